@@ -1,0 +1,53 @@
+# camlab: two commands on a fresh machine with only python3 and make.
+#   make lab    set up .venv and open the course in JupyterLab (LAB_ARGS=--no-browser for headless)
+#   make test   set up .venv with the test extra and run everything
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+LAB_ARGS ?=
+PYTEST_ARGS ?=
+
+.PHONY: lab test test-fast bench strip browser-deps clean
+
+$(BIN)/python:
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+
+$(VENV)/.installed-lab: pyproject.toml | $(BIN)/python
+	$(BIN)/python -m pip install --quiet -e .
+	touch $@
+
+$(VENV)/.installed-test: pyproject.toml | $(BIN)/python
+	$(BIN)/python -m pip install --quiet -e ".[test]"
+	touch $(VENV)/.installed-lab $@
+
+lab: $(VENV)/.installed-lab
+	$(BIN)/jupyter lab lessons/00_start_here.ipynb $(LAB_ARGS)
+
+# Debian's chromium serves the browser test; never `playwright install` (it downloads).
+browser-deps:
+	@command -v chromium >/dev/null 2>&1 || [ -x /usr/bin/chromium ] || { \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	    echo "installing Debian chromium for the browser test"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null; \
+	  else \
+	    echo "chromium is missing: install it (apt-get install chromium) or set CAMLAB_SKIP_BROWSER=1"; \
+	  fi; }
+
+# Unit, property, doctest, widget, exercise, lesson (nbval) and browser tests in one run.
+test: $(VENV)/.installed-test browser-deps
+	$(BIN)/python -m pytest -n 2 --dist loadfile --nbval-lax $(PYTEST_ARGS)
+
+# Everything but the notebooks and the browser: the quick loop while editing.
+test-fast: $(VENV)/.installed-test
+	$(BIN)/python -m pytest -n 2 --dist loadfile -m "not browser" camlab tests $(PYTEST_ARGS)
+
+bench: $(VENV)/.installed-test
+	MPLBACKEND=Agg $(BIN)/python benchmarks/run.py
+
+# Lessons are committed without outputs, execution counts or widget state.
+strip: $(VENV)/.installed-lab
+	$(BIN)/python tools/strip_notebooks.py lessons/*.ipynb
+
+clean:
+	rm -rf $(VENV) build *.egg-info

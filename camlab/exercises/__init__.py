@@ -1,0 +1,44 @@
+"""Exercise checks: ``check_<name>(student_function)`` and ``solution(name)``.
+
+Exercises are defined one module per lesson (``projective_plane.py``...). In a lesson::
+
+    from camlab.exercises import check_intersect_lines, solution
+    check_intersect_lines(intersect_lines)   # "not attempted yet" / diagnosis / well done
+    solution("intersect_lines")               # prints camlab's own implementation
+"""
+from __future__ import annotations
+
+import functools
+import importlib
+import pkgutil
+
+from ._core import EXERCISES, Exercise, check, register_exercise, same_up_to_scale, shape_problem
+from ._core import solution as _solution
+
+__all__ = ["EXERCISES", "Exercise", "all_exercises", "check", "register_exercise", "same_up_to_scale",
+           "shape_problem", "solution"]
+
+
+def all_exercises() -> dict[str, Exercise]:
+    """Import every lesson's exercise module and return the registry, by name."""
+    for module in pkgutil.iter_modules(__path__):
+        if not module.name.startswith("_"):
+            importlib.import_module(f"{__name__}.{module.name}")
+    return dict(EXERCISES)
+
+
+def solution(name: str) -> str:
+    """Print (and return) the source of camlab's implementation of exercise ``name``."""
+    if name not in all_exercises():
+        raise KeyError(f"solution: no exercise {name!r}; exercises are {sorted(EXERCISES)}")
+    return _solution(name)
+
+
+def __getattr__(attr: str):
+    if attr.startswith("check_"):
+        name = attr[len("check_"):]
+        if name in all_exercises():
+            fn = functools.partial(check, name)
+            fn.__doc__ = f"Check your `{name}` function; prints 'not attempted yet' for a stub."
+            return fn
+    raise AttributeError(f"module 'camlab.exercises' has no attribute {attr!r}")

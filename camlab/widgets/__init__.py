@@ -1,0 +1,27 @@
+"""Interactive demos, one module per lesson, all following the pattern in ``_base``.
+
+In a lesson::
+
+    %matplotlib widget
+    from camlab.widgets import projective_plane as demos
+    demos.parallel_lines()
+
+``all_demos()`` imports every lesson module and returns the registry that the headless
+tests and ``benchmarks/latency.py`` sweep.
+"""
+from __future__ import annotations
+
+import importlib
+import pkgutil
+
+from ._base import REGISTRY, Demo, DemoSpec, FigureView, build_demo, register, slider
+
+__all__ = ["Demo", "DemoSpec", "FigureView", "REGISTRY", "all_demos", "build_demo", "register", "slider"]
+
+
+def all_demos() -> dict[str, DemoSpec]:
+    """Import every lesson's demo module and return the registry, by demo name."""
+    for module in pkgutil.iter_modules(__path__):
+        if not module.name.startswith("_"):
+            importlib.import_module(f"{__name__}.{module.name}")
+    return dict(REGISTRY)

@@ -1,0 +1,190 @@
+"""The widget pattern every camlab demo follows.
+
+A demo builds its controls and one figure once. Each control change calls ``update``,
+which runs tested pure functions from camlab, moves existing artists (``set_data``,
+``set_array``...) and records what it computed in ``state``; the figure is then
+redrawn in place. Nothing is rebuilt per event, so sliders stay fast.
+
+The figure is shown according to the matplotlib backend:
+
+* ``ipympl`` (``%matplotlib widget``, what the lessons use): the figure's canvas is
+  itself a widget, redrawn with ``draw_idle`` and able to take mouse events;
+* ``png`` (any other backend inside a kernel, e.g. inline or Voila without ipympl): the
+  figure is rendered to an ``ipywidgets.Image`` after every change;
+* ``agg`` (no kernel: tests and benchmarks): the figure is drawn with Agg and nothing
+  is sent anywhere.
+"""
+from __future__ import annotations
+
+import io
+import os
+from dataclasses import dataclass, field
+from typing import Any, Callable, Mapping, Sequence
+
+import ipywidgets as W
+import matplotlib
+import numpy as np
+from matplotlib.figure import Figure
+
+
+def _display_mode() -> str:
+    forced = os.environ.get("CAMLAB_FIGURE_MODE")
+    if forced:
+        return forced
+    if "ipympl" in matplotlib.get_backend():
+        return "ipympl"
+    try:
+        from IPython import get_ipython
+
+        if get_ipython() is not None and getattr(get_ipython(), "kernel", None) is not None:
+            return "png"
+    except ImportError:  # IPython is always present with ipywidgets, but be safe
+        pass
+    return "agg"
+
+
+class FigureView:
+    """One matplotlib figure inside a widget, redrawn in place (see the module docstring)."""
+
+    def __init__(self, figsize: tuple[float, float] = (8, 4), mode: str | None = None, **subplots_kw: Any):
+        self.mode = mode or _display_mode()
+        if self.mode == "ipympl":
+            import matplotlib.pyplot as plt
+
+            with plt.ioff():  # the demo container displays the canvas, not pyplot
+                self.fig = plt.figure(figsize=figsize, layout="constrained")
+            canvas = self.fig.canvas
+            canvas.header_visible = False
+            canvas.footer_visible = False
+            canvas.toolbar_position = "left"
+            canvas.resizable = False
+            self.widget: W.Widget = canvas
+        else:
+            from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+            self.fig = Figure(figsize=figsize, layout="constrained")
+            FigureCanvasAgg(self.fig)
+            self.widget = W.Image(format="png", layout=W.Layout(max_width="100%"))
+
+    def refresh(self) -> None:
+        """Show the figure's current artists."""
+        if self.mode == "ipympl":
+            self.fig.canvas.draw_idle()
+        elif self.mode == "png":
+            buf = io.BytesIO()
+            self.fig.savefig(buf, format="png", dpi=self.fig.dpi)
+            self.widget.value = buf.getvalue()
+        else:
+            self.fig.canvas.draw()
+
+    def pixels(self) -> np.ndarray:
+        """The figure rendered now, as an (H, W, 4) uint8 array (for tests)."""
+        self.fig.canvas.draw()
+        return np.asarray(self.fig.canvas.buffer_rgba()).copy()
+
+
+@dataclass
+class Demo:
+    """A built demo: its container widget, named controls, figure view and latest state.
+
+    Display it by making it the last expression of a cell. Tests and benchmarks drive
+    it with ``demo.set(name=value)`` and read ``demo.state``.
+    """
+
+    name: str
+    widget: W.Widget
+    controls: dict[str, W.ValueWidget]
+    view: FigureView
+    state: dict[str, Any] = field(default_factory=dict)
+    updates: int = 0
+
+    @property
+    def figure(self) -> Figure:
+        return self.view.fig
+
+    def set(self, **values: Any) -> None:
+        """Set control values as a user would; observers fire and the figure updates."""
+        for key, value in values.items():
+            if key not in self.controls:
+                raise KeyError(f"{self.name}: no control {key!r}; controls are {sorted(self.controls)}")
+            self.controls[key].value = value
+
+    def _repr_mimebundle_(self, **kwargs: Any):
+        return self.widget._repr_mimebundle_(**kwargs)
+
+
+def build_demo(
+    name: str,
+    controls: Mapping[str, W.ValueWidget],
+    view: FigureView,
+    update: Callable[[dict[str, Any], dict[str, Any]], None],
+    *,
+    title: str = "",
+    extra: Sequence[W.Widget] = (),
+) -> Demo:
+    """Wire controls to ``update(values, state)`` and lay the demo out.
+
+    ``update`` receives every control's current value by name and the demo's state dict
+    to fill in; it moves artists but does not draw (the view redraws once afterwards).
+    """
+    state: dict[str, Any] = {}
+    demo_controls = dict(controls)
+    panel: list[W.Widget] = []
+    if title:
+        panel.append(W.HTML(f"<b>{title}</b>"))
+    panel += list(demo_controls.values()) + list(extra)
+    box = W.HBox(
+        [W.VBox(panel, layout=W.Layout(min_width="300px")), view.widget],
+        layout=W.Layout(align_items="flex-start"),
+    )
+    box.add_class(f"camlab-demo-{name.replace('_', '-')}")
+    demo = Demo(name=name, widget=box, controls=demo_controls, view=view, state=state)
+
+    def on_change(_change: Any = None) -> None:
+        update({k: c.value for k, c in demo_controls.items()}, state)
+        demo.updates += 1
+        view.refresh()
+
+    for control in demo_controls.values():
+        control.observe(on_change, names="value")
+    on_change()
+    return demo
+
+
+def slider(value: float, lo: float, hi: float, step: float, description: str, **kw: Any) -> W.FloatSlider:
+    """A float slider that reports while dragging, with a readable label width."""
+    return W.FloatSlider(
+        value=value, min=lo, max=hi, step=step, description=description,
+        continuous_update=True, style={"description_width": "initial"},
+        layout=W.Layout(width="300px"), **kw,
+    )
+
+
+@dataclass(frozen=True)
+class DemoSpec:
+    """A registered demo: how to build it and the control values to sweep it through."""
+
+    name: str
+    lesson: str
+    builder: Callable[[], Demo]
+    sweep: dict[str, Sequence[Any]]
+
+
+REGISTRY: dict[str, DemoSpec] = {}
+
+
+def register(lesson: str, sweep: Mapping[str, Sequence[Any]]):
+    """Decorator: register a demo builder with the values to sweep each control through.
+
+    The benchmark and the headless widget tests drive every registered demo with its
+    sweep, so a new demo is measured and tested as soon as it is registered.
+    """
+
+    def deco(builder: Callable[[], Demo]) -> Callable[[], Demo]:
+        name = builder.__name__
+        if name in REGISTRY and REGISTRY[name].builder.__module__ != builder.__module__:
+            raise ValueError(f"register: a demo named {name!r} is already registered by {REGISTRY[name].builder.__module__}")
+        REGISTRY[name] = DemoSpec(name, lesson, builder, {k: list(v) for k, v in sweep.items()})
+        return builder
+
+    return deco
