@@ -215,7 +215,8 @@ def estimate_homography(src: ArrayLike, dst: ArrayLike, normalize: bool = True) 
 
     with :math:`x = (u, v, 1)`. Stacking the pairs gives :math:`A h = 0`, and the unit
     vector minimising :math:`\|A h\|` is the right singular vector of A with the smallest
-    singular value. With pixel coordinates the columns of A differ in size by factors up
+    singular value (equivalently the eigenvector of :math:`A^T A` with the smallest
+    eigenvalue, which is what the normalised path computes). With pixel coordinates the columns of A differ in size by factors up
     to :math:`u u' \approx 10^5`, so noise is amplified; Hartley's normalisation first
     maps each point set with a similarity T (:func:`hartley_normalization`), solves for
     :math:`\hat H` there, and returns :math:`H = T'^{-1} \hat H T`.
@@ -254,22 +255,27 @@ def estimate_homography(src: ArrayLike, dst: ArrayLike, normalize: bool = True) 
     dn, Td = _normalize_batch(d)
     _check_general_position(sn, "src")
     _check_general_position(dn, "dst")
-    if normalize:
+    if normalize and len(s) > 4:
+        # In normalised coordinates A is well conditioned, so the eigenvector of the 9x9
+        # A^T A with the smallest eigenvalue (= sigma^2) is as accurate as the SVD of A
+        # (1e-12 in the tests) and avoids a LAPACK factorisation of the tall A, which is
+        # slow under multithreaded BLAS on a busy machine.
         A = _dlt_rows(sn, dn)
+        ev, V = np.linalg.eigh(np.einsum("ni,nj->ij", A, A))
+        sv = np.sqrt(np.clip(ev[::-1], 0, None))
+        h, rank_tol = V[:, 0], 1e-7
     else:
-        A = _dlt_rows(s, d)
-    # The SVD of the small triangular factor R (A = QR) has the same singular values and
-    # right singular vectors as A, and is much cheaper than an SVD of the tall A.
-    R = np.linalg.qr(A, mode="r") if len(A) > 9 else A
-    _, sv, vt = np.linalg.svd(R)
-    if len(sv) < 9:  # exactly 4 pairs: 8 equations, the null space is the 9th vector
-        sv = np.append(sv, 0.0)
-    if sv[-2] < _RANK_TOL * sv[0]:
+        A = _dlt_rows(sn, dn) if normalize else _dlt_rows(s, d)
+        _, sv, vt = np.linalg.svd(A)
+        if len(sv) < 9:  # exactly 4 pairs: 8 equations, the null space is the 9th vector
+            sv = np.append(sv, 0.0)
+        h, rank_tol = vt[-1], _RANK_TOL
+    if sv[-2] < rank_tol * sv[0]:
         raise DegenerateError(
             "estimate_homography: the point pairs do not fix a unique homography (the DLT system has "
             "more than one null vector); pick at least 4 points in general position, no 3 on a line"
         )
-    H = vt[-1].reshape(3, 3)
+    H = h.reshape(3, 3)
     if normalize:
         H = np.linalg.solve(Td, H @ Ts)  # H = Td^-1 Hn Ts
     return normalize_homography(H)
@@ -306,9 +312,14 @@ def symmetric_transfer_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np
 
 def _project_batch(H: np.ndarray, p: np.ndarray) -> np.ndarray:
     """Map (N, 2) points by a stack of homographies (B, 3, 3): (B, 2, N), NaN/inf at infinity."""
-    y = H[:, :, :2] @ p.T + H[:, :, 2:]          # (B, 3, N): one matrix product per hypothesis
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return y[:, :2] / y[:, 2:]
+    # Plain broadcasting (B, 1) * (1, N) rather than a batched matrix product: it does
+    # not go through multithreaded BLAS, which is slow for many tiny products.
+    u, v = p[:, 0], p[:, 1]
+    h = H.reshape(len(H), 9, 1)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        iw = 1.0 / (h[:, 6] * u + h[:, 7] * v + h[:, 8])
+        return np.stack([(h[:, 0] * u + h[:, 1] * v + h[:, 2]) * iw,
+                         (h[:, 3] * u + h[:, 4] * v + h[:, 5]) * iw], axis=1)
 
 
 def _sym_err_batch(H: np.ndarray, Hinv: np.ndarray, s: np.ndarray, d: np.ndarray) -> np.ndarray:
