@@ -19,6 +19,7 @@ in the order top-left, top-right, bottom-right, bottom-left (clockwise on screen
 """
 from __future__ import annotations
 
+import functools
 from typing import NamedTuple, Sequence
 
 import numpy as np
@@ -31,7 +32,7 @@ from .warp import warp_perspective
 
 __all__ = [
     "AspectRatio", "DocumentNotFoundError", "PlanePhoto", "Rectified", "check_quadrilateral",
-    "estimate_aspect_ratio", "facade_texture", "find_document", "look_at_plane", "order_corners",
+    "estimate_aspect_ratio", "facade_texture", "find_document", "look_at_plane", "order_corners", "rectangle_homography",
     "page_texture", "painting_texture", "photograph_plane", "rectify_quadrilateral", "sample_photo",
 ]
 
@@ -271,6 +272,21 @@ class Rectified(NamedTuple):
     aspect: AspectRatio | None
 
 
+def rectangle_homography(corners: ArrayLike, width: int, height: int) -> np.ndarray:
+    """The homography taking corners TL, TR, BR, BL to the upright width x height rectangle.
+
+    The target corners are the centres of the rectangle's corner pixels:
+    (0, 0), (width - 1, 0), (width - 1, height - 1), (0, height - 1).
+
+    >>> H = rectangle_homography([[10, 10], [110, 10], [110, 60], [10, 60]], 101, 51)
+    >>> map_points(H, [110.0, 60.0]).round(9) + 0.0
+    array([100.,  50.])
+    """
+    q = _quad(corners)
+    target = np.array([[0, 0], [width - 1, 0], [width - 1, height - 1], [0, height - 1]], dtype=float)
+    return estimate_homography(q, target)
+
+
 def rectify_quadrilateral(
     image: ArrayLike,
     corners: ArrayLike,
@@ -330,8 +346,7 @@ def rectify_quadrilateral(
             raise CamlabInputError(f"size: expected (width, height) in pixels, got {size!r}") from None
     if w_out < 2 or h_out < 2 or w_out * h_out > 40_000_000:
         raise CamlabInputError(f"size: expected a (width, height) of at least 2 x 2 pixels, got ({w_out}, {h_out})")
-    target = np.array([[0, 0], [w_out - 1, 0], [w_out - 1, h_out - 1], [0, h_out - 1]], dtype=float)
-    H = estimate_homography(q, target)
+    H = rectangle_homography(q, w_out, h_out)
     out = warp_perspective(img, H, (h_out, w_out), interpolation=interpolation, method=method)
     return Rectified(out, H, q, aspect)
 
@@ -400,10 +415,12 @@ def find_document(image: ArrayLike, min_area_fraction: float = 0.1) -> np.ndarra
 
 # --------------------------------------------------------------------------- synthetic photos
 
+@functools.lru_cache(maxsize=8)
 def page_texture(width: int = 420, height: int = 594, seed: int = 0) -> np.ndarray:
     """A printed page (A4 proportions, 1 : sqrt 2): title, paragraphs of text, a figure box.
 
-    Returns an (height, width, 3) uint8 RGB image drawn with ``cv2.putText``.
+    Returns an (height, width, 3) uint8 RGB image drawn with ``cv2.putText`` (cached and
+    read-only, like the other textures).
     """
     import cv2
 
@@ -428,9 +445,11 @@ def page_texture(width: int = 420, height: int = 594, seed: int = 0) -> np.ndarr
     cv2.rectangle(page, (x0, y0), (x1, y1), (60, 90, 160), 2)
     cv2.line(page, (x0, y1), (x1, y0), (200, 60, 40), 2, cv2.LINE_AA)
     cv2.circle(page, ((x0 + x1) // 2, (y0 + y1) // 2), (y1 - y0) // 4, (40, 140, 60), 2, cv2.LINE_AA)
+    page.flags.writeable = False  # cached: copy before drawing on it
     return page
 
 
+@functools.lru_cache(maxsize=8)
 def facade_texture(width: int = 480, height: int = 360, floors: int = 4, bays: int = 6) -> np.ndarray:
     """A building facade: brick-coloured wall, a grid of windows, a door. (h, w, 3) uint8."""
     import cv2
@@ -452,9 +471,11 @@ def facade_texture(width: int = 480, height: int = 360, floors: int = 4, bays: i
     b = bays // 2
     x0, x1 = int(b * cw + 0.25 * cw), int(b * cw + 0.75 * cw)
     cv2.rectangle(wall, (x0, int(height - 0.85 * ch)), (x1, height - 1), (90, 60, 40), -1)
+    wall.flags.writeable = False  # cached: copy before drawing on it
     return wall
 
 
+@functools.lru_cache(maxsize=8)
 def painting_texture(width: int = 400) -> np.ndarray:
     """A framed painting: matplotlib's bundled Grace Hopper portrait inside a gold frame.
 
@@ -482,7 +503,19 @@ def painting_texture(width: int = 400) -> np.ndarray:
     frame[:] = (170, 130, 50)
     cv2.rectangle(frame, (6, 6), (width - 7, frame.shape[0] - 7), (210, 170, 80), 4)
     frame[20:-20, 20:-20] = art
+    frame.flags.writeable = False  # cached: copy before drawing on it
     return frame
+
+
+@functools.lru_cache(maxsize=4)
+def _desk(h: int, w: int, seed: int) -> np.ndarray:
+    """A dark wooden-desk background (cached: demos re-photograph on every slider move)."""
+    rng = np.random.default_rng(seed)
+    yy, xx = np.mgrid[0:h, 0:w]
+    base = 70 + 25 * np.sin(xx / 37.0) * np.cos(yy / 53.0) + rng.normal(0, 4, (h, w))
+    bg = np.clip(np.stack([base * 0.9, base * 0.75, base * 0.6], axis=-1), 0, 255).astype(np.uint8)
+    bg.flags.writeable = False
+    return bg
 
 
 class PlanePhoto(NamedTuple):
@@ -568,10 +601,7 @@ def photograph_plane(
     corners_tex = np.array([[0, 0], [tw - 1, 0], [tw - 1, th - 1], [0, th - 1]], dtype=float)
     corners = map_points(H, corners_tex)
     if background is None:
-        rng = np.random.default_rng(seed)
-        yy, xx = np.mgrid[0:h, 0:w]
-        base = 70 + 25 * np.sin(xx / 37.0) * np.cos(yy / 53.0) + rng.normal(0, 4, (h, w))
-        bg = np.clip(np.stack([base * 0.9, base * 0.75, base * 0.6], axis=-1), 0, 255).astype(np.uint8)
+        bg = _desk(h, w, seed)
     else:
         bg = np.asarray(background, dtype=np.uint8)
     photo = warp_perspective(tex, H, (h, w), method=method)
