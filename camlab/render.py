@@ -47,7 +47,7 @@ from . import sensor as _sensor
 from ._validate import CamlabInputError, as_points, check_matrix, check_positive
 
 __all__ = [
-    "Defocus", "GroundTruth", "Plane", "PlanePoints", "RenderResult", "Sensor", "box", "checkerboard",
+    "Defocus", "GroundTruth", "align_detected_corners", "Plane", "PlanePoints", "RenderResult", "Sensor", "box", "checkerboard",
     "look_at", "photo_plane", "project", "render", "rotation_from_euler", "sample_photo", "text_page",
     "textured_plane",
 ]
@@ -198,7 +198,7 @@ def checkerboard(pattern_size: tuple[int, int] = (9, 6), square: float = 0.025, 
 
     >>> b = checkerboard((4, 3), 0.03)
     >>> b.points.shape, b.points[1], b.texture.shape
-    ((12, 2), array([0.03, 0.  ]), (288, 384))
+    ((12, 2), array([0.03, 0.  ]), (288, 336))
     """
     try:
         cols, rows = (int(v) for v in pattern_size)
@@ -433,6 +433,23 @@ def project(points_world: ArrayLike, K: ArrayLike, R: ArrayLike = np.eye(3), t: 
     xy[Xc[:, 2] <= 0] = np.nan
     xd = _dist._distort(xy, _dist.as_dist(dist))
     return pts.restore(_dist._to_pixels(xd, K))
+
+
+def align_detected_corners(detected: ArrayLike, truth_pixels: ArrayLike) -> np.ndarray:
+    """Reorder detector output to match the ground truth's corner order.
+
+    ``cv2.findChessboardCorners[SB]`` may return a board's corners in reverse order (it
+    cannot always tell a board from its 180-degree rotation). Accepts OpenCV 4's
+    (N, 1, 2) or OpenCV 5's (N, 2) corners; returns (N, 2), reversed if that matches
+    ``truth_pixels`` better.
+    """
+    det = np.asarray(detected, dtype=float).reshape(-1, 2)
+    gt = as_points(truth_pixels, 2, "truth_pixels").array
+    if det.shape != gt.shape:
+        raise CamlabInputError(f"detected: expected {gt.shape[0]} corners like truth_pixels, got {det.shape[0]}")
+    if np.sum((det[::-1] - gt) ** 2) < np.sum((det - gt) ** 2):
+        det = det[::-1]
+    return det.copy()
 
 
 # ------------------------------------------------------------------------- rendering
