@@ -454,19 +454,25 @@ def align_detected_corners(detected: ArrayLike, truth_pixels: ArrayLike) -> np.n
 
 # ------------------------------------------------------------------------- rendering
 
-def _texture_level(tex: np.ndarray, level: int, cache: dict) -> np.ndarray:
+_MIP_CACHE: dict = {}
+
+
+def _texture_level(tex: np.ndarray, level: int) -> np.ndarray:
+    """``tex`` halved ``level`` times with area averaging, cached while ``tex`` is alive."""
+    import weakref
+
     import cv2
 
-    key = (id(tex), level)
-    if key not in cache:
-        a = tex if level == 0 else _texture_level(tex, level - 1, cache)
-        if level > 0:
-            a = cv2.resize(a, (max(1, a.shape[1] // 2), max(1, a.shape[0] // 2)), interpolation=cv2.INTER_AREA)
-        cache[key] = a
-    return cache[key]
-
-
-_MIP_CACHE: dict = {}
+    entry = _MIP_CACHE.get(id(tex))
+    if entry is None or entry[0]() is not tex:
+        entry = (weakref.ref(tex), [tex])
+        _MIP_CACHE[id(tex)] = entry
+        weakref.finalize(tex, _MIP_CACHE.pop, id(tex), None)
+    levels = entry[1]
+    while len(levels) <= level:
+        a = levels[-1]
+        levels.append(cv2.resize(a, (max(1, a.shape[1] // 2), max(1, a.shape[0] // 2)), interpolation=cv2.INTER_AREA))
+    return levels[level]
 
 
 def _disk_kernel(diameter: float) -> np.ndarray:
@@ -612,7 +618,7 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
         while level < 8 and (x1 - x0) / (p.texture.shape[1] >> (level + 1) or 1) < mpp \
                 and (p.texture.shape[1] >> (level + 1)) >= 2 and (p.texture.shape[0] >> (level + 1)) >= 2:
             level += 1
-        tex = _texture_level(p.texture, level, _MIP_CACHE)
+        tex = _texture_level(p.texture, level)
         th, tw = tex.shape[:2]
         S = np.array([[(x1 - x0) / tw, 0, x0 + 0.5 * (x1 - x0) / tw],
                       [0, (y1 - y0) / th, y0 + 0.5 * (y1 - y0) / th], [0, 0, 1]])
