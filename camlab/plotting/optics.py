@@ -72,7 +72,7 @@ def draw_thin_lens(ax, focal_length: float, object_distance: float, height: floa
         "object": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="-|>", color="tab:green", lw=2)),
         "image": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="-|>", color="tab:red", lw=2)),
         "rays": [ax.plot([], [], color=c, lw=1)[0] for c in ("tab:orange", "tab:purple", "tab:brown")],
-        "text": ax.text(0.02, 0.97, "", transform=ax.transAxes, va="top", fontsize=9, family="monospace"),
+        "text": ax.text(0.02, 0.03, "", transform=ax.transAxes, va="bottom", fontsize=9, family="monospace"),
         "height": height,
     }
     ax.set_xlabel("distance along the optical axis (m)")
