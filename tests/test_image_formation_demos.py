@@ -46,7 +46,7 @@ def test_pinhole_size_regimes():
     assert demo.state["limited_by"] == "diffraction"
     demo.set(diameter_mm=2.0)
     assert demo.state["limited_by"] == "geometry"
-    assert demo.state["best_mm"] == pytest.approx(0.366, abs=0.01)
+    assert demo.state["best_mm"] == pytest.approx(np.sqrt(2.44 * 550e-9 * 0.1 / 1.1) * 1e3)  # object at 1 m
 
 
 def test_thin_lens_and_dof_state():
