@@ -51,8 +51,8 @@ def test_pinhole_size_regimes():
 
 def test_thin_lens_and_dof_state():
     demo = lenses_and_distortion.thin_lens()
-    demo.set(focal_mm=50, object_m=0.1)
-    assert demo.state["image_distance"] == pytest.approx(0.1) and demo.state["magnification"] == pytest.approx(-1)
+    demo.set(focal_mm=40, object_m=0.12)
+    assert demo.state["image_distance"] == pytest.approx(0.06) and demo.state["magnification"] == pytest.approx(-0.5)
     dof = lenses_and_distortion.depth_of_field()
     dof.set(f_number=16.0, focus_m=1.2)
     wide = dof.state["far"] - dof.state["near"]
