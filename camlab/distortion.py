@@ -161,24 +161,7 @@ def undistort_points(
     pts = as_points(points, 2, "points")
     d = as_dist(dist)
     target = pts.array
-    x = target.copy()
-    if not d.any():
-        return pts.restore(x)
-    res = np.inf
-    for _ in range(max_iter):
-        r = _distort(x, d) - target
-        res = np.abs(r).max(axis=1)
-        if res.max() <= tol:
-            break
-        J = _jacobian(x, d)
-        det = J[:, 0, 0] * J[:, 1, 1] - J[:, 0, 1] * J[:, 1, 0]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            dx = (J[:, 1, 1] * r[:, 0] - J[:, 0, 1] * r[:, 1]) / det
-            dy = (-J[:, 1, 0] * r[:, 0] + J[:, 0, 0] * r[:, 1]) / det
-        x = x - np.stack([dx, dy], axis=1)
-        x[~np.isfinite(x)] = np.inf
-    else:
-        res = np.abs(_distort(x, d) - target).max(axis=1)
+    x, res = _newton_undistort(target, d, tol, max_iter)
     bad = ~(res <= max(tol, 1e-9))
     if bad.any():
         i = int(np.argmax(bad))
@@ -189,6 +172,35 @@ def undistort_points(
             f"where distortion folds over and has no unique inverse"
         )
     return pts.restore(x)
+
+
+def _newton_undistort(target: np.ndarray, d: np.ndarray, tol: float = 1e-12, max_iter: int = 30):
+    """Newton iterations for :func:`undistort_points`; returns (x, max-abs residual per point)."""
+    x = target.copy()
+    if not d.any():
+        return x, np.zeros(len(x))
+    res = np.full(len(x), np.inf)
+    for _ in range(max_iter):
+        r = _distort(x, d) - target
+        res = np.abs(r).max(axis=1)
+        if not (res > tol).any():
+            break
+        J = _jacobian(x, d)
+        det = J[:, 0, 0] * J[:, 1, 1] - J[:, 0, 1] * J[:, 1, 0]
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            dx = (J[:, 1, 1] * r[:, 0] - J[:, 0, 1] * r[:, 1]) / det
+            dy = (-J[:, 1, 0] * r[:, 0] + J[:, 0, 0] * r[:, 1]) / det
+            x = x - np.stack([dx, dy], axis=1)
+        x[~np.isfinite(x)] = 1e6
+    else:
+        with np.errstate(over="ignore", invalid="ignore"):
+            res = np.abs(_distort(x, d) - target).max(axis=1)
+    res = np.where(np.isfinite(res), res, np.inf)
+    # a root beyond the fold (slope of r L(r) <= 0) is not the physical inverse either
+    with np.errstate(over="ignore", invalid="ignore"):
+        beyond = np.hypot(x[:, 0], x[:, 1]) > max_valid_radius(d)
+    res[beyond] = np.inf
+    return x, res
 
 
 def radial_scale(r: ArrayLike, dist: ArrayLike | None) -> np.ndarray:
@@ -340,7 +352,9 @@ def _distort_map_cached(Kb: bytes, db: bytes, newKb: bytes, w: int, h: int, step
     gv = np.arange(0, h + step, step, dtype=float)
     U, V = np.meshgrid(gu, gv)
     xy = _normalise(np.stack([U.ravel(), V.ravel()], axis=1) - 0.0, K)
-    ideal = _to_pixels(undistort_points(xy, d), new_K)
+    x, res = _newton_undistort(xy, d)
+    x[~(res <= 1e-9)] = -1e4  # beyond the fold of the model: sample far outside (background)
+    ideal = _to_pixels(x, new_K)
     coarse_u = ideal[:, 0].reshape(V.shape).astype(np.float32)
     coarse_v = ideal[:, 1].reshape(V.shape).astype(np.float32)
     if step == 1:
@@ -365,10 +379,8 @@ def distort_map(K: ArrayLike, dist: ArrayLike | None, size: tuple[int, int],
     exactly every ``step`` pixels and interpolated bilinearly in between (``step=1``: exact
     everywhere). Results are cached and read-only.
 
-    Raises
-    ------
-    ConvergenceError
-        If the image corners lie beyond the valid radius of ``dist``.
+    Pixels beyond the fold of the model (no physical inverse, see :func:`max_valid_radius`)
+    map far outside the ideal image, so ``cv2.remap`` fills them with its border value.
     """
     K = _check_K(K)
     new_K = K if new_K is None else _check_K(new_K)

@@ -535,8 +535,10 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
     ------
     CamlabInputError
         A plane reaches behind the camera (z_cam <= 1 mm), bad K/pose/size, bad sensor settings.
-    ConvergenceError
-        The distortion folds over inside the image (undistortion of the image border fails).
+
+    Where the distortion model folds over inside the image (strong barrel distortion at
+    the corners, beyond :func:`camlab.distortion.max_valid_radius`) no ideal ray maps to the
+    pixel and it shows the background.
 
     Examples
     --------
@@ -595,7 +597,10 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
             np.column_stack([np.full(64, -0.5), np.linspace(-0.5, h - 0.5, 64)]),
             np.column_stack([np.full(64, w - 0.5), np.linspace(-0.5, h - 0.5, 64)]),
         ])
-        ideal = _dist.undistort_pixels(border, K, d)
+        x, res = _dist._newton_undistort(_dist._normalise(border, K), d)
+        ideal = _dist._to_pixels(x[res <= 1e-9], K)  # pixels beyond the model's fold see background
+        if len(ideal) == 0:
+            ideal = np.array([[-0.5, -0.5], [w - 0.5, h - 0.5]])
         lo = np.minimum(ideal.min(axis=0), [-0.5, -0.5]) - 2
         hi = np.maximum(ideal.max(axis=0), [w - 0.5, h - 0.5]) + 2
         lo = np.maximum(lo, [-1.5 * w, -1.5 * h])  # cap the canvas at 4x the image in each direction
