@@ -44,6 +44,12 @@ def draw_pinhole_3d(ax, edges: np.ndarray, f_draw: float, plane_half: float = 0.
     ax.view_init(elev=18, azim=-62)
     art["plane_half"] = plane_half
     update_pinhole_3d(art, edges, f_draw)
+    pts = edges.reshape(-1, 3)
+    half = max(plane_half, np.abs(pts[:, :2]).max()) * 1.15
+    ax.set_xlim(-1.3 * f_draw, pts[:, 2].max() * 1.05)
+    ax.set_ylim(-half, half)
+    ax.set_zlim(-half, half)
+    ax.set_box_aspect((3, 1.2, 1.2))
     return art
 
 
