@@ -46,10 +46,11 @@ from numpy.typing import ArrayLike
 from . import features as _feat
 from . import homography as _hg
 from ._validate import CamlabInputError, DegenerateError
+from .projective import map_points
 from .warp import canvas_bounds, warp_perspective
 
 __all__ = ["BLENDS", "MatchGraph", "PairRegistration", "PairReport", "StitchResult", "WarpedImages", "blend",
-           "cylindrical_warp", "feather_weights", "gain_compensation", "laplacian_blend", "match_graph",
+           "canvas_box", "cylindrical_warp", "feather_weights", "gain_compensation", "laplacian_blend", "match_graph",
            "prepare_images", "register_pair", "seam_masks", "stitch", "warp_images"]
 
 BLENDS = ("overwrite", "feather", "multiband")
@@ -322,6 +323,37 @@ def cylindrical_warp(image: ArrayLike, K: ArrayLike) -> tuple[np.ndarray, np.nda
 
 
 # --------------------------------------------------------------------------- warping
+
+def canvas_box(homographies: Sequence[ArrayLike], shapes: Sequence[Sequence[int]]) -> np.ndarray:
+    r"""The panorama's bounds: the bounding box of every image's corners mapped by its homography.
+
+    The corner pixels (0, 0), (w-1, 0), (w-1, h-1), (0, h-1) of image k are mapped by
+    :math:`H_k` (dividing by the third coordinate), and the box is rounded outwards to
+    whole pixels. The canvas is then :math:`u_{max} - u_{min} + 1` pixels wide and
+    :math:`T = \begin{pmatrix} 1 & 0 & -u_{min} \\ 0 & 1 & -v_{min} \\ 0 & 0 & 1 \end{pmatrix}`
+    moves its top-left corner to (0, 0): that is :func:`camlab.warp.canvas_bounds`, which
+    the pipeline uses (and which also refuses corners at infinity).
+
+    Returns
+    -------
+    (2, 2) ndarray
+        ``[[u_min, v_min], [u_max, v_max]]`` in pixels.
+
+    >>> canvas_box([np.eye(3), [[1, 0, 50], [0, 1, -30], [0, 0, 1]]], [(240, 320), (240, 320)])
+    array([[  0., -30.],
+           [369., 239.]])
+    """
+    if len(homographies) != len(shapes) or not len(shapes):
+        raise CamlabInputError(f"shapes: expected one shape per homography, got {len(shapes)} for {len(homographies)}")
+    pts = []
+    for H, shape in zip(homographies, shapes):
+        h, w = shape[:2]
+        pts.append(map_points(np.asarray(H, dtype=float), [[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]]))
+    allp = np.vstack(pts)
+    if not np.all(np.isfinite(allp)):
+        raise DegenerateError("canvas_box: a corner maps to infinity; the image crosses the horizon of its homography")
+    return np.array([np.floor(allp.min(axis=0) + 1e-9), np.ceil(allp.max(axis=0) - 1e-9)])
+
 
 def feather_weights(shape: Sequence[int]) -> np.ndarray:
     r"""Feathering weights of an image: each pixel's distance to the nearest image border.
