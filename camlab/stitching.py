@@ -435,7 +435,7 @@ def warp_images(images: Sequence[np.ndarray], homographies: Sequence[np.ndarray]
     return WarpedImages(out_i, out_m, out_w, out_h, T)
 
 
-def gain_compensation(warped: WarpedImages, sigma_n: float = 10.0 / 255, sigma_g: float = 0.1,
+def gain_compensation(warped: WarpedImages, sigma_n: float = 10.0 / 255, sigma_g: float = 1.0,
                       reference: int | None = None) -> np.ndarray:
     r"""One exposure gain per image so that overlapping regions agree (Brown & Lowe 2007, sec. 6).
 
