@@ -119,7 +119,7 @@ def to_gray_uint8(image: ArrayLike, name: str = "image") -> np.ndarray:
             f"{name}: expected a (H, W) grey or (H, W, 3|4) colour image at least 8 x 8 pixels, got shape {img.shape}"
         )
     if img.ndim == 3:
-        img = img[..., 0] if img.shape[2] == 1 else img[..., :3].astype(float) @ np.array([0.299, 0.587, 0.114])
+        img = img[..., 0] if img.shape[2] == 1 else img[..., :3].astype(float) @ np.array([299.0, 587.0, 114.0]) / 1000
     if np.issubdtype(np.asarray(image).dtype, np.floating):
         img = np.asarray(img, dtype=float) * 255.0
     elif np.asarray(image).dtype == np.uint16:

@@ -51,7 +51,7 @@ from .warp import canvas_bounds, warp_perspective
 
 __all__ = ["BLENDS", "MatchGraph", "PairRegistration", "PairReport", "StitchResult", "WarpedImages", "blend",
            "canvas_box", "cylindrical_warp", "feather_weights", "gain_compensation", "laplacian_blend", "match_graph",
-           "prepare_images", "register_pair", "seam_masks", "stitch", "warp_images"]
+           "prepare_images", "register_pair", "seam_masks", "seam_step", "stitch", "warp_images"]
 
 BLENDS = ("overwrite", "feather", "multiband")
 
@@ -491,6 +491,30 @@ def seam_masks(weights: Sequence[np.ndarray]) -> list[np.ndarray]:
     best = np.argmax(W, axis=0)
     covered = W.max(axis=0) > 0
     return [(best == k) & covered for k in range(len(weights))]
+
+
+def seam_step(image: np.ndarray, seam: np.ndarray, overlap: np.ndarray, width: int = 4) -> float:
+    """How visible a vertical seam is: the mean brightness step across it, in the image's units.
+
+    For every row, the seam is where ``seam`` (one image's seam mask) switches on or off
+    inside ``overlap``; the step is the mean luminance of the ``width`` pixels after it
+    minus the ``width`` pixels before it. Texture averages out over the rows (its
+    differences have both signs); an exposure jump does not. Returns the absolute mean
+    step (0 for a perfect blend; the exposure difference times the brightness for
+    overwrite), or 0.0 if there is no seam.
+    """
+    lum = np.asarray(image, dtype=float)
+    lum = lum.mean(axis=2) if lum.ndim == 3 else lum
+    steps = []
+    for r in range(lum.shape[0]):
+        cols = np.flatnonzero((seam[r, 1:] != seam[r, :-1]) & overlap[r, 1:] & overlap[r, :-1])
+        for c in cols:
+            lo, hi = c + 1 - width, c + 1 + width
+            if lo < 0 or hi > lum.shape[1] or not overlap[r, lo:hi].all():
+                continue
+            sign = 1.0 if seam[r, c + 1] else -1.0  # orient: from the other image into this one
+            steps.append(sign * (lum[r, c + 1:hi].mean() - lum[r, lo:c + 1].mean()))
+    return float(abs(np.mean(steps))) if steps else 0.0
 
 
 def _fill_outside(img: np.ndarray, mask: np.ndarray, levels: int) -> np.ndarray:

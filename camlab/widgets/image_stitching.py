@@ -242,19 +242,23 @@ def blending_seams() -> Demo:
     """Overwrite, feather and multi-band blending of two differently exposed views, with a zoom on the seam."""
     wi, gains = _pair_warp()
     seam = st.seam_masks(wi.weights)[0]
-    # a zoom window centred on the seam, half way down
     hh, ww = wi.shape
-    row = hh // 2
-    cols = np.flatnonzero(np.diff(seam[row].astype(int)) != 0)
-    c0 = int(cols[len(cols) // 2]) if len(cols) else ww // 2
-    z = 60
-    zu, zv = int(np.clip(c0 - z // 2, 0, ww - z)), int(np.clip(row - z // 2, 0, hh - z))
+    row, z = hh // 2, 60
+
+    def window(mask: np.ndarray) -> tuple[int, int]:
+        """A z x z zoom window centred where ``mask`` switches on/off in the middle row."""
+        cols = np.flatnonzero(np.diff(mask[row].astype(int)) != 0)
+        c0 = int(cols[0]) if len(cols) else ww // 2
+        return int(np.clip(c0 - z // 2, 0, ww - z)), int(np.clip(row - z // 2, 0, hh - z))
+
+    # overwrite's seam is the border of the image painted last; the others' is the middle seam
+    windows = {"overwrite": window(wi.masks[1]), "feather": window(seam), "multiband": window(seam)}
     view = FigureView(figsize=(9, 3.4))
     ax, ax_z = view.fig.subplots(1, 2, width_ratios=[2.2, 1])
     im = view.animate(ax.imshow(np.zeros((hh, ww, 3), np.float32), interpolation="nearest"))
     from matplotlib.patches import Rectangle
 
-    ax.add_patch(Rectangle((zu - 0.5, zv - 0.5), z, z, fill=False, color="yellow", lw=1.5))
+    rect = view.animate(ax.add_patch(Rectangle((0, 0), z, z, fill=False, color="yellow", lw=1.5)))
     ax.set_xticks([])
     ax.set_yticks([])
     ax.set_title("two views, exposures differ by 30%", fontsize=9)
@@ -268,12 +272,12 @@ def blending_seams() -> Demo:
     def update(v: dict, state: dict) -> None:
         out = st.blend(wi, v["method"], gains=gains if v["gains"] else None, levels=int(v["levels"]))
         im.set_data(out)
+        zu, zv = windows[v["method"]]
+        rect.set_xy((zu - 0.5, zv - 0.5))
         imz.set_data(out[zv:zv + z, zu:zu + z])
-        # seam visibility: the mean brightness jump across the seam line inside the overlap
-        lum = out.mean(axis=2)
-        edge = seam[:, 1:] != seam[:, :-1]
-        edge &= both[:, 1:] & both[:, :-1]
-        jump = float(np.mean(np.abs(lum[:, 1:] - lum[:, :-1])[edge])) * 255 if edge.any() else 0.0
+        # the exposure step across the seam, grey levels; overwrite's seam is the last image's border
+        jump = 255 * (st.seam_step(out, wi.masks[1], wi.masks[0]) if v["method"] == "overwrite"
+                      else st.seam_step(out, seam, both))
         state.update(method=v["method"], seam_jump=jump, image=out)
         readout.value = _pre(f"blend: {v['method']}\ngains: {np.round(gains, 3).tolist() if v['gains'] else 'off'}\n"
                              f"mean step across the seam: {jump:.1f} grey levels")
