@@ -34,7 +34,7 @@ from ..camera import Camera, project_segments
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
 
 __all__ = ["AXIS_COLOURS", "CameraArtist", "SceneView", "axes3d", "draw_points", "draw_segments",
-           "draw_world_axes", "image_axes", "polyline_data", "set_equal_aspect", "update_segments"]
+           "draw_world_axes", "freeze_layout", "image_axes", "polyline_data", "set_equal_aspect", "update_segments"]
 
 
 def axes3d(fig, *args: Any, elev: float = 22.0, azim: float = -60.0, **kw: Any):
@@ -176,7 +176,7 @@ class CameraArtist:
 
     def __init__(self, ax, camera: Camera, size: float = 0.5, color: str = "tab:purple", label: str = "",
                  image: np.ndarray | None = None, image_lines: ArrayLike | None = None,
-                 show_axes: bool = True, image_grid: tuple[int, int] = (24, 18), line_color: str = "k"):
+                 show_axes: bool = True, image_grid: tuple[int, int] = (24, 18), line_color: str = "0.15"):
         from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
         self.ax, self.size, self.image_grid = ax, float(size), image_grid
@@ -193,7 +193,7 @@ class CameraArtist:
                                               ha="center", va="center"))
         (self.centre_marker,) = ax.plot([], [], [], "o", color=color, ms=4)
         self.label = ax.text(0, 0, 0, label, color=color, fontsize=9) if label else None
-        (self.lines,) = ax.plot([], [], [], color=line_color, lw=0.9)
+        (self.lines,) = ax.plot([], [], [], color=line_color, lw=0.6)
         self.mesh, self._pixels = None, None
         if image is not None:
             self.mesh = Poly3DCollection([np.zeros((4, 3))], lw=0.0)
@@ -273,7 +273,7 @@ class SceneView:
 
     def __init__(self, fig, camera: Camera, segments: ArrayLike, extent: ArrayLike | None = None,
                  axes: tuple | None = None, plane_size: float = 0.8, world_axes: float = 0.8,
-                 image_title: str = "camera image", elev: float = 22.0, azim: float = -60.0,
+                 image_title: str = "camera image", elev: float = 24.0, azim: float = 15.0,
                  axis_off: bool = True):
         self.segments = np.asarray(segments, dtype=float)
         if axes is None:
@@ -290,22 +290,40 @@ class SceneView:
         self.world = draw_segments(ax3, self.segments)
         pix = project_segments(camera, self.segments)
         self.camera_artist = CameraArtist(ax3, camera, size=plane_size, image_lines=pix, label="C")
-        pts = [self.segments.reshape(-1, 3), self.camera_artist.extent_points()]
-        if extent is not None:
-            pts.append(np.reshape(np.asarray(extent, dtype=float), (-1, 3)))
-        set_equal_aspect(ax3, pts, zoom=1.45 if axis_off else 1.0)
+        self.extent = None if extent is None else np.reshape(np.asarray(extent, dtype=float), (-1, 3))
+        self.zoom = 1.25 if axis_off else 1.0
+        self._fit()
         image_axes(ax2, camera.image_size, image_title, labels=not axis_off)
         d = polyline_data(pix)
         (self.image_lines,) = ax2.plot(d[:, 0], d[:, 1], color="k", lw=1.2)
         self.camera = camera
 
+    def _fit(self) -> None:
+        pts = [self.segments.reshape(-1, 3), self.camera_artist.extent_points()]
+        if self.extent is not None:
+            pts.append(self.extent)
+        set_equal_aspect(self.ax3d, pts, zoom=self.zoom)
+
     def update(self, camera: Camera) -> np.ndarray:
-        """Re-photograph the scene with ``camera``; returns the (M, 2, 2) pixel segments."""
+        """Re-photograph the scene with ``camera``; returns the (M, 2, 2) pixel segments.
+
+        The 3-D limits follow the camera so it never leaves the view."""
         pix = project_segments(camera, self.segments)
         self.camera_artist.update(camera, image_lines=pix)
+        self._fit()
         update_segments(self.image_lines, pix)
         w, h = camera.image_size
         if (w, h) != tuple(self.camera.image_size):
             image_axes(self.ax_image, (w, h), labels=False)
         self.camera = camera
         return pix
+
+
+def freeze_layout(fig) -> None:
+    """Run the figure's layout engine once, then switch it off.
+
+    Constrained layout costs about as much as drawing a 3-D scene on every redraw; a demo
+    whose axes never change size lays out once at build time and keeps those positions.
+    """
+    fig.canvas.draw()
+    fig.set_layout_engine("none")
