@@ -44,7 +44,7 @@ __all__ = [
     "check_rotation", "decompose_projection_matrix", "estimate_projection_matrix",
     "euler_from_rotation", "intrinsic_matrix", "is_rotation", "look_at_rotation",
     "opencv_from_opengl", "opengl_from_opencv", "project_points", "reprojection_errors",
-    "rotation_from_axis_angle", "rotation_from_euler", "rotation_x", "rotation_y", "rotation_z",
+    "rotation_from_axis_angle", "rotation_from_euler", "rq_decomposition", "rotation_x", "rotation_y", "rotation_z",
     "box_wireframe", "ground_grid", "house_wireframe", "project_segments",
 ]
 
@@ -632,15 +632,44 @@ class Decomposition(NamedTuple):
     centre: np.ndarray
 
 
-def _rq(M: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """RQ decomposition M = U Q (U upper triangular, Q orthogonal) via numpy's QR.
+def rq_decomposition(M: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    r"""RQ decomposition :math:`M = K R`: K upper triangular with a positive diagonal, R orthogonal.
 
-    With the exchange matrix E (ones on the anti-diagonal), QR of (E M)^T = Q' R'
-    gives M = E R'^T Q'^T = (E R'^T E)(E Q'^T), and E R'^T E is upper triangular.
+    numpy only has QR (orthogonal times triangular), so we reverse the order of rows.
+    With the exchange matrix E (ones on the anti-diagonal, :math:`E = E^\top = E^{-1}`),
+    QR of :math:`(E M)^\top = Q' U'` gives :math:`M = E U'^\top Q'^\top = (E U'^\top E)(E Q'^\top)`,
+    and :math:`E U'^\top E` is upper triangular. The factors are unique only up to
+    :math:`D = \operatorname{diag}(\pm 1, \pm 1, \pm 1)` since :math:`K R = (K D)(D R)`;
+    choosing D = sign(diag(K)) makes the diagonal of K positive. Then
+    :math:`\det R = \operatorname{sign}(\det M)`: R is a rotation exactly when det M > 0.
+
+    Parameters
+    ----------
+    M : (3, 3) array_like
+        Invertible, e.g. the left 3x3 block of a camera matrix.
+
+    Returns
+    -------
+    K : (3, 3) ndarray
+        Upper triangular, positive diagonal (not normalised: K[2, 2] carries M's scale).
+    R : (3, 3) ndarray
+        Orthogonal.
+
+    Examples
+    --------
+    >>> K, R = rq_decomposition(np.diag([2.0, -3.0, 4.0]))
+    >>> np.diag(K), np.diag(R)
+    (array([2., 3., 4.]), array([ 1., -1.,  1.]))
     """
+    Mm = check_matrix(M, (3, 3), "M")
+    if abs(np.linalg.det(Mm)) <= 1e-12 * max(np.abs(Mm).max(), 1e-300) ** 3:
+        raise DegenerateError("rq_decomposition: M is singular, so K would have a zero on its diagonal; "
+                              "a finite camera has an invertible left 3x3 block")
     E = np.eye(3)[::-1]
-    Q, U = np.linalg.qr((E @ M).T)
-    return E @ U.T @ E, E @ Q.T
+    Q, U = np.linalg.qr((E @ Mm).T)
+    K, R = E @ U.T @ E, E @ Q.T
+    D = np.diag(np.sign(np.diag(K)))
+    return K @ D, D @ R
 
 
 def decompose_projection_matrix(P: ArrayLike) -> Decomposition:
@@ -693,9 +722,7 @@ def decompose_projection_matrix(P: ArrayLike) -> Decomposition:
     if np.linalg.det(M) < 0:
         Pm = -Pm
         M = Pm[:, :3]
-    K, R = _rq(M)
-    D = np.diag(np.sign(np.diag(K)))
-    K, R = K @ D, D @ R
+    K, R = rq_decomposition(M)
     t = np.linalg.solve(K, Pm[:, 3])
     K = K / K[2, 2]
     K[1, 0] = K[2, 0] = K[2, 1] = 0.0  # exactly triangular (they are ~1e-17 after RQ)
