@@ -259,7 +259,8 @@ class CameraArtist:
             cols = np.linspace(0, W, gw + 1).astype(int)
             colours = np.array([[img[rows[i]:max(rows[i + 1], rows[i] + 1), cols[j]:max(cols[j + 1], cols[j] + 1), :3]
                                  .mean(axis=(0, 1)) for j in range(gw)] for i in range(gh)]).reshape(-1, 3)
-            self.mesh.set_facecolor(np.clip(colours, 0.0, 1.0))
+            self.mesh_colours = np.clip(colours, 0.0, 1.0)  # row-major over the grid, top-left first
+            self.mesh.set_facecolor(self.mesh_colours)
 
 
 class SceneView:
