@@ -192,10 +192,10 @@ def test_dolly_zoom_demo_state():
     assert not np.array_equal(before, d.view.pixels())
 
 
-def test_parallel_lines_demo_state():
+def test_parallel_rails_demo_state():
     from camlab.widgets import affine_cameras as demos
 
-    d = demos.parallel_lines()
+    d = demos.parallel_rails()
     assert d.state["affine_direction"][2] == 0.0
     vp = d.state["vanishing_point"]
     cam = d.state["camera"]

@@ -11,6 +11,11 @@ front of the centre at depth ``size`` metres (the *positive*, non-inverted image
 real sensor sits behind the pinhole, upside down), pixel (0, 0) at the top-left corner of
 the plane. World axes are X, Y, Z in the same colours. 3-D axes get equal aspect.
 
+Blitting (``FigureView.animate``): a 3-D axes' projection depends on its limits, so in a
+demo register *every* artist of the 3-D axes as animated (``SceneView.artists()``,
+``CameraArtist.artists()``) and keep the 3-D axes' own decorations off; ``SceneView.update``
+and :func:`refresh_projection` recompute the projection so blitted artists land right.
+
 Typical use::
 
     from camlab.plotting import scene3d
@@ -34,7 +39,8 @@ from ..camera import Camera, project_segments
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
 
 __all__ = ["AXIS_COLOURS", "CameraArtist", "SceneView", "axes3d", "draw_points", "draw_segments",
-           "draw_world_axes", "freeze_layout", "image_axes", "polyline_data", "set_equal_aspect", "update_segments"]
+           "draw_world_axes", "image_axes", "polyline_data", "refresh_projection", "set_equal_aspect",
+           "update_segments"]
 
 
 def axes3d(fig, *args: Any, elev: float = 22.0, azim: float = -60.0, **kw: Any):
@@ -66,6 +72,16 @@ def set_equal_aspect(ax, points: ArrayLike | Sequence[ArrayLike], margin: float 
     ax.set_ylim(centre[1] - half, centre[1] + half)
     ax.set_zlim(centre[2] - half, centre[2] + half)
     ax.set_box_aspect((1, 1, 1), zoom=zoom)
+
+
+def refresh_projection(ax) -> None:
+    """Recompute a 3-D axes' projection matrix after its limits or view changed.
+
+    A full draw does this itself; a blitted redraw (only animated artists) does not, so
+    call it after :func:`set_equal_aspect` in an update.
+    """
+    ax.M = ax.get_proj()
+    ax.invM = np.linalg.inv(ax.M)
 
 
 def polyline_data(segments: ArrayLike) -> np.ndarray:
@@ -200,6 +216,11 @@ class CameraArtist:
             ax.add_collection3d(self.mesh)
         self.update(camera, image=image, image_lines=image_lines)
 
+    def artists(self) -> list:
+        """Every artist this camera drew (register them with ``FigureView.animate``)."""
+        out = [self.frustum, self.plane, *self.axes_lines, *self.axes_text, self.centre_marker, self.lines]
+        return out + [a for a in (self.label, self.mesh) if a is not None]
+
     def corners(self, camera: Camera | None = None) -> np.ndarray:
         """The image plane's four corners (top-left, top-right, bottom-right, bottom-left), world (4, 3)."""
         cam = camera or self.camera
@@ -207,9 +228,10 @@ class CameraArtist:
         uv = np.array([[-0.5, -0.5], [w - 0.5, -0.5], [w - 0.5, h - 0.5], [-0.5, h - 0.5]])
         return _plane_points(cam, uv, self.size)
 
-    def extent_points(self) -> np.ndarray:
+    def extent_points(self, camera: Camera | None = None) -> np.ndarray:
         """Points to include when setting equal-aspect limits: centre and plane corners."""
-        return np.vstack([self.camera.centre, self.corners()])
+        cam = camera or self.camera
+        return np.vstack([cam.centre, self.corners(cam)])
 
     def update(self, camera: Camera, image: np.ndarray | None = None, image_lines: ArrayLike | None = None) -> None:
         """Move every artist to ``camera``; redraw the image content if given."""
@@ -222,6 +244,8 @@ class CameraArtist:
         f[12:17] = np.vstack([corners, corners[:1]])
         self.frustum.set_data_3d(f[:, 0], f[:, 1], f[:, 2])
         self.plane.set_verts([corners])
+        if getattr(self.ax, "M", None) is not None:  # blitting draws polygons from their last projection
+            self.plane.do_3d_projection()
         L = self.size * 0.6
         for i, (ln, tx) in enumerate(zip(self.axes_lines, self.axes_text)):
             e = C + L * camera.R[i]  # camera axis i in world coordinates is row i of R
@@ -248,6 +272,8 @@ class CameraArtist:
         G = _plane_points(camera, np.column_stack([U.ravel(), V.ravel()]), self.size).reshape(gh + 1, gw + 1, 3)
         quads = np.stack([G[:-1, :-1], G[:-1, 1:], G[1:, 1:], G[1:, :-1]], axis=2).reshape(-1, 4, 3)
         self.mesh.set_verts(quads)
+        if getattr(self.ax, "M", None) is not None:
+            self.mesh.do_3d_projection()
         if image is not None:
             img = np.asarray(image, dtype=float)
             if img.max() > 1.0:
@@ -286,8 +312,7 @@ class SceneView:
         self.ax3d, self.ax_image = ax3, ax2
         if axis_off:  # no panes, ticks or tick labels: the world axes carry the frame; 5x faster
             ax3.set_axis_off()
-        if world_axes:
-            draw_world_axes(ax3, world_axes)
+        self.world_axes = draw_world_axes(ax3, world_axes) if world_axes else []
         self.world = draw_segments(ax3, self.segments)
         pix = project_segments(camera, self.segments)
         self.camera_artist = CameraArtist(ax3, camera, size=plane_size, image_lines=pix, label="C")
@@ -299,19 +324,25 @@ class SceneView:
         (self.image_lines,) = ax2.plot(d[:, 0], d[:, 1], color="k", lw=1.2)
         self.camera = camera
 
-    def _fit(self) -> None:
-        pts = [self.segments.reshape(-1, 3), self.camera_artist.extent_points()]
+    def _fit(self, camera: Camera | None = None) -> None:
+        pts = [self.segments.reshape(-1, 3), self.camera_artist.extent_points(camera)]
         if self.extent is not None:
             pts.append(self.extent)
         set_equal_aspect(self.ax3d, pts, zoom=self.zoom)
+        refresh_projection(self.ax3d)
+
+    def artists(self) -> list:
+        """The artists that move: everything in the 3-D axes (its projection follows the
+        camera) and the image's lines. Register them with ``FigureView.animate``."""
+        return [self.world, *self.world_axes, *self.camera_artist.artists(), self.image_lines]
 
     def update(self, camera: Camera) -> np.ndarray:
         """Re-photograph the scene with ``camera``; returns the (M, 2, 2) pixel segments.
 
         The 3-D limits follow the camera so it never leaves the view."""
         pix = project_segments(camera, self.segments)
+        self._fit(camera)
         self.camera_artist.update(camera, image_lines=pix)
-        self._fit()
         update_segments(self.image_lines, pix)
         w, h = camera.image_size
         if (w, h) != tuple(self.camera.image_size):
@@ -319,12 +350,3 @@ class SceneView:
         self.camera = camera
         return pix
 
-
-def freeze_layout(fig) -> None:
-    """Run the figure's layout engine once, then switch it off.
-
-    Constrained layout costs about as much as drawing a 3-D scene on every redraw; a demo
-    whose axes never change size lays out once at build time and keeps those positions.
-    """
-    fig.canvas.draw()
-    fig.set_layout_engine("none")

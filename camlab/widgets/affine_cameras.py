@@ -62,7 +62,7 @@ def three_cameras():
     axes[2].tick_params(labelsize=7)
     (orth,) = axes[2].plot([], [], color="k", lw=1.1)
     (ghost,) = axes[1].plot([], [], color="tab:red", lw=0.8, alpha=0.5)
-    scene3d.freeze_layout(view.fig)
+    view.animate(persp, weak, ghost, orth)
     controls = {
         "azimuth": slider(-40, -180, 180, 2, "azimuth (deg)"),
         "elevation": slider(20, 0, 80, 1, "elevation (deg)"),
@@ -125,7 +125,7 @@ def dolly_zoom():
         axis.set_minor_locator(NullLocator())
         axis.set_ticks(ticks, labels=[f"{t:g}" for t in ticks])
     (marker,) = ax_err.plot([], [], "o", color="tab:red", ms=7)
-    scene3d.freeze_layout(view.fig)
+    view.animate(persp, weak, marker)
     controls = {"distance": slider(D0, 1.6, 60.0, 0.2, "distance d (m)")}
 
     def update(v, state):
@@ -145,7 +145,7 @@ def dolly_zoom():
 
 
 @register(lesson="05", sweep={"yaw": [-50, 40], "pitch": [5, 40]})
-def parallel_lines():
+def parallel_rails():
     """Parallel rails in a perspective image meet at a vanishing point; an affine image keeps them parallel."""
     view = FigureView(figsize=(9, 3.6))
     ax_p, ax_a = view.fig.subplots(1, 2)
@@ -166,7 +166,7 @@ def parallel_lines():
         lines.append(ln)
     (vp,) = ax_p.plot([], [], "o", color="tab:red", ms=8)
     (horizon,) = ax_p.plot([], [], color="tab:red", lw=0.8, ls="--")
-    scene3d.freeze_layout(view.fig)
+    view.animate(*lines, vp, horizon)
     controls = {"yaw": slider(0, -60, 60, 1, "yaw (deg)"), "pitch": slider(15, 2, 60, 1, "pitch down (deg)")}
 
     def update(v, state):
@@ -188,4 +188,4 @@ def parallel_lines():
         horizon.set_data(us, -(l_h[0] * us + l_h[2]) / l_h[1] if abs(l_h[1]) > 1e-12 else [np.nan, np.nan])
         state.update(vanishing_point=vpt, affine_direction=v_a, camera=cam, P_affine=P_aff, horizon=l_h)
 
-    return build_demo("parallel_lines", controls, view, update, title="Parallel lines: vanishing versus parallel")
+    return build_demo("parallel_rails", controls, view, update, title="Parallel lines: vanishing versus parallel")

@@ -48,7 +48,7 @@ def camera_explorer():
     sv = scene3d.SceneView(view.fig, cam0, scene, plane_size=1.5)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
     (pp,) = sv.ax_image.plot([], [], "+", color="tab:purple", ms=10, mew=2)
-    scene3d.freeze_layout(view.fig)
+    view.animate(*sv.artists(), pp)
     controls = {
         "fx": slider(800, 200, 1600, 10, "fx (px)"),
         "fy": slider(800, 200, 1600, 10, "fy (px)"),
@@ -101,7 +101,7 @@ def resectioning():
     (reproj,) = sv.ax_image.plot([], [], "+", color="tab:orange", ms=8, mew=1.5)
     (est_lines,) = sv.ax_image.plot([], [], color="tab:orange", lw=1.0, ls="--")
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
-    scene3d.freeze_layout(view.fig)
+    view.animate(*est_art.artists(), pts3d, meas, reproj, est_lines)
     controls = {
         "noise": slider(0.5, 0.0, 5.0, 0.1, "pixel noise sigma (px)"),
         "n_points": W.IntSlider(value=12, min=6, max=60, description="correspondences N",
@@ -152,7 +152,8 @@ def opencv_vs_opengl():
         texts.append(ax.text(0, 0, 0, "", color=c, fontsize=9, fontweight="bold"))
     scene3d.set_equal_aspect(ax, [[-0.6, -0.6, 0.0], [2.4, -2.4, 1.6], art.extent_points()], zoom=1.3)
     title = ax.set_title("", fontsize=9)
-    scene3d.freeze_layout(view.fig)
+    scene3d.refresh_projection(ax)
+    view.animate(*art.artists(), *lines, *texts, title)
     controls = {
         "yaw": slider(0, -90, 90, 2, "orbit (deg)"),
         "frame": W.ToggleButtons(options=["OpenCV", "OpenGL / Blender"], value="OpenCV", description="frame"),
