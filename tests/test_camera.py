@@ -486,6 +486,24 @@ def test_resectioning_demo_recovers_camera():
     assert 1.0 < d.state["rms"] < 4.0
 
 
+def test_resectioning_outlier_and_click():
+    from types import SimpleNamespace
+
+    from camlab.widgets import projective_camera as demos
+
+    d = demos.resectioning()
+    d.set(noise=0.0, n_points=12)
+    d.set(outlier=60.0)
+    assert d.state["rms"] > 5.0 and d.state["focal_error"] > 1.0  # one bad pair spoils the linear fit
+    d.set(outlier=0.0)
+    assert d.state["rms"] < 1e-6
+    target = d.state["points_image"][3] + [40.0, -30.0]
+    d.on_click(SimpleNamespace(inaxes=d.figure.axes[1], xdata=target[0], ydata=target[1]))
+    assert np.allclose(d.state["points_image"][3], target) and d.state["rms"] > 5.0
+    d.set(n_points=13)  # new measurements forget the click
+    assert d.state["rms"] < 1e-6
+
+
 def test_opencv_vs_opengl_demo_flips_y_and_z():
     from camlab.widgets import projective_camera as demos
 

@@ -87,9 +87,15 @@ def resection_data(n_points: int, noise_px: float, seed: int = 0):
     return cam, X, uv
 
 
-@register(lesson="04", sweep={"noise": [0.0, 3.0], "n_points": [6, 40], "refine": [True, False]})
+@register(lesson="04", sweep={"noise": [0.0, 3.0], "n_points": [6, 40], "outlier": [0.0, 60.0],
+                              "refine": [True, False]})
 def resectioning():
-    """Estimate P from noisy correspondences (DLT, optionally refined) and compare to the truth."""
+    """Estimate P from noisy correspondences (DLT, optionally refined) and compare to the truth.
+
+    Click in the image to move the nearest measured pixel there (a mismatched
+    correspondence); the ``outlier`` slider does the same to correspondence 0 without a mouse.
+    Changing N or the noise starts from fresh measurements.
+    """
     view = FigureView(figsize=(9, 4.2))
     cam, X, uv = resection_data(12, 0.5)
     frame = np.concatenate([cm.box_wireframe((0.0, 0.0, 1.0), (2.0, 2.0, 2.0)), cm.ground_grid(2.0, 1.0)])
@@ -106,11 +112,21 @@ def resectioning():
         "noise": slider(0.5, 0.0, 5.0, 0.1, "pixel noise sigma (px)"),
         "n_points": W.IntSlider(value=12, min=6, max=60, description="correspondences N",
                                 style={"description_width": "initial"}, layout=W.Layout(width="300px")),
+        "outlier": slider(0.0, 0.0, 100.0, 2.0, "shift pair 0 by (px)"),
         "refine": W.Checkbox(value=False, description="refine (minimise reprojection error)"),
     }
+    clicked: dict[int, np.ndarray] = {}  # correspondence index -> clicked pixel
+    last_data: dict[str, tuple] = {}
 
     def update(v, state):
-        cam_true, Xw, uvn = resection_data(int(v["n_points"]), float(v["noise"]))
+        key = (int(v["n_points"]), float(v["noise"]))
+        if last_data.get("key") != key:
+            clicked.clear()
+            last_data["key"] = key
+        cam_true, Xw, uvn = resection_data(*key)
+        uvn[0, 0] += float(v["outlier"])
+        for i, uv_click in clicked.items():
+            uvn[i] = uv_click
         P = cm.estimate_projection_matrix(Xw, uvn, refine=bool(v["refine"]))
         K, R, t, C = cm.decompose_projection_matrix(P)
         est = cm.Camera(K, R, t)
@@ -126,10 +142,25 @@ def resectioning():
         centre_err = float(np.linalg.norm(C - cam_true.centre))
         info.value = (f"<pre>RMS reprojection {rms:.2f} px\n|fx - fx_true| = {focal_err:.1f} px\n"
                       f"|C - C_true| = {100 * centre_err:.1f} cm</pre>")
-        state.update(P=P, K=K, R=R, t=t, centre=C, rms=rms, focal_error=focal_err, centre_error=centre_err)
+        state.update(P=P, K=K, R=R, t=t, centre=C, rms=rms, focal_error=focal_err, centre_error=centre_err,
+                     points_image=uvn)
 
-    return build_demo("resectioning", controls, view, update,
-                      title="Resection: estimate P from N point pairs (DLT)", extra=[info])
+    demo = build_demo("resectioning", controls, view, update,
+                      title="Resection: estimate P from N point pairs (DLT); click the image to move a pixel",
+                      extra=[info])
+
+    def on_click(event):
+        if event.inaxes is not sv.ax_image or event.xdata is None:
+            return
+        uvn = demo.state["points_image"]
+        i = int(np.argmin(np.linalg.norm(uvn - [event.xdata, event.ydata], axis=1)))
+        clicked[i] = np.array([event.xdata, event.ydata])
+        update({k: c.value for k, c in demo.controls.items()}, demo.state)
+        demo.view.refresh()
+
+    view.fig.canvas.mpl_connect("button_press_event", on_click)
+    demo.on_click = on_click  # for tests: call with an object carrying inaxes, xdata, ydata
+    return demo
 
 
 @register(lesson="04", sweep={"yaw": [-60, 60], "frame": ["OpenGL / Blender", "OpenCV"]})
