@@ -330,7 +330,7 @@ class Camera:
     --------
     >>> cam = Camera.look_at(eye=[0, -5, 1], target=[0, 0, 1])
     >>> cam.project([0, 0, 1])
-    array([320., 240.])
+    array([319.5, 239.5])
     >>> np.round(cam.centre, 12) + 0.0
     array([ 0., -5.,  1.])
     """
@@ -392,12 +392,13 @@ class Camera:
     ) -> "Camera":
         r"""A camera at ``eye`` (world metres) looking at ``target``, with ``up`` (default world
         +z) appearing up in the image. ``K`` defaults to fx = fy = 800 px with the principal
-        point at the centre of ``image_size``. :math:`t = -R\,\text{eye}`."""
+        point at the image centre ((W - 1) / 2, (H - 1) / 2), as in :meth:`from_fov` (pixel
+        centres are at integers). :math:`t = -R\,\text{eye}`."""
         R = look_at_rotation(eye, target, up)
         e = np.asarray(eye, dtype=float)
         if K is None:
             w, h = (int(v) for v in image_size)
-            K = intrinsic_matrix(800.0, 800.0, w / 2.0, h / 2.0)
+            K = intrinsic_matrix(800.0, 800.0, (w - 1) / 2.0, (h - 1) / 2.0)
         return cls(K, R, -R @ e, dist, image_size)
 
     def replace(self, **changes) -> "Camera":
