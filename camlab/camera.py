@@ -843,7 +843,7 @@ def estimate_projection_matrix(
     A[0::2, 8:12] = -un[:, :1] * Xn
     A[1::2, 4:8] = Xn
     A[1::2, 8:12] = -un[:, 1:] * Xn
-    _, s, Vt = np.linalg.svd(A)
+    _, s, Vt = np.linalg.svd(A, full_matrices=False)  # U is never needed: keep it (2N, 12)
     if s[-2] <= 1e-10 * s[0]:
         raise DegenerateError(
             "estimate_projection_matrix: the correspondences do not fix P uniquely (A has a null space of "
@@ -873,7 +873,20 @@ def _refine_projection_matrix(P0: np.ndarray, X: np.ndarray, uv: np.ndarray) -> 
         x = Xh @ p.reshape(3, 4).T
         return (x[:, :2] / x[:, 2:] - uv).ravel()
 
-    res = least_squares(residuals, P0.ravel(), method="lm", x_scale="jac")
+    def jacobian(p: np.ndarray) -> np.ndarray:
+        # u = a / w, v = b / w with a = p1 . X, b = p2 . X, w = p3 . X:
+        # du/dp1 = X / w, du/dp3 = -u X / w, dv/dp2 = X / w, dv/dp3 = -v X / w.
+        x = Xh @ p.reshape(3, 4).T
+        w = x[:, 2:]
+        u, v = x[:, :1] / w, x[:, 1:2] / w
+        J = np.zeros((len(Xh), 2, 12))
+        J[:, 0, 0:4] = Xh / w
+        J[:, 0, 8:12] = -u * Xh / w
+        J[:, 1, 4:8] = Xh / w
+        J[:, 1, 8:12] = -v * Xh / w
+        return J.reshape(-1, 12)
+
+    res = least_squares(residuals, P0.ravel(), jac=jacobian, method="lm", x_scale="jac")
     if not res.success:
         raise ConvergenceError(f"estimate_projection_matrix: refinement did not converge ({res.message})")
     return _normalize_P(res.x.reshape(3, 4))
