@@ -285,7 +285,7 @@ def canvas_bounds(Hs: Sequence[ArrayLike], shapes: Sequence[Sequence[int]],
     Each image's four corner pixels (0, 0), (w-1, 0), (w-1, h-1), (0, h-1) are mapped by
     its H; the canvas spans their bounding box, rounded outwards to whole pixels, and T
     shifts its top-left corner to (0, 0). Warp image i with ``T @ Hs[i]`` so nothing is
-    cropped at negative coordinates (the panorama canvas of lesson 11 uses this too).
+    cropped at negative coordinates (panorama stitching uses the same canvas).
 
     Parameters
     ----------
