@@ -31,7 +31,7 @@ from .projective import map_points
 from .warp import warp_perspective
 
 __all__ = [
-    "AspectRatio", "DocumentNotFoundError", "PlanePhoto", "Rectified", "check_quadrilateral",
+    "AspectRatio", "DocumentNotFoundError", "PlanePhoto", "Rectified", "check_quadrilateral", "desk_background",
     "estimate_aspect_ratio", "facade_texture", "find_document", "look_at_plane", "order_corners", "rectangle_homography",
     "page_texture", "painting_texture", "photograph_plane", "rectify_quadrilateral", "sample_photo",
 ]
@@ -508,7 +508,7 @@ def painting_texture(width: int = 400) -> np.ndarray:
 
 
 @functools.lru_cache(maxsize=4)
-def _desk(h: int, w: int, seed: int) -> np.ndarray:
+def desk_background(h: int = 480, w: int = 640, seed: int = 0) -> np.ndarray:
     """A dark wooden-desk background (cached: demos re-photograph on every slider move)."""
     rng = np.random.default_rng(seed)
     yy, xx = np.mgrid[0:h, 0:w]
@@ -601,7 +601,7 @@ def photograph_plane(
     corners_tex = np.array([[0, 0], [tw - 1, 0], [tw - 1, th - 1], [0, th - 1]], dtype=float)
     corners = map_points(H, corners_tex)
     if background is None:
-        bg = _desk(h, w, seed)
+        bg = desk_background(h, w, seed)
     else:
         bg = np.asarray(background, dtype=np.uint8)
     photo = warp_perspective(tex, H, (h, w), method=method)

@@ -126,7 +126,7 @@ def document_scanner() -> Demo:
 
     def update(v: dict, state: dict) -> None:
         photo = pp.sample_photo("page", yaw=v["yaw"], pitch=v["pitch"])
-        image = photo.image if v["page_present"] else np.asarray(pp._desk(480, 640, 0))
+        image = photo.image if v["page_present"] else np.asarray(pp.desk_background())
         im_p.set_data(image)
         try:
             corners = pp.find_document(image)
