@@ -31,7 +31,8 @@ def _display_mode() -> str:
     forced = os.environ.get("CAMLAB_FIGURE_MODE")
     if forced:
         return forced
-    if "ipympl" in matplotlib.get_backend():
+    backend = matplotlib.get_backend().lower()
+    if backend == "widget" or "ipympl" in backend:  # `%matplotlib widget` reports "widget"
         return "ipympl"
     try:
         from IPython import get_ipython
@@ -89,6 +90,9 @@ class FigureView:
             return
         self._background = canvas.copy_from_bbox(self.fig.bbox)
         self._draw_animated()
+        if self.fig.get_layout_engine() is not None:
+            # Freeze the layout that draw computed: blitting needs the axes to stay put.
+            self.fig.set_layout_engine("none")
 
     def _draw_animated(self) -> None:
         for artist in self._animated:
@@ -102,22 +106,16 @@ class FigureView:
             self.widget.value = buf.getvalue()
             return
         canvas = self.fig.canvas
-        if not self._animated:  # nothing registered with animate(): redraw everything
-            if self.mode == "ipympl":
-                canvas.draw_idle()
-            else:
-                canvas.draw()
-            return
-        if self._background is None:
-            canvas.draw()  # the draw event captures the background and draws the animated artists
-            if self.fig.get_layout_engine() is not None:
-                # Freeze the layout computed by that draw; later draws need not redo it.
-                self.fig.set_layout_engine("none")
-        else:
+        if self._animated and self._background is not None:
             canvas.restore_region(self._background)
             self._draw_animated()
-        if self.mode == "ipympl":
-            canvas.blit(self.fig.bbox)
+            if self.mode == "ipympl":
+                canvas.blit(self.fig.bbox)
+        elif self.mode == "ipympl":
+            # A full draw when the browser shows the canvas; its draw_event captures the background.
+            canvas.draw_idle()
+        else:
+            canvas.draw()
 
     def pixels(self) -> np.ndarray:
         """The figure as currently shown, as an (H, W, 4) uint8 array (for tests)."""
