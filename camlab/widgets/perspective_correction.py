@@ -61,6 +61,7 @@ def rectify_photo() -> Demo:
     quad = view.animate(ax_p.plot([], [], "-", color="tab:orange", lw=1.5)[0])
     handles = view.animate(ax_p.plot([], [], "o", color="tab:orange", ms=9, mec="k")[0])
     _on_top(view, ax_p)
+    caption = view.animate(ax_r.text(0.5, -0.02, "", transform=ax_r.transAxes, ha="center", va="top", fontsize=9))
     readout = W.HTML()
     first = pp.sample_photo("page")
     control = _corner_text(format_corners(first.corners), "corners (TL; TR; BR; BL)")
@@ -97,6 +98,7 @@ def rectify_photo() -> Demo:
         state.update(error=None, ratio=est.ratio, true_ratio=photo.aspect, focal=est.focal_length,
                      focal_source=est.focal_source, corners=corners, scene=v["scene"])
         f = "—" if est.focal_length is None else f"{est.focal_length:.0f} px"
+        caption.set_text(f"w/h {est.ratio:.3f} (true {photo.aspect:.3f}); f {f}, {est.focal_source}")
         readout.value = _pre(f"aspect w/h estimated: {est.ratio:.3f}\n"
                              f"aspect w/h true:      {photo.aspect:.3f}\n"
                              f"focal length: {f} ({est.focal_source}; true {photo.K[0, 0]:.0f})")
