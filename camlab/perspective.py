@@ -604,11 +604,21 @@ def photograph_plane(
         bg = desk_background(h, w, seed)
     else:
         bg = np.asarray(background, dtype=np.uint8)
-    photo = warp_perspective(tex, H, (h, w), method=method)
-    mask = warp_perspective(np.full((th, tw), 255, np.uint8), H, (h, w), method=method).astype(np.float32) / 255
-    out = photo.astype(np.float32) + bg.astype(np.float32) * (1 - mask[..., None])
+    if method == "cv2":
+        import cv2
+
+        # Warp straight onto a copy of the background: BORDER_TRANSPARENT leaves the
+        # pixels outside the texture untouched (one call, fast enough for live demos).
+        image = np.array(bg, dtype=np.uint8, copy=True)
+        cv2.warpPerspective(np.ascontiguousarray(tex, dtype=np.uint8), H, (w, h), dst=image,
+                            flags=cv2.INTER_LINEAR, borderMode=cv2.BORDER_TRANSPARENT)
+    else:
+        photo = warp_perspective(tex, H, (h, w), method=method)
+        mask = warp_perspective(np.full((th, tw), 255, np.uint8), H, (h, w), method=method).astype(np.float32) / 255
+        out = photo.astype(np.float32) + bg.astype(np.float32) * (1 - mask[..., None])
+        image = np.clip(out, 0, 255).astype(np.uint8)
     # The corners are the centres of the texture's corner pixels: (tw - 1) x (th - 1) apart.
-    return PlanePhoto(np.clip(out, 0, 255).astype(np.uint8), corners, (tw - 1) / (th - 1), H, K)
+    return PlanePhoto(image, corners, (tw - 1) / (th - 1), H, K)
 
 
 _SCENES = {
