@@ -49,14 +49,20 @@ def _set_photo(im: Any, image: np.ndarray) -> None:
     im.set_data(cv2.resize(np.ascontiguousarray(image), _PHOTO_DISPLAY, interpolation=cv2.INTER_AREA))
 
 
-def _photo_axes(view: FigureView):
+def _photo_demo(photo_title: str, result_title: str, outline: dict):
+    """The figure every lesson-10 demo uses: the photo (with an outline artist) and the result."""
+    view = FigureView(figsize=(9, 4.2))
     ax_p, ax_r = view.fig.subplots(1, 2, width_ratios=[1.35, 1])
     im_p = view.animate(ax_p.imshow(np.zeros((_PHOTO_DISPLAY[1], _PHOTO_DISPLAY[0], 3), np.uint8),
                                     extent=(-0.5, 639.5, 479.5, -0.5), interpolation="nearest"))
     ax_p.set(xlim=(-0.5, 639.5), ylim=(479.5, -0.5))
     im_r = view.animate(ax_r.imshow(np.full((_SHOW, _SHOW, 3), 255, np.uint8), interpolation="nearest"))
     ax_r.set_axis_off()
-    return ax_p, ax_r, im_p, im_r
+    ax_p.set_title(photo_title, fontsize=10, pad=3)
+    ax_r.set_title(result_title, fontsize=10, pad=3)
+    line = view.animate(ax_p.plot([], [], **outline)[0])
+    _on_top(view, ax_p)
+    return view, ax_p, ax_r, im_p, im_r, line
 
 
 @register(lesson="10", sweep={"scene": ["page", "painting", "facade"], "corners": [
@@ -66,13 +72,9 @@ def _photo_axes(view: FigureView):
 def rectify_photo() -> Demo:
     """Drag the four corners of a page, painting or facade; the rectified view follows, sized
     by the aspect ratio estimated from the quadrilateral (compared with the truth)."""
-    view = FigureView(figsize=(9, 4.2))
-    ax_p, ax_r, im_p, im_r = _photo_axes(view)
-    ax_p.set_title("photo: drag the orange corners", fontsize=10, pad=3)
-    ax_r.set_title("rectified", fontsize=10, pad=3)
-    quad = view.animate(ax_p.plot([], [], "-", color="tab:orange", lw=1.5)[0])
+    view, ax_p, ax_r, im_p, im_r, quad = _photo_demo("photo: drag the orange corners", "rectified",
+                                                     dict(ls="-", color="tab:orange", lw=1.5))
     handles = view.animate(ax_p.plot([], [], "o", color="tab:orange", ms=9, mec="k")[0])
-    _on_top(view, ax_p)
     caption = view.animate(ax_r.text(0.5, -0.02, "", transform=ax_r.transAxes, ha="center", va="top", fontsize=9))
     readout = W.HTML()
     first = pp.sample_photo("page")
@@ -130,12 +132,8 @@ def rectify_photo() -> Demo:
 def document_scanner() -> Demo:
     """"Scan this page": find the page automatically (edges, contours, largest convex
     quadrilateral) and rectify it; it says so when there is no page."""
-    view = FigureView(figsize=(9, 4.2))
-    ax_p, ax_r, im_p, im_r = _photo_axes(view)
-    ax_p.set_title("photo with the detected outline", fontsize=10, pad=3)
-    ax_r.set_title("scanned page", fontsize=10, pad=3)
-    found = view.animate(ax_p.plot([], [], "-", color="lime", lw=2)[0])
-    _on_top(view, ax_p)
+    view, ax_p, ax_r, im_p, im_r, found = _photo_demo("photo with the detected outline", "scanned page",
+                                                      dict(ls="-", color="lime", lw=2))
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
@@ -171,12 +169,8 @@ def document_scanner() -> Demo:
 def keystone_correction() -> Demo:
     """Keystone: a camera tilted up at a facade makes its verticals converge; the
     rectifying homography makes them parallel again."""
-    view = FigureView(figsize=(9, 4.2))
-    ax_p, ax_r, im_p, im_r = _photo_axes(view)
-    ax_p.set_title("photo (camera tilted up)", fontsize=10, pad=3)
-    ax_r.set_title("keystone-corrected", fontsize=10, pad=3)
-    quad = view.animate(ax_p.plot([], [], "--", color="yellow", lw=1.5)[0])
-    _on_top(view, ax_p)
+    view, ax_p, ax_r, im_p, im_r, quad = _photo_demo("photo (camera tilted up)", "keystone-corrected",
+                                                     dict(ls="--", color="yellow", lw=1.5))
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
