@@ -310,23 +310,28 @@ def symmetric_transfer_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np
     return _sym_err_batch(Hm[None], np.linalg.inv(Hm)[None], s, d)[0]
 
 
-def _project_batch(H: np.ndarray, p: np.ndarray) -> np.ndarray:
-    """Map (N, 2) points by a stack of homographies (B, 3, 3): (B, 2, N), NaN/inf at infinity."""
-    # Plain broadcasting (B, 1) * (1, N) rather than a batched matrix product: it does
-    # not go through multithreaded BLAS, which is slow for many tiny products.
+def _sq_transfer_batch(H: np.ndarray, p: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """(B, N) squared distances |q - pi(H p)|^2 for a stack of homographies (B, 3, 3).
+
+    Plain broadcasting of (B, 1) coefficients against (N,) coordinates rather than a
+    batched matrix product: no multithreaded BLAS, which is slow for many tiny products.
+    """
     u, v = p[:, 0], p[:, 1]
     h = H.reshape(len(H), 9, 1)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         iw = 1.0 / (h[:, 6] * u + h[:, 7] * v + h[:, 8])
-        return np.stack([(h[:, 0] * u + h[:, 1] * v + h[:, 2]) * iw,
-                         (h[:, 3] * u + h[:, 4] * v + h[:, 5]) * iw], axis=1)
+        ex = (h[:, 0] * u + h[:, 1] * v + h[:, 2]) * iw - q[:, 0]
+        ey = (h[:, 3] * u + h[:, 4] * v + h[:, 5]) * iw - q[:, 1]
+        ex *= ex
+        ey *= ey
+        ex += ey
+    return ex
 
 
 def _sym_err_batch(H: np.ndarray, Hinv: np.ndarray, s: np.ndarray, d: np.ndarray) -> np.ndarray:
     """(B, N) symmetric transfer RMS errors for B homographies; inf where a point maps to infinity."""
-    fwd = np.sum((_project_batch(H, s) - d.T) ** 2, axis=1)
-    bwd = np.sum((_project_batch(Hinv, d) - s.T) ** 2, axis=1)
-    e = np.sqrt(0.5 * (fwd + bwd))
+    with np.errstate(invalid="ignore", over="ignore"):
+        e = np.sqrt(0.5 * (_sq_transfer_batch(H, s, d) + _sq_transfer_batch(Hinv, d, s)))
     return np.where(np.isfinite(e), e, np.inf)
 
 
@@ -506,8 +511,8 @@ def ransac_homography(
     best_count, best_cost, best_H = -1, np.inf, None
     needed, drawn = float(max_iters), 0
     while drawn < min(needed, max_iters):
-        # The first batch is half size; later ones are only as large as still needed.
-        want = batch // 2 if drawn == 0 else int(np.ceil(min(needed, max_iters) - drawn))
+        # The first batch is a quarter size; later ones are only as large as still needed.
+        want = batch // 4 if drawn == 0 else int(np.ceil(min(needed, max_iters) - drawn))
         b = int(np.clip(want, 1, min(batch, max_iters - drawn)))
         # Four indices per sample; samples that repeat an index are rejected below.
         idx = rng.integers(0, n, size=(b, 4))
