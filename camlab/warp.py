@@ -167,7 +167,7 @@ def _warp_cv2(img: np.ndarray, H: np.ndarray, shape: tuple[int, int], interpolat
     nch = 1 if img.ndim == 2 else img.shape[2]
     out = cv2.warpPerspective(src, H, (shape[1], shape[0]), flags=flags,
                               borderMode=cv2.BORDER_CONSTANT, borderValue=(float(fill),) * max(nch, 1))
-    return out.reshape(shape[0], shape[1], *img.shape[2:])
+    return _to_dtype(out.reshape(shape[0], shape[1], *img.shape[2:]), img.dtype)
 
 
 def warp_perspective(
