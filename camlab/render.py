@@ -116,6 +116,8 @@ class Plane:
         Key of this plane's points in ``GroundTruth.points``.
     pattern_size : (cols, rows) or None
         Inner-corner count of a checkerboard, in ``cv2.findChessboardCorners`` order.
+    two_sided : bool
+        Seen from both sides (default); box faces are one-sided and culled from behind.
     """
 
     texture: np.ndarray
@@ -125,6 +127,7 @@ class Plane:
     points: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     name: str = "plane"
     pattern_size: tuple[int, int] | None = None
+    two_sided: bool = True
 
     @property
     def object_points(self) -> np.ndarray:
@@ -323,7 +326,7 @@ def box(center: ArrayLike, size: ArrayLike, *, R: ArrayLike = np.eye(3), colors:
             base = np.clip(base + rng.normal(0, 0.12, size=(th, tw)).astype(np.float32), 0, 1)
         label = f"{name}{'+' if sign > 0 else '-'}{'xyz'[ax]}"
         pts = np.array([[-w / 2, -h / 2], [w / 2, -h / 2], [w / 2, h / 2], [-w / 2, h / 2]])
-        faces.append(Plane(_as_texture(base), (-w / 2, -h / 2, w / 2, h / 2), Rf, tf, pts, label))
+        faces.append(Plane(_as_texture(base), (-w / 2, -h / 2, w / 2, h / 2), Rf, tf, pts, label, two_sided=False))
     return faces
 
 
@@ -581,6 +584,8 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
         zc = (p.corners_world @ R.T + t)[:, 2]
         if zc.max() <= 1e-3:
             continue  # entirely behind the camera: invisible
+        if not p.two_sided and Rc[:, 2] @ tc >= 0:
+            continue  # a one-sided face seen from behind (its normal points away from the camera)
         if zc.min() <= 1e-3:
             raise CamlabInputError(
                 f"scene: plane {p.name!r} reaches behind the camera (corner depths {np.round(zc, 3).tolist()} m); "
@@ -630,8 +635,7 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
         H = Hplane @ S  # texel (c, r) -> canvas px
         if p.is_color and not color:
             tex = np.ascontiguousarray(tex @ np.array([0.299, 0.587, 0.114], dtype=np.float32))
-        elif color and not p.is_color:
-            tex = np.repeat(tex[..., None], 3, axis=2)
+        # a grey texture in a colour render stays one channel: compositing broadcasts it
         quad = cv2.perspectiveTransform(np.array([[[-0.5, -0.5], [tw - 0.5, -0.5], [tw - 0.5, th - 0.5],
                                                    [-0.5, th - 0.5]]], dtype=np.float64), H)[0]
         # work only inside the plane's bounding box (plus room for its blur)
