@@ -43,7 +43,7 @@ test-fast: $(VENV)/.installed-test
 	$(BIN)/python -m pytest -n 2 --dist loadfile -m "not browser" camlab tests $(PYTEST_ARGS)
 
 bench: $(VENV)/.installed-test
-	MPLBACKEND=Agg $(BIN)/python benchmarks/run.py
+	$(BIN)/python benchmarks/run.py
 
 # Lessons are committed without outputs, execution counts or widget state.
 strip: $(VENV)/.installed-lab

@@ -19,6 +19,12 @@ from numpy.typing import ArrayLike
 
 from ._validate import CamlabInputError, DegenerateError, as_points, check_matrix
 
+__all__ = [
+    "LINE_AT_INFINITY", "DegenerateError", "clip_line", "cross_ratio", "from_homogeneous", "horizon",
+    "ideal_point", "is_ideal", "is_on_line", "join", "map_lines", "map_points", "meet", "normalize_lines",
+    "normalize_points", "point_line_distance", "to_homogeneous", "vanishing_point",
+]
+
 LINE_AT_INFINITY = np.array([0.0, 0.0, 1.0])
 """The line (0, 0, 1) on which every ideal point (x, y, 0) lies."""
 
@@ -439,6 +445,8 @@ def vanishing_point(segments: ArrayLike) -> np.ndarray:
     if sv[1] < 1e-9 * sv[0]:
         raise DegenerateError("segments: all segments lie on one line, so they do not fix a vanishing point")
     v = np.linalg.solve(T, vt[-1])  # undo the conditioning: v = T^-1 v_n
+    if abs(v[2]) <= 1e-12 * np.linalg.norm(v[:2]):
+        v[2] = 0.0  # parallel to round-off: the vanishing point is ideal, not at 1e16 px
     return normalize_points(v)
 
 
@@ -449,3 +457,50 @@ def horizon(vp1: ArrayLike, vp2: ArrayLike) -> np.ndarray:
     ideal, i.e. the plane is parallel to the image). See :func:`join`.
     """
     return normalize_lines(join(vp1, vp2))
+
+
+def clip_line(line: ArrayLike, xlim: tuple[float, float], ylim: tuple[float, float]) -> np.ndarray:
+    """The visible piece of an infinite line inside a box, for drawing.
+
+    Intersects the line with the four box edges (each a line itself) and keeps the two
+    crossings that lie on the box.
+
+    Parameters
+    ----------
+    line : (3,) array_like
+    xlim, ylim : (lo, hi)
+        The box, in the same units as the line (pixels or plot units).
+
+    Returns
+    -------
+    (2, 2) ndarray
+        Two endpoints ``[[x1, y1], [x2, y2]]``; all NaN when the line misses the box
+        (including the line at infinity).
+
+    Examples
+    --------
+    >>> clip_line([0, 1, -2], (0, 10), (0, 5))  # y = 2 across the box
+    array([[ 0.,  2.],
+           [10.,  2.]])
+    """
+    ln, _ = _as_lines(line, "line")
+    ln = ln[0]
+    (x0, x1), (y0, y1) = xlim, ylim
+    edges = np.array([[1, 0, -x0], [1, 0, -x1], [0, 1, -y0], [0, 1, -y1]], dtype=float)
+    hits = from_homogeneous(np.cross(ln, edges))  # NaN where the line is parallel to an edge
+    span = max(x1 - x0, y1 - y0)
+    eps = 1e-9 * span
+    inside = (
+        np.isfinite(hits).all(axis=1)
+        & (hits[:, 0] >= x0 - eps) & (hits[:, 0] <= x1 + eps)
+        & (hits[:, 1] >= y0 - eps) & (hits[:, 1] <= y1 + eps)
+    )
+    pts = hits[inside]
+    if len(pts) < 2:
+        return np.full((2, 2), np.nan)
+    # A line through a corner hits two edges there; take the two crossings farthest apart.
+    d = np.linalg.norm(pts[:, None] - pts[None], axis=2)
+    i, j = np.unravel_index(np.argmax(d), d.shape)
+    if d[i, j] <= eps:
+        return np.full((2, 2), np.nan)
+    return np.array([pts[i], pts[j]]) + 0.0  # + 0.0 turns -0.0 into 0.0

@@ -1,0 +1,48 @@
+"""Timing and table helpers shared by the benchmark scripts."""
+from __future__ import annotations
+
+import time
+from typing import Any, Callable, Sequence
+
+import numpy as np
+
+
+def time_calls(fn: Callable[[], Any], repeat: int = 20, warmup: int = 2) -> np.ndarray:
+    """Wall-clock seconds of ``repeat`` calls of ``fn`` after ``warmup`` untimed calls."""
+    for _ in range(warmup):
+        fn()
+    out = np.empty(repeat)
+    for i in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        out[i] = time.perf_counter() - t0
+    return out
+
+
+def median_ms(fn: Callable[[], Any], repeat: int = 20, warmup: int = 2) -> float:
+    return float(np.median(time_calls(fn, repeat, warmup)) * 1e3)
+
+
+def ratio_row(case: str, camlab_fn: Callable[[], Any], opencv_fn: Callable[[], Any], target: float,
+              repeat: int = 20) -> dict:
+    """Time camlab against OpenCV in one run; ``ok`` if camlab is within ``target`` x OpenCV."""
+    c, o = median_ms(camlab_fn, repeat), median_ms(opencv_fn, repeat)
+    return {"case": case, "camlab_ms": c, "opencv_ms": o, "ratio": c / o, "target": f"<= {target:g}x",
+            "ok": c / o <= target}
+
+
+def print_table(rows: Sequence[dict], columns: Sequence[str], title: str = "") -> None:
+    """Print rows as a Markdown table (floats with 2 decimals)."""
+    def fmt(v: Any) -> str:
+        if isinstance(v, (bool, np.bool_)):
+            return "yes" if v else "NO"
+        if isinstance(v, (float, np.floating)):
+            return f"{v:.2f}"
+        return str(v)
+
+    if title:
+        print(f"\n### {title}\n")
+    print("| " + " | ".join(columns) + " |")
+    print("|" + "---|" * len(columns))
+    for row in rows:
+        print("| " + " | ".join(fmt(row.get(c, "")) for c in columns) + " |")

@@ -1,0 +1,35 @@
+"""Every benchmark in one run: demo latency, import time, and camlab-versus-OpenCV speed ratios.
+
+Each `benchmarks/speed_<topic>.py` provides `rows()` returning dicts with case, camlab_ms,
+opencv_ms, ratio, target and ok; this script prints them all as tables.
+"""
+from __future__ import annotations
+
+import importlib
+import os
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).parent
+sys.path.insert(0, str(HERE))
+
+import latency  # noqa: E402
+from _timing import print_table  # noqa: E402
+
+
+def main() -> int:
+    sys.argv = sys.argv[:1]
+    latency.main()
+    failed = []
+    for path in sorted(HERE.glob("speed_*.py")):
+        module = importlib.import_module(path.stem)
+        rows = module.rows()
+        print_table(rows, ["case", "camlab_ms", "opencv_ms", "ratio", "target", "ok"], f"{path.stem}: camlab vs OpenCV")
+        failed += [f"{path.stem}: {r['case']}" for r in rows if not r["ok"]]
+    if failed:
+        print("\nMissed targets:\n- " + "\n- ".join(failed))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

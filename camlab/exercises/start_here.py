@@ -1,0 +1,34 @@
+"""The warm-up exercise of lesson 00: how exercises and checks work."""
+from __future__ import annotations
+
+import numpy as np
+
+from .. import projective
+from ._core import Exercise, register_exercise, shape_problem
+
+
+def _diagnose(args, got, expected) -> str:
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + ": append one coordinate, w = 1, to the 2 you were given"
+    g = np.asarray(got, dtype=float)
+    if g[-1] == 0:
+        return "w = 0 makes an ideal point (a direction), not the point itself: append 1"
+    if np.allclose(g[1:], args[0]):
+        return "you put the 1 first; by convention w is the last coordinate: (x, y, 1)"
+    return "append 1 to the point, keeping x and y as they are"
+
+
+register_exercise(Exercise(
+    name="lift",
+    lesson="00",
+    reference=projective.to_homogeneous,
+    cases=lambda: [(np.array([3.0, 4.0]),), (np.array([-1.5, 0.0]),), (np.array([640.0, 480.0]),)],
+    compare=lambda got, expected: np.shape(got) == np.shape(expected) and np.allclose(got, expected),
+    diagnose=_diagnose,
+    wrong_variants=(
+        (lambda p: np.append(p, 0.0), "ideal point"),
+        (lambda p: np.insert(p, 0, 1.0), "w is the last coordinate"),
+        (lambda p: p, "shape (3,)"),
+    ),
+))

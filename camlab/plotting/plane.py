@@ -1,0 +1,64 @@
+"""Drawing points and lines of the projective plane (lesson 06)."""
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.lines import Line2D
+
+from ..projective import clip_line
+
+
+def set_line(artist: Line2D, line: np.ndarray, ax: Axes) -> None:
+    """Move ``artist`` to show the infinite ``line`` (a, b, c) clipped to ``ax``'s limits."""
+    ends = clip_line(line, ax.get_xlim(), sorted(ax.get_ylim()))
+    artist.set_data(ends[:, 0], ends[:, 1])
+
+
+def plane_axes(ax: Axes, lim: float, title: str = "", xlabel: str = "x", ylabel: str = "y") -> Axes:
+    """A square, equal-aspect axes centred on the origin with light axis lines."""
+    ax.set_xlim(-lim, lim)
+    ax.set_ylim(-lim, lim)
+    ax.set_aspect("equal")
+    ax.axhline(0, color="0.85", lw=0.8, zorder=0)
+    ax.axvline(0, color="0.85", lw=0.8, zorder=0)
+    ax.grid(True, color="0.93")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    if title:
+        ax.set_title(title)
+    return ax
+
+
+def image_axes(ax: Axes, width: int, height: int, title: str = "") -> Axes:
+    """Axes in pixel coordinates: u right, v down, origin at the top-left pixel centre."""
+    ax.set_xlim(-0.5, width - 0.5)
+    ax.set_ylim(height - 0.5, -0.5)
+    ax.set_aspect("equal")
+    ax.set_xlabel("u (px)")
+    ax.set_ylabel("v (px)")
+    if title:
+        ax.set_title(title)
+    return ax
+
+
+def arrow_to_infinity(point_h: np.ndarray, ax: Axes) -> tuple[np.ndarray, np.ndarray]:
+    """Where to draw a point that may be off-axes or ideal: (position, unit direction).
+
+    A finite point inside the axes is drawn where it is; otherwise an arrow at the edge
+    of the axes points along its direction from the axes' centre (for an ideal point,
+    along (x, y)).
+    """
+    x, y, w = np.asarray(point_h, dtype=float)
+    (x0, x1), (y0, y1) = ax.get_xlim(), sorted(ax.get_ylim())
+    centre = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
+    if w != 0:
+        p = np.array([x / w, y / w])
+        if x0 <= p[0] <= x1 and y0 <= p[1] <= y1:
+            return p, np.zeros(2)
+        direction = p - centre
+    else:
+        direction = np.array([x, y])
+    direction = direction / np.linalg.norm(direction)
+    half = np.array([(x1 - x0), (y1 - y0)]) / 2 * 0.9
+    t = np.min(half / np.maximum(np.abs(direction), 1e-12))
+    return centre + t * direction, direction

@@ -1,0 +1,233 @@
+import numpy as np
+import pytest
+from hypothesis import assume, given
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
+
+from camlab import projective as pj
+from camlab._validate import CamlabInputError, DegenerateError
+
+coord = st.floats(-1e3, 1e3, allow_nan=False)
+point2 = arrays(float, 2, elements=coord)
+
+
+def random_homography(rng: np.random.Generator) -> np.ndarray:
+    """A well-conditioned homography with a real perspective part."""
+    H = np.eye(3) + 0.3 * rng.standard_normal((3, 3))
+    H[2, :2] *= 0.01
+    return H
+
+
+# --- homogeneous coordinates -------------------------------------------------------
+
+def test_to_homogeneous_keeps_rank():
+    assert pj.to_homogeneous([1, 2]).shape == (3,)
+    np.testing.assert_array_equal(pj.to_homogeneous([[1, 2], [3, 4]]), [[1, 2, 1], [3, 4, 1]])
+
+
+def test_from_homogeneous_ideal_points_are_nan_not_huge():
+    out = pj.from_homogeneous([[2, 4, 2], [1, 1, 0], [1, 1, 1e-300]])
+    np.testing.assert_array_equal(out[0], [1, 2])
+    assert np.isnan(out[1]).all()
+    assert np.isfinite(out[2]).all()  # tiny but non-zero w is a real (far) point
+
+
+@given(arrays(float, (5, 2), elements=coord), st.floats(-50, 50).filter(lambda s: abs(s) > 1e-3))
+def test_homogeneous_round_trip_and_scale_invariance(x, s):
+    np.testing.assert_allclose(pj.from_homogeneous(pj.to_homogeneous(x)), x)
+    np.testing.assert_allclose(pj.from_homogeneous(s * pj.to_homogeneous(x)), x, rtol=1e-12, atol=1e-9)
+
+
+def test_inputs_are_not_modified():
+    x = np.array([[1.0, 2.0]])
+    pj.to_homogeneous(x)
+    pj.map_points(np.eye(3) * 2, x)
+    np.testing.assert_array_equal(x, [[1.0, 2.0]])
+
+
+# --- join, meet, incidence ---------------------------------------------------------
+
+def test_join_and_meet_known_answers():
+    np.testing.assert_allclose(pj.join([0, 0], [1, 1]), [-1, 1, 0])
+    np.testing.assert_allclose(pj.meet([1, 0, -2], [0, 1, -3]), [2, 3, 1])
+    vp = pj.meet([0, 1, 0], [0, 1, -1])  # y = 0 and y = 1
+    assert vp[2] == 0 and pj.is_ideal(vp)
+    assert pj.is_on_line(vp, pj.LINE_AT_INFINITY)
+
+
+@given(point2, point2)
+def test_join_passes_through_both_points(p, q):
+    assume(np.linalg.norm(p - q) > 1e-3)
+    line = pj.join(p, q)
+    assert pj.is_on_line(p, line) and pj.is_on_line(q, line)
+
+
+@given(point2, point2, point2, point2)
+def test_meet_is_dual_to_join(a, b, c, d):
+    assume(min(np.linalg.norm(a - b), np.linalg.norm(c - d)) > 1e-2)
+    l1, l2 = pj.join(a, b), pj.join(c, d)
+    u1, u2 = l1 / np.linalg.norm(l1), l2 / np.linalg.norm(l2)
+    assume(np.linalg.norm(np.cross(u1, u2)) > 1e-6)  # distinct lines
+    x = pj.meet(l1, l2)
+    assert pj.is_on_line(x, l1, tol=1e-7) and pj.is_on_line(x, l2, tol=1e-7)
+
+
+def test_join_meet_batches_broadcast_a_single_row():
+    lines = pj.join([0, 0], [[1, 0], [0, 1], [1, 1]])
+    assert lines.shape == (3, 3)
+    pts = pj.meet(lines, [1, 0, -5])  # each with x = 5
+    np.testing.assert_allclose(pj.from_homogeneous(pts)[:, 0], [5, np.nan, 5])  # x = 0 is parallel
+
+
+def test_is_on_line_ignores_scale():
+    line = np.array([1.0, -2.0, 3.0])
+    p = np.array([1.0, 2.0, 1.0])
+    for s in (1e-8, 1.0, 1e8):
+        assert pj.is_on_line(s * p, line) and pj.is_on_line(p, s * line)
+    assert not pj.is_on_line([1.0, 2.1], line)
+
+
+def test_degenerate_join_and_meet_raise():
+    with pytest.raises(DegenerateError, match="p and q coincide"):
+        pj.join([1, 2], [2, 4, 2])
+    with pytest.raises(DegenerateError, match="the same line"):
+        pj.meet([1, 2, 3], [-2, -4, -6])
+
+
+@pytest.mark.parametrize("bad, message", [
+    ([1, 2, 3, 4], r"p: expected \(N, 2\) or \(N, 3\) points"),
+    ([np.nan, 1], r"p: expected finite values, found nan at index \(0, 0\)"),
+    ("ab", r"p: expected numbers convertible to a float array"),
+    ([0, 0, 0], r"p: \(0, 0, 0\) is not a point"),
+])
+def test_bad_points_name_the_argument(bad, message):
+    with pytest.raises(CamlabInputError, match=message):
+        pj.join(bad, [1, 1])
+
+
+# --- normalisation, ideal points, distances ----------------------------------------
+
+def test_normalize_points_and_lines():
+    np.testing.assert_allclose(pj.normalize_points([[2, 4, 2], [3, 4, 0]]), [[1, 2, 1], [0.6, 0.8, 0]])
+    np.testing.assert_allclose(pj.normalize_lines([0, 0, -7]), [0, 0, 1])
+    line = pj.normalize_lines([3, 4, 10])
+    assert pj.point_line_distance([0, 0], line) == pytest.approx(2.0)
+
+
+def test_ideal_point_lies_on_every_parallel_line():
+    v = pj.ideal_point([1, 2])
+    for c in (-5, 0, 3):
+        assert pj.is_on_line(v, [2, -1, c])
+    with pytest.raises(CamlabInputError, match="direction"):
+        pj.ideal_point([0, 0])
+
+
+def test_point_line_distance_rejects_line_at_infinity():
+    with pytest.raises(DegenerateError, match="line at infinity"):
+        pj.point_line_distance([1, 1], [0, 0, 1])
+
+
+# --- homographies on points and lines ---------------------------------------------
+
+@pytest.mark.parametrize("seed", range(5))
+def test_lines_map_by_inverse_transpose_consistently_with_points(seed):
+    rng = np.random.default_rng(seed)
+    H = random_homography(rng)
+    p, q = rng.uniform(-100, 100, (2, 2))
+    mapped_line = pj.map_lines(H, pj.join(p, q))
+    for x in (p, q, 0.3 * p + 0.7 * q):
+        assert pj.is_on_line(pj.map_points(H, x), mapped_line, tol=1e-9)
+
+
+def test_map_points_homogeneous_keeps_ideal_points():
+    H = np.array([[1, 0, 0], [0, 1, 0], [1, 0, 1.0]])  # sends x = -1 to infinity
+    out = pj.map_points(H, [[-1, 5], [1, 1]])
+    assert np.isnan(out[0]).all()
+    np.testing.assert_allclose(out[1], [0.5, 0.5])
+    np.testing.assert_allclose(pj.map_points(H, [-1, 5, 1]), [-1, 5, 0])
+
+
+def test_map_lines_rejects_singular_H():
+    with pytest.raises(DegenerateError, match="singular"):
+        pj.map_lines(np.diag([1.0, 1.0, 0.0]), [1, 2, 3])
+    with pytest.raises(CamlabInputError, match=r"H: expected a \(3, 3\) matrix, got shape \(2, 2\)"):
+        pj.map_points(np.eye(2), [1, 2])
+
+
+# --- cross-ratio ---------------------------------------------------------------------
+
+def test_cross_ratio_known_value_and_ideal_point():
+    assert pj.cross_ratio([[0, 0], [1, 0], [2, 0], [3, 0]]) == pytest.approx(4 / 3)
+    # With D at infinity, (A, B; C, inf) = AC / BC.
+    assert pj.cross_ratio([[0, 0, 1], [1, 0, 1], [3, 0, 1], [1, 0, 0]]) == pytest.approx(3 / 2)
+
+
+@given(st.lists(st.floats(-50, 50), min_size=4, max_size=4, unique=True), st.integers(0, 10_000))
+def test_cross_ratio_is_invariant_under_homographies(ts, seed):
+    ts = np.sort(ts)
+    assume(np.min(np.diff(ts)) > 1e-2)
+    rng = np.random.default_rng(seed)
+    origin, direction = rng.uniform(-10, 10, 2), rng.standard_normal(2)
+    pts = origin + ts[:, None] * direction
+    H = random_homography(rng)
+    mapped = pj.map_points(H, pj.to_homogeneous(pts))  # homogeneous: robust if one goes to infinity
+    assert pj.cross_ratio(mapped) == pytest.approx(pj.cross_ratio(pts), rel=1e-6)
+
+
+def test_cross_ratio_errors():
+    with pytest.raises(DegenerateError, match="point C .* is off the line"):
+        pj.cross_ratio([[0, 0], [1, 0], [2, 0.5], [3, 0]])
+    with pytest.raises(DegenerateError, match="B = C or A = D"):
+        pj.cross_ratio([[0, 0], [1, 0], [1, 0], [3, 0]])
+    with pytest.raises(CamlabInputError, match="exactly 4 collinear points"):
+        pj.cross_ratio([[0, 0], [1, 0], [2, 0], [3, 0], [4, 0]])
+
+
+# --- vanishing points and the horizon -----------------------------------------------
+
+def test_vanishing_point_of_two_segments_is_their_meet():
+    segs = [[[100, 480], [280, 200]], [[540, 480], [360, 200]]]
+    vp = pj.vanishing_point(segs)
+    expected = pj.normalize_points(pj.meet(pj.join(*segs[0]), pj.join(*segs[1])))
+    np.testing.assert_allclose(vp, expected, rtol=1e-10)
+
+
+def test_vanishing_point_least_squares_from_noisy_segments():
+    rng = np.random.default_rng(1)
+    vp_true = np.array([400.0, -150.0])
+    starts = rng.uniform([0, 300], [640, 480], (12, 2))
+    ends = starts + 0.6 * (vp_true - starts) + rng.normal(0, 0.3, (12, 2))
+    vp = pj.from_homogeneous(pj.vanishing_point(np.stack([starts, ends], axis=1)))
+    assert np.linalg.norm(vp - vp_true) < 5.0
+
+
+def test_vanishing_point_of_parallel_segments_is_ideal():
+    vp = pj.vanishing_point([[[0, 0], [1, 2]], [[5, 0], [6, 2]], [[9, 1], [10, 3]]])
+    assert pj.is_ideal(vp, tol=1e-9)
+    np.testing.assert_allclose(np.abs(vp[:2]), np.array([1, 2]) / np.sqrt(5), atol=1e-9)
+
+
+def test_vanishing_point_errors():
+    with pytest.raises(CamlabInputError, match=r"segments: expected \(N, 2, 2\)"):
+        pj.vanishing_point([[[0, 0], [1, 1]]])
+    with pytest.raises(DegenerateError, match="segment 1 has zero length"):
+        pj.vanishing_point([[[0, 0], [1, 1]], [[2, 2], [2, 2]]])
+    with pytest.raises(DegenerateError, match="all segments lie on one line"):
+        pj.vanishing_point([[[0, 0], [1, 1]], [[2, 2], [3, 3]]])
+
+
+def test_horizon_matches_camera_ground_truth():
+    from camlab.widgets.projective_plane import ground_plane_view
+
+    g = ground_plane_view(np.radians(12), np.radians(20), 700.0)
+    segs = np.array(g["segments"])
+    n = g["n_along_z"]
+    hz = pj.horizon(pj.vanishing_point(segs[:n]), pj.vanishing_point(segs[n:]))
+    truth = pj.normalize_lines(g["horizon"])
+    assert min(np.linalg.norm(hz - truth), np.linalg.norm(hz + truth)) < 1e-9
+
+
+def test_clip_line():
+    np.testing.assert_allclose(pj.clip_line([1, -1, 0], (0, 10), (0, 5)), [[0, 0], [5, 5]], atol=1e-12)
+    assert np.isnan(pj.clip_line([0, 1, -20], (0, 10), (0, 5))).all()
+    assert np.isnan(pj.clip_line([0, 0, 1], (0, 10), (0, 5))).all()

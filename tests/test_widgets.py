@@ -1,0 +1,139 @@
+"""Every registered demo, driven headlessly through its sweep, plus lesson-06 specifics."""
+import numpy as np
+import pytest
+
+from camlab.widgets import FigureView, all_demos
+
+DEMOS = all_demos()
+
+
+def _snapshot(state: dict) -> dict:
+    return {k: np.array(v, dtype=object if isinstance(v, (list, tuple)) else None, copy=True)
+            for k, v in state.items()}
+
+
+def _changed(before: dict, after: dict) -> bool:
+    for key in set(before) | set(after):
+        if key not in before or key not in after:
+            return True
+        a, b = before[key], after[key]
+        try:
+            if a.shape != b.shape or not np.array_equal(a, b, equal_nan=a.dtype.kind == "f"):
+                return True
+        except TypeError:
+            if not np.array_equal(a, b):
+                return True
+    return False
+
+
+def test_every_lesson_demo_module_registers_something():
+    assert {"stack_check", "lift_to_plane", "parallel_lines", "point_line_duality",
+            "vanishing_points", "cross_ratio_invariance"} <= set(DEMOS)
+
+
+@pytest.mark.parametrize("name", sorted(DEMOS))
+def test_sweep_changes_state_and_figure(name):
+    spec = DEMOS[name]
+    demo = spec.builder()
+    assert demo.updates == 1 and demo.state, f"{name}: the default view must compute something"
+    assert demo.view.mode == "agg"
+    for control, values in spec.sweep.items():
+        assert control in demo.controls, f"{name}: sweep names unknown control {control!r}"
+        assert len(values) >= 2, f"{name}: sweep {control!r} needs at least two values"
+        moved_state = moved_pixels = 0
+        for value in values:
+            demo.set(**{control: spec.sweep[control][0]})
+            before_state, before_pixels = _snapshot(demo.state), demo.view.pixels()
+            if value == spec.sweep[control][0]:
+                continue
+            demo.set(**{control: value})
+            moved_state += _changed(before_state, _snapshot(demo.state))
+            moved_pixels += not np.array_equal(before_pixels, demo.view.pixels())
+        assert moved_state, f"{name}: moving {control!r} never changed demo.state"
+        assert moved_pixels, f"{name}: moving {control!r} never changed the figure"
+
+
+def test_png_mode_sends_an_image_that_changes():
+    view = FigureView(figsize=(3, 2), mode="png")
+    ax = view.fig.subplots()
+    line = view.animate(ax.plot([0, 1], [0, 1])[0])
+    view.refresh()
+    first = view.widget.value
+    assert first[:8] == b"\x89PNG\r\n\x1a\n"
+    line.set_data([0, 1], [1, 0])
+    view.refresh()
+    assert view.widget.value != first
+
+
+def test_blitting_matches_a_full_redraw():
+    """The cached-background path must show exactly what a full draw would."""
+    from camlab.widgets import projective_plane
+
+    demo = projective_plane.point_line_duality()
+    demo.set(px=-1.3, line_angle=100.0)
+    blitted = demo.view.pixels().astype(int)
+    for artist in demo.view._animated:
+        artist.set_animated(False)
+    demo.figure.canvas.draw()
+    redrawn = np.asarray(demo.figure.canvas.buffer_rgba()).astype(int)
+    diff = np.abs(blitted - redrawn).max(axis=2)
+    # Only anti-aliased edges may differ, and only partly; a stale background differs fully.
+    assert diff.max() <= 80 and np.mean(diff > 0) < 0.01
+
+
+# --- lesson-06 specifics -------------------------------------------------------------
+
+def test_parallel_lines_meet_runs_to_infinity():
+    from camlab.widgets.projective_plane import parallel_lines
+
+    demo = parallel_lines()
+    ws = []
+    for angle in (10.0, 20.0, 27.0, 29.5, 30.0):
+        demo.set(angle2=angle)
+        ws.append(demo.state["w"])
+    assert all(a > b for a, b in zip(ws, ws[1:])), ws
+    assert ws[-1] == 0.0 and np.isnan(demo.state["point"]).all()
+    demo.set(offset2=0.5)  # now l2 == l1
+    assert demo.state["meet"] is None
+
+
+def test_duality_incidence_is_preserved():
+    from camlab.widgets.projective_plane import point_line_duality
+
+    demo = point_line_duality()
+    # Put p on l: l has unit normal at 0 degrees and distance 1, i.e. x = 1.
+    demo.set(line_angle=0.0, line_dist=1.0, px=1.0, py=0.7)
+    assert demo.state["on_line"] and abs(demo.state["incidence"]) < 1e-12
+    demo.set(px=1.5)
+    assert not demo.state["on_line"]
+
+
+def test_vanishing_points_demo_agrees_with_camera_truth():
+    from camlab.widgets.projective_plane import vanishing_points
+
+    demo = vanishing_points()
+    for pitch, yaw in ((12.0, 15.0), (30.0, -30.0), (5.0, 0.0)):
+        demo.set(pitch=pitch, yaw=yaw)
+        s = demo.state
+        np.testing.assert_allclose(s["vp_z"], s["vp_z_true"], rtol=1e-8, atol=1e-8)
+        h, t = s["horizon"], s["horizon_true"]
+        assert min(np.linalg.norm(h - t), np.linalg.norm(h + t)) < 1e-8
+    demo.set(yaw=0.0)  # lines across the view are parallel in the image: ideal vanishing point
+    assert abs(demo.state["vp_x"][2]) < 1e-9
+
+
+def test_cross_ratio_demo_invariance():
+    from camlab.widgets.projective_plane import cross_ratio_invariance
+
+    demo = cross_ratio_invariance()
+    demo.set(h31=0.3, h32=-0.2, angle=25.0)
+    s = demo.state
+    assert s["cross_ratio_after"] == pytest.approx(s["cross_ratio_before"], rel=1e-9)
+    assert abs(s["ratio_after"] - s["ratio_before"]) > 0.05  # plain ratios are not invariant
+
+
+def test_unknown_control_is_a_clear_error():
+    from camlab.widgets.start_here import stack_check
+
+    with pytest.raises(KeyError, match="no control 'angel'"):
+        stack_check().set(angel=3)
