@@ -168,7 +168,8 @@ def demosaicing():
         im_full.set_data(out)
         im_zoom.set_data(out[crop])
         box.set_xy((u0 - 0.5, v0 - 0.5))
-        state.update(psnr=sensor.psnr(truth, out, border=2))
+        state.update(psnr=sensor.psnr(truth, out, border=2), zoom=(u0, v0),
+                     zoom_psnr=sensor.psnr(truth[crop], out[crop]))
         ax_full.set_title(f"{method}: PSNR {state['psnr']:.2f} dB", fontsize=10)
 
     return build_demo("demosaicing", controls, view, update, title="Bayer mosaic and demosaicing")

@@ -68,7 +68,8 @@ def pinhole_projection():
             img = img[::-1, ::-1]  # the real image: rotated 180 degrees
         im.set_data(img)
         centre = pinhole.project_pinhole([0.0, 0.0, Z], f)
-        state.update(fx=K[0, 0], box_width_px=K[0, 0] * BOX_SIZE[0] / Z, image=img, centre=centre)
+        state.update(fx=K[0, 0], box_width_px=K[0, 0] * BOX_SIZE[0] / Z, image=img, centre=centre,
+                     plane="real" if values["real_plane"] else "virtual")
         ax_img.set_title(("real image (inverted)" if values["real_plane"] else "virtual image (upright)")
                          + f", fx = {K[0, 0]:.0f} px", fontsize=10)
         label.set_text(f"box ~ {state['box_width_px']:.0f} px wide")
