@@ -59,9 +59,8 @@ def pinhole_projection():
         f = values["focal_mm"] * 1e-3
         Z = values["distance"]
         e = _rotated_box_edges(Z)
-        for line, seg in zip(art["box"], e):
-            line.set_data_3d(*optics._to_plot(seg))
         optics.update_pinhole_3d(art, e, f * DRAW_SCALE)
+        ax3.set_xlim(-1.3 * f * DRAW_SCALE, Z + 0.35)
         K = sensor.intrinsics_from_sensor(f, (PITCH, PITCH), SIZE)
         img = render.render(_box_scene(Z), K, SIZE).irradiance
         if values["real_plane"]:
