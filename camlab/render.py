@@ -698,10 +698,10 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
                 Xc = wp[inside] @ R.T + t
                 vis[inside] = _nearest_hit(Xc / Xc[:, 2:3], geo) >= Xc[:, 2] * (1 - 1e-6)
             truth.points[p.name] = PlanePoints(p.object_points, wp, px, vis, p.pattern_size)
-    for p in planes:  # planes entirely behind the camera still get an entry
+    for p in planes:  # culled planes (behind the camera, back faces) still get an entry, all invisible
         if len(p.points) and p.name not in truth.points:
             wp = p.world_points
-            truth.points[p.name] = PlanePoints(p.object_points, wp, np.full((len(wp), 2), np.nan),
+            truth.points[p.name] = PlanePoints(p.object_points, wp, project(wp, K, R, t, d),
                                                np.zeros(len(wp), bool), p.pattern_size)
     return RenderResult(image, irradiance, truth)
 

@@ -124,6 +124,10 @@ def test_box_faces_and_scene_flattening():
     for f in faces:  # outward normals
         assert np.dot(f.R[:, 2], f.t - [0, 0, 1.0]) > 0
     out = r.render([faces, r.text_page(0.3, t=(0, 0, 2.0))], K, depth=True)
+    # the face turned away from the camera is culled: its corners project but are not visible
+    back, front = out.truth.points["box+z"], out.truth.points["box-z"]
+    assert np.isfinite(back.pixels).all() and not back.visible.any()
+    assert front.visible.all()
     assert out.image.std() > 10
     signs = np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).reshape(3, -1).T
     vertices = (signs * [0.1, 0.15, 0.1]) @ r.rotation_from_euler(0.4, 0.6, 0).T + [0, 0, 1.0]
