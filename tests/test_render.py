@@ -175,3 +175,10 @@ def test_bad_inputs():
         r.render(board, K, supersample=0)
     with pytest.raises(CamlabInputError, match=r"detected: expected 12 corners"):
         r.align_detected_corners(np.zeros((5, 2)), np.zeros((12, 2)))
+
+
+def test_align_detected_corners_undoes_reversal_and_opencv4_shape():
+    gt = r.checkerboard((4, 3), 0.03, t=(0, 0, 0.5)).points * 1000 + 100
+    det4 = gt[::-1].reshape(-1, 1, 2) + 0.01   # OpenCV 4 shape, reversed order
+    assert np.allclose(r.align_detected_corners(det4, gt), gt + 0.01)
+    assert np.allclose(r.align_detected_corners(gt - 0.01, gt), gt - 0.01)
