@@ -9,7 +9,6 @@ from ..plotting import images, optics
 from matplotlib.ticker import MaxNLocator
 
 from ._base import FigureView, build_demo, register, slider
-from ._image_formation import freeze_layout
 
 SIZE = (320, 240)
 PITCH = 36e-3 / SIZE[0]  # a 36 mm wide sensor with 320 pixels: 112.5 um pixels
@@ -52,15 +51,16 @@ def pinhole_projection():
     for axis in (ax3.xaxis, ax3.yaxis, ax3.zaxis):
         axis.set_major_locator(MaxNLocator(3))
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
-    freeze_layout(view)
     label = ax_img.text(4, 14, "", color="w", fontsize=9, va="top", bbox=dict(fc="k", alpha=0.5, lw=0))
+    # everything that moves is blitted over the cached static figure
+    view.animate(im, label, ax_img.title, art["box"], art["rays"], art["real"], art["virtual"],
+                 *art["planes"].values())
 
     def update(values, state):
         f = values["focal_mm"] * 1e-3
         Z = values["distance"]
         e = _rotated_box_edges(Z)
         optics.update_pinhole_3d(art, e, f * DRAW_SCALE)
-        ax3.set_xlim(-1.3 * f * DRAW_SCALE, Z + 0.35)
         K = sensor.intrinsics_from_sensor(f, (PITCH, PITCH), SIZE)
         img = render.render(_box_scene(Z), K, SIZE).irradiance
         if values["real_plane"]:
@@ -94,7 +94,8 @@ def pinhole_size():
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
     ax_img.set_title("page at 1 m: blur 0.00 mm = 0.0 px", fontsize=10)
     ax_plot.set_title("best d = 0.00 mm; now diffraction-limited", fontsize=10)
-    freeze_layout(view)
+    view.animate(im, ax_img.title, ax_plot.title, art["geometric"], art["diffraction"], art["total"],
+                 art["marker"], art["best"])
 
     def update(values, state):
         f, d = values["focal_mm"] * 1e-3, values["diameter_mm"] * 1e-3
