@@ -4,25 +4,23 @@ Run: python benchmarks/speed_image_formation.py   (prints the speed table, then 
 """
 from __future__ import annotations
 
-import time
+import os
+import sys
 
 import cv2
 import numpy as np
 
 from camlab import distortion, render, sensor
 
+sys.path.insert(0, os.path.dirname(__file__))
+from _timing import median_ms  # noqa: E402
+
 K = np.array([[800.0, 0.0, 319.5], [0.0, 800.0, 239.5], [0.0, 0.0, 1.0]])
 DIST = np.array([-0.28, 0.09, 0.0012, -0.0008, -0.01])
 
 
 def _median_ms(fn, repeat: int = 15) -> float:
-    fn()  # warm-up (caches, imports)
-    ts = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        ts.append(time.perf_counter() - t0)
-    return float(np.median(ts) * 1e3)
+    return median_ms(fn, repeat=repeat, warmup=1)
 
 
 def _row(case, ours, ref, target, ok):
