@@ -45,6 +45,7 @@ from . import distortion as _dist
 from . import lens as _lens
 from . import sensor as _sensor
 from ._validate import CamlabInputError, as_points, check_matrix, check_positive
+from .camera import Camera, look_at_rotation, rotation_from_euler
 
 __all__ = [
     "Defocus", "GroundTruth", "align_detected_corners", "Plane", "PlanePoints", "RenderResult", "Sensor", "box", "checkerboard",
@@ -55,43 +56,18 @@ __all__ = [
 
 # ------------------------------------------------------------------------- poses
 
-def rotation_from_euler(rx: float = 0.0, ry: float = 0.0, rz: float = 0.0) -> np.ndarray:
-    r"""Rotation :math:`R = R_z(r_z) R_y(r_y) R_x(r_x)` (radians): x first, then y, then z.
-
-    >>> np.allclose(rotation_from_euler(0, 0, np.pi / 2) @ [1, 0, 0], [0, 1, 0])
-    True
-    """
-    cx, sx, cy, sy, cz, sz = np.cos(rx), np.sin(rx), np.cos(ry), np.sin(ry), np.cos(rz), np.sin(rz)
-    Rx = np.array([[1, 0, 0], [0, cx, -sx], [0, sx, cx]])
-    Ry = np.array([[cy, 0, sy], [0, 1, 0], [-sy, 0, cy]])
-    Rz = np.array([[cz, -sz, 0], [sz, cz, 0], [0, 0, 1]])
-    return Rz @ Ry @ Rx
-
-
 def look_at(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0.0, -1.0, 0.0)) -> tuple[np.ndarray, np.ndarray]:
     r"""The camera pose ``(R, t)`` (cam_from_world) of a camera at ``eye`` looking at ``target``.
 
-    The camera's z axis points from eye to target, its y axis (image down) is as close as
-    possible to ``-up``. Returns ``R`` (3, 3) and ``t`` (3,) with ``X_cam = R X_world + t``.
+    The rotation is :func:`camlab.camera.look_at_rotation`; the default ``up`` is -y because
+    the render scenes use y down. Returns ``R`` (3, 3) and ``t = -R eye`` (3,).
 
     >>> R, t = look_at([0, 0, -2], [0, 0, 0])
     >>> np.allclose(R, np.eye(3)), np.allclose(t, [0, 0, 2])
     (True, True)
     """
-    eye = check_matrix(eye, (3,), "eye")
-    target = check_matrix(target, (3,), "target")
-    up = check_matrix(up, (3,), "up")
-    z = target - eye
-    if np.linalg.norm(z) == 0:
-        raise CamlabInputError("look_at: eye and target coincide; put the target somewhere in front of the camera")
-    z = z / np.linalg.norm(z)
-    x = np.cross(z, up)  # x = y cross z with y = -up
-    if np.linalg.norm(x) < 1e-9:
-        raise CamlabInputError("look_at: up is parallel to the viewing direction; choose another up vector")
-    x = x / np.linalg.norm(x)
-    y = np.cross(z, x)
-    R = np.stack([x, y, z])
-    return R, -R @ eye
+    R = look_at_rotation(eye, target, up)
+    return R, -R @ np.asarray(eye, dtype=float)
 
 
 # ------------------------------------------------------------------------- scene
@@ -116,6 +92,8 @@ class Plane:
         Key of this plane's points in ``GroundTruth.points``.
     pattern_size : (cols, rows) or None
         Inner-corner count of a checkerboard, in ``cv2.findChessboardCorners`` order.
+    two_sided : bool
+        Seen from both sides (default); box faces are one-sided and culled from behind.
     """
 
     texture: np.ndarray
@@ -125,6 +103,7 @@ class Plane:
     points: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     name: str = "plane"
     pattern_size: tuple[int, int] | None = None
+    two_sided: bool = True
 
     @property
     def object_points(self) -> np.ndarray:
@@ -323,7 +302,7 @@ def box(center: ArrayLike, size: ArrayLike, *, R: ArrayLike = np.eye(3), colors:
             base = np.clip(base + rng.normal(0, 0.12, size=(th, tw)).astype(np.float32), 0, 1)
         label = f"{name}{'+' if sign > 0 else '-'}{'xyz'[ax]}"
         pts = np.array([[-w / 2, -h / 2], [w / 2, -h / 2], [w / 2, h / 2], [-w / 2, h / 2]])
-        faces.append(Plane(_as_texture(base), (-w / 2, -h / 2, w / 2, h / 2), Rf, tf, pts, label))
+        faces.append(Plane(_as_texture(base), (-w / 2, -h / 2, w / 2, h / 2), Rf, tf, pts, label, two_sided=False))
     return faces
 
 
@@ -417,22 +396,16 @@ def project(points_world: ArrayLike, K: ArrayLike, R: ArrayLike = np.eye(3), t: 
     r"""Project world points to distorted pixels: the renderer's ground-truth projection.
 
     :math:`X_c = R X + t`, :math:`x = (X_c/Z_c, Y_c/Z_c)`, :math:`x_d = \mathrm{distort}(x)`,
-    :math:`u = K [x_d, 1]`. Agrees with ``cv2.projectPoints`` (to 1e-9 px).
+    :math:`u = K [x_d, 1]`, by :meth:`camlab.camera.Camera.project`. Agrees with
+    ``cv2.projectPoints`` (to 1e-9 px).
 
     Returns
     -------
     (N, 2) or (2,) ndarray
         Pixels (u, v); NaN for points with Z_c <= 0.
     """
-    pts = as_points(points_world, 3, "points_world")
-    K = _dist._check_K(K)
     R, t = _pose(R, t, "camera")
-    Xc = pts.array @ R.T + t
-    with np.errstate(divide="ignore", invalid="ignore"):
-        xy = Xc[:, :2] / Xc[:, 2:3]
-    xy[Xc[:, 2] <= 0] = np.nan
-    xd = _dist._distort(xy, _dist.as_dist(dist))
-    return pts.restore(_dist._to_pixels(xd, K))
+    return Camera(_dist._check_K(K), R, t, dist=tuple(_dist.as_dist(dist))).project(points_world)
 
 
 def align_detected_corners(detected: ArrayLike, truth_pixels: ArrayLike) -> np.ndarray:
@@ -534,7 +507,10 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
     Raises
     ------
     CamlabInputError
-        A plane reaches behind the camera (z_cam <= 1 mm), bad K/pose/size, bad sensor settings.
+        Bad K/pose/size, bad sensor settings, an empty scene.
+
+    Planes may reach behind the camera (a floor, a wall beside it): the part nearer than
+    ``NEAR`` = 2 cm is clipped away.
 
     Where the distortion model folds over inside the image (strong barrel distortion at
     the corners, beyond :func:`camlab.distortion.max_valid_radius`) no ideal ray maps to the
@@ -579,14 +555,13 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
         Rc = R @ p.R
         tc = R @ p.t + t
         zc = (p.corners_world @ R.T + t)[:, 2]
-        if zc.max() <= 1e-3:
-            continue  # entirely behind the camera: invisible
-        if zc.min() <= 1e-3:
-            raise CamlabInputError(
-                f"scene: plane {p.name!r} reaches behind the camera (corner depths {np.round(zc, 3).tolist()} m); "
-                f"move it in front (all z_cam > 0) or out of the scene"
-            )
-        geo.append((p, Rc, tc, float(np.mean(zc))))
+        if zc.max() <= NEAR:
+            continue  # entirely behind the camera (or closer than NEAR): invisible
+        if not p.two_sided and Rc[:, 2] @ tc >= 0:
+            continue  # a one-sided face seen from behind (its normal points away from the camera)
+        poly = _clip_to_near(p.extent, Rc, tc)  # the part in front of the near plane (floors, walls)
+        zpoly = poly @ Rc[2, :2] + tc[2]
+        geo.append((p, Rc, tc, float(np.mean(zpoly)), poly))
 
     # the ideal (undistorted) canvas: supersampled, and large enough for what distortion pulls in
     Ks = np.array([[ss, 0, (ss - 1) / 2], [0, ss, (ss - 1) / 2], [0, 0, 1]]) @ K  # output px -> ss px
@@ -614,11 +589,11 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
 
     canvas = np.empty((ch, cw, nch), dtype=np.float32)
     canvas[:] = bg
-    for p, Rc, tc, zmid in sorted(geo, key=lambda g: -g[3]):  # painter's algorithm, far to near
+    for p, Rc, tc, zmid, poly in sorted(geo, key=lambda g: -g[3]):  # painter's algorithm, far to near
         x0, y0, x1, y1 = p.extent
         # coarsest texture level whose texel still covers >= 1 canvas pixel at the plane's nearest point
         Hplane = Kc @ np.column_stack([Rc[:, 0], Rc[:, 1], tc])  # plane metres -> canvas px
-        mpp = _metres_per_canvas_px(Hplane, p.extent)
+        mpp = _metres_per_canvas_px(Hplane, poly)
         level = 0
         while level < 8 and (x1 - x0) / (p.texture.shape[1] >> (level + 1) or 1) < mpp \
                 and (p.texture.shape[1] >> (level + 1)) >= 2 and (p.texture.shape[0] >> (level + 1)) >= 2:
@@ -630,10 +605,8 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
         H = Hplane @ S  # texel (c, r) -> canvas px
         if p.is_color and not color:
             tex = np.ascontiguousarray(tex @ np.array([0.299, 0.587, 0.114], dtype=np.float32))
-        elif color and not p.is_color:
-            tex = np.repeat(tex[..., None], 3, axis=2)
-        quad = cv2.perspectiveTransform(np.array([[[-0.5, -0.5], [tw - 0.5, -0.5], [tw - 0.5, th - 0.5],
-                                                   [-0.5, th - 0.5]]], dtype=np.float64), H)[0]
+        # a grey texture in a colour render stays one channel: compositing broadcasts it
+        quad = cv2.perspectiveTransform(poly[None].astype(np.float64), Hplane)[0]  # visible outline, canvas px
         # work only inside the plane's bounding box (plus room for its blur)
         c_px = _coc_pixels(defocus, K, zmid) * ss if defocus is not None else 0.0
         pad = int(np.ceil(c_px / 2)) + 2
@@ -684,7 +657,7 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
 
     truth = GroundTruth(K=K, dist=d, R=R, t=t, size=(w, h), points={},
                         depth=_depth_map(geo, K, d, w, h) if depth else None)
-    for p, _, _, _ in geo:
+    for p, *_ in geo:
         if len(p.points):
             wp = p.world_points
             px = project(wp, K, R, t, d)
@@ -695,10 +668,10 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
                 Xc = wp[inside] @ R.T + t
                 vis[inside] = _nearest_hit(Xc / Xc[:, 2:3], geo) >= Xc[:, 2] * (1 - 1e-6)
             truth.points[p.name] = PlanePoints(p.object_points, wp, px, vis, p.pattern_size)
-    for p in planes:  # planes entirely behind the camera still get an entry
+    for p in planes:  # culled planes (behind the camera, back faces) still get an entry, all invisible
         if len(p.points) and p.name not in truth.points:
             wp = p.world_points
-            truth.points[p.name] = PlanePoints(p.object_points, wp, np.full((len(wp), 2), np.nan),
+            truth.points[p.name] = PlanePoints(p.object_points, wp, project(wp, K, R, t, d),
                                                np.zeros(len(wp), bool), p.pattern_size)
     return RenderResult(image, irradiance, truth)
 
@@ -718,11 +691,31 @@ def _flatten(scene) -> list[Plane]:
     return out
 
 
-def _metres_per_canvas_px(Hplane: np.ndarray, extent) -> float:
-    """Smallest plane-metres-per-canvas-pixel over the rectangle's corners (its closest part)."""
+NEAR = 0.02  # metres: the renderer's near clipping distance
+
+
+def _clip_to_near(extent, Rc: np.ndarray, tc: np.ndarray) -> np.ndarray:
+    """The plane rectangle's part with z_cam >= NEAR, as an (M, 2) convex polygon in plane coordinates.
+
+    z_cam is linear on the plane, so one Sutherland-Hodgman step against a half-plane clips it.
+    """
     x0, y0, x1, y1 = extent
+    rect = np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]], dtype=float)
+    z = rect @ Rc[2, :2] + tc[2] - NEAR
+    out = []
+    for i in range(4):
+        a, b, za, zb = rect[i], rect[(i + 1) % 4], z[i], z[(i + 1) % 4]
+        if za >= 0:
+            out.append(a)
+        if (za >= 0) != (zb >= 0):
+            out.append(a + (b - a) * za / (za - zb))
+    return np.array(out)
+
+
+def _metres_per_canvas_px(Hplane: np.ndarray, poly: np.ndarray) -> float:
+    """Smallest plane-metres-per-canvas-pixel over the visible polygon's vertices (its closest part)."""
     best = np.inf
-    for x, y in ((x0, y0), (x1, y0), (x1, y1), (x0, y1), ((x0 + x1) / 2, (y0 + y1) / 2)):
+    for x, y in np.vstack([poly, poly.mean(axis=0)]):
         q = Hplane @ [x, y, 1.0]
         J = (Hplane[:2, :2] * q[2] - np.outer(q[:2], Hplane[2, :2])) / q[2] ** 2  # d canvas / d plane
         s = np.sqrt(abs(np.linalg.det(J)))
@@ -740,7 +733,7 @@ def _coc_pixels(defocus: Defocus, K: np.ndarray, depth: float) -> float:
 def _nearest_hit(rays: np.ndarray, geo) -> np.ndarray:
     """Depth z_cam where each ray ``(x, y, 1)`` first meets a plane of the scene (inf: none)."""
     depth = np.full(len(rays), np.inf)
-    for p, Rc, tc, _ in geo:
+    for p, Rc, tc, *_ in geo:
         n = Rc[:, 2]
         with np.errstate(divide="ignore", invalid="ignore"):
             z = (n @ tc) / (rays @ n)  # the plane n . X = n . tc meets the ray z * (x, y, 1) here
