@@ -3,13 +3,14 @@ r"""The panorama data of lesson 09, rendered by the virtual camera with full gro
 ``python -m camlab.stitching_data`` writes ``data/panorama/`` (deterministic: the same
 bytes on every run with the same library versions):
 
-``rot_00.png`` ... ``rot_03.png``
+``rot_00.jpg`` ... ``rot_03.jpg``
     A camera turning about its centre (yaw -27, -9, 9, 27 degrees, a little pitch and roll)
     in a room: a wide textured back wall 6 m away (16 m wide), a photograph, a text page and a box
     closer by. 640 x 480 RGB, fx = 800; each view has its own exposure gain and sensor
-    noise. Because the centre does not move, view i maps to view j by the homography
+    noise, and is stored as a quality-95 JPEG like a camera's (a noisy PNG is 5x larger,
+    and ``data/`` must stay small). Because the centre does not move, view i maps to view j by the homography
     :math:`H_{ji} = K R_j R_i^T K^{-1}` whatever the depth (lesson 09, section 1).
-``plane_0.png``, ``plane_1.png``
+``plane_0.jpg``, ``plane_1.jpg``
     A flat poster photographed from two different positions: related by the plane-induced
     homography :math:`K (R - t n^T / d) K^{-1}`.
 ``truth.json``
@@ -45,6 +46,7 @@ PANORAMA_PARAMS = {
     "full_well": 20000.0,
     "read_noise": 3.0,
     "supersample": 2,
+    "jpeg_quality": 95,
     "wall_texture_px": [2100, 800],
     "plane_pair": {"t1": [0.25, -0.05, 0.0], "angles1_deg": [-6.0, 4.0, 2.0]},
 }
@@ -179,10 +181,11 @@ class PlanarPair(NamedTuple):
     params: dict
 
 
-def _encode_png(img: np.ndarray) -> bytes:
+def _encode_jpeg(img: np.ndarray, quality: int) -> bytes:
+    """JPEG bytes of an RGB image (what a camera writes; deterministic for one libjpeg version)."""
     import cv2
 
-    ok, buf = cv2.imencode(".png", img[..., ::-1], [cv2.IMWRITE_PNG_COMPRESSION, 9])
+    ok, buf = cv2.imencode(".jpg", img[..., ::-1], [cv2.IMWRITE_JPEG_QUALITY, int(quality)])
     return buf.tobytes()
 
 
@@ -200,8 +203,8 @@ def make_panorama_set(out_dir: Path | str, params: dict = PANORAMA_PARAMS) -> li
     for i, ((yaw, pitch, roll), gain) in enumerate(zip(params["angles_deg"], params["gains"])):
         R = cam_from_world(*np.radians([yaw, pitch, roll]))
         img = render_view(R, gain=gain, rng=rng, params=params, scene=scene)
-        name = f"rot_{i:02d}.png"
-        (out / name).write_bytes(_encode_png(img))
+        name = f"rot_{i:02d}.jpg"
+        (out / name).write_bytes(_encode_jpeg(img, params["jpeg_quality"]))
         files.append(out / name)
         views.append({"file": name, "R": np.round(R, 15).tolist(), "gain": gain})
 
@@ -220,8 +223,8 @@ def make_panorama_set(out_dir: Path | str, params: dict = PANORAMA_PARAMS) -> li
 
         img = quantize(np.clip(add_noise(res.irradiance, NoiseModel(params["full_well"], params["read_noise"]),
                                          rng), 0, 1), 8)
-        name = f"plane_{i}.png"
-        (out / name).write_bytes(_encode_png(img))
+        name = f"plane_{i}.jpg"
+        (out / name).write_bytes(_encode_jpeg(img, params["jpeg_quality"]))
         files.append(out / name)
     # the poster is the plane z = 1.5 in camera 0's frame: n = (0, 0, 1), d = -1.5 (n . X + d = 0)
     Hp = plane_homography(K, poses[1][0], poses[1][1], (0, 0, 1), -1.5)
@@ -235,7 +238,7 @@ def make_panorama_set(out_dir: Path | str, params: dict = PANORAMA_PARAMS) -> li
         "views": views,
         "H_true": [[np.round(_true_h(K, views, i, j), 12).tolist() for j in range(len(views))]
                    for i in range(len(views))],
-        "plane_pair": {"files": ["plane_0.png", "plane_1.png"], "R1": np.round(poses[1][0], 15).tolist(),
+        "plane_pair": {"files": ["plane_0.jpg", "plane_1.jpg"], "R1": np.round(poses[1][0], 15).tolist(),
                        "t1": np.round(poses[1][1], 15).tolist(), "plane_n": [0, 0, 1], "plane_d": -1.5,
                        "H_10": np.round(Hp, 12).tolist()},
     }

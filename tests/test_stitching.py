@@ -332,10 +332,10 @@ def test_register_pair_too_few_matches(half):
 def test_dataset_regenerates_byte_identically(tmp_path):
     sd.make_panorama_set(tmp_path)
     bundled = sd._data_dir()
-    for name in ["rot_00.png", "rot_03.png", "plane_1.png", "truth.json"]:
+    for name in ["rot_00.jpg", "rot_03.jpg", "plane_1.jpg", "truth.json"]:
         assert (tmp_path / name).read_bytes() == (bundled / name).read_bytes(), name
     total = sum(p.stat().st_size for p in bundled.iterdir())
-    assert total < 4_000_000
+    assert total < 800_000
 
 
 def test_loaders_and_truth():

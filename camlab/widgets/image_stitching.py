@@ -169,7 +169,7 @@ def _chain_to(graph: st.MatchGraph, ref: int) -> list:
     return [hg.normalize_homography(to_ref @ H) for H in graph.homographies]
 
 
-@register(lesson="09", sweep={"reference": [0, 1, 3]})
+@register(lesson="09", sweep={"reference": [0, 1, 3]}, target_ms=100.0)
 def panorama_canvas() -> Demo:
     """Every image warped onto one canvas; the reference image decides the shape (and the stretch).
 
@@ -237,7 +237,7 @@ def _pair_warp():
     return wi, st.gain_compensation(wi, reference=0)
 
 
-@register(lesson="09", sweep={"method": list(st.BLENDS), "gains": [False, True], "levels": [1, 5]})
+@register(lesson="09", sweep={"method": list(st.BLENDS), "gains": [False, True], "levels": [1, 5]}, target_ms=100.0)
 def blending_seams() -> Demo:
     """Overwrite, feather and multi-band blending of two differently exposed views, with a zoom on the seam."""
     wi, gains = _pair_warp()
@@ -299,7 +299,7 @@ def _panoramas():
             for proj in ("planar", "cylindrical")}
 
 
-@register(lesson="09", sweep={"projection": ["planar", "cylindrical"], "outlines": [True, False]})
+@register(lesson="09", sweep={"projection": ["planar", "cylindrical"], "outlines": [True, False]}, target_ms=100.0)
 def full_panorama() -> Demo:
     """The four-image panorama, planar or cylindrical, multi-band blended, with each image's footprint."""
     pans = _panoramas()
@@ -327,7 +327,8 @@ def full_panorama() -> Demo:
                 ln.set_data(p[:, 0], p[:, 1])
             else:
                 ln.set_data([], [])
-        state.update(projection=v["projection"], shape=(hh, ww), reference=r.reference)
+        state.update(projection=v["projection"], shape=(hh, ww), reference=r.reference,
+                     outlines_drawn=sum(len(ln.get_xdata()) > 0 for ln in lines))
         rows = "\n".join(f"{p.i}-{p.j}: {p.matches:4d} matches {p.inliers:4d} inliers "
                          f"rms {p.residual_rms:.2f} {'ok' if p.accepted else 'rejected'}" for p in r.pairs)
         readout.value = _pre(f"{v['projection']}: {ww} x {hh} px, reference {r.reference}\n{rows}")
@@ -370,7 +371,7 @@ def parallax_pairs():
     return out
 
 
-@register(lesson="09", sweep={"baseline": list(BASELINES[::2]), "method": ["feather", "multiband"]})
+@register(lesson="09", sweep={"baseline": list(BASELINES[::2]), "method": ["feather", "multiband"]}, target_ms=100.0)
 def parallax_ghosting() -> Demo:
     """Move the camera sideways between shots: near objects no longer fit the homography and ghost."""
     pairs = parallax_pairs()
@@ -391,7 +392,8 @@ def parallax_ghosting() -> Demo:
         hh, ww = wi.shape
         im.set_extent((-0.5, ww - 0.5, hh - 0.5, -0.5))
         n, k = len(reg.matches.src), int(reg.inliers.sum())
-        state.update(baseline=float(v["baseline"]), inlier_fraction=k / max(n, 1), residual_rms=reg.residual_rms)
+        state.update(baseline=float(v["baseline"]), inlier_fraction=k / max(n, 1), residual_rms=reg.residual_rms,
+                     method=v["method"], image=out)
         readout.value = _pre(f"camera moved {100 * float(v['baseline']):.0f} cm\nmatches: {n}\n"
                              f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\ninlier RMS: {reg.residual_rms:.2f} px")
 
