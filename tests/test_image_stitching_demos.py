@@ -16,7 +16,7 @@ def test_feature_matches_ratio_lets_wrong_matches_in():
     strict = dict(d.state)
     d.set(ratio=1.0)
     assert d.state["matches"] > strict["matches"] and d.state["wrong"] > 10 * max(strict["wrong"], 1)
-    assert strict["precision"] > 0.97
+    assert strict["precision"] > 0.95
     d.set(mutual=True)
     mutual = dict(d.state)
     d.set(mutual=False)
