@@ -110,8 +110,8 @@ def to_gray_uint8(image: ArrayLike, name: str = "image") -> np.ndarray:
     Colour is converted with the Rec. 601 weights (0.299 R + 0.587 G + 0.114 B), images in
     RGB channel order as everywhere in camlab.
 
-    >>> to_gray_uint8(np.full((2, 2, 3), 0.5)).tolist()
-    [[128, 128], [128, 128]]
+    >>> to_gray_uint8(np.full((8, 8, 3), 0.5))[0, :3].tolist()
+    [128, 128, 128]
     """
     img = np.asarray(image)
     if img.ndim not in (2, 3) or (img.ndim == 3 and img.shape[2] not in (1, 3, 4)) or min(img.shape[:2]) < 8:

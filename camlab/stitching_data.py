@@ -282,7 +282,7 @@ def load_panorama_set(directory: Path | str | None = None, scale: float = 1.0) -
     """Load ``data/panorama`` (or ``directory``); ``scale`` < 1 resizes the images (K follows).
 
     >>> s = load_panorama_set(scale=0.5)
-    >>> len(s.images), s.images[0].shape, s.K[0, 0]
+    >>> len(s.images), s.images[0].shape, float(s.K[0, 0])
     (4, (240, 320, 3), 400.0)
     """
     d, truth = _truth(directory)
