@@ -419,12 +419,18 @@ def warp_images(images: Sequence[np.ndarray], homographies: Sequence[np.ndarray]
     """
     if len(images) != len(homographies) or not images:
         raise CamlabInputError(f"homographies: expected one per image, got {len(homographies)} for {len(images)} images")
+    for k, im in enumerate(images):
+        if np.ndim(im) != 3 or np.shape(im)[2] != 3:
+            raise CamlabInputError(f"images[{k}]: expected an (h, w, 3) float32 image from prepare_images, "
+                                   f"got shape {np.shape(im)}; call prepare_images(images) first")
     T, shape = canvas_bounds(list(homographies), [im.shape for im in images], max_pixels=max_pixels)
     out_i, out_m, out_w, out_h = [], [], [], []
     for im, H in zip(images, homographies):
         Hc = _hg.normalize_homography(T @ np.asarray(H, dtype=float))
-        wimg = warp_perspective(im, Hc, shape, method="cv2")
-        wgt = warp_perspective(feather_weights(im.shape).astype(np.float32), Hc, shape, method="cv2")
+        # one warp for the colour channels and the feather weight together (4 channels)
+        both = warp_perspective(np.dstack([im, feather_weights(im.shape).astype(np.float32)]), Hc, shape,
+                                method="cv2")
+        wimg, wgt = np.ascontiguousarray(both[..., :3]), both[..., 3]
         ones = np.ones(im.shape[:2], np.float32)
         mask = warp_perspective(ones, Hc, shape, interpolation="nearest", method="cv2") > 0.5
         wgt = np.where(mask, np.maximum(wgt, 1e-3), 0).astype(np.float32)
@@ -530,14 +536,14 @@ def _fill_outside(img: np.ndarray, mask: np.ndarray, levels: int) -> np.ndarray:
         stack.append((cv2.pyrDown(a), cv2.pyrDown(w)))
     a, w = stack[-1]
     filled = a / np.maximum(w, 1e-6)[..., None]
-    for a, w in reversed(stack[:-1]):
-        up = cv2.pyrUp(filled, dstsize=(w.shape[1], w.shape[0]))
-        if up.ndim == 2:
-            up = up[..., None]
+    for a, w in reversed(stack[1:-1]):
+        up = cv2.pyrUp(filled, dstsize=(w.shape[1], w.shape[0])).reshape(a.shape)
         own = a / np.maximum(w, 1e-6)[..., None]
-        t = np.clip(w * 4, 0, 1)[..., None]  # trust the pixel's own (normalised) value where it has support
-        filled = t * own + (1 - t) * up
-    return np.where(mask[..., None], img, filled)
+        t = np.minimum(w * 4, 1)[..., None]  # trust the pixel's own (normalised) value where it has support
+        filled = up + t * (own - up)
+    # full resolution: the image itself inside the mask, the pulled-up fill outside
+    up = cv2.pyrUp(filled, dstsize=(mask.shape[1], mask.shape[0])).reshape(img.shape)
+    return np.where(mask[..., None], img, up)
 
 
 def laplacian_blend(images: Sequence[np.ndarray], masks: Sequence[np.ndarray], levels: int = 5,
@@ -577,31 +583,45 @@ def laplacian_blend(images: Sequence[np.ndarray], masks: Sequence[np.ndarray], l
     union = np.zeros((h, w), bool)
     for m in masks:
         union |= m
-    acc = None
-    wsum = None
     feet = masks if footprints is None else footprints
+    nch = images[0].shape[2]
+    # level sizes of the whole canvas (pyrDown halves, rounding up)
+    sizes = [(h, w)]
+    for _ in range(levels):
+        sizes.append(((sizes[-1][0] + 1) // 2, (sizes[-1][1] + 1) // 2))
+    acc = [np.zeros((*sz, nch), np.float32) for sz in sizes]
+    wsum = [np.zeros(sz, np.float32) for sz in sizes]
+    step = 1 << levels
+    pad = 4 * step  # the 5-tap filters spread a mask about 2 * 2^l pixels at level l
     for img, m, foot in zip(images, masks, feet):
         if not m.any():
             continue
-        valid = foot | m
-        g = [_fill_outside(img, valid, levels).astype(np.float32)]
-        mk = [m.astype(np.float32)]
+        # Work in the image's bounding box (aligned to the coarsest grid, padded by the
+        # filters' reach): outside it the blurred seam mask is zero, so nothing changes.
+        rows, cols = np.flatnonzero(m.any(axis=1)), np.flatnonzero(m.any(axis=0))
+        y0, x0 = max(0, (rows[0] - pad) // step * step), max(0, (cols[0] - pad) // step * step)
+        y1, x1 = min(h, rows[-1] + 1 + pad), min(w, cols[-1] + 1 + pad)
+        if y1 < h:
+            y1 = min(h, y0 + -(-(y1 - y0) // step) * step)
+        if x1 < w:
+            x1 = min(w, x0 + -(-(x1 - x0) // step) * step)
+        sub = (slice(y0, y1), slice(x0, x1))
+        valid = foot[sub] | m[sub]
+        g = [_fill_outside(img[sub], valid, levels).astype(np.float32)]
+        mk = [m[sub].astype(np.float32)]
         for _ in range(levels):
             g.append(cv2.pyrDown(g[-1]))
             mk.append(cv2.pyrDown(mk[-1]))
-        lap = []
-        for lv in range(levels):
-            up = cv2.pyrUp(g[lv + 1], dstsize=(g[lv].shape[1], g[lv].shape[0]))
-            lap.append(g[lv] - up.reshape(g[lv].shape))
-        lap.append(g[levels])
-        if acc is None:
-            acc = [np.zeros_like(x) for x in lap]
-            wsum = [np.zeros(x.shape[:2], np.float32) for x in lap]
         for lv in range(levels + 1):
-            acc[lv] += lap[lv] * mk[lv][..., None]
-            wsum[lv] += mk[lv]
-    if acc is None:
-        return np.zeros((h, w, images[0].shape[2]), np.float32)
+            if lv < levels:
+                up = cv2.pyrUp(g[lv + 1], dstsize=(g[lv].shape[1], g[lv].shape[0]))
+                band = g[lv] - up.reshape(g[lv].shape)
+            else:
+                band = g[levels]
+            oy, ox = y0 >> lv, x0 >> lv
+            hh, ww = mk[lv].shape
+            acc[lv][oy:oy + hh, ox:ox + ww] += band * mk[lv][..., None]
+            wsum[lv][oy:oy + hh, ox:ox + ww] += mk[lv]
     bands = [a / np.maximum(s, 1e-6)[..., None] for a, s in zip(acc, wsum)]
     out = bands[-1]
     for lv in range(levels - 1, -1, -1):

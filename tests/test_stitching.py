@@ -348,3 +348,10 @@ def test_loaders_and_truth():
     assert np.allclose(half.true_homography(0, 1), hg.normalize_homography(S @ H @ np.linalg.inv(S)))
     with pytest.raises(CamlabInputError, match="directory: no truth.json"):
         sd.load_panorama_set("/nonexistent")
+
+
+def test_warp_images_bad_input():
+    with pytest.raises(CamlabInputError, match=r"images\[0\]: expected an \(h, w, 3\) float32 image from prepare_images"):
+        st.warp_images([np.zeros((10, 10))], [np.eye(3)])
+    with pytest.raises(CamlabInputError, match="homographies: expected one per image, got 2 for 1 images"):
+        st.warp_images([np.zeros((10, 10, 3))], [np.eye(3), np.eye(3)])
