@@ -430,7 +430,7 @@ def warp_images(images: Sequence[np.ndarray], homographies: Sequence[np.ndarray]
         # one warp for the colour channels and the feather weight together (4 channels)
         both = warp_perspective(np.dstack([im, feather_weights(im.shape).astype(np.float32)]), Hc, shape,
                                 method="cv2")
-        wimg, wgt = np.ascontiguousarray(both[..., :3]), both[..., 3]
+        wimg, wgt = both[..., :3], both[..., 3]
         ones = np.ones(im.shape[:2], np.float32)
         mask = warp_perspective(ones, Hc, shape, interpolation="nearest", method="cv2") > 0.5
         wgt = np.where(mask, np.maximum(wgt, 1e-3), 0).astype(np.float32)
