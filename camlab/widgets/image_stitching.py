@@ -15,7 +15,7 @@ from .. import features as ft
 from .. import homography as hg
 from .. import stitching as st
 from .. import stitching_data as sd
-from ..plotting.stitching import draw_matches, match_segments, outline
+from ..plotting.stitching import draw_keypoints, draw_matches, match_segments, outline
 from ..projective import map_points
 from ._base import Demo, FigureView, build_demo, register, slider
 
@@ -71,7 +71,9 @@ def feature_matches() -> Demo:
     view = FigureView(figsize=(9, 3.4))
     ax = view.fig.subplots()
     art = draw_matches(ax, s.images[i], s.images[j], np.zeros((0, 2)), np.zeros((0, 2)))
-    view.animate(art["good"], art["bad"])  # the images stay: only the lines move
+    view.animate(art["good"], art["bad"])  # the images and keypoints stay: only the lines move
+    draw_keypoints(ax, feats[i].points, feats[i].sizes, color="yellow", alpha=0.5)
+    draw_keypoints(ax, feats[j].points + [art["offset"], 0], feats[j].sizes, color="yellow", alpha=0.5)
     ax.set_title(f"views {i} and {j}: green = confirmed by the true homography, red = wrong match", fontsize=9)
     readout = W.HTML()
 
