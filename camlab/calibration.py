@@ -886,7 +886,7 @@ def calibrate_camera(
     lm: LMResult = levenberg_marquardt(prob.residuals, prob.pack(g0, poses0), prob.jacobian,
                                        normal_equations=prob.normal_equations,
                                        damped_solve=lambda A, g, mu: A.solve(mu), max_iter=max_iter,
-                                       ftol=1e-15, xtol=1e-14, gtol=1e-12)
+                                       ftol=1e-12, xtol=1e-12, gtol=1e-12)
     if not np.all(np.isfinite(lm.x)):
         raise ConvergenceError("calibrate_camera: the refinement produced non-finite parameters; check the data")
     g, poses = prob.unpack(lm.x)
