@@ -521,16 +521,28 @@ def initial_radial_distortion(K: ArrayLike, object_points, image_points, R: Arra
 
 # ======================================================================== 7. refinement
 
-def _left_jacobian(r: np.ndarray) -> np.ndarray:
-    r"""Left Jacobian of SO(3): :math:`\partial (R(r) X) / \partial r = -[R X]_\times J_l(r)`.
+def _rotations_and_left_jacobians(rvecs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    r"""Rotations :math:`R(r)` and left Jacobians :math:`J_l(r)` of V axis-angle vectors at once, (V, 3, 3) each.
 
+    The batched form of :func:`camlab.camera.rotation_from_axis_angle` (Rodrigues,
+    :math:`R = I + \frac{\sin\theta}{\theta}[r]_\times + \frac{1 - \cos\theta}{\theta^2}[r]_\times^2`),
+    vectorised because the refinement evaluates every view's rotation at every iteration. The
+    derivative of a rotated point is :math:`\partial (R(r) X) / \partial r = -[R X]_\times J_l(r)` with
     :math:`J_l = I + \frac{1 - \cos\theta}{\theta^2} [r]_\times + \frac{\theta - \sin\theta}{\theta^3} [r]_\times^2`.
+    Near :math:`\theta = 0` the coefficients use their Taylor limits (1, 1/2, 1/6).
     """
-    theta = np.linalg.norm(r)
-    S = _skew(r)
-    if theta < 1e-8:
-        return np.eye(3) + 0.5 * S
-    return np.eye(3) + (1 - np.cos(theta)) / theta**2 * S + (theta - np.sin(theta)) / theta**3 * (S @ S)
+    theta = np.linalg.norm(rvecs, axis=1)
+    S = _skew(rvecs)
+    S2 = S @ S
+    small = theta < 1e-6
+    th = np.where(small, 1.0, theta)
+    a = np.where(small, 1.0 - theta**2 / 6, np.sin(th) / th)            # sin(t) / t
+    b = np.where(small, 0.5 - theta**2 / 24, (1 - np.cos(th)) / th**2)  # (1 - cos t) / t^2
+    c = np.where(small, 1.0 / 6 - theta**2 / 120, (th - np.sin(th)) / th**3)
+    eye = np.eye(3)
+    R = eye + a[:, None, None] * S + b[:, None, None] * S2
+    Jl = eye + b[:, None, None] * S + c[:, None, None] * S2
+    return R, Jl
 
 
 def _skew(w: np.ndarray) -> np.ndarray:
@@ -550,7 +562,7 @@ def _project(g: np.ndarray, poses: np.ndarray, X: np.ndarray, jac: bool = False)
     :math:`u = K_p\,\mathrm{distort}(\pi(R X + t))` with :math:`K_p = [[f_x, s], [0, f_y]]`.
     """
     fx, fy, cx, cy, s, k1, k2, p1, p2, k3 = g
-    R = np.stack([rotation_from_axis_angle(p[:3]) for p in poses])
+    R, Jl = _rotations_and_left_jacobians(poses[:, :3])
     RX = np.einsum("vij,vmj->vmi", R, X)
     Xc = RX + poses[:, None, 3:]
     z = Xc[..., 2]
@@ -580,7 +592,6 @@ def _project(g: np.ndarray, poses: np.ndarray, X: np.ndarray, jac: bool = False)
     P[..., 0, 0], P[..., 0, 2] = inv_z, -x * inv_z
     P[..., 1, 1], P[..., 1, 2] = inv_z, -y * inv_z
     dXc = A @ P  # (V, M, 2, 3): d uv / d Xc = d uv / d t
-    Jl = np.stack([_left_jacobian(p[:3]) for p in poses])  # (V, 3, 3)
     dR = -_skew(RX) @ Jl[:, None]  # d (R X) / d rvec, (V, M, 3, 3)
     Jp = np.concatenate([dXc @ dR, dXc], axis=-1)
     return uv, Jg, Jp
@@ -645,6 +656,7 @@ class _Problem:
         self.g0, self.free = g0, free
         self.ni = int(free.sum())
         self.V = X.shape[0]
+        self._last = None
 
     def pack(self, g: np.ndarray, poses: np.ndarray) -> np.ndarray:
         return np.concatenate([g[self.free], poses.ravel()])
@@ -654,16 +666,28 @@ class _Problem:
         g[self.free] = x[:self.ni]
         return g, x[self.ni:].reshape(self.V, 6)
 
-    def residuals(self, x: np.ndarray) -> np.ndarray:
+    def _evaluate(self, x: np.ndarray):
+        """Residuals and Jacobian blocks at x, computed together and kept for the next call.
+
+        LM asks for r(x) at a trial point and then, if the step is accepted, for J(x) at the
+        same point: one projection pass serves both.
+        """
+        if self._last is not None and np.array_equal(self._last[0], x):
+            return self._last[1]
         g, poses = self.unpack(x)
-        return ((_project(g, poses, self.X) - self.obs) * self.mask[..., None]).ravel()
+        uv, Jg, Jp = _project(g, poses, self.X, jac=True)
+        m = self.mask[..., None]
+        V, M = self.mask.shape
+        r = ((uv - self.obs) * m).ravel()
+        J = ((Jg[..., self.free] * m[..., None]).reshape(V, 2 * M, self.ni), (Jp * m[..., None]).reshape(V, 2 * M, 6))
+        self._last = (x.copy(), (r, J))
+        return r, J
+
+    def residuals(self, x: np.ndarray) -> np.ndarray:
+        return self._evaluate(x)[0]
 
     def jacobian(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        g, poses = self.unpack(x)
-        _, Jg, Jp = _project(g, poses, self.X, jac=True)
-        m = self.mask[..., None, None]
-        V, M = self.mask.shape
-        return (Jg[..., self.free] * m).reshape(V, 2 * M, self.ni), (Jp * m).reshape(V, 2 * M, 6)
+        return self._evaluate(x)[1]
 
     def normal_equations(self, J, r: np.ndarray):
         A = _BlockNormal(J[0], J[1], r.reshape(self.V, -1))
@@ -788,6 +812,7 @@ def calibrate_camera(
     skew: bool = False,
     fix: Sequence[str] = (),
     K_guess: ArrayLike | None = None,
+    dist_guess: ArrayLike | None = None,
     max_iter: int = 100,
 ) -> CalibrationResult:
     r"""Calibrate a camera from V >= 3 views of a flat target: Zhang's closed form, then LM.
@@ -809,6 +834,9 @@ def calibrate_camera(
         ``CALIB_ZERO_TANGENT_DIST``). Fixed distortion coefficients stay 0.
     K_guess : (3, 3) array_like, optional
         Start from this K instead of Zhang's closed form.
+    dist_guess : (5,) array_like, optional
+        Start from these coefficients instead of the linear radial estimate (with ``K_guess``,
+        a warm start from an earlier calibration converges in a few iterations).
     max_iter : int
         Most LM iterations.
 
@@ -868,7 +896,9 @@ def calibrate_camera(
     poses0 = np.array(poses0)
     fixed = set(fix) | ({"skew"} if not skew else set())
     d0 = np.zeros(5)
-    if not {"k1", "k2"} & fixed:
+    if dist_guess is not None:
+        d0 = as_dist(dist_guess, "dist_guess")
+    elif not {"k1", "k2"} & fixed:
         d0[:2] = initial_radial_distortion(K0, objs, imgs, [rotation_from_axis_angle(p[:3]) for p in poses0],
                                            poses0[:, 3:])
     elif "k1" not in fixed:
@@ -887,7 +917,7 @@ def calibrate_camera(
     lm: LMResult = levenberg_marquardt(prob.residuals, prob.pack(g0, poses0), prob.jacobian,
                                        normal_equations=prob.normal_equations,
                                        damped_solve=lambda A, g, mu: A.solve(mu), max_iter=max_iter,
-                                       ftol=1e-12, xtol=1e-12, gtol=1e-12)
+                                       ftol=1e-10, xtol=1e-10, gtol=1e-12)
     if not np.all(np.isfinite(lm.x)):
         raise ConvergenceError("calibrate_camera: the refinement produced non-finite parameters; check the data")
     g, poses = prob.unpack(lm.x)
