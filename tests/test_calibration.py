@@ -14,7 +14,7 @@ from camlab._validate import CamlabInputError, DegenerateError
 from camlab.camera import rotation_from_axis_angle, rotation_from_euler
 from camlab.data import load_calibration_set
 from camlab.homography import pose_homography
-from camlab.optimize import dense_damped_solve
+from camlab.optimize import dense_damped_solve, lm_step
 from camlab.render import align_detected_corners, project
 
 K_TRUE = np.array([[820.0, 0.0, 322.4], [0.0, 818.0, 236.8], [0.0, 0.0, 1.0]])
@@ -391,3 +391,54 @@ def test_save_is_loadable_by_opencv(noisy15, tmp_path, suffix):
     assert size == (640, 480)
     with pytest.raises(CamlabInputError, match="expected a .json, .yaml"):
         C.save_calibration(res, tmp_path / "cam.txt")
+
+
+# ---------------------------------------------------------------- lesson 08 demos and exercises
+
+def test_accuracy_demo_recalibrates_and_reports_consistent_errors():
+    from camlab.widgets import camera_calibration as demos
+
+    demo = demos.accuracy_vs_views()
+    demo.set(n_views=10, noise=0.0)
+    np.testing.assert_allclose(demo.state["K"], K_TRUE, atol=1e-6)
+    demo.set(noise=0.5)
+    err, std = demo.state["errors"], demo.state["std"]
+    assert np.all(np.abs(err) < 4 * std) and np.all(std > 0.5)
+    before = demo.view.pixels()
+    demo.set(n_views=3)
+    assert demo.state["std"][0] > std[0]  # fewer views: larger uncertainty
+    assert not np.array_equal(before, demo.view.pixels())
+
+
+def test_view_inspector_shows_the_chosen_view(bundled):
+    from camlab.widgets import camera_calibration as demos
+
+    demo = demos.view_inspector()
+    out = demos.bundled_calibration()
+    demo.set(view=4)
+    assert demo.state["image_index"] == out.used[4]
+    assert demo.state["rms"] == pytest.approx(out.result.per_view_rms[4])
+    assert out.result.rms < 0.1  # the rendered corners are detected to a few hundredths of a pixel
+
+
+def test_undistort_demo_tradeoff_moves_with_alpha():
+    from camlab.widgets import camera_calibration as demos
+
+    demo = demos.undistort_alpha()
+    demo.set(alpha=1.0)
+    assert demo.state["lost_fraction"] < 0.01 < demo.state["black_fraction"]
+    demo.set(alpha=0.0)
+    assert demo.state["black_fraction"] < 0.01 < demo.state["lost_fraction"]
+
+
+def test_exercise_diagnoses_specific_mistakes():
+    from camlab.exercises import check
+
+    H = np.array([[2.0, 0.3, 5.0], [-0.1, 1.5, 2.0], [0.01, 0.02, 1.0]])
+    with pytest.raises(AssertionError, match="rows of H"):
+        check("zhang_constraints", lambda H: C.zhang_constraints(H.T))
+    with pytest.raises(AssertionError, match="wrong sign"):
+        check("lm_step", lambda J, r, mu: -lm_step(J, r, mu))
+    with pytest.raises(AssertionError, match="reflection"):
+        check("nearest_rotation", lambda M: (lambda U, S, Vt: U @ Vt)(*np.linalg.svd(M)))
+    assert C.zhang_constraints(H).shape == (2, 6)

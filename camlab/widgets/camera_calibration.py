@@ -102,7 +102,7 @@ def accuracy_vs_views() -> Demo:
                       title="More views, less noise: a better camera", extra=[readout])
 
 
-@register(lesson="08", sweep={"view": [0, 5, 11], "magnify": [1.0, 100.0, 400.0]})
+@register(lesson="08", sweep={"view": [0, 5, 11], "magnify": [1.0, 300.0, 1000.0]})
 def view_inspector(calibration: C.ImageCalibration | None = None, images: list | None = None) -> Demo:
     """Each photo with detected corners (+), reprojected corners (o) and residual arrows x magnify.
 
@@ -143,7 +143,8 @@ def view_inspector(calibration: C.ImageCalibration | None = None, images: list |
         arrows.set_offsets(pred)
         arrows.set_UVC(r[:, 0] * v["magnify"], r[:, 1] * v["magnify"])
         worst = int(np.argmax(np.linalg.norm(r, axis=1)))
-        state.update(view=k, image_index=i, rms=float(res.per_view_rms[k]), worst_corner=worst)
+        state.update(view=k, image_index=i, rms=float(res.per_view_rms[k]), worst_corner=worst,
+                     longest_arrow_px=float(np.linalg.norm(r[worst]) * v["magnify"]))
         readout.value = _pre(f"view {k} ({out.names[i]})\nrms {res.per_view_rms[k]:.3f} px "
                              f"(median {np.median(res.per_view_rms):.3f})\nworst corner {worst}: "
                              f"{np.linalg.norm(r[worst]):.3f} px\narrows ×{v['magnify']:.0f}")
@@ -151,7 +152,7 @@ def view_inspector(calibration: C.ImageCalibration | None = None, images: list |
     controls = {
         "view": W.IntSlider(value=0, min=0, max=res.n_views - 1, description="view", continuous_update=True,
                             style={"description_width": "initial"}, layout=W.Layout(width="300px")),
-        "magnify": slider(100.0, 1.0, 500.0, 1.0, "arrow magnification"),
+        "magnify": slider(300.0, 1.0, 1000.0, 1.0, "arrow magnification"),
     }
     return build_demo("view_inspector", controls, view, update,
                       title="Detected versus reprojected corners", extra=[readout])
