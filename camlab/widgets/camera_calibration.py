@@ -69,7 +69,7 @@ def accuracy_vs_views() -> Demo:
     readout = W.HTML()
     # Warm start: each update starts LM from the previous solution (K, dist and every view's
     # last pose) instead of Zhang's closed form. The minimum is the same (a full calibration
-    # from scratch agrees to ~1e-9, see the tests); LM just gets there in a few iterations.
+    # from scratch agrees to ~1e-6 relative, see the tests); LM just gets there in a few iterations.
     first = C.calibrate_camera(s.object_points, [s.exact[i] + 0.3 * unit[i] for i in range(len(unit))], s.image_size)
     warm = {"K": first.K, "dist": first.dist, "poses": np.column_stack([first.rvecs, first.tvecs])}
 
