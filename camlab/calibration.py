@@ -785,7 +785,7 @@ class CalibrationResult:
         lines.append("  " + "  ".join(f"{k} = {p[k]:.2f} ± {s[k]:.2f}" for k in ("fx", "fy", "cx", "cy")))
         if "skew" in self.free_params:
             lines.append(f"  skew = {p['skew']:.3f} ± {s['skew']:.3f}")
-        lines.append("  " + "  ".join(f"{k} = {p[k]:+.4f} ± {s[k]:.4f}" for k in PARAM_NAMES[5:]))
+        lines.append("  " + "  ".join(f"{k} = {p[k]:+.4g} ± {s[k]:.2g}" for k in PARAM_NAMES[5:]))
         return "\n".join(lines)
 
 
