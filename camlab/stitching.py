@@ -51,7 +51,7 @@ from .warp import canvas_bounds, warp_perspective
 
 __all__ = ["BLENDS", "MatchGraph", "PairRegistration", "PairReport", "StitchResult", "WarpedImages", "blend",
            "canvas_box", "cylindrical_warp", "feather_weights", "gain_compensation", "laplacian_blend", "match_graph",
-           "prepare_images", "register_pair", "seam_masks", "seam_step", "stitch", "warp_images"]
+           "overlap_difference", "prepare_images", "register_pair", "seam_masks", "seam_step", "stitch", "warp_images"]
 
 BLENDS = ("overwrite", "feather", "multiband")
 
@@ -497,6 +497,19 @@ def seam_masks(weights: Sequence[np.ndarray]) -> list[np.ndarray]:
     best = np.argmax(W, axis=0)
     covered = W.max(axis=0) > 0
     return [(best == k) & covered for k in range(len(weights))]
+
+
+def overlap_difference(warped: WarpedImages, i: int = 0, j: int = 1) -> float:
+    """Mean absolute difference of images i and j where both cover the canvas (0 if they never overlap).
+
+    After registration a rotation panorama differs only by noise and exposure here; parallax
+    (a camera that moved in front of a 3-D scene) leaves misaligned objects: the ghosts
+    blending will show. Same units as the images.
+    """
+    both = warped.masks[i] & warped.masks[j]
+    if not both.any():
+        return 0.0
+    return float(np.abs(warped.images[i][both] - warped.images[j][both]).mean())
 
 
 def seam_step(image: np.ndarray, seam: np.ndarray, overlap: np.ndarray, width: int = 4) -> float:

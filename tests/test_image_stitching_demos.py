@@ -56,9 +56,13 @@ def test_blending_demo_seam_steps():
 def test_parallax_demo_residuals_grow_with_baseline():
     d = demos.parallax_ghosting()
     d.set(baseline=0.0)
-    still = d.state["inlier_fraction"]
+    still = dict(d.state)
+    assert still["misalignment"] < 4  # only noise: the views align exactly
+    d.set(baseline=0.1)
+    small = d.state["misalignment"]
     d.set(baseline=0.4)
-    assert d.state["inlier_fraction"] < still - 0.1  # near objects stop fitting the homography
+    assert d.state["inlier_fraction"] < still["inlier_fraction"] - 0.1  # near objects stop fitting the homography
+    assert d.state["misalignment"] > small > 3 * still["misalignment"]  # ghosts grow with the baseline
 
 
 def test_full_panorama_demo():

@@ -185,6 +185,13 @@ def test_multiband_reconstructs_a_single_image(half):
     assert np.abs(out - img).max() < 1e-5
 
 
+def test_overlap_difference():
+    wi = _two_constant_images()
+    assert st.overlap_difference(wi) == pytest.approx(0.4)
+    apart = st.warp_images([np.zeros((10, 10, 3), np.float32)] * 2, [np.eye(3), hg.euclidean(0, 50, 0)])
+    assert st.overlap_difference(apart) == 0.0
+
+
 def test_gain_compensation_on_scaled_copies():
     rng = np.random.default_rng(0)
     base = rng.uniform(0.2, 0.8, (50, 50, 3)).astype(np.float32)

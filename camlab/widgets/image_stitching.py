@@ -403,10 +403,12 @@ def parallax_ghosting() -> Demo:
         hh, ww = wi.shape
         im.set_extent((-0.5, ww - 0.5, hh - 0.5, -0.5))
         n, k = len(reg.matches.src), int(reg.inliers.sum())
+        diff = 255 * st.overlap_difference(wi)
         state.update(baseline=float(v["baseline"]), inlier_fraction=k / max(n, 1), residual_rms=reg.residual_rms,
-                     method=v["method"], image=out)
+                     misalignment=diff, method=v["method"], image=out)
         readout.value = _pre(f"camera moved {100 * float(v['baseline']):.0f} cm\nmatches: {n}\n"
-                             f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\ninlier RMS: {reg.residual_rms:.2f} px")
+                             f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\ninlier RMS: {reg.residual_rms:.2f} px\n"
+                             f"mean |view 0 - view 1| on the overlap:\n  {diff:.1f} grey levels")
 
     controls = {
         "baseline": W.SelectionSlider(options=list(BASELINES), value=0.0, description="baseline (m)"),
