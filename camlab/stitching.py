@@ -451,7 +451,9 @@ def gain_compensation(warped: WarpedImages, sigma_n: float = 10.0 / 255, sigma_g
     .. math:: e = \tfrac12 \sum_{i,j} N_{ij} \left( (g_i \bar I_{ij} - g_j \bar I_{ji})^2 / \sigma_N^2
               + (1 - g_i)^2 / \sigma_g^2 \right),
 
-    a linear least-squares problem in the gains (the prior keeps them near 1). With
+    a linear least-squares problem in the gains (the prior keeps them near 1). The default
+    :math:`\sigma_g = 1` is weaker than Brown & Lowe's 0.1: exposures in a hand-held set
+    can differ by 30% or more, and a strong prior would leave part of that step. With
     ``reference`` given, all gains are divided by that image's gain (it keeps its look).
 
     Returns
