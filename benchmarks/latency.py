@@ -51,7 +51,11 @@ def _sweep_ms(demo, spec, rounds: int) -> np.ndarray:
 def demo_latency(spec, rounds: int) -> dict:
     """Median and p95 per update: Agg (callback + draw) and ipympl (+ the PNG diff sent to the browser)."""
     agg = _sweep_ms(_build(spec, "agg"), spec, rounds)
-    web = _sweep_ms(_build(spec, "ipympl"), spec, rounds)
+    web_demo = _build(spec, "ipympl")
+    web = _sweep_ms(web_demo, spec, rounds)
+    import matplotlib.pyplot as plt
+
+    plt.close(web_demo.figure)  # pyplot keeps ipympl figures alive until closed
     target = spec.target_ms
     median, p95 = float(np.median(agg)), float(np.percentile(agg, 95))
     return {"lesson": spec.lesson, "demo": spec.name, "updates": len(agg), "median_ms": median, "p95_ms": p95,

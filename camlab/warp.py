@@ -63,6 +63,8 @@ def _check_options(interpolation: str, method: str) -> None:
 
 
 def _to_dtype(values: np.ndarray, dtype: np.dtype) -> np.ndarray:
+    if values.dtype == dtype:  # cv2 already returns the input's dtype: nothing to round
+        return values
     if np.issubdtype(dtype, np.integer):
         info = np.iinfo(dtype)
         return np.clip(np.rint(values), info.min, info.max).astype(dtype)
