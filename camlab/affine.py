@@ -1,0 +1,251 @@
+r"""Affine cameras: orthographic, weak perspective and the general affine camera.
+
+An affine camera is a 3x4 matrix whose last row is :math:`(0, 0, 0, 1)`:
+
+.. math::
+
+    P_A = \begin{pmatrix} m_{11} & m_{12} & m_{13} & m_{14} \\
+                          m_{21} & m_{22} & m_{23} & m_{24} \\
+                          0 & 0 & 0 & 1 \end{pmatrix},
+    \qquad u = M_2 X + t_2 ,
+
+so projection is linear (no division by depth). Its centre is at infinity (all rays
+are parallel), parallel world lines stay parallel in the image, and the midpoint of
+a segment images to the midpoint of its image. The family, from special to general
+(H&Z section 6.3):
+
+* **orthographic**: drop the camera z coordinate, :math:`u = (r_1 \cdot X + t_1,\ r_2 \cdot X + t_2)`;
+* **scaled orthographic**: the same times a scale k (pixels per metre);
+* **weak perspective**: different scales :math:`\alpha_x, \alpha_y` (and skew);
+* **general affine**: any :math:`M_2` of rank 2, 8 degrees of freedom.
+
+A perspective camera looking at an object of depth range :math:`\Delta` at distance
+:math:`d_0` is close to affine when :math:`\Delta \ll d_0`: the weak-perspective
+image of a point differs from its perspective image by the factor
+:math:`\Delta / d_0` times its distance from the principal point (H&Z eq. 6.17).
+
+Conventions (docs/conventions.md): R, t are cam_from_world, camera frame x right,
+y down, z forward; pixels (u, v) = (column, row); points are rows. See lesson 05.
+"""
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ._validate import CamlabInputError, DegenerateError, as_points, check_matrix, check_positive
+from .camera import Camera, check_rotation, project_points
+
+__all__ = [
+    "affine_approximation", "dolly_zoom_focal", "estimate_affine_camera", "image_of_direction",
+    "is_affine", "orthographic_matrix", "scaled_orthographic_matrix", "weak_perspective_error",
+    "weak_perspective_matrix",
+]
+
+
+def _affine_from(A2: np.ndarray, R: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """[[A2 @ [r1; r2], A2 @ t[:2] + offset]; [0 0 0 1]] with A2 a (2, 3) [K2 | c] block."""
+    P = np.zeros((3, 4))
+    P[:2, :3] = A2[:, :2] @ R[:2]
+    P[:2, 3] = A2[:, :2] @ t[:2] + A2[:, 2]
+    P[2, 3] = 1.0
+    return P
+
+
+def orthographic_matrix(R: ArrayLike, t: ArrayLike) -> np.ndarray:
+    r"""The orthographic camera: :math:`P = \begin{pmatrix} 1&0&0&0 \\ 0&1&0&0 \\ 0&0&0&1\end{pmatrix}
+    \begin{pmatrix} R & t \\ 0^\top & 1\end{pmatrix}`.
+
+    It keeps the camera x, y coordinates (metres) and forgets depth.
+
+    Parameters
+    ----------
+    R : (3, 3) array_like
+        cam_from_world rotation.
+    t : (3,) array_like
+        cam_from_world translation (metres); only t[0], t[1] matter.
+
+    Returns
+    -------
+    (3, 4) ndarray
+        Image coordinates in metres.
+
+    Examples
+    --------
+    >>> orthographic_matrix(np.eye(3), [0.0, 0.0, 5.0]) @ [1.0, 2.0, 3.0, 1.0]
+    array([1., 2., 1.])
+    """
+    return scaled_orthographic_matrix(R, t, 1.0, (0.0, 0.0))
+
+
+def scaled_orthographic_matrix(R: ArrayLike, t: ArrayLike, k: float, principal_point: ArrayLike = (0.0, 0.0)) -> np.ndarray:
+    r"""Scaled orthographic: orthographic projection times ``k`` pixels per metre, plus the
+    principal point (cx, cy): :math:`u = k (r_1 \cdot X + t_1) + c_x`, likewise v."""
+    return weak_perspective_matrix(R, t, k, k, 0.0, principal_point)
+
+
+def weak_perspective_matrix(
+    R: ArrayLike, t: ArrayLike, ax: float, ay: float, skew: float = 0.0,
+    principal_point: ArrayLike = (0.0, 0.0),
+) -> np.ndarray:
+    r"""Weak perspective (an affine camera with an affine calibration matrix):
+
+    .. math:: P = \begin{pmatrix} \alpha_x & s & c_x \\ 0 & \alpha_y & c_y \\ 0 & 0 & 1 \end{pmatrix}
+              \begin{pmatrix} r_1^\top & t_1 \\ r_2^\top & t_2 \\ 0^\top & 1 \end{pmatrix}
+
+    Parameters
+    ----------
+    R, t : cam_from_world pose.
+    ax, ay : float
+        Scales in pixels per metre (> 0): a perspective camera's :math:`f / d_0`.
+    skew : float
+    principal_point : (2,) array_like
+        Pixel where the camera's optical axis lands.
+    """
+    Rm = check_rotation(R)
+    tv = check_matrix(t, (3,), "t")
+    ax = check_positive(ax, "ax", "pixels per metre")
+    ay = check_positive(ay, "ay", "pixels per metre")
+    c = check_matrix(principal_point, (2,), "principal_point")
+    A2 = np.array([[ax, float(skew), c[0]], [0.0, ay, c[1]]])
+    return _affine_from(A2, Rm, tv)
+
+
+def is_affine(P: ArrayLike, tol: float = 1e-12) -> bool:
+    """True if P's last row is proportional to (0, 0, 0, 1) (its centre is at infinity)."""
+    a = check_matrix(P, (3, 4), "P")
+    last = a[2]
+    return bool(abs(last[3]) > 0 and np.abs(last[:3]).max() <= tol * max(abs(last[3]), np.abs(a).max()))
+
+
+def affine_approximation(camera: Camera, reference_point: ArrayLike) -> np.ndarray:
+    r"""The affine camera that agrees with a perspective camera to first order about a point.
+
+    With :math:`d_0 = r_3 \cdot X_0 + t_3` the depth of the reference point
+    :math:`X_0`, replacing every point's depth by :math:`d_0` gives (H&Z eq. 6.16)
+
+    .. math:: P_\infty = K \begin{pmatrix} r_1^\top & t_1 \\ r_2^\top & t_2 \\ 0^\top & d_0 \end{pmatrix},
+
+    normalised here so that the last row is (0, 0, 0, 1). It images X_0 exactly where the
+    perspective camera does; a point at depth :math:`d_0 + \Delta` lands at
+    :math:`x_{\text{affine}}` with :math:`x_{\text{proj}} - x_0 = \frac{d_0}{d_0 + \Delta}
+    (x_{\text{affine}} - x_0)` where :math:`x_0` is the principal point.
+
+    Parameters
+    ----------
+    camera : Camera
+        The perspective camera (its distortion is ignored).
+    reference_point : (3,) array_like
+        A world point in front of the camera, e.g. the object's centroid.
+
+    Returns
+    -------
+    (3, 4) ndarray
+        An affine camera (last row (0, 0, 0, 1)).
+    """
+    if not isinstance(camera, Camera):
+        raise CamlabInputError(f"camera: expected a camlab.camera.Camera, got {type(camera).__name__}")
+    X0 = check_matrix(reference_point, (3,), "reference_point")
+    d0 = float(camera.R[2] @ X0 + camera.t[2])
+    if d0 <= 0:
+        raise CamlabInputError(
+            f"reference_point: expected a point in front of the camera, but its depth is {d0:.3g} m; "
+            f"pick a point the camera sees (e.g. the object's centroid)"
+        )
+    E = np.zeros((3, 4))
+    E[:2, :3] = camera.R[:2]
+    E[:2, 3] = camera.t[:2]
+    E[2, 3] = d0
+    return camera.K @ E / d0
+
+
+def weak_perspective_error(camera: Camera, points_world: ArrayLike, reference_point: ArrayLike | None = None) -> np.ndarray:
+    r"""Per-point pixel distance between perspective and weak-perspective images.
+
+    The weak-perspective camera is :func:`affine_approximation` about ``reference_point``
+    (default: the centroid of the points). The error grows with :math:`\Delta / d_0`,
+    the point's depth offset relative to the reference depth.
+
+    Returns
+    -------
+    (N,) ndarray
+        Pixels; NaN for points behind the camera.
+    """
+    X = as_points(points_world, 3, "points_world").array
+    X0 = X.mean(axis=0) if reference_point is None else reference_point
+    PA = affine_approximation(camera, X0)
+    return np.linalg.norm(camera.replace(dist=(0.0,) * 5).project(X) - project_points(PA, X), axis=1)
+
+
+def dolly_zoom_focal(f0: float, d0: float, d: float) -> float:
+    r"""The focal length that keeps an object's image size fixed when the camera moves
+    from distance ``d0`` to ``d``: the image size is :math:`\propto f / d`, so
+    :math:`f = f_0 \, d / d_0` (the "Vertigo" dolly zoom)."""
+    return check_positive(f0, "f0", "pixels") * check_positive(d, "d", "metres") / check_positive(d0, "d0", "metres")
+
+
+def estimate_affine_camera(points_world: ArrayLike, points_image: ArrayLike) -> np.ndarray:
+    r"""The gold-standard affine camera from N >= 4 correspondences (H&Z algorithm 7.2).
+
+    An affine camera is linear, :math:`u_i = M_2 X_i + t_2`, so the image error is linear
+    in its 8 entries and the least-squares solution *is* the maximum-likelihood estimate
+    under Gaussian pixel noise; no iteration is needed. Centring both point sets
+    (:math:`\bar X`, :math:`\bar u`) removes :math:`t_2 = \bar u - M_2 \bar X`, and
+    :math:`M_2` solves :math:`\min \sum_i \|(u_i - \bar u) - M_2 (X_i - \bar X)\|^2`,
+    i.e. :math:`M_2^\top = (X_c^\top X_c)^{-1} X_c^\top U_c`.
+
+    Parameters
+    ----------
+    points_world : (N, 3) array_like
+        World points (metres), N >= 4, not coplanar.
+    points_image : (N, 2) array_like
+
+    Returns
+    -------
+    (3, 4) ndarray
+        Affine camera with last row (0, 0, 0, 1).
+
+    Raises
+    ------
+    CamlabInputError
+        Fewer than 4 points or mismatched counts.
+    DegenerateError
+        Coplanar world points (M_2 is then not determined).
+    """
+    X = as_points(points_world, 3, "points_world").array
+    uv = as_points(points_image, 2, "points_image").array
+    if len(X) != len(uv):
+        raise CamlabInputError(f"points_world and points_image: expected equally many points, got {len(X)} and {len(uv)}")
+    if len(X) < 4:
+        raise CamlabInputError(
+            f"points_world: expected (N, 3) with N >= 4 correspondences (an affine camera has 8 degrees of "
+            f"freedom, each point gives 2 equations), got {len(X)}; add more points"
+        )
+    Xm, um = X.mean(axis=0), uv.mean(axis=0)
+    Xc, uc = X - Xm, uv - um
+    sv = np.linalg.svd(Xc, compute_uv=False)
+    if sv[2] <= 1e-9 * sv[0]:
+        raise DegenerateError(
+            "estimate_affine_camera: the world points are coplanar, so the affine camera is not determined; "
+            "use points off a single plane"
+        )
+    M2 = np.linalg.lstsq(Xc, uc, rcond=None)[0].T
+    P = np.zeros((3, 4))
+    P[:2, :3] = M2
+    P[:2, 3] = um - M2 @ Xm
+    P[2, 3] = 1.0
+    return P
+
+
+def image_of_direction(P: ArrayLike, direction: ArrayLike) -> np.ndarray:
+    r"""Where a family of parallel world lines with ``direction`` d meets in the image:
+    :math:`v = P (d, 0)^\top`, homogeneous (3,).
+
+    For a finite camera this is the vanishing point :math:`K R d`. For an affine camera
+    its last coordinate is 0: an ideal point, so the image lines are parallel too (with
+    direction v[:2]).
+    """
+    Pm = check_matrix(P, (3, 4), "P")
+    d = check_matrix(direction, (3,), "direction")
+    if not np.any(d):
+        raise CamlabInputError("direction: expected a non-zero 3-vector, got (0, 0, 0)")
+    return Pm[:, :3] @ d

@@ -1,0 +1,930 @@
+r"""The projective camera :math:`P = K [R \mid t]`: project, back-project, decompose, resection.
+
+A pinhole camera maps a world point :math:`X` (metres) to a pixel :math:`(u, v)` in two
+steps. The *extrinsics* ``R, t`` move the point into the camera frame
+(``cam_from_world``), and the *intrinsics* ``K`` map camera-frame directions to pixels:
+
+.. math::
+
+    X_c = R X + t, \qquad
+    \lambda \begin{pmatrix} u \\ v \\ 1 \end{pmatrix} = K X_c, \qquad
+    K = \begin{pmatrix} f_x & s & c_x \\ 0 & f_y & c_y \\ 0 & 0 & 1 \end{pmatrix},
+
+so :math:`\lambda \tilde u = P \tilde X` with the 3x4 matrix :math:`P = K [R \mid t]`.
+The depth :math:`\lambda = z_c` is positive in front of the camera; points with
+:math:`z_c \le 0` have no image and come back as NaN.
+
+Conventions (docs/conventions.md): camera frame x right, y down, z forward (OpenCV,
+Hartley & Zisserman); ``R, t`` are *cam_from_world*; the camera centre is
+:math:`C = -R^\top t`; pixels (u, v) = (column, row) with the origin at the centre of the
+top-left pixel; points are rows, so the textbook :math:`x = P X` is ``X_h @ P.T``;
+angles in radians. See lesson 04.
+"""
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ._validate import (
+    CamlabInputError,
+    ConvergenceError,
+    DegenerateError,
+    as_points,
+    check_finite,
+    check_matrix,
+    check_positive,
+)
+
+__all__ = [
+    "Camera", "Decomposition", "CV_FROM_GL", "axis_angle_from_rotation", "camera_centre",
+    "check_rotation", "decompose_projection_matrix", "estimate_projection_matrix",
+    "euler_from_rotation", "intrinsic_matrix", "is_rotation", "look_at_rotation",
+    "opencv_from_opengl", "opengl_from_opencv", "project_points", "reprojection_errors",
+    "rotation_from_axis_angle", "rotation_from_euler", "rq_decomposition", "rotation_x", "rotation_y", "rotation_z",
+    "box_wireframe", "ground_grid", "house_wireframe", "project_segments",
+]
+
+CV_FROM_GL = np.diag([1.0, -1.0, -1.0])
+r"""Maps OpenGL/Blender camera axes (x right, y up, z backward) to OpenCV's (x right, y down,
+z forward). It is its own inverse: :math:`F^{-1} = F`."""
+
+_ROT_TOL = 1e-6
+
+
+# ---------------------------------------------------------------------------------------
+# Intrinsics and rotations
+# ---------------------------------------------------------------------------------------
+
+def intrinsic_matrix(fx: float, fy: float, cx: float, cy: float, skew: float = 0.0) -> np.ndarray:
+    r"""The calibration matrix :math:`K` (pixels).
+
+    .. math:: K = \begin{pmatrix} f_x & s & c_x \\ 0 & f_y & c_y \\ 0 & 0 & 1 \end{pmatrix}
+
+    Parameters
+    ----------
+    fx, fy : float
+        Focal lengths in pixels (focal length in metres times pixels per metre), > 0.
+    cx, cy : float
+        Principal point in pixels (u, v).
+    skew : float
+        Skew :math:`s = f_x \cot\theta` for pixel axes at angle :math:`\theta`; 0 for
+        every modern sensor.
+
+    Returns
+    -------
+    (3, 3) ndarray
+
+    Examples
+    --------
+    >>> intrinsic_matrix(800, 800, 320, 240)
+    array([[800.,   0., 320.],
+           [  0., 800., 240.],
+           [  0.,   0.,   1.]])
+    """
+    fx = check_positive(fx, "fx", "pixels")
+    fy = check_positive(fy, "fy", "pixels")
+    vals = np.array([cx, cy, skew], dtype=float)
+    check_finite(vals, "cx, cy, skew")
+    return np.array([[fx, vals[2], vals[0]], [0.0, fy, vals[1]], [0.0, 0.0, 1.0]])
+
+
+def is_rotation(R: ArrayLike, tol: float = _ROT_TOL) -> bool:
+    r"""True if ``R`` is a (3, 3) rotation: :math:`R^\top R = I` and :math:`\det R = +1`."""
+    a = np.asarray(R, dtype=float)
+    if a.shape != (3, 3) or not np.isfinite(a).all():
+        return False
+    return bool(np.abs(a.T @ a - np.eye(3)).max() <= tol and abs(np.linalg.det(a) - 1.0) <= tol)
+
+
+def check_rotation(R: ArrayLike, name: str = "R", tol: float = _ROT_TOL) -> np.ndarray:
+    """Return ``R`` as a float (3, 3) array if it is a rotation, else raise saying why.
+
+    >>> check_rotation(np.diag([1.0, 1.0, -1.0]))
+    Traceback (most recent call last):
+    ...
+    camlab._validate.CamlabInputError: R: expected a rotation (R^T R = I, det R = +1), got det R = -1 (a reflection); flip the sign of one axis
+    """
+    a = check_matrix(R, (3, 3), name)
+    err = float(np.abs(a.T @ a - np.eye(3)).max())
+    if err > tol:
+        raise CamlabInputError(
+            f"{name}: expected a rotation (R^T R = I, det R = +1), but max |R^T R - I| = {err:.3g}; "
+            f"build R with rotation_from_axis_angle / rotation_from_euler, or orthonormalise it"
+        )
+    det = float(np.linalg.det(a))
+    if abs(det - 1.0) > tol:
+        raise CamlabInputError(
+            f"{name}: expected a rotation (R^T R = I, det R = +1), got det R = {det:.3g} (a reflection); "
+            f"flip the sign of one axis"
+        )
+    return a
+
+
+def rotation_from_axis_angle(rvec: ArrayLike) -> np.ndarray:
+    r"""Rodrigues' formula: the rotation by angle :math:`\theta = \|r\|` (radians) about :math:`r / \|r\|`.
+
+    .. math:: R = I + \sin\theta\,[k]_\times + (1 - \cos\theta)\,[k]_\times^2
+
+    This is the ``rvec`` convention of ``cv2.Rodrigues``.
+
+    Parameters
+    ----------
+    rvec : (3,) array_like
+        Rotation vector: unit axis times angle in radians.
+
+    Returns
+    -------
+    (3, 3) ndarray
+
+    Examples
+    --------
+    >>> np.round(rotation_from_axis_angle([0, 0, np.pi / 2]), 12) + 0.0
+    array([[ 0., -1.,  0.],
+           [ 1.,  0.,  0.],
+           [ 0.,  0.,  1.]])
+    """
+    r = check_matrix(rvec, (3,), "rvec")
+    theta = float(np.linalg.norm(r))
+    if theta < 1e-15:
+        return np.eye(3)
+    k = r / theta
+    kx = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    return np.eye(3) + np.sin(theta) * kx + (1.0 - np.cos(theta)) * (kx @ kx)
+
+
+def axis_angle_from_rotation(R: ArrayLike) -> np.ndarray:
+    r"""The rotation vector (axis times angle, radians) of a rotation; inverse of
+    :func:`rotation_from_axis_angle`, angle in :math:`[0, \pi]`.
+
+    Uses :math:`\cos\theta = (\operatorname{tr} R - 1)/2` and the skew part
+    :math:`(R - R^\top)/2 = \sin\theta [k]_\times`; near :math:`\theta = \pi` the axis is
+    read from :math:`R + I` instead.
+    """
+    a = check_rotation(R)
+    cos = np.clip((np.trace(a) - 1.0) / 2.0, -1.0, 1.0)
+    theta = float(np.arccos(cos))
+    w = np.array([a[2, 1] - a[1, 2], a[0, 2] - a[2, 0], a[1, 0] - a[0, 1]]) / 2.0
+    if theta < 1e-12:
+        return w  # sin(theta) ~ theta: the skew part is already the rotation vector
+    if np.pi - theta > 1e-6:
+        return w / np.sin(theta) * theta
+    # theta ~ pi: R + I = 2 k k^T; take the largest column for the axis, sign from w.
+    B = (a + np.eye(3)) / 2.0
+    k = B[:, int(np.argmax(np.diag(B)))]
+    k = k / np.linalg.norm(k)
+    if np.dot(k, w) < 0:
+        k = -k
+    return k * theta
+
+
+def rotation_x(angle: float) -> np.ndarray:
+    """Rotation by ``angle`` radians about the x axis (right-handed)."""
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+
+
+def rotation_y(angle: float) -> np.ndarray:
+    """Rotation by ``angle`` radians about the y axis (right-handed)."""
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+def rotation_z(angle: float) -> np.ndarray:
+    """Rotation by ``angle`` radians about the z axis (right-handed)."""
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def rotation_from_euler(rx: float, ry: float, rz: float) -> np.ndarray:
+    r"""Rotation from Euler angles in radians: :math:`R = R_z(r_z) R_y(r_y) R_x(r_x)`.
+
+    Read right to left: rotate about the fixed x axis first, then y, then z (extrinsic
+    x-y-z, the same matrix as intrinsic z-y'-x''; roll-pitch-yaw for a z-up body).
+    Inverse: :func:`euler_from_rotation`.
+    """
+    angles = np.array([rx, ry, rz], dtype=float)
+    check_finite(angles, "rx, ry, rz")
+    return rotation_z(angles[2]) @ rotation_y(angles[1]) @ rotation_x(angles[0])
+
+
+def euler_from_rotation(R: ArrayLike) -> np.ndarray:
+    r"""The angles ``(rx, ry, rz)`` with :math:`R = R_z R_y R_x`, ``ry`` in
+    :math:`[-\pi/2, \pi/2]`. At gimbal lock (:math:`|r_y| = \pi/2`) ``rx`` is set to 0."""
+    a = check_rotation(R)
+    ry = float(np.arcsin(np.clip(-a[2, 0], -1.0, 1.0)))
+    if abs(a[2, 0]) < 1.0 - 1e-12:
+        rx = float(np.arctan2(a[2, 1], a[2, 2]))
+        rz = float(np.arctan2(a[1, 0], a[0, 0]))
+    else:  # gimbal lock: only rz - rx (or rz + rx) is defined
+        rx = 0.0
+        rz = float(np.arctan2(-a[0, 1], a[1, 1]))
+    return np.array([rx, ry, rz])
+
+
+def look_at_rotation(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0.0, 0.0, 1.0)) -> np.ndarray:
+    r"""The cam_from_world rotation of a camera at ``eye`` looking at ``target``.
+
+    The rows of R are the camera axes written in world coordinates: z (forward) points
+    from eye to target, x (right) is :math:`z \times \text{up}` normalised, y (down)
+    is :math:`z \times x`, so "up" appears up in the image.
+
+    Raises
+    ------
+    DegenerateError
+        If eye == target or the viewing direction is parallel to ``up``.
+    """
+    e = check_matrix(eye, (3,), "eye")
+    g = check_matrix(target, (3,), "target")
+    u = check_matrix(up, (3,), "up")
+    z = g - e
+    if np.linalg.norm(z) < 1e-12:
+        raise DegenerateError("look_at: eye and target coincide, so there is no viewing direction; move the eye")
+    z = z / np.linalg.norm(z)
+    x = np.cross(z, u)
+    if np.linalg.norm(x) < 1e-9 * max(np.linalg.norm(u), 1e-300):
+        raise DegenerateError(
+            f"look_at: the viewing direction {np.round(z, 6)} is parallel to up={u}, so 'right' is "
+            f"undefined; choose another up vector"
+        )
+    x = x / np.linalg.norm(x)
+    y = np.cross(z, x)
+    return np.vstack([x, y, z])
+
+
+def opengl_from_opencv(R: ArrayLike, t: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    r"""Convert a cam_from_world pose from the OpenCV camera frame to the OpenGL/Blender one.
+
+    Both describe the same physical camera; only the camera's axes are renamed:
+    OpenGL's camera looks down its -z axis with y up. With :math:`F =
+    \operatorname{diag}(1, -1, -1)`, :math:`R_{gl} = F R`, :math:`t_{gl} = F t`. A
+    Blender camera's ``matrix_world`` is the inverse: ``[[R_gl^T, -R_gl^T t_gl], [0, 1]]``.
+
+    Returns
+    -------
+    R_gl : (3, 3) ndarray
+    t_gl : (3,) ndarray
+    """
+    Rm = check_rotation(R)
+    tv = check_matrix(t, (3,), "t")
+    return CV_FROM_GL @ Rm, CV_FROM_GL @ tv
+
+
+def opencv_from_opengl(R_gl: ArrayLike, t_gl: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """Inverse of :func:`opengl_from_opencv` (the same flip, since F is its own inverse)."""
+    Rm = check_rotation(R_gl, "R_gl")
+    tv = check_matrix(t_gl, (3,), "t_gl")
+    return CV_FROM_GL @ Rm, CV_FROM_GL @ tv
+
+
+# ---------------------------------------------------------------------------------------
+# The Camera
+# ---------------------------------------------------------------------------------------
+
+def _check_K(K: ArrayLike, name: str = "K") -> np.ndarray:
+    a = check_matrix(K, (3, 3), name)
+    if np.any(a[2] != [0.0, 0.0, 1.0]) or a[1, 0] != 0.0:
+        raise CamlabInputError(
+            f"{name}: expected an upper-triangular calibration matrix with last row (0, 0, 1), got\n{a}; "
+            f"build it with intrinsic_matrix(fx, fy, cx, cy, skew)"
+        )
+    if a[0, 0] <= 0 or a[1, 1] <= 0:
+        raise CamlabInputError(
+            f"{name}: expected positive focal lengths on the diagonal, got fx = {a[0, 0]:g}, fy = {a[1, 1]:g} "
+            f"(a singular or mirrored K); focal lengths are in pixels and > 0"
+        )
+    return a
+
+
+def _frozen(a: np.ndarray) -> np.ndarray:
+    a = np.array(a, dtype=float)
+    a.flags.writeable = False
+    return a
+
+
+@dataclass(frozen=True, eq=False)
+class Camera:
+    r"""A pinhole camera :math:`P = K [R \mid t]` with optional lens distortion.
+
+    Parameters
+    ----------
+    K : (3, 3) array_like
+        Intrinsics (pixels), upper triangular, last row (0, 0, 1), positive focal lengths.
+    R : (3, 3) array_like
+        Rotation cam_from_world: its rows are the camera's x, y, z axes in world coordinates.
+    t : (3,) array_like
+        Translation cam_from_world (metres): the world origin in camera coordinates.
+        It is *not* the camera's position; that is :attr:`centre` :math:`= -R^\top t`.
+    dist : tuple of 5 floats
+        Distortion ``(k1, k2, p1, p2, k3)`` in OpenCV's order. :meth:`project` applies it;
+        :meth:`backproject` needs undistorted pixels (use camlab.distortion first).
+    image_size : (width, height)
+        Image size in pixels.
+
+    All arrays are stored as read-only float copies; use :meth:`replace` for a changed copy.
+
+    Examples
+    --------
+    >>> cam = Camera.look_at(eye=[0, -5, 1], target=[0, 0, 1])
+    >>> cam.project([0, 0, 1])
+    array([320., 240.])
+    >>> np.round(cam.centre, 12) + 0.0
+    array([ 0., -5.,  1.])
+    """
+
+    K: np.ndarray
+    R: np.ndarray = dataclasses.field(default_factory=lambda: np.eye(3))
+    t: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
+    dist: tuple[float, float, float, float, float] = (0.0, 0.0, 0.0, 0.0, 0.0)
+    image_size: tuple[int, int] = (640, 480)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "K", _frozen(_check_K(self.K)))
+        object.__setattr__(self, "R", _frozen(check_rotation(self.R)))
+        object.__setattr__(self, "t", _frozen(check_matrix(self.t, (3,), "t")))
+        d = np.asarray(self.dist, dtype=float).ravel()
+        if d.shape != (5,) or not np.isfinite(d).all():
+            raise CamlabInputError(
+                f"dist: expected 5 finite coefficients (k1, k2, p1, p2, k3) in OpenCV order, got {self.dist!r}; "
+                f"pad with zeros"
+            )
+        object.__setattr__(self, "dist", tuple(float(v) for v in d))
+        size = tuple(int(v) for v in np.asarray(self.image_size).ravel())
+        if len(size) != 2 or min(size) <= 0:
+            raise CamlabInputError(f"image_size: expected (width, height) in pixels > 0, got {self.image_size!r}")
+        object.__setattr__(self, "image_size", size)
+
+    # -- constructors --------------------------------------------------------------------
+    @classmethod
+    def from_fov(
+        cls,
+        fov_x: float,
+        image_size: tuple[int, int] = (640, 480),
+        R: ArrayLike | None = None,
+        t: ArrayLike | None = None,
+        dist: tuple[float, ...] = (0.0,) * 5,
+    ) -> "Camera":
+        r"""A camera with square pixels and the principal point at the image centre, from
+        its horizontal field of view ``fov_x`` (radians, in (0, pi)):
+        :math:`f = (W / 2) / \tan(\mathrm{fov}_x / 2)`, :math:`c = ((W - 1)/2, (H - 1)/2)`.
+        """
+        fov = float(fov_x)
+        if not 0.0 < fov < np.pi:
+            raise CamlabInputError(f"fov_x: expected a field of view in radians in (0, pi), got {fov_x!r}; "
+                                   f"use np.deg2rad(60) for 60 degrees")
+        w, h = (int(v) for v in image_size)
+        f = (w / 2.0) / np.tan(fov / 2.0)
+        K = intrinsic_matrix(f, f, (w - 1) / 2.0, (h - 1) / 2.0)
+        return cls(K, np.eye(3) if R is None else R, np.zeros(3) if t is None else t, dist, (w, h))
+
+    @classmethod
+    def look_at(
+        cls,
+        eye: ArrayLike,
+        target: ArrayLike,
+        up: ArrayLike = (0.0, 0.0, 1.0),
+        K: ArrayLike | None = None,
+        image_size: tuple[int, int] = (640, 480),
+        dist: tuple[float, ...] = (0.0,) * 5,
+    ) -> "Camera":
+        r"""A camera at ``eye`` (world metres) looking at ``target``, with ``up`` (default world
+        +z) appearing up in the image. ``K`` defaults to fx = fy = 800 px with the principal
+        point at the centre of ``image_size``. :math:`t = -R\,\text{eye}`."""
+        R = look_at_rotation(eye, target, up)
+        e = np.asarray(eye, dtype=float)
+        if K is None:
+            w, h = (int(v) for v in image_size)
+            K = intrinsic_matrix(800.0, 800.0, w / 2.0, h / 2.0)
+        return cls(K, R, -R @ e, dist, image_size)
+
+    def replace(self, **changes) -> "Camera":
+        """A copy with some fields changed, e.g. ``cam.replace(K=new_K)``."""
+        return dataclasses.replace(self, **changes)
+
+    # -- derived quantities --------------------------------------------------------------
+    @property
+    def P(self) -> np.ndarray:
+        r"""The (3, 4) projection matrix :math:`K [R \mid t]`."""
+        return self.K @ np.hstack([self.R, self.t[:, None]])
+
+    @property
+    def centre(self) -> np.ndarray:
+        r"""The camera centre in world coordinates, :math:`C = -R^\top t` (metres): the
+        point with :math:`P \tilde C = 0`."""
+        return -self.R.T @ self.t
+
+    @property
+    def principal_axis(self) -> np.ndarray:
+        """Unit viewing direction (camera +z) in world coordinates: the third row of R."""
+        return self.R[2].copy()
+
+    @property
+    def principal_point(self) -> np.ndarray:
+        """(cx, cy) in pixels: where the principal axis pierces the image."""
+        return self.K[:2, 2].copy()
+
+    @property
+    def cam_from_world(self) -> np.ndarray:
+        """The (4, 4) rigid transform ``[[R, t], [0, 1]]`` taking world points to the camera frame."""
+        T = np.eye(4)
+        T[:3, :3], T[:3, 3] = self.R, self.t
+        return T
+
+    @property
+    def world_from_cam(self) -> np.ndarray:
+        r"""The (4, 4) inverse ``[[R^T, C], [0, 1]]``: the camera's pose in the world (its
+        columns are the camera axes and centre in world coordinates)."""
+        T = np.eye(4)
+        T[:3, :3], T[:3, 3] = self.R.T, self.centre
+        return T
+
+    # -- mapping points --------------------------------------------------------------------
+    def to_camera(self, points_world: ArrayLike) -> np.ndarray:
+        """World points (N, 3) to camera coordinates :math:`X_c = R X + t` (metres)."""
+        p = as_points(points_world, 3, "points_world", finite=False)
+        return p.restore(p.array @ self.R.T + self.t)
+
+    def project(self, points_world: ArrayLike) -> np.ndarray:
+        r"""Project world points to pixels.
+
+        Parameters
+        ----------
+        points_world : (N, 3) or (3,) array_like
+            Points in the world frame, metres.
+
+        Returns
+        -------
+        (N, 2) or (2,) ndarray
+            Pixel coordinates (u, v); NaN for points with :math:`z_c \le 0` (behind or
+            on the camera's plane), which have no image.
+
+        Notes
+        -----
+        .. math:: x_n = (X_c / Z_c,\ Y_c / Z_c),\quad x_d = \operatorname{distort}(x_n),\quad
+                  \tilde u = K \tilde x_d
+
+        The distortion step is OpenCV's (k1, k2, p1, p2, k3) model and is the identity
+        when ``dist`` is all zero. See lesson 04, section 2.
+        """
+        p = as_points(points_world, 3, "points_world", finite=False)
+        Xc = p.array @ self.R.T + self.t
+        z = Xc[:, 2]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            xn = Xc[:, :2] / np.where(z > 0, z, np.nan)[:, None]
+        if any(self.dist):
+            xn = _distort_normalized(xn, self.dist)
+        uv = xn @ self.K[:2, :2].T + self.K[:2, 2]
+        return p.restore(uv)
+
+    def depth(self, points_world: ArrayLike) -> np.ndarray:
+        """The depth :math:`z_c` of each world point along the principal axis (metres)."""
+        p = as_points(points_world, 3, "points_world", finite=False)
+        return p.restore(p.array @ self.R[2] + self.t[2])
+
+    def backproject(self, uv: ArrayLike, depth: ArrayLike | None = None) -> np.ndarray:
+        r"""Back-project pixels to world rays or to world points at a given depth.
+
+        Parameters
+        ----------
+        uv : (N, 2) or (2,) array_like
+            Undistorted pixel coordinates (u, v).
+        depth : None, float or (N,) array_like
+            ``None``: return unit ray directions (world frame) from :attr:`centre` through
+            each pixel. A number or one per pixel: return the world points whose camera
+            depth :math:`z_c` equals it (metres, > 0), so that
+            ``project(backproject(uv, d)) == uv``.
+
+        Returns
+        -------
+        (N, 3) or (3,) ndarray
+            Unit directions (``depth=None``) or world points.
+
+        Notes
+        -----
+        .. math:: X_c = z\,K^{-1}\tilde u, \qquad X = R^\top (X_c - t) = C + z\,R^\top K^{-1} \tilde u
+        """
+        if any(self.dist):
+            raise CamlabInputError(
+                "backproject: this camera has lens distortion; undistort the pixels first "
+                "(camlab.distortion) and call backproject on camera.replace(dist=(0,) * 5)"
+            )
+        p = as_points(uv, 2, "uv")
+        rays_c = np.linalg.solve(self.K, np.hstack([p.array, np.ones((len(p.array), 1))]).T).T
+        if depth is None:
+            d = rays_c @ self.R  # = (R^T rays_c^T)^T
+            return p.restore(d / np.linalg.norm(d, axis=1, keepdims=True))
+        z = np.asarray(depth, dtype=float)
+        if z.ndim > 1 or (z.ndim == 1 and len(z) != len(p.array)):
+            raise CamlabInputError(f"depth: expected a number or one depth per pixel ({len(p.array)}), "
+                                   f"got shape {z.shape}")
+        if not np.all(np.isfinite(z)) or np.any(z <= 0):
+            raise CamlabInputError(f"depth: expected depths > 0 (metres in front of the camera), got {depth!r}; "
+                                   f"points at depth <= 0 are behind the camera and have no pixel")
+        Xc = rays_c * np.reshape(z, (-1, 1))
+        return p.restore((Xc - self.t) @ self.R)
+
+    def in_image(self, uv: ArrayLike) -> np.ndarray:
+        """(N,) bool: pixel lies inside the image (centre-of-pixel convention)."""
+        p = as_points(uv, 2, "uv", finite=False)
+        w, h = self.image_size
+        u, v = p.array.T
+        ok = (u >= -0.5) & (u <= w - 0.5) & (v >= -0.5) & (v <= h - 0.5)
+        return p.restore(ok)
+
+    def __repr__(self) -> str:
+        fx, fy, cx, cy = self.K[0, 0], self.K[1, 1], self.K[0, 2], self.K[1, 2]
+        C = np.round(self.centre, 4)
+        return (f"Camera(fx={fx:.6g}, fy={fy:.6g}, cx={cx:.6g}, cy={cy:.6g}, skew={self.K[0, 1]:.3g}, "
+                f"centre={C.tolist()}, image_size={self.image_size})")
+
+
+def _distort_normalized(xn: np.ndarray, dist: tuple[float, ...]) -> np.ndarray:
+    """OpenCV's Brown-Conrady model on normalised coordinates (the forward map only)."""
+    k1, k2, p1, p2, k3 = dist
+    x, y = xn[:, 0], xn[:, 1]
+    r2 = x * x + y * y
+    radial = 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3))
+    xd = x * radial + 2.0 * p1 * x * y + p2 * (r2 + 2.0 * x * x)
+    yd = y * radial + p1 * (r2 + 2.0 * y * y) + 2.0 * p2 * x * y
+    return np.column_stack([xd, yd])
+
+
+# ---------------------------------------------------------------------------------------
+# General projection matrices
+# ---------------------------------------------------------------------------------------
+
+def _check_P(P: ArrayLike, name: str = "P") -> np.ndarray:
+    a = check_matrix(P, (3, 4), name)
+    s = np.linalg.svd(a, compute_uv=False)
+    if s[0] == 0 or s[2] <= 1e-12 * s[0]:
+        raise DegenerateError(
+            f"{name}: a camera matrix has rank 3, this one has rank {int(np.sum(s > 1e-12 * s[0]))} "
+            f"(singular values {np.array2string(s, precision=3)}); it maps all of space to a line or point"
+        )
+    return a
+
+
+def project_points(P: ArrayLike, points_world: ArrayLike) -> np.ndarray:
+    r"""Project world points with any 3x4 camera matrix: :math:`\lambda \tilde u = P \tilde X`.
+
+    Works for projective and affine cameras alike. For a finite camera the sign of the
+    depth is :math:`\operatorname{sign}(\det M)\,w` (M = P's left 3x3 block), which does not
+    change when P is scaled, so points behind the camera come back as NaN whatever the
+    scale of P. Affine cameras (M singular) see every point.
+
+    Parameters
+    ----------
+    P : (3, 4) array_like
+    points_world : (N, 3) or (3,) array_like
+
+    Returns
+    -------
+    (N, 2) or (2,) ndarray
+        Pixels; NaN where the point is behind a finite camera or maps to infinity.
+    """
+    Pm = _check_P(P)
+    p = as_points(points_world, 3, "points_world", finite=False)
+    x = p.array @ Pm[:, :3].T + Pm[:, 3]
+    w = x[:, 2]
+    det = np.linalg.det(Pm[:, :3])
+    scale = np.abs(Pm).max()
+    if abs(det) > 1e-12 * scale ** 3:
+        behind = np.sign(det) * w <= 0
+    else:
+        behind = w == 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        uv = x[:, :2] / np.where(behind, np.nan, w)[:, None]
+    return p.restore(uv)
+
+
+def camera_centre(P: ArrayLike) -> np.ndarray:
+    r"""The camera centre: the right null space of P, :math:`P \tilde C = 0`.
+
+    Returns
+    -------
+    (4,) ndarray
+        The homogeneous centre, scaled to w = 1 for a finite camera. An affine camera has
+        its centre at infinity: w = 0 and (x, y, z) is the (unit) viewing direction.
+
+    Notes
+    -----
+    The last right singular vector of P spans its null space. For a finite camera
+    :math:`P = [M \mid p_4]` this equals :math:`(-M^{-1} p_4, 1)`.
+    """
+    Pm = _check_P(P)
+    _, _, Vt = np.linalg.svd(Pm)
+    C = Vt[-1]
+    if abs(C[3]) > 1e-12 * np.abs(C).max():
+        return C / C[3]
+    return C / np.linalg.norm(C[:3])
+
+
+class Decomposition(NamedTuple):
+    """The factors of :math:`P = \\lambda K [R \\mid t]`: K (K[2, 2] = 1, positive focal lengths),
+    R (det +1), t (cam_from_world) and the camera centre C = -R^T t."""
+
+    K: np.ndarray
+    R: np.ndarray
+    t: np.ndarray
+    centre: np.ndarray
+
+
+def rq_decomposition(M: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    r"""RQ decomposition :math:`M = K R`: K upper triangular with a positive diagonal, R orthogonal.
+
+    numpy only has QR (orthogonal times triangular), so we reverse the order of rows.
+    With the exchange matrix E (ones on the anti-diagonal, :math:`E = E^\top = E^{-1}`),
+    QR of :math:`(E M)^\top = Q' U'` gives :math:`M = E U'^\top Q'^\top = (E U'^\top E)(E Q'^\top)`,
+    and :math:`E U'^\top E` is upper triangular. The factors are unique only up to
+    :math:`D = \operatorname{diag}(\pm 1, \pm 1, \pm 1)` since :math:`K R = (K D)(D R)`;
+    choosing D = sign(diag(K)) makes the diagonal of K positive. Then
+    :math:`\det R = \operatorname{sign}(\det M)`: R is a rotation exactly when det M > 0.
+
+    Parameters
+    ----------
+    M : (3, 3) array_like
+        Invertible, e.g. the left 3x3 block of a camera matrix.
+
+    Returns
+    -------
+    K : (3, 3) ndarray
+        Upper triangular, positive diagonal (not normalised: K[2, 2] carries M's scale).
+    R : (3, 3) ndarray
+        Orthogonal.
+
+    Examples
+    --------
+    >>> K, R = rq_decomposition(np.diag([2.0, -3.0, 4.0]))
+    >>> np.diag(K), np.diag(R)
+    (array([2., 3., 4.]), array([ 1., -1.,  1.]))
+    """
+    Mm = check_matrix(M, (3, 3), "M")
+    if abs(np.linalg.det(Mm)) <= 1e-12 * max(np.abs(Mm).max(), 1e-300) ** 3:
+        raise DegenerateError("rq_decomposition: M is singular, so K would have a zero on its diagonal; "
+                              "a finite camera has an invertible left 3x3 block")
+    E = np.eye(3)[::-1]
+    Q, U = np.linalg.qr((E @ Mm).T)
+    K, R = E @ U.T @ E, E @ Q.T
+    D = np.diag(np.sign(np.diag(K)))
+    return K @ D, D @ R
+
+
+def decompose_projection_matrix(P: ArrayLike) -> Decomposition:
+    r"""Factor a finite camera :math:`P = \lambda K [R \mid t]` by RQ decomposition.
+
+    Derivation (H&Z section 6.2.4): the left 3x3 block is :math:`M = \lambda K R`, an
+    upper-triangular matrix times a rotation, which is exactly an RQ decomposition.
+    RQ is unique only up to signs: :math:`K R = (K D)(D R)` for any
+    :math:`D = \operatorname{diag}(\pm 1, \pm 1, \pm 1)`. We
+
+    1. flip the sign of P if :math:`\det M < 0` (P is defined up to scale; now
+       :math:`\det(\lambda K R) > 0`);
+    2. choose D = sign(diag(K)) so the focal lengths and K[2, 2] are positive; then
+       :math:`\det R = \det M / \det K > 0`, so R is a rotation;
+    3. read :math:`t = K^{-1} p_4` with the still unnormalised K (it carries
+       :math:`\lambda`), then divide K by K[2, 2].
+
+    The centre is :math:`C = -R^\top t`, the null space of P.
+
+    Parameters
+    ----------
+    P : (3, 4) array_like
+        A finite projective camera (left 3x3 block invertible), any scale or sign.
+
+    Returns
+    -------
+    Decomposition
+        ``(K, R, t, centre)``.
+
+    Raises
+    ------
+    DegenerateError
+        If P has rank < 3, or M is singular (an affine camera: use camlab.affine).
+
+    Examples
+    --------
+    >>> cam = Camera.look_at([4, -3, 2], [0, 0, 0])
+    >>> K, R, t, C = decompose_projection_matrix(-2.5 * cam.P)
+    >>> bool(np.allclose(K, cam.K) and np.allclose(R, cam.R) and np.allclose(C, [4, -3, 2]))
+    True
+    """
+    Pm = _check_P(P)
+    M = Pm[:, :3]
+    s = np.linalg.svd(M, compute_uv=False)
+    if s[2] <= 1e-10 * s[0]:
+        raise DegenerateError(
+            "decompose_projection_matrix: P's left 3x3 block M is singular, so the camera centre is at "
+            "infinity (an affine camera) and P has no K [R | t] form; see camlab.affine"
+        )
+    if np.linalg.det(M) < 0:
+        Pm = -Pm
+        M = Pm[:, :3]
+    K, R = rq_decomposition(M)
+    t = np.linalg.solve(K, Pm[:, 3])
+    K = K / K[2, 2]
+    K[1, 0] = K[2, 0] = K[2, 1] = 0.0  # exactly triangular (they are ~1e-17 after RQ)
+    return Decomposition(K, R, t, -R.T @ t)
+
+
+# ---------------------------------------------------------------------------------------
+# Resectioning: the DLT for cameras
+# ---------------------------------------------------------------------------------------
+
+def _normalizing_transform(points: np.ndarray) -> np.ndarray:
+    r"""Hartley's similarity: centroid to the origin, mean distance :math:`\sqrt{d}`."""
+    d = points.shape[1]
+    c = points.mean(axis=0)
+    mean_dist = np.linalg.norm(points - c, axis=1).mean()
+    if mean_dist == 0:
+        raise DegenerateError("estimate_projection_matrix: all points coincide; spread them out")
+    s = np.sqrt(d) / mean_dist
+    T = np.eye(d + 1)
+    T[:d, :d] *= s
+    T[:d, d] = -s * c
+    return T
+
+
+def reprojection_errors(P: ArrayLike, points_world: ArrayLike, points_image: ArrayLike) -> np.ndarray:
+    """(N,) distances in pixels between ``points_image`` and the projections of ``points_world`` by P."""
+    uv = as_points(points_image, 2, "points_image").array
+    proj = np.atleast_2d(project_points(P, points_world))
+    if len(proj) != len(uv):
+        raise CamlabInputError(f"points_world and points_image: expected equally many points, "
+                               f"got {len(proj)} and {len(uv)}")
+    return np.linalg.norm(proj - uv, axis=1)
+
+
+def estimate_projection_matrix(
+    points_world: ArrayLike,
+    points_image: ArrayLike,
+    refine: bool = False,
+) -> np.ndarray:
+    r"""Estimate P from N >= 6 world-image correspondences (resectioning, the camera DLT).
+
+    Each correspondence :math:`\tilde u_i \simeq P \tilde X_i` gives, from
+    :math:`\tilde u_i \times P \tilde X_i = 0`, two linear equations in the 12 entries
+    of P (rows :math:`p^{1\top}, p^{2\top}, p^{3\top}`):
+
+    .. math::
+
+        \begin{pmatrix} \tilde X_i^\top & 0^\top & -u_i \tilde X_i^\top \\
+                        0^\top & \tilde X_i^\top & -v_i \tilde X_i^\top \end{pmatrix}
+        \begin{pmatrix} p^1 \\ p^2 \\ p^3 \end{pmatrix} = 0 .
+
+    Stacking gives :math:`A p = 0` with A of size 2N x 12; P has 11 degrees of freedom, so
+    5.5 correspondences are needed and we ask for 6. The least-squares solution with
+    :math:`\|p\| = 1` is the right singular vector of A with the smallest singular value.
+
+    Hartley normalisation (H&Z algorithm 7.1) makes this well conditioned: the image
+    points are moved to centroid 0 and mean distance :math:`\sqrt 2` by T, the world
+    points to centroid 0 and mean distance :math:`\sqrt 3` by U, the DLT estimates
+    :math:`\hat P` for the normalised points, and :math:`P = T^{-1} \hat P U`.
+
+    With ``refine=True`` the linear estimate seeds Levenberg-Marquardt
+    (scipy.optimize.least_squares) on the reprojection error
+    :math:`\sum_i \|u_i - \pi(P, X_i)\|^2`, the maximum-likelihood (gold standard)
+    estimate under Gaussian pixel noise.
+
+    Parameters
+    ----------
+    points_world : (N, 3) array_like
+        World points (metres), not all on one plane.
+    points_image : (N, 2) array_like
+        Their pixels (u, v).
+    refine : bool
+        Polish the linear estimate by minimising reprojection error.
+
+    Returns
+    -------
+    (3, 4) ndarray
+        P scaled so that its third row's first three entries have unit norm and
+        :math:`\det M > 0`; then ``P @ [X, 1]`` has the point's depth as third coordinate.
+
+    Raises
+    ------
+    CamlabInputError
+        Fewer than 6 correspondences, or different counts.
+    DegenerateError
+        The world points are coplanar (or collinear): P is then not determined, since a
+        plane only fixes a homography (8 of P's 11 degrees of freedom). Also raised when
+        the solution is not unique for another reason.
+    """
+    Xp = as_points(points_world, 3, "points_world")
+    up = as_points(points_image, 2, "points_image")
+    X, uv = Xp.array, up.array
+    if len(X) != len(uv):
+        raise CamlabInputError(
+            f"points_world and points_image: expected equally many points, got {len(X)} and {len(uv)}; "
+            f"pair each world point with its pixel"
+        )
+    if len(X) < 6:
+        raise CamlabInputError(
+            f"points_world: expected (N, 3) with N >= 6 correspondences (P has 11 degrees of freedom, each "
+            f"point gives 2 equations), got {len(X)}; add more points"
+        )
+    sv = np.linalg.svd(X - X.mean(axis=0), compute_uv=False)
+    if sv[2] <= 1e-9 * sv[0]:
+        raise DegenerateError(
+            f"estimate_projection_matrix: the {len(X)} world points are coplanar (their spread across the "
+            f"thinnest direction is {sv[2] / max(sv[0], 1e-300):.2g} of the widest), so P is not determined; "
+            f"use points on at least two planes (e.g. two faces of a box), or a homography for one plane"
+        )
+    T = _normalizing_transform(uv)
+    U = _normalizing_transform(X)
+    Xn = np.hstack([X, np.ones((len(X), 1))]) @ U.T
+    un = (np.hstack([uv, np.ones((len(uv), 1))]) @ T.T)[:, :2]
+    n = len(X)
+    A = np.zeros((2 * n, 12))
+    A[0::2, 0:4] = Xn
+    A[0::2, 8:12] = -un[:, :1] * Xn
+    A[1::2, 4:8] = Xn
+    A[1::2, 8:12] = -un[:, 1:] * Xn
+    _, s, Vt = np.linalg.svd(A)
+    if s[-2] <= 1e-10 * s[0]:
+        raise DegenerateError(
+            "estimate_projection_matrix: the correspondences do not fix P uniquely (A has a null space of "
+            "dimension > 1); the points and camera may lie on a twisted cubic, pick more varied points"
+        )
+    Pn = Vt[-1].reshape(3, 4)
+    P = np.linalg.solve(T, Pn @ U)
+    P = _normalize_P(P)
+    if refine:
+        P = _refine_projection_matrix(P, X, uv)
+    return P
+
+
+def _normalize_P(P: np.ndarray) -> np.ndarray:
+    P = P / np.linalg.norm(P[2, :3])
+    if np.linalg.det(P[:, :3]) < 0:
+        P = -P
+    return P
+
+
+def _refine_projection_matrix(P0: np.ndarray, X: np.ndarray, uv: np.ndarray) -> np.ndarray:
+    from scipy.optimize import least_squares
+
+    Xh = np.hstack([X, np.ones((len(X), 1))])
+
+    def residuals(p: np.ndarray) -> np.ndarray:
+        x = Xh @ p.reshape(3, 4).T
+        return (x[:, :2] / x[:, 2:] - uv).ravel()
+
+    res = least_squares(residuals, P0.ravel(), method="lm", x_scale="jac")
+    if not res.success:
+        raise ConvergenceError(f"estimate_projection_matrix: refinement did not converge ({res.message})")
+    return _normalize_P(res.x.reshape(3, 4))
+
+
+# ---------------------------------------------------------------------------------------
+# Simple wireframe scenes (what lessons 04-05 photograph)
+# ---------------------------------------------------------------------------------------
+
+def box_wireframe(centre: ArrayLike = (0.0, 0.0, 0.5), size: ArrayLike = (1.0, 1.0, 1.0)) -> np.ndarray:
+    """The 12 edges of an axis-aligned box as (12, 2, 3) segments (metres)."""
+    c = check_matrix(centre, (3,), "centre")
+    s = check_matrix(size, (3,), "size")
+    corners = np.array([[i, j, k] for i in (-0.5, 0.5) for j in (-0.5, 0.5) for k in (-0.5, 0.5)]) * s + c
+    edges = [(a, b) for a in range(8) for b in range(a + 1, 8) if bin(a ^ b).count("1") == 1]
+    return corners[np.array(edges)]
+
+
+def house_wireframe(centre: ArrayLike = (0.0, 0.0, 0.0), size: float = 1.0) -> np.ndarray:
+    """A house (box body, gable roof, door) standing on z = 0 at ``centre``, as (M, 2, 3) segments."""
+    c = check_matrix(centre, (3,), "centre")
+    s = check_positive(size, "size", "metres")
+    body = box_wireframe((0.0, 0.0, 0.5), (1.0, 1.4, 1.0))
+    r0, r1 = np.array([0.0, -0.7, 1.55]), np.array([0.0, 0.7, 1.55])
+    top = [(-0.5, 1.0), (0.5, 1.0)]
+    roof = [[r0, r1]]
+    for y, r in ((-0.7, r0), (0.7, r1)):
+        for x, z in top:
+            roof.append([[x, y, z], r])
+    door = [[[-0.5, -0.15, 0.0], [-0.5, -0.15, 0.6]], [[-0.5, -0.15, 0.6], [-0.5, 0.15, 0.6]],
+            [[-0.5, 0.15, 0.6], [-0.5, 0.15, 0.0]]]
+    segs = np.concatenate([body, np.array(roof, dtype=float), np.array(door, dtype=float)])
+    return segs * s + c
+
+
+def ground_grid(extent: float = 2.0, step: float = 0.5, z: float = 0.0) -> np.ndarray:
+    """Grid lines on the plane z = ``z`` covering [-extent, extent]^2, as (M, 2, 3) segments."""
+    e = check_positive(extent, "extent", "metres")
+    st = check_positive(step, "step", "metres")
+    ticks = np.arange(-e, e + 1e-9, st)
+    segs = [[[x, -e, z], [x, e, z]] for x in ticks] + [[[-e, y, z], [e, y, z]] for y in ticks]
+    return np.array(segs, dtype=float)
+
+
+def project_segments(camera: "Camera | ArrayLike", segments: ArrayLike) -> np.ndarray:
+    """Project (M, 2, 3) world segments to (M, 2, 2) pixel segments with a Camera or a 3x4 P.
+
+    Segments with an endpoint behind the camera get NaN there (matplotlib skips them).
+    """
+    s = np.asarray(segments, dtype=float)
+    if s.ndim != 3 or s.shape[1:] != (2, 3):
+        raise CamlabInputError(f"segments: expected (M, 2, 3) pairs of world points, got shape {s.shape}")
+    flat = s.reshape(-1, 3)
+    uv = camera.project(flat) if isinstance(camera, Camera) else project_points(camera, flat)
+    return uv.reshape(-1, 2, 2)

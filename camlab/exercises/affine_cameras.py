@@ -1,0 +1,123 @@
+"""Exercises for lesson 05, affine cameras."""
+from __future__ import annotations
+
+import numpy as np
+
+from .. import affine as af
+from .. import camera as cm
+from ._core import Exercise, register_exercise, shape_problem
+
+
+def _close(got, expected) -> bool:
+    return np.shape(got) == np.shape(expected) and bool(np.allclose(got, expected, rtol=1e-7, atol=1e-7))
+
+
+# -- affine_approximation ------------------------------------------------------------------
+
+def _approx_cases():
+    return [
+        (cm.Camera.look_at([4.0, -3.0, 2.0], [0.0, 0.0, 0.5]), np.array([0.0, 0.0, 0.5])),
+        (cm.Camera.look_at([-6.0, -8.0, 3.0], [0.5, 0.0, 0.0], K=cm.intrinsic_matrix(1200, 1100, 310, 250)),
+         np.array([0.2, 0.3, 0.4])),
+        (cm.Camera(cm.intrinsic_matrix(800, 800, 320, 240), cm.rotation_from_euler(0.2, 0.1, -0.3), [0.1, 0.2, 9.0]),
+         np.array([1.0, -0.5, 0.3])),
+    ]
+
+
+def _approx_diagnosis(args, got, expected) -> str:
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + ". Return the 3x4 affine camera."
+    camera, X0 = args
+    g = np.asarray(got, dtype=float)
+    if not np.allclose(g[2], [0.0, 0.0, 0.0, 1.0], atol=1e-9):
+        if abs(g[2, 3]) > 1e-12 and np.allclose(g[2, :3], 0.0, atol=1e-9):
+            return "the last row is (0, 0, 0, d0): divide the whole matrix by d0 so it is (0, 0, 0, 1)."
+        return "the last row must be (0, 0, 0, 1): replace r3 . X + t3 by the constant reference depth d0."
+    d0_origin = camera.t[2]
+    E = np.zeros((3, 4))
+    E[:2, :3], E[:2, 3], E[2, 3] = camera.R[:2], camera.t[:2], d0_origin
+    if np.allclose(g, camera.K @ E / d0_origin, atol=1e-7):
+        return ("you used d0 = t3, the depth of the world origin; use the depth of the reference point, "
+                "d0 = r3 . X0 + t3.")
+    if not np.allclose(cm.project_points(g, X0), camera.project(X0), atol=1e-6):
+        return "the reference point must image where the perspective camera puts it; use d0 = r3 . X0 + t3."
+    return "the matrix images X0 correctly but differs elsewhere: P = K [[r1, t1], [r2, t2], [0, d0]] / d0."
+
+
+def _approx_origin_depth(camera, X0):
+    E = np.zeros((3, 4))
+    E[:2, :3], E[:2, 3], E[2, 3] = camera.R[:2], camera.t[:2], camera.t[2]
+    return camera.K @ E / camera.t[2]
+
+
+def _approx_unnormalised(camera, X0):
+    d0 = camera.R[2] @ X0 + camera.t[2]
+    E = np.zeros((3, 4))
+    E[:2, :3], E[:2, 3], E[2, 3] = camera.R[:2], camera.t[:2], d0
+    return camera.K @ E
+
+
+register_exercise(Exercise(
+    name="affine_approximation",
+    lesson="05",
+    reference=af.affine_approximation,
+    cases=_approx_cases,
+    compare=_close,
+    diagnose=_approx_diagnosis,
+    wrong_variants=(
+        (_approx_origin_depth, "depth of the world origin"),
+        (_approx_unnormalised, "divide the whole matrix by d0"),
+        (lambda camera, X0: camera.P, "last row must be"),
+    ),
+))
+
+
+# -- estimate_affine_camera -------------------------------------------------------------------
+
+def _estimate_cases():
+    rng = np.random.default_rng(5)
+    out = []
+    for k in range(3):
+        R = cm.rotation_from_euler(*rng.uniform(-0.5, 0.5, 3))
+        P = af.weak_perspective_matrix(R, [0.1 * k, -0.2, 5.0], 160 + 20 * k, 150, 0.0, (320, 240))
+        X = rng.uniform(-1.0, 1.0, (10 + 5 * k, 3))
+        uv = cm.project_points(P, X) + rng.normal(0.0, 1.0, (len(X), 2))  # noisy: least squares matters
+        out.append((X, uv))
+    return out
+
+
+def _estimate_diagnosis(args, got, expected) -> str:
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + ". Return the 3x4 affine camera with last row (0, 0, 0, 1)."
+    X, uv = args
+    g = np.asarray(got, dtype=float)
+    if not np.allclose(g[2], [0.0, 0.0, 0.0, 1.0], atol=1e-9):
+        return "the last row of an affine camera is (0, 0, 0, 1); estimate only the top 2x4 block (8 numbers)."
+    r_got = np.sqrt(np.mean(np.sum((cm.project_points(g, X) - uv) ** 2, axis=1)))
+    r_exp = np.sqrt(np.mean(np.sum((cm.project_points(expected, X) - uv) ** 2, axis=1)))
+    return (f"your camera's RMS residual is {r_got:.3f} px, the least-squares optimum is {r_exp:.3f} px: use all "
+            f"the points in one least-squares solve (np.linalg.lstsq), not an exact fit to a few of them.")
+
+
+def _estimate_four_points(X, uv):
+    return af.estimate_affine_camera(X[:4], uv[:4])
+
+
+def _estimate_dlt(X, uv):
+    return cm.estimate_projection_matrix(X, uv)
+
+
+register_exercise(Exercise(
+    name="estimate_affine_camera",
+    lesson="05",
+    reference=af.estimate_affine_camera,
+    cases=_estimate_cases,
+    compare=_close,
+    diagnose=_estimate_diagnosis,
+    wrong_variants=(
+        (_estimate_four_points, "all the points"),
+        (_estimate_dlt, "last row of an affine camera"),
+    ),
+))

@@ -1,0 +1,93 @@
+"""Exercises for lesson 02: the thin lens and lens distortion."""
+from __future__ import annotations
+
+import numpy as np
+
+from .. import distortion, lens
+from ._core import Exercise, register_exercise, shape_problem
+
+
+def _is_number(x) -> bool:
+    try:
+        return np.ndim(x) == 0 and np.isfinite(float(x))
+    except (TypeError, ValueError):
+        return False
+
+
+def _thin_lens_cases():
+    return [(0.05, 0.1), (0.05, 2.0), (0.2, 0.35), (0.018, 0.5)]
+
+
+def _thin_lens_diagnosis(args, got, expected) -> str:
+    f, zo = args
+    if not _is_number(got):
+        return "return one number: the image distance in metres"
+    g = float(got)
+    if np.isclose(g, f * zo / (zo + f)):
+        return "sign slip: 1/z_i = 1/f - 1/z_o, so z_i = f z_o / (z_o - f)"
+    if np.isclose(g, 1 / f - 1 / zo) or np.isclose(g, 1 / f + 1 / zo):
+        return "you returned 1/z_i; invert it to get the distance"
+    return "solve 1/f = 1/z_o + 1/z_i for z_i"
+
+
+register_exercise(Exercise(
+    name="thin_lens_image_distance",
+    lesson="02",
+    reference=lens.image_distance,
+    cases=_thin_lens_cases,
+    compare=lambda got, exp: _is_number(got) and bool(np.isclose(float(got), exp, rtol=1e-9)),
+    diagnose=_thin_lens_diagnosis,
+    wrong_variants=(
+        (lambda f, zo: f * zo / (zo + f), "sign slip"),
+        (lambda f, zo: 1 / f - 1 / zo, "invert it"),
+    ),
+))
+
+
+def _distort_cases():
+    rng = np.random.default_rng(2)
+    pts = rng.uniform(-0.5, 0.5, (8, 2))
+    return [
+        (pts, np.array([-0.2, 0.0, 0.0, 0.0, 0.0])),
+        (pts, np.array([-0.25, 0.08, 0.0, 0.0, -0.01])),
+        (pts, np.array([0.1, -0.02, 0.004, -0.003, 0.0])),
+        (np.array([[0.3, 0.4]]), np.array([-0.1, 0.02, 0.01, 0.02, 0.005])),
+    ]
+
+
+def _distort_diagnosis(args, got, expected) -> str:
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem
+    x, d = args
+    g = np.asarray(got, dtype=float)
+    k1, k2, p1, p2, k3 = d
+    swapped = distortion.distort_points(x, [k1, k2, p2, p1, k3])
+    if np.allclose(g, swapped):
+        return "p1 and p2 are swapped: OpenCV's order is (k1, k2, p1, p2, k3), and x gets 2 p1 x y + p2 (r^2 + 2 x^2)"
+    radial_only = distortion.distort_points(x, [k1, k2, 0, 0, k3])
+    if np.allclose(g, radial_only) and (p1 or p2):
+        return "you left out the tangential terms p1, p2"
+    r = np.hypot(x[:, 0], x[:, 1])
+    wrong_r = x * (1 + k1 * r + k2 * r**2 + k3 * r**3)[:, None]
+    if np.allclose(g[:, :2], wrong_r) or np.allclose(g, wrong_r + (expected - radial_only)):
+        return "the radial factor uses even powers of r: 1 + k1 r^2 + k2 r^4 + k3 r^6 with r^2 = x^2 + y^2"
+    if np.allclose(g, distortion.distort_points(x, [k1, k2, p1, p2, 0])) and k3:
+        return "you dropped k3 (the fifth coefficient, r^6)"
+    return "compare term by term with the model in the lesson: radial factor, then the two tangential terms"
+
+
+register_exercise(Exercise(
+    name="distort_points",
+    lesson="02",
+    reference=distortion.distort_points,
+    cases=_distort_cases,
+    compare=lambda got, exp: np.shape(got) == np.shape(exp) and np.allclose(got, exp, rtol=0, atol=1e-12),
+    diagnose=_distort_diagnosis,
+    wrong_variants=(
+        (lambda x, d: distortion.distort_points(x, [d[0], d[1], d[3], d[2], d[4]]), "p1 and p2 are swapped"),
+        (lambda x, d: distortion.distort_points(x, [d[0], d[1], 0, 0, d[4]]), "tangential"),
+        (lambda x, d: x * (1 + d[0] * np.hypot(*x.T) + d[1] * np.hypot(*x.T) ** 2
+                           + d[4] * np.hypot(*x.T) ** 3)[:, None], "even powers"),
+    ),
+))

@@ -1,0 +1,89 @@
+"""Exercises for lesson 10, perspective correction."""
+from __future__ import annotations
+
+import numpy as np
+
+from .. import perspective as pp
+from ..homography import estimate_homography
+from ..projective import map_points
+from ._core import Exercise, register_exercise, same_up_to_scale, shape_problem
+
+
+def _rect_cases():
+    return [
+        (np.array([[10.0, 10.0], [110.0, 10.0], [110.0, 60.0], [10.0, 60.0]]), 101, 51),
+        (pp.sample_photo("page").corners, 210, 297),
+        (pp.sample_photo("facade").corners, 400, 300),
+    ]
+
+
+def _rect_diagnosis(args, got, expected) -> str:
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem
+    corners, w, h = args
+    g = np.asarray(got, dtype=float)
+    if same_up_to_scale(g, np.linalg.inv(expected), rtol=1e-5):
+        return "your H maps the rectangle into the photo; the rectifying H goes from the photo corners to the rectangle."
+    moved = map_points(g, corners)
+    want = np.array([[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]], dtype=float)
+    if np.allclose(moved, want * [w / (w - 1), h / (h - 1)], atol=1e-6):
+        return ("off by one: the last pixel centre of a width-w image is at u = w - 1, so map to "
+                "(w - 1, 0), (w - 1, h - 1), (0, h - 1).")
+    k = int(np.argmax(np.linalg.norm(moved - want, axis=1)))
+    return (f"corner {k} ({'TL TR BR BL'.split()[k]}) goes to {np.round(moved[k], 2)}, expected {want[k]}; "
+            f"pair TL, TR, BR, BL with (0, 0), (w - 1, 0), (w - 1, h - 1), (0, h - 1) in that order.")
+
+
+register_exercise(Exercise(
+    name="rectangle_homography",
+    lesson="10",
+    reference=pp.rectangle_homography,
+    cases=_rect_cases,
+    compare=lambda got, expected: same_up_to_scale(got, expected, rtol=1e-6),
+    diagnose=_rect_diagnosis,
+    wrong_variants=(
+        (lambda c, w, h: np.linalg.inv(pp.rectangle_homography(c, w, h)), "maps the rectangle into the photo"),
+        (lambda c, w, h: estimate_homography(c, [[0, 0], [w, 0], [w, h], [0, h]]), "off by one"),
+        (lambda c, w, h: estimate_homography(c, [[0, 0], [0, h - 1], [w - 1, h - 1], [w - 1, 0]]), "pair TL, TR"),
+    ),
+))
+
+
+def _order_cases():
+    page = pp.sample_photo("page").corners
+    return [
+        (np.array([[10.0, 0.0], [0.0, 0.0], [0.0, 10.0], [10.0, 10.0]]),),
+        (page[[2, 0, 3, 1]],),
+        (page[[3, 2, 1, 0]],),
+        (np.array([[300.0, 50.0], [520.0, 120.0], [90.0, 300.0], [480.0, 420.0]]),),  # bow-tie order
+    ]
+
+
+def _order_diagnosis(args, got, expected) -> str:
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem
+    g = np.asarray(got, dtype=float)
+    for shift in (1, 2, 3):
+        if np.allclose(g, np.roll(expected, shift, axis=0)):
+            return "the cyclic order is right but it does not start at the top-left corner (smallest u + v)."
+    if np.allclose(g, expected[::-1]) or any(np.allclose(g, np.roll(expected[::-1], s, axis=0)) for s in range(4)):
+        return "your corners go counter-clockwise on screen; remember v points down, so sort by increasing angle."
+    return ("sorting by coordinates alone fails for tilted quadrilaterals; sort by the angle around the "
+            "centroid (np.arctan2(v - v_c, u - u_c)), then start at the top-left corner.")
+
+
+register_exercise(Exercise(
+    name="order_corners",
+    lesson="10",
+    reference=pp.order_corners,
+    cases=_order_cases,
+    compare=lambda got, expected: np.shape(got) == np.shape(expected) and np.allclose(got, expected),
+    diagnose=_order_diagnosis,
+    wrong_variants=(
+        (lambda c: np.roll(pp.order_corners(c), 1, axis=0), "does not start at the top-left"),
+        (lambda c: pp.order_corners(c)[::-1], "counter-clockwise"),
+        (lambda c: np.asarray(c, float)[np.lexsort((np.asarray(c)[:, 0], np.asarray(c)[:, 1]))], "sort by the angle"),
+    ),
+))

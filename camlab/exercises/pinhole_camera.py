@@ -1,0 +1,85 @@
+"""Exercises for lesson 01, the pinhole camera."""
+from __future__ import annotations
+
+import numpy as np
+
+from .. import pinhole
+from ._core import Exercise, register_exercise, shape_problem
+
+
+def _projection_cases():
+    rng = np.random.default_rng(1)
+    pts = np.column_stack([rng.uniform(-1, 1, (6, 2)), rng.uniform(1, 5, 6)])
+    return [
+        (np.array([[0.5, -0.25, 2.0]]), 0.05),
+        (pts, 0.035),
+        (np.array([[0.0, 0.0, 1.0], [0.2, 0.4, 4.0]]), 0.1),
+    ]
+
+
+def _projection_diagnosis(args, got, expected) -> str:
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + ". Return one (x, y) row per point."
+    g = np.asarray(got, dtype=float)
+    if np.allclose(g, -expected):
+        return "your image is inverted: that is the real image behind the pinhole; use the virtual plane, x = f X / Z"
+    X, f = args
+    if np.allclose(g, f * X[:, :2]):
+        return "you did not divide by the depth Z: x = f X / Z"
+    if np.allclose(g, X[:, :2] / X[:, 2:3]):
+        return "you forgot to multiply by the focal length f"
+    return "check the similar triangles: x / f = X / Z and y / f = Y / Z"
+
+
+register_exercise(Exercise(
+    name="pinhole_projection",
+    lesson="01",
+    reference=pinhole.project_pinhole,
+    cases=_projection_cases,
+    compare=lambda got, exp: np.shape(got) == np.shape(exp) and np.allclose(got, exp, rtol=1e-9, atol=1e-12),
+    diagnose=_projection_diagnosis,
+    wrong_variants=(
+        (lambda X, f: -f * X[:, :2] / X[:, 2:3], "inverted"),
+        (lambda X, f: f * X[:, :2], "divide by the depth"),
+        (lambda X, f: X[:, :2] / X[:, 2:3], "multiply by the focal length"),
+    ),
+))
+
+
+def _is_number(x) -> bool:
+    try:
+        return np.ndim(x) == 0 and np.isfinite(float(x))
+    except (TypeError, ValueError):
+        return False
+
+
+def _best_cases():
+    return [(0.1, 550e-9), (0.05, 450e-9), (0.25, 650e-9)]
+
+
+def _best_diagnosis(args, got, expected) -> str:
+    f, lam = args
+    try:
+        g = float(got)
+    except (TypeError, ValueError):
+        return "return a single number: the diameter in metres"
+    if np.isclose(g, np.sqrt(lam * f)):
+        return "you dropped the 2.44 of the Airy disc: minimise d + 2.44 lambda f / d"
+    if np.isclose(g, 2.44 * lam * f):
+        return "you forgot the square root: setting the derivative 1 - 2.44 lambda f / d^2 to zero gives d^2 = 2.44 lambda f"
+    return "minimise the total blur d + 2.44 lambda f / d over d (a distant object)"
+
+
+register_exercise(Exercise(
+    name="best_pinhole_diameter",
+    lesson="01",
+    reference=pinhole.optimal_pinhole_diameter,
+    cases=_best_cases,
+    compare=lambda got, exp: _is_number(got) and bool(np.isclose(float(got), exp, rtol=1e-6)),
+    diagnose=_best_diagnosis,
+    wrong_variants=(
+        (lambda f, lam: float(np.sqrt(lam * f)), "2.44"),
+        (lambda f, lam: 2.44 * lam * f, "square root"),
+    ),
+))

@@ -1,0 +1,944 @@
+r"""Homographies: estimation (DLT, RANSAC, Levenberg-Marquardt), algebra and geometry.
+
+A homography is an invertible 3x3 matrix H acting on homogeneous image points,
+:math:`x' \sim H x` (rows: ``X @ H.T``), and on lines by :math:`l' \sim H^{-T} l`.
+It has 8 degrees of freedom (9 entries up to scale), so four point pairs in general
+position fix it. Applying H to points and lines is :func:`camlab.projective.map_points`
+and :func:`camlab.projective.map_lines`; they are re-exported here.
+
+This module holds
+
+* estimation: :func:`estimate_homography` (normalised DLT), :func:`ransac_homography`
+  (vectorised adaptive RANSAC), :func:`refine_homography` (LM on the symmetric
+  transfer error), and the error measures :func:`transfer_error`,
+  :func:`symmetric_transfer_error`, :func:`sampson_error`;
+* algebra: :func:`compose`, :func:`invert`, :func:`normalize_homography`,
+  :func:`same_homography`;
+* the transformation hierarchy: :func:`euclidean`, :func:`similarity`,
+  :func:`affine`, :func:`projective`, :data:`HIERARCHY`, :func:`classify`,
+  :func:`decompose`;
+* homographies from geometry: :func:`plane_homography` (:math:`K'(R - t n^T/d)K^{-1}`),
+  :func:`rotation_homography` (:math:`K' R K^{-1}`) and :func:`pose_homography`
+  (the world plane Z = 0 to the image, :math:`K [r_1\ r_2\ t]`).
+
+Pixel coordinates (u, v) = (column, row), origin at the centre of the top-left pixel
+(docs/conventions.md). See lesson 07.
+"""
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ._validate import (
+    CamlabInputError,
+    ConvergenceError,
+    DegenerateError,
+    as_points,
+    check_finite,
+    check_matrix,
+    check_positive,
+)
+from .projective import map_lines, map_points
+
+__all__ = [
+    "HIERARCHY", "RansacResult", "RefineResult", "affine", "classify", "compose", "decompose",
+    "estimate_homography", "euclidean", "hartley_normalization", "invert", "map_lines", "map_points",
+    "normalize_homography", "plane_homography", "pose_homography", "projective", "ransac_homography",
+    "refine_homography", "rotation_homography", "same_homography", "sampson_error", "similarity",
+    "symmetric_transfer_error", "transfer_error",
+]
+
+_COLLINEAR_TOL = 1e-9   # |det| of three Hartley-normalised points below this: collinear
+_RANK_TOL = 1e-10       # second-smallest singular value of the DLT system relative to the largest
+
+
+# --------------------------------------------------------------------------- validation
+
+def _pairs(src: ArrayLike, dst: ArrayLike, min_count: int = 4) -> tuple[np.ndarray, np.ndarray]:
+    """Validate two (N, 2) arrays of corresponding points."""
+    s = as_points(src, 2, "src", finite=False).array
+    d = as_points(dst, 2, "dst", finite=False).array
+    if len(s) != len(d):
+        raise CamlabInputError(
+            f"src, dst: expected the same number of points (one pair per row), got {len(s)} and {len(d)}"
+        )
+    if len(s) < min_count:
+        raise CamlabInputError(
+            f"src: expected (N, 2) with N >= {min_count} point pairs, got shape {s.shape}; "
+            f"a homography has 8 degrees of freedom and each pair fixes 2"
+        )
+    check_finite(s, "src")
+    check_finite(d, "dst")
+    return s, d
+
+
+def _check_h(H: ArrayLike, name: str = "H") -> np.ndarray:
+    Hm = check_matrix(H, (3, 3), name)
+    s = np.linalg.svd(Hm, compute_uv=False)
+    if s[0] == 0 or s[-1] < 1e-12 * s[0]:
+        raise DegenerateError(
+            f"{name}: singular (singular values {np.array2string(s, precision=3)}); a homography must be "
+            f"invertible, it cannot collapse the plane onto a line or a point"
+        )
+    return Hm
+
+
+# --------------------------------------------------------------------------- normalisation
+
+def hartley_normalization(points: ArrayLike) -> np.ndarray:
+    r"""The similarity T that centres points and scales their mean distance to :math:`\sqrt 2`.
+
+    .. math:: T = \begin{pmatrix} s & 0 & -s\bar u \\ 0 & s & -s\bar v \\ 0 & 0 & 1 \end{pmatrix},
+              \quad s = \frac{\sqrt 2}{\operatorname{mean}_i \| x_i - \bar x \|}
+
+    After ``map_points(T, points)`` the coordinates are of order 1, so the entries of the
+    DLT matrix (products of coordinates up to :math:`u u'`) are all of similar size.
+
+    Parameters
+    ----------
+    points : (N, 2) array_like
+
+    Returns
+    -------
+    (3, 3) ndarray
+
+    Examples
+    --------
+    >>> T = hartley_normalization([[0, 0], [2, 0], [2, 2], [0, 2]])
+    >>> map_points(T, [[0, 0], [2, 2]]).round(6)
+    array([[-1., -1.],
+           [ 1.,  1.]])
+    """
+    p = as_points(points, 2, "points").array
+    c = p.mean(axis=0)
+    spread = np.mean(np.linalg.norm(p - c, axis=1))
+    if spread == 0:
+        raise DegenerateError("points: all points coincide, so they cannot be normalised; use distinct points")
+    s = np.sqrt(2.0) / spread
+    return np.array([[s, 0.0, -s * c[0]], [0.0, s, -s * c[1]], [0.0, 0.0, 1.0]])
+
+
+def _normalize_batch(p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    T = hartley_normalization(p)
+    return p * T[0, 0] + T[:2, 2], T
+
+
+def normalize_homography(H: ArrayLike) -> np.ndarray:
+    """Scale H so that H[2, 2] = 1, or to unit Frobenius norm when H[2, 2] is (nearly) 0.
+
+    Homographies are defined up to scale; this picks H[2, 2] = 1 when H[2, 2] is not
+    tiny (the usual textbook form) and unit norm with a non-negative H[2, 2] otherwise.
+
+    >>> normalize_homography(2 * np.eye(3))
+    array([[1., 0., 0.],
+           [0., 1., 0.],
+           [0., 0., 1.]])
+    """
+    Hm = check_matrix(H, (3, 3), "H")
+    n = np.linalg.norm(Hm)
+    if n == 0:
+        raise DegenerateError("H: the zero matrix is not a homography")
+    if abs(Hm[2, 2]) > 1e-8 * n:
+        return Hm / Hm[2, 2]
+    return Hm / n
+
+
+def same_homography(H1: ArrayLike, H2: ArrayLike, tol: float = 1e-9) -> bool:
+    """True if H1 and H2 are equal up to a non-zero scale (relative Frobenius tolerance).
+
+    >>> same_homography(np.eye(3), -5 * np.eye(3))
+    True
+    """
+    a = check_matrix(H1, (3, 3), "H1")
+    b = check_matrix(H2, (3, 3), "H2")
+    a = a / np.linalg.norm(a)
+    b = b / np.linalg.norm(b)
+    return bool(min(np.linalg.norm(a - b), np.linalg.norm(a + b)) <= tol)
+
+
+# --------------------------------------------------------------------------- DLT
+
+def _dlt_rows(s: np.ndarray, d: np.ndarray) -> np.ndarray:
+    r"""The 2N x 9 DLT matrix A with :math:`A h = 0` for :math:`h` = H row-major.
+
+    Works on stacked batches: s, d of shape (..., N, 2) give (..., 2N, 9).
+    """
+    u, v = s[..., 0], s[..., 1]
+    up, vp = d[..., 0], d[..., 1]
+    one, zero = np.ones_like(u), np.zeros_like(u)
+    r1 = np.stack([zero, zero, zero, -u, -v, -one, vp * u, vp * v, vp], axis=-1)
+    r2 = np.stack([u, v, one, zero, zero, zero, -up * u, -up * v, -up], axis=-1)
+    A = np.stack([r1, r2], axis=-2)  # (..., N, 2, 9)
+    return A.reshape(*A.shape[:-3], -1, 9)
+
+
+def _collinear_triples(p: np.ndarray) -> np.ndarray:
+    """For (..., 4, 2) normalised points, |det| of the 4 triples: (..., 4)."""
+    idx = np.array([[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]])
+    t = p[..., idx, :]  # (..., 4, 3, 2)
+    a = t[..., 1, :] - t[..., 0, :]
+    b = t[..., 2, :] - t[..., 0, :]
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def _check_general_position(sn: np.ndarray, name: str) -> None:
+    """Raise DegenerateError for collinear configurations of Hartley-normalised points."""
+    centred = sn - sn.mean(axis=0)
+    sv = np.linalg.svd(centred, compute_uv=False)
+    if sv[1] < _COLLINEAR_TOL * max(sv[0], 1e-300):
+        raise DegenerateError(
+            f"estimate_homography: all {len(sn)} points in {name} are collinear, so they do not fix a "
+            f"homography; pick points spread over the plane (at least 4, no 3 on a line)"
+        )
+    if len(sn) == 4:
+        dets = np.abs(_collinear_triples(sn))
+        if dets.min() < _COLLINEAR_TOL * 4:
+            k = int(np.argmin(dets))
+            triple = [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]][k]
+            raise DegenerateError(
+                f"estimate_homography: 3 of the 4 points in {name} are collinear (points {triple}); "
+                f"pick points in general position"
+            )
+
+
+def estimate_homography(src: ArrayLike, dst: ArrayLike, normalize: bool = True) -> np.ndarray:
+    r"""Estimate H with dst ~ H src from N >= 4 point pairs by the direct linear transform.
+
+    Derivation. :math:`x' \sim H x` means :math:`x' \times H x = 0`. Writing
+    :math:`h` for the 9 entries of H (row-major), each pair gives two independent
+    linear equations
+
+    .. math::
+        \begin{pmatrix} 0^T & -x^T & v' x^T \\ x^T & 0^T & -u' x^T \end{pmatrix} h = 0,
+
+    with :math:`x = (u, v, 1)`. Stacking the pairs gives :math:`A h = 0`, and the unit
+    vector minimising :math:`\|A h\|` is the right singular vector of A with the smallest
+    singular value (equivalently the eigenvector of :math:`A^T A` with the smallest
+    eigenvalue, which is what the normalised path computes). With pixel coordinates the columns of A differ in size by factors up
+    to :math:`u u' \approx 10^5`, so noise is amplified; Hartley's normalisation first
+    maps each point set with a similarity T (:func:`hartley_normalization`), solves for
+    :math:`\hat H` there, and returns :math:`H = T'^{-1} \hat H T`.
+
+    Parameters
+    ----------
+    src, dst : (N, 2) array_like
+        Corresponding pixel coordinates (u, v), N >= 4.
+    normalize : bool
+        Apply Hartley normalisation (default). ``False`` solves in raw pixel coordinates,
+        to show why normalising matters (lesson 07, section 5).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        H scaled so that H[2, 2] = 1 where possible (see :func:`normalize_homography`).
+
+    Raises
+    ------
+    CamlabInputError
+        Fewer than 4 pairs, mismatched lengths, NaN or inf.
+    DegenerateError
+        All points collinear, 3 of a minimal set of 4 collinear, or any set that leaves
+        the solution non-unique (the DLT system has a null space of dimension > 1).
+
+    Examples
+    --------
+    >>> src = [[0, 0], [1, 0], [1, 1], [0, 1]]
+    >>> estimate_homography(src, [[0, 0], [2, 0], [2, 2], [0, 2]]).round(12) + 0.0
+    array([[2., 0., 0.],
+           [0., 2., 0.],
+           [0., 0., 1.]])
+    """
+    s, d = _pairs(src, dst)
+    sn, Ts = _normalize_batch(s)
+    dn, Td = _normalize_batch(d)
+    _check_general_position(sn, "src")
+    _check_general_position(dn, "dst")
+    if normalize and len(s) > 4:
+        # In normalised coordinates A is well conditioned, so the eigenvector of the 9x9
+        # A^T A with the smallest eigenvalue (= sigma^2) is as accurate as the SVD of A
+        # (1e-12 in the tests) and avoids a LAPACK factorisation of the tall A, which is
+        # slow under multithreaded BLAS on a busy machine.
+        A = _dlt_rows(sn, dn)
+        ev, V = np.linalg.eigh(np.einsum("ni,nj->ij", A, A))
+        sv = np.sqrt(np.clip(ev[::-1], 0, None))
+        h, rank_tol = V[:, 0], 1e-7
+    else:
+        A = _dlt_rows(sn, dn) if normalize else _dlt_rows(s, d)
+        _, sv, vt = np.linalg.svd(A)
+        if len(sv) < 9:  # exactly 4 pairs: 8 equations, the null space is the 9th vector
+            sv = np.append(sv, 0.0)
+        h, rank_tol = vt[-1], _RANK_TOL
+    if sv[-2] < rank_tol * sv[0]:
+        raise DegenerateError(
+            "estimate_homography: the point pairs do not fix a unique homography (the DLT system has "
+            "more than one null vector); pick at least 4 points in general position, no 3 on a line"
+        )
+    H = h.reshape(3, 3)
+    if normalize:
+        H = np.linalg.solve(Td, H @ Ts)  # H = Td^-1 Hn Ts
+    return normalize_homography(H)
+
+
+# --------------------------------------------------------------------------- errors
+
+def transfer_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np.ndarray:
+    r"""One-way transfer error :math:`\| x'_i - \pi(H x_i) \|` in pixels, one per pair.
+
+    >>> transfer_error(np.eye(3), [[0, 0], [1, 1]], [[3, 4], [1, 1]])
+    array([5., 0.])
+    """
+    Hm = check_matrix(H, (3, 3), "H")
+    s, d = _pairs(src, dst, min_count=1)
+    return np.linalg.norm(map_points(Hm, s) - d, axis=1)
+
+
+def symmetric_transfer_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np.ndarray:
+    r"""Symmetric transfer error per pair, as an RMS distance in pixels.
+
+    .. math:: e_i = \sqrt{\tfrac12 \left( \| x'_i - \pi(H x_i) \|^2 + \| x_i - \pi(H^{-1} x'_i) \|^2 \right)}
+
+    The :math:`\tfrac12` makes :math:`e_i` a distance comparable with a pixel threshold:
+    a pair off by 1 px in each image has :math:`e_i \approx 1`.
+
+    >>> float(symmetric_transfer_error(np.eye(3), [0, 0], [3, 4])[0])
+    5.0
+    """
+    Hm = _check_h(H)
+    s, d = _pairs(src, dst, min_count=1)
+    return _sym_err_batch(Hm[None], np.linalg.inv(Hm)[None], s, d)[0]
+
+
+def _project_batch(H: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """Map (N, 2) points by a stack of homographies (B, 3, 3): (B, 2, N), NaN/inf at infinity."""
+    # Plain broadcasting (B, 1) * (1, N) rather than a batched matrix product: it does
+    # not go through multithreaded BLAS, which is slow for many tiny products.
+    u, v = p[:, 0], p[:, 1]
+    h = H.reshape(len(H), 9, 1)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        iw = 1.0 / (h[:, 6] * u + h[:, 7] * v + h[:, 8])
+        return np.stack([(h[:, 0] * u + h[:, 1] * v + h[:, 2]) * iw,
+                         (h[:, 3] * u + h[:, 4] * v + h[:, 5]) * iw], axis=1)
+
+
+def _sym_err_batch(H: np.ndarray, Hinv: np.ndarray, s: np.ndarray, d: np.ndarray) -> np.ndarray:
+    """(B, N) symmetric transfer RMS errors for B homographies; inf where a point maps to infinity."""
+    fwd = np.sum((_project_batch(H, s) - d.T) ** 2, axis=1)
+    bwd = np.sum((_project_batch(Hinv, d) - s.T) ** 2, axis=1)
+    e = np.sqrt(0.5 * (fwd + bwd))
+    return np.where(np.isfinite(e), e, np.inf)
+
+
+def _sampson_batch(H: np.ndarray, s: np.ndarray, d: np.ndarray) -> np.ndarray:
+    r"""(B, N) Sampson distances (first-order geometric error) for B homographies."""
+    u, v = s[:, 0], s[:, 1]
+    up, vp = d[:, 0], d[:, 1]
+    h = H.reshape(len(H), 9)[:, None, :]  # (B, 1, 9)
+    # Algebraic residuals e = A_i h (two rows of the DLT matrix) ...
+    Hx = np.einsum("bij,nj->bni", H, np.stack([u, v, np.ones_like(u)], axis=1))  # (B, N, 3)
+    e1 = -Hx[..., 1] + vp * Hx[..., 2]
+    e2 = Hx[..., 0] - up * Hx[..., 2]
+    # ... and their Jacobian with respect to (u, v, u', v').
+    h = h[:, 0, :]
+    j11 = -h[:, None, 3] + vp * h[:, None, 6]
+    j12 = -h[:, None, 4] + vp * h[:, None, 7]
+    j14 = Hx[..., 2]
+    j21 = h[:, None, 0] - up * h[:, None, 6]
+    j22 = h[:, None, 1] - up * h[:, None, 7]
+    j23 = -Hx[..., 2]
+    a = j11 ** 2 + j12 ** 2 + j14 ** 2          # J J^T = [[a, b], [b, c]]
+    b = j11 * j21 + j12 * j22
+    c = j21 ** 2 + j22 ** 2 + j23 ** 2
+    det = a * c - b * b
+    with np.errstate(divide="ignore", invalid="ignore"):
+        q = (c * e1 ** 2 - 2 * b * e1 * e2 + a * e2 ** 2) / det  # e^T (J J^T)^-1 e
+    q = np.where(np.isfinite(q) & (q >= 0), q, np.inf)
+    return np.sqrt(q)
+
+
+def sampson_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np.ndarray:
+    r"""Sampson distance per pair: the first-order approximation of the geometric error.
+
+    With :math:`e = A_i h` the two algebraic residuals of pair i and J their 2x4
+    Jacobian with respect to :math:`(u, v, u', v')`, the smallest correction of the four
+    coordinates that zeroes the linearised residual has squared length
+    :math:`e^T (J J^T)^{-1} e` (H&Z section 4.2.6). It is close to the reprojection error
+    of the gold-standard estimate, in pixels, without any iteration.
+
+    >>> float(sampson_error(np.eye(3), [0, 0], [0, 2])[0]).__round__(6)  # 2 px, split over both images
+    1.414214
+    """
+    Hm = _check_h(H)
+    s, d = _pairs(src, dst, min_count=1)
+    return _sampson_batch(Hm[None], s, d)[0]
+
+
+# --------------------------------------------------------------------------- RANSAC
+
+class RansacResult(NamedTuple):
+    """What :func:`ransac_homography` found.
+
+    Attributes
+    ----------
+    H : (3, 3) ndarray
+        The homography re-estimated (normalised DLT) on all inliers, H[2, 2] = 1.
+    inliers : (N,) bool ndarray
+        Pairs whose residual under ``H`` is below the threshold.
+    iterations : int
+        Minimal samples drawn (hypotheses tried, degenerate ones included).
+    residuals : (N,) ndarray
+        Each pair's error under the final ``H`` in pixels (the chosen ``score``).
+    """
+
+    H: np.ndarray
+    inliers: np.ndarray
+    iterations: int
+    residuals: np.ndarray
+
+
+def _required_iterations(inlier_ratio: float, confidence: float, sample_size: int = 4) -> float:
+    r""":math:`k = \log(1 - p) / \log(1 - w^s)`: samples needed to draw one all-inlier sample."""
+    w_s = inlier_ratio ** sample_size
+    if w_s <= 0:
+        return np.inf
+    if w_s >= 1:
+        return 1.0
+    return np.log(1 - confidence) / np.log(1 - w_s)
+
+
+def _minimal_solve(sn: np.ndarray, dn: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Solve B minimal 4-point DLTs at once; returns (B, 3, 3) H and a (B,) validity mask."""
+    # Reject samples with 3 collinear points in either image, and samples whose triangle
+    # orientations flip inconsistently (no homography that keeps all 4 points in front
+    # can map them so; H&Z and OpenCV's isMinimalSetConsistent).
+    ds = _collinear_triples(sn)
+    dd = _collinear_triples(dn)
+    ok = (np.abs(ds).min(axis=1) > 1e-6) & (np.abs(dd).min(axis=1) > 1e-6)
+    prod = np.sign(ds * dd)
+    ok &= np.all(prod == prod[:, :1], axis=1)
+    A = _dlt_rows(sn, dn)  # (B, 8, 9)
+    # The null vector of an 8x9 system: the last right singular vector.
+    _, sv, vt = np.linalg.svd(A)
+    H = vt[:, -1, :].reshape(-1, 3, 3)
+    ok &= sv[:, -1] > 1e-10 * sv[:, 0]
+    return H, ok
+
+
+def ransac_homography(
+    src: ArrayLike,
+    dst: ArrayLike,
+    threshold: float = 3.0,
+    confidence: float = 0.995,
+    max_iters: int = 2000,
+    rng: np.random.Generator | None = None,
+    *,
+    score: str = "transfer",
+    batch: int = 64,
+) -> RansacResult:
+    r"""Robustly estimate H from pairs with outliers by adaptive, vectorised RANSAC.
+
+    Algorithm (H&Z algorithm 4.6, Fischler & Bolles 1981):
+
+    1. Normalise both point sets once (Hartley), so minimal solves are well conditioned.
+    2. Draw ``batch`` random 4-pair samples at once; reject degenerate ones (3 collinear
+       points in either image, or inconsistent triangle orientations).
+    3. Solve all 4-point DLTs together with one batched SVD; score every hypothesis on
+       every pair at once (a (batch, N) error matrix) and count pairs below
+       ``threshold``. Keep the hypothesis with the most inliers (ties: smaller total
+       truncated error, MSAC-style).
+    4. Adapt: with inlier ratio w of the best hypothesis so far, one all-inlier sample
+       is drawn with probability ``confidence`` after
+       :math:`k = \log(1 - p) / \log(1 - w^4)` samples. Stop when k samples
+       (or ``max_iters``) have been drawn.
+    5. Re-estimate H by the normalised DLT on all inliers, recompute the inliers, and
+       repeat until the set stops changing (at most 5 times).
+
+    Parameters
+    ----------
+    src, dst : (N, 2) array_like
+        Corresponding pixel coordinates, N >= 4.
+    threshold : float
+        Inlier threshold in pixels on the ``score`` error.
+    confidence : float
+        Probability in (0, 1) of having drawn at least one all-inlier sample.
+    max_iters : int
+        Upper bound on samples drawn.
+    rng : np.random.Generator or None
+        Source of randomness (seed it for reproducible results).
+    score : {"transfer", "sampson"}
+        ``"transfer"``: :func:`symmetric_transfer_error`; ``"sampson"``:
+        :func:`sampson_error`.
+    batch : int
+        Samples solved and scored per vectorised step.
+
+    Returns
+    -------
+    RansacResult
+        ``H``, ``inliers`` (bool mask), ``iterations``, ``residuals`` (pixels).
+
+    Raises
+    ------
+    DegenerateError
+        If no hypothesis is supported by a fifth pair (only its own minimal sample fits).
+    """
+    s, d = _pairs(src, dst)
+    threshold = check_positive(threshold, "threshold", "pixels")
+    if not 0 < confidence < 1:
+        raise CamlabInputError(f"confidence: expected a probability strictly between 0 and 1, got {confidence!r}")
+    if int(max_iters) < 1:
+        raise CamlabInputError(f"max_iters: expected a positive integer, got {max_iters!r}")
+    if score not in ("transfer", "sampson"):
+        raise CamlabInputError(f"score: expected 'transfer' or 'sampson', got {score!r}")
+    rng = np.random.default_rng() if rng is None else rng
+    n = len(s)
+    sn, Ts = _normalize_batch(s)
+    dn, Td = _normalize_batch(d)
+    Ts_inv, Td_inv = np.linalg.inv(Ts), np.linalg.inv(Td)
+
+    def residuals(Hs: np.ndarray) -> np.ndarray:
+        if score == "sampson":
+            return _sampson_batch(Hs, s, d)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            inv = np.linalg.inv(Hs)
+        return _sym_err_batch(Hs, inv, s, d)
+
+    best_count, best_cost, best_H = -1, np.inf, None
+    needed, drawn = float(max_iters), 0
+    while drawn < min(needed, max_iters):
+        # The first batch is half size; later ones are only as large as still needed.
+        want = batch // 2 if drawn == 0 else int(np.ceil(min(needed, max_iters) - drawn))
+        b = int(np.clip(want, 1, min(batch, max_iters - drawn)))
+        # Four indices per sample; samples that repeat an index are rejected below.
+        idx = rng.integers(0, n, size=(b, 4))
+        drawn += b
+        Hn, ok = _minimal_solve(sn[idx], dn[idx])
+        srt = np.sort(idx, axis=1)
+        ok &= np.all(srt[:, 1:] != srt[:, :-1], axis=1)
+        if not ok.any():
+            continue
+        Hn = Hn[ok]
+        Hs = Td_inv @ Hn @ Ts  # back to pixels: H = Td^-1 Hn Ts
+        err = residuals(Hs)
+        inl = err < threshold
+        counts = inl.sum(axis=1)
+        cost = np.minimum(err, threshold).sum(axis=1)
+        k = int(np.lexsort((cost, -counts))[0])
+        if counts[k] > best_count or (counts[k] == best_count and cost[k] < best_cost):
+            best_count, best_cost, best_H = int(counts[k]), float(cost[k]), Hs[k]
+            needed = _required_iterations(best_count / n, confidence)
+    if best_H is None or best_count < min(n, 5):
+        raise DegenerateError(
+            f"ransac_homography: no hypothesis from {drawn} samples was supported by any pair beyond its "
+            f"own 4 within {threshold} px; the data may hold no homography, or the threshold is too small"
+        )
+    H = best_H
+    inliers = residuals(H[None])[0] < threshold
+    for _ in range(5):
+        try:
+            H_new = estimate_homography(s[inliers], d[inliers])
+        except DegenerateError:
+            break
+        new = residuals(H_new[None])[0] < threshold
+        if new.sum() < inliers.sum():
+            break
+        H = H_new
+        if np.array_equal(new, inliers):
+            break
+        inliers = new
+    res = residuals(H[None])[0]
+    return RansacResult(normalize_homography(H), res < threshold, int(drawn), res)
+
+
+# --------------------------------------------------------------------------- LM refinement
+
+class RefineResult(NamedTuple):
+    """What :func:`refine_homography` did.
+
+    Attributes
+    ----------
+    H : (3, 3) ndarray
+        The refined homography, H[2, 2] = 1.
+    rms_initial, rms_final : float
+        RMS symmetric transfer error in pixels before and after.
+    iterations : int
+        Levenberg-Marquardt steps taken (accepted or rejected).
+    """
+
+    H: np.ndarray
+    rms_initial: float
+    rms_final: float
+    iterations: int
+
+
+def _transfer_residuals_and_jacobian(h: np.ndarray, s: np.ndarray, d: np.ndarray):
+    """Residual vector (4N,) and its Jacobian (4N, 9) with respect to h = H row-major."""
+    H = h.reshape(3, 3)
+    G = np.linalg.inv(H)
+    n = len(s)
+    xs = np.hstack([s, np.ones((n, 1))])
+    xd = np.hstack([d, np.ones((n, 1))])
+    y = xs @ H.T                     # forward: y = H x
+    z = xd @ G.T                     # backward: z = H^-1 x'
+    p = y[:, :2] / y[:, 2:]
+    q = z[:, :2] / z[:, 2:]
+    r = np.concatenate([(p - d).ravel(), (q - s).ravel()])
+
+    def dproj(w: np.ndarray, proj: np.ndarray) -> np.ndarray:  # d(pi(w))/dw, (N, 2, 3)
+        J = np.zeros((len(w), 2, 3))
+        J[:, 0, 0] = J[:, 1, 1] = 1 / w[:, 2]
+        J[:, :, 2] = -proj / w[:, 2:]
+        return J
+
+    # dy/dh = kron(I3, x^T): dy_i/dH_ij = x_j.
+    Ky = np.einsum("ik,nj->nikj", np.eye(3), xs).reshape(n, 3, 9)
+    Jf = dproj(y, p) @ Ky
+    # d(H^-1) = -H^-1 dH H^-1, so dz = -G dH z and dz/dh = -G kron(I3, z^T).
+    Kz = np.einsum("ik,nj->nikj", np.eye(3), z).reshape(n, 3, 9)
+    Jb = dproj(z, q) @ (-G @ Kz)
+    return r, np.concatenate([Jf.reshape(2 * n, 9), Jb.reshape(2 * n, 9)])
+
+
+def refine_homography(
+    H: ArrayLike,
+    src: ArrayLike,
+    dst: ArrayLike,
+    max_iters: int = 50,
+    tol: float = 1e-10,
+) -> RefineResult:
+    r"""Refine H by Levenberg-Marquardt on the symmetric transfer error (the geometric cost).
+
+    Minimises :math:`\sum_i \|x'_i - \pi(H x_i)\|^2 + \|x_i - \pi(H^{-1} x'_i)\|^2` over
+    H, starting from ``H`` (typically the DLT). The 9 entries carry one redundant scale,
+    so steps are taken in the 8-dimensional space orthogonal to the current :math:`h`
+    (a basis B from the SVD of :math:`h^T`), and h is re-normalised after each step.
+
+    Each step solves :math:`(J^T J + \lambda\, \mathrm{diag}(J^T J))\,\delta = -J^T r`
+    with the analytic Jacobian J: for the forward term
+    :math:`\partial (Hx)/\partial h = I_3 \otimes x^T`, and for the backward term
+    :math:`d(H^{-1}) = -H^{-1}\, dH\, H^{-1}`. A step that lowers the cost is accepted and
+    :math:`\lambda` shrinks 10x; otherwise it is rejected and :math:`\lambda` grows 10x.
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        Starting homography (invertible).
+    src, dst : (N, 2) array_like
+        Corresponding pixel coordinates, N >= 4.
+    max_iters : int
+        Maximum LM steps.
+    tol : float
+        Stop when the relative cost decrease of an accepted step is below ``tol``.
+
+    Returns
+    -------
+    RefineResult
+        ``H``, ``rms_initial``, ``rms_final`` (pixels), ``iterations``.
+
+    Raises
+    ------
+    ConvergenceError
+        If the cost is not finite at the start (a point maps to infinity).
+    """
+    h = _check_h(H).ravel().copy()
+    s, d = _pairs(src, dst)
+    h /= np.linalg.norm(h)
+    r, J = _transfer_residuals_and_jacobian(h, s, d)
+    cost = float(r @ r)
+    if not np.isfinite(cost):
+        raise ConvergenceError("refine_homography: the starting H maps some point to infinity; start from the DLT")
+    rms0 = np.sqrt(cost / (2 * len(s)))
+    lam = 1e-3
+    it = 0
+    for it in range(1, int(max_iters) + 1):
+        B = np.linalg.svd(h[None, :])[2][1:].T     # (9, 8): orthonormal basis orthogonal to h
+        Jb = J @ B
+        JtJ = Jb.T @ Jb
+        g = Jb.T @ r
+        if np.max(np.abs(g)) < 1e-14 * max(cost, 1e-300):
+            break
+        step = np.linalg.solve(JtJ + lam * np.diag(np.diag(JtJ) + 1e-12), -g)
+        h_new = h + B @ step
+        h_new /= np.linalg.norm(h_new)
+        try:
+            r_new, J_new = _transfer_residuals_and_jacobian(h_new, s, d)
+        except np.linalg.LinAlgError:
+            lam *= 10
+            continue
+        cost_new = float(r_new @ r_new)
+        if np.isfinite(cost_new) and cost_new < cost:
+            done = (cost - cost_new) <= tol * cost
+            h, r, J, cost = h_new, r_new, J_new, cost_new
+            lam = max(lam / 10, 1e-12)
+            if done:
+                break
+        else:
+            lam *= 10
+            if lam > 1e12:
+                break
+    return RefineResult(normalize_homography(h.reshape(3, 3)), float(rms0),
+                        float(np.sqrt(cost / (2 * len(s)))), it)
+
+
+# --------------------------------------------------------------------------- algebra
+
+def compose(*Hs: ArrayLike) -> np.ndarray:
+    r"""The product :math:`H_1 H_2 \cdots H_k`: apply :math:`H_k` first, :math:`H_1` last.
+
+    ``compose(H2, H1)`` maps a point by H1 and then by H2, like the matrix product
+    (a composition of homographies is a homography: the group property).
+
+    >>> compose(np.diag([2.0, 2.0, 1.0]), [[1, 0, 5], [0, 1, 0], [0, 0, 1]])  # shift, then scale
+    array([[ 2.,  0., 10.],
+           [ 0.,  2.,  0.],
+           [ 0.,  0.,  1.]])
+    """
+    if not Hs:
+        raise CamlabInputError("compose: expected at least one (3, 3) homography, got none")
+    out = np.eye(3)
+    for i, H in enumerate(Hs):
+        out = out @ _check_h(H, f"Hs[{i}]")
+    return normalize_homography(out)
+
+
+def invert(H: ArrayLike) -> np.ndarray:
+    """The inverse homography (maps dst back to src), normalised; raises if H is singular.
+
+    >>> invert([[2, 0, 0], [0, 2, 0], [0, 0, 1]])
+    array([[0.5, 0. , 0. ],
+           [0. , 0.5, 0. ],
+           [0. , 0. , 1. ]])
+    """
+    return normalize_homography(np.linalg.inv(_check_h(H)))
+
+
+# --------------------------------------------------------------------------- hierarchy
+
+HIERARCHY: dict[str, dict] = {
+    "euclidean": {
+        "dof": 3, "matrix": "[[R, t], [0, 1]]",
+        "invariants": ["length", "angle", "area", "parallelism", "ratio of lengths", "collinearity", "cross-ratio"],
+    },
+    "similarity": {
+        "dof": 4, "matrix": "[[sR, t], [0, 1]]",
+        "invariants": ["angle", "ratio of lengths", "parallelism", "collinearity", "cross-ratio"],
+    },
+    "affine": {
+        "dof": 6, "matrix": "[[A, t], [0, 1]]",
+        "invariants": ["parallelism", "ratio of lengths on parallel lines", "ratio of areas", "collinearity",
+                       "cross-ratio", "line at infinity"],
+    },
+    "projective": {
+        "dof": 8, "matrix": "[[A, t], [v^T, w]]",
+        "invariants": ["collinearity", "incidence", "tangency", "cross-ratio"],
+    },
+}
+"""The four groups of plane transformations, their degrees of freedom and invariants (H&Z table 2.1)."""
+
+
+def _rot(theta: float) -> np.ndarray:
+    c, s = np.cos(theta), np.sin(theta)
+    return np.array([[c, -s], [s, c]])
+
+
+def euclidean(theta: float = 0.0, tx: float = 0.0, ty: float = 0.0) -> np.ndarray:
+    """A rotation by ``theta`` radians (counter-clockwise in x-right, y-up axes; clockwise
+    on screen, where v points down) followed by a translation (tx, ty). 3 dof.
+
+    >>> euclidean(0.0, 2.0, 3.0)[:2, 2]
+    array([2., 3.])
+    """
+    H = np.eye(3)
+    H[:2, :2] = _rot(theta)
+    H[:2, 2] = tx, ty
+    return H
+
+
+def similarity(scale: float = 1.0, theta: float = 0.0, tx: float = 0.0, ty: float = 0.0) -> np.ndarray:
+    """Isotropic scaling, rotation and translation: ``[[s R, t], [0, 1]]``. 4 dof."""
+    check_positive(scale, "scale")
+    H = euclidean(theta, tx, ty)
+    H[:2, :2] *= scale
+    return H
+
+
+def affine(theta: float = 0.0, phi: float = 0.0, sx: float = 1.0, sy: float = 1.0,
+           tx: float = 0.0, ty: float = 0.0) -> np.ndarray:
+    r"""An affinity from H&Z's decomposition :math:`A = R(\theta) R(-\phi) D R(\phi)`. 6 dof.
+
+    :math:`D = \mathrm{diag}(s_x, s_y)` scales along axes rotated by :math:`\phi`, then
+    :math:`R(\theta)` rotates; (tx, ty) translates. Parallel lines stay parallel.
+    """
+    if sx == 0 or sy == 0:
+        raise DegenerateError(f"sx, sy: a zero scale collapses the plane; got sx={sx}, sy={sy}")
+    H = np.eye(3)
+    H[:2, :2] = _rot(theta) @ _rot(-phi) @ np.diag([sx, sy]) @ _rot(phi)
+    H[:2, 2] = tx, ty
+    return H
+
+
+def projective(A: ArrayLike | None = None, t: ArrayLike = (0.0, 0.0), v: ArrayLike = (0.0, 0.0),
+               w: float = 1.0) -> np.ndarray:
+    r"""A general homography ``[[A, t], [v^T, w]]``; v != 0 moves the line at infinity. 8 dof.
+
+    >>> projective(v=[0.001, 0.0])[2]
+    array([0.001, 0.   , 1.   ])
+    """
+    H = np.eye(3)
+    H[:2, :2] = np.eye(2) if A is None else check_matrix(A, (2, 2), "A")
+    H[:2, 2] = check_matrix(t, (2,), "t")
+    H[2, :2] = check_matrix(v, (2,), "v")
+    H[2, 2] = w
+    return _check_h(H)
+
+
+def classify(H: ArrayLike, tol: float = 1e-9) -> str:
+    """The smallest group of the hierarchy that contains H: 'euclidean', 'similarity',
+    'affine' or 'projective'.
+
+    >>> classify(similarity(2.0, 0.3, 1, 1)), classify(affine(sx=2.0)), classify(projective(v=[1e-3, 0]))
+    ('similarity', 'affine', 'projective')
+    """
+    Hm = normalize_homography(_check_h(H))
+    if abs(Hm[2, 2]) < tol or np.abs(Hm[2, :2]).max() > tol * abs(Hm[2, 2]):
+        return "projective"
+    A = Hm[:2, :2] / Hm[2, 2]
+    AtA = A.T @ A
+    s2 = AtA[0, 0]
+    if np.abs(AtA - s2 * np.eye(2)).max() > tol * max(s2, 1.0) or np.linalg.det(A) <= 0:
+        return "affine"  # not a scaled rotation (reflections count as affine here)
+    if abs(s2 - 1.0) > tol:
+        return "similarity"
+    return "euclidean"
+
+
+def decompose(H: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    r"""Split :math:`H = H_S H_A H_P` into similarity, affine and projective parts (H&Z 2.4.6).
+
+    .. math::
+        H_S = \begin{pmatrix} sR & t/v \\ 0^T & 1 \end{pmatrix},\quad
+        H_A = \begin{pmatrix} K & 0 \\ 0^T & 1 \end{pmatrix},\quad
+        H_P = \begin{pmatrix} I & 0 \\ v^T & v \end{pmatrix}
+
+    with K upper triangular, det K = 1. Requires H[2, 2] != 0 (the origin does not map
+    to infinity).
+
+    Returns
+    -------
+    (H_S, H_A, H_P) : three (3, 3) ndarrays whose product equals ``normalize_homography(H)``.
+    """
+    Hm = normalize_homography(_check_h(H))
+    if abs(Hm[2, 2]) < 1e-12:
+        raise DegenerateError("decompose: H[2, 2] = 0 (the origin maps to infinity); translate first")
+    vvec, vs = Hm[2, :2], Hm[2, 2]
+    t = Hm[:2, 2]
+    Aeff = Hm[:2, :2] - np.outer(t, vvec) / vs  # sRK = A - t v^T / v
+    # QR-like split sR K with K upper triangular, det K = 1, s > 0.
+    Q, Rq = np.linalg.qr(Aeff)
+    signs = np.sign(np.diag(Rq))
+    signs[signs == 0] = 1
+    Q, Rq = Q * signs, signs[:, None] * Rq
+    s = np.sqrt(abs(np.linalg.det(Rq)))
+    K = Rq / s
+    HS = np.eye(3)
+    HS[:2, :2] = s * Q
+    HS[:2, 2] = t / vs
+    HA = np.eye(3)
+    HA[:2, :2] = K
+    HP = np.eye(3)
+    HP[2, :2] = vvec / vs * 1.0
+    HP[2, 2] = 1.0
+    return HS, HA, HP
+
+
+# --------------------------------------------------------------------------- geometry
+
+def _check_K(K: ArrayLike, name: str) -> np.ndarray:
+    Km = check_matrix(K, (3, 3), name)
+    if abs(np.linalg.det(Km)) < 1e-12:
+        raise DegenerateError(f"{name}: the intrinsic matrix is singular; expected [[fx, s, cx], [0, fy, cy], [0, 0, 1]]")
+    return Km
+
+
+def _check_R(R: ArrayLike) -> np.ndarray:
+    Rm = check_matrix(R, (3, 3), "R")
+    if not np.allclose(Rm.T @ Rm, np.eye(3), atol=1e-6) or np.linalg.det(Rm) < 0:
+        raise CamlabInputError("R: expected a rotation matrix (R^T R = I, det R = +1)")
+    return Rm
+
+
+def rotation_homography(K: ArrayLike, R: ArrayLike, K2: ArrayLike | None = None) -> np.ndarray:
+    r"""The homography between two views from one centre: :math:`H = K' R K^{-1}`.
+
+    A camera that only rotates (R maps camera-1 coordinates to camera-2 coordinates)
+    sees every scene point along the same ray, whatever its depth, so
+    :math:`x_2 \sim K' R K^{-1} x_1`. This is why panoramas need no depth.
+
+    Parameters
+    ----------
+    K : (3, 3) array_like
+        Intrinsics of the first camera.
+    R : (3, 3) array_like
+        Rotation cam2_from_cam1.
+    K2 : (3, 3) array_like, optional
+        Intrinsics of the second camera (default: K).
+    """
+    Km = _check_K(K, "K")
+    K2m = Km if K2 is None else _check_K(K2, "K2")
+    return normalize_homography(K2m @ _check_R(R) @ np.linalg.inv(Km))
+
+
+def plane_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike, n: ArrayLike, d: float,
+                     K2: ArrayLike | None = None) -> np.ndarray:
+    r"""The homography induced by a plane between two views: :math:`H = K'(R - t n^T / d) K^{-1}`.
+
+    Camera 1 is :math:`K[I \mid 0]`, camera 2 is :math:`K'[R \mid t]` (cam2_from_cam1).
+    The plane is :math:`n^T X + d = 0` in camera-1 coordinates (H&Z result 13.1). For X
+    on the plane, :math:`-n^T X / d = 1`, so
+    :math:`R X + t = R X - t\, n^T X / d = (R - t n^T / d) X`; with
+    :math:`X \sim K^{-1} x_1` this gives :math:`x_2 \sim K'(R - t n^T/d) K^{-1} x_1`.
+
+    Parameters
+    ----------
+    K : (3, 3) array_like
+    R : (3, 3) array_like
+        Rotation cam2_from_cam1.
+    t : (3,) array_like
+        Translation cam2_from_cam1, metres.
+    n : (3,) array_like
+        Plane normal in camera-1 coordinates (need not be unit; d scales with it).
+    d : float
+        Plane offset: the plane is n . X + d = 0; d != 0 (the plane must not pass
+        through camera 1's centre).
+    K2 : (3, 3) array_like, optional
+        Intrinsics of camera 2 (default: K).
+    """
+    Km = _check_K(K, "K")
+    K2m = Km if K2 is None else _check_K(K2, "K2")
+    tv = check_matrix(np.ravel(np.asarray(t, dtype=float)), (3,), "t")
+    nv = check_matrix(np.ravel(np.asarray(n, dtype=float)), (3,), "n")
+    if not np.isfinite(d) or d == 0:
+        raise DegenerateError(f"d: the plane n . X + d = 0 must not pass through camera 1's centre; got d={d!r}")
+    if not np.any(nv):
+        raise CamlabInputError("n: the plane normal must be non-zero")
+    H = K2m @ (_check_R(R) - np.outer(tv, nv) / d) @ np.linalg.inv(Km)
+    return normalize_homography(_check_h(H, "plane_homography"))
+
+
+def pose_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike) -> np.ndarray:
+    r"""The homography from the world plane Z = 0 to the image: :math:`H = K [r_1\ r_2\ t]`.
+
+    A point (X, Y, 0) projects to :math:`K (X r_1 + Y r_2 + t)`, linear in (X, Y, 1).
+    This is how a flat textured target (a page, a painting, a chessboard) photographed
+    by a camera ``K [R | t]`` (cam_from_world) appears: Zhang's calibration and lesson 10
+    start from it.
+
+    >>> K = np.array([[800.0, 0, 320], [0, 800, 240], [0, 0, 1]])
+    >>> map_points(pose_homography(K, np.eye(3), [0, 0, 2.0]), [0.0, 0.0])
+    array([320., 240.])
+    """
+    Km = _check_K(K, "K")
+    Rm = _check_R(R)
+    tv = check_matrix(np.ravel(np.asarray(t, dtype=float)), (3,), "t")
+    H = Km @ np.column_stack([Rm[:, 0], Rm[:, 1], tv])
+    return normalize_homography(_check_h(H, "pose_homography"))

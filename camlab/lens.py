@@ -1,0 +1,169 @@
+r"""The thin lens: focusing, magnification, aperture, blur circles and depth of field.
+
+A thin lens of focal length :math:`f` images a point at distance :math:`z_o` in front of it
+sharply at distance :math:`z_i` behind it, where
+
+.. math:: \frac{1}{f} = \frac{1}{z_o} + \frac{1}{z_i}.
+
+With the sensor at the image distance of the *focus distance* :math:`s`, a point at any
+other depth :math:`z` spreads into a blur disc (circle of confusion) of diameter
+
+.. math:: c(z) = A \, \frac{f}{s - f} \, \frac{|z - s|}{z}, \qquad A = f / N,
+
+and everything whose blur stays below an acceptable :math:`c` lies in the depth of field
+:math:`[z_{near}, z_{far}]`. All lengths are in metres (any one unit works if used
+consistently). See lesson 02, sections 1-2.
+"""
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ._validate import CamlabInputError, check_positive
+
+__all__ = [
+    "DepthOfField", "aperture_diameter", "circle_of_confusion", "depth_of_field",
+    "hyperfocal_distance", "image_distance", "magnification", "object_distance",
+]
+
+
+def _distances(z: ArrayLike, name: str) -> np.ndarray:
+    a = np.asarray(z, dtype=float)
+    if not np.all(np.isfinite(a)) or np.any(a <= 0):
+        raise CamlabInputError(f"{name}: expected positive finite distances in metres, got {z!r}")
+    return a
+
+
+def _outside_focal_length(z_o: np.ndarray, f: float, name: str) -> None:
+    if np.any(z_o <= f):
+        raise CamlabInputError(
+            f"{name}: object at {float(np.min(z_o))!r} m is inside the focal length f = {f!r} m, so the "
+            f"lens forms no real image (a virtual, magnifying-glass image instead); move it beyond f"
+        )
+
+
+def image_distance(focal_length: float, object_distance: ArrayLike) -> np.ndarray | float:
+    r"""Where a thin lens focuses an object: :math:`z_i = f z_o / (z_o - f)`.
+
+    >>> round(float(image_distance(0.05, 2.0)), 6)      # 50 mm lens, object 2 m away
+    0.051282
+    >>> image_distance(0.05, 0.03)
+    Traceback (most recent call last):
+    ...
+    camlab._validate.CamlabInputError: object_distance: object at 0.03 m is inside the focal length f = 0.05 m, so the lens forms no real image (a virtual, magnifying-glass image instead); move it beyond f
+    """
+    f = check_positive(focal_length, "focal_length", "metres")
+    z = _distances(object_distance, "object_distance")
+    _outside_focal_length(z, f, "object_distance")
+    out = f * z / (z - f)
+    return float(out) if out.ndim == 0 else out
+
+
+def object_distance(focal_length: float, image_distance_: ArrayLike) -> np.ndarray | float:
+    r"""The object distance that a sensor at ``image_distance_`` behind the lens has in focus.
+
+    >>> round(float(object_distance(0.05, 0.0512820513)), 6)
+    2.0
+    """
+    f = check_positive(focal_length, "focal_length", "metres")
+    zi = _distances(image_distance_, "image_distance")
+    _outside_focal_length(zi, f, "image_distance")
+    out = f * zi / (zi - f)
+    return float(out) if out.ndim == 0 else out
+
+
+def magnification(focal_length: float, object_distance_: ArrayLike) -> np.ndarray | float:
+    r"""Lateral magnification :math:`m = -z_i / z_o = f / (f - z_o)`; negative means inverted.
+
+    >>> float(magnification(0.05, 0.1))     # object at 2f: life size, inverted
+    -1.0
+    """
+    f = check_positive(focal_length, "focal_length", "metres")
+    z = _distances(object_distance_, "object_distance")
+    _outside_focal_length(z, f, "object_distance")
+    out = f / (f - z)
+    return float(out) if out.ndim == 0 else out
+
+
+def aperture_diameter(focal_length: float, f_number: float) -> float:
+    """Entrance pupil diameter :math:`A = f / N` (metres).
+
+    >>> aperture_diameter(0.05, 2.0)
+    0.025
+    """
+    return check_positive(focal_length, "focal_length", "metres") / check_positive(f_number, "f_number")
+
+
+def circle_of_confusion(focal_length: float, f_number: float, focus_distance: float,
+                        depth: ArrayLike) -> np.ndarray | float:
+    r"""Blur-disc diameter on the sensor (metres) for points at ``depth`` when focused at ``focus_distance``.
+
+    .. math:: c = \frac{f}{N} \frac{f}{s - f} \frac{|z - s|}{z}
+
+    Derivation: the sensor sits at :math:`s_i = f s / (s - f)`; a point at depth :math:`z`
+    focuses at :math:`z_i = f z / (z - f)`, and its cone of light (base :math:`A`) cuts
+    the sensor in a disc of diameter :math:`A |s_i - z_i| / z_i`, which simplifies to the
+    formula above. Points beyond the focus (:math:`z \to \infty`) tend to
+    :math:`A f / (s - f)`.
+
+    >>> round(float(circle_of_confusion(0.05, 2.0, 2.0, 4.0)) * 1e3, 4)   # mm
+    0.3205
+    """
+    f = check_positive(focal_length, "focal_length", "metres")
+    N = check_positive(f_number, "f_number")
+    s = check_positive(focus_distance, "focus_distance", "metres")
+    _outside_focal_length(np.asarray(s), f, "focus_distance")
+    z = _distances(depth, "depth")
+    out = (f / N) * f / (s - f) * np.abs(z - s) / z
+    return float(out) if out.ndim == 0 else out
+
+
+def hyperfocal_distance(focal_length: float, f_number: float, coc: float) -> float:
+    r"""Focus distance whose depth of field reaches infinity: :math:`H = f^2 / (N c) + f`.
+
+    Textbook value: 50 mm at f/8 with c = 0.03 mm gives H = 10.47 m.
+
+    >>> round(hyperfocal_distance(0.05, 8, 0.03e-3), 2)
+    10.47
+    """
+    f = check_positive(focal_length, "focal_length", "metres")
+    N = check_positive(f_number, "f_number")
+    c = check_positive(coc, "coc", "metres")
+    return f * f / (N * c) + f
+
+
+class DepthOfField(NamedTuple):
+    """Near and far limits of acceptable sharpness (metres; ``far`` may be inf) and the hyperfocal distance."""
+
+    near: float
+    far: float
+    hyperfocal: float
+
+    @property
+    def total(self) -> float:
+        return self.far - self.near
+
+
+def depth_of_field(focal_length: float, f_number: float, focus_distance: float, coc: float) -> DepthOfField:
+    r"""Depth of field of a thin lens focused at :math:`s`, for acceptable blur :math:`c`.
+
+    .. math::
+
+        z_{near} = \frac{s (H - f)}{H + s - 2f}, \qquad
+        z_{far} = \frac{s (H - f)}{H - s}\ (s < H), \text{ else } \infty
+
+    These are the depths where :func:`circle_of_confusion` equals ``coc``.
+
+    >>> dof = depth_of_field(0.05, 8, 5.0, 0.03e-3)   # 50 mm f/8 focused at 5 m
+    >>> round(dof.near, 3), round(dof.far, 3)
+    (3.389, 9.527)
+    """
+    f = check_positive(focal_length, "focal_length", "metres")
+    s = check_positive(focus_distance, "focus_distance", "metres")
+    _outside_focal_length(np.asarray(s), f, "focus_distance")
+    H = hyperfocal_distance(f, f_number, coc)
+    near = s * (H - f) / (H + s - 2 * f)
+    far = s * (H - f) / (H - s) if s < H else float("inf")
+    return DepthOfField(float(near), float(far), float(H))

@@ -1,0 +1,139 @@
+"""Optics diagrams: a 3-D pinhole camera, thin-lens ray diagrams, blur curves (lessons 01-02).
+
+Each ``draw_*`` function draws once and returns a dict of artists; its ``update_*``
+partner moves those artists, so widgets can redraw in place.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .. import lens as _lens
+from .. import pinhole as _pinhole
+
+__all__ = ["box_edges", "draw_pinhole_3d", "update_pinhole_3d", "draw_thin_lens", "update_thin_lens",
+           "draw_pinhole_blur", "update_pinhole_blur"]
+
+_EDGES = [(0, 1), (1, 3), (3, 2), (2, 0), (4, 5), (5, 7), (7, 6), (6, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
+
+
+def box_edges(center, size) -> np.ndarray:
+    """(12, 2, 3) end points of an axis-aligned box's edges (camera frame, metres)."""
+    c, s = np.asarray(center, float), np.asarray(size, float) / 2
+    v = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]) * s + c
+    return np.array([[v[i], v[j]] for i, j in _EDGES])
+
+
+def _to_plot(p):
+    """Camera frame (x right, y down, z forward) -> plot axes (z, x, -y): depth to the right, up is up."""
+    p = np.asarray(p, float)
+    return p[..., 2], p[..., 0], -p[..., 1]
+
+
+def draw_pinhole_3d(ax, edges: np.ndarray, f_draw: float, plane_half: float = 0.12) -> dict:
+    """Box edges, the pinhole, the real (behind) and virtual (in front) image planes and the rays."""
+    art = {"box": [ax.plot(*_to_plot(e), color="tab:blue", lw=1.5)[0] for e in edges]}
+    ax.scatter([0], [0], [0], color="k", s=25)
+    art["planes"] = {}
+    for name, color in (("real", "tab:red"), ("virtual", "tab:green")):
+        art["planes"][name] = ax.plot([], [], [], color=color, lw=1, alpha=0.6)[0]
+        art[name] = [ax.plot([], [], [], color=color, lw=1.2)[0] for _ in edges]
+    art["rays"] = [ax.plot([], [], [], color="0.6", lw=0.6)[0] for _ in range(8)]
+    ax.set_xlabel("z (forward)")
+    ax.set_ylabel("x")
+    ax.set_zlabel("-y (up)")
+    ax.view_init(elev=18, azim=-62)
+    art["plane_half"] = plane_half
+    update_pinhole_3d(art, edges, f_draw)
+    pts = edges.reshape(-1, 3)
+    half = max(plane_half, np.abs(pts[:, :2]).max()) * 1.15
+    ax.set_xlim(-1.3 * f_draw, pts[:, 2].max() * 1.05)
+    ax.set_ylim(-half, half)
+    ax.set_zlim(-half, half)
+    ax.set_box_aspect((3, 1.2, 1.2))
+    return art
+
+
+def update_pinhole_3d(art: dict, edges: np.ndarray, f_draw: float) -> None:
+    h = art["plane_half"]
+    for name, sign in (("real", -1), ("virtual", 1)):
+        z = sign * f_draw
+        sq = np.array([[-h, -h * 0.75, z], [h, -h * 0.75, z], [h, h * 0.75, z], [-h, h * 0.75, z], [-h, -h * 0.75, z]])
+        art["planes"][name].set_data_3d(*_to_plot(sq))
+        img = _pinhole.project_pinhole(edges.reshape(-1, 3), f_draw, plane=name).reshape(-1, 2, 2)
+        for line, seg in zip(art[name], img):
+            art_pts = np.column_stack([seg, np.full(2, z)])
+            line.set_data_3d(*_to_plot(art_pts))
+    corners = np.unique(edges.reshape(-1, 3), axis=0)
+    for line, X in zip(art["rays"], corners):
+        end = -X * f_draw / X[2]  # through the pinhole to the real plane
+        line.set_data_3d(*_to_plot(np.array([X, end])))
+
+
+def draw_thin_lens(ax, focal_length: float, object_distance: float, height: float = 1.0) -> dict:
+    """A thin-lens ray diagram in units of metres: object arrow, lens, the three principal rays, image arrow."""
+    art = {
+        "lens": ax.axvline(0, color="tab:blue", lw=2),
+        "axis": ax.axhline(0, color="0.5", lw=0.8),
+        "foci": ax.plot([], [], "k+", ms=10)[0],
+        "object": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="-|>", color="tab:green", lw=2)),
+        "image": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="-|>", color="tab:red", lw=2)),
+        "rays": [ax.plot([], [], color=c, lw=1)[0] for c in ("tab:orange", "tab:purple", "tab:brown")],
+        "text": ax.text(0.02, 0.03, "", transform=ax.transAxes, va="bottom", fontsize=9, family="monospace"),
+        "height": height,
+    }
+    ax.set_xlabel("distance along the optical axis (m)")
+    ax.set_ylabel("height (m)")
+    update_thin_lens(art, ax, focal_length, object_distance)
+    return art
+
+
+def update_thin_lens(art: dict, ax, f: float, zo: float) -> dict:
+    """Move the diagram to focal length ``f`` and object distance ``zo``; returns the computed values."""
+    hgt = art["height"]
+    zi = _lens.image_distance(f, zo)
+    m = _lens.magnification(f, zo)
+    hi = m * hgt
+    art["foci"].set_data([-f, f], [0, 0])
+    art["object"].xy, art["object"].xyann = (-zo, hgt), (-zo, 0)
+    art["image"].xy, art["image"].xyann = (zi, hi), (zi, 0)
+    # parallel ray -> through far focus; central ray undeviated; ray through near focus -> parallel
+    art["rays"][0].set_data([-zo, 0, zi], [hgt, hgt, hi])
+    art["rays"][1].set_data([-zo, zi], [hgt, hi])
+    art["rays"][2].set_data([-zo, 0, zi], [hgt, hi, hi])
+    art["text"].set_text(f"f   = {f * 1e3:6.1f} mm\nz_o = {zo:6.3f} m\nz_i = {zi:6.3f} m\nm   = {m:6.3f}")
+    span = max(zo, zi) * 1.15
+    ax.set_xlim(-span, span)
+    lim = max(hgt, abs(hi)) * 1.3
+    ax.set_ylim(-lim, lim)
+    return {"image_distance": zi, "magnification": m}
+
+
+def draw_pinhole_blur(ax, focal_length: float, wavelength: float = 550e-9) -> dict:
+    """Geometric, diffraction and total blur (mm) against pinhole diameter (mm), log axes, with a marker."""
+    d = np.geomspace(0.02e-3, 3e-3, 300)
+    b = _pinhole.pinhole_blur(d, focal_length, wavelength=wavelength)
+    art = {
+        "geometric": ax.plot(d * 1e3, b.geometric * 1e3, label="geometric  d (1 + f/Z)")[0],
+        "diffraction": ax.plot(d * 1e3, b.diffraction * 1e3, label=r"diffraction  $2.44\lambda f/d$")[0],
+        "total": ax.plot(d * 1e3, b.total * 1e3, "k", lw=2, label="total")[0],
+        "marker": ax.axvline(1, color="tab:red", ls="--"),
+        "best": ax.plot([], [], "k*", ms=12, label="best diameter")[0],
+        "d": d,
+    }
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("pinhole diameter d (mm)")
+    ax.set_ylabel("blur diameter (mm)")
+    ax.legend(fontsize=8, loc="upper center")
+    return art
+
+
+def update_pinhole_blur(art: dict, focal_length: float, diameter: float, wavelength: float = 550e-9) -> None:
+    d = art["d"]
+    b = _pinhole.pinhole_blur(d, focal_length, wavelength=wavelength)
+    art["geometric"].set_ydata(b.geometric * 1e3)
+    art["diffraction"].set_ydata(b.diffraction * 1e3)
+    art["total"].set_ydata(b.total * 1e3)
+    art["marker"].set_xdata([diameter * 1e3, diameter * 1e3])
+    best = _pinhole.optimal_pinhole_diameter(focal_length, wavelength)
+    art["best"].set_data([best * 1e3], [float(_pinhole.pinhole_blur(best, focal_length, wavelength=wavelength).total) * 1e3])

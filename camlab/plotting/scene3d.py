@@ -1,0 +1,352 @@
+"""3-D views of cameras and scenes: frustums, camera and world axes, image planes.
+
+Used by lessons 04-05 and later by calibration and stereo. Everything here draws once
+and returns handles whose ``update`` methods MOVE the existing artists
+(``Line3D.set_data_3d``, ``Poly3DCollection.set_verts``, ``Text3D.set_position_3d``),
+so a slider callback stays within the latency budget.
+
+Conventions (docs/conventions.md): a camera is drawn in the OpenCV frame, its axes
+labelled x (right, red), y (down, green), z (forward, blue); its image plane is drawn in
+front of the centre at depth ``size`` metres (the *positive*, non-inverted image: the
+real sensor sits behind the pinhole, upside down), pixel (0, 0) at the top-left corner of
+the plane. World axes are X, Y, Z in the same colours. 3-D axes get equal aspect.
+
+Blitting (``FigureView.animate``): a 3-D axes' projection depends on its limits, so in a
+demo register *every* artist of the 3-D axes as animated (``SceneView.artists()``,
+``CameraArtist.artists()``) and keep the 3-D axes' own decorations off; ``SceneView.update``
+and :func:`refresh_projection` recompute the projection so blitted artists land right.
+
+Typical use::
+
+    from camlab.plotting import scene3d
+    ax = scene3d.axes3d(fig, 121)
+    scene3d.draw_world_axes(ax)
+    segs = scene3d.draw_segments(ax, house)             # world wireframe
+    cam_art = scene3d.CameraArtist(ax, camera, size=0.6, image_lines=camera_pixels)
+    scene3d.set_equal_aspect(ax, [house.reshape(-1, 3), camera.centre])
+    ...
+    cam_art.update(new_camera, image_lines=new_pixels)    # in a slider callback
+"""
+from __future__ import annotations
+
+from typing import Any, Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..camera import Camera, project_segments
+
+AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
+
+__all__ = ["AXIS_COLOURS", "CameraArtist", "SceneView", "axes3d", "draw_points", "draw_segments",
+           "draw_world_axes", "image_axes", "polyline_data", "refresh_projection", "set_equal_aspect",
+           "update_segments"]
+
+
+def axes3d(fig, *args: Any, elev: float = 22.0, azim: float = -60.0, **kw: Any):
+    """Add a 3-D axes to ``fig`` (``fig.add_subplot(*args, projection='3d')``), labelled X, Y, Z
+    in metres, with a light pane style that keeps drawing fast."""
+    ax = fig.add_subplot(*args, projection="3d", **kw)
+    ax.view_init(elev=elev, azim=azim)
+    ax.set_xlabel("X (m)", labelpad=-8)
+    ax.set_ylabel("Y (m)", labelpad=-8)
+    ax.set_zlabel("Z (m)", labelpad=-8)
+    ax.tick_params(labelsize=7, pad=-2)
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+        axis.pane.set_alpha(0.15)
+    return ax
+
+
+def set_equal_aspect(ax, points: ArrayLike | Sequence[ArrayLike], margin: float = 0.02, zoom: float = 1.0) -> None:
+    """Give a 3-D axes equal scale on X, Y, Z: a cube of limits around ``points`` and a
+    (1, 1, 1) box aspect, so angles and lengths look right."""
+    if isinstance(points, (list, tuple)):
+        pts = np.vstack([np.reshape(np.asarray(p, dtype=float), (-1, 3)) for p in points])
+    else:
+        pts = np.reshape(np.asarray(points, dtype=float), (-1, 3))
+    pts = pts[np.isfinite(pts).all(axis=1)]
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    centre = (lo + hi) / 2.0
+    half = max(float((hi - lo).max()) / 2.0, 1e-6) * (1.0 + margin)
+    ax.set_xlim(centre[0] - half, centre[0] + half)
+    ax.set_ylim(centre[1] - half, centre[1] + half)
+    ax.set_zlim(centre[2] - half, centre[2] + half)
+    ax.set_box_aspect((1, 1, 1), zoom=zoom)
+
+
+def refresh_projection(ax) -> None:
+    """Recompute a 3-D axes' projection matrix after its limits or view changed.
+
+    A full draw does this itself; a blitted redraw (only animated artists) does not, so
+    call it after :func:`set_equal_aspect` in an update.
+    """
+    ax.M = ax.get_proj()
+    ax.invM = np.linalg.inv(ax.M)
+
+
+def polyline_data(segments: ArrayLike) -> np.ndarray:
+    """(M, 2, d) segments as one (3M, d) polyline with NaN rows between segments.
+
+    One Line2D/Line3D with NaN breaks draws far faster than M separate lines.
+    """
+    s = np.asarray(segments, dtype=float)
+    out = np.full((len(s), 3, s.shape[-1]), np.nan)
+    out[:, :2] = s
+    return out.reshape(-1, s.shape[-1])
+
+
+def draw_segments(ax, segments: ArrayLike, **kw: Any):
+    """Draw (M, 2, 3) world segments as one Line3D; move them later with :func:`update_segments`."""
+    d = polyline_data(segments)
+    kw.setdefault("color", "0.25")
+    kw.setdefault("lw", 1.2)
+    (line,) = ax.plot(d[:, 0], d[:, 1], d[:, 2], **kw)
+    return line
+
+
+def update_segments(line, segments: ArrayLike) -> None:
+    """Move a line made by :func:`draw_segments` (3-D) or a 2-D ``ax.plot`` polyline to new segments."""
+    d = polyline_data(segments)
+    if d.shape[1] == 3:
+        line.set_data_3d(d[:, 0], d[:, 1], d[:, 2])
+    else:
+        line.set_data(d[:, 0], d[:, 1])
+
+
+def draw_points(ax, points: ArrayLike, **kw: Any):
+    """World points (N, 3) as markers on one Line3D (move with ``set_data_3d``)."""
+    p = np.reshape(np.asarray(points, dtype=float), (-1, 3))
+    kw.setdefault("marker", "o")
+    kw.setdefault("ms", 3)
+    kw.setdefault("ls", "none")
+    (line,) = ax.plot(p[:, 0], p[:, 1], p[:, 2], **kw)
+    return line
+
+
+def draw_world_axes(ax, length: float = 1.0, origin: ArrayLike = (0.0, 0.0, 0.0), labels=("X", "Y", "Z")) -> list:
+    """World axes as three coloured arrows-as-lines from ``origin``, labelled X, Y, Z."""
+    o = np.asarray(origin, dtype=float)
+    out = []
+    for i, (c, name) in enumerate(zip(AXIS_COLOURS, labels)):
+        e = o.copy()
+        e[i] += length
+        (ln,) = ax.plot(*np.c_[o, e], color=c, lw=2.0)
+        out.append(ln)
+        out.append(ax.text(*(o + (e - o) * 1.12), name, color=c, fontsize=9, fontweight="bold",
+                           ha="center", va="center"))
+    return out
+
+
+def image_axes(ax, image_size: tuple[int, int], title: str = "", labels: bool = True) -> None:
+    """Set up a 2-D axes as an image: u right, v down, pixel centres at integers, equal aspect.
+
+    ``labels=False`` leaves out the axis labels (each text costs about 1 ms per redraw in
+    a slider demo); the title then says "u right, v down".
+    """
+    w, h = image_size
+    ax.set_xlim(-0.5, w - 0.5)
+    ax.set_ylim(h - 0.5, -0.5)
+    ax.set_aspect("equal")
+    if labels:
+        ax.set_xlabel("u (px)", fontsize=8)
+        ax.set_ylabel("v (px)", fontsize=8)
+    elif title:
+        title = f"{title} (u right, v down, px)"
+    ax.set_xticks([0, w // 2, w])
+    ax.set_yticks([0, h // 2, h])
+    ax.tick_params(labelsize=7)
+    if title:
+        ax.set_title(title, fontsize=9)
+
+
+def _plane_points(camera: Camera, uv: np.ndarray, size: float) -> np.ndarray:
+    """Pixels (N, 2) lifted to the plane z_c = size in front of the camera, world coordinates.
+
+    NaN pixels stay NaN (segments that leave the picture break there)."""
+    ones = np.ones((len(uv), 1))
+    rays_c = np.linalg.solve(camera.K, np.hstack([uv, ones]).T).T  # z = 1 in camera frame
+    return (rays_c * size - camera.t) @ camera.R
+
+
+class CameraArtist:
+    """A camera drawn in a 3-D axes: frustum, image plane, camera axes and optional image.
+
+    Parameters
+    ----------
+    ax : Axes3D
+    camera : Camera
+    size : float
+        Depth of the drawn image plane in metres (the frustum's length).
+    color : str
+        Frustum colour.
+    label : str
+        Text at the camera centre (e.g. "C" or "left").
+    image : (H, W) or (H, W, 3) array, optional
+        A raster image drawn on the image plane as a coarse textured mesh of
+        ``image_grid`` quads (block means), fast enough for sliders.
+    image_lines : (M, 2, 2) array, optional
+        Pixel segments (e.g. the projected wireframe) drawn on the image plane.
+    show_axes : bool
+        Draw the camera's x (right), y (down), z (forward) axes, labelled.
+    """
+
+    def __init__(self, ax, camera: Camera, size: float = 0.5, color: str = "tab:purple", label: str = "",
+                 image: np.ndarray | None = None, image_lines: ArrayLike | None = None,
+                 show_axes: bool = True, image_grid: tuple[int, int] = (24, 18), line_color: str = "0.15"):
+        from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+        self.ax, self.size, self.image_grid = ax, float(size), image_grid
+        self.camera = camera
+        (self.frustum,) = ax.plot([], [], [], color=color, lw=1.2)
+        self.plane = Poly3DCollection([np.zeros((4, 3))], facecolor=color, alpha=0.12, edgecolor=color, lw=1.0)
+        ax.add_collection3d(self.plane)
+        self.axes_lines, self.axes_text = [], []
+        if show_axes:
+            for c, name in zip(AXIS_COLOURS, ("x", "y", "z")):
+                (ln,) = ax.plot([], [], [], color=c, lw=2.0)
+                self.axes_lines.append(ln)
+                self.axes_text.append(ax.text(0, 0, 0, name, color=c, fontsize=9, fontweight="bold",
+                                              ha="center", va="center"))
+        (self.centre_marker,) = ax.plot([], [], [], "o", color=color, ms=4)
+        self.label = ax.text(0, 0, 0, label, color=color, fontsize=9) if label else None
+        (self.lines,) = ax.plot([], [], [], color=line_color, lw=0.6)
+        self.mesh, self._pixels = None, None
+        if image is not None:
+            self.mesh = Poly3DCollection([np.zeros((4, 3))], lw=0.0)
+            ax.add_collection3d(self.mesh)
+        self.update(camera, image=image, image_lines=image_lines)
+
+    def artists(self) -> list:
+        """Every artist this camera drew (register them with ``FigureView.animate``)."""
+        out = [self.frustum, self.plane, *self.axes_lines, *self.axes_text, self.centre_marker, self.lines]
+        return out + [a for a in (self.label, self.mesh) if a is not None]
+
+    def corners(self, camera: Camera | None = None) -> np.ndarray:
+        """The image plane's four corners (top-left, top-right, bottom-right, bottom-left), world (4, 3)."""
+        cam = camera or self.camera
+        w, h = cam.image_size
+        uv = np.array([[-0.5, -0.5], [w - 0.5, -0.5], [w - 0.5, h - 0.5], [-0.5, h - 0.5]])
+        return _plane_points(cam, uv, self.size)
+
+    def extent_points(self, camera: Camera | None = None) -> np.ndarray:
+        """Points to include when setting equal-aspect limits: centre and plane corners."""
+        cam = camera or self.camera
+        return np.vstack([cam.centre, self.corners(cam)])
+
+    def update(self, camera: Camera, image: np.ndarray | None = None, image_lines: ArrayLike | None = None) -> None:
+        """Move every artist to ``camera``; redraw the image content if given."""
+        self.camera = camera
+        C = camera.centre
+        corners = self.corners(camera)
+        f = np.full((4 * 3 + 5, 3), np.nan)
+        for i, k in enumerate(corners):  # centre-to-corner rays, NaN-separated
+            f[3 * i], f[3 * i + 1] = C, k
+        f[12:17] = np.vstack([corners, corners[:1]])
+        self.frustum.set_data_3d(f[:, 0], f[:, 1], f[:, 2])
+        self.plane.set_verts([corners])
+        if getattr(self.ax, "M", None) is not None:  # blitting draws polygons from their last projection
+            self.plane.do_3d_projection()
+        L = self.size * 0.6
+        for i, (ln, tx) in enumerate(zip(self.axes_lines, self.axes_text)):
+            e = C + L * camera.R[i]  # camera axis i in world coordinates is row i of R
+            ln.set_data_3d([C[0], e[0]], [C[1], e[1]], [C[2], e[2]])
+            tx.set_position_3d(C + 1.2 * L * camera.R[i])
+        self.centre_marker.set_data_3d([C[0]], [C[1]], [C[2]])
+        if self.label is not None:
+            self.label.set_position_3d(C - 0.25 * self.size * camera.R[1] - 0.15 * self.size * camera.R[0])
+        if image_lines is not None:
+            self._pixels = np.asarray(image_lines, dtype=float)
+        if self._pixels is not None:  # without new pixels, the old ones move with the camera
+            d = polyline_data(self._pixels) if len(self._pixels) else np.empty((0, 2))
+            P3 = _plane_points(camera, d, self.size) if len(d) else np.empty((0, 3))
+            self.lines.set_data_3d(P3[:, 0], P3[:, 1], P3[:, 2])
+        if self.mesh is not None:
+            self._update_mesh(camera, image)
+
+    def _update_mesh(self, camera: Camera, image: np.ndarray | None) -> None:
+        gw, gh = self.image_grid
+        w, h = camera.image_size
+        us = np.linspace(-0.5, w - 0.5, gw + 1)
+        vs = np.linspace(-0.5, h - 0.5, gh + 1)
+        U, V = np.meshgrid(us, vs)
+        G = _plane_points(camera, np.column_stack([U.ravel(), V.ravel()]), self.size).reshape(gh + 1, gw + 1, 3)
+        quads = np.stack([G[:-1, :-1], G[:-1, 1:], G[1:, 1:], G[1:, :-1]], axis=2).reshape(-1, 4, 3)
+        self.mesh.set_verts(quads)
+        if getattr(self.ax, "M", None) is not None:
+            self.mesh.do_3d_projection()
+        if image is not None:
+            img = np.asarray(image, dtype=float)
+            if img.max() > 1.0:
+                img = img / 255.0
+            if img.ndim == 2:
+                img = np.repeat(img[..., None], 3, axis=2)
+            H, W = img.shape[:2]
+            rows = np.linspace(0, H, gh + 1).astype(int)
+            cols = np.linspace(0, W, gw + 1).astype(int)
+            colours = np.array([[img[rows[i]:max(rows[i + 1], rows[i] + 1), cols[j]:max(cols[j + 1], cols[j] + 1), :3]
+                                 .mean(axis=(0, 1)) for j in range(gw)] for i in range(gh)]).reshape(-1, 3)
+            self.mesh_colours = np.clip(colours, 0.0, 1.0)  # row-major over the grid, top-left first
+            self.mesh.set_facecolor(self.mesh_colours)
+
+
+class SceneView:
+    """A wireframe scene photographed by one camera: a 3-D view beside the camera's image.
+
+    ``SceneView(fig, camera, segments)`` adds two axes to ``fig`` (3-D on the left, the
+    image on the right), draws the world wireframe, world axes and the camera (with the
+    projected wireframe on its image plane), and ``update(camera)`` moves everything.
+    The 3-D limits are fixed at construction from ``extent`` (world points to keep in view).
+    """
+
+    def __init__(self, fig, camera: Camera, segments: ArrayLike, extent: ArrayLike | None = None,
+                 axes: tuple | None = None, plane_size: float = 0.8, world_axes: float = 0.8,
+                 image_title: str = "camera image", elev: float = 24.0, azim: float = 15.0,
+                 axis_off: bool = True):
+        self.segments = np.asarray(segments, dtype=float)
+        if axes is None:
+            gs = fig.add_gridspec(1, 2, width_ratios=(1.15, 1.0))
+            ax3 = axes3d(fig, gs[0, 0], elev=elev, azim=azim)
+            ax2 = fig.add_subplot(gs[0, 1])
+        else:
+            ax3, ax2 = axes
+        self.ax3d, self.ax_image = ax3, ax2
+        if axis_off:  # no panes, ticks or tick labels: the world axes carry the frame; 5x faster
+            ax3.set_axis_off()
+        self.world_axes = draw_world_axes(ax3, world_axes) if world_axes else []
+        self.world = draw_segments(ax3, self.segments)
+        pix = project_segments(camera, self.segments)
+        self.camera_artist = CameraArtist(ax3, camera, size=plane_size, image_lines=pix, label="C")
+        self.extent = None if extent is None else np.reshape(np.asarray(extent, dtype=float), (-1, 3))
+        self.zoom = 1.25 if axis_off else 1.0
+        self._fit()
+        image_axes(ax2, camera.image_size, image_title, labels=not axis_off)
+        d = polyline_data(pix)
+        (self.image_lines,) = ax2.plot(d[:, 0], d[:, 1], color="k", lw=1.2)
+        self.camera = camera
+
+    def _fit(self, camera: Camera | None = None) -> None:
+        pts = [self.segments.reshape(-1, 3), self.camera_artist.extent_points(camera)]
+        if self.extent is not None:
+            pts.append(self.extent)
+        set_equal_aspect(self.ax3d, pts, zoom=self.zoom)
+        refresh_projection(self.ax3d)
+
+    def artists(self) -> list:
+        """The artists that move: everything in the 3-D axes (its projection follows the
+        camera) and the image's lines. Register them with ``FigureView.animate``."""
+        return [self.world, *self.world_axes, *self.camera_artist.artists(), self.image_lines]
+
+    def update(self, camera: Camera) -> np.ndarray:
+        """Re-photograph the scene with ``camera``; returns the (M, 2, 2) pixel segments.
+
+        The 3-D limits follow the camera so it never leaves the view."""
+        pix = project_segments(camera, self.segments)
+        self._fit(camera)
+        self.camera_artist.update(camera, image_lines=pix)
+        update_segments(self.image_lines, pix)
+        w, h = camera.image_size
+        if (w, h) != tuple(self.camera.image_size):
+            image_axes(self.ax_image, (w, h), labels=False)
+        self.camera = camera
+        return pix
+

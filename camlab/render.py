@@ -1,0 +1,763 @@
+r"""The virtual camera: render scenes of textured planes with exact ground truth.
+
+Every later lesson needs images whose true camera is known. :func:`render` draws a
+scene made of flat textured rectangles (:class:`Plane`: checkerboards, photographs, a text
+page, the faces of boxes) through
+
+1. pinhole projection with intrinsics ``K`` and pose ``(R, t)`` (``X_cam = R X_world + t``),
+2. Brown-Conrady lens distortion ``dist = (k1, k2, p1, p2, k3)`` (:mod:`camlab.distortion`),
+3. optional defocus from the thin lens' circle of confusion (:mod:`camlab.lens`),
+4. the sensor: box-filtered (anti-aliased) pixels, shot and read noise, quantisation and
+   an optional Bayer mosaic (:mod:`camlab.sensor`),
+
+and returns the image with its :class:`GroundTruth`: K, dist, pose, image size, the exact
+pixel position of every named plane point (all checkerboard inner corners, in OpenCV's
+order) and a depth map.
+
+Conventions: pixels (u, v) = (column, row), origin at the centre of the top-left pixel,
+``img[v, u]``; camera frame x right, y down, z forward; metres. A plane's own frame has its
+x axis along texture columns, y along texture rows and z = x cross y; for a checkerboard
+its origin is the first inner corner, so ``board.object_points`` are the
+``(i * square, j * square, 0)`` points ``cv2.calibrateCamera`` expects.
+
+How it works (one pass per plane, all with cv2): the texture -> image map of a plane is
+the homography :math:`H = K [r_1\ r_2\ t] S` (S maps texels to plane metres); each plane is
+warped into an ideal (undistorted) canvas at ``supersample`` times the output resolution,
+composited far to near with its anti-aliased coverage, blurred by its circle of
+confusion (one disc per plane, at the depth of its centre), remapped through the inverse
+distortion (:func:`camlab.distortion.distort_map`) and box-filtered down to the sensor.
+Textures are pre-filtered (halved until a texel covers about one canvas pixel) so
+photographs do not alias. Ground-truth corners are computed analytically by projecting
+the points, never measured on the image.
+
+See lesson 02, section 4, and docs/conventions.md.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import lru_cache
+from typing import Iterable, NamedTuple, Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from . import distortion as _dist
+from . import lens as _lens
+from . import sensor as _sensor
+from ._validate import CamlabInputError, as_points, check_matrix, check_positive
+
+__all__ = [
+    "Defocus", "GroundTruth", "align_detected_corners", "Plane", "PlanePoints", "RenderResult", "Sensor", "box", "checkerboard",
+    "look_at", "photo_plane", "project", "render", "rotation_from_euler", "sample_photo", "text_page",
+    "textured_plane",
+]
+
+
+# ------------------------------------------------------------------------- poses
+
+def rotation_from_euler(rx: float = 0.0, ry: float = 0.0, rz: float = 0.0) -> np.ndarray:
+    r"""Rotation :math:`R = R_z(r_z) R_y(r_y) R_x(r_x)` (radians): x first, then y, then z.
+
+    >>> np.allclose(rotation_from_euler(0, 0, np.pi / 2) @ [1, 0, 0], [0, 1, 0])
+    True
+    """
+    cx, sx, cy, sy, cz, sz = np.cos(rx), np.sin(rx), np.cos(ry), np.sin(ry), np.cos(rz), np.sin(rz)
+    Rx = np.array([[1, 0, 0], [0, cx, -sx], [0, sx, cx]])
+    Ry = np.array([[cy, 0, sy], [0, 1, 0], [-sy, 0, cy]])
+    Rz = np.array([[cz, -sz, 0], [sz, cz, 0], [0, 0, 1]])
+    return Rz @ Ry @ Rx
+
+
+def look_at(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0.0, -1.0, 0.0)) -> tuple[np.ndarray, np.ndarray]:
+    r"""The camera pose ``(R, t)`` (cam_from_world) of a camera at ``eye`` looking at ``target``.
+
+    The camera's z axis points from eye to target, its y axis (image down) is as close as
+    possible to ``-up``. Returns ``R`` (3, 3) and ``t`` (3,) with ``X_cam = R X_world + t``.
+
+    >>> R, t = look_at([0, 0, -2], [0, 0, 0])
+    >>> np.allclose(R, np.eye(3)), np.allclose(t, [0, 0, 2])
+    (True, True)
+    """
+    eye = check_matrix(eye, (3,), "eye")
+    target = check_matrix(target, (3,), "target")
+    up = check_matrix(up, (3,), "up")
+    z = target - eye
+    if np.linalg.norm(z) == 0:
+        raise CamlabInputError("look_at: eye and target coincide; put the target somewhere in front of the camera")
+    z = z / np.linalg.norm(z)
+    x = np.cross(z, up)  # x = y cross z with y = -up
+    if np.linalg.norm(x) < 1e-9:
+        raise CamlabInputError("look_at: up is parallel to the viewing direction; choose another up vector")
+    x = x / np.linalg.norm(x)
+    y = np.cross(z, x)
+    R = np.stack([x, y, z])
+    return R, -R @ eye
+
+
+# ------------------------------------------------------------------------- scene
+
+@dataclass(frozen=True, eq=False)
+class Plane:
+    """A flat textured rectangle in the world.
+
+    Attributes
+    ----------
+    texture : (Ht, Wt) or (Ht, Wt, 3) float32 ndarray
+        Reflectance in [0, 1], grey or RGB; texel (c, r) covers the rectangle's cell in
+        column c, row r.
+    extent : (x0, y0, x1, y1)
+        The rectangle in the plane's own frame, metres; the texture spans it exactly.
+    R, t : (3, 3), (3,) ndarray
+        world_from_plane: ``X_world = R @ [x, y, 0] + t``.
+    points : (M, 2) ndarray
+        Named points of interest in plane coordinates (checkerboard inner corners); their
+        exact pixels are returned in the ground truth.
+    name : str
+        Key of this plane's points in ``GroundTruth.points``.
+    pattern_size : (cols, rows) or None
+        Inner-corner count of a checkerboard, in ``cv2.findChessboardCorners`` order.
+    """
+
+    texture: np.ndarray
+    extent: tuple[float, float, float, float]
+    R: np.ndarray
+    t: np.ndarray
+    points: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
+    name: str = "plane"
+    pattern_size: tuple[int, int] | None = None
+
+    @property
+    def object_points(self) -> np.ndarray:
+        """(M, 3) points in the plane frame with z = 0 (``cv2.calibrateCamera``'s objectPoints)."""
+        return np.column_stack([self.points, np.zeros(len(self.points))])
+
+    @property
+    def world_points(self) -> np.ndarray:
+        """(M, 3) named points in the world frame."""
+        return self.object_points @ self.R.T + self.t
+
+    @property
+    def corners_world(self) -> np.ndarray:
+        """(4, 3) world positions of the rectangle's corners (top-left, top-right, bottom-right, bottom-left)."""
+        x0, y0, x1, y1 = self.extent
+        c = np.array([[x0, y0, 0], [x1, y0, 0], [x1, y1, 0], [x0, y1, 0]], dtype=float)
+        return c @ self.R.T + self.t
+
+    @property
+    def is_color(self) -> bool:
+        return self.texture.ndim == 3
+
+
+def _pose(R, t, name: str) -> tuple[np.ndarray, np.ndarray]:
+    R = check_matrix(R, (3, 3), f"{name} R")
+    t = check_matrix(t, (3,), f"{name} t")
+    if not np.allclose(R @ R.T, np.eye(3), atol=1e-6) or np.linalg.det(R) < 0:
+        raise CamlabInputError(f"{name} R: expected a rotation matrix (R R^T = I, det R = +1), got {R.tolist()}")
+    return R, t
+
+
+def _as_texture(texture: ArrayLike) -> np.ndarray:
+    a = np.asarray(texture)
+    if a.ndim == 3 and a.shape[2] == 4:
+        a = a[..., :3]
+    if not (a.ndim == 2 or (a.ndim == 3 and a.shape[2] == 3)) or min(a.shape[:2]) < 1:
+        raise CamlabInputError(f"texture: expected an (H, W) or (H, W, 3) image, got shape {a.shape}")
+    if np.issubdtype(a.dtype, np.integer):
+        a = a / np.iinfo(a.dtype).max
+    elif not np.issubdtype(a.dtype, np.floating):
+        raise CamlabInputError(f"texture: expected a float or integer image, got dtype {a.dtype}")
+    a = np.ascontiguousarray(a, dtype=np.float32)
+    a.setflags(write=False)
+    return a
+
+
+def textured_plane(texture: ArrayLike, width: float, *, R: ArrayLike = np.eye(3), t: ArrayLike = (0, 0, 0),
+                   height: float | None = None, centered: bool = True, name: str = "plane") -> Plane:
+    """A rectangle ``width`` metres wide showing ``texture``; height from the texture's aspect by default.
+
+    ``centered``: the plane frame's origin is the rectangle's centre (else its top-left corner).
+    """
+    tex = _as_texture(texture)
+    w = check_positive(width, "width", "metres")
+    h = check_positive(height, "height", "metres") if height is not None else w * tex.shape[0] / tex.shape[1]
+    R, t = _pose(R, t, name)
+    extent = (-w / 2, -h / 2, w / 2, h / 2) if centered else (0.0, 0.0, w, h)
+    return Plane(tex, extent, R, t, name=name)
+
+
+def checkerboard(pattern_size: tuple[int, int] = (9, 6), square: float = 0.025, *, R: ArrayLike = np.eye(3),
+                 t: ArrayLike = (0, 0, 0), margin: float = 1.0, px_per_square: int = 48,
+                 colors: tuple[float, float] = (0.05, 0.95), name: str = "board") -> Plane:
+    """A checkerboard with ``pattern_size = (cols, rows)`` inner corners and ``square`` metres per square.
+
+    It has ``cols + 1`` by ``rows + 1`` squares (the top-left one dark) inside a light
+    border ``margin`` squares wide (the quiet zone detectors need). The plane's origin is
+    the first inner corner; ``points`` are the inner corners row by row, ``(i * square,
+    j * square)`` for ``j`` in rows, ``i`` in cols: the order and the object points of
+    ``cv2.findChessboardCorners(img, pattern_size)`` for an upright board.
+
+    >>> b = checkerboard((4, 3), 0.03)
+    >>> b.points.shape, b.points[1], b.texture.shape
+    ((12, 2), array([0.03, 0.  ]), (288, 336))
+    """
+    try:
+        cols, rows = (int(v) for v in pattern_size)
+    except (TypeError, ValueError):
+        raise CamlabInputError(f"pattern_size: expected (cols, rows) inner corners, got {pattern_size!r}") from None
+    if cols < 2 or rows < 2:
+        raise CamlabInputError(f"pattern_size: expected at least (2, 2) inner corners, got {pattern_size!r}")
+    s = check_positive(square, "square", "metres")
+    if not margin >= 0:
+        raise CamlabInputError(f"margin: expected >= 0 squares, got {margin!r}")
+    R, t = _pose(R, t, name)
+    n = int(px_per_square)
+    m = int(round(margin * n))
+    dark, light = colors
+    sq = (np.add.outer(np.arange(rows + 1), np.arange(cols + 1)) % 2).astype(np.float32)  # 0 = dark at (0, 0)
+    board = np.where(sq == 0, dark, light).astype(np.float32)
+    tex = np.full(((rows + 1) * n + 2 * m, (cols + 1) * n + 2 * m), light, dtype=np.float32)
+    tex[m:m + (rows + 1) * n, m:m + (cols + 1) * n] = np.kron(board, np.ones((n, n), dtype=np.float32))
+    tex.setflags(write=False)
+    off = s + m * s / n  # first inner corner, measured from the texture's top-left edge
+    extent = (-off, -off, tex.shape[1] * s / n - off, tex.shape[0] * s / n - off)
+    jj, ii = np.mgrid[0:rows, 0:cols]
+    pts = np.column_stack([ii.ravel() * s, jj.ravel() * s])
+    return Plane(tex, extent, R, t, pts, name, (cols, rows))
+
+
+@lru_cache(maxsize=4)
+def _photo(kind: str) -> np.ndarray:
+    import matplotlib.image as mpimg
+    from matplotlib import cbook
+
+    name = {"grace_hopper": "grace_hopper.jpg", "coffee": "Minduka_Present_Blue_Pack.png"}.get(kind, kind)
+    with cbook.get_sample_data(name) as f:
+        img = mpimg.imread(f, format=name.rsplit(".", 1)[-1])
+    return _as_texture(img)
+
+
+def sample_photo(kind: str = "grace_hopper") -> np.ndarray:
+    """A photograph bundled with matplotlib (no network), as a float32 (H, W, 3) texture in [0, 1]."""
+    if kind not in ("grace_hopper",):
+        raise CamlabInputError(f"kind: expected 'grace_hopper', got {kind!r}")
+    return _photo(kind)
+
+
+def photo_plane(width: float = 0.4, *, R: ArrayLike = np.eye(3), t: ArrayLike = (0, 0, 0), name: str = "photo") -> Plane:
+    """A centred rectangle showing matplotlib's bundled Grace Hopper photograph."""
+    return textured_plane(sample_photo(), width, R=R, t=t, name=name)
+
+
+@lru_cache(maxsize=4)
+def _text_texture(width_px: int, seed: int) -> np.ndarray:
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    rng = np.random.default_rng(seed)
+    words = ("camera lens pixel sensor light ray focus image plane point line matrix projective "
+             "geometry calibration homography epipolar depth field aperture distortion").split()
+    h_px = int(width_px * 1.414)
+    fig = Figure(figsize=(width_px / 100, h_px / 100), dpi=100)
+    FigureCanvasAgg(fig)
+    fig.text(0.08, 0.94, "Chapter 1. Image formation", fontsize=width_px / 28, weight="bold", va="top")
+    for i in range(34):
+        line = " ".join(rng.choice(words, size=7))
+        fig.text(0.08, 0.88 - i * 0.024, line.capitalize() + ".", fontsize=width_px / 50, va="top")
+    fig.canvas.draw()
+    rgba = np.asarray(fig.canvas.buffer_rgba())
+    grey = rgba[..., :3].mean(axis=2) / 255.0
+    return _as_texture(grey)
+
+
+def text_page(width: float = 0.21, *, R: ArrayLike = np.eye(3), t: ArrayLike = (0, 0, 0), seed: int = 0,
+              name: str = "page") -> Plane:
+    """A printed page (A4 proportions) of deterministic pseudo-text, rendered with matplotlib's Agg."""
+    return textured_plane(_text_texture(600, int(seed)), width, R=R, t=t, name=name)
+
+
+def box(center: ArrayLike, size: ArrayLike, *, R: ArrayLike = np.eye(3), colors: Sequence[float] | None = None,
+        texture: str = "noise", texels: int = 64, rng: np.random.Generator | int | None = 0,
+        name: str = "box") -> list[Plane]:
+    """The six faces of a box, as planes with outward normals (z = x cross y points out).
+
+    Parameters
+    ----------
+    center : (3,) world position, metres.
+    size : (3,) edge lengths along the box's own x, y, z axes, metres.
+    R : (3, 3) world_from_box rotation.
+    colors : six greys in [0, 1] (faces +x, -x, +y, -y, +z, -z); distinct shades by default.
+    texture : "noise" (random texture on each face: good for stereo matching) or "flat".
+    rng : seed or Generator for the noise texture (deterministic by default).
+
+    Faces get names ``f"{name}+x"`` ... and their 4 corners as named points.
+    """
+    c = check_matrix(center, (3,), "center")
+    sz = check_matrix(size, (3,), "size")
+    if np.any(sz <= 0):
+        raise CamlabInputError(f"size: expected three positive edge lengths in metres, got {sz.tolist()}")
+    Rb, _ = _pose(R, np.zeros(3), name)
+    if texture not in ("noise", "flat"):
+        raise CamlabInputError(f"texture: expected 'noise' or 'flat', got {texture!r}")
+    shades = list(colors) if colors is not None else [0.75, 0.45, 0.6, 0.3, 0.85, 0.55]
+    rng = np.random.default_rng(rng)
+    half = sz / 2
+    faces = []
+    # (outward axis index, sign, in-face x axis, in-face y axis)
+    spec = [(0, 1, 2, 1), (0, -1, 2, 1), (1, 1, 0, 2), (1, -1, 0, 2), (2, 1, 0, 1), (2, -1, 0, 1)]
+    for k, (ax, sign, ix, iy) in enumerate(spec):
+        n = np.zeros(3)
+        n[ax] = sign
+        ex = np.zeros(3)
+        ex[ix] = 1.0
+        ey = np.zeros(3)
+        ey[iy] = 1.0
+        if np.dot(np.cross(ex, ey), n) < 0:
+            ex = -ex
+        Rf = Rb @ np.column_stack([ex, ey, n])
+        tf = c + Rb @ (n * half[ax])
+        w, h = 2 * half[ix], 2 * half[iy]
+        th = max(2, int(round(texels * h / max(w, h))))
+        tw = max(2, int(round(texels * w / max(w, h))))
+        base = np.full((th, tw), shades[k % len(shades)], dtype=np.float32)
+        if texture == "noise":
+            base = np.clip(base + rng.normal(0, 0.12, size=(th, tw)).astype(np.float32), 0, 1)
+        label = f"{name}{'+' if sign > 0 else '-'}{'xyz'[ax]}"
+        pts = np.array([[-w / 2, -h / 2], [w / 2, -h / 2], [w / 2, h / 2], [-w / 2, h / 2]])
+        faces.append(Plane(_as_texture(base), (-w / 2, -h / 2, w / 2, h / 2), Rf, tf, pts, label))
+    return faces
+
+
+# ------------------------------------------------------------------------- camera model parts
+
+@dataclass(frozen=True)
+class Defocus:
+    """Thin-lens defocus: blur each plane by its circle of confusion.
+
+    ``focal_length`` (metres) defaults to ``fx * pixel_pitch``; ``pixel_pitch`` converts the
+    blur diameter from metres on the sensor to pixels.
+    """
+
+    f_number: float = 2.8
+    focus_distance: float = 1.0
+    pixel_pitch: float = 5e-6
+    focal_length: float | None = None
+
+
+@dataclass(frozen=True)
+class Sensor:
+    """The sensor stage: bit depth, noise (None = noise-free) and an optional Bayer pattern."""
+
+    bits: int = 8
+    noise: _sensor.NoiseModel | None = None
+    bayer: str | None = None
+
+
+class PlanePoints(NamedTuple):
+    """Ground truth for one plane's named points (M of them)."""
+
+    object_points: np.ndarray  # (M, 3) in the plane frame, z = 0 (metres)
+    world: np.ndarray          # (M, 3) world frame (metres)
+    pixels: np.ndarray         # (M, 2) exact distorted pixel positions (u, v)
+    visible: np.ndarray        # (M,) bool: in front of the camera, inside the image and not occluded
+    pattern_size: tuple[int, int] | None
+
+
+@dataclass(frozen=True)
+class GroundTruth:
+    """Everything true about a render.
+
+    ``K`` (3, 3), ``dist`` (5,) (k1, k2, p1, p2, k3), ``R`` (3, 3) and ``t`` (3,) with
+    ``X_cam = R X_world + t``, ``size = (width, height)``, ``points`` maps each plane name to
+    its :class:`PlanePoints`, ``depth`` is the (H, W) z_cam of the surface seen by each
+    pixel centre (inf where only background is seen).
+    """
+
+    K: np.ndarray
+    dist: np.ndarray
+    R: np.ndarray
+    t: np.ndarray
+    size: tuple[int, int]
+    points: dict[str, PlanePoints]
+    depth: np.ndarray | None
+
+    @property
+    def camera_center(self) -> np.ndarray:
+        """The camera's position in the world, ``-R^T t``."""
+        return -self.R.T @ self.t
+
+    @property
+    def P(self) -> np.ndarray:
+        """The (3, 4) projection matrix ``K [R | t]`` (ignores distortion)."""
+        return self.K @ np.column_stack([self.R, self.t])
+
+    def corners(self, name: str | None = None) -> np.ndarray:
+        """The (M, 2) pixel positions of a plane's points; default: the only checkerboard in the scene."""
+        if name is None:
+            boards = [k for k, v in self.points.items() if v.pattern_size is not None]
+            if len(boards) != 1:
+                raise CamlabInputError(f"corners: name the plane, the scene has checkerboards {boards}")
+            name = boards[0]
+        return self.points[name].pixels
+
+
+class RenderResult(NamedTuple):
+    """``image``: uint8 (bits <= 8) or uint16, (H, W) grey, (H, W, 3) RGB or (H, W) Bayer mosaic;
+    ``irradiance``: the float32 image in [0, 1] before noise and quantisation (RGB before any
+    mosaic); ``truth``: :class:`GroundTruth`."""
+
+    image: np.ndarray
+    irradiance: np.ndarray
+    truth: GroundTruth
+
+
+# ------------------------------------------------------------------------- projection
+
+def project(points_world: ArrayLike, K: ArrayLike, R: ArrayLike = np.eye(3), t: ArrayLike = (0, 0, 0),
+            dist: ArrayLike | None = None) -> np.ndarray:
+    r"""Project world points to distorted pixels: the renderer's ground-truth projection.
+
+    :math:`X_c = R X + t`, :math:`x = (X_c/Z_c, Y_c/Z_c)`, :math:`x_d = \mathrm{distort}(x)`,
+    :math:`u = K [x_d, 1]`. Agrees with ``cv2.projectPoints`` (to 1e-9 px).
+
+    Returns
+    -------
+    (N, 2) or (2,) ndarray
+        Pixels (u, v); NaN for points with Z_c <= 0.
+    """
+    pts = as_points(points_world, 3, "points_world")
+    K = _dist._check_K(K)
+    R, t = _pose(R, t, "camera")
+    Xc = pts.array @ R.T + t
+    with np.errstate(divide="ignore", invalid="ignore"):
+        xy = Xc[:, :2] / Xc[:, 2:3]
+    xy[Xc[:, 2] <= 0] = np.nan
+    xd = _dist._distort(xy, _dist.as_dist(dist))
+    return pts.restore(_dist._to_pixels(xd, K))
+
+
+def align_detected_corners(detected: ArrayLike, truth_pixels: ArrayLike) -> np.ndarray:
+    """Reorder detector output to match the ground truth's corner order.
+
+    ``cv2.findChessboardCorners[SB]`` may return a board's corners in reverse order (it
+    cannot always tell a board from its 180-degree rotation). Accepts OpenCV 4's
+    (N, 1, 2) or OpenCV 5's (N, 2) corners; returns (N, 2), reversed if that matches
+    ``truth_pixels`` better.
+    """
+    det = np.asarray(detected, dtype=float).reshape(-1, 2)
+    gt = as_points(truth_pixels, 2, "truth_pixels").array
+    if det.shape != gt.shape:
+        raise CamlabInputError(f"detected: expected {gt.shape[0]} corners like truth_pixels, got {det.shape[0]}")
+    if np.sum((det[::-1] - gt) ** 2) < np.sum((det - gt) ** 2):
+        det = det[::-1]
+    return det.copy()
+
+
+# ------------------------------------------------------------------------- rendering
+
+_MIP_CACHE: dict = {}
+
+
+def _texture_level(tex: np.ndarray, level: int) -> np.ndarray:
+    """``tex`` halved ``level`` times with area averaging, cached while ``tex`` is alive."""
+    import weakref
+
+    import cv2
+
+    entry = _MIP_CACHE.get(id(tex))
+    if entry is None or entry[0]() is not tex:
+        entry = (weakref.ref(tex), [tex])
+        _MIP_CACHE[id(tex)] = entry
+        weakref.finalize(tex, _MIP_CACHE.pop, id(tex), None)
+    levels = entry[1]
+    while len(levels) <= level:
+        a = levels[-1]
+        levels.append(cv2.resize(a, (max(1, a.shape[1] // 2), max(1, a.shape[0] // 2)), interpolation=cv2.INTER_AREA))
+    return levels[level]
+
+
+def _disk_kernel(diameter: float) -> np.ndarray:
+    r = diameter / 2
+    n = int(np.ceil(r)) + 1
+    y, x = np.mgrid[-n:n + 1, -n:n + 1]
+    # 4x4 supersampled coverage of each kernel cell by the disc: soft, unbiased edges
+    s = (np.arange(4) + 0.5) / 4 - 0.5
+    cov = np.zeros(x.shape)
+    for dy in s:
+        for dx in s:
+            cov += ((x + dx) ** 2 + (y + dy) ** 2) <= r * r
+    if cov.sum() == 0:
+        cov[n, n] = 1
+    return (cov / cov.sum()).astype(np.float32)
+
+
+def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size: tuple[int, int] = (640, 480), *,
+           R: ArrayLike = np.eye(3), t: ArrayLike = (0, 0, 0), dist: ArrayLike | None = None,
+           defocus: Defocus | None = None, blur: float = 0.0, sensor: Sensor = Sensor(),
+           background: float | tuple[float, float, float] = 0.5, supersample: int = 2,
+           color: bool | None = None, depth: bool = False,
+           rng: np.random.Generator | int | None = None) -> RenderResult:
+    r"""Render ``scene`` with camera ``K``, pose ``(R, t)`` and lens distortion ``dist``.
+
+    Parameters
+    ----------
+    scene : Plane or iterable of Planes (nested lists, e.g. from :func:`box`, are flattened)
+    K : (3, 3) array_like
+        Intrinsics, pixels.
+    size : (width, height)
+        Image size in pixels.
+    R, t : (3, 3), (3,) array_like
+        cam_from_world pose: ``X_cam = R X_world + t``.
+    dist : (5,) array_like or None
+        ``(k1, k2, p1, p2, k3)``; the whole image must lie inside the model's valid radius.
+    defocus : Defocus or None
+        Thin-lens blur per plane (its circle of confusion at the depth of its centre).
+    blur : float
+        Extra disc blur over the whole image, diameter in pixels (e.g. a pinhole's blur).
+    sensor : Sensor
+        Bit depth, noise and Bayer pattern. The default is a noise-free 8-bit grey sensor.
+    background : float or RGB
+        Irradiance where no plane is seen.
+    supersample : int
+        Canvas resolution factor (anti-aliasing by box filtering ``supersample**2`` samples).
+    color : bool or None
+        Render RGB; default: True if any texture is RGB or a Bayer pattern is set.
+    depth : bool
+        Compute ``truth.depth`` (about 10 ms per plane at 640x480); otherwise it is None.
+    rng : Generator, int seed or None
+        Randomness for noise only; the same seed gives the same bytes.
+
+    Returns
+    -------
+    RenderResult
+        ``(image, irradiance, truth)``; see :class:`GroundTruth`.
+
+    Raises
+    ------
+    CamlabInputError
+        A plane reaches behind the camera (z_cam <= 1 mm), bad K/pose/size, bad sensor settings.
+
+    Where the distortion model folds over inside the image (strong barrel distortion at
+    the corners, beyond :func:`camlab.distortion.max_valid_radius`) no ideal ray maps to the
+    pixel and it shows the background.
+
+    Examples
+    --------
+    >>> K = [[800, 0, 319.5], [0, 800, 239.5], [0, 0, 1]]
+    >>> board = checkerboard((9, 6), 0.025, t=(-0.1, -0.0625, 0.6))
+    >>> out = render(board, K)
+    >>> out.image.shape, out.image.dtype, out.truth.corners().shape
+    ((480, 640), dtype('uint8'), (54, 2))
+    """
+    import cv2
+
+    planes = _flatten(scene)
+    K = _dist._check_K(K)
+    w, h = _dist._check_size(size)
+    R, t = _pose(R, t, "camera")
+    d = _dist.as_dist(dist)
+    ss = int(supersample)
+    if ss < 1 or ss > 8:
+        raise CamlabInputError(f"supersample: expected an integer from 1 to 8, got {supersample!r}")
+    if not isinstance(sensor, Sensor):
+        raise CamlabInputError(f"sensor: expected a camlab.render.Sensor, got {type(sensor).__name__}")
+    _sensor._check_bits(sensor.bits)
+    if sensor.bayer is not None:
+        _sensor._check_pattern(sensor.bayer)
+    if not blur >= 0:
+        raise CamlabInputError(f"blur: expected a diameter >= 0 pixels, got {blur!r}")
+    if color is None:
+        color = sensor.bayer is not None or any(p.is_color for p in planes)
+    nch = 3 if color else 1
+    bg = np.broadcast_to(np.asarray(background, dtype=np.float32).ravel(), (3,)) if np.ndim(background) else \
+        np.full(3, float(background), dtype=np.float32)
+    if not color:
+        bg = bg[:1] if np.ndim(background) == 0 else np.array([bg.mean()], dtype=np.float32)
+
+    # camera-frame geometry of each plane; refuse planes reaching behind the camera
+    geo = []
+    for p in planes:
+        Rc = R @ p.R
+        tc = R @ p.t + t
+        zc = (p.corners_world @ R.T + t)[:, 2]
+        if zc.max() <= 1e-3:
+            continue  # entirely behind the camera: invisible
+        if zc.min() <= 1e-3:
+            raise CamlabInputError(
+                f"scene: plane {p.name!r} reaches behind the camera (corner depths {np.round(zc, 3).tolist()} m); "
+                f"move it in front (all z_cam > 0) or out of the scene"
+            )
+        geo.append((p, Rc, tc, float(np.mean(zc))))
+
+    # the ideal (undistorted) canvas: supersampled, and large enough for what distortion pulls in
+    Ks = np.array([[ss, 0, (ss - 1) / 2], [0, ss, (ss - 1) / 2], [0, 0, 1]]) @ K  # output px -> ss px
+    if d.any():
+        border = np.concatenate([
+            np.column_stack([np.linspace(-0.5, w - 0.5, 64), np.full(64, -0.5)]),
+            np.column_stack([np.linspace(-0.5, w - 0.5, 64), np.full(64, h - 0.5)]),
+            np.column_stack([np.full(64, -0.5), np.linspace(-0.5, h - 0.5, 64)]),
+            np.column_stack([np.full(64, w - 0.5), np.linspace(-0.5, h - 0.5, 64)]),
+        ])
+        x, res = _dist._newton_undistort(_dist._normalise(border, K), d)
+        ideal = _dist._to_pixels(x[res <= 1e-9], K)  # pixels beyond the model's fold see background
+        if len(ideal) == 0:
+            ideal = np.array([[-0.5, -0.5], [w - 0.5, h - 0.5]])
+        lo = np.minimum(ideal.min(axis=0), [-0.5, -0.5]) - 2
+        hi = np.maximum(ideal.max(axis=0), [w - 0.5, h - 0.5]) + 2
+        lo = np.maximum(lo, [-1.5 * w, -1.5 * h])  # cap the canvas at 4x the image in each direction
+        hi = np.minimum(hi, [2.5 * w, 2.5 * h])
+        off = np.floor(-lo * ss)
+        Kc = Ks.copy()
+        Kc[:2, 2] += off
+        cw, ch = int(np.ceil((hi[0] - lo[0]) * ss)) + 1, int(np.ceil((hi[1] - lo[1]) * ss)) + 1
+    else:
+        Kc, cw, ch = Ks, w * ss, h * ss
+
+    canvas = np.empty((ch, cw, nch), dtype=np.float32)
+    canvas[:] = bg
+    for p, Rc, tc, zmid in sorted(geo, key=lambda g: -g[3]):  # painter's algorithm, far to near
+        x0, y0, x1, y1 = p.extent
+        # coarsest texture level whose texel still covers >= 1 canvas pixel at the plane's nearest point
+        Hplane = Kc @ np.column_stack([Rc[:, 0], Rc[:, 1], tc])  # plane metres -> canvas px
+        mpp = _metres_per_canvas_px(Hplane, p.extent)
+        level = 0
+        while level < 8 and (x1 - x0) / (p.texture.shape[1] >> (level + 1) or 1) < mpp \
+                and (p.texture.shape[1] >> (level + 1)) >= 2 and (p.texture.shape[0] >> (level + 1)) >= 2:
+            level += 1
+        tex = _texture_level(p.texture, level)
+        th, tw = tex.shape[:2]
+        S = np.array([[(x1 - x0) / tw, 0, x0 + 0.5 * (x1 - x0) / tw],
+                      [0, (y1 - y0) / th, y0 + 0.5 * (y1 - y0) / th], [0, 0, 1]])
+        H = Hplane @ S  # texel (c, r) -> canvas px
+        if p.is_color and not color:
+            tex = np.ascontiguousarray(tex @ np.array([0.299, 0.587, 0.114], dtype=np.float32))
+        elif color and not p.is_color:
+            tex = np.repeat(tex[..., None], 3, axis=2)
+        quad = cv2.perspectiveTransform(np.array([[[-0.5, -0.5], [tw - 0.5, -0.5], [tw - 0.5, th - 0.5],
+                                                   [-0.5, th - 0.5]]], dtype=np.float64), H)[0]
+        # work only inside the plane's bounding box (plus room for its blur)
+        c_px = _coc_pixels(defocus, K, zmid) * ss if defocus is not None else 0.0
+        pad = int(np.ceil(c_px / 2)) + 2
+        bx0, by0 = np.maximum(np.floor(quad.min(axis=0)).astype(int) - pad, 0)
+        bx1, by1 = np.minimum(np.ceil(quad.max(axis=0)).astype(int) + pad + 1, [cw, ch])
+        if bx1 <= bx0 or by1 <= by0:
+            continue
+        T = np.array([[1.0, 0, -bx0], [0, 1.0, -by0], [0, 0, 1]])
+        layer = cv2.warpPerspective(tex, T @ H, (int(bx1 - bx0), int(by1 - by0)), flags=cv2.INTER_LINEAR,
+                                    borderMode=cv2.BORDER_REPLICATE)
+        if layer.ndim == 2:
+            layer = layer[..., None]
+        # coverage: the warped rectangle, anti-aliased (LINE_AA edges, then the supersampling)
+        alpha = np.zeros(layer.shape[:2], dtype=np.float32)
+        cv2.fillConvexPoly(alpha, np.round((quad - [bx0, by0]) * 16).astype(np.int32), 1.0,
+                           lineType=cv2.LINE_AA, shift=4)
+        if c_px > 1.0:
+            kern = _disk_kernel(c_px)
+            layer = cv2.filter2D(layer * alpha[..., None], -1, kern, borderType=cv2.BORDER_CONSTANT)
+            alpha = cv2.filter2D(alpha, -1, kern, borderType=cv2.BORDER_CONSTANT)
+            if layer.ndim == 2:
+                layer = layer[..., None]
+            layer = layer / np.maximum(alpha, 1e-6)[..., None]
+        roi = canvas[by0:by1, bx0:bx1]
+        roi += alpha[..., None] * (layer - roi)
+
+    if blur > 1.0 / ss:
+        canvas = cv2.filter2D(canvas, -1, _disk_kernel(blur * ss), borderType=cv2.BORDER_REFLECT)
+        if canvas.ndim == 2:
+            canvas = canvas[..., None]
+    if d.any():
+        maps = _dist.distort_map(Ks, d, (w * ss, h * ss), new_K=Kc, step=4)
+        canvas = cv2.remap(canvas, maps.map_u, maps.map_v, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT,
+                           borderValue=tuple(float(v) for v in bg) + (0,) * (4 - len(bg)))
+        if canvas.ndim == 2:
+            canvas = canvas[..., None]
+    img = cv2.resize(canvas, (w, h), interpolation=cv2.INTER_AREA) if ss > 1 else canvas
+    if img.ndim == 3 and img.shape[2] == 1:
+        img = img[..., 0]
+    irradiance = np.clip(img, 0.0, 1.0).astype(np.float32)
+
+    signal = irradiance
+    if sensor.bayer is not None:
+        signal = _sensor.mosaic(irradiance, sensor.bayer)
+    if sensor.noise is not None:
+        signal = _sensor.add_noise(signal, sensor.noise, rng)
+    image = _sensor.quantize(signal, sensor.bits)
+
+    truth = GroundTruth(K=K, dist=d, R=R, t=t, size=(w, h), points={},
+                        depth=_depth_map(geo, K, d, w, h) if depth else None)
+    for p, _, _, _ in geo:
+        if len(p.points):
+            wp = p.world_points
+            px = project(wp, K, R, t, d)
+            zc = (wp @ R.T + t)[:, 2]
+            inside = (zc > 0) & (px[:, 0] >= -0.5) & (px[:, 0] <= w - 0.5) & (px[:, 1] >= -0.5) & (px[:, 1] <= h - 0.5)
+            vis = inside.copy()
+            if inside.any():  # occluded if another plane meets the point's ray in front of it
+                Xc = wp[inside] @ R.T + t
+                vis[inside] = _nearest_hit(Xc / Xc[:, 2:3], geo) >= Xc[:, 2] * (1 - 1e-6)
+            truth.points[p.name] = PlanePoints(p.object_points, wp, px, vis, p.pattern_size)
+    for p in planes:  # planes entirely behind the camera still get an entry
+        if len(p.points) and p.name not in truth.points:
+            wp = p.world_points
+            truth.points[p.name] = PlanePoints(p.object_points, wp, np.full((len(wp), 2), np.nan),
+                                               np.zeros(len(wp), bool), p.pattern_size)
+    return RenderResult(image, irradiance, truth)
+
+
+def _flatten(scene) -> list[Plane]:
+    if isinstance(scene, Plane):
+        return [scene]
+    out: list[Plane] = []
+    try:
+        items = list(scene)
+    except TypeError:
+        raise CamlabInputError(f"scene: expected a Plane or a list of Planes, got {type(scene).__name__}") from None
+    for item in items:
+        out += _flatten(item)
+    if not out:
+        raise CamlabInputError("scene: expected at least one Plane, got an empty scene")
+    return out
+
+
+def _metres_per_canvas_px(Hplane: np.ndarray, extent) -> float:
+    """Smallest plane-metres-per-canvas-pixel over the rectangle's corners (its closest part)."""
+    x0, y0, x1, y1 = extent
+    best = np.inf
+    for x, y in ((x0, y0), (x1, y0), (x1, y1), (x0, y1), ((x0 + x1) / 2, (y0 + y1) / 2)):
+        q = Hplane @ [x, y, 1.0]
+        J = (Hplane[:2, :2] * q[2] - np.outer(q[:2], Hplane[2, :2])) / q[2] ** 2  # d canvas / d plane
+        s = np.sqrt(abs(np.linalg.det(J)))
+        if s > 0:
+            best = min(best, 1.0 / s)
+    return best
+
+
+def _coc_pixels(defocus: Defocus, K: np.ndarray, depth: float) -> float:
+    pitch = check_positive(defocus.pixel_pitch, "pixel_pitch", "metres")
+    f = defocus.focal_length if defocus.focal_length is not None else K[0, 0] * pitch
+    return float(_lens.circle_of_confusion(f, defocus.f_number, defocus.focus_distance, depth)) / pitch
+
+
+def _nearest_hit(rays: np.ndarray, geo) -> np.ndarray:
+    """Depth z_cam where each ray ``(x, y, 1)`` first meets a plane of the scene (inf: none)."""
+    depth = np.full(len(rays), np.inf)
+    for p, Rc, tc, _ in geo:
+        n = Rc[:, 2]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            z = (n @ tc) / (rays @ n)  # the plane n . X = n . tc meets the ray z * (x, y, 1) here
+            loc = (rays * z[:, None] - tc) @ Rc[:, :2]  # hit point in plane coordinates
+        x0, y0, x1, y1 = p.extent
+        hit = (z > 0) & (loc[:, 0] >= x0) & (loc[:, 0] <= x1) & (loc[:, 1] >= y0) & (loc[:, 1] <= y1)
+        depth = np.where(hit & (z < depth), z, depth)
+    return depth
+
+
+def _depth_map(geo, K, d, w, h) -> np.ndarray:
+    """z_cam of the nearest plane through each pixel centre (inf for background)."""
+    if d.any():
+        maps = _dist.distort_map(K, d, (w, h), step=4)
+        ideal = np.stack([maps.map_u.ravel(), maps.map_v.ravel()], axis=1).astype(float)
+    else:
+        u, v = np.meshgrid(np.arange(w, dtype=float), np.arange(h, dtype=float))
+        ideal = np.stack([u.ravel(), v.ravel()], axis=1)
+    xy = _dist._normalise(ideal, K)
+    return _nearest_hit(np.column_stack([xy, np.ones(len(xy))]), geo).reshape(h, w)

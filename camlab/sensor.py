@@ -1,0 +1,285 @@
+r"""The digital sensor: metric image plane to pixels, sampling, quantisation, noise, Bayer.
+
+Pixels (u, v) = (column, row) with the origin at the centre of the top-left pixel; images
+are indexed ``img[v, u]``. A point :math:`(x, y)` on the image plane (metres, origin on
+the optical axis, y down) lands at
+
+.. math:: u = x / s_x + c_x, \qquad v = y / s_y + c_y
+
+for pixel pitch :math:`(s_x, s_y)` and principal point :math:`(c_x, c_y)` in pixels, so a
+lens of focal length :math:`f` gives :math:`f_x = f / s_x,\ f_y = f / s_y`.
+
+Images handled here are float arrays in [0, 1] (irradiance relative to saturation) or
+integer digital numbers after :func:`quantize`. See lesson 03.
+"""
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ._validate import CamlabInputError, as_points, check_positive
+
+__all__ = [
+    "BAYER_PATTERNS", "NoiseModel", "add_noise", "bayer_masks", "demosaic_bilinear", "demosaic_opencv",
+    "dequantize", "intrinsics_from_sensor", "metric_to_pixels", "mosaic", "pixels_to_metric", "psnr",
+    "quantize", "sample", "zone_plate",
+]
+
+BAYER_PATTERNS = ("RGGB", "BGGR", "GRBG", "GBRG")
+
+
+def metric_to_pixels(points: ArrayLike, pitch: tuple[float, float], principal_point: tuple[float, float]) -> np.ndarray:
+    """Image-plane points (x, y) in metres to pixel coordinates (u, v) (see the module docstring).
+
+    >>> metric_to_pixels([1e-3, -0.5e-3], (5e-6, 5e-6), (319.5, 239.5))
+    array([519.5, 139.5])
+    """
+    pts = as_points(points, 2, "points")
+    sx = check_positive(pitch[0], "pitch[0]", "metres")
+    sy = check_positive(pitch[1], "pitch[1]", "metres")
+    uv = pts.array / [sx, sy] + np.asarray(principal_point, dtype=float)
+    return pts.restore(uv)
+
+
+def pixels_to_metric(pixels: ArrayLike, pitch: tuple[float, float], principal_point: tuple[float, float]) -> np.ndarray:
+    """Inverse of :func:`metric_to_pixels`: pixels (u, v) to image-plane metres (x, y)."""
+    pts = as_points(pixels, 2, "pixels")
+    sx = check_positive(pitch[0], "pitch[0]", "metres")
+    sy = check_positive(pitch[1], "pitch[1]", "metres")
+    return pts.restore((pts.array - np.asarray(principal_point, dtype=float)) * [sx, sy])
+
+
+def intrinsics_from_sensor(focal_length: float, pitch: tuple[float, float], size: tuple[int, int],
+                           principal_offset: tuple[float, float] = (0.0, 0.0)) -> np.ndarray:
+    r"""The intrinsic matrix K of a lens on a sensor.
+
+    :math:`f_x = f / s_x`, :math:`f_y = f / s_y`; the principal point is the image centre
+    :math:`((W - 1)/2, (H - 1)/2)` (pixel-centre origin) plus ``principal_offset`` pixels.
+
+    >>> intrinsics_from_sensor(4e-3, (5e-6, 5e-6), (640, 480))
+    array([[800. ,   0. , 319.5],
+           [  0. , 800. , 239.5],
+           [  0. ,   0. ,   1. ]])
+    """
+    f = check_positive(focal_length, "focal_length", "metres")
+    sx = check_positive(pitch[0], "pitch[0]", "metres")
+    sy = check_positive(pitch[1], "pitch[1]", "metres")
+    w, h = size
+    return np.array([[f / sx, 0.0, (w - 1) / 2 + principal_offset[0]],
+                     [0.0, f / sy, (h - 1) / 2 + principal_offset[1]],
+                     [0.0, 0.0, 1.0]])
+
+
+def _check_image(image: ArrayLike, name: str = "image", *, channels: tuple[int, ...] = (1, 3)) -> np.ndarray:
+    a = np.asarray(image)
+    ok_shape = (a.ndim == 2 and 1 in channels) or (a.ndim == 3 and a.shape[2] in channels)
+    if not ok_shape or a.size == 0:
+        want = " or ".join(["(H, W)"] * (1 in channels) + [f"(H, W, {c})" for c in channels if c != 1])
+        raise CamlabInputError(f"{name}: expected an image of shape {want}, got shape {a.shape}")
+    if not (np.issubdtype(a.dtype, np.floating) or np.issubdtype(a.dtype, np.integer)):
+        raise CamlabInputError(f"{name}: expected a float or integer image, got dtype {a.dtype}")
+    return a
+
+
+def _check_bits(bits: int) -> int:
+    if not isinstance(bits, (int, np.integer)) or not 1 <= bits <= 16:
+        raise CamlabInputError(f"bits: expected an integer bit depth from 1 to 16, got {bits!r}")
+    return int(bits)
+
+
+def quantize(image: ArrayLike, bits: int = 8) -> np.ndarray:
+    r"""Quantise a float image in [0, 1] to ``bits``-bit digital numbers (round to nearest, clip).
+
+    :math:`DN = \mathrm{round}(I (2^b - 1))`; uint8 for ``bits <= 8``, else uint16.
+
+    >>> quantize(np.array([0.0, 0.5, 1.0, 1.2]), 2)
+    array([0, 2, 3, 3], dtype=uint8)
+    """
+    b = _check_bits(bits)
+    a = np.asarray(image)
+    if not np.issubdtype(a.dtype, np.floating):
+        raise CamlabInputError(f"image: expected a float image with values in [0, 1], got dtype {a.dtype}")
+    levels = (1 << b) - 1
+    dn = np.clip(np.rint(a * levels), 0, levels)
+    return dn.astype(np.uint8 if b <= 8 else np.uint16)
+
+
+def dequantize(dn: ArrayLike, bits: int = 8) -> np.ndarray:
+    """Digital numbers back to float [0, 1]: ``dn / (2**bits - 1)``."""
+    b = _check_bits(bits)
+    a = np.asarray(dn)
+    if not np.issubdtype(a.dtype, np.integer):
+        raise CamlabInputError(f"dn: expected integer digital numbers, got dtype {a.dtype}")
+    return a.astype(float) / ((1 << b) - 1)
+
+
+class NoiseModel(NamedTuple):
+    """Sensor noise: ``full_well`` electrons at saturation (shot noise) and ``read_noise`` electrons RMS."""
+
+    full_well: float = 10000.0
+    read_noise: float = 5.0
+
+
+def add_noise(image: ArrayLike, noise: NoiseModel = NoiseModel(), rng: np.random.Generator | int | None = None) -> np.ndarray:
+    r"""Add photon shot noise and read noise to a float image in [0, 1].
+
+    Electrons :math:`e \sim \mathrm{Poisson}(I \cdot FW)`, plus Gaussian read noise of
+    ``read_noise`` electrons; returned as :math:`e / FW` (float, may leave [0, 1] slightly).
+    Shot noise grows as :math:`\sqrt{I}`, so SNR :math:`\approx \sqrt{I \cdot FW}` in bright areas.
+    """
+    a = _check_image(image)
+    fw = check_positive(noise.full_well, "full_well", "electrons")
+    if not noise.read_noise >= 0:
+        raise CamlabInputError(f"read_noise: expected >= 0 electrons RMS, got {noise.read_noise!r}")
+    rng = np.random.default_rng(rng)
+    electrons = rng.poisson(np.clip(a.astype(float), 0, None) * fw).astype(float)
+    if noise.read_noise > 0:
+        electrons += rng.normal(0.0, noise.read_noise, size=a.shape)
+    return electrons / fw
+
+
+def sample(image: ArrayLike, factor: int, prefilter: bool = False) -> np.ndarray:
+    """Sample a fine image with a coarser pixel grid ``factor`` times larger.
+
+    ``prefilter=False`` takes the value at each coarse pixel's centre (an ideal point
+    sampler: frequencies above Nyquist alias); ``True`` averages the ``factor x factor``
+    area each pixel covers (a real pixel's box filter, which suppresses most aliasing).
+    """
+    a = _check_image(image).astype(float)
+    if not isinstance(factor, (int, np.integer)) or factor < 1:
+        raise CamlabInputError(f"factor: expected an integer >= 1, got {factor!r}")
+    h, w = (a.shape[0] // factor) * factor, (a.shape[1] // factor) * factor
+    a = a[:h, :w]
+    if not prefilter:
+        # the fine pixel nearest the coarse pixel's centre
+        c = (factor - 1) // 2
+        return a[c::factor, c::factor].copy()
+    return a.reshape(h // factor, factor, w // factor, factor, *a.shape[2:]).mean(axis=(1, 3))
+
+
+def zone_plate(size: int = 512, k: float | None = None) -> np.ndarray:
+    r"""A zone plate :math:`\frac12(1 + \cos(k r^2))`: local frequency grows linearly with radius.
+
+    With the default ``k = pi / size`` the frequency reaches the Nyquist limit (0.5
+    cycle/pixel) at the image edge, so any coarser sampling aliases into visible rings.
+    """
+    if not isinstance(size, (int, np.integer)) or size < 2:
+        raise CamlabInputError(f"size: expected an integer >= 2, got {size!r}")
+    k = np.pi / size if k is None else check_positive(k, "k")
+    c = (size - 1) / 2
+    y, x = np.mgrid[0:size, 0:size] - c
+    return 0.5 * (1 + np.cos(k * (x * x + y * y)))
+
+
+def _check_pattern(pattern: str) -> str:
+    p = str(pattern).upper()
+    if p not in BAYER_PATTERNS:
+        raise CamlabInputError(f"pattern: expected one of {', '.join(BAYER_PATTERNS)}, got {pattern!r}")
+    return p
+
+
+def bayer_masks(shape: tuple[int, int], pattern: str = "RGGB") -> np.ndarray:
+    """(H, W, 3) boolean masks of which pixels see red, green and blue.
+
+    The pattern names the top-left 2x2 block in reading order: RGGB has R at (0, 0),
+    G at (0, 1) and (1, 0), B at (1, 1).
+
+    >>> bayer_masks((2, 2), "GRBG")[..., 0].astype(int)   # red at row 0, column 1
+    array([[0, 1],
+           [0, 0]])
+    """
+    p = _check_pattern(pattern)
+    h, w = shape
+    masks = np.zeros((h, w, 3), dtype=bool)
+    for (dy, dx), ch in zip([(0, 0), (0, 1), (1, 0), (1, 1)], p):
+        masks[dy::2, dx::2, "RGB".index(ch)] = True
+    return masks
+
+
+def mosaic(rgb: ArrayLike, pattern: str = "RGGB") -> np.ndarray:
+    """Keep one colour per pixel as a Bayer colour-filter array does: (H, W, 3) -> (H, W), same dtype."""
+    a = _check_image(rgb, "rgb", channels=(3,))
+    m = bayer_masks(a.shape[:2], pattern)
+    return (a * m).sum(axis=2).astype(a.dtype)
+
+
+def _convolve3(a: np.ndarray, k: np.ndarray) -> np.ndarray:
+    """3x3 correlation with zero padding, written as nine shifted sums."""
+    p = np.pad(a, 1)
+    h, w = a.shape
+    out = np.zeros_like(a, dtype=float)
+    for dy in range(3):
+        for dx in range(3):
+            if k[dy, dx]:
+                out += k[dy, dx] * p[dy:dy + h, dx:dx + w]
+    return out
+
+
+def demosaic_bilinear(raw: ArrayLike, pattern: str = "RGGB") -> np.ndarray:
+    r"""Bilinear demosaicing: fill each colour's missing pixels with the mean of its neighbours.
+
+    For each channel, :math:`\hat c = (k * (m \cdot r)) / (k * m)` with the channel's
+    mask :math:`m`, the raw image :math:`r` and the tent kernel
+    :math:`k = \frac14 [1, 2, 1]^T [1, 2, 1]`. Dividing by :math:`k * m` (normalised
+    convolution) averages exactly the available neighbours: 2 or 4 for green, 1, 2 or 4 for
+    red and blue, and stays right at the image border where a plain convolution darkens.
+    Measured pixels are kept as they are.
+
+    Parameters
+    ----------
+    raw : (H, W) array_like
+        Mosaic (float or integer).
+    pattern : {"RGGB", "BGGR", "GRBG", "GBRG"}
+
+    Returns
+    -------
+    (H, W, 3) float ndarray
+        RGB, in the units of ``raw``.
+    """
+    r = _check_image(raw, "raw", channels=(1,)).astype(float)
+    masks = bayer_masks(r.shape, pattern)
+    k = np.array([[1.0, 2.0, 1.0], [2.0, 4.0, 2.0], [1.0, 2.0, 1.0]]) / 4.0
+    out = np.empty(r.shape + (3,))
+    for c in range(3):
+        m = masks[..., c].astype(float)
+        est = _convolve3(r * m, k) / _convolve3(m, k)
+        out[..., c] = np.where(masks[..., c], r, est)
+    return out
+
+
+# OpenCV names a Bayer pattern by the 2nd and 3rd pixels of its 2nd row, so RGGB is "BayerBG".
+_CV_NAMES = {"RGGB": "BG", "BGGR": "RG", "GRBG": "GB", "GBRG": "GR"}
+
+
+def demosaic_opencv(raw: ArrayLike, pattern: str = "RGGB", method: str = "bilinear") -> np.ndarray:
+    """OpenCV's demosaicing (``method`` = "bilinear", "vng" or "ea" edge-aware) of a uint8/uint16 mosaic, as RGB.
+
+    VNG accepts 8-bit input only. A thin adapter for comparisons; the method taught is
+    :func:`demosaic_bilinear`.
+    """
+    import cv2
+
+    r = _check_image(raw, "raw", channels=(1,))
+    if r.dtype not in (np.uint8, np.uint16):
+        raise CamlabInputError(f"raw: OpenCV demosaicing needs uint8 or uint16, got dtype {r.dtype}")
+    suffix = {"bilinear": "", "vng": "_VNG", "ea": "_EA"}
+    if method not in suffix:
+        raise CamlabInputError(f"method: expected 'bilinear', 'vng' or 'ea', got {method!r}")
+    if method == "vng" and r.dtype != np.uint8:
+        raise CamlabInputError("raw: OpenCV's VNG demosaicing accepts uint8 only; quantise to 8 bits first")
+    code = getattr(cv2, f"COLOR_Bayer{_CV_NAMES[_check_pattern(pattern)]}2RGB{suffix[method]}")
+    return cv2.cvtColor(np.ascontiguousarray(r), code)
+
+
+def psnr(reference: ArrayLike, test: ArrayLike, peak: float = 1.0, border: int = 0) -> float:
+    r"""Peak signal-to-noise ratio :math:`10 \log_{10}(peak^2 / MSE)` in dB, ignoring ``border`` pixels."""
+    a = np.asarray(reference, dtype=float)
+    b = np.asarray(test, dtype=float)
+    if a.shape != b.shape:
+        raise CamlabInputError(f"test: expected the reference's shape {a.shape}, got {b.shape}")
+    if border:
+        a, b = a[border:-border, border:-border], b[border:-border, border:-border]
+    mse = np.mean((a - b) ** 2)
+    return float("inf") if mse == 0 else float(10 * np.log10(peak * peak / mse))

@@ -1,0 +1,191 @@
+"""Demos for lesson 05, affine cameras.
+
+In a lesson::
+
+    %matplotlib widget
+    from camlab.widgets import affine_cameras as demos
+    demos.three_cameras()
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .. import affine as af
+from .. import camera as cm
+from ..plotting import scene3d
+from ._base import FigureView, build_demo, register, slider
+from .projective_camera import orbit_eye
+
+TARGET = np.array([0.0, 0.0, 0.5])
+F0, D0 = 800.0, 4.0  # reference focal length (px) and distance (m) for the dolly zoom
+
+
+def box_and_rails() -> np.ndarray:
+    """A 1 m cube on two long parallel rails, (M, 2, 3) metres: depth and parallel lines."""
+    rails = np.array([[[-3.0, y, 0.0], [3.0, y, 0.0]] for y in (-0.8, -0.6, 0.6, 0.8)])
+    return np.concatenate([cm.box_wireframe((0.0, 0.0, 0.5), (1.0, 1.0, 1.0)), rails])
+
+
+def three_images(camera: cm.Camera, segments: np.ndarray):
+    """The same segments seen by the perspective camera, its weak-perspective approximation
+    about the scene centre, and the orthographic camera with the same pose (metres)."""
+    X0 = segments.reshape(-1, 3).mean(axis=0)
+    P_weak = af.affine_approximation(camera, X0)
+    P_orth = af.orthographic_matrix(camera.R, camera.t)
+    return (cm.project_segments(camera, segments), cm.project_segments(P_weak, segments),
+            cm.project_segments(P_orth, segments), P_weak, P_orth)
+
+
+def _image_panel(ax, title, size=(640, 480), tick_labels=True):
+    # Short titles and few tick labels: every text costs about 1 ms per redraw.
+    scene3d.image_axes(ax, size, labels=False)
+    ax.set_title(title, fontsize=9)
+    ax.tick_params(labelleft=tick_labels, labelbottom=tick_labels)
+    (ln,) = ax.plot([], [], color="k", lw=1.1)
+    return ln
+
+
+@register(lesson="05", sweep={"azimuth": [-80, 10], "elevation": [5, 50], "distance": [2.5, 12.0]})
+def three_cameras():
+    """Perspective, weak-perspective and orthographic images of the same scene side by side."""
+    view = FigureView(figsize=(9.5, 3.2))
+    axes = view.fig.subplots(1, 3)
+    scene = box_and_rails()
+    persp = _image_panel(axes[0], "perspective")
+    weak = _image_panel(axes[1], "weak perspective", tick_labels=False)
+    axes[2].set_aspect("equal")
+    axes[2].set_title("orthographic (metres)", fontsize=9)
+    axes[2].set_xlim(-2.2, 2.2)
+    axes[2].set_ylim(1.65, -1.65)
+    axes[2].set_xticks([-2, 0, 2])
+    axes[2].set_yticks([-1, 0, 1])
+    axes[2].tick_params(labelsize=7)
+    (orth,) = axes[2].plot([], [], color="k", lw=1.1)
+    (ghost,) = axes[1].plot([], [], color="tab:red", lw=0.8, alpha=0.5)
+    view.animate(persp, weak, ghost, orth)
+    controls = {
+        "azimuth": slider(-40, -180, 180, 2, "azimuth (deg)"),
+        "elevation": slider(20, 0, 80, 1, "elevation (deg)"),
+        "distance": slider(4.0, 2.0, 20.0, 0.25, "distance (m), dolly zoom"),
+    }
+
+    def update(v, state):
+        f = af.dolly_zoom_focal(F0, D0, v["distance"])
+        K = cm.intrinsic_matrix(f, f, 320, 240)
+        cam = cm.Camera.look_at(orbit_eye(v["azimuth"], v["elevation"], v["distance"], TARGET), TARGET, K=K)
+        p, w, o, P_weak, _ = three_images(cam, scene)
+        scene3d.update_segments(persp, p)
+        scene3d.update_segments(weak, w)
+        scene3d.update_segments(ghost, p)
+        scene3d.update_segments(orth, o)
+        diff = np.linalg.norm(p - w, axis=-1)
+        state.update(camera=cam, P_weak=P_weak, focal=f, max_difference=float(np.nanmax(diff)))
+
+    return build_demo("three_cameras", controls, view, update,
+                      title="One scene, three cameras (red: the perspective image, for comparison)")
+
+
+def dolly_curve(distances: np.ndarray, points: np.ndarray, azimuth=-40.0, elevation=20.0) -> np.ndarray:
+    """RMS pixel difference between perspective and weak perspective along a dolly zoom."""
+    out = []
+    for d in distances:
+        f = af.dolly_zoom_focal(F0, D0, d)
+        cam = cm.Camera.look_at(orbit_eye(azimuth, elevation, d, TARGET), TARGET,
+                                K=cm.intrinsic_matrix(f, f, 320, 240))
+        e = af.weak_perspective_error(cam, points, TARGET)
+        out.append(np.sqrt(np.mean(e ** 2)))
+    return np.array(out)
+
+
+@register(lesson="05", sweep={"distance": [1.8, 6.0, 40.0]})
+def dolly_zoom():
+    """Move the camera away while zooming in (f = f0 d / d0): the object keeps its size, the
+    perspective image approaches the weak-perspective one and the error falls like 1/d."""
+    view = FigureView(figsize=(9, 3.8))
+    ax_img, ax_err = view.fig.subplots(1, 2, width_ratios=(1.25, 1.0))
+    cube = cm.box_wireframe((0.0, 0.0, 0.5), (1.0, 1.0, 1.0))
+    pts = cube.reshape(-1, 3)
+    _image_panel(ax_img, "black: perspective, orange: weak perspective", tick_labels=False).remove()
+    (persp,) = ax_img.plot([], [], color="k", lw=1.3)
+    (weak,) = ax_img.plot([], [], color="tab:orange", lw=1.3, ls="--")
+    distances = np.geomspace(1.6, 60.0, 60)
+    curve = dolly_curve(distances, pts)
+    depth_ratio = np.sqrt(3.0) / distances  # the cube's depth range (its diagonal) over its distance
+    ax_err.loglog(distances, curve, color="tab:blue", lw=1.5)
+    ax_err.set_xlabel("distance d (m), focal length f = f0 d / d0", fontsize=8)
+    ax_err.set_ylabel("RMS difference (px)", fontsize=8)
+    ax_err.tick_params(labelsize=7)
+    ax_err.axhline(1.0, color="0.5", lw=0.8, ls=":")
+    ax_err.text(distances[-1], 1.05, "1 px", ha="right", va="bottom", fontsize=7, color="0.4")
+    ax_err.grid(True, which="major", alpha=0.3)
+    # Plain tick labels and no minor ticks: log axes' default mathtext labels cost ~20 ms a redraw.
+    from matplotlib.ticker import NullLocator
+
+    for axis, ticks in ((ax_err.xaxis, [2, 5, 10, 20, 50]), (ax_err.yaxis, [0.1, 1, 10, 100])):
+        axis.set_minor_locator(NullLocator())
+        axis.set_ticks(ticks, labels=[f"{t:g}" for t in ticks])
+    (marker,) = ax_err.plot([], [], "o", color="tab:red", ms=7)
+    view.animate(persp, weak, marker)
+    controls = {"distance": slider(D0, 1.6, 60.0, 0.2, "distance d (m)")}
+
+    def update(v, state):
+        d = float(v["distance"])
+        f = af.dolly_zoom_focal(F0, D0, d)
+        cam = cm.Camera.look_at(orbit_eye(-40.0, 20.0, d, TARGET), TARGET, K=cm.intrinsic_matrix(f, f, 320, 240))
+        P_weak = af.affine_approximation(cam, TARGET)
+        scene3d.update_segments(persp, cm.project_segments(cam, cube))
+        scene3d.update_segments(weak, cm.project_segments(P_weak, cube))
+        e = af.weak_perspective_error(cam, pts, TARGET)
+        rms = float(np.sqrt(np.mean(e ** 2)))
+        marker.set_data([d], [rms])
+        state.update(distance=d, focal=f, rms_error=rms, max_error=float(e.max()),
+                     depth_ratio=float(np.sqrt(3.0) / d), curve=(distances, curve, depth_ratio))
+
+    return build_demo("dolly_zoom", controls, view, update, title="Dolly zoom: when is weak perspective good enough?")
+
+
+@register(lesson="05", sweep={"yaw": [-50, 40], "pitch": [5, 40]})
+def parallel_rails():
+    """Parallel rails in a perspective image meet at a vanishing point; an affine image keeps them parallel."""
+    view = FigureView(figsize=(9, 3.6))
+    ax_p, ax_a = view.fig.subplots(1, 2)
+    rails = np.array([[[y, 0.0, 0.0], [y, 40.0, 0.0]] for y in (-1.5, -0.5, 0.5, 1.5)])
+    sleepers = np.array([[[-1.7, s, 0.0], [1.7, s, 0.0]] for s in np.arange(0.0, 40.0, 1.0)])
+    scene = np.concatenate([rails, sleepers])
+    ax_p.set_title("perspective: rails meet at the vanishing point", fontsize=9)
+    ax_a.set_title("affine approximation: rails stay parallel", fontsize=9)
+    lines = []
+    for ax in (ax_p, ax_a):
+        ax.set_xlim(-0.5, 639.5)
+        ax.set_ylim(479.5, -0.5)
+        ax.set_aspect("equal")
+        ax.set_xticks([0, 320, 640])
+        ax.set_yticks([0, 240, 480])
+        ax.tick_params(labelsize=7, labelleft=ax is ax_p)
+        (ln,) = ax.plot([], [], color="k", lw=1.0)
+        lines.append(ln)
+    (vp,) = ax_p.plot([], [], "o", color="tab:red", ms=8)
+    (horizon,) = ax_p.plot([], [], color="tab:red", lw=0.8, ls="--")
+    view.animate(*lines, vp, horizon)
+    controls = {"yaw": slider(0, -60, 60, 1, "yaw (deg)"), "pitch": slider(15, 2, 60, 1, "pitch down (deg)")}
+
+    def update(v, state):
+        yaw, pitch = np.deg2rad(v["yaw"]), np.deg2rad(v["pitch"])
+        eye = np.array([0.0, -4.0, 2.0])
+        # look along the rails (+Y), turned by yaw about Z and tilted down by pitch
+        direction = cm.rotation_z(-yaw) @ np.array([0.0, np.cos(pitch), -np.sin(pitch)])
+        cam = cm.Camera.look_at(eye, eye + direction, K=cm.intrinsic_matrix(500, 500, 320, 240))
+        P_aff = af.affine_approximation(cam, np.array([0.0, 6.0, 0.0]))
+        lines[0].set_data(*scene3d.polyline_data(cm.project_segments(cam, scene)).T)
+        lines[1].set_data(*scene3d.polyline_data(cm.project_segments(P_aff, scene)).T)
+        v_p = af.image_of_direction(cam.P, [0.0, 1.0, 0.0])
+        v_a = af.image_of_direction(P_aff, [0.0, 1.0, 0.0])
+        vpt = v_p[:2] / v_p[2]
+        vp.set_data([vpt[0]], [vpt[1]])
+        # the horizon: the line through the vanishing points of two ground directions
+        l_h = np.cross(af.image_of_direction(cam.P, [1.0, 0.0, 0.0]), v_p)
+        us = np.array([-1.0, 641.0])
+        horizon.set_data(us, -(l_h[0] * us + l_h[2]) / l_h[1] if abs(l_h[1]) > 1e-12 else [np.nan, np.nan])
+        state.update(vanishing_point=vpt, affine_direction=v_a, camera=cam, P_affine=P_aff, horizon=l_h)
+
+    return build_demo("parallel_rails", controls, view, update, title="Parallel lines: vanishing versus parallel")

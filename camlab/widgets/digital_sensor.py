@@ -1,0 +1,174 @@
+"""Demos for lesson 03: pixels, sampling and aliasing, bit depth and noise, Bayer demosaicing."""
+from __future__ import annotations
+
+import ipywidgets as W
+from matplotlib.patches import Circle
+import numpy as np
+
+from .. import render, sensor
+from ..plotting import images
+from ._base import FigureView, build_demo, register, slider
+from ._image_formation import freeze_layout
+
+SIZE = (320, 240)
+
+
+@register(lesson="03", sweep={"pitch_um": [3.0, 6.0, 12.0], "cx_offset": [-40, 0, 40]})
+def pixel_pitch():
+    """The same 3 mm lens on sensors with different pixel pitch and principal point offset."""
+    controls = {
+        "pitch_um": slider(6.0, 2.0, 15.0, 0.5, "pixel pitch (um)"),
+        "cx_offset": slider(0, -60, 60, 2, "principal point offset (px)"),
+    }
+    view = FigureView(figsize=(9, 4))
+    ax_img, ax_txt = view.fig.subplots(1, 2, width_ratios=[1.4, 1])
+    scene = [render.checkerboard((9, 6), 0.05, t=(-0.2, -0.125, 1.2)), render.photo_plane(0.25, t=(0.32, 0.05, 1.3))]
+    im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
+    pp, = ax_img.plot([], [], "r+", ms=14, mew=2)
+    ax_txt.axis("off")
+    text = ax_txt.text(0, 1, "", va="top", family="monospace", fontsize=10)
+    ax_img.set_title("f = 3 mm, 320 x 240 pixels (red +: principal point)", fontsize=10)
+    freeze_layout(view)
+
+    def update(values, state):
+        pitch = values["pitch_um"] * 1e-6
+        K = sensor.intrinsics_from_sensor(3e-3, (pitch, pitch), SIZE, (values["cx_offset"], 0.0))
+        im.set_data(render.render(scene, K, SIZE).irradiance)
+        pp.set_data([K[0, 2]], [K[1, 2]])
+        fov = 2 * np.degrees(np.arctan(SIZE[0] / 2 / K[0, 0]))
+        state.update(K=K, fov_deg=fov)
+        text.set_text(f"u = x / s_x + c_x\nv = y / s_y + c_y\n\nf_x = f / s_x = {K[0, 0]:.0f} px\n"
+                      f"c_x = {K[0, 2]:.1f}, c_y = {K[1, 2]:.1f}\nsensor {SIZE[0] * pitch * 1e3:.2f} x "
+                      f"{SIZE[1] * pitch * 1e3:.2f} mm\nhorizontal FOV {fov:.1f} deg")
+
+    return build_demo("pixel_pitch", controls, view, update, title="Pixel pitch and principal point")
+
+
+@register(lesson="03", sweep={"factor": [1, 3, 6], "prefilter": [True, False]})
+def sampling_aliasing():
+    """A zone plate sampled by coarser pixels: ideal point samples alias, real (box) pixels much less."""
+    controls = {
+        "factor": W.IntSlider(value=4, min=1, max=8, description="pixel size (fine px)", continuous_update=True,
+                              style={"description_width": "initial"}, layout=W.Layout(width="300px")),
+        "prefilter": W.Checkbox(value=False, description="average over the pixel area (box filter)"),
+    }
+    view = FigureView(figsize=(9, 4))
+    ax_t, ax_s = view.fig.subplots(1, 2)
+    zp = sensor.zone_plate(384, k=np.pi / 768)  # 0.25 cycle/px at the edge
+    images.show_image(ax_t, zp, "scene: zone plate (frequency grows with radius)")
+    im = images.show_image(ax_s, zp, "sampled")
+    nyq = ax_s.add_patch(Circle((0, 0), 1, fill=False, color="tab:red", ls="--", lw=1.5))
+    freeze_layout(view)
+
+    def update(values, state):
+        k = int(values["factor"])
+        s = sensor.sample(zp, k, prefilter=values["prefilter"])
+        # show the coarse samples as blocks at the scene's scale
+        im.set_data(np.kron(s, np.ones((k, k))))
+        # the local frequency (pi / 768) r / pi cycles per fine px reaches 0.5 cycle per coarse px at r = 384 / k
+        r = zp.shape[0] / k
+        nyq.set_center(((zp.shape[1] - 1) / 2, (zp.shape[0] - 1) / 2))
+        nyq.set_radius(r)
+        outer = np.hypot(*np.meshgrid(np.arange(s.shape[1]) - (s.shape[1] - 1) / 2,
+                                      np.arange(s.shape[0]) - (s.shape[0] - 1) / 2)) * k > r * 1.1
+        state.update(samples=s.shape, nyquist_radius=r, alias_contrast=float(s[outer].std()) if outer.any() else 0.0)
+        ax_s.set_title(f"{'box' if values['prefilter'] else 'point'}-sampled, 1 px = {k} fine px "
+                       f"(red: Nyquist)", fontsize=10)
+
+    return build_demo("sampling_aliasing", controls, view, update, title="Sampling and aliasing")
+
+
+@register(lesson="03", sweep={"bits": [1, 3, 8], "exposure": [0.02, 0.3, 1.0], "read_noise": [0.0, 20.0]})
+def bit_depth_and_noise():
+    """Quantisation and noise on a rendered page and photo, with a row profile."""
+    controls = {
+        "bits": W.IntSlider(value=4, min=1, max=12, description="bit depth", continuous_update=True,
+                            style={"description_width": "initial"}, layout=W.Layout(width="300px")),
+        "exposure": W.FloatLogSlider(value=0.3, base=10, min=-2, max=0, step=0.05, description="exposure (x full well)",
+                                     continuous_update=True, style={"description_width": "initial"},
+                                     layout=W.Layout(width="300px")),
+        "read_noise": slider(5.0, 0.0, 40.0, 1.0, "read noise (electrons)"),
+    }
+    view = FigureView(figsize=(9, 4))
+    ax_img, ax_p = view.fig.subplots(1, 2)
+    K = np.array([[330.0, 0, 159.5], [0, 330.0, 119.5], [0, 0, 1]])
+    clean = render.render([render.photo_plane(0.5, t=(0.0, 0, 1.0))], K, SIZE, color=False).irradiance
+    im = images.show_image(ax_img, clean, vmax=1.0)
+    row = 150
+    ax_img.axhline(row, color="tab:red", lw=0.8)
+    ax_p.plot(clean[row], color="0.6", lw=1, label="true irradiance")
+    prof, = ax_p.plot(clean[row], color="tab:red", lw=1, label="recorded")
+    ax_p.set_ylim(-0.05, 1.05)
+    ax_p.set_xlabel("u (px)")
+    ax_p.set_ylabel("value / full scale")
+    ax_p.legend(fontsize=8, loc="upper right")
+    ax_p.set_title("row 150: 00 levels, SNR 000.0 at mid-grey", fontsize=10)
+    freeze_layout(view)
+    full_well = 10000.0
+    rng = np.random.default_rng(0)
+
+    def update(values, state):
+        bits, expo = int(values["bits"]), float(values["exposure"])
+        noisy = sensor.add_noise(clean * expo, sensor.NoiseModel(full_well, values["read_noise"]), rng)
+        dn = sensor.quantize(np.clip(noisy / expo, 0, 1), bits)  # shown with gain 1 / exposure
+        shown = sensor.dequantize(dn, bits)
+        im.set_data(shown)
+        prof.set_ydata(shown[row])
+        signal = 0.5 * expo * full_well
+        snr = signal / np.sqrt(signal + values["read_noise"] ** 2 + (full_well * expo / 2**bits) ** 2 / 12)
+        state.update(levels=2**bits, snr=float(snr), rms_error=float(np.sqrt(np.mean((shown - clean) ** 2))))
+        ax_p.set_title(f"row {row}: {2**bits} levels, SNR {snr:.1f} at mid-grey", fontsize=10)
+
+    return build_demo("bit_depth_and_noise", controls, view, update, title="Bit depth and noise")
+
+
+_METHODS = ("truth", "camlab bilinear", "OpenCV bilinear", "OpenCV VNG", "OpenCV edge-aware")
+
+
+def _scene_rgb():
+    K = np.array([[900.0, 0, 159.5], [0, 900.0, 119.5], [0, 0, 1]])
+    scene = [render.photo_plane(0.3, t=(0.05, 0.02, 1.0)),
+             render.text_page(0.2, t=(-0.2, 0.0, 1.1), R=render.rotation_from_euler(0, 0.2, 0.05))]
+    return render.render(scene, K, SIZE, color=True).irradiance
+
+
+@register(lesson="03", sweep={"pattern": ["RGGB", "GBRG"], "method": list(_METHODS), "zoom_u": [40, 200]})
+def demosaicing():
+    """Bayer mosaic and demosaicing methods side by side, with a zoomed crop and PSNR."""
+    controls = {
+        "pattern": W.Dropdown(options=["RGGB", "BGGR", "GRBG", "GBRG"], value="RGGB", description="Bayer pattern"),
+        "method": W.Dropdown(options=list(_METHODS), value="camlab bilinear", description="method"),
+        "zoom_u": W.IntSlider(value=120, min=0, max=SIZE[0] - 48, description="zoom at u", continuous_update=True),
+    }
+    view = FigureView(figsize=(9, 4))
+    ax_raw, ax_full, ax_zoom = view.fig.subplots(1, 3, width_ratios=[1, 1, 0.8])
+    truth = _scene_rgb()
+    im_raw = images.show_image(ax_raw, np.zeros(SIZE[::-1] + (3,)), "Bayer mosaic (zoom)")
+    im_full = images.show_image(ax_full, truth, "method")
+    im_zoom = images.show_image(ax_zoom, truth[:48, :48], "zoom")
+    box = images.zoom_box(ax_full, 120, 100, 48)
+    ax_full.set_title("camlab bilinear: PSNR 00.00 dB", fontsize=10)
+    freeze_layout(view)
+    v0 = 100
+
+    def update(values, state):
+        pattern, method, u0 = values["pattern"], values["method"], int(values["zoom_u"])
+        raw = sensor.quantize(sensor.mosaic(truth, pattern))
+        if method == "truth":
+            out = truth
+        elif method == "camlab bilinear":
+            out = sensor.demosaic_bilinear(raw, pattern) / 255
+        else:
+            out = sensor.demosaic_opencv(raw, pattern, {"OpenCV bilinear": "bilinear", "OpenCV VNG": "vng",
+                                                        "OpenCV edge-aware": "ea"}[method]) / 255
+        out = np.clip(out, 0, 1)
+        masks = sensor.bayer_masks(raw.shape, pattern)
+        crop = (slice(v0, v0 + 48), slice(u0, u0 + 48))
+        im_raw.set_data(masks[crop] * (raw[crop] / 255.0)[..., None])
+        im_full.set_data(out)
+        im_zoom.set_data(out[crop])
+        box.set_xy((u0 - 0.5, v0 - 0.5))
+        state.update(psnr=sensor.psnr(truth, out, border=2))
+        ax_full.set_title(f"{method}: PSNR {state['psnr']:.2f} dB", fontsize=10)
+
+    return build_demo("demosaicing", controls, view, update, title="Bayer mosaic and demosaicing")

@@ -1,0 +1,153 @@
+"""Demos for lesson 02: the thin lens, depth of field, and lens distortion."""
+from __future__ import annotations
+
+import ipywidgets as W
+import numpy as np
+
+from .. import distortion, lens, render
+from ..plotting import images, optics
+from ._base import FigureView, build_demo, register, slider
+from ._image_formation import freeze_layout
+
+SIZE = (480, 360)
+K_DOF = np.array([[560.0, 0.0, 239.5], [0.0, 560.0, 179.5], [0.0, 0.0, 1.0]])
+PITCH = 5e-6
+F_DOF = K_DOF[0, 0] * PITCH * 10  # 28 mm lens on a 50 um-pitch sensor: K above, strong, visible blur
+PITCH_DOF = F_DOF / K_DOF[0, 0]
+
+
+@register(lesson="02", sweep={"focal_mm": [30, 50, 90], "object_m": [0.12, 0.3, 0.8]})
+def thin_lens():
+    """Principal rays through a thin lens: where the image forms and how large it is."""
+    controls = {
+        "focal_mm": slider(50, 20, 100, 1, "focal length f (mm)"),
+        "object_m": slider(0.2, 0.11, 1.0, 0.01, "object distance z_o (m)"),
+    }
+    view = FigureView(figsize=(9, 4))
+    ax = view.fig.subplots()
+    art = optics.draw_thin_lens(ax, 0.05, 0.2, height=0.03)
+    ax.set_title("1/f = 1/z_o + 1/z_i: parallel ray -> focus, central ray straight, focal ray -> parallel", fontsize=10)
+    freeze_layout(view)
+
+    def update(values, state):
+        f, zo = values["focal_mm"] * 1e-3, values["object_m"]
+        if zo <= f * 1.05:  # slider corner: keep the object outside the focal length
+            zo = f * 1.05
+        state.update(optics.update_thin_lens(art, ax, f, zo))
+
+    return build_demo("thin_lens", controls, view, update, title="Thin lens")
+
+
+def _dof_scene():
+    return [render.checkerboard((5, 4), 0.04, t=(-0.33, -0.02, 0.6), name="near", px_per_square=32),
+            render.text_page(0.3, t=(0.0, -0.02, 1.2)),
+            render.checkerboard((7, 5), 0.12, t=(0.1, -0.55, 2.4), name="far", px_per_square=32),
+            render.textured_plane(render.sample_photo(), 3.2, t=(0, 0, 4.0), name="wall")]
+
+
+@register(lesson="02", sweep={"f_number": [1.4, 4.0, 16.0], "focus_m": [0.6, 1.2, 2.4]})
+def depth_of_field():
+    """A scene of planes at 0.6, 1.2, 2.4 and 4 m rendered with thin-lens blur, beside its blur curve."""
+    controls = {
+        "f_number": W.SelectionSlider(options=[1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0, 16.0], value=2.8,
+                                      description="f-number N", continuous_update=True,
+                                      style={"description_width": "initial"}, layout=W.Layout(width="300px")),
+        "focus_m": slider(1.2, 0.5, 4.0, 0.05, "focus distance (m)"),
+    }
+    view = FigureView(figsize=(9, 4))
+    ax_img, ax_c = view.fig.subplots(1, 2, width_ratios=[1.3, 1])
+    scene = _dof_scene()
+    im = images.show_image(ax_img, np.zeros((SIZE[1], SIZE[0], 3)))
+    z = np.linspace(0.3, 5, 400)
+    curve, = ax_c.plot(z, np.zeros_like(z), "k")
+    band = ax_c.axvspan(1, 2, color="tab:green", alpha=0.2, label="depth of field")
+    ax_c.axhline(2 * PITCH_DOF * 1e6, color="tab:red", ls="--", lw=1, label="acceptable c = 2 pixels")
+    for zp, c in zip((0.6, 1.2, 2.4, 4.0), ("tab:blue", "tab:orange", "tab:purple", "tab:brown")):
+        ax_c.axvline(zp, color=c, lw=1)
+    ax_c.set_xlim(0.3, 5)
+    ax_c.set_ylim(0, 600)
+    ax_c.set_xlabel("depth z (m)")
+    ax_c.set_ylabel("blur circle c (um on the sensor)")
+    ax_c.legend(fontsize=8, loc="upper right")
+    ax_c.set_title("DoF 0.00-0.00 m", fontsize=10)
+    ax_img.set_title(f"f = {F_DOF * 1e3:.0f} mm, N = 2.8, focused at 1.20 m", fontsize=10)
+    freeze_layout(view)
+
+    def update(values, state):
+        N, s = float(values["f_number"]), values["focus_m"]
+        out = render.render(scene, K_DOF, SIZE, defocus=render.Defocus(N, s, PITCH_DOF, F_DOF))
+        im.set_data(out.irradiance)
+        c = lens.circle_of_confusion(F_DOF, N, s, z)
+        curve.set_ydata(c * 1e6)
+        dof = lens.depth_of_field(F_DOF, N, s, 2 * PITCH_DOF)
+        far = min(dof.far, 5.0)
+        band.set_x(dof.near)
+        band.set_width(far - dof.near)
+        state.update(near=dof.near, far=dof.far, coc_px={zp: float(lens.circle_of_confusion(F_DOF, N, s, zp)) / PITCH_DOF
+                                                         for zp in (0.6, 1.2, 2.4, 4.0)})
+        ax_c.set_title(f"DoF {dof.near:.2f}-{dof.far:.2f} m", fontsize=10)
+        ax_img.set_title(f"f = {F_DOF * 1e3:.0f} mm, N = {N}, focused at {s:.2f} m", fontsize=10)
+
+    return build_demo("depth_of_field", controls, view, update, title="Depth of field")
+
+
+K_D = np.array([[420.0, 0.0, 239.5], [0.0, 420.0, 179.5], [0.0, 0.0, 1.0]])
+
+
+def _grid_lines(n: int = 9, samples: int = 60) -> np.ndarray:
+    """(2n, samples, 2) ideal pixel polylines of a grid covering the image."""
+    us = np.linspace(0, SIZE[0] - 1, n)
+    vs = np.linspace(0, SIZE[1] - 1, n)
+    t = np.linspace(0, 1, samples)
+    lines = [np.column_stack([np.full(samples, u), t * (SIZE[1] - 1)]) for u in us]
+    lines += [np.column_stack([t * (SIZE[0] - 1), np.full(samples, v)]) for v in vs]
+    return np.array(lines)
+
+
+@register(lesson="02", sweep={"k1": [-0.35, 0.0, 0.25], "k2": [-0.05, 0.1], "p1": [-0.01, 0.01],
+                              "p2": [-0.01, 0.01], "undistort": [True, False]})
+def lens_distortion():
+    """Distortion sliders warp a rendered checkerboard and a grid; tick 'undistort' to undo it."""
+    controls = {
+        "k1": slider(-0.25, -0.4, 0.3, 0.01, "k1 (radial)"),
+        "k2": slider(0.05, -0.1, 0.15, 0.005, "k2 (radial)"),
+        "p1": slider(0.0, -0.02, 0.02, 0.001, "p1 (tangential)", readout_format=".3f"),
+        "p2": slider(0.0, -0.02, 0.02, 0.001, "p2 (tangential)", readout_format=".3f"),
+        "undistort": W.Checkbox(value=False, description="undistort (cv2.remap with our map)"),
+    }
+    view = FigureView(figsize=(9, 4))
+    ax_img, ax_grid = view.fig.subplots(1, 2)
+    board = render.checkerboard((11, 8), 0.04, t=(-0.2, -0.14, 0.45), px_per_square=32)
+    im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=255)
+    dots, = ax_img.plot([], [], "r.", ms=3)
+    ideal = _grid_lines()
+    ghost = [ax_grid.plot(*ln.T, color="0.8", lw=0.8)[0] for ln in ideal]
+    bent = [ax_grid.plot(*ln.T, color="tab:blue", lw=1.2)[0] for ln in ideal]
+    ax_grid.set_xlim(-60, SIZE[0] + 60)
+    ax_grid.set_ylim(SIZE[1] + 60, -60)
+    ax_grid.set_aspect("equal")
+    ax_grid.plot([-0.5, SIZE[0] - 0.5, SIZE[0] - 0.5, -0.5, -0.5], [-0.5, -0.5, SIZE[1] - 0.5, SIZE[1] - 0.5, -0.5], "k", lw=1)
+    ax_grid.set_title("a straight grid through the lens: barrel", fontsize=10)
+    ax_img.set_title("rendered: distorted (red: true corners)", fontsize=10)
+    freeze_layout(view)
+
+    def update(values, state):
+        d = np.array([values["k1"], values["k2"], values["p1"], values["p2"], 0.0])
+        out = render.render(board, K_D, SIZE, dist=d)
+        img = out.image
+        corners = out.truth.corners()
+        if values["undistort"]:
+            img = distortion.undistort_image(img, K_D, d)
+            corners = distortion.undistort_pixels(corners, K_D, d)
+        im.set_data(img)
+        dots.set_data(corners[:, 0], corners[:, 1])
+        for line, ln in zip(bent, ideal):
+            line.set_data(*distortion.distort_pixels(ln, K_D, d).T)
+        kind = distortion.classify_distortion(d, r_max=float(np.hypot(*SIZE) / 2 / K_D[0, 0]))
+        state.update(kind=kind, corner0=corners[0], max_shift=float(np.abs(
+            distortion.distort_pixels(ideal.reshape(-1, 2), K_D, d) - ideal.reshape(-1, 2)).max()))
+        ax_grid.set_title(f"a straight grid through the lens: {kind}", fontsize=10)
+        ax_img.set_title("undistorted: lines straight again" if values["undistort"]
+                         else "rendered: distorted (red: true corners)", fontsize=10)
+
+    return build_demo("lens_distortion", controls, view, update, title="Lens distortion (k1, k2, p1, p2)")

@@ -1,0 +1,186 @@
+"""Demos for lesson 10, perspective correction.
+
+The photos are synthetic (``camlab.perspective.sample_photo``): a textured rectangle
+seen at an angle through a plane-induced homography, so the true corners and aspect
+ratio are known. Corners are dragged with the mouse under ipympl, or typed into the
+corners text control ``"u0, v0; u1, v1; u2, v2; u3, v3"`` (TL, TR, BR, BL).
+"""
+from __future__ import annotations
+
+from typing import Any
+
+import ipywidgets as W
+import numpy as np
+
+from .. import perspective as pp
+from ..warp import warp_perspective
+from ._base import Demo, FigureView, build_demo, register, slider
+from .homographies import _corner_text, _on_top, _parse_corners, _pre, connect_corner_drag, format_corners
+
+_SHOW = 260  # the rectified view is drawn into a _SHOW x _SHOW box
+
+
+def _fit(size_wh: tuple[int, int]) -> tuple[int, int]:
+    """Scale (width, height) to fit in the display box, keeping the ratio."""
+    w, h = size_wh
+    s = (_SHOW - 1) / max(w, h)
+    return max(2, int(round(w * s))), max(2, int(round(h * s)))
+
+
+def _show_rectified(im: Any, image: np.ndarray, quad: np.ndarray, size_wh: tuple[int, int]) -> np.ndarray:
+    """Rectify ``quad`` into a rectangle of ratio size_wh, drawn centred in the display box."""
+    w, h = _fit(size_wh)
+    r = pp.rectify_quadrilateral(image, quad, size=(w, h), method="cv2")
+    box = np.full((_SHOW, _SHOW, 3), 255, np.uint8)
+    y0, x0 = (_SHOW - h) // 2, (_SHOW - w) // 2
+    box[y0:y0 + h, x0:x0 + w] = r.image
+    im.set_data(box)
+    return r.H
+
+
+def _photo_axes(view: FigureView):
+    ax_p, ax_r = view.fig.subplots(1, 2, width_ratios=[1.35, 1])
+    im_p = view.animate(ax_p.imshow(np.zeros((480, 640, 3), np.uint8)))
+    ax_p.set(xlim=(-0.5, 639.5), ylim=(479.5, -0.5))
+    im_r = view.animate(ax_r.imshow(np.full((_SHOW, _SHOW, 3), 255, np.uint8)))
+    ax_r.set_axis_off()
+    return ax_p, ax_r, im_p, im_r
+
+
+@register(lesson="10", sweep={"scene": ["page", "painting", "facade"], "corners": [
+    "250.0, 120.0; 420.0, 140.0; 400.0, 380.0; 230.0, 350.0",
+    "200.0, 100.0; 450.0, 100.0; 450.0, 380.0; 200.0, 380.0",
+], "use_focal": [True, False]})
+def rectify_photo() -> Demo:
+    """Drag the four corners of a page, painting or facade; the rectified view follows, sized
+    by the aspect ratio estimated from the quadrilateral (compared with the truth)."""
+    view = FigureView(figsize=(9, 4.2))
+    ax_p, ax_r, im_p, im_r = _photo_axes(view)
+    ax_p.set_title("photo: drag the orange corners", fontsize=10, pad=3)
+    ax_r.set_title("rectified", fontsize=10, pad=3)
+    quad = view.animate(ax_p.plot([], [], "-", color="tab:orange", lw=1.5)[0])
+    handles = view.animate(ax_p.plot([], [], "o", color="tab:orange", ms=9, mec="k")[0])
+    _on_top(view, ax_p)
+    readout = W.HTML()
+    first = pp.sample_photo("page")
+    control = _corner_text(format_corners(first.corners), "corners (TL; TR; BR; BL)")
+    current: dict[str, Any] = {"scene": None, "photo": None, "corners": first.corners, "busy": False}
+
+    def update(v: dict, state: dict) -> None:
+        if current["busy"]:
+            return
+        if v["scene"] != current["scene"]:  # a new photo: start from its true corners
+            current["scene"], current["photo"] = v["scene"], pp.sample_photo(v["scene"])
+            im_p.set_data(current["photo"].image)
+            text = format_corners(current["photo"].corners)
+            if text != control.value:
+                current["busy"] = True
+                control.value = text
+                current["busy"] = False
+            v = {**v, "corners": text}
+        photo = current["photo"]
+        try:
+            corners = _parse_corners(v["corners"])
+            corners = pp.check_quadrilateral(corners)
+            est = pp.estimate_aspect_ratio(corners, photo.image.shape,
+                                           focal_length=photo.K[0, 0] if v["use_focal"] else None)
+        except (ValueError, pp.DegenerateError) as exc:
+            state.update(error=str(exc), ratio=None)
+            readout.value = _pre(f"cannot rectify:\n{exc}")
+            return
+        current["corners"] = corners
+        closed = np.vstack([corners, corners[:1]])
+        quad.set_data(closed[:, 0], closed[:, 1])
+        handles.set_data(corners[:, 0], corners[:, 1])
+        width = max(np.linalg.norm(corners[1] - corners[0]), np.linalg.norm(corners[2] - corners[3]))
+        _show_rectified(im_r, photo.image, corners, (int(width), int(width / est.ratio)))
+        state.update(error=None, ratio=est.ratio, true_ratio=photo.aspect, focal=est.focal_length,
+                     focal_source=est.focal_source, corners=corners, scene=v["scene"])
+        f = "—" if est.focal_length is None else f"{est.focal_length:.0f} px"
+        readout.value = _pre(f"aspect w/h estimated: {est.ratio:.3f}\n"
+                             f"aspect w/h true:      {photo.aspect:.3f}\n"
+                             f"focal length: {f} ({est.focal_source}; true {photo.K[0, 0]:.0f})")
+
+    controls = {
+        "scene": W.Dropdown(options=["page", "painting", "facade"], value="page", description="photo"),
+        "corners": control,
+        "use_focal": W.Checkbox(value=False, description="focal length known (800 px)"),
+    }
+    demo = build_demo("rectify_photo", controls, view, update, title="Rectify a photographed rectangle",
+                      extra=[readout])
+    demo.handlers = connect_corner_drag(view, ax_p, control, lambda: current["corners"])
+    return demo
+
+
+@register(lesson="10", sweep={"yaw": [-0.6, 0.0, 0.5], "pitch": [0.5, -0.3], "page_present": [False, True]})
+def document_scanner() -> Demo:
+    """"Scan this page": find the page automatically (edges, contours, largest convex
+    quadrilateral) and rectify it; it says so when there is no page."""
+    view = FigureView(figsize=(9, 4.2))
+    ax_p, ax_r, im_p, im_r = _photo_axes(view)
+    ax_p.set_title("photo with the detected outline", fontsize=10, pad=3)
+    ax_r.set_title("scanned page", fontsize=10, pad=3)
+    found = view.animate(ax_p.plot([], [], "-", color="lime", lw=2)[0])
+    _on_top(view, ax_p)
+    readout = W.HTML()
+
+    def update(v: dict, state: dict) -> None:
+        photo = pp.sample_photo("page", yaw=v["yaw"], pitch=v["pitch"])
+        image = photo.image if v["page_present"] else np.asarray(pp._desk(480, 640, 0))
+        im_p.set_data(image)
+        try:
+            corners = pp.find_document(image)
+        except pp.DocumentNotFoundError as exc:
+            found.set_data([], [])
+            im_r.set_data(np.full((_SHOW, _SHOW, 3), 255, np.uint8))
+            state.update(found=False, corner_error=None, message=str(exc))
+            readout.value = _pre("no page found:\n" + str(exc).replace("; ", ";\n"))
+            return
+        closed = np.vstack([corners, corners[:1]])
+        found.set_data(closed[:, 0], closed[:, 1])
+        est = pp.estimate_aspect_ratio(corners, image.shape)
+        _show_rectified(im_r, image, corners, (400, int(400 / est.ratio)))
+        err = float(np.abs(corners - photo.corners).max())
+        state.update(found=True, corner_error=err, ratio=est.ratio, message="")
+        readout.value = _pre(f"page found; worst corner error {err:.1f} px\n"
+                             f"aspect w/h {est.ratio:.3f} (true {photo.aspect:.3f}, A4 = 0.707)")
+
+    controls = {
+        "yaw": slider(0.45, -0.8, 0.8, 0.05, "page yaw (rad)"),
+        "pitch": slider(0.35, -0.7, 0.7, 0.05, "page pitch (rad)"),
+        "page_present": W.Checkbox(value=True, description="page on the desk"),
+    }
+    return build_demo("document_scanner", controls, view, update, title="Scan this page", extra=[readout])
+
+
+@register(lesson="10", sweep={"tilt": [-0.7, -0.3, 0.0], "yaw": [0.0, 0.3]})
+def keystone_correction() -> Demo:
+    """Keystone: a camera tilted up at a facade makes its verticals converge; the
+    rectifying homography makes them parallel again."""
+    view = FigureView(figsize=(9, 4.2))
+    ax_p, ax_r, im_p, im_r = _photo_axes(view)
+    ax_p.set_title("photo (camera tilted up)", fontsize=10, pad=3)
+    ax_r.set_title("keystone-corrected", fontsize=10, pad=3)
+    quad = view.animate(ax_p.plot([], [], "--", color="yellow", lw=1.5)[0])
+    _on_top(view, ax_p)
+    readout = W.HTML()
+
+    def update(v: dict, state: dict) -> None:
+        photo = pp.sample_photo("facade", pitch=v["tilt"], yaw=v["yaw"])
+        im_p.set_data(photo.image)
+        c = photo.corners
+        closed = np.vstack([c, c[:1]])
+        quad.set_data(closed[:, 0], closed[:, 1])
+        est = pp.estimate_aspect_ratio(c, photo.image.shape)
+        _show_rectified(im_r, photo.image, c, (400, int(round(400 / est.ratio))))
+        left, right = c[3] - c[0], c[2] - c[1]
+        converge = float(np.degrees(np.arctan2(left[0], left[1]) - np.arctan2(right[0], right[1])))
+        state.update(ratio=est.ratio, true_ratio=photo.aspect, convergence=converge, focal_source=est.focal_source)
+        readout.value = _pre(f"verticals converge by {abs(converge):.1f}°\n"
+                             f"aspect w/h estimated {est.ratio:.3f} (true {photo.aspect:.3f}, f {est.focal_source})")
+
+    controls = {
+        "tilt": slider(-0.5, -0.8, 0.0, 0.05, "camera tilt (rad)"),
+        "yaw": slider(0.0, -0.5, 0.5, 0.05, "yaw (rad)"),
+    }
+    return build_demo("keystone_correction", controls, view, update, title="Keystone correction", extra=[readout])

@@ -1,0 +1,210 @@
+"""Demos for lesson 04, the projective camera P = K [R | t].
+
+In a lesson::
+
+    %matplotlib widget
+    from camlab.widgets import projective_camera as demos
+    demos.camera_explorer()
+"""
+from __future__ import annotations
+
+import ipywidgets as W
+import numpy as np
+
+from .. import camera as cm
+from ..plotting import scene3d
+from ._base import FigureView, build_demo, register, slider
+
+TARGET = np.array([0.0, 0.0, 0.7])
+
+
+def house_scene() -> np.ndarray:
+    """The lesson's wireframe world: a house on a 4 m x 4 m ground grid, (M, 2, 3) metres."""
+    return np.concatenate([cm.house_wireframe(), cm.ground_grid(2.0, 0.5)])
+
+
+def orbit_eye(azimuth_deg: float, elevation_deg: float, distance: float, target=TARGET) -> np.ndarray:
+    """A point on a sphere of radius ``distance`` about ``target``; azimuth from +X towards +Y."""
+    a, e = np.deg2rad(azimuth_deg), np.deg2rad(elevation_deg)
+    return np.asarray(target) + distance * np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
+
+
+def _fmt(v: np.ndarray) -> str:
+    return "(" + ", ".join(f"{x:+.2f}" for x in v) + ")"
+
+
+@register(lesson="04", sweep={"fx": [400, 1200], "fy": [500, 1100], "cx": [200, 420], "cy": [160, 320],
+                              "skew": [-150, 150], "azimuth": [-140, -20], "elevation": [5, 60],
+                              "distance": [3.5, 8.0]})
+def camera_explorer():
+    """Intrinsics and pose sliders beside a live 3-D frustum view and the camera's image.
+
+    The text under the image shows t (the world origin in camera coordinates) next to
+    the centre C = -R^T t (the camera in world coordinates): two different vectors.
+    """
+    view = FigureView(figsize=(9, 4.2))
+    scene = house_scene()
+    cam0 = cm.Camera.look_at(orbit_eye(-60, 25, 5.0), TARGET)
+    sv = scene3d.SceneView(view.fig, cam0, scene, plane_size=1.5)
+    info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
+    (pp,) = sv.ax_image.plot([], [], "+", color="tab:purple", ms=10, mew=2)
+    view.animate(*sv.artists(), pp)
+    controls = {
+        "fx": slider(800, 200, 1600, 10, "fx (px)"),
+        "fy": slider(800, 200, 1600, 10, "fy (px)"),
+        "cx": slider(320, 0, 640, 5, "cx (px)"),
+        "cy": slider(240, 0, 480, 5, "cy (px)"),
+        "skew": slider(0, -300, 300, 10, "skew s (px)"),
+        "azimuth": slider(-60, -180, 180, 2, "azimuth (deg)"),
+        "elevation": slider(25, -10, 80, 1, "elevation (deg)"),
+        "distance": slider(5.0, 2.5, 9.0, 0.1, "distance (m)"),
+    }
+
+    def update(v, state):
+        K = cm.intrinsic_matrix(v["fx"], v["fy"], v["cx"], v["cy"], v["skew"])
+        cam = cm.Camera.look_at(orbit_eye(v["azimuth"], v["elevation"], v["distance"]), TARGET, K=K)
+        sv.update(cam)
+        pp.set_data([cam.principal_point[0]], [cam.principal_point[1]])
+        info.value = (f"<pre>t = {_fmt(cam.t)} m  (world origin in camera frame)\n"
+                      f"C = -R^T t = {_fmt(cam.centre)} m  (camera in world)</pre>")
+        state.update(camera=cam, K=K, R=cam.R, t=cam.t, centre=cam.centre, P=cam.P)
+
+    return build_demo("camera_explorer", controls, view, update,
+                      title="Drag the intrinsics and the pose: P = K [R | t]", extra=[info])
+
+
+def resection_data(n_points: int, noise_px: float, seed: int = 0):
+    """A true camera, N world points on two faces of a box and their noisy pixels."""
+    rng = np.random.default_rng(seed)
+    cam = cm.Camera.look_at(orbit_eye(-55, 25, 5.0), TARGET)
+    n1 = n_points // 2
+    # Two faces of a 2 m cube (x = 1 and y = -1 planes): non-coplanar, like a calibration rig.
+    a = rng.uniform(-1, 1, (n_points, 2))
+    X = np.empty((n_points, 3))
+    X[:n1] = np.column_stack([np.full(n1, 1.0), a[:n1, 0], 1.0 + a[:n1, 1]])
+    X[n1:] = np.column_stack([a[n1:, 0], np.full(n_points - n1, -1.0), 1.0 + a[n1:, 1]])
+    uv = cam.project(X) + rng.normal(0.0, noise_px, (n_points, 2))
+    return cam, X, uv
+
+
+@register(lesson="04", sweep={"noise": [0.0, 3.0], "n_points": [6, 40], "outlier": [0.0, 60.0],
+                              "refine": [True, False]})
+def resectioning():
+    """Estimate P from noisy correspondences (DLT, optionally refined) and compare to the truth.
+
+    Click in the image to move the nearest measured pixel there (a mismatched
+    correspondence); the ``outlier`` slider does the same to correspondence 0 without a mouse.
+    Changing N or the noise starts from fresh measurements.
+    """
+    view = FigureView(figsize=(9, 4.2))
+    cam, X, uv = resection_data(12, 0.5)
+    frame = np.concatenate([cm.box_wireframe((0.0, 0.0, 1.0), (2.0, 2.0, 2.0)), cm.ground_grid(2.0, 1.0)])
+    sv = scene3d.SceneView(view.fig, cam, frame, plane_size=1.0, image_title="measured (o) vs reprojected (+)")
+    sv.camera_artist.lines.set_alpha(0.4)
+    est_art = scene3d.CameraArtist(sv.ax3d, cam, size=1.0, color="tab:orange", show_axes=False, label="est.")
+    pts3d = scene3d.draw_points(sv.ax3d, X, color="tab:blue")
+    (meas,) = sv.ax_image.plot([], [], "o", mfc="none", color="tab:blue", ms=6)
+    (reproj,) = sv.ax_image.plot([], [], "+", color="tab:orange", ms=8, mew=1.5)
+    (est_lines,) = sv.ax_image.plot([], [], color="tab:orange", lw=1.0, ls="--")
+    info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
+    view.animate(*est_art.artists(), pts3d, meas, reproj, est_lines)
+    controls = {
+        "noise": slider(0.5, 0.0, 5.0, 0.1, "pixel noise sigma (px)"),
+        "n_points": W.IntSlider(value=12, min=6, max=60, description="correspondences N",
+                                style={"description_width": "initial"}, layout=W.Layout(width="300px")),
+        "outlier": slider(0.0, 0.0, 100.0, 2.0, "shift pair 0 by (px)"),
+        "refine": W.Checkbox(value=False, description="refine (minimise reprojection error)"),
+    }
+    clicked: dict[int, np.ndarray] = {}  # correspondence index -> clicked pixel
+    last_data: dict[str, tuple] = {}
+
+    def update(v, state):
+        key = (int(v["n_points"]), float(v["noise"]))
+        if last_data.get("key") != key:
+            clicked.clear()
+            last_data["key"] = key
+        cam_true, Xw, uvn = resection_data(*key)
+        uvn[0, 0] += float(v["outlier"])
+        for i, uv_click in clicked.items():
+            uvn[i] = uv_click
+        P = cm.estimate_projection_matrix(Xw, uvn, refine=bool(v["refine"]))
+        K, R, t, C = cm.decompose_projection_matrix(P)
+        est = cm.Camera(K, R, t)
+        err = cm.reprojection_errors(P, Xw, uvn)
+        est_art.update(est)
+        pts3d.set_data_3d(Xw[:, 0], Xw[:, 1], Xw[:, 2])
+        meas.set_data(uvn[:, 0], uvn[:, 1])
+        r = cm.project_points(P, Xw)
+        reproj.set_data(r[:, 0], r[:, 1])
+        scene3d.update_segments(est_lines, cm.project_segments(P, frame))
+        rms = float(np.sqrt(np.mean(err ** 2)))
+        focal_err = float(abs(K[0, 0] - cam_true.K[0, 0]))
+        centre_err = float(np.linalg.norm(C - cam_true.centre))
+        info.value = (f"<pre>RMS reprojection {rms:.2f} px\n|fx - fx_true| = {focal_err:.1f} px\n"
+                      f"|C - C_true| = {100 * centre_err:.1f} cm</pre>")
+        state.update(P=P, K=K, R=R, t=t, centre=C, rms=rms, focal_error=focal_err, centre_error=centre_err,
+                     points_image=uvn)
+
+    demo = build_demo("resectioning", controls, view, update,
+                      title="Resection: estimate P from N point pairs (DLT); click the image to move a pixel",
+                      extra=[info])
+
+    def on_click(event):
+        if event.inaxes is not sv.ax_image or event.xdata is None:
+            return
+        uvn = demo.state["points_image"]
+        i = int(np.argmin(np.linalg.norm(uvn - [event.xdata, event.ydata], axis=1)))
+        clicked[i] = np.array([event.xdata, event.ydata])
+        update({k: c.value for k, c in demo.controls.items()}, demo.state)
+        demo.view.refresh()
+
+    view.fig.canvas.mpl_connect("button_press_event", on_click)
+    demo.on_click = on_click  # for tests: call with an object carrying inaxes, xdata, ydata
+    return demo
+
+
+@register(lesson="04", sweep={"yaw": [-60, 60], "frame": ["OpenGL / Blender", "OpenCV"]})
+def opencv_vs_opengl():
+    """The same camera with OpenCV axes (x right, y down, z forward) or OpenGL/Blender axes
+    (x right, y up, z backward): only the labels of the camera axes change, R_gl = F R."""
+    from mpl_toolkits.mplot3d import Axes3D  # noqa: F401  (registers the 3-D projection)
+
+    view = FigureView(figsize=(6.5, 4.2))
+    ax = scene3d.axes3d(view.fig, 1, 1, 1, elev=20, azim=-110)
+    ax.set_axis_off()
+    scene3d.draw_world_axes(ax, 0.6)
+    scene3d.draw_segments(ax, cm.house_wireframe((0.0, 0.0, 0.0), 0.6), color="0.6")
+    cam0 = cm.Camera.look_at([2.0, -2.0, 1.0], [0.0, 0.0, 0.4])
+    art = scene3d.CameraArtist(ax, cam0, size=0.6, show_axes=False, label="camera")
+    lines, texts = [], []
+    for c in scene3d.AXIS_COLOURS:
+        (ln,) = ax.plot([], [], [], color=c, lw=2.5)
+        lines.append(ln)
+        texts.append(ax.text(0, 0, 0, "", color=c, fontsize=9, fontweight="bold"))
+    scene3d.set_equal_aspect(ax, [[-0.6, -0.6, 0.0], [2.4, -2.4, 1.6], art.extent_points()], zoom=1.3)
+    title = ax.set_title("", fontsize=9)
+    scene3d.refresh_projection(ax)
+    view.animate(*art.artists(), *lines, *texts, title)
+    controls = {
+        "yaw": slider(0, -90, 90, 2, "orbit (deg)"),
+        "frame": W.ToggleButtons(options=["OpenCV", "OpenGL / Blender"], value="OpenCV", description="frame"),
+    }
+
+    def update(v, state):
+        eye = cm.rotation_z(np.deg2rad(v["yaw"])) @ np.array([2.0, -2.0, 1.0])
+        cam = cm.Camera.look_at(eye, [0.0, 0.0, 0.4])
+        art.update(cam)
+        gl = v["frame"] != "OpenCV"
+        R_axes = cm.opengl_from_opencv(cam.R, cam.t)[0] if gl else cam.R
+        names = ("x right", "y up", "z backward") if gl else ("x right", "y down", "z forward")
+        C = cam.centre
+        for i, (ln, tx) in enumerate(zip(lines, texts)):
+            e = C + 0.5 * R_axes[i]  # row i of R = camera axis i in world coordinates
+            ln.set_data_3d([C[0], e[0]], [C[1], e[1]], [C[2], e[2]])
+            tx.set_position_3d(C + 0.62 * R_axes[i])
+            tx.set_text(names[i])
+        title.set_text(("OpenGL/Blender: R_gl = diag(1,-1,-1) R, t_gl = diag(1,-1,-1) t" if gl else
+                        "OpenCV / H&Z: X_cam = R X + t, camera looks along +z"))
+        state.update(R_axes=R_axes, frame=v["frame"], camera=cam)
+
+    return build_demo("opencv_vs_opengl", controls, view, update, title="Same camera, two axis conventions")

@@ -1,0 +1,216 @@
+"""Tests for camlab.affine: the affine camera family, the affine approximation, estimation."""
+from __future__ import annotations
+
+import os
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from camlab import affine as af
+from camlab import camera as cm
+from camlab._validate import CamlabInputError, DegenerateError
+
+os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
+
+
+@pytest.fixture
+def rng():
+    return np.random.default_rng(1)
+
+
+@pytest.fixture
+def cam():
+    return cm.Camera.look_at([4.0, -3.0, 2.0], [0.0, 0.0, 0.5], K=cm.intrinsic_matrix(800, 780, 320, 240))
+
+
+def test_orthographic_known():
+    R = cm.rotation_z(np.pi / 2)
+    P = af.orthographic_matrix(R, [1.0, 2.0, 10.0])
+    X = np.array([[1.0, 0.0, 5.0], [0.0, 1.0, -3.0]])
+    # R maps x to y and y to -x; depth (t3 and X_z) is forgotten
+    assert np.allclose(cm.project_points(P, X), [[1.0, 3.0], [0.0, 2.0]])
+    assert af.is_affine(P) and not af.is_affine(cm.Camera.look_at([3, 0, 0], [0, 0, 0]).P)
+
+
+def test_scaled_orthographic_and_weak_perspective(rng):
+    R = cm.rotation_from_euler(0.1, 0.2, 0.3)
+    t = np.array([0.1, -0.2, 7.0])
+    X = rng.uniform(-1, 1, (10, 3))
+    Xc = X @ R.T + t
+    so = cm.project_points(af.scaled_orthographic_matrix(R, t, 150.0, (320, 240)), X)
+    assert np.allclose(so, 150.0 * Xc[:, :2] + [320, 240])
+    wp = cm.project_points(af.weak_perspective_matrix(R, t, 150.0, 120.0, 5.0, (320, 240)), X)
+    assert np.allclose(wp, Xc[:, :2] @ np.array([[150.0, 5.0], [0.0, 120.0]]).T + [320, 240])
+    with pytest.raises(CamlabInputError, match="ax: expected a positive finite number"):
+        af.weak_perspective_matrix(R, t, 0.0, 1.0)
+    with pytest.raises(CamlabInputError, match="expected a rotation"):
+        af.orthographic_matrix(2 * np.eye(3), t)
+
+
+def test_affine_camera_sees_points_behind():
+    P = af.orthographic_matrix(np.eye(3), [0.0, 0.0, 0.0])
+    assert np.allclose(cm.project_points(P, [1.0, 2.0, -5.0]), [1.0, 2.0])
+
+
+def test_affine_approximation_exact_at_reference(cam, rng):
+    X0 = np.array([0.3, -0.2, 0.7])
+    PA = af.affine_approximation(cam, X0)
+    assert af.is_affine(PA) and np.allclose(PA[2], [0, 0, 0, 1])
+    assert np.allclose(cm.project_points(PA, X0), cam.project(X0))
+    # Points at the reference depth (a fronto-parallel plane) image identically
+    d0 = cam.depth(X0)
+    uv = rng.uniform([0, 0], [640, 480], (10, 2))
+    X = cam.backproject(uv, d0)
+    assert np.allclose(cm.project_points(PA, X), uv)
+
+
+def test_affine_approximation_error_formula(cam, rng):
+    """H&Z eq. 6.17: x_proj - x0 = d0 / (d0 + Delta) (x_affine - x0), x0 the principal point."""
+    X0 = np.array([0.0, 0.0, 0.5])
+    PA = af.affine_approximation(cam, X0)
+    X = rng.uniform(-1, 1, (20, 3)) + X0
+    d0, d = cam.depth(X0), cam.depth(X)
+    x0 = cam.principal_point
+    lhs = cam.project(X) - x0
+    rhs = (d0 / d)[:, None] * (cm.project_points(PA, X) - x0)
+    assert np.allclose(lhs, rhs)
+
+
+def test_affine_approximation_errors(cam):
+    with pytest.raises(CamlabInputError, match="reference_point: expected a point in front of the camera"):
+        af.affine_approximation(cam, cam.centre - cam.principal_axis)
+    with pytest.raises(CamlabInputError, match="camera: expected a camlab.camera.Camera"):
+        af.affine_approximation(cam.P, [0, 0, 0])
+
+
+def test_weak_perspective_error_falls_like_one_over_distance(rng):
+    cube = cm.box_wireframe((0, 0, 0), (1, 1, 1)).reshape(-1, 3)
+    rms = []
+    for d in (5.0, 10.0, 20.0, 40.0):
+        f = af.dolly_zoom_focal(800.0, 5.0, d)
+        c = cm.Camera.look_at([d, 0.3 * d, 0.2 * d], [0, 0, 0], K=cm.intrinsic_matrix(f, f, 320, 240))
+        rms.append(np.sqrt(np.mean(af.weak_perspective_error(c, cube, [0, 0, 0]) ** 2)))
+    ratios = np.array(rms[:-1]) / np.array(rms[1:])
+    assert np.all(ratios > 1.8) and np.all(ratios < 2.3)  # error ~ (size / d) * (image size): halves per doubling
+
+
+def test_dolly_zoom_keeps_image_size():
+    sizes = []
+    for d in (3.0, 6.0, 30.0):
+        f = af.dolly_zoom_focal(800.0, 3.0, d)
+        c = cm.Camera.look_at([0, -d, 0], [0, 0, 0], K=cm.intrinsic_matrix(f, f, 320, 240))
+        a, b = c.project([[-0.5, 0, 0], [0.5, 0, 0]])
+        sizes.append(np.linalg.norm(a - b))
+    assert np.allclose(sizes, sizes[0])
+    assert af.dolly_zoom_focal(800, 2, 4) == 1600
+
+
+def test_estimate_affine_exact_on_affine_data(rng):
+    R = cm.rotation_from_euler(0.3, -0.1, 0.7)
+    P = af.weak_perspective_matrix(R, [0.2, 0.1, 5], 180, 170, 3.0, (320, 240))
+    X = rng.uniform(-1, 1, (12, 3))
+    Pe = af.estimate_affine_camera(X, cm.project_points(P, X))
+    assert np.abs(Pe - P).max() < 1e-10
+    Pe4 = af.estimate_affine_camera(X[:4], cm.project_points(P, X[:4]))  # the minimum
+    assert np.abs(Pe4 - P).max() < 1e-9
+
+
+def test_estimate_affine_is_least_squares(rng):
+    P = af.scaled_orthographic_matrix(cm.rotation_x(0.4), [0, 0, 5], 200.0, (320, 240))
+    X = rng.uniform(-1, 1, (30, 3))
+    uv = cm.project_points(P, X) + rng.normal(0, 1.0, (30, 2))
+    Pe = af.estimate_affine_camera(X, uv)
+    best = np.sum(cm.reprojection_errors(Pe, X, uv) ** 2)
+    for _ in range(20):  # every perturbation of the 8 free entries does worse
+        Q = Pe.copy()
+        Q[:2] += rng.normal(0, 1e-3, (2, 4))
+        assert np.sum(cm.reprojection_errors(Q, X, uv) ** 2) > best
+
+
+def test_estimate_affine_bad_input(rng):
+    X = rng.uniform(-1, 1, (3, 3))
+    with pytest.raises(CamlabInputError, match=r"N >= 4 correspondences"):
+        af.estimate_affine_camera(X, X[:, :2])
+    plane = np.column_stack([rng.uniform(-1, 1, (8, 2)), np.ones(8)])
+    with pytest.raises(DegenerateError, match="coplanar"):
+        af.estimate_affine_camera(plane, plane[:, :2])
+    with pytest.raises(CamlabInputError, match="equally many points, got 8 and 7"):
+        af.estimate_affine_camera(rng.uniform(-1, 1, (8, 3)), np.zeros((7, 2)))
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.floats(-1, 1), min_size=3, max_size=3), st.floats(0.5, 5), st.floats(-3, 3))
+def test_parallel_lines_stay_parallel(direction, offset, angle):
+    d = np.array(direction)
+    if np.linalg.norm(d) < 1e-3:
+        d = np.array([1.0, 0.0, 0.0])
+    P = af.weak_perspective_matrix(cm.rotation_from_euler(angle, 0.3, -angle), [0, 0, 5], 100, 90, 2.0, (320, 240))
+    v = af.image_of_direction(P, d)
+    assert v[2] == 0.0  # an ideal point: the image lines are parallel
+    a = cm.project_points(P, [[0, 0, 0], d])
+    b = cm.project_points(P, [[offset, 0, 1], np.array([offset, 0, 1]) + d])
+    da, db = a[1] - a[0], b[1] - b[0]
+    assert abs(da[0] * db[1] - da[1] * db[0]) <= 1e-9 * (1 + np.linalg.norm(da) * np.linalg.norm(db))
+
+
+def test_perspective_image_of_direction_is_vanishing_point(cam):
+    d = np.array([0.0, 1.0, 0.0])
+    v = af.image_of_direction(cam.P, d)
+    far = cam.project(np.array([0.2, 0.0, 0.1]) + 1e7 * d)
+    assert np.allclose(v[:2] / v[2], far, atol=1e-3)
+    assert np.allclose(v, cam.K @ cam.R @ d)
+    with pytest.raises(CamlabInputError, match="non-zero"):
+        af.image_of_direction(cam.P, [0, 0, 0])
+
+
+# -- lesson 05 demos and exercises ----------------------------------------------------------
+
+def test_three_cameras_demo_difference_shrinks_with_distance():
+    from camlab.widgets import affine_cameras as demos
+
+    d = demos.three_cameras()
+    d.set(distance=3.0)
+    near = d.state["max_difference"]
+    d.set(distance=18.0)
+    assert d.state["max_difference"] < near / 4
+    assert af.is_affine(d.state["P_weak"])
+
+
+def test_dolly_zoom_demo_state():
+    from camlab.widgets import affine_cameras as demos
+
+    d = demos.dolly_zoom()
+    d.set(distance=8.0)
+    assert d.state["focal"] == pytest.approx(1600.0)
+    e8 = d.state["rms_error"]
+    d.set(distance=32.0)
+    assert d.state["rms_error"] < e8 / 3
+    before = d.view.pixels()
+    d.set(distance=2.0)
+    assert not np.array_equal(before, d.view.pixels())
+
+
+def test_parallel_rails_demo_state():
+    from camlab.widgets import affine_cameras as demos
+
+    d = demos.parallel_rails()
+    assert d.state["affine_direction"][2] == 0.0
+    vp = d.state["vanishing_point"]
+    cam = d.state["camera"]
+    far = cam.project([0.5, 1e8, 0.0])
+    assert np.allclose(vp, far, atol=1e-2)
+    d.set(yaw=30)
+    assert d.state["vanishing_point"][0] != pytest.approx(vp[0])
+
+
+def test_lesson05_exercises(capsys):
+    from camlab.exercises import all_exercises, check
+
+    for name in ("affine_approximation", "estimate_affine_camera"):
+        ex = all_exercises()[name]
+        assert ex.lesson == "05" and check(name, ex.reference)
+    with pytest.raises(AssertionError, match="depth of the world origin"):
+        check("affine_approximation", lambda c, X0: (lambda E: c.K @ E / c.t[2])(
+            np.vstack([np.c_[c.R[:2], c.t[:2]], [0, 0, 0, c.t[2]]])))

@@ -1,0 +1,130 @@
+"""Demo-specific tests for lessons 07 and 10 (widgets) and their exercises."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from matplotlib.backend_bases import MouseEvent
+
+from camlab import homography as hg
+from camlab import perspective as pp
+from camlab.exercises import all_exercises, check
+from camlab.projective import map_points
+from camlab.widgets import homographies as h07
+from camlab.widgets import perspective_correction as p10
+
+
+def _mouse(fig, ax, name, uv, button=1):
+    x, y = ax.transData.transform(uv)
+    return MouseEvent(name, fig.canvas, x, y, button=button)
+
+
+def _drag(demo, ax, start, end):
+    fig = demo.figure
+    for name, uv in (("button_press_event", start), ("motion_notify_event", end), ("button_release_event", end)):
+        fig.canvas.callbacks.process(name, _mouse(fig, ax, name, uv))
+
+
+def test_hierarchy_demo_classifies_each_group():
+    d = h07.transformation_hierarchy()
+    for group in ("euclidean", "similarity", "affine", "projective"):
+        d.set(group=group)
+        assert d.state["classified"] == group
+        assert d.state["dof"] == {"euclidean": 3, "similarity": 4, "affine": 6, "projective": 8}[group]
+    d.set(group="euclidean", theta=30.0, tx=10.0)
+    H = d.state["H"]
+    assert np.allclose(H[:2, :2], [[np.cos(np.pi / 6), -np.sin(np.pi / 6)], [np.sin(np.pi / 6), np.cos(np.pi / 6)]])
+
+
+def test_drag_homography_keeps_cross_ratio_and_maps_corners():
+    d = h07.drag_homography()
+    before = d.view.pixels()
+    corners = np.array([[30.0, 40.0], [260.0, 20.0], [250.0, 240.0], [50.0, 200.0]])
+    d.set(corners=h07.format_corners(corners))
+    assert np.allclose(map_points(d.state["H"], h07.SQUARE), corners, atol=1e-6)
+    assert np.isclose(d.state["cross_ratio_image"], d.state["cross_ratio_source"], rtol=1e-9)
+    assert not np.isclose(d.state["length_ratio_image"], d.state["length_ratio_source"], rtol=1e-3)
+    assert not np.array_equal(before, d.view.pixels())
+    # a bad corner set is reported, not raised
+    d.set(corners="0, 0; 10, 10; 20, 20; 0, 30")
+    assert "collinear" in d.state["error"]
+
+
+def test_drag_homography_mouse_drag_headless():
+    d = h07.drag_homography()
+    ax = d.figure.axes[1]
+    start = d.state["corners"][2].copy()
+    _drag(d, ax, start, (270.0, 240.0))
+    assert np.allclose(d.state["corners"][2], (270.0, 240.0), atol=0.5)
+    assert np.allclose(map_points(d.state["H"], h07.SQUARE[2]), (270.0, 240.0), atol=0.5)
+    # a press far from every corner grabs nothing
+    old = d.state["corners"].copy()
+    _drag(d, ax, (150.0, 130.0), (10.0, 10.0))
+    assert np.allclose(d.state["corners"], old)
+
+
+def test_ransac_demo_finds_true_inliers():
+    d = h07.ransac_outliers()
+    d.set(outliers=0.5, threshold=3.0, seed=1)
+    assert d.state["recall"] > 0.9 and d.state["corner_error"] < 3.0
+    few = d.state["iterations"]
+    d.set(outliers=0.1)
+    assert d.state["iterations"] < few
+
+
+def test_forward_warp_demo_holes_grow_with_magnification():
+    d = h07.forward_vs_inverse()
+    d.set(scale=0.6)
+    small = d.state["hole_fraction"]
+    d.set(scale=2.8)
+    assert d.state["hole_fraction"] > 0.5 > small
+
+
+def test_rectify_photo_estimates_true_aspect_and_drags():
+    d = p10.rectify_photo()
+    for scene in ("painting", "facade", "page"):
+        d.set(scene=scene)
+        assert d.state["scene"] == scene
+        # the corners pass through the text control (2 decimals), hence the tolerance
+        assert np.isclose(d.state["ratio"], d.state["true_ratio"], rtol=1e-3)
+        assert d.state["focal_source"] == "estimated" and np.isclose(d.state["focal"], 800, rtol=1e-2)
+    ax = d.figure.axes[0]
+    c0 = d.state["corners"][0].copy()
+    _drag(d, ax, c0, c0 + [15.0, -10.0])
+    assert np.allclose(d.state["corners"][0], c0 + [15.0, -10.0], atol=0.5)
+    d.set(corners="300, 100; 200, 100; 300, 300; 200, 300")  # a bow tie
+    assert "self-intersecting" in d.state["error"]
+
+
+def test_document_scanner_reports_missing_page():
+    d = p10.document_scanner()
+    assert d.state["found"] and d.state["corner_error"] < 4
+    d.set(page_present=False)
+    assert d.state["found"] is False and "no convex quadrilateral" in d.state["message"]
+
+
+def test_keystone_demo_corrects_converging_verticals():
+    d = p10.keystone_correction()
+    d.set(tilt=-0.6, yaw=0.0)
+    assert abs(d.state["convergence"]) > 5
+    d.set(yaw=0.2)  # with both edge pairs converging the focal length and ratio are exact
+    assert np.isclose(d.state["ratio"], d.state["true_ratio"], rtol=1e-6)
+
+
+@pytest.mark.parametrize("name", ["dlt_homography", "apply_homography", "rectangle_homography", "order_corners"])
+def test_exercises_accept_reference_and_catch_mistakes(name, capsys):
+    ex = all_exercises()[name]
+    assert check(name, ex.reference)
+    for fn, phrase in ex.wrong_variants:
+        with pytest.raises(AssertionError, match=phrase):
+            check(name, fn)
+
+
+def test_dlt_exercise_accepts_an_honest_unnormalised_dlt():
+    def dlt(src, dst):
+        rows = []
+        for (u, v), (up, vp) in zip(src, dst):
+            rows.append([0, 0, 0, -u, -v, -1, vp * u, vp * v, vp])
+            rows.append([u, v, 1, 0, 0, 0, -up * u, -up * v, -up])
+        return np.linalg.svd(np.array(rows))[2][-1].reshape(3, 3)
+
+    assert check("dlt_homography", dlt)

@@ -1,0 +1,110 @@
+"""Demo- and exercise-specific tests for lessons 01-03 (the generic sweeps live in test_widgets.py)."""
+import contextlib
+import io
+import os
+
+import numpy as np
+import pytest
+
+os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
+
+from camlab import distortion, lens  # noqa: E402
+from camlab.exercises import all_exercises, check  # noqa: E402
+from camlab.widgets import digital_sensor, lenses_and_distortion, pinhole_camera  # noqa: E402
+from camlab.widgets import REGISTRY  # noqa: E402
+
+MODULES = {"01": pinhole_camera, "02": lenses_and_distortion, "03": digital_sensor}
+
+
+@pytest.mark.parametrize("name", sorted(n for n, s in REGISTRY.items() if s.lesson in MODULES))
+def test_every_demo_sweeps_and_moves_pixels(name):
+    spec = REGISTRY[name]
+    demo = spec.builder()
+    before = demo.view.pixels()
+    for key, values in spec.sweep.items():
+        for v in values:
+            demo.set(**{key: v})
+    assert not np.array_equal(before, demo.view.pixels())
+
+
+def test_pinhole_projection_box_width_follows_f_over_z():
+    demo = pinhole_camera.pinhole_projection()
+    demo.set(focal_mm=50, distance=2.0)
+    w1 = demo.state["box_width_px"]
+    demo.set(focal_mm=100)
+    assert demo.state["box_width_px"] == pytest.approx(2 * w1)
+    demo.set(distance=4.0)
+    assert demo.state["box_width_px"] == pytest.approx(w1)
+    upright = demo.state["image"].copy()
+    demo.set(real_plane=True)
+    assert np.array_equal(demo.state["image"], upright[::-1, ::-1])
+
+
+def test_pinhole_size_regimes():
+    demo = pinhole_camera.pinhole_size()
+    demo.set(focal_mm=100, diameter_mm=0.05)
+    assert demo.state["limited_by"] == "diffraction"
+    demo.set(diameter_mm=2.0)
+    assert demo.state["limited_by"] == "geometry"
+    assert demo.state["best_mm"] == pytest.approx(np.sqrt(2.44 * 550e-9 * 0.1 / 1.1) * 1e3)  # object at 1 m
+
+
+def test_thin_lens_and_dof_state():
+    demo = lenses_and_distortion.thin_lens()
+    demo.set(focal_mm=40, object_m=0.12)
+    assert demo.state["image_distance"] == pytest.approx(0.06) and demo.state["magnification"] == pytest.approx(-0.5)
+    dof = lenses_and_distortion.depth_of_field()
+    dof.set(f_number=16.0, focus_m=1.2)
+    wide = dof.state["far"] - dof.state["near"]
+    dof.set(f_number=1.4)
+    assert dof.state["far"] - dof.state["near"] < wide
+    assert dof.state["coc_px"][1.2] == 0 and dof.state["coc_px"][0.6] > 2
+
+
+def test_distortion_demo_classifies_and_undistorts():
+    demo = lenses_and_distortion.lens_distortion()
+    demo.set(k1=-0.3, k2=0.0, p1=0.0, p2=0.0)
+    assert demo.state["kind"] == "barrel"
+    demo.set(k1=0.2)
+    assert demo.state["kind"] == "pincushion"
+    c_dist = demo.state["corner0"].copy()
+    demo.set(undistort=True)
+    ideal = distortion.undistort_pixels(c_dist, lenses_and_distortion.K_D, [0.2, 0, 0, 0, 0])
+    assert np.allclose(demo.state["corner0"], ideal)
+
+
+def test_sensor_demos_state():
+    s = digital_sensor.sampling_aliasing()
+    s.set(factor=6, prefilter=False)
+    aliased = s.state["alias_contrast"]
+    s.set(prefilter=True)
+    assert s.state["alias_contrast"] < 0.5 * aliased
+    b = digital_sensor.bit_depth_and_noise()
+    b.set(bits=2, read_noise=0.0, exposure=1.0)
+    assert b.state["levels"] == 4
+    coarse = b.state["rms_error"]
+    b.set(bits=10)
+    assert b.state["rms_error"] < coarse
+    d = digital_sensor.demosaicing()
+    d.set(method="truth")
+    assert d.state["psnr"] == np.inf
+    d.set(method="camlab bilinear")
+    ours = d.state["psnr"]
+    d.set(method="OpenCV bilinear")
+    assert ours >= d.state["psnr"] - 0.05
+
+
+@pytest.mark.parametrize("name", ["pinhole_projection", "best_pinhole_diameter", "thin_lens_image_distance",
+                                  "distort_points", "quantize_image", "demosaic_bilinear"])
+def test_exercises_accept_reference_and_catch_mistakes(name):
+    ex = all_exercises()[name]
+    with contextlib.redirect_stdout(io.StringIO()) as out:
+        assert check(name, ex.reference)
+    assert "correct" in out.getvalue()
+    for wrong, phrase in ex.wrong_variants:
+        with pytest.raises(AssertionError, match=phrase.replace("*", r"\*")):
+            check(name, wrong)
+
+
+def test_thin_lens_exercise_uses_textbook_numbers():
+    assert lens.image_distance(0.05, 0.1) == pytest.approx(0.1)

@@ -1,0 +1,97 @@
+"""Tests for camlab.sensor: pixel mapping, sampling, quantisation, noise, Bayer and demosaicing."""
+import cv2
+import numpy as np
+import pytest
+
+from camlab import render as r
+from camlab import sensor as S
+from camlab._validate import CamlabInputError
+
+
+def test_metric_pixel_round_trip_and_intrinsics():
+    pts = np.array([[1e-3, -2e-3], [0.0, 0.0]])
+    px = S.metric_to_pixels(pts, (4e-6, 5e-6), (320, 240))
+    assert np.allclose(px, [[570, -160], [320, 240]])
+    assert np.allclose(S.pixels_to_metric(px, (4e-6, 5e-6), (320, 240)), pts)
+    K = S.intrinsics_from_sensor(4e-3, (4e-6, 5e-6), (640, 480), (2, -1))
+    assert np.allclose(K, [[1000, 0, 321.5], [0, 800, 238.5], [0, 0, 1]])
+
+
+def test_quantize_levels_and_errors():
+    x = np.linspace(0, 1, 1001)
+    for bits in (1, 3, 8, 12, 16):
+        q = S.quantize(x, bits)
+        assert len(np.unique(q)) == min(2**bits, 1001)
+        assert np.abs(S.dequantize(q, bits) - x).max() <= 0.5 / (2**bits - 1) + 1e-12
+    assert S.quantize(x, 12).dtype == np.uint16
+    for bad in (0, 17, 8.5):
+        with pytest.raises(CamlabInputError, match="bits: expected an integer bit depth from 1 to 16"):
+            S.quantize(x, bad)
+    with pytest.raises(CamlabInputError, match="image: expected a float image"):
+        S.quantize(np.zeros(3, np.uint8))
+
+
+def test_aliasing_point_sampling_versus_box_filter():
+    zp = S.zone_plate(512)
+    point = S.sample(zp, 4, prefilter=False)
+    box = S.sample(zp, 4, prefilter=True)
+    assert point.shape == box.shape == (128, 128)
+    # beyond the coarse Nyquist radius the true signal averages to 0.5 with tiny contrast;
+    # point sampling shows full-contrast false rings there, the box filter mostly does not
+    yy, xx = np.mgrid[0:128, 0:128] - 63.5
+    outer = np.hypot(xx, yy) > 45
+    assert point[outer].std() > 0.3 and box[outer].std() < 0.15
+
+
+def test_noise_statistics():
+    img = np.full((200, 200), 0.25)
+    n = S.add_noise(img, S.NoiseModel(full_well=4000, read_noise=10), rng=0)
+    assert n.mean() == pytest.approx(0.25, abs=2e-3)
+    assert n.std() == pytest.approx(np.sqrt(0.25 * 4000 + 100) / 4000, rel=0.05)
+    assert np.array_equal(n, S.add_noise(img, S.NoiseModel(4000, 10), rng=0))
+
+
+@pytest.mark.parametrize("pattern", S.BAYER_PATTERNS)
+def test_mosaic_and_bilinear_demosaic(pattern):
+    rng = np.random.default_rng(0)
+    rgb = rng.uniform(size=(8, 10, 3))
+    raw = S.mosaic(rgb, pattern)
+    m = S.bayer_masks(raw.shape, pattern)
+    assert m.sum(axis=2).max() == 1 and m[..., 1].mean() == 0.5
+    assert np.allclose(raw, (rgb * m).sum(axis=2))
+    out = S.demosaic_bilinear(raw, pattern)
+    assert np.allclose(out[m], rgb[m])   # measured samples kept
+    # a smooth (linear) colour ramp is reconstructed exactly away from the border
+    yy, xx = np.mgrid[0:12, 0:12].astype(float)
+    ramp = np.stack([0.02 * xx + 0.01 * yy, 0.5 - 0.01 * xx, 0.03 * yy], axis=2)
+    rec = S.demosaic_bilinear(S.mosaic(ramp, pattern), pattern)
+    assert np.allclose(rec[1:-1, 1:-1], ramp[1:-1, 1:-1])
+
+
+@pytest.mark.parametrize("pattern", S.BAYER_PATTERNS)
+def test_bilinear_matches_or_beats_opencv_on_a_rendered_scene(pattern):
+    K = np.array([[700.0, 0, 159.5], [0, 700, 119.5], [0, 0, 1]])
+    truth = r.render(r.photo_plane(0.3, t=(0, 0, 0.9)), K, size=(320, 240)).irradiance
+    raw = S.quantize(S.mosaic(truth, pattern))
+    ours = S.demosaic_bilinear(raw, pattern) / 255
+    cv_bilinear = S.demosaic_opencv(raw, pattern, "bilinear") / 255
+    p_ours, p_cv = S.psnr(truth, ours, border=2), S.psnr(truth, cv_bilinear, border=2)
+    assert p_cv > 25          # the adapter picks OpenCV's matching pattern (a wrong one gives ~15 dB)
+    assert p_ours >= p_cv - 0.05
+    for method in ("vng", "ea"):
+        assert S.psnr(truth, S.demosaic_opencv(raw, pattern, method) / 255, border=2) > 25
+
+
+def test_bad_inputs():
+    with pytest.raises(CamlabInputError, match="pattern: expected one of RGGB, BGGR, GRBG, GBRG, got 'RGBG'"):
+        S.mosaic(np.zeros((4, 4, 3)), "RGBG")
+    with pytest.raises(CamlabInputError, match=r"rgb: expected an image of shape \(H, W, 3\), got shape \(4, 4\)"):
+        S.mosaic(np.zeros((4, 4)))
+    with pytest.raises(CamlabInputError, match=r"raw: expected an image of shape \(H, W\)"):
+        S.demosaic_bilinear(np.zeros((4, 4, 3)))
+    with pytest.raises(CamlabInputError, match="raw: OpenCV demosaicing needs uint8 or uint16"):
+        S.demosaic_opencv(np.zeros((4, 4)))
+    with pytest.raises(CamlabInputError, match="image: expected a float or integer image"):
+        S.add_noise(np.zeros((3, 3), dtype=bool))
+    with pytest.raises(CamlabInputError, match="pitch\\[0\\]: expected a positive"):
+        S.metric_to_pixels([0, 0], (0, 1e-6), (0, 0))
