@@ -42,7 +42,7 @@ from .projective import map_points
 __all__ = [
     "CalibratedRectification", "UncalibratedRectification", "VerticalDisparity",
     "rectify_calibrated", "rectify_images", "rectify_points", "rectification_coverage",
-    "rectify_uncalibrated", "vertical_disparity", "disparity_to_depth",
+    "rectify_uncalibrated", "vertical_disparity",
 ]
 
 
@@ -365,26 +365,6 @@ def rectification_coverage(rect: CalibratedRectification, camera1: Camera, camer
         q = rectify_points(rect, cam, np.column_stack([gu.ravel(), gv.ravel()]), which)
         out[f"kept{k}"] = float(np.mean((q[:, 0] >= -0.5) & (q[:, 0] <= w - 0.5) & (q[:, 1] >= -0.5) & (q[:, 1] <= h - 0.5)))
     return out
-
-
-def disparity_to_depth(disparity: ArrayLike, focal_length: float, baseline: float) -> np.ndarray:
-    r"""Depth :math:`Z = f B / d` (metres) from disparity d (pixels) in a rectified pair.
-
-    Similar triangles: a point at depth Z seen from two centres B apart along x projects
-    to columns :math:`u_1 = f X / Z + c` and :math:`u_2 = f (X - B) / Z + c`, so
-    :math:`d = u_1 - u_2 = f B / Z`. Non-positive or non-finite disparities (no match)
-    give NaN.
-
-    >>> disparity_to_depth([40.0, 0.0], focal_length=800, baseline=0.1)
-    array([ 2., nan])
-    """
-    d = np.array(disparity, dtype=float)
-    f = float(focal_length)
-    b = float(baseline)
-    if not (np.isfinite(f) and f > 0 and np.isfinite(b) and b > 0):
-        raise CamlabInputError(f"focal_length, baseline: expected positive pixels and metres, got {focal_length!r}, {baseline!r}")
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(np.isfinite(d) & (d > 0), f * b / np.where(d > 0, d, 1.0), np.nan)
 
 
 # --------------------------------------------------------------------------- uncalibrated
