@@ -121,8 +121,9 @@ def block_matching_disparity(left: ArrayLike, right: ArrayLike, max_disparity: i
     d0 = int(min_disparity)
     if not 0 <= d0 < D:
         raise CamlabInputError(f"min_disparity: expected an integer in [0, max_disparity), got {min_disparity!r}")
-    Lz = L - box_sum(L, b) / (b * b)
-    Rz = R - box_sum(R, b) / (b * b)
+    count = box_sum(np.ones((h, w)), b)  # pixels inside each window (fewer at the border)
+    Lz = L - box_sum(L, b) / count
+    Rz = R - box_sum(R, b) / count
     ds = np.arange(d0, D + 1)
     cost = np.empty((len(ds), h, w), dtype=np.float32)
     for k, d in enumerate(ds):  # 1. the cost volume, one disparity at a time
@@ -134,7 +135,8 @@ def block_matching_disparity(left: ArrayLike, right: ArrayLike, max_disparity: i
     best = np.take_along_axis(cost, k[None], axis=0)[0]
     cm = np.take_along_axis(cost, np.clip(k - 1, 0, len(ds) - 1)[None], axis=0)[0]
     cp = np.take_along_axis(cost, np.clip(k + 1, 0, len(ds) - 1)[None], axis=0)[0]
-    den = cm.astype(np.float64) - 2 * best + cp  # 3. sub-pixel parabola
+    with np.errstate(invalid="ignore"):  # inf - inf at the image edge
+        den = cm.astype(np.float64) - 2 * best + cp  # 3. sub-pixel parabola
     ok = (k > 0) & (k < len(ds) - 1) & np.isfinite(den) & (den > 0)
     off = np.zeros((h, w))
     off[ok] = (cm[ok] - cp[ok]) / (2 * den[ok])
@@ -145,7 +147,7 @@ def block_matching_disparity(left: ArrayLike, right: ArrayLike, max_disparity: i
         for j in range(len(ds)):
             far = np.abs(k - j) > 1
             np.minimum(second, np.where(far, cost[j], np.inf), out=second)
-        valid &= best <= (1 - uniqueness) * second
+        valid &= np.isfinite(second) & (best < (1 - uniqueness) * second)
     if lr_check > 0:  # 5. left-right consistency
         best_r = np.full((h, w), np.inf, dtype=np.float32)
         kr = np.zeros((h, w), dtype=np.int64)

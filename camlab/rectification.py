@@ -89,7 +89,7 @@ def _finite_pairs(x1: ArrayLike, x2: ArrayLike):
 # --------------------------------------------------------------------------- calibrated
 
 class CalibratedRectification(NamedTuple):
-    """Everything :func:`rectify_calibrated` computed.
+    r"""Everything :func:`rectify_calibrated` computed.
 
     Attributes
     ----------
