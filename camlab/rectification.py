@@ -41,7 +41,7 @@ from .projective import map_points
 
 __all__ = [
     "CalibratedRectification", "UncalibratedRectification", "VerticalDisparity",
-    "rectify_calibrated", "rectify_images", "rectify_points", "rectification_coverage",
+    "rectify_calibrated", "rectify_images", "rectify_points", "unrectify_points", "rectification_coverage",
     "rectify_uncalibrated", "vertical_disparity",
 ]
 
@@ -314,6 +314,25 @@ def rectify_points(rect: CalibratedRectification, camera: Camera, pixels: ArrayL
     p = as_points(pixels, 2, "pixels")
     q = _rectified_normalised(camera, rect.R1 if which == 1 else rect.R2, p.array)
     return p.restore(q @ rect.K[:2, :2].T + rect.K[:2, 2])
+
+
+def unrectify_points(rect: CalibratedRectification, camera: Camera, pixels: ArrayLike, which: int) -> np.ndarray:
+    r"""The inverse of :func:`rectify_points`: rectified pixels to original (distorted) pixels of ``camera``.
+
+    :math:`p \mapsto K\,\mathrm{distort}(\pi(R_i^\top K_{new}^{-1} \tilde p))`, exactly what the
+    remap tables store. Use it to carry true matches from the rectified pair (e.g. from
+    the true disparity) back to the raw images.
+    """
+    if which not in (1, 2):
+        raise CamlabInputError(f"which: expected 1 or 2 (the camera the pixels belong to), got {which!r}")
+    p = as_points(pixels, 2, "pixels")
+    rays = np.column_stack([p.array, np.ones(len(p.array))]) @ np.linalg.inv(rect.K).T @ (rect.R1 if which == 1 else rect.R2)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        xn = np.where(rays[:, 2:3] > 0, rays[:, :2] / rays[:, 2:3], np.nan)
+    if any(camera.dist):
+        ok = np.all(np.isfinite(xn), axis=1)
+        xn[ok] = distort_points(xn[ok], camera.dist)
+    return p.restore(xn @ camera.K[:2, :2].T + camera.K[:2, 2])
 
 
 def rectify_images(rect: "CalibratedRectification | UncalibratedRectification", image1: np.ndarray,

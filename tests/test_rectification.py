@@ -202,3 +202,13 @@ def test_uncalibrated_forward_motion_is_degenerate():
         rc.rectify_uncalibrated(c1.project(X), c2.project(X), F, (640, 480))
     with pytest.raises(CamlabInputError, match="N >= 8"):
         rc.rectify_uncalibrated(c1.project(X)[:5], c2.project(X)[:5], F, (640, 480))
+
+
+def test_rectify_unrectify_round_trip(rig, rect):
+    tl, tr = _true_corners(rig)
+    for cam, pts, which in ((rig.camera1, tl, 1), (rig.camera2, tr, 2)):
+        back = rc.unrectify_points(rect, cam, rc.rectify_points(rect, cam, pts, which), which)
+        assert np.abs(back - pts).max() < 1e-6
+    # and the remap tables store exactly unrectify_points
+    m = rect.maps1
+    assert np.allclose(rc.unrectify_points(rect, rig.camera1, [[100.0, 50.0]], 1), [[m.map_u[50, 100], m.map_v[50, 100]]], atol=1e-3)
