@@ -286,7 +286,7 @@ def rectify_pair() -> Demo:
         step.set_data(bins, np.append(frac, frac[-1]))
         readout.value = _pre(f"{v['method']}: vertical disparity of {len(vd.values)} true matches\n"
                              f"median {vd.median:.3g} px, 95th percentile {vd.p95:.3g} px")
-        state.update(vertical=vd, method=v["method"])
+        state.update(vertical_median=vd.median, vertical_p95=vd.p95, vertical_values=vd.values, method=v["method"])
 
     controls = {
         "method": W.ToggleButtons(options=["original", "calibrated", "uncalibrated"], value="calibrated",
