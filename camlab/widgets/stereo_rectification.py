@@ -223,7 +223,7 @@ def epipolar_lines() -> Demo:
 
 # --------------------------------------------------------------------------- demo 2: rectification
 
-@register(lesson="11", sweep={"method": ["original", "calibrated", "uncalibrated"], "alpha": [0.0, 1.0]})
+@register(lesson="11", sweep={"alpha": [0.5, 1.0], "method": ["original", "calibrated", "uncalibrated"]})
 def rectify_pair() -> Demo:
     """The rendered pair before and after rectification, with a row grid and the true matches.
 
