@@ -402,7 +402,9 @@ def estimate_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, normalize: bool = 
             f"estimate_fundamental_matrix: the {len(a)} pairs give an 8-point system of rank < 8, so F is not "
             f"unique; the points are coplanar, collinear or repeated. Use points spread over several depths"
         )
-    if plane_tol > 0:
+    # Only data that a homography could explain within plane_tol px has a nearly 3-dimensional null
+    # space (s[6] tiny); skip the homography fit otherwise (it costs twice the 8-point solve).
+    if plane_tol > 0 and s[6] < 1e-4 * s[0]:
         try:
             H = estimate_homography(a, b)
             plane_err = float(np.sqrt(np.mean(symmetric_transfer_error(H, a, b) ** 2)))
