@@ -4,7 +4,8 @@ Each demo is driven through its registered sweep (every control, every value, cy
 the Agg backend and the same blitting path the lessons use under ipympl. A second pair of
 columns repeats the sweep with ipympl's canvas as a connected browser sees it, so it also
 counts encoding the PNG diff that goes to the browser. Targets on the
-2-core course machine: median <= 30 ms and p95 <= 60 ms (image demos: see their issue).
+2-core course machine: median <= 30 ms and p95 <= 60 ms, or the demo's registered
+`target_ms` (image demos, set by their issue).
 
 Usage: python benchmarks/latency.py [--rounds N] [demo names...]
 """
@@ -22,10 +23,6 @@ import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(__file__))
 from _timing import print_table  # noqa: E402
-
-# Demos that re-render or warp images have their own issue targets (median ms).
-IMAGE_TARGETS: dict[str, float] = {}
-
 
 def _build(spec, mode: str):
     """Build a demo in ``mode``; for ipympl, act as a connected browser would."""
@@ -55,7 +52,7 @@ def demo_latency(spec, rounds: int) -> dict:
     """Median and p95 per update: Agg (callback + draw) and ipympl (+ the PNG diff sent to the browser)."""
     agg = _sweep_ms(_build(spec, "agg"), spec, rounds)
     web = _sweep_ms(_build(spec, "ipympl"), spec, rounds)
-    target = IMAGE_TARGETS.get(spec.name, 30.0)
+    target = spec.target_ms
     median, p95 = float(np.median(agg)), float(np.percentile(agg, 95))
     return {"lesson": spec.lesson, "demo": spec.name, "updates": len(agg), "median_ms": median, "p95_ms": p95,
             "ipympl_median_ms": float(np.median(web)), "ipympl_p95_ms": float(np.percentile(web, 95)),

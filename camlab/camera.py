@@ -330,7 +330,7 @@ class Camera:
     --------
     >>> cam = Camera.look_at(eye=[0, -5, 1], target=[0, 0, 1])
     >>> cam.project([0, 0, 1])
-    array([320., 240.])
+    array([319.5, 239.5])
     >>> np.round(cam.centre, 12) + 0.0
     array([ 0., -5.,  1.])
     """
@@ -392,12 +392,13 @@ class Camera:
     ) -> "Camera":
         r"""A camera at ``eye`` (world metres) looking at ``target``, with ``up`` (default world
         +z) appearing up in the image. ``K`` defaults to fx = fy = 800 px with the principal
-        point at the centre of ``image_size``. :math:`t = -R\,\text{eye}`."""
+        point at the image centre ((W - 1) / 2, (H - 1) / 2), as in :meth:`from_fov` (pixel
+        centres are at integers). :math:`t = -R\,\text{eye}`."""
         R = look_at_rotation(eye, target, up)
         e = np.asarray(eye, dtype=float)
         if K is None:
             w, h = (int(v) for v in image_size)
-            K = intrinsic_matrix(800.0, 800.0, w / 2.0, h / 2.0)
+            K = intrinsic_matrix(800.0, 800.0, (w - 1) / 2.0, (h - 1) / 2.0)
         return cls(K, R, -R @ e, dist, image_size)
 
     def replace(self, **changes) -> "Camera":
@@ -842,7 +843,7 @@ def estimate_projection_matrix(
     A[0::2, 8:12] = -un[:, :1] * Xn
     A[1::2, 4:8] = Xn
     A[1::2, 8:12] = -un[:, 1:] * Xn
-    _, s, Vt = np.linalg.svd(A)
+    _, s, Vt = np.linalg.svd(A, full_matrices=False)  # U is never needed: keep it (2N, 12)
     if s[-2] <= 1e-10 * s[0]:
         raise DegenerateError(
             "estimate_projection_matrix: the correspondences do not fix P uniquely (A has a null space of "
@@ -872,7 +873,20 @@ def _refine_projection_matrix(P0: np.ndarray, X: np.ndarray, uv: np.ndarray) -> 
         x = Xh @ p.reshape(3, 4).T
         return (x[:, :2] / x[:, 2:] - uv).ravel()
 
-    res = least_squares(residuals, P0.ravel(), method="lm", x_scale="jac")
+    def jacobian(p: np.ndarray) -> np.ndarray:
+        # u = a / w, v = b / w with a = p1 . X, b = p2 . X, w = p3 . X:
+        # du/dp1 = X / w, du/dp3 = -u X / w, dv/dp2 = X / w, dv/dp3 = -v X / w.
+        x = Xh @ p.reshape(3, 4).T
+        w = x[:, 2:]
+        u, v = x[:, :1] / w, x[:, 1:2] / w
+        J = np.zeros((len(Xh), 2, 12))
+        J[:, 0, 0:4] = Xh / w
+        J[:, 0, 8:12] = -u * Xh / w
+        J[:, 1, 4:8] = Xh / w
+        J[:, 1, 8:12] = -v * Xh / w
+        return J.reshape(-1, 12)
+
+    res = least_squares(residuals, P0.ravel(), jac=jacobian, method="lm", x_scale="jac")
     if not res.success:
         raise ConvergenceError(f"estimate_projection_matrix: refinement did not converge ({res.message})")
     return _normalize_P(res.x.reshape(3, 4))

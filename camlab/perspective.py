@@ -31,7 +31,7 @@ from .projective import map_points
 from .warp import warp_perspective
 
 __all__ = [
-    "AspectRatio", "DocumentNotFoundError", "PlanePhoto", "Rectified", "check_quadrilateral",
+    "AspectRatio", "DocumentNotFoundError", "PlanePhoto", "Rectified", "check_quadrilateral", "desk_background",
     "estimate_aspect_ratio", "facade_texture", "find_document", "look_at_plane", "order_corners", "rectangle_homography",
     "page_texture", "painting_texture", "photograph_plane", "rectify_quadrilateral", "sample_photo",
 ]
@@ -508,7 +508,7 @@ def painting_texture(width: int = 400) -> np.ndarray:
 
 
 @functools.lru_cache(maxsize=4)
-def _desk(h: int, w: int, seed: int) -> np.ndarray:
+def desk_background(h: int = 480, w: int = 640, seed: int = 0) -> np.ndarray:
     """A dark wooden-desk background (cached: demos re-photograph on every slider move)."""
     rng = np.random.default_rng(seed)
     yy, xx = np.mgrid[0:h, 0:w]
@@ -601,14 +601,24 @@ def photograph_plane(
     corners_tex = np.array([[0, 0], [tw - 1, 0], [tw - 1, th - 1], [0, th - 1]], dtype=float)
     corners = map_points(H, corners_tex)
     if background is None:
-        bg = _desk(h, w, seed)
+        bg = desk_background(h, w, seed)
     else:
         bg = np.asarray(background, dtype=np.uint8)
-    photo = warp_perspective(tex, H, (h, w), method=method)
-    mask = warp_perspective(np.full((th, tw), 255, np.uint8), H, (h, w), method=method).astype(np.float32) / 255
-    out = photo.astype(np.float32) + bg.astype(np.float32) * (1 - mask[..., None])
+    if method == "cv2":
+        import cv2
+
+        # Warp straight onto a copy of the background: BORDER_TRANSPARENT leaves the
+        # pixels outside the texture untouched (one call, fast enough for live demos).
+        image = np.array(bg, dtype=np.uint8, copy=True)
+        cv2.warpPerspective(np.ascontiguousarray(tex, dtype=np.uint8), H, (w, h), dst=image,
+                            flags=cv2.INTER_LINEAR, borderMode=cv2.BORDER_TRANSPARENT)
+    else:
+        photo = warp_perspective(tex, H, (h, w), method=method)
+        mask = warp_perspective(np.full((th, tw), 255, np.uint8), H, (h, w), method=method).astype(np.float32) / 255
+        out = photo.astype(np.float32) + bg.astype(np.float32) * (1 - mask[..., None])
+        image = np.clip(out, 0, 255).astype(np.uint8)
     # The corners are the centres of the texture's corner pixels: (tw - 1) x (th - 1) apart.
-    return PlanePhoto(np.clip(out, 0, 255).astype(np.uint8), corners, (tw - 1) / (th - 1), H, K)
+    return PlanePhoto(image, corners, (tw - 1) / (th - 1), H, K)
 
 
 _SCENES = {

@@ -108,13 +108,18 @@ def _unit_rows(a: np.ndarray) -> np.ndarray:
     return a / np.linalg.norm(a, axis=1, keepdims=True)
 
 
-def _cross(a: np.ndarray, b: np.ndarray, sa: bool, sb: bool, what: str) -> np.ndarray:
+def _cross(a: np.ndarray, b: np.ndarray, sa: bool, sb: bool, what: str, same_message: str) -> np.ndarray:
+    """Row-wise a x b for join and meet, refusing inputs that are equal up to scale."""
     if len(a) != len(b) and not (sa or sb):
         raise CamlabInputError(f"{what}: expected equally many rows or a single one, got {len(a)} and {len(b)}")
     c = np.cross(a, b)
     # Scale-free test for a zero cross product: the inputs were equal up to scale.
-    size = np.linalg.norm(c, axis=1) / (np.linalg.norm(a, axis=1) * np.linalg.norm(b, axis=1))
-    return c, size < _REL_TOL
+    same = np.linalg.norm(c, axis=1) / (np.linalg.norm(a, axis=1) * np.linalg.norm(b, axis=1)) < _REL_TOL
+    if same.any():
+        i = int(np.argmax(same))
+        raise DegenerateError(f"{what}: {same_message} (row {i}: {a[min(i, len(a) - 1)]} and "
+                              f"{b[min(i, len(b) - 1)]})")
+    return c[0] if sa and sb else c
 
 
 def join(p: ArrayLike, q: ArrayLike) -> np.ndarray:
@@ -145,14 +150,8 @@ def join(p: ArrayLike, q: ArrayLike) -> np.ndarray:
     """
     a, sa = _as_homogeneous_2d(p, "p")
     b, sb = _as_homogeneous_2d(q, "q")
-    line, same = _cross(a, b, sa, sb, "join")
-    if same.any():
-        i = int(np.argmax(same))
-        raise DegenerateError(
-            f"join: p and q coincide (row {i}: {a[min(i, len(a) - 1)]} and {b[min(i, len(b) - 1)]}), "
-            f"so no unique line passes through them; pick two distinct points"
-        )
-    return line[0] if sa and sb else line
+    return _cross(a, b, sa, sb, "join", "p and q coincide, so no unique line passes through them; "
+                                        "pick two distinct points")
 
 
 def meet(l: ArrayLike, m: ArrayLike) -> np.ndarray:
@@ -184,14 +183,8 @@ def meet(l: ArrayLike, m: ArrayLike) -> np.ndarray:
     """
     a, sa = _as_lines(l, "l")
     b, sb = _as_lines(m, "m")
-    point, same = _cross(a, b, sa, sb, "meet")
-    if same.any():
-        i = int(np.argmax(same))
-        raise DegenerateError(
-            f"meet: l and m are the same line (row {i}), so they share every point; "
-            f"pick two distinct lines"
-        )
-    return point[0] if sa and sb else point
+    return _cross(a, b, sa, sb, "meet", "l and m are the same line, so they share every point; "
+                                        "pick two distinct lines")
 
 
 def is_on_line(points: ArrayLike, line: ArrayLike, tol: float = 1e-9) -> np.ndarray:

@@ -116,6 +116,8 @@ class Plane:
         Key of this plane's points in ``GroundTruth.points``.
     pattern_size : (cols, rows) or None
         Inner-corner count of a checkerboard, in ``cv2.findChessboardCorners`` order.
+    two_sided : bool
+        Seen from both sides (default); box faces are one-sided and culled from behind.
     """
 
     texture: np.ndarray
@@ -125,6 +127,7 @@ class Plane:
     points: np.ndarray = field(default_factory=lambda: np.zeros((0, 2)))
     name: str = "plane"
     pattern_size: tuple[int, int] | None = None
+    two_sided: bool = True
 
     @property
     def object_points(self) -> np.ndarray:
@@ -323,7 +326,7 @@ def box(center: ArrayLike, size: ArrayLike, *, R: ArrayLike = np.eye(3), colors:
             base = np.clip(base + rng.normal(0, 0.12, size=(th, tw)).astype(np.float32), 0, 1)
         label = f"{name}{'+' if sign > 0 else '-'}{'xyz'[ax]}"
         pts = np.array([[-w / 2, -h / 2], [w / 2, -h / 2], [w / 2, h / 2], [-w / 2, h / 2]])
-        faces.append(Plane(_as_texture(base), (-w / 2, -h / 2, w / 2, h / 2), Rf, tf, pts, label))
+        faces.append(Plane(_as_texture(base), (-w / 2, -h / 2, w / 2, h / 2), Rf, tf, pts, label, two_sided=False))
     return faces
 
 
@@ -534,7 +537,10 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
     Raises
     ------
     CamlabInputError
-        A plane reaches behind the camera (z_cam <= 1 mm), bad K/pose/size, bad sensor settings.
+        Bad K/pose/size, bad sensor settings, an empty scene.
+
+    Planes may reach behind the camera (a floor, a wall beside it): the part nearer than
+    ``NEAR`` = 2 cm is clipped away.
 
     Where the distortion model folds over inside the image (strong barrel distortion at
     the corners, beyond :func:`camlab.distortion.max_valid_radius`) no ideal ray maps to the
@@ -579,14 +585,13 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
         Rc = R @ p.R
         tc = R @ p.t + t
         zc = (p.corners_world @ R.T + t)[:, 2]
-        if zc.max() <= 1e-3:
-            continue  # entirely behind the camera: invisible
-        if zc.min() <= 1e-3:
-            raise CamlabInputError(
-                f"scene: plane {p.name!r} reaches behind the camera (corner depths {np.round(zc, 3).tolist()} m); "
-                f"move it in front (all z_cam > 0) or out of the scene"
-            )
-        geo.append((p, Rc, tc, float(np.mean(zc))))
+        if zc.max() <= NEAR:
+            continue  # entirely behind the camera (or closer than NEAR): invisible
+        if not p.two_sided and Rc[:, 2] @ tc >= 0:
+            continue  # a one-sided face seen from behind (its normal points away from the camera)
+        poly = _clip_to_near(p.extent, Rc, tc)  # the part in front of the near plane (floors, walls)
+        zpoly = poly @ Rc[2, :2] + tc[2]
+        geo.append((p, Rc, tc, float(np.mean(zpoly)), poly))
 
     # the ideal (undistorted) canvas: supersampled, and large enough for what distortion pulls in
     Ks = np.array([[ss, 0, (ss - 1) / 2], [0, ss, (ss - 1) / 2], [0, 0, 1]]) @ K  # output px -> ss px
@@ -614,11 +619,11 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
 
     canvas = np.empty((ch, cw, nch), dtype=np.float32)
     canvas[:] = bg
-    for p, Rc, tc, zmid in sorted(geo, key=lambda g: -g[3]):  # painter's algorithm, far to near
+    for p, Rc, tc, zmid, poly in sorted(geo, key=lambda g: -g[3]):  # painter's algorithm, far to near
         x0, y0, x1, y1 = p.extent
         # coarsest texture level whose texel still covers >= 1 canvas pixel at the plane's nearest point
         Hplane = Kc @ np.column_stack([Rc[:, 0], Rc[:, 1], tc])  # plane metres -> canvas px
-        mpp = _metres_per_canvas_px(Hplane, p.extent)
+        mpp = _metres_per_canvas_px(Hplane, poly)
         level = 0
         while level < 8 and (x1 - x0) / (p.texture.shape[1] >> (level + 1) or 1) < mpp \
                 and (p.texture.shape[1] >> (level + 1)) >= 2 and (p.texture.shape[0] >> (level + 1)) >= 2:
@@ -630,10 +635,8 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
         H = Hplane @ S  # texel (c, r) -> canvas px
         if p.is_color and not color:
             tex = np.ascontiguousarray(tex @ np.array([0.299, 0.587, 0.114], dtype=np.float32))
-        elif color and not p.is_color:
-            tex = np.repeat(tex[..., None], 3, axis=2)
-        quad = cv2.perspectiveTransform(np.array([[[-0.5, -0.5], [tw - 0.5, -0.5], [tw - 0.5, th - 0.5],
-                                                   [-0.5, th - 0.5]]], dtype=np.float64), H)[0]
+        # a grey texture in a colour render stays one channel: compositing broadcasts it
+        quad = cv2.perspectiveTransform(poly[None].astype(np.float64), Hplane)[0]  # visible outline, canvas px
         # work only inside the plane's bounding box (plus room for its blur)
         c_px = _coc_pixels(defocus, K, zmid) * ss if defocus is not None else 0.0
         pad = int(np.ceil(c_px / 2)) + 2
@@ -684,7 +687,7 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
 
     truth = GroundTruth(K=K, dist=d, R=R, t=t, size=(w, h), points={},
                         depth=_depth_map(geo, K, d, w, h) if depth else None)
-    for p, _, _, _ in geo:
+    for p, *_ in geo:
         if len(p.points):
             wp = p.world_points
             px = project(wp, K, R, t, d)
@@ -695,10 +698,10 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
                 Xc = wp[inside] @ R.T + t
                 vis[inside] = _nearest_hit(Xc / Xc[:, 2:3], geo) >= Xc[:, 2] * (1 - 1e-6)
             truth.points[p.name] = PlanePoints(p.object_points, wp, px, vis, p.pattern_size)
-    for p in planes:  # planes entirely behind the camera still get an entry
+    for p in planes:  # culled planes (behind the camera, back faces) still get an entry, all invisible
         if len(p.points) and p.name not in truth.points:
             wp = p.world_points
-            truth.points[p.name] = PlanePoints(p.object_points, wp, np.full((len(wp), 2), np.nan),
+            truth.points[p.name] = PlanePoints(p.object_points, wp, project(wp, K, R, t, d),
                                                np.zeros(len(wp), bool), p.pattern_size)
     return RenderResult(image, irradiance, truth)
 
@@ -718,11 +721,31 @@ def _flatten(scene) -> list[Plane]:
     return out
 
 
-def _metres_per_canvas_px(Hplane: np.ndarray, extent) -> float:
-    """Smallest plane-metres-per-canvas-pixel over the rectangle's corners (its closest part)."""
+NEAR = 0.02  # metres: the renderer's near clipping distance
+
+
+def _clip_to_near(extent, Rc: np.ndarray, tc: np.ndarray) -> np.ndarray:
+    """The plane rectangle's part with z_cam >= NEAR, as an (M, 2) convex polygon in plane coordinates.
+
+    z_cam is linear on the plane, so one Sutherland-Hodgman step against a half-plane clips it.
+    """
     x0, y0, x1, y1 = extent
+    rect = np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]], dtype=float)
+    z = rect @ Rc[2, :2] + tc[2] - NEAR
+    out = []
+    for i in range(4):
+        a, b, za, zb = rect[i], rect[(i + 1) % 4], z[i], z[(i + 1) % 4]
+        if za >= 0:
+            out.append(a)
+        if (za >= 0) != (zb >= 0):
+            out.append(a + (b - a) * za / (za - zb))
+    return np.array(out)
+
+
+def _metres_per_canvas_px(Hplane: np.ndarray, poly: np.ndarray) -> float:
+    """Smallest plane-metres-per-canvas-pixel over the visible polygon's vertices (its closest part)."""
     best = np.inf
-    for x, y in ((x0, y0), (x1, y0), (x1, y1), (x0, y1), ((x0 + x1) / 2, (y0 + y1) / 2)):
+    for x, y in np.vstack([poly, poly.mean(axis=0)]):
         q = Hplane @ [x, y, 1.0]
         J = (Hplane[:2, :2] * q[2] - np.outer(q[:2], Hplane[2, :2])) / q[2] ** 2  # d canvas / d plane
         s = np.sqrt(abs(np.linalg.det(J)))
@@ -740,7 +763,7 @@ def _coc_pixels(defocus: Defocus, K: np.ndarray, depth: float) -> float:
 def _nearest_hit(rays: np.ndarray, geo) -> np.ndarray:
     """Depth z_cam where each ray ``(x, y, 1)`` first meets a plane of the scene (inf: none)."""
     depth = np.full(len(rays), np.inf)
-    for p, Rc, tc, _ in geo:
+    for p, Rc, tc, *_ in geo:
         n = Rc[:, 2]
         with np.errstate(divide="ignore", invalid="ignore"):
             z = (n @ tc) / (rays @ n)  # the plane n . X = n . tc meets the ray z * (x, y, 1) here

@@ -167,7 +167,7 @@ def _warp_cv2(img: np.ndarray, H: np.ndarray, shape: tuple[int, int], interpolat
     nch = 1 if img.ndim == 2 else img.shape[2]
     out = cv2.warpPerspective(src, H, (shape[1], shape[0]), flags=flags,
                               borderMode=cv2.BORDER_CONSTANT, borderValue=(float(fill),) * max(nch, 1))
-    return out.reshape(shape[0], shape[1], *img.shape[2:])
+    return _to_dtype(out.reshape(shape[0], shape[1], *img.shape[2:]), img.dtype)
 
 
 def warp_perspective(
@@ -285,7 +285,7 @@ def canvas_bounds(Hs: Sequence[ArrayLike], shapes: Sequence[Sequence[int]],
     Each image's four corner pixels (0, 0), (w-1, 0), (w-1, h-1), (0, h-1) are mapped by
     its H; the canvas spans their bounding box, rounded outwards to whole pixels, and T
     shifts its top-left corner to (0, 0). Warp image i with ``T @ Hs[i]`` so nothing is
-    cropped at negative coordinates (the panorama canvas of lesson 11 uses this too).
+    cropped at negative coordinates (panorama stitching uses the same canvas).
 
     Parameters
     ----------

@@ -85,6 +85,14 @@ KERNEL_IDLE = """() => {
   return !!k && k.connectionStatus === 'connected' && k.status === 'idle';
 }"""
 
+# The kernel is briefly idle between cells, so also require every code cell to have run.
+ALL_CELLS_RUN = """() => {
+  const w = window.jupyterapp.shell.currentWidget;
+  const k = w.sessionContext.session.kernel;
+  const code = w.content.widgets.filter((c) => c.model.type === 'code');
+  return k.status === 'idle' && code.every((c) => c.model.executionCount !== null);
+}"""
+
 
 def test_lesson_06_runs_and_a_slider_moves_the_figure(lab):
     from playwright.sync_api import sync_playwright
@@ -107,17 +115,22 @@ def test_lesson_06_runs_and_a_slider_moves_the_figure(lab):
             figure = demo.locator("canvas").first
             figure.wait_for(state="visible")
             readout = demo.locator("pre").first
-            page.wait_for_function("(el) => el.textContent.includes('l1 × l2')", arg=readout.element_handle())
-            page.wait_for_function(KERNEL_IDLE, polling=500)  # every cell has run
+            page.wait_for_function(
+                "() => (document.querySelector('.camlab-demo-parallel-lines pre') || {}).textContent?.includes('l1 × l2')")
+            page.wait_for_function(ALL_CELLS_RUN, polling=500)
             page.wait_for_timeout(1000)
+            demo.scroll_into_view_if_needed()
             before_png, before_text = figure.screenshot(), readout.text_content()
 
-            handle = demo.locator(".noUi-handle").first
-            handle.focus()
-            for _ in range(20):  # the angle slider: 20 steps of 0.5 degrees
-                handle.press("ArrowRight")
-            page.wait_for_function("([el, old]) => el.textContent !== old",
-                                   arg=[readout.element_handle(), before_text])
+            # Click the angle slider's track at 80 % (a click needs no keyboard focus, which
+            # JupyterLab may move while it renders).
+            track = demo.locator(".noUi-base").first
+            box = track.bounding_box()
+            track.click(position={"x": 0.8 * box["width"], "y": box["height"] / 2})
+            # The HTML readout replaces its <pre> on every update: query it afresh each poll.
+            page.wait_for_function(
+                "(old) => document.querySelector('.camlab-demo-parallel-lines pre').textContent !== old",
+                arg=before_text, polling=250)
             page.wait_for_timeout(1500)  # let the kernel's blitted image reach the canvas
             after_png, after_text = figure.screenshot(), readout.text_content()
             errors = page.locator(".jp-OutputArea-output[data-mime-type='application/vnd.jupyter.stderr']")

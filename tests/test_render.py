@@ -124,10 +124,27 @@ def test_box_faces_and_scene_flattening():
     for f in faces:  # outward normals
         assert np.dot(f.R[:, 2], f.t - [0, 0, 1.0]) > 0
     out = r.render([faces, r.text_page(0.3, t=(0, 0, 2.0))], K, depth=True)
+    # the face turned away from the camera is culled: its corners project but are not visible
+    back, front = out.truth.points["box+z"], out.truth.points["box-z"]
+    assert np.isfinite(back.pixels).all() and not back.visible.any()
+    assert front.visible.all()
     assert out.image.std() > 10
     signs = np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).reshape(3, -1).T
     vertices = (signs * [0.1, 0.15, 0.1]) @ r.rotation_from_euler(0.4, 0.6, 0).T + [0, 0, 1.0]
     assert out.truth.depth.min() == pytest.approx(vertices[:, 2].min(), abs=0.01)  # the nearest vertex
+
+
+def test_a_floor_reaching_behind_the_camera_is_clipped():
+    # a 4 m floor 0.3 m below the camera, from 1 m behind it to 3 m ahead, with a board standing on it
+    floor = r.textured_plane(r.checkerboard((7, 7), 0.5).texture, 4.0, height=4.0,
+                             R=r.rotation_from_euler(np.pi / 2, 0, 0), t=(0, 0.3, 1.0), name="floor")
+    out = r.render([floor, r.checkerboard((9, 6), 0.05, t=(-0.2, -0.25, 2.0))], K, depth=True)
+    ok, corners = cv2.findChessboardCornersSB(out.image, (9, 6))
+    assert ok and _rms(r.align_detected_corners(corners, out.truth.corners("board")), out.truth.corners("board")) < 0.1
+    # the floor fills the bottom rows up to its horizon; the depth there is 0.3 / y_normalised
+    v = 470
+    assert out.truth.depth[v, 320] == pytest.approx(0.3 / ((v - 239.5) / 800), rel=1e-6)
+    assert out.image[470].std() > 5 and np.isinf(out.truth.depth[10, 320])
 
 
 def test_look_at_and_rotation():
@@ -142,8 +159,6 @@ def test_look_at_and_rotation():
 
 def test_bad_inputs():
     board = r.checkerboard((4, 3), 0.03, t=(0, 0, 0.5))
-    with pytest.raises(CamlabInputError, match=r"plane 'board' reaches behind the camera"):
-        r.render(r.checkerboard((4, 3), 0.03, R=r.rotation_from_euler(0, 1.5, 0), t=(0, 0, 0.01)), K)
     with pytest.raises(CamlabInputError, match=r"scene: expected at least one Plane"):
         r.render([], K)
     with pytest.raises(CamlabInputError, match=r"bits: expected an integer bit depth from 1 to 16"):
@@ -160,3 +175,10 @@ def test_bad_inputs():
         r.render(board, K, supersample=0)
     with pytest.raises(CamlabInputError, match=r"detected: expected 12 corners"):
         r.align_detected_corners(np.zeros((5, 2)), np.zeros((12, 2)))
+
+
+def test_align_detected_corners_undoes_reversal_and_opencv4_shape():
+    gt = r.checkerboard((4, 3), 0.03, t=(0, 0, 0.5)).points * 1000 + 100
+    det4 = gt[::-1].reshape(-1, 1, 2) + 0.01   # OpenCV 4 shape, reversed order
+    assert np.allclose(r.align_detected_corners(det4, gt), gt + 0.01)
+    assert np.allclose(r.align_detected_corners(gt - 0.01, gt), gt - 0.01)

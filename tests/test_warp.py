@@ -134,3 +134,13 @@ def test_bad_input():
         warp.warp_perspective(img, np.eye(3), (20, 30), interpolation="cubic")
     with pytest.raises(DegenerateError, match="maps to or beyond infinity"):
         warp.warp_to_canvas(img, [[1, 0, 0], [0, 1, 0], [0, -0.1, 1]])
+
+
+@pytest.mark.parametrize("dtype", [np.uint8, np.uint16, np.int32, np.float32, np.float64])
+def test_dtype_kept_and_methods_agree(dtype):
+    img = (np.arange(48).reshape(6, 8) * 3).astype(dtype)
+    H_half = [[1, 0, 0.5], [0, 1, 0], [0, 0, 1]]
+    a = warp.warp_perspective(img, H_half, (6, 8))
+    b = warp.warp_perspective(img, H_half, (6, 8), method="cv2")
+    assert a.dtype == b.dtype == dtype
+    assert np.abs(a.astype(float) - b.astype(float))[:, 1:-1].max() <= 1

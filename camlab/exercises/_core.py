@@ -46,7 +46,7 @@ def register_exercise(exercise: Exercise) -> Exercise:
 def _fmt(value: Any) -> str:
     if isinstance(value, np.ndarray):
         return np.array2string(value, precision=4, suppress_small=True, separator=", ")
-    if isinstance(value, tuple):
+    if isinstance(value, (tuple, list)):
         return "(" + ", ".join(_fmt(v) for v in value) + ")"
     return repr(value)
 
@@ -76,7 +76,7 @@ def check(name: str, student_function: Callable[..., Any]) -> bool:
             raise AssertionError(
                 f"{name}: wrong answer on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_fmt(args)}\n"
-                f"  got      {_fmt(got if not isinstance(got, (list, tuple)) else np.asarray(got))}\n"
+                f"  got      {_fmt(got)}\n"
                 f"  expected {_fmt(expected)}\n"
                 f"  likely cause: {exercise.diagnose(args, got, expected)}"
             )

@@ -4,14 +4,8 @@ from __future__ import annotations
 import numpy as np
 
 from .. import distortion, lens
+from ._numbers import is_number as _is_number
 from ._core import Exercise, register_exercise, shape_problem
-
-
-def _is_number(x) -> bool:
-    try:
-        return np.ndim(x) == 0 and np.isfinite(float(x))
-    except (TypeError, ValueError):
-        return False
 
 
 def _thin_lens_cases():

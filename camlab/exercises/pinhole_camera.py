@@ -4,6 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import pinhole
+from ._numbers import is_number as _is_number
 from ._core import Exercise, register_exercise, shape_problem
 
 
@@ -45,13 +46,6 @@ register_exercise(Exercise(
         (lambda X, f: X[:, :2] / X[:, 2:3], "multiply by the focal length"),
     ),
 ))
-
-
-def _is_number(x) -> bool:
-    try:
-        return np.ndim(x) == 0 and np.isfinite(float(x))
-    except (TypeError, ValueError):
-        return False
 
 
 def _best_cases():

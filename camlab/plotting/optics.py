@@ -29,15 +29,26 @@ def _to_plot(p):
     return p[..., 2], p[..., 0], -p[..., 1]
 
 
+def _polyline(segments: np.ndarray) -> tuple:
+    """(K, 2, 3) segments -> plot-axes coordinates of one polyline with NaN breaks (one artist, fast)."""
+    seg = np.asarray(segments, float)
+    pts = np.concatenate([seg, np.full((len(seg), 1, 3), np.nan)], axis=1).reshape(-1, 3)
+    return _to_plot(pts)
+
+
 def draw_pinhole_3d(ax, edges: np.ndarray, f_draw: float, plane_half: float = 0.12) -> dict:
-    """Box edges, the pinhole, the real (behind) and virtual (in front) image planes and the rays."""
-    art = {"box": [ax.plot(*_to_plot(e), color="tab:blue", lw=1.5)[0] for e in edges]}
+    """Box edges, the pinhole, the real (behind) and virtual (in front) image planes and the rays.
+
+    ``edges`` is (K, 2, 3) camera-frame segments (metres); the image planes are drawn at
+    distance ``f_draw`` behind and in front of the pinhole at the origin.
+    """
+    art = {"box": ax.plot(*_polyline(edges), color="tab:blue", lw=1.5)[0]}
     ax.scatter([0], [0], [0], color="k", s=25)
     art["planes"] = {}
     for name, color in (("real", "tab:red"), ("virtual", "tab:green")):
         art["planes"][name] = ax.plot([], [], [], color=color, lw=1, alpha=0.6)[0]
-        art[name] = [ax.plot([], [], [], color=color, lw=1.2)[0] for _ in edges]
-    art["rays"] = [ax.plot([], [], [], color="0.6", lw=0.6)[0] for _ in range(8)]
+        art[name] = ax.plot([], [], [], color=color, lw=1.2)[0]
+    art["rays"] = ax.plot([], [], [], color="0.6", lw=0.6)[0]
     ax.set_xlabel("z (forward)")
     ax.set_ylabel("x")
     ax.set_zlabel("-y (up)")
@@ -54,19 +65,18 @@ def draw_pinhole_3d(ax, edges: np.ndarray, f_draw: float, plane_half: float = 0.
 
 
 def update_pinhole_3d(art: dict, edges: np.ndarray, f_draw: float) -> None:
+    """Move the box to ``edges`` and the image planes to distance ``f_draw``."""
+    art["box"].set_data_3d(*_polyline(edges))
     h = art["plane_half"]
     for name, sign in (("real", -1), ("virtual", 1)):
         z = sign * f_draw
         sq = np.array([[-h, -h * 0.75, z], [h, -h * 0.75, z], [h, h * 0.75, z], [-h, h * 0.75, z], [-h, -h * 0.75, z]])
         art["planes"][name].set_data_3d(*_to_plot(sq))
         img = _pinhole.project_pinhole(edges.reshape(-1, 3), f_draw, plane=name).reshape(-1, 2, 2)
-        for line, seg in zip(art[name], img):
-            art_pts = np.column_stack([seg, np.full(2, z)])
-            line.set_data_3d(*_to_plot(art_pts))
+        art[name].set_data_3d(*_polyline(np.concatenate([img, np.full(img.shape[:2] + (1,), z)], axis=2)))
     corners = np.unique(edges.reshape(-1, 3), axis=0)
-    for line, X in zip(art["rays"], corners):
-        end = -X * f_draw / X[2]  # through the pinhole to the real plane
-        line.set_data_3d(*_to_plot(np.array([X, end])))
+    ends = -corners * f_draw / corners[:, 2:3]  # through the pinhole to the real plane
+    art["rays"].set_data_3d(*_polyline(np.stack([corners, ends], axis=1)))
 
 
 def draw_thin_lens(ax, focal_length: float, object_distance: float, height: float = 1.0) -> dict:

@@ -271,22 +271,22 @@ class CameraArtist:
         U, V = np.meshgrid(us, vs)
         G = _plane_points(camera, np.column_stack([U.ravel(), V.ravel()]), self.size).reshape(gh + 1, gw + 1, 3)
         quads = np.stack([G[:-1, :-1], G[:-1, 1:], G[1:, 1:], G[1:, :-1]], axis=2).reshape(-1, 4, 3)
-        self.mesh.set_verts(quads)
-        if getattr(self.ax, "M", None) is not None:
-            self.mesh.do_3d_projection()
         if image is not None:
             img = np.asarray(image, dtype=float)
             if img.max() > 1.0:
                 img = img / 255.0
             if img.ndim == 2:
                 img = np.repeat(img[..., None], 3, axis=2)
-            H, W = img.shape[:2]
-            rows = np.linspace(0, H, gh + 1).astype(int)
-            cols = np.linspace(0, W, gw + 1).astype(int)
-            colours = np.array([[img[rows[i]:max(rows[i + 1], rows[i] + 1), cols[j]:max(cols[j + 1], cols[j] + 1), :3]
-                                 .mean(axis=(0, 1)) for j in range(gw)] for i in range(gh)]).reshape(-1, 3)
+            # Block means over the grid cells (area interpolation), one colour per quad.
+            import cv2
+
+            colours = cv2.resize(img[..., :3].astype(np.float32), (gw, gh), interpolation=cv2.INTER_AREA)
+            colours = colours.reshape(-1, 3).astype(float)
             self.mesh_colours = np.clip(colours, 0.0, 1.0)  # row-major over the grid, top-left first
             self.mesh.set_facecolor(self.mesh_colours)
+        self.mesh.set_verts(quads)
+        if getattr(self.ax, "M", None) is not None:
+            self.mesh.do_3d_projection()
 
 
 class SceneView:

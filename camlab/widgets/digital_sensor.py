@@ -8,7 +8,6 @@ import numpy as np
 from .. import render, sensor
 from ..plotting import images
 from ._base import FigureView, build_demo, register, slider
-from ._image_formation import freeze_layout
 
 SIZE = (320, 240)
 
@@ -28,7 +27,7 @@ def pixel_pitch():
     ax_txt.axis("off")
     text = ax_txt.text(0, 1, "", va="top", family="monospace", fontsize=10)
     ax_img.set_title("f = 3 mm, 320 x 240 pixels (red +: principal point)", fontsize=10)
-    freeze_layout(view)
+    view.animate(im, pp, text)
 
     def update(values, state):
         pitch = values["pitch_um"] * 1e-6
@@ -58,7 +57,7 @@ def sampling_aliasing():
     images.show_image(ax_t, zp, "scene: zone plate (frequency grows with radius)")
     im = images.show_image(ax_s, zp, "sampled")
     nyq = ax_s.add_patch(Circle((0, 0), 1, fill=False, color="tab:red", ls="--", lw=1.5))
-    freeze_layout(view)
+    view.animate(im, nyq, ax_s.title)
 
     def update(values, state):
         k = int(values["factor"])
@@ -103,7 +102,7 @@ def bit_depth_and_noise():
     ax_p.set_ylabel("value / full scale")
     ax_p.legend(fontsize=8, loc="upper right")
     ax_p.set_title("row 150: 00 levels, SNR 000.0 at mid-grey", fontsize=10)
-    freeze_layout(view)
+    view.animate(im, prof, ax_p.title)
     full_well = 10000.0
     rng = np.random.default_rng(0)
 
@@ -148,7 +147,7 @@ def demosaicing():
     im_zoom = images.show_image(ax_zoom, truth[:48, :48], "zoom")
     box = images.zoom_box(ax_full, 120, 100, 48)
     ax_full.set_title("camlab bilinear: PSNR 00.00 dB", fontsize=10)
-    freeze_layout(view)
+    view.animate(im_raw, im_full, im_zoom, box, ax_full.title)
     v0 = 100
 
     def update(values, state):
@@ -168,7 +167,8 @@ def demosaicing():
         im_full.set_data(out)
         im_zoom.set_data(out[crop])
         box.set_xy((u0 - 0.5, v0 - 0.5))
-        state.update(psnr=sensor.psnr(truth, out, border=2))
+        state.update(psnr=sensor.psnr(truth, out, border=2), zoom=(u0, v0),
+                     zoom_psnr=sensor.psnr(truth[crop], out[crop]))
         ax_full.set_title(f"{method}: PSNR {state['psnr']:.2f} dB", fontsize=10)
 
     return build_demo("demosaicing", controls, view, update, title="Bayer mosaic and demosaicing")

@@ -170,21 +170,21 @@ def opencv_vs_opengl():
     from mpl_toolkits.mplot3d import Axes3D  # noqa: F401  (registers the 3-D projection)
 
     view = FigureView(figsize=(6.5, 4.2))
-    ax = scene3d.axes3d(view.fig, 1, 1, 1, elev=20, azim=-110)
+    ax = scene3d.axes3d(view.fig, 1, 1, 1, elev=20, azim=-130)
     ax.set_axis_off()
     scene3d.draw_world_axes(ax, 0.6)
     scene3d.draw_segments(ax, cm.house_wireframe((0.0, 0.0, 0.0), 0.6), color="0.6")
     cam0 = cm.Camera.look_at([2.0, -2.0, 1.0], [0.0, 0.0, 0.4])
-    art = scene3d.CameraArtist(ax, cam0, size=0.6, show_axes=False, label="camera")
+    art = scene3d.CameraArtist(ax, cam0, size=0.6, show_axes=False)
     lines, texts = [], []
     for c in scene3d.AXIS_COLOURS:
         (ln,) = ax.plot([], [], [], color=c, lw=2.5)
         lines.append(ln)
         texts.append(ax.text(0, 0, 0, "", color=c, fontsize=9, fontweight="bold"))
-    scene3d.set_equal_aspect(ax, [[-0.6, -0.6, 0.0], [2.4, -2.4, 1.6], art.extent_points()], zoom=1.3)
-    title = ax.set_title("", fontsize=9)
+    scene3d.set_equal_aspect(ax, [[-0.6, -0.6, 0.0], [2.9, -2.9, 2.0], [-1.0, -2.9, 0.0], art.extent_points()], zoom=1.3)
+    title = W.HTML()  # the formula beside the figure: long canvas text costs ~7 ms per redraw
     scene3d.refresh_projection(ax)
-    view.animate(*art.artists(), *lines, *texts, title)
+    view.animate(*art.artists(), *lines, *texts)
     controls = {
         "yaw": slider(0, -90, 90, 2, "orbit (deg)"),
         "frame": W.ToggleButtons(options=["OpenCV", "OpenGL / Blender"], value="OpenCV", description="frame"),
@@ -199,12 +199,14 @@ def opencv_vs_opengl():
         names = ("x right", "y up", "z backward") if gl else ("x right", "y down", "z forward")
         C = cam.centre
         for i, (ln, tx) in enumerate(zip(lines, texts)):
-            e = C + 0.5 * R_axes[i]  # row i of R = camera axis i in world coordinates
+            e = C + 0.9 * R_axes[i]  # row i of R = camera axis i in world coordinates
             ln.set_data_3d([C[0], e[0]], [C[1], e[1]], [C[2], e[2]])
-            tx.set_position_3d(C + 0.62 * R_axes[i])
+            tx.set_position_3d(C + 1.0 * R_axes[i])
             tx.set_text(names[i])
-        title.set_text(("OpenGL/Blender: R_gl = diag(1,-1,-1) R, t_gl = diag(1,-1,-1) t" if gl else
-                        "OpenCV / H&Z: X_cam = R X + t, camera looks along +z"))
+        title.value = ("<pre>OpenGL/Blender: R_gl = diag(1,-1,-1) R, t_gl = diag(1,-1,-1) t\n"
+                       "camera looks along its -z axis</pre>" if gl else
+                       "<pre>OpenCV / H&amp;Z: X_cam = R X + t\ncamera looks along its +z axis</pre>")
         state.update(R_axes=R_axes, frame=v["frame"], camera=cam)
 
-    return build_demo("opencv_vs_opengl", controls, view, update, title="Same camera, two axis conventions")
+    return build_demo("opencv_vs_opengl", controls, view, update, title="Same camera, two axis conventions",
+                      extra=[title])

@@ -1,0 +1,107 @@
+"""The ``camlab`` command line: ``camlab <command> ...``.
+
+Commands are registered in :data:`COMMANDS` (name -> (add_arguments, run)); to add one,
+write ``_add_<name>(parser)`` and ``_run_<name>(args) -> int`` and register them. Errors a
+user can fix (bad pattern, no images, too few detections) are printed as one clear
+message with exit status 2, never a traceback.
+
+``camlab calibrate "photos/*.jpg" --pattern 9x6 --square 0.025 [--out camera.json]
+[--report report.png]`` detects the chessboard in each photo, calibrates, prints the result
+and the coach's advice, writes an OpenCV-loadable file (``cv2.FileStorage``: ``.json``,
+``.yaml`` or ``.xml``) and saves a report figure.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import Callable
+
+from ._validate import CamlabInputError, ConvergenceError
+
+__all__ = ["COMMANDS", "build_parser", "main"]
+
+
+def _add_calibrate(p: argparse.ArgumentParser) -> None:
+    p.add_argument("images", nargs="+", help='image files or a quoted glob pattern, e.g. "photos/*.jpg"')
+    p.add_argument("--pattern", required=True, help="inner corners COLSxROWS, e.g. 9x6 for a board of 10 x 7 squares")
+    p.add_argument("--square", required=True, type=float, help="side of one square in metres, e.g. 0.025")
+    p.add_argument("--out", default="calibration.json", help="result file (.json, .yaml or .xml; default calibration.json)")
+    p.add_argument("--report", default="calibration_report.png", help="report figure (default calibration_report.png)")
+    p.add_argument("--no-report", action="store_true", help="do not save a report figure")
+    p.add_argument("--fix-k3", action="store_true", help="keep k3 = 0 (recommended for ordinary lenses with few views)")
+    p.add_argument("--skew", action="store_true", help="also estimate the skew (OpenCV never does)")
+
+
+def _expand(patterns: list[str]) -> list[str]:
+    import glob
+
+    files: list[str] = []
+    for pat in patterns:
+        if any(ch in pat for ch in "*?["):
+            matched = sorted(glob.glob(pat))
+            if not matched:
+                raise CamlabInputError(f"images: no files match {pat!r}")
+            files += matched
+        else:
+            files.append(pat)
+    return files
+
+
+def _run_calibrate(args: argparse.Namespace) -> int:
+    from .calibration import calibrate_from_images, coach, parse_pattern, save_calibration
+
+    pattern = parse_pattern(args.pattern)
+    files = _expand(args.images)
+    print(f"camlab calibrate: {len(files)} images, pattern {pattern[0]}x{pattern[1]} inner corners, "
+          f"square {args.square} m")
+    out = calibrate_from_images(files, pattern, args.square, skew=args.skew, fix=("k3",) if args.fix_k3 else ())
+    print(out.report())
+    result = out.result
+    print(result.summary())
+    report = coach(result)
+    worst = ", ".join(f"view {v} ({files[out.used[v]]}) {result.per_view_rms[v]:.2f} px" for v in report.worst_views[:3])
+    print(f"worst views: {worst}")
+    print("advice:")
+    print(report.text())
+    path = save_calibration(result, args.out)
+    print(f"wrote {path} (load in OpenCV: cv2.FileStorage(path, cv2.FILE_STORAGE_READ).getNode('camera_matrix').mat())")
+    if not args.no_report:
+        from .plotting.calibration import report_figure
+
+        fig = report_figure(result, report)
+        fig.savefig(args.report, dpi=90)
+        print(f"saved report figure {args.report}")
+    return 0
+
+
+COMMANDS: dict[str, tuple[str, Callable[[argparse.ArgumentParser], None], Callable[[argparse.Namespace], int]]] = {
+    "calibrate": ("calibrate a camera from photos of a chessboard", _add_calibrate, _run_calibrate),
+}
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="camlab", description="camlab: camera geometry tools")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    for name, (help_text, add, run) in COMMANDS.items():
+        p = sub.add_parser(name, help=help_text, description=help_text)
+        add(p)
+        p.set_defaults(run=run)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the ``camlab`` console script; returns the exit status."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if getattr(args, "run", None) is None:
+        parser.print_help()
+        return 2
+    try:
+        return args.run(args)
+    except (CamlabInputError, ConvergenceError) as exc:
+        print(f"camlab {args.command}: error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

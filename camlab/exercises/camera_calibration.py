@@ -1,0 +1,142 @@
+"""Exercises for lesson 08, camera calibration."""
+from __future__ import annotations
+
+import numpy as np
+
+from .. import calibration, optimize
+from ..camera import rotation_from_axis_angle
+from ._core import Exercise, register_exercise, shape_problem
+
+
+def _close(got, expected, rtol=1e-7, atol=1e-12) -> bool:
+    g = np.asarray(got, dtype=float) if got is not None else None
+    return g is not None and g.shape == np.shape(expected) and bool(np.allclose(g, expected, rtol=rtol, atol=atol))
+
+
+# ------------------------------------------------------------------ V from one homography
+
+def _zhang_cases():
+    K = np.array([[820.0, 0.0, 322.4], [0.0, 818.0, 236.8], [0.0, 0.0, 1.0]])
+    rng = np.random.default_rng(8)
+    out = []
+    for _ in range(3):
+        r = rng.normal(0, 0.4, 3)
+        R = rotation_from_axis_angle(r)
+        H = K @ np.column_stack([R[:, 0], R[:, 1], [0.02, -0.01, 0.5]])
+        out.append((H / H[2, 2],))
+    out.append((np.array([[2.0, 0.3, 5.0], [-0.1, 1.5, 2.0], [0.01, 0.02, 1.0]]),))
+    return out
+
+
+def _zhang_diagnosis(args, got, expected) -> str:
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + ". Return a (2, 6) array: the rows v12 and v11 - v22."
+    (H,) = args
+    g = np.asarray(got, dtype=float)
+    if np.allclose(g, calibration.zhang_constraints(H.T)):
+        return "you used the rows of H; h_i is the i-th column, H[:, i]"
+    if np.allclose(g[1], calibration.zhang_v(H, 0, 0) + calibration.zhang_v(H, 1, 1)):
+        return "the second row is v11 - v22 (equal lengths: h1^T B h1 = h2^T B h2), not the sum"
+    if np.allclose(g[0], expected[0]) and not np.allclose(g[1], expected[1]):
+        return "the first row (v12) is right; check the second, v11 - v22"
+    return ("v_ij = (hi1 hj1, hi1 hj2 + hi2 hj1, hi2 hj2, hi3 hj1 + hi1 hj3, hi3 hj2 + hi2 hj3, hi3 hj3) "
+            "with h_i = H[:, i]; check the order of the six entries")
+
+
+register_exercise(Exercise(
+    name="zhang_constraints",
+    lesson="08",
+    reference=calibration.zhang_constraints,
+    cases=_zhang_cases,
+    compare=lambda got, expected: _close(got, expected),
+    diagnose=_zhang_diagnosis,
+    wrong_variants=(
+        (lambda H: calibration.zhang_constraints(H.T), "rows of H"),
+        (lambda H: np.stack([calibration.zhang_v(H, 0, 1),
+                             calibration.zhang_v(H, 0, 0) + calibration.zhang_v(H, 1, 1)]), "not the sum"),
+    ),
+))
+
+
+# ------------------------------------------------------------------ one LM step
+
+def _lm_cases():
+    rng = np.random.default_rng(9)
+    return [(rng.normal(size=(8, 3)), rng.normal(size=8), mu) for mu in (0.0, 0.01, 1.0, 100.0)] + \
+        [(np.array([[1.0, 0.0], [0.0, 100.0], [1.0, 1.0]]), np.array([1.0, -2.0, 0.5]), 0.5)]
+
+
+def _lm_diagnosis(args, got, expected) -> str:
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + ". Return the step delta with one entry per parameter (J has n columns)."
+    J, r, mu = args
+    g = np.asarray(got, dtype=float)
+    A, grad = J.T @ J, J.T @ r
+    if np.allclose(g, -expected):
+        return "wrong sign: the step solves (A + mu D) delta = -J^T r (it must go downhill)"
+    if np.allclose(g, np.linalg.solve(A + mu * np.eye(len(A)), -grad)):
+        return "you damped with mu * I; Marquardt scales by D = diag(J^T J) so every parameter's units cancel"
+    if np.allclose(g, np.linalg.solve(A, -grad)):
+        return "that is the Gauss-Newton step: add the damping mu * diag(J^T J) to J^T J"
+    return "solve (J^T J + mu diag(J^T J)) delta = -J^T r with np.linalg.solve"
+
+
+register_exercise(Exercise(
+    name="lm_step",
+    lesson="08",
+    reference=optimize.lm_step,
+    cases=_lm_cases,
+    compare=lambda got, expected: _close(got, expected, rtol=1e-8, atol=1e-10),
+    diagnose=_lm_diagnosis,
+    wrong_variants=(
+        (lambda J, r, mu: np.linalg.solve(J.T @ J + mu * np.diag(np.diag(J.T @ J)), J.T @ r), "wrong sign"),
+        (lambda J, r, mu: np.linalg.solve(J.T @ J + mu * np.eye(J.shape[1]), -J.T @ r), "mu * I"),
+        (lambda J, r, mu: np.linalg.solve(J.T @ J, -J.T @ r), "Gauss-Newton"),
+    ),
+))
+
+
+# ------------------------------------------------------------------ nearest rotation
+
+def _rotation_cases():
+    rng = np.random.default_rng(10)
+    out = []
+    for scale in (0.02, 0.2, 1.0):
+        R = rotation_from_axis_angle(rng.normal(0, 1, 3))
+        out.append((R + scale * rng.normal(size=(3, 3)),))
+    out.append((np.diag([1.0, 1.0, -1.0]) + 0.1 * rng.normal(size=(3, 3)),))  # needs the det fix
+    return out
+
+
+def _rotation_diagnosis(args, got, expected) -> str:
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem
+    g = np.asarray(got, dtype=float)
+    if not np.allclose(g.T @ g, np.eye(3), atol=1e-8):
+        return "your matrix is not orthonormal (R^T R != I): use the SVD M = U S V^T and drop S"
+    if np.linalg.det(g) < 0:
+        return "det R = -1, a reflection: flip the sign of the last column of U when det(U V^T) < 0"
+    return "a rotation, but not the closest one to M: take U V^T from the SVD of M"
+
+
+def _gram_schmidt(M):
+    Q, Rr = np.linalg.qr(M)
+    return Q * np.sign(np.diag(Rr))
+
+
+register_exercise(Exercise(
+    name="nearest_rotation",
+    lesson="08",
+    reference=calibration.nearest_rotation,
+    cases=_rotation_cases,
+    compare=lambda got, expected: _close(got, expected, rtol=1e-8, atol=1e-10),
+    diagnose=_rotation_diagnosis,
+    wrong_variants=(
+        (lambda M: (lambda U, S, Vt: U @ Vt)(*np.linalg.svd(M)), "det R = -1"),
+        (lambda M: M / np.linalg.norm(M, axis=0), "not orthonormal"),
+        (_gram_schmidt, "not the closest"),
+    ),
+))

@@ -1,0 +1,256 @@
+r"""Levenberg-Marquardt for nonlinear least squares, in readable numpy.
+
+We minimise the cost :math:`F(x) = \tfrac12 \|r(x)\|^2` of a residual vector
+:math:`r(x) \in \mathbb{R}^m` over parameters :math:`x \in \mathbb{R}^n` (for calibration:
+reprojection errors in pixels over intrinsics, distortion and every view's pose).
+
+**Gauss-Newton.** Linearise :math:`r(x + \delta) \approx r + J \delta` with the Jacobian
+:math:`J = \partial r / \partial x` (m x n). The linear least-squares problem
+:math:`\min_\delta \|r + J\delta\|^2` has the *normal equations*
+
+.. math:: A \delta = -g, \qquad A = J^\top J, \quad g = J^\top r .
+
+Near the minimum this converges fast, but far from it the linear model lies and the step
+can increase the cost; where A is (nearly) singular the step is huge.
+
+**Levenberg-Marquardt** damps the step:
+
+.. math:: (A + \mu D) \delta = -g, \qquad D = \operatorname{diag}(A) .
+
+Large :math:`\mu` gives a short step along the (scaled) steepest descent direction
+:math:`-D^{-1} g / \mu`; small :math:`\mu` gives the Gauss-Newton step. Marquardt's
+choice :math:`D = \operatorname{diag}(A)` makes the step independent of each
+parameter's units (a focal length in pixels and a rotation in radians are damped alike).
+
+**Damping strategy** (Nielsen 1999, as in Madsen, Nielsen & Tingleff, *Methods for
+non-linear least squares problems*, 2004, section 3.2). Compare the actual decrease of
+the cost with the decrease the linear model predicted, the *gain ratio*
+
+.. math:: \rho = \frac{F(x) - F(x + \delta)}{L(0) - L(\delta)}, \qquad
+          L(0) - L(\delta) = -\tfrac12 \delta^\top (2 g + A \delta)
+          = \tfrac12 \delta^\top (\mu D \delta - g).
+
+If :math:`\rho > 0` the step is accepted and the model was trustworthy, so damping shrinks
+smoothly: :math:`\mu \leftarrow \mu \max(\tfrac13, 1 - (2\rho - 1)^3)`,
+:math:`\nu \leftarrow 2`. If :math:`\rho \le 0` the step is rejected and damping grows
+ever faster: :math:`\mu \leftarrow \mu \nu`, :math:`\nu \leftarrow 2 \nu`. The start is
+:math:`\mu_0 = \tau` (default :math:`10^{-3}`): relative to D, so nearly Gauss-Newton.
+
+**Stopping**: the gradient is tiny (:math:`\|g\|_\infty \le` ``gtol``), the step is tiny
+(:math:`\|\delta\| \le` ``xtol`` :math:`(\|x\| + ` ``xtol`` :math:`)`), the relative
+decrease of the cost in an accepted step is below ``ftol``, or ``max_iter`` iterations.
+
+**Structure.** :func:`levenberg_marquardt` never forms J itself. It calls
+``jacobian(x)`` and hands the result to ``normal_equations(J, r) -> (A, g)`` and
+``damped_solve(A, g, mu) -> delta``. The defaults treat J as a dense matrix; camera
+calibration passes block versions (:mod:`camlab.calibration`) that exploit that each
+view's pose touches only that view's residuals. See lesson 08, section 4.
+"""
+from __future__ import annotations
+
+from typing import Any, Callable, NamedTuple
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ._validate import CamlabInputError, ConvergenceError, check_finite
+
+__all__ = ["LMResult", "dense_damped_solve", "dense_normal_equations", "levenberg_marquardt", "lm_step"]
+
+
+class LMResult(NamedTuple):
+    """The outcome of :func:`levenberg_marquardt`.
+
+    ``x`` the solution; ``cost`` :math:`\\tfrac12\\|r\\|^2` there; ``residuals`` r(x);
+    ``cost_history`` the cost after every iteration (entry 0 is the start; rejected steps
+    repeat the previous cost); ``mu_history`` the damping used at each iteration;
+    ``iterations``; ``converged`` and ``message`` say why it stopped; ``jacobian`` and
+    ``normal`` hold J and the (A, g) of the normal equations at ``x`` (for covariances).
+    """
+
+    x: np.ndarray
+    cost: float
+    residuals: np.ndarray
+    cost_history: np.ndarray
+    mu_history: np.ndarray
+    iterations: int
+    converged: bool
+    message: str
+    jacobian: Any
+    normal: tuple
+
+
+def dense_normal_equations(J: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    r"""The Gauss-Newton normal equations of a dense Jacobian: :math:`(J^\top J,\ J^\top r)`."""
+    return J.T @ J, J.T @ r
+
+
+def dense_damped_solve(A: np.ndarray, g: np.ndarray, mu: float) -> np.ndarray:
+    r"""Solve :math:`(A + \mu\,\operatorname{diag}(A))\,\delta = -g` for the LM step.
+
+    A diagonal entry of 0 (a parameter the residuals ignore) is floored at a tiny value so
+    the damped matrix stays invertible and that parameter simply does not move.
+    """
+    d = np.diag(A).copy()
+    d = np.maximum(d, 1e-12 * max(d.max(initial=0.0), 1e-300))
+    return np.linalg.solve(A + mu * np.diag(d), -g)
+
+
+def lm_step(J: ArrayLike, r: ArrayLike, mu: float) -> np.ndarray:
+    r"""One Levenberg-Marquardt step: solve :math:`(J^\top J + \mu\,\operatorname{diag}(J^\top J))\,\delta = -J^\top r`.
+
+    Parameters
+    ----------
+    J : (m, n) array_like
+        Jacobian of the residuals at the current parameters.
+    r : (m,) array_like
+        Residuals at the current parameters.
+    mu : float
+        Damping, >= 0. ``mu = 0`` is the Gauss-Newton step.
+
+    Returns
+    -------
+    (n,) ndarray
+        The step :math:`\delta` to add to the parameters.
+
+    Examples
+    --------
+    Fit y = a x to (1, 2), (2, 4): one Gauss-Newton step from a = 0 lands on a = 2.
+
+    >>> lm_step([[-1.0], [-2.0]], [2.0, 4.0], 0.0)
+    array([2.])
+    >>> lm_step([[-1.0], [-2.0]], [2.0, 4.0], 1.0)   # damped: half way
+    array([1.])
+    """
+    Jm = np.array(J, dtype=float)
+    rv = np.array(r, dtype=float).ravel()
+    if Jm.ndim != 2 or Jm.shape[0] != rv.size:
+        raise CamlabInputError(f"J: expected an (m, n) Jacobian with m = len(r) = {rv.size}, got shape {Jm.shape}")
+    if not (np.isfinite(mu) and mu >= 0):
+        raise CamlabInputError(f"mu: expected a damping >= 0, got {mu!r}")
+    check_finite(Jm, "J")
+    check_finite(rv, "r")
+    A, g = dense_normal_equations(Jm, rv)
+    return dense_damped_solve(A, g, float(mu))
+
+
+def levenberg_marquardt(
+    residuals: Callable[[np.ndarray], np.ndarray],
+    x0: ArrayLike,
+    jacobian: Callable[[np.ndarray], Any],
+    *,
+    normal_equations: Callable[[Any, np.ndarray], tuple[Any, np.ndarray]] = dense_normal_equations,
+    damped_solve: Callable[[Any, np.ndarray, float], np.ndarray] = dense_damped_solve,
+    max_iter: int = 100,
+    ftol: float = 1e-12,
+    xtol: float = 1e-12,
+    gtol: float = 1e-10,
+    tau: float = 1e-3,
+    callback: Callable[[int, np.ndarray, float], None] | None = None,
+) -> LMResult:
+    r"""Minimise :math:`\tfrac12\|r(x)\|^2` by Levenberg-Marquardt (see the module docstring).
+
+    Parameters
+    ----------
+    residuals : callable
+        ``residuals(x) -> (m,) ndarray``.
+    x0 : (n,) array_like
+        Starting parameters.
+    jacobian : callable
+        ``jacobian(x) -> J``; a dense (m, n) array with the default solvers, or any object
+        that ``normal_equations`` understands.
+    normal_equations : callable
+        ``(J, r) -> (A, g)`` with :math:`A = J^\top J` (in any form ``damped_solve`` takes)
+        and the gradient :math:`g = J^\top r` as an (n,) array.
+    damped_solve : callable
+        ``(A, g, mu) -> delta`` solving :math:`(A + \mu\,\mathrm{diag}(A))\delta = -g`.
+    max_iter : int
+        Most iterations (accepted plus rejected steps).
+    ftol, xtol, gtol : float
+        Stopping tolerances on the relative cost decrease, the step and the gradient.
+    tau : float
+        Initial damping :math:`\mu_0`, relative to diag(A).
+    callback : callable, optional
+        Called as ``callback(iteration, x, cost)`` after each accepted step.
+
+    Returns
+    -------
+    LMResult
+
+    Raises
+    ------
+    ConvergenceError
+        If the residuals at ``x0`` are not finite (the start is invalid).
+
+    Examples
+    --------
+    Fit :math:`y = e^{a t}` to exact data with a = 0.7:
+
+    >>> t = np.linspace(0, 1, 20); y = np.exp(0.7 * t)
+    >>> res = levenberg_marquardt(lambda x: np.exp(x[0] * t) - y, [0.0],
+    ...                           lambda x: (t * np.exp(x[0] * t))[:, None])
+    >>> round(float(res.x[0]), 10), res.converged
+    (0.7, True)
+    """
+    x = np.array(x0, dtype=float).ravel()
+    check_finite(x, "x0")
+    r = np.asarray(residuals(x), dtype=float)
+    if not np.all(np.isfinite(r)):
+        raise ConvergenceError("levenberg_marquardt: the residuals at the starting point x0 are not finite; "
+                               "start from parameters where the model is defined")
+    cost = 0.5 * float(r @ r)
+    J = jacobian(x)
+    A, g = normal_equations(J, r)
+    mu, nu = float(tau), 2.0
+    costs, mus = [cost], [mu]
+    converged, message = False, f"stopped after max_iter = {max_iter} iterations"
+    it = 0
+    if np.max(np.abs(g), initial=0.0) <= gtol:
+        return LMResult(x, cost, r, np.array(costs), np.array(mus), 0, True, "gradient is zero at x0", J, (A, g))
+    while it < max_iter:
+        it += 1
+        delta = damped_solve(A, g, mu)
+        if not np.all(np.isfinite(delta)):
+            mu, nu = mu * nu, nu * 2.0
+            costs.append(cost)
+            mus.append(mu)
+            continue
+        if np.linalg.norm(delta) <= xtol * (np.linalg.norm(x) + xtol):
+            converged, message = True, "step below xtol"
+            break
+        x_new = x + delta
+        r_new = np.asarray(residuals(x_new), dtype=float)
+        cost_new = 0.5 * float(r_new @ r_new) if np.all(np.isfinite(r_new)) else np.inf
+        # predicted decrease of the linear model: L(0) - L(delta) = 0.5 delta^T (mu D delta - g)
+        predicted = 0.5 * float(delta @ (mu * _diag(A) * delta - g))
+        rho = (cost - cost_new) / predicted if predicted > 0 else -1.0
+        if rho > 0:  # accept: the cost went down
+            small_decrease = (cost - cost_new) <= ftol * cost
+            x, r, cost = x_new, r_new, cost_new
+            J = jacobian(x)
+            A, g = normal_equations(J, r)
+            mu *= max(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
+            nu = 2.0
+            if callback is not None:
+                callback(it, x, cost)
+            costs.append(cost)
+            mus.append(mu)
+            if np.max(np.abs(g)) <= gtol:
+                converged, message = True, "gradient below gtol"
+                break
+            if small_decrease:
+                converged, message = True, "relative cost decrease below ftol"
+                break
+        else:  # reject: increase the damping, shorter and more gradient-like step
+            mu, nu = mu * nu, nu * 2.0
+            costs.append(cost)
+            mus.append(mu)
+            if mu > 1e20:
+                converged, message = True, "damping exploded: no step decreases the cost (at a minimum)"
+                break
+    return LMResult(x, cost, r, np.array(costs), np.array(mus), it, converged, message, J, (A, g))
+
+
+def _diag(A: Any) -> np.ndarray:
+    """diag(A) for a dense matrix or any object with a ``diagonal()`` method."""
+    return np.diag(A) if isinstance(A, np.ndarray) else A.diagonal()

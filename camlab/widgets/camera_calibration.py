@@ -1,0 +1,201 @@
+"""Demos for lesson 08, camera calibration.
+
+* :func:`accuracy_vs_views`: recalibrate a known camera from 3-15 views and 0-1 px of corner
+  noise; see the estimates' errors against their reported 3-sigma bars.
+* :func:`view_inspector`: one photo of the rendered set with its detected corners, the
+  calibrated model's reprojections and the (magnified) residuals.
+* :func:`undistort_alpha`: undistort a photo and trade black borders for lost pixels.
+
+Each builds its figure once; updates call camlab.calibration and move artists.
+"""
+from __future__ import annotations
+
+from functools import lru_cache
+
+import ipywidgets as W
+import numpy as np
+
+from .. import calibration as C
+from .._validate import CamlabInputError, ConvergenceError
+from ..plotting.calibration import image_frame
+from ._base import Demo, FigureView, build_demo, register, slider
+
+
+def _pre(text: str) -> str:
+    return f"<pre style='font-size: 12px; line-height: 1.3; margin: 4px 0'>{text}</pre>"
+
+
+@lru_cache(maxsize=1)
+def _pool(n: int = 15, seed: int = 0):
+    """Fixed exact views of the lesson's camera and a fixed unit-noise draw for each corner."""
+    s = C.make_synthetic_views(n, 0.0, rng=np.random.default_rng(seed))
+    unit = np.random.default_rng(seed + 1).normal(size=(n, len(s.object_points), 2))
+    return s, unit
+
+
+@lru_cache(maxsize=1)
+def bundled_calibration() -> C.ImageCalibration:
+    """Calibration of the rendered photos in data/calib_chessboard (detected corners), cached."""
+    from ..data import load_calibration_set
+
+    cs = load_calibration_set()
+    return C.calibrate_from_images(cs.images, cs.pattern_size, cs.square)
+
+
+_NAMES = ("fx", "fy", "cx", "cy")
+
+
+@register(lesson="08", sweep={"n_views": [3, 6, 10, 15], "noise": [0.0, 0.3, 1.0]})
+def accuracy_vs_views() -> Demo:
+    """Calibrate from the first n views with sigma px of noise: errors against the reported 3-sigma bars."""
+    s, unit = _pool()
+    truth = np.array([s.K[0, 0], s.K[1, 1], s.K[0, 2], s.K[1, 2]])
+    view = FigureView(figsize=(9, 3.8))
+    ax, axi = view.fig.subplots(1, 2, width_ratios=[1, 1.3])
+    ax.axhline(0, color="0.4", lw=1)
+    ax.set(xlim=(-0.6, 3.6), ylim=(-12, 12), xticks=range(4), xticklabels=_NAMES,
+           ylabel="estimate − truth (px)", title="Errors and ±3σ bars")
+    ax.grid(True, axis="y", color="0.93")
+    from matplotlib.collections import LineCollection
+
+    bars = view.animate(ax.add_collection(LineCollection([], colors="tab:blue", lw=6, alpha=0.35,
+                                                         label="±3σ reported")))
+    dots, = ax.plot([], [], "o", color="tab:red", ms=7, label="actual error")
+    view.animate(dots)
+    ax.legend(loc="lower left", fontsize=8)
+    image_frame(axi, s.image_size, "Corners used")
+    pts = axi.scatter(np.zeros(0), np.zeros(0), s=3, c=np.zeros(0), cmap="tab20", vmin=0, vmax=15)
+    view.animate(pts)
+    readout = W.HTML()
+
+    def update(v: dict, state: dict) -> None:
+        n, sigma = int(v["n_views"]), float(v["noise"])
+        obs = [s.exact[i] + sigma * unit[i] for i in range(n)]
+        pts.set_offsets(np.concatenate(obs))
+        pts.set_array(np.repeat(np.arange(n), len(s.object_points)).astype(float))
+        try:
+            res = C.calibrate_camera(s.object_points, obs, s.image_size)
+        except (CamlabInputError, ConvergenceError) as exc:
+            state.update(K=None, dist=None, errors=None, std=None, rms=None)
+            dots.set_data([], [])
+            bars.set_segments([])
+            readout.value = _pre(f"calibration failed:\n{exc}")
+            return
+        est = np.array([res.intrinsics[k] for k in _NAMES])
+        std = np.array([res.std[k] for k in _NAMES])
+        err = est - truth
+        state.update(K=res.K, dist=res.dist, errors=err, std=std, rms=res.rms, n_views=n, noise=sigma)
+        x = np.arange(4)
+        dots.set_data(x, np.clip(err, -11.5, 11.5))
+        bars.set_segments([[(i, -3 * sd), (i, 3 * sd)] for i, sd in zip(x, std)])
+        lines = [f"{n} views, noise σ = {sigma:.2f} px, rms = {res.rms:.3f} px"]
+        lines += [f"{k:>2} = {e:8.2f} ± {sd:5.2f}  (true {t:.1f})" for k, e, sd, t in zip(_NAMES, est, std, truth)]
+        lines.append(f"k1 = {res.dist[0]:+.3f} ± {res.std['k1']:.3f}  (true {s.dist[0]:+.3f})")
+        readout.value = _pre("\n".join(lines))
+
+    controls = {
+        "n_views": W.IntSlider(value=6, min=3, max=15, description="views", continuous_update=True,
+                               style={"description_width": "initial"}, layout=W.Layout(width="300px")),
+        "noise": slider(0.3, 0.0, 1.0, 0.05, "corner noise σ (px)"),
+    }
+    return build_demo("accuracy_vs_views", controls, view, update,
+                      title="More views, less noise: a better camera", extra=[readout])
+
+
+@register(lesson="08", sweep={"view": [0, 5, 11], "magnify": [1.0, 300.0, 1000.0]})
+def view_inspector(calibration: C.ImageCalibration | None = None, images: list | None = None) -> Demo:
+    """Each photo with detected corners (+), reprojected corners (o) and residual arrows x magnify.
+
+    ``calibration`` from :func:`camlab.calibration.calibrate_from_images` and the ``images`` it
+    was given; default: the rendered set in data/.
+    """
+    out = bundled_calibration() if calibration is None else calibration
+    res = out.result
+    if images is None and calibration is None:
+        from ..data import load_calibration_set
+
+        images = load_calibration_set().images
+    view = FigureView(figsize=(7.5, 5))
+    ax = view.fig.subplots()
+    image_frame(ax, res.image_size)
+    w, h = res.image_size
+    im = view.animate(ax.imshow(np.zeros((h, w)), cmap="gray", vmin=0, vmax=255,
+                                extent=(-0.5, w - 0.5, h - 0.5, -0.5)))
+    det, = ax.plot([], [], "+", color="tab:green", ms=8, mew=1.5, label="detected")
+    rep, = ax.plot([], [], "o", mfc="none", color="tab:red", ms=6, label="reprojected")
+    view.animate(det, rep)
+    n = len(res.object_points[0])
+    arrows = view.animate(ax.quiver(np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), color="yellow",
+                                    angles="xy", scale_units="xy", scale=1, width=0.004))
+    ax.legend(loc="upper right", fontsize=8)
+    readout = W.HTML()
+
+    def update(v: dict, state: dict) -> None:
+        k = int(v["view"])
+        i = out.used[k]
+        img = images[i] if images is not None else None
+        im.set_data(img if img is not None else np.full((h, w), 128.0))
+        obs = res.image_points[k]
+        pred = res.reprojected(k)
+        r = res.residuals[k]
+        det.set_data(obs[:, 0], obs[:, 1])
+        rep.set_data(pred[:, 0], pred[:, 1])
+        arrows.set_offsets(pred)
+        arrows.set_UVC(r[:, 0] * v["magnify"], r[:, 1] * v["magnify"])
+        worst = int(np.argmax(np.linalg.norm(r, axis=1)))
+        state.update(view=k, image_index=i, rms=float(res.per_view_rms[k]), worst_corner=worst,
+                     longest_arrow_px=float(np.linalg.norm(r[worst]) * v["magnify"]))
+        readout.value = _pre(f"view {k} ({out.names[i]})\nrms {res.per_view_rms[k]:.3f} px "
+                             f"(median {np.median(res.per_view_rms):.3f})\nworst corner {worst}: "
+                             f"{np.linalg.norm(r[worst]):.3f} px\narrows ×{v['magnify']:.0f}")
+
+    controls = {
+        "view": W.IntSlider(value=0, min=0, max=res.n_views - 1, description="view", continuous_update=True,
+                            style={"description_width": "initial"}, layout=W.Layout(width="300px")),
+        "magnify": slider(300.0, 1.0, 1000.0, 1.0, "arrow magnification"),
+    }
+    return build_demo("view_inspector", controls, view, update,
+                      title="Detected versus reprojected corners", extra=[readout])
+
+
+@register(lesson="08", sweep={"alpha": [0.0, 0.5, 1.0]})
+def undistort_alpha(image: np.ndarray | None = None, K: np.ndarray | None = None,
+                    dist: np.ndarray | None = None) -> Demo:
+    """Undistort a photo; alpha trades black borders (alpha = 1) for cropped pixels (alpha = 0)."""
+    from ..data import load_calibration_set
+
+    if image is None or K is None:
+        cs = load_calibration_set()
+        image, K, dist = cs.images[3], cs.K, cs.dist
+    h, w = image.shape[:2]
+    view = FigureView(figsize=(9, 3.8))
+    ax0, ax1 = view.fig.subplots(1, 2)
+    image_frame(ax0, (w, h), "distorted photo")
+    ax0.imshow(image, cmap="gray", vmin=0, vmax=255, extent=(-0.5, w - 0.5, h - 0.5, -0.5))
+    image_frame(ax1, (w, h), "undistorted")
+    im = view.animate(ax1.imshow(np.zeros((h, w)), cmap="gray", vmin=0, vmax=255,
+                                 extent=(-0.5, w - 0.5, h - 0.5, -0.5)))
+    edge, = ax1.plot([], [], color="tab:orange", lw=1.5, label="photo's border")
+    view.animate(edge)
+    ax1.legend(loc="lower right", fontsize=8)
+    t = np.linspace(0, 1, 40)
+    border = np.concatenate([np.column_stack([t * (w - 1), 0 * t]), np.column_stack([(w - 1) + 0 * t, t * (h - 1)]),
+                             np.column_stack([(1 - t) * (w - 1), (h - 1) + 0 * t]), np.column_stack([0 * t, (1 - t) * (h - 1)])])
+    from ..distortion import undistort_pixels
+
+    border_ideal = undistort_pixels(border, K, dist)  # ideal pixels with the old K
+    readout = W.HTML()
+
+    def update(v: dict, state: dict) -> None:
+        out = C.undistort(image, K=K, dist=dist, alpha=float(v["alpha"]))
+        im.set_data(out.image)
+        b = (border_ideal - K[:2, 2]) / np.diag(K)[:2] * np.diag(out.K)[:2] + out.K[:2, 2]
+        edge.set_data(b[:, 0], b[:, 1])
+        state.update(new_K=out.K, black_fraction=out.black_fraction, lost_fraction=out.lost_fraction)
+        readout.value = _pre(f"alpha = {v['alpha']:.2f}\nnew fx = {out.K[0, 0]:.1f} (was {K[0, 0]:.1f})\n"
+                             f"black border: {100 * out.black_fraction:.1f}% of the output\n"
+                             f"photo pixels lost: {100 * out.lost_fraction:.1f}%")
+
+    controls = {"alpha": slider(0.0, 0.0, 1.0, 0.05, "alpha")}
+    return build_demo("undistort_alpha", controls, view, update,
+                      title="Undistortion: crop or keep everything?", extra=[readout])

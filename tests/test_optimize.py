@@ -1,0 +1,126 @@
+"""Tests for camlab.optimize: Levenberg-Marquardt and one damped step."""
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from camlab import ConvergenceError
+from camlab._validate import CamlabInputError
+from camlab.optimize import dense_damped_solve, levenberg_marquardt, lm_step
+
+
+def rosenbrock():
+    """Rosenbrock as least squares: r = (10 (y - x^2), 1 - x), minimum 0 at (1, 1)."""
+    def res(p):
+        return np.array([10 * (p[1] - p[0] ** 2), 1 - p[0]])
+
+    def jac(p):
+        return np.array([[-20 * p[0], 10.0], [-1.0, 0.0]])
+
+    return res, jac
+
+
+def test_rosenbrock_from_the_classic_start():
+    res, jac = rosenbrock()
+    out = levenberg_marquardt(res, [-1.2, 1.0], jac)
+    assert out.converged
+    np.testing.assert_allclose(out.x, [1.0, 1.0], atol=1e-9)
+    assert out.cost < 1e-20
+    # accepted steps never increase the cost
+    assert np.all(np.diff(out.cost_history) <= 1e-15)
+    assert len(out.cost_history) == out.iterations + 1 == len(out.mu_history)
+
+
+def test_damping_grows_after_a_rejected_step_and_shrinks_after_good_ones():
+    res, jac = rosenbrock()
+    out = levenberg_marquardt(res, [-1.2, 1.0], jac, tau=1e-8)
+    d = np.diff(out.cost_history)
+    mus = out.mu_history
+    rejected = np.flatnonzero(d == 0)
+    assert len(rejected) > 0, "from a nearly Gauss-Newton start Rosenbrock must reject some steps"
+    for i in rejected:
+        assert mus[i + 1] > mus[i]
+    accepted = np.flatnonzero(d < 0)
+    assert any(mus[i + 1] < mus[i] for i in accepted)
+
+
+def test_matches_scipy_least_squares_on_a_curve_fit():
+    from scipy.optimize import least_squares
+
+    rng = np.random.default_rng(3)
+    t = np.linspace(0, 3, 60)
+    y = 2.5 * np.exp(-1.3 * t) + 0.4 + rng.normal(0, 0.01, t.size)
+
+    def res(p):
+        return p[0] * np.exp(-p[1] * t) + p[2] - y
+
+    def jac(p):
+        e = np.exp(-p[1] * t)
+        return np.column_stack([e, -p[0] * t * e, np.ones_like(t)])
+
+    ours = levenberg_marquardt(res, [1.0, 0.5, 0.0], jac)
+    ref = least_squares(res, [1.0, 0.5, 0.0], jac=jac, method="lm", xtol=1e-14, ftol=1e-14)
+    np.testing.assert_allclose(ours.x, ref.x, rtol=1e-7)
+    assert ours.cost == pytest.approx(ref.cost, rel=1e-9)
+
+
+def test_structured_solvers_are_used():
+    calls = {"normal": 0, "solve": 0}
+
+    def normal(J, r):
+        calls["normal"] += 1
+        return J.T @ J, J.T @ r
+
+    def solve(A, g, mu):
+        calls["solve"] += 1
+        return dense_damped_solve(A, g, mu)
+
+    res, jac = rosenbrock()
+    out = levenberg_marquardt(res, [0.0, 0.0], jac, normal_equations=normal, damped_solve=solve)
+    assert out.converged and calls["normal"] >= 2 and calls["solve"] >= out.iterations - 1
+
+
+def test_max_iter_stops_and_says_so():
+    res, jac = rosenbrock()
+    out = levenberg_marquardt(res, [-1.2, 1.0], jac, max_iter=2)
+    assert out.iterations == 2 and not out.converged and "max_iter" in out.message
+
+
+def test_starting_at_the_minimum_returns_at_once():
+    res, jac = rosenbrock()
+    out = levenberg_marquardt(res, [1.0, 1.0], jac)
+    assert out.iterations == 0 and out.converged
+
+
+def test_non_finite_start_raises():
+    with pytest.raises(ConvergenceError, match="not finite"):
+        levenberg_marquardt(lambda x: np.where(x < 0, np.nan, x), [-1.0], lambda x: np.eye(1))
+    with pytest.raises(CamlabInputError, match="x0: expected finite"):
+        levenberg_marquardt(lambda x: x, [np.nan], lambda x: np.eye(1))
+
+
+def test_lm_step_known_answers_and_limits():
+    J = np.array([[1.0, 0.0], [0.0, 10.0], [1.0, 1.0]])
+    r = np.array([1.0, -2.0, 0.5])
+    gn = np.linalg.lstsq(J, -r, rcond=None)[0]
+    np.testing.assert_allclose(lm_step(J, r, 0.0), gn, atol=1e-12)
+    # large damping: a short step along -D^-1 g / mu
+    A, g = J.T @ J, J.T @ r
+    np.testing.assert_allclose(lm_step(J, r, 1e8) * 1e8, -g / np.diag(A), rtol=1e-6)
+
+
+def test_lm_step_bad_input():
+    with pytest.raises(CamlabInputError, match="J: expected an \\(m, n\\) Jacobian with m = len\\(r\\) = 3"):
+        lm_step(np.ones((2, 2)), np.ones(3), 0.1)
+    with pytest.raises(CamlabInputError, match="mu: expected a damping >= 0"):
+        lm_step(np.ones((3, 2)), np.ones(3), -1.0)
+
+
+@given(st.floats(0.0, 1e3), st.integers(0, 10_000))
+def test_damped_step_never_points_uphill(mu, seed):
+    rng = np.random.default_rng(seed)
+    J, r = rng.normal(size=(8, 3)), rng.normal(size=8)
+    d = lm_step(J, r, mu)
+    # a descent direction: g . delta <= 0, and the linear model does not get worse
+    assert (J.T @ r) @ d <= 1e-9
+    assert np.linalg.norm(r + J @ d) <= np.linalg.norm(r) + 1e-9
