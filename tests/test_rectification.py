@@ -212,3 +212,37 @@ def test_rectify_unrectify_round_trip(rig, rect):
     # and the remap tables store exactly unrectify_points
     m = rect.maps1
     assert np.allclose(rc.unrectify_points(rect, rig.camera1, [[100.0, 50.0]], 1), [[m.map_u[50, 100], m.map_v[50, 100]]], atol=1e-3)
+
+
+def _angle_deg(A, B):
+    return np.degrees(np.arccos(np.clip((np.trace(A @ B.T) - 1) / 2, -1, 1)))
+
+
+def test_stereo_calibrate_matches_opencv_and_truth(rig):
+    from camlab.calibration import find_chessboard
+
+    p1 = [find_chessboard(im, rig.pattern_size).corners for im in rig.calib_left]
+    p2 = [find_chessboard(im, rig.pattern_size).corners for im in rig.calib_right]
+    sc = rc.stereo_calibrate(rig.object_points, p1, p2, (640, 480))
+    assert sc.converged and sc.rms < 0.2
+    R, t = ep.relative_pose(rig.camera1, rig.camera2)
+    assert _angle_deg(sc.R, R) < 0.5 and np.linalg.norm(sc.t - t) < 0.005  # 5 mm of a 12 cm baseline
+    obj = [rig.object_points.astype(np.float32)] * len(p1)
+    rms, *_, Rc, tc, _, _ = cv2.stereoCalibrate(obj, [p.astype(np.float32) for p in p1],
+                                                [p.astype(np.float32) for p in p2], sc.K1, sc.dist1, sc.K2,
+                                                sc.dist2, (640, 480), flags=cv2.CALIB_FIX_INTRINSIC)
+    # the same problem (fixed intrinsics): the same optimum
+    assert abs(sc.rms - rms) < 1e-4
+    assert _angle_deg(sc.R, Rc) < 1e-3 and np.linalg.norm(sc.t - tc.ravel()) < 1e-5
+    cam1, cam2 = sc.cameras()
+    assert np.allclose(ep.relative_pose(cam1, cam2)[0], sc.R)
+
+
+def test_stereo_calibrate_bad_input(rig):
+    tl = list(rig.calib_corners_left)
+    with pytest.raises(CamlabInputError, match="same number"):
+        rc.stereo_calibrate(rig.object_points, tl, tl[:-1], (640, 480))
+    with pytest.raises(CamlabInputError, match=">= 3"):
+        rc.stereo_calibrate(rig.object_points, tl[:2], tl[:2], (640, 480))
+    with pytest.raises(CamlabInputError, match="corners per view"):
+        rc.stereo_calibrate(rig.object_points, [t[:-1] for t in tl], tl, (640, 480))
