@@ -29,6 +29,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .distortion import distort_points
 from ._validate import (
     CamlabInputError,
     ConvergenceError,
@@ -476,7 +477,7 @@ class Camera:
         with np.errstate(divide="ignore", invalid="ignore"):
             xn = Xc[:, :2] / np.where(z > 0, z, np.nan)[:, None]
         if any(self.dist):
-            xn = _distort_normalized(xn, self.dist)
+            xn = distort_points(xn, self.dist)
         uv = xn @ self.K[:2, :2].T + self.K[:2, 2]
         return p.restore(uv)
 
@@ -540,17 +541,6 @@ class Camera:
         C = np.round(self.centre, 4)
         return (f"Camera(fx={fx:.6g}, fy={fy:.6g}, cx={cx:.6g}, cy={cy:.6g}, skew={self.K[0, 1]:.3g}, "
                 f"centre={C.tolist()}, image_size={self.image_size})")
-
-
-def _distort_normalized(xn: np.ndarray, dist: tuple[float, ...]) -> np.ndarray:
-    """OpenCV's Brown-Conrady model on normalised coordinates (the forward map only)."""
-    k1, k2, p1, p2, k3 = dist
-    x, y = xn[:, 0], xn[:, 1]
-    r2 = x * x + y * y
-    radial = 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3))
-    xd = x * radial + 2.0 * p1 * x * y + p2 * (r2 + 2.0 * x * x)
-    yd = y * radial + p1 * (r2 + 2.0 * y * y) + 2.0 * p2 * x * y
-    return np.column_stack([xd, yd])
 
 
 # ---------------------------------------------------------------------------------------

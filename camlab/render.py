@@ -45,6 +45,7 @@ from . import distortion as _dist
 from . import lens as _lens
 from . import sensor as _sensor
 from ._validate import CamlabInputError, as_points, check_matrix, check_positive
+from .camera import Camera, look_at_rotation, rotation_from_euler
 
 __all__ = [
     "Defocus", "GroundTruth", "align_detected_corners", "Plane", "PlanePoints", "RenderResult", "Sensor", "box", "checkerboard",
@@ -55,43 +56,18 @@ __all__ = [
 
 # ------------------------------------------------------------------------- poses
 
-def rotation_from_euler(rx: float = 0.0, ry: float = 0.0, rz: float = 0.0) -> np.ndarray:
-    r"""Rotation :math:`R = R_z(r_z) R_y(r_y) R_x(r_x)` (radians): x first, then y, then z.
-
-    >>> np.allclose(rotation_from_euler(0, 0, np.pi / 2) @ [1, 0, 0], [0, 1, 0])
-    True
-    """
-    cx, sx, cy, sy, cz, sz = np.cos(rx), np.sin(rx), np.cos(ry), np.sin(ry), np.cos(rz), np.sin(rz)
-    Rx = np.array([[1, 0, 0], [0, cx, -sx], [0, sx, cx]])
-    Ry = np.array([[cy, 0, sy], [0, 1, 0], [-sy, 0, cy]])
-    Rz = np.array([[cz, -sz, 0], [sz, cz, 0], [0, 0, 1]])
-    return Rz @ Ry @ Rx
-
-
 def look_at(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0.0, -1.0, 0.0)) -> tuple[np.ndarray, np.ndarray]:
     r"""The camera pose ``(R, t)`` (cam_from_world) of a camera at ``eye`` looking at ``target``.
 
-    The camera's z axis points from eye to target, its y axis (image down) is as close as
-    possible to ``-up``. Returns ``R`` (3, 3) and ``t`` (3,) with ``X_cam = R X_world + t``.
+    The rotation is :func:`camlab.camera.look_at_rotation`; the default ``up`` is -y because
+    the render scenes use y down. Returns ``R`` (3, 3) and ``t = -R eye`` (3,).
 
     >>> R, t = look_at([0, 0, -2], [0, 0, 0])
     >>> np.allclose(R, np.eye(3)), np.allclose(t, [0, 0, 2])
     (True, True)
     """
-    eye = check_matrix(eye, (3,), "eye")
-    target = check_matrix(target, (3,), "target")
-    up = check_matrix(up, (3,), "up")
-    z = target - eye
-    if np.linalg.norm(z) == 0:
-        raise CamlabInputError("look_at: eye and target coincide; put the target somewhere in front of the camera")
-    z = z / np.linalg.norm(z)
-    x = np.cross(z, up)  # x = y cross z with y = -up
-    if np.linalg.norm(x) < 1e-9:
-        raise CamlabInputError("look_at: up is parallel to the viewing direction; choose another up vector")
-    x = x / np.linalg.norm(x)
-    y = np.cross(z, x)
-    R = np.stack([x, y, z])
-    return R, -R @ eye
+    R = look_at_rotation(eye, target, up)
+    return R, -R @ np.asarray(eye, dtype=float)
 
 
 # ------------------------------------------------------------------------- scene
@@ -420,22 +396,16 @@ def project(points_world: ArrayLike, K: ArrayLike, R: ArrayLike = np.eye(3), t: 
     r"""Project world points to distorted pixels: the renderer's ground-truth projection.
 
     :math:`X_c = R X + t`, :math:`x = (X_c/Z_c, Y_c/Z_c)`, :math:`x_d = \mathrm{distort}(x)`,
-    :math:`u = K [x_d, 1]`. Agrees with ``cv2.projectPoints`` (to 1e-9 px).
+    :math:`u = K [x_d, 1]`, by :meth:`camlab.camera.Camera.project`. Agrees with
+    ``cv2.projectPoints`` (to 1e-9 px).
 
     Returns
     -------
     (N, 2) or (2,) ndarray
         Pixels (u, v); NaN for points with Z_c <= 0.
     """
-    pts = as_points(points_world, 3, "points_world")
-    K = _dist._check_K(K)
     R, t = _pose(R, t, "camera")
-    Xc = pts.array @ R.T + t
-    with np.errstate(divide="ignore", invalid="ignore"):
-        xy = Xc[:, :2] / Xc[:, 2:3]
-    xy[Xc[:, 2] <= 0] = np.nan
-    xd = _dist._distort(xy, _dist.as_dist(dist))
-    return pts.restore(_dist._to_pixels(xd, K))
+    return Camera(_dist._check_K(K), R, t, dist=tuple(_dist.as_dist(dist))).project(points_world)
 
 
 def align_detected_corners(detected: ArrayLike, truth_pixels: ArrayLike) -> np.ndarray:

@@ -153,7 +153,7 @@ def test_look_at_and_rotation():
     assert np.allclose(R @ R.T, np.eye(3)) and np.linalg.det(R) == pytest.approx(1)
     with pytest.raises(CamlabInputError, match="eye and target coincide"):
         r.look_at([0, 0, 0], [0, 0, 0])
-    with pytest.raises(CamlabInputError, match="up is parallel"):
+    with pytest.raises(CamlabInputError, match="parallel to up"):
         r.look_at([0, 0, 0], [0, 1, 0])
 
 
