@@ -813,6 +813,7 @@ def calibrate_camera(
     fix: Sequence[str] = (),
     K_guess: ArrayLike | None = None,
     dist_guess: ArrayLike | None = None,
+    pose_guess: ArrayLike | None = None,
     max_iter: int = 100,
 ) -> CalibrationResult:
     r"""Calibrate a camera from V >= 3 views of a flat target: Zhang's closed form, then LM.
@@ -831,12 +832,16 @@ def calibrate_camera(
     fix : sequence of str
         Parameters held at their initial value: any of ``PARAM_NAMES`` (e.g.
         ``("k3",)`` like ``cv2.CALIB_FIX_K3``, ``("p1", "p2")`` like
-        ``CALIB_ZERO_TANGENT_DIST``). Fixed distortion coefficients stay 0.
+        ``CALIB_ZERO_TANGENT_DIST``). Fixed coefficients stay at their start: 0, or ``dist_guess``.
     K_guess : (3, 3) array_like, optional
         Start from this K instead of Zhang's closed form.
     dist_guess : (5,) array_like, optional
         Start from these coefficients instead of the linear radial estimate (with ``K_guess``,
         a warm start from an earlier calibration converges in a few iterations).
+    pose_guess : (V, 6) array_like, optional
+        Start each view's pose from (rvec, tvec) instead of its homography; needs ``K_guess``.
+        With all three guesses Zhang's closed form is skipped entirely (``initial`` is then
+        empty).
     max_iter : int
         Most LM iterations.
 
@@ -859,7 +864,10 @@ def calibrate_camera(
     :math:`p = n_{free} + 6V` unknowns with :func:`camlab.optimize.levenberg_marquardt`;
     its analytic Jacobian has one dense block for the intrinsics and a 6-column block per
     view, and the damped normal equations are solved by eliminating the poses (Schur
-    complement, see ``_BlockNormal``).
+    complement, see ``_BlockNormal``). Zhang's closed form starts close to the minimum, so
+    the initial damping is small (``tau = 1e-5`` relative to diag(J^T J)): the distortion
+    coefficients are strongly correlated, and a larger damping would crawl along that valley
+    for many iterations before it shrank.
     """
     objs, imgs = _check_views(object_points, image_points, min_views=1)
     if len(imgs) < 3:
@@ -879,21 +887,28 @@ def calibrate_camera(
     for v, o in enumerate(objs):
         _planar_xy(o, v)
 
-    # Zhang's closed form
-    Hs = view_homographies(objs, imgs)
-    if K_guess is None:
+    if pose_guess is not None and K_guess is None:
+        raise CamlabInputError("pose_guess: pass K_guess too (the poses only make sense with a camera)")
+    if K_guess is None:  # Zhang's closed form
+        Hs = view_homographies(objs, imgs)
         K0 = intrinsics_from_homographies(Hs, skew=skew, image_size=(w, h))
     else:
         K0 = np.array(K_guess, dtype=float)
         if K0.shape != (3, 3) or not np.isfinite(K0).all() or K0[0, 0] <= 0 or K0[1, 1] <= 0:
             raise CamlabInputError(f"K_guess: expected a (3, 3) intrinsic matrix with fx, fy > 0, got {K0.tolist()}")
+        Hs = view_homographies(objs, imgs) if pose_guess is None else None
     if not skew:
         K0[0, 1] = 0.0
-    poses0 = []
-    for H in Hs:
-        R, t = extrinsics_from_homography(K0, H)
-        poses0.append(np.concatenate([axis_angle_from_rotation(R), t]))
-    poses0 = np.array(poses0)
+    if pose_guess is None:
+        poses0 = []
+        for H in Hs:
+            R, t = extrinsics_from_homography(K0, H)
+            poses0.append(np.concatenate([axis_angle_from_rotation(R), t]))
+        poses0 = np.array(poses0)
+    else:
+        poses0 = np.array(pose_guess, dtype=float)
+        if poses0.shape != (len(imgs), 6) or not np.isfinite(poses0).all():
+            raise CamlabInputError(f"pose_guess: expected ({len(imgs)}, 6) finite (rvec, tvec) rows, got {poses0.shape}")
     fixed = set(fix) | ({"skew"} if not skew else set())
     d0 = np.zeros(5)
     if dist_guess is not None:
@@ -917,7 +932,7 @@ def calibrate_camera(
     lm: LMResult = levenberg_marquardt(prob.residuals, prob.pack(g0, poses0), prob.jacobian,
                                        normal_equations=prob.normal_equations,
                                        damped_solve=lambda A, g, mu: A.solve(mu), max_iter=max_iter,
-                                       ftol=1e-10, xtol=1e-10, gtol=1e-12)
+                                       ftol=1e-10, xtol=1e-10, gtol=1e-12, tau=1e-5)
     if not np.all(np.isfinite(lm.x)):
         raise ConvergenceError("calibrate_camera: the refinement produced non-finite parameters; check the data")
     g, poses = prob.unpack(lm.x)
@@ -935,7 +950,8 @@ def calibrate_camera(
     for name, var in zip(np.array(PARAM_NAMES)[free], np.diag(cov)):
         std[str(name)] = float(np.sqrt(max(var, 0.0)))
     K = np.array([[g[0], g[4], g[2]], [0.0, g[1], g[3]], [0.0, 0.0, 1.0]])
-    initial = {"K": K0, "dist": d0, "homographies": Hs, "rvecs": poses0[:, :3].copy(), "tvecs": poses0[:, 3:].copy()}
+    initial = {"K": K0, "dist": d0, "homographies": Hs, "rvecs": poses0[:, :3].copy(), "tvecs": poses0[:, 3:].copy(),
+               "closed_form": K_guess is None}
     return CalibrationResult(
         K=K, dist=g[5:].copy(), rvecs=poses[:, :3].copy(), tvecs=poses[:, 3:].copy(), rms=rms,
         per_view_rms=per_view, residuals=[res[v, :len(o)] for v, o in enumerate(objs)], std=std,

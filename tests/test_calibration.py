@@ -432,8 +432,9 @@ def test_undistort_demo_tradeoff_moves_with_alpha():
 
 
 def test_exercise_diagnoses_specific_mistakes():
-    from camlab.exercises import check
+    from camlab.exercises import all_exercises, check
 
+    all_exercises()
     H = np.array([[2.0, 0.3, 5.0], [-0.1, 1.5, 2.0], [0.01, 0.02, 1.0]])
     with pytest.raises(AssertionError, match="rows of H"):
         check("zhang_constraints", lambda H: C.zhang_constraints(H.T))
@@ -442,3 +443,19 @@ def test_exercise_diagnoses_specific_mistakes():
     with pytest.raises(AssertionError, match="reflection"):
         check("nearest_rotation", lambda M: (lambda U, S, Vt: U @ Vt)(*np.linalg.svd(M)))
     assert C.zhang_constraints(H).shape == (2, 6)
+
+
+def test_warm_start_reaches_the_same_minimum(noisy15):
+    s, cold = noisy15
+    pts = [p + 0.05 * np.random.default_rng(1).normal(size=p.shape) for p in s.image_points]
+    ref = C.calibrate_camera(s.object_points, pts, s.image_size)
+    warm = C.calibrate_camera(s.object_points, pts, s.image_size, K_guess=cold.K, dist_guess=cold.dist,
+                              pose_guess=np.column_stack([cold.rvecs, cold.tvecs]))
+    assert warm.initial["closed_form"] is False and warm.initial["homographies"] is None
+    np.testing.assert_allclose(warm.K, ref.K, rtol=1e-6)  # 1e-6 of 322 px is far below the 2 px std
+    np.testing.assert_allclose(warm.dist, ref.dist, rtol=1e-4, atol=1e-6)
+    assert warm.iterations <= ref.iterations
+    with pytest.raises(CamlabInputError, match="pose_guess: pass K_guess too"):
+        C.calibrate_camera(s.object_points, pts, s.image_size, pose_guess=np.zeros((15, 6)))
+    with pytest.raises(CamlabInputError, match=r"pose_guess: expected \(15, 6\)"):
+        C.calibrate_camera(s.object_points, pts, s.image_size, K_guess=cold.K, pose_guess=np.zeros((3, 6)))
