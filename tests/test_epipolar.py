@@ -221,3 +221,34 @@ def test_property_estimate_recovers_truth(yaw, pitch, base, seed):
     F = ep.estimate_fundamental_matrix(x1[ok], x2[ok])
     assert np.allclose(F, ep.fundamental_from_cameras(c1, c2), atol=1e-6)
     assert np.max(ep.sampson_distance(F, x1[ok], x2[ok])) < 1e-6
+
+
+def test_rendered_rig_sift_matches_estimate_equals_truth_and_matches_opencv():
+    """On the rendered rig (data/stereo): F from SIFT matches vs F from the true cameras, and vs OpenCV."""
+    from camlab.distortion import undistort_image, undistort_pixels
+    from camlab.stereo_data import load_stereo_rig
+
+    rig = load_stereo_rig()
+    c1, c2 = rig.camera1, rig.camera2
+    L, R = undistort_image(rig.left, c1.K, c1.dist), undistort_image(rig.right, c2.K, c2.dist)
+    sift = cv2.SIFT_create(1500)
+    k1, d1 = sift.detectAndCompute(L, None)
+    k2, d2 = sift.detectAndCompute(R, None)
+    good = [m for m, n in cv2.BFMatcher().knnMatch(d1, d2, k=2) if m.distance < 0.8 * n.distance]
+    x1 = np.array([k1[m.queryIdx].pt for m in good])
+    x2 = np.array([k2[m.trainIdx].pt for m in good])
+    res = ep.ransac_fundamental_matrix(x1, x2, threshold=1.0, rng=np.random.default_rng(0))
+    F_true = ep.fundamental_from_cameras(c1.replace(dist=(0.0,) * 5), c2.replace(dist=(0.0,) * 5))
+    # up to scale: the estimate agrees with the truth on the true correspondences (chessboard corners)
+    t1 = undistort_pixels(rig.calib_corners_left.reshape(-1, 2), c1.K, c1.dist)
+    t2 = undistort_pixels(rig.calib_corners_right.reshape(-1, 2), c2.K, c2.dist)
+    assert np.median(ep.sampson_distance(F_true, t1, t2)) < 1e-6
+    assert np.median(ep.sampson_distance(res.F, t1, t2)) < 0.3
+    e_est, e_true = ep.epipoles(res.F).e2, ep.epipoles(F_true).e2
+    assert np.degrees(np.arccos(abs(e_est @ e_true))) < 0.5  # the same epipole direction
+    Fc, mask = cv2.findFundamentalMat(x1, x2, cv2.FM_RANSAC, 1.0, 0.999)
+    mask = mask.ravel().astype(bool)
+    ours_on_cv = np.median(ep.sampson_distance(res.F, x1[mask], x2[mask]))
+    cv_on_ours = np.median(ep.sampson_distance(Fc, x1[res.inliers], x2[res.inliers]))
+    assert ours_on_cv <= 1.1 * cv_on_ours + 0.02
+    assert res.inliers.sum() >= 0.9 * mask.sum()
