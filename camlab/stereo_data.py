@@ -14,7 +14,8 @@ r"""A rendered stereo rig with full ground truth: ``data/stereo/`` (lesson 11).
     0 = no surface. Load with :func:`load_stereo_rig`.
 ``calib_left_NN.png``, ``calib_right_NN.png``
     Chessboard views seen by both cameras (9 x 6 inner corners, 25 mm squares), for
-    stereo calibration.
+    stereo calibration; noise-free 8-bit (keeps them about 10 kB each; the whole of
+    ``data/`` must stay under 3 MB).
 ``truth.json``
     Both cameras (K, dist, R, t cam_from_world), the rectified cameras, the exact corner
     pixels of every calibration view in both images, and the generator's parameters.
@@ -204,13 +205,16 @@ def make_stereo_rig(out_dir: Path | str, params: dict = STEREO_PARAMS) -> list[P
     enc = np.where(np.isfinite(disp) & (disp > 0), np.clip(np.round(disp * 256), 1, 65535), 0).astype(np.uint16)
     files.append(_png(out / "disparity.png", enc))
     cols, rows = params["pattern_size"]
+    # Calibration views without sensor noise (8-bit quantisation only): noisy PNGs are ~15x larger,
+    # and data/ must stay small. Add noise with camlab.sensor.add_noise to study its effect.
+    quiet = render.Sensor(bits=8)
     views = []
     for i, (R, t) in enumerate(_calib_poses(params, c1, c2)):
         board = render.checkerboard((cols, rows), params["square"], R=R, t=t)
         corners = {}
         for name, c in (("left", c1), ("right", c2)):
-            res = render.render(board, c.K, size, R=c.R, t=c.t, dist=c.dist, sensor=sensor,
-                                supersample=params["supersample"], rng=rng, color=False)
+            res = render.render(board, c.K, size, R=c.R, t=c.t, dist=c.dist, sensor=quiet,
+                                supersample=params["supersample"], color=False)
             files.append(_png(out / f"calib_{name}_{i:02d}.png", res.image))
             corners[name] = np.round(res.truth.corners(), 9).tolist()
         views.append({"left": f"calib_left_{i:02d}.png", "right": f"calib_right_{i:02d}.png",
