@@ -64,7 +64,9 @@ def test_calibrated_vertical_disparity_on_rectified_images_vs_opencv(rig, rect):
             store.append(np.abs(p[:, 1] - q[:, 1]))
     ours, theirs = np.concatenate(ours), np.concatenate(theirs)
     assert np.median(ours) < 0.1
-    assert np.median(ours) <= 1.1 * np.median(theirs)
+    # Both are at the corner detector's noise level (about 0.015 px); allow 0.005 px of that noise.
+    assert np.median(ours) <= 1.1 * np.median(theirs) + 0.005
+    assert np.mean(ours) <= 1.1 * np.mean(theirs) + 0.005
 
 
 def test_rotations_close_to_opencv_and_rectified_cameras_are_parallel(rig, rect):
