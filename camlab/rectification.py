@@ -340,7 +340,9 @@ def rectify_images(rect: "CalibratedRectification | UncalibratedRectification", 
     """Warp both original images into the rectified pair with ``cv2.remap`` / ``cv2.warpPerspective``.
 
     Images are (H, W) or (H, W, C) arrays indexed ``img[v, u]``; pixels without a source
-    are 0 (the black border).
+    are 0 (the black border). A calibrated ``rect`` takes the raw (distorted) images: its
+    remap tables undistort too. An uncalibrated ``rect`` applies H1, H2 as they are, so pass
+    images that are already undistorted (F, and so H1, H2, relate ideal pixels).
     """
     import cv2
 

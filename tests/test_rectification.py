@@ -187,7 +187,9 @@ def test_bad_input_messages():
         rc.rectify_calibrated(*_simple_rig(offset=(0.0, 0.0, 0.2)))
     with pytest.raises(DegenerateError, match="opposite directions|no region in common|behind"):
         rc.rectify_calibrated(*_simple_rig(offset=(0.3, 0.0, 0.0), yaw2=np.pi))
-    with pytest.raises(DegenerateError, match="no region in common|behind"):  # toed out: no overlap
+    with pytest.raises(DegenerateError, match="no region in common"):  # toed out by 52 degrees: no overlap
+        rc.rectify_calibrated(*_simple_rig(offset=(0.3, 0.0, 0.0), yaw2=0.9))
+    with pytest.raises(DegenerateError, match="behind the rectified camera"):  # 80 degrees apart
         rc.rectify_calibrated(*_simple_rig(offset=(0.3, 0.0, 0.0), yaw2=1.4))
     with pytest.raises(CamlabInputError, match="camera1: expected a camlab.camera.Camera"):
         rc.rectify_calibrated(c1.P, c2)
