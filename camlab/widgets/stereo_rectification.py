@@ -264,6 +264,7 @@ def rectify_pair() -> Demo:
             y2 = rc.rectify_points(full, rig.camera2, x2, 2)
             s1 = rc.rectify_points(rect, h1, (x1 + 0.5) / 2 - 0.5, 1)
             s2 = rc.rectify_points(rect, h2, (x2 + 0.5) / 2 - 0.5, 2)
+            state.update(rectified_K=full.K)  # alpha sets the zoom of the rectified images
         elif v["method"] == "uncalibrated":
             S = np.array([[0.5, 0, -0.25], [0, 0.5, -0.25], [0, 0, 1.0]])
             Hs = [S @ H @ np.linalg.inv(S) for H in (unc.H1, unc.H2)]
