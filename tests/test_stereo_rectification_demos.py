@@ -100,3 +100,16 @@ def test_epipole_exercise_rejects_euclidean_answer():
         return e.e1[:2] / e.e1[2], e.e2[:2] / e.e2[2]
     with pytest.raises(AssertionError, match="homogeneous 3-vectors"):
         check("epipoles", euclid)
+
+
+def test_epipolar_lines_real_mouse_event_through_the_canvas():
+    """A matplotlib MouseEvent dispatched by the canvas (what ipympl sends on a click) moves the point."""
+    from matplotlib.backend_bases import MouseEvent
+
+    demo = demos.epipolar_lines()
+    fig = demo.figure
+    fig.canvas.draw()
+    x, y = demo.axes[0].transData.transform((200.0, 150.0))
+    fig.canvas.callbacks.process("button_press_event", MouseEvent("button_press_event", fig.canvas, x, y, button=1))
+    assert np.allclose([demo.controls["u"].value, demo.controls["v"].value], [200, 150], atol=1e-6)
+    assert np.allclose(demo.state["point"], [200, 150], atol=1e-6)
