@@ -110,11 +110,14 @@ def rig_cameras(params: dict = STEREO_PARAMS, distortion: bool = True) -> tuple[
     eye1 = np.array(params["left_eye"], dtype=float)
     eye2 = eye1 + [params["baseline"], 0.0, 0.0] + np.array(params["right_offset"])
     target = np.array(params["target"], dtype=float)
-    R1 = look_at_rotation(eye1, target + [params["baseline"] / 2 - 0.0, 0, 0])
-    R1 = rotation_from_axis_angle([0.0, params["toe_in"], 0.0]) @ R1  # turn right (towards the middle)
-    R2 = look_at_rotation(eye2, target + [params["baseline"] / 2, 0, 0])
+    ahead = target + [eye1[0], 0.0, 0.0]  # straight ahead of the left camera (world +y)
+    R1 = look_at_rotation(eye1, ahead)
+    R2 = look_at_rotation(eye2, ahead + (eye2 - eye1) * [1.0, 0.0, 0.0])
+    # Toe-in: a rotation about the camera's own y axis (pointing down); a negative angle turns
+    # the camera to its right. The left camera turns right, the right one left: they converge.
+    R1 = rotation_from_axis_angle([0.0, -params["toe_in"], 0.0]) @ R1
     R2 = rotation_from_axis_angle([0.0, 0.0, params["right_roll"]]) @ \
-        rotation_from_axis_angle([0.0, -params["toe_in"], 0.0]) @ R2
+        rotation_from_axis_angle([0.0, params["toe_in"], 0.0]) @ R2
     d1 = tuple(params["dist_left"]) if distortion else (0.0,) * 5
     d2 = tuple(params["dist_right"]) if distortion else (0.0,) * 5
     c1 = Camera(np.array(params["K_left"]), R1, -R1 @ eye1, d1, size)
