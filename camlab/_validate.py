@@ -140,3 +140,18 @@ def check_positive(value: float, name: str, unit: str = "") -> float:
         unit = f" {unit}" if unit else ""
         raise CamlabInputError(f"{name}: expected a positive finite number{unit}, got {value!r}")
     return v
+
+
+def check_image_size(size, name: str = "size") -> tuple[int, int]:
+    """Return ``size`` as integer ``(width, height)`` in pixels, or raise a clear error.
+
+    >>> check_image_size((640, 480))
+    (640, 480)
+    """
+    try:
+        w, h = (int(s) for s in size)
+    except (TypeError, ValueError):
+        raise CamlabInputError(f"{name}: expected (width, height) in pixels, got {size!r}") from None
+    if w < 1 or h < 1:
+        raise CamlabInputError(f"{name}: expected positive (width, height) in pixels, got {size!r}")
+    return w, h

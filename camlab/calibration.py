@@ -39,7 +39,7 @@ from typing import Any, NamedTuple, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, ConvergenceError, DegenerateError, as_points, check_finite, check_positive
+from ._validate import CamlabInputError, ConvergenceError, DegenerateError, as_points, check_finite, check_image_size, check_positive
 from .camera import axis_angle_from_rotation, rotation_from_axis_angle
 from .distortion import as_dist, distort_points, distortion_jacobian, undistort_image, undistort_points
 from .homography import estimate_homography
@@ -785,7 +785,7 @@ class CalibrationResult:
         lines.append("  " + "  ".join(f"{k} = {p[k]:.2f} ± {s[k]:.2f}" for k in ("fx", "fy", "cx", "cy")))
         if "skew" in self.free_params:
             lines.append(f"  skew = {p['skew']:.3f} ± {s['skew']:.3f}")
-        lines.append("  " + "  ".join(f"{k} = {p[k]:+.4f} ± {s[k]:.4f}" for k in PARAM_NAMES[5:]))
+        lines.append("  " + "  ".join(f"{k} = {p[k]:+.4g} ± {s[k]:.2g}" for k in PARAM_NAMES[5:]))
         return "\n".join(lines)
 
 
@@ -875,12 +875,7 @@ def calibrate_camera(
             f"image_points: expected at least 3 views of the board, got {len(imgs)}; "
             f"photograph it in more orientations"
         )
-    try:
-        w, h = (int(v) for v in image_size)
-    except (TypeError, ValueError):
-        raise CamlabInputError(f"image_size: expected (width, height) in pixels, got {image_size!r}") from None
-    if w < 1 or h < 1:
-        raise CamlabInputError(f"image_size: expected positive (width, height), got {image_size!r}")
+    w, h = check_image_size(image_size, "image_size")
     unknown = [f for f in fix if f not in PARAM_NAMES]
     if unknown:
         raise CamlabInputError(f"fix: unknown parameter(s) {unknown}; choose from {list(PARAM_NAMES)}")
@@ -1247,7 +1242,7 @@ def optimal_new_camera_matrix(K: ArrayLike, dist: ArrayLike | None, image_size: 
     a = float(alpha)
     if not 0.0 <= a <= 1.0:
         raise CamlabInputError(f"alpha: expected a number in [0, 1] (0: no black borders, 1: keep all pixels), got {alpha!r}")
-    w, h = (int(v) for v in image_size)
+    w, h = check_image_size(image_size, "image_size")
     inner, outer = _rectangles(Km, d, (w, h))
 
     def fit(r):
@@ -1268,7 +1263,7 @@ def undistortion_tradeoff(K: ArrayLike, dist: ArrayLike | None, image_size: Sequ
     """
     Km, Kn = _check_K3(K), _check_K3(new_K, "new_K")
     d = as_dist(dist)
-    w, h = (int(v) for v in image_size)
+    w, h = check_image_size(image_size, "image_size")
     U, Vv = np.meshgrid(np.arange(0, w, step, dtype=float), np.arange(0, h, step, dtype=float))
     pix = np.column_stack([U.ravel(), Vv.ravel()])
     # output pixel -> source pixel: K distort(Kn^-1 p); same as distort_pixels with a change of K

@@ -26,7 +26,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, ConvergenceError, as_points, check_finite, check_matrix
+from ._validate import CamlabInputError, ConvergenceError, as_points, check_finite, check_image_size, check_matrix
 
 __all__ = [
     "DistortionMaps", "as_dist", "classify_distortion", "distort_pixels", "distort_points",
@@ -271,16 +271,6 @@ def _check_K(K: ArrayLike) -> np.ndarray:
     return K
 
 
-def _check_size(size, name: str = "size") -> tuple[int, int]:
-    try:
-        w, h = (int(s) for s in size)
-    except (TypeError, ValueError):
-        raise CamlabInputError(f"{name}: expected (width, height) in pixels, got {size!r}") from None
-    if w < 1 or h < 1:
-        raise CamlabInputError(f"{name}: expected positive (width, height) in pixels, got {size!r}")
-    return w, h
-
-
 def _normalise(pixels: np.ndarray, K: np.ndarray) -> np.ndarray:
     y = (pixels[:, 1] - K[1, 2]) / K[1, 1]
     x = (pixels[:, 0] - K[0, 2] - K[0, 1] * y) / K[0, 0]
@@ -334,7 +324,7 @@ def undistort_map(K: ArrayLike, dist: ArrayLike | None, size: tuple[int, int],
     """
     K = _check_K(K)
     new_K = K if new_K is None else _check_K(new_K)
-    w, h = _check_size(size)
+    w, h = check_image_size(size)
     u, v = np.meshgrid(np.arange(w, dtype=float), np.arange(h, dtype=float))
     xy = _normalise(np.stack([u.ravel(), v.ravel()], axis=1), new_K)
     src = _to_pixels(_distort(xy, as_dist(dist)), K)
@@ -384,7 +374,7 @@ def distort_map(K: ArrayLike, dist: ArrayLike | None, size: tuple[int, int],
     """
     K = _check_K(K)
     new_K = K if new_K is None else _check_K(new_K)
-    w, h = _check_size(size)
+    w, h = check_image_size(size)
     if int(step) < 1:
         raise CamlabInputError(f"step: expected an integer >= 1, got {step!r}")
     return _distort_map_cached(K.tobytes(), as_dist(dist).tobytes(), new_K.tobytes(), w, h, int(step))

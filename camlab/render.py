@@ -44,7 +44,7 @@ from numpy.typing import ArrayLike
 from . import distortion as _dist
 from . import lens as _lens
 from . import sensor as _sensor
-from ._validate import CamlabInputError, as_points, check_matrix, check_positive
+from ._validate import CamlabInputError, as_points, check_image_size, check_matrix, check_positive
 from .camera import Camera, look_at_rotation, rotation_from_euler
 
 __all__ = [
@@ -528,7 +528,7 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
 
     planes = _flatten(scene)
     K = _dist._check_K(K)
-    w, h = _dist._check_size(size)
+    w, h = check_image_size(size)
     R, t = _pose(R, t, "camera")
     d = _dist.as_dist(dist)
     ss = int(supersample)

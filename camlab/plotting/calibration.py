@@ -81,7 +81,7 @@ def plot_uncertainty_map(ax, result: CalibrationResult, step: int = 16):
     us, vs, sig = projection_uncertainty(result, step)
     image_frame(ax, result.image_size, "Projection uncertainty (px, 1σ)")
     w, h = result.image_size
-    im = ax.imshow(sig, extent=(-0.5, w - 0.5, h - 0.5, -0.5), cmap="magma", interpolation="bilinear")
+    im = ax.imshow(sig, extent=(-0.5, w - 0.5, h - 0.5, -0.5), cmap="viridis", interpolation="bilinear")
     ax.figure.colorbar(im, ax=ax, shrink=0.8)
     return im
 

@@ -80,7 +80,12 @@ def update_pinhole_3d(art: dict, edges: np.ndarray, f_draw: float) -> None:
 
 
 def draw_thin_lens(ax, focal_length: float, object_distance: float, height: float = 1.0) -> dict:
-    """A thin-lens ray diagram in units of metres: object arrow, lens, the three principal rays, image arrow."""
+    """A thin-lens ray diagram: object arrow, lens, the three principal rays, image arrow.
+
+    The axes are fixed at [-1, 1] and the drawing is scaled to fill them (the numbers are in
+    the corner text), so an update moves artists without rescaling the axes, which keeps
+    the diagram blittable and fast.
+    """
     art = {
         "lens": ax.axvline(0, color="tab:blue", lw=2),
         "axis": ax.axhline(0, color="0.5", lw=0.8),
@@ -91,8 +96,8 @@ def draw_thin_lens(ax, focal_length: float, object_distance: float, height: floa
         "text": ax.text(0.02, 0.03, "", transform=ax.transAxes, va="bottom", fontsize=9, family="monospace"),
         "height": height,
     }
-    ax.set_xlabel("distance along the optical axis (m)")
-    ax.set_ylabel("height (m)")
+    ax.set(xlim=(-1, 1), ylim=(-1, 1), xticks=[], yticks=[])
+    ax.set_xlabel("object side  ←  lens  →  image side   (drawn to fit; lengths in the corner)")
     update_thin_lens(art, ax, focal_length, object_distance)
     return art
 
@@ -103,18 +108,16 @@ def update_thin_lens(art: dict, ax, f: float, zo: float) -> dict:
     zi = _lens.image_distance(f, zo)
     m = _lens.magnification(f, zo)
     hi = m * hgt
-    art["foci"].set_data([-f, f], [0, 0])
-    art["object"].xy, art["object"].xyann = (-zo, hgt), (-zo, 0)
-    art["image"].xy, art["image"].xyann = (zi, hi), (zi, 0)
+    sx = 1 / (max(zo, zi) * 1.15)  # metres to plot units, so the whole diagram fits
+    sy = 1 / (max(hgt, abs(hi)) * 1.3)
+    art["foci"].set_data([-f * sx, f * sx], [0, 0])
+    art["object"].xy, art["object"].xyann = (-zo * sx, hgt * sy), (-zo * sx, 0)
+    art["image"].xy, art["image"].xyann = (zi * sx, hi * sy), (zi * sx, 0)
     # parallel ray -> through far focus; central ray undeviated; ray through near focus -> parallel
-    art["rays"][0].set_data([-zo, 0, zi], [hgt, hgt, hi])
-    art["rays"][1].set_data([-zo, zi], [hgt, hi])
-    art["rays"][2].set_data([-zo, 0, zi], [hgt, hi, hi])
+    art["rays"][0].set_data(np.array([-zo, 0, zi]) * sx, np.array([hgt, hgt, hi]) * sy)
+    art["rays"][1].set_data(np.array([-zo, zi]) * sx, np.array([hgt, hi]) * sy)
+    art["rays"][2].set_data(np.array([-zo, 0, zi]) * sx, np.array([hgt, hi, hi]) * sy)
     art["text"].set_text(f"f   = {f * 1e3:6.1f} mm\nz_o = {zo:6.3f} m\nz_i = {zi:6.3f} m\nm   = {m:6.3f}")
-    span = max(zo, zi) * 1.15
-    ax.set_xlim(-span, span)
-    lim = max(hgt, abs(hi)) * 1.3
-    ax.set_ylim(-lim, lim)
     return {"image_distance": zi, "magnification": m}
 
 

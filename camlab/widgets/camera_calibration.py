@@ -133,7 +133,7 @@ def view_inspector(calibration: C.ImageCalibration | None = None, images: list |
     rep, = ax.plot([], [], "o", mfc="none", color="tab:red", ms=6, label="reprojected")
     view.animate(det, rep)
     n = len(res.object_points[0])
-    arrows = view.animate(ax.quiver(np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), color="yellow",
+    arrows = view.animate(ax.quiver(np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), color="magenta",
                                     angles="xy", scale_units="xy", scale=1, width=0.004))
     ax.legend(loc="upper right", fontsize=8)
     readout = W.HTML()

@@ -26,7 +26,7 @@ def thin_lens():
     ax = view.fig.subplots()
     art = optics.draw_thin_lens(ax, 0.05, 0.2, height=0.03)
     ax.set_title("1/f = 1/z_o + 1/z_i: parallel ray -> focus, central ray straight, focal ray -> parallel", fontsize=10)
-    # the axis limits follow the image, so this demo redraws fully (a plain line plot: cheap)
+    view.animate(art["foci"], art["object"], art["image"], *art["rays"], art["text"])
 
     def update(values, state):
         f, zo = values["focal_mm"] * 1e-3, values["object_m"]
