@@ -405,8 +405,8 @@ def estimate_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, normalize: bool = 
     else:
         an, bn, T1, T2 = a, b, np.eye(3), np.eye(3)
     A = _eight_point_rows(an, bn)
-    _, s, Vt = np.linalg.svd(A, full_matrices=False)
-    if len(s) < 9 or s[7] <= _RANK_TOL * s[0]:
+    _, s, Vt = np.linalg.svd(A, full_matrices=len(A) < 9)  # Vt must hold all 9 right singular vectors
+    if s[7] <= _RANK_TOL * s[0]:  # 8 independent rows: a one-dimensional null space
         raise DegenerateError(
             f"estimate_fundamental_matrix: the {len(a)} pairs give an 8-point system of rank < 8, so F is not "
             f"unique; the points are coplanar, collinear or repeated. Use points spread over several depths"
@@ -432,7 +432,7 @@ def estimate_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, normalize: bool = 
         den = np.sqrt(Fx[:, 0] ** 2 + Fx[:, 1] ** 2 + Ftx[:, 0] ** 2 + Ftx[:, 1] ** 2)
         if not np.all(den > 0):
             break
-        Fn = _rank2(np.linalg.svd(A / den[:, None], full_matrices=False)[2][-1].reshape(3, 3))
+        Fn = _rank2(np.linalg.svd(A / den[:, None], full_matrices=len(A) < 9)[2][-1].reshape(3, 3))
     return normalize_fundamental(T2.T @ Fn @ T1)
 
 

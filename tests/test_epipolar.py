@@ -267,3 +267,11 @@ def test_sampson_iterations_lower_the_geometric_error():
     costs = np.array(costs)
     # reweighting approximately minimises the Sampson cost (not exactly: rank 2 is imposed after each solve)
     assert np.all(costs[:, 1] <= 1.001 * costs[:, 0]) and costs[:, 1].sum() < costs[:, 0].sum()
+
+
+def test_exactly_eight_pairs_are_enough():
+    c1, c2, X, x1, x2 = _rig(n=8, seed=3)
+    F = ep.estimate_fundamental_matrix(x1, x2)
+    assert np.allclose(F, ep.fundamental_from_cameras(c1, c2), atol=1e-6)
+    res = ep.ransac_fundamental_matrix(*_rig(n=9, seed=4)[3:], threshold=0.5, rng=np.random.default_rng(0))
+    assert res.inliers.all()
