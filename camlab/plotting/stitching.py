@@ -1,0 +1,73 @@
+"""Drawing helpers for features, matches and panoramas (lesson 09).
+
+Images are shown pixel-exact: pixel (u, v) has its centre at data coordinates (u, v)
+(docs/conventions.md). Helpers return the artists they create so demos can move them.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["draw_keypoints", "draw_matches", "match_segments", "outline", "side_by_side"]
+
+
+def side_by_side(image1: np.ndarray, image2: np.ndarray, gap: int = 8) -> tuple[np.ndarray, float]:
+    """Two images next to each other on one canvas (white gap); returns it and image 2's u offset."""
+    a, b = np.asarray(image1), np.asarray(image2)
+    if a.ndim == 2:
+        a = np.repeat(a[..., None], 3, axis=2)
+    if b.ndim == 2:
+        b = np.repeat(b[..., None], 3, axis=2)
+    h = max(a.shape[0], b.shape[0])
+    fill = 255 if a.dtype == np.uint8 else 1.0
+    out = np.full((h, a.shape[1] + gap + b.shape[1], 3), fill, dtype=a.dtype)
+    out[:a.shape[0], :a.shape[1]] = a
+    out[:b.shape[0], a.shape[1] + gap:] = b.astype(a.dtype)
+    return out, float(a.shape[1] + gap)
+
+
+def match_segments(src: np.ndarray, dst: np.ndarray, offset: float) -> np.ndarray:
+    """(M, 2, 2) line segments from ``src`` (image 1) to ``dst`` shifted right by ``offset`` (image 2)."""
+    src = np.asarray(src, dtype=float).reshape(-1, 2)
+    dst = np.asarray(dst, dtype=float).reshape(-1, 2) + [offset, 0.0]
+    return np.stack([src, dst], axis=1)
+
+
+def draw_keypoints(ax, points: np.ndarray, sizes: np.ndarray | None = None, color: str = "yellow", **kw):
+    """Keypoints as circles of their detection size (scatter); returns the PathCollection."""
+    pts = np.asarray(points, dtype=float).reshape(-1, 2)
+    s = 12.0 if sizes is None else np.clip(np.asarray(sizes, dtype=float), 2, 60) ** 2 / 4
+    return ax.scatter(pts[:, 0], pts[:, 1], s=s, facecolors="none", edgecolors=color, linewidths=0.7, **kw)
+
+
+def draw_matches(ax, image1: np.ndarray, image2: np.ndarray, src: np.ndarray, dst: np.ndarray,
+                 good: np.ndarray | None = None, gap: int = 8) -> dict:
+    """Show two images side by side with a line per match (green where ``good``, red elsewhere).
+
+    Returns a dict with the ``image`` artist, the ``good`` and ``bad`` LineCollections and
+    the ``offset`` of image 2, so a demo can update the segments
+    (``art["good"].set_segments(match_segments(...))``).
+    """
+    from matplotlib.collections import LineCollection
+
+    both, off = side_by_side(image1, image2, gap)
+    im = ax.imshow(both, interpolation="nearest")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    seg = match_segments(src, dst, off)
+    g = np.ones(len(seg), bool) if good is None else np.asarray(good, bool)
+    lc_good = LineCollection(seg[g], colors="lime", linewidths=0.8)
+    lc_bad = LineCollection(seg[~g], colors="red", linewidths=0.9)
+    ax.add_collection(lc_good)
+    ax.add_collection(lc_bad)
+    ax.set(xlim=(-0.5, both.shape[1] - 0.5), ylim=(both.shape[0] - 0.5, -0.5))
+    return {"image": im, "good": lc_good, "bad": lc_bad, "offset": off}
+
+
+def outline(ax, H: np.ndarray, shape: tuple[int, ...], **kw):
+    """Draw the border of an image of ``shape`` mapped by H (e.g. onto a panorama canvas); returns the Line2D."""
+    from ..projective import map_points
+
+    h, w = shape[:2]
+    c = np.array([[-0.5, -0.5], [w - 0.5, -0.5], [w - 0.5, h - 0.5], [-0.5, h - 0.5], [-0.5, -0.5]])
+    p = map_points(np.asarray(H, dtype=float), c)
+    return ax.plot(p[:, 0], p[:, 1], **kw)[0]

@@ -1,0 +1,845 @@
+r"""Image stitching: a panorama pipeline with every stage exposed.
+
+The stages, each a function you can call, inspect and replace (lesson 09):
+
+1. **Features and matches** (:mod:`camlab.features`): SIFT keypoints, ratio test.
+2. **Pairwise registration** :func:`register_pair`: match, then
+   :func:`camlab.homography.ransac_homography`; the pair is accepted only if enough
+   matches agree (Brown & Lowe's test: :math:`n_\text{inliers} > 8 + 0.3\, n_\text{matches}`
+   and at least ``min_inliers``).
+3. **Match graph** :func:`match_graph`: every pair is registered; the **reference** image
+   is the one connected to most others (ties: most inliers); a maximum spanning tree
+   (edges weighted by inliers) chains every other image to it,
+   :math:`H_{\text{ref} \leftarrow k} = H_{\text{ref} \leftarrow p} H_{p \leftarrow k}`.
+   Images that no accepted pair reaches are listed in ``unconnected``, never dropped
+   silently.
+4. **Canvas** (:func:`camlab.warp.canvas_bounds`): map every image's corners by its
+   homography, take the bounding box, and prepend one translation T so nothing has a
+   negative coordinate. ``T @ H_ref<-k`` maps image k onto the canvas.
+5. **Warp** :func:`warp_images`: every image onto the canvas (:func:`camlab.warp.warp_perspective`,
+   cv2 path), with its mask and its feather weight.
+6. **Exposure** :func:`gain_compensation` (optional): one gain per image so overlaps agree.
+7. **Blend** :func:`blend`: ``"overwrite"`` (hard seams), ``"feather"`` (weights falling
+   to zero at each image border, :func:`feather_weights`) or ``"multiband"``
+   (Burt & Adelson's Laplacian-pyramid blending: low frequencies blended over wide
+   regions, fine detail over narrow ones, so neither seams nor ghosts).
+
+:func:`stitch` runs them all. For wide rotations with a known focal length,
+``projection="cylindrical"`` first maps every image onto a cylinder
+(:func:`cylindrical_warp`), where a turning camera becomes a sliding one.
+
+Why a homography? A camera that only rotates about its centre sees every point along
+the same ray whatever its depth, :math:`x_j \sim K R_j R_i^T K^{-1} x_i`; a planar
+scene is related by :math:`K (R - t n^T/d) K^{-1}`. Anything else (a camera that
+translates in front of a 3-D scene) has parallax, and no single homography aligns it:
+ghosts. Pixel convention: (u, v) = (column, row), origin at the centre of the top-left
+pixel (docs/conventions.md).
+"""
+from __future__ import annotations
+
+import warnings
+from typing import NamedTuple, Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from . import features as _feat
+from . import homography as _hg
+from ._validate import CamlabInputError, DegenerateError
+from .projective import map_points
+from .warp import canvas_bounds, warp_perspective
+
+__all__ = ["BLENDS", "MatchGraph", "PairRegistration", "PairReport", "StitchResult", "WarpedImages", "blend",
+           "canvas_box", "cylindrical_warp", "feather_weights", "gain_compensation", "laplacian_blend", "match_graph",
+           "overlap_difference", "prepare_images", "register_pair", "seam_masks", "seam_step", "stitch", "warp_images"]
+
+BLENDS = ("overwrite", "feather", "multiband")
+
+
+# --------------------------------------------------------------------------- input
+
+def prepare_images(images: Sequence[ArrayLike]) -> list[np.ndarray]:
+    """Validate ``images`` and return them as float32 RGB arrays in [0, 1].
+
+    Grey (H, W) or (H, W, 1) images become RGB (the panorama is colour if any input is);
+    an alpha channel is dropped. uint8 is divided by 255, uint16 by 65535, floats are
+    taken as already in [0, 1]. Sizes may differ.
+    """
+    if isinstance(images, np.ndarray) and images.ndim in (2, 3) and images.dtype != object:
+        raise CamlabInputError(f"images: expected a list of images, got one array of shape {images.shape}; "
+                               f"pass [image1, image2, ...]")
+    imgs = list(images)
+    if len(imgs) < 2:
+        raise CamlabInputError(f"images: expected at least 2 images to stitch, got {len(imgs)}")
+    out = []
+    for i, im in enumerate(imgs):
+        a = np.asarray(im)
+        if a.ndim not in (2, 3) or (a.ndim == 3 and a.shape[2] not in (1, 3, 4)) or min(a.shape[:2]) < 16:
+            raise CamlabInputError(f"images[{i}]: expected a (H, W) grey or (H, W, 3|4) colour image at least "
+                                   f"16 x 16 pixels, got shape {a.shape}")
+        if a.dtype == np.uint8:
+            f = a.astype(np.float32) / 255
+        elif a.dtype == np.uint16:
+            f = a.astype(np.float32) / 65535
+        elif np.issubdtype(a.dtype, np.floating):
+            f = a.astype(np.float32)
+        else:
+            raise CamlabInputError(f"images[{i}]: expected uint8, uint16 or float pixels, got dtype {a.dtype}")
+        if f.ndim == 2:
+            f = f[..., None]
+        if f.shape[2] == 4:
+            f = f[..., :3]
+        if f.shape[2] == 1:
+            f = np.repeat(f, 3, axis=2)
+        out.append(np.ascontiguousarray(f))
+    return out
+
+
+# --------------------------------------------------------------------------- registration
+
+class PairRegistration(NamedTuple):
+    """The registration of image i onto image j.
+
+    Attributes
+    ----------
+    H : (3, 3) ndarray or None
+        Maps image i's pixels to image j's (None if RANSAC found nothing).
+    matches : camlab.features.Matches
+        The putative matches (after the ratio test); ``matches.src`` in image i.
+    inliers : (M,) bool ndarray
+        Matches consistent with H (all False if H is None).
+    residual_rms : float
+        RMS one-way transfer error :math:`\\|x_j - \\pi(H x_i)\\|` of the inliers, pixels.
+    accepted : bool
+        Enough inliers to trust H (see :func:`register_pair`).
+    reason : str
+        Why the pair was rejected ("" if accepted).
+    """
+
+    H: np.ndarray | None
+    matches: _feat.Matches
+    inliers: np.ndarray
+    residual_rms: float
+    accepted: bool
+    reason: str
+
+
+def register_pair(features1: _feat.Features, features2: _feat.Features, *, ratio: float = 0.75,
+                  mutual: bool = False, threshold: float = 3.0, min_inliers: int = 15,
+                  rng: np.random.Generator | None = None, matches: _feat.Matches | None = None,
+                  refine: bool = True) -> PairRegistration:
+    r"""Register image 1 onto image 2: match features, fit H by RANSAC, judge the result.
+
+    The pair is accepted when RANSAC finds at least ``min_inliers`` inliers *and* more
+    than :math:`8 + 0.3 n_m` of the :math:`n_m` matches (Brown & Lowe 2007, eq. 13: the
+    inliers of a wrong model are few and random, those of a right one a fixed share).
+    A rejected pair is returned with ``accepted=False`` and a ``reason``, not raised, so a
+    panorama can report it. With ``refine`` (default), H is polished by
+    :func:`camlab.homography.refine_homography` (Levenberg-Marquardt on the geometric
+    error of the inliers) and the inliers recomputed: the DLT minimises an algebraic error
+    and can be off by a pixel or more at the image corners, far from the matches.
+
+    Parameters
+    ----------
+    features1, features2 : camlab.features.Features
+    ratio, mutual : see :func:`camlab.features.filter_matches`
+    threshold : float
+        RANSAC inlier threshold (symmetric transfer error, pixels).
+    min_inliers : int
+    rng : np.random.Generator, optional
+        RANSAC's randomness (default: seeded with 0, so results are reproducible).
+    matches : camlab.features.Matches, optional
+        Use these matches instead of matching (e.g. re-filtered ones from a slider).
+    """
+    rng = np.random.default_rng(0) if rng is None else rng
+    m = _feat.match_features(features1, features2, ratio, mutual) if matches is None else matches
+    n = len(m.src)
+    none = np.zeros(n, bool)
+    if n < max(min_inliers, 5):
+        return PairRegistration(None, m, none, float("nan"), False,
+                                f"too few matches: {n} (need at least {max(min_inliers, 5)})")
+    try:
+        r = _hg.ransac_homography(m.src, m.dst, threshold, 0.999, 2000, rng)
+    except DegenerateError as exc:
+        return PairRegistration(None, m, none, float("nan"), False, f"RANSAC failed: {exc}")
+    H, inl = r.H, r.inliers
+    if refine and inl.sum() >= 8:
+        try:
+            H = _hg.refine_homography(H, m.src[inl], m.dst[inl]).H
+            inl = _hg.symmetric_transfer_error(H, m.src, m.dst) < threshold
+        except (DegenerateError, _hg.ConvergenceError):
+            H, inl = r.H, r.inliers
+    k = int(inl.sum())
+    rms = float(np.sqrt(np.mean(_hg.transfer_error(H, m.src[inl], m.dst[inl]) ** 2))) if k else np.nan
+    need = max(min_inliers, int(np.floor(8 + 0.3 * n)) + 1)
+    if k < need:
+        return PairRegistration(H, m, inl, rms, False,
+                                f"too few inliers: {k} of {n} matches (need {need}); the images probably do not overlap")
+    return PairRegistration(H, m, inl, rms, True, "")
+
+
+class PairReport(NamedTuple):
+    """One row of the per-pair report: image ``i`` registered onto image ``j``."""
+
+    i: int
+    j: int
+    matches: int
+    inliers: int
+    residual_rms: float
+    accepted: bool
+    reason: str
+
+
+class MatchGraph(NamedTuple):
+    """Who overlaps whom, and how every image reaches the reference.
+
+    Attributes
+    ----------
+    pairs : dict[(i, j), PairRegistration]
+        Every registered pair, i < j (H maps i to j).
+    reference : int
+        The image connected to most others.
+    homographies : list of (3, 3) ndarray or None
+        ``ref_from_k`` for each image k; None for images not connected to the reference.
+    parent : list of int
+        Each image's neighbour on its path to the reference (-1 for the reference and
+        unconnected images).
+    unconnected : list of int
+        Images that no chain of accepted pairs links to the reference.
+    """
+
+    pairs: dict
+    reference: int
+    homographies: list
+    parent: list
+    unconnected: list
+
+    def report(self) -> list[PairReport]:
+        """One :class:`PairReport` per registered pair."""
+        return [PairReport(i, j, len(p.matches.src), int(p.inliers.sum()), p.residual_rms, p.accepted, p.reason)
+                for (i, j), p in sorted(self.pairs.items())]
+
+
+def match_graph(features: Sequence[_feat.Features], *, ratio: float = 0.75, mutual: bool = False,
+                threshold: float = 3.0, min_inliers: int = 15, rng: np.random.Generator | None = None,
+                reference: int | None = None) -> MatchGraph:
+    r"""Register every pair, choose the reference image and chain homographies to it.
+
+    1. Register each pair i < j (:func:`register_pair`).
+    2. The reference is the image with the most accepted pairs (ties: the most inliers
+       in them, then the lower index), unless ``reference`` is given.
+    3. Grow a maximum spanning tree from the reference (Prim's algorithm, edges weighted
+       by their inlier count: the strongest registrations first) and chain
+       :math:`H_{r \leftarrow k} = H_{r \leftarrow p} H_{p \leftarrow k}` along it
+       (:math:`H_{p \leftarrow k}` is the pair's H or its inverse).
+    """
+    feats = list(features)
+    n = len(feats)
+    if n < 2:
+        raise CamlabInputError(f"features: expected the features of at least 2 images, got {n}")
+    rng = np.random.default_rng(0) if rng is None else rng
+    pairs = {}
+    for i in range(n):
+        for j in range(i + 1, n):
+            pairs[(i, j)] = register_pair(feats[i], feats[j], ratio=ratio, mutual=mutual, threshold=threshold,
+                                          min_inliers=min_inliers, rng=rng)
+    degree = np.zeros(n, int)
+    strength = np.zeros(n, int)
+    for (i, j), p in pairs.items():
+        if p.accepted:
+            degree[[i, j]] += 1
+            strength[[i, j]] += int(p.inliers.sum())
+    if reference is None:
+        ref = int(np.lexsort((np.arange(n), -strength, -degree))[0])
+    else:
+        if not 0 <= int(reference) < n:
+            raise CamlabInputError(f"reference: expected an image index in [0, {n - 1}], got {reference!r}")
+        ref = int(reference)
+    Hs: list = [None] * n
+    parent = [-1] * n
+    Hs[ref] = np.eye(3)
+    while True:  # Prim: attach the strongest accepted edge leaving the tree
+        best = None
+        for (i, j), p in pairs.items():
+            if not p.accepted or (Hs[i] is None) == (Hs[j] is None):
+                continue
+            w = int(p.inliers.sum())
+            if best is None or w > best[0]:
+                best = (w, i, j, p)
+        if best is None:
+            break
+        _, i, j, p = best
+        if Hs[i] is not None:  # j joins: ref <- i <- j, H maps i to j so i <- j is H^-1
+            Hs[j] = _hg.normalize_homography(Hs[i] @ np.linalg.inv(p.H))
+            parent[j] = i
+        else:
+            Hs[i] = _hg.normalize_homography(Hs[j] @ p.H)
+            parent[i] = j
+    unconnected = [k for k in range(n) if Hs[k] is None]
+    return MatchGraph(pairs, ref, Hs, parent, unconnected)
+
+
+# --------------------------------------------------------------------------- projection
+
+def cylindrical_warp(image: ArrayLike, K: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    r"""Map an image onto a cylinder of radius f around the camera centre (unrolled).
+
+    Output pixel (u', v') is the cylinder point at angle :math:`\theta = (u' - c_x)/f` and
+    height :math:`h = (v' - c_y)/f`; its ray :math:`(\sin\theta, h, \cos\theta)` meets
+    the image at :math:`\pi(K (\sin\theta, h, \cos\theta)^T)`. On the cylinder a camera
+    turning about its vertical axis just slides sideways, so wide panoramas stay
+    undistorted (a planar canvas stretches without bound towards 90 degrees).
+
+    Parameters
+    ----------
+    image : (H, W[, C]) array_like
+    K : (3, 3) array_like
+        The camera's intrinsics (fx is used as the cylinder radius f).
+
+    Returns
+    -------
+    cyl : ndarray like ``image``
+        The unrolled cylinder, same size, centred on the principal point.
+    mask : (H, W) bool ndarray
+        Where the cylinder sees the image.
+    """
+    import cv2
+
+    img = np.asarray(image)
+    Km = _hg._check_K(K, "K")
+    h, w = img.shape[:2]
+    f, cx, cy = Km[0, 0], Km[0, 2], Km[1, 2]
+    vv, uu = np.mgrid[0:h, 0:w].astype(np.float32)
+    theta = (uu - cx) / f
+    hh = (vv - cy) / f
+    x, y, z = np.sin(theta), hh, np.cos(theta)
+    map_u = (Km[0, 0] * x + Km[0, 1] * y + cx * z) / z
+    map_v = (Km[1, 1] * y + cy * z) / z
+    map_u, map_v = map_u.astype(np.float32), map_v.astype(np.float32)
+    src = img.astype(np.float32) if img.dtype not in (np.uint8, np.float32) else img
+    cyl = cv2.remap(src, map_u, map_v, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT, borderValue=0)
+    mask = (map_u >= -0.5) & (map_u <= w - 0.5) & (map_v >= -0.5) & (map_v <= h - 0.5)
+    return cyl.reshape(img.shape).astype(img.dtype), mask
+
+
+# --------------------------------------------------------------------------- warping
+
+def canvas_box(homographies: Sequence[ArrayLike], shapes: Sequence[Sequence[int]]) -> np.ndarray:
+    r"""The panorama's bounds: the bounding box of every image's corners mapped by its homography.
+
+    The corner pixels (0, 0), (w-1, 0), (w-1, h-1), (0, h-1) of image k are mapped by
+    :math:`H_k` (dividing by the third coordinate), and the box is rounded outwards to
+    whole pixels. The canvas is then :math:`u_{max} - u_{min} + 1` pixels wide and
+    :math:`T = \begin{pmatrix} 1 & 0 & -u_{min} \\ 0 & 1 & -v_{min} \\ 0 & 0 & 1 \end{pmatrix}`
+    moves its top-left corner to (0, 0): that is :func:`camlab.warp.canvas_bounds`, which
+    the pipeline uses (and which also refuses corners at infinity).
+
+    Returns
+    -------
+    (2, 2) ndarray
+        ``[[u_min, v_min], [u_max, v_max]]`` in pixels.
+
+    >>> canvas_box([np.eye(3), [[1, 0, 50], [0, 1, -30], [0, 0, 1]]], [(240, 320), (240, 320)])
+    array([[  0., -30.],
+           [369., 239.]])
+    """
+    if len(homographies) != len(shapes) or not len(shapes):
+        raise CamlabInputError(f"shapes: expected one shape per homography, got {len(shapes)} for {len(homographies)}")
+    pts = []
+    for H, shape in zip(homographies, shapes):
+        h, w = shape[:2]
+        pts.append(map_points(np.asarray(H, dtype=float), [[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]]))
+    allp = np.vstack(pts)
+    if not np.all(np.isfinite(allp)):
+        raise DegenerateError("canvas_box: a corner maps to infinity; the image crosses the horizon of its homography")
+    return np.array([np.floor(allp.min(axis=0) + 1e-9), np.ceil(allp.max(axis=0) - 1e-9)])
+
+
+def feather_weights(shape: Sequence[int]) -> np.ndarray:
+    r"""Feathering weights of an image: each pixel's distance to the nearest image border.
+
+    Pixel centres are at integer (u, v) and the border is at -1/2 and W - 1/2 (H - 1/2), so
+
+    .. math:: w(u, v) = \min(u + \tfrac12,\; W - \tfrac12 - u,\; v + \tfrac12,\; H - \tfrac12 - v).
+
+    Warped with the image, it falls to zero at the image's edge, so where two images
+    overlap each fades out towards its own border and no seam jumps.
+
+    >>> feather_weights((3, 4))
+    array([[0.5, 0.5, 0.5, 0.5],
+           [0.5, 1.5, 1.5, 0.5],
+           [0.5, 0.5, 0.5, 0.5]])
+    """
+    try:
+        h, w = (int(s) for s in tuple(shape)[:2])
+    except (TypeError, ValueError):
+        raise CamlabInputError(f"shape: expected (height, width), got {shape!r}") from None
+    if h < 1 or w < 1:
+        raise CamlabInputError(f"shape: expected a positive (height, width), got ({h}, {w})")
+    u = np.arange(w, dtype=float)
+    v = np.arange(h, dtype=float)
+    du = np.minimum(u + 0.5, w - 0.5 - u)
+    dv = np.minimum(v + 0.5, h - 0.5 - v)
+    return np.minimum(dv[:, None], du[None, :])
+
+
+class WarpedImages(NamedTuple):
+    """Images warped onto one canvas.
+
+    ``images[k]`` (h, w, 3) float32 (zero outside), ``masks[k]`` (h, w) bool,
+    ``weights[k]`` (h, w) float32 feather weights (zero outside), ``homographies[k]`` the
+    canvas_from_image H actually used, ``T`` the canvas translation.
+    """
+
+    images: list
+    masks: list
+    weights: list
+    homographies: list
+    T: np.ndarray
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return self.masks[0].shape
+
+
+def warp_images(images: Sequence[np.ndarray], homographies: Sequence[np.ndarray], *,
+                max_pixels: int = 40_000_000) -> WarpedImages:
+    """Warp every image onto the panorama canvas (bounds from all warped corners, one translation).
+
+    Parameters
+    ----------
+    images : sequence of (h, w, 3) float32 arrays (see :func:`prepare_images`)
+    homographies : sequence of (3, 3)
+        reference_from_image for each image (from :func:`match_graph`).
+
+    Returns
+    -------
+    WarpedImages
+        With ``homographies[k] = T @ homographies[k]`` (canvas_from_image).
+    """
+    if len(images) != len(homographies) or not images:
+        raise CamlabInputError(f"homographies: expected one per image, got {len(homographies)} for {len(images)} images")
+    for k, im in enumerate(images):
+        if np.ndim(im) != 3 or np.shape(im)[2] != 3:
+            raise CamlabInputError(f"images[{k}]: expected an (h, w, 3) float32 image from prepare_images, "
+                                   f"got shape {np.shape(im)}; call prepare_images(images) first")
+    T, shape = canvas_bounds(list(homographies), [im.shape for im in images], max_pixels=max_pixels)
+    out_i, out_m, out_w, out_h = [], [], [], []
+    for im, H in zip(images, homographies):
+        Hc = _hg.normalize_homography(T @ np.asarray(H, dtype=float))
+        # one warp for the colour channels and the feather weight together (4 channels)
+        both = warp_perspective(np.dstack([im, feather_weights(im.shape).astype(np.float32)]), Hc, shape,
+                                method="cv2")
+        wimg, wgt = both[..., :3], both[..., 3]
+        ones = np.ones(im.shape[:2], np.float32)
+        mask = warp_perspective(ones, Hc, shape, interpolation="nearest", method="cv2") > 0.5
+        wgt = np.where(mask, np.maximum(wgt, 1e-3), 0).astype(np.float32)
+        out_i.append(wimg)
+        out_m.append(mask)
+        out_w.append(wgt)
+        out_h.append(Hc)
+    return WarpedImages(out_i, out_m, out_w, out_h, T)
+
+
+def gain_compensation(warped: WarpedImages, sigma_n: float = 10.0 / 255, sigma_g: float = 1.0,
+                      reference: int | None = None) -> np.ndarray:
+    r"""One exposure gain per image so that overlapping regions agree (Brown & Lowe 2007, sec. 6).
+
+    Minimises, over all overlapping pairs with :math:`N_{ij}` common pixels and mean
+    intensities :math:`\bar I_{ij}` (image i on the overlap) and :math:`\bar I_{ji}`,
+
+    .. math:: e = \tfrac12 \sum_{i,j} N_{ij} \left( (g_i \bar I_{ij} - g_j \bar I_{ji})^2 / \sigma_N^2
+              + (1 - g_i)^2 / \sigma_g^2 \right),
+
+    a linear least-squares problem in the gains (the prior keeps them near 1). The default
+    :math:`\sigma_g = 1` is weaker than Brown & Lowe's 0.1: exposures in a hand-held set
+    can differ by 30% or more, and a strong prior would leave part of that step. With
+    ``reference`` given, all gains are divided by that image's gain (it keeps its look).
+
+    Returns
+    -------
+    (n,) ndarray
+        Multiply image k by ``gains[k]``.
+    """
+    n = len(warped.images)
+    A = np.zeros((n, n))
+    b = np.zeros(n)
+    lum = [im.mean(axis=2) for im in warped.images]
+    for i in range(n):
+        for j in range(n):
+            if i == j:
+                continue
+            both = warped.masks[i] & warped.masks[j]
+            N = int(both.sum())
+            if N == 0:
+                continue
+            Iij, Iji = float(lum[i][both].mean()), float(lum[j][both].mean())
+            # d e / d g_i from the (i, j) and (j, i) terms
+            A[i, i] += N * (2 * Iij * Iij / sigma_n ** 2 + 1 / sigma_g ** 2)
+            A[i, j] -= N * 2 * Iij * Iji / sigma_n ** 2
+            b[i] += N / sigma_g ** 2
+    for i in range(n):
+        if A[i, i] == 0:  # no overlap: keep the gain at 1
+            A[i, i], b[i] = 1.0, 1.0
+    g = np.linalg.solve(A, b)
+    if reference is not None:
+        g = g / g[int(reference)]
+    return g
+
+
+# --------------------------------------------------------------------------- blending
+
+def seam_masks(weights: Sequence[np.ndarray]) -> list[np.ndarray]:
+    """Split the canvas between the images: each pixel goes to the image with the largest weight.
+
+    With feather weights that is the image whose border is farthest (a Voronoi-like seam
+    along the middle of each overlap).
+    """
+    W = np.stack(weights)
+    best = np.argmax(W, axis=0)
+    covered = W.max(axis=0) > 0
+    return [(best == k) & covered for k in range(len(weights))]
+
+
+def overlap_difference(warped: WarpedImages, i: int = 0, j: int = 1) -> float:
+    """Mean absolute difference of images i and j where both cover the canvas (0 if they never overlap).
+
+    After registration a rotation panorama differs only by noise and exposure here; parallax
+    (a camera that moved in front of a 3-D scene) leaves misaligned objects: the ghosts
+    blending will show. Same units as the images.
+    """
+    both = warped.masks[i] & warped.masks[j]
+    if not both.any():
+        return 0.0
+    return float(np.abs(warped.images[i][both] - warped.images[j][both]).mean())
+
+
+def seam_step(image: np.ndarray, seam: np.ndarray, overlap: np.ndarray, width: int = 4) -> float:
+    """How visible a vertical seam is: the mean brightness step across it, in the image's units.
+
+    For every row, the seam is where ``seam`` (one image's seam mask) switches on or off
+    inside ``overlap``; the step is the mean luminance of the ``width`` pixels after it
+    minus the ``width`` pixels before it. Texture averages out over the rows (its
+    differences have both signs); an exposure jump does not. Returns the absolute mean
+    step (0 for a perfect blend; the exposure difference times the brightness for
+    overwrite), or 0.0 if there is no seam.
+    """
+    lum = np.asarray(image, dtype=float)
+    lum = lum.mean(axis=2) if lum.ndim == 3 else lum
+    steps = []
+    for r in range(lum.shape[0]):
+        cols = np.flatnonzero((seam[r, 1:] != seam[r, :-1]) & overlap[r, 1:] & overlap[r, :-1])
+        for c in cols:
+            lo, hi = c + 1 - width, c + 1 + width
+            if lo < 0 or hi > lum.shape[1] or not overlap[r, lo:hi].all():
+                continue
+            sign = 1.0 if seam[r, c + 1] else -1.0  # orient: from the other image into this one
+            steps.append(sign * (lum[r, c + 1:hi].mean() - lum[r, lo:c + 1].mean()))
+    return float(abs(np.mean(steps))) if steps else 0.0
+
+
+def _fill_outside(img: np.ndarray, mask: np.ndarray, levels: int) -> np.ndarray:
+    """Extend an image beyond its mask by push-pull (normalised pyramid), so pyramids do not see black."""
+    import cv2
+
+    m = mask.astype(np.float32)
+    stack = [(img * m[..., None], m)]
+    for _ in range(levels):
+        a, w = stack[-1]
+        if min(w.shape) < 2:
+            break
+        stack.append((cv2.pyrDown(a), cv2.pyrDown(w)))
+    a, w = stack[-1]
+    filled = a / np.maximum(w, 1e-6)[..., None]
+    for a, w in reversed(stack[1:-1]):
+        up = cv2.pyrUp(filled, dstsize=(w.shape[1], w.shape[0])).reshape(a.shape)
+        own = a / np.maximum(w, 1e-6)[..., None]
+        t = np.minimum(w * 4, 1)[..., None]  # trust the pixel's own (normalised) value where it has support
+        filled = up + t * (own - up)
+    # full resolution: the image itself inside the mask, the pulled-up fill outside
+    up = cv2.pyrUp(filled, dstsize=(mask.shape[1], mask.shape[0])).reshape(img.shape)
+    return np.where(mask[..., None], img, up)
+
+
+def laplacian_blend(images: Sequence[np.ndarray], masks: Sequence[np.ndarray], levels: int = 5,
+                    footprints: Sequence[np.ndarray] | None = None) -> np.ndarray:
+    r"""Multi-band blending (Burt & Adelson 1983) of images with disjoint seam masks.
+
+    Each image's Laplacian pyramid :math:`L_k^{(l)} = G_k^{(l)} - \mathrm{up}(G_k^{(l+1)})`
+    holds its detail at band l; each seam mask's Gaussian pyramid :math:`M_k^{(l)}` gets
+    smoother at coarser levels. Blend band by band and collapse:
+
+    .. math:: L^{(l)} = \frac{\sum_k M_k^{(l)} L_k^{(l)}}{\sum_k M_k^{(l)}}, \qquad
+              I = L^{(0)} + \mathrm{up}(L^{(1)} + \mathrm{up}(\dots)).
+
+    Coarse bands (exposure, shading) cross the seam over about :math:`2^l` pixels, fine
+    detail over one or two: no visible seam, no ghost of misregistered detail. Pixels
+    outside an image are first filled by push-pull so its pyramid does not see a black
+    border. Pyramids use ``cv2.pyrDown``/``cv2.pyrUp`` (the 5-tap binomial filter).
+
+    Parameters
+    ----------
+    images : sequence of (h, w, C) float32
+    masks : sequence of (h, w) bool
+        Disjoint seam masks (:func:`seam_masks`); the union is the panorama.
+    levels : int
+        Pyramid levels below the full resolution.
+    footprints : sequence of (h, w) bool, optional
+        Where each image has data (default: its seam mask); outside, it is extended by
+        push-pull before its pyramid is built.
+    """
+    import cv2
+
+    if len(images) != len(masks) or not images:
+        raise CamlabInputError(f"masks: expected one mask per image, got {len(masks)} for {len(images)} images")
+    levels = int(levels)
+    h, w = masks[0].shape
+    levels = max(0, min(levels, int(np.log2(max(2, min(h, w)))) - 2))
+    union = np.zeros((h, w), bool)
+    for m in masks:
+        union |= m
+    feet = masks if footprints is None else footprints
+    nch = images[0].shape[2]
+    # level sizes of the whole canvas (pyrDown halves, rounding up)
+    sizes = [(h, w)]
+    for _ in range(levels):
+        sizes.append(((sizes[-1][0] + 1) // 2, (sizes[-1][1] + 1) // 2))
+    acc = [np.zeros((*sz, nch), np.float32) for sz in sizes]
+    wsum = [np.zeros(sz, np.float32) for sz in sizes]
+    step = 1 << levels
+    pad = 4 * step  # the 5-tap filters spread a mask about 2 * 2^l pixels at level l
+    for img, m, foot in zip(images, masks, feet):
+        if not m.any():
+            continue
+        # Work in the image's bounding box (aligned to the coarsest grid, padded by the
+        # filters' reach): outside it the blurred seam mask is zero, so nothing changes.
+        rows, cols = np.flatnonzero(m.any(axis=1)), np.flatnonzero(m.any(axis=0))
+        y0, x0 = max(0, (rows[0] - pad) // step * step), max(0, (cols[0] - pad) // step * step)
+        y1, x1 = min(h, rows[-1] + 1 + pad), min(w, cols[-1] + 1 + pad)
+        if y1 < h:
+            y1 = min(h, y0 + -(-(y1 - y0) // step) * step)
+        if x1 < w:
+            x1 = min(w, x0 + -(-(x1 - x0) // step) * step)
+        sub = (slice(y0, y1), slice(x0, x1))
+        valid = foot[sub] | m[sub]
+        g = [_fill_outside(img[sub], valid, levels).astype(np.float32)]
+        mk = [m[sub].astype(np.float32)]
+        for _ in range(levels):
+            g.append(cv2.pyrDown(g[-1]))
+            mk.append(cv2.pyrDown(mk[-1]))
+        for lv in range(levels + 1):
+            if lv < levels:
+                up = cv2.pyrUp(g[lv + 1], dstsize=(g[lv].shape[1], g[lv].shape[0]))
+                band = g[lv] - up.reshape(g[lv].shape)
+            else:
+                band = g[levels]
+            oy, ox = y0 >> lv, x0 >> lv
+            hh, ww = mk[lv].shape
+            acc[lv][oy:oy + hh, ox:ox + ww] += band * mk[lv][..., None]
+            wsum[lv][oy:oy + hh, ox:ox + ww] += mk[lv]
+    bands = [a / np.maximum(s, 1e-6)[..., None] for a, s in zip(acc, wsum)]
+    out = bands[-1]
+    for lv in range(levels - 1, -1, -1):
+        out = cv2.pyrUp(out, dstsize=(bands[lv].shape[1], bands[lv].shape[0])).reshape(bands[lv].shape) + bands[lv]
+    return np.where(union[..., None], np.clip(out, 0, 1), 0).astype(np.float32)
+
+
+def blend(warped: WarpedImages, method: str = "multiband", *, gains: ArrayLike | None = None,
+          levels: int = 5, feather_power: float = 1.0) -> np.ndarray:
+    r"""Blend images warped onto one canvas.
+
+    * ``"overwrite"``: paint the images in order, each over the previous (hard seams:
+      every exposure or alignment difference shows as an edge).
+    * ``"feather"``: :math:`I = \sum_k w_k^p I_k / \sum_k w_k^p` with the warped
+      :func:`feather_weights` (smooth seams; misaligned detail doubles: ghosts and blur).
+    * ``"multiband"``: :func:`laplacian_blend` over the :func:`seam_masks`.
+
+    Parameters
+    ----------
+    warped : WarpedImages
+    method : {"overwrite", "feather", "multiband"}
+    gains : (n,) array_like, optional
+        Exposure gains (:func:`gain_compensation`) applied first.
+    levels : int
+        Pyramid levels for ``"multiband"``.
+    feather_power : float
+        p above: larger values sharpen the transition towards a seam.
+
+    Returns
+    -------
+    (h, w, 3) float32 ndarray in [0, 1]
+    """
+    if method not in BLENDS:
+        raise CamlabInputError(f"method: expected one of {BLENDS}, got {method!r}")
+    imgs = warped.images
+    if gains is not None:
+        g = np.asarray(gains, dtype=float).ravel()
+        if g.shape != (len(imgs),):
+            raise CamlabInputError(f"gains: expected {len(imgs)} gains (one per image), got shape {g.shape}")
+        imgs = [np.clip(im * np.float32(gk), 0, 1) for im, gk in zip(imgs, g)]
+    h, w = warped.shape
+    if method == "overwrite":
+        out = np.zeros((h, w, imgs[0].shape[2]), np.float32)
+        for im, m in zip(imgs, warped.masks):
+            out[m] = im[m]
+        return out
+    if method == "feather":
+        num = np.zeros((h, w, imgs[0].shape[2]), np.float32)
+        den = np.zeros((h, w), np.float32)
+        for im, wk in zip(imgs, warped.weights):
+            wp = wk ** np.float32(feather_power) if feather_power != 1 else wk
+            num += im * wp[..., None]
+            den += wp
+        return np.where(den[..., None] > 0, num / np.maximum(den, 1e-12)[..., None], 0).astype(np.float32)
+    return laplacian_blend(imgs, seam_masks(warped.weights), levels, footprints=warped.masks)
+
+
+# --------------------------------------------------------------------------- the pipeline
+
+class StitchResult(NamedTuple):
+    """What :func:`stitch` made.
+
+    Attributes
+    ----------
+    panorama : (h, w, 3) ndarray
+        uint8 if every input was uint8, else float32 in [0, 1].
+    mask : (h, w) bool ndarray
+        Canvas pixels covered by at least one image.
+    homographies : list of (3, 3) ndarray or None
+        canvas_from_image for every input image (None for an unconnected image). With
+        ``projection="cylindrical"`` they map the *cylindrical* image onto the canvas.
+    masks : list of (h, w) bool ndarray or None
+        Each image's footprint on the canvas.
+    pairs : list of PairReport
+        Every registered pair: matches, inliers, residual RMS, accepted, reason.
+    reference : int
+        The reference image (the canvas is its image plane, shifted).
+    unconnected : list of int
+        Images that could not be connected (left out of the panorama, and reported).
+    gains : (n,) ndarray
+        Exposure gains applied (ones if gain compensation was off; NaN for unconnected).
+    graph : MatchGraph
+        The full registration (matches and inlier masks of every pair).
+    """
+
+    panorama: np.ndarray
+    mask: np.ndarray
+    homographies: list
+    masks: list
+    pairs: list
+    reference: int
+    unconnected: list
+    gains: np.ndarray
+    graph: MatchGraph
+
+
+def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", method: str = "sift",
+           max_features: int = 2500, ratio: float = 0.75, mutual: bool = False, threshold: float = 3.0,
+           min_inliers: int = 15, compensate_gains: bool = True, levels: int = 5,
+           projection: str = "planar", K: ArrayLike | None = None, reference: int | None = None,
+           rng: np.random.Generator | None = None, max_pixels: int = 40_000_000) -> StitchResult:
+    """Stitch overlapping images (a camera rotating about its centre, or a planar scene) into a panorama.
+
+    Runs the stages of the module docstring: features (:func:`camlab.features.detect_features`),
+    :func:`match_graph` (pairwise RANSAC, reference, chained homographies),
+    :func:`warp_images` (canvas and masks), optional :func:`gain_compensation`, :func:`blend`.
+
+    Parameters
+    ----------
+    images : sequence of (H, W[, C]) array_like
+        At least two images; sizes and channel counts may differ (:func:`prepare_images`).
+    blend_method : {"overwrite", "feather", "multiband"}
+    method : {"sift", "orb"}
+        Feature detector.
+    max_features, ratio, mutual, threshold, min_inliers
+        See :func:`camlab.features.detect_features` and :func:`register_pair`.
+    compensate_gains : bool
+        Equalise exposures first (:func:`gain_compensation`, relative to the reference).
+    levels : int
+        Multi-band pyramid levels.
+    projection : {"planar", "cylindrical"}
+        ``"cylindrical"`` needs ``K`` and warps every image onto a cylinder first.
+    K : (3, 3) array_like, optional
+        Intrinsics (for the cylindrical projection; all images share them).
+    reference : int, optional
+        Force the reference image (default: the best-connected one).
+    rng : np.random.Generator, optional
+        RANSAC's randomness (default seeded, reproducible).
+
+    Returns
+    -------
+    StitchResult
+
+    Raises
+    ------
+    CamlabInputError
+        Fewer than two images, bad shapes or dtypes, bad options.
+    DegenerateError
+        No pair of images could be registered (nothing to stitch); the message lists
+        every pair's matches and inliers.
+
+    Warns
+    -----
+    UserWarning
+        If some images could not be connected; they are listed in ``unconnected``.
+    """
+    if blend_method not in BLENDS:
+        raise CamlabInputError(f"blend_method: expected one of {BLENDS}, got {blend_method!r}")
+    if projection not in ("planar", "cylindrical"):
+        raise CamlabInputError(f"projection: expected 'planar' or 'cylindrical', got {projection!r}")
+    imgs = prepare_images(images)
+    all_uint8 = all(np.asarray(im).dtype == np.uint8 for im in images)
+    n = len(imgs)
+    cyl_masks = None
+    if projection == "cylindrical":
+        if K is None:
+            raise CamlabInputError("K: the cylindrical projection needs the intrinsics K (the cylinder radius is fx)")
+        warped_cyl = [cylindrical_warp(im, K) for im in imgs]
+        imgs = [c for c, _ in warped_cyl]
+        cyl_masks = [m for _, m in warped_cyl]
+    feats = [_feat.detect_features(im, method, max_features,
+                                   mask=None if cyl_masks is None else _erode(cyl_masks[k]))
+             for k, im in enumerate(imgs)]
+    graph = match_graph(feats, ratio=ratio, mutual=mutual, threshold=threshold, min_inliers=min_inliers,
+                        rng=rng, reference=reference)
+    keep = [k for k in range(n) if graph.homographies[k] is not None]
+    if len(keep) < 2:
+        rows = "; ".join(f"{r.i}-{r.j}: {r.matches} matches, {r.inliers} inliers ({r.reason})" for r in graph.report())
+        raise DegenerateError(f"stitch: no pair of images could be registered, nothing to stitch. Pairs: {rows}")
+    if graph.unconnected:
+        why = {k: [r.reason for r in graph.report() if k in (r.i, r.j)] for k in graph.unconnected}
+        warnings.warn(f"stitch: images {graph.unconnected} could not be connected to the reference image "
+                      f"{graph.reference} and are left out of the panorama: {why}", UserWarning, stacklevel=2)
+    sub = [imgs[k] for k in keep]
+    if cyl_masks is not None:  # zero what the cylinder does not see so masks stay exact
+        sub = [np.where(cyl_masks[k][..., None], imgs[k], 0).astype(np.float32) for k in keep]
+    warped = warp_images(sub, [graph.homographies[k] for k in keep], max_pixels=max_pixels)
+    if cyl_masks is not None:
+        masks = []
+        for idx, k in enumerate(keep):
+            m = warp_perspective(cyl_masks[k].astype(np.float32), warped.homographies[idx], warped.shape,
+                                 interpolation="nearest", method="cv2") > 0.5
+            masks.append(m)
+        weights = [np.where(m, w, 0).astype(np.float32) for m, w in zip(masks, warped.weights)]
+        warped = WarpedImages(warped.images, masks, weights, warped.homographies, warped.T)
+    ref_local = keep.index(graph.reference)
+    g_sub = gain_compensation(warped, reference=ref_local) if compensate_gains else np.ones(len(keep))
+    pano = blend(warped, blend_method, gains=g_sub, levels=levels)
+    union = np.logical_or.reduce(warped.masks)
+    gains = np.full(n, np.nan)
+    gains[keep] = g_sub
+    Hs: list = [None] * n
+    Ms: list = [None] * n
+    for idx, k in enumerate(keep):
+        Hs[k] = warped.homographies[idx]
+        Ms[k] = warped.masks[idx]
+    if all_uint8:
+        pano = np.clip(np.rint(pano * 255), 0, 255).astype(np.uint8)
+    return StitchResult(pano, union, Hs, Ms, graph.report(), graph.reference, list(graph.unconnected), gains, graph)
+
+
+def _erode(mask: np.ndarray, r: int = 3) -> np.ndarray:
+    """Shrink a mask by r pixels (features too close to a cylinder edge see the black border)."""
+    import cv2
+
+    return cv2.erode(mask.astype(np.uint8), np.ones((2 * r + 1, 2 * r + 1), np.uint8)) > 0

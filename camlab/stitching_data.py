@@ -1,0 +1,316 @@
+r"""The panorama data of lesson 09, rendered by the virtual camera with full ground truth.
+
+``python -m camlab.stitching_data`` writes ``data/panorama/`` (deterministic: the same
+bytes on every run with the same library versions):
+
+``rot_00.jpg`` ... ``rot_03.jpg``
+    A camera turning about its centre (yaw -27, -9, 9, 27 degrees, a little pitch and roll)
+    in a room: a wide textured back wall 6 m away (16 m wide), a photograph, a text page and a box
+    closer by. 640 x 480 RGB, fx = 800; each view has its own exposure gain and sensor
+    noise, and is stored as a quality-95 JPEG like a camera's (a noisy PNG is 5x larger,
+    and ``data/`` must stay small). Because the centre does not move, view i maps to view j by the homography
+    :math:`H_{ji} = K R_j R_i^T K^{-1}` whatever the depth (lesson 09, section 1).
+``plane_0.jpg``, ``plane_1.jpg``
+    A flat poster photographed from two different positions: related by the plane-induced
+    homography :math:`K (R - t n^T / d) K^{-1}`.
+``truth.json``
+    The generator's parameters, K, every view's pose (cam_from_world ``R``, ``t``), gains,
+    and the true homographies.
+
+:func:`room_scene` also feeds the ghosting demonstration (a camera that translates in
+front of the 3-D room) and the direct render of the panorama view used to measure the
+stitch. Load everything with :func:`load_panorama_set`.
+"""
+from __future__ import annotations
+
+import json
+import sys
+from functools import lru_cache
+from pathlib import Path
+from typing import NamedTuple
+
+import numpy as np
+
+from ._validate import CamlabInputError, check_positive
+
+__all__ = ["PANORAMA_PARAMS", "PanoramaSet", "PlanarPair", "load_panorama_set", "load_planar_pair",
+           "make_panorama_set", "render_view", "room_scene", "scale_intrinsics", "wall_texture"]
+
+PANORAMA_PARAMS = {
+    "seed": 909,
+    "image_size": [640, 480],
+    "K": [[800.0, 0.0, 319.5], [0.0, 800.0, 239.5], [0.0, 0.0, 1.0]],
+    # (yaw, pitch, roll) in degrees of each view of the rotation set
+    "angles_deg": [[-27.0, 1.5, 0.5], [-9.0, -1.0, -0.8], [9.0, 0.5, 1.0], [27.0, -1.5, -0.5]],
+    "gains": [1.0, 0.86, 1.12, 0.93],
+    "full_well": 20000.0,
+    "read_noise": 3.0,
+    "supersample": 2,
+    "jpeg_quality": 95,
+    "wall_texture_px": [2100, 800],
+    "plane_pair": {"t1": [0.25, -0.05, 0.0], "angles1_deg": [-6.0, 4.0, 2.0]},
+}
+
+
+def _rot(yaw: float, pitch: float, roll: float) -> np.ndarray:
+    """cam_from_world for a camera turned by ``yaw`` about y, ``pitch`` about x, ``roll`` about z (radians)."""
+    from .render import rotation_from_euler
+
+    # world_from_cam = Ry(yaw) Rx(pitch) Rz(roll); cam_from_world is its transpose
+    return rotation_from_euler(0, yaw, 0) @ rotation_from_euler(pitch, 0, 0) @ rotation_from_euler(0, 0, roll)
+
+
+def cam_from_world(yaw: float, pitch: float = 0.0, roll: float = 0.0) -> np.ndarray:
+    """The rotation cam_from_world of a camera at the origin turned by (yaw, pitch, roll) radians."""
+    return _rot(yaw, pitch, roll).T
+
+
+@lru_cache(maxsize=2)
+def wall_texture(width: int = 2100, height: int = 800, seed: int = 909) -> np.ndarray:
+    """A feature-rich, non-repeating RGB texture (float32 in [0, 1]): soft colour fields and posters.
+
+    Made with a seeded generator, so it is the same every time: smooth multi-scale colour
+    noise, then a few hundred random rectangles, discs, triangles and strokes in random
+    colours (corners and blobs for the feature detector at every scale).
+    """
+    import cv2
+
+    rng = np.random.default_rng(seed)
+    tex = np.zeros((height, width, 3), np.float32)
+    for scale, amp, chroma in ((120, 0.16, 0.5), (30, 0.10, 0.3), (6, 0.05, 0.2)):
+        small = rng.normal(0, 1, (height // scale + 2, width // scale + 2, 3)).astype(np.float32)
+        small = (1 - chroma) * small.mean(axis=2, keepdims=True) + chroma * small  # mostly luminance
+        tex += amp * cv2.resize(small, (width, height), interpolation=cv2.INTER_CUBIC)
+    tex = 0.55 + tex
+    for _ in range(520):
+        kind = rng.integers(0, 4)
+        colour = tuple(float(c) for c in 0.6 * rng.uniform(0.05, 0.95) + 0.4 * rng.uniform(0.05, 0.95, 3))
+        cx, cy = rng.uniform(0, width), rng.uniform(0, height)
+        size = float(np.exp(rng.uniform(np.log(4), np.log(45))))
+        if kind == 0:
+            a = rng.uniform(-0.6, 0.6)
+            box = cv2.boxPoints(((cx, cy), (size * rng.uniform(0.6, 1.8), size), np.degrees(a)))
+            cv2.fillConvexPoly(tex, np.round(box * 16).astype(np.int32), colour, cv2.LINE_AA, 4)
+        elif kind == 1:
+            cv2.circle(tex, (int(cx * 16), int(cy * 16)), int(size * 8), colour, -1, cv2.LINE_AA, 4)
+        elif kind == 2:
+            tri = np.array([cx, cy]) + rng.uniform(-size, size, (3, 2))
+            cv2.fillConvexPoly(tex, np.round(tri * 16).astype(np.int32), colour, cv2.LINE_AA, 4)
+        else:
+            p2 = np.array([cx, cy]) + rng.uniform(-2 * size, 2 * size, 2)
+            cv2.line(tex, (int(cx * 16), int(cy * 16)), (int(p2[0] * 16), int(p2[1] * 16)), colour,
+                     int(rng.integers(1, 4)), cv2.LINE_AA, 4)
+    return np.clip(tex, 0.0, 1.0)
+
+
+def room_scene(params: dict = PANORAMA_PARAMS) -> list:
+    """The 3-D scene of the panorama set: a wide back wall 6 m away and three nearer objects.
+
+    World frame = the camera frame of a camera at the origin with yaw = pitch = roll = 0
+    (x right, y down, z forward, metres). The nearer planes (a photograph at 2.6 m, a text
+    page at 1.7 m, a box at 3.4 m) sit at other depths than the wall, so a camera that
+    translates sees them move against it (parallax, the ghosting demonstration).
+    """
+    from . import render
+
+    tw, th = params["wall_texture_px"]
+    tex = wall_texture(tw, th, params["seed"])
+    wall = render.textured_plane(tex, 16.0, t=(0.0, 0.0, 6.0), name="wall")
+    photo = render.photo_plane(0.9, R=render.rotation_from_euler(0, np.radians(-15), 0), t=(-0.55, 0.05, 2.6))
+    page = render.text_page(0.42, R=render.rotation_from_euler(0, np.radians(20), 0), t=(0.75, 0.1, 1.7),
+                            seed=params["seed"])
+    cube = render.box((-1.9, -0.2, 3.6), (0.6, 0.6, 0.6), R=render.rotation_from_euler(0, np.radians(30), 0))
+    return [wall, photo, page, cube]
+
+
+def scale_intrinsics(K: np.ndarray, scale: float) -> np.ndarray:
+    r"""Intrinsics of the same camera with images resized by ``scale``.
+
+    With the pixel-centre convention (u = 0 is the centre of the first pixel), resizing by
+    s maps u to :math:`s (u + 1/2) - 1/2`: :math:`K' = S K`,
+    :math:`S = \begin{pmatrix} s & 0 & (s-1)/2 \\ 0 & s & (s-1)/2 \\ 0 & 0 & 1\end{pmatrix}`.
+    """
+    s = check_positive(scale, "scale")
+    S = np.array([[s, 0, (s - 1) / 2], [0, s, (s - 1) / 2], [0, 0, 1]])
+    return S @ np.asarray(K, dtype=float)
+
+
+def render_view(R: np.ndarray, *, t=(0.0, 0.0, 0.0), K=None, size=None, gain: float = 1.0,
+                noise: bool = True, rng=None, params: dict = PANORAMA_PARAMS, scene=None) -> np.ndarray:
+    """Render the room (:func:`room_scene`) from pose ``(R, t)`` (cam_from_world) as a uint8 RGB image.
+
+    ``gain`` scales the irradiance (exposure); ``noise`` adds shot and read noise
+    (``params``). ``K``/``size`` default to the set's camera.
+    """
+    from . import render
+    from .sensor import NoiseModel, add_noise, quantize
+
+    K = np.array(params["K"]) if K is None else np.asarray(K, dtype=float)
+    size = tuple(params["image_size"]) if size is None else tuple(size)
+    scene = room_scene(params) if scene is None else scene
+    out = render.render(scene, K, size, R=R, t=t, supersample=params["supersample"], color=True)
+    signal = out.irradiance * np.float32(gain)
+    if noise:
+        signal = add_noise(signal, NoiseModel(params["full_well"], params["read_noise"]), rng)
+    return quantize(np.clip(signal, 0, 1), 8)
+
+
+class PanoramaSet(NamedTuple):
+    """The rotation set: RGB ``images``, shared ``K``, cam_from_world ``R`` (n, 3, 3), ``gains``,
+    ``H_true[j][i]`` = the true homography from view i to view j, and the generator ``params``."""
+
+    images: list
+    K: np.ndarray
+    R: np.ndarray
+    gains: np.ndarray
+    params: dict
+
+    def true_homography(self, i: int, j: int) -> np.ndarray:
+        """The ground-truth homography mapping view ``i``'s pixels to view ``j``'s: K R_j R_i^T K^-1."""
+        from .homography import rotation_homography
+
+        return rotation_homography(self.K, self.R[j] @ self.R[i].T)
+
+
+class PlanarPair(NamedTuple):
+    """Two views of a flat poster; ``H`` maps view 0's pixels to view 1's."""
+
+    images: list
+    K: np.ndarray
+    H: np.ndarray
+    params: dict
+
+
+def _encode_jpeg(img: np.ndarray, quality: int) -> bytes:
+    """JPEG bytes of an RGB image (what a camera writes; deterministic for one libjpeg version)."""
+    import cv2
+
+    ok, buf = cv2.imencode(".jpg", img[..., ::-1], [cv2.IMWRITE_JPEG_QUALITY, int(quality)])
+    return buf.tobytes()
+
+
+def make_panorama_set(out_dir: Path | str, params: dict = PANORAMA_PARAMS) -> list[Path]:
+    """Render the panorama set and the planar pair into ``out_dir``; return the files written."""
+    from . import render
+    from .homography import plane_homography
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    K = np.array(params["K"])
+    scene = room_scene(params)
+    rng = np.random.default_rng(params["seed"])
+    files, views = [], []
+    for i, ((yaw, pitch, roll), gain) in enumerate(zip(params["angles_deg"], params["gains"])):
+        R = cam_from_world(*np.radians([yaw, pitch, roll]))
+        img = render_view(R, gain=gain, rng=rng, params=params, scene=scene)
+        name = f"rot_{i:02d}.jpg"
+        (out / name).write_bytes(_encode_jpeg(img, params["jpeg_quality"]))
+        files.append(out / name)
+        views.append({"file": name, "R": np.round(R, 15).tolist(), "gain": gain})
+
+    # the planar pair: a poster (the wall texture) 1.5 m away, seen from two positions
+    pp = params["plane_pair"]
+    poster = render.textured_plane(wall_texture(*params["wall_texture_px"], params["seed"])[:, :800], 2.0,
+                                   t=(0.0, 0.0, 1.5), name="poster")
+    R1 = cam_from_world(*np.radians(pp["angles1_deg"]))
+    t1 = np.asarray(pp["t1"], dtype=float)
+    # camera 0 at the origin; camera 1 at centre c1 = t1 (world), so its translation is -R1 c1
+    poses = [(np.eye(3), np.zeros(3)), (R1, -R1 @ t1)]
+    for i, (R, t) in enumerate(poses):
+        res = render.render(poster, K, tuple(params["image_size"]), R=R, t=t, supersample=params["supersample"],
+                            color=True, background=0.3)
+        from .sensor import NoiseModel, add_noise, quantize
+
+        img = quantize(np.clip(add_noise(res.irradiance, NoiseModel(params["full_well"], params["read_noise"]),
+                                         rng), 0, 1), 8)
+        name = f"plane_{i}.jpg"
+        (out / name).write_bytes(_encode_jpeg(img, params["jpeg_quality"]))
+        files.append(out / name)
+    # the poster is the plane z = 1.5 in camera 0's frame: n = (0, 0, 1), d = -1.5 (n . X + d = 0)
+    Hp = plane_homography(K, poses[1][0], poses[1][1], (0, 0, 1), -1.5)
+    truth = {
+        "description": "Panorama set rendered by camlab.render; regenerate with `python -m camlab.stitching_data`.",
+        "generator": "camlab.stitching_data.make_panorama_set",
+        "params": params,
+        "conventions": "pixels (u, v) = (column, row), origin at the centre of the top-left pixel; R = cam_from_world, "
+                       "every rotation view has its centre at the world origin; H_ij maps view j's pixels to view i's",
+        "K": params["K"], "image_size": params["image_size"],
+        "views": views,
+        "H_true": [[np.round(_true_h(K, views, i, j), 12).tolist() for j in range(len(views))]
+                   for i in range(len(views))],
+        "plane_pair": {"files": ["plane_0.jpg", "plane_1.jpg"], "R1": np.round(poses[1][0], 15).tolist(),
+                       "t1": np.round(poses[1][1], 15).tolist(), "plane_n": [0, 0, 1], "plane_d": -1.5,
+                       "H_10": np.round(Hp, 12).tolist()},
+    }
+    (out / "truth.json").write_text(json.dumps(truth, indent=1) + "\n")
+    files.append(out / "truth.json")
+    return files
+
+
+def _true_h(K: np.ndarray, views: list, i: int, j: int) -> np.ndarray:
+    from .homography import rotation_homography
+
+    return rotation_homography(K, np.array(views[i]["R"]) @ np.array(views[j]["R"]).T)
+
+
+def _data_dir() -> Path:
+    return Path(__file__).resolve().parent.parent / "data" / "panorama"
+
+
+def _read(path: Path, scale: float) -> np.ndarray:
+    import cv2
+
+    img = cv2.imread(str(path), cv2.IMREAD_COLOR)
+    if img is None:
+        raise CamlabInputError(f"directory: cannot read {path}; run `python -m camlab.stitching_data` to generate it")
+    img = np.ascontiguousarray(img[..., ::-1])
+    if scale != 1.0:
+        h, w = img.shape[:2]
+        img = cv2.resize(img, (int(round(w * scale)), int(round(h * scale))), interpolation=cv2.INTER_AREA)
+    return img
+
+
+def _truth(directory) -> tuple[Path, dict]:
+    d = Path(directory) if directory is not None else _data_dir()
+    path = d / "truth.json"
+    if not path.exists():
+        raise CamlabInputError(f"directory: no truth.json in {d}; run `python -m camlab.stitching_data` to generate it")
+    return d, json.loads(path.read_text())
+
+
+def load_panorama_set(directory: Path | str | None = None, scale: float = 1.0) -> PanoramaSet:
+    """Load ``data/panorama`` (or ``directory``); ``scale`` < 1 resizes the images (K follows).
+
+    >>> s = load_panorama_set(scale=0.5)
+    >>> len(s.images), s.images[0].shape, float(s.K[0, 0])
+    (4, (240, 320, 3), 400.0)
+    """
+    d, truth = _truth(directory)
+    images = [_read(d / v["file"], scale) for v in truth["views"]]
+    K = scale_intrinsics(np.array(truth["K"]), scale)
+    return PanoramaSet(images, K, np.array([v["R"] for v in truth["views"]]),
+                       np.array([v["gain"] for v in truth["views"]]), truth["params"])
+
+
+def load_planar_pair(directory: Path | str | None = None, scale: float = 1.0) -> PlanarPair:
+    """Load the two views of the flat poster; ``H`` maps view 0's pixels to view 1's (at ``scale``)."""
+    d, truth = _truth(directory)
+    pp = truth["plane_pair"]
+    images = [_read(d / f, scale) for f in pp["files"]]
+    S = scale_intrinsics(np.eye(3), scale)
+    H = S @ np.array(pp["H_10"]) @ np.linalg.inv(S)
+    return PlanarPair(images, scale_intrinsics(np.array(truth["K"]), scale), H / H[2, 2], truth["params"])
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Regenerate ``data/panorama`` (or the directory given as the only argument)."""
+    argv = sys.argv[1:] if argv is None else argv
+    root = Path(argv[0]) if argv else _data_dir()
+    files = make_panorama_set(root)
+    total = sum(f.stat().st_size for f in files)
+    print(f"wrote {len(files)} files ({total / 1e6:.2f} MB) to {root}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,417 @@
+"""Demos for lesson 09, image stitching: matches, RANSAC, the canvas, blending, the panorama, parallax.
+
+All demos use the rendered panorama set at half size (320 x 240, f = 400 px). Features,
+nearest neighbours and warps are computed once when a demo is built; sliders only
+re-filter, re-score or re-blend, so every update stays fast.
+"""
+from __future__ import annotations
+
+from functools import lru_cache
+
+import ipywidgets as W
+import numpy as np
+
+from .. import features as ft
+from .. import homography as hg
+from .. import stitching as st
+from .. import stitching_data as sd
+from ..plotting.stitching import draw_keypoints, draw_matches, match_segments, outline
+from ..projective import map_points
+from ._base import Demo, FigureView, build_demo, register, slider
+
+SCALE = 0.5
+
+
+def _rgba(image: np.ndarray) -> np.ndarray:
+    """An image as opaque uint8 RGBA: what Agg draws fastest (no conversion at every redraw)."""
+    a = np.asarray(image)
+    if a.dtype != np.uint8:
+        a = np.clip(np.rint(a * 255), 0, 255).astype(np.uint8)
+    out = np.empty((*a.shape[:2], 4), np.uint8)
+    out[..., :3] = a[..., :3] if a.ndim == 3 else a[..., None]
+    out[..., 3] = 255
+    return out
+
+
+def _pre(text: str) -> str:
+    return f"<pre style='font-size:12px;line-height:1.3;margin:0'>{text}</pre>"
+
+
+@lru_cache(maxsize=1)
+def demo_data():
+    """The half-size panorama set with its features and adjacent-pair nearest neighbours (cached)."""
+    s = sd.load_panorama_set(scale=SCALE)
+    imgs = st.prepare_images(s.images)
+    feats = [ft.detect_features(im, max_features=1500) for im in imgs]
+    knn = {(i, i + 1): ft.knn_match(feats[i], feats[i + 1]) for i in range(len(imgs) - 1)}
+    return s, imgs, feats, knn
+
+
+@lru_cache(maxsize=1)
+def demo_graph():
+    """The match graph of the half-size set (registration of every pair, reference, chains)."""
+    _, _, feats, _ = demo_data()
+    return st.match_graph(feats)
+
+
+def _true_good(s, i: int, j: int, src: np.ndarray, dst: np.ndarray, tol: float = 2.0) -> np.ndarray:
+    """Matches that the ground-truth homography confirms (transfer error below ``tol`` pixels)."""
+    if len(src) == 0:
+        return np.zeros(0, bool)
+    return hg.transfer_error(s.true_homography(i, j), src, dst) < tol
+
+
+# ----------------------------------------------------------------------------- matches
+
+@register(lesson="09", sweep={"ratio": [0.6, 0.8, 0.95, 1.0], "mutual": [True, False]})
+def feature_matches() -> Demo:
+    """SIFT matches between views 0 and 1: loosen the ratio test and watch wrong matches (red) appear."""
+    s, imgs, feats, knn = demo_data()
+    i, j = 0, 1
+    view = FigureView(figsize=(9, 3.4))
+    ax = view.fig.subplots()
+    art = draw_matches(ax, s.images[i], s.images[j], np.zeros((0, 2)), np.zeros((0, 2)))
+    view.animate(art["good"], art["bad"])  # the images and keypoints stay: only the lines move
+    draw_keypoints(ax, feats[i].points, feats[i].sizes, color="yellow", alpha=0.5)
+    draw_keypoints(ax, feats[j].points + [art["offset"], 0], feats[j].sizes, color="yellow", alpha=0.5)
+    ax.set_title(f"views {i} and {j}: green = confirmed by the true homography, red = wrong match", fontsize=9)
+    readout = W.HTML()
+
+    def update(v: dict, state: dict) -> None:
+        m = ft.filter_matches(knn[(i, j)], v["ratio"], v["mutual"])
+        good = _true_good(s, i, j, m.src, m.dst)
+        seg = match_segments(m.src, m.dst, art["offset"])
+        show = np.arange(len(seg)) % max(1, len(seg) // 200 + 1) == 0  # draw at most ~200 lines (speed)
+        art["good"].set_segments(seg[good & show])
+        art["bad"].set_segments(seg[~good & show])
+        n, nbad = len(good), int((~good).sum())
+        state.update(matches=n, wrong=nbad, precision=(n - nbad) / n if n else float("nan"))
+        readout.value = _pre(f"keypoints: {len(feats[i].points)} / {len(feats[j].points)}\n"
+                             f"matches kept: {n}\nwrong (red): {nbad} ({100 * nbad / max(n, 1):.0f}%)"
+                             + ("\n(at most 200 lines drawn)" if n > 200 else ""))
+
+    controls = {
+        "ratio": slider(0.75, 0.4, 1.0, 0.01, "ratio test r"),
+        "mutual": W.Checkbox(value=False, description="mutual check"),
+    }
+    return build_demo("feature_matches", controls, view, update, title="Feature matching", extra=[readout])
+
+
+# ----------------------------------------------------------------------------- RANSAC
+
+@register(lesson="09", sweep={"threshold": [0.5, 3.0, 15.0, 40.0], "ratio": [0.95, 0.7]})
+def ransac_registration() -> Demo:
+    """RANSAC on real matches: the threshold decides which matches count as inliers, and the H you get."""
+    s, imgs, feats, knn = demo_data()
+    i, j = 1, 2
+    view = FigureView(figsize=(9, 3.6))
+    ax, ax_e = view.fig.subplots(1, 2, width_ratios=[1.5, 1])
+    ax.imshow(s.images[j], interpolation="nearest")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    ax.set_title(f"matches in image {j}; frame of image {i} mapped by H", fontsize=9)
+    inl = view.animate(ax.plot([], [], ".", color="lime", ms=4, label="inliers")[0])
+    outl = view.animate(ax.plot([], [], "x", color="red", ms=4, label="outliers")[0])
+    true_box = outline(ax, s.true_homography(i, j), imgs[i].shape, color="white", lw=2, label="true")
+    est_box = view.animate(outline(ax, np.eye(3), imgs[i].shape, color="tab:blue", lw=1.5, ls="--", label="RANSAC"))
+    h, w = imgs[j].shape[:2]
+    ax.set(xlim=(-0.5, w - 0.5), ylim=(h - 0.5, -0.5))
+    ax.legend(loc="lower left", fontsize=7, framealpha=0.7)
+    ax_e.set(xlabel="symmetric transfer error (px)", ylabel="matches (scaled)", xscale="log", xlim=(0.03, 300), ylim=(0, 1))
+    ax_e.set_title("residuals under the RANSAC H", fontsize=9)
+    bins = np.logspace(np.log10(0.03), np.log10(300), 41)
+    bars = ax_e.bar(bins[:-1], np.zeros(40), width=np.diff(bins), align="edge", color="0.6")
+    view.animate(*bars)
+    thr_line = view.animate(ax_e.axvline(3, color="tab:red", lw=1.5))
+    readout = W.HTML()
+    true_H = s.true_homography(i, j)
+    corners = np.array([[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]], float)
+
+    def update(v: dict, state: dict) -> None:
+        m = ft.filter_matches(knn[(i, j)], v["ratio"])
+        r = st.register_pair(feats[i], feats[j], matches=m, threshold=v["threshold"], rng=np.random.default_rng(0))
+        thr_line.set_xdata([v["threshold"], v["threshold"]])
+        if r.H is None:
+            inl.set_data([], [])
+            outl.set_data(m.dst[:, 0], m.dst[:, 1])
+            est_box.set_data([], [])
+            state.update(inliers=0, corner_error=float("nan"), accepted=False)
+            readout.value = _pre(r.reason)
+            return
+        inl.set_data(m.dst[r.inliers, 0], m.dst[r.inliers, 1])
+        outl.set_data(m.dst[~r.inliers, 0], m.dst[~r.inliers, 1])
+        box = map_points(r.H, np.vstack([corners, corners[:1]]))
+        est_box.set_data(box[:, 0], box[:, 1])
+        res = hg.symmetric_transfer_error(r.H, m.src, m.dst)
+        counts, _ = np.histogram(np.clip(res, 0.031, 299), bins)
+        top = max(counts.max(), 1)
+        for b, c in zip(bars, counts):
+            b.set_height(c / top)
+        err = float(np.max(np.linalg.norm(map_points(r.H, corners) - map_points(true_H, corners), axis=1)))
+        good = _true_good(s, i, j, m.src, m.dst)
+        state.update(inliers=int(r.inliers.sum()), corner_error=err, accepted=r.accepted,
+                     false_inliers=int((r.inliers & ~good).sum()))
+        readout.value = _pre(f"matches: {len(m.src)}\ninliers: {int(r.inliers.sum())} "
+                             f"({int((r.inliers & ~good).sum())} of them wrong)\n"
+                             f"inlier RMS: {r.residual_rms:.2f} px\nworst corner vs truth: {err:.2f} px\n"
+                             f"accepted: {r.accepted} {r.reason}")
+
+    controls = {
+        "threshold": slider(3.0, 0.3, 40.0, 0.1, "threshold (px)"),
+        "ratio": slider(0.9, 0.5, 1.0, 0.01, "ratio test r"),
+    }
+    return build_demo("ransac_registration", controls, view, update, title="RANSAC on SIFT matches", extra=[readout])
+
+
+# ----------------------------------------------------------------------------- canvas
+
+def _frame(shape) -> np.ndarray:
+    """The closed border polygon of an image of ``shape`` (pixel edges at -0.5 and w - 0.5)."""
+    h, w = shape[:2]
+    return np.array([[-0.5, -0.5], [w - 0.5, -0.5], [w - 0.5, h - 0.5], [-0.5, h - 0.5], [-0.5, -0.5]])
+
+
+def _chain_to(graph: st.MatchGraph, ref: int) -> list:
+    """Re-express the graph's homographies relative to another reference image ``ref``."""
+    to_ref = np.linalg.inv(graph.homographies[ref])
+    return [hg.normalize_homography(to_ref @ H) for H in graph.homographies]
+
+
+@register(lesson="09", sweep={"reference": [0, 1, 3]}, target_ms=100.0)
+def panorama_canvas() -> Demo:
+    """Every image warped onto one canvas; the reference image decides the shape (and the stretch).
+
+    Shown at quarter size (160 x 120 images) so that even the widest canvas warps quickly.
+    """
+    import cv2
+
+    s, imgs, _, _ = demo_data()
+    graph = demo_graph()
+    small = [cv2.resize(im, (im.shape[1] // 2, im.shape[0] // 2), interpolation=cv2.INTER_AREA) for im in imgs]
+    S = sd.scale_intrinsics(np.eye(3), 0.5)  # half-size pixels from demo pixels
+    chains = {ref: [S @ H @ np.linalg.inv(S) for H in _chain_to(graph, ref)] for ref in range(len(imgs))}
+    sizes = {ref: hg_canvas(chains[ref], small) for ref in chains}
+    hmax = max(sz[0] for sz in sizes.values())
+    wmax = max(sz[1] for sz in sizes.values())
+    view = FigureView(figsize=(9, 3.6))
+    ax = view.fig.subplots()
+    im = view.animate(ax.imshow(np.zeros((10, 10, 3)), interpolation="nearest"))
+    colors = ["tab:red", "tab:orange", "tab:green", "tab:blue"]
+    lines = [view.animate(ax.plot([], [], color=c, lw=1.5, label=f"image {k}")[0]) for k, c in enumerate(colors)]
+    ax.legend(loc="lower right", fontsize=7, ncols=4)
+    ax.set(xlim=(-0.5, wmax - 0.5), ylim=(hmax - 0.5, -0.5), aspect="equal")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    readout = W.HTML()
+    # warping is the expensive part: done once per reference, when the demo is built
+    cache = {}
+    for ref in chains:
+        wi = st.warp_images(small, chains[ref], max_pixels=3_000_000)
+        cache[ref] = (wi, _rgba(st.blend(wi, "overwrite")))
+
+    def update(v: dict, state: dict) -> None:
+        ref = int(v["reference"])
+        wi, pano = cache[ref]
+        im.set_data(pano)
+        hh, ww = wi.shape
+        im.set_extent((-0.5, ww - 0.5, hh - 0.5, -0.5))
+        for k, ln in enumerate(lines):
+            p = map_points(wi.homographies[k], _frame(small[k].shape))
+            ln.set_data(p[:, 0], p[:, 1])
+        state.update(reference=ref, canvas=(hh, ww), T=wi.T)
+        readout.value = _pre(f"reference image: {ref}\ncanvas: {ww} x {hh} px\n"
+                             f"translation T: ({wi.T[0, 2]:.0f}, {wi.T[1, 2]:.0f})\n"
+                             f"best-connected image: {graph.reference}")
+
+    controls = {"reference": W.IntSlider(value=graph.reference, min=0, max=len(imgs) - 1, description="reference")}
+    return build_demo("panorama_canvas", controls, view, update, title="The panorama canvas", extra=[readout])
+
+
+def hg_canvas(homographies, images) -> tuple[int, int]:
+    """(height, width) of the canvas that holds every image warped by its homography."""
+    from ..warp import canvas_bounds
+
+    return canvas_bounds(homographies, [im.shape for im in images])[1]
+
+
+# ----------------------------------------------------------------------------- blending
+
+@lru_cache(maxsize=1)
+def _pair_warp():
+    """Images 1 and 2 (half size) warped onto their common canvas, and their gains."""
+    s, imgs, _, _ = demo_data()
+    graph = demo_graph()
+    Hs = _chain_to(graph, 1)
+    wi = st.warp_images([imgs[1], imgs[2]], [Hs[1], Hs[2]])
+    return wi, st.gain_compensation(wi, reference=0)
+
+
+@register(lesson="09", sweep={"method": list(st.BLENDS), "gains": [False, True], "levels": [1, 5]}, target_ms=100.0)
+def blending_seams() -> Demo:
+    """Overwrite, feather and multi-band blending of two differently exposed views, with a zoom on the seam."""
+    wi, gains = _pair_warp()
+    seam = st.seam_masks(wi.weights)[0]
+    hh, ww = wi.shape
+    row, z = hh // 2, 60
+
+    def window(mask: np.ndarray) -> tuple[int, int]:
+        """A z x z zoom window centred where ``mask`` switches on/off in the middle row."""
+        cols = np.flatnonzero(np.diff(mask[row].astype(int)) != 0)
+        c0 = int(cols[0]) if len(cols) else ww // 2
+        return int(np.clip(c0 - z // 2, 0, ww - z)), int(np.clip(row - z // 2, 0, hh - z))
+
+    # overwrite's seam is the border of the image painted last; the others' is the middle seam
+    windows = {"overwrite": window(wi.masks[1]), "feather": window(seam), "multiband": window(seam)}
+    view = FigureView(figsize=(9, 3.4))
+    ax, ax_z = view.fig.subplots(1, 2, width_ratios=[2.2, 1])
+    im = view.animate(ax.imshow(np.zeros((hh, ww, 3), np.float32), interpolation="nearest"))
+    from matplotlib.patches import Rectangle
+
+    rect = view.animate(ax.add_patch(Rectangle((0, 0), z, z, fill=False, color="yellow", lw=1.5)))
+    ax.set_xticks([])
+    ax.set_yticks([])
+    ax.set_title("two views, exposures differ by 30%", fontsize=9)
+    imz = view.animate(ax_z.imshow(np.zeros((z, z, 3), np.float32), interpolation="nearest"))
+    ax_z.set_xticks([])
+    ax_z.set_yticks([])
+    ax_z.set_title("zoom on the seam", fontsize=9)
+    readout = W.HTML()
+    both = wi.masks[0] & wi.masks[1]
+
+    def update(v: dict, state: dict) -> None:
+        out = st.blend(wi, v["method"], gains=gains if v["gains"] else None, levels=int(v["levels"]))
+        rgba = _rgba(out)
+        im.set_data(rgba)
+        zu, zv = windows[v["method"]]
+        rect.set_xy((zu - 0.5, zv - 0.5))
+        imz.set_data(rgba[zv:zv + z, zu:zu + z])
+        # the exposure step across the seam, grey levels; overwrite's seam is the last image's border
+        jump = 255 * (st.seam_step(out, wi.masks[1], wi.masks[0]) if v["method"] == "overwrite"
+                      else st.seam_step(out, seam, both))
+        state.update(method=v["method"], seam_jump=jump, image=out)
+        readout.value = _pre(f"blend: {v['method']}\ngains: {np.round(gains, 3).tolist() if v['gains'] else 'off'}\n"
+                             f"mean step across the seam: {jump:.1f} grey levels")
+
+    controls = {
+        "method": W.Dropdown(options=list(st.BLENDS), value="overwrite", description="blend"),
+        "gains": W.Checkbox(value=False, description="gain compensation"),
+        "levels": W.IntSlider(value=5, min=1, max=6, description="pyramid levels"),
+    }
+    return build_demo("blending_seams", controls, view, update, title="Blending", extra=[readout])
+
+
+# ----------------------------------------------------------------------------- full panorama
+
+@lru_cache(maxsize=1)
+def _panoramas():
+    s, _, _, _ = demo_data()
+    return {proj: st.stitch(s.images, projection=proj, K=s.K, blend_method="multiband", max_features=1500)
+            for proj in ("planar", "cylindrical")}
+
+
+@register(lesson="09", sweep={"projection": ["planar", "cylindrical"], "outlines": [True, False]}, target_ms=100.0)
+def full_panorama() -> Demo:
+    """The four-image panorama, planar or cylindrical, multi-band blended, with each image's footprint."""
+    pans = _panoramas()
+    s, imgs, _, _ = demo_data()
+    view = FigureView(figsize=(9, 3.4))
+    ax = view.fig.subplots()
+    im = view.animate(ax.imshow(pans["planar"].panorama, interpolation="nearest"))
+    colors = ["tab:red", "tab:orange", "tab:green", "tab:blue"]
+    lines = [view.animate(ax.plot([], [], color=c, lw=1.2)[0]) for c in colors]
+    hmax = max(p.panorama.shape[0] for p in pans.values())
+    wmax = max(p.panorama.shape[1] for p in pans.values())
+    ax.set(xlim=(-0.5, wmax - 0.5), ylim=(hmax - 0.5, -0.5), aspect="equal")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    readout = W.HTML()
+    shown = {k: _rgba(p.panorama) for k, p in pans.items()}
+
+    def update(v: dict, state: dict) -> None:
+        r = pans[v["projection"]]
+        im.set_data(shown[v["projection"]])
+        hh, ww = r.panorama.shape[:2]
+        im.set_extent((-0.5, ww - 0.5, hh - 0.5, -0.5))
+        for k, ln in enumerate(lines):
+            if v["outlines"] and r.homographies[k] is not None:
+                p = map_points(r.homographies[k], _frame(imgs[k].shape))
+                ln.set_data(p[:, 0], p[:, 1])
+            else:
+                ln.set_data([], [])
+        state.update(projection=v["projection"], shape=(hh, ww), reference=r.reference,
+                     outlines_drawn=sum(len(ln.get_xdata()) > 0 for ln in lines))
+        rows = "\n".join(f"{p.i}-{p.j}: {p.matches:4d} matches {p.inliers:4d} inliers "
+                         f"rms {p.residual_rms:.2f} {'ok' if p.accepted else 'rejected'}" for p in r.pairs)
+        readout.value = _pre(f"{v['projection']}: {ww} x {hh} px, reference {r.reference}\n{rows}")
+
+    controls = {
+        "projection": W.Dropdown(options=["planar", "cylindrical"], value="planar", description="projection"),
+        "outlines": W.Checkbox(value=True, description="image outlines"),
+    }
+    return build_demo("full_panorama", controls, view, update, title="The panorama", extra=[readout])
+
+
+# ----------------------------------------------------------------------------- parallax
+
+BASELINES = (0.0, 0.05, 0.1, 0.2, 0.4)
+
+
+@lru_cache(maxsize=1)
+def parallax_pairs():
+    """Two half-size views of the room per baseline: the second camera turned 12 degrees AND moved sideways.
+
+    Returns {baseline: (warped images, homography, pair registration)}; the homography is
+    estimated from the matches (RANSAC locks onto the dominant plane, the back wall).
+    """
+    s, _, _, _ = demo_data()
+    K = s.K
+    size = (s.images[0].shape[1], s.images[0].shape[0])
+    scene = sd.room_scene()
+    R0 = sd.cam_from_world(np.radians(-16.0))
+    R1 = sd.cam_from_world(np.radians(-4.0))
+    img0 = st.prepare_images([sd.render_view(R0, K=K, size=size, noise=False, scene=scene)] * 2)[0]
+    f0 = ft.detect_features(img0, max_features=1500)
+    out = {}
+    for b in BASELINES:
+        c1 = np.array([b, 0.0, 0.0])  # the second camera's centre, metres to the right
+        img1 = st.prepare_images([sd.render_view(R1, t=-R1 @ c1, K=K, size=size, noise=False, scene=scene)] * 2)[0]
+        f1 = ft.detect_features(img1, max_features=1500)
+        reg = st.register_pair(f1, f0, threshold=2.0)
+        wi = st.warp_images([img0, img1], [np.eye(3), reg.H])
+        out[b] = (wi, reg)
+    return out
+
+
+@register(lesson="09", sweep={"baseline": list(BASELINES[::2]), "method": ["feather", "multiband"]}, target_ms=100.0)
+def parallax_ghosting() -> Demo:
+    """Move the camera sideways between shots: near objects no longer fit the homography and ghost."""
+    pairs = parallax_pairs()
+    view = FigureView(figsize=(9, 3.4))
+    ax = view.fig.subplots()
+    im = view.animate(ax.imshow(np.zeros((10, 10, 3)), interpolation="nearest"))
+    hmax = max(p[0].shape[0] for p in pairs.values())
+    wmax = max(p[0].shape[1] for p in pairs.values())
+    ax.set(xlim=(-0.5, wmax - 0.5), ylim=(hmax - 0.5, -0.5), aspect="equal")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    readout = W.HTML()
+
+    def update(v: dict, state: dict) -> None:
+        wi, reg = pairs[float(v["baseline"])]
+        out = st.blend(wi, v["method"])
+        im.set_data(_rgba(out))
+        hh, ww = wi.shape
+        im.set_extent((-0.5, ww - 0.5, hh - 0.5, -0.5))
+        n, k = len(reg.matches.src), int(reg.inliers.sum())
+        diff = 255 * st.overlap_difference(wi)
+        state.update(baseline=float(v["baseline"]), inlier_fraction=k / max(n, 1), residual_rms=reg.residual_rms,
+                     misalignment=diff, method=v["method"], image=out)
+        readout.value = _pre(f"camera moved {100 * float(v['baseline']):.0f} cm\nmatches: {n}\n"
+                             f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\ninlier RMS: {reg.residual_rms:.2f} px\n"
+                             f"mean |view 0 - view 1| on the overlap:\n  {diff:.1f} grey levels")
+
+    controls = {
+        "baseline": W.SelectionSlider(options=list(BASELINES), value=0.0, description="baseline (m)"),
+        "method": W.Dropdown(options=["feather", "multiband"], value="feather", description="blend"),
+    }
+    return build_demo("parallax_ghosting", controls, view, update, title="Parallax makes ghosts", extra=[readout])

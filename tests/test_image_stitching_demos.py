@@ -1,0 +1,81 @@
+"""Demo-specific tests for lesson 09 (the generic sweep test lives in tests/test_widgets.py)."""
+import os
+
+import numpy as np
+import pytest
+
+os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
+
+import camlab.exercises as ex  # noqa: E402
+from camlab.widgets import image_stitching as demos  # noqa: E402
+
+
+def test_feature_matches_ratio_lets_wrong_matches_in():
+    d = demos.feature_matches()
+    d.set(ratio=0.6)
+    strict = dict(d.state)
+    d.set(ratio=1.0)
+    assert d.state["matches"] > strict["matches"] and d.state["wrong"] > 10 * max(strict["wrong"], 1)
+    assert strict["precision"] > 0.95
+    d.set(mutual=True)
+    mutual = dict(d.state)
+    d.set(mutual=False)
+    assert mutual["wrong"] < d.state["wrong"]
+
+
+def test_ransac_demo_threshold():
+    d = demos.ransac_registration()
+    d.set(threshold=3.0)
+    at3 = d.state["inliers"]
+    assert d.state["accepted"] and d.state["corner_error"] < 1.0 and d.state["false_inliers"] <= 5
+    d.set(threshold=40.0)
+    assert d.state["false_inliers"] > 5  # a loose threshold lets wrong matches in
+    d.set(threshold=0.3)
+    assert d.state["inliers"] < at3  # a tight threshold rejects good matches too
+
+
+def test_canvas_demo_reference_changes_canvas():
+    d = demos.panorama_canvas()
+    d.set(reference=1)
+    mid = d.state["canvas"]
+    d.set(reference=3)
+    end = d.state["canvas"]
+    assert end[0] * end[1] > 1.3 * mid[0] * mid[1]  # an end reference stretches the far images
+
+
+def test_blending_demo_seam_steps():
+    d = demos.blending_seams()
+    d.set(method="overwrite", gains=False)
+    over = d.state["seam_jump"]
+    d.set(method="multiband")
+    assert over > 15 and d.state["seam_jump"] < over / 4
+    d.set(method="overwrite", gains=True)
+    assert d.state["seam_jump"] < over / 4
+
+
+def test_parallax_demo_residuals_grow_with_baseline():
+    d = demos.parallax_ghosting()
+    d.set(baseline=0.0)
+    still = dict(d.state)
+    assert still["misalignment"] < 4  # only noise: the views align exactly
+    d.set(baseline=0.1)
+    small = d.state["misalignment"]
+    d.set(baseline=0.4)
+    assert d.state["inlier_fraction"] < still["inlier_fraction"] - 0.1  # near objects stop fitting the homography
+    assert d.state["misalignment"] > small > 3 * still["misalignment"]  # ghosts grow with the baseline
+
+
+def test_full_panorama_demo():
+    d = demos.full_panorama()
+    d.set(projection="planar")
+    planar = d.state["shape"]
+    d.set(projection="cylindrical")
+    assert d.state["shape"][1] < planar[1]  # the cylinder does not stretch the ends
+
+
+@pytest.mark.parametrize("name", ["canvas_box", "feather_weights"])
+def test_exercises_reference_passes_and_solution_prints(name, capsys):
+    from camlab import stitching as st
+
+    assert getattr(ex, f"check_{name}")(getattr(st, name)) is True
+    assert f"def {name}" in ex.solution(name)
