@@ -3,10 +3,13 @@ r"""A rendered stereo rig with full ground truth: ``data/stereo/`` (lesson 11).
 ``python -m camlab.stereo_data`` rewrites ``data/stereo/`` deterministically from
 :data:`STEREO_PARAMS` with :mod:`camlab.render` (the virtual camera):
 
-``left.png``, ``right.png``
+``left.jpg``, ``right.jpg``
     The raw pair, 640 x 480, 8-bit grey, with lens distortion, a slight toe-in, a small
-    vertical offset and roll between the cameras (so rectification has work to do), and a
-    little sensor noise. The scene: a textured back wall, three textured planes at
+    vertical offset and roll between the cameras (so rectification has work to do), a
+    little sensor noise, stored as JPEG (quality ``jpeg_quality``) as a camera would: the
+    random textures cost about 225 kB per image as PNG, and all of ``data/`` must stay
+    under 3 MB. The ground truth is exact; the compression noise is part of the matching
+    problem (depth accuracy is tested on these very files). The scene: a textured back wall, three textured planes at
     different depths (one showing a photograph), and two boxes with noise-textured faces.
 ``disparity.png``
     The true disparity of the *calibrated rectification* of the pair (``alpha = 0``), for
@@ -56,7 +59,8 @@ STEREO_PARAMS = {
     "full_well": 20000.0,
     "read_noise": 1.5,
     "supersample": 2,
-    "n_calib": 6,
+    "n_calib": 4,
+    "jpeg_quality": 85,
     "pattern_size": [9, 6],
     "square": 0.025,
     "rectify_alpha": 0.0,
@@ -177,6 +181,14 @@ def _png(path: Path, img: np.ndarray) -> Path:
     return path
 
 
+def _jpg(path: Path, img: np.ndarray, quality: int) -> Path:
+    import cv2
+
+    ok, buf = cv2.imencode(".jpg", img, [cv2.IMWRITE_JPEG_QUALITY, int(quality)])
+    path.write_bytes(buf.tobytes())
+    return path
+
+
 def _camera_json(c: Camera) -> dict:
     return {"K": np.round(c.K, 12).tolist(), "dist": list(c.dist), "R": np.round(c.R, 12).tolist(),
             "t": np.round(c.t, 12).tolist(), "image_size": list(c.image_size)}
@@ -199,7 +211,7 @@ def make_stereo_rig(out_dir: Path | str, params: dict = STEREO_PARAMS) -> list[P
     for name, c in (("left", c1), ("right", c2)):
         res = render.render(scene, c.K, size, R=c.R, t=c.t, dist=c.dist, sensor=sensor,
                             supersample=params["supersample"], rng=rng, color=False)
-        files.append(_png(out / f"{name}.png", res.image))
+        files.append(_jpg(out / f"{name}.jpg", res.image, params["jpeg_quality"]))
     rect = rectify_calibrated(c1, c2, alpha=params["rectify_alpha"], maps=False)
     r1 = rect.camera1
     gt = render.render(scene, r1.K, size, R=r1.R, t=r1.t, supersample=1, depth=True, color=False).truth
@@ -237,7 +249,7 @@ def make_stereo_rig(out_dir: Path | str, params: dict = STEREO_PARAMS) -> list[P
         "object_points": np.round(render.checkerboard((cols, rows), params["square"]).object_points, 12).tolist(),
         "calibration_views": views,
     }
-    (out / "truth.json").write_text(json.dumps(truth, indent=1) + "\n")
+    (out / "truth.json").write_text(json.dumps(truth, separators=(",", ":")) + "\n")
     files.append(out / "truth.json")
     lines = [f"{hashlib.sha256(p.read_bytes()).hexdigest()}  {p.stat().st_size:>8}  {p.name}" for p in sorted(files)]
     (out / "MANIFEST.txt").write_text("# sha256  bytes  file   (regenerate with: python -m camlab.stereo_data)\n"
@@ -271,7 +283,7 @@ def load_stereo_rig(directory: Path | str | None = None) -> StereoRig:
     disp[disp == 0] = np.nan
     views = truth["calibration_views"]
     return StereoRig(
-        left=grey("left.png"), right=grey("right.png"), camera1=cam(truth["camera_left"]),
+        left=grey("left.jpg"), right=grey("right.jpg"), camera1=cam(truth["camera_left"]),
         camera2=cam(truth["camera_right"]), disparity=disp,
         calib_left=[grey(v["left"]) for v in views], calib_right=[grey(v["right"]) for v in views],
         calib_corners_left=np.array([v["corners_left"] for v in views]),

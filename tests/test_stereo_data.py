@@ -37,5 +37,5 @@ def test_generator_is_deterministic(tmp_path):
     params = dict(STEREO_PARAMS, n_calib=1)
     make_stereo_rig(tmp_path, params)
     bundled = _default_dir()
-    for name in ("left.png", "right.png", "disparity.png", "calib_left_00.png"):
+    for name in ("left.jpg", "right.jpg", "disparity.png", "calib_left_00.png"):
         assert (tmp_path / name).read_bytes() == (bundled / name).read_bytes(), name
