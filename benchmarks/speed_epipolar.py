@@ -39,6 +39,17 @@ def _matches(n: int = 500, outliers: float = 0.3, seed: int = 0):
 
 
 def rows() -> list[dict]:
+    # One thread for OpenCV, like camlab's numpy (these array sizes do not use BLAS threads):
+    # ratios then compare algorithms, not the number of free cores on a shared machine.
+    threads = cv2.getNumThreads()
+    cv2.setNumThreads(1)
+    try:
+        return _rows()
+    finally:
+        cv2.setNumThreads(threads)
+
+
+def _rows() -> list[dict]:
     c1, c2, x1, x2, bad = _matches()
     good1, good2 = x1[~bad], x2[~bad]
     out = [
