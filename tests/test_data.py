@@ -27,7 +27,7 @@ def test_calibration_set_ground_truth():
     assert ok
     assert np.sqrt(np.mean(np.sum((render.align_detected_corners(found, cs.corners[0]) - cs.corners[0]) ** 2, 1))) < 0.15
     total = sum(p.stat().st_size for p in data.data_dir().rglob("*") if p.is_file())
-    assert total < 3e6
+    assert total < 6e6, f"data/ holds {total / 1e6:.1f} MB; keep the shipped assets small"  # all data sets together
 
 
 def test_missing_directory(tmp_path):
