@@ -1,0 +1,721 @@
+r"""Two-view geometry: the fundamental and essential matrices, epipoles, epipolar lines, triangulation.
+
+Two cameras see the same world point :math:`X` at pixels :math:`x` (image 1) and
+:math:`x'` (image 2). The two rays and the baseline joining the camera centres lie in one
+plane, the *epipolar plane*, so :math:`x'` must lie on the line where that plane cuts
+image 2. Algebraically, for homogeneous pixels,
+
+.. math:: \tilde x'^\top F\, \tilde x = 0, \qquad l' = F \tilde x, \qquad l = F^\top \tilde x',
+
+with the (3, 3) *fundamental matrix* F of rank 2 (7 degrees of freedom). Its null vectors
+are the *epipoles* :math:`F e = 0`, :math:`F^\top e' = 0`: the image of the other camera's
+centre, through which every epipolar line passes. With calibrated cameras
+(:math:`\hat x = K^{-1} \tilde x`) the same constraint reads
+:math:`\hat x'^\top E \hat x = 0` with the *essential matrix*
+:math:`E = [t]_\times R = K'^\top F K`, where ``(R, t)`` is camera 2's pose relative to
+camera 1 (``X_2 = R X_1 + t``).
+
+Conventions (docs/conventions.md): points are rows, pixels (u, v) = (column, row) with the
+origin at the centre of the top-left pixel; ``x1`` are pixels in image 1 and ``x2`` the
+corresponding pixels in image 2, so ``x2_h @ F @ x1_h == 0``; poses are cam_from_world;
+metres. See lesson 11 and Hartley & Zisserman chapters 9-12.
+"""
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ._validate import (
+    CamlabInputError,
+    DegenerateError,
+    as_points,
+    check_matrix,
+    check_positive,
+)
+from .camera import Camera, camera_centre
+from .homography import _normalize_batch, _required_iterations, estimate_homography, symmetric_transfer_error
+from .projective import from_homogeneous, normalize_lines, to_homogeneous
+
+__all__ = [
+    "EssentialDecomposition", "FundamentalRansacResult", "RelativePose",
+    "decompose_essential_matrix", "epipolar_distance", "epipolar_lines", "epipoles",
+    "essential_from_fundamental", "essential_matrix", "estimate_fundamental_matrix",
+    "fundamental_from_cameras", "fundamental_from_essential", "normalize_fundamental",
+    "ransac_fundamental_matrix", "recover_pose", "relative_pose", "reprojection_error",
+    "sampson_distance", "skew", "triangulate_points",
+]
+
+_PLANE_TOL = 1e-3   # px: a homography explaining every pair this well means "all points on one plane"
+_RANK_TOL = 1e-9    # second-smallest singular value of the normalised 8-point system, relative
+
+
+# --------------------------------------------------------------------------- helpers
+
+def skew(v: ArrayLike) -> np.ndarray:
+    r"""The cross-product matrix :math:`[v]_\times` with :math:`[v]_\times w = v \times w`.
+
+    >>> skew([1, 2, 3]) @ np.array([4, 5, 6]), np.cross([1, 2, 3], [4, 5, 6])
+    (array([-3.,  6., -3.]), array([-3,  6, -3]))
+    """
+    a = check_matrix(v, (3,), "v")
+    return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+
+
+def _pairs(x1: ArrayLike, x2: ArrayLike, min_count: int = 1) -> tuple[np.ndarray, np.ndarray, bool]:
+    p1 = as_points(x1, 2, "x1")
+    p2 = as_points(x2, 2, "x2")
+    if len(p1.array) != len(p2.array):
+        raise CamlabInputError(
+            f"x1, x2: expected the same number of corresponding points, got {len(p1.array)} and "
+            f"{len(p2.array)}; pass matched pairs (row i of x1 corresponds to row i of x2)"
+        )
+    if len(p1.array) < min_count:
+        raise CamlabInputError(
+            f"x1: expected (N, 2) with N >= {min_count} point pairs, got shape {p1.array.shape}; "
+            f"the fundamental matrix has 7 degrees of freedom and the linear 8-point algorithm needs 8 pairs"
+        )
+    return p1.array, p2.array, p1.single and p2.single
+
+
+def _check_F(F: ArrayLike, name: str = "F") -> np.ndarray:
+    a = check_matrix(F, (3, 3), name)
+    if not np.any(a):
+        raise CamlabInputError(f"{name}: expected a non-zero (3, 3) fundamental matrix, got all zeros")
+    return a
+
+
+def normalize_fundamental(F: ArrayLike) -> np.ndarray:
+    """Scale F to unit Frobenius norm with its largest-magnitude entry positive (compare F's up to scale).
+
+    >>> normalize_fundamental(-2 * np.eye(3)).round(4)
+    array([[0.5774, 0.    , 0.    ],
+           [0.    , 0.5774, 0.    ],
+           [0.    , 0.    , 0.5774]])
+    """
+    a = _check_F(F)
+    a = a / np.linalg.norm(a)
+    k = np.argmax(np.round(np.abs(a), 9))  # ties (e.g. a skew-symmetric F): the first in row-major order
+    return a * np.sign(a.flat[k])
+
+
+def _as_P(cam: "Camera | ArrayLike", name: str) -> np.ndarray:
+    return cam.P if isinstance(cam, Camera) else check_matrix(cam, (3, 4), name)
+
+
+# --------------------------------------------------------------------------- from known cameras
+
+def relative_pose(camera1: Camera, camera2: Camera) -> tuple[np.ndarray, np.ndarray]:
+    r"""Camera 2's pose relative to camera 1: ``(R, t)`` with :math:`X_2 = R X_1 + t`.
+
+    With cam_from_world poses :math:`X_i = R_i X + t_i`:
+    :math:`R = R_2 R_1^\top`, :math:`t = t_2 - R t_1`. The baseline length is
+    :math:`\|t\| = \|C_2 - C_1\|` (metres).
+    """
+    for c, n in ((camera1, "camera1"), (camera2, "camera2")):
+        if not isinstance(c, Camera):
+            raise CamlabInputError(f"{n}: expected a camlab.camera.Camera, got {type(c).__name__}")
+    R = camera2.R @ camera1.R.T
+    return R, camera2.t - R @ camera1.t
+
+
+def essential_matrix(R: ArrayLike, t: ArrayLike) -> np.ndarray:
+    r""":math:`E = [t]_\times R` for the relative pose :math:`X_2 = R X_1 + t`.
+
+    Derivation: :math:`X_2 = R X_1 + t` and :math:`t`, :math:`X_2` and :math:`R X_1` are
+    coplanar (the epipolar plane), so :math:`X_2 \cdot (t \times R X_1) = 0`, i.e.
+    :math:`X_2^\top [t]_\times R X_1 = 0`; dividing by the depths gives
+    :math:`\hat x_2^\top E \hat x_1 = 0` for normalised image points.
+    """
+    return skew(t) @ check_matrix(R, (3, 3), "R")
+
+
+def fundamental_from_cameras(camera1: "Camera | ArrayLike", camera2: "Camera | ArrayLike") -> np.ndarray:
+    r"""The fundamental matrix of two known cameras, unit Frobenius norm.
+
+    Parameters
+    ----------
+    camera1, camera2 : Camera or (3, 4) array_like
+        The cameras (distortion is ignored: F relates *undistorted* pixels), or their
+        projection matrices.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        F with ``x2_h @ F @ x1_h == 0`` for corresponding pixels.
+
+    Notes
+    -----
+    For two :class:`~camlab.camera.Camera` objects,
+    :math:`F = K_2^{-\top} [t]_\times R\, K_1^{-1}` with the relative pose from
+    :func:`relative_pose`. For general projection matrices (H&Z result 9.1),
+
+    .. math:: F = [e']_\times P_2 P_1^+, \qquad e' = P_2 C_1,
+
+    where :math:`C_1` is camera 1's centre (the null vector of :math:`P_1`) and
+    :math:`P_1^+` its pseudo-inverse: :math:`P_1^+ x` is a point on the ray of :math:`x`,
+    its image is :math:`P_2 P_1^+ x`, and the epipolar line joins it to the epipole.
+
+    Raises
+    ------
+    DegenerateError
+        If both cameras have the same centre (no baseline: no epipolar geometry).
+    """
+    if isinstance(camera1, Camera) and isinstance(camera2, Camera):
+        R, t = relative_pose(camera1, camera2)
+        base = np.linalg.norm(t)
+        scale = max(np.linalg.norm(camera1.centre), np.linalg.norm(camera2.centre), 1.0)
+        if base <= 1e-12 * scale:
+            raise DegenerateError(
+                "fundamental_from_cameras: the two cameras have the same centre (baseline 0 m); "
+                "a pure rotation has no epipolar geometry (the images are related by a homography). "
+                "Move one camera"
+            )
+        F = np.linalg.inv(camera2.K).T @ essential_matrix(R, t) @ np.linalg.inv(camera1.K)
+        return normalize_fundamental(F)
+    P1, P2 = _as_P(camera1, "camera1"), _as_P(camera2, "camera2")
+    C1h = camera_centre(P1)  # (4,) homogeneous
+    e2 = P2 @ C1h
+    if np.linalg.norm(e2) <= 1e-12 * np.linalg.norm(P2) * np.linalg.norm(C1h):
+        raise DegenerateError(
+            "fundamental_from_cameras: camera 1's centre projects to 0 in camera 2, so both cameras have "
+            "the same centre (no baseline); move one camera"
+        )
+    return normalize_fundamental(skew(e2) @ P2 @ np.linalg.pinv(P1))
+
+
+def essential_from_fundamental(F: ArrayLike, K1: ArrayLike, K2: ArrayLike | None = None) -> np.ndarray:
+    r""":math:`E = K_2^\top F K_1`, projected onto the essential matrices (singular values (1, 1, 0)).
+
+    A true essential matrix has two equal singular values and one zero (H&Z result 9.17);
+    an F estimated from noisy points gives an E that is close, and the closest one in the
+    Frobenius norm replaces the singular values by their mean.
+    """
+    F = _check_F(F)
+    K1 = check_matrix(K1, (3, 3), "K1")
+    K2 = K1 if K2 is None else check_matrix(K2, (3, 3), "K2")
+    U, s, Vt = np.linalg.svd(K2.T @ F @ K1)
+    return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
+
+
+def fundamental_from_essential(E: ArrayLike, K1: ArrayLike, K2: ArrayLike | None = None) -> np.ndarray:
+    r""":math:`F = K_2^{-\top} E K_1^{-1}`, unit Frobenius norm."""
+    E = check_matrix(E, (3, 3), "E")
+    K1 = check_matrix(K1, (3, 3), "K1")
+    K2 = K1 if K2 is None else check_matrix(K2, (3, 3), "K2")
+    return normalize_fundamental(np.linalg.inv(K2).T @ E @ np.linalg.inv(K1))
+
+
+# --------------------------------------------------------------------------- epipoles and lines
+
+class Epipoles(NamedTuple):
+    """Homogeneous epipoles, unit norm: ``e1`` in image 1 (F e1 = 0), ``e2`` in image 2 (F^T e2 = 0).
+
+    An epipole with third coordinate 0 is an ideal point: the epipolar lines are parallel
+    (the baseline is parallel to that image plane). ``from_homogeneous`` gives its pixel
+    (NaN when ideal).
+    """
+
+    e1: np.ndarray
+    e2: np.ndarray
+
+
+def epipoles(F: ArrayLike) -> Epipoles:
+    r"""The epipoles: the right and left null vectors of F (last singular vectors).
+
+    ``e1`` is the image of camera 2's centre in image 1 and ``e2`` the image of camera 1's
+    centre in image 2. Signs are chosen so the last non-zero coordinate is positive.
+
+    >>> F = np.array([[0, 0, 0], [0, 0, -1], [0, 1, 0]])  # a pure x-translation: rows match
+    >>> epipoles(F).e1
+    array([1., 0., 0.])
+    """
+    F = _check_F(F)
+    U, s, Vt = np.linalg.svd(F)
+    out = []
+    for e in (Vt[-1], U[:, -1]):
+        nz = np.flatnonzero(np.abs(e) > 1e-12)
+        out.append(e * np.sign(e[nz[-1]]) if len(nz) else e)
+    return Epipoles(*out)
+
+
+def epipolar_lines(F: ArrayLike, points: ArrayLike, image: int = 1) -> np.ndarray:
+    r"""Epipolar lines in the *other* image for points in image ``image``.
+
+    Parameters
+    ----------
+    F : (3, 3) array_like
+        Fundamental matrix with ``x2_h @ F @ x1_h == 0``.
+    points : (N, 2) or (2,) array_like
+        Pixels (u, v) in image ``image``.
+    image : {1, 2}
+        1: points are in image 1, lines :math:`l' = F \tilde x` are in image 2;
+        2: points are in image 2, lines :math:`l = F^\top \tilde x'` are in image 1.
+
+    Returns
+    -------
+    (N, 3) or (3,) ndarray
+        Lines (a, b, c) with :math:`a^2 + b^2 = 1`, so :math:`a u + b v + c` is the signed
+        distance in pixels of (u, v) from the line.
+
+    >>> F = np.array([[0, 0, 0], [0, 0, -1], [0, 1, 0]])
+    >>> epipolar_lines(F, [10, 20])  # the row v = 20
+    array([ 0., -1., 20.])
+    """
+    F = _check_F(F)
+    if image not in (1, 2):
+        raise CamlabInputError(f"image: expected 1 or 2 (the image the points are in), got {image!r}")
+    p = as_points(points, 2, "points")
+    M = F if image == 1 else F.T
+    lines = to_homogeneous(p.array) @ M.T
+    if np.any(np.linalg.norm(lines[:, :2], axis=1) == 0):
+        raise DegenerateError("epipolar_lines: a point is the epipole itself, whose epipolar line is undefined")
+    return p.restore(normalize_lines(lines))
+
+
+def epipolar_distance(F: ArrayLike, x1: ArrayLike, x2: ArrayLike) -> np.ndarray:
+    r"""Symmetric epipolar distance per pair, RMS in pixels.
+
+    .. math:: d_i = \sqrt{\tfrac12\left(d(x'_i, F x_i)^2 + d(x_i, F^\top x'_i)^2\right)}
+    """
+    F = _check_F(F)
+    a, b, single = _pairs(x1, x2)
+    d2 = np.sum(to_homogeneous(b) * epipolar_lines(F, a, 1), axis=1)
+    d1 = np.sum(to_homogeneous(a) * epipolar_lines(F, b, 2), axis=1)
+    out = np.sqrt(0.5 * (d1 ** 2 + d2 ** 2))
+    return out[0] if single else out
+
+
+def _sampson_batch(F: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """(B, N) Sampson distances for a stack of B fundamental matrices."""
+    ah, bh = to_homogeneous(a), to_homogeneous(b)
+    Fx = np.einsum("bij,nj->bni", F, ah)      # (B, N, 3): lines in image 2
+    Ftx = np.einsum("bji,nj->bni", F, bh)     # (B, N, 3): lines in image 1
+    alg = np.sum(Fx * bh[None], axis=2)
+    den = Fx[..., 0] ** 2 + Fx[..., 1] ** 2 + Ftx[..., 0] ** 2 + Ftx[..., 1] ** 2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        d = np.abs(alg) / np.sqrt(den)
+    return np.where(np.isfinite(d), d, np.inf)
+
+
+def sampson_distance(F: ArrayLike, x1: ArrayLike, x2: ArrayLike) -> np.ndarray:
+    r"""Sampson distance per pair (pixels): the first-order geometric error of :math:`x'^\top F x = 0`.
+
+    .. math:: d_i = \frac{|\tilde x_i'^\top F \tilde x_i|}
+              {\sqrt{(F\tilde x_i)_1^2 + (F\tilde x_i)_2^2 + (F^\top\tilde x_i')_1^2 + (F^\top\tilde x_i')_2^2}}
+
+    It is the length of the smallest joint correction of (u, v, u', v') that zeroes the
+    linearised constraint (H&Z section 11.4.3), close to the gold-standard reprojection
+    error without triangulating. Compare with OpenCV's inlier thresholds in pixels.
+
+    >>> F = np.array([[0, 0, 0], [0, 0, -1], [0, 1, 0]])
+    >>> sampson_distance(F, [[0, 0]], [[5, 2]])  # 2 px vertical offset, shared by both images
+    array([1.41421356])
+    """
+    F = _check_F(F)
+    a, b, single = _pairs(x1, x2)
+    out = _sampson_batch(F[None], a, b)[0]
+    return out[0] if single else out
+
+
+# --------------------------------------------------------------------------- estimation
+
+def _eight_point_rows(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Rows of the 8-point system A f = 0 (f = F row-major); a, b: (..., N, 2)."""
+    u, v = a[..., 0], a[..., 1]
+    up, vp = b[..., 0], b[..., 1]
+    one = np.ones_like(u)
+    return np.stack([up * u, up * v, up, vp * u, vp * v, vp, u, v, one], axis=-1)
+
+
+def _rank2(F: np.ndarray) -> np.ndarray:
+    """Closest rank-2 matrix (Frobenius) to each F in a (..., 3, 3) stack: zero the smallest singular value."""
+    U, s, Vt = np.linalg.svd(F)
+    s[..., 2] = 0.0
+    return (U * s[..., None, :]) @ Vt
+
+
+def estimate_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, normalize: bool = True,
+                                plane_tol: float = _PLANE_TOL, sampson_iterations: int = 0) -> np.ndarray:
+    r"""Estimate F from N >= 8 point pairs by the normalised 8-point algorithm.
+
+    Derivation (H&Z algorithm 11.1). Each pair gives one linear equation in the nine
+    entries :math:`f` of F (row-major):
+
+    .. math:: \tilde x'^\top F \tilde x = 0 \iff
+              (u'u,\ u'v,\ u',\ v'u,\ v'v,\ v',\ u,\ v,\ 1)\, f = 0 .
+
+    1. Normalise each image's points with a similarity T (centroid to 0, mean distance
+       :math:`\sqrt 2`): pixel coordinates in the hundreds make the columns of A differ by
+       :math:`10^5` in size and the unnormalised solution is poor (Hartley 1997).
+    2. Stack the N rows into A and take :math:`f` = the right singular vector of the
+       smallest singular value (least squares with :math:`\|f\| = 1`).
+    3. Enforce rank 2: replace F by the closest singular matrix, zeroing its smallest
+       singular value, so that all epipolar lines meet in one epipole.
+    4. Undo the normalisation: :math:`F = T'^\top \hat F T`.
+
+    Parameters
+    ----------
+    x1, x2 : (N, 2) array_like
+        Corresponding pixels in image 1 and image 2, N >= 8.
+    normalize : bool
+        Hartley normalisation (step 1). ``False`` shows why it matters.
+    plane_tol : float
+        Pixels. If a single homography maps every ``x1`` to its ``x2`` within this RMS
+        symmetric transfer error, the pairs are degenerate (see Raises).
+    sampson_iterations : int
+        After the linear solution, re-solve this many times with each row of A divided by
+        the Sampson denominator of the current F,
+        :math:`\sqrt{(F\tilde x)_1^2 + (F\tilde x)_2^2 + (F^\top\tilde x')_1^2 + (F^\top\tilde x')_2^2}`,
+        so that the weighted algebraic error becomes the Sampson distance in pixels
+        (iteratively reweighted least squares). The plain 8-point algorithm minimises an
+        algebraic error that over-weights points far from the epipole; this matters when
+        the epipole is far away (a nearly parallel rig). 0 (default) is the classic
+        algorithm; :func:`ransac_fundamental_matrix` uses 10 for its final fit.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        F of rank 2, unit Frobenius norm, ``x2_h @ F @ x1_h ~ 0``.
+
+    Raises
+    ------
+    CamlabInputError
+        Fewer than 8 pairs, or different counts.
+    DegenerateError
+        The 8-point system has more than a one-dimensional null space, or one homography
+        explains all pairs (all world points on one plane, or the camera only rotated): F
+        is then not determined (a 3-parameter family fits exactly). Noisy near-planar
+        scenes pass this test but give an unreliable F; check the residuals.
+
+    Examples
+    --------
+    >>> cam1 = Camera.look_at([0, -3, 0.5], [0, 0, 0.5])
+    >>> cam2 = Camera.look_at([0.4, -3, 0.5], [0, 0, 0.5])
+    >>> X = np.random.default_rng(0).uniform(-0.5, 0.5, (20, 3)) + [0, 0, 0.5]
+    >>> F = estimate_fundamental_matrix(cam1.project(X), cam2.project(X))
+    >>> bool(np.allclose(F, fundamental_from_cameras(cam1, cam2), atol=1e-9))
+    True
+    """
+    a, b, _ = _pairs(x1, x2, min_count=8)
+    if normalize:
+        an, T1 = _normalize_batch(a)
+        bn, T2 = _normalize_batch(b)
+    else:
+        an, bn, T1, T2 = a, b, np.eye(3), np.eye(3)
+    A = _eight_point_rows(an, bn)
+    _, s, Vt = np.linalg.svd(A, full_matrices=len(A) < 9)  # Vt must hold all 9 right singular vectors
+    if s[7] <= _RANK_TOL * s[0]:  # 8 independent rows: a one-dimensional null space
+        raise DegenerateError(
+            f"estimate_fundamental_matrix: the {len(a)} pairs give an 8-point system of rank < 8, so F is not "
+            f"unique; the points are coplanar, collinear or repeated. Use points spread over several depths"
+        )
+    # Only data that a homography could explain within plane_tol px has a nearly 3-dimensional null
+    # space (s[6] tiny); skip the homography fit otherwise (it costs twice the 8-point solve).
+    if plane_tol > 0 and s[6] < 1e-4 * s[0]:
+        try:
+            H = estimate_homography(a, b)
+            plane_err = float(np.sqrt(np.mean(symmetric_transfer_error(H, a, b) ** 2)))
+        except CamlabInputError:
+            plane_err = np.inf
+        if plane_err < plane_tol:
+            raise DegenerateError(
+                f"estimate_fundamental_matrix: one homography maps all {len(a)} points of x1 onto x2 "
+                f"(RMS error {plane_err:.2g} px < plane_tol = {plane_tol} px): the world points are all on one "
+                f"plane (or the camera only rotated), and F is not determined. Add points off that plane"
+            )
+    Fn = _rank2(Vt[-1].reshape(3, 3))
+    ah, bh = to_homogeneous(an), to_homogeneous(bn)
+    for _ in range(int(sampson_iterations)):
+        Fx, Ftx = ah @ Fn.T, bh @ Fn
+        den = np.sqrt(Fx[:, 0] ** 2 + Fx[:, 1] ** 2 + Ftx[:, 0] ** 2 + Ftx[:, 1] ** 2)
+        if not np.all(den > 0):
+            break
+        Fn = _rank2(np.linalg.svd(A / den[:, None], full_matrices=len(A) < 9)[2][-1].reshape(3, 3))
+    return normalize_fundamental(T2.T @ Fn @ T1)
+
+
+class FundamentalRansacResult(NamedTuple):
+    """What :func:`ransac_fundamental_matrix` found.
+
+    Attributes
+    ----------
+    F : (3, 3) ndarray
+        Re-estimated by the normalised 8-point algorithm on all inliers, unit norm.
+    inliers : (N,) bool ndarray
+        Pairs whose Sampson distance under ``F`` is below the threshold.
+    iterations : int
+        8-pair samples drawn.
+    residuals : (N,) ndarray
+        Sampson distance of every pair under ``F``, pixels.
+    """
+
+    F: np.ndarray
+    inliers: np.ndarray
+    iterations: int
+    residuals: np.ndarray
+
+
+def ransac_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, threshold: float = 1.0, confidence: float = 0.999,
+                              max_iters: int = 5000, rng: np.random.Generator | None = None, *,
+                              batch: int = 128) -> FundamentalRansacResult:
+    r"""Robust F from pairs with outliers: RANSAC over 8-point samples, scored by Sampson distance.
+
+    1. Normalise both point sets once (Hartley).
+    2. Draw ``batch`` samples of 8 distinct pairs; solve all their 8-point systems with one
+       batched SVD and enforce rank 2 on each.
+    3. Score every hypothesis on every pair by :func:`sampson_distance` (pixels) and keep
+       the one with most pairs below ``threshold`` (ties: smaller truncated error sum).
+    4. Stop after :math:`k = \log(1-p) / \log(1-w^8)` samples for the best inlier ratio w
+       seen so far, or ``max_iters``.
+    5. Re-estimate F on all inliers (normalised 8-point, then Sampson-weighted
+       iterations, see :func:`estimate_fundamental_matrix`) and recompute the inliers,
+       until the set stops changing (at most 5 times).
+
+    Parameters
+    ----------
+    x1, x2 : (N, 2) array_like
+        Putative matches in pixels, N >= 8.
+    threshold : float
+        Inlier threshold on the Sampson distance, pixels.
+    confidence : float
+        Probability in (0, 1) of having drawn at least one all-inlier sample.
+    max_iters : int
+        Upper bound on samples.
+    rng : np.random.Generator or None
+        Seed it for reproducible results.
+    batch : int
+        Samples solved and scored per vectorised step.
+
+    Raises
+    ------
+    DegenerateError
+        No hypothesis is supported by more than its own 8 pairs, or the inliers are
+        degenerate (see :func:`estimate_fundamental_matrix`).
+    """
+    a, b, _ = _pairs(x1, x2, min_count=8)
+    threshold = check_positive(threshold, "threshold", "pixels")
+    if not 0 < confidence < 1:
+        raise CamlabInputError(f"confidence: expected a probability strictly between 0 and 1, got {confidence!r}")
+    if int(max_iters) < 1:
+        raise CamlabInputError(f"max_iters: expected a positive integer, got {max_iters!r}")
+    rng = np.random.default_rng() if rng is None else rng
+    n = len(a)
+    an, T1 = _normalize_batch(a)
+    bn, T2 = _normalize_batch(b)
+    best = (-1, np.inf, None)
+    needed, drawn = float(max_iters), 0
+    while drawn < min(needed, max_iters):
+        k = int(np.clip(min(needed, max_iters) - drawn, 1, batch))
+        # 8 distinct indices per sample: argsort of random keys, first 8 columns.
+        if n <= 64:
+            idx = np.argsort(rng.random((k, n)), axis=1)[:, :8]
+        else:
+            idx = rng.integers(0, n, size=(k, 8))
+            srt = np.sort(idx, axis=1)
+            idx = idx[np.all(srt[:, 1:] != srt[:, :-1], axis=1)]
+        drawn += k
+        if len(idx) == 0:
+            continue
+        _, s, Vt = np.linalg.svd(_eight_point_rows(an[idx], bn[idx]))
+        ok = s[:, 7] > 1e-8 * s[:, 0]  # rank-deficient samples give no unique F
+        if not ok.any():
+            continue
+        Fs = T2.T @ _rank2(Vt[ok, -1].reshape(-1, 3, 3)) @ T1
+        err = _sampson_batch(Fs, a, b)
+        counts = (err < threshold).sum(axis=1)
+        cost = np.minimum(err, threshold).sum(axis=1)
+        j = int(np.lexsort((cost, -counts))[0])
+        if counts[j] > best[0] or (counts[j] == best[0] and cost[j] < best[1]):
+            best = (int(counts[j]), float(cost[j]), Fs[j])
+            needed = _required_iterations(best[0] / n, confidence, sample_size=8)
+    count, _, F = best
+    if F is None or count <= min(8, n - 1):
+        raise DegenerateError(
+            f"ransac_fundamental_matrix: no hypothesis from {drawn} samples was supported by any pair beyond its "
+            f"own 8 within {threshold} px; the matches may be mostly wrong, or the threshold too small"
+        )
+    inliers = _sampson_batch(F[None], a, b)[0] < threshold
+    for _ in range(5):
+        F = estimate_fundamental_matrix(a[inliers], b[inliers], plane_tol=0, sampson_iterations=10)
+        new = _sampson_batch(F[None], a, b)[0] < threshold
+        if np.array_equal(new, inliers) or new.sum() < 8:
+            break
+        inliers = new
+    res = _sampson_batch(F[None], a, b)[0]
+    return FundamentalRansacResult(normalize_fundamental(F), res < threshold, int(drawn), res)
+
+
+# --------------------------------------------------------------------------- essential matrix and pose
+
+class EssentialDecomposition(NamedTuple):
+    """The four poses an essential matrix allows: ``R`` (4, 3, 3), ``t`` (4, 3) unit vectors.
+
+    Candidates are ``(R_a, t), (R_a, -t), (R_b, t), (R_b, -t)``; only one puts the points in
+    front of both cameras (see :func:`recover_pose`).
+    """
+
+    R: np.ndarray
+    t: np.ndarray
+
+
+def decompose_essential_matrix(E: ArrayLike) -> EssentialDecomposition:
+    r"""The four (R, t) with :math:`E \sim [t]_\times R` (H&Z result 9.19).
+
+    With :math:`E = U\,\mathrm{diag}(1, 1, 0)\,V^\top` (U, V rotations) and
+    :math:`W = \begin{pmatrix}0&-1&0\\1&0&0\\0&0&1\end{pmatrix}`:
+    :math:`R \in \{U W V^\top,\ U W^\top V^\top\}` and :math:`t = \pm u_3` (the last column
+    of U, the left null vector of E: the baseline direction, its length unknown).
+    """
+    E = check_matrix(E, (3, 3), "E")
+    U, s, Vt = np.linalg.svd(E)
+    if s[0] <= 0 or s[1] < 0.5 * s[0] or s[2] > 0.1 * s[0]:
+        raise DegenerateError(
+            f"decompose_essential_matrix: singular values {np.round(s / max(s[0], 1e-300), 4).tolist()} "
+            f"(relative) are far from (1, 1, 0); this is not an essential matrix. Did you pass F instead of "
+            f"K2^T F K1?"
+        )
+    if np.linalg.det(U) < 0:
+        U = -U
+    if np.linalg.det(Vt) < 0:
+        Vt = -Vt
+    W = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    Ra, Rb = U @ W @ Vt, U @ W.T @ Vt
+    t = U[:, 2]
+    return EssentialDecomposition(np.stack([Ra, Ra, Rb, Rb]), np.stack([t, -t, t, -t]))
+
+
+class RelativePose(NamedTuple):
+    """What :func:`recover_pose` chose.
+
+    ``R`` (3, 3), ``t`` (3,) unit: camera 2's pose relative to camera 1 (``X_2 = R X_1 + t``,
+    baseline length unknown: scale t by it); ``points`` (N, 3) triangulated in camera 1's
+    frame (units of the baseline); ``in_front`` (N,) bool: in front of both cameras;
+    ``counts`` (4,): points in front for each candidate of :func:`decompose_essential_matrix`.
+    """
+
+    R: np.ndarray
+    t: np.ndarray
+    points: np.ndarray
+    in_front: np.ndarray
+    counts: np.ndarray
+
+
+def recover_pose(E: ArrayLike, x1: ArrayLike, x2: ArrayLike, K1: ArrayLike, K2: ArrayLike | None = None) -> RelativePose:
+    r"""Pick the one (R, t) of the four from E that puts the points in front of both cameras.
+
+    The cheirality test: triangulate every pair with :math:`P_1 = K_1 [I \mid 0]` and
+    each candidate :math:`P_2 = K_2 [R \mid t]`; a point is valid if its depth is positive
+    in both cameras. Three of the candidates put (almost) every point behind a camera.
+    """
+    K1 = check_matrix(K1, (3, 3), "K1")
+    K2 = K1 if K2 is None else check_matrix(K2, (3, 3), "K2")
+    a, b, _ = _pairs(x1, x2)
+    cands = decompose_essential_matrix(E)
+    P1 = K1 @ np.eye(3, 4)
+    best = None
+    counts = np.zeros(4, dtype=int)
+    for i, (R, t) in enumerate(zip(cands.R, cands.t)):
+        X = triangulate_points(P1, K2 @ np.column_stack([R, t]), a, b)
+        front = (X[:, 2] > 0) & ((X @ R.T + t)[:, 2] > 0)
+        counts[i] = int(front.sum())
+        if best is None or counts[i] > counts[best[0]]:
+            best = (i, X, front)
+    i, X, front = best
+    return RelativePose(cands.R[i], cands.t[i], X, front, counts)
+
+
+# --------------------------------------------------------------------------- triangulation
+
+def reprojection_error(P: "Camera | ArrayLike", points_world: ArrayLike, pixels: ArrayLike) -> np.ndarray:
+    """Distance in pixels between ``pixels`` and the projections of ``points_world`` by P (one per point)."""
+    Pm = _as_P(P, "P")
+    X = as_points(points_world, 3, "points_world").array
+    uv = as_points(pixels, 2, "pixels").array
+    return np.linalg.norm(from_homogeneous(to_homogeneous(X) @ Pm.T) - uv, axis=1)
+
+
+def _refine_points(Ps: list[np.ndarray], uvs: list[np.ndarray], X: np.ndarray, iters: int = 10) -> np.ndarray:
+    """Minimise the summed squared reprojection error over each point independently (Gauss-Newton, damped)."""
+    X = X.copy()
+    lam = np.full(len(X), 1e-3)
+
+    def cost_and_terms(X):
+        JtJ = np.zeros((len(X), 3, 3))
+        Jtr = np.zeros((len(X), 3))
+        cost = np.zeros(len(X))
+        for P, uv in zip(Ps, uvs):
+            h = X @ P[:, :3].T + P[:, 3]
+            w = h[:, 2:3]
+            r = h[:, :2] / w - uv
+            # d(h_xy / w)/dX = (P_xy - (h_xy / w) P_w) / w
+            J = (P[None, :2, :3] - (h[:, :2] / w)[:, :, None] * P[None, 2:3, :3]) / w[:, :, None]
+            JtJ += np.einsum("nki,nkj->nij", J, J)
+            Jtr += np.einsum("nki,nk->ni", J, r)
+            cost += np.sum(r * r, axis=1)
+        return cost, JtJ, Jtr
+
+    cost, JtJ, Jtr = cost_and_terms(X)
+    for _ in range(iters):
+        A = JtJ + lam[:, None, None] * np.eye(3) * (np.trace(JtJ, axis1=1, axis2=2)[:, None, None] / 3 + 1e-12)
+        step = np.linalg.solve(A, -Jtr[:, :, None])[:, :, 0]
+        Xn = X + step
+        cn, JtJn, Jtrn = cost_and_terms(Xn)
+        better = np.isfinite(cn) & (cn < cost)
+        X[better], cost[better], JtJ[better], Jtr[better] = Xn[better], cn[better], JtJn[better], Jtrn[better]
+        lam = np.where(better, lam * 0.1, lam * 10.0)
+        if np.all(np.abs(step[better]) < 1e-12 * (1 + np.abs(X[better]))):
+            break
+    return X
+
+
+def triangulate_points(P1: "Camera | ArrayLike", P2: "Camera | ArrayLike", x1: ArrayLike, x2: ArrayLike,
+                       refine: bool = False) -> np.ndarray:
+    r"""World points from their pixels in two cameras: linear (DLT), optionally refined.
+
+    Linear triangulation (H&Z section 12.2). :math:`\tilde x \sim P X` means
+    :math:`\tilde x \times P X = 0`, two independent equations per image:
+
+    .. math::
+        \begin{pmatrix} u\, p^{3\top} - p^{1\top} \\ v\, p^{3\top} - p^{2\top} \\
+        u'\, p'^{3\top} - p'^{1\top} \\ v'\, p'^{3\top} - p'^{2\top} \end{pmatrix} \tilde X = 0,
+
+    solved for each point by the smallest right singular vector of this 4x4 matrix
+    (rows scaled to unit norm for conditioning). It minimises an algebraic error; with
+    ``refine=True`` each point then moves to minimise the geometric error
+    :math:`\|x - \pi(P X)\|^2 + \|x' - \pi(P' X)\|^2` by damped Gauss-Newton (3 unknowns per
+    point, all points at once), the maximum-likelihood estimate under Gaussian pixel noise.
+
+    Parameters
+    ----------
+    P1, P2 : Camera or (3, 4) array_like
+        The two cameras (undistorted pixels).
+    x1, x2 : (N, 2) or (2,) array_like
+        Corresponding pixels.
+    refine : bool
+        Minimise reprojection error after the linear solution.
+
+    Returns
+    -------
+    (N, 3) or (3,) ndarray
+        World points (NaN for points at infinity, e.g. parallel rays).
+
+    >>> cam1 = Camera.look_at([0, -3, 0], [0, 0, 0]); cam2 = Camera.look_at([0.5, -3, 0], [0, 0, 0])
+    >>> X = np.array([0.1, 0.2, -0.1])
+    >>> triangulate_points(cam1, cam2, cam1.project(X), cam2.project(X)).round(9) + 0.0
+    array([ 0.1,  0.2, -0.1])
+    """
+    A1, A2 = _as_P(P1, "P1"), _as_P(P2, "P2")
+    a, b, single = _pairs(x1, x2)
+    rows = np.stack([
+        a[:, 0:1] * A1[2] - A1[0], a[:, 1:2] * A1[2] - A1[1],
+        b[:, 0:1] * A2[2] - A2[0], b[:, 1:2] * A2[2] - A2[1],
+    ], axis=1)  # (N, 4, 4)
+    rows /= np.linalg.norm(rows, axis=2, keepdims=True)
+    _, _, Vt = np.linalg.svd(rows)
+    X = from_homogeneous(Vt[:, -1, :])
+    if refine:
+        ok = np.all(np.isfinite(X), axis=1)
+        X[ok] = _refine_points([A1, A2], [a[ok], b[ok]], X[ok])
+    return X[0] if single else X

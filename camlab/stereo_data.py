@@ -1,0 +1,307 @@
+r"""A rendered stereo rig with full ground truth: ``data/stereo/`` (lesson 11).
+
+``python -m camlab.stereo_data`` rewrites ``data/stereo/`` deterministically from
+:data:`STEREO_PARAMS` with :mod:`camlab.render` (the virtual camera):
+
+``left.jpg``, ``right.jpg``
+    The raw pair, 640 x 480, 8-bit grey, with lens distortion, a slight toe-in, a small
+    vertical offset and roll between the cameras (so rectification has work to do), a
+    little sensor noise, stored as JPEG (quality ``jpeg_quality``) as a camera would: the
+    random textures cost about 225 kB per image as PNG, and all of ``data/`` must stay
+    under 3 MB. The ground truth is exact; the compression noise is part of the matching
+    problem (depth accuracy is tested on these very files). The scene: a textured back wall, three textured planes at
+    different depths (one showing a photograph), and two boxes with noise-textured faces.
+``disparity.png``
+    The true disparity of the *calibrated rectification* of the pair (``alpha = 0``), for
+    every pixel of the rectified left image, stored KITTI-style: uint16 = round(256 d),
+    0 = no surface. Load with :func:`load_stereo_rig`.
+``calib_left_NN.png``, ``calib_right_NN.png``
+    Chessboard views seen by both cameras (9 x 6 inner corners, 25 mm squares), for
+    stereo calibration; noise-free 8-bit (keeps them about 10 kB each; the whole of
+    ``data/`` must stay under 3 MB).
+``truth.json``
+    Both cameras (K, dist, R, t cam_from_world), the rectified cameras, the exact corner
+    pixels of every calibration view in both images, and the generator's parameters.
+``MANIFEST.txt``
+    SHA-256 and size of every file.
+
+Conventions: pixels (u, v) = (column, row), origin at the centre of the top-left pixel;
+world z up, metres; the left camera looks along world +y.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import sys
+from pathlib import Path
+from typing import NamedTuple
+
+import numpy as np
+
+from ._validate import CamlabInputError
+from .camera import Camera, intrinsic_matrix, look_at_rotation, rotation_from_axis_angle
+
+__all__ = ["STEREO_PARAMS", "StereoRig", "load_stereo_rig", "make_stereo_rig", "rig_cameras", "stereo_scene", "main"]
+
+STEREO_PARAMS = {
+    "seed": 11,
+    "image_size": [640, 480],
+    "K_left": [[800.0, 0.0, 321.3], [0.0, 801.5, 238.2], [0.0, 0.0, 1.0]],
+    "K_right": [[806.0, 0.0, 317.9], [0.0, 805.0, 243.6], [0.0, 0.0, 1.0]],
+    "dist_left": [-0.08, 0.03, 0.0004, -0.0003, 0.0],
+    "dist_right": [-0.07, 0.025, -0.0003, 0.0002, 0.0],
+    "left_eye": [-0.06, 0.0, 1.0],
+    "baseline": 0.12,
+    "right_offset": [0.0, 0.004, 0.006],     # extra displacement of the right camera, metres
+    "toe_in": 0.02,                          # radians each camera turns towards the middle
+    "right_roll": 0.01,                      # radians, about the right camera's optical axis
+    "target": [0.0, 3.0, 1.0],
+    "full_well": 20000.0,
+    "read_noise": 1.5,
+    "supersample": 2,
+    "n_calib": 4,
+    "jpeg_quality": 85,
+    "pattern_size": [9, 6],
+    "square": 0.025,
+    "rectify_alpha": 0.0,
+}
+
+
+def _noise_texture(shape: tuple[int, int], seed: int, base: float = 0.5) -> np.ndarray:
+    """Smooth multi-scale random texture in [0, 1] (good for matching at several depths)."""
+    import cv2
+
+    rng = np.random.default_rng(seed)
+    h, w = shape
+    tex = np.zeros((h, w), np.float32)
+    for k, amp in ((4, 0.3), (16, 0.25), (64, 0.25), (256, 0.25), (512, 0.15)):
+        small = rng.normal(0, 1, (max(2, h * k // 512), max(2, w * k // 512))).astype(np.float32)
+        tex += amp * cv2.resize(small, (w, h), interpolation=cv2.INTER_CUBIC)
+    return np.clip(base + 0.5 * tex / 1.2, 0, 1)
+
+
+def _facing(normal_towards: str = "-y") -> np.ndarray:
+    """world_from_plane rotation for a plane whose texture is upright seen from -y (the cameras)."""
+    return np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])
+
+
+def stereo_scene(params: dict = STEREO_PARAMS) -> list:
+    """The planes of the scene (a list of :class:`camlab.render.Plane`), deterministic."""
+    from . import render
+
+    s = int(params["seed"])
+    Rf = _facing()
+    turn = rotation_from_axis_angle([0.0, 0.0, 0.35])  # a plane turned 20 degrees about the vertical
+    scene = [
+        render.textured_plane(_noise_texture((512, 768), s), 6.0, R=Rf, t=(0.0, 4.2, 1.4), height=4.0, name="wall"),
+        render.textured_plane(_noise_texture((384, 384), s + 1, 0.6), 0.9, R=turn @ Rf, t=(-0.75, 2.6, 1.15),
+                              name="panel_far"),
+        render.textured_plane(render.sample_photo("grace_hopper").mean(axis=2), 0.55, R=Rf, t=(0.45, 1.9, 1.2),
+                              name="photo"),
+        render.textured_plane(_noise_texture((256, 256), s + 2, 0.45), 0.35, R=Rf, t=(-0.2, 1.35, 0.9),
+                              name="panel_near"),
+        render.box((0.35, 2.2, 0.55), (0.3, 0.3, 0.3), R=rotation_from_axis_angle([0, 0, 0.5]), rng=s + 3,
+                   name="box_a"),
+        render.box((-0.45, 1.75, 0.62), (0.18, 0.18, 0.25), R=rotation_from_axis_angle([0, 0, -0.4]), rng=s + 4,
+                   name="box_b"),
+    ]
+    return scene
+
+
+def rig_cameras(params: dict = STEREO_PARAMS, distortion: bool = True) -> tuple[Camera, Camera]:
+    """The left and right cameras (cam_from_world), with a small toe-in, offset and roll."""
+    size = tuple(params["image_size"])
+    eye1 = np.array(params["left_eye"], dtype=float)
+    eye2 = eye1 + [params["baseline"], 0.0, 0.0] + np.array(params["right_offset"])
+    target = np.array(params["target"], dtype=float)
+    ahead = target + [eye1[0], 0.0, 0.0]  # straight ahead of the left camera (world +y)
+    R1 = look_at_rotation(eye1, ahead)
+    R2 = look_at_rotation(eye2, ahead + (eye2 - eye1) * [1.0, 0.0, 0.0])
+    # Toe-in: a rotation about the camera's own y axis (pointing down); a negative angle turns
+    # the camera to its right. The left camera turns right, the right one left: they converge.
+    R1 = rotation_from_axis_angle([0.0, -params["toe_in"], 0.0]) @ R1
+    R2 = rotation_from_axis_angle([0.0, 0.0, params["right_roll"]]) @ \
+        rotation_from_axis_angle([0.0, params["toe_in"], 0.0]) @ R2
+    d1 = tuple(params["dist_left"]) if distortion else (0.0,) * 5
+    d2 = tuple(params["dist_right"]) if distortion else (0.0,) * 5
+    c1 = Camera(np.array(params["K_left"]), R1, -R1 @ eye1, d1, size)
+    c2 = Camera(np.array(params["K_right"]), R2, -R2 @ eye2, d2, size)
+    return c1, c2
+
+
+def _calib_poses(params: dict, c1: Camera, c2: Camera):
+    """Board poses (world_from_board R, t) that both cameras see whole."""
+    rng = np.random.default_rng(int(params["seed"]) + 100)
+    cols, rows = params["pattern_size"]
+    sq = params["square"]
+    centre_board = np.array([(cols - 1) * sq / 2, (rows - 1) * sq / 2, 0.0])
+    mid = (c1.centre + c2.centre) / 2
+    out = []
+    while len(out) < int(params["n_calib"]):
+        dist = rng.uniform(0.55, 0.9)
+        aim = mid + dist * np.array([0.0, 1.0, 0.0]) + [rng.uniform(-0.1, 0.1), 0.0, rng.uniform(-0.07, 0.07)]
+        tilt = rotation_from_axis_angle(rng.uniform(-0.45, 0.45, 3) * [1.0, 0.4, 1.0])
+        R = tilt @ _facing()
+        t = aim - R @ centre_board
+        corners = np.array([[0, 0, 0], [(cols - 1) * sq, 0, 0], [0, (rows - 1) * sq, 0],
+                            [(cols - 1) * sq, (rows - 1) * sq, 0]]) @ R.T + t
+        ok = True
+        for c in (c1, c2):
+            uv = c.project(corners)
+            w, h = c.image_size
+            ok &= bool(np.all(np.isfinite(uv)) and np.all(uv > 40) and np.all(uv[:, 0] < w - 40)
+                       and np.all(uv[:, 1] < h - 40))
+        if ok:
+            out.append((R, t))
+    return out
+
+
+class StereoRig(NamedTuple):
+    """The bundled stereo rig: raw images, cameras, true rectified disparity, calibration views."""
+
+    left: np.ndarray              # (480, 640) uint8
+    right: np.ndarray
+    camera1: Camera               # left camera (with distortion)
+    camera2: Camera
+    disparity: np.ndarray         # (480, 640) float, true disparity of the alpha=0 calibrated rectification; NaN = none
+    calib_left: list[np.ndarray]
+    calib_right: list[np.ndarray]
+    calib_corners_left: np.ndarray    # (n, 54, 2) exact pixels
+    calib_corners_right: np.ndarray
+    object_points: np.ndarray     # (54, 3) board frame
+    pattern_size: tuple[int, int]
+    params: dict
+
+
+def _png(path: Path, img: np.ndarray) -> Path:
+    import cv2
+
+    ok, buf = cv2.imencode(".png", img, [cv2.IMWRITE_PNG_COMPRESSION, 9])
+    path.write_bytes(buf.tobytes())
+    return path
+
+
+def _jpg(path: Path, img: np.ndarray, quality: int) -> Path:
+    import cv2
+
+    ok, buf = cv2.imencode(".jpg", img, [cv2.IMWRITE_JPEG_QUALITY, int(quality)])
+    path.write_bytes(buf.tobytes())
+    return path
+
+
+def _camera_json(c: Camera) -> dict:
+    return {"K": np.round(c.K, 12).tolist(), "dist": list(c.dist), "R": np.round(c.R, 12).tolist(),
+            "t": np.round(c.t, 12).tolist(), "image_size": list(c.image_size)}
+
+
+def make_stereo_rig(out_dir: Path | str, params: dict = STEREO_PARAMS) -> list[Path]:
+    """Render the stereo rig into ``out_dir``; return the files written."""
+    from . import render
+    from .rectification import rectify_calibrated
+    from .sensor import NoiseModel
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    c1, c2 = rig_cameras(params)
+    size = tuple(params["image_size"])
+    sensor = render.Sensor(bits=8, noise=NoiseModel(params["full_well"], params["read_noise"]))
+    rng = np.random.default_rng(int(params["seed"]) + 1)
+    scene = stereo_scene(params)
+    files = []
+    for name, c in (("left", c1), ("right", c2)):
+        res = render.render(scene, c.K, size, R=c.R, t=c.t, dist=c.dist, sensor=sensor,
+                            supersample=params["supersample"], rng=rng, color=False)
+        files.append(_jpg(out / f"{name}.jpg", res.image, params["jpeg_quality"]))
+    rect = rectify_calibrated(c1, c2, alpha=params["rectify_alpha"], maps=False)
+    r1 = rect.camera1
+    gt = render.render(scene, r1.K, size, R=r1.R, t=r1.t, supersample=1, depth=True, color=False).truth
+    with np.errstate(divide="ignore", invalid="ignore"):
+        disp = rect.K[0, 0] * rect.baseline / gt.depth
+    enc = np.where(np.isfinite(disp) & (disp > 0), np.clip(np.round(disp * 256), 1, 65535), 0).astype(np.uint16)
+    files.append(_png(out / "disparity.png", enc))
+    cols, rows = params["pattern_size"]
+    # Calibration views without sensor noise (8-bit quantisation only): noisy PNGs are ~15x larger,
+    # and data/ must stay small. Add noise with camlab.sensor.add_noise to study its effect.
+    quiet = render.Sensor(bits=8)
+    views = []
+    for i, (R, t) in enumerate(_calib_poses(params, c1, c2)):
+        board = render.checkerboard((cols, rows), params["square"], R=R, t=t)
+        corners = {}
+        for name, c in (("left", c1), ("right", c2)):
+            res = render.render(board, c.K, size, R=c.R, t=c.t, dist=c.dist, sensor=quiet,
+                                supersample=params["supersample"], color=False)
+            files.append(_png(out / f"calib_{name}_{i:02d}.png", res.image))
+            corners[name] = np.round(res.truth.corners(), 9).tolist()
+        views.append({"left": f"calib_left_{i:02d}.png", "right": f"calib_right_{i:02d}.png",
+                      "R_world_from_board": np.round(R, 12).tolist(), "t_world_from_board": np.round(t, 12).tolist(),
+                      "corners_left": corners["left"], "corners_right": corners["right"]})
+    truth = {
+        "description": "Stereo rig rendered by camlab.render; regenerate with `python -m camlab.stereo_data`.",
+        "generator": "camlab.stereo_data.make_stereo_rig",
+        "params": params,
+        "conventions": "pixels (u, v) = (column, row), origin at the centre of the top-left pixel; X_cam = R X_world + t; "
+                       "dist = (k1, k2, p1, p2, k3); disparity.png = round(256 * d) of the alpha=0 calibrated "
+                       "rectification (camlab.rectification.rectify_calibrated), 0 = no surface",
+        "camera_left": _camera_json(c1), "camera_right": _camera_json(c2),
+        "rectified": {"K": np.round(rect.K, 12).tolist(), "R1": np.round(rect.R1, 12).tolist(),
+                      "R2": np.round(rect.R2, 12).tolist(), "baseline": rect.baseline},
+        "pattern_size": [cols, rows], "square": params["square"],
+        "object_points": np.round(render.checkerboard((cols, rows), params["square"]).object_points, 12).tolist(),
+        "calibration_views": views,
+    }
+    (out / "truth.json").write_text(json.dumps(truth, separators=(",", ":")) + "\n")
+    files.append(out / "truth.json")
+    lines = [f"{hashlib.sha256(p.read_bytes()).hexdigest()}  {p.stat().st_size:>8}  {p.name}" for p in sorted(files)]
+    (out / "MANIFEST.txt").write_text("# sha256  bytes  file   (regenerate with: python -m camlab.stereo_data)\n"
+                                      + "\n".join(lines) + "\n")
+    return files + [out / "MANIFEST.txt"]
+
+
+def _default_dir() -> Path:
+    from .data import data_dir
+
+    return data_dir() / "stereo"
+
+
+def load_stereo_rig(directory: Path | str | None = None) -> StereoRig:
+    """Load ``data/stereo`` (or ``directory``) as a :class:`StereoRig`."""
+    import cv2
+
+    d = Path(directory) if directory is not None else _default_dir()
+    path = d / "truth.json"
+    if not path.exists():
+        raise CamlabInputError(f"directory: no truth.json in {d}; run `python -m camlab.stereo_data` to generate it")
+    truth = json.loads(path.read_text())
+
+    def cam(j):
+        return Camera(np.array(j["K"]), np.array(j["R"]), np.array(j["t"]), tuple(j["dist"]), tuple(j["image_size"]))
+
+    def grey(name):
+        return cv2.imread(str(d / name), cv2.IMREAD_GRAYSCALE)
+
+    disp = cv2.imread(str(d / "disparity.png"), cv2.IMREAD_UNCHANGED).astype(float) / 256.0
+    disp[disp == 0] = np.nan
+    views = truth["calibration_views"]
+    return StereoRig(
+        left=grey("left.jpg"), right=grey("right.jpg"), camera1=cam(truth["camera_left"]),
+        camera2=cam(truth["camera_right"]), disparity=disp,
+        calib_left=[grey(v["left"]) for v in views], calib_right=[grey(v["right"]) for v in views],
+        calib_corners_left=np.array([v["corners_left"] for v in views]),
+        calib_corners_right=np.array([v["corners_right"] for v in views]),
+        object_points=np.array(truth["object_points"]), pattern_size=tuple(truth["pattern_size"]),
+        params=truth["params"],
+    )
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Regenerate ``data/stereo`` (or the directory given as the only argument)."""
+    argv = sys.argv[1:] if argv is None else argv
+    root = Path(argv[0]) if argv else _default_dir()
+    files = make_stereo_rig(root)
+    total = sum(f.stat().st_size for f in files)
+    print(f"wrote {len(files)} files ({total / 1e6:.2f} MB) to {root}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
