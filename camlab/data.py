@@ -173,10 +173,14 @@ def write_manifest(root: Path) -> Path:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Regenerate ``data/`` (or the directory given as the only argument)."""
+    """Regenerate every data set in ``data/`` (or the directory given as the only argument)."""
     argv = sys.argv[1:] if argv is None else argv
     root = Path(argv[0]) if argv else data_dir()
-    files = make_calibration_set(root / "calib_chessboard")
+    from .stereo_data import make_stereo_rig
+    from .stitching_data import make_panorama_set
+
+    files = (make_calibration_set(root / "calib_chessboard") + make_panorama_set(root / "panorama")
+             + make_stereo_rig(root / "stereo"))
     write_manifest(root)
     total = sum(f.stat().st_size for f in files)
     print(f"wrote {len(files)} files ({total / 1e6:.2f} MB) to {root}")

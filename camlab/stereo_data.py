@@ -1,6 +1,6 @@
 r"""A rendered stereo rig with full ground truth: ``data/stereo/`` (lesson 11).
 
-``python -m camlab.stereo_data`` rewrites ``data/stereo/`` deterministically from
+``python -m camlab.data`` rewrites ``data/stereo/`` (with the other data sets) deterministically from
 :data:`STEREO_PARAMS` with :mod:`camlab.render` (the virtual camera):
 
 ``left.jpg``, ``right.jpg``
@@ -8,7 +8,7 @@ r"""A rendered stereo rig with full ground truth: ``data/stereo/`` (lesson 11).
     vertical offset and roll between the cameras (so rectification has work to do), a
     little sensor noise, stored as JPEG (quality ``jpeg_quality``) as a camera would: the
     random textures cost about 225 kB per image as PNG, and all of ``data/`` must stay
-    under 3 MB. The ground truth is exact; the compression noise is part of the matching
+    within its budget (tests/test_data.py). The ground truth is exact; the compression noise is part of the matching
     problem (depth accuracy is tested on these very files). The scene: a textured back wall, three textured planes at
     different depths (one showing a photograph), and two boxes with noise-textured faces.
 ``disparity.png``
@@ -18,26 +18,24 @@ r"""A rendered stereo rig with full ground truth: ``data/stereo/`` (lesson 11).
 ``calib_left_NN.png``, ``calib_right_NN.png``
     Chessboard views seen by both cameras (9 x 6 inner corners, 25 mm squares), for
     stereo calibration; noise-free 8-bit (keeps them about 10 kB each; the whole of
-    ``data/`` must stay under 3 MB).
+    ``data/`` must stay within its budget).
 ``truth.json``
     Both cameras (K, dist, R, t cam_from_world), the rectified cameras, the exact corner
     pixels of every calibration view in both images, and the generator's parameters.
-``MANIFEST.txt``
-    SHA-256 and size of every file.
+``data/MANIFEST.txt`` lists the SHA-256 and size of every file.
 
 Conventions: pixels (u, v) = (column, row), origin at the centre of the top-left pixel;
 world z up, metres; the left camera looks along world +y.
 """
 from __future__ import annotations
 
-import hashlib
 import json
-import sys
 from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
 
+from .data import data_dir
 from ._validate import CamlabInputError
 from .camera import Camera, intrinsic_matrix, look_at_rotation, rotation_from_axis_angle
 
@@ -236,7 +234,7 @@ def make_stereo_rig(out_dir: Path | str, params: dict = STEREO_PARAMS) -> list[P
                       "R_world_from_board": np.round(R, 12).tolist(), "t_world_from_board": np.round(t, 12).tolist(),
                       "corners_left": corners["left"], "corners_right": corners["right"]})
     truth = {
-        "description": "Stereo rig rendered by camlab.render; regenerate with `python -m camlab.stereo_data`.",
+        "description": "Stereo rig rendered by camlab.render; regenerate with `python -m camlab.data`.",
         "generator": "camlab.stereo_data.make_stereo_rig",
         "params": params,
         "conventions": "pixels (u, v) = (column, row), origin at the centre of the top-left pixel; X_cam = R X_world + t; "
@@ -251,26 +249,17 @@ def make_stereo_rig(out_dir: Path | str, params: dict = STEREO_PARAMS) -> list[P
     }
     (out / "truth.json").write_text(json.dumps(truth, separators=(",", ":")) + "\n")
     files.append(out / "truth.json")
-    lines = [f"{hashlib.sha256(p.read_bytes()).hexdigest()}  {p.stat().st_size:>8}  {p.name}" for p in sorted(files)]
-    (out / "MANIFEST.txt").write_text("# sha256  bytes  file   (regenerate with: python -m camlab.stereo_data)\n"
-                                      + "\n".join(lines) + "\n")
-    return files + [out / "MANIFEST.txt"]
-
-
-def _default_dir() -> Path:
-    from .data import data_dir
-
-    return data_dir() / "stereo"
+    return files
 
 
 def load_stereo_rig(directory: Path | str | None = None) -> StereoRig:
     """Load ``data/stereo`` (or ``directory``) as a :class:`StereoRig`."""
     import cv2
 
-    d = Path(directory) if directory is not None else _default_dir()
+    d = Path(directory) if directory is not None else data_dir() / "stereo"
     path = d / "truth.json"
     if not path.exists():
-        raise CamlabInputError(f"directory: no truth.json in {d}; run `python -m camlab.stereo_data` to generate it")
+        raise CamlabInputError(f"directory: no truth.json in {d}; run `python -m camlab.data` to generate it")
     truth = json.loads(path.read_text())
 
     def cam(j):
@@ -291,17 +280,3 @@ def load_stereo_rig(directory: Path | str | None = None) -> StereoRig:
         object_points=np.array(truth["object_points"]), pattern_size=tuple(truth["pattern_size"]),
         params=truth["params"],
     )
-
-
-def main(argv: list[str] | None = None) -> int:
-    """Regenerate ``data/stereo`` (or the directory given as the only argument)."""
-    argv = sys.argv[1:] if argv is None else argv
-    root = Path(argv[0]) if argv else _default_dir()
-    files = make_stereo_rig(root)
-    total = sum(f.stat().st_size for f in files)
-    print(f"wrote {len(files)} files ({total / 1e6:.2f} MB) to {root}")
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

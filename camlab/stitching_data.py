@@ -1,6 +1,6 @@
 r"""The panorama data of lesson 09, rendered by the virtual camera with full ground truth.
 
-``python -m camlab.stitching_data`` writes ``data/panorama/`` (deterministic: the same
+``python -m camlab.data`` writes ``data/panorama/`` (with the other data sets) (deterministic: the same
 bytes on every run with the same library versions):
 
 ``rot_00.jpg`` ... ``rot_03.jpg``
@@ -24,13 +24,13 @@ stitch. Load everything with :func:`load_panorama_set`.
 from __future__ import annotations
 
 import json
-import sys
 from functools import lru_cache
 from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
 
+from .data import data_dir
 from ._validate import CamlabInputError, check_positive
 
 __all__ = ["PANORAMA_PARAMS", "PanoramaSet", "PlanarPair", "load_panorama_set", "load_planar_pair",
@@ -229,7 +229,7 @@ def make_panorama_set(out_dir: Path | str, params: dict = PANORAMA_PARAMS) -> li
     # the poster is the plane z = 1.5 in camera 0's frame: n = (0, 0, 1), d = -1.5 (n . X + d = 0)
     Hp = plane_homography(K, poses[1][0], poses[1][1], (0, 0, 1), -1.5)
     truth = {
-        "description": "Panorama set rendered by camlab.render; regenerate with `python -m camlab.stitching_data`.",
+        "description": "Panorama set rendered by camlab.render; regenerate with `python -m camlab.data`.",
         "generator": "camlab.stitching_data.make_panorama_set",
         "params": params,
         "conventions": "pixels (u, v) = (column, row), origin at the centre of the top-left pixel; R = cam_from_world, "
@@ -253,16 +253,12 @@ def _true_h(K: np.ndarray, views: list, i: int, j: int) -> np.ndarray:
     return rotation_homography(K, np.array(views[i]["R"]) @ np.array(views[j]["R"]).T)
 
 
-def _data_dir() -> Path:
-    return Path(__file__).resolve().parent.parent / "data" / "panorama"
-
-
 def _read(path: Path, scale: float) -> np.ndarray:
     import cv2
 
     img = cv2.imread(str(path), cv2.IMREAD_COLOR)
     if img is None:
-        raise CamlabInputError(f"directory: cannot read {path}; run `python -m camlab.stitching_data` to generate it")
+        raise CamlabInputError(f"directory: cannot read {path}; run `python -m camlab.data` to generate it")
     img = np.ascontiguousarray(img[..., ::-1])
     if scale != 1.0:
         h, w = img.shape[:2]
@@ -271,10 +267,10 @@ def _read(path: Path, scale: float) -> np.ndarray:
 
 
 def _truth(directory) -> tuple[Path, dict]:
-    d = Path(directory) if directory is not None else _data_dir()
+    d = Path(directory) if directory is not None else data_dir() / "panorama"
     path = d / "truth.json"
     if not path.exists():
-        raise CamlabInputError(f"directory: no truth.json in {d}; run `python -m camlab.stitching_data` to generate it")
+        raise CamlabInputError(f"directory: no truth.json in {d}; run `python -m camlab.data` to generate it")
     return d, json.loads(path.read_text())
 
 
@@ -300,17 +296,3 @@ def load_planar_pair(directory: Path | str | None = None, scale: float = 1.0) ->
     S = scale_intrinsics(np.eye(3), scale)
     H = S @ np.array(pp["H_10"]) @ np.linalg.inv(S)
     return PlanarPair(images, scale_intrinsics(np.array(truth["K"]), scale), H / H[2, 2], truth["params"])
-
-
-def main(argv: list[str] | None = None) -> int:
-    """Regenerate ``data/panorama`` (or the directory given as the only argument)."""
-    argv = sys.argv[1:] if argv is None else argv
-    root = Path(argv[0]) if argv else _data_dir()
-    files = make_panorama_set(root)
-    total = sum(f.stat().st_size for f in files)
-    print(f"wrote {len(files)} files ({total / 1e6:.2f} MB) to {root}")
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

@@ -32,10 +32,11 @@ def test_true_disparity_agrees_with_calibrated_rectification():
 
 
 def test_generator_is_deterministic(tmp_path):
-    from camlab.stereo_data import make_stereo_rig, _default_dir
+    from camlab.data import data_dir
+    from camlab.stereo_data import make_stereo_rig
 
     params = dict(STEREO_PARAMS, n_calib=1)
     make_stereo_rig(tmp_path, params)
-    bundled = _default_dir()
+    bundled = data_dir() / "stereo"
     for name in ("left.jpg", "right.jpg", "disparity.png", "calib_left_00.png"):
         assert (tmp_path / name).read_bytes() == (bundled / name).read_bytes(), name

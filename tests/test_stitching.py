@@ -338,7 +338,7 @@ def test_register_pair_too_few_matches(half):
 
 def test_dataset_regenerates_byte_identically(tmp_path):
     sd.make_panorama_set(tmp_path)
-    bundled = sd._data_dir()
+    bundled = sd.data_dir() / "panorama"
     for name in ["rot_00.jpg", "rot_03.jpg", "plane_1.jpg", "truth.json"]:
         assert (tmp_path / name).read_bytes() == (bundled / name).read_bytes(), name
     total = sum(p.stat().st_size for p in bundled.iterdir())
