@@ -12,10 +12,10 @@ import functools
 import importlib
 import pkgutil
 
-from ._core import EXERCISES, Exercise, check, register_exercise, same_up_to_scale, shape_problem
+from ._core import EXERCISES, Exercise, check, register_exercise, same_array, same_up_to_scale, shape_problem
 from ._core import solution as _solution
 
-__all__ = ["EXERCISES", "Exercise", "all_exercises", "check", "register_exercise", "same_up_to_scale",
+__all__ = ["EXERCISES", "Exercise", "all_exercises", "check", "register_exercise", "same_array", "same_up_to_scale",
            "shape_problem", "solution"]
 
 

@@ -102,6 +102,19 @@ def same_up_to_scale(got: Any, expected: np.ndarray, rtol: float = 1e-6) -> bool
     return bool(min(np.linalg.norm(g - e), np.linalg.norm(g + e)) <= rtol)
 
 
+def same_array(rtol: float = 1e-5, atol: float = 1e-8) -> Callable[[Any, Any], bool]:
+    """A comparison for ``Exercise.compare``: same shape and ``np.allclose`` with these tolerances."""
+
+    def compare(got: Any, expected: Any) -> bool:
+        try:
+            g = np.asarray(got, dtype=float)
+        except (TypeError, ValueError):
+            return False
+        return g.shape == np.shape(expected) and bool(np.allclose(g, expected, rtol=rtol, atol=atol))
+
+    return compare
+
+
 def shape_problem(got: Any, expected: np.ndarray) -> str | None:
     """A diagnosis for the commonest mistakes (wrong shape, NaN), or None."""
     g = np.asarray(got, dtype=float) if got is not None else None

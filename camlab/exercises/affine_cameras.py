@@ -5,11 +5,8 @@ import numpy as np
 
 from .. import affine as af
 from .. import camera as cm
-from ._core import Exercise, register_exercise, shape_problem
+from ._core import Exercise, register_exercise, same_array, shape_problem
 
-
-def _close(got, expected) -> bool:
-    return np.shape(got) == np.shape(expected) and bool(np.allclose(got, expected, rtol=1e-7, atol=1e-7))
 
 
 # -- affine_approximation ------------------------------------------------------------------
@@ -63,7 +60,7 @@ register_exercise(Exercise(
     lesson="05",
     reference=af.affine_approximation,
     cases=_approx_cases,
-    compare=_close,
+    compare=same_array(rtol=1e-7, atol=1e-7),
     diagnose=_approx_diagnosis,
     wrong_variants=(
         (_approx_origin_depth, "depth of the world origin"),
@@ -114,7 +111,7 @@ register_exercise(Exercise(
     lesson="05",
     reference=af.estimate_affine_camera,
     cases=_estimate_cases,
-    compare=_close,
+    compare=same_array(rtol=1e-7, atol=1e-7),
     diagnose=_estimate_diagnosis,
     wrong_variants=(
         (_estimate_four_points, "all the points"),

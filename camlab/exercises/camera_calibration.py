@@ -5,12 +5,8 @@ import numpy as np
 
 from .. import calibration, optimize
 from ..camera import rotation_from_axis_angle
-from ._core import Exercise, register_exercise, shape_problem
+from ._core import Exercise, register_exercise, same_array, shape_problem
 
-
-def _close(got, expected, rtol=1e-7, atol=1e-12) -> bool:
-    g = np.asarray(got, dtype=float) if got is not None else None
-    return g is not None and g.shape == np.shape(expected) and bool(np.allclose(g, expected, rtol=rtol, atol=atol))
 
 
 # ------------------------------------------------------------------ V from one homography
@@ -49,7 +45,7 @@ register_exercise(Exercise(
     lesson="08",
     reference=calibration.zhang_constraints,
     cases=_zhang_cases,
-    compare=lambda got, expected: _close(got, expected),
+    compare=same_array(rtol=1e-7, atol=1e-12),
     diagnose=_zhang_diagnosis,
     wrong_variants=(
         (lambda H: calibration.zhang_constraints(H.T), "rows of H"),
@@ -88,7 +84,7 @@ register_exercise(Exercise(
     lesson="08",
     reference=optimize.lm_step,
     cases=_lm_cases,
-    compare=lambda got, expected: _close(got, expected, rtol=1e-8, atol=1e-10),
+    compare=same_array(rtol=1e-8, atol=1e-10),
     diagnose=_lm_diagnosis,
     wrong_variants=(
         (lambda J, r, mu: np.linalg.solve(J.T @ J + mu * np.diag(np.diag(J.T @ J)), J.T @ r), "wrong sign"),
@@ -132,7 +128,7 @@ register_exercise(Exercise(
     lesson="08",
     reference=calibration.nearest_rotation,
     cases=_rotation_cases,
-    compare=lambda got, expected: _close(got, expected, rtol=1e-8, atol=1e-10),
+    compare=same_array(rtol=1e-8, atol=1e-10),
     diagnose=_rotation_diagnosis,
     wrong_variants=(
         (lambda M: (lambda U, S, Vt: U @ Vt)(*np.linalg.svd(M)), "det R = -1"),

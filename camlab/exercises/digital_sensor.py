@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import sensor
-from ._core import Exercise, register_exercise, shape_problem
+from ._core import Exercise, register_exercise, same_array, shape_problem
 
 
 def _quantize_cases():
@@ -96,7 +96,7 @@ register_exercise(Exercise(
     lesson="03",
     reference=sensor.demosaic_bilinear,
     cases=_demosaic_cases,
-    compare=lambda got, exp: np.shape(got) == np.shape(exp) and np.allclose(got, exp, atol=1e-9),
+    compare=same_array(atol=1e-9),
     diagnose=_demosaic_diagnosis,
     wrong_variants=(
         (_zero_padded_demosaic, "border"),

@@ -5,7 +5,7 @@ import numpy as np
 
 from .. import homography as hg
 from ..projective import map_points
-from ._core import Exercise, register_exercise, same_up_to_scale, shape_problem
+from ._core import Exercise, register_exercise, same_array, same_up_to_scale, shape_problem
 
 
 def _dlt_cases():
@@ -88,7 +88,7 @@ register_exercise(Exercise(
     lesson="07",
     reference=map_points,
     cases=_apply_cases,
-    compare=lambda got, expected: np.shape(got) == np.shape(expected) and np.allclose(got, expected, rtol=1e-9, atol=1e-9),
+    compare=same_array(rtol=1e-9, atol=1e-9),
     diagnose=_apply_diagnosis,
     wrong_variants=(
         (lambda H, p: (np.column_stack([p, np.ones(len(p))]) @ H.T)[:, :2], "divide by w"),

@@ -5,7 +5,7 @@ import numpy as np
 
 from .. import stitching as st
 from ..homography import rotation_homography
-from ._core import Exercise, register_exercise
+from ._core import Exercise, register_exercise, same_array
 
 
 # ----------------------------------------------------------------------------- canvas bounds
@@ -62,7 +62,7 @@ register_exercise(Exercise(
     lesson="09",
     reference=st.canvas_box,
     cases=_canvas_cases,
-    compare=lambda got, expected: np.shape(got) == (2, 2) and np.allclose(got, expected, atol=1e-9),
+    compare=same_array(atol=1e-9),
     diagnose=_canvas_diagnosis,
     wrong_variants=(
         (lambda Hs, shapes: st.canvas_box(Hs, shapes)[:, ::-1], "(u, v)"),
@@ -101,7 +101,7 @@ register_exercise(Exercise(
     lesson="09",
     reference=st.feather_weights,
     cases=_feather_cases,
-    compare=lambda got, expected: np.shape(got) == expected.shape and np.allclose(got, expected, atol=1e-9),
+    compare=same_array(atol=1e-9),
     diagnose=_feather_diagnosis,
     wrong_variants=(
         (lambda shape: st.feather_weights(shape) - 0.5, "half a pixel"),

@@ -5,7 +5,7 @@ import numpy as np
 
 from .. import distortion, lens
 from ._numbers import is_number as _is_number
-from ._core import Exercise, register_exercise, shape_problem
+from ._core import Exercise, register_exercise, same_array, shape_problem
 
 
 def _thin_lens_cases():
@@ -76,7 +76,7 @@ register_exercise(Exercise(
     lesson="02",
     reference=distortion.distort_points,
     cases=_distort_cases,
-    compare=lambda got, exp: np.shape(got) == np.shape(exp) and np.allclose(got, exp, rtol=0, atol=1e-12),
+    compare=same_array(rtol=0, atol=1e-12),
     diagnose=_distort_diagnosis,
     wrong_variants=(
         (lambda x, d: distortion.distort_points(x, [d[0], d[1], d[3], d[2], d[4]]), "p1 and p2 are swapped"),

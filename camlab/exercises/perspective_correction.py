@@ -6,7 +6,7 @@ import numpy as np
 from .. import perspective as pp
 from ..homography import estimate_homography
 from ..projective import map_points
-from ._core import Exercise, register_exercise, same_up_to_scale, shape_problem
+from ._core import Exercise, register_exercise, same_array, same_up_to_scale, shape_problem
 
 
 def _rect_cases():
@@ -79,7 +79,7 @@ register_exercise(Exercise(
     lesson="10",
     reference=pp.order_corners,
     cases=_order_cases,
-    compare=lambda got, expected: np.shape(got) == np.shape(expected) and np.allclose(got, expected),
+    compare=same_array(),
     diagnose=_order_diagnosis,
     wrong_variants=(
         (lambda c: np.roll(pp.order_corners(c), 1, axis=0), "does not start at the top-left"),

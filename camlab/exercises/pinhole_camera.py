@@ -5,7 +5,7 @@ import numpy as np
 
 from .. import pinhole
 from ._numbers import is_number as _is_number
-from ._core import Exercise, register_exercise, shape_problem
+from ._core import Exercise, register_exercise, same_array, shape_problem
 
 
 def _projection_cases():
@@ -38,7 +38,7 @@ register_exercise(Exercise(
     lesson="01",
     reference=pinhole.project_pinhole,
     cases=_projection_cases,
-    compare=lambda got, exp: np.shape(got) == np.shape(exp) and np.allclose(got, exp, rtol=1e-9, atol=1e-12),
+    compare=same_array(rtol=1e-9, atol=1e-12),
     diagnose=_projection_diagnosis,
     wrong_variants=(
         (lambda X, f: -f * X[:, :2] / X[:, 2:3], "inverted"),

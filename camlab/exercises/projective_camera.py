@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import camera as cm
-from ._core import Exercise, register_exercise, same_up_to_scale, shape_problem
+from ._core import Exercise, register_exercise, same_array, same_up_to_scale, shape_problem
 
 
 def _cameras():
@@ -52,7 +52,7 @@ register_exercise(Exercise(
     lesson="04",
     reference=cm.project_points,
     cases=_project_cases,
-    compare=lambda got, exp: np.shape(got) == np.shape(exp) and bool(np.allclose(got, exp, rtol=1e-8, atol=1e-6)),
+    compare=same_array(rtol=1e-8, atol=1e-6),
     diagnose=_project_diagnosis,
     wrong_variants=(
         (lambda P, X: (np.hstack([X, np.ones((len(X), 1))]) @ P.T)[:, :2], "without dividing"),

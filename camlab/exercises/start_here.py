@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import projective
-from ._core import Exercise, register_exercise, shape_problem
+from ._core import Exercise, register_exercise, same_array, shape_problem
 
 
 def _diagnose(args, got, expected) -> str:
@@ -24,7 +24,7 @@ register_exercise(Exercise(
     lesson="00",
     reference=projective.to_homogeneous,
     cases=lambda: [(np.array([3.0, 4.0]),), (np.array([-1.5, 0.0]),), (np.array([640.0, 480.0]),)],
-    compare=lambda got, expected: np.shape(got) == np.shape(expected) and np.allclose(got, expected),
+    compare=same_array(),
     diagnose=_diagnose,
     wrong_variants=(
         (lambda p: np.append(p, 0.0), "ideal point"),

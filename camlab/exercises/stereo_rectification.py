@@ -6,7 +6,7 @@ import numpy as np
 from .. import disparity, epipolar
 from ..camera import Camera
 from ..homography import hartley_normalization
-from ._core import Exercise, register_exercise, same_up_to_scale, shape_problem
+from ._core import Exercise, register_exercise, same_array, same_up_to_scale, shape_problem
 
 
 def _rig_points(seed: int, noise: float, n: int = 24, baseline=(0.3, 0.02, 0.01)):
@@ -148,7 +148,7 @@ register_exercise(Exercise(
     lesson="11",
     reference=disparity.disparity_to_depth,
     cases=_depth_cases,
-    compare=lambda got, expected: np.shape(got) == np.shape(expected) and np.allclose(got, expected, rtol=1e-9),
+    compare=same_array(rtol=1e-9),
     diagnose=_depth_diagnosis,
     wrong_variants=(
         (lambda d, f, B: f * d / B, "Z = f B / d"),
