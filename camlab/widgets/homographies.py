@@ -14,6 +14,7 @@ import numpy as np
 
 from .. import homography as hg
 from ..projective import cross_ratio, map_points
+from ..robust import required_iterations
 from ..warp import forward_warp, warp_perspective
 from ._base import Demo, FigureView, build_demo, register, slider
 
@@ -278,7 +279,7 @@ def ransac_outliers() -> Demo:
     box_est = view.animate(ax.plot([], [], "--", color="tab:blue", lw=2, label="RANSAC H")[0])
     ax.legend(loc="lower right", fontsize=8)
     w = np.linspace(0.0, 0.9, 200)
-    ax_k.semilogy(w, [hg._required_iterations(1 - x, 0.995) for x in w], color="0.5",
+    ax_k.semilogy(w, [required_iterations(1 - x, 0.995, 4) for x in w], color="0.5",
                   label="k = log(1-p) / log(1-(1-ε)^4)")
     dot = view.animate(ax_k.plot([], [], "o", color="tab:blue", label="iterations drawn")[0])
     ax_k.set(xlabel="outlier fraction ε", ylabel="samples", ylim=(1, 5000), title="adaptive iteration count")
