@@ -132,7 +132,7 @@ def hierarchy_matrix(group: str, theta: float, scale: float, shear: float, aspec
 
 
 @register(lesson="07", sweep={"group": list(_GROUPS), "theta": [-30.0, 20.0], "shear": [0.0, 40.0],
-                              "v1": [0.0, 2.0, 14.0], "tx": [-20.0, 30.0]}, target_ms=60.0)
+                              "v1": [0.0, 2.0, 14.0], "tx": [-20.0, 30.0]})
 def transformation_hierarchy() -> Demo:
     """Euclidean, similarity, affine, projective: sliders for each group acting on a picture."""
     pic = picture()
@@ -204,7 +204,7 @@ _DRAG_START = np.array([[40.0, 30.0], [250.0, 60.0], [230.0, 200.0], [60.0, 230.
     format_corners(_DRAG_START),
     "20.0, 20.0; 280.0, 20.0; 280.0, 230.0; 20.0, 230.0",
     "100.0, 40.0; 200.0, 40.0; 280.0, 230.0; 20.0, 230.0",
-]}, target_ms=60.0)
+]})
 def drag_homography() -> Demo:
     """Drag the four target corners: lines stay lines and the cross-ratio stays fixed,
     while lengths, angles and ratios of lengths change."""
@@ -379,7 +379,7 @@ def ransac_outliers() -> Demo:
 
 # ----------------------------------------------------------------------------- forward vs inverse
 
-@register(lesson="07", sweep={"scale": [0.6, 1.5, 2.8], "angle": [0.0, 25.0]}, target_ms=60.0)
+@register(lesson="07", sweep={"scale": [0.6, 1.5, 2.8], "angle": [0.0, 25.0]})
 def forward_vs_inverse() -> Demo:
     """Forward mapping leaves holes where H magnifies; inverse mapping never does."""
     pic = picture(60, 80)

@@ -223,8 +223,7 @@ def epipolar_lines() -> Demo:
 
 # --------------------------------------------------------------------------- demo 2: rectification
 
-@register(lesson="11", sweep={"alpha": [0.5, 1.0], "method": ["original", "calibrated", "uncalibrated"]},
-          target_ms=100.0)
+@register(lesson="11", sweep={"alpha": [0.5, 1.0], "method": ["original", "calibrated", "uncalibrated"]})
 def rectify_pair() -> Demo:
     """The rendered pair before and after rectification, with a row grid and the true matches.
 
@@ -331,8 +330,7 @@ def _match(method: str, block: int) -> np.ndarray:
     return dp.sgbm_disparity(L, R, max_disparity=44, block_size=block, min_disparity=8)
 
 
-@register(lesson="11", sweep={"block_size": [3, 7, 15], "method": ["block matching (numpy)", "SGBM (OpenCV)"]},
-          target_ms=100.0)
+@register(lesson="11", sweep={"block_size": [3, 7, 15], "method": ["block matching (numpy)", "SGBM (OpenCV)"]})
 def disparity_depth() -> Demo:
     """Disparity by block matching (numpy) or SGBM, its depth error, and the 3-D points.
 

@@ -43,11 +43,11 @@ from typing import NamedTuple, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from . import features as _feat
-from . import homography as _hg
-from ._validate import CamlabInputError, DegenerateError
-from .projective import map_points
-from .warp import canvas_bounds, warp_perspective
+from .. import features as _feat
+from .. import homography as _hg
+from .._validate import CamlabInputError, DegenerateError
+from ..projective import map_points
+from ..warp import canvas_bounds, warp_perspective
 
 __all__ = ["BLENDS", "MatchGraph", "PairRegistration", "PairReport", "StitchResult", "WarpedImages", "blend",
            "canvas_box", "cylindrical_warp", "feather_weights", "gain_compensation", "laplacian_blend", "match_graph",
