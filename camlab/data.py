@@ -11,6 +11,11 @@ checks that. Assets:
     parameters and the ground truth (K, dist, each view's pose and exact corner pixels).
 
 Load with :func:`load_calibration_set`.
+
+``data/photos/``
+    A few real photographs from the MIT-licensed mvtb-data package (a chessboard set, facades,
+    a street, a sign on a wall, stereo pairs), downscaled; shipped, not generated, and listed
+    with their source in ``data/photos/ATTRIBUTION.md``. Load with :func:`load_photo`.
 """
 from __future__ import annotations
 
@@ -24,7 +29,8 @@ import numpy as np
 
 from ._validate import CamlabInputError
 
-__all__ = ["CalibrationSet", "CALIBRATION_PARAMS", "data_dir", "load_calibration_set", "make_calibration_set", "main"]
+__all__ = ["CalibrationSet", "CALIBRATION_PARAMS", "data_dir", "load_calibration_set", "load_photo", "make_calibration_set", "main",
+           "photo_names"]
 
 CALIBRATION_PARAMS = {
     "seed": 2026,
@@ -161,11 +167,44 @@ def load_calibration_set(directory: Path | str | None = None) -> CalibrationSet:
     )
 
 
+PHOTO_SUFFIXES = (".jpg", ".png")
+
+
+def photo_names() -> list[str]:
+    """Names of the shipped real photographs (``data/photos/``), without extension, sorted."""
+    return sorted(p.stem for p in (data_dir() / "photos").iterdir() if p.suffix in PHOTO_SUFFIXES)
+
+
+def load_photo(name: str, gray: bool = False) -> np.ndarray:
+    """Load a shipped real photograph by name.
+
+    Parameters
+    ----------
+    name : str
+        One of :func:`photo_names`, e.g. ``"calib_left01"``, ``"street"``, ``"walls_left"``.
+    gray : bool
+        Return a single-channel image instead of RGB.
+
+    Returns
+    -------
+    (H, W, 3) or (H, W) uint8 ndarray
+        RGB (not OpenCV's BGR) or grey, indexed ``img[v, u]``.
+    """
+    import cv2
+
+    names = photo_names()
+    if not isinstance(name, str) or name not in names:
+        raise CamlabInputError(f"name: expected one of {names}, got {name!r}")
+    path = next(p for p in (data_dir() / "photos").iterdir() if p.stem == name and p.suffix in PHOTO_SUFFIXES)
+    image = cv2.imread(str(path), cv2.IMREAD_GRAYSCALE if gray else cv2.IMREAD_COLOR)
+    return image if gray else cv2.cvtColor(image, cv2.COLOR_BGR2RGB)
+
+
 def write_manifest(root: Path) -> Path:
-    """``data/MANIFEST.txt``: every file with its size and SHA-256."""
+    """``data/MANIFEST.txt``: every generated file with its size and SHA-256 (not the shipped photos)."""
     lines = []
     for p in sorted(root.rglob("*")):
-        if p.is_file() and p.name != "MANIFEST.txt":
+        if p.is_file() and p.name != "MANIFEST.txt" and "photos" not in p.relative_to(root).parts:
             lines.append(f"{hashlib.sha256(p.read_bytes()).hexdigest()}  {p.stat().st_size:>8}  {p.relative_to(root)}")
     path = root / "MANIFEST.txt"
     path.write_text("# sha256  bytes  path   (regenerate everything with: python -m camlab.data)\n" + "\n".join(lines) + "\n")
