@@ -18,7 +18,7 @@ $(VENV)/.installed-lab: pyproject.toml | $(BIN)/python
 	touch $@
 
 $(VENV)/.installed-test: pyproject.toml | $(BIN)/python
-	$(BIN)/python -m pip install --quiet -e ".[test]"
+	$(BIN)/python -m pip install --quiet -e ".[test,class]"
 	touch $(VENV)/.installed-lab $@
 
 lab: $(VENV)/.installed-lab
