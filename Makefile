@@ -7,7 +7,7 @@ BIN    := $(VENV)/bin
 LAB_ARGS ?=
 PYTEST_ARGS ?=
 
-.PHONY: lab test test-fast bench strip browser-deps clean
+.PHONY: lab test test-fast bench strip browser-deps clean present
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -51,3 +51,8 @@ strip: $(VENV)/.installed-lab
 
 clean:
 	rm -rf $(VENV) build *.egg-info
+
+# Teaching a class (docs/teaching.md). Lecture mode: one lesson's demos without code, in Voila.
+LESSON ?= 00
+present: $(VENV)/.installed-test
+	$(BIN)/camlab present $(LESSON)
