@@ -16,7 +16,7 @@ from .. import disparity as dp
 from .. import epipolar as ep
 from .. import rectification as rc
 from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
-from ..plotting.plane import arrow_to_infinity, image_axes
+from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes
 from ._base import Demo, FigureView, build_demo, register, slider
 
 SIZE = (640, 480)
@@ -171,7 +171,7 @@ def epipolar_lines() -> Demo:
         shaft.set_data([tail[0], xy[0]], [tail[1], xy[1]])
         head.set_data([xy[0]], [xy[1]])
         # a triangle marker rotated to point along the direction (v grows downwards on screen)
-        head.set_marker((3, 0, np.degrees(np.arctan2(-direction[1], direction[0])) - 90))
+        head.set_marker(arrow_marker(direction, ax))
 
     def update(v, state):
         c1, c2 = rig_pair(v["baseline"], np.deg2rad(v["toe_in"]))
