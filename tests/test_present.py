@@ -12,7 +12,9 @@ import pytest
 
 from camlab.classroom.lessons import find_lesson, lesson_files
 from camlab.classroom.present import is_demo_cell, presentation_notebook
-from test_browser import CHROMIUM, CHROMIUM_ARGS, _free_port
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tools"))
+import browser  # noqa: E402
 
 
 def _lesson(spec: str) -> dict:
@@ -52,7 +54,9 @@ def test_camlab_present_serves_demos_without_code_and_a_slider_moves_a_figure(tm
         pytest.skip("CAMLAB_SKIP_BROWSER=1")
     from playwright.sync_api import sync_playwright
 
-    port = _free_port()
+    if not Path(browser.CHROMIUM).exists():
+        pytest.fail("Debian chromium is not installed: `apt-get install chromium` (make test does this as root)")
+    port = browser.free_port()
     env = dict(os.environ, JUPYTER_CONFIG_DIR=str(tmp_path / "config"), JUPYTER_RUNTIME_DIR=str(tmp_path / "runtime"),
                MPLBACKEND="module://ipympl.backend_nbagg")
     env.pop("CAMLAB_FIGURE_MODE", None)
@@ -72,9 +76,7 @@ def test_camlab_present_serves_demos_without_code_and_a_slider_moves_a_figure(tm
                 pytest.fail("voila did not start:\n" + (tmp_path / "voila.log").read_text(errors="replace")[-3000:])
             time.sleep(0.5)
         with sync_playwright() as p:
-            context = p.chromium.launch_persistent_context(
-                str(tmp_path / "chromium"), executable_path=CHROMIUM, headless=True, args=CHROMIUM_ARGS,
-                viewport={"width": 1600, "height": 1000})
+            context = browser.launch(p, tmp_path / "chromium")
             try:
                 page = context.new_page()
                 page.set_default_timeout(120_000)
