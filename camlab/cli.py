@@ -74,8 +74,36 @@ def _run_calibrate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _add_assignments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("dest", help="a new (or empty) folder for the nbgrader course directory")
+    p.add_argument("lessons", nargs="*", metavar="LESSON", help="lesson numbers or names, e.g. 06 07 (default: all)")
+
+
+def _run_assignments(args: argparse.Namespace) -> int:
+    from .classroom.assignments import write_course
+
+    for stem, names in write_course(args.dest, args.lessons).items():
+        print(f"{args.dest}/source/{stem}/{stem}.ipynb: exercises graded: {len(names)} ({', '.join(names)})")
+    print(f"next: cd {args.dest} && nbgrader generate_assignment <lesson>   (see docs/teaching.md)")
+    return 0
+
+
+def _add_present(p: argparse.ArgumentParser) -> None:
+    p.add_argument("lesson", help="lesson number or name, e.g. 07")
+    p.add_argument("--port", type=int, default=8866, help="port on 127.0.0.1 (default 8866)")
+    p.add_argument("--no-browser", action="store_true", help="do not open a browser")
+
+
+def _run_present(args: argparse.Namespace) -> int:
+    from .classroom.present import serve
+
+    return serve(args.lesson, port=args.port, open_browser=not args.no_browser)
+
+
 COMMANDS: dict[str, tuple[str, Callable[[argparse.ArgumentParser], None], Callable[[argparse.Namespace], int]]] = {
     "calibrate": ("calibrate a camera from photos of a chessboard", _add_calibrate, _run_calibrate),
+    "present": ("lecture mode: serve one lesson's demos without code (Voila)", _add_present, _run_present),
+    "assignments": ("write an nbgrader course directory of graded lessons", _add_assignments, _run_assignments),
 }
 
 
