@@ -10,8 +10,8 @@ import numpy as np
 from .. import lens as _lens
 from .. import pinhole as _pinhole
 
-__all__ = ["box_edges", "draw_pinhole_3d", "update_pinhole_3d", "draw_thin_lens", "update_thin_lens",
-           "draw_pinhole_blur", "update_pinhole_blur"]
+__all__ = ["box_edges", "draw_pinhole_3d", "update_pinhole_3d", "draw_similar_triangles", "update_similar_triangles",
+           "draw_thin_lens", "update_thin_lens", "draw_pinhole_blur", "update_pinhole_blur"]
 
 _EDGES = [(0, 1), (1, 3), (3, 2), (2, 0), (4, 5), (5, 7), (7, 6), (6, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
 
@@ -77,6 +77,77 @@ def update_pinhole_3d(art: dict, edges: np.ndarray, f_draw: float) -> None:
     corners = np.unique(edges.reshape(-1, 3), axis=0)
     ends = -corners * f_draw / corners[:, 2:3]  # through the pinhole to the real plane
     art["rays"].set_data_3d(*_polyline(np.stack([corners, ends], axis=1)))
+
+
+def _dimension(ax, color: str) -> dict:
+    """A dimension line (double arrow) with a label, drawn empty; :func:`_set_dimension` places it."""
+    arrow = ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="<->", color=color, lw=1.2,
+                                                                       shrinkA=0, shrinkB=0))
+    label = ax.text(0, 0, "", color=color, fontsize=10, ha="center", va="center",
+                    bbox=dict(fc="white", ec="none", alpha=0.8, pad=1))
+    return {"arrow": arrow, "label": label}
+
+
+def _set_dimension(dim: dict, a, b, text: str, offset=(0.0, 0.0), ha: str = "center") -> None:
+    dim["arrow"].xy, dim["arrow"].xyann = tuple(b), tuple(a)
+    dim["label"].set_position(((a[0] + b[0]) / 2 + offset[0], (a[1] + b[1]) / 2 + offset[1]))
+    dim["label"].set_text(text)
+    dim["label"].set_horizontalalignment(ha)
+
+
+def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
+    """A 2-D side view of pinhole projection: depth z to the right, height (-y, up) upwards.
+
+    The pinhole sits at the origin, the real image plane at z = -f and the virtual one at
+    z = +f. Two shaded similar triangles share the ray through the hole: (0, 0)-(Z, 0)-(Z, Y)
+    and (0, 0)-(f, 0)-(f, y); dimension lines label f, Z, Y and y.
+    """
+    ax.axhline(0, color="0.6", lw=0.8, zorder=0)
+    ax.plot([0], [0], "ko", ms=5, zorder=5)
+    ax.annotate("pinhole", (0, 0), xytext=(-6, 6), textcoords="offset points", ha="right", va="bottom", fontsize=9)
+    art = {
+        "big": ax.fill([0, 1, 1], [0, 0, 1], color="tab:blue", alpha=0.15, lw=0)[0],
+        "small": ax.fill([0, 1, 1], [0, 0, 1], color="tab:green", alpha=0.35, lw=0)[0],
+        "object": ax.plot([], [], color="tab:blue", lw=3, solid_capstyle="butt")[0],
+        "point": ax.plot([], [], "o", color="tab:blue", ms=8)[0],
+        "ray": ax.plot([], [], color="tab:orange", lw=1.5)[0],
+        "planes": ax.plot([], [], color="0.3", lw=1, ls="--")[0],
+        "virtual": ax.plot([], [], color="tab:green", lw=3, solid_capstyle="butt")[0],
+        "real": ax.plot([], [], color="tab:red", lw=3, solid_capstyle="butt")[0],
+        "dims": {k: _dimension(ax, c) for k, c in (("f", "k"), ("Z", "k"), ("Y", "tab:blue"), ("y", "tab:green"),
+                                                    ("y_real", "tab:red"))},
+    }
+    ax.set_xlim(-0.3 * z_max, 1.08 * z_max)
+    ax.set_ylim(-h_max, h_max)
+    ax.set_aspect("equal")  # similar triangles look similar only at equal scales
+    ax.set_xlabel("depth z (m)")
+    ax.set_ylabel("height -y, up (m)")
+    return art
+
+
+def update_similar_triangles(art: dict, f: float, Z: float, Y: float) -> float:
+    """Redraw for focal length ``f``, object depth ``Z`` and height ``Y`` (metres, up positive); returns y."""
+    y = f * Y / Z
+    art["big"].set_xy([[0, 0], [Z, 0], [Z, Y]])
+    art["small"].set_xy([[0, 0], [f, 0], [f, y]])
+    art["object"].set_data([Z, Z], [0, Y])
+    art["point"].set_data([Z], [Y])
+    art["ray"].set_data([-f, Z], [-y, Y])
+    h = art["planes"].axes.get_ylim()[1] * 0.9
+    art["planes"].set_data([-f, -f, np.nan, f, f], [-h, h, np.nan, -h, h])
+    art["virtual"].set_data([f, f], [0, y])
+    art["real"].set_data([-f, -f], [0, -y])
+    below = -0.12 * h if Y >= 0 else 0.12 * h  # dimension lines go on the side away from the object
+    d = art["dims"]
+    _set_dimension(d["Z"], (0, 3 * below), (Z, 3 * below), f"Z = {Z:.2f} m")
+    _set_dimension(d["f"], (0, below), (f, below), f"f = {f:.2f} m", offset=(0, below))
+    _set_dimension(d["Y"], (Z + 0.1, 0), (Z + 0.1, Y), f" Y = {Y:+.2f} m", offset=(0.05, 0), ha="left")
+    room = Z - f > 1.3  # else y's label would sit on Y's: put it left of the plane
+    _set_dimension(d["y"], (f + 0.06, 0), (f + 0.06, y), f" y = {y * 100:+.1f} cm ",
+                   offset=(0.05 if room else -0.17, 0), ha="left" if room else "right")
+    _set_dimension(d["y_real"], (-f - 0.06, 0), (-f - 0.06, -y), f"real\n{-y * 100:+.1f} cm",
+                   offset=(-0.05, 0), ha="right")
+    return y
 
 
 def draw_thin_lens(ax, focal_length: float, object_distance: float, height: float = 1.0) -> dict:
