@@ -107,7 +107,7 @@ def test_camera_rejects_non_rotation():
 
 
 @pytest.mark.parametrize("K, msg", [
-    (np.diag([800.0, 0.0, 1.0]), "positive focal lengths"),
+    (np.diag([800.0, 0.0, 1.0]), r"fx = 800, fy = 0 \(a mirrored or singular K\)"),
     (np.diag([800.0, 800.0, 2.0]), r"last row \(0, 0, 1\)"),
     (np.zeros((3, 3)), r"last row \(0, 0, 1\)"),
 ])
