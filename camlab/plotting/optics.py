@@ -240,7 +240,7 @@ def draw_focus_cone(ax, half_height_mm: float = 20.0) -> dict:
 
 
 def update_focus_cone(art: dict, f: float, N: float, z_o: float, z_s: float) -> dict:
-    """Object point at ``z_o`` (m), sensor ``z_s`` (m) behind a lens ``f`` (m) at f-number ``N``.
+    r"""Object point at ``z_o`` (m), sensor ``z_s`` (m) behind a lens ``f`` (m) at f-number ``N``.
 
     The cone from the aperture (diameter A = f / N) converges to the image point at
     :math:`z_i` and cuts the sensor in a disc of diameter :math:`c = A\,|z_s - z_i| / z_i`
