@@ -35,8 +35,8 @@ from ._validate import (
     check_positive,
 )
 from .camera import Camera, camera_centre
-from .homography import _normalize_batch, _required_iterations, estimate_homography, symmetric_transfer_error
-from .projective import from_homogeneous, normalize_lines, to_homogeneous
+from .homography import _required_iterations, estimate_homography, symmetric_transfer_error
+from .projective import from_homogeneous, hartley_normalize, normalize_lines, to_homogeneous
 
 __all__ = [
     "EssentialDecomposition", "FundamentalRansacResult", "RelativePose",
@@ -400,8 +400,8 @@ def estimate_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, normalize: bool = 
     """
     a, b, _ = _pairs(x1, x2, min_count=8)
     if normalize:
-        an, T1 = _normalize_batch(a)
-        bn, T2 = _normalize_batch(b)
+        an, T1 = hartley_normalize(a)
+        bn, T2 = hartley_normalize(b)
     else:
         an, bn, T1, T2 = a, b, np.eye(3), np.eye(3)
     A = _eight_point_rows(an, bn)
@@ -502,8 +502,8 @@ def ransac_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, threshold: float = 1
         raise CamlabInputError(f"max_iters: expected a positive integer, got {max_iters!r}")
     rng = np.random.default_rng() if rng is None else rng
     n = len(a)
-    an, T1 = _normalize_batch(a)
-    bn, T2 = _normalize_batch(b)
+    an, T1 = hartley_normalize(a)
+    bn, T2 = hartley_normalize(b)
     best = (-1, np.inf, None)
     needed, drawn = float(max_iters), 0
     while drawn < min(needed, max_iters):
