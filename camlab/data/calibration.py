@@ -1,8 +1,7 @@
-"""Bundled data in ``data/``: small assets camlab made itself, regenerated deterministically.
+"""The chessboard calibration set of lesson 08, rendered by the virtual camera with full ground truth.
 
-``python -m camlab.data`` rewrites every file in ``data/`` from fixed parameters (recorded
-beside the files), giving the same bytes every time on the same library versions; a test
-checks that. Assets:
+``python -m camlab.data`` rewrites it (with the other data sets) from fixed parameters
+recorded beside the files:
 
 ``data/calib_chessboard/``
     ``view_00.png`` ... ``view_15.png``: a 9 x 6 inner-corner chessboard (25 mm squares)
@@ -14,17 +13,16 @@ Load with :func:`load_calibration_set`.
 """
 from __future__ import annotations
 
-import hashlib
 import json
-import sys
 from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
 
-from ._validate import CamlabInputError
+from .._validate import CamlabInputError
+from ._resources import dataset_dir
 
-__all__ = ["CalibrationSet", "CALIBRATION_PARAMS", "data_dir", "load_calibration_set", "make_calibration_set", "main"]
+__all__ = ["CalibrationSet", "CALIBRATION_PARAMS", "load_calibration_set", "make_calibration_set"]
 
 CALIBRATION_PARAMS = {
     "seed": 2026,
@@ -42,14 +40,9 @@ CALIBRATION_PARAMS = {
 }
 
 
-def data_dir() -> Path:
-    """The repository's ``data/`` directory."""
-    return Path(__file__).resolve().parent.parent / "data"
-
-
 def _views(params: dict):
     """Yield ``(R, t)`` camera poses (cam_from_world) that keep the whole board in view."""
-    from . import render
+    from .. import render
 
     rng = np.random.default_rng(params["seed"])
     cols, rows = params["pattern_size"]
@@ -104,8 +97,8 @@ def make_calibration_set(out_dir: Path | str, params: dict = CALIBRATION_PARAMS)
     """Render the calibration set into ``out_dir``; return the files written."""
     import cv2
 
-    from . import render
-    from .sensor import NoiseModel
+    from .. import render
+    from ..sensor import NoiseModel
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -146,7 +139,7 @@ def load_calibration_set(directory: Path | str | None = None) -> CalibrationSet:
     """Load ``data/calib_chessboard`` (or ``directory``) as a :class:`CalibrationSet`."""
     import cv2
 
-    d = Path(directory) if directory is not None else data_dir() / "calib_chessboard"
+    d = Path(directory) if directory is not None else dataset_dir("calib_chessboard")
     path = d / "truth.json"
     if not path.exists():
         raise CamlabInputError(f"directory: no truth.json in {d}; run `python -m camlab.data` to generate it")
@@ -159,33 +152,3 @@ def load_calibration_set(directory: Path | str | None = None) -> CalibrationSet:
         object_points=np.array(truth["object_points"]), pattern_size=tuple(truth["pattern_size"]),
         square=float(truth["square"]), params=truth["params"],
     )
-
-
-def write_manifest(root: Path) -> Path:
-    """``data/MANIFEST.txt``: every file with its size and SHA-256."""
-    lines = []
-    for p in sorted(root.rglob("*")):
-        if p.is_file() and p.name != "MANIFEST.txt":
-            lines.append(f"{hashlib.sha256(p.read_bytes()).hexdigest()}  {p.stat().st_size:>8}  {p.relative_to(root)}")
-    path = root / "MANIFEST.txt"
-    path.write_text("# sha256  bytes  path   (regenerate everything with: python -m camlab.data)\n" + "\n".join(lines) + "\n")
-    return path
-
-
-def main(argv: list[str] | None = None) -> int:
-    """Regenerate every data set in ``data/`` (or the directory given as the only argument)."""
-    argv = sys.argv[1:] if argv is None else argv
-    root = Path(argv[0]) if argv else data_dir()
-    from .stereo_data import make_stereo_rig
-    from .stitching_data import make_panorama_set
-
-    files = (make_calibration_set(root / "calib_chessboard") + make_panorama_set(root / "panorama")
-             + make_stereo_rig(root / "stereo"))
-    write_manifest(root)
-    total = sum(f.stat().st_size for f in files)
-    print(f"wrote {len(files)} files ({total / 1e6:.2f} MB) to {root}")
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
