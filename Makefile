@@ -21,7 +21,7 @@ $(VENV)/.installed-lab: pyproject.toml setup.py | $(BIN)/python
 
 $(VENV)/.installed-test: pyproject.toml setup.py | $(BIN)/python
 	@$(BIN)/python -m pip uninstall --quiet --yes camlab 2>/dev/null || true
-	$(BIN)/python -m pip install --quiet -e ".[test]"
+	$(BIN)/python -m pip install --quiet -e ".[test,class]"
 	touch $(VENV)/.installed-lab $@
 
 lab: $(VENV)/.installed-lab

@@ -39,7 +39,7 @@ from typing import Any, NamedTuple, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, ConvergenceError, DegenerateError, as_points, check_finite, check_image_size, check_positive
+from ._validate import CamlabInputError, ConvergenceError, DegenerateError, as_points, check_finite, check_intrinsics, check_positive, check_size
 from .camera import axis_angle_from_rotation, rotation_from_axis_angle
 from .distortion import as_dist, distort_points, distortion_jacobian, undistort_image, undistort_points
 from .homography import estimate_homography
@@ -875,7 +875,7 @@ def calibrate_camera(
             f"image_points: expected at least 3 views of the board, got {len(imgs)}; "
             f"photograph it in more orientations"
         )
-    w, h = check_image_size(image_size, "image_size")
+    w, h = check_size(image_size, "image_size")
     unknown = [f for f in fix if f not in PARAM_NAMES]
     if unknown:
         raise CamlabInputError(f"fix: unknown parameter(s) {unknown}; choose from {list(PARAM_NAMES)}")
@@ -888,9 +888,7 @@ def calibrate_camera(
         Hs = view_homographies(objs, imgs)
         K0 = intrinsics_from_homographies(Hs, skew=skew, image_size=(w, h))
     else:
-        K0 = np.array(K_guess, dtype=float)
-        if K0.shape != (3, 3) or not np.isfinite(K0).all() or K0[0, 0] <= 0 or K0[1, 1] <= 0:
-            raise CamlabInputError(f"K_guess: expected a (3, 3) intrinsic matrix with fx, fy > 0, got {K0.tolist()}")
+        K0 = check_intrinsics(K_guess, "K_guess")
         Hs = view_homographies(objs, imgs) if pose_guess is None else None
     if not skew:
         K0[0, 1] = 0.0
@@ -1202,13 +1200,6 @@ def coach(result: CalibrationResult, grid: tuple[int, int] = (4, 6)) -> CoachRep
 
 # ======================================================================== undistortion
 
-def _check_K3(K: ArrayLike, name: str = "K") -> np.ndarray:
-    Km = np.asarray(K, dtype=float)
-    if Km.shape != (3, 3) or not np.isfinite(Km).all() or Km[0, 0] <= 0 or Km[1, 1] <= 0:
-        raise CamlabInputError(f"{name}: expected a (3, 3) intrinsic matrix with fx, fy > 0, got {np.shape(K)}")
-    return Km
-
-
 def _rectangles(K: np.ndarray, dist: np.ndarray, size: tuple[int, int], n: int = 9):
     """Inner and outer rectangles (x0, y0, x1, y1) of the undistorted image border, normalised coords."""
     w, h = size
@@ -1237,12 +1228,12 @@ def optimal_new_camera_matrix(K: ArrayLike, dist: ArrayLike | None, image_size: 
     (3, 3) ndarray
         New K (zero skew), pixels.
     """
-    Km = _check_K3(K)
+    Km = check_intrinsics(K)
     d = as_dist(dist)
     a = float(alpha)
     if not 0.0 <= a <= 1.0:
         raise CamlabInputError(f"alpha: expected a number in [0, 1] (0: no black borders, 1: keep all pixels), got {alpha!r}")
-    w, h = check_image_size(image_size, "image_size")
+    w, h = check_size(image_size, "image_size")
     inner, outer = _rectangles(Km, d, (w, h))
 
     def fit(r):
@@ -1261,9 +1252,9 @@ def undistortion_tradeoff(K: ArrayLike, dist: ArrayLike | None, image_size: Sequ
     border); ``lost_fraction``: share of photo pixels that land outside the output. Both on
     a grid every ``step`` pixels.
     """
-    Km, Kn = _check_K3(K), _check_K3(new_K, "new_K")
+    Km, Kn = check_intrinsics(K), check_intrinsics(new_K, "new_K")
     d = as_dist(dist)
-    w, h = check_image_size(image_size, "image_size")
+    w, h = check_size(image_size, "image_size")
     U, Vv = np.meshgrid(np.arange(0, w, step, dtype=float), np.arange(0, h, step, dtype=float))
     pix = np.column_stack([U.ravel(), Vv.ravel()])
     # output pixel -> source pixel: K distort(Kn^-1 p); same as distort_pixels with a change of K
@@ -1394,7 +1385,7 @@ def make_synthetic_views(n_views: int = 15, noise: float = 0.0, *, K: ArrayLike 
     from .render import project
 
     rng = np.random.default_rng() if rng is None else rng
-    Km = _check_K3(K)
+    Km = check_intrinsics(K)
     d = as_dist(dist)
     obj = board_points(pattern_size, square)
     centre = obj.mean(axis=0)

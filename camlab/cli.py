@@ -90,9 +90,24 @@ def _run_lessons(args: argparse.Namespace) -> int:
     return 0
 
 
+def _add_assignments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("dest", help="a new (or empty) folder for the nbgrader course directory")
+    p.add_argument("lessons", nargs="*", metavar="LESSON", help="lesson numbers or names, e.g. 06 07 (default: all)")
+
+
+def _run_assignments(args: argparse.Namespace) -> int:
+    from .classroom.assignments import write_course
+
+    for stem, names in write_course(args.dest, args.lessons).items():
+        print(f"{args.dest}/source/{stem}/{stem}.ipynb: exercises graded: {len(names)} ({', '.join(names)})")
+    print(f"next: cd {args.dest} && nbgrader generate_assignment <lesson>   (see docs/teaching.md)")
+    return 0
+
+
 COMMANDS: dict[str, tuple[str, Callable[[argparse.ArgumentParser], None], Callable[[argparse.Namespace], int]]] = {
     "calibrate": ("calibrate a camera from photos of a chessboard", _add_calibrate, _run_calibrate),
     "lessons": ("copy the lessons into a working folder (keeps lessons you edited)", _add_lessons, _run_lessons),
+    "assignments": ("write an nbgrader course directory of graded lessons", _add_assignments, _run_assignments),
 }
 
 

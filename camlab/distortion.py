@@ -26,7 +26,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, ConvergenceError, as_points, check_finite, check_image_size, check_matrix
+from ._validate import CamlabInputError, ConvergenceError, as_points, check_finite, check_intrinsics, check_matrix, check_size
 
 __all__ = [
     "DistortionMaps", "as_dist", "classify_distortion", "distort_pixels", "distort_points",
@@ -262,15 +262,6 @@ def classify_distortion(dist: ArrayLike | None, r_max: float = 0.8, tol: float =
 
 # ---------------------------------------------------------------- pixels and images
 
-def _check_K(K: ArrayLike) -> np.ndarray:
-    K = check_matrix(K, (3, 3), "K")
-    if K[2, 0] != 0 or K[2, 1] != 0 or K[2, 2] != 1 or K[0, 0] <= 0 or K[1, 1] <= 0:
-        raise CamlabInputError(
-            f"K: expected an intrinsic matrix [[fx, s, cx], [0, fy, cy], [0, 0, 1]] with fx, fy > 0, got {K.tolist()}"
-        )
-    return K
-
-
 def _normalise(pixels: np.ndarray, K: np.ndarray) -> np.ndarray:
     y = (pixels[:, 1] - K[1, 2]) / K[1, 1]
     x = (pixels[:, 0] - K[0, 2] - K[0, 1] * y) / K[0, 0]
@@ -284,14 +275,14 @@ def _to_pixels(xy: np.ndarray, K: np.ndarray) -> np.ndarray:
 def distort_pixels(pixels: ArrayLike, K: ArrayLike, dist: ArrayLike | None) -> np.ndarray:
     """Move ideal pixel positions (u, v) to where the distorting lens images them (same K)."""
     pts = as_points(pixels, 2, "pixels")
-    K = _check_K(K)
+    K = check_intrinsics(K)
     return pts.restore(_to_pixels(_distort(_normalise(pts.array, K), as_dist(dist)), K))
 
 
 def undistort_pixels(pixels: ArrayLike, K: ArrayLike, dist: ArrayLike | None) -> np.ndarray:
     """Inverse of :func:`distort_pixels`: distorted pixels (u, v) to ideal pixels (same K)."""
     pts = as_points(pixels, 2, "pixels")
-    K = _check_K(K)
+    K = check_intrinsics(K)
     return pts.restore(_to_pixels(undistort_points(_normalise(pts.array, K), dist), K))
 
 
@@ -322,9 +313,9 @@ def undistort_map(K: ArrayLike, dist: ArrayLike | None, size: tuple[int, int],
     new_K : (3, 3) array_like, optional
         Intrinsics of the undistorted output.
     """
-    K = _check_K(K)
-    new_K = K if new_K is None else _check_K(new_K)
-    w, h = check_image_size(size)
+    K = check_intrinsics(K)
+    new_K = K if new_K is None else check_intrinsics(new_K, "new_K")
+    w, h = check_size(size)
     u, v = np.meshgrid(np.arange(w, dtype=float), np.arange(h, dtype=float))
     xy = _normalise(np.stack([u.ravel(), v.ravel()], axis=1), new_K)
     src = _to_pixels(_distort(xy, as_dist(dist)), K)
@@ -372,9 +363,9 @@ def distort_map(K: ArrayLike, dist: ArrayLike | None, size: tuple[int, int],
     Pixels beyond the fold of the model (no physical inverse, see :func:`max_valid_radius`)
     map far outside the ideal image, so ``cv2.remap`` fills them with its border value.
     """
-    K = _check_K(K)
-    new_K = K if new_K is None else _check_K(new_K)
-    w, h = check_image_size(size)
+    K = check_intrinsics(K)
+    new_K = K if new_K is None else check_intrinsics(new_K, "new_K")
+    w, h = check_size(size)
     if int(step) < 1:
         raise CamlabInputError(f"step: expected an integer >= 1, got {step!r}")
     return _distort_map_cached(K.tobytes(), as_dist(dist).tobytes(), new_K.tobytes(), w, h, int(step))

@@ -37,8 +37,10 @@ from ._validate import (
     DegenerateError,
     as_points,
     check_finite,
+    check_intrinsics,
     check_matrix,
     check_positive,
+    check_rotation,
 )
 from .projective import map_lines, map_points
 
@@ -868,20 +870,6 @@ def decompose(H: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 # --------------------------------------------------------------------------- geometry
 
-def _check_K(K: ArrayLike, name: str) -> np.ndarray:
-    Km = check_matrix(K, (3, 3), name)
-    if abs(np.linalg.det(Km)) < 1e-12:
-        raise DegenerateError(f"{name}: the intrinsic matrix is singular; expected [[fx, s, cx], [0, fy, cy], [0, 0, 1]]")
-    return Km
-
-
-def _check_R(R: ArrayLike) -> np.ndarray:
-    Rm = check_matrix(R, (3, 3), "R")
-    if not np.allclose(Rm.T @ Rm, np.eye(3), atol=1e-6) or np.linalg.det(Rm) < 0:
-        raise CamlabInputError("R: expected a rotation matrix (R^T R = I, det R = +1)")
-    return Rm
-
-
 def rotation_homography(K: ArrayLike, R: ArrayLike, K2: ArrayLike | None = None) -> np.ndarray:
     r"""The homography between two views from one centre: :math:`H = K' R K^{-1}`.
 
@@ -898,9 +886,9 @@ def rotation_homography(K: ArrayLike, R: ArrayLike, K2: ArrayLike | None = None)
     K2 : (3, 3) array_like, optional
         Intrinsics of the second camera (default: K).
     """
-    Km = _check_K(K, "K")
-    K2m = Km if K2 is None else _check_K(K2, "K2")
-    return normalize_homography(K2m @ _check_R(R) @ np.linalg.inv(Km))
+    Km = check_intrinsics(K, "K")
+    K2m = Km if K2 is None else check_intrinsics(K2, "K2")
+    return normalize_homography(K2m @ check_rotation(R) @ np.linalg.inv(Km))
 
 
 def plane_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike, n: ArrayLike, d: float,
@@ -928,15 +916,15 @@ def plane_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike, n: ArrayLike, d: 
     K2 : (3, 3) array_like, optional
         Intrinsics of camera 2 (default: K).
     """
-    Km = _check_K(K, "K")
-    K2m = Km if K2 is None else _check_K(K2, "K2")
+    Km = check_intrinsics(K, "K")
+    K2m = Km if K2 is None else check_intrinsics(K2, "K2")
     tv = check_matrix(np.ravel(np.asarray(t, dtype=float)), (3,), "t")
     nv = check_matrix(np.ravel(np.asarray(n, dtype=float)), (3,), "n")
     if not np.isfinite(d) or d == 0:
         raise DegenerateError(f"d: the plane n . X + d = 0 must not pass through camera 1's centre; got d={d!r}")
     if not np.any(nv):
         raise CamlabInputError("n: the plane normal must be non-zero")
-    H = K2m @ (_check_R(R) - np.outer(tv, nv) / d) @ np.linalg.inv(Km)
+    H = K2m @ (check_rotation(R) - np.outer(tv, nv) / d) @ np.linalg.inv(Km)
     return normalize_homography(_check_h(H, "plane_homography"))
 
 
@@ -952,8 +940,8 @@ def pose_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike) -> np.ndarray:
     >>> map_points(pose_homography(K, np.eye(3), [0, 0, 2.0]), [0.0, 0.0])
     array([320., 240.])
     """
-    Km = _check_K(K, "K")
-    Rm = _check_R(R)
+    Km = check_intrinsics(K, "K")
+    Rm = check_rotation(R)
     tv = check_matrix(np.ravel(np.asarray(t, dtype=float)), (3,), "t")
     H = Km @ np.column_stack([Rm[:, 0], Rm[:, 1], tv])
     return normalize_homography(_check_h(H, "pose_homography"))

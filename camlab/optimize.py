@@ -55,7 +55,8 @@ from numpy.typing import ArrayLike
 
 from ._validate import CamlabInputError, ConvergenceError, check_finite
 
-__all__ = ["LMResult", "dense_damped_solve", "dense_normal_equations", "levenberg_marquardt", "lm_step"]
+__all__ = ["LMResult", "dense_damped_solve", "dense_normal_equations", "huber_residuals", "levenberg_marquardt",
+           "lm_step"]
 
 
 class LMResult(NamedTuple):
@@ -254,3 +255,43 @@ def levenberg_marquardt(
 def _diag(A: Any) -> np.ndarray:
     """diag(A) for a dense matrix or any object with a ``diagonal()`` method."""
     return np.diag(A) if isinstance(A, np.ndarray) else A.diagonal()
+
+
+def huber_residuals(errors: ArrayLike, delta: float) -> np.ndarray:
+    r"""Rescale error vectors so that least squares on them minimises the Huber loss.
+
+    A robust loss :math:`\rho` replaces :math:`\tfrac12 \|e\|^2` by :math:`\rho(\|e\|)`; for
+    Huber's, quadratic near zero and linear beyond :math:`\delta`,
+
+    .. math:: \rho(s) = \begin{cases} s^2/2 & s \le \delta \\ \delta s - \delta^2/2 & s > \delta \end{cases}
+
+    Scaling each error vector by :math:`\sqrt{2\rho(s)}/s` gives residuals :math:`\tilde e`
+    with :math:`\tfrac12\|\tilde e\|^2 = \rho(s)`, so :func:`levenberg_marquardt` on
+    :math:`\tilde e` minimises :math:`\sum \rho` exactly (a wrong match pulls with a
+    constant force instead of one growing with its error). Inliers are unchanged.
+
+    Parameters
+    ----------
+    errors : (N, D) array_like
+        One error vector per row (e.g. a match's 2-D reprojection error, pixels).
+    delta : float
+        Where the loss turns linear, same units (> 0).
+
+    Returns
+    -------
+    (N, D) ndarray
+
+    >>> huber_residuals([[3.0, 4.0], [0.3, 0.4]], 1.0)   # |e| = 5: sqrt(2*(5 - 0.5)) = 3
+    array([[1.8, 2.4],
+           [0.3, 0.4]])
+    """
+    e = np.asarray(errors, dtype=float)
+    if e.ndim != 2:
+        raise CamlabInputError(f"errors: expected an (N, D) array of error vectors, got shape {e.shape}")
+    if not (np.isfinite(delta) and delta > 0):
+        raise CamlabInputError(f"delta: expected a positive threshold, got {delta!r}")
+    s = np.linalg.norm(e, axis=1, keepdims=True)
+    big = s > delta
+    scale = np.ones_like(s)
+    scale[big] = np.sqrt(2 * delta * s[big] - delta ** 2) / s[big]
+    return e * scale

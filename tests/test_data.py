@@ -1,7 +1,9 @@
 """Tests for camlab.data: the bundled sets regenerate (to a stated tolerance), are true, and are found anywhere."""
+import fnmatch
 import hashlib
 import json
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -12,6 +14,7 @@ import pytest
 
 from camlab import data, render
 from camlab._validate import CamlabInputError
+from camlab.data.regenerate import GENERATED_SETS
 
 # Regeneration must give the bundled files back. Compared as decoded pixels and parsed ground
 # truth, not bytes, so a patch release of OpenCV (its resize, libpng or libjpeg) does not break it:
@@ -48,7 +51,7 @@ def regenerated(tmp_path_factory):
     return root
 
 
-@pytest.mark.parametrize("name", ["calib_chessboard", "panorama", "stereo"])
+@pytest.mark.parametrize("name", GENERATED_SETS)
 def test_regeneration_reproduces_the_bundled_set(regenerated, name):
     bundled = data.data_dir() / name
     made = sorted(p.name for p in (regenerated / name).iterdir())
@@ -66,12 +69,13 @@ def test_regeneration_reproduces_the_bundled_set(regenerated, name):
             f"{name}/{f}: mean |diff| {diff.mean():.3f}, max {diff.max():.1f}"
 
 
-def test_manifest_lists_every_bundled_file_with_its_hash():
+def test_manifest_lists_every_generated_file_with_its_hash():
     root = data.data_dir()
     listed = _manifest(root / "MANIFEST.txt")
-    present = {p.relative_to(root).as_posix(): p for p in root.rglob("*") if p.is_file() and p.name != "MANIFEST.txt"}
-    assert sorted(listed) == sorted(present), "data/MANIFEST.txt is stale: run `python -m camlab.data`"
-    for name, path in present.items():
+    present = {p.relative_to(root).as_posix(): p for p in root.rglob("*") if p.is_file()}
+    generated = {name: p for name, p in present.items() if name.split("/")[0] in GENERATED_SETS}
+    assert sorted(listed) == sorted(generated), "data/MANIFEST.txt is stale: run `python -m camlab.data`"
+    for name, path in generated.items():
         assert listed[name] == (hashlib.sha256(path.read_bytes()).hexdigest(), path.stat().st_size), \
             f"{name} changed since data/MANIFEST.txt was written: run `python -m camlab.data`"
     total = sum(p.stat().st_size for p in present.values())
@@ -120,3 +124,33 @@ def test_python_m_camlab_data_writes_where_asked(tmp_path):
     env = dict(os.environ, CAMLAB_DATA=str(tmp_path / "unused"))
     out = subprocess.run([sys.executable, "-m", "camlab.data", "--help"], capture_output=True, text=True, env=env)
     assert out.returncode == 0 and "usage: python -m camlab.data" in out.stdout
+
+
+def test_photos_load_and_are_attributed():
+    names = data.photo_names()
+    assert {"calib_left01", "calib_left14", "street", "walls_left", "walls_right"} <= set(names)
+    attribution = (data.data_dir() / "photos" / "ATTRIBUTION.md").read_text()
+    for name in names:  # every shipped photo is listed with its source
+        assert f"`{name}." in attribution or name.startswith("calib_left"), name
+    rgb, gray = data.load_photo("church"), data.load_photo("calib_left01", gray=True)
+    assert rgb.dtype == np.uint8 and rgb.shape == (532, 800, 3) and gray.shape == (480, 640)
+    assert rgb[..., 2].mean() > rgb[..., 0].mean()  # a blue sky: RGB order, not OpenCV's BGR
+    ok, _ = cv2.findChessboardCorners(gray, (9, 6))
+    assert ok
+
+
+def test_unknown_photo():
+    with pytest.raises(CamlabInputError, match="name: expected one of"):
+        data.load_photo("nope")
+
+
+def test_every_shipped_file_is_attributed():
+    root = data.data_dir()
+    table = (root / "ATTRIBUTION.md").read_text()
+    rows = [line.split("|")[1] for line in table.splitlines() if line.startswith("| `")]
+    patterns = [p for row in rows for p in re.findall(r"`([^`]+)`", row)]
+    assert "photos/*" in patterns and "calib_chessboard/*" in patterns
+    for path in root.rglob("*"):
+        if path.is_file():
+            rel = path.relative_to(root).as_posix()
+            assert any(fnmatch.fnmatch(rel, p) for p in patterns), f"data/{rel} is not in data/ATTRIBUTION.md"

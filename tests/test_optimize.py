@@ -6,7 +6,7 @@ from hypothesis import strategies as st
 
 from camlab import ConvergenceError
 from camlab._validate import CamlabInputError
-from camlab.optimize import dense_damped_solve, levenberg_marquardt, lm_step
+from camlab.optimize import dense_damped_solve, huber_residuals, levenberg_marquardt, lm_step
 
 
 def rosenbrock():
@@ -124,3 +124,27 @@ def test_damped_step_never_points_uphill(mu, seed):
     # a descent direction: g . delta <= 0, and the linear model does not get worse
     assert (J.T @ r) @ d <= 1e-9
     assert np.linalg.norm(r + J @ d) <= np.linalg.norm(r) + 1e-9
+
+
+def test_huber_residuals_give_the_huber_cost_and_a_robust_fit():
+    rng = np.random.default_rng(3)
+    e = rng.normal(0, 3, (200, 2))
+    s = np.linalg.norm(e, axis=1)
+    rho = np.where(s <= 1.5, s ** 2 / 2, 1.5 * s - 1.5 ** 2 / 2)
+    assert np.allclose(0.5 * (huber_residuals(e, 1.5) ** 2).sum(axis=1), rho)
+    # a line fit with 20% gross outliers: plain least squares is pulled away, Huber is not
+    t = np.linspace(0, 1, 50)
+    y = 2 * t + 1 + rng.normal(0, 0.01, 50)
+    y[::5] += 5
+    plain = levenberg_marquardt(lambda p: p[0] * t + p[1] - y, [0.0, 0.0], lambda p: np.c_[t, np.ones_like(t)])
+    robust = levenberg_marquardt(lambda p: huber_residuals((p[0] * t + p[1] - y)[:, None], 0.05).ravel(), [0.0, 0.0],
+                                 lambda p: np.stack([(huber_residuals((p[0] * t + p[1] - y)[:, None], 0.05).ravel()
+                                                      - huber_residuals(((p[0] + d[0]) * t + p[1] + d[1] - y)[:, None],
+                                                                        0.05).ravel()) / -1e-7
+                                                     for d in ([1e-7, 0], [0, 1e-7])], axis=1))
+    assert abs(plain.x[1] - 1) > 0.5
+    assert abs(robust.x[0] - 2) < 0.05 and abs(robust.x[1] - 1) < 0.05
+    with pytest.raises(CamlabInputError, match="delta"):
+        huber_residuals(e, 0)
+    with pytest.raises(CamlabInputError, match="errors"):
+        huber_residuals([1.0, 2.0], 1)

@@ -16,14 +16,17 @@ from pathlib import Path
 
 from ._resources import data_dir, regeneration_dir
 
-__all__ = ["main", "regenerate", "write_manifest"]
+__all__ = ["GENERATED_SETS", "main", "regenerate", "write_manifest"]
+
+
+GENERATED_SETS = ("calib_chessboard", "panorama", "stereo")
 
 
 def write_manifest(root: Path) -> Path:
-    """``root/MANIFEST.txt``: every file under ``root`` with its SHA-256 and size in bytes."""
+    """``root/MANIFEST.txt``: every generated file (:data:`GENERATED_SETS`) with its SHA-256 and size in bytes."""
     lines = []
     for p in sorted(root.rglob("*")):
-        if p.is_file() and p.name != "MANIFEST.txt":
+        if p.is_file() and p.relative_to(root).parts[0] in GENERATED_SETS:
             lines.append(f"{hashlib.sha256(p.read_bytes()).hexdigest()}  {p.stat().st_size:>8}  "
                          f"{p.relative_to(root).as_posix()}")
     path = root / "MANIFEST.txt"

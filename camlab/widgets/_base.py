@@ -26,6 +26,8 @@ import matplotlib
 import numpy as np
 from matplotlib.figure import Figure
 
+from ._transport import use_fast_png
+
 
 def _display_mode() -> str:
     forced = os.environ.get("CAMLAB_FIGURE_MODE")
@@ -67,6 +69,7 @@ class FigureView:
             canvas.footer_visible = False
             canvas.toolbar_position = "left"
             canvas.resizable = False
+            use_fast_png(canvas)
             self.widget: W.Widget = canvas
         else:
             from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -209,17 +212,16 @@ class DemoSpec:
     lesson: str
     builder: Callable[[], Demo]
     sweep: dict[str, Sequence[Any]]
-    target_ms: float = 30.0  # median update latency target; p95 target is twice this
 
 
 REGISTRY: dict[str, DemoSpec] = {}
 
 
-def register(lesson: str, sweep: Mapping[str, Sequence[Any]], target_ms: float = 30.0):
+def register(lesson: str, sweep: Mapping[str, Sequence[Any]]):
     """Decorator: register a demo builder with the values to sweep each control through.
 
-    ``target_ms`` is the demo's median update-latency target (30 ms for drawings; image
-    demos have larger targets set by their issue).
+    Every demo has the same latency target, two frames at 60 Hz as the browser receives it
+    (see ``benchmarks/latency.py``).
 
     The benchmark and the headless widget tests drive every registered demo with its
     sweep, so a new demo is measured and tested as soon as it is registered.
@@ -229,7 +231,7 @@ def register(lesson: str, sweep: Mapping[str, Sequence[Any]], target_ms: float =
         name = builder.__name__
         if name in REGISTRY and REGISTRY[name].builder.__module__ != builder.__module__:
             raise ValueError(f"register: a demo named {name!r} is already registered by {REGISTRY[name].builder.__module__}")
-        REGISTRY[name] = DemoSpec(name, lesson, builder, {k: list(v) for k, v in sweep.items()}, target_ms)
+        REGISTRY[name] = DemoSpec(name, lesson, builder, {k: list(v) for k, v in sweep.items()})
         return builder
 
     return deco

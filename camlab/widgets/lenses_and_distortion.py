@@ -44,7 +44,7 @@ def _dof_scene():
             render.textured_plane(render.sample_photo(), 3.2, t=(0, 0, 4.0), name="wall")]
 
 
-@register(lesson="02", sweep={"f_number": [1.4, 4.0, 16.0], "focus_m": [0.6, 1.2, 2.4]}, target_ms=100.0)
+@register(lesson="02", sweep={"f_number": [1.4, 4.0, 16.0], "focus_m": [0.6, 1.2, 2.4]})
 def depth_of_field():
     """A scene of planes at 0.6, 1.2, 2.4 and 4 m rendered with thin-lens blur, beside its blur curve."""
     controls = {
@@ -105,7 +105,7 @@ def _grid_lines(n: int = 9, samples: int = 60) -> np.ndarray:
 
 
 @register(lesson="02", sweep={"k1": [-0.35, 0.0, 0.25], "k2": [-0.05, 0.1], "p1": [-0.01, 0.01],
-                              "p2": [-0.01, 0.01], "undistort": [True, False]}, target_ms=100.0)
+                              "p2": [-0.01, 0.01], "undistort": [True, False]})
 def lens_distortion():
     """Distortion sliders warp a rendered checkerboard and a grid; tick 'undistort' to undo it."""
     controls = {

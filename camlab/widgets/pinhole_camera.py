@@ -30,7 +30,7 @@ def _rotated_box_edges(distance: float) -> np.ndarray:
     return np.array(edges)
 
 
-@register(lesson="01", sweep={"focal_mm": [20, 50, 90], "distance": [1.0, 2.0, 3.5], "real_plane": [True, False]}, target_ms=100.0)
+@register(lesson="01", sweep={"focal_mm": [20, 50, 90], "distance": [1.0, 2.0, 3.5], "real_plane": [True, False]})
 def pinhole_projection():
     """A box, the pinhole and both image planes in 3-D beside the image the camera records."""
     controls = {
@@ -76,7 +76,7 @@ def pinhole_projection():
     return build_demo("pinhole_projection", controls, view, update, title="Pinhole projection x = f X / Z")
 
 
-@register(lesson="01", sweep={"diameter_mm": [0.05, 0.3, 1.5], "focal_mm": [50, 100, 200]}, target_ms=100.0)
+@register(lesson="01", sweep={"diameter_mm": [0.05, 0.3, 1.5], "focal_mm": [50, 100, 200]})
 def pinhole_size():
     """Blur against pinhole diameter (geometric versus diffraction) and the blurred image it gives."""
     controls = {
