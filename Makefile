@@ -7,7 +7,7 @@ BIN    := $(VENV)/bin
 LAB_ARGS ?=
 PYTEST_ARGS ?=
 
-.PHONY: lab test test-fast bench strip browser-deps clean
+.PHONY: lab test test-fast bench bench-browser strip browser-deps clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -47,6 +47,10 @@ test-fast: $(VENV)/.installed-test
 
 bench: $(VENV)/.installed-test
 	$(BIN)/python benchmarks/run.py
+
+# Slider keydown to changed canvas pixels in JupyterLab, headless Chromium, one demo per lesson.
+bench-browser: $(VENV)/.installed-test browser-deps
+	$(BIN)/python benchmarks/latency.py --browser
 
 # Lessons are committed without outputs, execution counts or widget state.
 strip: $(VENV)/.installed-lab

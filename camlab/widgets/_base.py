@@ -26,6 +26,7 @@ import matplotlib
 import numpy as np
 from matplotlib.figure import Figure
 
+from ..plotting.static import demo_alt_text, static_bundle
 from ._transport import use_fast_png
 
 
@@ -153,8 +154,22 @@ class Demo:
                 raise KeyError(f"{self.name}: no control {key!r}; controls are {sorted(self.controls)}")
             self.controls[key].value = value
 
+    @property
+    def alt_text(self) -> str:
+        """What the figure shows at the current settings (the static picture's alt text)."""
+        spec = REGISTRY.get(self.name)
+        doc = (spec.builder.__doc__ or "") if spec is not None else ""
+        description = doc.strip().split("\n\n")[0] or self.name.replace("_", " ")
+        return demo_alt_text(description, self.controls, self.figure)
+
     def _repr_mimebundle_(self, **kwargs: Any):
-        return self.widget._repr_mimebundle_(**kwargs)
+        """The live widget, plus one PNG with alt text for readers without a kernel.
+
+        See :mod:`camlab.plotting.static`: JupyterLab shows only the widget view; saved
+        HTML, nbviewer and the course website show the PNG.
+        """
+        png = self.view.widget.value if self.view.mode == "png" and self.view.widget.value else None
+        return static_bundle(self.widget._repr_mimebundle_(**kwargs), self.figure, self.alt_text, png)
 
 
 def build_demo(
