@@ -58,3 +58,9 @@ strip: $(VENV)/.installed-lab
 
 clean:
 	rm -rf $(VENV) build *.egg-info
+
+# Teaching a class (docs/teaching.md). Lecture mode: one lesson's demos without code, in Voila.
+.PHONY: present
+LESSON ?= 00
+present: $(VENV)/.installed-test
+	$(BIN)/camlab present $(LESSON)
