@@ -13,11 +13,14 @@ $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 
-$(VENV)/.installed-lab: pyproject.toml | $(BIN)/python
+# (The distribution was called `camlab` before 0.1.0 became camlab-course: drop a stale one.)
+$(VENV)/.installed-lab: pyproject.toml setup.py | $(BIN)/python
+	@$(BIN)/python -m pip uninstall --quiet --yes camlab 2>/dev/null || true
 	$(BIN)/python -m pip install --quiet -e .
 	touch $@
 
-$(VENV)/.installed-test: pyproject.toml | $(BIN)/python
+$(VENV)/.installed-test: pyproject.toml setup.py | $(BIN)/python
+	@$(BIN)/python -m pip uninstall --quiet --yes camlab 2>/dev/null || true
 	$(BIN)/python -m pip install --quiet -e ".[test,class]"
 	touch $(VENV)/.installed-lab $@
 

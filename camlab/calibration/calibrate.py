@@ -193,24 +193,89 @@ def calibrate_camera(
     coefficients are strongly correlated, and a larger damping would crawl along that valley
     for many iterations before it shrank.
     """
+    objs, imgs, size = _check_calibration_inputs(object_points, image_points, image_size, fix)
+    start = initial_estimate(objs, imgs, size, skew=skew, fix=fix, K_guess=K_guess, dist_guess=dist_guess,
+                             pose_guess=pose_guess)
+    fixed = set(fix) | ({"skew"} if not skew else set())
+    free = np.array([name not in fixed for name in PARAM_NAMES])
+    X, obs, mask = pad_views(objs, imgs)
+    prob = CalibrationProblem(X, obs, mask, start.g, free)
+    lm: LMResult = levenberg_marquardt(prob.residuals, prob.pack(start.g, start.poses), prob.jacobian,
+                                       normal_equations=prob.normal_equations,
+                                       damped_solve=lambda A, g, mu: A.solve(mu), max_iter=max_iter,
+                                       ftol=1e-10, xtol=1e-10, gtol=1e-12, tau=1e-5)
+    if not np.all(np.isfinite(lm.x)):
+        raise ConvergenceError("calibrate_camera: the refinement produced non-finite parameters; check the data")
+    g, poses = prob.unpack(lm.x)
+    res = (obs - project_views(g, poses, X)) * mask[..., None]
+    rms, per_view = _rms(res, mask)
+    cov, std = _parameter_covariance(lm, prob, free)
+    K = np.array([[g[0], g[4], g[2]], [0.0, g[1], g[3]], [0.0, 0.0, 1.0]])
+    initial = {"K": start.K, "dist": start.dist, "homographies": start.homographies,
+               "rvecs": start.poses[:, :3].copy(), "tvecs": start.poses[:, 3:].copy(), "closed_form": K_guess is None}
+    return CalibrationResult(
+        K=K, dist=g[5:].copy(), rvecs=poses[:, :3].copy(), tvecs=poses[:, 3:].copy(), rms=rms,
+        per_view_rms=per_view, residuals=[res[v, :len(o)] for v, o in enumerate(objs)], std=std,
+        covariance=cov, free_params=tuple(str(n) for n in np.array(PARAM_NAMES)[free]), image_size=size,
+        object_points=objs, image_points=imgs, cost_history=lm.cost_history, iterations=lm.iterations,
+        converged=lm.converged, initial=initial,
+    )
+
+
+def _check_calibration_inputs(object_points, image_points, image_size, fix) -> tuple[list, list, tuple[int, int]]:
+    """Validated views, (width, height) and parameter names, or a clear error."""
     objs, imgs = check_views(object_points, image_points, min_views=1)
     if len(imgs) < 3:
         raise CamlabInputError(
             f"image_points: expected at least 3 views of the board, got {len(imgs)}; "
             f"photograph it in more orientations"
         )
-    w, h = check_size(image_size, "image_size")
+    size = check_size(image_size, "image_size")
     unknown = [f for f in fix if f not in PARAM_NAMES]
     if unknown:
         raise CamlabInputError(f"fix: unknown parameter(s) {unknown}; choose from {list(PARAM_NAMES)}")
     for v, o in enumerate(objs):
         planar_xy(o, v)
+    return objs, imgs, size
 
+
+class InitialEstimate(NamedTuple):
+    """Where the refinement starts (stages 2-6 of Zhang's method, or the caller's guesses).
+
+    Attributes
+    ----------
+    K : (3, 3) ndarray
+        Intrinsics, pixels.
+    dist : (5,) ndarray
+        (k1, k2, p1, p2, k3).
+    poses : (V, 6) ndarray
+        Each view's (rvec, t), cam_from_board.
+    homographies : (V, 3, 3) ndarray or None
+        Board -> image per view; None when ``pose_guess`` made them unnecessary.
+    g : (10,) ndarray
+        The global parameters in ``PARAM_NAMES`` order.
+    """
+
+    K: np.ndarray
+    dist: np.ndarray
+    poses: np.ndarray
+    homographies: np.ndarray | None
+    g: np.ndarray
+
+
+def initial_estimate(objs: list, imgs: list, size: tuple[int, int], *, skew: bool = False, fix: Sequence[str] = (),
+                     K_guess: ArrayLike | None = None, dist_guess: ArrayLike | None = None,
+                     pose_guess: ArrayLike | None = None) -> InitialEstimate:
+    """Zhang's closed form (homographies, K, poses, linear radial distortion), or the caller's guesses.
+
+    ``objs`` and ``imgs`` as validated by :func:`~camlab.calibration.zhang.check_views`;
+    other arguments as in :func:`calibrate_camera`.
+    """
     if pose_guess is not None and K_guess is None:
         raise CamlabInputError("pose_guess: pass K_guess too (the poses only make sense with a camera)")
     if K_guess is None:  # Zhang's closed form
         Hs = view_homographies(objs, imgs)
-        K0 = intrinsics_from_homographies(Hs, skew=skew, image_size=(w, h))
+        K0 = intrinsics_from_homographies(Hs, skew=skew, image_size=size)
     else:
         K0 = check_intrinsics(K_guess, "K_guess")
         Hs = view_homographies(objs, imgs) if pose_guess is None else None
@@ -237,26 +302,27 @@ def calibrate_camera(
         d0[0] = initial_radial_distortion(K0, objs, imgs, [rotation_from_axis_angle(p[:3]) for p in poses0],
                                           poses0[:, 3:])[0]
     g0 = np.array([K0[0, 0], K0[1, 1], K0[0, 2], K0[1, 2], K0[0, 1], *d0])
-    free = np.array([name not in fixed for name in PARAM_NAMES])
+    return InitialEstimate(K0, d0, poses0, Hs, g0)
 
-    # pad the views to one (V, M) array so everything is vectorised; padded rows have weight 0
+
+def pad_views(objs: list, imgs: list) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Pad V views of different lengths to (V, M) arrays so the refinement is vectorised.
+
+    Returns board points X (V, M, 3), observed corners (V, M, 2) and a (V, M) mask that is 0
+    on padded rows (they repeat the view's first point and carry no weight).
+    """
     V, M = len(objs), max(len(o) for o in objs)
     X, obs, mask = np.zeros((V, M, 3)), np.zeros((V, M, 2)), np.zeros((V, M))
     for v, (o, p) in enumerate(zip(objs, imgs)):
         X[v, :len(o)], obs[v, :len(o)], mask[v, :len(o)] = o, p, 1.0
         X[v, len(o):] = o[0]
-    prob = CalibrationProblem(X, obs, mask, g0, free)
-    lm: LMResult = levenberg_marquardt(prob.residuals, prob.pack(g0, poses0), prob.jacobian,
-                                       normal_equations=prob.normal_equations,
-                                       damped_solve=lambda A, g, mu: A.solve(mu), max_iter=max_iter,
-                                       ftol=1e-10, xtol=1e-10, gtol=1e-12, tau=1e-5)
-    if not np.all(np.isfinite(lm.x)):
-        raise ConvergenceError("calibrate_camera: the refinement produced non-finite parameters; check the data")
-    g, poses = prob.unpack(lm.x)
-    res = (obs - project_views(g, poses, X)) * mask[..., None]
-    rms, per_view = _rms(res, mask)
-    # covariance of the free intrinsics: sigma^2 S^-1 with S the undamped Schur complement
-    n_res, p = 2 * mask.sum(), prob.ni + 6 * V
+    return X, obs, mask
+
+
+def _parameter_covariance(lm: LMResult, prob: CalibrationProblem, free: np.ndarray) -> tuple[np.ndarray, dict]:
+    r"""Covariance of the free intrinsics, :math:`\hat\sigma^2 S^{-1}` with S the undamped Schur
+    complement, and the standard deviation of every parameter in ``PARAM_NAMES`` (0 if fixed)."""
+    n_res, p = 2 * prob.mask.sum(), prob.ni + 6 * prob.V
     sigma2 = 2 * lm.cost / max(n_res - p, 1)
     S, _, _ = lm.normal[0].schur(0.0)
     try:
@@ -266,16 +332,7 @@ def calibrate_camera(
     std = dict.fromkeys(PARAM_NAMES, 0.0)
     for name, var in zip(np.array(PARAM_NAMES)[free], np.diag(cov)):
         std[str(name)] = float(np.sqrt(max(var, 0.0)))
-    K = np.array([[g[0], g[4], g[2]], [0.0, g[1], g[3]], [0.0, 0.0, 1.0]])
-    initial = {"K": K0, "dist": d0, "homographies": Hs, "rvecs": poses0[:, :3].copy(), "tvecs": poses0[:, 3:].copy(),
-               "closed_form": K_guess is None}
-    return CalibrationResult(
-        K=K, dist=g[5:].copy(), rvecs=poses[:, :3].copy(), tvecs=poses[:, 3:].copy(), rms=rms,
-        per_view_rms=per_view, residuals=[res[v, :len(o)] for v, o in enumerate(objs)], std=std,
-        covariance=cov, free_params=tuple(str(n) for n in np.array(PARAM_NAMES)[free]), image_size=(w, h),
-        object_points=objs, image_points=imgs, cost_history=lm.cost_history, iterations=lm.iterations,
-        converged=lm.converged, initial=initial,
-    )
+    return cov, std
 
 
 class ImageCalibration(NamedTuple):
