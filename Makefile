@@ -35,7 +35,7 @@ browser-deps:
 	  fi; }
 
 # Unit, property, doctest, widget, exercise, lesson (nbval) and browser tests in one run.
-test: $(VENV)/.installed-test browser-deps
+test: $(VENV)/.installed-test browser-deps site-deps
 	$(BIN)/python -m pytest -n 2 --dist loadfile --nbval-lax $(PYTEST_ARGS)
 
 # Everything but the notebooks and the browser: the quick loop while editing.
@@ -51,3 +51,20 @@ strip: $(VENV)/.installed-lab
 
 clean:
 	rm -rf $(VENV) build *.egg-info
+
+# The course as a static website in site/ (issue 17): every lesson executed, maths typeset
+# by a local MathJax 3 from the npm registry (axe-core comes along for the accessibility test).
+NPM_DIR := build/npm
+.PHONY: site site-deps test-site
+$(NPM_DIR)/.installed:
+	npm install --prefix $(NPM_DIR) --no-audit --no-fund --no-save --silent mathjax@3.2.2 axe-core@4.10.3
+	touch $@
+
+site-deps: $(NPM_DIR)/.installed
+
+site: $(VENV)/.installed-test site-deps
+	$(BIN)/python tools/site/build.py site
+
+# The site's own tests on the site just built (CI runs this after `make site`).
+test-site: site browser-deps
+	CAMLAB_SITE_DIR=site $(BIN)/python -m pytest -p no:randomly tests/test_site.py $(PYTEST_ARGS)
