@@ -7,7 +7,7 @@ BIN    := $(VENV)/bin
 LAB_ARGS ?=
 PYTEST_ARGS ?=
 
-.PHONY: lab test test-fast bench strip browser-deps clean
+.PHONY: lab test test-fast bench bench-browser strip browser-deps clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -45,12 +45,22 @@ test-fast: $(VENV)/.installed-test
 bench: $(VENV)/.installed-test
 	$(BIN)/python benchmarks/run.py
 
+# Slider keydown to changed canvas pixels in JupyterLab, headless Chromium, one demo per lesson.
+bench-browser: $(VENV)/.installed-test browser-deps
+	$(BIN)/python benchmarks/latency.py --browser
+
 # Lessons are committed without outputs, execution counts or widget state.
 strip: $(VENV)/.installed-lab
 	$(BIN)/python tools/strip_notebooks.py lessons/*.ipynb
 
 clean:
 	rm -rf $(VENV) build *.egg-info
+
+# Teaching a class (docs/teaching.md). Lecture mode: one lesson's demos without code, in Voila.
+.PHONY: present
+LESSON ?= 00
+present: $(VENV)/.installed-test
+	$(BIN)/camlab present $(LESSON)
 
 # The course as a static website in site/ (issue 17): every lesson executed, maths typeset
 # by a local MathJax 3 from the npm registry (axe-core comes along for the accessibility test).

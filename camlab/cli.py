@@ -88,8 +88,21 @@ def _run_assignments(args: argparse.Namespace) -> int:
     return 0
 
 
+def _add_present(p: argparse.ArgumentParser) -> None:
+    p.add_argument("lesson", help="lesson number or name, e.g. 07")
+    p.add_argument("--port", type=int, default=8866, help="port on 127.0.0.1 (default 8866)")
+    p.add_argument("--no-browser", action="store_true", help="do not open a browser")
+
+
+def _run_present(args: argparse.Namespace) -> int:
+    from .classroom.present import serve
+
+    return serve(args.lesson, port=args.port, open_browser=not args.no_browser)
+
+
 COMMANDS: dict[str, tuple[str, Callable[[argparse.ArgumentParser], None], Callable[[argparse.Namespace], int]]] = {
     "calibrate": ("calibrate a camera from photos of a chessboard", _add_calibrate, _run_calibrate),
+    "present": ("lecture mode: serve one lesson's demos without code (Voila)", _add_present, _run_present),
     "assignments": ("write an nbgrader course directory of graded lessons", _add_assignments, _run_assignments),
 }
 

@@ -236,28 +236,40 @@ def max_valid_radius(dist: ArrayLike | None, r_max: float = 3.0) -> float:
 
 
 def classify_distortion(dist: ArrayLike | None, r_max: float = 0.8, tol: float = 1e-4) -> str:
-    r"""Name the radial distortion over radii ``(0, r_max]``: barrel, pincushion, mustache or none.
+    r"""Name the distortion over radii ``(0, r_max]``: barrel, pincushion, mustache or none, plus tangential.
 
-    Barrel: :math:`L(r) < 1` (points pulled inwards, straight lines bow outwards, typical
-    of wide angles). Pincushion: :math:`L(r) > 1` (telephoto). Mustache: the sign changes
-    within the field of view. ``tol`` is the smallest :math:`|L - 1|` that counts.
+    Radial part: barrel when :math:`L(r) < 1` (points pulled inwards, straight lines bow
+    outwards, typical of wide angles), pincushion when :math:`L(r) > 1` (telephoto),
+    mustache when the sign changes within the field of view. Tangential part: when
+    :math:`(p_1, p_2)` moves some point within ``r_max`` by more than ``tol`` (the shift
+    is at most :math:`3\,|(p_1, p_2)|\,r^2`), ``" + tangential"`` is appended, or the
+    answer is ``"tangential"`` alone when the radial part is none. ``tol`` is the smallest
+    displacement (normalised units) that counts.
 
     >>> classify_distortion([-0.3, 0, 0, 0, 0]), classify_distortion([0.2, 0, 0, 0, 0])
     ('barrel', 'pincushion')
     >>> classify_distortion([-0.3, 0.6, 0, 0, 0])
     'mustache'
+    >>> classify_distortion([0, 0, 0.01, 0, 0]), classify_distortion([-0.3, 0, 0, 0.01, 0])
+    ('tangential', 'barrel + tangential')
     """
     if not r_max > 0:
         raise CamlabInputError(f"r_max: expected a positive normalised radius, got {r_max!r}")
-    dev = radial_scale(np.linspace(0.0, r_max, 200)[1:], dist) - 1.0
-    dev = dev[np.abs(dev) > tol]
+    d = as_dist(dist)
+    r = np.linspace(0.0, r_max, 200)[1:]
+    dev = radial_scale(r, d) - 1.0
+    dev = dev[np.abs(dev) * r > tol]
     if dev.size == 0:
-        return "none"
-    if (dev < 0).all():
-        return "barrel"
-    if (dev > 0).all():
-        return "pincushion"
-    return "mustache"
+        radial = "none"
+    elif (dev < 0).all():
+        radial = "barrel"
+    elif (dev > 0).all():
+        radial = "pincushion"
+    else:
+        radial = "mustache"
+    if 3.0 * np.hypot(d[2], d[3]) * r_max**2 <= tol:
+        return radial
+    return "tangential" if radial == "none" else f"{radial} + tangential"
 
 
 # ---------------------------------------------------------------- pixels and images

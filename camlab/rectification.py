@@ -585,6 +585,7 @@ def stereo_calibrate(object_points: ArrayLike, image_points1, image_points2, ima
     StereoCalibration
     """
     from . import calibration as cal
+    from .calibration.refinement import project_views
     from .camera import axis_angle_from_rotation, rotation_from_axis_angle
     from .optimize import levenberg_marquardt
 
@@ -621,7 +622,7 @@ def stereo_calibrate(object_points: ArrayLike, image_points1, image_points2, ima
         R1 = np.stack([rotation_from_axis_angle(r) for r in poses[:, :3]])
         R2 = Rr @ R1
         poses2 = np.column_stack([[axis_angle_from_rotation(R) for R in R2], poses[:, 3:] @ Rr.T + tr])
-        uv = np.concatenate([cal._project(g1, poses, Xv), cal._project(g2, poses2, Xv)])
+        uv = np.concatenate([project_views(g1, poses, Xv), project_views(g2, poses2, Xv)])
         return (uv - obs).ravel()
 
     def jacobian(p):

@@ -24,7 +24,7 @@ import json
 from pathlib import Path
 
 from .._validate import CamlabInputError
-from .lessons import find_lesson, lesson_files
+from .lessons import called, find_lesson, lesson_files, only_statement, stub_name
 
 __all__ = ["NBGRADER_CONFIG", "POINTS", "STUB", "assignment_notebook", "write_course"]
 
@@ -40,35 +40,6 @@ c.ClearSolutions.code_stub = {{"python": {STUB!r}}}
 # Lessons 08, 09 and 11 compute for tens of seconds; leave room on a busy grading machine.
 c.Execute.timeout = 600
 '''
-
-
-def _only_statement(cell: dict) -> ast.stmt | None:
-    """The single Python statement of a code cell, or None (markdown, magics, several statements)."""
-    if cell["cell_type"] != "code":
-        return None
-    try:
-        body = ast.parse("".join(cell["source"])).body
-    except SyntaxError:
-        return None
-    return body[0] if len(body) == 1 else None
-
-
-def _stub_name(stmt: ast.stmt | None) -> str | None:
-    """``name`` if ``stmt`` is ``def name(...): ... raise NotImplementedError``."""
-    if isinstance(stmt, ast.FunctionDef) and isinstance(stmt.body[-1], ast.Raise):
-        raised = stmt.body[-1].exc
-        if isinstance(raised, ast.Call):
-            raised = raised.func
-        if isinstance(raised, ast.Name) and raised.id == "NotImplementedError":
-            return stmt.name
-    return None
-
-
-def _called(stmt: ast.stmt | None) -> tuple[str, list[ast.expr]] | None:
-    """``(function name, arguments)`` if ``stmt`` is a bare call ``f(...)``."""
-    if isinstance(stmt, ast.Expr) and isinstance(stmt.value, ast.Call) and isinstance(stmt.value.func, ast.Name):
-        return stmt.value.func.id, stmt.value.args
-    return None
 
 
 def _grade_metadata(grade_id: str, *, solution: bool) -> dict:
@@ -110,8 +81,8 @@ def assignment_notebook(notebook: dict, lesson: str) -> tuple[dict, list[str]]:
     nb = copy.deepcopy(notebook)
     cells, graded, stubs = [], [], {}
     for cell in nb["cells"]:
-        stmt = _only_statement(cell)
-        name, call = _stub_name(stmt), _called(stmt)
+        stmt = only_statement(cell)
+        name, call = stub_name(stmt), called(stmt)
         if name in exercises:
             stubs[name] = cell
             cell["source"] = _solution_source(stmt, exercises[name].reference)

@@ -1,11 +1,12 @@
-"""Find lesson notebooks by number (``07``), stem (``07_homographies``) or file name."""
+"""Find lesson notebooks by number (``07``), stem (``07_homographies``) or file name, and read their cells."""
 from __future__ import annotations
 
+import ast
 from pathlib import Path
 
 from .._validate import CamlabInputError
 
-__all__ = ["find_lesson", "lesson_files"]
+__all__ = ["called", "find_lesson", "lesson_files", "only_statement", "stub_name"]
 
 
 def lesson_files() -> list[Path]:
@@ -31,3 +32,32 @@ def find_lesson(spec: str) -> Path:
         known = ", ".join(f.stem for f in files)
         raise CamlabInputError(f"lesson: no lesson {spec!r}; expected a number or name, one of {known}")
     return matches[0]
+
+
+def only_statement(cell: dict) -> ast.stmt | None:
+    """The single Python statement of a code cell, or None (markdown, magics, several statements)."""
+    if cell["cell_type"] != "code":
+        return None
+    try:
+        body = ast.parse("".join(cell["source"])).body
+    except SyntaxError:
+        return None
+    return body[0] if len(body) == 1 else None
+
+
+def stub_name(stmt: ast.stmt | None) -> str | None:
+    """``name`` if ``stmt`` is ``def name(...): ... raise NotImplementedError``."""
+    if isinstance(stmt, ast.FunctionDef) and isinstance(stmt.body[-1], ast.Raise):
+        raised = stmt.body[-1].exc
+        if isinstance(raised, ast.Call):
+            raised = raised.func
+        if isinstance(raised, ast.Name) and raised.id == "NotImplementedError":
+            return stmt.name
+    return None
+
+
+def called(stmt: ast.stmt | None) -> tuple[str, list[ast.expr]] | None:
+    """``(function name, arguments)`` if ``stmt`` is a bare call ``f(...)``."""
+    if isinstance(stmt, ast.Expr) and isinstance(stmt.value, ast.Call) and isinstance(stmt.value.func, ast.Name):
+        return stmt.value.func.id, stmt.value.args
+    return None

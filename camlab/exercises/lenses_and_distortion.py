@@ -111,3 +111,48 @@ register_exercise(Exercise(
     ),
     teaching=distort_points,
 ))
+
+
+# -- hyperfocal_distance ------------------------------------------------------------------
+
+def _hyperfocal_cases():
+    return [(0.05, 8.0, 0.03e-3), (0.028, 2.8, 0.02e-3), (0.1, 16.0, 0.03e-3), (0.018, 5.6, 0.015e-3)]
+
+
+def _hyperfocal_diagnosis(args, got, expected) -> str:
+    f, N, c = args
+    if not _is_number(got):
+        return "return one number: the hyperfocal distance in metres"
+    slip = unit_slip(got, expected)
+    if slip:
+        return slip
+    g = float(got)
+    if np.isclose(g, f**2 / (N * c), rtol=1e-9):
+        return "you dropped the + f: H = f^2 / (N c) + f (small, but it is where the thin-lens algebra puts it)"
+    if np.isclose(g, f**2 * N / c, rtol=1e-9) or np.isclose(g, f**2 * N / c + f, rtol=1e-9):
+        return "N belongs in the denominator: a larger f-number (smaller aperture) brings H closer"
+    if np.isclose(g, f / (N * c) + f, rtol=1e-9) or np.isclose(g, f / (N * c), rtol=1e-9):
+        return "square the focal length: H = f^2 / (N c) + f"
+    return "set the blur circle of a point at infinity, A f / (H - f) with A = f / N, equal to c and solve for H"
+
+
+def hyperfocal_distance(f, N, c):
+    """Focus here and everything from H/2 to infinity is sharp: the far limit of the depth of field reaches infinity."""
+    return f**2 / (N * c) + f     # all lengths in metres
+
+
+register_exercise(Exercise(
+    name="hyperfocal_distance",
+    lesson="02",
+    reference=lens.hyperfocal_distance,
+    cases=_hyperfocal_cases,
+    compare=lambda got, exp: _is_number(got) and bool(np.isclose(float(got), exp, rtol=1e-9)),
+    diagnose=_hyperfocal_diagnosis,
+    wrong_variants=(
+        (lambda f, N, c: f**2 / (N * c), "dropped the + f"),
+        (lambda f, N, c: f**2 * N / c + f, "denominator"),
+        (lambda f, N, c: f / (N * c) + f, "square the focal length"),
+        (lambda f, N, c: 1e3 * (f**2 / (N * c) + f), "millimetres"),
+    ),
+    teaching=hyperfocal_distance,
+))
