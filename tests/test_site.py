@@ -142,24 +142,26 @@ def server(site):
 
 
 @pytest.fixture(scope="module")
-def browser():
-    from test_browser import CHROMIUM, CHROMIUM_ARGS
+def browser(tmp_path_factory):
+    """A headless Debian Chromium context (tools/browser.py, shared with tests/test_browser.py)."""
+    sys.path.insert(0, str(REPO / "tools"))
+    import browser as chromium
 
     if os.environ.get("CAMLAB_SKIP_BROWSER") == "1":
         pytest.skip("CAMLAB_SKIP_BROWSER=1")
-    if not Path(CHROMIUM).exists():
+    if not Path(chromium.CHROMIUM).exists():
         pytest.fail("Debian chromium is not installed: `apt-get install chromium` (make test does this as root)")
     from playwright.sync_api import sync_playwright
 
     with sync_playwright() as p:
-        b = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=CHROMIUM_ARGS)
-        yield b
-        b.close()
+        context = chromium.launch(p, tmp_path_factory.mktemp("chromium"))
+        yield context
+        context.close()
 
 
 def visit(browser, url: str) -> dict:
     """Open a page; return its console errors, outside requests, failures, maths and images."""
-    page = browser.new_page(viewport={"width": 1200, "height": 900})
+    page = browser.new_page()
     seen = dict(errors=[], outside=[], failed=[])
     host = urlsplit(url).netloc
     page.on("console", lambda m: seen["errors"].append(m.text) if m.type == "error" else None)
