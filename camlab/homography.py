@@ -42,10 +42,12 @@ from ._validate import (
     check_positive,
     check_rotation,
 )
-from .projective import map_lines, map_points
+from .optimize import levenberg_marquardt, unit_sphere_basis, unit_sphere_update
+from .projective import hartley_normalization, hartley_normalize, map_lines, map_points
+from .robust import PairModel, ransac
 
 __all__ = [
-    "HIERARCHY", "RansacResult", "RefineResult", "affine", "classify", "compose", "decompose",
+    "HIERARCHY", "HomographyModel", "RansacResult", "RefineResult", "affine", "classify", "compose", "decompose",
     "estimate_homography", "euclidean", "hartley_normalization", "invert", "map_lines", "map_points",
     "normalize_homography", "plane_homography", "pose_homography", "projective", "ransac_homography",
     "refine_homography", "rotation_homography", "same_homography", "sampson_error", "similarity",
@@ -54,7 +56,6 @@ __all__ = [
 
 _COLLINEAR_TOL = 1e-9   # |det| of three Hartley-normalised points below this: collinear
 _RANK_TOL = 1e-10       # second-smallest singular value of the DLT system relative to the largest
-_PREVIEW = 100          # RANSAC scores hypotheses on this many pairs before scoring the best fully
 
 
 # --------------------------------------------------------------------------- validation
@@ -89,44 +90,6 @@ def _check_h(H: ArrayLike, name: str = "H") -> np.ndarray:
 
 
 # --------------------------------------------------------------------------- normalisation
-
-def hartley_normalization(points: ArrayLike) -> np.ndarray:
-    r"""The similarity T that centres points and scales their mean distance to :math:`\sqrt 2`.
-
-    .. math:: T = \begin{pmatrix} s & 0 & -s\bar u \\ 0 & s & -s\bar v \\ 0 & 0 & 1 \end{pmatrix},
-              \quad s = \frac{\sqrt 2}{\operatorname{mean}_i \| x_i - \bar x \|}
-
-    After ``map_points(T, points)`` the coordinates are of order 1, so the entries of the
-    DLT matrix (products of coordinates up to :math:`u u'`) are all of similar size.
-
-    Parameters
-    ----------
-    points : (N, 2) array_like
-
-    Returns
-    -------
-    (3, 3) ndarray
-
-    Examples
-    --------
-    >>> T = hartley_normalization([[0, 0], [2, 0], [2, 2], [0, 2]])
-    >>> map_points(T, [[0, 0], [2, 2]]).round(6)
-    array([[-1., -1.],
-           [ 1.,  1.]])
-    """
-    p = as_points(points, 2, "points").array
-    c = p.mean(axis=0)
-    spread = np.mean(np.linalg.norm(p - c, axis=1))
-    if spread == 0:
-        raise DegenerateError("points: all points coincide, so they cannot be normalised; use distinct points")
-    s = np.sqrt(2.0) / spread
-    return np.array([[s, 0.0, -s * c[0]], [0.0, s, -s * c[1]], [0.0, 0.0, 1.0]])
-
-
-def _normalize_batch(p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    T = hartley_normalization(p)
-    return p * T[0, 0] + T[:2, 2], T
-
 
 def normalize_homography(H: ArrayLike) -> np.ndarray:
     """Scale H so that H[2, 2] = 1, or to unit Frobenius norm when H[2, 2] is (nearly) 0.
@@ -257,8 +220,8 @@ def estimate_homography(src: ArrayLike, dst: ArrayLike, normalize: bool = True) 
            [0., 0., 1.]])
     """
     s, d = _pairs(src, dst)
-    sn, Ts = _normalize_batch(s)
-    dn, Td = _normalize_batch(d)
+    sn, Ts = hartley_normalize(s)
+    dn, Td = hartley_normalize(d)
     _check_general_position(sn, "src")
     _check_general_position(dn, "dst")
     if normalize and len(s) > 4:
@@ -319,19 +282,14 @@ def symmetric_transfer_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np
 def _sq_transfer_batch(H: np.ndarray, p: np.ndarray, q: np.ndarray) -> np.ndarray:
     """(B, N) squared distances |q - pi(H p)|^2 for a stack of homographies (B, 3, 3).
 
-    Plain broadcasting of (B, 1) coefficients against (N,) coordinates rather than a
-    batched matrix product: no multithreaded BLAS, which is slow for many tiny products.
+    Points are used as (3, N) columns, so mapping all of them by each H is one (3, 3) @ (3, N)
+    product per homography.
     """
-    u, v = p[:, 0], p[:, 1]
-    h = H.reshape(len(H), 9, 1)
+    y = H @ np.vstack([p.T, np.ones(len(p))])         # (B, 3, N)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        iw = 1.0 / (h[:, 6] * u + h[:, 7] * v + h[:, 8])
-        ex = (h[:, 0] * u + h[:, 1] * v + h[:, 2]) * iw - q[:, 0]
-        ey = (h[:, 3] * u + h[:, 4] * v + h[:, 5]) * iw - q[:, 1]
-        ex *= ex
-        ey *= ey
-        ex += ey
-    return ex
+        e = y[:, :2] / y[:, 2:] - q.T                  # (B, 2, N)
+        e *= e
+        return e[:, 0] + e[:, 1]
 
 
 def _sym_err_batch(H: np.ndarray, Hinv: np.ndarray, s: np.ndarray, d: np.ndarray) -> np.ndarray:
@@ -393,7 +351,7 @@ class RansacResult(NamedTuple):
     Attributes
     ----------
     H : (3, 3) ndarray
-        The homography re-estimated (normalised DLT) on all inliers, H[2, 2] = 1.
+        The locally optimised homography (least squares on its inliers), H[2, 2] = 1.
     inliers : (N,) bool ndarray
         Pairs whose residual under ``H`` is below the threshold.
     iterations : int
@@ -406,16 +364,6 @@ class RansacResult(NamedTuple):
     inliers: np.ndarray
     iterations: int
     residuals: np.ndarray
-
-
-def _required_iterations(inlier_ratio: float, confidence: float, sample_size: int = 4) -> float:
-    r""":math:`k = \log(1 - p) / \log(1 - w^s)`: samples needed to draw one all-inlier sample."""
-    w_s = inlier_ratio ** sample_size
-    if w_s <= 0:
-        return np.inf
-    if w_s >= 1:
-        return 1.0
-    return np.log(1 - confidence) / np.log(1 - w_s)
 
 
 def _minimal_solve(sn: np.ndarray, dn: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -436,34 +384,80 @@ def _minimal_solve(sn: np.ndarray, dn: np.ndarray) -> tuple[np.ndarray, np.ndarr
     return H, ok
 
 
+class HomographyModel(PairModel):
+    """Homographies ``dst ~ H src`` for the robust driver :func:`camlab.robust.ransac`.
+
+    Minimal samples of 4 pairs are solved by the 4-point DLT (batched SVD), larger sets
+    by the normalised DLT (the smallest eigenvector of :math:`A^T A`), both in Hartley-
+    normalised coordinates computed once; residuals are the symmetric transfer error or
+    the Sampson error in pixels.
+    """
+
+    sample_size = 4
+    name = "ransac_homography"
+
+    def __init__(self, src: np.ndarray, dst: np.ndarray, score: str = "transfer"):
+        super().__init__(src, dst)
+        self.score = score
+        self.sn, self.Ts = hartley_normalize(src)
+        self.dn, self.Td = hartley_normalize(dst)
+        self.Td_inv = np.linalg.inv(self.Td)
+        self.A = _dlt_rows(self.sn, self.dn).reshape(-1, 2, 9)  # each pair's two DLT rows, once
+
+    def _to_pixels(self, Hn: np.ndarray) -> np.ndarray:
+        return self.Td_inv @ Hn @ self.Ts  # H = Td^-1 Hn Ts
+
+    def minimal(self, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        Hn, ok = _minimal_solve(self.sn[idx], self.dn[idx])
+        return self._to_pixels(Hn), ok
+
+    def fit(self, idx: np.ndarray) -> np.ndarray:
+        A = self.A[idx].reshape(-1, 9)
+        ev, V = np.linalg.eigh(A.T @ A)
+        if ev[1] <= 1e-12 * ev[-1]:
+            raise DegenerateError("ransac_homography: the inliers do not fix a unique homography")
+        H = self._to_pixels(V[:, 0].reshape(3, 3))
+        return H / np.linalg.norm(H)
+
+    def residuals(self, models: np.ndarray, i1: np.ndarray | None = None,
+                  i2: np.ndarray | None = None) -> np.ndarray:
+        s = self.x1 if i1 is None else self.x1[i1]
+        d = self.x2 if i1 is None else self.x2[i1 if i2 is None else i2]
+        if self.score == "sampson":
+            return _sampson_batch(models, s, d)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            inv = np.linalg.inv(models)
+        return _sym_err_batch(models, inv, s, d)
+
+
 def ransac_homography(
     src: ArrayLike,
     dst: ArrayLike,
     threshold: float = 3.0,
     confidence: float = 0.995,
     max_iters: int = 2000,
-    rng: np.random.Generator | None = None,
+    rng: np.random.Generator | int | None = None,
     *,
     score: str = "transfer",
     batch: int = 64,
 ) -> RansacResult:
-    r"""Robustly estimate H from pairs with outliers by adaptive, vectorised RANSAC.
+    r"""Robustly estimate H from pairs with outliers: LO-RANSAC with MSAC scoring.
 
-    Algorithm (H&Z algorithm 4.6, Fischler & Bolles 1981):
+    :class:`HomographyModel` plugged into the driver :func:`camlab.robust.ransac`
+    (its docstring derives each step; H&Z algorithm 4.6, Fischler & Bolles 1981):
 
     1. Normalise both point sets once (Hartley), so minimal solves are well conditioned.
-    2. Draw ``batch`` random 4-pair samples at once; reject degenerate ones (3 collinear
-       points in either image, or inconsistent triangle orientations).
-    3. Solve all 4-point DLTs together with one batched SVD; score every hypothesis on
-       a random preview of 100 pairs, then the best quarter on every pair at once (a
-       (batch, N) error matrix), counting pairs below ``threshold``. Keep the hypothesis
-       with the most inliers (ties: smaller total truncated error, MSAC-style).
-    4. Adapt: with inlier ratio w of the best hypothesis so far, one all-inlier sample
-       is drawn with probability ``confidence`` after
-       :math:`k = \log(1 - p) / \log(1 - w^4)` samples. Stop when k samples
-       (or ``max_iters``) have been drawn.
-    5. Re-estimate H by the normalised DLT on all inliers, recompute the inliers, and
-       repeat until the set stops changing (at most 5 times).
+    2. Draw random 4-pair samples in batches; reject degenerate ones (3 collinear points
+       in either image, or inconsistent triangle orientations); solve all their 4-point
+       DLTs with one batched SVD.
+    3. Score every hypothesis by the truncated quadratic (MSAC) cost
+       :math:`\sum_i \min(e_i^2, t^2)` of its ``score`` errors.
+    4. Each time a hypothesis beats the best so far, re-fit it on its inliers by the
+       normalised DLT (local optimisation), so the kept model is a least-squares fit to
+       its consensus, not to 4 noisy points.
+    5. Stop after :math:`k = \log(1 - p) / \log(1 - w^4)` samples for the best inlier
+       ratio w so far (or ``max_iters``), and refuse a consensus that random pairs could
+       reach by chance.
 
     Parameters
     ----------
@@ -475,7 +469,7 @@ def ransac_homography(
         Probability in (0, 1) of having drawn at least one all-inlier sample.
     max_iters : int
         Upper bound on samples drawn.
-    rng : np.random.Generator or None
+    rng : np.random.Generator, int or None
         Source of randomness (seed it for reproducible results).
     score : {"transfer", "sampson"}
         ``"transfer"``: :func:`symmetric_transfer_error`; ``"sampson"``:
@@ -491,80 +485,14 @@ def ransac_homography(
     Raises
     ------
     DegenerateError
-        If no hypothesis is supported by a fifth pair (only its own minimal sample fits).
+        If no sample gives a homography, or the best has no more inliers than random
+        pairs would reach by chance (the matches are wrong, or the threshold too small).
     """
     s, d = _pairs(src, dst)
-    threshold = check_positive(threshold, "threshold", "pixels")
-    if not 0 < confidence < 1:
-        raise CamlabInputError(f"confidence: expected a probability strictly between 0 and 1, got {confidence!r}")
-    if int(max_iters) < 1:
-        raise CamlabInputError(f"max_iters: expected a positive integer, got {max_iters!r}")
     if score not in ("transfer", "sampson"):
         raise CamlabInputError(f"score: expected 'transfer' or 'sampson', got {score!r}")
-    rng = np.random.default_rng() if rng is None else rng
-    n = len(s)
-    sn, Ts = _normalize_batch(s)
-    dn, Td = _normalize_batch(d)
-    Ts_inv, Td_inv = np.linalg.inv(Ts), np.linalg.inv(Td)
-
-    def residuals(Hs: np.ndarray, s: np.ndarray = s, d: np.ndarray = d) -> np.ndarray:
-        if score == "sampson":
-            return _sampson_batch(Hs, s, d)
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            inv = np.linalg.inv(Hs)
-        return _sym_err_batch(Hs, inv, s, d)
-
-    best_count, best_cost, best_H = -1, np.inf, None
-    needed, drawn = float(max_iters), 0
-    while drawn < min(needed, max_iters):
-        # The first batch is a quarter size; later ones are only as large as still needed.
-        want = batch // 4 if drawn == 0 else int(np.ceil(min(needed, max_iters) - drawn))
-        b = int(np.clip(want, 1, min(batch, max_iters - drawn)))
-        # Four indices per sample; samples that repeat an index are rejected below.
-        idx = rng.integers(0, n, size=(b, 4))
-        drawn += b
-        Hn, ok = _minimal_solve(sn[idx], dn[idx])
-        srt = np.sort(idx, axis=1)
-        ok &= np.all(srt[:, 1:] != srt[:, :-1], axis=1)
-        if not ok.any():
-            continue
-        Hn = Hn[ok]
-        Hs = Td_inv @ Hn @ Ts  # back to pixels: H = Td^-1 Hn Ts
-        if len(Hs) > 4 and n > 4 * _PREVIEW:
-            # Preview: score every hypothesis on a random subset first and fully score only
-            # the most promising quarter (a bad hypothesis rarely looks good on 100 pairs).
-            sub = rng.choice(n, _PREVIEW, replace=False)
-            pre = residuals(Hs, s[sub], d[sub]) < threshold
-            Hs = Hs[np.argsort(-pre.sum(axis=1), kind="stable")[: max(2, len(Hs) // 4)]]
-        err = residuals(Hs)
-        inl = err < threshold
-        counts = inl.sum(axis=1)
-        cost = np.minimum(err, threshold).sum(axis=1)
-        k = int(np.lexsort((cost, -counts))[0])
-        if counts[k] > best_count or (counts[k] == best_count and cost[k] < best_cost):
-            best_count, best_cost, best_H = int(counts[k]), float(cost[k]), Hs[k]
-            needed = _required_iterations(best_count / n, confidence)
-    if best_H is None or best_count < min(n, 5):
-        raise DegenerateError(
-            f"ransac_homography: no hypothesis from {drawn} samples was supported by any pair beyond its "
-            f"own 4 within {threshold} px; the data may hold no homography, or the threshold is too small"
-        )
-    H = best_H
-    inliers = residuals(H[None])[0] < threshold
-    for _ in range(5):
-        try:
-            H_new = estimate_homography(s[inliers], d[inliers])
-        except DegenerateError:
-            break
-        new = residuals(H_new[None])[0] < threshold
-        if new.sum() < inliers.sum():
-            break
-        H = H_new
-        if np.array_equal(new, inliers):
-            break
-        inliers = new
-    res = residuals(H[None])[0]
-    return RansacResult(normalize_homography(H), res < threshold, int(drawn), res)
+    fit = ransac(HomographyModel(s, d, score), threshold, confidence, max_iters, rng, batch=batch)
+    return RansacResult(normalize_homography(fit.model), fit.inliers, fit.iterations, fit.residuals)
 
 
 # --------------------------------------------------------------------------- LM refinement
@@ -630,11 +558,10 @@ def refine_homography(
     so steps are taken in the 8-dimensional space orthogonal to the current :math:`h`
     (a basis B from the SVD of :math:`h^T`), and h is re-normalised after each step.
 
-    Each step solves :math:`(J^T J + \lambda\, \mathrm{diag}(J^T J))\,\delta = -J^T r`
-    with the analytic Jacobian J: for the forward term
-    :math:`\partial (Hx)/\partial h = I_3 \otimes x^T`, and for the backward term
-    :math:`d(H^{-1}) = -H^{-1}\, dH\, H^{-1}`. A step that lowers the cost is accepted and
-    :math:`\lambda` shrinks 10x; otherwise it is rejected and :math:`\lambda` grows 10x.
+    The steps are :func:`camlab.optimize.levenberg_marquardt`'s, on the unit sphere
+    (:func:`camlab.optimize.unit_sphere_update`), with the analytic Jacobian J: for the
+    forward term :math:`\partial (Hx)/\partial h = I_3 \otimes x^T`, and for the backward
+    term :math:`d(H^{-1}) = -H^{-1}\, dH\, H^{-1}`.
 
     Parameters
     ----------
@@ -643,7 +570,7 @@ def refine_homography(
     src, dst : (N, 2) array_like
         Corresponding pixel coordinates, N >= 4.
     max_iters : int
-        Maximum LM steps.
+        Maximum LM steps (accepted or rejected).
     tol : float
         Stop when the relative cost decrease of an accepted step is below ``tol``.
 
@@ -660,41 +587,25 @@ def refine_homography(
     h = _check_h(H).ravel().copy()
     s, d = _pairs(src, dst)
     h /= np.linalg.norm(h)
-    r, J = _transfer_residuals_and_jacobian(h, s, d)
-    cost = float(r @ r)
-    if not np.isfinite(cost):
+    r0 = _transfer_residuals_and_jacobian(h, s, d)[0]
+    if not np.all(np.isfinite(r0)):
         raise ConvergenceError("refine_homography: the starting H maps some point to infinity; start from the DLT")
-    rms0 = np.sqrt(cost / (2 * len(s)))
-    lam = 1e-3
-    it = 0
-    for it in range(1, int(max_iters) + 1):
-        B = np.linalg.svd(h[None, :])[2][1:].T     # (9, 8): orthonormal basis orthogonal to h
-        Jb = J @ B
-        JtJ = Jb.T @ Jb
-        g = Jb.T @ r
-        if np.max(np.abs(g)) < 1e-14 * max(cost, 1e-300):
-            break
-        step = np.linalg.solve(JtJ + lam * np.diag(np.diag(JtJ) + 1e-12), -g)
-        h_new = h + B @ step
-        h_new /= np.linalg.norm(h_new)
-        try:
-            r_new, J_new = _transfer_residuals_and_jacobian(h_new, s, d)
-        except np.linalg.LinAlgError:
-            lam *= 10
-            continue
-        cost_new = float(r_new @ r_new)
-        if np.isfinite(cost_new) and cost_new < cost:
-            done = (cost - cost_new) <= tol * cost
-            h, r, J, cost = h_new, r_new, J_new, cost_new
-            lam = max(lam / 10, 1e-12)
-            if done:
-                break
-        else:
-            lam *= 10
-            if lam > 1e12:
-                break
-    return RefineResult(normalize_homography(h.reshape(3, 3)), float(rms0),
-                        float(np.sqrt(cost / (2 * len(s)))), it)
+    cache: dict = {}
+
+    def evaluate(x: np.ndarray):
+        key = x.tobytes()
+        if key not in cache:
+            cache.clear()
+            try:
+                cache[key] = _transfer_residuals_and_jacobian(x, s, d)
+            except np.linalg.LinAlgError:  # a singular trial H: reject the step
+                cache[key] = (np.full(4 * len(s), np.inf), None)
+        return cache[key]
+
+    lm = levenberg_marquardt(lambda x: evaluate(x)[0], h, lambda x: evaluate(x)[1] @ unit_sphere_basis(x),
+                             update=unit_sphere_update, max_iter=int(max_iters), ftol=tol, xtol=1e-14, gtol=0.0)
+    return RefineResult(normalize_homography(lm.x.reshape(3, 3)), float(np.sqrt(r0 @ r0 / (2 * len(s)))),
+                        float(np.sqrt(2 * lm.cost / (2 * len(s)))), lm.iterations)
 
 
 # --------------------------------------------------------------------------- algebra
