@@ -127,7 +127,7 @@ class PairRegistration(NamedTuple):
 def register_pair(features1: _feat.Features, features2: _feat.Features, *, ratio: float = 0.75,
                   mutual: bool = False, threshold: float = 3.0, min_inliers: int = 15,
                   rng: np.random.Generator | None = None, matches: _feat.Matches | None = None,
-                  refine: bool = True) -> PairRegistration:
+                  refine: bool = True, approximate: bool = False) -> PairRegistration:
     r"""Register image 1 onto image 2: match features, fit H by RANSAC, judge the result.
 
     The pair is accepted when RANSAC finds at least ``min_inliers`` inliers *and* more
@@ -152,9 +152,11 @@ def register_pair(features1: _feat.Features, features2: _feat.Features, *, ratio
         RANSAC's randomness (default: seeded with 0, so results are reproducible).
     matches : camlab.features.Matches, optional
         Use these matches instead of matching (e.g. re-filtered ones from a slider).
+    approximate : bool
+        Match with FLANN instead of brute force (:func:`camlab.features.knn_match`).
     """
     rng = np.random.default_rng(0) if rng is None else rng
-    m = _feat.match_features(features1, features2, ratio, mutual) if matches is None else matches
+    m = _feat.match_features(features1, features2, ratio, mutual, approximate=approximate) if matches is None else matches
     n = len(m.src)
     none = np.zeros(n, bool)
     if n < max(min_inliers, 5):
@@ -234,7 +236,7 @@ class MatchGraph(NamedTuple):
 
 def match_graph(features: Sequence[_feat.Features], *, ratio: float = 0.75, mutual: bool = False,
                 threshold: float = 3.0, min_inliers: int = 15, rng: np.random.Generator | None = None,
-                reference: int | None = None) -> MatchGraph:
+                reference: int | None = None, approximate: bool = False) -> MatchGraph:
     r"""Register every pair, choose the reference image and chain homographies to it.
 
     1. Register each pair i < j (:func:`register_pair`).
@@ -254,7 +256,7 @@ def match_graph(features: Sequence[_feat.Features], *, ratio: float = 0.75, mutu
     for i in range(n):
         for j in range(i + 1, n):
             pairs[(i, j)] = register_pair(feats[i], feats[j], ratio=ratio, mutual=mutual, threshold=threshold,
-                                          min_inliers=min_inliers, rng=rng)
+                                          min_inliers=min_inliers, rng=rng, approximate=approximate)
     degree = np.zeros(n, int)
     strength = np.zeros(n, int)
     for (i, j), p in pairs.items():

@@ -221,7 +221,7 @@ def _adjust(blocks: dict, build, pair_errors, pairs: list, huber: float, max_ite
 
     if n == 0:
         return models(x0), rms(x0), rms(x0), np.zeros(1), 0, "nothing to adjust"
-    res = levenberg_marquardt(residuals, x0, jacobian, max_iter=max_iter, ftol=1e-10)
+    res = levenberg_marquardt(residuals, x0, jacobian, max_iter=max_iter, ftol=1e-8)
     return models(res.x), rms(x0), rms(res.x), res.cost_history, res.iterations, res.message
 
 
@@ -234,7 +234,7 @@ def _pairs(matches: dict, present) -> list:
 
 
 def bundle_adjust(Ks: Sequence, Rs: Sequence, matches: dict, *, fixed: int | None = None,
-                  huber: float = 2.0, max_iter: int = 50, focal: bool = True) -> BundleResult:
+                  huber: float = 2.0, max_iter: int = 30, focal: bool = True) -> BundleResult:
     r"""Refine every camera's focal and rotation over all matches (Brown & Lowe 2007, sec. 4).
 
     Minimises the symmetric reprojection error of every match of every pair, through a
@@ -299,7 +299,7 @@ class HomographyAdjustment(NamedTuple):
 
 
 def adjust_homographies(ref_from_k: Sequence, matches: dict, *, reference: int, huber: float = 2.0,
-                        max_iter: int = 50) -> HomographyAdjustment:
+                        max_iter: int = 30) -> HomographyAdjustment:
     r"""Refine every image's homography onto the reference together, over all matches (planar scenes).
 
     A flat scene seen from several positions has no common centre, so no rotation model;
@@ -387,7 +387,7 @@ class CameraEstimate(NamedTuple):
     bundle: BundleResult
 
 
-def inlier_matches(graph, max_matches: int = 400) -> dict:
+def inlier_matches(graph, max_matches: int = 200) -> dict:
     """(i, j) -> (x_i, x_j): the inlier matches of every accepted pair (at most ``max_matches``, the most distinctive)."""
     out = {}
     for (i, j), p in graph.pairs.items():
@@ -398,7 +398,7 @@ def inlier_matches(graph, max_matches: int = 400) -> dict:
 
 
 def estimate_cameras(graph, shapes: Sequence[Sequence[int]], *, K: ArrayLike | None = None, huber: float = 2.0,
-                     max_matches: int = 400, wave: bool = True) -> CameraEstimate:
+                     max_matches: int = 200, wave: bool = True) -> CameraEstimate:
     """Focal, spanning-tree rotations, bundle adjustment, wave correction (the module docstring's steps).
 
     Parameters

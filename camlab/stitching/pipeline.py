@@ -28,7 +28,7 @@ from .. import features as _feat
 from .. import homography as _hg
 from .._validate import CamlabInputError, DegenerateError
 from . import BLENDS, WarpedImages, blend, feather_weights, gain_compensation, match_graph, prepare_images, warp_images
-from .cameras import adjust_homographies, estimate_cameras, inlier_matches
+from .cameras import adjust_homographies, estimate_cameras, estimate_focal, inlier_matches
 from .projections import PROJECTIONS, canvas_from_ray, make_canvas, warp_to_canvas
 
 __all__ = ["PROJECTION_CHOICES", "StitchResult", "largest_rectangle", "stitch"]
@@ -105,6 +105,26 @@ def _duplicates(imgs: list) -> dict:
                 out[j] = i
                 break
     return out
+
+
+def _detect(im: np.ndarray, method: str, max_features: int, mask, megapixels) -> _feat.Features:
+    """Features of ``im`` found on a copy of at most ``megapixels``, positions in ``im``'s pixels.
+
+    Resizing by s maps pixel centres u to s (u + 1/2) - 1/2, so back is (u' + 1/2)/s - 1/2.
+    """
+    import cv2
+
+    h, w = im.shape[:2]
+    s = 1.0 if megapixels is None else min(1.0, float(np.sqrt(megapixels * 1e6 / (h * w))))
+    if s > 0.95:
+        return _feat.detect_features(im, method, max_features, mask=mask)
+    size = (max(16, int(round(w * s))), max(16, int(round(h * s))))
+    small = cv2.resize(im, size, interpolation=cv2.INTER_AREA)
+    m = None if mask is None else cv2.resize(mask.astype(np.uint8), size, interpolation=cv2.INTER_NEAREST) > 0
+    f = _feat.detect_features(small, method, max_features, mask=m)
+    sx, sy = size[0] / w, size[1] / h
+    pts = np.c_[(f.points[:, 0] + 0.5) / sx - 0.5, (f.points[:, 1] + 0.5) / sy - 0.5]
+    return f._replace(points=pts, sizes=f.sizes / s)
 
 
 def _names(names, n: int) -> list:
@@ -185,7 +205,7 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
            projection: str = "auto", K: ArrayLike | None = None, reference: int | None = None,
            rng: np.random.Generator | None = None, max_pixels: int = 40_000_000,
            names: Sequence[str] | None = None, crop: bool = False, rotation_tol: float = 1.0,
-           plane_tol: float = 1.5) -> StitchResult:
+           plane_tol: float = 1.5, registration_megapixels: float = 0.15) -> StitchResult:
     """Stitch overlapping photos of a turning camera, or of a flat scene, into a panorama.
 
     See the module docstring for the stages.
@@ -212,6 +232,10 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
         Image names for messages (default "image 0", ...).
     crop : bool
         Crop to the largest rectangle that holds no empty canvas.
+    registration_megapixels : float
+        Find features on copies at most this large (SIFT's cost grows with the area; its
+        finest octave mostly adds noise-level keypoints); their positions are mapped back,
+        so every later stage works in full-resolution pixels. ``None``: full resolution.
     rotation_tol, plane_tol : float
         RMS residuals (pixels) above which the rotation model, then the plane model, is
         judged not to fit.
@@ -249,11 +273,11 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
         warnings.warn("stitch: " + "; ".join(f"{label[j]!r} is the same photo as {label[i]!r}" for j, i in dup.items())
                       + "; the repeat is left out", UserWarning, stacklevel=2)
     masks_feat = [None if k not in dup else np.zeros(im.shape[:2], bool) for k, im in enumerate(imgs)]
-    feats = [_feat.detect_features(im, method, max_features, mask=masks_feat[k]) for k, im in enumerate(imgs)]
+    feats = [_detect(im, method, max_features, masks_feat[k], registration_megapixels) for k, im in enumerate(imgs)]
     times["features"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     graph = match_graph(feats, ratio=ratio, mutual=mutual, threshold=threshold, min_inliers=min_inliers,
-                        rng=rng, reference=reference)
+                        rng=rng, reference=reference, approximate=True)
     times["matching"] = time.perf_counter() - t0
     keep = [k for k in range(n) if graph.homographies[k] is not None]
     if len(keep) < 2:
@@ -270,12 +294,14 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
 
     t0 = time.perf_counter()
     shapes = [im.shape for im in imgs]
-    est = estimate_cameras(graph, shapes, K=Kfix)
-    rot_rms = est.bundle.rms_after
-    model, cams, Hs_plane, resid = "rotation", est, None, rot_rms
     diag = float(np.median([np.hypot(*sh[:2]) for sh in shapes]))
-    telephoto = float(np.median([est.Ks[k][0, 0] for k in keep])) > 4 * diag
-    if (rot_rms > rotation_tol or telephoto) and projection in ("auto", "planar"):
+    f0 = estimate_focal({key: p.H for key, p in graph.pairs.items() if p.accepted}, shapes)
+    # views under 14 degrees wide: a rotation cannot be told from a flat scene (and its adjustment crawls)
+    telephoto = Kfix is None and f0 > 4 * diag and projection in ("auto", "planar")
+    est = None if telephoto else estimate_cameras(graph, shapes, K=Kfix)
+    rot_rms = np.inf if est is None else est.bundle.rms_after
+    model, resid = "rotation", rot_rms
+    if (telephoto or rot_rms > rotation_tol) and projection in ("auto", "planar"):
         adj = adjust_homographies(graph.homographies, inlier_matches(graph), reference=graph.reference)
         model, Hs_plane, resid = "homography", adj.homographies, adj.rms_after
         if adj.rms_after > plane_tol:
@@ -287,8 +313,11 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
         warnings.warn(f"stitch: the rotation model leaves {rot_rms:.2f} px RMS (more than {rotation_tol} px): the "
                       f"camera moved (parallax) or the scene is flat; try projection='planar'", UserWarning,
                       stacklevel=2)
-    Ks = [est.Ks[k] for k in keep]
-    Rs = [est.Rs[k] for k in keep]
+    if model == "homography":
+        Ks = Rs = [None] * len(keep)
+    else:
+        Ks = [est.Ks[k] for k in keep]
+        Rs = [est.Rs[k] for k in keep]
     sub_shapes = [shapes[k] for k in keep]
     chosen = projection
     if projection == "auto":
@@ -297,11 +326,11 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
 
     t0 = time.perf_counter()
     sub = [imgs[k] for k in keep]
-    s = float(np.median([Kk[0, 0] for Kk in Ks]))
     if chosen == "planar":
         if model == "homography":
             H_list = [Hs_plane[k] for k in keep]
         else:
+            s = float(np.median([Kk[0, 0] for Kk in Ks]))
             Kc = np.diag([s, s, 1.0])
             H_list = [Kc @ R.T @ np.linalg.inv(Kk) for Kk, R in zip(Ks, Rs)]
         try:
@@ -311,6 +340,7 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
                                   "use projection='cylindrical' or 'spherical'") from None
         outlines_sub = [_hg_border(H, sh) for H, sh in zip(warped.homographies, sub_shapes)]
     else:
+        s = float(np.median([Kk[0, 0] for Kk in Ks]))
         canvas = make_canvas(Ks, Rs, sub_shapes, chosen, s, max_pixels=max_pixels)
         if canvas.wraps:
             warnings.warn("stitch: the photos turn through more than 360 degrees; the canvas is one full turn and "
