@@ -7,18 +7,21 @@ BIN    := $(VENV)/bin
 LAB_ARGS ?=
 PYTEST_ARGS ?=
 
-.PHONY: lab test test-fast bench strip browser-deps clean
+.PHONY: lab test test-fast bench bench-browser strip browser-deps clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 
-$(VENV)/.installed-lab: pyproject.toml | $(BIN)/python
+# (The distribution was called `camlab` before 0.1.0 became camlab-course: drop a stale one.)
+$(VENV)/.installed-lab: pyproject.toml setup.py | $(BIN)/python
+	@$(BIN)/python -m pip uninstall --quiet --yes camlab 2>/dev/null || true
 	$(BIN)/python -m pip install --quiet -e .
 	touch $@
 
-$(VENV)/.installed-test: pyproject.toml | $(BIN)/python
-	$(BIN)/python -m pip install --quiet -e ".[test]"
+$(VENV)/.installed-test: pyproject.toml setup.py | $(BIN)/python
+	@$(BIN)/python -m pip uninstall --quiet --yes camlab 2>/dev/null || true
+	$(BIN)/python -m pip install --quiet -e ".[test,class]"
 	touch $(VENV)/.installed-lab $@
 
 lab: $(VENV)/.installed-lab
@@ -45,9 +48,19 @@ test-fast: $(VENV)/.installed-test
 bench: $(VENV)/.installed-test
 	$(BIN)/python benchmarks/run.py
 
+# Slider keydown to changed canvas pixels in JupyterLab, headless Chromium, one demo per lesson.
+bench-browser: $(VENV)/.installed-test browser-deps
+	$(BIN)/python benchmarks/latency.py --browser
+
 # Lessons are committed without outputs, execution counts or widget state.
 strip: $(VENV)/.installed-lab
 	$(BIN)/python tools/strip_notebooks.py lessons/*.ipynb
 
 clean:
 	rm -rf $(VENV) build *.egg-info
+
+# Teaching a class (docs/teaching.md). Lecture mode: one lesson's demos without code, in Voila.
+.PHONY: present
+LESSON ?= 00
+present: $(VENV)/.installed-test
+	$(BIN)/camlab present $(LESSON)

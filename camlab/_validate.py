@@ -133,25 +133,144 @@ def check_matrix(x: ArrayLike, shape: tuple[int, ...], name: str, *, finite: boo
     return a
 
 
+def _number(value, name: str, what: str) -> float:
+    """``value`` as a float; strings, None and other non-numbers raise naming ``name``."""
+    if isinstance(value, (str, bytes, bool)) or value is None:
+        raise CamlabInputError(f"{name}: expected {what}, got {type(value).__name__} {value!r}; pass a number")
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise CamlabInputError(f"{name}: expected {what}, got {type(value).__name__} {value!r}; pass a number") from None
+
+
 def check_positive(value: float, name: str, unit: str = "") -> float:
-    """Return ``value`` as a float if it is finite and > 0, else raise."""
-    v = float(value)
+    """Return ``value`` as a float if it is finite and > 0, else raise naming ``name``.
+
+    >>> check_positive(0.05, "focal_length", "metres")
+    0.05
+    >>> check_positive("0.05", "focal_length", "metres")
+    Traceback (most recent call last):
+    ...
+    camlab._validate.CamlabInputError: focal_length: expected a positive finite number metres, got str '0.05'; pass a number
+    """
+    unit = f" {unit}" if unit else ""
+    v = _number(value, name, f"a positive finite number{unit}")
     if not np.isfinite(v) or v <= 0:
-        unit = f" {unit}" if unit else ""
         raise CamlabInputError(f"{name}: expected a positive finite number{unit}, got {value!r}")
     return v
 
 
-def check_image_size(size, name: str = "size") -> tuple[int, int]:
-    """Return ``size`` as integer ``(width, height)`` in pixels, or raise a clear error.
+def check_size(size, name: str = "size", *, minimum: int = 1) -> tuple[int, int]:
+    """Return an image ``size`` as integer ``(width, height)`` in pixels, or raise a clear error.
 
-    >>> check_image_size((640, 480))
+    ``size`` is (width, height) and ``shape`` is (height, width) throughout camlab (see
+    docs/conventions.md). Whole numbers written as floats (``640.0``) are accepted; a
+    fraction (``640.7``), a string, zero or a negative number is a mistake, not something
+    to truncate.
+
+    >>> check_size((640, 480))
     (640, 480)
+    >>> check_size((640.7, 480))
+    Traceback (most recent call last):
+    ...
+    camlab._validate.CamlabInputError: size: expected (width, height) as whole numbers of pixels, got (640.7, 480); round it first
     """
     try:
-        w, h = (int(s) for s in size)
+        vals = [v for v in size] if not isinstance(size, (str, bytes)) else None
+    except TypeError:
+        vals = None
+    if vals is None or len(vals) != 2 or any(isinstance(v, (str, bytes, bool)) or v is None for v in vals):
+        raise CamlabInputError(f"{name}: expected (width, height) in pixels, got {size!r}")
+    try:
+        f = np.array(vals, dtype=float)
     except (TypeError, ValueError):
         raise CamlabInputError(f"{name}: expected (width, height) in pixels, got {size!r}") from None
-    if w < 1 or h < 1:
-        raise CamlabInputError(f"{name}: expected positive (width, height) in pixels, got {size!r}")
+    if f.shape != (2,) or not np.isfinite(f).all():
+        raise CamlabInputError(f"{name}: expected (width, height) in pixels, got {size!r}")
+    if np.any(f != np.round(f)):
+        raise CamlabInputError(
+            f"{name}: expected (width, height) as whole numbers of pixels, got {size!r}; round it first"
+        )
+    w, h = int(f[0]), int(f[1])
+    if w < minimum or h < minimum:
+        raise CamlabInputError(
+            f"{name}: expected (width, height) of at least {minimum} x {minimum} pixels, got ({w}, {h})"
+        )
     return w, h
+
+
+ROTATION_TOL = 1e-6
+
+
+def check_rotation(R: ArrayLike, name: str = "R", tol: float = ROTATION_TOL) -> np.ndarray:
+    r"""Return ``R`` as a float (3, 3) array if it is a rotation, else raise saying why.
+
+    A rotation has :math:`R^\top R = I` (to ``tol``) and :math:`\det R = +1`.
+
+    >>> check_rotation(np.diag([1.0, 1.0, -1.0]))
+    Traceback (most recent call last):
+    ...
+    camlab._validate.CamlabInputError: R: expected a rotation matrix (R^T R = I, det R = +1), got det R = -1 (a reflection); flip the sign of one axis
+    """
+    a = check_matrix(R, (3, 3), name)
+    err = float(np.abs(a.T @ a - np.eye(3)).max())
+    if err > tol:
+        raise CamlabInputError(
+            f"{name}: expected a rotation matrix (R^T R = I, det R = +1), but max |R^T R - I| = {err:.3g}; "
+            f"build R with rotation_from_axis_angle / rotation_from_euler, or orthonormalise it"
+        )
+    det = float(np.linalg.det(a))
+    if abs(det - 1.0) > tol:
+        raise CamlabInputError(
+            f"{name}: expected a rotation matrix (R^T R = I, det R = +1), got det R = {det:.3g} (a reflection); "
+            f"flip the sign of one axis"
+        )
+    return a
+
+
+def check_pose(R: ArrayLike, t: ArrayLike, name: str = "") -> tuple[np.ndarray, np.ndarray]:
+    """Return a pose ``(R, t)`` as a (3, 3) rotation and a (3,) translation, or raise.
+
+    ``name`` prefixes the argument names in messages (``"camera"`` gives ``"camera R"``).
+
+    >>> R, t = check_pose(np.eye(3), [0, 0, 2])
+    >>> t
+    array([0., 0., 2.])
+    """
+    prefix = f"{name} " if name else ""
+    Rm = check_rotation(R, f"{prefix}R")
+    tv = check_matrix(np.ravel(_as_float(t, f"{prefix}t")), (3,), f"{prefix}t")
+    return Rm, tv
+
+
+def check_intrinsics(K: ArrayLike, name: str = "K") -> np.ndarray:
+    r"""Return an intrinsic matrix as a float (3, 3) array with last row (0, 0, 1), or raise.
+
+    .. math:: K = \begin{bmatrix} f_x & s & c_x \\ 0 & f_y & c_y \\ 0 & 0 & 1 \end{bmatrix},
+              \quad f_x, f_y > 0
+
+    The last row must be exactly ``(0, 0, 1)``: divide a K known only up to scale by its
+    last entry before passing it. A K with a negative
+    focal length (a mirrored image), a non-zero below-diagonal entry, or NaN/inf is
+    rejected.
+
+    >>> check_intrinsics([[800, 0, 320], [0, 800, 240], [0, 0, 1]])[0]
+    array([800.,   0., 320.])
+    >>> check_intrinsics([[-800, 0, 320], [0, 800, 240], [0, 0, 1]])
+    Traceback (most recent call last):
+    ...
+    camlab._validate.CamlabInputError: K: expected an intrinsic matrix [[fx, s, cx], [0, fy, cy], [0, 0, 1]] with fx, fy > 0, got fx = -800, fy = 800 (a mirrored or singular K); focal lengths are in pixels and > 0
+    """
+    a = check_matrix(K, (3, 3), name)
+    want = f"{name}: expected an intrinsic matrix [[fx, s, cx], [0, fy, cy], [0, 0, 1]] with fx, fy > 0"
+    if a[2, 0] != 0.0 or a[2, 1] != 0.0 or a[2, 2] != 1.0 or a[1, 0] != 0.0:
+        raise CamlabInputError(
+            f"{want}, got {a.tolist()} (not upper triangular with last row (0, 0, 1)); "
+            f"build it with intrinsic_matrix(fx, fy, cx, cy, skew)"
+        )
+    if a[0, 0] <= 0 or a[1, 1] <= 0:
+        raise CamlabInputError(
+            f"{want}, got fx = {a[0, 0]:g}, fy = {a[1, 1]:g} (a mirrored or singular K); "
+            f"focal lengths are in pixels and > 0"
+        )
+    return a

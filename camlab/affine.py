@@ -32,8 +32,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, DegenerateError, as_points, check_matrix, check_positive
-from .camera import Camera, check_rotation, project_points
+from ._validate import CamlabInputError, DegenerateError, as_points, check_matrix, check_positive, check_rotation
+from .camera import Camera, project_points
 
 __all__ = [
     "affine_approximation", "dolly_zoom_focal", "estimate_affine_camera", "image_of_direction",

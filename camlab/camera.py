@@ -35,9 +35,13 @@ from ._validate import (
     ConvergenceError,
     DegenerateError,
     as_points,
+    ROTATION_TOL,
     check_finite,
+    check_intrinsics,
     check_matrix,
     check_positive,
+    check_rotation,
+    check_size,
 )
 
 __all__ = [
@@ -52,8 +56,6 @@ __all__ = [
 CV_FROM_GL = np.diag([1.0, -1.0, -1.0])
 r"""Maps OpenGL/Blender camera axes (x right, y up, z backward) to OpenCV's (x right, y down,
 z forward). It is its own inverse: :math:`F^{-1} = F`."""
-
-_ROT_TOL = 1e-6
 
 
 # ---------------------------------------------------------------------------------------
@@ -93,36 +95,12 @@ def intrinsic_matrix(fx: float, fy: float, cx: float, cy: float, skew: float = 0
     return np.array([[fx, vals[2], vals[0]], [0.0, fy, vals[1]], [0.0, 0.0, 1.0]])
 
 
-def is_rotation(R: ArrayLike, tol: float = _ROT_TOL) -> bool:
+def is_rotation(R: ArrayLike, tol: float = ROTATION_TOL) -> bool:
     r"""True if ``R`` is a (3, 3) rotation: :math:`R^\top R = I` and :math:`\det R = +1`."""
     a = np.asarray(R, dtype=float)
     if a.shape != (3, 3) or not np.isfinite(a).all():
         return False
     return bool(np.abs(a.T @ a - np.eye(3)).max() <= tol and abs(np.linalg.det(a) - 1.0) <= tol)
-
-
-def check_rotation(R: ArrayLike, name: str = "R", tol: float = _ROT_TOL) -> np.ndarray:
-    """Return ``R`` as a float (3, 3) array if it is a rotation, else raise saying why.
-
-    >>> check_rotation(np.diag([1.0, 1.0, -1.0]))
-    Traceback (most recent call last):
-    ...
-    camlab._validate.CamlabInputError: R: expected a rotation (R^T R = I, det R = +1), got det R = -1 (a reflection); flip the sign of one axis
-    """
-    a = check_matrix(R, (3, 3), name)
-    err = float(np.abs(a.T @ a - np.eye(3)).max())
-    if err > tol:
-        raise CamlabInputError(
-            f"{name}: expected a rotation (R^T R = I, det R = +1), but max |R^T R - I| = {err:.3g}; "
-            f"build R with rotation_from_axis_angle / rotation_from_euler, or orthonormalise it"
-        )
-    det = float(np.linalg.det(a))
-    if abs(det - 1.0) > tol:
-        raise CamlabInputError(
-            f"{name}: expected a rotation (R^T R = I, det R = +1), got det R = {det:.3g} (a reflection); "
-            f"flip the sign of one axis"
-        )
-    return a
 
 
 def rotation_from_axis_angle(rvec: ArrayLike) -> np.ndarray:
@@ -285,21 +263,6 @@ def opencv_from_opengl(R_gl: ArrayLike, t_gl: ArrayLike) -> tuple[np.ndarray, np
 # The Camera
 # ---------------------------------------------------------------------------------------
 
-def _check_K(K: ArrayLike, name: str = "K") -> np.ndarray:
-    a = check_matrix(K, (3, 3), name)
-    if np.any(a[2] != [0.0, 0.0, 1.0]) or a[1, 0] != 0.0:
-        raise CamlabInputError(
-            f"{name}: expected an upper-triangular calibration matrix with last row (0, 0, 1), got\n{a}; "
-            f"build it with intrinsic_matrix(fx, fy, cx, cy, skew)"
-        )
-    if a[0, 0] <= 0 or a[1, 1] <= 0:
-        raise CamlabInputError(
-            f"{name}: expected positive focal lengths on the diagonal, got fx = {a[0, 0]:g}, fy = {a[1, 1]:g} "
-            f"(a singular or mirrored K); focal lengths are in pixels and > 0"
-        )
-    return a
-
-
 def _frozen(a: np.ndarray) -> np.ndarray:
     a = np.array(a, dtype=float)
     a.flags.writeable = False
@@ -343,7 +306,7 @@ class Camera:
     image_size: tuple[int, int] = (640, 480)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "K", _frozen(_check_K(self.K)))
+        object.__setattr__(self, "K", _frozen(check_intrinsics(self.K)))
         object.__setattr__(self, "R", _frozen(check_rotation(self.R)))
         object.__setattr__(self, "t", _frozen(check_matrix(self.t, (3,), "t")))
         d = np.asarray(self.dist, dtype=float).ravel()
@@ -353,10 +316,7 @@ class Camera:
                 f"pad with zeros"
             )
         object.__setattr__(self, "dist", tuple(float(v) for v in d))
-        size = tuple(int(v) for v in np.asarray(self.image_size).ravel())
-        if len(size) != 2 or min(size) <= 0:
-            raise CamlabInputError(f"image_size: expected (width, height) in pixels > 0, got {self.image_size!r}")
-        object.__setattr__(self, "image_size", size)
+        object.__setattr__(self, "image_size", check_size(self.image_size, "image_size"))
 
     # -- constructors --------------------------------------------------------------------
     @classmethod

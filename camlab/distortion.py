@@ -26,7 +26,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, ConvergenceError, as_points, check_finite, check_image_size, check_matrix
+from ._validate import CamlabInputError, ConvergenceError, as_points, check_finite, check_intrinsics, check_matrix, check_size
 
 __all__ = [
     "DistortionMaps", "as_dist", "classify_distortion", "distort_pixels", "distort_points",
@@ -236,40 +236,43 @@ def max_valid_radius(dist: ArrayLike | None, r_max: float = 3.0) -> float:
 
 
 def classify_distortion(dist: ArrayLike | None, r_max: float = 0.8, tol: float = 1e-4) -> str:
-    r"""Name the radial distortion over radii ``(0, r_max]``: barrel, pincushion, mustache or none.
+    r"""Name the distortion over radii ``(0, r_max]``: barrel, pincushion, mustache or none, plus tangential.
 
-    Barrel: :math:`L(r) < 1` (points pulled inwards, straight lines bow outwards, typical
-    of wide angles). Pincushion: :math:`L(r) > 1` (telephoto). Mustache: the sign changes
-    within the field of view. ``tol`` is the smallest :math:`|L - 1|` that counts.
+    Radial part: barrel when :math:`L(r) < 1` (points pulled inwards, straight lines bow
+    outwards, typical of wide angles), pincushion when :math:`L(r) > 1` (telephoto),
+    mustache when the sign changes within the field of view. Tangential part: when
+    :math:`(p_1, p_2)` moves some point within ``r_max`` by more than ``tol`` (the shift
+    is at most :math:`3\,|(p_1, p_2)|\,r^2`), ``" + tangential"`` is appended, or the
+    answer is ``"tangential"`` alone when the radial part is none. ``tol`` is the smallest
+    displacement (normalised units) that counts.
 
     >>> classify_distortion([-0.3, 0, 0, 0, 0]), classify_distortion([0.2, 0, 0, 0, 0])
     ('barrel', 'pincushion')
     >>> classify_distortion([-0.3, 0.6, 0, 0, 0])
     'mustache'
+    >>> classify_distortion([0, 0, 0.01, 0, 0]), classify_distortion([-0.3, 0, 0, 0.01, 0])
+    ('tangential', 'barrel + tangential')
     """
     if not r_max > 0:
         raise CamlabInputError(f"r_max: expected a positive normalised radius, got {r_max!r}")
-    dev = radial_scale(np.linspace(0.0, r_max, 200)[1:], dist) - 1.0
-    dev = dev[np.abs(dev) > tol]
+    d = as_dist(dist)
+    r = np.linspace(0.0, r_max, 200)[1:]
+    dev = radial_scale(r, d) - 1.0
+    dev = dev[np.abs(dev) * r > tol]
     if dev.size == 0:
-        return "none"
-    if (dev < 0).all():
-        return "barrel"
-    if (dev > 0).all():
-        return "pincushion"
-    return "mustache"
+        radial = "none"
+    elif (dev < 0).all():
+        radial = "barrel"
+    elif (dev > 0).all():
+        radial = "pincushion"
+    else:
+        radial = "mustache"
+    if 3.0 * np.hypot(d[2], d[3]) * r_max**2 <= tol:
+        return radial
+    return "tangential" if radial == "none" else f"{radial} + tangential"
 
 
 # ---------------------------------------------------------------- pixels and images
-
-def _check_K(K: ArrayLike) -> np.ndarray:
-    K = check_matrix(K, (3, 3), "K")
-    if K[2, 0] != 0 or K[2, 1] != 0 or K[2, 2] != 1 or K[0, 0] <= 0 or K[1, 1] <= 0:
-        raise CamlabInputError(
-            f"K: expected an intrinsic matrix [[fx, s, cx], [0, fy, cy], [0, 0, 1]] with fx, fy > 0, got {K.tolist()}"
-        )
-    return K
-
 
 def _normalise(pixels: np.ndarray, K: np.ndarray) -> np.ndarray:
     y = (pixels[:, 1] - K[1, 2]) / K[1, 1]
@@ -284,14 +287,14 @@ def _to_pixels(xy: np.ndarray, K: np.ndarray) -> np.ndarray:
 def distort_pixels(pixels: ArrayLike, K: ArrayLike, dist: ArrayLike | None) -> np.ndarray:
     """Move ideal pixel positions (u, v) to where the distorting lens images them (same K)."""
     pts = as_points(pixels, 2, "pixels")
-    K = _check_K(K)
+    K = check_intrinsics(K)
     return pts.restore(_to_pixels(_distort(_normalise(pts.array, K), as_dist(dist)), K))
 
 
 def undistort_pixels(pixels: ArrayLike, K: ArrayLike, dist: ArrayLike | None) -> np.ndarray:
     """Inverse of :func:`distort_pixels`: distorted pixels (u, v) to ideal pixels (same K)."""
     pts = as_points(pixels, 2, "pixels")
-    K = _check_K(K)
+    K = check_intrinsics(K)
     return pts.restore(_to_pixels(undistort_points(_normalise(pts.array, K), dist), K))
 
 
@@ -322,9 +325,9 @@ def undistort_map(K: ArrayLike, dist: ArrayLike | None, size: tuple[int, int],
     new_K : (3, 3) array_like, optional
         Intrinsics of the undistorted output.
     """
-    K = _check_K(K)
-    new_K = K if new_K is None else _check_K(new_K)
-    w, h = check_image_size(size)
+    K = check_intrinsics(K)
+    new_K = K if new_K is None else check_intrinsics(new_K, "new_K")
+    w, h = check_size(size)
     u, v = np.meshgrid(np.arange(w, dtype=float), np.arange(h, dtype=float))
     xy = _normalise(np.stack([u.ravel(), v.ravel()], axis=1), new_K)
     src = _to_pixels(_distort(xy, as_dist(dist)), K)
@@ -372,9 +375,9 @@ def distort_map(K: ArrayLike, dist: ArrayLike | None, size: tuple[int, int],
     Pixels beyond the fold of the model (no physical inverse, see :func:`max_valid_radius`)
     map far outside the ideal image, so ``cv2.remap`` fills them with its border value.
     """
-    K = _check_K(K)
-    new_K = K if new_K is None else _check_K(new_K)
-    w, h = check_image_size(size)
+    K = check_intrinsics(K)
+    new_K = K if new_K is None else check_intrinsics(new_K, "new_K")
+    w, h = check_size(size)
     if int(step) < 1:
         raise CamlabInputError(f"step: expected an integer >= 1, got {step!r}")
     return _distort_map_cached(K.tobytes(), as_dist(dist).tobytes(), new_K.tobytes(), w, h, int(step))

@@ -35,11 +35,12 @@ from ._validate import (
     check_positive,
 )
 from .camera import Camera, camera_centre
-from .homography import _normalize_batch, _required_iterations, estimate_homography, symmetric_transfer_error
+from .homography import _normalize_batch, estimate_homography, symmetric_transfer_error
 from .projective import from_homogeneous, normalize_lines, to_homogeneous
+from .robust import PairModel, ransac
 
 __all__ = [
-    "EssentialDecomposition", "FundamentalRansacResult", "RelativePose",
+    "EssentialDecomposition", "FundamentalModel", "FundamentalRansacResult", "RelativePose",
     "decompose_essential_matrix", "epipolar_distance", "epipolar_lines", "epipoles",
     "essential_from_fundamental", "essential_matrix", "estimate_fundamental_matrix",
     "fundamental_from_cameras", "fundamental_from_essential", "normalize_fundamental",
@@ -442,7 +443,7 @@ class FundamentalRansacResult(NamedTuple):
     Attributes
     ----------
     F : (3, 3) ndarray
-        Re-estimated by the normalised 8-point algorithm on all inliers, unit norm.
+        The locally optimised F (Sampson-weighted 8-point on its inliers), unit norm.
     inliers : (N,) bool ndarray
         Pairs whose Sampson distance under ``F`` is below the threshold.
     iterations : int
@@ -457,21 +458,68 @@ class FundamentalRansacResult(NamedTuple):
     residuals: np.ndarray
 
 
+class FundamentalModel(PairModel):
+    """Fundamental matrices ``x2_h @ F @ x1_h = 0`` for the robust driver :func:`camlab.robust.ransac`.
+
+    Minimal samples of 8 pairs are solved by the 8-point algorithm (batched SVD, rank 2
+    enforced), larger sets by the normalised 8-point algorithm with two Sampson-weighted
+    re-solves (see ``sampson_iterations`` in :func:`estimate_fundamental_matrix`), both in
+    Hartley-normalised coordinates computed once; residuals are Sampson distances in pixels.
+    """
+
+    sample_size = 8
+    name = "ransac_fundamental_matrix"
+
+    def __init__(self, x1: np.ndarray, x2: np.ndarray):
+        super().__init__(x1, x2)
+        self.an, self.T1 = _normalize_batch(x1)
+        self.bn, self.T2 = _normalize_batch(x2)
+
+    def minimal(self, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        _, s, Vt = np.linalg.svd(_eight_point_rows(self.an[idx], self.bn[idx]))
+        ok = s[:, 7] > 1e-8 * s[:, 0]  # rank-deficient samples give no unique F
+        return self.T2.T @ _rank2(Vt[:, -1].reshape(-1, 3, 3)) @ self.T1, ok
+
+    def fit(self, idx: np.ndarray) -> np.ndarray:
+        A = _eight_point_rows(self.an[idx], self.bn[idx])
+        ah, bh = to_homogeneous(self.an[idx]), to_homogeneous(self.bn[idx])
+        w = np.ones(len(A))
+        for _ in range(3):  # the plain 8-point solve, then two Sampson-weighted ones
+            Aw = A / w[:, None]
+            ev, V = np.linalg.eigh(Aw.T @ Aw)
+            if ev[1] <= 1e-12 * ev[-1]:
+                raise DegenerateError("ransac_fundamental_matrix: the inliers do not fix a unique F")
+            Fn = _rank2(V[:, 0].reshape(3, 3))
+            Fx, Ftx = ah @ Fn.T, bh @ Fn
+            w = np.sqrt(Fx[:, 0] ** 2 + Fx[:, 1] ** 2 + Ftx[:, 0] ** 2 + Ftx[:, 1] ** 2)
+            if not np.all(w > 0):
+                break
+        return normalize_fundamental(self.T2.T @ Fn @ self.T1)
+
+    def residuals(self, models: np.ndarray, i1: np.ndarray | None = None,
+                  i2: np.ndarray | None = None) -> np.ndarray:
+        a = self.x1 if i1 is None else self.x1[i1]
+        b = self.x2 if i1 is None else self.x2[i1 if i2 is None else i2]
+        return _sampson_batch(models, a, b)
+
+
 def ransac_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, threshold: float = 1.0, confidence: float = 0.999,
-                              max_iters: int = 5000, rng: np.random.Generator | None = None, *,
+                              max_iters: int = 5000, rng: np.random.Generator | int | None = None, *,
                               batch: int = 128) -> FundamentalRansacResult:
-    r"""Robust F from pairs with outliers: RANSAC over 8-point samples, scored by Sampson distance.
+    r"""Robust F from pairs with outliers: LO-RANSAC over 8-point samples, MSAC-scored by Sampson distance.
+
+    :class:`FundamentalModel` plugged into the driver :func:`camlab.robust.ransac` (its
+    docstring derives each step):
 
     1. Normalise both point sets once (Hartley).
-    2. Draw ``batch`` samples of 8 distinct pairs; solve all their 8-point systems with one
-       batched SVD and enforce rank 2 on each.
-    3. Score every hypothesis on every pair by :func:`sampson_distance` (pixels) and keep
-       the one with most pairs below ``threshold`` (ties: smaller truncated error sum).
-    4. Stop after :math:`k = \log(1-p) / \log(1-w^8)` samples for the best inlier ratio w
-       seen so far, or ``max_iters``.
-    5. Re-estimate F on all inliers (normalised 8-point, then Sampson-weighted
-       iterations, see :func:`estimate_fundamental_matrix`) and recompute the inliers,
-       until the set stops changing (at most 5 times).
+    2. Draw samples of 8 distinct pairs in batches; solve all their 8-point systems with
+       one batched SVD and enforce rank 2 on each.
+    3. Score every hypothesis by the truncated quadratic (MSAC) cost
+       :math:`\sum_i \min(d_i^2, t^2)` of the :func:`sampson_distance` d (pixels).
+    4. Each time a hypothesis beats the best so far, re-fit it on its inliers
+       (normalised 8-point with Sampson weights; local optimisation).
+    5. Stop after :math:`k = \log(1-p) / \log(1-w^8)` samples for the best inlier ratio w
+       seen so far, or ``max_iters``; refuse a consensus that wrong matches reach by chance.
 
     Parameters
     ----------
@@ -483,7 +531,7 @@ def ransac_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, threshold: float = 1
         Probability in (0, 1) of having drawn at least one all-inlier sample.
     max_iters : int
         Upper bound on samples.
-    rng : np.random.Generator or None
+    rng : np.random.Generator, int or None
         Seed it for reproducible results.
     batch : int
         Samples solved and scored per vectorised step.
@@ -491,60 +539,12 @@ def ransac_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, threshold: float = 1
     Raises
     ------
     DegenerateError
-        No hypothesis is supported by more than its own 8 pairs, or the inliers are
-        degenerate (see :func:`estimate_fundamental_matrix`).
+        Too few inliers: no hypothesis is supported by more pairs than wrong matches would
+        support by chance (all matches wrong, or the threshold too small).
     """
     a, b, _ = _pairs(x1, x2, min_count=8)
-    threshold = check_positive(threshold, "threshold", "pixels")
-    if not 0 < confidence < 1:
-        raise CamlabInputError(f"confidence: expected a probability strictly between 0 and 1, got {confidence!r}")
-    if int(max_iters) < 1:
-        raise CamlabInputError(f"max_iters: expected a positive integer, got {max_iters!r}")
-    rng = np.random.default_rng() if rng is None else rng
-    n = len(a)
-    an, T1 = _normalize_batch(a)
-    bn, T2 = _normalize_batch(b)
-    best = (-1, np.inf, None)
-    needed, drawn = float(max_iters), 0
-    while drawn < min(needed, max_iters):
-        k = int(np.clip(min(needed, max_iters) - drawn, 1, batch))
-        # 8 distinct indices per sample: argsort of random keys, first 8 columns.
-        if n <= 64:
-            idx = np.argsort(rng.random((k, n)), axis=1)[:, :8]
-        else:
-            idx = rng.integers(0, n, size=(k, 8))
-            srt = np.sort(idx, axis=1)
-            idx = idx[np.all(srt[:, 1:] != srt[:, :-1], axis=1)]
-        drawn += k
-        if len(idx) == 0:
-            continue
-        _, s, Vt = np.linalg.svd(_eight_point_rows(an[idx], bn[idx]))
-        ok = s[:, 7] > 1e-8 * s[:, 0]  # rank-deficient samples give no unique F
-        if not ok.any():
-            continue
-        Fs = T2.T @ _rank2(Vt[ok, -1].reshape(-1, 3, 3)) @ T1
-        err = _sampson_batch(Fs, a, b)
-        counts = (err < threshold).sum(axis=1)
-        cost = np.minimum(err, threshold).sum(axis=1)
-        j = int(np.lexsort((cost, -counts))[0])
-        if counts[j] > best[0] or (counts[j] == best[0] and cost[j] < best[1]):
-            best = (int(counts[j]), float(cost[j]), Fs[j])
-            needed = _required_iterations(best[0] / n, confidence, sample_size=8)
-    count, _, F = best
-    if F is None or count <= min(8, n - 1):
-        raise DegenerateError(
-            f"ransac_fundamental_matrix: no hypothesis from {drawn} samples was supported by any pair beyond its "
-            f"own 8 within {threshold} px; the matches may be mostly wrong, or the threshold too small"
-        )
-    inliers = _sampson_batch(F[None], a, b)[0] < threshold
-    for _ in range(5):
-        F = estimate_fundamental_matrix(a[inliers], b[inliers], plane_tol=0, sampson_iterations=10)
-        new = _sampson_batch(F[None], a, b)[0] < threshold
-        if np.array_equal(new, inliers) or new.sum() < 8:
-            break
-        inliers = new
-    res = _sampson_batch(F[None], a, b)[0]
-    return FundamentalRansacResult(normalize_fundamental(F), res < threshold, int(drawn), res)
+    fit = ransac(FundamentalModel(a, b), threshold, confidence, max_iters, rng, batch=batch)
+    return FundamentalRansacResult(normalize_fundamental(fit.model), fit.inliers, fit.iterations, fit.residuals)
 
 
 # --------------------------------------------------------------------------- essential matrix and pose

@@ -37,13 +37,16 @@ from ._validate import (
     DegenerateError,
     as_points,
     check_finite,
+    check_intrinsics,
     check_matrix,
     check_positive,
+    check_rotation,
 )
 from .projective import map_lines, map_points
+from .robust import PairModel, ransac
 
 __all__ = [
-    "HIERARCHY", "RansacResult", "RefineResult", "affine", "classify", "compose", "decompose",
+    "HIERARCHY", "HomographyModel", "RansacResult", "RefineResult", "affine", "classify", "compose", "decompose",
     "estimate_homography", "euclidean", "hartley_normalization", "invert", "map_lines", "map_points",
     "normalize_homography", "plane_homography", "pose_homography", "projective", "ransac_homography",
     "refine_homography", "rotation_homography", "same_homography", "sampson_error", "similarity",
@@ -52,7 +55,6 @@ __all__ = [
 
 _COLLINEAR_TOL = 1e-9   # |det| of three Hartley-normalised points below this: collinear
 _RANK_TOL = 1e-10       # second-smallest singular value of the DLT system relative to the largest
-_PREVIEW = 100          # RANSAC scores hypotheses on this many pairs before scoring the best fully
 
 
 # --------------------------------------------------------------------------- validation
@@ -317,19 +319,14 @@ def symmetric_transfer_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np
 def _sq_transfer_batch(H: np.ndarray, p: np.ndarray, q: np.ndarray) -> np.ndarray:
     """(B, N) squared distances |q - pi(H p)|^2 for a stack of homographies (B, 3, 3).
 
-    Plain broadcasting of (B, 1) coefficients against (N,) coordinates rather than a
-    batched matrix product: no multithreaded BLAS, which is slow for many tiny products.
+    Points are used as (3, N) columns, so mapping all of them by each H is one (3, 3) @ (3, N)
+    product per homography.
     """
-    u, v = p[:, 0], p[:, 1]
-    h = H.reshape(len(H), 9, 1)
+    y = H @ np.vstack([p.T, np.ones(len(p))])         # (B, 3, N)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        iw = 1.0 / (h[:, 6] * u + h[:, 7] * v + h[:, 8])
-        ex = (h[:, 0] * u + h[:, 1] * v + h[:, 2]) * iw - q[:, 0]
-        ey = (h[:, 3] * u + h[:, 4] * v + h[:, 5]) * iw - q[:, 1]
-        ex *= ex
-        ey *= ey
-        ex += ey
-    return ex
+        e = y[:, :2] / y[:, 2:] - q.T                  # (B, 2, N)
+        e *= e
+        return e[:, 0] + e[:, 1]
 
 
 def _sym_err_batch(H: np.ndarray, Hinv: np.ndarray, s: np.ndarray, d: np.ndarray) -> np.ndarray:
@@ -391,7 +388,7 @@ class RansacResult(NamedTuple):
     Attributes
     ----------
     H : (3, 3) ndarray
-        The homography re-estimated (normalised DLT) on all inliers, H[2, 2] = 1.
+        The locally optimised homography (least squares on its inliers), H[2, 2] = 1.
     inliers : (N,) bool ndarray
         Pairs whose residual under ``H`` is below the threshold.
     iterations : int
@@ -404,16 +401,6 @@ class RansacResult(NamedTuple):
     inliers: np.ndarray
     iterations: int
     residuals: np.ndarray
-
-
-def _required_iterations(inlier_ratio: float, confidence: float, sample_size: int = 4) -> float:
-    r""":math:`k = \log(1 - p) / \log(1 - w^s)`: samples needed to draw one all-inlier sample."""
-    w_s = inlier_ratio ** sample_size
-    if w_s <= 0:
-        return np.inf
-    if w_s >= 1:
-        return 1.0
-    return np.log(1 - confidence) / np.log(1 - w_s)
 
 
 def _minimal_solve(sn: np.ndarray, dn: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -434,34 +421,80 @@ def _minimal_solve(sn: np.ndarray, dn: np.ndarray) -> tuple[np.ndarray, np.ndarr
     return H, ok
 
 
+class HomographyModel(PairModel):
+    """Homographies ``dst ~ H src`` for the robust driver :func:`camlab.robust.ransac`.
+
+    Minimal samples of 4 pairs are solved by the 4-point DLT (batched SVD), larger sets
+    by the normalised DLT (the smallest eigenvector of :math:`A^T A`), both in Hartley-
+    normalised coordinates computed once; residuals are the symmetric transfer error or
+    the Sampson error in pixels.
+    """
+
+    sample_size = 4
+    name = "ransac_homography"
+
+    def __init__(self, src: np.ndarray, dst: np.ndarray, score: str = "transfer"):
+        super().__init__(src, dst)
+        self.score = score
+        self.sn, self.Ts = _normalize_batch(src)
+        self.dn, self.Td = _normalize_batch(dst)
+        self.Td_inv = np.linalg.inv(self.Td)
+        self.A = _dlt_rows(self.sn, self.dn).reshape(-1, 2, 9)  # each pair's two DLT rows, once
+
+    def _to_pixels(self, Hn: np.ndarray) -> np.ndarray:
+        return self.Td_inv @ Hn @ self.Ts  # H = Td^-1 Hn Ts
+
+    def minimal(self, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        Hn, ok = _minimal_solve(self.sn[idx], self.dn[idx])
+        return self._to_pixels(Hn), ok
+
+    def fit(self, idx: np.ndarray) -> np.ndarray:
+        A = self.A[idx].reshape(-1, 9)
+        ev, V = np.linalg.eigh(A.T @ A)
+        if ev[1] <= 1e-12 * ev[-1]:
+            raise DegenerateError("ransac_homography: the inliers do not fix a unique homography")
+        H = self._to_pixels(V[:, 0].reshape(3, 3))
+        return H / np.linalg.norm(H)
+
+    def residuals(self, models: np.ndarray, i1: np.ndarray | None = None,
+                  i2: np.ndarray | None = None) -> np.ndarray:
+        s = self.x1 if i1 is None else self.x1[i1]
+        d = self.x2 if i1 is None else self.x2[i1 if i2 is None else i2]
+        if self.score == "sampson":
+            return _sampson_batch(models, s, d)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            inv = np.linalg.inv(models)
+        return _sym_err_batch(models, inv, s, d)
+
+
 def ransac_homography(
     src: ArrayLike,
     dst: ArrayLike,
     threshold: float = 3.0,
     confidence: float = 0.995,
     max_iters: int = 2000,
-    rng: np.random.Generator | None = None,
+    rng: np.random.Generator | int | None = None,
     *,
     score: str = "transfer",
     batch: int = 64,
 ) -> RansacResult:
-    r"""Robustly estimate H from pairs with outliers by adaptive, vectorised RANSAC.
+    r"""Robustly estimate H from pairs with outliers: LO-RANSAC with MSAC scoring.
 
-    Algorithm (H&Z algorithm 4.6, Fischler & Bolles 1981):
+    :class:`HomographyModel` plugged into the driver :func:`camlab.robust.ransac`
+    (its docstring derives each step; H&Z algorithm 4.6, Fischler & Bolles 1981):
 
     1. Normalise both point sets once (Hartley), so minimal solves are well conditioned.
-    2. Draw ``batch`` random 4-pair samples at once; reject degenerate ones (3 collinear
-       points in either image, or inconsistent triangle orientations).
-    3. Solve all 4-point DLTs together with one batched SVD; score every hypothesis on
-       a random preview of 100 pairs, then the best quarter on every pair at once (a
-       (batch, N) error matrix), counting pairs below ``threshold``. Keep the hypothesis
-       with the most inliers (ties: smaller total truncated error, MSAC-style).
-    4. Adapt: with inlier ratio w of the best hypothesis so far, one all-inlier sample
-       is drawn with probability ``confidence`` after
-       :math:`k = \log(1 - p) / \log(1 - w^4)` samples. Stop when k samples
-       (or ``max_iters``) have been drawn.
-    5. Re-estimate H by the normalised DLT on all inliers, recompute the inliers, and
-       repeat until the set stops changing (at most 5 times).
+    2. Draw random 4-pair samples in batches; reject degenerate ones (3 collinear points
+       in either image, or inconsistent triangle orientations); solve all their 4-point
+       DLTs with one batched SVD.
+    3. Score every hypothesis by the truncated quadratic (MSAC) cost
+       :math:`\sum_i \min(e_i^2, t^2)` of its ``score`` errors.
+    4. Each time a hypothesis beats the best so far, re-fit it on its inliers by the
+       normalised DLT (local optimisation), so the kept model is a least-squares fit to
+       its consensus, not to 4 noisy points.
+    5. Stop after :math:`k = \log(1 - p) / \log(1 - w^4)` samples for the best inlier
+       ratio w so far (or ``max_iters``), and refuse a consensus that random pairs could
+       reach by chance.
 
     Parameters
     ----------
@@ -473,7 +506,7 @@ def ransac_homography(
         Probability in (0, 1) of having drawn at least one all-inlier sample.
     max_iters : int
         Upper bound on samples drawn.
-    rng : np.random.Generator or None
+    rng : np.random.Generator, int or None
         Source of randomness (seed it for reproducible results).
     score : {"transfer", "sampson"}
         ``"transfer"``: :func:`symmetric_transfer_error`; ``"sampson"``:
@@ -489,80 +522,14 @@ def ransac_homography(
     Raises
     ------
     DegenerateError
-        If no hypothesis is supported by a fifth pair (only its own minimal sample fits).
+        If no sample gives a homography, or the best has no more inliers than random
+        pairs would reach by chance (the matches are wrong, or the threshold too small).
     """
     s, d = _pairs(src, dst)
-    threshold = check_positive(threshold, "threshold", "pixels")
-    if not 0 < confidence < 1:
-        raise CamlabInputError(f"confidence: expected a probability strictly between 0 and 1, got {confidence!r}")
-    if int(max_iters) < 1:
-        raise CamlabInputError(f"max_iters: expected a positive integer, got {max_iters!r}")
     if score not in ("transfer", "sampson"):
         raise CamlabInputError(f"score: expected 'transfer' or 'sampson', got {score!r}")
-    rng = np.random.default_rng() if rng is None else rng
-    n = len(s)
-    sn, Ts = _normalize_batch(s)
-    dn, Td = _normalize_batch(d)
-    Ts_inv, Td_inv = np.linalg.inv(Ts), np.linalg.inv(Td)
-
-    def residuals(Hs: np.ndarray, s: np.ndarray = s, d: np.ndarray = d) -> np.ndarray:
-        if score == "sampson":
-            return _sampson_batch(Hs, s, d)
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            inv = np.linalg.inv(Hs)
-        return _sym_err_batch(Hs, inv, s, d)
-
-    best_count, best_cost, best_H = -1, np.inf, None
-    needed, drawn = float(max_iters), 0
-    while drawn < min(needed, max_iters):
-        # The first batch is a quarter size; later ones are only as large as still needed.
-        want = batch // 4 if drawn == 0 else int(np.ceil(min(needed, max_iters) - drawn))
-        b = int(np.clip(want, 1, min(batch, max_iters - drawn)))
-        # Four indices per sample; samples that repeat an index are rejected below.
-        idx = rng.integers(0, n, size=(b, 4))
-        drawn += b
-        Hn, ok = _minimal_solve(sn[idx], dn[idx])
-        srt = np.sort(idx, axis=1)
-        ok &= np.all(srt[:, 1:] != srt[:, :-1], axis=1)
-        if not ok.any():
-            continue
-        Hn = Hn[ok]
-        Hs = Td_inv @ Hn @ Ts  # back to pixels: H = Td^-1 Hn Ts
-        if len(Hs) > 4 and n > 4 * _PREVIEW:
-            # Preview: score every hypothesis on a random subset first and fully score only
-            # the most promising quarter (a bad hypothesis rarely looks good on 100 pairs).
-            sub = rng.choice(n, _PREVIEW, replace=False)
-            pre = residuals(Hs, s[sub], d[sub]) < threshold
-            Hs = Hs[np.argsort(-pre.sum(axis=1), kind="stable")[: max(2, len(Hs) // 4)]]
-        err = residuals(Hs)
-        inl = err < threshold
-        counts = inl.sum(axis=1)
-        cost = np.minimum(err, threshold).sum(axis=1)
-        k = int(np.lexsort((cost, -counts))[0])
-        if counts[k] > best_count or (counts[k] == best_count and cost[k] < best_cost):
-            best_count, best_cost, best_H = int(counts[k]), float(cost[k]), Hs[k]
-            needed = _required_iterations(best_count / n, confidence)
-    if best_H is None or best_count < min(n, 5):
-        raise DegenerateError(
-            f"ransac_homography: no hypothesis from {drawn} samples was supported by any pair beyond its "
-            f"own 4 within {threshold} px; the data may hold no homography, or the threshold is too small"
-        )
-    H = best_H
-    inliers = residuals(H[None])[0] < threshold
-    for _ in range(5):
-        try:
-            H_new = estimate_homography(s[inliers], d[inliers])
-        except DegenerateError:
-            break
-        new = residuals(H_new[None])[0] < threshold
-        if new.sum() < inliers.sum():
-            break
-        H = H_new
-        if np.array_equal(new, inliers):
-            break
-        inliers = new
-    res = residuals(H[None])[0]
-    return RansacResult(normalize_homography(H), res < threshold, int(drawn), res)
+    fit = ransac(HomographyModel(s, d, score), threshold, confidence, max_iters, rng, batch=batch)
+    return RansacResult(normalize_homography(fit.model), fit.inliers, fit.iterations, fit.residuals)
 
 
 # --------------------------------------------------------------------------- LM refinement
@@ -868,20 +835,6 @@ def decompose(H: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 # --------------------------------------------------------------------------- geometry
 
-def _check_K(K: ArrayLike, name: str) -> np.ndarray:
-    Km = check_matrix(K, (3, 3), name)
-    if abs(np.linalg.det(Km)) < 1e-12:
-        raise DegenerateError(f"{name}: the intrinsic matrix is singular; expected [[fx, s, cx], [0, fy, cy], [0, 0, 1]]")
-    return Km
-
-
-def _check_R(R: ArrayLike) -> np.ndarray:
-    Rm = check_matrix(R, (3, 3), "R")
-    if not np.allclose(Rm.T @ Rm, np.eye(3), atol=1e-6) or np.linalg.det(Rm) < 0:
-        raise CamlabInputError("R: expected a rotation matrix (R^T R = I, det R = +1)")
-    return Rm
-
-
 def rotation_homography(K: ArrayLike, R: ArrayLike, K2: ArrayLike | None = None) -> np.ndarray:
     r"""The homography between two views from one centre: :math:`H = K' R K^{-1}`.
 
@@ -898,9 +851,9 @@ def rotation_homography(K: ArrayLike, R: ArrayLike, K2: ArrayLike | None = None)
     K2 : (3, 3) array_like, optional
         Intrinsics of the second camera (default: K).
     """
-    Km = _check_K(K, "K")
-    K2m = Km if K2 is None else _check_K(K2, "K2")
-    return normalize_homography(K2m @ _check_R(R) @ np.linalg.inv(Km))
+    Km = check_intrinsics(K, "K")
+    K2m = Km if K2 is None else check_intrinsics(K2, "K2")
+    return normalize_homography(K2m @ check_rotation(R) @ np.linalg.inv(Km))
 
 
 def plane_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike, n: ArrayLike, d: float,
@@ -928,15 +881,15 @@ def plane_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike, n: ArrayLike, d: 
     K2 : (3, 3) array_like, optional
         Intrinsics of camera 2 (default: K).
     """
-    Km = _check_K(K, "K")
-    K2m = Km if K2 is None else _check_K(K2, "K2")
+    Km = check_intrinsics(K, "K")
+    K2m = Km if K2 is None else check_intrinsics(K2, "K2")
     tv = check_matrix(np.ravel(np.asarray(t, dtype=float)), (3,), "t")
     nv = check_matrix(np.ravel(np.asarray(n, dtype=float)), (3,), "n")
     if not np.isfinite(d) or d == 0:
         raise DegenerateError(f"d: the plane n . X + d = 0 must not pass through camera 1's centre; got d={d!r}")
     if not np.any(nv):
         raise CamlabInputError("n: the plane normal must be non-zero")
-    H = K2m @ (_check_R(R) - np.outer(tv, nv) / d) @ np.linalg.inv(Km)
+    H = K2m @ (check_rotation(R) - np.outer(tv, nv) / d) @ np.linalg.inv(Km)
     return normalize_homography(_check_h(H, "plane_homography"))
 
 
@@ -952,8 +905,8 @@ def pose_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike) -> np.ndarray:
     >>> map_points(pose_homography(K, np.eye(3), [0, 0, 2.0]), [0.0, 0.0])
     array([320., 240.])
     """
-    Km = _check_K(K, "K")
-    Rm = _check_R(R)
+    Km = check_intrinsics(K, "K")
+    Rm = check_rotation(R)
     tv = check_matrix(np.ravel(np.asarray(t, dtype=float)), (3,), "t")
     H = Km @ np.column_stack([Rm[:, 0], Rm[:, 1], tv])
     return normalize_homography(_check_h(H, "pose_homography"))

@@ -25,7 +25,7 @@ from typing import NamedTuple, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, DegenerateError, as_points, check_positive
+from ._validate import CamlabInputError, DegenerateError, as_points, check_positive, check_size
 from .homography import estimate_homography, pose_homography
 from .projective import map_points
 from .warp import warp_perspective
@@ -340,10 +340,7 @@ def rectify_quadrilateral(
         width = max(np.linalg.norm(q[1] - q[0]), np.linalg.norm(q[2] - q[3]))
         w_out, h_out = int(round(width)), int(round(width / aspect.ratio))
     else:
-        try:
-            w_out, h_out = (int(s) for s in size)
-        except (TypeError, ValueError):
-            raise CamlabInputError(f"size: expected (width, height) in pixels, got {size!r}") from None
+        w_out, h_out = check_size(size, "size", minimum=2)
     if w_out < 2 or h_out < 2 or w_out * h_out > 40_000_000:
         raise CamlabInputError(f"size: expected a (width, height) of at least 2 x 2 pixels, got ({w_out}, {h_out})")
     H = rectangle_homography(q, w_out, h_out)

@@ -22,6 +22,7 @@ from ._validate import CamlabInputError, DegenerateError, as_points, check_matri
 __all__ = [
     "LINE_AT_INFINITY", "DegenerateError", "clip_line", "cross_ratio", "from_homogeneous", "horizon",
     "ideal_point", "is_ideal", "is_on_line", "join", "map_lines", "map_points", "meet", "normalize_lines",
+    "splits_at_infinity",
     "normalize_points", "point_line_distance", "to_homogeneous", "vanishing_point",
 ]
 
@@ -329,6 +330,33 @@ def map_lines(H: ArrayLike, lines: ArrayLike) -> np.ndarray:
         )
     out = ln @ np.linalg.inv(Hm)
     return out[0] if single else out
+
+
+def splits_at_infinity(H: ArrayLike, points: ArrayLike) -> bool:
+    r"""True when H sends part of the polygon ``points`` through infinity.
+
+    H maps the line :math:`H^T l_\infty = (h_{31}, h_{32}, h_{33})` to the line at infinity:
+    a point on it gets :math:`w = h_{31} x + h_{32} y + h_{33} = 0`. If w has different signs
+    at the polygon's corners, that line crosses the polygon, and its image is torn in two
+    pieces that leave through infinity on one side and come back on the other (the "bow
+    tie" of four corners dragged past each other).
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+    points : (N, 2) array_like
+        Corners of a convex polygon (e.g. an image's four corners).
+
+    Examples
+    --------
+    >>> square = [[0, 0], [1, 0], [1, 1], [0, 1]]
+    >>> splits_at_infinity(np.eye(3), square), splits_at_infinity([[1, 0, 0], [0, 1, 0], [-2, 0, 1]], square)
+    (False, True)
+    """
+    Hm = check_matrix(H, (3, 3), "H")
+    p = as_points(points, (2,), "points").array
+    w = p @ Hm[2, :2] + Hm[2, 2]
+    return bool(w.min() <= 0 <= w.max())
 
 
 def cross_ratio(points: ArrayLike) -> float:

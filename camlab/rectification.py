@@ -32,7 +32,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, DegenerateError, as_points, check_matrix
+from ._validate import CamlabInputError, DegenerateError, as_points, check_matrix, check_size
 from .camera import Camera, intrinsic_matrix
 from .distortion import DistortionMaps, distort_points, undistort_pixels
 from .epipolar import _check_F, _pairs, epipoles, relative_pose, skew
@@ -240,9 +240,7 @@ def rectify_calibrated(camera1: Camera, camera2: Camera, alpha: float = 0.0, ima
     alpha = float(alpha)
     if method not in ("numpy", "cv2"):
         raise CamlabInputError(f"method: expected 'numpy' or 'cv2', got {method!r}")
-    size = tuple(int(v) for v in (image_size or camera1.image_size))
-    if len(size) != 2 or min(size) <= 0:
-        raise CamlabInputError(f"image_size: expected (width, height) in pixels > 0, got {image_size!r}")
+    size = check_size(camera1.image_size if image_size is None else image_size, "image_size")
     base = camera2.centre - camera1.centre
     B = float(np.linalg.norm(base))
     scale = max(np.linalg.norm(camera1.centre), np.linalg.norm(camera2.centre), 1.0)
@@ -468,12 +466,7 @@ def rectify_uncalibrated(x1: ArrayLike, x2: ArrayLike, F: ArrayLike, image_size:
     """
     F = _check_F(F)
     a, b, _ = _pairs(x1, x2, min_count=8)
-    try:
-        w, h = (int(v) for v in image_size)
-    except (TypeError, ValueError):
-        raise CamlabInputError(f"image_size: expected (width, height) in pixels, got {image_size!r}") from None
-    if w <= 0 or h <= 0:
-        raise CamlabInputError(f"image_size: expected (width, height) in pixels > 0, got {image_size!r}")
+    w, h = check_size(image_size, "image_size")
     e2 = epipoles(F).e2
     centre = np.array([(w - 1) / 2, (h - 1) / 2])
     if abs(e2[2]) > 1e-12 * np.linalg.norm(e2[:2]):
@@ -592,6 +585,7 @@ def stereo_calibrate(object_points: ArrayLike, image_points1, image_points2, ima
     StereoCalibration
     """
     from . import calibration as cal
+    from .calibration.refinement import project_views
     from .camera import axis_angle_from_rotation, rotation_from_axis_angle
     from .optimize import levenberg_marquardt
 
@@ -628,7 +622,7 @@ def stereo_calibrate(object_points: ArrayLike, image_points1, image_points2, ima
         R1 = np.stack([rotation_from_axis_angle(r) for r in poses[:, :3]])
         R2 = Rr @ R1
         poses2 = np.column_stack([[axis_angle_from_rotation(R) for R in R2], poses[:, 3:] @ Rr.T + tr])
-        uv = np.concatenate([cal._project(g1, poses, Xv), cal._project(g2, poses2, Xv)])
+        uv = np.concatenate([project_views(g1, poses, Xv), project_views(g2, poses2, Xv)])
         return (uv - obs).ravel()
 
     def jacobian(p):

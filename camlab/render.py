@@ -44,7 +44,16 @@ from numpy.typing import ArrayLike
 from . import distortion as _dist
 from . import lens as _lens
 from . import sensor as _sensor
-from ._validate import CamlabInputError, as_points, check_image_size, check_matrix, check_positive
+from ._validate import (
+    CamlabInputError,
+    as_points,
+    check_intrinsics,
+    check_matrix,
+    check_pose,
+    check_positive,
+    check_rotation,
+    check_size,
+)
 from .camera import Camera, look_at_rotation, rotation_from_euler
 
 __all__ = [
@@ -127,14 +136,6 @@ class Plane:
         return self.texture.ndim == 3
 
 
-def _pose(R, t, name: str) -> tuple[np.ndarray, np.ndarray]:
-    R = check_matrix(R, (3, 3), f"{name} R")
-    t = check_matrix(t, (3,), f"{name} t")
-    if not np.allclose(R @ R.T, np.eye(3), atol=1e-6) or np.linalg.det(R) < 0:
-        raise CamlabInputError(f"{name} R: expected a rotation matrix (R R^T = I, det R = +1), got {R.tolist()}")
-    return R, t
-
-
 def _as_texture(texture: ArrayLike) -> np.ndarray:
     a = np.asarray(texture)
     if a.ndim == 3 and a.shape[2] == 4:
@@ -159,7 +160,7 @@ def textured_plane(texture: ArrayLike, width: float, *, R: ArrayLike = np.eye(3)
     tex = _as_texture(texture)
     w = check_positive(width, "width", "metres")
     h = check_positive(height, "height", "metres") if height is not None else w * tex.shape[0] / tex.shape[1]
-    R, t = _pose(R, t, name)
+    R, t = check_pose(R, t, name)
     extent = (-w / 2, -h / 2, w / 2, h / 2) if centered else (0.0, 0.0, w, h)
     return Plane(tex, extent, R, t, name=name)
 
@@ -188,7 +189,7 @@ def checkerboard(pattern_size: tuple[int, int] = (9, 6), square: float = 0.025, 
     s = check_positive(square, "square", "metres")
     if not margin >= 0:
         raise CamlabInputError(f"margin: expected >= 0 squares, got {margin!r}")
-    R, t = _pose(R, t, name)
+    R, t = check_pose(R, t, name)
     n = int(px_per_square)
     m = int(round(margin * n))
     dark, light = colors
@@ -274,7 +275,7 @@ def box(center: ArrayLike, size: ArrayLike, *, R: ArrayLike = np.eye(3), colors:
     sz = check_matrix(size, (3,), "size")
     if np.any(sz <= 0):
         raise CamlabInputError(f"size: expected three positive edge lengths in metres, got {sz.tolist()}")
-    Rb, _ = _pose(R, np.zeros(3), name)
+    Rb = check_rotation(R, f"{name} R")
     if texture not in ("noise", "flat"):
         raise CamlabInputError(f"texture: expected 'noise' or 'flat', got {texture!r}")
     shades = list(colors) if colors is not None else [0.75, 0.45, 0.6, 0.3, 0.85, 0.55]
@@ -404,8 +405,8 @@ def project(points_world: ArrayLike, K: ArrayLike, R: ArrayLike = np.eye(3), t: 
     (N, 2) or (2,) ndarray
         Pixels (u, v); NaN for points with Z_c <= 0.
     """
-    R, t = _pose(R, t, "camera")
-    return Camera(_dist._check_K(K), R, t, dist=tuple(_dist.as_dist(dist))).project(points_world)
+    R, t = check_pose(R, t, "camera")
+    return Camera(check_intrinsics(K), R, t, dist=tuple(_dist.as_dist(dist))).project(points_world)
 
 
 def align_detected_corners(detected: ArrayLike, truth_pixels: ArrayLike) -> np.ndarray:
@@ -527,9 +528,9 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
     import cv2
 
     planes = _flatten(scene)
-    K = _dist._check_K(K)
-    w, h = check_image_size(size)
-    R, t = _pose(R, t, "camera")
+    K = check_intrinsics(K)
+    w, h = check_size(size)
+    R, t = check_pose(R, t, "camera")
     d = _dist.as_dist(dist)
     ss = int(supersample)
     if ss < 1 or ss > 8:

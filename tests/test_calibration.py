@@ -10,6 +10,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from camlab import calibration as C
+from camlab.calibration.refinement import BlockNormal, project_views
 from camlab._validate import CamlabInputError, DegenerateError
 from camlab.camera import rotation_from_axis_angle, rotation_from_euler
 from camlab.data import load_calibration_set
@@ -152,19 +153,19 @@ def test_analytic_jacobian_matches_finite_differences():
     g = np.array([800.0, 790.0, 320.0, 240.0, 0.7, -0.2, 0.05, 0.001, -0.002, 0.01])
     poses = np.array([[0.3, -0.2, 0.1, 0.02, -0.01, 0.5], [-0.1, 0.4, 2.0, -0.05, 0.03, 0.4]])
     X = np.concatenate([rng.uniform(-0.1, 0.1, (2, 7, 2)), np.zeros((2, 7, 1))], axis=-1)
-    _, Jg, Jp = C._project(g, poses, X, jac=True)
+    _, Jg, Jp = project_views(g, poses, X, jac=True)
     for k in range(10):
         h = 1e-6 * max(abs(g[k]), 1.0)
         gp, gm = g.copy(), g.copy()
         gp[k] += h
         gm[k] -= h
-        num = (C._project(gp, poses, X) - C._project(gm, poses, X)) / (2 * h)
+        num = (project_views(gp, poses, X) - project_views(gm, poses, X)) / (2 * h)
         np.testing.assert_allclose(Jg[..., k], num, rtol=1e-5, atol=1e-6)
     for k in range(6):
         pp, pm = poses.copy(), poses.copy()
         pp[:, k] += 1e-7
         pm[:, k] -= 1e-7
-        num = (C._project(g, pp, X) - C._project(g, pm, X)) / 2e-7
+        num = (project_views(g, pp, X) - project_views(g, pm, X)) / 2e-7
         np.testing.assert_allclose(Jp[..., k], num, rtol=1e-5, atol=1e-4)
 
 
@@ -176,7 +177,7 @@ def test_schur_complement_solve_equals_the_dense_solve():
     for v in range(V):
         J[v * 2 * M:(v + 1) * 2 * M, :ni] = Ji[v]
         J[v * 2 * M:(v + 1) * 2 * M, ni + 6 * v:ni + 6 * v + 6] = Jp[v]
-    A = C._BlockNormal(Ji, Jp, r)
+    A = BlockNormal(Ji, Jp, r)
     np.testing.assert_allclose(A.gradient(), J.T @ r.ravel(), rtol=1e-12)
     np.testing.assert_allclose(A.diagonal(), np.diag(J.T @ J), rtol=1e-12)
     for mu in (0.0, 1e-3, 10.0):

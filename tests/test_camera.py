@@ -107,7 +107,7 @@ def test_camera_rejects_non_rotation():
 
 
 @pytest.mark.parametrize("K, msg", [
-    (np.diag([800.0, 0.0, 1.0]), "positive focal lengths"),
+    (np.diag([800.0, 0.0, 1.0]), r"fx = 800, fy = 0 \(a mirrored or singular K\)"),
     (np.diag([800.0, 800.0, 2.0]), r"last row \(0, 0, 1\)"),
     (np.zeros((3, 3)), r"last row \(0, 0, 1\)"),
 ])
@@ -282,11 +282,14 @@ def test_decompose_matches_cv2(cam, rng):
 
 
 def test_cv2_does_not_fix_negative_scale(cam):
-    """With P scaled by a negative number OpenCV returns negative focal lengths; camlab does not."""
-    K_cv = cv2.decomposeProjectionMatrix(-2.0 * cam.P)[0]
-    K_cv = K_cv / K_cv[2, 2]
-    assert K_cv[0, 0] < 0
-    assert cm.decompose_projection_matrix(-2.0 * cam.P).K[0, 0] > 0
+    """For -2.5 P OpenCV returns positive focal lengths but K33 = -2.5 and R turned 180 deg about z (lesson 04)."""
+    K_cv, R_cv = cv2.decomposeProjectionMatrix(-2.5 * cam.P)[:2]
+    assert K_cv[0, 0] > 0 and K_cv[1, 1] > 0
+    assert np.isclose(K_cv[2, 2], -2.5)
+    assert np.allclose(R_cv, np.diag([-1.0, -1.0, 1.0]) @ cam.R)
+    assert (K_cv / K_cv[2, 2])[0, 0] < 0          # normalising afterwards gives negative focal lengths
+    dec = cm.decompose_projection_matrix(-2.5 * cam.P)
+    assert dec.K[0, 0] > 0 and np.allclose(dec.K, cam.K) and np.allclose(dec.R, cam.R)
 
 
 def test_rq_decomposition_properties(rng):

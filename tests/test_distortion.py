@@ -118,11 +118,15 @@ def test_undistort_reports_non_convergence_beyond_the_fold():
 
 
 def test_classification():
-    assert D.classify_distortion(DISTS[0]) == "barrel"
-    assert D.classify_distortion(DISTS[1]) == "pincushion"
+    assert D.classify_distortion(DISTS[0]) == "barrel + tangential"  # p1, p2 shift corners by ~2 px at f = 800
+    assert D.classify_distortion(DISTS[1]) == "pincushion + tangential"
+    assert D.classify_distortion([0.12, -0.05, 0, 0, 0]) == "pincushion"
     assert D.classify_distortion([-0.3, 0.6, 0, 0, 0]) == "mustache"
     assert D.classify_distortion(None) == "none"
-    assert D.classify_distortion([0, 0, 0.01, 0, 0]) == "none"  # tangential only: no radial class
+    assert D.classify_distortion([0, 0, 0.01, 0, 0]) == "tangential"  # the grid is bent, so not "none"
+    assert D.classify_distortion([0, 0, 0, -0.01, 0]) == "tangential"
+    assert D.classify_distortion([0.2, 0, 0.002, 0, 0]) == "pincushion + tangential"
+    assert D.classify_distortion([-0.3, 0, 1e-7, 0, 0]) == "barrel"  # below tol: invisible
 
 
 def test_no_distortion_is_identity():

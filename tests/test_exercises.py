@@ -1,4 +1,9 @@
 """Every registered exercise: the reference passes, a stub is 'not attempted', mistakes are diagnosed."""
+import builtins
+import dis
+import types
+
+import numpy as np
 import pytest
 
 from camlab import exercises
@@ -35,11 +40,70 @@ def test_wrong_variants_are_diagnosed(name):
         assert phrase in message, f"{name}: diagnosis lacks {phrase!r}:\n{message}"
 
 
+# Lessons whose every exercise must have a teaching solution (extend as lessons gain theirs).
+TEACHING_LESSONS = {"00", "01", "02", "03", "04", "05", "06", "07", "08", "10", "11"}
+TEACHING = sorted(n for n, e in EXERCISES.items() if e.teaching is not None)
+
+
 @pytest.mark.parametrize("name", sorted(EXERCISES))
-def test_solution_prints_the_library_source(name, capsys):
+def test_solution_prints_the_teaching_solution_or_the_library_source(name, capsys):
+    exercise = EXERCISES[name]
     source = solution(name)
-    assert f"def {EXERCISES[name].reference.__name__}(" in source
+    shown = exercise.teaching or exercise.reference
+    assert f"def {shown.__name__}(" in source
     assert source in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("name", sorted(n for n, e in EXERCISES.items() if e.lesson in TEACHING_LESSONS))
+def test_exercise_has_a_teaching_solution_named_like_it(name):
+    teaching = EXERCISES[name].teaching
+    assert teaching is not None, f"{name}: register a teaching solution (Exercise(..., teaching=fn))"
+    assert teaching.__name__ == name, f"{name}: name the teaching solution like the student's function"
+
+
+@pytest.mark.parametrize("name", TEACHING)
+def test_teaching_solution_agrees_with_the_library(name, capsys):
+    assert check(name, EXERCISES[name].teaching) is True
+    assert "correct on all" in capsys.readouterr().out
+
+
+def _globals_used(code: types.CodeType) -> set[str]:
+    names = {i.argval for i in dis.get_instructions(code) if i.opname in ("LOAD_GLOBAL", "LOAD_NAME")}
+    for const in code.co_consts:
+        if isinstance(const, types.CodeType):
+            names |= _globals_used(const)
+    return names
+
+
+@pytest.mark.parametrize("name", TEACHING)
+def test_teaching_solution_is_self_contained_numpy(name):
+    teaching = EXERCISES[name].teaching
+    for used in _globals_used(teaching.__code__):
+        if hasattr(builtins, used):
+            continue
+        assert teaching.__globals__.get(used) is np, \
+            f"{name}: the teaching solution uses {used!r}; it may use only numpy (np) and builtins"
+
+
+def test_teaching_solution_check_catches_a_call_into_camlab():
+    def leaky(x):
+        return camlab_helper(x)  # noqa: F821
+    assert "camlab_helper" in _globals_used(leaky.__code__)
+
+
+def test_large_array_mismatch_is_summarised_not_printed():
+    from camlab.exercises._core import _fmt, worst_mismatch
+    expected = np.zeros((40, 50, 3))
+    got = expected.copy()
+    got[7, 9, 2] = 5.0
+    assert _fmt(got).startswith("<array of shape (40, 50, 3)")
+    line = worst_mismatch(got, expected)
+    assert "(row, column, channel) (7, 9, 2): got 5, expected 0 (1 of 6000 entries differ)" in line
+
+
+def test_forgotten_return_is_named():
+    with pytest.raises(AssertionError, match="forget `return`"):
+        check("lift", lambda p: None)
 
 
 def test_check_functions_exist_by_name():

@@ -31,10 +31,16 @@ def test_pinhole_projection_box_width_follows_f_over_z():
     demo = pinhole_camera.pinhole_projection()
     demo.set(focal_mm=50, distance=2.0)
     w1 = demo.state["box_width_px"]
+    box_columns = np.flatnonzero(np.any(np.abs(demo.state["image"] - 0.35) > 0.02, axis=0))
+    assert w1 == pytest.approx(box_columns.max() - box_columns.min(), abs=2.0)  # the readout is what you see
     demo.set(focal_mm=100)
     assert demo.state["box_width_px"] == pytest.approx(2 * w1)
     demo.set(distance=4.0)
-    assert demo.state["box_width_px"] == pytest.approx(w1)
+    assert demo.state["box_width_px"] == pytest.approx(w1, rel=0.1)   # about f / Z (the box has depth)
+    for f_mm, Z in ((100, 0.8), (15, 0.8), (100, 4.0)):
+        demo.set(focal_mm=f_mm, distance=Z)
+        assert 0 < demo.state["f_draw"] < 0.5 * Z   # the drawn image planes stay between pinhole and box
+    demo.set(focal_mm=50, distance=2.0)
     upright = demo.state["image"].copy()
     demo.set(real_plane=True)
     assert np.array_equal(demo.state["image"], upright[::-1, ::-1])

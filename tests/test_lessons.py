@@ -50,3 +50,37 @@ def test_lesson_anatomy(path):
     for c in code:
         assert "pip install" not in c and "http" not in c, f"{path.name}: no installs or network in lessons"
         assert not re.search(r"['\"]/(home|root|work|tmp)/", c), f"{path.name}: no absolute paths"
+
+
+# Lessons whose self-check questions must each carry a revealable answer (extend lesson by lesson).
+ANSWERED_LESSONS = {"00", "01", "02", "03", "04", "05", "06", "07"}
+_QUESTION = re.compile(r"^(?:\d+\.|\*\*\d+\.\*\*)\s", re.MULTILINE)
+
+
+def self_check_questions(markdown: str) -> list[str]:
+    """The self-check section split into one chunk per numbered question (question + what follows)."""
+    match = re.search(r"^## Self-check questions\s*$(.*?)(?=^## |\Z)", markdown, re.MULTILINE | re.DOTALL)
+    if not match:
+        return []
+    section = match.group(1)
+    starts = [m.start() for m in _QUESTION.finditer(section)]
+    return [section[a:b] for a, b in zip(starts, starts[1:] + [len(section)])]
+
+
+@pytest.mark.parametrize("path", [p for p in LESSONS if p.name[:2] in ANSWERED_LESSONS], ids=lambda p: p.name)
+def test_every_self_check_question_has_a_revealable_answer(path):
+    markdown = "\n".join(_source(c) for c in _cells(path) if c["cell_type"] == "markdown")
+    questions = self_check_questions(markdown)
+    assert len(questions) >= 2, f"{path.name}: '## Self-check questions' needs at least two numbered questions"
+    for chunk in questions:
+        first = chunk.splitlines()[0]
+        answer = re.search(r"<details>\s*<summary>[^<]+</summary>(.*?)</details>", chunk, re.DOTALL)
+        assert answer, f"{path.name}: question {first!r} has no <details><summary>Answer</summary> ... </details>"
+        assert len(answer.group(1).strip()) >= 20, f"{path.name}: the answer to {first!r} is empty"
+
+
+def test_self_check_parser_sees_a_missing_answer():
+    md = ("## Self-check questions\n1. Why?\n<details><summary>Answer</summary>\n\nBecause of this and that.\n"
+          "</details>\n\n2. And why not?\n\n## Summary\n")
+    chunks = self_check_questions(md)
+    assert len(chunks) == 2 and "<details>" in chunks[0] and "<details>" not in chunks[1]

@@ -1,4 +1,4 @@
-"""Tests for camlab.stitching (and camlab.stitching_data): ground truth, OpenCV cross-checks, bad input."""
+"""Tests for camlab.stitching (and camlab.data.panorama): ground truth, OpenCV cross-checks, bad input."""
 import warnings
 
 import cv2
@@ -10,7 +10,7 @@ from hypothesis import strategies as hs
 from camlab import features as ft
 from camlab import homography as hg
 from camlab import stitching as st
-from camlab import stitching_data as sd
+from camlab.data import panorama as sd
 from camlab._validate import CamlabInputError, DegenerateError
 from camlab.warp import canvas_bounds
 
@@ -348,15 +348,6 @@ def test_register_pair_too_few_matches(half):
     few = ft.Matches(*(a[:6] for a in ft.match_features(f[0], f[1])))
     r = st.register_pair(f[0], f[1], matches=few)
     assert not r.accepted and r.H is None and r.reason == "too few matches: 6 (need at least 15)"
-
-
-def test_dataset_regenerates_byte_identically(tmp_path):
-    sd.make_panorama_set(tmp_path)
-    bundled = sd.data_dir() / "panorama"
-    for name in ["rot_00.jpg", "rot_03.jpg", "plane_1.jpg", "truth.json"]:
-        assert (tmp_path / name).read_bytes() == (bundled / name).read_bytes(), name
-    total = sum(p.stat().st_size for p in bundled.iterdir())
-    assert total < 800_000
 
 
 def test_loaders_and_truth():

@@ -4,7 +4,12 @@ Exercises are defined one module per lesson (``projective_plane.py``...). In a l
 
     from camlab.exercises import check_intersect_lines, solution
     check_intersect_lines(intersect_lines)   # "not attempted yet" / diagnosis / well done
-    solution("intersect_lines")               # prints camlab's own implementation
+    solution("intersect_lines")               # prints a short teaching solution in numpy
+
+Each exercise module registers, beside the check, a *teaching solution*: a function named
+like the exercise, written in plain numpy to be read (``Exercise(..., teaching=fn)``). It
+never calls camlab, let alone a private helper; tests/test_exercises.py proves it passes
+the exercise's own check, i.e. agrees with camlab's optimised implementation.
 """
 from __future__ import annotations
 
@@ -12,11 +17,12 @@ import functools
 import importlib
 import pkgutil
 
-from ._core import EXERCISES, Exercise, check, register_exercise, same_array, same_up_to_scale, shape_problem
+from ._core import (EXERCISES, Exercise, check, register_exercise, same_array, same_up_to_scale, shape_problem,
+                    unit_slip, worst_mismatch)
 from ._core import solution as _solution
 
 __all__ = ["EXERCISES", "Exercise", "all_exercises", "check", "register_exercise", "same_array", "same_up_to_scale",
-           "shape_problem", "solution"]
+           "shape_problem", "solution", "unit_slip", "worst_mismatch"]
 
 
 def all_exercises() -> dict[str, Exercise]:
@@ -28,7 +34,7 @@ def all_exercises() -> dict[str, Exercise]:
 
 
 def solution(name: str) -> str:
-    """Print (and return) the source of camlab's implementation of exercise ``name``."""
+    """Print (and return) the teaching solution of exercise ``name`` (numpy only)."""
     if name not in all_exercises():
         raise KeyError(f"solution: no exercise {name!r}; exercises are {sorted(EXERCISES)}")
     return _solution(name)

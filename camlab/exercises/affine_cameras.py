@@ -55,6 +55,16 @@ def _approx_unnormalised(camera, X0):
     return camera.K @ E
 
 
+def affine_approximation(camera, X0):
+    """Give every point the depth d0 of the reference point X0 (H&Z eq. 6.16), last row (0, 0, 0, 1)."""
+    K, R, t = camera.K, camera.R, camera.t
+    d0 = R[2] @ X0 + t[2]        # depth of X0 in the camera frame
+    E = np.zeros((3, 4))
+    E[:2, :3], E[:2, 3] = R[:2], t[:2]
+    E[2, 3] = d0                 # the third row no longer depends on the point
+    return K @ E / d0
+
+
 register_exercise(Exercise(
     name="affine_approximation",
     lesson="05",
@@ -67,6 +77,7 @@ register_exercise(Exercise(
         (_approx_unnormalised, "divide the whole matrix by d0"),
         (lambda camera, X0: camera.P, "last row must be"),
     ),
+    teaching=affine_approximation,
 ))
 
 
@@ -106,6 +117,16 @@ def _estimate_dlt(X, uv):
     return cm.estimate_projection_matrix(X, uv)
 
 
+def estimate_affine_camera(X, uv):
+    """Least-squares affine camera (H&Z algorithm 7.2): centre both point sets, then solve for M2."""
+    Xm, um = X.mean(axis=0), uv.mean(axis=0)
+    M2 = np.linalg.lstsq(X - Xm, uv - um, rcond=None)[0].T   # (2, 3): uv - um = M2 (X - Xm)
+    P = np.zeros((3, 4))
+    P[:2, :3], P[:2, 3] = M2, um - M2 @ Xm                   # the centroids correspond
+    P[2, 3] = 1.0
+    return P
+
+
 register_exercise(Exercise(
     name="estimate_affine_camera",
     lesson="05",
@@ -117,4 +138,5 @@ register_exercise(Exercise(
         (_estimate_four_points, "all the points"),
         (_estimate_dlt, "last row of an affine camera"),
     ),
+    teaching=estimate_affine_camera,
 ))

@@ -40,6 +40,18 @@ def _zhang_diagnosis(args, got, expected) -> str:
             "with h_i = H[:, i]; check the order of the six entries")
 
 
+def zhang_constraints(H):
+    """Rows v12 and v11 - v22, with h_i = H[:, i]: h_i^T B h_j = v_ij . b, b = (B11, B12, B22, B13, B23, B33)."""
+    H = np.asarray(H, dtype=float)
+
+    def v(i, j):
+        a, b = H[:, i], H[:, j]
+        return np.array([a[0] * b[0], a[0] * b[1] + a[1] * b[0], a[1] * b[1],
+                         a[2] * b[0] + a[0] * b[2], a[2] * b[1] + a[1] * b[2], a[2] * b[2]])
+
+    return np.stack([v(0, 1), v(0, 0) - v(1, 1)])
+
+
 register_exercise(Exercise(
     name="zhang_constraints",
     lesson="08",
@@ -52,6 +64,7 @@ register_exercise(Exercise(
         (lambda H: np.stack([calibration.zhang_v(H, 0, 1),
                              calibration.zhang_v(H, 0, 0) + calibration.zhang_v(H, 1, 1)]), "not the sum"),
     ),
+    teaching=zhang_constraints,
 ))
 
 
@@ -79,6 +92,12 @@ def _lm_diagnosis(args, got, expected) -> str:
     return "solve (J^T J + mu diag(J^T J)) delta = -J^T r with np.linalg.solve"
 
 
+def lm_step(J, r, mu):
+    """Solve (J^T J + mu diag(J^T J)) delta = -J^T r: Gauss-Newton for mu = 0, damped otherwise."""
+    A = J.T @ J
+    return np.linalg.solve(A + mu * np.diag(np.diag(A)), -J.T @ r)
+
+
 register_exercise(Exercise(
     name="lm_step",
     lesson="08",
@@ -91,6 +110,7 @@ register_exercise(Exercise(
         (lambda J, r, mu: np.linalg.solve(J.T @ J + mu * np.eye(J.shape[1]), -J.T @ r), "mu * I"),
         (lambda J, r, mu: np.linalg.solve(J.T @ J, -J.T @ r), "Gauss-Newton"),
     ),
+    teaching=lm_step,
 ))
 
 
@@ -123,6 +143,14 @@ def _gram_schmidt(M):
     return Q * np.sign(np.diag(Rr))
 
 
+def nearest_rotation(M):
+    """U V^T from the SVD M = U S V^T, with the last column of U flipped if det(U V^T) = -1."""
+    U, _, Vt = np.linalg.svd(M)
+    if np.linalg.det(U @ Vt) < 0:
+        U[:, -1] *= -1
+    return U @ Vt
+
+
 register_exercise(Exercise(
     name="nearest_rotation",
     lesson="08",
@@ -135,4 +163,5 @@ register_exercise(Exercise(
         (lambda M: M / np.linalg.norm(M, axis=0), "not orthonormal"),
         (_gram_schmidt, "not the closest"),
     ),
+    teaching=nearest_rotation,
 ))

@@ -24,15 +24,28 @@ def _quantize_diagnosis(args, got, expected) -> str:
     img, bits = args
     g = np.asarray(got)
     levels = 2**bits - 1
+    if np.array_equal(g, expected):      # right numbers, wrong type
+        if not np.issubdtype(g.dtype, np.integer):
+            return (f"the values are right but the dtype is {g.dtype}: digital numbers are integers; "
+                    f"end with .astype(np.uint8) for <= 8 bits, np.uint16 above")
+        return f"the values are right but the dtype is {g.dtype}; use {np.asarray(expected).dtype} for {bits} bits"
+    if bits > 8 and g.dtype == np.uint8:
+        return (f"{bits}-bit numbers reach {levels}, but uint8 stops at 255 and wraps around: "
+                f"use np.uint16 above 8 bits")
     if np.array_equal(g, np.floor(np.clip(img, 0, 1) * levels)):
         return "you truncated (floor); round to the nearest level so the error is at most half a step"
     if np.array_equal(g, np.clip(np.rint(img * 2**bits), 0, 2**bits)) or g.max() > levels:
         return f"a {bits}-bit number runs from 0 to 2**bits - 1 = {levels}: scale by 2**bits - 1 and clip"
     if np.array_equal(g, np.rint(img * levels)):
         return "clip to [0, 2**bits - 1]: values outside [0, 1] saturate"
-    if not np.issubdtype(g.dtype, np.integer):
-        return "return integer digital numbers (uint8 for <= 8 bits, uint16 above)"
     return "DN = round(I * (2**bits - 1)), clipped to [0, 2**bits - 1]"
+
+
+def quantize_image(image, bits):
+    """Digital numbers DN = round(I (2**bits - 1)), clipped; uint8 up to 8 bits, uint16 above."""
+    levels = 2**bits - 1
+    dn = np.clip(np.round(image * levels), 0, levels)   # round to nearest, then saturate
+    return dn.astype(np.uint8 if bits <= 8 else np.uint16)
 
 
 register_exercise(Exercise(
@@ -47,7 +60,10 @@ register_exercise(Exercise(
         (lambda img, bits: np.floor(np.clip(img, 0, 1) * (2**bits - 1)).astype(np.uint16), "round to the nearest"),
         (lambda img, bits: np.clip(np.rint(img * 2**bits), 0, 2**bits).astype(np.uint16), "2**bits - 1"),
         (lambda img, bits: np.rint(img * (2**bits - 1)).astype(np.int64), "clip"),
+        (lambda img, bits: np.clip(np.rint(img * (2**bits - 1)), 0, 2**bits - 1), "dtype is float64"),
+        (lambda img, bits: np.clip(np.rint(img * (2**bits - 1)), 0, 2**bits - 1).astype(np.uint8), "wraps around"),
     ),
+    teaching=quantize_image,
 ))
 
 
@@ -91,6 +107,27 @@ def _zero_padded_demosaic(raw, pattern):
     return out
 
 
+def demosaic_bilinear(raw, pattern):
+    """Keep each measured sample; fill the rest with the weighted mean of available neighbours."""
+    raw = np.asarray(raw, dtype=float)
+    H, W = raw.shape
+    masks = np.zeros((H, W, 3))                    # which pixel measured which colour
+    for (dy, dx), colour in zip([(0, 0), (0, 1), (1, 0), (1, 1)], pattern):
+        masks[dy::2, dx::2, "RGB".index(colour)] = 1
+    weights = np.array([[1, 2, 1], [2, 4, 2], [1, 2, 1]]) / 4   # nearer samples count more
+    out = np.empty((H, W, 3))
+    for c in range(3):
+        m = masks[..., c]
+        padded_values, padded_mask = np.pad(raw * m, 1), np.pad(m, 1)
+        total, weight = np.zeros((H, W)), np.zeros((H, W))
+        for dy in range(3):
+            for dx in range(3):
+                total += weights[dy, dx] * padded_values[dy:dy + H, dx:dx + W]
+                weight += weights[dy, dx] * padded_mask[dy:dy + H, dx:dx + W]
+        out[..., c] = np.where(m == 1, raw, total / weight)   # only existing neighbours count
+    return out
+
+
 register_exercise(Exercise(
     name="demosaic_bilinear",
     lesson="03",
@@ -102,4 +139,5 @@ register_exercise(Exercise(
         (_zero_padded_demosaic, "border"),
         (lambda raw, pattern: sensor.demosaic_bilinear(raw, "BGGR" if pattern == "RGGB" else "RGGB"), "measured samples"),
     ),
+    teaching=demosaic_bilinear,
 ))

@@ -5,7 +5,7 @@ import numpy as np
 
 from .. import distortion, lens
 from ._numbers import is_number as _is_number
-from ._core import Exercise, register_exercise, same_array, shape_problem
+from ._core import Exercise, register_exercise, same_array, shape_problem, unit_slip
 
 
 def _thin_lens_cases():
@@ -16,12 +16,20 @@ def _thin_lens_diagnosis(args, got, expected) -> str:
     f, zo = args
     if not _is_number(got):
         return "return one number: the image distance in metres"
+    slip = unit_slip(got, expected)
+    if slip:
+        return slip
     g = float(got)
     if np.isclose(g, f * zo / (zo + f)):
         return "sign slip: 1/z_i = 1/f - 1/z_o, so z_i = f z_o / (z_o - f)"
     if np.isclose(g, 1 / f - 1 / zo) or np.isclose(g, 1 / f + 1 / zo):
         return "you returned 1/z_i; invert it to get the distance"
     return "solve 1/f = 1/z_o + 1/z_i for z_i"
+
+
+def thin_lens_image_distance(f, z_o):
+    """Solve the thin-lens equation 1/f = 1/z_o + 1/z_i for z_i (all in metres)."""
+    return f * z_o / (z_o - f)
 
 
 register_exercise(Exercise(
@@ -34,7 +42,9 @@ register_exercise(Exercise(
     wrong_variants=(
         (lambda f, zo: f * zo / (zo + f), "sign slip"),
         (lambda f, zo: 1 / f - 1 / zo, "invert it"),
+        (lambda f, zo: 1e3 * f * zo / (zo - f), "millimetres"),
     ),
+    teaching=thin_lens_image_distance,
 ))
 
 
@@ -56,6 +66,9 @@ def _distort_diagnosis(args, got, expected) -> str:
     x, d = args
     g = np.asarray(got, dtype=float)
     k1, k2, p1, p2, k3 = d
+    if (p1 or p2 or k3) and np.allclose(g, distortion.distort_points(x, [k1, k2, p2, k3, p1])):
+        return ("you read dist as (k1, k2, k3, p1, p2); OpenCV's order is (k1, k2, p1, p2, k3): "
+                "k3 comes last, after the tangential p1, p2")
     swapped = distortion.distort_points(x, [k1, k2, p2, p1, k3])
     if np.allclose(g, swapped):
         return "p1 and p2 are swapped: OpenCV's order is (k1, k2, p1, p2, k3), and x gets 2 p1 x y + p2 (r^2 + 2 x^2)"
@@ -71,6 +84,17 @@ def _distort_diagnosis(args, got, expected) -> str:
     return "compare term by term with the model in the lesson: radial factor, then the two tangential terms"
 
 
+def distort_points(x, dist):
+    """Brown-Conrady distortion of (N, 2) normalised points, dist in OpenCV's order."""
+    k1, k2, p1, p2, k3 = dist                      # note: k3 comes last
+    u, v = x[:, 0], x[:, 1]
+    r2 = u**2 + v**2
+    radial = 1 + k1 * r2 + k2 * r2**2 + k3 * r2**3  # even powers of r
+    ud = u * radial + 2 * p1 * u * v + p2 * (r2 + 2 * u**2)
+    vd = v * radial + p1 * (r2 + 2 * v**2) + 2 * p2 * u * v
+    return np.column_stack([ud, vd])
+
+
 register_exercise(Exercise(
     name="distort_points",
     lesson="02",
@@ -81,7 +105,54 @@ register_exercise(Exercise(
     wrong_variants=(
         (lambda x, d: distortion.distort_points(x, [d[0], d[1], d[3], d[2], d[4]]), "p1 and p2 are swapped"),
         (lambda x, d: distortion.distort_points(x, [d[0], d[1], 0, 0, d[4]]), "tangential"),
+        (lambda x, d: distortion.distort_points(x, [d[0], d[1], d[3], d[4], d[2]]), "k3 comes last"),
         (lambda x, d: x * (1 + d[0] * np.hypot(*x.T) + d[1] * np.hypot(*x.T) ** 2
                            + d[4] * np.hypot(*x.T) ** 3)[:, None], "even powers"),
     ),
+    teaching=distort_points,
+))
+
+
+# -- hyperfocal_distance ------------------------------------------------------------------
+
+def _hyperfocal_cases():
+    return [(0.05, 8.0, 0.03e-3), (0.028, 2.8, 0.02e-3), (0.1, 16.0, 0.03e-3), (0.018, 5.6, 0.015e-3)]
+
+
+def _hyperfocal_diagnosis(args, got, expected) -> str:
+    f, N, c = args
+    if not _is_number(got):
+        return "return one number: the hyperfocal distance in metres"
+    slip = unit_slip(got, expected)
+    if slip:
+        return slip
+    g = float(got)
+    if np.isclose(g, f**2 / (N * c), rtol=1e-9):
+        return "you dropped the + f: H = f^2 / (N c) + f (small, but it is where the thin-lens algebra puts it)"
+    if np.isclose(g, f**2 * N / c, rtol=1e-9) or np.isclose(g, f**2 * N / c + f, rtol=1e-9):
+        return "N belongs in the denominator: a larger f-number (smaller aperture) brings H closer"
+    if np.isclose(g, f / (N * c) + f, rtol=1e-9) or np.isclose(g, f / (N * c), rtol=1e-9):
+        return "square the focal length: H = f^2 / (N c) + f"
+    return "set the blur circle of a point at infinity, A f / (H - f) with A = f / N, equal to c and solve for H"
+
+
+def hyperfocal_distance(f, N, c):
+    """Focus here and everything from H/2 to infinity is sharp: the far limit of the depth of field reaches infinity."""
+    return f**2 / (N * c) + f     # all lengths in metres
+
+
+register_exercise(Exercise(
+    name="hyperfocal_distance",
+    lesson="02",
+    reference=lens.hyperfocal_distance,
+    cases=_hyperfocal_cases,
+    compare=lambda got, exp: _is_number(got) and bool(np.isclose(float(got), exp, rtol=1e-9)),
+    diagnose=_hyperfocal_diagnosis,
+    wrong_variants=(
+        (lambda f, N, c: f**2 / (N * c), "dropped the + f"),
+        (lambda f, N, c: f**2 * N / c + f, "denominator"),
+        (lambda f, N, c: f / (N * c) + f, "square the focal length"),
+        (lambda f, N, c: 1e3 * (f**2 / (N * c) + f), "millimetres"),
+    ),
+    teaching=hyperfocal_distance,
 ))

@@ -35,6 +35,18 @@ def _rect_diagnosis(args, got, expected) -> str:
             f"pair TL, TR, BR, BL with (0, 0), (w - 1, 0), (w - 1, h - 1), (0, h - 1) in that order.")
 
 
+def rectangle_homography(corners, width, height):
+    """Four pairs fix H: with h33 = 1 each pair gives two linear equations in the other 8 entries."""
+    target = np.array([[0, 0], [width - 1, 0], [width - 1, height - 1], [0, height - 1]], dtype=float)
+    A, b = [], []
+    for (u, v), (x, y) in zip(np.asarray(corners, dtype=float), target):
+        A.append([u, v, 1, 0, 0, 0, -x * u, -x * v])      # x (h31 u + h32 v + 1) = h11 u + h12 v + h13
+        A.append([0, 0, 0, u, v, 1, -y * u, -y * v])      # y (h31 u + h32 v + 1) = h21 u + h22 v + h23
+        b += [x, y]
+    h = np.linalg.solve(np.array(A), np.array(b))
+    return np.append(h, 1.0).reshape(3, 3)
+
+
 register_exercise(Exercise(
     name="rectangle_homography",
     lesson="10",
@@ -47,7 +59,16 @@ register_exercise(Exercise(
         (lambda c, w, h: estimate_homography(c, [[0, 0], [w, 0], [w, h], [0, h]]), "off by one"),
         (lambda c, w, h: estimate_homography(c, [[0, 0], [0, h - 1], [w - 1, h - 1], [w - 1, 0]]), "pair TL, TR"),
     ),
+    teaching=rectangle_homography,
 ))
+
+
+def _rotated_rectangle(angle_deg: float, centre=(320.0, 240.0), size=(260.0, 150.0)) -> np.ndarray:
+    """Corners of a w x h rectangle turned by angle_deg on screen, in TL, TR, BR, BL order of the unturned one."""
+    t = np.radians(angle_deg)
+    R = np.array([[np.cos(t), -np.sin(t)], [np.sin(t), np.cos(t)]])
+    w, h = size
+    return np.array([[-w, -h], [w, -h], [w, h], [-w, h]]) / 2 @ R.T + centre
 
 
 def _order_cases():
@@ -57,6 +78,11 @@ def _order_cases():
         (page[[2, 0, 3, 1]],),
         (page[[3, 2, 1, 0]],),
         (np.array([[300.0, 50.0], [520.0, 120.0], [90.0, 300.0], [480.0, 420.0]]),),  # bow-tie order
+        # turned quadrilaterals: the corner with the smallest angle around the centroid is
+        # then not the top-left one, so sorting by angle alone starts in the wrong place
+        (_rotated_rectangle(25.0)[[1, 3, 0, 2]],),
+        (_rotated_rectangle(-35.0)[[2, 1, 3, 0]],),
+        (_rotated_rectangle(40.0, size=(200.0, 300.0))[[3, 0, 2, 1]],),
     ]
 
 
@@ -74,6 +100,21 @@ def _order_diagnosis(args, got, expected) -> str:
             "centroid (np.arctan2(v - v_c, u - u_c)), then start at the top-left corner.")
 
 
+def order_corners(corners):
+    """Sort by angle around the centroid (clockwise on screen, v down), then start at min u + v."""
+    q = np.asarray(corners, dtype=float)
+    c = q.mean(axis=0)
+    q = q[np.argsort(np.arctan2(q[:, 1] - c[1], q[:, 0] - c[0]))]
+    return np.roll(q, -np.argmin(q.sum(axis=1)), axis=0)
+
+
+def _sorted_by_angle(corners):
+    """A plausible mistake: sort by angle around the centroid, but never rotate to the top-left."""
+    q = np.asarray(corners, dtype=float)
+    c = q.mean(axis=0)
+    return q[np.argsort(np.arctan2(q[:, 1] - c[1], q[:, 0] - c[0]))]
+
+
 register_exercise(Exercise(
     name="order_corners",
     lesson="10",
@@ -85,5 +126,7 @@ register_exercise(Exercise(
         (lambda c: np.roll(pp.order_corners(c), 1, axis=0), "does not start at the top-left"),
         (lambda c: pp.order_corners(c)[::-1], "counter-clockwise"),
         (lambda c: np.asarray(c, float)[np.lexsort((np.asarray(c)[:, 0], np.asarray(c)[:, 1]))], "sort by the angle"),
+        (_sorted_by_angle, "does not start at the top-left"),
     ),
+    teaching=order_corners,
 ))

@@ -5,7 +5,7 @@ import numpy as np
 
 from .. import pinhole
 from ._numbers import is_number as _is_number
-from ._core import Exercise, register_exercise, same_array, shape_problem
+from ._core import Exercise, register_exercise, same_array, shape_problem, unit_slip
 
 
 def _projection_cases():
@@ -22,6 +22,9 @@ def _projection_diagnosis(args, got, expected) -> str:
     problem = shape_problem(got, expected)
     if problem:
         return problem + ". Return one (x, y) row per point."
+    slip = unit_slip(got, expected)
+    if slip:
+        return slip
     g = np.asarray(got, dtype=float)
     if np.allclose(g, -expected):
         return "your image is inverted: that is the real image behind the pinhole; use the virtual plane, x = f X / Z"
@@ -31,6 +34,13 @@ def _projection_diagnosis(args, got, expected) -> str:
     if np.allclose(g, X[:, :2] / X[:, 2:3]):
         return "you forgot to multiply by the focal length f"
     return "check the similar triangles: x / f = X / Z and y / f = Y / Z"
+
+
+def pinhole_projection(X, f):
+    """Virtual image of camera-frame points: x = f X / Z, y = f Y / Z (similar triangles)."""
+    X = np.asarray(X, dtype=float)
+    Z = X[:, 2:3]                 # (N, 1), so one division scales both columns
+    return f * X[:, :2] / Z
 
 
 register_exercise(Exercise(
@@ -44,7 +54,9 @@ register_exercise(Exercise(
         (lambda X, f: -f * X[:, :2] / X[:, 2:3], "inverted"),
         (lambda X, f: f * X[:, :2], "divide by the depth"),
         (lambda X, f: X[:, :2] / X[:, 2:3], "multiply by the focal length"),
+        (lambda X, f: 1e3 * f * X[:, :2] / X[:, 2:3], "millimetres"),
     ),
+    teaching=pinhole_projection,
 ))
 
 
@@ -58,11 +70,19 @@ def _best_diagnosis(args, got, expected) -> str:
         g = float(got)
     except (TypeError, ValueError):
         return "return a single number: the diameter in metres"
+    slip = unit_slip(got, expected)
+    if slip:
+        return slip
     if np.isclose(g, np.sqrt(lam * f)):
         return "you dropped the 2.44 of the Airy disc: minimise d + 2.44 lambda f / d"
     if np.isclose(g, 2.44 * lam * f):
         return "you forgot the square root: setting the derivative 1 - 2.44 lambda f / d^2 to zero gives d^2 = 2.44 lambda f"
     return "minimise the total blur d + 2.44 lambda f / d over d (a distant object)"
+
+
+def best_pinhole_diameter(f, wavelength):
+    """Minimise b(d) = d + 2.44 wavelength f / d: b'(d) = 1 - 2.44 wavelength f / d**2 = 0."""
+    return float(np.sqrt(2.44 * wavelength * f))
 
 
 register_exercise(Exercise(
@@ -75,5 +95,7 @@ register_exercise(Exercise(
     wrong_variants=(
         (lambda f, lam: float(np.sqrt(lam * f)), "2.44"),
         (lambda f, lam: 2.44 * lam * f, "square root"),
+        (lambda f, lam: 1e3 * float(np.sqrt(2.44 * lam * f)), "millimetres"),
     ),
+    teaching=best_pinhole_diameter,
 ))

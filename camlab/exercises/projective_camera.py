@@ -47,6 +47,14 @@ def _project_diagnosis(args, got, expected) -> str:
     return "project with x = P (X, Y, Z, 1)^T, then (u, v) = (x / w, y / w)."
 
 
+def project_points(P, X):
+    """Pixels of (N, 3) world points: x = P (X, 1), then divide by the third coordinate."""
+    X = np.asarray(X, dtype=float)
+    Xh = np.hstack([X, np.ones((len(X), 1))])   # (N, 4) homogeneous world points
+    x = Xh @ np.asarray(P).T                    # points are rows: (P Xh^T)^T = Xh P^T
+    return x[:, :2] / x[:, 2:3]
+
+
 register_exercise(Exercise(
     name="project_points",
     lesson="04",
@@ -59,6 +67,7 @@ register_exercise(Exercise(
         (lambda P, X: (X @ P[:, :3].T)[:, :2] / (X @ P[:, :3].T)[:, 2:], "fourth column"),
         (lambda P, X: np.hstack([X, np.ones((len(X), 1))]) @ P.T, "homogeneous pixels"),
     ),
+    teaching=project_points,
 ))
 
 
@@ -84,6 +93,13 @@ def _centre_diagnosis(args, got, expected) -> str:
     return "P C = 0 but the result differs; scale the centre so that its last coordinate is 1"
 
 
+def camera_centre(P):
+    """The homogeneous centre C with P C = 0: P's right null vector, scaled to w = 1."""
+    _, _, Vt = np.linalg.svd(P)
+    C = Vt[-1]                 # the right singular vector of the zero singular value
+    return C / C[3]
+
+
 register_exercise(Exercise(
     name="camera_centre",
     lesson="04",
@@ -95,6 +111,7 @@ register_exercise(Exercise(
         (lambda P: -np.linalg.solve(P[:, :3], P[:, 3]), "returned a 3-vector"),
         (lambda P: np.append(-P[:, 3], 1.0), "P C is not 0"),  # confuses t with the centre
     ),
+    teaching=camera_centre,
 ))
 
 
@@ -124,6 +141,10 @@ def _rq_diagnosis(args, got, expected) -> str:
         assert K.shape == R.shape == (3, 3)
     except (TypeError, ValueError, AssertionError):
         return "return a pair (K, R) of (3, 3) arrays"
+    if np.isclose(K[2, 2], 1.0) and not np.isclose(abs(M[2] @ M[2]), 1.0):
+        return ("you divided K by K[2, 2], so K R = M / K[2, 2] and no longer M; and a negative K[2, 2] "
+                "does not fix the signs. Keep K unnormalised (K[2, 2] carries M's scale) and fix the signs "
+                "with D = diag(sign(diag(K))): K D and D R.")
     if not np.allclose(K @ R, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
         if np.allclose(R @ K, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
             return "you computed M = Q K (a QR decomposition); the camera needs M = K R with K on the left (RQ)."
@@ -144,9 +165,25 @@ def _rq_no_sign_fix(M):
     return rq(M)
 
 
+def _rq_normalised_no_sign_fix(M):
+    from scipy.linalg import rq
+
+    K, R = rq(M)
+    return K / K[2, 2], R
+
+
 def _rq_qr(M):
     Q, U = np.linalg.qr(M)
     return U, Q
+
+
+def rq_decomposition(M):
+    """M = K R with K upper triangular (positive diagonal) and R orthogonal, from numpy's QR."""
+    E = np.eye(3)[::-1]                 # the exchange matrix reverses row order; E = E^T = E^-1
+    Q, U = np.linalg.qr((E @ M).T)      # (E M)^T = Q U, so M = (E U^T E)(E Q^T)
+    K, R = E @ U.T @ E, E @ Q.T         # E U^T E is upper triangular
+    D = np.diag(np.sign(np.diag(K)))    # K R = (K D)(D R): flip signs so diag(K) > 0
+    return K @ D, D @ R
 
 
 register_exercise(Exercise(
@@ -158,7 +195,9 @@ register_exercise(Exercise(
     diagnose=_rq_diagnosis,
     wrong_variants=(
         (_rq_no_sign_fix, "fix the signs"),
+        (_rq_normalised_no_sign_fix, "divided K by K[2, 2]"),
         (_rq_qr, "QR decomposition"),
         (lambda M: (lambda K, R: (K, R.T))(*cm.rq_decomposition(M)), "transposed"),
     ),
+    teaching=rq_decomposition,
 ))

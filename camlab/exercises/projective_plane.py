@@ -37,6 +37,11 @@ def _intersect_cases():
     ]
 
 
+def intersect_lines(l1, l2):
+    """The point on both lines is orthogonal to both: their cross product (kept homogeneous)."""
+    return np.cross(np.asarray(l1, dtype=float), np.asarray(l2, dtype=float))
+
+
 register_exercise(Exercise(
     name="intersect_lines",
     lesson="06",
@@ -49,6 +54,7 @@ register_exercise(Exercise(
         (lambda l1, l2: (np.cross(l1, l2) / np.cross(l1, l2)[2])[:2], "homogeneous 3-vector"),
         (lambda l1, l2: l1 + l2, "not on both lines"),
     ),
+    teaching=intersect_lines,
 ))
 
 
@@ -73,6 +79,13 @@ def _line_diagnosis(args, got, expected) -> str:
             f"|l . q| = {off[1]:.3g}). Lift p and q to (x, y, 1) before the cross product.")
 
 
+def line_through_points(p, q):
+    """Lift both pixels to (x, y, 1); the line through them is orthogonal to both: p x q."""
+    p_h = np.array([p[0], p[1], 1.0])
+    q_h = np.array([q[0], q[1], 1.0])
+    return np.cross(p_h, q_h)
+
+
 register_exercise(Exercise(
     name="line_through_points",
     lesson="06",
@@ -84,6 +97,7 @@ register_exercise(Exercise(
         (lambda p, q: np.cross(np.append(p, 0.0), np.append(q, 0.0)), "Lift p and q"),
         (lambda p, q: np.append(q - p, 0.0), "does not pass through both points"),
     ),
+    teaching=line_through_points,
 ))
 
 
@@ -104,6 +118,14 @@ def _vanishing_diagnosis(args, got, expected) -> str:
         "Make one line per segment (join its two endpoints), then intersect the two lines.")
 
 
+def vanishing_point(segments):
+    """One line per segment (join its endpoints), then meet the two lines; stay homogeneous."""
+    (a1, b1), (a2, b2) = np.asarray(segments, dtype=float)
+    line1 = np.cross([a1[0], a1[1], 1.0], [b1[0], b1[1], 1.0])
+    line2 = np.cross([a2[0], a2[1], 1.0], [b2[0], b2[1], 1.0])
+    return np.cross(line1, line2)
+
+
 register_exercise(Exercise(
     name="vanishing_point",
     lesson="06",
@@ -117,4 +139,5 @@ register_exercise(Exercise(
          "not on both lines"),
         (lambda s: projective.from_homogeneous(projective.vanishing_point(s)), "homogeneous 3-vector"),
     ),
+    teaching=vanishing_point,
 ))

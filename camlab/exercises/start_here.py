@@ -19,6 +19,11 @@ def _diagnose(args, got, expected) -> str:
     return "append 1 to the point, keeping x and y as they are"
 
 
+def lift(p):
+    """Homogeneous coordinates of one image point: append w = 1."""
+    return np.append(np.asarray(p, dtype=float), 1.0)
+
+
 register_exercise(Exercise(
     name="lift",
     lesson="00",
@@ -31,4 +36,5 @@ register_exercise(Exercise(
         (lambda p: np.insert(p, 0, 1.0), "w is the last coordinate"),
         (lambda p: p, "shape (3,)"),
     ),
+    teaching=lift,
 ))

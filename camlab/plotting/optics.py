@@ -10,7 +10,8 @@ import numpy as np
 from .. import lens as _lens
 from .. import pinhole as _pinhole
 
-__all__ = ["box_edges", "draw_pinhole_3d", "update_pinhole_3d", "draw_thin_lens", "update_thin_lens",
+__all__ = ["box_edges", "draw_pinhole_3d", "update_pinhole_3d", "draw_similar_triangles", "update_similar_triangles",
+           "draw_thin_lens", "update_thin_lens", "draw_focus_cone", "update_focus_cone",
            "draw_pinhole_blur", "update_pinhole_blur"]
 
 _EDGES = [(0, 1), (1, 3), (3, 2), (2, 0), (4, 5), (5, 7), (7, 6), (6, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
@@ -79,6 +80,77 @@ def update_pinhole_3d(art: dict, edges: np.ndarray, f_draw: float) -> None:
     art["rays"].set_data_3d(*_polyline(np.stack([corners, ends], axis=1)))
 
 
+def _dimension(ax, color: str) -> dict:
+    """A dimension line (double arrow) with a label, drawn empty; :func:`_set_dimension` places it."""
+    arrow = ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="<->", color=color, lw=1.2,
+                                                                       shrinkA=0, shrinkB=0))
+    label = ax.text(0, 0, "", color=color, fontsize=10, ha="center", va="center",
+                    bbox=dict(fc="white", ec="none", alpha=0.8, pad=1))
+    return {"arrow": arrow, "label": label}
+
+
+def _set_dimension(dim: dict, a, b, text: str, offset=(0.0, 0.0), ha: str = "center") -> None:
+    dim["arrow"].xy, dim["arrow"].xyann = tuple(b), tuple(a)
+    dim["label"].set_position(((a[0] + b[0]) / 2 + offset[0], (a[1] + b[1]) / 2 + offset[1]))
+    dim["label"].set_text(text)
+    dim["label"].set_horizontalalignment(ha)
+
+
+def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
+    """A 2-D side view of pinhole projection: depth z to the right, height (-y, up) upwards.
+
+    The pinhole sits at the origin, the real image plane at z = -f and the virtual one at
+    z = +f. Two shaded similar triangles share the ray through the hole: (0, 0)-(Z, 0)-(Z, Y)
+    and (0, 0)-(f, 0)-(f, y); dimension lines label f, Z, Y and y.
+    """
+    ax.axhline(0, color="0.6", lw=0.8, zorder=0)
+    ax.plot([0], [0], "ko", ms=5, zorder=5)
+    ax.annotate("pinhole", (0, 0), xytext=(-6, 6), textcoords="offset points", ha="right", va="bottom", fontsize=9)
+    art = {
+        "big": ax.fill([0, 1, 1], [0, 0, 1], color="tab:blue", alpha=0.15, lw=0)[0],
+        "small": ax.fill([0, 1, 1], [0, 0, 1], color="tab:green", alpha=0.35, lw=0)[0],
+        "object": ax.plot([], [], color="tab:blue", lw=3, solid_capstyle="butt")[0],
+        "point": ax.plot([], [], "o", color="tab:blue", ms=8)[0],
+        "ray": ax.plot([], [], color="tab:orange", lw=1.5)[0],
+        "planes": ax.plot([], [], color="0.3", lw=1, ls="--")[0],
+        "virtual": ax.plot([], [], color="tab:green", lw=3, solid_capstyle="butt")[0],
+        "real": ax.plot([], [], color="tab:red", lw=3, solid_capstyle="butt")[0],
+        "dims": {k: _dimension(ax, c) for k, c in (("f", "k"), ("Z", "k"), ("Y", "tab:blue"), ("y", "tab:green"),
+                                                    ("y_real", "tab:red"))},
+    }
+    ax.set_xlim(-0.3 * z_max, 1.08 * z_max)
+    ax.set_ylim(-h_max, h_max)
+    ax.set_aspect("equal")  # similar triangles look similar only at equal scales
+    ax.set_xlabel("depth z (m)")
+    ax.set_ylabel("height -y, up (m)")
+    return art
+
+
+def update_similar_triangles(art: dict, f: float, Z: float, Y: float) -> float:
+    """Redraw for focal length ``f``, object depth ``Z`` and height ``Y`` (metres, up positive); returns y."""
+    y = f * Y / Z
+    art["big"].set_xy([[0, 0], [Z, 0], [Z, Y]])
+    art["small"].set_xy([[0, 0], [f, 0], [f, y]])
+    art["object"].set_data([Z, Z], [0, Y])
+    art["point"].set_data([Z], [Y])
+    art["ray"].set_data([-f, Z], [-y, Y])
+    h = art["planes"].axes.get_ylim()[1] * 0.9
+    art["planes"].set_data([-f, -f, np.nan, f, f], [-h, h, np.nan, -h, h])
+    art["virtual"].set_data([f, f], [0, y])
+    art["real"].set_data([-f, -f], [0, -y])
+    below = -0.12 * h if Y >= 0 else 0.12 * h  # dimension lines go on the side away from the object
+    d = art["dims"]
+    _set_dimension(d["Z"], (0, 3 * below), (Z, 3 * below), f"Z = {Z:.2f} m")
+    _set_dimension(d["f"], (0, below), (f, below), f"f = {f:.2f} m", offset=(0, below))
+    _set_dimension(d["Y"], (Z + 0.1, 0), (Z + 0.1, Y), f" Y = {Y:+.2f} m", offset=(0.05, 0), ha="left")
+    room = Z - f > 1.3  # else y's label would sit on Y's: put it left of the plane
+    _set_dimension(d["y"], (f + 0.06, 0), (f + 0.06, y), f" y = {y * 100:+.1f} cm ",
+                   offset=(0.05 if room else -0.17, 0), ha="left" if room else "right")
+    _set_dimension(d["y_real"], (-f - 0.06, 0), (-f - 0.06, -y), f"real\n{-y * 100:+.1f} cm",
+                   offset=(-0.05, 0), ha="right")
+    return y
+
+
 def draw_thin_lens(ax, focal_length: float, object_distance: float, height: float = 1.0) -> dict:
     """A thin-lens ray diagram: object arrow, lens, the three principal rays, image arrow.
 
@@ -119,6 +191,82 @@ def update_thin_lens(art: dict, ax, f: float, zo: float) -> dict:
     art["rays"][2].set_data(np.array([-zo, 0, zi]) * sx, np.array([hgt, hi, hi]) * sy)
     art["text"].set_text(f"f   = {f * 1e3:6.1f} mm\nz_o = {zo:6.3f} m\nz_i = {zi:6.3f} m\nm   = {m:6.3f}")
     return {"image_distance": zi, "magnification": m}
+
+
+# The focus-cone diagram has two horizontal scales: the object side in metres, the image side
+# in millimetres (a true-scale drawing would squeeze the image side into a few pixels).
+CONE_OBJECT_MAX = 2.0    # metres drawn on [-1, 0]
+CONE_IMAGE_MAX = 0.09    # metres drawn on [0, 1]
+
+
+def _cone_x(z):
+    """Signed distance from the lens (object side negative) -> plot x."""
+    z = np.asarray(z, dtype=float)
+    return np.where(z < 0, z / CONE_OBJECT_MAX, z / CONE_IMAGE_MAX)
+
+
+def draw_focus_cone(ax, half_height_mm: float = 20.0) -> dict:
+    """A point on the axis, the aperture, the cone of light behind the lens and a movable sensor.
+
+    Vertical positions are millimetres; horizontally the object side is in metres and the
+    image side in millimetres (marked on the axis), so both fit. :func:`update_focus_cone`
+    moves everything and returns the blur circle on the sensor.
+    """
+    ax.axhline(0, color="0.6", lw=0.8)
+    ax.axvline(0, color="tab:blue", lw=1, alpha=0.3)
+    art = {
+        "stop": ax.plot([], [], color="k", lw=4, solid_capstyle="butt")[0],
+        "lens": ax.plot([], [], color="tab:blue", lw=3)[0],
+        "cone_in": ax.fill([0, 0, 0], [0, 0, 0], color="gold", alpha=0.35, lw=0)[0],
+        "cone_out": ax.fill([0, 0, 0, 0], [0, 0, 0, 0], color="gold", alpha=0.35, lw=0)[0],
+        "rays": ax.plot([], [], color="darkorange", lw=1)[0],
+        "point": ax.plot([], [], "o", color="tab:green", ms=7)[0],
+        "focus": ax.plot([], [], "x", color="darkorange", ms=8, mew=2)[0],
+        "sensor": ax.plot([], [], color="0.3", lw=2)[0],
+        "blur": ax.plot([], [], color="tab:red", lw=6, solid_capstyle="butt")[0],
+        "text": ax.text(0.01, 0.02, "", transform=ax.transAxes, fontsize=9, family="monospace", va="bottom",
+                        bbox=dict(fc="white", ec="0.8", alpha=0.9)),
+        "half": half_height_mm,
+    }
+    ticks_m = [-2.0, -1.5, -1.0, -0.5]
+    ticks_mm = [25, 50, 75]
+    ax.set_xticks([float(_cone_x(t)) for t in ticks_m] + [0.0] + [float(_cone_x(t * 1e-3)) for t in ticks_mm])
+    ax.set_xticklabels([f"{-t:g} m" for t in ticks_m] + ["lens"] + [f"{t} mm" for t in ticks_mm])
+    ax.set_xlim(-1.02, 1.0)
+    ax.set_ylim(-half_height_mm, half_height_mm)
+    ax.set_xlabel("distance from the lens (object side in metres, image side in millimetres)")
+    ax.set_ylabel("height (mm)")
+    return art
+
+
+def update_focus_cone(art: dict, f: float, N: float, z_o: float, z_s: float) -> dict:
+    r"""Object point at ``z_o`` (m), sensor ``z_s`` (m) behind a lens ``f`` (m) at f-number ``N``.
+
+    The cone from the aperture (diameter A = f / N) converges to the image point at
+    :math:`z_i` and cuts the sensor in a disc of diameter :math:`c = A\,|z_s - z_i| / z_i`
+    (similar triangles). Returns ``{"z_i", "A", "c"}`` in metres.
+    """
+    A = _lens.aperture_diameter(f, N)
+    z_i = float(_lens.image_distance(f, z_o))
+    a = A / 2 * 1e3  # mm
+    c = A * abs(z_s - z_i) / z_i
+    xo, xi, xs = float(_cone_x(-z_o)), float(_cone_x(z_i)), float(_cone_x(z_s))
+    far = max(z_s, z_i) * 1.15  # draw the cone a little past the sensor or the focus
+    y_far = a * (1 - far / z_i)   # the upper ray at distance `far` (it crosses the axis at z_i)
+    xf = float(_cone_x(far))
+    art["stop"].set_data([0, 0, np.nan, 0, 0], [art["half"], a, np.nan, -a, -art["half"]])
+    art["lens"].set_data([0, 0], [-a, a])
+    art["cone_in"].set_xy([[xo, 0], [0, a], [0, -a]])
+    art["cone_out"].set_xy([[0, a], [xf, y_far], [xf, -y_far], [0, -a]])
+    art["rays"].set_data([xo, 0, xf, np.nan, xo, 0, xf], [0, a, y_far, np.nan, 0, -a, -y_far])
+    art["point"].set_data([xo], [0])
+    art["focus"].set_data([xi], [0])
+    art["sensor"].set_data([xs, xs], [-0.8 * art["half"], 0.8 * art["half"]])
+    half_c = c / 2 * 1e3
+    art["blur"].set_data([xs, xs], [-max(half_c, 0.15), max(half_c, 0.15)])
+    art["text"].set_text(f"A = f/N = {A * 1e3:.1f} mm   z_i = {z_i * 1e3:.1f} mm   sensor at {z_s * 1e3:.1f} mm\n"
+                         f"c = A |z_s - z_i| / z_i = {c * 1e6:.0f} µm")
+    return {"z_i": z_i, "A": A, "c": c}
 
 
 def draw_pinhole_blur(ax, focal_length: float, wavelength: float = 550e-9) -> dict:

@@ -41,24 +41,51 @@ def image_axes(ax: Axes, width: int, height: int, title: str = "") -> Axes:
     return ax
 
 
-def arrow_to_infinity(point_h: np.ndarray, ax: Axes) -> tuple[np.ndarray, np.ndarray]:
+def arrow_to_infinity(point_h: np.ndarray, ax: Axes, anchor: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Where to draw a point that may be off-axes or ideal: (position, unit direction).
 
-    A finite point inside the axes is drawn where it is; otherwise an arrow at the edge
-    of the axes points along its direction from the axes' centre (for an ideal point,
-    along (x, y)).
+    A finite point inside the axes is drawn where it is; otherwise an arrow near the edge
+    of the axes points from ``anchor`` (default: the axes' centre) towards the point (for
+    an ideal point, along its direction (x, y)). Give an anchor on a line through the point
+    (e.g. a vanishing point's horizon) and the arrow sits on that line.
     """
     x, y, w = np.asarray(point_h, dtype=float)
     (x0, x1), (y0, y1) = ax.get_xlim(), sorted(ax.get_ylim())
     centre = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
+    start = centre if anchor is None else np.asarray(anchor, dtype=float)
     if w != 0:
         p = np.array([x / w, y / w])
         if x0 <= p[0] <= x1 and y0 <= p[1] <= y1:
             return p, np.zeros(2)
-        direction = p - centre
+        direction = p - start
     else:
         direction = np.array([x, y])
+        if anchor is not None and np.dot(direction, start - centre) < 0:
+            direction = -direction  # an ideal point lies both ways: point to the nearer edge
     direction = direction / np.linalg.norm(direction)
     half = np.array([(x1 - x0), (y1 - y0)]) / 2 * 0.9
-    t = np.min(half / np.maximum(np.abs(direction), 1e-12))
-    return centre + t * direction, direction
+    lo, hi = centre - half, centre + half
+    with np.errstate(divide="ignore", invalid="ignore"):
+        steps = np.where(direction > 0, (hi - start) / direction, (lo - start) / direction)
+    s = max(0.0, float(np.min(steps[np.abs(direction) > 1e-12])))
+    return start + s * direction, direction
+
+
+_ARROW = np.array([[0.0, 1.0], [-0.55, -0.7], [0.0, -0.3], [0.55, -0.7], [0.0, 1.0]])
+
+
+def arrow_marker(direction: np.ndarray, ax: Axes):
+    """A marker shaped like an arrowhead pointing along ``direction`` (data units) in ``ax``.
+
+    Screen and data directions differ when the y axis is inverted (image axes, v down);
+    an equilateral triangle would not do: it seems to point at whichever vertex is nearest.
+    """
+    from matplotlib.markers import MarkerStyle
+    from matplotlib.path import Path
+    from matplotlib.transforms import Affine2D
+
+    dx, dy = np.asarray(direction, dtype=float)
+    if ax.yaxis_inverted():
+        dy = -dy
+    angle = np.degrees(np.arctan2(dy, dx)) - 90.0  # the path points up (+y) at angle 0
+    return MarkerStyle(Path(_ARROW), transform=Affine2D().rotate_deg(angle))

@@ -45,7 +45,7 @@ from numpy.typing import ArrayLike
 
 from .. import features as _feat
 from .. import homography as _hg
-from .._validate import CamlabInputError, DegenerateError
+from .._validate import CamlabInputError, DegenerateError, check_intrinsics
 from ..projective import map_points
 from ..warp import canvas_bounds, warp_perspective
 
@@ -320,7 +320,7 @@ def cylindrical_warp(image: ArrayLike, K: ArrayLike) -> tuple[np.ndarray, np.nda
     import cv2
 
     img = np.asarray(image)
-    Km = _hg._check_K(K, "K")
+    Km = check_intrinsics(K, "K")
     h, w = img.shape[:2]
     f, cx, cy = Km[0, 0], Km[0, 2], Km[1, 2]
     vv, uu = np.mgrid[0:h, 0:w].astype(np.float32)

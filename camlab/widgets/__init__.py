@@ -14,7 +14,10 @@ from __future__ import annotations
 import importlib
 import pkgutil
 
+from ..plotting.static import install_canvas_formatter
 from ._base import REGISTRY, Demo, DemoSpec, FigureView, build_demo, register, slider
+
+install_canvas_formatter()  # plain figures in a lesson keep a PNG with alt text too
 
 __all__ = ["Demo", "DemoSpec", "FigureView", "REGISTRY", "all_demos", "build_demo", "register", "slider"]
 

@@ -26,6 +26,9 @@ import matplotlib
 import numpy as np
 from matplotlib.figure import Figure
 
+from ..plotting.static import demo_alt_text, static_bundle
+from ._transport import use_fast_png
+
 
 def _display_mode() -> str:
     forced = os.environ.get("CAMLAB_FIGURE_MODE")
@@ -67,6 +70,7 @@ class FigureView:
             canvas.footer_visible = False
             canvas.toolbar_position = "left"
             canvas.resizable = False
+            use_fast_png(canvas)
             self.widget: W.Widget = canvas
         else:
             from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -150,8 +154,22 @@ class Demo:
                 raise KeyError(f"{self.name}: no control {key!r}; controls are {sorted(self.controls)}")
             self.controls[key].value = value
 
+    @property
+    def alt_text(self) -> str:
+        """What the figure shows at the current settings (the static picture's alt text)."""
+        spec = REGISTRY.get(self.name)
+        doc = (spec.builder.__doc__ or "") if spec is not None else ""
+        description = doc.strip().split("\n\n")[0] or self.name.replace("_", " ")
+        return demo_alt_text(description, self.controls, self.figure)
+
     def _repr_mimebundle_(self, **kwargs: Any):
-        return self.widget._repr_mimebundle_(**kwargs)
+        """The live widget, plus one PNG with alt text for readers without a kernel.
+
+        See :mod:`camlab.plotting.static`: JupyterLab shows only the widget view; saved
+        HTML, nbviewer and the course website show the PNG.
+        """
+        png = self.view.widget.value if self.view.mode == "png" and self.view.widget.value else None
+        return static_bundle(self.widget._repr_mimebundle_(**kwargs), self.figure, self.alt_text, png)
 
 
 def build_demo(
@@ -209,17 +227,16 @@ class DemoSpec:
     lesson: str
     builder: Callable[[], Demo]
     sweep: dict[str, Sequence[Any]]
-    target_ms: float = 30.0  # median update latency target; p95 target is twice this
 
 
 REGISTRY: dict[str, DemoSpec] = {}
 
 
-def register(lesson: str, sweep: Mapping[str, Sequence[Any]], target_ms: float = 30.0):
+def register(lesson: str, sweep: Mapping[str, Sequence[Any]]):
     """Decorator: register a demo builder with the values to sweep each control through.
 
-    ``target_ms`` is the demo's median update-latency target (30 ms for drawings; image
-    demos have larger targets set by their issue).
+    Every demo has the same latency target, two frames at 60 Hz as the browser receives it
+    (see ``benchmarks/latency.py``).
 
     The benchmark and the headless widget tests drive every registered demo with its
     sweep, so a new demo is measured and tested as soon as it is registered.
@@ -229,7 +246,7 @@ def register(lesson: str, sweep: Mapping[str, Sequence[Any]], target_ms: float =
         name = builder.__name__
         if name in REGISTRY and REGISTRY[name].builder.__module__ != builder.__module__:
             raise ValueError(f"register: a demo named {name!r} is already registered by {REGISTRY[name].builder.__module__}")
-        REGISTRY[name] = DemoSpec(name, lesson, builder, {k: list(v) for k, v in sweep.items()}, target_ms)
+        REGISTRY[name] = DemoSpec(name, lesson, builder, {k: list(v) for k, v in sweep.items()})
         return builder
 
     return deco

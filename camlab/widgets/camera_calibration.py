@@ -110,7 +110,7 @@ def accuracy_vs_views() -> Demo:
                       title="More views, less noise: a better camera", extra=[readout])
 
 
-@register(lesson="08", sweep={"view": [0, 5, 11], "magnify": [1.0, 300.0, 1000.0]}, target_ms=100.0)
+@register(lesson="08", sweep={"view": [0, 5, 11], "magnify": [1.0, 300.0, 1000.0]})
 def view_inspector(calibration: C.ImageCalibration | None = None, images: list | None = None) -> Demo:
     """Each photo with detected corners (+), reprojected corners (o) and residual arrows x magnify.
 
@@ -166,7 +166,7 @@ def view_inspector(calibration: C.ImageCalibration | None = None, images: list |
                       title="Detected versus reprojected corners", extra=[readout])
 
 
-@register(lesson="08", sweep={"alpha": [0.0, 0.5, 1.0]}, target_ms=100.0)
+@register(lesson="08", sweep={"alpha": [0.0, 0.5, 1.0]})
 def undistort_alpha(image: np.ndarray | None = None, K: np.ndarray | None = None,
                     dist: np.ndarray | None = None) -> Demo:
     """Undistort a photo; alpha trades black borders (alpha = 1) for cropped pixels (alpha = 0)."""

@@ -12,7 +12,7 @@ from ._base import FigureView, build_demo, register, slider
 SIZE = (320, 240)
 
 
-@register(lesson="03", sweep={"pitch_um": [3.0, 6.0, 12.0], "cx_offset": [-40, 0, 40]}, target_ms=100.0)
+@register(lesson="03", sweep={"pitch_um": [3.0, 6.0, 12.0], "cx_offset": [-40, 0, 40]})
 def pixel_pitch():
     """The same 3 mm lens on sensors with different pixel pitch and principal point offset."""
     controls = {
@@ -43,7 +43,7 @@ def pixel_pitch():
     return build_demo("pixel_pitch", controls, view, update, title="Pixel pitch and principal point")
 
 
-@register(lesson="03", sweep={"factor": [1, 3, 6], "prefilter": [True, False]}, target_ms=60.0)
+@register(lesson="03", sweep={"factor": [1, 3, 6], "prefilter": [True, False]})
 def sampling_aliasing():
     """A zone plate sampled by coarser pixels: ideal point samples alias, real (box) pixels much less."""
     controls = {
@@ -77,7 +77,7 @@ def sampling_aliasing():
     return build_demo("sampling_aliasing", controls, view, update, title="Sampling and aliasing")
 
 
-@register(lesson="03", sweep={"bits": [1, 3, 8], "exposure": [0.02, 0.3, 1.0], "read_noise": [0.0, 20.0]}, target_ms=100.0)
+@register(lesson="03", sweep={"bits": [1, 3, 8], "exposure": [0.02, 0.3, 1.0], "read_noise": [0.0, 20.0]})
 def bit_depth_and_noise():
     """Quantisation and noise on a rendered page and photo, with a row profile."""
     controls = {
@@ -131,7 +131,7 @@ def _scene_rgb():
     return render.render(scene, K, SIZE, color=True).irradiance
 
 
-@register(lesson="03", sweep={"pattern": ["RGGB", "GBRG"], "method": list(_METHODS), "zoom_u": [40, 200]}, target_ms=100.0)
+@register(lesson="03", sweep={"pattern": ["RGGB", "GBRG"], "method": list(_METHODS), "zoom_u": [40, 200]})
 def demosaicing():
     """Bayer mosaic and demosaicing methods side by side, with a zoomed crop and PSNR."""
     controls = {

@@ -14,7 +14,7 @@ import numpy as np
 from .. import features as ft
 from .. import homography as hg
 from .. import stitching as st
-from .. import stitching_data as sd
+from ..data import panorama as sd
 from ..plotting.stitching import draw_keypoints, draw_matches, match_segments, outline
 from ..projective import map_points
 from ._base import Demo, FigureView, build_demo, register, slider
@@ -177,7 +177,7 @@ def _chain_to(graph: st.MatchGraph, ref: int) -> list:
     return [hg.normalize_homography(to_ref @ H) for H in graph.homographies]
 
 
-@register(lesson="09", sweep={"reference": [0, 1, 3]}, target_ms=100.0)
+@register(lesson="09", sweep={"reference": [0, 1, 3]})
 def panorama_canvas() -> Demo:
     """Every image warped onto one canvas; the reference image decides the shape (and the stretch).
 
@@ -246,7 +246,7 @@ def _pair_warp():
     return wi, st.gain_compensation(wi, reference=0)
 
 
-@register(lesson="09", sweep={"method": list(st.BLENDS), "gains": [False, True], "levels": [1, 5]}, target_ms=100.0)
+@register(lesson="09", sweep={"method": list(st.BLENDS), "gains": [False, True], "levels": [1, 5]})
 def blending_seams() -> Demo:
     """Overwrite, feather and multi-band blending of two differently exposed views, with a zoom on the seam."""
     wi, gains = _pair_warp()
@@ -309,7 +309,7 @@ def _panoramas():
             for proj in ("planar", "cylindrical")}
 
 
-@register(lesson="09", sweep={"projection": ["planar", "cylindrical"], "outlines": [True, False]}, target_ms=100.0)
+@register(lesson="09", sweep={"projection": ["planar", "cylindrical"], "outlines": [True, False]})
 def full_panorama() -> Demo:
     """The four-image panorama, planar or cylindrical, multi-band blended, with each image's footprint."""
     pans = _panoramas()
@@ -382,7 +382,7 @@ def parallax_pairs():
     return out
 
 
-@register(lesson="09", sweep={"baseline": list(BASELINES[::2]), "method": ["feather", "multiband"]}, target_ms=100.0)
+@register(lesson="09", sweep={"baseline": list(BASELINES[::2]), "method": ["feather", "multiband"]})
 def parallax_ghosting() -> Demo:
     """Move the camera sideways between shots: near objects no longer fit the homography and ghost."""
     pairs = parallax_pairs()

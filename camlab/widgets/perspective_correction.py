@@ -68,7 +68,7 @@ def _photo_demo(photo_title: str, result_title: str, outline: dict):
 @register(lesson="10", sweep={"scene": ["page", "painting", "facade"], "corners": [
     "250.0, 120.0; 420.0, 140.0; 400.0, 380.0; 230.0, 350.0",
     "200.0, 100.0; 450.0, 100.0; 450.0, 380.0; 200.0, 380.0",
-], "use_focal": [True, False]}, target_ms=60.0)
+], "use_focal": [True, False]})
 def rectify_photo() -> Demo:
     """Drag the four corners of a page, painting or facade; the rectified view follows, sized
     by the aspect ratio estimated from the quadrilateral (compared with the truth)."""
@@ -128,7 +128,7 @@ def rectify_photo() -> Demo:
     return demo
 
 
-@register(lesson="10", sweep={"yaw": [-0.6, 0.0, 0.5], "pitch": [0.5, -0.3], "page_present": [False, True]}, target_ms=60.0)
+@register(lesson="10", sweep={"yaw": [-0.6, 0.0, 0.5], "pitch": [0.5, -0.3], "page_present": [False, True]})
 def document_scanner() -> Demo:
     """"Scan this page": find the page automatically (edges, contours, largest convex
     quadrilateral) and rectify it; it says so when there is no page."""
@@ -165,7 +165,7 @@ def document_scanner() -> Demo:
     return build_demo("document_scanner", controls, view, update, title="Scan this page", extra=[readout])
 
 
-@register(lesson="10", sweep={"tilt": [-0.7, -0.3, 0.0], "yaw": [0.0, 0.3]}, target_ms=60.0)
+@register(lesson="10", sweep={"tilt": [-0.7, -0.3, 0.0], "yaw": [0.0, 0.3]})
 def keystone_correction() -> Demo:
     """Keystone: a camera tilted up at a facade makes its verticals converge; the
     rectifying homography makes them parallel again."""

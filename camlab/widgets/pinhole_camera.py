@@ -13,7 +13,8 @@ from ._base import FigureView, build_demo, register, slider
 SIZE = (320, 240)
 PITCH = 36e-3 / SIZE[0]  # a 36 mm wide sensor with 320 pixels: 112.5 um pixels
 BOX_SIZE = (0.3, 0.3, 0.3)
-DRAW_SCALE = 10.0  # the 3-D view draws the image planes 10x further from the pinhole than f
+DRAW_SCALE = 10.0  # the 3-D view draws the image planes up to 10x further from the pinhole than f...
+PLANE_ROOM = 0.45  # ...but never beyond 45 % of the way to the box's nearest corner
 
 
 def _box_scene(distance: float):
@@ -30,7 +31,7 @@ def _rotated_box_edges(distance: float) -> np.ndarray:
     return np.array(edges)
 
 
-@register(lesson="01", sweep={"focal_mm": [20, 50, 90], "distance": [1.0, 2.0, 3.5], "real_plane": [True, False]}, target_ms=100.0)
+@register(lesson="01", sweep={"focal_mm": [20, 50, 90], "distance": [1.0, 2.0, 3.5], "real_plane": [True, False]})
 def pinhole_projection():
     """A box, the pinhole and both image planes in 3-D beside the image the camera records."""
     controls = {
@@ -38,45 +39,99 @@ def pinhole_projection():
         "distance": slider(2.0, 0.8, 4.0, 0.1, "box distance Z (m)"),
         "real_plane": W.Checkbox(value=False, description="show the real (inverted) image"),
     }
-    view = FigureView(figsize=(9, 4))
-    ax3 = view.fig.add_subplot(1, 2, 1, projection="3d")
-    ax_img = view.fig.add_subplot(1, 2, 2)
+    view = FigureView(figsize=(10.5, 4.6))
+    view.fig.get_layout_engine().set(wspace=0.12)  # room for the 3-D z label, which the layout does not see
+    grid = view.fig.add_gridspec(1, 2, width_ratios=(1.35, 1))
+    ax3 = view.fig.add_subplot(grid[0], projection="3d")
+    ax_img = view.fig.add_subplot(grid[1])
     edges = _rotated_box_edges(2.0)
     art = optics.draw_pinhole_3d(ax3, edges, 0.05 * DRAW_SCALE, plane_half=0.25)
-    ax3.set_title(f"pinhole at 0; image planes drawn {DRAW_SCALE:.0f}x further than f", fontsize=9)
-    ax3.set_xlim(-0.8, 4.2)
-    ax3.set_ylim(-0.6, 0.6)
-    ax3.set_zlim(-0.6, 0.6)
-    ax3.set_box_aspect((3, 1.2, 1.2))
+    ax3.set_xlim(-1.1, 4.5)
+    ax3.set_ylim(-0.35, 0.35)
+    ax3.set_zlim(-0.35, 0.35)
+    ax3.set_box_aspect((3, 1, 1), zoom=1.1)
+    ax3.set_xlabel("z, forward (m)")
+    ax3.set_ylabel("x (m)")
+    ax3.set_zlabel("-y, up (m)")
     for axis in (ax3.xaxis, ax3.yaxis, ax3.zaxis):
         axis.set_major_locator(MaxNLocator(3))
+    for name in ("real", "virtual"):
+        art[name].set_linewidth(1.8)
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
+    width_bar = ax_img.plot([], [], color="tab:orange", lw=2, marker="|", ms=10)[0]
     label = ax_img.text(4, 14, "", color="w", fontsize=9, va="top", bbox=dict(fc="k", alpha=0.5, lw=0))
     # everything that moves is blitted over the cached static figure
-    view.animate(im, label, ax_img.title, art["box"], art["rays"], art["real"], art["virtual"],
+    view.animate(im, width_bar, label, ax_img.title, ax3.title, art["box"], art["rays"], art["real"], art["virtual"],
                  *art["planes"].values())
 
     def update(values, state):
         f = values["focal_mm"] * 1e-3
         Z = values["distance"]
         e = _rotated_box_edges(Z)
-        optics.update_pinhole_3d(art, e, f * DRAW_SCALE)
+        corners = np.unique(e.reshape(-1, 3), axis=0)
+        # the image planes: 10 f when that fits, else closer, always between pinhole and box
+        f_draw = min(DRAW_SCALE * f, PLANE_ROOM * corners[:, 2].min())
+        art["plane_half"] = 1.25 * np.abs(pinhole.project_pinhole(corners, f_draw)).max()
+        optics.update_pinhole_3d(art, e, f_draw)
+        ax3.set_title(f"pinhole at 0; both image planes drawn {f_draw / f:.1f} f from it", fontsize=9)
         K = sensor.intrinsics_from_sensor(f, (PITCH, PITCH), SIZE)
         img = render.render(_box_scene(Z), K, SIZE).irradiance
+        u = K[0, 0] * corners[:, 0] / corners[:, 2] + K[0, 2]  # the corners' columns, x = f X / Z in pixels
+        v_bar = 0.92 * SIZE[1]
         if values["real_plane"]:
             img = img[::-1, ::-1]  # the real image: rotated 180 degrees
+            u = SIZE[0] - 1 - u
         im.set_data(img)
+        width_bar.set_data([u.min(), u.max()], [v_bar, v_bar])
         centre = pinhole.project_pinhole([0.0, 0.0, Z], f)
-        state.update(fx=K[0, 0], box_width_px=K[0, 0] * BOX_SIZE[0] / Z, image=img, centre=centre,
-                     plane="real" if values["real_plane"] else "virtual")
+        state.update(fx=K[0, 0], box_width_px=float(u.max() - u.min()), image=img, centre=centre,
+                     plane="real" if values["real_plane"] else "virtual", f_draw=f_draw)
         ax_img.set_title(("real image (inverted)" if values["real_plane"] else "virtual image (upright)")
                          + f", fx = {K[0, 0]:.0f} px", fontsize=10)
-        label.set_text(f"box ~ {state['box_width_px']:.0f} px wide")
+        label.set_text(f"box spans {state['box_width_px']:.0f} px (orange)")
 
     return build_demo("pinhole_projection", controls, view, update, title="Pinhole projection x = f X / Z")
 
 
-@register(lesson="01", sweep={"diameter_mm": [0.05, 0.3, 1.5], "focal_mm": [50, 100, 200]}, target_ms=100.0)
+@register(lesson="01", sweep={"f": [0.3, 1.0], "Z": [1.2, 5.0], "Y": [-1.0, 0.4, 1.0]})
+def similar_triangles():
+    """A side view of a room-sized camera obscura: drag the object point and read x / f = X / Z off the triangles."""
+    controls = {
+        "f": slider(0.8, 0.3, 1.0, 0.05, "focal length f (m)"),
+        "Z": slider(3.0, 1.2, 5.0, 0.05, "object depth Z (m)"),
+        "Y": slider(0.8, -1.0, 1.0, 0.05, "object height Y (m, up)"),
+    }
+    view = FigureView(figsize=(9, 4))
+    ax = view.fig.subplots()
+    art = optics.draw_similar_triangles(ax, z_max=5.6, h_max=1.3)
+    ax.set_title("click or drag in the figure to move the object point", fontsize=9)
+    readout = ax.text(0.99, 0.02, "", transform=ax.transAxes, ha="right", va="bottom", fontsize=10, family="monospace",
+                      bbox=dict(fc="white", ec="0.7", alpha=0.9))
+    movers = [art[k] for k in ("big", "small", "object", "point", "ray", "planes", "virtual", "real")]
+    for dim in art["dims"].values():
+        movers += [dim["arrow"], dim["label"]]
+    view.animate(*movers, readout)
+
+    def update(values, state):
+        f, Z, Y = values["f"], values["Z"], values["Y"]
+        y = optics.update_similar_triangles(art, f, Z, Y)
+        state.update(y=y, ratio_image=y / f, ratio_object=Y / Z)
+        readout.set_text(f"y / f = {y / f:+.3f}\nY / Z = {Y / Z:+.3f}\n=> y = f Y / Z = {y * 100:+.1f} cm")
+
+    demo = build_demo("similar_triangles", controls, view, update, title="Similar triangles: y / f = Y / Z")
+
+    def on_mouse(event):
+        if event.inaxes is ax and event.button == 1 and event.xdata is not None:
+            z = float(np.clip(event.xdata, controls["Z"].min, controls["Z"].max))
+            y = float(np.clip(event.ydata, controls["Y"].min, controls["Y"].max))
+            demo.set(Z=round(z / 0.05) * 0.05, Y=round(y / 0.05) * 0.05)
+
+    view.fig.canvas.mpl_connect("button_press_event", on_mouse)
+    view.fig.canvas.mpl_connect("motion_notify_event", on_mouse)
+    return demo
+
+
+@register(lesson="01", sweep={"diameter_mm": [0.05, 0.3, 1.5], "focal_mm": [50, 100, 200]})
 def pinhole_size():
     """Blur against pinhole diameter (geometric versus diffraction) and the blurred image it gives."""
     controls = {

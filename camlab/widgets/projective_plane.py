@@ -9,7 +9,7 @@ import ipywidgets as W
 import numpy as np
 
 from .. import projective as pj
-from ..plotting.plane import arrow_to_infinity, image_axes, plane_axes, set_line
+from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes, plane_axes, set_line
 from ._base import Demo, FigureView, build_demo, register, slider
 
 
@@ -124,7 +124,7 @@ def parallel_lines() -> Demo:
         w_dot.set_data([v["angle2"]], [state["w"]])
 
     controls = {
-        "angle2": slider(15.0, 0.0, 60.0, 0.5, "angle of l2 (°)"),
+        "angle2": slider(55.0, 0.0, 60.0, 0.5, "angle of l2 (°)"),
         "offset2": slider(-1.0, -3.0, 3.0, 0.1, "l2 crosses x = 0 at y ="),
     }
     return build_demo("parallel_lines", controls, view, update,
@@ -209,7 +209,7 @@ def ground_plane_view(pitch: float, yaw: float, focal: float, size: tuple[int, i
                 vp_z=vp_z, vp_x=vp_x, horizon=horizon_true)
 
 
-@register(lesson="06", sweep={"pitch": [5.0, 15.0, 30.0], "yaw": [0.0, 20.0, -35.0], "focal": [400.0, 800.0]})
+@register(lesson="06", sweep={"pitch": [5.0, 15.0, 30.0, 40.0], "yaw": [0.0, 20.0, -35.0], "focal": [400.0, 800.0]})
 def vanishing_points() -> Demo:
     """A tilted camera looks at a ground grid; parallel rails meet at vanishing points on the horizon."""
     size = (640, 480)
@@ -223,12 +223,14 @@ def vanishing_points() -> Demo:
     ax.add_collection(grid_z)
     ax.add_collection(grid_x)
     horizon_artist, = ax.plot([], [], "--", color="tab:red", lw=1.5, label="horizon = vp_z × vp_x")
-    vz_dot, = ax.plot([], [], "o", color="tab:blue", mec="k", ms=9)
-    vx_dot, = ax.plot([], [], "o", color="tab:green", mec="k", ms=9)
+    vz_dot, = ax.plot([], [], "o", color="tab:blue", mec="k", ms=11)
+    vx_dot, = ax.plot([], [], "o", color="tab:green", mec="k", ms=11)
     ax.legend(loc="lower left", fontsize=8, framealpha=0.9)
+    note = ax.text(0.98, 0.03, "", transform=ax.transAxes, ha="right", va="bottom", fontsize=8, color="tab:red",
+                   bbox=dict(fc="white", ec="tab:red", alpha=0.9))
     readout = W.HTML()
     box = ((-0.5, size[0] - 0.5), (-0.5, size[1] - 0.5))
-    view.animate(grid_z, grid_x, horizon_artist, vz_dot, vx_dot)
+    view.animate(grid_z, grid_x, horizon_artist, vz_dot, vx_dot, note)
 
     def update(v: dict, state: dict) -> None:
         g = ground_plane_view(np.radians(v["pitch"]), np.radians(v["yaw"]), v["focal"], size)
@@ -243,13 +245,22 @@ def vanishing_points() -> Demo:
                      vp_z_true=pj.normalize_points(g["vp_z"]), vp_x_true=pj.normalize_points(g["vp_x"]))
         ends = pj.clip_line(hz, *box)
         horizon_artist.set_data(ends[:, 0], ends[:, 1])
+        visible = bool(np.isfinite(ends).all())
+        # An off-image vanishing point is drawn as an arrow ON the horizon (it lies on it),
+        # from the middle of the horizon's visible piece towards the point.
+        anchor = ends.mean(axis=0) if visible else None
         lines = []
         for dot, vp, name in ((vz_dot, vp_z, "vp_z"), (vx_dot, vp_x, "vp_x")):
-            pos, direction = arrow_to_infinity(vp, ax)
+            pos, direction = arrow_to_infinity(vp, ax, anchor)
             dot.set_data([pos[0]], [pos[1]])
-            dot.set_marker("o" if not direction.any() else (3, 0, np.degrees(np.arctan2(-direction[1], direction[0])) - 90))
-            lines.append(f"{name} = " + ("at infinity, direction ({:+.2f}, {:+.2f})".format(*vp[:2]) if vp[2] == 0 or abs(vp[2]) < 1e-9
+            dot.set_marker("o" if not direction.any() else arrow_marker(direction, ax))
+            lines.append(f"{name} = " + ("at infinity, direction ({:+.2f}, {:+.2f})".format(*vp[:2]) if abs(vp[2]) < 1e-9
                                           else f"({vp[0]:.0f}, {vp[1]:.0f}) px" + ("" if not direction.any() else " (off image)")))
+        v_horizon = float(-hz[2] / hz[1]) if abs(hz[1]) > 1e-12 else float("nan")
+        note.set_text("" if visible else
+                      f"the horizon is above the image (v = {v_horizon:.0f} px at u = 0):\n"
+                      f"pitched down {v['pitch']:.0f}°, it sees only ground;\nthe lines still meet there (arrows)")
+        state.update(horizon_visible=visible)
         readout.value = _pre("\n".join(lines))
 
     controls = {

@@ -2,7 +2,7 @@
 
 Every demo computes with tested camlab functions (:mod:`camlab.epipolar`,
 :mod:`camlab.rectification`, :mod:`camlab.disparity`) and only moves artists. Images
-come from the bundled rendered rig (:mod:`camlab.stereo_data`), shown at half
+come from the bundled rendered rig (:mod:`camlab.data.stereo`), shown at half
 resolution so that re-warping stays within the latency budget.
 """
 from __future__ import annotations
@@ -16,7 +16,7 @@ from .. import disparity as dp
 from .. import epipolar as ep
 from .. import rectification as rc
 from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
-from ..plotting.plane import arrow_to_infinity, image_axes
+from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes
 from ._base import Demo, FigureView, build_demo, register, slider
 
 SIZE = (640, 480)
@@ -31,7 +31,7 @@ def _pre(text: str) -> str:
 @lru_cache(maxsize=1)
 def _scene_segments() -> np.ndarray:
     """(M, 2, 3) world segments outlining the rig's scene: plane rectangles and box faces."""
-    from ..stereo_data import stereo_scene
+    from ..data.stereo import stereo_scene
 
     segs = []
     planes = []
@@ -70,7 +70,7 @@ def _rig_data():
     """The bundled rig at half resolution: raw images, cameras, true matches (from the true disparity)."""
     import cv2
 
-    from ..stereo_data import load_stereo_rig
+    from ..data.stereo import load_stereo_rig
 
     rig = load_stereo_rig()
     rect0 = rc.rectify_calibrated(rig.camera1, rig.camera2, alpha=rig.params["rectify_alpha"], maps=False)
@@ -171,7 +171,7 @@ def epipolar_lines() -> Demo:
         shaft.set_data([tail[0], xy[0]], [tail[1], xy[1]])
         head.set_data([xy[0]], [xy[1]])
         # a triangle marker rotated to point along the direction (v grows downwards on screen)
-        head.set_marker((3, 0, np.degrees(np.arctan2(-direction[1], direction[0])) - 90))
+        head.set_marker(arrow_marker(direction, ax))
 
     def update(v, state):
         c1, c2 = rig_pair(v["baseline"], np.deg2rad(v["toe_in"]))
@@ -223,8 +223,7 @@ def epipolar_lines() -> Demo:
 
 # --------------------------------------------------------------------------- demo 2: rectification
 
-@register(lesson="11", sweep={"alpha": [0.5, 1.0], "method": ["original", "calibrated", "uncalibrated"]},
-          target_ms=100.0)
+@register(lesson="11", sweep={"alpha": [0.5, 1.0], "method": ["original", "calibrated", "uncalibrated"]})
 def rectify_pair() -> Demo:
     """The rendered pair before and after rectification, with a row grid and the true matches.
 
@@ -331,8 +330,7 @@ def _match(method: str, block: int) -> np.ndarray:
     return dp.sgbm_disparity(L, R, max_disparity=44, block_size=block, min_disparity=8)
 
 
-@register(lesson="11", sweep={"block_size": [3, 7, 15], "method": ["block matching (numpy)", "SGBM (OpenCV)"]},
-          target_ms=100.0)
+@register(lesson="11", sweep={"block_size": [3, 7, 15], "method": ["block matching (numpy)", "SGBM (OpenCV)"]})
 def disparity_depth() -> Demo:
     """Disparity by block matching (numpy) or SGBM, its depth error, and the 3-D points.
 

@@ -35,11 +35,11 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .data import data_dir
-from ._validate import CamlabInputError
-from .camera import Camera, intrinsic_matrix, look_at_rotation, rotation_from_axis_angle
+from ._resources import dataset_dir
+from .._validate import CamlabInputError
+from ..camera import Camera, intrinsic_matrix, look_at_rotation, rotation_from_axis_angle
 
-__all__ = ["STEREO_PARAMS", "StereoRig", "load_stereo_rig", "make_stereo_rig", "rig_cameras", "stereo_scene", "main"]
+__all__ = ["STEREO_PARAMS", "StereoRig", "load_stereo_rig", "make_stereo_rig", "rig_cameras", "stereo_scene"]
 
 STEREO_PARAMS = {
     "seed": 11,
@@ -85,7 +85,7 @@ def _facing(normal_towards: str = "-y") -> np.ndarray:
 
 def stereo_scene(params: dict = STEREO_PARAMS) -> list:
     """The planes of the scene (a list of :class:`camlab.render.Plane`), deterministic."""
-    from . import render
+    from .. import render
 
     s = int(params["seed"])
     Rf = _facing()
@@ -194,9 +194,9 @@ def _camera_json(c: Camera) -> dict:
 
 def make_stereo_rig(out_dir: Path | str, params: dict = STEREO_PARAMS) -> list[Path]:
     """Render the stereo rig into ``out_dir``; return the files written."""
-    from . import render
-    from .rectification import rectify_calibrated
-    from .sensor import NoiseModel
+    from .. import render
+    from ..rectification import rectify_calibrated
+    from ..sensor import NoiseModel
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -235,7 +235,7 @@ def make_stereo_rig(out_dir: Path | str, params: dict = STEREO_PARAMS) -> list[P
                       "corners_left": corners["left"], "corners_right": corners["right"]})
     truth = {
         "description": "Stereo rig rendered by camlab.render; regenerate with `python -m camlab.data`.",
-        "generator": "camlab.stereo_data.make_stereo_rig",
+        "generator": "camlab.data.stereo.make_stereo_rig",
         "params": params,
         "conventions": "pixels (u, v) = (column, row), origin at the centre of the top-left pixel; X_cam = R X_world + t; "
                        "dist = (k1, k2, p1, p2, k3); disparity.png = round(256 * d) of the alpha=0 calibrated "
@@ -256,7 +256,7 @@ def load_stereo_rig(directory: Path | str | None = None) -> StereoRig:
     """Load ``data/stereo`` (or ``directory``) as a :class:`StereoRig`."""
     import cv2
 
-    d = Path(directory) if directory is not None else data_dir() / "stereo"
+    d = Path(directory) if directory is not None else dataset_dir("stereo")
     path = d / "truth.json"
     if not path.exists():
         raise CamlabInputError(f"directory: no truth.json in {d}; run `python -m camlab.data` to generate it")

@@ -32,8 +32,8 @@ from numpy.typing import ArrayLike
 
 import numpy as np
 
-from .data import data_dir
-from ._validate import CamlabInputError, check_positive
+from ._resources import dataset_dir
+from .._validate import CamlabInputError, check_positive
 
 __all__ = ["PANORAMA_PARAMS", "TURNING_SETS", "PanoramaSet", "PlanarPair", "TurningSet", "environment_map",
            "environment_view", "load_aerial_mosaic", "load_panorama_set", "load_planar_pair", "make_panorama_set",
@@ -57,7 +57,7 @@ PANORAMA_PARAMS = {
 
 def _rot(yaw: float, pitch: float, roll: float) -> np.ndarray:
     """cam_from_world for a camera turned by ``yaw`` about y, ``pitch`` about x, ``roll`` about z (radians)."""
-    from .render import rotation_from_euler
+    from ..render import rotation_from_euler
 
     # world_from_cam = Ry(yaw) Rx(pitch) Rz(roll); cam_from_world is its transpose
     return rotation_from_euler(0, yaw, 0) @ rotation_from_euler(pitch, 0, 0) @ rotation_from_euler(0, 0, roll)
@@ -114,7 +114,7 @@ def room_scene(params: dict = PANORAMA_PARAMS) -> list:
     page at 1.7 m, a box at 3.4 m) sit at other depths than the wall, so a camera that
     translates sees them move against it (parallax, the ghosting demonstration).
     """
-    from . import render
+    from .. import render
 
     tw, th = params["wall_texture_px"]
     tex = wall_texture(tw, th, params["seed"])
@@ -145,8 +145,8 @@ def render_view(R: np.ndarray, *, t=(0.0, 0.0, 0.0), K=None, size=None, gain: fl
     ``gain`` scales the irradiance (exposure); ``noise`` adds shot and read noise
     (``params``). ``K``/``size`` default to the set's camera.
     """
-    from . import render
-    from .sensor import NoiseModel, add_noise, quantize
+    from .. import render
+    from ..sensor import NoiseModel, add_noise, quantize
 
     K = np.array(params["K"]) if K is None else np.asarray(K, dtype=float)
     size = tuple(params["image_size"]) if size is None else tuple(size)
@@ -170,7 +170,7 @@ class PanoramaSet(NamedTuple):
 
     def true_homography(self, i: int, j: int) -> np.ndarray:
         """The ground-truth homography mapping view ``i``'s pixels to view ``j``'s: K R_j R_i^T K^-1."""
-        from .homography import rotation_homography
+        from ..homography import rotation_homography
 
         return rotation_homography(self.K, self.R[j] @ self.R[i].T)
 
@@ -194,8 +194,8 @@ def _encode_jpeg(img: np.ndarray, quality: int) -> bytes:
 
 def make_panorama_set(out_dir: Path | str, params: dict = PANORAMA_PARAMS) -> list[Path]:
     """Render the panorama set and the planar pair into ``out_dir``; return the files written."""
-    from . import render
-    from .homography import plane_homography
+    from .. import render
+    from ..homography import plane_homography
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -222,7 +222,7 @@ def make_panorama_set(out_dir: Path | str, params: dict = PANORAMA_PARAMS) -> li
     for i, (R, t) in enumerate(poses):
         res = render.render(poster, K, tuple(params["image_size"]), R=R, t=t, supersample=params["supersample"],
                             color=True, background=0.3)
-        from .sensor import NoiseModel, add_noise, quantize
+        from ..sensor import NoiseModel, add_noise, quantize
 
         img = quantize(np.clip(add_noise(res.irradiance, NoiseModel(params["full_well"], params["read_noise"]),
                                          rng), 0, 1), 8)
@@ -233,7 +233,7 @@ def make_panorama_set(out_dir: Path | str, params: dict = PANORAMA_PARAMS) -> li
     Hp = plane_homography(K, poses[1][0], poses[1][1], (0, 0, 1), -1.5)
     truth = {
         "description": "Panorama set rendered by camlab.render; regenerate with `python -m camlab.data`.",
-        "generator": "camlab.stitching_data.make_panorama_set",
+        "generator": "camlab.data.panorama.make_panorama_set",
         "params": params,
         "conventions": "pixels (u, v) = (column, row), origin at the centre of the top-left pixel; R = cam_from_world, "
                        "every rotation view has its centre at the world origin; H_ij maps view j's pixels to view i's",
@@ -251,7 +251,7 @@ def make_panorama_set(out_dir: Path | str, params: dict = PANORAMA_PARAMS) -> li
 
 
 def _true_h(K: np.ndarray, views: list, i: int, j: int) -> np.ndarray:
-    from .homography import rotation_homography
+    from ..homography import rotation_homography
 
     return rotation_homography(K, np.array(views[i]["R"]) @ np.array(views[j]["R"]).T)
 
@@ -270,7 +270,7 @@ def _read(path: Path, scale: float) -> np.ndarray:
 
 
 def _truth(directory) -> tuple[Path, dict]:
-    d = Path(directory) if directory is not None else data_dir() / "panorama"
+    d = Path(directory) if directory is not None else dataset_dir("panorama")
     path = d / "truth.json"
     if not path.exists():
         raise CamlabInputError(f"directory: no truth.json in {d}; run `python -m camlab.data` to generate it")

@@ -1,0 +1,137 @@
+"""Input to pixels in a real browser: one demo per lesson in JupyterLab, headless Chromium.
+
+For each lesson the first registered demo that has a slider is built in a scratch notebook
+under ``%matplotlib widget``. The benchmark focuses the slider's handle, presses an arrow key
+and times, inside the page, from the keydown event to the first animation frame in which
+the demo's canvas pixels differ: the kernel's callback and draw, ipympl's PNG diff, the
+websocket, and the browser's decode and paint, as a student's eye would see it.
+
+Usage: python benchmarks/browser_latency.py [--presses N]   (``make bench-browser``)
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parent / "tools"))
+sys.path.insert(0, str(HERE))
+import browser  # noqa: E402
+from _timing import print_table  # noqa: E402
+
+# Arm: at the next keydown start a frame loop; store the ms until the canvas pixels change.
+ARM_KEY_TO_PIXELS = """(selector) => {
+  window.__camlabLatency = undefined;
+  const resolve = (ms) => { window.__camlabLatency = ms; };
+  const canvas = document.querySelector(selector + ' canvas');
+  const ctx = canvas.getContext('2d', {willReadFrequently: true});
+  const checksum = () => {
+    const d = ctx.getImageData(0, 0, canvas.width, canvas.height).data;
+    let s = 0;
+    for (let i = 0; i < d.length; i += 7) s = (s * 31 + d[i]) | 0;
+    return s;
+  };
+  const before = checksum();
+  document.addEventListener('keydown', (e) => {
+    const t0 = performance.now();
+    const poll = () => {
+      if (checksum() !== before) resolve(performance.now() - t0);
+      else if (performance.now() - t0 > 5000) resolve(-1);
+      else requestAnimationFrame(poll);
+    };
+    requestAnimationFrame(poll);
+  }, {capture: true, once: true});
+}"""
+
+
+def slider_demos() -> dict[str, str]:
+    """Per lesson, the first registered demo (by name) whose controls include an enabled slider."""
+    os.environ["CAMLAB_FIGURE_MODE"] = "agg"
+    import ipywidgets as W
+    import matplotlib.pyplot as plt
+
+    from camlab.widgets import all_demos
+
+    chosen: dict[str, str] = {}
+    specs = all_demos()
+    for name in sorted(specs, key=lambda n: (specs[n].lesson, n)):
+        spec = specs[name]
+        if spec.lesson in chosen:
+            continue
+        demo = spec.builder()
+        if any(isinstance(c, (W.FloatSlider, W.IntSlider)) and not c.disabled for c in demo.controls.values()):
+            chosen[spec.lesson] = name
+        plt.close(demo.figure)
+    return chosen
+
+
+def _notebook(names: list[str]) -> dict:
+    cells = ["%matplotlib widget\nfrom camlab.widgets import all_demos\nspecs = all_demos()"]
+    cells += [f"specs[{n!r}].builder()" for n in names]
+    return {"nbformat": 4, "nbformat_minor": 5, "metadata": {"kernelspec": {"name": "python3", "display_name": "Python 3",
+                                                                            "language": "python"}},
+            "cells": [{"cell_type": "code", "metadata": {}, "source": c, "outputs": [], "execution_count": None,
+                       "id": f"c{i}"} for i, c in enumerate(cells)]}
+
+
+def measure(presses: int = 7) -> dict[str, float]:
+    """Median keydown-to-pixels milliseconds per chosen demo, by demo name."""
+    from playwright.sync_api import sync_playwright
+
+    chosen = slider_demos()
+    with tempfile.TemporaryDirectory() as tmp:
+        base = Path(tmp)
+        (base / "root").mkdir()
+        (base / "root" / "latency.ipynb").write_text(json.dumps(_notebook(list(chosen.values()))))
+        results: dict[str, float] = {}
+        with browser.jupyterlab(base / "root", base) as lab, sync_playwright() as p:
+            context = browser.launch(p, lab["profile"])
+            try:
+                page = context.new_page()
+                page.set_default_timeout(180_000)
+                browser.open_notebook(page, lab, "latency.ipynb")
+                page.evaluate(browser.RUN_ALL)
+                page.wait_for_function(browser.ALL_CELLS_RUN, polling=500)
+                for name in chosen.values():
+                    selector = f".camlab-demo-{name.replace('_', '-')}"
+                    demo = page.locator(selector)
+                    demo.scroll_into_view_if_needed()
+                    demo.locator("canvas").first.wait_for(state="visible")
+                    page.wait_for_timeout(1500)  # the first full frame
+                    handle = demo.locator(".widget-slider:not(.mod-disabled) .noUi-handle").first
+                    samples = []
+                    for i in range(presses):
+                        handle.focus()
+                        page.evaluate(ARM_KEY_TO_PIXELS, selector)  # never awaits a promise
+                        page.keyboard.press("ArrowRight" if i % 2 == 0 else "ArrowLeft")
+                        page.wait_for_function("() => window.__camlabLatency !== undefined", polling=50)
+                        samples.append(page.evaluate("() => window.__camlabLatency"))
+                        page.wait_for_timeout(300)
+                    ok = [s for s in samples if s >= 0]
+                    results[name] = float(np.median(ok)) if ok else float("nan")
+            finally:
+                context.close()
+    return results
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--presses", type=int, default=7)
+    args = parser.parse_args()
+    from camlab.widgets import all_demos
+
+    specs = all_demos()
+    measured = measure(args.presses)
+    rows = [{"lesson": specs[n].lesson, "demo": n, "browser_ms": ms, "ok": ms <= 33.0} for n, ms in measured.items()]
+    print_table(rows, ["lesson", "demo", "browser_ms", "ok"],
+                "Slider keydown to changed canvas pixels, JupyterLab in headless Chromium (median)")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,446 @@
+r"""Calibration end to end: :func:`calibrate_camera` (Zhang's closed form, then LM) and
+:func:`calibrate_from_images` (detect, then calibrate), with their results.
+"""
+from __future__ import annotations
+
+import glob as _glob
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, NamedTuple, Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .._validate import CamlabInputError, ConvergenceError, check_intrinsics, check_size
+from ..camera import axis_angle_from_rotation, rotation_from_axis_angle
+from ..distortion import as_dist
+from ..optimize import LMResult, levenberg_marquardt
+from .detection import board_points, find_chessboard, grey_uint8, parse_pattern
+from .refinement import CalibrationProblem, PARAM_NAMES, project_views, reproject
+from .zhang import (
+    check_views,
+    extrinsics_from_homography,
+    initial_radial_distortion,
+    intrinsics_from_homographies,
+    planar_xy,
+    view_homographies,
+)
+
+
+@dataclass(frozen=True, eq=False)
+class CalibrationResult:
+    r"""A calibrated camera and everything needed to judge it.
+
+    Attributes
+    ----------
+    K : (3, 3) ndarray
+        Intrinsics [[fx, skew, cx], [0, fy, cy], [0, 0, 1]], pixels.
+    dist : (5,) ndarray
+        (k1, k2, p1, p2, k3), OpenCV's order.
+    rvecs, tvecs : (V, 3) ndarray
+        Each view's pose, cam_from_board: axis-angle (radians) and translation (metres).
+    rms : float
+        :math:`\sqrt{\sum_i \|e_i\|^2 / N}` over all N corners, pixels: the number
+        ``cv2.calibrateCamera`` returns. (The RMS per coordinate is ``rms / sqrt(2)``.)
+    per_view_rms : (V,) ndarray
+        The same per view.
+    residuals : list of (N_v, 2) ndarray
+        Observed minus reprojected corner, pixels, per view.
+    std : dict
+        Standard deviation of each refined global parameter (``PARAM_NAMES``; 0 for fixed
+        ones) from :math:`\hat\sigma^2 (J^\top J)^{-1}` with
+        :math:`\hat\sigma^2 = \sum r^2 / (2N - p)`, OpenCV's definition.
+    covariance : (n_free, n_free) ndarray
+        Covariance of the free global parameters ``free_params``.
+    free_params : tuple of str
+    image_size : (width, height)
+    object_points, image_points : lists of (N_v, 3) and (N_v, 2) ndarrays, the data.
+    cost_history : ndarray
+        LM cost :math:`\tfrac12\|r\|^2` per iteration; ``rms_history`` the matching rms.
+    iterations : int
+    converged : bool
+    initial : dict
+        Zhang's closed-form stages: ``K``, ``dist``, ``homographies``, ``rvecs``, ``tvecs``.
+    """
+
+    K: np.ndarray
+    dist: np.ndarray
+    rvecs: np.ndarray
+    tvecs: np.ndarray
+    rms: float
+    per_view_rms: np.ndarray
+    residuals: list
+    std: dict
+    covariance: np.ndarray
+    free_params: tuple
+    image_size: tuple
+    object_points: list
+    image_points: list
+    cost_history: np.ndarray
+    iterations: int
+    converged: bool
+    initial: dict = field(default_factory=dict)
+
+    @property
+    def R(self) -> np.ndarray:
+        """(V, 3, 3) rotations, cam_from_board."""
+        return np.stack([rotation_from_axis_angle(r) for r in self.rvecs])
+
+    @property
+    def n_views(self) -> int:
+        return len(self.rvecs)
+
+    @property
+    def n_points(self) -> int:
+        return int(sum(len(p) for p in self.image_points))
+
+    @property
+    def rms_history(self) -> np.ndarray:
+        """The rms (OpenCV's definition) after each LM iteration."""
+        return np.sqrt(2 * self.cost_history / self.n_points)
+
+    @property
+    def intrinsics(self) -> dict:
+        """{name: value} for every global parameter in ``PARAM_NAMES``."""
+        vals = [self.K[0, 0], self.K[1, 1], self.K[0, 2], self.K[1, 2], self.K[0, 1], *self.dist]
+        return dict(zip(PARAM_NAMES, (float(v) for v in vals)))
+
+    def reprojected(self, view: int) -> np.ndarray:
+        """(N_v, 2) pixels where the calibrated model puts view ``view``'s corners."""
+        return reproject(self.object_points[view], self.K, self.dist, self.rvecs[view], self.tvecs[view])
+
+    def summary(self) -> str:
+        """A few lines for people: parameters with their standard deviations, rms."""
+        p, s = self.intrinsics, self.std
+        lines = [f"calibrated from {self.n_views} views, {self.n_points} corners; rms reprojection error "
+                 f"{self.rms:.3f} px ({'converged' if self.converged else 'NOT converged'} in {self.iterations} "
+                 f"LM iterations)"]
+        lines.append("  " + "  ".join(f"{k} = {p[k]:.2f} ± {s[k]:.2f}" for k in ("fx", "fy", "cx", "cy")))
+        if "skew" in self.free_params:
+            lines.append(f"  skew = {p['skew']:.3f} ± {s['skew']:.3f}")
+        lines.append("  " + "  ".join(f"{k} = {p[k]:+.4g} ± {s[k]:.2g}" for k in PARAM_NAMES[5:]))
+        return "\n".join(lines)
+
+
+def _rms(res: np.ndarray, mask: np.ndarray) -> tuple[float, np.ndarray]:
+    sq = (np.sum(res * res, axis=-1) * mask)
+    return float(np.sqrt(sq.sum() / mask.sum())), np.sqrt(sq.sum(axis=1) / mask.sum(axis=1))
+
+
+def calibrate_camera(
+    object_points: Sequence[ArrayLike] | ArrayLike,
+    image_points: Sequence[ArrayLike],
+    image_size: Sequence[int],
+    *,
+    skew: bool = False,
+    fix: Sequence[str] = (),
+    K_guess: ArrayLike | None = None,
+    dist_guess: ArrayLike | None = None,
+    pose_guess: ArrayLike | None = None,
+    max_iter: int = 100,
+) -> CalibrationResult:
+    r"""Calibrate a camera from V >= 3 views of a flat target: Zhang's closed form, then LM.
+
+    Parameters
+    ----------
+    object_points : (N, 3) array_like, or a list of V (N_v, 3)
+        Board points in the board frame, metres, Z = 0 (:func:`board_points`); one array
+        for all views or one per view.
+    image_points : list of V (N_v, 2) array_like
+        Detected corners (u, v) per view, pixels.
+    image_size : (width, height)
+        Pixels.
+    skew : bool
+        Also estimate the skew K[0, 1] (OpenCV never does; default False keeps it 0).
+    fix : sequence of str
+        Parameters held at their initial value: any of ``PARAM_NAMES`` (e.g.
+        ``("k3",)`` like ``cv2.CALIB_FIX_K3``, ``("p1", "p2")`` like
+        ``CALIB_ZERO_TANGENT_DIST``). Fixed coefficients stay at their start: 0, or ``dist_guess``.
+    K_guess : (3, 3) array_like, optional
+        Start from this K instead of Zhang's closed form.
+    dist_guess : (5,) array_like, optional
+        Start from these coefficients instead of the linear radial estimate (with ``K_guess``,
+        a warm start from an earlier calibration converges in a few iterations).
+    pose_guess : (V, 6) array_like, optional
+        Start each view's pose from (rvec, tvec) instead of its homography; needs ``K_guess``.
+        With all three guesses Zhang's closed form is skipped entirely (``initial`` is then
+        empty).
+    max_iter : int
+        Most LM iterations.
+
+    Returns
+    -------
+    CalibrationResult
+
+    Raises
+    ------
+    CamlabInputError
+        Fewer than 3 views, mismatched or non-finite points, non-planar targets, bad names.
+    DegenerateError
+        The views do not determine K (e.g. the board parallel to the image in every view).
+    ConvergenceError
+        The refinement failed to produce finite parameters.
+
+    Notes
+    -----
+    The refinement minimises :math:`\sum_{v,i} \|x_{vi} - \pi(K, d, R_v, t_v, X_i)\|^2` over
+    :math:`p = n_{free} + 6V` unknowns with :func:`camlab.optimize.levenberg_marquardt`;
+    its analytic Jacobian has one dense block for the intrinsics and a 6-column block per
+    view, and the damped normal equations are solved by eliminating the poses (Schur
+    complement, see ``BlockNormal``). Zhang's closed form starts close to the minimum, so
+    the initial damping is small (``tau = 1e-5`` relative to diag(J^T J)): the distortion
+    coefficients are strongly correlated, and a larger damping would crawl along that valley
+    for many iterations before it shrank.
+    """
+    objs, imgs, size = _check_calibration_inputs(object_points, image_points, image_size, fix)
+    start = initial_estimate(objs, imgs, size, skew=skew, fix=fix, K_guess=K_guess, dist_guess=dist_guess,
+                             pose_guess=pose_guess)
+    fixed = set(fix) | ({"skew"} if not skew else set())
+    free = np.array([name not in fixed for name in PARAM_NAMES])
+    X, obs, mask = pad_views(objs, imgs)
+    prob = CalibrationProblem(X, obs, mask, start.g, free)
+    lm: LMResult = levenberg_marquardt(prob.residuals, prob.pack(start.g, start.poses), prob.jacobian,
+                                       normal_equations=prob.normal_equations,
+                                       damped_solve=lambda A, g, mu: A.solve(mu), max_iter=max_iter,
+                                       ftol=1e-10, xtol=1e-10, gtol=1e-12, tau=1e-5)
+    if not np.all(np.isfinite(lm.x)):
+        raise ConvergenceError("calibrate_camera: the refinement produced non-finite parameters; check the data")
+    g, poses = prob.unpack(lm.x)
+    res = (obs - project_views(g, poses, X)) * mask[..., None]
+    rms, per_view = _rms(res, mask)
+    cov, std = _parameter_covariance(lm, prob, free)
+    K = np.array([[g[0], g[4], g[2]], [0.0, g[1], g[3]], [0.0, 0.0, 1.0]])
+    initial = {"K": start.K, "dist": start.dist, "homographies": start.homographies,
+               "rvecs": start.poses[:, :3].copy(), "tvecs": start.poses[:, 3:].copy(), "closed_form": K_guess is None}
+    return CalibrationResult(
+        K=K, dist=g[5:].copy(), rvecs=poses[:, :3].copy(), tvecs=poses[:, 3:].copy(), rms=rms,
+        per_view_rms=per_view, residuals=[res[v, :len(o)] for v, o in enumerate(objs)], std=std,
+        covariance=cov, free_params=tuple(str(n) for n in np.array(PARAM_NAMES)[free]), image_size=size,
+        object_points=objs, image_points=imgs, cost_history=lm.cost_history, iterations=lm.iterations,
+        converged=lm.converged, initial=initial,
+    )
+
+
+def _check_calibration_inputs(object_points, image_points, image_size, fix) -> tuple[list, list, tuple[int, int]]:
+    """Validated views, (width, height) and parameter names, or a clear error."""
+    objs, imgs = check_views(object_points, image_points, min_views=1)
+    if len(imgs) < 3:
+        raise CamlabInputError(
+            f"image_points: expected at least 3 views of the board, got {len(imgs)}; "
+            f"photograph it in more orientations"
+        )
+    size = check_size(image_size, "image_size")
+    unknown = [f for f in fix if f not in PARAM_NAMES]
+    if unknown:
+        raise CamlabInputError(f"fix: unknown parameter(s) {unknown}; choose from {list(PARAM_NAMES)}")
+    for v, o in enumerate(objs):
+        planar_xy(o, v)
+    return objs, imgs, size
+
+
+class InitialEstimate(NamedTuple):
+    """Where the refinement starts (stages 2-6 of Zhang's method, or the caller's guesses).
+
+    Attributes
+    ----------
+    K : (3, 3) ndarray
+        Intrinsics, pixels.
+    dist : (5,) ndarray
+        (k1, k2, p1, p2, k3).
+    poses : (V, 6) ndarray
+        Each view's (rvec, t), cam_from_board.
+    homographies : (V, 3, 3) ndarray or None
+        Board -> image per view; None when ``pose_guess`` made them unnecessary.
+    g : (10,) ndarray
+        The global parameters in ``PARAM_NAMES`` order.
+    """
+
+    K: np.ndarray
+    dist: np.ndarray
+    poses: np.ndarray
+    homographies: np.ndarray | None
+    g: np.ndarray
+
+
+def initial_estimate(objs: list, imgs: list, size: tuple[int, int], *, skew: bool = False, fix: Sequence[str] = (),
+                     K_guess: ArrayLike | None = None, dist_guess: ArrayLike | None = None,
+                     pose_guess: ArrayLike | None = None) -> InitialEstimate:
+    """Zhang's closed form (homographies, K, poses, linear radial distortion), or the caller's guesses.
+
+    ``objs`` and ``imgs`` as validated by :func:`~camlab.calibration.zhang.check_views`;
+    other arguments as in :func:`calibrate_camera`.
+    """
+    if pose_guess is not None and K_guess is None:
+        raise CamlabInputError("pose_guess: pass K_guess too (the poses only make sense with a camera)")
+    if K_guess is None:  # Zhang's closed form
+        Hs = view_homographies(objs, imgs)
+        K0 = intrinsics_from_homographies(Hs, skew=skew, image_size=size)
+    else:
+        K0 = check_intrinsics(K_guess, "K_guess")
+        Hs = view_homographies(objs, imgs) if pose_guess is None else None
+    if not skew:
+        K0[0, 1] = 0.0
+    if pose_guess is None:
+        poses0 = []
+        for H in Hs:
+            R, t = extrinsics_from_homography(K0, H)
+            poses0.append(np.concatenate([axis_angle_from_rotation(R), t]))
+        poses0 = np.array(poses0)
+    else:
+        poses0 = np.array(pose_guess, dtype=float)
+        if poses0.shape != (len(imgs), 6) or not np.isfinite(poses0).all():
+            raise CamlabInputError(f"pose_guess: expected ({len(imgs)}, 6) finite (rvec, tvec) rows, got {poses0.shape}")
+    fixed = set(fix) | ({"skew"} if not skew else set())
+    d0 = np.zeros(5)
+    if dist_guess is not None:
+        d0 = as_dist(dist_guess, "dist_guess")
+    elif not {"k1", "k2"} & fixed:
+        d0[:2] = initial_radial_distortion(K0, objs, imgs, [rotation_from_axis_angle(p[:3]) for p in poses0],
+                                           poses0[:, 3:])
+    elif "k1" not in fixed:
+        d0[0] = initial_radial_distortion(K0, objs, imgs, [rotation_from_axis_angle(p[:3]) for p in poses0],
+                                          poses0[:, 3:])[0]
+    g0 = np.array([K0[0, 0], K0[1, 1], K0[0, 2], K0[1, 2], K0[0, 1], *d0])
+    return InitialEstimate(K0, d0, poses0, Hs, g0)
+
+
+def pad_views(objs: list, imgs: list) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Pad V views of different lengths to (V, M) arrays so the refinement is vectorised.
+
+    Returns board points X (V, M, 3), observed corners (V, M, 2) and a (V, M) mask that is 0
+    on padded rows (they repeat the view's first point and carry no weight).
+    """
+    V, M = len(objs), max(len(o) for o in objs)
+    X, obs, mask = np.zeros((V, M, 3)), np.zeros((V, M, 2)), np.zeros((V, M))
+    for v, (o, p) in enumerate(zip(objs, imgs)):
+        X[v, :len(o)], obs[v, :len(o)], mask[v, :len(o)] = o, p, 1.0
+        X[v, len(o):] = o[0]
+    return X, obs, mask
+
+
+def _parameter_covariance(lm: LMResult, prob: CalibrationProblem, free: np.ndarray) -> tuple[np.ndarray, dict]:
+    r"""Covariance of the free intrinsics, :math:`\hat\sigma^2 S^{-1}` with S the undamped Schur
+    complement, and the standard deviation of every parameter in ``PARAM_NAMES`` (0 if fixed)."""
+    n_res, p = 2 * prob.mask.sum(), prob.ni + 6 * prob.V
+    sigma2 = 2 * lm.cost / max(n_res - p, 1)
+    S, _, _ = lm.normal[0].schur(0.0)
+    try:
+        cov = sigma2 * np.linalg.inv(S)
+    except np.linalg.LinAlgError:
+        cov = np.full((prob.ni, prob.ni), np.inf)
+    std = dict.fromkeys(PARAM_NAMES, 0.0)
+    for name, var in zip(np.array(PARAM_NAMES)[free], np.diag(cov)):
+        std[str(name)] = float(np.sqrt(max(var, 0.0)))
+    return cov, std
+
+
+class ImageCalibration(NamedTuple):
+    """The outcome of :func:`calibrate_from_images`.
+
+    ``result`` the :class:`CalibrationResult` over the good views; ``names`` every input's
+    name (file path or ``image[i]``); ``used`` the indices that went into ``result`` (view v
+    of ``result`` is input ``used[v]``); ``failed`` {index: reason} for the rest;
+    ``detections`` (N, 2) corners or None per input.
+    """
+
+    result: CalibrationResult
+    names: list
+    used: list
+    failed: dict
+    detections: list
+
+    def report(self) -> str:
+        """Which images were used, which failed and why."""
+        lines = [f"{len(self.used)} of {len(self.names)} images used"]
+        for i, why in sorted(self.failed.items()):
+            lines.append(f"  skipped {self.names[i]}: {why}")
+        return "\n".join(lines)
+
+
+def _load_images(images_or_paths) -> tuple[list, list, dict]:
+    """Images and names; unreadable files become failures."""
+    import cv2
+
+    if isinstance(images_or_paths, (str, os.PathLike)):
+        pattern = str(images_or_paths)
+        paths = sorted(_glob.glob(pattern)) if any(ch in pattern for ch in "*?[") else [pattern]
+        if not paths:
+            raise CamlabInputError(f"images_or_paths: no files match {pattern!r}; check the path and quote the pattern")
+        images_or_paths = paths
+    items = list(images_or_paths)
+    if not items:
+        raise CamlabInputError("images_or_paths: expected images or file paths, got an empty list")
+    images, names, failed = [], [], {}
+    for i, item in enumerate(items):
+        if isinstance(item, (str, os.PathLike)):
+            names.append(str(item))
+            img = cv2.imread(str(item), cv2.IMREAD_GRAYSCALE) if Path(item).is_file() else None
+            if img is None:
+                failed[i] = "could not read the file (missing, or not an image)"
+            images.append(img)
+        else:
+            names.append(f"image[{i}]")
+            images.append(np.asarray(item))
+    return images, names, failed
+
+
+def calibrate_from_images(images_or_paths, pattern_size: Sequence[int] | str, square_size: float,
+                          **kwargs: Any) -> ImageCalibration:
+    """Detect the chessboard in every image, report failures, calibrate from the rest.
+
+    Parameters
+    ----------
+    images_or_paths : sequence of images or paths, or a glob pattern like ``"photos/*.png"``
+    pattern_size : (cols, rows) or "COLSxROWS"
+        Inner corners.
+    square_size : float
+        Side of one square, metres (sets the units of the translations).
+    **kwargs
+        Passed to :func:`calibrate_camera` (``skew``, ``fix``, ...).
+
+    Returns
+    -------
+    ImageCalibration
+
+    Raises
+    ------
+    CamlabInputError
+        Fewer than 3 images with a detected board (the message lists each failure).
+    """
+    pattern = parse_pattern(pattern_size)
+    obj = board_points(pattern, square_size)
+    images, names, failed = _load_images(images_or_paths)
+    sizes = {}
+    for i, img in enumerate(images):
+        if i not in failed:
+            try:
+                g = grey_uint8(img, f"images[{i}]")
+                images[i] = g
+                sizes.setdefault(g.shape[::-1], []).append(i)
+            except CamlabInputError as exc:
+                failed[i] = str(exc)
+    size = max(sizes, key=lambda s: len(sizes[s])) if sizes else None
+    for s, idx in sizes.items():
+        if s != size:
+            for i in idx:
+                failed[i] = (f"image size {s[0]} x {s[1]} differs from the other images' {size[0]} x {size[1]}; "
+                             f"calibrate each camera/resolution separately")
+    detections: list = [None] * len(images)
+    for i, img in enumerate(images):
+        if i in failed:
+            continue
+        det = find_chessboard(img, pattern)
+        if det.found:
+            detections[i] = det.corners
+        else:
+            failed[i] = det.reason
+    used = [i for i in range(len(images)) if detections[i] is not None]
+    if len(used) < 3:
+        why = "\n".join(f"  {names[i]}: {r}" for i, r in sorted(failed.items()))
+        raise CamlabInputError(
+            f"calibrate_from_images: need at least 3 images with the board detected, got {len(used)} of "
+            f"{len(images)}:\n{why}"
+        )
+    result = calibrate_camera(obj, [detections[i] for i in used], size, **kwargs)
+    return ImageCalibration(result, names, used, dict(sorted(failed.items())), detections)

@@ -1,0 +1,201 @@
+r"""Stage 7: the projection model of calibration with its analytic Jacobian, and the block normal equations.
+
+:func:`project_views` projects every view's board points with the global parameters
+``g = (fx, fy, cx, cy, skew, k1, k2, p1, p2, k3)`` (``PARAM_NAMES``) and per-view poses
+(rvec, t), and differentiates the projection; :class:`BlockNormal` solves Levenberg-Marquardt's
+damped normal equations by eliminating the poses (Schur complement).
+"""
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .._validate import as_points
+from ..distortion import as_dist, distortion_jacobian
+
+
+PARAM_NAMES = ("fx", "fy", "cx", "cy", "skew", "k1", "k2", "p1", "p2", "k3")
+"""The global (per-camera) parameters in the order camlab refines them."""
+
+
+def _rotations_and_left_jacobians(rvecs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    r"""Rotations :math:`R(r)` and left Jacobians :math:`J_l(r)` of V axis-angle vectors at once, (V, 3, 3) each.
+
+    The batched form of :func:`camlab.camera.rotation_from_axis_angle` (Rodrigues,
+    :math:`R = I + \frac{\sin\theta}{\theta}[r]_\times + \frac{1 - \cos\theta}{\theta^2}[r]_\times^2`),
+    vectorised because the refinement evaluates every view's rotation at every iteration. The
+    derivative of a rotated point is :math:`\partial (R(r) X) / \partial r = -[R X]_\times J_l(r)` with
+    :math:`J_l = I + \frac{1 - \cos\theta}{\theta^2} [r]_\times + \frac{\theta - \sin\theta}{\theta^3} [r]_\times^2`.
+    Near :math:`\theta = 0` the coefficients use their Taylor limits (1, 1/2, 1/6).
+    """
+    theta = np.linalg.norm(rvecs, axis=1)
+    S = _skew(rvecs)
+    S2 = S @ S
+    small = theta < 1e-6
+    th = np.where(small, 1.0, theta)
+    a = np.where(small, 1.0 - theta**2 / 6, np.sin(th) / th)            # sin(t) / t
+    b = np.where(small, 0.5 - theta**2 / 24, (1 - np.cos(th)) / th**2)  # (1 - cos t) / t^2
+    c = np.where(small, 1.0 / 6 - theta**2 / 120, (th - np.sin(th)) / th**3)
+    eye = np.eye(3)
+    R = eye + a[:, None, None] * S + b[:, None, None] * S2
+    Jl = eye + b[:, None, None] * S + c[:, None, None] * S2
+    return R, Jl
+
+
+def _skew(w: np.ndarray) -> np.ndarray:
+    """[w]_x for (..., 3) vectors: (..., 3, 3)."""
+    out = np.zeros(w.shape[:-1] + (3, 3))
+    out[..., 0, 1], out[..., 0, 2] = -w[..., 2], w[..., 1]
+    out[..., 1, 0], out[..., 1, 2] = w[..., 2], -w[..., 0]
+    out[..., 2, 0], out[..., 2, 1] = -w[..., 1], w[..., 0]
+    return out
+
+
+def project_views(g: np.ndarray, poses: np.ndarray, X: np.ndarray, jac: bool = False):
+    r"""Project padded board points X (V, M, 3) with global parameters g (10,) and poses (V, 6).
+
+    Returns uv (V, M, 2) and, with ``jac``, d uv / d g (V, M, 2, 10) and d uv / d pose
+    (V, M, 2, 6) (pose = rvec, t). The chain rule, point by point:
+    :math:`u = K_p\,\mathrm{distort}(\pi(R X + t))` with :math:`K_p = [[f_x, s], [0, f_y]]`.
+    """
+    fx, fy, cx, cy, s, k1, k2, p1, p2, k3 = g
+    R, Jl = _rotations_and_left_jacobians(poses[:, :3])
+    RX = np.einsum("vij,vmj->vmi", R, X)
+    Xc = RX + poses[:, None, 3:]
+    z = Xc[..., 2]
+    x, y = Xc[..., 0] / z, Xc[..., 1] / z
+    r2 = x * x + y * y
+    radial = 1 + r2 * (k1 + r2 * (k2 + r2 * k3))
+    xd = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x)
+    yd = y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y
+    uv = np.stack([fx * xd + s * yd + cx, fy * yd + cy], axis=-1)
+    if not jac:
+        return uv
+    V, M = x.shape
+    Jg = np.zeros((V, M, 2, 10))
+    Jg[..., 0, 0], Jg[..., 0, 2], Jg[..., 0, 4] = xd, 1.0, yd
+    Jg[..., 1, 1], Jg[..., 1, 3] = yd, 1.0
+    r4 = r2 * r2
+    dxd = np.stack([x * r2, x * r4, 2 * x * y, r2 + 2 * x * x, x * r4 * r2], axis=-1)  # d xd / d(k1 k2 p1 p2 k3)
+    dyd = np.stack([y * r2, y * r4, r2 + 2 * y * y, 2 * x * y, y * r4 * r2], axis=-1)
+    Jg[..., 0, 5:] = fx * dxd + s * dyd
+    Jg[..., 1, 5:] = fy * dyd
+    Jd = distortion_jacobian(np.stack([x, y], axis=-1).reshape(-1, 2), g[5:]).reshape(V, M, 2, 2)
+    A = np.empty_like(Jd)  # d uv / d (x, y) = K_p @ Jd
+    A[..., 0, :] = fx * Jd[..., 0, :] + s * Jd[..., 1, :]
+    A[..., 1, :] = fy * Jd[..., 1, :]
+    inv_z = 1.0 / z
+    P = np.zeros((V, M, 2, 3))  # d (x, y) / d Xc
+    P[..., 0, 0], P[..., 0, 2] = inv_z, -x * inv_z
+    P[..., 1, 1], P[..., 1, 2] = inv_z, -y * inv_z
+    dXc = A @ P  # (V, M, 2, 3): d uv / d Xc = d uv / d t
+    dR = -_skew(RX) @ Jl[:, None]  # d (R X) / d rvec, (V, M, 3, 3)
+    Jp = np.concatenate([dXc @ dR, dXc], axis=-1)
+    return uv, Jg, Jp
+
+
+class BlockNormal:
+    r"""The normal equations of calibration in block form.
+
+    Parameters are ``[intrinsics (n_i), pose_1 (6), ..., pose_V (6)]``. Each view's pose only
+    touches that view's residuals, so
+
+    .. math::
+        J^\top J = \begin{pmatrix} U & W_1 & \cdots & W_V \\ W_1^\top & V_1 & & \\
+                   \vdots & & \ddots & \\ W_V^\top & & & V_V \end{pmatrix},\quad
+        U = \sum_v J_{i,v}^\top J_{i,v},\ W_v = J_{i,v}^\top J_{p,v},\ V_v = J_{p,v}^\top J_{p,v}.
+
+    The damped system is solved by eliminating the poses (the Schur complement): with
+    :math:`V'_v = V_v + \mu\,\mathrm{diag}(V_v)`,
+    :math:`S = U' - \sum_v W_v V_v'^{-1} W_v^\top`,
+    :math:`S \delta_i = -g_i + \sum_v W_v V_v'^{-1} g_v` and then
+    :math:`\delta_v = V_v'^{-1}(-g_v - W_v^\top \delta_i)`: one n_i x n_i solve and V 6 x 6
+    inverses instead of a dense (n_i + 6V)-square solve.
+    """
+
+    def __init__(self, Ji: np.ndarray, Jp: np.ndarray, r: np.ndarray):
+        JiT = Ji.transpose(0, 2, 1)
+        self.U = (JiT @ Ji).sum(axis=0)
+        self.W = JiT @ Jp
+        self.Vb = Jp.transpose(0, 2, 1) @ Jp
+        self.gi = np.einsum("vki,vk->i", Ji, r)
+        self.gp = np.einsum("vki,vk->vi", Jp, r)
+
+    def gradient(self) -> np.ndarray:
+        return np.concatenate([self.gi, self.gp.ravel()])
+
+    def diagonal(self) -> np.ndarray:
+        return np.concatenate([np.diag(self.U), np.diagonal(self.Vb, axis1=1, axis2=2).ravel()])
+
+    def schur(self, mu: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(S, V'^-1, W V'^-1) for damping mu."""
+        dU = np.diag(self.U)
+        Ud = self.U + mu * np.diag(np.maximum(dU, 1e-12 * max(dU.max(initial=0.0), 1e-300)))
+        dV = np.diagonal(self.Vb, axis1=1, axis2=2)
+        Vd = self.Vb + mu * dV[:, :, None] * np.eye(6)
+        Vinv = np.linalg.inv(Vd)
+        Y = self.W @ Vinv
+        S = Ud - (Y @ self.W.transpose(0, 2, 1)).sum(axis=0)
+        return S, Vinv, Y
+
+    def solve(self, mu: float) -> np.ndarray:
+        S, Vinv, Y = self.schur(mu)
+        di = np.linalg.solve(S, -self.gi + np.einsum("vij,vj->i", Y, self.gp))
+        dp = np.einsum("vij,vj->vi", Vinv, -self.gp - np.einsum("vij,i->vj", self.W, di))
+        return np.concatenate([di, dp.ravel()])
+
+
+class CalibrationProblem:
+    """Packs the calibration unknowns into one vector and evaluates residuals and Jacobians."""
+
+    def __init__(self, X: np.ndarray, obs: np.ndarray, mask: np.ndarray, g0: np.ndarray, free: np.ndarray):
+        self.X, self.obs, self.mask = X, obs, mask
+        self.g0, self.free = g0, free
+        self.ni = int(free.sum())
+        self.V = X.shape[0]
+        self._last = None
+
+    def pack(self, g: np.ndarray, poses: np.ndarray) -> np.ndarray:
+        return np.concatenate([g[self.free], poses.ravel()])
+
+    def unpack(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        g = self.g0.copy()
+        g[self.free] = x[:self.ni]
+        return g, x[self.ni:].reshape(self.V, 6)
+
+    def _evaluate(self, x: np.ndarray):
+        """Residuals and Jacobian blocks at x, computed together and kept for the next call.
+
+        LM asks for r(x) at a trial point and then, if the step is accepted, for J(x) at the
+        same point: one projection pass serves both.
+        """
+        if self._last is not None and np.array_equal(self._last[0], x):
+            return self._last[1]
+        g, poses = self.unpack(x)
+        uv, Jg, Jp = project_views(g, poses, self.X, jac=True)
+        m = self.mask[..., None]
+        V, M = self.mask.shape
+        r = ((uv - self.obs) * m).ravel()
+        J = ((Jg[..., self.free] * m[..., None]).reshape(V, 2 * M, self.ni), (Jp * m[..., None]).reshape(V, 2 * M, 6))
+        self._last = (x.copy(), (r, J))
+        return r, J
+
+    def residuals(self, x: np.ndarray) -> np.ndarray:
+        return self._evaluate(x)[0]
+
+    def jacobian(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return self._evaluate(x)[1]
+
+    def normal_equations(self, J, r: np.ndarray):
+        A = BlockNormal(J[0], J[1], r.reshape(self.V, -1))
+        return A, A.gradient()
+
+
+def reproject(object_points: ArrayLike, K: ArrayLike, dist: ArrayLike | None, rvec: ArrayLike,
+              tvec: ArrayLike) -> np.ndarray:
+    """Project (N, 3) board points with intrinsics, distortion and an axis-angle pose (like cv2.projectPoints)."""
+    X = as_points(object_points, 3, "object_points").array
+    Km = np.asarray(K, dtype=float)
+    g = np.array([Km[0, 0], Km[1, 1], Km[0, 2], Km[1, 2], Km[0, 1], *as_dist(dist)])
+    pose = np.concatenate([np.ravel(rvec), np.ravel(tvec)]).astype(float)
+    return project_views(g, pose[None], X[None])[0]

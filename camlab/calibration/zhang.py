@@ -1,0 +1,295 @@
+r"""Stages 2-6 of Zhang's method: homographies, constraints on B, K in closed form, poses, radial distortion.
+
+See :mod:`camlab.calibration` for the whole pipeline and lesson 08 for the derivations.
+"""
+from __future__ import annotations
+
+from typing import Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .._validate import CamlabInputError, DegenerateError, as_points
+from ..homography import estimate_homography
+
+
+def check_views(object_points, image_points, min_views: int = 1):
+    """Lists of (N_v, 3) and (N_v, 2) float arrays, validated view by view."""
+    if isinstance(image_points, np.ndarray) and image_points.ndim == 2:
+        image_points = [image_points]
+    try:
+        n = len(image_points)
+    except TypeError:
+        raise CamlabInputError(
+            f"image_points: expected a list of (N, 2) arrays, one per view, got {type(image_points).__name__}"
+        ) from None
+    if n < min_views:
+        raise CamlabInputError(
+            f"image_points: expected at least {min_views} views, got {n}; take more photos of the board "
+            f"in different orientations"
+        )
+    obj = np.asarray(object_points, dtype=float) if not isinstance(object_points, (list, tuple)) else None
+    if obj is not None and obj.ndim == 2:
+        objs = [obj] * n  # one board for all views
+    else:
+        objs = list(object_points)
+        if len(objs) != n:
+            raise CamlabInputError(
+                f"object_points: expected one (N, 3) array per view (or one for all), got {len(objs)} "
+                f"for {n} views"
+            )
+    out_obj, out_img = [], []
+    for v, (o, p) in enumerate(zip(objs, image_points)):
+        o = as_points(np.asarray(o, dtype=float).reshape(-1, 3) if np.size(o) % 3 == 0 else o, 3,
+                      f"object_points[{v}]", min_count=4).array
+        p = as_points(np.asarray(p, dtype=float).reshape(-1, 2) if np.size(p) % 2 == 0 else p, 2,
+                      f"image_points[{v}]", min_count=4, finite=False).array
+        if len(o) != len(p):
+            raise CamlabInputError(
+                f"image_points[{v}]: expected {len(o)} points like object_points[{v}], got {len(p)}"
+            )
+        if not np.isfinite(p).all():
+            bad = int(np.argwhere(~np.isfinite(p).all(axis=1))[0, 0])
+            raise CamlabInputError(
+                f"image_points[{v}]: corner {bad} is NaN or inf ({int((~np.isfinite(p)).any(axis=1).sum())} "
+                f"non-finite corners in this view); drop the view or the bad corners"
+            )
+        out_obj.append(o)
+        out_img.append(p)
+    return out_obj, out_img
+
+
+def planar_xy(obj: np.ndarray, v: int) -> np.ndarray:
+    scale = max(np.abs(obj[:, :2]).max(), 1e-300)
+    if np.abs(obj[:, 2]).max() > 1e-9 * scale:
+        raise CamlabInputError(
+            f"object_points[{v}]: Zhang's method needs a flat target with Z = 0 (a chessboard in its own frame), "
+            f"got Z up to {np.abs(obj[:, 2]).max():.3g}; for a 3-D target use "
+            f"camlab.camera.estimate_projection_matrix (DLT resectioning)"
+        )
+    return obj[:, :2]
+
+
+def view_homographies(object_points: Sequence[ArrayLike] | ArrayLike,
+                      image_points: Sequence[ArrayLike]) -> np.ndarray:
+    """(V, 3, 3) homographies board plane (X, Y) -> image (u, v), one per view (normalised DLT).
+
+    Uses :func:`camlab.homography.estimate_homography` (Hartley normalisation); each H is
+    scaled so H[2, 2] = 1.
+    """
+    objs, imgs = check_views(object_points, image_points)
+    return np.stack([estimate_homography(planar_xy(o, v), p) for v, (o, p) in enumerate(zip(objs, imgs))])
+
+
+def zhang_v(H: ArrayLike, i: int, j: int) -> np.ndarray:
+    r"""Zhang's vector :math:`v_{ij}` with :math:`h_i^\top B h_j = v_{ij}^\top b`.
+
+    With :math:`h_i` the i-th column of H (i, j in 0, 1, 2) and
+    :math:`b = (B_{11}, B_{12}, B_{22}, B_{13}, B_{23}, B_{33})` the six distinct entries of
+    the symmetric :math:`B = K^{-\top} K^{-1}`:
+
+    .. math::
+        v_{ij} = (h_{i1} h_{j1},\ h_{i1} h_{j2} + h_{i2} h_{j1},\ h_{i2} h_{j2},\
+                  h_{i3} h_{j1} + h_{i1} h_{j3},\ h_{i3} h_{j2} + h_{i2} h_{j3},\ h_{i3} h_{j3})
+
+    >>> zhang_v(np.eye(3), 0, 0)
+    array([1., 0., 0., 0., 0., 0.])
+    """
+    Hm = np.asarray(H, dtype=float)
+    if Hm.shape != (3, 3):
+        raise CamlabInputError(f"H: expected a (3, 3) homography, got shape {Hm.shape}")
+    a, c = Hm[:, i], Hm[:, j]
+    return np.array([a[0] * c[0], a[0] * c[1] + a[1] * c[0], a[1] * c[1],
+                     a[2] * c[0] + a[0] * c[2], a[2] * c[1] + a[1] * c[2], a[2] * c[2]])
+
+
+def zhang_constraints(H: ArrayLike) -> np.ndarray:
+    r"""The (2, 6) rows one view adds to :math:`V b = 0`.
+
+    :math:`H = \lambda K [r_1\ r_2\ t]`, so :math:`r_k = \lambda^{-1} K^{-1} h_k`; the
+    columns of a rotation are orthonormal, so
+
+    .. math::
+        h_1^\top B h_2 = 0 \;\Rightarrow\; v_{12}^\top b = 0, \qquad
+        h_1^\top B h_1 = h_2^\top B h_2 \;\Rightarrow\; (v_{11} - v_{22})^\top b = 0 .
+
+    (In 0-based column indices: ``zhang_v(H, 0, 1)`` and ``zhang_v(H, 0, 0) - zhang_v(H, 1, 1)``.)
+    """
+    return np.stack([zhang_v(H, 0, 1), zhang_v(H, 0, 0) - zhang_v(H, 1, 1)])
+
+
+def intrinsics_from_b(b: ArrayLike) -> np.ndarray:
+    r"""K from :math:`b \propto (B_{11}, B_{12}, B_{22}, B_{13}, B_{23}, B_{33})` in closed form.
+
+    Zhang (2000), appendix B, with :math:`B = \lambda K^{-\top} K^{-1}`:
+
+    .. math::
+        c_y &= (B_{12} B_{13} - B_{11} B_{23}) / (B_{11} B_{22} - B_{12}^2) \\
+        \lambda &= B_{33} - [B_{13}^2 + c_y (B_{12} B_{13} - B_{11} B_{23})] / B_{11} \\
+        f_x &= \sqrt{\lambda / B_{11}}, \qquad
+        f_y = \sqrt{\lambda B_{11} / (B_{11} B_{22} - B_{12}^2)} \\
+        s &= -B_{12} f_x^2 f_y / \lambda, \qquad
+        c_x = s\, c_y / f_y - B_{13} f_x^2 / \lambda
+
+    b is known only up to scale and sign; the sign is chosen to make B positive definite.
+
+    Raises
+    ------
+    DegenerateError
+        If no sign of b gives a positive definite B (the views do not determine K).
+    """
+    bv = np.asarray(b, dtype=float).ravel()
+    if bv.shape != (6,) or not np.isfinite(bv).all():
+        raise CamlabInputError(f"b: expected 6 finite numbers (B11, B12, B22, B13, B23, B33), got {np.shape(b)}")
+    if bv[0] < 0:
+        bv = -bv
+    B11, B12, B22, B13, B23, B33 = bv
+    den = B11 * B22 - B12 * B12
+    if B11 <= 0 or den <= 0:
+        raise DegenerateError(
+            "intrinsics_from_b: B = K^-T K^-1 came out indefinite, so the views do not determine K; this "
+            "happens when the board has nearly the same orientation in every view (for instance always "
+            "parallel to the image plane): tilt it by 20-45 degrees in different directions"
+        )
+    cy = (B12 * B13 - B11 * B23) / den
+    lam = B33 - (B13 * B13 + cy * (B12 * B13 - B11 * B23)) / B11
+    if lam / B11 <= 0:
+        raise DegenerateError(
+            "intrinsics_from_b: the closed-form focal length is imaginary (lambda / B11 < 0): the views do "
+            "not determine K; the board has nearly the same orientation in every view (e.g. parallel to the image "
+            "plane): use more views with the board tilted by 20-45 degrees in different directions"
+        )
+    fx = np.sqrt(lam / B11)
+    fy = np.sqrt(lam * B11 / den)
+    s = -B12 * fx * fx * fy / lam
+    cx = s * cy / fy - B13 * fx * fx / lam
+    return np.array([[fx, s, cx], [0.0, fy, cy], [0.0, 0.0, 1.0]])
+
+
+def intrinsics_from_homographies(homographies: ArrayLike, *, skew: bool = False,
+                                 image_size: Sequence[int] | None = None) -> np.ndarray:
+    r"""K in closed form from V >= 2 view homographies (>= 3 with ``skew=True``).
+
+    Stacks :func:`zhang_constraints` into V (2V x 6), takes b as the right singular vector
+    with the smallest singular value and applies :func:`intrinsics_from_b`. With
+    ``skew=False`` the column of :math:`B_{12}` is dropped (zero skew makes
+    :math:`B_{12} = 0`), leaving 5 unknowns.
+
+    For conditioning, the homographies are first expressed in pixels scaled to about
+    [-1, 1] by :math:`T` (from ``image_size``, or from their own translations):
+    :math:`T H = (T K) [r_1\ r_2\ t]`, so the method yields :math:`T K` and
+    :math:`K = T^{-1} (T K)`.
+
+    Raises
+    ------
+    DegenerateError
+        Too few views, or a set that leaves b undetermined (all boards parallel).
+    """
+    Hs = np.asarray(homographies, dtype=float)
+    if Hs.ndim != 3 or Hs.shape[1:] != (3, 3):
+        raise CamlabInputError(f"homographies: expected (V, 3, 3), got shape {Hs.shape}")
+    need = 3 if skew else 2
+    if len(Hs) < need:
+        raise DegenerateError(
+            f"intrinsics_from_homographies: expected at least {need} views (each gives 2 equations on "
+            f"{5 if skew else 4} unknowns), got {len(Hs)}; add views"
+        )
+    if image_size is not None:
+        w, h = (float(x) for x in image_size)
+        c = np.array([(w - 1) / 2, (h - 1) / 2])
+        sc = (w + h) / 4
+    else:
+        pts = Hs[:, :2, 2] / Hs[:, 2:, 2]
+        c, sc = pts.mean(axis=0), max(np.abs(pts - pts.mean(axis=0)).max(), 1.0)
+    T = np.array([[1 / sc, 0, -c[0] / sc], [0, 1 / sc, -c[1] / sc], [0, 0, 1]])
+    Hn = T @ Hs
+    Hn /= np.linalg.norm(Hn, axis=(1, 2), keepdims=True)
+    V = np.concatenate([zhang_constraints(H) for H in Hn])
+    cols = [0, 1, 2, 3, 4, 5] if skew else [0, 2, 3, 4, 5]
+    _, sv, Vt = np.linalg.svd(V[:, cols])
+    if sv[-2] < 1e-3 * sv[0]:  # well-spread views: 0.03-0.2; all boards parallel: < 1e-4
+        raise DegenerateError(
+            f"intrinsics_from_homographies: the {len(Hs)} views do not fix K (V b = 0 has more than one "
+            f"solution: singular values {sv[-2] / sv[0]:.1g} and {sv[-1] / sv[0]:.1g} of the largest); the board is at nearly the same orientation in every view, e.g. parallel to the "
+            f"image plane: tilt it by 20-45 degrees in different directions"
+        )
+    b = np.zeros(6)
+    b[cols] = Vt[-1]
+    Kn = intrinsics_from_b(b)
+    K = np.linalg.solve(T, Kn)
+    K = K / K[2, 2]
+    K[1, 0] = K[2, 0] = K[2, 1] = 0.0
+    return K
+
+
+def nearest_rotation(M: ArrayLike) -> np.ndarray:
+    r"""The rotation closest to M in the Frobenius norm: :math:`U \operatorname{diag}(1, 1, \det UV^\top) V^\top`.
+
+    With the SVD :math:`M = U \Sigma V^\top`, :math:`\min_R \|R - M\|_F` over rotations is
+    solved by replacing the singular values with ones (Zhang 2000, appendix C); the last
+    sign keeps :math:`\det R = +1`.
+
+    >>> np.round(nearest_rotation(2 * np.eye(3)), 12) + 0.0
+    array([[1., 0., 0.],
+           [0., 1., 0.],
+           [0., 0., 1.]])
+    """
+    Mm = np.asarray(M, dtype=float)
+    if Mm.shape != (3, 3) or not np.isfinite(Mm).all():
+        raise CamlabInputError(f"M: expected a finite (3, 3) matrix, got shape {Mm.shape}")
+    U, _, Vt = np.linalg.svd(Mm)
+    D = np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Vt))])
+    return U @ D @ Vt
+
+
+def extrinsics_from_homography(K: ArrayLike, H: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    r"""A view's pose (R, t), cam_from_board, from K and its homography.
+
+    :math:`K^{-1} H = \lambda [r_1\ r_2\ t]` with :math:`\lambda = 1 / \|K^{-1} h_1\|`
+    (sign chosen so the board is in front, :math:`t_z > 0`), :math:`r_3 = r_1 \times r_2`.
+    With noise :math:`[r_1\ r_2\ r_3]` is not orthonormal; :func:`nearest_rotation` fixes that.
+    """
+    Km = np.asarray(K, dtype=float)
+    A = np.linalg.solve(Km, np.asarray(H, dtype=float))
+    lam = 2.0 / (np.linalg.norm(A[:, 0]) + np.linalg.norm(A[:, 1]))
+    if A[2, 2] * lam < 0:
+        lam = -lam
+    r1, r2, t = lam * A[:, 0], lam * A[:, 1], lam * A[:, 2]
+    R = nearest_rotation(np.column_stack([r1, r2, np.cross(r1, r2)]))
+    return R, t
+
+
+def _normalised(K: np.ndarray, Xc: np.ndarray) -> np.ndarray:
+    return Xc[..., :2] / Xc[..., 2:3]
+
+
+def initial_radial_distortion(K: ArrayLike, object_points, image_points, R: ArrayLike, t: ArrayLike) -> np.ndarray:
+    r"""Linear least-squares (k1, k2) given K and every view's pose (Zhang 2000, section 3.3).
+
+    With ideal normalised points :math:`x` (from K, R, t, no distortion), radius
+    :math:`r^2 = x^2 + y^2` and ideal pixels :math:`(u, v)`, the radial model says the
+    observed pixels are :math:`\breve u = u + (u - c_x)(k_1 r^2 + k_2 r^4)` (same for v):
+    two linear equations in (k1, k2) per corner,
+
+    .. math::
+        \begin{pmatrix} (u - c_x) r^2 & (u - c_x) r^4 \\ (v - c_y) r^2 & (v - c_y) r^4 \end{pmatrix}
+        \begin{pmatrix} k_1 \\ k_2 \end{pmatrix} = \begin{pmatrix} \breve u - u \\ \breve v - v \end{pmatrix}.
+
+    Returns
+    -------
+    (2,) ndarray
+        (k1, k2).
+    """
+    Km = np.asarray(K, dtype=float)
+    objs, imgs = check_views(object_points, image_points)
+    Rs, ts = np.asarray(R, dtype=float).reshape(-1, 3, 3), np.asarray(t, dtype=float).reshape(-1, 3)
+    rows, rhs = [], []
+    for o, p, Rv, tv in zip(objs, imgs, Rs, ts):
+        x = _normalised(Km, o @ Rv.T + tv)
+        r2 = np.sum(x * x, axis=1)
+        uv = x @ Km[:2, :2].T + Km[:2, 2]
+        d = uv - Km[:2, 2]
+        rows.append(np.stack([d * r2[:, None], d * (r2 * r2)[:, None]], axis=-1).reshape(-1, 2))
+        rhs.append((p - uv).ravel())
+    k, *_ = np.linalg.lstsq(np.concatenate(rows), np.concatenate(rhs), rcond=None)
+    return k

@@ -1,0 +1,64 @@
+"""Find lesson notebooks by number (``07``), stem (``07_homographies``) or file name, and read their cells."""
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+from .._validate import CamlabInputError
+
+__all__ = ["called", "find_lesson", "lesson_files", "only_statement", "stub_name"]
+
+
+def lesson_files() -> list[Path]:
+    """Every lesson notebook ``NN_slug.ipynb``, in course order."""
+    from ..data import lessons_dir  # the clone's lessons/ or the wheel's camlab/lessons
+
+    return sorted(lessons_dir().glob("[0-9][0-9]_*.ipynb"))
+
+
+def find_lesson(spec: str) -> Path:
+    """The lesson named by ``spec``: ``"7"``, ``"07"``, ``"07_homographies"`` or ``"07_homographies.ipynb"``.
+
+    Raises
+    ------
+    CamlabInputError
+        If no lesson, or more than one, matches.
+    """
+    files = lesson_files()
+    key = Path(str(spec)).name.removesuffix(".ipynb")
+    if key.isdigit():
+        key = f"{int(key):02d}"
+    matches = [f for f in files if f.stem == key or f.stem.split("_", 1)[0] == key]
+    if len(matches) != 1:
+        known = ", ".join(f.stem for f in files)
+        raise CamlabInputError(f"lesson: no lesson {spec!r}; expected a number or name, one of {known}")
+    return matches[0]
+
+
+def only_statement(cell: dict) -> ast.stmt | None:
+    """The single Python statement of a code cell, or None (markdown, magics, several statements)."""
+    if cell["cell_type"] != "code":
+        return None
+    try:
+        body = ast.parse("".join(cell["source"])).body
+    except SyntaxError:
+        return None
+    return body[0] if len(body) == 1 else None
+
+
+def stub_name(stmt: ast.stmt | None) -> str | None:
+    """``name`` if ``stmt`` is ``def name(...): ... raise NotImplementedError``."""
+    if isinstance(stmt, ast.FunctionDef) and isinstance(stmt.body[-1], ast.Raise):
+        raised = stmt.body[-1].exc
+        if isinstance(raised, ast.Call):
+            raised = raised.func
+        if isinstance(raised, ast.Name) and raised.id == "NotImplementedError":
+            return stmt.name
+    return None
+
+
+def called(stmt: ast.stmt | None) -> tuple[str, list[ast.expr]] | None:
+    """``(function name, arguments)`` if ``stmt`` is a bare call ``f(...)``."""
+    if isinstance(stmt, ast.Expr) and isinstance(stmt.value, ast.Call) and isinstance(stmt.value.func, ast.Name):
+        return stmt.value.func.id, stmt.value.args
+    return None

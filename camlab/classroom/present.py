@@ -1,0 +1,86 @@
+"""Lecture mode: one lesson's demos, full width and without code, served by Voila.
+
+``camlab present 07`` (or ``make present LESSON=07``) builds a *presentation notebook* from
+the lesson and serves it with Voila (which hides all code). The presentation keeps the lesson's
+title, each demo with the heading of its section, and runs every other cell of the lesson
+silently (``%%capture``, and the figures those cells draw are closed), because later demos need
+what earlier cells computed. Exercises and their checks are left out: hidden code makes them
+unusable, so students do those in JupyterLab.
+"""
+from __future__ import annotations
+
+import ast
+import copy
+import json
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+from .lessons import called, find_lesson, only_statement, stub_name
+
+__all__ = ["is_demo_cell", "presentation_notebook", "serve"]
+
+SILENT = """%%capture
+import matplotlib.pyplot as _camlab_plt
+_camlab_figures = set(_camlab_plt.get_fignums())
+{code}
+for _n in set(_camlab_plt.get_fignums()) - _camlab_figures:
+    _camlab_plt.close(_n)
+"""
+
+
+def is_demo_cell(cell: dict) -> bool:
+    """True for a cell that is one call ``demos.<name>(...)`` (the lesson's interactive demos)."""
+    stmt = only_statement(cell)
+    func = stmt.value.func if isinstance(stmt, ast.Expr) and isinstance(stmt.value, ast.Call) else None
+    return isinstance(func, ast.Attribute) and isinstance(func.value, ast.Name) and func.value.id == "demos"
+
+
+def _is_exercise(cell: dict) -> bool:
+    stmt = only_statement(cell)
+    call = called(stmt)
+    return stub_name(stmt) is not None or bool(call and (call[0] == "solution" or call[0].startswith("check_")))
+
+
+def _markdown(text: str) -> dict:
+    return {"cell_type": "markdown", "metadata": {}, "source": text}
+
+
+def presentation_notebook(notebook: dict) -> dict:
+    """The lecture version of a lesson notebook: title, then each demo under its section heading."""
+    nb = copy.deepcopy(notebook)
+    title = "".join(nb["cells"][0]["source"]).strip().splitlines()[0]
+    cells, heading, shown = [_markdown(title)], None, None
+    for cell in nb["cells"][1:]:
+        if cell["cell_type"] == "markdown":
+            lines = "".join(cell["source"]).lstrip().splitlines()
+            heading = lines[0] if lines and lines[0].startswith("#") else heading
+        elif is_demo_cell(cell):
+            if heading and heading != shown:
+                cells.append(_markdown(heading))
+                shown = heading
+            cells.append(dict(cell, source="".join(cell["source"])))
+        elif cell["cell_type"] == "code" and not _is_exercise(cell):
+            cell["source"] = SILENT.format(code="".join(cell["source"]))
+            cells.append(cell)
+    nb["cells"] = cells
+    return nb
+
+
+def serve(lesson: str, port: int = 8866, open_browser: bool = True) -> int:
+    """Write the presentation of ``lesson`` to a temporary folder and serve it with Voila until Ctrl-C."""
+    path = find_lesson(lesson)
+    presentation = presentation_notebook(json.loads(path.read_text(encoding="utf-8")))
+    with tempfile.TemporaryDirectory(prefix="camlab-present-") as folder:
+        target = Path(folder) / path.name
+        target.write_text(json.dumps(presentation), encoding="utf-8")
+        cmd = [sys.executable, "-m", "voila", str(target), f"--port={port}", "--Voila.ip=127.0.0.1",
+               "--theme=light", "--VoilaConfiguration.show_margins=False"]
+        if not open_browser:
+            cmd.append("--no-browser")
+        print(f"camlab present: serving {path.stem} at http://127.0.0.1:{port}/ (Ctrl-C stops)", flush=True)
+        try:
+            return subprocess.run(cmd, cwd=folder).returncode
+        except KeyboardInterrupt:
+            return 0

@@ -1,0 +1,160 @@
+"""Static pictures of live figures: what a notebook keeps for readers without a kernel.
+
+A live figure (an ipympl canvas, or a camlab demo around one) is a widget. JupyterLab
+draws it from the running kernel, but a saved notebook read on GitHub, nbviewer, in
+nbconvert's HTML or PDF, or on the course website has no kernel. So whenever a live
+figure is displayed, its display bundle carries one PNG of the figure as it is at that
+moment next to the widget view, and the output metadata carries alt text::
+
+    data     = {"application/vnd.jupyter.widget-view+json": {...},
+                "image/png": <base64>, "text/plain": <alt text>}
+    metadata = {"image/png": {"alt": <alt text>, "width": w, "height": h}}
+
+A front end shows one entry of a bundle. JupyterLab, Notebook 7 and Voila rank the
+widget view first and show only the live figure; static renderers, which cannot run a
+widget, show the PNG. The PNG is rendered once per display, never per slider event.
+
+Alt text says what the figure shows: for a demo, its description and the values of its
+controls (:func:`demo_alt_text`); for a plain figure, the text a lesson gave with
+:func:`alt_text`, or else a description built from the titles, axis labels and legend
+entries (:func:`describe_figure`).
+"""
+from __future__ import annotations
+
+import base64
+import io
+import weakref
+from typing import Any, Mapping
+
+from matplotlib.figure import Figure
+
+WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
+_ALT: "weakref.WeakKeyDictionary[Figure, str]" = weakref.WeakKeyDictionary()
+
+
+def alt_text(fig: Figure, text: str) -> Figure:
+    """Give a plain figure the alt text its static picture carries; returns ``fig``.
+
+    Write what a reader should see, e.g. ``"Image height falls as 1/Z; a longer focal
+    length scales every curve up"``, not "Figure 1".
+    """
+    text = " ".join(str(text).split())
+    if not text:
+        raise ValueError("alt_text: expected a sentence describing the figure, got an empty string")
+    _ALT[fig] = text
+    return fig
+
+
+def _quoted(texts: list[str]) -> str:
+    return ", ".join(f"'{t}'" for t in texts)
+
+
+def _describe_axes(ax: Any) -> str:
+    title = " ".join(t for t in (ax.get_title("left"), ax.get_title(), ax.get_title("right")) if t)
+    kind = "3-D view" if ax.name == "3d" else ("image" if ax.images and not ax.lines else "plot")
+    words = [f"{kind} '{title}'" if title else kind]
+    labels = [lab for lab in (ax.get_xlabel(), ax.get_ylabel()) if lab]
+    if labels:
+        words.append("axes " + _quoted(labels))
+    legend = ax.get_legend()
+    if legend is not None:
+        entries = [t.get_text() for t in legend.get_texts() if t.get_text()]
+        if entries:
+            words.append("legend " + _quoted(entries))
+    return ", ".join(words)
+
+
+def describe_figure(fig: Figure) -> str:
+    """Alt text for a figure: the lesson's own (:func:`alt_text`) or one built from its text.
+
+    The built description lists each panel's title, axis labels and legend entries,
+    which in camlab's figures name what is drawn.
+    """
+    if fig in _ALT:
+        return _ALT[fig]
+    panels = [ax for ax in fig.axes if ax.get_visible() and ax.get_label() != "<colorbar>"]
+    parts = [_describe_axes(ax) for ax in panels]
+    suptitle = fig._suptitle.get_text() if fig._suptitle is not None else ""
+    head = f"Figure '{suptitle}'" if suptitle else "Figure"
+    if not parts:
+        return f"{head} without axes"
+    count = f" with {len(parts)} panels" if len(parts) > 1 else ""
+    return f"{head}{count}: " + "; ".join(parts) + "."
+
+
+def _format_value(control: Any) -> str:
+    index = getattr(control, "index", None)  # selection widgets show an option's label
+    if isinstance(index, int):
+        option = tuple(control.options)[index]
+        return str(option[0] if isinstance(option, tuple) and len(option) == 2 else option)
+    value = control.value
+    if isinstance(value, bool):
+        return "on" if value else "off"
+    if isinstance(value, float):
+        return f"{value:g}"
+    if isinstance(value, (tuple, list)):
+        return "(" + ", ".join(f"{v:g}" if isinstance(v, float) else str(v) for v in value) + ")"
+    return str(value)
+
+
+def demo_alt_text(description: str, controls: Mapping[str, Any], fig: Figure | None = None) -> str:
+    """Alt text for a demo: what it shows, its panels, and the settings it was drawn at."""
+    text = " ".join(description.split())
+    if text and text[-1] not in ".!?":
+        text += "."
+    if fig is not None:
+        titles = [ax.get_title() for ax in fig.axes if ax.get_visible() and ax.get_title()]
+        if titles:
+            text += " Panels: " + _quoted(titles) + "."
+    settings = [f"{(c.description or name).strip().rstrip('=:').strip()} = {_format_value(c)}"
+                for name, c in controls.items()]
+    if settings:
+        text += " Shown at " + "; ".join(settings) + "."
+    return text.strip()
+
+
+def figure_png(fig: Figure) -> bytes:
+    """The figure rendered once to PNG at its own size and dpi."""
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=fig.dpi)
+    return buf.getvalue()
+
+
+def static_bundle(data: Mapping[str, Any], fig: Figure, alt: str, png: bytes | None = None) -> tuple[dict, dict]:
+    """A widget's display bundle plus a PNG of ``fig`` and its alt text (module docstring).
+
+    ``png`` reuses an image already rendered (the png display mode keeps one); otherwise
+    the figure is rendered once here. ipympl's own ``text/html`` copy of the picture
+    (an ``<img>`` without alt text) is dropped, so static renderers use the PNG entry.
+    """
+    png = png if png is not None else figure_png(fig)
+    out = {k: v for k, v in data.items() if k != "text/html"}
+    out["image/png"] = base64.b64encode(png).decode("ascii")
+    out["text/plain"] = alt
+    width, height = fig.get_size_inches() * fig.dpi
+    metadata = {"image/png": {"alt": alt, "width": int(round(width)), "height": int(round(height))}}
+    return out, metadata
+
+
+def _canvas_bundle(canvas: Any) -> tuple[dict, dict]:
+    """Display bundle of an ipympl canvas (a plain figure under ``%matplotlib widget``)."""
+    data = canvas._repr_mimebundle_()  # ipympl registers the view and renders its PNG once
+    png = base64.b64decode(data["image/png"]) if "image/png" in data else None
+    return static_bundle(data, canvas.figure, describe_figure(canvas.figure), png)
+
+
+def install_canvas_formatter() -> bool:
+    """In an IPython kernel, give every displayed ipympl canvas alt text (module docstring).
+
+    Returns whether a kernel was found. Safe to call more than once.
+    """
+    try:
+        from IPython import get_ipython
+    except ImportError:  # pragma: no cover - IPython comes with ipywidgets
+        return False
+    shell = get_ipython()
+    if shell is None:
+        return False
+    formatter = shell.display_formatter.mimebundle_formatter
+    formatter.for_type_by_name("ipympl.backend_nbagg", "Canvas", _canvas_bundle)
+    return True

@@ -1,0 +1,308 @@
+r"""One robust estimation driver for models of point pairs: RANSAC with MSAC scoring and local optimisation.
+
+Homographies (:func:`camlab.homography.ransac_homography`) and fundamental matrices
+(:func:`camlab.epipolar.ransac_fundamental_matrix`) plug into :func:`ransac` by describing
+their model as a :class:`PairModel`: how to solve a minimal sample, how to fit many pairs
+by least squares, and the residual of a pair in pixels. The driver does the rest.
+
+The algorithm, step by step (each step is a few lines of :func:`ransac`):
+
+1. **Hypothesise.** Draw random minimal samples of ``s`` pairs (4 for H, 8 for F) and
+   solve each exactly; degenerate samples (collinear points, rank deficiency) are skipped.
+   Samples are drawn and solved in vectorised batches.
+2. **Score by truncated squares (MSAC).** Plain RANSAC counts inliers, so every model
+   with the same count ties, however well it fits. MSAC (Torr & Zisserman 2000) scores a
+   model by the truncated quadratic loss
+
+   .. math:: C = \sum_i \min(e_i^2,\ t^2),
+
+   the negative log-likelihood of Gaussian inliers plus uniform outliers: inliers
+   contribute their squared error, outliers a constant. Lower is better. (MAGSAC
+   marginalises the threshold too; the truncated quadratic is its fixed-:math:`\sigma`
+   special case.)
+3. **Optimise locally (LO-RANSAC).** A model from a minimal sample is fitted to the noise
+   of only ``s`` points, so it is worse than the consensus it found. Each time a
+   hypothesis beats the best so far, :func:`local_optimization` re-fits it on its inliers
+   inside the loop (Chum, Matas & Kittler 2003; the "LO+" variant of Lebeda, Matas &
+   Chum 2012): a few least-squares fits on random subsets of the inliers, each followed
+   by iterated least squares with a threshold shrinking from :math:`3t` to :math:`t`.
+   The result is close to the best model the data support, so different seeds agree.
+   The final model gets one more thorough local optimisation.
+4. **Stop adaptively.** With inlier ratio :math:`w` of the best model so far, one sample
+   is all inliers with probability :math:`w^s`, so :math:`k` samples contain one with
+   probability :math:`1 - (1 - w^s)^k`. Setting this to the ``confidence`` p gives
+   :func:`required_iterations`, :math:`k = \log(1 - p) / \log(1 - w^s)`. Local
+   optimisation raises :math:`w` early, which shortens the loop.
+5. **Refuse chance.** A consensus must be more than a coincidence. The driver measures
+   how often a pair fits the final model by chance (its inlier rate on pairs shuffled so
+   that they cannot correspond) and raises :class:`DegenerateError` if the number of
+   inliers beyond the minimal sample is not significant: if any of the hypotheses tried
+   could plausibly have reached it with random pairs (binomial tail times the number of
+   samples drawn above 1 %). Matches that are all wrong give no model.
+
+References
+----------
+Fischler & Bolles (1981), Random sample consensus. Torr & Zisserman (2000), MLESAC.
+Chum, Matas & Kittler (2003), Locally optimized RANSAC. Lebeda, Matas & Chum (2012),
+Fixing the locally optimized RANSAC. Barath et al. (2020), MAGSAC++. Hartley & Zisserman,
+section 4.7.
+"""
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+from ._validate import CamlabInputError, DegenerateError, check_positive
+
+__all__ = ["PairModel", "RobustFit", "local_optimization", "msac_cost", "ransac", "required_iterations"]
+
+_PREVIEW = 100        # with more pairs than 4x this, hypotheses are first scored on this many
+_LO_INNER = 2         # least-squares fits on random inlier subsets per local optimisation
+_LO_STEPS = 3         # iterated least squares: thresholds from _LO_FACTOR * t down to t
+_LO_FACTOR = 3.0
+_LO_FINAL_INNER = 5   # a more thorough local optimisation of the final model
+_LO_FINAL_STEPS = 3
+_ALPHA = 0.01         # significance level of the chance test (step 5)
+
+
+class PairModel:
+    """A model of point pairs ``(x1[i], x2[i])`` that :func:`ransac` can fit robustly.
+
+    Subclasses set :attr:`sample_size` and :attr:`name` and implement :meth:`minimal`,
+    :meth:`fit` and :meth:`residuals`; this base class stores the pairs.
+
+    Parameters
+    ----------
+    x1, x2 : (N, 2) ndarray
+        Validated corresponding pixels (the caller checks them).
+    """
+
+    sample_size: int = 0
+    name: str = "ransac"
+
+    def __init__(self, x1: np.ndarray, x2: np.ndarray):
+        self.x1, self.x2 = x1, x2
+
+    def __len__(self) -> int:
+        return len(self.x1)
+
+    def minimal(self, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Solve (B, sample_size) index samples: (B, ...) models and a (B,) mask of usable ones."""
+        raise NotImplementedError
+
+    def fit(self, idx: np.ndarray) -> np.ndarray:
+        """Least-squares model from the pairs ``idx`` (more than a minimal sample); raises DegenerateError."""
+        raise NotImplementedError
+
+    def residuals(self, models: np.ndarray, i1: np.ndarray | None = None,
+                  i2: np.ndarray | None = None) -> np.ndarray:
+        """(B, M) errors in pixels of the pairs ``(x1[i1], x2[i2])`` (all pairs by default; inf if undefined)."""
+        raise NotImplementedError
+
+
+class RobustFit(NamedTuple):
+    """What :func:`ransac` found.
+
+    Attributes
+    ----------
+    model : ndarray
+        The locally optimised model with the lowest MSAC cost.
+    inliers : (N,) bool ndarray
+        Pairs whose residual under ``model`` is below the threshold.
+    iterations : int
+        Minimal samples drawn.
+    residuals : (N,) ndarray
+        Each pair's error under ``model``, pixels.
+    cost : float
+        The MSAC cost :func:`msac_cost` of ``model``.
+    """
+
+    model: np.ndarray
+    inliers: np.ndarray
+    iterations: int
+    residuals: np.ndarray
+    cost: float
+
+
+def msac_cost(residuals: np.ndarray, threshold: float) -> np.ndarray:
+    r"""Truncated quadratic cost :math:`\sum_i \min(e_i^2, t^2)` along the last axis (lower is better).
+
+    >>> float(msac_cost(np.array([0.0, 1.0, 10.0]), 2.0))  # 0 + 1 + 4 (the outlier is capped)
+    5.0
+    """
+    return np.sum(np.minimum(residuals, threshold) ** 2, axis=-1)
+
+
+def required_iterations(inlier_ratio: float, confidence: float, sample_size: int) -> float:
+    r"""Samples :math:`k = \log(1 - p) / \log(1 - w^s)` needed to draw one all-inlier sample with probability p.
+
+    >>> round(required_iterations(0.5, 0.99, 4))  # 50 % inliers, 4-point samples
+    71
+    """
+    w_s = inlier_ratio ** sample_size
+    if w_s <= 0:
+        return np.inf
+    if w_s >= 1:
+        return 1.0
+    return float(np.log(1 - confidence) / np.log(1 - w_s))
+
+
+def _check_settings(threshold, confidence, max_iters) -> tuple[float, float, int]:
+    threshold = check_positive(threshold, "threshold", "pixels")
+    try:
+        confidence = float(confidence)
+    except (TypeError, ValueError):
+        confidence = np.nan
+    if not 0 < confidence < 1:
+        raise CamlabInputError(f"confidence: expected a probability strictly between 0 and 1, got {confidence!r}; "
+                               f"0.995 is usual")
+    if isinstance(max_iters, bool) or not isinstance(max_iters, (int, np.integer)) or max_iters < 1:
+        raise CamlabInputError(f"max_iters: expected a positive integer, got {max_iters!r}; 2000 is usual")
+    return threshold, confidence, int(max_iters)
+
+
+def local_optimization(model: PairModel, start: np.ndarray, threshold: float, rng: np.random.Generator,
+                       inner: int = _LO_INNER, steps: int = _LO_STEPS) -> tuple[np.ndarray, float]:
+    r"""Improve a model by re-fitting it on its inliers (LO+, Lebeda et al. 2012); returns (model, MSAC cost).
+
+    1. Take the inliers :math:`I` of ``start`` at ``threshold`` t.
+    2. Fit by least squares on all of :math:`I` and on ``_LO_INNER`` random subsets of
+       :math:`I` (half of it, at most 7 minimal samples' worth: subsets escape a model
+       that a few bad inliers pulled askew).
+    3. Polish each fit by iterated least squares: re-select the pairs within a threshold
+       that shrinks geometrically from :math:`3t` to :math:`t` and re-fit on them (a wider
+       threshold first lets the model move towards inliers it did not yet explain).
+    4. Return the candidate with the lowest MSAC cost (``start`` if nothing beats it).
+    """
+    s = model.sample_size
+    res = model.residuals(start[None])[0]
+    best, best_cost = start, float(msac_cost(res, threshold))
+    inl = np.flatnonzero(res < threshold)
+    if len(inl) <= s:
+        return best, best_cost
+    size = min(len(inl) // 2, 7 * s)
+    subsets = [inl] + ([rng.choice(inl, size, replace=False) for _ in range(inner)] if size > s else [])
+    for sub in subsets:
+        try:
+            m = model.fit(sub)
+            for thr in np.geomspace(_LO_FACTOR * threshold, threshold, steps):
+                sel = np.flatnonzero(model.residuals(m[None])[0] < thr)
+                if len(sel) <= s:
+                    break
+                m = model.fit(sel)
+        except DegenerateError:
+            continue
+        cost = float(msac_cost(model.residuals(m[None])[0], threshold))
+        if cost < best_cost:
+            best, best_cost = m, cost
+    return best, best_cost
+
+
+def _chance_significant(model: PairModel, fit: np.ndarray, count: int, threshold: float, drawn: int,
+                        rng: np.random.Generator) -> tuple[bool, float]:
+    """Step 5: is ``count`` inliers more than random pairs reach? Returns (significant, chance rate)."""
+    from scipy.special import bdtrc  # binomial upper tail P(X > k)
+
+    n, s = len(model), model.sample_size
+    i1 = np.tile(np.arange(n), 3)
+    i2 = np.concatenate([rng.permutation(n) for _ in range(3)])
+    wrong = i1 != i2                                   # pairs that cannot correspond
+    chance = float(np.mean(model.residuals(fit[None], i1[wrong], i2[wrong])[0] < threshold)) if wrong.any() else 0.0
+    extra = count - s
+    p_any = drawn * bdtrc(extra - 1, n - s, chance)  # P(X >= extra) per hypothesis
+    return bool(p_any < _ALPHA), chance
+
+
+def ransac(model: PairModel, threshold: float, confidence: float = 0.995, max_iters: int = 2000,
+           rng: np.random.Generator | int | None = None, *, batch: int = 64,
+           local_optimize: bool = True) -> RobustFit:
+    """Fit ``model`` robustly: sample, score (MSAC), optimise locally, stop adaptively, refuse chance.
+
+    See the module docstring for the derivation of each step.
+
+    Parameters
+    ----------
+    model : PairModel
+        The pairs and how to fit them (e.g. ``camlab.homography.HomographyModel``).
+    threshold : float
+        Inlier threshold on the model's residual, pixels.
+    confidence : float
+        Probability in (0, 1) of having drawn at least one all-inlier sample.
+    max_iters : int
+        Upper bound on minimal samples drawn.
+    rng : np.random.Generator, int or None
+        Randomness (seed it for reproducible results).
+    batch : int
+        Samples solved and scored per vectorised step.
+    local_optimize : bool
+        Step 3 (default on); off gives plain MSAC, to compare.
+
+    Returns
+    -------
+    RobustFit
+
+    Raises
+    ------
+    DegenerateError
+        If no sample gives a usable model, or the best consensus is no larger than random
+        pairs reach by chance (step 5).
+    """
+    threshold, confidence, max_iters = _check_settings(threshold, confidence, max_iters)
+    batch = int(check_positive(batch, "batch"))
+    rng = np.random.default_rng(rng)
+    n, s = len(model), model.sample_size
+    best, best_cost, best_count, best_raw = None, np.inf, 0, np.inf
+    needed, drawn = float(max_iters), 0
+    while drawn < min(needed, max_iters):
+        b = int(np.clip(min(needed, max_iters) - drawn, 1, batch if drawn else max(batch // 4, 1)))
+        idx = rng.integers(0, n, size=(b, s))
+        drawn += b
+        srt = np.sort(idx, axis=1)
+        idx = idx[np.all(srt[:, 1:] != srt[:, :-1], axis=1)]      # s distinct pairs
+        if len(idx) == 0:
+            continue
+        models, ok = model.minimal(idx)
+        models = models[ok]
+        if len(models) == 0:
+            continue
+        if len(models) > 4 and n > 4 * _PREVIEW:
+            # Score on a random subset first; fully score only the most promising quarter.
+            sub = rng.choice(n, _PREVIEW, replace=False)
+            pre = msac_cost(model.residuals(models, sub, sub), threshold)
+            models = models[np.argsort(pre, kind="stable")[: max(2, len(models) // 4)]]
+        costs = msac_cost(model.residuals(models), threshold)
+        k = int(np.argmin(costs))
+        # Compare raw hypotheses with raw ones: a polished model would otherwise shut out
+        # every raw hypothesis of a better structure (raw fits are noisier than polished).
+        if costs[k] >= best_raw:
+            continue
+        best_raw = float(costs[k])
+        candidate, cost = models[k], best_raw
+        if local_optimize:
+            candidate, cost = local_optimization(model, candidate, threshold, rng)
+        if cost >= best_cost:
+            continue
+        best, best_cost = candidate, cost
+        best_count = int(np.sum(model.residuals(best[None])[0] < threshold))
+        needed = required_iterations(best_count / n, confidence, s)
+    if best is not None and local_optimize:
+        best, best_cost = local_optimization(model, best, threshold, rng, inner=_LO_FINAL_INNER, steps=_LO_FINAL_STEPS)
+        best_count = int(np.sum(model.residuals(best[None])[0] < threshold))
+    if best is None:
+        raise DegenerateError(f"{model.name}: none of the {drawn} random samples gave a usable model; the points "
+                              f"may be collinear or repeated")
+    if best_count <= s:
+        raise DegenerateError(
+            f"{model.name}: too few inliers: no hypothesis from {drawn} samples was supported by any pair beyond its "
+            f"own {s} within {threshold} px; the matches may be all wrong, or the threshold too small"
+        )
+    significant, chance = _chance_significant(model, best, best_count, threshold, drawn, rng)
+    if not significant:
+        raise DegenerateError(
+            f"{model.name}: too few inliers: the best of {drawn} hypotheses explains {best_count} of {n} pairs within "
+            f"{threshold} px, but wrong pairs fit it at a rate of {chance:.2g}, so that many could be chance. The "
+            f"matches may be mostly wrong (check the matching), or the threshold too small"
+        )
+    res = model.residuals(best[None])[0]
+    return RobustFit(best, res < threshold, int(drawn), res, best_cost)

@@ -1,0 +1,115 @@
+"""The robust driver (camlab.robust) with its two plug-ins, on synthetic data and on real photo pairs vs OpenCV."""
+from __future__ import annotations
+
+from functools import lru_cache
+
+import cv2
+import numpy as np
+import pytest
+
+from camlab import robust
+from camlab._validate import CamlabInputError, DegenerateError
+from camlab.data import load_photo
+from camlab.epipolar import ransac_fundamental_matrix
+from camlab.features import detect_features, match_features
+from camlab.homography import HomographyModel, ransac_homography, symmetric_transfer_error
+from camlab.projective import map_points
+
+
+@lru_cache(maxsize=None)
+def _matches(a: str, b: str, max_features: int, ratio: float) -> tuple[np.ndarray, np.ndarray]:
+    m = match_features(detect_features(load_photo(a), max_features=max_features),
+                       detect_features(load_photo(b), max_features=max_features), ratio)
+    return m.src, m.dst
+
+
+def _msac(H, src, dst, t=3.0) -> float:
+    return float(np.sum(np.minimum(symmetric_transfer_error(H, src, dst), t) ** 2))
+
+
+def _synthetic(outliers: float, n: int = 300, seed: int = 0):
+    rng = np.random.default_rng(seed)
+    H = np.array([[0.9, 0.1, 40.0], [-0.05, 1.1, -10.0], [3e-4, 2e-4, 1.0]])
+    src = rng.uniform(0, 640, (n, 2))
+    dst = map_points(H, src) + rng.normal(0, 0.5, (n, 2))
+    bad = rng.random(n) < outliers
+    dst[bad] = rng.uniform(0, 640, (bad.sum(), 2))
+    return src, dst, ~bad
+
+
+def test_same_inliers_for_every_seed_at_70_percent_outliers():
+    src, dst, good = _synthetic(0.7)
+    masks = [ransac_homography(src, dst, 3.0, rng=seed).inliers for seed in range(10)]
+    assert all(np.array_equal(m, masks[0]) for m in masks)
+    assert (masks[0] & good).sum() >= 0.97 * good.sum() and (masks[0] & ~good).sum() <= 3
+
+
+def test_local_optimization_never_raises_the_cost():
+    src, dst, _ = _synthetic(0.5, seed=3)
+    model = HomographyModel(src, dst)
+    rng = np.random.default_rng(0)
+    idx = np.flatnonzero(_synthetic(0.5, seed=3)[2])[:4][None]
+    H4, ok = model.minimal(idx)
+    assert ok[0]
+    raw = float(robust.msac_cost(model.residuals(H4)[0], 3.0))
+    H, cost = robust.local_optimization(model, H4[0], 3.0, rng)
+    assert cost < raw
+    assert cost == pytest.approx(float(robust.msac_cost(model.residuals(H[None])[0], 3.0)))
+
+
+def test_local_optimization_beats_plain_msac_in_cost():
+    src, dst, _ = _synthetic(0.6, seed=4)
+    lo = robust.ransac(HomographyModel(src, dst), 3.0, rng=1)
+    plain = robust.ransac(HomographyModel(src, dst), 3.0, rng=1, local_optimize=False)
+    assert lo.cost <= plain.cost
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"threshold": "3"}, "threshold"), ({"threshold": -1}, "threshold"), ({"confidence": 1.5}, "confidence"),
+    ({"confidence": None}, "confidence"), ({"max_iters": "many"}, "max_iters"), ({"max_iters": 2.5}, "max_iters"),
+    ({"max_iters": 0}, "max_iters"),
+])
+def test_driver_settings_are_checked(kwargs, match):
+    src, dst, _ = _synthetic(0.2)
+    with pytest.raises(CamlabInputError, match=match):
+        ransac_homography(src, dst, **kwargs)
+
+
+# --------------------------------------------------------------------------- real photographs
+
+@pytest.mark.parametrize("pair, max_features, ratio", [
+    (("building_1", "building_3"), 300, 0.9),     # few matches, few inliers, large viewpoint change
+    (("building_2", "building_3"), 300, 0.9),
+    (("building_1", "building_2"), 2500, 0.8),
+])
+def test_homography_on_real_pairs_is_as_good_as_opencv_and_steady(pair, max_features, ratio):
+    src, dst = _matches(*pair, max_features, ratio)
+    ours = [ransac_homography(src, dst, 3.0, rng=seed).H for seed in range(10)]
+    counts = np.array([(symmetric_transfer_error(H, src, dst) < 3).sum() for H in ours])
+    costs = np.array([_msac(H, src, dst) for H in ours])
+    cv = [cv2.findHomography(src, dst, m, 3.0)[0] for m in (cv2.RANSAC, cv2.USAC_MAGSAC)]
+    cv_counts = [(symmetric_transfer_error(H, src, dst) < 3).sum() for H in cv]
+    cv_cost = min(_msac(H, src, dst) for H in cv)
+    # Every seed within 5 % of OpenCV's better inlier count and its MSAC cost, and seeds agree.
+    assert counts.min() >= 0.95 * max(cv_counts), (counts, cv_counts)
+    assert np.median(costs) <= 1.05 * cv_cost, (costs, cv_cost)
+    assert counts.max() - counts.min() <= max(2, 0.05 * np.median(counts)), counts
+
+
+def test_fundamental_on_a_real_stereo_pair_matches_magsac():
+    x1, x2 = _matches("walls_left", "walls_right", 2500, 0.8)
+    counts = [int(ransac_fundamental_matrix(x1, x2, 1.0, rng=seed).inliers.sum()) for seed in range(5)]
+    magsac = int(cv2.findFundamentalMat(x1, x2, cv2.USAC_MAGSAC, 1.0, 0.999)[1].sum())
+    assert min(counts) >= 0.98 * magsac and max(counts) - min(counts) <= 3, (counts, magsac)
+
+
+@pytest.mark.parametrize("estimator, args", [
+    (ransac_fundamental_matrix, (1.0,)), (ransac_homography, (3.0,)),
+])
+def test_all_wrong_real_matches_give_too_few_inliers(estimator, args):
+    x1, x2 = _matches("walls_left", "walls_right", 2500, 0.8)
+    wrong = x2[np.random.default_rng(0).permutation(len(x2))]
+    with pytest.raises(DegenerateError, match="too few inliers"):
+        estimator(x1, wrong, *args, rng=0)
+    # OpenCV returns a model on the same matches: it does not test for chance.
+    assert cv2.findFundamentalMat(x1, wrong, cv2.FM_RANSAC, 1.0, 0.999)[1] is not None

@@ -1,0 +1,94 @@
+"""Live figures leave a static PNG with alt text in their display bundle (camlab.plotting.static)."""
+import base64
+import io
+
+import matplotlib.image as mpimg
+import numpy as np
+import pytest
+from matplotlib.figure import Figure
+
+from camlab.plotting import static
+from camlab.widgets import all_demos
+
+DEMOS = all_demos()
+WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
+
+
+def _png_pixels(b64: str) -> np.ndarray:
+    return (mpimg.imread(io.BytesIO(base64.b64decode(b64)), format="png") * 255).round().astype(np.uint8)
+
+
+@pytest.mark.parametrize("name", sorted(DEMOS))
+def test_demo_bundle_has_widget_png_and_alt_text(name):
+    spec = DEMOS[name]
+    demo = spec.builder()
+    data, metadata = demo._repr_mimebundle_()
+    assert WIDGET_VIEW in data and data[WIDGET_VIEW]["model_id"] == demo.widget.model_id
+    assert "text/html" not in data
+    png = _png_pixels(data["image/png"])
+    shown = demo.view.pixels()
+    assert png.shape[:2] == shown.shape[:2], f"{name}: the PNG is not the figure's size"
+    diff = np.abs(png[..., :3].astype(int) - shown[..., :3].astype(int)).mean()
+    assert diff < 3, f"{name}: the PNG differs from the figure as shown (mean |diff| {diff:.1f} grey levels)"
+    alt = metadata["image/png"]["alt"]
+    assert alt == data["text/plain"]
+    first_words = " ".join(spec.builder.__doc__.split()[:3])
+    assert alt.startswith(first_words), f"{name}: alt text should start with the demo's description: {alt!r}"
+    for control in demo.controls.values():
+        assert f"{control.description.strip().rstrip('=:').strip()} = " in alt, f"{name}: alt text misses a setting"
+    h, w = png.shape[:2]
+    assert (metadata["image/png"]["width"], metadata["image/png"]["height"]) == (w, h)
+
+
+def test_alt_text_follows_the_settings():
+    demo = DEMOS["stack_check"].builder()
+    assert "angle (°) = 20; scale = 1." in demo.alt_text
+    demo.set(angle=-35.0, scale=1.5)
+    assert "angle (°) = -35; scale = 1.5." in demo.alt_text
+    assert "Panels: 'drag the sliders'" in demo.alt_text
+
+
+def test_selection_controls_show_their_label():
+    import ipywidgets as W
+
+    controls = {"b": W.SelectionSlider(options=[0.0, 0.25], value=0.0, description="baseline (m)"),
+                "m": W.Dropdown(options=[("multi-band", "mb"), ("feather", "f")], value="f", description="blend"),
+                "on": W.Checkbox(value=True, description="outlines")}
+    assert static.demo_alt_text("A demo", controls) == "A demo. Shown at baseline (m) = 0.0; blend = feather; outlines = on."
+
+
+def test_plain_figure_description_names_panels_labels_and_legend():
+    fig = Figure()
+    ax1, ax2 = fig.subplots(1, 2)
+    ax1.plot([0, 1], label="f = 25 mm")
+    ax1.plot([1, 0], label="f = 50 mm")
+    ax1.set(title="image height", xlabel="distance Z (m)", ylabel="height (mm)")
+    ax1.legend()
+    ax2.imshow(np.zeros((4, 4)))
+    ax2.set_title("photo")
+    assert static.describe_figure(fig) == (
+        "Figure with 2 panels: plot 'image height', axes 'distance Z (m)', 'height (mm)', "
+        "legend 'f = 25 mm', 'f = 50 mm'; image 'photo'.")
+    static.alt_text(fig, "  Image height falls as 1/Z.  ")
+    assert static.describe_figure(fig) == "Image height falls as 1/Z."
+    with pytest.raises(ValueError, match="alt_text: expected a sentence"):
+        static.alt_text(fig, " ")
+
+
+def test_ipympl_canvas_display_carries_png_and_alt_text_in_a_shell():
+    """The formatter camlab.widgets installs in a kernel: real IPython display path, real ipympl canvas."""
+    from IPython.core.interactiveshell import InteractiveShell
+    from ipympl.backend_nbagg import Canvas
+
+    shell = InteractiveShell.instance()
+    try:
+        assert static.install_canvas_formatter()
+        fig = Figure(figsize=(3, 2), dpi=80)
+        Canvas(fig)
+        fig.subplots().set_title("join and meet")
+        data, metadata = shell.display_formatter.format(fig.canvas)
+    finally:
+        InteractiveShell.clear_instance()
+    assert WIDGET_VIEW in data and "text/html" not in data
+    assert _png_pixels(data["image/png"]).shape[:2] == (160, 240)
+    assert metadata["image/png"]["alt"] == "Figure: plot 'join and meet'."

@@ -1,0 +1,114 @@
+"""Headless Debian Chromium and a throwaway JupyterLab, for the browser tests and benchmarks.
+
+Playwright drives the system Chromium (never `playwright install`, which downloads a browser);
+JupyterLab runs on loopback with a token, a free port and temporary config, runtime, settings
+and workspace folders, so nothing touches the user's setup (see ../shared ECOSYSTEM notes).
+"""
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import secrets
+import shutil
+import socket
+import subprocess
+import sys
+import time
+import urllib.request
+from pathlib import Path
+from typing import Iterator
+
+CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
+CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                 "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                 "--disable-dev-shm-usage"]
+
+KERNEL_IDLE = """() => {
+  const w = window.jupyterapp && window.jupyterapp.shell.currentWidget;
+  const k = w && w.sessionContext && w.sessionContext.session && w.sessionContext.session.kernel;
+  return !!k && k.connectionStatus === 'connected' && k.status === 'idle';
+}"""
+
+# The kernel is briefly idle between cells, so also require every code cell to have run.
+ALL_CELLS_RUN = """() => {
+  const w = window.jupyterapp.shell.currentWidget;
+  const k = w.sessionContext.session.kernel;
+  const code = w.content.widgets.filter((c) => c.model.type === 'code');
+  return k.status === 'idle' && code.every((c) => c.model.executionCount !== null);
+}"""
+
+RUN_ALL = "() => { window.jupyterapp.commands.execute('notebook:run-all-cells'); }"  # never await it: it can hang
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def wait_for_http(url: str, process: subprocess.Popen, log: Path, timeout: float = 60) -> None:
+    """Poll ``url`` until it answers 200; raise with the server's log if it dies or times out."""
+    deadline = time.time() + timeout
+    while True:
+        try:
+            with urllib.request.urlopen(url, timeout=2) as r:
+                if r.status == 200:
+                    return
+        except OSError:
+            pass
+        if time.time() > deadline or process.poll() is not None:
+            raise RuntimeError(f"{url} did not come up:\n" + log.read_text(errors="replace")[-3000:])
+        time.sleep(0.5)
+
+
+def stop(process: subprocess.Popen) -> None:
+    process.terminate()
+    try:
+        process.wait(timeout=15)
+    except subprocess.TimeoutExpired:
+        process.kill()
+
+
+@contextlib.contextmanager
+def jupyterlab(root: Path, base: Path) -> Iterator[dict]:
+    """Serve ``root`` with JupyterLab (ipympl backend) using scratch folders under ``base``.
+
+    Yields ``dict(url, token, profile)``; ``profile`` is a fresh Chromium profile folder.
+    """
+    settings = base / "settings" / "@jupyterlab" / "apputils-extension"
+    settings.mkdir(parents=True)
+    (settings / "notification.jupyterlab-settings").write_text(
+        json.dumps({"fetchNews": "false", "checkForUpdates": False}))
+    env = dict(os.environ, JUPYTER_CONFIG_DIR=str(base / "config"), JUPYTER_RUNTIME_DIR=str(base / "runtime"),
+               JUPYTERLAB_SETTINGS_DIR=str(base / "settings"), JUPYTERLAB_WORKSPACES_DIR=str(base / "workspaces"),
+               MPLBACKEND="module://ipympl.backend_nbagg")
+    env.pop("CAMLAB_FIGURE_MODE", None)
+    token, port = secrets.token_hex(16), free_port()
+    cmd = [sys.executable, "-m", "jupyter", "lab", "--no-browser", f"--port={port}", "--ip=127.0.0.1",
+           f"--ServerApp.token={token}", f"--ServerApp.root_dir={root}", "--LabApp.expose_app_in_browser=True",
+           "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate", "--ServerApp.open_browser=False"]
+    if hasattr(os, "geteuid") and os.geteuid() == 0:
+        cmd.append("--allow-root")
+    log_path = base / "lab.log"
+    with open(log_path, "wb") as log:
+        server = subprocess.Popen(cmd, env=env, stdout=log, stderr=subprocess.STDOUT)
+        url = f"http://127.0.0.1:{port}"
+        try:
+            wait_for_http(f"{url}/api/status?token={token}", server, log_path)
+            yield dict(url=url, token=token, profile=base / "chromium")
+        finally:
+            stop(server)
+
+
+def launch(playwright, profile: Path, **kw):
+    """A persistent headless Chromium context on the system browser."""
+    return playwright.chromium.launch_persistent_context(
+        str(profile), executable_path=CHROMIUM, headless=True, args=CHROMIUM_ARGS,
+        viewport={"width": 1400, "height": 1000}, **kw)
+
+
+def open_notebook(page, lab: dict, path: str) -> None:
+    """Open ``path`` in a fresh workspace and wait for its kernel."""
+    page.goto(f"{lab['url']}/lab/workspaces/t{secrets.token_hex(4)}/tree/{path}?reset&token={lab['token']}")
+    page.wait_for_function(KERNEL_IDLE, polling=500)
