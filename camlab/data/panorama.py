@@ -314,7 +314,7 @@ def environment_map() -> np.ndarray:
     per 0.117 degree in both directions, so latitudes up to +-60 degrees. Mirroring makes
     the world seamless at 360 degrees.
     """
-    from .data import load_photo
+    from .photos import load_photo
 
     photo = load_photo("lab_scene")
     # the photo's centre straight ahead; its mirror image behind (the seams at +-90 degrees)
@@ -391,7 +391,7 @@ TURNING_SETS = {
 
 @lru_cache(maxsize=8)
 def _turning(name: str, f: float, width: int, height: int, unrelated: bool) -> TurningSet:
-    from .data import load_photo
+    from .photos import load_photo
 
     spec = TURNING_SETS[name]
     K = np.array([[f, 0, (width - 1) / 2], [0, f, (height - 1) / 2], [0, 0, 1.0]])
@@ -447,7 +447,7 @@ def load_aerial_mosaic(count: int = 6) -> list:
     A flat scene seen from six positions (mvtb-data ``mosaic/aerial2-00*``, MIT; see
     data/photos/ATTRIBUTION.md), so consecutive photos are related by homographies.
     """
-    from .data import load_photo
+    from .photos import load_photo
 
     if not 2 <= int(count) <= 6:
         raise CamlabInputError(f"count: expected 2 to 6 aerial photos, got {count!r}")

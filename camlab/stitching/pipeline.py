@@ -25,8 +25,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .. import features as _feat
-from .. import homography as _hg
-from .._validate import CamlabInputError, DegenerateError
+from .._validate import CamlabInputError, DegenerateError, check_intrinsics
 from . import BLENDS, WarpedImages, blend, feather_weights, gain_compensation, match_graph, prepare_images, warp_images
 from .cameras import adjust_homographies, estimate_cameras, estimate_focal, inlier_matches
 from .projections import PROJECTIONS, canvas_from_ray, make_canvas, warp_to_canvas
@@ -267,7 +266,7 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
     all_uint8 = all(np.asarray(im).dtype == np.uint8 for im in images)
     n = len(imgs)
     label = _names(names, n)
-    Kfix = None if K is None else _hg._check_K(K, "K")
+    Kfix = None if K is None else check_intrinsics(K, "K")
     dup = _duplicates(imgs)
     if dup:
         warnings.warn("stitch: " + "; ".join(f"{label[j]!r} is the same photo as {label[i]!r}" for j, i in dup.items())
