@@ -38,7 +38,7 @@ browser-deps:
 	  fi; }
 
 # Unit, property, doctest, widget, exercise, lesson (nbval) and browser tests in one run.
-test: $(VENV)/.installed-test browser-deps
+test: $(VENV)/.installed-test browser-deps hub-deps
 	$(BIN)/python -m pytest -n 2 --dist loadfile --nbval-lax $(PYTEST_ARGS)
 
 # Everything but the notebooks and the browser: the quick loop while editing.
@@ -64,3 +64,16 @@ clean:
 LESSON ?= 00
 present: $(VENV)/.installed-test
 	$(BIN)/camlab present $(LESSON)
+
+# configurable-http-proxy (npm registry) for the JupyterHub test, in a local prefix.
+CHP := $(VENV)/chp/node_modules/.bin/configurable-http-proxy
+.PHONY: hub-deps class-load
+hub-deps: $(CHP)
+$(CHP): | $(BIN)/python
+	npm install --prefix $(VENV)/chp --no-audit --no-fund --loglevel=error configurable-http-proxy@5
+
+# A real hub with N students running lessons at once; prints the sizing table (docs/teaching.md).
+N ?= 8
+LESSONS ?=
+class-load: $(VENV)/.installed-test hub-deps
+	$(BIN)/python benchmarks/class_load.py --students $(N) $(LESSONS)

@@ -30,6 +30,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .distortion import distort_points
+from .optimize import levenberg_marquardt, unit_sphere_basis, unit_sphere_update
+from .projective import hartley_normalization
 from ._validate import (
     CamlabInputError,
     ConvergenceError,
@@ -684,20 +686,6 @@ def decompose_projection_matrix(P: ArrayLike) -> Decomposition:
 # Resectioning: the DLT for cameras
 # ---------------------------------------------------------------------------------------
 
-def _normalizing_transform(points: np.ndarray) -> np.ndarray:
-    r"""Hartley's similarity: centroid to the origin, mean distance :math:`\sqrt{d}`."""
-    d = points.shape[1]
-    c = points.mean(axis=0)
-    mean_dist = np.linalg.norm(points - c, axis=1).mean()
-    if mean_dist == 0:
-        raise DegenerateError("estimate_projection_matrix: all points coincide; spread them out")
-    s = np.sqrt(d) / mean_dist
-    T = np.eye(d + 1)
-    T[:d, :d] *= s
-    T[:d, d] = -s * c
-    return T
-
-
 def reprojection_errors(P: ArrayLike, points_world: ArrayLike, points_image: ArrayLike) -> np.ndarray:
     """(N,) distances in pixels between ``points_image`` and the projections of ``points_world`` by P."""
     uv = as_points(points_image, 2, "points_image").array
@@ -735,7 +723,8 @@ def estimate_projection_matrix(
     :math:`\hat P` for the normalised points, and :math:`P = T^{-1} \hat P U`.
 
     With ``refine=True`` the linear estimate seeds Levenberg-Marquardt
-    (scipy.optimize.least_squares) on the reprojection error
+    (:func:`camlab.optimize.levenberg_marquardt`, on the unit sphere of P's 12 entries) on the
+    reprojection error
     :math:`\sum_i \|u_i - \pi(P, X_i)\|^2`, the maximum-likelihood (gold standard)
     estimate under Gaussian pixel noise.
 
@@ -783,8 +772,8 @@ def estimate_projection_matrix(
             f"thinnest direction is {sv[2] / max(sv[0], 1e-300):.2g} of the widest), so P is not determined; "
             f"use points on at least two planes (e.g. two faces of a box), or a homography for one plane"
         )
-    T = _normalizing_transform(uv)
-    U = _normalizing_transform(X)
+    T = hartley_normalization(uv, "points_image")
+    U = hartley_normalization(X, "points_world")
     Xn = np.hstack([X, np.ones((len(X), 1))]) @ U.T
     un = (np.hstack([uv, np.ones((len(uv), 1))]) @ T.T)[:, :2]
     n = len(X)
@@ -815,8 +804,7 @@ def _normalize_P(P: np.ndarray) -> np.ndarray:
 
 
 def _refine_projection_matrix(P0: np.ndarray, X: np.ndarray, uv: np.ndarray) -> np.ndarray:
-    from scipy.optimize import least_squares
-
+    """Gold-standard P: LM on the reprojection error, stepping on the unit sphere of the 12 entries."""
     Xh = np.hstack([X, np.ones((len(X), 1))])
 
     def residuals(p: np.ndarray) -> np.ndarray:
@@ -834,10 +822,12 @@ def _refine_projection_matrix(P0: np.ndarray, X: np.ndarray, uv: np.ndarray) -> 
         J[:, 0, 8:12] = -u * Xh / w
         J[:, 1, 4:8] = Xh / w
         J[:, 1, 8:12] = -v * Xh / w
-        return J.reshape(-1, 12)
+        return J.reshape(-1, 12) @ unit_sphere_basis(p)
 
-    res = least_squares(residuals, P0.ravel(), jac=jacobian, method="lm", x_scale="jac")
-    if not res.success:
+    p0 = P0.ravel() / np.linalg.norm(P0)
+    res = levenberg_marquardt(residuals, p0, jacobian, update=unit_sphere_update, max_iter=200,
+                              ftol=1e-15, xtol=1e-15, gtol=1e-12)
+    if not np.all(np.isfinite(res.x)):
         raise ConvergenceError(f"estimate_projection_matrix: refinement did not converge ({res.message})")
     return _normalize_P(res.x.reshape(3, 4))
 

@@ -14,6 +14,8 @@ lines by ``l' = H^{-T} l``. See lesson 06.
 """
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -24,6 +26,7 @@ __all__ = [
     "ideal_point", "is_ideal", "is_on_line", "join", "map_lines", "map_points", "meet", "normalize_lines",
     "splits_at_infinity",
     "normalize_points", "point_line_distance", "to_homogeneous", "vanishing_point",
+    "HartleyNormalized", "hartley_normalization", "hartley_normalize",
 ]
 
 LINE_AT_INFINITY = np.array([0.0, 0.0, 1.0])
@@ -456,10 +459,7 @@ def vanishing_point(segments: ArrayLike) -> np.ndarray:
     lengths = np.linalg.norm(s[:, 1] - s[:, 0], axis=1)
     if np.any(lengths == 0):
         raise DegenerateError(f"segments: segment {int(np.argmin(lengths))} has zero length; it defines no line")
-    pts = s.reshape(-1, 2)
-    centre = pts.mean(axis=0)
-    scale = np.sqrt(2) / max(np.mean(np.linalg.norm(pts - centre, axis=1)), 1e-300)
-    T = np.array([[scale, 0, -scale * centre[0]], [0, scale, -scale * centre[1]], [0, 0, 1]])
+    T = hartley_normalization(s.reshape(-1, 2), "segments")
     ends = [to_homogeneous(s[:, k]) @ T.T for k in (0, 1)]
     lines = normalize_lines(np.cross(ends[0], ends[1]))
     _, sv, vt = np.linalg.svd(lines)
@@ -525,3 +525,83 @@ def clip_line(line: ArrayLike, xlim: tuple[float, float], ylim: tuple[float, flo
     if d[i, j] <= eps:
         return np.full((2, 2), np.nan)
     return np.array([pts[i], pts[j]]) + 0.0  # + 0.0 turns -0.0 into 0.0
+
+
+# --------------------------------------------------------------------------- conditioning
+
+def hartley_normalization(points: ArrayLike, name: str = "points") -> np.ndarray:
+    r"""Hartley's similarity T that centres (N, D) points and scales their mean distance to :math:`\sqrt D`.
+
+    .. math:: T = \begin{pmatrix} s I_D & -s \bar x \\ 0^\top & 1 \end{pmatrix},
+              \quad s = \frac{\sqrt D}{\operatorname{mean}_i \| x_i - \bar x \|}
+
+    After the mapping, coordinates are of order 1, so the entries of a DLT matrix
+    (products of coordinates such as :math:`u u'`) are of similar size and its SVD is well
+    conditioned (Hartley 1997; H&Z algorithms 4.2 and 7.1). Image points (D = 2) end at
+    mean distance :math:`\sqrt 2`, world points (D = 3) at :math:`\sqrt 3`.
+
+    Parameters
+    ----------
+    points : (N, D) array_like
+        D = 2 (image) or 3 (world), Euclidean.
+    name : str
+        The argument's name in error messages.
+
+    Returns
+    -------
+    (D + 1, D + 1) ndarray
+        T, acting on homogeneous points: :math:`\tilde x_n = T \tilde x`.
+
+    Raises
+    ------
+    DegenerateError
+        All points coincide (nothing to scale).
+
+    Examples
+    --------
+    >>> T = hartley_normalization([[0, 0], [2, 0], [2, 2], [0, 2]])
+    >>> map_points(T, [[0, 0], [2, 2]]).round(6)
+    array([[-1., -1.],
+           [ 1.,  1.]])
+    """
+    p = as_points(points, (2, 3), name).array
+    d = p.shape[1]
+    c = p.mean(axis=0)
+    spread = np.mean(np.linalg.norm(p - c, axis=1))
+    if spread == 0:
+        raise DegenerateError(f"{name}: all points coincide, so they cannot be normalised; use distinct points")
+    s = np.sqrt(d) / spread
+    T = np.eye(d + 1)
+    T[:d, :d] *= s
+    T[:d, d] = -s * c
+    return T
+
+
+class HartleyNormalized(NamedTuple):
+    r"""(N, D) points after Hartley's conditioning, and the (D + 1, D + 1) similarity T that did it.
+
+    Attributes
+    ----------
+    points : (N, D) ndarray
+        Centred, mean distance :math:`\sqrt D`.
+    T : (D + 1, D + 1) ndarray
+        :math:`\tilde x_n = T \tilde x`; undo a DLT estimate with :math:`T^{-1}`.
+    """
+
+    points: np.ndarray
+    T: np.ndarray
+
+
+def hartley_normalize(points: ArrayLike, name: str = "points") -> HartleyNormalized:
+    """Apply :func:`hartley_normalization`: ``(T x, T)`` for (N, D) points.
+
+    >>> hartley_normalize([[0, 0], [2, 0], [2, 2], [0, 2]]).points
+    array([[-1., -1.],
+           [ 1., -1.],
+           [ 1.,  1.],
+           [-1.,  1.]])
+    """
+    p = as_points(points, (2, 3), name).array
+    T = hartley_normalization(p, name)
+    d = p.shape[1]
+    return HartleyNormalized(p * T[0, 0] + T[:d, d], T)

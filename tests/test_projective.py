@@ -231,3 +231,22 @@ def test_clip_line():
     np.testing.assert_allclose(pj.clip_line([1, -1, 0], (0, 10), (0, 5)), [[0, 0], [5, 5]], atol=1e-12)
     assert np.isnan(pj.clip_line([0, 1, -20], (0, 10), (0, 5))).all()
     assert np.isnan(pj.clip_line([0, 0, 1], (0, 10), (0, 5))).all()
+
+
+@pytest.mark.parametrize("d", [2, 3])
+def test_hartley_normalize_centres_and_scales_n_by_d_points(d):
+    rng = np.random.default_rng(d)
+    p = rng.uniform(-300, 900, (40, d))
+    pn, T = pj.hartley_normalize(p)
+    assert T.shape == (d + 1, d + 1)
+    np.testing.assert_allclose(pn.mean(axis=0), 0, atol=1e-12)
+    assert np.isclose(np.linalg.norm(pn, axis=1).mean(), np.sqrt(d))
+    np.testing.assert_allclose(np.c_[p, np.ones(40)] @ T.T, np.c_[pn, np.ones(40)], atol=1e-12)
+    np.testing.assert_array_equal(pj.hartley_normalization(p), T)
+
+
+def test_hartley_normalize_rejects_coincident_points_naming_them():
+    with pytest.raises(DegenerateError, match=r"^points_world: all points coincide"):
+        pj.hartley_normalization(np.ones((5, 3)), "points_world")
+    with pytest.raises(CamlabInputError, match=r"points: expected \(N, 2\) or \(N, 3\) points"):
+        pj.hartley_normalize(np.ones((5, 4)))
