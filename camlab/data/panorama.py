@@ -24,6 +24,7 @@ stitch. Load everything with :func:`load_panorama_set`.
 from __future__ import annotations
 
 import json
+from functools import lru_cache
 from pathlib import Path
 from typing import NamedTuple
 
