@@ -23,7 +23,7 @@ from camlab import disparity as dp  # noqa: E402
 from camlab import epipolar as ep  # noqa: E402
 from camlab import rectification as rc  # noqa: E402
 from camlab.camera import Camera  # noqa: E402
-from camlab.stereo_data import load_stereo_rig  # noqa: E402
+from camlab.data.stereo import load_stereo_rig  # noqa: E402
 
 
 def _matches(n: int = 500, outliers: float = 0.3, seed: int = 0):

@@ -30,7 +30,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _timing import median_ms, print_table  # noqa: E402
 
 from camlab import stitching as st  # noqa: E402
-from camlab import stitching_data as sd  # noqa: E402
+from camlab.data import panorama as sd  # noqa: E402
 
 LEVELS = 5
 

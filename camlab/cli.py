@@ -5,6 +5,9 @@ write ``_add_<name>(parser)`` and ``_run_<name>(args) -> int`` and register them
 user can fix (bad pattern, no images, too few detections) are printed as one clear
 message with exit status 2, never a traceback.
 
+``camlab lessons [DEST] [--force]`` copies the lessons into a working folder (see
+:mod:`camlab.course`); ``camlab --version`` prints the version.
+
 ``camlab calibrate "photos/*.jpg" --pattern 9x6 --square 0.025 [--out camera.json]
 [--report report.png]`` detects the chessboard in each photo, calibrates, prints the result
 and the coach's advice, writes an OpenCV-loadable file (``cv2.FileStorage``: ``.json``,
@@ -74,6 +77,19 @@ def _run_calibrate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _add_lessons(p: argparse.ArgumentParser) -> None:
+    p.add_argument("dest", nargs="?", default="camlab-course",
+                   help="working folder (default ./camlab-course); lessons go to DEST/lessons, docs to DEST/docs")
+    p.add_argument("--force", action="store_true", help="also overwrite lessons you have edited")
+
+
+def _run_lessons(args: argparse.Namespace) -> int:
+    from .course import copy_course
+
+    print(copy_course(args.dest, force=args.force).text())
+    return 0
+
+
 def _add_assignments(p: argparse.ArgumentParser) -> None:
     p.add_argument("dest", help="a new (or empty) folder for the nbgrader course directory")
     p.add_argument("lessons", nargs="*", metavar="LESSON", help="lesson numbers or names, e.g. 06 07 (default: all)")
@@ -102,13 +118,17 @@ def _run_present(args: argparse.Namespace) -> int:
 
 COMMANDS: dict[str, tuple[str, Callable[[argparse.ArgumentParser], None], Callable[[argparse.Namespace], int]]] = {
     "calibrate": ("calibrate a camera from photos of a chessboard", _add_calibrate, _run_calibrate),
+    "lessons": ("copy the lessons into a working folder (keeps lessons you edited)", _add_lessons, _run_lessons),
     "present": ("lecture mode: serve one lesson's demos without code (Voila)", _add_present, _run_present),
     "assignments": ("write an nbgrader course directory of graded lessons", _add_assignments, _run_assignments),
 }
 
 
 def build_parser() -> argparse.ArgumentParser:
+    from . import __version__
+
     parser = argparse.ArgumentParser(prog="camlab", description="camlab: camera geometry tools")
+    parser.add_argument("--version", action="version", version=f"camlab {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     for name, (help_text, add, run) in COMMANDS.items():
         p = sub.add_parser(name, help=help_text, description=help_text)

@@ -38,8 +38,8 @@ from ._validate import (
     check_rotation,
 )
 from .camera import Camera, camera_centre
-from .homography import _normalize_batch, estimate_homography, symmetric_transfer_error
-from .projective import from_homogeneous, normalize_lines, to_homogeneous
+from .homography import estimate_homography, symmetric_transfer_error
+from .projective import from_homogeneous, hartley_normalize, normalize_lines, to_homogeneous
 from .robust import PairModel, ransac
 
 __all__ = [
@@ -416,8 +416,8 @@ def estimate_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, normalize: bool = 
     """
     a, b, _ = _pairs(x1, x2, min_count=8)
     if normalize:
-        an, T1 = _normalize_batch(a)
-        bn, T2 = _normalize_batch(b)
+        an, T1 = hartley_normalize(a)
+        bn, T2 = hartley_normalize(b)
     else:
         an, bn, T1, T2 = a, b, np.eye(3), np.eye(3)
     A = _eight_point_rows(an, bn)
@@ -487,8 +487,8 @@ class FundamentalModel(PairModel):
 
     def __init__(self, x1: np.ndarray, x2: np.ndarray):
         super().__init__(x1, x2)
-        self.an, self.T1 = _normalize_batch(x1)
-        self.bn, self.T2 = _normalize_batch(x2)
+        self.an, self.T1 = hartley_normalize(x1)
+        self.bn, self.T2 = hartley_normalize(x2)
 
     def minimal(self, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         _, s, Vt = np.linalg.svd(_eight_point_rows(self.an[idx], self.bn[idx]))

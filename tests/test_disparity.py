@@ -6,7 +6,7 @@ import scipy.ndimage as ndi
 from camlab import disparity as dp
 from camlab import rectification as rc
 from camlab._validate import CamlabInputError
-from camlab.stereo_data import load_stereo_rig
+from camlab.data.stereo import load_stereo_rig
 
 BAND = slice(150, 330)  # rows crossing the wall, the photo, both panels and both boxes (keeps the test fast)
 

@@ -7,7 +7,7 @@ from hypothesis import strategies as hs
 
 from camlab import features as ft
 from camlab import homography as hg
-from camlab import stitching_data as sd
+from camlab.data import panorama as sd
 from camlab._validate import CamlabInputError
 
 

@@ -9,7 +9,7 @@ from camlab._validate import CamlabInputError, DegenerateError
 from camlab.camera import Camera, rotation_from_axis_angle
 from camlab.distortion import undistort_pixels
 from camlab.projective import map_points
-from camlab.stereo_data import load_stereo_rig
+from camlab.data.stereo import load_stereo_rig
 
 
 @pytest.fixture(scope="module")

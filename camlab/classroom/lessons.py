@@ -11,8 +11,9 @@ __all__ = ["called", "find_lesson", "lesson_files", "only_statement", "stub_name
 
 def lesson_files() -> list[Path]:
     """Every lesson notebook ``NN_slug.ipynb``, in course order."""
-    folder = Path(__file__).resolve().parent.parent.parent / "lessons"
-    return sorted(folder.glob("[0-9][0-9]_*.ipynb"))
+    from ..data import lessons_dir  # the clone's lessons/ or the wheel's camlab/lessons
+
+    return sorted(lessons_dir().glob("[0-9][0-9]_*.ipynb"))
 
 
 def find_lesson(spec: str) -> Path:

@@ -14,7 +14,7 @@ import numpy as np
 from .. import features as ft
 from .. import homography as hg
 from .. import stitching as st
-from .. import stitching_data as sd
+from ..data import panorama as sd
 from ..plotting.stitching import draw_keypoints, draw_matches, match_segments, outline
 from ..projective import map_points
 from ._base import Demo, FigureView, build_demo, register, slider

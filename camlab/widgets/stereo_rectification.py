@@ -2,7 +2,7 @@
 
 Every demo computes with tested camlab functions (:mod:`camlab.epipolar`,
 :mod:`camlab.rectification`, :mod:`camlab.disparity`) and only moves artists. Images
-come from the bundled rendered rig (:mod:`camlab.stereo_data`), shown at half
+come from the bundled rendered rig (:mod:`camlab.data.stereo`), shown at half
 resolution so that re-warping stays within the latency budget.
 """
 from __future__ import annotations
@@ -31,7 +31,7 @@ def _pre(text: str) -> str:
 @lru_cache(maxsize=1)
 def _scene_segments() -> np.ndarray:
     """(M, 2, 3) world segments outlining the rig's scene: plane rectangles and box faces."""
-    from ..stereo_data import stereo_scene
+    from ..data.stereo import stereo_scene
 
     segs = []
     planes = []
@@ -70,7 +70,7 @@ def _rig_data():
     """The bundled rig at half resolution: raw images, cameras, true matches (from the true disparity)."""
     import cv2
 
-    from ..stereo_data import load_stereo_rig
+    from ..data.stereo import load_stereo_rig
 
     rig = load_stereo_rig()
     rect0 = rc.rectify_calibrated(rig.camera1, rig.camera2, alpha=rig.params["rectify_alpha"], maps=False)

@@ -1,8 +1,7 @@
-"""Bundled data in ``data/``: small assets camlab made itself, regenerated deterministically.
+"""The chessboard calibration set of lesson 08, rendered by the virtual camera with full ground truth.
 
-``python -m camlab.data`` rewrites every file in ``data/`` from fixed parameters (recorded
-beside the files), giving the same bytes every time on the same library versions; a test
-checks that. Assets:
+``python -m camlab.data`` rewrites it (with the other data sets) from fixed parameters
+recorded beside the files:
 
 ``data/calib_chessboard/``
     ``view_00.png`` ... ``view_15.png``: a 9 x 6 inner-corner chessboard (25 mm squares)
@@ -11,26 +10,19 @@ checks that. Assets:
     parameters and the ground truth (K, dist, each view's pose and exact corner pixels).
 
 Load with :func:`load_calibration_set`.
-
-``data/photos/``
-    A few real photographs from the MIT-licensed mvtb-data package (a chessboard set, facades,
-    a street, a sign on a wall, stereo pairs), downscaled; shipped, not generated, and listed
-    with their source in ``data/photos/ATTRIBUTION.md``. Load with :func:`load_photo`.
 """
 from __future__ import annotations
 
-import hashlib
 import json
-import sys
 from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
 
-from ._validate import CamlabInputError
+from .._validate import CamlabInputError
+from ._resources import dataset_dir
 
-__all__ = ["CalibrationSet", "CALIBRATION_PARAMS", "data_dir", "load_calibration_set", "load_photo", "make_calibration_set", "main",
-           "photo_names"]
+__all__ = ["CalibrationSet", "CALIBRATION_PARAMS", "load_calibration_set", "make_calibration_set"]
 
 CALIBRATION_PARAMS = {
     "seed": 2026,
@@ -48,14 +40,9 @@ CALIBRATION_PARAMS = {
 }
 
 
-def data_dir() -> Path:
-    """The repository's ``data/`` directory."""
-    return Path(__file__).resolve().parent.parent / "data"
-
-
 def _views(params: dict):
     """Yield ``(R, t)`` camera poses (cam_from_world) that keep the whole board in view."""
-    from . import render
+    from .. import render
 
     rng = np.random.default_rng(params["seed"])
     cols, rows = params["pattern_size"]
@@ -110,8 +97,8 @@ def make_calibration_set(out_dir: Path | str, params: dict = CALIBRATION_PARAMS)
     """Render the calibration set into ``out_dir``; return the files written."""
     import cv2
 
-    from . import render
-    from .sensor import NoiseModel
+    from .. import render
+    from ..sensor import NoiseModel
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -152,7 +139,7 @@ def load_calibration_set(directory: Path | str | None = None) -> CalibrationSet:
     """Load ``data/calib_chessboard`` (or ``directory``) as a :class:`CalibrationSet`."""
     import cv2
 
-    d = Path(directory) if directory is not None else data_dir() / "calib_chessboard"
+    d = Path(directory) if directory is not None else dataset_dir("calib_chessboard")
     path = d / "truth.json"
     if not path.exists():
         raise CamlabInputError(f"directory: no truth.json in {d}; run `python -m camlab.data` to generate it")
@@ -165,66 +152,3 @@ def load_calibration_set(directory: Path | str | None = None) -> CalibrationSet:
         object_points=np.array(truth["object_points"]), pattern_size=tuple(truth["pattern_size"]),
         square=float(truth["square"]), params=truth["params"],
     )
-
-
-PHOTO_SUFFIXES = (".jpg", ".png")
-
-
-def photo_names() -> list[str]:
-    """Names of the shipped real photographs (``data/photos/``), without extension, sorted."""
-    return sorted(p.stem for p in (data_dir() / "photos").iterdir() if p.suffix in PHOTO_SUFFIXES)
-
-
-def load_photo(name: str, gray: bool = False) -> np.ndarray:
-    """Load a shipped real photograph by name.
-
-    Parameters
-    ----------
-    name : str
-        One of :func:`photo_names`, e.g. ``"calib_left01"``, ``"street"``, ``"walls_left"``.
-    gray : bool
-        Return a single-channel image instead of RGB.
-
-    Returns
-    -------
-    (H, W, 3) or (H, W) uint8 ndarray
-        RGB (not OpenCV's BGR) or grey, indexed ``img[v, u]``.
-    """
-    import cv2
-
-    names = photo_names()
-    if not isinstance(name, str) or name not in names:
-        raise CamlabInputError(f"name: expected one of {names}, got {name!r}")
-    path = next(p for p in (data_dir() / "photos").iterdir() if p.stem == name and p.suffix in PHOTO_SUFFIXES)
-    image = cv2.imread(str(path), cv2.IMREAD_GRAYSCALE if gray else cv2.IMREAD_COLOR)
-    return image if gray else cv2.cvtColor(image, cv2.COLOR_BGR2RGB)
-
-
-def write_manifest(root: Path) -> Path:
-    """``data/MANIFEST.txt``: every generated file with its size and SHA-256 (not the shipped photos)."""
-    lines = []
-    for p in sorted(root.rglob("*")):
-        if p.is_file() and p.name != "MANIFEST.txt" and "photos" not in p.relative_to(root).parts:
-            lines.append(f"{hashlib.sha256(p.read_bytes()).hexdigest()}  {p.stat().st_size:>8}  {p.relative_to(root)}")
-    path = root / "MANIFEST.txt"
-    path.write_text("# sha256  bytes  path   (regenerate everything with: python -m camlab.data)\n" + "\n".join(lines) + "\n")
-    return path
-
-
-def main(argv: list[str] | None = None) -> int:
-    """Regenerate every data set in ``data/`` (or the directory given as the only argument)."""
-    argv = sys.argv[1:] if argv is None else argv
-    root = Path(argv[0]) if argv else data_dir()
-    from .stereo_data import make_stereo_rig
-    from .stitching_data import make_panorama_set
-
-    files = (make_calibration_set(root / "calib_chessboard") + make_panorama_set(root / "panorama")
-             + make_stereo_rig(root / "stereo"))
-    write_manifest(root)
-    total = sum(f.stat().st_size for f in files)
-    print(f"wrote {len(files)} files ({total / 1e6:.2f} MB) to {root}")
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
