@@ -326,7 +326,7 @@ def white_balance(rgb: ArrayLike, white: ArrayLike | None = None) -> np.ndarray:
     >>> white_balance(np.array([[[0.5, 0.4, 0.275]]]), white=[1.0, 0.8, 0.55])
     array([[[0.4, 0.4, 0.4]]])
     """
-    img = _check_image(rgb, "rgb", channels=(3,)).astype(float)
+    img = check_image(rgb, "rgb", channels=(3,)).astype(float)
     w = img.reshape(-1, 3).mean(axis=0) if white is None else np.asarray(white, dtype=float)
     if w.shape != (3,) or not np.all(w > 0):
         raise CamlabInputError(f"white: expected three positive channel values (R, G, B), got {np.asarray(w).tolist()}")

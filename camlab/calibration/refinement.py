@@ -194,7 +194,7 @@ class CalibrationProblem:
 
 def reproject(object_points: ArrayLike, K: ArrayLike, dist: ArrayLike | None, rvec: ArrayLike,
               tvec: ArrayLike) -> np.ndarray:
-    """Project (N, 3) board points with intrinsics, distortion and an axis-angle pose (like cv2.projectPoints).
+    r"""Project (N, 3) board points with intrinsics, distortion and an axis-angle pose (like cv2.projectPoints).
 
     NaN for points behind the camera (:math:`z_c \le 0`) and beyond the distortion model's
     valid radius, where cv2.projectPoints returns a mirrored pixel.
