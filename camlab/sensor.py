@@ -23,8 +23,8 @@ from ._validate import CamlabInputError, as_points, check_positive
 
 __all__ = [
     "BAYER_PATTERNS", "NoiseModel", "add_noise", "bayer_masks", "demosaic_bilinear", "demosaic_opencv",
-    "dequantize", "intrinsics_from_sensor", "metric_to_pixels", "mosaic", "pixels_to_metric", "psnr",
-    "quantize", "sample", "zone_plate",
+    "dequantize", "gamma_encode", "intrinsics_from_sensor", "metric_to_pixels", "mosaic", "pixels_to_metric",
+    "psnr", "quantize", "sample", "white_balance", "zone_plate",
 ]
 
 BAYER_PATTERNS = ("RGGB", "BGGR", "GRBG", "GBRG")
@@ -289,3 +289,36 @@ def psnr(reference: ArrayLike, test: ArrayLike, peak: float = 1.0, border: int =
         a, b = a[border:-border, border:-border], b[border:-border, border:-border]
     mse = np.mean((a - b) ** 2)
     return float("inf") if mse == 0 else float(10 * np.log10(peak * peak / mse))
+
+
+def gamma_encode(linear: ArrayLike) -> np.ndarray:
+    r"""sRGB encoding of linear values in [0, 1]: what a camera does before it saves a JPEG.
+
+    A sensor's numbers are proportional to light, but we see brightness roughly as its cube
+    root, so linear 8-bit values waste codes on the highlights and band in the shadows. sRGB
+    stores :math:`V = 1.055\,L^{1/2.4} - 0.055` (a straight segment :math:`12.92\,L` below
+    :math:`L = 0.0031308`); a display undoes it. Mid-grey, 18 % of white, is stored near 0.46.
+
+    >>> np.round(gamma_encode(np.array([0.0, 0.18, 1.0])), 3)
+    array([0.   , 0.461, 1.   ])
+    """
+    L = np.clip(np.asarray(linear, dtype=float), 0.0, 1.0)
+    return np.where(L <= 0.0031308, 12.92 * L, 1.055 * L ** (1 / 2.4) - 0.055)
+
+
+def white_balance(rgb: ArrayLike, white: ArrayLike | None = None) -> np.ndarray:
+    r"""Scale each channel so that ``white`` (an RGB triple seen on a white or grey surface) becomes grey.
+
+    Under warm light a white wall records as, say, (1.0, 0.8, 0.55). Dividing every pixel by
+    that triple (von Kries scaling, then normalising to the green channel) makes the wall
+    neutral again. With ``white=None`` the *grey-world* assumption estimates it as the mean
+    colour of the whole image. Works on linear (not gamma-encoded) values; clipped to [0, 1].
+
+    >>> white_balance(np.array([[[0.5, 0.4, 0.275]]]), white=[1.0, 0.8, 0.55])
+    array([[[0.4, 0.4, 0.4]]])
+    """
+    img = _check_image(rgb, "rgb", channels=(3,)).astype(float)
+    w = img.reshape(-1, 3).mean(axis=0) if white is None else np.asarray(white, dtype=float)
+    if w.shape != (3,) or not np.all(w > 0):
+        raise CamlabInputError(f"white: expected three positive channel values (R, G, B), got {np.asarray(w).tolist()}")
+    return np.clip(img * (w[1] / w), 0.0, 1.0)

@@ -127,12 +127,14 @@ class PairRegistration(NamedTuple):
 def register_pair(features1: _feat.Features, features2: _feat.Features, *, ratio: float = 0.75,
                   mutual: bool = False, threshold: float = 3.0, min_inliers: int = 15,
                   rng: np.random.Generator | None = None, matches: _feat.Matches | None = None,
-                  refine: bool = True) -> PairRegistration:
+                  refine: bool = True, approximate: bool = False) -> PairRegistration:
     r"""Register image 1 onto image 2: match features, fit H by RANSAC, judge the result.
 
     The pair is accepted when RANSAC finds at least ``min_inliers`` inliers *and* more
     than :math:`8 + 0.3 n_m` of the :math:`n_m` matches (Brown & Lowe 2007, eq. 13: the
-    inliers of a wrong model are few and random, those of a right one a fixed share).
+    inliers of a wrong model are few and random, those of a right one a fixed share), and
+    H does not mirror the image (a reflection fits the matches of a symmetric scene but
+    no camera produces it).
     A rejected pair is returned with ``accepted=False`` and a ``reason``, not raised, so a
     panorama can report it. With ``refine`` (default), H is polished by
     :func:`camlab.homography.refine_homography` (Levenberg-Marquardt on the geometric
@@ -150,9 +152,11 @@ def register_pair(features1: _feat.Features, features2: _feat.Features, *, ratio
         RANSAC's randomness (default: seeded with 0, so results are reproducible).
     matches : camlab.features.Matches, optional
         Use these matches instead of matching (e.g. re-filtered ones from a slider).
+    approximate : bool
+        Match with FLANN instead of brute force (:func:`camlab.features.knn_match`).
     """
     rng = np.random.default_rng(0) if rng is None else rng
-    m = _feat.match_features(features1, features2, ratio, mutual) if matches is None else matches
+    m = _feat.match_features(features1, features2, ratio, mutual, approximate=approximate) if matches is None else matches
     n = len(m.src)
     none = np.zeros(n, bool)
     if n < max(min_inliers, 5):
@@ -175,7 +179,17 @@ def register_pair(features1: _feat.Features, features2: _feat.Features, *, ratio
     if k < need:
         return PairRegistration(H, m, inl, rms, False,
                                 f"too few inliers: {k} of {n} matches (need {need}); the images probably do not overlap")
+    if _mirrors(H, m.src[inl]):
+        return PairRegistration(H, m, inl, rms, False, f"the homography mirrors the image ({k} inliers): a "
+                                "reflection, which no camera motion produces; wrong matches on a symmetric scene")
     return PairRegistration(H, m, inl, rms, True, "")
+
+
+def _mirrors(H: np.ndarray, points: np.ndarray) -> bool:
+    r"""Whether H reverses orientation at the points' centroid x: the Jacobian of
+    :math:`\pi(H x)` has determinant :math:`\det H / w^3` with :math:`w = (H \tilde x)_3`."""
+    c = np.append(points.mean(axis=0), 1.0)
+    return float(np.linalg.det(H) / (H[2] @ c) ** 3) < 0
 
 
 class PairReport(NamedTuple):
@@ -222,7 +236,7 @@ class MatchGraph(NamedTuple):
 
 def match_graph(features: Sequence[_feat.Features], *, ratio: float = 0.75, mutual: bool = False,
                 threshold: float = 3.0, min_inliers: int = 15, rng: np.random.Generator | None = None,
-                reference: int | None = None) -> MatchGraph:
+                reference: int | None = None, approximate: bool = False) -> MatchGraph:
     r"""Register every pair, choose the reference image and chain homographies to it.
 
     1. Register each pair i < j (:func:`register_pair`).
@@ -242,7 +256,7 @@ def match_graph(features: Sequence[_feat.Features], *, ratio: float = 0.75, mutu
     for i in range(n):
         for j in range(i + 1, n):
             pairs[(i, j)] = register_pair(feats[i], feats[j], ratio=ratio, mutual=mutual, threshold=threshold,
-                                          min_inliers=min_inliers, rng=rng)
+                                          min_inliers=min_inliers, rng=rng, approximate=approximate)
     degree = np.zeros(n, int)
     strength = np.zeros(n, int)
     for (i, j), p in pairs.items():
@@ -696,150 +710,4 @@ def blend(warped: WarpedImages, method: str = "multiband", *, gains: ArrayLike |
 
 # --------------------------------------------------------------------------- the pipeline
 
-class StitchResult(NamedTuple):
-    """What :func:`stitch` made.
-
-    Attributes
-    ----------
-    panorama : (h, w, 3) ndarray
-        uint8 if every input was uint8, else float32 in [0, 1].
-    mask : (h, w) bool ndarray
-        Canvas pixels covered by at least one image.
-    homographies : list of (3, 3) ndarray or None
-        canvas_from_image for every input image (None for an unconnected image). With
-        ``projection="cylindrical"`` they map the *cylindrical* image onto the canvas.
-    masks : list of (h, w) bool ndarray or None
-        Each image's footprint on the canvas.
-    pairs : list of PairReport
-        Every registered pair: matches, inliers, residual RMS, accepted, reason.
-    reference : int
-        The reference image (the canvas is its image plane, shifted).
-    unconnected : list of int
-        Images that could not be connected (left out of the panorama, and reported).
-    gains : (n,) ndarray
-        Exposure gains applied (ones if gain compensation was off; NaN for unconnected).
-    graph : MatchGraph
-        The full registration (matches and inlier masks of every pair).
-    """
-
-    panorama: np.ndarray
-    mask: np.ndarray
-    homographies: list
-    masks: list
-    pairs: list
-    reference: int
-    unconnected: list
-    gains: np.ndarray
-    graph: MatchGraph
-
-
-def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", method: str = "sift",
-           max_features: int = 2500, ratio: float = 0.75, mutual: bool = False, threshold: float = 3.0,
-           min_inliers: int = 15, compensate_gains: bool = True, levels: int = 5,
-           projection: str = "planar", K: ArrayLike | None = None, reference: int | None = None,
-           rng: np.random.Generator | None = None, max_pixels: int = 40_000_000) -> StitchResult:
-    """Stitch overlapping images (a camera rotating about its centre, or a planar scene) into a panorama.
-
-    Runs the stages of the module docstring: features (:func:`camlab.features.detect_features`),
-    :func:`match_graph` (pairwise RANSAC, reference, chained homographies),
-    :func:`warp_images` (canvas and masks), optional :func:`gain_compensation`, :func:`blend`.
-
-    Parameters
-    ----------
-    images : sequence of (H, W[, C]) array_like
-        At least two images; sizes and channel counts may differ (:func:`prepare_images`).
-    blend_method : {"overwrite", "feather", "multiband"}
-    method : {"sift", "orb"}
-        Feature detector.
-    max_features, ratio, mutual, threshold, min_inliers
-        See :func:`camlab.features.detect_features` and :func:`register_pair`.
-    compensate_gains : bool
-        Equalise exposures first (:func:`gain_compensation`, relative to the reference).
-    levels : int
-        Multi-band pyramid levels.
-    projection : {"planar", "cylindrical"}
-        ``"cylindrical"`` needs ``K`` and warps every image onto a cylinder first.
-    K : (3, 3) array_like, optional
-        Intrinsics (for the cylindrical projection; all images share them).
-    reference : int, optional
-        Force the reference image (default: the best-connected one).
-    rng : np.random.Generator, optional
-        RANSAC's randomness (default seeded, reproducible).
-
-    Returns
-    -------
-    StitchResult
-
-    Raises
-    ------
-    CamlabInputError
-        Fewer than two images, bad shapes or dtypes, bad options.
-    DegenerateError
-        No pair of images could be registered (nothing to stitch); the message lists
-        every pair's matches and inliers.
-
-    Warns
-    -----
-    UserWarning
-        If some images could not be connected; they are listed in ``unconnected``.
-    """
-    if blend_method not in BLENDS:
-        raise CamlabInputError(f"blend_method: expected one of {BLENDS}, got {blend_method!r}")
-    if projection not in ("planar", "cylindrical"):
-        raise CamlabInputError(f"projection: expected 'planar' or 'cylindrical', got {projection!r}")
-    imgs = prepare_images(images)
-    all_uint8 = all(np.asarray(im).dtype == np.uint8 for im in images)
-    n = len(imgs)
-    cyl_masks = None
-    if projection == "cylindrical":
-        if K is None:
-            raise CamlabInputError("K: the cylindrical projection needs the intrinsics K (the cylinder radius is fx)")
-        warped_cyl = [cylindrical_warp(im, K) for im in imgs]
-        imgs = [c for c, _ in warped_cyl]
-        cyl_masks = [m for _, m in warped_cyl]
-    feats = [_feat.detect_features(im, method, max_features,
-                                   mask=None if cyl_masks is None else _erode(cyl_masks[k]))
-             for k, im in enumerate(imgs)]
-    graph = match_graph(feats, ratio=ratio, mutual=mutual, threshold=threshold, min_inliers=min_inliers,
-                        rng=rng, reference=reference)
-    keep = [k for k in range(n) if graph.homographies[k] is not None]
-    if len(keep) < 2:
-        rows = "; ".join(f"{r.i}-{r.j}: {r.matches} matches, {r.inliers} inliers ({r.reason})" for r in graph.report())
-        raise DegenerateError(f"stitch: no pair of images could be registered, nothing to stitch. Pairs: {rows}")
-    if graph.unconnected:
-        why = {k: [r.reason for r in graph.report() if k in (r.i, r.j)] for k in graph.unconnected}
-        warnings.warn(f"stitch: images {graph.unconnected} could not be connected to the reference image "
-                      f"{graph.reference} and are left out of the panorama: {why}", UserWarning, stacklevel=2)
-    sub = [imgs[k] for k in keep]
-    if cyl_masks is not None:  # zero what the cylinder does not see so masks stay exact
-        sub = [np.where(cyl_masks[k][..., None], imgs[k], 0).astype(np.float32) for k in keep]
-    warped = warp_images(sub, [graph.homographies[k] for k in keep], max_pixels=max_pixels)
-    if cyl_masks is not None:
-        masks = []
-        for idx, k in enumerate(keep):
-            m = warp_perspective(cyl_masks[k].astype(np.float32), warped.homographies[idx], warped.shape,
-                                 interpolation="nearest", method="cv2") > 0.5
-            masks.append(m)
-        weights = [np.where(m, w, 0).astype(np.float32) for m, w in zip(masks, warped.weights)]
-        warped = WarpedImages(warped.images, masks, weights, warped.homographies, warped.T)
-    ref_local = keep.index(graph.reference)
-    g_sub = gain_compensation(warped, reference=ref_local) if compensate_gains else np.ones(len(keep))
-    pano = blend(warped, blend_method, gains=g_sub, levels=levels)
-    union = np.logical_or.reduce(warped.masks)
-    gains = np.full(n, np.nan)
-    gains[keep] = g_sub
-    Hs: list = [None] * n
-    Ms: list = [None] * n
-    for idx, k in enumerate(keep):
-        Hs[k] = warped.homographies[idx]
-        Ms[k] = warped.masks[idx]
-    if all_uint8:
-        pano = np.clip(np.rint(pano * 255), 0, 255).astype(np.uint8)
-    return StitchResult(pano, union, Hs, Ms, graph.report(), graph.reference, list(graph.unconnected), gains, graph)
-
-
-def _erode(mask: np.ndarray, r: int = 3) -> np.ndarray:
-    """Shrink a mask by r pixels (features too close to a cylinder edge see the black border)."""
-    import cv2
-
-    return cv2.erode(mask.astype(np.uint8), np.ones((2 * r + 1, 2 * r + 1), np.uint8)) > 0
+from .pipeline import PROJECTION_CHOICES, StitchResult, stitch  # noqa: E402  (uses the stages above)
