@@ -24,7 +24,7 @@ from ._validate import CamlabInputError, DegenerateError, as_points, check_matri
 __all__ = [
     "LINE_AT_INFINITY", "DegenerateError", "clip_line", "cross_ratio", "from_homogeneous", "horizon",
     "ideal_point", "is_ideal", "is_on_line", "join", "map_lines", "map_points", "meet", "normalize_lines",
-    "splits_at_infinity",
+    "splits_at_infinity", "VanishingPointFit", "segments_pointing_at", "vanishing_point_ransac",
     "normalize_points", "point_line_distance", "to_homogeneous", "vanishing_point",
     "HartleyNormalized", "hartley_normalization", "hartley_normalize",
 ]
@@ -469,6 +469,70 @@ def vanishing_point(segments: ArrayLike) -> np.ndarray:
     if abs(v[2]) <= 1e-12 * np.linalg.norm(v[:2]):
         v[2] = 0.0  # parallel to round-off: the vanishing point is ideal, not at 1e16 px
     return normalize_points(v)
+
+
+def segments_pointing_at(segments: ArrayLike, point_h: ArrayLike, tol_deg: float = 1.5) -> np.ndarray:
+    """Which segments point at the (possibly ideal) point, within ``tol_deg`` degrees.
+
+    The angle is measured at each segment's midpoint m, between the segment's direction
+    and the direction from m to the point, :math:`(x - m w, y - m w)`, which stays valid
+    for an ideal point (w = 0). Returns an (N,) bool array.
+    """
+    segs = np.asarray(segments, dtype=float)
+    v = np.asarray(point_h, dtype=float)
+    mid, d = segs.mean(axis=1), segs[:, 1] - segs[:, 0]
+    to_v = v[:2] - mid * v[2]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cos = np.abs(np.sum(d * to_v, axis=1)) / (np.linalg.norm(d, axis=1) * np.linalg.norm(to_v, axis=1))
+    return np.nan_to_num(np.degrees(np.arccos(np.clip(cos, 0, 1))), nan=180.0) < tol_deg
+
+
+class VanishingPointFit(NamedTuple):
+    """What :func:`vanishing_point_ransac` found: ``point`` (3,) homogeneous, ``inliers`` (N,) bool."""
+
+    point: np.ndarray
+    inliers: np.ndarray
+
+
+def vanishing_point_ransac(segments: ArrayLike, tol_deg: float = 1.5, samples: int = 300,
+                           rng: np.random.Generator | int | None = None) -> VanishingPointFit:
+    """The vanishing point most segments point at, robust to segments that belong to none.
+
+    RANSAC (Fischler & Bolles): two random segments propose the meet of their lines; every
+    segment pointing at it within ``tol_deg`` (:func:`segments_pointing_at`) votes; the
+    proposal with the most votes wins and is re-estimated from its voters by
+    :func:`vanishing_point` (least squares over unit vectors, so it may be ideal).
+
+    Parameters
+    ----------
+    segments : (N, 2, 2) array_like
+        Image segments (pixels), N >= 2.
+    tol_deg : float
+    samples : int
+    rng : numpy Generator, int or None
+
+    Returns
+    -------
+    VanishingPointFit
+    """
+    segs = np.asarray(segments, dtype=float)
+    if segs.ndim != 3 or segs.shape[1:] != (2, 2) or len(segs) < 2:
+        raise CamlabInputError(f"segments: expected (N, 2, 2) with N >= 2 segments, got shape {segs.shape}")
+    rng = np.random.default_rng(rng)
+    ones = np.ones((len(segs), 1))
+    lines = np.cross(np.hstack([segs[:, 0], ones]), np.hstack([segs[:, 1], ones]))
+    best = np.zeros(len(segs), bool)
+    for _ in range(int(samples)):
+        i, j = rng.choice(len(segs), 2, replace=False)
+        proposal = np.cross(lines[i], lines[j])
+        if not np.any(proposal):
+            continue
+        votes = segments_pointing_at(segs, proposal, tol_deg)
+        if votes.sum() > best.sum():
+            best = votes
+    if best.sum() < 2:
+        raise DegenerateError("segments: no two segments point at a common point; there is no vanishing point here")
+    return VanishingPointFit(vanishing_point(segs[best]), best)
 
 
 def horizon(vp1: ArrayLike, vp2: ArrayLike) -> np.ndarray:
