@@ -108,6 +108,13 @@ def _as_lines(x: ArrayLike, name: str) -> tuple[np.ndarray, bool]:
     return p.array, p.single
 
 
+def _check_nonzero_H(H: ArrayLike) -> np.ndarray:
+    Hm = check_matrix(H, (3, 3), "H")
+    if not Hm.any():
+        raise DegenerateError("H: all zeros, which maps every point to (0, 0, 0), not a point; pass a homography")
+    return Hm
+
+
 def _unit_rows(a: np.ndarray) -> np.ndarray:
     return a / np.linalg.norm(a, axis=1, keepdims=True)
 
@@ -305,7 +312,7 @@ def map_points(H: ArrayLike, points: ArrayLike) -> np.ndarray:
     >>> map_points(np.diag([2.0, 3.0, 1.0]), [1.0, 1.0])
     array([2., 3.])
     """
-    Hm = check_matrix(H, (3, 3), "H")
+    Hm = _check_nonzero_H(H)
     p = as_points(points, (2, 3), "points")
     euclidean = p.array.shape[1] == 2
     x = np.hstack([p.array, np.ones((len(p.array), 1))]) if euclidean else p.array
@@ -325,7 +332,7 @@ def map_lines(H: ArrayLike, lines: ArrayLike) -> np.ndarray:
     DegenerateError
         If H is singular (it then collapses the plane and has no inverse).
     """
-    Hm = check_matrix(H, (3, 3), "H")
+    Hm = _check_nonzero_H(H)
     ln, single = _as_lines(lines, "lines")
     if np.linalg.cond(Hm) > 1e12:
         raise DegenerateError(
@@ -356,7 +363,7 @@ def splits_at_infinity(H: ArrayLike, points: ArrayLike) -> bool:
     >>> splits_at_infinity(np.eye(3), square), splits_at_infinity([[1, 0, 0], [0, 1, 0], [-2, 0, 1]], square)
     (False, True)
     """
-    Hm = check_matrix(H, (3, 3), "H")
+    Hm = _check_nonzero_H(H)
     p = as_points(points, (2,), "points").array
     w = p @ Hm[2, :2] + Hm[2, 2]
     return bool(w.min() <= 0 <= w.max())
@@ -541,7 +548,17 @@ def horizon(vp1: ArrayLike, vp2: ArrayLike) -> np.ndarray:
     Returns the line normalised so that a^2 + b^2 = 1 (or (0, 0, 1) when both points are
     ideal, i.e. the plane is parallel to the image). See :func:`join`.
     """
-    return normalize_lines(join(vp1, vp2))
+    a, sa = _as_homogeneous_2d(vp1, "vp1")
+    b, sb = _as_homogeneous_2d(vp2, "vp2")
+    return normalize_lines(_cross(a, b, sa, sb, "horizon", "vp1 and vp2 coincide, so they do not fix a line; "
+                                                          "use the vanishing points of two different directions"))
+
+
+def _interval(lim: ArrayLike, name: str) -> tuple[float, float]:
+    lo, hi = check_matrix(lim, (2,), name)
+    if not lo < hi:
+        raise CamlabInputError(f"{name}: expected (lo, hi) with lo < hi, got {lim!r}")
+    return float(lo), float(hi)
 
 
 def clip_line(line: ArrayLike, xlim: tuple[float, float], ylim: tuple[float, float]) -> np.ndarray:
@@ -570,7 +587,7 @@ def clip_line(line: ArrayLike, xlim: tuple[float, float], ylim: tuple[float, flo
     """
     ln, _ = _as_lines(line, "line")
     ln = ln[0]
-    (x0, x1), (y0, y1) = xlim, ylim
+    (x0, x1), (y0, y1) = _interval(xlim, "xlim"), _interval(ylim, "ylim")
     edges = np.array([[1, 0, -x0], [1, 0, -x1], [0, 1, -y0], [0, 1, -y1]], dtype=float)
     hits = from_homogeneous(np.cross(ln, edges))  # NaN where the line is parallel to an edge
     span = max(x1 - x0, y1 - y0)
