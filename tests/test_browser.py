@@ -65,8 +65,14 @@ def test_lesson_06_runs_and_a_slider_moves_the_figure(lab):
             after_png, after_text = figure.screenshot(), readout.text_content()
             errors = page.locator(".jp-OutputArea-output[data-mime-type='application/vnd.jupyter.stderr']")
             stderr = [t for t in errors.all_text_contents() if "Error" in t]
+            # Each figure's bundle also carries a static PNG for readers without a kernel;
+            # JupyterLab must show the live widget only, never the PNG under it.
+            static_images = page.locator(".jp-OutputArea-output[data-mime-type='image/png']").count()
+            live_canvases = page.locator(".jp-OutputArea-output canvas").count()
         finally:
             context.close()
     assert before_text != after_text, "the slider did not reach the kernel"
     assert before_png != after_png, "the slider moved but the figure did not change"
     assert not stderr, f"lesson 06 printed errors in the browser: {stderr[:2]}"
+    assert static_images == 0, f"JupyterLab shows {static_images} static PNGs under the live figures"
+    assert live_canvases >= 6, f"expected the 6 live figures of lesson 06, found {live_canvases} canvases"
