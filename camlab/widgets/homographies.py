@@ -98,10 +98,12 @@ def _on_top(view: FigureView, ax: Any) -> None:
         view.animate(ax.get_legend())
 
 
-def _warning(view: FigureView, ax: Any) -> Callable[[str], None]:
-    """An animated red note in the bottom-left corner of ``ax``; returns ``say(text)``
-    ("" hides it: a hidden text costs nothing to draw, an empty one with a box does)."""
-    note = view.animate(ax.text(0.02, 0.02, "", transform=ax.transAxes, va="bottom", fontsize=8, color="tab:red",
+def _warning(view: FigureView, ax: Any, x: float = 0.02, y: float = 0.02, ha: str = "left",
+             va: str = "bottom") -> Callable[[str], None]:
+    """An animated red note in ``ax`` (axes coordinates; default the bottom-left corner);
+    returns ``say(text)`` ("" hides it: a hidden text costs nothing to draw, an empty one
+    with a box does)."""
+    note = view.animate(ax.text(x, y, "", transform=ax.transAxes, ha=ha, va=va, fontsize=8, color="tab:red",
                                 bbox=dict(fc="white", ec="tab:red", alpha=0.9), visible=False))
 
     def say(text: str) -> None:
@@ -320,7 +322,7 @@ def ransac_outliers() -> Demo:
     for name, colour in _VERDICTS:
         ax.plot([], [], "-", color=colour, lw=2, label=name)
     ax.legend(loc="lower right", fontsize=7, ncol=2, framealpha=0.9)
-    failure = _warning(view, ax)
+    failure = _warning(view, ax, 0.5, 0.55, "center", "center")
     eps = np.linspace(0.0, 0.97, 300)
     ax_k.semilogy(eps, samples_needed(eps), color="0.5", label="k = log(1-p) / log(1-(1-ε)⁴), p = 0.995")
     needed = view.animate(ax_k.plot([], [], "o", mfc="none", mec="tab:blue", ms=9,
@@ -340,12 +342,13 @@ def ransac_outliers() -> Demo:
         try:
             r = hg.ransac_homography(src, dst, v["threshold"], 0.995, 1000, np.random.default_rng(int(v["seed"])))
         except hg.DegenerateError as exc:  # clear the last result: a stale plot would be a lie
-            state.update(iterations=None, error=str(exc), verdicts=None)
+            state.update(iterations=None, inliers=None, recall=None, corner_error=None, H=None, verdicts=None,
+                         outlier_fraction_found=None, samples_needed=None, error=str(exc))
             for artist in (box_est, dot, needed):
                 artist.set_data([], [])
             arrows.set_segments([])
             heads.set_offsets(np.zeros((0, 2)))
-            failure("RANSAC failed:\n" + str(exc)[:90] + "...")
+            failure("RANSAC failed: no hypothesis had real support\n(the full message is beside the sliders)")
             readout.value = _pre(str(exc))
             return
         failure("")
