@@ -118,7 +118,7 @@ def to_gray_uint8(image: ArrayLike, name: str = "image") -> np.ndarray:
         raise CamlabInputError(
             f"{name}: expected a (H, W) grey or (H, W, 3|4) colour image at least 8 x 8 pixels, got shape {img.shape}"
         )
-    if img.dtype.kind == "f" and (img.min() < 0 or img.max() > 1):
+    if img.dtype.kind == "f" and (img.min() < -1e-3 or img.max() > 1 + 1e-3):  # rounding slack
         raise CamlabInputError(
             f"{name}: a float image must hold values in [0, 1], got {img.min():.4g} to {img.max():.4g}; "
             f"divide 0..255 values by 255 (or pass them as uint8)"
