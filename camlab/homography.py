@@ -78,7 +78,8 @@ def _pairs(src: ArrayLike, dst: ArrayLike, min_count: int = 4) -> tuple[np.ndarr
     return s, d
 
 
-def _check_h(H: ArrayLike, name: str = "H") -> np.ndarray:
+def check_homography(H: ArrayLike, name: str = "H") -> np.ndarray:
+    """Return H as a float (3, 3) array, or raise if it is malformed, non-finite or singular."""
     Hm = check_matrix(H, (3, 3), name)
     s = np.linalg.svd(Hm, compute_uv=False)
     if s[0] == 0 or s[-1] < 1e-12 * s[0]:
@@ -274,7 +275,7 @@ def symmetric_transfer_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np
     >>> float(symmetric_transfer_error(np.eye(3), [0, 0], [3, 4])[0])
     5.0
     """
-    Hm = _check_h(H)
+    Hm = check_homography(H)
     s, d = _pairs(src, dst, min_count=1)
     return _sym_err_batch(Hm[None], np.linalg.inv(Hm)[None], s, d)[0]
 
@@ -338,7 +339,7 @@ def sampson_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np.ndarray:
     >>> float(sampson_error(np.eye(3), [0, 0], [0, 2])[0]).__round__(6)  # 2 px, split over both images
     1.414214
     """
-    Hm = _check_h(H)
+    Hm = check_homography(H)
     s, d = _pairs(src, dst, min_count=1)
     return _sampson_batch(Hm[None], s, d)[0]
 
@@ -584,7 +585,7 @@ def refine_homography(
     ConvergenceError
         If the cost is not finite at the start (a point maps to infinity).
     """
-    h = _check_h(H).ravel().copy()
+    h = check_homography(H).ravel().copy()
     s, d = _pairs(src, dst)
     h /= np.linalg.norm(h)
     r0 = _transfer_residuals_and_jacobian(h, s, d)[0]
@@ -625,7 +626,7 @@ def compose(*Hs: ArrayLike) -> np.ndarray:
         raise CamlabInputError("compose: expected at least one (3, 3) homography, got none")
     out = np.eye(3)
     for i, H in enumerate(Hs):
-        out = out @ _check_h(H, f"Hs[{i}]")
+        out = out @ check_homography(H, f"Hs[{i}]")
     return normalize_homography(out)
 
 
@@ -637,7 +638,7 @@ def invert(H: ArrayLike) -> np.ndarray:
            [0. , 0.5, 0. ],
            [0. , 0. , 1. ]])
     """
-    return normalize_homography(np.linalg.inv(_check_h(H)))
+    return normalize_homography(np.linalg.inv(check_homography(H)))
 
 
 # --------------------------------------------------------------------------- hierarchy
@@ -717,7 +718,7 @@ def projective(A: ArrayLike | None = None, t: ArrayLike = (0.0, 0.0), v: ArrayLi
     H[:2, 2] = check_matrix(t, (2,), "t")
     H[2, :2] = check_matrix(v, (2,), "v")
     H[2, 2] = w
-    return _check_h(H)
+    return check_homography(H)
 
 
 def classify(H: ArrayLike, tol: float = 1e-9) -> str:
@@ -727,7 +728,7 @@ def classify(H: ArrayLike, tol: float = 1e-9) -> str:
     >>> classify(similarity(2.0, 0.3, 1, 1)), classify(affine(sx=2.0)), classify(projective(v=[1e-3, 0]))
     ('similarity', 'affine', 'projective')
     """
-    Hm = normalize_homography(_check_h(H))
+    Hm = normalize_homography(check_homography(H))
     if abs(Hm[2, 2]) < tol or np.abs(Hm[2, :2]).max() > tol * abs(Hm[2, 2]):
         return "projective"
     A = Hm[:2, :2] / Hm[2, 2]
@@ -755,7 +756,7 @@ def decompose(H: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     -------
     (H_S, H_A, H_P) : three (3, 3) ndarrays whose product equals ``normalize_homography(H)``.
     """
-    Hm = normalize_homography(_check_h(H))
+    Hm = normalize_homography(check_homography(H))
     if abs(Hm[2, 2]) < 1e-12:
         raise DegenerateError("decompose: H[2, 2] = 0 (the origin maps to infinity); translate first")
     vvec, vs = Hm[2, :2], Hm[2, 2]
@@ -836,7 +837,7 @@ def plane_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike, n: ArrayLike, d: 
     if not np.any(nv):
         raise CamlabInputError("n: the plane normal must be non-zero")
     H = K2m @ (check_rotation(R) - np.outer(tv, nv) / d) @ np.linalg.inv(Km)
-    return normalize_homography(_check_h(H, "plane_homography"))
+    return normalize_homography(check_homography(H, "plane_homography"))
 
 
 def pose_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike) -> np.ndarray:
@@ -855,4 +856,4 @@ def pose_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike) -> np.ndarray:
     Rm = check_rotation(R)
     tv = check_matrix(np.ravel(np.asarray(t, dtype=float)), (3,), "t")
     H = Km @ np.column_stack([Rm[:, 0], Rm[:, 1], tv])
-    return normalize_homography(_check_h(H, "pose_homography"))
+    return normalize_homography(check_homography(H, "pose_homography"))

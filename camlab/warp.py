@@ -23,7 +23,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._validate import CamlabInputError, DegenerateError, check_matrix
-from .homography import _check_h, compose
+from .homography import check_homography, compose
 from .projective import map_points
 
 __all__ = ["CanvasWarp", "canvas_bounds", "forward_warp", "warp_perspective", "warp_to_canvas"]
@@ -224,7 +224,7 @@ def warp_perspective(
            [ 0.,  8.,  9., 10.]])
     """
     img = _check_image(image)
-    Hm = _check_h(H)
+    Hm = check_homography(H)
     shape = _check_shape(output_shape)
     _check_options(interpolation, method)
     if not np.isfinite(fill):
@@ -264,7 +264,7 @@ def forward_warp(image: ArrayLike, H: ArrayLike, output_shape: Sequence[int], *,
            [0., 0., 0., 0.]])
     """
     img = _check_image(image)
-    Hm = _check_h(H)
+    Hm = check_homography(H)
     h, w = _check_shape(output_shape)
     sh, sw = img.shape[:2]
     vv, uu = np.mgrid[0:sh, 0:sw]
@@ -322,7 +322,7 @@ def canvas_bounds(Hs: Sequence[ArrayLike], shapes: Sequence[Sequence[int]],
         )
     corners = []
     for i, (H, shape) in enumerate(zip(Hs, shapes)):
-        Hm = _check_h(H, f"Hs[{i}]")
+        Hm = check_homography(H, f"Hs[{i}]")
         h, w = int(shape[0]), int(shape[1])
         c = np.array([[0, 0, 1], [w - 1, 0, 1], [w - 1, h - 1, 1], [0, h - 1, 1]], dtype=float) @ Hm.T
         if np.any(c[:, 2] <= 1e-12 * np.abs(c).max()):
@@ -394,7 +394,7 @@ def warp_to_canvas(
     ((2, 3), array([10., 20.]))
     """
     img = _check_image(image)
-    Hm = _check_h(H)
+    Hm = check_homography(H)
     _check_options(interpolation, method)
     T, shape = canvas_bounds([Hm], [img.shape], max_pixels=max_pixels)
     Hc = compose(T, Hm)

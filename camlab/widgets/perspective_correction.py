@@ -15,7 +15,7 @@ import numpy as np
 from .. import perspective as pp
 from ..warp import warp_perspective
 from ._base import Demo, FigureView, build_demo, register, slider
-from .homographies import _corner_text, _on_top, _parse_corners, _pre, connect_corner_drag, format_corners
+from .controls import connect_corner_drag, corner_text, format_corners, monospace, on_top, parse_corners
 
 _SHOW = 260  # the rectified view is drawn into a _SHOW x _SHOW box
 
@@ -61,7 +61,7 @@ def _photo_demo(photo_title: str, result_title: str, outline: dict):
     ax_p.set_title(photo_title, fontsize=10, pad=3)
     ax_r.set_title(result_title, fontsize=10, pad=3)
     line = view.animate(ax_p.plot([], [], **outline)[0])
-    _on_top(view, ax_p)
+    on_top(view, ax_p)
     return view, ax_p, ax_r, im_p, im_r, line
 
 
@@ -78,7 +78,7 @@ def rectify_photo() -> Demo:
     caption = view.animate(ax_r.text(0.5, -0.02, "", transform=ax_r.transAxes, ha="center", va="top", fontsize=9))
     readout = W.HTML()
     first = pp.sample_photo("page")
-    control = _corner_text(format_corners(first.corners), "corners (TL; TR; BR; BL)")
+    control = corner_text(format_corners(first.corners), "corners (TL; TR; BR; BL)")
     current: dict[str, Any] = {"scene": None, "photo": None, "corners": first.corners, "busy": False}
 
     def update(v: dict, state: dict) -> None:
@@ -95,13 +95,13 @@ def rectify_photo() -> Demo:
             v = {**v, "corners": text}
         photo = current["photo"]
         try:
-            corners = _parse_corners(v["corners"])
+            corners = parse_corners(v["corners"])
             corners = pp.check_quadrilateral(corners)
             est = pp.estimate_aspect_ratio(corners, photo.image.shape,
                                            focal_length=photo.K[0, 0] if v["use_focal"] else None)
         except (ValueError, pp.DegenerateError) as exc:
             state.update(error=str(exc), ratio=None)
-            readout.value = _pre(f"cannot rectify:\n{exc}")
+            readout.value = monospace(f"cannot rectify:\n{exc}")
             return
         current["corners"] = corners
         closed = np.vstack([corners, corners[:1]])
@@ -113,7 +113,7 @@ def rectify_photo() -> Demo:
                      focal_source=est.focal_source, corners=corners, scene=v["scene"])
         f = "—" if est.focal_length is None else f"{est.focal_length:.0f} px"
         caption.set_text(f"w/h {est.ratio:.3f} (true {photo.aspect:.3f}); f {f}, {est.focal_source}")
-        readout.value = _pre(f"aspect w/h estimated: {est.ratio:.3f}\n"
+        readout.value = monospace(f"aspect w/h estimated: {est.ratio:.3f}\n"
                              f"aspect w/h true:      {photo.aspect:.3f}\n"
                              f"focal length: {f} ({est.focal_source}; true {photo.K[0, 0]:.0f})")
 
@@ -124,7 +124,7 @@ def rectify_photo() -> Demo:
     }
     demo = build_demo("rectify_photo", controls, view, update, title="Rectify a photographed rectangle",
                       extra=[readout])
-    demo.handlers = connect_corner_drag(view, ax_p, control, lambda: current["corners"])
+    demo.handlers.update(connect_corner_drag(view, ax_p, control, lambda: current["corners"]))
     return demo
 
 
@@ -146,7 +146,7 @@ def document_scanner() -> Demo:
             found.set_data([], [])
             im_r.set_data(np.full((_SHOW, _SHOW, 3), 255, np.uint8))
             state.update(found=False, corner_error=None, message=str(exc))
-            readout.value = _pre("no page found:\n" + str(exc).replace("; ", ";\n"))
+            readout.value = monospace("no page found:\n" + str(exc).replace("; ", ";\n"))
             return
         closed = np.vstack([corners, corners[:1]])
         found.set_data(closed[:, 0], closed[:, 1])
@@ -154,7 +154,7 @@ def document_scanner() -> Demo:
         _show_rectified(im_r, image, corners, (400, int(400 / est.ratio)))
         err = float(np.abs(corners - photo.corners).max())
         state.update(found=True, corner_error=err, ratio=est.ratio, message="")
-        readout.value = _pre(f"page found; worst corner error {err:.1f} px\n"
+        readout.value = monospace(f"page found; worst corner error {err:.1f} px\n"
                              f"aspect w/h {est.ratio:.3f} (true {photo.aspect:.3f}, A4 = 0.707)")
 
     controls = {
@@ -184,7 +184,7 @@ def keystone_correction() -> Demo:
         left, right = c[3] - c[0], c[2] - c[1]
         converge = float(np.degrees(np.arctan2(left[0], left[1]) - np.arctan2(right[0], right[1])))
         state.update(ratio=est.ratio, true_ratio=photo.aspect, convergence=converge, focal_source=est.focal_source)
-        readout.value = _pre(f"verticals converge by {abs(converge):.1f}°\n"
+        readout.value = monospace(f"verticals converge by {abs(converge):.1f}°\n"
                              f"aspect w/h estimated {est.ratio:.3f} (true {photo.aspect:.3f}, f {est.focal_source})")
 
     controls = {

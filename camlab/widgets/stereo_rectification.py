@@ -18,12 +18,9 @@ from .. import rectification as rc
 from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
 from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes
 from ._base import Demo, FigureView, build_demo, register, slider
+from .controls import monospace
 
 SIZE = (640, 480)
-
-
-def _pre(text: str) -> str:
-    return f"<pre style='font-size: 12px; line-height: 1.3; margin: 4px 0'>{text}</pre>"
 
 
 # --------------------------------------------------------------------------- shared data
@@ -194,7 +191,7 @@ def epipolar_lines() -> Demo:
         show_epipole(e.e2, epi_r, shafts[1], heads[1], axr)
         at_inf = abs(e.e2[2]) < 1e-9
         ep2 = "at infinity (lines parallel)" if at_inf else f"({e.e2[0] / e.e2[2]:.0f}, {e.e2[1] / e.e2[2]:.0f}) px"
-        readout.value = _pre(f"baseline {v['baseline']:.2f} m, toe-in {v['toe_in']:.0f} deg\n"
+        readout.value = monospace(f"baseline {v['baseline']:.2f} m, toe-in {v['toe_in']:.0f} deg\n"
                              f"right epipole e' = {ep2}\n"
                              f"max distance of the depth marks from l' = "
                              f"{np.nanmax(np.abs(np.append(uv, np.ones((len(uv), 1)), 1) @ l2)):.1e} px")
@@ -216,8 +213,7 @@ def epipolar_lines() -> Demo:
         demo.controls["v"].value = float(np.clip(event.ydata, 0, 479))
 
     view.fig.canvas.mpl_connect("button_press_event", on_click)
-    demo.on_click = on_click  # tests call it with an object carrying inaxes, xdata, ydata
-    demo.axes = (axl, axr)
+    demo.handlers["button_press_event"] = on_click  # tests call it with an object carrying inaxes, xdata, ydata
     return demo
 
 
@@ -285,7 +281,7 @@ def rectify_pair() -> Demo:
         counts, _ = np.histogram(np.clip(vd.values, 0, 13.99), bins)
         frac = counts / max(1, len(vd.values))
         step.set_data(bins, np.append(frac, frac[-1]))
-        readout.value = _pre(f"{v['method']}: vertical disparity of {len(vd.values)} true matches\n"
+        readout.value = monospace(f"{v['method']}: vertical disparity of {len(vd.values)} true matches\n"
                              f"median {vd.median:.3g} px, 95th percentile {vd.p95:.3g} px")
         state.update(vertical_median=vd.median, vertical_p95=vd.p95, vertical_values=vd.values, method=v["method"])
 
@@ -380,7 +376,7 @@ def disparity_depth() -> Demo:
         rel = np.abs(err[ok])
         state.update(disparity=d, median_error_percent=float(np.median(rel)), within_5=float(np.mean(rel < 5)),
                      coverage=float(ok.sum() / planar.sum()))
-        readout.value = _pre(f"{v['method']}, {int(v['block_size'])} x {int(v['block_size'])} window\n"
+        readout.value = monospace(f"{v['method']}, {int(v['block_size'])} x {int(v['block_size'])} window\n"
                              f"on textured planes: {100 * state['coverage']:.0f}% matched, median depth error "
                              f"{state['median_error_percent']:.2f}%\n"
                              f"{100 * state['within_5']:.1f}% of matched pixels within 5% of the true depth")
