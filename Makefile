@@ -75,8 +75,15 @@ $(CHP): | $(BIN)/python
 # A real hub with N students running lessons at once; prints the sizing table (docs/teaching.md).
 N ?= 8
 LESSONS ?=
+DRAG ?= transformation_hierarchy
 class-load: $(VENV)/.installed-test hub-deps
-	$(BIN)/python benchmarks/class_load.py --students $(N) $(LESSONS)
+	$(BIN)/python benchmarks/class_load.py --students $(N) $(if $(DRAG),--drag $(DRAG)) $(LESSONS)
+
+# Binder's install step and the hub image's RUN steps (docs/teaching.md) in fresh venvs, then
+# every lesson from a folder outside the repository. Minutes, not seconds: CI runs it.
+.PHONY: test-binder
+test-binder: $(VENV)/.installed-test
+	CAMLAB_TEST_BINDER=1 $(BIN)/python -m pytest -p no:randomly tests/test_binder.py $(PYTEST_ARGS)
 
 # The course as a static website in site/ (issue 17): every lesson executed, maths typeset
 # by a local MathJax 3 from the npm registry (axe-core comes along for the accessibility test).

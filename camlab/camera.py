@@ -29,7 +29,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .distortion import distort_points
+from .distortion import beyond_valid_radius, distort_points
 from .optimize import levenberg_marquardt, unit_sphere_basis, unit_sphere_update
 from .projective import hartley_normalization
 from ._validate import (
@@ -38,7 +38,9 @@ from ._validate import (
     DegenerateError,
     as_points,
     ROTATION_TOL,
+    as_float,
     check_finite,
+    check_number,
     check_intrinsics,
     check_matrix,
     check_positive,
@@ -94,9 +96,9 @@ def intrinsic_matrix(fx: float, fy: float, cx: float, cy: float, skew: float = 0
     """
     fx = check_positive(fx, "fx", "pixels")
     fy = check_positive(fy, "fy", "pixels")
-    vals = np.array([cx, cy, skew], dtype=float)
-    check_finite(vals, "cx, cy, skew")
-    return np.array([[fx, vals[2], vals[0]], [0.0, fy, vals[1]], [0.0, 0.0, 1.0]])
+    cx, cy = check_number(cx, "cx", "pixels"), check_number(cy, "cy", "pixels")
+    skew = check_number(skew, "skew", "pixels")
+    return np.array([[fx, skew, cx], [0.0, fy, cy], [0.0, 0.0, 1.0]])
 
 
 def is_rotation(R: ArrayLike, tol: float = ROTATION_TOL) -> bool:
@@ -166,18 +168,21 @@ def axis_angle_from_rotation(R: ArrayLike) -> np.ndarray:
 
 def rotation_x(angle: float) -> np.ndarray:
     """Rotation by ``angle`` radians about the x axis (right-handed)."""
+    angle = check_number(angle, "angle", "radians")
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
 
 
 def rotation_y(angle: float) -> np.ndarray:
     """Rotation by ``angle`` radians about the y axis (right-handed)."""
+    angle = check_number(angle, "angle", "radians")
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
 
 
 def rotation_z(angle: float) -> np.ndarray:
     """Rotation by ``angle`` radians about the z axis (right-handed)."""
+    angle = check_number(angle, "angle", "radians")
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
@@ -425,7 +430,8 @@ class Camera:
         -------
         (N, 2) or (2,) ndarray
             Pixel coordinates (u, v); NaN for points with :math:`z_c \le 0` (behind or
-            on the camera's plane), which have no image.
+            on the camera's plane), which have no image, and for points beyond the
+            distortion model's valid radius (:func:`camlab.distortion.max_valid_radius`).
 
         Notes
         -----
@@ -441,7 +447,9 @@ class Camera:
         with np.errstate(divide="ignore", invalid="ignore"):
             xn = Xc[:, :2] / np.where(z > 0, z, np.nan)[:, None]
         if any(self.dist):
+            far = beyond_valid_radius(xn, self.dist)  # the model folds back there: no pixel, not a mirrored one
             xn = distort_points(xn, self.dist)
+            xn[far] = np.nan
         uv = xn @ self.K[:2, :2].T + self.K[:2, 2]
         return p.restore(uv)
 
@@ -843,7 +851,9 @@ def project_segments(camera: "Camera | ArrayLike", segments: ArrayLike) -> np.nd
 
     Segments with an endpoint behind the camera get NaN there (matplotlib skips them).
     """
-    s = np.asarray(segments, dtype=float)
+    if not isinstance(camera, Camera):
+        camera = _check_P(camera, "camera")
+    s = as_float(segments, "segments")
     if s.ndim != 3 or s.shape[1:] != (2, 3):
         raise CamlabInputError(f"segments: expected (M, 2, 3) pairs of world points, got shape {s.shape}")
     flat = s.reshape(-1, 3)
