@@ -13,7 +13,6 @@ import ipywidgets as W
 import numpy as np
 
 from .. import perspective as pp
-from ..warp import warp_perspective
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import connect_corner_drag, corner_text, format_corners, monospace, on_top, parse_corners
 
