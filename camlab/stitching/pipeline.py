@@ -5,10 +5,10 @@ r"""The whole panorama: :func:`stitch` runs every stage and says what it chose a
 3. The model. A **rotation** (:func:`camlab.stitching.cameras.estimate_cameras`: focal from
    the homographies, spanning-tree rotations, bundle adjustment, wave correction) explains
    a camera turning about its centre. If its residual is large, or the focal comes out
-   longer than 4 image diagonals (views under 14 degrees wide: a rotation cannot be told
-   from a flat scene), the images are taken as views of a **plane** (a map, a document, a facade from several positions) and every
-   homography is refined together (:func:`camlab.stitching.cameras.adjust_homographies`). If
-   that fails too, the camera moved in front of a 3-D scene: a warning gives both residuals.
+   longer than 2 image diagonals (views under about 30 degrees wide, where a flat scene
+   passes for a rotation), the **plane** model is tried: the images are taken as views of a plane (a map, a document, a facade from several positions) and every
+   homography is refined together (:func:`camlab.stitching.cameras.adjust_homographies`), and
+   wins if its residual is below 0.7 times the rotation's. If neither fits, the camera moved in front of a 3-D scene: a warning gives both residuals.
 4. The canvas (:mod:`camlab.stitching.projections`): planar, cylindrical or spherical;
    ``"auto"`` takes the plane for planar scenes and fields of view up to 100 degrees, the
    sphere beyond.
@@ -336,8 +336,8 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
     shapes = [im.shape for im in imgs]
     diag = float(np.median([np.hypot(*sh[:2]) for sh in shapes]))
     f0 = estimate_focal({key: p.H for key, p in graph.pairs.items() if p.accepted}, shapes)
-    # views under 14 degrees wide: a rotation cannot be told from a flat scene (and its adjustment crawls)
-    telephoto = Kfix is None and f0 > 4 * diag and projection in ("auto", "planar")
+    # views under about 30 degrees wide: a flat scene passes for a rotation (and its adjustment crawls)
+    telephoto = Kfix is None and f0 > 2 * diag and projection in ("auto", "planar")
     est = None if telephoto else estimate_cameras(graph, shapes, K=Kfix)
     rot_rms = np.inf if est is None else est.bundle.rms_after
     # residuals are in full-resolution pixels; features found on smaller copies are that much less precise
@@ -346,10 +346,10 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
     rot_tol, pl_tol = rotation_tol * max(1.0, coarse), plane_tol * max(1.0, coarse)
     model, resid = "rotation", rot_rms
     if (telephoto or rot_rms > rot_tol) and projection in ("auto", "planar"):
-        adj = adjust_homographies(graph.homographies, inlier_matches(graph), reference=graph.reference)
+        adj = adjust_homographies(graph.homographies, inlier_matches(graph, 100), reference=graph.reference)
         if telephoto or adj.rms_after < 0.7 * rot_rms:  # a plane explains the matches clearly better
             model, Hs_plane, resid = "homography", adj.homographies, adj.rms_after
-        if adj.rms_after > pl_tol:
+        if adj.rms_after > pl_tol and rot_rms > rot_tol:
             warnings.warn(f"stitch: neither a turning camera (rotation model residual {rot_rms:.2f} px) nor a flat "
                           f"scene (homography residual {adj.rms_after:.2f} px) explains the matches: the camera "
                           f"moved in front of a 3-D scene (parallax); expect ghosts and misaligned seams",

@@ -538,7 +538,7 @@ def parallax_ghosting() -> Demo:
         im.set_extent((-0.5, ww - 0.5, hh - 0.5, -0.5))
         n, k = len(reg.matches.src), int(reg.inliers.sum())
         diff = 255 * st.overlap_difference(wi)
-        state.update(baseline=b, inlier_fraction=k / max(n, 1), residual_rms=reg.residual_rms,
+        state.update(baseline=b, edges=bool(v["edges"]), inlier_fraction=k / max(n, 1), residual_rms=reg.residual_rms,
                      misalignment=diff, method=v["method"], image=out)
         readout.value = _pre(f"camera moved {100 * b:.0f} cm\nmatches: {n}\n"
                              f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\ninlier RMS: {reg.residual_rms:.2f} px\n"
