@@ -319,6 +319,7 @@ def ransac_outliers() -> Demo:
     heads = view.animate(ax.scatter(np.zeros(0), np.zeros(0), s=6))
     box_true = view.animate(ax.plot([], [], "-", color="0.3", lw=2, label="true H (image frame)")[0])
     box_est = view.animate(ax.plot([], [], "--", color="tab:blue", lw=2, label="RANSAC H")[0])
+    best = view.animate(ax.plot([], [], "o", mfc="none", mec="k", mew=2, ms=11, label="the winning sample of 4")[0])
     for name, colour in _VERDICTS:
         ax.plot([], [], "-", color=colour, lw=2, label=name)
     ax.legend(loc="lower right", fontsize=7, ncol=2, framealpha=0.9)
@@ -344,7 +345,7 @@ def ransac_outliers() -> Demo:
         except hg.DegenerateError as exc:  # clear the last result: a stale plot would be a lie
             state.update(iterations=None, inliers=None, recall=None, corner_error=None, H=None, verdicts=None,
                          outlier_fraction_found=None, samples_needed=None, error=str(exc))
-            for artist in (box_est, dot, needed):
+            for artist in (box_est, dot, needed, best):
                 artist.set_data([], [])
             arrows.set_segments([])
             heads.set_offsets(np.zeros((0, 2)))
@@ -362,6 +363,7 @@ def ransac_outliers() -> Demo:
         bt, be = map_points(H, frame), map_points(r.H, frame)
         box_true.set_data(bt[:, 0], bt[:, 1])
         box_est.set_data(be[:, 0], be[:, 1])
+        best.set_data(dst[r.sample, 0], dst[r.sample, 1])
         eps_found = 1.0 - r.inliers.mean()
         k_needed = float(samples_needed(eps_found))
         dot.set_data([v["outliers"]], [r.iterations])
@@ -369,7 +371,8 @@ def ransac_outliers() -> Demo:
         counts = np.bincount(verdict, minlength=4)
         found_true = float(np.mean(r.inliers[~out])) if (~out).any() else float("nan")
         err = float(np.max(np.linalg.norm(be - bt, axis=1)))
-        state.update(iterations=r.iterations, inliers=int(r.inliers.sum()), recall=found_true, corner_error=err,
+        state.update(sample=r.sample, iterations=r.iterations, inliers=int(r.inliers.sum()), recall=found_true,
+                     corner_error=err,
                      error=None, H=r.H, verdicts=counts, outlier_fraction_found=eps_found, samples_needed=k_needed)
         readout.value = _pre(
             f"true ε = {v['outliers']:.2f}, found ε = {eps_found:.2f}\n"
