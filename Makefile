@@ -48,7 +48,7 @@ browser-deps:
 	  fi; }
 
 # Unit, property, doctest, widget, exercise, lesson (nbval) and browser tests in one run.
-test: $(VENV)/.installed-test$(STAMP) browser-deps
+test: $(VENV)/.installed-test$(STAMP) browser-deps hub-deps site-deps
 	$(BIN)/python -m pytest -n 2 --dist loadfile --nbval-lax $(PYTEST_ARGS)
 
 # Everything but the notebooks and the browser: the quick loop while editing.
@@ -113,3 +113,40 @@ clean:
 LESSON ?= 00
 present: $(VENV)/.installed-test$(STAMP)
 	$(BIN)/camlab present $(LESSON)
+
+# configurable-http-proxy (npm registry) for the JupyterHub test, in a local prefix.
+CHP := $(VENV)/chp/node_modules/.bin/configurable-http-proxy
+.PHONY: hub-deps class-load
+hub-deps: $(CHP)
+$(CHP): | $(BIN)/python
+	npm install --prefix $(VENV)/chp --no-audit --no-fund --loglevel=error configurable-http-proxy@5
+
+# A real hub with N students running lessons at once; prints the sizing table (docs/teaching.md).
+N ?= 8
+LESSONS ?=
+DRAG ?= transformation_hierarchy
+class-load: $(VENV)/.installed-test$(STAMP) hub-deps
+	$(BIN)/python benchmarks/class_load.py --students $(N) $(if $(DRAG),--drag $(DRAG)) $(LESSONS)
+
+# Binder's install step and the hub image's RUN steps (docs/teaching.md) in fresh venvs, then
+# every lesson from a folder outside the repository. Minutes, not seconds: CI runs it.
+.PHONY: test-binder
+test-binder: $(VENV)/.installed-test$(STAMP)
+	CAMLAB_TEST_BINDER=1 $(BIN)/python -m pytest -p no:randomly tests/test_binder.py $(PYTEST_ARGS)
+
+# The course as a static website in site/ (issue 17): every lesson executed, maths typeset
+# by a local MathJax 3 from the npm registry (axe-core comes along for the accessibility test).
+NPM_DIR := build/npm
+.PHONY: site site-deps test-site
+$(NPM_DIR)/.installed:
+	npm install --prefix $(NPM_DIR) --no-audit --no-fund --no-save --silent mathjax@3.2.2 axe-core@4.10.3
+	touch $@
+
+site-deps: $(NPM_DIR)/.installed
+
+site: $(VENV)/.installed-test$(STAMP) site-deps
+	$(BIN)/python tools/site/build.py site
+
+# The site's own tests on the site just built (CI runs this after `make site`).
+test-site: site browser-deps
+	CAMLAB_SITE_DIR=site $(BIN)/python -m pytest -p no:randomly tests/test_site.py $(PYTEST_ARGS)

@@ -29,20 +29,26 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .distortion import distort_points
+from .distortion import beyond_valid_radius, distort_points
+from .optimize import levenberg_marquardt, unit_sphere_basis, unit_sphere_update
+from .projective import hartley_normalization
 from ._validate import (
     CamlabInputError,
     ConvergenceError,
     DegenerateError,
     as_points,
     ROTATION_TOL,
+    as_float,
     check_finite,
+    check_number,
     check_intrinsics,
     check_matrix,
     check_positive,
     check_rotation,
     check_size,
 )
+# The wireframe scenes live in camlab.scenes; they are re-exported here for lessons 04-05.
+from .scenes import box_wireframe, ground_grid, house_wireframe
 
 __all__ = [
     "Camera", "Decomposition", "CV_FROM_GL", "axis_angle_from_rotation", "camera_centre",
@@ -90,9 +96,9 @@ def intrinsic_matrix(fx: float, fy: float, cx: float, cy: float, skew: float = 0
     """
     fx = check_positive(fx, "fx", "pixels")
     fy = check_positive(fy, "fy", "pixels")
-    vals = np.array([cx, cy, skew], dtype=float)
-    check_finite(vals, "cx, cy, skew")
-    return np.array([[fx, vals[2], vals[0]], [0.0, fy, vals[1]], [0.0, 0.0, 1.0]])
+    cx, cy = check_number(cx, "cx", "pixels"), check_number(cy, "cy", "pixels")
+    skew = check_number(skew, "skew", "pixels")
+    return np.array([[fx, skew, cx], [0.0, fy, cy], [0.0, 0.0, 1.0]])
 
 
 def is_rotation(R: ArrayLike, tol: float = ROTATION_TOL) -> bool:
@@ -162,18 +168,21 @@ def axis_angle_from_rotation(R: ArrayLike) -> np.ndarray:
 
 def rotation_x(angle: float) -> np.ndarray:
     """Rotation by ``angle`` radians about the x axis (right-handed)."""
+    angle = check_number(angle, "angle", "radians")
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
 
 
 def rotation_y(angle: float) -> np.ndarray:
     """Rotation by ``angle`` radians about the y axis (right-handed)."""
+    angle = check_number(angle, "angle", "radians")
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
 
 
 def rotation_z(angle: float) -> np.ndarray:
     """Rotation by ``angle`` radians about the z axis (right-handed)."""
+    angle = check_number(angle, "angle", "radians")
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
@@ -421,7 +430,8 @@ class Camera:
         -------
         (N, 2) or (2,) ndarray
             Pixel coordinates (u, v); NaN for points with :math:`z_c \le 0` (behind or
-            on the camera's plane), which have no image.
+            on the camera's plane), which have no image, and for points beyond the
+            distortion model's valid radius (:func:`camlab.distortion.max_valid_radius`).
 
         Notes
         -----
@@ -437,7 +447,9 @@ class Camera:
         with np.errstate(divide="ignore", invalid="ignore"):
             xn = Xc[:, :2] / np.where(z > 0, z, np.nan)[:, None]
         if any(self.dist):
+            far = beyond_valid_radius(xn, self.dist)  # the model folds back there: no pixel, not a mirrored one
             xn = distort_points(xn, self.dist)
+            xn[far] = np.nan
         uv = xn @ self.K[:2, :2].T + self.K[:2, 2]
         return p.restore(uv)
 
@@ -684,20 +696,6 @@ def decompose_projection_matrix(P: ArrayLike) -> Decomposition:
 # Resectioning: the DLT for cameras
 # ---------------------------------------------------------------------------------------
 
-def _normalizing_transform(points: np.ndarray) -> np.ndarray:
-    r"""Hartley's similarity: centroid to the origin, mean distance :math:`\sqrt{d}`."""
-    d = points.shape[1]
-    c = points.mean(axis=0)
-    mean_dist = np.linalg.norm(points - c, axis=1).mean()
-    if mean_dist == 0:
-        raise DegenerateError("estimate_projection_matrix: all points coincide; spread them out")
-    s = np.sqrt(d) / mean_dist
-    T = np.eye(d + 1)
-    T[:d, :d] *= s
-    T[:d, d] = -s * c
-    return T
-
-
 def reprojection_errors(P: ArrayLike, points_world: ArrayLike, points_image: ArrayLike) -> np.ndarray:
     """(N,) distances in pixels between ``points_image`` and the projections of ``points_world`` by P."""
     uv = as_points(points_image, 2, "points_image").array
@@ -735,7 +733,8 @@ def estimate_projection_matrix(
     :math:`\hat P` for the normalised points, and :math:`P = T^{-1} \hat P U`.
 
     With ``refine=True`` the linear estimate seeds Levenberg-Marquardt
-    (scipy.optimize.least_squares) on the reprojection error
+    (:func:`camlab.optimize.levenberg_marquardt`, on the unit sphere of P's 12 entries) on the
+    reprojection error
     :math:`\sum_i \|u_i - \pi(P, X_i)\|^2`, the maximum-likelihood (gold standard)
     estimate under Gaussian pixel noise.
 
@@ -783,8 +782,8 @@ def estimate_projection_matrix(
             f"thinnest direction is {sv[2] / max(sv[0], 1e-300):.2g} of the widest), so P is not determined; "
             f"use points on at least two planes (e.g. two faces of a box), or a homography for one plane"
         )
-    T = _normalizing_transform(uv)
-    U = _normalizing_transform(X)
+    T = hartley_normalization(uv, "points_image")
+    U = hartley_normalization(X, "points_world")
     Xn = np.hstack([X, np.ones((len(X), 1))]) @ U.T
     un = (np.hstack([uv, np.ones((len(uv), 1))]) @ T.T)[:, :2]
     n = len(X)
@@ -815,8 +814,7 @@ def _normalize_P(P: np.ndarray) -> np.ndarray:
 
 
 def _refine_projection_matrix(P0: np.ndarray, X: np.ndarray, uv: np.ndarray) -> np.ndarray:
-    from scipy.optimize import least_squares
-
+    """Gold-standard P: LM on the reprojection error, stepping on the unit sphere of the 12 entries."""
     Xh = np.hstack([X, np.ones((len(X), 1))])
 
     def residuals(p: np.ndarray) -> np.ndarray:
@@ -834,59 +832,28 @@ def _refine_projection_matrix(P0: np.ndarray, X: np.ndarray, uv: np.ndarray) -> 
         J[:, 0, 8:12] = -u * Xh / w
         J[:, 1, 4:8] = Xh / w
         J[:, 1, 8:12] = -v * Xh / w
-        return J.reshape(-1, 12)
+        return J.reshape(-1, 12) @ unit_sphere_basis(p)
 
-    res = least_squares(residuals, P0.ravel(), jac=jacobian, method="lm", x_scale="jac")
-    if not res.success:
+    p0 = P0.ravel() / np.linalg.norm(P0)
+    res = levenberg_marquardt(residuals, p0, jacobian, update=unit_sphere_update, max_iter=200,
+                              ftol=1e-15, xtol=1e-15, gtol=1e-12)
+    if not np.all(np.isfinite(res.x)):
         raise ConvergenceError(f"estimate_projection_matrix: refinement did not converge ({res.message})")
     return _normalize_P(res.x.reshape(3, 4))
 
 
 # ---------------------------------------------------------------------------------------
-# Simple wireframe scenes (what lessons 04-05 photograph)
+# Projecting wireframes (scenes from camlab.scenes)
 # ---------------------------------------------------------------------------------------
-
-def box_wireframe(centre: ArrayLike = (0.0, 0.0, 0.5), size: ArrayLike = (1.0, 1.0, 1.0)) -> np.ndarray:
-    """The 12 edges of an axis-aligned box as (12, 2, 3) segments (metres)."""
-    c = check_matrix(centre, (3,), "centre")
-    s = check_matrix(size, (3,), "size")
-    corners = np.array([[i, j, k] for i in (-0.5, 0.5) for j in (-0.5, 0.5) for k in (-0.5, 0.5)]) * s + c
-    edges = [(a, b) for a in range(8) for b in range(a + 1, 8) if bin(a ^ b).count("1") == 1]
-    return corners[np.array(edges)]
-
-
-def house_wireframe(centre: ArrayLike = (0.0, 0.0, 0.0), size: float = 1.0) -> np.ndarray:
-    """A house (box body, gable roof, door) standing on z = 0 at ``centre``, as (M, 2, 3) segments."""
-    c = check_matrix(centre, (3,), "centre")
-    s = check_positive(size, "size", "metres")
-    body = box_wireframe((0.0, 0.0, 0.5), (1.0, 1.4, 1.0))
-    r0, r1 = np.array([0.0, -0.7, 1.55]), np.array([0.0, 0.7, 1.55])
-    top = [(-0.5, 1.0), (0.5, 1.0)]
-    roof = [[r0, r1]]
-    for y, r in ((-0.7, r0), (0.7, r1)):
-        for x, z in top:
-            roof.append([[x, y, z], r])
-    door = [[[-0.5, -0.15, 0.0], [-0.5, -0.15, 0.6]], [[-0.5, -0.15, 0.6], [-0.5, 0.15, 0.6]],
-            [[-0.5, 0.15, 0.6], [-0.5, 0.15, 0.0]]]
-    segs = np.concatenate([body, np.array(roof, dtype=float), np.array(door, dtype=float)])
-    return segs * s + c
-
-
-def ground_grid(extent: float = 2.0, step: float = 0.5, z: float = 0.0) -> np.ndarray:
-    """Grid lines on the plane z = ``z`` covering [-extent, extent]^2, as (M, 2, 3) segments."""
-    e = check_positive(extent, "extent", "metres")
-    st = check_positive(step, "step", "metres")
-    ticks = np.arange(-e, e + 1e-9, st)
-    segs = [[[x, -e, z], [x, e, z]] for x in ticks] + [[[-e, y, z], [e, y, z]] for y in ticks]
-    return np.array(segs, dtype=float)
-
 
 def project_segments(camera: "Camera | ArrayLike", segments: ArrayLike) -> np.ndarray:
     """Project (M, 2, 3) world segments to (M, 2, 2) pixel segments with a Camera or a 3x4 P.
 
     Segments with an endpoint behind the camera get NaN there (matplotlib skips them).
     """
-    s = np.asarray(segments, dtype=float)
+    if not isinstance(camera, Camera):
+        camera = _check_P(camera, "camera")
+    s = as_float(segments, "segments")
     if s.ndim != 3 or s.shape[1:] != (2, 3):
         raise CamlabInputError(f"segments: expected (M, 2, 3) pairs of world points, got shape {s.shape}")
     flat = s.reshape(-1, 3)

@@ -35,14 +35,17 @@ from ._validate import (
     CamlabInputError,
     ConvergenceError,
     DegenerateError,
+    as_float,
     as_points,
     check_finite,
     check_intrinsics,
     check_matrix,
+    check_number,
     check_positive,
     check_rotation,
 )
-from .projective import map_lines, map_points
+from .optimize import levenberg_marquardt, unit_sphere_basis, unit_sphere_update
+from .projective import hartley_normalization, hartley_normalize, map_lines, map_points
 from .robust import PairModel, ransac
 
 __all__ = [
@@ -89,44 +92,6 @@ def _check_h(H: ArrayLike, name: str = "H") -> np.ndarray:
 
 
 # --------------------------------------------------------------------------- normalisation
-
-def hartley_normalization(points: ArrayLike) -> np.ndarray:
-    r"""The similarity T that centres points and scales their mean distance to :math:`\sqrt 2`.
-
-    .. math:: T = \begin{pmatrix} s & 0 & -s\bar u \\ 0 & s & -s\bar v \\ 0 & 0 & 1 \end{pmatrix},
-              \quad s = \frac{\sqrt 2}{\operatorname{mean}_i \| x_i - \bar x \|}
-
-    After ``map_points(T, points)`` the coordinates are of order 1, so the entries of the
-    DLT matrix (products of coordinates up to :math:`u u'`) are all of similar size.
-
-    Parameters
-    ----------
-    points : (N, 2) array_like
-
-    Returns
-    -------
-    (3, 3) ndarray
-
-    Examples
-    --------
-    >>> T = hartley_normalization([[0, 0], [2, 0], [2, 2], [0, 2]])
-    >>> map_points(T, [[0, 0], [2, 2]]).round(6)
-    array([[-1., -1.],
-           [ 1.,  1.]])
-    """
-    p = as_points(points, 2, "points").array
-    c = p.mean(axis=0)
-    spread = np.mean(np.linalg.norm(p - c, axis=1))
-    if spread == 0:
-        raise DegenerateError("points: all points coincide, so they cannot be normalised; use distinct points")
-    s = np.sqrt(2.0) / spread
-    return np.array([[s, 0.0, -s * c[0]], [0.0, s, -s * c[1]], [0.0, 0.0, 1.0]])
-
-
-def _normalize_batch(p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    T = hartley_normalization(p)
-    return p * T[0, 0] + T[:2, 2], T
-
 
 def normalize_homography(H: ArrayLike) -> np.ndarray:
     """Scale H so that H[2, 2] = 1, or to unit Frobenius norm when H[2, 2] is (nearly) 0.
@@ -257,8 +222,8 @@ def estimate_homography(src: ArrayLike, dst: ArrayLike, normalize: bool = True) 
            [0., 0., 1.]])
     """
     s, d = _pairs(src, dst)
-    sn, Ts = _normalize_batch(s)
-    dn, Td = _normalize_batch(d)
+    sn, Ts = hartley_normalize(s)
+    dn, Td = hartley_normalize(d)
     _check_general_position(sn, "src")
     _check_general_position(dn, "dst")
     if normalize and len(s) > 4:
@@ -295,7 +260,7 @@ def transfer_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np.ndarray:
     >>> transfer_error(np.eye(3), [[0, 0], [1, 1]], [[3, 4], [1, 1]])
     array([5., 0.])
     """
-    Hm = check_matrix(H, (3, 3), "H")
+    Hm = _check_h(H)
     s, d = _pairs(src, dst, min_count=1)
     return np.linalg.norm(map_points(Hm, s) - d, axis=1)
 
@@ -395,12 +360,15 @@ class RansacResult(NamedTuple):
         Minimal samples drawn (hypotheses tried, degenerate ones included).
     residuals : (N,) ndarray
         Each pair's error under the final ``H`` in pixels (the chosen ``score``).
+    sample : (4,) int ndarray
+        The minimal sample whose hypothesis, locally optimised, became ``H``.
     """
 
     H: np.ndarray
     inliers: np.ndarray
     iterations: int
     residuals: np.ndarray
+    sample: np.ndarray | None = None
 
 
 def _minimal_solve(sn: np.ndarray, dn: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -436,8 +404,8 @@ class HomographyModel(PairModel):
     def __init__(self, src: np.ndarray, dst: np.ndarray, score: str = "transfer"):
         super().__init__(src, dst)
         self.score = score
-        self.sn, self.Ts = _normalize_batch(src)
-        self.dn, self.Td = _normalize_batch(dst)
+        self.sn, self.Ts = hartley_normalize(src)
+        self.dn, self.Td = hartley_normalize(dst)
         self.Td_inv = np.linalg.inv(self.Td)
         self.A = _dlt_rows(self.sn, self.dn).reshape(-1, 2, 9)  # each pair's two DLT rows, once
 
@@ -529,7 +497,7 @@ def ransac_homography(
     if score not in ("transfer", "sampson"):
         raise CamlabInputError(f"score: expected 'transfer' or 'sampson', got {score!r}")
     fit = ransac(HomographyModel(s, d, score), threshold, confidence, max_iters, rng, batch=batch)
-    return RansacResult(normalize_homography(fit.model), fit.inliers, fit.iterations, fit.residuals)
+    return RansacResult(normalize_homography(fit.model), fit.inliers, fit.iterations, fit.residuals, fit.sample)
 
 
 # --------------------------------------------------------------------------- LM refinement
@@ -595,11 +563,10 @@ def refine_homography(
     so steps are taken in the 8-dimensional space orthogonal to the current :math:`h`
     (a basis B from the SVD of :math:`h^T`), and h is re-normalised after each step.
 
-    Each step solves :math:`(J^T J + \lambda\, \mathrm{diag}(J^T J))\,\delta = -J^T r`
-    with the analytic Jacobian J: for the forward term
-    :math:`\partial (Hx)/\partial h = I_3 \otimes x^T`, and for the backward term
-    :math:`d(H^{-1}) = -H^{-1}\, dH\, H^{-1}`. A step that lowers the cost is accepted and
-    :math:`\lambda` shrinks 10x; otherwise it is rejected and :math:`\lambda` grows 10x.
+    The steps are :func:`camlab.optimize.levenberg_marquardt`'s, on the unit sphere
+    (:func:`camlab.optimize.unit_sphere_update`), with the analytic Jacobian J: for the
+    forward term :math:`\partial (Hx)/\partial h = I_3 \otimes x^T`, and for the backward
+    term :math:`d(H^{-1}) = -H^{-1}\, dH\, H^{-1}`.
 
     Parameters
     ----------
@@ -608,7 +575,7 @@ def refine_homography(
     src, dst : (N, 2) array_like
         Corresponding pixel coordinates, N >= 4.
     max_iters : int
-        Maximum LM steps.
+        Maximum LM steps (accepted or rejected).
     tol : float
         Stop when the relative cost decrease of an accepted step is below ``tol``.
 
@@ -625,41 +592,25 @@ def refine_homography(
     h = _check_h(H).ravel().copy()
     s, d = _pairs(src, dst)
     h /= np.linalg.norm(h)
-    r, J = _transfer_residuals_and_jacobian(h, s, d)
-    cost = float(r @ r)
-    if not np.isfinite(cost):
+    r0 = _transfer_residuals_and_jacobian(h, s, d)[0]
+    if not np.all(np.isfinite(r0)):
         raise ConvergenceError("refine_homography: the starting H maps some point to infinity; start from the DLT")
-    rms0 = np.sqrt(cost / (2 * len(s)))
-    lam = 1e-3
-    it = 0
-    for it in range(1, int(max_iters) + 1):
-        B = np.linalg.svd(h[None, :])[2][1:].T     # (9, 8): orthonormal basis orthogonal to h
-        Jb = J @ B
-        JtJ = Jb.T @ Jb
-        g = Jb.T @ r
-        if np.max(np.abs(g)) < 1e-14 * max(cost, 1e-300):
-            break
-        step = np.linalg.solve(JtJ + lam * np.diag(np.diag(JtJ) + 1e-12), -g)
-        h_new = h + B @ step
-        h_new /= np.linalg.norm(h_new)
-        try:
-            r_new, J_new = _transfer_residuals_and_jacobian(h_new, s, d)
-        except np.linalg.LinAlgError:
-            lam *= 10
-            continue
-        cost_new = float(r_new @ r_new)
-        if np.isfinite(cost_new) and cost_new < cost:
-            done = (cost - cost_new) <= tol * cost
-            h, r, J, cost = h_new, r_new, J_new, cost_new
-            lam = max(lam / 10, 1e-12)
-            if done:
-                break
-        else:
-            lam *= 10
-            if lam > 1e12:
-                break
-    return RefineResult(normalize_homography(h.reshape(3, 3)), float(rms0),
-                        float(np.sqrt(cost / (2 * len(s)))), it)
+    cache: dict = {}
+
+    def evaluate(x: np.ndarray):
+        key = x.tobytes()
+        if key not in cache:
+            cache.clear()
+            try:
+                cache[key] = _transfer_residuals_and_jacobian(x, s, d)
+            except np.linalg.LinAlgError:  # a singular trial H: reject the step
+                cache[key] = (np.full(4 * len(s), np.inf), None)
+        return cache[key]
+
+    lm = levenberg_marquardt(lambda x: evaluate(x)[0], h, lambda x: evaluate(x)[1] @ unit_sphere_basis(x),
+                             update=unit_sphere_update, max_iter=int(max_iters), ftol=tol, xtol=1e-14, gtol=0.0)
+    return RefineResult(normalize_homography(lm.x.reshape(3, 3)), float(np.sqrt(r0 @ r0 / (2 * len(s)))),
+                        float(np.sqrt(2 * lm.cost / (2 * len(s)))), lm.iterations)
 
 
 # --------------------------------------------------------------------------- algebra
@@ -718,7 +669,8 @@ HIERARCHY: dict[str, dict] = {
 """The four groups of plane transformations, their degrees of freedom and invariants (H&Z table 2.1)."""
 
 
-def _rot(theta: float) -> np.ndarray:
+def _rot(theta: float, name: str = "theta") -> np.ndarray:
+    theta = check_number(theta, name, "radians")
     c, s = np.cos(theta), np.sin(theta)
     return np.array([[c, -s], [s, c]])
 
@@ -732,7 +684,7 @@ def euclidean(theta: float = 0.0, tx: float = 0.0, ty: float = 0.0) -> np.ndarra
     """
     H = np.eye(3)
     H[:2, :2] = _rot(theta)
-    H[:2, 2] = tx, ty
+    H[:2, 2] = check_number(tx, "tx", "pixels"), check_number(ty, "ty", "pixels")
     return H
 
 
@@ -751,11 +703,12 @@ def affine(theta: float = 0.0, phi: float = 0.0, sx: float = 1.0, sy: float = 1.
     :math:`D = \mathrm{diag}(s_x, s_y)` scales along axes rotated by :math:`\phi`, then
     :math:`R(\theta)` rotates; (tx, ty) translates. Parallel lines stay parallel.
     """
+    sx, sy = check_number(sx, "sx"), check_number(sy, "sy")
     if sx == 0 or sy == 0:
         raise DegenerateError(f"sx, sy: a zero scale collapses the plane; got sx={sx}, sy={sy}")
     H = np.eye(3)
-    H[:2, :2] = _rot(theta) @ _rot(-phi) @ np.diag([sx, sy]) @ _rot(phi)
-    H[:2, 2] = tx, ty
+    H[:2, :2] = _rot(theta) @ _rot(-check_number(phi, "phi", "radians"), "phi") @ np.diag([sx, sy]) @ _rot(phi, "phi")
+    H[:2, 2] = check_number(tx, "tx", "pixels"), check_number(ty, "ty", "pixels")
     return H
 
 
@@ -770,7 +723,7 @@ def projective(A: ArrayLike | None = None, t: ArrayLike = (0.0, 0.0), v: ArrayLi
     H[:2, :2] = np.eye(2) if A is None else check_matrix(A, (2, 2), "A")
     H[:2, 2] = check_matrix(t, (2,), "t")
     H[2, :2] = check_matrix(v, (2,), "v")
-    H[2, 2] = w
+    H[2, 2] = check_number(w, "w")
     return _check_h(H)
 
 
@@ -883,9 +836,9 @@ def plane_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike, n: ArrayLike, d: 
     """
     Km = check_intrinsics(K, "K")
     K2m = Km if K2 is None else check_intrinsics(K2, "K2")
-    tv = check_matrix(np.ravel(np.asarray(t, dtype=float)), (3,), "t")
-    nv = check_matrix(np.ravel(np.asarray(n, dtype=float)), (3,), "n")
-    if not np.isfinite(d) or d == 0:
+    tv = check_matrix(np.ravel(as_float(t, "t")), (3,), "t")
+    nv = check_matrix(np.ravel(as_float(n, "n")), (3,), "n")
+    if check_number(d, "d", "metres") == 0:
         raise DegenerateError(f"d: the plane n . X + d = 0 must not pass through camera 1's centre; got d={d!r}")
     if not np.any(nv):
         raise CamlabInputError("n: the plane normal must be non-zero")
@@ -907,6 +860,6 @@ def pose_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike) -> np.ndarray:
     """
     Km = check_intrinsics(K, "K")
     Rm = check_rotation(R)
-    tv = check_matrix(np.ravel(np.asarray(t, dtype=float)), (3,), "t")
+    tv = check_matrix(np.ravel(as_float(t, "t")), (3,), "t")
     H = Km @ np.column_stack([Rm[:, 0], Rm[:, 1], tv])
     return normalize_homography(_check_h(H, "pose_homography"))

@@ -45,6 +45,18 @@ decrease of the cost in an accepted step is below ``ftol``, or ``max_iter`` iter
 ``damped_solve(A, g, mu) -> delta``. The defaults treat J as a dense matrix; camera
 calibration passes block versions (:mod:`camlab.calibration`) that exploit that each
 view's pose touches only that view's residuals. See lesson 08, section 4.
+
+**Parameters that are not a vector space.** A homography or a projection matrix is
+defined up to scale: its entries live on the unit sphere, one dimension is redundant, and a
+plain step :math:`x + \delta` could shrink it towards 0. Pass ``update(x, delta)`` to step
+in a local parametrisation instead (the Jacobian is then with respect to ``delta``):
+:func:`unit_sphere_update` steps in the tangent space :math:`x^\perp` (basis
+:func:`unit_sphere_basis`) and re-normalises. Without a Jacobian, :func:`numeric_jacobian`
+differentiates the residuals by central differences.
+
+**Robust losses.** Least squares on :func:`huber_residuals` minimises the Huber loss
+exactly; wrap the residual function with it (and use the numeric Jacobian, or the chain
+rule) to down-weight outliers.
 """
 from __future__ import annotations
 
@@ -56,7 +68,7 @@ from numpy.typing import ArrayLike
 from ._validate import CamlabInputError, ConvergenceError, check_finite
 
 __all__ = ["LMResult", "dense_damped_solve", "dense_normal_equations", "huber_residuals", "levenberg_marquardt",
-           "lm_step"]
+           "lm_step", "numeric_jacobian", "unit_sphere_basis", "unit_sphere_update"]
 
 
 class LMResult(NamedTuple):
@@ -135,11 +147,63 @@ def lm_step(J: ArrayLike, r: ArrayLike, mu: float) -> np.ndarray:
     return dense_damped_solve(A, g, float(mu))
 
 
+def numeric_jacobian(residuals: Callable[[np.ndarray], np.ndarray], x: ArrayLike,
+                     step: float = 1e-6) -> np.ndarray:
+    r"""The (m, n) Jacobian of ``residuals`` at ``x`` by central differences.
+
+    :math:`J_{:, k} \approx \frac{r(x + h_k e_k) - r(x - h_k e_k)}{2 h_k}` with
+    :math:`h_k = \text{step} \cdot \max(1, |x_k|)`: error :math:`O(h^2)`, 2n evaluations.
+    For a local parametrisation differentiate ``lambda d: residuals(update(x, d))`` at 0.
+
+    >>> numeric_jacobian(lambda x: np.array([x[0] ** 2, x[0] * x[1]]), [3.0, 2.0]).round(6)
+    array([[6., 0.],
+           [2., 3.]])
+    """
+    x = np.array(x, dtype=float).ravel()
+    h = step * np.maximum(1.0, np.abs(x))
+    cols = []
+    for k in range(x.size):
+        e = np.zeros_like(x)
+        e[k] = h[k]
+        cols.append((np.asarray(residuals(x + e), dtype=float) - np.asarray(residuals(x - e), dtype=float))
+                    / (2 * h[k]))
+    return np.stack(cols, axis=-1)
+
+
+def unit_sphere_basis(x: ArrayLike) -> np.ndarray:
+    r"""An orthonormal basis (n, n - 1) of the tangent space :math:`x^\perp` of the unit sphere at x.
+
+    The right singular vectors of the row :math:`x^\top` other than :math:`x / \|x\|`
+    (the same basis for the same x, so a Jacobian and a step computed at x agree).
+    """
+    v = np.asarray(x, dtype=float).ravel()
+    return np.linalg.svd(v[None, :])[2][1:].T
+
+
+def unit_sphere_update(x: ArrayLike, delta: ArrayLike) -> np.ndarray:
+    r"""Step on the unit sphere: :math:`x' = (x + B\delta) / \|x + B\delta\|`, B = :func:`unit_sphere_basis`.
+
+    For parameters defined up to scale (homographies, projection matrices): the step has
+    n - 1 components and never changes the scale.
+
+    >>> unit_sphere_update([0.0, 0.0, 1.0], [0.0, 0.0]).tolist()
+    [0.0, 0.0, 1.0]
+    """
+    v = np.asarray(x, dtype=float).ravel()
+    y = v + unit_sphere_basis(v) @ np.asarray(delta, dtype=float)
+    return y / np.linalg.norm(y)
+
+
+def _add(x: np.ndarray, delta: np.ndarray) -> np.ndarray:
+    return x + delta
+
+
 def levenberg_marquardt(
     residuals: Callable[[np.ndarray], np.ndarray],
     x0: ArrayLike,
-    jacobian: Callable[[np.ndarray], Any],
+    jacobian: Callable[[np.ndarray], Any] | None = None,
     *,
+    update: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None,
     normal_equations: Callable[[Any, np.ndarray], tuple[Any, np.ndarray]] = dense_normal_equations,
     damped_solve: Callable[[Any, np.ndarray, float], np.ndarray] = dense_damped_solve,
     max_iter: int = 100,
@@ -157,9 +221,13 @@ def levenberg_marquardt(
         ``residuals(x) -> (m,) ndarray``.
     x0 : (n,) array_like
         Starting parameters.
-    jacobian : callable
+    jacobian : callable, optional
         ``jacobian(x) -> J``; a dense (m, n) array with the default solvers, or any object
-        that ``normal_equations`` understands.
+        that ``normal_equations`` understands. None: central differences
+        (:func:`numeric_jacobian`), only without ``update``.
+    update : callable, optional
+        ``update(x, delta) -> x_new``, the step in a local parametrisation (e.g.
+        :func:`unit_sphere_update`); the Jacobian is then d r / d delta. Default ``x + delta``.
     normal_equations : callable
         ``(J, r) -> (A, g)`` with :math:`A = J^\top J` (in any form ``damped_solve`` takes)
         and the gradient :math:`g = J^\top r` as an (n,) array.
@@ -195,6 +263,14 @@ def levenberg_marquardt(
     """
     x = np.array(x0, dtype=float).ravel()
     check_finite(x, "x0")
+    step = _add if update is None else update
+    if jacobian is None:
+        if update is not None:
+            raise CamlabInputError(
+                "jacobian: with a custom update, pass the Jacobian with respect to the step, e.g. "
+                "lambda x: numeric_jacobian(lambda d: residuals(update(x, d)), np.zeros(k))"
+            )
+        jacobian = lambda x: numeric_jacobian(residuals, x)  # noqa: E731
     r = np.asarray(residuals(x), dtype=float)
     if not np.all(np.isfinite(r)):
         raise ConvergenceError("levenberg_marquardt: the residuals at the starting point x0 are not finite; "
@@ -219,7 +295,7 @@ def levenberg_marquardt(
         if np.linalg.norm(delta) <= xtol * (np.linalg.norm(x) + xtol):
             converged, message = True, "step below xtol"
             break
-        x_new = x + delta
+        x_new = step(x, delta)
         r_new = np.asarray(residuals(x_new), dtype=float)
         cost_new = 0.5 * float(r_new @ r_new) if np.all(np.isfinite(r_new)) else np.inf
         # predicted decrease of the linear model: L(0) - L(delta) = 0.5 delta^T (mu D delta - g)

@@ -82,7 +82,7 @@ def test_find_chessboard_explains_failures(bundled):
     cut = np.ascontiguousarray(img[:, :int(np.sort(gt[:, 0])[-15])])
     assert "cut off" in C.find_chessboard(cut, (9, 6)).reason
     assert "too blurry" in C.find_chessboard(cv2.GaussianBlur(img, (0, 0), 30), (9, 6)).reason
-    with pytest.raises(CamlabInputError, match="image: expected an \\(H, W\\) grey"):
+    with pytest.raises(CamlabInputError, match="image: expected an image of shape \\(H, W\\)"):
         C.find_chessboard(np.zeros((4, 4, 2)), (9, 6))
 
 
@@ -124,6 +124,29 @@ def test_initial_radial_distortion_is_exact_for_radial_data():
     s = C.make_synthetic_views(6, 0.0, dist=[-0.25, 0.08, 0, 0, 0], rng=np.random.default_rng(2))
     k = C.initial_radial_distortion(K_TRUE, s.object_points, s.image_points, s.R, s.t)
     np.testing.assert_allclose(k, [-0.25, 0.08], rtol=1e-9)
+
+
+def test_linear_distortion_with_homography_poses_has_the_wrong_sign_and_the_alternation_fixes_it():
+    # The lesson's camera: barrel distortion k1 = -0.21, k2 = +0.09, corner noise 0.2 px.
+    s = C.make_synthetic_views(12, 0.2, rng=np.random.default_rng(3))
+    Hs = C.view_homographies(s.object_points, s.image_points)
+    K0 = C.intrinsics_from_homographies(Hs, image_size=s.image_size)
+    poses = [C.extrinsics_from_homography(K0, H) for H in Hs]
+    linear = C.initial_radial_distortion(K0, s.object_points, s.image_points, [p[0] for p in poses],
+                                         [p[1] for p in poses])
+    assert linear[0] > 0 > s.dist[0]          # the poses absorbed the distortion: wrong sign
+    start = C.closed_form_with_distortion(s.object_points, s.image_points, s.image_size)
+    assert len(start.rounds) == 3 and start.dist[2:].tolist() == [0, 0, 0]
+    assert start.dist[0] == pytest.approx(s.dist[0], rel=0.03)
+    assert 0 < start.dist[1] < 2 * s.dist[1]   # right sign, right size; k2 is weakly determined
+    np.testing.assert_allclose(np.diag(start.K)[:2], np.diag(s.K)[:2], rtol=5e-3)
+    assert start.rounds[-1][2] < start.rounds[0][2]   # the rms falls as the rounds alternate
+
+
+def test_closed_form_with_distortion_rejects_zero_rounds():
+    s = C.make_synthetic_views(4, 0.0, rng=np.random.default_rng(1))
+    with pytest.raises(CamlabInputError, match="rounds"):
+        C.closed_form_with_distortion(s.object_points, s.image_points, s.image_size, rounds=0)
 
 
 @given(st.integers(0, 10_000))
@@ -390,7 +413,7 @@ def test_save_is_loadable_by_opencv(noisy15, tmp_path, suffix):
     K, d, size = C.load_calibration(path)
     np.testing.assert_allclose(K, res.K)
     assert size == (640, 480)
-    with pytest.raises(CamlabInputError, match="expected a .json, .yaml"):
+    with pytest.raises(CamlabInputError, match="expected a file name ending in .json, .yaml"):
         C.save_calibration(res, tmp_path / "cam.txt")
 
 
@@ -409,6 +432,21 @@ def test_accuracy_demo_recalibrates_and_reports_consistent_errors():
     demo.set(n_views=3)
     assert demo.state["std"][0] > std[0]  # fewer views: larger uncertainty
     assert not np.array_equal(before, demo.view.pixels())
+    np.testing.assert_allclose(demo.state["z"], demo.state["errors"] / demo.state["std"])
+
+
+def test_accuracy_demo_plots_in_sigma_units_and_marks_clipped_errors():
+    from camlab.widgets import camera_calibration as demos
+
+    demo = demos.accuracy_vs_views()
+    demo.set(n_views=3, noise=1.0)      # the setting the lesson recommends: cx lands far outside
+    z = demo.state["z"]
+    assert np.abs(z).max() > 3
+    ax = demo.figure.axes[0]
+    dots, above, below = (line for line in ax.get_lines() if line.get_animated())
+    assert np.all(np.abs(dots.get_ydata()) < ax.get_ylim()[1])   # every dot on the axis
+    outside = np.abs(z) > ax.get_ylim()[1] - 0.4
+    assert len(above.get_xdata()) + len(below.get_xdata()) == outside.sum()
 
 
 def test_view_inspector_shows_the_chosen_view(bundled):

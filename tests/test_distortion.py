@@ -150,7 +150,7 @@ def test_bad_inputs():
         D.undistort_map(np.eye(3) * -1, None, (4, 4))
     with pytest.raises(CamlabInputError, match=r"size: expected \(width, height\)"):
         D.undistort_map(K, None, 640)
-    with pytest.raises(CamlabInputError, match=r"image: expected an \(H, W\) or \(H, W, C\) array"):
+    with pytest.raises(CamlabInputError, match=r"image: expected an image of shape \(H, W\)"):
         D.undistort_image(np.zeros(5), K, None)
     with pytest.raises(CamlabInputError, match=r"step: expected an integer >= 1"):
         D.distort_map(K, None, (8, 8), step=0)

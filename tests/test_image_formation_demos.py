@@ -114,3 +114,40 @@ def test_exercises_accept_reference_and_catch_mistakes(name):
 
 def test_thin_lens_exercise_uses_textbook_numbers():
     assert lens.image_distance(0.05, 0.1) == pytest.approx(0.1)
+
+
+def test_sensor_demos_show_what_they_claim():
+    d = digital_sensor.demosaicing()
+    d.set(pattern="GBRG", method="camlab bilinear")
+    right = d.state["psnr"]
+    d.set(assume="RGGB")                          # the classic mistake: demosaic with the wrong pattern
+    assert d.state["assumed"] == "RGGB" and d.state["psnr"] < right - 5
+    raw_panel = d.figure.axes[0].images[0]
+    assert raw_panel.get_array().shape[:2] == (digital_sensor.CROP,) * 2
+    assert raw_panel.get_extent() == [-0.5, digital_sensor.CROP - 0.5, digital_sensor.CROP - 0.5, -0.5]  # no stretching
+    s = digital_sensor.sampling_aliasing()
+    assert all(im.get_interpolation() == "antialiased" for ax in s.figure.axes for im in ax.images)
+    b = digital_sensor.bit_depth_and_noise()
+    ax_img, ax_p = b.figure.axes[:2]
+    animated = b.view._animated
+    assert ax_img.lines[0] in animated and ax_p.get_legend() in animated   # drawn over the blitted image/profile
+    assert animated.index(ax_p.get_legend()) > animated.index(ax_p.lines[1])
+
+
+def test_focus_and_blur_follows_the_cone():
+    demo = lenses_and_distortion.focus_and_blur()
+    demo.set(f_number=2.8, object_m=1.0, sensor_mm=52.6)
+    s = dict(demo.state)
+    A = 0.05 / 2.8
+    assert s["c"] == pytest.approx(A * abs(0.0526 - s["z_i"]) / s["z_i"])
+    assert s["c"] == pytest.approx(lens.circle_of_confusion(0.05, 2.8, s["focus"], 1.0), rel=1e-9)
+    demo.set(f_number=16.0)
+    assert demo.state["far"] - demo.state["near"] > s["far"] - s["near"]
+
+
+def test_similar_triangles_ratios_agree():
+    demo = pinhole_camera.similar_triangles()
+    for f, Z, Y in ((0.3, 1.2, -1.0), (1.0, 5.0, 0.4)):
+        demo.set(f=f, Z=Z, Y=Y)
+        assert demo.state["ratio_image"] == pytest.approx(demo.state["ratio_object"])
+        assert demo.state["y"] == pytest.approx(f * Y / Z)

@@ -6,7 +6,15 @@ from hypothesis import strategies as st
 
 from camlab import ConvergenceError
 from camlab._validate import CamlabInputError
-from camlab.optimize import dense_damped_solve, huber_residuals, levenberg_marquardt, lm_step
+from camlab.optimize import (
+    dense_damped_solve,
+    huber_residuals,
+    levenberg_marquardt,
+    lm_step,
+    numeric_jacobian,
+    unit_sphere_basis,
+    unit_sphere_update,
+)
 
 
 def rosenbrock():
@@ -148,3 +156,47 @@ def test_huber_residuals_give_the_huber_cost_and_a_robust_fit():
         huber_residuals(e, 0)
     with pytest.raises(CamlabInputError, match="errors"):
         huber_residuals([1.0, 2.0], 1)
+
+
+def test_numeric_jacobian_matches_the_analytic_one():
+    t = np.linspace(0, 1, 7)
+
+    def res(x):
+        return x[0] * np.exp(x[1] * t) - 1.0
+
+    x = np.array([1.3, -0.4])
+    analytic = np.c_[np.exp(x[1] * t), x[0] * t * np.exp(x[1] * t)]
+    np.testing.assert_allclose(numeric_jacobian(res, x), analytic, rtol=1e-8, atol=1e-10)
+    # without a Jacobian levenberg_marquardt differentiates numerically and still converges
+    y = 2.0 * np.exp(0.7 * t)
+    out = levenberg_marquardt(lambda p: p[0] * np.exp(p[1] * t) - y, [1.0, 0.0])
+    np.testing.assert_allclose(out.x, [2.0, 0.7], atol=1e-8)
+    assert out.converged
+
+
+def test_unit_sphere_steps_stay_on_the_sphere():
+    rng = np.random.default_rng(5)
+    x = rng.normal(size=9)
+    x /= np.linalg.norm(x)
+    B = unit_sphere_basis(x)
+    assert B.shape == (9, 8)
+    np.testing.assert_allclose(B.T @ B, np.eye(8), atol=1e-12)
+    np.testing.assert_allclose(B.T @ x, 0, atol=1e-12)
+    y = unit_sphere_update(x, rng.normal(size=8))
+    assert np.isclose(np.linalg.norm(y), 1.0) and not np.allclose(y, x)
+    # a tiny step moves x along B delta, to first order
+    d = 1e-7 * rng.normal(size=8)
+    np.testing.assert_allclose(unit_sphere_update(x, d) - x, B @ d, atol=1e-13)
+
+
+def test_lm_on_the_sphere_finds_the_smallest_eigenvector():
+    """min ||A x||^2 over unit x is the eigenvector of A^T A with the smallest eigenvalue."""
+    rng = np.random.default_rng(2)
+    A = rng.normal(size=(20, 5))
+    out = levenberg_marquardt(lambda x: A @ x, np.ones(5) / np.sqrt(5), lambda x: A @ unit_sphere_basis(x),
+                              update=unit_sphere_update, max_iter=200, ftol=1e-15, xtol=1e-15, gtol=1e-13)
+    w, V = np.linalg.eigh(A.T @ A)
+    assert np.isclose(np.linalg.norm(out.x), 1.0)
+    assert abs(abs(out.x @ V[:, 0]) - 1) < 1e-9
+    with pytest.raises(CamlabInputError, match="jacobian: with a custom update, pass the Jacobian"):
+        levenberg_marquardt(lambda x: A @ x, np.ones(5), update=unit_sphere_update)

@@ -91,7 +91,35 @@ def test_bad_inputs():
         S.demosaic_bilinear(np.zeros((4, 4, 3)))
     with pytest.raises(CamlabInputError, match="raw: OpenCV demosaicing needs uint8 or uint16"):
         S.demosaic_opencv(np.zeros((4, 4)))
-    with pytest.raises(CamlabInputError, match="image: expected a float or integer image"):
+    with pytest.raises(CamlabInputError, match="image: expected an image of integer or float pixels"):
         S.add_noise(np.zeros((3, 3), dtype=bool))
-    with pytest.raises(CamlabInputError, match="pitch\\[0\\]: expected a positive"):
+    with pytest.raises(CamlabInputError, match="pitch: expected a pair of positive numbers"):
         S.metric_to_pixels([0, 0], (0, 1e-6), (0, 0))
+
+
+def test_gamma_encode_is_srgb():
+    L = np.linspace(0, 1, 1001)
+    V = S.gamma_encode(L)
+    assert V[0] == 0 and V[-1] == pytest.approx(1.0)
+    assert np.all(np.diff(V) > 0)                                     # monotonic: no code is lost
+    knee = 0.0031308
+    assert 12.92 * knee == pytest.approx(1.055 * knee ** (1 / 2.4) - 0.055, abs=1e-6)  # the two pieces meet
+    assert S.gamma_encode(0.18) == pytest.approx(0.4614, abs=1e-4)  # mid-grey is stored near the middle
+    inverse = np.where(V <= 0.04045, V / 12.92, ((V + 0.055) / 1.055) ** 2.4)  # the display's decoding
+    assert np.allclose(inverse, L, atol=1e-9)
+
+
+def test_white_balance_neutralises_the_white_and_grey_world():
+    rng = np.random.default_rng(3)
+    scene = rng.uniform(0.1, 0.9, (20, 30, 3))
+    light = np.array([1.0, 0.8, 0.55])
+    seen = scene * light
+    fixed = S.white_balance(seen, white=light * 0.9)
+    assert np.allclose(fixed, np.clip(scene * 0.8, 0, 1))            # normalised to the green channel
+    grey = S.white_balance(seen)                                  # grey world: mean colour -> grey
+    m = grey.reshape(-1, 3).mean(axis=0)
+    assert np.ptp(m) < 0.01
+    with pytest.raises(CamlabInputError, match="white: expected three positive"):
+        S.white_balance(seen, white=[1.0, 0.0, 1.0])
+    with pytest.raises(CamlabInputError, match=r"rgb: expected an image of shape \(H, W, 3\)"):
+        S.white_balance(seen[..., 0])

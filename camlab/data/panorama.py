@@ -28,13 +28,17 @@ from functools import lru_cache
 from pathlib import Path
 from typing import NamedTuple
 
+from numpy.typing import ArrayLike
+
 import numpy as np
 
 from ._resources import dataset_dir
 from .._validate import CamlabInputError, check_positive
+from ..scenes import wall_texture
 
-__all__ = ["PANORAMA_PARAMS", "PanoramaSet", "PlanarPair", "load_panorama_set", "load_planar_pair",
-           "make_panorama_set", "render_view", "room_scene", "scale_intrinsics", "wall_texture"]
+__all__ = ["PANORAMA_PARAMS", "TURNING_SETS", "PanoramaSet", "PlanarPair", "TurningSet", "environment_map",
+           "environment_view", "load_aerial_mosaic", "load_panorama_set", "load_planar_pair", "make_panorama_set",
+           "render_view", "room_scene", "scale_intrinsics", "turning_set", "wall_texture"]
 
 PANORAMA_PARAMS = {
     "seed": 909,
@@ -63,44 +67,6 @@ def _rot(yaw: float, pitch: float, roll: float) -> np.ndarray:
 def cam_from_world(yaw: float, pitch: float = 0.0, roll: float = 0.0) -> np.ndarray:
     """The rotation cam_from_world of a camera at the origin turned by (yaw, pitch, roll) radians."""
     return _rot(yaw, pitch, roll).T
-
-
-@lru_cache(maxsize=2)
-def wall_texture(width: int = 2100, height: int = 800, seed: int = 909) -> np.ndarray:
-    """A feature-rich, non-repeating RGB texture (float32 in [0, 1]): soft colour fields and posters.
-
-    Made with a seeded generator, so it is the same every time: smooth multi-scale colour
-    noise, then a few hundred random rectangles, discs, triangles and strokes in random
-    colours (corners and blobs for the feature detector at every scale).
-    """
-    import cv2
-
-    rng = np.random.default_rng(seed)
-    tex = np.zeros((height, width, 3), np.float32)
-    for scale, amp, chroma in ((120, 0.16, 0.5), (30, 0.10, 0.3), (6, 0.05, 0.2)):
-        small = rng.normal(0, 1, (height // scale + 2, width // scale + 2, 3)).astype(np.float32)
-        small = (1 - chroma) * small.mean(axis=2, keepdims=True) + chroma * small  # mostly luminance
-        tex += amp * cv2.resize(small, (width, height), interpolation=cv2.INTER_CUBIC)
-    tex = 0.55 + tex
-    for _ in range(520):
-        kind = rng.integers(0, 4)
-        colour = tuple(float(c) for c in 0.6 * rng.uniform(0.05, 0.95) + 0.4 * rng.uniform(0.05, 0.95, 3))
-        cx, cy = rng.uniform(0, width), rng.uniform(0, height)
-        size = float(np.exp(rng.uniform(np.log(4), np.log(45))))
-        if kind == 0:
-            a = rng.uniform(-0.6, 0.6)
-            box = cv2.boxPoints(((cx, cy), (size * rng.uniform(0.6, 1.8), size), np.degrees(a)))
-            cv2.fillConvexPoly(tex, np.round(box * 16).astype(np.int32), colour, cv2.LINE_AA, 4)
-        elif kind == 1:
-            cv2.circle(tex, (int(cx * 16), int(cy * 16)), int(size * 8), colour, -1, cv2.LINE_AA, 4)
-        elif kind == 2:
-            tri = np.array([cx, cy]) + rng.uniform(-size, size, (3, 2))
-            cv2.fillConvexPoly(tex, np.round(tri * 16).astype(np.int32), colour, cv2.LINE_AA, 4)
-        else:
-            p2 = np.array([cx, cy]) + rng.uniform(-2 * size, 2 * size, 2)
-            cv2.line(tex, (int(cx * 16), int(cy * 16)), (int(p2[0] * 16), int(p2[1] * 16)), colour,
-                     int(rng.integers(1, 4)), cv2.LINE_AA, 4)
-    return np.clip(tex, 0.0, 1.0)
 
 
 def room_scene(params: dict = PANORAMA_PARAMS) -> list:
@@ -296,3 +262,156 @@ def load_planar_pair(directory: Path | str | None = None, scale: float = 1.0) ->
     S = scale_intrinsics(np.eye(3), scale)
     H = S @ np.array(pp["H_10"]) @ np.linalg.inv(S)
     return PlanarPair(images, scale_intrinsics(np.array(truth["K"]), scale), H / H[2, 2], truth["params"])
+
+
+# --------------------------------------------------------------------------- a real photo as the world
+
+@lru_cache(maxsize=1)
+def environment_map() -> np.ndarray:
+    r"""A 360-degree world made from a real photograph (read-only uint8 RGB, 1024 x 3072).
+
+    ``lab_scene`` (mvtb-data, MIT; data/photos/ATTRIBUTION.md) next to its mirror image
+    (the photo's centre straight ahead, the mirror image behind), read as an equirectangular map: column u is the longitude
+    :math:`\theta = 2\pi (u + \tfrac12)/W - \pi` (0 straight ahead, positive to the right),
+    row v the latitude :math:`\phi = (v - (H-1)/2)\, 2\pi / W` (positive down), one pixel
+    per 0.117 degree in both directions, so latitudes up to +-60 degrees. Mirroring makes
+    the world seamless at 360 degrees.
+    """
+    from .photos import load_photo
+
+    photo = load_photo("lab_scene")
+    # the photo's centre straight ahead; its mirror image behind (the seams at +-90 degrees)
+    env = np.ascontiguousarray(np.roll(np.hstack([photo, photo[:, ::-1]]), photo.shape[1] // 2, axis=1))
+    env.setflags(write=False)
+    return env
+
+
+def environment_view(R: ArrayLike, K: ArrayLike, size: tuple[int, int], env: np.ndarray | None = None
+                     ) -> np.ndarray:
+    r"""What a pinhole camera (K, R cam_from_world) at the world's centre sees of :func:`environment_map`.
+
+    Every pixel's ray :math:`d = R^\top K^{-1} (u, v, 1)^\top` is turned into longitude
+    :math:`\theta = \operatorname{atan2}(d_x, d_z)` and latitude
+    :math:`\phi = \operatorname{atan2}(d_y, \sqrt{d_x^2 + d_z^2})` and looked up (bilinear).
+    Any two such views are related exactly by :math:`K R_j R_i^\top K^{-1}`: a turning
+    camera with known ground truth, showing a real scene.
+
+    Parameters
+    ----------
+    R : (3, 3) array_like
+        cam_from_world.
+    K : (3, 3) array_like
+    size : (width, height)
+    env : ndarray, optional
+        Equirectangular map (default :func:`environment_map`).
+    """
+    import cv2
+
+    env = environment_map() if env is None else env
+    H, W = env.shape[:2]
+    w, h = size
+    Ki = np.linalg.inv(np.asarray(K, float))
+    Rt = np.asarray(R, float).T
+    v, u = np.mgrid[0:h, 0:w].astype(np.float32)
+    ray = [Ki[r, 0] * u + Ki[r, 1] * v + Ki[r, 2] for r in range(3)]  # K^-1 (u, v, 1)
+    dx, dy, dz = (Rt[r, 0] * ray[0] + Rt[r, 1] * ray[1] + Rt[r, 2] * ray[2] for r in range(3))
+    theta = np.arctan2(dx, dz)
+    phi = np.arctan2(dy, np.hypot(dx, dz))
+    scale = W / (2 * np.pi)
+    mu = np.mod((theta + np.pi) * scale - 0.5, W).astype(np.float32)
+    mv = (phi * scale + (H - 1) / 2).astype(np.float32)
+    ext = np.hstack([env, env[:, :1]])  # interpolate across the 360-degree seam
+    return cv2.remap(ext, mu, mv, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
+
+
+class TurningSet(NamedTuple):
+    """Views of :func:`environment_map` from a turning camera: ``images`` (uint8 RGB), the exact
+    ``K`` (shared) and ``R`` (n, 3, 3) cam_from_world, the (yaw, pitch, roll) ``angles_deg``
+    and exposure ``gains``; ``names`` label the images (an unrelated photo is named as such)."""
+
+    images: list
+    K: np.ndarray
+    R: np.ndarray
+    angles_deg: np.ndarray
+    gains: np.ndarray
+    names: list
+
+
+#: The rendered turning-camera sets: (yaw, pitch, roll) per view in degrees, and gains.
+TURNING_SETS = {
+    # three photos of a turning camera (plus an unrelated photo, see turning_set)
+    "turn3": {"angles": [(-40, 2, 0.5), (0, -1, -0.5), (40, 1.5, 1.0)], "gains": [1.0, 0.9, 1.1]},
+    # a pair at two exposures (the second over-exposed: bright parts clip)
+    "exposures": {"angles": [(-18, 0, 0), (18, 1, 0.5)], "gains": [0.75, 1.6]},
+    # a full turn in eight photos: the loop closes only if the errors do not accumulate
+    "loop": {"angles": [(45 * k, 3 * np.sin(k), 1.0 * np.cos(k)) for k in range(8)], "gains": [1.0] * 8},
+    # a turn of 405 degrees: the ninth photo shows what the first did
+    "over360": {"angles": [(45 * k, 0, 0) for k in range(10)], "gains": [1.0] * 10},
+    # a wide 200-degree sweep (a plane cannot hold it)
+    "wide": {"angles": [(-100 + 40 * k, 2 * (-1) ** k, 0) for k in range(6)], "gains": [1.0] * 6},
+}
+
+
+@lru_cache(maxsize=8)
+def _turning(name: str, f: float, width: int, height: int, unrelated: bool) -> TurningSet:
+    from .photos import load_photo
+
+    spec = TURNING_SETS[name]
+    K = np.array([[f, 0, (width - 1) / 2], [0, f, (height - 1) / 2], [0, 0, 1.0]])
+    rng = np.random.default_rng(2007)
+    images, Rs = [], []
+    for (yaw, pitch, roll), gain in zip(spec["angles"], spec["gains"]):
+        R = cam_from_world(*np.radians([yaw, pitch, roll]))
+        img = environment_view(R, K, (width, height)).astype(float) * gain
+        img = np.clip(np.rint(img + rng.normal(0, 1.5, img.shape)), 0, 255).astype(np.uint8)
+        img.setflags(write=False)
+        images.append(img)
+        Rs.append(R)
+    names = [f"{name}_{k}" for k in range(len(images))]
+    if unrelated:
+        import cv2
+
+        church = cv2.resize(load_photo("church"), (width, height), interpolation=cv2.INTER_AREA)
+        images.insert(1, church)
+        names.insert(1, "church (unrelated)")
+    return TurningSet(images, K, np.array(Rs), np.array(spec["angles"], float), np.array(spec["gains"], float),
+                      names)
+
+
+def turning_set(name: str = "turn3", *, f: float = 500.0, size: tuple[int, int] = (900, 660),
+                unrelated: bool = False) -> TurningSet:
+    """A rendered turning-camera set with exact ground truth (:data:`TURNING_SETS`, :func:`environment_view`).
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`TURNING_SETS`.
+    f : float
+        Focal length in pixels (default 500: a 84-degree horizontal field of view at 900 px).
+    size : (width, height)
+        Image size (default 900 x 660, about 0.6 megapixel).
+    unrelated : bool
+        Insert an unrelated photo (``church``) as the second image; it is not in ``R``.
+
+    Returns
+    -------
+    TurningSet
+        Sensor noise (sigma 1.5 grey levels) is added with a fixed seed: the same images every call.
+    """
+    if name not in TURNING_SETS:
+        raise CamlabInputError(f"name: expected one of {sorted(TURNING_SETS)}, got {name!r}")
+    w, h = (int(v) for v in size)
+    return _turning(name, float(check_positive(f, "f")), w, h, bool(unrelated))
+
+
+def load_aerial_mosaic(count: int = 6) -> list:
+    """The real planar mosaic: ``count`` (2-6) overlapping aerial photographs (grey, 900 px wide).
+
+    A flat scene seen from six positions (mvtb-data ``mosaic/aerial2-00*``, MIT; see
+    data/photos/ATTRIBUTION.md), so consecutive photos are related by homographies.
+    """
+    from .photos import load_photo
+
+    if not 2 <= int(count) <= 6:
+        raise CamlabInputError(f"count: expected 2 to 6 aerial photos, got {count!r}")
+    return [load_photo(f"aerial_{k}", gray=True) for k in range(1, int(count) + 1)]

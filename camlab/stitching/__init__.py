@@ -49,8 +49,9 @@ from .._validate import CamlabInputError, DegenerateError, check_intrinsics
 from ..projective import map_points
 from ..warp import canvas_bounds, warp_perspective
 
-__all__ = ["BLENDS", "MatchGraph", "PairRegistration", "PairReport", "StitchResult", "WarpedImages", "blend",
-           "canvas_box", "cylindrical_warp", "feather_weights", "gain_compensation", "laplacian_blend", "match_graph",
+__all__ = ["BLENDS", "PROJECTION_CHOICES", "MatchGraph", "PairRegistration", "PairReport", "StitchResult",
+           "WarpedImages", "blend", "canvas_box", "cylindrical_warp", "dp_seam_masks", "feather_weights", "largest_rectangle",
+           "gain_compensation", "laplacian_blend", "match_graph",
            "overlap_difference", "prepare_images", "register_pair", "seam_masks", "seam_step", "stitch", "warp_images"]
 
 BLENDS = ("overwrite", "feather", "multiband")
@@ -127,12 +128,14 @@ class PairRegistration(NamedTuple):
 def register_pair(features1: _feat.Features, features2: _feat.Features, *, ratio: float = 0.75,
                   mutual: bool = False, threshold: float = 3.0, min_inliers: int = 15,
                   rng: np.random.Generator | None = None, matches: _feat.Matches | None = None,
-                  refine: bool = True) -> PairRegistration:
+                  refine: bool = True, approximate: bool = False) -> PairRegistration:
     r"""Register image 1 onto image 2: match features, fit H by RANSAC, judge the result.
 
     The pair is accepted when RANSAC finds at least ``min_inliers`` inliers *and* more
     than :math:`8 + 0.3 n_m` of the :math:`n_m` matches (Brown & Lowe 2007, eq. 13: the
-    inliers of a wrong model are few and random, those of a right one a fixed share).
+    inliers of a wrong model are few and random, those of a right one a fixed share), and
+    H does not mirror the image (a reflection fits the matches of a symmetric scene but
+    no camera produces it).
     A rejected pair is returned with ``accepted=False`` and a ``reason``, not raised, so a
     panorama can report it. With ``refine`` (default), H is polished by
     :func:`camlab.homography.refine_homography` (Levenberg-Marquardt on the geometric
@@ -150,9 +153,11 @@ def register_pair(features1: _feat.Features, features2: _feat.Features, *, ratio
         RANSAC's randomness (default: seeded with 0, so results are reproducible).
     matches : camlab.features.Matches, optional
         Use these matches instead of matching (e.g. re-filtered ones from a slider).
+    approximate : bool
+        Match with FLANN instead of brute force (:func:`camlab.features.knn_match`).
     """
     rng = np.random.default_rng(0) if rng is None else rng
-    m = _feat.match_features(features1, features2, ratio, mutual) if matches is None else matches
+    m = _feat.match_features(features1, features2, ratio, mutual, approximate=approximate) if matches is None else matches
     n = len(m.src)
     none = np.zeros(n, bool)
     if n < max(min_inliers, 5):
@@ -175,7 +180,17 @@ def register_pair(features1: _feat.Features, features2: _feat.Features, *, ratio
     if k < need:
         return PairRegistration(H, m, inl, rms, False,
                                 f"too few inliers: {k} of {n} matches (need {need}); the images probably do not overlap")
+    if _mirrors(H, m.src[inl]):
+        return PairRegistration(H, m, inl, rms, False, f"the homography mirrors the image ({k} inliers): a "
+                                "reflection, which no camera motion produces; wrong matches on a symmetric scene")
     return PairRegistration(H, m, inl, rms, True, "")
+
+
+def _mirrors(H: np.ndarray, points: np.ndarray) -> bool:
+    r"""Whether H reverses orientation at the points' centroid x: the Jacobian of
+    :math:`\pi(H x)` has determinant :math:`\det H / w^3` with :math:`w = (H \tilde x)_3`."""
+    c = np.append(points.mean(axis=0), 1.0)
+    return float(np.linalg.det(H) / (H[2] @ c) ** 3) < 0
 
 
 class PairReport(NamedTuple):
@@ -222,7 +237,7 @@ class MatchGraph(NamedTuple):
 
 def match_graph(features: Sequence[_feat.Features], *, ratio: float = 0.75, mutual: bool = False,
                 threshold: float = 3.0, min_inliers: int = 15, rng: np.random.Generator | None = None,
-                reference: int | None = None) -> MatchGraph:
+                reference: int | None = None, approximate: bool = False) -> MatchGraph:
     r"""Register every pair, choose the reference image and chain homographies to it.
 
     1. Register each pair i < j (:func:`register_pair`).
@@ -242,7 +257,7 @@ def match_graph(features: Sequence[_feat.Features], *, ratio: float = 0.75, mutu
     for i in range(n):
         for j in range(i + 1, n):
             pairs[(i, j)] = register_pair(feats[i], feats[j], ratio=ratio, mutual=mutual, threshold=threshold,
-                                          min_inliers=min_inliers, rng=rng)
+                                          min_inliers=min_inliers, rng=rng, approximate=approximate)
     degree = np.zeros(n, int)
     strength = np.zeros(n, int)
     for (i, j), p in pairs.items():
@@ -442,19 +457,30 @@ def warp_images(images: Sequence[np.ndarray], homographies: Sequence[np.ndarray]
 
 
 def gain_compensation(warped: WarpedImages, sigma_n: float = 10.0 / 255, sigma_g: float = 1.0,
-                      reference: int | None = None) -> np.ndarray:
+                      reference: int | None = None, megapixels: float | None = 0.1,
+                      clip: tuple[float, float] = (2 / 255, 253 / 255)) -> np.ndarray:
     r"""One exposure gain per image so that overlapping regions agree (Brown & Lowe 2007, sec. 6).
 
     Minimises, over all overlapping pairs with :math:`N_{ij}` common pixels and mean
     intensities :math:`\bar I_{ij}` (image i on the overlap) and :math:`\bar I_{ji}`,
 
     .. math:: e = \tfrac12 \sum_{i,j} N_{ij} \left( (g_i \bar I_{ij} - g_j \bar I_{ji})^2 / \sigma_N^2
-              + (1 - g_i)^2 / \sigma_g^2 \right),
+              + (1 - g_i)^2 / \sigma_g^2 \right).
 
-    a linear least-squares problem in the gains (the prior keeps them near 1). The default
+    Setting :math:`\partial e / \partial g_i = 0` gives one linear equation per image,
+
+    .. math:: g_i \sum_{j} N_{ij} \Big(\frac{2 \bar I_{ij}^2}{\sigma_N^2} + \frac{1}{\sigma_g^2}\Big)
+              - \sum_j g_j N_{ij} \frac{2 \bar I_{ij} \bar I_{ji}}{\sigma_N^2} = \sum_j \frac{N_{ij}}{\sigma_g^2},
+
+    solved directly (the prior keeps the gains near 1 and the system regular). The default
     :math:`\sigma_g = 1` is weaker than Brown & Lowe's 0.1: exposures in a hand-held set
     can differ by 30% or more, and a strong prior would leave part of that step. With
     ``reference`` given, all gains are divided by that image's gain (it keeps its look).
+
+    Means are taken on a subsampled canvas of about ``megapixels`` (exposure is smooth; None:
+    every pixel) and only over pixels that no image clips: a channel at or beyond ``clip``
+    (black or saturated) has lost its true brightness, and an over-exposed white sky would
+    otherwise pull the gain (and, scaled, turn grey or cyan).
 
     Returns
     -------
@@ -462,15 +488,20 @@ def gain_compensation(warped: WarpedImages, sigma_n: float = 10.0 / 255, sigma_g
         Multiply image k by ``gains[k]``.
     """
     n = len(warped.images)
+    h, w = warped.shape
+    step = 1 if megapixels is None else max(1, int(round(np.sqrt(h * w / (megapixels * 1e6)))))
+    imgs = [im[::step, ::step] for im in warped.images]
+    lum = [im.mean(axis=2) for im in imgs]
+    ok = [m[::step, ::step] & (im.min(axis=2) > clip[0]) & (im.max(axis=2) < clip[1])
+          for m, im in zip(warped.masks, imgs)]
     A = np.zeros((n, n))
     b = np.zeros(n)
-    lum = [im.mean(axis=2) for im in warped.images]
     for i in range(n):
         for j in range(n):
             if i == j:
                 continue
-            both = warped.masks[i] & warped.masks[j]
-            N = int(both.sum())
+            both = ok[i] & ok[j]
+            N = int(both.sum()) * step * step
             if N == 0:
                 continue
             Iij, Iji = float(lum[i][both].mean()), float(lum[j][both].mean())
@@ -499,6 +530,90 @@ def seam_masks(weights: Sequence[np.ndarray]) -> list[np.ndarray]:
     best = np.argmax(W, axis=0)
     covered = W.max(axis=0) > 0
     return [(best == k) & covered for k in range(len(weights))]
+
+
+def _seam_path(cost: np.ndarray) -> np.ndarray:
+    r"""The cheapest top-to-bottom path through ``cost`` (one column per row, steps of -1, 0, +1).
+
+    Dynamic programming: :math:`E(r, c) = \text{cost}(r, c) + \min(E(r-1, c-1), E(r-1, c), E(r-1, c+1))`,
+    then walk back up from the cheapest bottom cell.
+    """
+    h, w = cost.shape
+    E = cost.copy()
+    back = np.zeros((h, w), np.int64)
+    for r in range(1, h):
+        prev = np.stack([np.r_[np.inf, E[r - 1, :-1]], E[r - 1], np.r_[E[r - 1, 1:], np.inf]])
+        k = np.argmin(prev, axis=0)
+        back[r] = k - 1
+        E[r] += prev[k, np.arange(w)]
+    path = np.zeros(h, np.int64)
+    path[-1] = int(np.argmin(E[-1]))
+    for r in range(h - 1, 0, -1):
+        path[r - 1] = path[r] + back[r, path[r]]
+    return path
+
+
+def dp_seam_masks(warped: WarpedImages, megapixels: float = 0.1) -> list[np.ndarray]:
+    r"""Seams along which the images differ least, found by dynamic programming at low resolution.
+
+    Images are added one at a time. Where image k overlaps what is already placed, the
+    cost of a seam through a pixel is how different the two images are there, in colour
+    and in gradient, :math:`|I_a - I_k| + |\nabla I_a - \nabla I_k|` (summed over channels),
+    and :func:`_seam_path` finds the cheapest path across the overlap (top to bottom, or
+    left to right if the overlap is wider than tall); each side goes to the image that
+    owns the pixels beyond it. A seam that avoids differences (a moving person, parallax, a
+    small misregistration) hides them: the blend then only has to hide exposure. The
+    search runs on a canvas subsampled to about ``megapixels``; the labels are scaled back
+    up (nearest), and pixels the coarse labels miss go to the largest feather weight.
+
+    Returns
+    -------
+    list of (h, w) bool ndarray
+        Disjoint seam masks covering the union of the footprints.
+    """
+    import cv2
+
+    h, w = warped.shape
+    step = max(1, int(round(np.sqrt(h * w / (megapixels * 1e6)))))
+    imgs = [im[::step, ::step] for im in warped.images]
+    masks = [m[::step, ::step] for m in warped.masks]
+    label = np.full(masks[0].shape, -1, np.int64)
+    comp = np.zeros_like(imgs[0])
+    for k, (im, m) in enumerate(zip(imgs, masks)):
+        placed = label >= 0
+        ov = placed & m
+        if ov.sum() > 2:
+            rows, cols = np.flatnonzero(ov.any(axis=1)), np.flatnonzero(ov.any(axis=0))
+            box = (slice(rows[0], rows[-1] + 1), slice(cols[0], cols[-1] + 1))
+            a, b = comp[box], im[box]
+            diff = np.abs(a - b).sum(axis=2)
+            for ax in (0, 1):
+                diff += np.abs(np.diff(a, axis=ax, prepend=0) - np.diff(b, axis=ax, prepend=0)).sum(axis=2)
+            cost = np.where(ov[box], diff, 1e6)
+            tall = cost.shape[0] >= cost.shape[1]
+            path = _seam_path(cost if tall else cost.T)
+            grid = np.arange(cost.shape[1] if tall else cost.shape[0])
+            left = grid[None, :] <= path[:, None]
+            left = left if tall else left.T
+            # which side is k's: where k alone lies, in the box's frame
+            only_k, only_a = (m & ~placed)[box], (placed & ~m)[box]
+            axis = 1 if tall else 0
+            pos = np.indices(only_k.shape)[axis]
+            k_left = (pos[only_k].mean() if only_k.any() else np.inf) < (pos[only_a].mean() if only_a.any() else -np.inf)
+            take = ov[box] & (left if k_left else ~left)
+            label[box][take] = k
+            comp[box][take] = b[take]
+        fresh = m & ~placed
+        label[fresh] = k
+        comp[fresh] = im[fresh]
+    full = cv2.resize(label.astype(np.float32), (w, h), interpolation=cv2.INTER_NEAREST).astype(np.int64)
+    out = [(full == k) & m for k, m in enumerate(warped.masks)]
+    union = np.logical_or.reduce(warped.masks)
+    missed = union & ~np.logical_or.reduce(out)
+    if missed.any():
+        fallback = seam_masks(warped.weights)
+        out = [o | (f & missed) for o, f in zip(out, fallback)]
+    return out
 
 
 def overlap_difference(warped: WarpedImages, i: int = 0, j: int = 1) -> float:
@@ -645,14 +760,16 @@ def laplacian_blend(images: Sequence[np.ndarray], masks: Sequence[np.ndarray], l
 
 
 def blend(warped: WarpedImages, method: str = "multiband", *, gains: ArrayLike | None = None,
-          levels: int = 5, feather_power: float = 1.0) -> np.ndarray:
+          levels: int = 5, feather_power: float = 1.0, seam: str = "voronoi") -> np.ndarray:
     r"""Blend images warped onto one canvas.
 
     * ``"overwrite"``: paint the images in order, each over the previous (hard seams:
       every exposure or alignment difference shows as an edge).
     * ``"feather"``: :math:`I = \sum_k w_k^p I_k / \sum_k w_k^p` with the warped
       :func:`feather_weights` (smooth seams; misaligned detail doubles: ghosts and blur).
-    * ``"multiband"``: :func:`laplacian_blend` over the :func:`seam_masks`.
+    * ``"multiband"``: :func:`laplacian_blend` over seam masks: ``seam="voronoi"``
+      (:func:`seam_masks`, the middle of each overlap) or ``"dp"`` (:func:`dp_seam_masks`,
+      along the smallest differences).
 
     Parameters
     ----------
@@ -671,6 +788,8 @@ def blend(warped: WarpedImages, method: str = "multiband", *, gains: ArrayLike |
     """
     if method not in BLENDS:
         raise CamlabInputError(f"method: expected one of {BLENDS}, got {method!r}")
+    if seam not in ("voronoi", "dp"):
+        raise CamlabInputError(f"seam: expected 'voronoi' or 'dp', got {seam!r}")
     imgs = warped.images
     if gains is not None:
         g = np.asarray(gains, dtype=float).ravel()
@@ -691,155 +810,10 @@ def blend(warped: WarpedImages, method: str = "multiband", *, gains: ArrayLike |
             num += im * wp[..., None]
             den += wp
         return np.where(den[..., None] > 0, num / np.maximum(den, 1e-12)[..., None], 0).astype(np.float32)
-    return laplacian_blend(imgs, seam_masks(warped.weights), levels, footprints=warped.masks)
+    seams = dp_seam_masks(warped) if seam == "dp" else seam_masks(warped.weights)
+    return laplacian_blend(imgs, seams, levels, footprints=warped.masks)
 
 
 # --------------------------------------------------------------------------- the pipeline
 
-class StitchResult(NamedTuple):
-    """What :func:`stitch` made.
-
-    Attributes
-    ----------
-    panorama : (h, w, 3) ndarray
-        uint8 if every input was uint8, else float32 in [0, 1].
-    mask : (h, w) bool ndarray
-        Canvas pixels covered by at least one image.
-    homographies : list of (3, 3) ndarray or None
-        canvas_from_image for every input image (None for an unconnected image). With
-        ``projection="cylindrical"`` they map the *cylindrical* image onto the canvas.
-    masks : list of (h, w) bool ndarray or None
-        Each image's footprint on the canvas.
-    pairs : list of PairReport
-        Every registered pair: matches, inliers, residual RMS, accepted, reason.
-    reference : int
-        The reference image (the canvas is its image plane, shifted).
-    unconnected : list of int
-        Images that could not be connected (left out of the panorama, and reported).
-    gains : (n,) ndarray
-        Exposure gains applied (ones if gain compensation was off; NaN for unconnected).
-    graph : MatchGraph
-        The full registration (matches and inlier masks of every pair).
-    """
-
-    panorama: np.ndarray
-    mask: np.ndarray
-    homographies: list
-    masks: list
-    pairs: list
-    reference: int
-    unconnected: list
-    gains: np.ndarray
-    graph: MatchGraph
-
-
-def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", method: str = "sift",
-           max_features: int = 2500, ratio: float = 0.75, mutual: bool = False, threshold: float = 3.0,
-           min_inliers: int = 15, compensate_gains: bool = True, levels: int = 5,
-           projection: str = "planar", K: ArrayLike | None = None, reference: int | None = None,
-           rng: np.random.Generator | None = None, max_pixels: int = 40_000_000) -> StitchResult:
-    """Stitch overlapping images (a camera rotating about its centre, or a planar scene) into a panorama.
-
-    Runs the stages of the module docstring: features (:func:`camlab.features.detect_features`),
-    :func:`match_graph` (pairwise RANSAC, reference, chained homographies),
-    :func:`warp_images` (canvas and masks), optional :func:`gain_compensation`, :func:`blend`.
-
-    Parameters
-    ----------
-    images : sequence of (H, W[, C]) array_like
-        At least two images; sizes and channel counts may differ (:func:`prepare_images`).
-    blend_method : {"overwrite", "feather", "multiband"}
-    method : {"sift", "orb"}
-        Feature detector.
-    max_features, ratio, mutual, threshold, min_inliers
-        See :func:`camlab.features.detect_features` and :func:`register_pair`.
-    compensate_gains : bool
-        Equalise exposures first (:func:`gain_compensation`, relative to the reference).
-    levels : int
-        Multi-band pyramid levels.
-    projection : {"planar", "cylindrical"}
-        ``"cylindrical"`` needs ``K`` and warps every image onto a cylinder first.
-    K : (3, 3) array_like, optional
-        Intrinsics (for the cylindrical projection; all images share them).
-    reference : int, optional
-        Force the reference image (default: the best-connected one).
-    rng : np.random.Generator, optional
-        RANSAC's randomness (default seeded, reproducible).
-
-    Returns
-    -------
-    StitchResult
-
-    Raises
-    ------
-    CamlabInputError
-        Fewer than two images, bad shapes or dtypes, bad options.
-    DegenerateError
-        No pair of images could be registered (nothing to stitch); the message lists
-        every pair's matches and inliers.
-
-    Warns
-    -----
-    UserWarning
-        If some images could not be connected; they are listed in ``unconnected``.
-    """
-    if blend_method not in BLENDS:
-        raise CamlabInputError(f"blend_method: expected one of {BLENDS}, got {blend_method!r}")
-    if projection not in ("planar", "cylindrical"):
-        raise CamlabInputError(f"projection: expected 'planar' or 'cylindrical', got {projection!r}")
-    imgs = prepare_images(images)
-    all_uint8 = all(np.asarray(im).dtype == np.uint8 for im in images)
-    n = len(imgs)
-    cyl_masks = None
-    if projection == "cylindrical":
-        if K is None:
-            raise CamlabInputError("K: the cylindrical projection needs the intrinsics K (the cylinder radius is fx)")
-        warped_cyl = [cylindrical_warp(im, K) for im in imgs]
-        imgs = [c for c, _ in warped_cyl]
-        cyl_masks = [m for _, m in warped_cyl]
-    feats = [_feat.detect_features(im, method, max_features,
-                                   mask=None if cyl_masks is None else _erode(cyl_masks[k]))
-             for k, im in enumerate(imgs)]
-    graph = match_graph(feats, ratio=ratio, mutual=mutual, threshold=threshold, min_inliers=min_inliers,
-                        rng=rng, reference=reference)
-    keep = [k for k in range(n) if graph.homographies[k] is not None]
-    if len(keep) < 2:
-        rows = "; ".join(f"{r.i}-{r.j}: {r.matches} matches, {r.inliers} inliers ({r.reason})" for r in graph.report())
-        raise DegenerateError(f"stitch: no pair of images could be registered, nothing to stitch. Pairs: {rows}")
-    if graph.unconnected:
-        why = {k: [r.reason for r in graph.report() if k in (r.i, r.j)] for k in graph.unconnected}
-        warnings.warn(f"stitch: images {graph.unconnected} could not be connected to the reference image "
-                      f"{graph.reference} and are left out of the panorama: {why}", UserWarning, stacklevel=2)
-    sub = [imgs[k] for k in keep]
-    if cyl_masks is not None:  # zero what the cylinder does not see so masks stay exact
-        sub = [np.where(cyl_masks[k][..., None], imgs[k], 0).astype(np.float32) for k in keep]
-    warped = warp_images(sub, [graph.homographies[k] for k in keep], max_pixels=max_pixels)
-    if cyl_masks is not None:
-        masks = []
-        for idx, k in enumerate(keep):
-            m = warp_perspective(cyl_masks[k].astype(np.float32), warped.homographies[idx], warped.shape,
-                                 interpolation="nearest", method="cv2") > 0.5
-            masks.append(m)
-        weights = [np.where(m, w, 0).astype(np.float32) for m, w in zip(masks, warped.weights)]
-        warped = WarpedImages(warped.images, masks, weights, warped.homographies, warped.T)
-    ref_local = keep.index(graph.reference)
-    g_sub = gain_compensation(warped, reference=ref_local) if compensate_gains else np.ones(len(keep))
-    pano = blend(warped, blend_method, gains=g_sub, levels=levels)
-    union = np.logical_or.reduce(warped.masks)
-    gains = np.full(n, np.nan)
-    gains[keep] = g_sub
-    Hs: list = [None] * n
-    Ms: list = [None] * n
-    for idx, k in enumerate(keep):
-        Hs[k] = warped.homographies[idx]
-        Ms[k] = warped.masks[idx]
-    if all_uint8:
-        pano = np.clip(np.rint(pano * 255), 0, 255).astype(np.uint8)
-    return StitchResult(pano, union, Hs, Ms, graph.report(), graph.reference, list(graph.unconnected), gains, graph)
-
-
-def _erode(mask: np.ndarray, r: int = 3) -> np.ndarray:
-    """Shrink a mask by r pixels (features too close to a cylinder edge see the black border)."""
-    import cv2
-
-    return cv2.erode(mask.astype(np.uint8), np.ones((2 * r + 1, 2 * r + 1), np.uint8)) > 0
+from .pipeline import PROJECTION_CHOICES, StitchResult, largest_rectangle, stitch  # noqa: E402  (uses the stages above)

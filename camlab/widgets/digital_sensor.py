@@ -16,7 +16,7 @@ SIZE = (320, 240)
 def pixel_pitch():
     """The same 3 mm lens on sensors with different pixel pitch and principal point offset."""
     controls = {
-        "pitch_um": slider(6.0, 2.0, 15.0, 0.5, "pixel pitch (um)"),
+        "pitch_um": slider(6.0, 2.0, 15.0, 0.5, "pixel pitch (µm)"),
         "cx_offset": slider(0, -60, 60, 2, "principal point offset (px)"),
     }
     view = FigureView(figsize=(9, 4))
@@ -26,7 +26,7 @@ def pixel_pitch():
     pp, = ax_img.plot([], [], "r+", ms=14, mew=2)
     ax_txt.axis("off")
     text = ax_txt.text(0, 1, "", va="top", family="monospace", fontsize=10)
-    ax_img.set_title("f = 3 mm, 320 x 240 pixels (red +: principal point)", fontsize=10)
+    ax_img.set_title("f = 3 mm, always 320 x 240 pixels (red +: principal point)", fontsize=10)
     view.animate(im, pp, text)
 
     def update(values, state):
@@ -38,7 +38,8 @@ def pixel_pitch():
         state.update(K=K, fov_deg=fov)
         text.set_text(f"u = x / s_x + c_x\nv = y / s_y + c_y\n\nf_x = f / s_x = {K[0, 0]:.0f} px\n"
                       f"c_x = {K[0, 2]:.1f}, c_y = {K[1, 2]:.1f}\nsensor {SIZE[0] * pitch * 1e3:.2f} x "
-                      f"{SIZE[1] * pitch * 1e3:.2f} mm\nhorizontal FOV {fov:.1f} deg")
+                      f"{SIZE[1] * pitch * 1e3:.2f} mm\n(320 x 240 pixels held fixed:\n finer pixels, smaller sensor)\n"
+                      f"horizontal FOV {fov:.1f} deg")
 
     return build_demo("pixel_pitch", controls, view, update, title="Pixel pitch and principal point")
 
@@ -54,8 +55,9 @@ def sampling_aliasing():
     view = FigureView(figsize=(9, 4))
     ax_t, ax_s = view.fig.subplots(1, 2)
     zp = sensor.zone_plate(384, k=np.pi / 768)  # 0.25 cycle/px at the edge
-    images.show_image(ax_t, zp, "scene: zone plate (frequency grows with radius)")
-    im = images.show_image(ax_s, zp, "sampled")
+    # Both panels are drawn smaller than 384 px: antialiased display, or the screen adds its own moire.
+    images.show_image(ax_t, zp, "scene: zone plate (frequency grows with radius)", interpolation="antialiased")
+    im = images.show_image(ax_s, zp, "sampled", interpolation="antialiased")
     nyq = ax_s.add_patch(Circle((0, 0), 1, fill=False, color="tab:red", ls="--", lw=1.5))
     view.animate(im, nyq, ax_s.title)
 
@@ -94,15 +96,16 @@ def bit_depth_and_noise():
     clean = render.render([render.photo_plane(0.5, t=(0.0, 0, 1.0))], K, SIZE, color=False).irradiance
     im = images.show_image(ax_img, clean, vmax=1.0)
     row = 150
-    ax_img.axhline(row, color="tab:red", lw=0.8)
+    marker = ax_img.axhline(row, color="tab:red", lw=1)
     ax_p.plot(clean[row], color="0.6", lw=1, label="true irradiance")
     prof, = ax_p.plot(clean[row], color="tab:red", lw=1, label="recorded")
-    ax_p.set_ylim(-0.05, 1.05)
+    ax_p.set_ylim(-0.05, 1.3)  # headroom: the legend sits above the profile
     ax_p.set_xlabel("u (px)")
     ax_p.set_ylabel("value / full scale")
-    ax_p.legend(fontsize=8, loc="upper right")
+    legend = ax_p.legend(fontsize=8, loc="upper center", ncols=2)
     ax_p.set_title("row 150: 00 levels, SNR 000.0 at mid-grey", fontsize=10)
-    view.animate(im, prof, ax_p.title)
+    # blitted in this order: the row marker over the image, the legend over the profile
+    view.animate(im, marker, prof, legend, ax_p.title)
     full_well = 10000.0
     rng = np.random.default_rng(0)
 
@@ -131,44 +134,54 @@ def _scene_rgb():
     return render.render(scene, K, SIZE, color=True).irradiance
 
 
-@register(lesson="03", sweep={"pattern": ["RGGB", "GBRG"], "method": list(_METHODS), "zoom_u": [40, 200]})
+_SAME = "same as the sensor"
+CROP = 48
+
+
+@register(lesson="03", sweep={"pattern": ["RGGB", "GBRG"], "method": list(_METHODS), "zoom_u": [40, 200],
+                              "assume": ["BGGR", _SAME]})
 def demosaicing():
-    """Bayer mosaic and demosaicing methods side by side, with a zoomed crop and PSNR."""
+    """Bayer mosaic and demosaicing methods side by side, with a zoomed crop and PSNR; try the wrong pattern."""
+    patterns = ["RGGB", "BGGR", "GRBG", "GBRG"]
     controls = {
-        "pattern": W.Dropdown(options=["RGGB", "BGGR", "GRBG", "GBRG"], value="RGGB", description="Bayer pattern"),
+        "pattern": W.Dropdown(options=patterns, value="RGGB", description="sensor's pattern"),
+        "assume": W.Dropdown(options=[_SAME] + patterns, value=_SAME, description="demosaic as",
+                             style={"description_width": "initial"}),
         "method": W.Dropdown(options=list(_METHODS), value="camlab bilinear", description="method"),
-        "zoom_u": W.IntSlider(value=120, min=0, max=SIZE[0] - 48, description="zoom at u", continuous_update=True),
+        "zoom_u": W.IntSlider(value=120, min=0, max=SIZE[0] - CROP, description="zoom at u", continuous_update=True),
     }
-    view = FigureView(figsize=(9, 4))
-    ax_raw, ax_full, ax_zoom = view.fig.subplots(1, 3, width_ratios=[1, 1, 0.8])
+    view = FigureView(figsize=(10, 3.9))
+    ax_raw, ax_full, ax_zoom = view.fig.subplots(1, 3, width_ratios=[0.75, 1, 0.75])
     truth = _scene_rgb()
-    im_raw = images.show_image(ax_raw, np.zeros(SIZE[::-1] + (3,)), "Bayer mosaic (zoom)")
+    im_raw = images.show_image(ax_raw, np.zeros((CROP, CROP, 3)), "Bayer mosaic (zoom)")
     im_full = images.show_image(ax_full, truth, "method")
-    im_zoom = images.show_image(ax_zoom, truth[:48, :48], "zoom")
-    box = images.zoom_box(ax_full, 120, 100, 48)
+    im_zoom = images.show_image(ax_zoom, truth[:CROP, :CROP], "zoom")
+    box = images.zoom_box(ax_full, 120, 100, CROP)
     ax_full.set_title("camlab bilinear: PSNR 00.00 dB", fontsize=10)
     view.animate(im_raw, im_full, im_zoom, box, ax_full.title)
     v0 = 100
 
     def update(values, state):
         pattern, method, u0 = values["pattern"], values["method"], int(values["zoom_u"])
+        assumed = pattern if values["assume"] == _SAME else values["assume"]  # a wrong guess is the classic bug
         raw = sensor.quantize(sensor.mosaic(truth, pattern))
         if method == "truth":
             out = truth
         elif method == "camlab bilinear":
-            out = sensor.demosaic_bilinear(raw, pattern) / 255
+            out = sensor.demosaic_bilinear(raw, assumed) / 255
         else:
-            out = sensor.demosaic_opencv(raw, pattern, {"OpenCV bilinear": "bilinear", "OpenCV VNG": "vng",
+            out = sensor.demosaic_opencv(raw, assumed, {"OpenCV bilinear": "bilinear", "OpenCV VNG": "vng",
                                                         "OpenCV edge-aware": "ea"}[method]) / 255
         out = np.clip(out, 0, 1)
         masks = sensor.bayer_masks(raw.shape, pattern)
-        crop = (slice(v0, v0 + 48), slice(u0, u0 + 48))
+        crop = (slice(v0, v0 + CROP), slice(u0, u0 + CROP))
         im_raw.set_data(masks[crop] * (raw[crop] / 255.0)[..., None])
         im_full.set_data(out)
         im_zoom.set_data(out[crop])
         box.set_xy((u0 - 0.5, v0 - 0.5))
-        state.update(psnr=sensor.psnr(truth, out, border=2), zoom=(u0, v0),
+        state.update(psnr=sensor.psnr(truth, out, border=2), zoom=(u0, v0), assumed=assumed,
                      zoom_psnr=sensor.psnr(truth[crop], out[crop]))
-        ax_full.set_title(f"{method}: PSNR {state['psnr']:.2f} dB", fontsize=10)
+        wrong = "" if assumed == pattern or method == "truth" else f" as {assumed} (wrong!)"
+        ax_full.set_title(f"{method}{wrong}: PSNR {state['psnr']:.1f} dB", fontsize=10)
 
     return build_demo("demosaicing", controls, view, update, title="Bayer mosaic and demosaicing")

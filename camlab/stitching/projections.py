@@ -1,0 +1,161 @@
+r"""Panorama canvases for a rotating camera: the plane, the cylinder and the sphere.
+
+Every image k has a camera (K_k, R_k cam_from_world) from :mod:`camlab.stitching.cameras`.
+A canvas is a way of laying the directions of the world flat. For a world ray
+:math:`d = (d_x, d_y, d_z)` (x right, y down, z forward, the mean viewing direction after
+wave correction) and a scale s (pixels per radian at the centre, the median focal):
+
+============  ====================================  ==========================================
+canvas        (u, v) from the ray d                  ray d from (u, v)
+============  ====================================  ==========================================
+planar        :math:`s (d_x/d_z,\ d_y/d_z)`          :math:`(u/s,\ v/s,\ 1)`
+cylindrical   :math:`s (\theta,\ d_y/\rho)`          :math:`(\sin(u/s),\ v/s,\ \cos(u/s))`
+spherical     :math:`s (\theta,\ \phi)`              :math:`(\sin\theta\cos\phi,\ \sin\phi,\ \cos\theta\cos\phi)`
+============  ====================================  ==========================================
+
+with :math:`\theta = \operatorname{atan2}(d_x, d_z)` (longitude), :math:`\rho = \sqrt{d_x^2 + d_z^2}`
+and :math:`\phi = \operatorname{atan2}(d_y, \rho)` (latitude). The plane keeps straight lines
+straight but stretches without bound towards 90 degrees from its centre (it cannot show a
+turn of 180 degrees at all); the cylinder holds any horizontal turn, up to 360 degrees, but
+stretches vertically away from the horizon; the sphere holds every direction, bending
+straight lines. Each image is warped backwards: canvas pixel -> ray -> :math:`\pi(K_k R_k d)`
+(:func:`warp_to_canvas`), over only its own footprint (:func:`footprint`).
+"""
+from __future__ import annotations
+
+from typing import NamedTuple, Sequence
+
+import numpy as np
+
+from .._validate import CamlabInputError, DegenerateError
+
+__all__ = ["PROJECTIONS", "Canvas", "canvas_from_ray", "footprint", "make_canvas", "ray_from_canvas",
+           "warp_to_canvas"]
+
+PROJECTIONS = ("planar", "cylindrical", "spherical")
+
+
+def canvas_from_ray(d: np.ndarray, projection: str, s: float) -> tuple[np.ndarray, np.ndarray]:
+    """Canvas coordinates (u, v) of world rays ``d`` (..., 3) (see the module table); NaN where undefined."""
+    x, y, z = d[..., 0], d[..., 1], d[..., 2]
+    if projection == "planar":
+        with np.errstate(divide="ignore", invalid="ignore"):
+            zz = np.where(z > 1e-9, z, np.nan)
+            return s * x / zz, s * y / zz
+    rho = np.hypot(x, z)
+    theta = np.arctan2(x, z)
+    if projection == "cylindrical":
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return s * theta, s * y / rho
+    return s * theta, s * np.arctan2(y, rho)
+
+
+def ray_from_canvas(u: np.ndarray, v: np.ndarray, projection: str, s: float) -> tuple:
+    """World rays (x, y, z), each like ``u``, of canvas pixels (u, v): the inverse of :func:`canvas_from_ray`."""
+    if projection == "planar":
+        return u / s, v / s, np.ones_like(u)
+    theta = u / s
+    if projection == "cylindrical":
+        return np.sin(theta), v / s, np.cos(theta)
+    phi = v / s
+    return np.sin(theta) * np.cos(phi), np.sin(phi), np.cos(theta) * np.cos(phi)
+
+
+def _border(shape: Sequence[int], n: int = 16) -> np.ndarray:
+    h, w = shape[:2]
+    t = np.linspace(0, 1, n)
+    u, v = (w - 1) * t, (h - 1) * t
+    return np.vstack([np.c_[u, 0 * t], np.c_[u, 0 * t + h - 1], np.c_[0 * t, v], np.c_[0 * t + w - 1, v],
+                      [[(w - 1) / 2, (h - 1) / 2]]])
+
+
+def footprint(K: np.ndarray, R: np.ndarray, shape: Sequence[int], projection: str, s: float) -> np.ndarray:
+    """The canvas box ``[[u_min, v_min], [u_max, v_max]]`` of an image (its border's rays, mapped).
+
+    On the cylinder and the sphere the longitude is unrolled around the image's own centre,
+    so an image looking backwards (longitude near 180 degrees) gets one box, which may reach
+    past +-pi*s. Raises DegenerateError on the plane if the image sees 90 degrees or more
+    away from the canvas centre (its border has no image on the plane).
+    """
+    p = _border(shape)
+    rays = (np.c_[p, np.ones(len(p))] @ np.linalg.inv(K).T) @ R  # rows: R^T K^-1 x
+    u, v = canvas_from_ray(rays, projection, s)
+    if projection != "planar":
+        u = u[-1] + np.angle(np.exp(1j * (u - u[-1]) / s)) * s  # unwrap around the centre's longitude
+    if not (np.all(np.isfinite(u)) and np.all(np.isfinite(v))):
+        raise DegenerateError(f"footprint: part of the image looks 90 degrees or more away from the {projection} "
+                              "canvas's centre; a plane cannot hold it. Use projection='cylindrical' or 'spherical'")
+    return np.array([[u.min(), v.min()], [u.max(), v.max()]])
+
+
+class Canvas(NamedTuple):
+    """A panorama canvas: ``projection``, scale ``s`` (pixels per radian), ``origin`` (u, v) of
+    pixel (0, 0), ``shape`` (h, w), ``wraps`` (the canvas is one full turn wide, columns
+    modulo w), and ``boxes``: each image's (row0, row1, col0, col1), columns unwrapped."""
+
+    projection: str
+    s: float
+    origin: tuple
+    shape: tuple
+    wraps: bool
+    boxes: list
+
+
+def make_canvas(Ks: Sequence, Rs: Sequence, shapes: Sequence, projection: str, s: float, *,
+                max_pixels: int = 40_000_000) -> Canvas:
+    """Bounds of all images' footprints; a canvas that would be wider than one full turn wraps.
+
+    ``Ks``, ``Rs``, ``shapes`` for the images in the panorama (no None). Raises
+    CamlabInputError if the canvas would exceed ``max_pixels``.
+    """
+    if projection not in PROJECTIONS:
+        raise CamlabInputError(f"projection: expected one of {PROJECTIONS}, got {projection!r}")
+    boxes = np.array([footprint(K, R, sh, projection, s) for K, R, sh in zip(Ks, Rs, shapes)])
+    lo = np.floor(boxes[:, 0].min(axis=0))
+    hi = np.ceil(boxes[:, 1].max(axis=0))
+    full = int(round(2 * np.pi * s))
+    wraps = projection != "planar" and hi[0] - lo[0] + 1 > full
+    w = full if wraps else int(hi[0] - lo[0]) + 1
+    h = int(hi[1] - lo[1]) + 1
+    if h * w > max_pixels:
+        raise CamlabInputError(f"max_pixels: the {projection} canvas would be {w} x {h} = {w * h} pixels "
+                               f"(limit {max_pixels}); the images may be badly registered, or raise max_pixels")
+    out = []
+    for (bu0, bv0), (bu1, bv1) in boxes:
+        c0, c1 = int(np.floor(bu0 - lo[0])), int(np.ceil(bu1 - lo[0])) + 1
+        r0, r1 = max(0, int(np.floor(bv0 - lo[1]))), min(h, int(np.ceil(bv1 - lo[1])) + 1)
+        if not wraps:
+            c0, c1 = max(0, c0), min(w, c1)
+        out.append((r0, r1, c0, min(c1, c0 + w)))
+    return Canvas(projection, float(s), (float(lo[0]), float(lo[1])), (h, w), bool(wraps), out)
+
+
+def warp_to_canvas(image: np.ndarray, K: np.ndarray, R: np.ndarray, canvas: Canvas, box: tuple,
+                   extra: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """Warp one image into its canvas box: canvas pixel -> world ray -> :math:`\\pi(K R d)` (bilinear).
+
+    Returns the warped (r1-r0, c1-c0, C) patch, its bool mask (the pixel sees the image, in
+    front of the camera) and, if given, ``extra`` (an (h, w) float32 channel such as feather
+    weights) warped the same way.
+    """
+    import cv2
+
+    r0, r1, c0, c1 = box
+    v, u = np.mgrid[r0:r1, c0:c1].astype(np.float32)
+    x, y, z = ray_from_canvas(u + np.float32(canvas.origin[0]), v + np.float32(canvas.origin[1]),
+                              canvas.projection, np.float32(canvas.s))
+    M = (K @ R).astype(np.float32)
+    p = [M[r, 0] * x + M[r, 1] * y + M[r, 2] * z for r in range(3)]
+    ahead = p[2] > 1e-6
+    with np.errstate(divide="ignore", invalid="ignore"):
+        mu = np.where(ahead, p[0] / p[2], -10).astype(np.float32)
+        mv = np.where(ahead, p[1] / p[2], -10).astype(np.float32)
+    h, w = image.shape[:2]
+    mask = ahead & (mu >= -0.5) & (mu <= w - 0.5) & (mv >= -0.5) & (mv <= h - 0.5)
+    src = image if extra is None else np.dstack([image, extra])
+    out = cv2.remap(src, mu, mv, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
+    out = out.reshape(mu.shape + (src.shape[2],)) if out.ndim == 2 else out
+    out[~mask] = 0
+    if extra is None:
+        return out, mask, None
+    return out[..., :-1], mask, out[..., -1]

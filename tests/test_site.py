@@ -1,0 +1,212 @@
+"""The course website (`make site`, tools/site/build.py): built, then read as a visitor would.
+
+The site is built once per run into a temporary folder (about 2 minutes), or taken from
+CAMLAB_SITE_DIR when CI has just built it with `make site` (its executed notebooks are in
+build/executed). Pages are served over HTTP on 127.0.0.1 and opened in headless Debian
+Chromium, like tests/test_browser.py.
+"""
+import functools
+import http.server
+import json
+import os
+import re
+import subprocess
+import sys
+import threading
+import time
+from html.parser import HTMLParser
+from pathlib import Path
+from urllib.parse import urlsplit
+
+import pytest
+
+from camlab.widgets import all_demos
+
+REPO = Path(__file__).resolve().parent.parent
+LESSONS = sorted((REPO / "lessons").glob("[0-9][0-9]_*.ipynb"))
+DEMOS = all_demos()
+DEMO_CALL = re.compile(r"\bdemos\.(\w+)\(")
+FIGURE_CALL = re.compile(r"\bplt\.(subplots|figure)\(")
+MAX_BYTES = 30e6
+MAX_BUILD_S = 180
+
+
+@pytest.fixture(scope="module")
+def site(tmp_path_factory):
+    given = os.environ.get("CAMLAB_SITE_DIR")
+    if given:
+        out, executed, seconds = Path(given).resolve(), REPO / "build" / "executed", None
+        assert (out / "pages.json").is_file(), f"CAMLAB_SITE_DIR={given} holds no built site: run `make site`"
+    else:
+        base = tmp_path_factory.mktemp("site")
+        out, executed = base / "site", base / "executed"
+        start = time.perf_counter()
+        run = subprocess.run([sys.executable, str(REPO / "tools" / "site" / "build.py"), str(out),
+                              "--executed", str(executed)], capture_output=True, text=True)
+        seconds = time.perf_counter() - start
+        assert run.returncode == 0, f"the site build failed:\n{run.stdout[-2000:]}\n{run.stderr[-4000:]}"
+    return dict(out=out, executed=executed, seconds=seconds, pages=json.loads((out / "pages.json").read_text()))
+
+
+def _code_cells(nb: dict) -> list[tuple[str, list]]:
+    return [("".join(c["source"]), c.get("outputs", [])) for c in nb["cells"] if c["cell_type"] == "code"]
+
+
+def expected_images(lesson: Path) -> int:
+    """Figures and demos a lesson makes, counted from its source and the demo registry."""
+    count = 0
+    for source, _ in _code_cells(json.loads(lesson.read_text(encoding="utf-8"))):
+        count += len(FIGURE_CALL.findall(source))
+        count += sum(name in DEMOS for name in DEMO_CALL.findall(source))
+    return count
+
+
+def test_site_has_every_page_and_stays_small(site):
+    pages = site["pages"]
+    assert pages["pages"][0] == "index.html" and "conventions.html" in pages["pages"]
+    assert pages["lessons"] == [p.stem + ".html" for p in LESSONS]
+    size = sum(f.stat().st_size for f in site["out"].rglob("*") if f.is_file())
+    assert size < MAX_BYTES, f"the site is {size / 1e6:.1f} MB; the budget is {MAX_BYTES / 1e6:.0f} MB"
+    if site["seconds"] is not None:
+        assert site["seconds"] < MAX_BUILD_S, f"the site took {site['seconds']:.0f} s to build (budget {MAX_BUILD_S} s)"
+
+
+@pytest.mark.parametrize("lesson", LESSONS, ids=lambda p: p.name)
+def test_executed_lesson_has_a_static_image_for_every_demo_and_figure(site, lesson):
+    nb = json.loads((site["executed"] / lesson.name).read_text(encoding="utf-8"))
+    demo_cells = 0
+    for source, outputs in _code_cells(nb):
+        displays = [o for o in outputs if o.get("output_type") in ("display_data", "execute_result")]
+        widgets = [o for o in displays if "application/vnd.jupyter.widget-view+json" in o["data"]]
+        for out in widgets:
+            assert "image/png" in out["data"], f"{lesson.name}: a live figure without a static PNG:\n{source[:200]}"
+            alt = out.get("metadata", {}).get("image/png", {}).get("alt", "")
+            assert len(alt) > 20 and not re.fullmatch(r"Figure( \d+)?\.?", alt), f"{lesson.name}: weak alt text {alt!r}"
+        if any(name in DEMOS for name in DEMO_CALL.findall(source)):
+            demo_cells += 1
+            assert widgets, f"{lesson.name}: the demo cell shows no live widget:\n{source[:200]}"
+    assert demo_cells, f"{lesson.name}: no demo cell found (calls like demos.<registered name>())"
+
+
+class _Links(HTMLParser):
+    def __init__(self):
+        super().__init__()
+        self.ids, self.links = set(), []
+
+    def handle_starttag(self, tag, attrs):
+        attrs = dict(attrs)
+        if "id" in attrs:
+            self.ids.add(attrs["id"])
+        for key in ("href", "src"):
+            if attrs.get(key) and tag in ("a", "link", "img", "script"):
+                self.links.append(attrs[key])
+
+
+@functools.lru_cache(maxsize=None)
+def _parse(path: Path) -> _Links:
+    parser = _Links()
+    parser.feed(path.read_text(encoding="utf-8"))
+    return parser
+
+
+def test_internal_links_resolve(site):
+    out, broken, checked = site["out"], [], 0
+    for page in site["pages"]["pages"]:
+        for url in _parse(out / page).links:
+            parts = urlsplit(url)
+            if parts.scheme in ("http", "https", "mailto", "data"):
+                continue
+            target = out / parts.path if parts.path else out / page
+            checked += 1
+            if not target.is_file():
+                broken.append(f"{page}: {url} (no such file)")
+            elif parts.fragment and target.suffix == ".html" and parts.fragment not in _parse(target).ids:
+                broken.append(f"{page}: {url} (no such anchor)")
+    assert checked > 100
+    assert not broken, "broken links:\n" + "\n".join(broken[:20])
+
+
+@pytest.fixture(scope="module")
+def server(site):
+    class Quiet(http.server.SimpleHTTPRequestHandler):
+        def log_message(self, *args):
+            pass
+
+    handler = functools.partial(Quiet, directory=str(site["out"]))
+    httpd = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+    thread = threading.Thread(target=httpd.serve_forever, daemon=True)
+    thread.start()
+    yield f"http://127.0.0.1:{httpd.server_address[1]}"
+    httpd.shutdown()
+    httpd.server_close()
+
+
+@pytest.fixture(scope="module")
+def browser(tmp_path_factory):
+    """A headless Debian Chromium context (tools/browser.py, shared with tests/test_browser.py)."""
+    sys.path.insert(0, str(REPO / "tools"))
+    import browser as chromium
+
+    if os.environ.get("CAMLAB_SKIP_BROWSER") == "1":
+        pytest.skip("CAMLAB_SKIP_BROWSER=1")
+    if not Path(chromium.CHROMIUM).exists():
+        pytest.fail("Debian chromium is not installed: `apt-get install chromium` (make test does this as root)")
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as p:
+        context = chromium.launch(p, tmp_path_factory.mktemp("chromium"))
+        yield context
+        context.close()
+
+
+def visit(browser, url: str) -> dict:
+    """Open a page; return its console errors, outside requests, failures, maths and images."""
+    page = browser.new_page()
+    seen = dict(errors=[], outside=[], failed=[])
+    host = urlsplit(url).netloc
+    page.on("console", lambda m: seen["errors"].append(m.text) if m.type == "error" else None)
+    page.on("pageerror", lambda e: seen["errors"].append(str(e)))
+    page.on("request", lambda r: seen["outside"].append(r.url) if urlsplit(r.url).netloc != host else None)
+    page.on("requestfailed", lambda r: seen["failed"].append(r.url))
+    page.on("response", lambda r: seen["failed"].append(f"{r.status} {r.url}") if r.status >= 400 else None)
+    try:
+        page.goto(url, wait_until="load")
+        page.wait_for_function("() => window.MathJax && MathJax.startup && MathJax.startup.promise", timeout=30_000)
+        page.evaluate("() => MathJax.startup.promise")
+        seen.update(page.evaluate("""() => ({
+            math: document.querySelectorAll('mjx-container').length,
+            math_errors: document.querySelectorAll('mjx-merror').length,
+            assistive: document.querySelectorAll('mjx-container mjx-assistive-mml math').length,
+            dollars: [...document.querySelectorAll('.jp-MarkdownCell')].some(c => /\\$[^$]+\\$/.test(c.textContent)),
+            images: [...document.querySelectorAll('main img')].map(i => ({alt: i.alt, ok: i.complete && i.naturalWidth > 0})),
+        })"""))
+    finally:
+        page.close()
+    return seen
+
+
+@pytest.mark.browser
+def test_every_page_loads_offline_with_typeset_maths_and_all_figures(site, server, browser):
+    problems, counts = [], {}
+    for name in site["pages"]["pages"]:
+        seen = visit(browser, f"{server}/{name}")
+        if seen["errors"] or seen["outside"] or seen["failed"]:
+            problems.append(f"{name}: console {seen['errors'][:2]} outside {seen['outside'][:2]} failed {seen['failed'][:2]}")
+        if seen["math_errors"] or seen["dollars"]:
+            problems.append(f"{name}: {seen['math_errors']} maths errors; untypeset $...$ left: {seen['dollars']}")
+        if seen["math"] and seen["assistive"] < seen["math"]:
+            problems.append(f"{name}: {seen['math'] - seen['assistive']} formulas without assistive MathML")
+        broken = [i for i in seen["images"] if not i["ok"] or len(i["alt"]) < 20]
+        if broken:
+            problems.append(f"{name}: {len(broken)} images broken or without alt text: {broken[:2]}")
+        counts[name] = (len(seen["images"]), seen["math"])
+    for lesson in LESSONS:
+        shown, want = counts[lesson.stem + ".html"][0], expected_images(lesson)
+        if shown < want:
+            problems.append(f"{lesson.name}: {shown} images on the page, but it makes {want} figures and demos")
+        markdown = "".join("".join(c["source"]) for c in json.loads(lesson.read_text("utf-8"))["cells"]
+                           if c["cell_type"] == "markdown")
+        if "$" in markdown and counts[lesson.stem + ".html"][1] == 0:
+            problems.append(f"{lesson.name}: the lesson writes maths but the page typeset none")
+    print("\npage: images, formulas\n" + "\n".join(f"{k}: {v[0]}, {v[1]}" for k, v in counts.items()))  # for the notes
+    assert not problems, "\n".join(problems)
