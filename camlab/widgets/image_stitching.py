@@ -116,10 +116,10 @@ def ransac_registration() -> Demo:
     est_box = view.animate(outline(ax, np.eye(3), imgs[i].shape, color="tab:blue", lw=1.5, ls="--", label="RANSAC"))
     h, w = imgs[j].shape[:2]
     ax.set(xlim=(-0.5, w - 0.5), ylim=(h - 0.5, -0.5))
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.02), ncols=4, fontsize=7, frameon=False)
-    ax_e.set(xlabel="symmetric transfer error of each match (px, log scale)",
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.02), ncols=4, fontsize=7, facecolor="0.75")
+    ax_e.set(xlabel="transfer error per match (px, log scale)",
              ylabel="number of matches\n(relative to the tallest bar)", xscale="log", xlim=(0.03, 300), ylim=(0, 1))
-    ax_e.set_title("residuals under the RANSAC H; red line = threshold", fontsize=9)
+    ax_e.set_title("residuals under H (red: threshold)", fontsize=9)
     bins = np.logspace(np.log10(0.03), np.log10(300), 41)
     bars = ax_e.bar(bins[:-1], np.zeros(40), width=np.diff(bins), align="edge", color="0.6")
     view.animate(*bars)
