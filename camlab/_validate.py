@@ -34,7 +34,10 @@ class Points(NamedTuple):
         return result[0] if self.single else result
 
 
-def _as_float(x: ArrayLike, name: str) -> np.ndarray:
+def as_float(x: ArrayLike, name: str) -> np.ndarray:
+    """A float copy of ``x`` (any shape); strings, None and ragged lists raise naming ``name``."""
+    if x is None:
+        raise CamlabInputError(f"{name}: expected numbers, got None")
     try:
         return np.array(x, dtype=float)  # a copy: inputs are never modified
     except (TypeError, ValueError) as exc:
@@ -94,7 +97,7 @@ def as_points(
     camlab._validate.CamlabInputError: p: expected (N, 2) points (one per row) or a single (2,) point, got shape (1, 3)
     """
     dims = (dim,) if isinstance(dim, int) else tuple(dim)
-    a = _as_float(x, name)
+    a = as_float(x, name)
     single = a.ndim == 1
     if single:
         a = a[None, :]
@@ -125,7 +128,7 @@ def check_matrix(x: ArrayLike, shape: tuple[int, ...], name: str, *, finite: boo
     ...
     camlab._validate.CamlabInputError: H: expected a (3, 3) matrix, got shape (2, 2)
     """
-    a = _as_float(x, name)
+    a = as_float(x, name)
     if a.shape != tuple(shape):
         raise CamlabInputError(f"{name}: expected a {tuple(shape)} matrix, got shape {a.shape}")
     if finite:
@@ -239,7 +242,7 @@ def check_pose(R: ArrayLike, t: ArrayLike, name: str = "") -> tuple[np.ndarray, 
     """
     prefix = f"{name} " if name else ""
     Rm = check_rotation(R, f"{prefix}R")
-    tv = check_matrix(np.ravel(_as_float(t, f"{prefix}t")), (3,), f"{prefix}t")
+    tv = check_matrix(np.ravel(as_float(t, f"{prefix}t")), (3,), f"{prefix}t")
     return Rm, tv
 
 
@@ -274,3 +277,105 @@ def check_intrinsics(K: ArrayLike, name: str = "K") -> np.ndarray:
             f"focal lengths are in pixels and > 0"
         )
     return a
+
+
+def check_number(value, name: str, unit: str = "") -> float:
+    """Return ``value`` as a finite float (any sign), or raise naming ``name``.
+
+    >>> check_number(-0.5, "theta", "radians")
+    -0.5
+    >>> check_number(float("nan"), "theta", "radians")
+    Traceback (most recent call last):
+    ...
+    camlab._validate.CamlabInputError: theta: expected a finite number radians, got nan
+    """
+    unit = f" {unit}" if unit else ""
+    v = _number(value, name, f"a finite number{unit}")
+    if not np.isfinite(v):
+        raise CamlabInputError(f"{name}: expected a finite number{unit}, got {value!r}")
+    return v
+
+
+def check_integer(value, name: str, minimum: int = 1) -> int:
+    """Return ``value`` as an int >= ``minimum``; fractions, strings, None, NaN raise naming ``name``.
+
+    >>> check_integer(3.0, "levels")
+    3
+    >>> check_integer(2.5, "levels")
+    Traceback (most recent call last):
+    ...
+    camlab._validate.CamlabInputError: levels: expected a whole number >= 1, got 2.5; round it first
+    """
+    v = _number(value, name, f"a whole number >= {minimum}")
+    if not np.isfinite(v) or v != round(v):
+        raise CamlabInputError(f"{name}: expected a whole number >= {minimum}, got {value!r}; round it first")
+    if v < minimum:
+        raise CamlabInputError(f"{name}: expected a whole number >= {minimum}, got {value!r}")
+    return int(v)
+
+
+def check_image(image, name: str = "image", *, channels: tuple[int, ...] = (1, 3, 4)) -> np.ndarray:
+    """Return ``image`` as an array if it is a non-empty (H, W) or (H, W, C) real image, or raise.
+
+    Pixels may be integers or floats (NaN or inf in a float image is an error); object,
+    complex, bool and string arrays are rejected. The array is returned without a copy.
+    Images are indexed ``img[v, u]``.
+
+    >>> check_image(np.zeros((4, 5), np.uint8)).shape
+    (4, 5)
+    >>> check_image(np.zeros((4, 5), object))
+    Traceback (most recent call last):
+    ...
+    camlab._validate.CamlabInputError: image: expected an image of integer or float pixels, got dtype object; convert with np.asarray(image, dtype=np.uint8) or float
+    """
+    if image is None or isinstance(image, (str, bytes)):
+        raise CamlabInputError(f"{name}: expected an image array (H, W) or (H, W, C), got {type(image).__name__}; "
+                               f"load a file with cv2.imread or camlab.data.load_photo first")
+    a = np.asarray(image)
+    if a.dtype.kind not in "uif" or a.dtype == np.float16:
+        raise CamlabInputError(f"{name}: expected an image of integer or float pixels, got dtype {a.dtype}; "
+                               f"convert with np.asarray(image, dtype=np.uint8) or float")
+    if not ((a.ndim == 2 and 1 in channels) or (a.ndim == 3 and a.shape[2] in channels)) or a.size == 0:
+        want = " or ".join(["(H, W)"] * (1 in channels) + [f"(H, W, {c})" for c in channels if c != 1])
+        raise CamlabInputError(f"{name}: expected an image of shape {want}, got shape {a.shape}")
+    if a.dtype.kind == "f":
+        check_finite(a, name)
+    return a
+
+
+def check_shape(shape, name: str = "shape", *, minimum: int = 1) -> tuple[int, int]:
+    """Return an array ``shape`` as integer ``(height, width)``, or raise (the transpose of :func:`check_size`).
+
+    >>> check_shape((480, 640))
+    (480, 640)
+    >>> check_shape((480, 0.5))
+    Traceback (most recent call last):
+    ...
+    camlab._validate.CamlabInputError: shape: expected (height, width) as whole numbers of pixels >= 1, got (480, 0.5)
+    """
+    try:
+        w, h = check_size(tuple(shape)[::-1] if isinstance(shape, (tuple, list, np.ndarray)) else shape, name,
+                          minimum=minimum)
+    except CamlabInputError:
+        raise CamlabInputError(
+            f"{name}: expected (height, width) as whole numbers of pixels >= {minimum}, got {shape!r}"
+        ) from None
+    return h, w
+
+
+def check_pair(value, name: str, unit: str = "", *, positive: bool = False) -> tuple[float, float]:
+    """Return two finite numbers (e.g. a pixel pitch (sx, sy) or a point (u, v)), or raise naming ``name``.
+
+    >>> check_pair(5e-6, "pitch", "metres", positive=True)
+    Traceback (most recent call last):
+    ...
+    camlab._validate.CamlabInputError: pitch: expected a pair of positive numbers metres, got 5e-06; for equal values pass (5e-06, 5e-06)
+    """
+    what = f"a pair of {'positive ' if positive else ''}numbers{' ' + unit if unit else ''}"
+    if isinstance(value, (str, bytes)) or np.ndim(value) == 0:
+        fix = f"; for equal values pass ({value!r}, {value!r})" if isinstance(value, (int, float)) else ""
+        raise CamlabInputError(f"{name}: expected {what}, got {value!r}{fix}")
+    a = check_matrix(np.ravel(as_float(value, name)), (2,), name)
+    if positive and np.any(a <= 0):
+        raise CamlabInputError(f"{name}: expected {what}, got {value!r}")
+    return float(a[0]), float(a[1])

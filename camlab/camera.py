@@ -29,7 +29,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .distortion import distort_points
+from .distortion import beyond_valid_radius, distort_points
 from .optimize import levenberg_marquardt, unit_sphere_basis, unit_sphere_update
 from .projective import hartley_normalization
 from ._validate import (
@@ -38,13 +38,17 @@ from ._validate import (
     DegenerateError,
     as_points,
     ROTATION_TOL,
+    as_float,
     check_finite,
+    check_number,
     check_intrinsics,
     check_matrix,
     check_positive,
     check_rotation,
     check_size,
 )
+# The wireframe scenes live in camlab.scenes; they are re-exported here for lessons 04-05.
+from .scenes import box_wireframe, ground_grid, house_wireframe
 
 __all__ = [
     "Camera", "Decomposition", "CV_FROM_GL", "axis_angle_from_rotation", "camera_centre",
@@ -92,9 +96,9 @@ def intrinsic_matrix(fx: float, fy: float, cx: float, cy: float, skew: float = 0
     """
     fx = check_positive(fx, "fx", "pixels")
     fy = check_positive(fy, "fy", "pixels")
-    vals = np.array([cx, cy, skew], dtype=float)
-    check_finite(vals, "cx, cy, skew")
-    return np.array([[fx, vals[2], vals[0]], [0.0, fy, vals[1]], [0.0, 0.0, 1.0]])
+    cx, cy = check_number(cx, "cx", "pixels"), check_number(cy, "cy", "pixels")
+    skew = check_number(skew, "skew", "pixels")
+    return np.array([[fx, skew, cx], [0.0, fy, cy], [0.0, 0.0, 1.0]])
 
 
 def is_rotation(R: ArrayLike, tol: float = ROTATION_TOL) -> bool:
@@ -164,18 +168,21 @@ def axis_angle_from_rotation(R: ArrayLike) -> np.ndarray:
 
 def rotation_x(angle: float) -> np.ndarray:
     """Rotation by ``angle`` radians about the x axis (right-handed)."""
+    angle = check_number(angle, "angle", "radians")
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
 
 
 def rotation_y(angle: float) -> np.ndarray:
     """Rotation by ``angle`` radians about the y axis (right-handed)."""
+    angle = check_number(angle, "angle", "radians")
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
 
 
 def rotation_z(angle: float) -> np.ndarray:
     """Rotation by ``angle`` radians about the z axis (right-handed)."""
+    angle = check_number(angle, "angle", "radians")
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
@@ -423,7 +430,8 @@ class Camera:
         -------
         (N, 2) or (2,) ndarray
             Pixel coordinates (u, v); NaN for points with :math:`z_c \le 0` (behind or
-            on the camera's plane), which have no image.
+            on the camera's plane), which have no image, and for points beyond the
+            distortion model's valid radius (:func:`camlab.distortion.max_valid_radius`).
 
         Notes
         -----
@@ -439,7 +447,9 @@ class Camera:
         with np.errstate(divide="ignore", invalid="ignore"):
             xn = Xc[:, :2] / np.where(z > 0, z, np.nan)[:, None]
         if any(self.dist):
+            far = beyond_valid_radius(xn, self.dist)  # the model folds back there: no pixel, not a mirrored one
             xn = distort_points(xn, self.dist)
+            xn[far] = np.nan
         uv = xn @ self.K[:2, :2].T + self.K[:2, 2]
         return p.restore(uv)
 
@@ -833,50 +843,17 @@ def _refine_projection_matrix(P0: np.ndarray, X: np.ndarray, uv: np.ndarray) -> 
 
 
 # ---------------------------------------------------------------------------------------
-# Simple wireframe scenes (what lessons 04-05 photograph)
+# Projecting wireframes (scenes from camlab.scenes)
 # ---------------------------------------------------------------------------------------
-
-def box_wireframe(centre: ArrayLike = (0.0, 0.0, 0.5), size: ArrayLike = (1.0, 1.0, 1.0)) -> np.ndarray:
-    """The 12 edges of an axis-aligned box as (12, 2, 3) segments (metres)."""
-    c = check_matrix(centre, (3,), "centre")
-    s = check_matrix(size, (3,), "size")
-    corners = np.array([[i, j, k] for i in (-0.5, 0.5) for j in (-0.5, 0.5) for k in (-0.5, 0.5)]) * s + c
-    edges = [(a, b) for a in range(8) for b in range(a + 1, 8) if bin(a ^ b).count("1") == 1]
-    return corners[np.array(edges)]
-
-
-def house_wireframe(centre: ArrayLike = (0.0, 0.0, 0.0), size: float = 1.0) -> np.ndarray:
-    """A house (box body, gable roof, door) standing on z = 0 at ``centre``, as (M, 2, 3) segments."""
-    c = check_matrix(centre, (3,), "centre")
-    s = check_positive(size, "size", "metres")
-    body = box_wireframe((0.0, 0.0, 0.5), (1.0, 1.4, 1.0))
-    r0, r1 = np.array([0.0, -0.7, 1.55]), np.array([0.0, 0.7, 1.55])
-    top = [(-0.5, 1.0), (0.5, 1.0)]
-    roof = [[r0, r1]]
-    for y, r in ((-0.7, r0), (0.7, r1)):
-        for x, z in top:
-            roof.append([[x, y, z], r])
-    door = [[[-0.5, -0.15, 0.0], [-0.5, -0.15, 0.6]], [[-0.5, -0.15, 0.6], [-0.5, 0.15, 0.6]],
-            [[-0.5, 0.15, 0.6], [-0.5, 0.15, 0.0]]]
-    segs = np.concatenate([body, np.array(roof, dtype=float), np.array(door, dtype=float)])
-    return segs * s + c
-
-
-def ground_grid(extent: float = 2.0, step: float = 0.5, z: float = 0.0) -> np.ndarray:
-    """Grid lines on the plane z = ``z`` covering [-extent, extent]^2, as (M, 2, 3) segments."""
-    e = check_positive(extent, "extent", "metres")
-    st = check_positive(step, "step", "metres")
-    ticks = np.arange(-e, e + 1e-9, st)
-    segs = [[[x, -e, z], [x, e, z]] for x in ticks] + [[[-e, y, z], [e, y, z]] for y in ticks]
-    return np.array(segs, dtype=float)
-
 
 def project_segments(camera: "Camera | ArrayLike", segments: ArrayLike) -> np.ndarray:
     """Project (M, 2, 3) world segments to (M, 2, 2) pixel segments with a Camera or a 3x4 P.
 
     Segments with an endpoint behind the camera get NaN there (matplotlib skips them).
     """
-    s = np.asarray(segments, dtype=float)
+    if not isinstance(camera, Camera):
+        camera = _check_P(camera, "camera")
+    s = as_float(segments, "segments")
     if s.ndim != 3 or s.shape[1:] != (2, 3):
         raise CamlabInputError(f"segments: expected (M, 2, 3) pairs of world points, got shape {s.shape}")
     flat = s.reshape(-1, 3)

@@ -53,7 +53,7 @@ def _expand(patterns: list[str]) -> list[str]:
 def _run_calibrate(args: argparse.Namespace) -> int:
     from .calibration import calibrate_from_images, coach, parse_pattern, save_calibration
 
-    pattern = parse_pattern(args.pattern)
+    pattern = parse_pattern(args.pattern, "--pattern")
     files = _expand(args.images)
     print(f"camlab calibrate: {len(files)} images, pattern {pattern[0]}x{pattern[1]} inner corners, "
           f"square {args.square} m")

@@ -23,13 +23,25 @@ from __future__ import annotations
 from functools import lru_cache
 from typing import NamedTuple
 
+import functools
+
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, ConvergenceError, as_points, check_finite, check_intrinsics, check_matrix, check_size
+from ._validate import (
+    CamlabInputError,
+    ConvergenceError,
+    as_float,
+    as_points,
+    check_finite,
+    check_image,
+    check_intrinsics,
+    check_matrix,
+    check_size,
+)
 
 __all__ = [
-    "DistortionMaps", "as_dist", "classify_distortion", "distort_pixels", "distort_points",
+    "DistortionMaps", "as_dist", "beyond_valid_radius", "classify_distortion", "distort_pixels", "distort_points",
     "distortion_jacobian", "max_valid_radius", "radial_scale", "undistort_image",
     "undistort_map", "undistort_pixels", "undistort_points", "distort_map",
 ]
@@ -210,7 +222,7 @@ def radial_scale(r: ArrayLike, dist: ArrayLike | None) -> np.ndarray:
     0.95
     """
     k1, k2, _, _, k3 = as_dist(dist)
-    r2 = np.asarray(r, dtype=float) ** 2
+    r2 = check_finite(as_float(r, "r"), "r") ** 2
     return 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3))
 
 
@@ -233,6 +245,27 @@ def max_valid_radius(dist: ArrayLike | None, r_max: float = 3.0) -> float:
     i = bad[0]
     # linear interpolation of the zero crossing
     return float(r[i - 1] + (r[i] - r[i - 1]) * slope[i - 1] / (slope[i - 1] - slope[i]))
+
+
+@functools.lru_cache(maxsize=64)
+def _valid_radius(dist: tuple[float, ...]) -> float:
+    return max_valid_radius(dist)
+
+
+def beyond_valid_radius(points: ArrayLike, dist: ArrayLike | None) -> np.ndarray:
+    """(N,) bool: normalised points farther from the axis than :func:`max_valid_radius`.
+
+    The polynomial model folds back beyond that radius (a point farther out lands on the
+    same pixel as one farther in, a mirrored image), so projections mark them NaN.
+
+    >>> beyond_valid_radius([[0.5, 0.0], [1.0, 0.0]], [-0.5, 0, 0, 0, 0]).tolist()
+    [False, True]
+    """
+    p = as_points(points, 2, "points", finite=False).array
+    d = as_dist(dist)
+    if not d.any():
+        return np.zeros(len(p), dtype=bool)
+    return np.hypot(p[:, 0], p[:, 1]) > _valid_radius(tuple(d.tolist()))
 
 
 def classify_distortion(dist: ArrayLike | None, r_max: float = 0.8, tol: float = 1e-4) -> str:
@@ -388,8 +421,6 @@ def undistort_image(image: np.ndarray, K: ArrayLike, dist: ArrayLike | None,
     """Undistort an image (H, W) or (H, W, C) with :func:`undistort_map` and ``cv2.remap`` (bilinear)."""
     import cv2
 
-    img = np.asarray(image)
-    if img.ndim not in (2, 3) or img.size == 0:
-        raise CamlabInputError(f"image: expected an (H, W) or (H, W, C) array, got shape {img.shape}")
+    img = check_image(image)
     maps = undistort_map(K, dist, (img.shape[1], img.shape[0]), new_K)
     return cv2.remap(img, maps.map_u, maps.map_v, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT)

@@ -30,9 +30,12 @@ from numpy.typing import ArrayLike
 from ._validate import (
     CamlabInputError,
     DegenerateError,
+    as_float,
     as_points,
+    check_intrinsics,
     check_matrix,
     check_positive,
+    check_rotation,
 )
 from .camera import Camera, camera_centre
 from .homography import estimate_homography, symmetric_transfer_error
@@ -102,7 +105,14 @@ def normalize_fundamental(F: ArrayLike) -> np.ndarray:
 
 
 def _as_P(cam: "Camera | ArrayLike", name: str) -> np.ndarray:
-    return cam.P if isinstance(cam, Camera) else check_matrix(cam, (3, 4), name)
+    if isinstance(cam, Camera):
+        return cam.P
+    P = check_matrix(cam, (3, 4), name)
+    sv = np.linalg.svd(P, compute_uv=False)
+    if sv[0] == 0 or sv[2] <= 1e-12 * sv[0]:
+        raise DegenerateError(f"{name}: a camera matrix has rank 3, this one has singular values "
+                              f"{np.array2string(sv, precision=3)}; pass a Camera or K @ [R | t]")
+    return P
 
 
 # --------------------------------------------------------------------------- from known cameras
@@ -129,7 +139,12 @@ def essential_matrix(R: ArrayLike, t: ArrayLike) -> np.ndarray:
     :math:`X_2^\top [t]_\times R X_1 = 0`; dividing by the depths gives
     :math:`\hat x_2^\top E \hat x_1 = 0` for normalised image points.
     """
-    return skew(t) @ check_matrix(R, (3, 3), "R")
+    Rm = check_rotation(R, "R")
+    tv = check_matrix(np.ravel(as_float(t, "t")), (3,), "t")
+    if not tv.any():
+        raise DegenerateError("t: zero translation gives E = 0: with no baseline the two views share one centre and "
+                              "there is no epipolar geometry (use a rotation homography instead)")
+    return skew(tv) @ Rm
 
 
 def fundamental_from_cameras(camera1: "Camera | ArrayLike", camera2: "Camera | ArrayLike") -> np.ndarray:
@@ -194,17 +209,17 @@ def essential_from_fundamental(F: ArrayLike, K1: ArrayLike, K2: ArrayLike | None
     Frobenius norm replaces the singular values by their mean.
     """
     F = _check_F(F)
-    K1 = check_matrix(K1, (3, 3), "K1")
-    K2 = K1 if K2 is None else check_matrix(K2, (3, 3), "K2")
+    K1 = check_intrinsics(K1, "K1")
+    K2 = K1 if K2 is None else check_intrinsics(K2, "K2")
     U, s, Vt = np.linalg.svd(K2.T @ F @ K1)
     return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
 
 
 def fundamental_from_essential(E: ArrayLike, K1: ArrayLike, K2: ArrayLike | None = None) -> np.ndarray:
     r""":math:`F = K_2^{-\top} E K_1^{-1}`, unit Frobenius norm."""
-    E = check_matrix(E, (3, 3), "E")
-    K1 = check_matrix(K1, (3, 3), "K1")
-    K2 = K1 if K2 is None else check_matrix(K2, (3, 3), "K2")
+    E = _check_F(E, "E")
+    K1 = check_intrinsics(K1, "K1")
+    K2 = K1 if K2 is None else check_intrinsics(K2, "K2")
     return normalize_fundamental(np.linalg.inv(K2).T @ E @ np.linalg.inv(K1))
 
 
@@ -572,7 +587,7 @@ def decompose_essential_matrix(E: ArrayLike) -> EssentialDecomposition:
     U, s, Vt = np.linalg.svd(E)
     if s[0] <= 0 or s[1] < 0.5 * s[0] or s[2] > 0.1 * s[0]:
         raise DegenerateError(
-            f"decompose_essential_matrix: singular values {np.round(s / max(s[0], 1e-300), 4).tolist()} "
+            f"E: singular values {np.round(s / max(s[0], 1e-300), 4).tolist()} "
             f"(relative) are far from (1, 1, 0); this is not an essential matrix. Did you pass F instead of "
             f"K2^T F K1?"
         )
@@ -609,8 +624,8 @@ def recover_pose(E: ArrayLike, x1: ArrayLike, x2: ArrayLike, K1: ArrayLike, K2: 
     each candidate :math:`P_2 = K_2 [R \mid t]`; a point is valid if its depth is positive
     in both cameras. Three of the candidates put (almost) every point behind a camera.
     """
-    K1 = check_matrix(K1, (3, 3), "K1")
-    K2 = K1 if K2 is None else check_matrix(K2, (3, 3), "K2")
+    K1 = check_intrinsics(K1, "K1")
+    K2 = K1 if K2 is None else check_intrinsics(K2, "K2")
     a, b, _ = _pairs(x1, x2)
     cands = decompose_essential_matrix(E)
     P1 = K1 @ np.eye(3, 4)
@@ -708,6 +723,10 @@ def triangulate_points(P1: "Camera | ArrayLike", P2: "Camera | ArrayLike", x1: A
     """
     A1, A2 = _as_P(P1, "P1"), _as_P(P2, "P2")
     a, b, single = _pairs(x1, x2)
+    C1, C2 = camera_centre(A1), camera_centre(A2)
+    if np.linalg.norm(C1 - C2) <= 1e-9 * max(np.linalg.norm(C1[:3]), np.linalg.norm(C2[:3]), 1e-300):
+        raise DegenerateError("P1, P2: both cameras have the same centre (zero baseline), so the rays of "
+                              "corresponding pixels meet only there and depth is undetermined; move one camera")
     rows = np.stack([
         a[:, 0:1] * A1[2] - A1[0], a[:, 1:2] * A1[2] - A1[1],
         b[:, 0:1] * A2[2] - A2[0], b[:, 1:2] * A2[2] - A2[1],

@@ -35,10 +35,12 @@ from ._validate import (
     CamlabInputError,
     ConvergenceError,
     DegenerateError,
+    as_float,
     as_points,
     check_finite,
     check_intrinsics,
     check_matrix,
+    check_number,
     check_positive,
     check_rotation,
 )
@@ -258,7 +260,7 @@ def transfer_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np.ndarray:
     >>> transfer_error(np.eye(3), [[0, 0], [1, 1]], [[3, 4], [1, 1]])
     array([5., 0.])
     """
-    Hm = check_matrix(H, (3, 3), "H")
+    Hm = _check_h(H)
     s, d = _pairs(src, dst, min_count=1)
     return np.linalg.norm(map_points(Hm, s) - d, axis=1)
 
@@ -358,12 +360,15 @@ class RansacResult(NamedTuple):
         Minimal samples drawn (hypotheses tried, degenerate ones included).
     residuals : (N,) ndarray
         Each pair's error under the final ``H`` in pixels (the chosen ``score``).
+    sample : (4,) int ndarray
+        The minimal sample whose hypothesis, locally optimised, became ``H``.
     """
 
     H: np.ndarray
     inliers: np.ndarray
     iterations: int
     residuals: np.ndarray
+    sample: np.ndarray | None = None
 
 
 def _minimal_solve(sn: np.ndarray, dn: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -492,7 +497,7 @@ def ransac_homography(
     if score not in ("transfer", "sampson"):
         raise CamlabInputError(f"score: expected 'transfer' or 'sampson', got {score!r}")
     fit = ransac(HomographyModel(s, d, score), threshold, confidence, max_iters, rng, batch=batch)
-    return RansacResult(normalize_homography(fit.model), fit.inliers, fit.iterations, fit.residuals)
+    return RansacResult(normalize_homography(fit.model), fit.inliers, fit.iterations, fit.residuals, fit.sample)
 
 
 # --------------------------------------------------------------------------- LM refinement
@@ -664,7 +669,8 @@ HIERARCHY: dict[str, dict] = {
 """The four groups of plane transformations, their degrees of freedom and invariants (H&Z table 2.1)."""
 
 
-def _rot(theta: float) -> np.ndarray:
+def _rot(theta: float, name: str = "theta") -> np.ndarray:
+    theta = check_number(theta, name, "radians")
     c, s = np.cos(theta), np.sin(theta)
     return np.array([[c, -s], [s, c]])
 
@@ -678,7 +684,7 @@ def euclidean(theta: float = 0.0, tx: float = 0.0, ty: float = 0.0) -> np.ndarra
     """
     H = np.eye(3)
     H[:2, :2] = _rot(theta)
-    H[:2, 2] = tx, ty
+    H[:2, 2] = check_number(tx, "tx", "pixels"), check_number(ty, "ty", "pixels")
     return H
 
 
@@ -697,11 +703,12 @@ def affine(theta: float = 0.0, phi: float = 0.0, sx: float = 1.0, sy: float = 1.
     :math:`D = \mathrm{diag}(s_x, s_y)` scales along axes rotated by :math:`\phi`, then
     :math:`R(\theta)` rotates; (tx, ty) translates. Parallel lines stay parallel.
     """
+    sx, sy = check_number(sx, "sx"), check_number(sy, "sy")
     if sx == 0 or sy == 0:
         raise DegenerateError(f"sx, sy: a zero scale collapses the plane; got sx={sx}, sy={sy}")
     H = np.eye(3)
-    H[:2, :2] = _rot(theta) @ _rot(-phi) @ np.diag([sx, sy]) @ _rot(phi)
-    H[:2, 2] = tx, ty
+    H[:2, :2] = _rot(theta) @ _rot(-check_number(phi, "phi", "radians"), "phi") @ np.diag([sx, sy]) @ _rot(phi, "phi")
+    H[:2, 2] = check_number(tx, "tx", "pixels"), check_number(ty, "ty", "pixels")
     return H
 
 
@@ -716,7 +723,7 @@ def projective(A: ArrayLike | None = None, t: ArrayLike = (0.0, 0.0), v: ArrayLi
     H[:2, :2] = np.eye(2) if A is None else check_matrix(A, (2, 2), "A")
     H[:2, 2] = check_matrix(t, (2,), "t")
     H[2, :2] = check_matrix(v, (2,), "v")
-    H[2, 2] = w
+    H[2, 2] = check_number(w, "w")
     return _check_h(H)
 
 
@@ -829,9 +836,9 @@ def plane_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike, n: ArrayLike, d: 
     """
     Km = check_intrinsics(K, "K")
     K2m = Km if K2 is None else check_intrinsics(K2, "K2")
-    tv = check_matrix(np.ravel(np.asarray(t, dtype=float)), (3,), "t")
-    nv = check_matrix(np.ravel(np.asarray(n, dtype=float)), (3,), "n")
-    if not np.isfinite(d) or d == 0:
+    tv = check_matrix(np.ravel(as_float(t, "t")), (3,), "t")
+    nv = check_matrix(np.ravel(as_float(n, "n")), (3,), "n")
+    if check_number(d, "d", "metres") == 0:
         raise DegenerateError(f"d: the plane n . X + d = 0 must not pass through camera 1's centre; got d={d!r}")
     if not np.any(nv):
         raise CamlabInputError("n: the plane normal must be non-zero")
@@ -853,6 +860,6 @@ def pose_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike) -> np.ndarray:
     """
     Km = check_intrinsics(K, "K")
     Rm = check_rotation(R)
-    tv = check_matrix(np.ravel(np.asarray(t, dtype=float)), (3,), "t")
+    tv = check_matrix(np.ravel(as_float(t, "t")), (3,), "t")
     H = Km @ np.column_stack([Rm[:, 0], Rm[:, 1], tv])
     return normalize_homography(_check_h(H, "pose_homography"))

@@ -19,15 +19,24 @@ in the order top-left, top-right, bottom-right, bottom-left (clockwise on screen
 """
 from __future__ import annotations
 
-import functools
 from typing import NamedTuple, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from ._validate import CamlabInputError, DegenerateError, as_points, check_positive, check_size
-from .homography import estimate_homography, pose_homography
-from .projective import map_points
+from .homography import estimate_homography
+# The synthetic plane photos live in camlab.scenes; they are re-exported here for lesson 10.
+from .scenes import (
+    PlanePhoto,
+    desk_background,
+    facade_texture,
+    look_at_plane,
+    page_texture,
+    painting_texture,
+    photograph_plane,
+    sample_photo,
+)
 from .warp import warp_perspective
 
 __all__ = [
@@ -279,6 +288,7 @@ def rectangle_homography(corners: ArrayLike, width: int, height: int) -> np.ndar
     (0, 0), (width - 1, 0), (width - 1, height - 1), (0, height - 1).
 
     >>> H = rectangle_homography([[10, 10], [110, 10], [110, 60], [10, 60]], 101, 51)
+    >>> from camlab.projective import map_points
     >>> map_points(H, [110.0, 60.0]).round(9) + 0.0
     array([100.,  50.])
     """
@@ -412,229 +422,3 @@ def find_document(image: ArrayLike, min_area_fraction: float = 0.1) -> np.ndarra
 
 # --------------------------------------------------------------------------- synthetic photos
 
-@functools.lru_cache(maxsize=8)
-def page_texture(width: int = 420, height: int = 594, seed: int = 0) -> np.ndarray:
-    """A printed page (A4 proportions, 1 : sqrt 2): title, paragraphs of text, a figure box.
-
-    Returns an (height, width, 3) uint8 RGB image drawn with ``cv2.putText`` (cached and
-    read-only, like the other textures).
-    """
-    import cv2
-
-    rng = np.random.default_rng(seed)
-    page = np.full((height, width, 3), 250, np.uint8)
-    cv2.putText(page, "Projective Geometry", (int(0.08 * width), int(0.09 * height)),
-                cv2.FONT_HERSHEY_DUPLEX, width / 560, (20, 20, 20), 2, cv2.LINE_AA)
-    words = ["camera", "plane", "homography", "line", "point", "image", "ray", "scale", "view", "map"]
-    y = int(0.16 * height)
-    line_h = max(12, height // 34)
-    box_top = int(0.55 * height)
-    while y < height - int(0.06 * height):
-        if box_top <= y < box_top + int(0.2 * height):
-            y = box_top + int(0.2 * height) + line_h
-            continue
-        text = " ".join(rng.choice(words, size=5))
-        cv2.putText(page, text, (int(0.08 * width), y), cv2.FONT_HERSHEY_SIMPLEX, width / 1100,
-                    (40, 40, 40), 1, cv2.LINE_AA)
-        y += line_h
-    x0, x1 = int(0.2 * width), int(0.8 * width)
-    y0, y1 = box_top, box_top + int(0.18 * height)
-    cv2.rectangle(page, (x0, y0), (x1, y1), (60, 90, 160), 2)
-    cv2.line(page, (x0, y1), (x1, y0), (200, 60, 40), 2, cv2.LINE_AA)
-    cv2.circle(page, ((x0 + x1) // 2, (y0 + y1) // 2), (y1 - y0) // 4, (40, 140, 60), 2, cv2.LINE_AA)
-    page.flags.writeable = False  # cached: copy before drawing on it
-    return page
-
-
-@functools.lru_cache(maxsize=8)
-def facade_texture(width: int = 480, height: int = 360, floors: int = 4, bays: int = 6) -> np.ndarray:
-    """A building facade: brick-coloured wall, a grid of windows, a door. (h, w, 3) uint8."""
-    import cv2
-
-    wall = np.empty((height, width, 3), np.uint8)
-    wall[:] = (178, 102, 76)
-    for r in range(0, height, 12):  # brick courses
-        cv2.line(wall, (0, r), (width - 1, r), (150, 86, 64), 1)
-    cw, ch = width / bays, height / (floors + 0.4)
-    for f in range(floors):
-        for b in range(bays):
-            x0, y0 = int(b * cw + 0.25 * cw), int(0.3 * ch + f * ch)
-            x1, y1 = int(x0 + 0.5 * cw), int(y0 + 0.6 * ch)
-            if f == floors - 1 and b == bays // 2:
-                continue
-            cv2.rectangle(wall, (x0, y0), (x1, y1), (235, 235, 225), -1)
-            cv2.rectangle(wall, (x0 + 3, y0 + 3), (x1 - 3, y1 - 3), (70, 110, 150), -1)
-            cv2.line(wall, ((x0 + x1) // 2, y0), ((x0 + x1) // 2, y1), (235, 235, 225), 2)
-    b = bays // 2
-    x0, x1 = int(b * cw + 0.25 * cw), int(b * cw + 0.75 * cw)
-    cv2.rectangle(wall, (x0, int(height - 0.85 * ch)), (x1, height - 1), (90, 60, 40), -1)
-    wall.flags.writeable = False  # cached: copy before drawing on it
-    return wall
-
-
-@functools.lru_cache(maxsize=8)
-def painting_texture(width: int = 400) -> np.ndarray:
-    """A framed painting: matplotlib's bundled Grace Hopper portrait inside a gold frame.
-
-    Falls back to a drawn landscape if the sample image is unavailable. (h, w, 3) uint8.
-    """
-    import cv2
-
-    try:
-        import matplotlib.cbook as cbook
-        import matplotlib.image as mpimg
-
-        with cbook.get_sample_data("grace_hopper.jpg") as f:
-            art = mpimg.imread(f)[..., :3]
-        art = np.asarray(art)
-        if art.dtype != np.uint8:
-            art = (np.clip(art, 0, 1) * 255).astype(np.uint8)
-    except Exception:  # pragma: no cover - matplotlib always ships the sample
-        art = np.zeros((600, 512, 3), np.uint8)
-        art[:300] = (120, 170, 230)
-        art[300:] = (60, 140, 70)
-        cv2.circle(art, (380, 120), 50, (250, 220, 80), -1)
-    scale = (width - 40) / art.shape[1]
-    art = cv2.resize(art, (width - 40, int(round(art.shape[0] * scale))), interpolation=cv2.INTER_AREA)
-    frame = np.empty((art.shape[0] + 40, width, 3), np.uint8)
-    frame[:] = (170, 130, 50)
-    cv2.rectangle(frame, (6, 6), (width - 7, frame.shape[0] - 7), (210, 170, 80), 4)
-    frame[20:-20, 20:-20] = art
-    frame.flags.writeable = False  # cached: copy before drawing on it
-    return frame
-
-
-@functools.lru_cache(maxsize=4)
-def desk_background(h: int = 480, w: int = 640, seed: int = 0) -> np.ndarray:
-    """A dark wooden-desk background (cached: demos re-photograph on every slider move)."""
-    rng = np.random.default_rng(seed)
-    yy, xx = np.mgrid[0:h, 0:w]
-    base = 70 + 25 * np.sin(xx / 37.0) * np.cos(yy / 53.0) + rng.normal(0, 4, (h, w))
-    bg = np.clip(np.stack([base * 0.9, base * 0.75, base * 0.6], axis=-1), 0, 255).astype(np.uint8)
-    bg.flags.writeable = False
-    return bg
-
-
-class PlanePhoto(NamedTuple):
-    """A synthetic photo of a flat rectangle with its ground truth.
-
-    Attributes
-    ----------
-    image : (h, w, 3) uint8 ndarray
-        The photo.
-    corners : (4, 2) ndarray
-        True image positions of the rectangle's corners, TL, TR, BR, BL.
-    aspect : float
-        True width / height of the rectangle.
-    H : (3, 3) ndarray
-        image_from_texture: maps texture pixels into the photo.
-    K : (3, 3) ndarray
-        The camera intrinsics used (focal length ``K[0, 0]`` pixels).
-    """
-
-    image: np.ndarray
-    corners: np.ndarray
-    aspect: float
-    H: np.ndarray
-    K: np.ndarray
-
-
-def look_at_plane(yaw: float, pitch: float, roll: float = 0.0) -> np.ndarray:
-    """Rotation cam_from_plane turning a plane about its own centre: yaw about the
-    vertical (v) axis, pitch about the horizontal (u) axis, roll about the view axis,
-    in radians. With all angles 0 the plane faces the camera squarely."""
-    cy, sy = np.cos(yaw), np.sin(yaw)
-    cp, sp = np.cos(pitch), np.sin(pitch)
-    cr, sr = np.cos(roll), np.sin(roll)
-    Ry = np.array([[cy, 0, sy], [0, 1, 0], [-sy, 0, cy]])
-    Rx = np.array([[1, 0, 0], [0, cp, -sp], [0, sp, cp]])
-    Rz = np.array([[cr, -sr, 0], [sr, cr, 0], [0, 0, 1]])
-    return Rz @ Rx @ Ry
-
-
-def photograph_plane(
-    texture: ArrayLike,
-    *,
-    yaw: float = 0.5,
-    pitch: float = 0.3,
-    roll: float = 0.0,
-    distance: float = 2.2,
-    width_m: float = 1.0,
-    offset: ArrayLike = (0.0, 0.0),
-    focal: float = 800.0,
-    image_shape: tuple[int, int] = (480, 640),
-    background: ArrayLike | None = None,
-    seed: int = 0,
-    method: str = "cv2",
-) -> PlanePhoto:
-    r"""Photograph a flat textured rectangle at an angle: a plane-induced homography.
-
-    The texture is a rectangle ``width_m`` metres wide (its height follows from the
-    texture's pixel aspect), centred on the optical axis at ``distance`` metres (plus
-    ``offset`` metres in x and y), turned by :func:`look_at_plane`. The camera is
-    :math:`K = [[f, 0, c_x], [0, f, c_y], [0, 0, 1]]`; a plane point (X, Y, 0) projects by
-    :func:`camlab.homography.pose_homography`, and a texture pixel (u, v) is the plane
-    point :math:`s (u - (W-1)/2,\ v - (H-1)/2)` with :math:`s` = metres per texture
-    pixel. The photo is the texture warped by the product onto a background.
-
-    Returns
-    -------
-    PlanePhoto
-        ``image``, true ``corners``, true ``aspect``, ``H`` (image_from_texture), ``K``.
-    """
-    tex = np.asarray(texture)
-    if tex.ndim != 3 or tex.shape[2] != 3:
-        raise CamlabInputError(f"texture: expected an (H, W, 3) RGB image, got shape {tex.shape}")
-    th, tw = tex.shape[:2]
-    h, w = image_shape
-    K = np.array([[focal, 0, (w - 1) / 2], [0, focal, (h - 1) / 2], [0, 0, 1.0]])
-    R = look_at_plane(yaw, pitch, roll)
-    off = np.asarray(offset, dtype=float)
-    t = np.array([off[0], off[1], check_positive(distance, "distance", "metres")])
-    s = check_positive(width_m, "width_m", "metres") / tw
-    S = np.array([[s, 0, -s * (tw - 1) / 2], [0, s, -s * (th - 1) / 2], [0, 0, 1]])
-    H = pose_homography(K, R, t) @ S
-    H = H / H[2, 2]
-    corners_tex = np.array([[0, 0], [tw - 1, 0], [tw - 1, th - 1], [0, th - 1]], dtype=float)
-    corners = map_points(H, corners_tex)
-    if background is None:
-        bg = desk_background(h, w, seed)
-    else:
-        bg = np.asarray(background, dtype=np.uint8)
-    if method == "cv2":
-        import cv2
-
-        # Warp straight onto a copy of the background: BORDER_TRANSPARENT leaves the
-        # pixels outside the texture untouched (one call, fast enough for live demos).
-        image = np.array(bg, dtype=np.uint8, copy=True)
-        cv2.warpPerspective(np.ascontiguousarray(tex, dtype=np.uint8), H, (w, h), dst=image,
-                            flags=cv2.INTER_LINEAR, borderMode=cv2.BORDER_TRANSPARENT)
-    else:
-        photo = warp_perspective(tex, H, (h, w), method=method)
-        mask = warp_perspective(np.full((th, tw), 255, np.uint8), H, (h, w), method=method).astype(np.float32) / 255
-        out = photo.astype(np.float32) + bg.astype(np.float32) * (1 - mask[..., None])
-        image = np.clip(out, 0, 255).astype(np.uint8)
-    # The corners are the centres of the texture's corner pixels: (tw - 1) x (th - 1) apart.
-    return PlanePhoto(image, corners, (tw - 1) / (th - 1), H, K)
-
-
-_SCENES = {
-    "page": dict(yaw=0.45, pitch=0.35, roll=0.1, distance=2.2, width_m=0.75),
-    "painting": dict(yaw=-0.6, pitch=0.1, roll=0.0, distance=2.4, width_m=0.8),
-    "facade": dict(yaw=0.2, pitch=-0.5, roll=0.0, distance=1.8, width_m=1.0),
-}
-
-
-def sample_photo(kind: str = "page", **pose) -> PlanePhoto:
-    """A ready-made synthetic photo for lesson 10: ``"page"``, ``"painting"`` or ``"facade"``.
-
-    Keyword arguments override the scene's pose (see :func:`photograph_plane`).
-
-    >>> p = sample_photo("page")
-    >>> p.image.shape, round(p.aspect, 3)
-    ((480, 640, 3), 0.707)
-    """
-    if kind not in _SCENES:
-        raise CamlabInputError(f"kind: expected one of {sorted(_SCENES)}, got {kind!r}")
-    texture = {"page": page_texture, "painting": painting_texture, "facade": facade_texture}[kind]()
-    return photograph_plane(texture, **{**_SCENES[kind], **pose})

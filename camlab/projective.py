@@ -24,7 +24,7 @@ from ._validate import CamlabInputError, DegenerateError, as_points, check_matri
 __all__ = [
     "LINE_AT_INFINITY", "DegenerateError", "clip_line", "cross_ratio", "from_homogeneous", "horizon",
     "ideal_point", "is_ideal", "is_on_line", "join", "map_lines", "map_points", "meet", "normalize_lines",
-    "splits_at_infinity",
+    "splits_at_infinity", "VanishingPointFit", "segments_pointing_at", "vanishing_point_ransac",
     "normalize_points", "point_line_distance", "to_homogeneous", "vanishing_point",
     "HartleyNormalized", "hartley_normalization", "hartley_normalize",
 ]
@@ -106,6 +106,13 @@ def _as_lines(x: ArrayLike, name: str) -> tuple[np.ndarray, bool]:
     if np.any(np.all(p.array == 0, axis=1)):
         raise CamlabInputError(f"{name}: (0, 0, 0) is not a line; a line is (a, b, c) with ax + by + c = 0")
     return p.array, p.single
+
+
+def _check_nonzero_H(H: ArrayLike) -> np.ndarray:
+    Hm = check_matrix(H, (3, 3), "H")
+    if not Hm.any():
+        raise DegenerateError("H: all zeros, which maps every point to (0, 0, 0), not a point; pass a homography")
+    return Hm
 
 
 def _unit_rows(a: np.ndarray) -> np.ndarray:
@@ -305,7 +312,7 @@ def map_points(H: ArrayLike, points: ArrayLike) -> np.ndarray:
     >>> map_points(np.diag([2.0, 3.0, 1.0]), [1.0, 1.0])
     array([2., 3.])
     """
-    Hm = check_matrix(H, (3, 3), "H")
+    Hm = _check_nonzero_H(H)
     p = as_points(points, (2, 3), "points")
     euclidean = p.array.shape[1] == 2
     x = np.hstack([p.array, np.ones((len(p.array), 1))]) if euclidean else p.array
@@ -325,7 +332,7 @@ def map_lines(H: ArrayLike, lines: ArrayLike) -> np.ndarray:
     DegenerateError
         If H is singular (it then collapses the plane and has no inverse).
     """
-    Hm = check_matrix(H, (3, 3), "H")
+    Hm = _check_nonzero_H(H)
     ln, single = _as_lines(lines, "lines")
     if np.linalg.cond(Hm) > 1e12:
         raise DegenerateError(
@@ -356,7 +363,7 @@ def splits_at_infinity(H: ArrayLike, points: ArrayLike) -> bool:
     >>> splits_at_infinity(np.eye(3), square), splits_at_infinity([[1, 0, 0], [0, 1, 0], [-2, 0, 1]], square)
     (False, True)
     """
-    Hm = check_matrix(H, (3, 3), "H")
+    Hm = _check_nonzero_H(H)
     p = as_points(points, (2,), "points").array
     w = p @ Hm[2, :2] + Hm[2, 2]
     return bool(w.min() <= 0 <= w.max())
@@ -471,13 +478,87 @@ def vanishing_point(segments: ArrayLike) -> np.ndarray:
     return normalize_points(v)
 
 
+def segments_pointing_at(segments: ArrayLike, point_h: ArrayLike, tol_deg: float = 1.5) -> np.ndarray:
+    """Which segments point at the (possibly ideal) point, within ``tol_deg`` degrees.
+
+    The angle is measured at each segment's midpoint m, between the segment's direction
+    and the direction from m to the point, :math:`(x - m w, y - m w)`, which stays valid
+    for an ideal point (w = 0). Returns an (N,) bool array.
+    """
+    segs = np.asarray(segments, dtype=float)
+    v = np.asarray(point_h, dtype=float)
+    mid, d = segs.mean(axis=1), segs[:, 1] - segs[:, 0]
+    to_v = v[:2] - mid * v[2]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cos = np.abs(np.sum(d * to_v, axis=1)) / (np.linalg.norm(d, axis=1) * np.linalg.norm(to_v, axis=1))
+    return np.nan_to_num(np.degrees(np.arccos(np.clip(cos, 0, 1))), nan=180.0) < tol_deg
+
+
+class VanishingPointFit(NamedTuple):
+    """What :func:`vanishing_point_ransac` found: ``point`` (3,) homogeneous, ``inliers`` (N,) bool."""
+
+    point: np.ndarray
+    inliers: np.ndarray
+
+
+def vanishing_point_ransac(segments: ArrayLike, tol_deg: float = 1.5, samples: int = 300,
+                           rng: np.random.Generator | int | None = None) -> VanishingPointFit:
+    """The vanishing point most segments point at, robust to segments that belong to none.
+
+    RANSAC (Fischler & Bolles): two random segments propose the meet of their lines; every
+    segment pointing at it within ``tol_deg`` (:func:`segments_pointing_at`) votes; the
+    proposal with the most votes wins and is re-estimated from its voters by
+    :func:`vanishing_point` (least squares over unit vectors, so it may be ideal).
+
+    Parameters
+    ----------
+    segments : (N, 2, 2) array_like
+        Image segments (pixels), N >= 2.
+    tol_deg : float
+    samples : int
+    rng : numpy Generator, int or None
+
+    Returns
+    -------
+    VanishingPointFit
+    """
+    segs = np.asarray(segments, dtype=float)
+    if segs.ndim != 3 or segs.shape[1:] != (2, 2) or len(segs) < 2:
+        raise CamlabInputError(f"segments: expected (N, 2, 2) with N >= 2 segments, got shape {segs.shape}")
+    rng = np.random.default_rng(rng)
+    ones = np.ones((len(segs), 1))
+    lines = np.cross(np.hstack([segs[:, 0], ones]), np.hstack([segs[:, 1], ones]))
+    best = np.zeros(len(segs), bool)
+    for _ in range(int(samples)):
+        i, j = rng.choice(len(segs), 2, replace=False)
+        proposal = np.cross(lines[i], lines[j])
+        if not np.any(proposal):
+            continue
+        votes = segments_pointing_at(segs, proposal, tol_deg)
+        if votes.sum() > best.sum():
+            best = votes
+    if best.sum() < 2:
+        raise DegenerateError("segments: no two segments point at a common point; there is no vanishing point here")
+    return VanishingPointFit(vanishing_point(segs[best]), best)
+
+
 def horizon(vp1: ArrayLike, vp2: ArrayLike) -> np.ndarray:
     """The vanishing line through two vanishing points of one plane (its horizon).
 
     Returns the line normalised so that a^2 + b^2 = 1 (or (0, 0, 1) when both points are
     ideal, i.e. the plane is parallel to the image). See :func:`join`.
     """
-    return normalize_lines(join(vp1, vp2))
+    a, sa = _as_homogeneous_2d(vp1, "vp1")
+    b, sb = _as_homogeneous_2d(vp2, "vp2")
+    return normalize_lines(_cross(a, b, sa, sb, "horizon", "vp1 and vp2 coincide, so they do not fix a line; "
+                                                          "use the vanishing points of two different directions"))
+
+
+def _interval(lim: ArrayLike, name: str) -> tuple[float, float]:
+    lo, hi = check_matrix(lim, (2,), name)
+    if not lo < hi:
+        raise CamlabInputError(f"{name}: expected (lo, hi) with lo < hi, got {lim!r}")
+    return float(lo), float(hi)
 
 
 def clip_line(line: ArrayLike, xlim: tuple[float, float], ylim: tuple[float, float]) -> np.ndarray:
@@ -506,7 +587,7 @@ def clip_line(line: ArrayLike, xlim: tuple[float, float], ylim: tuple[float, flo
     """
     ln, _ = _as_lines(line, "line")
     ln = ln[0]
-    (x0, x1), (y0, y1) = xlim, ylim
+    (x0, x1), (y0, y1) = _interval(xlim, "xlim"), _interval(ylim, "ylim")
     edges = np.array([[1, 0, -x0], [1, 0, -x1], [0, 1, -y0], [0, 1, -y1]], dtype=float)
     hits = from_homogeneous(np.cross(ln, edges))  # NaN where the line is parallel to an edge
     span = max(x1 - x0, y1 - y0)

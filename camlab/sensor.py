@@ -19,7 +19,16 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, as_points, check_positive
+from ._validate import (
+    CamlabInputError,
+    as_points,
+    check_finite,
+    check_image,
+    check_pair,
+    check_positive,
+    check_shape,
+    check_size,
+)
 
 __all__ = [
     "BAYER_PATTERNS", "NoiseModel", "add_noise", "bayer_masks", "demosaic_bilinear", "demosaic_opencv",
@@ -37,18 +46,16 @@ def metric_to_pixels(points: ArrayLike, pitch: tuple[float, float], principal_po
     array([519.5, 139.5])
     """
     pts = as_points(points, 2, "points")
-    sx = check_positive(pitch[0], "pitch[0]", "metres")
-    sy = check_positive(pitch[1], "pitch[1]", "metres")
-    uv = pts.array / [sx, sy] + np.asarray(principal_point, dtype=float)
+    sx, sy = check_pair(pitch, "pitch", "metres", positive=True)
+    uv = pts.array / [sx, sy] + check_pair(principal_point, "principal_point", "pixels")
     return pts.restore(uv)
 
 
 def pixels_to_metric(pixels: ArrayLike, pitch: tuple[float, float], principal_point: tuple[float, float]) -> np.ndarray:
     """Inverse of :func:`metric_to_pixels`: pixels (u, v) to image-plane metres (x, y)."""
     pts = as_points(pixels, 2, "pixels")
-    sx = check_positive(pitch[0], "pitch[0]", "metres")
-    sy = check_positive(pitch[1], "pitch[1]", "metres")
-    return pts.restore((pts.array - np.asarray(principal_point, dtype=float)) * [sx, sy])
+    sx, sy = check_pair(pitch, "pitch", "metres", positive=True)
+    return pts.restore((pts.array - check_pair(principal_point, "principal_point", "pixels")) * [sx, sy])
 
 
 def intrinsics_from_sensor(focal_length: float, pitch: tuple[float, float], size: tuple[int, int],
@@ -64,23 +71,12 @@ def intrinsics_from_sensor(focal_length: float, pitch: tuple[float, float], size
            [  0. ,   0. ,   1. ]])
     """
     f = check_positive(focal_length, "focal_length", "metres")
-    sx = check_positive(pitch[0], "pitch[0]", "metres")
-    sy = check_positive(pitch[1], "pitch[1]", "metres")
-    w, h = size
-    return np.array([[f / sx, 0.0, (w - 1) / 2 + principal_offset[0]],
-                     [0.0, f / sy, (h - 1) / 2 + principal_offset[1]],
+    sx, sy = check_pair(pitch, "pitch", "metres", positive=True)
+    w, h = check_size(size)
+    ox, oy = check_pair(principal_offset, "principal_offset", "pixels")
+    return np.array([[f / sx, 0.0, (w - 1) / 2 + ox],
+                     [0.0, f / sy, (h - 1) / 2 + oy],
                      [0.0, 0.0, 1.0]])
-
-
-def _check_image(image: ArrayLike, name: str = "image", *, channels: tuple[int, ...] = (1, 3)) -> np.ndarray:
-    a = np.asarray(image)
-    ok_shape = (a.ndim == 2 and 1 in channels) or (a.ndim == 3 and a.shape[2] in channels)
-    if not ok_shape or a.size == 0:
-        want = " or ".join(["(H, W)"] * (1 in channels) + [f"(H, W, {c})" for c in channels if c != 1])
-        raise CamlabInputError(f"{name}: expected an image of shape {want}, got shape {a.shape}")
-    if not (np.issubdtype(a.dtype, np.floating) or np.issubdtype(a.dtype, np.integer)):
-        raise CamlabInputError(f"{name}: expected a float or integer image, got dtype {a.dtype}")
-    return a
 
 
 def _check_bits(bits: int) -> int:
@@ -99,6 +95,8 @@ def quantize(image: ArrayLike, bits: int = 8) -> np.ndarray:
     """
     b = _check_bits(bits)
     a = np.asarray(image)
+    if a.dtype.kind == "f":
+        check_finite(a, "image")
     if not np.issubdtype(a.dtype, np.floating):
         raise CamlabInputError(f"image: expected a float image with values in [0, 1], got dtype {a.dtype}")
     levels = (1 << b) - 1
@@ -131,7 +129,7 @@ def add_noise(image: ArrayLike, noise: NoiseModel = NoiseModel(), rng: np.random
     Pixels expecting more than 100 electrons draw :math:`\mathcal{N}(\lambda, \lambda)`
     instead of the Poisson law (indistinguishable there, and 10x faster for slider demos).
     """
-    a = _check_image(image)
+    a = check_image(image)
     fw = check_positive(noise.full_well, "full_well", "electrons")
     if not noise.read_noise >= 0:
         raise CamlabInputError(f"read_noise: expected >= 0 electrons RMS, got {noise.read_noise!r}")
@@ -153,7 +151,7 @@ def sample(image: ArrayLike, factor: int, prefilter: bool = False) -> np.ndarray
     sampler: frequencies above Nyquist alias); ``True`` averages the ``factor x factor``
     area each pixel covers (a real pixel's box filter, which suppresses most aliasing).
     """
-    a = _check_image(image).astype(float)
+    a = check_image(image).astype(float)
     if not isinstance(factor, (int, np.integer)) or factor < 1:
         raise CamlabInputError(f"factor: expected an integer >= 1, got {factor!r}")
     h, w = (a.shape[0] // factor) * factor, (a.shape[1] // factor) * factor
@@ -197,7 +195,7 @@ def bayer_masks(shape: tuple[int, int], pattern: str = "RGGB") -> np.ndarray:
            [0, 0]])
     """
     p = _check_pattern(pattern)
-    h, w = shape
+    h, w = check_shape(shape)
     masks = np.zeros((h, w, 3), dtype=bool)
     for (dy, dx), ch in zip([(0, 0), (0, 1), (1, 0), (1, 1)], p):
         masks[dy::2, dx::2, "RGB".index(ch)] = True
@@ -206,7 +204,7 @@ def bayer_masks(shape: tuple[int, int], pattern: str = "RGGB") -> np.ndarray:
 
 def mosaic(rgb: ArrayLike, pattern: str = "RGGB") -> np.ndarray:
     """Keep one colour per pixel as a Bayer colour-filter array does: (H, W, 3) -> (H, W), same dtype."""
-    a = _check_image(rgb, "rgb", channels=(3,))
+    a = check_image(rgb, "rgb", channels=(3,))
     m = bayer_masks(a.shape[:2], pattern)
     return (a * m).sum(axis=2).astype(a.dtype)
 
@@ -244,7 +242,7 @@ def demosaic_bilinear(raw: ArrayLike, pattern: str = "RGGB") -> np.ndarray:
     (H, W, 3) float ndarray
         RGB, in the units of ``raw``.
     """
-    r = _check_image(raw, "raw", channels=(1,)).astype(float)
+    r = check_image(raw, "raw", channels=(1,)).astype(float)
     masks = bayer_masks(r.shape, pattern)
     k = np.array([[1.0, 2.0, 1.0], [2.0, 4.0, 2.0], [1.0, 2.0, 1.0]]) / 4.0
     out = np.empty(r.shape + (3,))
@@ -267,7 +265,7 @@ def demosaic_opencv(raw: ArrayLike, pattern: str = "RGGB", method: str = "biline
     """
     import cv2
 
-    r = _check_image(raw, "raw", channels=(1,))
+    r = check_image(raw, "raw", channels=(1,))
     if r.dtype not in (np.uint8, np.uint16):
         raise CamlabInputError(f"raw: OpenCV demosaicing needs uint8 or uint16, got dtype {r.dtype}")
     suffix = {"bilinear": "", "vng": "_VNG", "ea": "_EA"}
@@ -279,10 +277,21 @@ def demosaic_opencv(raw: ArrayLike, pattern: str = "RGGB", method: str = "biline
     return cv2.cvtColor(np.ascontiguousarray(r), code)
 
 
-def psnr(reference: ArrayLike, test: ArrayLike, peak: float = 1.0, border: int = 0) -> float:
-    r"""Peak signal-to-noise ratio :math:`10 \log_{10}(peak^2 / MSE)` in dB, ignoring ``border`` pixels."""
-    a = np.asarray(reference, dtype=float)
-    b = np.asarray(test, dtype=float)
+def psnr(reference: ArrayLike, test: ArrayLike, peak: float | None = None, border: int = 0) -> float:
+    r"""Peak signal-to-noise ratio :math:`10 \log_{10}(peak^2 / MSE)` in dB, ignoring ``border`` pixels.
+
+    ``peak`` defaults to the largest value of the reference's integer type (255 for uint8)
+    and to 1.0 for float images in [0, 1].
+
+    >>> ref = np.full((4, 4), 100, np.uint8)
+    >>> round(psnr(ref, ref + 1), 2)  # an error of 1 grey level of 255
+    48.13
+    """
+    ref, tst = check_image(reference, "reference"), check_image(test, "test")
+    if peak is None:
+        peak = float(np.iinfo(ref.dtype).max) if ref.dtype.kind in "ui" else 1.0
+    peak = check_positive(peak, "peak")
+    a, b = ref.astype(float), tst.astype(float)
     if a.shape != b.shape:
         raise CamlabInputError(f"test: expected the reference's shape {a.shape}, got {b.shape}")
     if border:
@@ -317,7 +326,7 @@ def white_balance(rgb: ArrayLike, white: ArrayLike | None = None) -> np.ndarray:
     >>> white_balance(np.array([[[0.5, 0.4, 0.275]]]), white=[1.0, 0.8, 0.55])
     array([[[0.4, 0.4, 0.4]]])
     """
-    img = _check_image(rgb, "rgb", channels=(3,)).astype(float)
+    img = check_image(rgb, "rgb", channels=(3,)).astype(float)
     w = img.reshape(-1, 3).mean(axis=0) if white is None else np.asarray(white, dtype=float)
     if w.shape != (3,) or not np.all(w > 0):
         raise CamlabInputError(f"white: expected three positive channel values (R, G, B), got {np.asarray(w).tolist()}")

@@ -22,7 +22,7 @@ from typing import NamedTuple, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, DegenerateError, check_matrix
+from ._validate import CamlabInputError, DegenerateError, check_image, check_matrix, check_shape
 from .homography import _check_h, compose
 from .projective import map_points
 
@@ -32,23 +32,10 @@ _INTERPOLATIONS = ("nearest", "bilinear")
 _METHODS = ("numpy", "cv2")
 
 
-def _check_image(image: ArrayLike, name: str = "image") -> np.ndarray:
-    img = np.asarray(image)
-    if img.ndim not in (2, 3) or (img.ndim == 3 and img.shape[2] not in (1, 3, 4)) or min(img.shape[:2]) < 1:
-        raise CamlabInputError(
-            f"{name}: expected a (H, W) grey or (H, W, 3|4) colour image, got shape {img.shape}"
-        )
-    if img.dtype == bool or not (np.issubdtype(img.dtype, np.integer) or np.issubdtype(img.dtype, np.floating)):
-        raise CamlabInputError(f"{name}: expected an integer or float image, got dtype {img.dtype}")
-    return img
-
-
 def _check_shape(output_shape: Sequence[int]) -> tuple[int, int]:
-    try:
-        h, w = (int(x) for x in tuple(output_shape)[:2])
-    except (TypeError, ValueError):
-        raise CamlabInputError(f"output_shape: expected (height, width) in pixels, got {output_shape!r}") from None
-    if h < 1 or w < 1 or h * w > 50_000_000:
+    h, w = check_shape(tuple(output_shape)[:2] if isinstance(output_shape, (tuple, list)) else output_shape,
+                       "output_shape")
+    if h * w > 50_000_000:
         raise CamlabInputError(
             f"output_shape: expected a positive (height, width) under 50 megapixels, got ({h}, {w})"
         )
@@ -223,7 +210,7 @@ def warp_perspective(
            [ 0.,  4.,  5.,  6.],
            [ 0.,  8.,  9., 10.]])
     """
-    img = _check_image(image)
+    img = check_image(image)
     Hm = _check_h(H)
     shape = _check_shape(output_shape)
     _check_options(interpolation, method)
@@ -263,7 +250,7 @@ def forward_warp(image: ArrayLike, H: ArrayLike, output_shape: Sequence[int], *,
            [1., 0., 1., 0.],
            [0., 0., 0., 0.]])
     """
-    img = _check_image(image)
+    img = check_image(image)
     Hm = _check_h(H)
     h, w = _check_shape(output_shape)
     sh, sw = img.shape[:2]
@@ -393,7 +380,7 @@ def warp_to_canvas(
     >>> r.image.shape, r.T[:2, 2]
     ((2, 3), array([10., 20.]))
     """
-    img = _check_image(image)
+    img = check_image(image)
     Hm = _check_h(H)
     _check_options(interpolation, method)
     T, shape = canvas_bounds([Hm], [img.shape], max_pixels=max_pixels)

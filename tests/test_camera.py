@@ -489,6 +489,40 @@ def test_resectioning_demo_recovers_camera():
     assert 1.0 < d.state["rms"] < 4.0
 
 
+def test_resectioning_teaches_the_redundancy_trap():
+    from camlab.widgets import projective_camera as demos
+
+    d = demos.resectioning()
+    d.set(noise=5.0, n_points=6, refine=True)
+    assert d.state["redundancy"] == 1
+    assert d.state["rms"] < 2.0 and d.state["centre_error"] > 1.0   # small residual, camera metres off
+    assert "a small RMS" in d.widget.children[0].children[-1].value
+    d.set(n_points=60)
+    assert d.state["redundancy"] == 109 and d.state["centre_error"] < 0.2
+    assert d.state["rms"] == pytest.approx(d.state["expected_rms"], rel=0.5)
+
+
+def test_camera_image_plane_lines_are_clipped_to_the_picture():
+    from camlab.plotting.scene3d import clip_segments
+    from camlab.widgets import projective_camera as demos
+
+    seg = np.array([[[-100.0, 100.0], [700.0, 100.0]], [[700.0, -5.0], [800.0, 600.0]], [[10.0, 10.0], [20.0, 30.0]],
+                    [[np.nan, 0.0], [5.0, 5.0]]])
+    out = clip_segments(seg, (640, 480))
+    assert np.allclose(out[0], [[-0.5, 100.0], [639.5, 100.0]])
+    assert np.isnan(out[1]).all() and np.isnan(out[3]).all()   # wholly outside; a NaN end
+    assert np.allclose(out[2], seg[2])                          # inside: unchanged
+    d = demos.camera_explorer()
+    d.set(fx=200, fy=1600, cx=0, cy=480, skew=300, azimuth=180, elevation=-10, distance=2.5)
+    cam = d.state["camera"]  # the plane lines of the explorer's camera stay within its image plane
+    lines = [ln for ax in d.figure.axes[:1] for ln in ax.lines if ln.get_color() == "0.15"][0]
+    xyz = np.column_stack(lines.get_data_3d())
+    xyz = xyz[np.isfinite(xyz).all(axis=1)]
+    uvw = (xyz @ cam.R.T + cam.t) @ cam.K.T
+    uv = uvw[:, :2] / uvw[:, 2:]
+    assert len(uv) and (uv[:, 0] > -0.6).all() and (uv[:, 0] < 639.6).all() and (uv[:, 1] < 479.6).all()
+
+
 def test_resectioning_outlier_and_click():
     from types import SimpleNamespace
 

@@ -56,7 +56,7 @@ def test_yaml_output_and_no_report(photos, tmp_path, capsys):
 
 @pytest.mark.parametrize("args, message", [
     (["--pattern", "10x7"], "need at least 3 images"),
-    (["--pattern", "9by6"], "pattern_size: expected inner corners"),
+    (["--pattern", "9by6"], "--pattern: expected inner corners"),
 ])
 def test_user_errors_exit_2_with_a_message_not_a_traceback(photos, tmp_path, capsys, args, message):
     code = cli.main(["calibrate", str(photos / "img_[0-3].png"), "--square", "0.025",

@@ -250,3 +250,47 @@ def test_hartley_normalize_rejects_coincident_points_naming_them():
         pj.hartley_normalization(np.ones((5, 3)), "points_world")
     with pytest.raises(CamlabInputError, match=r"points: expected \(N, 2\) or \(N, 3\) points"):
         pj.hartley_normalize(np.ones((5, 4)))
+
+
+def test_vanishing_point_ransac_ignores_segments_that_point_elsewhere():
+    rng = np.random.default_rng(4)
+    v = np.array([900.0, 200.0])
+    starts = rng.uniform([0, 0], [640, 480], (20, 2))
+    good = np.stack([starts, starts + 0.3 * (v - starts)], axis=1) + rng.normal(0, 0.3, (20, 2, 2))
+    bad = rng.uniform([0, 0], [640, 480], (8, 2, 2))
+    fit = pj.vanishing_point_ransac(np.concatenate([good, bad]), tol_deg=1.0, rng=0)
+    assert fit.inliers[:20].all() and fit.inliers[20:].sum() <= 1
+    assert np.linalg.norm(pj.from_homogeneous(fit.point) - v) < 15
+    # the least-squares point over all segments is dragged away by the stray ones
+    assert np.linalg.norm(pj.from_homogeneous(pj.vanishing_point(np.concatenate([good, bad]))) - v) > 50
+
+
+def test_vanishing_point_ransac_handles_an_ideal_point_and_bad_input():
+    segs = np.array([[[0.0, y], [100.0, y + 1e-9]] for y in (10.0, 50.0, 90.0)])
+    fit = pj.vanishing_point_ransac(segs, rng=1)
+    assert fit.inliers.all() and abs(fit.point[2]) < 1e-6 * np.linalg.norm(fit.point)
+    with pytest.raises(pj.CamlabInputError, match="segments"):
+        pj.vanishing_point_ransac(np.zeros((1, 2, 2)))
+
+
+def test_splits_at_infinity_sees_a_bow_tie():
+    from camlab.homography import estimate_homography
+    square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    convex = estimate_homography(square, [[0, 0], [2, 0.2], [1.8, 1.5], [0.1, 1.2]])
+    bow_tie = estimate_homography(square, [[0, 0], [2, 0.2], [0.1, 1.2], [1.8, 1.5]])
+    assert not pj.splits_at_infinity(convex, square) and pj.splits_at_infinity(bow_tie, square)
+
+
+def test_vanishing_points_demo_draws_offimage_points_on_the_horizon():
+    import os
+    os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
+    from camlab.widgets import projective_plane as demos
+    d = demos.vanishing_points()
+    d.set(pitch=5.0, yaw=-35.0, focal=400.0)                # vp_x far left of the image
+    ax = d.figure.axes[0]
+    horizon, vz, vx = [line for line in ax.get_lines() if line.get_animated()][:3]
+    (x, y), hz = (vx.get_xdata()[0], vx.get_ydata()[0]), d.state["horizon"]
+    assert abs(hz @ [x, y, 1.0]) / np.linalg.norm(hz[:2]) < 1.0    # the arrow sits on the horizon
+    d.set(pitch=40.0)
+    assert d.state["horizon_visible"] is False
+    assert any(t.get_visible() and "above the image" in t.get_text() for t in ax.texts)

@@ -91,9 +91,9 @@ def test_bad_inputs():
         S.demosaic_bilinear(np.zeros((4, 4, 3)))
     with pytest.raises(CamlabInputError, match="raw: OpenCV demosaicing needs uint8 or uint16"):
         S.demosaic_opencv(np.zeros((4, 4)))
-    with pytest.raises(CamlabInputError, match="image: expected a float or integer image"):
+    with pytest.raises(CamlabInputError, match="image: expected an image of integer or float pixels"):
         S.add_noise(np.zeros((3, 3), dtype=bool))
-    with pytest.raises(CamlabInputError, match="pitch\\[0\\]: expected a positive"):
+    with pytest.raises(CamlabInputError, match="pitch: expected a pair of positive numbers"):
         S.metric_to_pixels([0, 0], (0, 1e-6), (0, 0))
 
 

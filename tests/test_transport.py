@@ -53,3 +53,30 @@ def test_nothing_sent_when_nothing_changed(ipympl_canvas):
     canvas.draw()
     canvas._png_is_old = False
     assert canvas.get_diff_image() is None
+
+
+def test_animated_images_are_kept_at_the_resolution_shown():
+    from camlab.widgets import FigureView
+
+    view = FigureView(figsize=(4, 3), mode="agg", dpi=50)  # axes about 150 px wide
+    ax = view.fig.add_subplot()
+    big = np.random.default_rng(0).random((480, 640))
+    image = view.animate(ax.imshow(big, cmap="gray"))
+    crisp = view.animate(ax.imshow(big, interpolation="nearest", extent=(0, 640, 480, 0)))
+    extent = image.get_extent()
+    image.set_data(big)
+    crisp.set_data(big > 0.5)  # bool: not an image type Agg averages; left alone
+    shown = image.get_array()
+    assert shown.shape[1] < 200 and shown.shape[0] < 160 and image.get_extent() == extent
+    assert abs(shown.mean() - big.mean()) < 0.01  # area-averaged, not subsampled
+    assert crisp.get_array().shape == (480, 640)
+    crisp.set_data(big)
+    assert set(np.unique(np.isin(crisp.get_array(), big))) == {True}  # nearest: source values only
+    ax.set_autoscale_on(False)
+    image.set_extent((0, 64, 48, 0))  # shown 10x smaller: refitted from the full array
+    assert image.get_array().shape[1] < 20
+    image.set_extent(extent)
+    assert image.get_array().shape == shown.shape
+    small = np.ones((20, 30))
+    image.set_data(small)
+    assert image.get_array().shape == (20, 30)  # smaller than shown: untouched

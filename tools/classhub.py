@@ -93,7 +93,7 @@ def _wait_ready(url: str, process: subprocess.Popen, log: Path, timeout: float =
         time.sleep(0.3)
 
 
-def _processes_under(folder: Path) -> list:
+def processes_under(folder: Path) -> list:
     """Processes whose working folder is inside ``folder`` (the students' servers and kernels)."""
     import psutil
 
@@ -130,7 +130,7 @@ def class_hub(base: Path) -> Iterator[Hub]:
                 process.wait(timeout=60)
             except subprocess.TimeoutExpired:
                 os.killpg(process.pid, signal.SIGKILL)
-            for leftover in _processes_under(base):
+            for leftover in processes_under(base):
                 leftover.kill()
 
 
@@ -236,7 +236,7 @@ async def kernel(hub: Hub, name: str, token: str, path: str):
         await api(f"{server}/api/sessions/{session['id']}", token, "DELETE")
 
 
-def _printed(outputs: list[dict], tag: str) -> str | None:
+def printed(outputs: list[dict], tag: str) -> str | None:
     """The rest of the printed line that starts with ``tag``, or None."""
     text = "".join(o.get("text", "") for o in outputs)
     return text.split(tag, 1)[1].splitlines()[0].strip() if tag in text else None
@@ -265,10 +265,16 @@ async def run_lesson(hub: Hub, name: str, token: str, lesson: Path) -> dict:
         wall = time.perf_counter() - t0
         _, metrics = await run(METRICS)
     await api(contents, token, "PUT", {"type": "notebook", "format": "json", "content": nb})
-    marker = (_printed(nb["cells"][0]["outputs"], "camlab-hub-run") or "").split()
+    marker = (printed(nb["cells"][0]["outputs"], "camlab-hub-run") or "").split()
     return {"student": name, "lesson": lesson.stem, "wall_s": wall, "errors": errors, "cells": count,
             "kernel_user": marker[0] if marker else None, "kernel_cwd": marker[1] if marker else None,
-            **json.loads(_printed(metrics, "camlab-hub-metrics") or "{}")}
+            **json.loads(printed(metrics, "camlab-hub-metrics") or "{}")}
+
+
+def server_rss_mb(hub: Hub) -> dict[str, float]:
+    """Resident memory of each student's single-user server process (without its kernels), MB."""
+    return {p.cwd().split("/")[-1]: p.memory_info().rss / 2**20 for p in processes_under(hub.homes)
+            if "jupyterhub-singleuser" in " ".join(p.cmdline())}
 
 
 async def run_class(hub: Hub, names: list[str], lessons: list[Path]) -> tuple[dict[str, str], list[dict]]:

@@ -1,8 +1,10 @@
 """Stage 1: find a chessboard's inner corners in a photo, or say in plain words why not.
 
-OpenCV finds the board (``cv2.findChessboardCorners``) and refines each corner
-(``cv2.cornerSubPix``); camlab normalises the shapes of OpenCV 4 and 5 and explains
-failures. Pixels (u, v) = (column, row), origin at the centre of the top-left pixel.
+OpenCV finds the board and refines each corner; camlab normalises the shapes of OpenCV 4
+and 5 and explains failures. A board that any of OpenCV's detectors finds is used: the
+classic detector with its quick pre-check (``CALIB_CB_FAST_CHECK``, which rejects some
+real photos), then without it, then the sector-based ``cv2.findChessboardCornersSB``.
+Pixels (u, v) = (column, row), origin at the centre of the top-left pixel.
 """
 from __future__ import annotations
 
@@ -11,7 +13,7 @@ from typing import NamedTuple, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import CamlabInputError, check_positive
+from .._validate import CamlabInputError, check_image, check_positive
 
 
 class ChessboardDetection(NamedTuple):
@@ -19,32 +21,40 @@ class ChessboardDetection(NamedTuple):
 
     ``found``; ``corners`` (N, 2) sub-pixel (u, v) in row-major order, first corner nearest
     the image's top-left, or None; ``reason`` a plain-language explanation when not found
-    ("" when found); ``pattern_size`` (cols, rows) inner corners asked for.
+    ("" when found); ``pattern_size`` (cols, rows) inner corners asked for; ``detector``
+    which detector found the board: "classic (fast check)", "classic" or "SB" ("" if none).
     """
 
     found: bool
     corners: np.ndarray | None
     reason: str
     pattern_size: tuple[int, int]
+    detector: str = ""
 
 
-def parse_pattern(pattern: str | Sequence[int]) -> tuple[int, int]:
-    """``"9x6"`` or ``(9, 6)`` -> ``(9, 6)`` inner corners (columns, rows).
+def parse_pattern(pattern: str | Sequence[int], name: str = "pattern") -> tuple[int, int]:
+    """``"9x6"`` or ``(9, 6)`` -> ``(9, 6)`` inner corners (columns, rows); fractions are refused.
 
     >>> parse_pattern("9x6")
     (9, 6)
+    >>> parse_pattern((9.5, 6))
+    Traceback (most recent call last):
+    ...
+    camlab._validate.CamlabInputError: pattern: expected inner corners as whole numbers (cols, rows) or 'COLSxROWS' like '9x6', got (9.5, 6)
     """
+    want = f"{name}: expected inner corners as whole numbers (cols, rows) or 'COLSxROWS' like '9x6', got {pattern!r}"
     try:
-        if isinstance(pattern, str):
-            cols, rows = (int(p) for p in pattern.lower().replace("*", "x").split("x"))
-        else:
-            cols, rows = (int(p) for p in pattern)
+        parts = pattern.lower().replace("*", "x").split("x") if isinstance(pattern, str) else list(pattern)
+        if len(parts) != 2 or any(isinstance(p, bool) for p in parts):
+            raise ValueError
+        vals = [float(p) for p in parts]
     except (TypeError, ValueError):
-        raise CamlabInputError(
-            f"pattern_size: expected inner corners as (cols, rows) or 'COLSxROWS' like '9x6', got {pattern!r}"
-        ) from None
+        raise CamlabInputError(want) from None
+    if not all(np.isfinite(v) and v == int(v) for v in vals):
+        raise CamlabInputError(want)
+    cols, rows = int(vals[0]), int(vals[1])
     if cols < 2 or rows < 2:
-        raise CamlabInputError(f"pattern_size: expected at least 2 x 2 inner corners, got {pattern!r}")
+        raise CamlabInputError(f"{name}: expected at least 2 x 2 inner corners, got {pattern!r}")
     return cols, rows
 
 
@@ -62,7 +72,7 @@ def board_points(pattern_size: Sequence[int] | str, square_size: float) -> np.nd
            [0.5, 0.5, 0. ],
            [1. , 0.5, 0. ]])
     """
-    cols, rows = parse_pattern(pattern_size)
+    cols, rows = parse_pattern(pattern_size, "pattern_size")
     s = check_positive(square_size, "square_size", "metres")
     j, i = np.divmod(np.arange(cols * rows), cols)
     return np.column_stack([i * s, j * s, np.zeros(cols * rows)])
@@ -71,7 +81,9 @@ def board_points(pattern_size: Sequence[int] | str, square_size: float) -> np.nd
 def grey_uint8(image: ArrayLike, name: str = "image") -> np.ndarray:
     import cv2
 
-    img = np.asarray(image)
+    img = check_image(image, name, channels=(1, 3, 4))
+    if img.ndim == 3 and img.shape[2] == 1:
+        img = img[..., 0]
     if img.ndim == 3 and img.shape[2] in (3, 4):
         img = cv2.cvtColor(img, cv2.COLOR_RGB2GRAY if img.shape[2] == 3 else cv2.COLOR_RGBA2GRAY)
     if img.ndim != 2 or img.size == 0:
@@ -85,23 +97,43 @@ def grey_uint8(image: ArrayLike, name: str = "image") -> np.ndarray:
     return img
 
 
-def _detect(img: np.ndarray, pattern: tuple[int, int]) -> np.ndarray | None:
-    """OpenCV's classic detector + cornerSubPix, normalised to (N, 2) in a fixed order."""
+def _detect(img: np.ndarray, pattern: tuple[int, int], thorough: bool = True) -> tuple[np.ndarray | None, str]:
+    """OpenCV's detectors in turn, normalised to (N, 2) in a fixed order; returns (corners, detector).
+
+    1. The classic detector with ``CALIB_CB_FAST_CHECK`` (quick on images without a board);
+    2. without the fast check, which rejects some real photos with a board (``thorough``);
+    3. ``findChessboardCornersSB``, sector based, robust to blur and uneven light (``thorough``).
+    Corners of the classic detector are refined by ``cornerSubPix``; SB's are sub-pixel already.
+    """
     import cv2
 
-    flags = cv2.CALIB_CB_ADAPTIVE_THRESH | cv2.CALIB_CB_NORMALIZE_IMAGE | cv2.CALIB_CB_FAST_CHECK
-    ok, corners = cv2.findChessboardCorners(img, pattern, flags=flags)
-    if not ok or corners is None:
-        return None
+    base = cv2.CALIB_CB_ADAPTIVE_THRESH | cv2.CALIB_CB_NORMALIZE_IMAGE
+    for flags, label in [(base | cv2.CALIB_CB_FAST_CHECK, "classic (fast check)"), (base, "classic")][:2 if thorough else 1]:
+        ok, corners = cv2.findChessboardCorners(img, pattern, flags=flags)
+        if ok and corners is not None:
+            return _fixed_order(_subpixel(img, corners, pattern)), label
+    if thorough:
+        ok, corners = cv2.findChessboardCornersSB(img, pattern, flags=cv2.CALIB_CB_NORMALIZE_IMAGE | cv2.CALIB_CB_EXHAUSTIVE
+                                                  | cv2.CALIB_CB_ACCURACY)
+        if ok and corners is not None:
+            return _fixed_order(np.asarray(corners, dtype=float).reshape(-1, 2)), "SB"
+    return None, ""
+
+
+def _fixed_order(c: np.ndarray) -> np.ndarray:
+    """Start at the corner nearer the image's top-left (detectors may return either end first)."""
+    return c[::-1].copy() if c[0].sum() > c[-1].sum() else c
+
+
+def _subpixel(img: np.ndarray, corners: np.ndarray, pattern: tuple[int, int]) -> np.ndarray:
+    import cv2
+
     c = np.asarray(corners, dtype=np.float32).reshape(-1, 2)  # (N, 1, 2) in OpenCV 4, (N, 2) in 5
     spacing = np.min(np.linalg.norm(np.diff(c.reshape(pattern[1], pattern[0], 2), axis=1), axis=2))
     half = int(np.clip(0.4 * spacing, 2, 5))  # the search window must stay inside one square
     crit = (cv2.TERM_CRITERIA_EPS + cv2.TERM_CRITERIA_COUNT, 50, 1e-4)
     c = cv2.cornerSubPix(img, c.reshape(-1, 1, 2), (half, half), (-1, -1), crit)
-    c = np.asarray(c, dtype=float).reshape(-1, 2)
-    if c[0].sum() > c[-1].sum():  # a fixed order: start at the corner nearer the image's top-left
-        c = c[::-1].copy()
-    return c
+    return np.asarray(c, dtype=float).reshape(-1, 2)
 
 
 def _edge_width(img: np.ndarray) -> float:
@@ -134,15 +166,17 @@ def find_chessboard(image: ArrayLike, pattern_size: Sequence[int] | str) -> Ches
 
     Notes
     -----
-    ``cv2.findChessboardCorners`` finds the board and ``cv2.cornerSubPix`` refines each
-    corner to the saddle point of the intensity (window at most 11 x 11 pixels, smaller
-    for small boards). OpenCV 4 returns (N, 1, 2), OpenCV 5 (N, 2); both become (N, 2).
+    ``cv2.findChessboardCorners`` finds the board (with its fast pre-check, then without
+    it) and ``cv2.cornerSubPix`` refines each corner to the saddle point of the intensity
+    (window at most 11 x 11 pixels, smaller for small boards); if both fail,
+    ``cv2.findChessboardCornersSB`` tries (``detector`` says which one found it). OpenCV 4
+    returns (N, 1, 2), OpenCV 5 (N, 2); both become (N, 2).
     """
-    pattern = parse_pattern(pattern_size)
+    pattern = parse_pattern(pattern_size, "pattern_size")
     img = grey_uint8(image)
-    corners = _detect(img, pattern)
+    corners, detector = _detect(img, pattern)
     if corners is not None:
-        return ChessboardDetection(True, corners, "", pattern)
+        return ChessboardDetection(True, corners, "", pattern, detector)
     return ChessboardDetection(False, None, _why_not_found(img, pattern), pattern)
 
 
@@ -152,7 +186,7 @@ def _why_not_found(img: np.ndarray, pattern: tuple[int, int]) -> str:
     if hi - lo < 25:
         return (f"no chessboard found: the image has almost no contrast (grey levels {lo:.0f} to {hi:.0f}); "
                 f"check exposure and that the board is in view")
-    if cols > 2 and rows > 2 and _detect(img, (cols - 1, rows - 1)) is not None:
+    if cols > 2 and rows > 2 and _detect(img, (cols - 1, rows - 1), thorough=False)[0] is not None:
         return (f"wrong pattern size: a board with {cols - 1} x {rows - 1} inner corners was found; "
                 f"pattern_size counts inner corners (where four squares meet), not squares: "
                 f"use --pattern {cols - 1}x{rows - 1}")
@@ -165,6 +199,8 @@ def _why_not_found(img: np.ndarray, pattern: tuple[int, int]) -> str:
         part = np.asarray(part, dtype=float).reshape(-1, 2)
         spacing = np.median(np.linalg.norm(np.diff(part[:2], axis=0), axis=1))
         margin = min(part[:, 0].min(), part[:, 1].min(), w - 1 - part[:, 0].max(), h - 1 - part[:, 1].max())
+    # A few squares of a grid (windows, tiles) are not a board: only a good part of one counts.
+    if ok and part is not None and len(part) >= 0.3 * cols * rows:
         if len(part) < cols * rows and margin < 1.5 * spacing:  # fewer corners, and they reach the border
             return (f"board cut off: the chessboard runs into the image border, so not all {cols} x {rows} inner "
                     f"corners are visible; keep the whole board (with its white border) in view")

@@ -6,9 +6,12 @@ from pathlib import Path
 
 import numpy as np
 
+from .._files import atomic_output, check_output_path
 from .._validate import CamlabInputError
 from .calibrate import CalibrationResult
 from .refinement import PARAM_NAMES
+
+SUFFIXES = (".json", ".yaml", ".yml", ".xml")
 
 
 def save_calibration(result: CalibrationResult, path: str | os.PathLike) -> Path:
@@ -19,10 +22,15 @@ def save_calibration(result: CalibrationResult, path: str | os.PathLike) -> Path
     """
     import cv2
 
-    p = Path(path)
-    if p.suffix.lower() not in (".json", ".yaml", ".yml", ".xml"):
-        raise CamlabInputError(f"path: expected a .json, .yaml, .yml or .xml file name, got {str(path)!r}")
-    fs = cv2.FileStorage(str(p), cv2.FILE_STORAGE_WRITE)
+    if not isinstance(result, CalibrationResult):
+        raise CamlabInputError(f"result: expected the CalibrationResult of calibrate_camera, got {type(result).__name__}")
+    p = check_output_path(path, "path", SUFFIXES)
+    with atomic_output(p) as tmp:  # the old file stays intact until the new one is complete
+        _write(cv2.FileStorage(str(tmp), cv2.FILE_STORAGE_WRITE), result)
+    return p
+
+
+def _write(fs, result: CalibrationResult) -> None:
     try:
         fs.write("image_width", int(result.image_size[0]))
         fs.write("image_height", int(result.image_size[1]))
@@ -37,7 +45,6 @@ def save_calibration(result: CalibrationResult, path: str | os.PathLike) -> Path
         fs.write("tvecs", np.asarray(result.tvecs, dtype=np.float64))
     finally:
         fs.release()
-    return p
 
 
 def load_calibration(path: str | os.PathLike) -> tuple[np.ndarray, np.ndarray, tuple[int, int]]:
@@ -45,9 +52,15 @@ def load_calibration(path: str | os.PathLike) -> tuple[np.ndarray, np.ndarray, t
     with the same node names)."""
     import cv2
 
+    if not isinstance(path, (str, os.PathLike)):
+        raise CamlabInputError(f"path: expected a file path, got {type(path).__name__}")
     if not Path(path).is_file():
         raise CamlabInputError(f"path: no file {str(path)!r}")
-    fs = cv2.FileStorage(str(path), cv2.FILE_STORAGE_READ)
+    try:
+        fs = cv2.FileStorage(str(path), cv2.FILE_STORAGE_READ)
+    except (cv2.error, SystemError):
+        raise CamlabInputError(f"path: {str(path)!r} is not a file OpenCV's FileStorage can parse; "
+                               f"pass a .json/.yaml/.xml written by save_calibration or `camlab calibrate`") from None
     try:
         K = fs.getNode("camera_matrix").mat()
         dist = fs.getNode("distortion_coefficients").mat()

@@ -10,8 +10,9 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import as_points
-from ..distortion import as_dist, distortion_jacobian
+from .._validate import as_float, as_points, check_intrinsics, check_matrix
+from ..camera import rotation_from_axis_angle
+from ..distortion import as_dist, beyond_valid_radius, distortion_jacobian
 
 
 PARAM_NAMES = ("fx", "fy", "cx", "cy", "skew", "k1", "k2", "p1", "p2", "k3")
@@ -193,9 +194,21 @@ class CalibrationProblem:
 
 def reproject(object_points: ArrayLike, K: ArrayLike, dist: ArrayLike | None, rvec: ArrayLike,
               tvec: ArrayLike) -> np.ndarray:
-    """Project (N, 3) board points with intrinsics, distortion and an axis-angle pose (like cv2.projectPoints)."""
+    r"""Project (N, 3) board points with intrinsics, distortion and an axis-angle pose (like cv2.projectPoints).
+
+    NaN for points behind the camera (:math:`z_c \le 0`) and beyond the distortion model's
+    valid radius, where cv2.projectPoints returns a mirrored pixel.
+    """
     X = as_points(object_points, 3, "object_points").array
-    Km = np.asarray(K, dtype=float)
-    g = np.array([Km[0, 0], Km[1, 1], Km[0, 2], Km[1, 2], Km[0, 1], *as_dist(dist)])
-    pose = np.concatenate([np.ravel(rvec), np.ravel(tvec)]).astype(float)
-    return project_views(g, pose[None], X[None])[0]
+    Km = check_intrinsics(K, "K")
+    d = as_dist(dist)
+    rv = check_matrix(np.ravel(as_float(rvec, "rvec")), (3,), "rvec")
+    tv = check_matrix(np.ravel(as_float(tvec, "tvec")), (3,), "tvec")
+    g = np.array([Km[0, 0], Km[1, 1], Km[0, 2], Km[1, 2], Km[0, 1], *d])
+    uv = project_views(g, np.concatenate([rv, tv])[None], X[None])[0]
+    # No pixel behind the camera, nor beyond the distortion model's valid radius (it folds back there).
+    Xc = X @ rotation_from_axis_angle(rv).T + tv
+    with np.errstate(divide="ignore", invalid="ignore"):
+        xn = Xc[:, :2] / Xc[:, 2:]
+    uv[(Xc[:, 2] <= 0) | beyond_valid_radius(xn, d)] = np.nan
+    return uv

@@ -6,7 +6,7 @@ from typing import NamedTuple, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import CamlabInputError, ConvergenceError, check_intrinsics, check_size
+from .._validate import CamlabInputError, ConvergenceError, check_image, check_intrinsics, check_number, check_size
 from ..distortion import as_dist, distort_points, undistort_image, undistort_points
 from .calibrate import CalibrationResult
 
@@ -51,7 +51,7 @@ def optimal_new_camera_matrix(K: ArrayLike, dist: ArrayLike | None, image_size: 
     """
     Km = check_intrinsics(K)
     d = as_dist(dist)
-    a = float(alpha)
+    a = check_number(alpha, "alpha")
     if not 0.0 <= a <= 1.0:
         raise CamlabInputError(f"alpha: expected a number in [0, 1] (0: no black borders, 1: keep all pixels), got {alpha!r}")
     w, h = check_size(image_size, "image_size")
@@ -106,9 +106,7 @@ def undistort(image: ArrayLike, result: CalibrationResult | None = None, *, K: A
     ``alpha`` as in :func:`optimal_new_camera_matrix`: 0 crops to valid pixels, 1 keeps all.
     The remap uses :func:`camlab.distortion.undistort_image` (bilinear, black outside).
     """
-    img = np.asarray(image)
-    if img.ndim not in (2, 3) or img.size == 0:
-        raise CamlabInputError(f"image: expected an (H, W) or (H, W, C) array, got shape {img.shape}")
+    img = check_image(image)
     if result is not None:
         K, dist = result.K, result.dist
     if K is None:

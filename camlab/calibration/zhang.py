@@ -9,8 +9,19 @@ from typing import Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import CamlabInputError, DegenerateError, as_points
+from .._validate import CamlabInputError, DegenerateError, as_float, as_points, check_intrinsics, check_matrix
 from ..homography import estimate_homography
+
+
+def _rows(x, dim: int, name: str) -> np.ndarray:
+    """One view's points as rows: OpenCV's (N, 1, dim) is squeezed; a transposed (dim, N) is refused."""
+    a = as_float(x, name)
+    if a.ndim == 3 and a.shape[1] == 1:
+        a = a[:, 0, :]
+    if a.ndim == 2 and a.shape[0] == dim and a.shape[1] > dim:
+        raise CamlabInputError(f"{name}: got shape {a.shape}, which looks transposed; points are rows, "
+                               f"pass ({a.shape[1]}, {dim}) (use .T)")
+    return a
 
 
 def check_views(object_points, image_points, min_views: int = 1):
@@ -18,6 +29,8 @@ def check_views(object_points, image_points, min_views: int = 1):
     if isinstance(image_points, np.ndarray) and image_points.ndim == 2:
         image_points = [image_points]
     try:
+        if isinstance(image_points, str):
+            raise TypeError
         n = len(image_points)
     except TypeError:
         raise CamlabInputError(
@@ -28,7 +41,10 @@ def check_views(object_points, image_points, min_views: int = 1):
             f"image_points: expected at least {min_views} views, got {n}; take more photos of the board "
             f"in different orientations"
         )
-    obj = np.asarray(object_points, dtype=float) if not isinstance(object_points, (list, tuple)) else None
+    if object_points is None or isinstance(object_points, str):
+        raise CamlabInputError(f"object_points: expected (N, 3) board points, or one such array per view, got "
+                               f"{type(object_points).__name__}")
+    obj = as_float(object_points, "object_points") if not isinstance(object_points, (list, tuple)) else None
     if obj is not None and obj.ndim == 2:
         objs = [obj] * n  # one board for all views
     else:
@@ -40,10 +56,8 @@ def check_views(object_points, image_points, min_views: int = 1):
             )
     out_obj, out_img = [], []
     for v, (o, p) in enumerate(zip(objs, image_points)):
-        o = as_points(np.asarray(o, dtype=float).reshape(-1, 3) if np.size(o) % 3 == 0 else o, 3,
-                      f"object_points[{v}]", min_count=4).array
-        p = as_points(np.asarray(p, dtype=float).reshape(-1, 2) if np.size(p) % 2 == 0 else p, 2,
-                      f"image_points[{v}]", min_count=4, finite=False).array
+        o = as_points(_rows(o, 3, f"object_points[{v}]"), 3, f"object_points[{v}]", min_count=4).array
+        p = as_points(_rows(p, 2, f"image_points[{v}]"), 2, f"image_points[{v}]", min_count=4, finite=False).array
         if len(o) != len(p):
             raise CamlabInputError(
                 f"image_points[{v}]: expected {len(o)} points like object_points[{v}], got {len(p)}"
@@ -95,9 +109,12 @@ def zhang_v(H: ArrayLike, i: int, j: int) -> np.ndarray:
     >>> zhang_v(np.eye(3), 0, 0)
     array([1., 0., 0., 0., 0., 0.])
     """
-    Hm = np.asarray(H, dtype=float)
-    if Hm.shape != (3, 3):
-        raise CamlabInputError(f"H: expected a (3, 3) homography, got shape {Hm.shape}")
+    Hm = check_matrix(H, (3, 3), "H")
+    if not Hm.any():
+        raise DegenerateError("H: all zeros; pass the board -> image homography of a view")
+    for value, name in ((i, "i"), (j, "j")):
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value not in (0, 1, 2):
+            raise CamlabInputError(f"{name}: expected a column index 0, 1 or 2, got {value!r}")
     a, c = Hm[:, i], Hm[:, j]
     return np.array([a[0] * c[0], a[0] * c[1] + a[1] * c[0], a[1] * c[1],
                      a[2] * c[0] + a[0] * c[2], a[2] * c[1] + a[1] * c[2], a[2] * c[2]])
@@ -234,10 +251,12 @@ def nearest_rotation(M: ArrayLike) -> np.ndarray:
            [0., 1., 0.],
            [0., 0., 1.]])
     """
-    Mm = np.asarray(M, dtype=float)
-    if Mm.shape != (3, 3) or not np.isfinite(Mm).all():
-        raise CamlabInputError(f"M: expected a finite (3, 3) matrix, got shape {Mm.shape}")
-    U, _, Vt = np.linalg.svd(Mm)
+    Mm = check_matrix(M, (3, 3), "M")
+    U, sv, Vt = np.linalg.svd(Mm)
+    if sv[1] <= 1e-12 * max(sv[0], 1e-300):
+        raise DegenerateError(f"M: rank {int(np.sum(sv > 1e-12 * sv[0]))} (singular values "
+                              f"{np.array2string(sv, precision=3)}), so no rotation is nearest to it; "
+                              f"at least two of its columns must be independent")
     D = np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Vt))])
     return U @ D @ Vt
 
@@ -249,8 +268,12 @@ def extrinsics_from_homography(K: ArrayLike, H: ArrayLike) -> tuple[np.ndarray, 
     (sign chosen so the board is in front, :math:`t_z > 0`), :math:`r_3 = r_1 \times r_2`.
     With noise :math:`[r_1\ r_2\ r_3]` is not orthonormal; :func:`nearest_rotation` fixes that.
     """
-    Km = np.asarray(K, dtype=float)
-    A = np.linalg.solve(Km, np.asarray(H, dtype=float))
+    Km = check_intrinsics(K, "K")
+    Hm = check_matrix(H, (3, 3), "H")
+    if np.linalg.matrix_rank(Hm[:, :2]) < 2:
+        raise DegenerateError("H: its first two columns are dependent, so they cannot be the images of the "
+                              "board's x and y axes; pass the board -> image homography")
+    A = np.linalg.solve(Km, Hm)
     lam = 2.0 / (np.linalg.norm(A[:, 0]) + np.linalg.norm(A[:, 1]))
     if A[2, 2] * lam < 0:
         lam = -lam

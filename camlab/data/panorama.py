@@ -34,6 +34,7 @@ import numpy as np
 
 from ._resources import dataset_dir
 from .._validate import CamlabInputError, check_positive
+from ..scenes import wall_texture
 
 __all__ = ["PANORAMA_PARAMS", "TURNING_SETS", "PanoramaSet", "PlanarPair", "TurningSet", "environment_map",
            "environment_view", "load_aerial_mosaic", "load_panorama_set", "load_planar_pair", "make_panorama_set",
@@ -66,44 +67,6 @@ def _rot(yaw: float, pitch: float, roll: float) -> np.ndarray:
 def cam_from_world(yaw: float, pitch: float = 0.0, roll: float = 0.0) -> np.ndarray:
     """The rotation cam_from_world of a camera at the origin turned by (yaw, pitch, roll) radians."""
     return _rot(yaw, pitch, roll).T
-
-
-@lru_cache(maxsize=2)
-def wall_texture(width: int = 2100, height: int = 800, seed: int = 909) -> np.ndarray:
-    """A feature-rich, non-repeating RGB texture (float32 in [0, 1]): soft colour fields and posters.
-
-    Made with a seeded generator, so it is the same every time: smooth multi-scale colour
-    noise, then a few hundred random rectangles, discs, triangles and strokes in random
-    colours (corners and blobs for the feature detector at every scale).
-    """
-    import cv2
-
-    rng = np.random.default_rng(seed)
-    tex = np.zeros((height, width, 3), np.float32)
-    for scale, amp, chroma in ((120, 0.16, 0.5), (30, 0.10, 0.3), (6, 0.05, 0.2)):
-        small = rng.normal(0, 1, (height // scale + 2, width // scale + 2, 3)).astype(np.float32)
-        small = (1 - chroma) * small.mean(axis=2, keepdims=True) + chroma * small  # mostly luminance
-        tex += amp * cv2.resize(small, (width, height), interpolation=cv2.INTER_CUBIC)
-    tex = 0.55 + tex
-    for _ in range(520):
-        kind = rng.integers(0, 4)
-        colour = tuple(float(c) for c in 0.6 * rng.uniform(0.05, 0.95) + 0.4 * rng.uniform(0.05, 0.95, 3))
-        cx, cy = rng.uniform(0, width), rng.uniform(0, height)
-        size = float(np.exp(rng.uniform(np.log(4), np.log(45))))
-        if kind == 0:
-            a = rng.uniform(-0.6, 0.6)
-            box = cv2.boxPoints(((cx, cy), (size * rng.uniform(0.6, 1.8), size), np.degrees(a)))
-            cv2.fillConvexPoly(tex, np.round(box * 16).astype(np.int32), colour, cv2.LINE_AA, 4)
-        elif kind == 1:
-            cv2.circle(tex, (int(cx * 16), int(cy * 16)), int(size * 8), colour, -1, cv2.LINE_AA, 4)
-        elif kind == 2:
-            tri = np.array([cx, cy]) + rng.uniform(-size, size, (3, 2))
-            cv2.fillConvexPoly(tex, np.round(tri * 16).astype(np.int32), colour, cv2.LINE_AA, 4)
-        else:
-            p2 = np.array([cx, cy]) + rng.uniform(-2 * size, 2 * size, 2)
-            cv2.line(tex, (int(cx * 16), int(cy * 16)), (int(p2[0] * 16), int(p2[1] * 16)), colour,
-                     int(rng.integers(1, 4)), cv2.LINE_AA, 4)
-    return np.clip(tex, 0.0, 1.0)
 
 
 def room_scene(params: dict = PANORAMA_PARAMS) -> list:

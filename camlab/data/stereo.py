@@ -38,8 +38,9 @@ import numpy as np
 from ._resources import dataset_dir
 from .._validate import CamlabInputError
 from ..camera import Camera, intrinsic_matrix, look_at_rotation, rotation_from_axis_angle
+from ..scenes import noise_texture, portrait
 
-__all__ = ["STEREO_PARAMS", "StereoRig", "load_stereo_rig", "make_stereo_rig", "rig_cameras", "stereo_scene"]
+__all__ = ["STEREO_PARAMS", "StereoRig", "load_stereo_rig", "make_stereo_rig", "rig_cameras", "stereo_scene", "true_matches"]
 
 STEREO_PARAMS = {
     "seed": 11,
@@ -65,19 +66,6 @@ STEREO_PARAMS = {
 }
 
 
-def _noise_texture(shape: tuple[int, int], seed: int, base: float = 0.5) -> np.ndarray:
-    """Smooth multi-scale random texture in [0, 1] (good for matching at several depths)."""
-    import cv2
-
-    rng = np.random.default_rng(seed)
-    h, w = shape
-    tex = np.zeros((h, w), np.float32)
-    for k, amp in ((4, 0.3), (16, 0.25), (64, 0.25), (256, 0.25), (512, 0.15)):
-        small = rng.normal(0, 1, (max(2, h * k // 512), max(2, w * k // 512))).astype(np.float32)
-        tex += amp * cv2.resize(small, (w, h), interpolation=cv2.INTER_CUBIC)
-    return np.clip(base + 0.5 * tex / 1.2, 0, 1)
-
-
 def _facing(normal_towards: str = "-y") -> np.ndarray:
     """world_from_plane rotation for a plane whose texture is upright seen from -y (the cameras)."""
     return np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])
@@ -91,12 +79,12 @@ def stereo_scene(params: dict = STEREO_PARAMS) -> list:
     Rf = _facing()
     turn = rotation_from_axis_angle([0.0, 0.0, 0.35])  # a plane turned 20 degrees about the vertical
     scene = [
-        render.textured_plane(_noise_texture((512, 768), s), 6.0, R=Rf, t=(0.0, 4.2, 1.4), height=4.0, name="wall"),
-        render.textured_plane(_noise_texture((384, 384), s + 1, 0.6), 0.9, R=turn @ Rf, t=(-0.75, 2.6, 1.15),
+        render.textured_plane(noise_texture((512, 768), s), 6.0, R=Rf, t=(0.0, 4.2, 1.4), height=4.0, name="wall"),
+        render.textured_plane(noise_texture((384, 384), s + 1, 0.6), 0.9, R=turn @ Rf, t=(-0.75, 2.6, 1.15),
                               name="panel_far"),
-        render.textured_plane(render.sample_photo("grace_hopper").mean(axis=2), 0.55, R=Rf, t=(0.45, 1.9, 1.2),
+        render.textured_plane(portrait().mean(axis=2), 0.55, R=Rf, t=(0.45, 1.9, 1.2),
                               name="photo"),
-        render.textured_plane(_noise_texture((256, 256), s + 2, 0.45), 0.35, R=Rf, t=(-0.2, 1.35, 0.9),
+        render.textured_plane(noise_texture((256, 256), s + 2, 0.45), 0.35, R=Rf, t=(-0.2, 1.35, 0.9),
                               name="panel_near"),
         render.box((0.35, 2.2, 0.55), (0.3, 0.3, 0.3), R=rotation_from_axis_angle([0, 0, 0.5]), rng=s + 3,
                    name="box_a"),
@@ -169,6 +157,33 @@ class StereoRig(NamedTuple):
     object_points: np.ndarray     # (54, 3) board frame
     pattern_size: tuple[int, int]
     params: dict
+
+
+def true_matches(rig: StereoRig, step: int = 30, start: int = 20) -> tuple[np.ndarray, np.ndarray]:
+    """Exact correspondences in the raw (distorted) images, from the true disparity.
+
+    A grid of pixels of the rectified left image (every ``step`` pixels from ``start``) with
+    their true disparity ``d`` gives rectified pairs ``(u, v)`` and ``(u - d, v)``; the
+    calibrated rectification (``alpha`` as stored) carries both back to the raw images.
+    Pairs that land outside either image, or on no surface, are dropped.
+
+    Returns
+    -------
+    x1, x2 : (N, 2) ndarray
+        Raw left and right pixels (u, v) of the same scene points.
+    """
+    from ..rectification import rectify_calibrated, unrectify_points
+
+    rect = rectify_calibrated(rig.camera1, rig.camera2, alpha=rig.params["rectify_alpha"], maps=False)
+    h, w = rig.disparity.shape
+    v, u = np.mgrid[start:h - 10:step, start:w - 10:step]
+    p1 = np.column_stack([u.ravel(), v.ravel()]).astype(float)
+    d = rig.disparity[v.ravel(), u.ravel()]
+    ok = np.isfinite(d)
+    x1 = unrectify_points(rect, rig.camera1, p1[ok], 1)
+    x2 = unrectify_points(rect, rig.camera2, p1[ok] - np.column_stack([d[ok], np.zeros(ok.sum())]), 2)
+    inside = np.all((x1 > 0) & (x1 < [w - 1, h - 1]) & (x2 > 0) & (x2 < [w - 1, h - 1]), axis=1)
+    return x1[inside], x2[inside]
 
 
 def _png(path: Path, img: np.ndarray) -> Path:

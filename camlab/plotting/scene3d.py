@@ -38,7 +38,7 @@ from ..camera import Camera, project_segments
 
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
 
-__all__ = ["AXIS_COLOURS", "CameraArtist", "SceneView", "axes3d", "draw_points", "draw_segments",
+__all__ = ["AXIS_COLOURS", "CameraArtist", "SceneView", "axes3d", "clip_segments", "draw_points", "draw_segments",
            "draw_world_axes", "image_axes", "polyline_data", "refresh_projection", "set_equal_aspect",
            "update_segments"]
 
@@ -159,6 +159,34 @@ def image_axes(ax, image_size: tuple[int, int], title: str = "", labels: bool = 
         ax.set_title(title, fontsize=9)
 
 
+def clip_segments(segments: ArrayLike, image_size: tuple[int, int]) -> np.ndarray:
+    """Clip (M, 2, 2) pixel segments to the image rectangle (Liang-Barsky); outside ones become NaN.
+
+    The image covers u in [-0.5, W - 0.5] and v in [-0.5, H - 0.5] (pixel centres at integers).
+    A segment is the set p0 + s (p1 - p0), 0 <= s <= 1; each border cuts the allowed s to an
+    interval, and what survives all four is the visible part. Segments with a NaN end stay NaN.
+
+    >>> clip_segments([[[-10.0, 5.0], [20.0, 5.0]]], (10, 10)).tolist()
+    [[[-0.5, 5.0], [9.5, 5.0]]]
+    """
+    seg = np.asarray(segments, dtype=float).reshape(-1, 2, 2)
+    w, h = image_size
+    p0, d = seg[:, 0], seg[:, 1] - seg[:, 0]
+    lo, hi = np.zeros(len(seg)), np.ones(len(seg))
+    visible = np.isfinite(seg).all(axis=(1, 2))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for axis, (low, high) in enumerate(((-0.5, w - 0.5), (-0.5, h - 0.5))):
+            for p, q in ((-d[:, axis], p0[:, axis] - low), (d[:, axis], high - p0[:, axis])):
+                r = q / p
+                lo = np.where(p < 0, np.maximum(lo, r), lo)
+                hi = np.where(p > 0, np.minimum(hi, r), hi)
+                visible &= ~((p == 0) & (q < 0))
+    visible &= lo <= hi
+    out = np.stack([p0 + lo[:, None] * d, p0 + hi[:, None] * d], axis=1)
+    out[~visible] = np.nan
+    return out
+
+
 def _plane_points(camera: Camera, uv: np.ndarray, size: float) -> np.ndarray:
     """Pixels (N, 2) lifted to the plane z_c = size in front of the camera, world coordinates.
 
@@ -254,8 +282,8 @@ class CameraArtist:
         self.centre_marker.set_data_3d([C[0]], [C[1]], [C[2]])
         if self.label is not None:
             self.label.set_position_3d(C - 0.25 * self.size * camera.R[1] - 0.15 * self.size * camera.R[0])
-        if image_lines is not None:
-            self._pixels = np.asarray(image_lines, dtype=float)
+        if image_lines is not None:  # only what the camera sees is drawn on its image plane
+            self._pixels = clip_segments(image_lines, camera.image_size)
         if self._pixels is not None:  # without new pixels, the old ones move with the camera
             d = polyline_data(self._pixels) if len(self._pixels) else np.empty((0, 2))
             P3 = _plane_points(camera, d, self.size) if len(d) else np.empty((0, 3))

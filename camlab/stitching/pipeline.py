@@ -160,7 +160,7 @@ def _warp_curved(imgs: list, Ks: list, Rs: list, canvas) -> WarpedImages:
     for im, K, R, box in zip(imgs, Ks, Rs, canvas.boxes):
         patch, mask, wgt = warp_to_canvas(im, K, R, canvas, box, feather_weights(im.shape).astype(np.float32))
         r0, r1, c0, c1 = box
-        cols = np.arange(c0, c1) % w
+        cols = slice(c0, c1) if 0 <= c0 and c1 <= w else np.arange(c0, c1) % w  # a wrapping canvas: modulo w
         full = np.zeros((h, w, 3), np.float32)
         fm = np.zeros((h, w), bool)
         fw = np.zeros((h, w), np.float32)
@@ -171,6 +171,45 @@ def _warp_curved(imgs: list, Ks: list, Rs: list, canvas) -> WarpedImages:
         out_m.append(fm)
         out_w.append(fw)
     return WarpedImages(out_i, out_m, out_w, [None] * len(imgs), np.eye(3))
+
+
+def _warn_second_plane(graph, names: list, rng) -> None:
+    """Warn if an accepted pair's outliers follow a second homography: two planes, so the camera moved (parallax).
+
+    A camera that only turns maps every scene point by one homography; if the matches that
+    the first homography rejects agree on another one (at least 10 of them, and more than
+    8 + 0.3 of the outliers, the Brown & Lowe test), the scene has depth and the centre moved.
+    """
+    from ..homography import ransac_homography, transfer_error
+
+    rng = np.random.default_rng(1) if rng is None else rng
+    for (i, j), p in sorted(graph.pairs.items()):
+        out = ~p.inliers
+        n = int(out.sum())
+        if not p.accepted or n < 10:
+            continue
+        try:
+            r2 = ransac_homography(p.matches.src[out], p.matches.dst[out], 3.0, 0.99, 500, rng)
+        except (DegenerateError, CamlabInputError):
+            continue
+        k2 = int(r2.inliers.sum())
+        if k2 >= max(10, 8 + 0.3 * n):
+            off = float(np.median(transfer_error(p.H, p.matches.src[out][r2.inliers], p.matches.dst[out][r2.inliers])))
+            warnings.warn(f"stitch: {names[i]!r}-{names[j]!r}: {k2} matches follow a second plane, {off:.1f} px "
+                          f"(median) off the first homography: the camera moved between the photos (parallax), "
+                          f"so no single homography or rotation aligns everything; expect ghosts of near objects",
+                          UserWarning, stacklevel=3)
+
+
+def _warn_full_turn(Rs: list, names: list) -> None:
+    """Warn, naming the photos, if the camera turned through more than 360 degrees (in input order)."""
+    yaw = np.unwrap([np.arctan2(R[2, 0], R[2, 2]) for R in Rs])
+    turn = np.degrees(yaw - yaw[0])
+    if np.abs(turn).max() > 365:
+        again = [nm for nm, t in zip(names, turn) if abs(t) > 350]
+        warnings.warn(f"stitch: the photos turn through {np.abs(turn).max():.0f} degrees, more than a full circle: "
+                      f"{', '.join(repr(x) for x in again)} show again what the first photos showed; the canvas is "
+                      f"one full turn and the repeated views are blended in", UserWarning, stacklevel=3)
 
 
 def largest_rectangle(mask: np.ndarray) -> tuple[int, int, int, int]:
@@ -318,6 +357,9 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
         Ks = [est.Ks[k] for k in keep]
         Rs = [est.Rs[k] for k in keep]
     sub_shapes = [shapes[k] for k in keep]
+    _warn_second_plane(graph, label, rng)
+    if model == "rotation":
+        _warn_full_turn(Rs, [label[k] for k in keep])
     chosen = projection
     if projection == "auto":
         chosen = "planar" if model == "homography" or max(_field_of_view(Ks, Rs, sub_shapes)) <= 100 else "spherical"
@@ -341,9 +383,6 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
     else:
         s = float(np.median([Kk[0, 0] for Kk in Ks]))
         canvas = make_canvas(Ks, Rs, sub_shapes, chosen, s, max_pixels=max_pixels)
-        if canvas.wraps:
-            warnings.warn("stitch: the photos turn through more than 360 degrees; the canvas is one full turn and "
-                          "the overlapping ends are blended", UserWarning, stacklevel=2)
         warped = _warp_curved(sub, Ks, Rs, canvas)
         outlines_sub = [_outline_curved(Kk, R, sh, canvas) for Kk, R, sh in zip(Ks, Rs, sub_shapes)]
     times["warping"] = time.perf_counter() - t0
@@ -352,7 +391,7 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
     g_sub = gain_compensation(warped, reference=ref_local) if compensate_gains else np.ones(len(keep))
     times["exposure"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    pano = blend(warped, blend_method, gains=g_sub, levels=levels)
+    pano = blend(warped, blend_method, gains=g_sub, levels=levels, seam="dp")
     union = np.logical_or.reduce(warped.masks)
     times["seams_blend"] = time.perf_counter() - t0
     masks_out = list(warped.masks)

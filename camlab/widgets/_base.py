@@ -25,9 +25,10 @@ import ipywidgets as W
 import matplotlib
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.image import AxesImage
 
 from ..plotting.static import demo_alt_text, static_bundle
-from ._transport import use_fast_png
+from ._transport import show_at_display_resolution, use_fast_png
 
 
 def _display_mode() -> str:
@@ -82,8 +83,13 @@ class FigureView:
         self.fig.canvas.mpl_connect("draw_event", self._on_full_draw)
 
     def animate(self, *artists: Any) -> Any:
-        """Register artists that updates move; returns them (one artist if one was given)."""
+        """Register artists that updates move; returns them (one artist if one was given).
+
+        Images among them keep their data at the resolution they are shown.
+        """
         for artist in artists:
+            if isinstance(artist, AxesImage):
+                show_at_display_resolution(artist)
             artist.set_animated(True)
             self._animated.append(artist)
         return artists[0] if len(artists) == 1 else artists

@@ -4,7 +4,7 @@ from __future__ import annotations
 import ipywidgets as W
 import numpy as np
 
-from .. import distortion, lens, render
+from .. import distortion, lens, render, scenes
 from ..plotting import images, optics, palette
 from ._base import FigureView, build_demo, register, slider
 
@@ -86,7 +86,7 @@ def _dof_scene():
     return [render.checkerboard((5, 4), 0.04, t=(-0.33, -0.02, 0.6), name="near", px_per_square=32),
             render.text_page(0.3, t=(0.0, -0.02, 1.2)),
             render.checkerboard((7, 5), 0.12, t=(0.1, -0.55, 2.4), name="far", px_per_square=32),
-            render.textured_plane(render.sample_photo(), 3.2, t=(0, 0, 4.0), name="wall")]
+            render.textured_plane(scenes.portrait(), 3.2, t=(0, 0, 4.0), name="wall")]
 
 
 @register(lesson="02", sweep={"f_number": [1.4, 4.0, 16.0], "focus_m": [0.6, 1.2, 2.4]})

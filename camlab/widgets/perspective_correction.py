@@ -76,6 +76,8 @@ def rectify_photo() -> Demo:
                                                      dict(ls="-", color="tab:orange", lw=1.5))
     handles = view.animate(ax_p.plot([], [], "o", color="tab:orange", ms=9, mec="k")[0])
     caption = view.animate(ax_r.text(0.5, -0.02, "", transform=ax_r.transAxes, ha="center", va="top", fontsize=9))
+    other = view.animate(ax_r.plot([], [], "--", color="tab:red", lw=1.5)[0])
+    truth_box = view.animate(ax_r.plot([], [], ":", color="tab:green", lw=1.5)[0])
     readout = W.HTML()
     first = pp.sample_photo("page")
     control = _corner_text(format_corners(first.corners), "corners (TL; TR; BR; BL)")
@@ -97,30 +99,40 @@ def rectify_photo() -> Demo:
         try:
             corners = _parse_corners(v["corners"])
             corners = pp.check_quadrilateral(corners)
-            est = pp.estimate_aspect_ratio(corners, photo.image.shape,
-                                           focal_length=photo.K[0, 0] if v["use_focal"] else None)
+            from_quad = pp.estimate_aspect_ratio(corners, photo.image.shape)
+            known = pp.estimate_aspect_ratio(corners, photo.image.shape, focal_length=photo.K[0, 0])
         except (ValueError, pp.DegenerateError) as exc:
             state.update(error=str(exc), ratio=None)
             readout.value = _pre(f"cannot rectify:\n{exc}")
             return
+        est, alt = (known, from_quad) if v["use_focal"] else (from_quad, known)
         current["corners"] = corners
         closed = np.vstack([corners, corners[:1]])
         quad.set_data(closed[:, 0], closed[:, 1])
         handles.set_data(corners[:, 0], corners[:, 1])
         width = max(np.linalg.norm(corners[1] - corners[0]), np.linalg.norm(corners[2] - corners[3]))
         _show_rectified(im_r, photo.image, corners, (int(width), int(width / est.ratio)))
+        # Outlines, in the display box, of the rectangle the other focal length and the truth would give.
+        for artist, ratio in ((other, alt.ratio), (truth_box, photo.aspect)):
+            w, h = _fit((int(width), int(width / ratio)))
+            x0, y0 = (_SHOW - w) // 2 - 0.5, (_SHOW - h) // 2 - 0.5
+            artist.set_data([x0, x0 + w, x0 + w, x0, x0], [y0, y0, y0 + h, y0 + h, y0])
         state.update(error=None, ratio=est.ratio, true_ratio=photo.aspect, focal=est.focal_length,
-                     focal_source=est.focal_source, corners=corners, scene=v["scene"])
-        f = "—" if est.focal_length is None else f"{est.focal_length:.0f} px"
-        caption.set_text(f"w/h {est.ratio:.3f} (true {photo.aspect:.3f}); f {f}, {est.focal_source}")
-        readout.value = _pre(f"aspect w/h estimated: {est.ratio:.3f}\n"
-                             f"aspect w/h true:      {photo.aspect:.3f}\n"
-                             f"focal length: {f} ({est.focal_source}; true {photo.K[0, 0]:.0f})")
+                     focal_source=est.focal_source, corners=corners, scene=v["scene"],
+                     ratio_from_quad=from_quad.ratio, ratio_known_focal=known.ratio, focal_from_quad=from_quad.focal_length)
+        f = "—" if from_quad.focal_length is None else f"{from_quad.focal_length:.0f} px"
+        used = "known f" if v["use_focal"] else "f from the corners"
+        caption.set_text(f"w/h {est.ratio:.3f} ({used}); red: the other f, {alt.ratio:.3f}; green: true {photo.aspect:.3f}")
+        readout.value = _pre(f"w/h with f from the corners: {from_quad.ratio:.3f}  (f = {f}, {from_quad.focal_source})\n"
+                             f"w/h with f known ({photo.K[0, 0]:.0f} px): {known.ratio:.3f}\n"
+                             f"w/h true:                   {photo.aspect:.3f}\n"
+                             "the rectified view uses the ticked choice;\ndrag a corner a few px: the estimated f moves,\n"
+                             "the known-f ratio hardly does")
 
     controls = {
         "scene": W.Dropdown(options=["page", "painting", "facade"], value="page", description="photo"),
         "corners": control,
-        "use_focal": W.Checkbox(value=False, description="focal length known (800 px)"),
+        "use_focal": W.Checkbox(value=False, description="use the known focal length (800 px)"),
     }
     demo = build_demo("rectify_photo", controls, view, update, title="Rectify a photographed rectangle",
                       extra=[readout])
@@ -165,12 +177,17 @@ def document_scanner() -> Demo:
     return build_demo("document_scanner", controls, view, update, title="Scan this page", extra=[readout])
 
 
-@register(lesson="10", sweep={"tilt": [-0.7, -0.3, 0.0], "yaw": [0.0, 0.3]})
+@register(lesson="10", sweep={"tilt": [-0.7, 0.0, -0.3], "yaw": [0.3, 0.0], "use_focal": [False, True]})
 def keystone_correction() -> Demo:
     """Keystone: a camera tilted up at a facade makes its verticals converge; the
-    rectifying homography makes them parallel again."""
+    rectifying homography makes them parallel again. With yaw 0 the horizontals stay
+    parallel, so the corners cannot tell the focal length: the aspect ratio then rests
+    on an assumed f, and the figure says how far off that makes it."""
     view, ax_p, ax_r, im_p, im_r, quad = _photo_demo("photo (camera tilted up)", "keystone-corrected",
                                                      dict(ls="--", color="yellow", lw=1.5))
+    caption = view.animate(ax_r.text(0.5, -0.02, "", transform=ax_r.transAxes, ha="center", va="top", fontsize=8,
+                                     color="k"))
+    truth_box = view.animate(ax_r.plot([], [], ":", color="tab:green", lw=1.5)[0])
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
@@ -179,16 +196,28 @@ def keystone_correction() -> Demo:
         c = photo.corners
         closed = np.vstack([c, c[:1]])
         quad.set_data(closed[:, 0], closed[:, 1])
-        est = pp.estimate_aspect_ratio(c, photo.image.shape)
+        est = pp.estimate_aspect_ratio(c, photo.image.shape, focal_length=photo.K[0, 0] if v["use_focal"] else None)
         _show_rectified(im_r, photo.image, c, (400, int(round(400 / est.ratio))))
+        w, h = _fit((400, int(round(400 / photo.aspect))))
+        x0, y0 = (_SHOW - w) // 2 - 0.5, (_SHOW - h) // 2 - 0.5
+        truth_box.set_data([x0, x0 + w, x0 + w, x0, x0], [y0, y0, y0 + h, y0 + h, y0])
         left, right = c[3] - c[0], c[2] - c[1]
         converge = float(np.degrees(np.arctan2(left[0], left[1]) - np.arctan2(right[0], right[1])))
-        state.update(ratio=est.ratio, true_ratio=photo.aspect, convergence=converge, focal_source=est.focal_source)
+        off = 100 * (est.ratio / photo.aspect - 1)
+        state.update(ratio=est.ratio, true_ratio=photo.aspect, convergence=converge, focal_source=est.focal_source,
+                     focal=est.focal_length, ratio_error_percent=off)
+        f_px = f"{est.focal_length:.0f} px" if est.focal_length is not None else ""
+        f_text = {"assumed": f"f assumed {f_px} (cannot be estimated; true {photo.K[0, 0]:.0f})",
+                  "estimated": f"f estimated {f_px} (true {photo.K[0, 0]:.0f})",
+                  "given": f"f given {f_px}",
+                  "not needed": "f not needed (an affine view)"}[est.focal_source]
+        caption.set_text(f"w/h {est.ratio:.3f}, true {photo.aspect:.3f} (green): {off:+.1f}%\n{f_text}")
         readout.value = _pre(f"verticals converge by {abs(converge):.1f}°\n"
-                             f"aspect w/h estimated {est.ratio:.3f} (true {photo.aspect:.3f}, f {est.focal_source})")
+                             f"aspect w/h estimated {est.ratio:.3f} (true {photo.aspect:.3f}, {off:+.1f}%)\n{f_text}")
 
     controls = {
         "tilt": slider(-0.5, -0.8, 0.0, 0.05, "camera tilt (rad)"),
         "yaw": slider(0.0, -0.5, 0.5, 0.05, "yaw (rad)"),
+        "use_focal": W.Checkbox(value=False, description="use the known focal length (800 px)"),
     }
     return build_demo("keystone_correction", controls, view, update, title="Keystone correction", extra=[readout])

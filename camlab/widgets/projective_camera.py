@@ -140,10 +140,18 @@ def resectioning():
         rms = float(np.sqrt(np.mean(err ** 2)))
         focal_err = float(abs(K[0, 0] - cam_true.K[0, 0]))
         centre_err = float(np.linalg.norm(C - cam_true.centre))
+        n = len(Xw)
+        redundancy = 2 * n - 11  # equations minus unknowns: the noise the residuals can show
+        expected = float(v["noise"]) * np.sqrt(2.0 * redundancy / (2 * n))  # RMS a perfect fit leaves (H&Z 5.1.3)
+        warning = ("\n<b>few spare equations: the fit absorbs the noise, so a small RMS\n"
+                   "says little about the camera</b>" if redundancy < 10 and v["noise"] > 0 else "")
         info.value = (f"<pre>RMS reprojection {rms:.2f} px\n|fx - fx_true| = {focal_err:.1f} px\n"
-                      f"|C - C_true| = {100 * centre_err:.1f} cm</pre>")
+                      f"|C - C_true| = {100 * centre_err:.1f} cm\n\n"
+                      f"redundancy 2N - 11 = {redundancy}\n"
+                      f"RMS expected from the noise alone:\n  sigma sqrt(2) sqrt((2N - 11) / 2N) = {expected:.2f} px"
+                      f"{warning}</pre>")
         state.update(P=P, K=K, R=R, t=t, centre=C, rms=rms, focal_error=focal_err, centre_error=centre_err,
-                     points_image=uvn)
+                     points_image=uvn, redundancy=redundancy, expected_rms=expected)
 
     demo = build_demo("resectioning", controls, view, update,
                       title="Resection: estimate P from N point pairs (DLT); click the image to move a pixel",
