@@ -13,6 +13,7 @@ import ipywidgets as W
 import numpy as np
 
 from .. import homography as hg
+from ..plotting import palette
 from ..projective import cross_ratio, map_points, splits_at_infinity
 from ..warp import forward_warp, warp_perspective
 from ._base import Demo, FigureView, build_demo, register, slider
@@ -300,8 +301,8 @@ def samples_needed(outlier_fraction: np.ndarray | float, confidence: float = 0.9
 
 
 # What RANSAC did with each pair, against the truth the demo knows.
-_VERDICTS = (("inlier, kept", "tab:green"), ("outlier, wrongly kept", "tab:red"),
-             ("inlier, wrongly rejected", "tab:orange"), ("outlier, rejected", (0.6, 0.6, 0.6, 0.45)))
+_VERDICTS = (("inlier, kept", palette.GREEN), ("outlier, wrongly kept", palette.RED),
+             ("inlier, wrongly rejected", palette.ORANGE), ("outlier, rejected", (0.6, 0.6, 0.6, 0.45)))
 
 
 @register(lesson="07", sweep={"outliers": [0.1, 0.4, 0.7], "threshold": [1.0, 3.0, 8.0], "seed": [0, 3]})
