@@ -37,7 +37,7 @@ import numpy as np
 
 from ._resources import dataset_dir
 from .._validate import CamlabInputError
-from ..camera import Camera, intrinsic_matrix, look_at_rotation, rotation_from_axis_angle
+from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
 from ..scenes import noise_texture, portrait
 
 __all__ = ["STEREO_PARAMS", "StereoRig", "load_stereo_rig", "make_stereo_rig", "rig_cameras", "stereo_scene", "true_matches"]

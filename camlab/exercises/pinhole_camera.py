@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import pinhole
-from ._numbers import is_number as _is_number, same_number
+from ._numbers import same_number
 from ._core import Exercise, register_exercise, same_array, shape_problem, unit_slip
 
 

@@ -113,7 +113,7 @@ def ransac_registration() -> Demo:
     ax.set_title(f"matches in image {j}; frame of image {i} mapped by H", fontsize=9)
     inl = view.animate(ax.plot([], [], ".", color="lime", ms=4, label="inliers")[0])
     outl = view.animate(ax.plot([], [], "x", color="red", ms=4, label="outliers")[0])
-    true_box = outline(ax, s.true_homography(i, j), imgs[i].shape, color="white", lw=2, label="true")
+    outline(ax, s.true_homography(i, j), imgs[i].shape, color="white", lw=2, label="true")
     est_box = view.animate(outline(ax, np.eye(3), imgs[i].shape, color="tab:blue", lw=1.5, ls="--", label="RANSAC"))
     h, w = imgs[j].shape[:2]
     ax.set(xlim=(-0.5, w - 0.5), ylim=(h - 0.5, -0.5))
