@@ -87,10 +87,19 @@ def weak_perspective_matrix(
     R: ArrayLike, t: ArrayLike, ax: float, ay: float, skew: float = 0.0,
     principal_point: ArrayLike = (0.0, 0.0),
 ) -> np.ndarray:
-    r"""Weak perspective (an affine camera with an affine calibration matrix):
+    r"""A weak-perspective camera, or with ``skew`` a general affine camera (H&Z §6.3.4):
 
     .. math:: P = \begin{pmatrix} \alpha_x & s & c_x \\ 0 & \alpha_y & c_y \\ 0 & 0 & 1 \end{pmatrix}
               \begin{pmatrix} r_1^\top & t_1 \\ r_2^\top & t_2 \\ 0^\top & 1 \end{pmatrix}
+
+    In Hartley & Zisserman's terms, ``skew = 0`` gives **weak perspective**,
+    :math:`\mathrm{diag}(\alpha_x, \alpha_y, 1)` times the orthographic camera: 7 degrees of
+    freedom (3 rotation, 2 translation, 2 scales); ``ax == ay`` is scaled orthographic (6);
+    a non-zero ``skew`` gives the **general affine camera** (8). The principal point adds no
+    degree of freedom: :math:`c_x` shifts every image point exactly as changing :math:`t_1` by
+    :math:`c_x / \alpha_x` (and :math:`c_y` as :math:`t_2`, after the skew) does, so H&Z absorb
+    it into the translation. It is accepted here only to place the picture in pixel
+    coordinates, e.g. about the image centre.
 
     Parameters
     ----------
@@ -98,8 +107,17 @@ def weak_perspective_matrix(
     ax, ay : float
         Scales in pixels per metre (> 0): a perspective camera's :math:`f / d_0`.
     skew : float
+        Pixels per metre of the second camera axis added to u (0 for weak perspective).
     principal_point : (2,) array_like
-        Pixel where the camera's optical axis lands.
+        A constant pixel offset (redundant with ``t``; see above).
+
+    Examples
+    --------
+    >>> R, t = np.eye(3), np.array([0.1, 0.0, 5.0])
+    >>> P_pp = weak_perspective_matrix(R, t, 100.0, 100.0, principal_point=(320, 240))
+    >>> P_t = weak_perspective_matrix(R, t + [3.2, 2.4, 0.0], 100.0, 100.0)
+    >>> bool(np.allclose(P_pp, P_t))   # the principal point is a translation in disguise
+    True
     """
     Rm = check_rotation(R)
     tv = check_matrix(t, (3,), "t")

@@ -203,6 +203,15 @@ def test_parallel_rails_demo_state():
     assert np.allclose(vp, far, atol=1e-2)
     d.set(yaw=30)
     assert d.state["vanishing_point"][0] != pytest.approx(vp[0])
+    near, far_gap = d.state["sleeper_gaps"]["affine"]
+    assert near == pytest.approx(far_gap)                       # no foreshortening
+    near, far_gap = d.state["sleeper_gaps"]["perspective"]
+    assert near > 10 * far_gap                                  # perspective crowds the far sleepers
+    for yaw, pitch in ((-30, 2), (30, 40), (-30, 40), (30, 2)):  # every corner of the ranges shows track
+        d.set(yaw=yaw, pitch=pitch)
+        u, v = d.figure.axes[0].lines[0].get_data()
+        inside = (u > 0) & (u < 640) & (v > 0) & (v < 480)
+        assert inside.sum() >= 6, (yaw, pitch)   # segment end points inside the picture
 
 
 def test_lesson05_exercises(capsys):

@@ -132,3 +132,6 @@ def test_nbgrader_generates_the_assignment_and_autogrades_submissions(tmp_path):
               for c in graded if c["metadata"]["nbgrader"]["grade"]}
     assert [k for k, v in errors.items() if v] == ["check_intersect_lines"]
     assert "return the homogeneous 3-vector" in errors["check_intersect_lines"][0]["evalue"]  # the diagnosis stays
+    _nbgrader(course, "generate_feedback", lesson)  # what the student gets back
+    feedback = (course / "feedback" / "bob" / lesson / f"{lesson}.html").read_text()
+    assert "return the homogeneous 3-vector instead" in feedback and "Score: 2.0 / 3.0" in feedback

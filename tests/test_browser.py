@@ -42,27 +42,13 @@ def test_lesson_06_runs_and_a_slider_moves_the_figure(lab):
             demo = page.locator(".camlab-demo-parallel-lines")
             demo.wait_for(state="attached")
             demo.scroll_into_view_if_needed()
-            figure = demo.locator("canvas").first
-            figure.wait_for(state="visible")
-            readout = demo.locator("pre").first
+            demo.locator("canvas").first.wait_for(state="visible")
             page.wait_for_function(
                 "() => (document.querySelector('.camlab-demo-parallel-lines pre') || {}).textContent?.includes('l1 × l2')")
             page.wait_for_function(browser.ALL_CELLS_RUN, polling=500)
             page.wait_for_timeout(1000)
-            demo.scroll_into_view_if_needed()
-            before_png, before_text = figure.screenshot(), readout.text_content()
-
-            # Click the angle slider's track at 80 % (a click needs no keyboard focus, which
-            # JupyterLab may move while it renders).
-            track = demo.locator(".noUi-base").first
-            box = track.bounding_box()
-            track.click(position={"x": 0.8 * box["width"], "y": box["height"] / 2})
-            # The HTML readout replaces its <pre> on every update: query it afresh each poll.
-            page.wait_for_function(
-                "(old) => document.querySelector('.camlab-demo-parallel-lines pre').textContent !== old",
-                arg=before_text, polling=250)
-            page.wait_for_timeout(1500)  # let the kernel's blitted image reach the canvas
-            after_png, after_text = figure.screenshot(), readout.text_content()
+            before_png, after_png, before_text, after_text = browser.click_slider(
+                page, "camlab-demo-parallel-lines", 0.8)  # the angle slider
             errors = page.locator(".jp-OutputArea-output[data-mime-type='application/vnd.jupyter.stderr']")
             stderr = [t for t in errors.all_text_contents() if "Error" in t]
             # Each figure's bundle also carries a static PNG for readers without a kernel;

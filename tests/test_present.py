@@ -86,21 +86,10 @@ def test_camlab_present_serves_demos_without_code_and_a_slider_moves_a_figure(tm
                 for name in demo_names:
                     page.locator(f".camlab-demo-{name} canvas").first.wait_for(state="visible")
                 load_seconds = time.time() - started
-                demo = page.locator(".camlab-demo-transformation-hierarchy")
-                demo.scroll_into_view_if_needed()
-                figure = demo.locator("canvas").first
-                readout = demo.locator("pre").first
                 page.wait_for_timeout(2000)
-                before_png, before_text = figure.screenshot(), readout.text_content()
-                page.screenshot(path=str(tmp_path / "present_07.png"), full_page=False)
-                track = demo.locator(".noUi-base").first  # the rotation slider
-                box = track.bounding_box()
-                track.click(position={"x": 0.85 * box["width"], "y": box["height"] / 2})
-                page.wait_for_function(
-                    "(old) => document.querySelector('.camlab-demo-transformation-hierarchy pre').textContent !== old",
-                    arg=before_text, polling=250)
-                page.wait_for_timeout(1500)  # let the kernel's new image reach the canvas
-                after_png, after_text = figure.screenshot(), readout.text_content()
+                page.screenshot(path=str(tmp_path / "present_07.png"))
+                before_png, after_png, before_text, after_text = browser.click_slider(
+                    page, "camlab-demo-transformation-hierarchy", 0.85)  # the rotation slider
                 text = page.locator("body").inner_text()
                 code_cells = page.locator(".jp-InputArea-editor").count()
             finally:

@@ -51,6 +51,21 @@ def test_rectify_pair_vertical_disparity_drops():
     demo.set(method="uncalibrated")
     unc = demo.state["vertical_median"]
     assert raw > 5 and cal < 0.1 and unc < 0.5
+    # the calibrated route uses the stereo-calibrated cameras, so it is not exact: its error is
+    # the calibration's (true cameras would give ~1e-10 px, a spike that teaches nothing)
+    assert cal > 1e-3
+
+
+def test_epipolar_lines_forward_motion_puts_the_epipole_in_the_image():
+    demo = demos.epipolar_lines()
+    assert not demo.state["epipole_inside"]          # the side-by-side rig: far outside
+    demo.set(motion="forward (driving)", toe_in=5.0)
+    assert demo.state["epipole_inside"]
+    e2 = demo.state["epipoles"].e2
+    u, v = e2[:2] / e2[2]
+    assert 0 < u < 639 and 0 < v < 479
+    # every epipolar line passes through it
+    assert abs(demo.state["line_right"] @ e2) < 1e-9 * np.linalg.norm(demo.state["line_right"]) * np.linalg.norm(e2)
 
 
 def test_disparity_demo_depth_accuracy_and_block_size():

@@ -72,6 +72,11 @@ def test_animated_images_are_kept_at_the_resolution_shown():
     assert crisp.get_array().shape == (480, 640)
     crisp.set_data(big)
     assert set(np.unique(np.isin(crisp.get_array(), big))) == {True}  # nearest: source values only
+    ax.set_autoscale_on(False)
+    image.set_extent((0, 64, 48, 0))  # shown 10x smaller: refitted from the full array
+    assert image.get_array().shape[1] < 20
+    image.set_extent(extent)
+    assert image.get_array().shape == shown.shape
     small = np.ones((20, 30))
     image.set_data(small)
     assert image.get_array().shape == (20, 30)  # smaller than shown: untouched

@@ -112,3 +112,23 @@ def open_notebook(page, lab: dict, path: str) -> None:
     """Open ``path`` in a fresh workspace and wait for its kernel."""
     page.goto(f"{lab['url']}/lab/workspaces/t{secrets.token_hex(4)}/tree/{path}?reset&token={lab['token']}")
     page.wait_for_function(KERNEL_IDLE, polling=500)
+
+
+def click_slider(page, demo: str, fraction: float) -> tuple[bytes, bytes, str, str]:
+    """Click the first slider of the demo with CSS class ``demo`` at ``fraction`` of its track.
+
+    Returns ``(figure PNG before, after, readout text before, after)``. A click needs no
+    keyboard focus (which JupyterLab may move while it renders); the HTML readout replaces
+    its <pre> on every update, so it is queried afresh while waiting for the change.
+    """
+    box_ = page.locator(f".{demo}")
+    box_.scroll_into_view_if_needed()
+    figure, readout = box_.locator("canvas").first, box_.locator("pre").first
+    before_png, before_text = figure.screenshot(), readout.text_content()
+    track = box_.locator(".noUi-base").first
+    box = track.bounding_box()
+    track.click(position={"x": fraction * box["width"], "y": box["height"] / 2})
+    page.wait_for_function(f"(old) => document.querySelector('.{demo} pre').textContent !== old",
+                           arg=before_text, polling=250)
+    page.wait_for_timeout(1500)  # let the kernel's new image reach the canvas
+    return before_png, figure.screenshot(), before_text, readout.text_content()

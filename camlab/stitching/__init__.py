@@ -37,7 +37,6 @@ pixel (docs/conventions.md).
 """
 from __future__ import annotations
 
-import warnings
 from typing import NamedTuple, Sequence
 
 import numpy as np
@@ -49,8 +48,9 @@ from .._validate import CamlabInputError, DegenerateError, check_intrinsics
 from ..projective import map_points
 from ..warp import canvas_bounds, warp_perspective
 
-__all__ = ["BLENDS", "MatchGraph", "PairRegistration", "PairReport", "StitchResult", "WarpedImages", "blend",
-           "canvas_box", "cylindrical_warp", "feather_weights", "gain_compensation", "laplacian_blend", "match_graph",
+__all__ = ["BLENDS", "PROJECTION_CHOICES", "MatchGraph", "PairRegistration", "PairReport", "StitchResult",
+           "WarpedImages", "blend", "canvas_box", "cylindrical_warp", "dp_seam_masks", "feather_weights", "largest_rectangle",
+           "gain_compensation", "laplacian_blend", "match_graph",
            "overlap_difference", "prepare_images", "register_pair", "seam_masks", "seam_step", "stitch", "warp_images"]
 
 BLENDS = ("overwrite", "feather", "multiband")
@@ -127,7 +127,8 @@ class PairRegistration(NamedTuple):
 def register_pair(features1: _feat.Features, features2: _feat.Features, *, ratio: float = 0.75,
                   mutual: bool = False, threshold: float = 3.0, min_inliers: int = 15,
                   rng: np.random.Generator | None = None, matches: _feat.Matches | None = None,
-                  refine: bool = True, approximate: bool = False) -> PairRegistration:
+                  refine: bool = True, approximate: bool = False, confidence: float = 0.999,
+                  max_iters: int = 2000) -> PairRegistration:
     r"""Register image 1 onto image 2: match features, fit H by RANSAC, judge the result.
 
     The pair is accepted when RANSAC finds at least ``min_inliers`` inliers *and* more
@@ -154,6 +155,8 @@ def register_pair(features1: _feat.Features, features2: _feat.Features, *, ratio
         Use these matches instead of matching (e.g. re-filtered ones from a slider).
     approximate : bool
         Match with FLANN instead of brute force (:func:`camlab.features.knn_match`).
+    confidence, max_iters : float, int
+        RANSAC's stopping rule (:func:`camlab.homography.ransac_homography`).
     """
     rng = np.random.default_rng(0) if rng is None else rng
     m = _feat.match_features(features1, features2, ratio, mutual, approximate=approximate) if matches is None else matches
@@ -163,7 +166,7 @@ def register_pair(features1: _feat.Features, features2: _feat.Features, *, ratio
         return PairRegistration(None, m, none, float("nan"), False,
                                 f"too few matches: {n} (need at least {max(min_inliers, 5)})")
     try:
-        r = _hg.ransac_homography(m.src, m.dst, threshold, 0.999, 2000, rng)
+        r = _hg.ransac_homography(m.src, m.dst, threshold, confidence, max_iters, rng)
     except DegenerateError as exc:
         return PairRegistration(None, m, none, float("nan"), False, f"RANSAC failed: {exc}")
     H, inl = r.H, r.inliers
@@ -236,7 +239,8 @@ class MatchGraph(NamedTuple):
 
 def match_graph(features: Sequence[_feat.Features], *, ratio: float = 0.75, mutual: bool = False,
                 threshold: float = 3.0, min_inliers: int = 15, rng: np.random.Generator | None = None,
-                reference: int | None = None, approximate: bool = False) -> MatchGraph:
+                reference: int | None = None, approximate: bool = False, refine: bool = True,
+                confidence: float = 0.999, max_iters: int = 2000) -> MatchGraph:
     r"""Register every pair, choose the reference image and chain homographies to it.
 
     1. Register each pair i < j (:func:`register_pair`).
@@ -256,7 +260,8 @@ def match_graph(features: Sequence[_feat.Features], *, ratio: float = 0.75, mutu
     for i in range(n):
         for j in range(i + 1, n):
             pairs[(i, j)] = register_pair(feats[i], feats[j], ratio=ratio, mutual=mutual, threshold=threshold,
-                                          min_inliers=min_inliers, rng=rng, approximate=approximate)
+                                          min_inliers=min_inliers, rng=rng, approximate=approximate,
+                                          refine=refine, confidence=confidence, max_iters=max_iters)
     degree = np.zeros(n, int)
     strength = np.zeros(n, int)
     for (i, j), p in pairs.items():
@@ -456,19 +461,30 @@ def warp_images(images: Sequence[np.ndarray], homographies: Sequence[np.ndarray]
 
 
 def gain_compensation(warped: WarpedImages, sigma_n: float = 10.0 / 255, sigma_g: float = 1.0,
-                      reference: int | None = None) -> np.ndarray:
+                      reference: int | None = None, megapixels: float | None = 0.1,
+                      clip: tuple[float, float] = (2 / 255, 253 / 255)) -> np.ndarray:
     r"""One exposure gain per image so that overlapping regions agree (Brown & Lowe 2007, sec. 6).
 
     Minimises, over all overlapping pairs with :math:`N_{ij}` common pixels and mean
     intensities :math:`\bar I_{ij}` (image i on the overlap) and :math:`\bar I_{ji}`,
 
     .. math:: e = \tfrac12 \sum_{i,j} N_{ij} \left( (g_i \bar I_{ij} - g_j \bar I_{ji})^2 / \sigma_N^2
-              + (1 - g_i)^2 / \sigma_g^2 \right),
+              + (1 - g_i)^2 / \sigma_g^2 \right).
 
-    a linear least-squares problem in the gains (the prior keeps them near 1). The default
+    Setting :math:`\partial e / \partial g_i = 0` gives one linear equation per image,
+
+    .. math:: g_i \sum_{j} N_{ij} \Big(\frac{2 \bar I_{ij}^2}{\sigma_N^2} + \frac{1}{\sigma_g^2}\Big)
+              - \sum_j g_j N_{ij} \frac{2 \bar I_{ij} \bar I_{ji}}{\sigma_N^2} = \sum_j \frac{N_{ij}}{\sigma_g^2},
+
+    solved directly (the prior keeps the gains near 1 and the system regular). The default
     :math:`\sigma_g = 1` is weaker than Brown & Lowe's 0.1: exposures in a hand-held set
     can differ by 30% or more, and a strong prior would leave part of that step. With
     ``reference`` given, all gains are divided by that image's gain (it keeps its look).
+
+    Means are taken on a subsampled canvas of about ``megapixels`` (exposure is smooth; None:
+    every pixel) and only over pixels that no image clips: a channel at or beyond ``clip``
+    (black or saturated) has lost its true brightness, and an over-exposed white sky would
+    otherwise pull the gain (and, scaled, turn grey or cyan).
 
     Returns
     -------
@@ -476,15 +492,20 @@ def gain_compensation(warped: WarpedImages, sigma_n: float = 10.0 / 255, sigma_g
         Multiply image k by ``gains[k]``.
     """
     n = len(warped.images)
+    h, w = warped.shape
+    step = 1 if megapixels is None else max(1, int(round(np.sqrt(h * w / (megapixels * 1e6)))))
+    imgs = [im[::step, ::step] for im in warped.images]
+    lum = [im.mean(axis=2) for im in imgs]
+    ok = [m[::step, ::step] & (im.min(axis=2) > clip[0]) & (im.max(axis=2) < clip[1])
+          for m, im in zip(warped.masks, imgs)]
     A = np.zeros((n, n))
     b = np.zeros(n)
-    lum = [im.mean(axis=2) for im in warped.images]
     for i in range(n):
         for j in range(n):
             if i == j:
                 continue
-            both = warped.masks[i] & warped.masks[j]
-            N = int(both.sum())
+            both = ok[i] & ok[j]
+            N = int(both.sum()) * step * step
             if N == 0:
                 continue
             Iij, Iji = float(lum[i][both].mean()), float(lum[j][both].mean())
@@ -513,6 +534,93 @@ def seam_masks(weights: Sequence[np.ndarray]) -> list[np.ndarray]:
     best = np.argmax(W, axis=0)
     covered = W.max(axis=0) > 0
     return [(best == k) & covered for k in range(len(weights))]
+
+
+def _seam_path(cost: np.ndarray) -> np.ndarray:
+    r"""The cheapest top-to-bottom path through ``cost`` (one column per row, steps of -1, 0, +1).
+
+    Dynamic programming: :math:`E(r, c) = \text{cost}(r, c) + \min(E(r-1, c-1), E(r-1, c), E(r-1, c+1))`,
+    then walk back up from the cheapest bottom cell.
+    """
+    h, w = cost.shape
+    E = cost.copy()
+    back = np.zeros((h, w), np.int64)
+    for r in range(1, h):
+        prev = np.stack([np.r_[np.inf, E[r - 1, :-1]], E[r - 1], np.r_[E[r - 1, 1:], np.inf]])
+        k = np.argmin(prev, axis=0)
+        back[r] = k - 1
+        E[r] += prev[k, np.arange(w)]
+    path = np.zeros(h, np.int64)
+    path[-1] = int(np.argmin(E[-1]))
+    for r in range(h - 1, 0, -1):
+        path[r - 1] = path[r] + back[r, path[r]]
+    return path
+
+
+def dp_seam_masks(warped: WarpedImages, megapixels: float = 0.1) -> list[np.ndarray]:
+    r"""Seams along which the images differ least, found by dynamic programming at low resolution.
+
+    Images are added one at a time. Where image k overlaps what is already placed, the
+    cost of a seam through a pixel is how different the two images are there, in colour
+    and in gradient, :math:`|I_a - I_k| + |\nabla I_a - \nabla I_k|` (summed over channels),
+    and :func:`_seam_path` finds the cheapest path across the overlap (top to bottom, or
+    left to right if the overlap is wider than tall); each side goes to the image that
+    owns the pixels beyond it. A seam that avoids differences (a moving person, parallax, a
+    small misregistration) hides them: the blend then only has to hide exposure. The
+    search runs on a canvas subsampled to about ``megapixels``; the labels are scaled back
+    up (nearest), and pixels the coarse labels miss go to the largest feather weight.
+
+    Returns
+    -------
+    list of (h, w) bool ndarray
+        Disjoint seam masks covering the union of the footprints.
+    """
+    import cv2
+
+    h, w = warped.shape
+    step = max(1, int(round(np.sqrt(h * w / (megapixels * 1e6)))))
+    imgs = [im[::step, ::step] for im in warped.images]
+    masks = [m[::step, ::step] for m in warped.masks]
+    label = np.full(masks[0].shape, -1, np.int64)
+    comp = np.zeros_like(imgs[0])
+    for k, (im, m) in enumerate(zip(imgs, masks)):
+        placed = label >= 0
+        ov = placed & m
+        if ov.sum() > 2:
+            rows, cols = np.flatnonzero(ov.any(axis=1)), np.flatnonzero(ov.any(axis=0))
+            box = (slice(rows[0], rows[-1] + 1), slice(cols[0], cols[-1] + 1))
+            a, b = comp[box], im[box]
+            diff = np.abs(a - b).sum(axis=2)
+            for ax in (0, 1):
+                diff += np.abs(np.diff(a, axis=ax, prepend=0) - np.diff(b, axis=ax, prepend=0)).sum(axis=2)
+            cost = np.where(ov[box], diff, 1e6)
+            tall = cost.shape[0] >= cost.shape[1]
+            path = _seam_path(cost if tall else cost.T)
+            grid = np.arange(cost.shape[1] if tall else cost.shape[0])
+            left = grid[None, :] <= path[:, None]
+            left = left if tall else left.T
+            # which side is k's: where k alone lies, in the box's frame
+            only_k, only_a = (m & ~placed)[box], (placed & ~m)[box]
+            axis = 1 if tall else 0
+            pos = np.indices(only_k.shape)[axis]
+            k_left = (pos[only_k].mean() if only_k.any() else np.inf) < (pos[only_a].mean() if only_a.any() else -np.inf)
+            take = ov[box] & (left if k_left else ~left)
+            label[box][take] = k
+            comp[box][take] = b[take]
+        fresh = m & ~placed
+        label[fresh] = k
+        comp[fresh] = im[fresh]
+    full = cv2.resize(label.astype(np.float32), (w, h), interpolation=cv2.INTER_NEAREST).astype(np.int64)
+    out = [(full == k) & m for k, m in enumerate(warped.masks)]
+    union = np.logical_or.reduce(warped.masks)
+    missed = union & ~np.logical_or.reduce(out)
+    if missed.any():  # only in the box around the missed pixels (a thin rim)
+        rows, cols = np.flatnonzero(missed.any(axis=1)), np.flatnonzero(missed.any(axis=0))
+        box = (slice(rows[0], rows[-1] + 1), slice(cols[0], cols[-1] + 1))
+        fallback = seam_masks([wk[box] for wk in warped.weights])
+        for o, f in zip(out, fallback):
+            o[box] |= f & missed[box]
+    return out
 
 
 def overlap_difference(warped: WarpedImages, i: int = 0, j: int = 1) -> float:
@@ -655,18 +763,22 @@ def laplacian_blend(images: Sequence[np.ndarray], masks: Sequence[np.ndarray], l
     out = bands[-1]
     for lv in range(levels - 1, -1, -1):
         out = cv2.pyrUp(out, dstsize=(bands[lv].shape[1], bands[lv].shape[0])).reshape(bands[lv].shape) + bands[lv]
-    return np.where(union[..., None], np.clip(out, 0, 1), 0).astype(np.float32)
+    out = np.clip(out, 0, 1, out=out).astype(np.float32, copy=False)
+    out[~union] = 0
+    return out
 
 
 def blend(warped: WarpedImages, method: str = "multiband", *, gains: ArrayLike | None = None,
-          levels: int = 5, feather_power: float = 1.0) -> np.ndarray:
+          levels: int = 5, feather_power: float = 1.0, seam: str = "voronoi") -> np.ndarray:
     r"""Blend images warped onto one canvas.
 
     * ``"overwrite"``: paint the images in order, each over the previous (hard seams:
       every exposure or alignment difference shows as an edge).
     * ``"feather"``: :math:`I = \sum_k w_k^p I_k / \sum_k w_k^p` with the warped
       :func:`feather_weights` (smooth seams; misaligned detail doubles: ghosts and blur).
-    * ``"multiband"``: :func:`laplacian_blend` over the :func:`seam_masks`.
+    * ``"multiband"``: :func:`laplacian_blend` over seam masks: ``seam="voronoi"``
+      (:func:`seam_masks`, the middle of each overlap) or ``"dp"`` (:func:`dp_seam_masks`,
+      along the smallest differences).
 
     Parameters
     ----------
@@ -685,12 +797,14 @@ def blend(warped: WarpedImages, method: str = "multiband", *, gains: ArrayLike |
     """
     if method not in BLENDS:
         raise CamlabInputError(f"method: expected one of {BLENDS}, got {method!r}")
+    if seam not in ("voronoi", "dp"):
+        raise CamlabInputError(f"seam: expected 'voronoi' or 'dp', got {seam!r}")
     imgs = warped.images
     if gains is not None:
         g = np.asarray(gains, dtype=float).ravel()
         if g.shape != (len(imgs),):
             raise CamlabInputError(f"gains: expected {len(imgs)} gains (one per image), got shape {g.shape}")
-        imgs = [np.clip(im * np.float32(gk), 0, 1) for im, gk in zip(imgs, g)]
+        imgs = [np.minimum(im * np.float32(gk), np.float32(1)) for im, gk in zip(imgs, g)]  # im >= 0
     h, w = warped.shape
     if method == "overwrite":
         out = np.zeros((h, w, imgs[0].shape[2]), np.float32)
@@ -705,9 +819,10 @@ def blend(warped: WarpedImages, method: str = "multiband", *, gains: ArrayLike |
             num += im * wp[..., None]
             den += wp
         return np.where(den[..., None] > 0, num / np.maximum(den, 1e-12)[..., None], 0).astype(np.float32)
-    return laplacian_blend(imgs, seam_masks(warped.weights), levels, footprints=warped.masks)
+    seams = dp_seam_masks(warped) if seam == "dp" else seam_masks(warped.weights)
+    return laplacian_blend(imgs, seams, levels, footprints=warped.masks)
 
 
 # --------------------------------------------------------------------------- the pipeline
 
-from .pipeline import PROJECTION_CHOICES, StitchResult, stitch  # noqa: E402  (uses the stages above)
+from .pipeline import PROJECTION_CHOICES, StitchResult, largest_rectangle, stitch  # noqa: E402  (uses the stages above)

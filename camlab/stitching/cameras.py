@@ -30,7 +30,7 @@ from typing import NamedTuple, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import CamlabInputError, DegenerateError, check_matrix
+from .._validate import DegenerateError, check_matrix
 from ..camera import rotation_from_axis_angle
 from ..optimize import huber_residuals, levenberg_marquardt
 
@@ -94,7 +94,8 @@ def focal_from_homography(H: ArrayLike, shape_src: Sequence[int], shape_dst: Seq
     h = h / np.linalg.norm(h)
 
     def pick(n1, d1, n2, d2):
-        v = n1 / d1 if abs(d1) > abs(d2) else n2 / d2
+        n, d = (n1, d1) if abs(d1) > abs(d2) else (n2, d2)
+        v = n / d if abs(d) > 1e-12 else float("nan")
         return float(np.sqrt(v)) if np.isfinite(v) and v > 0 else float("nan")
 
     f_dst = pick(-(h[0] * h[1] + h[3] * h[4]), h[6] * h[7],

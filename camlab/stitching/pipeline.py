@@ -5,10 +5,10 @@ r"""The whole panorama: :func:`stitch` runs every stage and says what it chose a
 3. The model. A **rotation** (:func:`camlab.stitching.cameras.estimate_cameras`: focal from
    the homographies, spanning-tree rotations, bundle adjustment, wave correction) explains
    a camera turning about its centre. If its residual is large, or the focal comes out
-   longer than 4 image diagonals (views under 14 degrees wide: a rotation cannot be told
-   from a flat scene), the images are taken as views of a **plane** (a map, a document, a facade from several positions) and every
-   homography is refined together (:func:`camlab.stitching.cameras.adjust_homographies`). If
-   that fails too, the camera moved in front of a 3-D scene: a warning gives both residuals.
+   longer than 2 image diagonals (views under about 30 degrees wide, where a flat scene
+   passes for a rotation), the **plane** model is tried: the images are taken as views of a plane (a map, a document, a facade from several positions) and every
+   homography is refined together (:func:`camlab.stitching.cameras.adjust_homographies`), and
+   wins if its residual is below 0.7 times the rotation's. If neither fits, the camera moved in front of a 3-D scene: a warning gives both residuals.
 4. The canvas (:mod:`camlab.stitching.projections`): planar, cylindrical or spherical;
    ``"auto"`` takes the plane for planar scenes and fields of view up to 100 degrees, the
    sphere beyond.
@@ -160,7 +160,7 @@ def _warp_curved(imgs: list, Ks: list, Rs: list, canvas) -> WarpedImages:
     for im, K, R, box in zip(imgs, Ks, Rs, canvas.boxes):
         patch, mask, wgt = warp_to_canvas(im, K, R, canvas, box, feather_weights(im.shape).astype(np.float32))
         r0, r1, c0, c1 = box
-        cols = np.arange(c0, c1) % w
+        cols = slice(c0, c1) if 0 <= c0 and c1 <= w else np.arange(c0, c1) % w  # a wrapping canvas: modulo w
         full = np.zeros((h, w, 3), np.float32)
         fm = np.zeros((h, w), bool)
         fw = np.zeros((h, w), np.float32)
@@ -171,6 +171,45 @@ def _warp_curved(imgs: list, Ks: list, Rs: list, canvas) -> WarpedImages:
         out_m.append(fm)
         out_w.append(fw)
     return WarpedImages(out_i, out_m, out_w, [None] * len(imgs), np.eye(3))
+
+
+def _warn_second_plane(graph, names: list, rng) -> None:
+    """Warn if an accepted pair's outliers follow a second homography: two planes, so the camera moved (parallax).
+
+    A camera that only turns maps every scene point by one homography; if the matches that
+    the first homography rejects agree on another one (at least 10 of them, and more than
+    8 + 0.3 of the outliers, the Brown & Lowe test), the scene has depth and the centre moved.
+    """
+    from ..homography import ransac_homography, transfer_error
+
+    rng = np.random.default_rng(1) if rng is None else rng
+    for (i, j), p in sorted(graph.pairs.items()):
+        out = ~p.inliers
+        n = int(out.sum())
+        if not p.accepted or n < 10:
+            continue
+        try:
+            r2 = ransac_homography(p.matches.src[out], p.matches.dst[out], 3.0, 0.99, 300, rng)
+        except (DegenerateError, CamlabInputError):
+            continue
+        k2 = int(r2.inliers.sum())
+        if k2 >= max(10, 8 + 0.3 * n):
+            off = float(np.median(transfer_error(p.H, p.matches.src[out][r2.inliers], p.matches.dst[out][r2.inliers])))
+            warnings.warn(f"stitch: {names[i]!r}-{names[j]!r}: {k2} matches follow a second plane, {off:.1f} px "
+                          f"(median) off the first homography: the camera moved between the photos (parallax), "
+                          f"so no single homography or rotation aligns everything; expect ghosts of near objects",
+                          UserWarning, stacklevel=3)
+
+
+def _warn_full_turn(Rs: list, names: list) -> None:
+    """Warn, naming the photos, if the camera turned through more than 360 degrees (in input order)."""
+    yaw = np.unwrap([np.arctan2(R[2, 0], R[2, 2]) for R in Rs])
+    turn = np.degrees(yaw - yaw[0])
+    if np.abs(turn).max() > 365:
+        again = [nm for nm, t in zip(names, turn) if abs(t) > 350]
+        warnings.warn(f"stitch: the photos turn through {np.abs(turn).max():.0f} degrees, more than a full circle: "
+                      f"{', '.join(repr(x) for x in again)} show again what the first photos showed; the canvas is "
+                      f"one full turn and the repeated views are blended in", UserWarning, stacklevel=3)
 
 
 def largest_rectangle(mask: np.ndarray) -> tuple[int, int, int, int]:
@@ -204,7 +243,7 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
            projection: str = "auto", K: ArrayLike | None = None, reference: int | None = None,
            rng: np.random.Generator | None = None, max_pixels: int = 40_000_000,
            names: Sequence[str] | None = None, crop: bool = False, rotation_tol: float = 1.0,
-           plane_tol: float = 1.5, registration_megapixels: float = 0.15) -> StitchResult:
+           plane_tol: float = 1.5, registration_megapixels: float | None = 0.15) -> StitchResult:
     """Stitch overlapping photos of a turning camera, or of a flat scene, into a panorama.
 
     See the module docstring for the stages.
@@ -236,8 +275,9 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
         finest octave mostly adds noise-level keypoints); their positions are mapped back,
         so every later stage works in full-resolution pixels. ``None``: full resolution.
     rotation_tol, plane_tol : float
-        RMS residuals (pixels) above which the rotation model, then the plane model, is
-        judged not to fit.
+        RMS residuals (pixels at the registration resolution) above which the rotation
+        model, then the plane model, is judged not to fit. The plane replaces the rotation
+        only if it fits clearly better (residual below 0.7 times the rotation's).
 
     Returns
     -------
@@ -276,7 +316,8 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
     times["features"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     graph = match_graph(feats, ratio=ratio, mutual=mutual, threshold=threshold, min_inliers=min_inliers,
-                        rng=rng, reference=reference, approximate=True)
+                        rng=rng, reference=reference, approximate=True, refine=False, confidence=0.995,
+                        max_iters=1000)  # bundle adjustment refines every pair together afterwards
     times["matching"] = time.perf_counter() - t0
     keep = [k for k in range(n) if graph.homographies[k] is not None]
     if len(keep) < 2:
@@ -295,21 +336,26 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
     shapes = [im.shape for im in imgs]
     diag = float(np.median([np.hypot(*sh[:2]) for sh in shapes]))
     f0 = estimate_focal({key: p.H for key, p in graph.pairs.items() if p.accepted}, shapes)
-    # views under 14 degrees wide: a rotation cannot be told from a flat scene (and its adjustment crawls)
-    telephoto = Kfix is None and f0 > 4 * diag and projection in ("auto", "planar")
+    # views under about 30 degrees wide: a flat scene passes for a rotation (and its adjustment crawls)
+    telephoto = Kfix is None and f0 > 2 * diag and projection in ("auto", "planar")
     est = None if telephoto else estimate_cameras(graph, shapes, K=Kfix)
     rot_rms = np.inf if est is None else est.bundle.rms_after
+    # residuals are in full-resolution pixels; features found on smaller copies are that much less precise
+    coarse = float(np.median([np.sqrt(im.shape[0] * im.shape[1] / (registration_megapixels * 1e6))
+                              for im in imgs])) if registration_megapixels else 1.0
+    rot_tol, pl_tol = rotation_tol * max(1.0, coarse), plane_tol * max(1.0, coarse)
     model, resid = "rotation", rot_rms
-    if (telephoto or rot_rms > rotation_tol) and projection in ("auto", "planar"):
-        adj = adjust_homographies(graph.homographies, inlier_matches(graph), reference=graph.reference)
-        model, Hs_plane, resid = "homography", adj.homographies, adj.rms_after
-        if adj.rms_after > plane_tol:
+    if (telephoto or rot_rms > rot_tol) and projection in ("auto", "planar"):
+        adj = adjust_homographies(graph.homographies, inlier_matches(graph, 100), reference=graph.reference)
+        if telephoto or adj.rms_after < 0.7 * rot_rms:  # a plane explains the matches clearly better
+            model, Hs_plane, resid = "homography", adj.homographies, adj.rms_after
+        if adj.rms_after > pl_tol and rot_rms > rot_tol:
             warnings.warn(f"stitch: neither a turning camera (rotation model residual {rot_rms:.2f} px) nor a flat "
                           f"scene (homography residual {adj.rms_after:.2f} px) explains the matches: the camera "
                           f"moved in front of a 3-D scene (parallax); expect ghosts and misaligned seams",
                           UserWarning, stacklevel=2)
-    elif rot_rms > rotation_tol:
-        warnings.warn(f"stitch: the rotation model leaves {rot_rms:.2f} px RMS (more than {rotation_tol} px): the "
+    elif rot_rms > rot_tol:
+        warnings.warn(f"stitch: the rotation model leaves {rot_rms:.2f} px RMS (more than {rot_tol:.2f} px): the "
                       f"camera moved (parallax) or the scene is flat; try projection='planar'", UserWarning,
                       stacklevel=2)
     if model == "homography":
@@ -318,6 +364,9 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
         Ks = [est.Ks[k] for k in keep]
         Rs = [est.Rs[k] for k in keep]
     sub_shapes = [shapes[k] for k in keep]
+    _warn_second_plane(graph, label, rng)
+    if model == "rotation":
+        _warn_full_turn(Rs, [label[k] for k in keep])
     chosen = projection
     if projection == "auto":
         chosen = "planar" if model == "homography" or max(_field_of_view(Ks, Rs, sub_shapes)) <= 100 else "spherical"
@@ -341,9 +390,6 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
     else:
         s = float(np.median([Kk[0, 0] for Kk in Ks]))
         canvas = make_canvas(Ks, Rs, sub_shapes, chosen, s, max_pixels=max_pixels)
-        if canvas.wraps:
-            warnings.warn("stitch: the photos turn through more than 360 degrees; the canvas is one full turn and "
-                          "the overlapping ends are blended", UserWarning, stacklevel=2)
         warped = _warp_curved(sub, Ks, Rs, canvas)
         outlines_sub = [_outline_curved(Kk, R, sh, canvas) for Kk, R, sh in zip(Ks, Rs, sub_shapes)]
     times["warping"] = time.perf_counter() - t0
@@ -352,7 +398,7 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
     g_sub = gain_compensation(warped, reference=ref_local) if compensate_gains else np.ones(len(keep))
     times["exposure"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    pano = blend(warped, blend_method, gains=g_sub, levels=levels)
+    pano = blend(warped, blend_method, gains=g_sub, levels=levels, seam="dp")
     union = np.logical_or.reduce(warped.masks)
     times["seams_blend"] = time.perf_counter() - t0
     masks_out = list(warped.masks)

@@ -77,5 +77,16 @@ def _fit_to_display(image: Any, array: Any) -> Any:
 
 def show_at_display_resolution(image: Any) -> None:
     """Make an ``AxesImage`` keep its data at the resolution it is shown (its extent stays)."""
-    set_data = image.set_data
-    image.set_data = lambda array: set_data(_fit_to_display(image, array))  # set_array calls it too
+    set_data, set_extent = image.set_data, image.set_extent
+    source: list[Any] = [None]  # the caller's full array, to refit when the extent changes
+
+    def fitted_data(array: Any) -> None:  # set_array calls it too
+        source[0] = array
+        set_data(_fit_to_display(image, array))
+
+    def fitted_extent(extent: Any, **kwargs: Any) -> None:
+        set_extent(extent, **kwargs)
+        if source[0] is not None:
+            set_data(_fit_to_display(image, source[0]))
+
+    image.set_data, image.set_extent = fitted_data, fitted_extent

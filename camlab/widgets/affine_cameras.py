@@ -144,30 +144,55 @@ def dolly_zoom():
     return build_demo("dolly_zoom", controls, view, update, title="Dolly zoom: when is weak perspective good enough?")
 
 
-@register(lesson="05", sweep={"yaw": [-50, 40], "pitch": [5, 40]})
+RAIL_START, RAIL_END = -3.0, 40.0   # metres along +Y; the camera stands at Y = -4
+NEAR_FAR = (-2.0, 20.0)              # the two sleeper gaps compared for foreshortening
+
+
+def rail_track() -> np.ndarray:
+    """Four parallel rails and equally spaced (1 m) sleepers on the ground, (M, 2, 3) metres."""
+    rails = np.array([[[y, RAIL_START, 0.0], [y, RAIL_END, 0.0]] for y in (-1.5, -0.5, 0.5, 1.5)])
+    sleepers = np.array([[[-1.7, s, 0.0], [1.7, s, 0.0]] for s in np.arange(RAIL_START, RAIL_END, 1.0)])
+    return np.concatenate([rails, sleepers])
+
+
+def sleeper_gaps(P: np.ndarray) -> tuple[float, float]:
+    """Image length (px) of a 1 m stretch of track near the camera and far away, under camera P."""
+    gaps = []
+    for y in NEAR_FAR:
+        a, b = cm.project_points(P, np.array([[0.0, y, 0.0], [0.0, y + 1.0, 0.0]]))
+        gaps.append(float(np.linalg.norm(b - a)))
+    return gaps[0], gaps[1]
+
+
+# Yaw and pitch stay within the field of view (f = 500 px: half-angles 33 and 26 degrees), so
+# the perspective image always shows the vanishing point or the track, like the affine one.
+@register(lesson="05", sweep={"yaw": [-30, 30], "pitch": [2, 40]})
 def parallel_rails():
-    """Parallel rails in a perspective image meet at a vanishing point; an affine image keeps them parallel."""
-    view = FigureView(figsize=(9, 3.6))
+    """Parallel rails meet at a vanishing point in perspective; an affine image keeps them parallel,
+    and keeps equal sleepers equal at every depth (no foreshortening)."""
+    view = FigureView(figsize=(10, 4.0))
     ax_p, ax_a = view.fig.subplots(1, 2)
-    rails = np.array([[[y, 0.0, 0.0], [y, 40.0, 0.0]] for y in (-1.5, -0.5, 0.5, 1.5)])
-    sleepers = np.array([[[-1.7, s, 0.0], [1.7, s, 0.0]] for s in np.arange(0.0, 40.0, 1.0)])
-    scene = np.concatenate([rails, sleepers])
-    ax_p.set_title("perspective: rails meet at the vanishing point", fontsize=9)
-    ax_a.set_title("affine approximation: rails stay parallel", fontsize=9)
-    lines = []
+    scene = rail_track()
+    ax_p.set_title("perspective: rails meet, far sleepers crowd", fontsize=9)
+    ax_a.set_title("affine: rails stay parallel, sleepers stay evenly spaced", fontsize=9)
+    lines, texts = [], []
     for ax in (ax_p, ax_a):
         ax.set_xlim(-0.5, 639.5)
         ax.set_ylim(479.5, -0.5)
         ax.set_aspect("equal")
         ax.set_xticks([0, 320, 640])
         ax.set_yticks([0, 240, 480])
+        ax.set_xlabel("u (px)", fontsize=8)
         ax.tick_params(labelsize=7, labelleft=ax is ax_p)
         (ln,) = ax.plot([], [], color="k", lw=1.0)
         lines.append(ln)
+        texts.append(ax.text(0.02, 0.97, "", transform=ax.transAxes, fontsize=8, family="monospace", va="top",
+                             bbox=dict(fc="white", ec="0.8", alpha=0.9)))
+    ax_p.set_ylabel("v (px)", fontsize=8)
     (vp,) = ax_p.plot([], [], "o", color="tab:red", ms=8)
     (horizon,) = ax_p.plot([], [], color="tab:red", lw=0.8, ls="--")
-    view.animate(*lines, vp, horizon)
-    controls = {"yaw": slider(0, -60, 60, 1, "yaw (deg)"), "pitch": slider(15, 2, 60, 1, "pitch down (deg)")}
+    view.animate(*lines, vp, horizon, *texts)
+    controls = {"yaw": slider(0, -30, 30, 1, "yaw (deg)"), "pitch": slider(15, 2, 40, 1, "pitch down (deg)")}
 
     def update(v, state):
         yaw, pitch = np.deg2rad(v["yaw"]), np.deg2rad(v["pitch"])
@@ -186,6 +211,10 @@ def parallel_rails():
         l_h = np.cross(af.image_of_direction(cam.P, [1.0, 0.0, 0.0]), v_p)
         us = np.array([-1.0, 641.0])
         horizon.set_data(us, -(l_h[0] * us + l_h[2]) / l_h[1] if abs(l_h[1]) > 1e-12 else [np.nan, np.nan])
-        state.update(vanishing_point=vpt, affine_direction=v_a, camera=cam, P_affine=P_aff, horizon=l_h)
+        gaps = {"perspective": sleeper_gaps(cam.P), "affine": sleeper_gaps(P_aff)}
+        for text, (near, far) in zip(texts, gaps.values()):
+            text.set_text(f"1 m of track: {near:5.1f} px near\n              {far:5.1f} px at 20 m")
+        state.update(vanishing_point=vpt, affine_direction=v_a, camera=cam, P_affine=P_aff, horizon=l_h,
+                     sleeper_gaps=gaps)
 
     return build_demo("parallel_rails", controls, view, update, title="Parallel lines: vanishing versus parallel")
