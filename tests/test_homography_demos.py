@@ -144,3 +144,29 @@ def test_dlt_exercise_rejects_the_unnormalised_dlt_and_names_normalisation():
 
 def test_dlt_exercise_accepts_any_hartley_style_normalisation():
     assert check("dlt_homography", lambda s, d: _student_dlt(s, d, normalise=True))
+
+
+def test_ransac_demo_colours_verdicts_against_the_truth_and_clears_on_failure():
+    d = h07.ransac_outliers()
+    d.set(outliers=0.2, threshold=10.0, seed=0)
+    kept_in, kept_out, lost_in, rejected_out = d.state["verdicts"]
+    assert kept_in + lost_in == 160 and kept_out + rejected_out == 40
+    arrows = d.figure.axes[0].collections[0]
+    assert len(arrows.get_segments()) == 200
+    d.set(outliers=0.8, threshold=0.5)          # nothing supports any hypothesis
+    assert d.state["iterations"] is None and d.state["H"] is None and "too few inliers" in d.state["error"]
+    assert len(arrows.get_segments()) == 0       # no stale picture of the last success
+
+
+def test_drag_and_hierarchy_warn_when_the_picture_is_torn_through_infinity():
+    d = h07.drag_homography()
+    assert d.state["torn"] is False
+    d.set(corners="40, 30; 250, 60; 60, 230; 230, 200")   # a bow tie
+    assert d.state["torn"] is True
+    texts = [t for t in d.figure.axes[1].texts if t.get_visible() and "infinity" in t.get_text()]
+    assert texts
+    h = h07.transformation_hierarchy()
+    h.set(group="projective", v1=14.0, v2=5.0)
+    assert h.state["torn"] is True
+    h.set(v1=1.0, v2=0.0)
+    assert h.state["torn"] is False

@@ -271,3 +271,26 @@ def test_vanishing_point_ransac_handles_an_ideal_point_and_bad_input():
     assert fit.inliers.all() and abs(fit.point[2]) < 1e-6 * np.linalg.norm(fit.point)
     with pytest.raises(pj.CamlabInputError, match="segments"):
         pj.vanishing_point_ransac(np.zeros((1, 2, 2)))
+
+
+def test_splits_at_infinity_sees_a_bow_tie():
+    from camlab.homography import estimate_homography
+    square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    convex = estimate_homography(square, [[0, 0], [2, 0.2], [1.8, 1.5], [0.1, 1.2]])
+    bow_tie = estimate_homography(square, [[0, 0], [2, 0.2], [0.1, 1.2], [1.8, 1.5]])
+    assert not pj.splits_at_infinity(convex, square) and pj.splits_at_infinity(bow_tie, square)
+
+
+def test_vanishing_points_demo_draws_offimage_points_on_the_horizon():
+    import os
+    os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
+    from camlab.widgets import projective_plane as demos
+    d = demos.vanishing_points()
+    d.set(pitch=5.0, yaw=-35.0, focal=400.0)                # vp_x far left of the image
+    ax = d.figure.axes[0]
+    horizon, vz, vx = [line for line in ax.get_lines() if line.get_animated()][:3]
+    (x, y), hz = (vx.get_xdata()[0], vx.get_ydata()[0]), d.state["horizon"]
+    assert abs(hz @ [x, y, 1.0]) / np.linalg.norm(hz[:2]) < 1.0    # the arrow sits on the horizon
+    d.set(pitch=40.0)
+    assert d.state["horizon_visible"] is False
+    assert any(t.get_visible() and "above the image" in t.get_text() for t in ax.texts)

@@ -98,10 +98,19 @@ def _on_top(view: FigureView, ax: Any) -> None:
         view.animate(ax.get_legend())
 
 
-def _warning(view: FigureView, ax: Any) -> Any:
-    """An animated red note in the top-left corner of ``ax`` (empty text hides it)."""
-    return view.animate(ax.text(0.02, 0.02, "", transform=ax.transAxes, va="bottom", fontsize=8, color="tab:red",
-                                bbox=dict(fc="white", ec="tab:red", alpha=0.9)))
+def _warning(view: FigureView, ax: Any, x: float = 0.02, y: float = 0.02, ha: str = "left",
+             va: str = "bottom") -> Callable[[str], None]:
+    """An animated red note in ``ax`` (axes coordinates; default the bottom-left corner);
+    returns ``say(text)`` ("" hides it: a hidden text costs nothing to draw, an empty one
+    with a box does)."""
+    note = view.animate(ax.text(x, y, "", transform=ax.transAxes, ha=ha, va=va, fontsize=8, color="tab:red",
+                                bbox=dict(fc="white", ec="tab:red", alpha=0.9), visible=False))
+
+    def say(text: str) -> None:
+        note.set_text(text)
+        note.set_visible(bool(text))
+
+    return say
 
 
 TORN = ("the line that H sends to infinity crosses the picture:\n"
@@ -173,7 +182,7 @@ def transformation_hierarchy() -> Demo:
         info = hg.HIERARCHY[v["group"]]
         kind = hg.classify(Hg)
         torn = splits_at_infinity(H, picture_corners)
-        warning.set_text(TORN if torn else "")
+        warning(TORN if torn else "")
         state.update(H=Hg, group=v["group"], classified=kind, dof=info["dof"], torn=torn)
         title.set_text(f"{v['group']}: {info['dof']} dof")
         readout.value = _pre("H =\n" + np.array2string(Hg, precision=4, suppress_small=True)
@@ -238,12 +247,12 @@ def drag_homography() -> Demo:
             H = hg.estimate_homography(SQUARE, corners)
         except (ValueError, hg.DegenerateError) as exc:
             state.update(error=str(exc))
-            warning.set_text("cannot use these corners:\n" + str(exc)[:80])
+            warning("cannot use these corners:\n" + str(exc)[:80])
             readout.value = _pre(f"cannot use these corners:\n{exc}")
             return
         current["corners"] = corners
         torn = splits_at_infinity(H, SQUARE)
-        warning.set_text("a bow tie or a dent: " + TORN if torn else "")
+        warning("a bow tie or a dent: " + TORN if torn else "")
         im.set_data(warp_perspective(pic, H, out_hw, method="cv2", fill=255))
         m = map_points(H, line_pts)
         mapped_line.set_data(m[:, 0], m[:, 1])
@@ -313,8 +322,7 @@ def ransac_outliers() -> Demo:
     for name, colour in _VERDICTS:
         ax.plot([], [], "-", color=colour, lw=2, label=name)
     ax.legend(loc="lower right", fontsize=7, ncol=2, framealpha=0.9)
-    failure = view.animate(ax.text(0.5, 0.5, "", transform=ax.transAxes, ha="center", va="center", fontsize=9,
-                                   color="tab:red", wrap=True, bbox=dict(fc="white", ec="tab:red")))
+    failure = _warning(view, ax, 0.5, 0.55, "center", "center")
     eps = np.linspace(0.0, 0.97, 300)
     ax_k.semilogy(eps, samples_needed(eps), color="0.5", label="k = log(1-p) / log(1-(1-ε)⁴), p = 0.995")
     needed = view.animate(ax_k.plot([], [], "o", mfc="none", mec="tab:blue", ms=9,
@@ -334,15 +342,16 @@ def ransac_outliers() -> Demo:
         try:
             r = hg.ransac_homography(src, dst, v["threshold"], 0.995, 1000, np.random.default_rng(int(v["seed"])))
         except hg.DegenerateError as exc:  # clear the last result: a stale plot would be a lie
-            state.update(iterations=None, error=str(exc), verdicts=None)
+            state.update(iterations=None, inliers=None, recall=None, corner_error=None, H=None, verdicts=None,
+                         outlier_fraction_found=None, samples_needed=None, error=str(exc))
             for artist in (box_est, dot, needed):
                 artist.set_data([], [])
             arrows.set_segments([])
             heads.set_offsets(np.zeros((0, 2)))
-            failure.set_text("RANSAC failed:\n" + str(exc)[:90] + "...")
+            failure("RANSAC failed: no hypothesis had real support\n(the full message is beside the sliders)")
             readout.value = _pre(str(exc))
             return
-        failure.set_text("")
+        failure("")
         verdict = np.select([~out & r.inliers, out & r.inliers, ~out & ~r.inliers], [0, 1, 2], 3)
         colours = np.array([to_rgba(c) for _, c in _VERDICTS])[verdict]
         order = np.argsort(-verdict)  # rejected outliers first, so the interesting arrows sit on top

@@ -260,6 +260,7 @@ def vanishing_points() -> Demo:
         note.set_text("" if visible else
                       f"the horizon is above the image (v = {v_horizon:.0f} px at u = 0):\n"
                       f"pitched down {v['pitch']:.0f}°, it sees only ground;\nthe lines still meet there (arrows)")
+        note.set_visible(not visible)  # an invisible text costs nothing to draw; an empty one with a box does
         state.update(horizon_visible=visible)
         readout.value = _pre("\n".join(lines))
 
