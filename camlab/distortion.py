@@ -36,7 +36,6 @@ from ._validate import (
     check_finite,
     check_image,
     check_intrinsics,
-    check_matrix,
     check_size,
 )
 

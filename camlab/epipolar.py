@@ -34,7 +34,6 @@ from ._validate import (
     as_points,
     check_intrinsics,
     check_matrix,
-    check_positive,
     check_rotation,
 )
 from .camera import Camera, camera_centre

@@ -360,12 +360,15 @@ class RansacResult(NamedTuple):
         Minimal samples drawn (hypotheses tried, degenerate ones included).
     residuals : (N,) ndarray
         Each pair's error under the final ``H`` in pixels (the chosen ``score``).
+    sample : (4,) int ndarray
+        The minimal sample whose hypothesis, locally optimised, became ``H``.
     """
 
     H: np.ndarray
     inliers: np.ndarray
     iterations: int
     residuals: np.ndarray
+    sample: np.ndarray | None = None
 
 
 def _minimal_solve(sn: np.ndarray, dn: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -494,7 +497,7 @@ def ransac_homography(
     if score not in ("transfer", "sampson"):
         raise CamlabInputError(f"score: expected 'transfer' or 'sampson', got {score!r}")
     fit = ransac(HomographyModel(s, d, score), threshold, confidence, max_iters, rng, batch=batch)
-    return RansacResult(normalize_homography(fit.model), fit.inliers, fit.iterations, fit.residuals)
+    return RansacResult(normalize_homography(fit.model), fit.inliers, fit.iterations, fit.residuals, fit.sample)
 
 
 # --------------------------------------------------------------------------- LM refinement

@@ -32,10 +32,10 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, DegenerateError, as_points, check_matrix, check_size
+from ._validate import CamlabInputError, DegenerateError, as_points, check_size
 from .camera import Camera, intrinsic_matrix
 from .distortion import DistortionMaps, distort_points, undistort_pixels
-from .epipolar import _check_F, _pairs, epipoles, relative_pose, skew
+from .epipolar import _check_F, _pairs, epipoles, skew
 from .homography import compose
 from .projective import map_points
 

@@ -22,7 +22,7 @@ from typing import NamedTuple, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, DegenerateError, check_image, check_matrix, check_shape
+from ._validate import CamlabInputError, DegenerateError, check_image, check_shape
 from .homography import _check_h, compose
 from .projective import map_points
 

@@ -37,10 +37,10 @@ import numpy as np
 
 from ._resources import dataset_dir
 from .._validate import CamlabInputError
-from ..camera import Camera, intrinsic_matrix, look_at_rotation, rotation_from_axis_angle
+from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
 from ..scenes import noise_texture, portrait
 
-__all__ = ["STEREO_PARAMS", "StereoRig", "load_stereo_rig", "make_stereo_rig", "rig_cameras", "stereo_scene"]
+__all__ = ["STEREO_PARAMS", "StereoRig", "load_stereo_rig", "make_stereo_rig", "rig_cameras", "stereo_scene", "true_matches"]
 
 STEREO_PARAMS = {
     "seed": 11,
@@ -157,6 +157,33 @@ class StereoRig(NamedTuple):
     object_points: np.ndarray     # (54, 3) board frame
     pattern_size: tuple[int, int]
     params: dict
+
+
+def true_matches(rig: StereoRig, step: int = 30, start: int = 20) -> tuple[np.ndarray, np.ndarray]:
+    """Exact correspondences in the raw (distorted) images, from the true disparity.
+
+    A grid of pixels of the rectified left image (every ``step`` pixels from ``start``) with
+    their true disparity ``d`` gives rectified pairs ``(u, v)`` and ``(u - d, v)``; the
+    calibrated rectification (``alpha`` as stored) carries both back to the raw images.
+    Pairs that land outside either image, or on no surface, are dropped.
+
+    Returns
+    -------
+    x1, x2 : (N, 2) ndarray
+        Raw left and right pixels (u, v) of the same scene points.
+    """
+    from ..rectification import rectify_calibrated, unrectify_points
+
+    rect = rectify_calibrated(rig.camera1, rig.camera2, alpha=rig.params["rectify_alpha"], maps=False)
+    h, w = rig.disparity.shape
+    v, u = np.mgrid[start:h - 10:step, start:w - 10:step]
+    p1 = np.column_stack([u.ravel(), v.ravel()]).astype(float)
+    d = rig.disparity[v.ravel(), u.ravel()]
+    ok = np.isfinite(d)
+    x1 = unrectify_points(rect, rig.camera1, p1[ok], 1)
+    x2 = unrectify_points(rect, rig.camera2, p1[ok] - np.column_stack([d[ok], np.zeros(ok.sum())]), 2)
+    inside = np.all((x1 > 0) & (x1 < [w - 1, h - 1]) & (x2 > 0) & (x2 < [w - 1, h - 1]), axis=1)
+    return x1[inside], x2[inside]
 
 
 def _png(path: Path, img: np.ndarray) -> Path:

@@ -37,7 +37,6 @@ pixel (docs/conventions.md).
 """
 from __future__ import annotations
 
-import warnings
 from typing import NamedTuple, Sequence
 
 import numpy as np

@@ -13,6 +13,7 @@ import ipywidgets as W
 import numpy as np
 
 from .. import homography as hg
+from ..plotting import palette
 from ..projective import cross_ratio, map_points, splits_at_infinity
 from ..warp import forward_warp, warp_perspective
 from ._base import Demo, FigureView, build_demo, register, slider
@@ -300,8 +301,8 @@ def samples_needed(outlier_fraction: np.ndarray | float, confidence: float = 0.9
 
 
 # What RANSAC did with each pair, against the truth the demo knows.
-_VERDICTS = (("inlier, kept", "tab:green"), ("outlier, wrongly kept", "tab:red"),
-             ("inlier, wrongly rejected", "tab:orange"), ("outlier, rejected", (0.6, 0.6, 0.6, 0.45)))
+_VERDICTS = (("inlier, kept", palette.GREEN), ("outlier, wrongly kept", palette.RED),
+             ("inlier, wrongly rejected", palette.ORANGE), ("outlier, rejected", (0.6, 0.6, 0.6, 0.45)))
 
 
 @register(lesson="07", sweep={"outliers": [0.1, 0.4, 0.7], "threshold": [1.0, 3.0, 8.0], "seed": [0, 3]})
@@ -319,6 +320,7 @@ def ransac_outliers() -> Demo:
     heads = view.animate(ax.scatter(np.zeros(0), np.zeros(0), s=6))
     box_true = view.animate(ax.plot([], [], "-", color="0.3", lw=2, label="true H (image frame)")[0])
     box_est = view.animate(ax.plot([], [], "--", color="tab:blue", lw=2, label="RANSAC H")[0])
+    best = view.animate(ax.plot([], [], "o", mfc="none", mec="k", mew=2, ms=11, label="the winning sample of 4")[0])
     for name, colour in _VERDICTS:
         ax.plot([], [], "-", color=colour, lw=2, label=name)
     ax.legend(loc="lower right", fontsize=7, ncol=2, framealpha=0.9)
@@ -344,7 +346,7 @@ def ransac_outliers() -> Demo:
         except hg.DegenerateError as exc:  # clear the last result: a stale plot would be a lie
             state.update(iterations=None, inliers=None, recall=None, corner_error=None, H=None, verdicts=None,
                          outlier_fraction_found=None, samples_needed=None, error=str(exc))
-            for artist in (box_est, dot, needed):
+            for artist in (box_est, dot, needed, best):
                 artist.set_data([], [])
             arrows.set_segments([])
             heads.set_offsets(np.zeros((0, 2)))
@@ -362,6 +364,7 @@ def ransac_outliers() -> Demo:
         bt, be = map_points(H, frame), map_points(r.H, frame)
         box_true.set_data(bt[:, 0], bt[:, 1])
         box_est.set_data(be[:, 0], be[:, 1])
+        best.set_data(dst[r.sample, 0], dst[r.sample, 1])
         eps_found = 1.0 - r.inliers.mean()
         k_needed = float(samples_needed(eps_found))
         dot.set_data([v["outliers"]], [r.iterations])
@@ -369,7 +372,8 @@ def ransac_outliers() -> Demo:
         counts = np.bincount(verdict, minlength=4)
         found_true = float(np.mean(r.inliers[~out])) if (~out).any() else float("nan")
         err = float(np.max(np.linalg.norm(be - bt, axis=1)))
-        state.update(iterations=r.iterations, inliers=int(r.inliers.sum()), recall=found_true, corner_error=err,
+        state.update(sample=r.sample, iterations=r.iterations, inliers=int(r.inliers.sum()), recall=found_true,
+                     corner_error=err,
                      error=None, H=r.H, verdicts=counts, outlier_fraction_found=eps_found, samples_needed=k_needed)
         readout.value = _pre(
             f"true ε = {v['outliers']:.2f}, found ε = {eps_found:.2f}\n"

@@ -15,6 +15,7 @@ from .. import features as ft
 from .. import homography as hg
 from .. import stitching as st
 from ..data import panorama as sd
+from ..plotting import palette
 from ..plotting.stitching import draw_keypoints, draw_matches, match_segments, outline
 from ..projective import map_points
 from ._base import Demo, FigureView, build_demo, register, slider
@@ -112,7 +113,7 @@ def ransac_registration() -> Demo:
     ax.set_title(f"matches in image {j}; frame of image {i} mapped by H", fontsize=9)
     inl = view.animate(ax.plot([], [], ".", color="lime", ms=4, label="inliers")[0])
     outl = view.animate(ax.plot([], [], "x", color="red", ms=4, label="outliers")[0])
-    true_box = outline(ax, s.true_homography(i, j), imgs[i].shape, color="white", lw=2, label="true")
+    outline(ax, s.true_homography(i, j), imgs[i].shape, color="white", lw=2, label="true")
     est_box = view.animate(outline(ax, np.eye(3), imgs[i].shape, color="tab:blue", lw=1.5, ls="--", label="RANSAC"))
     h, w = imgs[j].shape[:2]
     ax.set(xlim=(-0.5, w - 0.5), ylim=(h - 0.5, -0.5))
@@ -196,7 +197,7 @@ def panorama_canvas() -> Demo:
     view = FigureView(figsize=(9, 3.6))
     ax = view.fig.subplots()
     im = view.animate(ax.imshow(np.zeros((10, 10, 3)), interpolation="nearest"))
-    colors = ["tab:red", "tab:orange", "tab:green", "tab:blue"]
+    colors = palette.SERIES[:4]
     lines = [view.animate(ax.plot([], [], color=c, lw=1.5, label=f"image {k}")[0]) for k, c in enumerate(colors)]
     ax.legend(loc="lower right", fontsize=7, ncols=4)
     ax.set(xlim=(-0.5, wmax - 0.5), ylim=(hmax - 0.5, -0.5), aspect="equal")
@@ -317,7 +318,7 @@ def full_panorama() -> Demo:
     view = FigureView(figsize=(9, 3.4))
     ax = view.fig.subplots()
     im = view.animate(ax.imshow(pans["planar"].panorama, interpolation="nearest"))
-    colors = ["tab:red", "tab:orange", "tab:green", "tab:blue"]
+    colors = palette.SERIES[:4]
     lines = [view.animate(ax.plot([], [], color=c, lw=1.2)[0]) for c in colors]
     hmax = max(p.panorama.shape[0] for p in pans.values())
     wmax = max(p.panorama.shape[1] for p in pans.values())

@@ -13,7 +13,6 @@ import ipywidgets as W
 import numpy as np
 
 from .. import perspective as pp
-from ..warp import warp_perspective
 from ._base import Demo, FigureView, build_demo, register, slider
 from .homographies import _corner_text, _on_top, _parse_corners, _pre, connect_corner_drag, format_corners
 

@@ -85,21 +85,10 @@ def _rig_data():
     """The bundled rig at half resolution: raw images, cameras, true matches (from the true disparity)."""
     import cv2
 
-    from ..data.stereo import load_stereo_rig
+    from ..data.stereo import load_stereo_rig, true_matches
 
     rig = load_stereo_rig()
-    rect0 = rc.rectify_calibrated(rig.camera1, rig.camera2, alpha=rig.params["rectify_alpha"], maps=False)
-    # true matches: a grid of rectified left pixels with their true disparity, mapped back to the raw images
-    v, u = np.mgrid[20:470:30, 20:630:30]
-    u, v = u.ravel().astype(float), v.ravel().astype(float)
-    d = rig.disparity[v.astype(int), u.astype(int)]
-    ok = np.isfinite(d)
-    p1 = np.column_stack([u[ok], v[ok]])
-    p2 = p1 - np.column_stack([d[ok], np.zeros(ok.sum())])
-    x1 = rc.unrectify_points(rect0, rig.camera1, p1, 1)
-    x2 = rc.unrectify_points(rect0, rig.camera2, p2, 2)
-    inside = np.all((x1 > 0) & (x1 < [639, 479]) & (x2 > 0) & (x2 < [639, 479]), axis=1)
-    x1, x2 = x1[inside], x2[inside]
+    x1, x2 = true_matches(rig, step=30, start=20)
     half = [cv2.resize(im, (320, 240), interpolation=cv2.INTER_AREA) for im in (rig.left, rig.right)]
     # uncalibrated route: undistort with the known lenses, F by RANSAC on the (noisy) matches
     from ..distortion import undistort_image, undistort_pixels
