@@ -7,7 +7,8 @@ control ``"u0, v0; u1, v1; u2, v2; u3, v3"`` so tests and static pages drive the
 """
 from __future__ import annotations
 
-from typing import Any
+from functools import lru_cache
+from typing import Any, Callable
 
 import ipywidgets as W
 import numpy as np
@@ -227,6 +228,25 @@ def _ransac_data(outlier_fraction: float, seed: int, n: int = 200, noise: float 
     return H, src, dst, out
 
 
+@lru_cache(maxsize=256)
+def _ransac_run(outlier_fraction: float, threshold: float, seed: int):
+    """The demo's data and RANSAC's answer (or its error message) for one slider setting.
+
+    Cached: sliders revisit settings, and the answer is a pure function of them (seeded).
+    Arrays come back read-only so no caller can corrupt the cache.
+    """
+    data = _ransac_data(outlier_fraction, seed)
+    for a in data:
+        a.setflags(write=False)
+    try:
+        r = hg.ransac_homography(data[1], data[2], threshold, 0.995, 1000, np.random.default_rng(seed))
+    except hg.DegenerateError as exc:
+        return data, str(exc)
+    for a in (r.H, r.inliers, r.residuals, r.sample):
+        a.setflags(write=False)
+    return data, r
+
+
 def samples_needed(outlier_fraction: np.ndarray | float, confidence: float = 0.995, sample_size: int = 4):
     r""":math:`k = \log(1 - p) / \log(1 - (1 - \varepsilon)^s)`: samples for one all-inlier sample."""
     clean = (1.0 - np.asarray(outlier_fraction, dtype=float)) ** sample_size
@@ -274,18 +294,17 @@ def ransac_outliers() -> Demo:
     frame = np.array([[0, 0], [399, 0], [399, 299], [0, 299], [0, 0]], float)
 
     def update(v: dict, state: dict) -> None:
-        H, src, dst, out = _ransac_data(v["outliers"], int(v["seed"]))
-        try:
-            r = hg.ransac_homography(src, dst, v["threshold"], 0.995, 1000, np.random.default_rng(int(v["seed"])))
-        except hg.DegenerateError as exc:  # clear the last result: a stale plot would be a lie
+        (H, src, dst, out), r = _ransac_run(float(v["outliers"]), float(v["threshold"]), int(v["seed"]))
+        if isinstance(r, str):  # RANSAC failed: clear the last result, a stale plot would be a lie
+            exc = r
             state.update(iterations=None, inliers=None, recall=None, corner_error=None, H=None, verdicts=None,
-                         outlier_fraction_found=None, samples_needed=None, error=str(exc))
+                         outlier_fraction_found=None, samples_needed=None, error=exc)
             for artist in (box_est, dot, needed, best):
                 artist.set_data([], [])
             arrows.set_segments([])
             heads.set_offsets(np.zeros((0, 2)))
             failure("RANSAC failed: no hypothesis had real support\n(the full message is beside the sliders)")
-            readout.value = monospace(str(exc))
+            readout.value = monospace(exc)
             return
         failure("")
         verdict = np.select([~out & r.inliers, out & r.inliers, ~out & ~r.inliers], [0, 1, 2], 3)
