@@ -116,6 +116,9 @@ class RobustFit(NamedTuple):
         Each pair's error under ``model``, pixels.
     cost : float
         The MSAC cost :func:`msac_cost` of ``model``.
+    sample : (s,) int ndarray
+        Indices of the minimal sample whose hypothesis became ``model`` (after local
+        optimisation), e.g. to show it in a demo.
     """
 
     model: np.ndarray
@@ -123,6 +126,7 @@ class RobustFit(NamedTuple):
     iterations: int
     residuals: np.ndarray
     cost: float
+    sample: np.ndarray | None = None
 
 
 def msac_cost(residuals: np.ndarray, threshold: float) -> np.ndarray:
@@ -252,7 +256,7 @@ def ransac(model: PairModel, threshold: float, confidence: float = 0.995, max_it
     batch = int(check_positive(batch, "batch"))
     rng = np.random.default_rng(rng)
     n, s = len(model), model.sample_size
-    best, best_cost, best_count, best_raw = None, np.inf, 0, np.inf
+    best, best_cost, best_count, best_raw, best_sample = None, np.inf, 0, np.inf, None
     needed, drawn = float(max_iters), 0
     while drawn < min(needed, max_iters):
         b = int(np.clip(min(needed, max_iters) - drawn, 1, batch if drawn else max(batch // 4, 1)))
@@ -263,14 +267,15 @@ def ransac(model: PairModel, threshold: float, confidence: float = 0.995, max_it
         if len(idx) == 0:
             continue
         models, ok = model.minimal(idx)
-        models = models[ok]
+        models, idx = models[ok], idx[ok]
         if len(models) == 0:
             continue
         if len(models) > 4 and n > 4 * _PREVIEW:
             # Score on a random subset first; fully score only the most promising quarter.
             sub = rng.choice(n, _PREVIEW, replace=False)
             pre = msac_cost(model.residuals(models, sub, sub), threshold)
-            models = models[np.argsort(pre, kind="stable")[: max(2, len(models) // 4)]]
+            keep = np.argsort(pre, kind="stable")[: max(2, len(models) // 4)]
+            models, idx = models[keep], idx[keep]
         costs = msac_cost(model.residuals(models), threshold)
         k = int(np.argmin(costs))
         # Compare raw hypotheses with raw ones: a polished model would otherwise shut out
@@ -283,7 +288,7 @@ def ransac(model: PairModel, threshold: float, confidence: float = 0.995, max_it
             candidate, cost = local_optimization(model, candidate, threshold, rng)
         if cost >= best_cost:
             continue
-        best, best_cost = candidate, cost
+        best, best_cost, best_sample = candidate, cost, idx[k].copy()
         best_count = int(np.sum(model.residuals(best[None])[0] < threshold))
         needed = required_iterations(best_count / n, confidence, s)
     if best is not None and local_optimize:
@@ -305,4 +310,4 @@ def ransac(model: PairModel, threshold: float, confidence: float = 0.995, max_it
             f"matches may be mostly wrong (check the matching), or the threshold too small"
         )
     res = model.residuals(best[None])[0]
-    return RobustFit(best, res < threshold, int(drawn), res, best_cost)
+    return RobustFit(best, res < threshold, int(drawn), res, best_cost, best_sample)

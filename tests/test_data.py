@@ -44,8 +44,27 @@ def _manifest(path: Path) -> dict[str, tuple[str, int]]:
     return {name: (sha, int(size)) for sha, size, name in rows}
 
 
+LOCK = Path(__file__).resolve().parent.parent / "requirements" / "lock.txt"
+
+
+def _locked_series(package: str) -> str:
+    """``major.minor`` of ``package`` in requirements/lock.txt (the versions the bundled data were made with)."""
+    m = re.search(rf"^{re.escape(package)}==(\d+\.\d+)", LOCK.read_text(), re.M)
+    assert m, f"requirements/lock.txt does not pin {package}"
+    return m.group(1)
+
+
 @pytest.fixture(scope="module")
 def regenerated(tmp_path_factory):
+    # Another minor series of OpenCV (resize, JPEG) or matplotlib (text) renders visibly different
+    # pixels: the comparison is pinned to the lock's series, and tolerates its patch releases.
+    import matplotlib
+
+    for package, version in (("opencv-python-headless", cv2.__version__), ("matplotlib", matplotlib.__version__)):
+        series = _locked_series(package)
+        if not version.startswith(series + "."):
+            pytest.skip(f"the bundled data were rendered with {package} {series}.x (requirements/lock.txt); "
+                        f"this is {version}: regeneration is compared only on the locked series")
     root = tmp_path_factory.mktemp("data")
     data.regenerate(root)
     return root
@@ -154,3 +173,26 @@ def test_every_shipped_file_is_attributed():
         if path.is_file():
             rel = path.relative_to(root).as_posix()
             assert any(fnmatch.fnmatch(rel, p) for p in patterns), f"data/{rel} is not in data/ATTRIBUTION.md"
+
+
+def test_encode_image_raises_when_opencv_reports_failure(monkeypatch):
+    """cv2.imencode's ok flag used to be ignored: a failed encode would write garbage into a data set."""
+    import cv2
+
+    from camlab.data._resources import encode_image
+
+    img = np.zeros((4, 4), np.uint8)
+    assert encode_image(img, ".png")[:4] == b"\x89PNG"
+    monkeypatch.setattr(cv2, "imencode", lambda *a, **k: (False, None))
+    with pytest.raises(OSError, match=r"cv2.imencode could not encode a \(4, 4\) uint8 image as .png"):
+        encode_image(img, ".png")
+
+
+def test_panorama_rotation_helpers_say_their_direction():
+    from camlab.data import panorama
+
+    Rc = panorama.cam_from_world(0.3, -0.1, 0.05)
+    # a camera turned right by yaw sees a point that lies ahead-right of the world straight ahead
+    ahead_right = np.array([np.sin(0.3), 0.0, np.cos(0.3)])
+    assert np.allclose(panorama._rot(0.3, 0, 0) @ [0, 0, 1.0], ahead_right)  # world_from_cam maps its axis out
+    assert np.allclose(Rc @ panorama._rot(0.3, -0.1, 0.05), np.eye(3))

@@ -52,7 +52,11 @@ def test_undistort_matches_cv2_undistort_points(d):
     distorted = D.distort_pixels(PIX, K, d)
     ours = D.undistort_points(_norm(distorted), d)
     crit = (cv2.TERM_CRITERIA_COUNT | cv2.TERM_CRITERIA_EPS, 200, 1e-14)
-    ref = cv2.undistortPoints(distorted.reshape(-1, 1, 2), K, d, None, None, criteria=crit).reshape(-1, 2)
+    src = distorted.reshape(-1, 1, 2)
+    if hasattr(cv2, "undistortPointsIter"):  # OpenCV 4.x: the variant that takes stopping criteria
+        ref = cv2.undistortPointsIter(src, K, d, None, None, crit).reshape(-1, 2)
+    else:                                    # OpenCV 5.x folded it into undistortPoints
+        ref = cv2.undistortPoints(src, K, d, None, None, criteria=crit).reshape(-1, 2)
     assert np.abs(ours - ref).max() * 800 < 1e-4      # px
     assert np.abs(ours - _norm(PIX)).max() * 800 < 1e-8  # we invert exactly; OpenCV's fixed point is looser
 

@@ -357,3 +357,14 @@ def test_map_points_single_and_batch():
     src, _ = _pairs(5)
     assert hg.map_points(H_TRUE, src[0]).shape == (2,)
     assert np.allclose(hg.map_points(H_TRUE, src[0]), hg.map_points(H_TRUE, src)[0])
+
+
+def test_ransac_reports_the_winning_minimal_sample():
+    rng = np.random.default_rng(5)
+    H = np.array([[1.1, 0.05, 20.0], [-0.03, 0.95, -10.0], [2e-4, -1e-4, 1.0]])
+    src = rng.uniform(0, 500, (120, 2))
+    dst = hg.map_points(H, src) + rng.normal(0, 0.3, src.shape)
+    dst[:30] = rng.uniform(0, 500, (30, 2))
+    r = hg.ransac_homography(src, dst, 2.0, rng=rng)
+    assert r.sample.shape == (4,) and len(set(r.sample.tolist())) == 4
+    assert r.inliers[r.sample].all()            # a clean sample won, and its pairs fit the answer

@@ -5,8 +5,6 @@ import numpy as np
 import pytest
 from matplotlib.backend_bases import MouseEvent
 
-from camlab import homography as hg
-from camlab import perspective as pp
 from camlab.exercises import all_exercises, check
 from camlab.projective import map_points
 from camlab.widgets import homographies as h07
@@ -153,6 +151,8 @@ def test_ransac_demo_colours_verdicts_against_the_truth_and_clears_on_failure():
     assert kept_in + lost_in == 160 and kept_out + rejected_out == 40
     arrows = d.figure.axes[0].collections[0]
     assert len(arrows.get_segments()) == 200
+    sample = d.state["sample"]                    # the winning minimal sample, ringed on the figure
+    assert len(set(sample.tolist())) == 4 and d.state["verdicts"] is not None
     d.set(outliers=0.8, threshold=0.5)          # nothing supports any hypothesis
     assert d.state["iterations"] is None and d.state["H"] is None and "too few inliers" in d.state["error"]
     assert len(arrows.get_segments()) == 0       # no stale picture of the last success

@@ -1,10 +1,14 @@
 """Packaging promises: a light import and lazy topic modules."""
+import re
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
 import camlab
+
+REPO = Path(__file__).resolve().parent.parent
 
 
 def test_import_camlab_is_light():
@@ -23,3 +27,39 @@ def test_submodules_load_lazily_and_unknown_names_fail_clearly():
 def test_errors_are_value_errors():
     assert issubclass(camlab.CamlabInputError, ValueError)
     assert issubclass(camlab.DegenerateError, camlab.CamlabInputError)
+
+
+def _project() -> dict:
+    import tomllib
+
+    return tomllib.loads((REPO / "pyproject.toml").read_text())["project"]
+
+
+def _pins(path: Path) -> dict[str, str]:
+    """``{name: version}`` of the ``name==version`` lines of a requirements file (first one wins)."""
+    pins: dict[str, str] = {}
+    for line in path.read_text().splitlines():
+        m = re.match(r"^([A-Za-z0-9_.-]+)==([^\s;]+)", line)
+        if m:
+            pins.setdefault(m.group(1).lower(), m.group(2))
+    return pins
+
+
+def test_oldest_pins_are_the_declared_lower_bounds():
+    """requirements/oldest.txt (make test-oldest) installs exactly the floors pyproject.toml declares."""
+    floors = {}
+    for dep in _project()["dependencies"]:
+        m = re.fullmatch(r"([A-Za-z0-9_.-]+)>=([0-9][^,;\s]*)", dep.replace(" ", ""))
+        assert m, f"dependency {dep!r}: declare a plain lower bound 'name>=X'"
+        floors[m.group(1).lower()] = m.group(2)
+    assert _pins(REPO / "requirements" / "oldest.txt") == floors
+
+
+def test_lock_pins_every_dependency_within_its_bounds():
+    from packaging.requirements import Requirement
+
+    pins = _pins(REPO / "requirements" / "lock.txt")
+    for dep in _project()["dependencies"]:
+        req = Requirement(dep)
+        assert req.name.lower() in pins, f"requirements/lock.txt does not pin {req.name}: run `make lock`"
+        assert req.specifier.contains(pins[req.name.lower()]), f"{req.name}=={pins[req.name.lower()]} outside {dep}"

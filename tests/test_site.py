@@ -10,10 +10,10 @@ import http.server
 import json
 import os
 import re
+import resource
 import subprocess
 import sys
 import threading
-import time
 from html.parser import HTMLParser
 from pathlib import Path
 from urllib.parse import urlsplit
@@ -31,6 +31,11 @@ MAX_BYTES = 30e6
 MAX_BUILD_S = 180
 
 
+def _children_cpu() -> float:
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
 @pytest.fixture(scope="module")
 def site(tmp_path_factory):
     given = os.environ.get("CAMLAB_SITE_DIR")
@@ -40,10 +45,10 @@ def site(tmp_path_factory):
     else:
         base = tmp_path_factory.mktemp("site")
         out, executed = base / "site", base / "executed"
-        start = time.perf_counter()
+        cpu_before = _children_cpu()
         run = subprocess.run([sys.executable, str(REPO / "tools" / "site" / "build.py"), str(out),
                               "--executed", str(executed)], capture_output=True, text=True)
-        seconds = time.perf_counter() - start
+        seconds = _children_cpu() - cpu_before  # the build and its kernels; wall time varies with load
         assert run.returncode == 0, f"the site build failed:\n{run.stdout[-2000:]}\n{run.stderr[-4000:]}"
     return dict(out=out, executed=executed, seconds=seconds, pages=json.loads((out / "pages.json").read_text()))
 
@@ -68,7 +73,9 @@ def test_site_has_every_page_and_stays_small(site):
     size = sum(f.stat().st_size for f in site["out"].rglob("*") if f.is_file())
     assert size < MAX_BYTES, f"the site is {size / 1e6:.1f} MB; the budget is {MAX_BYTES / 1e6:.0f} MB"
     if site["seconds"] is not None:
-        assert site["seconds"] < MAX_BUILD_S, f"the site took {site['seconds']:.0f} s to build (budget {MAX_BUILD_S} s)"
+        # CPU seconds of the build and its kernels: under MAX_BUILD_S the build ends within
+        # 3 minutes even on one free core, however loaded the shared machine is now.
+        assert site["seconds"] < MAX_BUILD_S, f"the site took {site['seconds']:.0f} CPU s to build (budget {MAX_BUILD_S} s)"
 
 
 @pytest.mark.parametrize("lesson", LESSONS, ids=lambda p: p.name)
@@ -159,8 +166,12 @@ def browser(tmp_path_factory):
         context.close()
 
 
+AXE = REPO / "build" / "npm" / "node_modules" / "axe-core" / "axe.min.js"
+AXE_RULES = ["wcag2a", "wcag2aa", "wcag21a", "wcag21aa", "best-practice"]
+
+
 def visit(browser, url: str) -> dict:
-    """Open a page; return its console errors, outside requests, failures, maths and images."""
+    """Open a page; return its console errors, outside requests, failures, maths, images and axe results."""
     page = browser.new_page()
     seen = dict(errors=[], outside=[], failed=[])
     host = urlsplit(url).netloc
@@ -180,33 +191,61 @@ def visit(browser, url: str) -> dict:
             dollars: [...document.querySelectorAll('.jp-MarkdownCell')].some(c => /\\$[^$]+\\$/.test(c.textContent)),
             images: [...document.querySelectorAll('main img')].map(i => ({alt: i.alt, ok: i.complete && i.naturalWidth > 0})),
         })"""))
+        page.add_script_tag(path=str(AXE))  # inline: no request
+        result = page.evaluate("(rules) => axe.run(document, {runOnly: rules})", AXE_RULES)
+        seen["axe"] = [(v["impact"], v["id"], len(v["nodes"]), v["nodes"][0]["target"]) for v in result["violations"]]
     finally:
         page.close()
     return seen
 
 
+@pytest.fixture(scope="module")
+def visits(site, server, browser) -> dict:
+    assert AXE.is_file(), f"axe-core is missing at {AXE}: run `make site-deps`"
+    return {name: visit(browser, f"{server}/{name}") for name in site["pages"]["pages"]}
+
+
 @pytest.mark.browser
-def test_every_page_loads_offline_with_typeset_maths_and_all_figures(site, server, browser):
-    problems, counts = [], {}
-    for name in site["pages"]["pages"]:
-        seen = visit(browser, f"{server}/{name}")
-        if seen["errors"] or seen["outside"] or seen["failed"]:
-            problems.append(f"{name}: console {seen['errors'][:2]} outside {seen['outside'][:2]} failed {seen['failed'][:2]}")
-        if seen["math_errors"] or seen["dollars"]:
-            problems.append(f"{name}: {seen['math_errors']} maths errors; untypeset $...$ left: {seen['dollars']}")
-        if seen["math"] and seen["assistive"] < seen["math"]:
-            problems.append(f"{name}: {seen['math'] - seen['assistive']} formulas without assistive MathML")
-        broken = [i for i in seen["images"] if not i["ok"] or len(i["alt"]) < 20]
-        if broken:
-            problems.append(f"{name}: {len(broken)} images broken or without alt text: {broken[:2]}")
-        counts[name] = (len(seen["images"]), seen["math"])
+def test_every_page_loads_offline_without_errors(visits):
+    problems = [f"{name}: console {s['errors'][:2]} outside {s['outside'][:2]} failed {s['failed'][:2]}"
+                for name, s in visits.items() if s["errors"] or s["outside"] or s["failed"]]
+    assert not problems, "\n".join(problems)
+
+
+@pytest.mark.browser
+def test_maths_is_typeset_from_the_local_mathjax_with_assistive_mathml(visits):
+    problems = []
+    for name, s in visits.items():
+        if s["math_errors"] or s["dollars"]:
+            problems.append(f"{name}: {s['math_errors']} maths errors; untypeset $...$ left: {s['dollars']}")
+        if s["assistive"] < s["math"]:
+            problems.append(f"{name}: {s['math'] - s['assistive']} of {s['math']} formulas without assistive MathML")
     for lesson in LESSONS:
-        shown, want = counts[lesson.stem + ".html"][0], expected_images(lesson)
-        if shown < want:
-            problems.append(f"{lesson.name}: {shown} images on the page, but it makes {want} figures and demos")
         markdown = "".join("".join(c["source"]) for c in json.loads(lesson.read_text("utf-8"))["cells"]
                            if c["cell_type"] == "markdown")
-        if "$" in markdown and counts[lesson.stem + ".html"][1] == 0:
+        if "$" in markdown and visits[lesson.stem + ".html"]["math"] == 0:
             problems.append(f"{lesson.name}: the lesson writes maths but the page typeset none")
-    print("\npage: images, formulas\n" + "\n".join(f"{k}: {v[0]}, {v[1]}" for k, v in counts.items()))  # for the notes
     assert not problems, "\n".join(problems)
+
+
+@pytest.mark.browser
+def test_every_figure_and_demo_is_an_image_with_alt_text(visits):
+    problems = []
+    for name, s in visits.items():
+        broken = [i for i in s["images"] if not i["ok"] or len(i["alt"]) < 20]
+        if broken:
+            problems.append(f"{name}: {len(broken)} images broken or without alt text: {broken[:2]}")
+    for lesson in LESSONS:
+        shown, want = len(visits[lesson.stem + ".html"]["images"]), expected_images(lesson)
+        print(f"{lesson.name}: {shown} images for {want} figures and demos")
+        if shown < want:
+            problems.append(f"{lesson.name}: {shown} images on the page, but it makes {want} figures and demos")
+    assert not problems, "\n".join(problems)
+
+
+@pytest.mark.browser
+def test_axe_core_finds_no_critical_or_serious_violation(visits):
+    bad = {name: [v for v in s["axe"] if v[0] in ("critical", "serious")] for name, s in visits.items()}
+    for name, s in visits.items():
+        print(f"axe {name}: " + (", ".join(f"{v[1]} ({v[0]}, {v[2]} nodes)" for v in s["axe"]) or "no violations"))
+    assert not any(bad.values()), "\n".join(f"{k}: {v}" for k, v in bad.items() if v)

@@ -27,8 +27,10 @@ def test_demo_bundle_has_widget_png_and_alt_text(name):
     assert "text/html" not in data
     png = _png_pixels(data["image/png"])
     shown = demo.view.pixels()
-    assert png.shape[:2] == shown.shape[:2], f"{name}: the PNG is not the figure's size"
-    diff = np.abs(png[..., :3].astype(int) - shown[..., :3].astype(int)).mean()
+    # matplotlib < 3.10 may round the saved height one pixel differently from the canvas
+    assert np.abs(np.subtract(png.shape[:2], shown.shape[:2])).max() <= 1, f"{name}: the PNG is not the figure's size"
+    h, w = np.minimum(png.shape[:2], shown.shape[:2])
+    diff = np.abs(png[:h, :w, :3].astype(int) - shown[:h, :w, :3].astype(int)).mean()
     assert diff < 3, f"{name}: the PNG differs from the figure as shown (mean |diff| {diff:.1f} grey levels)"
     alt = metadata["image/png"]["alt"]
     assert alt == data["text/plain"]

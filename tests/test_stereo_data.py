@@ -29,3 +29,18 @@ def test_true_disparity_agrees_with_calibrated_rectification():
     stored = rig.disparity[np.round(u1[:, 1]).astype(int), np.round(u1[:, 0]).astype(int)]
     assert np.allclose(stored, d, atol=0.05)
     assert np.allclose(ep.triangulate_points(rect.camera1, rect.camera2, u1, u2), X, atol=1e-9)
+
+
+def test_true_matches_are_exact_correspondences():
+    from camlab.data.stereo import true_matches
+
+    rig = load_stereo_rig()
+    x1, x2 = true_matches(rig, step=40, start=30)
+    assert x1.shape == x2.shape and len(x1) > 100
+    assert np.all((x1 > 0) & (x1 < [639, 479]) & (x2 > 0) & (x2 < [639, 479]))
+    # carried to the rectified images they lie on one row, apart by the true disparity
+    rect = rc.rectify_calibrated(rig.camera1, rig.camera2, alpha=STEREO_PARAMS["rectify_alpha"], maps=False)
+    r1, r2 = rc.rectify_points(rect, rig.camera1, x1, 1), rc.rectify_points(rect, rig.camera2, x2, 2)
+    assert np.abs(r1[:, 1] - r2[:, 1]).max() < 1e-6
+    d = rig.disparity[np.round(r1[:, 1]).astype(int), np.round(r1[:, 0]).astype(int)]
+    assert np.abs((r1[:, 0] - r2[:, 0]) - d).max() < 1e-6

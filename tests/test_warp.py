@@ -9,6 +9,7 @@ from camlab import warp
 from camlab._validate import CamlabInputError, DegenerateError
 from camlab.homography import similarity
 from camlab.projective import map_points
+from conftest import assert_close_to_cv2_warp
 
 H = np.array([[0.9, 0.1, 30.0], [-0.05, 0.95, 20.0], [2e-4, 1e-4, 1.0]])
 
@@ -36,8 +37,8 @@ def test_bilinear_matches_cv2_within_one_grey_level(shape):
     diff = np.abs(ours.astype(int) - ref.astype(int))
     inside = _interior(shape, H)
     assert inside.mean() > 0.6
-    assert diff[inside].max() <= 1
-    assert diff.max() <= 2  # even at the border (blend with fill)
+    assert diff[inside].max() <= 1 and diff[inside].mean() < 0.05  # measured 0.0001 (OpenCV 5.0), 0.037 (4.12)
+    assert diff.max() <= 3  # even at the border (blend with fill; OpenCV 4.x's fixed-point weights: 3, 5.x: 1)
     assert ours.dtype == np.uint8 and ours.shape == ref.shape
 
 
@@ -117,7 +118,7 @@ def test_canvas_contains_whole_image_and_translation_composes():
     # The canvas image agrees with cv2 on the same composed H.
     ref = cv2.warpPerspective(img, r.H, (r.image.shape[1], r.image.shape[0]))
     inside = _interior(r.image.shape, r.H)
-    assert np.abs(r.image.astype(int) - ref.astype(int))[inside].max() <= 1
+    assert_close_to_cv2_warp(r.image[inside], ref[inside])
 
 
 def test_bad_input():

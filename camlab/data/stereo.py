@@ -35,12 +35,12 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._resources import dataset_dir
+from ._resources import dataset_dir, encode_image
 from .._validate import CamlabInputError
-from ..camera import Camera, intrinsic_matrix, look_at_rotation, rotation_from_axis_angle
+from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
 from ..scenes import noise_texture, portrait
 
-__all__ = ["STEREO_PARAMS", "StereoRig", "load_stereo_rig", "make_stereo_rig", "rig_cameras", "stereo_scene"]
+__all__ = ["STEREO_PARAMS", "StereoRig", "load_stereo_rig", "make_stereo_rig", "rig_cameras", "stereo_scene", "true_matches"]
 
 STEREO_PARAMS = {
     "seed": 11,
@@ -159,19 +159,44 @@ class StereoRig(NamedTuple):
     params: dict
 
 
+def true_matches(rig: StereoRig, step: int = 30, start: int = 20) -> tuple[np.ndarray, np.ndarray]:
+    """Exact correspondences in the raw (distorted) images, from the true disparity.
+
+    A grid of pixels of the rectified left image (every ``step`` pixels from ``start``) with
+    their true disparity ``d`` gives rectified pairs ``(u, v)`` and ``(u - d, v)``; the
+    calibrated rectification (``alpha`` as stored) carries both back to the raw images.
+    Pairs that land outside either image, or on no surface, are dropped.
+
+    Returns
+    -------
+    x1, x2 : (N, 2) ndarray
+        Raw left and right pixels (u, v) of the same scene points.
+    """
+    from ..rectification import rectify_calibrated, unrectify_points
+
+    rect = rectify_calibrated(rig.camera1, rig.camera2, alpha=rig.params["rectify_alpha"], maps=False)
+    h, w = rig.disparity.shape
+    v, u = np.mgrid[start:h - 10:step, start:w - 10:step]
+    p1 = np.column_stack([u.ravel(), v.ravel()]).astype(float)
+    d = rig.disparity[v.ravel(), u.ravel()]
+    ok = np.isfinite(d)
+    x1 = unrectify_points(rect, rig.camera1, p1[ok], 1)
+    x2 = unrectify_points(rect, rig.camera2, p1[ok] - np.column_stack([d[ok], np.zeros(ok.sum())]), 2)
+    inside = np.all((x1 > 0) & (x1 < [w - 1, h - 1]) & (x2 > 0) & (x2 < [w - 1, h - 1]), axis=1)
+    return x1[inside], x2[inside]
+
+
 def _png(path: Path, img: np.ndarray) -> Path:
     import cv2
 
-    ok, buf = cv2.imencode(".png", img, [cv2.IMWRITE_PNG_COMPRESSION, 9])
-    path.write_bytes(buf.tobytes())
+    path.write_bytes(encode_image(img, ".png", (cv2.IMWRITE_PNG_COMPRESSION, 9)))
     return path
 
 
 def _jpg(path: Path, img: np.ndarray, quality: int) -> Path:
     import cv2
 
-    ok, buf = cv2.imencode(".jpg", img, [cv2.IMWRITE_JPEG_QUALITY, int(quality)])
-    path.write_bytes(buf.tobytes())
+    path.write_bytes(encode_image(img, ".jpg", (cv2.IMWRITE_JPEG_QUALITY, int(quality))))
     return path
 
 

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import base64
 import io
+import struct
 import weakref
 from typing import Any, Mapping
 
@@ -131,8 +132,8 @@ def static_bundle(data: Mapping[str, Any], fig: Figure, alt: str, png: bytes | N
     out = {k: v for k, v in data.items() if k != "text/html"}
     out["image/png"] = base64.b64encode(png).decode("ascii")
     out["text/plain"] = alt
-    width, height = fig.get_size_inches() * fig.dpi
-    metadata = {"image/png": {"alt": alt, "width": int(round(width)), "height": int(round(height))}}
+    width, height = struct.unpack(">II", png[16:24])  # the PNG's own size (IHDR), which matplotlib < 3.10 may round
+    metadata = {"image/png": {"alt": alt, "width": width, "height": height}}
     return out, metadata
 
 

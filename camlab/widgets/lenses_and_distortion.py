@@ -5,7 +5,7 @@ import ipywidgets as W
 import numpy as np
 
 from .. import distortion, lens, render, scenes
-from ..plotting import images, optics
+from ..plotting import images, optics, palette
 from ._base import FigureView, build_demo, register, slider
 
 SIZE = (480, 360)
@@ -107,7 +107,7 @@ def depth_of_field():
     band = ax_c.axvspan(1, 2, color="tab:green", alpha=0.2, label="depth of field")
     ax_c.axhline(2 * PITCH_DOF * 1e6, color="tab:red", ls="--", lw=1,
                  label=f"acceptable c = 2 px = {2 * PITCH_DOF * 1e6:.0f} µm")
-    for zp, c, name in zip((0.6, 1.2, 2.4, 4.0), ("tab:blue", "tab:orange", "tab:purple", "tab:brown"),
+    for zp, c, name in zip((0.6, 1.2, 2.4, 4.0), (palette.BLUE, palette.ORANGE, palette.PURPLE, palette.BROWN),
                            ("small board", "page", "large board", "wall")):
         ax_c.axvline(zp, color=c, lw=1.5, label=f"{name}, {zp:g} m")
     ax_c.set_xlim(0.3, 5)
@@ -171,7 +171,8 @@ def lens_distortion():
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=255)
     dots, = ax_img.plot([], [], "r.", ms=3)
     ideal = _grid_lines()
-    ghost = [ax_grid.plot(*ln.T, color="0.8", lw=0.8)[0] for ln in ideal]
+    for ln in ideal:  # the undistorted grid, drawn once in grey behind the bent one
+        ax_grid.plot(*ln.T, color="0.8", lw=0.8)
     bent = [ax_grid.plot(*ln.T, color="tab:blue", lw=1.2)[0] for ln in ideal]
     ax_grid.set_xlim(-60, SIZE[0] + 60)
     ax_grid.set_ylim(SIZE[1] + 60, -60)
