@@ -50,14 +50,30 @@ def _expand(patterns: list[str]) -> list[str]:
     return files
 
 
+def _progress(i: int, n: int, name: str, failure: str | None) -> None:
+    """One line per image, or a bar redrawn in place on a terminal."""
+    verdict = "board found" if failure is None else f"skipped: {failure.split(':')[0]}"
+    if sys.stdout.isatty():
+        bar = "#" * round(24 * i / n)
+        print(f"\r[{bar:<24}] {i}/{n} {name[-40:]:<40}", end="" if i < n else "\n", flush=True)
+    else:
+        print(f"  [{i}/{n}] {name}: {verdict}", flush=True)
+
+
 def _run_calibrate(args: argparse.Namespace) -> int:
+    from ._files import check_output_path
     from .calibration import calibrate_from_images, coach, parse_pattern, save_calibration
+    from .calibration.io import SUFFIXES
 
     pattern = parse_pattern(args.pattern, "--pattern")
+    check_output_path(args.out, "--out", SUFFIXES)  # before any work: nothing is written if one fails
+    if not args.no_report:
+        check_output_path(args.report, "--report", (".png", ".pdf", ".svg", ".jpg"))
     files = _expand(args.images)
     print(f"camlab calibrate: {len(files)} images, pattern {pattern[0]}x{pattern[1]} inner corners, "
           f"square {args.square} m")
-    out = calibrate_from_images(files, pattern, args.square, skew=args.skew, fix=("k3",) if args.fix_k3 else ())
+    out = calibrate_from_images(files, pattern, args.square, skew=args.skew, fix=("k3",) if args.fix_k3 else (),
+                                progress=_progress)
     print(out.report())
     result = out.result
     print(result.summary())
@@ -66,15 +82,64 @@ def _run_calibrate(args: argparse.Namespace) -> int:
     print(f"worst views: {worst}")
     print("advice:")
     print(report.text())
-    path = save_calibration(result, args.out)
-    print(f"wrote {path} (load in OpenCV: cv2.FileStorage(path, cv2.FILE_STORAGE_READ).getNode('camera_matrix').mat())")
-    if not args.no_report:
+    if not args.no_report:  # the figure first: if it fails, no result file is left behind
+        from ._files import atomic_output
         from .plotting.calibration import report_figure
 
         fig = report_figure(result, report)
-        fig.savefig(args.report, dpi=90)
+        with atomic_output(args.report) as tmp:
+            fig.savefig(tmp, dpi=90)
+    path = save_calibration(result, args.out)
+    print(f"wrote {path} (load in OpenCV: cv2.FileStorage(path, cv2.FILE_STORAGE_READ).getNode('camera_matrix').mat())")
+    if not args.no_report:
         print(f"saved report figure {args.report}")
     return 0
+
+
+def _add_undistort(p: argparse.ArgumentParser) -> None:
+    p.add_argument("images", nargs="+", help='photos or a quoted glob pattern, e.g. "photos/*.jpg"')
+    p.add_argument("--calibration", required=True, help="calibration file from `camlab calibrate` (.json/.yaml/.xml)")
+    p.add_argument("--out-dir", required=True, help="folder for the undistorted images (same file names)")
+    p.add_argument("--alpha", type=float, default=0.0,
+                   help="0: crop to valid pixels (no black corners, default); 1: keep every source pixel")
+
+
+def _run_undistort(args: argparse.Namespace) -> int:
+    """Undistort each photo with the calibration; exit 1 if some could not be read or written."""
+    from pathlib import Path
+
+    import cv2
+
+    from ._files import atomic_output, check_output_path
+    from .calibration import load_calibration, undistort
+
+    K, dist, size = load_calibration(args.calibration)
+    out_dir = Path(args.out_dir)
+    if not out_dir.is_dir():
+        raise CamlabInputError(f"--out-dir: no folder {str(out_dir)!r}; create it first")
+    check_output_path(out_dir / "probe.png", "--out-dir")
+    files = _expand(args.images)
+    failed = 0
+    for i, name in enumerate(files, 1):
+        img = cv2.imread(name, cv2.IMREAD_UNCHANGED)
+        if img is None:
+            print(f"  [{i}/{len(files)}] {name}: skipped: not an image OpenCV can read", flush=True)
+            failed += 1
+            continue
+        if (img.shape[1], img.shape[0]) != size:
+            print(f"  [{i}/{len(files)}] {name}: skipped: {img.shape[1]} x {img.shape[0]} pixels, but the calibration "
+                  f"is for {size[0]} x {size[1]}", flush=True)
+            failed += 1
+            continue
+        res = undistort(img, K=K, dist=dist, alpha=args.alpha)
+        target = out_dir / Path(name).name
+        with atomic_output(target) as tmp:
+            if not cv2.imwrite(str(tmp), res.image):
+                raise CamlabInputError(f"--out-dir: could not write {str(target)!r}")
+        print(f"  [{i}/{len(files)}] {name} -> {target} ({100 * res.black_fraction:.1f}% black, "
+              f"{100 * res.lost_fraction:.1f}% of the photo cropped)", flush=True)
+    print(f"camlab undistort: {len(files) - failed} of {len(files)} images written to {out_dir}")
+    return 1 if failed else 0
 
 
 def _add_lessons(p: argparse.ArgumentParser) -> None:
@@ -118,6 +183,7 @@ def _run_present(args: argparse.Namespace) -> int:
 
 COMMANDS: dict[str, tuple[str, Callable[[argparse.ArgumentParser], None], Callable[[argparse.Namespace], int]]] = {
     "calibrate": ("calibrate a camera from photos of a chessboard", _add_calibrate, _run_calibrate),
+    "undistort": ("undistort photos with a calibration file", _add_undistort, _run_undistort),
     "lessons": ("copy the lessons into a working folder (keeps lessons you edited)", _add_lessons, _run_lessons),
     "present": ("lecture mode: serve one lesson's demos without code (Voila)", _add_present, _run_present),
     "assignments": ("write an nbgrader course directory of graded lessons", _add_assignments, _run_assignments),

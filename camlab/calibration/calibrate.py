@@ -7,7 +7,7 @@ import glob as _glob
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, NamedTuple, Sequence
+from typing import Any, Callable, NamedTuple, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -429,6 +429,20 @@ class ImageCalibration(NamedTuple):
         return "\n".join(lines)
 
 
+def _unreadable(path: Path) -> str | None:
+    """Why a photo file cannot be used (missing, empty, truncated JPEG/PNG), or None."""
+    if not path.is_file():
+        return "could not read the file: it does not exist"
+    data = path.read_bytes()
+    if not data:
+        return "could not read the file: it is empty (0 bytes)"
+    if data[:2] == b"\xff\xd8" and data.rstrip(b"\x00")[-2:] != b"\xff\xd9":
+        return "truncated JPEG: the file ends before its end-of-image marker (copy it again from the camera)"
+    if data[:8] == b"\x89PNG\r\n\x1a\n" and b"IEND" not in data[-16:]:
+        return "truncated PNG: the file ends before its IEND chunk (copy it again)"
+    return None
+
+
 def _load_images(images_or_paths) -> tuple[list, list, dict]:
     """Images and names; unreadable files become failures."""
     import cv2
@@ -446,9 +460,10 @@ def _load_images(images_or_paths) -> tuple[list, list, dict]:
     for i, item in enumerate(items):
         if isinstance(item, (str, os.PathLike)):
             names.append(str(item))
-            img = cv2.imread(str(item), cv2.IMREAD_GRAYSCALE) if Path(item).is_file() else None
+            why = _unreadable(Path(item))
+            img = None if why else cv2.imread(str(item), cv2.IMREAD_GRAYSCALE)
             if img is None:
-                failed[i] = "could not read the file (missing, or not an image)"
+                failed[i] = why or "could not read the file: not an image format OpenCV knows"
             images.append(img)
         else:
             names.append(f"image[{i}]")
@@ -457,6 +472,7 @@ def _load_images(images_or_paths) -> tuple[list, list, dict]:
 
 
 def calibrate_from_images(images_or_paths, pattern_size: Sequence[int] | str, square_size: float,
+                          progress: Callable[[int, int, str, str | None], None] | None = None,
                           **kwargs: Any) -> ImageCalibration:
     """Detect the chessboard in every image, report failures, calibrate from the rest.
 
@@ -467,6 +483,9 @@ def calibrate_from_images(images_or_paths, pattern_size: Sequence[int] | str, sq
         Inner corners.
     square_size : float
         Side of one square, metres (sets the units of the translations).
+    progress : callable, optional
+        Called after each image as ``progress(i, n, name, failure)`` (i from 1; failure is
+        the reason the image is skipped, None when its board was found).
     **kwargs
         Passed to :func:`calibrate_camera` (``skew``, ``fix``, ...).
 
@@ -499,13 +518,14 @@ def calibrate_from_images(images_or_paths, pattern_size: Sequence[int] | str, sq
                              f"calibrate each camera/resolution separately")
     detections: list = [None] * len(images)
     for i, img in enumerate(images):
-        if i in failed:
-            continue
-        det = find_chessboard(img, pattern)
-        if det.found:
-            detections[i] = det.corners
-        else:
-            failed[i] = det.reason
+        if i not in failed:
+            det = find_chessboard(img, pattern)
+            if det.found:
+                detections[i] = det.corners
+            else:
+                failed[i] = det.reason
+        if progress is not None:
+            progress(i + 1, len(images), names[i], failed.get(i))
     used = [i for i in range(len(images)) if detections[i] is not None]
     if len(used) < 3:
         why = "\n".join(f"  {names[i]}: {r}" for i, r in sorted(failed.items()))
