@@ -6,7 +6,6 @@ opencv_ms, ratio, target and ok; this script prints them all as tables.
 from __future__ import annotations
 
 import importlib
-import os
 import sys
 from pathlib import Path
 

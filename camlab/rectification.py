@@ -32,10 +32,10 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, DegenerateError, as_points, check_matrix, check_size
+from ._validate import CamlabInputError, DegenerateError, as_points, check_size
 from .camera import Camera, intrinsic_matrix
 from .distortion import DistortionMaps, distort_points, undistort_pixels
-from .epipolar import _check_F, _pairs, epipoles, relative_pose, skew
+from .epipolar import check_fundamental, epipoles, point_pairs, skew
 from .homography import compose
 from .projective import map_points
 
@@ -464,8 +464,8 @@ def rectify_uncalibrated(x1: ArrayLike, x2: ArrayLike, F: ArrayLike, image_size:
         The epipole lies inside image 2 (forward motion): no homography sends it to
         infinity without tearing the image; use a polar rectification instead.
     """
-    F = _check_F(F)
-    a, b, _ = _pairs(x1, x2, min_count=8)
+    F = check_fundamental(F)
+    a, b, _ = point_pairs(x1, x2, min_count=8)
     w, h = check_size(image_size, "image_size")
     e2 = epipoles(F).e2
     centre = np.array([(w - 1) / 2, (h - 1) / 2])

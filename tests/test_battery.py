@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import collections
 import importlib
-import inspect
 import os
 import sys
 import tempfile

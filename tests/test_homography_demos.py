@@ -5,8 +5,6 @@ import numpy as np
 import pytest
 from matplotlib.backend_bases import MouseEvent
 
-from camlab import homography as hg
-from camlab import perspective as pp
 from camlab.exercises import all_exercises, check
 from camlab.projective import map_points
 from camlab.widgets import homographies as h07

@@ -1,7 +1,6 @@
 """Demo-specific tests for lesson 09 (the generic sweep test lives in tests/test_widgets.py)."""
 import os
 
-import numpy as np
 import pytest
 
 os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")

@@ -1,5 +1,4 @@
 """Tests for camlab.sensor: pixel mapping, sampling, quantisation, noise, Bayer and demosaicing."""
-import cv2
 import numpy as np
 import pytest
 

@@ -87,3 +87,19 @@ def regeneration_dir() -> Path:
         return cache_dir()
     bundled = data_dir()
     return bundled if bundled == _REPO / "data" else cache_dir()
+
+
+def encode_image(image, ext: str, params: tuple[int, ...] = ()) -> bytes:
+    """The bytes of ``image`` encoded by ``cv2.imencode`` as ``ext`` (".png", ".jpg"), or raise.
+
+    ``cv2.imencode`` reports failure with a flag, not an exception; ignoring the flag would
+    write an empty or stale file into a data set.
+    """
+    import cv2
+
+    ok, buf = cv2.imencode(ext, image, list(params))
+    if not ok or buf is None:
+        raise OSError(f"cv2.imencode could not encode a {getattr(image, 'shape', '?')} "
+                      f"{getattr(image, 'dtype', '?')} image as {ext}")
+    return buf.tobytes()
+

@@ -35,9 +35,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._resources import dataset_dir
+from ._resources import dataset_dir, encode_image
 from .._validate import CamlabInputError
-from ..camera import Camera, intrinsic_matrix, look_at_rotation, rotation_from_axis_angle
+from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
 from ..scenes import noise_texture, portrait
 
 __all__ = ["STEREO_PARAMS", "StereoRig", "load_stereo_rig", "make_stereo_rig", "rig_cameras", "stereo_scene", "true_matches"]
@@ -189,16 +189,14 @@ def true_matches(rig: StereoRig, step: int = 30, start: int = 20) -> tuple[np.nd
 def _png(path: Path, img: np.ndarray) -> Path:
     import cv2
 
-    ok, buf = cv2.imencode(".png", img, [cv2.IMWRITE_PNG_COMPRESSION, 9])
-    path.write_bytes(buf.tobytes())
+    path.write_bytes(encode_image(img, ".png", (cv2.IMWRITE_PNG_COMPRESSION, 9)))
     return path
 
 
 def _jpg(path: Path, img: np.ndarray, quality: int) -> Path:
     import cv2
 
-    ok, buf = cv2.imencode(".jpg", img, [cv2.IMWRITE_JPEG_QUALITY, int(quality)])
-    path.write_bytes(buf.tobytes())
+    path.write_bytes(encode_image(img, ".jpg", (cv2.IMWRITE_JPEG_QUALITY, int(quality))))
     return path
 
 

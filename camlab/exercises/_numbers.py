@@ -10,3 +10,12 @@ def is_number(x) -> bool:
         return np.ndim(x) == 0 and bool(np.isfinite(float(x)))
     except (TypeError, ValueError):
         return False
+
+
+def same_number(rtol: float = 1e-9):
+    """A comparison for ``Exercise.compare``: one finite number, equal to the expected one within ``rtol``."""
+
+    def compare(got, expected) -> bool:
+        return is_number(got) and bool(np.isclose(float(got), expected, rtol=rtol))
+
+    return compare

@@ -109,3 +109,80 @@ register_exercise(Exercise(
                                        tuple(shape)).copy(), "vertical"),
     ),
 ))
+
+
+# ----------------------------------------------------------------------------- focal from a rotation homography
+
+def _focal_reference(H, shape):
+    """One focal for both images (the same camera): the median of what H's rows and columns give."""
+    from ..stitching.cameras import focal_from_homography
+
+    fs = [f for f in focal_from_homography(H, shape, shape) if np.isfinite(f)]
+    return float(np.median(fs)) if fs else float("nan")
+
+
+def focal_from_rotation_homography(H, shape):
+    """Teaching solution: the focal length (pixels) of a camera that turned, from H = K R K^-1."""
+    h, w = shape[:2]
+    C = np.array([[1.0, 0, (w - 1) / 2], [0, 1, (h - 1) / 2], [0, 0, 1]])  # principal point at the centre
+    Hc = np.linalg.inv(C) @ np.asarray(H, float) @ C                       # now H ~ diag(f, f, 1) R diag(1/f, 1/f, 1)
+    h0, h1, h2, h3, h4, h5, h6, h7, _ = Hc.ravel() / np.linalg.norm(Hc)
+    # R's columns 1 and 2 are orthogonal and equally long: two formulas for f^2, keep the better-conditioned one
+    n1, d1 = -(h0 * h1 + h3 * h4), h6 * h7
+    n2, d2 = h0 ** 2 + h3 ** 2 - h1 ** 2 - h4 ** 2, h7 ** 2 - h6 ** 2
+    f2_cols = n1 / d1 if abs(d1) > abs(d2) else n2 / d2
+    # R's rows 1 and 2 likewise
+    n1, d1 = -h2 * h5, h0 * h3 + h1 * h4
+    n2, d2 = h5 ** 2 - h2 ** 2, h0 ** 2 + h1 ** 2 - h3 ** 2 - h4 ** 2
+    f2_rows = n1 / d1 if abs(d1) > abs(d2) else n2 / d2
+    good = [np.sqrt(v) for v in (f2_rows, f2_cols) if np.isfinite(v) and v > 0]
+    return float(np.median(good)) if good else float("nan")
+
+
+def _focal_cases():
+    from ..camera import rotation_from_axis_angle
+
+    out = []
+    for f, (h, w), rvec in ((700.0, (480, 640), [0.0, 0.35, 0.0]),       # a pure pan: h7 = 0
+                            (520.0, (660, 900), [0.05, -0.4, 0.03]),     # pan, tilt and roll
+                            (1200.0, (600, 800), [0.2, 0.0, 0.0])):      # a pure tilt
+        K = np.array([[f, 0, (w - 1) / 2], [0, f, (h - 1) / 2], [0, 0, 1]])
+        out.append((rotation_homography(K, rotation_from_axis_angle(rvec)), (h, w)))
+    return out
+
+
+def _focal_uncentred(H, shape):
+    h0, h1, h2, h3, h4, h5, h6, h7, _ = np.asarray(H, float).ravel()
+    return float(np.sqrt(abs((h0 ** 2 + h3 ** 2 - h1 ** 2 - h4 ** 2) / (h7 ** 2 - h6 ** 2))))
+
+
+def _focal_diagnosis(args, got, expected) -> str:
+    H, shape = args
+    try:
+        g = float(got)
+    except (TypeError, ValueError):
+        return f"return one number, the focal length in pixels; got {type(got).__name__}."
+    if not np.isfinite(g):
+        return ("you returned NaN or inf: for a pure pan h6 h7 = 0 (and for a pure tilt h6 = 0), so one formula is "
+                "0/0; use the other one (the equal-length condition), whichever denominator is larger.")
+    if np.isclose(g, expected ** 2, rtol=1e-3):
+        return "that is f squared: the orthogonality conditions give f^2; take the square root."
+    if np.isclose(g, _focal_uncentred(H, shape), rtol=1e-3) or abs(g / expected - 1) > 0.05:
+        return ("move the principal point to the origin first: H_c = C^-1 H C with C the translation to the image "
+                "centre ((w-1)/2, (h-1)/2). The formulas hold for K = diag(f, f, 1) only.")
+    return "f^2 = -(h0 h1 + h3 h4) / (h6 h7) or (h0^2 + h3^2 - h1^2 - h4^2) / (h7^2 - h6^2) on the centred H."
+
+
+register_exercise(Exercise(
+    name="focal_from_rotation_homography",
+    lesson="09",
+    reference=_focal_reference,
+    cases=_focal_cases,
+    compare=lambda got, expected: np.isfinite(float(got)) and abs(float(got) / expected - 1) < 1e-6,
+    diagnose=_focal_diagnosis,
+    wrong_variants=(
+        (lambda H, shape: focal_from_rotation_homography(H, shape) ** 2, "square root"),
+        (_focal_uncentred, "principal point"),
+    ),
+    teaching=focal_from_rotation_homography,
+))

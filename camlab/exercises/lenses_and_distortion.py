@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import distortion, lens
-from ._numbers import is_number as _is_number
+from ._numbers import is_number as _is_number, same_number
 from ._core import Exercise, register_exercise, same_array, shape_problem, unit_slip
 
 
@@ -37,7 +37,7 @@ register_exercise(Exercise(
     lesson="02",
     reference=lens.image_distance,
     cases=_thin_lens_cases,
-    compare=lambda got, exp: _is_number(got) and bool(np.isclose(float(got), exp, rtol=1e-9)),
+    compare=same_number(rtol=1e-9),
     diagnose=_thin_lens_diagnosis,
     wrong_variants=(
         (lambda f, zo: f * zo / (zo + f), "sign slip"),
@@ -146,7 +146,7 @@ register_exercise(Exercise(
     lesson="02",
     reference=lens.hyperfocal_distance,
     cases=_hyperfocal_cases,
-    compare=lambda got, exp: _is_number(got) and bool(np.isclose(float(got), exp, rtol=1e-9)),
+    compare=same_number(rtol=1e-9),
     diagnose=_hyperfocal_diagnosis,
     wrong_variants=(
         (lambda f, N, c: f**2 / (N * c), "dropped the + f"),

@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import pinhole
-from ._numbers import is_number as _is_number
+from ._numbers import same_number
 from ._core import Exercise, register_exercise, same_array, shape_problem, unit_slip
 
 
@@ -90,7 +90,7 @@ register_exercise(Exercise(
     lesson="01",
     reference=pinhole.optimal_pinhole_diameter,
     cases=_best_cases,
-    compare=lambda got, exp: _is_number(got) and bool(np.isclose(float(got), exp, rtol=1e-6)),
+    compare=same_number(rtol=1e-6),
     diagnose=_best_diagnosis,
     wrong_variants=(
         (lambda f, lam: float(np.sqrt(lam * f)), "2.44"),

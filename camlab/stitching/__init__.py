@@ -37,7 +37,6 @@ pixel (docs/conventions.md).
 """
 from __future__ import annotations
 
-import warnings
 from typing import NamedTuple, Sequence
 
 import numpy as np
@@ -128,7 +127,8 @@ class PairRegistration(NamedTuple):
 def register_pair(features1: _feat.Features, features2: _feat.Features, *, ratio: float = 0.75,
                   mutual: bool = False, threshold: float = 3.0, min_inliers: int = 15,
                   rng: np.random.Generator | None = None, matches: _feat.Matches | None = None,
-                  refine: bool = True, approximate: bool = False) -> PairRegistration:
+                  refine: bool = True, approximate: bool = False, confidence: float = 0.999,
+                  max_iters: int = 2000) -> PairRegistration:
     r"""Register image 1 onto image 2: match features, fit H by RANSAC, judge the result.
 
     The pair is accepted when RANSAC finds at least ``min_inliers`` inliers *and* more
@@ -155,6 +155,8 @@ def register_pair(features1: _feat.Features, features2: _feat.Features, *, ratio
         Use these matches instead of matching (e.g. re-filtered ones from a slider).
     approximate : bool
         Match with FLANN instead of brute force (:func:`camlab.features.knn_match`).
+    confidence, max_iters : float, int
+        RANSAC's stopping rule (:func:`camlab.homography.ransac_homography`).
     """
     rng = np.random.default_rng(0) if rng is None else rng
     m = _feat.match_features(features1, features2, ratio, mutual, approximate=approximate) if matches is None else matches
@@ -164,7 +166,7 @@ def register_pair(features1: _feat.Features, features2: _feat.Features, *, ratio
         return PairRegistration(None, m, none, float("nan"), False,
                                 f"too few matches: {n} (need at least {max(min_inliers, 5)})")
     try:
-        r = _hg.ransac_homography(m.src, m.dst, threshold, 0.999, 2000, rng)
+        r = _hg.ransac_homography(m.src, m.dst, threshold, confidence, max_iters, rng)
     except DegenerateError as exc:
         return PairRegistration(None, m, none, float("nan"), False, f"RANSAC failed: {exc}")
     H, inl = r.H, r.inliers
@@ -237,7 +239,8 @@ class MatchGraph(NamedTuple):
 
 def match_graph(features: Sequence[_feat.Features], *, ratio: float = 0.75, mutual: bool = False,
                 threshold: float = 3.0, min_inliers: int = 15, rng: np.random.Generator | None = None,
-                reference: int | None = None, approximate: bool = False) -> MatchGraph:
+                reference: int | None = None, approximate: bool = False, refine: bool = True,
+                confidence: float = 0.999, max_iters: int = 2000) -> MatchGraph:
     r"""Register every pair, choose the reference image and chain homographies to it.
 
     1. Register each pair i < j (:func:`register_pair`).
@@ -257,7 +260,8 @@ def match_graph(features: Sequence[_feat.Features], *, ratio: float = 0.75, mutu
     for i in range(n):
         for j in range(i + 1, n):
             pairs[(i, j)] = register_pair(feats[i], feats[j], ratio=ratio, mutual=mutual, threshold=threshold,
-                                          min_inliers=min_inliers, rng=rng, approximate=approximate)
+                                          min_inliers=min_inliers, rng=rng, approximate=approximate,
+                                          refine=refine, confidence=confidence, max_iters=max_iters)
     degree = np.zeros(n, int)
     strength = np.zeros(n, int)
     for (i, j), p in pairs.items():
@@ -610,9 +614,12 @@ def dp_seam_masks(warped: WarpedImages, megapixels: float = 0.1) -> list[np.ndar
     out = [(full == k) & m for k, m in enumerate(warped.masks)]
     union = np.logical_or.reduce(warped.masks)
     missed = union & ~np.logical_or.reduce(out)
-    if missed.any():
-        fallback = seam_masks(warped.weights)
-        out = [o | (f & missed) for o, f in zip(out, fallback)]
+    if missed.any():  # only in the box around the missed pixels (a thin rim)
+        rows, cols = np.flatnonzero(missed.any(axis=1)), np.flatnonzero(missed.any(axis=0))
+        box = (slice(rows[0], rows[-1] + 1), slice(cols[0], cols[-1] + 1))
+        fallback = seam_masks([wk[box] for wk in warped.weights])
+        for o, f in zip(out, fallback):
+            o[box] |= f & missed[box]
     return out
 
 
@@ -756,7 +763,9 @@ def laplacian_blend(images: Sequence[np.ndarray], masks: Sequence[np.ndarray], l
     out = bands[-1]
     for lv in range(levels - 1, -1, -1):
         out = cv2.pyrUp(out, dstsize=(bands[lv].shape[1], bands[lv].shape[0])).reshape(bands[lv].shape) + bands[lv]
-    return np.where(union[..., None], np.clip(out, 0, 1), 0).astype(np.float32)
+    out = np.clip(out, 0, 1, out=out).astype(np.float32, copy=False)
+    out[~union] = 0
+    return out
 
 
 def blend(warped: WarpedImages, method: str = "multiband", *, gains: ArrayLike | None = None,
@@ -795,7 +804,7 @@ def blend(warped: WarpedImages, method: str = "multiband", *, gains: ArrayLike |
         g = np.asarray(gains, dtype=float).ravel()
         if g.shape != (len(imgs),):
             raise CamlabInputError(f"gains: expected {len(imgs)} gains (one per image), got shape {g.shape}")
-        imgs = [np.clip(im * np.float32(gk), 0, 1) for im, gk in zip(imgs, g)]
+        imgs = [np.minimum(im * np.float32(gk), np.float32(1)) for im, gk in zip(imgs, g)]  # im >= 0
     h, w = warped.shape
     if method == "overwrite":
         out = np.zeros((h, w, imgs[0].shape[2]), np.float32)

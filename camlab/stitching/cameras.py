@@ -30,7 +30,7 @@ from typing import NamedTuple, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import CamlabInputError, DegenerateError, check_matrix
+from .._validate import DegenerateError, check_matrix
 from ..camera import rotation_from_axis_angle
 from ..optimize import huber_residuals, levenberg_marquardt
 

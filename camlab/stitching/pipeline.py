@@ -5,10 +5,10 @@ r"""The whole panorama: :func:`stitch` runs every stage and says what it chose a
 3. The model. A **rotation** (:func:`camlab.stitching.cameras.estimate_cameras`: focal from
    the homographies, spanning-tree rotations, bundle adjustment, wave correction) explains
    a camera turning about its centre. If its residual is large, or the focal comes out
-   longer than 4 image diagonals (views under 14 degrees wide: a rotation cannot be told
-   from a flat scene), the images are taken as views of a **plane** (a map, a document, a facade from several positions) and every
-   homography is refined together (:func:`camlab.stitching.cameras.adjust_homographies`). If
-   that fails too, the camera moved in front of a 3-D scene: a warning gives both residuals.
+   longer than 2 image diagonals (views under about 30 degrees wide, where a flat scene
+   passes for a rotation), the **plane** model is tried: the images are taken as views of a plane (a map, a document, a facade from several positions) and every
+   homography is refined together (:func:`camlab.stitching.cameras.adjust_homographies`), and
+   wins if its residual is below 0.7 times the rotation's. If neither fits, the camera moved in front of a 3-D scene: a warning gives both residuals.
 4. The canvas (:mod:`camlab.stitching.projections`): planar, cylindrical or spherical;
    ``"auto"`` takes the plane for planar scenes and fields of view up to 100 degrees, the
    sphere beyond.
@@ -189,7 +189,7 @@ def _warn_second_plane(graph, names: list, rng) -> None:
         if not p.accepted or n < 10:
             continue
         try:
-            r2 = ransac_homography(p.matches.src[out], p.matches.dst[out], 3.0, 0.99, 500, rng)
+            r2 = ransac_homography(p.matches.src[out], p.matches.dst[out], 3.0, 0.99, 300, rng)
         except (DegenerateError, CamlabInputError):
             continue
         k2 = int(r2.inliers.sum())
@@ -243,7 +243,7 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
            projection: str = "auto", K: ArrayLike | None = None, reference: int | None = None,
            rng: np.random.Generator | None = None, max_pixels: int = 40_000_000,
            names: Sequence[str] | None = None, crop: bool = False, rotation_tol: float = 1.0,
-           plane_tol: float = 1.5, registration_megapixels: float = 0.15) -> StitchResult:
+           plane_tol: float = 1.5, registration_megapixels: float | None = 0.15) -> StitchResult:
     """Stitch overlapping photos of a turning camera, or of a flat scene, into a panorama.
 
     See the module docstring for the stages.
@@ -275,8 +275,9 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
         finest octave mostly adds noise-level keypoints); their positions are mapped back,
         so every later stage works in full-resolution pixels. ``None``: full resolution.
     rotation_tol, plane_tol : float
-        RMS residuals (pixels) above which the rotation model, then the plane model, is
-        judged not to fit.
+        RMS residuals (pixels at the registration resolution) above which the rotation
+        model, then the plane model, is judged not to fit. The plane replaces the rotation
+        only if it fits clearly better (residual below 0.7 times the rotation's).
 
     Returns
     -------
@@ -315,7 +316,8 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
     times["features"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     graph = match_graph(feats, ratio=ratio, mutual=mutual, threshold=threshold, min_inliers=min_inliers,
-                        rng=rng, reference=reference, approximate=True)
+                        rng=rng, reference=reference, approximate=True, refine=False, confidence=0.995,
+                        max_iters=1000)  # bundle adjustment refines every pair together afterwards
     times["matching"] = time.perf_counter() - t0
     keep = [k for k in range(n) if graph.homographies[k] is not None]
     if len(keep) < 2:
@@ -334,21 +336,26 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
     shapes = [im.shape for im in imgs]
     diag = float(np.median([np.hypot(*sh[:2]) for sh in shapes]))
     f0 = estimate_focal({key: p.H for key, p in graph.pairs.items() if p.accepted}, shapes)
-    # views under 14 degrees wide: a rotation cannot be told from a flat scene (and its adjustment crawls)
-    telephoto = Kfix is None and f0 > 4 * diag and projection in ("auto", "planar")
+    # views under about 30 degrees wide: a flat scene passes for a rotation (and its adjustment crawls)
+    telephoto = Kfix is None and f0 > 2 * diag and projection in ("auto", "planar")
     est = None if telephoto else estimate_cameras(graph, shapes, K=Kfix)
     rot_rms = np.inf if est is None else est.bundle.rms_after
+    # residuals are in full-resolution pixels; features found on smaller copies are that much less precise
+    coarse = float(np.median([np.sqrt(im.shape[0] * im.shape[1] / (registration_megapixels * 1e6))
+                              for im in imgs])) if registration_megapixels else 1.0
+    rot_tol, pl_tol = rotation_tol * max(1.0, coarse), plane_tol * max(1.0, coarse)
     model, resid = "rotation", rot_rms
-    if (telephoto or rot_rms > rotation_tol) and projection in ("auto", "planar"):
-        adj = adjust_homographies(graph.homographies, inlier_matches(graph), reference=graph.reference)
-        model, Hs_plane, resid = "homography", adj.homographies, adj.rms_after
-        if adj.rms_after > plane_tol:
+    if (telephoto or rot_rms > rot_tol) and projection in ("auto", "planar"):
+        adj = adjust_homographies(graph.homographies, inlier_matches(graph, 100), reference=graph.reference)
+        if telephoto or adj.rms_after < 0.7 * rot_rms:  # a plane explains the matches clearly better
+            model, Hs_plane, resid = "homography", adj.homographies, adj.rms_after
+        if adj.rms_after > pl_tol and rot_rms > rot_tol:
             warnings.warn(f"stitch: neither a turning camera (rotation model residual {rot_rms:.2f} px) nor a flat "
                           f"scene (homography residual {adj.rms_after:.2f} px) explains the matches: the camera "
                           f"moved in front of a 3-D scene (parallax); expect ghosts and misaligned seams",
                           UserWarning, stacklevel=2)
-    elif rot_rms > rotation_tol:
-        warnings.warn(f"stitch: the rotation model leaves {rot_rms:.2f} px RMS (more than {rotation_tol} px): the "
+    elif rot_rms > rot_tol:
+        warnings.warn(f"stitch: the rotation model leaves {rot_rms:.2f} px RMS (more than {rot_tol:.2f} px): the "
                       f"camera moved (parallax) or the scene is flat; try projection='planar'", UserWarning,
                       stacklevel=2)
     if model == "homography":
@@ -430,7 +437,7 @@ def _hg_border(H: np.ndarray, shape) -> np.ndarray:
 
 def _ring(shape) -> np.ndarray:
     """40 points per side around an image's border, in order (top, right, bottom, left)."""
-    from .projections import _border
+    from .projections import border_points
 
-    p = _border(shape, 40)[:-1]
+    p = border_points(shape, 40)[:-1]
     return np.vstack([p[:40], p[120:160], p[40:80][::-1], p[80:120][::-1]])

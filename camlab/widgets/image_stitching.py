@@ -19,6 +19,7 @@ from ..plotting import palette
 from ..plotting.stitching import draw_keypoints, draw_matches, match_segments, outline
 from ..projective import map_points
 from ._base import Demo, FigureView, build_demo, register, slider
+from .controls import monospace
 
 SCALE = 0.5
 
@@ -32,10 +33,6 @@ def _rgba(image: np.ndarray) -> np.ndarray:
     out[..., :3] = a[..., :3] if a.ndim == 3 else a[..., None]
     out[..., 3] = 255
     return out
-
-
-def _pre(text: str) -> str:
-    return f"<pre style='font-size:12px;line-height:1.3;margin:0'>{text}</pre>"
 
 
 @lru_cache(maxsize=1)
@@ -87,7 +84,7 @@ def feature_matches() -> Demo:
         art["bad"].set_segments(seg[~good & show])
         n, nbad = len(good), int((~good).sum())
         state.update(matches=n, wrong=nbad, precision=(n - nbad) / n if n else float("nan"))
-        readout.value = _pre(f"keypoints: {len(feats[i].points)} / {len(feats[j].points)}\n"
+        readout.value = monospace(f"keypoints: {len(feats[i].points)} / {len(feats[j].points)}\n"
                              f"matches kept: {n}\nwrong (red): {nbad} ({100 * nbad / max(n, 1):.0f}%)"
                              + ("\n(at most 200 lines drawn)" if n > 200 else ""))
 
@@ -113,13 +110,14 @@ def ransac_registration() -> Demo:
     ax.set_title(f"matches in image {j}; frame of image {i} mapped by H", fontsize=9)
     inl = view.animate(ax.plot([], [], ".", color="lime", ms=4, label="inliers")[0])
     outl = view.animate(ax.plot([], [], "x", color="red", ms=4, label="outliers")[0])
-    true_box = outline(ax, s.true_homography(i, j), imgs[i].shape, color="white", lw=2, label="true")
+    outline(ax, s.true_homography(i, j), imgs[i].shape, color="white", lw=2, label="true")
     est_box = view.animate(outline(ax, np.eye(3), imgs[i].shape, color="tab:blue", lw=1.5, ls="--", label="RANSAC"))
     h, w = imgs[j].shape[:2]
     ax.set(xlim=(-0.5, w - 0.5), ylim=(h - 0.5, -0.5))
-    ax.legend(loc="lower left", fontsize=7, framealpha=0.7)
-    ax_e.set(xlabel="symmetric transfer error (px)", ylabel="matches (scaled)", xscale="log", xlim=(0.03, 300), ylim=(0, 1))
-    ax_e.set_title("residuals under the RANSAC H", fontsize=9)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.02), ncols=4, fontsize=7, facecolor="0.75")
+    ax_e.set(xlabel="transfer error per match (px, log scale)",
+             ylabel="number of matches\n(relative to the tallest bar)", xscale="log", xlim=(0.03, 300), ylim=(0, 1))
+    ax_e.set_title("residuals under H (red: threshold)", fontsize=9)
     bins = np.logspace(np.log10(0.03), np.log10(300), 41)
     bars = ax_e.bar(bins[:-1], np.zeros(40), width=np.diff(bins), align="edge", color="0.6")
     view.animate(*bars)
@@ -137,7 +135,7 @@ def ransac_registration() -> Demo:
             outl.set_data(m.dst[:, 0], m.dst[:, 1])
             est_box.set_data([], [])
             state.update(inliers=0, corner_error=float("nan"), accepted=False)
-            readout.value = _pre(r.reason)
+            readout.value = monospace(r.reason)
             return
         inl.set_data(m.dst[r.inliers, 0], m.dst[r.inliers, 1])
         outl.set_data(m.dst[~r.inliers, 0], m.dst[~r.inliers, 1])
@@ -152,7 +150,7 @@ def ransac_registration() -> Demo:
         good = _true_good(s, i, j, m.src, m.dst)
         state.update(inliers=int(r.inliers.sum()), corner_error=err, accepted=r.accepted,
                      false_inliers=int((r.inliers & ~good).sum()))
-        readout.value = _pre(f"matches: {len(m.src)}\ninliers: {int(r.inliers.sum())} "
+        readout.value = monospace(f"matches: {len(m.src)}\ninliers: {int(r.inliers.sum())} "
                              f"({int((r.inliers & ~good).sum())} of them wrong)\n"
                              f"inlier RMS: {r.residual_rms:.2f} px\nworst corner vs truth: {err:.2f} px\n"
                              f"accepted: {r.accepted} {r.reason}")
@@ -220,8 +218,8 @@ def panorama_canvas() -> Demo:
             p = map_points(wi.homographies[k], _frame(small[k].shape))
             ln.set_data(p[:, 0], p[:, 1])
         state.update(reference=ref, canvas=(hh, ww), T=wi.T)
-        readout.value = _pre(f"reference image: {ref}\ncanvas: {ww} x {hh} px\n"
-                             f"translation T: ({wi.T[0, 2]:.0f}, {wi.T[1, 2]:.0f})\n"
+        readout.value = monospace(f"reference image: {ref}\ncanvas: {ww} x {hh} px\n"
+                             f"translation T: ({int(round(wi.T[0, 2])):+d}, {int(round(wi.T[1, 2])):+d}) px\n"
                              f"best-connected image: {graph.reference}")
 
     controls = {"reference": W.IntSlider(value=graph.reference, min=0, max=len(imgs) - 1, description="reference")}
@@ -261,14 +259,18 @@ def blending_seams() -> Demo:
         c0 = int(cols[0]) if len(cols) else ww // 2
         return int(np.clip(c0 - z // 2, 0, ww - z)), int(np.clip(row - z // 2, 0, hh - z))
 
-    # overwrite's seam is the border of the image painted last; the others' is the middle seam
-    windows = {"overwrite": window(wi.masks[1]), "feather": window(seam), "multiband": window(seam)}
+    # overwrite's seam is the border of the image painted last, the others' the middle seam: one fixed window
+    # wide enough to hold both, so switching methods compares the same canvas pixels
+    (u1, _), (u2, _) = window(wi.masks[1]), window(seam)
+    z = int(min(ww, max(z, abs(u1 - u2) + z)))
+    u0 = int(np.clip(min(u1, u2), 0, ww - z))
+    v0 = int(np.clip(row - z // 2, 0, hh - z))
     view = FigureView(figsize=(9, 3.4))
     ax, ax_z = view.fig.subplots(1, 2, width_ratios=[2.2, 1])
     im = view.animate(ax.imshow(np.zeros((hh, ww, 3), np.float32), interpolation="nearest"))
     from matplotlib.patches import Rectangle
 
-    rect = view.animate(ax.add_patch(Rectangle((0, 0), z, z, fill=False, color="yellow", lw=1.5)))
+    ax.add_patch(Rectangle((u0 - 0.5, v0 - 0.5), z, z, fill=False, color="yellow", lw=1.5))
     ax.set_xticks([])
     ax.set_yticks([])
     ax.set_title("two views, exposures differ by 30%", fontsize=9)
@@ -278,19 +280,27 @@ def blending_seams() -> Demo:
     ax_z.set_title("zoom on the seam", fontsize=9)
     readout = W.HTML()
     both = wi.masks[0] & wi.masks[1]
+    cache: dict = {}
+    for m in st.BLENDS:  # blending is the slow part: every setting the controls can reach, once
+        for g in (False, True):
+            for lv in (range(1, 7) if m == "multiband" else (5,)):
+                update_key = (m, g, lv if m == "multiband" else 0)
+                out = st.blend(wi, m, gains=gains if g else None, levels=lv)
+                cache[update_key] = (out, _rgba(out))
 
     def update(v: dict, state: dict) -> None:
-        out = st.blend(wi, v["method"], gains=gains if v["gains"] else None, levels=int(v["levels"]))
-        rgba = _rgba(out)
+        key = (v["method"], bool(v["gains"]), int(v["levels"]) if v["method"] == "multiband" else 0)
+        if key not in cache:
+            out = st.blend(wi, v["method"], gains=gains if v["gains"] else None, levels=int(v["levels"]))
+            cache[key] = (out, _rgba(out))
+        out, rgba = cache[key]
         im.set_data(rgba)
-        zu, zv = windows[v["method"]]
-        rect.set_xy((zu - 0.5, zv - 0.5))
-        imz.set_data(rgba[zv:zv + z, zu:zu + z])
+        imz.set_data(rgba[v0:v0 + z, u0:u0 + z])
         # the exposure step across the seam, grey levels; overwrite's seam is the last image's border
         jump = 255 * (st.seam_step(out, wi.masks[1], wi.masks[0]) if v["method"] == "overwrite"
                       else st.seam_step(out, seam, both))
         state.update(method=v["method"], seam_jump=jump, image=out)
-        readout.value = _pre(f"blend: {v['method']}\ngains: {np.round(gains, 3).tolist() if v['gains'] else 'off'}\n"
+        readout.value = monospace(f"blend: {v['method']}\ngains: {np.round(gains, 3).tolist() if v['gains'] else 'off'}\n"
                              f"mean step across the seam: {jump:.1f} grey levels")
 
     controls = {
@@ -306,7 +316,7 @@ def blending_seams() -> Demo:
 @lru_cache(maxsize=1)
 def _panoramas():
     s, _, _, _ = demo_data()
-    return {proj: st.stitch(s.images, projection=proj, K=s.K, blend_method="multiband", max_features=1500)
+    return {proj: st.stitch(s.images, projection=proj, blend_method="multiband", max_features=1500)
             for proj in ("planar", "cylindrical")}
 
 
@@ -319,7 +329,8 @@ def full_panorama() -> Demo:
     ax = view.fig.subplots()
     im = view.animate(ax.imshow(pans["planar"].panorama, interpolation="nearest"))
     colors = palette.SERIES[:4]
-    lines = [view.animate(ax.plot([], [], color=c, lw=1.2)[0]) for c in colors]
+    lines = [view.animate(ax.plot([], [], color=c, lw=1.2, label=f"view {k}")[0]) for k, c in enumerate(colors)]
+    ax.legend(handles=lines, loc="lower center", ncols=4, fontsize=8, framealpha=0.8, title="outline of")
     hmax = max(p.panorama.shape[0] for p in pans.values())
     wmax = max(p.panorama.shape[1] for p in pans.values())
     ax.set(xlim=(-0.5, wmax - 0.5), ylim=(hmax - 0.5, -0.5), aspect="equal")
@@ -334,8 +345,8 @@ def full_panorama() -> Demo:
         hh, ww = r.panorama.shape[:2]
         im.set_extent((-0.5, ww - 0.5, hh - 0.5, -0.5))
         for k, ln in enumerate(lines):
-            if v["outlines"] and r.homographies[k] is not None:
-                p = map_points(r.homographies[k], _frame(imgs[k].shape))
+            if v["outlines"] and r.outlines[k] is not None:
+                p = np.vstack([r.outlines[k], r.outlines[k][:1]])
                 ln.set_data(p[:, 0], p[:, 1])
             else:
                 ln.set_data([], [])
@@ -343,13 +354,108 @@ def full_panorama() -> Demo:
                      outlines_drawn=sum(len(ln.get_xdata()) > 0 for ln in lines))
         rows = "\n".join(f"{p.i}-{p.j}: {p.matches:4d} matches {p.inliers:4d} inliers "
                          f"rms {p.residual_rms:.2f} {'ok' if p.accepted else 'rejected'}" for p in r.pairs)
-        readout.value = _pre(f"{v['projection']}: {ww} x {hh} px, reference {r.reference}\n{rows}")
+        readout.value = monospace(f"{v['projection']}: {ww} x {hh} px, reference {r.reference}\n{rows}")
 
     controls = {
         "projection": W.Dropdown(options=["planar", "cylindrical"], value="planar", description="projection"),
         "outlines": W.Checkbox(value=True, description="image outlines"),
     }
     return build_demo("full_panorama", controls, view, update, title="The panorama", extra=[readout])
+
+
+# ----------------------------------------------------------------------------- plane, cylinder, sphere
+
+@lru_cache(maxsize=1)
+def _sweep_cameras():
+    """The 200-degree sweep (six views, 360 x 264, f = 200 px) with its bundle-adjusted cameras."""
+    s = sd.turning_set("wide", size=(360, 264), f=200.0)
+    r = st.stitch(s.images, projection="spherical", blend_method="overwrite")
+    return s, r
+
+
+@lru_cache(maxsize=1)
+def canvas_gallery() -> dict:
+    """{(views, projection): (RGBA image or None, message)} for the first 2-6 views on each canvas.
+
+    Every image is warped with the estimated cameras (:mod:`camlab.stitching.projections`)
+    and pasted (overwrite, at 3/4 of the focal length: a preview); a plane that cannot hold
+    the views gets None and the reason.
+    """
+    from ..stitching import projections as pj
+    from ..stitching.cameras import wave_correct
+
+    s, r = _sweep_cameras()
+    imgs = st.prepare_images(s.images)
+    out = {}
+    for n in range(2, 7):
+        Ks = [r.cameras[k][0] for k in range(n)]
+        Rs = wave_correct([r.cameras[k][1] for k in range(n)])  # the canvas centred on these n views
+        scale = 0.75 * float(np.median([K[0, 0] for K in Ks]))
+        for proj in pj.PROJECTIONS:
+            fov = 40 * (n - 1) + np.degrees(2 * np.arctan(180 / 200))
+            try:
+                canvas = pj.make_canvas(Ks, Rs, [im.shape for im in imgs[:n]], proj, scale, max_pixels=3_000_000)
+            except (st.DegenerateError, st.CamlabInputError) as exc:
+                why = str(exc).split(";")[0].replace("footprint: ", "")
+                out[(n, proj)] = (None, f"{n} views, {fov:.0f} degrees: {why}")
+                continue
+            pano = np.zeros((*canvas.shape, 3), np.float32)
+            for im, K, R, box in zip(imgs[:n], Ks, Rs, canvas.boxes):
+                patch, mask, _ = pj.warp_to_canvas(im, K, R, canvas, box)
+                r0, r1, c0, c1 = box
+                pano[r0:r1, c0:c1][mask] = patch[mask]
+            out[(n, proj)] = (_fit(_rgba(pano)), f"{n} views, {fov:.0f} degrees of view: {proj} canvas "
+                                                  f"{canvas.shape[1]} x {canvas.shape[0]} px (shown scaled to fit)")
+    return out
+
+
+def _fit(rgba: np.ndarray, box: tuple[int, int] = (220, 560)) -> np.ndarray:
+    """Scale an RGBA image to fit a (height, width) box, placed at the top centre of a white box."""
+    import cv2
+
+    h, w = rgba.shape[:2]
+    k = min(box[0] / h, box[1] / w)
+    small = cv2.resize(rgba, (max(1, int(w * k)), max(1, int(h * k))), interpolation=cv2.INTER_AREA)
+    out = np.full((*box, 4), 255, np.uint8)
+    x0 = (box[1] - small.shape[1]) // 2
+    out[:small.shape[0], x0:x0 + small.shape[1]] = small
+    return out
+
+
+@register(lesson="09", sweep={"views": [2, 3, 4, 5, 6], "projection": ["planar", "cylindrical", "spherical"]})
+def canvas_projections() -> Demo:
+    """The same photos on a plane, a cylinder and a sphere as the turn grows (precomputed previews)."""
+    gallery = canvas_gallery()
+    view = FigureView(figsize=(6.4, 2.6))
+    ax = view.fig.subplots()
+    blank = np.full((220, 560, 4), 255, np.uint8)
+    im = view.animate(ax.imshow(blank, interpolation="nearest"))
+    msg = view.animate(ax.text(0.5, 0.5, "", transform=ax.transAxes, ha="center", va="center", fontsize=10,
+                               color="tab:red", wrap=True))
+    ax.set(xlim=(-0.5, 559.5), ylim=(219.5, -0.5), aspect="equal")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    readout = W.HTML()
+
+    def update(v: dict, state: dict) -> None:
+        img, text = gallery[(v["views"], v["projection"])]
+        if img is None:
+            im.set_data(blank)
+            msg.set_text("the plane cannot hold this turn:\n" + text.split(": ", 1)[1])
+        else:
+            im.set_data(img)
+            msg.set_text("")
+        readout.value = monospace(text)
+        state.update(views=v["views"], projection=v["projection"], failed=img is None,
+                     shape=None if img is None else img.shape[:2])
+
+    controls = {
+        "views": W.IntSlider(value=3, min=2, max=6, description="views"),
+        "projection": W.Dropdown(options=["planar", "cylindrical", "spherical"], value="planar",
+                                 description="canvas"),
+    }
+    return build_demo("canvas_projections", controls, view, update, title="Plane, cylinder, sphere",
+                      extra=[readout])
 
 
 # ----------------------------------------------------------------------------- parallax
@@ -383,7 +489,26 @@ def parallax_pairs():
     return out
 
 
-@register(lesson="09", sweep={"baseline": list(BASELINES[::2]), "method": ["feather", "multiband"]})
+def _edge_overlay(wi) -> tuple[np.ndarray, np.ndarray]:
+    """Canny edges of each of the two warped views (bool masks on the canvas)."""
+    import cv2
+
+    return tuple(cv2.Canny(np.clip(im.mean(axis=2) * 255, 0, 255).astype(np.uint8), 60, 140) > 0 for im in wi.images[:2])
+
+
+def _with_edges(rgba: np.ndarray, edges) -> np.ndarray:
+    """Paint view 0's edges red and view 1's cyan (white where both) onto an RGBA image."""
+    if edges is None:
+        return rgba
+    out = rgba.copy()
+    e0, e1 = edges
+    out[e0 & ~e1, :3] = (255, 40, 40)
+    out[e1 & ~e0, :3] = (0, 230, 255)
+    out[e0 & e1, :3] = 255
+    return out
+
+
+@register(lesson="09", sweep={"baseline": list(BASELINES[::2]), "method": ["feather", "multiband"], "edges": [True, False]})
 def parallax_ghosting() -> Demo:
     """Move the camera sideways between shots: near objects no longer fit the homography and ghost."""
     pairs = parallax_pairs()
@@ -397,22 +522,30 @@ def parallax_ghosting() -> Demo:
     ax.set_yticks([])
     readout = W.HTML()
 
+    blends = {(b, m): st.blend(wi, m) for b, (wi, _) in pairs.items() for m in ("feather", "multiband")}
+    edges = {b: _edge_overlay(wi) for b, (wi, _) in pairs.items()}
+    shown = {(b, m, e): _with_edges(_rgba(out), edges[b] if e else None)
+             for (b, m), out in blends.items() for e in (False, True)}
+
     def update(v: dict, state: dict) -> None:
-        wi, reg = pairs[float(v["baseline"])]
-        out = st.blend(wi, v["method"])
-        im.set_data(_rgba(out))
+        b = float(v["baseline"])
+        wi, reg = pairs[b]
+        out = blends[(b, v["method"])]
+        im.set_data(shown[(b, v["method"], bool(v["edges"]))])
         hh, ww = wi.shape
         im.set_extent((-0.5, ww - 0.5, hh - 0.5, -0.5))
         n, k = len(reg.matches.src), int(reg.inliers.sum())
         diff = 255 * st.overlap_difference(wi)
-        state.update(baseline=float(v["baseline"]), inlier_fraction=k / max(n, 1), residual_rms=reg.residual_rms,
+        state.update(baseline=b, edges=bool(v["edges"]), inlier_fraction=k / max(n, 1), residual_rms=reg.residual_rms,
                      misalignment=diff, method=v["method"], image=out)
-        readout.value = _pre(f"camera moved {100 * float(v['baseline']):.0f} cm\nmatches: {n}\n"
+        readout.value = monospace(f"camera moved {100 * b:.0f} cm\nmatches: {n}\n"
                              f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\ninlier RMS: {reg.residual_rms:.2f} px\n"
-                             f"mean |view 0 - view 1| on the overlap:\n  {diff:.1f} grey levels")
+                             f"mean |view 0 - view 1| on the overlap:\n  {diff:.1f} grey levels\n"
+                             f"edges: red = view 0, cyan = view 1 (white where they agree)")
 
     controls = {
-        "baseline": W.SelectionSlider(options=list(BASELINES), value=0.0, description="baseline (m)"),
+        "baseline": W.SelectionSlider(options=list(BASELINES), value=0.2, description="baseline (m)"),
         "method": W.Dropdown(options=["feather", "multiband"], value="feather", description="blend"),
+        "edges": W.Checkbox(value=True, description="both views' edges"),
     }
     return build_demo("parallax_ghosting", controls, view, update, title="Parallax makes ghosts", extra=[readout])

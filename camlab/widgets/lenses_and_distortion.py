@@ -171,7 +171,8 @@ def lens_distortion():
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=255)
     dots, = ax_img.plot([], [], "r.", ms=3)
     ideal = _grid_lines()
-    ghost = [ax_grid.plot(*ln.T, color="0.8", lw=0.8)[0] for ln in ideal]
+    for ln in ideal:  # the undistorted grid, drawn once in grey behind the bent one
+        ax_grid.plot(*ln.T, color="0.8", lw=0.8)
     bent = [ax_grid.plot(*ln.T, color="tab:blue", lw=1.2)[0] for ln in ideal]
     ax_grid.set_xlim(-60, SIZE[0] + 60)
     ax_grid.set_ylim(SIZE[1] + 60, -60)

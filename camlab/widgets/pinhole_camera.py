@@ -150,7 +150,7 @@ def pinhole_size():
     ax_img.set_title("page at 1 m: blur 0.00 mm = 0.0 px", fontsize=10)
     ax_plot.set_title("best d = 0.00 mm; now diffraction-limited", fontsize=10)
     view.animate(im, ax_img.title, ax_plot.title, art["geometric"], art["diffraction"], art["total"],
-                 art["marker"], art["best"])
+                 art["marker"], art["best"], ax_plot.get_legend())  # the legend last: drawn over the curves
 
     def update(values, state):
         f, d = values["focal_mm"] * 1e-3, values["diameter_mm"] * 1e-3
