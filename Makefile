@@ -65,10 +65,16 @@ test-wheel: $(VENV)/.installed-test$(STAMP)
 	$(BIN)/python tools/check_dist.py dist
 	$(UV) venv --quiet --python $(BIN)/python $(WHEEL_VENV)
 	$(UV) pip install --quiet --python $(WHEEL_VENV)/bin/python dist/*.whl nbval pytest pytest-xdist $(PIN)
+	$(call run-lessons-outside,$(WHEEL_VENV))
+
+# $(call run-lessons-outside,VENV): from an unrelated temporary folder, copy the lessons with
+# VENV's `camlab lessons` and run every one with nbval against VENV's installed camlab.
+define run-lessons-outside
 	@set -e; here=$$(pwd); work=$$(mktemp -d); trap 'rm -rf "$$work"' EXIT; cd "$$work"; \
-	  "$$here/$(WHEEL_VENV)/bin/camlab" --version; "$$here/$(WHEEL_VENV)/bin/camlab" lessons course; cd course; \
-	  "$$here/$(WHEEL_VENV)/bin/python" -c "import camlab; assert camlab.__file__.startswith('$$here/$(WHEEL_VENV)/'), camlab.__file__"; \
-	  "$$here/$(WHEEL_VENV)/bin/python" -m pytest -p no:cacheprovider -n 2 --dist loadfile --nbval-lax --nbval-current-env lessons
+	  "$$here/$(1)/bin/camlab" --version; "$$here/$(1)/bin/camlab" lessons course; cd course; \
+	  "$$here/$(1)/bin/python" -c "import camlab; assert camlab.__file__.startswith('$$here/$(1)/'), camlab.__file__"; \
+	  "$$here/$(1)/bin/python" -m pytest -p no:cacheprovider -n 2 --dist loadfile --nbval-lax --nbval-current-env lessons
+endef
 
 # The lowest versions pyproject.toml declares (requirements/oldest.txt pins them; a test keeps
 # the two in step): the fast tests plus three lessons, in their own venv. The class extra
@@ -128,11 +134,16 @@ DRAG ?= transformation_hierarchy
 class-load: $(VENV)/.installed-test$(STAMP) hub-deps
 	$(BIN)/python benchmarks/class_load.py --students $(N) $(if $(DRAG),--drag $(DRAG)) $(LESSONS)
 
-# Binder's install step and the hub image's RUN steps (docs/teaching.md) in fresh venvs, then
-# every lesson from a folder outside the repository. Minutes, not seconds: CI runs it.
+# Binder's install step (read from repo2docker's Dockerfile) into a fresh venv and the hub
+# image's RUN steps (docs/teaching.md) into another, then every lesson from a folder outside
+# the repository against the Binder venv. Minutes, not seconds: CI runs it.
+BINDER_VENV := build/venv-binder
 .PHONY: test-binder
 test-binder: $(VENV)/.installed-test$(STAMP)
-	CAMLAB_TEST_BINDER=1 $(BIN)/python -m pytest -p no:randomly tests/test_binder.py $(PYTEST_ARGS)
+	rm -rf $(BINDER_VENV) && mkdir -p build
+	CAMLAB_TEST_BINDER=1 CAMLAB_BINDER_VENV=$(BINDER_VENV) $(BIN)/python -m pytest -p no:randomly tests/test_binder.py $(PYTEST_ARGS)
+	$(UV) pip install --quiet --python $(BINDER_VENV)/bin/python nbval pytest pytest-xdist $(PIN)
+	$(call run-lessons-outside,$(BINDER_VENV))
 
 # The course as a static website in site/ (issue 17): every lesson executed, maths typeset
 # by a local MathJax 3 from the npm registry (axe-core comes along for the accessibility test).

@@ -20,7 +20,23 @@ def time_calls(fn: Callable[[], Any], repeat: int = 20, warmup: int = 2) -> np.n
 
 
 def median_ms(fn: Callable[[], Any], repeat: int = 20, warmup: int = 2) -> float:
+    """Median wall-clock milliseconds of ``repeat`` calls of ``fn`` (after ``warmup`` untimed calls)."""
     return float(np.median(time_calls(fn, repeat, warmup)) * 1e3)
+
+
+def paired_ms(ours: Callable[[], Any], ref: Callable[[], Any], repeat: int = 25) -> tuple[float, float]:
+    """Median milliseconds of two functions timed alternately, so both see the same machine load
+    (the 2-core machines these run on are shared; sequential blocks drift apart)."""
+    ours(), ref()
+    a, b = [], []
+    for _ in range(repeat):
+        t = time.perf_counter()
+        ours()
+        a.append(time.perf_counter() - t)
+        t = time.perf_counter()
+        ref()
+        b.append(time.perf_counter() - t)
+    return float(np.median(a) * 1e3), float(np.median(b) * 1e3)
 
 
 def ratio_row(case: str, camlab_fn: Callable[[], Any], opencv_fn: Callable[[], Any], target: float,

@@ -11,7 +11,6 @@ Accuracy table: decomposition error vs OpenCV and vs the truth, DLT recovery wit
 from __future__ import annotations
 
 import sys
-import time
 from pathlib import Path
 
 import cv2
@@ -19,17 +18,10 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _timing import median_ms  # noqa: E402
+
 from camlab import camera as cm  # noqa: E402
-
-
-def _median_ms(fn, repeat: int = 200) -> float:
-    fn()
-    ts = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        fn()
-        ts.append(time.perf_counter() - t0)
-    return float(np.median(ts) * 1e3)
 
 
 def _setup(seed: int = 0, n: int = 1000):
@@ -54,21 +46,21 @@ def rows() -> list[dict]:
                     "target": target, "ok": bool(ours <= max_ms)})
 
     row("project 1000 points (Camera.project vs cv2.projectPoints)",
-        _median_ms(lambda: cam.project(X)),
-        _median_ms(lambda: cv2.projectPoints(X, rvec, cam.t.reshape(3, 1), cam.K, None)), 1.0)
+        median_ms(lambda: cam.project(X), 200, 1),
+        median_ms(lambda: cv2.projectPoints(X, rvec, cam.t.reshape(3, 1), cam.K, None), 200, 1), 1.0)
     P = 3.0 * cam.P
     row("decompose P (decompose_projection_matrix vs cv2.decomposeProjectionMatrix)",
-        _median_ms(lambda: cm.decompose_projection_matrix(P)),
-        _median_ms(lambda: cv2.decomposeProjectionMatrix(P)), 1.0)
+        median_ms(lambda: cm.decompose_projection_matrix(P), 200, 1),
+        median_ms(lambda: cv2.decomposeProjectionMatrix(P), 200, 1), 1.0)
     r = rng.normal(size=3)
     row("axis-angle to R (rotation_from_axis_angle vs cv2.Rodrigues)",
-        _median_ms(lambda: cm.rotation_from_axis_angle(r)), _median_ms(lambda: cv2.Rodrigues(r)), 0.2)
+        median_ms(lambda: cm.rotation_from_axis_angle(r), 200, 1), median_ms(lambda: cv2.Rodrigues(r), 200, 1), 0.2)
     X50 = X[:50]
     uv50 = cam.project(X50) + rng.normal(0, 0.5, (50, 2))
     row("DLT resection, 50 points (estimate_projection_matrix)",
-        _median_ms(lambda: cm.estimate_projection_matrix(X50, uv50), 50), 0.0, 5.0)
+        median_ms(lambda: cm.estimate_projection_matrix(X50, uv50), 50, 1), 0.0, 5.0)
     row("DLT + LM refinement, 50 points (refine=True)",
-        _median_ms(lambda: cm.estimate_projection_matrix(X50, uv50, refine=True), 10), 0.0, 30.0)
+        median_ms(lambda: cm.estimate_projection_matrix(X50, uv50, refine=True), 10, 1), 0.0, 30.0)
     return out
 
 

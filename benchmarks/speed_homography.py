@@ -11,7 +11,8 @@ cv2.warpPerspective.
 """
 from __future__ import annotations
 
-import time
+import sys
+from pathlib import Path
 
 import cv2
 import numpy as np
@@ -20,32 +21,10 @@ from camlab.homography import estimate_homography, ransac_homography
 from camlab.projective import map_points
 from camlab.warp import warp_perspective
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _timing import median_ms, paired_ms  # noqa: E402
+
 H_TRUE = np.array([[1.1, 0.05, 30.0], [-0.03, 0.95, -20.0], [2e-4, -1e-4, 1.0]])
-
-
-def _median_ms(fn, repeats: int = 25) -> float:
-    fn()  # warm up
-    times = []
-    for _ in range(repeats):
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
-    return float(np.median(times) * 1e3)
-
-
-def _paired_ms(ours, ref, repeats: int = 25) -> tuple[float, float]:
-    """Median times of two functions timed alternately, so both see the same machine load
-    (the 2-core machines these run on are shared; sequential blocks drift apart)."""
-    ours(), ref()
-    a, b = [], []
-    for _ in range(repeats):
-        t = time.perf_counter()
-        ours()
-        a.append(time.perf_counter() - t)
-        t = time.perf_counter()
-        ref()
-        b.append(time.perf_counter() - t)
-    return float(np.median(a) * 1e3), float(np.median(b) * 1e3)
 
 
 def _data(n: int = 1000, outlier_fraction: float = 0.3, seed: int = 0):
@@ -67,14 +46,14 @@ def rows() -> list[dict]:
     src, dst = _data()
     out = []
     rng = np.random.default_rng(1)
-    ours, ref = _paired_ms(lambda: ransac_homography(src, dst, 3.0, 0.995, 2000, rng),
+    ours, ref = paired_ms(lambda: ransac_homography(src, dst, 3.0, 0.995, 2000, rng),
                            lambda: cv2.findHomography(src, dst, cv2.RANSAC, 3.0, maxIters=2000, confidence=0.995))
     out.append(_row("ransac_homography, 1000 pairs, 30% outliers", ours, ref, "ratio <= 10", 10.0))
     try:
         from skimage.measure import ransac
         from skimage.transform import ProjectiveTransform
 
-        sk = _median_ms(lambda: ransac((src, dst), ProjectiveTransform, min_samples=4, residual_threshold=3.0,
+        sk = median_ms(lambda: ransac((src, dst), ProjectiveTransform, min_samples=4, residual_threshold=3.0,
                                        max_trials=2000, stop_probability=0.995, rng=np.random.default_rng(1)),
                         repeats=5)
         out.append({"case": "ransac_homography vs skimage ransac(ProjectiveTransform)", "camlab_ms": ours,
@@ -82,11 +61,11 @@ def rows() -> list[dict]:
                     "ok": bool(sk / ours >= 5)})
     except ImportError:
         print("scikit-image: not installed (skipping the skimage ransac comparison)")
-    ours, ref = _paired_ms(lambda: estimate_homography(src, dst), lambda: cv2.findHomography(src, dst, 0))
+    ours, ref = paired_ms(lambda: estimate_homography(src, dst), lambda: cv2.findHomography(src, dst, 0))
     out.append(_row("estimate_homography, 1000 pairs", ours, ref, "ratio <= 3", 3.0))
     img = cv2.GaussianBlur((np.random.default_rng(0).random((480, 640, 3)) * 255).astype(np.uint8), (0, 0), 2)
     H = np.array([[0.9, 0.1, 30.0], [-0.05, 0.95, 20.0], [2e-4, 1e-4, 1.0]])
-    ours, ref = _paired_ms(lambda: warp_perspective(img, H, (480, 640)),
+    ours, ref = paired_ms(lambda: warp_perspective(img, H, (480, 640)),
                            lambda: cv2.warpPerspective(img, H, (640, 480)), repeats=15)
     out.append(_row(f"warp_perspective numpy bilinear, 640x480 RGB (cv2 on {cv2.getNumThreads()} threads)",
                     ours, ref, "ratio <= 10", 10.0))
@@ -94,12 +73,12 @@ def rows() -> list[dict]:
     threads = cv2.getNumThreads()
     cv2.setNumThreads(1)
     try:
-        ours, ref = _paired_ms(lambda: warp_perspective(img, H, (480, 640)),
+        ours, ref = paired_ms(lambda: warp_perspective(img, H, (480, 640)),
                                lambda: cv2.warpPerspective(img, H, (640, 480)), repeats=15)
     finally:
         cv2.setNumThreads(threads)
     out.append(_row("warp_perspective numpy bilinear, 640x480 RGB (cv2 on 1 thread)", ours, ref, "ratio <= 10", 10.0))
-    ours, ref = _paired_ms(lambda: warp_perspective(img, H, (480, 640), method="cv2"),
+    ours, ref = paired_ms(lambda: warp_perspective(img, H, (480, 640), method="cv2"),
                            lambda: cv2.warpPerspective(img, H, (640, 480)), repeats=15)
     out.append(_row("warp_perspective method='cv2', 640x480 RGB", ours, ref, "ratio <= 1.5", 1.5))
     return out

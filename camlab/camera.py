@@ -56,6 +56,7 @@ __all__ = [
     "euler_from_rotation", "intrinsic_matrix", "is_rotation", "look_at_rotation",
     "opencv_from_opengl", "opengl_from_opencv", "project_points", "reprojection_errors",
     "rotation_from_axis_angle", "rotation_from_euler", "rq_decomposition", "rotation_x", "rotation_y", "rotation_z",
+    "scale_intrinsics",
     "box_wireframe", "ground_grid", "house_wireframe", "project_segments",
 ]
 
@@ -211,6 +212,23 @@ def euler_from_rotation(R: ArrayLike) -> np.ndarray:
         rx = 0.0
         rz = float(np.arctan2(-a[0, 1], a[1, 1]))
     return np.array([rx, ry, rz])
+
+
+def scale_intrinsics(K: ArrayLike, scale: float) -> np.ndarray:
+    r"""Intrinsics of the same camera with its images resized by ``scale``.
+
+    With the pixel-centre convention (u = 0 is the centre of the first pixel), resizing by
+    s maps u to :math:`s (u + 1/2) - 1/2`: :math:`K' = S K`,
+    :math:`S = \begin{pmatrix} s & 0 & (s-1)/2 \\ 0 & s & (s-1)/2 \\ 0 & 0 & 1\end{pmatrix}`.
+    Also maps homographies between resized images: :math:`S H S^{-1}`.
+
+    >>> scale_intrinsics(intrinsic_matrix(800, 800, 319.5, 239.5), 2.0)[:2]
+    array([[1600. ,    0. ,  639.5],
+           [   0. , 1600. ,  479.5]])
+    """
+    s = check_positive(scale, "scale")
+    S = np.array([[s, 0, (s - 1) / 2], [0, s, (s - 1) / 2], [0, 0, 1]])
+    return S @ check_matrix(K, (3, 3), "K")
 
 
 def look_at_rotation(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0.0, 0.0, 1.0)) -> np.ndarray:
@@ -375,6 +393,19 @@ class Camera:
         """A copy with some fields changed, e.g. ``cam.replace(K=new_K)``."""
         return dataclasses.replace(self, **changes)
 
+    def resized(self, scale: float) -> "Camera":
+        """The same camera taking images resized by ``scale`` (K by :func:`scale_intrinsics`).
+
+        ``image_size * scale`` must be whole pixels (e.g. 0.5 for 640 x 480).
+
+        >>> Camera(intrinsic_matrix(800, 800, 319.5, 239.5)).resized(0.5).K[0]
+        array([400. ,   0. , 159.5])
+        """
+        s = check_positive(scale, "scale")
+        w, h = self.image_size
+        size = check_size((w * s, h * s), "image_size * scale")
+        return dataclasses.replace(self, K=scale_intrinsics(self.K, s), image_size=size)
+
     # -- derived quantities --------------------------------------------------------------
     @property
     def P(self) -> np.ndarray:
@@ -447,8 +478,10 @@ class Camera:
         with np.errstate(divide="ignore", invalid="ignore"):
             xn = Xc[:, :2] / np.where(z > 0, z, np.nan)[:, None]
         if any(self.dist):
+            ok = np.isfinite(xn).all(axis=1)  # points behind the camera stay NaN
             far = beyond_valid_radius(xn, self.dist)  # the model folds back there: no pixel, not a mirrored one
-            xn = distort_points(xn, self.dist)
+            if ok.any():
+                xn[ok] = distort_points(xn[ok], self.dist)
             xn[far] = np.nan
         uv = xn @ self.K[:2, :2].T + self.K[:2, 2]
         return p.restore(uv)

@@ -40,8 +40,9 @@ from ._validate import (
 )
 
 __all__ = [
-    "DistortionMaps", "as_dist", "beyond_valid_radius", "classify_distortion", "distort_pixels", "distort_points",
-    "distortion_jacobian", "max_valid_radius", "radial_scale", "undistort_image",
+    "DistortionMaps", "NewtonUndistort", "as_dist", "beyond_valid_radius", "classify_distortion", "distort_pixels",
+    "distort_points", "distortion_jacobian", "max_valid_radius", "newton_undistort", "normalised_to_pixels",
+    "pixels_to_normalised", "radial_scale", "undistort_image",
     "undistort_map", "undistort_pixels", "undistort_points", "distort_map",
 ]
 
@@ -172,7 +173,7 @@ def undistort_points(
     pts = as_points(points, 2, "points")
     d = as_dist(dist)
     target = pts.array
-    x, res = _newton_undistort(target, d, tol, max_iter)
+    x, res = newton_undistort(target, d, tol, max_iter)
     bad = ~(res <= max(tol, 1e-9))
     if bad.any():
         i = int(np.argmax(bad))
@@ -185,11 +186,30 @@ def undistort_points(
     return pts.restore(x)
 
 
-def _newton_undistort(target: np.ndarray, d: np.ndarray, tol: float = 1e-12, max_iter: int = 30):
-    """Newton iterations for :func:`undistort_points`; returns (x, max-abs residual per point)."""
+class NewtonUndistort(NamedTuple):
+    """The outcome of :func:`newton_undistort`.
+
+    Attributes
+    ----------
+    points : (N, 2) ndarray
+        Ideal normalised coordinates.
+    residual : (N,) ndarray
+        max-abs residual per point; inf where Newton failed or landed beyond the model's fold.
+    """
+
+    points: np.ndarray
+    residual: np.ndarray
+
+
+def newton_undistort(target: np.ndarray, d: np.ndarray, tol: float = 1e-12, max_iter: int = 30) -> NewtonUndistort:
+    """The Newton iterations of :func:`undistort_points`, without raising: check ``residual`` yourself.
+
+    ``target`` (N, 2) distorted normalised points, ``d`` (5,) coefficients (:func:`as_dist`).
+    The renderer uses it to find which border pixels have an ideal ray at all.
+    """
     x = target.copy()
     if not d.any():
-        return x, np.zeros(len(x))
+        return NewtonUndistort(x, np.zeros(len(x)))
     res = np.full(len(x), np.inf)
     for _ in range(max_iter):
         r = _distort(x, d) - target
@@ -211,7 +231,7 @@ def _newton_undistort(target: np.ndarray, d: np.ndarray, tol: float = 1e-12, max
     with np.errstate(over="ignore", invalid="ignore"):
         beyond = np.hypot(x[:, 0], x[:, 1]) > max_valid_radius(d)
     res[beyond] = np.inf
-    return x, res
+    return NewtonUndistort(x, res)
 
 
 def radial_scale(r: ArrayLike, dist: ArrayLike | None) -> np.ndarray:
@@ -306,13 +326,29 @@ def classify_distortion(dist: ArrayLike | None, r_max: float = 0.8, tol: float =
 
 # ---------------------------------------------------------------- pixels and images
 
-def _normalise(pixels: np.ndarray, K: np.ndarray) -> np.ndarray:
+def pixels_to_normalised(pixels: np.ndarray, K: np.ndarray) -> np.ndarray:
+    r"""Pixels (N, 2) to normalised image coordinates: :math:`(x, y, 1)^\top = K^{-1} (u, v, 1)^\top`.
+
+    Written out for an upper-triangular K: :math:`y = (v - c_y) / f_y`,
+    :math:`x = (u - c_x - s\,y) / f_x`. ``K`` must already be checked
+    (:func:`camlab._validate.check_intrinsics`). The inverse is :func:`normalised_to_pixels`.
+
+    >>> K = np.array([[800.0, 0, 320], [0, 800, 240], [0, 0, 1]])
+    >>> pixels_to_normalised(np.array([[400.0, 200.0]]), K)
+    array([[ 0.1 , -0.05]])
+    """
     y = (pixels[:, 1] - K[1, 2]) / K[1, 1]
     x = (pixels[:, 0] - K[0, 2] - K[0, 1] * y) / K[0, 0]
     return np.stack([x, y], axis=1)
 
 
-def _to_pixels(xy: np.ndarray, K: np.ndarray) -> np.ndarray:
+def normalised_to_pixels(xy: np.ndarray, K: np.ndarray) -> np.ndarray:
+    r"""Normalised image coordinates (N, 2) to pixels: :math:`(u, v, 1)^\top = K (x, y, 1)^\top`.
+
+    >>> K = np.array([[800.0, 0, 320], [0, 800, 240], [0, 0, 1]])
+    >>> normalised_to_pixels(np.array([[0.1, -0.05]]), K)
+    array([[400., 200.]])
+    """
     return np.stack([K[0, 0] * xy[:, 0] + K[0, 1] * xy[:, 1] + K[0, 2], K[1, 1] * xy[:, 1] + K[1, 2]], axis=1)
 
 
@@ -320,14 +356,14 @@ def distort_pixels(pixels: ArrayLike, K: ArrayLike, dist: ArrayLike | None) -> n
     """Move ideal pixel positions (u, v) to where the distorting lens images them (same K)."""
     pts = as_points(pixels, 2, "pixels")
     K = check_intrinsics(K)
-    return pts.restore(_to_pixels(_distort(_normalise(pts.array, K), as_dist(dist)), K))
+    return pts.restore(normalised_to_pixels(_distort(pixels_to_normalised(pts.array, K), as_dist(dist)), K))
 
 
 def undistort_pixels(pixels: ArrayLike, K: ArrayLike, dist: ArrayLike | None) -> np.ndarray:
     """Inverse of :func:`distort_pixels`: distorted pixels (u, v) to ideal pixels (same K)."""
     pts = as_points(pixels, 2, "pixels")
     K = check_intrinsics(K)
-    return pts.restore(_to_pixels(undistort_points(_normalise(pts.array, K), dist), K))
+    return pts.restore(normalised_to_pixels(undistort_points(pixels_to_normalised(pts.array, K), dist), K))
 
 
 class DistortionMaps(NamedTuple):
@@ -361,8 +397,8 @@ def undistort_map(K: ArrayLike, dist: ArrayLike | None, size: tuple[int, int],
     new_K = K if new_K is None else check_intrinsics(new_K, "new_K")
     w, h = check_size(size)
     u, v = np.meshgrid(np.arange(w, dtype=float), np.arange(h, dtype=float))
-    xy = _normalise(np.stack([u.ravel(), v.ravel()], axis=1), new_K)
-    src = _to_pixels(_distort(xy, as_dist(dist)), K)
+    xy = pixels_to_normalised(np.stack([u.ravel(), v.ravel()], axis=1), new_K)
+    src = normalised_to_pixels(_distort(xy, as_dist(dist)), K)
     return DistortionMaps(src[:, 0].reshape(h, w).astype(np.float32), src[:, 1].reshape(h, w).astype(np.float32))
 
 
@@ -376,10 +412,10 @@ def _distort_map_cached(Kb: bytes, db: bytes, newKb: bytes, w: int, h: int, step
     gu = np.arange(0, w + step, step, dtype=float)
     gv = np.arange(0, h + step, step, dtype=float)
     U, V = np.meshgrid(gu, gv)
-    xy = _normalise(np.stack([U.ravel(), V.ravel()], axis=1) - 0.0, K)
-    x, res = _newton_undistort(xy, d)
+    xy = pixels_to_normalised(np.stack([U.ravel(), V.ravel()], axis=1) - 0.0, K)
+    x, res = newton_undistort(xy, d)
     x[~(res <= 1e-9)] = -1e4  # beyond the fold of the model: sample far outside (background)
-    ideal = _to_pixels(x, new_K)
+    ideal = normalised_to_pixels(x, new_K)
     coarse_u = ideal[:, 0].reshape(V.shape).astype(np.float32)
     coarse_v = ideal[:, 1].reshape(V.shape).astype(np.float32)
     if step == 1:

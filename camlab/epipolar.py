@@ -51,6 +51,7 @@ __all__ = [
 ]
 
 _PLANE_TOL = 1e-3   # px: a homography explaining every pair this well means "all points on one plane"
+_BAD_FIT = 0.05     # a least-squares F with median Sampson distance above this fraction of the spread: wrong pairs
 _RANK_TOL = 1e-9    # second-smallest singular value of the normalised 8-point system, relative
 
 
@@ -66,7 +67,8 @@ def skew(v: ArrayLike) -> np.ndarray:
     return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
 
 
-def _pairs(x1: ArrayLike, x2: ArrayLike, min_count: int = 1) -> tuple[np.ndarray, np.ndarray, bool]:
+def point_pairs(x1: ArrayLike, x2: ArrayLike, min_count: int = 1) -> tuple[np.ndarray, np.ndarray, bool]:
+    """Validate matched (N, 2) points ``x1``, ``x2``: returns both as float arrays and whether both were single points."""
     p1 = as_points(x1, 2, "x1")
     p2 = as_points(x2, 2, "x2")
     if len(p1.array) != len(p2.array):
@@ -82,7 +84,8 @@ def _pairs(x1: ArrayLike, x2: ArrayLike, min_count: int = 1) -> tuple[np.ndarray
     return p1.array, p2.array, p1.single and p2.single
 
 
-def _check_F(F: ArrayLike, name: str = "F") -> np.ndarray:
+def check_fundamental(F: ArrayLike, name: str = "F") -> np.ndarray:
+    """Return F as a float (3, 3) array, or raise if it is malformed or all zeros."""
     a = check_matrix(F, (3, 3), name)
     if not np.any(a):
         raise CamlabInputError(f"{name}: expected a non-zero (3, 3) fundamental matrix, got all zeros")
@@ -97,7 +100,7 @@ def normalize_fundamental(F: ArrayLike) -> np.ndarray:
            [0.    , 0.5774, 0.    ],
            [0.    , 0.    , 0.5774]])
     """
-    a = _check_F(F)
+    a = check_fundamental(F)
     a = a / np.linalg.norm(a)
     k = np.argmax(np.round(np.abs(a), 9))  # ties (e.g. a skew-symmetric F): the first in row-major order
     return a * np.sign(a.flat[k])
@@ -207,7 +210,7 @@ def essential_from_fundamental(F: ArrayLike, K1: ArrayLike, K2: ArrayLike | None
     an F estimated from noisy points gives an E that is close, and the closest one in the
     Frobenius norm replaces the singular values by their mean.
     """
-    F = _check_F(F)
+    F = check_fundamental(F)
     K1 = check_intrinsics(K1, "K1")
     K2 = K1 if K2 is None else check_intrinsics(K2, "K2")
     U, s, Vt = np.linalg.svd(K2.T @ F @ K1)
@@ -216,7 +219,7 @@ def essential_from_fundamental(F: ArrayLike, K1: ArrayLike, K2: ArrayLike | None
 
 def fundamental_from_essential(E: ArrayLike, K1: ArrayLike, K2: ArrayLike | None = None) -> np.ndarray:
     r""":math:`F = K_2^{-\top} E K_1^{-1}`, unit Frobenius norm."""
-    E = _check_F(E, "E")
+    E = check_fundamental(E, "E")
     K1 = check_intrinsics(K1, "K1")
     K2 = K1 if K2 is None else check_intrinsics(K2, "K2")
     return normalize_fundamental(np.linalg.inv(K2).T @ E @ np.linalg.inv(K1))
@@ -246,7 +249,7 @@ def epipoles(F: ArrayLike) -> Epipoles:
     >>> epipoles(F).e1
     array([1., 0., 0.])
     """
-    F = _check_F(F)
+    F = check_fundamental(F)
     U, s, Vt = np.linalg.svd(F)
     out = []
     for e in (Vt[-1], U[:, -1]):
@@ -278,7 +281,7 @@ def epipolar_lines(F: ArrayLike, points: ArrayLike, image: int = 1) -> np.ndarra
     >>> epipolar_lines(F, [10, 20])  # the row v = 20
     array([ 0., -1., 20.])
     """
-    F = _check_F(F)
+    F = check_fundamental(F)
     if image not in (1, 2):
         raise CamlabInputError(f"image: expected 1 or 2 (the image the points are in), got {image!r}")
     p = as_points(points, 2, "points")
@@ -294,8 +297,8 @@ def epipolar_distance(F: ArrayLike, x1: ArrayLike, x2: ArrayLike) -> np.ndarray:
 
     .. math:: d_i = \sqrt{\tfrac12\left(d(x'_i, F x_i)^2 + d(x_i, F^\top x'_i)^2\right)}
     """
-    F = _check_F(F)
-    a, b, single = _pairs(x1, x2)
+    F = check_fundamental(F)
+    a, b, single = point_pairs(x1, x2)
     d2 = np.sum(to_homogeneous(b) * epipolar_lines(F, a, 1), axis=1)
     d1 = np.sum(to_homogeneous(a) * epipolar_lines(F, b, 2), axis=1)
     out = np.sqrt(0.5 * (d1 ** 2 + d2 ** 2))
@@ -328,8 +331,8 @@ def sampson_distance(F: ArrayLike, x1: ArrayLike, x2: ArrayLike) -> np.ndarray:
     >>> sampson_distance(F, [[0, 0]], [[5, 2]])  # 2 px vertical offset, shared by both images
     array([1.41421356])
     """
-    F = _check_F(F)
-    a, b, single = _pairs(x1, x2)
+    F = check_fundamental(F)
+    a, b, single = point_pairs(x1, x2)
     out = _sampson_batch(F[None], a, b)[0]
     return out[0] if single else out
 
@@ -413,7 +416,7 @@ def estimate_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, normalize: bool = 
     >>> bool(np.allclose(F, fundamental_from_cameras(cam1, cam2), atol=1e-9))
     True
     """
-    a, b, _ = _pairs(x1, x2, min_count=8)
+    a, b, _ = point_pairs(x1, x2, min_count=8)
     if normalize:
         an, T1 = hartley_normalize(a)
         bn, T2 = hartley_normalize(b)
@@ -448,7 +451,18 @@ def estimate_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, normalize: bool = 
         if not np.all(den > 0):
             break
         Fn = _rank2(np.linalg.svd(A / den[:, None], full_matrices=len(A) < 9)[2][-1].reshape(3, 3))
-    return normalize_fundamental(T2.T @ Fn @ T1)
+    F = normalize_fundamental(T2.T @ Fn @ T1)
+    if len(a) >= 12:
+        # Least squares fits any pairs, right or wrong: refuse a fit that explains them badly.
+        med = float(np.median(_sampson_batch(F[None], a, b)[0]))
+        spread = float(np.sqrt(np.mean(np.sum((b - b.mean(axis=0)) ** 2, axis=1))))
+        if med > _BAD_FIT * spread:
+            raise DegenerateError(
+                f"x1, x2: no F explains these pairs: the best fit leaves a median Sampson distance of {med:.3g} px "
+                f"({100 * med / spread:.0f}% of the points' spread); the matches are mostly wrong. Use "
+                f"ransac_fundamental_matrix, which separates right matches from wrong ones"
+            )
+    return F
 
 
 class FundamentalRansacResult(NamedTuple):
@@ -556,7 +570,7 @@ def ransac_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, threshold: float = 1
         Too few inliers: no hypothesis is supported by more pairs than wrong matches would
         support by chance (all matches wrong, or the threshold too small).
     """
-    a, b, _ = _pairs(x1, x2, min_count=8)
+    a, b, _ = point_pairs(x1, x2, min_count=8)
     fit = ransac(FundamentalModel(a, b), threshold, confidence, max_iters, rng, batch=batch)
     return FundamentalRansacResult(normalize_fundamental(fit.model), fit.inliers, fit.iterations, fit.residuals)
 
@@ -625,7 +639,7 @@ def recover_pose(E: ArrayLike, x1: ArrayLike, x2: ArrayLike, K1: ArrayLike, K2: 
     """
     K1 = check_intrinsics(K1, "K1")
     K2 = K1 if K2 is None else check_intrinsics(K2, "K2")
-    a, b, _ = _pairs(x1, x2)
+    a, b, _ = point_pairs(x1, x2)
     cands = decompose_essential_matrix(E)
     P1 = K1 @ np.eye(3, 4)
     best = None
@@ -721,7 +735,7 @@ def triangulate_points(P1: "Camera | ArrayLike", P2: "Camera | ArrayLike", x1: A
     array([ 0.1,  0.2, -0.1])
     """
     A1, A2 = _as_P(P1, "P1"), _as_P(P2, "P2")
-    a, b, single = _pairs(x1, x2)
+    a, b, single = point_pairs(x1, x2)
     C1, C2 = camera_centre(A1), camera_centre(A2)
     if np.linalg.norm(C1 - C2) <= 1e-9 * max(np.linalg.norm(C1[:3]), np.linalg.norm(C2[:3]), 1e-300):
         raise DegenerateError("P1, P2: both cameras have the same centre (zero baseline), so the rays of "

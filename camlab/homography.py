@@ -80,7 +80,8 @@ def _pairs(src: ArrayLike, dst: ArrayLike, min_count: int = 4) -> tuple[np.ndarr
     return s, d
 
 
-def _check_h(H: ArrayLike, name: str = "H") -> np.ndarray:
+def check_homography(H: ArrayLike, name: str = "H") -> np.ndarray:
+    """Return H as a float (3, 3) array, or raise if it is malformed, non-finite or singular."""
     Hm = check_matrix(H, (3, 3), name)
     s = np.linalg.svd(Hm, compute_uv=False)
     if s[0] == 0 or s[-1] < 1e-12 * s[0]:
@@ -260,7 +261,7 @@ def transfer_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np.ndarray:
     >>> transfer_error(np.eye(3), [[0, 0], [1, 1]], [[3, 4], [1, 1]])
     array([5., 0.])
     """
-    Hm = _check_h(H)
+    Hm = check_homography(H)
     s, d = _pairs(src, dst, min_count=1)
     return np.linalg.norm(map_points(Hm, s) - d, axis=1)
 
@@ -276,7 +277,7 @@ def symmetric_transfer_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np
     >>> float(symmetric_transfer_error(np.eye(3), [0, 0], [3, 4])[0])
     5.0
     """
-    Hm = _check_h(H)
+    Hm = check_homography(H)
     s, d = _pairs(src, dst, min_count=1)
     return _sym_err_batch(Hm[None], np.linalg.inv(Hm)[None], s, d)[0]
 
@@ -340,7 +341,7 @@ def sampson_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np.ndarray:
     >>> float(sampson_error(np.eye(3), [0, 0], [0, 2])[0]).__round__(6)  # 2 px, split over both images
     1.414214
     """
-    Hm = _check_h(H)
+    Hm = check_homography(H)
     s, d = _pairs(src, dst, min_count=1)
     return _sampson_batch(Hm[None], s, d)[0]
 
@@ -409,19 +410,19 @@ class HomographyModel(PairModel):
         self.Td_inv = np.linalg.inv(self.Td)
         self.A = _dlt_rows(self.sn, self.dn).reshape(-1, 2, 9)  # each pair's two DLT rows, once
 
-    def _to_pixels(self, Hn: np.ndarray) -> np.ndarray:
+    def normalised_to_pixels(self, Hn: np.ndarray) -> np.ndarray:
         return self.Td_inv @ Hn @ self.Ts  # H = Td^-1 Hn Ts
 
     def minimal(self, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         Hn, ok = _minimal_solve(self.sn[idx], self.dn[idx])
-        return self._to_pixels(Hn), ok
+        return self.normalised_to_pixels(Hn), ok
 
     def fit(self, idx: np.ndarray) -> np.ndarray:
         A = self.A[idx].reshape(-1, 9)
         ev, V = np.linalg.eigh(A.T @ A)
         if ev[1] <= 1e-12 * ev[-1]:
             raise DegenerateError("ransac_homography: the inliers do not fix a unique homography")
-        H = self._to_pixels(V[:, 0].reshape(3, 3))
+        H = self.normalised_to_pixels(V[:, 0].reshape(3, 3))
         return H / np.linalg.norm(H)
 
     def residuals(self, models: np.ndarray, i1: np.ndarray | None = None,
@@ -589,7 +590,7 @@ def refine_homography(
     ConvergenceError
         If the cost is not finite at the start (a point maps to infinity).
     """
-    h = _check_h(H).ravel().copy()
+    h = check_homography(H).ravel().copy()
     s, d = _pairs(src, dst)
     h /= np.linalg.norm(h)
     r0 = _transfer_residuals_and_jacobian(h, s, d)[0]
@@ -630,7 +631,7 @@ def compose(*Hs: ArrayLike) -> np.ndarray:
         raise CamlabInputError("compose: expected at least one (3, 3) homography, got none")
     out = np.eye(3)
     for i, H in enumerate(Hs):
-        out = out @ _check_h(H, f"Hs[{i}]")
+        out = out @ check_homography(H, f"Hs[{i}]")
     return normalize_homography(out)
 
 
@@ -642,7 +643,7 @@ def invert(H: ArrayLike) -> np.ndarray:
            [0. , 0.5, 0. ],
            [0. , 0. , 1. ]])
     """
-    return normalize_homography(np.linalg.inv(_check_h(H)))
+    return normalize_homography(np.linalg.inv(check_homography(H)))
 
 
 # --------------------------------------------------------------------------- hierarchy
@@ -724,7 +725,7 @@ def projective(A: ArrayLike | None = None, t: ArrayLike = (0.0, 0.0), v: ArrayLi
     H[:2, 2] = check_matrix(t, (2,), "t")
     H[2, :2] = check_matrix(v, (2,), "v")
     H[2, 2] = check_number(w, "w")
-    return _check_h(H)
+    return check_homography(H)
 
 
 def classify(H: ArrayLike, tol: float = 1e-9) -> str:
@@ -734,7 +735,7 @@ def classify(H: ArrayLike, tol: float = 1e-9) -> str:
     >>> classify(similarity(2.0, 0.3, 1, 1)), classify(affine(sx=2.0)), classify(projective(v=[1e-3, 0]))
     ('similarity', 'affine', 'projective')
     """
-    Hm = normalize_homography(_check_h(H))
+    Hm = normalize_homography(check_homography(H))
     if abs(Hm[2, 2]) < tol or np.abs(Hm[2, :2]).max() > tol * abs(Hm[2, 2]):
         return "projective"
     A = Hm[:2, :2] / Hm[2, 2]
@@ -762,7 +763,7 @@ def decompose(H: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     -------
     (H_S, H_A, H_P) : three (3, 3) ndarrays whose product equals ``normalize_homography(H)``.
     """
-    Hm = normalize_homography(_check_h(H))
+    Hm = normalize_homography(check_homography(H))
     if abs(Hm[2, 2]) < 1e-12:
         raise DegenerateError("decompose: H[2, 2] = 0 (the origin maps to infinity); translate first")
     vvec, vs = Hm[2, :2], Hm[2, 2]
@@ -843,7 +844,7 @@ def plane_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike, n: ArrayLike, d: 
     if not np.any(nv):
         raise CamlabInputError("n: the plane normal must be non-zero")
     H = K2m @ (check_rotation(R) - np.outer(tv, nv) / d) @ np.linalg.inv(Km)
-    return normalize_homography(_check_h(H, "plane_homography"))
+    return normalize_homography(check_homography(H, "plane_homography"))
 
 
 def pose_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike) -> np.ndarray:
@@ -862,4 +863,4 @@ def pose_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike) -> np.ndarray:
     Rm = check_rotation(R)
     tv = check_matrix(np.ravel(as_float(t, "t")), (3,), "t")
     H = Km @ np.column_stack([Rm[:, 0], Rm[:, 1], tv])
-    return normalize_homography(_check_h(H, "pose_homography"))
+    return normalize_homography(check_homography(H, "pose_homography"))

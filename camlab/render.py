@@ -51,7 +51,7 @@ from ._validate import (
     check_positive,
     check_size,
 )
-from .camera import Camera, look_at_rotation, rotation_from_euler
+from .camera import Camera, look_at_rotation, rotation_from_euler, scale_intrinsics
 # The scene builders live in camlab.scenes; they are re-exported here for the lessons.
 from .scenes import Plane, box, checkerboard, photo_plane, text_page, textured_plane
 
@@ -64,13 +64,15 @@ __all__ = [
 
 # ------------------------------------------------------------------------- poses
 
-def look_at(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0.0, -1.0, 0.0)) -> tuple[np.ndarray, np.ndarray]:
+def look_at(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0.0, 0.0, 1.0)) -> tuple[np.ndarray, np.ndarray]:
     r"""The camera pose ``(R, t)`` (cam_from_world) of a camera at ``eye`` looking at ``target``.
 
-    The rotation is :func:`camlab.camera.look_at_rotation`; the default ``up`` is -y because
-    the render scenes use y down. Returns ``R`` (3, 3) and ``t = -R eye`` (3,).
+    The rotation is :func:`camlab.camera.look_at_rotation`, with the same default ``up`` =
+    +z (the world's up, docs/conventions.md). Scenes built in a camera's own frame (y down,
+    the renderer's checkerboards in front of the origin) pass ``up=(0, -1, 0)``. Returns
+    ``R`` (3, 3) and ``t = -R eye`` (3,).
 
-    >>> R, t = look_at([0, 0, -2], [0, 0, 0])
+    >>> R, t = look_at([0, 0, -2], [0, 0, 0], up=(0, -1, 0))
     >>> np.allclose(R, np.eye(3)), np.allclose(t, [0, 0, 2])
     (True, True)
     """
@@ -298,8 +300,6 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
     >>> out.image.shape, out.image.dtype, out.truth.corners().shape
     ((480, 640), dtype('uint8'), (54, 2))
     """
-    import cv2
-
     planes = _flatten(scene)
     K = check_intrinsics(K)
     w, h = check_size(size)
@@ -310,20 +310,49 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
         raise CamlabInputError(f"supersample: expected an integer from 1 to 8, got {supersample!r}")
     if not isinstance(sensor, Sensor):
         raise CamlabInputError(f"sensor: expected a camlab.render.Sensor, got {type(sensor).__name__}")
-    _sensor._check_bits(sensor.bits)
+    _sensor.check_bits(sensor.bits)
     if sensor.bayer is not None:
-        _sensor._check_pattern(sensor.bayer)
+        _sensor.check_bayer_pattern(sensor.bayer)
     if not blur >= 0:
         raise CamlabInputError(f"blur: expected a diameter >= 0 pixels, got {blur!r}")
     if color is None:
         color = sensor.bayer is not None or any(p.is_color for p in planes)
-    nch = 3 if color else 1
+    bg = _background(background, color)
+
+    geo = _visible_planes(planes, R, t)                                  # 1. geometry in the camera frame
+    canvas = _IdealCanvas.around(K, d, (w, h), ss)                        # 2. the undistorted canvas
+    pixels = np.empty((canvas.height, canvas.width, 3 if color else 1), dtype=np.float32)
+    pixels[:] = bg
+    for g in sorted(geo, key=lambda g: -g.depth):                        # 3. painter's algorithm, far to near
+        _draw_plane(pixels, g, canvas.K, _coc_pixels(defocus, K, g.depth) * ss if defocus is not None else 0.0,
+                    color)
+    irradiance = _optics(pixels, canvas, d, blur, bg)                     # 4. blur, distortion, pixel area
+    image = _sensor_response(irradiance, sensor, rng)                     # 5. mosaic, noise, quantisation
+    truth = _ground_truth(planes, geo, K, d, R, t, (w, h), depth)          # 6. exact answers
+    return RenderResult(image, irradiance, truth)
+
+
+def _background(background: float | tuple[float, float, float], color: bool) -> np.ndarray:
+    """The background irradiance as 3 (RGB) or 1 (grey) float32 values."""
     bg = np.broadcast_to(np.asarray(background, dtype=np.float32).ravel(), (3,)) if np.ndim(background) else \
         np.full(3, float(background), dtype=np.float32)
     if not color:
         bg = bg[:1] if np.ndim(background) == 0 else np.array([bg.mean()], dtype=np.float32)
+    return bg
 
-    # camera-frame geometry of each plane; refuse planes reaching behind the camera
+
+class _CameraPlane(NamedTuple):
+    """A plane as the camera sees it: cam_from_plane (Rc, tc), depth of its visible centre, visible polygon."""
+
+    plane: Plane
+    Rc: np.ndarray
+    tc: np.ndarray
+    depth: float
+    poly: np.ndarray
+
+
+def _visible_planes(planes: list[Plane], R: np.ndarray, t: np.ndarray) -> list[_CameraPlane]:
+    """Stage 1: each plane in the camera frame, clipped at NEAR; planes behind the camera and back faces dropped."""
     geo = []
     for p in planes:
         Rc = R @ p.R
@@ -335,19 +364,35 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
             continue  # a one-sided face seen from behind (its normal points away from the camera)
         poly = _clip_to_near(p.extent, Rc, tc)  # the part in front of the near plane (floors, walls)
         zpoly = poly @ Rc[2, :2] + tc[2]
-        geo.append((p, Rc, tc, float(np.mean(zpoly)), poly))
+        geo.append(_CameraPlane(p, Rc, tc, float(np.mean(zpoly)), poly))
+    return geo
 
-    # the ideal (undistorted) canvas: supersampled, and large enough for what distortion pulls in
-    Ks = np.array([[ss, 0, (ss - 1) / 2], [0, ss, (ss - 1) / 2], [0, 0, 1]]) @ K  # output px -> ss px
-    if d.any():
+
+class _IdealCanvas(NamedTuple):
+    """Stage 2: the supersampled, undistorted canvas; ``K`` maps camera rays to canvas pixels and ``Ks``
+    to the supersampled output grid (the two differ when distortion pulls in rays from outside)."""
+
+    K: np.ndarray
+    Ks: np.ndarray
+    width: int
+    height: int
+    size: tuple[int, int]
+    supersample: int
+
+    @classmethod
+    def around(cls, K: np.ndarray, d: np.ndarray, size: tuple[int, int], ss: int) -> "_IdealCanvas":
+        w, h = size
+        Ks = scale_intrinsics(K, ss)  # output px -> supersampled px
+        if not d.any():
+            return cls(Ks, Ks, w * ss, h * ss, (w, h), ss)
         border = np.concatenate([
             np.column_stack([np.linspace(-0.5, w - 0.5, 64), np.full(64, -0.5)]),
             np.column_stack([np.linspace(-0.5, w - 0.5, 64), np.full(64, h - 0.5)]),
             np.column_stack([np.full(64, -0.5), np.linspace(-0.5, h - 0.5, 64)]),
             np.column_stack([np.full(64, w - 0.5), np.linspace(-0.5, h - 0.5, 64)]),
         ])
-        x, res = _dist._newton_undistort(_dist._normalise(border, K), d)
-        ideal = _dist._to_pixels(x[res <= 1e-9], K)  # pixels beyond the model's fold see background
+        x, res = _dist.newton_undistort(_dist.pixels_to_normalised(border, K), d)
+        ideal = _dist.normalised_to_pixels(x[res <= 1e-9], K)  # pixels beyond the model's fold see background
         if len(ideal) == 0:
             ideal = np.array([[-0.5, -0.5], [w - 0.5, h - 0.5]])
         lo = np.minimum(ideal.min(axis=0), [-0.5, -0.5]) - 2
@@ -358,61 +403,70 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
         Kc = Ks.copy()
         Kc[:2, 2] += off
         cw, ch = int(np.ceil((hi[0] - lo[0]) * ss)) + 1, int(np.ceil((hi[1] - lo[1]) * ss)) + 1
-    else:
-        Kc, cw, ch = Ks, w * ss, h * ss
+        return cls(Kc, Ks, cw, ch, (w, h), ss)
 
-    canvas = np.empty((ch, cw, nch), dtype=np.float32)
-    canvas[:] = bg
-    for p, Rc, tc, zmid, poly in sorted(geo, key=lambda g: -g[3]):  # painter's algorithm, far to near
-        x0, y0, x1, y1 = p.extent
-        # coarsest texture level whose texel still covers >= 1 canvas pixel at the plane's nearest point
-        Hplane = Kc @ np.column_stack([Rc[:, 0], Rc[:, 1], tc])  # plane metres -> canvas px
-        mpp = _metres_per_canvas_px(Hplane, poly)
-        level = 0
-        while level < 8 and (x1 - x0) / (p.texture.shape[1] >> (level + 1) or 1) < mpp \
-                and (p.texture.shape[1] >> (level + 1)) >= 2 and (p.texture.shape[0] >> (level + 1)) >= 2:
-            level += 1
-        tex = _texture_level(p.texture, level)
-        th, tw = tex.shape[:2]
-        S = np.array([[(x1 - x0) / tw, 0, x0 + 0.5 * (x1 - x0) / tw],
-                      [0, (y1 - y0) / th, y0 + 0.5 * (y1 - y0) / th], [0, 0, 1]])
-        H = Hplane @ S  # texel (c, r) -> canvas px
-        if p.is_color and not color:
-            tex = np.ascontiguousarray(tex @ np.array([0.299, 0.587, 0.114], dtype=np.float32))
-        # a grey texture in a colour render stays one channel: compositing broadcasts it
-        quad = cv2.perspectiveTransform(poly[None].astype(np.float64), Hplane)[0]  # visible outline, canvas px
-        # work only inside the plane's bounding box (plus room for its blur)
-        c_px = _coc_pixels(defocus, K, zmid) * ss if defocus is not None else 0.0
-        pad = int(np.ceil(c_px / 2)) + 2
-        bx0, by0 = np.maximum(np.floor(quad.min(axis=0)).astype(int) - pad, 0)
-        bx1, by1 = np.minimum(np.ceil(quad.max(axis=0)).astype(int) + pad + 1, [cw, ch])
-        if bx1 <= bx0 or by1 <= by0:
-            continue
-        T = np.array([[1.0, 0, -bx0], [0, 1.0, -by0], [0, 0, 1]])
-        layer = cv2.warpPerspective(tex, T @ H, (int(bx1 - bx0), int(by1 - by0)), flags=cv2.INTER_LINEAR,
-                                    borderMode=cv2.BORDER_REPLICATE)
+
+def _draw_plane(canvas: np.ndarray, g: _CameraPlane, Kc: np.ndarray, c_px: float, color: bool) -> None:
+    """Stage 3: warp one plane's texture into the canvas (in place), anti-aliased and defocused by ``c_px``."""
+    import cv2
+
+    p = g.plane
+    ch, cw = canvas.shape[:2]
+    x0, y0, x1, y1 = p.extent
+    # coarsest texture level whose texel still covers >= 1 canvas pixel at the plane's nearest point
+    Hplane = Kc @ np.column_stack([g.Rc[:, 0], g.Rc[:, 1], g.tc])  # plane metres -> canvas px
+    mpp = _metres_per_canvas_px(Hplane, g.poly)
+    level = 0
+    while level < 8 and (x1 - x0) / (p.texture.shape[1] >> (level + 1) or 1) < mpp \
+            and (p.texture.shape[1] >> (level + 1)) >= 2 and (p.texture.shape[0] >> (level + 1)) >= 2:
+        level += 1
+    tex = _texture_level(p.texture, level)
+    th, tw = tex.shape[:2]
+    S = np.array([[(x1 - x0) / tw, 0, x0 + 0.5 * (x1 - x0) / tw],
+                  [0, (y1 - y0) / th, y0 + 0.5 * (y1 - y0) / th], [0, 0, 1]])
+    H = Hplane @ S  # texel (c, r) -> canvas px
+    if p.is_color and not color:
+        tex = np.ascontiguousarray(tex @ np.array([0.299, 0.587, 0.114], dtype=np.float32))
+    # a grey texture in a colour render stays one channel: compositing broadcasts it
+    quad = cv2.perspectiveTransform(g.poly[None].astype(np.float64), Hplane)[0]  # visible outline, canvas px
+    # work only inside the plane's bounding box (plus room for its blur)
+    pad = int(np.ceil(c_px / 2)) + 2
+    bx0, by0 = np.maximum(np.floor(quad.min(axis=0)).astype(int) - pad, 0)
+    bx1, by1 = np.minimum(np.ceil(quad.max(axis=0)).astype(int) + pad + 1, [cw, ch])
+    if bx1 <= bx0 or by1 <= by0:
+        return
+    T = np.array([[1.0, 0, -bx0], [0, 1.0, -by0], [0, 0, 1]])
+    layer = cv2.warpPerspective(tex, T @ H, (int(bx1 - bx0), int(by1 - by0)), flags=cv2.INTER_LINEAR,
+                                borderMode=cv2.BORDER_REPLICATE)
+    if layer.ndim == 2:
+        layer = layer[..., None]
+    # coverage: the warped rectangle, anti-aliased (LINE_AA edges, then the supersampling)
+    alpha = np.zeros(layer.shape[:2], dtype=np.float32)
+    cv2.fillConvexPoly(alpha, np.round((quad - [bx0, by0]) * 16).astype(np.int32), 1.0,
+                       lineType=cv2.LINE_AA, shift=4)
+    if c_px > 1.0:
+        kern = _disk_kernel(c_px)
+        layer = cv2.filter2D(layer * alpha[..., None], -1, kern, borderType=cv2.BORDER_CONSTANT)
+        alpha = cv2.filter2D(alpha, -1, kern, borderType=cv2.BORDER_CONSTANT)
         if layer.ndim == 2:
             layer = layer[..., None]
-        # coverage: the warped rectangle, anti-aliased (LINE_AA edges, then the supersampling)
-        alpha = np.zeros(layer.shape[:2], dtype=np.float32)
-        cv2.fillConvexPoly(alpha, np.round((quad - [bx0, by0]) * 16).astype(np.int32), 1.0,
-                           lineType=cv2.LINE_AA, shift=4)
-        if c_px > 1.0:
-            kern = _disk_kernel(c_px)
-            layer = cv2.filter2D(layer * alpha[..., None], -1, kern, borderType=cv2.BORDER_CONSTANT)
-            alpha = cv2.filter2D(alpha, -1, kern, borderType=cv2.BORDER_CONSTANT)
-            if layer.ndim == 2:
-                layer = layer[..., None]
-            layer = layer / np.maximum(alpha, 1e-6)[..., None]
-        roi = canvas[by0:by1, bx0:bx1]
-        roi += alpha[..., None] * (layer - roi)
+        layer = layer / np.maximum(alpha, 1e-6)[..., None]
+    roi = canvas[by0:by1, bx0:bx1]
+    roi += alpha[..., None] * (layer - roi)
 
+
+def _optics(canvas: np.ndarray, ideal: _IdealCanvas, d: np.ndarray, blur: float, bg: np.ndarray) -> np.ndarray:
+    """Stage 4: extra blur, lens distortion (remap) and the pixels' area (box filter): irradiance in [0, 1]."""
+    import cv2
+
+    ss = ideal.supersample
+    w, h = ideal.size
     if blur > 1.0 / ss:
         canvas = cv2.filter2D(canvas, -1, _disk_kernel(blur * ss), borderType=cv2.BORDER_REFLECT)
         if canvas.ndim == 2:
             canvas = canvas[..., None]
     if d.any():
-        maps = _dist.distort_map(Ks, d, (w * ss, h * ss), new_K=Kc, step=4)
+        maps = _dist.distort_map(ideal.Ks, d, (w * ss, h * ss), new_K=ideal.K, step=4)
         canvas = cv2.remap(canvas, maps.map_u, maps.map_v, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT,
                            borderValue=tuple(float(v) for v in bg) + (0,) * (4 - len(bg)))
         if canvas.ndim == 2:
@@ -420,18 +474,27 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
     img = cv2.resize(canvas, (w, h), interpolation=cv2.INTER_AREA) if ss > 1 else canvas
     if img.ndim == 3 and img.shape[2] == 1:
         img = img[..., 0]
-    irradiance = np.clip(img, 0.0, 1.0).astype(np.float32)
+    return np.clip(img, 0.0, 1.0).astype(np.float32)
 
+
+def _sensor_response(irradiance: np.ndarray, sensor: Sensor, rng) -> np.ndarray:
+    """Stage 5: Bayer mosaic, shot and read noise, quantisation to digital numbers."""
     signal = irradiance
     if sensor.bayer is not None:
         signal = _sensor.mosaic(irradiance, sensor.bayer)
     if sensor.noise is not None:
         signal = _sensor.add_noise(signal, sensor.noise, rng)
-    image = _sensor.quantize(signal, sensor.bits)
+    return _sensor.quantize(signal, sensor.bits)
 
+
+def _ground_truth(planes: list[Plane], geo: list[_CameraPlane], K: np.ndarray, d: np.ndarray, R: np.ndarray,
+                  t: np.ndarray, size: tuple[int, int], depth: bool) -> GroundTruth:
+    """Stage 6: exact pixels of every named point (projected, never measured), visibility, depth map."""
+    w, h = size
     truth = GroundTruth(K=K, dist=d, R=R, t=t, size=(w, h), points={},
                         depth=_depth_map(geo, K, d, w, h) if depth else None)
-    for p, *_ in geo:
+    for g in geo:
+        p = g.plane
         if len(p.points):
             wp = p.world_points
             px = project(wp, K, R, t, d)
@@ -447,7 +510,7 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
             wp = p.world_points
             truth.points[p.name] = PlanePoints(p.object_points, wp, project(wp, K, R, t, d),
                                                np.zeros(len(wp), bool), p.pattern_size)
-    return RenderResult(image, irradiance, truth)
+    return truth
 
 
 def _flatten(scene) -> list[Plane]:
@@ -507,7 +570,7 @@ def _coc_pixels(defocus: Defocus, K: np.ndarray, depth: float) -> float:
 def _nearest_hit(rays: np.ndarray, geo) -> np.ndarray:
     """Depth z_cam where each ray ``(x, y, 1)`` first meets a plane of the scene (inf: none)."""
     depth = np.full(len(rays), np.inf)
-    for p, Rc, tc, *_ in geo:
+    for p, Rc, tc, *_ in geo:  # _CameraPlane rows
         n = Rc[:, 2]
         with np.errstate(divide="ignore", invalid="ignore"):
             z = (n @ tc) / (rays @ n)  # the plane n . X = n . tc meets the ray z * (x, y, 1) here
@@ -526,5 +589,5 @@ def _depth_map(geo, K, d, w, h) -> np.ndarray:
     else:
         u, v = np.meshgrid(np.arange(w, dtype=float), np.arange(h, dtype=float))
         ideal = np.stack([u.ravel(), v.ravel()], axis=1)
-    xy = _dist._normalise(ideal, K)
+    xy = _dist.pixels_to_normalised(ideal, K)
     return _nearest_hit(np.column_stack([xy, np.ones(len(xy))]), geo).reshape(h, w)

@@ -173,8 +173,12 @@ def painting_texture(width: int = 400) -> np.ndarray:
 
 
 @lru_cache(maxsize=4)
-def desk_background(h: int = 480, w: int = 640, seed: int = 0) -> np.ndarray:
-    """A dark wooden-desk background (cached: demos re-photograph on every slider move)."""
+def desk_background(shape: tuple[int, int] = (480, 640), seed: int = 0) -> np.ndarray:
+    """A dark wooden-desk background, (height, width, 3) uint8 for ``shape`` = (height, width).
+
+    Cached and read-only: demos re-photograph on every slider move.
+    """
+    h, w = (int(v) for v in shape)
     rng = np.random.default_rng(seed)
     yy, xx = np.mgrid[0:h, 0:w]
     base = 70 + 25 * np.sin(xx / 37.0) * np.cos(yy / 53.0) + rng.normal(0, 4, (h, w))
@@ -472,7 +476,8 @@ def photograph_plane(
     :math:`K = [[f, 0, c_x], [0, f, c_y], [0, 0, 1]]`; a plane point (X, Y, 0) projects by
     :func:`camlab.homography.pose_homography`, and a texture pixel (u, v) is the plane
     point :math:`s (u - (W-1)/2,\ v - (H-1)/2)` with :math:`s` = metres per texture
-    pixel. The photo is the texture warped by the product onto a background.
+    pixel. The photo is the texture warped by the product onto a background;
+    ``image_shape`` is the photo's (height, width), numpy's order.
 
     Returns
     -------
@@ -495,7 +500,7 @@ def photograph_plane(
     corners_tex = np.array([[0, 0], [tw - 1, 0], [tw - 1, th - 1], [0, th - 1]], dtype=float)
     corners = map_points(H, corners_tex)
     if background is None:
-        bg = desk_background(h, w, seed)
+        bg = desk_background((h, w), seed)
     else:
         bg = np.asarray(background, dtype=np.uint8)
     if method == "cv2":

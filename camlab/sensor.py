@@ -31,7 +31,7 @@ from ._validate import (
 )
 
 __all__ = [
-    "BAYER_PATTERNS", "NoiseModel", "add_noise", "bayer_masks", "demosaic_bilinear", "demosaic_opencv",
+    "BAYER_PATTERNS", "NoiseModel", "add_noise", "bayer_masks", "check_bayer_pattern", "check_bits", "demosaic_bilinear", "demosaic_opencv",
     "dequantize", "gamma_encode", "intrinsics_from_sensor", "metric_to_pixels", "mosaic", "pixels_to_metric",
     "psnr", "quantize", "sample", "white_balance", "zone_plate",
 ]
@@ -79,7 +79,8 @@ def intrinsics_from_sensor(focal_length: float, pitch: tuple[float, float], size
                      [0.0, 0.0, 1.0]])
 
 
-def _check_bits(bits: int) -> int:
+def check_bits(bits: int) -> int:
+    """Return ``bits`` as an int if it is a bit depth from 1 to 16, else raise."""
     if not isinstance(bits, (int, np.integer)) or not 1 <= bits <= 16:
         raise CamlabInputError(f"bits: expected an integer bit depth from 1 to 16, got {bits!r}")
     return int(bits)
@@ -93,7 +94,7 @@ def quantize(image: ArrayLike, bits: int = 8) -> np.ndarray:
     >>> quantize(np.array([0.0, 0.5, 1.0, 1.2]), 2)
     array([0, 2, 3, 3], dtype=uint8)
     """
-    b = _check_bits(bits)
+    b = check_bits(bits)
     a = np.asarray(image)
     if a.dtype.kind == "f":
         check_finite(a, "image")
@@ -106,11 +107,15 @@ def quantize(image: ArrayLike, bits: int = 8) -> np.ndarray:
 
 def dequantize(dn: ArrayLike, bits: int = 8) -> np.ndarray:
     """Digital numbers back to float [0, 1]: ``dn / (2**bits - 1)``."""
-    b = _check_bits(bits)
+    b = check_bits(bits)
     a = np.asarray(dn)
     if not np.issubdtype(a.dtype, np.integer):
         raise CamlabInputError(f"dn: expected integer digital numbers, got dtype {a.dtype}")
-    return a.astype(float) / ((1 << b) - 1)
+    levels = (1 << b) - 1
+    if a.size and (a.min() < 0 or a.max() > levels):
+        raise CamlabInputError(f"dn: {b}-bit digital numbers lie in [0, {levels}], got {a.min()} to {a.max()}; "
+                               f"pass the bit depth they were quantised with (bits=...)")
+    return a.astype(float) / levels
 
 
 class NoiseModel(NamedTuple):
@@ -177,7 +182,8 @@ def zone_plate(size: int = 512, k: float | None = None) -> np.ndarray:
     return 0.5 * (1 + np.cos(k * (x * x + y * y)))
 
 
-def _check_pattern(pattern: str) -> str:
+def check_bayer_pattern(pattern: str) -> str:
+    """Return a Bayer pattern name in upper case (one of ``BAYER_PATTERNS``), else raise."""
     p = str(pattern).upper()
     if p not in BAYER_PATTERNS:
         raise CamlabInputError(f"pattern: expected one of {', '.join(BAYER_PATTERNS)}, got {pattern!r}")
@@ -194,7 +200,7 @@ def bayer_masks(shape: tuple[int, int], pattern: str = "RGGB") -> np.ndarray:
     array([[0, 1],
            [0, 0]])
     """
-    p = _check_pattern(pattern)
+    p = check_bayer_pattern(pattern)
     h, w = check_shape(shape)
     masks = np.zeros((h, w, 3), dtype=bool)
     for (dy, dx), ch in zip([(0, 0), (0, 1), (1, 0), (1, 1)], p):
@@ -273,7 +279,7 @@ def demosaic_opencv(raw: ArrayLike, pattern: str = "RGGB", method: str = "biline
         raise CamlabInputError(f"method: expected 'bilinear', 'vng' or 'ea', got {method!r}")
     if method == "vng" and r.dtype != np.uint8:
         raise CamlabInputError("raw: OpenCV's VNG demosaicing accepts uint8 only; quantise to 8 bits first")
-    code = getattr(cv2, f"COLOR_Bayer{_CV_NAMES[_check_pattern(pattern)]}2RGB{suffix[method]}")
+    code = getattr(cv2, f"COLOR_Bayer{_CV_NAMES[check_bayer_pattern(pattern)]}2RGB{suffix[method]}")
     return cv2.cvtColor(np.ascontiguousarray(r), code)
 
 

@@ -23,10 +23,10 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._validate import CamlabInputError, DegenerateError, check_image, check_shape
-from .homography import _check_h, compose
+from .homography import check_homography, compose
 from .projective import map_points
 
-__all__ = ["CanvasWarp", "canvas_bounds", "forward_warp", "warp_perspective", "warp_to_canvas"]
+__all__ = ["CanvasBounds", "CanvasWarp", "canvas_bounds", "forward_warp", "warp_perspective", "warp_to_canvas"]
 
 _INTERPOLATIONS = ("nearest", "bilinear")
 _METHODS = ("numpy", "cv2")
@@ -211,7 +211,7 @@ def warp_perspective(
            [ 0.,  8.,  9., 10.]])
     """
     img = check_image(image)
-    Hm = _check_h(H)
+    Hm = check_homography(H)
     shape = _check_shape(output_shape)
     _check_options(interpolation, method)
     if not np.isfinite(fill):
@@ -251,7 +251,7 @@ def forward_warp(image: ArrayLike, H: ArrayLike, output_shape: Sequence[int], *,
            [0., 0., 0., 0.]])
     """
     img = check_image(image)
-    Hm = _check_h(H)
+    Hm = check_homography(H)
     h, w = _check_shape(output_shape)
     sh, sw = img.shape[:2]
     vv, uu = np.mgrid[0:sh, 0:sw]
@@ -267,8 +267,23 @@ def forward_warp(image: ArrayLike, H: ArrayLike, output_shape: Sequence[int], *,
     return out
 
 
+class CanvasBounds(NamedTuple):
+    """The outcome of :func:`canvas_bounds`.
+
+    Attributes
+    ----------
+    T : (3, 3) ndarray
+        The translation canvas_from_warped: ``[[1, 0, -u_min], [0, 1, -v_min], [0, 0, 1]]``.
+    shape : (height, width)
+        The canvas in pixels, numpy's order (a *shape*; a *size* would be (width, height)).
+    """
+
+    T: np.ndarray
+    shape: tuple[int, int]
+
+
 def canvas_bounds(Hs: Sequence[ArrayLike], shapes: Sequence[Sequence[int]],
-                  max_pixels: int = 40_000_000) -> tuple[np.ndarray, tuple[int, int]]:
+                  max_pixels: int = 40_000_000) -> CanvasBounds:
     r"""The translation T and size of a canvas holding every image i warped by ``Hs[i]``.
 
     Each image's four corner pixels (0, 0), (w-1, 0), (w-1, h-1), (0, h-1) are mapped by
@@ -287,9 +302,8 @@ def canvas_bounds(Hs: Sequence[ArrayLike], shapes: Sequence[Sequence[int]],
 
     Returns
     -------
-    T : (3, 3) ndarray
-        Pure translation ``[[1, 0, -u_min], [0, 1, -v_min], [0, 0, 1]]``.
-    (height, width) : tuple of int
+    CanvasBounds
+        ``(T, shape)``: the translation and the canvas shape (height, width).
 
     Raises
     ------
@@ -299,8 +313,8 @@ def canvas_bounds(Hs: Sequence[ArrayLike], shapes: Sequence[Sequence[int]],
 
     Examples
     --------
-    >>> T, size = canvas_bounds([[[1, 0, -5], [0, 1, 3], [0, 0, 1]]], [(10, 20)])
-    >>> T[:2, 2], size
+    >>> T, shape = canvas_bounds([[[1, 0, -5], [0, 1, 3], [0, 0, 1]]], [(10, 20)])
+    >>> T[:2, 2], shape
     (array([ 5., -3.]), (10, 20))
     """
     if len(Hs) != len(shapes) or len(Hs) == 0:
@@ -309,7 +323,7 @@ def canvas_bounds(Hs: Sequence[ArrayLike], shapes: Sequence[Sequence[int]],
         )
     corners = []
     for i, (H, shape) in enumerate(zip(Hs, shapes)):
-        Hm = _check_h(H, f"Hs[{i}]")
+        Hm = check_homography(H, f"Hs[{i}]")
         h, w = int(shape[0]), int(shape[1])
         c = np.array([[0, 0, 1], [w - 1, 0, 1], [w - 1, h - 1, 1], [0, h - 1, 1]], dtype=float) @ Hm.T
         if np.any(c[:, 2] <= 1e-12 * np.abs(c).max()):
@@ -329,7 +343,7 @@ def canvas_bounds(Hs: Sequence[ArrayLike], shapes: Sequence[Sequence[int]],
             f"the image enormously, probably because part of it lies near the line H sends to infinity"
         )
     T = np.array([[1.0, 0.0, -lo[0]], [0.0, 1.0, -lo[1]], [0.0, 0.0, 1.0]])
-    return T, (int(h_out), int(w_out))
+    return CanvasBounds(T, (int(h_out), int(w_out)))
 
 
 class CanvasWarp(NamedTuple):
@@ -381,7 +395,7 @@ def warp_to_canvas(
     ((2, 3), array([10., 20.]))
     """
     img = check_image(image)
-    Hm = _check_h(H)
+    Hm = check_homography(H)
     _check_options(interpolation, method)
     T, shape = canvas_bounds([Hm], [img.shape], max_pixels=max_pixels)
     Hc = compose(T, Hm)

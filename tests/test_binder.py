@@ -43,8 +43,6 @@ def test_repo2docker_picks_python_311_and_installs_from_the_lock_not_editable(do
     requirements = [ln.strip() for ln in (REPO / "binder" / "requirements.txt").read_text().splitlines()
                     if ln.strip() and not ln.startswith("#")]
     assert requirements == ["-r ../requirements/lock.txt", "."]  # the lock, then camlab itself, never -e
-    if not (REPO / "requirements" / "lock.txt").exists():
-        pytest.skip("requirements/lock.txt (issue 11's class lock) is not on this branch yet")
     lock = (REPO / "requirements" / "lock.txt").read_text()
     for package in ("numpy", "matplotlib", "ipympl", "ipywidgets", "jupyterlab", "opencv-python-headless"):
         assert re.search(rf"^{package}==\d", lock, flags=re.M), f"{package} is not pinned in the lock"
@@ -87,26 +85,24 @@ heavy = pytest.mark.skipif(os.environ.get("CAMLAB_TEST_BINDER") != "1",
 
 @pytest.mark.binder
 @heavy
-def test_binder_install_runs_every_lesson_outside_the_repo(dockerfile, tmp_path):
+def test_binder_install_step_installs_camlab_from_the_lock_not_editable(dockerfile, tmp_path):
+    """The image's install command, run in a copy of the repository; `make test-binder` then runs
+    every lesson against this venv from a folder outside the repository (Makefile:
+    run-lessons-outside, shared with `make test-wheel`)."""
     repo = _copy_repo(tmp_path / "repo")
-    python, env = _fresh_venv(tmp_path / "env")
+    python, env = _fresh_venv(Path(os.environ.get("CAMLAB_BINDER_VENV", tmp_path / "env")).resolve())
     for step in _install_steps(dockerfile):  # exactly the image's install command, in the copied repository
         run = subprocess.run([str(python.parent / "pip"), *shlex.split(step)[1:]], cwd=repo, env=env,
                              capture_output=True, text=True, timeout=1800)
         assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
     where = _imported_from(python, tmp_path, env)
     assert where.startswith(str(python.parent.parent)) and "site-packages" in where, where  # not editable
-    subprocess.run([str(python.parent / "pip"), "install", "--quiet", "pytest", "pytest-xdist", "nbval"],
-                   env=env, check=True, timeout=600)
-    work = tmp_path / "work"  # a student's folder outside the repository
-    shutil.copytree(repo / "lessons", work / "lessons")
-    lessons = sorted(p.name for p in (work / "lessons").glob("[0-9][0-9]_*.ipynb"))
-    run = subprocess.run([str(python), "-m", "pytest", "-p", "no:cacheprovider", "-n", "2", "--dist", "loadfile",
-                          "--nbval-lax", "--nbval-current-env", "-q", "lessons"], cwd=work, env=env,
-                         capture_output=True, text=True, timeout=2400)
-    assert run.returncode == 0, run.stdout[-4000:] + run.stderr[-2000:]
-    passed = int(re.search(r"(\d+) passed", run.stdout).group(1))
-    assert len(lessons) == 12 and passed >= 12 * 10, run.stdout[-500:]
+    frozen = subprocess.run([str(python.parent / "pip"), "freeze"], env=env, capture_output=True, text=True,
+                            check=True).stdout
+    lock = (REPO / "requirements" / "lock.txt").read_text()
+    for package in ("numpy", "ipympl", "opencv-python-headless", "jupyterlab"):
+        pinned = re.search(rf"^{package}==([^\s;]+)", lock, flags=re.M).group(1)
+        assert f"{package}=={pinned}" in frozen, f"{package} is not the lock's {pinned}"
 
 
 def _teaching_dockerfile() -> str:

@@ -72,6 +72,19 @@ def test_find_chessboard_matches_the_rendered_truth(bundled):
     np.testing.assert_allclose(C.find_chessboard(rgb, "9x6").corners, det.corners, atol=1e-6)
 
 
+@pytest.mark.parametrize("dtype", [np.float64, np.float32, np.uint16])
+def test_find_chessboard_on_a_colour_image_of_any_dtype(bundled, dtype):
+    """The docstring promises any dtype: a float64 RGB photo used to raise cv2.error (colour
+    conversion ran before the dtype was normalised, and cvtColor rejects float64)."""
+    grey = bundled.images[0]
+    scale = {np.float64: 1 / 255, np.float32: 1 / 255, np.uint16: 257}[dtype]
+    rgb = (np.dstack([grey] * 3).astype(float) * scale).astype(dtype)
+    det = C.find_chessboard(rgb, (9, 6))
+    assert det.found
+    ref = C.find_chessboard(grey, (9, 6)).corners
+    assert np.abs(det.corners - ref).max() < 0.05  # the same grey levels up to the 0..255 stretch
+
+
 def test_find_chessboard_explains_failures(bundled):
     img = bundled.images[0]
     assert "inner corners" in C.find_chessboard(img, (10, 7)).reason and "--pattern 9x6" in \

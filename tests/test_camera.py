@@ -535,7 +535,7 @@ def test_resectioning_outlier_and_click():
     d.set(outlier=0.0)
     assert d.state["rms"] < 1e-6
     target = d.state["points_image"][3] + [40.0, -30.0]
-    d.on_click(SimpleNamespace(inaxes=d.figure.axes[1], xdata=target[0], ydata=target[1]))
+    d.handlers["button_press_event"](SimpleNamespace(inaxes=d.figure.axes[1], xdata=target[0], ydata=target[1]))
     assert np.allclose(d.state["points_image"][3], target) and d.state["rms"] > 5.0
     d.set(n_points=13)  # new measurements forget the click
     assert d.state["rms"] < 1e-6
@@ -564,3 +564,36 @@ def test_lesson04_exercises_accept_reference_and_reject_stub(capsys):
         assert "not attempted yet" in capsys.readouterr().out
     with pytest.raises(AssertionError, match="divide by the third coordinate|without dividing"):
         check("project_points", lambda P, X: (np.hstack([X, np.ones((len(X), 1))]) @ P.T)[:, :2])
+
+
+def test_every_projection_path_gives_nan_behind_the_camera():
+    """One rule (docs/conventions.md): z_cam <= 0 projects to NaN, never to a mirrored pixel."""
+    from camlab import calibration, pinhole, render
+
+    K = cm.intrinsic_matrix(800, 800, 320, 240)
+    X = np.array([[0.1, -0.2, 2.0], [0.1, -0.2, -2.0], [0.3, 0.1, 0.0]])  # in front, behind, in the camera plane
+    dist = (-0.2, 0.05, 0.0, 0.0, 0.0)
+    paths = {
+        "Camera.project": cm.Camera(K, dist=dist).project(X),
+        "project_points": cm.project_points(cm.Camera(K).P, X),
+        "render.project": render.project(X, K, dist=dist),
+        "calibration.reproject": calibration.reproject(X, K, dist, np.zeros(3), np.zeros(3)),
+        "project_pinhole": pinhole.project_pinhole(X, 0.05),
+    }
+    for name, uv in paths.items():
+        assert np.isfinite(uv[0]).all(), name
+        assert np.isnan(uv[1]).all() and np.isnan(uv[2]).all(), name
+
+
+def test_scale_intrinsics_and_camera_resized_agree_with_resizing_pixels():
+    cam = cm.Camera(cm.intrinsic_matrix(800, 780, 319.5, 239.5, 2.0), image_size=(640, 480))
+    half = cam.resized(0.5)
+    assert half.image_size == (320, 240)
+    np.testing.assert_allclose(half.K, cm.scale_intrinsics(cam.K, 0.5))
+    # pixel centres: output pixel u' covers input pixels 2u' and 2u' + 1, so u' = (u - 0.5) / 2
+    X = np.array([[0.3, -0.1, 2.0], [-0.4, 0.2, 3.0]])
+    np.testing.assert_allclose(half.project(X), (cam.project(X) - 0.5) / 2, atol=1e-12)
+    with pytest.raises(CamlabInputError, match=r"image_size \* scale: expected \(width, height\) as whole numbers"):
+        cam.resized(0.33)
+    from camlab.data import panorama
+    assert panorama.scale_intrinsics is cm.scale_intrinsics  # one home

@@ -173,3 +173,26 @@ def test_every_shipped_file_is_attributed():
         if path.is_file():
             rel = path.relative_to(root).as_posix()
             assert any(fnmatch.fnmatch(rel, p) for p in patterns), f"data/{rel} is not in data/ATTRIBUTION.md"
+
+
+def test_encode_image_raises_when_opencv_reports_failure(monkeypatch):
+    """cv2.imencode's ok flag used to be ignored: a failed encode would write garbage into a data set."""
+    import cv2
+
+    from camlab.data._resources import encode_image
+
+    img = np.zeros((4, 4), np.uint8)
+    assert encode_image(img, ".png")[:4] == b"\x89PNG"
+    monkeypatch.setattr(cv2, "imencode", lambda *a, **k: (False, None))
+    with pytest.raises(OSError, match=r"cv2.imencode could not encode a \(4, 4\) uint8 image as .png"):
+        encode_image(img, ".png")
+
+
+def test_panorama_rotation_helpers_say_their_direction():
+    from camlab.data import panorama
+
+    Rc = panorama.cam_from_world(0.3, -0.1, 0.05)
+    # a camera turned right by yaw sees a point that lies ahead-right of the world straight ahead
+    ahead_right = np.array([np.sin(0.3), 0.0, np.cos(0.3)])
+    assert np.allclose(panorama._rot(0.3, 0, 0) @ [0, 0, 1.0], ahead_right)  # world_from_cam maps its axis out
+    assert np.allclose(Rc @ panorama._rot(0.3, -0.1, 0.05), np.eye(3))

@@ -3,6 +3,7 @@ import cv2
 import numpy as np
 import pytest
 
+from camlab import camera as cm
 from camlab import render as r
 from camlab._validate import CamlabInputError
 from camlab.sensor import NoiseModel
@@ -35,7 +36,7 @@ def test_find_chessboard_corners_sb_agrees_with_ground_truth(dist):
 
 def test_ground_truth_matches_cv2_project_points_with_a_moved_camera():
     board = r.checkerboard((7, 5), 0.04, R=r.rotation_from_euler(0.2, 0.1, 0), t=(0, 0, 0))
-    R, t = r.look_at([0.3, -0.2, -0.8], [0.12, 0.08, 0.0])
+    R, t = r.look_at([0.3, -0.2, -0.8], [0.12, 0.08, 0.0], up=(0, -1, 0))
     out = r.render(board, K, R=R, t=t, dist=BARREL)
     pts = out.truth.points["board"]
     rvec, _ = cv2.Rodrigues(R)
@@ -154,7 +155,21 @@ def test_look_at_and_rotation():
     with pytest.raises(CamlabInputError, match="eye and target coincide"):
         r.look_at([0, 0, 0], [0, 0, 0])
     with pytest.raises(CamlabInputError, match="parallel to up"):
-        r.look_at([0, 0, 0], [0, 1, 0])
+        r.look_at([0, 0, 0], [0, 0, 1])
+
+
+def test_look_at_has_one_default_up_everywhere():
+    """render.look_at used up = -y and camera.look_at_rotation up = +z: the same call failed in one."""
+    eye, target = [3.0, -4.0, 1.5], [0.0, 0.0, 0.5]
+    R, t = r.look_at(eye, target)
+    np.testing.assert_allclose(R, cm.look_at_rotation(eye, target), atol=1e-15)
+    cam = cm.Camera.look_at(eye, target)
+    np.testing.assert_allclose(R, cam.R, atol=1e-15)
+    np.testing.assert_allclose(t, cam.t, atol=1e-12)
+    assert R[1] @ [0, 0, 1] < 0  # the world's up (+z) points up in the image (camera -y)
+    for look in (r.look_at, cm.look_at_rotation):  # looking straight down the up axis fails in both
+        with pytest.raises(CamlabInputError, match="parallel to up"):
+            look([0, 0, 5.0], [0, 0, 0])
 
 
 def test_bad_inputs():

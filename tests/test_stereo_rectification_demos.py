@@ -21,13 +21,13 @@ class _Click:
 def test_epipolar_lines_click_moves_point_and_line_passes_through_true_match():
     demo = demos.epipolar_lines()
     before = demo.view.pixels()
-    demo.on_click(_Click(demo.axes[0], 150.0, 120.0))
+    demo.handlers["button_press_event"](_Click(demo.figure.axes[0], 150.0, 120.0))
     assert demo.controls["u"].value == 150.0 and demo.controls["v"].value == 120.0
     assert not np.array_equal(before, demo.view.pixels())
     # every depth along the ray images onto the right epipolar line
     l2, uv = demo.state["line_right"], demo.state["depth_points"]
     assert np.nanmax(np.abs(uv @ l2[:2] + l2[2])) < 1e-6
-    demo.on_click(_Click(demo.axes[1], 10.0, 10.0))  # clicks in the right image are ignored
+    demo.handlers["button_press_event"](_Click(demo.figure.axes[1], 10.0, 10.0))  # clicks in the right image are ignored
     assert demo.controls["u"].value == 150.0
 
 
@@ -124,7 +124,7 @@ def test_epipolar_lines_real_mouse_event_through_the_canvas():
     demo = demos.epipolar_lines()
     fig = demo.figure
     fig.canvas.draw()
-    x, y = demo.axes[0].transData.transform((200.0, 150.0))
+    x, y = demo.figure.axes[0].transData.transform((200.0, 150.0))
     fig.canvas.callbacks.process("button_press_event", MouseEvent("button_press_event", fig.canvas, x, y, button=1))
     assert np.allclose([demo.controls["u"].value, demo.controls["v"].value], [200, 150], atol=1e-6)
     assert np.allclose(demo.state["point"], [200, 150], atol=1e-6)

@@ -6,10 +6,9 @@ from typing import NamedTuple
 import numpy as np
 
 from .._validate import ConvergenceError
-from ..distortion import undistort_points
+from ..distortion import pixels_to_normalised, undistort_points
 from .calibrate import CalibrationResult
 from .refinement import PARAM_NAMES, project_views
-from .undistortion import to_normalised
 
 
 def projection_uncertainty(result: CalibrationResult, step: int = 20) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -31,7 +30,7 @@ def projection_uncertainty(result: CalibrationResult, step: int = 20) -> tuple[n
     U, Vv = np.meshgrid(us, vs)
     pix = np.column_stack([U.ravel(), Vv.ravel()])
     K = result.K
-    xd = to_normalised(pix, K)
+    xd = pixels_to_normalised(pix, K)
     try:
         x = undistort_points(xd, result.dist)
     except ConvergenceError:

@@ -79,21 +79,27 @@ def board_points(pattern_size: Sequence[int] | str, square_size: float) -> np.nd
 
 
 def grey_uint8(image: ArrayLike, name: str = "image") -> np.ndarray:
+    """The (H, W) uint8 grey image OpenCV's detectors want, from a grey, RGB or RGBA image of any dtype.
+
+    Non-uint8 images are first stretched to 0..255 (all channels together), then colour is
+    converted to grey: ``cv2.cvtColor`` accepts only 8-bit, 16-bit and float32 input, so
+    converting a float64 RGB image first would fail.
+    """
     import cv2
 
     img = check_image(image, name, channels=(1, 3, 4))
     if img.ndim == 3 and img.shape[2] == 1:
         img = img[..., 0]
-    if img.ndim == 3 and img.shape[2] in (3, 4):
-        img = cv2.cvtColor(img, cv2.COLOR_RGB2GRAY if img.shape[2] == 3 else cv2.COLOR_RGBA2GRAY)
-    if img.ndim != 2 or img.size == 0:
-        raise CamlabInputError(f"{name}: expected an (H, W) grey or (H, W, 3) colour image, got shape {img.shape}")
     if img.dtype != np.uint8:
         f = img.astype(float)
         if not np.isfinite(f).all():
             raise CamlabInputError(f"{name}: the image holds NaN or inf pixels")
         lo, hi = f.min(), f.max()
         img = np.zeros(f.shape, np.uint8) if hi <= lo else np.round(255 * (f - lo) / (hi - lo)).astype(np.uint8)
+    if img.ndim == 3 and img.shape[2] in (3, 4):
+        img = cv2.cvtColor(img, cv2.COLOR_RGB2GRAY if img.shape[2] == 3 else cv2.COLOR_RGBA2GRAY)
+    if img.ndim != 2 or img.size == 0:
+        raise CamlabInputError(f"{name}: expected an (H, W) grey or (H, W, 3) colour image, got shape {img.shape}")
     return img
 
 

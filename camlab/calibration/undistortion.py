@@ -7,18 +7,15 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validate import CamlabInputError, ConvergenceError, check_image, check_intrinsics, check_number, check_size
-from ..distortion import as_dist, distort_points, undistort_image, undistort_points
+from ..distortion import (
+    as_dist,
+    distort_points,
+    normalised_to_pixels,
+    pixels_to_normalised,
+    undistort_image,
+    undistort_points,
+)
 from .calibrate import CalibrationResult
-
-
-def to_normalised(pix: np.ndarray, K: np.ndarray) -> np.ndarray:
-    """Pixels (N, 2) -> normalised image coordinates: K^-1 [u, v, 1]."""
-    return (np.column_stack([pix, np.ones(len(pix))]) @ np.linalg.inv(K).T)[:, :2]
-
-
-def from_normalised(x: np.ndarray, K: np.ndarray) -> np.ndarray:
-    """Normalised image coordinates (N, 2) -> pixels: K [x, y, 1]."""
-    return x @ K[:2, :2].T + K[:2, 2]
 
 
 def _rectangles(K: np.ndarray, dist: np.ndarray, size: tuple[int, int], n: int = 9):
@@ -26,7 +23,7 @@ def _rectangles(K: np.ndarray, dist: np.ndarray, size: tuple[int, int], n: int =
     w, h = size
     gx, gy = np.meshgrid(np.linspace(0, w - 1, n), np.linspace(0, h - 1, n))
     pix = np.column_stack([gx.ravel(), gy.ravel()])
-    x = undistort_points(to_normalised(pix, K), dist).reshape(n, n, 2)
+    x = undistort_points(pixels_to_normalised(pix, K), dist).reshape(n, n, 2)
     outer = (x[..., 0].min(), x[..., 1].min(), x[..., 0].max(), x[..., 1].max())
     inner = (x[:, 0, 0].max(), x[0, :, 1].max(), x[:, -1, 0].min(), x[-1, :, 1].min())
     return inner, outer
@@ -79,10 +76,10 @@ def undistortion_tradeoff(K: ArrayLike, dist: ArrayLike | None, image_size: Sequ
     U, Vv = np.meshgrid(np.arange(0, w, step, dtype=float), np.arange(0, h, step, dtype=float))
     pix = np.column_stack([U.ravel(), Vv.ravel()])
     # output pixel -> source pixel: K distort(Kn^-1 p); same as distort_pixels with a change of K
-    src = from_normalised(distort_points(to_normalised(pix, Kn), d), Km)
+    src = normalised_to_pixels(distort_points(pixels_to_normalised(pix, Kn), d), Km)
     inside = (src[:, 0] >= -0.5) & (src[:, 0] <= w - 0.5) & (src[:, 1] >= -0.5) & (src[:, 1] <= h - 0.5)
     try:
-        dst = from_normalised(undistort_points(to_normalised(pix, Km), d), Kn)
+        dst = normalised_to_pixels(undistort_points(pixels_to_normalised(pix, Km), d), Kn)
         kept = (dst[:, 0] >= -0.5) & (dst[:, 0] <= w - 0.5) & (dst[:, 1] >= -0.5) & (dst[:, 1] <= h - 0.5)
     except ConvergenceError:
         kept = np.zeros(len(pix), bool)

@@ -282,10 +282,6 @@ def extrinsics_from_homography(K: ArrayLike, H: ArrayLike) -> tuple[np.ndarray, 
     return R, t
 
 
-def _normalised(K: np.ndarray, Xc: np.ndarray) -> np.ndarray:
-    return Xc[..., :2] / Xc[..., 2:3]
-
-
 def initial_radial_distortion(K: ArrayLike, object_points, image_points, R: ArrayLike, t: ArrayLike) -> np.ndarray:
     r"""Linear least-squares (k1, k2) given K and every view's pose (Zhang 2000, section 3.3).
 
@@ -308,7 +304,8 @@ def initial_radial_distortion(K: ArrayLike, object_points, image_points, R: Arra
     Rs, ts = np.asarray(R, dtype=float).reshape(-1, 3, 3), np.asarray(t, dtype=float).reshape(-1, 3)
     rows, rhs = [], []
     for o, p, Rv, tv in zip(objs, imgs, Rs, ts):
-        x = _normalised(Km, o @ Rv.T + tv)
+        Xc = o @ Rv.T + tv
+        x = Xc[:, :2] / Xc[:, 2:3]  # ideal normalised points
         r2 = np.sum(x * x, axis=1)
         uv = x @ Km[:2, :2].T + Km[:2, 2]
         d = uv - Km[:2, 2]

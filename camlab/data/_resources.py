@@ -14,6 +14,7 @@ an installed package, into the user cache (:func:`cache_dir`), never into site-p
 """
 from __future__ import annotations
 
+import json
 import os
 import sys
 from importlib.resources import files
@@ -21,7 +22,7 @@ from pathlib import Path
 
 from .._validate import CamlabInputError
 
-__all__ = ["cache_dir", "data_dir", "dataset_dir", "docs_dir", "lessons_dir", "regeneration_dir"]
+__all__ = ["cache_dir", "data_dir", "dataset_dir", "docs_dir", "lessons_dir", "read_truth", "regeneration_dir"]
 
 _REPO = Path(__file__).resolve().parents[2]
 
@@ -64,6 +65,15 @@ def dataset_dir(name: str) -> Path:
     return data_dir() / name
 
 
+def read_truth(directory: Path | str | None, name: str) -> tuple[Path, dict]:
+    """The folder of set ``name`` (``directory`` if given, else :func:`dataset_dir`) and its parsed ``truth.json``."""
+    d = Path(directory) if directory is not None else dataset_dir(name)
+    path = d / "truth.json"
+    if not path.exists():
+        raise CamlabInputError(f"directory: no truth.json in {d}; run `python -m camlab.data` to generate it")
+    return d, json.loads(path.read_text())
+
+
 def cache_dir() -> Path:
     """The user cache for regenerated data: ``$CAMLAB_DATA``, else the platform's cache folder + ``camlab``."""
     override = os.environ.get("CAMLAB_DATA")
@@ -87,3 +97,19 @@ def regeneration_dir() -> Path:
         return cache_dir()
     bundled = data_dir()
     return bundled if bundled == _REPO / "data" else cache_dir()
+
+
+def encode_image(image, ext: str, params: tuple[int, ...] = ()) -> bytes:
+    """The bytes of ``image`` encoded by ``cv2.imencode`` as ``ext`` (".png", ".jpg"), or raise.
+
+    ``cv2.imencode`` reports failure with a flag, not an exception; ignoring the flag would
+    write an empty or stale file into a data set.
+    """
+    import cv2
+
+    ok, buf = cv2.imencode(ext, image, list(params))
+    if not ok or buf is None:
+        raise OSError(f"cv2.imencode could not encode a {getattr(image, 'shape', '?')} "
+                      f"{getattr(image, 'dtype', '?')} image as {ext}")
+    return buf.tobytes()
+

@@ -19,8 +19,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .._validate import CamlabInputError
-from ._resources import dataset_dir
+from ._resources import encode_image, read_truth
 
 __all__ = ["CalibrationSet", "CALIBRATION_PARAMS", "load_calibration_set", "make_calibration_set"]
 
@@ -61,7 +60,7 @@ def _views(params: dict):
         eye = centre + dist * np.array([np.sin(tilt) * np.cos(azimuth), np.sin(tilt) * np.sin(azimuth), -np.cos(tilt)])
         target = centre + np.append(rng.normal(0, 0.02, 2), 0.0)
         roll = rng.uniform(-0.4, 0.4)
-        R, t = render.look_at(eye, target)
+        R, t = render.look_at(eye, target, up=(0.0, -1.0, 0.0))  # the board's frame: y down
         Rz = render.rotation_from_euler(0, 0, roll)
         R, t = Rz @ R, Rz @ t
         px = render.project(board.world_points, K, R, t, d)
@@ -112,8 +111,7 @@ def make_calibration_set(out_dir: Path | str, params: dict = CALIBRATION_PARAMS)
         res = render.render(board, K, tuple(params["image_size"]), R=R, t=t, dist=d, sensor=sensor,
                             supersample=params["supersample"], rng=rng)
         name = f"view_{i:02d}.png"
-        ok, buf = cv2.imencode(".png", res.image, [cv2.IMWRITE_PNG_COMPRESSION, 9])
-        (out / name).write_bytes(buf.tobytes())
+        (out / name).write_bytes(encode_image(res.image, ".png", (cv2.IMWRITE_PNG_COMPRESSION, 9)))
         files.append(out / name)
         rvec = cv2.Rodrigues(R)[0].ravel()
         views.append({"file": name, "R": np.round(R, 12).tolist(), "t": np.round(t, 12).tolist(),
@@ -139,11 +137,7 @@ def load_calibration_set(directory: Path | str | None = None) -> CalibrationSet:
     """Load ``data/calib_chessboard`` (or ``directory``) as a :class:`CalibrationSet`."""
     import cv2
 
-    d = Path(directory) if directory is not None else dataset_dir("calib_chessboard")
-    path = d / "truth.json"
-    if not path.exists():
-        raise CamlabInputError(f"directory: no truth.json in {d}; run `python -m camlab.data` to generate it")
-    truth = json.loads(path.read_text())
+    d, truth = read_truth(directory, "calib_chessboard")
     images = [cv2.imread(str(d / v["file"]), cv2.IMREAD_GRAYSCALE) for v in truth["views"]]
     return CalibrationSet(
         images=images, K=np.array(truth["K"]), dist=np.array(truth["dist"]),

@@ -32,8 +32,9 @@ from numpy.typing import ArrayLike
 
 import numpy as np
 
-from ._resources import dataset_dir
+from ._resources import encode_image, read_truth
 from .._validate import CamlabInputError, check_positive
+from ..camera import scale_intrinsics
 from ..scenes import wall_texture
 
 __all__ = ["PANORAMA_PARAMS", "TURNING_SETS", "PanoramaSet", "PlanarPair", "TurningSet", "environment_map",
@@ -57,7 +58,10 @@ PANORAMA_PARAMS = {
 
 
 def _rot(yaw: float, pitch: float, roll: float) -> np.ndarray:
-    """cam_from_world for a camera turned by ``yaw`` about y, ``pitch`` about x, ``roll`` about z (radians)."""
+    """world_from_cam for a camera turned by ``yaw`` about y, ``pitch`` about x, ``roll`` about z (radians).
+
+    Its transpose is :func:`cam_from_world`.
+    """
     from ..render import rotation_from_euler
 
     # world_from_cam = Ry(yaw) Rx(pitch) Rz(roll); cam_from_world is its transpose
@@ -87,18 +91,6 @@ def room_scene(params: dict = PANORAMA_PARAMS) -> list:
                             seed=params["seed"])
     cube = render.box((-1.9, -0.2, 3.6), (0.6, 0.6, 0.6), R=render.rotation_from_euler(0, np.radians(30), 0))
     return [wall, photo, page, cube]
-
-
-def scale_intrinsics(K: np.ndarray, scale: float) -> np.ndarray:
-    r"""Intrinsics of the same camera with images resized by ``scale``.
-
-    With the pixel-centre convention (u = 0 is the centre of the first pixel), resizing by
-    s maps u to :math:`s (u + 1/2) - 1/2`: :math:`K' = S K`,
-    :math:`S = \begin{pmatrix} s & 0 & (s-1)/2 \\ 0 & s & (s-1)/2 \\ 0 & 0 & 1\end{pmatrix}`.
-    """
-    s = check_positive(scale, "scale")
-    S = np.array([[s, 0, (s - 1) / 2], [0, s, (s - 1) / 2], [0, 0, 1]])
-    return S @ np.asarray(K, dtype=float)
 
 
 def render_view(R: np.ndarray, *, t=(0.0, 0.0, 0.0), K=None, size=None, gain: float = 1.0,
@@ -151,8 +143,7 @@ def _encode_jpeg(img: np.ndarray, quality: int) -> bytes:
     """JPEG bytes of an RGB image (what a camera writes; deterministic for one libjpeg version)."""
     import cv2
 
-    ok, buf = cv2.imencode(".jpg", img[..., ::-1], [cv2.IMWRITE_JPEG_QUALITY, int(quality)])
-    return buf.tobytes()
+    return encode_image(img[..., ::-1], ".jpg", (cv2.IMWRITE_JPEG_QUALITY, int(quality)))
 
 
 def make_panorama_set(out_dir: Path | str, params: dict = PANORAMA_PARAMS) -> list[Path]:
@@ -232,14 +223,6 @@ def _read(path: Path, scale: float) -> np.ndarray:
     return img
 
 
-def _truth(directory) -> tuple[Path, dict]:
-    d = Path(directory) if directory is not None else dataset_dir("panorama")
-    path = d / "truth.json"
-    if not path.exists():
-        raise CamlabInputError(f"directory: no truth.json in {d}; run `python -m camlab.data` to generate it")
-    return d, json.loads(path.read_text())
-
-
 def load_panorama_set(directory: Path | str | None = None, scale: float = 1.0) -> PanoramaSet:
     """Load ``data/panorama`` (or ``directory``); ``scale`` < 1 resizes the images (K follows).
 
@@ -247,7 +230,7 @@ def load_panorama_set(directory: Path | str | None = None, scale: float = 1.0) -
     >>> len(s.images), s.images[0].shape, float(s.K[0, 0])
     (4, (240, 320, 3), 400.0)
     """
-    d, truth = _truth(directory)
+    d, truth = read_truth(directory, "panorama")
     images = [_read(d / v["file"], scale) for v in truth["views"]]
     K = scale_intrinsics(np.array(truth["K"]), scale)
     return PanoramaSet(images, K, np.array([v["R"] for v in truth["views"]]),
@@ -256,7 +239,7 @@ def load_panorama_set(directory: Path | str | None = None, scale: float = 1.0) -
 
 def load_planar_pair(directory: Path | str | None = None, scale: float = 1.0) -> PlanarPair:
     """Load the two views of the flat poster; ``H`` maps view 0's pixels to view 1's (at ``scale``)."""
-    d, truth = _truth(directory)
+    d, truth = read_truth(directory, "panorama")
     pp = truth["plane_pair"]
     images = [_read(d / f, scale) for f in pp["files"]]
     S = scale_intrinsics(np.eye(3), scale)

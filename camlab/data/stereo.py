@@ -35,8 +35,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._resources import dataset_dir
-from .._validate import CamlabInputError
+from ._resources import encode_image, read_truth
 from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
 from ..scenes import noise_texture, portrait
 
@@ -189,16 +188,14 @@ def true_matches(rig: StereoRig, step: int = 30, start: int = 20) -> tuple[np.nd
 def _png(path: Path, img: np.ndarray) -> Path:
     import cv2
 
-    ok, buf = cv2.imencode(".png", img, [cv2.IMWRITE_PNG_COMPRESSION, 9])
-    path.write_bytes(buf.tobytes())
+    path.write_bytes(encode_image(img, ".png", (cv2.IMWRITE_PNG_COMPRESSION, 9)))
     return path
 
 
 def _jpg(path: Path, img: np.ndarray, quality: int) -> Path:
     import cv2
 
-    ok, buf = cv2.imencode(".jpg", img, [cv2.IMWRITE_JPEG_QUALITY, int(quality)])
-    path.write_bytes(buf.tobytes())
+    path.write_bytes(encode_image(img, ".jpg", (cv2.IMWRITE_JPEG_QUALITY, int(quality))))
     return path
 
 
@@ -271,11 +268,7 @@ def load_stereo_rig(directory: Path | str | None = None) -> StereoRig:
     """Load ``data/stereo`` (or ``directory``) as a :class:`StereoRig`."""
     import cv2
 
-    d = Path(directory) if directory is not None else dataset_dir("stereo")
-    path = d / "truth.json"
-    if not path.exists():
-        raise CamlabInputError(f"directory: no truth.json in {d}; run `python -m camlab.data` to generate it")
-    truth = json.loads(path.read_text())
+    d, truth = read_truth(directory, "stereo")
 
     def cam(j):
         return Camera(np.array(j["K"]), np.array(j["R"]), np.array(j["t"]), tuple(j["dist"]), tuple(j["image_size"]))

@@ -437,7 +437,7 @@ def _hg_border(H: np.ndarray, shape) -> np.ndarray:
 
 def _ring(shape) -> np.ndarray:
     """40 points per side around an image's border, in order (top, right, bottom, left)."""
-    from .projections import _border
+    from .projections import border_points
 
-    p = _border(shape, 40)[:-1]
+    p = border_points(shape, 40)[:-1]
     return np.vstack([p[:40], p[120:160], p[40:80][::-1], p[80:120][::-1]])

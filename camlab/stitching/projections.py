@@ -61,7 +61,8 @@ def ray_from_canvas(u: np.ndarray, v: np.ndarray, projection: str, s: float) -> 
     return np.sin(theta) * np.cos(phi), np.sin(phi), np.cos(theta) * np.cos(phi)
 
 
-def _border(shape: Sequence[int], n: int = 16) -> np.ndarray:
+def border_points(shape: Sequence[int], n: int = 16) -> np.ndarray:
+    """(4n + 1, 2) pixels (u, v) along the border of an image of ``shape`` (height, width), and its centre."""
     h, w = shape[:2]
     t = np.linspace(0, 1, n)
     u, v = (w - 1) * t, (h - 1) * t
@@ -77,7 +78,7 @@ def footprint(K: np.ndarray, R: np.ndarray, shape: Sequence[int], projection: st
     past +-pi*s. Raises DegenerateError on the plane if the image sees 90 degrees or more
     away from the canvas centre (its border has no image on the plane).
     """
-    p = _border(shape)
+    p = border_points(shape)
     rays = (np.c_[p, np.ones(len(p))] @ np.linalg.inv(K).T) @ R  # rows: R^T K^-1 x
     u, v = canvas_from_ray(rays, projection, s)
     if projection != "planar":

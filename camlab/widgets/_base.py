@@ -29,6 +29,7 @@ from matplotlib.image import AxesImage
 
 from ..plotting.static import demo_alt_text, static_bundle
 from ._transport import show_at_display_resolution, use_fast_png
+from .controls import slider as slider  # re-exported: every demo module imports it from here
 
 
 def _display_mode() -> str:
@@ -134,7 +135,7 @@ class FigureView:
         return np.asarray(self.fig.canvas.buffer_rgba()).copy()
 
 
-@dataclass
+@dataclass(slots=True)
 class Demo:
     """A built demo: its container widget, named controls, figure view and latest state.
 
@@ -148,6 +149,8 @@ class Demo:
     view: FigureView
     state: dict[str, Any] = field(default_factory=dict)
     updates: int = 0
+    handlers: dict[str, Callable] = field(default_factory=dict)
+    """Mouse handlers by matplotlib event name (``"button_press_event"`` ...), for tests to call."""
 
     @property
     def figure(self) -> Figure:
@@ -214,15 +217,6 @@ def build_demo(
         control.observe(on_change, names="value")
     on_change()
     return demo
-
-
-def slider(value: float, lo: float, hi: float, step: float, description: str, **kw: Any) -> W.FloatSlider:
-    """A float slider that reports while dragging, with a readable label width."""
-    return W.FloatSlider(
-        value=value, min=lo, max=hi, step=step, description=description,
-        continuous_update=True, style={"description_width": "initial"},
-        layout=W.Layout(width="300px"), **kw,
-    )
 
 
 @dataclass(frozen=True)

@@ -19,10 +19,7 @@ from .. import calibration as C
 from .._validate import CamlabInputError, ConvergenceError
 from ..plotting.calibration import image_frame
 from ._base import Demo, FigureView, build_demo, register, slider
-
-
-def _pre(text: str) -> str:
-    return f"<pre style='font-size: 12px; line-height: 1.3; margin: 4px 0'>{text}</pre>"
+from .controls import monospace
 
 
 @lru_cache(maxsize=1)
@@ -90,7 +87,7 @@ def accuracy_vs_views() -> Demo:
             state.update(K=None, dist=None, errors=None, std=None, rms=None)
             for artist in (dots, above, below):
                 artist.set_data([], [])
-            readout.value = _pre(f"calibration failed:\n{exc}")
+            readout.value = monospace(f"calibration failed:\n{exc}")
             return
         est = np.array([res.intrinsics[k] for k in _NAMES])
         std = np.array([res.std[k] for k in _NAMES])
@@ -109,7 +106,7 @@ def accuracy_vs_views() -> Demo:
         lines.append(f"k1 = {res.dist[0]:+.3f} ± {res.std['k1']:.3f}  (true {s.dist[0]:+.3f})")
         if sigma == 0:
             lines.append("no noise: errors and σ are both rounding noise")
-        readout.value = _pre("\n".join(lines))
+        readout.value = monospace("\n".join(lines))
 
     controls = {
         "n_views": W.IntSlider(value=6, min=3, max=15, description="views", continuous_update=True,
@@ -163,7 +160,7 @@ def view_inspector(calibration: C.ImageCalibration | None = None, images: list |
         worst = int(np.argmax(np.linalg.norm(r, axis=1)))
         state.update(view=k, image_index=i, rms=float(res.per_view_rms[k]), worst_corner=worst,
                      longest_arrow_px=float(np.linalg.norm(r[worst]) * v["magnify"]))
-        readout.value = _pre(f"view {k} ({out.names[i]})\nrms {res.per_view_rms[k]:.3f} px "
+        readout.value = monospace(f"view {k} ({out.names[i]})\nrms {res.per_view_rms[k]:.3f} px "
                              f"(median {np.median(res.per_view_rms):.3f})\nworst corner {worst}: "
                              f"{np.linalg.norm(r[worst]):.3f} px\narrows ×{v['magnify']:.0f}")
 
@@ -210,7 +207,7 @@ def undistort_alpha(image: np.ndarray | None = None, K: np.ndarray | None = None
         b = (border_ideal - K[:2, 2]) / np.diag(K)[:2] * np.diag(out.K)[:2] + out.K[:2, 2]
         edge.set_data(b[:, 0], b[:, 1])
         state.update(new_K=out.K, black_fraction=out.black_fraction, lost_fraction=out.lost_fraction)
-        readout.value = _pre(f"alpha = {v['alpha']:.2f}\nnew fx = {out.K[0, 0]:.1f} (was {K[0, 0]:.1f})\n"
+        readout.value = monospace(f"alpha = {v['alpha']:.2f}\nnew fx = {out.K[0, 0]:.1f} (was {K[0, 0]:.1f})\n"
                              f"black border: {100 * out.black_fraction:.1f}% of the output\n"
                              f"photo pixels lost: {100 * out.lost_fraction:.1f}%")
 

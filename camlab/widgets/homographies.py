@@ -7,6 +7,7 @@ control ``"u0, v0; u1, v1; u2, v2; u3, v3"`` so tests and static pages drive the
 """
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import Any, Callable
 
 import ipywidgets as W
@@ -17,10 +18,7 @@ from ..plotting import palette
 from ..projective import cross_ratio, map_points, splits_at_infinity
 from ..warp import forward_warp, warp_perspective
 from ._base import Demo, FigureView, build_demo, register, slider
-
-
-def _pre(text: str) -> str:
-    return f"<pre style='font-size: 12px; line-height: 1.3; margin: 4px 0'>{text}</pre>"
+from .controls import connect_corner_drag, corner_text, format_corners, monospace, on_top, parse_corners
 
 
 def picture(height: int = 120, width: int = 160) -> np.ndarray:
@@ -41,64 +39,6 @@ def picture(height: int = 120, width: int = 160) -> np.ndarray:
     return img
 
 
-def _parse_corners(text: str) -> np.ndarray:
-    """'u0, v0; u1, v1; ...' -> (4, 2) floats; raises ValueError on malformed text."""
-    rows = [r for r in str(text).split(";") if r.strip()]
-    pts = np.array([[float(x) for x in r.split(",")] for r in rows], dtype=float)
-    if pts.shape != (4, 2):
-        raise ValueError(f"expected 4 corners 'u, v' separated by ';', got {text!r}")
-    return pts
-
-
-def format_corners(pts: np.ndarray) -> str:
-    """(4, 2) corners -> the text form used by the corner controls."""
-    return "; ".join(f"{u:.2f}, {v:.2f}" for u, v in np.asarray(pts, dtype=float))
-
-
-def connect_corner_drag(view: FigureView, ax: Any, control: W.Text, get_corners: Callable[[], np.ndarray],
-                        radius_px: float = 15.0) -> dict[str, Callable]:
-    """Let the mouse drag the four corners drawn in ``ax``; a drag writes ``control.value``.
-
-    Press within ``radius_px`` screen pixels of a corner to pick it, move to drag it,
-    release to drop it. Returns the handlers (tests call them with synthetic
-    ``matplotlib.backend_bases.MouseEvent`` objects, or go through
-    ``fig.canvas.callbacks.process``).
-    """
-    grabbed: dict[str, Any] = {"index": None}
-
-    def on_press(event) -> None:
-        if event.inaxes is not ax or event.button != 1 or event.xdata is None:
-            return
-        screen = ax.transData.transform(get_corners())
-        d = np.hypot(screen[:, 0] - event.x, screen[:, 1] - event.y)
-        k = int(np.argmin(d))
-        grabbed["index"] = k if d[k] <= radius_px else None
-
-    def on_move(event) -> None:
-        k = grabbed["index"]
-        if k is None or event.inaxes is not ax or event.xdata is None:
-            return
-        pts = get_corners().copy()
-        pts[k] = event.xdata, event.ydata
-        control.value = format_corners(pts)
-
-    def on_release(_event) -> None:
-        grabbed["index"] = None
-
-    handlers = {"button_press_event": on_press, "motion_notify_event": on_move,
-                "button_release_event": on_release}
-    for name, fn in handlers.items():
-        view.fig.canvas.mpl_connect(name, fn)
-    return handlers
-
-
-def _on_top(view: FigureView, ax: Any) -> None:
-    """Draw the axes' spines (and legend) after the animated image, so it cannot hide them."""
-    view.animate(*ax.spines.values())
-    if ax.get_legend() is not None:
-        view.animate(ax.get_legend())
-
-
 def _warning(view: FigureView, ax: Any, x: float = 0.02, y: float = 0.02, ha: str = "left",
              va: str = "bottom") -> Callable[[str], None]:
     """An animated red note in ``ax`` (axes coordinates; default the bottom-left corner);
@@ -116,11 +56,6 @@ def _warning(view: FigureView, ax: Any, x: float = 0.02, y: float = 0.02, ha: st
 
 TORN = ("the line that H sends to infinity crosses the picture:\n"
         "its two halves leave through infinity and come back\non the other side (the picture is torn)")
-
-
-def _corner_text(value: str, description: str) -> W.Text:
-    return W.Text(value=value, description=description, continuous_update=False,
-                  style={"description_width": "initial"}, layout=W.Layout(width="300px"))
 
 
 # ----------------------------------------------------------------------------- hierarchy
@@ -167,7 +102,7 @@ def transformation_hierarchy() -> Demo:
     title = view.animate(ax.text(0.01, 0.98, "", transform=ax.transAxes, va="top", fontsize=10,
                                  bbox=dict(fc="white", ec="0.7", alpha=0.9)))
     ax.legend(loc="lower right", fontsize=8)
-    _on_top(view, ax)
+    on_top(view, ax)
     warning = _warning(view, ax)
     picture_corners = np.array([[0, 0], [pw - 1, 0], [pw - 1, ph - 1], [0, ph - 1]], float)
     readout = W.HTML()
@@ -186,7 +121,7 @@ def transformation_hierarchy() -> Demo:
         warning(TORN if torn else "")
         state.update(H=Hg, group=v["group"], classified=kind, dof=info["dof"], torn=torn)
         title.set_text(f"{v['group']}: {info['dof']} dof")
-        readout.value = _pre("H =\n" + np.array2string(Hg, precision=4, suppress_small=True)
+        readout.value = monospace("H =\n" + np.array2string(Hg, precision=4, suppress_small=True)
                              + f"\nsmallest group holding H: {kind}\nkeeps: " + ", ".join(info["invariants"][:4]))
 
     controls = {
@@ -236,20 +171,20 @@ def drag_homography() -> Demo:
     mapped_line = view.animate(ax_t.plot([], [], "o-", color="tab:green", ms=5, lw=1.5)[0])
     quad = view.animate(ax_t.plot([], [], "-", color="tab:orange", lw=1)[0])
     handles = view.animate(ax_t.plot([], [], "o", color="tab:orange", ms=10, mec="k")[0])
-    _on_top(view, ax_t)
+    on_top(view, ax_t)
     warning = _warning(view, ax_t)
     readout = W.HTML()
-    control = _corner_text(format_corners(_DRAG_START), "corners (u, v; ...)")
+    control = corner_text(format_corners(_DRAG_START), "corners (u, v; ...)")
     current = {"corners": _DRAG_START.copy()}
 
     def update(v: dict, state: dict) -> None:
         try:
-            corners = _parse_corners(v["corners"])
+            corners = parse_corners(v["corners"])
             H = hg.estimate_homography(SQUARE, corners)
         except (ValueError, hg.DegenerateError) as exc:
             state.update(error=str(exc))
             warning("cannot use these corners:\n" + str(exc)[:80])
-            readout.value = _pre(f"cannot use these corners:\n{exc}")
+            readout.value = monospace(f"cannot use these corners:\n{exc}")
             return
         current["corners"] = corners
         torn = splits_at_infinity(H, SQUARE)
@@ -267,7 +202,7 @@ def drag_homography() -> Demo:
         angle = np.degrees(np.arccos(np.clip(e1 @ e2 / np.linalg.norm(e1) / np.linalg.norm(e2), -1, 1)))
         state.update(H=H, error=None, torn=torn, cross_ratio_source=cr0, cross_ratio_image=cr1, length_ratio_source=ratio0,
                      length_ratio_image=ratio1, corner_angle=angle, corners=corners)
-        readout.value = _pre(
+        readout.value = monospace(
             f"                 source   image\n"
             f"cross-ratio      {cr0:7.4f}  {cr1:7.4f}   (kept)\n"
             f"|AB| / |CD|      {ratio0:7.4f}  {ratio1:7.4f}   (changes)\n"
@@ -276,7 +211,7 @@ def drag_homography() -> Demo:
 
     demo = build_demo("drag_homography", {"corners": control}, view, update,
                       title="A homography from four corners", extra=[readout])
-    demo.handlers = connect_corner_drag(view, ax_t, control, lambda: current["corners"])
+    demo.handlers.update(connect_corner_drag(view, ax_t, control, lambda: current["corners"]))
     return demo
 
 
@@ -291,6 +226,25 @@ def _ransac_data(outlier_fraction: float, seed: int, n: int = 200, noise: float 
     out[rng.choice(n, int(round(outlier_fraction * n)), replace=False)] = True
     dst[out] = rng.uniform([0, 0], [400, 300], (out.sum(), 2))
     return H, src, dst, out
+
+
+@lru_cache(maxsize=256)
+def _ransac_run(outlier_fraction: float, threshold: float, seed: int):
+    """The demo's data and RANSAC's answer (or its error message) for one slider setting.
+
+    Cached: sliders revisit settings, and the answer is a pure function of them (seeded).
+    Arrays come back read-only so no caller can corrupt the cache.
+    """
+    data = _ransac_data(outlier_fraction, seed)
+    for a in data:
+        a.setflags(write=False)
+    try:
+        r = hg.ransac_homography(data[1], data[2], threshold, 0.995, 1000, np.random.default_rng(seed))
+    except hg.DegenerateError as exc:
+        return data, str(exc)
+    for a in (r.H, r.inliers, r.residuals, r.sample):
+        a.setflags(write=False)
+    return data, r
 
 
 def samples_needed(outlier_fraction: np.ndarray | float, confidence: float = 0.995, sample_size: int = 4):
@@ -340,18 +294,17 @@ def ransac_outliers() -> Demo:
     frame = np.array([[0, 0], [399, 0], [399, 299], [0, 299], [0, 0]], float)
 
     def update(v: dict, state: dict) -> None:
-        H, src, dst, out = _ransac_data(v["outliers"], int(v["seed"]))
-        try:
-            r = hg.ransac_homography(src, dst, v["threshold"], 0.995, 1000, np.random.default_rng(int(v["seed"])))
-        except hg.DegenerateError as exc:  # clear the last result: a stale plot would be a lie
+        (H, src, dst, out), r = _ransac_run(float(v["outliers"]), float(v["threshold"]), int(v["seed"]))
+        if isinstance(r, str):  # RANSAC failed: clear the last result, a stale plot would be a lie
+            exc = r
             state.update(iterations=None, inliers=None, recall=None, corner_error=None, H=None, verdicts=None,
-                         outlier_fraction_found=None, samples_needed=None, error=str(exc))
+                         outlier_fraction_found=None, samples_needed=None, error=exc)
             for artist in (box_est, dot, needed, best):
                 artist.set_data([], [])
             arrows.set_segments([])
             heads.set_offsets(np.zeros((0, 2)))
             failure("RANSAC failed: no hypothesis had real support\n(the full message is beside the sliders)")
-            readout.value = _pre(str(exc))
+            readout.value = monospace(exc)
             return
         failure("")
         verdict = np.select([~out & r.inliers, out & r.inliers, ~out & ~r.inliers], [0, 1, 2], 3)
@@ -375,7 +328,7 @@ def ransac_outliers() -> Demo:
         state.update(sample=r.sample, iterations=r.iterations, inliers=int(r.inliers.sum()), recall=found_true,
                      corner_error=err,
                      error=None, H=r.H, verdicts=counts, outlier_fraction_found=eps_found, samples_needed=k_needed)
-        readout.value = _pre(
+        readout.value = monospace(
             f"true ε = {v['outliers']:.2f}, found ε = {eps_found:.2f}\n"
             f"samples drawn: {r.iterations}{' (the cap)' if r.iterations >= 1000 else ''}; "
             f"needed for the found ε: {k_needed:.0f}\n"
@@ -402,8 +355,8 @@ def forward_vs_inverse() -> Demo:
     blank = np.zeros((*out_hw, 3), np.uint8)
     im_f = view.animate(ax_f.imshow(blank, interpolation="nearest"))
     im_i = view.animate(ax_i.imshow(blank, interpolation="nearest"))
-    _on_top(view, ax_f)
-    _on_top(view, ax_i)
+    on_top(view, ax_f)
+    on_top(view, ax_i)
     ax_f.set_title("forward: push each source pixel", fontsize=10, pad=3)
     ax_i.set_title("inverse: pull each output pixel", fontsize=10, pad=3)
     readout = W.HTML()
@@ -423,7 +376,7 @@ def forward_vs_inverse() -> Demo:
         reached = forward_warp(ones, H, out_hw) > 0
         holes = float(np.mean(~reached[inner])) if inner.any() else 0.0
         state.update(H=H, hole_fraction=holes)
-        readout.value = _pre(f"holes in the forward warp: {100 * holes:.0f}% of the covered area\n"
+        readout.value = monospace(f"holes in the forward warp: {100 * holes:.0f}% of the covered area\n"
                              f"holes in the inverse warp: 0%")
 
     controls = {"scale": slider(2.0, 0.4, 3.0, 0.05, "scale"), "angle": slider(15.0, -45.0, 45.0, 1.0, "rotation (°)")}

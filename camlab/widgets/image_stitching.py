@@ -19,6 +19,7 @@ from ..plotting import palette
 from ..plotting.stitching import draw_keypoints, draw_matches, match_segments, outline
 from ..projective import map_points
 from ._base import Demo, FigureView, build_demo, register, slider
+from .controls import monospace
 
 SCALE = 0.5
 
@@ -32,10 +33,6 @@ def _rgba(image: np.ndarray) -> np.ndarray:
     out[..., :3] = a[..., :3] if a.ndim == 3 else a[..., None]
     out[..., 3] = 255
     return out
-
-
-def _pre(text: str) -> str:
-    return f"<pre style='font-size:12px;line-height:1.3;margin:0'>{text}</pre>"
 
 
 @lru_cache(maxsize=1)
@@ -87,7 +84,7 @@ def feature_matches() -> Demo:
         art["bad"].set_segments(seg[~good & show])
         n, nbad = len(good), int((~good).sum())
         state.update(matches=n, wrong=nbad, precision=(n - nbad) / n if n else float("nan"))
-        readout.value = _pre(f"keypoints: {len(feats[i].points)} / {len(feats[j].points)}\n"
+        readout.value = monospace(f"keypoints: {len(feats[i].points)} / {len(feats[j].points)}\n"
                              f"matches kept: {n}\nwrong (red): {nbad} ({100 * nbad / max(n, 1):.0f}%)"
                              + ("\n(at most 200 lines drawn)" if n > 200 else ""))
 
@@ -138,7 +135,7 @@ def ransac_registration() -> Demo:
             outl.set_data(m.dst[:, 0], m.dst[:, 1])
             est_box.set_data([], [])
             state.update(inliers=0, corner_error=float("nan"), accepted=False)
-            readout.value = _pre(r.reason)
+            readout.value = monospace(r.reason)
             return
         inl.set_data(m.dst[r.inliers, 0], m.dst[r.inliers, 1])
         outl.set_data(m.dst[~r.inliers, 0], m.dst[~r.inliers, 1])
@@ -153,7 +150,7 @@ def ransac_registration() -> Demo:
         good = _true_good(s, i, j, m.src, m.dst)
         state.update(inliers=int(r.inliers.sum()), corner_error=err, accepted=r.accepted,
                      false_inliers=int((r.inliers & ~good).sum()))
-        readout.value = _pre(f"matches: {len(m.src)}\ninliers: {int(r.inliers.sum())} "
+        readout.value = monospace(f"matches: {len(m.src)}\ninliers: {int(r.inliers.sum())} "
                              f"({int((r.inliers & ~good).sum())} of them wrong)\n"
                              f"inlier RMS: {r.residual_rms:.2f} px\nworst corner vs truth: {err:.2f} px\n"
                              f"accepted: {r.accepted} {r.reason}")
@@ -221,7 +218,7 @@ def panorama_canvas() -> Demo:
             p = map_points(wi.homographies[k], _frame(small[k].shape))
             ln.set_data(p[:, 0], p[:, 1])
         state.update(reference=ref, canvas=(hh, ww), T=wi.T)
-        readout.value = _pre(f"reference image: {ref}\ncanvas: {ww} x {hh} px\n"
+        readout.value = monospace(f"reference image: {ref}\ncanvas: {ww} x {hh} px\n"
                              f"translation T: ({int(round(wi.T[0, 2])):+d}, {int(round(wi.T[1, 2])):+d}) px\n"
                              f"best-connected image: {graph.reference}")
 
@@ -301,7 +298,7 @@ def blending_seams() -> Demo:
         imz.set_data(rgba[v0:v0 + z, u0:u0 + z])
         jump = jumps[key]  # the exposure step across the seam, grey levels (overwrite: the last image's border)
         state.update(method=v["method"], seam_jump=jump, image=out)
-        readout.value = _pre(f"blend: {v['method']}\ngains: {np.round(gains, 3).tolist() if v['gains'] else 'off'}\n"
+        readout.value = monospace(f"blend: {v['method']}\ngains: {np.round(gains, 3).tolist() if v['gains'] else 'off'}\n"
                              f"mean step across the seam: {jump:.1f} grey levels")
 
     controls = {
@@ -355,7 +352,7 @@ def full_panorama() -> Demo:
                      outlines_drawn=sum(len(ln.get_xdata()) > 0 for ln in lines))
         rows = "\n".join(f"{p.i}-{p.j}: {p.matches:4d} matches {p.inliers:4d} inliers "
                          f"rms {p.residual_rms:.2f} {'ok' if p.accepted else 'rejected'}" for p in r.pairs)
-        readout.value = _pre(f"{v['projection']}: {ww} x {hh} px, reference {r.reference}\n{rows}")
+        readout.value = monospace(f"{v['projection']}: {ww} x {hh} px, reference {r.reference}\n{rows}")
 
     controls = {
         "projection": W.Dropdown(options=["planar", "cylindrical"], value="planar", description="projection"),
@@ -446,7 +443,7 @@ def canvas_projections() -> Demo:
         else:
             im.set_data(img)
             msg.set_text("")
-        readout.value = _pre(text)
+        readout.value = monospace(text)
         state.update(views=v["views"], projection=v["projection"], failed=img is None,
                      shape=None if img is None else img.shape[:2])
 
@@ -539,7 +536,7 @@ def parallax_ghosting() -> Demo:
         diff = 255 * st.overlap_difference(wi)
         state.update(baseline=b, edges=bool(v["edges"]), inlier_fraction=k / max(n, 1), residual_rms=reg.residual_rms,
                      misalignment=diff, method=v["method"], image=out)
-        readout.value = _pre(f"camera moved {100 * b:.0f} cm\nmatches: {n}\n"
+        readout.value = monospace(f"camera moved {100 * b:.0f} cm\nmatches: {n}\n"
                              f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\ninlier RMS: {reg.residual_rms:.2f} px\n"
                              f"mean |view 0 - view 1| on the overlap:\n  {diff:.1f} grey levels\n"
                              f"edges: red = view 0, cyan = view 1 (white where they agree)")

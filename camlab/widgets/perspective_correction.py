@@ -14,7 +14,7 @@ import numpy as np
 
 from .. import perspective as pp
 from ._base import Demo, FigureView, build_demo, register, slider
-from .homographies import _corner_text, _on_top, _parse_corners, _pre, connect_corner_drag, format_corners
+from .controls import connect_corner_drag, corner_text, format_corners, monospace, on_top, parse_corners
 
 _SHOW = 260  # the rectified view is drawn into a _SHOW x _SHOW box
 
@@ -60,7 +60,7 @@ def _photo_demo(photo_title: str, result_title: str, outline: dict):
     ax_p.set_title(photo_title, fontsize=10, pad=3)
     ax_r.set_title(result_title, fontsize=10, pad=3)
     line = view.animate(ax_p.plot([], [], **outline)[0])
-    _on_top(view, ax_p)
+    on_top(view, ax_p)
     return view, ax_p, ax_r, im_p, im_r, line
 
 
@@ -79,7 +79,7 @@ def rectify_photo() -> Demo:
     truth_box = view.animate(ax_r.plot([], [], ":", color="tab:green", lw=1.5)[0])
     readout = W.HTML()
     first = pp.sample_photo("page")
-    control = _corner_text(format_corners(first.corners), "corners (TL; TR; BR; BL)")
+    control = corner_text(format_corners(first.corners), "corners (TL; TR; BR; BL)")
     current: dict[str, Any] = {"scene": None, "photo": None, "corners": first.corners, "busy": False}
 
     def update(v: dict, state: dict) -> None:
@@ -96,13 +96,13 @@ def rectify_photo() -> Demo:
             v = {**v, "corners": text}
         photo = current["photo"]
         try:
-            corners = _parse_corners(v["corners"])
+            corners = parse_corners(v["corners"])
             corners = pp.check_quadrilateral(corners)
             from_quad = pp.estimate_aspect_ratio(corners, photo.image.shape)
             known = pp.estimate_aspect_ratio(corners, photo.image.shape, focal_length=photo.K[0, 0])
         except (ValueError, pp.DegenerateError) as exc:
             state.update(error=str(exc), ratio=None)
-            readout.value = _pre(f"cannot rectify:\n{exc}")
+            readout.value = monospace(f"cannot rectify:\n{exc}")
             return
         est, alt = (known, from_quad) if v["use_focal"] else (from_quad, known)
         current["corners"] = corners
@@ -122,7 +122,7 @@ def rectify_photo() -> Demo:
         f = "—" if from_quad.focal_length is None else f"{from_quad.focal_length:.0f} px"
         used = "known f" if v["use_focal"] else "f from the corners"
         caption.set_text(f"w/h {est.ratio:.3f} ({used}); red: the other f, {alt.ratio:.3f}; green: true {photo.aspect:.3f}")
-        readout.value = _pre(f"w/h with f from the corners: {from_quad.ratio:.3f}  (f = {f}, {from_quad.focal_source})\n"
+        readout.value = monospace(f"w/h with f from the corners: {from_quad.ratio:.3f}  (f = {f}, {from_quad.focal_source})\n"
                              f"w/h with f known ({photo.K[0, 0]:.0f} px): {known.ratio:.3f}\n"
                              f"w/h true:                   {photo.aspect:.3f}\n"
                              "the rectified view uses the ticked choice;\ndrag a corner a few px: the estimated f moves,\n"
@@ -135,7 +135,7 @@ def rectify_photo() -> Demo:
     }
     demo = build_demo("rectify_photo", controls, view, update, title="Rectify a photographed rectangle",
                       extra=[readout])
-    demo.handlers = connect_corner_drag(view, ax_p, control, lambda: current["corners"])
+    demo.handlers.update(connect_corner_drag(view, ax_p, control, lambda: current["corners"]))
     return demo
 
 
@@ -157,7 +157,7 @@ def document_scanner() -> Demo:
             found.set_data([], [])
             im_r.set_data(np.full((_SHOW, _SHOW, 3), 255, np.uint8))
             state.update(found=False, corner_error=None, message=str(exc))
-            readout.value = _pre("no page found:\n" + str(exc).replace("; ", ";\n"))
+            readout.value = monospace("no page found:\n" + str(exc).replace("; ", ";\n"))
             return
         closed = np.vstack([corners, corners[:1]])
         found.set_data(closed[:, 0], closed[:, 1])
@@ -165,7 +165,7 @@ def document_scanner() -> Demo:
         _show_rectified(im_r, image, corners, (400, int(400 / est.ratio)))
         err = float(np.abs(corners - photo.corners).max())
         state.update(found=True, corner_error=err, ratio=est.ratio, message="")
-        readout.value = _pre(f"page found; worst corner error {err:.1f} px\n"
+        readout.value = monospace(f"page found; worst corner error {err:.1f} px\n"
                              f"aspect w/h {est.ratio:.3f} (true {photo.aspect:.3f}, A4 = 0.707)")
 
     controls = {
@@ -211,7 +211,7 @@ def keystone_correction() -> Demo:
                   "given": f"f given {f_px}",
                   "not needed": "f not needed (an affine view)"}[est.focal_source]
         caption.set_text(f"w/h {est.ratio:.3f}, true {photo.aspect:.3f} (green): {off:+.1f}%\n{f_text}")
-        readout.value = _pre(f"verticals converge by {abs(converge):.1f}°\n"
+        readout.value = monospace(f"verticals converge by {abs(converge):.1f}°\n"
                              f"aspect w/h estimated {est.ratio:.3f} (true {photo.aspect:.3f}, {off:+.1f}%)\n{f_text}")
 
     controls = {

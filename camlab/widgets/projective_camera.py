@@ -167,7 +167,7 @@ def resectioning():
         demo.view.refresh()
 
     view.fig.canvas.mpl_connect("button_press_event", on_click)
-    demo.on_click = on_click  # for tests: call with an object carrying inaxes, xdata, ydata
+    demo.handlers["button_press_event"] = on_click  # tests call it with an object carrying inaxes, xdata, ydata
     return demo
 
 

@@ -11,11 +11,7 @@ import numpy as np
 from .. import projective as pj
 from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes, plane_axes, set_line
 from ._base import Demo, FigureView, build_demo, register, slider
-
-
-def _pre(text: str) -> str:
-    """A monospace readout for numbers beside the sliders (text in the figure is slow to draw)."""
-    return f"<pre style='font-size: 12px; line-height: 1.3; margin: 4px 0'>{text}</pre>"
+from .controls import monospace
 
 
 @register(lesson="06", sweep={"x": [-1.5, 0.0, 1.2], "y": [1.0, -0.5], "scale": [0.4, 1.0, 2.5]})
@@ -51,7 +47,7 @@ def lift_to_plane() -> Demo:
         scaled.set_data_3d([xh[0]], [xh[1]], [xh[2]])
         hit.set_data_3d([xy[0]], [xy[1]], [1.0])
         dot.set_data([xy[0]], [xy[1]])
-        readout.value = _pre(f"λ(x, y, 1) = ({xh[0]:.2f}, {xh[1]:.2f}, {xh[2]:.2f})\n"
+        readout.value = monospace(f"λ(x, y, 1) = ({xh[0]:.2f}, {xh[1]:.2f}, {xh[2]:.2f})\n"
                              f"divide by w → ({xy[0]:.2f}, {xy[1]:.2f})")
 
     controls = {
@@ -107,7 +103,7 @@ def parallel_lines() -> Demo:
             meet_dot.set_data([], [])
             arrow.set_visible(False)
             w_dot.set_data([], [])
-            readout.value = _pre("l2 = l1: one line, every point shared,\nno single meet point")
+            readout.value = monospace("l2 = l1: one line, every point shared,\nno single meet point")
             return
         xu = x / np.linalg.norm(x)
         state.update(l2=l2, meet=x, w=float(abs(xu[2])), point=pj.from_homogeneous(x))
@@ -120,7 +116,7 @@ def parallel_lines() -> Demo:
             meet_dot.set_data([pos[0]], [pos[1]])
             arrow.set_visible(False)
         where = "ideal point: at infinity" if x[2] == 0 else f"(x, y) = ({x[0] / x[2]:.2f}, {x[1] / x[2]:.2f})"
-        readout.value = _pre(f"l1 × l2 = ({xu[0]:+.3f}, {xu[1]:+.3f}, {xu[2]:+.3f})  (unit length)\n{where}")
+        readout.value = monospace(f"l1 × l2 = ({xu[0]:+.3f}, {xu[1]:+.3f}, {xu[2]:+.3f})  (unit length)\n{where}")
         w_dot.set_data([v["angle2"]], [state["w"]])
 
     controls = {
@@ -159,7 +155,7 @@ def point_line_duality() -> Demo:
         set_line(pd_line, p, ax_d)
         ld = pj.from_homogeneous(l)
         ld_dot.set_data([ld[0]], [ld[1]])
-        readout.value = _pre(f"p = ({p[0]:+.2f}, {p[1]:+.2f}, {p[2]:+.2f})\n"
+        readout.value = monospace(f"p = ({p[0]:+.2f}, {p[1]:+.2f}, {p[2]:+.2f})\n"
                              f"l = ({l[0]:+.2f}, {l[1]:+.2f}, {l[2]:+.2f})\n"
                              f"p · l = {incidence:+.3f}\n(0 ⇔ p on l ⇔ l* on p*)")
 
@@ -262,7 +258,7 @@ def vanishing_points() -> Demo:
                       f"pitched down {v['pitch']:.0f}°, it sees only ground;\nthe lines still meet there (arrows)")
         note.set_visible(not visible)  # an invisible text costs nothing to draw; an empty one with a box does
         state.update(horizon_visible=visible)
-        readout.value = _pre("\n".join(lines))
+        readout.value = monospace("\n".join(lines))
 
     controls = {
         "pitch": slider(12.0, 0.0, 40.0, 0.5, "pitch down (°)"),
@@ -317,7 +313,7 @@ def cross_ratio_invariance() -> Demo:
         cr_before, cr_after = pj.cross_ratio(points), pj.cross_ratio(q)
         state.update(H=H, mapped=q, cross_ratio_before=cr_before, cross_ratio_after=cr_after,
                      ratio_before=ratio(points), ratio_after=ratio(q))
-        readout.value = _pre(f"             before   after\n"
+        readout.value = monospace(f"             before   after\n"
                              f"(A,B;C,D)  {cr_before:8.4f} {cr_after:8.4f}\n"
                              f"AB / BC    {ratio(points):8.4f} {ratio(q):8.4f}")
 

@@ -18,12 +18,9 @@ from .. import rectification as rc
 from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
 from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes
 from ._base import Demo, FigureView, build_demo, register, slider
+from .controls import monospace
 
 SIZE = (640, 480)
-
-
-def _pre(text: str) -> str:
-    return f"<pre style='font-size: 12px; line-height: 1.3; margin: 4px 0'>{text}</pre>"
 
 
 # --------------------------------------------------------------------------- shared data
@@ -220,7 +217,7 @@ def epipolar_lines() -> Demo:
         ep2 = "at infinity (lines parallel)" if at_inf else f"({e.e2[0] / e.e2[2]:.0f}, {e.e2[1] / e.e2[2]:.0f}) px"
         inside = not arrow_to_infinity(e.e2, axr)[1].any()
         state.update(epipole_inside=inside)
-        readout.value = _pre(f"{v['motion']}: baseline {v['baseline']:.2f} m, turn {v['toe_in']:.0f} deg\n"
+        readout.value = monospace(f"{v['motion']}: baseline {v['baseline']:.2f} m, turn {v['toe_in']:.0f} deg\n"
                              + ("the right epipole is inside the image: the lines fan out from it\n" if inside else "")
                              + f"right epipole e' = {ep2}\n"
                              f"max distance of the depth marks from l' = "
@@ -245,8 +242,7 @@ def epipolar_lines() -> Demo:
         demo.controls["v"].value = float(np.clip(event.ydata, 0, 479))
 
     view.fig.canvas.mpl_connect("button_press_event", on_click)
-    demo.on_click = on_click  # tests call it with an object carrying inaxes, xdata, ydata
-    demo.axes = (axl, axr)
+    demo.handlers["button_press_event"] = on_click  # tests call it with an object carrying inaxes, xdata, ydata
     return demo
 
 
@@ -322,7 +318,7 @@ def rectify_pair() -> Demo:
         step.set_data(np.r_[1e-3, values], np.r_[0.0, np.arange(1, len(values) + 1) / max(1, len(values))])
         source = {"calibrated": f"cameras from a stereo calibration (rms {cal_rms:.3f} px)",
                   "uncalibrated": "F from noisy matches (0.3 px)", "original": "the raw pair"}[v["method"]]
-        readout.value = _pre(f"{v['method']}: {source}\nvertical disparity of {len(vd.values)} true matches\n"
+        readout.value = monospace(f"{v['method']}: {source}\nvertical disparity of {len(vd.values)} true matches\n"
                              f"median {vd.median:.3g} px, 95th percentile {vd.p95:.3g} px")
         state.update(vertical_median=vd.median, vertical_p95=vd.p95, vertical_values=vd.values, method=v["method"])
 
@@ -417,7 +413,7 @@ def disparity_depth() -> Demo:
         rel = np.abs(err[ok])
         state.update(disparity=d, median_error_percent=float(np.median(rel)), within_5=float(np.mean(rel < 5)),
                      coverage=float(ok.sum() / planar.sum()))
-        readout.value = _pre(f"{v['method']}, {int(v['block_size'])} x {int(v['block_size'])} window\n"
+        readout.value = monospace(f"{v['method']}, {int(v['block_size'])} x {int(v['block_size'])} window\n"
                              f"on textured planes: {100 * state['coverage']:.0f}% matched, median depth error "
                              f"{state['median_error_percent']:.2f}%\n"
                              f"{100 * state['within_5']:.1f}% of matched pixels within 5% of the true depth")

@@ -1,0 +1,92 @@
+"""Controls shared by the demos: sliders, text readouts, draggable corners.
+
+One home for the small widgets every lesson's demos use, so they look and behave the
+same everywhere. Demo modules hold their controls, artists and ``update`` only.
+"""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, Callable
+
+import ipywidgets as W
+import numpy as np
+
+if TYPE_CHECKING:
+    from ._base import FigureView
+
+
+def slider(value: float, lo: float, hi: float, step: float, description: str, **kw: Any) -> W.FloatSlider:
+    """A float slider that reports while dragging, with a readable label width."""
+    return W.FloatSlider(
+        value=value, min=lo, max=hi, step=step, description=description,
+        continuous_update=True, style={"description_width": "initial"},
+        layout=W.Layout(width="300px"), **kw,
+    )
+
+
+def monospace(text: str) -> str:
+    """HTML for a monospace readout beside the sliders (text in the figure is slow to draw)."""
+    return f"<pre style='font-size: 12px; line-height: 1.3; margin: 4px 0'>{text}</pre>"
+
+
+def corner_text(value: str, description: str) -> W.Text:
+    """A text control holding four corners as ``"u0, v0; u1, v1; u2, v2; u3, v3"`` (see :func:`parse_corners`)."""
+    return W.Text(value=value, description=description, continuous_update=False,
+                  style={"description_width": "initial"}, layout=W.Layout(width="300px"))
+
+
+def parse_corners(text: str) -> np.ndarray:
+    """'u0, v0; u1, v1; ...' -> (4, 2) floats; raises ValueError on malformed text."""
+    rows = [r for r in str(text).split(";") if r.strip()]
+    pts = np.array([[float(x) for x in r.split(",")] for r in rows], dtype=float)
+    if pts.shape != (4, 2):
+        raise ValueError(f"expected 4 corners 'u, v' separated by ';', got {text!r}")
+    return pts
+
+
+def format_corners(pts: np.ndarray) -> str:
+    """(4, 2) corners -> the text form used by the corner controls."""
+    return "; ".join(f"{u:.2f}, {v:.2f}" for u, v in np.asarray(pts, dtype=float))
+
+
+def connect_corner_drag(view: FigureView, ax: Any, control: W.Text, get_corners: Callable[[], np.ndarray],
+                        radius_px: float = 15.0) -> dict[str, Callable]:
+    """Let the mouse drag the four corners drawn in ``ax``; a drag writes ``control.value``.
+
+    Press within ``radius_px`` screen pixels of a corner to pick it, move to drag it,
+    release to drop it. Returns the handlers (tests call them with synthetic
+    ``matplotlib.backend_bases.MouseEvent`` objects, or go through
+    ``fig.canvas.callbacks.process``).
+    """
+    grabbed: dict[str, Any] = {"index": None}
+
+    def on_press(event) -> None:
+        if event.inaxes is not ax or event.button != 1 or event.xdata is None:
+            return
+        screen = ax.transData.transform(get_corners())
+        d = np.hypot(screen[:, 0] - event.x, screen[:, 1] - event.y)
+        k = int(np.argmin(d))
+        grabbed["index"] = k if d[k] <= radius_px else None
+
+    def on_move(event) -> None:
+        k = grabbed["index"]
+        if k is None or event.inaxes is not ax or event.xdata is None:
+            return
+        pts = get_corners().copy()
+        pts[k] = event.xdata, event.ydata
+        control.value = format_corners(pts)
+
+    def on_release(_event) -> None:
+        grabbed["index"] = None
+
+    handlers = {"button_press_event": on_press, "motion_notify_event": on_move,
+                "button_release_event": on_release}
+    for name, fn in handlers.items():
+        view.fig.canvas.mpl_connect(name, fn)
+    return handlers
+
+
+def on_top(view: FigureView, ax: Any) -> None:
+    """Draw the axes' spines (and legend) after the animated image, so it cannot hide them."""
+    view.animate(*ax.spines.values())
+    if ax.get_legend() is not None:
+        view.animate(ax.get_legend())

@@ -1,0 +1,76 @@
+"""Architecture rules checked on the source: no module reaches into another module's privates."""
+import ast
+import sys
+from pathlib import Path
+
+import camlab
+
+ROOT = Path(camlab.__file__).parent
+
+
+def _module_name(path: Path) -> str:
+    parts = path.relative_to(ROOT.parent).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def _resolve(current: str, is_package: bool, level: int, module: str | None) -> str:
+    base = current.split(".") if is_package else current.split(".")[:-1]
+    if level > 1:
+        base = base[: len(base) - (level - 1)]
+    return ".".join(base + ([module] if module else []))
+
+
+def _private(name: str) -> bool:
+    return name.startswith("_") and not (name.startswith("__") and name.endswith("__"))
+
+
+def private_imports() -> list[str]:
+    """Every place a camlab module imports, or reads as an attribute, another module's _private name."""
+    found = []
+    for path in sorted(ROOT.rglob("*.py")):
+        name = _module_name(path)
+        tree = ast.parse(path.read_text(), str(path))
+        aliases: dict[str, str] = {}  # local name -> camlab module it refers to
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom):
+                target = _resolve(name, path.name == "__init__.py", node.level, node.module) if node.level \
+                    else (node.module or "")
+                if not target.startswith("camlab"):
+                    continue
+                for a in node.names:
+                    if _private(a.name) and not _is_module(f"{target}.{a.name}"):
+                        if target != name:
+                            found.append(f"{name}: from {target} import {a.name}")
+                    else:
+                        aliases[a.asname or a.name] = f"{target}.{a.name}" if _is_module(f"{target}.{a.name}") else ""
+            elif isinstance(node, ast.Import):
+                for a in node.names:
+                    if a.name.startswith("camlab"):
+                        aliases[a.asname or a.name.split(".")[0]] = a.name if a.asname else "camlab"
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and _private(node.attr):
+                module = aliases.get(node.value.id)
+                if module and module != name:
+                    found.append(f"{name}: {node.value.id}.{node.attr} ({module})")
+    return found
+
+
+def _is_module(dotted: str) -> bool:
+    rel = Path(*dotted.split("."))
+    return (ROOT.parent / rel).with_suffix(".py").is_file() or (ROOT.parent / rel / "__init__.py").is_file()
+
+
+def test_no_module_imports_another_modules_private_names():
+    """STYLE.md section 12: if two modules need a helper, it becomes a public name."""
+    assert private_imports() == []
+
+
+def test_the_scan_finds_a_private_import(tmp_path, monkeypatch):
+    """The rule can fail: a fake package that imports a private name is caught."""
+    pkg = tmp_path / "camlab"
+    pkg.mkdir()
+    (pkg / "__init__.py").write_text("")
+    (pkg / "a.py").write_text("def _helper():\n    return 1\n")
+    (pkg / "b.py").write_text("from .a import _helper\nfrom . import a as _a\nx = _a._helper()\n")
+    monkeypatch.setattr(sys.modules[__name__], "ROOT", pkg)
+    assert private_imports() == ["camlab.b: from camlab.a import _helper", "camlab.b: _a._helper (camlab.a)"]
