@@ -23,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError
+from ._validate import CamlabInputError, as_float, check_image, check_integer, check_positive
 
 __all__ = ["block_matching_disparity", "box_sum", "disparity_to_depth", "disparity_to_points", "sgbm_disparity"]
 
@@ -31,7 +31,7 @@ __all__ = ["block_matching_disparity", "box_sum", "disparity_to_depth", "dispari
 def _grey_pair(left: ArrayLike, right: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     out = []
     for img, name in ((left, "left"), (right, "right")):
-        a = np.asarray(img)
+        a = check_image(img, name, channels=(1, 3))
         if a.ndim == 3 and a.shape[2] == 3:
             a = a.mean(axis=2)
         if a.ndim != 2 or min(a.shape) < 3:
@@ -44,7 +44,7 @@ def _grey_pair(left: ArrayLike, right: ArrayLike) -> tuple[np.ndarray, np.ndarra
 
 
 def _check_search(max_disparity: int, block_size: int, width: int) -> tuple[int, int]:
-    D, b = int(max_disparity), int(block_size)
+    D, b = check_integer(max_disparity, "max_disparity"), check_integer(block_size, "block_size")
     if D < 1 or D >= width:
         raise CamlabInputError(f"max_disparity: expected an integer in [1, image width), got {max_disparity!r}")
     if b < 1 or b % 2 == 0:
@@ -197,11 +197,9 @@ def disparity_to_depth(disparity: ArrayLike, focal_length: float, baseline: floa
     >>> disparity_to_depth([40.0, 0.0], focal_length=800, baseline=0.1)
     array([ 2., nan])
     """
-    d = np.array(disparity, dtype=float)
-    f, B = float(focal_length), float(baseline)
-    if not (np.isfinite(f) and f > 0 and np.isfinite(B) and B > 0):
-        raise CamlabInputError(f"focal_length, baseline: expected positive pixels and metres, got "
-                               f"{focal_length!r}, {baseline!r}")
+    d = as_float(disparity, "disparity")
+    f = check_positive(focal_length, "focal_length", "pixels")
+    B = check_positive(baseline, "baseline", "metres")
     ok = np.isfinite(d) & (d > 0)
     return np.where(ok, f * B / np.where(ok, d, 1.0), np.nan)
 

@@ -51,6 +51,7 @@ __all__ = [
 ]
 
 _PLANE_TOL = 1e-3   # px: a homography explaining every pair this well means "all points on one plane"
+_BAD_FIT = 0.05     # a least-squares F with median Sampson distance above this fraction of the spread: wrong pairs
 _RANK_TOL = 1e-9    # second-smallest singular value of the normalised 8-point system, relative
 
 
@@ -450,7 +451,18 @@ def estimate_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, normalize: bool = 
         if not np.all(den > 0):
             break
         Fn = _rank2(np.linalg.svd(A / den[:, None], full_matrices=len(A) < 9)[2][-1].reshape(3, 3))
-    return normalize_fundamental(T2.T @ Fn @ T1)
+    F = normalize_fundamental(T2.T @ Fn @ T1)
+    if len(a) >= 12:
+        # Least squares fits any pairs, right or wrong: refuse a fit that explains them badly.
+        med = float(np.median(_sampson_batch(F[None], a, b)[0]))
+        spread = float(np.sqrt(np.mean(np.sum((b - b.mean(axis=0)) ** 2, axis=1))))
+        if med > _BAD_FIT * spread:
+            raise DegenerateError(
+                f"x1, x2: no F explains these pairs: the best fit leaves a median Sampson distance of {med:.3g} px "
+                f"({100 * med / spread:.0f}% of the points' spread); the matches are mostly wrong. Use "
+                f"ransac_fundamental_matrix, which separates right matches from wrong ones"
+            )
+    return F
 
 
 class FundamentalRansacResult(NamedTuple):

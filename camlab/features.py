@@ -31,7 +31,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError
+from ._validate import CamlabInputError, check_image, check_integer, check_positive
 
 __all__ = ["Features", "KnnMatches", "Matches", "detect_features", "filter_matches", "knn_match",
            "match_features", "to_gray_uint8"]
@@ -113,10 +113,15 @@ def to_gray_uint8(image: ArrayLike, name: str = "image") -> np.ndarray:
     >>> to_gray_uint8(np.full((8, 8, 3), 0.5))[0, :3].tolist()
     [128, 128, 128]
     """
-    img = np.asarray(image)
-    if img.ndim not in (2, 3) or (img.ndim == 3 and img.shape[2] not in (1, 3, 4)) or min(img.shape[:2]) < 8:
+    img = check_image(image, name)
+    if min(img.shape[:2]) < 8:
         raise CamlabInputError(
             f"{name}: expected a (H, W) grey or (H, W, 3|4) colour image at least 8 x 8 pixels, got shape {img.shape}"
+        )
+    if img.dtype.kind == "f" and (img.min() < -1e-3 or img.max() > 1 + 1e-3):  # rounding slack
+        raise CamlabInputError(
+            f"{name}: a float image must hold values in [0, 1], got {img.min():.4g} to {img.max():.4g}; "
+            f"divide 0..255 values by 255 (or pass them as uint8)"
         )
     if img.ndim == 3:
         img = img[..., 0] if img.shape[2] == 1 else img[..., :3].astype(float) @ np.array([299.0, 587.0, 114.0]) / 1000
@@ -157,8 +162,7 @@ def detect_features(image: ArrayLike, method: str = "sift", max_features: int = 
 
     if method not in _METHODS:
         raise CamlabInputError(f"method: expected one of {_METHODS}, got {method!r}")
-    if int(max_features) < 1:
-        raise CamlabInputError(f"max_features: expected a positive integer, got {max_features!r}")
+    max_features = check_integer(max_features, "max_features")
     gray = to_gray_uint8(image)
     m = None
     if mask is not None:
@@ -248,7 +252,7 @@ def filter_matches(knn: KnnMatches, ratio: float = 0.75, mutual: bool = False) -
     """
     if not isinstance(knn, KnnMatches):
         raise CamlabInputError(f"knn: expected camlab.features.KnnMatches from knn_match, got {type(knn).__name__}")
-    if not 0 < ratio <= 1:
+    if not 0 < check_positive(ratio, "ratio") <= 1:
         raise CamlabInputError(f"ratio: expected a number in (0, 1] (Lowe used 0.8; 0.6-0.8 is typical), got {ratio!r}")
     if len(knn.nn12) == 0:
         e = np.zeros(0)

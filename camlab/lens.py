@@ -21,7 +21,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, check_positive
+from ._validate import CamlabInputError, as_float, check_positive
 
 __all__ = [
     "DepthOfField", "aperture_diameter", "circle_of_confusion", "depth_of_field",
@@ -30,7 +30,7 @@ __all__ = [
 
 
 def _distances(z: ArrayLike, name: str) -> np.ndarray:
-    a = np.asarray(z, dtype=float)
+    a = as_float(z, name)
     if not np.all(np.isfinite(a)) or np.any(a <= 0):
         raise CamlabInputError(f"{name}: expected positive finite distances in metres, got {z!r}")
     return a

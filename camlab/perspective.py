@@ -24,7 +24,7 @@ from typing import NamedTuple, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, DegenerateError, as_points, check_positive, check_size
+from ._validate import CamlabInputError, DegenerateError, as_points, check_image, check_positive, check_shape, check_size
 from .homography import estimate_homography
 # The synthetic plane photos live in camlab.scenes; they are re-exported here for lesson 10.
 from .scenes import (
@@ -219,6 +219,8 @@ def estimate_aspect_ratio(
     if principal_point is not None:
         pp = as_points(principal_point, 2, "principal_point").array[0]
     elif image_shape is not None:
+        image_shape = check_shape(tuple(image_shape)[:2] if isinstance(image_shape, (tuple, list)) else image_shape,
+                                  "image_shape")
         pp = np.array([(image_shape[1] - 1) / 2, (image_shape[0] - 1) / 2])
     else:
         raise CamlabInputError(
@@ -293,6 +295,7 @@ def rectangle_homography(corners: ArrayLike, width: int, height: int) -> np.ndar
     array([100.,  50.])
     """
     q = _quad(corners)
+    width, height = check_size((width, height), "width, height", minimum=2)
     target = np.array([[0, 0], [width - 1, 0], [width - 1, height - 1], [0, height - 1]], dtype=float)
     return estimate_homography(q, target)
 
@@ -341,7 +344,7 @@ def rectify_quadrilateral(
     DegenerateError
         Corners self-intersecting, counter-clockwise or non-convex (unless ``reorder``).
     """
-    img = np.asarray(image)
+    img = check_image(image)
     q = order_corners(corners) if reorder else _quad(corners)
     q = check_quadrilateral(q)
     aspect = None
@@ -387,9 +390,7 @@ def find_document(image: ArrayLike, min_area_fraction: float = 0.1) -> np.ndarra
     """
     import cv2
 
-    img = np.asarray(image)
-    if img.ndim not in (2, 3) or img.size == 0:
-        raise CamlabInputError(f"image: expected a (H, W) or (H, W, 3) image, got shape {img.shape}")
+    img = check_image(image)
     if not 0 < min_area_fraction < 1:
         raise CamlabInputError(f"min_area_fraction: expected a number in (0, 1), got {min_area_fraction!r}")
     grey = img if img.ndim == 2 else cv2.cvtColor(img[..., :3].astype(np.uint8), cv2.COLOR_RGB2GRAY)
@@ -407,7 +408,9 @@ def find_document(image: ArrayLike, min_area_fraction: float = 0.1) -> np.ndarra
         area = cv2.contourArea(approx.astype(np.float32)) / area_img
         if best_area == 0:
             best_vertices, best_area = len(approx), area
-        if len(approx) == 4 and area >= min_area_fraction and cv2.isContourConvex(approx):
+        # The image frame itself (edges everywhere, as in noise or texture) is not a page.
+        frame = np.all((approx.min(axis=1) <= 2) | (approx[:, 0] >= grey.shape[1] - 3) | (approx[:, 1] >= grey.shape[0] - 3))
+        if len(approx) == 4 and area >= min_area_fraction and cv2.isContourConvex(approx) and not frame:
             return order_corners(approx.astype(float))
     if not contours:
         why = "no edges formed a closed outline"

@@ -19,7 +19,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, as_points, check_positive
+from ._validate import CamlabInputError, as_float, as_points, check_positive
 
 __all__ = [
     "PinholeBlur", "diffraction_blur", "geometric_blur", "optimal_pinhole_diameter",
@@ -64,6 +64,13 @@ def project_pinhole(points: ArrayLike, focal_length: float, plane: str = "virtua
     return pts.restore(-xy if plane == "real" else xy)
 
 
+def _diameters(diameter: ArrayLike) -> np.ndarray:
+    d = as_float(diameter, "diameter")
+    if np.any(~(d > 0)) or not np.all(np.isfinite(d)):
+        raise CamlabInputError(f"diameter: expected positive finite pinhole diameters in metres, got {diameter!r}")
+    return d
+
+
 def geometric_blur(diameter: ArrayLike, focal_length: float, object_distance: float = np.inf) -> np.ndarray | float:
     r"""Blur-disc diameter from the hole's size alone: :math:`d (Z + f) / Z` (metres).
 
@@ -73,9 +80,7 @@ def geometric_blur(diameter: ArrayLike, focal_length: float, object_distance: fl
     >>> round(float(geometric_blur(0.5e-3, 0.1, 1.0)) * 1e3, 3)
     0.55
     """
-    d = np.asarray(diameter, dtype=float)
-    if np.any(~(d > 0)):
-        raise CamlabInputError(f"diameter: expected positive pinhole diameters in metres, got {diameter!r}")
+    d = _diameters(diameter)
     f = check_positive(focal_length, "focal_length", "metres")
     Z = check_positive(object_distance, "object_distance", "metres") if np.isfinite(object_distance) else np.inf
     out = d * (1 + f / Z)
@@ -88,9 +93,7 @@ def diffraction_blur(diameter: ArrayLike, focal_length: float, wavelength: float
     >>> round(float(diffraction_blur(0.5e-3, 0.1)) * 1e3, 4)     # green light, f = 100 mm
     0.2684
     """
-    d = np.asarray(diameter, dtype=float)
-    if np.any(~(d > 0)):
-        raise CamlabInputError(f"diameter: expected positive pinhole diameters in metres, got {diameter!r}")
+    d = _diameters(diameter)
     f = check_positive(focal_length, "focal_length", "metres")
     lam = check_positive(wavelength, "wavelength", "metres")
     out = 2.44 * lam * f / d

@@ -35,7 +35,7 @@ from numpy.typing import ArrayLike
 from ._validate import CamlabInputError, DegenerateError, as_points, check_size
 from .camera import Camera, intrinsic_matrix
 from .distortion import DistortionMaps, distort_points, undistort_pixels
-from .epipolar import check_fundamental, epipoles, point_pairs, skew
+from .epipolar import check_fundamental, epipoles, point_pairs, sampson_distance, skew
 from .homography import compose
 from .projective import map_points
 
@@ -44,6 +44,8 @@ __all__ = [
     "rectify_calibrated", "rectify_images", "rectify_points", "unrectify_points", "rectification_coverage",
     "StereoCalibration", "rectify_uncalibrated", "stereo_calibrate", "vertical_disparity",
 ]
+
+_FIT_PX = 3.0  # Sampson distance (pixels) within which a pair counts as consistent with F
 
 
 # --------------------------------------------------------------------------- measuring
@@ -467,6 +469,13 @@ def rectify_uncalibrated(x1: ArrayLike, x2: ArrayLike, F: ArrayLike, image_size:
     F = check_fundamental(F)
     a, b, _ = point_pairs(x1, x2, min_count=8)
     w, h = check_size(image_size, "image_size")
+    fits = sampson_distance(F, a, b) < _FIT_PX
+    if fits.mean() < 0.5:  # the row alignment below is a least-squares fit to these pairs
+        raise DegenerateError(
+            f"x1, x2: only {int(fits.sum())} of {len(a)} pairs lie within {_FIT_PX} px of their epipolar lines "
+            f"under F, so the matches are mostly wrong or F belongs to other images; estimate F with "
+            f"ransac_fundamental_matrix and pass its inliers"
+        )
     e2 = epipoles(F).e2
     centre = np.array([(w - 1) / 2, (h - 1) / 2])
     if abs(e2[2]) > 1e-12 * np.linalg.norm(e2[:2]):

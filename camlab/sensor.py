@@ -111,7 +111,11 @@ def dequantize(dn: ArrayLike, bits: int = 8) -> np.ndarray:
     a = np.asarray(dn)
     if not np.issubdtype(a.dtype, np.integer):
         raise CamlabInputError(f"dn: expected integer digital numbers, got dtype {a.dtype}")
-    return a.astype(float) / ((1 << b) - 1)
+    levels = (1 << b) - 1
+    if a.size and (a.min() < 0 or a.max() > levels):
+        raise CamlabInputError(f"dn: {b}-bit digital numbers lie in [0, {levels}], got {a.min()} to {a.max()}; "
+                               f"pass the bit depth they were quantised with (bits=...)")
+    return a.astype(float) / levels
 
 
 class NoiseModel(NamedTuple):

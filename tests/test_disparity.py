@@ -90,5 +90,5 @@ def test_bad_input():
         dp.block_matching_disparity(img, img, 40)
     with pytest.raises(CamlabInputError, match="same size"):
         dp.block_matching_disparity(img, img[:, :-1], 8)
-    with pytest.raises(CamlabInputError, match="focal_length, baseline"):
+    with pytest.raises(CamlabInputError, match="baseline: expected a positive"):
         dp.disparity_to_depth([1.0], 800, 0)

@@ -52,7 +52,7 @@ def test_detect_bad_options_and_mask(pair):
     s, _ = pair
     with pytest.raises(CamlabInputError, match=r"method: expected one of \('sift', 'orb'\), got 'surf'"):
         ft.detect_features(s.images[0], "surf")
-    with pytest.raises(CamlabInputError, match="max_features: expected a positive integer"):
+    with pytest.raises(CamlabInputError, match="max_features: expected a whole number >= 1"):
         ft.detect_features(s.images[0], max_features=0)
     with pytest.raises(CamlabInputError, match=r"mask: expected shape \(240, 320\)"):
         ft.detect_features(s.images[0], mask=np.ones((10, 10), bool))

@@ -37,7 +37,7 @@ def test_bad_inputs():
         pinhole.project_pinhole([0, 0, 1], 0)
     with pytest.raises(CamlabInputError, match=r"plane: expected 'virtual' or 'real'"):
         pinhole.project_pinhole([0, 0, 1], 0.05, plane="front")
-    with pytest.raises(CamlabInputError, match=r"diameter: expected positive pinhole diameters"):
+    with pytest.raises(CamlabInputError, match=r"diameter: expected positive finite pinhole diameters"):
         pinhole.diffraction_blur(-1e-3, 0.1)
     with pytest.raises(CamlabInputError, match=r"points: expected \(N, 3\) points"):
         pinhole.project_pinhole([0, 1], 0.05)

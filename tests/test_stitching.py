@@ -139,7 +139,7 @@ def test_feather_weights_known_values_and_errors():
     w = st.feather_weights((4, 6))
     assert w.shape == (4, 6) and w[0, 0] == 0.5 and w[1, 2] == 1.5 and w.max() == 1.5
     assert np.allclose(w, w[::-1, ::-1])
-    with pytest.raises(CamlabInputError, match=r"shape: expected a positive \(height, width\), got \(0, 3\)"):
+    with pytest.raises(CamlabInputError, match=r"shape: expected \(height, width\) as whole numbers of pixels >= 1, got \(0, 3\)"):
         st.feather_weights((0, 3))
     with pytest.raises(CamlabInputError, match="shape: expected"):
         st.feather_weights("big")

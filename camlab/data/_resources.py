@@ -14,6 +14,7 @@ an installed package, into the user cache (:func:`cache_dir`), never into site-p
 """
 from __future__ import annotations
 
+import json
 import os
 import sys
 from importlib.resources import files
@@ -21,7 +22,7 @@ from pathlib import Path
 
 from .._validate import CamlabInputError
 
-__all__ = ["cache_dir", "data_dir", "dataset_dir", "docs_dir", "lessons_dir", "regeneration_dir"]
+__all__ = ["cache_dir", "data_dir", "dataset_dir", "docs_dir", "lessons_dir", "read_truth", "regeneration_dir"]
 
 _REPO = Path(__file__).resolve().parents[2]
 
@@ -62,6 +63,15 @@ def dataset_dir(name: str) -> Path:
     if override and (Path(override).expanduser() / name).is_dir():
         return Path(override).expanduser() / name
     return data_dir() / name
+
+
+def read_truth(directory: Path | str | None, name: str) -> tuple[Path, dict]:
+    """The folder of set ``name`` (``directory`` if given, else :func:`dataset_dir`) and its parsed ``truth.json``."""
+    d = Path(directory) if directory is not None else dataset_dir(name)
+    path = d / "truth.json"
+    if not path.exists():
+        raise CamlabInputError(f"directory: no truth.json in {d}; run `python -m camlab.data` to generate it")
+    return d, json.loads(path.read_text())
 
 
 def cache_dir() -> Path:

@@ -19,8 +19,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .._validate import CamlabInputError
-from ._resources import dataset_dir, encode_image
+from ._resources import encode_image, read_truth
 
 __all__ = ["CalibrationSet", "CALIBRATION_PARAMS", "load_calibration_set", "make_calibration_set"]
 
@@ -138,11 +137,7 @@ def load_calibration_set(directory: Path | str | None = None) -> CalibrationSet:
     """Load ``data/calib_chessboard`` (or ``directory``) as a :class:`CalibrationSet`."""
     import cv2
 
-    d = Path(directory) if directory is not None else dataset_dir("calib_chessboard")
-    path = d / "truth.json"
-    if not path.exists():
-        raise CamlabInputError(f"directory: no truth.json in {d}; run `python -m camlab.data` to generate it")
-    truth = json.loads(path.read_text())
+    d, truth = read_truth(directory, "calib_chessboard")
     images = [cv2.imread(str(d / v["file"]), cv2.IMREAD_GRAYSCALE) for v in truth["views"]]
     return CalibrationSet(
         images=images, K=np.array(truth["K"]), dist=np.array(truth["dist"]),

@@ -32,7 +32,7 @@ from numpy.typing import ArrayLike
 
 import numpy as np
 
-from ._resources import dataset_dir, encode_image
+from ._resources import encode_image, read_truth
 from .._validate import CamlabInputError, check_positive
 from ..camera import scale_intrinsics
 from ..scenes import wall_texture
@@ -223,14 +223,6 @@ def _read(path: Path, scale: float) -> np.ndarray:
     return img
 
 
-def _truth(directory) -> tuple[Path, dict]:
-    d = Path(directory) if directory is not None else dataset_dir("panorama")
-    path = d / "truth.json"
-    if not path.exists():
-        raise CamlabInputError(f"directory: no truth.json in {d}; run `python -m camlab.data` to generate it")
-    return d, json.loads(path.read_text())
-
-
 def load_panorama_set(directory: Path | str | None = None, scale: float = 1.0) -> PanoramaSet:
     """Load ``data/panorama`` (or ``directory``); ``scale`` < 1 resizes the images (K follows).
 
@@ -238,7 +230,7 @@ def load_panorama_set(directory: Path | str | None = None, scale: float = 1.0) -
     >>> len(s.images), s.images[0].shape, float(s.K[0, 0])
     (4, (240, 320, 3), 400.0)
     """
-    d, truth = _truth(directory)
+    d, truth = read_truth(directory, "panorama")
     images = [_read(d / v["file"], scale) for v in truth["views"]]
     K = scale_intrinsics(np.array(truth["K"]), scale)
     return PanoramaSet(images, K, np.array([v["R"] for v in truth["views"]]),
@@ -247,7 +239,7 @@ def load_panorama_set(directory: Path | str | None = None, scale: float = 1.0) -
 
 def load_planar_pair(directory: Path | str | None = None, scale: float = 1.0) -> PlanarPair:
     """Load the two views of the flat poster; ``H`` maps view 0's pixels to view 1's (at ``scale``)."""
-    d, truth = _truth(directory)
+    d, truth = read_truth(directory, "panorama")
     pp = truth["plane_pair"]
     images = [_read(d / f, scale) for f in pp["files"]]
     S = scale_intrinsics(np.eye(3), scale)

@@ -35,8 +35,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._resources import dataset_dir, encode_image
-from .._validate import CamlabInputError
+from ._resources import encode_image, read_truth
 from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
 from ..scenes import noise_texture, portrait
 
@@ -269,11 +268,7 @@ def load_stereo_rig(directory: Path | str | None = None) -> StereoRig:
     """Load ``data/stereo`` (or ``directory``) as a :class:`StereoRig`."""
     import cv2
 
-    d = Path(directory) if directory is not None else dataset_dir("stereo")
-    path = d / "truth.json"
-    if not path.exists():
-        raise CamlabInputError(f"directory: no truth.json in {d}; run `python -m camlab.data` to generate it")
-    truth = json.loads(path.read_text())
+    d, truth = read_truth(directory, "stereo")
 
     def cam(j):
         return Camera(np.array(j["K"]), np.array(j["R"]), np.array(j["t"]), tuple(j["dist"]), tuple(j["image_size"]))

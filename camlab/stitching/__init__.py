@@ -44,7 +44,7 @@ from numpy.typing import ArrayLike
 
 from .. import features as _feat
 from .. import homography as _hg
-from .._validate import CamlabInputError, DegenerateError, check_intrinsics
+from .._validate import CamlabInputError, DegenerateError, check_image, check_integer, check_intrinsics, check_shape
 from ..projective import map_points
 from ..warp import canvas_bounds, warp_perspective
 
@@ -324,7 +324,7 @@ def cylindrical_warp(image: ArrayLike, K: ArrayLike) -> tuple[np.ndarray, np.nda
     """
     import cv2
 
-    img = np.asarray(image)
+    img = check_image(image)
     Km = check_intrinsics(K, "K")
     h, w = img.shape[:2]
     f, cx, cy = Km[0, 0], Km[0, 2], Km[1, 2]
@@ -389,12 +389,7 @@ def feather_weights(shape: Sequence[int]) -> np.ndarray:
            [0.5, 1.5, 1.5, 0.5],
            [0.5, 0.5, 0.5, 0.5]])
     """
-    try:
-        h, w = (int(s) for s in tuple(shape)[:2])
-    except (TypeError, ValueError):
-        raise CamlabInputError(f"shape: expected (height, width), got {shape!r}") from None
-    if h < 1 or w < 1:
-        raise CamlabInputError(f"shape: expected a positive (height, width), got ({h}, {w})")
+    h, w = check_shape(tuple(shape)[:2] if isinstance(shape, (tuple, list)) else shape)
     u = np.arange(w, dtype=float)
     v = np.arange(h, dtype=float)
     du = np.minimum(u + 0.5, w - 0.5 - u)
@@ -683,6 +678,25 @@ def _fill_outside(img: np.ndarray, mask: np.ndarray, levels: int) -> np.ndarray:
     return np.where(mask[..., None], img, up)
 
 
+def _blend_inputs(images, masks) -> tuple[list, list]:
+    """Images as finite (h, w, C) arrays and masks as (h, w) bool of the same size, or a clear error."""
+    for value, name in ((images, "images"), (masks, "masks")):
+        if value is None or isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
+            raise CamlabInputError(f"{name}: expected a list with one array per image, got {type(value).__name__}")
+    if len(images) != len(masks) or not len(images):
+        raise CamlabInputError(f"masks: expected one mask per image, got {len(masks)} for {len(images)} images")
+    imgs = [check_image(im, f"images[{k}]", channels=(1, 2, 3, 4)) for k, im in enumerate(images)]
+    shape = imgs[0].shape[:2]
+    out = []
+    for k, (im, m) in enumerate(zip(imgs, masks)):
+        mk = np.asarray(m)
+        if mk.dtype != bool or mk.shape != shape or im.shape[:2] != shape or im.ndim != 3:
+            raise CamlabInputError(f"masks[{k}]: expected a bool (h, w) mask of the (h, w, C) images' size {shape}, "
+                                   f"got {mk.dtype} {mk.shape} for an image of shape {im.shape}")
+        out.append(mk)
+    return imgs, out
+
+
 def laplacian_blend(images: Sequence[np.ndarray], masks: Sequence[np.ndarray], levels: int = 5,
                     footprints: Sequence[np.ndarray] | None = None) -> np.ndarray:
     r"""Multi-band blending (Burt & Adelson 1983) of images with disjoint seam masks.
@@ -712,9 +726,8 @@ def laplacian_blend(images: Sequence[np.ndarray], masks: Sequence[np.ndarray], l
     """
     import cv2
 
-    if len(images) != len(masks) or not images:
-        raise CamlabInputError(f"masks: expected one mask per image, got {len(masks)} for {len(images)} images")
-    levels = int(levels)
+    images, masks = _blend_inputs(images, masks)
+    levels = check_integer(levels, "levels", minimum=1)
     h, w = masks[0].shape
     levels = max(0, min(levels, int(np.log2(max(2, min(h, w)))) - 2))
     union = np.zeros((h, w), bool)

@@ -29,7 +29,7 @@ from matplotlib.image import AxesImage
 
 from ..plotting.static import demo_alt_text, static_bundle
 from ._transport import show_at_display_resolution, use_fast_png
-from .controls import slider  # re-exported: every demo module imports it from here
+from .controls import slider as slider  # re-exported: every demo module imports it from here
 
 
 def _display_mode() -> str:
