@@ -281,24 +281,22 @@ def blending_seams() -> Demo:
     readout = W.HTML()
     both = wi.masks[0] & wi.masks[1]
     cache: dict = {}
+    jumps: dict = {}
     for m in st.BLENDS:  # blending is the slow part: every setting the controls can reach, once
         for g in (False, True):
             for lv in (range(1, 7) if m == "multiband" else (5,)):
                 update_key = (m, g, lv if m == "multiband" else 0)
                 out = st.blend(wi, m, gains=gains if g else None, levels=lv)
                 cache[update_key] = (out, _rgba(out))
+                jumps[update_key] = 255 * (st.seam_step(out, wi.masks[1], wi.masks[0]) if m == "overwrite"
+                                           else st.seam_step(out, seam, both))
 
     def update(v: dict, state: dict) -> None:
         key = (v["method"], bool(v["gains"]), int(v["levels"]) if v["method"] == "multiband" else 0)
-        if key not in cache:
-            out = st.blend(wi, v["method"], gains=gains if v["gains"] else None, levels=int(v["levels"]))
-            cache[key] = (out, _rgba(out))
         out, rgba = cache[key]
         im.set_data(rgba)
         imz.set_data(rgba[v0:v0 + z, u0:u0 + z])
-        # the exposure step across the seam, grey levels; overwrite's seam is the last image's border
-        jump = 255 * (st.seam_step(out, wi.masks[1], wi.masks[0]) if v["method"] == "overwrite"
-                      else st.seam_step(out, seam, both))
+        jump = jumps[key]  # the exposure step across the seam, grey levels (overwrite: the last image's border)
         state.update(method=v["method"], seam_jump=jump, image=out)
         readout.value = monospace(f"blend: {v['method']}\ngains: {np.round(gains, 3).tolist() if v['gains'] else 'off'}\n"
                              f"mean step across the seam: {jump:.1f} grey levels")
