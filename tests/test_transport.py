@@ -9,17 +9,15 @@ from camlab.widgets import _transport
 
 
 @pytest.fixture
-def ipympl_canvas(monkeypatch):
-    monkeypatch.setenv("MPLBACKEND", "module://ipympl.backend_nbagg")
-    pytest.importorskip("ipympl")
-    import matplotlib.pyplot as plt
+def ipympl_canvas():
+    ipympl = pytest.importorskip("ipympl.backend_nbagg")
+    from matplotlib.figure import Figure
 
-    with plt.ioff():
-        fig = plt.figure(figsize=(4, 3), dpi=80)
-    ax = fig.add_subplot()
-    image = ax.imshow(np.random.default_rng(0).random((30, 40)))
-    yield fig.canvas, image
-    plt.close(fig)
+    fig = Figure(figsize=(4, 3), dpi=80)  # not through pyplot: other tests may have chosen Agg there
+    canvas = ipympl.Canvas(fig)
+    ipympl.FigureManager(canvas, 0)
+    image = fig.add_subplot().imshow(np.random.default_rng(0).random((30, 40)))
+    yield canvas, image
 
 
 def _decode(png: bytes) -> np.ndarray:
