@@ -12,6 +12,11 @@ message with exit status 2, never a traceback.
 [--report report.png]`` detects the chessboard in each photo, calibrates, prints the result
 and the coach's advice, writes an OpenCV-loadable file (``cv2.FileStorage``: ``.json``,
 ``.yaml`` or ``.xml``) and saves a report figure.
+
+``camlab undistort``, ``camlab stitch FOLDER --out pano.jpg [--projection ...]`` and
+``camlab rectify LEFT RIGHT --out-dir D`` work on real photos: each prints a line per image
+or pair, exits 0 when everything was used, 1 when some input was left out (and says which),
+2 on an error the user can fix; outputs are checked before any work and written atomically.
 """
 from __future__ import annotations
 
@@ -142,6 +147,158 @@ def _run_undistort(args: argparse.Namespace) -> int:
     return 1 if failed else 0
 
 
+IMAGE_SUFFIXES = (".jpg", ".jpeg", ".png", ".tif", ".tiff", ".bmp")
+
+
+def _photos(args_images: list[str]) -> list[str]:
+    """Image files from folders (their images, sorted), files and quoted glob patterns."""
+    from pathlib import Path
+
+    files: list[str] = []
+    for item in args_images:
+        if Path(item).is_dir():
+            found = sorted(str(p) for p in Path(item).iterdir() if p.suffix.lower() in IMAGE_SUFFIXES)
+            if not found:
+                raise CamlabInputError(f"images: the folder {item!r} holds no {'/'.join(IMAGE_SUFFIXES)} files")
+            files += found
+        else:
+            files += _expand([item])
+    return files
+
+
+def _write_image(path, image_rgb_or_gray, name: str) -> None:
+    import cv2
+
+    from ._files import atomic_output
+
+    image = image_rgb_or_gray if image_rgb_or_gray.ndim == 2 else cv2.cvtColor(image_rgb_or_gray, cv2.COLOR_RGB2BGR)
+    with atomic_output(path) as tmp:
+        if not cv2.imwrite(str(tmp), image):
+            raise CamlabInputError(f"{name}: could not write {str(path)!r}")
+
+
+def _add_stitch(p: argparse.ArgumentParser) -> None:
+    p.add_argument("images", nargs="+", help='a folder of photos, photo files, or a quoted glob pattern')
+    p.add_argument("--out", required=True, help="the panorama (.jpg or .png)")
+    p.add_argument("--projection", choices=["auto", "planar", "cylindrical", "spherical"], default="auto",
+                   help="canvas: planar for a flat scene or a narrow turn, spherical for wide turns (default auto)")
+    p.add_argument("--crop", action="store_true", help="crop to the largest rectangle without empty canvas")
+
+
+def _run_stitch(args: argparse.Namespace) -> int:
+    """Stitch the photos; exit 1 if some could not be read or overlap nothing (named)."""
+    import warnings
+    from pathlib import Path
+
+    import cv2
+
+    from ._files import check_output_path
+    from .stitching import stitch
+
+    check_output_path(args.out, "--out", (".jpg", ".jpeg", ".png"))
+    images, names, unreadable = [], [], []
+    for name in _photos(args.images):
+        img = cv2.imread(name, cv2.IMREAD_COLOR)
+        if img is None:
+            unreadable.append(Path(name).name)
+            print(f"  {name}: skipped: not an image OpenCV can read", flush=True)
+            continue
+        images.append(cv2.cvtColor(img, cv2.COLOR_BGR2RGB))
+        names.append(Path(name).name)
+    if len(images) < 2:
+        raise CamlabInputError(f"images: need at least two readable photos, got {len(images)}")
+    print(f"camlab stitch: {len(images)} photos, projection {args.projection}", flush=True)
+    with warnings.catch_warnings(record=True) as caught:  # one line each, not Python's warning format
+        warnings.simplefilter("always")
+        res = stitch(images, projection=args.projection, crop=args.crop, names=names)
+    for w in caught:
+        print(f"  warning: {w.message}")
+    for pair in res.pairs:
+        if pair.accepted:
+            print(f"  {names[pair.i]} - {names[pair.j]}: {pair.inliers} of {pair.matches} matches agree, "
+                  f"rms {pair.residual_rms:.2f} px")
+    left_out = [names[i] for i in res.unconnected]
+    _write_image(args.out, res.panorama, "--out")
+    h, w = res.panorama.shape[:2]
+    print(f"wrote {args.out}: {w} x {h} px, {res.projection} canvas, {len(images) - len(left_out)} of "
+          f"{len(images) + len(unreadable)} photos used" + (f"; left out: {', '.join(unreadable + left_out)}"
+                                                            if unreadable or left_out else ""))
+    return 1 if unreadable or left_out else 0
+
+
+def _add_rectify(p: argparse.ArgumentParser) -> None:
+    p.add_argument("left", help="left photo")
+    p.add_argument("right", help="right photo (same size)")
+    p.add_argument("--out-dir", required=True, help="folder for left_rectified.png, right_rectified.png and "
+                                                     "vertical_disparity.png")
+    p.add_argument("--threshold", type=float, default=1.0, help="RANSAC threshold for F, pixels (default 1)")
+
+
+def _run_rectify(args: argparse.Namespace) -> int:
+    """Rectify an undistorted stereo pair from its matches alone (SIFT, F by RANSAC, Hartley)."""
+    from pathlib import Path
+
+    import cv2
+    import numpy as np
+
+    from . import epipolar, features
+    from . import rectification as rc
+    from ._files import check_output_path
+    from .homography import map_points
+
+    out_dir = Path(args.out_dir)
+    if not out_dir.is_dir():
+        raise CamlabInputError(f"--out-dir: no folder {str(out_dir)!r}; create it first")
+    outputs = {k: check_output_path(out_dir / f"{k}.png", "--out-dir")
+               for k in ("left_rectified", "right_rectified", "vertical_disparity")}
+    pair = []
+    for name, path in (("left", args.left), ("right", args.right)):
+        img = cv2.imread(path, cv2.IMREAD_COLOR)
+        if img is None:
+            raise CamlabInputError(f"{name}: {path!r} is not an image OpenCV can read")
+        pair.append(cv2.cvtColor(img, cv2.COLOR_BGR2RGB))
+    if pair[0].shape != pair[1].shape:
+        raise CamlabInputError(f"right: expected the left photo's size {pair[0].shape[1]} x {pair[0].shape[0]}, "
+                               f"got {pair[1].shape[1]} x {pair[1].shape[0]}")
+    m = features.match_features(*(features.detect_features(im) for im in pair))
+    fit = epipolar.ransac_fundamental_matrix(m.src, m.dst, threshold=args.threshold, rng=np.random.default_rng(0))
+    x1, x2 = m.src[fit.inliers], m.dst[fit.inliers]
+    size = (pair[0].shape[1], pair[0].shape[0])
+    rect = rc.rectify_uncalibrated(x1, x2, fit.F, size)
+    before = rc.vertical_disparity(x1, x2)
+    after = rc.vertical_disparity(map_points(rect.H1, x1), map_points(rect.H2, x2))
+    left, right = rc.rectify_images(rect, *pair)
+    _write_image(outputs["left_rectified"], left, "--out-dir")
+    _write_image(outputs["right_rectified"], right, "--out-dir")
+    _vertical_disparity_figure(before, after, outputs["vertical_disparity"])
+    print(f"camlab rectify: {len(m.src)} matches, {len(x1)} consistent with F; vertical disparity median "
+          f"{before.median:.2f} px before, {after.median:.2f} px after (95th percentile {after.p95:.2f} px)")
+    print(f"wrote {', '.join(str(p) for p in outputs.values())}")
+    return 0
+
+
+def _vertical_disparity_figure(before, after, path) -> None:
+    """Histograms of |v1 - v2| of the inlier matches before and after rectification."""
+    import numpy as np
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    from ._files import atomic_output
+
+    fig = Figure(figsize=(6, 3), dpi=100, layout="constrained")
+    FigureCanvasAgg(fig)
+    ax = fig.subplots()
+    top = max(float(np.percentile(before.values, 99)), 1.0)
+    bins = np.linspace(0, top, 40)
+    ax.hist(np.clip(before.values, 0, top), bins=bins, color="#BB5566", alpha=0.6, label=f"before (median {before.median:.1f} px)")
+    ax.hist(np.clip(after.values, 0, top), bins=bins, color="#004488", alpha=0.8, hatch="//",
+            label=f"after (median {after.median:.2f} px)")
+    ax.set(xlabel="vertical disparity |v1 - v2| of inlier matches (px)", ylabel="matches")
+    ax.legend()
+    with atomic_output(path) as tmp:
+        fig.savefig(tmp)
+
+
 def _add_lessons(p: argparse.ArgumentParser) -> None:
     p.add_argument("dest", nargs="?", default="camlab-course",
                    help="working folder (default ./camlab-course); lessons go to DEST/lessons, docs to DEST/docs")
@@ -184,6 +341,8 @@ def _run_present(args: argparse.Namespace) -> int:
 COMMANDS: dict[str, tuple[str, Callable[[argparse.ArgumentParser], None], Callable[[argparse.Namespace], int]]] = {
     "calibrate": ("calibrate a camera from photos of a chessboard", _add_calibrate, _run_calibrate),
     "undistort": ("undistort photos with a calibration file", _add_undistort, _run_undistort),
+    "stitch": ("stitch overlapping photos into a panorama", _add_stitch, _run_stitch),
+    "rectify": ("rectify a stereo pair from its matches, with a vertical-disparity figure", _add_rectify, _run_rectify),
     "lessons": ("copy the lessons into a working folder (keeps lessons you edited)", _add_lessons, _run_lessons),
     "present": ("lecture mode: serve one lesson's demos without code (Voila)", _add_present, _run_present),
     "assignments": ("write an nbgrader course directory of graded lessons", _add_assignments, _run_assignments),

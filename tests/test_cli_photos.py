@@ -98,3 +98,56 @@ def test_no_board_is_not_called_a_cut_off_board():
     for name in ("street", "building_1", "church"):
         reason = find_chessboard(load_photo(name), (9, 6)).reason
         assert reason.startswith("no ") and "cut off" not in reason, (name, reason)
+
+
+def _real(name):
+    return str(data_dir() / "photos" / name)
+
+
+def test_stitch_a_folder_of_real_photos_names_the_photo_left_out(tmp_path, capsys):
+    folder = tmp_path / "trip"
+    folder.mkdir()
+    for name in ("aerial_1.jpg", "aerial_2.jpg", "church.jpg"):
+        shutil.copy(_real(name), folder / name)
+    (folder / "notes.txt").write_text("not a photo")  # ignored: not an image file
+    out = tmp_path / "pano.jpg"
+    assert main(["stitch", str(folder), "--out", str(out), "--projection", "planar"]) == 1  # one photo left out
+    text = capsys.readouterr().out
+    assert "aerial_1.jpg - aerial_2.jpg" in text and "'church.jpg' overlaps none" in text
+    assert "2 of 3 photos used; left out: church.jpg" in text and "planar canvas" in text
+    pano, one = cv2.imread(str(out)), cv2.imread(_real("aerial_1.jpg"))
+    assert pano.shape[0] * pano.shape[1] > 1.25 * one.shape[0] * one.shape[1]  # more ground than one photo
+
+
+def test_stitch_checks_out_before_work_and_needs_two_photos(tmp_path, capsys):
+    assert main(["stitch", _real("aerial_1.jpg"), _real("aerial_2.jpg"), "--out", str(tmp_path / "no" / "p.jpg")]) == 2
+    assert main(["stitch", _real("aerial_1.jpg"), "--out", str(tmp_path / "p.jpg")]) == 2
+    err = capsys.readouterr().err
+    assert "--out: the folder" in err and "need at least two readable photos, got 1" in err
+    assert not list(tmp_path.iterdir())
+
+
+def test_rectify_a_real_stereo_pair(tmp_path, capsys):
+    assert main(["rectify", _real("walls_left.jpg"), _real("walls_right.jpg"), "--out-dir", str(tmp_path)]) == 0
+    text = capsys.readouterr().out
+    before, after = (float(x) for x in
+                     text.split("vertical disparity median ")[1].split(" px after")[0].split(" px before, "))
+    assert before > 5 and after < 0.5  # rows line up after rectification
+    left, right = (cv2.imread(str(tmp_path / f"{k}_rectified.png")) for k in ("left", "right"))
+    assert left.shape == right.shape == cv2.imread(_real("walls_left.jpg")).shape
+    assert (tmp_path / "vertical_disparity.png").stat().st_size > 5_000
+
+
+def test_rectify_names_bad_input(tmp_path, capsys):
+    assert main(["rectify", _real("walls_left.jpg"), _real("church.jpg"), "--out-dir", str(tmp_path)]) == 2
+    assert main(["rectify", _real("walls_left.jpg"), _real("walls_right.jpg"), "--out-dir", str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err
+    assert "right: expected the left photo's size 816 x 612, got 800 x 532" in err and "--out-dir: no folder" in err
+    assert not list(tmp_path.iterdir())
+
+
+@pytest.mark.parametrize("command", ["stitch", "rectify"])
+def test_help(command, capsys):
+    with pytest.raises(SystemExit) as exit_:
+        main([command, "--help"])
+    assert exit_.value.code == 0 and "usage: camlab " + command in capsys.readouterr().out
