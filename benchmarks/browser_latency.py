@@ -95,8 +95,7 @@ def measure(presses: int = 7) -> dict[str, float]:
             try:
                 page = context.new_page()
                 page.set_default_timeout(180_000)
-                browser.open_notebook(page, lab, "latency.ipynb")
-                page.evaluate(browser.RUN_ALL)
+                browser.run_notebook(page, lab, "latency.ipynb")
                 page.wait_for_function(browser.ALL_CELLS_RUN, polling=500)
                 for name in chosen.values():
                     selector = f".camlab-demo-{name.replace('_', '-')}"

@@ -37,8 +37,7 @@ def test_lesson_06_runs_and_a_slider_moves_the_figure(lab):
         try:
             page = context.new_page()
             page.set_default_timeout(90_000)
-            browser.open_notebook(page, lab, "lessons/06_projective_plane.ipynb")
-            page.evaluate(browser.RUN_ALL)
+            browser.run_notebook(page, lab, "lessons/06_projective_plane.ipynb")
             demo = page.locator(".camlab-demo-parallel-lines")
             demo.wait_for(state="attached")
             demo.scroll_into_view_if_needed()

@@ -108,10 +108,15 @@ def launch(playwright, profile: Path, **kw):
         viewport={"width": 1400, "height": 1000}, **kw)
 
 
-def open_notebook(page, lab: dict, path: str) -> None:
-    """Open ``path`` in a fresh workspace and wait for its kernel."""
+def run_notebook(page, lab: dict, path: str) -> None:
+    """Open ``path`` in a fresh workspace, wait for its kernel and start running every cell.
+
+    Run-all is started, not awaited (awaiting its promise can hang): wait for
+    :data:`ALL_CELLS_RUN` or for the element you need.
+    """
     page.goto(f"{lab['url']}/lab/workspaces/t{secrets.token_hex(4)}/tree/{path}?reset&token={lab['token']}")
     page.wait_for_function(KERNEL_IDLE, polling=500)
+    page.evaluate(RUN_ALL)
 
 
 def click_slider(page, demo: str, fraction: float) -> tuple[bytes, bytes, str, str]:
