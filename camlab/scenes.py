@@ -6,7 +6,8 @@ data generators (:mod:`camlab.data`) build the same scenes:
 - **textures** (read-only arrays, cached where they are pure functions of their
   arguments): :func:`as_texture`, :func:`portrait` (the one bundled sample photograph),
   :func:`page_texture`, :func:`facade_texture`, :func:`painting_texture`,
-  :func:`desk_background`, :func:`wall_texture` (panoramas), :func:`noise_texture` (stereo);
+  :func:`desk_background`, :func:`wall_texture` (panoramas), :func:`noise_texture` (stereo),
+  and one fresh uint8 picture to warp, :func:`house_picture` (lesson 07);
 - **planes for** :func:`camlab.render.render`: :class:`Plane`, :func:`textured_plane`,
   :func:`checkerboard`, :func:`photo_plane`, :func:`text_page`, :func:`box`;
 - **plane photos** made by one homography (lesson 10): :func:`photograph_plane`,
@@ -37,7 +38,7 @@ from .warp import warp_perspective
 
 __all__ = [
     "Plane", "PlanePhoto", "as_texture", "box", "box_and_rails", "box_before_wall", "box_wireframe", "checkerboard",
-    "depth_of_field_scene", "desk_background", "facade_texture", "ground_grid", "house_scene", "house_wireframe",
+    "depth_of_field_scene", "desk_background", "facade_texture", "ground_grid", "house_picture", "house_scene", "house_wireframe",
     "look_at_plane", "noise_texture", "page_texture", "painting_texture", "photo_and_page", "photo_plane",
     "photograph_plane", "plane_outlines", "portrait", "rail_track", "sample_photo", "text_page", "textured_plane",
     "wall_texture",
@@ -229,6 +230,27 @@ def wall_texture(width: int = 2100, height: int = 800, seed: int = 909) -> np.nd
     tex = np.clip(tex, 0.0, 1.0)
     tex.setflags(write=False)  # cached: a caller's edit must not change later renders
     return tex
+
+
+def house_picture(width: int = 160, height: int = 120) -> np.ndarray:
+    """A small test picture (lesson 07): a checkerboard with a house, a sun and a frame, (height, width, 3) uint8 RGB.
+
+    Drawn for 160 x 120 pixels and scaled with ``width``; writable (a new array each call).
+    """
+    import cv2
+
+    v, u = np.mgrid[0:height, 0:width]
+    check = ((u // 20 + v // 20) % 2).astype(np.float32)
+    img = np.empty((height, width, 3), np.uint8)
+    img[:] = (225, 235, 245)
+    img[check > 0] = (200, 215, 235)
+    s = width / 160
+    base = np.array([[40, 110], [40, 65], [80, 35], [120, 65], [120, 110]]) * s
+    cv2.fillPoly(img, [base.astype(np.int32)], (200, 80, 60))
+    cv2.rectangle(img, (int(70 * s), int(80 * s)), (int(90 * s), int(110 * s)), (90, 60, 40), -1)
+    cv2.circle(img, (int(135 * s), int(22 * s)), int(12 * s), (240, 190, 40), -1)
+    cv2.rectangle(img, (1, 1), (width - 2, height - 2), (30, 60, 140), 2)
+    return img
 
 
 def noise_texture(shape: tuple[int, int], seed: int, base: float = 0.5) -> np.ndarray:
