@@ -31,7 +31,7 @@ from typing import NamedTuple, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, check_matrix, check_pose, check_positive, check_rotation
+from ._validate import CamlabInputError, check_matrix, check_pose, check_positive, check_rotation, check_shape, check_size
 from .homography import pose_homography
 from .projective import map_points
 from .warp import warp_perspective
@@ -101,13 +101,17 @@ def _text_texture(width_px: int, seed: int) -> np.ndarray:
     return as_texture(grey)
 
 
-@lru_cache(maxsize=8)
-def page_texture(width: int = 420, height: int = 594, seed: int = 0) -> np.ndarray:
+def page_texture(size: tuple[int, int] = (420, 594), seed: int = 0) -> np.ndarray:
     """A printed page (A4 proportions, 1 : sqrt 2): title, paragraphs of text, a figure box.
 
-    Returns an (height, width, 3) uint8 RGB image drawn with ``cv2.putText`` (cached and
-    read-only, like the other textures).
+    ``size`` is (width, height) in pixels. Returns a (height, width, 3) uint8 RGB image
+    drawn with ``cv2.putText`` (cached and read-only, like the other textures).
     """
+    return _page_texture(*check_size(size), int(seed))
+
+
+@lru_cache(maxsize=8)
+def _page_texture(width: int, height: int, seed: int) -> np.ndarray:
     import cv2
 
     rng = np.random.default_rng(seed)
@@ -135,9 +139,17 @@ def page_texture(width: int = 420, height: int = 594, seed: int = 0) -> np.ndarr
     return page
 
 
+def facade_texture(size: tuple[int, int] = (480, 360), floors: int = 4, bays: int = 6) -> np.ndarray:
+    """A building facade: brick-coloured wall, a grid of ``floors`` x ``bays`` windows, a door.
+
+    ``size`` is (width, height) in pixels; returns a (height, width, 3) uint8 RGB image,
+    cached and read-only.
+    """
+    return _facade_texture(*check_size(size), int(floors), int(bays))
+
+
 @lru_cache(maxsize=8)
-def facade_texture(width: int = 480, height: int = 360, floors: int = 4, bays: int = 6) -> np.ndarray:
-    """A building facade: brick-coloured wall, a grid of windows, a door. (h, w, 3) uint8."""
+def _facade_texture(width: int, height: int, floors: int, bays: int) -> np.ndarray:
     import cv2
 
     wall = np.empty((height, width, 3), np.uint8)
@@ -177,13 +189,16 @@ def painting_texture(width: int = 400) -> np.ndarray:
     return frame
 
 
-@lru_cache(maxsize=4)
 def desk_background(shape: tuple[int, int] = (480, 640), seed: int = 0) -> np.ndarray:
     """A dark wooden-desk background, (height, width, 3) uint8 for ``shape`` = (height, width).
 
     Cached and read-only: demos re-photograph on every slider move.
     """
-    h, w = (int(v) for v in shape)
+    return _desk_background(*check_shape(shape), int(seed))
+
+
+@lru_cache(maxsize=4)
+def _desk_background(h: int, w: int, seed: int) -> np.ndarray:
     rng = np.random.default_rng(seed)
     yy, xx = np.mgrid[0:h, 0:w]
     base = 70 + 25 * np.sin(xx / 37.0) * np.cos(yy / 53.0) + rng.normal(0, 4, (h, w))
@@ -192,14 +207,19 @@ def desk_background(shape: tuple[int, int] = (480, 640), seed: int = 0) -> np.nd
     return bg
 
 
-@lru_cache(maxsize=2)
-def wall_texture(width: int = 2100, height: int = 800, seed: int = 909) -> np.ndarray:
+def wall_texture(size: tuple[int, int] = (2100, 800), seed: int = 909) -> np.ndarray:
     """A feature-rich, non-repeating RGB texture (float32 in [0, 1], read-only): soft colour fields and posters.
 
-    Made with a seeded generator, so it is the same every time: smooth multi-scale colour
-    noise, then a few hundred random rectangles, discs, triangles and strokes in random
-    colours (corners and blobs for the feature detector at every scale).
+    ``size`` is (width, height) in pixels; the result is (height, width, 3). Made with a
+    seeded generator, so it is the same every time: smooth multi-scale colour noise, then a
+    few hundred random rectangles, discs, triangles and strokes in random colours (corners
+    and blobs for the feature detector at every scale).
     """
+    return _wall_texture(*check_size(size), int(seed))
+
+
+@lru_cache(maxsize=2)
+def _wall_texture(width: int, height: int, seed: int) -> np.ndarray:
     import cv2
 
     rng = np.random.default_rng(seed)
@@ -232,12 +252,15 @@ def wall_texture(width: int = 2100, height: int = 800, seed: int = 909) -> np.nd
     return tex
 
 
-def house_picture(width: int = 160, height: int = 120) -> np.ndarray:
-    """A small test picture (lesson 07): a checkerboard with a house, a sun and a frame, (height, width, 3) uint8 RGB.
+def house_picture(size: tuple[int, int] = (160, 120)) -> np.ndarray:
+    """A small test picture (lesson 07): a checkerboard with a house, a sun and a frame.
 
-    Drawn for 160 x 120 pixels and scaled with ``width``; writable (a new array each call).
+    ``size`` is (width, height) in pixels; returns a (height, width, 3) uint8 RGB image,
+    a new writable array each call. Drawn for 160 x 120 and scaled with the width.
     """
     import cv2
+
+    width, height = check_size(size)
 
     v, u = np.mgrid[0:height, 0:width]
     check = ((u // 20 + v // 20) % 2).astype(np.float32)

@@ -27,7 +27,7 @@ def test_scenes_do_not_depend_on_the_data_sets():
 
 
 @pytest.mark.parametrize("make", [
-    lambda: scenes.wall_texture(300, 120, 1),
+    lambda: scenes.wall_texture((300, 120), 1),
     scenes.portrait,
     scenes.page_texture,
     scenes.facade_texture,
@@ -43,11 +43,11 @@ def test_cached_textures_are_read_only(make):
 
 def test_wall_texture_cannot_be_corrupted_by_a_caller():
     """It is cached: before, an edit by one caller changed every later render of the room."""
-    a = scenes.wall_texture(300, 120, 1)
+    a = scenes.wall_texture((300, 120), 1)
     before = a.copy()
     with pytest.raises(ValueError):
         a[:10] = 0.0
-    np.testing.assert_array_equal(scenes.wall_texture(300, 120, 1), before)
+    np.testing.assert_array_equal(scenes.wall_texture((300, 120), 1), before)
     assert a.dtype == np.float32 and a.min() >= 0 and a.max() <= 1
 
 
@@ -94,3 +94,13 @@ def test_the_lessons_scenes_have_the_documented_geometry():
     rails = scenes.rail_track(0.0, 10.0)
     assert rails.shape == (4 + 10, 2, 3)
     np.testing.assert_array_equal(rails[:4, 1] - rails[:4, 0], [[0, 10, 0]] * 4)  # the rails run along +y
+
+
+@pytest.mark.parametrize("make, size", [(scenes.page_texture, (210, 297)), (scenes.facade_texture, (240, 180)),
+                                        (scenes.wall_texture, (300, 120)), (scenes.house_picture, (80, 60))])
+def test_textures_take_one_size_width_then_height(make, size):
+    """docs/conventions.md: a size is (width, height) and no function takes them as two arguments."""
+    assert make(size).shape[:2] == size[::-1]
+    with pytest.raises(ValueError, match=r"size: expected \(width, height\) as whole numbers of pixels"):
+        make((size[0] + 0.7, size[1]))
+    assert scenes.desk_background((60, 80)).shape == (60, 80, 3)  # a shape is (height, width)

@@ -328,7 +328,7 @@ def ransac_outliers() -> Demo:
 @register(lesson="07", sweep={"scale": [0.6, 1.5, 2.8], "angle": [0.0, 25.0]})
 def forward_vs_inverse() -> Demo:
     """Forward mapping leaves holes where H magnifies; inverse mapping never does."""
-    pic = scenes.house_picture(80, 60)
+    pic = scenes.house_picture((80, 60))
     out_hw = (180, 240)
     view = FigureView(figsize=(9, 3.6))
     ax_f, ax_i = view.fig.subplots(1, 2)

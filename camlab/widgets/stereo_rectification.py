@@ -140,8 +140,8 @@ def epipolar_lines() -> Demo:
     """
     view = FigureView(figsize=(9.4, 3.9))
     axl, axr = view.fig.subplots(1, 2)
-    image_axes(axl, *SIZE, "left image: click a point")
-    image_axes(axr, *SIZE, "right image: its epipolar line")
+    image_axes(axl, SIZE, "left image: click a point")
+    image_axes(axr, SIZE, "right image: its epipolar line")
     segs = scenes.plane_outlines(stereo_scene())
     wl, = axl.plot([], [], color="0.55", lw=0.8)
     wr, = axr.plot([], [], color="0.55", lw=0.8)
