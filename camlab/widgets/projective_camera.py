@@ -12,15 +12,11 @@ import ipywidgets as W
 import numpy as np
 
 from .. import camera as cm
+from .. import scenes
 from ..plotting import scene3d
 from ._base import FigureView, build_demo, register, slider
 
 TARGET = np.array([0.0, 0.0, 0.7])
-
-
-def house_scene() -> np.ndarray:
-    """The lesson's wireframe world: a house on a 4 m x 4 m ground grid, (M, 2, 3) metres."""
-    return np.concatenate([cm.house_wireframe(), cm.ground_grid(2.0, 0.5)])
 
 
 def orbit_eye(azimuth_deg: float, elevation_deg: float, distance: float, target=TARGET) -> np.ndarray:
@@ -43,7 +39,7 @@ def camera_explorer():
     the centre C = -R^T t (the camera in world coordinates): two different vectors.
     """
     view = FigureView(figsize=(9, 4.2))
-    scene = house_scene()
+    scene = scenes.house_scene()
     cam0 = cm.Camera.look_at(orbit_eye(-60, 25, 5.0), TARGET)
     sv = scene3d.SceneView(view.fig, cam0, scene, plane_size=1.5)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time

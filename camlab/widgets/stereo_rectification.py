@@ -15,7 +15,9 @@ import numpy as np
 from .. import disparity as dp
 from .. import epipolar as ep
 from .. import rectification as rc
+from .. import scenes
 from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
+from ..data.stereo import stereo_scene
 from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import monospace
@@ -24,21 +26,6 @@ SIZE = (640, 480)
 
 
 # --------------------------------------------------------------------------- shared data
-
-@lru_cache(maxsize=1)
-def _scene_segments() -> np.ndarray:
-    """(M, 2, 3) world segments outlining the rig's scene: plane rectangles and box faces."""
-    from ..data.stereo import stereo_scene
-
-    segs = []
-    planes = []
-    for item in stereo_scene():
-        planes += item if isinstance(item, list) else [item]
-    for p in planes:
-        c = p.corners_world
-        segs += [(c[i], c[(i + 1) % 4]) for i in range(4)]
-    return np.array(segs)
-
 
 def rig_pair(baseline: float, toe_in: float, height: float = 0.0) -> tuple[Camera, Camera]:
     """Two cameras ``baseline`` metres apart along world x, each turned ``toe_in / 2`` radians
@@ -158,7 +145,7 @@ def epipolar_lines() -> Demo:
     axl, axr = view.fig.subplots(1, 2)
     image_axes(axl, *SIZE, "left image: click a point")
     image_axes(axr, *SIZE, "right image: its epipolar line")
-    segs = _scene_segments()
+    segs = scenes.plane_outlines(stereo_scene())
     wl, = axl.plot([], [], color="0.55", lw=0.8)
     wr, = axr.plot([], [], color="0.55", lw=0.8)
     pencil_l, = axl.plot([], [], color="tab:blue", lw=0.6, alpha=0.5)
