@@ -20,7 +20,7 @@ from ..projective import cross_ratio, map_points, splits_at_infinity
 from ..warp import forward_warp, warp_perspective
 from ..robust import required_iterations
 from ._base import Demo, FigureView, build_demo, register, slider
-from .controls import connect_corner_drag, corner_text, format_corners, monospace, on_top, parse_corners
+from .controls import connect_corner_drag, corner_keys, corner_text, format_corners, monospace, on_top, parse_corners
 
 
 def _warning(view: FigureView, ax: Any, x: float = 0.02, y: float = 0.02, ha: str = "left",
@@ -128,6 +128,7 @@ def transformation_hierarchy() -> Demo:
 # ----------------------------------------------------------------------------- drag corners
 
 SQUARE = np.array([[0.0, 0.0], [159.0, 0.0], [159.0, 119.0], [0.0, 119.0]])
+CORNER_NAMES = ("top left", "top right", "bottom right", "bottom left")  # of the source picture, SQUARE's order
 _DRAG_START = np.array([[40.0, 30.0], [250.0, 60.0], [230.0, 200.0], [60.0, 230.0]])
 
 
@@ -135,10 +136,11 @@ _DRAG_START = np.array([[40.0, 30.0], [250.0, 60.0], [230.0, 200.0], [60.0, 230.
     format_corners(_DRAG_START),
     "20.0, 20.0; 280.0, 20.0; 280.0, 230.0; 20.0, 230.0",
     "100.0, 40.0; 200.0, 40.0; 280.0, 230.0; 20.0, 230.0",
-]})
+], "corner": [0, 2], "corner_u": [10.0, 290.0], "corner_v": [10.0, 250.0]})
 def drag_homography() -> Demo:
     """Drag the four target corners: lines stay lines and the cross-ratio stays fixed,
-    while lengths, angles and ratios of lengths change."""
+    while lengths, angles and ratios of lengths change. Without a mouse, pick a corner and
+    move it with its two sliders (or type the corners)."""
     pic = scenes.house_picture()
     ph, pw = pic.shape[:2]
     out_hw = (260, 300)
@@ -147,7 +149,7 @@ def drag_homography() -> Demo:
     ax_s.imshow(pic)
     ax_s.set_title("source picture", fontsize=10, pad=3)
     ax_t.set(xlim=(-0.5, out_hw[1] - 0.5), ylim=(out_hw[0] - 0.5, -0.5), aspect="equal")
-    ax_t.set_title("drag the orange corners", fontsize=10, pad=3)
+    ax_t.set_title("drag a corner, or use the sliders", fontsize=10, pad=3)
     # Four collinear points on the picture's diagonal; a line; a right angle at corner 0.
     line_pts = np.array([[10.0, 10.0], [50.0, 40.0], [90.0, 70.0], [150.0, 115.0]])
     ax_s.plot(line_pts[:, 0], line_pts[:, 1], "o-", color="tab:green", ms=5, lw=1.5)
@@ -157,10 +159,12 @@ def drag_homography() -> Demo:
     mapped_line = view.animate(ax_t.plot([], [], "o-", color="tab:green", ms=5, lw=1.5)[0])
     quad = view.animate(ax_t.plot([], [], "-", color="tab:orange", lw=1)[0])
     handles = view.animate(ax_t.plot([], [], "o", color="tab:orange", ms=10, mec="k")[0])
+    chosen = view.animate(ax_t.plot([], [], "o", ms=17, mfc="none", mec="k", mew=2)[0])  # the corner the keys move
     on_top(view, ax_t)
     warning = _warning(view, ax_t)
     readout = W.HTML()
     control = corner_text(format_corners(_DRAG_START), "corners (u, v; ...)")
+    keys = corner_keys(control, CORNER_NAMES, out_hw[1] - 1, out_hw[0] - 1)
     current = {"corners": _DRAG_START.copy()}
 
     def update(v: dict, state: dict) -> None:
@@ -181,12 +185,13 @@ def drag_homography() -> Demo:
         closed = np.vstack([corners, corners[:1]])
         quad.set_data(closed[:, 0], closed[:, 1])
         handles.set_data(corners[:, 0], corners[:, 1])
+        chosen.set_data(corners[v["corner"], :1], corners[v["corner"], 1:])
         cr0, cr1 = cross_ratio(line_pts), cross_ratio(m)
         ratio0 = np.linalg.norm(line_pts[1] - line_pts[0]) / np.linalg.norm(line_pts[3] - line_pts[2])
         ratio1 = np.linalg.norm(m[1] - m[0]) / np.linalg.norm(m[3] - m[2])
         e1, e2 = corners[1] - corners[0], corners[3] - corners[0]
         angle = np.degrees(np.arccos(np.clip(e1 @ e2 / np.linalg.norm(e1) / np.linalg.norm(e2), -1, 1)))
-        state.update(H=H, error=None, torn=torn, cross_ratio_source=cr0, cross_ratio_image=cr1, length_ratio_source=ratio0,
+        state.update(H=H, error=None, torn=torn, corner=v["corner"], cross_ratio_source=cr0, cross_ratio_image=cr1, length_ratio_source=ratio0,
                      length_ratio_image=ratio1, corner_angle=angle, corners=corners)
         readout.value = monospace(
             f"                 source   image\n"
@@ -195,8 +200,8 @@ def drag_homography() -> Demo:
             f"corner angle     {90:7.1f}  {angle:7.1f}°  (changes)\n"
             "H =\n" + np.array2string(H, precision=4, suppress_small=True))
 
-    demo = build_demo("drag_homography", {"corners": control}, view, update,
-                      title="A homography from four corners", extra=[readout])
+    demo = build_demo("drag_homography", {"corners": control, "corner": keys.pop("corner")}, view, update,
+                      title="A homography from four corners", extra=[readout], linked=keys)
     demo.handlers.update(connect_corner_drag(view, ax_t, control, lambda: current["corners"]))
     return demo
 
