@@ -4,7 +4,7 @@ from __future__ import annotations
 import ipywidgets as W
 import numpy as np
 
-from .. import pinhole, render, sensor
+from .. import pinhole, render, scenes, sensor
 from ..plotting import images, optics
 from matplotlib.ticker import MaxNLocator
 
@@ -12,23 +12,12 @@ from ._base import FigureView, build_demo, register, slider
 
 SIZE = (320, 240)
 PITCH = 36e-3 / SIZE[0]  # a 36 mm wide sensor with 320 pixels: 112.5 um pixels
-BOX_SIZE = (0.3, 0.3, 0.3)
 DRAW_SCALE = 10.0  # the 3-D view draws the image planes up to 10x further from the pinhole than f...
 PLANE_ROOM = 0.45  # ...but never beyond 45 % of the way to the box's nearest corner
 
 
-def _box_scene(distance: float):
-    return [render.box([0.0, 0.0, distance], BOX_SIZE, R=render.rotation_from_euler(0.35, 0.6, 0.0), rng=0),
-            render.textured_plane(np.full((4, 4), 0.35), 3.0 * distance, t=(0, 0, 3.0 * distance), name="wall")]
-
-
 def _rotated_box_edges(distance: float) -> np.ndarray:
-    faces = _box_scene(distance)[0]
-    edges = []
-    for f in faces:
-        c = f.world_points  # the 4 face corners
-        edges += [[c[i], c[(i + 1) % 4]] for i in range(4)]
-    return np.array(edges)
+    return scenes.plane_outlines(scenes.box_before_wall(distance)[0])
 
 
 @register(lesson="01", sweep={"focal_mm": [20, 50, 90], "distance": [1.0, 2.0, 3.5], "real_plane": [True, False]})
@@ -75,7 +64,7 @@ def pinhole_projection():
         optics.update_pinhole_3d(art, e, f_draw)
         ax3.set_title(f"pinhole at 0; both image planes drawn {f_draw / f:.1f} f from it", fontsize=9)
         K = sensor.intrinsics_from_sensor(f, (PITCH, PITCH), SIZE)
-        img = render.render(_box_scene(Z), K, SIZE).irradiance
+        img = render.render(scenes.box_before_wall(Z), K, SIZE).irradiance
         u = K[0, 0] * corners[:, 0] / corners[:, 2] + K[0, 2]  # the corners' columns, x = f X / Z in pixels
         v_bar = 0.92 * SIZE[1]
         if values["real_plane"]:
