@@ -66,7 +66,7 @@ STEREO_PARAMS = {
 }
 
 
-def _facing(normal_towards: str = "-y") -> np.ndarray:
+def _facing() -> np.ndarray:
     """world_from_plane rotation for a plane whose texture is upright seen from -y (the cameras)."""
     return np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])
 
