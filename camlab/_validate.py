@@ -118,6 +118,67 @@ def as_points(
     return Points(a, single)
 
 
+class PointPairs(NamedTuple):
+    """Matched points: row i of ``first`` corresponds to row i of ``second``.
+
+    Attributes
+    ----------
+    first : (N, D1) float64 ndarray
+        The first set, e.g. source pixels or world points.
+    second : (N, D2) float64 ndarray
+        The matching points.
+    single : bool
+        Both were passed as one point each (``(D1,)`` and ``(D2,)``): results should drop the batch axis.
+    """
+
+    first: np.ndarray
+    second: np.ndarray
+    single: bool
+
+
+def as_point_pairs(
+    a: ArrayLike,
+    b: ArrayLike,
+    names: tuple[str, str] = ("x1", "x2"),
+    dims: tuple[int, int] = (2, 2),
+    *,
+    min_count: int = 1,
+    why: str = "",
+    finite: bool = True,
+) -> PointPairs:
+    """Validate corresponding points ``a`` (N, dims[0]) and ``b`` (N, dims[1]), one pair per row.
+
+    The one pair check of camlab (homographies, F, rectification, camera resectioning).
+    ``names`` are the arguments' names for the messages; ``why`` says why ``min_count``
+    pairs are needed (degrees of freedom); ``finite=False`` lets NaN through (callers
+    that drop non-finite pairs themselves).
+
+    Examples
+    --------
+    >>> as_point_pairs([[0, 0], [1, 2]], [[3, 4]], ("src", "dst"))
+    Traceback (most recent call last):
+    ...
+    camlab._validate.CamlabInputError: src, dst: expected the same number of points (row i of src pairs with row i of dst), got 2 and 1; pass matched pairs
+    """
+    n1, n2 = names
+    p1 = as_points(a, dims[0], n1, finite=False)
+    p2 = as_points(b, dims[1], n2, finite=False)
+    if len(p1.array) != len(p2.array):
+        raise CamlabInputError(
+            f"{n1}, {n2}: expected the same number of points (row i of {n1} pairs with row i of {n2}), "
+            f"got {len(p1.array)} and {len(p2.array)}; pass matched pairs"
+        )
+    if len(p1.array) < min_count:
+        raise CamlabInputError(
+            f"{n1}: expected (N, {dims[0]}) with N >= {min_count} point pairs, got shape {p1.array.shape}"
+            + (f"; {why}" if why else "")
+        )
+    if finite:
+        check_finite(p1.array, n1)
+        check_finite(p2.array, n2)
+    return PointPairs(p1.array, p2.array, p1.single and p2.single)
+
+
 def check_matrix(x: ArrayLike, shape: tuple[int, ...], name: str, *, finite: bool = True) -> np.ndarray:
     """Return ``x`` as a float array of exactly ``shape`` or raise a clear error.
 

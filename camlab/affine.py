@@ -32,7 +32,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, DegenerateError, as_points, check_matrix, check_positive, check_rotation
+from ._validate import CamlabInputError, DegenerateError, as_point_pairs, as_points, check_matrix, check_positive, check_rotation
 from .camera import Camera, project_points
 
 __all__ = [
@@ -229,15 +229,9 @@ def estimate_affine_camera(points_world: ArrayLike, points_image: ArrayLike) -> 
     DegenerateError
         Coplanar world points (M_2 is then not determined).
     """
-    X = as_points(points_world, 3, "points_world").array
-    uv = as_points(points_image, 2, "points_image").array
-    if len(X) != len(uv):
-        raise CamlabInputError(f"points_world and points_image: expected equally many points, got {len(X)} and {len(uv)}")
-    if len(X) < 4:
-        raise CamlabInputError(
-            f"points_world: expected (N, 3) with N >= 4 correspondences (an affine camera has 8 degrees of "
-            f"freedom, each point gives 2 equations), got {len(X)}; add more points"
-        )
+    X, uv, _ = as_point_pairs(points_world, points_image, ("points_world", "points_image"), (3, 2), min_count=4,
+                              why="an affine camera has 8 degrees of freedom and each point gives 2 equations; "
+                                  "add more points")
     Xm, um = X.mean(axis=0), uv.mean(axis=0)
     Xc, uc = X - Xm, uv - um
     sv = np.linalg.svd(Xc, compute_uv=False)

@@ -36,6 +36,7 @@ from ._validate import (
     CamlabInputError,
     ConvergenceError,
     DegenerateError,
+    as_point_pairs,
     as_points,
     ROTATION_TOL,
     as_float,
@@ -731,12 +732,9 @@ def decompose_projection_matrix(P: ArrayLike) -> Decomposition:
 
 def reprojection_errors(P: ArrayLike, points_world: ArrayLike, points_image: ArrayLike) -> np.ndarray:
     """(N,) distances in pixels between ``points_image`` and the projections of ``points_world`` by P."""
-    uv = as_points(points_image, 2, "points_image").array
-    proj = np.atleast_2d(project_points(P, points_world))
-    if len(proj) != len(uv):
-        raise CamlabInputError(f"points_world and points_image: expected equally many points, "
-                               f"got {len(proj)} and {len(uv)}")
-    return np.linalg.norm(proj - uv, axis=1)
+    X, uv, _ = as_point_pairs(points_world, points_image, ("points_world", "points_image"), (3, 2), finite=False)
+    check_finite(uv, "points_image")
+    return np.linalg.norm(project_points(P, X) - uv, axis=1)
 
 
 def estimate_projection_matrix(
@@ -795,19 +793,8 @@ def estimate_projection_matrix(
         plane only fixes a homography (8 of P's 11 degrees of freedom). Also raised when
         the solution is not unique for another reason.
     """
-    Xp = as_points(points_world, 3, "points_world")
-    up = as_points(points_image, 2, "points_image")
-    X, uv = Xp.array, up.array
-    if len(X) != len(uv):
-        raise CamlabInputError(
-            f"points_world and points_image: expected equally many points, got {len(X)} and {len(uv)}; "
-            f"pair each world point with its pixel"
-        )
-    if len(X) < 6:
-        raise CamlabInputError(
-            f"points_world: expected (N, 3) with N >= 6 correspondences (P has 11 degrees of freedom, each "
-            f"point gives 2 equations), got {len(X)}; add more points"
-        )
+    X, uv, _ = as_point_pairs(points_world, points_image, ("points_world", "points_image"), (3, 2), min_count=6,
+                              why="P has 11 degrees of freedom and each point gives 2 equations; add more points")
     sv = np.linalg.svd(X - X.mean(axis=0), compute_uv=False)
     if sv[2] <= 1e-9 * sv[0]:
         raise DegenerateError(

@@ -31,6 +31,7 @@ from ._validate import (
     CamlabInputError,
     DegenerateError,
     as_float,
+    as_point_pairs,
     as_points,
     check_intrinsics,
     check_matrix,
@@ -67,21 +68,7 @@ def skew(v: ArrayLike) -> np.ndarray:
     return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
 
 
-def point_pairs(x1: ArrayLike, x2: ArrayLike, min_count: int = 1) -> tuple[np.ndarray, np.ndarray, bool]:
-    """Validate matched (N, 2) points ``x1``, ``x2``: returns both as float arrays and whether both were single points."""
-    p1 = as_points(x1, 2, "x1")
-    p2 = as_points(x2, 2, "x2")
-    if len(p1.array) != len(p2.array):
-        raise CamlabInputError(
-            f"x1, x2: expected the same number of corresponding points, got {len(p1.array)} and "
-            f"{len(p2.array)}; pass matched pairs (row i of x1 corresponds to row i of x2)"
-        )
-    if len(p1.array) < min_count:
-        raise CamlabInputError(
-            f"x1: expected (N, 2) with N >= {min_count} point pairs, got shape {p1.array.shape}; "
-            f"the fundamental matrix has 7 degrees of freedom and the linear 8-point algorithm needs 8 pairs"
-        )
-    return p1.array, p2.array, p1.single and p2.single
+EIGHT_POINT_REASON = "the fundamental matrix has 7 degrees of freedom and the linear 8-point algorithm needs 8 pairs"
 
 
 def check_fundamental(F: ArrayLike, name: str = "F") -> np.ndarray:
@@ -298,7 +285,7 @@ def epipolar_distance(F: ArrayLike, x1: ArrayLike, x2: ArrayLike) -> np.ndarray:
     .. math:: d_i = \sqrt{\tfrac12\left(d(x'_i, F x_i)^2 + d(x_i, F^\top x'_i)^2\right)}
     """
     F = check_fundamental(F)
-    a, b, single = point_pairs(x1, x2)
+    a, b, single = as_point_pairs(x1, x2)
     d2 = np.sum(to_homogeneous(b) * epipolar_lines(F, a, 1), axis=1)
     d1 = np.sum(to_homogeneous(a) * epipolar_lines(F, b, 2), axis=1)
     out = np.sqrt(0.5 * (d1 ** 2 + d2 ** 2))
@@ -332,7 +319,7 @@ def sampson_distance(F: ArrayLike, x1: ArrayLike, x2: ArrayLike) -> np.ndarray:
     array([1.41421356])
     """
     F = check_fundamental(F)
-    a, b, single = point_pairs(x1, x2)
+    a, b, single = as_point_pairs(x1, x2)
     out = _sampson_batch(F[None], a, b)[0]
     return out[0] if single else out
 
@@ -416,7 +403,7 @@ def estimate_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, normalize: bool = 
     >>> bool(np.allclose(F, fundamental_from_cameras(cam1, cam2), atol=1e-9))
     True
     """
-    a, b, _ = point_pairs(x1, x2, min_count=8)
+    a, b, _ = as_point_pairs(x1, x2, min_count=8, why=EIGHT_POINT_REASON)
     if normalize:
         an, T1 = hartley_normalize(a)
         bn, T2 = hartley_normalize(b)
@@ -570,7 +557,7 @@ def ransac_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, threshold: float = 1
         Too few inliers: no hypothesis is supported by more pairs than wrong matches would
         support by chance (all matches wrong, or the threshold too small).
     """
-    a, b, _ = point_pairs(x1, x2, min_count=8)
+    a, b, _ = as_point_pairs(x1, x2, min_count=8, why=EIGHT_POINT_REASON)
     fit = ransac(FundamentalModel(a, b), threshold, confidence, max_iters, rng, batch=batch)
     return FundamentalRansacResult(normalize_fundamental(fit.model), fit.inliers, fit.iterations, fit.residuals)
 
@@ -639,7 +626,7 @@ def recover_pose(E: ArrayLike, x1: ArrayLike, x2: ArrayLike, K1: ArrayLike, K2: 
     """
     K1 = check_intrinsics(K1, "K1")
     K2 = K1 if K2 is None else check_intrinsics(K2, "K2")
-    a, b, _ = point_pairs(x1, x2)
+    a, b, _ = as_point_pairs(x1, x2)
     cands = decompose_essential_matrix(E)
     P1 = K1 @ np.eye(3, 4)
     best = None
@@ -735,7 +722,7 @@ def triangulate_points(P1: "Camera | ArrayLike", P2: "Camera | ArrayLike", x1: A
     array([ 0.1,  0.2, -0.1])
     """
     A1, A2 = _as_P(P1, "P1"), _as_P(P2, "P2")
-    a, b, single = point_pairs(x1, x2)
+    a, b, single = as_point_pairs(x1, x2)
     C1, C2 = camera_centre(A1), camera_centre(A2)
     if np.linalg.norm(C1 - C2) <= 1e-9 * max(np.linalg.norm(C1[:3]), np.linalg.norm(C2[:3]), 1e-300):
         raise DegenerateError("P1, P2: both cameras have the same centre (zero baseline), so the rays of "

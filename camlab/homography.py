@@ -36,8 +36,7 @@ from ._validate import (
     ConvergenceError,
     DegenerateError,
     as_float,
-    as_points,
-    check_finite,
+    as_point_pairs,
     check_intrinsics,
     check_matrix,
     check_number,
@@ -63,21 +62,10 @@ _RANK_TOL = 1e-10       # second-smallest singular value of the DLT system relat
 # --------------------------------------------------------------------------- validation
 
 def _pairs(src: ArrayLike, dst: ArrayLike, min_count: int = 4) -> tuple[np.ndarray, np.ndarray]:
-    """Validate two (N, 2) arrays of corresponding points."""
-    s = as_points(src, 2, "src", finite=False).array
-    d = as_points(dst, 2, "dst", finite=False).array
-    if len(s) != len(d):
-        raise CamlabInputError(
-            f"src, dst: expected the same number of points (one pair per row), got {len(s)} and {len(d)}"
-        )
-    if len(s) < min_count:
-        raise CamlabInputError(
-            f"src: expected (N, 2) with N >= {min_count} point pairs, got shape {s.shape}; "
-            f"a homography has 8 degrees of freedom and each pair fixes 2"
-        )
-    check_finite(s, "src")
-    check_finite(d, "dst")
-    return s, d
+    """Validate two (N, 2) arrays of corresponding points (:func:`camlab._validate.as_point_pairs`)."""
+    pairs = as_point_pairs(src, dst, ("src", "dst"), min_count=min_count,
+                           why="a homography has 8 degrees of freedom and each pair fixes 2")
+    return pairs.first, pairs.second
 
 
 def check_homography(H: ArrayLike, name: str = "H") -> np.ndarray:

@@ -283,19 +283,19 @@ class Rectified(NamedTuple):
     aspect: AspectRatio | None
 
 
-def rectangle_homography(corners: ArrayLike, width: int, height: int) -> np.ndarray:
-    """The homography taking corners TL, TR, BR, BL to the upright width x height rectangle.
+def rectangle_homography(corners: ArrayLike, size: tuple[int, int]) -> np.ndarray:
+    """The homography taking corners TL, TR, BR, BL to the upright rectangle of ``size`` (width, height) pixels.
 
     The target corners are the centres of the rectangle's corner pixels:
     (0, 0), (width - 1, 0), (width - 1, height - 1), (0, height - 1).
 
-    >>> H = rectangle_homography([[10, 10], [110, 10], [110, 60], [10, 60]], 101, 51)
+    >>> H = rectangle_homography([[10, 10], [110, 10], [110, 60], [10, 60]], (101, 51))
     >>> from camlab.projective import map_points
     >>> map_points(H, [110.0, 60.0]).round(9) + 0.0
     array([100.,  50.])
     """
     q = _quad(corners)
-    width, height = check_size((width, height), "width, height", minimum=2)
+    width, height = check_size(size, "size", minimum=2)
     target = np.array([[0, 0], [width - 1, 0], [width - 1, height - 1], [0, height - 1]], dtype=float)
     return estimate_homography(q, target)
 
@@ -356,7 +356,7 @@ def rectify_quadrilateral(
         w_out, h_out = check_size(size, "size", minimum=2)
     if w_out < 2 or h_out < 2 or w_out * h_out > 40_000_000:
         raise CamlabInputError(f"size: expected a (width, height) of at least 2 x 2 pixels, got ({w_out}, {h_out})")
-    H = rectangle_homography(q, w_out, h_out)
+    H = rectangle_homography(q, (w_out, h_out))
     out = warp_perspective(img, H, (h_out, w_out), interpolation=interpolation, method=method)
     return Rectified(out, H, q, aspect)
 

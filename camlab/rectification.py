@@ -32,10 +32,10 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, DegenerateError, as_points, check_size
+from ._validate import CamlabInputError, DegenerateError, as_point_pairs, as_points, check_size
 from .camera import Camera, intrinsic_matrix
 from .distortion import DistortionMaps, distort_points, undistort_pixels
-from .epipolar import check_fundamental, epipoles, point_pairs, sampson_distance, skew
+from .epipolar import EIGHT_POINT_REASON, check_fundamental, epipoles, sampson_distance, skew
 from .homography import compose
 from .projective import map_points
 
@@ -80,10 +80,7 @@ def vertical_disparity(x1: ArrayLike, x2: ArrayLike) -> VerticalDisparity:
 
 
 def _finite_pairs(x1: ArrayLike, x2: ArrayLike):
-    p1 = as_points(x1, 2, "x1", finite=False).array
-    p2 = as_points(x2, 2, "x2", finite=False).array
-    if len(p1) != len(p2):
-        raise CamlabInputError(f"x1, x2: expected the same number of points, got {len(p1)} and {len(p2)}")
+    p1, p2, _ = as_point_pairs(x1, x2, finite=False)
     ok = np.all(np.isfinite(p1), axis=1) & np.all(np.isfinite(p2), axis=1)
     return p1[ok], p2[ok]
 
@@ -467,7 +464,7 @@ def rectify_uncalibrated(x1: ArrayLike, x2: ArrayLike, F: ArrayLike, image_size:
         infinity without tearing the image; use a polar rectification instead.
     """
     F = check_fundamental(F)
-    a, b, _ = point_pairs(x1, x2, min_count=8)
+    a, b, _ = as_point_pairs(x1, x2, min_count=8, why=EIGHT_POINT_REASON)
     w, h = check_size(image_size, "image_size")
     fits = sampson_distance(F, a, b) < _FIT_PX
     if fits.mean() < 0.5:  # the row alignment below is a least-squares fit to these pairs

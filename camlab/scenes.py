@@ -6,13 +6,17 @@ data generators (:mod:`camlab.data`) build the same scenes:
 - **textures** (read-only arrays, cached where they are pure functions of their
   arguments): :func:`as_texture`, :func:`portrait` (the one bundled sample photograph),
   :func:`page_texture`, :func:`facade_texture`, :func:`painting_texture`,
-  :func:`desk_background`, :func:`wall_texture` (panoramas), :func:`noise_texture` (stereo);
+  :func:`desk_background`, :func:`wall_texture` (panoramas), :func:`noise_texture` (stereo),
+  and one fresh uint8 picture to warp, :func:`house_picture` (lesson 07);
 - **planes for** :func:`camlab.render.render`: :class:`Plane`, :func:`textured_plane`,
   :func:`checkerboard`, :func:`photo_plane`, :func:`text_page`, :func:`box`;
 - **plane photos** made by one homography (lesson 10): :func:`photograph_plane`,
   :func:`sample_photo`;
 - **wireframes** (M, 2, 3) segments (lessons 04-05): :func:`box_wireframe`,
-  :func:`house_wireframe`, :func:`ground_grid`.
+  :func:`house_wireframe`, :func:`ground_grid`, :func:`plane_outlines`;
+- **the lessons' scenes**, built once here for the lesson and its demos: :func:`box_before_wall`
+  (01), :func:`depth_of_field_scene` (02), :func:`photo_and_page` (03), :func:`house_scene` (04),
+  :func:`box_and_rails`, :func:`rail_track` (05).
 
 Conventions (docs/conventions.md): metres; a plane's frame has x along texture columns,
 y along texture rows, z = x cross y; poses say their direction (``world_from_plane``).
@@ -27,16 +31,17 @@ from typing import NamedTuple, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, check_matrix, check_pose, check_positive, check_rotation
+from ._validate import CamlabInputError, check_matrix, check_pose, check_positive, check_rotation, check_shape, check_size
 from .homography import pose_homography
 from .projective import map_points
 from .warp import warp_perspective
 
 __all__ = [
-    "Plane", "PlanePhoto", "as_texture", "box", "box_wireframe", "checkerboard", "desk_background",
-    "facade_texture", "ground_grid", "house_wireframe", "look_at_plane", "noise_texture", "page_texture",
-    "painting_texture", "photo_plane", "photograph_plane", "portrait", "sample_photo", "text_page",
-    "textured_plane", "wall_texture",
+    "Plane", "PlanePhoto", "as_texture", "box", "box_and_rails", "box_before_wall", "box_wireframe", "checkerboard",
+    "depth_of_field_scene", "desk_background", "facade_texture", "ground_grid", "house_picture", "house_scene", "house_wireframe",
+    "look_at_plane", "noise_texture", "page_texture", "painting_texture", "photo_and_page", "photo_plane",
+    "photograph_plane", "plane_outlines", "portrait", "rail_track", "sample_photo", "text_page", "textured_plane",
+    "wall_texture",
 ]
 
 
@@ -96,13 +101,17 @@ def _text_texture(width_px: int, seed: int) -> np.ndarray:
     return as_texture(grey)
 
 
-@lru_cache(maxsize=8)
-def page_texture(width: int = 420, height: int = 594, seed: int = 0) -> np.ndarray:
+def page_texture(size: tuple[int, int] = (420, 594), seed: int = 0) -> np.ndarray:
     """A printed page (A4 proportions, 1 : sqrt 2): title, paragraphs of text, a figure box.
 
-    Returns an (height, width, 3) uint8 RGB image drawn with ``cv2.putText`` (cached and
-    read-only, like the other textures).
+    ``size`` is (width, height) in pixels. Returns a (height, width, 3) uint8 RGB image
+    drawn with ``cv2.putText`` (cached and read-only, like the other textures).
     """
+    return _page_texture(*check_size(size), int(seed))
+
+
+@lru_cache(maxsize=8)
+def _page_texture(width: int, height: int, seed: int) -> np.ndarray:
     import cv2
 
     rng = np.random.default_rng(seed)
@@ -130,9 +139,17 @@ def page_texture(width: int = 420, height: int = 594, seed: int = 0) -> np.ndarr
     return page
 
 
+def facade_texture(size: tuple[int, int] = (480, 360), floors: int = 4, bays: int = 6) -> np.ndarray:
+    """A building facade: brick-coloured wall, a grid of ``floors`` x ``bays`` windows, a door.
+
+    ``size`` is (width, height) in pixels; returns a (height, width, 3) uint8 RGB image,
+    cached and read-only.
+    """
+    return _facade_texture(*check_size(size), int(floors), int(bays))
+
+
 @lru_cache(maxsize=8)
-def facade_texture(width: int = 480, height: int = 360, floors: int = 4, bays: int = 6) -> np.ndarray:
-    """A building facade: brick-coloured wall, a grid of windows, a door. (h, w, 3) uint8."""
+def _facade_texture(width: int, height: int, floors: int, bays: int) -> np.ndarray:
     import cv2
 
     wall = np.empty((height, width, 3), np.uint8)
@@ -172,13 +189,16 @@ def painting_texture(width: int = 400) -> np.ndarray:
     return frame
 
 
-@lru_cache(maxsize=4)
 def desk_background(shape: tuple[int, int] = (480, 640), seed: int = 0) -> np.ndarray:
     """A dark wooden-desk background, (height, width, 3) uint8 for ``shape`` = (height, width).
 
     Cached and read-only: demos re-photograph on every slider move.
     """
-    h, w = (int(v) for v in shape)
+    return _desk_background(*check_shape(shape), int(seed))
+
+
+@lru_cache(maxsize=4)
+def _desk_background(h: int, w: int, seed: int) -> np.ndarray:
     rng = np.random.default_rng(seed)
     yy, xx = np.mgrid[0:h, 0:w]
     base = 70 + 25 * np.sin(xx / 37.0) * np.cos(yy / 53.0) + rng.normal(0, 4, (h, w))
@@ -187,14 +207,19 @@ def desk_background(shape: tuple[int, int] = (480, 640), seed: int = 0) -> np.nd
     return bg
 
 
-@lru_cache(maxsize=2)
-def wall_texture(width: int = 2100, height: int = 800, seed: int = 909) -> np.ndarray:
+def wall_texture(size: tuple[int, int] = (2100, 800), seed: int = 909) -> np.ndarray:
     """A feature-rich, non-repeating RGB texture (float32 in [0, 1], read-only): soft colour fields and posters.
 
-    Made with a seeded generator, so it is the same every time: smooth multi-scale colour
-    noise, then a few hundred random rectangles, discs, triangles and strokes in random
-    colours (corners and blobs for the feature detector at every scale).
+    ``size`` is (width, height) in pixels; the result is (height, width, 3). Made with a
+    seeded generator, so it is the same every time: smooth multi-scale colour noise, then a
+    few hundred random rectangles, discs, triangles and strokes in random colours (corners
+    and blobs for the feature detector at every scale).
     """
+    return _wall_texture(*check_size(size), int(seed))
+
+
+@lru_cache(maxsize=2)
+def _wall_texture(width: int, height: int, seed: int) -> np.ndarray:
     import cv2
 
     rng = np.random.default_rng(seed)
@@ -225,6 +250,30 @@ def wall_texture(width: int = 2100, height: int = 800, seed: int = 909) -> np.nd
     tex = np.clip(tex, 0.0, 1.0)
     tex.setflags(write=False)  # cached: a caller's edit must not change later renders
     return tex
+
+
+def house_picture(size: tuple[int, int] = (160, 120)) -> np.ndarray:
+    """A small test picture (lesson 07): a checkerboard with a house, a sun and a frame.
+
+    ``size`` is (width, height) in pixels; returns a (height, width, 3) uint8 RGB image,
+    a new writable array each call. Drawn for 160 x 120 and scaled with the width.
+    """
+    import cv2
+
+    width, height = check_size(size)
+
+    v, u = np.mgrid[0:height, 0:width]
+    check = ((u // 20 + v // 20) % 2).astype(np.float32)
+    img = np.empty((height, width, 3), np.uint8)
+    img[:] = (225, 235, 245)
+    img[check > 0] = (200, 215, 235)
+    s = width / 160
+    base = np.array([[40, 110], [40, 65], [80, 35], [120, 65], [120, 110]]) * s
+    cv2.fillPoly(img, [base.astype(np.int32)], (200, 80, 60))
+    cv2.rectangle(img, (int(70 * s), int(80 * s)), (int(90 * s), int(110 * s)), (90, 60, 40), -1)
+    cv2.circle(img, (int(135 * s), int(22 * s)), int(12 * s), (240, 190, 40), -1)
+    cv2.rectangle(img, (1, 1), (width - 2, height - 2), (30, 60, 140), 2)
+    return img
 
 
 def noise_texture(shape: tuple[int, int], seed: int, base: float = 0.5) -> np.ndarray:
@@ -577,3 +626,79 @@ def ground_grid(extent: float = 2.0, step: float = 0.5, z: float = 0.0) -> np.nd
     ticks = np.arange(-e, e + 1e-9, st)
     segs = [[[x, -e, z], [x, e, z]] for x in ticks] + [[[-e, y, z], [e, y, z]] for y in ticks]
     return np.array(segs, dtype=float)
+
+
+def plane_outlines(planes: Sequence[Plane | Sequence[Plane]]) -> np.ndarray:
+    """The four edges of every plane's rectangle as (4 M, 2, 3) segments, metres.
+
+    ``planes`` may nest lists (a :func:`box` is a list of six faces), like a scene for
+    :func:`camlab.render.render`. Edges run top-left, top-right, bottom-right, bottom-left.
+    """
+    segments = []
+    for item in planes:
+        for plane in (item if isinstance(item, (list, tuple)) else [item]):
+            c = plane.corners_world
+            segments += [(c[i], c[(i + 1) % 4]) for i in range(4)]
+    return np.array(segments, dtype=float).reshape(-1, 2, 3)
+
+
+# --------------------------------------------------------------------------- the lessons' scenes
+
+def box_before_wall(distance: float) -> list:
+    """Lesson 01: a turned 0.3 m box ``distance`` metres in front of the pinhole and a wall 3x further.
+
+    Returns ``[faces, wall]``: the box's six faces (a list of :class:`Plane`) and a flat grey
+    wall (a :class:`Plane`) 3 ``distance`` wide at z = 3 ``distance``, a scene for
+    :func:`camlab.render.render`. :func:`plane_outlines` of ``faces`` gives the (24, 2, 3)
+    box edges the 3-D view draws.
+    """
+    from .camera import rotation_from_euler  # camera imports this module
+
+    d = check_positive(distance, "distance", "metres")
+    return [box([0.0, 0.0, d], (0.3, 0.3, 0.3), R=rotation_from_euler(0.35, 0.6, 0.0), rng=0),
+            textured_plane(np.full((4, 4), 0.35), 3.0 * d, t=(0, 0, 3.0 * d), name="wall")]
+
+
+def depth_of_field_scene() -> list[Plane]:
+    """Lesson 02: four planes at 0.6, 1.2, 2.4 and 4 m (near board, text page, far board, portrait wall).
+
+    Seen by a camera at the origin looking along +z; a list of :class:`Plane` for
+    :func:`camlab.render.render`, named ``"near"``, ``"page"``, ``"far"``, ``"wall"``.
+    """
+    return [checkerboard((5, 4), 0.04, t=(-0.33, -0.02, 0.6), name="near", px_per_square=32),
+            text_page(0.3, t=(0.0, -0.02, 1.2)),
+            checkerboard((7, 5), 0.12, t=(0.1, -0.55, 2.4), name="far", px_per_square=32),
+            textured_plane(portrait(), 3.2, t=(0, 0, 4.0), name="wall")]
+
+
+def photo_and_page() -> list[Plane]:
+    """Lesson 03: a colour photograph 1 m ahead and a slightly turned text page beside it, at 1.1 m.
+
+    A list of two :class:`Plane` (``"photo"``, ``"page"``) for :func:`camlab.render.render`,
+    framed by a camera at the origin looking along +z with f = 900 px on 320 x 240 pixels.
+    """
+    from .camera import rotation_from_euler  # camera imports this module
+
+    return [photo_plane(0.3, t=(0.05, 0.02, 1.0)),
+            text_page(0.2, t=(-0.2, 0.0, 1.1), R=rotation_from_euler(0, 0.2, 0.05))]
+
+
+def house_scene() -> np.ndarray:
+    """Lesson 04: a house on a 4 m x 4 m ground grid (z = 0), as (M, 2, 3) segments, metres."""
+    return np.concatenate([house_wireframe(), ground_grid(2.0, 0.5)])
+
+
+def box_and_rails() -> np.ndarray:
+    """Lesson 05: a 1 m cube on four long parallel rails along x, as (M, 2, 3) segments, metres."""
+    rails = np.array([[[-3.0, y, 0.0], [3.0, y, 0.0]] for y in (-0.8, -0.6, 0.6, 0.8)])
+    return np.concatenate([box_wireframe((0.0, 0.0, 0.5), (1.0, 1.0, 1.0)), rails])
+
+
+def rail_track(start: float = -3.0, end: float = 40.0) -> np.ndarray:
+    """Lesson 05: four parallel rails along +y and a sleeper every metre on the ground, (M, 2, 3) metres.
+
+    The rails run from y = ``start`` to ``end`` metres at x = -1.5, -0.5, 0.5, 1.5 m.
+    """
+    rails = np.array([[[x, start, 0.0], [x, end, 0.0]] for x in (-1.5, -0.5, 0.5, 1.5)])
+    sleepers = np.array([[[-1.7, y, 0.0], [1.7, y, 0.0]] for y in np.arange(start, end, 1.0)])
+    return np.concatenate([rails, sleepers])

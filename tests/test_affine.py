@@ -131,12 +131,12 @@ def test_estimate_affine_is_least_squares(rng):
 
 def test_estimate_affine_bad_input(rng):
     X = rng.uniform(-1, 1, (3, 3))
-    with pytest.raises(CamlabInputError, match=r"N >= 4 correspondences"):
+    with pytest.raises(CamlabInputError, match=r"points_world: expected \(N, 3\) with N >= 4 point pairs, got shape \(3, 3\); an affine camera"):
         af.estimate_affine_camera(X, X[:, :2])
     plane = np.column_stack([rng.uniform(-1, 1, (8, 2)), np.ones(8)])
     with pytest.raises(DegenerateError, match="coplanar"):
         af.estimate_affine_camera(plane, plane[:, :2])
-    with pytest.raises(CamlabInputError, match="equally many points, got 8 and 7"):
+    with pytest.raises(CamlabInputError, match="points_world, points_image: expected the same number of points .*got 8 and 7"):
         af.estimate_affine_camera(rng.uniform(-1, 1, (8, 3)), np.zeros((7, 2)))
 
 

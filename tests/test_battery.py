@@ -203,7 +203,7 @@ BASELINES: dict[str, Callable[[dict], dict]] = {
     "perspective.estimate_aspect_ratio": lambda v: {"corners": [[10.0, 10], [200, 20], [210, 150], [5, 160]],
                                                     "image_shape": (240, 320)},
     "perspective.rectangle_homography": lambda v: {"corners": [[10.0, 10], [200, 20], [210, 150], [5, 160]],
-                                                   "width": 100, "height": 80},
+                                                   "size": (100, 80)},
     "perspective.rectify_quadrilateral": lambda v: {"image": IMG, "corners": [[5.0, 5], [70, 6], [72, 50], [4, 55]]},
     "perspective.find_document": lambda v: {"image": _document()},
     "rectification.rectify_calibrated": lambda v: {"camera1": v["cam1"], "camera2": v["cam2"]},

@@ -80,7 +80,7 @@ def test_bad_input_messages():
     c1, c2, X, x1, x2 = _rig()
     with pytest.raises(CamlabInputError, match=r"x1: expected \(N, 2\) with N >= 8 point pairs, got shape \(7, 2\)"):
         ep.estimate_fundamental_matrix(x1[:7], x2[:7])
-    with pytest.raises(CamlabInputError, match="same number of corresponding points"):
+    with pytest.raises(CamlabInputError, match=r"x1, x2: expected the same number of points .*got 120 and 119"):
         ep.estimate_fundamental_matrix(x1, x2[:-1])
     with pytest.raises(CamlabInputError, match="threshold"):
         ep.ransac_fundamental_matrix(x1, x2, threshold=-1)

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from camlab.classroom.lessons import find_lesson, lesson_files
-from camlab.classroom.present import is_demo_cell, presentation_notebook
+from camlab.classroom.present import ACCESSIBILITY_SCRIPT, is_demo_cell, presentation_notebook
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tools"))
 import browser  # noqa: E402
@@ -30,7 +30,8 @@ def test_presentation_keeps_every_demo_in_order_and_silences_the_rest():
         assert show["cells"][0]["source"] == "".join(lesson["cells"][0]["source"]).splitlines()[0]
         for cell in show["cells"]:
             text = "".join(cell["source"])
-            assert cell["cell_type"] == "markdown" or is_demo_cell(cell) or text.startswith("%%capture\n")
+            assert cell["cell_type"] == "markdown" or is_demo_cell(cell) or text.startswith("%%capture\n") \
+                or text == ACCESSIBILITY_SCRIPT
             lines = text.splitlines()
             assert not any(ln.startswith(("check_", "solution(", "    raise NotImplementedError")) for ln in lines), path.stem
     headings = [c["source"] for c in presentation_notebook(_lesson("07"))["cells"] if c["cell_type"] == "markdown"]
@@ -43,19 +44,26 @@ def test_presentation_of_lesson_07_runs_and_shows_only_demos():
 
     nb = nbformat.from_dict(presentation_notebook(_lesson("07")))
     NotebookClient(nb, timeout=300, kernel_name="python3").execute()  # raises if any hidden cell fails
-    shown = [c for c in nb.cells if c.cell_type == "code" and c.outputs]
+    shown = [c for c in nb.cells if c.cell_type == "code" and c.outputs and c.source != ACCESSIBILITY_SCRIPT]
     assert len(shown) == 4 and all(is_demo_cell(c) for c in shown)
     assert all("application/vnd.jupyter.widget-view+json" in c.outputs[0]["data"] for c in shown)
 
 
-@pytest.mark.browser
-def test_camlab_present_serves_demos_without_code_and_a_slider_moves_a_figure(tmp_path):
+AXE = Path(__file__).resolve().parent.parent / "build" / "npm" / "node_modules" / "axe-core" / "axe.min.js"
+AXE_RULES = ["wcag2a", "wcag2aa", "wcag21a", "wcag21aa", "best-practice"]
+DEMOS_07 = ["transformation-hierarchy", "drag-homography", "ransac-outliers", "forward-vs-inverse"]
+
+
+@pytest.fixture(scope="module")
+def lecture(tmp_path_factory):
+    """``camlab present 07`` in Voila, open in headless Chromium once all four demos show."""
     if os.environ.get("CAMLAB_SKIP_BROWSER") == "1":
         pytest.skip("CAMLAB_SKIP_BROWSER=1")
     from playwright.sync_api import sync_playwright
 
     if not Path(browser.CHROMIUM).exists():
         pytest.fail("Debian chromium is not installed: `apt-get install chromium` (make test does this as root)")
+    tmp_path = tmp_path_factory.mktemp("present")
     port = browser.free_port()
     env = dict(os.environ, JUPYTER_CONFIG_DIR=str(tmp_path / "config"), JUPYTER_RUNTIME_DIR=str(tmp_path / "runtime"),
                MPLBACKEND="module://ipympl.backend_nbagg")
@@ -63,7 +71,6 @@ def test_camlab_present_serves_demos_without_code_and_a_slider_moves_a_figure(tm
     log = open(tmp_path / "voila.log", "wb")
     server = subprocess.Popen([sys.executable, "-m", "camlab.cli", "present", "07", f"--port={port}", "--no-browser"],
                               env=env, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
-    url = f"http://127.0.0.1:{port}/"
     try:
         deadline = time.time() + 60
         while True:
@@ -81,17 +88,13 @@ def test_camlab_present_serves_demos_without_code_and_a_slider_moves_a_figure(tm
                 page = context.new_page()
                 page.set_default_timeout(120_000)
                 started = time.time()
-                page.goto(url, wait_until="commit")
-                demo_names = ["transformation-hierarchy", "drag-homography", "ransac-outliers", "forward-vs-inverse"]
-                for name in demo_names:
+                page.goto(f"http://127.0.0.1:{port}/", wait_until="commit")
+                for name in DEMOS_07:
                     page.locator(f".camlab-demo-{name} canvas").first.wait_for(state="visible")
-                load_seconds = time.time() - started
+                print(f"lesson 07 in lecture mode: all 4 demos visible after {time.time() - started:.1f} s")
                 page.wait_for_timeout(2000)
                 page.screenshot(path=str(tmp_path / "present_07.png"))
-                before_png, after_png, before_text, after_text = browser.click_slider(
-                    page, "camlab-demo-transformation-hierarchy", 0.85)  # the rotation slider
-                text = page.locator("body").inner_text()
-                code_cells = page.locator(".jp-InputArea-editor").count()
+                yield dict(page=page, dir=tmp_path)
             finally:
                 context.close()
     finally:
@@ -101,9 +104,72 @@ def test_camlab_present_serves_demos_without_code_and_a_slider_moves_a_figure(tm
         except subprocess.TimeoutExpired:
             os.killpg(server.pid, signal.SIGKILL)
         log.close()
-    print(f"lesson 07 in lecture mode: all 4 demos visible after {load_seconds:.1f} s")
-    assert code_cells == 0 and "import " not in text and "demos." not in text, "code is visible"
+
+
+@pytest.mark.browser
+def test_camlab_present_serves_demos_without_code_and_a_slider_moves_a_figure(lecture):
+    page = lecture["page"]
+    before_png, after_png, before_text, after_text = browser.click_slider(
+        page, "camlab-demo-transformation-hierarchy", 0.85)  # the rotation slider
+    text = page.locator("body").inner_text()
+    assert page.locator(".jp-InputArea-editor").count() == 0 and "import " not in text and "demos." not in text, \
+        "code is visible"
     assert "07 · Estimate and apply homographies" in text and "2. The transformation hierarchy" in text
     assert before_text != after_text, "the slider did not reach the kernel"
     assert before_png != after_png, "the slider moved but the figure did not change"
     assert "Traceback" not in text and "Error" not in text
+
+
+@pytest.mark.browser
+def test_axe_core_finds_no_critical_or_serious_violation_in_the_lecture_view(lecture):
+    assert AXE.is_file(), f"axe-core is missing at {AXE}: run `make site-deps`"
+    page = lecture["page"]
+    page.add_script_tag(path=str(AXE))
+    result = page.evaluate("(rules) => axe.run(document, {runOnly: rules})", AXE_RULES)
+    found = [(v["impact"], v["id"], len(v["nodes"]), v["nodes"][0]["target"]) for v in result["violations"]]
+    print("axe lecture view 07: " + (", ".join(f"{v[1]} ({v[0]}, {v[2]} nodes)" for v in found) or "no violations"))
+    bad = [v for v in found if v[0] in ("critical", "serious")]
+    assert not bad, f"axe-core on the lecture view: {bad}"
+    unnamed = page.evaluate("() => [...document.querySelectorAll('[role=slider]')].filter(h => !h.getAttribute('aria-label')).length")
+    assert unnamed == 0 and page.locator("[role=slider]").count() >= 9
+
+
+FOCUSED = """() => {
+  const e = document.activeElement, s = getComputedStyle(e);
+  const demo = e.closest('[class*="camlab-demo-"]');
+  return {tag: e.tagName + '.' + e.className, label: e.getAttribute('aria-label'), demo: demo ? [...demo.classList].find(c => c.startsWith('camlab-demo-')) : null,
+          outline: s.outlineStyle !== 'none' && parseFloat(s.outlineWidth) > 0, shadow: s.boxShadow !== 'none'};
+}"""
+
+
+@pytest.mark.browser
+def test_keyboard_alone_reaches_a_corner_slider_and_moves_the_figure(lecture):
+    """Tab (only) to drag_homography's "corner u" slider, press arrow keys, and the picture changes."""
+    page, shots = lecture["page"], lecture["dir"]
+    page.evaluate("() => document.activeElement && document.activeElement.blur()")  # Tab from where focus was
+    demo = page.locator(".camlab-demo-drag-homography")
+    target = dict(label="corner u (px, right)", demo="camlab-demo-drag-homography")
+    trail = []
+    for presses in range(1, 301):
+        page.keyboard.press("Tab")
+        focused = page.evaluate(FOCUSED)
+        trail.append(focused)
+        if focused["label"] == target["label"] and focused["demo"] == target["demo"]:
+            break
+    else:
+        pytest.fail("300 presses of Tab never reached drag_homography's 'corner u' slider; focus went to "
+                    + str([f"{f['demo']}: {f['tag']} {f['label']}" for f in trail[:40]]))
+    print(f"Tab pressed {presses} times to reach drag_homography's corner u slider")
+    assert focused["outline"] or focused["shadow"], f"the focused slider shows no focus indicator: {focused}"
+    canvas, readout = demo.locator("canvas").first, demo.locator("pre").first
+    before_png, before_text = canvas.screenshot(), readout.text_content()
+    demo.screenshot(path=str(shots / "keyboard_before.png"))
+    for _ in range(6):
+        page.keyboard.press("PageUp")  # noUiSlider: five steps of 1 px per press
+    page.wait_for_function("(old) => document.querySelector('.camlab-demo-drag-homography pre').textContent !== old",
+                           arg=before_text, polling=250)
+    page.wait_for_timeout(1500)  # let the kernel's new image reach the canvas
+    demo.screenshot(path=str(shots / "keyboard_after.png"))
+    corners = demo.locator("input[type=text]").first.input_value()
+    assert corners.startswith("70.00, 30.00;"), f"corner 0 should have moved from u = 40 to 70: {corners}"
+    assert canvas.screenshot() != before_png, "the keys moved the slider but the figure did not change"

@@ -27,7 +27,7 @@ def test_scenes_do_not_depend_on_the_data_sets():
 
 
 @pytest.mark.parametrize("make", [
-    lambda: scenes.wall_texture(300, 120, 1),
+    lambda: scenes.wall_texture((300, 120), 1),
     scenes.portrait,
     scenes.page_texture,
     scenes.facade_texture,
@@ -43,11 +43,11 @@ def test_cached_textures_are_read_only(make):
 
 def test_wall_texture_cannot_be_corrupted_by_a_caller():
     """It is cached: before, an edit by one caller changed every later render of the room."""
-    a = scenes.wall_texture(300, 120, 1)
+    a = scenes.wall_texture((300, 120), 1)
     before = a.copy()
     with pytest.raises(ValueError):
         a[:10] = 0.0
-    np.testing.assert_array_equal(scenes.wall_texture(300, 120, 1), before)
+    np.testing.assert_array_equal(scenes.wall_texture((300, 120), 1), before)
     assert a.dtype == np.float32 and a.min() >= 0 and a.max() <= 1
 
 
@@ -63,3 +63,44 @@ def test_noise_texture_is_deterministic_and_in_range():
     assert a.shape == (64, 96) and np.array_equal(a, b)
     assert 0 <= a.min() and a.max() <= 1 and a.std() > 0.05
     assert not np.array_equal(a, scenes.noise_texture((64, 96), 4))
+
+
+def test_plane_outlines_of_a_box_are_its_twelve_edges_each_shared_by_two_faces():
+    size = np.array([0.2, 0.3, 0.4])
+    faces = scenes.box((1.0, 2.0, 3.0), size)
+    segs = scenes.plane_outlines([faces])  # nested like a render scene
+    assert segs.shape == (24, 2, 3)
+    assert np.allclose(np.abs(segs - [1.0, 2.0, 3.0]), size / 2)  # every end point is a box corner
+    lengths = np.sort(np.linalg.norm(segs[:, 1] - segs[:, 0], axis=1))
+    assert np.allclose(lengths, np.repeat(size, 8))  # 4 edges per axis, each seen by 2 faces
+    board = scenes.checkerboard((3, 2), 0.1)
+    np.testing.assert_allclose(scenes.plane_outlines([board])[:, 0], board.corners_world)
+
+
+def test_the_lessons_scenes_have_the_documented_geometry():
+    faces, wall = scenes.box_before_wall(2.0)
+    corners = scenes.plane_outlines(faces).reshape(-1, 3)
+    assert np.allclose(corners.mean(axis=0), [0, 0, 2.0]) and corners[:, 2].min() > 1.6  # a 0.3 m box at 2 m
+    assert wall.name == "wall" and np.allclose(wall.t, [0, 0, 6.0])
+    with pytest.raises(ValueError, match="distance"):
+        scenes.box_before_wall(-1.0)
+    depths = [np.mean(p.corners_world[:, 2]) for p in scenes.depth_of_field_scene()]
+    np.testing.assert_allclose(depths, [0.6, 1.2, 2.4, 4.0], atol=0.05)
+    assert [p.name for p in scenes.photo_and_page()] == ["photo", "page"]
+    house = scenes.house_scene()
+    assert house.shape[1:] == (2, 3) and house[..., 2].min() == 0.0 and np.isclose(house[..., 2].max(), 1.55)
+    cube_rails = scenes.box_and_rails()
+    assert cube_rails.shape == (16, 2, 3)
+    rails = scenes.rail_track(0.0, 10.0)
+    assert rails.shape == (4 + 10, 2, 3)
+    np.testing.assert_array_equal(rails[:4, 1] - rails[:4, 0], [[0, 10, 0]] * 4)  # the rails run along +y
+
+
+@pytest.mark.parametrize("make, size", [(scenes.page_texture, (210, 297)), (scenes.facade_texture, (240, 180)),
+                                        (scenes.wall_texture, (300, 120)), (scenes.house_picture, (80, 60))])
+def test_textures_take_one_size_width_then_height(make, size):
+    """docs/conventions.md: a size is (width, height) and no function takes them as two arguments."""
+    assert make(size).shape[:2] == size[::-1]
+    with pytest.raises(ValueError, match=r"size: expected \(width, height\) as whole numbers of pixels"):
+        make((size[0] + 0.7, size[1]))
+    assert scenes.desk_background((60, 80)).shape == (60, 80, 3)  # a shape is (height, width)

@@ -3,6 +3,7 @@ import numpy as np
 
 from camlab import epipolar as ep
 from camlab import rectification as rc
+from camlab.distortion import undistort_pixels
 from camlab.data.stereo import STEREO_PARAMS, load_stereo_rig, rig_cameras
 
 
@@ -35,7 +36,7 @@ def test_true_matches_are_exact_correspondences():
     from camlab.data.stereo import true_matches
 
     rig = load_stereo_rig()
-    x1, x2 = true_matches(rig, step=40, start=30)
+    x1, x2, u1, u2 = true_matches(rig, step=40, start=30)
     assert x1.shape == x2.shape and len(x1) > 100
     assert np.all((x1 > 0) & (x1 < [639, 479]) & (x2 > 0) & (x2 < [639, 479]))
     # carried to the rectified images they lie on one row, apart by the true disparity
@@ -44,3 +45,8 @@ def test_true_matches_are_exact_correspondences():
     assert np.abs(r1[:, 1] - r2[:, 1]).max() < 1e-6
     d = rig.disparity[np.round(r1[:, 1]).astype(int), np.round(r1[:, 0]).astype(int)]
     assert np.abs((r1[:, 0] - r2[:, 0]) - d).max() < 1e-6
+    # the undistorted pixels are the distortion-free cameras' images of the same rays: F holds exactly
+    cu1, cu2 = (c.replace(dist=(0.0,) * 5) for c in (rig.camera1, rig.camera2))
+    F = ep.fundamental_from_cameras(cu1, cu2)
+    assert np.abs(ep.sampson_distance(F, u1, u2)).max() < 1e-6
+    np.testing.assert_allclose(u1, undistort_pixels(x1, rig.camera1.K, rig.camera1.dist))

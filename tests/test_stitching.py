@@ -305,7 +305,7 @@ def test_single_image_and_bad_options(half):
 
 def test_no_overlap_is_reported_not_dropped(half):
     """An image of something else, an all-black image: listed in `unconnected`, with a warning and reasons."""
-    other = np.ascontiguousarray(np.rot90(sd.wall_texture(2100, 800)[400:640, 1500:1820]) * 255).astype(np.uint8)
+    other = np.ascontiguousarray(np.rot90(sd.wall_texture((2100, 800))[400:640, 1500:1820]) * 255).astype(np.uint8)
     other = np.ascontiguousarray(other[:240, :240])
     black = np.zeros((240, 320, 3), np.uint8)
     with pytest.warns(UserWarning, match=r"left out of the panorama: 'image 2' overlaps none.*'image 3' overlaps none"):

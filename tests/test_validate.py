@@ -4,6 +4,8 @@ import pytest
 
 from camlab._validate import (
     CamlabInputError,
+    PointPairs,
+    as_point_pairs,
     check_intrinsics,
     check_pose,
     check_positive,
@@ -154,3 +156,47 @@ def test_positive():
 def test_positive_rejects(bad, match):
     with pytest.raises(CamlabInputError, match=match):
         check_positive(bad, "f", "metres")
+
+
+# ------------------------------------------------------------------ as_point_pairs
+
+def test_point_pairs_are_a_named_tuple_of_float_copies():
+    a = [[1, 2], [3, 4]]
+    pairs = as_point_pairs(a, np.array([[5.0, 6.0], [7.0, 8.0]]))
+    assert isinstance(pairs, PointPairs) and pairs.single is False
+    np.testing.assert_array_equal(pairs.first, [[1.0, 2.0], [3.0, 4.0]])
+    assert pairs.first.dtype == float and pairs.second[1, 1] == 8.0
+    one = as_point_pairs([1, 2, 3], [4, 5], ("points_world", "points_image"), (3, 2))
+    assert one.single and one.first.shape == (1, 3) and one.second.shape == (1, 2)
+
+
+@pytest.mark.parametrize("a, b, kwargs, match", [
+    (np.zeros((3, 2)), np.zeros((4, 2)), {"names": ("src", "dst")},
+     r"src, dst: expected the same number of points \(row i of src pairs with row i of dst\), got 3 and 4; pass"),
+    (np.zeros((3, 2)), np.zeros((3, 2)), {"min_count": 4, "why": "H has 8 degrees of freedom"},
+     r"x1: expected \(N, 2\) with N >= 4 point pairs, got shape \(3, 2\); H has 8 degrees of freedom"),
+    (np.zeros((5, 3)), np.zeros((5, 2)), {"dims": (2, 2)}, r"x1: expected \(N, 2\) points"),
+    (np.zeros((5, 2)), [[0, 0]] * 4 + [[np.nan, 0]], {}, r"x2: expected finite values, found nan at index \(4, 0\)"),
+])
+def test_point_pairs_reject(a, b, kwargs, match):
+    with pytest.raises(CamlabInputError, match=match):
+        as_point_pairs(a, b, **kwargs)
+
+
+def test_point_pairs_can_let_non_finite_pairs_through():
+    pairs = as_point_pairs([[0, 0], [np.nan, 1]], [[1, 1], [2, 2]], finite=False)
+    assert np.isnan(pairs.first[1, 0])
+
+
+def test_every_pair_check_is_the_shared_one():
+    """Homographies, F, rectification, the affine camera and resectioning give the same message."""
+    from camlab import affine, camera, epipolar, homography, rectification
+
+    short = np.zeros((3, 2))
+    for call in (lambda: homography.estimate_homography(short, np.zeros((2, 2))),
+                 lambda: epipolar.estimate_fundamental_matrix(short, np.zeros((2, 2))),
+                 lambda: rectification.vertical_disparity(short, np.zeros((2, 2))),
+                 lambda: affine.estimate_affine_camera(np.zeros((3, 3)), np.zeros((2, 2))),
+                 lambda: camera.estimate_projection_matrix(np.zeros((3, 3)), np.zeros((2, 2)))):
+        with pytest.raises(CamlabInputError, match=r"expected the same number of points \(row i of .* got 3 and 2"):
+            call()

@@ -6,6 +6,18 @@ title, each demo with the heading of its section, and runs every other cell of t
 silently (``%%capture``, and the figures those cells draw are closed), because later demos need
 what earlier cells computed. Exercises and their checks are left out: hidden code makes them
 unusable, so students do those in JupyterLab.
+
+One more cell, after the title, mends two faults of the widget libraries for keyboard and
+screen-reader users (``tests/test_present.py`` checks both in a browser, with axe-core):
+
+* ipywidgets draws sliders with noUiSlider, whose handle (``role="slider"``) has no name of
+  its own: screen readers announce just a number, and axe-core reports
+  ``aria-input-field-name``. The script names each handle after its widget's label.
+* ipympl's figure takes keyboard focus and swallows every key, Tab included, so a keyboard
+  user who tabs into a figure cannot leave it (a keyboard trap, WCAG 2.1.2). The script lets
+  Tab and Shift+Tab move on; the other keys still reach matplotlib.
+
+It also draws a clear focus ring (the widgets only tint a focused slider handle).
 """
 from __future__ import annotations
 
@@ -29,6 +41,32 @@ for _n in set(_camlab_plt.get_fignums()) - _camlab_figures:
     _camlab_plt.close(_n)
 """
 
+ACCESSIBILITY_SCRIPT = """%%javascript
+(function () {
+  // Tab leaves a figure: stop the key before ipympl's canvas handler swallows it.
+  document.addEventListener('keydown', function (event) {
+    if (event.key === 'Tab' && event.target.classList.contains('jupyter-matplotlib-canvas-div')) {
+      event.stopImmediatePropagation();
+    }
+  }, true);
+  // A focus ring that shows on every control and figure (the widgets only tint a focused handle).
+  var style = document.createElement('style');
+  style.textContent = '.jupyter-widgets :focus-visible, .jupyter-matplotlib-canvas-div:focus-visible ' +
+                      '{ outline: 3px solid #1a4f8b; outline-offset: 2px; }';
+  document.head.appendChild(style);
+  // Name each slider handle after its widget's label, now and for every widget drawn later.
+  function nameHandles() {
+    document.querySelectorAll('.widget-slider .noUi-handle:not([aria-label])').forEach(function (handle) {
+      var label = handle.closest('.widget-slider').querySelector('.widget-label');
+      var text = label ? label.textContent.trim() : '';
+      if (text) handle.setAttribute('aria-label', text);
+    });
+  }
+  nameHandles();
+  new MutationObserver(nameHandles).observe(document.body, {childList: true, subtree: true});
+})();
+"""
+
 
 def is_demo_cell(cell: dict) -> bool:
     """True for a cell that is one call ``demos.<name>(...)`` (the lesson's interactive demos)."""
@@ -47,11 +85,15 @@ def _markdown(text: str) -> dict:
     return {"cell_type": "markdown", "metadata": {}, "source": text}
 
 
+def _code(text: str) -> dict:
+    return {"cell_type": "code", "metadata": {}, "source": text, "outputs": [], "execution_count": None}
+
+
 def presentation_notebook(notebook: dict) -> dict:
     """The lecture version of a lesson notebook: title, then each demo under its section heading."""
     nb = copy.deepcopy(notebook)
     title = "".join(nb["cells"][0]["source"]).strip().splitlines()[0]
-    cells, heading, shown = [_markdown(title)], None, None
+    cells, heading, shown = [_markdown(title), _code(ACCESSIBILITY_SCRIPT)], None, None
     for cell in nb["cells"][1:]:
         if cell["cell_type"] == "markdown":
             lines = "".join(cell["source"]).lstrip().splitlines()

@@ -33,7 +33,7 @@ from numpy.typing import ArrayLike
 import numpy as np
 
 from ._resources import encode_image, read_truth
-from .._validate import CamlabInputError, check_positive
+from .._validate import CamlabInputError, check_positive, check_size
 from ..camera import scale_intrinsics
 from ..scenes import wall_texture
 
@@ -83,8 +83,7 @@ def room_scene(params: dict = PANORAMA_PARAMS) -> list:
     """
     from .. import render
 
-    tw, th = params["wall_texture_px"]
-    tex = wall_texture(tw, th, params["seed"])
+    tex = wall_texture(params["wall_texture_px"], params["seed"])
     wall = render.textured_plane(tex, 16.0, t=(0.0, 0.0, 6.0), name="wall")
     photo = render.photo_plane(0.9, R=render.rotation_from_euler(0, np.radians(-15), 0), t=(-0.55, 0.05, 2.6))
     page = render.text_page(0.42, R=render.rotation_from_euler(0, np.radians(20), 0), t=(0.75, 0.1, 1.7),
@@ -167,7 +166,7 @@ def make_panorama_set(out_dir: Path | str, params: dict = PANORAMA_PARAMS) -> li
 
     # the planar pair: a poster (the wall texture) 1.5 m away, seen from two positions
     pp = params["plane_pair"]
-    poster = render.textured_plane(wall_texture(*params["wall_texture_px"], params["seed"])[:, :800], 2.0,
+    poster = render.textured_plane(wall_texture(params["wall_texture_px"], params["seed"])[:, :800], 2.0,
                                    t=(0.0, 0.0, 1.5), name="poster")
     R1 = cam_from_world(*np.radians(pp["angles1_deg"]))
     t1 = np.asarray(pp["t1"], dtype=float)
@@ -336,8 +335,10 @@ TURNING_SETS = {
 
 
 @lru_cache(maxsize=8)
-def _turning(name: str, f: float, width: int, height: int, unrelated: bool) -> TurningSet:
+def _turning(name: str, f: float, size: tuple[int, int], unrelated: bool) -> TurningSet:
     from .photos import load_photo
+
+    width, height = size
 
     spec = TURNING_SETS[name]
     K = np.array([[f, 0, (width - 1) / 2], [0, f, (height - 1) / 2], [0, 0, 1.0]])
@@ -383,8 +384,7 @@ def turning_set(name: str = "turn3", *, f: float = 500.0, size: tuple[int, int] 
     """
     if name not in TURNING_SETS:
         raise CamlabInputError(f"name: expected one of {sorted(TURNING_SETS)}, got {name!r}")
-    w, h = (int(v) for v in size)
-    return _turning(name, float(check_positive(f, "f")), w, h, bool(unrelated))
+    return _turning(name, float(check_positive(f, "f")), check_size(size), bool(unrelated))
 
 
 def load_aerial_mosaic(count: int = 6) -> list:

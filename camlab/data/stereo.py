@@ -39,7 +39,8 @@ from ._resources import encode_image, read_truth
 from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
 from ..scenes import noise_texture, portrait
 
-__all__ = ["STEREO_PARAMS", "StereoRig", "load_stereo_rig", "make_stereo_rig", "rig_cameras", "stereo_scene", "true_matches"]
+__all__ = ["STEREO_PARAMS", "StereoMatches", "StereoRig", "load_stereo_rig", "make_stereo_rig", "rig_cameras",
+           "stereo_scene", "true_matches"]
 
 STEREO_PARAMS = {
     "seed": 11,
@@ -158,19 +159,33 @@ class StereoRig(NamedTuple):
     params: dict
 
 
-def true_matches(rig: StereoRig, step: int = 30, start: int = 20) -> tuple[np.ndarray, np.ndarray]:
-    """Exact correspondences in the raw (distorted) images, from the true disparity.
+class StereoMatches(NamedTuple):
+    """True correspondences of the rig's pair, one scene point per row.
+
+    Attributes
+    ----------
+    raw1, raw2 : (N, 2) ndarray
+        Pixels (u, v) in the raw (distorted) left and right images.
+    ideal1, ideal2 : (N, 2) ndarray
+        The same points undistorted (pixels of the distortion-free cameras, which F relates).
+    """
+
+    raw1: np.ndarray
+    raw2: np.ndarray
+    ideal1: np.ndarray
+    ideal2: np.ndarray
+
+
+def true_matches(rig: StereoRig, step: int = 30, start: int = 20) -> StereoMatches:
+    """Exact correspondences in the raw (distorted) images, from the true disparity, and undistorted.
 
     A grid of pixels of the rectified left image (every ``step`` pixels from ``start``) with
     their true disparity ``d`` gives rectified pairs ``(u, v)`` and ``(u - d, v)``; the
-    calibrated rectification (``alpha`` as stored) carries both back to the raw images.
+    calibrated rectification (``alpha`` as stored) carries both back to the raw images, and
+    :func:`camlab.distortion.undistort_pixels` removes each camera's lens distortion.
     Pairs that land outside either image, or on no surface, are dropped.
-
-    Returns
-    -------
-    x1, x2 : (N, 2) ndarray
-        Raw left and right pixels (u, v) of the same scene points.
     """
+    from ..distortion import undistort_pixels
     from ..rectification import rectify_calibrated, unrectify_points
 
     rect = rectify_calibrated(rig.camera1, rig.camera2, alpha=rig.params["rectify_alpha"], maps=False)
@@ -182,7 +197,9 @@ def true_matches(rig: StereoRig, step: int = 30, start: int = 20) -> tuple[np.nd
     x1 = unrectify_points(rect, rig.camera1, p1[ok], 1)
     x2 = unrectify_points(rect, rig.camera2, p1[ok] - np.column_stack([d[ok], np.zeros(ok.sum())]), 2)
     inside = np.all((x1 > 0) & (x1 < [w - 1, h - 1]) & (x2 > 0) & (x2 < [w - 1, h - 1]), axis=1)
-    return x1[inside], x2[inside]
+    x1, x2 = x1[inside], x2[inside]
+    c1, c2 = rig.camera1, rig.camera2
+    return StereoMatches(x1, x2, undistort_pixels(x1, c1.K, c1.dist), undistort_pixels(x2, c2.K, c2.dist))
 
 
 def _png(path: Path, img: np.ndarray) -> Path:

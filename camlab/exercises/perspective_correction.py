@@ -11,9 +11,9 @@ from ._core import Exercise, register_exercise, same_array, same_up_to_scale, sh
 
 def _rect_cases():
     return [
-        (np.array([[10.0, 10.0], [110.0, 10.0], [110.0, 60.0], [10.0, 60.0]]), 101, 51),
-        (pp.sample_photo("page").corners, 210, 297),
-        (pp.sample_photo("facade").corners, 400, 300),
+        (np.array([[10.0, 10.0], [110.0, 10.0], [110.0, 60.0], [10.0, 60.0]]), (101, 51)),
+        (pp.sample_photo("page").corners, (210, 297)),
+        (pp.sample_photo("facade").corners, (400, 300)),
     ]
 
 
@@ -21,7 +21,7 @@ def _rect_diagnosis(args, got, expected) -> str:
     problem = shape_problem(got, expected)
     if problem:
         return problem
-    corners, w, h = args
+    corners, (w, h) = args
     g = np.asarray(got, dtype=float)
     if same_up_to_scale(g, np.linalg.inv(expected), rtol=1e-5):
         return "your H maps the rectangle into the photo; the rectifying H goes from the photo corners to the rectangle."
@@ -35,8 +35,9 @@ def _rect_diagnosis(args, got, expected) -> str:
             f"pair TL, TR, BR, BL with (0, 0), (w - 1, 0), (w - 1, h - 1), (0, h - 1) in that order.")
 
 
-def rectangle_homography(corners, width, height):
+def rectangle_homography(corners, size):
     """Four pairs fix H: with h33 = 1 each pair gives two linear equations in the other 8 entries."""
+    width, height = size
     target = np.array([[0, 0], [width - 1, 0], [width - 1, height - 1], [0, height - 1]], dtype=float)
     A, b = [], []
     for (u, v), (x, y) in zip(np.asarray(corners, dtype=float), target):
@@ -55,9 +56,10 @@ register_exercise(Exercise(
     compare=lambda got, expected: same_up_to_scale(got, expected, rtol=1e-6),
     diagnose=_rect_diagnosis,
     wrong_variants=(
-        (lambda c, w, h: np.linalg.inv(pp.rectangle_homography(c, w, h)), "maps the rectangle into the photo"),
-        (lambda c, w, h: estimate_homography(c, [[0, 0], [w, 0], [w, h], [0, h]]), "off by one"),
-        (lambda c, w, h: estimate_homography(c, [[0, 0], [0, h - 1], [w - 1, h - 1], [w - 1, 0]]), "pair TL, TR"),
+        (lambda c, size: np.linalg.inv(pp.rectangle_homography(c, size)), "maps the rectangle into the photo"),
+        (lambda c, size: estimate_homography(c, [[0, 0], [size[0], 0], size, [0, size[1]]]), "off by one"),
+        (lambda c, size: estimate_homography(c, [[0, 0], [0, size[1] - 1], np.subtract(size, 1), [size[0] - 1, 0]]),
+         "pair TL, TR"),
     ),
     teaching=rectangle_homography,
 ))

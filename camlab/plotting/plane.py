@@ -29,8 +29,10 @@ def plane_axes(ax: Axes, lim: float, title: str = "", xlabel: str = "x", ylabel:
     return ax
 
 
-def image_axes(ax: Axes, width: int, height: int, title: str = "") -> Axes:
-    """Axes in pixel coordinates: u right, v down, origin at the top-left pixel centre."""
+def image_axes(ax: Axes, size: tuple[int, int], title: str = "") -> Axes:
+    """Axes in pixel coordinates for an image of ``size`` (width, height): u right, v down,
+    origin at the top-left pixel centre."""
+    width, height = size
     ax.set_xlim(-0.5, width - 0.5)
     ax.set_ylim(height - 0.5, -0.5)
     ax.set_aspect("equal")

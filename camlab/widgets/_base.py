@@ -189,14 +189,18 @@ def build_demo(
     *,
     title: str = "",
     extra: Sequence[W.Widget] = (),
+    linked: Mapping[str, W.ValueWidget] | None = None,
 ) -> Demo:
     """Wire controls to ``update(values, state)`` and lay the demo out.
 
     ``update`` receives every control's current value by name and the demo's state dict
     to fill in; it moves artists but does not draw (the view redraws once afterwards).
+    ``linked`` controls only drive another control (the corner sliders of
+    :func:`~camlab.widgets.controls.corner_keys` write the corners text): they are shown,
+    set and swept like controls but not observed, so each change updates the figure once.
     """
     state: dict[str, Any] = {}
-    demo_controls = dict(controls)
+    demo_controls = dict(controls) | dict(linked or {})
     panel: list[W.Widget] = []
     if title:
         panel.append(W.HTML(f"<b>{title}</b>"))
@@ -213,7 +217,7 @@ def build_demo(
         demo.updates += 1
         view.refresh()
 
-    for control in demo_controls.values():
+    for control in controls.values():
         control.observe(on_change, names="value")
     on_change()
     return demo

@@ -12,18 +12,13 @@ import numpy as np
 
 from .. import affine as af
 from .. import camera as cm
+from .. import scenes
 from ..plotting import scene3d
 from ._base import FigureView, build_demo, register, slider
 from .projective_camera import orbit_eye
 
 TARGET = np.array([0.0, 0.0, 0.5])
 F0, D0 = 800.0, 4.0  # reference focal length (px) and distance (m) for the dolly zoom
-
-
-def box_and_rails() -> np.ndarray:
-    """A 1 m cube on two long parallel rails, (M, 2, 3) metres: depth and parallel lines."""
-    rails = np.array([[[-3.0, y, 0.0], [3.0, y, 0.0]] for y in (-0.8, -0.6, 0.6, 0.8)])
-    return np.concatenate([cm.box_wireframe((0.0, 0.0, 0.5), (1.0, 1.0, 1.0)), rails])
 
 
 def three_images(camera: cm.Camera, segments: np.ndarray):
@@ -50,7 +45,7 @@ def three_cameras():
     """Perspective, weak-perspective and orthographic images of the same scene side by side."""
     view = FigureView(figsize=(9.5, 3.2))
     axes = view.fig.subplots(1, 3)
-    scene = box_and_rails()
+    scene = scenes.box_and_rails()
     persp = _image_panel(axes[0], "perspective")
     weak = _image_panel(axes[1], "weak perspective", tick_labels=False)
     axes[2].set_aspect("equal")
@@ -144,15 +139,7 @@ def dolly_zoom():
     return build_demo("dolly_zoom", controls, view, update, title="Dolly zoom: when is weak perspective good enough?")
 
 
-RAIL_START, RAIL_END = -3.0, 40.0   # metres along +Y; the camera stands at Y = -4
-NEAR_FAR = (-2.0, 20.0)              # the two sleeper gaps compared for foreshortening
-
-
-def rail_track() -> np.ndarray:
-    """Four parallel rails and equally spaced (1 m) sleepers on the ground, (M, 2, 3) metres."""
-    rails = np.array([[[y, RAIL_START, 0.0], [y, RAIL_END, 0.0]] for y in (-1.5, -0.5, 0.5, 1.5)])
-    sleepers = np.array([[[-1.7, s, 0.0], [1.7, s, 0.0]] for s in np.arange(RAIL_START, RAIL_END, 1.0)])
-    return np.concatenate([rails, sleepers])
+NEAR_FAR = (-2.0, 20.0)  # the two sleeper gaps compared for foreshortening (the camera stands at y = -4)
 
 
 def sleeper_gaps(P: np.ndarray) -> tuple[float, float]:
@@ -172,7 +159,7 @@ def parallel_rails():
     and keeps equal sleepers equal at every depth (no foreshortening)."""
     view = FigureView(figsize=(10, 4.0))
     ax_p, ax_a = view.fig.subplots(1, 2)
-    scene = rail_track()
+    scene = scenes.rail_track()
     ax_p.set_title("perspective: rails meet, far sleepers crowd", fontsize=9)
     ax_a.set_title("affine: rails stay parallel, sleepers stay evenly spaced", fontsize=9)
     lines, texts = [], []

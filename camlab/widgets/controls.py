@@ -1,11 +1,11 @@
-"""Controls shared by the demos: sliders, text readouts, draggable corners.
+"""Controls shared by the demos: sliders, text readouts, draggable corners and their keyboard twins.
 
 One home for the small widgets every lesson's demos use, so they look and behave the
 same everywhere. Demo modules hold their controls, artists and ``update`` only.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Callable
+from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 import ipywidgets as W
 import numpy as np
@@ -46,6 +46,49 @@ def parse_corners(text: str) -> np.ndarray:
 def format_corners(pts: np.ndarray) -> str:
     """(4, 2) corners -> the text form used by the corner controls."""
     return "; ".join(f"{u:.2f}, {v:.2f}" for u, v in np.asarray(pts, dtype=float))
+
+
+def corner_keys(control: W.Text, names: Sequence[str], u_max: float, v_max: float) -> dict[str, W.ValueWidget]:
+    """Keyboard twins of dragging a corner: a dropdown picks the corner, two sliders move it.
+
+    Returns ``{"corner": Dropdown, "corner_u": slider, "corner_v": slider}``. Moving a slider
+    writes that corner into ``control`` (the corners text), so the demo updates through the
+    same path as a drag. When the text changes (typed, dragged, a new photo) or another
+    corner is picked, the sliders jump to that corner without writing back. Give the two
+    sliders to :func:`~camlab.widgets.build_demo` as ``linked`` controls, so that only the
+    text triggers an update; the demo's update can mark ``values["corner"]`` in the figure.
+    """
+    pick = W.Dropdown(options=[(name, i) for i, name in enumerate(names)], value=0, description="move corner",
+                      style={"description_width": "initial"})
+    u = slider(0.0, 0.0, u_max, 1.0, "corner u (px, right)")
+    v = slider(0.0, 0.0, v_max, 1.0, "corner v (px, down)")
+    syncing = [False]
+
+    def show_corner(_change: Any = None) -> None:
+        try:
+            pts = parse_corners(control.value)
+        except ValueError:
+            return  # the text is being typed: the sliders keep the last corner
+        syncing[0] = True
+        try:
+            u.value, v.value = (float(x) for x in pts[pick.value])
+        finally:
+            syncing[0] = False
+
+    def write_corner(_change: Any) -> None:
+        if syncing[0]:
+            return
+        try:
+            pts = parse_corners(control.value)
+        except ValueError:
+            return
+        pts[pick.value] = u.value, v.value
+        control.value = format_corners(pts)
+
+    for widget, handler in ((control, show_corner), (pick, show_corner), (u, write_corner), (v, write_corner)):
+        widget.observe(handler, names="value")
+    show_corner()
+    return {"corner": pick, "corner_u": u, "corner_v": v}
 
 
 def connect_corner_drag(view: FigureView, ax: Any, control: W.Text, get_corners: Callable[[], np.ndarray],

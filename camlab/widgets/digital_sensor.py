@@ -5,7 +5,7 @@ import ipywidgets as W
 from matplotlib.patches import Circle
 import numpy as np
 
-from .. import render, sensor
+from .. import render, scenes, sensor
 from ..plotting import images
 from ._base import FigureView, build_demo, register, slider
 from .controls import monospace
@@ -129,11 +129,7 @@ def bit_depth_and_noise():
 _METHODS = ("truth", "camlab bilinear", "OpenCV bilinear", "OpenCV VNG", "OpenCV edge-aware")
 
 
-def _scene_rgb():
-    K = np.array([[900.0, 0, 159.5], [0, 900.0, 119.5], [0, 0, 1]])
-    scene = [render.photo_plane(0.3, t=(0.05, 0.02, 1.0)),
-             render.text_page(0.2, t=(-0.2, 0.0, 1.1), R=render.rotation_from_euler(0, 0.2, 0.05))]
-    return render.render(scene, K, SIZE, color=True).irradiance
+K_DEMOSAIC = np.array([[900.0, 0, 159.5], [0, 900.0, 119.5], [0, 0, 1]])
 
 
 _SAME = "same as the sensor"
@@ -154,7 +150,7 @@ def demosaicing():
     }
     view = FigureView(figsize=(10, 3.9))
     ax_raw, ax_full, ax_zoom = view.fig.subplots(1, 3, width_ratios=[0.75, 1, 0.75])
-    truth = _scene_rgb()
+    truth = render.render(scenes.photo_and_page(), K_DEMOSAIC, SIZE, color=True).irradiance
     im_raw = images.show_image(ax_raw, np.zeros((CROP, CROP, 3)), "Bayer mosaic (zoom)")
     im_full = images.show_image(ax_full, truth, "method")
     im_zoom = images.show_image(ax_zoom, truth[:CROP, :CROP], "zoom")

@@ -14,29 +14,13 @@ import ipywidgets as W
 import numpy as np
 
 from .. import homography as hg
+from .. import scenes
 from ..plotting import palette
 from ..projective import cross_ratio, map_points, splits_at_infinity
 from ..warp import forward_warp, warp_perspective
+from ..robust import required_iterations
 from ._base import Demo, FigureView, build_demo, register, slider
-from .controls import connect_corner_drag, corner_text, format_corners, monospace, on_top, parse_corners
-
-
-def picture(height: int = 120, width: int = 160) -> np.ndarray:
-    """A small test picture: a checkerboard with a house, a sun and a frame (RGB uint8)."""
-    import cv2
-
-    v, u = np.mgrid[0:height, 0:width]
-    check = ((u // 20 + v // 20) % 2).astype(np.float32)
-    img = np.empty((height, width, 3), np.uint8)
-    img[:] = (225, 235, 245)
-    img[check > 0] = (200, 215, 235)
-    s = width / 160
-    base = np.array([[40, 110], [40, 65], [80, 35], [120, 65], [120, 110]]) * s
-    cv2.fillPoly(img, [base.astype(np.int32)], (200, 80, 60))
-    cv2.rectangle(img, (int(70 * s), int(80 * s)), (int(90 * s), int(110 * s)), (90, 60, 40), -1)
-    cv2.circle(img, (int(135 * s), int(22 * s)), int(12 * s), (240, 190, 40), -1)
-    cv2.rectangle(img, (1, 1), (width - 2, height - 2), (30, 60, 140), 2)
-    return img
+from .controls import connect_corner_drag, corner_keys, corner_text, format_corners, monospace, on_top, parse_corners
 
 
 def _warning(view: FigureView, ax: Any, x: float = 0.02, y: float = 0.02, ha: str = "left",
@@ -53,6 +37,8 @@ def _warning(view: FigureView, ax: Any, x: float = 0.02, y: float = 0.02, ha: st
 
     return say
 
+
+CONFIDENCE = 0.995  # RANSAC's confidence p in the demo
 
 TORN = ("the line that H sends to infinity crosses the picture:\n"
         "its two halves leave through infinity and come back\non the other side (the picture is torn)")
@@ -80,7 +66,7 @@ def hierarchy_matrix(group: str, theta: float, scale: float, shear: float, aspec
                               "v1": [0.0, 2.0, 14.0], "tx": [-20.0, 30.0]})
 def transformation_hierarchy() -> Demo:
     """Euclidean, similarity, affine, projective: sliders for each group acting on a picture."""
-    pic = picture()
+    pic = scenes.house_picture()
     ph, pw = pic.shape[:2]
     canvas_hw = (300, 400)
     # Picture coordinates centred on the origin; C places the origin at the canvas centre.
@@ -142,6 +128,7 @@ def transformation_hierarchy() -> Demo:
 # ----------------------------------------------------------------------------- drag corners
 
 SQUARE = np.array([[0.0, 0.0], [159.0, 0.0], [159.0, 119.0], [0.0, 119.0]])
+CORNER_NAMES = ("top left", "top right", "bottom right", "bottom left")  # of the source picture, SQUARE's order
 _DRAG_START = np.array([[40.0, 30.0], [250.0, 60.0], [230.0, 200.0], [60.0, 230.0]])
 
 
@@ -149,11 +136,12 @@ _DRAG_START = np.array([[40.0, 30.0], [250.0, 60.0], [230.0, 200.0], [60.0, 230.
     format_corners(_DRAG_START),
     "20.0, 20.0; 280.0, 20.0; 280.0, 230.0; 20.0, 230.0",
     "100.0, 40.0; 200.0, 40.0; 280.0, 230.0; 20.0, 230.0",
-]})
+], "corner": [0, 2], "corner_u": [10.0, 290.0], "corner_v": [10.0, 250.0]})
 def drag_homography() -> Demo:
     """Drag the four target corners: lines stay lines and the cross-ratio stays fixed,
-    while lengths, angles and ratios of lengths change."""
-    pic = picture()
+    while lengths, angles and ratios of lengths change. Without a mouse, pick a corner and
+    move it with its two sliders (or type the corners)."""
+    pic = scenes.house_picture()
     ph, pw = pic.shape[:2]
     out_hw = (260, 300)
     view = FigureView(figsize=(9, 4))
@@ -161,7 +149,7 @@ def drag_homography() -> Demo:
     ax_s.imshow(pic)
     ax_s.set_title("source picture", fontsize=10, pad=3)
     ax_t.set(xlim=(-0.5, out_hw[1] - 0.5), ylim=(out_hw[0] - 0.5, -0.5), aspect="equal")
-    ax_t.set_title("drag the orange corners", fontsize=10, pad=3)
+    ax_t.set_title("drag a corner, or use the sliders", fontsize=10, pad=3)
     # Four collinear points on the picture's diagonal; a line; a right angle at corner 0.
     line_pts = np.array([[10.0, 10.0], [50.0, 40.0], [90.0, 70.0], [150.0, 115.0]])
     ax_s.plot(line_pts[:, 0], line_pts[:, 1], "o-", color="tab:green", ms=5, lw=1.5)
@@ -171,10 +159,12 @@ def drag_homography() -> Demo:
     mapped_line = view.animate(ax_t.plot([], [], "o-", color="tab:green", ms=5, lw=1.5)[0])
     quad = view.animate(ax_t.plot([], [], "-", color="tab:orange", lw=1)[0])
     handles = view.animate(ax_t.plot([], [], "o", color="tab:orange", ms=10, mec="k")[0])
+    chosen = view.animate(ax_t.plot([], [], "o", ms=17, mfc="none", mec="k", mew=2)[0])  # the corner the keys move
     on_top(view, ax_t)
     warning = _warning(view, ax_t)
     readout = W.HTML()
     control = corner_text(format_corners(_DRAG_START), "corners (u, v; ...)")
+    keys = corner_keys(control, CORNER_NAMES, out_hw[1] - 1, out_hw[0] - 1)
     current = {"corners": _DRAG_START.copy()}
 
     def update(v: dict, state: dict) -> None:
@@ -195,12 +185,13 @@ def drag_homography() -> Demo:
         closed = np.vstack([corners, corners[:1]])
         quad.set_data(closed[:, 0], closed[:, 1])
         handles.set_data(corners[:, 0], corners[:, 1])
+        chosen.set_data(corners[v["corner"], :1], corners[v["corner"], 1:])
         cr0, cr1 = cross_ratio(line_pts), cross_ratio(m)
         ratio0 = np.linalg.norm(line_pts[1] - line_pts[0]) / np.linalg.norm(line_pts[3] - line_pts[2])
         ratio1 = np.linalg.norm(m[1] - m[0]) / np.linalg.norm(m[3] - m[2])
         e1, e2 = corners[1] - corners[0], corners[3] - corners[0]
         angle = np.degrees(np.arccos(np.clip(e1 @ e2 / np.linalg.norm(e1) / np.linalg.norm(e2), -1, 1)))
-        state.update(H=H, error=None, torn=torn, cross_ratio_source=cr0, cross_ratio_image=cr1, length_ratio_source=ratio0,
+        state.update(H=H, error=None, torn=torn, corner=v["corner"], cross_ratio_source=cr0, cross_ratio_image=cr1, length_ratio_source=ratio0,
                      length_ratio_image=ratio1, corner_angle=angle, corners=corners)
         readout.value = monospace(
             f"                 source   image\n"
@@ -209,8 +200,8 @@ def drag_homography() -> Demo:
             f"corner angle     {90:7.1f}  {angle:7.1f}°  (changes)\n"
             "H =\n" + np.array2string(H, precision=4, suppress_small=True))
 
-    demo = build_demo("drag_homography", {"corners": control}, view, update,
-                      title="A homography from four corners", extra=[readout])
+    demo = build_demo("drag_homography", {"corners": control, "corner": keys.pop("corner")}, view, update,
+                      title="A homography from four corners", extra=[readout], linked=keys)
     demo.handlers.update(connect_corner_drag(view, ax_t, control, lambda: current["corners"]))
     return demo
 
@@ -239,19 +230,12 @@ def _ransac_run(outlier_fraction: float, threshold: float, seed: int):
     for a in data:
         a.setflags(write=False)
     try:
-        r = hg.ransac_homography(data[1], data[2], threshold, 0.995, 1000, np.random.default_rng(seed))
+        r = hg.ransac_homography(data[1], data[2], threshold, CONFIDENCE, 1000, np.random.default_rng(seed))
     except hg.DegenerateError as exc:
         return data, str(exc)
     for a in (r.H, r.inliers, r.residuals, r.sample):
         a.setflags(write=False)
     return data, r
-
-
-def samples_needed(outlier_fraction: np.ndarray | float, confidence: float = 0.995, sample_size: int = 4):
-    r""":math:`k = \log(1 - p) / \log(1 - (1 - \varepsilon)^s)`: samples for one all-inlier sample."""
-    clean = (1.0 - np.asarray(outlier_fraction, dtype=float)) ** sample_size
-    with np.errstate(divide="ignore"):
-        return np.where(clean >= 1, 1.0, np.log(1 - confidence) / np.log1p(-np.minimum(clean, 1 - 1e-16)))
 
 
 # What RANSAC did with each pair, against the truth the demo knows.
@@ -280,7 +264,8 @@ def ransac_outliers() -> Demo:
     ax.legend(loc="lower right", fontsize=7, ncol=2, framealpha=0.9)
     failure = _warning(view, ax, 0.5, 0.55, "center", "center")
     eps = np.linspace(0.0, 0.97, 300)
-    ax_k.semilogy(eps, samples_needed(eps), color="0.5", label="k = log(1-p) / log(1-(1-ε)⁴), p = 0.995")
+    k_curve = [required_iterations(1.0 - e, CONFIDENCE, 4) for e in eps]
+    ax_k.semilogy(eps, k_curve, color="0.5", label="k = log(1-p) / log(1-(1-ε)⁴), p = 0.995")
     needed = view.animate(ax_k.plot([], [], "o", mfc="none", mec="tab:blue", ms=9,
                                     label="k for the ε RANSAC found")[0])
     dot = view.animate(ax_k.plot([], [], "o", color="tab:blue", label="samples drawn (whole batches)")[0])
@@ -319,7 +304,7 @@ def ransac_outliers() -> Demo:
         box_est.set_data(be[:, 0], be[:, 1])
         best.set_data(dst[r.sample, 0], dst[r.sample, 1])
         eps_found = 1.0 - r.inliers.mean()
-        k_needed = float(samples_needed(eps_found))
+        k_needed = required_iterations(1.0 - eps_found, CONFIDENCE, 4)
         dot.set_data([v["outliers"]], [r.iterations])
         needed.set_data([eps_found], [min(k_needed, 4500)])  # beyond the axes: pinned to the top
         counts = np.bincount(verdict, minlength=4)
@@ -348,7 +333,7 @@ def ransac_outliers() -> Demo:
 @register(lesson="07", sweep={"scale": [0.6, 1.5, 2.8], "angle": [0.0, 25.0]})
 def forward_vs_inverse() -> Demo:
     """Forward mapping leaves holes where H magnifies; inverse mapping never does."""
-    pic = picture(60, 80)
+    pic = scenes.house_picture((80, 60))
     out_hw = (180, 240)
     view = FigureView(figsize=(9, 3.6))
     ax_f, ax_i = view.fig.subplots(1, 2)

@@ -83,13 +83,6 @@ def focus_and_blur():
     return build_demo("focus_and_blur", controls, view, update, title="Focus, aperture and the blur circle")
 
 
-def _dof_scene():
-    return [render.checkerboard((5, 4), 0.04, t=(-0.33, -0.02, 0.6), name="near", px_per_square=32),
-            render.text_page(0.3, t=(0.0, -0.02, 1.2)),
-            render.checkerboard((7, 5), 0.12, t=(0.1, -0.55, 2.4), name="far", px_per_square=32),
-            render.textured_plane(scenes.portrait(), 3.2, t=(0, 0, 4.0), name="wall")]
-
-
 @register(lesson="02", sweep={"f_number": [1.4, 4.0, 16.0], "focus_m": [0.6, 1.2, 2.4]})
 def depth_of_field():
     """A scene of planes at 0.6, 1.2, 2.4 and 4 m rendered with thin-lens blur, beside its blur curve."""
@@ -101,7 +94,7 @@ def depth_of_field():
     }
     view = FigureView(figsize=(9, 4))
     ax_img, ax_c = view.fig.subplots(1, 2, width_ratios=[1.3, 1])
-    scene = _dof_scene()
+    scene = scenes.depth_of_field_scene()
     im = images.show_image(ax_img, np.zeros((SIZE[1], SIZE[0], 3)))
     z = np.linspace(0.3, 5, 400)
     curve, = ax_c.plot(z, np.zeros_like(z), "k")

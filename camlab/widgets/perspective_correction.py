@@ -2,8 +2,9 @@
 
 The photos are synthetic (``camlab.perspective.sample_photo``): a textured rectangle
 seen at an angle through a plane-induced homography, so the true corners and aspect
-ratio are known. Corners are dragged with the mouse under ipympl, or typed into the
-corners text control ``"u0, v0; u1, v1; u2, v2; u3, v3"`` (TL, TR, BR, BL).
+ratio are known. Corners are dragged with the mouse under ipympl, moved one at a time with
+the keyboard (a corner dropdown and two sliders), or typed into the corners text control
+``"u0, v0; u1, v1; u2, v2; u3, v3"`` (TL, TR, BR, BL).
 """
 from __future__ import annotations
 
@@ -14,7 +15,7 @@ import numpy as np
 
 from .. import perspective as pp
 from ._base import Demo, FigureView, build_demo, register, slider
-from .controls import connect_corner_drag, corner_text, format_corners, monospace, on_top, parse_corners
+from .controls import connect_corner_drag, corner_keys, corner_text, format_corners, monospace, on_top, parse_corners
 
 _SHOW = 260  # the rectified view is drawn into a _SHOW x _SHOW box
 
@@ -67,13 +68,15 @@ def _photo_demo(photo_title: str, result_title: str, outline: dict):
 @register(lesson="10", sweep={"scene": ["page", "painting", "facade"], "corners": [
     "250.0, 120.0; 420.0, 140.0; 400.0, 380.0; 230.0, 350.0",
     "200.0, 100.0; 450.0, 100.0; 450.0, 380.0; 200.0, 380.0",
-], "use_focal": [True, False]})
+], "use_focal": [True, False], "corner": [3, 0], "corner_u": [100.0, 300.0], "corner_v": [50.0, 250.0]})
 def rectify_photo() -> Demo:
     """Drag the four corners of a page, painting or facade; the rectified view follows, sized
-    by the aspect ratio estimated from the quadrilateral (compared with the truth)."""
+    by the aspect ratio estimated from the quadrilateral (compared with the truth). Without a
+    mouse, pick a corner and move it with its two sliders (or type the corners)."""
     view, ax_p, ax_r, im_p, im_r, quad = _photo_demo("photo: drag the orange corners", "rectified",
                                                      dict(ls="-", color="tab:orange", lw=1.5))
     handles = view.animate(ax_p.plot([], [], "o", color="tab:orange", ms=9, mec="k")[0])
+    chosen = view.animate(ax_p.plot([], [], "o", ms=16, mfc="none", mec="k", mew=2)[0])  # the corner the keys move
     # a static key (canvas text costs ~4 ms per line per redraw); the numbers are in the readout
     ax_r.text(0.5, -0.02, "red dashed: the other focal length's shape; green dotted: the true shape",
               transform=ax_r.transAxes, ha="center", va="top", fontsize=8)
@@ -83,6 +86,7 @@ def rectify_photo() -> Demo:
     readout = W.HTML()
     first = pp.sample_photo("page")
     control = corner_text(format_corners(first.corners), "corners (TL; TR; BR; BL)")
+    keys = corner_keys(control, ("top left", "top right", "bottom right", "bottom left"), 639, 479)
     current: dict[str, Any] = {"scene": None, "photo": None, "corners": first.corners, "busy": False}
 
     def update(v: dict, state: dict) -> None:
@@ -112,6 +116,7 @@ def rectify_photo() -> Demo:
         closed = np.vstack([corners, corners[:1]])
         quad.set_data(closed[:, 0], closed[:, 1])
         handles.set_data(corners[:, 0], corners[:, 1])
+        chosen.set_data(corners[v["corner"], :1], corners[v["corner"], 1:])
         width = max(np.linalg.norm(corners[1] - corners[0]), np.linalg.norm(corners[2] - corners[3]))
         _show_rectified(im_r, photo.image, corners, (int(width), int(width / est.ratio)))
         # Outlines, in the display box, of the rectangle the other focal length and the truth would give.
@@ -120,7 +125,7 @@ def rectify_photo() -> Demo:
             x0, y0 = (_SHOW - w) // 2 - 0.5, (_SHOW - h) // 2 - 0.5
             artist.set_data([x0, x0 + w, x0 + w, x0, x0], [y0, y0, y0 + h, y0 + h, y0])
         state.update(error=None, ratio=est.ratio, true_ratio=photo.aspect, focal=est.focal_length,
-                     focal_source=est.focal_source, corners=corners, scene=v["scene"],
+                     focal_source=est.focal_source, corners=corners, corner=v["corner"], scene=v["scene"],
                      ratio_from_quad=from_quad.ratio, ratio_known_focal=known.ratio, focal_from_quad=from_quad.focal_length)
         f = "—" if from_quad.focal_length is None else f"{from_quad.focal_length:.0f} px"
         used = "known f" if v["use_focal"] else "f from the corners"
@@ -136,9 +141,10 @@ def rectify_photo() -> Demo:
         "scene": W.Dropdown(options=["page", "painting", "facade"], value="page", description="photo"),
         "corners": control,
         "use_focal": W.Checkbox(value=False, description="use the known focal length (800 px)"),
+        "corner": keys.pop("corner"),
     }
     demo = build_demo("rectify_photo", controls, view, update, title="Rectify a photographed rectangle",
-                      extra=[readout])
+                      extra=[readout], linked=keys)
     demo.handlers.update(connect_corner_drag(view, ax_p, control, lambda: current["corners"]))
     return demo
 

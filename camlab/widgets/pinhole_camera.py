@@ -4,7 +4,7 @@ from __future__ import annotations
 import ipywidgets as W
 import numpy as np
 
-from .. import pinhole, render, sensor
+from .. import pinhole, render, scenes, sensor
 from ..plotting import images, optics
 from matplotlib.ticker import MaxNLocator
 
@@ -13,21 +13,14 @@ from .controls import monospace
 
 SIZE = (320, 240)
 PITCH = 36e-3 / SIZE[0]  # a 36 mm wide sensor with 320 pixels: 112.5 um pixels
-BOX_SIZE = (0.3, 0.3, 0.3)
 DRAW_SCALE = 10.0  # the 3-D view draws the image planes up to 10x further from the pinhole than f...
 PLANE_ROOM = 0.45  # ...but never beyond 45 % of the way to the box's nearest corner
 
 
-def _box_scene(distance: float):
-    return [render.box([0.0, 0.0, distance], BOX_SIZE, R=render.rotation_from_euler(0.35, 0.6, 0.0), rng=0),
-            render.textured_plane(np.full((4, 4), 0.35), 3.0 * distance, t=(0, 0, 3.0 * distance), name="wall")]
-
-
-def _box_outline(scene) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray]]:
-    """The box's (12 x 2, 2, 3) edge segments and (faces (6, 4, 3), mean greys (6,)) for the 3-D view."""
-    faces = scene[0]
-    edges = [[f.world_points[i], f.world_points[(i + 1) % 4]] for f in faces for i in range(4)]
-    return np.array(edges), (np.array([f.world_points for f in faces]), np.array([f.texture.mean() for f in faces]))
+def _box_outline(faces) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray]]:
+    """The box's (24, 2, 3) edge segments and (faces (6, 4, 3), mean greys (6,)) for the 3-D view."""
+    return scenes.plane_outlines(faces), (np.array([f.corners_world for f in faces]),
+                                          np.array([f.texture.mean() for f in faces]))
 
 
 @register(lesson="01", sweep={"focal_mm": [20, 50, 90], "distance": [1.0, 2.0, 3.5], "real_plane": [True, False]})
@@ -43,7 +36,7 @@ def pinhole_projection():
     grid = view.fig.add_gridspec(1, 2, width_ratios=(1.35, 1))
     ax3 = view.fig.add_subplot(grid[0], projection="3d")
     ax_img = view.fig.add_subplot(grid[1])
-    edges, faces = _box_outline(_box_scene(2.0))
+    edges, faces = _box_outline(scenes.box_before_wall(2.0)[0])
     art = optics.draw_pinhole_3d(ax3, edges, 0.05 * DRAW_SCALE, plane_half=0.25, faces=faces)
     ax3.set_xlim(-1.1, 4.5)
     ax3.set_ylim(-0.35, 0.35)
@@ -67,8 +60,8 @@ def pinhole_projection():
     def update(values, state):
         f = values["focal_mm"] * 1e-3
         Z = values["distance"]
-        scene = _box_scene(Z)
-        e, faces = _box_outline(scene)
+        scene = scenes.box_before_wall(Z)
+        e, faces = _box_outline(scene[0])
         corners = np.unique(e.reshape(-1, 3), axis=0)
         # the image planes: 10 f when that fits, else closer, always between pinhole and box
         f_draw = min(DRAW_SCALE * f, PLANE_ROOM * corners[:, 2].min())

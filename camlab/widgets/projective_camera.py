@@ -12,15 +12,11 @@ import ipywidgets as W
 import numpy as np
 
 from .. import camera as cm
+from .. import scenes
 from ..plotting import scene3d
 from ._base import FigureView, build_demo, register, slider
 
 TARGET = np.array([0.0, 0.0, 0.7])
-
-
-def house_scene() -> np.ndarray:
-    """The lesson's wireframe world: a house on a 4 m x 4 m ground grid, (M, 2, 3) metres."""
-    return np.concatenate([cm.house_wireframe(), cm.ground_grid(2.0, 0.5)])
 
 
 def orbit_eye(azimuth_deg: float, elevation_deg: float, distance: float, target=TARGET) -> np.ndarray:
@@ -43,7 +39,7 @@ def camera_explorer():
     the centre C = -R^T t (the camera in world coordinates): two different vectors.
     """
     view = FigureView(figsize=(9, 4.2))
-    scene = house_scene()
+    scene = scenes.house_scene()
     cam0 = cm.Camera.look_at(orbit_eye(-60, 25, 5.0), TARGET)
     sv = scene3d.SceneView(view.fig, cam0, scene, plane_size=1.5)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
@@ -88,13 +84,14 @@ def resection_data(n_points: int, noise_px: float, seed: int = 0):
 
 
 @register(lesson="04", sweep={"noise": [0.0, 3.0], "n_points": [6, 40], "outlier": [0.0, 60.0],
-                              "refine": [True, False]})
+                              "refine": [True, False], "pair": [0, 5], "outlier_v": [-60.0, 40.0]})
 def resectioning():
     """Estimate P from noisy correspondences (DLT, optionally refined) and compare to the truth.
 
     Click in the image to move the nearest measured pixel there (a mismatched
-    correspondence); the ``outlier`` slider does the same to correspondence 0 without a mouse.
-    Changing N or the noise starts from fresh measurements.
+    correspondence); without a mouse, the ``outlier`` and ``outlier_v`` sliders shift the
+    pixel of correspondence ``pair`` along u and v. Changing N or the noise starts from
+    fresh measurements.
     """
     view = FigureView(figsize=(9, 4.2))
     cam, X, uv = resection_data(12, 0.5)
@@ -112,7 +109,10 @@ def resectioning():
         "noise": slider(0.5, 0.0, 5.0, 0.1, "pixel noise sigma (px)"),
         "n_points": W.IntSlider(value=12, min=6, max=60, description="correspondences N",
                                 style={"description_width": "initial"}, layout=W.Layout(width="300px")),
-        "outlier": slider(0.0, 0.0, 100.0, 2.0, "shift pair 0 by (px)"),
+        "outlier": slider(0.0, -100.0, 100.0, 2.0, "shift pair k along u (px)"),
+        "outlier_v": slider(0.0, -100.0, 100.0, 2.0, "shift pair k along v (px)"),
+        "pair": W.IntSlider(value=0, min=0, max=5, description="pair k (0-5) to shift",
+                            style={"description_width": "initial"}, layout=W.Layout(width="300px")),
         "refine": W.Checkbox(value=False, description="refine (minimise reprojection error)"),
     }
     clicked: dict[int, np.ndarray] = {}  # correspondence index -> clicked pixel
@@ -124,7 +124,7 @@ def resectioning():
             clicked.clear()
             last_data["key"] = key
         cam_true, Xw, uvn = resection_data(*key)
-        uvn[0, 0] += float(v["outlier"])
+        uvn[v["pair"]] += float(v["outlier"]), float(v["outlier_v"])
         for i, uv_click in clicked.items():
             uvn[i] = uv_click
         P = cm.estimate_projection_matrix(Xw, uvn, refine=bool(v["refine"]))
@@ -154,7 +154,7 @@ def resectioning():
                      points_image=uvn, redundancy=redundancy, expected_rms=expected)
 
     demo = build_demo("resectioning", controls, view, update,
-                      title="Resection: estimate P from N point pairs (DLT); click the image to move a pixel",
+                      title="Resection: estimate P from N point pairs (DLT); click the image (or use the shift sliders) to move a pixel",
                       extra=[info])
 
     def on_click(event):

@@ -211,7 +211,7 @@ def vanishing_points() -> Demo:
     size = (640, 480)
     view = FigureView(figsize=(7, 5))
     ax = view.fig.subplots()
-    image_axes(ax, *size, "ground grid seen by a tilted camera")
+    image_axes(ax, size, "ground grid seen by a tilted camera")
     from matplotlib.collections import LineCollection
 
     grid_z = LineCollection([], colors="tab:blue", lw=1, label="lines along z (ahead)")
