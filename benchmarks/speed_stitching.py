@@ -1,10 +1,15 @@
 """camlab.stitch against cv2.Stitcher on 2-, 3- and 6-photo sets: time, per-stage table, accuracy.
 
-Run: ``python benchmarks/speed_stitching.py``. Both run on ONE thread (``cv2.setNumThreads(1)``)
-on the same inputs (about 0.6 megapixel), each with its own defaults (the Stitcher in its
-default PANORAMA mode: ORB features, spherical canvas, graph-cut seams, block gains,
-multi-band blending). Times are medians of ``repeat`` runs, measured in one run, so the
-ratio holds even when the machine is shared (the absolute numbers do not).
+Run: ``python benchmarks/speed_stitching.py``. Both run on ONE thread: ``cv2.setNumThreads(1)``
+(OpenCV's own thread pool, which camlab's OpenCV calls share), and ``OMP_NUM_THREADS``,
+``OPENBLAS_NUM_THREADS``, ``MKL_NUM_THREADS`` = 1 set below before numpy is imported (numpy's
+BLAS; from ``benchmarks/run.py``, which imports numpy first, they only hold if set in the shell:
+camlab's BLAS work here is 3x3 and 30x30 matrices, so it hardly matters). Same inputs (about
+0.6 megapixel), each with its own defaults (the Stitcher in its default PANORAMA mode: ORB
+features, spherical canvas, graph-cut seams, block gains, multi-band blending). The two
+run alternately ``repeat`` times in one process, so both see the same machine load; the
+table gives each run's ratio and the ratio of the medians, and the load average (the
+machine is shared: the ratio holds better than the absolute times).
 
 Sets:
 
@@ -21,13 +26,18 @@ the Stitcher's per image, and the truth where it is known.
 """
 from __future__ import annotations
 
-import sys
-import time
-import warnings
-from pathlib import Path
+import os
 
-import cv2
-import numpy as np
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ[_var] = "1"  # before numpy is imported: one BLAS thread, like cv2.setNumThreads(1)
+
+import sys  # noqa: E402
+import time  # noqa: E402
+import warnings  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+import cv2  # noqa: E402
+import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
@@ -129,21 +139,27 @@ def transfer_median(maps: dict, matches: dict) -> float:
     return float(np.median(np.concatenate(errs))) if errs else float("nan")
 
 
+STAGES = ["features", "matching", "estimation", "bundle_adjustment", "warping", "exposure", "seams", "compositing"]
+
+
 def rows(repeat: int = 3) -> list[dict]:
     cv2.setNumThreads(1)
     out, stages = [], []
+    rows.load = [os.getloadavg()[0]]
     for name, (images, names, f_true) in sets().items():
         mode, mode_name = cv_mode(images)
-        tc, to = [], []
+        tc, to, st_runs = [], [], []
         for _ in range(repeat):  # interleaved, so both see the same machine load
             t0 = time.perf_counter()
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 res = st.stitch(images, names=names)
             tc.append(time.perf_counter() - t0)
+            st_runs.append(res.timings)
             t0 = time.perf_counter()
             stitcher, status, _ = cv_stitch(images, mode)
             to.append(time.perf_counter() - t0)
+        rows.load.append(os.getloadavg()[0])
         cam, ocv = 1e3 * float(np.median(tc)), 1e3 * float(np.median(to))
         pairs = [(i, j) for i in range(len(images)) for j in range(i + 1, len(images))]
         indep = independent_matches(images, pairs)
@@ -154,20 +170,23 @@ def rows(repeat: int = 3) -> list[dict]:
         out.append({"case": f"{name} ({len(images)} photos, {images[0].shape[1]}x{images[0].shape[0]})",
                     "camlab_ms": cam, "opencv_ms": ocv, "ratio": cam / ocv, "target": f"<= {TARGET:g}x",
                     "ok": cam / ocv <= TARGET and status == cv2.Stitcher_OK,
+                    "runs": ", ".join(f"{a / b:.2f}" for a, b in zip(tc, to)),
                     "camlab_px": e_cam, "opencv_px": e_cv, "model": f"{res.model}/{res.projection}",
                     "opencv_mode": mode_name,
                     "left_out": ", ".join(res.names[k] for k in res.unconnected) or "-",
                     "f_camlab": f_cam or "-", "f_opencv": f_cv or "-", "f_true": f_true or "-"})
-        stages.append({"set": name, **{k: 1e3 * v for k, v in res.timings.items()}})
+        stages.append({"set": name, **{k: 1e3 * float(np.median([t.get(k, 0.0) for t in st_runs])) for k in STAGES},
+                       "total": cam})
     rows.stages = stages
     return out
 
 
 if __name__ == "__main__":
     r = rows()
-    print_table(r, ["case", "camlab_ms", "opencv_ms", "ratio", "target", "ok", "model", "opencv_mode", "left_out"],
-                title="camlab.stitch vs cv2.Stitcher, one thread (median ms)")
+    load = ", ".join(f"{x:.2f}" for x in rows.load)
+    print_table(r, ["case", "camlab_ms", "opencv_ms", "ratio", "runs", "target", "ok", "model", "opencv_mode",
+                    "left_out"],
+                title=f"camlab.stitch vs cv2.Stitcher, one thread (median ms; ratio per run; 1-min load {load})")
     print_table(r, ["case", "camlab_px", "opencv_px", "f_camlab", "f_opencv", "f_true"],
                 title="Transfer error on independent ORB matches (median px) and focal lengths (px)")
-    cols = ["set", "features", "matching", "cameras", "warping", "exposure", "seams_blend"]
-    print_table(rows.stages, cols, title="camlab per stage (ms, last run)")
+    print_table(rows.stages, ["set"] + STAGES + ["total"], title="camlab per stage (median ms over the runs)")

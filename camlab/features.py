@@ -33,8 +33,8 @@ from numpy.typing import ArrayLike
 
 from ._validate import CamlabInputError, check_image, check_integer, check_positive
 
-__all__ = ["Features", "KnnMatches", "Matches", "detect_features", "filter_matches", "knn_match",
-           "match_features", "to_gray_uint8"]
+__all__ = ["Features", "FlannIndex", "KnnMatches", "Matches", "detect_features", "filter_matches", "flann_index",
+           "knn_match", "match_features", "to_gray_uint8"]
 
 _METHODS = ("sift", "orb")
 
@@ -192,8 +192,37 @@ def _check_features(f, name: str) -> Features:
     return f
 
 
+class FlannIndex(NamedTuple):
+    """A FLANN search structure over one image's SIFT descriptors (:func:`flann_index`); it
+    keeps the descriptors it indexes alive."""
+
+    index: object
+    descriptors: np.ndarray
+
+
+def flann_index(features: Features) -> FlannIndex:
+    """Index ``features``' SIFT descriptors once (FLANN, 4 randomised k-d trees), to search them
+    from many images: :func:`knn_match` with ``index2=`` then skips building it per pair."""
+    import cv2
+
+    f = _check_features(features, "features")
+    if f.method != "sift":
+        raise CamlabInputError(f"features: expected SIFT features (FLANN's k-d trees need float descriptors), "
+                               f"got {f.method}; ORB is always matched by brute force")
+    d = np.ascontiguousarray(f.descriptors, dtype=np.float32)
+    return FlannIndex(cv2.flann_Index(d, {"algorithm": 1, "trees": 4}), d)
+
+
+def _flann_knn(index: FlannIndex, queries: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
+    """(n, k) indices and L2 distances of the k nearest indexed descriptors (32 leaf checks); inf where none found."""
+    idx, d2 = index.index.knnSearch(np.ascontiguousarray(queries, dtype=np.float32), k, params={"checks": 32})
+    idx, d2 = np.asarray(idx, int).reshape(-1, k), np.asarray(d2, float).reshape(-1, k)
+    missing = (idx < 0) | (idx >= len(index.descriptors))
+    return np.where(missing, 0, idx), np.where(missing, np.inf, np.sqrt(np.maximum(d2, 0)))  # FLANN gives squared L2
+
+
 def knn_match(features1: Features, features2: Features, backward: bool = True, *,
-              approximate: bool = False) -> KnnMatches:
+              approximate: bool = False, index2: FlannIndex | None = None) -> KnnMatches:
     """Find the two nearest descriptors in image 2 of each descriptor of image 1, and the reverse nearest.
 
     Brute force (every pair compared) with OpenCV's matcher: L2 distance for SIFT, Hamming
@@ -202,7 +231,9 @@ def knn_match(features1: Features, features2: Features, backward: bool = True, *
     time) when no mutual check will be asked for. ``approximate=True`` searches SIFT
     descriptors with FLANN's randomised k-d trees (4 trees, 32 leaf checks: a few times
     faster than brute force for thousands of features, and it may miss a true nearest
-    neighbour now and then; ORB always uses brute force).
+    neighbour now and then; ORB always uses brute force); ``index2`` (:func:`flann_index`
+    of ``features2``, made once and reused for every image matched against image 2)
+    implies it.
     """
     import cv2
 
@@ -213,12 +244,12 @@ def knn_match(features1: Features, features2: Features, backward: bool = True, *
     n1, n2 = len(f1.points), len(f2.points)
     if n1 < 1 or n2 < 2:
         return KnnMatches(np.zeros((0, 2), int), np.zeros((0, 2)), np.full(n2, -1, dtype=int), f1.points, f2.points)
-    if approximate and f1.method == "sift":
-        matcher = cv2.FlannBasedMatcher({"algorithm": 1, "trees": 4}, {"checks": 32})
-    else:
-        matcher = cv2.BFMatcher(cv2.NORM_L2 if f1.method == "sift" else cv2.NORM_HAMMING)
+    if f1.method == "sift" and (approximate or index2 is not None):
+        nn12, d12 = _flann_knn(flann_index(f2) if index2 is None else index2, f1.descriptors, 2)
+        nn21 = _flann_knn(flann_index(f1), f2.descriptors, 1)[0][:, 0] if backward else None
+        return KnnMatches(nn12, d12, nn21, f1.points, f2.points)
+    matcher = cv2.BFMatcher(cv2.NORM_L2 if f1.method == "sift" else cv2.NORM_HAMMING)
     knn = matcher.knnMatch(f1.descriptors, f2.descriptors, k=2)
-    # FLANN may return fewer than two neighbours: such a match cannot pass the ratio test (distance inf)
     nn12 = np.array([[m[min(t, len(m) - 1)].trainIdx if m else 0 for t in (0, 1)] for m in knn], dtype=int)
     d12 = np.array([[m[t].distance if len(m) > t else np.inf for t in (0, 1)] for m in knn], dtype=float)
     nn12, d12 = nn12.reshape(-1, 2), d12.reshape(-1, 2)

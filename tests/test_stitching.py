@@ -126,7 +126,8 @@ def test_warp_matches_opencv_warp_perspective(half):
     T, (h, w) = canvas_bounds([np.eye(3), H], [im.shape for im in imgs])
     ref = cv2.warpPerspective(imgs[1], T @ H, (w, h), flags=cv2.INTER_LINEAR)
     assert wi.shape == (h, w)
-    assert np.abs(wi.images[1] - ref).max() < 1e-5
+    # warped into its box by the translated H: the same samples up to float rounding (1e-4 = 0.03 grey levels)
+    assert np.abs(wi.images[1] - ref).max() < 1e-4
     assert np.allclose(wi.homographies[1], hg.normalize_homography(T @ H))
     h1, w1 = imgs[1].shape[:2]
     quad = hg.map_points(T @ H, [[-0.5, -0.5], [w1 - 0.5, -0.5], [w1 - 0.5, h1 - 0.5], [-0.5, h1 - 0.5]])

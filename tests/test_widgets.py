@@ -137,3 +137,24 @@ def test_unknown_control_is_a_clear_error():
 
     with pytest.raises(KeyError, match="no control 'angel'"):
         stack_check().set(angel=3)
+
+
+def test_a_demo_takes_no_ad_hoc_attributes():
+    """STYLE.md 12: state lives in ``demo.state`` and handlers in ``demo.handlers``, never on new attributes."""
+    demo = DEMOS["camera_explorer"].builder()
+    with pytest.raises(AttributeError):
+        demo.cache = {}  # a slotted dataclass: a typo or a stash fails loudly
+
+
+def test_shared_control_helpers_give_one_look():
+    from camlab.widgets import controls
+
+    made = [controls.slider(0.5, 0.0, 1.0, 0.1, "a"), controls.int_slider(3, 1, 9, "b", step=2),
+            controls.log_slider(0.3, 0.01, 1.0, 0.05, "c"), controls.choice_slider([1.4, 2.8], 2.8, "d")]
+    for w in made:
+        assert w.continuous_update and w.style.description_width == "initial" and w.layout.width == "300px"
+    assert len({id(w.layout) for w in made}) == len(made)  # each its own layout object
+    log = made[2]
+    assert (log.min, log.max, log.value) == (-2.0, 0.0, 0.3)
+    assert made[1].step == 2 and made[3].options == (1.4, 2.8)
+    assert not controls.int_slider(7, 3, 21, "e", continuous_update=False).continuous_update

@@ -37,6 +37,8 @@ pixel (docs/conventions.md).
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+from functools import cached_property
 from typing import NamedTuple, Sequence
 
 import numpy as np
@@ -256,12 +258,16 @@ def match_graph(features: Sequence[_feat.Features], *, ratio: float = 0.75, mutu
     if n < 2:
         raise CamlabInputError(f"features: expected the features of at least 2 images, got {n}")
     rng = np.random.default_rng(0) if rng is None else rng
+    # FLANN: index each image's descriptors once, not once per pair
+    index = [_feat.flann_index(f) if approximate and f.method == "sift" and len(f.points) >= 2 else None
+             for f in feats]
     pairs = {}
     for i in range(n):
         for j in range(i + 1, n):
+            knn = _feat.knn_match(feats[i], feats[j], backward=mutual, approximate=approximate, index2=index[j])
             pairs[(i, j)] = register_pair(feats[i], feats[j], ratio=ratio, mutual=mutual, threshold=threshold,
-                                          min_inliers=min_inliers, rng=rng, approximate=approximate,
-                                          refine=refine, confidence=confidence, max_iters=max_iters)
+                                          min_inliers=min_inliers, rng=rng, refine=refine, confidence=confidence,
+                                          max_iters=max_iters, matches=_feat.filter_matches(knn, ratio, mutual))
     degree = np.zeros(n, int)
     strength = np.zeros(n, int)
     for (i, j), p in pairs.items():
@@ -397,28 +403,81 @@ def feather_weights(shape: Sequence[int]) -> np.ndarray:
     return np.minimum(dv[:, None], du[None, :])
 
 
-class WarpedImages(NamedTuple):
-    """Images warped onto one canvas.
+@dataclass(frozen=True, eq=False)
+class WarpedImages:
+    """Images warped onto one canvas, each kept only in its own box of the canvas.
 
-    ``images[k]`` (h, w, 3) float32 (zero outside), ``masks[k]`` (h, w) bool,
-    ``weights[k]`` (h, w) float32 feather weights (zero outside), ``homographies[k]`` the
-    canvas_from_image H actually used, ``T`` the canvas translation.
+    Image k covers canvas rows ``r0:r1`` and columns ``c0:c1`` with
+    ``boxes[k] = (r0, r1, c0, c1)``; there ``patches[k]`` is the warped image
+    ((r1-r0, c1-c0, 3) float32, zero outside the image), ``patch_masks[k]`` where it has
+    data (bool) and ``patch_weights[k]`` its feather weights (float32, zero outside).
+    Exposure, seams and blending work box by box, so an image never costs more than its
+    own footprint. ``images``, ``masks`` and ``weights`` are the same data on the full
+    (h, w) canvas (built on first use). ``homographies[k]`` is the canvas_from_image H
+    used (None on a curved canvas), ``T`` the canvas translation, ``shape`` (h, w).
     """
 
-    images: list
-    masks: list
-    weights: list
+    patches: list
+    patch_masks: list
+    patch_weights: list
+    boxes: list
+    shape: tuple
     homographies: list
     T: np.ndarray
 
-    @property
-    def shape(self) -> tuple[int, int]:
-        return self.masks[0].shape
+    def _on_canvas(self, parts: list) -> list:
+        out = []
+        for p, (r0, r1, c0, c1) in zip(parts, self.boxes):
+            full = np.zeros(tuple(self.shape) + p.shape[2:], p.dtype)
+            full[r0:r1, c0:c1] = p
+            out.append(full)
+        return out
+
+    @cached_property
+    def images(self) -> list:
+        return self._on_canvas(self.patches)
+
+    @cached_property
+    def masks(self) -> list:
+        return self._on_canvas(self.patch_masks)
+
+    @cached_property
+    def weights(self) -> list:
+        return self._on_canvas(self.patch_weights)
+
+    def subsampled(self, step: int) -> tuple[list, list]:
+        """Every image and mask on the canvas grid ``[::step, ::step]`` (as ``images[k][::step, ::step]``),
+        built from the boxes without the full canvas."""
+        h, w = self.shape
+        size = (-(-h // step), -(-w // step))
+        imgs, masks = [], []
+        for p, m, (r0, r1, c0, c1) in zip(self.patches, self.patch_masks, self.boxes):
+            a, b = -(-r0 // step), -(-c0 // step)  # the first grid row and column in the box
+            sp, sm = p[a * step - r0::step, b * step - c0::step], m[a * step - r0::step, b * step - c0::step]
+            im = np.zeros(size + p.shape[2:], p.dtype)
+            mk = np.zeros(size, bool)
+            im[a:a + sp.shape[0], b:b + sp.shape[1]] = sp
+            mk[a:a + sm.shape[0], b:b + sm.shape[1]] = sm
+            imgs.append(im)
+            masks.append(mk)
+        return imgs, masks
+
+
+def _image_box(H: np.ndarray, image_shape: Sequence[int], shape: tuple[int, int]) -> tuple[int, int, int, int]:
+    """The canvas box (r0, r1, c0, c1) that can see image pixels through H (bilinear reach: one pixel beyond the edges)."""
+    h, w = image_shape[:2]
+    c = map_points(H, [[-1, -1], [w, -1], [w, h], [-1, h]])
+    lo, hi = np.floor(c.min(axis=0)) - 1, np.ceil(c.max(axis=0)) + 2
+    r0, c0 = int(min(max(lo[1], 0), shape[0])), int(min(max(lo[0], 0), shape[1]))
+    return r0, max(r0, int(min(hi[1], shape[0]))), c0, max(c0, int(min(hi[0], shape[1])))
 
 
 def warp_images(images: Sequence[np.ndarray], homographies: Sequence[np.ndarray], *,
                 max_pixels: int = 40_000_000) -> WarpedImages:
     """Warp every image onto the panorama canvas (bounds from all warped corners, one translation).
+
+    Each image is warped only into its own box of the canvas (the bounding box of its
+    warped corners): ``T_box @ T @ H`` with ``T_box`` the translation to the box's corner.
 
     Parameters
     ----------
@@ -438,21 +497,25 @@ def warp_images(images: Sequence[np.ndarray], homographies: Sequence[np.ndarray]
             raise CamlabInputError(f"images[{k}]: expected an (h, w, 3) float32 image from prepare_images, "
                                    f"got shape {np.shape(im)}; call prepare_images(images) first")
     T, shape = canvas_bounds(list(homographies), [im.shape for im in images], max_pixels=max_pixels)
-    out_i, out_m, out_w, out_h = [], [], [], []
+    out_i, out_m, out_w, out_h, boxes = [], [], [], [], []
     for im, H in zip(images, homographies):
         Hc = _hg.normalize_homography(T @ np.asarray(H, dtype=float))
+        r0, r1, c0, c1 = _image_box(Hc, im.shape, shape)
+        Hb = np.array([[1.0, 0, -c0], [0, 1, -r0], [0, 0, 1]]) @ Hc
+        size = (r1 - r0, c1 - c0)
         # one warp for the colour channels and the feather weight together (4 channels)
-        both = warp_perspective(np.dstack([im, feather_weights(im.shape).astype(np.float32)]), Hc, shape,
+        both = warp_perspective(np.dstack([im, feather_weights(im.shape).astype(np.float32)]), Hb, size,
                                 method="cv2")
         wimg, wgt = both[..., :3], both[..., 3]
         ones = np.ones(im.shape[:2], np.float32)
-        mask = warp_perspective(ones, Hc, shape, interpolation="nearest", method="cv2") > 0.5
+        mask = warp_perspective(ones, Hb, size, interpolation="nearest", method="cv2") > 0.5
         wgt = np.where(mask, np.maximum(wgt, 1e-3), 0).astype(np.float32)
         out_i.append(wimg)
         out_m.append(mask)
         out_w.append(wgt)
         out_h.append(Hc)
-    return WarpedImages(out_i, out_m, out_w, out_h, T)
+        boxes.append((r0, r1, c0, c1))
+    return WarpedImages(out_i, out_m, out_w, boxes, tuple(shape), out_h, T)
 
 
 def gain_compensation(warped: WarpedImages, sigma_n: float = 10.0 / 255, sigma_g: float = 1.0,
@@ -486,13 +549,12 @@ def gain_compensation(warped: WarpedImages, sigma_n: float = 10.0 / 255, sigma_g
     (n,) ndarray
         Multiply image k by ``gains[k]``.
     """
-    n = len(warped.images)
+    n = len(warped.patches)
     h, w = warped.shape
     step = 1 if megapixels is None else max(1, int(round(np.sqrt(h * w / (megapixels * 1e6)))))
-    imgs = [im[::step, ::step] for im in warped.images]
+    imgs, masks = warped.subsampled(step)
     lum = [im.mean(axis=2) for im in imgs]
-    ok = [m[::step, ::step] & (im.min(axis=2) > clip[0]) & (im.max(axis=2) < clip[1])
-          for m, im in zip(warped.masks, imgs)]
+    ok = [m & (im.min(axis=2) > clip[0]) & (im.max(axis=2) < clip[1]) for m, im in zip(masks, imgs)]
     A = np.zeros((n, n))
     b = np.zeros(n)
     for i in range(n):
@@ -567,16 +629,14 @@ def dp_seam_masks(warped: WarpedImages, megapixels: float = 0.1) -> list[np.ndar
 
     Returns
     -------
-    list of (h, w) bool ndarray
-        Disjoint seam masks covering the union of the footprints.
+    list of bool ndarray
+        Disjoint seam masks covering the union of the footprints, each in its image's box
+        (``masks[k]`` covers the canvas pixels ``warped.boxes[k]``, like ``warped.patch_masks[k]``).
     """
-    import cv2
-
     h, w = warped.shape
     step = max(1, int(round(np.sqrt(h * w / (megapixels * 1e6)))))
-    imgs = [im[::step, ::step] for im in warped.images]
-    masks = [m[::step, ::step] for m in warped.masks]
-    label = np.full(masks[0].shape, -1, np.int64)
+    imgs, masks = warped.subsampled(step)
+    label = np.full(masks[0].shape, -1, np.int16)
     comp = np.zeros_like(imgs[0])
     for k, (im, m) in enumerate(zip(imgs, masks)):
         placed = label >= 0
@@ -605,16 +665,20 @@ def dp_seam_masks(warped: WarpedImages, megapixels: float = 0.1) -> list[np.ndar
         fresh = m & ~placed
         label[fresh] = k
         comp[fresh] = im[fresh]
-    full = cv2.resize(label.astype(np.float32), (w, h), interpolation=cv2.INTER_NEAREST).astype(np.int64)
-    out = [(full == k) & m for k, m in enumerate(warped.masks)]
-    union = np.logical_or.reduce(warped.masks)
-    missed = union & ~np.logical_or.reduce(out)
-    if missed.any():  # only in the box around the missed pixels (a thin rim)
-        rows, cols = np.flatnonzero(missed.any(axis=1)), np.flatnonzero(missed.any(axis=0))
-        box = (slice(rows[0], rows[-1] + 1), slice(cols[0], cols[-1] + 1))
-        fallback = seam_masks([wk[box] for wk in warped.weights])
-        for o, f in zip(out, fallback):
-            o[box] |= f & missed[box]
+    # back to full resolution, box by box: each pixel takes its nearest coarse label
+    near_r = np.minimum((np.arange(h) + step // 2) // step, label.shape[0] - 1)
+    near_c = np.minimum((np.arange(w) + step // 2) // step, label.shape[1] - 1)
+    out, covered = [], np.zeros((h, w), bool)
+    best_w, best_k = np.zeros((h, w), np.float32), np.full((h, w), -1, np.int16)
+    for k, (m, wk, (r0, r1, c0, c1)) in enumerate(zip(warped.patch_masks, warped.patch_weights, warped.boxes)):
+        own = (label[np.ix_(near_r[r0:r1], near_c[c0:c1])] == k) & m
+        covered[r0:r1, c0:c1] |= own
+        out.append(own)
+        better = wk > best_w[r0:r1, c0:c1]  # the largest feather weight, for the pixels the labels miss
+        best_w[r0:r1, c0:c1][better] = wk[better]
+        best_k[r0:r1, c0:c1][better] = k
+    for k, (m, (r0, r1, c0, c1)) in enumerate(zip(warped.patch_masks, warped.boxes)):
+        out[k] |= m & ~covered[r0:r1, c0:c1] & (best_k[r0:r1, c0:c1] == k)
     return out
 
 
@@ -724,16 +788,26 @@ def laplacian_blend(images: Sequence[np.ndarray], masks: Sequence[np.ndarray], l
         Where each image has data (default: its seam mask); outside, it is extended by
         push-pull before its pyramid is built.
     """
-    import cv2
-
     images, masks = _blend_inputs(images, masks)
     levels = check_integer(levels, "levels", minimum=1)
-    h, w = masks[0].shape
-    levels = max(0, min(levels, int(np.log2(max(2, min(h, w)))) - 2))
-    union = np.zeros((h, w), bool)
-    for m in masks:
-        union |= m
     feet = masks if footprints is None else footprints
+    boxes = []
+    for m, f in zip(masks, feet):  # each image's box: where it has data
+        both = m | f
+        rows, cols = np.flatnonzero(both.any(axis=1)), np.flatnonzero(both.any(axis=0))
+        boxes.append((rows[0], rows[-1] + 1, cols[0], cols[-1] + 1) if len(rows) else (0, 0, 0, 0))
+    return _multiband([im[r0:r1, c0:c1] for im, (r0, r1, c0, c1) in zip(images, boxes)],
+                      [m[r0:r1, c0:c1] for m, (r0, r1, c0, c1) in zip(masks, boxes)],
+                      [f[r0:r1, c0:c1] for f, (r0, r1, c0, c1) in zip(feet, boxes)], boxes, masks[0].shape, levels)
+
+
+def _multiband(images: list, masks: list, feet: list, boxes: list, shape: tuple, levels: int) -> np.ndarray:
+    """:func:`laplacian_blend` of images given in boxes of the canvas: ``images[k]``, ``masks[k]``
+    (seam) and ``feet[k]`` (footprint) cover the canvas pixels ``boxes[k] = (r0, r1, c0, c1)``."""
+    import cv2
+
+    h, w = shape
+    levels = max(0, min(levels, int(np.log2(max(2, min(h, w)))) - 2))
     nch = images[0].shape[2]
     # level sizes of the whole canvas (pyrDown halves, rounding up)
     sizes = [(h, w)]
@@ -741,24 +815,33 @@ def laplacian_blend(images: Sequence[np.ndarray], masks: Sequence[np.ndarray], l
         sizes.append(((sizes[-1][0] + 1) // 2, (sizes[-1][1] + 1) // 2))
     acc = [np.zeros((*sz, nch), np.float32) for sz in sizes]
     wsum = [np.zeros(sz, np.float32) for sz in sizes]
+    union = np.zeros((h, w), bool)
     step = 1 << levels
     pad = 4 * step  # the 5-tap filters spread a mask about 2 * 2^l pixels at level l
-    for img, m, foot in zip(images, masks, feet):
+    for img, m, foot, (r0, r1, c0, c1) in zip(images, masks, feet, boxes):
         if not m.any():
             continue
-        # Work in the image's bounding box (aligned to the coarsest grid, padded by the
+        union[r0:r1, c0:c1] |= m
+        # Work in the seam mask's bounding box (aligned to the coarsest grid, padded by the
         # filters' reach): outside it the blurred seam mask is zero, so nothing changes.
-        rows, cols = np.flatnonzero(m.any(axis=1)), np.flatnonzero(m.any(axis=0))
+        rows, cols = np.flatnonzero(m.any(axis=1)) + r0, np.flatnonzero(m.any(axis=0)) + c0
         y0, x0 = max(0, (rows[0] - pad) // step * step), max(0, (cols[0] - pad) // step * step)
         y1, x1 = min(h, rows[-1] + 1 + pad), min(w, cols[-1] + 1 + pad)
         if y1 < h:
             y1 = min(h, y0 + -(-(y1 - y0) // step) * step)
         if x1 < w:
             x1 = min(w, x0 + -(-(x1 - x0) // step) * step)
-        sub = (slice(y0, y1), slice(x0, x1))
-        valid = foot[sub] | m[sub]
-        g = [_fill_outside(img[sub], valid, levels).astype(np.float32)]
-        mk = [m[sub].astype(np.float32)]
+        # the image's box pasted into that (larger) aligned box
+        sub = np.zeros((y1 - y0, x1 - x0, nch), np.float32)
+        valid = np.zeros((y1 - y0, x1 - x0), bool)
+        mk0 = np.zeros((y1 - y0, x1 - x0), np.float32)
+        ys, xs = slice(max(r0, y0) - y0, min(r1, y1) - y0), slice(max(c0, x0) - x0, min(c1, x1) - x0)
+        ps, qs = slice(max(r0, y0) - r0, min(r1, y1) - r0), slice(max(c0, x0) - c0, min(c1, x1) - c0)
+        sub[ys, xs] = img[ps, qs]
+        valid[ys, xs] = foot[ps, qs] | m[ps, qs]
+        mk0[ys, xs] = m[ps, qs]
+        g = [_fill_outside(sub, valid, levels).astype(np.float32)]
+        mk = [mk0]
         for _ in range(levels):
             g.append(cv2.pyrDown(g[-1]))
             mk.append(cv2.pyrDown(mk[-1]))
@@ -782,7 +865,8 @@ def laplacian_blend(images: Sequence[np.ndarray], masks: Sequence[np.ndarray], l
 
 
 def blend(warped: WarpedImages, method: str = "multiband", *, gains: ArrayLike | None = None,
-          levels: int = 5, feather_power: float = 1.0, seam: str = "voronoi") -> np.ndarray:
+          levels: int = 5, feather_power: float = 1.0, seam: str = "voronoi",
+          seams: Sequence[np.ndarray] | None = None) -> np.ndarray:
     r"""Blend images warped onto one canvas.
 
     * ``"overwrite"``: paint the images in order, each over the previous (hard seams:
@@ -803,6 +887,11 @@ def blend(warped: WarpedImages, method: str = "multiband", *, gains: ArrayLike |
         Pyramid levels for ``"multiband"``.
     feather_power : float
         p above: larger values sharpen the transition towards a seam.
+    seams : list of bool ndarray, optional
+        Seam masks already found, in the images' boxes (:func:`dp_seam_masks`); ``seam`` is
+        then not used.
+
+    Every image is blended within its own box of the canvas (``warped.boxes``).
 
     Returns
     -------
@@ -812,28 +901,32 @@ def blend(warped: WarpedImages, method: str = "multiband", *, gains: ArrayLike |
         raise CamlabInputError(f"method: expected one of {BLENDS}, got {method!r}")
     if seam not in ("voronoi", "dp"):
         raise CamlabInputError(f"seam: expected 'voronoi' or 'dp', got {seam!r}")
-    imgs = warped.images
+    imgs = warped.patches
     if gains is not None:
         g = np.asarray(gains, dtype=float).ravel()
         if g.shape != (len(imgs),):
             raise CamlabInputError(f"gains: expected {len(imgs)} gains (one per image), got shape {g.shape}")
         imgs = [np.minimum(im * np.float32(gk), np.float32(1)) for im, gk in zip(imgs, g)]  # im >= 0
     h, w = warped.shape
+    boxes = warped.boxes
     if method == "overwrite":
         out = np.zeros((h, w, imgs[0].shape[2]), np.float32)
-        for im, m in zip(imgs, warped.masks):
-            out[m] = im[m]
+        for im, m, (r0, r1, c0, c1) in zip(imgs, warped.patch_masks, boxes):
+            out[r0:r1, c0:c1][m] = im[m]
         return out
     if method == "feather":
         num = np.zeros((h, w, imgs[0].shape[2]), np.float32)
         den = np.zeros((h, w), np.float32)
-        for im, wk in zip(imgs, warped.weights):
+        for im, wk, (r0, r1, c0, c1) in zip(imgs, warped.patch_weights, boxes):
             wp = wk ** np.float32(feather_power) if feather_power != 1 else wk
-            num += im * wp[..., None]
-            den += wp
+            num[r0:r1, c0:c1] += im * wp[..., None]
+            den[r0:r1, c0:c1] += wp
         return np.where(den[..., None] > 0, num / np.maximum(den, 1e-12)[..., None], 0).astype(np.float32)
-    seams = dp_seam_masks(warped) if seam == "dp" else seam_masks(warped.weights)
-    return laplacian_blend(imgs, seams, levels, footprints=warped.masks)
+    if seams is None and seam == "dp":
+        seams = dp_seam_masks(warped)
+    elif seams is None:  # the Voronoi masks lie inside each image's footprint, so inside its box
+        seams = [sk[r0:r1, c0:c1] for sk, (r0, r1, c0, c1) in zip(seam_masks(warped.weights), boxes)]
+    return _multiband(imgs, seams, warped.patch_masks, boxes, warped.shape, check_integer(levels, "levels", minimum=1))
 
 
 # --------------------------------------------------------------------------- the pipeline

@@ -25,6 +25,7 @@ per overlapping pair; this module turns them into one camera per image (Brown & 
 """
 from __future__ import annotations
 
+import time
 from typing import NamedTuple, Sequence
 
 import numpy as np
@@ -147,7 +148,8 @@ class BundleResult(NamedTuple):
 
     ``Ks``, ``Rs``: refined intrinsics and cam_from_world rotations (None for images left
     out); ``rms_before``/``rms_after``: RMS reprojection error of all matches, pixels;
-    ``cost_history``: Huber cost per LM iteration; ``iterations``; ``message``.
+    ``cost_history``: Huber cost per LM iteration; ``iterations``; ``message``; ``seconds``: the
+    adjustment's wall time.
     """
 
     Ks: list
@@ -157,6 +159,7 @@ class BundleResult(NamedTuple):
     cost_history: np.ndarray
     iterations: int
     message: str
+    seconds: float
 
 
 def _project(H: np.ndarray, x: np.ndarray) -> np.ndarray:
@@ -221,9 +224,11 @@ def _adjust(blocks: dict, build, pair_errors, pairs: list, huber: float, max_ite
         return float(np.sqrt(np.mean(np.sum(e ** 2, axis=1))))
 
     if n == 0:
-        return models(x0), rms(x0), rms(x0), np.zeros(1), 0, "nothing to adjust"
+        return models(x0), rms(x0), rms(x0), np.zeros(1), 0, "nothing to adjust", 0.0
+    t0 = time.perf_counter()
     res = levenberg_marquardt(residuals, x0, jacobian, max_iter=max_iter, ftol=1e-8)
-    return models(res.x), rms(x0), rms(res.x), res.cost_history, res.iterations, res.message
+    return (models(res.x), rms(x0), rms(res.x), res.cost_history, res.iterations, res.message,
+            time.perf_counter() - t0)
 
 
 def _pairs(matches: dict, present) -> list:
@@ -283,20 +288,21 @@ def bundle_adjust(Ks: Sequence, Rs: Sequence, matches: dict, *, fixed: int | Non
     def errors(ci, cj, a, b):
         return pair_transfer_errors(ci[0], ci[1], cj[0], cj[1], a, b)
 
-    m, before, after, costs, its, msg = _adjust(blocks, build, errors, pairs, huber, max_iter)
+    m, before, after, costs, its, msg, secs = _adjust(blocks, build, errors, pairs, huber, max_iter)
     return BundleResult([m[k][0] if k in m else None for k in range(len(Rs))],
-                        [m[k][1] if k in m else None for k in range(len(Rs))], before, after, costs, its, msg)
+                        [m[k][1] if k in m else None for k in range(len(Rs))], before, after, costs, its, msg, secs)
 
 
 class HomographyAdjustment(NamedTuple):
     """The outcome of :func:`adjust_homographies`: ``homographies`` ref_from_k (None for images
-    left out), ``rms_before``/``rms_after`` (pixels), ``iterations``, ``message``."""
+    left out), ``rms_before``/``rms_after`` (pixels), ``iterations``, ``message``, ``seconds`` (wall time)."""
 
     homographies: list
     rms_before: float
     rms_after: float
     iterations: int
     message: str
+    seconds: float
 
 
 def adjust_homographies(ref_from_k: Sequence, matches: dict, *, reference: int, huber: float = 2.0,
@@ -328,9 +334,9 @@ def adjust_homographies(ref_from_k: Sequence, matches: dict, *, reference: int, 
     def errors(hi, hj, a, b):
         return _project(hj[1] @ hi[0], a) - b
 
-    m, before, after, _, its, msg = _adjust(blocks, build, errors, pairs, huber, max_iter)
+    m, before, after, _, its, msg, secs = _adjust(blocks, build, errors, pairs, huber, max_iter)
     return HomographyAdjustment([m[k][0] if k in m else None for k in range(len(ref_from_k))],
-                                before, after, its, msg)
+                                before, after, its, msg, secs)
 
 
 def wave_correct(Rs: Sequence[np.ndarray | None]) -> list:

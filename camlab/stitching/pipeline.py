@@ -26,7 +26,7 @@ from numpy.typing import ArrayLike
 
 from .. import features as _feat
 from .._validate import CamlabInputError, DegenerateError, check_intrinsics
-from . import BLENDS, WarpedImages, blend, feather_weights, gain_compensation, match_graph, prepare_images, warp_images
+from . import BLENDS, WarpedImages, blend, dp_seam_masks, feather_weights, gain_compensation, match_graph, prepare_images, warp_images
 from .cameras import adjust_homographies, estimate_cameras, estimate_focal, inlier_matches
 from .projections import PROJECTIONS, canvas_from_ray, make_canvas, warp_to_canvas
 
@@ -73,7 +73,9 @@ class StitchResult(NamedTuple):
         Each image's border on the canvas (for drawing which image went where).
     names : list of str
     timings : dict
-        Seconds per stage (features, matching, cameras, warping, exposure, seams_blend).
+        Seconds per stage: features, matching, estimation (focal, rotations, model choice),
+        bundle_adjustment (of the cameras, or of the homographies of a flat scene), warping,
+        exposure, seams, compositing (gains applied and blending).
     """
 
     panorama: np.ndarray
@@ -155,22 +157,27 @@ def _outline_curved(K, R, shape, canvas) -> np.ndarray:
 
 
 def _warp_curved(imgs: list, Ks: list, Rs: list, canvas) -> WarpedImages:
+    """Every image warped into its own box of a curved canvas; a box that wraps around a
+    full-turn canvas (columns modulo w) becomes a full-width one."""
     h, w = canvas.shape
-    out_i, out_m, out_w = [], [], []
+    out_i, out_m, out_w, boxes = [], [], [], []
     for im, K, R, box in zip(imgs, Ks, Rs, canvas.boxes):
         patch, mask, wgt = warp_to_canvas(im, K, R, canvas, box, feather_weights(im.shape).astype(np.float32))
+        wgt = np.where(mask, np.maximum(wgt, 1e-3), 0).astype(np.float32)
         r0, r1, c0, c1 = box
-        cols = slice(c0, c1) if 0 <= c0 and c1 <= w else np.arange(c0, c1) % w  # a wrapping canvas: modulo w
-        full = np.zeros((h, w, 3), np.float32)
-        fm = np.zeros((h, w), bool)
-        fw = np.zeros((h, w), np.float32)
-        full[r0:r1, cols] = patch
-        fm[r0:r1, cols] = mask
-        fw[r0:r1, cols] = np.where(mask, np.maximum(wgt, 1e-3), 0)
-        out_i.append(full)
-        out_m.append(fm)
-        out_w.append(fw)
-    return WarpedImages(out_i, out_m, out_w, [None] * len(imgs), np.eye(3))
+        if c0 < 0 or c1 > w:
+            cols = np.arange(c0, c1) % w
+            parts = []
+            for a in (patch, mask, wgt):
+                full = np.zeros((r1 - r0, w) + a.shape[2:], a.dtype)
+                full[:, cols] = a
+                parts.append(full)
+            (patch, mask, wgt), (c0, c1) = parts, (0, w)
+        out_i.append(patch)
+        out_m.append(mask)
+        out_w.append(wgt)
+        boxes.append((r0, r1, c0, c1))
+    return WarpedImages(out_i, out_m, out_w, boxes, (h, w), [None] * len(imgs), np.eye(3))
 
 
 def _warn_second_plane(graph, names: list, rng) -> None:
@@ -238,7 +245,7 @@ def largest_rectangle(mask: np.ndarray) -> tuple[int, int, int, int]:
 
 
 def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", method: str = "sift",
-           max_features: int = 2500, ratio: float = 0.75, mutual: bool = False, threshold: float = 3.0,
+           max_features: int = 1500, ratio: float = 0.75, mutual: bool = False, threshold: float = 3.0,
            min_inliers: int = 15, compensate_gains: bool = True, levels: int = 5,
            projection: str = "auto", K: ArrayLike | None = None, reference: int | None = None,
            rng: np.random.Generator | None = None, max_pixels: int = 40_000_000,
@@ -344,7 +351,7 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
     coarse = float(np.median([np.sqrt(im.shape[0] * im.shape[1] / (registration_megapixels * 1e6))
                               for im in imgs])) if registration_megapixels else 1.0
     rot_tol, pl_tol = rotation_tol * max(1.0, coarse), plane_tol * max(1.0, coarse)
-    model, resid = "rotation", rot_rms
+    model, resid, adj = "rotation", rot_rms, None
     if (telephoto or rot_rms > rot_tol) and projection in ("auto", "planar"):
         adj = adjust_homographies(graph.homographies, inlier_matches(graph, 100), reference=graph.reference)
         if telephoto or adj.rms_after < 0.7 * rot_rms:  # a plane explains the matches clearly better
@@ -370,7 +377,9 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
     chosen = projection
     if projection == "auto":
         chosen = "planar" if model == "homography" or max(_field_of_view(Ks, Rs, sub_shapes)) <= 100 else "spherical"
-    times["cameras"] = time.perf_counter() - t0
+    ba_seconds = (0.0 if est is None else est.bundle.seconds) + (0.0 if adj is None else adj.seconds)
+    times["estimation"] = time.perf_counter() - t0 - ba_seconds
+    times["bundle_adjustment"] = ba_seconds
 
     t0 = time.perf_counter()
     sub = [imgs[k] for k in keep]
@@ -398,9 +407,14 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
     g_sub = gain_compensation(warped, reference=ref_local) if compensate_gains else np.ones(len(keep))
     times["exposure"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    pano = blend(warped, blend_method, gains=g_sub, levels=levels, seam="dp")
-    union = np.logical_or.reduce(warped.masks)
-    times["seams_blend"] = time.perf_counter() - t0
+    seams = dp_seam_masks(warped) if blend_method == "multiband" else None
+    times["seams"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    pano = blend(warped, blend_method, gains=g_sub, levels=levels, seams=seams)
+    times["compositing"] = time.perf_counter() - t0
+    union = np.zeros(warped.shape, bool)
+    for m, (r0, r1, c0, c1) in zip(warped.patch_masks, warped.boxes):
+        union[r0:r1, c0:c1] |= m
     masks_out = list(warped.masks)
     if crop:
         r0, r1, c0, c1 = largest_rectangle(union)

@@ -14,13 +14,31 @@ if TYPE_CHECKING:
     from ._base import FigureView
 
 
+def _look(kw: dict[str, Any]) -> dict[str, Any]:
+    """The shared look of every slider: reports while dragging, readable label, 300 px wide (``kw`` overrides)."""
+    return {"continuous_update": True, "style": {"description_width": "initial"}, "layout": W.Layout(width="300px"),
+            **kw}
+
+
 def slider(value: float, lo: float, hi: float, step: float, description: str, **kw: Any) -> W.FloatSlider:
     """A float slider that reports while dragging, with a readable label width."""
-    return W.FloatSlider(
-        value=value, min=lo, max=hi, step=step, description=description,
-        continuous_update=True, style={"description_width": "initial"},
-        layout=W.Layout(width="300px"), **kw,
-    )
+    return W.FloatSlider(value=value, min=lo, max=hi, step=step, description=description, **_look(kw))
+
+
+def int_slider(value: int, lo: int, hi: int, description: str, step: int = 1, **kw: Any) -> W.IntSlider:
+    """An integer slider with the look of :func:`slider`."""
+    return W.IntSlider(value=value, min=lo, max=hi, step=step, description=description, **_look(kw))
+
+
+def log_slider(value: float, lo: float, hi: float, step: float, description: str, **kw: Any) -> W.FloatLogSlider:
+    """A slider on a log10 scale from ``lo`` to ``hi`` (values, not exponents); ``step`` is in decades."""
+    return W.FloatLogSlider(value=value, base=10, min=np.log10(lo), max=np.log10(hi), step=step,
+                            description=description, **_look(kw))
+
+
+def choice_slider(options: Sequence[Any], value: Any, description: str, **kw: Any) -> W.SelectionSlider:
+    """A slider over a few fixed values (f-numbers ...) with the look of :func:`slider`."""
+    return W.SelectionSlider(options=list(options), value=value, description=description, **_look(kw))
 
 
 def monospace(text: str) -> str:

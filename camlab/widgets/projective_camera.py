@@ -15,6 +15,7 @@ from .. import camera as cm
 from .. import scenes
 from ..plotting import scene3d
 from ._base import FigureView, build_demo, register, slider
+from .controls import int_slider
 
 TARGET = np.array([0.0, 0.0, 0.7])
 
@@ -107,12 +108,10 @@ def resectioning():
     view.animate(*est_art.artists(), pts3d, meas, reproj, est_lines)
     controls = {
         "noise": slider(0.5, 0.0, 5.0, 0.1, "pixel noise sigma (px)"),
-        "n_points": W.IntSlider(value=12, min=6, max=60, description="correspondences N",
-                                style={"description_width": "initial"}, layout=W.Layout(width="300px")),
+        "n_points": int_slider(12, 6, 60, "correspondences N"),
         "outlier": slider(0.0, -100.0, 100.0, 2.0, "shift pair k along u (px)"),
         "outlier_v": slider(0.0, -100.0, 100.0, 2.0, "shift pair k along v (px)"),
-        "pair": W.IntSlider(value=0, min=0, max=5, description="pair k (0-5) to shift",
-                            style={"description_width": "initial"}, layout=W.Layout(width="300px")),
+        "pair": int_slider(0, 0, 5, "pair k (0-5) to shift"),
         "refine": W.Checkbox(value=False, description="refine (minimise reprojection error)"),
     }
     clicked: dict[int, np.ndarray] = {}  # correspondence index -> clicked pixel

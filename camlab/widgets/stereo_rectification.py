@@ -20,7 +20,7 @@ from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
 from ..data.stereo import load_stereo_rig, stereo_scene, true_matches
 from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes
 from ._base import Demo, FigureView, build_demo, register, slider
-from .controls import monospace
+from .controls import int_slider, monospace
 
 SIZE = (640, 480)
 
@@ -404,8 +404,7 @@ def disparity_depth() -> Demo:
                              f"{100 * state['within_5']:.1f}% of matched pixels within 5% of the true depth")
 
     controls = {
-        "block_size": W.IntSlider(value=7, min=3, max=21, step=2, description="block size (px)",
-                                  continuous_update=False, style={"description_width": "initial"}),
+        "block_size": int_slider(7, 3, 21, "block size (px)", step=2, continuous_update=False),
         "method": W.ToggleButtons(options=["block matching (numpy)", "SGBM (OpenCV)"],
                                   value="block matching (numpy)", description="matcher",
                                   style={"button_width": "150px"}),
