@@ -50,3 +50,16 @@ def test_true_matches_are_exact_correspondences():
     F = ep.fundamental_from_cameras(cu1, cu2)
     assert np.abs(ep.sampson_distance(F, u1, u2)).max() < 1e-6
     np.testing.assert_allclose(u1, undistort_pixels(x1, rig.camera1.K, rig.camera1.dist))
+
+
+def test_calibrate_rig_recovers_the_true_relative_pose():
+    from camlab.data.stereo import calibrate_rig
+
+    rig = load_stereo_rig()
+    cal = calibrate_rig(rig)
+    assert 0 < cal.rms < 0.2  # noise-free 8-bit boards: a few hundredths of a pixel
+    assert np.array_equal(cal.camera1.R, np.eye(3)) and not np.any(cal.camera1.t)
+    R, t = ep.relative_pose(rig.camera1, rig.camera2)
+    assert abs(np.linalg.norm(cal.camera2.t) - np.linalg.norm(t)) < 1e-3  # baseline within 1 mm
+    assert np.abs(cal.camera2.R - R).max() < 0.01
+    assert np.allclose(cal.camera1.K, rig.camera1.K, atol=3.0)
