@@ -40,7 +40,7 @@ from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
 from ..scenes import noise_texture, portrait
 
 __all__ = ["STEREO_PARAMS", "RigCalibration", "StereoMatches", "StereoRig", "calibrate_rig", "load_stereo_rig",
-           "make_stereo_rig", "rig_cameras", "stereo_scene", "true_matches"]
+           "make_stereo_rig", "rig_cameras", "stereo_scene", "true_disparity", "true_matches"]
 
 STEREO_PARAMS = {
     "seed": 11,
@@ -200,6 +200,30 @@ def true_matches(rig: StereoRig, step: int = 30, start: int = 20) -> StereoMatch
     x1, x2 = x1[inside], x2[inside]
     c1, c2 = rig.camera1, rig.camera2
     return StereoMatches(x1, x2, undistort_pixels(x1, c1.K, c1.dist), undistort_pixels(x2, c2.K, c2.dist))
+
+
+def true_disparity(rig: StereoRig, rect) -> np.ndarray:
+    """The true disparity (pixels, NaN = no surface) of another calibrated rectification of the rig.
+
+    ``rect`` is :func:`camlab.rectification.rectify_calibrated` of the rig's true cameras at
+    any resolution or ``alpha`` (e.g. of ``camera.resized(0.5)``): it has the same rectifying
+    rotation as the stored one, so its pixel p' sees the surface of the stored rectified pixel
+    :math:`K K'^{-1} p'` at the same depth Z (nearest pixel), and its disparity is
+    :math:`d' = f' B / Z` (:func:`camlab.disparity.disparity_to_depth` is its own inverse).
+    """
+    import cv2
+
+    from ..disparity import disparity_to_depth
+    from ..rectification import rectify_calibrated
+
+    stored = rectify_calibrated(rig.camera1, rig.camera2, alpha=rig.params["rectify_alpha"], maps=False)
+    Z = disparity_to_depth(rig.disparity, stored.K[0, 0], stored.baseline).astype(np.float32)
+    M = stored.K @ np.linalg.inv(rect.K)
+    w, h = rect.camera1.image_size
+    v, u = np.mgrid[0:h, 0:w].astype(np.float32)
+    Zr = cv2.remap(Z, (M[0, 0] * u + M[0, 2]).astype(np.float32), (M[1, 1] * v + M[1, 2]).astype(np.float32),
+                   cv2.INTER_NEAREST, borderValue=np.nan)
+    return disparity_to_depth(Zr, rect.K[0, 0], rect.baseline)
 
 
 class RigCalibration(NamedTuple):

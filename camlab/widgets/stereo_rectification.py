@@ -17,7 +17,7 @@ from .. import epipolar as ep
 from .. import rectification as rc
 from .. import scenes
 from ..camera import Camera, look_at_rotation, rotation_from_axis_angle, scale_intrinsics
-from ..data.stereo import RigCalibration, calibrate_rig, load_stereo_rig, stereo_scene, true_matches
+from ..data.stereo import RigCalibration, calibrate_rig, load_stereo_rig, stereo_scene, true_disparity, true_matches
 from ..projective import map_points
 from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes
 from ._base import Demo, FigureView, build_demo, register, slider
@@ -310,16 +310,7 @@ def _rectified_half():
     rect = rc.rectify_calibrated(h1, h2, alpha=rig.params["rectify_alpha"], method="cv2")
     L, R = rc.rectify_images(rect, cv2.resize(rig.left, (320, 240), interpolation=cv2.INTER_AREA),
                              cv2.resize(rig.right, (320, 240), interpolation=cv2.INTER_AREA))
-    # the true disparity at half size: the same rectifying rotation, so a half-size pixel p' sees
-    # the surface of full-size pixel K_full K_half^-1 p' at the same depth Z; d' = f' B / Z
-    full = rc.rectify_calibrated(rig.camera1, rig.camera2, alpha=rig.params["rectify_alpha"], maps=False)
-    Z = dp.disparity_to_depth(rig.disparity, full.K[0, 0], full.baseline).astype(np.float32)
-    M = full.K @ np.linalg.inv(rect.K)
-    v, u = np.mgrid[0:240, 0:320].astype(np.float32)
-    Zh = cv2.remap(Z, (M[0, 0] * u + M[0, 2]).astype(np.float32), (M[1, 1] * v + M[1, 2]).astype(np.float32),
-                   cv2.INTER_NEAREST, borderValue=np.nan)
-    gt = dp.disparity_to_depth(Zh, rect.K[0, 0], rect.baseline)  # Z = f B / d is its own inverse
-    return rect, L, R, gt
+    return rect, L, R, true_disparity(rig, rect)
 
 
 @lru_cache(maxsize=16)
