@@ -7,6 +7,13 @@ from typing import Any, Callable, Sequence
 import numpy as np
 
 
+def timed(fn: Callable[[], Any]) -> tuple[Any, float]:
+    """``(fn(), seconds)``: one timed call that keeps its result (interleaved comparisons that also score it)."""
+    t0 = time.perf_counter()
+    value = fn()
+    return value, time.perf_counter() - t0
+
+
 def time_calls(fn: Callable[[], Any], repeat: int = 20, warmup: int = 2) -> np.ndarray:
     """Wall-clock seconds of ``repeat`` calls of ``fn`` after ``warmup`` untimed calls."""
     for _ in range(warmup):
@@ -47,8 +54,9 @@ def ratio_row(case: str, camlab_fn: Callable[[], Any], opencv_fn: Callable[[], A
             "ok": c / o <= target}
 
 
-def print_table(rows: Sequence[dict], columns: Sequence[str], title: str = "") -> None:
-    """Print rows as a Markdown table (floats with 2 decimals)."""
+def print_table(rows: Sequence[dict], columns: Sequence[str] | None = None, title: str = "") -> None:
+    """Print rows as a Markdown table (floats with 2 decimals); ``columns`` default to the first row's keys."""
+    columns = list(rows[0]) if columns is None else columns
     def fmt(v: Any) -> str:
         if isinstance(v, (bool, np.bool_)):
             return "yes" if v else "NO"

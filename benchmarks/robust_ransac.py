@@ -24,10 +24,14 @@ from __future__ import annotations
 
 import argparse
 import sys
-import time
+from pathlib import Path
 
 import cv2
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).parent))
+
+from _timing import print_table, timed  # noqa: E402
 
 from camlab._validate import DegenerateError
 from camlab.data import load_photo
@@ -57,16 +61,14 @@ def homography_row(case: str, src: np.ndarray, dst: np.ndarray, seeds: int) -> d
     runs = {"camlab": [], "RANSAC": [], "MAGSAC": []}
     times = {"camlab": [], "RANSAC": []}
     for seed in range(seeds):
-        t = time.perf_counter()
-        H = ransac_homography(src, dst, THRESHOLD, rng=seed).H
-        times["camlab"].append(time.perf_counter() - t)
-        runs["camlab"].append(_quality(H, src, dst))
+        fit, seconds = timed(lambda: ransac_homography(src, dst, THRESHOLD, rng=seed))
+        times["camlab"].append(seconds)
+        runs["camlab"].append(_quality(fit.H, src, dst))
         for name, method in (("RANSAC", cv2.RANSAC), ("MAGSAC", cv2.USAC_MAGSAC)):
             cv2.setRNGSeed(seed)
-            t = time.perf_counter()
-            H, _ = cv2.findHomography(src, dst, method, THRESHOLD)
+            (H, _), seconds = timed(lambda: cv2.findHomography(src, dst, method, THRESHOLD))
             if name == "RANSAC":
-                times[name].append(time.perf_counter() - t)
+                times[name].append(seconds)
             runs[name].append(_quality(H, src, dst))
     row = {"case": case, "N": len(src)}
     for name, q in runs.items():
@@ -87,12 +89,11 @@ def fundamental_rows(seeds: int) -> list[dict]:
         x1, x2 = matches(a, b, 2500, 0.8)
         counts, times, cv_times = [], [], []
         for seed in range(seeds):
-            t = time.perf_counter()
-            counts.append(int(ransac_fundamental_matrix(x1, x2, 1.0, rng=seed).inliers.sum()))
-            times.append(time.perf_counter() - t)
-            t = time.perf_counter()
-            _, mask = cv2.findFundamentalMat(x1, x2, cv2.FM_RANSAC, 1.0, 0.999)
-            cv_times.append(time.perf_counter() - t)
+            fit, seconds = timed(lambda: ransac_fundamental_matrix(x1, x2, 1.0, rng=seed))
+            counts.append(int(fit.inliers.sum()))
+            times.append(seconds)
+            (_, mask), seconds = timed(lambda: cv2.findFundamentalMat(x1, x2, cv2.FM_RANSAC, 1.0, 0.999))
+            cv_times.append(seconds)
         magsac = cv2.findFundamentalMat(x1, x2, cv2.USAC_MAGSAC, 1.0, 0.999)[1]
         wrong = x2[np.random.default_rng(0).permutation(len(x2))]
         try:
@@ -109,15 +110,6 @@ def fundamental_rows(seeds: int) -> list[dict]:
     return rows
 
 
-def print_table(rows: list[dict], title: str) -> None:
-    cols = list(rows[0])
-    print(f"\n### {title}\n")
-    print("| " + " | ".join(cols) + " |")
-    print("|" + "---|" * len(cols))
-    for r in rows:
-        print("| " + " | ".join(str(r[c]) for c in cols) + " |")
-
-
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=20)
@@ -127,9 +119,9 @@ def main(argv: list[str] | None = None) -> int:
         for label, (nf, ratio) in SETTINGS.items():
             src, dst = matches(a, b, nf, ratio)
             rows.append(homography_row(f"{a[-1]}->{b[-1]} {label}", src, dst, args.seeds))
-    print_table(rows, f"Homography on real photo pairs, {args.seeds} seeds, threshold {THRESHOLD} px "
+    print_table(rows, title=f"Homography on real photo pairs, {args.seeds} seeds, threshold {THRESHOLD} px "
                       f"(inliers min / median / max)")
-    print_table(fundamental_rows(args.seeds), f"Fundamental matrix on real stereo pairs, {args.seeds} seeds, 1 px")
+    print_table(fundamental_rows(args.seeds), title=f"Fundamental matrix on real stereo pairs, {args.seeds} seeds, 1 px")
     return 0
 
 

@@ -76,13 +76,17 @@ def as_dist(dist: ArrayLike | None, name: str = "dist") -> np.ndarray:
 
 
 def _distort(xy: np.ndarray, d: np.ndarray) -> np.ndarray:
+    return np.stack(_distort_xy(xy[..., 0], xy[..., 1], d), axis=-1)
+
+
+def _distort_xy(x: np.ndarray, y: np.ndarray, d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The Brown-Conrady model on coordinate arrays that broadcast (a column of y against a row of x)."""
     k1, k2, p1, p2, k3 = d
-    x, y = xy[..., 0], xy[..., 1]
     r2 = x * x + y * y
     radial = 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3))
     xd = x * radial + 2.0 * p1 * x * y + p2 * (r2 + 2.0 * x * x)
     yd = y * radial + p1 * (r2 + 2.0 * y * y) + 2.0 * p2 * x * y
-    return np.stack([xd, yd], axis=-1)
+    return xd, yd
 
 
 def _jacobian(xy: np.ndarray, d: np.ndarray) -> np.ndarray:
@@ -396,10 +400,14 @@ def undistort_map(K: ArrayLike, dist: ArrayLike | None, size: tuple[int, int],
     K = check_intrinsics(K)
     new_K = K if new_K is None else check_intrinsics(new_K, "new_K")
     w, h = check_size(size)
-    u, v = np.meshgrid(np.arange(w, dtype=float), np.arange(h, dtype=float))
-    xy = pixels_to_normalised(np.stack([u.ravel(), v.ravel()], axis=1), new_K)
-    src = normalised_to_pixels(_distort(xy, as_dist(dist)), K)
-    return DistortionMaps(src[:, 0].reshape(h, w).astype(np.float32), src[:, 1].reshape(h, w).astype(np.float32))
+    # K_new^-1 p, written out (see pixels_to_normalised): y depends on the row only, so a
+    # column of y broadcast against a row of u gives the whole grid without a pixel list
+    y = ((np.arange(h, dtype=float) - new_K[1, 2]) / new_K[1, 1])[:, None]
+    x = (np.arange(w, dtype=float)[None, :] - new_K[0, 2] - new_K[0, 1] * y) / new_K[0, 0]
+    xd, yd = _distort_xy(x, y, as_dist(dist))
+    map_u = K[0, 0] * xd + K[0, 1] * yd + K[0, 2]  # K (xd, yd, 1)
+    map_v = K[1, 1] * yd + K[1, 2]
+    return DistortionMaps(map_u.astype(np.float32), np.broadcast_to(map_v, (h, w)).astype(np.float32))
 
 
 @lru_cache(maxsize=16)

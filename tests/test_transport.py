@@ -78,3 +78,29 @@ def test_animated_images_are_kept_at_the_resolution_shown():
     small = np.ones((20, 30))
     image.set_data(small)
     assert image.get_array().shape == (20, 30)  # smaller than shown: untouched
+
+
+@pytest.mark.parametrize("origin, inverted, clipped", [("upper", False, False), ("lower", False, False),
+                                                       ("upper", True, False), ("upper", False, True)])
+def test_screen_images_land_where_matplotlib_draws_them(origin, inverted, clipped):
+    """The live canvas' image path (no general resampler) matches matplotlib's own drawing:
+    same orientation and place, colours within resampling differences, clipped to the axes."""
+    from camlab.widgets import FigureView
+
+    view = FigureView(figsize=(4, 3), mode="agg", dpi=60)
+    ax = view.fig.add_subplot()
+    yy, xx = np.mgrid[0:60, 0:80]
+    gradient = (xx / 79.0) * (yy < 30) + (yy / 59.0) * (yy >= 30)  # asymmetric: a flip shows
+    image = view.animate(ax.imshow(gradient, cmap="viridis", origin=origin))
+    if inverted:
+        ax.invert_xaxis()
+    if clipped:
+        ax.set_xlim(10, 50)  # part of the image lies outside the axes
+    view.fig.canvas.draw()  # the live path (not saving)
+    live = np.asarray(view.fig.canvas.buffer_rgba())[..., :3].astype(int)
+    buf = io.BytesIO()
+    view.fig.savefig(buf, format="png", dpi=60)  # saving: matplotlib's resampler
+    reference = np.asarray(Image.open(buf).convert("RGB")).astype(int)
+    assert image.make_image.__name__ == "screen_image"
+    diff = np.abs(live - reference).max(axis=2)
+    assert diff.mean() < 5 and (diff > 60).mean() < 0.02, (diff.mean(), (diff > 60).mean())  # a flip: mean > 40

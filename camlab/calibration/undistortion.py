@@ -1,6 +1,7 @@
 """Undistort images with a calibration, trading black borders against lost pixels (``alpha``)."""
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import NamedTuple, Sequence
 
 import numpy as np
@@ -78,12 +79,30 @@ def undistortion_tradeoff(K: ArrayLike, dist: ArrayLike | None, image_size: Sequ
     # output pixel -> source pixel: K distort(Kn^-1 p); same as distort_pixels with a change of K
     src = normalised_to_pixels(distort_points(pixels_to_normalised(pix, Kn), d), Km)
     inside = (src[:, 0] >= -0.5) & (src[:, 0] <= w - 0.5) & (src[:, 1] >= -0.5) & (src[:, 1] <= h - 0.5)
-    try:
-        dst = normalised_to_pixels(undistort_points(pixels_to_normalised(pix, Km), d), Kn)
-        kept = (dst[:, 0] >= -0.5) & (dst[:, 0] <= w - 0.5) & (dst[:, 1] >= -0.5) & (dst[:, 1] <= h - 0.5)
-    except ConvergenceError:
+    ideal = _ideal_grid(Km.tobytes(), d.tobytes(), w, h, step)
+    if ideal is None:  # the model has no inverse over the photo: nothing can be kept
         kept = np.zeros(len(pix), bool)
+    else:
+        dst = normalised_to_pixels(ideal, Kn)
+        kept = (dst[:, 0] >= -0.5) & (dst[:, 0] <= w - 0.5) & (dst[:, 1] >= -0.5) & (dst[:, 1] <= h - 0.5)
     return float(1 - inside.mean()), float(1 - kept.mean())
+
+
+@lru_cache(maxsize=8)
+def _ideal_grid(Kb: bytes, db: bytes, w: int, h: int, step: int) -> np.ndarray | None:
+    """Ideal normalised coordinates of the photo's pixels every ``step`` (None if the inversion fails).
+
+    The iterative inversion does not depend on the new K, so sweeping ``alpha`` (a slider)
+    pays for it once; the cached array is read-only.
+    """
+    U, Vv = np.meshgrid(np.arange(0, w, step, dtype=float), np.arange(0, h, step, dtype=float))
+    pix = np.column_stack([U.ravel(), Vv.ravel()])
+    try:
+        ideal = undistort_points(pixels_to_normalised(pix, np.frombuffer(Kb).reshape(3, 3)), np.frombuffer(db))
+    except ConvergenceError:
+        return None
+    ideal.setflags(write=False)
+    return ideal
 
 
 class Undistorted(NamedTuple):

@@ -37,25 +37,35 @@ def _polyline(segments: np.ndarray) -> tuple:
     return _to_plot(pts)
 
 
-def draw_pinhole_3d(ax, edges: np.ndarray, f_draw: float, plane_half: float = 0.12) -> dict:
+def draw_pinhole_3d(ax, edges: np.ndarray, f_draw: float, plane_half: float = 0.12,
+                    faces: tuple[np.ndarray, np.ndarray] | None = None) -> dict:
     """Box edges, the pinhole, the real (behind) and virtual (in front) image planes and the rays.
 
     ``edges`` is (K, 2, 3) camera-frame segments (metres); the image planes are drawn at
-    distance ``f_draw`` behind and in front of the pinhole at the origin.
+    distance ``f_draw`` behind and in front of the pinhole at the origin. ``faces``, if
+    given, is ``(polygons, shades)``: (F, 4, 3) camera-frame face corners and F greys in
+    [0, 1]; the faces the camera sees are then filled on the box and, projected, on both
+    image planes, so each plane shows a picture of the box rather than its wire frame.
     """
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
     art = {"box": ax.plot(*_polyline(edges), color="tab:blue", lw=1.5)[0]}
     ax.scatter([0], [0], [0], color="k", s=25)
     art["planes"] = {}
+    art["fills"] = {}
     for name, color in (("real", "tab:red"), ("virtual", "tab:green")):
         art["planes"][name] = ax.plot([], [], [], color=color, lw=1, alpha=0.6)[0]
         art[name] = ax.plot([], [], [], color=color, lw=1.2)[0]
+    if faces is not None:
+        for name in ("box", "real", "virtual"):
+            art["fills"][name] = ax.add_collection3d(Poly3DCollection([], edgecolor="none", shade=False))
     art["rays"] = ax.plot([], [], [], color="0.6", lw=0.6)[0]
     ax.set_xlabel("z (forward)")
     ax.set_ylabel("x")
     ax.set_zlabel("-y (up)")
     ax.view_init(elev=18, azim=-62)
     art["plane_half"] = plane_half
-    update_pinhole_3d(art, edges, f_draw)
+    update_pinhole_3d(art, edges, f_draw, faces)
     pts = edges.reshape(-1, 3)
     half = max(plane_half, np.abs(pts[:, :2]).max()) * 1.15
     ax.set_xlim(-1.3 * f_draw, pts[:, 2].max() * 1.05)
@@ -65,16 +75,32 @@ def draw_pinhole_3d(ax, edges: np.ndarray, f_draw: float, plane_half: float = 0.
     return art
 
 
-def update_pinhole_3d(art: dict, edges: np.ndarray, f_draw: float) -> None:
-    """Move the box to ``edges`` and the image planes to distance ``f_draw``."""
+def update_pinhole_3d(art: dict, edges: np.ndarray, f_draw: float,
+                      faces: tuple[np.ndarray, np.ndarray] | None = None) -> None:
+    """Move the box to ``edges`` (and its ``faces``, see :func:`draw_pinhole_3d`) and the image planes to ``f_draw``."""
     art["box"].set_data_3d(*_polyline(edges))
     h = art["plane_half"]
+    if faces is not None and art["fills"]:
+        polygons, shades = (np.asarray(a, float) for a in faces)
+        centres = polygons.mean(axis=1)
+        normals = np.cross(polygons[:, 1] - polygons[:, 0], polygons[:, 2] - polygons[:, 1])
+        seen = np.einsum("ij,ij->i", normals, -centres) > 0  # the face turns towards the pinhole
+        order = np.argsort(-centres[:, 2])  # far faces first: nearer ones paint over them
+        seen_faces = [k for k in order if seen[k]]
+        colours = [(shades[k],) * 3 for k in seen_faces]
+        art["fills"]["box"].set_verts([np.column_stack(_to_plot(polygons[k])) for k in seen_faces])
+        art["fills"]["box"].set_facecolor(colours)
     for name, sign in (("real", -1), ("virtual", 1)):
         z = sign * f_draw
         sq = np.array([[-h, -h * 0.75, z], [h, -h * 0.75, z], [h, h * 0.75, z], [-h, h * 0.75, z], [-h, -h * 0.75, z]])
         art["planes"][name].set_data_3d(*_to_plot(sq))
         img = _pinhole.project_pinhole(edges.reshape(-1, 3), f_draw, plane=name).reshape(-1, 2, 2)
         art[name].set_data_3d(*_polyline(np.concatenate([img, np.full(img.shape[:2] + (1,), z)], axis=2)))
+        if faces is not None and art["fills"]:
+            flat = [np.column_stack([_pinhole.project_pinhole(polygons[k], f_draw, plane=name), np.full(4, z)])
+                    for k in seen_faces]
+            art["fills"][name].set_verts([np.column_stack(_to_plot(p)) for p in flat])
+            art["fills"][name].set_facecolor(colours)
     corners = np.unique(edges.reshape(-1, 3), axis=0)
     ends = -corners * f_draw / corners[:, 2:3]  # through the pinhole to the real plane
     art["rays"].set_data_3d(*_polyline(np.stack([corners, ends], axis=1)))
@@ -170,11 +196,11 @@ def draw_thin_lens(ax, focal_length: float, object_distance: float, height: floa
     }
     ax.set(xlim=(-1, 1), ylim=(-1, 1), xticks=[], yticks=[])
     ax.set_xlabel("object side  ←  lens  →  image side   (drawn to fit; lengths in the corner)")
-    update_thin_lens(art, ax, focal_length, object_distance)
+    update_thin_lens(art, focal_length, object_distance)
     return art
 
 
-def update_thin_lens(art: dict, ax, f: float, zo: float) -> dict:
+def update_thin_lens(art: dict, f: float, zo: float) -> dict:
     """Move the diagram to focal length ``f`` and object distance ``zo``; returns the computed values."""
     hgt = art["height"]
     zi = _lens.image_distance(f, zo)
@@ -285,7 +311,8 @@ def draw_pinhole_blur(ax, focal_length: float, wavelength: float = 550e-9) -> di
     ax.set_yscale("log")
     ax.set_xlabel("pinhole diameter d (mm)")
     ax.set_ylabel("blur diameter (mm)")
-    ax.legend(fontsize=8, loc="upper center")
+    # below the axes, where the moving curves and marker never cross it: it need not be redrawn per update
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.17), ncols=2)
     return art
 
 

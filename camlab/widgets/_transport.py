@@ -75,9 +75,56 @@ def _fit_to_display(image: Any, array: Any) -> Any:
     return cv2.resize(a, (width, height), interpolation=cv2.INTER_NEAREST if crisp else cv2.INTER_AREA)
 
 
+def _screen_image(image: Any) -> tuple[np.ndarray, int, int] | None:
+    """``image``'s RGBA pixels as they land on the canvas, and their lower-left corner; None: use matplotlib.
+
+    The data is already at about screen size, so matplotlib's general resampler (built for
+    any affine transform) does work that teaches nothing: here the few cases the demos use,
+    an axis-aligned image on the canvas' own renderer, are placed by rounding the extent to
+    whole pixels (at most half a pixel from matplotlib's placement) and resized with OpenCV.
+    """
+    import cv2
+
+    a = image.get_array()
+    alpha = image.get_alpha()
+    canvas = image.get_figure(root=True).canvas
+    if (np.ma.isMaskedArray(a) and np.ma.getmaskarray(a).any()) or (alpha is not None and np.ndim(alpha) > 0) \
+            or getattr(canvas, "is_saving", lambda: False)() or not image.get_transform().is_affine:
+        return None
+    a = np.ma.getdata(a)
+    x0, x1, y0, y1 = image.get_extent()
+    row0_y = y1 if image.origin == "upper" else y0  # the data row 0 sits at this edge of the extent
+    (u_left, v_row0), (u_right, v_rowN) = image.get_transform().transform(
+        [(x0, row0_y), (x1, y0 + y1 - row0_y)])
+    if u_right < u_left:
+        a = a[:, ::-1]
+    if v_row0 > v_rowN:  # row 0 at the top on screen: Agg's draw_image takes the bottom row first
+        a = a[::-1]
+    left, right = round(min(u_left, u_right)), round(max(u_left, u_right))
+    bottom, top = round(min(v_row0, v_rowN)), round(max(v_row0, v_rowN))
+    clip = (image.get_clip_box() or image.axes.bbox) if image.get_clip_on() else image.get_figure(root=True).bbox
+    cl, cr, cb, ct = round(clip.x0), round(clip.x1), round(clip.y0), round(clip.y1)
+    if min(right, cr) - max(left, cl) < 1 or min(top, ct) - max(bottom, cb) < 1:
+        return np.zeros((0, 0, 4), np.uint8), 0, 0
+    if a.shape[:2] != (top - bottom, right - left):
+        crisp = image.get_interpolation() in ("nearest", "none")
+        shrink = a.shape[1] > right - left
+        a = np.asarray(a, np.float32) if a.dtype not in (np.uint8, np.float32) else a
+        a = cv2.resize(a, (right - left, top - bottom),
+                       interpolation=cv2.INTER_NEAREST if crisp else cv2.INTER_AREA if shrink else cv2.INTER_LINEAR)
+    # crop to the clip box (rows count up from the bottom edge)
+    a = a[max(0, cb - bottom):(top - bottom) - max(0, top - ct), max(0, cl - left):(right - left) - max(0, right - cr)]
+    rgba = image.to_rgba(a, bytes=True)
+    return np.ascontiguousarray(rgba), max(left, cl), max(bottom, cb)
+
+
 def show_at_display_resolution(image: Any) -> None:
-    """Make an ``AxesImage`` keep its data at the resolution it is shown (its extent stays)."""
-    set_data, set_extent = image.set_data, image.set_extent
+    """Make an ``AxesImage`` keep its data at the resolution it is shown (its extent stays).
+
+    On the live canvas it is then also drawn by :func:`_screen_image` rather than by
+    matplotlib's general resampler (about 2 ms instead of 5-10 ms per frame for a photo).
+    """
+    set_data, set_extent, make_image = image.set_data, image.set_extent, image.make_image
     source: list[Any] = [None]  # the caller's full array, to refit when the extent changes
 
     def fitted_data(array: Any) -> None:  # set_array calls it too
@@ -89,4 +136,11 @@ def show_at_display_resolution(image: Any) -> None:
         if source[0] is not None:
             set_data(_fit_to_display(image, source[0]))
 
-    image.set_data, image.set_extent = fitted_data, fitted_extent
+    def screen_image(renderer: Any, magnification: float = 1.0, unsampled: bool = False):
+        fast = None if unsampled or magnification != 1.0 else _screen_image(image)
+        if fast is None:
+            return make_image(renderer, magnification, unsampled)
+        rgba, left, bottom = fast
+        return (rgba, left, bottom, None) if rgba.size else (None, 0, 0, None)
+
+    image.set_data, image.set_extent, image.make_image = fitted_data, fitted_extent, screen_image

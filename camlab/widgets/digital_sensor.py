@@ -8,6 +8,7 @@ import numpy as np
 from .. import render, scenes, sensor
 from ..plotting import images
 from ._base import FigureView, build_demo, register, slider
+from .controls import monospace
 
 SIZE = (320, 240)
 
@@ -25,9 +26,11 @@ def pixel_pitch():
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
     pp, = ax_img.plot([], [], "r+", ms=14, mew=2)
     ax_txt.axis("off")
-    text = ax_txt.text(0, 1, "", va="top", family="monospace", fontsize=10)
+    ax_txt.text(0, 1, "u = x / s_x + c_x\nv = y / s_y + c_y\n\nf_x = f / s_x (px)\n\n320 x 240 pixels held fixed:\n"
+                "finer pixels, smaller sensor,\nnarrower field of view", va="top", family="monospace", fontsize=10)
     ax_img.set_title("f = 3 mm, always 320 x 240 pixels (red +: principal point)", fontsize=10)
-    view.animate(im, pp, text)
+    readout = W.HTML()  # the numbers beside the sliders: canvas text costs ~15 ms per redraw
+    view.animate(im, pp)
 
     def update(values, state):
         pitch = values["pitch_um"] * 1e-6
@@ -36,12 +39,11 @@ def pixel_pitch():
         pp.set_data([K[0, 2]], [K[1, 2]])
         fov = 2 * np.degrees(np.arctan(SIZE[0] / 2 / K[0, 0]))
         state.update(K=K, fov_deg=fov)
-        text.set_text(f"u = x / s_x + c_x\nv = y / s_y + c_y\n\nf_x = f / s_x = {K[0, 0]:.0f} px\n"
-                      f"c_x = {K[0, 2]:.1f}, c_y = {K[1, 2]:.1f}\nsensor {SIZE[0] * pitch * 1e3:.2f} x "
-                      f"{SIZE[1] * pitch * 1e3:.2f} mm\n(320 x 240 pixels held fixed:\n finer pixels, smaller sensor)\n"
-                      f"horizontal FOV {fov:.1f} deg")
+        readout.value = monospace(f"f_x = f / s_x = {K[0, 0]:.0f} px\nc_x = {K[0, 2]:.1f}, c_y = {K[1, 2]:.1f}\n"
+                                  f"sensor {SIZE[0] * pitch * 1e3:.2f} x {SIZE[1] * pitch * 1e3:.2f} mm\n"
+                                  f"horizontal FOV {fov:.1f} deg")
 
-    return build_demo("pixel_pitch", controls, view, update, title="Pixel pitch and principal point")
+    return build_demo("pixel_pitch", controls, view, update, title="Pixel pitch and principal point", extra=[readout])
 
 
 @register(lesson="03", sweep={"factor": [1, 3, 6], "prefilter": [True, False]})
@@ -157,25 +159,35 @@ def demosaicing():
     view.animate(im_raw, im_full, im_zoom, box, ax_full.title)
     v0 = 100
 
+    demosaiced: dict[tuple[str, str, str], tuple[np.ndarray, np.ndarray, float]] = {}
+
+    def develop(pattern: str, assumed: str, method: str):
+        """The raw mosaic, its demosaiced image and PSNR; pure, so kept while the zoom slider moves."""
+        key = (pattern, assumed, method)
+        if key not in demosaiced:
+            raw = sensor.quantize(sensor.mosaic(truth, pattern))
+            if method == "truth":
+                out = truth
+            elif method == "camlab bilinear":
+                out = sensor.demosaic_bilinear(raw, assumed) / 255
+            else:
+                out = sensor.demosaic_opencv(raw, assumed, {"OpenCV bilinear": "bilinear", "OpenCV VNG": "vng",
+                                                            "OpenCV edge-aware": "ea"}[method]) / 255
+            out = np.clip(out, 0, 1)
+            demosaiced[key] = raw, out, sensor.psnr(truth, out, border=2)
+        return demosaiced[key]
+
     def update(values, state):
         pattern, method, u0 = values["pattern"], values["method"], int(values["zoom_u"])
         assumed = pattern if values["assume"] == _SAME else values["assume"]  # a wrong guess is the classic bug
-        raw = sensor.quantize(sensor.mosaic(truth, pattern))
-        if method == "truth":
-            out = truth
-        elif method == "camlab bilinear":
-            out = sensor.demosaic_bilinear(raw, assumed) / 255
-        else:
-            out = sensor.demosaic_opencv(raw, assumed, {"OpenCV bilinear": "bilinear", "OpenCV VNG": "vng",
-                                                        "OpenCV edge-aware": "ea"}[method]) / 255
-        out = np.clip(out, 0, 1)
+        raw, out, psnr = develop(pattern, assumed, method)
         masks = sensor.bayer_masks(raw.shape, pattern)
         crop = (slice(v0, v0 + CROP), slice(u0, u0 + CROP))
         im_raw.set_data(masks[crop] * (raw[crop] / 255.0)[..., None])
         im_full.set_data(out)
         im_zoom.set_data(out[crop])
         box.set_xy((u0 - 0.5, v0 - 0.5))
-        state.update(psnr=sensor.psnr(truth, out, border=2), zoom=(u0, v0), assumed=assumed,
+        state.update(psnr=psnr, zoom=(u0, v0), assumed=assumed,
                      zoom_psnr=sensor.psnr(truth[crop], out[crop]))
         wrong = "" if assumed == pattern or method == "truth" else f" as {assumed} (wrong!)"
         ax_full.set_title(f"{method}{wrong}: PSNR {state['psnr']:.1f} dB", fontsize=10)

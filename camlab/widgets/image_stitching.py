@@ -328,7 +328,8 @@ def full_panorama() -> Demo:
     im = view.animate(ax.imshow(pans["planar"].panorama, interpolation="nearest"))
     colors = palette.SERIES[:4]
     lines = [view.animate(ax.plot([], [], color=c, lw=1.2, label=f"view {k}")[0]) for k, c in enumerate(colors)]
-    ax.legend(handles=lines, loc="lower center", ncols=4, fontsize=8, framealpha=0.8, title="outline of")
+    # below the axes: over the (animated) panorama it would be hidden, or cost a redraw per update
+    ax.legend(handles=lines, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncols=4, fontsize=8, title="outline of")
     hmax = max(p.panorama.shape[0] for p in pans.values())
     wmax = max(p.panorama.shape[1] for p in pans.values())
     ax.set(xlim=(-0.5, wmax - 0.5), ylim=(hmax - 0.5, -0.5), aspect="equal")

@@ -9,6 +9,7 @@ from ..plotting import images, optics
 from matplotlib.ticker import MaxNLocator
 
 from ._base import FigureView, build_demo, register, slider
+from .controls import monospace
 
 SIZE = (320, 240)
 PITCH = 36e-3 / SIZE[0]  # a 36 mm wide sensor with 320 pixels: 112.5 um pixels
@@ -16,8 +17,10 @@ DRAW_SCALE = 10.0  # the 3-D view draws the image planes up to 10x further from 
 PLANE_ROOM = 0.45  # ...but never beyond 45 % of the way to the box's nearest corner
 
 
-def _rotated_box_edges(distance: float) -> np.ndarray:
-    return scenes.plane_outlines(scenes.box_before_wall(distance)[0])
+def _box_outline(faces) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray]]:
+    """The box's (24, 2, 3) edge segments and (faces (6, 4, 3), mean greys (6,)) for the 3-D view."""
+    return scenes.plane_outlines(faces), (np.array([f.corners_world for f in faces]),
+                                          np.array([f.texture.mean() for f in faces]))
 
 
 @register(lesson="01", sweep={"focal_mm": [20, 50, 90], "distance": [1.0, 2.0, 3.5], "real_plane": [True, False]})
@@ -33,12 +36,12 @@ def pinhole_projection():
     grid = view.fig.add_gridspec(1, 2, width_ratios=(1.35, 1))
     ax3 = view.fig.add_subplot(grid[0], projection="3d")
     ax_img = view.fig.add_subplot(grid[1])
-    edges = _rotated_box_edges(2.0)
-    art = optics.draw_pinhole_3d(ax3, edges, 0.05 * DRAW_SCALE, plane_half=0.25)
+    edges, faces = _box_outline(scenes.box_before_wall(2.0)[0])
+    art = optics.draw_pinhole_3d(ax3, edges, 0.05 * DRAW_SCALE, plane_half=0.25, faces=faces)
     ax3.set_xlim(-1.1, 4.5)
     ax3.set_ylim(-0.35, 0.35)
     ax3.set_zlim(-0.35, 0.35)
-    ax3.set_box_aspect((3, 1, 1), zoom=1.1)
+    ax3.set_box_aspect((3, 1, 1), zoom=1.2)
     ax3.set_xlabel("z, forward (m)")
     ax3.set_ylabel("x (m)")
     ax3.set_zlabel("-y, up (m)")
@@ -48,23 +51,24 @@ def pinhole_projection():
         art[name].set_linewidth(1.8)
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
     width_bar = ax_img.plot([], [], color="tab:orange", lw=2, marker="|", ms=10)[0]
-    label = ax_img.text(4, 14, "", color="w", fontsize=9, va="top", bbox=dict(fc="k", alpha=0.5, lw=0))
+    ax3.set_title("pinhole at 0; both image planes drawn enlarged (distance in the readout)", fontsize=9)
+    readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
     # everything that moves is blitted over the cached static figure
-    view.animate(im, width_bar, label, ax_img.title, ax3.title, art["box"], art["rays"], art["real"], art["virtual"],
-                 *art["planes"].values())
+    view.animate(im, width_bar, ax_img.title, art["box"], art["rays"], art["real"], art["virtual"],
+                 *art["planes"].values(), *art["fills"].values())
 
     def update(values, state):
         f = values["focal_mm"] * 1e-3
         Z = values["distance"]
-        e = _rotated_box_edges(Z)
+        scene = scenes.box_before_wall(Z)
+        e, faces = _box_outline(scene[0])
         corners = np.unique(e.reshape(-1, 3), axis=0)
         # the image planes: 10 f when that fits, else closer, always between pinhole and box
         f_draw = min(DRAW_SCALE * f, PLANE_ROOM * corners[:, 2].min())
         art["plane_half"] = 1.25 * np.abs(pinhole.project_pinhole(corners, f_draw)).max()
-        optics.update_pinhole_3d(art, e, f_draw)
-        ax3.set_title(f"pinhole at 0; both image planes drawn {f_draw / f:.1f} f from it", fontsize=9)
+        optics.update_pinhole_3d(art, e, f_draw, faces)
         K = sensor.intrinsics_from_sensor(f, (PITCH, PITCH), SIZE)
-        img = render.render(scenes.box_before_wall(Z), K, SIZE).irradiance
+        img = render.render(scene, K, SIZE).irradiance
         u = K[0, 0] * corners[:, 0] / corners[:, 2] + K[0, 2]  # the corners' columns, x = f X / Z in pixels
         v_bar = 0.92 * SIZE[1]
         if values["real_plane"]:
@@ -75,11 +79,12 @@ def pinhole_projection():
         centre = pinhole.project_pinhole([0.0, 0.0, Z], f)
         state.update(fx=K[0, 0], box_width_px=float(u.max() - u.min()), image=img, centre=centre,
                      plane="real" if values["real_plane"] else "virtual", f_draw=f_draw)
-        ax_img.set_title(("real image (inverted)" if values["real_plane"] else "virtual image (upright)")
-                         + f", fx = {K[0, 0]:.0f} px", fontsize=10)
-        label.set_text(f"box spans {state['box_width_px']:.0f} px (orange)")
+        ax_img.set_title("real image (inverted)" if values["real_plane"] else "virtual image (upright)", fontsize=10)
+        readout.value = monospace(f"fx = f / pixel pitch = {K[0, 0]:.0f} px\nbox spans {state['box_width_px']:.0f} px"
+                                  f" (orange bar)\nimage planes drawn {f_draw / f:.1f} f from the pinhole")
 
-    return build_demo("pinhole_projection", controls, view, update, title="Pinhole projection x = f X / Z")
+    return build_demo("pinhole_projection", controls, view, update, title="Pinhole projection x = f X / Z",
+                      extra=[readout])
 
 
 @register(lesson="01", sweep={"f": [0.3, 1.0], "Z": [1.2, 5.0], "Y": [-1.0, 0.4, 1.0]})
@@ -136,10 +141,11 @@ def pinhole_size():
     ax_plot.minorticks_off()
     page = render.text_page(0.3, t=(0, 0, 1.0))
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
-    ax_img.set_title("page at 1 m: blur 0.00 mm = 0.0 px", fontsize=10)
-    ax_plot.set_title("best d = 0.00 mm; now diffraction-limited", fontsize=10)
-    view.animate(im, ax_img.title, ax_plot.title, art["geometric"], art["diffraction"], art["total"],
-                 art["marker"], art["best"], ax_plot.get_legend())  # the legend last: drawn over the curves
+    ax_img.set_title("a printed page at 1 m, seen through the pinhole", fontsize=10)
+    ax_plot.set_title("blur against pinhole size (star: best d)", fontsize=10)
+    readout = W.HTML()
+    view.animate(im, art["geometric"], art["diffraction"], art["total"],
+                 art["marker"], art["best"])
 
     def update(values, state):
         f, d = values["focal_mm"] * 1e-3, values["diameter_mm"] * 1e-3
@@ -153,7 +159,8 @@ def pinhole_size():
         best = pinhole.optimal_pinhole_diameter(f, object_distance=1.0)
         state.update(blur_mm=float(b.total) * 1e3, blur_px=blur_px, best_mm=best * 1e3,
                      limited_by="diffraction" if b.diffraction > b.geometric else "geometry")
-        ax_plot.set_title(f"best d = {best * 1e3:.2f} mm; now {state['limited_by']}-limited", fontsize=10)
-        ax_img.set_title(f"page at 1 m: blur {state['blur_mm']:.2f} mm = {blur_px:.1f} px", fontsize=10)
+        readout.value = monospace(f"best d = {best * 1e3:.2f} mm\nnow {state['limited_by']}-limited\n"
+                                  f"blur {state['blur_mm']:.2f} mm = {blur_px:.1f} px")
 
-    return build_demo("pinhole_size", controls, view, update, title="How big should the pinhole be?")
+    return build_demo("pinhole_size", controls, view, update, title="How big should the pinhole be?",
+                      extra=[readout])
