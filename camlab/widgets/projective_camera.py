@@ -21,12 +21,6 @@ from ..plotting import palette
 TARGET = np.array([0.0, 0.0, 0.7])
 
 
-def orbit_eye(azimuth_deg: float, elevation_deg: float, distance: float, target=TARGET) -> np.ndarray:
-    """A point on a sphere of radius ``distance`` about ``target``; azimuth from +X towards +Y."""
-    a, e = np.deg2rad(azimuth_deg), np.deg2rad(elevation_deg)
-    return np.asarray(target) + distance * np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
-
-
 def _fmt(v: np.ndarray) -> str:
     return "(" + ", ".join(f"{x:+.2f}" for x in v) + ")"
 
@@ -42,7 +36,7 @@ def camera_explorer():
     """
     view = FigureView(figsize=(9, 4.2))
     scene = scenes.house_scene()
-    cam0 = cm.Camera.look_at(orbit_eye(-60, 25, 5.0), TARGET)
+    cam0 = cm.Camera.look_at(cm.orbit_eye(np.radians(-60), np.radians(25), 5.0, TARGET), TARGET)
     sv = scene3d.SceneView(view.fig, cam0, scene, plane_size=1.5)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
     (pp,) = sv.ax_image.plot([], [], "+", color="tab:purple", ms=10, mew=2)
@@ -60,7 +54,8 @@ def camera_explorer():
 
     def update(v, state):
         K = cm.intrinsic_matrix(v["fx"], v["fy"], v["cx"], v["cy"], v["skew"])
-        cam = cm.Camera.look_at(orbit_eye(v["azimuth"], v["elevation"], v["distance"]), TARGET, K=K)
+        cam = cm.Camera.look_at(cm.orbit_eye(*np.radians([v["azimuth"], v["elevation"]]), v["distance"], TARGET), TARGET,
+                                K=K)
         sv.update(cam)
         pp.set_data([cam.principal_point[0]], [cam.principal_point[1]])
         info.value = (f"<pre>t = {_fmt(cam.t)} m  (world origin in camera frame)\n"
@@ -74,7 +69,7 @@ def camera_explorer():
 def resection_data(n_points: int, noise_px: float, seed: int = 0):
     """A true camera, N world points on two faces of a box and their noisy pixels."""
     rng = np.random.default_rng(seed)
-    cam = cm.Camera.look_at(orbit_eye(-55, 25, 5.0), TARGET)
+    cam = cm.Camera.look_at(cm.orbit_eye(np.radians(-55), np.radians(25), 5.0, TARGET), TARGET)
     n1 = n_points // 2
     # Two faces of a 2 m cube (x = 1 and y = -1 planes): non-coplanar, like a calibration rig.
     a = rng.uniform(-1, 1, (n_points, 2))
