@@ -26,7 +26,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import lru_cache
-from typing import TYPE_CHECKING, NamedTuple, Sequence
+from typing import NamedTuple, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -35,12 +35,10 @@ from ._validate import (
     CamlabInputError, check_integer, check_matrix, check_number, check_pose, check_positive, check_rotation, check_shape,
     check_size,
 )
+from .camera import Camera, orbit_eye, rotation_from_euler
 from .homography import pose_homography
 from .projective import map_points
 from .warp import warp_perspective
-
-if TYPE_CHECKING:
-    from .camera import Camera
 
 __all__ = [
     "as_texture", "box", "box_and_rails", "box_before_wall", "box_wireframe", "checkerboard",
@@ -659,8 +657,6 @@ def box_before_wall(distance: float) -> list:
     :func:`camlab.render.render`. :func:`plane_outlines` of ``faces`` gives the (24, 2, 3)
     box edges the 3-D view draws.
     """
-    from .camera import rotation_from_euler  # camera imports this module
-
     d = check_positive(distance, "distance", "metres")
     return [box([0.0, 0.0, d], (0.3, 0.3, 0.3), R=rotation_from_euler(0.35, 0.6, 0.0), rng=0),
             textured_plane(np.full((4, 4), 0.35), 3.0 * d, t=(0, 0, 3.0 * d), name="wall")]
@@ -684,8 +680,6 @@ def photo_and_page() -> list[Plane]:
     A list of two :class:`Plane` (``"photo"``, ``"page"``) for :func:`camlab.render.render`,
     framed by a camera at the origin looking along +z with f = 900 px on 320 x 240 pixels.
     """
-    from .camera import rotation_from_euler  # camera imports this module
-
     return [photo_plane(0.3, t=(0.05, 0.02, 1.0)),
             text_page(0.2, t=(-0.2, 0.0, 1.1), R=rotation_from_euler(0, 0.2, 0.05))]
 
@@ -724,15 +718,13 @@ class ResectionSet(NamedTuple):
         Their pixels with Gaussian noise.
     """
 
-    camera: "Camera"
+    camera: Camera
     points_world: np.ndarray
     points_image: np.ndarray
 
 
 def resection_set(n_points: int, noise_px: float, seed: int | None = 0) -> ResectionSet:
     """``n_points`` world points on two faces of a cube, seen by a known camera with ``noise_px`` pixels of noise."""
-    from .camera import Camera, orbit_eye  # camera imports this module
-
     n_points = check_integer(n_points, "n_points", minimum=1)
     sigma = check_number(noise_px, "noise_px", "pixels")
     if sigma < 0:

@@ -13,11 +13,17 @@ def test_scene_builders_have_one_definition_re_exported_for_the_lessons():
     for module, names in [(render, ["Plane", "box", "checkerboard", "photo_plane", "text_page", "textured_plane"]),
                           (perspective, ["PlanePhoto", "desk_background", "facade_texture", "page_texture",
                                          "painting_texture", "photograph_plane", "sample_photo", "look_at_plane"]),
-                          (camera, ["box_wireframe", "ground_grid", "house_wireframe"]),
                           (panorama, ["wall_texture"])]:
         for name in names:
             assert getattr(module, name) is getattr(scenes, name), (module.__name__, name)
     assert not hasattr(render, "sample_photo")  # one sample photo: scenes.sample_photo (plus scenes.portrait)
+    assert not hasattr(camera, "box_wireframe")  # scenes builds on camera, not the other way round
+
+
+def test_the_camera_model_does_not_import_the_scenes():
+    code = "import sys, camlab.camera; print('camlab.scenes' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
 
 
 def test_scenes_do_not_depend_on_the_data_sets():

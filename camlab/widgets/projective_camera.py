@@ -77,7 +77,7 @@ def resectioning():
     """
     view = FigureView(figsize=(9, 4.2))
     cam, X, uv = scenes.resection_set(12, 0.5)
-    frame = np.concatenate([cm.box_wireframe((0.0, 0.0, 1.0), (2.0, 2.0, 2.0)), cm.ground_grid(2.0, 1.0)])
+    frame = np.concatenate([scenes.box_wireframe((0.0, 0.0, 1.0), (2.0, 2.0, 2.0)), scenes.ground_grid(2.0, 1.0)])
     sv = scene3d.SceneView(view.fig, cam, frame, plane_size=1.0, image_title="measured (o) vs reprojected (+)")
     sv.camera_artist.lines.set_alpha(0.4)
     est_art = scene3d.CameraArtist(sv.ax3d, cam, size=1.0, color="tab:orange", show_axes=False, label="est.")
@@ -161,7 +161,7 @@ def opencv_vs_opengl():
     ax = scene3d.axes3d(view.fig, 1, 1, 1, elev=20, azim=-130)
     ax.set_axis_off()
     scene3d.draw_world_axes(ax, 0.6)
-    scene3d.draw_segments(ax, cm.house_wireframe((0.0, 0.0, 0.0), 0.6), color="0.6")
+    scene3d.draw_segments(ax, scenes.house_wireframe((0.0, 0.0, 0.0), 0.6), color="0.6")
     cam0 = cm.Camera.look_at([2.0, -2.0, 1.0], [0.0, 0.0, 0.4])
     art = scene3d.CameraArtist(ax, cam0, size=0.6, show_axes=False)
     lines, texts = [], []
