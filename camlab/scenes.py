@@ -16,7 +16,7 @@ data generators (:mod:`camlab.data`) build the same scenes:
   :func:`house_wireframe`, :func:`ground_grid`, :func:`plane_outlines`;
 - **the lessons' scenes**, built once here for the lesson and its demos: :func:`box_before_wall`
   (01), :func:`depth_of_field_scene` (02), :func:`photo_and_page` (03), :func:`house_scene` (04),
-  :func:`box_and_rails`, :func:`rail_track` (05), :func:`ground_plane_view` (06).
+  :func:`resection_set` (04), :func:`box_and_rails`, :func:`rail_track` (05), :func:`ground_plane_view` (06).
 
 Conventions (docs/conventions.md): metres; a plane's frame has x along texture columns,
 y along texture rows, z = x cross y; poses say their direction (``world_from_plane``).
@@ -31,7 +31,11 @@ from typing import NamedTuple, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, check_matrix, check_pose, check_positive, check_rotation, check_shape, check_size
+from ._validate import (
+    CamlabInputError, check_integer, check_matrix, check_number, check_pose, check_positive, check_rotation, check_shape,
+    check_size,
+)
+from .camera import Camera, orbit_eye, rotation_from_euler
 from .homography import pose_homography
 from .projective import map_points
 from .warp import warp_perspective
@@ -41,7 +45,8 @@ __all__ = [
     "depth_of_field_scene", "desk_background", "facade_texture", "ground_grid", "ground_plane_view", "GroundView",
     "house_picture", "house_scene", "house_wireframe", "look_at_plane", "noise_texture", "page_texture",
     "painting_texture", "photo_and_page", "photo_plane", "photograph_plane", "Plane", "plane_outlines",
-    "PlanePhoto", "portrait", "rail_track", "sample_photo", "text_page", "textured_plane", "wall_texture",
+    "PlanePhoto", "portrait", "rail_track", "resection_set", "ResectionSet", "sample_photo", "text_page",
+    "textured_plane", "wall_texture",
 ]
 
 
@@ -652,8 +657,6 @@ def box_before_wall(distance: float) -> list:
     :func:`camlab.render.render`. :func:`plane_outlines` of ``faces`` gives the (24, 2, 3)
     box edges the 3-D view draws.
     """
-    from .camera import rotation_from_euler  # camera imports this module
-
     d = check_positive(distance, "distance", "metres")
     return [box([0.0, 0.0, d], (0.3, 0.3, 0.3), R=rotation_from_euler(0.35, 0.6, 0.0), rng=0),
             textured_plane(np.full((4, 4), 0.35), 3.0 * d, t=(0, 0, 3.0 * d), name="wall")]
@@ -677,8 +680,6 @@ def photo_and_page() -> list[Plane]:
     A list of two :class:`Plane` (``"photo"``, ``"page"``) for :func:`camlab.render.render`,
     framed by a camera at the origin looking along +z with f = 900 px on 320 x 240 pixels.
     """
-    from .camera import rotation_from_euler  # camera imports this module
-
     return [photo_plane(0.3, t=(0.05, 0.02, 1.0)),
             text_page(0.2, t=(-0.2, 0.0, 1.1), R=rotation_from_euler(0, 0.2, 0.05))]
 
@@ -703,6 +704,41 @@ def rail_track(start: float = -3.0, end: float = 40.0) -> np.ndarray:
     sleepers = np.array([[[-1.7, y, 0.0], [1.7, y, 0.0]] for y in np.arange(start, end, 1.0)])
     return np.concatenate([rails, sleepers])
 
+
+class ResectionSet(NamedTuple):
+    """A true camera and noisy world-to-pixel correspondences (lesson 04, resectioning).
+
+    Attributes
+    ----------
+    camera : Camera
+        The true camera (640 x 480, f = 800 px), 5 m from (0, 0, 0.7) m.
+    points_world : (N, 3) ndarray
+        Points on two faces of a 2 m cube (x = 1 and y = -1): not coplanar, like a calibration rig.
+    points_image : (N, 2) ndarray
+        Their pixels with Gaussian noise.
+    """
+
+    camera: Camera
+    points_world: np.ndarray
+    points_image: np.ndarray
+
+
+def resection_set(n_points: int, noise_px: float, seed: int | None = 0) -> ResectionSet:
+    """``n_points`` world points on two faces of a cube, seen by a known camera with ``noise_px`` pixels of noise."""
+    n_points = check_integer(n_points, "n_points", minimum=1)
+    sigma = check_number(noise_px, "noise_px", "pixels")
+    if sigma < 0:
+        raise CamlabInputError(f"noise_px: expected a standard deviation >= 0 pixels, got {noise_px!r}")
+    rng = np.random.default_rng(seed)
+    target = np.array([0.0, 0.0, 0.7])
+    cam = Camera.look_at(orbit_eye(np.radians(-55), np.radians(25), 5.0, target), target)
+    n1 = n_points // 2
+    a = rng.uniform(-1, 1, (n_points, 2))
+    X = np.empty((n_points, 3))
+    X[:n1] = np.column_stack([np.full(n1, 1.0), a[:n1, 0], 1.0 + a[:n1, 1]])
+    X[n1:] = np.column_stack([a[n1:, 0], np.full(n_points - n1, -1.0), 1.0 + a[n1:, 1]])
+    uv = cam.project(X) + rng.normal(0.0, sigma, (n_points, 2))
+    return ResectionSet(cam, X, uv)
 
 class GroundView(NamedTuple):
     """A ground grid seen by a tilted camera (lesson 06), with its exact vanishing geometry.

@@ -88,7 +88,7 @@ def dolly_zoom():
     perspective image approaches the weak-perspective one and the error falls like 1/d."""
     view = FigureView(figsize=(9, 3.8))
     ax_img, ax_err = view.fig.subplots(1, 2, width_ratios=(1.25, 1.0))
-    cube = cm.box_wireframe((0.0, 0.0, 0.5), (1.0, 1.0, 1.0))
+    cube = scenes.box_wireframe((0.0, 0.0, 0.5), (1.0, 1.0, 1.0))
     pts = cube.reshape(-1, 3)
     _image_panel(ax_img, "black: perspective, orange: weak perspective", tick_labels=False).remove()
     (persp,) = ax_img.plot([], [], color="k", lw=1.3)
