@@ -29,16 +29,20 @@ y down, z forward; pixels (u, v) = (column, row); points are rows. See lesson 05
 """
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, DegenerateError, as_point_pairs, as_points, check_matrix, check_positive, check_rotation
-from .camera import Camera, project_points
+from ._validate import (
+    CamlabInputError, DegenerateError, as_point_pairs, as_points, check_finite, check_matrix, check_positive, check_rotation,
+)
+from .camera import Camera, project_points, project_segments
 
 __all__ = [
     "affine_approximation", "dolly_zoom_focal", "estimate_affine_camera", "image_of_direction",
-    "is_affine", "orthographic_matrix", "scaled_orthographic_matrix", "weak_perspective_error",
-    "weak_perspective_matrix",
+    "is_affine", "orthographic_matrix", "scaled_orthographic_matrix", "ThreeImages", "three_images",
+    "weak_perspective_error", "weak_perspective_matrix",
 ]
 
 
@@ -174,6 +178,36 @@ def affine_approximation(camera: Camera, reference_point: ArrayLike) -> np.ndarr
     E[:2, 3] = camera.t[:2]
     E[2, 3] = d0
     return camera.K @ E / d0
+
+
+class ThreeImages(NamedTuple):
+    """One scene seen by a perspective camera and by its two affine simplifications.
+
+    Attributes
+    ----------
+    perspective, weak, orthographic : (M, 2, 2) ndarray
+        The segments' images, pixels for the first two, metres (camera x, y) for the orthographic one.
+    P_weak, P_orth : (3, 4) ndarray
+        The weak-perspective and orthographic matrices used.
+    """
+
+    perspective: np.ndarray
+    weak: np.ndarray
+    orthographic: np.ndarray
+    P_weak: np.ndarray
+    P_orth: np.ndarray
+
+
+def three_images(camera: Camera, segments: ArrayLike) -> ThreeImages:
+    """Segments (M, 2, 3), metres, seen by ``camera``, by its weak-perspective approximation about
+    the segments' centroid (:func:`affine_approximation`), and by the orthographic camera with
+    the same pose (:func:`orthographic_matrix`). See lesson 05, section 1.
+    """
+    perspective = project_segments(camera, segments)  # validates the segments
+    segs = check_finite(np.asarray(segments, dtype=float), "segments")  # the centroid needs every end point
+    P_weak = affine_approximation(camera, segs.reshape(-1, 3).mean(axis=0))
+    P_orth = orthographic_matrix(camera.R, camera.t)
+    return ThreeImages(perspective, project_segments(P_weak, segs), project_segments(P_orth, segs), P_weak, P_orth)
 
 
 def weak_perspective_error(camera: Camera, points_world: ArrayLike, reference_point: ArrayLike | None = None) -> np.ndarray:

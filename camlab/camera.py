@@ -54,7 +54,7 @@ from .scenes import box_wireframe, ground_grid, house_wireframe
 __all__ = [
     "Camera", "Decomposition", "CV_FROM_GL", "axis_angle_from_rotation", "camera_centre",
     "check_rotation", "decompose_projection_matrix", "estimate_projection_matrix",
-    "euler_from_rotation", "intrinsic_matrix", "is_rotation", "look_at_rotation",
+    "euler_from_rotation", "intrinsic_matrix", "is_rotation", "look_at_rotation", "orbit_eye",
     "opencv_from_opengl", "opengl_from_opencv", "project_points", "reprojection_errors",
     "rotation_from_axis_angle", "rotation_from_euler", "rq_decomposition", "rotation_x", "rotation_y", "rotation_z",
     "scale_intrinsics",
@@ -230,6 +230,21 @@ def scale_intrinsics(K: ArrayLike, scale: float) -> np.ndarray:
     s = check_positive(scale, "scale")
     S = np.array([[s, 0, (s - 1) / 2], [0, s, (s - 1) / 2], [0, 0, 1]])
     return S @ check_matrix(K, (3, 3), "K")
+
+
+def orbit_eye(azimuth: float, elevation: float, distance: float, target: ArrayLike = (0.0, 0.0, 0.0)) -> np.ndarray:
+    r"""A camera position on the sphere of radius ``distance`` (metres) about ``target``, for a look-at.
+
+    ``azimuth`` turns from world +x towards +y and ``elevation`` rises towards +z (up), in
+    radians: :math:`C = T + d\,(\cos e \cos a, \cos e \sin a, \sin e)`.
+
+    >>> orbit_eye(np.pi / 2, 0.0, 2.0, (0, 0, 1)).round(12) + 0.0
+    array([0., 2., 1.])
+    """
+    d = check_positive(distance, "distance", "metres")
+    a, e = check_number(azimuth, "azimuth", "radians"), check_number(elevation, "elevation", "radians")
+    return check_matrix(target, (3,), "target") + d * np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a),
+                                                                 np.sin(e)])
 
 
 def look_at_rotation(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0.0, 0.0, 1.0)) -> np.ndarray:

@@ -16,7 +16,7 @@ data generators (:mod:`camlab.data`) build the same scenes:
   :func:`house_wireframe`, :func:`ground_grid`, :func:`plane_outlines`;
 - **the lessons' scenes**, built once here for the lesson and its demos: :func:`box_before_wall`
   (01), :func:`depth_of_field_scene` (02), :func:`photo_and_page` (03), :func:`house_scene` (04),
-  :func:`box_and_rails`, :func:`rail_track` (05).
+  :func:`resection_set` (04), :func:`box_and_rails`, :func:`rail_track` (05), :func:`ground_plane_view` (06).
 
 Conventions (docs/conventions.md): metres; a plane's frame has x along texture columns,
 y along texture rows, z = x cross y; poses say their direction (``world_from_plane``).
@@ -26,22 +26,29 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import lru_cache
-from typing import NamedTuple, Sequence
+from typing import TYPE_CHECKING, NamedTuple, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, check_matrix, check_pose, check_positive, check_rotation, check_shape, check_size
+from ._validate import (
+    CamlabInputError, check_integer, check_matrix, check_number, check_pose, check_positive, check_rotation, check_shape,
+    check_size,
+)
 from .homography import pose_homography
 from .projective import map_points
 from .warp import warp_perspective
 
+if TYPE_CHECKING:
+    from .camera import Camera
+
 __all__ = [
-    "Plane", "PlanePhoto", "as_texture", "box", "box_and_rails", "box_before_wall", "box_wireframe", "checkerboard",
-    "depth_of_field_scene", "desk_background", "facade_texture", "ground_grid", "house_picture", "house_scene", "house_wireframe",
-    "look_at_plane", "noise_texture", "page_texture", "painting_texture", "photo_and_page", "photo_plane",
-    "photograph_plane", "plane_outlines", "portrait", "rail_track", "sample_photo", "text_page", "textured_plane",
-    "wall_texture",
+    "as_texture", "box", "box_and_rails", "box_before_wall", "box_wireframe", "checkerboard",
+    "depth_of_field_scene", "desk_background", "facade_texture", "ground_grid", "ground_plane_view", "GroundView",
+    "house_picture", "house_scene", "house_wireframe", "look_at_plane", "noise_texture", "page_texture",
+    "painting_texture", "photo_and_page", "photo_plane", "photograph_plane", "Plane", "plane_outlines",
+    "PlanePhoto", "portrait", "rail_track", "resection_set", "ResectionSet", "sample_photo", "text_page",
+    "textured_plane", "wall_texture",
 ]
 
 
@@ -702,3 +709,103 @@ def rail_track(start: float = -3.0, end: float = 40.0) -> np.ndarray:
     rails = np.array([[[x, start, 0.0], [x, end, 0.0]] for x in (-1.5, -0.5, 0.5, 1.5)])
     sleepers = np.array([[[-1.7, y, 0.0], [1.7, y, 0.0]] for y in np.arange(start, end, 1.0)])
     return np.concatenate([rails, sleepers])
+
+
+class ResectionSet(NamedTuple):
+    """A true camera and noisy world-to-pixel correspondences (lesson 04, resectioning).
+
+    Attributes
+    ----------
+    camera : Camera
+        The true camera (640 x 480, f = 800 px), 5 m from (0, 0, 0.7) m.
+    points_world : (N, 3) ndarray
+        Points on two faces of a 2 m cube (x = 1 and y = -1): not coplanar, like a calibration rig.
+    points_image : (N, 2) ndarray
+        Their pixels with Gaussian noise.
+    """
+
+    camera: "Camera"
+    points_world: np.ndarray
+    points_image: np.ndarray
+
+
+def resection_set(n_points: int, noise_px: float, seed: int | None = 0) -> ResectionSet:
+    """``n_points`` world points on two faces of a cube, seen by a known camera with ``noise_px`` pixels of noise."""
+    from .camera import Camera, orbit_eye  # camera imports this module
+
+    n_points = check_integer(n_points, "n_points", minimum=1)
+    sigma = check_number(noise_px, "noise_px", "pixels")
+    if sigma < 0:
+        raise CamlabInputError(f"noise_px: expected a standard deviation >= 0 pixels, got {noise_px!r}")
+    rng = np.random.default_rng(seed)
+    target = np.array([0.0, 0.0, 0.7])
+    cam = Camera.look_at(orbit_eye(np.radians(-55), np.radians(25), 5.0, target), target)
+    n1 = n_points // 2
+    a = rng.uniform(-1, 1, (n_points, 2))
+    X = np.empty((n_points, 3))
+    X[:n1] = np.column_stack([np.full(n1, 1.0), a[:n1, 0], 1.0 + a[:n1, 1]])
+    X[n1:] = np.column_stack([a[n1:, 0], np.full(n_points - n1, -1.0), 1.0 + a[n1:, 1]])
+    uv = cam.project(X) + rng.normal(0.0, sigma, (n_points, 2))
+    return ResectionSet(cam, X, uv)
+
+class GroundView(NamedTuple):
+    """A ground grid seen by a tilted camera (lesson 06), with its exact vanishing geometry.
+
+    Attributes
+    ----------
+    K, R : (3, 3) ndarray
+        Intrinsics and the cam_from_world rotation (the camera sits at the world origin).
+    segments : (M, 2, 2) ndarray
+        The grid lines' images (pixels), clipped to the part in front of the camera: first the
+        ``n_along_z`` lines running ahead (along z), then the lines across (along x).
+    n_along_z : int
+        How many of ``segments`` run ahead.
+    vp_z, vp_x : (3,) ndarray
+        Homogeneous vanishing points of the world directions z and x, :math:`K R d`.
+    horizon : (3,) ndarray
+        The ground's horizon line :math:`K^{-T} R n` (n = (0, 1, 0), the ground's normal).
+    """
+
+    K: np.ndarray
+    R: np.ndarray
+    segments: np.ndarray
+    n_along_z: int
+    vp_z: np.ndarray
+    vp_x: np.ndarray
+    horizon: np.ndarray
+
+
+def ground_plane_view(pitch: float, yaw: float, focal: float, size: tuple[int, int] = (640, 480),
+                      height: float = 1.5) -> GroundView:
+    """A camera ``height`` metres over a ground grid, tilted down by ``pitch`` and turned by ``yaw`` (radians).
+
+    ``focal`` in pixels, ``size`` (width, height) in pixels. This scene's world frame is the
+    camera's before it turns: x right, y down (the ground is the plane y = ``height``), z
+    ahead. A world direction d vanishes at :math:`K R d`, and the ground's horizon is
+    :math:`K^{-T} R n`. Lines are clipped at 5 cm in front of the camera, so none flips
+    through the pinhole.
+    """
+    w, h = check_size(size)
+    f = check_positive(focal, "focal", "pixels")
+    cam_height = check_positive(height, "height", "metres")
+    K = np.array([[f, 0, (w - 1) / 2], [0, f, (h - 1) / 2], [0, 0, 1.0]])
+    cp, sp, cy, sy = np.cos(pitch), np.sin(pitch), np.cos(yaw), np.sin(yaw)
+    Rx = np.array([[1, 0, 0], [0, cp, -sp], [0, sp, cp]])  # optical axis tilted down by +pitch
+    Ry = np.array([[cy, 0, -sy], [0, 1, 0], [sy, 0, cy]])
+    R = Rx @ Ry  # cam_from_world (the camera sits at the world origin)
+    ticks = np.arange(-12.0, 12.1, 2.0)
+    along_z = [np.array([[x, cam_height, 0.5], [x, cam_height, 2000.0]]) for x in ticks]
+    along_x = [np.array([[-60.0, cam_height, z], [60.0, cam_height, z]]) for z in 2.0 * 1.4 ** np.arange(12)]
+    near = 0.05
+    segments = []
+    for seg in along_z + along_x:
+        a, b = seg @ R.T
+        if a[2] < near and b[2] < near:
+            continue  # wholly behind the camera
+        if a[2] < near or b[2] < near:  # clip at the near plane so nothing flips through the pinhole
+            s = (near - a[2]) / (b[2] - a[2])
+            a, b = (a + s * (b - a), b) if a[2] < near else (a, a + s * (b - a))
+        uv = np.stack([a, b]) @ K.T
+        segments.append(uv[:, :2] / uv[:, 2:])
+    return GroundView(K, R, np.array(segments).reshape(-1, 2, 2), len(along_z), K @ R @ np.array([0, 0, 1.0]),
+                      K @ R @ np.array([1.0, 0, 0]), np.linalg.inv(K).T @ R @ np.array([0, 1.0, 0]))

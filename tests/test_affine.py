@@ -223,3 +223,21 @@ def test_lesson05_exercises(capsys):
     with pytest.raises(AssertionError, match="depth of the world origin"):
         check("affine_approximation", lambda c, X0: (lambda E: c.K @ E / c.t[2])(
             np.vstack([np.c_[c.R[:2], c.t[:2]], [0, 0, 0, c.t[2]]])))
+
+
+def test_three_images_of_a_scene(cam):
+    from camlab.scenes import box_and_rails
+
+    segs = box_and_rails()
+    imgs = af.three_images(cam, segs)
+    assert isinstance(imgs, af.ThreeImages) and imgs.perspective.shape == imgs.weak.shape == (len(segs), 2, 2)
+    np.testing.assert_allclose(imgs.perspective, cm.project_segments(cam, segs))
+    centre = segs.reshape(-1, 3).mean(axis=0)  # weak perspective is exact at the scene's centroid
+    np.testing.assert_allclose(cm.project_points(imgs.P_weak, centre), cam.project(centre), atol=1e-9)
+    assert af.is_affine(imgs.P_weak) and af.is_affine(imgs.P_orth)
+    # parallel rails stay parallel in both affine images
+    for img in (imgs.weak, imgs.orthographic):
+        d = img[-4:, 1] - img[-4:, 0]
+        assert np.allclose(d[:, 0] * d[0, 1] - d[:, 1] * d[0, 0], 0, atol=1e-9)
+    with pytest.raises(CamlabInputError, match="segments"):
+        af.three_images(cam, segs[:, 0])

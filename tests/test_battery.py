@@ -102,10 +102,12 @@ BASELINES: dict[str, Callable[[dict], dict]] = {
     "camera.reprojection_errors": lambda v: {"P": v["cam2"].P, "points_world": v["X"], "points_image": v["x2"]},
     "camera.opengl_from_opencv": lambda v: {"R": R, "t": T},
     "camera.project_segments": lambda v: {"camera": v["cam1"], "segments": [[[0.0, 0, 2], [0.1, 0, 2]]]},
+    "camera.orbit_eye": lambda v: {"azimuth": 0.3, "elevation": 0.2, "distance": 4.0, "target": [0.0, 0, 0.5]},
     # affine
     "affine.orthographic_matrix": lambda v: {"R": R, "t": T},
     "affine.weak_perspective_matrix": lambda v: {"R": R, "t": T, "ax": 400.0, "ay": 400.0},
     "affine.affine_approximation": lambda v: {"camera": v["cam2"], "reference_point": [0.0, 0, 3]},
+    "affine.three_images": lambda v: {"camera": v["cam1"], "segments": [[[0.0, 0, 2], [0.1, 0, 2]], [[0.0, 0.1, 2.2], [0.1, 0.1, 2.2]]]},
     "affine.estimate_affine_camera": lambda v: {"points_world": v["X"], "points_image": v["x1"]},
     "affine.dolly_zoom_focal": lambda v: {"f0": 0.05, "d0": 2.0, "d": 3.0},
     "affine.weak_perspective_error": lambda v: {"camera": v["cam1"], "points_world": v["X"]},

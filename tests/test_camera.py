@@ -597,3 +597,13 @@ def test_scale_intrinsics_and_camera_resized_agree_with_resizing_pixels():
         cam.resized(0.33)
     from camlab.data import panorama
     assert panorama.scale_intrinsics is cm.scale_intrinsics  # one home
+
+
+def test_orbit_eye_is_a_point_on_a_sphere_in_radians():
+    T = np.array([0.0, 0.0, 0.5])
+    eye = cm.orbit_eye(np.radians(-40), np.radians(20), 4.0, T)
+    assert np.isclose(np.linalg.norm(eye - T), 4.0)
+    assert np.isclose(np.degrees(np.arcsin((eye - T)[2] / 4.0)), 20.0)  # elevation up, towards +z
+    np.testing.assert_allclose(cm.orbit_eye(0.0, 0.0, 2.0), [2.0, 0.0, 0.0])
+    with pytest.raises(CamlabInputError, match="distance"):
+        cm.orbit_eye(0.0, 0.0, -1.0)

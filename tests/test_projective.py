@@ -217,13 +217,13 @@ def test_vanishing_point_errors():
 
 
 def test_horizon_matches_camera_ground_truth():
-    from camlab.widgets.projective_plane import ground_plane_view
+    from camlab.scenes import ground_plane_view
 
     g = ground_plane_view(np.radians(12), np.radians(20), 700.0)
-    segs = np.array(g["segments"])
-    n = g["n_along_z"]
+    segs, n = g.segments, g.n_along_z
+    assert segs.shape == (len(segs), 2, 2) and 0 < n < len(segs)
     hz = pj.horizon(pj.vanishing_point(segs[:n]), pj.vanishing_point(segs[n:]))
-    truth = pj.normalize_lines(g["horizon"])
+    truth = pj.normalize_lines(g.horizon)
     assert min(np.linalg.norm(hz - truth), np.linalg.norm(hz + truth)) < 1e-9
 
 

@@ -104,3 +104,13 @@ def test_textures_take_one_size_width_then_height(make, size):
     with pytest.raises(ValueError, match=r"size: expected \(width, height\) as whole numbers of pixels"):
         make((size[0] + 0.7, size[1]))
     assert scenes.desk_background((60, 80)).shape == (60, 80, 3)  # a shape is (height, width)
+
+
+def test_resection_set_is_noisy_projections_of_non_coplanar_points():
+    exact = scenes.resection_set(20, 0.0, seed=3)
+    np.testing.assert_allclose(exact.points_image, exact.camera.project(exact.points_world))
+    assert np.linalg.matrix_rank(exact.points_world - exact.points_world.mean(axis=0)) == 3  # two cube faces
+    noisy = scenes.resection_set(20, 2.0, seed=3)
+    assert 1.0 < np.std(noisy.points_image - exact.points_image) < 3.0
+    with pytest.raises(ValueError, match="noise_px"):
+        scenes.resection_set(10, -1.0)

@@ -50,3 +50,29 @@ def test_true_matches_are_exact_correspondences():
     F = ep.fundamental_from_cameras(cu1, cu2)
     assert np.abs(ep.sampson_distance(F, u1, u2)).max() < 1e-6
     np.testing.assert_allclose(u1, undistort_pixels(x1, rig.camera1.K, rig.camera1.dist))
+
+
+def test_calibrate_rig_recovers_the_true_relative_pose():
+    from camlab.data.stereo import calibrate_rig
+
+    rig = load_stereo_rig()
+    cal = calibrate_rig(rig)
+    assert 0 < cal.rms < 0.2  # noise-free 8-bit boards: a few hundredths of a pixel
+    assert np.array_equal(cal.camera1.R, np.eye(3)) and not np.any(cal.camera1.t)
+    R, t = ep.relative_pose(rig.camera1, rig.camera2)
+    assert abs(np.linalg.norm(cal.camera2.t) - np.linalg.norm(t)) < 1e-3  # baseline within 1 mm
+    assert np.abs(cal.camera2.R - R).max() < 0.01
+    assert np.allclose(cal.camera1.K, rig.camera1.K, atol=3.0)
+
+
+def test_true_disparity_of_another_rectification():
+    from camlab.data.stereo import true_disparity
+
+    rig = load_stereo_rig()
+    alpha = STEREO_PARAMS["rectify_alpha"]
+    same = rc.rectify_calibrated(rig.camera1, rig.camera2, alpha=alpha, maps=False)
+    np.testing.assert_allclose(true_disparity(rig, same), rig.disparity, rtol=1e-6, equal_nan=True)
+    half = rc.rectify_calibrated(rig.camera1.resized(0.5), rig.camera2.resized(0.5), alpha=alpha, maps=False)
+    d = true_disparity(rig, half)
+    assert d.shape == (240, 320)
+    assert np.isclose(np.nanmedian(d), 0.5 * np.nanmedian(rig.disparity), rtol=0.02)  # f halves, B and Z stay

@@ -39,8 +39,8 @@ from ._resources import encode_image, read_truth
 from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
 from ..scenes import noise_texture, portrait
 
-__all__ = ["STEREO_PARAMS", "StereoMatches", "StereoRig", "load_stereo_rig", "make_stereo_rig", "rig_cameras",
-           "stereo_scene", "true_matches"]
+__all__ = ["STEREO_PARAMS", "RigCalibration", "StereoMatches", "StereoRig", "calibrate_rig", "load_stereo_rig",
+           "make_stereo_rig", "rig_cameras", "stereo_scene", "true_disparity", "true_matches"]
 
 STEREO_PARAMS = {
     "seed": 11,
@@ -66,7 +66,7 @@ STEREO_PARAMS = {
 }
 
 
-def _facing(normal_towards: str = "-y") -> np.ndarray:
+def _facing() -> np.ndarray:
     """world_from_plane rotation for a plane whose texture is upright seen from -y (the cameras)."""
     return np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])
 
@@ -200,6 +200,66 @@ def true_matches(rig: StereoRig, step: int = 30, start: int = 20) -> StereoMatch
     x1, x2 = x1[inside], x2[inside]
     c1, c2 = rig.camera1, rig.camera2
     return StereoMatches(x1, x2, undistort_pixels(x1, c1.K, c1.dist), undistort_pixels(x2, c2.K, c2.dist))
+
+
+def true_disparity(rig: StereoRig, rect) -> np.ndarray:
+    """The true disparity (pixels, NaN = no surface) of another calibrated rectification of the rig.
+
+    ``rect`` is :func:`camlab.rectification.rectify_calibrated` of the rig's true cameras at
+    any resolution or ``alpha`` (e.g. of ``camera.resized(0.5)``): it has the same rectifying
+    rotation as the stored one, so its pixel p' sees the surface of the stored rectified pixel
+    :math:`K K'^{-1} p'` at the same depth Z (nearest pixel), and its disparity is
+    :math:`d' = f' B / Z` (:func:`camlab.disparity.disparity_to_depth` is its own inverse).
+    """
+    import cv2
+
+    from ..disparity import disparity_to_depth
+    from ..rectification import rectify_calibrated
+
+    stored = rectify_calibrated(rig.camera1, rig.camera2, alpha=rig.params["rectify_alpha"], maps=False)
+    Z = disparity_to_depth(rig.disparity, stored.K[0, 0], stored.baseline).astype(np.float32)
+    M = stored.K @ np.linalg.inv(rect.K)
+    w, h = rect.camera1.image_size
+    v, u = np.mgrid[0:h, 0:w].astype(np.float32)
+    Zr = cv2.remap(Z, (M[0, 0] * u + M[0, 2]).astype(np.float32), (M[1, 1] * v + M[1, 2]).astype(np.float32),
+                   cv2.INTER_NEAREST, borderValue=np.nan)
+    return disparity_to_depth(Zr, rect.K[0, 0], rect.baseline)
+
+
+class RigCalibration(NamedTuple):
+    """The rig as a stereo calibration sees it.
+
+    Attributes
+    ----------
+    camera1, camera2 : Camera
+        The calibrated cameras in camera 1's frame (camera 1 has R = I, t = 0), with the
+        estimated distortion.
+    rms : float
+        The calibration's joint RMS reprojection error, pixels.
+    """
+
+    camera1: Camera
+    camera2: Camera
+    rms: float
+
+
+def calibrate_rig(rig: StereoRig) -> RigCalibration:
+    """Calibrate the rig from its chessboard pairs, as one would a real rig (not its true cameras).
+
+    Corners by :func:`camlab.calibration.find_chessboard` in every calibration image, then
+    :func:`camlab.rectification.stereo_calibrate`. Rectifying with these cameras leaves a
+    small vertical disparity: the calibration's own error, which the true cameras would hide.
+    """
+    from ..calibration import find_chessboard
+    from ..rectification import stereo_calibrate
+
+    size = rig.camera1.image_size
+    c1 = [find_chessboard(im, rig.pattern_size).corners for im in rig.calib_left]
+    c2 = [find_chessboard(im, rig.pattern_size).corners for im in rig.calib_right]
+    sc = stereo_calibrate(rig.object_points, c1, c2, size)
+    cam1 = Camera(sc.K1, np.eye(3), np.zeros(3), dist=tuple(sc.dist1), image_size=size)
+    cam2 = Camera(sc.K2, sc.R, sc.t, dist=tuple(sc.dist2), image_size=size)
+    return RigCalibration(cam1, cam2, float(sc.rms))
 
 
 def _png(path: Path, img: np.ndarray) -> Path:

@@ -196,11 +196,11 @@ def draw_thin_lens(ax, focal_length: float, object_distance: float, height: floa
     }
     ax.set(xlim=(-1, 1), ylim=(-1, 1), xticks=[], yticks=[])
     ax.set_xlabel("object side  ←  lens  →  image side   (drawn to fit; lengths in the corner)")
-    update_thin_lens(art, ax, focal_length, object_distance)
+    update_thin_lens(art, focal_length, object_distance)
     return art
 
 
-def update_thin_lens(art: dict, ax, f: float, zo: float) -> dict:
+def update_thin_lens(art: dict, f: float, zo: float) -> dict:
     """Move the diagram to focal length ``f`` and object distance ``zo``; returns the computed values."""
     hgt = art["height"]
     zi = _lens.image_distance(f, zo)

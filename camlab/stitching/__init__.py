@@ -503,10 +503,8 @@ def warp_images(images: Sequence[np.ndarray], homographies: Sequence[np.ndarray]
         r0, r1, c0, c1 = _image_box(Hc, im.shape, shape)
         Hb = np.array([[1.0, 0, -c0], [0, 1, -r0], [0, 0, 1]]) @ Hc
         size = (r1 - r0, c1 - c0)
-        # one warp for the colour channels and the feather weight together (4 channels)
-        both = warp_perspective(np.dstack([im, feather_weights(im.shape).astype(np.float32)]), Hb, size,
-                                method="cv2")
-        wimg, wgt = both[..., :3], both[..., 3]
+        wimg = warp_perspective(im, Hb, size, method="cv2")
+        wgt = warp_perspective(feather_weights(im.shape).astype(np.float32), Hb, size, method="cv2")
         ones = np.ones(im.shape[:2], np.float32)
         mask = warp_perspective(ones, Hb, size, interpolation="nearest", method="cv2") > 0.5
         wgt = np.where(mask, np.maximum(wgt, 1e-3), 0).astype(np.float32)
@@ -516,6 +514,15 @@ def warp_images(images: Sequence[np.ndarray], homographies: Sequence[np.ndarray]
         out_h.append(Hc)
         boxes.append((r0, r1, c0, c1))
     return WarpedImages(out_i, out_m, out_w, boxes, tuple(shape), out_h, T)
+
+
+def _over_channels(op, image: np.ndarray) -> np.ndarray:
+    """``op`` (np.add, np.minimum, ...) folded over the channels of an (h, w, C) image, one channel at a
+    time (the same as ``op.reduce(image, axis=2)``, which numpy runs about 10x slower for a short last axis)."""
+    out = image[..., 0]
+    for c in range(1, image.shape[2]):
+        out = op(out, image[..., c])
+    return out
 
 
 def gain_compensation(warped: WarpedImages, sigma_n: float = 10.0 / 255, sigma_g: float = 1.0,
@@ -553,8 +560,9 @@ def gain_compensation(warped: WarpedImages, sigma_n: float = 10.0 / 255, sigma_g
     h, w = warped.shape
     step = 1 if megapixels is None else max(1, int(round(np.sqrt(h * w / (megapixels * 1e6)))))
     imgs, masks = warped.subsampled(step)
-    lum = [im.mean(axis=2) for im in imgs]
-    ok = [m & (im.min(axis=2) > clip[0]) & (im.max(axis=2) < clip[1]) for m, im in zip(masks, imgs)]
+    lum = [_over_channels(np.add, im) / im.shape[2] for im in imgs]
+    ok = [m & (_over_channels(np.minimum, im) > clip[0]) & (_over_channels(np.maximum, im) < clip[1])
+          for m, im in zip(masks, imgs)]
     A = np.zeros((n, n))
     b = np.zeros(n)
     for i in range(n):
@@ -600,13 +608,16 @@ def _seam_path(cost: np.ndarray) -> np.ndarray:
     then walk back up from the cheapest bottom cell.
     """
     h, w = cost.shape
-    E = cost.copy()
+    E = np.full((h, w + 2), np.inf)  # one column of infinity each side: no path leaves the grid
+    E[0, 1:-1] = cost[0]
     back = np.zeros((h, w), np.int64)
+    cols = np.arange(w)
     for r in range(1, h):
-        prev = np.stack([np.r_[np.inf, E[r - 1, :-1]], E[r - 1], np.r_[E[r - 1, 1:], np.inf]])
+        prev = np.stack([E[r - 1, :-2], E[r - 1, 1:-1], E[r - 1, 2:]])  # from c-1, c, c+1
         k = np.argmin(prev, axis=0)
         back[r] = k - 1
-        E[r] += prev[k, np.arange(w)]
+        E[r, 1:-1] = cost[r] + prev[k, cols]
+    E = E[:, 1:-1]
     path = np.zeros(h, np.int64)
     path[-1] = int(np.argmin(E[-1]))
     for r in range(h - 1, 0, -1):
@@ -645,9 +656,9 @@ def dp_seam_masks(warped: WarpedImages, megapixels: float = 0.1) -> list[np.ndar
             rows, cols = np.flatnonzero(ov.any(axis=1)), np.flatnonzero(ov.any(axis=0))
             box = (slice(rows[0], rows[-1] + 1), slice(cols[0], cols[-1] + 1))
             a, b = comp[box], im[box]
-            diff = np.abs(a - b).sum(axis=2)
+            diff = _over_channels(np.add, np.abs(a - b))
             for ax in (0, 1):
-                diff += np.abs(np.diff(a, axis=ax, prepend=0) - np.diff(b, axis=ax, prepend=0)).sum(axis=2)
+                diff += _over_channels(np.add, np.abs(np.diff(a, axis=ax, prepend=0) - np.diff(b, axis=ax, prepend=0)))
             cost = np.where(ov[box], diff, 1e6)
             tall = cost.shape[0] >= cost.shape[1]
             path = _seam_path(cost if tall else cost.T)
@@ -739,7 +750,8 @@ def _fill_outside(img: np.ndarray, mask: np.ndarray, levels: int) -> np.ndarray:
         filled = up + t * (own - up)
     # full resolution: the image itself inside the mask, the pulled-up fill outside
     up = cv2.pyrUp(filled, dstsize=(mask.shape[1], mask.shape[0])).reshape(img.shape)
-    return np.where(mask[..., None], img, up)
+    np.copyto(up, img, where=mask[..., None])
+    return up
 
 
 def _blend_inputs(images, masks) -> tuple[list, list]:
@@ -817,7 +829,9 @@ def _multiband(images: list, masks: list, feet: list, boxes: list, shape: tuple,
     wsum = [np.zeros(sz, np.float32) for sz in sizes]
     union = np.zeros((h, w), bool)
     step = 1 << levels
-    pad = 4 * step  # the 5-tap filters spread a mask about 2 * 2^l pixels at level l
+    # each pyrDown's 5-tap filter reaches 2 pixels of its input, 2^l full-resolution pixels at level l,
+    # so after `levels` of them a seam mask reaches 2 (2^levels - 1) < 2 step pixels beyond itself
+    pad = 2 * step
     for img, m, foot, (r0, r1, c0, c1) in zip(images, masks, feet, boxes):
         if not m.any():
             continue
@@ -840,20 +854,21 @@ def _multiband(images: list, masks: list, feet: list, boxes: list, shape: tuple,
         sub[ys, xs] = img[ps, qs]
         valid[ys, xs] = foot[ps, qs] | m[ps, qs]
         mk0[ys, xs] = m[ps, qs]
-        g = [_fill_outside(sub, valid, levels).astype(np.float32)]
+        g = [_fill_outside(sub, valid, levels).astype(np.float32, copy=False)]
         mk = [mk0]
         for _ in range(levels):
             g.append(cv2.pyrDown(g[-1]))
             mk.append(cv2.pyrDown(mk[-1]))
         for lv in range(levels + 1):
-            if lv < levels:
-                up = cv2.pyrUp(g[lv + 1], dstsize=(g[lv].shape[1], g[lv].shape[0]))
-                band = g[lv] - up.reshape(g[lv].shape)
+            if lv < levels:  # band = g[lv] - up(g[lv + 1]), computed in place
+                band = cv2.pyrUp(g[lv + 1], dstsize=(g[lv].shape[1], g[lv].shape[0])).reshape(g[lv].shape)
+                np.subtract(g[lv], band, out=band)
             else:
                 band = g[levels]
+            band *= mk[lv][..., None]
             oy, ox = y0 >> lv, x0 >> lv
             hh, ww = mk[lv].shape
-            acc[lv][oy:oy + hh, ox:ox + ww] += band * mk[lv][..., None]
+            acc[lv][oy:oy + hh, ox:ox + ww] += band
             wsum[lv][oy:oy + hh, ox:ox + ww] += mk[lv]
     bands = [a / np.maximum(s, 1e-6)[..., None] for a, s in zip(acc, wsum)]
     out = bands[-1]

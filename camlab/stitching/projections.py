@@ -51,7 +51,8 @@ def canvas_from_ray(d: np.ndarray, projection: str, s: float) -> tuple[np.ndarra
 
 
 def ray_from_canvas(u: np.ndarray, v: np.ndarray, projection: str, s: float) -> tuple:
-    """World rays (x, y, z), each like ``u``, of canvas pixels (u, v): the inverse of :func:`canvas_from_ray`."""
+    """World rays (x, y, z) of canvas pixels (u, v), each broadcast like ``u`` and ``v``: the inverse of
+    :func:`canvas_from_ray`."""
     if projection == "planar":
         return u / s, v / s, np.ones_like(u)
     theta = u / s
@@ -142,9 +143,11 @@ def warp_to_canvas(image: np.ndarray, K: np.ndarray, R: np.ndarray, canvas: Canv
     import cv2
 
     r0, r1, c0, c1 = box
-    v, u = np.mgrid[r0:r1, c0:c1].astype(np.float32)
-    x, y, z = ray_from_canvas(u + np.float32(canvas.origin[0]), v + np.float32(canvas.origin[1]),
-                              canvas.projection, np.float32(canvas.s))
+    # a row of u and a column of v: every projection's ray separates into functions of u and
+    # of v, so the trigonometry runs on the box's edges and broadcasting fills the box
+    u = np.arange(c0, c1, dtype=np.float32)[None, :] + np.float32(canvas.origin[0])
+    v = np.arange(r0, r1, dtype=np.float32)[:, None] + np.float32(canvas.origin[1])
+    x, y, z = ray_from_canvas(u, v, canvas.projection, np.float32(canvas.s))
     M = (K @ R).astype(np.float32)
     p = [M[r, 0] * x + M[r, 1] * y + M[r, 2] * z for r in range(3)]
     ahead = p[2] > 1e-6
@@ -153,10 +156,9 @@ def warp_to_canvas(image: np.ndarray, K: np.ndarray, R: np.ndarray, canvas: Canv
         mv = np.where(ahead, p[1] / p[2], -10).astype(np.float32)
     h, w = image.shape[:2]
     mask = ahead & (mu >= -0.5) & (mu <= w - 0.5) & (mv >= -0.5) & (mv <= h - 0.5)
-    src = image if extra is None else np.dstack([image, extra])
-    out = cv2.remap(src, mu, mv, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
-    out = out.reshape(mu.shape + (src.shape[2],)) if out.ndim == 2 else out
-    out[~mask] = 0
-    if extra is None:
-        return out, mask, None
-    return out[..., :-1], mask, out[..., -1]
+    warped = []
+    for src in (image, extra) if extra is not None else (image,):
+        out = cv2.remap(src, mu, mv, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE).reshape(mu.shape + src.shape[2:])
+        out[~mask] = 0
+        warped.append(out)
+    return warped[0], mask, (warped[1] if extra is not None else None)

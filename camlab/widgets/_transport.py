@@ -95,7 +95,7 @@ def _fit_to_display(image: Any, array: Any) -> Any:
     return cv2.resize(a, (width, height), interpolation=cv2.INTER_NEAREST if crisp else cv2.INTER_AREA)
 
 
-def _screen_image(image: Any, renderer: Any) -> tuple[np.ndarray, int, int] | None:
+def _screen_image(image: Any) -> tuple[np.ndarray, int, int] | None:
     """``image``'s RGBA pixels as they land on the canvas, and their lower-left corner; None: use matplotlib.
 
     The data is already at about screen size, so matplotlib's general resampler (built for
@@ -157,7 +157,7 @@ def show_at_display_resolution(image: Any) -> None:
             set_data(_fit_to_display(image, source[0]))
 
     def screen_image(renderer: Any, magnification: float = 1.0, unsampled: bool = False):
-        fast = None if unsampled or magnification != 1.0 else _screen_image(image, renderer)
+        fast = None if unsampled or magnification != 1.0 else _screen_image(image)
         if fast is None:
             return make_image(renderer, magnification, unsampled)
         rgba, left, bottom = fast

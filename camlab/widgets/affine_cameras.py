@@ -15,20 +15,9 @@ from .. import camera as cm
 from .. import scenes
 from ..plotting import scene3d
 from ._base import FigureView, build_demo, register, slider
-from .projective_camera import orbit_eye
 
 TARGET = np.array([0.0, 0.0, 0.5])
 F0, D0 = 800.0, 4.0  # reference focal length (px) and distance (m) for the dolly zoom
-
-
-def three_images(camera: cm.Camera, segments: np.ndarray):
-    """The same segments seen by the perspective camera, its weak-perspective approximation
-    about the scene centre, and the orthographic camera with the same pose (metres)."""
-    X0 = segments.reshape(-1, 3).mean(axis=0)
-    P_weak = af.affine_approximation(camera, X0)
-    P_orth = af.orthographic_matrix(camera.R, camera.t)
-    return (cm.project_segments(camera, segments), cm.project_segments(P_weak, segments),
-            cm.project_segments(P_orth, segments), P_weak, P_orth)
 
 
 def _image_panel(ax, title, size=(640, 480), tick_labels=True):
@@ -67,8 +56,9 @@ def three_cameras():
     def update(v, state):
         f = af.dolly_zoom_focal(F0, D0, v["distance"])
         K = cm.intrinsic_matrix(f, f, 320, 240)
-        cam = cm.Camera.look_at(orbit_eye(v["azimuth"], v["elevation"], v["distance"], TARGET), TARGET, K=K)
-        p, w, o, P_weak, _ = three_images(cam, scene)
+        cam = cm.Camera.look_at(cm.orbit_eye(*np.radians([v["azimuth"], v["elevation"]]), v["distance"], TARGET),
+                                TARGET, K=K)
+        p, w, o, P_weak, _ = af.three_images(cam, scene)
         scene3d.update_segments(persp, p)
         scene3d.update_segments(weak, w)
         scene3d.update_segments(ghost, p)
@@ -85,7 +75,7 @@ def dolly_curve(distances: np.ndarray, points: np.ndarray, azimuth=-40.0, elevat
     out = []
     for d in distances:
         f = af.dolly_zoom_focal(F0, D0, d)
-        cam = cm.Camera.look_at(orbit_eye(azimuth, elevation, d, TARGET), TARGET,
+        cam = cm.Camera.look_at(cm.orbit_eye(np.radians(azimuth), np.radians(elevation), d, TARGET), TARGET,
                                 K=cm.intrinsic_matrix(f, f, 320, 240))
         e = af.weak_perspective_error(cam, points, TARGET)
         out.append(np.sqrt(np.mean(e ** 2)))
@@ -126,7 +116,8 @@ def dolly_zoom():
     def update(v, state):
         d = float(v["distance"])
         f = af.dolly_zoom_focal(F0, D0, d)
-        cam = cm.Camera.look_at(orbit_eye(-40.0, 20.0, d, TARGET), TARGET, K=cm.intrinsic_matrix(f, f, 320, 240))
+        cam = cm.Camera.look_at(cm.orbit_eye(np.radians(-40.0), np.radians(20.0), d, TARGET), TARGET,
+                                K=cm.intrinsic_matrix(f, f, 320, 240))
         P_weak = af.affine_approximation(cam, TARGET)
         scene3d.update_segments(persp, cm.project_segments(cam, cube))
         scene3d.update_segments(weak, cm.project_segments(P_weak, cube))

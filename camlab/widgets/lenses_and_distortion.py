@@ -33,7 +33,7 @@ def thin_lens():
         f, zo = values["focal_mm"] * 1e-3, values["object_m"]
         if zo <= f * 1.05:  # slider corner: keep the object outside the focal length
             zo = f * 1.05
-        state.update(optics.update_thin_lens(art, ax, f, zo))
+        state.update(optics.update_thin_lens(art, f, zo))
 
     return build_demo("thin_lens", controls, view, update, title="Thin lens")
 

@@ -20,12 +20,6 @@ from .controls import int_slider
 TARGET = np.array([0.0, 0.0, 0.7])
 
 
-def orbit_eye(azimuth_deg: float, elevation_deg: float, distance: float, target=TARGET) -> np.ndarray:
-    """A point on a sphere of radius ``distance`` about ``target``; azimuth from +X towards +Y."""
-    a, e = np.deg2rad(azimuth_deg), np.deg2rad(elevation_deg)
-    return np.asarray(target) + distance * np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
-
-
 def _fmt(v: np.ndarray) -> str:
     return "(" + ", ".join(f"{x:+.2f}" for x in v) + ")"
 
@@ -41,7 +35,7 @@ def camera_explorer():
     """
     view = FigureView(figsize=(9, 4.2))
     scene = scenes.house_scene()
-    cam0 = cm.Camera.look_at(orbit_eye(-60, 25, 5.0), TARGET)
+    cam0 = cm.Camera.look_at(cm.orbit_eye(np.radians(-60), np.radians(25), 5.0, TARGET), TARGET)
     sv = scene3d.SceneView(view.fig, cam0, scene, plane_size=1.5)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
     (pp,) = sv.ax_image.plot([], [], "+", color="tab:purple", ms=10, mew=2)
@@ -59,7 +53,8 @@ def camera_explorer():
 
     def update(v, state):
         K = cm.intrinsic_matrix(v["fx"], v["fy"], v["cx"], v["cy"], v["skew"])
-        cam = cm.Camera.look_at(orbit_eye(v["azimuth"], v["elevation"], v["distance"]), TARGET, K=K)
+        cam = cm.Camera.look_at(cm.orbit_eye(*np.radians([v["azimuth"], v["elevation"]]), v["distance"], TARGET), TARGET,
+                                K=K)
         sv.update(cam)
         pp.set_data([cam.principal_point[0]], [cam.principal_point[1]])
         info.value = (f"<pre>t = {_fmt(cam.t)} m  (world origin in camera frame)\n"
@@ -68,20 +63,6 @@ def camera_explorer():
 
     return build_demo("camera_explorer", controls, view, update,
                       title="Drag the intrinsics and the pose: P = K [R | t]", extra=[info])
-
-
-def resection_data(n_points: int, noise_px: float, seed: int = 0):
-    """A true camera, N world points on two faces of a box and their noisy pixels."""
-    rng = np.random.default_rng(seed)
-    cam = cm.Camera.look_at(orbit_eye(-55, 25, 5.0), TARGET)
-    n1 = n_points // 2
-    # Two faces of a 2 m cube (x = 1 and y = -1 planes): non-coplanar, like a calibration rig.
-    a = rng.uniform(-1, 1, (n_points, 2))
-    X = np.empty((n_points, 3))
-    X[:n1] = np.column_stack([np.full(n1, 1.0), a[:n1, 0], 1.0 + a[:n1, 1]])
-    X[n1:] = np.column_stack([a[n1:, 0], np.full(n_points - n1, -1.0), 1.0 + a[n1:, 1]])
-    uv = cam.project(X) + rng.normal(0.0, noise_px, (n_points, 2))
-    return cam, X, uv
 
 
 @register(lesson="04", sweep={"noise": [0.0, 3.0], "n_points": [6, 40], "outlier": [0.0, 60.0],
@@ -95,7 +76,7 @@ def resectioning():
     fresh measurements.
     """
     view = FigureView(figsize=(9, 4.2))
-    cam, X, uv = resection_data(12, 0.5)
+    cam, X, uv = scenes.resection_set(12, 0.5)
     frame = np.concatenate([cm.box_wireframe((0.0, 0.0, 1.0), (2.0, 2.0, 2.0)), cm.ground_grid(2.0, 1.0)])
     sv = scene3d.SceneView(view.fig, cam, frame, plane_size=1.0, image_title="measured (o) vs reprojected (+)")
     sv.camera_artist.lines.set_alpha(0.4)
@@ -122,7 +103,7 @@ def resectioning():
         if last_data.get("key") != key:
             clicked.clear()
             last_data["key"] = key
-        cam_true, Xw, uvn = resection_data(*key)
+        cam_true, Xw, uvn = scenes.resection_set(*key)
         uvn[v["pair"]] += float(v["outlier"]), float(v["outlier_v"])
         for i, uv_click in clicked.items():
             uvn[i] = uv_click

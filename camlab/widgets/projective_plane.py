@@ -9,6 +9,7 @@ import ipywidgets as W
 import numpy as np
 
 from .. import projective as pj
+from .. import scenes
 from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes, plane_axes, set_line
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import monospace
@@ -169,42 +170,6 @@ def point_line_duality() -> Demo:
                       title="Duality: points and lines are the same 3-vectors", extra=[readout])
 
 
-def ground_plane_view(pitch: float, yaw: float, focal: float, size: tuple[int, int] = (640, 480),
-                      height: float = 1.5) -> dict:
-    """A camera at ``height`` metres over a ground grid, tilted down by ``pitch`` (radians).
-
-    Returns the projected grid segments (clipped to the part in front of the camera), the
-    camera matrices and the ground-truth vanishing points and horizon from K R:
-    a world direction d vanishes at K R d, and the ground's horizon is K^-T R n.
-    World frame: x right, y down (the ground is y = height below the camera), z ahead.
-    """
-    w, h = size
-    K = np.array([[focal, 0, (w - 1) / 2], [0, focal, (h - 1) / 2], [0, 0, 1.0]])
-    cp, sp, cy, sy = np.cos(pitch), np.sin(pitch), np.cos(yaw), np.sin(yaw)
-    Rx = np.array([[1, 0, 0], [0, cp, -sp], [0, sp, cp]])  # optical axis tilted down by +pitch
-    Ry = np.array([[cy, 0, -sy], [0, 1, 0], [sy, 0, cy]])
-    R = Rx @ Ry  # cam_from_world (the camera sits at the world origin)
-    ticks = np.arange(-12.0, 12.1, 2.0)
-    along_z = [np.array([[x, height, 0.5], [x, height, 2000.0]]) for x in ticks]
-    along_x = [np.array([[-60.0, height, z], [60.0, height, z]]) for z in 2.0 * 1.4 ** np.arange(12)]
-    near = 0.05
-    segments = []
-    for seg in along_z + along_x:
-        a, b = seg @ R.T
-        if a[2] < near and b[2] < near:
-            continue  # wholly behind the camera
-        if a[2] < near or b[2] < near:  # clip at the near plane so nothing flips through the pinhole
-            s = (near - a[2]) / (b[2] - a[2])
-            a, b = (a + s * (b - a), b) if a[2] < near else (a, a + s * (b - a))
-        uv = np.stack([a, b]) @ K.T
-        segments.append(uv[:, :2] / uv[:, 2:])
-    vp_z = K @ R @ np.array([0, 0, 1.0])
-    vp_x = K @ R @ np.array([1.0, 0, 0])
-    horizon_true = np.linalg.inv(K).T @ R @ np.array([0, 1.0, 0])
-    return dict(K=K, R=R, segments=segments, n_along_z=sum(1 for _ in along_z),
-                vp_z=vp_z, vp_x=vp_x, horizon=horizon_true)
-
-
 @register(lesson="06", sweep={"pitch": [5.0, 15.0, 30.0, 40.0], "yaw": [0.0, 20.0, -35.0], "focal": [400.0, 800.0]})
 def vanishing_points() -> Demo:
     """A tilted camera looks at a ground grid; parallel rails meet at vanishing points on the horizon."""
@@ -229,16 +194,16 @@ def vanishing_points() -> Demo:
     view.animate(grid_z, grid_x, horizon_artist, vz_dot, vx_dot, note)
 
     def update(v: dict, state: dict) -> None:
-        g = ground_plane_view(np.radians(v["pitch"]), np.radians(v["yaw"]), v["focal"], size)
-        segs = g["segments"]
-        n = g["n_along_z"]
+        g = scenes.ground_plane_view(np.radians(v["pitch"]), np.radians(v["yaw"]), v["focal"], size)
+        segs = g.segments
+        n = g.n_along_z
         grid_z.set_segments(segs[:n])
         grid_x.set_segments(segs[n:])
         vp_z = pj.vanishing_point(np.array(segs[:n]))  # estimated from the drawn lines
-        vp_x = pj.vanishing_point(np.array(segs[n:])) if len(segs) - n >= 2 else pj.normalize_points(g["vp_x"])
+        vp_x = pj.vanishing_point(np.array(segs[n:])) if len(segs) - n >= 2 else pj.normalize_points(g.vp_x)
         hz = pj.horizon(vp_z, vp_x)
-        state.update(vp_z=vp_z, vp_x=vp_x, horizon=hz, horizon_true=pj.normalize_lines(g["horizon"]),
-                     vp_z_true=pj.normalize_points(g["vp_z"]), vp_x_true=pj.normalize_points(g["vp_x"]))
+        state.update(vp_z=vp_z, vp_x=vp_x, horizon=hz, horizon_true=pj.normalize_lines(g.horizon),
+                     vp_z_true=pj.normalize_points(g.vp_z), vp_x_true=pj.normalize_points(g.vp_x))
         ends = pj.clip_line(hz, *box)
         horizon_artist.set_data(ends[:, 0], ends[:, 1])
         visible = bool(np.isfinite(ends).all())

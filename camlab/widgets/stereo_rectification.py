@@ -16,8 +16,9 @@ from .. import disparity as dp
 from .. import epipolar as ep
 from .. import rectification as rc
 from .. import scenes
-from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
-from ..data.stereo import load_stereo_rig, stereo_scene, true_matches
+from ..camera import Camera, look_at_rotation, rotation_from_axis_angle, scale_intrinsics
+from ..data.stereo import RigCalibration, calibrate_rig, load_stereo_rig, stereo_scene, true_disparity, true_matches
+from ..projective import map_points
 from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import int_slider, monospace
@@ -85,28 +86,12 @@ def _rig_data():
 
 
 @lru_cache(maxsize=1)
-def calibrated_rig() -> tuple[Camera, Camera, float]:
-    """The rig as a stereo calibration from its six chessboard pairs sees it (not the true cameras).
-
-    Returns both cameras in camera 1's frame and the calibration's joint rms (pixels).
-    Rectifying with these, like a real rig, leaves a small vertical disparity: the
-    calibration's own error, which rectifying with the true cameras would hide.
-    """
-    from ..calibration import find_chessboard
-
-    rig = load_stereo_rig()
-    c1 = [find_chessboard(im, rig.pattern_size).corners for im in rig.calib_left]
-    c2 = [find_chessboard(im, rig.pattern_size).corners for im in rig.calib_right]
-    sc = rc.stereo_calibrate(rig.object_points, c1, c2, SIZE)
-    cam1 = Camera(sc.K1, np.eye(3), np.zeros(3), dist=tuple(sc.dist1), image_size=SIZE)
-    cam2 = Camera(sc.K2, sc.R, sc.t, dist=tuple(sc.dist2), image_size=SIZE)
-    return cam1, cam2, float(sc.rms)
+def calibrated_rig() -> RigCalibration:
+    """:func:`camlab.data.stereo.calibrate_rig` of the bundled rig, computed once."""
+    return calibrate_rig(load_stereo_rig())
 
 
-def _half_camera(cam: Camera) -> Camera:
-    """The same camera with half the resolution (pixel centres: u' = (u + 0.5) / 2 - 0.5)."""
-    S = np.array([[0.5, 0, -0.25], [0, 0.5, -0.25], [0, 0, 1.0]])
-    return cam.replace(K=S @ cam.K, image_size=(cam.image_size[0] // 2, cam.image_size[1] // 2))
+HALF = scale_intrinsics(np.eye(3), 0.5)  # full-size pixels -> half-size pixels: u' = (u + 0.5) / 2 - 0.5
 
 
 # --------------------------------------------------------------------------- demo 1: epipolar lines
@@ -247,7 +232,7 @@ def rectify_pair() -> Demo:
     rig, matches, half, und, unc = _rig_data()
     x1, x2, u1, u2 = matches
     cal1, cal2, cal_rms = calibrated_rig()
-    h1, h2 = _half_camera(cal1), _half_camera(cal2)
+    h1, h2 = cal1.resized(0.5), cal2.resized(0.5)
     view = FigureView(figsize=(9.4, 3.6))
     gs = view.fig.add_gridspec(1, 3, width_ratios=[2.6, 0.05, 1])
     ax = view.fig.add_subplot(gs[0])
@@ -278,22 +263,19 @@ def rectify_pair() -> Demo:
             full = rc.rectify_calibrated(cal1, cal2, alpha=v["alpha"], maps=False)
             y1 = rc.rectify_points(full, cal1, x1, 1)
             y2 = rc.rectify_points(full, cal2, x2, 2)
-            s1 = rc.rectify_points(rect, h1, (x1 + 0.5) / 2 - 0.5, 1)
-            s2 = rc.rectify_points(rect, h2, (x2 + 0.5) / 2 - 0.5, 2)
+            s1 = rc.rectify_points(rect, h1, map_points(HALF, x1), 1)
+            s2 = rc.rectify_points(rect, h2, map_points(HALF, x2), 2)
             state.update(rectified_K=full.K)  # alpha sets the zoom of the rectified images
         elif v["method"] == "uncalibrated":
-            S = np.array([[0.5, 0, -0.25], [0, 0.5, -0.25], [0, 0, 1.0]])
-            Hs = [S @ H @ np.linalg.inv(S) for H in (unc.H1, unc.H2)]
+            Hs = [HALF @ H @ np.linalg.inv(HALF) for H in (unc.H1, unc.H2)]
             L, R = (cv2.warpPerspective(cv2.resize(im_, (320, 240), interpolation=cv2.INTER_AREA), H, (320, 240))
                     for im_, H in zip(und, Hs))
-            from ..projective import map_points
-
             y1, y2 = map_points(unc.H1, u1), map_points(unc.H2, u2)
-            s1, s2 = (y1 + 0.5) / 2 - 0.5, (y2 + 0.5) / 2 - 0.5
+            s1, s2 = map_points(HALF, y1), map_points(HALF, y2)
         else:
             L, R = half
             y1, y2 = x1, x2
-            s1, s2 = (x1 + 0.5) / 2 - 0.5, (x2 + 0.5) / 2 - 0.5
+            s1, s2 = map_points(HALF, x1), map_points(HALF, x2)
         im.set_data(np.hstack([L, R]))
         seg = np.full((len(sel), 3, 2), np.nan)
         seg[:, 0], seg[:, 1] = s1[sel], s2[sel] + [320, 0]
@@ -324,20 +306,11 @@ def _rectified_half():
     import cv2
 
     rig, *_ = _rig_data()
-    h1, h2 = _half_camera(rig.camera1), _half_camera(rig.camera2)
+    h1, h2 = rig.camera1.resized(0.5), rig.camera2.resized(0.5)
     rect = rc.rectify_calibrated(h1, h2, alpha=rig.params["rectify_alpha"], method="cv2")
     L, R = rc.rectify_images(rect, cv2.resize(rig.left, (320, 240), interpolation=cv2.INTER_AREA),
                              cv2.resize(rig.right, (320, 240), interpolation=cv2.INTER_AREA))
-    # the true disparity at half size: the same rectifying rotation, so a half-size pixel p' sees
-    # the surface of full-size pixel K_full K_half^-1 p' at the same depth Z; d' = f' B / Z
-    full = rc.rectify_calibrated(rig.camera1, rig.camera2, alpha=rig.params["rectify_alpha"], maps=False)
-    Z = dp.disparity_to_depth(rig.disparity, full.K[0, 0], full.baseline).astype(np.float32)
-    M = full.K @ np.linalg.inv(rect.K)
-    v, u = np.mgrid[0:240, 0:320].astype(np.float32)
-    Zh = cv2.remap(Z, (M[0, 0] * u + M[0, 2]).astype(np.float32), (M[1, 1] * v + M[1, 2]).astype(np.float32),
-                   cv2.INTER_NEAREST, borderValue=np.nan)
-    gt = dp.disparity_to_depth(Zh, rect.K[0, 0], rect.baseline)  # Z = f B / d is its own inverse
-    return rect, L, R, gt
+    return rect, L, R, true_disparity(rig, rect)
 
 
 @lru_cache(maxsize=16)
