@@ -16,7 +16,8 @@ data generators (:mod:`camlab.data`) build the same scenes:
   :func:`house_wireframe`, :func:`ground_grid`, :func:`plane_outlines`;
 - **the lessons' scenes**, built once here for the lesson and its demos: :func:`box_before_wall`
   (01), :func:`depth_of_field_scene` (02), :func:`photo_and_page` (03), :func:`house_scene` (04),
-  :func:`resection_set` (04), :func:`box_and_rails`, :func:`rail_track` (05), :func:`ground_plane_view` (06).
+  :func:`resection_set` (04), :func:`box_and_rails`, :func:`rail_track` (05), :func:`ground_plane_view` (06),
+  :func:`stereo_pair`, :func:`forward_pair` (11).
 
 Conventions (docs/conventions.md): metres; a plane's frame has x along texture columns,
 y along texture rows, z = x cross y; poses say their direction (``world_from_plane``).
@@ -26,7 +27,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import lru_cache
-from typing import TYPE_CHECKING, NamedTuple, Sequence
+from typing import NamedTuple, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -35,20 +36,18 @@ from ._validate import (
     CamlabInputError, check_integer, check_matrix, check_number, check_pose, check_positive, check_rotation, check_shape,
     check_size,
 )
+from .camera import Camera, look_at_rotation, orbit_eye, rotation_from_axis_angle, rotation_from_euler
 from .homography import pose_homography
 from .projective import map_points
 from .warp import warp_perspective
 
-if TYPE_CHECKING:
-    from .camera import Camera
-
 __all__ = [
-    "as_texture", "box", "box_and_rails", "box_before_wall", "box_wireframe", "checkerboard",
-    "depth_of_field_scene", "desk_background", "facade_texture", "ground_grid", "ground_plane_view", "GroundView",
-    "house_picture", "house_scene", "house_wireframe", "look_at_plane", "noise_texture", "page_texture",
-    "painting_texture", "photo_and_page", "photo_plane", "photograph_plane", "Plane", "plane_outlines",
-    "PlanePhoto", "portrait", "rail_track", "resection_set", "ResectionSet", "sample_photo", "text_page",
-    "textured_plane", "wall_texture",
+    "as_texture", "box", "box_and_rails", "box_before_wall", "box_wireframe", "CameraPair", "checkerboard",
+    "depth_of_field_scene", "desk_background", "facade_texture", "forward_pair", "ground_grid",
+    "ground_plane_view", "GroundView", "house_picture", "house_scene", "house_wireframe", "look_at_plane",
+    "noise_texture", "page_texture", "painting_texture", "photo_and_page", "photo_plane", "photograph_plane",
+    "Plane", "plane_outlines", "PlanePhoto", "portrait", "rail_track", "resection_set", "ResectionSet",
+    "sample_photo", "stereo_pair", "text_page", "textured_plane", "wall_texture",
 ]
 
 
@@ -659,8 +658,6 @@ def box_before_wall(distance: float) -> list:
     :func:`camlab.render.render`. :func:`plane_outlines` of ``faces`` gives the (24, 2, 3)
     box edges the 3-D view draws.
     """
-    from .camera import rotation_from_euler  # camera imports this module
-
     d = check_positive(distance, "distance", "metres")
     return [box([0.0, 0.0, d], (0.3, 0.3, 0.3), R=rotation_from_euler(0.35, 0.6, 0.0), rng=0),
             textured_plane(np.full((4, 4), 0.35), 3.0 * d, t=(0, 0, 3.0 * d), name="wall")]
@@ -684,8 +681,6 @@ def photo_and_page() -> list[Plane]:
     A list of two :class:`Plane` (``"photo"``, ``"page"``) for :func:`camlab.render.render`,
     framed by a camera at the origin looking along +z with f = 900 px on 320 x 240 pixels.
     """
-    from .camera import rotation_from_euler  # camera imports this module
-
     return [photo_plane(0.3, t=(0.05, 0.02, 1.0)),
             text_page(0.2, t=(-0.2, 0.0, 1.1), R=rotation_from_euler(0, 0.2, 0.05))]
 
@@ -711,6 +706,46 @@ def rail_track(start: float = -3.0, end: float = 40.0) -> np.ndarray:
     return np.concatenate([rails, sleepers])
 
 
+class CameraPair(NamedTuple):
+    """Two views of one scene (cam_from_world poses)."""
+
+    camera1: Camera
+    camera2: Camera
+
+
+def _camera_800(R: np.ndarray, eye: np.ndarray) -> Camera:
+    """A 640 x 480 camera with f = 800 px at ``eye`` (metres) turned by cam_from_world ``R``."""
+    return Camera(np.array([[800.0, 0, 319.5], [0, 800.0, 239.5], [0, 0, 1]]), R, -R @ eye, image_size=(640, 480))
+
+
+def stereo_pair(baseline: float, toe_in: float, height: float = 0.0) -> CameraPair:
+    """Lesson 11: two cameras ``baseline`` metres apart along world x at 1 m, looking along +y, each turned
+    ``toe_in / 2`` radians towards the other (converging for toe_in > 0), the right one raised by ``height`` m.
+
+    640 x 480 pixels, f = 800 px. With ``toe_in = 0`` the epipoles are at infinity (parallel cameras).
+    """
+    eye1 = np.array([-baseline / 2, 0.0, 1.0])
+    eye2 = np.array([baseline / 2, 0.0, 1.0 + height])
+    cams = []
+    for eye, turn in ((eye1, -toe_in / 2), (eye2, toe_in / 2)):
+        R = look_at_rotation(eye, eye + [0.0, 1.0, 0.0])
+        R = rotation_from_axis_angle([0.0, turn, 0.0]) @ R  # about the camera's (downward) y axis
+        cams.append(_camera_800(R, eye))
+    return CameraPair(*cams)
+
+
+def forward_pair(baseline: float, turn: float) -> CameraPair:
+    """Lesson 11: the second camera ``baseline`` metres straight ahead of the first (forward motion, like a
+    car's camera between two frames), turned by ``turn`` radians about its vertical axis.
+
+    Its epipole is the image of the first centre: near the principal point, inside the image,
+    and every epipolar line fans out from it. 640 x 480 pixels, f = 800 px.
+    """
+    eye1, eye2 = np.array([0.0, -1.0, 1.0]), np.array([0.0, -1.0 + baseline, 1.0])
+    R1 = look_at_rotation(eye1, eye1 + [0.0, 1.0, 0.0])
+    R2 = rotation_from_axis_angle([0.0, turn, 0.0]) @ look_at_rotation(eye2, eye2 + [0.0, 1.0, 0.0])
+    return CameraPair(_camera_800(R1, eye1), _camera_800(R2, eye2))
+
 class ResectionSet(NamedTuple):
     """A true camera and noisy world-to-pixel correspondences (lesson 04, resectioning).
 
@@ -724,15 +759,13 @@ class ResectionSet(NamedTuple):
         Their pixels with Gaussian noise.
     """
 
-    camera: "Camera"
+    camera: Camera
     points_world: np.ndarray
     points_image: np.ndarray
 
 
 def resection_set(n_points: int, noise_px: float, seed: int | None = 0) -> ResectionSet:
     """``n_points`` world points on two faces of a cube, seen by a known camera with ``noise_px`` pixels of noise."""
-    from .camera import Camera, orbit_eye  # camera imports this module
-
     n_points = check_integer(n_points, "n_points", minimum=1)
     sigma = check_number(noise_px, "noise_px", "pixels")
     if sigma < 0:

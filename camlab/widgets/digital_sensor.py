@@ -9,6 +9,7 @@ from .. import render, scenes, sensor
 from ..plotting import images
 from ._base import FigureView, build_demo, register, slider
 from .controls import monospace
+from ..plotting import palette
 
 SIZE = (320, 240)
 
@@ -98,8 +99,8 @@ def bit_depth_and_noise():
     clean = render.render([render.photo_plane(0.5, t=(0.0, 0, 1.0))], K, SIZE, color=False).irradiance
     im = images.show_image(ax_img, clean, vmax=1.0)
     row = 150
-    marker = ax_img.axhline(row, color="tab:red", lw=1)
-    ax_p.plot(clean[row], color="0.6", lw=1, label="true irradiance")
+    marker = ax_img.axhline(row, color="tab:red", lw=1, path_effects=palette.halo(1))
+    ax_p.plot(clean[row], color=palette.GREY, lw=1, label="true irradiance")
     prof, = ax_p.plot(clean[row], color="tab:red", lw=1, label="recorded")
     ax_p.set_ylim(-0.05, 1.3)  # headroom: the legend sits above the profile
     ax_p.set_xlabel("u (px)")

@@ -60,7 +60,7 @@ def focus_and_blur():
     curve, = ax_c.plot(z, np.zeros_like(z), "k", label="c(z), sensor fixed")
     band = ax_c.axvspan(1, 2, color="tab:green", alpha=0.2, label="depth of field")
     ax_c.axhline(COC_OK * 1e6, color="tab:red", ls="--", lw=1, label="acceptable c = 30 µm")
-    marker, = ax_c.plot([], [], "o", color="tab:green", ms=7, label="the point")
+    marker, = ax_c.plot([], [], "o", color="tab:green", mec="k", ms=7, label="the point")
     ax_c.set(xlim=(0.25, 5.0), yscale="log", ylim=(2, 1e4), xlabel="object distance z (m)",
              ylabel="blur circle c (µm, log scale)")
     ax_c.legend(fontsize=8, loc="upper right")
@@ -103,7 +103,7 @@ def depth_of_field():
                  label=f"acceptable c = 2 px = {2 * PITCH_DOF * 1e6:.0f} µm")
     for zp, c, name in zip((0.6, 1.2, 2.4, 4.0), (palette.BLUE, palette.ORANGE, palette.PURPLE, palette.BROWN),
                            ("small board", "page", "large board", "wall")):
-        ax_c.axvline(zp, color=c, lw=1.5, label=f"{name}, {zp:g} m")
+        ax_c.axvline(zp, color=c, lw=1.5, label=f"{name}, {zp:g} m", path_effects=palette.halo(1.5))
     ax_c.set_xlim(0.3, 5)
     ax_c.set_ylim(0, 600)
     ax_c.set_xlabel("depth z (m)")
@@ -165,10 +165,10 @@ def lens_distortion():
     ax_img, ax_grid = view.fig.subplots(1, 2)
     board = render.checkerboard((11, 8), 0.04, t=(-0.2, -0.14, 0.45), px_per_square=32)
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=255)
-    dots, = ax_img.plot([], [], "r.", ms=3)
+    dots, = ax_img.plot([], [], ".", color=palette.RED, ms=3, path_effects=palette.halo())
     ideal = _grid_lines()
     for ln in ideal:  # the undistorted grid, drawn once in grey behind the bent one
-        ax_grid.plot(*ln.T, color="0.8", lw=0.8)
+        ax_grid.plot(*ln.T, color=palette.GREY, lw=0.8)
     bent = [ax_grid.plot(*ln.T, color="tab:blue", lw=1.2)[0] for ln in ideal]
     ax_grid.set_xlim(-60, SIZE[0] + 60)
     ax_grid.set_ylim(SIZE[1] + 60, -60)
