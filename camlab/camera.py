@@ -48,8 +48,6 @@ from ._validate import (
     check_rotation,
     check_size,
 )
-# The wireframe scenes live in camlab.scenes; they are re-exported here for lessons 04-05.
-from .scenes import box_wireframe, ground_grid, house_wireframe
 
 __all__ = [
     "Camera", "Decomposition", "CV_FROM_GL", "axis_angle_from_rotation", "camera_centre",
@@ -58,7 +56,7 @@ __all__ = [
     "opencv_from_opengl", "opengl_from_opencv", "project_points", "reprojection_errors",
     "rotation_from_axis_angle", "rotation_from_euler", "rq_decomposition", "rotation_x", "rotation_y", "rotation_z",
     "scale_intrinsics",
-    "box_wireframe", "ground_grid", "house_wireframe", "project_segments",
+    "project_segments",
 ]
 
 CV_FROM_GL = np.diag([1.0, -1.0, -1.0])

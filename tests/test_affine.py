@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 from camlab import affine as af
 from camlab import camera as cm
 from camlab._validate import CamlabInputError, DegenerateError
+from camlab.scenes import box_wireframe
 
 os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
 
@@ -86,7 +87,7 @@ def test_affine_approximation_errors(cam):
 
 
 def test_weak_perspective_error_falls_like_one_over_distance(rng):
-    cube = cm.box_wireframe((0, 0, 0), (1, 1, 1)).reshape(-1, 3)
+    cube = box_wireframe((0, 0, 0), (1, 1, 1)).reshape(-1, 3)
     rms = []
     for d in (5.0, 10.0, 20.0, 40.0):
         f = af.dolly_zoom_focal(800.0, 5.0, d)

@@ -10,6 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from camlab import camera as cm
+from camlab import scenes
 from camlab._validate import CamlabInputError, DegenerateError
 
 os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
@@ -392,12 +393,12 @@ def test_reprojection_errors_known(cam):
 # -- scenes ----------------------------------------------------------------------------------------
 
 def test_wireframes_and_project_segments(cam):
-    box = cm.box_wireframe((0, 0, 0), (2, 2, 2))
+    box = scenes.box_wireframe((0, 0, 0), (2, 2, 2))
     assert box.shape == (12, 2, 3)
     assert np.allclose(np.linalg.norm(box[:, 1] - box[:, 0], axis=1), 2.0)  # every edge is a cube edge
-    house = cm.house_wireframe()
+    house = scenes.house_wireframe()
     assert house.shape[1:] == (2, 3) and house[..., 2].min() == 0.0
-    grid = cm.ground_grid(2.0, 0.5)
+    grid = scenes.ground_grid(2.0, 0.5)
     assert grid.shape == (18, 2, 3)
     pix = cm.project_segments(cam, box)
     assert pix.shape == (12, 2, 2)
@@ -422,7 +423,7 @@ def test_camera_artist_geometry_and_update(cam):
 
     fig = _agg_figure()
     ax = scene3d.axes3d(fig, 111)
-    art = scene3d.CameraArtist(ax, cam, size=0.5, image_lines=cm.project_segments(cam, cm.box_wireframe()))
+    art = scene3d.CameraArtist(ax, cam, size=0.5, image_lines=cm.project_segments(cam, scenes.box_wireframe()))
     corners = art.corners()
     assert np.allclose(cam.depth(corners), 0.5)  # the image plane is z_c = size
     assert np.allclose(cam.project(corners[0]), [-0.5, -0.5])  # top-left corner of the top-left pixel

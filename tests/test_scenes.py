@@ -13,11 +13,17 @@ def test_scene_builders_have_one_definition_re_exported_for_the_lessons():
     for module, names in [(render, ["Plane", "box", "checkerboard", "photo_plane", "text_page", "textured_plane"]),
                           (perspective, ["PlanePhoto", "desk_background", "facade_texture", "page_texture",
                                          "painting_texture", "photograph_plane", "sample_photo", "look_at_plane"]),
-                          (camera, ["box_wireframe", "ground_grid", "house_wireframe"]),
                           (panorama, ["wall_texture"])]:
         for name in names:
             assert getattr(module, name) is getattr(scenes, name), (module.__name__, name)
     assert not hasattr(render, "sample_photo")  # one sample photo: scenes.sample_photo (plus scenes.portrait)
+    assert not hasattr(camera, "box_wireframe")  # scenes builds on camera, not the other way round
+
+
+def test_the_camera_model_does_not_import_the_scenes():
+    code = "import sys, camlab.camera; print('camlab.scenes' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
 
 
 def test_scenes_do_not_depend_on_the_data_sets():
@@ -104,3 +110,34 @@ def test_textures_take_one_size_width_then_height(make, size):
     with pytest.raises(ValueError, match=r"size: expected \(width, height\) as whole numbers of pixels"):
         make((size[0] + 0.7, size[1]))
     assert scenes.desk_background((60, 80)).shape == (60, 80, 3)  # a shape is (height, width)
+
+
+def test_resection_set_is_noisy_projections_of_non_coplanar_points():
+    exact = scenes.resection_set(20, 0.0, seed=3)
+    np.testing.assert_allclose(exact.points_image, exact.camera.project(exact.points_world))
+    assert np.linalg.matrix_rank(exact.points_world - exact.points_world.mean(axis=0)) == 3  # two cube faces
+    noisy = scenes.resection_set(20, 2.0, seed=3)
+    assert 1.0 < np.std(noisy.points_image - exact.points_image) < 3.0
+    with pytest.raises(ValueError, match="noise_px"):
+        scenes.resection_set(10, -1.0)
+
+
+def test_camera_pairs_for_lesson_11():
+    from camlab import epipolar as ep
+
+    pair = scenes.stereo_pair(0.2, 0.0)
+    assert isinstance(pair, scenes.CameraPair) and np.isclose(np.linalg.norm(pair.camera2.centre - pair.camera1.centre), 0.2)
+    assert abs(ep.epipoles(ep.fundamental_from_cameras(*pair)).e2[2]) < 1e-12  # parallel: epipole at infinity
+    e2 = ep.epipoles(ep.fundamental_from_cameras(*scenes.forward_pair(0.5, 0.0))).e2
+    np.testing.assert_allclose(e2[:2] / e2[2], [319.5, 239.5], atol=1e-6)  # straight ahead: the image centre
+
+
+def test_outlier_matches_hold_the_stated_fraction_of_wrong_pairs():
+    from camlab.projective import map_points
+
+    m = scenes.outlier_matches(0.3, seed=2)
+    assert m.is_outlier.sum() == 60 and m.src.shape == m.dst.shape == (200, 2)
+    err = np.linalg.norm(map_points(m.H, m.src) - m.dst, axis=1)
+    assert err[~m.is_outlier].max() < 6 and np.median(err[m.is_outlier]) > 30
+    with pytest.raises(ValueError, match="outlier_fraction"):
+        scenes.outlier_matches(1.5)

@@ -21,7 +21,7 @@ def image_frame(ax, image_size: tuple[int, int], title: str = "") -> None:
     ax.set_xlim(-0.5, w - 0.5)
     ax.set_ylim(h - 0.5, -0.5)
     ax.set_aspect("equal")
-    ax.plot([-0.5, w - 0.5, w - 0.5, -0.5, -0.5], [-0.5, -0.5, h - 0.5, h - 0.5, -0.5], color="0.5", lw=0.8)
+    ax.plot([-0.5, w - 0.5, w - 0.5, -0.5, -0.5], [-0.5, -0.5, h - 0.5, h - 0.5, -0.5], color="0.5", lw=0.8, gid="grid")
     ax.set_xlabel("u (px)")
     ax.set_ylabel("v (px)")
     if title:
@@ -69,9 +69,9 @@ def plot_coverage(ax, result: CalibrationResult, report: CoachReport | None = No
     ax.imshow(empty, extent=(-0.5, w - 0.5, h - 0.5, -0.5), cmap="Reds", vmin=0, vmax=2.5, alpha=0.6,
               interpolation="nearest")
     for c in np.linspace(-0.5, w - 0.5, cols + 1)[1:-1]:
-        ax.axvline(c, color="0.8", lw=0.5)
+        ax.axvline(c, color="0.8", lw=0.5, gid="grid")
     for r in np.linspace(-0.5, h - 0.5, rows + 1)[1:-1]:
-        ax.axhline(r, color="0.8", lw=0.5)
+        ax.axhline(r, color="0.8", lw=0.5, gid="grid")
     colors = np.concatenate([np.full(len(p), v) for v, p in enumerate(result.image_points)])
     return ax.scatter(*np.concatenate(result.image_points).T, c=colors, s=3, cmap="tab20")
 

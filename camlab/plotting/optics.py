@@ -9,6 +9,7 @@ import numpy as np
 
 from .. import lens as _lens
 from .. import pinhole as _pinhole
+from . import palette
 
 __all__ = ["box_edges", "draw_pinhole_3d", "update_pinhole_3d", "draw_similar_triangles", "update_similar_triangles",
            "draw_thin_lens", "update_thin_lens", "draw_focus_cone", "update_focus_cone",
@@ -49,17 +50,17 @@ def draw_pinhole_3d(ax, edges: np.ndarray, f_draw: float, plane_half: float = 0.
     """
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-    art = {"box": ax.plot(*_polyline(edges), color="tab:blue", lw=1.5)[0]}
+    art = {"box": ax.plot(*_polyline(edges), color=palette.BLUE, lw=1.5, path_effects=palette.halo(1.5))[0]}
     ax.scatter([0], [0], [0], color="k", s=25)
     art["planes"] = {}
     art["fills"] = {}
-    for name, color in (("real", "tab:red"), ("virtual", "tab:green")):
-        art["planes"][name] = ax.plot([], [], [], color=color, lw=1, alpha=0.6)[0]
-        art[name] = ax.plot([], [], [], color=color, lw=1.2)[0]
+    for name, color in (("real", palette.RED), ("virtual", palette.GREEN)):
+        art["planes"][name] = ax.plot([], [], [], color=color, lw=1, path_effects=palette.halo(1))[0]
+        art[name] = ax.plot([], [], [], color=color, lw=1.2, path_effects=palette.halo(1.2))[0]
     if faces is not None:
         for name in ("box", "real", "virtual"):
             art["fills"][name] = ax.add_collection3d(Poly3DCollection([], edgecolor="none", shade=False))
-    art["rays"] = ax.plot([], [], [], color="0.6", lw=0.6)[0]
+    art["rays"] = ax.plot([], [], [], color=palette.GREY, lw=0.6, path_effects=palette.halo(0.6))[0]
     ax.set_xlabel("z (forward)")
     ax.set_ylabel("x")
     ax.set_zlabel("-y (up)")
@@ -111,7 +112,7 @@ def _dimension(ax, color: str) -> dict:
     arrow = ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="<->", color=color, lw=1.2,
                                                                        shrinkA=0, shrinkB=0))
     label = ax.text(0, 0, "", color=color, fontsize=10, ha="center", va="center",
-                    bbox=dict(fc="white", ec="none", alpha=0.8, pad=1))
+                    bbox=dict(fc="white", ec="none", pad=1))
     return {"arrow": arrow, "label": label}
 
 
@@ -129,20 +130,20 @@ def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
     z = +f. Two shaded similar triangles share the ray through the hole: (0, 0)-(Z, 0)-(Z, Y)
     and (0, 0)-(f, 0)-(f, y); dimension lines label f, Z, Y and y.
     """
-    ax.axhline(0, color="0.6", lw=0.8, zorder=0)
+    ax.axhline(0, color="0.4", lw=0.8, zorder=0)
     ax.plot([0], [0], "ko", ms=5, zorder=5)
     ax.annotate("pinhole", (0, 0), xytext=(-6, 6), textcoords="offset points", ha="right", va="bottom", fontsize=9)
     art = {
         "big": ax.fill([0, 1, 1], [0, 0, 1], color="tab:blue", alpha=0.15, lw=0)[0],
         "small": ax.fill([0, 1, 1], [0, 0, 1], color="tab:green", alpha=0.35, lw=0)[0],
-        "object": ax.plot([], [], color="tab:blue", lw=3, solid_capstyle="butt")[0],
-        "point": ax.plot([], [], "o", color="tab:blue", ms=8)[0],
-        "ray": ax.plot([], [], color="tab:orange", lw=1.5)[0],
+        "object": ax.plot([], [], color=palette.BLUE, lw=3, solid_capstyle="butt")[0],
+        "point": ax.plot([], [], "o", color=palette.BLUE, ms=8)[0],
+        "ray": ax.plot([], [], color=palette.ORANGE, lw=1.5, path_effects=palette.halo(1.5))[0],
         "planes": ax.plot([], [], color="0.3", lw=1, ls="--")[0],
-        "virtual": ax.plot([], [], color="tab:green", lw=3, solid_capstyle="butt")[0],
-        "real": ax.plot([], [], color="tab:red", lw=3, solid_capstyle="butt")[0],
-        "dims": {k: _dimension(ax, c) for k, c in (("f", "k"), ("Z", "k"), ("Y", "tab:blue"), ("y", "tab:green"),
-                                                    ("y_real", "tab:red"))},
+        "virtual": ax.plot([], [], color=palette.GREEN, lw=3, solid_capstyle="butt")[0],
+        "real": ax.plot([], [], color=palette.RED, lw=3, solid_capstyle="butt")[0],
+        "dims": {k: _dimension(ax, c) for k, c in (("f", "k"), ("Z", "k"), ("Y", palette.BLUE), ("y", palette.GREEN),
+                                                    ("y_real", palette.RED))},
     }
     ax.set_xlim(-0.3 * z_max, 1.08 * z_max)
     ax.set_ylim(-h_max, h_max)
@@ -190,7 +191,7 @@ def draw_thin_lens(ax, focal_length: float, object_distance: float, height: floa
         "foci": ax.plot([], [], "k+", ms=10)[0],
         "object": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="-|>", color="tab:green", lw=2)),
         "image": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="-|>", color="tab:red", lw=2)),
-        "rays": [ax.plot([], [], color=c, lw=1)[0] for c in ("tab:orange", "tab:purple", "tab:brown")],
+        "rays": [ax.plot([], [], color=c, lw=1)[0] for c in (palette.ORANGE, "tab:purple", "tab:brown")],
         "text": ax.text(0.02, 0.03, "", transform=ax.transAxes, va="bottom", fontsize=9, family="monospace"),
         "height": height,
     }
@@ -238,16 +239,16 @@ def draw_focus_cone(ax, half_height_mm: float = 20.0) -> dict:
     image side in millimetres (marked on the axis), so both fit. :func:`update_focus_cone`
     moves everything and returns the blur circle on the sensor.
     """
-    ax.axhline(0, color="0.6", lw=0.8)
-    ax.axvline(0, color="tab:blue", lw=1, alpha=0.3)
+    ax.axhline(0, color=palette.GREY, lw=0.8)
+    ax.axvline(0, color="tab:blue", lw=1, alpha=0.3, gid="grid")
     art = {
         "stop": ax.plot([], [], color="k", lw=4, solid_capstyle="butt")[0],
         "lens": ax.plot([], [], color="tab:blue", lw=3)[0],
         "cone_in": ax.fill([0, 0, 0], [0, 0, 0], color="gold", alpha=0.35, lw=0)[0],
         "cone_out": ax.fill([0, 0, 0, 0], [0, 0, 0, 0], color="gold", alpha=0.35, lw=0)[0],
-        "rays": ax.plot([], [], color="darkorange", lw=1)[0],
+        "rays": ax.plot([], [], color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0],
         "point": ax.plot([], [], "o", color="tab:green", ms=7)[0],
-        "focus": ax.plot([], [], "x", color="darkorange", ms=8, mew=2)[0],
+        "focus": ax.plot([], [], "x", color=palette.ORANGE, ms=8, mew=2)[0],
         "sensor": ax.plot([], [], color="0.3", lw=2)[0],
         "blur": ax.plot([], [], color="tab:red", lw=6, solid_capstyle="butt")[0],
         "text": ax.text(0.01, 0.02, "", transform=ax.transAxes, fontsize=9, family="monospace", va="bottom",
@@ -301,7 +302,7 @@ def draw_pinhole_blur(ax, focal_length: float, wavelength: float = 550e-9) -> di
     b = _pinhole.pinhole_blur(d, focal_length, wavelength=wavelength)
     art = {
         "geometric": ax.plot(d * 1e3, b.geometric * 1e3, label="geometric  d (1 + f/Z)")[0],
-        "diffraction": ax.plot(d * 1e3, b.diffraction * 1e3, label=r"diffraction  $2.44\lambda f/d$")[0],
+        "diffraction": ax.plot(d * 1e3, b.diffraction * 1e3, color=palette.ORANGE, label=r"diffraction  $2.44\lambda f/d$")[0],
         "total": ax.plot(d * 1e3, b.total * 1e3, "k", lw=2, label="total")[0],
         "marker": ax.axvline(1, color="tab:red", ls="--"),
         "best": ax.plot([], [], "k*", ms=12, label="best diameter")[0],

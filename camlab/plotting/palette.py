@@ -1,4 +1,4 @@
-"""Colours for things a figure tells apart by colour: distinct for colour-blind readers too.
+"""Colours for figures: distinct for colour-blind readers, and contrasted enough to see.
 
 Every pair in :data:`SERIES` stays at CIE delta-E >= 13 in normal vision and for full
 protanopia, deuteranopia and tritanopia (Machado et al. 2009 simulation;
@@ -6,14 +6,32 @@ protanopia, deuteranopia and tritanopia (Machado et al. 2009 simulation;
 their everyday names, so a lesson can still say "the green arrows"; they are darker or
 lighter than matplotlib's ``tab:`` colours where those collapse (``tab:green`` against
 ``tab:red`` for deuteranopes, ``tab:orange`` against ``tab:green`` for protanopes).
-Based on Paul Tol's colour schemes (https://personal.sron.nl/~pault/). Value images use
-perceptually uniform colormaps (``viridis``, ``cividis``) instead.
+Based on Paul Tol's colour schemes (https://personal.sron.nl/~pault/).
+
+Every colour here reaches 3:1 against white, the contrast WCAG 2.1 asks of lines and
+markers (1.4.11); all but ORANGE also reach 4.5:1, enough for text (1.4.3). ORANGE is
+darker than Tol's ``#EE9944`` (2.3:1) for that reason. ``tests/test_figure_contrast.py``
+measures every demo. A line or text drawn over a photograph, whose colours can be
+anything, gets a white outline with :func:`halo`. Value images use perceptually uniform
+colormaps (``viridis``, ``cividis``) with a colour bar instead.
 """
-BLUE = "#4477AA"
-ORANGE = "#EE9944"
-GREEN = "#228833"
-RED = "#CC3311"
-PURPLE = "#AA3377"
-BROWN = "#8C564B"
+BLUE = "#4477AA"  # 4.7:1 on white
+ORANGE = "#CC7700"  # 3.4:1: lines and markers, not text
+GREEN = "#228833"  # 4.5:1
+RED = "#CC3311"  # 5.2:1
+PURPLE = "#AA3377"  # 6.1:1
+BROWN = "#8C564B"  # 5.9:1
+GREY = "#808080"  # 4.0:1: reference lines ("before", "original", construction)
 
 SERIES = (BLUE, ORANGE, GREEN, RED, PURPLE, BROWN)  # for numbered things: image 0, 1, 2...
+
+
+def halo(linewidth: float = 0.0, colour: str = "white") -> list:
+    """Path effects that outline a line of ``linewidth`` points (0: a text or a marker) in ``colour``.
+
+    Pass as ``path_effects=halo(lw)`` to a line, marker or text drawn over an image: the
+    outline, 1 point each side, is the background it is seen against.
+    """
+    from matplotlib import patheffects
+
+    return [patheffects.withStroke(linewidth=linewidth + 2.0, foreground=colour)]

@@ -35,6 +35,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..camera import Camera, project_segments
+from . import palette
 
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
 
@@ -218,14 +219,14 @@ class CameraArtist:
         Draw the camera's x (right), y (down), z (forward) axes, labelled.
     """
 
-    def __init__(self, ax, camera: Camera, size: float = 0.5, color: str = "tab:purple", label: str = "",
+    def __init__(self, ax, camera: Camera, size: float = 0.5, color: str = palette.PURPLE, label: str = "",
                  image: np.ndarray | None = None, image_lines: ArrayLike | None = None,
                  show_axes: bool = True, image_grid: tuple[int, int] = (24, 18), line_color: str = "0.15"):
         from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
         self.ax, self.size, self.image_grid = ax, float(size), image_grid
         self.camera = camera
-        (self.frustum,) = ax.plot([], [], [], color=color, lw=1.2)
+        (self.frustum,) = ax.plot([], [], [], color=color, lw=1.2, path_effects=palette.halo(1.2))
         self.plane = Poly3DCollection([np.zeros((4, 3))], facecolor=color, alpha=0.12, edgecolor=color, lw=1.0)
         ax.add_collection3d(self.plane)
         self.axes_lines, self.axes_text = [], []
@@ -237,7 +238,7 @@ class CameraArtist:
                                               ha="center", va="center"))
         (self.centre_marker,) = ax.plot([], [], [], "o", color=color, ms=4)
         self.label = ax.text(0, 0, 0, label, color=color, fontsize=9) if label else None
-        (self.lines,) = ax.plot([], [], [], color=line_color, lw=0.6)
+        (self.lines,) = ax.plot([], [], [], color=line_color, lw=0.6, gid="thumbnail")  # the image panel, in small
         self.mesh, self._pixels = None, None
         if image is not None:
             self.mesh = Poly3DCollection([np.zeros((4, 3))], lw=0.0)

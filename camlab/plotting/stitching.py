@@ -6,6 +6,7 @@ Images are shown pixel-exact: pixel (u, v) has its centre at data coordinates (u
 from __future__ import annotations
 
 import numpy as np
+from . import palette
 
 __all__ = ["draw_keypoints", "draw_matches", "match_segments", "outline", "side_by_side"]
 
@@ -55,8 +56,8 @@ def draw_matches(ax, image1: np.ndarray, image2: np.ndarray, src: np.ndarray, ds
     ax.set_yticks([])
     seg = match_segments(src, dst, off)
     g = np.ones(len(seg), bool) if good is None else np.asarray(good, bool)
-    lc_good = LineCollection(seg[g], colors="lime", linewidths=0.8)
-    lc_bad = LineCollection(seg[~g], colors="red", linewidths=0.9)
+    lc_good = LineCollection(seg[g], colors=palette.GREEN, linewidths=0.8, path_effects=palette.halo(0.8))
+    lc_bad = LineCollection(seg[~g], colors=palette.RED, linewidths=0.9, path_effects=palette.halo(0.9))
     ax.add_collection(lc_good)
     ax.add_collection(lc_bad)
     ax.set(xlim=(-0.5, both.shape[1] - 0.5), ylim=(both.shape[0] - 0.5, -0.5))

@@ -13,7 +13,7 @@ import numpy as np
 from .. import affine as af
 from .. import camera as cm
 from .. import scenes
-from ..plotting import scene3d
+from ..plotting import palette, scene3d
 from ._base import FigureView, build_demo, register, slider
 
 TARGET = np.array([0.0, 0.0, 0.5])
@@ -45,7 +45,7 @@ def three_cameras():
     axes[2].set_yticks([-1, 0, 1])
     axes[2].tick_params(labelsize=7)
     (orth,) = axes[2].plot([], [], color="k", lw=1.1)
-    (ghost,) = axes[1].plot([], [], color="tab:red", lw=0.8, alpha=0.5)
+    (ghost,) = axes[1].plot([], [], color=palette.RED, lw=0.8, ls="--")
     view.animate(persp, weak, ghost, orth)
     controls = {
         "azimuth": slider(-40, -180, 180, 2, "azimuth (deg)"),
@@ -88,11 +88,11 @@ def dolly_zoom():
     perspective image approaches the weak-perspective one and the error falls like 1/d."""
     view = FigureView(figsize=(9, 3.8))
     ax_img, ax_err = view.fig.subplots(1, 2, width_ratios=(1.25, 1.0))
-    cube = cm.box_wireframe((0.0, 0.0, 0.5), (1.0, 1.0, 1.0))
+    cube = scenes.box_wireframe((0.0, 0.0, 0.5), (1.0, 1.0, 1.0))
     pts = cube.reshape(-1, 3)
     _image_panel(ax_img, "black: perspective, orange: weak perspective", tick_labels=False).remove()
     (persp,) = ax_img.plot([], [], color="k", lw=1.3)
-    (weak,) = ax_img.plot([], [], color="tab:orange", lw=1.3, ls="--")
+    (weak,) = ax_img.plot([], [], color=palette.ORANGE, lw=1.3, ls="--")
     distances = np.geomspace(1.6, 60.0, 60)
     curve = dolly_curve(distances, pts)
     depth_ratio = np.sqrt(3.0) / distances  # the cube's depth range (its diagonal) over its distance

@@ -20,6 +20,7 @@ from .._validate import CamlabInputError, ConvergenceError
 from ..plotting.calibration import image_frame
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import monospace
+from ..plotting import palette
 
 
 @lru_cache(maxsize=1)
@@ -63,7 +64,8 @@ def accuracy_vs_views() -> Demo:
     view.animate(dots, above, below)
     ax.legend(loc="lower left", fontsize=7)
     image_frame(axi, s.image_size, "Corners used, coloured by view")
-    pts = axi.scatter(np.zeros(0), np.zeros(0), s=3, c=np.zeros(0), cmap="tab20", vmin=-0.5, vmax=14.5)
+    pts = axi.scatter(np.zeros(0), np.zeros(0), s=3, c=np.zeros(0), cmap="tab20", vmin=-0.5, vmax=14.5,
+                      edgecolors="k", linewidths=0.3)
     view.fig.colorbar(pts, ax=axi, label="view", ticks=range(0, 15, 2), shrink=0.9)
     view.animate(pts)
     readout = W.HTML()
@@ -136,8 +138,8 @@ def view_inspector(calibration: C.ImageCalibration | None = None, images: list |
     w, h = res.image_size
     im = view.animate(ax.imshow(np.zeros((h, w)), cmap="gray", vmin=0, vmax=255,
                                 extent=(-0.5, w - 0.5, h - 0.5, -0.5)))
-    det, = ax.plot([], [], "+", color="tab:green", ms=8, mew=1.5, label="detected")
-    rep, = ax.plot([], [], "o", mfc="none", color="tab:red", ms=6, label="reprojected")
+    det, = ax.plot([], [], "+", color=palette.GREEN, ms=8, mew=1.5, label="detected", path_effects=palette.halo(1.5))
+    rep, = ax.plot([], [], "o", mfc="none", color=palette.RED, ms=6, label="reprojected", path_effects=palette.halo())
     view.animate(det, rep)
     n = len(res.object_points[0])
     arrows = view.animate(ax.quiver(np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), color="magenta",
@@ -190,7 +192,7 @@ def undistort_alpha(image: np.ndarray | None = None, K: np.ndarray | None = None
     image_frame(ax1, (w, h), "undistorted")
     im = view.animate(ax1.imshow(np.zeros((h, w)), cmap="gray", vmin=0, vmax=255,
                                  extent=(-0.5, w - 0.5, h - 0.5, -0.5)))
-    edge, = ax1.plot([], [], color="tab:orange", lw=1.5, label="photo's border")
+    edge, = ax1.plot([], [], color=palette.ORANGE, lw=1.5, label="photo's border", path_effects=palette.halo(1.5))
     view.animate(edge)
     ax1.legend(loc="lower right", fontsize=8)
     t = np.linspace(0, 1, 40)

@@ -84,7 +84,7 @@ def transformation_hierarchy() -> Demo:
     grid_u = np.linspace(0, pw - 1, 5)
     grid_lines = [np.column_stack([np.full(20, x), np.linspace(0, ph - 1, 20)]) for x in grid_u]
     grid_lines += [np.column_stack([np.linspace(0, pw - 1, 20), np.full(20, y)]) for y in np.linspace(0, ph - 1, 4)]
-    grid_artists = [view.animate(ax.plot([], [], color="tab:orange", lw=1)[0]) for _ in grid_lines]
+    grid_artists = [view.animate(ax.plot([], [], color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0]) for _ in grid_lines]
     title = view.animate(ax.text(0.01, 0.98, "", transform=ax.transAxes, va="top", fontsize=10,
                                  bbox=dict(fc="white", ec="0.7", alpha=0.9)))
     ax.legend(loc="lower right", fontsize=8)
@@ -152,13 +152,13 @@ def drag_homography() -> Demo:
     ax_t.set_title("drag a corner, or use the sliders", fontsize=10, pad=3)
     # Four collinear points on the picture's diagonal; a line; a right angle at corner 0.
     line_pts = np.array([[10.0, 10.0], [50.0, 40.0], [90.0, 70.0], [150.0, 115.0]])
-    ax_s.plot(line_pts[:, 0], line_pts[:, 1], "o-", color="tab:green", ms=5, lw=1.5)
+    ax_s.plot(line_pts[:, 0], line_pts[:, 1], "o-", color=palette.GREEN, ms=5, lw=1.5, path_effects=palette.halo(1.5))
     for name, p in zip("ABCD", line_pts):
-        ax_s.annotate(name, p, xytext=(3, -8), textcoords="offset points", fontsize=9, color="darkgreen")
+        ax_s.annotate(name, p, xytext=(3, -8), textcoords="offset points", fontsize=9, color="darkgreen", path_effects=palette.halo())
     im = view.animate(ax_t.imshow(np.zeros((*out_hw, 3), np.uint8), extent=(-0.5, out_hw[1] - 0.5, out_hw[0] - 0.5, -0.5)))
-    mapped_line = view.animate(ax_t.plot([], [], "o-", color="tab:green", ms=5, lw=1.5)[0])
-    quad = view.animate(ax_t.plot([], [], "-", color="tab:orange", lw=1)[0])
-    handles = view.animate(ax_t.plot([], [], "o", color="tab:orange", ms=10, mec="k")[0])
+    mapped_line = view.animate(ax_t.plot([], [], "o-", color=palette.GREEN, ms=5, lw=1.5, path_effects=palette.halo(1.5))[0])
+    quad = view.animate(ax_t.plot([], [], "-", color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0])
+    handles = view.animate(ax_t.plot([], [], "o", color=palette.ORANGE, ms=10, mec="k")[0])
     chosen = view.animate(ax_t.plot([], [], "o", ms=17, mfc="none", mec="k", mew=2)[0])  # the corner the keys move
     on_top(view, ax_t)
     warning = _warning(view, ax_t)
@@ -208,17 +208,6 @@ def drag_homography() -> Demo:
 
 # ----------------------------------------------------------------------------- RANSAC
 
-def _ransac_data(outlier_fraction: float, seed: int, n: int = 200, noise: float = 1.0):
-    rng = np.random.default_rng(seed)
-    H = np.array([[0.9, 0.15, 40.0], [-0.1, 0.85, 30.0], [4e-4, 2e-4, 1.0]])
-    src = rng.uniform([0, 0], [400, 300], (n, 2))
-    dst = map_points(H, src) + rng.normal(0, noise, (n, 2))
-    out = np.zeros(n, bool)
-    out[rng.choice(n, int(round(outlier_fraction * n)), replace=False)] = True
-    dst[out] = rng.uniform([0, 0], [400, 300], (out.sum(), 2))
-    return H, src, dst, out
-
-
 @lru_cache(maxsize=256)
 def _ransac_run(outlier_fraction: float, threshold: float, seed: int):
     """The demo's data and RANSAC's answer (or its error message) for one slider setting.
@@ -226,7 +215,7 @@ def _ransac_run(outlier_fraction: float, threshold: float, seed: int):
     Cached: sliders revisit settings, and the answer is a pure function of them (seeded).
     Arrays come back read-only so no caller can corrupt the cache.
     """
-    data = _ransac_data(outlier_fraction, seed)
+    data = scenes.outlier_matches(outlier_fraction, seed)
     for a in data:
         a.setflags(write=False)
     try:
@@ -240,7 +229,7 @@ def _ransac_run(outlier_fraction: float, threshold: float, seed: int):
 
 # What RANSAC did with each pair, against the truth the demo knows.
 _VERDICTS = (("inlier, kept", palette.GREEN), ("outlier, wrongly kept", palette.RED),
-             ("inlier, wrongly rejected", palette.ORANGE), ("outlier, rejected", (0.6, 0.6, 0.6, 0.45)))
+             ("inlier, wrongly rejected", palette.ORANGE), ("outlier, rejected", palette.GREY))
 
 
 @register(lesson="07", sweep={"outliers": [0.1, 0.4, 0.7], "threshold": [1.0, 3.0, 8.0], "seed": [0, 3]})

@@ -70,8 +70,8 @@ def feature_matches() -> Demo:
     ax = view.fig.subplots()
     art = draw_matches(ax, s.images[i], s.images[j], np.zeros((0, 2)), np.zeros((0, 2)))
     view.animate(art["good"], art["bad"])  # the images and keypoints stay: only the lines move
-    draw_keypoints(ax, feats[i].points, feats[i].sizes, color="yellow", alpha=0.5)
-    draw_keypoints(ax, feats[j].points + [art["offset"], 0], feats[j].sizes, color="yellow", alpha=0.5)
+    draw_keypoints(ax, feats[i].points, feats[i].sizes, color="yellow", path_effects=palette.halo(0.7, "black"))
+    draw_keypoints(ax, feats[j].points + [art["offset"], 0], feats[j].sizes, color="yellow", path_effects=palette.halo(0.7, "black"))
     ax.set_title(f"views {i} and {j}: green = confirmed by the true homography, red = wrong match", fontsize=9)
     readout = W.HTML()
 
@@ -108,10 +108,10 @@ def ransac_registration() -> Demo:
     ax.set_xticks([])
     ax.set_yticks([])
     ax.set_title(f"matches in image {j}; frame of image {i} mapped by H", fontsize=9)
-    inl = view.animate(ax.plot([], [], ".", color="lime", ms=4, label="inliers")[0])
-    outl = view.animate(ax.plot([], [], "x", color="red", ms=4, label="outliers")[0])
-    outline(ax, s.true_homography(i, j), imgs[i].shape, color="white", lw=2, label="true")
-    est_box = view.animate(outline(ax, np.eye(3), imgs[i].shape, color="tab:blue", lw=1.5, ls="--", label="RANSAC"))
+    inl = view.animate(ax.plot([], [], ".", color=palette.GREEN, ms=4, label="inliers", path_effects=palette.halo())[0])
+    outl = view.animate(ax.plot([], [], "x", color=palette.RED, ms=4, label="outliers", path_effects=palette.halo())[0])
+    outline(ax, s.true_homography(i, j), imgs[i].shape, color="white", lw=2, label="true", path_effects=palette.halo(2, "black"))
+    est_box = view.animate(outline(ax, np.eye(3), imgs[i].shape, color=palette.BLUE, lw=1.5, ls="--", label="RANSAC", path_effects=palette.halo(1.5)))
     h, w = imgs[j].shape[:2]
     ax.set(xlim=(-0.5, w - 0.5), ylim=(h - 0.5, -0.5))
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.02), ncols=4, fontsize=7, facecolor="0.75")
@@ -196,7 +196,7 @@ def panorama_canvas() -> Demo:
     ax = view.fig.subplots()
     im = view.animate(ax.imshow(np.zeros((10, 10, 3)), interpolation="nearest"))
     colors = palette.SERIES[:4]
-    lines = [view.animate(ax.plot([], [], color=c, lw=1.5, label=f"image {k}")[0]) for k, c in enumerate(colors)]
+    lines = [view.animate(ax.plot([], [], color=c, lw=1.5, path_effects=palette.halo(1.5), label=f"image {k}")[0]) for k, c in enumerate(colors)]
     ax.legend(loc="lower right", fontsize=7, ncols=4)
     ax.set(xlim=(-0.5, wmax - 0.5), ylim=(hmax - 0.5, -0.5), aspect="equal")
     ax.set_xticks([])
@@ -327,7 +327,7 @@ def full_panorama() -> Demo:
     ax = view.fig.subplots()
     im = view.animate(ax.imshow(pans["planar"].panorama, interpolation="nearest"))
     colors = palette.SERIES[:4]
-    lines = [view.animate(ax.plot([], [], color=c, lw=1.2, label=f"view {k}")[0]) for k, c in enumerate(colors)]
+    lines = [view.animate(ax.plot([], [], color=c, lw=1.2, path_effects=palette.halo(1.2), label=f"view {k}")[0]) for k, c in enumerate(colors)]
     # below the axes: over the (animated) panorama it would be hidden, or cost a redraw per update
     ax.legend(handles=lines, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncols=4, fontsize=8, title="outline of")
     hmax = max(p.panorama.shape[0] for p in pans.values())

@@ -60,7 +60,7 @@ def focus_and_blur():
     curve, = ax_c.plot(z, np.zeros_like(z), "k", label="c(z), sensor fixed")
     band = ax_c.axvspan(1, 2, color="tab:green", alpha=0.2, label="depth of field")
     ax_c.axhline(COC_OK * 1e6, color="tab:red", ls="--", lw=1, label="acceptable c = 30 µm")
-    marker, = ax_c.plot([], [], "o", color="tab:green", ms=7, label="the point")
+    marker, = ax_c.plot([], [], "o", color="tab:green", mec="k", ms=7, label="the point")
     ax_c.set(xlim=(0.25, 5.0), yscale="log", ylim=(2, 1e4), xlabel="object distance z (m)",
              ylabel="blur circle c (µm, log scale)")
     ax_c.legend(fontsize=8, loc="upper right")
@@ -103,7 +103,7 @@ def depth_of_field():
                  label=f"acceptable c = 2 px = {2 * PITCH_DOF * 1e6:.0f} µm")
     for zp, c, name in zip((0.6, 1.2, 2.4, 4.0), (palette.BLUE, palette.ORANGE, palette.PURPLE, palette.BROWN),
                            ("small board", "page", "large board", "wall")):
-        ax_c.axvline(zp, color=c, lw=1.5, label=f"{name}, {zp:g} m")
+        ax_c.axvline(zp, color=c, lw=1.5, label=f"{name}, {zp:g} m", path_effects=palette.halo(1.5))
     ax_c.set_xlim(0.3, 5)
     ax_c.set_ylim(0, 600)
     ax_c.set_xlabel("depth z (m)")
@@ -165,20 +165,21 @@ def lens_distortion():
     ax_img, ax_grid = view.fig.subplots(1, 2)
     board = render.checkerboard((11, 8), 0.04, t=(-0.2, -0.14, 0.45), px_per_square=32)
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=255)
-    dots, = ax_img.plot([], [], "r.", ms=3)
+    dots, = ax_img.plot([], [], ".", color=palette.RED, ms=3, path_effects=palette.halo())
     ideal = _grid_lines()
     for ln in ideal:  # the undistorted grid, drawn once in grey behind the bent one
-        ax_grid.plot(*ln.T, color="0.8", lw=0.8)
+        ax_grid.plot(*ln.T, color=palette.GREY, lw=0.8)
     bent = [ax_grid.plot(*ln.T, color="tab:blue", lw=1.2)[0] for ln in ideal]
     ax_grid.set_xlim(-60, SIZE[0] + 60)
     ax_grid.set_ylim(SIZE[1] + 60, -60)
     ax_grid.set_aspect("equal")
     ax_grid.plot([-0.5, SIZE[0] - 0.5, SIZE[0] - 0.5, -0.5, -0.5], [-0.5, -0.5, SIZE[1] - 0.5, SIZE[1] - 0.5, -0.5], "k", lw=1)
-    ax_grid.set_title("a straight grid through the lens: barrel", fontsize=10)
+    ax_grid.set_title("a straight grid through the lens (grey: without it)", fontsize=10)
     ax_grid.set_xlabel("u (px)")
     ax_grid.set_ylabel("v (px)")
-    ax_img.set_title("rendered: distorted (red: true corners)", fontsize=10)
-    view.animate(im, dots, *bent, ax_grid.title, ax_img.title)
+    ax_img.set_title("rendered board (red: true corners)", fontsize=10)
+    readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
+    view.animate(im, dots, *bent)
 
     def update(values, state):
         d = np.array([values["k1"], values["k2"], values["p1"], values["p2"], 0.0])
@@ -196,8 +197,9 @@ def lens_distortion():
         kind = distortion.classify_distortion(d, r_max=float(np.hypot(*SIZE) / 2 / K_D[0, 0]))
         state.update(kind=kind, corner0=corners[0], max_shift=float(np.abs(
             distortion.distort_pixels(ideal.reshape(-1, 2), K_D, d) - ideal.reshape(-1, 2)).max()))
-        ax_grid.set_title(f"a straight grid through the lens: {kind}", fontsize=10)
-        ax_img.set_title("undistorted: lines straight again" if values["undistort"]
-                         else "rendered: distorted (red: true corners)", fontsize=10)
+        readout.value = monospace(f"distortion: {kind}\nlargest shift {state['max_shift']:.1f} px\n"
+                                  + ("left: undistorted, lines straight again" if values["undistort"]
+                                     else "left: as the lens records it"))
 
-    return build_demo("lens_distortion", controls, view, update, title="Lens distortion (k1, k2, p1, p2)")
+    return build_demo("lens_distortion", controls, view, update, title="Lens distortion (k1, k2, p1, p2)",
+                      extra=[readout])

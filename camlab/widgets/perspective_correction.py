@@ -16,6 +16,7 @@ import numpy as np
 from .. import perspective as pp
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import connect_corner_drag, corner_keys, corner_text, format_corners, monospace, on_top, parse_corners
+from ..plotting import palette
 
 _SHOW = 260  # the rectified view is drawn into a _SHOW x _SHOW box
 
@@ -74,14 +75,14 @@ def rectify_photo() -> Demo:
     by the aspect ratio estimated from the quadrilateral (compared with the truth). Without a
     mouse, pick a corner and move it with its two sliders (or type the corners)."""
     view, ax_p, ax_r, im_p, im_r, quad = _photo_demo("photo: drag the orange corners", "rectified",
-                                                     dict(ls="-", color="tab:orange", lw=1.5))
-    handles = view.animate(ax_p.plot([], [], "o", color="tab:orange", ms=9, mec="k")[0])
+                                                     dict(ls="-", color=palette.ORANGE, lw=1.5, path_effects=palette.halo(1.5)))
+    handles = view.animate(ax_p.plot([], [], "o", color=palette.ORANGE, ms=9, mec="k")[0])
     chosen = view.animate(ax_p.plot([], [], "o", ms=16, mfc="none", mec="k", mew=2)[0])  # the corner the keys move
     # a static key (canvas text costs ~4 ms per line per redraw); the numbers are in the readout
     ax_r.text(0.5, -0.02, "red dashed: the other focal length's shape; green dotted: the true shape",
               transform=ax_r.transAxes, ha="center", va="top", fontsize=8)
-    other = view.animate(ax_r.plot([], [], "--", color="tab:red", lw=1.5)[0])
-    truth_box = view.animate(ax_r.plot([], [], ":", color="tab:green", lw=1.5)[0])
+    other = view.animate(ax_r.plot([], [], "--", color=palette.RED, lw=1.5, path_effects=palette.halo(1.5))[0])
+    truth_box = view.animate(ax_r.plot([], [], ":", color=palette.GREEN, lw=1.5, path_effects=palette.halo(1.5))[0])
     view.animate(ax_r.title)  # says which focal length the rectified view uses
     readout = W.HTML()
     first = pp.sample_photo("page")
@@ -154,7 +155,7 @@ def document_scanner() -> Demo:
     """"Scan this page": find the page automatically (edges, contours, largest convex
     quadrilateral) and rectify it; it says so when there is no page."""
     view, ax_p, ax_r, im_p, im_r, found = _photo_demo("photo with the detected outline", "scanned page",
-                                                      dict(ls="-", color="lime", lw=2))
+                                                      dict(ls="-", color=palette.GREEN, lw=2, path_effects=palette.halo(2)))
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
@@ -196,7 +197,7 @@ def keystone_correction() -> Demo:
                                                      dict(ls="--", color="yellow", lw=1.5))
     ax_r.text(0.5, -0.02, "green dotted: the true shape (numbers in the readout)", transform=ax_r.transAxes,
               ha="center", va="top", fontsize=8)  # static: canvas text costs ~4 ms per line per redraw
-    truth_box = view.animate(ax_r.plot([], [], ":", color="tab:green", lw=1.5)[0])
+    truth_box = view.animate(ax_r.plot([], [], ":", color=palette.GREEN, lw=1.5, path_effects=palette.halo(1.5))[0])
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:

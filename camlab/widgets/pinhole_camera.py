@@ -10,6 +10,7 @@ from matplotlib.ticker import MaxNLocator
 
 from ._base import FigureView, build_demo, register, slider
 from .controls import monospace
+from ..plotting import palette
 
 SIZE = (320, 240)
 PITCH = 36e-3 / SIZE[0]  # a 36 mm wide sensor with 320 pixels: 112.5 um pixels
@@ -50,7 +51,7 @@ def pinhole_projection():
     for name in ("real", "virtual"):
         art[name].set_linewidth(1.8)
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
-    width_bar = ax_img.plot([], [], color="tab:orange", lw=2, marker="|", ms=10)[0]
+    width_bar = ax_img.plot([], [], color=palette.ORANGE, lw=2, marker="|", ms=10, path_effects=palette.halo(2))[0]
     ax3.set_title("pinhole at 0; both image planes drawn enlarged (distance in the readout)", fontsize=9)
     readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
     # everything that moves is blitted over the cached static figure

@@ -16,6 +16,7 @@ from .. import scenes
 from ..plotting import scene3d
 from ._base import FigureView, build_demo, register, slider
 from .controls import int_slider
+from ..plotting import palette
 
 TARGET = np.array([0.0, 0.0, 0.7])
 
@@ -65,20 +66,6 @@ def camera_explorer():
                       title="Drag the intrinsics and the pose: P = K [R | t]", extra=[info])
 
 
-def resection_data(n_points: int, noise_px: float, seed: int = 0):
-    """A true camera, N world points on two faces of a box and their noisy pixels."""
-    rng = np.random.default_rng(seed)
-    cam = cm.Camera.look_at(cm.orbit_eye(np.radians(-55), np.radians(25), 5.0, TARGET), TARGET)
-    n1 = n_points // 2
-    # Two faces of a 2 m cube (x = 1 and y = -1 planes): non-coplanar, like a calibration rig.
-    a = rng.uniform(-1, 1, (n_points, 2))
-    X = np.empty((n_points, 3))
-    X[:n1] = np.column_stack([np.full(n1, 1.0), a[:n1, 0], 1.0 + a[:n1, 1]])
-    X[n1:] = np.column_stack([a[n1:, 0], np.full(n_points - n1, -1.0), 1.0 + a[n1:, 1]])
-    uv = cam.project(X) + rng.normal(0.0, noise_px, (n_points, 2))
-    return cam, X, uv
-
-
 @register(lesson="04", sweep={"noise": [0.0, 3.0], "n_points": [6, 40], "outlier": [0.0, 60.0],
                               "refine": [True, False], "pair": [0, 5], "outlier_v": [-60.0, 40.0]})
 def resectioning():
@@ -90,15 +77,15 @@ def resectioning():
     fresh measurements.
     """
     view = FigureView(figsize=(9, 4.2))
-    cam, X, uv = resection_data(12, 0.5)
-    frame = np.concatenate([cm.box_wireframe((0.0, 0.0, 1.0), (2.0, 2.0, 2.0)), cm.ground_grid(2.0, 1.0)])
+    cam, X, uv = scenes.resection_set(12, 0.5)
+    frame = np.concatenate([scenes.box_wireframe((0.0, 0.0, 1.0), (2.0, 2.0, 2.0)), scenes.ground_grid(2.0, 1.0)])
     sv = scene3d.SceneView(view.fig, cam, frame, plane_size=1.0, image_title="measured (o) vs reprojected (+)")
     sv.camera_artist.lines.set_alpha(0.4)
-    est_art = scene3d.CameraArtist(sv.ax3d, cam, size=1.0, color="tab:orange", show_axes=False, label="est.")
+    est_art = scene3d.CameraArtist(sv.ax3d, cam, size=1.0, color=palette.ORANGE, show_axes=False, label="est.")
     pts3d = scene3d.draw_points(sv.ax3d, X, color="tab:blue")
     (meas,) = sv.ax_image.plot([], [], "o", mfc="none", color="tab:blue", ms=6)
-    (reproj,) = sv.ax_image.plot([], [], "+", color="tab:orange", ms=8, mew=1.5)
-    (est_lines,) = sv.ax_image.plot([], [], color="tab:orange", lw=1.0, ls="--")
+    (reproj,) = sv.ax_image.plot([], [], "+", color=palette.ORANGE, ms=8, mew=1.5)
+    (est_lines,) = sv.ax_image.plot([], [], color=palette.ORANGE, lw=1.0, ls="--")
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
     view.animate(*est_art.artists(), pts3d, meas, reproj, est_lines)
     controls = {
@@ -117,7 +104,7 @@ def resectioning():
         if last_data.get("key") != key:
             clicked.clear()
             last_data["key"] = key
-        cam_true, Xw, uvn = resection_data(*key)
+        cam_true, Xw, uvn = scenes.resection_set(*key)
         uvn[v["pair"]] += float(v["outlier"]), float(v["outlier_v"])
         for i, uv_click in clicked.items():
             uvn[i] = uv_click
@@ -175,7 +162,7 @@ def opencv_vs_opengl():
     ax = scene3d.axes3d(view.fig, 1, 1, 1, elev=20, azim=-130)
     ax.set_axis_off()
     scene3d.draw_world_axes(ax, 0.6)
-    scene3d.draw_segments(ax, cm.house_wireframe((0.0, 0.0, 0.0), 0.6), color="0.6")
+    scene3d.draw_segments(ax, scenes.house_wireframe((0.0, 0.0, 0.0), 0.6), color=palette.GREY)
     cam0 = cm.Camera.look_at([2.0, -2.0, 1.0], [0.0, 0.0, 0.4])
     art = scene3d.CameraArtist(ax, cam0, size=0.6, show_axes=False)
     lines, texts = [], []

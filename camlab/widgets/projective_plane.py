@@ -13,6 +13,7 @@ from .. import scenes
 from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes, plane_axes, set_line
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import monospace
+from ..plotting import palette
 
 
 @register(lesson="06", sweep={"x": [-1.5, 0.0, 1.2], "y": [1.0, -0.5], "scale": [0.4, 1.0, 2.5]})
@@ -31,7 +32,7 @@ def lift_to_plane() -> Demo:
     ax3.text(-2, 2, 1.1, "w = 1", color="tab:blue")
     ax3.scatter([0], [0], [0], color="k", s=15)
     ray, = ax3.plot([], [], [], color="tab:blue", lw=1.5, label="ray = one projective point")
-    scaled, = ax3.plot([], [], [], "o", color="tab:orange", label="λ(x, y, 1)")
+    scaled, = ax3.plot([], [], [], "o", color=palette.ORANGE, label="λ(x, y, 1)")
     hit, = ax3.plot([], [], [], "o", color="tab:blue", label="(x, y, 1)")
     ax3.legend(loc="upper left", fontsize=8)
     view.animate(ray, scaled, hit)
@@ -73,14 +74,14 @@ def parallel_lines() -> Demo:
     ax, axw = view.fig.subplots(1, 2, width_ratios=[1.3, 1])
     plane_axes(ax, 4, "l1 = 30° fixed; turn l2")
     l1_artist, = ax.plot([], [], color="tab:blue", lw=2, label="l1")
-    l2_artist, = ax.plot([], [], color="tab:orange", lw=2, label="l2")
+    l2_artist, = ax.plot([], [], color=palette.ORANGE, lw=2, label="l2")
     meet_dot, = ax.plot([], [], "o", color="tab:red", ms=8, label="l1 × l2")
     arrow = ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="->", color="tab:red", lw=2))
     ax.legend(loc="lower right", fontsize=8)
     readout = W.HTML()
     angle1 = 30.0
     angles = np.linspace(0, 60, 241)
-    w_curve, = axw.plot([], [], color="0.6")
+    w_curve, = axw.plot([], [], color=palette.GREY)
     w_dot, = axw.plot([], [], "o", color="tab:red")
     axw.axvline(angle1, color="tab:blue", ls=":", lw=1)
     axw.set(xlim=(0, 60), xlabel="angle of l2 (degrees)", ylabel="|w| of the unit meet point",
@@ -136,9 +137,9 @@ def point_line_duality() -> Demo:
     plane_axes(ax_p, 3, "primal: point p, line l")
     plane_axes(ax_d, 3, "dual: line p*, point l*")
     p_dot, = ax_p.plot([], [], "o", color="tab:blue", ms=9, label="p")
-    l_line, = ax_p.plot([], [], color="tab:orange", lw=2, label="l")
+    l_line, = ax_p.plot([], [], color=palette.ORANGE, lw=2, label="l")
     pd_line, = ax_d.plot([], [], color="tab:blue", lw=2, label="p* (same 3 numbers as p)")
-    ld_dot, = ax_d.plot([], [], "o", color="tab:orange", ms=9, label="l* (same 3 numbers as l)")
+    ld_dot, = ax_d.plot([], [], "o", color=palette.ORANGE, ms=9, label="l* (same 3 numbers as l)")
     for a in (ax_p, ax_d):
         a.legend(loc="lower right", fontsize=8)
     view.animate(p_dot, l_line, pd_line, ld_dot)
@@ -244,15 +245,15 @@ def cross_ratio_invariance() -> Demo:
     grid = np.array([[[x, -1.5], [x, 1.5]] for x in np.linspace(-1.5, 1.5, 7)]
                     + [[[-1.5, y], [1.5, y]] for y in np.linspace(-1.5, 1.5, 7)])
     points = np.array([[-1.2, -0.6], [-0.3, -0.15], [0.4, 0.2], [1.3, 0.65]])
-    colors = ["tab:blue", "tab:orange", "tab:green", "tab:red"]
+    colors = ["tab:blue", palette.ORANGE, "tab:green", "tab:red"]
     from matplotlib.collections import LineCollection
 
-    ax_s.add_collection(LineCollection(grid, colors="0.8", lw=0.8))
+    ax_s.add_collection(LineCollection(grid, colors=palette.GREY, lw=0.8))
     ax_s.plot(points[:, 0], points[:, 1], "-", color="0.3")
     ax_s.scatter(points[:, 0], points[:, 1], c=colors, s=50, zorder=3)
     for name, p in zip("ABCD", points):
         ax_s.annotate(name, p, xytext=(4, 6), textcoords="offset points")
-    mapped_grid = LineCollection([], colors="0.8", lw=0.8)
+    mapped_grid = LineCollection([], colors=palette.GREY, lw=0.8)
     ax_t.add_collection(mapped_grid)
     mapped_line, = ax_t.plot([], [], "-", color="0.3")
     mapped_pts = ax_t.scatter(points[:, 0], points[:, 1], c=colors, s=50, zorder=3)

@@ -7,6 +7,7 @@ import numpy as np
 from .. import projective as pj
 from ..plotting.plane import plane_axes
 from ._base import Demo, FigureView, build_demo, register, slider
+from ..plotting import palette
 
 # A little house outline, in plot units: the course's running example of a shape.
 HOUSE = np.array([[-1, -1], [1, -1], [1, 0.6], [0, 1.4], [-1, 0.6], [-1, -1]], dtype=float)
@@ -17,7 +18,7 @@ def stack_check() -> Demo:
     """Rotate and scale a house with two sliders; if it moves, the interactive stack works."""
     view = FigureView(figsize=(4.5, 4.5))
     ax = plane_axes(view.fig.subplots(), 3, "drag the sliders")
-    ax.plot(HOUSE[:, 0], HOUSE[:, 1], color="0.8", lw=1, ls="--", label="original")
+    ax.plot(HOUSE[:, 0], HOUSE[:, 1], color=palette.GREY, lw=1, ls="--", label="original")
     house = view.animate(ax.plot([], [], color="tab:blue", lw=2, label="rotated and scaled")[0])
     ax.legend(loc="lower right", fontsize=8)
     readout = W.HTML()

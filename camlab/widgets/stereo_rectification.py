@@ -16,45 +16,20 @@ from .. import disparity as dp
 from .. import epipolar as ep
 from .. import rectification as rc
 from .. import scenes
-from ..camera import Camera, look_at_rotation, rotation_from_axis_angle, scale_intrinsics
+from ..camera import Camera, scale_intrinsics
 from ..data.stereo import RigCalibration, calibrate_rig, load_stereo_rig, stereo_scene, true_disparity, true_matches
 from ..projective import map_points
 from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import int_slider, monospace
+from ..plotting import palette
 
 SIZE = (640, 480)
 
 
 # --------------------------------------------------------------------------- shared data
 
-def rig_pair(baseline: float, toe_in: float, height: float = 0.0) -> tuple[Camera, Camera]:
-    """Two cameras ``baseline`` metres apart along world x, each turned ``toe_in / 2`` radians
-    towards the other (converging for toe_in > 0), the right one raised by ``height`` m."""
-    eye1 = np.array([-baseline / 2, 0.0, 1.0])
-    eye2 = np.array([baseline / 2, 0.0, 1.0 + height])
-    cams = []
-    for eye, turn in ((eye1, -toe_in / 2), (eye2, toe_in / 2)):
-        R = look_at_rotation(eye, eye + [0.0, 1.0, 0.0])
-        R = rotation_from_axis_angle([0.0, turn, 0.0]) @ R  # about the camera's (downward) y axis
-        cams.append(Camera(np.array([[800.0, 0, 319.5], [0, 800.0, 239.5], [0, 0, 1]]), R, -R @ eye,
-                           image_size=SIZE))
-    return cams[0], cams[1]
-
-
-def forward_pair(baseline: float, turn: float) -> tuple[Camera, Camera]:
-    """The second camera ``baseline`` metres straight ahead of the first (forward motion,
-    like a car's camera between two frames), turned by ``turn`` radians about its vertical
-    axis. Its epipole is the image of the first centre: near the principal point, inside
-    the image, and every epipolar line fans out from it."""
-    K = np.array([[800.0, 0, 319.5], [0, 800.0, 239.5], [0, 0, 1]])
-    eye1, eye2 = np.array([0.0, -1.0, 1.0]), np.array([0.0, -1.0 + baseline, 1.0])
-    R1 = look_at_rotation(eye1, eye1 + [0.0, 1.0, 0.0])
-    R2 = rotation_from_axis_angle([0.0, turn, 0.0]) @ look_at_rotation(eye2, eye2 + [0.0, 1.0, 0.0])
-    return (Camera(K, R1, -R1 @ eye1, image_size=SIZE), Camera(K, R2, -R2 @ eye2, image_size=SIZE))
-
-
-_MOTIONS = {"sideways (stereo rig)": rig_pair, "forward (driving)": forward_pair}
+_MOTIONS = {"sideways (stereo rig)": scenes.stereo_pair, "forward (driving)": scenes.forward_pair}
 
 
 def _projected_segments(cam: Camera, segs: np.ndarray) -> np.ndarray:
@@ -130,12 +105,12 @@ def epipolar_lines() -> Demo:
     segs = scenes.plane_outlines(stereo_scene())
     wl, = axl.plot([], [], color="0.55", lw=0.8)
     wr, = axr.plot([], [], color="0.55", lw=0.8)
-    pencil_l, = axl.plot([], [], color="tab:blue", lw=0.6, alpha=0.5)
-    pencil_r, = axr.plot([], [], color="tab:blue", lw=0.6, alpha=0.5)
+    pencil_l, = axl.plot([], [], color=palette.BLUE, lw=0.6, path_effects=palette.halo(0.6))
+    pencil_r, = axr.plot([], [], color=palette.BLUE, lw=0.6, path_effects=palette.halo(0.6))
     point, = axl.plot([], [], "o", color="tab:red", ms=8)
     line_l, = axl.plot([], [], color="tab:red", lw=1.2, ls="--")
     line_r, = axr.plot([], [], color="tab:red", lw=1.8)
-    depth_dots, = axr.plot([], [], "o", color="tab:orange", ms=5, label="depth 1, 2, ..., 6 m")
+    depth_dots, = axr.plot([], [], "o", color=palette.ORANGE, ms=5, label="depth 1, 2, ..., 6 m")
     epi_l, = axl.plot([], [], "*", color="k", ms=13)
     epi_r, = axr.plot([], [], "*", color="k", ms=13, label="epipole")
     # an epipole off the image: an arrow (shaft + head) at the border pointing to it
@@ -242,15 +217,15 @@ def rectify_pair() -> Demo:
     im = ax.imshow(np.hstack(half), cmap="gray", vmin=0, vmax=255, extent=(-0.5, 639.5, 239.5, -0.5),
                    interpolation="nearest")
     for r in range(20, 240, 20):
-        ax.axhline(r, color="tab:cyan", lw=0.5, alpha=0.7)
-    ax.axvline(319.5, color="w", lw=1)
+        ax.axhline(r, color="tab:cyan", lw=0.5, alpha=0.7, gid="grid")
+    ax.axvline(319.5, color="w", lw=1, gid="grid")
     sel = np.linspace(0, len(x1) - 1, 14).astype(int)
-    match_lines, = ax.plot([], [], color="tab:orange", lw=0.9)
+    match_lines, = ax.plot([], [], color=palette.ORANGE, lw=0.9, path_effects=palette.halo(0.9))
     # Cumulative, on a log axis: raw (pixels), calibrated and uncalibrated (hundredths) all readable.
     step, = axh.plot([], [], drawstyle="steps-post", color="tab:purple", lw=2.5)
     axh.set(xscale="log", xlim=(1e-3, 30), ylim=(0, 1.05), xlabel="|v1 - v2| (px, full size, log)",
             ylabel="fraction of matches ≤ x")
-    axh.axvline(0.5, color="0.6", ls=":", lw=1)
+    axh.axvline(0.5, color=palette.GREY, ls=":", lw=1)
     axh.set_title("vertical disparity", fontsize=9)
     axh.grid(True, which="major", color="0.93")
     view.animate(im, match_lines, step)
@@ -339,7 +314,7 @@ def disparity_depth() -> Demo:
     for a, t in ((ax1, "disparity (px)"), (ax2, "depth error (%)")):
         a.set(xticks=[], yticks=[])
         a.set_title(t, fontsize=9)
-    im1 = ax1.imshow(gt, cmap="turbo", vmin=8, vmax=40, interpolation="nearest")
+    im1 = ax1.imshow(gt, cmap="viridis", vmin=8, vmax=40, interpolation="nearest")
     view.fig.colorbar(im1, ax=ax1, shrink=0.7)
     im2 = ax2.imshow(np.zeros_like(gt), cmap="coolwarm", vmin=-5, vmax=5, interpolation="nearest")
     view.fig.colorbar(im2, ax=ax2, shrink=0.7)
