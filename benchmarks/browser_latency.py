@@ -25,10 +25,31 @@ sys.path.insert(0, str(HERE))
 import browser  # noqa: E402
 from _timing import print_table  # noqa: E402
 
-# Arm: at the next keydown start a frame loop; store the ms until the canvas pixels change.
+# Before JupyterLab loads: timestamp every websocket message the page receives while armed.
+WATCH_WEBSOCKETS = """(() => {
+  window.__camlabFrames = [];
+  const add = WebSocket.prototype.addEventListener;
+  const watch = (ws) => {
+    if (ws.__camlabWatched) return;
+    ws.__camlabWatched = true;
+    add.call(ws, 'message', (e) => {
+      if (window.__camlabArmed) {
+        const d = e.data;
+        window.__camlabFrames.push([performance.now(), (d && (d.byteLength || d.size || d.length)) || 0]);
+      }
+    });
+  };
+  WebSocket.prototype.addEventListener = function (type, fn, opts) { watch(this); return add.call(this, type, fn, opts); };
+  const onmessage = Object.getOwnPropertyDescriptor(WebSocket.prototype, 'onmessage');
+  Object.defineProperty(WebSocket.prototype, 'onmessage', {
+    set(fn) { watch(this); onmessage.set.call(this, fn); }, get() { return onmessage.get.call(this); } });
+})();"""
+
+# Arm: at the next keydown start a frame loop; record when the canvas pixels change.
 ARM_KEY_TO_PIXELS = """(selector) => {
   window.__camlabLatency = undefined;
-  const resolve = (ms) => { window.__camlabLatency = ms; };
+  window.__camlabFrames = [];
+  window.__camlabArmed = true;
   const canvas = document.querySelector(selector + ' canvas');
   const ctx = canvas.getContext('2d', {willReadFrequently: true});
   const checksum = () => {
@@ -40,14 +61,35 @@ ARM_KEY_TO_PIXELS = """(selector) => {
   const before = checksum();
   document.addEventListener('keydown', (e) => {
     const t0 = performance.now();
+    const done = (ms) => {
+      window.__camlabArmed = false;
+      const frames = window.__camlabFrames.map(([t, n]) => [t - t0, n]);
+      window.__camlabLatency = {pixels: ms, frames: frames};
+    };
     const poll = () => {
-      if (checksum() !== before) resolve(performance.now() - t0);
-      else if (performance.now() - t0 > 5000) resolve(-1);
+      if (checksum() !== before) done(performance.now() - t0);
+      else if (performance.now() - t0 > 5000) done(-1);
       else requestAnimationFrame(poll);
     };
     requestAnimationFrame(poll);
   }, {capture: true, once: true});
 }"""
+
+
+def stages(sample: dict) -> dict[str, float]:
+    """Split one press into its path: the server round trip, the figure frame's arrival, its paint.
+
+    ``reply_ms``: keydown to the kernel's first message back (its "busy" status): the
+    websocket, Jupyter server and ZMQ round trip that every kernel interaction pays.
+    ``frame_ms``: keydown to the largest message before the pixels changed, the PNG diff
+    (callback, draw and encode in the kernel happen between reply and frame).
+    ``pixels_ms``: keydown to the first animation frame whose canvas pixels differ (the
+    browser decoded the PNG and drew it).
+    """
+    frames = [(t, n) for t, n in sample["frames"] if t <= sample["pixels"]]
+    if sample["pixels"] < 0 or not frames:
+        return {"pixels_ms": float("nan"), "reply_ms": float("nan"), "frame_ms": float("nan")}
+    return {"pixels_ms": sample["pixels"], "reply_ms": frames[0][0], "frame_ms": max(frames, key=lambda f: f[1])[0]}
 
 
 def slider_demos() -> dict[str, str]:
@@ -80,8 +122,8 @@ def _notebook(names: list[str]) -> dict:
                        "id": f"c{i}"} for i, c in enumerate(cells)]}
 
 
-def measure(presses: int = 7) -> dict[str, float]:
-    """Median keydown-to-pixels milliseconds per chosen demo, by demo name."""
+def measure(presses: int = 7) -> dict[str, dict[str, float]]:
+    """Median milliseconds of each stage (see :func:`stages`) per chosen demo, by demo name."""
     from playwright.sync_api import sync_playwright
 
     chosen = slider_demos()
@@ -92,6 +134,7 @@ def measure(presses: int = 7) -> dict[str, float]:
         results: dict[str, float] = {}
         with browser.jupyterlab(base / "root", base) as lab, sync_playwright() as p:
             context = browser.launch(p, lab["profile"])
+            context.add_init_script(WATCH_WEBSOCKETS)
             try:
                 page = context.new_page()
                 page.set_default_timeout(180_000)
@@ -110,10 +153,9 @@ def measure(presses: int = 7) -> dict[str, float]:
                         page.evaluate(ARM_KEY_TO_PIXELS, selector)  # never awaits a promise
                         page.keyboard.press("ArrowRight" if i % 2 == 0 else "ArrowLeft")
                         page.wait_for_function("() => window.__camlabLatency !== undefined", polling=50)
-                        samples.append(page.evaluate("() => window.__camlabLatency"))
+                        samples.append(stages(page.evaluate("() => window.__camlabLatency")))
                         page.wait_for_timeout(300)
-                    ok = [s for s in samples if s >= 0]
-                    results[name] = float(np.median(ok)) if ok else float("nan")
+                    results[name] = {k: float(np.nanmedian([s[k] for s in samples])) for k in samples[0]}
             finally:
                 context.close()
     return results
@@ -127,9 +169,9 @@ def main() -> None:
 
     specs = all_demos()
     measured = measure(args.presses)
-    rows = [{"lesson": specs[n].lesson, "demo": n, "browser_ms": ms, "ok": ms <= 33.0} for n, ms in measured.items()]
-    print_table(rows, ["lesson", "demo", "browser_ms", "ok"],
-                "Slider keydown to changed canvas pixels, JupyterLab in headless Chromium (median)")
+    rows = [{"lesson": specs[n].lesson, "demo": n, **ms} for n, ms in measured.items()]
+    print_table(rows, ["lesson", "demo", "pixels_ms", "reply_ms", "frame_ms"],
+                "Slider keydown to changed canvas pixels, JupyterLab in headless Chromium (median; see stages())")
 
 
 if __name__ == "__main__":

@@ -14,9 +14,11 @@ data generators (:mod:`camlab.data`) build the same scenes:
   :func:`sample_photo`;
 - **wireframes** (M, 2, 3) segments (lessons 04-05): :func:`box_wireframe`,
   :func:`house_wireframe`, :func:`ground_grid`, :func:`plane_outlines`;
-- **the lessons' scenes**, built once here for the lesson and its demos: :func:`box_before_wall`
-  (01), :func:`depth_of_field_scene` (02), :func:`photo_and_page` (03), :func:`house_scene` (04),
-  :func:`resection_set` (04), :func:`box_and_rails`, :func:`rail_track` (05), :func:`ground_plane_view` (06).
+- **the lessons' scenes and synthetic data**, built here once for the lesson and its demos:
+  :func:`box_before_wall` (01), :func:`depth_of_field_scene` (02), :func:`photo_and_page` (03),
+  :func:`house_scene`, :func:`resection_set` (04), :func:`box_and_rails`, :func:`rail_track` (05),
+  :func:`ground_plane_view` (06), :func:`outlier_matches` (07), :func:`stereo_pair`,
+  :func:`forward_pair` (11).
 
 Conventions (docs/conventions.md): metres; a plane's frame has x along texture columns,
 y along texture rows, z = x cross y; poses say their direction (``world_from_plane``).
@@ -35,18 +37,18 @@ from ._validate import (
     CamlabInputError, check_integer, check_matrix, check_number, check_pose, check_positive, check_rotation, check_shape,
     check_size,
 )
-from .camera import Camera, orbit_eye, rotation_from_euler
+from .camera import Camera, look_at_rotation, orbit_eye, rotation_from_axis_angle, rotation_from_euler
 from .homography import pose_homography
 from .projective import map_points
 from .warp import warp_perspective
 
 __all__ = [
-    "as_texture", "box", "box_and_rails", "box_before_wall", "box_wireframe", "checkerboard",
-    "depth_of_field_scene", "desk_background", "facade_texture", "ground_grid", "ground_plane_view", "GroundView",
-    "house_picture", "house_scene", "house_wireframe", "look_at_plane", "noise_texture", "page_texture",
-    "painting_texture", "photo_and_page", "photo_plane", "photograph_plane", "Plane", "plane_outlines",
-    "PlanePhoto", "portrait", "rail_track", "resection_set", "ResectionSet", "sample_photo", "text_page",
-    "textured_plane", "wall_texture",
+    "as_texture", "box", "box_and_rails", "box_before_wall", "box_wireframe", "CameraPair", "checkerboard",
+    "depth_of_field_scene", "desk_background", "facade_texture", "forward_pair", "ground_grid",
+    "ground_plane_view", "GroundView", "house_picture", "house_scene", "house_wireframe", "look_at_plane",
+    "noise_texture", "outlier_matches", "OutlierMatches", "page_texture", "painting_texture", "photo_and_page",
+    "photo_plane", "photograph_plane", "Plane", "plane_outlines", "PlanePhoto", "portrait", "rail_track",
+    "resection_set", "ResectionSet", "sample_photo", "stereo_pair", "text_page", "textured_plane", "wall_texture",
 ]
 
 
@@ -704,6 +706,79 @@ def rail_track(start: float = -3.0, end: float = 40.0) -> np.ndarray:
     sleepers = np.array([[[-1.7, y, 0.0], [1.7, y, 0.0]] for y in np.arange(start, end, 1.0)])
     return np.concatenate([rails, sleepers])
 
+
+class CameraPair(NamedTuple):
+    """Two views of one scene (cam_from_world poses)."""
+
+    camera1: Camera
+    camera2: Camera
+
+
+def _camera_800(R: np.ndarray, eye: np.ndarray) -> Camera:
+    """A 640 x 480 camera with f = 800 px at ``eye`` (metres) turned by cam_from_world ``R``."""
+    return Camera(np.array([[800.0, 0, 319.5], [0, 800.0, 239.5], [0, 0, 1]]), R, -R @ eye, image_size=(640, 480))
+
+
+def stereo_pair(baseline: float, toe_in: float, height: float = 0.0) -> CameraPair:
+    """Lesson 11: two cameras ``baseline`` metres apart along world x at 1 m, looking along +y, each turned
+    ``toe_in / 2`` radians towards the other (converging for toe_in > 0), the right one raised by ``height`` m.
+
+    640 x 480 pixels, f = 800 px. With ``toe_in = 0`` the epipoles are at infinity (parallel cameras).
+    """
+    eye1 = np.array([-baseline / 2, 0.0, 1.0])
+    eye2 = np.array([baseline / 2, 0.0, 1.0 + height])
+    cams = []
+    for eye, turn in ((eye1, -toe_in / 2), (eye2, toe_in / 2)):
+        R = look_at_rotation(eye, eye + [0.0, 1.0, 0.0])
+        R = rotation_from_axis_angle([0.0, turn, 0.0]) @ R  # about the camera's (downward) y axis
+        cams.append(_camera_800(R, eye))
+    return CameraPair(*cams)
+
+
+def forward_pair(baseline: float, turn: float) -> CameraPair:
+    """Lesson 11: the second camera ``baseline`` metres straight ahead of the first (forward motion, like a
+    car's camera between two frames), turned by ``turn`` radians about its vertical axis.
+
+    Its epipole is the image of the first centre: near the principal point, inside the image,
+    and every epipolar line fans out from it. 640 x 480 pixels, f = 800 px.
+    """
+    eye1, eye2 = np.array([0.0, -1.0, 1.0]), np.array([0.0, -1.0 + baseline, 1.0])
+    R1 = look_at_rotation(eye1, eye1 + [0.0, 1.0, 0.0])
+    R2 = rotation_from_axis_angle([0.0, turn, 0.0]) @ look_at_rotation(eye2, eye2 + [0.0, 1.0, 0.0])
+    return CameraPair(_camera_800(R1, eye1), _camera_800(R2, eye2))
+
+class OutlierMatches(NamedTuple):
+    """Point pairs related by a known homography, a known fraction of them replaced by random points (lesson 07).
+
+    Attributes
+    ----------
+    H : (3, 3) ndarray
+        The true dst_from_src homography.
+    src, dst : (N, 2) ndarray
+        The pairs, pixels in a 400 x 300 image; the inliers' ``dst`` carry Gaussian noise.
+    is_outlier : (N,) bool ndarray
+        Which pairs are random (wrong matches).
+    """
+
+    H: np.ndarray
+    src: np.ndarray
+    dst: np.ndarray
+    is_outlier: np.ndarray
+
+
+def outlier_matches(outlier_fraction: float, seed: int | None = 0, n: int = 200, noise: float = 1.0) -> OutlierMatches:
+    """``n`` matches of a fixed homography with ``noise`` pixels of noise, ``round(outlier_fraction n)`` of them wrong."""
+    if not 0 <= check_number(outlier_fraction, "outlier_fraction") <= 1:
+        raise CamlabInputError(f"outlier_fraction: expected a fraction in [0, 1], got {outlier_fraction!r}")
+    n = check_integer(n, "n", minimum=4)
+    rng = np.random.default_rng(seed)
+    H = np.array([[0.9, 0.15, 40.0], [-0.1, 0.85, 30.0], [4e-4, 2e-4, 1.0]])
+    src = rng.uniform([0, 0], [400, 300], (n, 2))
+    dst = map_points(H, src) + rng.normal(0, noise, (n, 2))
+    out = np.zeros(n, bool)
+    out[rng.choice(n, int(round(outlier_fraction * n)), replace=False)] = True
+    dst[out] = rng.uniform([0, 0], [400, 300], (out.sum(), 2))
+    return OutlierMatches(H, src, dst, out)
 
 class ResectionSet(NamedTuple):
     """A true camera and noisy world-to-pixel correspondences (lesson 04, resectioning).

@@ -120,3 +120,24 @@ def test_resection_set_is_noisy_projections_of_non_coplanar_points():
     assert 1.0 < np.std(noisy.points_image - exact.points_image) < 3.0
     with pytest.raises(ValueError, match="noise_px"):
         scenes.resection_set(10, -1.0)
+
+
+def test_camera_pairs_for_lesson_11():
+    from camlab import epipolar as ep
+
+    pair = scenes.stereo_pair(0.2, 0.0)
+    assert isinstance(pair, scenes.CameraPair) and np.isclose(np.linalg.norm(pair.camera2.centre - pair.camera1.centre), 0.2)
+    assert abs(ep.epipoles(ep.fundamental_from_cameras(*pair)).e2[2]) < 1e-12  # parallel: epipole at infinity
+    e2 = ep.epipoles(ep.fundamental_from_cameras(*scenes.forward_pair(0.5, 0.0))).e2
+    np.testing.assert_allclose(e2[:2] / e2[2], [319.5, 239.5], atol=1e-6)  # straight ahead: the image centre
+
+
+def test_outlier_matches_hold_the_stated_fraction_of_wrong_pairs():
+    from camlab.projective import map_points
+
+    m = scenes.outlier_matches(0.3, seed=2)
+    assert m.is_outlier.sum() == 60 and m.src.shape == m.dst.shape == (200, 2)
+    err = np.linalg.norm(map_points(m.H, m.src) - m.dst, axis=1)
+    assert err[~m.is_outlier].max() < 6 and np.median(err[m.is_outlier]) > 30
+    with pytest.raises(ValueError, match="outlier_fraction"):
+        scenes.outlier_matches(1.5)

@@ -104,3 +104,9 @@ def test_screen_images_land_where_matplotlib_draws_them(origin, inverted, clippe
     assert image.make_image.__name__ == "screen_image"
     diff = np.abs(live - reference).max(axis=2)
     assert diff.mean() < 5 and (diff > 60).mean() < 0.02, (diff.mean(), (diff > 60).mean())  # a flip: mean > 40
+
+
+@pytest.mark.parametrize("shape", [(1, 1), (1, 7), (5, 1), (37, 53)])
+def test_encoded_png_decodes_to_the_same_pixels(shape):
+    rgba = np.random.default_rng(1).integers(0, 256, (*shape, 4), dtype=np.uint8)
+    assert np.array_equal(_decode(_transport.encode_png(rgba)), rgba)

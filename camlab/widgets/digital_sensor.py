@@ -105,10 +105,10 @@ def bit_depth_and_noise():
     ax_p.set_ylim(-0.05, 1.3)  # headroom: the legend sits above the profile
     ax_p.set_xlabel("u (px)")
     ax_p.set_ylabel("value / full scale")
-    legend = ax_p.legend(fontsize=8, loc="upper center", ncols=2)
-    ax_p.set_title("row 150: 00 levels, SNR 000.0 at mid-grey", fontsize=10)
-    # blitted in this order: the row marker over the image, the legend over the profile
-    view.animate(im, marker, prof, legend, ax_p.title)
+    ax_p.legend(fontsize=8, loc="upper center", ncols=2)  # above 1.0, where the clipped profile never reaches
+    ax_p.set_title(f"row {row} (red line), recorded against true", fontsize=10)
+    readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
+    view.animate(im, marker, prof)
     full_well = 10000.0
     rng = np.random.default_rng(0)
 
@@ -122,9 +122,10 @@ def bit_depth_and_noise():
         signal = 0.5 * expo * full_well
         snr = signal / np.sqrt(signal + values["read_noise"] ** 2 + (full_well * expo / 2**bits) ** 2 / 12)
         state.update(levels=2**bits, snr=float(snr), rms_error=float(np.sqrt(np.mean((shown - clean) ** 2))))
-        ax_p.set_title(f"row {row}: {2**bits} levels, SNR {snr:.1f} at mid-grey", fontsize=10)
+        readout.value = monospace(f"{2**bits} levels\nSNR {snr:.1f} at mid-grey\n"
+                                  f"rms error {state['rms_error']:.3f} of full scale")
 
-    return build_demo("bit_depth_and_noise", controls, view, update, title="Bit depth and noise")
+    return build_demo("bit_depth_and_noise", controls, view, update, title="Bit depth and noise", extra=[readout])
 
 
 _METHODS = ("truth", "camlab bilinear", "OpenCV bilinear", "OpenCV VNG", "OpenCV edge-aware")

@@ -208,17 +208,6 @@ def drag_homography() -> Demo:
 
 # ----------------------------------------------------------------------------- RANSAC
 
-def _ransac_data(outlier_fraction: float, seed: int, n: int = 200, noise: float = 1.0):
-    rng = np.random.default_rng(seed)
-    H = np.array([[0.9, 0.15, 40.0], [-0.1, 0.85, 30.0], [4e-4, 2e-4, 1.0]])
-    src = rng.uniform([0, 0], [400, 300], (n, 2))
-    dst = map_points(H, src) + rng.normal(0, noise, (n, 2))
-    out = np.zeros(n, bool)
-    out[rng.choice(n, int(round(outlier_fraction * n)), replace=False)] = True
-    dst[out] = rng.uniform([0, 0], [400, 300], (out.sum(), 2))
-    return H, src, dst, out
-
-
 @lru_cache(maxsize=256)
 def _ransac_run(outlier_fraction: float, threshold: float, seed: int):
     """The demo's data and RANSAC's answer (or its error message) for one slider setting.
@@ -226,7 +215,7 @@ def _ransac_run(outlier_fraction: float, threshold: float, seed: int):
     Cached: sliders revisit settings, and the answer is a pure function of them (seeded).
     Arrays come back read-only so no caller can corrupt the cache.
     """
-    data = _ransac_data(outlier_fraction, seed)
+    data = scenes.outlier_matches(outlier_fraction, seed)
     for a in data:
         a.setflags(write=False)
     try:

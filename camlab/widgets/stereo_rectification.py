@@ -16,7 +16,7 @@ from .. import disparity as dp
 from .. import epipolar as ep
 from .. import rectification as rc
 from .. import scenes
-from ..camera import Camera, look_at_rotation, rotation_from_axis_angle, scale_intrinsics
+from ..camera import Camera, scale_intrinsics
 from ..data.stereo import RigCalibration, calibrate_rig, load_stereo_rig, stereo_scene, true_disparity, true_matches
 from ..projective import map_points
 from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes
@@ -29,33 +29,7 @@ SIZE = (640, 480)
 
 # --------------------------------------------------------------------------- shared data
 
-def rig_pair(baseline: float, toe_in: float, height: float = 0.0) -> tuple[Camera, Camera]:
-    """Two cameras ``baseline`` metres apart along world x, each turned ``toe_in / 2`` radians
-    towards the other (converging for toe_in > 0), the right one raised by ``height`` m."""
-    eye1 = np.array([-baseline / 2, 0.0, 1.0])
-    eye2 = np.array([baseline / 2, 0.0, 1.0 + height])
-    cams = []
-    for eye, turn in ((eye1, -toe_in / 2), (eye2, toe_in / 2)):
-        R = look_at_rotation(eye, eye + [0.0, 1.0, 0.0])
-        R = rotation_from_axis_angle([0.0, turn, 0.0]) @ R  # about the camera's (downward) y axis
-        cams.append(Camera(np.array([[800.0, 0, 319.5], [0, 800.0, 239.5], [0, 0, 1]]), R, -R @ eye,
-                           image_size=SIZE))
-    return cams[0], cams[1]
-
-
-def forward_pair(baseline: float, turn: float) -> tuple[Camera, Camera]:
-    """The second camera ``baseline`` metres straight ahead of the first (forward motion,
-    like a car's camera between two frames), turned by ``turn`` radians about its vertical
-    axis. Its epipole is the image of the first centre: near the principal point, inside
-    the image, and every epipolar line fans out from it."""
-    K = np.array([[800.0, 0, 319.5], [0, 800.0, 239.5], [0, 0, 1]])
-    eye1, eye2 = np.array([0.0, -1.0, 1.0]), np.array([0.0, -1.0 + baseline, 1.0])
-    R1 = look_at_rotation(eye1, eye1 + [0.0, 1.0, 0.0])
-    R2 = rotation_from_axis_angle([0.0, turn, 0.0]) @ look_at_rotation(eye2, eye2 + [0.0, 1.0, 0.0])
-    return (Camera(K, R1, -R1 @ eye1, image_size=SIZE), Camera(K, R2, -R2 @ eye2, image_size=SIZE))
-
-
-_MOTIONS = {"sideways (stereo rig)": rig_pair, "forward (driving)": forward_pair}
+_MOTIONS = {"sideways (stereo rig)": scenes.stereo_pair, "forward (driving)": scenes.forward_pair}
 
 
 def _projected_segments(cam: Camera, segs: np.ndarray) -> np.ndarray:
