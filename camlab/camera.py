@@ -52,7 +52,7 @@ from ._validate import (
 __all__ = [
     "Camera", "Decomposition", "CV_FROM_GL", "axis_angle_from_rotation", "camera_centre",
     "check_rotation", "decompose_projection_matrix", "estimate_projection_matrix",
-    "euler_from_rotation", "intrinsic_matrix", "is_rotation", "look_at_rotation", "orbit_eye",
+    "euler_from_rotation", "intrinsic_matrix", "is_rotation", "look_at_rotation", "nearest_rotation", "orbit_eye",
     "opencv_from_opengl", "opengl_from_opencv", "project_points", "reprojection_errors",
     "rotation_from_axis_angle", "rotation_from_euler", "rq_decomposition", "rotation_x", "rotation_y", "rotation_z",
     "scale_intrinsics",
@@ -197,6 +197,28 @@ def rotation_from_euler(rx: float, ry: float, rz: float) -> np.ndarray:
     angles = np.array([rx, ry, rz], dtype=float)
     check_finite(angles, "rx, ry, rz")
     return rotation_z(angles[2]) @ rotation_y(angles[1]) @ rotation_x(angles[0])
+
+
+def nearest_rotation(M: ArrayLike) -> np.ndarray:
+    r"""The rotation closest to M in the Frobenius norm: :math:`U \operatorname{diag}(1, 1, \det UV^\top) V^\top`.
+
+    With the SVD :math:`M = U \Sigma V^\top`, :math:`\min_R \|R - M\|_F` over rotations is
+    solved by replacing the singular values with ones (Zhang 2000, appendix C); the last
+    sign keeps :math:`\det R = +1`.
+
+    >>> np.round(nearest_rotation(2 * np.eye(3)), 12) + 0.0
+    array([[1., 0., 0.],
+           [0., 1., 0.],
+           [0., 0., 1.]])
+    """
+    Mm = check_matrix(M, (3, 3), "M")
+    U, sv, Vt = np.linalg.svd(Mm)
+    if sv[1] <= 1e-12 * max(sv[0], 1e-300):
+        raise DegenerateError(f"M: rank {int(np.sum(sv > 1e-12 * sv[0]))} (singular values "
+                              f"{np.array2string(sv, precision=3)}), so no rotation is nearest to it; "
+                              f"at least two of its columns must be independent")
+    D = np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Vt))])
+    return U @ D @ Vt
 
 
 def euler_from_rotation(R: ArrayLike) -> np.ndarray:

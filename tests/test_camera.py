@@ -608,3 +608,12 @@ def test_orbit_eye_is_a_point_on_a_sphere_in_radians():
     np.testing.assert_allclose(cm.orbit_eye(0.0, 0.0, 2.0), [2.0, 0.0, 0.0])
     with pytest.raises(CamlabInputError, match="distance"):
         cm.orbit_eye(0.0, 0.0, -1.0)
+
+
+def test_nearest_rotation_has_one_home():
+    """Calibration (Zhang's R), rectification and panorama stitching all use camera.nearest_rotation."""
+    from camlab import calibration
+
+    assert calibration.nearest_rotation is cm.nearest_rotation
+    H = 3.0 * cm.rotation_from_axis_angle([0.1, -0.2, 0.3])  # a rotation homography's scale
+    np.testing.assert_allclose(cm.nearest_rotation(H), H / 3.0, atol=1e-12)

@@ -10,6 +10,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validate import CamlabInputError, DegenerateError, as_float, as_points, check_intrinsics, check_matrix
+from ..camera import nearest_rotation
 from ..homography import estimate_homography
 
 
@@ -237,28 +238,6 @@ def intrinsics_from_homographies(homographies: ArrayLike, *, skew: bool = False,
     K = K / K[2, 2]
     K[1, 0] = K[2, 0] = K[2, 1] = 0.0
     return K
-
-
-def nearest_rotation(M: ArrayLike) -> np.ndarray:
-    r"""The rotation closest to M in the Frobenius norm: :math:`U \operatorname{diag}(1, 1, \det UV^\top) V^\top`.
-
-    With the SVD :math:`M = U \Sigma V^\top`, :math:`\min_R \|R - M\|_F` over rotations is
-    solved by replacing the singular values with ones (Zhang 2000, appendix C); the last
-    sign keeps :math:`\det R = +1`.
-
-    >>> np.round(nearest_rotation(2 * np.eye(3)), 12) + 0.0
-    array([[1., 0., 0.],
-           [0., 1., 0.],
-           [0., 0., 1.]])
-    """
-    Mm = check_matrix(M, (3, 3), "M")
-    U, sv, Vt = np.linalg.svd(Mm)
-    if sv[1] <= 1e-12 * max(sv[0], 1e-300):
-        raise DegenerateError(f"M: rank {int(np.sum(sv > 1e-12 * sv[0]))} (singular values "
-                              f"{np.array2string(sv, precision=3)}), so no rotation is nearest to it; "
-                              f"at least two of its columns must be independent")
-    D = np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Vt))])
-    return U @ D @ Vt
 
 
 def extrinsics_from_homography(K: ArrayLike, H: ArrayLike) -> tuple[np.ndarray, np.ndarray]:

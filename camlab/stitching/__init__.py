@@ -409,11 +409,13 @@ class WarpedImages:
 
     Image k covers canvas rows ``r0:r1`` and columns ``c0:c1`` with
     ``boxes[k] = (r0, r1, c0, c1)``; there ``patches[k]`` is the warped image
-    ((r1-r0, c1-c0, 3) float32, zero outside the image), ``patch_masks[k]`` where it has
-    data (bool) and ``patch_weights[k]`` its feather weights (float32, zero outside).
-    Exposure, seams and blending work box by box, so an image never costs more than its
-    own footprint. ``images``, ``masks`` and ``weights`` are the same data on the full
-    (h, w) canvas (built on first use). ``homographies[k]`` is the canvas_from_image H
+    ((r1-r0, c1-c0, 3) float32), ``patch_masks[k]`` where it has data (bool) and
+    ``patch_weights[k]`` its feather weights (float32, zero outside the mask). Outside its
+    mask a patch repeats the image's nearest edge pixels (the warp's replicated border), so
+    the blend's pyramids see no black edge. Exposure, seams and blending work box by box,
+    so an image never costs more than its own footprint. ``images`` (zero outside each
+    image), ``masks`` and ``weights`` are the same data on the full (h, w) canvas (built on
+    first use). ``homographies[k]`` is the canvas_from_image H
     used (None on a curved canvas), ``T`` the canvas translation, ``shape`` (h, w).
     """
 
@@ -427,9 +429,9 @@ class WarpedImages:
 
     def _on_canvas(self, parts: list) -> list:
         out = []
-        for p, (r0, r1, c0, c1) in zip(parts, self.boxes):
+        for p, m, (r0, r1, c0, c1) in zip(parts, self.patch_masks, self.boxes):
             full = np.zeros(tuple(self.shape) + p.shape[2:], p.dtype)
-            full[r0:r1, c0:c1] = p
+            full[r0:r1, c0:c1][m] = p[m]
             out.append(full)
         return out
 
@@ -446,8 +448,9 @@ class WarpedImages:
         return self._on_canvas(self.patch_weights)
 
     def subsampled(self, step: int) -> tuple[list, list]:
-        """Every image and mask on the canvas grid ``[::step, ::step]`` (as ``images[k][::step, ::step]``),
-        built from the boxes without the full canvas."""
+        """Every image and mask on the canvas grid ``[::step, ::step]`` (as ``images[k][::step, ::step]``,
+        but with the patches' replicated border kept outside the masks), built from the boxes without
+        the full canvas."""
         h, w = self.shape
         size = (-(-h // step), -(-w // step))
         imgs, masks = [], []
@@ -496,6 +499,8 @@ def warp_images(images: Sequence[np.ndarray], homographies: Sequence[np.ndarray]
         if np.ndim(im) != 3 or np.shape(im)[2] != 3:
             raise CamlabInputError(f"images[{k}]: expected an (h, w, 3) float32 image from prepare_images, "
                                    f"got shape {np.shape(im)}; call prepare_images(images) first")
+    import cv2
+
     T, shape = canvas_bounds(list(homographies), [im.shape for im in images], max_pixels=max_pixels)
     out_i, out_m, out_w, out_h, boxes = [], [], [], [], []
     for im, H in zip(images, homographies):
@@ -503,7 +508,9 @@ def warp_images(images: Sequence[np.ndarray], homographies: Sequence[np.ndarray]
         r0, r1, c0, c1 = _image_box(Hc, im.shape, shape)
         Hb = np.array([[1.0, 0, -c0], [0, 1, -r0], [0, 0, 1]]) @ Hc
         size = (r1 - r0, c1 - c0)
-        wimg = warp_perspective(im, Hb, size, method="cv2")
+        # the image with a replicated border (no black edge for the blend's pyramids), its feather weight
+        wimg = cv2.warpPerspective(np.asarray(im, np.float32), Hb, size[::-1], flags=cv2.INTER_LINEAR,
+                                   borderMode=cv2.BORDER_REPLICATE).reshape(size + (3,))
         wgt = warp_perspective(feather_weights(im.shape).astype(np.float32), Hb, size, method="cv2")
         ones = np.ones(im.shape[:2], np.float32)
         mask = warp_perspective(ones, Hb, size, interpolation="nearest", method="cv2") > 0.5
@@ -680,16 +687,23 @@ def dp_seam_masks(warped: WarpedImages, megapixels: float = 0.1) -> list[np.ndar
     near_r = np.minimum((np.arange(h) + step // 2) // step, label.shape[0] - 1)
     near_c = np.minimum((np.arange(w) + step // 2) // step, label.shape[1] - 1)
     out, covered = [], np.zeros((h, w), bool)
-    best_w, best_k = np.zeros((h, w), np.float32), np.full((h, w), -1, np.int16)
-    for k, (m, wk, (r0, r1, c0, c1)) in enumerate(zip(warped.patch_masks, warped.patch_weights, warped.boxes)):
+    for k, (m, (r0, r1, c0, c1)) in enumerate(zip(warped.patch_masks, warped.boxes)):
         own = (label[np.ix_(near_r[r0:r1], near_c[c0:c1])] == k) & m
         covered[r0:r1, c0:c1] |= own
         out.append(own)
-        better = wk > best_w[r0:r1, c0:c1]  # the largest feather weight, for the pixels the labels miss
-        best_w[r0:r1, c0:c1][better] = wk[better]
-        best_k[r0:r1, c0:c1][better] = k
-    for k, (m, (r0, r1, c0, c1)) in enumerate(zip(warped.patch_masks, warped.boxes)):
-        out[k] |= m & ~covered[r0:r1, c0:c1] & (best_k[r0:r1, c0:c1] == k)
+    missed = np.zeros((h, w), bool)  # a thin rim: footprint pixels whose nearest coarse label is not theirs
+    for m, (r0, r1, c0, c1) in zip(warped.patch_masks, warped.boxes):
+        missed[r0:r1, c0:c1] |= m & ~covered[r0:r1, c0:c1]
+    ys, xs = np.nonzero(missed)
+    best_w, best_k = np.zeros(len(ys), np.float32), np.full(len(ys), -1)
+    for k, (wk, (r0, r1, c0, c1)) in enumerate(zip(warped.patch_weights, warped.boxes)):  # the largest feather weight
+        inside = np.flatnonzero((ys >= r0) & (ys < r1) & (xs >= c0) & (xs < c1))
+        wv = wk[ys[inside] - r0, xs[inside] - c0]
+        better = wv > best_w[inside]
+        best_w[inside[better]], best_k[inside[better]] = wv[better], k
+    for k, (r0, r1, c0, c1) in enumerate(warped.boxes):
+        mine = best_k == k
+        out[k][ys[mine] - r0, xs[mine] - c0] = True
     return out
 
 
@@ -744,10 +758,11 @@ def _fill_outside(img: np.ndarray, mask: np.ndarray, levels: int) -> np.ndarray:
     a, w = stack[-1]
     filled = a / np.maximum(w, 1e-6)[..., None]
     for a, w in reversed(stack[1:-1]):
-        up = cv2.pyrUp(filled, dstsize=(w.shape[1], w.shape[0])).reshape(a.shape)
+        filled = cv2.pyrUp(filled, dstsize=(w.shape[1], w.shape[0])).reshape(a.shape)
         own = a / np.maximum(w, 1e-6)[..., None]
-        t = np.minimum(w * 4, 1)[..., None]  # trust the pixel's own (normalised) value where it has support
-        filled = up + t * (own - up)
+        own -= filled
+        own *= np.minimum(w * 4, 1)[..., None]  # trust the pixel's own (normalised) value where it has support
+        filled += own  # up + t (own - up)
     # full resolution: the image itself inside the mask, the pulled-up fill outside
     up = cv2.pyrUp(filled, dstsize=(mask.shape[1], mask.shape[0])).reshape(img.shape)
     np.copyto(up, img, where=mask[..., None])
@@ -813,9 +828,16 @@ def laplacian_blend(images: Sequence[np.ndarray], masks: Sequence[np.ndarray], l
                       [f[r0:r1, c0:c1] for f, (r0, r1, c0, c1) in zip(feet, boxes)], boxes, masks[0].shape, levels)
 
 
-def _multiband(images: list, masks: list, feet: list, boxes: list, shape: tuple, levels: int) -> np.ndarray:
+def _multiband(images: list, masks: list, feet: list, boxes: list, shape: tuple, levels: int, *,
+               extended: bool = False) -> np.ndarray:
     """:func:`laplacian_blend` of images given in boxes of the canvas: ``images[k]``, ``masks[k]``
-    (seam) and ``feet[k]`` (footprint) cover the canvas pixels ``boxes[k] = (r0, r1, c0, c1)``."""
+    (seam) and ``feet[k]`` (footprint) cover the canvas pixels ``boxes[k] = (r0, r1, c0, c1)``.
+
+    Each image is extended beyond its footprint before its pyramid is built: by push-pull
+    (:func:`_fill_outside`), or, if ``extended`` (the images already repeat their edge
+    pixels outside the footprint, as :func:`warp_images` makes them), by repeating the
+    box's border pixels, as OpenCV's multi-band blender does.
+    """
     import cv2
 
     h, w = shape
@@ -845,16 +867,21 @@ def _multiband(images: list, masks: list, feet: list, boxes: list, shape: tuple,
             y1 = min(h, y0 + -(-(y1 - y0) // step) * step)
         if x1 < w:
             x1 = min(w, x0 + -(-(x1 - x0) // step) * step)
-        # the image's box pasted into that (larger) aligned box
-        sub = np.zeros((y1 - y0, x1 - x0, nch), np.float32)
-        valid = np.zeros((y1 - y0, x1 - x0), bool)
+        # the image's box placed in that aligned box (each may stick out of the other)
         mk0 = np.zeros((y1 - y0, x1 - x0), np.float32)
         ys, xs = slice(max(r0, y0) - y0, min(r1, y1) - y0), slice(max(c0, x0) - x0, min(c1, x1) - x0)
         ps, qs = slice(max(r0, y0) - r0, min(r1, y1) - r0), slice(max(c0, x0) - c0, min(c1, x1) - c0)
-        sub[ys, xs] = img[ps, qs]
-        valid[ys, xs] = foot[ps, qs] | m[ps, qs]
         mk0[ys, xs] = m[ps, qs]
-        g = [_fill_outside(sub, valid, levels).astype(np.float32, copy=False)]
+        if extended:
+            sub = cv2.copyMakeBorder(np.ascontiguousarray(img[ps, qs], np.float32), ys.start, y1 - y0 - ys.stop,
+                                     xs.start, x1 - x0 - xs.stop, cv2.BORDER_REPLICATE).reshape(mk0.shape + (nch,))
+            g = [sub]
+        else:
+            sub = np.zeros((y1 - y0, x1 - x0, nch), np.float32)
+            valid = np.zeros((y1 - y0, x1 - x0), bool)
+            sub[ys, xs] = img[ps, qs]
+            valid[ys, xs] = foot[ps, qs] | m[ps, qs]
+            g = [_fill_outside(sub, valid, levels).astype(np.float32, copy=False)]
         mk = [mk0]
         for _ in range(levels):
             g.append(cv2.pyrDown(g[-1]))
@@ -941,7 +968,8 @@ def blend(warped: WarpedImages, method: str = "multiband", *, gains: ArrayLike |
         seams = dp_seam_masks(warped)
     elif seams is None:  # the Voronoi masks lie inside each image's footprint, so inside its box
         seams = [sk[r0:r1, c0:c1] for sk, (r0, r1, c0, c1) in zip(seam_masks(warped.weights), boxes)]
-    return _multiband(imgs, seams, warped.patch_masks, boxes, warped.shape, check_integer(levels, "levels", minimum=1))
+    return _multiband(imgs, seams, warped.patch_masks, boxes, warped.shape, check_integer(levels, "levels", minimum=1),
+                      extended=True)
 
 
 # --------------------------------------------------------------------------- the pipeline

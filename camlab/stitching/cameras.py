@@ -32,7 +32,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validate import DegenerateError, check_matrix
-from ..camera import rotation_from_axis_angle
+from ..camera import nearest_rotation, rotation_from_axis_angle
 from ..optimize import huber_residuals, levenberg_marquardt
 
 __all__ = ["BundleResult", "CameraEstimate", "HomographyAdjustment", "adjust_homographies", "bundle_adjust", "estimate_cameras", "estimate_focal",
@@ -126,8 +126,7 @@ def _nearest_rotation(M: np.ndarray) -> np.ndarray:
     d = np.linalg.det(M)
     if not np.isfinite(d) or abs(d) < 1e-300:
         raise DegenerateError("initial_rotations: a homography is singular; it cannot come from a rotation")
-    U, _, Vt = np.linalg.svd(M / np.cbrt(d))
-    return U @ np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Vt))]) @ Vt
+    return nearest_rotation(M / np.cbrt(d))
 
 
 def initial_rotations(ref_from_k: Sequence[np.ndarray | None], Ks: Sequence[np.ndarray | None]) -> list:

@@ -138,7 +138,9 @@ def warp_to_canvas(image: np.ndarray, K: np.ndarray, R: np.ndarray, canvas: Canv
 
     Returns the warped (r1-r0, c1-c0, C) patch, its bool mask (the pixel sees the image, in
     front of the camera) and, if given, ``extra`` (an (h, w) float32 channel such as feather
-    weights) warped the same way.
+    weights) warped the same way (zero outside the mask). Outside the mask the patch repeats
+    the image's nearest edge pixels (``cv2.BORDER_REPLICATE``): a pyramid built on it sees no
+    black border. Use the mask to tell the two apart.
     """
     import cv2
 
@@ -156,9 +158,9 @@ def warp_to_canvas(image: np.ndarray, K: np.ndarray, R: np.ndarray, canvas: Canv
         mv = np.where(ahead, p[1] / p[2], -10).astype(np.float32)
     h, w = image.shape[:2]
     mask = ahead & (mu >= -0.5) & (mu <= w - 0.5) & (mv >= -0.5) & (mv <= h - 0.5)
-    warped = []
-    for src in (image, extra) if extra is not None else (image,):
-        out = cv2.remap(src, mu, mv, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE).reshape(mu.shape + src.shape[2:])
-        out[~mask] = 0
-        warped.append(out)
-    return warped[0], mask, (warped[1] if extra is not None else None)
+    out = cv2.remap(image, mu, mv, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE).reshape(mu.shape + image.shape[2:])
+    if extra is None:
+        return out, mask, None
+    more = cv2.remap(extra, mu, mv, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE).reshape(mu.shape + extra.shape[2:])
+    more[~mask] = 0
+    return out, mask, more
