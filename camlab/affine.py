@@ -35,12 +35,12 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._validate import (
-    CamlabInputError, DegenerateError, as_point_pairs, as_points, check_finite, check_matrix, check_positive, check_rotation,
+    CamlabInputError, DegenerateError, as_float, as_point_pairs, as_points, check_finite, check_matrix, check_positive, check_rotation,
 )
-from .camera import Camera, project_points, project_segments
+from .camera import Camera, intrinsic_matrix, orbit_eye, project_points, project_segments
 
 __all__ = [
-    "affine_approximation", "dolly_zoom_focal", "estimate_affine_camera", "image_of_direction",
+    "affine_approximation", "dolly_zoom_camera", "dolly_zoom_errors", "dolly_zoom_focal", "estimate_affine_camera", "image_of_direction",
     "is_affine", "orthographic_matrix", "scaled_orthographic_matrix", "ThreeImages", "three_images",
     "weak_perspective_error", "weak_perspective_matrix",
 ]
@@ -178,6 +178,37 @@ def affine_approximation(camera: Camera, reference_point: ArrayLike) -> np.ndarr
     E[:2, 3] = camera.t[:2]
     E[2, 3] = d0
     return camera.K @ E / d0
+
+
+def dolly_zoom_camera(distance: float, azimuth: float, elevation: float, target: ArrayLike, f0: float = 800.0,
+                      d0: float = 4.0, principal_point: tuple[float, float] = (320.0, 240.0)) -> Camera:
+    """A camera ``distance`` metres from ``target`` on the orbit (``azimuth``, ``elevation``, radians:
+    :func:`camlab.camera.orbit_eye`), looking at it, zoomed to :func:`dolly_zoom_focal` ``(f0, d0, distance)``
+    so the target keeps the size it has at ``d0`` with focal length ``f0`` (pixels). See lesson 05, section 2.
+    """
+    distance = check_positive(distance, "distance", "metres")
+    f = dolly_zoom_focal(f0, d0, distance)
+    return Camera.look_at(orbit_eye(azimuth, elevation, distance, target), target,
+                          K=intrinsic_matrix(f, f, *principal_point))
+
+
+def dolly_zoom_errors(points_world: ArrayLike, distances: ArrayLike, azimuth: float, elevation: float,
+                      target: ArrayLike, f0: float = 800.0, d0: float = 4.0) -> np.ndarray:
+    """RMS pixel distance between the perspective and weak-perspective images of ``points_world`` along a
+    dolly zoom: one value per distance of :func:`dolly_zoom_camera`, weak perspective about ``target``.
+
+    The object keeps its image size while the depth range shrinks relative to the distance, so
+    the error falls like 1 / d (lesson 05, section 2).
+    """
+    ds = as_float(distances, "distances")
+    if ds.ndim != 1 or len(ds) == 0 or not np.all(np.isfinite(ds) & (ds > 0)):
+        raise CamlabInputError(f"distances: expected a non-empty 1-D array of positive distances in metres, got "
+                               f"{np.array2string(ds, precision=3, threshold=6)} (shape {ds.shape})")
+    out = []
+    for d in ds:
+        cam = dolly_zoom_camera(d, azimuth, elevation, target, f0, d0)
+        out.append(np.sqrt(np.mean(weak_perspective_error(cam, points_world, target) ** 2)))
+    return np.array(out)
 
 
 class ThreeImages(NamedTuple):

@@ -242,3 +242,14 @@ def test_three_images_of_a_scene(cam):
         assert np.allclose(d[:, 0] * d[0, 1] - d[:, 1] * d[0, 0], 0, atol=1e-9)
     with pytest.raises(CamlabInputError, match="segments"):
         af.three_images(cam, segs[:, 0])
+
+
+def test_dolly_zoom_camera_keeps_the_target_size_and_the_error_falls_like_one_over_d():
+    target = np.array([0.0, 0.0, 0.5])
+    near, far = (af.dolly_zoom_camera(d, np.radians(-40), np.radians(20), target) for d in (4.0, 16.0))
+    assert np.isclose(np.linalg.norm(near.centre - target), 4.0) and np.isclose(far.K[0, 0], 4 * near.K[0, 0])
+    np.testing.assert_allclose(near.project(target), [320.0, 240.0], atol=1e-9)  # looking at it
+    cube = box_wireframe((0, 0, 0.5), (1, 1, 1)).reshape(-1, 3)
+    d = np.array([8.0, 16.0, 32.0])
+    rms = af.dolly_zoom_errors(cube, d, np.radians(-40), np.radians(20), target)
+    np.testing.assert_allclose(rms[:-1] / rms[1:], 2.0, rtol=0.05)  # doubling the distance halves the error

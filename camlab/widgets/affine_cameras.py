@@ -18,6 +18,7 @@ from ._base import FigureView, build_demo, register, slider
 
 TARGET = np.array([0.0, 0.0, 0.5])
 F0, D0 = 800.0, 4.0  # reference focal length (px) and distance (m) for the dolly zoom
+DOLLY_VIEW = np.radians([-40.0, 20.0])  # the dolly zoom demo's azimuth and elevation
 
 
 def _image_panel(ax, title, size=(640, 480), tick_labels=True):
@@ -54,10 +55,8 @@ def three_cameras():
     }
 
     def update(v, state):
-        f = af.dolly_zoom_focal(F0, D0, v["distance"])
-        K = cm.intrinsic_matrix(f, f, 320, 240)
-        cam = cm.Camera.look_at(cm.orbit_eye(*np.radians([v["azimuth"], v["elevation"]]), v["distance"], TARGET),
-                                TARGET, K=K)
+        cam = af.dolly_zoom_camera(v["distance"], *np.radians([v["azimuth"], v["elevation"]]), TARGET, F0, D0)
+        f = cam.K[0, 0]
         p, w, o, P_weak, _ = af.three_images(cam, scene)
         scene3d.update_segments(persp, p)
         scene3d.update_segments(weak, w)
@@ -68,18 +67,6 @@ def three_cameras():
 
     return build_demo("three_cameras", controls, view, update,
                       title="One scene, three cameras (red: the perspective image, for comparison)")
-
-
-def dolly_curve(distances: np.ndarray, points: np.ndarray, azimuth=-40.0, elevation=20.0) -> np.ndarray:
-    """RMS pixel difference between perspective and weak perspective along a dolly zoom."""
-    out = []
-    for d in distances:
-        f = af.dolly_zoom_focal(F0, D0, d)
-        cam = cm.Camera.look_at(cm.orbit_eye(np.radians(azimuth), np.radians(elevation), d, TARGET), TARGET,
-                                K=cm.intrinsic_matrix(f, f, 320, 240))
-        e = af.weak_perspective_error(cam, points, TARGET)
-        out.append(np.sqrt(np.mean(e ** 2)))
-    return np.array(out)
 
 
 @register(lesson="05", sweep={"distance": [1.8, 6.0, 40.0]})
@@ -94,7 +81,7 @@ def dolly_zoom():
     (persp,) = ax_img.plot([], [], color="k", lw=1.3)
     (weak,) = ax_img.plot([], [], color=palette.ORANGE, lw=1.3, ls="--")
     distances = np.geomspace(1.6, 60.0, 60)
-    curve = dolly_curve(distances, pts)
+    curve = af.dolly_zoom_errors(pts, distances, *DOLLY_VIEW, TARGET, F0, D0)
     depth_ratio = np.sqrt(3.0) / distances  # the cube's depth range (its diagonal) over its distance
     ax_err.loglog(distances, curve, color="tab:blue", lw=1.5)
     ax_err.set_xlabel("distance d (m), focal length f = f0 d / d0", fontsize=8)
@@ -115,9 +102,8 @@ def dolly_zoom():
 
     def update(v, state):
         d = float(v["distance"])
-        f = af.dolly_zoom_focal(F0, D0, d)
-        cam = cm.Camera.look_at(cm.orbit_eye(np.radians(-40.0), np.radians(20.0), d, TARGET), TARGET,
-                                K=cm.intrinsic_matrix(f, f, 320, 240))
+        cam = af.dolly_zoom_camera(d, *DOLLY_VIEW, TARGET, F0, D0)
+        f = cam.K[0, 0]
         P_weak = af.affine_approximation(cam, TARGET)
         scene3d.update_segments(persp, cm.project_segments(cam, cube))
         scene3d.update_segments(weak, cm.project_segments(P_weak, cube))
