@@ -102,6 +102,29 @@ def test_mutual_check_equals_opencv_cross_check(pair):
         ft.filter_matches(knn, 0.8, mutual=True)
 
 
+def test_flann_index_agrees_with_brute_force(pair):
+    """The FLANN path (one index per image, reused across pairs) finds nearly the same ratio-test
+    matches as brute force, with the same (unsquared L2) distances where it finds the same neighbour."""
+    s, (f1, f2) = pair
+    bf = ft.match_features(f1, f2, ratio=0.75)
+    index = ft.flann_index(f2)
+    knn = ft.knn_match(f1, f2, backward=True, index2=index)
+    exact = ft.knn_match(f1, f2)
+    same = knn.nn12[:, 0] == exact.nn12[:, 0]
+    assert np.allclose(knn.d12[same, 0], exact.d12[same, 0], rtol=1e-5)
+    fl = ft.filter_matches(knn, 0.75)
+    both = set(zip(fl.idx1.tolist(), fl.idx2.tolist())) & set(zip(bf.idx1.tolist(), bf.idx2.tolist()))
+    assert len(both) >= 0.9 * len(bf.idx1) and len(fl.idx1) <= 1.05 * len(bf.idx1)
+    H = s.true_homography(1, 2)
+    right, right_bf = hg.transfer_error(H, fl.src, fl.dst) < 2.0, hg.transfer_error(H, bf.src, bf.dst) < 2.0
+    assert right.sum() >= 0.9 * right_bf.sum() and right.mean() >= right_bf.mean() - 0.02
+    again = ft.filter_matches(ft.knn_match(f1, f2, backward=False, index2=index), 0.75)  # the index is reusable
+    assert np.array_equal(again.idx1, fl.idx1)
+    assert (knn.nn21 >= 0).all() and (knn.nn21[fl.idx2] == fl.idx1).mean() > 0.9  # the backward pass
+    with pytest.raises(CamlabInputError, match="features: expected SIFT features"):
+        ft.flann_index(ft.detect_features(s.images[1], "orb", 500))
+
+
 def test_orb_matching_uses_hamming(pair):
     """ORB, the fast option: binary descriptors, Hamming distances, coarser keypoint positions."""
     full = sd.load_panorama_set()
