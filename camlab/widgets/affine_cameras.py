@@ -116,18 +116,6 @@ def dolly_zoom():
     return build_demo("dolly_zoom", controls, view, update, title="Dolly zoom: when is weak perspective good enough?")
 
 
-NEAR_FAR = (-2.0, 20.0)  # the two sleeper gaps compared for foreshortening (the camera stands at y = -4)
-
-
-def sleeper_gaps(P: np.ndarray) -> tuple[float, float]:
-    """Image length (px) of a 1 m stretch of track near the camera and far away, under camera P."""
-    gaps = []
-    for y in NEAR_FAR:
-        a, b = cm.project_points(P, np.array([[0.0, y, 0.0], [0.0, y + 1.0, 0.0]]))
-        gaps.append(float(np.linalg.norm(b - a)))
-    return gaps[0], gaps[1]
-
-
 # Yaw and pitch stay within the field of view (f = 500 px: half-angles 33 and 26 degrees), so
 # the perspective image always shows the vanishing point or the track, like the affine one.
 @register(lesson="05", sweep={"yaw": [-30, 30], "pitch": [2, 40]})
@@ -175,7 +163,7 @@ def parallel_rails():
         l_h = np.cross(af.image_of_direction(cam.P, [1.0, 0.0, 0.0]), v_p)
         us = np.array([-1.0, 641.0])
         horizon.set_data(us, -(l_h[0] * us + l_h[2]) / l_h[1] if abs(l_h[1]) > 1e-12 else [np.nan, np.nan])
-        gaps = {"perspective": sleeper_gaps(cam.P), "affine": sleeper_gaps(P_aff)}
+        gaps = {"perspective": scenes.sleeper_gaps(cam.P), "affine": scenes.sleeper_gaps(P_aff)}
         for text, (near, far) in zip(texts, gaps.values()):
             text.set_text(f"1 m of track: {near:5.1f} px near\n              {far:5.1f} px at 20 m")
         state.update(vanishing_point=vpt, affine_direction=v_a, camera=cam, P_affine=P_aff, horizon=l_h,
