@@ -56,7 +56,7 @@ def three_cameras():
 
     def update(v, state):
         cam = af.dolly_zoom_camera(v["distance"], *np.radians([v["azimuth"], v["elevation"]]), TARGET, F0, D0)
-        f = cam.K[0, 0]
+        f = float(cam.K[0, 0])
         p, w, o, P_weak, _ = af.three_images(cam, scene)
         scene3d.update_segments(persp, p)
         scene3d.update_segments(weak, w)
@@ -103,7 +103,7 @@ def dolly_zoom():
     def update(v, state):
         d = float(v["distance"])
         cam = af.dolly_zoom_camera(d, *DOLLY_VIEW, TARGET, F0, D0)
-        f = cam.K[0, 0]
+        f = float(cam.K[0, 0])
         P_weak = af.affine_approximation(cam, TARGET)
         scene3d.update_segments(persp, cm.project_segments(cam, cube))
         scene3d.update_segments(weak, cm.project_segments(P_weak, cube))
