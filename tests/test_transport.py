@@ -138,3 +138,18 @@ def test_haloed_lines_draw_as_two_plain_passes_that_look_the_same():
 
     diff = np.abs(drawn(True) - drawn(False)).max(axis=2)
     assert diff.mean() < 3.0 and (diff > 60).mean() < 0.02  # antialiased edges differ by a pixel
+
+
+def test_rotated_or_clipped_images_keep_matplotlibs_drawing():
+    from matplotlib.patches import Circle
+    from matplotlib.transforms import Affine2D
+
+    from camlab.widgets import FigureView
+
+    view = FigureView(figsize=(4, 3), mode="agg", dpi=60)
+    ax = view.fig.add_subplot()
+    rotated = view.animate(ax.imshow(np.random.default_rng(0).random((30, 40))))
+    rotated.set_transform(Affine2D().rotate_deg(30) + ax.transData)
+    clipped = view.animate(ax.imshow(np.random.default_rng(1).random((30, 40))))
+    clipped.set_clip_path(Circle((20, 15), 10, transform=ax.transData))
+    assert _transport._screen_image(rotated) is None and _transport._screen_image(clipped) is None

@@ -108,13 +108,15 @@ def _screen_image(image: Any) -> tuple[np.ndarray, int, int] | None:
     a = image.get_array()
     alpha = image.get_alpha()
     canvas = image.get_figure(root=True).canvas
+    transform = image.get_transform()
     if (np.ma.isMaskedArray(a) and np.ma.getmaskarray(a).any()) or (alpha is not None and np.ndim(alpha) > 0) \
-            or getattr(canvas, "is_saving", lambda: False)() or not image.get_transform().is_affine:
-        return None
+            or getattr(canvas, "is_saving", lambda: False)() or image.get_clip_path() is not None \
+            or not transform.is_affine or np.any(transform.get_affine().get_matrix()[[0, 1], [1, 0]] != 0):
+        return None  # masked, per-pixel alpha, a clip path, or a rotated or sheared image: matplotlib's way
     a = np.ma.getdata(a)
     x0, x1, y0, y1 = image.get_extent()
     row0_y = y1 if image.origin == "upper" else y0  # the data row 0 sits at this edge of the extent
-    (u_left, v_row0), (u_right, v_rowN) = image.get_transform().transform(
+    (u_left, v_row0), (u_right, v_rowN) = transform.transform(
         [(x0, row0_y), (x1, y0 + y1 - row0_y)])
     if u_right < u_left:
         a = a[:, ::-1]
