@@ -86,9 +86,9 @@ def transformation_hierarchy() -> Demo:
     grid_lines += [np.column_stack([np.linspace(0, pw - 1, 20), np.full(20, y)]) for y in np.linspace(0, ph - 1, 4)]
     grid_points = np.vstack(grid_lines)  # every line has 20 points; drawn as one artist, NaN-separated,
     grid_art = view.animate(ax.plot([], [], color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0])  # one outline
-    title = view.animate(ax.text(0.01, 0.98, "", transform=ax.transAxes, va="top", fontsize=10,
-                                 bbox=dict(fc="white", ec="0.7", alpha=0.9)))
-    ax.legend(loc="lower right", fontsize=8)
+    ax.set_title("the picture mapped by H (group and dof in the readout)", fontsize=10)
+    # beside the axes: over the warped picture the legend would need a redraw per update
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
     on_top(view, ax)
     warning = _warning(view, ax)
     picture_corners = np.array([[0, 0], [pw - 1, 0], [pw - 1, ph - 1], [0, ph - 1]], float)
@@ -107,8 +107,7 @@ def transformation_hierarchy() -> Demo:
         torn = splits_at_infinity(H, picture_corners)
         warning(TORN if torn else "")
         state.update(H=Hg, group=v["group"], classified=kind, dof=info["dof"], torn=torn)
-        title.set_text(f"{v['group']}: {info['dof']} dof")
-        readout.value = monospace("H =\n" + np.array2string(Hg, precision=4, suppress_small=True)
+        readout.value = monospace(f"{v['group']}: {info['dof']} dof\nH =\n" + np.array2string(Hg, precision=4, suppress_small=True)
                              + f"\nsmallest group holding H: {kind}\nkeeps: " + ", ".join(info["invariants"][:4]))
 
     controls = {
