@@ -258,9 +258,9 @@ def match_graph(features: Sequence[_feat.Features], *, ratio: float = 0.75, mutu
     if n < 2:
         raise CamlabInputError(f"features: expected the features of at least 2 images, got {n}")
     rng = np.random.default_rng(0) if rng is None else rng
-    # FLANN: index each image's descriptors once, not once per pair
-    index = [_feat.flann_index(f) if approximate and f.method == "sift" and len(f.points) >= 2 else None
-             for f in feats]
+    # FLANN: index each image's descriptors once (images 1..n-1 are searched), not once per pair
+    index = [_feat.flann_index(f) if k and approximate and f.method == "sift" and len(f.points) >= 2 else None
+             for k, f in enumerate(feats)]
     pairs = {}
     for i in range(n):
         for j in range(i + 1, n):
