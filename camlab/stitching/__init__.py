@@ -897,11 +897,13 @@ def _multiband(images: list, masks: list, feet: list, boxes: list, shape: tuple,
             hh, ww = mk[lv].shape
             acc[lv][oy:oy + hh, ox:ox + ww] += band
             wsum[lv][oy:oy + hh, ox:ox + ww] += mk[lv]
-    bands = [a / np.maximum(s, 1e-6)[..., None] for a, s in zip(acc, wsum)]
-    out = bands[-1]
+    for a, s in zip(acc, wsum):  # each band's weighted mean, in place
+        np.divide(a, np.maximum(s, 1e-6)[..., None], out=a)
+    out = acc[-1]
     for lv in range(levels - 1, -1, -1):
-        out = cv2.pyrUp(out, dstsize=(bands[lv].shape[1], bands[lv].shape[0])).reshape(bands[lv].shape) + bands[lv]
-    out = np.clip(out, 0, 1, out=out).astype(np.float32, copy=False)
+        out = cv2.pyrUp(out, dstsize=(acc[lv].shape[1], acc[lv].shape[0])).reshape(acc[lv].shape)
+        out += acc[lv]
+    np.clip(out, 0, 1, out=out)
     out[~union] = 0
     return out
 
