@@ -16,9 +16,9 @@ data generators (:mod:`camlab.data`) build the same scenes:
   :func:`house_wireframe`, :func:`ground_grid`, :func:`plane_outlines`;
 - **the lessons' scenes and synthetic data**, built here once for the lesson and its demos:
   :func:`box_before_wall` (01), :func:`depth_of_field_scene` (02), :func:`photo_and_page` (03),
-  :func:`house_scene`, :func:`resection_set` (04), :func:`box_and_rails`, :func:`rail_track` (05),
-  :func:`ground_plane_view` (06), :func:`outlier_matches` (07), :func:`stereo_pair`,
-  :func:`forward_pair` (11).
+  :func:`house_scene`, :func:`resection_set` (04), :func:`box_and_rails`, :func:`rail_track`,
+  :func:`sleeper_gaps` (05), :func:`ground_plane_view` (06), :func:`outlier_matches` (07),
+  :func:`stereo_pair`, :func:`forward_pair` (11).
 
 Conventions (docs/conventions.md): metres; a plane's frame has x along texture columns,
 y along texture rows, z = x cross y; poses say their direction (``world_from_plane``).
@@ -37,7 +37,7 @@ from ._validate import (
     CamlabInputError, check_integer, check_matrix, check_number, check_pose, check_positive, check_rotation, check_shape,
     check_size,
 )
-from .camera import Camera, look_at_rotation, orbit_eye, rotation_from_axis_angle, rotation_from_euler
+from .camera import Camera, look_at_rotation, orbit_eye, project_points, rotation_from_axis_angle, rotation_from_euler
 from .homography import pose_homography
 from .projective import map_points
 from .warp import warp_perspective
@@ -48,7 +48,8 @@ __all__ = [
     "ground_plane_view", "GroundView", "house_picture", "house_scene", "house_wireframe", "look_at_plane",
     "noise_texture", "outlier_matches", "OutlierMatches", "page_texture", "painting_texture", "photo_and_page",
     "photo_plane", "photograph_plane", "Plane", "plane_outlines", "PlanePhoto", "portrait", "rail_track",
-    "resection_set", "ResectionSet", "sample_photo", "stereo_pair", "text_page", "textured_plane", "wall_texture",
+    "resection_set", "ResectionSet", "sample_photo", "sleeper_gaps", "stereo_pair", "text_page", "textured_plane",
+    "wall_texture",
 ]
 
 
@@ -705,6 +706,17 @@ def rail_track(start: float = -3.0, end: float = 40.0) -> np.ndarray:
     rails = np.array([[[x, start, 0.0], [x, end, 0.0]] for x in (-1.5, -0.5, 0.5, 1.5)])
     sleepers = np.array([[[-1.7, y, 0.0], [1.7, y, 0.0]] for y in np.arange(start, end, 1.0)])
     return np.concatenate([rails, sleepers])
+
+
+def sleeper_gaps(P: ArrayLike, at: Sequence[float] = (-2.0, 20.0)) -> np.ndarray:
+    """Lesson 05: the image length (pixels) under the camera matrix ``P`` of one metre of :func:`rail_track`
+    (the ground line x = 0 from y to y + 1) for each y in ``at`` metres: equal for an affine
+    camera, shrinking with distance for a perspective one (foreshortening)."""
+    ys = np.atleast_1d(np.asarray(at, dtype=float))
+    zero = np.zeros_like(ys)
+    near_end = project_points(P, np.column_stack([zero, ys, zero]))
+    far_end = project_points(P, np.column_stack([zero, ys + 1.0, zero]))
+    return np.linalg.norm(far_end - near_end, axis=1)
 
 
 class CameraPair(NamedTuple):

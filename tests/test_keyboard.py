@@ -46,10 +46,17 @@ def _mouse_callbacks(fig) -> int:
     return count
 
 
+def _widgets(widget):
+    yield widget
+    for child in getattr(widget, "children", ()):
+        yield from _widgets(child)
+
+
 @pytest.mark.parametrize("name", sorted(DEMOS))
-def test_every_canvas_mouse_action_has_a_swept_keyboard_twin(name):
+def test_no_autoplay_and_every_canvas_mouse_action_has_a_swept_keyboard_twin(name):
     spec = DEMOS[name]
     demo = spec.builder()
+    assert not [w for w in _widgets(demo.widget) if isinstance(w, W.Play)], f"{name} plays by itself"
     if _mouse_callbacks(demo.figure) == 0:
         assert name not in KEYBOARD_TWINS, f"{name} takes no mouse input now: drop it from KEYBOARD_TWINS"
         return
@@ -102,16 +109,8 @@ def test_resectioning_shift_sliders_do_what_a_click_does():
     np.testing.assert_allclose(keyed.state["P"], clicked.state["P"], atol=1e-9)
 
 
-def _widgets(widget):
-    yield widget
-    for child in getattr(widget, "children", ()):
-        yield from _widgets(child)
-
-
-def test_nothing_animates_on_its_own():
-    """No demo holds a Play widget, and no camlab code starts a timer or an animation."""
-    for name, spec in DEMOS.items():
-        assert not [w for w in _widgets(spec.builder().widget) if isinstance(w, W.Play)], f"{name} plays by itself"
+def test_no_camlab_code_starts_a_timer_or_an_animation():
+    """Nothing moves on its own (WCAG 2.2.2); the per-demo test above checks for Play widgets."""
     package = Path(__file__).resolve().parent.parent / "camlab"
     moving = re.compile(r"new_timer|FuncAnimation|ArtistAnimation|\bW\.Play\b|widgets\.Play\b|asyncio\.sleep|threading\.Timer")
     found = [f"{p.relative_to(package)}:{i}" for p in package.rglob("*.py")

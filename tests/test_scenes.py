@@ -141,3 +141,14 @@ def test_outlier_matches_hold_the_stated_fraction_of_wrong_pairs():
     assert err[~m.is_outlier].max() < 6 and np.median(err[m.is_outlier]) > 30
     with pytest.raises(ValueError, match="outlier_fraction"):
         scenes.outlier_matches(1.5)
+
+
+def test_sleeper_gaps_show_foreshortening_only_in_perspective():
+    from camlab import affine, camera
+
+    eye = np.array([0.0, -4.0, 2.0])
+    cam = camera.Camera.look_at(eye, eye + [0.0, np.cos(0.26), -np.sin(0.26)], K=camera.intrinsic_matrix(500, 500, 320, 240))
+    near, far = scenes.sleeper_gaps(cam.P)
+    assert near > 20 * far  # 1 m of track 2 m away against 24 m away
+    assert np.isclose(*scenes.sleeper_gaps(affine.affine_approximation(cam, [0.0, 6.0, 0.0])))
+    assert scenes.sleeper_gaps(cam.P, at=[0.0, 5.0, 10.0]).shape == (3,)

@@ -56,7 +56,7 @@ def three_cameras():
 
     def update(v, state):
         cam = af.dolly_zoom_camera(v["distance"], *np.radians([v["azimuth"], v["elevation"]]), TARGET, F0, D0)
-        f = cam.K[0, 0]
+        f = float(cam.K[0, 0])
         p, w, o, P_weak, _ = af.three_images(cam, scene)
         scene3d.update_segments(persp, p)
         scene3d.update_segments(weak, w)
@@ -103,7 +103,7 @@ def dolly_zoom():
     def update(v, state):
         d = float(v["distance"])
         cam = af.dolly_zoom_camera(d, *DOLLY_VIEW, TARGET, F0, D0)
-        f = cam.K[0, 0]
+        f = float(cam.K[0, 0])
         P_weak = af.affine_approximation(cam, TARGET)
         scene3d.update_segments(persp, cm.project_segments(cam, cube))
         scene3d.update_segments(weak, cm.project_segments(P_weak, cube))
@@ -114,18 +114,6 @@ def dolly_zoom():
                      depth_ratio=float(np.sqrt(3.0) / d), curve=(distances, curve, depth_ratio))
 
     return build_demo("dolly_zoom", controls, view, update, title="Dolly zoom: when is weak perspective good enough?")
-
-
-NEAR_FAR = (-2.0, 20.0)  # the two sleeper gaps compared for foreshortening (the camera stands at y = -4)
-
-
-def sleeper_gaps(P: np.ndarray) -> tuple[float, float]:
-    """Image length (px) of a 1 m stretch of track near the camera and far away, under camera P."""
-    gaps = []
-    for y in NEAR_FAR:
-        a, b = cm.project_points(P, np.array([[0.0, y, 0.0], [0.0, y + 1.0, 0.0]]))
-        gaps.append(float(np.linalg.norm(b - a)))
-    return gaps[0], gaps[1]
 
 
 # Yaw and pitch stay within the field of view (f = 500 px: half-angles 33 and 26 degrees), so
@@ -175,7 +163,7 @@ def parallel_rails():
         l_h = np.cross(af.image_of_direction(cam.P, [1.0, 0.0, 0.0]), v_p)
         us = np.array([-1.0, 641.0])
         horizon.set_data(us, -(l_h[0] * us + l_h[2]) / l_h[1] if abs(l_h[1]) > 1e-12 else [np.nan, np.nan])
-        gaps = {"perspective": sleeper_gaps(cam.P), "affine": sleeper_gaps(P_aff)}
+        gaps = {"perspective": scenes.sleeper_gaps(cam.P), "affine": scenes.sleeper_gaps(P_aff)}
         for text, (near, far) in zip(texts, gaps.values()):
             text.set_text(f"1 m of track: {near:5.1f} px near\n              {far:5.1f} px at 20 m")
         state.update(vanishing_point=vpt, affine_direction=v_a, camera=cam, P_affine=P_aff, horizon=l_h,
