@@ -102,12 +102,12 @@ lock: $(VENV)/.installed-test$(STAMP)
 	$(UV) pip compile pyproject.toml --all-extras --universal --python-version 3.11 --quiet --no-header \
 	  --custom-compile-command "make lock" -o $(LOCK)
 
-bench: $(VENV)/.installed-test$(STAMP)
+bench: $(VENV)/.installed-test$(STAMP) browser-deps
 	$(BIN)/python benchmarks/run.py
 
 # Slider keydown to changed canvas pixels in JupyterLab, headless Chromium, one demo per lesson.
 bench-browser: $(VENV)/.installed-test$(STAMP) browser-deps
-	$(BIN)/python benchmarks/latency.py --browser
+	$(BIN)/python benchmarks/browser_latency.py
 
 # Lessons are committed without outputs, execution counts or widget state.
 strip: $(VENV)/.installed-lab$(STAMP)

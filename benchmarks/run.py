@@ -1,4 +1,5 @@
-"""Every benchmark in one run: demo latency, import time, and camlab-versus-OpenCV speed ratios.
+"""Every benchmark in one run: demo latency (ipympl path and real browser), import time, and
+camlab-versus-OpenCV speed ratios.
 
 Each `benchmarks/speed_<topic>.py` provides `rows()` returning dicts with case, camlab_ms,
 opencv_ms, ratio, target and ok; this script prints them all as tables.
@@ -17,8 +18,7 @@ from _timing import print_table  # noqa: E402
 
 
 def main() -> int:
-    sys.argv = sys.argv[:1]
-    latency.main()
+    latency.main(["--browser"])  # the ipympl table with the real-browser columns
     failed = []
     for path in sorted(HERE.glob("speed_*.py")):
         module = importlib.import_module(path.stem)

@@ -60,9 +60,7 @@ def _alpha(artist, rgba) -> tuple:
 
 
 def _halo(artist, background: np.ndarray) -> np.ndarray:
-    """The outline a ``palette.halo`` path effect (or ``palette.halo_lines``) draws under the artist is its background."""
-    if getattr(artist, "halo_colour", None) is not None:
-        return drawn_over(_alpha(artist, to_rgba(artist.halo_colour)), background)
+    """The outline a ``palette.halo`` path effect draws under the artist is its background."""
     for effect in artist.get_path_effects() or ():
         if isinstance(effect, patheffects.Stroke) and "foreground" in effect._gc:
             outline = to_rgba(effect._gc["foreground"])

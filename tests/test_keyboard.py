@@ -53,10 +53,14 @@ def _widgets(widget):
 
 
 @pytest.mark.parametrize("name", sorted(DEMOS))
-def test_no_autoplay_and_every_canvas_mouse_action_has_a_swept_keyboard_twin(name):
+def test_every_control_is_named_nothing_autoplays_and_mouse_actions_have_keyboard_twins(name):
     spec = DEMOS[name]
     demo = spec.builder()
     assert not [w for w in _widgets(demo.widget) if isinstance(w, W.Play)], f"{name} plays by itself"
+    # A control's description is its visible label and its accessible name (the lecture view
+    # names slider handles after it): none may be empty.
+    unnamed = [key for key, control in demo.controls.items() if not str(control.description).strip()]
+    assert not unnamed, f"{name}: controls without a description (label): {unnamed}"
     if _mouse_callbacks(demo.figure) == 0:
         assert name not in KEYBOARD_TWINS, f"{name} takes no mouse input now: drop it from KEYBOARD_TWINS"
         return

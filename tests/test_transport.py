@@ -110,3 +110,46 @@ def test_screen_images_land_where_matplotlib_draws_them(origin, inverted, clippe
 def test_encoded_png_decodes_to_the_same_pixels(shape):
     rgba = np.random.default_rng(1).integers(0, 256, (*shape, 4), dtype=np.uint8)
     assert np.array_equal(_decode(_transport.encode_png(rgba)), rgba)
+
+
+def test_haloed_lines_draw_as_two_plain_passes_that_look_the_same():
+    """An animated haloed line (markers and a collection) draws without the per-path
+    path-effect renderer, and looks as the path effect draws it."""
+    from matplotlib.collections import LineCollection
+
+    from camlab.plotting import palette
+    from camlab.widgets import FigureView
+
+    def drawn(two_passes: bool) -> np.ndarray:
+        view = FigureView(figsize=(4, 3), mode="agg", dpi=60)
+        ax = view.fig.add_subplot()
+        ax.imshow(np.random.default_rng(0).random((30, 40)), cmap="gray")
+        dots = ax.plot(*np.random.default_rng(1).uniform(0, 30, (2, 50)), "o", ms=4, color=palette.GREEN,
+                       path_effects=palette.halo())[0]
+        lines = ax.add_collection(LineCollection([[(0, 0), (39, 29)], [(0, 29), (39, 0)]], colors=palette.RED,
+                                                 linewidths=1.0, path_effects=palette.halo(1.0)))
+        if two_passes:
+            view.animate(dots, lines)
+            assert "draw" in vars(dots) and "draw" in vars(lines) and dots.get_path_effects()
+            for artist in (dots, lines):
+                artist.set_animated(False)  # drawn by the full draw below, like a blitted frame
+        view.fig.canvas.draw()
+        return np.asarray(view.fig.canvas.buffer_rgba())[..., :3].astype(int)
+
+    diff = np.abs(drawn(True) - drawn(False)).max(axis=2)
+    assert diff.mean() < 3.0 and (diff > 60).mean() < 0.02  # antialiased edges differ by a pixel
+
+
+def test_rotated_or_clipped_images_keep_matplotlibs_drawing():
+    from matplotlib.patches import Circle
+    from matplotlib.transforms import Affine2D
+
+    from camlab.widgets import FigureView
+
+    view = FigureView(figsize=(4, 3), mode="agg", dpi=60)
+    ax = view.fig.add_subplot()
+    rotated = view.animate(ax.imshow(np.random.default_rng(0).random((30, 40))))
+    rotated.set_transform(Affine2D().rotate_deg(30) + ax.transData)
+    clipped = view.animate(ax.imshow(np.random.default_rng(1).random((30, 40))))
+    clipped.set_clip_path(Circle((20, 15), 10, transform=ax.transData))
+    assert _transport._screen_image(rotated) is None and _transport._screen_image(clipped) is None

@@ -48,14 +48,16 @@ def draw_matches(ax, image1: np.ndarray, image2: np.ndarray, src: np.ndarray, ds
     the ``offset`` of image 2, so a demo can update the segments
     (``art["good"].set_segments(match_segments(...))``).
     """
+    from matplotlib.collections import LineCollection
+
     both, off = side_by_side(image1, image2, gap)
     im = ax.imshow(both, interpolation="nearest")
     ax.set_xticks([])
     ax.set_yticks([])
     seg = match_segments(src, dst, off)
     g = np.ones(len(seg), bool) if good is None else np.asarray(good, bool)
-    lc_good = palette.halo_lines(seg[g], palette.GREEN, 0.8)
-    lc_bad = palette.halo_lines(seg[~g], palette.RED, 0.9)
+    lc_good = LineCollection(seg[g], colors=palette.GREEN, linewidths=0.8, path_effects=palette.halo(0.8))
+    lc_bad = LineCollection(seg[~g], colors=palette.RED, linewidths=0.9, path_effects=palette.halo(0.9))
     ax.add_collection(lc_good)
     ax.add_collection(lc_bad)
     ax.set(xlim=(-0.5, both.shape[1] - 0.5), ylim=(both.shape[0] - 0.5, -0.5))

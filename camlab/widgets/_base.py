@@ -28,7 +28,7 @@ from matplotlib.figure import Figure
 from matplotlib.image import AxesImage
 
 from ..plotting.static import demo_alt_text, static_bundle
-from ._transport import show_at_display_resolution, use_fast_png
+from ._transport import halo_in_two_passes, show_at_display_resolution, use_fast_png
 from .controls import slider as slider  # re-exported: every demo module imports it from here
 
 
@@ -86,11 +86,13 @@ class FigureView:
     def animate(self, *artists: Any) -> Any:
         """Register artists that updates move; returns them (one artist if one was given).
 
-        Images among them keep their data at the resolution they are shown.
+        Images among them keep their data at the resolution they are shown; haloed lines draw
+        their halo as a plain pass (see :mod:`._transport`).
         """
         for artist in artists:
             if isinstance(artist, AxesImage):
                 show_at_display_resolution(artist)
+            halo_in_two_passes(artist)
             artist.set_animated(True)
             self._animated.append(artist)
         return artists[0] if len(artists) == 1 else artists

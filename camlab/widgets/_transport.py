@@ -108,13 +108,15 @@ def _screen_image(image: Any) -> tuple[np.ndarray, int, int] | None:
     a = image.get_array()
     alpha = image.get_alpha()
     canvas = image.get_figure(root=True).canvas
+    transform = image.get_transform()
     if (np.ma.isMaskedArray(a) and np.ma.getmaskarray(a).any()) or (alpha is not None and np.ndim(alpha) > 0) \
-            or getattr(canvas, "is_saving", lambda: False)() or not image.get_transform().is_affine:
-        return None
+            or getattr(canvas, "is_saving", lambda: False)() or image.get_clip_path() is not None \
+            or not transform.is_affine or np.any(transform.get_affine().get_matrix()[[0, 1], [1, 0]] != 0):
+        return None  # masked, per-pixel alpha, a clip path, or a rotated or sheared image: matplotlib's way
     a = np.ma.getdata(a)
     x0, x1, y0, y1 = image.get_extent()
     row0_y = y1 if image.origin == "upper" else y0  # the data row 0 sits at this edge of the extent
-    (u_left, v_row0), (u_right, v_rowN) = image.get_transform().transform(
+    (u_left, v_row0), (u_right, v_rowN) = transform.transform(
         [(x0, row0_y), (x1, y0 + y1 - row0_y)])
     if u_right < u_left:
         a = a[:, ::-1]
@@ -164,3 +166,54 @@ def show_at_display_resolution(image: Any) -> None:
         return (rgba, left, bottom, None) if rgba.size else (None, 0, 0, None)
 
     image.set_data, image.set_extent, image.make_image = fitted_data, fitted_extent, screen_image
+
+
+def halo_in_two_passes(artist: Any) -> None:
+    """Draw a line's :func:`camlab.plotting.palette.halo` as a second plain pass, not a path effect.
+
+    A path effect makes matplotlib draw markers and collections one path at a time: 68 ms
+    per frame for the 2 x 300 haloed inlier dots of ``ransac_registration``, against about
+    1 ms for two plain passes. The artist keeps its declared path effect (what it looks
+    like); its ``draw`` first strokes it in the halo colour at the halo's width, then draws
+    it as itself. Artists without exactly one ``withStroke`` effect are left alone.
+    """
+    from matplotlib import patheffects
+    from matplotlib.collections import LineCollection
+    from matplotlib.lines import Line2D
+
+    effects = artist.get_path_effects() if hasattr(artist, "get_path_effects") else None
+    if not effects or len(effects) != 1 or not isinstance(effects[0], patheffects.withStroke) \
+            or not isinstance(artist, (Line2D, LineCollection)):
+        return
+    halo, width = effects[0]._gc.get("foreground", "white"), effects[0]._gc.get("linewidth", 2.0)
+
+    def draw(renderer: Any) -> None:
+        type(artist).draw(artist, renderer)  # the class's draw, looked up at each frame
+
+    # The stored style, not the getters' resolved one: a marker colour "auto" must stay "auto",
+    # and a collection's colours must not take in its alpha (its RGBA arrays already do).
+    stored = ({"color": "_original_edgecolor", "linewidth": "_us_lw"} if isinstance(artist, LineCollection) else
+              {key: "_" + key for key in ("color", "linewidth", "markeredgewidth", "markeredgecolor", "markerfacecolor")})
+
+    def halo_pass(renderer: Any) -> None:
+        plain = {key: getattr(artist, attr) for key, attr in stored.items()}
+        style = {"color": halo, "linewidth": width}
+        if isinstance(artist, Line2D):
+            hollow = isinstance(plain["markerfacecolor"], str) and plain["markerfacecolor"] == "none"
+            style.update(markeredgewidth=width, markeredgecolor=halo, markerfacecolor="none" if hollow else halo)
+        artist.set(**style)
+        draw(renderer)
+        artist.set(**plain)
+
+    def two_passes(renderer: Any) -> None:
+        callback, artist.stale_callback = artist.stale_callback, None  # restyling for a pass is no change
+        try:
+            artist.set_path_effects([])
+            halo_pass(renderer)
+            draw(renderer)
+        finally:
+            artist.set_path_effects(effects)
+            artist.stale_callback = callback
+
+    artist.draw = two_passes
+

@@ -84,10 +84,11 @@ def transformation_hierarchy() -> Demo:
     grid_u = np.linspace(0, pw - 1, 5)
     grid_lines = [np.column_stack([np.full(20, x), np.linspace(0, ph - 1, 20)]) for x in grid_u]
     grid_lines += [np.column_stack([np.linspace(0, pw - 1, 20), np.full(20, y)]) for y in np.linspace(0, ph - 1, 4)]
-    grid_artists = [view.animate(ax.plot([], [], color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0]) for _ in grid_lines]
-    title = view.animate(ax.text(0.01, 0.98, "", transform=ax.transAxes, va="top", fontsize=10,
-                                 bbox=dict(fc="white", ec="0.7", alpha=0.9)))
-    ax.legend(loc="lower right", fontsize=8)
+    grid_points = np.vstack(grid_lines)  # every line has 20 points; drawn as one artist, NaN-separated,
+    grid_art = view.animate(ax.plot([], [], color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0])  # one outline
+    ax.set_title("the picture mapped by H (group and dof in the readout)", fontsize=10)
+    # beside the axes: over the warped picture the legend would need a redraw per update
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
     on_top(view, ax)
     warning = _warning(view, ax)
     picture_corners = np.array([[0, 0], [pw - 1, 0], [pw - 1, ph - 1], [0, ph - 1]], float)
@@ -98,16 +99,15 @@ def transformation_hierarchy() -> Demo:
                               v["aspect"], v["tx"], v["ty"], v["v1"] * 1e-3, v["v2"] * 1e-3)
         H = hg.compose(C, Hg, P)
         im.set_data(warp_perspective(pic, H, canvas_hw, method="cv2", fill=255))
-        for art, line in zip(grid_artists, grid_lines):
-            m = map_points(H, line)
-            art.set_data(m[:, 0], m[:, 1])
+        m = map_points(H, grid_points).reshape(len(grid_lines), 20, 2)
+        m = np.concatenate([m, np.full((len(grid_lines), 1, 2), np.nan)], axis=1).reshape(-1, 2)
+        grid_art.set_data(m[:, 0], m[:, 1])
         info = hg.HIERARCHY[v["group"]]
         kind = hg.classify(Hg)
         torn = splits_at_infinity(H, picture_corners)
         warning(TORN if torn else "")
         state.update(H=Hg, group=v["group"], classified=kind, dof=info["dof"], torn=torn)
-        title.set_text(f"{v['group']}: {info['dof']} dof")
-        readout.value = monospace("H =\n" + np.array2string(Hg, precision=4, suppress_small=True)
+        readout.value = monospace(f"{v['group']}: {info['dof']} dof\nH =\n" + np.array2string(Hg, precision=4, suppress_small=True)
                              + f"\nsmallest group holding H: {kind}\nkeeps: " + ", ".join(info["invariants"][:4]))
 
     controls = {

@@ -77,7 +77,8 @@ def rectify_photo() -> Demo:
     view, ax_p, ax_r, im_p, im_r, quad = _photo_demo("photo: drag the orange corners", "rectified",
                                                      dict(ls="-", color=palette.ORANGE, lw=1.5, path_effects=palette.halo(1.5)))
     handles = view.animate(ax_p.plot([], [], "o", color=palette.ORANGE, ms=9, mec="k")[0])
-    chosen = view.animate(ax_p.plot([], [], "o", ms=16, mfc="none", mec="k", mew=2)[0])  # the corner the keys move
+    chosen = view.animate(ax_p.plot([], [], "o", ms=16, mfc="none", mec="k", mew=2,  # the corner the keys move
+                                    path_effects=palette.halo(2))[0])
     # a static key (canvas text costs ~4 ms per line per redraw); the numbers are in the readout
     ax_r.text(0.5, -0.02, "red dashed: the other focal length's shape; green dotted: the true shape",
               transform=ax_r.transAxes, ha="center", va="top", fontsize=8)
