@@ -258,9 +258,9 @@ def match_graph(features: Sequence[_feat.Features], *, ratio: float = 0.75, mutu
     if n < 2:
         raise CamlabInputError(f"features: expected the features of at least 2 images, got {n}")
     rng = np.random.default_rng(0) if rng is None else rng
-    # FLANN: index each image's descriptors once, not once per pair
-    index = [_feat.flann_index(f) if approximate and f.method == "sift" and len(f.points) >= 2 else None
-             for f in feats]
+    # FLANN: index each image's descriptors once (images 1..n-1 are searched), not once per pair
+    index = [_feat.flann_index(f) if k and approximate and f.method == "sift" and len(f.points) >= 2 else None
+             for k, f in enumerate(feats)]
     pairs = {}
     for i in range(n):
         for j in range(i + 1, n):
@@ -897,11 +897,13 @@ def _multiband(images: list, masks: list, feet: list, boxes: list, shape: tuple,
             hh, ww = mk[lv].shape
             acc[lv][oy:oy + hh, ox:ox + ww] += band
             wsum[lv][oy:oy + hh, ox:ox + ww] += mk[lv]
-    bands = [a / np.maximum(s, 1e-6)[..., None] for a, s in zip(acc, wsum)]
-    out = bands[-1]
+    for a, s in zip(acc, wsum):  # each band's weighted mean, in place
+        np.divide(a, np.maximum(s, 1e-6)[..., None], out=a)
+    out = acc[-1]
     for lv in range(levels - 1, -1, -1):
-        out = cv2.pyrUp(out, dstsize=(bands[lv].shape[1], bands[lv].shape[0])).reshape(bands[lv].shape) + bands[lv]
-    out = np.clip(out, 0, 1, out=out).astype(np.float32, copy=False)
+        out = cv2.pyrUp(out, dstsize=(acc[lv].shape[1], acc[lv].shape[0])).reshape(acc[lv].shape)
+        out += acc[lv]
+    np.clip(out, 0, 1, out=out)
     out[~union] = 0
     return out
 

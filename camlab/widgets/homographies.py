@@ -84,7 +84,8 @@ def transformation_hierarchy() -> Demo:
     grid_u = np.linspace(0, pw - 1, 5)
     grid_lines = [np.column_stack([np.full(20, x), np.linspace(0, ph - 1, 20)]) for x in grid_u]
     grid_lines += [np.column_stack([np.linspace(0, pw - 1, 20), np.full(20, y)]) for y in np.linspace(0, ph - 1, 4)]
-    grid_artists = [view.animate(ax.plot([], [], color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0]) for _ in grid_lines]
+    grid_points = np.vstack(grid_lines)  # every line has 20 points; drawn as one artist, NaN-separated,
+    grid_art = view.animate(ax.plot([], [], color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0])  # one outline
     ax.set_title("the picture mapped by H (group and dof in the readout)", fontsize=10)
     # beside the axes: over the warped picture the legend would need a redraw per update
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
@@ -98,9 +99,9 @@ def transformation_hierarchy() -> Demo:
                               v["aspect"], v["tx"], v["ty"], v["v1"] * 1e-3, v["v2"] * 1e-3)
         H = hg.compose(C, Hg, P)
         im.set_data(warp_perspective(pic, H, canvas_hw, method="cv2", fill=255))
-        for art, line in zip(grid_artists, grid_lines):
-            m = map_points(H, line)
-            art.set_data(m[:, 0], m[:, 1])
+        m = map_points(H, grid_points).reshape(len(grid_lines), 20, 2)
+        m = np.concatenate([m, np.full((len(grid_lines), 1, 2), np.nan)], axis=1).reshape(-1, 2)
+        grid_art.set_data(m[:, 0], m[:, 1])
         info = hg.HIERARCHY[v["group"]]
         kind = hg.classify(Hg)
         torn = splits_at_infinity(H, picture_corners)
