@@ -1,4 +1,6 @@
 """Every registered demo, driven headlessly through its sweep, plus lesson-06 specifics."""
+import pickle
+
 import numpy as np
 import pytest
 
@@ -20,8 +22,8 @@ def _changed(before: dict, after: dict) -> bool:
         try:
             if a.shape != b.shape or not np.array_equal(a, b, equal_nan=a.dtype.kind == "f"):
                 return True
-        except TypeError:
-            if not np.array_equal(a, b):
+        except (TypeError, ValueError):  # objects whose == is elementwise (a Camera holds arrays)
+            if pickle.dumps(a) != pickle.dumps(b):
                 return True
     return False
 
