@@ -48,6 +48,16 @@ def test_lesson_06_runs_and_a_slider_moves_the_figure(lab):
             page.wait_for_timeout(1000)
             before_png, after_png, before_text, after_text = browser.click_slider(
                 page, "camlab-demo-parallel-lines", 0.8)  # the angle slider
+            # camlab.widgets' page script (camlab/_access.py): every slider handle has a name, and
+            # Tab leaves a figure (ipympl's canvas would keep the focus: a keyboard trap).
+            sliders = page.locator(".jp-OutputArea [role=slider]").count()
+            unnamed = page.evaluate(
+                "() => [...document.querySelectorAll('.jp-OutputArea [role=slider]')].filter(h => !h.getAttribute('aria-label')).length")
+            figure = demo.locator(".jupyter-matplotlib-canvas-div").first
+            figure.focus()
+            focused_before = figure.evaluate("el => el === document.activeElement")
+            page.keyboard.press("Tab")
+            still_in_figure = figure.evaluate("el => el === document.activeElement")
             errors = page.locator(".jp-OutputArea-output[data-mime-type='application/vnd.jupyter.stderr']")
             stderr = [t for t in errors.all_text_contents() if "Error" in t]
             # Each figure's bundle also carries a static PNG for readers without a kernel;
@@ -61,3 +71,5 @@ def test_lesson_06_runs_and_a_slider_moves_the_figure(lab):
     assert not stderr, f"lesson 06 printed errors in the browser: {stderr[:2]}"
     assert static_images == 0, f"JupyterLab shows {static_images} static PNGs under the live figures"
     assert live_canvases >= 6, f"expected the 6 live figures of lesson 06, found {live_canvases} canvases"
+    assert sliders >= 10 and unnamed == 0, f"{unnamed} of {sliders} slider handles have no accessible name"
+    assert focused_before and not still_in_figure, "Tab does not leave a focused figure (a keyboard trap)"

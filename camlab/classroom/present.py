@@ -7,17 +7,9 @@ silently (``%%capture``, and the figures those cells draw are closed), because l
 what earlier cells computed. Exercises and their checks are left out: hidden code makes them
 unusable, so students do those in JupyterLab.
 
-One more cell, after the title, mends two faults of the widget libraries for keyboard and
-screen-reader users (``tests/test_present.py`` checks both in a browser, with axe-core):
-
-* ipywidgets draws sliders with noUiSlider, whose handle (``role="slider"``) has no name of
-  its own: screen readers announce just a number, and axe-core reports
-  ``aria-input-field-name``. The script names each handle after its widget's label.
-* ipympl's figure takes keyboard focus and swallows every key, Tab included, so a keyboard
-  user who tabs into a figure cannot leave it (a keyboard trap, WCAG 2.1.2). The script lets
-  Tab and Shift+Tab move on; the other keys still reach matplotlib.
-
-It also draws a clear focus ring (the widgets only tint a focused slider handle).
+One more cell, after the title, runs :data:`camlab._access.SCRIPT` in the page (names
+for slider handles, Tab out of figures, focus rings): the copy ``import camlab.widgets``
+sends runs silently here, like the rest of the lesson's setup.
 """
 from __future__ import annotations
 
@@ -29,6 +21,7 @@ import sys
 import tempfile
 from pathlib import Path
 
+from .. import _access as access
 from .lessons import called, find_lesson, only_statement, stub_name
 
 __all__ = ["is_demo_cell", "presentation_notebook", "serve"]
@@ -41,31 +34,7 @@ for _n in set(_camlab_plt.get_fignums()) - _camlab_figures:
     _camlab_plt.close(_n)
 """
 
-ACCESSIBILITY_SCRIPT = """%%javascript
-(function () {
-  // Tab leaves a figure: stop the key before ipympl's canvas handler swallows it.
-  document.addEventListener('keydown', function (event) {
-    if (event.key === 'Tab' && event.target.classList.contains('jupyter-matplotlib-canvas-div')) {
-      event.stopImmediatePropagation();
-    }
-  }, true);
-  // A focus ring that shows on every control and figure (the widgets only tint a focused handle).
-  var style = document.createElement('style');
-  style.textContent = '.jupyter-widgets :focus-visible, .jupyter-matplotlib-canvas-div:focus-visible ' +
-                      '{ outline: 3px solid #1a4f8b; outline-offset: 2px; }';
-  document.head.appendChild(style);
-  // Name each slider handle after its widget's label, now and for every widget drawn later.
-  function nameHandles() {
-    document.querySelectorAll('.widget-slider .noUi-handle:not([aria-label])').forEach(function (handle) {
-      var label = handle.closest('.widget-slider').querySelector('.widget-label');
-      var text = label ? label.textContent.trim() : '';
-      if (text) handle.setAttribute('aria-label', text);
-    });
-  }
-  nameHandles();
-  new MutationObserver(nameHandles).observe(document.body, {childList: true, subtree: true});
-})();
-"""
+ACCESSIBILITY_SCRIPT = "%%javascript\n" + access.SCRIPT  # the import's copy runs silently here
 
 
 def is_demo_cell(cell: dict) -> bool:

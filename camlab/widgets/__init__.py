@@ -15,9 +15,11 @@ import importlib
 import pkgutil
 
 from ..plotting.static import install_canvas_formatter
+from .. import _access
 from ._base import REGISTRY, Demo, DemoSpec, FigureView, build_demo, register, slider
 
 install_canvas_formatter()  # plain figures in a lesson keep a PNG with alt text too
+_access.install()  # named slider handles, Tab out of figures, focus rings (docs/accessibility.md)
 
 __all__ = ["Demo", "DemoSpec", "FigureView", "REGISTRY", "all_demos", "build_demo", "register", "slider"]
 
