@@ -197,6 +197,9 @@ def test_multiband_reconstructs_a_single_image(half):
     img = st.prepare_images(half.images[:2])[0]
     out = st.laplacian_blend([img], [np.ones(img.shape[:2], bool)], levels=5)
     assert np.abs(out - img).max() < 1e-5
+    grey = img[..., :1]  # one channel (OpenCV's pyramids drop a single channel's axis)
+    out = st.laplacian_blend([grey], [np.ones(img.shape[:2], bool)], levels=5)
+    assert out.shape == grey.shape and np.abs(out - grey).max() < 1e-5
 
 
 def test_blend_in_boxes_agrees_with_laplacian_blend_on_the_canvas(half):

@@ -484,7 +484,7 @@ def warp_images(images: Sequence[np.ndarray], homographies: Sequence[np.ndarray]
 
     Parameters
     ----------
-    images : sequence of (h, w, 3) float32 arrays (see :func:`prepare_images`)
+    images : sequence of (h, w, 3) float32 arrays (see :func:`prepare_images`), or (h, w, 1) for grey
     homographies : sequence of (3, 3)
         reference_from_image for each image (from :func:`match_graph`).
 
@@ -496,7 +496,7 @@ def warp_images(images: Sequence[np.ndarray], homographies: Sequence[np.ndarray]
     if len(images) != len(homographies) or not images:
         raise CamlabInputError(f"homographies: expected one per image, got {len(homographies)} for {len(images)} images")
     for k, im in enumerate(images):
-        if np.ndim(im) != 3 or np.shape(im)[2] != 3:
+        if np.ndim(im) != 3 or np.shape(im)[2] not in (1, 3):
             raise CamlabInputError(f"images[{k}]: expected an (h, w, 3) float32 image from prepare_images, "
                                    f"got shape {np.shape(im)}; call prepare_images(images) first")
     import cv2
@@ -510,7 +510,7 @@ def warp_images(images: Sequence[np.ndarray], homographies: Sequence[np.ndarray]
         size = (r1 - r0, c1 - c0)
         # the image with a replicated border (no black edge for the blend's pyramids), its feather weight
         wimg = cv2.warpPerspective(np.asarray(im, np.float32), Hb, size[::-1], flags=cv2.INTER_LINEAR,
-                                   borderMode=cv2.BORDER_REPLICATE).reshape(size + (3,))
+                                   borderMode=cv2.BORDER_REPLICATE).reshape(size + im.shape[2:])
         wgt = warp_perspective(feather_weights(im.shape).astype(np.float32), Hb, size, method="cv2")
         ones = np.ones(im.shape[:2], np.float32)
         mask = warp_perspective(ones, Hb, size, interpolation="nearest", method="cv2") > 0.5
@@ -744,6 +744,14 @@ def seam_step(image: np.ndarray, seam: np.ndarray, overlap: np.ndarray, width: i
     return float(abs(np.mean(steps))) if steps else 0.0
 
 
+def _pyr_down(image: np.ndarray) -> np.ndarray:
+    """``cv2.pyrDown`` of an (h, w, C) image, keeping the channel axis (OpenCV drops it when C is 1)."""
+    import cv2
+
+    out = cv2.pyrDown(image)
+    return out.reshape(out.shape[:2] + image.shape[2:])
+
+
 def _fill_outside(img: np.ndarray, mask: np.ndarray, levels: int) -> np.ndarray:
     """Extend an image beyond its mask by push-pull (normalised pyramid), so pyramids do not see black."""
     import cv2
@@ -754,7 +762,7 @@ def _fill_outside(img: np.ndarray, mask: np.ndarray, levels: int) -> np.ndarray:
         a, w = stack[-1]
         if min(w.shape) < 2:
             break
-        stack.append((cv2.pyrDown(a), cv2.pyrDown(w)))
+        stack.append((_pyr_down(a), cv2.pyrDown(w)))
     a, w = stack[-1]
     filled = a / np.maximum(w, 1e-6)[..., None]
     for a, w in reversed(stack[1:-1]):
@@ -884,7 +892,7 @@ def _multiband(images: list, masks: list, feet: list, boxes: list, shape: tuple,
             g = [_fill_outside(sub, valid, levels).astype(np.float32, copy=False)]
         mk = [mk0]
         for _ in range(levels):
-            g.append(cv2.pyrDown(g[-1]))
+            g.append(_pyr_down(g[-1]))
             mk.append(cv2.pyrDown(mk[-1]))
         for lv in range(levels + 1):
             if lv < levels:  # band = g[lv] - up(g[lv + 1]), computed in place

@@ -311,6 +311,10 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
     t0 = time.perf_counter()
     imgs = prepare_images(images)
     all_uint8 = all(np.asarray(im).dtype == np.uint8 for im in images)
+    # all grey: stitch one channel (a third of the warping and blending) and repeat it at the end
+    grey = all(np.ndim(im) == 2 or np.shape(im)[2] == 1 for im in images)
+    if grey:
+        imgs = [np.ascontiguousarray(im[..., :1]) for im in imgs]
     n = len(imgs)
     label = _names(names, n)
     Kfix = None if K is None else check_intrinsics(K, "K")
@@ -442,6 +446,8 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
         H_out = [None if H is None else Tc @ H for H in H_out]
     if all_uint8:
         pano = np.rint(np.multiply(pano, 255, out=pano), out=pano).astype(np.uint8)  # pano is in [0, 1]
+    if grey:
+        pano = np.repeat(pano, 3, axis=2)
     unconnected = sorted(set(graph.unconnected) | set(dup))
     return StitchResult(pano, union, H_out, M_out, graph.report(), graph.reference, unconnected, gains, graph,
                         C_out, chosen, model, float(resid), O_out, label, times)

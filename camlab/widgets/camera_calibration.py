@@ -145,6 +145,7 @@ def view_inspector(calibration: C.ImageCalibration | None = None, images: list |
     arrows = view.animate(ax.quiver(np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), color="magenta",
                                     angles="xy", scale_units="xy", scale=1, width=0.004))
     ax.legend(loc="upper right", fontsize=8)
+    view.animate(ax.get_legend())  # over the animated photo, or it would hide the legend
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
@@ -195,6 +196,7 @@ def undistort_alpha(image: np.ndarray | None = None, K: np.ndarray | None = None
     edge, = ax1.plot([], [], color=palette.ORANGE, lw=1.5, label="photo's border", path_effects=palette.halo(1.5))
     view.animate(edge)
     ax1.legend(loc="lower right", fontsize=8)
+    view.animate(ax1.get_legend())  # over the animated photo, or it would hide the legend
     t = np.linspace(0, 1, 40)
     border = np.concatenate([np.column_stack([t * (w - 1), 0 * t]), np.column_stack([(w - 1) + 0 * t, t * (h - 1)]),
                              np.column_stack([(1 - t) * (w - 1), (h - 1) + 0 * t]), np.column_stack([0 * t, (1 - t) * (h - 1)])])

@@ -270,7 +270,7 @@ def blending_seams() -> Demo:
     im = view.animate(ax.imshow(np.zeros((hh, ww, 3), np.float32), interpolation="nearest"))
     from matplotlib.patches import Rectangle
 
-    ax.add_patch(Rectangle((u0 - 0.5, v0 - 0.5), z, z, fill=False, color="yellow", lw=1.5))
+    view.animate(ax.add_patch(Rectangle((u0 - 0.5, v0 - 0.5), z, z, fill=False, color="yellow", lw=1.5)))  # over the image
     ax.set_xticks([])
     ax.set_yticks([])
     ax.set_title("two views, exposures differ by 30%", fontsize=9)

@@ -216,9 +216,9 @@ def rectify_pair() -> Demo:
     ax.set_title("left | right (half size)", fontsize=9)
     im = ax.imshow(np.hstack(half), cmap="gray", vmin=0, vmax=255, extent=(-0.5, 639.5, 239.5, -0.5),
                    interpolation="nearest")
-    for r in range(20, 240, 20):
-        ax.axhline(r, color="tab:cyan", lw=0.5, alpha=0.7, gid="grid")
-    ax.axvline(319.5, color="w", lw=1, gid="grid")
+    # guides over the animated pair (drawn under it they would be hidden): rows to judge rectification by
+    guides = [ax.axhline(r, color="tab:cyan", lw=0.5, alpha=0.7, gid="grid") for r in range(20, 240, 20)]
+    guides.append(ax.axvline(319.5, color="w", lw=1, gid="grid"))
     sel = np.linspace(0, len(x1) - 1, 14).astype(int)
     match_lines, = ax.plot([], [], color=palette.ORANGE, lw=0.9, path_effects=palette.halo(0.9))
     # Cumulative, on a log axis: raw (pixels), calibrated and uncalibrated (hundredths) all readable.
@@ -228,7 +228,7 @@ def rectify_pair() -> Demo:
     axh.axvline(0.5, color=palette.GREY, ls=":", lw=1)
     axh.set_title("vertical disparity", fontsize=9)
     axh.grid(True, which="major", color="0.93")
-    view.animate(im, match_lines, step)
+    view.animate(im, *guides, match_lines, step)
     readout = W.HTML()
 
     def update(v, state):
