@@ -10,13 +10,8 @@ DEMOS = all_demos()
 
 
 def _snapshot(state: dict) -> dict:
-    flat = {}  # a dict of arrays (e.g. one per camera model) is compared entry by entry
-    for key, value in state.items():
-        items = value.items() if isinstance(value, dict) else [(None, value)]
-        for sub, v in items:
-            flat[key if sub is None else f"{key}.{sub}"] = np.array(
-                v, dtype=object if isinstance(v, (list, tuple)) else None, copy=True)
-    return flat
+    return {k: np.array(v, dtype=object if isinstance(v, (list, tuple)) else None, copy=True)
+            for k, v in state.items()}
 
 
 def _changed(before: dict, after: dict) -> bool:
