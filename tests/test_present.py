@@ -168,8 +168,14 @@ def test_keyboard_alone_reaches_a_corner_slider_and_moves_the_figure(lecture):
         page.keyboard.press("PageUp")  # noUiSlider: five steps of 1 px per press
     page.wait_for_function("(old) => document.querySelector('.camlab-demo-drag-homography pre').textContent !== old",
                            arg=before_text, polling=250)
-    page.wait_for_timeout(1500)  # let the kernel's new image reach the canvas
+    changed = False
+    for _ in range(60):  # the kernel's new image reaches the canvas after the readout: up to 15 s when busy
+        changed = canvas.screenshot() != before_png
+        if changed:
+            break
+        page.wait_for_timeout(250)
+    page.wait_for_timeout(500)
     demo.screenshot(path=str(shots / "keyboard_after.png"))
     corners = demo.locator("input[type=text]").first.input_value()
     assert corners.startswith("70.00, 30.00;"), f"corner 0 should have moved from u = 40 to 70: {corners}"
-    assert canvas.screenshot() != before_png, "the keys moved the slider but the figure did not change"
+    assert changed, "the keys moved the slider but the figure did not change"

@@ -135,5 +135,11 @@ def click_slider(page, demo: str, fraction: float) -> tuple[bytes, bytes, str, s
     track.click(position={"x": fraction * box["width"], "y": box["height"] / 2})
     page.wait_for_function(f"(old) => document.querySelector('.{demo} pre').textContent !== old",
                            arg=before_text, polling=250)
-    page.wait_for_timeout(1500)  # let the kernel's new image reach the canvas
+    after_png = figure.screenshot()
+    for _ in range(60):  # the kernel's new image reaches the canvas after the readout: up to 15 s on a busy machine
+        if after_png != before_png:
+            break
+        page.wait_for_timeout(250)
+        after_png = figure.screenshot()
+    page.wait_for_timeout(500)  # and let it finish drawing
     return before_png, figure.screenshot(), before_text, readout.text_content()
