@@ -247,7 +247,7 @@ def draw_focus_cone(ax, half_height_mm: float = 20.0) -> dict:
         "cone_in": ax.fill([0, 0, 0], [0, 0, 0], color="gold", alpha=0.35, lw=0)[0],
         "cone_out": ax.fill([0, 0, 0, 0], [0, 0, 0, 0], color="gold", alpha=0.35, lw=0)[0],
         "rays": ax.plot([], [], color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0],
-        "point": ax.plot([], [], "o", color="tab:green", ms=7)[0],
+        "point": ax.plot([], [], "o", color=palette.GREEN, ms=7)[0],
         "focus": ax.plot([], [], "x", color=palette.ORANGE, ms=8, mew=2)[0],
         "sensor": ax.plot([], [], color="0.3", lw=2)[0],
         "blur": ax.plot([], [], color="tab:red", lw=6, solid_capstyle="butt")[0],

@@ -107,7 +107,7 @@ def _screen_image(image: Any) -> tuple[np.ndarray, int, int] | None:
 
     a = image.get_array()
     alpha = image.get_alpha()
-    canvas = image.get_figure(root=True).canvas
+    canvas = image.figure.canvas  # (a subfigure's canvas is its root figure's)
     transform = image.get_transform()
     if (np.ma.isMaskedArray(a) and np.ma.getmaskarray(a).any()) or (alpha is not None and np.ndim(alpha) > 0) \
             or getattr(canvas, "is_saving", lambda: False)() or image.get_clip_path() is not None \
@@ -124,7 +124,7 @@ def _screen_image(image: Any) -> tuple[np.ndarray, int, int] | None:
         a = a[::-1]
     left, right = round(min(u_left, u_right)), round(max(u_left, u_right))
     bottom, top = round(min(v_row0, v_rowN)), round(max(v_row0, v_rowN))
-    clip = (image.get_clip_box() or image.axes.bbox) if image.get_clip_on() else image.get_figure(root=True).bbox
+    clip = (image.get_clip_box() or image.axes.bbox) if image.get_clip_on() else image.figure.canvas.figure.bbox
     cl, cr, cb, ct = round(clip.x0), round(clip.x1), round(clip.y0), round(clip.y1)
     if min(right, cr) - max(left, cl) < 1 or min(top, ct) - max(bottom, cb) < 1:
         return np.zeros((0, 0, 4), np.uint8), 0, 0
