@@ -42,7 +42,7 @@ def pinhole_projection():
     ax3.set_xlim(-1.1, 4.5)
     ax3.set_ylim(-0.35, 0.35)
     ax3.set_zlim(-0.35, 0.35)
-    ax3.set_box_aspect((3, 1, 1), zoom=1.2)
+    ax3.set_box_aspect((3, 1, 1), zoom=1.1)
     ax3.set_xlabel("z, forward (m)")
     ax3.set_ylabel("x (m)")
     ax3.set_zlabel("-y, up (m)")
