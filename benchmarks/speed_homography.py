@@ -55,7 +55,7 @@ def rows() -> list[dict]:
 
         sk = median_ms(lambda: ransac((src, dst), ProjectiveTransform, min_samples=4, residual_threshold=3.0,
                                        max_trials=2000, stop_probability=0.995, rng=np.random.default_rng(1)),
-                        repeats=5)
+                        repeat=5)
         out.append({"case": "ransac_homography vs skimage ransac(ProjectiveTransform)", "camlab_ms": ours,
                     "opencv_ms": sk, "ratio": ours / sk, "target": "skimage / camlab >= 5 (column 3 = skimage)",
                     "ok": bool(sk / ours >= 5)})
@@ -66,7 +66,7 @@ def rows() -> list[dict]:
     img = cv2.GaussianBlur((np.random.default_rng(0).random((480, 640, 3)) * 255).astype(np.uint8), (0, 0), 2)
     H = np.array([[0.9, 0.1, 30.0], [-0.05, 0.95, 20.0], [2e-4, 1e-4, 1.0]])
     ours, ref = paired_ms(lambda: warp_perspective(img, H, (480, 640)),
-                           lambda: cv2.warpPerspective(img, H, (640, 480)), repeats=15)
+                           lambda: cv2.warpPerspective(img, H, (640, 480)), repeat=15)
     out.append(_row(f"warp_perspective numpy bilinear, 640x480 RGB (cv2 on {cv2.getNumThreads()} threads)",
                     ours, ref, "ratio <= 10", 10.0))
     # numpy runs on one core; the same comparison against single-threaded OpenCV:
@@ -74,12 +74,12 @@ def rows() -> list[dict]:
     cv2.setNumThreads(1)
     try:
         ours, ref = paired_ms(lambda: warp_perspective(img, H, (480, 640)),
-                               lambda: cv2.warpPerspective(img, H, (640, 480)), repeats=15)
+                               lambda: cv2.warpPerspective(img, H, (640, 480)), repeat=15)
     finally:
         cv2.setNumThreads(threads)
     out.append(_row("warp_perspective numpy bilinear, 640x480 RGB (cv2 on 1 thread)", ours, ref, "ratio <= 10", 10.0))
     ours, ref = paired_ms(lambda: warp_perspective(img, H, (480, 640), method="cv2"),
-                           lambda: cv2.warpPerspective(img, H, (640, 480)), repeats=15)
+                           lambda: cv2.warpPerspective(img, H, (640, 480)), repeat=15)
     out.append(_row("warp_perspective method='cv2', 640x480 RGB", ours, ref, "ratio <= 1.5", 1.5))
     return out
 
