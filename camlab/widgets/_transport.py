@@ -17,7 +17,6 @@ extra bytes cost far less than the encode saves.
 """
 from __future__ import annotations
 
-import math
 import struct
 import types
 import zlib
@@ -74,25 +73,40 @@ def use_fast_png(canvas: Any) -> None:
     canvas.get_diff_image = types.MethodType(_fast_diff_image, canvas)
 
 
-def _fit_to_display(image: Any, array: Any) -> Any:
-    """``array`` area-averaged to the canvas pixels ``image``'s extent covers, if it is larger."""
+def _pixel_box(image: Any) -> tuple[int, int, int, int]:
+    """(left, right, bottom, top): the canvas pixels ``image``'s extent covers, edges rounded."""
+    x0, x1, y0, y1 = image.get_extent()
+    (u0, v0), (u1, v1) = image.get_transform().transform([(x0, y0), (x1, y1)])
+    return round(min(u0, u1)), round(max(u0, u1)), round(min(v0, v1)), round(max(v0, v1))
+
+
+def _resize(image: Any, a: np.ndarray, width: int, height: int) -> np.ndarray:
+    """``a`` resized to width x height as ``image`` displays it: a pixelated view ('nearest')
+    stays crisp; anything else is area-averaged when shrunk (as antialiasing would) and
+    interpolated when enlarged."""
     import cv2
 
+    if image.get_interpolation() in ("nearest", "none"):
+        mode = cv2.INTER_NEAREST
+    else:
+        mode = cv2.INTER_AREA if a.shape[1] > width else cv2.INTER_LINEAR
+    return cv2.resize(a, (width, height), interpolation=mode)
+
+
+def _fit_to_display(image: Any, array: Any) -> Any:
+    """``array`` area-averaged to the canvas pixels ``image``'s extent covers, if it is larger."""
     if np.ma.isMaskedArray(array):
         return array
     a = np.asarray(array)
     if a.ndim not in (2, 3) or a.dtype.kind not in "uif" or (a.ndim == 3 and a.shape[2] > 4):
         return array
-    x0, x1, y0, y1 = image.get_extent()
-    (u0, v0), (u1, v1) = image.axes.transData.transform([(x0, y0), (x1, y1)])
-    width, height = min(a.shape[1], math.ceil(abs(u1 - u0))), min(a.shape[0], math.ceil(abs(v1 - v0)))
+    left, right, bottom, top = _pixel_box(image)  # the box _screen_image draws into: no second resize there
+    width, height = min(a.shape[1], right - left), min(a.shape[0], top - bottom)
     if width < 2 or height < 2 or (width, height) == (a.shape[1], a.shape[0]):
         return array
     if a.dtype not in (np.uint8, np.uint16, np.float32, np.float64):
         a = a.astype(np.float64)
-    # A pixelated view ('nearest') stays crisp; anything else is averaged, as antialiasing would.
-    crisp = image.get_interpolation() in ("nearest", "none")
-    return cv2.resize(a, (width, height), interpolation=cv2.INTER_NEAREST if crisp else cv2.INTER_AREA)
+    return _resize(image, a, width, height)
 
 
 def _screen_image(image: Any) -> tuple[np.ndarray, int, int] | None:
@@ -103,8 +117,6 @@ def _screen_image(image: Any) -> tuple[np.ndarray, int, int] | None:
     an axis-aligned image on the canvas' own renderer, are placed by rounding the extent to
     whole pixels (at most half a pixel from matplotlib's placement) and resized with OpenCV.
     """
-    import cv2
-
     a = image.get_array()
     alpha = image.get_alpha()
     canvas = image.figure.canvas  # (a subfigure's canvas is its root figure's)
@@ -122,18 +134,14 @@ def _screen_image(image: Any) -> tuple[np.ndarray, int, int] | None:
         a = a[:, ::-1]
     if v_row0 > v_rowN:  # row 0 at the top on screen: Agg's draw_image takes the bottom row first
         a = a[::-1]
-    left, right = round(min(u_left, u_right)), round(max(u_left, u_right))
-    bottom, top = round(min(v_row0, v_rowN)), round(max(v_row0, v_rowN))
+    left, right, bottom, top = _pixel_box(image)
     clip = (image.get_clip_box() or image.axes.bbox) if image.get_clip_on() else image.figure.canvas.figure.bbox
     cl, cr, cb, ct = round(clip.x0), round(clip.x1), round(clip.y0), round(clip.y1)
     if min(right, cr) - max(left, cl) < 1 or min(top, ct) - max(bottom, cb) < 1:
         return np.zeros((0, 0, 4), np.uint8), 0, 0
-    if a.shape[:2] != (top - bottom, right - left):
-        crisp = image.get_interpolation() in ("nearest", "none")
-        shrink = a.shape[1] > right - left
-        a = np.asarray(a, np.float32) if a.dtype not in (np.uint8, np.float32) else a
-        a = cv2.resize(a, (right - left, top - bottom),
-                       interpolation=cv2.INTER_NEAREST if crisp else cv2.INTER_AREA if shrink else cv2.INTER_LINEAR)
+    if a.shape[:2] != (top - bottom, right - left):  # smaller than shown (set_data already shrank larger ones)
+        a = _resize(image, np.asarray(a, np.float32) if a.dtype not in (np.uint8, np.float32) else a,
+                    right - left, top - bottom)
     # crop to the clip box (rows count up from the bottom edge)
     a = a[max(0, cb - bottom):(top - bottom) - max(0, top - ct), max(0, cl - left):(right - left) - max(0, right - cr)]
     rgba = image.to_rgba(a, bytes=True)
