@@ -8,6 +8,8 @@ One module per set, each with its generator and loader:
     ``calib_chessboard/``: 16 rendered chessboard views with exact ground truth (lesson 08).
 :mod:`camlab.data.panorama`
     ``panorama/``: a camera turning about its centre in a rendered room, and a planar pair (lesson 09).
+:mod:`camlab.data.panorama_examples`
+    The panorama sets as lesson 09's demonstrations use them (features, warps, blends), computed once and cached.
 :mod:`camlab.data.stereo`
     ``stereo/``: a rendered stereo rig with true disparity and calibration views (lesson 11).
 :mod:`camlab.data.photos`

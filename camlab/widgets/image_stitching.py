@@ -1,12 +1,11 @@
 """Demos for lesson 09, image stitching: matches, RANSAC, the canvas, blending, the panorama, parallax.
 
 All demos use the rendered panorama set at half size (320 x 240, f = 400 px). Features,
-nearest neighbours and warps are computed once when a demo is built; sliders only
-re-filter, re-score or re-blend, so every update stays fast.
+nearest neighbours, warps and blends are computed once and cached by
+:mod:`camlab.data.panorama_examples`; sliders only re-filter, re-score or choose among
+precomputed images, so every update stays fast.
 """
 from __future__ import annotations
-
-from functools import lru_cache
 
 import ipywidgets as W
 import numpy as np
@@ -14,15 +13,12 @@ import numpy as np
 from .. import features as ft
 from .. import homography as hg
 from .. import stitching as st
-from ..data import panorama as sd
+from ..data import panorama_examples as pe
 from ..plotting import palette
 from ..plotting.stitching import draw_keypoints, draw_matches, match_segments, outline
 from ..projective import map_points
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import monospace
-
-SCALE = 0.5
-
 
 def _rgba(image: np.ndarray) -> np.ndarray:
     """An image as opaque uint8 RGBA: what Agg draws fastest (no conversion at every redraw)."""
@@ -35,36 +31,12 @@ def _rgba(image: np.ndarray) -> np.ndarray:
     return out
 
 
-@lru_cache(maxsize=1)
-def demo_data():
-    """The half-size panorama set with its features and adjacent-pair nearest neighbours (cached)."""
-    s = sd.load_panorama_set(scale=SCALE)
-    imgs = st.prepare_images(s.images)
-    feats = [ft.detect_features(im, max_features=1500) for im in imgs]
-    knn = {(i, i + 1): ft.knn_match(feats[i], feats[i + 1]) for i in range(len(imgs) - 1)}
-    return s, imgs, feats, knn
-
-
-@lru_cache(maxsize=1)
-def demo_graph():
-    """The match graph of the half-size set (registration of every pair, reference, chains)."""
-    _, _, feats, _ = demo_data()
-    return st.match_graph(feats)
-
-
-def _true_good(s, i: int, j: int, src: np.ndarray, dst: np.ndarray, tol: float = 2.0) -> np.ndarray:
-    """Matches that the ground-truth homography confirms (transfer error below ``tol`` pixels)."""
-    if len(src) == 0:
-        return np.zeros(0, bool)
-    return hg.transfer_error(s.true_homography(i, j), src, dst) < tol
-
-
 # ----------------------------------------------------------------------------- matches
 
 @register(lesson="09", sweep={"ratio": [0.6, 0.8, 0.95, 1.0], "mutual": [True, False]})
 def feature_matches() -> Demo:
     """SIFT matches between views 0 and 1: loosen the ratio test and watch wrong matches (red) appear."""
-    s, imgs, feats, knn = demo_data()
+    s, _, feats, knn = pe.panorama_example()
     i, j = 0, 1
     view = FigureView(figsize=(9, 3.4))
     ax = view.fig.subplots()
@@ -77,7 +49,7 @@ def feature_matches() -> Demo:
 
     def update(v: dict, state: dict) -> None:
         m = ft.filter_matches(knn[(i, j)], v["ratio"], v["mutual"])
-        good = _true_good(s, i, j, m.src, m.dst)
+        good = pe.correct_matches(s, i, j, m.src, m.dst)
         seg = match_segments(m.src, m.dst, art["offset"])
         show = np.arange(len(seg)) % max(1, len(seg) // 200 + 1) == 0  # draw at most ~200 lines (speed)
         art["good"].set_segments(seg[good & show])
@@ -100,7 +72,7 @@ def feature_matches() -> Demo:
 @register(lesson="09", sweep={"threshold": [0.5, 3.0, 15.0, 40.0], "ratio": [0.95, 0.7]})
 def ransac_registration() -> Demo:
     """RANSAC on real matches: the threshold decides which matches count as inliers, and the H you get."""
-    s, imgs, feats, knn = demo_data()
+    s, imgs, feats, knn = pe.panorama_example()
     i, j = 1, 2
     view = FigureView(figsize=(9, 3.6))
     ax, ax_e = view.fig.subplots(1, 2, width_ratios=[1.5, 1])
@@ -147,7 +119,7 @@ def ransac_registration() -> Demo:
         for b, c in zip(bars, counts):
             b.set_height(c / top)
         err = float(np.max(np.linalg.norm(map_points(r.H, corners) - map_points(true_H, corners), axis=1)))
-        good = _true_good(s, i, j, m.src, m.dst)
+        good = pe.correct_matches(s, i, j, m.src, m.dst)
         state.update(inliers=int(r.inliers.sum()), corner_error=err, accepted=r.accepted,
                      false_inliers=int((r.inliers & ~good).sum()))
         readout.value = monospace(f"matches: {len(m.src)}\ninliers: {int(r.inliers.sum())} "
@@ -170,28 +142,16 @@ def _frame(shape) -> np.ndarray:
     return np.array([[-0.5, -0.5], [w - 0.5, -0.5], [w - 0.5, h - 0.5], [-0.5, h - 0.5], [-0.5, -0.5]])
 
 
-def _chain_to(graph: st.MatchGraph, ref: int) -> list:
-    """Re-express the graph's homographies relative to another reference image ``ref``."""
-    to_ref = np.linalg.inv(graph.homographies[ref])
-    return [hg.normalize_homography(to_ref @ H) for H in graph.homographies]
-
-
 @register(lesson="09", sweep={"reference": [0, 1, 3]})
 def panorama_canvas() -> Demo:
     """Every image warped onto one canvas; the reference image decides the shape (and the stretch).
 
     Shown at quarter size (160 x 120 images) so that even the widest canvas warps quickly.
     """
-    import cv2
-
-    s, imgs, _, _ = demo_data()
-    graph = demo_graph()
-    small = [cv2.resize(im, (im.shape[1] // 2, im.shape[0] // 2), interpolation=cv2.INTER_AREA) for im in imgs]
-    S = sd.scale_intrinsics(np.eye(3), 0.5)  # half-size pixels from demo pixels
-    chains = {ref: [S @ H @ np.linalg.inv(S) for H in _chain_to(graph, ref)] for ref in range(len(imgs))}
-    sizes = {ref: hg_canvas(chains[ref], small) for ref in chains}
-    hmax = max(sz[0] for sz in sizes.values())
-    wmax = max(sz[1] for sz in sizes.values())
+    graph = pe.panorama_graph()
+    small, canvases = pe.reference_canvases()
+    hmax = max(c.shape[0] for c in canvases.values())
+    wmax = max(c.shape[1] for c in canvases.values())
     view = FigureView(figsize=(9, 3.6))
     ax = view.fig.subplots()
     im = view.animate(ax.imshow(np.zeros((10, 10, 3)), interpolation="nearest"))
@@ -202,54 +162,32 @@ def panorama_canvas() -> Demo:
     ax.set_xticks([])
     ax.set_yticks([])
     readout = W.HTML()
-    # warping is the expensive part: done once per reference, when the demo is built
-    cache = {}
-    for ref in chains:
-        wi = st.warp_images(small, chains[ref], max_pixels=3_000_000)
-        cache[ref] = (wi, _rgba(st.blend(wi, "overwrite")))
+    shown = {ref: _rgba(c.panorama) for ref, c in canvases.items()}
 
     def update(v: dict, state: dict) -> None:
         ref = int(v["reference"])
-        wi, pano = cache[ref]
-        im.set_data(pano)
-        hh, ww = wi.shape
+        c = canvases[ref]
+        im.set_data(shown[ref])
+        hh, ww = c.shape
         im.set_extent((-0.5, ww - 0.5, hh - 0.5, -0.5))
         for k, ln in enumerate(lines):
-            p = map_points(wi.homographies[k], _frame(small[k].shape))
+            p = map_points(c.homographies[k], _frame(small[k].shape))
             ln.set_data(p[:, 0], p[:, 1])
-        state.update(reference=ref, canvas=(hh, ww), T=wi.T)
+        state.update(reference=ref, canvas=(hh, ww), T=c.T)
         readout.value = monospace(f"reference image: {ref}\ncanvas: {ww} x {hh} px\n"
-                             f"translation T: ({int(round(wi.T[0, 2])):+d}, {int(round(wi.T[1, 2])):+d}) px\n"
+                             f"translation T: ({int(round(c.T[0, 2])):+d}, {int(round(c.T[1, 2])):+d}) px\n"
                              f"best-connected image: {graph.reference}")
 
-    controls = {"reference": W.IntSlider(value=graph.reference, min=0, max=len(imgs) - 1, description="reference")}
+    controls = {"reference": W.IntSlider(value=graph.reference, min=0, max=len(small) - 1, description="reference")}
     return build_demo("panorama_canvas", controls, view, update, title="The panorama canvas", extra=[readout])
-
-
-def hg_canvas(homographies, images) -> tuple[int, int]:
-    """(height, width) of the canvas that holds every image warped by its homography."""
-    from ..warp import canvas_bounds
-
-    return canvas_bounds(homographies, [im.shape for im in images])[1]
 
 
 # ----------------------------------------------------------------------------- blending
 
-@lru_cache(maxsize=1)
-def _pair_warp():
-    """Images 1 and 2 (half size) warped onto their common canvas, and their gains."""
-    s, imgs, _, _ = demo_data()
-    graph = demo_graph()
-    Hs = _chain_to(graph, 1)
-    wi = st.warp_images([imgs[1], imgs[2]], [Hs[1], Hs[2]])
-    return wi, st.gain_compensation(wi, reference=0)
-
-
 @register(lesson="09", sweep={"method": list(st.BLENDS), "gains": [False, True], "levels": [1, 5]})
 def blending_seams() -> Demo:
     """Overwrite, feather and multi-band blending of two differently exposed views, with a zoom on the seam."""
-    wi, gains = _pair_warp()
-    seam = st.seam_masks(wi.weights)[0]
+    wi, gains, seam = pe.exposure_pair()
     hh, ww = wi.shape
     row, z = hh // 2, 60
 
@@ -279,17 +217,9 @@ def blending_seams() -> Demo:
     ax_z.set_yticks([])
     ax_z.set_title("zoom on the seam", fontsize=9)
     readout = W.HTML()
-    both = wi.masks[0] & wi.masks[1]
-    cache: dict = {}
-    jumps: dict = {}
-    for m in st.BLENDS:  # blending is the slow part: every setting the controls can reach, once
-        for g in (False, True):
-            for lv in (range(1, 7) if m == "multiband" else (5,)):
-                update_key = (m, g, lv if m == "multiband" else 0)
-                out = st.blend(wi, m, gains=gains if g else None, levels=lv)
-                cache[update_key] = (out, _rgba(out))
-                jumps[update_key] = 255 * (st.seam_step(out, wi.masks[1], wi.masks[0]) if m == "overwrite"
-                                           else st.seam_step(out, seam, both))
+    # every setting the controls can reach, blended once (pe.pair_blends)
+    cache = {key: (b.image, _rgba(b.image)) for key, b in pe.pair_blends().items()}
+    jumps = {key: 255 * b.seam_step for key, b in pe.pair_blends().items()}
 
     def update(v: dict, state: dict) -> None:
         key = (v["method"], bool(v["gains"]), int(v["levels"]) if v["method"] == "multiband" else 0)
@@ -311,18 +241,10 @@ def blending_seams() -> Demo:
 
 # ----------------------------------------------------------------------------- full panorama
 
-@lru_cache(maxsize=1)
-def _panoramas():
-    s, _, _, _ = demo_data()
-    return {proj: st.stitch(s.images, projection=proj, blend_method="multiband", max_features=1500)
-            for proj in ("planar", "cylindrical")}
-
-
 @register(lesson="09", sweep={"projection": ["planar", "cylindrical"], "outlines": [True, False]})
 def full_panorama() -> Demo:
     """The four-image panorama, planar or cylindrical, multi-band blended, with each image's footprint."""
-    pans = _panoramas()
-    s, imgs, _, _ = demo_data()
+    pans = pe.stitched_panoramas()
     view = FigureView(figsize=(9, 3.4))
     ax = view.fig.subplots()
     im = view.animate(ax.imshow(pans["planar"].panorama, interpolation="nearest"))
@@ -364,48 +286,17 @@ def full_panorama() -> Demo:
 
 # ----------------------------------------------------------------------------- plane, cylinder, sphere
 
-@lru_cache(maxsize=1)
-def _sweep_cameras():
-    """The 200-degree sweep (six views, 360 x 264, f = 200 px) with its bundle-adjusted cameras."""
-    s = sd.turning_set("wide", size=(360, 264), f=200.0)
-    r = st.stitch(s.images, projection="spherical", blend_method="overwrite")
-    return s, r
-
-
-@lru_cache(maxsize=1)
-def canvas_gallery() -> dict:
-    """{(views, projection): (RGBA image or None, message)} for the first 2-6 views on each canvas.
-
-    Every image is warped with the estimated cameras (:mod:`camlab.stitching.projections`)
-    and pasted (overwrite, at 3/4 of the focal length: a preview); a plane that cannot hold
-    the views gets None and the reason.
-    """
-    from ..stitching import projections as pj
-    from ..stitching.cameras import wave_correct
-
-    s, r = _sweep_cameras()
-    imgs = st.prepare_images(s.images)
-    out = {}
-    for n in range(2, 7):
-        Ks = [r.cameras[k][0] for k in range(n)]
-        Rs = wave_correct([r.cameras[k][1] for k in range(n)])  # the canvas centred on these n views
-        scale = 0.75 * float(np.median([K[0, 0] for K in Ks]))
-        for proj in pj.PROJECTIONS:
-            fov = 40 * (n - 1) + np.degrees(2 * np.arctan(180 / 200))
-            try:
-                canvas = pj.make_canvas(Ks, Rs, [im.shape for im in imgs[:n]], proj, scale, max_pixels=3_000_000)
-            except (st.DegenerateError, st.CamlabInputError) as exc:
-                why = str(exc).split(";")[0].replace("footprint: ", "")
-                out[(n, proj)] = (None, f"{n} views, {fov:.0f} degrees: {why}")
-                continue
-            pano = np.zeros((*canvas.shape, 3), np.float32)
-            for im, K, R, box in zip(imgs[:n], Ks, Rs, canvas.boxes):
-                patch, mask, _ = pj.warp_to_canvas(im, K, R, canvas, box)
-                r0, r1, c0, c1 = box
-                pano[r0:r1, c0:c1][mask] = patch[mask]
-            out[(n, proj)] = (_fit(_rgba(pano)), f"{n} views, {fov:.0f} degrees of view: {proj} canvas "
-                                                  f"{canvas.shape[1]} x {canvas.shape[0]} px (shown scaled to fit)")
-    return out
+def _gallery() -> dict:
+    """{(views, projection): (RGBA image or None, message)}: :func:`camlab.data.panorama_examples.canvas_previews`
+    fitted into the demo's display box, with the text the demo shows."""
+    gallery = {}
+    for (n, proj), p in pe.canvas_previews().items():
+        if p.image is None:
+            gallery[(n, proj)] = (None, f"{n} views, {p.fov_deg:.0f} degrees: {p.reason}")
+        else:
+            gallery[(n, proj)] = (_fit(_rgba(p.image)), f"{n} views, {p.fov_deg:.0f} degrees of view: {proj} canvas "
+                                                        f"{p.image.shape[1]} x {p.image.shape[0]} px (shown scaled to fit)")
+    return gallery
 
 
 def _fit(rgba: np.ndarray, box: tuple[int, int] = (220, 560)) -> np.ndarray:
@@ -424,7 +315,7 @@ def _fit(rgba: np.ndarray, box: tuple[int, int] = (220, 560)) -> np.ndarray:
 @register(lesson="09", sweep={"views": [2, 3, 4, 5, 6], "projection": ["planar", "cylindrical", "spherical"]})
 def canvas_projections() -> Demo:
     """The same photos on a plane, a cylinder and a sphere as the turn grows (precomputed previews)."""
-    gallery = canvas_gallery()
+    gallery = _gallery()
     view = FigureView(figsize=(6.4, 2.6))
     ax = view.fig.subplots()
     blank = np.full((220, 560, 4), 255, np.uint8)
@@ -459,42 +350,6 @@ def canvas_projections() -> Demo:
 
 # ----------------------------------------------------------------------------- parallax
 
-BASELINES = (0.0, 0.05, 0.1, 0.2, 0.4)
-
-
-@lru_cache(maxsize=1)
-def parallax_pairs():
-    """Two half-size views of the room per baseline: the second camera turned 12 degrees AND moved sideways.
-
-    Returns {baseline: (warped images, homography, pair registration)}; the homography is
-    estimated from the matches (RANSAC locks onto the dominant plane, the back wall).
-    """
-    s, _, _, _ = demo_data()
-    K = s.K
-    size = (s.images[0].shape[1], s.images[0].shape[0])
-    scene = sd.room_scene()
-    R0 = sd.cam_from_world(np.radians(-16.0))
-    R1 = sd.cam_from_world(np.radians(-4.0))
-    img0 = st.prepare_images([sd.render_view(R0, K=K, size=size, noise=False, scene=scene)] * 2)[0]
-    f0 = ft.detect_features(img0, max_features=1500)
-    out = {}
-    for b in BASELINES:
-        c1 = np.array([b, 0.0, 0.0])  # the second camera's centre, metres to the right
-        img1 = st.prepare_images([sd.render_view(R1, t=-R1 @ c1, K=K, size=size, noise=False, scene=scene)] * 2)[0]
-        f1 = ft.detect_features(img1, max_features=1500)
-        reg = st.register_pair(f1, f0, threshold=2.0)
-        wi = st.warp_images([img0, img1], [np.eye(3), reg.H])
-        out[b] = (wi, reg)
-    return out
-
-
-def _edge_overlay(wi) -> tuple[np.ndarray, np.ndarray]:
-    """Canny edges of each of the two warped views (bool masks on the canvas)."""
-    import cv2
-
-    return tuple(cv2.Canny(np.clip(im.mean(axis=2) * 255, 0, 255).astype(np.uint8), 60, 140) > 0 for im in wi.images[:2])
-
-
 def _with_edges(rgba: np.ndarray, edges) -> np.ndarray:
     """Paint view 0's edges red and view 1's cyan (white where both) onto an RGBA image."""
     if edges is None:
@@ -507,34 +362,32 @@ def _with_edges(rgba: np.ndarray, edges) -> np.ndarray:
     return out
 
 
-@register(lesson="09", sweep={"baseline": list(BASELINES[::2]), "method": ["feather", "multiband"], "edges": [True, False]})
+@register(lesson="09", sweep={"baseline": list(pe.BASELINES[::2]), "method": ["feather", "multiband"], "edges": [True, False]})
 def parallax_ghosting() -> Demo:
     """Move the camera sideways between shots: near objects no longer fit the homography and ghost."""
-    pairs = parallax_pairs()
+    pairs = pe.parallax_pairs()
     view = FigureView(figsize=(9, 3.4))
     ax = view.fig.subplots()
     im = view.animate(ax.imshow(np.zeros((10, 10, 3)), interpolation="nearest"))
-    hmax = max(p[0].shape[0] for p in pairs.values())
-    wmax = max(p[0].shape[1] for p in pairs.values())
+    hmax = max(p.warped.shape[0] for p in pairs.values())
+    wmax = max(p.warped.shape[1] for p in pairs.values())
     ax.set(xlim=(-0.5, wmax - 0.5), ylim=(hmax - 0.5, -0.5), aspect="equal")
     ax.set_xticks([])
     ax.set_yticks([])
     readout = W.HTML()
 
-    blends = {(b, m): st.blend(wi, m) for b, (wi, _) in pairs.items() for m in ("feather", "multiband")}
-    edges = {b: _edge_overlay(wi) for b, (wi, _) in pairs.items()}
-    shown = {(b, m, e): _with_edges(_rgba(out), edges[b] if e else None)
-             for (b, m), out in blends.items() for e in (False, True)}
+    shown = {(b, m, e): _with_edges(_rgba(out), p.edges if e else None)
+             for b, p in pairs.items() for m, out in p.blends.items() for e in (False, True)}
 
     def update(v: dict, state: dict) -> None:
         b = float(v["baseline"])
-        wi, reg = pairs[b]
-        out = blends[(b, v["method"])]
+        p = pairs[b]
+        wi, reg, out = p.warped, p.registration, p.blends[v["method"]]
         im.set_data(shown[(b, v["method"], bool(v["edges"]))])
         hh, ww = wi.shape
         im.set_extent((-0.5, ww - 0.5, hh - 0.5, -0.5))
         n, k = len(reg.matches.src), int(reg.inliers.sum())
-        diff = 255 * st.overlap_difference(wi)
+        diff = 255 * p.misalignment
         state.update(baseline=b, edges=bool(v["edges"]), inlier_fraction=k / max(n, 1), residual_rms=reg.residual_rms,
                      misalignment=diff, method=v["method"], image=out)
         readout.value = monospace(f"camera moved {100 * b:.0f} cm\nmatches: {n}\n"
@@ -543,7 +396,7 @@ def parallax_ghosting() -> Demo:
                              f"edges: red = view 0, cyan = view 1 (white where they agree)")
 
     controls = {
-        "baseline": W.SelectionSlider(options=list(BASELINES), value=0.2, description="baseline (m)"),
+        "baseline": W.SelectionSlider(options=list(pe.BASELINES), value=0.2, description="baseline (m)"),
         "method": W.Dropdown(options=["feather", "multiband"], value="feather", description="blend"),
         "edges": W.Checkbox(value=True, description="both views' edges"),
     }

@@ -1,0 +1,158 @@
+"""camlab.data.panorama_examples: lesson 09's data, computed once, cached and read-only.
+
+Each result is checked against the ground truth of the rendered sets and against the
+public stages it is made of (recomputed live), and every cached array must refuse edits.
+"""
+import dataclasses
+
+import numpy as np
+import pytest
+
+from camlab import stitching as st
+from camlab.data import panorama_examples as pe
+from camlab.projective import map_points
+from camlab.warp import canvas_bounds
+
+CACHED = [pe.panorama_example, pe.panorama_graph, pe.reference_canvases, pe.exposure_pair, pe.pair_blends,
+          pe.stitched_panoramas, pe.wide_sweep, pe.canvas_previews, pe.parallax_pairs]
+
+
+def arrays(obj) -> list:
+    """Every ndarray inside obj (NamedTuples, lists, tuples, dicts, WarpedImages with their canvases)."""
+    if isinstance(obj, np.ndarray):
+        return [obj]
+    if isinstance(obj, dict):
+        return [a for v in obj.values() for a in arrays(v)]
+    if isinstance(obj, (list, tuple)):
+        return [a for v in obj for a in arrays(v)]
+    if isinstance(obj, st.WarpedImages):
+        parts = [getattr(obj, f.name) for f in dataclasses.fields(obj)] + [obj.images, obj.masks, obj.weights]
+        return arrays(parts)
+    return []
+
+
+@pytest.mark.parametrize("make", CACHED, ids=lambda f: f.__name__)
+def test_cached_results_are_read_only(make):
+    result = make()
+    assert make() is result  # cached: computed once
+    found = arrays(result)
+    assert len(found) >= 3
+    writable = [a.shape for a in found if a.flags.writeable]
+    assert not writable, f"{len(writable)} of {len(found)} arrays are writable: {writable[:5]}"
+    biggest = max(found, key=lambda a: a.size)
+    with pytest.raises(ValueError, match="read-only"):
+        biggest.flat[0] = 0
+    with pytest.raises(ValueError, match="read-only"):
+        np.add(biggest, 1, out=biggest, casting="unsafe")
+
+
+def test_an_edit_cannot_reach_the_next_caller():
+    img = pe.panorama_example().images[0]
+    before = img.copy()
+    with pytest.raises(ValueError):
+        img[:10] = 0
+    np.testing.assert_array_equal(pe.panorama_example().images[0], before)
+
+
+def test_panorama_example_shapes():
+    ex = pe.panorama_example()
+    assert len(ex.data.images) == len(ex.images) == len(ex.features) == 4
+    assert ex.data.images[0].shape == (240, 320, 3) and ex.data.images[0].dtype == np.uint8
+    assert float(ex.data.K[0, 0]) == 400.0
+    assert all(im.shape == (240, 320, 3) and im.dtype == np.float32 for im in ex.images)
+    assert all(500 < len(f.points) <= 1500 for f in ex.features)
+    assert sorted(ex.knn) == [(0, 1), (1, 2), (2, 3)]
+
+
+def test_graph_reference_and_relative_homographies_agree_with_the_truth():
+    ex, graph = pe.panorama_example(), pe.panorama_graph()
+    assert graph.reference in (1, 2) and graph.unconnected == []  # a middle view: it overlaps two others
+    np.testing.assert_allclose(graph.homographies[graph.reference], np.eye(3), atol=1e-9)
+    h, w = ex.images[0].shape[:2]
+    corners = np.array([[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]], float)
+    for ref in range(4):
+        Hs = pe.homographies_relative_to(graph, ref)
+        np.testing.assert_allclose(Hs[ref], np.eye(3), atol=1e-9)
+        for k in range(max(0, ref - 1), min(4, ref + 2)):  # the neighbours: corners within 1.5 px of the truth
+            err = np.abs(map_points(Hs[k], corners) - map_points(ex.data.true_homography(k, ref), corners)).max()
+            assert err < 1.5, (ref, k, err)
+
+
+def test_correct_matches_uses_the_true_homography():
+    ex = pe.panorama_example()
+    src = np.array([[50.0, 60.0], [200.0, 120.0], [300.0, 30.0]])
+    dst = map_points(ex.data.true_homography(0, 1), src)
+    assert pe.correct_matches(ex.data, 0, 1, src, dst).all()
+    assert not pe.correct_matches(ex.data, 0, 1, src, dst + [3.0, 0.0]).any()
+    assert pe.correct_matches(ex.data, 0, 1, src, dst + [1.0, 1.0], tol=2.0).all()  # 1.41 px < 2 px
+    empty = pe.correct_matches(ex.data, 0, 1, np.zeros((0, 2)), np.zeros((0, 2)))
+    assert empty.shape == (0,) and empty.dtype == bool
+
+
+def test_reference_canvases_are_the_warps_of_the_relative_homographies():
+    small, canvases = pe.reference_canvases()
+    assert sorted(canvases) == [0, 1, 2, 3] and all(im.shape == (120, 160, 3) for im in small)
+    graph = pe.panorama_graph()
+    S = np.diag([0.5, 0.5, 1.0])
+    S[:2, 2] = -0.25  # half-size pixel centres -> quarter-size pixel centres
+    for ref, c in canvases.items():
+        chain = [S @ H @ np.linalg.inv(S) for H in pe.homographies_relative_to(graph, ref)]
+        T, shape = canvas_bounds(chain, [im.shape for im in small], max_pixels=3_000_000)
+        assert c.shape == tuple(shape) and c.panorama.shape == (*shape, 3)
+        np.testing.assert_allclose(c.T, T)
+        np.testing.assert_allclose(c.homographies[ref], T, atol=1e-9)  # the reference is only translated
+    wi = st.warp_images(small, [np.linalg.inv(canvases[1].T) @ H for H in canvases[1].homographies],
+                        max_pixels=3_000_000)
+    np.testing.assert_array_equal(st.blend(wi, "overwrite"), canvases[1].panorama)
+    middle, end = canvases[1].shape, canvases[3].shape
+    assert end[0] * end[1] > 1.3 * middle[0] * middle[1]  # an end reference stretches the far images
+
+
+def test_pair_blends_cover_every_setting_and_gains_hide_the_seam():
+    wi, gains, seam = pe.exposure_pair()
+    assert seam.dtype == bool and seam.shape == wi.shape and not (seam & ~wi.masks[0]).any()
+    assert gains.shape == (2,) and gains[0] == 1.0 and abs(gains[1] - 1) > 0.1  # exposures differ
+    blends = pe.pair_blends()
+    assert sorted(blends) == sorted([(m, g, 0) for m in ("overwrite", "feather") for g in (False, True)]
+                                    + [("multiband", g, lv) for g in (False, True) for lv in range(1, 7)])
+    over = blends[("overwrite", False, 0)].seam_step
+    assert over > 15 / 255
+    assert blends[("overwrite", True, 0)].seam_step < over / 4
+    assert blends[("multiband", True, 5)].seam_step < over / 4
+    b = blends[("multiband", True, 3)]
+    again = st.blend(wi, "multiband", gains=gains, levels=3)
+    np.testing.assert_array_equal(b.image, again)
+    assert b.seam_step == st.seam_step(again, seam, wi.masks[0] & wi.masks[1])
+
+
+def test_parallax_grows_with_the_baseline():
+    pairs = pe.parallax_pairs()
+    assert tuple(pairs) == pe.BASELINES
+    mis = [p.misalignment for p in pairs.values()]
+    assert mis[0] < 4 / 255 and all(a < b for a, b in zip(mis, mis[1:]))  # only noise when the camera turns
+    for p in pairs.values():
+        assert p.registration.accepted and sorted(p.blends) == ["feather", "multiband"]
+        assert p.misalignment == st.overlap_difference(p.warped)
+        assert all(e.dtype == bool and e.shape == p.warped.shape and e.any() for e in p.edges)
+        for e, again in zip(p.edges, pe.edge_masks(p.warped)):
+            np.testing.assert_array_equal(e, again)
+
+
+def test_canvas_previews_the_plane_cannot_hold_a_wide_turn():
+    previews = pe.canvas_previews()
+    assert sorted(previews) == sorted((n, p) for n in range(2, 7) for p in ("planar", "cylindrical", "spherical"))
+    for (n, proj), p in previews.items():
+        assert p.fov_deg == pytest.approx(40 * (n - 1) + np.degrees(2 * np.arctan(0.9)))
+        if proj == "planar" and n >= 4:  # beyond 180 degrees
+            assert p.image is None and "90 degrees" in p.reason
+        else:
+            assert p.reason == "" and p.image.ndim == 3 and p.image.dtype == np.float32 and p.image.max() > 0.2
+    widths = [previews[(n, "cylindrical")].image.shape[1] for n in range(2, 7)]
+    assert all(a < b for a, b in zip(widths, widths[1:]))  # every view adds width
+
+
+def test_stitched_panoramas():
+    pans = pe.stitched_panoramas()
+    assert sorted(pans) == ["cylindrical", "planar"]
+    assert pans["cylindrical"].panorama.shape[1] < pans["planar"].panorama.shape[1]
+    assert all(r.unconnected == [] and r.panorama.shape[2] == 3 for r in pans.values())
