@@ -49,7 +49,7 @@ from .robust import PairModel, ransac
 
 __all__ = [
     "HIERARCHY", "HomographyModel", "RansacResult", "RefineResult", "affine", "classify", "compose", "decompose",
-    "estimate_homography", "euclidean", "hartley_normalization", "invert", "map_lines", "map_points",
+    "estimate_homography", "euclidean", "hartley_normalization", "hierarchy_matrix", "invert", "map_lines", "map_points",
     "normalize_homography", "plane_homography", "pose_homography", "projective", "ransac_homography",
     "refine_homography", "rotation_homography", "same_homography", "sampson_error", "similarity",
     "symmetric_transfer_error", "transfer_error",
@@ -714,6 +714,37 @@ def projective(A: ArrayLike | None = None, t: ArrayLike = (0.0, 0.0), v: ArrayLi
     H[2, :2] = check_matrix(v, (2,), "v")
     H[2, 2] = check_number(w, "w")
     return check_homography(H)
+
+
+def hierarchy_matrix(group: str, *, theta: float = 0.0, scale: float = 1.0, shear: float = 0.0,
+                     aspect: float = 1.0, tx: float = 0.0, ty: float = 0.0,
+                     v: ArrayLike = (0.0, 0.0)) -> np.ndarray:
+    r"""One matrix of ``group`` (a key of :data:`HIERARCHY`) from one set of parameters.
+
+    Each group uses only the parameters it has and ignores the rest, which is what lesson
+    07's demo shows when the group changes under fixed sliders:
+
+    * euclidean: rotation ``theta`` (radians) and translation (tx, ty);
+    * similarity: adds the isotropic ``scale``;
+    * affine: scales ``scale * aspect`` and ``scale / aspect`` along axes turned by ``shear``
+      (:func:`affine` with :math:`\phi` = ``shear``);
+    * projective: that affinity followed by ``v``, the bottom row that moves the line at
+      infinity: :math:`H = H_A H_P` (:func:`compose`, :func:`projective`).
+
+    >>> classify(hierarchy_matrix("similarity", theta=0.3, scale=2.0, shear=0.5))
+    'similarity'
+    """
+    if group not in HIERARCHY:
+        raise CamlabInputError(f"group: expected one of {', '.join(HIERARCHY)}, got {group!r}")
+    if group == "euclidean":
+        return euclidean(theta, tx, ty)
+    if group == "similarity":
+        return similarity(scale, theta, tx, ty)
+    aspect = check_positive(aspect, "aspect")
+    A = affine(theta, shear, scale * aspect, scale / aspect, tx, ty)
+    if group == "affine":
+        return A
+    return compose(A, projective(v=v))
 
 
 def classify(H: ArrayLike, tol: float = 1e-9) -> str:

@@ -44,6 +44,19 @@ def _outside_focal_length(z_o: np.ndarray, f: float, name: str) -> None:
         )
 
 
+def _conjugate(focal_length: float, z: ArrayLike, name: str) -> np.ndarray | float:
+    """The other distance of a thin lens: :math:`1/f = 1/z_o + 1/z_i` is symmetric in the two, so
+    either one follows from the other by :math:`f z / (z - f)`."""
+    f = check_positive(focal_length, "focal_length", "metres")
+    z = _distances(z, name)
+    if name == "image_distance" and np.any(z <= f):
+        raise CamlabInputError(f"image_distance: a sensor {float(np.min(z))!r} m behind the lens is not beyond the "
+                               f"focal length f = {f!r} m, so no real object is in focus there; place it beyond f")
+    _outside_focal_length(z, f, name)
+    out = f * z / (z - f)
+    return float(out) if out.ndim == 0 else out
+
+
 def image_distance(focal_length: float, object_distance: ArrayLike) -> np.ndarray | float:
     r"""Where a thin lens focuses an object: :math:`z_i = f z_o / (z_o - f)`.
 
@@ -54,11 +67,7 @@ def image_distance(focal_length: float, object_distance: ArrayLike) -> np.ndarra
     ...
     camlab._validate.CamlabInputError: object_distance: object at 0.03 m is inside the focal length f = 0.05 m, so the lens forms no real image (a virtual, magnifying-glass image instead); move it beyond f
     """
-    f = check_positive(focal_length, "focal_length", "metres")
-    z = _distances(object_distance, "object_distance")
-    _outside_focal_length(z, f, "object_distance")
-    out = f * z / (z - f)
-    return float(out) if out.ndim == 0 else out
+    return _conjugate(focal_length, object_distance, "object_distance")
 
 
 def object_distance(focal_length: float, image_distance_: ArrayLike) -> np.ndarray | float:
@@ -67,11 +76,7 @@ def object_distance(focal_length: float, image_distance_: ArrayLike) -> np.ndarr
     >>> round(float(object_distance(0.05, 0.0512820513)), 6)
     2.0
     """
-    f = check_positive(focal_length, "focal_length", "metres")
-    zi = _distances(image_distance_, "image_distance")
-    _outside_focal_length(zi, f, "image_distance")
-    out = f * zi / (zi - f)
-    return float(out) if out.ndim == 0 else out
+    return _conjugate(focal_length, image_distance_, "image_distance")
 
 
 def magnification(focal_length: float, object_distance_: ArrayLike) -> np.ndarray | float:

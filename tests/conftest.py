@@ -4,10 +4,26 @@ import os
 os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
 os.environ.setdefault("MPLBACKEND", "Agg")
 
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
 from hypothesis import settings  # noqa: E402
 
 settings.register_profile("camlab", max_examples=60, deadline=None, derandomize=True)
 settings.load_profile("camlab")
+
+
+@pytest.fixture
+def rng():
+    """A seeded generator: every test that draws random data draws the same data each run."""
+    return np.random.default_rng(0)
+
+
+@pytest.fixture
+def cam():
+    """A general camera (skewed K, off-centre principal point) looking at the origin from above and aside."""
+    from camlab import camera as cm
+
+    return cm.Camera.look_at([4.0, -3.0, 2.0], [0.0, 0.0, 0.5], K=cm.intrinsic_matrix(810, 790, 330, 235, 1.5))
 
 
 def assert_close_to_cv2_warp(ours, ref) -> None:

@@ -16,16 +16,6 @@ from camlab.scenes import box_wireframe
 os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
 
 
-@pytest.fixture
-def rng():
-    return np.random.default_rng(1)
-
-
-@pytest.fixture
-def cam():
-    return cm.Camera.look_at([4.0, -3.0, 2.0], [0.0, 0.0, 0.5], K=cm.intrinsic_matrix(800, 780, 320, 240))
-
-
 def test_orthographic_known():
     R = cm.rotation_z(np.pi / 2)
     P = af.orthographic_matrix(R, [1.0, 2.0, 10.0])

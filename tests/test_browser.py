@@ -3,7 +3,6 @@
 Playwright drives the system Chromium (never `playwright install`, which downloads a browser).
 JupyterLab serves a temporary copy of the lessons so autosave never touches the repository.
 """
-import os
 import shutil
 import sys
 from pathlib import Path
@@ -19,10 +18,7 @@ import browser  # noqa: E402
 
 @pytest.fixture(scope="module")
 def lab(tmp_path_factory):
-    if os.environ.get("CAMLAB_SKIP_BROWSER") == "1":
-        pytest.skip("CAMLAB_SKIP_BROWSER=1")
-    if not Path(browser.CHROMIUM).exists():
-        pytest.fail("Debian chromium is not installed: `apt-get install chromium` (make test does this as root)")
+    browser.require_chromium()
     base = tmp_path_factory.mktemp("lab")
     shutil.copytree(REPO / "lessons", base / "root" / "lessons")
     with browser.jupyterlab(base / "root", base) as lab:

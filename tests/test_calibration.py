@@ -14,6 +14,7 @@ from camlab.calibration.refinement import BlockNormal, project_views
 from camlab._validate import CamlabInputError, DegenerateError
 from camlab.camera import rotation_from_axis_angle, rotation_from_euler
 from camlab.data import load_calibration_set
+from camlab.data.calibration import bundled_calibration
 from camlab.homography import pose_homography
 from camlab.optimize import dense_damped_solve, lm_step
 from camlab.render import align_detected_corners, project
@@ -462,11 +463,20 @@ def test_accuracy_demo_plots_in_sigma_units_and_marks_clipped_errors():
     assert len(above.get_xdata()) + len(below.get_xdata()) == outside.sum()
 
 
+def test_bundled_calibration_is_computed_once_and_read_only():
+    out = bundled_calibration()
+    assert bundled_calibration() is out
+    assert out.used == list(range(16)) and out.failed == {}
+    for a in (out.result.K, out.result.dist, out.result.rvecs, out.result.residuals[0], out.detections[0]):
+        with pytest.raises(ValueError, match="read-only"):
+            a[0] = 0  # shared by every caller: an edit must not change the next one's answer
+
+
 def test_view_inspector_shows_the_chosen_view(bundled):
     from camlab.widgets import camera_calibration as demos
 
     demo = demos.view_inspector()
-    out = demos.bundled_calibration()
+    out = bundled_calibration()
     demo.set(view=4)
     assert demo.state["image_index"] == out.used[4]
     assert demo.state["rms"] == pytest.approx(out.result.per_view_rms[4])

@@ -16,16 +16,6 @@ from camlab._validate import CamlabInputError, DegenerateError
 os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
 
 
-@pytest.fixture
-def rng():
-    return np.random.default_rng(0)
-
-
-@pytest.fixture
-def cam():
-    return cm.Camera.look_at([4.0, -3.0, 2.0], [0.0, 0.0, 0.5], K=cm.intrinsic_matrix(810, 790, 330, 235, 1.5))
-
-
 def box_points(rng, n=40):
     """World points spread through a 2 m cube (never coplanar)."""
     return rng.uniform(-1.0, 1.0, (n, 3)) + [0.0, 0.0, 1.0]

@@ -45,55 +45,33 @@ def point_sets(draw, dims=(2, 2), min_n=0, max_n=30):
     return a, b
 
 
-def _finite_or_clear(fn, *args, **kwargs):
+# Each estimator: the point sets it is fed, and how it is called on them (``seed`` seeds RANSAC).
+ESTIMATORS = {
+    "estimate_homography": (point_sets(), lambda a, b, seed: estimate_homography(a, b)),
+    "ransac_homography": (point_sets(min_n=4, max_n=60),
+                          lambda a, b, seed: ransac_homography(a, b, 3.0, max_iters=200, rng=seed)),
+    "refine_homography": (point_sets(min_n=4), lambda a, b, seed: refine_homography(np.eye(3), a, b, max_iters=5)),
+    "estimate_fundamental_matrix": (point_sets(), lambda a, b, seed: estimate_fundamental_matrix(a, b)),
+    "ransac_fundamental_matrix": (point_sets(min_n=8, max_n=60),
+                                  lambda a, b, seed: ransac_fundamental_matrix(a, b, 1.0, max_iters=300, rng=seed)),
+    "estimate_projection_matrix": (point_sets(dims=(3, 2)), lambda a, b, seed: estimate_projection_matrix(a, b)),
+    "estimate_affine_camera": (point_sets(dims=(3, 2)), lambda a, b, seed: estimate_affine_camera(a, b)),
+}
+
+
+@FUZZ
+@pytest.mark.parametrize("name", list(ESTIMATORS))
+@given(data=st.data())
+def test_estimators_give_finite_numbers_or_a_clear_error(name, data):
+    points, call = ESTIMATORS[name]
+    a, b = data.draw(points, label="point sets")
+    seed = data.draw(st.integers(0, 3), label="seed")
     try:
-        out = fn(*args, **kwargs)
+        out = call(a, b, seed)
     except (CamlabInputError, ConvergenceError):
         return
     arrays = [v for v in (out if isinstance(out, tuple) else (out,)) if isinstance(v, np.ndarray) and v.dtype.kind == "f"]
-    assert arrays and all(np.isfinite(v).all() for v in arrays[:1]), f"{fn.__name__} returned non-finite numbers"
-
-
-@FUZZ
-@given(point_sets())
-def test_estimate_homography_fuzz(pairs):
-    _finite_or_clear(estimate_homography, *pairs)
-
-
-@FUZZ
-@given(point_sets(min_n=4, max_n=60), st.integers(0, 3))
-def test_ransac_homography_fuzz(pairs, seed):
-    _finite_or_clear(ransac_homography, *pairs, 3.0, max_iters=200, rng=seed)
-
-
-@FUZZ
-@given(point_sets(min_n=4))
-def test_refine_homography_fuzz(pairs):
-    _finite_or_clear(refine_homography, np.eye(3), *pairs, max_iters=5)
-
-
-@FUZZ
-@given(point_sets())
-def test_estimate_fundamental_matrix_fuzz(pairs):
-    _finite_or_clear(estimate_fundamental_matrix, *pairs)
-
-
-@FUZZ
-@given(point_sets(min_n=8, max_n=60), st.integers(0, 3))
-def test_ransac_fundamental_matrix_fuzz(pairs, seed):
-    _finite_or_clear(ransac_fundamental_matrix, *pairs, 1.0, max_iters=300, rng=seed)
-
-
-@FUZZ
-@given(point_sets(dims=(3, 2)))
-def test_estimate_projection_matrix_fuzz(pairs):
-    _finite_or_clear(estimate_projection_matrix, *pairs)
-
-
-@FUZZ
-@given(point_sets(dims=(3, 2)))
-def test_estimate_affine_camera_fuzz(pairs):
-    _finite_or_clear(estimate_affine_camera, *pairs)
+    assert arrays and np.isfinite(arrays[0]).all(), f"{name} returned non-finite numbers"
 
 
 @FUZZ

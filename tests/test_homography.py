@@ -272,6 +272,23 @@ def test_compose_invert_and_singular():
         hg.compose()
 
 
+def test_hierarchy_matrix_builds_a_member_of_each_group():
+    params = dict(theta=0.4, scale=1.6, shear=0.3, aspect=1.3, tx=5.0, ty=-2.0, v=(1e-3, 2e-3))
+    for group in hg.HIERARCHY:
+        assert hg.classify(hg.hierarchy_matrix(group, **params)) == group
+    # each group ignores the parameters it does not have
+    assert np.allclose(hg.hierarchy_matrix("euclidean", **params), hg.euclidean(0.4, 5.0, -2.0))
+    assert np.allclose(hg.hierarchy_matrix("similarity", **params), hg.similarity(1.6, 0.4, 5.0, -2.0))
+    A = hg.hierarchy_matrix("affine", **params)
+    assert np.allclose(A, hg.affine(0.4, 0.3, 1.6 * 1.3, 1.6 / 1.3, 5.0, -2.0))
+    assert np.allclose(hg.hierarchy_matrix("projective", **params), A @ hg.projective(v=(1e-3, 2e-3)))
+    with pytest.raises(CamlabInputError, match="group: expected one of euclidean, similarity, affine, projective, "
+                                               "got 'rigid'"):
+        hg.hierarchy_matrix("rigid")
+    with pytest.raises(CamlabInputError, match="aspect"):
+        hg.hierarchy_matrix("affine", aspect=0.0)
+
+
 def test_hierarchy_classify_and_invariants():
     rng = np.random.default_rng(0)
     E = hg.euclidean(0.7, 10, -3)

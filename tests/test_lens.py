@@ -54,6 +54,8 @@ def test_bad_physical_inputs():
         lens.image_distance(-0.05, 1.0)
     with pytest.raises(CamlabInputError, match=r"object_distance: object at 0.03 m is inside the focal length"):
         lens.image_distance(0.05, 0.03)
+    with pytest.raises(CamlabInputError, match=r"image_distance: a sensor 0.03 m behind the lens is not beyond"):
+        lens.object_distance(0.05, 0.03)
     with pytest.raises(CamlabInputError, match=r"object_distance: expected positive finite distances"):
         lens.magnification(0.05, 0.0)
     with pytest.raises(CamlabInputError, match=r"depth: expected positive finite distances"):

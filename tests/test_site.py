@@ -154,10 +154,7 @@ def browser(tmp_path_factory):
     sys.path.insert(0, str(REPO / "tools"))
     import browser as chromium
 
-    if os.environ.get("CAMLAB_SKIP_BROWSER") == "1":
-        pytest.skip("CAMLAB_SKIP_BROWSER=1")
-    if not Path(chromium.CHROMIUM).exists():
-        pytest.fail("Debian chromium is not installed: `apt-get install chromium` (make test does this as root)")
+    chromium.require_chromium()
     from playwright.sync_api import sync_playwright
 
     with sync_playwright() as p:

@@ -4,6 +4,7 @@ import numpy as np
 from camlab import epipolar as ep
 from camlab import rectification as rc
 from camlab.distortion import undistort_pixels
+from camlab.projective import map_points
 from camlab.data.stereo import STEREO_PARAMS, load_stereo_rig, rig_cameras
 
 
@@ -76,3 +77,36 @@ def test_true_disparity_of_another_rectification():
     d = true_disparity(rig, half)
     assert d.shape == (240, 320)
     assert np.isclose(np.nanmedian(d), 0.5 * np.nanmedian(rig.disparity), rtol=0.02)  # f halves, B and Z stay
+
+
+def test_bundled_rig_prepares_lesson_11_s_pair_once_and_read_only():
+    import pytest
+
+    from camlab.data.stereo import HALF_SIZE, bundled_rig, true_matches
+
+    prepared = bundled_rig()
+    assert bundled_rig() is prepared  # cached
+    rig, matches, half, und, unc = prepared
+    again = true_matches(load_stereo_rig(), step=30, start=20)
+    for a, b in zip(matches, again):
+        np.testing.assert_array_equal(a, b)
+    assert [im.shape for im in half] == [HALF_SIZE[::-1]] * 2 and [im.shape for im in und] == [(480, 640)] * 2
+    # Hartley's rectification from the noisy matches leaves them on (almost) the same rows
+    vd = rc.vertical_disparity(map_points(unc.H1, matches.ideal1), map_points(unc.H2, matches.ideal2))
+    assert vd.median < 0.5
+    for a in (rig.left, rig.disparity, matches.raw1, half[0], und[1]):
+        with pytest.raises(ValueError, match="read-only"):
+            a[0] = 0  # a caller's edit must not corrupt the cache
+
+
+def test_half_size_rectification_scores_only_smooth_surfaces():
+    from camlab.data.stereo import half_size_rectification
+
+    rect, left, right, disparity, smooth = half_size_rectification()
+    assert left.shape == right.shape == disparity.shape == smooth.shape == (240, 320)
+    assert not left.flags.writeable and not smooth.flags.writeable
+    assert np.all(np.isfinite(disparity[smooth]))
+    # the depth edges (large disparity steps) are left out, most of the textured surface is kept
+    step = np.abs(np.diff(np.nan_to_num(disparity, nan=-100.0), axis=1)) > 1
+    assert not np.any(smooth[:, 1:] & step)
+    assert 0.5 < smooth.mean() < 0.98

@@ -89,6 +89,26 @@ def test_projection_round_trips():
         assert np.allclose(back, d, atol=1e-9), proj
 
 
+def test_pixel_rays_and_canvas_points_of_a_camera_looking_backwards():
+    from camlab.camera import intrinsic_matrix, rotation_from_axis_angle
+
+    K = intrinsic_matrix(300, 290, 170, 118, 2.0)
+    R = rotation_from_axis_angle([0.0, np.radians(179.0), 0.0])  # turned almost all the way round
+    pixels = np.array([[0.0, 0.0], [339.0, 0.0], [170.0, 118.0], [339.0, 235.0]])
+    rays = pj.pixel_rays(pixels, K, R)
+    expected = (np.c_[pixels, np.ones(4)] @ np.linalg.inv(K).T) @ R  # R^T K^-1 x, row by row
+    np.testing.assert_allclose(rays, expected, rtol=1e-12)
+    s = 300.0
+    u, v = pj.canvas_points(pixels, K, R, "cylindrical", s)
+    # the image straddles the canvas's seam at +-pi s, but its points stay together around its optical axis
+    axis = -np.radians(179.0) * s
+    assert np.all(np.abs(u - axis) < np.pi / 2 * s) and np.ptp(u) < np.pi / 2 * s
+    assert u.min() < -np.pi * s < u.max()
+    wrapped, _ = pj.canvas_from_ray(rays, "cylindrical", s)  # without unrolling the points split across the seam
+    assert np.ptp(wrapped) > np.pi * s
+    np.testing.assert_allclose(np.angle(np.exp(1j * u / s)), wrapped / s, atol=1e-12)
+
+
 def test_loop_closes_after_bundle_adjustment():
     """A full turn in 8 photos: the spanning tree leaves the loop open, bundle adjustment closes it."""
     s = pd.turning_set("loop", size=(450, 330), f=250)

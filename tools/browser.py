@@ -41,6 +41,17 @@ ALL_CELLS_RUN = """() => {
 RUN_ALL = "() => { window.jupyterapp.commands.execute('notebook:run-all-cells'); }"  # never await it: it can hang
 
 
+def require_chromium() -> None:
+    """For a browser test's fixture: skip it under CAMLAB_SKIP_BROWSER=1, fail it (saying how to
+    install) when Debian's chromium is missing: a browser test never passes by not running."""
+    import pytest
+
+    if os.environ.get("CAMLAB_SKIP_BROWSER") == "1":
+        pytest.skip("CAMLAB_SKIP_BROWSER=1")
+    if not Path(CHROMIUM).exists():
+        pytest.fail("Debian chromium is not installed: `apt-get install chromium` (make test does this as root)")
+
+
 def free_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))

@@ -22,7 +22,8 @@ from pathlib import Path
 
 from .._validate import CamlabInputError
 
-__all__ = ["cache_dir", "data_dir", "dataset_dir", "docs_dir", "lessons_dir", "read_truth", "regeneration_dir"]
+__all__ = ["cache_dir", "data_dir", "dataset_dir", "docs_dir", "lessons_dir", "read_only", "read_truth",
+           "regeneration_dir"]
 
 _REPO = Path(__file__).resolve().parents[2]
 
@@ -113,3 +114,8 @@ def encode_image(image, ext: str, params: tuple[int, ...] = ()) -> bytes:
                       f"{getattr(image, 'dtype', '?')} image as {ext}")
     return buf.tobytes()
 
+
+def read_only(*arrays) -> None:
+    """Freeze arrays that a cache hands out: a caller's in-place edit would otherwise change every later use."""
+    for a in arrays:
+        a.setflags(write=False)

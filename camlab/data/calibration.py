@@ -9,19 +9,20 @@ recorded beside the files:
     640 x 480, 8-bit grey, with a little sensor noise; ``truth.json`` holds the generator's
     parameters and the ground truth (K, dist, each view's pose and exact corner pixels).
 
-Load with :func:`load_calibration_set`.
+Load with :func:`load_calibration_set`; :func:`bundled_calibration` is its calibration, computed once.
 """
 from __future__ import annotations
 
 import json
+from functools import lru_cache
 from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
 
-from ._resources import encode_image, read_truth
+from ._resources import encode_image, read_only, read_truth
 
-__all__ = ["CalibrationSet", "CALIBRATION_PARAMS", "load_calibration_set", "make_calibration_set"]
+__all__ = ["CalibrationSet", "CALIBRATION_PARAMS", "bundled_calibration", "load_calibration_set", "make_calibration_set"]
 
 CALIBRATION_PARAMS = {
     "seed": 2026,
@@ -146,3 +147,20 @@ def load_calibration_set(directory: Path | str | None = None) -> CalibrationSet:
         object_points=np.array(truth["object_points"]), pattern_size=tuple(truth["pattern_size"]),
         square=float(truth["square"]), params=truth["params"],
     )
+
+
+@lru_cache(maxsize=1)
+def bundled_calibration():
+    """:func:`camlab.calibration.calibrate_from_images` of the bundled set (detected corners), computed once.
+
+    Lesson 08's ``view_inspector`` shows it. Its arrays (corners, K, dist, poses, residuals)
+    are read-only: the result is shared by every caller.
+    """
+    from ..calibration import calibrate_from_images
+
+    cs = load_calibration_set()
+    out = calibrate_from_images(cs.images, cs.pattern_size, cs.square)
+    r = out.result
+    read_only(r.K, r.dist, r.rvecs, r.tvecs, r.per_view_rms, *r.residuals, *r.image_points,
+              *(d for d in out.detections if d is not None))
+    return out

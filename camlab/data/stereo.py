@@ -30,17 +30,19 @@ world z up, metres; the left camera looks along world +y.
 from __future__ import annotations
 
 import json
+from functools import lru_cache
 from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
 
-from ._resources import encode_image, read_truth
+from ._resources import encode_image, read_only, read_truth
 from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
 from ..scenes import noise_texture, portrait
 
-__all__ = ["STEREO_PARAMS", "RigCalibration", "StereoMatches", "StereoRig", "calibrate_rig", "load_stereo_rig",
-           "make_stereo_rig", "rig_cameras", "stereo_scene", "true_disparity", "true_matches"]
+__all__ = ["HALF_SIZE", "STEREO_PARAMS", "HalfSizeRectification", "PreparedRig", "RigCalibration", "StereoMatches",
+           "StereoRig", "bundled_rig", "bundled_rig_calibration", "calibrate_rig", "half_size_rectification",
+           "load_stereo_rig", "make_stereo_rig", "rig_cameras", "stereo_scene", "true_disparity", "true_matches"]
 
 STEREO_PARAMS = {
     "seed": 11,
@@ -260,6 +262,114 @@ def calibrate_rig(rig: StereoRig) -> RigCalibration:
     cam1 = Camera(sc.K1, np.eye(3), np.zeros(3), dist=tuple(sc.dist1), image_size=size)
     cam2 = Camera(sc.K2, sc.R, sc.t, dist=tuple(sc.dist2), image_size=size)
     return RigCalibration(cam1, cam2, float(sc.rms))
+
+
+# ----------------------------------------------------------------------------- the rig as lesson 11 uses it
+
+HALF_SIZE = (320, 240)  # (width, height) the demos show the pair at, so that re-warping stays fast
+
+
+def _halved(image: np.ndarray) -> np.ndarray:
+    import cv2
+
+    return cv2.resize(image, HALF_SIZE, interpolation=cv2.INTER_AREA)
+
+
+class PreparedRig(NamedTuple):
+    """The bundled rig prepared once for lesson 11's demos (:func:`bundled_rig`); arrays are read-only.
+
+    Attributes
+    ----------
+    rig : StereoRig
+        The rig as :func:`load_stereo_rig` reads it.
+    matches : StereoMatches
+        Its true matches every 30 pixels (:func:`true_matches`).
+    half : tuple of two (240, 320) uint8 arrays
+        The raw left and right images at :data:`HALF_SIZE`.
+    undistorted : tuple of two (480, 640) uint8 arrays
+        The full-size pair with each camera's lens distortion removed.
+    uncalibrated
+        :func:`camlab.rectification.rectify_uncalibrated` (Hartley's method) from F that
+        RANSAC estimates on the undistorted matches with 0.3 px of noise added (seeded): what
+        section 4 of the lesson computes, with a denser grid of matches.
+    """
+
+    rig: StereoRig
+    matches: StereoMatches
+    half: tuple
+    undistorted: tuple
+    uncalibrated: object
+
+
+@lru_cache(maxsize=1)
+def bundled_rig() -> PreparedRig:
+    """The bundled rig with its true matches, half-size and undistorted pair, and uncalibrated rectification (cached)."""
+    from ..distortion import undistort_image
+    from ..epipolar import ransac_fundamental_matrix
+    from ..rectification import rectify_uncalibrated
+
+    rig = load_stereo_rig()
+    read_only(rig.left, rig.right, rig.disparity)
+    matches = true_matches(rig, step=30, start=20)
+    half = (_halved(rig.left), _halved(rig.right))
+    undistorted = (undistort_image(rig.left, rig.camera1.K, rig.camera1.dist),
+                   undistort_image(rig.right, rig.camera2.K, rig.camera2.dist))
+    rng = np.random.default_rng(0)
+    n1 = matches.ideal1 + rng.normal(0, 0.3, matches.ideal1.shape)
+    n2 = matches.ideal2 + rng.normal(0, 0.3, matches.ideal2.shape)
+    F = ransac_fundamental_matrix(n1, n2, 1.0, rng=np.random.default_rng(1)).F
+    uncalibrated = rectify_uncalibrated(n1, n2, F, rig.camera1.image_size)
+    read_only(*matches, *half, *undistorted)
+    return PreparedRig(rig, matches, half, undistorted, uncalibrated)
+
+
+@lru_cache(maxsize=1)
+def bundled_rig_calibration() -> RigCalibration:
+    """:func:`calibrate_rig` of the bundled rig, computed once."""
+    return calibrate_rig(bundled_rig().rig)
+
+
+class HalfSizeRectification(NamedTuple):
+    """The rig's calibrated rectification at half size (:func:`half_size_rectification`); arrays are read-only.
+
+    Attributes
+    ----------
+    rect
+        :func:`camlab.rectification.rectify_calibrated` of the true cameras resized by 0.5,
+        with the stored ``rectify_alpha``.
+    left, right : (240, 320) uint8 ndarray
+        The rectified half-size pair.
+    disparity : (240, 320) float ndarray
+        Its true disparity (:func:`true_disparity`), NaN where no surface is seen.
+    smooth : (240, 320) bool ndarray
+        Pixels whose true disparity varies by less than 0.5 px over their 9 x 9 neighbourhood:
+        the textured surfaces, away from depth edges, where a matcher's depth error is fair to score.
+    """
+
+    rect: object
+    left: np.ndarray
+    right: np.ndarray
+    disparity: np.ndarray
+    smooth: np.ndarray
+
+
+@lru_cache(maxsize=1)
+def half_size_rectification() -> HalfSizeRectification:
+    """The alpha = 0 calibrated rectification of the bundled rig at half size, with the true disparity (cached)."""
+    import scipy.ndimage as ndi
+
+    from ..rectification import rectify_calibrated, rectify_images
+
+    prepared = bundled_rig()
+    rig = prepared.rig
+    rect = rectify_calibrated(rig.camera1.resized(0.5), rig.camera2.resized(0.5),
+                              alpha=rig.params["rectify_alpha"], method="cv2")
+    left, right = rectify_images(rect, *prepared.half)
+    disparity = true_disparity(rig, rect)
+    g = np.nan_to_num(disparity, nan=-100.0)
+    smooth = np.isfinite(disparity) & (ndi.maximum_filter(g, 9) - ndi.minimum_filter(g, 9) < 0.5)
+    read_only(left, right, disparity, smooth)
+    return HalfSizeRectification(rect, left, right, disparity, smooth)
 
 
 def _png(path: Path, img: np.ndarray) -> Path:

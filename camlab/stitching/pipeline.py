@@ -28,7 +28,7 @@ from .. import features as _feat
 from .._validate import CamlabInputError, DegenerateError, check_intrinsics
 from . import BLENDS, WarpedImages, blend, dp_seam_masks, feather_weights, gain_compensation, match_graph, prepare_images, warp_images
 from .cameras import adjust_homographies, estimate_cameras, estimate_focal, inlier_matches
-from .projections import PROJECTIONS, canvas_from_ray, make_canvas, warp_to_canvas
+from .projections import PROJECTIONS, canvas_points, make_canvas, warp_to_canvas
 
 __all__ = ["PROJECTION_CHOICES", "StitchResult", "largest_rectangle", "stitch"]
 
@@ -147,12 +147,7 @@ def _field_of_view(Ks: list, Rs: list, shapes: list) -> tuple[float, float]:
 
 
 def _outline_curved(K, R, shape, canvas) -> np.ndarray:
-    p = _ring(shape)
-    rays = (np.c_[p, np.ones(len(p))] @ np.linalg.inv(K).T) @ R
-    u, v = canvas_from_ray(rays, canvas.projection, canvas.s)
-    if canvas.projection != "planar":
-        c = canvas_from_ray((np.array([[0.0, 0.0, 1.0]]) @ R), canvas.projection, canvas.s)[0][0]
-        u = c + np.angle(np.exp(1j * (u - c) / canvas.s)) * canvas.s
+    u, v = canvas_points(_ring(shape), K, R, canvas.projection, canvas.s)
     return np.c_[u - canvas.origin[0], v - canvas.origin[1]]
 
 

@@ -28,9 +28,10 @@ from typing import NamedTuple, Sequence
 import numpy as np
 
 from .._validate import CamlabInputError, DegenerateError
+from ..distortion import pixels_to_normalised
 
-__all__ = ["PROJECTIONS", "Canvas", "canvas_from_ray", "footprint", "make_canvas", "ray_from_canvas",
-           "warp_to_canvas"]
+__all__ = ["PROJECTIONS", "Canvas", "canvas_from_ray", "canvas_points", "footprint", "make_canvas", "pixel_rays",
+           "ray_from_canvas", "warp_to_canvas"]
 
 PROJECTIONS = ("planar", "cylindrical", "spherical")
 
@@ -71,19 +72,38 @@ def border_points(shape: Sequence[int], n: int = 16) -> np.ndarray:
                       [[(w - 1) / 2, (h - 1) / 2]]])
 
 
+def pixel_rays(pixels: np.ndarray, K: np.ndarray, R: np.ndarray) -> np.ndarray:
+    r"""World directions (N, 3) of pixels (N, 2) of a camera with intrinsics K and rotation R
+    (cam_from_world): :math:`d = R^\top K^{-1} (u, v, 1)^\top`, by
+    :func:`camlab.distortion.pixels_to_normalised` (rows of the result: :math:`(x, y, 1) R`)."""
+    xy = pixels_to_normalised(pixels, K)
+    return np.c_[xy, np.ones(len(xy))] @ R
+
+
+def canvas_points(pixels: np.ndarray, K: np.ndarray, R: np.ndarray, projection: str,
+                  s: float) -> tuple[np.ndarray, np.ndarray]:
+    r"""Where pixels (N, 2) of image (K, R) land on a canvas: (u, v), each (N,).
+
+    On the cylinder and the sphere the longitude is unrolled around the image's optical axis
+    (within :math:`\pm\pi s` of it), so one image never splits across the canvas's seam; an
+    image looking backwards may reach past :math:`\pm\pi s`.
+    """
+    u, v = canvas_from_ray(pixel_rays(pixels, K, R), projection, s)
+    if projection != "planar":
+        axis = canvas_from_ray(R[2:3], projection, s)[0][0]  # the optical axis R^T (0, 0, 1)
+        u = axis + np.angle(np.exp(1j * (u - axis) / s)) * s
+    return u, v
+
+
 def footprint(K: np.ndarray, R: np.ndarray, shape: Sequence[int], projection: str, s: float) -> np.ndarray:
     """The canvas box ``[[u_min, v_min], [u_max, v_max]]`` of an image (its border's rays, mapped).
 
-    On the cylinder and the sphere the longitude is unrolled around the image's own centre,
-    so an image looking backwards (longitude near 180 degrees) gets one box, which may reach
-    past +-pi*s. Raises DegenerateError on the plane if the image sees 90 degrees or more
+    On the cylinder and the sphere the longitude is unrolled around the image's optical axis
+    (:func:`canvas_points`), so an image looking backwards (longitude near 180 degrees) gets one
+    box, which may reach past +-pi*s. Raises DegenerateError on the plane if the image sees 90 degrees or more
     away from the canvas centre (its border has no image on the plane).
     """
-    p = border_points(shape)
-    rays = (np.c_[p, np.ones(len(p))] @ np.linalg.inv(K).T) @ R  # rows: R^T K^-1 x
-    u, v = canvas_from_ray(rays, projection, s)
-    if projection != "planar":
-        u = u[-1] + np.angle(np.exp(1j * (u - u[-1]) / s)) * s  # unwrap around the centre's longitude
+    u, v = canvas_points(border_points(shape), K, R, projection, s)
     if not (np.all(np.isfinite(u)) and np.all(np.isfinite(v))):
         raise DegenerateError(f"footprint: part of the image looks 90 degrees or more away from the {projection} "
                               "canvas's centre; a plane cannot hold it. Use projection='cylindrical' or 'spherical'")

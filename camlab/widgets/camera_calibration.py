@@ -10,34 +10,16 @@ Each builds its figure once; updates call camlab.calibration and move artists.
 """
 from __future__ import annotations
 
-from functools import lru_cache
-
 import ipywidgets as W
 import numpy as np
 
 from .. import calibration as C
 from .._validate import CamlabInputError, ConvergenceError
+from ..data.calibration import bundled_calibration
 from ..plotting.calibration import image_frame
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import monospace
 from ..plotting import palette
-
-
-@lru_cache(maxsize=1)
-def _pool(n: int = 15, seed: int = 0):
-    """Fixed exact views of the lesson's camera and a fixed unit-noise draw for each corner."""
-    s = C.make_synthetic_views(n, 0.0, rng=np.random.default_rng(seed))
-    unit = np.random.default_rng(seed + 1).normal(size=(n, len(s.object_points), 2))
-    return s, unit
-
-
-@lru_cache(maxsize=1)
-def bundled_calibration() -> C.ImageCalibration:
-    """Calibration of the rendered photos in data/calib_chessboard (detected corners), cached."""
-    from ..data import load_calibration_set
-
-    cs = load_calibration_set()
-    return C.calibrate_from_images(cs.images, cs.pattern_size, cs.square)
 
 
 _NAMES = ("fx", "fy", "cx", "cy")
@@ -47,7 +29,8 @@ _SIGMA_LIM = 8.0  # the sigma-unit axis spans +-8
 @register(lesson="08", sweep={"n_views": [3, 6, 10, 15], "noise": [0.0, 0.3, 1.0]})
 def accuracy_vs_views() -> Demo:
     """Calibrate from the first n views with sigma px of noise: errors in units of the reported sigma."""
-    s, unit = _pool()
+    s = C.make_synthetic_views(15, 0.0, rng=np.random.default_rng(0))  # exact views of the lesson's camera
+    unit = np.random.default_rng(1).normal(size=(15, len(s.object_points), 2))  # one fixed draw, scaled by sigma
     truth = np.array([s.K[0, 0], s.K[1, 1], s.K[0, 2], s.K[1, 2]])
     view = FigureView(figsize=(9.4, 3.9))
     ax, axi = view.fig.subplots(1, 2, width_ratios=[1, 1.3])

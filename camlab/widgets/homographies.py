@@ -46,20 +46,7 @@ TORN = ("the line that H sends to infinity crosses the picture:\n"
 
 # ----------------------------------------------------------------------------- hierarchy
 
-_GROUPS = ("euclidean", "similarity", "affine", "projective")
-
-
-def hierarchy_matrix(group: str, theta: float, scale: float, shear: float, aspect: float,
-                     tx: float, ty: float, v1: float, v2: float) -> np.ndarray:
-    """The matrix of ``group`` from the demo's parameters; parameters outside the group are ignored."""
-    if group == "euclidean":
-        return hg.euclidean(theta, tx, ty)
-    if group == "similarity":
-        return hg.similarity(scale, theta, tx, ty)
-    A = hg.affine(theta, shear, scale * aspect, scale / aspect, tx, ty)
-    if group == "affine":
-        return A
-    return hg.compose(A, hg.projective(v=(v1, v2)))
+_GROUPS = tuple(hg.HIERARCHY)  # euclidean, similarity, affine, projective
 
 
 @register(lesson="07", sweep={"group": list(_GROUPS), "theta": [-30.0, 20.0], "shear": [0.0, 40.0],
@@ -95,8 +82,9 @@ def transformation_hierarchy() -> Demo:
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
-        Hg = hierarchy_matrix(v["group"], np.radians(v["theta"]), v["scale"], np.radians(v["shear"]),
-                              v["aspect"], v["tx"], v["ty"], v["v1"] * 1e-3, v["v2"] * 1e-3)
+        Hg = hg.hierarchy_matrix(v["group"], theta=np.radians(v["theta"]), scale=v["scale"],
+                                 shear=np.radians(v["shear"]), aspect=v["aspect"], tx=v["tx"], ty=v["ty"],
+                                 v=(v["v1"] * 1e-3, v["v2"] * 1e-3))
         H = hg.compose(C, Hg, P)
         im.set_data(warp_perspective(pic, H, canvas_hw, method="cv2", fill=255))
         m = map_points(H, grid_points).reshape(len(grid_lines), 20, 2)
@@ -208,25 +196,6 @@ def drag_homography() -> Demo:
 
 # ----------------------------------------------------------------------------- RANSAC
 
-@lru_cache(maxsize=256)
-def _ransac_run(outlier_fraction: float, threshold: float, seed: int):
-    """The demo's data and RANSAC's answer (or its error message) for one slider setting.
-
-    Cached: sliders revisit settings, and the answer is a pure function of them (seeded).
-    Arrays come back read-only so no caller can corrupt the cache.
-    """
-    data = scenes.outlier_matches(outlier_fraction, seed)
-    for a in data:
-        a.setflags(write=False)
-    try:
-        r = hg.ransac_homography(data[1], data[2], threshold, CONFIDENCE, 1000, np.random.default_rng(seed))
-    except hg.DegenerateError as exc:
-        return data, str(exc)
-    for a in (r.H, r.inliers, r.residuals, r.sample):
-        a.setflags(write=False)
-    return data, r
-
-
 # What RANSAC did with each pair, against the truth the demo knows.
 _VERDICTS = (("inlier, kept", palette.GREEN), ("outlier, wrongly kept", palette.RED),
              ("inlier, wrongly rejected", palette.ORANGE), ("outlier, rejected", palette.GREY))
@@ -267,8 +236,17 @@ def ransac_outliers() -> Demo:
     readout = W.HTML()
     frame = np.array([[0, 0], [399, 0], [399, 299], [0, 299], [0, 0]], float)
 
+    @lru_cache(maxsize=256)  # sliders revisit settings; the answer is a pure (seeded) function of them
+    def run(outlier_fraction: float, threshold: float, seed: int):
+        """The demo's data and RANSAC's answer, or its error message."""
+        data = scenes.outlier_matches(outlier_fraction, seed)
+        try:
+            return data, hg.ransac_homography(data[1], data[2], threshold, CONFIDENCE, 1000, np.random.default_rng(seed))
+        except hg.DegenerateError as exc:
+            return data, str(exc)
+
     def update(v: dict, state: dict) -> None:
-        (H, src, dst, out), r = _ransac_run(float(v["outliers"]), float(v["threshold"]), int(v["seed"]))
+        (H, src, dst, out), r = run(float(v["outliers"]), float(v["threshold"]), int(v["seed"]))
         if isinstance(r, str):  # RANSAC failed: clear the last result, a stale plot would be a lie
             exc = r
             state.update(iterations=None, inliers=None, recall=None, corner_error=None, H=None, verdicts=None,

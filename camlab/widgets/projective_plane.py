@@ -157,9 +157,8 @@ def point_line_duality() -> Demo:
         set_line(pd_line, p, ax_d)
         ld = pj.from_homogeneous(l)
         ld_dot.set_data([ld[0]], [ld[1]])
-        readout.value = monospace(f"p = ({p[0]:+.2f}, {p[1]:+.2f}, {p[2]:+.2f})\n"
-                             f"l = ({l[0]:+.2f}, {l[1]:+.2f}, {l[2]:+.2f})\n"
-                             f"p · l = {incidence:+.3f}\n(0 ⇔ p on l ⇔ l* on p*)")
+        p_text, l_text = (", ".join(f"{c:+.2f}" for c in x) for x in (p, l))
+        readout.value = monospace(f"p = ({p_text})\nl = ({l_text})\np · l = {incidence:+.3f}\n(0 ⇔ p on l ⇔ l* on p*)")
 
     controls = {
         "px": slider(1.0, -2.5, 2.5, 0.05, "p: x"),

@@ -17,7 +17,7 @@ from .. import epipolar as ep
 from .. import rectification as rc
 from .. import scenes
 from ..camera import Camera, scale_intrinsics
-from ..data.stereo import RigCalibration, calibrate_rig, load_stereo_rig, stereo_scene, true_disparity, true_matches
+from ..data.stereo import bundled_rig, bundled_rig_calibration, half_size_rectification, stereo_scene
 from ..projective import map_points
 from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes
 from ._base import Demo, FigureView, build_demo, register, slider
@@ -38,32 +38,6 @@ def _projected_segments(cam: Camera, segs: np.ndarray) -> np.ndarray:
     out = np.full((len(uv), 3, 2), np.nan)
     out[:, :2] = uv
     return out.reshape(-1, 2)
-
-
-@lru_cache(maxsize=1)
-def _rig_data():
-    """The bundled rig, its true matches (:func:`camlab.data.stereo.true_matches`), the raw pair at half
-    size, the undistorted pair, and Hartley's rectification from F estimated by RANSAC on the
-    undistorted matches with 0.3 px noise added (lesson 11, section 4)."""
-    import cv2
-
-    from ..distortion import undistort_image
-
-    rig = load_stereo_rig()
-    m = true_matches(rig, step=30, start=20)
-    half = [cv2.resize(im, (320, 240), interpolation=cv2.INTER_AREA) for im in (rig.left, rig.right)]
-    und = [undistort_image(im, c.K, c.dist) for im, c in ((rig.left, rig.camera1), (rig.right, rig.camera2))]
-    rng = np.random.default_rng(0)
-    n1, n2 = m.ideal1 + rng.normal(0, 0.3, m.ideal1.shape), m.ideal2 + rng.normal(0, 0.3, m.ideal2.shape)
-    F = ep.ransac_fundamental_matrix(n1, n2, 1.0, rng=np.random.default_rng(1)).F
-    unc = rc.rectify_uncalibrated(n1, n2, F, SIZE)
-    return rig, m, half, und, unc
-
-
-@lru_cache(maxsize=1)
-def calibrated_rig() -> RigCalibration:
-    """:func:`camlab.data.stereo.calibrate_rig` of the bundled rig, computed once."""
-    return calibrate_rig(load_stereo_rig())
 
 
 HALF = scale_intrinsics(np.eye(3), 0.5)  # full-size pixels -> half-size pixels: u' = (u + 0.5) / 2 - 0.5
@@ -196,7 +170,8 @@ def epipolar_lines() -> Demo:
 def rectify_pair() -> Demo:
     """The rendered pair before and after rectification, with a row grid and the true matches.
 
-    The calibrated route uses the cameras a stereo calibration found (:func:`calibrated_rig`),
+    The calibrated route uses the cameras a stereo calibration found
+    (:func:`camlab.data.stereo.bundled_rig_calibration`),
     as a real rig would, so its vertical disparity is the calibration's error, not zero.
 
     After rectification every match line is horizontal and the vertical disparity
@@ -204,9 +179,9 @@ def rectify_pair() -> Demo:
     """
     import cv2
 
-    rig, matches, half, und, unc = _rig_data()
+    _, matches, half, und, unc = bundled_rig()
     x1, x2, u1, u2 = matches
-    cal1, cal2, cal_rms = calibrated_rig()
+    cal1, cal2, cal_rms = bundled_rig_calibration()
     h1, h2 = cal1.resized(0.5), cal2.resized(0.5)
     view = FigureView(figsize=(9.4, 3.6))
     gs = view.fig.add_gridspec(1, 3, width_ratios=[2.6, 0.05, 1])
@@ -275,27 +250,6 @@ def rectify_pair() -> Demo:
 
 # --------------------------------------------------------------------------- demo 3: disparity and depth
 
-@lru_cache(maxsize=1)
-def _rectified_half():
-    """The alpha = 0 calibrated rectification of the rig at half size, with the true disparity."""
-    import cv2
-
-    rig, *_ = _rig_data()
-    h1, h2 = rig.camera1.resized(0.5), rig.camera2.resized(0.5)
-    rect = rc.rectify_calibrated(h1, h2, alpha=rig.params["rectify_alpha"], method="cv2")
-    L, R = rc.rectify_images(rect, cv2.resize(rig.left, (320, 240), interpolation=cv2.INTER_AREA),
-                             cv2.resize(rig.right, (320, 240), interpolation=cv2.INTER_AREA))
-    return rect, L, R, true_disparity(rig, rect)
-
-
-@lru_cache(maxsize=16)
-def _match(method: str, block: int) -> np.ndarray:
-    rect, L, R, gt = _rectified_half()
-    if method == "block matching (numpy)":
-        return dp.block_matching_disparity(L, R, max_disparity=44, block_size=block, min_disparity=8)
-    return dp.sgbm_disparity(L, R, max_disparity=44, block_size=block, min_disparity=8)
-
-
 @register(lesson="11", sweep={"block_size": [3, 7, 15], "method": ["block matching (numpy)", "SGBM (OpenCV)"]})
 def disparity_depth() -> Demo:
     """Disparity by block matching (numpy) or SGBM, its depth error, and the 3-D points.
@@ -305,8 +259,15 @@ def disparity_depth() -> Demo:
     """
     from ..plotting import scene3d
 
-    rect, L, R, gt = _rectified_half()
+    rect, L, R, gt, smooth = half_size_rectification()
     f, B = rect.K[0, 0], rect.baseline
+
+    @lru_cache(maxsize=16)  # sliders revisit settings; matching is the slow part
+    def match(method: str, block: int) -> np.ndarray:
+        if method == "block matching (numpy)":
+            return dp.block_matching_disparity(L, R, max_disparity=44, block_size=block, min_disparity=8)
+        return dp.sgbm_disparity(L, R, max_disparity=44, block_size=block, min_disparity=8)
+
     view = FigureView(figsize=(9.4, 3.4))
     ax1 = view.fig.add_subplot(1, 3, 1)
     ax2 = view.fig.add_subplot(1, 3, 2)
@@ -328,24 +289,20 @@ def disparity_depth() -> Demo:
     pts, = ax3.plot([], [], [], ".", ms=1.0, color="tab:blue")
     view.animate(im1, im2, pts)
     zt = dp.disparity_to_depth(gt, f, B)
-    import scipy.ndimage as ndi
-
-    g = np.nan_to_num(gt, nan=-100.0)
-    planar = np.isfinite(gt) & (ndi.maximum_filter(g, 9) - ndi.minimum_filter(g, 9) < 0.5)
     readout = W.HTML()
 
     def update(v, state):
-        d = _match(v["method"], int(v["block_size"]))
+        d = match(v["method"], int(v["block_size"]))
         z = dp.disparity_to_depth(d, f, B)
         err = 100 * (z - zt) / zt
         im1.set_data(d)
         im2.set_data(err)
         P = dp.disparity_to_points(d, rect.K, B, step=3)
         pts.set_data_3d(P[:, 0], P[:, 2], -P[:, 1])  # camera frame (y down) drawn with depth back, up up
-        ok = planar & np.isfinite(err)
+        ok = smooth & np.isfinite(err)
         rel = np.abs(err[ok])
         state.update(disparity=d, median_error_percent=float(np.median(rel)), within_5=float(np.mean(rel < 5)),
-                     coverage=float(ok.sum() / planar.sum()))
+                     coverage=float(ok.sum() / smooth.sum()))
         readout.value = monospace(f"{v['method']}, {int(v['block_size'])} x {int(v['block_size'])} window\n"
                              f"on textured planes: {100 * state['coverage']:.0f}% matched, median depth error "
                              f"{state['median_error_percent']:.2f}%\n"
