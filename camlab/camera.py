@@ -50,7 +50,7 @@ from ._validate import (
 )
 
 __all__ = [
-    "Camera", "Decomposition", "CV_FROM_GL", "axis_angle_from_rotation", "camera_centre",
+    "Camera", "Decomposition", "CV_FROM_GL", "Pose", "RQ", "axis_angle_from_rotation", "camera_centre",
     "check_rotation", "decompose_projection_matrix", "estimate_projection_matrix",
     "euler_from_rotation", "intrinsic_matrix", "is_rotation", "look_at_rotation", "nearest_rotation", "orbit_eye",
     "opencv_from_opengl", "opengl_from_opencv", "project_points", "reprojection_errors",
@@ -297,7 +297,17 @@ def look_at_rotation(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0.0, 0.
     return np.vstack([x, y, z])
 
 
-def opengl_from_opencv(R: ArrayLike, t: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+class Pose(NamedTuple):
+    """A rigid pose ``(R, t)``: :math:`X_{to} = R X_{from} + t`, R (3, 3) a rotation, t (3,).
+
+    cam_from_world unless the function that returns it says otherwise; unpack it as ``R, t = ...``.
+    """
+
+    R: np.ndarray
+    t: np.ndarray
+
+
+def opengl_from_opencv(R: ArrayLike, t: ArrayLike) -> Pose:
     r"""Convert a cam_from_world pose from the OpenCV camera frame to the OpenGL/Blender one.
 
     Both describe the same physical camera; only the camera's axes are renamed:
@@ -307,19 +317,19 @@ def opengl_from_opencv(R: ArrayLike, t: ArrayLike) -> tuple[np.ndarray, np.ndarr
 
     Returns
     -------
-    R_gl : (3, 3) ndarray
-    t_gl : (3,) ndarray
+    Pose
+        ``R`` = :math:`R_{gl}` (3, 3) and ``t`` = :math:`t_{gl}` (3,).
     """
     Rm = check_rotation(R)
     tv = check_matrix(t, (3,), "t")
-    return CV_FROM_GL @ Rm, CV_FROM_GL @ tv
+    return Pose(CV_FROM_GL @ Rm, CV_FROM_GL @ tv)
 
 
-def opencv_from_opengl(R_gl: ArrayLike, t_gl: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+def opencv_from_opengl(R_gl: ArrayLike, t_gl: ArrayLike) -> Pose:
     """Inverse of :func:`opengl_from_opencv` (the same flip, since F is its own inverse)."""
     Rm = check_rotation(R_gl, "R_gl")
     tv = check_matrix(t_gl, (3,), "t_gl")
-    return CV_FROM_GL @ Rm, CV_FROM_GL @ tv
+    return Pose(CV_FROM_GL @ Rm, CV_FROM_GL @ tv)
 
 
 # ---------------------------------------------------------------------------------------
@@ -664,7 +674,14 @@ class Decomposition(NamedTuple):
     centre: np.ndarray
 
 
-def rq_decomposition(M: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+class RQ(NamedTuple):
+    """The factors of :func:`rq_decomposition`: ``K`` upper triangular, ``R`` orthogonal."""
+
+    K: np.ndarray
+    R: np.ndarray
+
+
+def rq_decomposition(M: ArrayLike) -> RQ:
     r"""RQ decomposition :math:`M = K R`: K upper triangular with a positive diagonal, R orthogonal.
 
     numpy only has QR (orthogonal times triangular), so we reverse the order of rows.
@@ -682,10 +699,9 @@ def rq_decomposition(M: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
 
     Returns
     -------
-    K : (3, 3) ndarray
-        Upper triangular, positive diagonal (not normalised: K[2, 2] carries M's scale).
-    R : (3, 3) ndarray
-        Orthogonal.
+    RQ
+        ``K`` (3, 3): upper triangular, positive diagonal (not normalised: K[2, 2] carries
+        M's scale); ``R`` (3, 3): orthogonal.
 
     Examples
     --------
@@ -701,7 +717,7 @@ def rq_decomposition(M: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     Q, U = np.linalg.qr((E @ Mm).T)
     K, R = E @ U.T @ E, E @ Q.T
     D = np.diag(np.sign(np.diag(K)))
-    return K @ D, D @ R
+    return RQ(K @ D, D @ R)
 
 
 def decompose_projection_matrix(P: ArrayLike) -> Decomposition:

@@ -37,7 +37,7 @@ from ._validate import (
     check_matrix,
     check_rotation,
 )
-from .camera import Camera, camera_centre
+from .camera import Camera, Pose, camera_centre
 from .homography import estimate_homography, symmetric_transfer_error
 from .projective import from_homogeneous, hartley_normalize, normalize_lines, to_homogeneous
 from .robust import PairModel, ransac
@@ -106,7 +106,7 @@ def _as_P(cam: "Camera | ArrayLike", name: str) -> np.ndarray:
 
 # --------------------------------------------------------------------------- from known cameras
 
-def relative_pose(camera1: Camera, camera2: Camera) -> tuple[np.ndarray, np.ndarray]:
+def relative_pose(camera1: Camera, camera2: Camera) -> Pose:
     r"""Camera 2's pose relative to camera 1: ``(R, t)`` with :math:`X_2 = R X_1 + t`.
 
     With cam_from_world poses :math:`X_i = R_i X + t_i`:
@@ -117,7 +117,7 @@ def relative_pose(camera1: Camera, camera2: Camera) -> tuple[np.ndarray, np.ndar
         if not isinstance(c, Camera):
             raise CamlabInputError(f"{n}: expected a camlab.camera.Camera, got {type(c).__name__}")
     R = camera2.R @ camera1.R.T
-    return R, camera2.t - R @ camera1.t
+    return Pose(R, camera2.t - R @ camera1.t)
 
 
 def essential_matrix(R: ArrayLike, t: ArrayLike) -> np.ndarray:

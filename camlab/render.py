@@ -51,7 +51,7 @@ from ._validate import (
     check_positive,
     check_size,
 )
-from .camera import Camera, look_at_rotation, rotation_from_euler, scale_intrinsics
+from .camera import Camera, Pose, look_at_rotation, rotation_from_euler, scale_intrinsics
 # The scene builders live in camlab.scenes; they are re-exported here for the lessons.
 from .scenes import Plane, box, checkerboard, photo_plane, text_page, textured_plane
 
@@ -64,20 +64,20 @@ __all__ = [
 
 # ------------------------------------------------------------------------- poses
 
-def look_at(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0.0, 0.0, 1.0)) -> tuple[np.ndarray, np.ndarray]:
+def look_at(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0.0, 0.0, 1.0)) -> Pose:
     r"""The camera pose ``(R, t)`` (cam_from_world) of a camera at ``eye`` looking at ``target``.
 
     The rotation is :func:`camlab.camera.look_at_rotation`, with the same default ``up`` =
     +z (the world's up, docs/conventions.md). Scenes built in a camera's own frame (y down,
-    the renderer's checkerboards in front of the origin) pass ``up=(0, -1, 0)``. Returns
-    ``R`` (3, 3) and ``t = -R eye`` (3,).
+    the renderer's checkerboards in front of the origin) pass ``up=(0, -1, 0)``. Returns the
+    :class:`camlab.camera.Pose` ``R`` (3, 3), ``t = -R eye`` (3,).
 
     >>> R, t = look_at([0, 0, -2], [0, 0, 0], up=(0, -1, 0))
     >>> np.allclose(R, np.eye(3)), np.allclose(t, [0, 0, 2])
     (True, True)
     """
     R = look_at_rotation(eye, target, up)
-    return R, -R @ np.asarray(eye, dtype=float)
+    return Pose(R, -R @ np.asarray(eye, dtype=float))
 
 
 # ------------------------------------------------------------------------- scene

@@ -607,3 +607,27 @@ def test_nearest_rotation_has_one_home():
     assert calibration.nearest_rotation is cm.nearest_rotation
     H = 3.0 * cm.rotation_from_axis_angle([0.1, -0.2, 0.3])  # a rotation homography's scale
     np.testing.assert_allclose(cm.nearest_rotation(H), H / 3.0, atol=1e-12)
+
+
+def test_functions_returning_a_pose_or_factors_name_them():
+    """Issue 12: no bare tuples; each unpacks as before (``R, t = ...``) and reads by name."""
+    from camlab import epipolar as ep
+    from camlab import render
+    from camlab.calibration import extrinsics_from_homography
+    from camlab.data.stereo import rig_cameras
+    from camlab.scenes import CameraPair
+
+    pair = rig_cameras()
+    assert isinstance(pair, CameraPair)
+    pose = ep.relative_pose(pair.camera1, pair.camera2)
+    assert isinstance(pose, cm.Pose) and np.allclose(pose.R, pair.camera2.R @ pair.camera1.R.T)
+    R, t = render.look_at([0.0, -2.0, 1.0], [0.0, 0.0, 1.0])
+    assert np.allclose(render.look_at([0.0, -2.0, 1.0], [0.0, 0.0, 1.0]).t, t)
+    gl = cm.opengl_from_opencv(R, t)
+    assert np.allclose(gl.R, cm.CV_FROM_GL @ R) and np.allclose(cm.opencv_from_opengl(*gl).t, t)
+    K = cm.intrinsic_matrix(800, 800, 320, 240)
+    H = K @ np.column_stack([R[:, 0], R[:, 1], t])  # the board plane z = 0 seen by (R, t)
+    board = extrinsics_from_homography(K, H)
+    assert np.allclose(board.R, R) and np.allclose(board.t, t)
+    rq = cm.rq_decomposition(K @ R)
+    assert np.allclose(rq.K, K) and np.allclose(rq.R, R)

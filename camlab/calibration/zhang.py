@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validate import CamlabInputError, DegenerateError, as_float, as_points, check_intrinsics, check_matrix
-from ..camera import nearest_rotation
+from ..camera import Pose, nearest_rotation
 from ..homography import estimate_homography
 
 
@@ -240,7 +240,7 @@ def intrinsics_from_homographies(homographies: ArrayLike, *, skew: bool = False,
     return K
 
 
-def extrinsics_from_homography(K: ArrayLike, H: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+def extrinsics_from_homography(K: ArrayLike, H: ArrayLike) -> Pose:
     r"""A view's pose (R, t), cam_from_board, from K and its homography.
 
     :math:`K^{-1} H = \lambda [r_1\ r_2\ t]` with :math:`\lambda = 1 / \|K^{-1} h_1\|`
@@ -258,7 +258,7 @@ def extrinsics_from_homography(K: ArrayLike, H: ArrayLike) -> tuple[np.ndarray, 
         lam = -lam
     r1, r2, t = lam * A[:, 0], lam * A[:, 1], lam * A[:, 2]
     R = nearest_rotation(np.column_stack([r1, r2, np.cross(r1, r2)]))
-    return R, t
+    return Pose(R, t)
 
 
 def initial_radial_distortion(K: ArrayLike, object_points, image_points, R: ArrayLike, t: ArrayLike) -> np.ndarray:

@@ -38,7 +38,7 @@ import numpy as np
 
 from ._resources import encode_image, read_only, read_truth
 from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
-from ..scenes import noise_texture, portrait
+from ..scenes import CameraPair, noise_texture, portrait
 
 __all__ = ["HALF_SIZE", "STEREO_PARAMS", "HalfSizeRectification", "PreparedRig", "RigCalibration", "StereoMatches",
            "StereoRig", "bundled_rig", "bundled_rig_calibration", "calibrate_rig", "half_size_rectification",
@@ -96,7 +96,7 @@ def stereo_scene(params: dict = STEREO_PARAMS) -> list:
     return scene
 
 
-def rig_cameras(params: dict = STEREO_PARAMS, distortion: bool = True) -> tuple[Camera, Camera]:
+def rig_cameras(params: dict = STEREO_PARAMS, distortion: bool = True) -> CameraPair:
     """The left and right cameras (cam_from_world), with a small toe-in, offset and roll."""
     size = tuple(params["image_size"])
     eye1 = np.array(params["left_eye"], dtype=float)
@@ -114,7 +114,7 @@ def rig_cameras(params: dict = STEREO_PARAMS, distortion: bool = True) -> tuple[
     d2 = tuple(params["dist_right"]) if distortion else (0.0,) * 5
     c1 = Camera(np.array(params["K_left"]), R1, -R1 @ eye1, d1, size)
     c2 = Camera(np.array(params["K_right"]), R2, -R2 @ eye2, d2, size)
-    return c1, c2
+    return CameraPair(c1, c2)
 
 
 def _calib_poses(params: dict, c1: Camera, c2: Camera):
