@@ -267,24 +267,31 @@ def symmetric_transfer_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np
     """
     Hm = check_homography(H)
     s, d = _pairs(src, dst, min_count=1)
-    return _sym_err_batch(Hm[None], np.linalg.inv(Hm)[None], s, d)[0]
+    return _sym_err_batch(Hm[None], np.linalg.inv(Hm)[None], _columns(s), _columns(d))[0]
+
+
+def _columns(points: np.ndarray) -> np.ndarray:
+    """Points (N, 2) as homogeneous columns (3, N): what :func:`_sq_transfer_batch` multiplies."""
+    return np.vstack([points.T, np.ones(len(points))])
 
 
 def _sq_transfer_batch(H: np.ndarray, p: np.ndarray, q: np.ndarray) -> np.ndarray:
     """(B, N) squared distances |q - pi(H p)|^2 for a stack of homographies (B, 3, 3).
 
-    Points are used as (3, N) columns, so mapping all of them by each H is one (3, 3) @ (3, N)
-    product per homography.
+    ``p`` and ``q`` are homogeneous columns (3, N) (:func:`_columns`), so mapping all points
+    by each H is one (3, 3) @ (3, N) product per homography.
     """
-    y = H @ np.vstack([p.T, np.ones(len(p))])         # (B, 3, N)
+    y = H @ p                                          # (B, 3, N)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        e = y[:, :2] / y[:, 2:] - q.T                  # (B, 2, N)
+        e = y[:, :2] / y[:, 2:] - q[:2]                # (B, 2, N)
         e *= e
         return e[:, 0] + e[:, 1]
 
 
 def _sym_err_batch(H: np.ndarray, Hinv: np.ndarray, s: np.ndarray, d: np.ndarray) -> np.ndarray:
-    """(B, N) symmetric transfer RMS errors for B homographies; inf where a point maps to infinity."""
+    """(B, N) symmetric transfer RMS errors for B homographies; inf where a point maps to infinity.
+
+    ``s`` and ``d`` are homogeneous columns (3, N) (:func:`_columns`)."""
     with np.errstate(invalid="ignore", over="ignore"):
         e = np.sqrt(0.5 * (_sq_transfer_batch(H, s, d) + _sq_transfer_batch(Hinv, d, s)))
     return np.where(np.isfinite(e), e, np.inf)
@@ -397,6 +404,7 @@ class HomographyModel(PairModel):
         self.dn, self.Td = hartley_normalize(dst)
         self.Td_inv = np.linalg.inv(self.Td)
         self.A = _dlt_rows(self.sn, self.dn).reshape(-1, 2, 9)  # each pair's two DLT rows, once
+        self.c1, self.c2 = _columns(self.x1), _columns(self.x2)  # homogeneous columns, once
 
     def normalised_to_pixels(self, Hn: np.ndarray) -> np.ndarray:
         return self.Td_inv @ Hn @ self.Ts  # H = Td^-1 Hn Ts
@@ -415,10 +423,12 @@ class HomographyModel(PairModel):
 
     def residuals(self, models: np.ndarray, i1: np.ndarray | None = None,
                   i2: np.ndarray | None = None) -> np.ndarray:
-        s = self.x1 if i1 is None else self.x1[i1]
-        d = self.x2 if i1 is None else self.x2[i1 if i2 is None else i2]
         if self.score == "sampson":
+            s = self.x1 if i1 is None else self.x1[i1]
+            d = self.x2 if i1 is None else self.x2[i1 if i2 is None else i2]
             return _sampson_batch(models, s, d)
+        s = self.c1 if i1 is None else self.c1[:, i1]
+        d = self.c2 if i1 is None else self.c2[:, i1 if i2 is None else i2]
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             inv = np.linalg.inv(models)
         return _sym_err_batch(models, inv, s, d)

@@ -187,10 +187,11 @@ def local_optimization(model: PairModel, start: np.ndarray, threshold: float, rn
         return best, best_cost
     size = min(len(inl) // 2, 7 * s)
     subsets = [inl] + ([rng.choice(inl, size, replace=False) for _ in range(inner)] if size > s else [])
+    thresholds = np.geomspace(_LO_FACTOR * threshold, threshold, steps)
     for sub in subsets:
         try:
             m = model.fit(sub)
-            for thr in np.geomspace(_LO_FACTOR * threshold, threshold, steps):
+            for thr in thresholds:
                 sel = np.flatnonzero(model.residuals(m[None])[0] < thr)
                 if len(sel) <= s:
                     break
