@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from camlab import stitching as st
+from camlab._validate import CamlabInputError
 from camlab.data import panorama_examples as pe
 from camlab.projective import map_points
 from camlab.warp import canvas_bounds
@@ -144,11 +145,23 @@ def test_canvas_previews_the_plane_cannot_hold_a_wide_turn():
     for (n, proj), p in previews.items():
         assert p.fov_deg == pytest.approx(40 * (n - 1) + np.degrees(2 * np.arctan(0.9)))
         if proj == "planar" and n >= 4:  # beyond 180 degrees
-            assert p.image is None and "90 degrees" in p.reason
-        else:
-            assert p.reason == "" and p.image.ndim == 3 and p.image.dtype == np.float32 and p.image.max() > 0.2
-    widths = [previews[(n, "cylindrical")].image.shape[1] for n in range(2, 7)]
+            assert p.image is None and p.shape is None and "90 degrees" in p.reason
+            continue
+        assert p.reason == "" and p.image.dtype == np.uint8 and p.image.max() > 50
+        h, w = p.image.shape[:2]
+        assert h <= 220 and w <= 560 and (h >= 219 or w >= 559)  # scaled to fit the box, touching one side
+        assert abs(w / h - p.shape[1] / p.shape[0]) < 0.02 * w / h  # the canvas' aspect ratio kept
+    widths = [previews[(n, "cylindrical")].shape[1] for n in range(2, 7)]
     assert all(a < b for a, b in zip(widths, widths[1:]))  # every view adds width
+    assert previews[(3, "planar")].shape[1] > 4 * previews[(3, "cylindrical")].shape[1]  # the plane stretches
+
+
+def test_canvas_previews_other_sizes_and_bad_sizes():
+    small = pe.canvas_previews((50, 100))
+    assert small[(2, "spherical")].shape == pe.canvas_previews()[(2, "spherical")].shape
+    assert max(small[(2, "spherical")].image.shape[:2]) <= 100
+    with pytest.raises(CamlabInputError, match="max_shape"):
+        pe.canvas_previews((0, 100))
 
 
 def test_stitched_panoramas():

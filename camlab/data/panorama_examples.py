@@ -39,7 +39,7 @@ import numpy as np
 
 from .. import features as ft
 from .. import stitching as st
-from .._validate import CamlabInputError, DegenerateError
+from .._validate import CamlabInputError, DegenerateError, check_shape
 from ..camera import scale_intrinsics
 from ..homography import normalize_homography, transfer_error
 from .panorama import PanoramaSet, TurningSet, cam_from_world, load_panorama_set, render_view, room_scene, turning_set
@@ -306,9 +306,11 @@ class CanvasPreview(NamedTuple):
 
     Attributes
     ----------
-    image : (h, w, 3) float32 ndarray or None
-        The canvas (overwrite, at 3/4 of the focal length: a preview); None if it cannot
-        hold the views.
+    image : (h, w, 3) uint8 ndarray or None
+        The canvas (overwrite, at 3/4 of the focal length), scaled down to fit the
+        ``max_shape`` asked for; None if the canvas cannot hold the views.
+    shape : (height, width) or None
+        The canvas before scaling.
     fov_deg : float
         The horizontal field of view the views span, degrees.
     reason : str
@@ -316,18 +318,27 @@ class CanvasPreview(NamedTuple):
     """
 
     image: np.ndarray | None
+    shape: tuple | None
     fov_deg: float
     reason: str
 
 
-@lru_cache(maxsize=1)
-def canvas_previews() -> dict:
+def canvas_previews(max_shape: tuple[int, int] = (220, 560)) -> dict:
     """{(views, projection): CanvasPreview} for the first 2-6 views of :func:`wide_sweep` on every canvas (cached, read-only).
 
     Every image is warped with the estimated cameras (:mod:`camlab.stitching.projections`),
     on a canvas centred on those views (:func:`camlab.stitching.cameras.wave_correct`),
-    and pasted over the previous ones.
+    and pasted over the previous ones. A preview is for looking at: each canvas is kept
+    as 8-bit RGB scaled down (``cv2.INTER_AREA``) to fit ``max_shape`` (height, width),
+    not at full resolution (the plane under three views is 1067 x 2316 pixels).
     """
+    return _canvas_previews(check_shape(max_shape, "max_shape"))
+
+
+@lru_cache(maxsize=4)
+def _canvas_previews(max_shape: tuple[int, int]) -> dict:
+    import cv2
+
     from ..stitching import projections as pj
     from ..stitching.cameras import wave_correct
 
@@ -343,14 +354,18 @@ def canvas_previews() -> dict:
             try:
                 canvas = pj.make_canvas(Ks, Rs, [im.shape for im in imgs[:n]], proj, scale, max_pixels=3_000_000)
             except (DegenerateError, CamlabInputError) as exc:
-                out[(n, proj)] = CanvasPreview(None, fov, str(exc).split(";")[0].replace("footprint: ", ""))
+                out[(n, proj)] = CanvasPreview(None, None, fov, str(exc).split(";")[0].replace("footprint: ", ""))
                 continue
             pano = np.zeros((*canvas.shape, 3), np.float32)
             for im, K, R, box in zip(imgs[:n], Ks, Rs, canvas.boxes):
                 patch, mask, _ = pj.warp_to_canvas(im, K, R, canvas, box)
                 r0, r1, c0, c1 = box
                 pano[r0:r1, c0:c1][mask] = patch[mask]
-            out[(n, proj)] = CanvasPreview(pano, fov, "")
+            h, w = canvas.shape
+            k = min(max_shape[0] / h, max_shape[1] / w)
+            small = cv2.resize(np.clip(np.rint(pano * 255), 0, 255).astype(np.uint8),
+                               (max(1, int(w * k)), max(1, int(h * k))), interpolation=cv2.INTER_AREA)
+            out[(n, proj)] = CanvasPreview(small, (h, w), fov, "")
     return _read_only(out)
 
 

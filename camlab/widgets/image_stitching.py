@@ -286,29 +286,27 @@ def full_panorama() -> Demo:
 
 # ----------------------------------------------------------------------------- plane, cylinder, sphere
 
+BOX = (220, 560)  # (height, width) of canvas_projections' picture
+
+
 def _gallery() -> dict:
     """{(views, projection): (RGBA image or None, message)}: :func:`camlab.data.panorama_examples.canvas_previews`
-    fitted into the demo's display box, with the text the demo shows."""
+    placed in the demo's picture, with the text the demo shows."""
     gallery = {}
-    for (n, proj), p in pe.canvas_previews().items():
+    for (n, proj), p in pe.canvas_previews(BOX).items():
         if p.image is None:
             gallery[(n, proj)] = (None, f"{n} views, {p.fov_deg:.0f} degrees: {p.reason}")
         else:
-            gallery[(n, proj)] = (_fit(_rgba(p.image)), f"{n} views, {p.fov_deg:.0f} degrees of view: {proj} canvas "
-                                                        f"{p.image.shape[1]} x {p.image.shape[0]} px (shown scaled to fit)")
+            gallery[(n, proj)] = (_place(_rgba(p.image)), f"{n} views, {p.fov_deg:.0f} degrees of view: {proj} canvas "
+                                                          f"{p.shape[1]} x {p.shape[0]} px (shown scaled to fit)")
     return gallery
 
 
-def _fit(rgba: np.ndarray, box: tuple[int, int] = (220, 560)) -> np.ndarray:
-    """Scale an RGBA image to fit a (height, width) box, placed at the top centre of a white box."""
-    import cv2
-
-    h, w = rgba.shape[:2]
-    k = min(box[0] / h, box[1] / w)
-    small = cv2.resize(rgba, (max(1, int(w * k)), max(1, int(h * k))), interpolation=cv2.INTER_AREA)
-    out = np.full((*box, 4), 255, np.uint8)
-    x0 = (box[1] - small.shape[1]) // 2
-    out[:small.shape[0], x0:x0 + small.shape[1]] = small
+def _place(rgba: np.ndarray) -> np.ndarray:
+    """An RGBA image that fits in :data:`BOX`, placed at the top centre of a white BOX."""
+    out = np.full((*BOX, 4), 255, np.uint8)
+    x0 = (BOX[1] - rgba.shape[1]) // 2
+    out[:rgba.shape[0], x0:x0 + rgba.shape[1]] = rgba
     return out
 
 
@@ -318,11 +316,11 @@ def canvas_projections() -> Demo:
     gallery = _gallery()
     view = FigureView(figsize=(6.4, 2.6))
     ax = view.fig.subplots()
-    blank = np.full((220, 560, 4), 255, np.uint8)
+    blank = np.full((*BOX, 4), 255, np.uint8)
     im = view.animate(ax.imshow(blank, interpolation="nearest"))
     msg = view.animate(ax.text(0.5, 0.5, "", transform=ax.transAxes, ha="center", va="center", fontsize=10,
                                color="tab:red", wrap=True))
-    ax.set(xlim=(-0.5, 559.5), ylim=(219.5, -0.5), aspect="equal")
+    ax.set(xlim=(-0.5, BOX[1] - 0.5), ylim=(BOX[0] - 0.5, -0.5), aspect="equal")
     ax.set_xticks([])
     ax.set_yticks([])
     readout = W.HTML()
