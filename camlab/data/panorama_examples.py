@@ -17,17 +17,20 @@ public names, so the widgets hold only controls, artists and ``update``:
 :func:`stitched_panoramas`
     The four-image panorama, planar and cylindrical.
 :func:`wide_sweep` and :func:`canvas_previews`
-    A 200-degree sweep stitched with bundle-adjusted cameras, and its first 2-6 views
-    pasted onto a plane, a cylinder and a sphere.
+    A 200-degree sweep stitched with bundle-adjusted cameras, and previews of its first
+    2-6 views pasted onto a plane, a cylinder and a sphere.
 :func:`parallax_pairs`
     Two views of the room from cameras that turn *and* move sideways by each of
     :data:`BASELINES`: registered, warped, blended, with their edges.
 
-Every function without arguments is cached (``functools.lru_cache``): the first call
-computes, later calls return the same object. Every array in a cached result is
-read-only, so a caller's edit cannot change what the next caller gets; copy an array
-(``a.copy()``) to change it. Everything is deterministic (fixed seeds): the same arrays on
-every run with the same library versions.
+Every result is cached (``functools.lru_cache``): the first call computes, later calls
+return the same object. Every array in a cached result is read-only, so a caller's edit
+cannot change what the next caller gets; copy an array (``a.copy()``) to change it.
+Seeds are fixed, with one exception: :func:`camlab.stitching.stitch` matches with FLANN,
+whose randomised trees draw from OpenCV's global random state, so
+:func:`stitched_panoramas` and :func:`wide_sweep` depend on how much of it earlier code
+in the process used (in a fresh process, on nothing: the same arrays on every run with
+the same library versions).
 """
 from __future__ import annotations
 
