@@ -202,7 +202,13 @@ class FlannIndex(NamedTuple):
 
 def flann_index(features: Features) -> FlannIndex:
     """Index ``features``' SIFT descriptors once (FLANN, 4 randomised k-d trees), to search them
-    from many images: :func:`knn_match` with ``index2=`` then skips building it per pair."""
+    from many images: :func:`knn_match` with ``index2=`` then skips building it per pair.
+
+    FLANN draws the trees' random splits from OpenCV's global random generator, so the same
+    descriptors would give a different index (and now and then different matches) depending
+    on what ran before. The generator is seeded (``cv2.setRNGSeed(0)``, the state a fresh
+    process starts in) before every build: the same features always give the same index.
+    """
     import cv2
 
     f = _check_features(features, "features")
@@ -210,6 +216,7 @@ def flann_index(features: Features) -> FlannIndex:
         raise CamlabInputError(f"features: expected SIFT features (FLANN's k-d trees need float descriptors), "
                                f"got {f.method}; ORB is always matched by brute force")
     d = np.ascontiguousarray(f.descriptors, dtype=np.float32)
+    cv2.setRNGSeed(0)
     return FlannIndex(cv2.flann_Index(d, {"algorithm": 1, "trees": 4}), d)
 
 

@@ -76,6 +76,44 @@ def test_the_scan_finds_a_private_import(tmp_path, monkeypatch):
     assert private_imports() == ["camlab.b: from camlab.a import _helper", "camlab.b: _a._helper (camlab.a)"]
 
 
+_CACHES = {"lru_cache", "cache"}
+
+
+def _decorator_name(node: ast.expr) -> str:
+    node = node.func if isinstance(node, ast.Call) else node
+    return node.attr if isinstance(node, ast.Attribute) else getattr(node, "id", "")
+
+
+def widget_data_caches(widgets: Path) -> list[str]:
+    """Module-level cached functions in the widget modules: data computed once and kept for every demo.
+
+    Issue 12 item 8: widget modules hold controls, artists and ``update``; data sets and the
+    pipelines that prepare them are core (camlab.data, camlab.stitching ...), public and
+    tested. Every such pipeline found in a widget module was a module-level ``lru_cache``;
+    a memo local to one demo's builder (what its sliders revisit) is part of ``update``.
+    """
+    found = []
+    for path in sorted(widgets.glob("*.py")):
+        for node in ast.parse(path.read_text(), str(path)).body:
+            if isinstance(node, ast.FunctionDef) and any(_decorator_name(d) in _CACHES for d in node.decorator_list):
+                found.append(f"{path.stem}.{node.name}")
+    return found
+
+
+def test_widget_modules_hold_no_data_pipelines():
+    assert widget_data_caches(ROOT / "widgets") == []
+
+
+def test_the_scan_finds_a_cached_pipeline_in_a_widget_module(tmp_path):
+    """The rule can fail: module-level caches are caught, a builder's local memo is not."""
+    (tmp_path / "demo.py").write_text(
+        "import functools\nfrom functools import lru_cache\n\n"
+        "@lru_cache(maxsize=1)\ndef prepared():\n    return 1\n\n"
+        "@functools.cache\ndef more():\n    return 2\n\n"
+        "def builder():\n    @lru_cache\n    def memo(x):\n        return x\n    return memo\n")
+    assert widget_data_caches(tmp_path) == ["demo.prepared", "demo.more"]
+
+
 BENCHMARKS = ROOT.parent / "benchmarks"
 
 

@@ -125,6 +125,17 @@ def test_flann_index_agrees_with_brute_force(pair):
         ft.flann_index(ft.detect_features(s.images[1], "orb", 500))
 
 
+def test_flann_matches_do_not_depend_on_what_ran_before(pair):
+    """FLANN's random trees come from OpenCV's global generator: flann_index seeds it, so the
+    same features match the same way whatever was drawn before (the panorama stays the same)."""
+    _, (f1, f2) = pair
+    first = ft.knn_match(f1, f2, approximate=True)
+    cv2.randu(np.zeros(1000, np.float32), 0, 1)  # draws from the global generator, as other code would
+    ft.flann_index(f1)
+    again = ft.knn_match(f1, f2, approximate=True)
+    assert np.array_equal(first.nn12, again.nn12) and np.array_equal(first.nn21, again.nn21)
+
+
 def test_orb_matching_uses_hamming(pair):
     """ORB, the fast option: binary descriptors, Hamming distances, coarser keypoint positions."""
     full = sd.load_panorama_set()
