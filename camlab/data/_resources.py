@@ -20,6 +20,8 @@ import sys
 from importlib.resources import files
 from pathlib import Path
 
+import numpy as np
+
 from .._validate import CamlabInputError
 
 __all__ = ["cache_dir", "data_dir", "dataset_dir", "docs_dir", "lessons_dir", "read_only", "read_truth",
@@ -115,7 +117,22 @@ def encode_image(image, ext: str, params: tuple[int, ...] = ()) -> bytes:
     return buf.tobytes()
 
 
-def read_only(*arrays) -> None:
-    """Freeze arrays that a cache hands out: a caller's in-place edit would otherwise change every later use."""
-    for a in arrays:
-        a.setflags(write=False)
+def read_only(obj):
+    """Freeze every ndarray in ``obj`` and return ``obj``: arrays, and the NamedTuples, lists,
+    tuples, dicts and objects (their attributes) that hold them, all the way down.
+
+    A cache hands the same object to every caller, so one caller's in-place edit would
+    otherwise change what the next one gets; copy an array (``a.copy()``) to change it.
+    """
+    if isinstance(obj, np.ndarray):
+        obj.setflags(write=False)
+    elif isinstance(obj, dict):
+        for value in obj.values():
+            read_only(value)
+    elif isinstance(obj, (list, tuple)):
+        for value in obj:
+            read_only(value)
+    elif hasattr(obj, "__dict__") and not isinstance(obj, type):
+        for value in vars(obj).values():
+            read_only(value)
+    return obj

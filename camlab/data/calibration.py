@@ -153,14 +153,10 @@ def load_calibration_set(directory: Path | str | None = None) -> CalibrationSet:
 def bundled_calibration():
     """:func:`camlab.calibration.calibrate_from_images` of the bundled set (detected corners), computed once.
 
-    Lesson 08's ``view_inspector`` shows it. Its arrays (corners, K, dist, poses, residuals)
-    are read-only: the result is shared by every caller.
+    Lesson 08's ``view_inspector`` shows it. All its arrays are read-only: the result is
+    shared by every caller.
     """
     from ..calibration import calibrate_from_images
 
     cs = load_calibration_set()
-    out = calibrate_from_images(cs.images, cs.pattern_size, cs.square)
-    r = out.result
-    read_only(r.K, r.dist, r.rvecs, r.tvecs, r.per_view_rms, *r.residuals, *r.image_points,
-              *(d for d in out.detections if d is not None))
-    return out
+    return read_only(calibrate_from_images(cs.images, cs.pattern_size, cs.square))

@@ -26,15 +26,11 @@ public names, so the widgets hold only controls, artists and ``update``:
 Every result is cached (``functools.lru_cache``): the first call computes, later calls
 return the same object. Every array in a cached result is read-only, so a caller's edit
 cannot change what the next caller gets; copy an array (``a.copy()``) to change it.
-Seeds are fixed, with one exception: :func:`camlab.stitching.stitch` matches with FLANN,
-whose randomised trees draw from OpenCV's global random state, so
-:func:`stitched_panoramas` and :func:`wide_sweep` depend on how much of it earlier code
-in the process used (in a fresh process, on nothing: the same arrays on every run with
-the same library versions).
+Every random choice is seeded (FLANN's trees too, :func:`camlab.features.flann_index`): the
+same arrays on every run with the same library versions.
 """
 from __future__ import annotations
 
-import dataclasses
 from functools import lru_cache
 from typing import NamedTuple
 
@@ -45,6 +41,7 @@ from .. import stitching as st
 from .._validate import CamlabInputError, DegenerateError, check_shape
 from ..camera import scale_intrinsics
 from ..homography import normalize_homography, transfer_error
+from ._resources import read_only
 from .panorama import PanoramaSet, TurningSet, cam_from_world, load_panorama_set, render_view, room_scene, turning_set
 
 __all__ = ["BASELINES", "SCALE", "BlendedPair", "CanvasPreview", "ExposurePair", "PanoramaExample", "ParallaxPair",
@@ -58,26 +55,11 @@ SCALE = 0.5
 BASELINES = (0.0, 0.05, 0.1, 0.2, 0.4)
 
 
-def _read_only(obj):
-    """Make every ndarray inside ``obj`` (NamedTuples, lists, tuples, dicts, WarpedImages) read-only; return ``obj``.
-
-    A :class:`camlab.stitching.WarpedImages` builds its full-canvas ``images``, ``masks``
-    and ``weights`` on first use: they are built here, so they are read-only too.
-    """
-    if isinstance(obj, np.ndarray):
-        obj.setflags(write=False)
-    elif isinstance(obj, dict):
-        for value in obj.values():
-            _read_only(value)
-    elif isinstance(obj, (list, tuple)):
-        for value in obj:
-            _read_only(value)
-    elif isinstance(obj, st.WarpedImages):
-        for f in dataclasses.fields(obj):
-            _read_only(getattr(obj, f.name))
-        for on_canvas in (obj.images, obj.masks, obj.weights):
-            _read_only(on_canvas)
-    return obj
+def _with_canvases(warped: st.WarpedImages) -> st.WarpedImages:
+    """Build ``warped``'s full-canvas images, masks and weights (made on first use) now, so that
+    :func:`read_only` freezes them with the rest."""
+    warped.images, warped.masks, warped.weights
+    return warped
 
 
 # --------------------------------------------------------------------------- the rotation set at half size
@@ -111,13 +93,13 @@ def panorama_example() -> PanoramaExample:
     imgs = st.prepare_images(s.images)
     feats = [ft.detect_features(im, max_features=1500) for im in imgs]
     knn = {(i, i + 1): ft.knn_match(feats[i], feats[i + 1]) for i in range(len(imgs) - 1)}
-    return _read_only(PanoramaExample(s, imgs, feats, knn))
+    return read_only(PanoramaExample(s, imgs, feats, knn))
 
 
 @lru_cache(maxsize=1)
 def panorama_graph() -> st.MatchGraph:
     """The match graph of :func:`panorama_example` (every pair registered, the reference, the chains; cached)."""
-    return _read_only(st.match_graph(panorama_example().features))
+    return read_only(st.match_graph(panorama_example().features))
 
 
 def correct_matches(data: PanoramaSet, i: int, j: int, src: np.ndarray, dst: np.ndarray,
@@ -200,7 +182,7 @@ def reference_canvases() -> ReferenceCanvases:
         chain = [S @ H @ np.linalg.inv(S) for H in homographies_relative_to(graph, ref)]
         wi = st.warp_images(small, chain, max_pixels=3_000_000)
         canvases[ref] = ReferenceCanvas(tuple(wi.shape), wi.T, wi.homographies, st.blend(wi, "overwrite"))
-    return _read_only(ReferenceCanvases(small, canvases))
+    return read_only(ReferenceCanvases(small, canvases))
 
 
 # --------------------------------------------------------------------------- blending two exposures
@@ -228,8 +210,8 @@ def exposure_pair() -> ExposurePair:
     """Images 1 and 2 (half size) warped onto their common canvas, their gains and seam (cached, read-only)."""
     imgs = panorama_example().images
     Hs = homographies_relative_to(panorama_graph(), 1)
-    wi = st.warp_images([imgs[1], imgs[2]], [Hs[1], Hs[2]])
-    return _read_only(ExposurePair(wi, st.gain_compensation(wi, reference=0), st.seam_masks(wi.weights)[0]))
+    wi = _with_canvases(st.warp_images([imgs[1], imgs[2]], [Hs[1], Hs[2]]))
+    return read_only(ExposurePair(wi, st.gain_compensation(wi, reference=0), st.seam_masks(wi.weights)[0]))
 
 
 class BlendedPair(NamedTuple):
@@ -269,7 +251,7 @@ def pair_blends() -> dict:
                 step = (st.seam_step(image, wi.masks[1], wi.masks[0]) if m == "overwrite"
                         else st.seam_step(image, seam, both))
                 out[(m, g, lv if m == "multiband" else 0)] = BlendedPair(image, step)
-    return _read_only(out)
+    return read_only(out)
 
 
 # --------------------------------------------------------------------------- full panoramas
@@ -278,7 +260,7 @@ def pair_blends() -> dict:
 def stitched_panoramas() -> dict:
     """{"planar" | "cylindrical": :class:`camlab.stitching.StitchResult`} of the half-size set, multi-band blended (cached, read-only)."""
     s = panorama_example().data
-    return _read_only({proj: st.stitch(s.images, projection=proj, blend_method="multiband", max_features=1500)
+    return read_only({proj: st.stitch(s.images, projection=proj, blend_method="multiband", max_features=1500)
                        for proj in ("planar", "cylindrical")})
 
 
@@ -301,7 +283,7 @@ class WideSweep(NamedTuple):
 def wide_sweep() -> WideSweep:
     """The 200-degree sweep (six views, 360 x 264, f = 200 px) with its bundle-adjusted cameras (cached, read-only)."""
     s = turning_set("wide", size=(360, 264), f=200.0)
-    return _read_only(WideSweep(s, st.stitch(s.images, projection="spherical", blend_method="overwrite")))
+    return read_only(WideSweep(s, st.stitch(s.images, projection="spherical", blend_method="overwrite")))
 
 
 class CanvasPreview(NamedTuple):
@@ -369,7 +351,7 @@ def _canvas_previews(max_shape: tuple[int, int]) -> dict:
             small = cv2.resize(np.clip(np.rint(pano * 255), 0, 255).astype(np.uint8),
                                (max(1, int(w * k)), max(1, int(h * k))), interpolation=cv2.INTER_AREA)
             out[(n, proj)] = CanvasPreview(small, (h, w), fov, "")
-    return _read_only(out)
+    return read_only(out)
 
 
 # --------------------------------------------------------------------------- parallax
@@ -430,7 +412,7 @@ def parallax_pairs() -> dict:
         img1 = st.prepare_images([render_view(R1, t=-R1 @ c1, K=K, size=size, noise=False, scene=scene)] * 2)[0]
         f1 = ft.detect_features(img1, max_features=1500)
         reg = st.register_pair(f1, f0, threshold=2.0)
-        wi = st.warp_images([img0, img1], [np.eye(3), reg.H])
+        wi = _with_canvases(st.warp_images([img0, img1], [np.eye(3), reg.H]))
         blends = {m: st.blend(wi, m) for m in ("feather", "multiband")}
         out[b] = ParallaxPair(wi, reg, blends, edge_masks(wi), st.overlap_difference(wi))
-    return _read_only(out)
+    return read_only(out)

@@ -309,7 +309,6 @@ def bundled_rig() -> PreparedRig:
     from ..rectification import rectify_uncalibrated
 
     rig = load_stereo_rig()
-    read_only(rig.left, rig.right, rig.disparity)
     matches = true_matches(rig, step=30, start=20)
     half = (_halved(rig.left), _halved(rig.right))
     undistorted = (undistort_image(rig.left, rig.camera1.K, rig.camera1.dist),
@@ -319,14 +318,13 @@ def bundled_rig() -> PreparedRig:
     n2 = matches.ideal2 + rng.normal(0, 0.3, matches.ideal2.shape)
     F = ransac_fundamental_matrix(n1, n2, 1.0, rng=np.random.default_rng(1)).F
     uncalibrated = rectify_uncalibrated(n1, n2, F, rig.camera1.image_size)
-    read_only(*matches, *half, *undistorted)
-    return PreparedRig(rig, matches, half, undistorted, uncalibrated)
+    return read_only(PreparedRig(rig, matches, half, undistorted, uncalibrated))
 
 
 @lru_cache(maxsize=1)
 def bundled_rig_calibration() -> RigCalibration:
-    """:func:`calibrate_rig` of the bundled rig, computed once."""
-    return calibrate_rig(bundled_rig().rig)
+    """:func:`calibrate_rig` of the bundled rig, computed once (read-only)."""
+    return read_only(calibrate_rig(bundled_rig().rig))
 
 
 class HalfSizeRectification(NamedTuple):
@@ -368,8 +366,7 @@ def half_size_rectification() -> HalfSizeRectification:
     disparity = true_disparity(rig, rect)
     g = np.nan_to_num(disparity, nan=-100.0)
     smooth = np.isfinite(disparity) & (ndi.maximum_filter(g, 9) - ndi.minimum_filter(g, 9) < 0.5)
-    read_only(left, right, disparity, smooth)
-    return HalfSizeRectification(rect, left, right, disparity, smooth)
+    return read_only(HalfSizeRectification(rect, left, right, disparity, smooth))
 
 
 def _png(path: Path, img: np.ndarray) -> Path:
