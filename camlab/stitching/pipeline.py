@@ -26,9 +26,11 @@ from numpy.typing import ArrayLike
 
 from .. import features as _feat
 from .._validate import CamlabInputError, DegenerateError, check_intrinsics
-from . import BLENDS, WarpedImages, blend, dp_seam_masks, feather_weights, gain_compensation, match_graph, prepare_images, warp_images
+from .blending import BLENDS, blend, dp_seam_masks, gain_compensation
 from .cameras import adjust_homographies, estimate_cameras, estimate_focal, inlier_matches
 from .projections import PROJECTIONS, canvas_points, make_canvas, warp_to_canvas
+from .registration import match_graph, prepare_images
+from .warping import WarpedImages, feather_weights, warp_images
 
 __all__ = ["PROJECTION_CHOICES", "StitchResult", "largest_rectangle", "stitch"]
 
