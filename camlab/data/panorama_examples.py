@@ -334,7 +334,8 @@ def _canvas_previews(max_shape: tuple[int, int]) -> dict:
         Ks = [r.cameras[k][0] for k in range(n)]
         Rs = wave_correct([r.cameras[k][1] for k in range(n)])  # the canvas centred on these n views
         scale = 0.75 * float(np.median([K[0, 0] for K in Ks]))
-        fov = 40 * (n - 1) + np.degrees(2 * np.arctan(180 / 200))
+        # the yaws the views span, plus one view's own width: 2 atan((w / 2) / f)
+        fov = float(np.ptp(s.angles_deg[:n, 0]) + np.degrees(2 * np.arctan(imgs[0].shape[1] / 2 / s.K[0, 0])))
         for proj in pj.PROJECTIONS:
             try:
                 canvas = pj.make_canvas(Ks, Rs, [im.shape for im in imgs[:n]], proj, scale, max_pixels=3_000_000)
@@ -404,12 +405,14 @@ def parallax_pairs() -> dict:
     scene = room_scene()
     R0 = cam_from_world(np.radians(-16.0))
     R1 = cam_from_world(np.radians(-4.0))
-    img0 = st.prepare_images([render_view(R0, K=K, size=size, noise=False, scene=scene)] * 2)[0]
+    # the second camera's centre moves b metres to the right: t = -R1 c1 with c1 = (b, 0, 0)
+    views = [render_view(R0, K=K, size=size, noise=False, scene=scene)]
+    views += [render_view(R1, t=-R1 @ np.array([b, 0.0, 0.0]), K=K, size=size, noise=False, scene=scene)
+              for b in BASELINES]
+    img0, *moved = st.prepare_images(views)
     f0 = ft.detect_features(img0, max_features=1500)
     out = {}
-    for b in BASELINES:
-        c1 = np.array([b, 0.0, 0.0])  # the second camera's centre, metres to the right
-        img1 = st.prepare_images([render_view(R1, t=-R1 @ c1, K=K, size=size, noise=False, scene=scene)] * 2)[0]
+    for b, img1 in zip(BASELINES, moved):
         f1 = ft.detect_features(img1, max_features=1500)
         reg = st.register_pair(f1, f0, threshold=2.0)
         wi = _with_canvases(st.warp_images([img0, img1], [np.eye(3), reg.H]))

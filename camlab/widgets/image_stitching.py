@@ -218,8 +218,9 @@ def blending_seams() -> Demo:
     ax_z.set_title("zoom on the seam", fontsize=9)
     readout = W.HTML()
     # every setting the controls can reach, blended once (pe.pair_blends)
-    cache = {key: (b.image, _rgba(b.image)) for key, b in pe.pair_blends().items()}
-    jumps = {key: 255 * b.seam_step for key, b in pe.pair_blends().items()}
+    blends = pe.pair_blends()
+    cache = {key: (b.image, _rgba(b.image)) for key, b in blends.items()}
+    jumps = {key: 255 * b.seam_step for key, b in blends.items()}
 
     def update(v: dict, state: dict) -> None:
         key = (v["method"], bool(v["gains"]), int(v["levels"]) if v["method"] == "multiband" else 0)

@@ -180,6 +180,8 @@ def rectify_pair() -> Demo:
     import cv2
 
     _, matches, half, und, unc = bundled_rig()
+    und_half = [cv2.resize(im_, (320, 240), interpolation=cv2.INTER_AREA) for im_ in und]  # once, not per update
+    unc_half = [HALF @ H @ np.linalg.inv(HALF) for H in (unc.H1, unc.H2)]  # the same rectification in half-size pixels
     x1, x2, u1, u2 = matches
     cal1, cal2, cal_rms = bundled_rig_calibration()
     h1, h2 = cal1.resized(0.5), cal2.resized(0.5)
@@ -217,9 +219,7 @@ def rectify_pair() -> Demo:
             s2 = rc.rectify_points(rect, h2, map_points(HALF, x2), 2)
             state.update(rectified_K=full.K)  # alpha sets the zoom of the rectified images
         elif v["method"] == "uncalibrated":
-            Hs = [HALF @ H @ np.linalg.inv(HALF) for H in (unc.H1, unc.H2)]
-            L, R = (cv2.warpPerspective(cv2.resize(im_, (320, 240), interpolation=cv2.INTER_AREA), H, (320, 240))
-                    for im_, H in zip(und, Hs))
+            L, R = (cv2.warpPerspective(im_, H, (320, 240)) for im_, H in zip(und_half, unc_half))
             y1, y2 = map_points(unc.H1, u1), map_points(unc.H2, u2)
             s1, s2 = map_points(HALF, y1), map_points(HALF, y2)
         else:
