@@ -15,7 +15,7 @@ STAMP  := $(if $(LOCKED),-locked,)
 # installing one flavour (locked or not) invalidates the other's stamps
 OTHER_STAMPS := $(if $(LOCKED),$(VENV)/.installed-lab $(VENV)/.installed-test,$(VENV)/.installed-lab-locked $(VENV)/.installed-test-locked)
 
-.PHONY: lab test test-fast test-wheel test-oldest lint lock bench bench-browser strip browser-deps clean
+.PHONY: lab test test-fast test-wheel test-oldest lint lock binder-link bench bench-browser strip browser-deps clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -58,12 +58,14 @@ test-fast: $(VENV)/.installed-test$(STAMP)
 # The installed course: build the wheel and sdist, check they carry lessons, data, licences
 # and py.typed (tools/check_dist.py), install the wheel (not editable) into a fresh venv, and
 # from an unrelated temporary folder copy the lessons (`camlab lessons`) and run every one.
-WHEEL_VENV := build/venv-wheel
+# WHEEL_PYTHON picks the interpreter of that venv (test-py3NN sets it).
+WHEEL_VENV ?= build/venv-wheel
+WHEEL_PYTHON ?= $(BIN)/python
 test-wheel: $(VENV)/.installed-test$(STAMP)
 	rm -rf dist $(WHEEL_VENV) && mkdir -p build
 	$(BIN)/python -m build --outdir dist . > build/build.log 2>&1 || { cat build/build.log; exit 1; }
 	$(BIN)/python tools/check_dist.py dist
-	$(UV) venv --quiet --python $(BIN)/python $(WHEEL_VENV)
+	$(UV) venv --quiet --no-python-downloads --python $(WHEEL_PYTHON) $(WHEEL_VENV)
 	$(UV) pip install --quiet --python $(WHEEL_VENV)/bin/python dist/*.whl nbval pytest pytest-xdist $(PIN)
 	$(call run-lessons-outside,$(WHEEL_VENV))
 
@@ -75,6 +77,16 @@ define run-lessons-outside
 	  "$$here/$(1)/bin/python" -c "import camlab; assert camlab.__file__.startswith('$$here/$(1)/'), camlab.__file__"; \
 	  "$$here/$(1)/bin/python" -m pytest -p no:cacheprovider -n 2 --dist loadfile --nbval-lax --nbval-current-env lessons
 endef
+
+# test-wheel on another CPython, found as python3.NN on PATH (pyenv's shims) or in ~/.pyenv:
+# `make test-py313` (CI) or `make test-py312`. Fails, naming what it looked for, where it is missing.
+test-py3%:
+	@py=; for c in $$(command -v python3.$*) $$(ls -d $$HOME/.pyenv/versions/3.$*.*/bin/python3.$* 2>/dev/null | sort -rV); do \
+	  if "$$c" -c pass 2>/dev/null; then py=$$c; break; fi; done; \
+	[ -n "$$py" ] || { echo "$@: no working CPython 3.$* (looked for python3.$* on PATH and in" \
+	  "~/.pyenv/versions/3.$*.*): install it (pyenv install 3.$*, or apt-get install python3.$*)" >&2; exit 1; }; \
+	echo "$@: $$py ($$("$$py" -V))"; \
+	$(MAKE) --no-print-directory test-wheel WHEEL_PYTHON="$$py" WHEEL_VENV=build/venv-py3$*
 
 # The lowest versions pyproject.toml declares (requirements/oldest.txt pins them; a test keeps
 # the two in step): the fast tests plus three lessons, in their own venv. The class extra
@@ -97,10 +109,21 @@ test-oldest: $(OLDEST_VENV)/.installed
 lint: $(VENV)/.installed-test$(STAMP)
 	$(BIN)/ruff check .
 
-# Re-pin requirements/lock.txt (every package, for Python 3.11 on every platform) from pyproject.toml.
+# Re-pin both locks from pyproject.toml, for Python 3.11 on every platform: requirements/lock.txt
+# with every extra (CI, developers, instructors: LOCKED=1) and requirements/students.txt with
+# none (what Binder and hub/Dockerfile install: the course and JupyterLab). The students' lock is
+# resolved within the full one (-c), so a package in both has one version (tests/test_package.py).
+STUDENTS_LOCK := requirements/students.txt
+COMPILE := $(UV) pip compile pyproject.toml --universal --python-version 3.11 --quiet --no-header \
+  --custom-compile-command "make lock"
 lock: $(VENV)/.installed-test$(STAMP)
-	$(UV) pip compile pyproject.toml --all-extras --universal --python-version 3.11 --quiet --no-header \
-	  --custom-compile-command "make lock" -o $(LOCK)
+	$(COMPILE) --all-extras -o $(LOCK)
+	$(COMPILE) -c $(LOCK) --annotation-style line -o $(STUDENTS_LOCK)
+
+# The Binder link and README badge for this clone's GitHub remote (origin; REMOTE=upstream for another).
+REMOTE ?= origin
+binder-link:
+	@$(PYTHON) tools/binder_link.py $(REMOTE)
 
 bench: $(VENV)/.installed-test$(STAMP) browser-deps
 	$(BIN)/python benchmarks/run.py
@@ -137,7 +160,7 @@ class-load: $(VENV)/.installed-test$(STAMP) hub-deps
 	$(BIN)/python benchmarks/class_load.py --students $(N) $(if $(DRAG),--drag $(DRAG)) $(LESSONS)
 
 # Binder's install step (read from repo2docker's Dockerfile) into a fresh venv and the hub
-# image's RUN steps (docs/teaching.md) into another, then every lesson from a folder outside
+# image's RUN steps (hub/Dockerfile) into another, then every lesson from a folder outside
 # the repository against the Binder venv. Minutes, not seconds: CI runs it.
 BINDER_VENV := build/venv-binder
 .PHONY: test-binder

@@ -55,11 +55,33 @@ def test_oldest_pins_are_the_declared_lower_bounds():
     assert _pins(REPO / "requirements" / "oldest.txt") == floors
 
 
-def test_lock_pins_every_dependency_within_its_bounds():
+@pytest.mark.parametrize("lock", ["lock.txt", "students.txt"])
+def test_lock_pins_every_dependency_within_its_bounds(lock):
     from packaging.requirements import Requirement
 
-    pins = _pins(REPO / "requirements" / "lock.txt")
+    pins = _pins(REPO / "requirements" / lock)
     for dep in _project()["dependencies"]:
         req = Requirement(dep)
-        assert req.name.lower() in pins, f"requirements/lock.txt does not pin {req.name}: run `make lock`"
+        assert req.name.lower() in pins, f"requirements/{lock} does not pin {req.name}: run `make lock`"
         assert req.specifier.contains(pins[req.name.lower()]), f"{req.name}=={pins[req.name.lower()]} outside {dep}"
+
+
+def _pinned_versions(path: Path) -> set[tuple[str, str]]:
+    """``(name, version)`` of every pin of a universal lock: a package may have one per Python version
+    (its environment marker, which may be wider in the full lock, is left out)."""
+    return set(re.findall(r"^([A-Za-z0-9_.-]+)==([^\s;]+)", path.read_text().lower(), flags=re.M))
+
+
+def test_students_lock_is_the_full_locks_pins_for_the_course_alone():
+    """requirements/students.txt (Binder, hub/Dockerfile) shares every version with lock.txt (CI,
+    developers) and carries none of the extras' tools: `make lock` writes both."""
+    students = _pinned_versions(REPO / "requirements" / "students.txt")
+    full = _pinned_versions(REPO / "requirements" / "lock.txt")
+    assert students, "requirements/students.txt pins nothing"
+    differ = sorted(students - full)
+    assert not differ, f"students.txt pins {differ} where lock.txt has another version: run `make lock`"
+    from packaging.requirements import Requirement
+
+    names = {name for name, _ in students}
+    tools = {Requirement(dep).name.lower() for deps in _project()["optional-dependencies"].values() for dep in deps}
+    assert not names & tools, f"students.txt installs the extras' tools {sorted(names & tools)} for every student"
