@@ -79,7 +79,7 @@ define run-lessons-outside
 endef
 
 # test-wheel on another CPython, found as python3.NN on PATH (pyenv's shims) or in ~/.pyenv:
-# `make test-py313` (CI) or `make test-py312`. Fails, naming what it looked for, where it is missing.
+# `make test-py312`, `make test-py313` (both in CI). Fails, naming what it looked for, where it is missing.
 test-py3%:
 	@py=; for c in $$(command -v python3.$*) $$(ls -d $$HOME/.pyenv/versions/3.$*.*/bin/python3.$* 2>/dev/null | sort -rV); do \
 	  if "$$c" -c pass 2>/dev/null; then py=$$c; break; fi; done; \
