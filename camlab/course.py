@@ -8,7 +8,7 @@ and sources in order (not ids, metadata, outputs or execution counts, which Jupy
 save and running the cells change), other files' bytes. On a later run (a new camlab
 version) a lesson whose cells are as camlab copied them is updated; a lesson the student
 edited is kept, or with ``force`` replaced after its old version is kept beside it as
-``NN_name.mine-<date>.ipynb``. A notebook that is not readable JSON (cut short by an
+``NN_name.mine-<date>.ipynb``. An empty notebook, or one that is not readable JSON (cut short by an
 interrupted copy or save) is not mistaken for an edit: it is kept beside as
 ``NN_name.torn-<date>.ipynb`` and replaced. Every file is written to a temporary name in its
 folder and renamed into place, so an interrupted run leaves each file old or new, never torn.
