@@ -16,7 +16,7 @@ from typing import Iterator
 
 from ._validate import CamlabInputError
 
-__all__ = ["atomic_output", "check_output_path"]
+__all__ = ["atomic_output", "check_output_path", "output_folder"]
 
 
 def check_output_path(path, name: str, suffixes: tuple[str, ...] | None = None) -> Path:
@@ -43,6 +43,25 @@ def check_output_path(path, name: str, suffixes: tuple[str, ...] | None = None) 
                                f"folder") from None
     os.close(fd)
     os.unlink(probe)
+    return p
+
+
+def output_folder(path, name: str) -> Path:
+    """Return ``path`` as a Path to a folder for outputs, creating it (and its parents) if missing.
+
+    Raises :class:`CamlabInputError` naming ``name`` if ``path`` is a file or cannot be created.
+    """
+    if path is None or not isinstance(path, (str, os.PathLike)) or str(path) == "":
+        raise CamlabInputError(f"{name}: expected a folder path, got {path!r}")
+    p = Path(path)
+    if p.exists() and not p.is_dir():
+        raise CamlabInputError(f"{name}: {str(path)!r} is a file, not a folder; name a folder (a missing one is "
+                               f"created)")
+    try:
+        p.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise CamlabInputError(f"{name}: cannot create the folder {str(path)!r} ({exc.strerror}); choose another "
+                               f"folder") from None
     return p
 
 

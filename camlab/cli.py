@@ -104,7 +104,7 @@ def _run_calibrate(args: argparse.Namespace) -> int:
 def _add_undistort(p: argparse.ArgumentParser) -> None:
     p.add_argument("images", nargs="+", help='photos or a quoted glob pattern, e.g. "photos/*.jpg"')
     p.add_argument("--calibration", required=True, help="calibration file from `camlab calibrate` (.json/.yaml/.xml)")
-    p.add_argument("--out-dir", required=True, help="folder for the undistorted images (same file names)")
+    p.add_argument("--out-dir", required=True, help="folder for the undistorted images (same file names; created if missing)")
     p.add_argument("--alpha", type=float, default=0.0,
                    help="0: crop to valid pixels (no black corners, default); 1: keep every source pixel")
 
@@ -115,13 +115,11 @@ def _run_undistort(args: argparse.Namespace) -> int:
 
     import cv2
 
-    from ._files import atomic_output, check_output_path
+    from ._files import atomic_output, check_output_path, output_folder
     from .calibration import load_calibration, undistort
 
     K, dist, size = load_calibration(args.calibration)
-    out_dir = Path(args.out_dir)
-    if not out_dir.is_dir():
-        raise CamlabInputError(f"--out-dir: no folder {str(out_dir)!r}; create it first")
+    out_dir = output_folder(args.out_dir, "--out-dir")
     check_output_path(out_dir / "probe.png", "--out-dir")
     files = _expand(args.images)
     failed = 0
@@ -230,25 +228,21 @@ def _add_rectify(p: argparse.ArgumentParser) -> None:
     p.add_argument("left", help="left photo")
     p.add_argument("right", help="right photo (same size)")
     p.add_argument("--out-dir", required=True, help="folder for left_rectified.png, right_rectified.png and "
-                                                     "vertical_disparity.png")
+                                                     "vertical_disparity.png (created if missing)")
     p.add_argument("--threshold", type=float, default=1.0, help="RANSAC threshold for F, pixels (default 1)")
 
 
 def _run_rectify(args: argparse.Namespace) -> int:
     """Rectify an undistorted stereo pair from its matches alone (SIFT, F by RANSAC, Hartley)."""
-    from pathlib import Path
-
     import cv2
     import numpy as np
 
     from . import epipolar, features
     from . import rectification as rc
-    from ._files import check_output_path
+    from ._files import check_output_path, output_folder
     from .homography import map_points
 
-    out_dir = Path(args.out_dir)
-    if not out_dir.is_dir():
-        raise CamlabInputError(f"--out-dir: no folder {str(out_dir)!r}; create it first")
+    out_dir = output_folder(args.out_dir, "--out-dir")
     outputs = {k: check_output_path(out_dir / f"{k}.png", "--out-dir")
                for k in ("left_rectified", "right_rectified", "vertical_disparity")}
     pair = []
@@ -302,7 +296,8 @@ def _vertical_disparity_figure(before, after, path) -> None:
 def _add_lessons(p: argparse.ArgumentParser) -> None:
     p.add_argument("dest", nargs="?", default="camlab-course",
                    help="working folder (default ./camlab-course); lessons go to DEST/lessons, docs to DEST/docs")
-    p.add_argument("--force", action="store_true", help="also overwrite lessons you have edited")
+    p.add_argument("--force", action="store_true",
+                   help="also replace lessons you have edited (yours are kept beside them as NN_name.mine-<date>.ipynb)")
 
 
 def _run_lessons(args: argparse.Namespace) -> int:
