@@ -141,7 +141,12 @@ def _run_undistort(args: argparse.Namespace) -> int:
                   f"calibration is for {size[0]} x {size[1]}", flush=True)
             failed += 1
             continue
-        res = undistort(img, K=K, dist=dist, alpha=args.alpha)
+        try:
+            res = undistort(img, K=K, dist=dist, alpha=args.alpha)
+        except ConvergenceError as exc:  # the lens model folds back inside the photo: no inverse there
+            raise CamlabInputError(f"--calibration: the distortion in {args.calibration!r} cannot be undone over the "
+                                   f"whole photo ({str(exc).split(';')[0]}); calibrate again with more views that "
+                                   f"reach the photo's corners, or with --fix-k3") from None
         target = out_dir / Path(name).name
         with atomic_output(target, "--out-dir") as tmp:
             if not cv2.imwrite(str(tmp), res.image):
