@@ -16,7 +16,11 @@ and the coach's advice, writes an OpenCV-loadable file (``cv2.FileStorage``: ``.
 ``camlab undistort``, ``camlab stitch FOLDER --out pano.jpg [--projection ...]`` and
 ``camlab rectify LEFT RIGHT --out-dir D`` work on real photos: each prints a line per image
 or pair, exits 0 when everything was used, 1 when some input was left out (and says which),
-2 on an error the user can fix; outputs are checked before any work and written atomically.
+2 on an error the user can fix; outputs are checked before any work (never one of the inputs)
+and written atomically. Photos are read by one reader (:func:`camlab._files.read_photo`:
+upright by their EXIF orientation, truncated files refused by name); ``stitch`` and
+``rectify`` shrink photos above ``--max-megapixels``; ``rectify --calibration CAL`` rectifies
+from the camera's calibration, which also works where the matches lie on one plane.
 """
 from __future__ import annotations
 
