@@ -202,8 +202,10 @@ def test_the_hubs_login_is_github_oauth_limited_to_the_class_organisation():
     from traitlets.config import Config
 
     config = yaml.safe_load((REPO / "hub" / "config.yaml").read_text())["hub"]["config"]
-    (entry,) = entry_points(group="jupyterhub.authenticators", name=config["JupyterHub"]["authenticator_class"])
-    github = entry.load()
+    name = config["JupyterHub"]["authenticator_class"]
+    found = entry_points(group="jupyterhub.authenticators", name=name)
+    assert found, f"no JupyterHub authenticator {name!r} installed: install the class extra (oauthenticator)"
+    github = next(iter(found)).load()
     assert github.__name__ == "GitHubOAuthenticator"
     classes = {"JupyterHub": JupyterHub, "Authenticator": Authenticator, "GitHubOAuthenticator": github}
     assert set(config) == set(classes)
