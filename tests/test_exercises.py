@@ -118,3 +118,9 @@ def test_check_functions_exist_by_name():
 def test_student_crash_is_reported_with_its_input():
     with pytest.raises(AssertionError, match=r"raised ZeroDivisionError.*\n  on input"):
         check("intersect_lines", lambda l1, l2: 1 / 0)
+
+
+def test_estimate_affine_camera_accepts_a_column_of_ones_instead_of_centring(capsys):
+    from camlab.exercises.affine_cameras import _estimate_with_ones
+
+    assert check("estimate_affine_camera", _estimate_with_ones) is True
