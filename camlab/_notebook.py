@@ -26,28 +26,24 @@ def is_cell_file(filename: str) -> bool:
 
 def _show_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int,
                   file: TextIO | None = None, line: str | None = None) -> None:
-    if not is_cell_file(filename):
-        _python_show_warning(message, category, filename, lineno, file, line)
-        return
+    """``warnings.showwarning`` in a kernel: Python's format, without the path for a cell's warning."""
+    if is_cell_file(filename):
+        text = f"{category.__name__}: {message}\n"
+    else:
+        text = warnings.formatwarning(message, category, filename, lineno, line)
     stream = sys.stderr if file is None else file
     try:
-        stream.write(f"{category.__name__}: {message}\n")
+        stream.write(text)
     except OSError:  # like Python's own: a closed stderr loses the warning, not the program
         pass
 
 
-_python_show_warning = warnings.showwarning
-
-
 def install_warning_format() -> bool:
     """In an IPython kernel, print warnings from cells without their temporary path; returns whether it did."""
-    global _python_show_warning
     shell: Any = None
     if "IPython" in sys.modules:
         shell = sys.modules["IPython"].get_ipython()
     if shell is None or getattr(shell, "kernel", None) is None:
         return False
-    if warnings.showwarning is not _show_warning:
-        _python_show_warning = warnings.showwarning
-        warnings.showwarning = _show_warning
+    warnings.showwarning = _show_warning
     return True
