@@ -64,7 +64,7 @@ test-wheel: $(VENV)/.installed-test$(STAMP)
 	$(BIN)/python -m build --outdir dist . > build/build.log 2>&1 || { cat build/build.log; exit 1; }
 	$(BIN)/python tools/check_dist.py dist
 	$(UV) venv --quiet --python $(BIN)/python $(WHEEL_VENV)
-	$(UV) pip install --quiet --python $(WHEEL_VENV)/bin/python dist/*.whl nbval pytest pytest-xdist $(PIN)
+	$(UV) pip install --quiet --python $(WHEEL_VENV)/bin/python dist/*.whl nbval pytest pytest-xdist pytest-timeout $(PIN)
 	$(call run-lessons-outside,$(WHEEL_VENV))
 
 # $(call run-lessons-outside,VENV): from an unrelated temporary folder, copy the lessons with
@@ -73,7 +73,7 @@ define run-lessons-outside
 	@set -e; here=$$(pwd); work=$$(mktemp -d); trap 'rm -rf "$$work"' EXIT; cd "$$work"; \
 	  "$$here/$(1)/bin/camlab" --version; "$$here/$(1)/bin/camlab" lessons course; cd course; \
 	  "$$here/$(1)/bin/python" -c "import camlab; assert camlab.__file__.startswith('$$here/$(1)/'), camlab.__file__"; \
-	  "$$here/$(1)/bin/python" -m pytest -p no:cacheprovider -n 2 --dist loadfile --nbval-lax --nbval-current-env lessons
+	  "$$here/$(1)/bin/python" -m pytest -p no:cacheprovider -n 2 --dist loadfile --timeout 300 --nbval-lax --nbval-current-env lessons
 endef
 
 # The lowest versions pyproject.toml declares (requirements/oldest.txt pins them; a test keeps
@@ -144,7 +144,7 @@ BINDER_VENV := build/venv-binder
 test-binder: $(VENV)/.installed-test$(STAMP)
 	rm -rf $(BINDER_VENV) && mkdir -p build
 	CAMLAB_TEST_BINDER=1 CAMLAB_BINDER_VENV=$(BINDER_VENV) $(BIN)/python -m pytest -p no:randomly tests/test_binder.py $(PYTEST_ARGS)
-	$(UV) pip install --quiet --python $(BINDER_VENV)/bin/python nbval pytest pytest-xdist $(PIN)
+	$(UV) pip install --quiet --python $(BINDER_VENV)/bin/python nbval pytest pytest-xdist pytest-timeout $(PIN)
 	$(call run-lessons-outside,$(BINDER_VENV))
 
 # The course as a static website in site/ (issue 17): every lesson executed, maths typeset

@@ -40,3 +40,10 @@ def assert_close_to_cv2_warp(ours, ref) -> None:
     diff = np.abs(np.asarray(ours).astype(int) - np.asarray(ref).astype(int))
     assert diff.max() <= 4, f"max |diff| {diff.max()} grey levels (OpenCV's fixed point allows 4)"
     assert diff.mean() < 0.25, f"mean |diff| {diff.mean():.3f} grey levels: more than fixed-point rounding"
+
+
+def pytest_collection_modifyitems(items):
+    """The tests that install whole environments (marked ``binder``) get 30 minutes, not the default 300 s."""
+    for item in items:
+        if item.get_closest_marker("binder") and not item.get_closest_marker("timeout"):
+            item.add_marker(pytest.mark.timeout(1800))

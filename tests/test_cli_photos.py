@@ -140,10 +140,11 @@ def test_rectify_a_real_stereo_pair(tmp_path, capsys):
 
 def test_rectify_names_bad_input(tmp_path, capsys):
     assert main(["rectify", _real("walls_left.jpg"), _real("church.jpg"), "--out-dir", str(tmp_path)]) == 2
+    (tmp_path / "x").write_text("")  # a missing --out-dir is created; a file is not a folder
     assert main(["rectify", _real("walls_left.jpg"), _real("walls_right.jpg"), "--out-dir", str(tmp_path / "x")]) == 2
     err = capsys.readouterr().err
-    assert "right: expected the left photo's size 816 x 612, got 800 x 532" in err and "--out-dir: no folder" in err
-    assert not list(tmp_path.iterdir())
+    assert "right: expected the left photo's size 816 x 612, got 800 x 532" in err and "is a file, not a folder" in err
+    assert [p.name for p in tmp_path.iterdir()] == ["x"]
 
 
 @pytest.mark.parametrize("command", ["stitch", "rectify"])

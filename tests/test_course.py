@@ -26,8 +26,10 @@ def test_copy_then_update_keeps_edited_lessons(tmp_path):
     lesson = tmp_path / "lessons" / "06_projective_plane.ipynb"
     assert lesson.read_bytes() == (lessons_dir() / lesson.name).read_bytes()
 
-    # the student edits one lesson; a new camlab version changes another one and this one
-    lesson.write_text(lesson.read_text() + " ")
+    # the student edits one lesson (a cell, not just its bytes); a new camlab version changes another one
+    nb = json.loads(lesson.read_text())
+    nb["cells"][1]["source"] = "".join(nb["cells"][1]["source"]) + " "
+    lesson.write_text(json.dumps(nb))
     stale = tmp_path / "lessons" / "00_start_here.ipynb"
     stale.write_text("{}")
     manifest = json.loads((tmp_path / MANIFEST_NAME).read_text())
@@ -37,13 +39,14 @@ def test_copy_then_update_keeps_edited_lessons(tmp_path):
     again = copy_course(tmp_path)
     assert again.kept == ["lessons/06_projective_plane.ipynb"]   # edited: left alone
     assert again.updated == ["lessons/00_start_here.ipynb"]      # untouched copy of an old version: updated
-    assert lesson.read_text().endswith(" ") and stale.read_bytes() == (lessons_dir() / stale.name).read_bytes()
+    assert json.loads(lesson.read_text())["cells"][1]["source"].endswith(" ") and stale.read_bytes() == (lessons_dir() / stale.name).read_bytes()
     assert "kept your edited lessons/06_projective_plane.ipynb" in again.text() and "--force" in again.text()
 
     # the edit is still recognised as an edit next time, and --force overwrites it
     assert copy_course(tmp_path).kept == ["lessons/06_projective_plane.ipynb"]
     forced = copy_course(tmp_path, force=True)
     assert forced.updated == ["lessons/06_projective_plane.ipynb"] and not forced.kept
+    assert list(forced.backups) == ["lessons/06_projective_plane.ipynb"]  # the edit is kept beside
     assert lesson.read_bytes() == (lessons_dir() / lesson.name).read_bytes()
 
 

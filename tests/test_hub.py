@@ -16,7 +16,8 @@ from camlab.classroom.lessons import find_lesson
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tools"))
 import classhub  # noqa: E402
 
-pytestmark = pytest.mark.hub
+# Four servers and four kernels on two cores take one to three minutes; past ten something hangs.
+pytestmark = [pytest.mark.hub, pytest.mark.timeout(600)]
 
 STUDENTS = ["ada", "blaise", "carl", "dora"]
 
@@ -49,7 +50,8 @@ def test_four_students_run_a_lesson_at_once_each_in_their_own_folder(tmp_path):
         t_hub = time.perf_counter() - t0
         tokens, rows = asyncio.run(classhub.run_class(hub, STUDENTS, [lesson]))
         t_class = time.perf_counter() - t0 - t_hub
-        own, crossed = asyncio.run(_cross_reads(hub, tokens, lesson.name))
+        with classhub.failing_with_log(hub):
+            own, crossed = asyncio.run(_cross_reads(hub, tokens, lesson.name))
     print(f"\nhub up in {t_hub:.1f} s; 4 servers started and lesson 06 run by all in {t_class:.1f} s; "
           + ", ".join(f"{r['student']} {r['wall_s']:.1f} s / {r['peak_mb']:.0f} MB / {r['cpu_s']:.1f} cpu-s"
                       for r in rows)
@@ -59,6 +61,7 @@ def test_four_students_run_a_lesson_at_once_each_in_their_own_folder(tmp_path):
     for r in rows:
         assert r["errors"] == [] and r["cells"] == code_cells + 1, r
         assert r["kernel_user"] == r["student"] and Path(r["kernel_cwd"]) == hub.homes / r["student"], r
+        assert r["kernel_transport"] == "ipc", r  # TCP ports picked by four servers at once can collide
         assert 60 < r["peak_mb"] < 2000 and 0.5 < r["cpu_s"] < 300, r
     for name in STUDENTS:
         files = sorted(p.relative_to(hub.homes / name).as_posix() for p in (hub.homes / name).rglob("*.ipynb")
@@ -77,3 +80,13 @@ def test_four_students_run_a_lesson_at_once_each_in_their_own_folder(tmp_path):
     denied = [c for c in crossed if c[-1] in (200, 201)]
     assert not denied, f"a student reached another student's files: {denied}"
     assert {c[-1] for c in crossed if c[2] == "PUT"} <= {403, 404} and not list(hub.homes.rglob("intrusion.txt"))
+
+
+def test_a_wait_past_its_deadline_fails_with_the_hub_log(tmp_path):
+    """What replaced the hang: a wait that passes its deadline names what it waited for and shows the log."""
+    log = tmp_path / "hub.log"
+    log.write_text("...\n[E] ZMQError: Address already in use\n")
+    hub = classhub.Hub("http://127.0.0.1:1", "token", tmp_path, log, process=None)
+    with pytest.raises(RuntimeError, match=r"(?s)the kernel running 'x = 1': no answer within 0 s.*Address already"):
+        with classhub.failing_with_log(hub):
+            asyncio.run(classhub.within(0.05, asyncio.sleep(10), "the kernel running 'x = 1'"))

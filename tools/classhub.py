@@ -10,6 +10,12 @@ REST API, starts their servers and issues each a token; every student, concurren
 lesson into their folder, opens a session on their own server, executes the lesson cell by cell
 over the kernel's websocket, saves the executed notebook back through the contents API, and
 reads the kernel's own peak memory and CPU time (``getrusage``) at the end.
+
+Two things keep a class run from hanging. Kernels talk over IPC (Unix sockets in a runtime
+folder per student), not TCP: every single-user server picks its kernels' TCP ports on its own,
+so servers started at once could pick the same free port (``ZMQError: Address already in use``)
+and a kernel would never answer. And every wait has a deadline: a request, a server's start,
+each kernel message; one that passes fails with the hub log's tail instead of waiting forever.
 """
 from __future__ import annotations
 
@@ -18,10 +24,12 @@ import contextlib
 import json
 import os
 import secrets
+import shutil
 import signal
 import socket
 import subprocess
 import sys
+import tempfile
 import time
 import urllib.request
 import uuid
@@ -33,11 +41,17 @@ REPO = Path(__file__).resolve().parent.parent
 BIN = Path(sys.executable).parent
 CHP = Path(os.environ.get("CAMLAB_CHP", REPO / ".venv" / "chp" / "node_modules" / ".bin" / "configurable-http-proxy"))
 
-MARKER = 'import os; print("camlab-hub-run", os.environ.get("JUPYTERHUB_USER"), os.getcwd())'
+MARKER = ('import json, os, ipykernel; print("camlab-hub-run", os.environ.get("JUPYTERHUB_USER"), os.getcwd(), '
+          'json.loads(ipykernel.get_connection_info())["transport"])')
 METRICS = ("import json as _j, resource as _r\n"
            "_s, _c = _r.getrusage(_r.RUSAGE_SELF), _r.getrusage(_r.RUSAGE_CHILDREN)\n"
            "print('camlab-hub-metrics', _j.dumps({'peak_mb': _s.ru_maxrss / 1024, "
            "'cpu_s': _s.ru_utime + _s.ru_stime + _c.ru_utime + _c.ru_stime}))")
+
+
+REQUEST_S = 120      # one REST call (starting a server is answered at once: 202)
+SERVERS_READY_S = 240  # every student's server up
+KERNEL_MESSAGE_S = 300  # the longest silence of a kernel running one cell
 
 
 def free_port() -> int:
@@ -54,9 +68,32 @@ class Hub:
     log: Path
     process: subprocess.Popen = field(repr=False)
 
+    def log_tail(self, chars: int = 4000) -> str:
+        return self.log.read_text(errors="replace")[-chars:]
 
-def _config(base: Path, port: int, token: str) -> str:
-    args = ["--allow-root"] if hasattr(os, "geteuid") and os.geteuid() == 0 else []
+
+async def within(seconds: float, awaitable, what: str):
+    """Await ``awaitable`` for at most ``seconds``; past that, fail naming ``what``."""
+    try:
+        return await asyncio.wait_for(awaitable, seconds)
+    except asyncio.TimeoutError:
+        raise TimeoutError(f"{what}: no answer within {seconds:.0f} s") from None
+
+
+@contextlib.contextmanager
+def failing_with_log(hub: Hub) -> Iterator[None]:
+    """Re-raise any failure in the block with the hub log's tail: what the hub and servers said."""
+    try:
+        yield
+    except Exception as exc:
+        raise RuntimeError(f"{type(exc).__name__}: {exc}\nthe hub log ends:\n{hub.log_tail()}") from exc
+
+
+def _config(base: Path, port: int, token: str, runtime: Path) -> str:
+    # IPC kernels: their sockets are files named after the kernel's id, so no two can collide.
+    # A runtime folder per student under a short path keeps socket paths under the 107-byte limit.
+    args = ["--KernelManager.transport=ipc"]
+    args += ["--allow-root"] if hasattr(os, "geteuid") and os.geteuid() == 0 else []
     return f"""
 c = get_config()
 c.JupyterHub.bind_url = "http://127.0.0.1:{port}"
@@ -72,6 +109,7 @@ c.JupyterHub.spawner_class = "simple"
 c.SimpleLocalProcessSpawner.home_dir_template = {str(base / "homes" / "{username}")!r}
 c.Spawner.cmd = [{str(BIN / "jupyterhub-singleuser")!r}]
 c.Spawner.args = {args!r}
+c.Spawner.environment = {{"JUPYTER_RUNTIME_DIR": lambda spawner: {str(runtime)!r} + "/" + spawner.user.name}}
 c.Spawner.default_url = "/lab"
 c.Spawner.start_timeout = 180
 c.Spawner.http_timeout = 180
@@ -114,7 +152,8 @@ def class_hub(base: Path) -> Iterator[Hub]:
     base.mkdir(parents=True, exist_ok=True)
     (base / "homes").mkdir(exist_ok=True)
     port, token = free_port(), secrets.token_hex(32)
-    (base / "jupyterhub_config.py").write_text(_config(base, port, token))
+    runtime = Path(tempfile.mkdtemp(prefix="camlab-hub-"))
+    (base / "jupyterhub_config.py").write_text(_config(base, port, token, runtime))
     env = {k: v for k, v in os.environ.items() if not k.startswith(("JUPYTERHUB", "CAMLAB_FIGURE", "MPLBACKEND"))}
     env["PATH"] = f"{BIN}{os.pathsep}{env.get('PATH', '')}"
     log = base / "hub.log"
@@ -132,6 +171,7 @@ def class_hub(base: Path) -> Iterator[Hub]:
                 os.killpg(process.pid, signal.SIGKILL)
             for leftover in processes_under(base):
                 leftover.kill()
+            shutil.rmtree(runtime, ignore_errors=True)
 
 
 # --- the REST and kernel clients (tornado, which Jupyter already installs) ---------------------
@@ -144,10 +184,12 @@ async def api(url: str, token: str, method: str = "GET", body: dict | None = Non
         response = await AsyncHTTPClient().fetch(
             url, method=method, headers={"Authorization": f"token {token}"}, follow_redirects=False,
             body=None if body is None and method in ("GET", "DELETE") else json.dumps(body or {}),
-            allow_nonstandard_methods=True, request_timeout=600)
+            allow_nonstandard_methods=True, connect_timeout=REQUEST_S, request_timeout=REQUEST_S)
         status, text = response.code, response.body
     except HTTPClientError as exc:
-        status, text = exc.code, (exc.response.body if exc.response else b"")
+        if exc.response is None:  # a timeout or a dropped connection (599) is never an answer
+            raise TimeoutError(f"{method} {url}: {exc}") from None
+        status, text = exc.code, exc.response.body
     if ok and status not in ok:
         raise RuntimeError(f"{method} {url}: HTTP {status} {text[:300]!r}")
     return status, (json.loads(text) if text and text.strip().startswith((b"{", b"[")) else None)
@@ -157,7 +199,7 @@ async def start_students(hub: Hub, names: list[str]) -> dict[str, str]:
     """Create the students, start their servers (all at once) and return a token for each."""
     await api(f"{hub.url}/hub/api/users", hub.admin_token, "POST", {"usernames": names})
     await asyncio.gather(*(api(f"{hub.url}/hub/api/users/{n}/server", hub.admin_token, "POST") for n in names))
-    deadline = time.time() + 240
+    deadline = time.time() + SERVERS_READY_S
     for name in names:
         while True:
             _, user = await api(f"{hub.url}/hub/api/users/{name}", hub.admin_token)
@@ -190,7 +232,7 @@ async def _execute(ws, code: str, session: str) -> tuple[str, list[dict]]:
     await ws.write_message(json.dumps(request))
     msg_id, outputs, status, idle = request["header"]["msg_id"], [], None, False
     while status is None or not idle:
-        raw = await ws.read_message()
+        raw = await within(KERNEL_MESSAGE_S, ws.read_message(), f"the kernel running {code[:60]!r}...")
         if raw is None:
             raise RuntimeError("the kernel's websocket closed")
         if isinstance(raw, bytes):
@@ -227,7 +269,8 @@ async def kernel(hub: Hub, name: str, token: str, path: str):
                            {"path": path, "type": "notebook", "name": path, "kernel": {"name": "python3"}})
     ws_url = (server.replace("http", "ws", 1)
               + f"/api/kernels/{session['kernel']['id']}/channels?session_id={uuid.uuid4().hex}")
-    ws = await websocket_connect(HTTPRequest(ws_url, headers={"Authorization": f"token {token}"}),
+    ws = await websocket_connect(HTTPRequest(ws_url, headers={"Authorization": f"token {token}"},
+                                             connect_timeout=REQUEST_S, request_timeout=REQUEST_S),
                                  max_message_size=256 * 1024 * 1024)
     try:
         yield lambda code: _execute(ws, code, session["id"])
@@ -267,7 +310,7 @@ async def run_lesson(hub: Hub, name: str, token: str, lesson: Path) -> dict:
     await api(contents, token, "PUT", {"type": "notebook", "format": "json", "content": nb})
     marker = (printed(nb["cells"][0]["outputs"], "camlab-hub-run") or "").split()
     return {"student": name, "lesson": lesson.stem, "wall_s": wall, "errors": errors, "cells": count,
-            "kernel_user": marker[0] if marker else None, "kernel_cwd": marker[1] if marker else None,
+            **dict(zip(("kernel_user", "kernel_cwd", "kernel_transport"), [*marker, None, None, None])),
             **json.loads(printed(metrics, "camlab-hub-metrics") or "{}")}
 
 
@@ -278,13 +321,16 @@ def server_rss_mb(hub: Hub) -> dict[str, float]:
 
 
 async def run_class(hub: Hub, names: list[str], lessons: list[Path]) -> tuple[dict[str, str], list[dict]]:
-    """Start ``names``' servers, then every student runs ``lessons`` in turn, all students at once."""
-    tokens = await start_students(hub, names)
+    """Start ``names``' servers, then every student runs ``lessons`` in turn, all students at once.
 
+    A request that fails or times out fails the run with the hub log's tail (what the servers said).
+    """
     async def student(name: str) -> list[dict]:
         return [await run_lesson(hub, name, tokens[name], lesson) for lesson in lessons]
 
-    results = await asyncio.gather(*(student(n) for n in names))
+    with failing_with_log(hub):
+        tokens = await start_students(hub, names)
+        results = await asyncio.gather(*(student(n) for n in names))
     return tokens, [r for rows in results for r in rows]
 
 

@@ -6,12 +6,12 @@ from __future__ import annotations
 import glob as _glob
 import os
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any, Callable, NamedTuple, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .._files import PhotoReadError, read_photo
 from .._validate import CamlabInputError, ConvergenceError, check_intrinsics, check_size
 from ..camera import axis_angle_from_rotation, rotation_from_axis_angle
 from ..distortion import as_dist
@@ -429,24 +429,8 @@ class ImageCalibration(NamedTuple):
         return "\n".join(lines)
 
 
-def _unreadable(path: Path) -> str | None:
-    """Why a photo file cannot be used (missing, empty, truncated JPEG/PNG), or None."""
-    if not path.is_file():
-        return "could not read the file: it does not exist"
-    data = path.read_bytes()
-    if not data:
-        return "could not read the file: it is empty (0 bytes)"
-    if data[:2] == b"\xff\xd8" and data.rstrip(b"\x00")[-2:] != b"\xff\xd9":
-        return "truncated JPEG: the file ends before its end-of-image marker (copy it again from the camera)"
-    if data[:8] == b"\x89PNG\r\n\x1a\n" and b"IEND" not in data[-16:]:
-        return "truncated PNG: the file ends before its IEND chunk (copy it again)"
-    return None
-
-
-def _load_images(images_or_paths) -> tuple[list, list, dict]:
-    """Images and names; unreadable files become failures."""
-    import cv2
-
+def _inputs(images_or_paths) -> list:
+    """The images or file paths to calibrate from (a glob pattern expanded), not yet read."""
     if isinstance(images_or_paths, (str, os.PathLike)):
         pattern = str(images_or_paths)
         paths = sorted(_glob.glob(pattern)) if any(ch in pattern for ch in "*?[") else [pattern]
@@ -456,19 +440,17 @@ def _load_images(images_or_paths) -> tuple[list, list, dict]:
     items = list(images_or_paths)
     if not items:
         raise CamlabInputError("images_or_paths: expected images or file paths, got an empty list")
-    images, names, failed = [], [], {}
-    for i, item in enumerate(items):
-        if isinstance(item, (str, os.PathLike)):
-            names.append(str(item))
-            why = _unreadable(Path(item))
-            img = None if why else cv2.imread(str(item), cv2.IMREAD_GRAYSCALE)
-            if img is None:
-                failed[i] = why or "could not read the file: not an image format OpenCV knows"
-            images.append(img)
-        else:
-            names.append(f"image[{i}]")
-            images.append(np.asarray(item))
-    return images, names, failed
+    return items
+
+
+def _grey(item, i: int) -> np.ndarray:
+    """Input i as a grey uint8 image: a file read upright (:func:`camlab._files.read_photo`) or an array."""
+    if isinstance(item, (str, os.PathLike)):
+        try:
+            return read_photo(item, "grey")
+        except PhotoReadError as exc:
+            raise CamlabInputError(exc.reason) from None
+    return grey_uint8(item, f"images[{i}]")
 
 
 def calibrate_from_images(images_or_paths, pattern_size: Sequence[int] | str, square_size: float,
@@ -500,38 +482,38 @@ def calibrate_from_images(images_or_paths, pattern_size: Sequence[int] | str, sq
     """
     pattern = parse_pattern(pattern_size)
     obj = board_points(pattern, square_size)
-    images, names, failed = _load_images(images_or_paths)
-    sizes = {}
-    for i, img in enumerate(images):
-        if i not in failed:
-            try:
-                g = grey_uint8(img, f"images[{i}]")
-                images[i] = g
-                sizes.setdefault(g.shape[::-1], []).append(i)
-            except CamlabInputError as exc:
-                failed[i] = str(exc)
+    items = _inputs(images_or_paths)
+    names = [str(x) if isinstance(x, (str, os.PathLike)) else f"image[{i}]" for i, x in enumerate(items)]
+    failed, sizes = {}, {}
+    # One image in memory at a time (a phone photo is 40 MB in grey): a first pass learns the sizes (so
+    # an odd one is reported as such), a second reads again the images of the common size, one by one.
+    for i, item in enumerate(items):
+        try:
+            sizes.setdefault(_grey(item, i).shape[::-1], []).append(i)
+        except CamlabInputError as exc:
+            failed[i] = str(exc)
     size = max(sizes, key=lambda s: len(sizes[s])) if sizes else None
     for s, idx in sizes.items():
         if s != size:
             for i in idx:
                 failed[i] = (f"image size {s[0]} x {s[1]} differs from the other images' {size[0]} x {size[1]}; "
                              f"calibrate each camera/resolution separately")
-    detections: list = [None] * len(images)
-    for i, img in enumerate(images):
+    detections: list = [None] * len(items)
+    for i, item in enumerate(items):
         if i not in failed:
-            det = find_chessboard(img, pattern)
+            det = find_chessboard(_grey(item, i), pattern)
             if det.found:
                 detections[i] = det.corners
             else:
                 failed[i] = det.reason
         if progress is not None:
-            progress(i + 1, len(images), names[i], failed.get(i))
-    used = [i for i in range(len(images)) if detections[i] is not None]
+            progress(i + 1, len(items), names[i], failed.get(i))
+    used = [i for i in range(len(items)) if detections[i] is not None]
     if len(used) < 3:
         why = "\n".join(f"  {names[i]}: {r}" for i, r in sorted(failed.items()))
         raise CamlabInputError(
             f"calibrate_from_images: need at least 3 images with the board detected, got {len(used)} of "
-            f"{len(images)}:\n{why}"
+            f"{len(items)}:\n{why}"
         )
     result = calibrate_camera(obj, [detections[i] for i in used], size, **kwargs)
     return ImageCalibration(result, names, used, dict(sorted(failed.items())), detections)

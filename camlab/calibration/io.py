@@ -14,20 +14,31 @@ from .refinement import PARAM_NAMES
 SUFFIXES = (".json", ".yaml", ".yml", ".xml")
 
 
-def save_calibration(result: CalibrationResult, path: str | os.PathLike) -> Path:
+def save_calibration(result: CalibrationResult, path: str | os.PathLike, *, name: str = "path") -> Path:
     """Write K, dist and the quality numbers with ``cv2.FileStorage`` (``.json``, ``.yaml``/``.yml`` or ``.xml``).
 
     OpenCV users load it with ``fs = cv2.FileStorage(path, cv2.FILE_STORAGE_READ);
     K = fs.getNode("camera_matrix").mat(); dist = fs.getNode("distortion_coefficients").mat()``.
+    The file is read back before it replaces an old one (OpenCV writes a short or empty
+    file on a full disk without an error); ``name`` is the argument named in errors.
     """
     import cv2
 
     if not isinstance(result, CalibrationResult):
         raise CamlabInputError(f"result: expected the CalibrationResult of calibrate_camera, got {type(result).__name__}")
-    p = check_output_path(path, "path", SUFFIXES)
-    with atomic_output(p) as tmp:  # the old file stays intact until the new one is complete
+    p = check_output_path(path, name, SUFFIXES)
+    with atomic_output(p, name, verify=_reads_back) as tmp:  # the old file stays intact until the new one is checked
         _write(cv2.FileStorage(str(tmp), cv2.FILE_STORAGE_WRITE), result)
     return p
+
+
+def _reads_back(path: Path) -> str | None:
+    """None if ``path`` loads as a calibration, else why not (for :func:`atomic_output`)."""
+    try:
+        load_calibration(path)
+    except CamlabInputError:
+        return "the file written does not read back as a calibration (a full disk?)"
+    return None
 
 
 def _write(fs, result: CalibrationResult) -> None:
@@ -47,26 +58,59 @@ def _write(fs, result: CalibrationResult) -> None:
         fs.release()
 
 
-def load_calibration(path: str | os.PathLike) -> tuple[np.ndarray, np.ndarray, tuple[int, int]]:
-    """Read ``(K, dist, image_size)`` from a file written by :func:`save_calibration` (or by OpenCV
-    with the same node names)."""
+def load_calibration(path: str | os.PathLike, *, name: str = "path") -> tuple[np.ndarray, np.ndarray, tuple[int, int]]:
+    """Read ``(K, dist, image_size)`` from a file written by :func:`save_calibration`, by OpenCV
+    with the same node names, or by ROS's camera calibrator (``camera_info`` YAML, whose
+    matrices are ``rows``/``cols``/``data`` maps; ``distortion_model: plumb_bob``). ``name`` is the argument named in errors."""
     import cv2
 
     if not isinstance(path, (str, os.PathLike)):
-        raise CamlabInputError(f"path: expected a file path, got {type(path).__name__}")
+        raise CamlabInputError(f"{name}: expected a file path, got {type(path).__name__}")
     if not Path(path).is_file():
-        raise CamlabInputError(f"path: no file {str(path)!r}")
+        raise CamlabInputError(f"{name}: no file {str(path)!r}")
+    expected = ("pass a .json/.yaml/.xml written by `camlab calibrate` (or save_calibration), OpenCV's "
+                "FileStorage, or ROS's camera calibrator")
     try:
         fs = cv2.FileStorage(str(path), cv2.FILE_STORAGE_READ)
     except (cv2.error, SystemError):
-        raise CamlabInputError(f"path: {str(path)!r} is not a file OpenCV's FileStorage can parse; "
-                               f"pass a .json/.yaml/.xml written by save_calibration or `camlab calibrate`") from None
+        raise CamlabInputError(f"{name}: {str(path)!r} is not a file OpenCV's FileStorage can parse; {expected}") from None
     try:
-        K = fs.getNode("camera_matrix").mat()
-        dist = fs.getNode("distortion_coefficients").mat()
+        if not fs.isOpened():
+            raise CamlabInputError(f"{name}: {str(path)!r} is not a file OpenCV's FileStorage can parse; {expected}")
+        model = fs.getNode("distortion_model")
+        if not model.empty() and model.string() not in ("plumb_bob", "radtan"):
+            raise CamlabInputError(f"{name}: {str(path)!r} uses the {model.string()!r} distortion model; camlab "
+                                   f"undistorts with OpenCV's standard model (ROS 'plumb_bob': k1, k2, p1, p2, k3)")
+        K = _matrix(fs.getNode("camera_matrix"), path, name, expected)
+        dist = _matrix(fs.getNode("distortion_coefficients"), path, name, expected)
         size = (int(fs.getNode("image_width").real()), int(fs.getNode("image_height").real()))
     finally:
         fs.release()
-    if K is None or dist is None:
-        raise CamlabInputError(f"path: {str(path)!r} has no camera_matrix / distortion_coefficients nodes")
-    return np.asarray(K, dtype=float), np.asarray(dist, dtype=float).ravel(), size
+    if K.shape != (3, 3) or dist.size not in (4, 5) or min(size) <= 0:
+        raise CamlabInputError(f"{name}: {str(path)!r} holds camera_matrix {K.shape[0]} x {K.shape[1]}, {dist.size} "
+                               f"distortion coefficients and image size {size[0]} x {size[1]}; expected 3 x 3, 4 or 5 "
+                               f"(k1, k2, p1, p2[, k3]) and a positive image_width and image_height")
+    return K, dist.ravel(), size
+
+
+def _matrix(node, path, name: str, expected: str) -> np.ndarray:
+    """A matrix node as a float array: OpenCV's ``!!opencv-matrix`` (with ``dt``), or ROS's map of
+    ``rows``, ``cols`` and ``data`` (no ``dt``: ``node.mat()`` fails on it with ``!dt.empty()``)."""
+    if node.empty():
+        raise CamlabInputError(f"{name}: {str(path)!r} has no camera_matrix / distortion_coefficients nodes; {expected}")
+    if node.isMap() and node.getNode("dt").empty():
+        rows, cols, data = (node.getNode(k) for k in ("rows", "cols", "data"))
+        values = [data.at(i).real() for i in range(data.size())] if data.isSeq() else []
+        if rows.empty() or cols.empty() or len(values) != int(rows.real()) * int(cols.real()):
+            raise CamlabInputError(f"{name}: {str(path)!r}: the {node.name()} node is neither an OpenCV matrix nor a "
+                                   f"ROS rows/cols/data map; {expected}")
+        return np.array(values, dtype=float).reshape(int(rows.real()), int(cols.real()))
+    import cv2
+
+    try:
+        m = node.mat()
+    except cv2.error:  # a scalar, string or map that is not a matrix
+        m = None
+    if m is None:
+        raise CamlabInputError(f"{name}: {str(path)!r}: the {node.name()} node is not a matrix; {expected}")
+    return np.asarray(m, dtype=float)

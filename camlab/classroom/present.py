@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import ast
 import copy
+import importlib.util
 import json
 import os
 import subprocess
@@ -26,6 +27,7 @@ import tempfile
 from pathlib import Path
 
 from .. import _access as access
+from .._validate import CamlabInputError
 from .lessons import called, find_lesson, only_statement, stub_name
 
 __all__ = ["is_demo_cell", "presentation_notebook", "serve"]
@@ -91,8 +93,17 @@ def voila_environment() -> dict[str, str]:
 
 
 def serve(lesson: str, port: int = 8866, open_browser: bool = True) -> int:
-    """Write the presentation of ``lesson`` to a temporary folder and serve it with Voila until Ctrl-C."""
+    """Write the presentation of ``lesson`` to a temporary folder and serve it with Voila until Ctrl-C.
+
+    Raises
+    ------
+    CamlabInputError
+        If ``lesson`` names no lesson, or Voila (the ``class`` extra) is not installed.
+    """
     path = find_lesson(lesson)
+    if importlib.util.find_spec("voila") is None:  # before printing a URL nothing will serve
+        raise CamlabInputError('camlab present needs Voila, which is not installed; install the class extra: '
+                               'pip install "camlab-course[class]"')
     presentation = presentation_notebook(json.loads(path.read_text(encoding="utf-8")))
     with tempfile.TemporaryDirectory(prefix="camlab-present-") as folder:
         target = Path(folder) / path.name

@@ -177,6 +177,24 @@ def _warp_curved(imgs: list, Ks: list, Rs: list, canvas) -> WarpedImages:
     return WarpedImages(out_i, out_m, out_w, boxes, (h, w), [None] * len(imgs), np.eye(3))
 
 
+def _warn_left_out(graph, lost: list, label: list) -> None:
+    """Warn, naming them, about images left out: alone (overlapping nothing) or in a separate group."""
+    if not lost:
+        return
+    reasons = []
+    for group in graph.groups():
+        if not set(group) & set(lost):
+            continue
+        if len(group) == 1:
+            k = group[0]
+            best = max((r.inliers for r in graph.report() if k in (r.i, r.j)), default=0)
+            reasons.append(f"{label[k]!r} overlaps none of the others (best pair: {best} inliers)")
+        else:
+            reasons.append(f"{', '.join(repr(label[k]) for k in group)} overlap each other but none of the "
+                           f"panorama's photos: a separate panorama; stitch them on their own")
+    warnings.warn(f"stitch: left out of the panorama: {'; '.join(reasons)}", UserWarning, stacklevel=3)
+
+
 def _warn_second_plane(graph, names: list, rng) -> None:
     """Warn if an accepted pair's outliers follow a second homography: two planes, so the camera moved (parallax).
 
@@ -337,12 +355,7 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
                          for r in graph.report())
         raise DegenerateError(f"stitch: no two images could be registered (at most one usable image), nothing to "
                               f"stitch. Pairs: {rows}")
-    lost = [k for k in graph.unconnected if k not in dup]
-    if lost:
-        why = "; ".join(f"{label[k]!r} overlaps none of the others (best pair: "
-                        f"{max((r.inliers for r in graph.report() if k in (r.i, r.j)), default=0)} inliers)"
-                        for k in lost)
-        warnings.warn(f"stitch: left out of the panorama: {why}", UserWarning, stacklevel=2)
+    _warn_left_out(graph, [k for k in graph.unconnected if k not in dup], label)
 
     t0 = time.perf_counter()
     shapes = [im.shape for im in imgs]

@@ -189,6 +189,28 @@ class MatchGraph(NamedTuple):
     parent: list
     unconnected: list
 
+    def groups(self) -> list[list[int]]:
+        """The connected groups of images (linked by chains of accepted pairs), largest first.
+
+        Two separate panoramas in one folder are two groups of two or more; a photo that
+        overlaps nothing is a group of one.
+        """
+        n = len(self.homographies)
+        label = list(range(n))
+
+        def root(k: int) -> int:
+            while label[k] != k:
+                k = label[k]
+            return k
+
+        for (i, j), p in self.pairs.items():
+            if p.accepted:
+                label[root(i)] = root(j)
+        groups: dict = {}
+        for k in range(n):
+            groups.setdefault(root(k), []).append(k)
+        return sorted(groups.values(), key=lambda g: (-len(g), g[0]))
+
     def report(self) -> list[PairReport]:
         """One :class:`PairReport` per registered pair."""
         return [PairReport(i, j, len(p.matches.src), int(p.inliers.sum()), p.residual_rms, p.accepted, p.reason)

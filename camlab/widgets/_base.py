@@ -110,6 +110,10 @@ class FigureView:
 
     def _draw_animated(self) -> None:
         for artist in self._animated:
+            if hasattr(artist, "do_3d_projection"):
+                # 3-D fills and patches keep the 2-D paths of the last full draw: Axes3D.draw
+                # projects them, draw_artist does not, so a moved face would be drawn where it was.
+                artist.do_3d_projection()
             self.fig.draw_artist(artist)
 
     def refresh(self) -> None:

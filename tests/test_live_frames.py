@@ -1,0 +1,85 @@
+"""The frame a demo sends after a control moves equals a full redraw of the same figure.
+
+The live path (``FigureView.refresh``) restores a cached background and draws only the
+animated artists on it. Anything that a full draw does and ``draw_artist`` skips (3-D
+projection of fills, a changed axis limit, a stale legend) makes the live frame differ from
+what the same state looks like drawn from scratch. For every registered demo, at its
+default and at both ends of every control's sweep, the two must agree up to anti-aliasing.
+"""
+import numpy as np
+import pytest
+
+from camlab.widgets import all_demos
+
+DEMOS = all_demos()
+
+
+def full_redraw(view) -> np.ndarray:
+    """The figure drawn from scratch, every artist in one ordinary draw, as an (H, W, 4) uint8 array.
+
+    The draw is flagged as a save so that ``FigureView`` keeps its cached background; the
+    next live frame restores that background, so the demo carries on unchanged.
+    """
+    canvas = view.fig.canvas
+    animated = list(view._animated)
+    for artist in animated:
+        artist.set_animated(False)
+    canvas._is_saving = True
+    try:
+        canvas.draw()
+        return np.asarray(canvas.buffer_rgba()).copy()
+    finally:
+        canvas._is_saving = False
+        for artist in animated:
+            artist.set_animated(True)
+
+
+def frame_difference(live: np.ndarray, full: np.ndarray) -> tuple[float, float]:
+    """(share of pixels that differ, largest difference in grey levels), edges forgiven.
+
+    Anti-aliasing and image resampling may put an edge one pixel over, so a pixel counts as
+    different only if no pixel of the other frame within one pixel of it is within 64 grey
+    levels; a stale or missing artist differs over its whole area.
+    """
+    a, b = live[..., :3].astype(int), np.pad(full[..., :3].astype(int), ((1, 1), (1, 1), (0, 0)), mode="edge")
+    h, w = a.shape[:2]
+    diff = np.min([np.abs(a - b[dy:dy + h, dx:dx + w]).max(axis=2) for dy in range(3) for dx in range(3)], axis=0)
+    return float(np.mean(diff > 64)), float(diff.max())
+
+
+def sweep_points(spec) -> list[tuple[str, object]]:
+    """Each control at both ends of its sweep (the other controls where the sweep left them)."""
+    return [(control, value) for control, values in spec.sweep.items() for value in (values[0], values[-1])]
+
+
+# Live frames that differ from a full redraw today by 0.1-1.7 % of their pixels, not yet
+# triaged (issues 28 and 29; lesson 09's panorama_canvas has the stale axis limits the review
+# found). Strict: a fix that makes one pass must take it off this list.
+KNOWN_DIFFERENT = {"epipolar_lines", "focus_and_blur", "panorama_canvas", "ransac_outliers", "undistort_alpha",
+                   "view_inspector"}
+
+
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason="issues 28/29"))
+                                  if n in KNOWN_DIFFERENT else n for n in sorted(DEMOS)])
+def test_live_frame_equals_a_full_redraw_at_every_sweep_end(name):
+    spec = DEMOS[name]
+    demo = spec.builder()
+    wrong = []
+    for control, value in [("default", None), *sweep_points(spec)]:
+        if control != "default":
+            demo.set(**{control: value})
+        live = demo.view.pixels()
+        share, worst = frame_difference(live, full_redraw(demo.view))
+        if share > 0.001:
+            wrong.append(f"{control}={value!r}: {share:.2%} of pixels differ (up to {worst:.0f} grey levels)")
+    assert not wrong, f"{name}: the live frame is not what a full redraw shows at\n  " + "\n  ".join(wrong)
+
+
+def test_the_comparison_catches_a_frame_that_missed_a_move():
+    """The check can fail: an artist moved without a refresh leaves the live frame stale."""
+    from camlab.widgets.pinhole_camera import pinhole_projection
+
+    demo = pinhole_projection()
+    demo.view._animated[0].set_data(np.zeros_like(demo.state["image"]))  # the image goes black, unsent
+    share, worst = frame_difference(demo.view.pixels(), full_redraw(demo.view))
+    assert share > 0.01 and worst == 255
