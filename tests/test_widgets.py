@@ -263,7 +263,7 @@ def test_a_failing_update_names_the_control_and_keeps_the_last_picture():
     assert demo.problem == "height (m) = 4.0: H: expected a height below 3"
     assert demo.state == {"h": 1.0} and np.array_equal(shown, demo.view.pixels())
     assert list(line.get_ydata()) == [0, 1.0]  # the artists went back to the last good settings
-    assert "height (m) = 4.0" in demo.widget.children[0].children[-1].value
+    assert "height (m) = 4.0" in demo.widget.children[0].children[1].value  # under the control
     demo.set(h=2.0)
     assert demo.problem == "" and demo.state == {"h": 2.0} and demo.updates == 2
 

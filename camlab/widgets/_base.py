@@ -237,7 +237,7 @@ def build_demo(
     panel: list[W.Widget] = []
     if title:
         panel.append(W.HTML(f"<b>{title}</b>"))
-    panel += list(demo_controls.values()) + list(extra) + [problem_line]
+    panel += list(demo_controls.values()) + [problem_line] + list(extra)  # the problem under the controls
     box = W.HBox(
         [W.VBox(panel, layout=W.Layout(min_width="300px")), view.widget],
         layout=W.Layout(align_items="flex-start"),
