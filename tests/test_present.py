@@ -49,6 +49,20 @@ def test_presentation_of_lesson_07_runs_and_shows_only_demos():
     assert all("application/vnd.jupyter.widget-view+json" in c.outputs[0]["data"] for c in shown)
 
 
+def test_serve_runs_voila_with_the_camlab_template(monkeypatch):
+    pytest.importorskip("voila")
+    from camlab.classroom import present
+
+    seen = {}
+    monkeypatch.setattr(present.subprocess, "run",
+                        lambda cmd, cwd, env: seen.update(cmd=cmd, env=env) or subprocess.CompletedProcess(cmd, 0))
+    monkeypatch.setenv("JUPYTER_PATH", "/elsewhere")
+    assert present.serve("07", open_browser=False) == 0
+    assert "--template=camlab" in seen["cmd"]
+    assert seen["env"]["JUPYTER_PATH"].split(os.pathsep) == [str(present.VOILA_DATA), "/elsewhere"]
+    assert (present.VOILA_DATA / "voila" / "templates" / "camlab" / "index.html.j2").is_file()
+
+
 def test_lecture_page_links_nothing_outside_the_machine(tmp_path):
     """Voila's lab template links Font Awesome from a CDN; camlab's template drops the links
     (Voila's bundle carries the fonts), so a class without internet gets the whole page."""
