@@ -257,30 +257,27 @@ def build_demo(
         values = {k: c.value for k, c in demo_controls.items()}
         if not last_good:  # the defaults: a failure here is a bug, so it raises
             draw(values)
-        else:
-            problem = _not_a_number(demo_controls)
-            if not problem:
-                try:
-                    draw(values)
-                except Exception as exc:  # noqa: BLE001 - any failure is shown in the demo, never raised into the page
-                    key = next((k for k, c in demo_controls.items() if change is not None and c is change["owner"]), "")
-                    what = f"{_label(demo_controls[key], key)} = {values[key]!r}" if key else "these settings"
-                    problem = f"{what}: {exc}"
-            if problem:
-                _show_problem(demo, problem_line, problem)
-                _restore(last_good)
-                return
+        elif problem := _not_a_number(demo_controls) or try_draw(values, change):
+            _show_problem(demo, problem_line, problem)
+            return
         last_good.clear()
         last_good.update(values)
         _show_problem(demo, problem_line, "")
         demo.updates += 1
 
-    def _restore(values: dict[str, Any]) -> None:
-        """Put the artists back to the last good settings (a failing update may have moved some)."""
+    def try_draw(values: dict[str, Any], change: Any) -> str:
+        """'' once drawn; else what went wrong, naming the control, with the artists back at the last good settings."""
         try:
-            update(values, dict(state))
-        except Exception:  # noqa: BLE001 - it worked before; if not now, the problem is already shown
+            draw(values)
+            return ""
+        except Exception as exc:  # noqa: BLE001 - any failure is shown in the demo, never raised into the page
+            reason = str(exc) or type(exc).__name__
+        try:
+            update(last_good, dict(state))  # a failing update may have moved some artists
+        except Exception:  # noqa: BLE001 - it worked before; if not now, the problem is shown anyway
             pass
+        key = next((k for k, c in demo_controls.items() if change is not None and c is change["owner"]), "")
+        return f"{_label(demo_controls[key], key)} = {values[key]!r}: {reason}" if key else f"these settings: {reason}"
 
     def on_linked(change: Any) -> None:
         """A linked control drives the figure through another; only its own NaN is reported here."""
