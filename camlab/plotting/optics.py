@@ -186,45 +186,63 @@ def update_similar_triangles(art: dict, f: float, Z: float, Y: float) -> float:
     return y
 
 
-def draw_thin_lens(ax, focal_length: float, object_distance: float, height: float = 1.0) -> dict:
-    """A thin-lens ray diagram: object arrow, lens, the three principal rays, image arrow.
+THIN_LENS_X = (-12.0, 9.0)   # the ray diagram's horizontal range, in units of f
+THIN_LENS_Y = 3.2            # ... and its vertical half-range, in object heights
 
-    The axes are fixed at [-1, 1] and the drawing is scaled to fill them (the numbers are in
-    the corner text), so an update moves artists without rescaling the axes, which keeps
-    the diagram blittable and fast.
+
+def draw_thin_lens(ax, focal_length: float, object_distance: float) -> dict:
+    """A thin-lens ray diagram: object arrow, lens, foci F and F', the three principal rays, image arrow.
+
+    Distances are drawn in units of f (the diagram depends only on z_o / f) and heights in
+    units of the object's height, on fixed axes: as the object nears F the image runs off to
+    the right and grows, and an object or image beyond the axes is marked at the edge with
+    its distance. Fixed axes also keep the diagram blittable. The metres are in the corner.
     """
+    colours = (palette.ORANGE, palette.PURPLE, palette.BROWN)
+    names = ("parallel, then through F'", "through the centre, straight", "through F, then parallel")
     art = {
-        "lens": ax.axvline(0, color="tab:blue", lw=2),
+        "lens": ax.axvline(0, color=palette.BLUE, lw=2),
         "axis": ax.axhline(0, color="0.5", lw=0.8),
-        "foci": ax.plot([], [], "k+", ms=10)[0],
-        "object": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="-|>", color="tab:green", lw=2)),
-        "image": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="-|>", color="tab:red", lw=2)),
-        "rays": [ax.plot([], [], color=c, lw=1)[0] for c in (palette.ORANGE, "tab:purple", "tab:brown")],
-        "text": ax.text(0.02, 0.03, "", transform=ax.transAxes, va="bottom", fontsize=9, family="monospace"),
-        "height": height,
+        "foci": ax.plot([-1, 1], [0, 0], "k+", ms=10, mew=1.5)[0],
+        "object": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="-|>", color=palette.GREEN, lw=2)),
+        "image": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="-|>", color=palette.RED, lw=2)),
+        "rays": [ax.plot([], [], color=c, lw=1.2, label=n)[0] for c, n in zip(colours, names)],
+        "object_off": ax.text(THIN_LENS_X[0] + 0.3, 0.85 * THIN_LENS_Y, "", fontsize=9, color=palette.GREEN, va="center"),
+        "image_off": ax.text(THIN_LENS_X[1] - 0.3, -0.85 * THIN_LENS_Y, "", fontsize=9, color=palette.RED, va="center",
+                             ha="right"),
+        "text": ax.text(0.01, 0.03, "", transform=ax.transAxes, va="bottom", fontsize=9, family="monospace",
+                        bbox=dict(fc="white", ec="0.8", alpha=0.9)),
     }
-    ax.set(xlim=(-1, 1), ylim=(-1, 1), xticks=[], yticks=[])
-    ax.set_xlabel("object side  ←  lens  →  image side   (drawn to fit; lengths in the corner)")
+    for x, label in ((-1, "F"), (1, "F'")):
+        ax.annotate(label, (x, 0), xytext=(5, 4), textcoords="offset points", ha="left", va="bottom", fontsize=10)
+    lo, hi = THIN_LENS_X
+    ax.set(xlim=THIN_LENS_X, ylim=(-THIN_LENS_Y, THIN_LENS_Y), yticks=[-2, -1, 0, 1, 2],
+           xticks=[t for t in range(int(lo), int(hi) + 1) if t % 2 == 0])
+    ax.set_xlabel("distance from the lens, in units of f (object side left, image side right)")
+    ax.set_ylabel("height / object height")
+    ax.legend(loc="upper right", fontsize=8, title="principal rays", title_fontsize=8)
     update_thin_lens(art, focal_length, object_distance)
     return art
 
 
 def update_thin_lens(art: dict, f: float, zo: float) -> dict:
     """Move the diagram to focal length ``f`` and object distance ``zo``; returns the computed values."""
-    hgt = art["height"]
-    zi = _lens.image_distance(f, zo)
-    m = _lens.magnification(f, zo)
-    hi = m * hgt
-    sx = 1 / (max(zo, zi) * 1.15)  # metres to plot units, so the whole diagram fits
-    sy = 1 / (max(hgt, abs(hi)) * 1.3)
-    art["foci"].set_data([-f * sx, f * sx], [0, 0])
-    art["object"].xy, art["object"].xyann = (-zo * sx, hgt * sy), (-zo * sx, 0)
-    art["image"].xy, art["image"].xyann = (zi * sx, hi * sy), (zi * sx, 0)
-    # parallel ray -> through far focus; central ray undeviated; ray through near focus -> parallel
-    art["rays"][0].set_data(np.array([-zo, 0, zi]) * sx, np.array([hgt, hgt, hi]) * sy)
-    art["rays"][1].set_data(np.array([-zo, zi]) * sx, np.array([hgt, hi]) * sy)
-    art["rays"][2].set_data(np.array([-zo, 0, zi]) * sx, np.array([hgt, hi, hi]) * sy)
-    art["text"].set_text(f"f   = {f * 1e3:6.1f} mm\nz_o = {zo:6.3f} m\nz_i = {zi:6.3f} m\nm   = {m:6.3f}")
+    zi = float(_lens.image_distance(f, zo))
+    m = float(_lens.magnification(f, zo))
+    xo, xi = -zo / f, zi / f                       # units of f
+    lo, hi = THIN_LENS_X
+    xo_drawn, xi_drawn = max(xo, lo + 0.3), min(xi, hi - 0.3)
+    art["object"].xy, art["object"].xyann = (xo_drawn, 1.0), (xo_drawn, 0)
+    art["image"].xy, art["image"].xyann = (xi_drawn, m), (xi_drawn, 0)
+    # parallel ray -> through F'; central ray undeviated; ray through F -> parallel (exact lines, clipped by the axes)
+    art["rays"][0].set_data([xo, 0, xi], [1, 1, m])
+    art["rays"][1].set_data([xo, xi], [1, m])
+    art["rays"][2].set_data([xo, 0, xi], [1, m, m])
+    art["object_off"].set_text(f"<- object at {-xo:.1f} f" if xo < lo + 0.3 else "")
+    where = "off the axes" if abs(m) > THIN_LENS_Y else "->" if xi > hi - 0.3 else ""
+    art["image_off"].set_text(f"image at {xi:.1f} f, m = {m:.1f} {where}" if where else "")
+    art["text"].set_text(f"f   = {f * 1e3:6.1f} mm\nz_o = {zo:6.3f} m = {-xo:.2f} f\nz_i = {zi:6.3f} m = {xi:.2f} f\n"
+                         f"m   = {m:6.3f}")
     return {"image_distance": zi, "magnification": m}
 
 
