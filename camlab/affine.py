@@ -29,7 +29,7 @@ y down, z forward; pixels (u, v) = (column, row); points are rows. See lesson 05
 """
 from __future__ import annotations
 
-from typing import NamedTuple
+from typing import Callable, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -41,7 +41,7 @@ from .camera import Camera, intrinsic_matrix, orbit_eye, project_points, project
 
 __all__ = [
     "affine_approximation", "dolly_zoom_camera", "dolly_zoom_errors", "dolly_zoom_focal", "estimate_affine_camera", "image_of_direction",
-    "is_affine", "orthographic_matrix", "scaled_orthographic_matrix", "ThreeImages", "three_images",
+    "is_affine", "orthographic_matrix", "paraperspective_approximation", "scaled_orthographic_matrix", "ThreeImages", "three_images",
     "weak_perspective_error", "weak_perspective_matrix",
 ]
 
@@ -140,9 +140,10 @@ def is_affine(P: ArrayLike, tol: float = 1e-12) -> bool:
 
 
 def affine_approximation(camera: Camera, reference_point: ArrayLike) -> np.ndarray:
-    r"""The affine camera that agrees with a perspective camera to first order about a point.
+    r"""The weak-perspective approximation of a perspective camera about a point (H&Z §6.3.1).
 
-    With :math:`d_0 = r_3 \cdot X_0 + t_3` the depth of the reference point
+    Every point's depth is replaced by the reference point's depth (zeroth order in depth;
+    :func:`paraperspective_approximation` is the first-order one). With :math:`d_0 = r_3 \cdot X_0 + t_3` the depth of the reference point
     :math:`X_0`, replacing every point's depth by :math:`d_0` gives (H&Z eq. 6.16)
 
     .. math:: P_\infty = K \begin{pmatrix} r_1^\top & t_1 \\ r_2^\top & t_2 \\ 0^\top & d_0 \end{pmatrix},
@@ -164,6 +165,16 @@ def affine_approximation(camera: Camera, reference_point: ArrayLike) -> np.ndarr
     (3, 4) ndarray
         An affine camera (last row (0, 0, 0, 1)).
     """
+    d0 = _reference_depth(camera, reference_point)[1]
+    E = np.zeros((3, 4))
+    E[:2, :3] = camera.R[:2]
+    E[:2, 3] = camera.t[:2]
+    E[2, 3] = d0
+    return camera.K @ E / d0
+
+
+def _reference_depth(camera: Camera, reference_point: ArrayLike) -> tuple[np.ndarray, float]:
+    """The reference point as a (3,) array and its depth d0 > 0 in ``camera``."""
     if not isinstance(camera, Camera):
         raise CamlabInputError(f"camera: expected a camlab.camera.Camera, got {type(camera).__name__}")
     X0 = check_matrix(reference_point, (3,), "reference_point")
@@ -173,32 +184,81 @@ def affine_approximation(camera: Camera, reference_point: ArrayLike) -> np.ndarr
             f"reference_point: expected a point in front of the camera, but its depth is {d0:.3g} m; "
             f"pick a point the camera sees (e.g. the object's centroid)"
         )
+    return X0, d0
+
+
+def paraperspective_approximation(camera: Camera, reference_point: ArrayLike) -> np.ndarray:
+    r"""The para-perspective camera about a point: perspective linearised at the point (first order).
+
+    Weak perspective (:func:`affine_approximation`) projects every point onto the plane
+    :math:`z = d_0` through the reference point :math:`X_0` **along the optical axis**, then
+    divides by :math:`d_0`. Para-perspective (Aloimonos 1990; Szeliski §2.1.4) projects along
+    the **ray through** :math:`X_0` instead. In camera coordinates, with
+    :math:`(a, b) = (x_0 / d_0, y_0 / d_0)` the reference point's normalised image position,
+
+    .. math:: x_n = rac{x - a\,(z - d_0)}{d_0}, \qquad y_n = rac{y - b\,(z - d_0)}{d_0},
+
+    which is the first-order Taylor expansion of :math:`(x / z, y / z)` about :math:`X_0`. A point
+    at depth :math:`d_0 + \Delta` is off by about :math:`\Delta / d_0` times its image distance
+    from the image of :math:`X_0`; weak perspective's error is :math:`\Delta / d_0` times the distance
+    from the principal point. So the two coincide on the optical axis, and para-perspective is much
+    better for an object seen off-centre. It is still an affine camera: last row (0, 0, 0, 1),
+    8 degrees of freedom in general.
+
+    Parameters
+    ----------
+    camera : Camera
+        The perspective camera (its distortion is ignored).
+    reference_point : (3,) array_like
+        A world point in front of the camera, e.g. the object's centroid (metres).
+
+    Returns
+    -------
+    (3, 4) ndarray
+        An affine camera (last row (0, 0, 0, 1)) that images ``reference_point`` exactly where
+        ``camera`` does, with the same first derivatives there.
+    """
+    X0, d0 = _reference_depth(camera, reference_point)
+    ab = (camera.R[:2] @ X0 + camera.t[:2]) / d0  # normalised image coordinates of X0
     E = np.zeros((3, 4))
-    E[:2, :3] = camera.R[:2]
-    E[:2, 3] = camera.t[:2]
+    E[:2, :3] = camera.R[:2] - np.outer(ab, camera.R[2])
+    E[:2, 3] = camera.t[:2] - ab * (camera.t[2] - d0)
     E[2, 3] = d0
     return camera.K @ E / d0
 
 
 def dolly_zoom_camera(distance: float, azimuth: float, elevation: float, target: ArrayLike, f0: float = 800.0,
-                      d0: float = 4.0, principal_point: tuple[float, float] = (320.0, 240.0)) -> Camera:
+                      d0: float = 4.0, principal_point: tuple[float, float] = (319.5, 239.5),
+                      image_offset: float = 0.0) -> Camera:
     """A camera ``distance`` metres from ``target`` on the orbit (``azimuth``, ``elevation``, radians:
     :func:`camlab.camera.orbit_eye`), looking at it, zoomed to :func:`dolly_zoom_focal` ``(f0, d0, distance)``
     so the target keeps the size it has at ``d0`` with focal length ``f0`` (pixels). See lesson 05, section 2.
+
+    ``image_offset`` (pixels) turns the camera so the target images about that far right of the
+    principal point, at every distance (off the optical axis, where weak and para-perspective differ).
     """
     distance = check_positive(distance, "distance", "metres")
     f = dolly_zoom_focal(f0, d0, distance)
-    return Camera.look_at(orbit_eye(azimuth, elevation, distance, target), target,
-                          K=intrinsic_matrix(f, f, *principal_point))
+    eye = orbit_eye(azimuth, elevation, distance, target)
+    K = intrinsic_matrix(f, f, *principal_point)
+    on_axis = Camera.look_at(eye, target, K=K)
+    if image_offset == 0:
+        return on_axis
+    # A lateral shift s of the aim point at distance d moves the target by f s / d = image_offset pixels.
+    aim = np.asarray(target, dtype=float) - float(image_offset) * distance / f * on_axis.R[0]
+    return Camera.look_at(eye, aim, K=K)
 
 
 def dolly_zoom_errors(points_world: ArrayLike, distances: ArrayLike, azimuth: float, elevation: float,
-                      target: ArrayLike, f0: float = 800.0, d0: float = 4.0) -> np.ndarray:
+                      target: ArrayLike, f0: float = 800.0, d0: float = 4.0,
+                      approximation: Callable[[Camera, ArrayLike], np.ndarray] | None = None,
+                      image_offset: float = 0.0) -> np.ndarray:
     """RMS pixel distance between the perspective and weak-perspective images of ``points_world`` along a
-    dolly zoom: one value per distance of :func:`dolly_zoom_camera`, weak perspective about ``target``.
+    dolly zoom: one value per distance of :func:`dolly_zoom_camera`, weak perspective about ``target``
+    (or ``approximation(camera, target)``, e.g. :func:`paraperspective_approximation`).
 
     The object keeps its image size while the depth range shrinks relative to the distance, so
-    the error falls like 1 / d (lesson 05, section 2).
+    the error falls like 1 / d (lesson 05, section 2). ``image_offset`` is :func:`dolly_zoom_camera`'s.
     """
     ds = as_float(distances, "distances")
     if ds.ndim != 1 or len(ds) == 0 or not np.all(np.isfinite(ds) & (ds > 0)):
@@ -206,8 +266,8 @@ def dolly_zoom_errors(points_world: ArrayLike, distances: ArrayLike, azimuth: fl
                                f"{np.array2string(ds, precision=3, threshold=6)} (shape {ds.shape})")
     out = []
     for d in ds:
-        cam = dolly_zoom_camera(d, azimuth, elevation, target, f0, d0)
-        out.append(np.sqrt(np.mean(weak_perspective_error(cam, points_world, target) ** 2)))
+        cam = dolly_zoom_camera(d, azimuth, elevation, target, f0, d0, image_offset=image_offset)
+        out.append(np.sqrt(np.mean(weak_perspective_error(cam, points_world, target, approximation) ** 2)))
     return np.array(out)
 
 
@@ -241,12 +301,14 @@ def three_images(camera: Camera, segments: ArrayLike) -> ThreeImages:
     return ThreeImages(perspective, project_segments(P_weak, segs), project_segments(P_orth, segs), P_weak, P_orth)
 
 
-def weak_perspective_error(camera: Camera, points_world: ArrayLike, reference_point: ArrayLike | None = None) -> np.ndarray:
+def weak_perspective_error(camera: Camera, points_world: ArrayLike, reference_point: ArrayLike | None = None,
+                           approximation: Callable[[Camera, ArrayLike], np.ndarray] | None = None) -> np.ndarray:
     r"""Per-point pixel distance between perspective and weak-perspective images.
 
     The weak-perspective camera is :func:`affine_approximation` about ``reference_point``
     (default: the centroid of the points). The error grows with :math:`\Delta / d_0`,
-    the point's depth offset relative to the reference depth.
+    the point's depth offset relative to the reference depth. Pass
+    ``approximation=paraperspective_approximation`` to measure that camera instead.
 
     Returns
     -------
@@ -255,7 +317,7 @@ def weak_perspective_error(camera: Camera, points_world: ArrayLike, reference_po
     """
     X = as_points(points_world, 3, "points_world").array
     X0 = X.mean(axis=0) if reference_point is None else reference_point
-    PA = affine_approximation(camera, X0)
+    PA = (approximation or affine_approximation)(camera, X0)
     return np.linalg.norm(camera.replace(dist=(0.0,) * 5).project(X) - project_points(PA, X), axis=1)
 
 

@@ -238,8 +238,35 @@ def test_dolly_zoom_camera_keeps_the_target_size_and_the_error_falls_like_one_ov
     target = np.array([0.0, 0.0, 0.5])
     near, far = (af.dolly_zoom_camera(d, np.radians(-40), np.radians(20), target) for d in (4.0, 16.0))
     assert np.isclose(np.linalg.norm(near.centre - target), 4.0) and np.isclose(far.K[0, 0], 4 * near.K[0, 0])
-    np.testing.assert_allclose(near.project(target), [320.0, 240.0], atol=1e-9)  # looking at it
+    np.testing.assert_allclose(near.project(target), [319.5, 239.5], atol=1e-9)  # looking at it
+    for d in (4.0, 16.0, 64.0):                    # image_offset keeps the target about that far off centre
+        off = af.dolly_zoom_camera(d, np.radians(-40), np.radians(20), target, image_offset=150.0)
+        assert off.project(target)[0] - 319.5 == pytest.approx(150.0, rel=0.01)
     cube = box_wireframe((0, 0, 0.5), (1, 1, 1)).reshape(-1, 3)
     d = np.array([8.0, 16.0, 32.0])
     rms = af.dolly_zoom_errors(cube, d, np.radians(-40), np.radians(20), target)
     np.testing.assert_allclose(rms[:-1] / rms[1:], 2.0, rtol=0.05)  # doubling the distance halves the error
+
+
+def test_paraperspective_is_perspective_to_first_order_and_weak_perspective_is_not():
+    cam = cm.Camera.look_at([4.0, -3.0, 2.0], [0.3, 0.2, 0.5])
+    X0 = np.array([0.6, 0.4, 0.9])                     # off the optical axis
+    P_para, P_weak = af.paraperspective_approximation(cam, X0), af.affine_approximation(cam, X0)
+    assert af.is_affine(P_para)
+    assert np.allclose(cm.project_points(P_para, X0), cam.project(X0))
+    step = np.array([0.3, -0.5, 0.8])
+
+    def gap(P, s):
+        X = X0 + s * step
+        return np.linalg.norm(cam.project(X) - cm.project_points(P, X))
+
+    assert gap(P_para, 0.01) / gap(P_para, 0.1) == pytest.approx(0.01, rel=0.05)   # second order
+    assert gap(P_weak, 0.01) / gap(P_weak, 0.1) == pytest.approx(0.1, rel=0.1)      # first order
+    on_axis = cm.Camera.look_at([4.0, -3.0, 2.0], X0)                               # X0 on the optical axis:
+    assert np.allclose(af.paraperspective_approximation(on_axis, X0), af.affine_approximation(on_axis, X0))
+
+
+def test_paraperspective_rejects_a_point_behind_the_camera():
+    cam = cm.Camera.look_at([0.0, -4.0, 0.0], [0.0, 0.0, 0.0])
+    with pytest.raises(CamlabInputError, match="in front of the camera"):
+        af.paraperspective_approximation(cam, [0.0, -8.0, 0.0])

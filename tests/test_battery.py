@@ -107,6 +107,7 @@ BASELINES: dict[str, Callable[[dict], dict]] = {
     "affine.orthographic_matrix": lambda v: {"R": R, "t": T},
     "affine.weak_perspective_matrix": lambda v: {"R": R, "t": T, "ax": 400.0, "ay": 400.0},
     "affine.affine_approximation": lambda v: {"camera": v["cam2"], "reference_point": [0.0, 0, 3]},
+    "affine.paraperspective_approximation": lambda v: {"camera": v["cam2"], "reference_point": [0.0, 0, 3]},
     "affine.dolly_zoom_camera": lambda v: {"distance": 6.0, "azimuth": -0.7, "elevation": 0.35, "target": [0.0, 0, 0.5]},
     "affine.dolly_zoom_errors": lambda v: {"points_world": X3, "distances": [4.0, 8.0], "azimuth": -0.7, "elevation": 0.35,
                                            "target": [0.0, 0, 0.5]},

@@ -132,3 +132,9 @@ def test_pinhole_checks_pass_right_answers_in_other_forms(capsys):
     assert check("pinhole_projection", lambda X, f: f * np.asarray(X)[:, :2] / np.asarray(X)[:, [2]])
     assert check("pinhole_projection", lambda X, f: (f * np.asarray(X).T[:2] / np.asarray(X).T[2]).T)
     assert check("best_pinhole_diameter", lambda f, lam: (2.44 * lam * f) ** 0.5)
+
+
+def test_estimate_affine_camera_accepts_a_column_of_ones_instead_of_centring(capsys):
+    from camlab.exercises.affine_cameras import _estimate_with_ones
+
+    assert check("estimate_affine_camera", _estimate_with_ones) is True

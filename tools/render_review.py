@@ -69,7 +69,7 @@ def render_demos(lesson: str, out: Path, settings: list[tuple[str, dict]]) -> in
         for point in points:
             demo = spec.builder()  # each point from the default, so one control moves at a time
             demo.set(**point)
-            label = ",".join(f"{k}={v}" for k, v in point.items()) or "default"
+            label = ",".join(f"{k}={v}" for k, v in point.items()).replace("/", "-").replace(" ", "") or "default"
             plt.imsave(out / f"{lesson}_{name}_{label}.png", demo.view.pixels())
             plt.close(demo.figure)
             count += 1

@@ -103,10 +103,43 @@ def _estimate_diagnosis(args, got, expected) -> str:
     g = np.asarray(got, dtype=float)
     if not np.allclose(g[2], [0.0, 0.0, 0.0, 1.0], atol=1e-9):
         return "the last row of an affine camera is (0, 0, 0, 1); estimate only the top 2x4 block (8 numbers)."
+    M2, t2 = g[:2, :3], g[:2, 3]
+    M2_expected = expected[:2, :3]
+    if np.allclose(M2, M2_expected.T.reshape(2, 3), atol=1e-6):
+        return ("M2 is scrambled: lstsq returns the (3, 2) matrix M2^T; transpose it (.T), do not reshape it to (2, 3).")
+    uncentred = np.linalg.lstsq(X, uv, rcond=None)[0].T
+    if np.allclose(M2, uncentred, atol=1e-6):
+        return ("you regressed the pixels on the raw world points, so the fit had no constant term and M2 absorbed "
+                "the offset: centre both point sets first (or append a column of ones to X).")
+    if np.allclose(t2, 0.0, atol=1e-6) or np.allclose(t2, uv.mean(axis=0), atol=1e-6):
+        return ("the translation column is wrong: after fitting M2 on centred points, the centroids must "
+                "correspond, t2 = mean(uv) - M2 @ mean(X).")
     r_got = np.sqrt(np.mean(np.sum((cm.project_points(g, X) - uv) ** 2, axis=1)))
     r_exp = np.sqrt(np.mean(np.sum((cm.project_points(expected, X) - uv) ** 2, axis=1)))
     return (f"your camera's RMS residual is {r_got:.3f} px, the least-squares optimum is {r_exp:.3f} px: use all "
             f"the points in one least-squares solve (np.linalg.lstsq), not an exact fit to a few of them.")
+
+
+def _estimate_reshaped(X, uv):
+    Xm, um = X.mean(axis=0), uv.mean(axis=0)
+    M2 = np.linalg.lstsq(X - Xm, uv - um, rcond=None)[0].reshape(2, 3)
+    return np.vstack([np.c_[M2, um - M2 @ Xm], [0.0, 0.0, 0.0, 1.0]])
+
+
+def _estimate_uncentred(X, uv):
+    M2 = np.linalg.lstsq(X, uv, rcond=None)[0].T
+    return np.vstack([np.c_[M2, uv.mean(axis=0) - M2 @ X.mean(axis=0)], [0.0, 0.0, 0.0, 1.0]])
+
+
+def _estimate_no_translation(X, uv):
+    M2 = af.estimate_affine_camera(X, uv)[:2, :3]
+    return np.vstack([np.c_[M2, np.zeros(2)], [0.0, 0.0, 0.0, 1.0]])
+
+
+def _estimate_with_ones(X, uv):
+    """A right answer in another form: one lstsq with a column of ones, no centring."""
+    A = np.linalg.lstsq(np.c_[X, np.ones(len(X))], uv, rcond=None)[0].T
+    return np.vstack([A, [0.0, 0.0, 0.0, 1.0]])
 
 
 def _estimate_four_points(X, uv):
@@ -137,6 +170,9 @@ register_exercise(Exercise(
     wrong_variants=(
         (_estimate_four_points, "all the points"),
         (_estimate_dlt, "last row of an affine camera"),
+        (_estimate_reshaped, "transpose it"),
+        (_estimate_uncentred, "centre both point sets"),
+        (_estimate_no_translation, "translation column"),
     ),
     teaching=estimate_affine_camera,
 ))

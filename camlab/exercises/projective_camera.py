@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import camera as cm
-from ._core import Exercise, register_exercise, same_array, same_up_to_scale, shape_problem
+from ._core import Exercise, register_exercise, same_array, shape_problem
 
 
 def _cameras():
@@ -90,7 +90,8 @@ def _centre_diagnosis(args, got, expected) -> str:
     if residual > 1e-8:
         return (f"P C is not 0 (relative |P C| = {residual:.3g}). The centre is the null space of P: "
                 f"the last right singular vector of np.linalg.svd(P), or (-M^-1 p4, 1).")
-    return "P C = 0 but the result differs; scale the centre so that its last coordinate is 1"
+    return (f"P C = 0, but your last coordinate is {g[3]:.4g}: the null vector is defined only up to scale; "
+            f"divide it by its last entry so that its last coordinate is 1 (C = (X, Y, Z, 1)).")
 
 
 def camera_centre(P):
@@ -105,11 +106,12 @@ register_exercise(Exercise(
     lesson="04",
     reference=cm.camera_centre,
     cases=_centre_cases,
-    compare=lambda got, exp: same_up_to_scale(got, exp, rtol=1e-8),
+    compare=same_array(rtol=1e-8, atol=1e-10),  # the prompt fixes the scale: last entry 1
     diagnose=_centre_diagnosis,
     wrong_variants=(
         (lambda P: -np.linalg.solve(P[:, :3], P[:, 3]), "returned a 3-vector"),
         (lambda P: np.append(-P[:, 3], 1.0), "P C is not 0"),  # confuses t with the centre
+        (lambda P: np.linalg.svd(P)[2][-1], "last coordinate is 1"),  # the unit null vector, not scaled
     ),
     teaching=camera_centre,
 ))
@@ -150,6 +152,9 @@ def _rq_diagnosis(args, got, expected) -> str:
             return "you computed M = Q K (a QR decomposition); the camera needs M = K R with K on the left (RQ)."
         if np.allclose(K @ R.T, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
             return "R is transposed: M = K R."
+        if _signs_fixed_in_k_only(K, R, M):
+            return ("you fixed the signs of K (K D) but not of R: K R = (K D)(D R), so apply the same "
+                    "D = diag(sign(diag(K))) to R's rows too (D R), or K R no longer equals M.")
         return "K R does not reproduce M; an RQ decomposition must satisfy M = K R exactly."
     if np.abs(np.tril(K, -1)).max() > 1e-9 * np.abs(K).max():
         return "K must be upper triangular."
@@ -157,6 +162,22 @@ def _rq_diagnosis(args, got, expected) -> str:
         return ("K has a negative diagonal entry: fix the signs. RQ is unique only up to D = diag(+-1); "
                 "use K D and D R with D = diag(sign(diag(K))).")
     return "K R = M with K positive upper triangular, but the factors differ; is R orthogonal?"
+
+
+def _signs_fixed_in_k_only(K, R, M) -> bool:
+    """True if K D R = M for some D = diag(+-1) other than I (K's columns flipped, R's rows not)."""
+    scale = 1e-6 * np.abs(M).max()
+    for signs in np.array(np.meshgrid(*[[1.0, -1.0]] * 3)).reshape(3, -1).T[1:]:
+        if np.allclose(K @ np.diag(signs) @ R, M, rtol=1e-6, atol=scale):
+            return True
+    return False
+
+
+def _rq_signs_of_k_only(M):
+    from scipy.linalg import rq
+
+    K, R = rq(M)
+    return K @ np.diag(np.sign(np.diag(K))), R
 
 
 def _rq_no_sign_fix(M):
@@ -197,6 +218,7 @@ register_exercise(Exercise(
         (_rq_no_sign_fix, "fix the signs"),
         (_rq_normalised_no_sign_fix, "divided K by K[2, 2]"),
         (_rq_qr, "QR decomposition"),
+        (_rq_signs_of_k_only, "apply the same"),
         (lambda M: (lambda K, R: (K, R.T))(*cm.rq_decomposition(M)), "transposed"),
     ),
     teaching=rq_decomposition,

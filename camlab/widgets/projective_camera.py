@@ -25,7 +25,7 @@ def _fmt(v: np.ndarray) -> str:
     return "(" + ", ".join(f"{x:+.2f}" for x in v) + ")"
 
 
-@register(lesson="04", sweep={"fx": [400, 1200], "fy": [500, 1100], "cx": [200, 420], "cy": [160, 320],
+@register(lesson="04", sweep={"fx": [400, 1200], "fy": [500, 1100], "cx": [199.5, 419.5], "cy": [159.5, 319.5],
                               "skew": [-150, 150], "azimuth": [-140, -20], "elevation": [5, 60],
                               "distance": [3.5, 8.0]})
 def camera_explorer():
@@ -44,8 +44,9 @@ def camera_explorer():
     controls = {
         "fx": slider(800, 200, 1600, 10, "fx (px)"),
         "fy": slider(800, 200, 1600, 10, "fy (px)"),
-        "cx": slider(320, 0, 640, 5, "cx (px)"),
-        "cy": slider(240, 0, 480, 5, "cy (px)"),
+        # The image centre is ((W - 1) / 2, (H - 1) / 2) with pixel centres at integers (docs/conventions.md).
+        "cx": slider(319.5, -0.5, 639.5, 5, "cx (px)"),
+        "cy": slider(239.5, -0.5, 479.5, 5, "cy (px)"),
         "skew": slider(0, -300, 300, 10, "skew s (px)"),
         "azimuth": slider(-60, -180, 180, 2, "azimuth (deg)"),
         "elevation": slider(25, -10, 80, 1, "elevation (deg)"),
@@ -123,13 +124,15 @@ def resectioning():
         centre_err = float(np.linalg.norm(C - cam_true.centre))
         n = len(Xw)
         redundancy = 2 * n - 11  # equations minus unknowns: the noise the residuals can show
-        expected = float(v["noise"]) * np.sqrt(2.0 * redundancy / (2 * n))  # RMS a perfect fit leaves (H&Z 5.1.3)
+        # The expected RMS residual of the maximum-likelihood fit (H&Z 5.1.3); the true camera leaves sigma sqrt(2).
+        expected = float(v["noise"]) * np.sqrt(2.0 * redundancy / (2 * n))
         warning = ("\n<b>few spare equations: the fit absorbs the noise, so a small RMS\n"
                    "says little about the camera</b>" if redundancy < 10 and v["noise"] > 0 else "")
         info.value = (f"<pre>RMS reprojection {rms:.2f} px\n|fx - fx_true| = {focal_err:.1f} px\n"
                       f"|C - C_true| = {100 * centre_err:.1f} cm\n\n"
                       f"redundancy 2N - 11 = {redundancy}\n"
-                      f"RMS expected from the noise alone:\n  sigma sqrt(2) sqrt((2N - 11) / 2N) = {expected:.2f} px"
+                      f"RMS expected of the fitted camera:\n  sigma sqrt(2) sqrt((2N - 11) / 2N) = {expected:.2f} px\n"
+                      f"(the true camera leaves sigma sqrt(2) = {float(v['noise']) * np.sqrt(2.0):.2f} px)"
                       f"{warning}</pre>")
         state.update(P=P, K=K, R=R, t=t, centre=C, rms=rms, focal_error=focal_err, centre_error=centre_err,
                      points_image=uvn, redundancy=redundancy, expected_rms=expected)
@@ -164,7 +167,7 @@ def opencv_vs_opengl():
     scene3d.draw_world_axes(ax, 0.6)
     scene3d.draw_segments(ax, scenes.house_wireframe((0.0, 0.0, 0.0), 0.6), color=palette.GREY)
     cam0 = cm.Camera.look_at([2.0, -2.0, 1.0], [0.0, 0.0, 0.4])
-    art = scene3d.CameraArtist(ax, cam0, size=0.6, show_axes=False)
+    art = scene3d.CameraArtist(ax, cam0, size=0.45, show_axes=False)  # shorter than the axes, so labels clear it
     lines, texts = [], []
     for c in scene3d.AXIS_COLOURS:
         (ln,) = ax.plot([], [], [], color=c, lw=2.5)
@@ -190,7 +193,7 @@ def opencv_vs_opengl():
         for i, (ln, tx) in enumerate(zip(lines, texts)):
             e = C + 0.9 * R_axes[i]  # row i of R = camera axis i in world coordinates
             ln.set_data_3d([C[0], e[0]], [C[1], e[1]], [C[2], e[2]])
-            tx.set_position_3d(C + 1.0 * R_axes[i])
+            tx.set_position_3d(C + 1.1 * R_axes[i])
             tx.set_text(names[i])
         title.value = ("<pre>OpenGL/Blender: R_gl = diag(1,-1,-1) R, t_gl = diag(1,-1,-1) t\n"
                        "camera looks along its -z axis</pre>" if gl else
