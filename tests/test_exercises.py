@@ -120,6 +120,20 @@ def test_student_crash_is_reported_with_its_input():
         check("intersect_lines", lambda l1, l2: 1 / 0)
 
 
+def test_a_broadcasting_error_gets_a_hint_naming_keepdims():
+    def project(X, f):
+        return f * np.ones((6, 2)) / np.ones(6)  # numpy's own error for (6, 2) / (6,), as X[:, :2] / X[:, 2] gives
+
+    with pytest.raises(AssertionError, match=r"raised ValueError.*\n.*\n  likely cause: a broadcasting slip.*X\[:, 2:3\]"):
+        check("pinhole_projection", project)
+
+
+def test_pinhole_checks_pass_right_answers_in_other_forms(capsys):
+    assert check("pinhole_projection", lambda X, f: f * np.asarray(X)[:, :2] / np.asarray(X)[:, [2]])
+    assert check("pinhole_projection", lambda X, f: (f * np.asarray(X).T[:2] / np.asarray(X).T[2]).T)
+    assert check("best_pinhole_diameter", lambda f, lam: (2.44 * lam * f) ** 0.5)
+
+
 def test_estimate_affine_camera_accepts_a_column_of_ones_instead_of_centring(capsys):
     from camlab.exercises.affine_cameras import _estimate_with_ones
 

@@ -167,7 +167,7 @@ def _run_student(name: str, student_function: Callable[..., Any], args: tuple, i
     except Exception as exc:
         raise AssertionError(
             f"{name}: your function raised {type(exc).__name__}: {exc}\n"
-            f"  on input {_fmt(args)}"
+            f"  on input {_fmt(args)}" + _exception_hint(exc)
         ) from exc
 
 
@@ -197,6 +197,14 @@ def check(name: str, student_function: Callable[..., Any]) -> CheckResult:
             )
     print(f"{name}: correct on all {len(cases)} test inputs. Well done!")
     return CheckResult(name, True)
+
+
+def _exception_hint(exc: Exception) -> str:
+    """A likely cause for the errors students meet most ('' for the others)."""
+    if isinstance(exc, ValueError) and "broadcast" in str(exc):
+        return ("\n  likely cause: a broadcasting slip. Dividing an (N, 2) array by an (N,) column such as X[:, 2]"
+                " lines the column up with the last axis; keep it 2-D: X[:, 2:3], X[:, 2, None] or keepdims=True")
+    return ""
 
 
 def _as_array(value: Any) -> Any:
