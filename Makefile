@@ -91,7 +91,10 @@ test-py3%:
 # The lowest versions pyproject.toml declares (requirements/oldest.txt pins them; a test keeps
 # the two in step): the fast tests plus three lessons, in their own venv. The class extra
 # (nbgrader, voila) needs JupyterLab >= 4.2, so its tests, like the hub, Binder and site tests
-# (their own installs and builds), run only in the newest environment.
+# (their own installs and builds), run only in the newest environment. So does the live-frame
+# comparison (tests/test_live_frames.py): its list of known differences is measured with the
+# newest matplotlib; 3.9.4 draws three more demos differently (disparity_depth, full_panorama,
+# parallax_ghosting, 0.1-0.3 % of pixels), which issues 28/29 triage with the others.
 OLDEST_VENV := .venv-oldest
 OLDEST_LESSONS := lessons/00_start_here.ipynb lessons/07_homographies.ipynb lessons/11_stereo_rectification.ipynb
 $(OLDEST_VENV)/.installed: pyproject.toml setup.py requirements/oldest.txt | $(VENV)/.installed-test$(STAMP)
@@ -103,7 +106,8 @@ $(OLDEST_VENV)/.installed: pyproject.toml setup.py requirements/oldest.txt | $(V
 test-oldest: $(OLDEST_VENV)/.installed
 	$(OLDEST_VENV)/bin/python -m pytest -n 2 -m "not browser" --nbval-lax camlab tests $(OLDEST_LESSONS) \
 	  --ignore=camlab/classroom --ignore=tests/test_present.py --ignore=tests/test_assignments.py \
-	  --ignore=tests/test_hub.py --ignore=tests/test_binder.py --ignore=tests/test_site.py $(PYTEST_ARGS)
+	  --ignore=tests/test_hub.py --ignore=tests/test_binder.py --ignore=tests/test_site.py \
+	  --ignore=tests/test_live_frames.py $(PYTEST_ARGS)
 
 # pyflakes rules (unused imports, undefined names, ...): configured in pyproject.toml.
 lint: $(VENV)/.installed-test$(STAMP)

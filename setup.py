@@ -34,5 +34,6 @@ RESOURCE_DATA = resource_packages()
 setup(
     packages=find_packages(include=["camlab", "camlab.*"]) + list(RESOURCE_DATA),
     package_dir={package: root for package, (root, _, _) in RESOURCES.items()},
-    package_data={"camlab": ["py.typed"], **RESOURCE_DATA},
+    package_data={"camlab": ["py.typed"], "camlab.classroom": ["jupyter_data/voila/templates/camlab/*"],  # present.py
+                  **RESOURCE_DATA},
 )

@@ -42,7 +42,7 @@ def test_every_lesson_becomes_a_course_whose_solutions_pass_their_checks(tmp_pat
             assert "### BEGIN SOLUTION" in solution_cell["source"] and "### END SOLUTION" in solution_cell["source"]
             namespace: dict = {}
             exec(solution_cell["source"], namespace)  # the instructor's solution must pass its own check
-            assert check(name, namespace[name]) is True
+            assert check(name, namespace[name]).passed is True
             assert test_cell["source"].endswith(f'assert check_{name}({name}), "{name}: not attempted yet"')
             total += 1
     assert total == sum(len(n) for n in course.values()) >= 24

@@ -551,7 +551,7 @@ def test_lesson04_exercises_accept_reference_and_reject_stub(capsys):
         def stub(*args):
             raise NotImplementedError
 
-        assert check(name, stub) is False
+        assert check(name, stub).passed is False
         assert "not attempted yet" in capsys.readouterr().out
     with pytest.raises(AssertionError, match="divide by the third coordinate|without dividing"):
         check("project_points", lambda P, X: (np.hstack([X, np.ones((len(X), 1))]) @ P.T)[:, :2])

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from camlab import exercises
-from camlab.exercises import all_exercises, check, solution
+from camlab.exercises import all_exercises, check, solution, worst_mismatch
 
 EXERCISES = all_exercises()
 
@@ -18,13 +18,13 @@ def _stub(*args):
 
 @pytest.mark.parametrize("name", sorted(EXERCISES))
 def test_reference_passes(name, capsys):
-    assert check(name, EXERCISES[name].reference) is True
+    assert check(name, EXERCISES[name].reference).passed is True
     assert "correct on all" in capsys.readouterr().out
 
 
 @pytest.mark.parametrize("name", sorted(EXERCISES))
 def test_stub_reports_not_attempted(name, capsys):
-    assert check(name, _stub) is False
+    assert check(name, _stub).passed is False
     assert "not attempted yet" in capsys.readouterr().out
 
 
@@ -63,7 +63,7 @@ def test_exercise_has_a_teaching_solution_named_like_it(name):
 
 @pytest.mark.parametrize("name", TEACHING)
 def test_teaching_solution_agrees_with_the_library(name, capsys):
-    assert check(name, EXERCISES[name].teaching) is True
+    assert check(name, EXERCISES[name].teaching).passed is True
     assert "correct on all" in capsys.readouterr().out
 
 
@@ -98,7 +98,7 @@ def test_large_array_mismatch_is_summarised_not_printed():
     got[7, 9, 2] = 5.0
     assert _fmt(got).startswith("<array of shape (40, 50, 3)")
     line = worst_mismatch(got, expected)
-    assert "(row, column, channel) (7, 9, 2): got 5, expected 0 (1 of 6000 entries differ)" in line
+    assert "(row, column, channel) (7, 9, 2): got 5, expected 0 (1 of 6000 entries differ by more than rtol 1e-05, atol 1e-08)" in line
 
 
 def test_forgotten_return_is_named():
@@ -120,7 +120,153 @@ def test_student_crash_is_reported_with_its_input():
         check("intersect_lines", lambda l1, l2: 1 / 0)
 
 
+def test_a_broadcasting_error_gets_a_hint_naming_keepdims():
+    def project(X, f):
+        return f * np.ones((6, 2)) / np.ones(6)  # numpy's own error for (6, 2) / (6,), as X[:, :2] / X[:, 2] gives
+
+    with pytest.raises(AssertionError, match=r"raised ValueError.*\n.*\n  likely cause: a broadcasting slip.*X\[:, 2:3\]"):
+        check("pinhole_projection", project)
+
+
+def test_pinhole_checks_pass_right_answers_in_other_forms(capsys):
+    assert check("pinhole_projection", lambda X, f: f * np.asarray(X)[:, :2] / np.asarray(X)[:, [2]])
+    assert check("pinhole_projection", lambda X, f: (f * np.asarray(X).T[:2] / np.asarray(X).T[2]).T)
+    assert check("best_pinhole_diameter", lambda f, lam: (2.44 * lam * f) ** 0.5)
+
+
 def test_estimate_affine_camera_accepts_a_column_of_ones_instead_of_centring(capsys):
     from camlab.exercises.affine_cameras import _estimate_with_ones
 
-    assert check("estimate_affine_camera", _estimate_with_ones) is True
+    assert check("estimate_affine_camera", _estimate_with_ones).passed is True
+
+
+def _in_float32(value):
+    """A right answer as a student computing in float32 would return it."""
+    if isinstance(value, tuple) and hasattr(value, "_fields"):
+        return type(value)(*(_in_float32(v) for v in value))
+    if isinstance(value, (tuple, list)):
+        return type(value)(_in_float32(v) for v in value)
+    if np.asarray(value).dtype.kind == "f":
+        return np.float32(value) if np.ndim(value) == 0 else np.asarray(value, dtype=np.float32)
+    return value
+
+
+@pytest.mark.parametrize("name", sorted(EXERCISES))
+def test_right_answer_in_float32_passes(name, capsys):
+    reference = EXERCISES[name].reference
+    assert check(name, lambda *args: _in_float32(reference(*args))).passed is True
+    assert "correct on all" in capsys.readouterr().out
+
+
+def test_float32_answer_is_held_to_float32_precision_not_beyond():
+    from camlab.exercises._core import Tolerance
+
+    tol = Tolerance(rtol=1e-9, atol=0.0)
+    expected = np.array([1.2, 2.4, 6.0])
+    assert tol.for_answer(expected, expected) == tol                     # float64: the exercise's own
+    widened = tol.for_answer(expected.astype(np.float32), expected)
+    assert widened.rtol == pytest.approx(100 * np.finfo(np.float32).eps) and widened.atol == pytest.approx(6 * widened.rtol)
+    with pytest.raises(AssertionError, match="wrong answer"):             # a real mistake in float32 still fails
+        check("disparity_to_depth", lambda d, f, B: np.float32(1.001) * (f * B / d).astype(np.float32))
+
+
+def test_mismatch_line_counts_with_the_exercises_tolerance_and_shows_the_digits():
+    from camlab.exercises._core import Tolerance
+
+    got, expected = np.array([1.2, 2.4 + 1e-12, 6.0]), np.array([1.2, 2.4, 6.0])
+    line = worst_mismatch(got, expected, Tolerance(rtol=1e-14, atol=0.0))
+    assert "got 2.400000000001, expected 2.4 (1 of 3 entries differ by more than rtol 1e-14, atol 0)" in line
+
+
+def test_check_result_is_falsy_for_a_stub_and_prints_nothing_in_ipython(capsys):
+    from IPython.core.interactiveshell import InteractiveShell
+
+    result = check("lift", _stub)
+    assert not result and repr(result) == "CheckResult('lift', passed=False)"
+    assert check("lift", EXERCISES["lift"].reference)
+    shell = InteractiveShell.instance()
+    try:
+        assert shell.display_formatter.format(result) == ({}, {})   # ends a cell: no stray `False`
+    finally:
+        InteractiveShell.clear_instance()
+
+
+@pytest.fixture
+def short_time_limit(monkeypatch):
+    import signal
+    import threading
+
+    from camlab.exercises import _core
+
+    if not hasattr(signal, "setitimer") or threading.current_thread() is not threading.main_thread():
+        pytest.skip("the time limit needs SIGALRM in the main thread")
+    monkeypatch.setattr(_core, "TIME_LIMIT_S", 0.3)
+
+
+def _never_returns(*args):
+    """Spins (for 10 s, so that a check without a time limit fails instead of hanging the suite)."""
+    import time
+
+    end = time.monotonic() + 10
+    while time.monotonic() < end:
+        try:
+            pass
+        except Exception:  # a student's catch-all must not swallow the time limit
+            pass
+
+
+def test_a_function_that_never_returns_is_stopped_naming_its_input(short_time_limit):
+    import time
+
+    start = time.monotonic()
+    with pytest.raises(AssertionError, match=r"(?s)still running after 0.3 s on test input 1 of \d+.*input    \(\[\["):
+        check("apply_homography", _never_returns)
+    assert time.monotonic() - start < 5
+
+
+def test_time_limit_on_a_later_input_names_that_input(short_time_limit):
+    calls = []
+
+    def slow_on_the_second(*args):
+        calls.append(1)
+        if len(calls) == 2:
+            _never_returns()
+        return EXERCISES["intersect_lines"].reference(*args)
+
+    with pytest.raises(AssertionError, match="on test input 2 of"):
+        check("intersect_lines", slow_on_the_second)
+
+
+def test_time_limit_restores_an_outer_timer():
+    import signal
+
+    from camlab.exercises._core import time_limit
+
+    fired = []
+    previous = signal.signal(signal.SIGALRM, lambda *a: fired.append(1))
+    try:
+        signal.setitimer(signal.ITIMER_REAL, 30.0)
+        with time_limit(5.0):
+            pass
+        remaining, _ = signal.getitimer(signal.ITIMER_REAL)
+        assert 25 < remaining <= 30 and signal.getsignal(signal.SIGALRM) is not None and not fired
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+def test_time_limit_runs_without_a_timer_off_the_main_thread():
+    import threading
+
+    from camlab.exercises._core import time_limit
+
+    seen = []
+
+    def worker():
+        with time_limit(0.01):
+            seen.append(sum(range(10)))
+
+    thread = threading.Thread(target=worker)
+    thread.start()
+    thread.join(5)
+    assert seen == [45]

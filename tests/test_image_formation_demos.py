@@ -53,6 +53,23 @@ def test_pinhole_size_regimes():
     demo.set(diameter_mm=2.0)
     assert demo.state["limited_by"] == "geometry"
     assert demo.state["best_mm"] == pytest.approx(np.sqrt(2.44 * 550e-9 * 0.1 / 1.1) * 1e3)  # object at 1 m
+    rows = {}
+    for d in (0.05, 0.35, 1.5):  # the lesson's claim: the best hole leaves four rows legible, the extremes one or two
+        demo.set(diameter_mm=d)
+        rows[d] = demo.state["legible_rows"]
+    assert rows == {0.05: 1, 0.35: 4, 1.5: 2}
+
+
+def test_letter_chart_rows_shrink():
+    from camlab import scenes
+
+    chart = scenes.letter_chart(0.3)
+    ink = chart.texture < 0.5
+    assert chart.texture.shape == (500, 600) and ink.any()
+    rows = np.flatnonzero(ink.any(axis=1))
+    runs = np.split(rows, np.flatnonzero(np.diff(rows) > 1) + 1)
+    heights = [len(r) for r in runs]
+    assert len(heights) == 5 and heights == sorted(heights, reverse=True)
 
 
 def test_thin_lens_and_dof_state():

@@ -82,4 +82,4 @@ def test_the_comparison_catches_a_frame_that_missed_a_move():
     demo = pinhole_projection()
     demo.view._animated[0].set_data(np.zeros_like(demo.state["image"]))  # the image goes black, unsent
     share, worst = frame_difference(demo.view.pixels(), full_redraw(demo.view))
-    assert share > 0.01 and worst == 255
+    assert share > 0.01 and worst > 250

@@ -49,6 +49,56 @@ def test_presentation_of_lesson_07_runs_and_shows_only_demos():
     assert all("application/vnd.jupyter.widget-view+json" in c.outputs[0]["data"] for c in shown)
 
 
+def test_serve_runs_voila_with_the_camlab_template(monkeypatch):
+    pytest.importorskip("voila")
+    from camlab.classroom import present
+
+    seen = {}
+    monkeypatch.setattr(present.subprocess, "run",
+                        lambda cmd, cwd, env: seen.update(cmd=cmd, env=env) or subprocess.CompletedProcess(cmd, 0))
+    monkeypatch.setenv("JUPYTER_PATH", "/elsewhere")
+    assert present.serve("07", open_browser=False) == 0
+    assert "--template=camlab" in seen["cmd"]
+    assert seen["env"]["JUPYTER_PATH"].split(os.pathsep) == [str(present.VOILA_DATA), "/elsewhere"]
+    assert (present.VOILA_DATA / "voila" / "templates" / "camlab" / "index.html.j2").is_file()
+
+
+def test_lecture_page_links_nothing_outside_the_machine(tmp_path):
+    """Voila's lab template links Font Awesome from a CDN; camlab's template drops the links
+    (Voila's bundle carries the fonts), so a class without internet gets the whole page."""
+    import re
+    import urllib.request
+
+    pytest.importorskip("voila")
+    from camlab.classroom.present import voila_environment
+
+    notebook = tmp_path / "slide.ipynb"
+    notebook.write_text(json.dumps({"cells": [{"cell_type": "markdown", "id": "a", "metadata": {}, "source": "# hello"}],
+                                    "metadata": {}, "nbformat": 4, "nbformat_minor": 5}))
+    env = dict(voila_environment(), JUPYTER_CONFIG_DIR=str(tmp_path / "config"),
+               JUPYTER_RUNTIME_DIR=str(tmp_path / "runtime"))
+    port, log = browser.free_port(), tmp_path / "voila.log"
+
+    def page(template: str) -> str:
+        with open(log, "wb") as out:
+            server = subprocess.Popen([sys.executable, "-m", "voila", str(notebook), f"--port={port}", "--no-browser",
+                                       "--Voila.ip=127.0.0.1", f"--template={template}"],
+                                      cwd=tmp_path, env=env, stdout=out, stderr=subprocess.STDOUT, start_new_session=True)
+            try:
+                browser.wait_for_http(f"http://127.0.0.1:{port}/", server, log)
+                with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=60) as response:
+                    return response.read().decode("utf-8")
+            finally:
+                os.killpg(server.pid, signal.SIGTERM)
+                server.wait(timeout=20)
+
+    outside = re.compile(r"""<(?:link|script)[^>]+(?:href|src)=["']https?://""")
+    assert outside.search(page("lab")), "Voila's lab template no longer links a CDN: is the camlab template still needed?"
+    html = page("camlab")
+    assert "hello" in html and "jp-Notebook" in html
+    assert not outside.search(html), outside.search(html).group(0)
+
+
 AXE = Path(__file__).resolve().parent.parent / "build" / "npm" / "node_modules" / "axe-core" / "axe.min.js"
 AXE_RULES = ["wcag2a", "wcag2aa", "wcag21a", "wcag21aa", "best-practice"]
 DEMOS_07 = ["transformation-hierarchy", "drag-homography", "ransac-outliers", "forward-vs-inverse"]

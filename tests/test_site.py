@@ -95,6 +95,99 @@ def test_executed_lesson_has_a_static_image_for_every_demo_and_figure(site, less
     assert demo_cells, f"{lesson.name}: no demo cell found (calls like demos.<registered name>())"
 
 
+WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
+WIDGET_STATE = "application/vnd.jupyter.widget-state+json"
+STRAY_REPRS = ("Text(", "<matplotlib.", "[<matplotlib.", "<Figure ", "<IPython.core.display")
+LOCAL_PATH = re.compile(r"(/tmp/|/var/folders/|/home/|/root/|/Users/|[A-Za-z]:\\Users\\|ipykernel_\d+)")
+
+
+def _text(value) -> str:
+    return "".join(value) if isinstance(value, list) else str(value)
+
+
+def _output_problem(out: dict) -> str | None:
+    """What is wrong with one output a reader sees (None when nothing is)."""
+    kind = out.get("output_type")
+    if kind == "stream":
+        text = _text(out.get("text", ""))
+        if out.get("name") == "stderr" and LOCAL_PATH.search(text):
+            return f"stderr names a local path: {text.strip()[:160]!r}"
+        return None
+    data = out.get("data", {})
+    if kind not in ("execute_result", "display_data") or WIDGET_VIEW in data:
+        return None  # a live figure's text/plain is its alt text
+    if set(data) & {"image/png", "text/html", "text/markdown", "text/latex", "image/svg+xml", "application/javascript"}:
+        return None  # a rich output; its text/plain is the fallback nobody sees
+    plain = _text(data.get("text/plain", "")).strip()
+    if kind == "execute_result" and plain in ("True", "False"):
+        return f"a stray {plain} ends the cell"
+    if plain.startswith(STRAY_REPRS):
+        return f"a stray repr {plain[:80]!r}"
+    return None
+
+
+def _canvas_problems(nb: dict) -> list[str]:
+    """ipympl canvases (MPLCanvasModel) in the saved widget state that show the "Figure N" header."""
+    state = nb.get("metadata", {}).get("widgets", {}).get(WIDGET_STATE, {}).get("state", {})
+    canvases = {k: m["state"] for k, m in state.items() if m.get("model_name") == "MPLCanvasModel"}
+    if not canvases:
+        return ["no ipympl canvas in the saved widget state (execute with store_widget_state=True)"]
+    return [f"canvas {k} shows ipympl's header {c.get('_figure_label', 'Figure')!r}"
+            for k, c in canvases.items() if c.get("header_visible", True)]
+
+
+def output_problems(nb: dict) -> list[str]:
+    """Everything in an executed lesson that a student should not see (issue 26, item 5).
+
+    A stray ``True``/``False`` or matplotlib repr ending a cell, a warning naming a local or
+    temporary path, and a live figure with ipympl's "Figure N" header.
+    """
+    problems = []
+    cells = [c for c in nb["cells"] if c["cell_type"] == "code"]
+    for number, cell in enumerate(cells, 1):
+        for out in cell.get("outputs", []):
+            problem = _output_problem(out)
+            if problem:
+                problems.append(f"code cell {number} ({_text(cell['source']).strip()[:60]!r}...): {problem}")
+    return problems + _canvas_problems(nb)
+
+
+@pytest.mark.parametrize("lesson", LESSONS, ids=lambda p: p.name)
+def test_executed_lesson_shows_no_stray_output(site, lesson):
+    nb = json.loads((site["executed"] / lesson.name).read_text(encoding="utf-8"))
+    problems = output_problems(nb)
+    assert not problems, f"{lesson.name}:\n" + "\n".join(problems)
+
+
+def _nb(outputs: list[dict], header_visible: bool = False) -> dict:
+    canvas = {"model_name": "MPLCanvasModel", "state": {"header_visible": header_visible, "_figure_label": "Figure 3"}}
+    return {"cells": [{"cell_type": "code", "source": "x", "outputs": outputs}],
+            "metadata": {"widgets": {WIDGET_STATE: {"state": {"m1": canvas}}}}}
+
+
+def test_output_problems_finds_each_kind_of_stray_output():
+    def result(text, kind="execute_result"):
+        return {"output_type": kind, "data": {"text/plain": text}}
+
+    clean = [result("array([1, 2])"), {"output_type": "stream", "name": "stdout", "text": "ok False\n"},
+             {"output_type": "stream", "name": "stderr", "text": "UserWarning: stitch: left out\n"},
+             {"output_type": "display_data", "data": {WIDGET_VIEW: {}, "text/plain": "False"}}]
+    assert output_problems(_nb(clean)) == []
+    faults = [("a stray False", result("False")), ("a stray True", result("True")),
+              ("stray repr \"Text(0.5", result("Text(0.5, 1.0, 'warped')")),
+              ("stray repr '[<matplotlib.lines", result("[<matplotlib.lines.Line2D at 0x7f>]", "display_data")),
+              ("local path: '/tmp/ipykernel_6366", {"output_type": "stream", "name": "stderr",
+                                                    "text": "/tmp/ipykernel_6366/305.py:2: UserWarning: left out\n"}),
+              ("local path: '/home/ada", {"output_type": "stream", "name": "stderr", "text": "/home/ada/x.py:1: W\n"})]
+    for phrase, out in faults:
+        found = output_problems(_nb([out]))
+        assert len(found) == 1 and phrase in found[0], (phrase, found)
+    assert "shows ipympl's header 'Figure 3'" in output_problems(_nb([], header_visible=True))[0]
+    no_state = _nb([])
+    no_state["metadata"] = {}
+    assert "no ipympl canvas" in output_problems(no_state)[0]
+
+
 class _Links(HTMLParser):
     def __init__(self):
         super().__init__()

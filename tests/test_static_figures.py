@@ -88,9 +88,11 @@ def test_ipympl_canvas_display_carries_png_and_alt_text_in_a_shell():
         fig = Figure(figsize=(3, 2), dpi=80)
         Canvas(fig)
         fig.subplots().set_title("join and meet")
+        assert fig.canvas.header_visible
         data, metadata = shell.display_formatter.format(fig.canvas)
     finally:
         InteractiveShell.clear_instance()
+    assert not fig.canvas.header_visible  # no "Figure N" title bar above a lesson's figure
     assert WIDGET_VIEW in data and "text/html" not in data
     assert _png_pixels(data["image/png"]).shape[:2] == (160, 240)
     assert metadata["image/png"]["alt"] == "Figure: plot 'join and meet'."

@@ -197,3 +197,84 @@ def test_shared_control_helpers_give_one_look():
     assert (log.min, log.max, log.value) == (-2.0, 0.0, 0.3)
     assert made[1].step == 2 and made[3].options == (1.4, 2.8)
     assert not controls.int_slider(7, 3, 21, "e", continuous_update=False).continuous_update
+
+
+# Values a student can type or a slider can report that no demo can draw (issue 26, 2b).
+BAD_FLOATS = [float("nan"), 1e308]
+UNDRAWABLE_CORNERS = ["", "garbage", "nan, 1; 2, 3; 4, 5; 6, 7", "5, 5; 5, 5; 5, 5; 5, 5",
+                      "1e308, 1e308; -1e308, 1e308; 1e308, -1e308; 0, 0"]
+ODD_CORNERS = ["0, 0; 100, 100; 200, 200; 300, 300", "1e12, 0; 0, 1e12; -1e12, 0; 0, -1e12"]  # collinear, far
+
+
+def _bad_values(control) -> list:
+    import ipywidgets as W
+
+    if isinstance(control, W.Text):
+        return UNDRAWABLE_CORNERS + ODD_CORNERS
+    if isinstance(control, (W.FloatSlider, W.FloatLogSlider)):
+        return BAD_FLOATS
+    return []
+
+
+def _shown_problem(demo) -> str:
+    """The problem the demo shows beside its controls: the shared problem line, or the demo's own readout."""
+    return demo.problem or str(demo.state.get("error") or "")
+
+
+@pytest.mark.parametrize("name", sorted(DEMOS))
+def test_a_demo_never_dies_on_nan_huge_or_degenerate_values(name):
+    demo = DEMOS[name].builder()
+    for key, control in demo.controls.items():
+        good = control.value
+        label = (control.description or key).strip().rstrip("=:").strip()
+        for value in _bad_values(control):
+            before_state, before_pixels = _snapshot(demo.state), demo.view.pixels()
+            demo.set(**{key: value})  # nothing may escape
+            if isinstance(value, float) and np.isnan(value):
+                assert demo.problem.startswith(f"{label} = nan: not a number"), f"{name}.{key}: {demo.problem!r}"
+            if value in UNDRAWABLE_CORNERS:
+                assert "corner" in _shown_problem(demo), f"{name}.{key}={value!r}: the demo shows no problem"
+            if demo.problem:  # not drawn: the figure and the state stay as they were
+                assert demo.problem.startswith(f"{label} = "), f"{name}.{key}={value!r}: {demo.problem!r}"
+                assert not _changed(before_state, _snapshot(demo.state)), f"{name}.{key}={value!r}: state moved"
+                assert np.array_equal(before_pixels, demo.view.pixels()), f"{name}.{key}={value!r}: picture moved"
+            demo.set(**{key: good})
+            assert not _shown_problem(demo), f"{name}.{key}: the problem stays after going back to {good!r}"
+
+
+def test_a_failing_update_names_the_control_and_keeps_the_last_picture():
+    import ipywidgets as W
+
+    from camlab.widgets import FigureView, build_demo
+
+    view = FigureView(figsize=(2, 2))
+    line = view.animate(view.fig.subplots().plot([0, 1], [0, 1])[0])
+    control = W.FloatSlider(value=1.0, min=0.0, max=5.0, description="height (m)")
+
+    def update(v, state):
+        line.set_ydata([0, v["h"]])
+        if v["h"] > 3:
+            raise ValueError("H: expected a height below 3")
+        state["h"] = v["h"]
+
+    demo = build_demo("probe", {"h": control}, view, update)
+    shown = demo.view.pixels()
+    demo.set(h=4.0)
+    assert demo.problem == "height (m) = 4.0: H: expected a height below 3"
+    assert demo.state == {"h": 1.0} and np.array_equal(shown, demo.view.pixels())
+    assert list(line.get_ydata()) == [0, 1.0]  # the artists went back to the last good settings
+    assert "height (m) = 4.0" in demo.widget.children[0].children[1].value  # under the control
+    demo.set(h=2.0)
+    assert demo.problem == "" and demo.state == {"h": 2.0} and demo.updates == 2
+
+
+def test_a_demo_whose_defaults_fail_raises_when_built():
+    import ipywidgets as W
+
+    from camlab.widgets import FigureView, build_demo
+
+    def update(v, state):
+        raise RuntimeError("broken demo")
+
+    with pytest.raises(RuntimeError, match="broken demo"):
+        build_demo("broken", {"x": W.FloatSlider(value=1.0)}, FigureView(figsize=(2, 2)), update)

@@ -20,7 +20,9 @@ def _expected_wheel_files() -> set[str]:
              for p in (REPO / "data").rglob("*") if p.is_file() and not any(s.startswith(".") for s in p.parts)}
     files |= {f"camlab/lessons/{p.name}" for p in (REPO / "lessons").glob("*.ipynb")}
     files |= {"camlab/lessons/README.md", "camlab/docs/conventions.md", "camlab/py.typed", "camlab/__init__.py",
-              "camlab/data/_resources.py", "camlab/cli.py"}
+              "camlab/data/_resources.py", "camlab/cli.py",
+              "camlab/classroom/jupyter_data/voila/templates/camlab/index.html.j2",  # the lecture view's template
+              "camlab/classroom/jupyter_data/voila/templates/camlab/conf.json"}
     return files
 
 

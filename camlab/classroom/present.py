@@ -10,6 +10,9 @@ unusable, so students do those in JupyterLab.
 One more cell, after the title, runs :data:`camlab._access.SCRIPT` in the page (names
 for slider handles, Tab out of figures, focus rings): the copy ``import camlab.widgets``
 sends runs silently here, like the rest of the lesson's setup.
+
+Voila renders with the ``camlab`` template (:data:`VOILA_DATA`): its lab template without the
+Font Awesome links to a CDN, so the lecture view makes no request outside the machine.
 """
 from __future__ import annotations
 
@@ -17,6 +20,7 @@ import ast
 import copy
 import importlib.util
 import json
+import os
 import subprocess
 import sys
 import tempfile
@@ -37,6 +41,7 @@ for _n in set(_camlab_plt.get_fignums()) - _camlab_figures:
 """
 
 ACCESSIBILITY_SCRIPT = "%%javascript\n" + access.SCRIPT  # the import's copy runs silently here
+VOILA_DATA = Path(__file__).with_name("jupyter_data")  # voila/templates/camlab, found through JUPYTER_PATH
 
 
 def is_demo_cell(cell: dict) -> bool:
@@ -81,6 +86,12 @@ def presentation_notebook(notebook: dict) -> dict:
     return nb
 
 
+def voila_environment() -> dict[str, str]:
+    """This process's environment with :data:`VOILA_DATA` first on JUPYTER_PATH (where Voila finds templates)."""
+    paths = [str(VOILA_DATA), *filter(None, os.environ.get("JUPYTER_PATH", "").split(os.pathsep))]
+    return dict(os.environ, JUPYTER_PATH=os.pathsep.join(paths))
+
+
 def serve(lesson: str, port: int = 8866, open_browser: bool = True) -> int:
     """Write the presentation of ``lesson`` to a temporary folder and serve it with Voila until Ctrl-C.
 
@@ -98,11 +109,11 @@ def serve(lesson: str, port: int = 8866, open_browser: bool = True) -> int:
         target = Path(folder) / path.name
         target.write_text(json.dumps(presentation), encoding="utf-8")
         cmd = [sys.executable, "-m", "voila", str(target), f"--port={port}", "--Voila.ip=127.0.0.1",
-               "--theme=light", "--VoilaConfiguration.show_margins=False"]
+               "--theme=light", "--VoilaConfiguration.show_margins=False", "--template=camlab"]
         if not open_browser:
             cmd.append("--no-browser")
         print(f"camlab present: serving {path.stem} at http://127.0.0.1:{port}/ (Ctrl-C stops)", flush=True)
         try:
-            return subprocess.run(cmd, cwd=folder).returncode
+            return subprocess.run(cmd, cwd=folder, env=voila_environment()).returncode
         except KeyboardInterrupt:
             return 0

@@ -3,11 +3,18 @@
 An exercise pairs a reference implementation from camlab with test inputs, a
 comparison and a diagnosis. ``check`` runs the student's function on every input:
 
-* a stub that raises NotImplementedError prints "not attempted yet" and returns False,
-  so a lesson with untouched exercises still runs top to bottom in CI;
+* a stub that raises NotImplementedError prints "not attempted yet" and returns a false
+  :class:`CheckResult`, so a lesson with untouched exercises still runs top to bottom in CI;
 * a wrong answer raises AssertionError naming the input, what came out, what was
   expected and the likely cause;
-* a right answer prints a congratulation and returns True.
+* a function still running after :data:`TIME_LIMIT_S` seconds on one input is stopped,
+  and the AssertionError names that input (see :func:`time_limit`);
+* a right answer prints a congratulation and returns a true :class:`CheckResult`.
+
+The result prints nothing when it ends a cell (the verdict is already printed), and
+``assert check_<name>(<name>)`` works as with a bool (graded assignments use that).
+Float answers are compared in float64 within the exercise's :class:`Tolerance`; an
+answer computed in float32 is held to what float32 can represent.
 
 A wrong answer's message stays short: an image-sized array is summarised (shape, dtype,
 range, worst entry) instead of printed. ``solution(name)`` prints the exercise's *teaching
@@ -19,8 +26,12 @@ numpy and builtins.
 from __future__ import annotations
 
 import inspect
+import signal
+import threading
+import time
+from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import Any, Callable, Sequence
+from typing import Any, Callable, Iterator, Sequence
 
 import numpy as np
 
@@ -71,36 +82,129 @@ def _copy(args: tuple) -> tuple:
     return tuple(np.array(a) if isinstance(a, np.ndarray) else a for a in args)
 
 
-def check(name: str, student_function: Callable[..., Any]) -> bool:
+class CheckResult:
+    """What :func:`check` found: true when the function passed every test input.
+
+    Shows nothing when it ends a cell, where a bool would print a stray ``False`` under
+    "not attempted yet" (the check has printed its verdict already).
+    """
+
+    __slots__ = ("name", "passed")
+
+    def __init__(self, name: str, passed: bool):
+        self.name, self.passed = name, bool(passed)
+
+    def __bool__(self) -> bool:
+        return self.passed
+
+    def __repr__(self) -> str:
+        return f"CheckResult({self.name!r}, passed={self.passed})"
+
+    def _ipython_display_(self) -> None:
+        """IPython's display hook: the check's printed verdict says it all."""
+
+
+TIME_LIMIT_S = 30.0
+"""Seconds a student's function may run on one test input (a slow loop, not an endless one, fits)."""
+
+
+class OutOfTime(TimeoutError):
+    """Raised by :func:`time_limit` when its body ran too long."""
+
+
+class _Alarm(BaseException):
+    """Raised into the running code by the timer; a BaseException, so a student's ``except Exception`` cannot eat it."""
+
+
+@contextmanager
+def time_limit(seconds: float) -> Iterator[None]:
+    """Raise :class:`OutOfTime` if the body is still running after ``seconds``.
+
+    Uses a SIGALRM timer, which exists on Unix in the main thread (where a Jupyter kernel
+    runs cells). Elsewhere (Windows, a worker thread) the body runs without a limit. A timer
+    already running (pytest-timeout's) is put back with its remaining time afterwards, and
+    wins if it is due first.
+    """
+    if not hasattr(signal, "setitimer") or threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    outer_delay, outer_interval = signal.getitimer(signal.ITIMER_REAL)
+    outer_first = 0 < outer_delay <= seconds
+    outer_handler = signal.getsignal(signal.SIGALRM)
+
+    def on_alarm(signum: int, frame: Any) -> None:
+        if outer_first and callable(outer_handler):
+            outer_handler(signum, frame)  # the outer deadline came first: its handler decides
+        raise _Alarm
+
+    start = time.monotonic()
+    signal.signal(signal.SIGALRM, on_alarm)
+    signal.setitimer(signal.ITIMER_REAL, outer_delay if outer_first else seconds)
+    try:
+        yield
+    except _Alarm:
+        raise OutOfTime(f"still running after {seconds:g} s") from None
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, outer_handler)
+        if outer_delay and not outer_first:
+            signal.setitimer(signal.ITIMER_REAL, max(outer_delay - (time.monotonic() - start), 1e-3), outer_interval)
+
+
+def _run_student(name: str, student_function: Callable[..., Any], args: tuple, i: int, n: int) -> Any:
+    """The student's answer on test input ``i`` of ``n``; AssertionError on a crash or an endless run."""
+    try:
+        with time_limit(TIME_LIMIT_S):
+            return student_function(*_copy(args))
+    except NotImplementedError:
+        raise
+    except OutOfTime:
+        raise AssertionError(
+            f"{name}: your function was still running after {TIME_LIMIT_S:g} s on test input {i + 1} of {n}, "
+            f"so the check stopped it\n"
+            f"  input    {_fmt(args)}\n"
+            f"  likely cause: a loop that never ends (a `while` whose condition stays true?)") from None
+    except Exception as exc:
+        raise AssertionError(
+            f"{name}: your function raised {type(exc).__name__}: {exc}\n"
+            f"  on input {_fmt(args)}" + _exception_hint(exc)
+        ) from exc
+
+
+def check(name: str, student_function: Callable[..., Any]) -> CheckResult:
     """Check ``student_function`` against exercise ``name`` (see the module docstring)."""
     exercise = EXERCISES[name]
     cases = list(exercise.cases())
     for i, args in enumerate(cases):
         expected = exercise.reference(*_copy(args))
         try:
-            got = student_function(*_copy(args))
+            got = _run_student(name, student_function, args, i, len(cases))
         except NotImplementedError:
             print(f"{name}: not attempted yet. Fill in the function above, run its cell, then this one.")
-            return False
-        except Exception as exc:
-            raise AssertionError(
-                f"{name}: your function raised {type(exc).__name__}: {exc}\n"
-                f"  on input {_fmt(args)}"
-            ) from exc
+            return CheckResult(name, False)
         if got is None:
             raise AssertionError(f"{name}: your function returned None on test input {i + 1}\n"
                                  f"  likely cause: did you forget `return`? The last line should be `return <result>`.")
         if not exercise.compare(got, expected):
+            tolerance = exercise.compare.tolerance if isinstance(exercise.compare, SameArray) else None
             raise AssertionError(
                 f"{name}: wrong answer on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_fmt(args)}\n"
                 f"  got      {_fmt(_as_array(got))}\n"
                 f"  expected {_fmt(expected)}\n"
-                + worst_mismatch(got, expected)
+                + worst_mismatch(got, expected, tolerance)
                 + f"  likely cause: {exercise.diagnose(args, got, expected)}"
             )
     print(f"{name}: correct on all {len(cases)} test inputs. Well done!")
-    return True
+    return CheckResult(name, True)
+
+
+def _exception_hint(exc: Exception) -> str:
+    """A likely cause for the errors students meet most ('' for the others)."""
+    if isinstance(exc, ValueError) and "broadcast" in str(exc):
+        return ("\n  likely cause: a broadcasting slip. Dividing an (N, 2) array by an (N,) column such as X[:, 2]"
+                " lines the column up with the last axis; keep it 2-D: X[:, 2:3], X[:, 2, None] or keepdims=True")
+    return ""
 
 
 def _as_array(value: Any) -> Any:
@@ -113,8 +217,12 @@ def _as_array(value: Any) -> Any:
     return value
 
 
-def worst_mismatch(got: Any, expected: Any) -> str:
-    """One line naming the worst entry of two same-shape arrays ('' if that makes no sense)."""
+def worst_mismatch(got: Any, expected: Any, tolerance: Tolerance | None = None) -> str:
+    """One line naming the worst entry of two same-shape arrays ('' if that makes no sense).
+
+    Entries count as differing by ``tolerance`` (the exercise's; numpy's default otherwise),
+    so the count agrees with the verdict. Values that print alike at 6 digits are shown in full.
+    """
     try:
         g = np.asarray(got, dtype=float)
         e = np.asarray(expected, dtype=float)
@@ -128,9 +236,13 @@ def worst_mismatch(got: Any, expected: Any) -> str:
         return ""
     index = np.unravel_index(int(np.argmax(err)), e.shape)
     where = {2: "(row, column)", 3: "(row, column, channel)"}.get(e.ndim, "index")
-    wrong = int(np.sum(~np.isclose(g, e)))
-    return (f"  worst    {where} {tuple(int(i) for i in index)}: got {g[index]:.6g}, expected {e[index]:.6g}"
-            f" ({wrong} of {e.size} entries differ)\n")
+    tol = (tolerance or Tolerance()).for_answer(got, expected)
+    wrong = int(np.sum(~tol.close(g, e)))
+    shown_got, shown_expected = f"{g[index]:.6g}", f"{e[index]:.6g}"
+    if shown_got == shown_expected:
+        shown_got, shown_expected = repr(float(g[index])), repr(float(e[index]))
+    return (f"  worst    {where} {tuple(int(i) for i in index)}: got {shown_got}, expected {shown_expected}"
+            f" ({wrong} of {e.size} entries differ by more than {tol})\n")
 
 
 def solution(name: str) -> str:
@@ -158,17 +270,68 @@ def same_up_to_scale(got: Any, expected: np.ndarray, rtol: float = 1e-6) -> bool
     return bool(min(np.linalg.norm(g - e), np.linalg.norm(g + e)) <= rtol)
 
 
-def same_array(rtol: float = 1e-5, atol: float = 1e-8) -> Callable[[Any, Any], bool]:
-    """A comparison for ``Exercise.compare``: same shape and ``np.allclose`` with these tolerances."""
+REDUCED_PRECISION_SLACK = 100
+"""An answer in a shorter float type is held to this many of its epsilons (float32: 1.2e-5)."""
 
-    def compare(got: Any, expected: Any) -> bool:
+
+def _coarsest_eps(value: Any) -> float:
+    """The largest machine epsilon among the floats in ``value`` (arrays, numpy scalars, tuples, lists)."""
+    if isinstance(value, (tuple, list)):
+        return max((_coarsest_eps(v) for v in value), default=float(np.finfo(np.float64).eps))
+    dtype = getattr(value, "dtype", None)
+    if dtype is not None and np.issubdtype(dtype, np.floating):
+        return float(np.finfo(dtype).eps)
+    return float(np.finfo(np.float64).eps)
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """How close a float answer must be, entry by entry: ``|got - expected| <= atol + rtol |expected|``.
+
+    Compared in float64. An answer computed in float32 (or float16) cannot come closer than
+    its own rounding, so :meth:`for_answer` widens both tolerances to
+    :data:`REDUCED_PRECISION_SLACK` of its epsilons (``atol`` relative to the largest expected entry).
+    """
+
+    rtol: float = 1e-5
+    atol: float = 1e-8
+
+    def for_answer(self, got: Any, expected: Any) -> "Tolerance":
+        eps = _coarsest_eps(got)
+        if eps <= np.finfo(np.float64).eps:
+            return self
+        slack = REDUCED_PRECISION_SLACK * eps
+        e = np.abs(np.asarray(expected, dtype=float))
+        scale = float(e[np.isfinite(e)].max(initial=0.0))
+        return Tolerance(max(self.rtol, slack), max(self.atol, slack * scale))
+
+    def close(self, got: Any, expected: Any) -> np.ndarray:
+        """Per entry: within the tolerance (in float64)."""
+        return np.isclose(np.asarray(got, dtype=float), np.asarray(expected, dtype=float),
+                          rtol=self.rtol, atol=self.atol)
+
+    def __str__(self) -> str:
+        return f"rtol {self.rtol:.1g}, atol {self.atol:.1g}"
+
+
+@dataclass(frozen=True)
+class SameArray:
+    """``Exercise.compare`` for float answers: same shape, every entry within ``tolerance``."""
+
+    tolerance: Tolerance
+
+    def __call__(self, got: Any, expected: Any) -> bool:
         try:
             g = np.asarray(got, dtype=float)
         except (TypeError, ValueError):
             return False
-        return g.shape == np.shape(expected) and bool(np.allclose(g, expected, rtol=rtol, atol=atol))
+        tol = self.tolerance.for_answer(got, expected)
+        return g.shape == np.shape(expected) and bool(np.all(tol.close(g, expected)))
 
-    return compare
+
+def same_array(rtol: float = 1e-5, atol: float = 1e-8) -> SameArray:
+    """A comparison for ``Exercise.compare``: same shape and ``np.allclose`` with these tolerances (float64)."""
+    return SameArray(Tolerance(rtol, atol))
 
 
 def shape_problem(got: Any, expected: np.ndarray) -> str | None:

@@ -3,6 +3,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._core import SameArray, Tolerance
+
 
 def is_number(x) -> bool:
     """True for a finite real scalar (a Python float, a 0-d array...)."""
@@ -12,10 +14,13 @@ def is_number(x) -> bool:
         return False
 
 
-def same_number(rtol: float = 1e-9):
+class SameNumber(SameArray):
+    """``Exercise.compare`` for a one-number answer: finite, and within ``tolerance`` of the expected one."""
+
+    def __call__(self, got, expected) -> bool:
+        return is_number(got) and super().__call__(got, expected)
+
+
+def same_number(rtol: float = 1e-9) -> SameNumber:
     """A comparison for ``Exercise.compare``: one finite number, equal to the expected one within ``rtol``."""
-
-    def compare(got, expected) -> bool:
-        return is_number(got) and bool(np.isclose(float(got), expected, rtol=rtol))
-
-    return compare
+    return SameNumber(Tolerance(rtol, 1e-8))

@@ -22,6 +22,9 @@ def _thin_lens_diagnosis(args, got, expected) -> str:
     g = float(got)
     if np.isclose(g, f * zo / (zo + f)):
         return "sign slip: 1/z_i = 1/f - 1/z_o, so z_i = f z_o / (z_o - f)"
+    if np.isclose(g, f * zo / (f - zo)):
+        return ("sign slip: z_i = f z_o / (z_o - f), not / (f - z_o); your z_i is negative, but an object beyond f "
+                "forms a real image behind the lens, z_i > 0")
     if np.isclose(g, 1 / f - 1 / zo) or np.isclose(g, 1 / f + 1 / zo):
         return "you returned 1/z_i; invert it to get the distance"
     return "solve 1/f = 1/z_o + 1/z_i for z_i"
@@ -43,6 +46,7 @@ register_exercise(Exercise(
         (lambda f, zo: f * zo / (zo + f), "sign slip"),
         (lambda f, zo: 1 / f - 1 / zo, "invert it"),
         (lambda f, zo: 1e3 * f * zo / (zo - f), "millimetres"),
+        (lambda f, zo: f * zo / (f - zo), "your z_i is negative"),
     ),
     teaching=thin_lens_image_distance,
 ))
@@ -59,6 +63,18 @@ def _distort_cases():
     ]
 
 
+def _brown_variant(x, d, cross: float = 2.0, squares_swapped: bool = False, divide: bool = False) -> np.ndarray:
+    """The Brown-Conrady model with one typical slip: the cross term's 2, x^2 / y^2 swapped, or x / L for x L."""
+    k1, k2, p1, p2, k3 = d
+    u, v = x[:, 0], x[:, 1]
+    r2 = u**2 + v**2
+    L = 1 + k1 * r2 + k2 * r2**2 + k3 * r2**3
+    su, sv = (v, u) if squares_swapped else (u, v)
+    radial = np.column_stack([u, v]) / L[:, None] if divide else np.column_stack([u, v]) * L[:, None]
+    return radial + np.column_stack([cross * p1 * u * v + p2 * (r2 + 2 * su**2),
+                                     p1 * (r2 + 2 * sv**2) + cross * p2 * u * v])
+
+
 def _distort_diagnosis(args, got, expected) -> str:
     problem = shape_problem(got, expected)
     if problem:
@@ -72,6 +88,12 @@ def _distort_diagnosis(args, got, expected) -> str:
     swapped = distortion.distort_points(x, [k1, k2, p2, p1, k3])
     if np.allclose(g, swapped):
         return "p1 and p2 are swapped: OpenCV's order is (k1, k2, p1, p2, k3), and x gets 2 p1 x y + p2 (r^2 + 2 x^2)"
+    if (p1 or p2) and np.allclose(g, _brown_variant(x, d, cross=1.0)):
+        return "the cross terms need their factor 2: x gets 2 p1 x y, y gets 2 p2 x y"
+    if (p1 or p2) and np.allclose(g, _brown_variant(x, d, squares_swapped=True)):
+        return "x^2 and y^2 are swapped in the tangential terms: x gets p2 (r^2 + 2 x^2), y gets p1 (r^2 + 2 y^2)"
+    if np.allclose(g, _brown_variant(x, d, divide=True)):
+        return "you divided by the radial factor L; distortion multiplies: x_d = x L + ... (dividing is a rough inverse)"
     radial_only = distortion.distort_points(x, [k1, k2, 0, 0, k3])
     if np.allclose(g, radial_only) and (p1 or p2):
         return "you left out the tangential terms p1, p2"
@@ -108,6 +130,9 @@ register_exercise(Exercise(
         (lambda x, d: distortion.distort_points(x, [d[0], d[1], d[3], d[4], d[2]]), "k3 comes last"),
         (lambda x, d: x * (1 + d[0] * np.hypot(*x.T) + d[1] * np.hypot(*x.T) ** 2
                            + d[4] * np.hypot(*x.T) ** 3)[:, None], "even powers"),
+        (lambda x, d: _brown_variant(x, d, cross=1.0), "factor 2"),
+        (lambda x, d: _brown_variant(x, d, squares_swapped=True), "swapped in the tangential terms"),
+        (lambda x, d: _brown_variant(x, d, divide=True), "divided by the radial factor"),
     ),
     teaching=distort_points,
 ))
@@ -129,6 +154,10 @@ def _hyperfocal_diagnosis(args, got, expected) -> str:
     g = float(got)
     if np.isclose(g, f**2 / (N * c), rtol=1e-9):
         return "you dropped the + f: H = f^2 / (N c) + f (small, but it is where the thin-lens algebra puts it)"
+    if np.isclose(g, f**2 / (N * c) - f, rtol=1e-9):
+        return "the sign of f: c = A f / (H - f) gives H - f = f^2 / (N c), so H = f^2 / (N c) + f"
+    if np.isclose(g, expected / 2, rtol=1e-9):
+        return "you returned H / 2, the near limit of the depth of field when focused at H; H itself is f^2 / (N c) + f"
     if np.isclose(g, f**2 * N / c, rtol=1e-9) or np.isclose(g, f**2 * N / c + f, rtol=1e-9):
         return "N belongs in the denominator: a larger f-number (smaller aperture) brings H closer"
     if np.isclose(g, f / (N * c) + f, rtol=1e-9) or np.isclose(g, f / (N * c), rtol=1e-9):
@@ -153,6 +182,8 @@ register_exercise(Exercise(
         (lambda f, N, c: f**2 * N / c + f, "denominator"),
         (lambda f, N, c: f / (N * c) + f, "square the focal length"),
         (lambda f, N, c: 1e3 * (f**2 / (N * c) + f), "millimetres"),
+        (lambda f, N, c: f**2 / (N * c) - f, "the sign of f"),
+        (lambda f, N, c: (f**2 / (N * c) + f) / 2, "H / 2"),
     ),
     teaching=hyperfocal_distance,
 ))

@@ -13,7 +13,7 @@ from . import palette
 
 __all__ = ["box_edges", "draw_pinhole_3d", "update_pinhole_3d", "draw_similar_triangles", "update_similar_triangles",
            "draw_thin_lens", "update_thin_lens", "draw_focus_cone", "update_focus_cone",
-           "draw_pinhole_blur", "update_pinhole_blur"]
+           "draw_pinhole_blur", "update_pinhole_blur", "draw_pinhole_cones"]
 
 _EDGES = [(0, 1), (1, 3), (3, 2), (2, 0), (4, 5), (5, 7), (7, 6), (6, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
 
@@ -128,11 +128,11 @@ def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
 
     The pinhole sits at the origin, the real image plane at z = -f and the virtual one at
     z = +f. Two shaded similar triangles share the ray through the hole: (0, 0)-(Z, 0)-(Z, Y)
-    and (0, 0)-(f, 0)-(f, y); dimension lines label f, Z, Y and y.
+    and (0, 0)-(f, 0)-(f, y); dimension lines label f, Z, Y and y. Y and y are signed in the
+    camera frame (y down), so a point drawn above the axis has a negative Y.
     """
     ax.axhline(0, color="0.4", lw=0.8, zorder=0)
     ax.plot([0], [0], "ko", ms=5, zorder=5)
-    ax.annotate("pinhole", (0, 0), xytext=(-6, 6), textcoords="offset points", ha="right", va="bottom", fontsize=9)
     art = {
         "big": ax.fill([0, 1, 1], [0, 0, 1], color="tab:blue", alpha=0.15, lw=0)[0],
         "small": ax.fill([0, 1, 1], [0, 0, 1], color="tab:green", alpha=0.35, lw=0)[0],
@@ -142,6 +142,9 @@ def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
         "planes": ax.plot([], [], color="0.3", lw=1, ls="--")[0],
         "virtual": ax.plot([], [], color=palette.GREEN, lw=3, solid_capstyle="butt")[0],
         "real": ax.plot([], [], color=palette.RED, lw=3, solid_capstyle="butt")[0],
+        # below (or above) the pinhole, under the f and Z dimension lines, where no other label goes
+        "pinhole": ax.annotate("pinhole", (0, 0), xytext=(0, 0), ha="center", va="center", fontsize=9,
+                               arrowprops=dict(arrowstyle="-", color="0.3", lw=0.8, shrinkA=2, shrinkB=3)),
         "dims": {k: _dimension(ax, c) for k, c in (("f", "k"), ("Z", "k"), ("Y", palette.BLUE), ("y", palette.GREEN),
                                                     ("y_real", palette.RED))},
     }
@@ -154,69 +157,92 @@ def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
 
 
 def update_similar_triangles(art: dict, f: float, Z: float, Y: float) -> float:
-    """Redraw for focal length ``f``, object depth ``Z`` and height ``Y`` (metres, up positive); returns y."""
+    """Redraw for focal length ``f``, object depth ``Z`` and ``Y`` (metres, camera frame: y down); returns y.
+
+    The figure's vertical axis is -y (up), so the object point is drawn at height -Y.
+    """
     y = f * Y / Z
-    art["big"].set_xy([[0, 0], [Z, 0], [Z, Y]])
-    art["small"].set_xy([[0, 0], [f, 0], [f, y]])
-    art["object"].set_data([Z, Z], [0, Y])
-    art["point"].set_data([Z], [Y])
-    art["ray"].set_data([-f, Z], [-y, Y])
+    up, up_img = -Y, -y  # heights on the page
+    art["big"].set_xy([[0, 0], [Z, 0], [Z, up]])
+    art["small"].set_xy([[0, 0], [f, 0], [f, up_img]])
+    art["object"].set_data([Z, Z], [0, up])
+    art["point"].set_data([Z], [up])
+    art["ray"].set_data([-f, Z], [y, up])
     h = art["planes"].axes.get_ylim()[1] * 0.9
     art["planes"].set_data([-f, -f, np.nan, f, f], [-h, h, np.nan, -h, h])
-    art["virtual"].set_data([f, f], [0, y])
-    art["real"].set_data([-f, -f], [0, -y])
-    below = -0.12 * h if Y >= 0 else 0.12 * h  # dimension lines go on the side away from the object
+    art["virtual"].set_data([f, f], [0, up_img])
+    art["real"].set_data([-f, -f], [0, y])
+    away = -0.12 * h if up >= 0 else 0.12 * h  # dimension lines go on the side away from the object
     d = art["dims"]
-    _set_dimension(d["Z"], (0, 3 * below), (Z, 3 * below), f"Z = {Z:.2f} m")
-    _set_dimension(d["f"], (0, below), (f, below), f"f = {f:.2f} m", offset=(0, below))
-    _set_dimension(d["Y"], (Z + 0.1, 0), (Z + 0.1, Y), f" Y = {Y:+.2f} m", offset=(0.05, 0), ha="left")
+    _set_dimension(d["Z"], (0, 3 * away), (Z, 3 * away), f"Z = {Z:.2f} m")
+    _set_dimension(d["f"], (0, away), (f, away), f"f = {f:.2f} m", offset=(0, away))
+    _set_dimension(d["Y"], (Z + 0.1, 0), (Z + 0.1, up), f" Y = {Y:+.2f} m", offset=(0.05, 0), ha="left")
     room = Z - f > 1.3  # else y's label would sit on Y's: put it left of the plane
-    _set_dimension(d["y"], (f + 0.06, 0), (f + 0.06, y), f" y = {y * 100:+.1f} cm ",
+    _set_dimension(d["y"], (f + 0.06, 0), (f + 0.06, up_img), f" y = {y * 100:+.1f} cm ",
                    offset=(0.05 if room else -0.17, 0), ha="left" if room else "right")
-    _set_dimension(d["y_real"], (-f - 0.06, 0), (-f - 0.06, -y), f"real\n{-y * 100:+.1f} cm",
+    _set_dimension(d["y_real"], (-f - 0.06, 0), (-f - 0.06, y), f"real\n{-y * 100:+.1f} cm",
                    offset=(-0.05, 0), ha="right")
+    art["pinhole"].xyann = (0, 4.6 * away)
     return y
 
 
-def draw_thin_lens(ax, focal_length: float, object_distance: float, height: float = 1.0) -> dict:
-    """A thin-lens ray diagram: object arrow, lens, the three principal rays, image arrow.
+THIN_LENS_X = (-12.0, 9.0)   # the ray diagram's horizontal range, in units of f
+THIN_LENS_Y = 3.2            # ... and its vertical half-range, in object heights
 
-    The axes are fixed at [-1, 1] and the drawing is scaled to fill them (the numbers are in
-    the corner text), so an update moves artists without rescaling the axes, which keeps
-    the diagram blittable and fast.
+
+def draw_thin_lens(ax, focal_length: float, object_distance: float) -> dict:
+    """A thin-lens ray diagram: object arrow, lens, foci F and F', the three principal rays, image arrow.
+
+    Distances are drawn in units of f (the diagram depends only on z_o / f) and heights in
+    units of the object's height, on fixed axes: as the object nears F the image runs off to
+    the right and grows, and an object or image beyond the axes is marked at the edge with
+    its distance. Fixed axes also keep the diagram blittable. The metres are in the corner.
     """
+    colours = (palette.ORANGE, palette.PURPLE, palette.BROWN)
+    names = ("parallel, then through F'", "through the centre, straight", "through F, then parallel")
     art = {
-        "lens": ax.axvline(0, color="tab:blue", lw=2),
+        "lens": ax.axvline(0, color=palette.BLUE, lw=2),
         "axis": ax.axhline(0, color="0.5", lw=0.8),
-        "foci": ax.plot([], [], "k+", ms=10)[0],
-        "object": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="-|>", color="tab:green", lw=2)),
-        "image": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="-|>", color="tab:red", lw=2)),
-        "rays": [ax.plot([], [], color=c, lw=1)[0] for c in (palette.ORANGE, "tab:purple", "tab:brown")],
-        "text": ax.text(0.02, 0.03, "", transform=ax.transAxes, va="bottom", fontsize=9, family="monospace"),
-        "height": height,
+        "foci": ax.plot([-1, 1], [0, 0], "k+", ms=10, mew=1.5)[0],
+        "object": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="-|>", color=palette.GREEN, lw=2)),
+        "image": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="-|>", color=palette.RED, lw=2)),
+        "rays": [ax.plot([], [], color=c, lw=1.2, label=n)[0] for c, n in zip(colours, names)],
+        "object_off": ax.text(THIN_LENS_X[0] + 0.3, 0.85 * THIN_LENS_Y, "", fontsize=9, color=palette.GREEN, va="center"),
+        "image_off": ax.text(THIN_LENS_X[1] - 0.3, -0.85 * THIN_LENS_Y, "", fontsize=9, color=palette.RED, va="center",
+                             ha="right"),
+        "text": ax.text(0.01, 0.03, "", transform=ax.transAxes, va="bottom", fontsize=9, family="monospace",
+                        bbox=dict(fc="white", ec="0.8", alpha=0.9)),
     }
-    ax.set(xlim=(-1, 1), ylim=(-1, 1), xticks=[], yticks=[])
-    ax.set_xlabel("object side  ←  lens  →  image side   (drawn to fit; lengths in the corner)")
+    for x, label in ((-1, "F"), (1, "F'")):
+        ax.annotate(label, (x, 0), xytext=(5, 4), textcoords="offset points", ha="left", va="bottom", fontsize=10)
+    lo, hi = THIN_LENS_X
+    ax.set(xlim=THIN_LENS_X, ylim=(-THIN_LENS_Y, THIN_LENS_Y), yticks=[-2, -1, 0, 1, 2],
+           xticks=[t for t in range(int(lo), int(hi) + 1) if t % 2 == 0])
+    ax.set_xlabel("distance from the lens, in units of f (object side left, image side right)")
+    ax.set_ylabel("height / object height")
+    ax.legend(loc="upper right", fontsize=8, title="principal rays", title_fontsize=8)
     update_thin_lens(art, focal_length, object_distance)
     return art
 
 
 def update_thin_lens(art: dict, f: float, zo: float) -> dict:
     """Move the diagram to focal length ``f`` and object distance ``zo``; returns the computed values."""
-    hgt = art["height"]
-    zi = _lens.image_distance(f, zo)
-    m = _lens.magnification(f, zo)
-    hi = m * hgt
-    sx = 1 / (max(zo, zi) * 1.15)  # metres to plot units, so the whole diagram fits
-    sy = 1 / (max(hgt, abs(hi)) * 1.3)
-    art["foci"].set_data([-f * sx, f * sx], [0, 0])
-    art["object"].xy, art["object"].xyann = (-zo * sx, hgt * sy), (-zo * sx, 0)
-    art["image"].xy, art["image"].xyann = (zi * sx, hi * sy), (zi * sx, 0)
-    # parallel ray -> through far focus; central ray undeviated; ray through near focus -> parallel
-    art["rays"][0].set_data(np.array([-zo, 0, zi]) * sx, np.array([hgt, hgt, hi]) * sy)
-    art["rays"][1].set_data(np.array([-zo, zi]) * sx, np.array([hgt, hi]) * sy)
-    art["rays"][2].set_data(np.array([-zo, 0, zi]) * sx, np.array([hgt, hi, hi]) * sy)
-    art["text"].set_text(f"f   = {f * 1e3:6.1f} mm\nz_o = {zo:6.3f} m\nz_i = {zi:6.3f} m\nm   = {m:6.3f}")
+    zi = float(_lens.image_distance(f, zo))
+    m = float(_lens.magnification(f, zo))
+    xo, xi = -zo / f, zi / f                       # units of f
+    lo, hi = THIN_LENS_X
+    xo_drawn, xi_drawn = max(xo, lo + 0.3), min(xi, hi - 0.3)
+    art["object"].xy, art["object"].xyann = (xo_drawn, 1.0), (xo_drawn, 0)
+    art["image"].xy, art["image"].xyann = (xi_drawn, m), (xi_drawn, 0)
+    # parallel ray -> through F'; central ray undeviated; ray through F -> parallel (exact lines, clipped by the axes)
+    art["rays"][0].set_data([xo, 0, xi], [1, 1, m])
+    art["rays"][1].set_data([xo, xi], [1, m])
+    art["rays"][2].set_data([xo, 0, xi], [1, m, m])
+    art["object_off"].set_text(f"<- object at {-xo:.1f} f" if xo < lo + 0.3 else "")
+    where = "off the axes" if abs(m) > THIN_LENS_Y else "->" if xi > hi - 0.3 else ""
+    art["image_off"].set_text(f"image at {xi:.1f} f, m = {m:.1f} {where}" if where else "")
+    art["text"].set_text(f"f   = {f * 1e3:6.1f} mm\nz_o = {zo:6.3f} m = {-xo:.2f} f\nz_i = {zi:6.3f} m = {xi:.2f} f\n"
+                         f"m   = {m:6.3f}")
     return {"image_distance": zi, "magnification": m}
 
 
@@ -296,15 +322,17 @@ def update_focus_cone(art: dict, f: float, N: float, z_o: float, z_s: float) -> 
     return {"z_i": z_i, "A": A, "c": c}
 
 
-def draw_pinhole_blur(ax, focal_length: float, wavelength: float = 550e-9) -> dict:
-    """Geometric, diffraction and total blur (mm) against pinhole diameter (mm), log axes, with a marker."""
+def draw_pinhole_blur(ax, focal_length: float, wavelength: float = 550e-9, object_distance: float = np.inf) -> dict:
+    """Geometric, diffraction and total blur (mm) against pinhole diameter (mm), log axes, with a marker.
+
+    ``object_distance`` (metres) is the Z of the geometric term d (1 + f/Z); infinite by default.
+    """
     d = np.geomspace(0.02e-3, 3e-3, 300)
-    b = _pinhole.pinhole_blur(d, focal_length, wavelength=wavelength)
     art = {
-        "geometric": ax.plot(d * 1e3, b.geometric * 1e3, label="geometric  d (1 + f/Z)")[0],
-        "diffraction": ax.plot(d * 1e3, b.diffraction * 1e3, color=palette.ORANGE, label=r"diffraction  $2.44\lambda f/d$")[0],
-        "total": ax.plot(d * 1e3, b.total * 1e3, "k", lw=2, label="total")[0],
-        "marker": ax.axvline(1, color="tab:red", ls="--"),
+        "geometric": ax.plot(d * 1e3, d * 1e3, label="geometric  d (1 + f/Z)")[0],
+        "diffraction": ax.plot(d * 1e3, d * 1e3, color=palette.ORANGE, label=r"diffraction  $2.44\lambda f/d$")[0],
+        "total": ax.plot(d * 1e3, d * 1e3, "k", lw=2, label="total")[0],
+        "marker": ax.axvline(1, color="tab:red", ls="--", label="your d"),
         "best": ax.plot([], [], "k*", ms=12, label="best diameter")[0],
         "d": d,
     }
@@ -314,15 +342,58 @@ def draw_pinhole_blur(ax, focal_length: float, wavelength: float = 550e-9) -> di
     ax.set_ylabel("blur diameter (mm)")
     # below the axes, where the moving curves and marker never cross it: it need not be redrawn per update
     ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.17), ncols=2)
+    update_pinhole_blur(art, focal_length, 1e-3, wavelength, object_distance)
     return art
 
 
-def update_pinhole_blur(art: dict, focal_length: float, diameter: float, wavelength: float = 550e-9) -> None:
+def update_pinhole_blur(art: dict, focal_length: float, diameter: float, wavelength: float = 550e-9,
+                        object_distance: float = np.inf) -> None:
+    """Redraw the curves for ``focal_length`` and ``object_distance``, the marker at ``diameter`` (metres)."""
     d = art["d"]
-    b = _pinhole.pinhole_blur(d, focal_length, wavelength=wavelength)
+    b = _pinhole.pinhole_blur(d, focal_length, object_distance, wavelength)
     art["geometric"].set_ydata(b.geometric * 1e3)
     art["diffraction"].set_ydata(b.diffraction * 1e3)
     art["total"].set_ydata(b.total * 1e3)
     art["marker"].set_xdata([diameter * 1e3, diameter * 1e3])
-    best = _pinhole.optimal_pinhole_diameter(focal_length, wavelength)
-    art["best"].set_data([best * 1e3], [float(_pinhole.pinhole_blur(best, focal_length, wavelength=wavelength).total) * 1e3])
+    best = _pinhole.optimal_pinhole_diameter(focal_length, wavelength, object_distance)
+    best_blur = _pinhole.pinhole_blur(best, focal_length, object_distance, wavelength).total
+    art["best"].set_data([best * 1e3], [float(best_blur) * 1e3])
+
+
+def draw_pinhole_cones(ax, diameter: float, focal_length: float, object_distance: float,
+                       heights=(-0.02, 0.02), wavelength: float = 550e-9) -> dict:
+    """Side view of pinhole blur: each object point's cone of rays through a hole of ``diameter``.
+
+    Two points at ``heights`` (metres, camera y) and distance ``object_distance`` send cones
+    through the hole; each cone cuts the image plane ``focal_length`` behind it in a disc of
+    diameter d (1 + f/Z) (drawn in the point's colour), widened by diffraction to the Airy
+    disc 2.44 lambda f / d (the pale band). Heights are millimetres; the object side is
+    drawn on [-1, 0] and the image side on [0, 1] (two horizontal scales, as in
+    :func:`draw_focus_cone`). Returns the blur terms in metres.
+    """
+    Z, f, d = object_distance, focal_length, diameter
+    b = _pinhole.pinhole_blur(d, f, Z, wavelength)
+    a = d / 2 * 1e3
+    for Y, colour in zip(heights, (palette.BLUE, palette.GREEN)):
+        y_obj = -Y * 1e3                    # mm, drawn up
+        y_img = Y * f / Z * 1e3             # the real image is inverted: -f Y / Z, drawn up as +
+        top, bottom = y_img + b.geometric / 2 * 1e3, y_img - b.geometric / 2 * 1e3
+        halo = b.total / 2 * 1e3
+        ax.fill([0, 1, 1, 0], [a, y_img + halo, y_img - halo, -a], color=colour, alpha=0.12, lw=0)  # diffraction
+        ax.fill([-1, 0, 0], [y_obj, a, -a], color=colour, alpha=0.35, lw=0)
+        ax.fill([0, 1, 1, 0], [a, top, bottom, -a], color=colour, alpha=0.35, lw=0)
+        ax.plot([1, 1], [y_img - halo, y_img + halo], color=colour, lw=8, alpha=0.3, solid_capstyle="butt")
+        ax.plot([1, 1], [bottom, top], color=colour, lw=4, solid_capstyle="butt")
+        ax.plot([-1], [y_obj], "o", color=colour, ms=6)
+    wall = 1.15 * max(abs(h) for h in heights) * 1e3
+    ax.plot([0, 0, np.nan, 0, 0], [wall, a, np.nan, -a, -wall], color="k", lw=3, solid_capstyle="butt")
+    ax.axhline(0, color=palette.GREY, lw=0.6, zorder=0)
+    ax.axvline(1, color="0.3", lw=1, ls="--")
+    ax.set_xlim(-1.05, 1.12)
+    ax.set_ylim(-wall, wall)
+    ax.set_xticks([-1, 0, 1], [f"object\nZ = {Z:g} m", "pinhole", f"image plane\nf = {f * 1e3:g} mm"])
+    ax.set_ylabel("height (mm)")
+    ax.set_title(f"d = {d * 1e3:g} mm", fontsize=10)
+    ax.text(0.5, 0.97, f"disc of rays {b.geometric * 1e3:.2f} mm\n+ diffraction {b.diffraction * 1e3:.2f} mm",
+            transform=ax.transAxes, fontsize=8, va="top", ha="center", bbox=dict(fc="white", ec="0.8", pad=2))
+    return {"geometric": b.geometric, "diffraction": b.diffraction, "total": b.total}

@@ -138,7 +138,12 @@ def static_bundle(data: Mapping[str, Any], fig: Figure, alt: str, png: bytes | N
 
 
 def _canvas_bundle(canvas: Any) -> tuple[dict, dict]:
-    """Display bundle of an ipympl canvas (a plain figure under ``%matplotlib widget``)."""
+    """Display bundle of an ipympl canvas (a plain figure under ``%matplotlib widget``).
+
+    The canvas loses ipympl's header, a title bar reading "Figure N" that says nothing
+    (the figure's own titles do), as the demos' canvases do (``widgets._base.FigureView``).
+    """
+    canvas.header_visible = False
     data = canvas._repr_mimebundle_()  # ipympl registers the view and renders its PNG once
     png = base64.b64decode(data["image/png"]) if "image/png" in data else None
     return static_bundle(data, canvas.figure, describe_figure(canvas.figure), png)

@@ -41,6 +41,7 @@ from .textures import (
 from .planes import (
     box,
     checkerboard,
+    letter_chart,
     photo_plane,
     Plane,
     text_page,
@@ -80,7 +81,7 @@ from .lessons import (
 __all__ = [
     "as_texture", "box", "box_and_rails", "box_before_wall", "box_wireframe", "CameraPair", "checkerboard",
     "depth_of_field_scene", "desk_background", "facade_texture", "forward_pair", "ground_grid",
-    "ground_plane_view", "GroundView", "house_picture", "house_scene", "house_wireframe", "look_at_plane",
+    "ground_plane_view", "GroundView", "house_picture", "house_scene", "house_wireframe", "letter_chart", "look_at_plane",
     "noise_texture", "outlier_matches", "OutlierMatches", "page_texture", "painting_texture", "photo_and_page",
     "photo_plane", "photograph_plane", "Plane", "plane_outlines", "PlanePhoto", "portrait", "rail_track",
     "resection_set", "ResectionSet", "sample_photo", "sleeper_gaps", "stereo_pair", "text_page", "textured_plane",

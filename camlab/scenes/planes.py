@@ -36,6 +36,41 @@ def _text_texture(width_px: int, seed: int) -> np.ndarray:
     return as_texture(grey)
 
 
+# An optician's chart: cap heights of its rows in texture pixels (600 px across the chart)
+CHART_ROW_HEIGHTS = (90, 58, 38, 25, 16)
+_CHART_LETTERS = "EFHKLNOPTZ"
+
+
+@lru_cache(maxsize=2)
+def _chart_texture(seed: int) -> np.ndarray:
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    rng = np.random.default_rng(seed)
+    w_px, h_px = 600, 500
+    fig = Figure(figsize=(w_px / 100, h_px / 100), dpi=100)
+    FigureCanvasAgg(fig)
+    top = 30
+    for cap in CHART_ROW_HEIGHTS:
+        letters = " ".join(rng.choice(list(_CHART_LETTERS), size=int(min(7, 380 // cap))))
+        # DejaVu Sans capitals are about 0.73 em tall: a font size of cap / 0.73 pixels (at 100 dpi, 1 pt = 100/72 px)
+        fig.text(0.5, 1 - top / h_px, letters, fontsize=cap / 0.73 * 72 / 100, weight="bold", ha="center", va="top")
+        top += 1.6 * cap
+    fig.canvas.draw()
+    grey = np.asarray(fig.canvas.buffer_rgba())[..., :3].mean(axis=2) / 255.0
+    return as_texture(grey)
+
+
+def letter_chart(width: float = 0.3, *, R: ArrayLike = np.eye(3), t: ArrayLike = (0, 0, 0), seed: int = 0,
+                 name: str = "chart") -> Plane:
+    """An optician's chart (6 : 5): rows of capitals, each row smaller, for judging blur by eye.
+
+    The rows' cap heights are ``CHART_ROW_HEIGHTS`` / 600 of ``width`` (metres): the smallest row
+    is still legible while the blur is smaller than about half its height.
+    """
+    return textured_plane(_chart_texture(int(seed)), width, R=R, t=t, name=name)
+
+
 
 @dataclass(frozen=True, eq=False)
 class Plane:

@@ -15,11 +15,12 @@ import importlib
 import pkgutil
 
 from ..plotting.static import install_canvas_formatter
-from .. import _access
+from .. import _access, _notebook
 from ._base import REGISTRY, Demo, DemoSpec, FigureView, build_demo, register, slider
 
 install_canvas_formatter()  # plain figures in a lesson keep a PNG with alt text too
 _access.install()  # named slider handles, Tab out of figures, focus rings (docs/accessibility.md)
+_notebook.install_warning_format()  # a warning from a cell without the kernel's temporary path
 
 __all__ = ["Demo", "DemoSpec", "FigureView", "REGISTRY", "all_demos", "build_demo", "register", "slider"]
 

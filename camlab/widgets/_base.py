@@ -16,6 +16,7 @@ The figure is shown according to the matplotlib backend:
 """
 from __future__ import annotations
 
+import html
 import io
 import os
 from dataclasses import dataclass, field
@@ -157,6 +158,8 @@ class Demo:
     updates: int = 0
     handlers: dict[str, Callable] = field(default_factory=dict)
     """Mouse handlers by matplotlib event name (``"button_press_event"`` ...), for tests to call."""
+    problem: str = ""
+    """Why the last change could not be drawn (the control and the reason), '' when it was."""
 
     @property
     def figure(self) -> Figure:
@@ -187,6 +190,24 @@ class Demo:
         return static_bundle(self.widget._repr_mimebundle_(**kwargs), self.figure, self.alt_text, png)
 
 
+def _label(control: W.ValueWidget, key: str) -> str:
+    return (control.description or "").strip().rstrip("=:").strip() or key
+
+
+def _not_a_number(controls: Mapping[str, W.ValueWidget]) -> str:
+    """A problem naming the first control holding NaN (float sliders accept it), or ''."""
+    for key, control in controls.items():
+        value = control.value
+        if isinstance(value, (float, np.floating)) and not np.isfinite(value):
+            return f"{_label(control, key)} = {value}: not a number the demo can draw; move the slider or type a number"
+    return ""
+
+
+def _show_problem(demo: Demo, line: W.HTML, problem: str) -> None:
+    demo.problem = problem
+    line.value = f"<b>\u26a0 {html.escape(problem)}</b><br>The figure keeps the last settings that worked." if problem else ""
+
+
 def build_demo(
     name: str,
     controls: Mapping[str, W.ValueWidget],
@@ -204,27 +225,71 @@ def build_demo(
     ``linked`` controls only drive another control (the corner sliders of
     :func:`~camlab.widgets.controls.corner_keys` write the corners text): they are shown,
     set and swept like controls but not observed, so each change updates the figure once.
+
+    A demo never dies: a control holding NaN, or a change that makes ``update`` (or the
+    redraw) raise, is reported under the controls naming the control (``Demo.problem``),
+    and the figure and ``state`` stay at the last settings that worked. Only the first
+    update, at build time, raises: a demo whose defaults fail is a bug.
     """
     state: dict[str, Any] = {}
     demo_controls = dict(controls) | dict(linked or {})
+    problem_line = W.HTML()
     panel: list[W.Widget] = []
     if title:
         panel.append(W.HTML(f"<b>{title}</b>"))
-    panel += list(demo_controls.values()) + list(extra)
+    panel += list(demo_controls.values()) + [problem_line] + list(extra)  # the problem under the controls
     box = W.HBox(
         [W.VBox(panel, layout=W.Layout(min_width="300px")), view.widget],
         layout=W.Layout(align_items="flex-start"),
     )
     box.add_class(f"camlab-demo-{name.replace('_', '-')}")
     demo = Demo(name=name, widget=box, controls=demo_controls, view=view, state=state)
+    last_good: dict[str, Any] = {}
 
-    def on_change(_change: Any = None) -> None:
-        update({k: c.value for k, c in demo_controls.items()}, state)
-        demo.updates += 1
+    def draw(values: dict[str, Any]) -> None:
+        trial = dict(state)  # a failing update leaves the demo's state as it was
+        update(values, trial)
         view.refresh()
+        state.clear()
+        state.update(trial)
+
+    def on_change(change: Any = None) -> None:
+        values = {k: c.value for k, c in demo_controls.items()}
+        if not last_good:  # the defaults: a failure here is a bug, so it raises
+            draw(values)
+        elif problem := _not_a_number(demo_controls) or try_draw(values, change):
+            _show_problem(demo, problem_line, problem)
+            return
+        last_good.clear()
+        last_good.update(values)
+        _show_problem(demo, problem_line, "")
+        demo.updates += 1
+
+    def try_draw(values: dict[str, Any], change: Any) -> str:
+        """'' once drawn; else what went wrong, naming the control, with the artists back at the last good settings."""
+        try:
+            draw(values)
+            return ""
+        except Exception as exc:  # noqa: BLE001 - any failure is shown in the demo, never raised into the page
+            reason = str(exc) or type(exc).__name__
+        try:
+            update(last_good, dict(state))  # a failing update may have moved some artists
+        except Exception:  # noqa: BLE001 - it worked before; if not now, the problem is shown anyway
+            pass
+        key = next((k for k, c in demo_controls.items() if change is not None and c is change["owner"]), "")
+        return f"{_label(demo_controls[key], key)} = {values[key]!r}: {reason}" if key else f"these settings: {reason}"
+
+    def on_linked(change: Any) -> None:
+        """A linked control drives the figure through another; only its own NaN is reported here."""
+        control = change["owner"]
+        problem = _not_a_number({k: c for k, c in (linked or {}).items() if c is control})
+        if problem or demo.problem.startswith(f"{_label(control, '')} = "):
+            _show_problem(demo, problem_line, problem)
 
     for control in controls.values():
         control.observe(on_change, names="value")
+    for control in (linked or {}).values():
+        control.observe(on_linked, names="value")
     on_change()
     return demo
 

@@ -52,12 +52,34 @@ def corner_text(value: str, description: str) -> W.Text:
                   style={"description_width": "initial"}, layout=W.Layout(width="300px"))
 
 
+CORNER_LIMIT_PX = 1e6
+"""Corners farther out than this (pixels) are typing slips, not pictures."""
+
+
 def parse_corners(text: str) -> np.ndarray:
-    """'u0, v0; u1, v1; ...' -> (4, 2) floats; raises ValueError on malformed text."""
+    """'u0, v0; u1, v1; ...' -> (4, 2) floats.
+
+    Raises ValueError on malformed text, on non-finite or far-off (beyond
+    :data:`CORNER_LIMIT_PX`) coordinates, and on two corners less than a pixel apart.
+    """
     rows = [r for r in str(text).split(";") if r.strip()]
-    pts = np.array([[float(x) for x in r.split(",")] for r in rows], dtype=float)
+    try:
+        pts = np.array([[float(x) for x in r.split(",")] for r in rows], dtype=float)
+    except ValueError:  # a word, or rows of different lengths
+        pts = np.empty(0)
     if pts.shape != (4, 2):
-        raise ValueError(f"expected 4 corners 'u, v' separated by ';', got {text!r}")
+        raise ValueError(f"expected 4 corners 'u, v' (pixels) separated by ';', got {text!r}")
+    far = np.flatnonzero(~(np.abs(pts) <= CORNER_LIMIT_PX).all(axis=1))
+    if far.size:
+        u, v = pts[far[0]]
+        raise ValueError(f"corner {far[0] + 1} is ({u:.4g}, {v:.4g}): expected finite pixel coordinates "
+                         f"within ±{CORNER_LIMIT_PX:.0e}")
+    gaps = np.linalg.norm(pts[:, None] - pts[None], axis=-1)
+    np.fill_diagonal(gaps, np.inf)
+    i, j = np.unravel_index(int(np.argmin(gaps)), gaps.shape)
+    if gaps[i, j] < 1.0:
+        raise ValueError(f"corners {min(i, j) + 1} and {max(i, j) + 1} coincide (less than 1 px apart): "
+                         f"four corners need four distinct points")
     return pts
 
 
@@ -94,8 +116,8 @@ def corner_keys(control: W.Text, names: Sequence[str], u_max: float, v_max: floa
             syncing[0] = False
 
     def write_corner(_change: Any) -> None:
-        if syncing[0]:
-            return
+        if syncing[0] or not (np.isfinite(u.value) and np.isfinite(v.value)):
+            return  # NaN from a slider: the demo reports it (widgets._base.build_demo)
         try:
             pts = parse_corners(control.value)
         except ValueError:

@@ -25,9 +25,9 @@ def thin_lens():
     }
     view = FigureView(figsize=(9, 4))
     ax = view.fig.subplots()
-    art = optics.draw_thin_lens(ax, 0.05, 0.2, height=0.03)
-    ax.set_title("1/f = 1/z_o + 1/z_i: parallel ray -> focus, central ray straight, focal ray -> parallel", fontsize=10)
-    view.animate(art["foci"], art["object"], art["image"], *art["rays"], art["text"])
+    art = optics.draw_thin_lens(ax, 0.05, 0.2)
+    ax.set_title("1/f = 1/z_o + 1/z_i, drawn in units of f: move the object towards F", fontsize=10)
+    view.animate(art["object"], art["image"], *art["rays"], art["object_off"], art["image_off"], art["text"])
 
     def update(values, state):
         f, zo = values["focal_mm"] * 1e-3, values["object_m"]
@@ -92,12 +92,12 @@ def depth_of_field():
                                       style={"description_width": "initial"}, layout=W.Layout(width="300px")),
         "focus_m": slider(1.2, 0.5, 4.0, 0.05, "focus distance (m)"),
     }
-    view = FigureView(figsize=(9, 4))
-    ax_img, ax_c = view.fig.subplots(1, 2, width_ratios=[1.3, 1])
+    view = FigureView(figsize=(10.5, 4.8))  # the 480 x 360 image at no less than 1:1, so 2 px of blur can be judged
+    ax_img, ax_c = view.fig.subplots(1, 2, width_ratios=[1.45, 1])
     scene = scenes.depth_of_field_scene()
     im = images.show_image(ax_img, np.zeros((SIZE[1], SIZE[0], 3)))
     z = np.linspace(0.3, 5, 400)
-    curve, = ax_c.plot(z, np.zeros_like(z), "k")
+    curve, = ax_c.plot(z, np.full_like(z, 100.0), "k")
     band = ax_c.axvspan(1, 2, color="tab:green", alpha=0.2, label="depth of field")
     ax_c.axhline(2 * PITCH_DOF * 1e6, color="tab:red", ls="--", lw=1,
                  label=f"acceptable c = 2 px = {2 * PITCH_DOF * 1e6:.0f} µm")
@@ -105,9 +105,10 @@ def depth_of_field():
                            ("small board", "page", "large board", "wall")):
         ax_c.axvline(zp, color=c, lw=1.5, label=f"{name}, {zp:g} m", path_effects=palette.halo(1.5))
     ax_c.set_xlim(0.3, 5)
-    ax_c.set_ylim(0, 600)
+    ax_c.set_ylim(5, 5000)
+    ax_c.set_yscale("log")  # from the 2-px line to the blur at f/16 and f/1.4 on one readable scale
     ax_c.set_xlabel("depth z (m)")
-    ax_c.set_ylabel("blur circle c (µm on the sensor)")
+    ax_c.set_ylabel("blur circle c (µm on the sensor, log)")
     ax_c.legend(fontsize=7, loc="upper right")
     ax_c.set_title("blur circle against depth (green band: sharp)", fontsize=10)
     ax_img.set_title(f"f = {F_DOF * 1e3:.0f} mm thin lens (N, focus: sliders)", fontsize=10)

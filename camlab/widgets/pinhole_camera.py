@@ -11,6 +11,7 @@ from matplotlib.ticker import MaxNLocator
 from ._base import FigureView, build_demo, register, slider
 from .controls import monospace
 from ..plotting import palette
+from ..scenes.planes import CHART_ROW_HEIGHTS
 
 SIZE = (320, 240)
 PITCH = 36e-3 / SIZE[0]  # a 36 mm wide sensor with 320 pixels: 112.5 um pixels
@@ -78,10 +79,12 @@ def pinhole_projection():
         im.set_data(img)
         width_bar.set_data([u.min(), u.max()], [v_bar, v_bar])
         centre = pinhole.project_pinhole([0.0, 0.0, Z], f)
-        state.update(fx=K[0, 0], box_width_px=float(u.max() - u.min()), image=img, centre=centre,
+        fov = np.degrees(2 * np.arctan(SIZE[0] * PITCH / (2 * f)))  # the sensor's width w seen from the pinhole
+        state.update(fx=K[0, 0], box_width_px=float(u.max() - u.min()), image=img, centre=centre, fov_deg=fov,
                      plane="real" if values["real_plane"] else "virtual", f_draw=f_draw)
         ax_img.set_title("real image (inverted)" if values["real_plane"] else "virtual image (upright)", fontsize=10)
-        readout.value = monospace(f"fx = f / pixel pitch = {K[0, 0]:.0f} px\nbox spans {state['box_width_px']:.0f} px"
+        readout.value = monospace(f"fx = f / pixel pitch = {K[0, 0]:.0f} px\n"
+                                  f"field of view 2 atan(w / 2f) = {fov:.1f} deg (w = 36 mm)\nbox spans {state['box_width_px']:.0f} px"
                                   f" (orange bar)\nimage planes drawn {f_draw / f:.1f} f from the pinhole")
 
     return build_demo("pinhole_projection", controls, view, update, title="Pinhole projection x = f X / Z",
@@ -94,7 +97,7 @@ def similar_triangles():
     controls = {
         "f": slider(0.8, 0.3, 1.0, 0.05, "focal length f (m)"),
         "Z": slider(3.0, 1.2, 5.0, 0.05, "object depth Z (m)"),
-        "Y": slider(0.8, -1.0, 1.0, 0.05, "object height Y (m, up)"),
+        "Y": slider(-0.8, -1.0, 1.0, 0.05, "object Y (m; y points down)"),
     }
     view = FigureView(figsize=(9, 4))
     ax = view.fig.subplots()
@@ -102,7 +105,7 @@ def similar_triangles():
     ax.set_title("click or drag in the figure to move the object point", fontsize=9)
     readout = ax.text(0.99, 0.02, "", transform=ax.transAxes, ha="right", va="bottom", fontsize=10, family="monospace",
                       bbox=dict(fc="white", ec="0.7", alpha=0.9))
-    movers = [art[k] for k in ("big", "small", "object", "point", "ray", "planes", "virtual", "real")]
+    movers = [art[k] for k in ("big", "small", "object", "point", "ray", "planes", "virtual", "real", "pinhole")]
     for dim in art["dims"].values():
         movers += [dim["arrow"], dim["label"]]
     view.animate(*movers, readout)
@@ -118,7 +121,7 @@ def similar_triangles():
     def on_mouse(event):
         if event.inaxes is ax and event.button == 1 and event.xdata is not None:
             z = float(np.clip(event.xdata, controls["Z"].min, controls["Z"].max))
-            y = float(np.clip(event.ydata, controls["Y"].min, controls["Y"].max))
+            y = float(np.clip(-event.ydata, controls["Y"].min, controls["Y"].max))  # the plot shows -y (up)
             demo.set(Z=round(z / 0.05) * 0.05, Y=round(y / 0.05) * 0.05)
 
     view.fig.canvas.mpl_connect("button_press_event", on_mouse)
@@ -126,42 +129,49 @@ def similar_triangles():
     return demo
 
 
-@register(lesson="01", sweep={"diameter_mm": [0.05, 0.3, 1.5], "focal_mm": [50, 100, 200]})
+PAGE_Z = 1.0  # the chart's distance in pinhole_size (metres)
+
+
+@register(lesson="01", sweep={"diameter_mm": [0.05, 0.35, 1.5], "focal_mm": [50, 100, 200]})
 def pinhole_size():
-    """Blur against pinhole diameter (geometric versus diffraction) and the blurred image it gives."""
+    """Blur against pinhole diameter (geometric versus diffraction) and the blurred chart it gives."""
     controls = {
-        "diameter_mm": W.FloatLogSlider(value=0.3, base=10, min=np.log10(0.03), max=np.log10(2.5), step=0.02,
+        "diameter_mm": W.FloatLogSlider(value=0.35, base=10, min=np.log10(0.03), max=np.log10(2.5), step=0.02,
                                         description="pinhole d (mm)", continuous_update=True,
                                         style={"description_width": "initial"}, layout=W.Layout(width="300px")),
         "focal_mm": slider(100, 30, 200, 5, "focal length f (mm)"),
     }
     view = FigureView(figsize=(9, 4))
     ax_plot, ax_img = view.fig.subplots(1, 2)
-    art = optics.draw_pinhole_blur(ax_plot, 0.1)
+    art = optics.draw_pinhole_blur(ax_plot, 0.1, object_distance=PAGE_Z)
     ax_plot.set_ylim(0.01, 30)
     ax_plot.minorticks_off()
-    page = render.text_page(0.3, t=(0, 0, 1.0))
+    chart = scenes.letter_chart(0.3, t=(0, 0, PAGE_Z))
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
-    ax_img.set_title("a printed page at 1 m, seen through the pinhole", fontsize=10)
-    ax_plot.set_title("blur against pinhole size (star: best d)", fontsize=10)
+    ax_img.set_title(f"a letter chart at Z = {PAGE_Z:g} m, seen through the pinhole", fontsize=10)
+    ax_plot.set_title(f"blur against pinhole size, object at Z = {PAGE_Z:g} m", fontsize=10)
     readout = W.HTML()
     view.animate(im, art["geometric"], art["diffraction"], art["total"],
                  art["marker"], art["best"])
 
     def update(values, state):
         f, d = values["focal_mm"] * 1e-3, values["diameter_mm"] * 1e-3
-        optics.update_pinhole_blur(art, f, d)
-        b = pinhole.pinhole_blur(d, f, object_distance=1.0)
+        optics.update_pinhole_blur(art, f, d, object_distance=PAGE_Z)
+        b = pinhole.pinhole_blur(d, f, object_distance=PAGE_Z)
         # a sensor whose 320 pixels span the same field of view at every f
         pitch = f * 0.36 / SIZE[0]
         K = sensor.intrinsics_from_sensor(f, (pitch, pitch), SIZE)
         blur_px = float(b.total) / pitch
-        im.set_data(render.render(page, K, SIZE, blur=blur_px).irradiance)
-        best = pinhole.optimal_pinhole_diameter(f, object_distance=1.0)
-        state.update(blur_mm=float(b.total) * 1e3, blur_px=blur_px, best_mm=best * 1e3,
+        im.set_data(render.render(chart, K, SIZE, blur=blur_px).irradiance)
+        best = pinhole.optimal_pinhole_diameter(f, object_distance=PAGE_Z)
+        rows_px = np.array(CHART_ROW_HEIGHTS) * 0.3 / 600 * f / PAGE_Z / pitch  # cap heights on the sensor
+        legible = int(np.sum(rows_px > 1.5 * blur_px))  # by eye: a letter survives a blur up to 2/3 of its height
+        state.update(blur_mm=float(b.total) * 1e3, blur_px=blur_px, best_mm=best * 1e3, legible_rows=legible,
                      limited_by="diffraction" if b.diffraction > b.geometric else "geometry")
-        readout.value = monospace(f"best d = {best * 1e3:.2f} mm\nnow {state['limited_by']}-limited\n"
-                                  f"blur {state['blur_mm']:.2f} mm = {blur_px:.1f} px")
+        readout.value = monospace(f"best d = {best * 1e3:.2f} mm (star) for Z = {PAGE_Z:g} m\n"
+                                  f"your d = {d * 1e3:.2f} mm (red line), {state['limited_by']}-limited\n"
+                                  f"blur {state['blur_mm']:.2f} mm = {blur_px:.1f} px\n"
+                                  f"rows legible: {legible} of {len(rows_px)} (letters over 1.5 x blur)")
 
     return build_demo("pinhole_size", controls, view, update, title="How big should the pinhole be?",
                       extra=[readout])

@@ -9,15 +9,20 @@ from ..plotting.plane import plane_axes
 from ._base import Demo, FigureView, build_demo, register, slider
 from ..plotting import palette
 
-# A little house outline, in plot units: the course's running example of a shape.
-HOUSE = np.array([[-1, -1], [1, -1], [1, 0.6], [0, 1.4], [-1, 0.6], [-1, -1]], dtype=float)
+# A little house outline, in plot units: the course's running example of a shape. y points down, as in
+# every image of the course, so the roof (drawn on top) has the most negative y.
+HOUSE = np.array([[-1, 1], [1, 1], [1, -0.6], [0, -1.4], [-1, -0.6], [-1, 1]], dtype=float)
 
 
 @register(lesson="00", sweep={"angle": [0.0, 45.0, 120.0], "scale": [0.5, 1.5]})
 def stack_check() -> Demo:
-    """Rotate and scale a house with two sliders; if it moves, the interactive stack works."""
+    """Rotate and scale a house with two sliders; if it moves, the interactive stack works.
+
+    The axes have y down, like every image in the course, so a positive angle turns the house clockwise.
+    """
     view = FigureView(figsize=(4.5, 4.5))
-    ax = plane_axes(view.fig.subplots(), 3, "drag the sliders")
+    ax = plane_axes(view.fig.subplots(), 3, "drag the sliders", xlabel="x (right)", ylabel="y (down)")
+    ax.invert_yaxis()  # y down, as in images and in the camera frame
     ax.plot(HOUSE[:, 0], HOUSE[:, 1], color=palette.GREY, lw=1, ls="--", label="original")
     house = view.animate(ax.plot([], [], color="tab:blue", lw=2, label="rotated and scaled")[0])
     ax.legend(loc="lower right", fontsize=8)

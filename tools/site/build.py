@@ -17,11 +17,13 @@ registry. Jupyter Book 2 / MyST would bring its own Node toolchain, theme and a 
 Markdown dialect to learn for a dozen pages; Sphinx + myst-nb the same in Python.
 
 Figures come from the display bundles (see ``camlab.plotting.static``): the PNG entry,
-with its alt text from the output metadata. Lessons are executed without saving widget
-state, so nothing on a page needs a widget manager or a kernel.
+with its alt text from the output metadata. The executed notebooks keep their widget
+state (what each live figure and control was set to, which the tests read: no figure
+shows ipympl's "Figure N" header); the pages drop it, so nothing on a page needs a widget
+manager or a kernel.
 
 The executed notebooks are kept in ``--executed`` (default ``build/executed``) for the
-tests. Nothing is fetched from the network; MathJax must be installed first
+tests (tests/test_site.py also checks their outputs for stray reprs and warnings). Nothing is fetched from the network; MathJax must be installed first
 (``make site-deps`` puts it in ``build/npm``).
 """
 from __future__ import annotations
@@ -57,12 +59,12 @@ class Page:
 
 
 def execute(path: Path, executed_dir: Path) -> Path:
-    """Run one lesson top to bottom in a fresh kernel; save it (without widget state)."""
+    """Run one lesson top to bottom in a fresh kernel; save it with its widget state (for the tests)."""
     import nbformat
     from nbclient import NotebookClient
 
     nb = nbformat.read(path, as_version=4)
-    client = NotebookClient(nb, timeout=600, kernel_name="python3", store_widget_state=False,
+    client = NotebookClient(nb, timeout=600, kernel_name="python3", store_widget_state=True,
                             resources={"metadata": {"path": str(path.parent)}})
     client.execute()
     out = executed_dir / path.name
@@ -109,6 +111,7 @@ def collect_pages(executed: list[Path], lessons: list[Path]) -> list[Page]:
     pages.append(Page(readme, "index.html", "camlab lessons", _markdown_notebook((REPO / readme).read_text("utf-8"))))
     for run, lesson in zip(executed, lessons):
         nb = nbformat.read(run, as_version=4)
+        nb.metadata.pop("widgets", None)  # static pages: no widget manager, no script from a CDN
         first = "".join(nb.cells[0].source) if nb.cells else ""
         pages.append(Page(lesson.relative_to(REPO), lesson.stem + ".html", _title(first, lesson.stem), nb))
     todo = [Path("docs/conventions.md")]
