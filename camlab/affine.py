@@ -438,7 +438,7 @@ PROJECTION_MODELS = ("orthographic", "weak perspective", "para-perspective", "pe
 def projection_rays(points_xz: ArrayLike, reference_xz: ArrayLike, model: str, image_depth: float = 1.0) -> np.ndarray:
     r"""The rays of one camera model in a top view (camera x across, z forward; centre at the origin).
 
-    Each point travels to its image on the line :math:`z =` ``image_depth`` (H&Z fig. 6.8; Szeliski
+    Each point travels to its image on the line :math:`z =` ``image_depth`` (H&Z §6.3; Szeliski
     fig. 2.7): **perspective** straight towards the centre; **orthographic** parallel to the optical
     axis (image x in metres); **weak perspective** parallel to the axis onto the plane :math:`z = d_0`
     through the reference point, then towards the centre; **para-perspective** parallel to the ray

@@ -57,7 +57,7 @@ def three_cameras():
     axes = view.fig.subplots(1, 3)
     scene = scenes.box_and_rails()
     persp = _image_panel(axes[0], "perspective (px)", "perspective")
-    weak = _image_panel(axes[1], "weak perspective over perspective (px)", "weak perspective", tick_labels=False)
+    weak = _image_panel(axes[1], "weak perspective over perspective (px)", "weak perspective")
     axes[2].set_aspect("equal")
     axes[2].set_title("orthographic (metres)", fontsize=9)
     axes[2].set_xlim(-2.2, 2.2)
@@ -66,7 +66,7 @@ def three_cameras():
     axes[2].set_yticks([-1, 0, 1])
     axes[2].tick_params(labelsize=7)
     orth = model_line(axes[2], "orthographic")
-    ghost = model_line(axes[1], "perspective", lw=0.8)
+    ghost = model_line(axes[1], "perspective", lw=0.8, zorder=1.5)  # under the blue dashes, live and redrawn alike
     model_legend(view.fig, ("perspective", "weak perspective", "orthographic"))
     view.animate(persp, ghost, weak, orth)
     controls = {
@@ -117,7 +117,7 @@ def dolly_zoom():
     distances = np.geomspace(*DOLLY_DISTANCES, 60)
     curves = {m: ax_err.loglog(distances, np.ones_like(distances), color=COLOURS[m], ls=STYLES[m], lw=1.5)[0]
               for m in APPROXIMATIONS}
-    ax_err.set_xlim(distances[0], distances[-1])
+    ax_err.set_xlim(distances[0] / 1.08, distances[-1] * 1.08)  # room for the marker at the slider's ends
     ax_err.set_ylim(0.005, 200)
     ax_err.set_title("RMS distance to the perspective image", fontsize=9)
     ax_err.set_xlabel(f"distance d (m); focal length f = {F0:.0f} d / {D0:.0f} px", fontsize=8)
@@ -201,7 +201,7 @@ def parallel_rails():
     (horizon,) = ax_p.plot([], [], color=palette.GREY, lw=0.8, ls="--")
     view.animate(*lines, vp, horizon, *texts)
     (ref,) = ax_a.plot([], [], "o", color=palette.GREY, ms=5)
-    ref_label = ax_a.text(0, 0, " X0", fontsize=8, color="0.3", va="center")
+    ref_label = ax_a.text(0, 0, "  X0", fontsize=8, color="0.2", va="center", path_effects=palette.halo(1.0))
     view.animate(ref, ref_label)
     controls = {"yaw": slider(0, -15, 15, 1, "yaw (deg)"), "pitch": slider(15, 10, 18, 1, "pitch down (deg)")}
 
@@ -240,16 +240,16 @@ def _joined(*polylines):
     return np.vstack(rows).T if rows else np.empty((2, 0))
 
 
-@register(lesson="05", sweep={"offset": [0.0, 1.0, 3.0]})
+@register(lesson="05", sweep={"offset": [0.0, 1.0, 2.5]})
 def projection_rays():
-    """A top view of four camera models (after H&Z fig. 6.8 and Szeliski fig. 2.7): how each sends the
+    """A top view of four camera models (after H&Z §6.3 and Szeliski fig. 2.7): how each sends the
     corners of a block to the image line. Move the block sideways: on the optical axis weak and
     para-perspective coincide; off it, para-perspective's rays follow the line of sight to X0."""
     view = FigureView(figsize=(10, 4.4))
     axes = view.fig.subplots(1, 4, sharey=True)
     artists = {}
     for ax, model in zip(axes, af.PROJECTION_MODELS):
-        ax.set_xlim(-0.7, 4.1)
+        ax.set_xlim(-1.0, 4.0)
         ax.set_ylim(-0.4, 7.4)
         ax.set_aspect("equal")
         ax.set_title(model, fontsize=9, color=COLOURS[model])
@@ -259,8 +259,8 @@ def projection_rays():
         ax.axhline(RAY_IMAGE, color="0.3", lw=1.0)  # the image line
         ax.plot([0], [0], "o", color="0.2", ms=4)
         if model in ("weak perspective", "para-perspective"):
-            ax.axhline(RAY_DEPTH, color=palette.GREY, lw=0.8, ls="--")  # the plane z = d0
-        block = ax.fill([], [], color=palette.GREY, alpha=0.35, lw=0)[0]
+            ax.axhline(RAY_DEPTH, color="0.4", lw=0.8, ls="--")  # the plane z = d0 (dark enough over the block)
+        block = ax.fill([], [], color=palette.GREY, alpha=0.18, lw=0)[0]  # light: rays and the plane z = d0 cross it
         rays = ax.plot([], [], color=COLOURS[model], lw=1.0)[0]
         to_centre = ax.plot([], [], color=COLOURS[model], lw=0.7, ls=(0, (2, 2)))[0]
         images = ax.plot([], [], "o", color=COLOURS[model], ms=4)[0]
@@ -269,11 +269,8 @@ def projection_rays():
         artists[model] = (block, rays, to_centre, images, truth, x0)
         view.animate(*artists[model])
     axes[0].set_ylabel("depth z (m)", fontsize=8)
-    axes[0].text(3.4, RAY_IMAGE - 0.15, "image\nline", fontsize=7, color="0.3", va="top")
-    for ax in axes[1:3]:
-        ax.text(-0.6, RAY_DEPTH + 0.1, "z = d0", fontsize=7, color="0.3")
-    axes[0].text(0.1, -0.3, "camera", fontsize=7, color="0.3")
-    controls = {"offset": slider(2.0, 0.0, 3.0, 0.25, "block's x offset (m)")}
+    axes[0].set_yticks([0, RAY_IMAGE, RAY_DEPTH], labels=["camera 0", f"image {RAY_IMAGE:g}", f"d0 = {RAY_DEPTH:g}"])
+    controls = {"offset": slider(2.0, 0.0, 2.5, 0.25, "block's x offset (m)")}
 
     def update(v, state):
         reference = np.array([float(v["offset"]), RAY_DEPTH])
