@@ -648,3 +648,26 @@ def test_functions_returning_a_pose_or_factors_name_them():
     assert np.allclose(board.R, R) and np.allclose(board.t, t)
     rq = cm.rq_decomposition(K @ R)
     assert np.allclose(rq.K, K) and np.allclose(rq.R, R)
+
+
+def test_resectioning_keeps_a_wild_fit_in_view_and_says_when_it_failed():
+    from camlab.widgets import projective_camera as demos
+
+    d = demos.resectioning()
+    d.set(n_points=6, outlier_v=-60.0, refine=True, noise=0.0)  # the review's setting: a focal length near 60 px
+    assert abs(d.state["K"][0, 0]) < 100
+    ax3d = d.figure.axes[0]
+    frustum = [ln for ln in ax3d.lines if ln.get_color() == demos.palette.ORANGE][0]
+    x, y, z = (np.asarray(a, dtype=float) for a in frustum.get_data_3d())
+    pts = np.column_stack([x, y, z])[np.isfinite(x)]
+    assert np.ptp(pts, axis=0).max() < 2.0              # shortened (13 m tall before): no frustum over the view
+    assert np.isfinite(d.state["rms"])
+    d.set(outlier_v=0.0, outlier=60.0)                  # a fit with every point behind the estimated camera
+    assert d.state["behind"] > 0 and not np.isfinite(d.state["rms"])
+
+    def texts(widget):
+        yield str(getattr(widget, "value", ""))
+        for child in getattr(widget, "children", ()):
+            yield from texts(child)
+
+    assert any("behind the estimated camera" in text for text in texts(d.widget))  # said, not a silent 'nan'

@@ -39,13 +39,14 @@ def depth_of_field_scene() -> list[Plane]:
             textured_plane(portrait(), 3.2, t=(0, 0, 4.0), name="wall")]
 
 
-def photo_and_page() -> list[Plane]:
+def photo_and_page(linear: bool = False) -> list[Plane]:
     """Lesson 03: a colour photograph 1 m ahead and a slightly turned text page beside it, at 1.1 m.
 
     A list of two :class:`Plane` (``"photo"``, ``"page"``) for :func:`camlab.render.render`,
     framed by a camera at the origin looking along +z with f = 900 px on 320 x 240 pixels.
+    ``linear``: the photograph in linear reflectance (see :func:`photo_plane`).
     """
-    return [photo_plane(0.3, t=(0.05, 0.02, 1.0)),
+    return [photo_plane(0.3, t=(0.05, 0.02, 1.0), linear=linear),
             text_page(0.2, t=(-0.2, 0.0, 1.1), R=rotation_from_euler(0, 0.2, 0.05))]
 
 
