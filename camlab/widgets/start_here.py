@@ -7,7 +7,7 @@ from matplotlib.colors import to_rgba
 
 from .. import projective as pj
 from ..plotting.plane import plane_axes
-from ._base import Demo, FigureView, build_demo, register, slider
+from ._base import Demo, FigureView, display_mode, build_demo, register, slider
 from .controls import monospace
 from ..plotting import palette
 
@@ -51,3 +51,27 @@ def stack_check() -> Demo:
         "scale": slider(1.0, 0.3, 2.0, 0.05, "scale"),
     }
     return build_demo("stack_check", controls, view, update, title="Is everything working?", extra=[readout])
+
+
+def stack_report() -> str:
+    """What the kernel can see of the interactive stack: the versions, and whether demos will be live figures.
+
+    The browser's half (JupyterLab's ipywidgets and ipympl extensions) is out of the kernel's
+    sight: the demo below is its test.
+    """
+    from importlib.metadata import PackageNotFoundError, version
+
+    import matplotlib
+
+    from .. import __version__
+
+    try:
+        ipympl = version("ipympl")
+    except PackageNotFoundError:
+        ipympl = "missing"
+    versions = (f"camlab {__version__}, numpy {np.__version__}, matplotlib {matplotlib.__version__}, "
+                f"ipywidgets {W.__version__}, ipympl {ipympl}")
+    if display_mode() == "ipympl":
+        return versions + "\nfigures: live (%matplotlib widget is on); the demo below tests the browser's side"
+    return (versions + f"\nfigures: still pictures, not live: the matplotlib backend is {matplotlib.get_backend()!r}; "
+            "run `%matplotlib widget` first (the setup cell's first line)")
