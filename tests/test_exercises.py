@@ -280,3 +280,37 @@ def test_time_limit_runs_without_a_timer_off_the_main_thread():
     thread.start()
     thread.join(5)
     assert seen == [45]
+
+
+@pytest.mark.parametrize("name", sorted(EXERCISES))
+@pytest.mark.parametrize("answer", ["oops", [np.zeros(2), 1.0], {"x": 1}], ids=["str", "ragged list", "dict"])
+def test_an_answer_that_is_not_numbers_is_named_not_a_crash_inside_camlab(name, answer):
+    with pytest.raises(AssertionError) as info:
+        check(name, lambda *args: answer)
+    message = str(info.value)
+    assert "likely cause" in message, message
+    expected = EXERCISES[name].reference(*EXERCISES[name].cases()[0])
+    if isinstance(expected, (np.ndarray, float)):  # answers of other kinds (pairs of arrays) have their own hints
+        assert f"you returned a {type(answer).__name__}" in message, message
+
+
+def test_lift_rejects_a_list_since_its_prompt_asks_for_an_array_and_names_the_fix():
+    with pytest.raises(AssertionError, match=r"wrong type of answer.*\n.*\n  got      \[2\.5, 4\.25, 1\.0\]  \(a list\)"
+                                             r"(.|\n)*you returned a list; return a numpy array of shape \(3,\)"):
+        check("lift", lambda p: [p[0], p[1], 1.0])
+
+
+def test_ndarray_answer_is_not_demanded_where_the_prompt_does_not_ask(capsys):
+    assert check("pinhole_projection", lambda X, f: (f * np.asarray(X)[:, :2] / np.asarray(X)[:, [2]]).tolist())
+
+
+def test_a_ragged_np_array_inside_the_students_function_gets_a_hint():
+    with pytest.raises(AssertionError, match=r"raised ValueError(.|\n)*likely cause: an array beside numbers.*np\.append"):
+        check("lift", lambda p: np.array([p, 1]))
+
+
+@pytest.mark.parametrize("right", [lambda p: np.r_[p, 1], lambda p: np.hstack([p, 1]), lambda p: np.concatenate((p, [1.0])),
+                                   lambda p: np.array([p[0], p[1], 1]), lambda p: np.append(p, 1).astype(np.float32)],
+                         ids=["r_", "hstack", "concatenate", "int literal", "float32"])
+def test_lift_passes_right_answers_in_other_forms(right, capsys):
+    assert check("lift", right).passed is True

@@ -6,7 +6,9 @@ comparison and a diagnosis. ``check`` runs the student's function on every input
 * a stub that raises NotImplementedError prints "not attempted yet" and returns a false
   :class:`CheckResult`, so a lesson with untouched exercises still runs top to bottom in CI;
 * a wrong answer raises AssertionError naming the input, what came out, what was
-  expected and the likely cause;
+  expected and the likely cause; so does an answer of the wrong type (a string, a
+  list of an array and a number, or, where the prompt asks for a numpy array, any list),
+  named by :func:`type_problem`;
 * a function still running after :data:`TIME_LIMIT_S` seconds on one input is stopped,
   and the AssertionError names that input (see :func:`time_limit`);
 * a right answer prints a congratulation and returns a true :class:`CheckResult`.
@@ -52,6 +54,8 @@ class Exercise:
     diagnose: Callable[[tuple, Any, Any], str]
     wrong_variants: Sequence[tuple[Callable[..., Any], str]] = field(default_factory=tuple)
     teaching: Callable[..., Any] | None = None
+    ndarray_only: bool = False
+    """The prompt asks for a numpy array: a list or tuple of the right numbers is rejected too."""
 
 
 EXERCISES: dict[str, Exercise] = {}
@@ -72,8 +76,11 @@ def _fmt(value: Any) -> str:
             span = f", values {finite.min():.4g} .. {finite.max():.4g}" if finite.size else ""
             return f"<array of shape {value.shape}, dtype {value.dtype}{span}>"
         return np.array2string(value, precision=4, suppress_small=True, separator=", ")
+    if isinstance(value, np.generic):
+        return repr(value.item())  # 2.5, not np.float64(2.5)
     if isinstance(value, (tuple, list)):
-        return "(" + ", ".join(_fmt(v) for v in value) + ")"
+        inner = ", ".join(_fmt(v) for v in value)
+        return f"[{inner}]" if isinstance(value, list) else f"({inner})"
     return repr(value)
 
 
@@ -185,6 +192,15 @@ def check(name: str, student_function: Callable[..., Any]) -> CheckResult:
         if got is None:
             raise AssertionError(f"{name}: your function returned None on test input {i + 1}\n"
                                  f"  likely cause: did you forget `return`? The last line should be `return <result>`.")
+        wrong_type = type_problem(got, expected, exercise.ndarray_only)
+        if wrong_type:
+            raise AssertionError(
+                f"{name}: wrong type of answer on test input {i + 1} of {len(cases)}\n"
+                f"  input    {_fmt(args)}\n"
+                f"  got      {_fmt(got)}  (a {type(got).__name__})\n"
+                f"  expected {_fmt(expected)}\n"
+                f"  likely cause: {wrong_type}"
+            )
         if not exercise.compare(got, expected):
             tolerance = exercise.compare.tolerance if isinstance(exercise.compare, SameArray) else None
             raise AssertionError(
@@ -204,7 +220,38 @@ def _exception_hint(exc: Exception) -> str:
     if isinstance(exc, ValueError) and "broadcast" in str(exc):
         return ("\n  likely cause: a broadcasting slip. Dividing an (N, 2) array by an (N,) column such as X[:, 2]"
                 " lines the column up with the last axis; keep it 2-D: X[:, 2:3], X[:, 2, None] or keepdims=True")
+    if isinstance(exc, ValueError) and "inhomogeneous" in str(exc):
+        return f"\n  likely cause: an array beside numbers, as in np.array([p, 1]), makes no array of numbers: {_JOIN}"
     return ""
+
+
+_JOIN = "join an array and numbers with np.append(p, 1.0), np.concatenate or np.hstack"
+
+
+def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | None:
+    """Why ``got`` is the wrong type of answer for an array or a number ``expected``, or None.
+
+    Catches what numpy cannot turn into numbers (a string, a list holding an array and a
+    number) and, with ``ndarray_only``, a list or tuple where the prompt asks for an array.
+    Answers of other kinds (pairs of arrays...) are left to the exercise's compare and diagnose.
+    """
+    if isinstance(expected, np.ndarray):
+        wanted = f"return a numpy array of shape {expected.shape}"
+    elif isinstance(expected, (float, int, np.number)):
+        wanted = "return one number"
+    else:
+        return None
+    kind = type(got).__name__
+    try:
+        np.asarray(got, dtype=float)
+    except (TypeError, ValueError):
+        if isinstance(got, (list, tuple)):
+            return (f"you returned a {kind} that numpy cannot turn into one array of numbers (an array beside "
+                    f"numbers, such as [p, 1]?); {wanted}: {_JOIN}")
+        return f"you returned a {kind}, which is not numbers; {wanted}"
+    if ndarray_only and not isinstance(got, np.ndarray):
+        return f"you returned a {kind}; {wanted}: wrap the values in np.array(...)"
+    return None
 
 
 def _as_array(value: Any) -> Any:
@@ -336,9 +383,12 @@ def same_array(rtol: float = 1e-5, atol: float = 1e-8) -> SameArray:
 
 def shape_problem(got: Any, expected: np.ndarray) -> str | None:
     """A diagnosis for the commonest mistakes (wrong shape, NaN), or None."""
-    g = np.asarray(got, dtype=float) if got is not None else None
-    if g is None:
+    if got is None:
         return "the function returned None: did you forget `return`?"
+    wrong_type = type_problem(got, expected)
+    if wrong_type:
+        return wrong_type
+    g = np.asarray(got, dtype=float)
     if g.shape != np.shape(expected):
         return f"expected an array of shape {np.shape(expected)}, got shape {g.shape}"
     if not np.isfinite(g).all():

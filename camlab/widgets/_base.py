@@ -33,7 +33,8 @@ from ._transport import halo_in_two_passes, show_at_display_resolution, use_fast
 from .controls import slider as slider  # re-exported: every demo module imports it from here
 
 
-def _display_mode() -> str:
+def display_mode() -> str:
+    """How figures will show: "ipympl" (live, `%matplotlib widget`), "png" (a kernel without it) or "agg" (headless)."""
     forced = os.environ.get("CAMLAB_FIGURE_MODE")
     if forced:
         return forced
@@ -60,7 +61,7 @@ class FigureView:
     """
 
     def __init__(self, figsize: tuple[float, float] = (8, 4), mode: str | None = None, dpi: float = 90):
-        self.mode = mode or _display_mode()
+        self.mode = mode or display_mode()
         self._animated: list[Any] = []
         self._background = None
         if self.mode == "ipympl":
