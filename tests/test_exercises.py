@@ -280,3 +280,21 @@ def test_time_limit_runs_without_a_timer_off_the_main_thread():
     thread.start()
     thread.join(5)
     assert seen == [45]
+
+
+def test_a_right_answer_that_changes_its_input_in_place_fails_naming_the_argument():
+    """An in-place change of the caller's array (a typical mistake) fails, even when the answer is right."""
+    from camlab import distortion
+
+    def scaled_in_place(x, dist):
+        out = distortion.distort_points(x, dist)
+        x *= 1.0 + 0 * x  # a no-op in value: nothing changes, so this passes
+        return out
+
+    def overwritten(x, dist):
+        x[:] = distortion.distort_points(x, dist)
+        return x
+
+    assert check("distort_points", scaled_in_place)
+    with pytest.raises(AssertionError, match=r"changed its input `x` in place.*\n.*likely cause: an in-place operation"):
+        check("distort_points", overwritten)
