@@ -314,3 +314,21 @@ def test_a_ragged_np_array_inside_the_students_function_gets_a_hint():
                          ids=["r_", "hstack", "concatenate", "int literal", "float32"])
 def test_lift_passes_right_answers_in_other_forms(right, capsys):
     assert check("lift", right).passed is True
+
+
+def test_a_right_answer_that_changes_its_input_in_place_fails_naming_the_argument():
+    """An in-place change of the caller's array (a typical mistake) fails, even when the answer is right."""
+    from camlab import distortion
+
+    def scaled_in_place(x, dist):
+        out = distortion.distort_points(x, dist)
+        x *= 1.0 + 0 * x  # a no-op in value: nothing changes, so this passes
+        return out
+
+    def overwritten(x, dist):
+        x[:] = distortion.distort_points(x, dist)
+        return x
+
+    assert check("distort_points", scaled_in_place)
+    with pytest.raises(AssertionError, match=r"changed its input `x` in place.*\n.*likely cause: an in-place operation"):
+        check("distort_points", overwritten)

@@ -9,6 +9,8 @@ comparison and a diagnosis. ``check`` runs the student's function on every input
   expected and the likely cause; so does an answer of the wrong type (a string, a
   list of an array and a number, or, where the prompt asks for a numpy array, any list),
   named by :func:`type_problem`;
+* a function that changes an input array in place fails, naming the argument (the
+  caller's data must come back as it went in), even if its answer is right;
 * a function still running after :data:`TIME_LIMIT_S` seconds on one input is stopped,
   and the AssertionError names that input (see :func:`time_limit`);
 * a right answer prints a congratulation and returns a true :class:`CheckResult`.
@@ -158,11 +160,42 @@ def time_limit(seconds: float) -> Iterator[None]:
             signal.setitimer(signal.ITIMER_REAL, max(outer_delay - (time.monotonic() - start), 1e-3), outer_interval)
 
 
+def _inputs_changed(original: tuple, passed: tuple) -> list[int]:
+    """Positions of the array arguments that differ, after the student's call, from the originals."""
+    changed = []
+    for k, (before, after) in enumerate(zip(original, passed)):
+        if isinstance(before, np.ndarray):
+            same = before.shape == np.shape(after) and np.array_equal(
+                before, after, equal_nan=before.dtype.kind in "fc")
+            if not same:
+                changed.append(k)
+    return changed
+
+
+def _parameter_name(function: Callable[..., Any], position: int) -> str:
+    """The name of ``function``'s parameter at ``position`` (for messages), or 'argument k'."""
+    try:
+        names = list(inspect.signature(function).parameters)
+    except (TypeError, ValueError):
+        names = []
+    return f"`{names[position]}`" if position < len(names) else f"argument {position + 1}"
+
+
+def _in_place_message(name: str, student_function: Callable[..., Any], changed: list[int], i: int, n: int) -> str:
+    what = ", ".join(_parameter_name(student_function, k) for k in changed)
+    return (f"{name}: your function changed its input {what} in place (test input {i + 1} of {n}); the caller's "
+            f"array must come back as it went in\n"
+            f"  likely cause: an in-place operation on an argument (`x *= L`, `x[:, 0] = ...`, `x += ...`); "
+            f"build a new array instead (`x * L`), or work on a copy first (`x = np.array(x, dtype=float)`)")
+
+
 def _run_student(name: str, student_function: Callable[..., Any], args: tuple, i: int, n: int) -> Any:
-    """The student's answer on test input ``i`` of ``n``; AssertionError on a crash or an endless run."""
+    """The student's answer on test input ``i`` of ``n``; AssertionError on a crash, an endless run or
+    an input changed in place."""
+    passed = _copy(args)
     try:
         with time_limit(TIME_LIMIT_S):
-            return student_function(*_copy(args))
+            got = student_function(*passed)
     except NotImplementedError:
         raise
     except OutOfTime:
@@ -176,6 +209,10 @@ def _run_student(name: str, student_function: Callable[..., Any], args: tuple, i
             f"{name}: your function raised {type(exc).__name__}: {exc}\n"
             f"  on input {_fmt(args)}" + _exception_hint(exc)
         ) from exc
+    changed = _inputs_changed(args, passed)
+    if changed:
+        raise AssertionError(_in_place_message(name, student_function, changed, i, n))
+    return got
 
 
 def check(name: str, student_function: Callable[..., Any]) -> CheckResult:

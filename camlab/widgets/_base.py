@@ -109,8 +109,18 @@ class FigureView:
             # Freeze the layout that draw computed: blitting needs the axes to stay put.
             self.fig.set_layout_engine("none")
 
+    def _in_draw_order(self) -> list[Any]:
+        """The animated artists in the order a full draw paints them: axes by axes (figure texts last), then zorder.
+
+        Drawing them in registration order would let a fill registered after a line cover it
+        live but not in a full redraw (a colour that changes on the first move).
+        """
+        axes = self.fig.axes
+        return sorted(self._animated, key=lambda a: (axes.index(a.axes) if getattr(a, "axes", None) in axes else len(axes),
+                                                     a.get_zorder()))
+
     def _draw_animated(self) -> None:
-        for artist in self._animated:
+        for artist in self._in_draw_order():
             if hasattr(artist, "do_3d_projection"):
                 # 3-D fills and patches keep the 2-D paths of the last full draw: Axes3D.draw
                 # projects them, draw_artist does not, so a moved face would be drawn where it was.
