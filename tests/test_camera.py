@@ -397,6 +397,23 @@ def test_wireframes_and_project_segments(cam):
         cm.project_segments(cam, np.zeros((3, 3)))
 
 
+
+def test_project_segments_clips_a_segment_that_runs_behind_the_camera():
+    cam = cm.Camera(cm.intrinsic_matrix(800, 800, 319.5, 239.5), np.eye(3), [0.0, 0.0, 0.0])
+    segs = np.array([[[0.5, 0.2, 4.0], [0.5, 0.2, -2.0]],     # from 4 m in front to 2 m behind
+                     [[0.0, 0.0, -1.0], [1.0, 0.0, -3.0]],     # wholly behind
+                     [[-1.0, 0.0, 2.0], [1.0, 0.0, 2.0]]])     # wholly in front
+    for camera in (cam, cam.P, -2.0 * cam.P):                 # a Camera, or P at any scale and sign
+        pix = cm.project_segments(camera, segs)
+        assert np.allclose(pix[0, 0], [319.5 + 100, 239.5 + 40])   # the front end is untouched
+        far = pix[0, 1] - [319.5, 239.5]                          # the clipped end: same ray direction, far out
+        assert np.all(np.isfinite(far)) and np.linalg.norm(far) > 1e4
+        assert np.allclose(far / np.linalg.norm(far), np.array([0.5, 0.2]) / np.hypot(0.5, 0.2))
+        assert np.isnan(pix[1]).all() and np.allclose(pix[2], [[-80.5, 239.5], [719.5, 239.5]])
+    affine = cm.project_segments(np.array([[100.0, 0, 0, 0], [0, 100, 0, 0], [0, 0, 0, 1]]), segs)
+    assert np.allclose(affine[0], [[50, 20], [50, 20]])     # affine cameras clip nothing
+
+
 # -- 3-D views (camlab.plotting.scene3d) --------------------------------------------------------
 
 def _agg_figure():

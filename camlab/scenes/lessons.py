@@ -75,7 +75,7 @@ def rail_track(start: float = -3.0, end: float = 40.0) -> np.ndarray:
 def sleeper_gaps(P: ArrayLike, at: Sequence[float] = (-2.0, 20.0)) -> np.ndarray:
     """Lesson 05: the image length (pixels) under the camera matrix ``P`` of one metre of :func:`rail_track`
     (the ground line x = 0 from y to y + 1) for each y in ``at`` metres: equal for an affine
-    camera, shrinking with distance for a perspective one (foreshortening)."""
+    camera, shrinking with distance for a perspective one (perspective diminution)."""
     ys = np.atleast_1d(np.asarray(at, dtype=float))
     zero = np.zeros_like(ys)
     near_end = project_points(P, np.column_stack([zero, ys, zero]))
