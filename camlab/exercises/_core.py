@@ -259,6 +259,10 @@ def _exception_hint(exc: Exception) -> str:
                 " lines the column up with the last axis; keep it 2-D: X[:, 2:3], X[:, 2, None] or keepdims=True")
     if isinstance(exc, ValueError) and "inhomogeneous" in str(exc):
         return f"\n  likely cause: an array beside numbers, as in np.array([p, 1]), makes no array of numbers: {_JOIN}"
+    if isinstance(exc, ValueError) and "matmul" in str(exc):
+        return ("\n  likely cause: the sizes of a matrix product do not fit (A @ B needs A's columns = B's rows)."
+                " With points as rows, a matrix M acts as X @ M.T, not X @ M; and lift points to homogeneous"
+                " coordinates (append a column of ones) before a 3 x 4 or 3 x 3 projective matrix")
     return ""
 
 
