@@ -25,16 +25,6 @@ def _not_an_array(got) -> str | None:
             f"on the whole image, without .tolist())")
 
 
-class _SameNdarray(SameArray):
-    """SameArray that also rejects a list of the right numbers: the prompt asks for a numpy array.
-
-    (Lesson 00's branch adds ``Exercise(ndarray_only=True)`` to _core for this; use it once merged.)
-    """
-
-    def __call__(self, got, expected) -> bool:
-        return isinstance(got, np.ndarray) and super().__call__(got, expected)
-
-
 def _same_after_cast(got: np.ndarray, candidate: np.ndarray) -> bool:
     """``got`` equals ``candidate`` cast to got's dtype (so a wrapped-around uint8 still matches its cause)."""
     with np.errstate(invalid="ignore", over="ignore"):
@@ -208,8 +198,9 @@ register_exercise(Exercise(
     lesson="03",
     reference=sensor.demosaic_bilinear,
     cases=_demosaic_cases,
-    compare=_SameNdarray(Tolerance(1e-5, 1e-9)),
+    compare=SameArray(Tolerance(1e-5, 1e-9)),
     diagnose=_demosaic_diagnosis,
+    ndarray_only=True,
     wrong_variants=(
         (_zero_padded_demosaic, "border"),
         (lambda raw, pattern: sensor.demosaic_bilinear(raw, "GRBG" if pattern == "RGGB" else "RGGB"), "measured samples"),
