@@ -26,6 +26,7 @@ numpy and builtins.
 from __future__ import annotations
 
 import inspect
+import re
 import signal
 import threading
 import time
@@ -74,6 +75,8 @@ def _fmt(value: Any) -> str:
         return np.array2string(value, precision=4, suppress_small=True, separator=", ")
     if isinstance(value, (tuple, list)):
         return "(" + ", ".join(_fmt(v) for v in value) + ")"
+    if isinstance(value, np.generic):  # 0.000365, not np.float64(0.000365)
+        return repr(value.item())
     return repr(value)
 
 
@@ -151,11 +154,30 @@ def time_limit(seconds: float) -> Iterator[None]:
             signal.setitimer(signal.ITIMER_REAL, max(outer_delay - (time.monotonic() - start), 1e-3), outer_interval)
 
 
+def _changed_in_place(args: tuple, given: tuple) -> int | None:
+    """The position of the first array argument the student's function changed, or None."""
+    for k, (a, b) in enumerate(zip(args, given)):
+        if isinstance(a, np.ndarray) and isinstance(b, np.ndarray):
+            try:
+                same = a.shape == b.shape and np.array_equal(a, b, equal_nan=a.dtype.kind in "fc")
+            except TypeError:  # an object array: compare without NaN handling
+                same = a.shape == b.shape and np.array_equal(a, b)
+            if not same:
+                return k
+    return None
+
+
 def _run_student(name: str, student_function: Callable[..., Any], args: tuple, i: int, n: int) -> Any:
-    """The student's answer on test input ``i`` of ``n``; AssertionError on a crash or an endless run."""
+    """The student's answer on test input ``i`` of ``n``; AssertionError on a crash, an endless run or a changed input.
+
+    The function gets copies of the inputs, so the check's own are safe; a function that changes
+    its argument in place would still corrupt a student's data (the course's functions never
+    modify their inputs), so that fails too, naming the argument.
+    """
+    given = _copy(args)
     try:
         with time_limit(TIME_LIMIT_S):
-            return student_function(*_copy(args))
+            answer = student_function(*given)
     except NotImplementedError:
         raise
     except OutOfTime:
@@ -169,6 +191,19 @@ def _run_student(name: str, student_function: Callable[..., Any], args: tuple, i
             f"{name}: your function raised {type(exc).__name__}: {exc}\n"
             f"  on input {_fmt(args)}" + _exception_hint(exc)
         ) from exc
+    changed = _changed_in_place(args, given)
+    if changed is not None:
+        try:
+            params = list(inspect.signature(student_function).parameters)
+        except (TypeError, ValueError):  # a builtin or a C function: no signature
+            params = []
+        arg = f"`{params[changed]}`" if changed < len(params) else f"argument {changed + 1}"
+        raise AssertionError(
+            f"{name}: your function changed its input {arg} in place on test input {i + 1} of {n}\n"
+            f"  input    {_fmt(args)}\n"
+            f"  likely cause: an in-place operation on the argument (`X[:, :2] *= ...`, `X /= ...`, `X[...] = ...`);"
+            f" the caller's array would be silently changed. Build a new array, or start with `X = X.copy()`")
+    return answer
 
 
 def check(name: str, student_function: Callable[..., Any]) -> CheckResult:
@@ -201,6 +236,12 @@ def check(name: str, student_function: Callable[..., Any]) -> CheckResult:
 
 def _exception_hint(exc: Exception) -> str:
     """A likely cause for the errors students meet most ('' for the others)."""
+    one_based = ("\n  likely cause: counting columns from 1. Python counts from 0: the columns of an (N, 3) array"
+                 " are 0, 1 and 2 (x, y, z), so z is X[:, 2] or X[:, 2:3]")
+    if isinstance(exc, IndexError) and "out of bounds" in str(exc):
+        return one_based
+    if isinstance(exc, ValueError) and "broadcast" in str(exc) and re.search(r"\(\d+,0\)|\(0,", str(exc)):
+        return one_based + " (a slice past the last column, X[:, 3:4], is empty)"
     if isinstance(exc, ValueError) and "broadcast" in str(exc):
         return ("\n  likely cause: a broadcasting slip. Dividing an (N, 2) array by an (N,) column such as X[:, 2]"
                 " lines the column up with the last axis; keep it 2-D: X[:, 2:3], X[:, 2, None] or keepdims=True")
@@ -256,7 +297,14 @@ def solution(name: str) -> str:
         source = (inspect.getsource(exercise.teaching)
                   + f"\n# camlab's own, tested implementation: {where} (read it with {where}??)\n")
     print(source)
-    return source
+    return _PrintedText(source)
+
+
+class _PrintedText(str):
+    """A string already printed: ending a cell, it shows nothing more (no escaped ``Out[]`` copy)."""
+
+    def _ipython_display_(self) -> None:
+        """IPython's display hook: the text is on the page already."""
 
 
 def same_up_to_scale(got: Any, expected: np.ndarray, rtol: float = 1e-6) -> bool:

@@ -88,7 +88,11 @@ class FigureView:
         """Register artists that updates move; returns them (one artist if one was given).
 
         Images among them keep their data at the resolution they are shown; haloed lines draw
-        their halo as a plain pass (see :mod:`._transport`).
+        their halo as a plain pass (see :mod:`._transport`). An image's axes frame (its spines)
+        is animated with it: a static spine would be in the cached background, under the image.
+        Anything static that must show *above* an animated artist (a marker on a moving line)
+        must be animated too, for the same reason: the live path paints animated artists over
+        the whole background, in zorder, as a full draw does.
         """
         for artist in artists:
             if isinstance(artist, AxesImage):
@@ -96,6 +100,8 @@ class FigureView:
             halo_in_two_passes(artist)
             artist.set_animated(True)
             self._animated.append(artist)
+            if isinstance(artist, AxesImage):
+                self.animate(*(s for s in artist.axes.spines.values() if s not in self._animated))
         return artists[0] if len(artists) == 1 else artists
 
     def _on_full_draw(self, _event: Any = None) -> None:
@@ -109,7 +115,8 @@ class FigureView:
             self.fig.set_layout_engine("none")
 
     def _draw_animated(self) -> None:
-        for artist in self._animated:
+        # in zorder, as a full draw orders each axes' artists (stable: ties keep their registration order)
+        for artist in sorted(self._animated, key=lambda a: a.get_zorder()):
             if hasattr(artist, "do_3d_projection"):
                 # 3-D fills and patches keep the 2-D paths of the last full draw: Axes3D.draw
                 # projects them, draw_artist does not, so a moved face would be drawn where it was.

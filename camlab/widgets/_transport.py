@@ -156,17 +156,28 @@ def show_at_display_resolution(image: Any) -> None:
     """
     set_data, set_extent, make_image = image.set_data, image.set_extent, image.make_image
     source: list[Any] = [None]  # the caller's full array, to refit when the extent changes
+    fitted_for: list[Any] = [None]  # the canvas pixels the data was fitted to
+
+    def refit() -> None:
+        fitted_for[0] = _pixel_box(image)
+        set_data(_fit_to_display(image, source[0]))
 
     def fitted_data(array: Any) -> None:  # set_array calls it too
         source[0] = array
-        set_data(_fit_to_display(image, array))
+        refit()
 
     def fitted_extent(extent: Any, **kwargs: Any) -> None:
         set_extent(extent, **kwargs)
         if source[0] is not None:
-            set_data(_fit_to_display(image, source[0]))
+            refit()
 
     def screen_image(renderer: Any, magnification: float = 1.0, unsampled: bool = False):
+        if source[0] is not None and _pixel_box(image) != fitted_for[0]:
+            # The layout moved the axes since set_data (a first draw lays the figure out): fit the
+            # data to where it lands now, or the first draw shows other pixels than every later frame.
+            stale = image.stale
+            refit()
+            image.stale = stale
         fast = None if unsampled or magnification != 1.0 else _screen_image(image)
         if fast is None:
             return make_image(renderer, magnification, unsampled)
