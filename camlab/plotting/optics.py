@@ -187,7 +187,7 @@ def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
         "dims": {k: _dimension(ax, c) for k, c in (("f", "k"), ("Z", "k"), ("Y", palette.BLUE), ("y", palette.GREEN),
                                                     ("y_real", palette.RED))},
     }
-    ax.set_xlim(-0.36 * z_max, 1.08 * z_max)  # room left of the real plane for its label at f = 1 m
+    ax.set_xlim(-0.36 * z_max, 1.14 * z_max)  # room for the real plane's label at f = 1 m and for Y's at Z = 5 m
     ax.set_ylim(-h_max, h_max)
     ax.set_aspect("equal")  # similar triangles look similar only at equal scales
     ax.set_xlabel("depth z (m)")
@@ -415,7 +415,7 @@ def draw_pinhole_cones(ax, diameter: float, focal_length: float, object_distance
     Z, f, d = object_distance, focal_length, diameter
     b = _pinhole.pinhole_blur(d, f, Z, wavelength)
     a = d / 2 * 1e3
-    for Y, colour in zip(heights, (palette.BLUE, palette.GREEN)):
+    for Y, colour in zip(heights, (palette.BLUE, palette.PURPLE)):  # objects: blue and purple (green is the virtual plane)
         y_obj = -Y * 1e3                    # mm, drawn up
         y_img = Y * f / Z * 1e3             # the real image is inverted: -f Y / Z, drawn up as +
         top, bottom = y_img + b.geometric / 2 * 1e3, y_img - b.geometric / 2 * 1e3

@@ -15,7 +15,8 @@ from ..scenes.planes import CHART_ROW_HEIGHTS
 SIZE = (320, 240)
 PITCH = 36e-3 / SIZE[0]  # a 36 mm wide sensor with 320 pixels: 112.5 um pixels
 DRAW_SCALE = 16.0  # the 3-D view draws the image planes up to 16x further from the pinhole than f...
-PLANE_ROOM = 0.45  # ...but never beyond 45 % of the way to the box's nearest corner
+PLANE_ROOM = 0.45  # ...but never beyond 45 % of the way to the box's nearest corner...
+PLANE_MAX = 0.95  # ...nor beyond the 3-D view's near end at z = -1.1 m (the real plane's frame)
 
 
 def _box_outline(faces) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray]]:
@@ -58,7 +59,7 @@ def pinhole_projection():
         e, faces = _box_outline(scene[0])
         corners = np.unique(e.reshape(-1, 3), axis=0)
         # the image planes as far out as fits (a big picture of the box), always between pinhole and box
-        f_draw = min(DRAW_SCALE * f, PLANE_ROOM * corners[:, 2].min())
+        f_draw = min(DRAW_SCALE * f, PLANE_ROOM * corners[:, 2].min(), PLANE_MAX)
         optics.update_pinhole_3d(art, e, f_draw, faces)
         K = sensor.intrinsics_from_sensor(f, (PITCH, PITCH), SIZE)
         img = render.render(scene, K, SIZE).irradiance
