@@ -40,8 +40,9 @@ from ._validate import (
 from .camera import Camera, intrinsic_matrix, orbit_eye, project_points, project_segments
 
 __all__ = [
-    "affine_approximation", "dolly_zoom_camera", "dolly_zoom_errors", "dolly_zoom_focal", "estimate_affine_camera", "image_of_direction",
-    "is_affine", "orthographic_matrix", "paraperspective_approximation", "scaled_orthographic_matrix", "ThreeImages", "three_images",
+    "affine_approximation", "affine_fit_departure", "dolly_zoom_camera", "dolly_zoom_errors", "dolly_zoom_focal", "estimate_affine_camera", "image_of_direction",
+    "is_affine", "largest_gap_in_frame", "orthographic_matrix", "paraperspective_approximation", "projection_rays", "PROJECTION_MODELS",
+    "scaled_orthographic_matrix", "ThreeImages", "three_images",
     "weak_perspective_error", "weak_perspective_matrix",
 ]
 
@@ -196,14 +197,19 @@ def paraperspective_approximation(camera: Camera, reference_point: ArrayLike) ->
     the **ray through** :math:`X_0` instead. In camera coordinates, with
     :math:`(a, b) = (x_0 / d_0, y_0 / d_0)` the reference point's normalised image position,
 
-    .. math:: x_n = rac{x - a\,(z - d_0)}{d_0}, \qquad y_n = rac{y - b\,(z - d_0)}{d_0},
+    .. math:: x_n = \frac{x - a\,(z - d_0)}{d_0}, \qquad y_n = \frac{y - b\,(z - d_0)}{d_0},
 
-    which is the first-order Taylor expansion of :math:`(x / z, y / z)` about :math:`X_0`. A point
-    at depth :math:`d_0 + \Delta` is off by about :math:`\Delta / d_0` times its image distance
-    from the image of :math:`X_0`; weak perspective's error is :math:`\Delta / d_0` times the distance
-    from the principal point. So the two coincide on the optical axis, and para-perspective is much
-    better for an object seen off-centre. It is still an affine camera: last row (0, 0, 0, 1),
-    8 degrees of freedom in general.
+    which is the first-order Taylor expansion of :math:`(x / z, y / z)` about :math:`X_0`. Its error is
+    exact and simple: a point at depth :math:`d_0 + \Delta` lands at
+
+    .. math:: x_{\text{para}} - x_{\text{proj}} = \frac{\Delta}{d_0}\,(x_{\text{proj}} - x_{X_0}),
+
+    :math:`\Delta / d_0` times its perspective image's distance from the image of :math:`X_0`, where weak
+    perspective has the distance from the principal point (:func:`affine_approximation`). So the two
+    coincide when :math:`X_0` is on the optical axis, and para-perspective is much better for an object
+    seen off-centre. It is still an affine camera (last row (0, 0, 0, 1)), but not a weak-perspective
+    one: in general (:math:`a b \neq 0`) the rows of its :math:`M_2` are neither orthogonal nor of equal
+    length, so it is a general affine camera (8 degrees of freedom, H&Z §6.3.4).
 
     Parameters
     ----------
@@ -301,6 +307,23 @@ def three_images(camera: Camera, segments: ArrayLike) -> ThreeImages:
     return ThreeImages(perspective, project_segments(P_weak, segs), project_segments(P_orth, segs), P_weak, P_orth)
 
 
+def largest_gap_in_frame(camera: Camera, P_affine: ArrayLike, segments: ArrayLike, size: tuple[int, int] = (640, 480),
+                         samples: int = 41) -> float:
+    """The largest distance (pixels) between the perspective and the affine image of the same world point,
+    over ``samples`` points along each (M, 2, 3) segment whose two images both fall inside the
+    ``size`` = (width, height) frame (NaN if none does): what a reader can see in the picture."""
+    segs = check_finite(np.asarray(segments, dtype=float), "segments")
+    if segs.ndim != 3 or segs.shape[1:] != (2, 3):
+        raise CamlabInputError(f"segments: expected (M, 2, 3) pairs of world points, got shape {segs.shape}")
+    s = np.linspace(0.0, 1.0, samples)[None, :, None]
+    X = (segs[:, :1] + s * (segs[:, 1:] - segs[:, :1])).reshape(-1, 3)
+    a, b = camera.replace(dist=(0.0,) * 5).project(X), project_points(P_affine, X)
+    w, h = size
+    inside = np.all([(p[:, 0] >= -0.5) & (p[:, 0] <= w - 0.5) & (p[:, 1] >= -0.5) & (p[:, 1] <= h - 0.5)
+                     for p in (a, b)], axis=0)
+    return float(np.linalg.norm(a[inside] - b[inside], axis=1).max()) if inside.any() else float("nan")
+
+
 def weak_perspective_error(camera: Camera, points_world: ArrayLike, reference_point: ArrayLike | None = None,
                            approximation: Callable[[Camera, ArrayLike], np.ndarray] | None = None) -> np.ndarray:
     r"""Per-point pixel distance between perspective and weak-perspective images.
@@ -388,3 +411,68 @@ def image_of_direction(P: ArrayLike, direction: ArrayLike) -> np.ndarray:
     if not np.any(d):
         raise CamlabInputError("direction: expected a non-zero 3-vector, got (0, 0, 0)")
     return Pm[:, :3] @ d
+
+
+def affine_fit_departure(H: ArrayLike, size: tuple[int, int], samples: int = 30) -> float:
+    r"""How far the homography ``H`` is from an affine map over a ``size`` = (width, height) image: the
+    largest distance (pixels) between ``H`` and its least-squares affine fit on a ``samples`` x ``samples``
+    grid of pixel centres spanning the image.
+
+    Two affine cameras see a plane through affine maps, so two views of a plane are related by an
+    affinity; for perspective cameras the map is a homography whose departure from affine grows with
+    the plane's depth range over the field of view, :math:`\Delta / d_0`. See lesson 05, section 3.
+    """
+    Hm = check_matrix(H, (3, 3), "H")
+    width, height = (int(check_positive(n, "size", "pixels")) for n in size)
+    u, v = np.meshgrid(np.linspace(0, width - 1, samples), np.linspace(0, height - 1, samples))
+    grid = np.column_stack([u.ravel(), v.ravel(), np.ones(u.size)])
+    mapped = grid @ Hm.T
+    mapped = mapped[:, :2] / mapped[:, 2:]
+    A = np.linalg.lstsq(grid, mapped, rcond=None)[0]
+    return float(np.linalg.norm(grid @ A - mapped, axis=1).max())
+
+
+PROJECTION_MODELS = ("orthographic", "weak perspective", "para-perspective", "perspective")
+
+
+def projection_rays(points_xz: ArrayLike, reference_xz: ArrayLike, model: str, image_depth: float = 1.0) -> np.ndarray:
+    r"""The rays of one camera model in a top view (camera x across, z forward; centre at the origin).
+
+    Each point travels to its image on the line :math:`z =` ``image_depth`` (H&Z §6.3; Szeliski
+    fig. 2.7): **perspective** straight towards the centre; **orthographic** parallel to the optical
+    axis (image x in metres); **weak perspective** parallel to the axis onto the plane :math:`z = d_0`
+    through the reference point, then towards the centre; **para-perspective** parallel to the ray
+    through the reference point onto that plane, then towards the centre.
+
+    Parameters
+    ----------
+    points_xz : (N, 2) array_like
+        Points (x, z) in metres, in front of the camera (z > 0).
+    reference_xz : (2,) array_like
+        The reference point :math:`X_0 = (x_0, d_0)`, :math:`d_0 > 0`.
+    model : one of :data:`PROJECTION_MODELS`
+    image_depth : float
+        Where the image line is drawn (z, metres).
+
+    Returns
+    -------
+    (N, 3, 2) ndarray
+        Per point: the point, where its ray bends (on :math:`z = d_0`; the point itself for the
+        perspective and orthographic models) and its image on :math:`z =` ``image_depth``.
+    """
+    p = as_points(points_xz, 2, "points_xz").array
+    x0, d0 = check_matrix(reference_xz, (2,), "reference_xz")
+    d0 = check_positive(d0, "reference_xz[1]", "metres (the reference depth)")
+    f = check_positive(image_depth, "image_depth", "metres")
+    if model not in PROJECTION_MODELS:
+        raise CamlabInputError(f"model: expected one of {PROJECTION_MODELS}, got {model!r}")
+    x, z = p[:, 0], p[:, 1]
+    if model in ("orthographic", "perspective"):
+        bend = p
+        image_x = x if model == "orthographic" else f * x / z
+    else:
+        slope = 0.0 if model == "weak perspective" else x0 / d0  # dx/dz of the projection direction
+        bend = np.column_stack([x - slope * (z - d0), np.full(len(p), d0)])
+        image_x = f * bend[:, 0] / d0
+    image = np.column_stack([image_x, np.full(len(p), f)])
+    return np.stack([p, bend, image], axis=1)

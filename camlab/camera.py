@@ -920,13 +920,40 @@ def _refine_projection_matrix(P0: np.ndarray, X: np.ndarray, uv: np.ndarray) -> 
 def project_segments(camera: "Camera | ArrayLike", segments: ArrayLike) -> np.ndarray:
     """Project (M, 2, 3) world segments to (M, 2, 2) pixel segments with a Camera or a 3x4 P.
 
-    Segments with an endpoint behind the camera get NaN there (matplotlib skips them).
+    A segment with one end behind the camera is clipped at a near plane first (at 1/1000 of
+    its front end's depth), so the part in front of the camera is drawn, running off the
+    picture, instead of vanishing. A segment wholly behind the camera comes back as NaN
+    (matplotlib skips it). Affine cameras see every point and clip nothing.
     """
     if not isinstance(camera, Camera):
         camera = _check_P(camera, "camera")
     s = as_float(segments, "segments")
     if s.ndim != 3 or s.shape[1:] != (2, 3):
         raise CamlabInputError(f"segments: expected (M, 2, 3) pairs of world points, got shape {s.shape}")
+    s = _clip_behind(s, _signed_depth(camera, s.reshape(-1, 3)).reshape(-1, 2))
     flat = s.reshape(-1, 3)
     uv = camera.project(flat) if isinstance(camera, Camera) else project_points(camera, flat)
     return uv.reshape(-1, 2, 2)
+
+
+def _signed_depth(camera: "Camera | np.ndarray", points: np.ndarray) -> np.ndarray:
+    """Positive in front of the camera (any scale); +1 everywhere for an affine camera."""
+    if isinstance(camera, Camera):
+        return camera.depth(points)
+    det = np.linalg.det(camera[:, :3])
+    if abs(det) <= 1e-12 * np.abs(camera).max() ** 3:
+        return np.ones(len(points))
+    return np.sign(det) * (points @ camera[2, :3] + camera[2, 3])
+
+
+def _clip_behind(segments: np.ndarray, depth: np.ndarray, near: float = 1e-3) -> np.ndarray:
+    """Move the behind end of each half-visible segment to depth ``near`` times its front end's depth."""
+    out = segments.copy()
+    for behind, front in ((0, 1), (1, 0)):
+        half = (depth[:, behind] <= 0) & (depth[:, front] > 0)
+        if not half.any():
+            continue
+        z_b, z_f = depth[half, behind], depth[half, front]
+        s = ((1 - near) * z_f / (z_f - z_b))[:, None]  # fraction of the way from the front end to the behind end
+        out[half, behind] = segments[half, front] + s * (segments[half, behind] - segments[half, front])
+    return out

@@ -32,7 +32,7 @@ from ._validate import (
 
 __all__ = [
     "BAYER_PATTERNS", "NoiseModel", "add_noise", "bayer_masks", "check_bayer_pattern", "check_bits", "demosaic_bilinear", "demosaic_opencv",
-    "dequantize", "gamma_encode", "intrinsics_from_sensor", "metric_to_pixels", "mosaic", "pixels_to_metric",
+    "dequantize", "gamma_decode", "gamma_encode", "intrinsics_from_sensor", "metric_to_pixels", "mosaic", "pixels_to_metric",
     "psnr", "quantize", "sample", "white_balance", "zone_plate",
 ]
 
@@ -319,6 +319,19 @@ def gamma_encode(linear: ArrayLike) -> np.ndarray:
     """
     L = np.clip(np.asarray(linear, dtype=float), 0.0, 1.0)
     return np.where(L <= 0.0031308, 12.92 * L, 1.055 * L ** (1 / 2.4) - 0.055)
+
+
+def gamma_decode(encoded: ArrayLike) -> np.ndarray:
+    r"""Inverse of :func:`gamma_encode`: sRGB-encoded values in [0, 1] (a JPEG's) back to linear light.
+
+    :math:`L = ((V + 0.055) / 1.055)^{2.4}`, and :math:`V / 12.92` below :math:`V = 0.04045`:
+    what a display does, and what a photometric computation must do first to a JPEG's values.
+
+    >>> np.round(gamma_decode(np.array([0.0, 0.5, 1.0])), 3)  # half the code is a fifth of the light
+    array([0.   , 0.214, 1.   ])
+    """
+    V = np.clip(np.asarray(encoded, dtype=float), 0.0, 1.0)
+    return np.where(V <= 0.04045, V / 12.92, ((V + 0.055) / 1.055) ** 2.4)
 
 
 def white_balance(rgb: ArrayLike, white: ArrayLike | None = None) -> np.ndarray:

@@ -397,6 +397,23 @@ def test_wireframes_and_project_segments(cam):
         cm.project_segments(cam, np.zeros((3, 3)))
 
 
+
+def test_project_segments_clips_a_segment_that_runs_behind_the_camera():
+    cam = cm.Camera(cm.intrinsic_matrix(800, 800, 319.5, 239.5), np.eye(3), [0.0, 0.0, 0.0])
+    segs = np.array([[[0.5, 0.2, 4.0], [0.5, 0.2, -2.0]],     # from 4 m in front to 2 m behind
+                     [[0.0, 0.0, -1.0], [1.0, 0.0, -3.0]],     # wholly behind
+                     [[-1.0, 0.0, 2.0], [1.0, 0.0, 2.0]]])     # wholly in front
+    for camera in (cam, cam.P, -2.0 * cam.P):                 # a Camera, or P at any scale and sign
+        pix = cm.project_segments(camera, segs)
+        assert np.allclose(pix[0, 0], [319.5 + 100, 239.5 + 40])   # the front end is untouched
+        far = pix[0, 1] - [319.5, 239.5]                          # the clipped end: same ray direction, far out
+        assert np.all(np.isfinite(far)) and np.linalg.norm(far) > 1e4
+        assert np.allclose(far / np.linalg.norm(far), np.array([0.5, 0.2]) / np.hypot(0.5, 0.2))
+        assert np.isnan(pix[1]).all() and np.allclose(pix[2], [[-80.5, 239.5], [719.5, 239.5]])
+    affine = cm.project_segments(np.array([[100.0, 0, 0, 0], [0, 100, 0, 0], [0, 0, 0, 1]]), segs)
+    assert np.allclose(affine[0], [[50, 20], [50, 20]])     # affine cameras clip nothing
+
+
 # -- 3-D views (camlab.plotting.scene3d) --------------------------------------------------------
 
 def _agg_figure():
@@ -631,3 +648,26 @@ def test_functions_returning_a_pose_or_factors_name_them():
     assert np.allclose(board.R, R) and np.allclose(board.t, t)
     rq = cm.rq_decomposition(K @ R)
     assert np.allclose(rq.K, K) and np.allclose(rq.R, R)
+
+
+def test_resectioning_keeps_a_wild_fit_in_view_and_says_when_it_failed():
+    from camlab.widgets import projective_camera as demos
+
+    d = demos.resectioning()
+    d.set(n_points=6, outlier_v=-60.0, refine=True, noise=0.0)  # the review's setting: a focal length near 60 px
+    assert abs(d.state["K"][0, 0]) < 100
+    ax3d = d.figure.axes[0]
+    frustum = [ln for ln in ax3d.lines if ln.get_color() == demos.palette.ORANGE][0]
+    x, y, z = (np.asarray(a, dtype=float) for a in frustum.get_data_3d())
+    pts = np.column_stack([x, y, z])[np.isfinite(x)]
+    assert np.ptp(pts, axis=0).max() < 2.0              # shortened (13 m tall before): no frustum over the view
+    assert np.isfinite(d.state["rms"])
+    d.set(outlier_v=0.0, outlier=60.0)                  # a fit with every point behind the estimated camera
+    assert d.state["behind"] > 0 and not np.isfinite(d.state["rms"])
+
+    def texts(widget):
+        yield str(getattr(widget, "value", ""))
+        for child in getattr(widget, "children", ()):
+            yield from texts(child)
+
+    assert any("behind the estimated camera" in text for text in texts(d.widget))  # said, not a silent 'nan'

@@ -128,6 +128,16 @@ def test_a_broadcasting_error_gets_a_hint_naming_keepdims():
         check("pinhole_projection", project)
 
 
+@pytest.mark.parametrize("divide", [lambda x: (x / x[:, 2])[:, :2], lambda x: x[:, :2] / x[:, 2]])
+def test_project_points_divided_without_keepdims_gets_the_hint(divide):
+    # lesson 04's exercise: the (N, 3) or (N, 2) block divided by the (N,) column x[:, 2]
+    def project_points(P, X):
+        return divide(np.c_[X, np.ones(len(X))] @ np.asarray(P).T)
+
+    with pytest.raises(AssertionError, match=r"likely cause: a broadcasting slip.*keepdims=True"):
+        check("project_points", project_points)
+
+
 def test_pinhole_checks_pass_right_answers_in_other_forms(capsys):
     assert check("pinhole_projection", lambda X, f: f * np.asarray(X)[:, :2] / np.asarray(X)[:, [2]])
     assert check("pinhole_projection", lambda X, f: (f * np.asarray(X).T[:2] / np.asarray(X).T[2]).T)

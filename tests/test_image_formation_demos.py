@@ -178,3 +178,20 @@ def test_similar_triangles_ratios_agree():
         demo.set(f=f, Z=Z, Y=Y)
         assert demo.state["ratio_image"] == pytest.approx(demo.state["ratio_object"])
         assert demo.state["y"] == pytest.approx(f * Y / Z)
+
+
+def test_sensor_demos_read_as_the_lesson_says():
+    p = digital_sensor.pixel_pitch()
+    p.set(cx_offset=40)
+    ax = p.figure.axes[0]
+    assert ax.get_xlabel() == "u (px)" and ax.get_ylabel() == "v (px)" and len(ax.get_xticks()) > 3
+    centre, principal = (line.get_xydata()[0] for line in ax.lines)
+    assert np.allclose(centre, (159.5, 119.5)) and np.allclose(principal, (199.5, 119.5))  # the shift reads on u
+    d = digital_sensor.demosaicing()
+    psnr = {}
+    for method in ("camlab bilinear", "OpenCV VNG", "OpenCV edge-aware"):
+        d.set(method=method)
+        psnr[method] = d.state["psnr"]
+    # lesson 03: VNG several dB above bilinear, OpenCV's EA about the same as bilinear
+    assert psnr["OpenCV VNG"] > psnr["camlab bilinear"] + 3
+    assert abs(psnr["OpenCV edge-aware"] - psnr["camlab bilinear"]) < 0.5

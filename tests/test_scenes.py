@@ -143,7 +143,7 @@ def test_outlier_matches_hold_the_stated_fraction_of_wrong_pairs():
         scenes.outlier_matches(1.5)
 
 
-def test_sleeper_gaps_show_foreshortening_only_in_perspective():
+def test_sleeper_gaps_shrink_with_distance_only_in_perspective():
     from camlab import affine, camera
 
     eye = np.array([0.0, -4.0, 2.0])

@@ -104,8 +104,9 @@ def test_gamma_encode_is_srgb():
     knee = 0.0031308
     assert 12.92 * knee == pytest.approx(1.055 * knee ** (1 / 2.4) - 0.055, abs=1e-6)  # the two pieces meet
     assert S.gamma_encode(0.18) == pytest.approx(0.4614, abs=1e-4)  # mid-grey is stored near the middle
-    inverse = np.where(V <= 0.04045, V / 12.92, ((V + 0.055) / 1.055) ** 2.4)  # the display's decoding
-    assert np.allclose(inverse, L, atol=1e-9)
+    assert np.allclose(S.gamma_decode(V), L, atol=1e-9)               # the display's decoding undoes it
+    assert S.gamma_decode(0.04045) == pytest.approx(0.04045 / 12.92)  # the linear toe
+    assert S.gamma_decode(0.5) == pytest.approx(0.2140, abs=1e-4)     # half the code is a fifth of the light
 
 
 def test_white_balance_neutralises_the_white_and_grey_world():

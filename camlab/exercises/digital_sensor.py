@@ -34,6 +34,10 @@ def _quantize_diagnosis(args, got, expected) -> str:
                 f"use np.uint16 above 8 bits")
     if np.array_equal(g, np.floor(np.clip(img, 0, 1) * levels)):
         return "you truncated (floor); round to the nearest level so the error is at most half a step"
+    adc = np.floor(np.clip(img, 0, 1) * 2**bits)   # many real converters: 2**bits bins of width 1 / 2**bits
+    if np.array_equal(g, adc) or np.array_equal(g, np.minimum(adc, levels)):
+        return ("you used an ADC's floor(I * 2**bits); this lesson's DN = round(I * (2**bits - 1)) maps 0 and 1 "
+                "exactly to 0 and 2**bits - 1 with at most half a step of error: scale by 2**bits - 1 and round")
     if np.array_equal(g, np.clip(np.rint(img * 2**bits), 0, 2**bits)) or g.max() > levels:
         return f"a {bits}-bit number runs from 0 to 2**bits - 1 = {levels}: scale by 2**bits - 1 and clip"
     if np.array_equal(g, np.rint(img * levels)):
@@ -59,6 +63,9 @@ register_exercise(Exercise(
     wrong_variants=(
         (lambda img, bits: np.floor(np.clip(img, 0, 1) * (2**bits - 1)).astype(np.uint16), "round to the nearest"),
         (lambda img, bits: np.clip(np.rint(img * 2**bits), 0, 2**bits).astype(np.uint16), "2**bits - 1"),
+        (lambda img, bits: np.minimum(np.floor(np.clip(img, 0, 1) * 2**bits), 2**bits - 1).astype(np.uint16),
+         "an ADC's floor"),
+        (lambda img, bits: np.floor(np.clip(img, 0, 1) * 2**bits).astype(np.uint16), "an ADC's floor"),
         (lambda img, bits: np.rint(img * (2**bits - 1)).astype(np.int64), "clip"),
         (lambda img, bits: np.clip(np.rint(img * (2**bits - 1)), 0, 2**bits - 1), "dtype is float64"),
         (lambda img, bits: np.clip(np.rint(img * (2**bits - 1)), 0, 2**bits - 1).astype(np.uint8), "wraps around"),

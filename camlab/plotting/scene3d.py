@@ -58,9 +58,14 @@ def axes3d(fig, *args: Any, elev: float = 22.0, azim: float = -60.0, **kw: Any):
     return ax
 
 
-def set_equal_aspect(ax, points: ArrayLike | Sequence[ArrayLike], margin: float = 0.02, zoom: float = 1.0) -> None:
+def set_equal_aspect(ax, points: ArrayLike | Sequence[ArrayLike], margin: float = 0.02, zoom: float = 1.0,
+                     tight: bool = False) -> None:
     """Give a 3-D axes equal scale on X, Y, Z: a cube of limits around ``points`` and a
-    (1, 1, 1) box aspect, so angles and lengths look right."""
+    (1, 1, 1) box aspect, so angles and lengths look right.
+
+    ``tight=True`` fits a box instead of a cube (limits per axis, box aspect in proportion,
+    so the scale stays equal): a flat or long scene then fills the canvas, but the box
+    changes shape when the points move."""
     if isinstance(points, (list, tuple)):
         pts = np.vstack([np.reshape(np.asarray(p, dtype=float), (-1, 3)) for p in points])
     else:
@@ -68,6 +73,13 @@ def set_equal_aspect(ax, points: ArrayLike | Sequence[ArrayLike], margin: float 
     pts = pts[np.isfinite(pts).all(axis=1)]
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     centre = (lo + hi) / 2.0
+    if tight:
+        half = np.maximum((hi - lo) / 2.0, 1e-3 * max(float((hi - lo).max()), 1e-6)) * (1.0 + margin)
+        ax.set_xlim(centre[0] - half[0], centre[0] + half[0])
+        ax.set_ylim(centre[1] - half[1], centre[1] + half[1])
+        ax.set_zlim(centre[2] - half[2], centre[2] + half[2])
+        ax.set_box_aspect(tuple(half), zoom=zoom)
+        return
     half = max(float((hi - lo).max()) / 2.0, 1e-6) * (1.0 + margin)
     ax.set_xlim(centre[0] - half, centre[0] + half)
     ax.set_ylim(centre[1] - half, centre[1] + half)
@@ -238,7 +250,7 @@ class CameraArtist:
                                               ha="center", va="center"))
         (self.centre_marker,) = ax.plot([], [], [], "o", color=color, ms=4)
         self.label = ax.text(0, 0, 0, label, color=color, fontsize=9) if label else None
-        (self.lines,) = ax.plot([], [], [], color=line_color, lw=0.6, gid="thumbnail")  # the image panel, in small
+        (self.lines,) = ax.plot([], [], [], color=line_color, lw=0.9, gid="thumbnail")  # the image panel, in small
         self.mesh, self._pixels = None, None
         if image is not None:
             self.mesh = Poly3DCollection([np.zeros((4, 3))], lw=0.0)
@@ -325,13 +337,17 @@ class SceneView:
     image on the right), draws the world wireframe, world axes and the camera (with the
     projected wireframe on its image plane), and ``update(camera)`` moves everything.
     The 3-D limits are fixed at construction from ``extent`` (world points to keep in view).
+    ``thumbnail``: the segments drawn small on the image plane (default: all); pick the main
+    object, as a whole scene is a tangle at that size.
     """
 
     def __init__(self, fig, camera: Camera, segments: ArrayLike, extent: ArrayLike | None = None,
                  axes: tuple | None = None, plane_size: float = 0.8, world_axes: float = 0.8,
                  image_title: str = "camera image", elev: float = 24.0, azim: float = 15.0,
-                 axis_off: bool = True):
+                 axis_off: bool = True, thumbnail: ArrayLike | None = None):
         self.segments = np.asarray(segments, dtype=float)
+        # what the small picture on the image plane shows: a whole scene is a tangle at that size
+        self.thumbnail = self.segments if thumbnail is None else np.asarray(thumbnail, dtype=float)
         if axes is None:
             gs = fig.add_gridspec(1, 2, width_ratios=(1.15, 1.0))
             ax3 = axes3d(fig, gs[0, 0], elev=elev, azim=azim)
@@ -344,7 +360,8 @@ class SceneView:
         self.world_axes = draw_world_axes(ax3, world_axes) if world_axes else []
         self.world = draw_segments(ax3, self.segments)
         pix = project_segments(camera, self.segments)
-        self.camera_artist = CameraArtist(ax3, camera, size=plane_size, image_lines=pix, label="C")
+        self.camera_artist = CameraArtist(ax3, camera, size=plane_size, image_lines=self._thumbnail_pixels(camera, pix),
+                                          label="C")
         self.extent = None if extent is None else np.reshape(np.asarray(extent, dtype=float), (-1, 3))
         self.zoom = 1.25 if axis_off else 1.0
         self._fit()
@@ -352,6 +369,9 @@ class SceneView:
         d = polyline_data(pix)
         (self.image_lines,) = ax2.plot(d[:, 0], d[:, 1], color="k", lw=1.2)
         self.camera = camera
+
+    def _thumbnail_pixels(self, camera: Camera, pix: np.ndarray) -> np.ndarray:
+        return pix if self.thumbnail is self.segments else project_segments(camera, self.thumbnail)
 
     def _fit(self, camera: Camera | None = None) -> None:
         pts = [self.segments.reshape(-1, 3), self.camera_artist.extent_points(camera)]
@@ -371,7 +391,7 @@ class SceneView:
         The 3-D limits follow the camera so it never leaves the view."""
         pix = project_segments(camera, self.segments)
         self._fit(camera)
-        self.camera_artist.update(camera, image_lines=pix)
+        self.camera_artist.update(camera, image_lines=self._thumbnail_pixels(camera, pix))
         update_segments(self.image_lines, pix)
         w, h = camera.image_size
         if (w, h) != tuple(self.camera.image_size):

@@ -46,13 +46,14 @@ def depth_of_field_scene() -> list[Plane]:
             textured_plane(portrait(), 3.2, t=(0, 0, 4.0), name="wall")]
 
 
-def photo_and_page() -> list[Plane]:
+def photo_and_page(linear: bool = False) -> list[Plane]:
     """Lesson 03: a colour photograph 1 m ahead and a slightly turned text page beside it, at 1.1 m.
 
     A list of two :class:`Plane` (``"photo"``, ``"page"``) for :func:`camlab.render.render`,
     framed by a camera at the origin looking along +z with f = 900 px on 320 x 240 pixels.
+    ``linear``: the photograph in linear reflectance (see :func:`photo_plane`).
     """
-    return [photo_plane(0.3, t=(0.05, 0.02, 1.0)),
+    return [photo_plane(0.3, t=(0.05, 0.02, 1.0), linear=linear),
             text_page(0.2, t=(-0.2, 0.0, 1.1), R=rotation_from_euler(0, 0.2, 0.05))]
 
 
@@ -80,7 +81,7 @@ def rail_track(start: float = -3.0, end: float = 40.0) -> np.ndarray:
 def sleeper_gaps(P: ArrayLike, at: Sequence[float] = (-2.0, 20.0)) -> np.ndarray:
     """Lesson 05: the image length (pixels) under the camera matrix ``P`` of one metre of :func:`rail_track`
     (the ground line x = 0 from y to y + 1) for each y in ``at`` metres: equal for an affine
-    camera, shrinking with distance for a perspective one (foreshortening)."""
+    camera, shrinking with distance for a perspective one (perspective diminution)."""
     ys = np.atleast_1d(np.asarray(at, dtype=float))
     zero = np.zeros_like(ys)
     near_end = project_points(P, np.column_stack([zero, ys, zero]))

@@ -181,9 +181,21 @@ def checkerboard(pattern_size: tuple[int, int] = (9, 6), square: float = 0.025, 
     return Plane(tex, extent, R, t, pts, name, (cols, rows))
 
 
-def photo_plane(width: float = 0.4, *, R: ArrayLike = np.eye(3), t: ArrayLike = (0, 0, 0), name: str = "photo") -> Plane:
-    """A centred rectangle showing matplotlib's bundled Grace Hopper photograph."""
-    return textured_plane(portrait(), width, R=R, t=t, name=name)
+def photo_plane(width: float = 0.4, *, R: ArrayLike = np.eye(3), t: ArrayLike = (0, 0, 0), name: str = "photo",
+                linear: bool = False) -> Plane:
+    """A centred rectangle showing matplotlib's bundled Grace Hopper photograph.
+
+    The photograph is a JPEG, so its values are sRGB-encoded; ``linear=True`` decodes them
+    to linear reflectance (:func:`camlab.sensor.gamma_decode`) for photometric work (lesson 03).
+    """
+    return textured_plane(_linear_portrait() if linear else portrait(), width, R=R, t=t, name=name)
+
+
+@lru_cache(maxsize=1)
+def _linear_portrait() -> np.ndarray:
+    from ..sensor import gamma_decode
+
+    return as_texture(gamma_decode(portrait()))
 
 
 def text_page(width: float = 0.21, *, R: ArrayLike = np.eye(3), t: ArrayLike = (0, 0, 0), seed: int = 0,

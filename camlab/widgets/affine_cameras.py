@@ -20,7 +20,9 @@ from ._base import FigureView, build_demo, register, slider
 TARGET = np.array([0.0, 0.0, 0.5])
 F0, D0 = 800.0, 4.0  # reference focal length (px) and distance (m) for the dolly zoom
 DOLLY_VIEW = np.radians([-40.0, 20.0])  # the dolly zoom demo's azimuth and elevation
-DOLLY_OFFSET = 150.0  # pixels right of the image centre where the dolly zoom keeps the cube (off axis)
+DOLLY_OFFSET = 100.0  # pixels right of the image centre where the dolly zoom keeps the cube (off axis)
+# From 2 m with the cube up to 100 px off centre, every corner of all three images stays in the 640 x 480 frame.
+DOLLY_DISTANCES = (2.0, 150.0)
 
 # One colour per camera model in every lesson-05 figure and demo (the lesson's static figures use them too).
 COLOURS = {"perspective": palette.RED, "weak perspective": palette.BLUE, "para-perspective": palette.GREEN,
@@ -48,14 +50,14 @@ def _image_panel(ax, title, model, size=(640, 480), tick_labels=True):
     return model_line(ax, model)
 
 
-@register(lesson="05", sweep={"azimuth": [-80, 10], "elevation": [5, 50], "distance": [2.5, 12.0]})
+@register(lesson="05", sweep={"azimuth": [-180, -80, 10, 180], "elevation": [0, 50, 80], "distance": [2.0, 12.0, 20.0]})
 def three_cameras():
     """Perspective, weak-perspective and orthographic images of the same scene side by side."""
     view = FigureView(figsize=(9.5, 3.4))
     axes = view.fig.subplots(1, 3)
     scene = scenes.box_and_rails()
     persp = _image_panel(axes[0], "perspective (px)", "perspective")
-    weak = _image_panel(axes[1], "weak perspective over perspective (px)", "weak perspective", tick_labels=False)
+    weak = _image_panel(axes[1], "weak perspective over perspective (px)", "weak perspective")
     axes[2].set_aspect("equal")
     axes[2].set_title("orthographic (metres)", fontsize=9)
     axes[2].set_xlim(-2.2, 2.2)
@@ -64,7 +66,7 @@ def three_cameras():
     axes[2].set_yticks([-1, 0, 1])
     axes[2].tick_params(labelsize=7)
     orth = model_line(axes[2], "orthographic")
-    ghost = model_line(axes[1], "perspective", lw=0.8)
+    ghost = model_line(axes[1], "perspective", lw=0.8, zorder=1.5)  # under the blue dashes, live and redrawn alike
     model_legend(view.fig, ("perspective", "weak perspective", "orthographic"))
     view.animate(persp, ghost, weak, orth)
     controls = {
@@ -81,40 +83,48 @@ def three_cameras():
         scene3d.update_segments(weak, w)
         scene3d.update_segments(ghost, p)
         scene3d.update_segments(orth, o)
-        diff = np.linalg.norm(p - w, axis=-1)
-        state.update(camera=cam, P_weak=P_weak, focal=f, max_difference=float(np.nanmax(diff)))
+        state.update(camera=cam, P_weak=P_weak, focal=f, max_difference=af.largest_gap_in_frame(cam, P_weak, scene))
 
     return build_demo("three_cameras", controls, view, update,
                       title="One scene, three cameras (the middle panel repeats the perspective image in red)")
 
 
-@register(lesson="05", sweep={"distance": [1.8, 6.0, 40.0, 150.0]})
+def dolly_curves(offset: float, distances: np.ndarray) -> dict:
+    """RMS error (px) of weak and para-perspective along the dolly zoom with the cube ``offset`` px off centre."""
+    pts = scenes.box_wireframe((0.0, 0.0, 0.5), (1.0, 1.0, 1.0)).reshape(-1, 3)
+    return {m: af.dolly_zoom_errors(pts, distances, *DOLLY_VIEW, TARGET, F0, D0, approximation=f, image_offset=offset)
+            for m, f in APPROXIMATIONS.items()}
+
+
+APPROXIMATIONS = {"weak perspective": af.affine_approximation, "para-perspective": af.paraperspective_approximation}
+
+
+@register(lesson="05", sweep={"distance": [2.0, 6.0, 40.0, 150.0], "offset": [0, 50, 100]})
 def dolly_zoom():
-    """Move the camera away while zooming in (f = f0 d / d0): the object keeps its size, the
-    perspective image approaches its affine approximations and their error falls like 1/d; off
-    the image centre, para-perspective stays closer than weak perspective."""
+    """Move the camera away while zooming in (f = f0 d / D0): the object keeps its size, the
+    perspective image approaches its affine approximations and their error falls like 1/d. Off
+    the image centre, para-perspective stays closer than weak perspective; on the axis (offset 0)
+    the two coincide."""
     view = FigureView(figsize=(9, 4.0))
     ax_img, ax_err = view.fig.subplots(1, 2, width_ratios=(1.25, 1.0))
     cube = scenes.box_wireframe((0.0, 0.0, 0.5), (1.0, 1.0, 1.0))
     pts = cube.reshape(-1, 3)
     models = ("perspective", "weak perspective", "para-perspective")
-    approximations = {"weak perspective": af.affine_approximation, "para-perspective": af.paraperspective_approximation}
     scene3d.image_axes(ax_img, (640, 480), labels=False)
-    ax_img.set_title("a 1 m cube (px)", fontsize=9)
-    ax_img.tick_params(labelleft=False, labelbottom=False)
+    ax_img.set_title("a 1 m cube (u right, v down, px)", fontsize=9)
     lines = {m: model_line(ax_img, m, lw=1.3) for m in models}
-    distances = np.geomspace(1.6, 150.0, 60)
-    curves = {m: af.dolly_zoom_errors(pts, distances, *DOLLY_VIEW, TARGET, F0, D0, approximation=f,
-                                       image_offset=DOLLY_OFFSET)
-              for m, f in approximations.items()}
-    for m, curve in curves.items():
-        ax_err.loglog(distances, curve, color=COLOURS[m], ls=STYLES[m], lw=1.5)
+    (centre,) = ax_img.plot([319.5], [239.5], "+", color=palette.GREY, ms=10, mew=1)  # the principal point
+    distances = np.geomspace(*DOLLY_DISTANCES, 60)
+    curves = {m: ax_err.loglog(distances, np.ones_like(distances), color=COLOURS[m], ls=STYLES[m], lw=1.5)[0]
+              for m in APPROXIMATIONS}
+    ax_err.set_xlim(distances[0] / 1.08, distances[-1] * 1.08)  # room for the marker at the slider's ends
+    ax_err.set_ylim(0.005, 200)
     ax_err.set_title("RMS distance to the perspective image", fontsize=9)
-    ax_err.set_xlabel("distance d (m), focal length f = f0 d / d0", fontsize=8)
+    ax_err.set_xlabel(f"distance d (m); focal length f = {F0:.0f} d / {D0:.0f} px", fontsize=8)
     ax_err.set_ylabel("RMS difference (px)", fontsize=8)
     ax_err.tick_params(labelsize=7)
     ax_err.axhline(1.0, color="0.5", lw=0.8, ls=":")
-    ax_err.text(distances[-1], 1.05, "1 px", ha="right", va="bottom", fontsize=7, color="0.4")
+    ax_err.text(distances[-1], 1.15, "1 px", ha="right", va="bottom", fontsize=7, color="0.4")
     ax_err.grid(True, which="major", alpha=0.3)
     # Plain tick labels and no minor ticks: log axes' default mathtext labels cost ~20 ms a redraw.
     from matplotlib.ticker import NullLocator
@@ -122,31 +132,37 @@ def dolly_zoom():
     for axis, ticks in ((ax_err.xaxis, [2, 5, 10, 20, 50, 100]), (ax_err.yaxis, [0.01, 0.1, 1, 10, 100])):
         axis.set_minor_locator(NullLocator())
         axis.set_ticks(ticks, labels=[f"{t:g}" for t in ticks])
-    markers = {m: ax_err.plot([], [], "o", color=COLOURS[m], ms=7)[0] for m in approximations}
+    markers = {m: ax_err.plot([], [], "o", color=COLOURS[m], ms=7)[0] for m in APPROXIMATIONS}
     model_legend(view.fig, models)
-    view.animate(*lines.values(), *markers.values())
-    controls = {"distance": slider(D0, 1.6, 150.0, 0.2, "distance d (m)")}
+    view.animate(*lines.values(), *curves.values(), *markers.values())
+    controls = {"distance": slider(D0, DOLLY_DISTANCES[0], DOLLY_DISTANCES[1], 0.2, "distance d (m)"),
+                "offset": slider(DOLLY_OFFSET, 0, 100, 10, "cube right of centre (px)")}
+    cache: dict = {}
 
     def update(v, state):
-        d = float(v["distance"])
-        cam = af.dolly_zoom_camera(d, *DOLLY_VIEW, TARGET, F0, D0, image_offset=DOLLY_OFFSET)
+        d, offset = float(v["distance"]), float(v["offset"])
+        if offset not in cache:  # the curves depend on the offset only
+            cache[offset] = dolly_curves(offset, distances)
+        cam = af.dolly_zoom_camera(d, *DOLLY_VIEW, TARGET, F0, D0, image_offset=offset)
         scene3d.update_segments(lines["perspective"], cm.project_segments(cam, cube))
         rms = {}
-        for m, approximate in approximations.items():
+        for m, approximate in APPROXIMATIONS.items():
             scene3d.update_segments(lines[m], cm.project_segments(approximate(cam, TARGET), cube))
             e = af.weak_perspective_error(cam, pts, TARGET, approximate)
             rms[m] = float(np.sqrt(np.mean(e ** 2)))
             markers[m].set_data([d], [rms[m]])
-        state.update(distance=d, focal=float(cam.K[0, 0]), rms_error=rms["weak perspective"],
-                     rms_paraperspective=rms["para-perspective"], curve=(distances, curves["weak perspective"]),
-                     curves=curves)
+            curves[m].set_ydata(cache[offset][m])
+        state.update(distance=d, offset=offset, focal=float(cam.K[0, 0]), rms_error=rms["weak perspective"],
+                     rms_paraperspective=rms["para-perspective"], curve=(distances, cache[offset]["weak perspective"]),
+                     curves=cache[offset], camera=cam)
 
     return build_demo("dolly_zoom", controls, view, update, title="Dolly zoom: when is an affine camera good enough?")
 
 
-RAIL_EYE = np.array([0.0, -4.0, 2.0])  # 2 m above the track, 4 m behind its start (metres)
-RAIL_REFERENCE = np.array([0.0, 8.0, 0.0])  # a third of the way along the track: the affine camera's reference point
-RAIL_TRACK = (-3.0, 25.0)  # where the track starts and ends along +y (metres)
+RAIL_EYE = np.array([0.0, 0.0, 2.0])  # the camera, 2 m above the ground at y = 0 (metres)
+RAIL_TRACK = (2.0, 22.0)  # where the track starts and ends along +y (metres from the camera)
+RAIL_REFERENCE = np.array([0.0, 12.0, 0.0])  # the middle of the track: the affine camera's reference point
+RAIL_SAMPLES = (4.0, 20.0)  # the metres of track the readouts measure, from y to y + 1 (in view at every setting)
 
 
 def rail_cameras(yaw: float, pitch: float):
@@ -158,13 +174,14 @@ def rail_cameras(yaw: float, pitch: float):
     return cam, af.affine_approximation(cam, RAIL_REFERENCE)
 
 
-# Yaw and pitch keep the vanishing point in the field of view (f = 500 px: half-angles 33 and 26
-# degrees); 10 to 22 degrees of pitch keep the affine image's sleepers apart (it squashes depth
-# along the line of sight) and its far end in the frame.
-@register(lesson="05", sweep={"yaw": [-30, 30], "pitch": [10, 22]})
+# Measured over the whole range (f = 500 px): yaw within +-15 and pitch 10 to 18 degrees keep the vanishing
+# point and every point of the affine track at least 13 px inside the 640 x 480 frame
+# (tests/test_affine.py::test_parallel_rails_keeps_everything_in_frame), and the affine sleepers at
+# least 7 px apart.
+@register(lesson="05", sweep={"yaw": [-15, 15], "pitch": [10, 18]})
 def parallel_rails():
     """Parallel rails meet at a vanishing point in perspective; an affine image keeps them parallel,
-    and keeps equal sleepers equal at every depth (no foreshortening)."""
+    and keeps equal sleepers equal at every depth (no shrinking with distance)."""
     view = FigureView(figsize=(10, 4.3))
     ax_p, ax_a = view.fig.subplots(1, 2)
     scene = scenes.rail_track(*RAIL_TRACK)
@@ -183,7 +200,10 @@ def parallel_rails():
     (vp,) = ax_p.plot([], [], "o", color=COLOURS["perspective"], ms=8, mfc="white", mew=2)
     (horizon,) = ax_p.plot([], [], color=palette.GREY, lw=0.8, ls="--")
     view.animate(*lines, vp, horizon, *texts)
-    controls = {"yaw": slider(0, -30, 30, 1, "yaw (deg)"), "pitch": slider(15, 10, 22, 1, "pitch down (deg)")}
+    (ref,) = ax_a.plot([], [], "o", color=palette.GREY, ms=5)
+    ref_label = ax_a.text(0, 0, "  X0", fontsize=8, color="0.2", va="center", path_effects=palette.halo(1.0))
+    view.animate(ref, ref_label)
+    controls = {"yaw": slider(0, -15, 15, 1, "yaw (deg)"), "pitch": slider(15, 10, 18, 1, "pitch down (deg)")}
 
     def update(v, state):
         cam, P_aff = rail_cameras(*np.deg2rad([v["yaw"], v["pitch"]]))
@@ -197,10 +217,79 @@ def parallel_rails():
         l_h = np.cross(af.image_of_direction(cam.P, [1.0, 0.0, 0.0]), v_p)
         us = np.array([-1.0, 641.0])
         horizon.set_data(us, -(l_h[0] * us + l_h[2]) / l_h[1] if abs(l_h[1]) > 1e-12 else [np.nan, np.nan])
-        gaps = {"perspective": scenes.sleeper_gaps(cam.P), "affine": scenes.sleeper_gaps(P_aff)}
+        x0 = cm.project_points(P_aff, RAIL_REFERENCE)
+        ref.set_data([x0[0]], [x0[1]])
+        ref_label.set_position(x0)
+        gaps = {"perspective": scenes.sleeper_gaps(cam.P, RAIL_SAMPLES), "affine": scenes.sleeper_gaps(P_aff, RAIL_SAMPLES)}
         for text, (near, far) in zip(texts, gaps.values()):
-            text.set_text(f"1 m of track: {near:5.1f} px near the camera, {far:5.1f} px at 20 m")
+            text.set_text(f"1 m of track: {near:5.1f} px at {RAIL_SAMPLES[0]:.0f} m, {far:5.1f} px at {RAIL_SAMPLES[1]:.0f} m")
         state.update(vanishing_point=vpt, affine_direction=v_a, camera=cam, P_affine=P_aff, horizon=l_h,
-                     sleeper_gaps=gaps)
+                     sleeper_gaps=gaps, reference_image=x0)
 
     return build_demo("parallel_rails", controls, view, update, title="Parallel lines: vanishing versus parallel")
+
+
+RAY_DEPTH = 6.0  # d0: depth of the object's centre in the ray diagram (metres)
+RAY_IMAGE = 3.0  # where the ray diagram draws the image line (z, metres)
+RAY_OBJECT = np.array([[-0.8, -1.0], [0.8, -1.0], [0.8, 1.0], [-0.8, 1.0]])  # a 1.6 m x 2 m block about X0 (x, z)
+
+
+def _joined(*polylines):
+    """Polylines (each (K, 2)) as one (x, y) pair separated by NaN, for one Line2D."""
+    rows = [np.vstack([p, [np.nan, np.nan]]) for p in polylines]
+    return np.vstack(rows).T if rows else np.empty((2, 0))
+
+
+@register(lesson="05", sweep={"offset": [0.0, 1.0, 2.5]})
+def projection_rays():
+    """A top view of four camera models (after H&Z §6.3 and Szeliski fig. 2.7): how each sends the
+    corners of a block to the image line. Move the block sideways: on the optical axis weak and
+    para-perspective coincide; off it, para-perspective's rays follow the line of sight to X0."""
+    view = FigureView(figsize=(10, 4.4))
+    axes = view.fig.subplots(1, 4, sharey=True)
+    artists = {}
+    for ax, model in zip(axes, af.PROJECTION_MODELS):
+        ax.set_xlim(-1.0, 4.0)
+        ax.set_ylim(-0.4, 7.4)
+        ax.set_aspect("equal")
+        ax.set_title(model, fontsize=9, color=COLOURS[model])
+        ax.set_xlabel("x (m)", fontsize=8)
+        ax.tick_params(labelsize=7)
+        ax.axvline(0.0, color=palette.GREY, lw=0.6, ls=":")  # the optical axis
+        ax.axhline(RAY_IMAGE, color="0.3", lw=1.0)  # the image line
+        ax.plot([0], [0], "o", color="0.2", ms=4)
+        if model in ("weak perspective", "para-perspective"):
+            ax.axhline(RAY_DEPTH, color="0.4", lw=0.8, ls="--")  # the plane z = d0 (dark enough over the block)
+        block = ax.fill([], [], color=palette.GREY, alpha=0.18, lw=0)[0]  # light: rays and the plane z = d0 cross it
+        rays = ax.plot([], [], color=COLOURS[model], lw=1.0)[0]
+        to_centre = ax.plot([], [], color=COLOURS[model], lw=0.7, ls=(0, (2, 2)))[0]
+        images = ax.plot([], [], "o", color=COLOURS[model], ms=4)[0]
+        truth = ax.plot([], [], "|", color=COLOURS["perspective"], ms=10, mew=1.5)[0]  # perspective, to compare
+        x0 = ax.plot([], [], "+", color="0.1", ms=8, mew=1.5)[0]
+        artists[model] = (block, rays, to_centre, images, truth, x0)
+        view.animate(*artists[model])
+    axes[0].set_ylabel("depth z (m)", fontsize=8)
+    axes[0].set_yticks([0, RAY_IMAGE, RAY_DEPTH], labels=["camera 0", f"image {RAY_IMAGE:g}", f"d0 = {RAY_DEPTH:g}"])
+    controls = {"offset": slider(2.0, 0.0, 2.5, 0.25, "block's x offset (m)")}
+
+    def update(v, state):
+        reference = np.array([float(v["offset"]), RAY_DEPTH])
+        corners = RAY_OBJECT + reference
+        perspective = af.projection_rays(corners, reference, "perspective", RAY_IMAGE)[:, 2]
+        images_x = {}
+        for model, (block, rays, to_centre, images, truth, x0) in artists.items():
+            r = af.projection_rays(corners, reference, model, RAY_IMAGE)
+            block.set_xy(corners)
+            rays.set_data(*_joined(*r))
+            central = model != "orthographic"
+            to_centre.set_data(*_joined(*([p, [0.0, 0.0]] for p in r[:, 2])) if central else ([], []))
+            images.set_data(*r[:, 2].T)
+            compare = model in ("weak perspective", "para-perspective")  # same image scale as perspective
+            truth.set_data(*(perspective.T if compare else ([], [])))
+            x0.set_data([reference[0]], [reference[1]])
+            images_x[model] = r[:, 2, 0]
+        state.update(reference=reference, image_x=images_x)
+
+    return build_demo("projection_rays", controls, view, update,
+                      title="Four cameras from above: where each sends the block's corners "
+                            "(red ticks: the perspective images)")

@@ -21,17 +21,20 @@ def pixel_pitch():
         "pitch_um": slider(6.0, 2.0, 15.0, 0.5, "pixel pitch (µm)"),
         "cx_offset": slider(0, -60, 60, 2, "principal point offset (px)"),
     }
-    view = FigureView(figsize=(9, 4))
-    ax_img, ax_txt = view.fig.subplots(1, 2, width_ratios=[1.4, 1])
+    view = FigureView(figsize=(7.2, 4.4))
+    ax_img = view.fig.subplots()
     scene = [render.checkerboard((9, 6), 0.05, t=(-0.2, -0.125, 1.2)), render.photo_plane(0.25, t=(0.32, 0.05, 1.3))]
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
-    pp, = ax_img.plot([], [], "r+", ms=14, mew=2)
-    ax_txt.axis("off")
-    ax_txt.text(0, 1, "u = x / s_x + c_x\nv = y / s_y + c_y\n\nf_x = f / s_x (px)\n\n320 x 240 pixels held fixed:\n"
-                "finer pixels, smaller sensor,\nnarrower field of view", va="top", family="monospace", fontsize=10)
-    ax_img.set_title("f = 3 mm, always 320 x 240 pixels (red +: principal point)", fontsize=10)
+    centre = ((SIZE[0] - 1) / 2, (SIZE[1] - 1) / 2)
+    mark, = ax_img.plot(*centre, "x", color=palette.BLUE, ms=10, mew=2, path_effects=palette.halo(), label="image centre")
+    pp, = ax_img.plot([], [], "+", color=palette.RED, ms=16, mew=2, path_effects=palette.halo(), label="principal point")
+    ax_img.set_xticks(np.arange(0, SIZE[0], 40))
+    ax_img.set_yticks(np.arange(0, SIZE[1], 40))
+    ax_img.set(xlabel="u (px)", ylabel="v (px)")
+    ax_img.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=9, borderaxespad=0)
+    ax_img.set_title("f = 3 mm, always 320 x 240 pixels", fontsize=10)
     readout = W.HTML()  # the numbers beside the sliders: canvas text costs ~15 ms per redraw
-    view.animate(im, pp)
+    view.animate(im, mark, pp)  # the centre mark too, or the blitted image covers it
 
     def update(values, state):
         pitch = values["pitch_um"] * 1e-6
@@ -96,15 +99,17 @@ def bit_depth_and_noise():
     view = FigureView(figsize=(9, 4))
     ax_img, ax_p = view.fig.subplots(1, 2)
     K = np.array([[330.0, 0, 159.5], [0, 330.0, 119.5], [0, 0, 1]])
-    clean = render.render([render.photo_plane(0.5, t=(0.0, 0, 1.0))], K, SIZE, color=False).irradiance
-    im = images.show_image(ax_img, clean, vmax=1.0)
+    # linear light, as a sensor counts it (the photo's JPEG values decoded), shown through sRGB
+    clean = render.render([render.photo_plane(0.5, t=(0.0, 0, 1.0), linear=True)], K, SIZE, color=False,
+                          background=0.2).irradiance
+    im = images.show_image(ax_img, sensor.gamma_encode(clean), "recorded, shown through sRGB", vmax=1.0)
     row = 150
     marker = ax_img.axhline(row, color="tab:red", lw=1, path_effects=palette.halo(1))
     ax_p.plot(clean[row], color=palette.GREY, lw=1, label="true irradiance")
     prof, = ax_p.plot(clean[row], color="tab:red", lw=1, label="recorded")
     ax_p.set_ylim(-0.05, 1.3)  # headroom: the legend sits above the profile
     ax_p.set_xlabel("u (px)")
-    ax_p.set_ylabel("value / full scale")
+    ax_p.set_ylabel("linear value / full scale")
     ax_p.legend(fontsize=8, loc="upper center", ncols=2)  # above 1.0, where the clipped profile never reaches
     ax_p.set_title(f"row {row} (red line), recorded against true", fontsize=10)
     readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
@@ -117,7 +122,7 @@ def bit_depth_and_noise():
         noisy = sensor.add_noise(clean * expo, sensor.NoiseModel(full_well, values["read_noise"]), rng)
         dn = sensor.quantize(np.clip(noisy / expo, 0, 1), bits)  # shown with gain 1 / exposure
         shown = sensor.dequantize(dn, bits)
-        im.set_data(shown)
+        im.set_data(sensor.gamma_encode(shown))
         prof.set_ydata(shown[row])
         signal = 0.5 * expo * full_well
         snr = signal / np.sqrt(signal + values["read_noise"] ** 2 + (full_well * expo / 2**bits) ** 2 / 12)
@@ -152,12 +157,13 @@ def demosaicing():
     }
     view = FigureView(figsize=(10, 3.9))
     ax_raw, ax_full, ax_zoom = view.fig.subplots(1, 3, width_ratios=[0.75, 1, 0.75])
-    truth = render.render(scenes.photo_and_page(), K_DEMOSAIC, SIZE, color=True).irradiance
+    # linear light (the photo's JPEG values decoded), as a sensor records it; every panel is shown through sRGB
+    truth = render.render(scenes.photo_and_page(linear=True), K_DEMOSAIC, SIZE, color=True, background=0.2).irradiance
     im_raw = images.show_image(ax_raw, np.zeros((CROP, CROP, 3)), "Bayer mosaic (zoom)")
-    im_full = images.show_image(ax_full, truth, "method")
-    im_zoom = images.show_image(ax_zoom, truth[:CROP, :CROP], "zoom")
+    im_full = images.show_image(ax_full, sensor.gamma_encode(truth), "method")
+    im_zoom = images.show_image(ax_zoom, sensor.gamma_encode(truth[:CROP, :CROP]), "zoom (shown through sRGB)")
     box = images.zoom_box(ax_full, 120, 100, CROP)
-    ax_full.set_title("camlab bilinear: PSNR 00.00 dB", fontsize=10)
+    ax_full.set_title("camlab bilinear: PSNR 00.00 dB (linear)", fontsize=10)
     view.animate(im_raw, im_full, im_zoom, box, ax_full.title)
     v0 = 100
 
@@ -185,13 +191,14 @@ def demosaicing():
         raw, out, psnr = develop(pattern, assumed, method)
         masks = sensor.bayer_masks(raw.shape, pattern)
         crop = (slice(v0, v0 + CROP), slice(u0, u0 + CROP))
-        im_raw.set_data(masks[crop] * (raw[crop] / 255.0)[..., None])
-        im_full.set_data(out)
-        im_zoom.set_data(out[crop])
+        im_raw.set_data(sensor.gamma_encode(masks[crop] * (raw[crop] / 255.0)[..., None]))
+        shown = sensor.gamma_encode(out)
+        im_full.set_data(shown)
+        im_zoom.set_data(shown[crop])
         box.set_xy((u0 - 0.5, v0 - 0.5))
         state.update(psnr=psnr, zoom=(u0, v0), assumed=assumed,
                      zoom_psnr=sensor.psnr(truth[crop], out[crop]))
         wrong = "" if assumed == pattern or method == "truth" else f" as {assumed} (wrong!)"
-        ax_full.set_title(f"{method}{wrong}: PSNR {state['psnr']:.1f} dB", fontsize=10)
+        ax_full.set_title(f"{method}{wrong}: PSNR {state['psnr']:.1f} dB (linear)", fontsize=10)
 
     return build_demo("demosaicing", controls, view, update, title="Bayer mosaic and demosaicing")

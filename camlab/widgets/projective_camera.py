@@ -37,7 +37,9 @@ def camera_explorer():
     view = FigureView(figsize=(9, 4.2))
     scene = scenes.house_scene()
     cam0 = cm.Camera.look_at(cm.orbit_eye(np.radians(-60), np.radians(25), 5.0, TARGET), TARGET)
-    sv = scene3d.SceneView(view.fig, cam0, scene, plane_size=1.5)
+    # Seen from behind the camera's shoulder, with only the house on the image plane: the small picture
+    # stays readable (the whole grid, seen edge-on, was a tangle).
+    sv = scene3d.SceneView(view.fig, cam0, scene, plane_size=2.0, thumbnail=scenes.house_wireframe(), azim=-20, elev=16)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
     (pp,) = sv.ax_image.plot([], [], "+", color="tab:purple", ms=10, mew=2)
     view.animate(*sv.artists(), pp)
@@ -113,12 +115,17 @@ def resectioning():
         K, R, t, C = cm.decompose_projection_matrix(P)
         est = cm.Camera(K, R, t)
         err = cm.reprojection_errors(P, Xw, uvn)
+        # A wild fit (N = 6 with an outlier) can have a focal length of a few tens of pixels; its frustum at
+        # the usual depth would be metres wide and cover the view, so shorten it to at most 1.2 m across.
+        w, h = est.image_size
+        est_art.size = min(1.0, 0.6 / max(w / 2 / abs(K[0, 0]), h / 2 / abs(K[1, 1])))
         est_art.update(est)
         pts3d.set_data_3d(Xw[:, 0], Xw[:, 1], Xw[:, 2])
         meas.set_data(uvn[:, 0], uvn[:, 1])
         r = cm.project_points(P, Xw)
         reproj.set_data(r[:, 0], r[:, 1])
         scene3d.update_segments(est_lines, cm.project_segments(P, frame))
+        behind = int(np.count_nonzero(~np.isfinite(err)))  # points behind the estimated camera have no image
         rms = float(np.sqrt(np.mean(err ** 2)))
         focal_err = float(abs(K[0, 0] - cam_true.K[0, 0]))
         centre_err = float(np.linalg.norm(C - cam_true.centre))
@@ -128,14 +135,17 @@ def resectioning():
         expected = float(v["noise"]) * np.sqrt(2.0 * redundancy / (2 * n))
         warning = ("\n<b>few spare equations: the fit absorbs the noise, so a small RMS\n"
                    "says little about the camera</b>" if redundancy < 10 and v["noise"] > 0 else "")
-        info.value = (f"<pre>RMS reprojection {rms:.2f} px\n|fx - fx_true| = {focal_err:.1f} px\n"
+        rms_text = (f"RMS reprojection {rms:.2f} px" if not behind else
+                    f"<b>{behind} of {n} points lie behind the estimated camera:\n"
+                    f"no reprojection error; the fit has failed</b>")
+        info.value = (f"<pre>{rms_text}\n|fx - fx_true| = {focal_err:.1f} px\n"
                       f"|C - C_true| = {100 * centre_err:.1f} cm\n\n"
                       f"redundancy 2N - 11 = {redundancy}\n"
                       f"RMS expected of the fitted camera:\n  sigma sqrt(2) sqrt((2N - 11) / 2N) = {expected:.2f} px\n"
                       f"(the true camera leaves sigma sqrt(2) = {float(v['noise']) * np.sqrt(2.0):.2f} px)"
                       f"{warning}</pre>")
         state.update(P=P, K=K, R=R, t=t, centre=C, rms=rms, focal_error=focal_err, centre_error=centre_err,
-                     points_image=uvn, redundancy=redundancy, expected_rms=expected)
+                     points_image=uvn, redundancy=redundancy, expected_rms=expected, behind=behind)
 
     demo = build_demo("resectioning", controls, view, update,
                       title="Resection: estimate P from N point pairs (DLT); click the image (or use the shift sliders) to move a pixel",
@@ -161,11 +171,13 @@ def opencv_vs_opengl():
     (x right, y up, z backward): only the labels of the camera axes change, R_gl = F R."""
     from mpl_toolkits.mplot3d import Axes3D  # noqa: F401  (registers the 3-D projection)
 
-    view = FigureView(figsize=(6.5, 4.2))
+    view = FigureView(figsize=(5.0, 3.4))
     ax = scene3d.axes3d(view.fig, 1, 1, 1, elev=20, azim=-130)
     ax.set_axis_off()
-    scene3d.draw_world_axes(ax, 0.6)
-    scene3d.draw_segments(ax, scenes.house_wireframe((0.0, 0.0, 0.0), 0.6), color=palette.GREY)
+    ax.set_position((0.0, -0.12, 1.0, 1.2))  # 3-D axes keep a square box: let it fill the wide canvas
+    world = scene3d.draw_world_axes(ax, 0.6)
+    house_segments = scenes.house_wireframe((0.0, 0.0, 0.0), 0.6)
+    house = scene3d.draw_segments(ax, house_segments, color=palette.GREY)
     cam0 = cm.Camera.look_at([2.0, -2.0, 1.0], [0.0, 0.0, 0.4])
     art = scene3d.CameraArtist(ax, cam0, size=0.45, show_axes=False)  # shorter than the axes, so labels clear it
     lines, texts = [], []
@@ -173,10 +185,10 @@ def opencv_vs_opengl():
         (ln,) = ax.plot([], [], [], color=c, lw=2.5)
         lines.append(ln)
         texts.append(ax.text(0, 0, 0, "", color=c, fontsize=9, fontweight="bold"))
-    scene3d.set_equal_aspect(ax, [[-0.6, -0.6, 0.0], [2.9, -2.9, 2.0], [-1.0, -2.9, 0.0], art.extent_points()], zoom=1.3)
     title = W.HTML()  # the formula beside the figure: long canvas text costs ~7 ms per redraw
-    scene3d.refresh_projection(ax)
-    view.animate(*art.artists(), *lines, *texts)
+    # The limits follow the orbiting camera (house, axes and labels fill the canvas at every angle), so
+    # everything in the 3-D axes moves with the projection and is animated.
+    view.animate(*world, house, *art.artists(), *lines, *texts)
     controls = {
         "yaw": slider(0, -90, 90, 2, "orbit (deg)"),
         "frame": W.ToggleButtons(options=["OpenCV", "OpenGL / Blender"], value="OpenCV", description="frame"),
@@ -190,6 +202,10 @@ def opencv_vs_opengl():
         R_axes = cm.opengl_from_opencv(cam.R, cam.t)[0] if gl else cam.R
         names = ("x right", "y up", "z backward") if gl else ("x right", "y down", "z forward")
         C = cam.centre
+        label_tips = C + 1.3 * R_axes
+        scene3d.set_equal_aspect(ax, [house_segments, np.zeros(3), label_tips, art.extent_points(cam)], zoom=0.95,
+                                 tight=True)
+        scene3d.refresh_projection(ax)
         for i, (ln, tx) in enumerate(zip(lines, texts)):
             e = C + 0.9 * R_axes[i]  # row i of R = camera axis i in world coordinates
             ln.set_data_3d([C[0], e[0]], [C[1], e[1]], [C[2], e[2]])
