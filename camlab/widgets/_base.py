@@ -88,11 +88,10 @@ class FigureView:
         """Register artists that updates move; returns them (one artist if one was given).
 
         Images among them keep their data at the resolution they are shown; haloed lines draw
-        their halo as a plain pass (see :mod:`._transport`). An image's axes frame (its spines)
-        is animated with it: a static spine would be in the cached background, under the image.
-        Anything static that must show *above* an animated artist (a marker on a moving line)
-        must be animated too, for the same reason: the live path paints animated artists over
-        the whole background, in zorder, as a full draw does.
+        their halo as a plain pass (see :mod:`._transport`). Anything static that must show
+        *above* an animated artist (a marker on a moving line, an image's spines:
+        :func:`~camlab.widgets.controls.on_top`) must be animated too: the live path paints the
+        animated artists over the cached background, in zorder, as a full draw does.
         """
         for artist in artists:
             if isinstance(artist, AxesImage):
@@ -100,8 +99,6 @@ class FigureView:
             halo_in_two_passes(artist)
             artist.set_animated(True)
             self._animated.append(artist)
-            if isinstance(artist, AxesImage):
-                self.animate(*(s for s in artist.axes.spines.values() if s not in self._animated))
         return artists[0] if len(artists) == 1 else artists
 
     def _on_full_draw(self, _event: Any = None) -> None:
