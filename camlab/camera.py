@@ -788,6 +788,14 @@ def reprojection_errors(P: ArrayLike, points_world: ArrayLike, points_image: Arr
     return np.linalg.norm(project_points(P, X) - uv, axis=1)
 
 
+def _thinnest_spread(sv: np.ndarray) -> str:
+    """Words for how flat a point set is, from its singular values (widest first)."""
+    ratio = sv[2] / max(sv[0], 1e-300)
+    if ratio == 0.0:
+        return "they have no spread at all across their thinnest direction"
+    return f"their spread across the thinnest direction is only {ratio:.1e} times the widest"
+
+
 def estimate_projection_matrix(
     points_world: ArrayLike,
     points_image: ArrayLike,
@@ -849,8 +857,8 @@ def estimate_projection_matrix(
     sv = np.linalg.svd(X - X.mean(axis=0), compute_uv=False)
     if sv[2] <= 1e-9 * sv[0]:
         raise DegenerateError(
-            f"estimate_projection_matrix: the {len(X)} world points are coplanar (their spread across the "
-            f"thinnest direction is {sv[2] / max(sv[0], 1e-300):.2g} of the widest), so P is not determined; "
+            f"estimate_projection_matrix: the {len(X)} world points are coplanar ({_thinnest_spread(sv)}), "
+            f"so P is not determined; "
             f"use points on at least two planes (e.g. two faces of a box), or a homography for one plane"
         )
     T = hartley_normalization(uv, "points_image")

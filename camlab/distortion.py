@@ -181,11 +181,13 @@ def undistort_points(
     bad = ~(res <= max(tol, 1e-9))
     if bad.any():
         i = int(np.argmax(bad))
+        r_fold = max_valid_radius(d)
         raise ConvergenceError(
             f"undistort_points: {int(bad.sum())} of {len(bad)} points did not converge "
-            f"(first: point {i} = {target[i]}, residual {res[i]:.3g}); they lie outside the "
-            f"valid field of view of dist = {d.tolist()} (max radius {max_valid_radius(d):.3g}), "
-            f"where distortion folds over and has no unique inverse"
+            f"(first: point {i} = {target[i]}, at distorted radius {np.hypot(*target[i]):.3g}, residual {res[i]:.3g}); "
+            f"they lie outside the valid field of view of dist = {d.tolist()}: the model folds over at ideal radius "
+            f"{r_fold:.3g}, which it sends to distorted radius {r_fold * float(radial_scale(r_fold, d)):.3g}, "
+            f"so a distorted point farther out has no inverse inside the fold"
         )
     return pts.restore(x)
 

@@ -56,7 +56,6 @@ def sweep_points(spec) -> list[tuple[str, object]]:
 # triaged (issues 28 and 29; lesson 09's panorama_canvas has the stale axis limits the review
 # found). Strict: a fix that makes one pass must take it off this list.
 KNOWN_DIFFERENT = {"epipolar_lines", "panorama_canvas", "ransac_outliers", "undistort_alpha"}
-# (focus_and_blur and view_inspector passed once an image's data was fitted after the first layout, issue 28)
 
 
 @pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason="issues 28/29"))

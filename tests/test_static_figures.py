@@ -47,7 +47,7 @@ def test_alt_text_follows_the_settings():
     assert "angle (°) = 20; scale = 1." in demo.alt_text
     demo.set(angle=-35.0, scale=1.5)
     assert "angle (°) = -35; scale = 1.5." in demo.alt_text
-    assert "Panels: 'drag the sliders'" in demo.alt_text
+    assert "Panels: 'a house on axes with y pointing down'" in demo.alt_text
 
 
 def test_selection_controls_show_their_label():

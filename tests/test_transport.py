@@ -153,3 +153,23 @@ def test_rotated_or_clipped_images_keep_matplotlibs_drawing():
     clipped = view.animate(ax.imshow(np.random.default_rng(1).random((30, 40))))
     clipped.set_clip_path(Circle((20, 15), 10, transform=ax.transData))
     assert _transport._screen_image(rotated) is None and _transport._screen_image(clipped) is None
+
+
+def test_an_image_fitted_before_the_layout_is_refitted_when_drawn():
+    """animate() fits the array to the axes as they are before constrained layout runs; the
+    first draw moves the axes, and the image must then be resampled once, from the caller's
+    array, to the box it really covers (not fitted small, then stretched)."""
+    from camlab.widgets import FigureView
+    from camlab.widgets._transport import _pixel_box
+
+    view = FigureView(figsize=(8, 4), mode="agg", dpi=90)
+    ax_img, ax_side = view.fig.subplots(1, 2, width_ratios=[2.5, 1])
+    ax_side.set_ylabel("a long label\nover two lines")
+    ax_side.set_title("a title\nover two lines")
+    image = view.animate(ax_img.imshow(np.zeros((360, 480))))
+    image.set_data(np.random.default_rng(1).random((360, 480)))
+    before = image.get_array().shape
+    view.fig.canvas.draw()  # the first full draw: the layout moves the axes
+    left, right, bottom, top = _pixel_box(image)
+    assert before != image.get_array().shape  # the layout did change the box (else this test proves nothing)
+    assert image.get_array().shape == (min(360, top - bottom), min(480, right - left))

@@ -278,3 +278,34 @@ def test_a_demo_whose_defaults_fail_raises_when_built():
 
     with pytest.raises(RuntimeError, match="broken demo"):
         build_demo("broken", {"x": W.FloatSlider(value=1.0)}, FigureView(figsize=(2, 2)), update)
+
+
+@pytest.mark.parametrize("angle", [-180.0, -60.0, 20.0, 90.0, 180.0])
+def test_stack_check_legend_stays_off_the_house_at_every_angle_and_the_largest_scale(angle):
+    from matplotlib.transforms import Bbox
+
+    demo = DEMOS["stack_check"].builder()
+    demo.set(angle=angle, scale=2.0)  # at scale 2 the house reaches every corner of the +-3 axes
+    fig = demo.figure
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    (ax,), legend = fig.axes, fig.legends[0]
+    box = legend.get_window_extent(renderer)
+    assert np.abs(demo.state["house"]).max() <= 3.0  # the whole house is inside the axes ...
+    assert not Bbox.intersection(box, ax.get_window_extent(renderer)), "the legend overlaps the axes"  # ... the legend not
+
+
+def test_stack_check_readout_marks_the_roof_tip_without_a_signed_zero():
+    demo = DEMOS["stack_check"].builder()
+    demo.set(angle=-180.0, scale=1.0)
+    readout = demo.widget.children[0].children[-1].value
+    assert "roof tip (orange dot) at (+0.00, +1.40)" in readout, readout
+
+
+def test_stack_report_names_the_versions_and_whether_figures_are_live():
+    from camlab import __version__
+    from camlab.widgets.start_here import stack_report
+
+    report = stack_report()
+    assert f"camlab {__version__}" in report and "ipywidgets" in report and "ipympl" in report
+    assert "figures: still pictures, not live" in report  # the tests draw with Agg

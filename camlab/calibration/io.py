@@ -62,7 +62,6 @@ def load_calibration(path: str | os.PathLike, *, name: str = "path") -> tuple[np
     """Read ``(K, dist, image_size)`` from a file written by :func:`save_calibration`, by OpenCV
     with the same node names, or by ROS's camera calibrator (``camera_info`` YAML, whose
     matrices are ``rows``/``cols``/``data`` maps; ``distortion_model: plumb_bob``). ``name`` is the argument named in errors."""
-    import cv2
 
     if not isinstance(path, (str, os.PathLike)):
         raise CamlabInputError(f"{name}: expected a file path, got {type(path).__name__}")
@@ -70,12 +69,9 @@ def load_calibration(path: str | os.PathLike, *, name: str = "path") -> tuple[np
         raise CamlabInputError(f"{name}: no file {str(path)!r}")
     expected = ("pass a .json/.yaml/.xml written by `camlab calibrate` (or save_calibration), OpenCV's "
                 "FileStorage, or ROS's camera calibrator")
+    fs = _open_storage(Path(path))
     try:
-        fs = cv2.FileStorage(str(path), cv2.FILE_STORAGE_READ)
-    except (cv2.error, SystemError):
-        raise CamlabInputError(f"{name}: {str(path)!r} is not a file OpenCV's FileStorage can parse; {expected}") from None
-    try:
-        if not fs.isOpened():
+        if fs is None or not fs.isOpened():
             raise CamlabInputError(f"{name}: {str(path)!r} is not a file OpenCV's FileStorage can parse; {expected}")
         model = fs.getNode("distortion_model")
         if not model.empty() and model.string() not in ("plumb_bob", "radtan"):
@@ -91,6 +87,29 @@ def load_calibration(path: str | os.PathLike, *, name: str = "path") -> tuple[np
                                f"distortion coefficients and image size {size[0]} x {size[1]}; expected 3 x 3, 4 or 5 "
                                f"(k1, k2, p1, p2[, k3]) and a positive image_width and image_height")
     return K, dist.ravel(), size
+
+
+def _open_storage(path: Path):
+    """``cv2.FileStorage`` for reading ``path``, or None if OpenCV cannot parse it.
+
+    OpenCV 4 reads YAML only after a ``%YAML:1.0`` directive, which ROS's files lack (OpenCV 5
+    reads them as they are), so a YAML file without one is read again from memory with it.
+    """
+    import cv2
+
+    try:
+        return cv2.FileStorage(str(path), cv2.FILE_STORAGE_READ)
+    except (cv2.error, SystemError):
+        if path.suffix.lower() not in (".yaml", ".yml"):
+            return None
+    text = path.read_text(encoding="utf-8", errors="replace")
+    if text.lstrip().startswith("%YAML"):
+        return None
+    flags = cv2.FILE_STORAGE_READ | cv2.FILE_STORAGE_MEMORY | cv2.FILE_STORAGE_FORMAT_YAML
+    try:
+        return cv2.FileStorage("%YAML:1.0\n---\n" + text, flags)
+    except (cv2.error, SystemError):
+        return None
 
 
 def _matrix(node, path, name: str, expected: str) -> np.ndarray:

@@ -18,11 +18,11 @@ import importlib
 import pkgutil
 
 from ._core import (EXERCISES, Exercise, check, register_exercise, same_array, same_up_to_scale, shape_problem,
-                    unit_slip, worst_mismatch)
+                    type_problem, unit_slip, worst_mismatch)
 from ._core import solution as _solution
 
 __all__ = ["EXERCISES", "Exercise", "all_exercises", "check", "register_exercise", "same_array", "same_up_to_scale",
-           "shape_problem", "solution", "unit_slip", "worst_mismatch"]
+           "shape_problem", "solution", "type_problem", "unit_slip", "worst_mismatch"]
 
 
 def all_exercises() -> dict[str, Exercise]:

@@ -6,7 +6,11 @@ comparison and a diagnosis. ``check`` runs the student's function on every input
 * a stub that raises NotImplementedError prints "not attempted yet" and returns a false
   :class:`CheckResult`, so a lesson with untouched exercises still runs top to bottom in CI;
 * a wrong answer raises AssertionError naming the input, what came out, what was
-  expected and the likely cause;
+  expected and the likely cause; so does an answer of the wrong type (a string, a
+  list of an array and a number, or, where the prompt asks for a numpy array, any list),
+  named by :func:`type_problem`;
+* a function that changes an input array in place fails, naming the argument (the
+  caller's data must come back as it went in), even if its answer is right;
 * a function still running after :data:`TIME_LIMIT_S` seconds on one input is stopped,
   and the AssertionError names that input (see :func:`time_limit`);
 * a right answer prints a congratulation and returns a true :class:`CheckResult`.
@@ -53,6 +57,8 @@ class Exercise:
     diagnose: Callable[[tuple, Any, Any], str]
     wrong_variants: Sequence[tuple[Callable[..., Any], str]] = field(default_factory=tuple)
     teaching: Callable[..., Any] | None = None
+    ndarray_only: bool = False
+    """The prompt asks for a numpy array: a list or tuple of the right numbers is rejected too."""
 
 
 EXERCISES: dict[str, Exercise] = {}
@@ -73,10 +79,11 @@ def _fmt(value: Any) -> str:
             span = f", values {finite.min():.4g} .. {finite.max():.4g}" if finite.size else ""
             return f"<array of shape {value.shape}, dtype {value.dtype}{span}>"
         return np.array2string(value, precision=4, suppress_small=True, separator=", ")
+    if isinstance(value, np.generic):
+        return repr(value.item())  # 2.5, not np.float64(2.5)
     if isinstance(value, (tuple, list)):
-        return "(" + ", ".join(_fmt(v) for v in value) + ")"
-    if isinstance(value, np.generic):  # 0.000365, not np.float64(0.000365)
-        return repr(value.item())
+        inner = ", ".join(_fmt(v) for v in value)
+        return f"[{inner}]" if isinstance(value, list) else f"({inner})"
     return repr(value)
 
 
@@ -154,30 +161,42 @@ def time_limit(seconds: float) -> Iterator[None]:
             signal.setitimer(signal.ITIMER_REAL, max(outer_delay - (time.monotonic() - start), 1e-3), outer_interval)
 
 
-def _changed_in_place(args: tuple, given: tuple) -> int | None:
-    """The position of the first array argument the student's function changed, or None."""
-    for k, (a, b) in enumerate(zip(args, given)):
-        if isinstance(a, np.ndarray) and isinstance(b, np.ndarray):
-            try:
-                same = a.shape == b.shape and np.array_equal(a, b, equal_nan=a.dtype.kind in "fc")
-            except TypeError:  # an object array: compare without NaN handling
-                same = a.shape == b.shape and np.array_equal(a, b)
+def _inputs_changed(original: tuple, passed: tuple) -> list[int]:
+    """Positions of the array arguments that differ, after the student's call, from the originals."""
+    changed = []
+    for k, (before, after) in enumerate(zip(original, passed)):
+        if isinstance(before, np.ndarray):
+            same = before.shape == np.shape(after) and np.array_equal(
+                before, after, equal_nan=before.dtype.kind in "fc")
             if not same:
-                return k
-    return None
+                changed.append(k)
+    return changed
+
+
+def _parameter_name(function: Callable[..., Any], position: int) -> str:
+    """The name of ``function``'s parameter at ``position`` (for messages), or 'argument k'."""
+    try:
+        names = list(inspect.signature(function).parameters)
+    except (TypeError, ValueError):
+        names = []
+    return f"`{names[position]}`" if position < len(names) else f"argument {position + 1}"
+
+
+def _in_place_message(name: str, student_function: Callable[..., Any], changed: list[int], i: int, n: int) -> str:
+    what = ", ".join(_parameter_name(student_function, k) for k in changed)
+    return (f"{name}: your function changed its input {what} in place (test input {i + 1} of {n}); the caller's "
+            f"array must come back as it went in\n"
+            f"  likely cause: an in-place operation on an argument (`x *= L`, `x[:, 0] = ...`, `x += ...`); "
+            f"build a new array instead (`x * L`), or work on a copy first (`x = np.array(x, dtype=float)`)")
 
 
 def _run_student(name: str, student_function: Callable[..., Any], args: tuple, i: int, n: int) -> Any:
-    """The student's answer on test input ``i`` of ``n``; AssertionError on a crash, an endless run or a changed input.
-
-    The function gets copies of the inputs, so the check's own are safe; a function that changes
-    its argument in place would still corrupt a student's data (the course's functions never
-    modify their inputs), so that fails too, naming the argument.
-    """
-    given = _copy(args)
+    """The student's answer on test input ``i`` of ``n``; AssertionError on a crash, an endless run or
+    an input changed in place."""
+    passed = _copy(args)
     try:
         with time_limit(TIME_LIMIT_S):
-            answer = student_function(*given)
+            got = student_function(*passed)
     except NotImplementedError:
         raise
     except OutOfTime:
@@ -191,19 +210,10 @@ def _run_student(name: str, student_function: Callable[..., Any], args: tuple, i
             f"{name}: your function raised {type(exc).__name__}: {exc}\n"
             f"  on input {_fmt(args)}" + _exception_hint(exc)
         ) from exc
-    changed = _changed_in_place(args, given)
-    if changed is not None:
-        try:
-            params = list(inspect.signature(student_function).parameters)
-        except (TypeError, ValueError):  # a builtin or a C function: no signature
-            params = []
-        arg = f"`{params[changed]}`" if changed < len(params) else f"argument {changed + 1}"
-        raise AssertionError(
-            f"{name}: your function changed its input {arg} in place on test input {i + 1} of {n}\n"
-            f"  input    {_fmt(args)}\n"
-            f"  likely cause: an in-place operation on the argument (`X[:, :2] *= ...`, `X /= ...`, `X[...] = ...`);"
-            f" the caller's array would be silently changed. Build a new array, or start with `X = X.copy()`")
-    return answer
+    changed = _inputs_changed(args, passed)
+    if changed:
+        raise AssertionError(_in_place_message(name, student_function, changed, i, n))
+    return got
 
 
 def check(name: str, student_function: Callable[..., Any]) -> CheckResult:
@@ -220,6 +230,15 @@ def check(name: str, student_function: Callable[..., Any]) -> CheckResult:
         if got is None:
             raise AssertionError(f"{name}: your function returned None on test input {i + 1}\n"
                                  f"  likely cause: did you forget `return`? The last line should be `return <result>`.")
+        wrong_type = type_problem(got, expected, exercise.ndarray_only)
+        if wrong_type:
+            raise AssertionError(
+                f"{name}: wrong type of answer on test input {i + 1} of {len(cases)}\n"
+                f"  input    {_fmt(args)}\n"
+                f"  got      {_fmt(got)}  (a {type(got).__name__})\n"
+                f"  expected {_fmt(expected)}\n"
+                f"  likely cause: {wrong_type}"
+            )
         if not exercise.compare(got, expected):
             tolerance = exercise.compare.tolerance if isinstance(exercise.compare, SameArray) else None
             raise AssertionError(
@@ -236,8 +255,8 @@ def check(name: str, student_function: Callable[..., Any]) -> CheckResult:
 
 def _exception_hint(exc: Exception) -> str:
     """A likely cause for the errors students meet most ('' for the others)."""
-    one_based = ("\n  likely cause: counting columns from 1. Python counts from 0: the columns of an (N, 3) array"
-                 " are 0, 1 and 2 (x, y, z), so z is X[:, 2] or X[:, 2:3]")
+    one_based = ("\n  likely cause: counting columns from 1. Python counts from 0: an axis of size n has indices"
+                 " 0 .. n - 1, so the columns of an (N, 3) array of points are 0, 1 and 2 (z is X[:, 2] or X[:, 2:3])")
     if isinstance(exc, IndexError) and "out of bounds" in str(exc):
         return one_based
     if isinstance(exc, ValueError) and "broadcast" in str(exc) and re.search(r"\(\d+,0\)|\(0,", str(exc)):
@@ -245,7 +264,42 @@ def _exception_hint(exc: Exception) -> str:
     if isinstance(exc, ValueError) and "broadcast" in str(exc):
         return ("\n  likely cause: a broadcasting slip. Dividing an (N, 2) array by an (N,) column such as X[:, 2]"
                 " lines the column up with the last axis; keep it 2-D: X[:, 2:3], X[:, 2, None] or keepdims=True")
+    if isinstance(exc, ValueError) and "inhomogeneous" in str(exc):
+        return f"\n  likely cause: an array beside numbers, as in np.array([p, 1]), makes no array of numbers: {_JOIN}"
+    if isinstance(exc, ValueError) and "matmul" in str(exc):
+        return ("\n  likely cause: the sizes of a matrix product do not fit (A @ B needs A's columns = B's rows)."
+                " With points as rows, a matrix M acts as X @ M.T, not X @ M; and lift points to homogeneous"
+                " coordinates (append a column of ones) before a 3 x 4 or 3 x 3 projective matrix")
     return ""
+
+
+_JOIN = "join an array and numbers with np.append(p, 1.0), np.concatenate or np.hstack"
+
+
+def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | None:
+    """Why ``got`` is the wrong type of answer for an array or a number ``expected``, or None.
+
+    Catches what numpy cannot turn into numbers (a string, a list holding an array and a
+    number) and, with ``ndarray_only``, a list or tuple where the prompt asks for an array.
+    Answers of other kinds (pairs of arrays...) are left to the exercise's compare and diagnose.
+    """
+    if isinstance(expected, np.ndarray):
+        wanted = f"return a numpy array of shape {expected.shape}"
+    elif isinstance(expected, (float, int, np.number)):
+        wanted = "return one number"
+    else:
+        return None
+    kind = type(got).__name__
+    try:
+        np.asarray(got, dtype=float)
+    except (TypeError, ValueError):
+        if isinstance(got, (list, tuple)):
+            return (f"you returned a {kind} that numpy cannot turn into one array of numbers (an array beside "
+                    f"numbers, such as [p, 1]?); {wanted}: {_JOIN}")
+        return f"you returned a {kind}, which is not numbers; {wanted}"
+    if ndarray_only and not isinstance(got, np.ndarray):
+        return f"you returned a {kind}; {wanted}: wrap the values in np.array(...)"
+    return None
 
 
 def _as_array(value: Any) -> Any:
@@ -384,9 +438,12 @@ def same_array(rtol: float = 1e-5, atol: float = 1e-8) -> SameArray:
 
 def shape_problem(got: Any, expected: np.ndarray) -> str | None:
     """A diagnosis for the commonest mistakes (wrong shape, NaN), or None."""
-    g = np.asarray(got, dtype=float) if got is not None else None
-    if g is None:
+    if got is None:
         return "the function returned None: did you forget `return`?"
+    wrong_type = type_problem(got, expected)
+    if wrong_type:
+        return wrong_type
+    g = np.asarray(got, dtype=float)
     if g.shape != np.shape(expected):
         return f"expected an array of shape {np.shape(expected)}, got shape {g.shape}"
     if not np.isfinite(g).all():

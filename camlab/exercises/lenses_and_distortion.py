@@ -27,6 +27,11 @@ def _thin_lens_diagnosis(args, got, expected) -> str:
                 "forms a real image behind the lens, z_i > 0")
     if np.isclose(g, 1 / f - 1 / zo) or np.isclose(g, 1 / f + 1 / zo):
         return "you returned 1/z_i; invert it to get the distance"
+    if np.isclose(g, f**2 / (zo - f)):
+        return ("that is Newton's form f^2 / (z_o - f), the distance from the focal point F' to the image, not from the "
+                "lens; add f (z_i = f + f^2 / (z_o - f) = f z_o / (z_o - f))")
+    if np.isclose(g, -f / (zo - f)) or np.isclose(g, f / (zo - f)):
+        return "you returned the magnification m = -z_i / z_o; the exercise asks for the distance z_i"
     return "solve 1/f = 1/z_o + 1/z_i for z_i"
 
 
@@ -47,6 +52,8 @@ register_exercise(Exercise(
         (lambda f, zo: 1 / f - 1 / zo, "invert it"),
         (lambda f, zo: 1e3 * f * zo / (zo - f), "millimetres"),
         (lambda f, zo: f * zo / (f - zo), "your z_i is negative"),
+        (lambda f, zo: f**2 / (zo - f), "from the focal point"),
+        (lambda f, zo: -f / (zo - f), "magnification"),
     ),
     teaching=thin_lens_image_distance,
 ))
@@ -75,6 +82,21 @@ def _brown_variant(x, d, cross: float = 2.0, squares_swapped: bool = False, divi
                                      p1 * (r2 + 2 * sv**2) + cross * p2 * u * v])
 
 
+def _sign_slip(x, d, g) -> str:
+    """A hint when ``g`` is the model with the radial or a tangential coefficient's sign flipped ('' if not)."""
+    k1, k2, p1, p2, k3 = d
+    flips = (((-k1, -k2, p1, p2, -k3), "the radial terms have the wrong sign: L = 1 + k1 r^2 + k2 r^4 + k3 r^6 "
+                                       "(k1 < 0 pulls points in, barrel)", k1 or k2 or k3),
+             ((k1, k2, -p1, -p2, k3), "the tangential terms have the wrong sign: x gets + 2 p1 x y + p2 (r^2 + 2 x^2), "
+                                      "y gets + p1 (r^2 + 2 y^2) + 2 p2 x y", p1 and p2),
+             ((k1, k2, -p1, p2, k3), "the p1 terms have the wrong sign: + 2 p1 x y in x_d, + p1 (r^2 + 2 y^2) in y_d", p1),
+             ((k1, k2, p1, -p2, k3), "the p2 terms have the wrong sign: + p2 (r^2 + 2 x^2) in x_d, + 2 p2 x y in y_d", p2))
+    for flipped, hint, present in flips:
+        if present and np.allclose(g, distortion.distort_points(x, flipped)):
+            return hint
+    return ""
+
+
 def _distort_diagnosis(args, got, expected) -> str:
     problem = shape_problem(got, expected)
     if problem:
@@ -94,6 +116,9 @@ def _distort_diagnosis(args, got, expected) -> str:
         return "x^2 and y^2 are swapped in the tangential terms: x gets p2 (r^2 + 2 x^2), y gets p1 (r^2 + 2 y^2)"
     if np.allclose(g, _brown_variant(x, d, divide=True)):
         return "you divided by the radial factor L; distortion multiplies: x_d = x L + ... (dividing is a rough inverse)"
+    sign = _sign_slip(x, d, g)
+    if sign:
+        return sign
     radial_only = distortion.distort_points(x, [k1, k2, 0, 0, k3])
     if np.allclose(g, radial_only) and (p1 or p2):
         return "you left out the tangential terms p1, p2"
@@ -133,6 +158,9 @@ register_exercise(Exercise(
         (lambda x, d: _brown_variant(x, d, cross=1.0), "factor 2"),
         (lambda x, d: _brown_variant(x, d, squares_swapped=True), "swapped in the tangential terms"),
         (lambda x, d: _brown_variant(x, d, divide=True), "divided by the radial factor"),
+        (lambda x, d: distortion.distort_points(x, [-d[0], -d[1], d[2], d[3], -d[4]]), "radial terms have the wrong sign"),
+        (lambda x, d: distortion.distort_points(x, [d[0], d[1], -d[2], -d[3], d[4]]), "tangential terms have the wrong"),
+        (lambda x, d: _in_place_distortion(x, d), "in place"),
     ),
     teaching=distort_points,
 ))
@@ -162,6 +190,15 @@ def _hyperfocal_diagnosis(args, got, expected) -> str:
         return "N belongs in the denominator: a larger f-number (smaller aperture) brings H closer"
     if np.isclose(g, f / (N * c) + f, rtol=1e-9) or np.isclose(g, f / (N * c), rtol=1e-9):
         return "square the focal length: H = f^2 / (N c) + f"
+    for scale, hint in ((1e-3, "c arrives in metres already (0.03 mm is 3e-05): multiplying it by 1e-3 again makes "
+                               "H about 1000 times too large"),
+                        (1e3, "c arrives in metres (0.03 mm is 3e-05), not millimetres: multiplying it by 1000 "
+                              "makes H about 1000 times too small"),
+                        (0.5, "c is the blur circle's diameter, not its radius: use c itself, H = f^2 / (N c) + f")):
+        if np.isclose(g, f**2 / (N * c * scale) + f, rtol=1e-9) or np.isclose(g, f**2 / (N * c * scale), rtol=1e-9):
+            return hint
+    if np.isclose(g, f**2 / (N**2 * c) + f, rtol=1e-9):
+        return "N enters once: A = f / N, so c = A f / (H - f) gives H - f = f^2 / (N c)"
     return "set the blur circle of a point at infinity, A f / (H - f) with A = f / N, equal to c and solve for H"
 
 
@@ -184,6 +221,124 @@ register_exercise(Exercise(
         (lambda f, N, c: 1e3 * (f**2 / (N * c) + f), "millimetres"),
         (lambda f, N, c: f**2 / (N * c) - f, "the sign of f"),
         (lambda f, N, c: (f**2 / (N * c) + f) / 2, "H / 2"),
+        (lambda f, N, c: f**2 / (N * c * 1e-3) + f, "metres already"),
+        (lambda f, N, c: f**2 / (N * c * 1e3) + f, "not millimetres"),
+        (lambda f, N, c: f**2 / (N * c / 2) + f, "not its radius"),
+        (lambda f, N, c: f**2 / (N**2 * c) + f, "N enters once"),
     ),
     teaching=hyperfocal_distance,
 ))
+
+
+# -- undistort_newton ------------------------------------------------------------------------
+
+NEWTON_STEPS = 8  # the teaching solution's steps: from x = x_d, quadratic convergence reaches 1e-12 in 4-6
+
+
+def _undistort_cases():
+    rng = np.random.default_rng(5)
+    pts = rng.uniform(-0.4, 0.4, (8, 2))
+    return [
+        (pts, -0.25, 0.05),
+        (pts, 0.12, 0.0),
+        (np.array([[0.45, -0.2], [0.0, 0.0], [-0.3, 0.35]]), -0.4, 0.0),  # strong barrel, inside its fold (0.609)
+    ]
+
+
+def _undistort_reference(x_d, k1, k2):
+    return distortion.undistort_points(x_d, [k1, k2, 0.0, 0.0, 0.0])
+
+
+def _radial_iterates(x_d, k1, k2, *, chain: float = 2.0, step_sign: float = -1.0, steps: int = 40) -> list:
+    """Iterates of x <- x + step_sign J^-1 (x L - x_d) from x = x_d, with J = L I + chain (k1 + 2 k2 r^2) x x^T.
+
+    chain = 2 is Newton; chain = 0 (J = L I) is the fixed-point iteration x = x_d / L; chain = 1 drops the
+    chain rule's 2; step_sign = +1 steps along the residual.
+    """
+    x, out = np.array(x_d, dtype=float), []
+    with np.errstate(all="ignore"):
+        for _ in range(steps):
+            r2 = (x**2).sum(axis=1, keepdims=True)
+            L = 1 + k1 * r2 + k2 * r2**2
+            J = L[:, :, None] * np.eye(2) + (chain * (k1 + 2 * k2 * r2))[:, :, None] * x[:, :, None] * x[:, None, :]
+            x = x + step_sign * np.linalg.solve(J, (x * L - x_d)[:, :, None])[:, :, 0]
+            out.append(x)
+    return out
+
+
+def _matches_an_iterate(g, iterates) -> int:
+    """1-based index of the iterate ``g`` equals (0 if none)."""
+    return next((k + 1 for k, it in enumerate(iterates) if np.allclose(g, it, rtol=0, atol=1e-12)), 0)
+
+
+def _undistort_diagnosis(args, got, expected) -> str:
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem
+    x_d, k1, k2 = args
+    g = np.asarray(got, dtype=float)
+    r2 = (x_d**2).sum(axis=1, keepdims=True)
+    if np.allclose(g, x_d * (1 + k1 * r2 + k2 * r2**2)):
+        return "you distorted x_d again; undistorting solves x L(r^2) = x_d for x, where r^2 = x^2 + y^2 of the unknown x"
+    steps = _matches_an_iterate(g, _radial_iterates(x_d, k1, k2))
+    if steps:
+        return (f"you stopped after {steps} Newton step{'s' * (steps > 1)}; the error squares each step but starts "
+                f"near k1 r^3: repeat until the step is below 1e-12 (about {NEWTON_STEPS} steps)")
+    if _matches_an_iterate(g, _radial_iterates(x_d, k1, k2, chain=0.0)):
+        return ("you used J = L I, leaving out how L changes with x: that is the fixed-point iteration x = x_d / L(x), "
+                "which converges slowly; differentiate x L(r^2) with the product rule: J = L I + x (dL/dx)^T")
+    if _matches_an_iterate(g, _radial_iterates(x_d, k1, k2, chain=1.0)):
+        return ("the Jacobian misses the chain rule's factor 2: d(r^2)/dx = 2 x, so dL/dx = (2 k1 + 4 k2 r^2) x "
+                "(with it Newton converges in a few steps)")
+    if _matches_an_iterate(g, _radial_iterates(x_d, k1, k2, step_sign=1.0)) or not np.all(np.abs(g) < 10):
+        return "step against the residual: x <- x - J^-1 (x L - x_d); stepping along it walks away from the answer"
+    r = np.sqrt((g**2).sum(axis=1, keepdims=True))
+    if np.allclose(g * (1 + k1 * r + k2 * r**2), x_d, atol=1e-9):
+        return "the radial factor uses even powers of r: L = 1 + k1 r^2 + k2 r^4 with r^2 = x^2 + y^2"
+    return ("one Newton step solves J dx = -(x L - x_d) with J the 2 x 2 Jacobian of x L(r^2); start from x = x_d and "
+            "repeat until dx is tiny")
+
+
+def undistort_newton(x_d, k1, k2, steps=NEWTON_STEPS):
+    """Invert x_d = x L(r^2), L = 1 + k1 r^2 + k2 r^4, for (N, 2) normalised points by Newton's method."""
+    x = np.array(x_d, dtype=float)                     # start at the distorted point (a copy: x_d stays as it is)
+    for _ in range(steps):
+        r2 = (x**2).sum(axis=1, keepdims=True)         # (N, 1)
+        L = 1 + k1 * r2 + k2 * r2**2
+        residual = x * L - x_d                         # F(x) - x_d: zero at the answer
+        # J = dF/dx = L I + x (dL/dx)^T, with dL/dx = (2 k1 + 4 k2 r^2) x (chain rule: d(r^2)/dx = 2x)
+        J = L[:, :, None] * np.eye(2) + (2 * k1 + 4 * k2 * r2)[:, :, None] * x[:, :, None] * x[:, None, :]
+        x = x - np.linalg.solve(J, residual[:, :, None])[:, :, 0]   # the Newton step: J dx = -residual
+    return x
+
+
+def _in_place_distortion(x, d):
+    out = distortion.distort_points(x, d)
+    x[:] = out  # the typical slip: the answer written over the caller's points
+    return out
+
+
+register_exercise(Exercise(
+    name="undistort_newton",
+    lesson="02",
+    reference=_undistort_reference,
+    cases=_undistort_cases,
+    compare=same_array(rtol=0, atol=1e-9),
+    diagnose=_undistort_diagnosis,
+    wrong_variants=(
+        (lambda x_d, k1, k2: _radial_iterates(x_d, k1, k2, steps=1)[0], "stopped after 1 Newton step"),
+        (lambda x_d, k1, k2: _radial_iterates(x_d, k1, k2, chain=0.0, steps=8)[-1], "fixed-point iteration"),
+        (lambda x_d, k1, k2: _radial_iterates(x_d, k1, k2, chain=1.0, steps=3)[-1], "chain rule"),
+        (lambda x_d, k1, k2: _radial_iterates(x_d, k1, k2, step_sign=1.0, steps=8)[-1], "against the residual"),
+        (lambda x_d, k1, k2: x_d * (1 + k1 * (x_d**2).sum(1, keepdims=True)
+                                    + k2 * (x_d**2).sum(1, keepdims=True) ** 2), "distorted x_d again"),
+        (lambda x_d, k1, k2: _in_place_newton(x_d, k1, k2), "in place"),
+    ),
+    teaching=undistort_newton,
+))
+
+
+def _in_place_newton(x_d, k1, k2):
+    x = undistort_newton(x_d, k1, k2)
+    x_d[:] = x  # overwrites the caller's points
+    return x

@@ -4,7 +4,8 @@ from __future__ import annotations
 import numpy as np
 
 from .. import camera as cm
-from ._core import Exercise, register_exercise, same_array, shape_problem
+from ..projective import hartley_normalization
+from ._core import Exercise, register_exercise, same_array, same_up_to_scale, shape_problem
 
 
 def _cameras():
@@ -36,6 +37,9 @@ def _project_diagnosis(args, got, expected) -> str:
             return problem + ". You returned homogeneous pixels: divide by the third coordinate and drop it."
         if np.shape(got) == (3, len(X)):
             return problem + ". Points are rows: compute X_h @ P.T, not P @ X_h."
+        if np.shape(got) == (2, len(X)):
+            return (problem + ": your pixels are columns (you projected P @ X_h.T). Points are rows here: "
+                    "compute X_h @ P.T, whose rows are the (u, v, w) of each point, or transpose your result.")
         return problem
     g = np.asarray(got, dtype=float)
     Xh = np.hstack([X, np.ones((len(X), 1))])
@@ -44,6 +48,21 @@ def _project_diagnosis(args, got, expected) -> str:
         return "you kept (x, y) without dividing by the third coordinate w = depth: u = x / w, v = y / w."
     if np.allclose(g, (X @ P[:, :3].T)[:, :2] / (X @ P[:, :3].T)[:, 2:], rtol=1e-6):
         return "you ignored the fourth column of P (the translation): lift X to (X, Y, Z, 1) first."
+    return _pixel_slip(g, np.asarray(expected, dtype=float))
+
+
+def _pixel_slip(got, expected) -> str:
+    """The cause when right pixels were then shifted, swapped or flipped."""
+    shift = got - expected
+    if np.allclose(shift, shift[0], atol=1e-6) and np.allclose(np.abs(shift[0]), 0.5, atol=1e-6):
+        return ("every pixel is off by half a pixel: P already puts pixel centres at integers (the principal "
+                "point is in P), so return x / w as it is, with no +-0.5.")
+    if np.allclose(got, expected[:, ::-1], rtol=1e-6, atol=1e-6):
+        return "u and v are swapped: column 0 is u = x / w (right), column 1 is v = y / w (down)."
+    flipped = got[:, 1] + expected[:, 1]
+    if np.allclose(got[:, 0], expected[:, 0], rtol=1e-6, atol=1e-6) and np.allclose(flipped, flipped[0], atol=1e-6):
+        return ("v is flipped (v measured upwards): in pixels v grows downwards and P already says so; "
+                "return v = y / w without negating it or subtracting it from the height.")
     return "project with x = P (X, Y, Z, 1)^T, then (u, v) = (x / w, y / w)."
 
 
@@ -66,6 +85,11 @@ register_exercise(Exercise(
         (lambda P, X: (np.hstack([X, np.ones((len(X), 1))]) @ P.T)[:, :2], "without dividing"),
         (lambda P, X: (X @ P[:, :3].T)[:, :2] / (X @ P[:, :3].T)[:, 2:], "fourth column"),
         (lambda P, X: np.hstack([X, np.ones((len(X), 1))]) @ P.T, "homogeneous pixels"),
+        (lambda P, X: cm.project_points(P, X).T, "pixels are columns"),
+        (lambda P, X: cm.project_points(P, X) + 0.5, "half a pixel"),
+        (lambda P, X: cm.project_points(P, X)[:, ::-1], "swapped"),
+        (lambda P, X: cm.project_points(P, X) * [1.0, -1.0] + [0.0, 479.0], "v is flipped"),
+        (lambda P, X: np.hstack([X, np.ones((len(X), 1))]) @ P, "X @ M.T"),
     ),
     teaching=project_points,
 ))
@@ -88,10 +112,30 @@ def _centre_diagnosis(args, got, expected) -> str:
         return problem
     residual = np.linalg.norm(P @ g) / (np.linalg.norm(P) * max(np.linalg.norm(g), 1e-300))
     if residual > 1e-8:
+        slip = _centre_slip(P, g, np.asarray(expected, dtype=float))
+        if slip:
+            return slip
         return (f"P C is not 0 (relative |P C| = {residual:.3g}). The centre is the null space of P: "
                 f"the last right singular vector of np.linalg.svd(P), or (-M^-1 p4, 1).")
     return (f"P C = 0, but your last coordinate is {g[3]:.4g}: the null vector is defined only up to scale; "
             f"divide it by its last entry so that its last coordinate is 1 (C = (X, Y, Z, 1)).")
+
+
+def _centre_slip(P, got, expected) -> str | None:
+    """The cause when the 4-vector is a known wrong one: V's column for its row, U's, a sign, p4."""
+    U, _, Vt = np.linalg.svd(P)
+    if same_up_to_scale(got, Vt[:, -1], rtol=1e-6):
+        return ("you took the last column of Vt. np.linalg.svd returns Vt, V transposed: the right singular "
+                "vectors are its rows, so the null vector is the last row, Vt[-1], not Vt[:, -1].")
+    if same_up_to_scale(got[:3], U[:, -1], rtol=1e-6):
+        return ("you took the last column of U, a left singular vector (3 numbers, on the image side). "
+                "The centre is a right singular vector, a 4-vector: the last row of Vt, Vt[-1].")
+    if np.allclose(got[:3], -expected[:3], rtol=1e-6) and np.isclose(got[3], 1.0):
+        return "the sign is flipped: P C = M C + p4 = 0 gives C = -M^-1 p4 (with the minus)."
+    if same_up_to_scale(got[:3], P[:, 3], rtol=1e-6):
+        return ("p4 (P's last column) is the image of the world origin, not the centre. The centre solves "
+                "M C + p4 = 0: C = -M^-1 p4, or the last row of Vt.")
+    return None
 
 
 def camera_centre(P):
@@ -110,7 +154,10 @@ register_exercise(Exercise(
     diagnose=_centre_diagnosis,
     wrong_variants=(
         (lambda P: -np.linalg.solve(P[:, :3], P[:, 3]), "returned a 3-vector"),
-        (lambda P: np.append(-P[:, 3], 1.0), "P C is not 0"),  # confuses t with the centre
+        (lambda P: np.append(-P[:, 3], 1.0), "image of the world origin"),  # confuses t with the centre
+        (lambda P: (lambda v: v / v[3])(np.linalg.svd(P)[2][:, -1]), "last row"),
+        (lambda P: np.append(np.linalg.svd(P)[0][:, -1], 1.0), "left singular vector"),
+        (lambda P: np.append(np.linalg.solve(P[:, :3], P[:, 3]), 1.0), "sign is flipped"),
         (lambda P: np.linalg.svd(P)[2][-1], "last coordinate is 1"),  # the unit null vector, not scaled
     ),
     teaching=camera_centre,
@@ -149,7 +196,12 @@ def _rq_diagnosis(args, got, expected) -> str:
                 "with D = diag(sign(diag(K))): K D and D R.")
     if not np.allclose(K @ R, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
         if np.allclose(R @ K, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
+            if np.abs(np.tril(K, -1)).max() > 1e-6 * np.abs(K).max() and np.allclose(K @ K.T, np.eye(3), atol=1e-6):
+                return "you returned (R, K): the order is swapped. Return K first, then R: `return K, R`."
             return "you computed M = Q K (a QR decomposition); the camera needs M = K R with K on the left (RQ)."
+        misplaced = _sign_fix_misplaced(K, R, M)
+        if misplaced:
+            return misplaced
         if np.allclose(K @ R.T, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
             return "R is transposed: M = K R."
         if _signs_fixed_in_k_only(K, R, M):
@@ -164,11 +216,29 @@ def _rq_diagnosis(args, got, expected) -> str:
     return "K R = M with K positive upper triangular, but the factors differ; is R orthogonal?"
 
 
+def _sign_flips():
+    """The seven D = diag(+-1) other than I."""
+    return [np.diag(signs) for signs in np.array(np.meshgrid(*[[1.0, -1.0]] * 3)).reshape(3, -1).T[1:]]
+
+
+def _sign_fix_misplaced(K, R, M) -> str | None:
+    """The cause when D was applied on the wrong side: R @ D (R's columns) or D @ K (K's rows)."""
+    scale = 1e-6 * np.abs(M).max()
+    for D in _sign_flips():
+        if np.allclose(K @ D @ R @ D, M, rtol=1e-6, atol=scale):
+            return ("you applied D to R's columns (R @ D). K R = (K D)(D R): D flips K's columns (K @ D) "
+                    "and R's rows (D @ R), so that D D = I cancels between them.")
+        if np.allclose(D @ K @ D @ R, M, rtol=1e-6, atol=scale):
+            return ("you applied D to K's rows (D @ K). K R = (K D)(D R): D flips K's columns (K @ D) "
+                    "and R's rows (D @ R), so that D D = I cancels between them.")
+    return None
+
+
 def _signs_fixed_in_k_only(K, R, M) -> bool:
     """True if K D R = M for some D = diag(+-1) other than I (K's columns flipped, R's rows not)."""
     scale = 1e-6 * np.abs(M).max()
-    for signs in np.array(np.meshgrid(*[[1.0, -1.0]] * 3)).reshape(3, -1).T[1:]:
-        if np.allclose(K @ np.diag(signs) @ R, M, rtol=1e-6, atol=scale):
+    for D in _sign_flips():
+        if np.allclose(K @ D @ R, M, rtol=1e-6, atol=scale):
             return True
     return False
 
@@ -191,6 +261,22 @@ def _rq_normalised_no_sign_fix(M):
 
     K, R = rq(M)
     return K / K[2, 2], R
+
+
+def _rq_sign_fix_on_columns_of_r(M):
+    from scipy.linalg import rq
+
+    K, R = rq(M)
+    D = np.diag(np.sign(np.diag(K)))
+    return K @ D, R @ D
+
+
+def _rq_sign_fix_on_rows_of_k(M):
+    from scipy.linalg import rq
+
+    K, R = rq(M)
+    D = np.diag(np.sign(np.diag(K)))
+    return D @ K, D @ R
 
 
 def _rq_qr(M):
@@ -220,6 +306,159 @@ register_exercise(Exercise(
         (_rq_qr, "QR decomposition"),
         (_rq_signs_of_k_only, "apply the same"),
         (lambda M: (lambda K, R: (K, R.T))(*cm.rq_decomposition(M)), "transposed"),
+        (lambda M: cm.rq_decomposition(M)[::-1], "order is swapped"),
+        (_rq_sign_fix_on_columns_of_r, "R's columns"),
+        (_rq_sign_fix_on_rows_of_k, "K's rows"),
     ),
     teaching=rq_decomposition,
+))
+
+
+# -- estimate_projection_matrix (the normalised DLT) -------------------------------------------
+# Noise-free cases pass any correct DLT, normalised or not. The last case is where the
+# difference shows: noisy pixels of a 4000 x 3000 photo of points in survey coordinates
+# (tens of metres from the world origin). There the unnormalised DLT is off by pixels, while
+# any Hartley-style normalisation (mean or RMS distance) agrees with camlab far below 0.05 px.
+
+def _survey_camera():
+    K = cm.intrinsic_matrix(3200.0, 3200.0, 1999.5, 1499.5)
+    return cm.Camera.look_at([74.0, 18.0, 12.0], [50.0, 50.0, 1.0], K=K, image_size=(4000, 3000))   # 40 m away
+
+
+def _survey_points(n, rng):
+    return rng.uniform([48.0, 48.0, 0.0], [52.0, 52.0, 2.0], (n, 3))    # a 4 m site, 70 m from the origin
+
+
+_SURVEY_TEST_POINTS = _survey_points(50, np.random.default_rng(12))   # where a noisy-case answer is compared
+
+
+def _dlt_cases():
+    rng = np.random.default_rng(11)
+    cases = []
+    for cam, n in zip(_cameras(), (6, 10, 14)):                   # exact pixels, six or more points
+        X = rng.uniform(-1.0, 1.0, (n, 3)) + [0.0, 0.0, 0.5]
+        cases.append((X, cm.project_points(cam.P, X)))
+    X = _survey_points(12, rng)
+    cases.append((X, cm.project_points(_survey_camera().P, X) + rng.normal(0.0, 1.0, (12, 2))))
+    return cases
+
+
+def _pixels_of(P, X):
+    x = np.column_stack([X, np.ones(len(X))]) @ np.asarray(P, dtype=float).T
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return x[:, :2] / x[:, 2:3]
+
+
+def _pixel_gap(got, expected, X) -> float:
+    """The largest distance (px) between the pixels of X under the two matrices."""
+    return float(np.nanmax(np.linalg.norm(_pixels_of(got, X) - _pixels_of(expected, X), axis=1)))
+
+
+def _same_camera_matrix(got, expected) -> bool:
+    """Equal up to scale and sign, or (noisy case) imaging the survey area within 0.05 px of camlab."""
+    if same_up_to_scale(got, expected, rtol=1e-6):
+        return True
+    try:
+        g = np.asarray(got, dtype=float)
+    except (TypeError, ValueError):
+        return False
+    if g.shape != (3, 4) or not np.isfinite(g).all():
+        return False
+    return _pixel_gap(g, expected, _SURVEY_TEST_POINTS) < 0.05
+
+
+def _normalisers(X, uv):
+    """Hartley's U (world, 4 x 4) and T (pixels, 3 x 3)."""
+    return hartley_normalization(X), hartley_normalization(uv)
+
+
+def _dlt_unnormalised(X, uv):
+    """The plain DLT in metres and pixels (a plausible student answer)."""
+    Xh = np.column_stack([X, np.ones(len(X))])
+    zero = np.zeros_like(Xh)
+    A = np.vstack([np.hstack([Xh, zero, -uv[:, :1] * Xh]), np.hstack([zero, Xh, -uv[:, 1:] * Xh])])
+    return np.linalg.svd(A)[2][-1].reshape(3, 4)
+
+
+def _dlt_not_undone(X, uv):
+    U, T = _normalisers(X, uv)
+    return T @ cm.estimate_projection_matrix(X, uv) @ np.linalg.inv(U)     # P_hat itself
+
+
+def _dlt_undone_wrong_order(X, uv):
+    U, T = _normalisers(X, uv)
+    return T @ _dlt_not_undone(X, uv) @ np.linalg.inv(U)                   # T P_hat U^-1
+
+
+def _dlt_diagnosis(args, got, expected) -> str:
+    X, uv = args
+    g = np.asarray(got, dtype=float) if got is not None else None
+    if g is not None and g.shape == (4, 3):
+        return ("your P is (4, 3): transposed. P maps (X, Y, Z, 1) to (u, v, w), so it is (3, 4); "
+                "A's columns list P row by row, so read the null vector back with p.reshape(3, 4).")
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + ". Return P as a (3, 4) array: p.reshape(3, 4)."
+    if same_up_to_scale(g, expected.ravel().reshape((3, 4), order="F"), rtol=1e-5):
+        return ("your 12 numbers are P's entries in the wrong order (column by column): A's columns list "
+                "P row by row (p^1, p^2, p^3), so read the null vector back with p.reshape(3, 4).")
+    U, T = _normalisers(X, uv)
+    P_hat = T @ expected @ np.linalg.inv(U)
+    if same_up_to_scale(g, P_hat, rtol=1e-5):
+        return ("you returned P_hat, the camera of the normalised points: the normalisation is not undone. "
+                "P_hat maps U X to T u, so P = inv(T) @ P_hat @ U.")
+    for wrong, how in ((T @ P_hat @ np.linalg.inv(U), "T @ P_hat @ inv(U)"),
+                       (np.linalg.inv(T) @ P_hat @ np.linalg.inv(U), "inv(T) @ P_hat @ inv(U)"),
+                       (T @ P_hat @ U, "T @ P_hat @ U")):
+        if same_up_to_scale(g, wrong, rtol=1e-5):
+            return (f"you undid the normalisation the wrong way round ({how}). P_hat maps U X to T u: "
+                    f"T u ~ P_hat U X, so u ~ inv(T) P_hat U X and P = inv(T) @ P_hat @ U.")
+    if np.linalg.norm(X.mean(axis=0)) > 20:
+        return (f"these are noisy pixels (1 px) of a 4000 x 3000 photo, 40 m from a site "
+                f"70 m from the world origin, and your P images them up to {_pixel_gap(g, expected, X):.3g} px from the "
+                f"normalised DLT's. Exact data hides it, noise does not: A's columns range from 1 to "
+                f"u X ~ 1e5, so A is badly conditioned. Normalise first (Hartley: pixels to centroid 0 and "
+                f"mean distance sqrt(2) by T, world points to mean distance sqrt(3) by U), solve for P_hat, "
+                f"then undo: P = inv(T) @ P_hat @ U.")
+    return ("P does not image X at uv. Build two rows of u x P X = 0 per point, take the right singular "
+            "vector of A with the smallest singular value (the last row of Vt) and reshape it to (3, 4).")
+
+
+def estimate_projection_matrix(X, uv):
+    """The normalised DLT: normalise, two rows of u x P X = 0 per point, SVD, undo."""
+    X, uv = np.asarray(X, dtype=float), np.asarray(uv, dtype=float)
+
+    def normaliser(p):  # centroid to 0, mean distance to the centroid sqrt(D), D = 2 or 3
+        c = p.mean(axis=0)
+        s = np.sqrt(p.shape[1]) / np.mean(np.linalg.norm(p - c, axis=1))
+        T = s * np.eye(p.shape[1] + 1)
+        T[:-1, -1], T[-1, -1] = -s * c, 1.0
+        return T
+
+    U, T = normaliser(X), normaliser(uv)
+    Xn = np.column_stack([X, np.ones(len(X))]) @ U.T     # normalised homogeneous points, as rows
+    un = np.column_stack([uv, np.ones(len(uv))]) @ T.T
+    rows = []
+    for Xh, (u, v, w) in zip(Xn, un):                    # u x P X = 0: two independent rows per point
+        rows.append(np.concatenate([w * Xh, np.zeros(4), -u * Xh]))
+        rows.append(np.concatenate([np.zeros(4), w * Xh, -v * Xh]))
+    P_hat = np.linalg.svd(np.array(rows))[2][-1].reshape(3, 4)   # smallest singular value's right vector
+    return np.linalg.inv(T) @ P_hat @ U                          # T u ~ P_hat U X, so u ~ T^-1 P_hat U X
+
+
+register_exercise(Exercise(
+    name="estimate_projection_matrix",
+    lesson="04",
+    reference=cm.estimate_projection_matrix,
+    cases=_dlt_cases,
+    compare=_same_camera_matrix,
+    diagnose=_dlt_diagnosis,
+    wrong_variants=(
+        (_dlt_not_undone, "not undone"),
+        (_dlt_undone_wrong_order, "wrong way round"),
+        (lambda X, uv: _dlt_unnormalised(np.asarray(X), np.asarray(uv)), "badly conditioned"),
+        (lambda X, uv: cm.estimate_projection_matrix(X, uv).T, "transposed"),
+        (lambda X, uv: cm.estimate_projection_matrix(X, uv).ravel().reshape((3, 4), order="F"), "wrong order"),
+    ),
+    teaching=estimate_projection_matrix,
 ))

@@ -6,23 +6,51 @@ import numpy as np
 from .. import projective
 from ._core import Exercise, register_exercise, same_array, shape_problem
 
+_KEEP = "append 1 to the point, keeping x and y as they are"
+
 
 def _diagnose(args, got, expected) -> str:
-    problem = shape_problem(got, expected)
+    problem = shape_problem(got, expected)  # check() has already named an answer that is not numbers
     if problem:
-        return problem + ": append one coordinate, w = 1, to the 2 you were given"
+        wrong_shape = np.shape(got) != np.shape(expected)
+        return problem + (": append one coordinate, w = 1, to the 2 you were given" if wrong_shape else "")
     g = np.asarray(got, dtype=float)
+    p = np.asarray(args[0], dtype=float)
     if g[-1] == 0:
         return "w = 0 makes an ideal point (a direction), not the point itself: append 1"
-    p = np.asarray(args[0], dtype=float)
-    if np.allclose(g[1:], p):
+    if np.allclose(g[:2], p):
+        return f"x and y are right, but w should be 1, not {g[-1]:g}: append exactly 1"
+    if np.allclose(g[1:], p) and g[0] == 1:
         return "you put the 1 first; by convention w is the last coordinate: (x, y, 1)"
     if np.allclose(g[:2], p[::-1]):
         return "x and y are swapped: keep the point's order, (u, v) = (column, row), and append 1"
-    if np.allclose(g[:2], np.trunc(p)) or np.allclose(g[:2], np.round(p)):
+    if np.allclose(g[:2] / g[-1], p):
+        shown = ", ".join(f"{c:g}" for c in g)
+        return (f"({shown}) is the same point scaled by {g[-1]:g} (homogeneous coordinates are defined up to scale), "
+                f"but this exercise fixes w = 1: {_KEEP}")
+    return _xy_slip(g[:2], p) + (f" (and w should be 1, not {g[-1]:g})" if g[-1] != 1 else "")
+
+
+def _xy_slip(xy: np.ndarray, p: np.ndarray) -> str:
+    """The likely cause when x and y came out wrong (w aside)."""
+    fractional = not np.array_equal(p, np.trunc(p))
+    if fractional and (np.allclose(xy, np.trunc(p)) or np.allclose(xy, np.round(p))):
         return ("the coordinates lost their fractions: you cast to int, but image points are real numbers "
                 "(sub-pixel positions such as -1.5); keep floats")
-    return "append 1 to the point, keeping x and y as they are"
+    for shift, cause in ((0.5, "pixel centres sit at whole numbers in this course (section 3), so a point needs no "
+                               "half-pixel shift"),
+                         (1.0, "numpy and this course count pixels from 0, not 1 (a 1-based index?)")):
+        for sign in (1, -1):
+            if np.allclose(xy, p + sign * shift):
+                return f"x and y are off by {sign * shift:+g}: {cause}; {_KEEP}"
+    if np.allclose(xy, [p[0], -p[1]]):
+        return f"y changed sign: y points down in this course, and lifting keeps its sign; {_KEEP}"
+    nonzero = np.abs(p) > 0
+    factor = xy[nonzero] / p[nonzero]
+    if np.allclose(factor, factor[0]) and np.allclose(xy, factor[0] * p):
+        cause = "a sign flip" if factor[0] == -1 else "a unit change or a stray factor"
+        return f"x and y are {factor[0]:g} times the point's ({cause}); {_KEEP}"
+    return _KEEP
 
 
 def lift(p):
@@ -34,15 +62,33 @@ register_exercise(Exercise(
     name="lift",
     lesson="00",
     reference=projective.to_homogeneous,
-    cases=lambda: [(np.array([3.0, 4.0]),), (np.array([-1.5, 0.0]),), (np.array([640.0, 480.0]),)],
+    # The first input has fractions, so an int cast shows at once; the last is the bottom-right pixel of 640 x 480.
+    cases=lambda: [(np.array([2.5, 4.25]),), (np.array([-1.5, 0.0]),), (np.array([639.0, 479.0]),)],
     compare=same_array(),
     diagnose=_diagnose,
+    ndarray_only=True,
     wrong_variants=(
         (lambda p: np.append(p, 0.0), "ideal point"),
         (lambda p: np.insert(p, 0, 1.0), "w is the last coordinate"),
         (lambda p: p, "shape (3,)"),
         (lambda p: np.array([p[1], p[0], 1.0]), "swapped"),
         (lambda p: np.append(np.asarray(p).astype(int), 1), "cast to int"),
+        (lambda p: np.append(p, -1.0), "w should be 1, not -1"),
+        (lambda p: np.append(p, 2.0), "w should be 1, not 2"),
+        (lambda p: 2 * np.append(p, 1.0), "fixes w = 1"),
+        (lambda p: -np.append(p, 1.0), "fixes w = 1"),
+        (lambda p: np.append(p + 0.5, 1.0), "half-pixel shift"),
+        (lambda p: np.append(p - 0.5, 1.0), "half-pixel shift"),
+        (lambda p: np.append(p + 1, 1.0), "1-based"),
+        (lambda p: np.array([p[0], -p[1], 1.0]), "y points down"),
+        (lambda p: np.append(1000 * p, 1.0), "1000 times"),
+        (lambda p: np.append(-p, 1.0), "sign flip"),
+        (lambda p: np.append(p * np.nan, 1.0), "NaN or inf"),
+        (lambda p: [p[0], p[1], 1.0], "you returned a list; return a numpy array of shape (3,)"),
+        (lambda p: (p[0], p[1], 1.0), "you returned a tuple; return a numpy array of shape (3,)"),
+        (lambda p: [p, 1], "np.append(p, 1.0)"),
+        (lambda p: "x, y, 1", "you returned a str"),
+        (lambda p: np.array([p, 1]), "np.append(p, 1.0)"),
     ),
     teaching=lift,
 ))

@@ -234,8 +234,9 @@ def draw_thin_lens(ax, focal_length: float, object_distance: float) -> dict:
 
     Distances are drawn in units of f (the diagram depends only on z_o / f) and heights in
     units of the object's height, on fixed axes: as the object nears F the image runs off to
-    the right and grows, and an object or image beyond the axes is marked at the edge with
-    its distance. Fixed axes also keep the diagram blittable. The metres are in the corner.
+    the right and grows. An object or image beyond the axes is not drawn (its rays still are);
+    the title, above the axes and off the rays, gives the numbers and says where it is.
+    Fixed axes also keep the diagram blittable.
     """
     colours = (palette.ORANGE, palette.PURPLE, palette.BROWN)
     names = ("parallel, then through F'", "through the centre, straight", "through F, then parallel")
@@ -246,11 +247,7 @@ def draw_thin_lens(ax, focal_length: float, object_distance: float) -> dict:
         "object": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="-|>", color=palette.GREEN, lw=2)),
         "image": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="-|>", color=palette.RED, lw=2)),
         "rays": [ax.plot([], [], color=c, lw=1.2, label=n)[0] for c, n in zip(colours, names)],
-        "object_off": ax.text(THIN_LENS_X[0] + 0.3, 0.85 * THIN_LENS_Y, "", fontsize=9, color=palette.GREEN, va="center"),
-        "image_off": ax.text(THIN_LENS_X[1] - 0.3, -0.85 * THIN_LENS_Y, "", fontsize=9, color=palette.RED, va="center",
-                             ha="right"),
-        "text": ax.text(0.01, 0.03, "", transform=ax.transAxes, va="bottom", fontsize=9, family="monospace",
-                        bbox=dict(fc="white", ec="0.8", alpha=0.9)),
+        "text": ax.set_title(" \n ", fontsize=9, family="monospace"),
     }
     for x, label in ((-1, "F"), (1, "F'")):
         ax.annotate(label, (x, 0), xytext=(5, 4), textcoords="offset points", ha="left", va="bottom", fontsize=10)
@@ -264,24 +261,32 @@ def draw_thin_lens(ax, focal_length: float, object_distance: float) -> dict:
     return art
 
 
+def _thin_lens_note(xo: float, xi: float, m: float) -> str:
+    """Where the object or image is when it lies beyond the axes ('' when both are on them)."""
+    lo, hi = THIN_LENS_X
+    notes = [f"object at {-xo:.1f} f, beyond the left edge" if xo < lo else ""]
+    if xi > hi or abs(m) > THIN_LENS_Y:
+        notes.append(f"image at {xi:.1f} f, m = {m:.1f}: beyond the {'right edge' if xi > hi else 'axes'}")
+    return "; ".join(n for n in notes if n)
+
+
 def update_thin_lens(art: dict, f: float, zo: float) -> dict:
     """Move the diagram to focal length ``f`` and object distance ``zo``; returns the computed values."""
     zi = float(_lens.image_distance(f, zo))
     m = float(_lens.magnification(f, zo))
     xo, xi = -zo / f, zi / f                       # units of f
     lo, hi = THIN_LENS_X
-    xo_drawn, xi_drawn = max(xo, lo + 0.3), min(xi, hi - 0.3)
-    art["object"].xy, art["object"].xyann = (xo_drawn, 1.0), (xo_drawn, 0)
-    art["image"].xy, art["image"].xyann = (xi_drawn, m), (xi_drawn, 0)
+    art["object"].xy, art["object"].xyann = (xo, 1.0), (xo, 0)
+    art["image"].xy, art["image"].xyann = (xi, m), (xi, 0)
+    art["object"].set_visible(xo >= lo)  # an arrow at the edge would not meet its rays
+    art["image"].set_visible(xi <= hi)
     # parallel ray -> through F'; central ray undeviated; ray through F -> parallel (exact lines, clipped by the axes)
     art["rays"][0].set_data([xo, 0, xi], [1, 1, m])
     art["rays"][1].set_data([xo, xi], [1, m])
     art["rays"][2].set_data([xo, 0, xi], [1, m, m])
-    art["object_off"].set_text(f"<- object at {-xo:.1f} f" if xo < lo + 0.3 else "")
-    where = "off the axes" if abs(m) > THIN_LENS_Y else "->" if xi > hi - 0.3 else ""
-    art["image_off"].set_text(f"image at {xi:.1f} f, m = {m:.1f} {where}" if where else "")
-    art["text"].set_text(f"f   = {f * 1e3:6.1f} mm\nz_o = {zo:6.3f} m = {-xo:.2f} f\nz_i = {zi:6.3f} m = {xi:.2f} f\n"
-                         f"m   = {m:6.3f}")
+    note = _thin_lens_note(xo, xi, m)
+    art["text"].set_text(f"f = {f * 1e3:.0f} mm   z_o = {zo:.3f} m = {-xo:.2f} f   z_i = {zi:.3f} m = {xi:.2f} f"
+                         f"   m = {m:.3f}\n{note or 'object (green) and image (red) arrows; move the object towards F'}")
     return {"image_distance": zi, "magnification": m}
 
 
@@ -289,6 +294,9 @@ def update_thin_lens(art: dict, f: float, zo: float) -> dict:
 # in millimetres (a true-scale drawing would squeeze the image side into a few pixels).
 CONE_OBJECT_MAX = 2.0    # metres drawn on [-1, 0]
 CONE_IMAGE_MAX = 0.09    # metres drawn on [0, 1]
+
+
+GREEN_LIGHT = 550e-9     # wavelength (m) for the diffraction blur
 
 
 def _cone_x(z):
@@ -316,15 +324,14 @@ def draw_focus_cone(ax, half_height_mm: float = 20.0) -> dict:
         "focus": ax.plot([], [], "x", color=palette.ORANGE, ms=8, mew=2)[0],
         "sensor": ax.plot([], [], color="0.3", lw=2)[0],
         "blur": ax.plot([], [], color="tab:red", lw=6, solid_capstyle="butt")[0],
-        "text": ax.text(0.01, 0.02, "", transform=ax.transAxes, fontsize=9, family="monospace", va="bottom",
-                        bbox=dict(fc="white", ec="0.8", alpha=0.9)),
+        "text": ax.set_title(" \n ", fontsize=8.5, family="monospace"),  # above the axes: never over the cone
         "half": half_height_mm,
     }
     ticks_m = [-2.0, -1.5, -1.0, -0.5]
     ticks_mm = [25, 50, 75]
     ax.set_xticks([float(_cone_x(t)) for t in ticks_m] + [0.0] + [float(_cone_x(t * 1e-3)) for t in ticks_mm])
     ax.set_xticklabels([f"{-t:g} m" for t in ticks_m] + ["lens"] + [f"{t} mm" for t in ticks_mm])
-    ax.set_xlim(-1.02, 1.0)
+    ax.set_xlim(-1.06, 1.0)  # room for the object dot at the left end (2 m)
     ax.set_ylim(-half_height_mm, half_height_mm)
     ax.set_xlabel("distance from the lens (object side in metres, image side in millimetres)")
     ax.set_ylabel("height (mm)")
@@ -356,9 +363,10 @@ def update_focus_cone(art: dict, f: float, N: float, z_o: float, z_s: float) -> 
     art["sensor"].set_data([xs, xs], [-0.8 * art["half"], 0.8 * art["half"]])
     half_c = c / 2 * 1e3
     art["blur"].set_data([xs, xs], [-max(half_c, 0.15), max(half_c, 0.15)])
-    art["text"].set_text(f"A = f/N = {A * 1e3:.1f} mm   z_i = {z_i * 1e3:.1f} mm   sensor at {z_s * 1e3:.1f} mm\n"
-                         f"c = A |z_s - z_i| / z_i = {c * 1e6:.0f} µm")
-    return {"z_i": z_i, "A": A, "c": c}
+    airy = 2.44 * GREEN_LIGHT * N  # the diffraction blur, which stopping down makes worse
+    art["text"].set_text(f"A = f/N = {A * 1e3:.1f} mm   z_i = {z_i * 1e3:.2f} mm   z_s = {z_s * 1e3:.2f} mm\n"
+                         f"c = A |z_s - z_i| / z_i = {c * 1e6:.0f} µm   Airy disc 2.44 λN = {airy * 1e6:.0f} µm")
+    return {"z_i": z_i, "A": A, "c": c, "airy": airy}
 
 
 def draw_pinhole_blur(ax, focal_length: float, wavelength: float = 550e-9, object_distance: float = np.inf) -> dict:

@@ -97,6 +97,21 @@ def refresh_projection(ax) -> None:
     ax.invM = np.linalg.inv(ax.M)
 
 
+def align_away(ax, text, start: ArrayLike, tip: ArrayLike) -> None:
+    """Align a 3-D label at ``tip`` so it runs away from the segment start -> tip on screen.
+
+    A label anchored at its left baseline is struck through by its own axis whenever that
+    axis points right and up on screen; aligned by the screen direction, it clears the line.
+    Call after the limits and view are final (:func:`refresh_projection`).
+    """
+    from mpl_toolkits.mplot3d import proj3d
+
+    M = ax.M if getattr(ax, "M", None) is not None else ax.get_proj()
+    (x0, x1), (y0, y1), _ = proj3d.proj_transform(*np.c_[start, tip], M)
+    text.set_horizontalalignment("left" if x1 >= x0 else "right")
+    text.set_verticalalignment("bottom" if y1 >= y0 else "top")
+
+
 def polyline_data(segments: ArrayLike) -> np.ndarray:
     """(M, 2, d) segments as one (3M, d) polyline with NaN rows between segments.
 
@@ -165,8 +180,12 @@ def image_axes(ax, image_size: tuple[int, int], title: str = "", labels: bool = 
         ax.set_ylabel("v (px)", fontsize=8)
     elif title:
         title = f"{title} (u right, v down, px)"
-    ax.set_xticks([0, w // 2, w])
-    ax.set_yticks([0, h // 2, h])
+    # Ticks on pixel centres, not at W and H: the image spans -0.5 .. W - 0.5 (a tick at W would
+    # also widen the limits past the last pixel's edge).
+    ax.set_xticks([0, w // 2, w - 1])
+    ax.set_yticks([0, h // 2, h - 1])
+    ax.set_xlim(-0.5, w - 0.5)
+    ax.set_ylim(h - 0.5, -0.5)
     ax.tick_params(labelsize=7)
     if title:
         ax.set_title(title, fontsize=9)
@@ -222,6 +241,10 @@ class CameraArtist:
         Frustum colour.
     label : str
         Text at the camera centre (e.g. "C" or "left").
+    label_offset : (float, float)
+        Where the label sits, in image-plane depths along the camera's x (right) and y (down)
+        axes from the centre: up-left by default; give two cameras drawn close together
+        different offsets so their labels do not overprint.
     image : (H, W) or (H, W, 3) array, optional
         A raster image drawn on the image plane as a coarse textured mesh of
         ``image_grid`` quads (block means), fast enough for sliders.
@@ -233,11 +256,12 @@ class CameraArtist:
 
     def __init__(self, ax, camera: Camera, size: float = 0.5, color: str = palette.PURPLE, label: str = "",
                  image: np.ndarray | None = None, image_lines: ArrayLike | None = None,
-                 show_axes: bool = True, image_grid: tuple[int, int] = (24, 18), line_color: str = "0.15"):
+                 show_axes: bool = True, image_grid: tuple[int, int] = (24, 18), line_color: str = "0.15",
+                 label_offset: tuple[float, float] = (-0.15, -0.25)):
         from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
         self.ax, self.size, self.image_grid = ax, float(size), image_grid
-        self.camera = camera
+        self.camera, self.label_offset = camera, label_offset
         (self.frustum,) = ax.plot([], [], [], color=color, lw=1.2, path_effects=palette.halo(1.2))
         self.plane = Poly3DCollection([np.zeros((4, 3))], facecolor=color, alpha=0.12, edgecolor=color, lw=1.0)
         ax.add_collection3d(self.plane)
@@ -294,7 +318,8 @@ class CameraArtist:
             tx.set_position_3d(C + 1.2 * L * camera.R[i])
         self.centre_marker.set_data_3d([C[0]], [C[1]], [C[2]])
         if self.label is not None:
-            self.label.set_position_3d(C - 0.25 * self.size * camera.R[1] - 0.15 * self.size * camera.R[0])
+            right, down = self.label_offset
+            self.label.set_position_3d(C + self.size * (right * camera.R[0] + down * camera.R[1]))
         if image_lines is not None:  # only what the camera sees is drawn on its image plane
             self._pixels = clip_segments(image_lines, camera.image_size)
         if self._pixels is not None:  # without new pixels, the old ones move with the camera

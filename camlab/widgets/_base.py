@@ -33,7 +33,8 @@ from ._transport import halo_in_two_passes, show_at_display_resolution, use_fast
 from .controls import slider as slider  # re-exported: every demo module imports it from here
 
 
-def _display_mode() -> str:
+def display_mode() -> str:
+    """How figures will show: "ipympl" (live, `%matplotlib widget`), "png" (a kernel without it) or "agg" (headless)."""
     forced = os.environ.get("CAMLAB_FIGURE_MODE")
     if forced:
         return forced
@@ -60,7 +61,7 @@ class FigureView:
     """
 
     def __init__(self, figsize: tuple[float, float] = (8, 4), mode: str | None = None, dpi: float = 90):
-        self.mode = mode or _display_mode()
+        self.mode = mode or display_mode()
         self._animated: list[Any] = []
         self._background = None
         if self.mode == "ipympl":
@@ -88,10 +89,7 @@ class FigureView:
         """Register artists that updates move; returns them (one artist if one was given).
 
         Images among them keep their data at the resolution they are shown; haloed lines draw
-        their halo as a plain pass (see :mod:`._transport`). Anything static that must show
-        *above* an animated artist (a marker on a moving line, an image's spines:
-        :func:`~camlab.widgets.controls.on_top`) must be animated too: the live path paints the
-        animated artists over the cached background, in zorder, as a full draw does.
+        their halo as a plain pass (see :mod:`._transport`).
         """
         for artist in artists:
             if isinstance(artist, AxesImage):
@@ -111,9 +109,18 @@ class FigureView:
             # Freeze the layout that draw computed: blitting needs the axes to stay put.
             self.fig.set_layout_engine("none")
 
+    def _in_draw_order(self) -> list[Any]:
+        """The animated artists in the order a full draw paints them: axes by axes (figure texts last), then zorder.
+
+        Drawing them in registration order would let a fill registered after a line cover it
+        live but not in a full redraw (a colour that changes on the first move).
+        """
+        axes = self.fig.axes
+        return sorted(self._animated, key=lambda a: (axes.index(a.axes) if getattr(a, "axes", None) in axes else len(axes),
+                                                     a.get_zorder()))
+
     def _draw_animated(self) -> None:
-        # in zorder, as a full draw orders each axes' artists (stable: ties keep their registration order)
-        for artist in sorted(self._animated, key=lambda a: a.get_zorder()):
+        for artist in self._in_draw_order():
             if hasattr(artist, "do_3d_projection"):
                 # 3-D fills and patches keep the 2-D paths of the last full draw: Axes3D.draw
                 # projects them, draw_artist does not, so a moved face would be drawn where it was.

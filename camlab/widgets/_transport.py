@@ -93,17 +93,27 @@ def _resize(image: Any, a: np.ndarray, width: int, height: int) -> np.ndarray:
     return cv2.resize(a, (width, height), interpolation=mode)
 
 
-def _fit_to_display(image: Any, array: Any) -> Any:
-    """``array`` area-averaged to the canvas pixels ``image``'s extent covers, if it is larger."""
-    if np.ma.isMaskedArray(array):
-        return array
+def _display_size(image: Any, array: Any) -> tuple[int, int] | None:
+    """(width, height) that ``array`` is kept at for ``image``'s current on-screen box, or None: keep it as it is."""
+    if array is None or np.ma.isMaskedArray(array):
+        return None
     a = np.asarray(array)
     if a.ndim not in (2, 3) or a.dtype.kind not in "uif" or (a.ndim == 3 and a.shape[2] > 4):
-        return array
+        return None
     left, right, bottom, top = _pixel_box(image)  # the box _screen_image draws into: no second resize there
     width, height = min(a.shape[1], right - left), min(a.shape[0], top - bottom)
-    if width < 2 or height < 2 or (width, height) == (a.shape[1], a.shape[0]):
+    if width < 2 or height < 2:
+        return None
+    return width, height
+
+
+def _fit_to_display(image: Any, array: Any) -> Any:
+    """``array`` area-averaged to the canvas pixels ``image``'s extent covers, if it is larger."""
+    size = _display_size(image, array)
+    a = np.asarray(array) if size is not None else None
+    if size is None or size == (a.shape[1], a.shape[0]):
         return array
+    width, height = size
     if a.dtype not in (np.uint8, np.uint16, np.float32, np.float64):
         a = a.astype(np.float64)
     return _resize(image, a, width, height)
@@ -156,28 +166,23 @@ def show_at_display_resolution(image: Any) -> None:
     """
     set_data, set_extent, make_image = image.set_data, image.set_extent, image.make_image
     source: list[Any] = [None]  # the caller's full array, to refit when the extent changes
-    fitted_for: list[Any] = [None]  # the canvas pixels the data was fitted to
-
-    def refit() -> None:
-        fitted_for[0] = _pixel_box(image)
-        set_data(_fit_to_display(image, source[0]))
 
     def fitted_data(array: Any) -> None:  # set_array calls it too
         source[0] = array
-        refit()
+        set_data(_fit_to_display(image, array))
 
     def fitted_extent(extent: Any, **kwargs: Any) -> None:
         set_extent(extent, **kwargs)
         if source[0] is not None:
-            refit()
+            set_data(_fit_to_display(image, source[0]))
 
     def screen_image(renderer: Any, magnification: float = 1.0, unsampled: bool = False):
-        if source[0] is not None and _pixel_box(image) != fitted_for[0]:
-            # The layout moved the axes since set_data (a first draw lays the figure out): fit the
-            # data to where it lands now, or the first draw shows other pixels than every later frame.
-            stale = image.stale
-            refit()
-            image.stale = stale
+        # The box may have changed since set_data: the first draw runs the figure's layout (an
+        # array fitted to the pre-layout axes would be stretched, resampled twice), a resize, a
+        # savefig at another dpi. Refit from the caller's array, which costs nothing when it has not.
+        wanted, shown = _display_size(image, source[0]), np.shape(image.get_array())
+        if wanted is not None and wanted != (shown[1], shown[0]):
+            set_data(_fit_to_display(image, source[0]))
         fast = None if unsampled or magnification != 1.0 else _screen_image(image)
         if fast is None:
             return make_image(renderer, magnification, unsampled)

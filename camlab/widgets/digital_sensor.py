@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 import ipywidgets as W
-from matplotlib.patches import Circle
+from matplotlib.patches import Rectangle
 import numpy as np
 
 from .. import render, scenes, sensor
@@ -64,7 +64,9 @@ def sampling_aliasing():
     # Both panels are drawn smaller than 384 px: antialiased display, or the screen adds its own moire.
     images.show_image(ax_t, zp, "scene: zone plate (frequency grows with radius)", interpolation="antialiased")
     im = images.show_image(ax_s, zp, "sampled", interpolation="antialiased")
-    nyq = ax_s.add_patch(Circle((0, 0), 1, fill=False, color="tab:red", ls="--", lw=1.5))
+    # A square grid samples each axis separately: the alias-free region is a square (|fx|, |fy| < 1/2 cycle per
+    # coarse px), not a circle; the zone plate's local frequency is (x, y) k / pi, so the square is |x|, |y| < r.
+    nyq = ax_s.add_patch(Rectangle((0, 0), 1, 1, fill=False, color=palette.RED, ls="--", lw=1.5))
     view.animate(im, nyq, ax_s.title)
 
     def update(values, state):
@@ -72,22 +74,24 @@ def sampling_aliasing():
         s = sensor.sample(zp, k, prefilter=values["prefilter"])
         # show the coarse samples as blocks at the scene's scale
         im.set_data(np.kron(s, np.ones((k, k))))
-        # the local frequency (pi / 768) r / pi cycles per fine px reaches 0.5 cycle per coarse px at r = 384 / k
+        # the local frequency (pi / 768) x / pi cycles per fine px reaches 0.5 cycle per coarse px at x = 384 / k
         r = zp.shape[0] / k
-        nyq.set_center(((zp.shape[1] - 1) / 2, (zp.shape[0] - 1) / 2))
-        nyq.set_radius(r)
-        outer = np.hypot(*np.meshgrid(np.arange(s.shape[1]) - (s.shape[1] - 1) / 2,
-                                      np.arange(s.shape[0]) - (s.shape[0] - 1) / 2)) * k > r * 1.1
-        state.update(samples=s.shape, nyquist_radius=r, alias_contrast=float(s[outer].std()) if outer.any() else 0.0)
-        ax_s.set_title(f"{'box' if values['prefilter'] else 'point'}-sampled, 1 px = {k} fine px "
-                       f"(red: Nyquist)", fontsize=10)
+        cx, cy = (zp.shape[1] - 1) / 2, (zp.shape[0] - 1) / 2
+        nyq.set_bounds(cx - r, cy - r, 2 * r, 2 * r)
+        x, y = np.meshgrid(np.arange(s.shape[1]) - (s.shape[1] - 1) / 2, np.arange(s.shape[0]) - (s.shape[0] - 1) / 2)
+        outer = np.maximum(abs(x), abs(y)) * k > r * 1.1     # beyond the Nyquist square, where aliases live
+        state.update(samples=s.shape, nyquist_half_side=r,
+                     alias_contrast=float(s[outer].std()) if outer.any() else 0.0)
+        where = "red square: Nyquist limit" if r < cx else "Nyquist limit beyond the frame: no aliasing"
+        ax_s.set_title(f"{'box' if values['prefilter'] else 'point'}-sampled, 1 px = {k} fine px\n({where})",
+                       fontsize=10)
 
     return build_demo("sampling_aliasing", controls, view, update, title="Sampling and aliasing")
 
 
 @register(lesson="03", sweep={"bits": [1, 3, 8], "exposure": [0.02, 0.3, 1.0], "read_noise": [0.0, 20.0]})
 def bit_depth_and_noise():
-    """Quantisation and noise on a rendered page and photo, with a row profile."""
+    """Quantisation and noise on a rendered photo, with a row profile."""
     controls = {
         "bits": W.IntSlider(value=4, min=1, max=12, description="bit depth", continuous_update=True,
                             style={"description_width": "initial"}, layout=W.Layout(width="300px")),
@@ -104,9 +108,9 @@ def bit_depth_and_noise():
                           background=0.2).irradiance
     im = images.show_image(ax_img, sensor.gamma_encode(clean), "recorded, shown through sRGB", vmax=1.0)
     row = 150
-    marker = ax_img.axhline(row, color="tab:red", lw=1, path_effects=palette.halo(1))
+    marker = ax_img.axhline(row, color=palette.RED, lw=1, path_effects=palette.halo(1))
     ax_p.plot(clean[row], color=palette.GREY, lw=1, label="true irradiance")
-    prof, = ax_p.plot(clean[row], color="tab:red", lw=1, label="recorded")
+    prof, = ax_p.plot(clean[row], color=palette.RED, lw=1, label="recorded")
     ax_p.set_ylim(-0.05, 1.3)  # headroom: the legend sits above the profile
     ax_p.set_xlabel("u (px)")
     ax_p.set_ylabel("linear value / full scale")
@@ -125,7 +129,8 @@ def bit_depth_and_noise():
         im.set_data(sensor.gamma_encode(shown))
         prof.set_ydata(shown[row])
         signal = 0.5 * expo * full_well
-        snr = signal / np.sqrt(signal + values["read_noise"] ** 2 + (full_well * expo / 2**bits) ** 2 / 12)
+        step = full_well * expo / (2**bits - 1)  # one DN in electrons: the gain g of section 3 at this exposure
+        snr = signal / np.sqrt(signal + values["read_noise"] ** 2 + step**2 / 12)
         state.update(levels=2**bits, snr=float(snr), rms_error=float(np.sqrt(np.mean((shown - clean) ** 2))))
         readout.value = monospace(f"{2**bits} levels\nSNR {snr:.1f} at mid-grey\n"
                                   f"rms error {state['rms_error']:.3f} of full scale")
@@ -199,6 +204,7 @@ def demosaicing():
         state.update(psnr=psnr, zoom=(u0, v0), assumed=assumed,
                      zoom_psnr=sensor.psnr(truth[crop], out[crop]))
         wrong = "" if assumed == pattern or method == "truth" else f" as {assumed} (wrong!)"
-        ax_full.set_title(f"{method}{wrong}: PSNR {state['psnr']:.1f} dB (linear)", fontsize=10)
+        score = "the reference the PSNRs compare with" if method == "truth" else f"PSNR {state['psnr']:.1f} dB (linear)"
+        ax_full.set_title(f"{method}{wrong}: {score}", fontsize=10)
 
     return build_demo("demosaicing", controls, view, update, title="Bayer mosaic and demosaicing")

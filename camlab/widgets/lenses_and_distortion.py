@@ -16,18 +16,17 @@ F_DOF = K_DOF[0, 0] * PITCH * 10  # 28 mm lens on a 50 um-pitch sensor: K above,
 PITCH_DOF = F_DOF / K_DOF[0, 0]
 
 
-@register(lesson="02", sweep={"focal_mm": [30, 50, 90], "object_m": [0.12, 0.3, 0.8]})
+@register(lesson="02", sweep={"focal_mm": [30, 50, 90], "object_m": [0.06, 0.3, 0.8]})
 def thin_lens():
     """Principal rays through a thin lens: where the image forms and how large it is."""
     controls = {
         "focal_mm": slider(50, 20, 100, 1, "focal length f (mm)"),
-        "object_m": slider(0.2, 0.11, 1.0, 0.01, "object distance z_o (m)"),
+        "object_m": slider(0.2, 0.06, 1.0, 0.005, "object distance z_o (m)", readout_format=".3f"),
     }
-    view = FigureView(figsize=(9, 4))
+    view = FigureView(figsize=(8.6, 4))
     ax = view.fig.subplots()
     art = optics.draw_thin_lens(ax, 0.05, 0.2)
-    ax.set_title("1/f = 1/z_o + 1/z_i, drawn in units of f: move the object towards F", fontsize=10)
-    view.animate(art["object"], art["image"], *art["rays"], art["object_off"], art["image_off"], art["text"])
+    view.animate(art["object"], art["image"], *art["rays"], art["text"])
 
     def update(values, state):
         f, zo = values["focal_mm"] * 1e-3, values["object_m"]
@@ -43,6 +42,12 @@ COC_OK = 0.03e-3   # acceptable blur circle, 0.03 mm (a 35 mm camera viewed as a
 F_NUMBERS = [1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0, 16.0]
 
 
+def blur_curve_depths(focus: float) -> np.ndarray:
+    """Depths (m) for the c(z) curve: 0.25-5 m, dense near ``focus`` where its V is narrower than 1 cm."""
+    near_focus = focus * (1 + np.linspace(-0.03, 0.03, 61))
+    return np.unique(np.concatenate([np.linspace(0.25, 5.0, 300), near_focus, [focus]]))
+
+
 @register(lesson="02", sweep={"f_number": [1.4, 8.0, 16.0], "object_m": [0.3, 1.0, 2.0], "sensor_mm": [50.6, 52.6, 60.0]})
 def focus_and_blur():
     """The cone of light from a point through the aperture, a movable sensor, and the blur circle c(z) it gives."""
@@ -52,18 +57,19 @@ def focus_and_blur():
         "object_m": slider(1.0, 0.3, 2.0, 0.01, "object distance z (m)"),
         "sensor_mm": slider(52.6, 50.6, 60.0, 0.1, "sensor behind lens z_s (mm)"),
     }
-    view = FigureView(figsize=(10, 4.2))
-    ax_cone, ax_c = view.fig.subplots(1, 2, width_ratios=[1.5, 1])
+    view = FigureView(figsize=(8.8, 4.8))
+    ax_cone, ax_c = view.fig.subplots(1, 2, width_ratios=[1.45, 1])
     art = optics.draw_focus_cone(ax_cone)
-    ax_cone.set_title("f = 50 mm: the cone meets the sensor in a disc (red), the blur circle", fontsize=10)
-    z = np.linspace(0.25, 5.0, 300)
-    curve, = ax_c.plot(z, np.zeros_like(z), "k", label="c(z), sensor fixed")
+    view.fig.suptitle("f = 50 mm lens: the cone of light meets the sensor in a disc (red), the blur circle c",
+                      fontsize=10)
+    curve, = ax_c.plot([], [], "k", label="c(z), sensor fixed")
     band = ax_c.axvspan(1, 2, color="tab:green", alpha=0.2, label="depth of field")
     ax_c.axhline(COC_OK * 1e6, color="tab:red", ls="--", lw=1, label="acceptable c = 30 µm")
     marker, = ax_c.plot([], [], "o", color="tab:green", mec="k", ms=7, label="the point")
-    ax_c.set(xlim=(0.25, 5.0), yscale="log", ylim=(2, 1e4), xlabel="object distance z (m)",
+    ax_c.set(xlim=(0.25, 5.0), yscale="log", ylim=(1, 1e4), xlabel="object distance z (m)",
              ylabel="blur circle c (µm, log scale)")
-    ax_c.legend(fontsize=8, loc="upper right")
+    # below the plot, never over the band or the curve
+    ax_c.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2)
     view.animate(*[art[k] for k in ("stop", "lens", "cone_in", "cone_out", "rays", "point", "focus", "sensor", "blur",
                                      "text")], curve, band, marker, ax_c.title)
 
@@ -71,13 +77,14 @@ def focus_and_blur():
         N, z_o, z_s = float(values["f_number"]), values["object_m"], values["sensor_mm"] * 1e-3
         state.update(optics.update_focus_cone(art, F_CONE, N, z_o, z_s))
         s = float(lens.object_distance(F_CONE, z_s))  # the distance this sensor position focuses
-        curve.set_ydata(lens.circle_of_confusion(F_CONE, N, s, z) * 1e6)
+        z = blur_curve_depths(s)
+        curve.set_data(z, np.maximum(lens.circle_of_confusion(F_CONE, N, s, z) * 1e6, 0.5))  # c = 0 at s: log floor
         dof = lens.depth_of_field(F_CONE, N, s, COC_OK)
         band.set_x(dof.near)
         band.set_width(min(dof.far, 10.0) - dof.near)
-        marker.set_data([z_o], [float(np.clip(state["c"] * 1e6, 2.2, 9e3))])
-        far = f"{dof.far:.2f} m" if np.isfinite(dof.far) else "infinity"
-        ax_c.set_title(f"focused at {s:.2f} m: sharp {dof.near:.2f} m to {far}", fontsize=9)
+        marker.set_data([z_o], [float(np.clip(state["c"] * 1e6, 1.3, 9e3))])
+        far = f"{dof.far:.3f} m" if np.isfinite(dof.far) else "infinity"
+        ax_c.set_title(f"focused at {s:.3f} m:\nsharp from {dof.near:.3f} m to {far}", fontsize=9)
         state.update(focus=s, near=dof.near, far=dof.far)
 
     return build_demo("focus_and_blur", controls, view, update, title="Focus, aperture and the blur circle")
@@ -92,26 +99,29 @@ def depth_of_field():
                                       style={"description_width": "initial"}, layout=W.Layout(width="300px")),
         "focus_m": slider(1.2, 0.5, 4.0, 0.05, "focus distance (m)"),
     }
-    view = FigureView(figsize=(10.5, 4.8))  # the 480 x 360 image at no less than 1:1, so 2 px of blur can be judged
-    ax_img, ax_c = view.fig.subplots(1, 2, width_ratios=[1.45, 1])
+    view = FigureView(figsize=(8.8, 5.4))  # the 480 x 360 image at no less than 1:1, so 2 px of blur can be judged
+    ax_img, ax_c = view.fig.subplots(1, 2, width_ratios=[2.75, 1])
     scene = scenes.depth_of_field_scene()
     im = images.show_image(ax_img, np.zeros((SIZE[1], SIZE[0], 3)))
     z = np.linspace(0.3, 5, 400)
-    curve, = ax_c.plot(z, np.full_like(z, 100.0), "k")
-    band = ax_c.axvspan(1, 2, color="tab:green", alpha=0.2, label="depth of field")
-    ax_c.axhline(2 * PITCH_DOF * 1e6, color="tab:red", ls="--", lw=1,
-                 label=f"acceptable c = 2 px = {2 * PITCH_DOF * 1e6:.0f} µm")
-    for zp, c, name in zip((0.6, 1.2, 2.4, 4.0), (palette.BLUE, palette.ORANGE, palette.PURPLE, palette.BROWN),
-                           ("small board", "page", "large board", "wall")):
-        ax_c.axvline(zp, color=c, lw=1.5, label=f"{name}, {zp:g} m", path_effects=palette.halo(1.5))
+    curve, = ax_c.plot(z, np.full_like(z, 100.0), "k", zorder=3)  # over the plane markers, live and redrawn
+    band = ax_c.axvspan(1, 2, color="tab:green", alpha=0.2)
+    ax_c.axhline(2 * PITCH_DOF * 1e6, color="tab:red", ls="--", lw=1)
+    planes = {"small board": (0.6, palette.BLUE), "page": (1.2, palette.ORANGE), "large board": (2.4, palette.PURPLE),
+              "wall": (4.0, palette.BROWN)}
+    for zp, c in planes.values():
+        ax_c.axvline(zp, color=c, lw=1.5, path_effects=palette.halo(1.5))
+    # the planes named on a top axis, each above its line: no legend over the band or the curve
+    # (black text: the orange line's colour is too light for text, WCAG 1.4.3)
+    top = ax_c.secondary_xaxis("top")
+    top.set_xticks([zp for zp, _ in planes.values()], ["board", "page", "board", "wall"], fontsize=8, rotation=90)
     ax_c.set_xlim(0.3, 5)
     ax_c.set_ylim(5, 5000)
     ax_c.set_yscale("log")  # from the 2-px line to the blur at f/16 and f/1.4 on one readable scale
     ax_c.set_xlabel("depth z (m)")
-    ax_c.set_ylabel("blur circle c (µm on the sensor, log)")
-    ax_c.legend(fontsize=7, loc="upper right")
-    ax_c.set_title("blur circle against depth (green band: sharp)", fontsize=10)
-    ax_img.set_title(f"f = {F_DOF * 1e3:.0f} mm thin lens (N, focus: sliders)", fontsize=10)
+    ax_c.set_ylabel("blur circle c on the sensor (µm)")
+    ax_c.set_title(f"green: sharp, c < 2 px\n(red dashes: 2 px = {2 * PITCH_DOF * 1e6:.0f} µm)", fontsize=9)
+    ax_img.set_title(f"f = {F_DOF * 1e3:.0f} mm thin lens; planes at 0.6, 1.2, 2.4 and 4 m", fontsize=10)
     ax_img.set_xlabel(f"sensor: {SIZE[0]} x {SIZE[1]} pixels of {PITCH_DOF * 1e6:.0f} µm "
                       f"({SIZE[0] * PITCH_DOF * 1e3:.0f} x {SIZE[1] * PITCH_DOF * 1e3:.0f} mm)", fontsize=9)
     readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
@@ -151,22 +161,22 @@ def _grid_lines(n: int = 9, samples: int = 60) -> np.ndarray:
     return np.array(lines)
 
 
-@register(lesson="02", sweep={"k1": [-0.35, 0.0, 0.25], "k2": [-0.05, 0.1], "p1": [-0.01, 0.01],
-                              "p2": [-0.01, 0.01], "undistort": [True, False]})
+@register(lesson="02", sweep={"k1": [-0.35, 0.0, 0.25], "k2": [-0.05, 0.1], "p1": [-0.03, 0.03],
+                              "p2": [-0.03, 0.03], "undistort": [True, False]})
 def lens_distortion():
     """Distortion sliders warp a rendered checkerboard and a grid; tick 'undistort' to undo it."""
     controls = {
         "k1": slider(-0.25, -0.4, 0.3, 0.01, "k1 (radial)"),
         "k2": slider(0.05, -0.1, 0.15, 0.005, "k2 (radial)"),
-        "p1": slider(0.0, -0.02, 0.02, 0.001, "p1 (tangential)", readout_format=".3f"),
-        "p2": slider(0.0, -0.02, 0.02, 0.001, "p2 (tangential)", readout_format=".3f"),
+        "p1": slider(0.0, -0.04, 0.04, 0.002, "p1 (tangential)", readout_format=".3f"),
+        "p2": slider(0.0, -0.04, 0.04, 0.002, "p2 (tangential)", readout_format=".3f"),
         "undistort": W.Checkbox(value=False, description="undistort (cv2.remap with our map)"),
     }
-    view = FigureView(figsize=(9, 4))
+    view = FigureView(figsize=(8.6, 4))
     ax_img, ax_grid = view.fig.subplots(1, 2)
     board = render.checkerboard((11, 8), 0.04, t=(-0.2, -0.14, 0.45), px_per_square=32)
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=255)
-    dots, = ax_img.plot([], [], ".", color=palette.RED, ms=3, path_effects=palette.halo())
+    dots, = ax_img.plot([], [], "o", color=palette.RED, ms=3.5, path_effects=palette.halo())
     ideal = _grid_lines()
     for ln in ideal:  # the undistorted grid, drawn once in grey behind the bent one
         ax_grid.plot(*ln.T, color=palette.GREY, lw=0.8)

@@ -19,6 +19,9 @@ from .controls import int_slider
 from ..plotting import palette
 
 TARGET = np.array([0.0, 0.0, 0.7])
+# The explorer's 3-D viewer orbits with the camera, this many degrees ahead of it: at a fixed viewer
+# angle, one orbit position looked straight down the camera's axis and piled everything up.
+VIEWER_OFFSET = 40.0
 
 
 def _fmt(v: np.ndarray) -> str:
@@ -39,7 +42,8 @@ def camera_explorer():
     cam0 = cm.Camera.look_at(cm.orbit_eye(np.radians(-60), np.radians(25), 5.0, TARGET), TARGET)
     # Seen from behind the camera's shoulder, with only the house on the image plane: the small picture
     # stays readable (the whole grid, seen edge-on, was a tangle).
-    sv = scene3d.SceneView(view.fig, cam0, scene, plane_size=2.0, thumbnail=scenes.house_wireframe(), azim=-20, elev=16)
+    sv = scene3d.SceneView(view.fig, cam0, scene, plane_size=2.0, thumbnail=scenes.house_wireframe(),
+                           azim=-60 + VIEWER_OFFSET, elev=16)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
     (pp,) = sv.ax_image.plot([], [], "+", color="tab:purple", ms=10, mew=2)
     view.animate(*sv.artists(), pp)
@@ -59,6 +63,7 @@ def camera_explorer():
         K = cm.intrinsic_matrix(v["fx"], v["fy"], v["cx"], v["cy"], v["skew"])
         cam = cm.Camera.look_at(cm.orbit_eye(*np.radians([v["azimuth"], v["elevation"]]), v["distance"], TARGET), TARGET,
                                 K=K)
+        sv.ax3d.view_init(elev=16, azim=v["azimuth"] + VIEWER_OFFSET)   # sv.update refreshes the projection
         sv.update(cam)
         pp.set_data([cam.principal_point[0]], [cam.principal_point[1]])
         info.value = (f"<pre>t = {_fmt(cam.t)} m  (world origin in camera frame)\n"
@@ -69,8 +74,8 @@ def camera_explorer():
                       title="Drag the intrinsics and the pose: P = K [R | t]", extra=[info])
 
 
-@register(lesson="04", sweep={"noise": [0.0, 3.0], "n_points": [6, 40], "outlier": [0.0, 60.0],
-                              "refine": [True, False], "pair": [0, 5], "outlier_v": [-60.0, 40.0]})
+@register(lesson="04", sweep={"noise": [0.0, 5.0], "n_points": [6, 60], "outlier": [-100.0, 60.0, 100.0],
+                              "refine": [True, False], "pair": [0, 5], "outlier_v": [-100.0, 40.0, 100.0]})
 def resectioning():
     """Estimate P from noisy correspondences (DLT, optionally refined) and compare to the truth.
 
@@ -84,13 +89,20 @@ def resectioning():
     frame = np.concatenate([scenes.box_wireframe((0.0, 0.0, 1.0), (2.0, 2.0, 2.0)), scenes.ground_grid(2.0, 1.0)])
     sv = scene3d.SceneView(view.fig, cam, frame, plane_size=1.0, image_title="measured (o) vs reprojected (+)")
     sv.camera_artist.lines.set_alpha(0.4)
-    est_art = scene3d.CameraArtist(sv.ax3d, cam, size=1.0, color=palette.ORANGE, show_axes=False, label="est.")
+    # "est." below-right of its centre, the true camera's "C" above-left: the two sit close together
+    est_art = scene3d.CameraArtist(sv.ax3d, cam, size=1.0, color=palette.ORANGE, show_axes=False, label="est.",
+                                   label_offset=(0.1, 0.35))
     pts3d = scene3d.draw_points(sv.ax3d, X, color="tab:blue")
+    # the moved correspondence(s), ringed in both panels: after the fit every residual grows, so
+    # without a mark the mismatch cannot be found
+    ring = dict(marker="o", ms=13, mfc="none", mec=palette.RED, mew=2.0, ls="none")
+    (moved_img,) = sv.ax_image.plot([], [], **ring)
+    (moved_3d,) = sv.ax3d.plot([], [], [], **ring)
     (meas,) = sv.ax_image.plot([], [], "o", mfc="none", color="tab:blue", ms=6)
     (reproj,) = sv.ax_image.plot([], [], "+", color=palette.ORANGE, ms=8, mew=1.5)
     (est_lines,) = sv.ax_image.plot([], [], color=palette.ORANGE, lw=1.0, ls="--")
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
-    view.animate(*est_art.artists(), pts3d, meas, reproj, est_lines)
+    view.animate(*est_art.artists(), pts3d, meas, reproj, est_lines, moved_img, moved_3d)
     controls = {
         "noise": slider(0.5, 0.0, 5.0, 0.1, "pixel noise sigma (px)"),
         "n_points": int_slider(12, 6, 60, "correspondences N"),
@@ -111,6 +123,9 @@ def resectioning():
         uvn[v["pair"]] += float(v["outlier"]), float(v["outlier_v"])
         for i, uv_click in clicked.items():
             uvn[i] = uv_click
+        moved = sorted(set(clicked) | ({int(v["pair"])} if v["outlier"] or v["outlier_v"] else set()))
+        moved_img.set_data(uvn[moved, 0], uvn[moved, 1])
+        moved_3d.set_data_3d(Xw[moved, 0], Xw[moved, 1], Xw[moved, 2])
         P = cm.estimate_projection_matrix(Xw, uvn, refine=bool(v["refine"]))
         K, R, t, C = cm.decompose_projection_matrix(P)
         est = cm.Camera(K, R, t)
@@ -145,7 +160,7 @@ def resectioning():
                       f"(the true camera leaves sigma sqrt(2) = {float(v['noise']) * np.sqrt(2.0):.2f} px)"
                       f"{warning}</pre>")
         state.update(P=P, K=K, R=R, t=t, centre=C, rms=rms, focal_error=focal_err, centre_error=centre_err,
-                     points_image=uvn, redundancy=redundancy, expected_rms=expected, behind=behind)
+                     points_image=uvn, redundancy=redundancy, expected_rms=expected, behind=behind, moved=moved)
 
     demo = build_demo("resectioning", controls, view, update,
                       title="Resection: estimate P from N point pairs (DLT); click the image (or use the shift sliders) to move a pixel",
@@ -202,15 +217,17 @@ def opencv_vs_opengl():
         R_axes = cm.opengl_from_opencv(cam.R, cam.t)[0] if gl else cam.R
         names = ("x right", "y up", "z backward") if gl else ("x right", "y down", "z forward")
         C = cam.centre
-        label_tips = C + 1.3 * R_axes
+        # The limits fit both frames' label tips, so toggling the frame changes only the labels
+        label_tips = C + 1.3 * np.vstack([cam.R, -cam.R[1:]])
         scene3d.set_equal_aspect(ax, [house_segments, np.zeros(3), label_tips, art.extent_points(cam)], zoom=0.95,
                                  tight=True)
         scene3d.refresh_projection(ax)
         for i, (ln, tx) in enumerate(zip(lines, texts)):
             e = C + 0.9 * R_axes[i]  # row i of R = camera axis i in world coordinates
             ln.set_data_3d([C[0], e[0]], [C[1], e[1]], [C[2], e[2]])
-            tx.set_position_3d(C + 1.1 * R_axes[i])
+            tx.set_position_3d(C + 1.05 * R_axes[i])
             tx.set_text(names[i])
+            scene3d.align_away(ax, tx, C, e)
         title.value = ("<pre>OpenGL/Blender: R_gl = diag(1,-1,-1) R, t_gl = diag(1,-1,-1) t\n"
                        "camera looks along its -z axis</pre>" if gl else
                        "<pre>OpenCV / H&amp;Z: X_cam = R X + t\ncamera looks along its +z axis</pre>")
