@@ -48,11 +48,20 @@ def install() -> bool:
     """In an IPython kernel, send :data:`SCRIPT` to the page (once per page); returns whether it did."""
     try:
         from IPython import get_ipython
-        from IPython.display import Javascript, display
+        from IPython.display import display
     except ImportError:  # pragma: no cover - IPython comes with ipywidgets
         return False
     shell = get_ipython()
     if shell is None or getattr(shell, "kernel", None) is None:
         return False
-    display(Javascript(SCRIPT))
+    display(script_bundle(), raw=True)
     return True
+
+
+def script_bundle() -> dict[str, str]:
+    """The display bundle of :data:`SCRIPT`: the script, and an empty text for pages that run no scripts.
+
+    ``IPython.display.Javascript`` also carries the text ``<IPython.core.display.Javascript
+    object>``, which GitHub, an untrusted notebook or a PDF shows in place of the script.
+    """
+    return {"application/javascript": SCRIPT, "text/plain": ""}

@@ -144,6 +144,45 @@ def test_pinhole_checks_pass_right_answers_in_other_forms(capsys):
     assert check("best_pinhole_diameter", lambda f, lam: (2.44 * lam * f) ** 0.5)
 
 
+def test_best_pinhole_accepts_a_numerical_minimiser_and_rejects_a_few_percent_off(capsys):
+    from scipy.optimize import minimize_scalar
+
+    def bounded(f, lam):  # stops about 0.4 % from d*, where the blur is within 1e-5 of its least
+        return minimize_scalar(lambda d: d + 2.44 * lam * f / d, bounds=(1e-6, 1e-2), method="bounded").x
+
+    assert check("best_pinhole_diameter", bounded)
+    with pytest.raises(AssertionError, match="minimise the total blur"):
+        check("best_pinhole_diameter", lambda f, lam: 1.05 * (2.44 * lam * f) ** 0.5)
+
+
+def test_a_function_that_changes_its_input_in_place_fails_naming_the_argument(capsys):
+    def project_in_place(X, f):
+        X[:, :2] *= f / X[:, 2:3]
+        return X[:, :2]
+
+    with pytest.raises(AssertionError, match=r"changed its input `X` in place(.|\n)*work on a copy"):
+        check("pinhole_projection", project_in_place)
+
+
+def test_counting_columns_from_one_is_named_as_such():
+    for one_based in (lambda X, f: f * X[:, 1:3] / X[:, 3:4], lambda X, f: f * X[:, [1, 2]] / X[:, [3]]):
+        with pytest.raises(AssertionError, match="counting columns from 1"):
+            check("pinhole_projection", one_based)
+
+
+def test_a_wrong_number_prints_as_a_plain_float():
+    with pytest.raises(AssertionError) as info:
+        check("best_pinhole_diameter", lambda f, lam: np.float64(1.0))
+    assert "np.float64" not in str(info.value) and "got      1.0" in str(info.value)
+
+
+def test_solution_ending_a_cell_shows_no_second_copy(capsys):
+    source = solution("pinhole_projection")
+    assert isinstance(source, str) and "def pinhole_projection(" in source
+    assert hasattr(source, "_ipython_display_")  # IPython calls it instead of printing an escaped Out[] repr
+    assert source._ipython_display_() is None and capsys.readouterr().out.count("def pinhole_projection(") == 1
+
+
 def test_estimate_affine_camera_accepts_a_column_of_ones_instead_of_centring(capsys):
     from camlab.exercises.affine_cameras import _estimate_with_ones
 

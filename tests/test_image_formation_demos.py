@@ -8,7 +8,7 @@ import pytest
 
 os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
 
-from camlab import distortion, lens  # noqa: E402
+from camlab import distortion, lens, render, scenes  # noqa: E402
 from camlab.exercises import all_exercises, check  # noqa: E402
 from camlab.widgets import digital_sensor, lenses_and_distortion, pinhole_camera  # noqa: E402
 from camlab.widgets import REGISTRY  # noqa: E402
@@ -31,7 +31,8 @@ def test_pinhole_projection_box_width_follows_f_over_z():
     demo = pinhole_camera.pinhole_projection()
     demo.set(focal_mm=50, distance=2.0)
     w1 = demo.state["box_width_px"]
-    box_columns = np.flatnonzero(np.any(np.abs(demo.state["image"] - 0.35) > 0.02, axis=0))
+    box_alone = render.render(scenes.box_before_wall(2.0)[0], demo.state["K"], pinhole_camera.SIZE, background=0.0)
+    box_columns = np.flatnonzero(np.any(box_alone.irradiance > 0.02, axis=0))
     assert w1 == pytest.approx(box_columns.max() - box_columns.min(), abs=2.0)  # the readout is what you see
     demo.set(focal_mm=100)
     assert demo.state["box_width_px"] == pytest.approx(2 * w1)
@@ -49,15 +50,19 @@ def test_pinhole_projection_box_width_follows_f_over_z():
 def test_pinhole_size_regimes():
     demo = pinhole_camera.pinhole_size()
     demo.set(focal_mm=100, diameter_mm=0.05)
-    assert demo.state["limited_by"] == "diffraction"
+    assert demo.state["limited_by"] == "diffraction-limited"
     demo.set(diameter_mm=2.0)
-    assert demo.state["limited_by"] == "geometry"
+    assert demo.state["limited_by"] == "geometry-limited"
     assert demo.state["best_mm"] == pytest.approx(np.sqrt(2.44 * 550e-9 * 0.1 / 1.1) * 1e3)  # object at 1 m
     rows = {}
     for d in (0.05, 0.35, 1.5):  # the lesson's claim: the best hole leaves four rows legible, the extremes one or two
         demo.set(diameter_mm=d)
         rows[d] = demo.state["legible_rows"]
     assert rows == {0.05: 1, 0.35: 4, 1.5: 2}
+    demo.set(diameter_mm=0.35)  # within 5 % of the best 0.349 mm: the two terms are equal to 0.5 %
+    assert demo.state["limited_by"] == "balanced"
+    demo.set(focal_mm=200)  # the field of view stays: blur grows in mm but falls per field angle, as 1 / sqrt(f)
+    assert demo.state["blur_mm"] == pytest.approx(1.19, abs=0.01) and demo.state["blur_px"] == pytest.approx(5.3, abs=0.1)
 
 
 def test_letter_chart_rows_shrink():

@@ -40,3 +40,18 @@ def test_installed_only_in_a_kernel(monkeypatch):
     monkeypatch.setattr(warnings, "showwarning", before)  # undone after the test
     assert _notebook.install_warning_format() and _notebook.install_warning_format()
     assert warnings.showwarning is _notebook._show_warning
+
+
+def test_the_page_script_shows_no_repr_where_scripts_do_not_run(monkeypatch):
+    """camlab.widgets' accessibility script (camlab/_access.py): a page that runs no scripts shows nothing."""
+    import IPython.display
+
+    from camlab import _access
+
+    shown = []
+    kernel_shell = types.SimpleNamespace(kernel=object())
+    monkeypatch.setattr("IPython.get_ipython", lambda: kernel_shell)
+    monkeypatch.setattr(IPython.display, "display", lambda *objs, **kw: shown.append((objs, kw)))
+    assert _access.install()
+    (bundle,), options = shown[0]
+    assert options.get("raw") and bundle["application/javascript"] == _access.SCRIPT and bundle["text/plain"] == ""

@@ -30,6 +30,7 @@ numpy and builtins.
 from __future__ import annotations
 
 import inspect
+import re
 import signal
 import threading
 import time
@@ -254,6 +255,12 @@ def check(name: str, student_function: Callable[..., Any]) -> CheckResult:
 
 def _exception_hint(exc: Exception) -> str:
     """A likely cause for the errors students meet most ('' for the others)."""
+    one_based = ("\n  likely cause: counting columns from 1. Python counts from 0: an axis of size n has indices"
+                 " 0 .. n - 1, so the columns of an (N, 3) array of points are 0, 1 and 2 (z is X[:, 2] or X[:, 2:3])")
+    if isinstance(exc, IndexError) and "out of bounds" in str(exc):
+        return one_based
+    if isinstance(exc, ValueError) and "broadcast" in str(exc) and re.search(r"\(\d+,0\)|\(0,", str(exc)):
+        return one_based + " (a slice past the last column, X[:, 3:4], is empty)"
     if isinstance(exc, ValueError) and "broadcast" in str(exc):
         return ("\n  likely cause: a broadcasting slip. Dividing an (N, 2) array by an (N,) column such as X[:, 2]"
                 " lines the column up with the last axis; keep it 2-D: X[:, 2:3], X[:, 2, None] or keepdims=True")
@@ -344,7 +351,14 @@ def solution(name: str) -> str:
         source = (inspect.getsource(exercise.teaching)
                   + f"\n# camlab's own, tested implementation: {where} (read it with {where}??)\n")
     print(source)
-    return source
+    return _PrintedText(source)
+
+
+class _PrintedText(str):
+    """A string already printed: ending a cell, it shows nothing more (no escaped ``Out[]`` copy)."""
+
+    def _ipython_display_(self) -> None:
+        """IPython's display hook: the text is on the page already."""
 
 
 def same_up_to_scale(got: Any, expected: np.ndarray, rtol: float = 1e-6) -> bool:

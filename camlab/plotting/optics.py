@@ -11,7 +11,7 @@ from .. import lens as _lens
 from .. import pinhole as _pinhole
 from . import palette
 
-__all__ = ["box_edges", "draw_pinhole_3d", "update_pinhole_3d", "draw_similar_triangles", "update_similar_triangles",
+__all__ = ["box_edges", "label_camera_axes", "plane_faces", "draw_pinhole_3d", "update_pinhole_3d", "draw_similar_triangles", "update_similar_triangles",
            "draw_thin_lens", "update_thin_lens", "draw_focus_cone", "update_focus_cone",
            "draw_pinhole_blur", "update_pinhole_blur", "draw_pinhole_cones"]
 
@@ -26,9 +26,36 @@ def box_edges(center, size) -> np.ndarray:
 
 
 def _to_plot(p):
-    """Camera frame (x right, y down, z forward) -> plot axes (z, x, -y): depth to the right, up is up."""
+    """Camera frame (x right, y down, z forward) -> plot axes (z, -x, -y): depth to the right, up is up.
+
+    The map is a rotation (determinant +1), so the plot is the camera frame seen from outside,
+    not its mirror image: with depth running right and y down, x comes out of the screen.
+    :func:`label_camera_axes` labels the ticks in camera coordinates.
+    """
     p = np.asarray(p, float)
-    return p[..., 2], p[..., 0], -p[..., 1]
+    return p[..., 2], -p[..., 0], -p[..., 1]
+
+
+def label_camera_axes(ax, labelpad: float = 8) -> None:
+    """Label a 3-D axes drawn through :func:`_to_plot` in camera coordinates: z forward, x right, y down.
+
+    The plot's second and third axes hold -x and -y; their tick labels show x and y themselves.
+    """
+    from matplotlib.ticker import FuncFormatter, MaxNLocator
+
+    negated = FuncFormatter(lambda v, _pos: f"{-v + 0.0:g}")  # + 0.0: no "-0"
+    ax.yaxis.set_major_formatter(negated)
+    ax.zaxis.set_major_formatter(negated)
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+        axis.set_major_locator(MaxNLocator(3))
+    ax.set_xlabel("z, forward (m)", labelpad=labelpad)
+    ax.set_ylabel("x, right (m)", labelpad=labelpad)
+    ax.set_zlabel("y, down (m)", labelpad=labelpad)
+
+
+def plane_faces(planes) -> tuple[np.ndarray, np.ndarray]:
+    """(F, 4, 3) camera-frame corners and F mean greys of scene planes: the ``faces`` of :func:`draw_pinhole_3d`."""
+    return (np.array([p.corners_world for p in planes]), np.array([float(np.mean(p.texture)) for p in planes]))
 
 
 def _polyline(segments: np.ndarray) -> tuple:
@@ -38,37 +65,47 @@ def _polyline(segments: np.ndarray) -> tuple:
     return _to_plot(pts)
 
 
-def draw_pinhole_3d(ax, edges: np.ndarray, f_draw: float, plane_half: float = 0.12,
+# Drawing order of the 3-D pinhole view, fixed (not by depth): a live frame that redraws the moving
+# artists in zorder then shows what a full draw shows. Rays go under the pictures on the image planes.
+_Z_RAYS, _Z_FILLS, _Z_PLANES, _Z_IMAGES, _Z_BOX, _Z_PINHOLE = 1.0, 1.5, 2.0, 2.5, 3.0, 4.0
+
+
+def draw_pinhole_3d(ax, edges: np.ndarray, f_draw: float, plane_half: float | None = None,
                     faces: tuple[np.ndarray, np.ndarray] | None = None) -> dict:
     """Box edges, the pinhole, the real (behind) and virtual (in front) image planes and the rays.
 
     ``edges`` is (K, 2, 3) camera-frame segments (metres); the image planes are drawn at
-    distance ``f_draw`` behind and in front of the pinhole at the origin. ``faces``, if
-    given, is ``(polygons, shades)``: (F, 4, 3) camera-frame face corners and F greys in
-    [0, 1]; the faces the camera sees are then filled on the box and, projected, on both
-    image planes, so each plane shows a picture of the box rather than its wire frame.
+    distance ``f_draw`` behind and in front of the pinhole at the origin, ``plane_half``
+    metres half-wide (None: 1.25 times the image, so the picture fills its frame). ``faces``,
+    if given, is ``(polygons, shades)`` (see :func:`plane_faces`): (F, 4, 3) camera-frame face
+    corners and F greys in [0, 1]; the faces the camera sees are then filled on the box and,
+    projected, on both image planes, so each plane shows a picture of the box rather than its
+    wire frame. The axes are labelled in camera coordinates (:func:`label_camera_axes`).
     """
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-    art = {"box": ax.plot(*_polyline(edges), color=palette.BLUE, lw=1.5, path_effects=palette.halo(1.5))[0]}
-    ax.scatter([0], [0], [0], color="k", s=25)
+    ax.computed_zorder = False  # the fixed order above, in full draws and live frames alike
+    art = {"box": ax.plot(*_polyline(edges), color=palette.BLUE, lw=1.5, path_effects=palette.halo(1.5),
+                          zorder=_Z_BOX)[0],
+           "pinhole": ax.plot([0], [0], [0], "o", color="k", ms=6, mec="white", mew=1, zorder=_Z_PINHOLE,
+                              gid="pinhole")[0]}
     art["planes"] = {}
     art["fills"] = {}
     for name, color in (("real", palette.RED), ("virtual", palette.GREEN)):
-        art["planes"][name] = ax.plot([], [], [], color=color, lw=1, path_effects=palette.halo(1))[0]
-        art[name] = ax.plot([], [], [], color=color, lw=1.2, path_effects=palette.halo(1.2))[0]
+        art["planes"][name] = ax.plot([], [], [], color=color, lw=1.2, zorder=_Z_PLANES)[0]
+        # the image's edges: the picture when no faces are given; the filled faces are the picture otherwise
+        art[name] = ax.plot([], [], [], color=color, lw=2.0, zorder=_Z_IMAGES, visible=faces is None)[0]
     if faces is not None:
         for name in ("box", "real", "virtual"):
-            art["fills"][name] = ax.add_collection3d(Poly3DCollection([], edgecolor="none", shade=False))
-    art["rays"] = ax.plot([], [], [], color=palette.GREY, lw=0.6, path_effects=palette.halo(0.6))[0]
-    ax.set_xlabel("z (forward)")
-    ax.set_ylabel("x")
-    ax.set_zlabel("-y (up)")
-    ax.view_init(elev=18, azim=-62)
+            art["fills"][name] = ax.add_collection3d(Poly3DCollection([], edgecolor="none", shade=False,
+                                                                      zorder=_Z_FILLS))
+    art["rays"] = ax.plot([], [], [], color=palette.GREY, lw=0.6, path_effects=palette.halo(0.6), zorder=_Z_RAYS)[0]
+    label_camera_axes(ax)
+    ax.view_init(elev=18, azim=-55)
     art["plane_half"] = plane_half
     update_pinhole_3d(art, edges, f_draw, faces)
     pts = edges.reshape(-1, 3)
-    half = max(plane_half, np.abs(pts[:, :2]).max()) * 1.15
+    half = max(art["plane_half_drawn"], np.abs(pts[:, :2]).max()) * 1.15
     ax.set_xlim(-1.3 * f_draw, pts[:, 2].max() * 1.05)
     ax.set_ylim(-half, half)
     ax.set_zlim(-half, half)
@@ -80,7 +117,9 @@ def update_pinhole_3d(art: dict, edges: np.ndarray, f_draw: float,
                       faces: tuple[np.ndarray, np.ndarray] | None = None) -> None:
     """Move the box to ``edges`` (and its ``faces``, see :func:`draw_pinhole_3d`) and the image planes to ``f_draw``."""
     art["box"].set_data_3d(*_polyline(edges))
-    h = art["plane_half"]
+    corners = np.unique(edges.reshape(-1, 3), axis=0)
+    h = art["plane_half"] or 1.25 * float(np.abs(_pinhole.project_pinhole(corners, f_draw)).max())
+    art["plane_half_drawn"] = h
     if faces is not None and art["fills"]:
         polygons, shades = (np.asarray(a, float) for a in faces)
         centres = polygons.mean(axis=1)
@@ -102,7 +141,6 @@ def update_pinhole_3d(art: dict, edges: np.ndarray, f_draw: float,
                     for k in seen_faces]
             art["fills"][name].set_verts([np.column_stack(_to_plot(p)) for p in flat])
             art["fills"][name].set_facecolor(colours)
-    corners = np.unique(edges.reshape(-1, 3), axis=0)
     ends = -corners * f_draw / corners[:, 2:3]  # through the pinhole to the real plane
     art["rays"].set_data_3d(*_polyline(np.stack([corners, ends], axis=1)))
 
@@ -132,10 +170,11 @@ def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
     camera frame (y down), so a point drawn above the axis has a negative Y.
     """
     ax.axhline(0, color="0.4", lw=0.8, zorder=0)
-    ax.plot([0], [0], "ko", ms=5, zorder=5)
     art = {
-        "big": ax.fill([0, 1, 1], [0, 0, 1], color="tab:blue", alpha=0.15, lw=0)[0],
-        "small": ax.fill([0, 1, 1], [0, 0, 1], color="tab:green", alpha=0.35, lw=0)[0],
+        # returned with the moving artists: a ray passes over the hole, and the dot must stay on top
+        "pinhole_dot": ax.plot([0], [0], "o", color="k", ms=6, mec="white", mew=1, zorder=5, gid="pinhole")[0],
+        "big": ax.fill([0, 1, 1], [0, 0, 1], color=palette.BLUE, alpha=0.15, lw=0)[0],
+        "small": ax.fill([0, 1, 1], [0, 0, 1], color=palette.GREEN, alpha=0.3, lw=0)[0],
         "object": ax.plot([], [], color=palette.BLUE, lw=3, solid_capstyle="butt")[0],
         "point": ax.plot([], [], "o", color=palette.BLUE, ms=8)[0],
         "ray": ax.plot([], [], color=palette.ORANGE, lw=1.5, path_effects=palette.halo(1.5))[0],
@@ -148,7 +187,7 @@ def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
         "dims": {k: _dimension(ax, c) for k, c in (("f", "k"), ("Z", "k"), ("Y", palette.BLUE), ("y", palette.GREEN),
                                                     ("y_real", palette.RED))},
     }
-    ax.set_xlim(-0.3 * z_max, 1.08 * z_max)
+    ax.set_xlim(-0.36 * z_max, 1.14 * z_max)  # room for the real plane's label at f = 1 m and for Y's at Z = 5 m
     ax.set_ylim(-h_max, h_max)
     ax.set_aspect("equal")  # similar triangles look similar only at equal scales
     ax.set_xlabel("depth z (m)")
@@ -337,10 +376,12 @@ def draw_pinhole_blur(ax, focal_length: float, wavelength: float = 550e-9, objec
     """
     d = np.geomspace(0.02e-3, 3e-3, 300)
     art = {
-        "geometric": ax.plot(d * 1e3, d * 1e3, label="geometric  d (1 + f/Z)")[0],
-        "diffraction": ax.plot(d * 1e3, d * 1e3, color=palette.ORANGE, label=r"diffraction  $2.44\lambda f/d$")[0],
+        # brown and black: lesson 01 keeps blue for objects, orange for rays, red and green for the image planes
+        "geometric": ax.plot(d * 1e3, d * 1e3, color=palette.BROWN, ls="--", label="geometric  d (1 + f/Z)")[0],
+        "diffraction": ax.plot(d * 1e3, d * 1e3, color=palette.BROWN, ls=":", lw=2,
+                               label=r"diffraction  $2.44\lambda f/d$")[0],
         "total": ax.plot(d * 1e3, d * 1e3, "k", lw=2, label="total")[0],
-        "marker": ax.axvline(1, color="tab:red", ls="--", label="your d"),
+        "marker": ax.axvline(1, color=palette.GREY, lw=1.5, label="your d"),
         "best": ax.plot([], [], "k*", ms=12, label="best diameter")[0],
         "d": d,
     }
@@ -382,7 +423,7 @@ def draw_pinhole_cones(ax, diameter: float, focal_length: float, object_distance
     Z, f, d = object_distance, focal_length, diameter
     b = _pinhole.pinhole_blur(d, f, Z, wavelength)
     a = d / 2 * 1e3
-    for Y, colour in zip(heights, (palette.BLUE, palette.GREEN)):
+    for Y, colour in zip(heights, (palette.BLUE, palette.PURPLE)):  # objects: blue and purple (green is the virtual plane)
         y_obj = -Y * 1e3                    # mm, drawn up
         y_img = Y * f / Z * 1e3             # the real image is inverted: -f Y / Z, drawn up as +
         top, bottom = y_img + b.geometric / 2 * 1e3, y_img - b.geometric / 2 * 1e3

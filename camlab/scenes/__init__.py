@@ -76,6 +76,7 @@ from .lessons import (
     ResectionSet,
     sleeper_gaps,
     stereo_pair,
+    WALL_DISTANCE,
 )
 
 __all__ = [
@@ -85,5 +86,5 @@ __all__ = [
     "noise_texture", "outlier_matches", "OutlierMatches", "page_texture", "painting_texture", "photo_and_page",
     "photo_plane", "photograph_plane", "Plane", "plane_outlines", "PlanePhoto", "portrait", "rail_track",
     "resection_set", "ResectionSet", "sample_photo", "sleeper_gaps", "stereo_pair", "text_page", "textured_plane",
-    "wall_texture",
+    "wall_texture", "WALL_DISTANCE",
 ]

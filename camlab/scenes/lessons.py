@@ -14,17 +14,24 @@ from .textures import portrait
 from .wireframes import box_wireframe, ground_grid, house_wireframe
 
 
-def box_before_wall(distance: float) -> list:
-    """Lesson 01: a turned 0.3 m box ``distance`` metres in front of the pinhole and a wall 3x further.
+WALL_DISTANCE = 6.0  # metres: lesson 01's checkered wall behind the box
 
-    Returns ``[faces, wall]``: the box's six faces (a list of :class:`Plane`) and a flat grey
-    wall (a :class:`Plane`) 3 ``distance`` wide at z = 3 ``distance``, a scene for
-    :func:`camlab.render.render`. :func:`plane_outlines` of ``faces`` gives the (24, 2, 3)
-    box edges the 3-D view draws.
+
+def box_before_wall(distance: float) -> list:
+    """Lesson 01: a turned 0.3 m box ``distance`` metres in front of the pinhole and a checkered wall behind it.
+
+    Returns ``[faces, wall]``: the box's six faces (a list of :class:`Plane`, its top face
+    darkest) and a wall (a :class:`Plane`) 16 m x 12 m of 1 m squares in two dark greys at
+    z = :data:`WALL_DISTANCE`, wide enough to fill the widest view lesson 01 shows, a scene for
+    :func:`camlab.render.render`. The wall stays put while the box moves, so its squares show
+    the perspective a focal length and a distance give (a dolly zoom keeps the box's size and
+    changes the wall's). :func:`plane_outlines` of ``faces`` gives the (24, 2, 3) box edges.
     """
     d = check_positive(distance, "distance", "metres")
+    squares = (np.indices((12, 16)).sum(axis=0) % 2) * 0.08 + 0.12  # 12 rows x 16 columns of 1 m squares
+    checker = np.kron(squares, np.ones((8, 8)))  # 8 texels per square keep the edges sharp
     return [box([0.0, 0.0, d], (0.3, 0.3, 0.3), R=rotation_from_euler(0.35, 0.6, 0.0), rng=0),
-            textured_plane(np.full((4, 4), 0.35), 3.0 * d, t=(0, 0, 3.0 * d), name="wall")]
+            textured_plane(checker, 16.0, t=(0, 0, WALL_DISTANCE), name="wall")]
 
 
 def depth_of_field_scene() -> list[Plane]:
