@@ -70,8 +70,10 @@ def load_calibration(path: str | os.PathLike, *, name: str = "path") -> tuple[np
     expected = ("pass a .json/.yaml/.xml written by `camlab calibrate` (or save_calibration), OpenCV's "
                 "FileStorage, or ROS's camera calibrator")
     fs = _open_storage(Path(path))
+    if fs is None:
+        raise CamlabInputError(f"{name}: {str(path)!r} is not a file OpenCV's FileStorage can parse; {expected}")
     try:
-        if fs is None or not fs.isOpened():
+        if not fs.isOpened():
             raise CamlabInputError(f"{name}: {str(path)!r} is not a file OpenCV's FileStorage can parse; {expected}")
         model = fs.getNode("distortion_model")
         if not model.empty() and model.string() not in ("plumb_bob", "radtan"):
