@@ -43,7 +43,17 @@ def assert_close_to_cv2_warp(ours, ref) -> None:
 
 
 def pytest_collection_modifyitems(items):
-    """The tests that install whole environments (marked ``binder``) get 30 minutes, not the default 300 s."""
+    """Deadlines beyond the default 300 s, still finite so nothing can hang CI.
+
+    Tests that install whole environments (marked ``binder``) get 30 minutes. Tests that drive a
+    real Chromium (marked ``browser``) get 15 minutes: the site's module fixture opens all 14
+    pages with MathJax and axe-core, 190 s on a loaded 2-core machine, more than 300 s beside
+    the rest of ``make test -n 2`` (the sixth clean-clone run).
+    """
     for item in items:
-        if item.get_closest_marker("binder") and not item.get_closest_marker("timeout"):
+        if item.get_closest_marker("timeout"):
+            continue
+        if item.get_closest_marker("binder"):
             item.add_marker(pytest.mark.timeout(1800))
+        elif item.get_closest_marker("browser"):
+            item.add_marker(pytest.mark.timeout(900))

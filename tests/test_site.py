@@ -263,6 +263,7 @@ AXE_RULES = ["wcag2a", "wcag2aa", "wcag21a", "wcag21aa", "best-practice"]
 def visit(browser, url: str) -> dict:
     """Open a page; return its console errors, outside requests, failures, maths, images and axe results."""
     page = browser.new_page()
+    page.set_default_timeout(120_000)  # a stuck page fails with its name, not the suite's deadline
     seen = dict(errors=[], outside=[], failed=[])
     host = urlsplit(url).netloc
     page.on("console", lambda m: seen["errors"].append(m.text) if m.type == "error" else None)
@@ -272,7 +273,7 @@ def visit(browser, url: str) -> dict:
     page.on("response", lambda r: seen["failed"].append(f"{r.status} {r.url}") if r.status >= 400 else None)
     try:
         page.goto(url, wait_until="load")
-        page.wait_for_function("() => window.MathJax && MathJax.startup && MathJax.startup.promise", timeout=30_000)
+        page.wait_for_function("() => window.MathJax && MathJax.startup && MathJax.startup.promise")
         page.evaluate("() => MathJax.startup.promise")
         seen.update(page.evaluate("""() => ({
             math: document.querySelectorAll('mjx-container').length,
