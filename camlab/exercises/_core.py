@@ -270,6 +270,10 @@ def _exception_hint(exc: Exception) -> str:
     """A likely cause for the errors students meet most ('' for the others)."""
     one_based = ("\n  likely cause: counting columns from 1. Python counts from 0: an axis of size n has indices"
                  " 0 .. n - 1, so the columns of an (N, 3) array of points are 0, 1 and 2 (z is X[:, 2] or X[:, 2:3])")
+    if isinstance(exc, ValueError) and "read-only" in str(exc):
+        return ("\n  likely cause: an in-place change (K /= d, K[0, 2] = ...) of an array you were given read-only,"
+                " such as a camlab Camera's K, R or t (cameras are immutable): build a new array (K / d) or change"
+                " a copy (K = camera.K.copy())")
     if isinstance(exc, IndexError) and "out of bounds" in str(exc):
         return one_based
     if isinstance(exc, ValueError) and "broadcast" in str(exc) and re.search(r"\(\d+,0\)|\(0,", str(exc)):
