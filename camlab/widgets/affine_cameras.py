@@ -135,6 +135,29 @@ def dolly_curves(offset: float, distances: np.ndarray) -> dict:
 APPROXIMATIONS = {"weak perspective": af.affine_approximation, "para-perspective": af.paraperspective_approximation}
 
 
+def _dolly_error_axes(ax, distances):
+    """The dolly zoom's log-log error panel: one (empty) curve and one marker per affine model."""
+    from matplotlib.ticker import NullLocator
+
+    curves = {m: ax.loglog(distances, np.ones_like(distances), color=COLOURS[m], ls=STYLES[m], lw=1.5)[0]
+              for m in APPROXIMATIONS}
+    ax.set_xlim(distances[0] / 1.08, distances[-1] * 1.08)  # room for the marker at the slider's ends
+    ax.set_ylim(0.005, 200)
+    ax.set_title("RMS distance to the perspective image", fontsize=9)
+    ax.set_xlabel(f"distance d (m); focal length f = {F0:.0f} d / {D0:.0f} px", fontsize=8)
+    ax.set_ylabel("RMS difference (px)", fontsize=8)
+    ax.tick_params(labelsize=7)
+    ax.axhline(1.0, color="0.5", lw=0.8, ls=":")
+    ax.text(distances[-1], 1.15, "1 px", ha="right", va="bottom", fontsize=7, color="0.4")
+    ax.grid(True, which="major", alpha=0.3)
+    # Plain tick labels and no minor ticks: log axes' default mathtext labels cost ~20 ms a redraw.
+    for axis, ticks in ((ax.xaxis, [2, 5, 10, 20, 50, 100]), (ax.yaxis, [0.01, 0.1, 1, 10, 100])):
+        axis.set_minor_locator(NullLocator())
+        axis.set_ticks(ticks, labels=[f"{t:g}" for t in ticks])
+    markers = {m: ax.plot([], [], "o", color=COLOURS[m], ms=7)[0] for m in APPROXIMATIONS}
+    return curves, markers
+
+
 @register(lesson="05", sweep={"distance": [2.0, 6.0, 40.0, 150.0], "offset": [0, 50, 100]})
 def dolly_zoom():
     """Move the camera away while zooming in (f = f0 d / D0): the object keeps its size, the
@@ -159,24 +182,7 @@ def dolly_zoom():
         # The readout sits under the axes, where no part of the cube can be.
         readouts[m] = ax.text(0.5, -0.12, "", transform=ax.transAxes, fontsize=8, ha="center", va="top")
     distances = np.geomspace(*DOLLY_DISTANCES, 60)
-    curves = {m: ax_err.loglog(distances, np.ones_like(distances), color=COLOURS[m], ls=STYLES[m], lw=1.5)[0]
-              for m in APPROXIMATIONS}
-    ax_err.set_xlim(distances[0] / 1.08, distances[-1] * 1.08)  # room for the marker at the slider's ends
-    ax_err.set_ylim(0.005, 200)
-    ax_err.set_title("RMS distance to the perspective image", fontsize=9)
-    ax_err.set_xlabel(f"distance d (m); focal length f = {F0:.0f} d / {D0:.0f} px", fontsize=8)
-    ax_err.set_ylabel("RMS difference (px)", fontsize=8)
-    ax_err.tick_params(labelsize=7)
-    ax_err.axhline(1.0, color="0.5", lw=0.8, ls=":")
-    ax_err.text(distances[-1], 1.15, "1 px", ha="right", va="bottom", fontsize=7, color="0.4")
-    ax_err.grid(True, which="major", alpha=0.3)
-    # Plain tick labels and no minor ticks: log axes' default mathtext labels cost ~20 ms a redraw.
-    from matplotlib.ticker import NullLocator
-
-    for axis, ticks in ((ax_err.xaxis, [2, 5, 10, 20, 50, 100]), (ax_err.yaxis, [0.01, 0.1, 1, 10, 100])):
-        axis.set_minor_locator(NullLocator())
-        axis.set_ticks(ticks, labels=[f"{t:g}" for t in ticks])
-    markers = {m: ax_err.plot([], [], "o", color=COLOURS[m], ms=7)[0] for m in APPROXIMATIONS}
+    curves, markers = _dolly_error_axes(ax_err, distances)
     model_legend(view.fig, models, reference=True, principal_point=True)
     view.animate(*under.values(), *lines.values(), *readouts.values(), *curves.values(), *markers.values())
     for artists in references.values():
