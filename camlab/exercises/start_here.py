@@ -21,6 +21,15 @@ def _batch_code_hint(exc: Exception, args: tuple) -> str:
     two rows: each raises, and the shared hints would blame something else (a 1-based column).
     """
     text = str(exc)
+    if "has no attribute 'append'" in text:
+        return ("\n  likely cause: p.append(1.0) is how a Python list grows; a numpy array has no .append method "
+                "(its size is fixed): np.append(p, 1.0) returns a new, longer array")
+    if "zero-dimensional arrays cannot be concatenated" in text:
+        return ("\n  likely cause: np.concatenate takes one sequence of arrays, and its second argument is the "
+                "axis: np.concatenate([p, [1.0]]), or simply np.append(p, 1.0)")
+    if "same number of dimensions" in text and "0 dimension(s)" in text:
+        return ("\n  likely cause: np.concatenate joins arrays, and the 1 is a bare number (0-D): write it as "
+                "[1.0], np.concatenate([p, [1.0]]), or use np.append(p, 1.0) or np.hstack([p, 1.0]), which accept it")
     if "same number of dimensions" in text:
         return (f"\n  likely cause: batch code on one point: {_ONE_POINT}, so np.hstack([p, np.ones((len(p), 1))]) "
                 f"joins a 1-D array to a 2-D column; for one point append one number: np.append(p, 1.0)")
@@ -35,6 +44,9 @@ def _batch_code_hint(exc: Exception, args: tuple) -> str:
 
 def _shape_slip(got_shape: tuple, g: np.ndarray, p: np.ndarray) -> str:
     """The likely cause of an answer of the wrong shape."""
+    if got_shape == (2,) and np.allclose(g, p + 1.0):
+        return ("p + [1] (or p + 1) adds 1 to each coordinate: numpy's + is arithmetic, not the list concatenation "
+                "it is for Python lists; append instead: np.append(p, 1.0)")
     if got_shape == (2, 2):
         return (f"np.column_stack / np.c_ with a column of ones is batch code: on one point it makes each "
                 f"coordinate a row. {_ONE_POINT}: append one number, np.append(p, 1.0)")
@@ -94,6 +106,12 @@ def _xy_slip(xy: np.ndarray, p: np.ndarray) -> str:
     return _KEEP
 
 
+def _list_append(p):
+    """A list's way to grow, tried on an array (a wrong variant for the tests)."""
+    p.append(1.0)
+    return p
+
+
 def lift(p):
     """Homogeneous coordinates of one image point: append w = 1."""
     return np.append(np.asarray(p, dtype=float), 1.0)
@@ -143,6 +161,10 @@ register_exercise(Exercise(
         (lambda p: np.hstack([p[None], [[1.0]]]), "one point in, one point out"),
         (lambda p: np.append(p, 1.0)[:, None], "a column; points are rows"),
         (lambda p: np.append(p, np.ones(len(p))), "two 1s"),
+        (_list_append, "no .append method"),
+        (lambda p: p + [1.0], "not the list concatenation"),
+        (lambda p: np.concatenate(p, 1), "its second argument is the axis"),
+        (lambda p: np.concatenate([p, 1.0]), "the 1 is a bare number"),
     ),
     exception_hint=_batch_code_hint,
     teaching=lift,
