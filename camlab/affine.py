@@ -194,7 +194,8 @@ def paraperspective_approximation(camera: Camera, reference_point: ArrayLike) ->
     Weak perspective (:func:`affine_approximation`) projects every point onto the plane
     :math:`z = d_0` through the reference point :math:`X_0` **along the optical axis**, then
     divides by :math:`d_0`. Para-perspective (Aloimonos 1990; Szeliski §2.1.4) projects along
-    the **ray through** :math:`X_0` instead. In camera coordinates, with
+    the **ray through** :math:`X_0` instead, so its rays, and its centre at infinity
+    :math:`(d, 0)`, point along the line of sight to :math:`X_0`, not along :math:`r_3`. In camera coordinates, with
     :math:`(a, b) = (x_0 / d_0, y_0 / d_0)` the reference point's normalised image position,
 
     .. math:: x_n = \frac{x - a\,(z - d_0)}{d_0}, \qquad y_n = \frac{y - b\,(z - d_0)}{d_0},
@@ -419,8 +420,12 @@ def affine_fit_departure(H: ArrayLike, size: tuple[int, int], samples: int = 30)
     grid of pixel centres spanning the image.
 
     Two affine cameras see a plane through affine maps, so two views of a plane are related by an
-    affinity; for perspective cameras the map is a homography whose departure from affine grows with
-    the plane's depth range over the field of view, :math:`\Delta / d_0`. See lesson 05, section 3.
+    affinity; for perspective cameras the map is a homography. It is affine exactly when it keeps the
+    line at infinity (H&Z §2.7.1): when the plane meets both cameras' principal planes in the same
+    line. That holds when both views see the plane face-on (its depth nearly constant across each
+    picture), but also, exactly, for one perspective camera slid within its principal plane without
+    turning. So a large departure proves perspective matters for the plane in at least one view; a
+    small one does not prove affine cameras. See lesson 05, section 3.
     """
     Hm = check_matrix(H, (3, 3), "H")
     width, height = (int(check_positive(n, "size", "pixels")) for n in size)

@@ -339,3 +339,88 @@ def test_paraperspective_rejects_a_point_behind_the_camera():
     cam = cm.Camera.look_at([0.0, -4.0, 0.0], [0.0, 0.0, 0.0])
     with pytest.raises(CamlabInputError, match="in front of the camera"):
         af.paraperspective_approximation(cam, [0.0, -8.0, 0.0])
+
+
+def test_paraperspective_looks_along_the_line_of_sight_to_X0_not_the_optical_axis():
+    cam = cm.Camera.look_at([4.0, -3.0, 2.0], [0.0, 0.0, 0.5])
+    X0 = np.array([0.6, 0.4, 0.9])
+    C = cm.camera_centre(af.paraperspective_approximation(cam, X0))
+    sight = (X0 - cam.centre) / np.linalg.norm(X0 - cam.centre)
+    d = C[:3] / np.linalg.norm(C[:3])
+    assert abs(C[3]) < 1e-12 and abs(abs(d @ sight) - 1) < 1e-12
+    assert abs(d @ cam.R[2]) < 0.999                                 # X0 is off the axis: not r3
+    weak = cm.camera_centre(af.affine_approximation(cam, X0))
+    assert abs(abs(weak[:3] @ cam.R[2]) / np.linalg.norm(weak[:3]) - 1) < 1e-12
+
+
+def test_a_camera_slid_in_its_principal_plane_gives_an_affine_homography_of_any_plane():
+    """Why an affine homography does not prove affine cameras (lesson 05, section 3)."""
+    low = cm.Camera.look_at([0.0, 0.0, 2.0], [0.0, 10.0, 0.0], K=cm.intrinsic_matrix(800, 800, 319.5, 239.5))
+    for shift, affine in (([1.5, 0.0, 0.0], True), ([0.0, 0.7, 0.0], True), ([0.0, 0.0, 1.5], False)):
+        moved = low.replace(t=low.t - np.array(shift))
+        H = moved.P[:, [0, 1, 3]] @ np.linalg.inv(low.P[:, [0, 1, 3]])   # the ground z = 0 from one view to the other
+        departure = af.affine_fit_departure(H, (640, 480))
+        assert (departure < 1e-9) if affine else (departure > 100), (shift, departure)
+
+
+def _reference_markers(ax):
+    from camlab.widgets.affine_cameras import REFERENCE_MARKER
+
+    return [ln for ln in ax.lines if ln.get_marker() == REFERENCE_MARKER["marker"]]
+
+
+@pytest.mark.parametrize("settings", [{}, {"azimuth": 180, "distance": 2.0}, {"elevation": 80}])
+def test_three_cameras_marks_X0_in_every_panel_where_it_images(settings):
+    from camlab.widgets import affine_cameras as demos
+
+    d = demos.three_cameras()
+    d.set(**settings)
+    for ax, xy in zip(d.figure.axes, d.state["reference_images"]):
+        (marker,) = _reference_markers(ax)
+        assert np.allclose(np.column_stack(marker.get_data())[0], xy)
+    assert np.allclose(d.state["reference_images"][0], d.state["reference_images"][1])   # exact at X0
+
+
+@pytest.mark.parametrize("offset", [0, 100])
+def test_dolly_zoom_draws_each_affine_cube_in_its_own_panel_with_X0_and_the_principal_point(offset):
+    """The para-perspective cube is not hidden under the weak-perspective dashes: each has its panel."""
+    from camlab.widgets import affine_cameras as demos
+
+    d = demos.dolly_zoom()
+    d.set(offset=offset)
+    ax_weak, ax_para, _ = d.figure.axes
+    for ax, model in ((ax_weak, "weak perspective"), (ax_para, "para-perspective")):
+        colours = {ln.get_color() for ln in ax.lines}
+        assert demos.COLOURS[model] in colours and demos.COLOURS["perspective"] in colours
+        other = "para-perspective" if model == "weak perspective" else "weak perspective"
+        assert demos.COLOURS[other] not in colours
+        (marker,) = _reference_markers(ax)
+        assert np.allclose(np.column_stack(marker.get_data())[0], d.state["reference_image"])
+    assert abs(d.state["reference_image"][0] - 319.5 - offset) < 2.0     # X0 images `offset` px right of centre
+    if offset:
+        assert d.state["rms_paraperspective"] < 0.8 * d.state["rms_error"]
+
+
+def test_parallel_rails_marks_X0_in_both_panels_at_the_same_pixel():
+    from camlab.widgets import affine_cameras as demos
+
+    d = demos.parallel_rails()
+    d.set(yaw=10, pitch=12)
+    (p,), (a,) = (_reference_markers(ax) for ax in d.figure.axes)
+    assert np.allclose(np.column_stack(p.get_data()), np.column_stack(a.get_data()))
+    assert np.allclose(np.column_stack(a.get_data())[0], d.state["reference_image"])
+
+
+def test_projection_rays_marks_X0_in_all_four_panels_and_the_line_of_sight_in_para_perspective():
+    from camlab.widgets import affine_cameras as demos
+
+    d = demos.projection_rays()
+    d.set(offset=2.5)
+    for ax in d.figure.axes:
+        (marker,) = _reference_markers(ax)
+        assert np.allclose(np.column_stack(marker.get_data())[0], d.state["reference"])
+    from_centre = [ln for ln in d.figure.axes[2].lines if len(ln.get_xdata()) == 2 and ln.get_linestyle() == "--"
+                   and np.allclose([ln.get_xdata()[0], ln.get_ydata()[0]], 0.0)]
+    (sight,) = from_centre                                   # one dashed line from the camera centre ...
+    x, z = sight.get_data()
+    assert np.isclose(x[1] / z[1], 2.5 / demos.RAY_DEPTH)    # ... through X0: the para-perspective rays' direction

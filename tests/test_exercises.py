@@ -403,3 +403,37 @@ def test_in_place_division_of_P_in_project_points_gets_a_hint():
 
     with pytest.raises(AssertionError, match=r"in place"):
         check("project_points", project_points)
+
+
+@pytest.mark.parametrize("name", sorted(EXERCISES))
+@pytest.mark.parametrize("cast, phrase", [(lambda a: np.asarray(a).astype(str), "of text (dtype <U"),
+                                          (lambda a: np.asarray(a) + 0j, "of complex numbers (dtype complex128)"),
+                                          (lambda a: np.asarray(a).astype(object), "of Python objects")],
+                         ids=["text", "complex", "object"])
+def test_the_right_numbers_as_text_complex_or_objects_are_rejected_naming_the_cause(name, cast, phrase):
+    """np.asarray(answer, dtype=float) reads '2.5' and drops an imaginary part: such answers must not pass."""
+    exercise = EXERCISES[name]
+    if not isinstance(exercise.reference(*exercise.cases()[0]), np.ndarray):
+        pytest.skip("answers of other kinds (pairs of arrays) have their own checks")
+    with pytest.raises(AssertionError, match=r"wrong type of answer(.|\n)*likely cause: you returned an ndarray ") as info:
+        check(name, lambda *args: cast(exercise.reference(*args)))
+    assert phrase in str(info.value)
+
+
+@pytest.mark.parametrize("answer", ["2.5", np.complex128(2.5), [2.5, 4.25, "1"]], ids=["str", "complex", "mixed list"])
+def test_a_number_as_text_or_complex_is_not_a_number(answer):
+    from camlab.exercises import type_problem
+
+    assert type_problem(answer, 2.5) or type_problem(answer, np.zeros(3))
+    assert "complex number" in (type_problem(np.complex128(2.5), 2.5) or "")
+
+
+@pytest.mark.parametrize("batch_code, phrase", [
+    (lambda p: np.hstack([p, np.ones((len(p), 1))]), r"batch code on one point(.|\n)*np\.append\(p, 1\.0\)"),
+    (lambda p: np.c_[p[:, 0], p[:, 1], np.ones(len(p))], r"no second axis(.|\n)*p\[0\] and p\[1\]"),
+    (lambda p: np.column_stack([p, np.ones(len(p))]), r"got shape \(2, 2\): np\.column_stack / np\.c_"),
+], ids=["hstack", "p[:, 0]", "column_stack"])
+def test_lift_names_the_worked_examples_batch_code_copied_for_one_point(batch_code, phrase):
+    with pytest.raises(AssertionError, match=phrase) as info:
+        check("lift", batch_code)
+    assert "1-based" not in str(info.value) and "counting columns from 1" not in str(info.value)

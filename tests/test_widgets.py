@@ -302,6 +302,18 @@ def test_stack_check_readout_marks_the_roof_tip_without_a_signed_zero():
     assert "roof tip (orange dot) at (+0.00, +1.40)" in readout, readout
 
 
+@pytest.mark.parametrize("angle, scale", [(20.0, 1.0), (-135.0, 1.7)])
+def test_stack_check_state_tip_is_the_orange_dot_and_the_readout(angle, scale):
+    """Lesson 00 checks its hand computation against demo.state["tip"]: it must be what the figure shows."""
+    demo = DEMOS["stack_check"].builder()
+    demo.set(angle=angle, scale=scale)
+    (tip_line,) = [ln for ln in demo.figure.axes[0].lines if ln.get_label() == "roof tip"]
+    assert np.allclose(np.column_stack(tip_line.get_data())[0], demo.state["tip"])
+    assert demo.state["readout"] in demo.widget.children[0].children[-1].value
+    t = np.radians(angle)
+    assert np.allclose(demo.state["tip"], scale * np.array([1.4 * np.sin(t), -1.4 * np.cos(t)]))
+
+
 def test_stack_report_names_the_versions_and_whether_figures_are_live():
     from camlab import __version__
     from camlab.widgets.start_here import stack_report

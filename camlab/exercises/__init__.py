@@ -17,11 +17,11 @@ import functools
 import importlib
 import pkgutil
 
-from ._core import (EXERCISES, Exercise, check, register_exercise, same_array, same_up_to_scale, shape_problem,
-                    type_problem, unit_slip, worst_mismatch)
+from ._core import (EXERCISES, TIME_LIMIT_S, Exercise, check, register_exercise, same_array, same_up_to_scale,
+                    shape_problem, type_problem, unit_slip, worst_mismatch)
 from ._core import solution as _solution
 
-__all__ = ["EXERCISES", "Exercise", "all_exercises", "check", "register_exercise", "same_array", "same_up_to_scale",
+__all__ = ["EXERCISES", "TIME_LIMIT_S", "Exercise", "all_exercises", "check", "register_exercise", "same_array", "same_up_to_scale",
            "shape_problem", "solution", "type_problem", "unit_slip", "worst_mismatch"]
 
 

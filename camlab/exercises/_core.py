@@ -6,11 +6,13 @@ comparison and a diagnosis. ``check`` runs the student's function on every input
 * a stub that raises NotImplementedError prints "not attempted yet" and returns a false
   :class:`CheckResult`, so a lesson with untouched exercises still runs top to bottom in CI;
 * a wrong answer raises AssertionError naming the input, what came out, what was
-  expected and the likely cause; so does an answer of the wrong type (a string, a
-  list of an array and a number, or, where the prompt asks for a numpy array, any list),
-  named by :func:`type_problem`;
+  expected and the likely cause; so does an answer of the wrong type (a string, an array of
+  strings or of complex numbers, a list of an array and a number, or, where the prompt asks
+  for a numpy array, any list), named by :func:`type_problem`;
 * a function that changes an input array in place fails, naming the argument (the
   caller's data must come back as it went in), even if its answer is right;
+* an exercise may name the likely cause of an exception its typical mistakes raise
+  (``Exercise.exception_hint``); the shared hints cover the rest;
 * a function still running after :data:`TIME_LIMIT_S` seconds on one input is stopped,
   and the AssertionError names that input (see :func:`time_limit`);
 * a right answer prints a congratulation and returns a true :class:`CheckResult`.
@@ -59,6 +61,9 @@ class Exercise:
     teaching: Callable[..., Any] | None = None
     ndarray_only: bool = False
     """The prompt asks for a numpy array: a list or tuple of the right numbers is rejected too."""
+    exception_hint: Callable[[Exception, tuple], str] | None = None
+    """``exception_hint(exc, args)``: the likely cause when the student's function raises ``exc`` on
+    ``args``, as ``"\n  likely cause: ..."``, or '' to fall back on the hints every check shares."""
 
 
 EXERCISES: dict[str, Exercise] = {}
@@ -75,10 +80,11 @@ _MAX_PRINTED = 24  # arrays with more entries are summarised, not printed
 def _fmt(value: Any) -> str:
     if isinstance(value, np.ndarray):
         if value.size > _MAX_PRINTED:
-            finite = value[np.isfinite(value)] if np.issubdtype(value.dtype, np.number) else value.ravel()
+            real = value.dtype.kind in "biuf"  # text, complex or objects have no range to print
+            finite = value[np.isfinite(value)] if real else value[:0]
             span = f", values {finite.min():.4g} .. {finite.max():.4g}" if finite.size else ""
             return f"<array of shape {value.shape}, dtype {value.dtype}{span}>"
-        return np.array2string(value, precision=4, suppress_small=True, separator=", ")
+        return np.array2string(value, precision=4, suppress_small=True, separator=", ", floatmode="maxprec_equal")
     if isinstance(value, np.generic):
         return repr(value.item())  # 2.5, not np.float64(2.5)
     if isinstance(value, (tuple, list)):
@@ -208,7 +214,7 @@ def _run_student(name: str, student_function: Callable[..., Any], args: tuple, i
     except Exception as exc:
         raise AssertionError(
             f"{name}: your function raised {type(exc).__name__}: {exc}\n"
-            f"  on input {_fmt(args)}" + _exception_hint(exc)
+            f"  on input {_fmt(args)}" + _exercise_exception_hint(name, exc, args)
         ) from exc
     changed = _inputs_changed(args, passed)
     if changed:
@@ -235,7 +241,7 @@ def check(name: str, student_function: Callable[..., Any]) -> CheckResult:
             raise AssertionError(
                 f"{name}: wrong type of answer on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_fmt(args)}\n"
-                f"  got      {_fmt(got)}  (a {type(got).__name__})\n"
+                f"  got      {_fmt(got)}  ({_a(got)})\n"
                 f"  expected {_fmt(expected)}\n"
                 f"  likely cause: {wrong_type}"
             )
@@ -253,10 +259,21 @@ def check(name: str, student_function: Callable[..., Any]) -> CheckResult:
     return CheckResult(name, True)
 
 
+def _exercise_exception_hint(name: str, exc: Exception, args: tuple) -> str:
+    """The exercise's own hint for ``exc`` (its ``exception_hint``), else the shared one."""
+    exercise = EXERCISES.get(name)
+    own = exercise.exception_hint(exc, args) if exercise is not None and exercise.exception_hint else ""
+    return own or _exception_hint(exc)
+
+
 def _exception_hint(exc: Exception) -> str:
     """A likely cause for the errors students meet most ('' for the others)."""
     one_based = ("\n  likely cause: counting columns from 1. Python counts from 0: an axis of size n has indices"
                  " 0 .. n - 1, so the columns of an (N, 3) array of points are 0, 1 and 2 (z is X[:, 2] or X[:, 2:3])")
+    if isinstance(exc, ValueError) and "read-only" in str(exc):
+        return ("\n  likely cause: an in-place change (K /= d, K[0, 2] = ...) of an array you were given read-only,"
+                " such as a camlab Camera's K, R or t (cameras are immutable): build a new array (K / d) or change"
+                " a copy (K = camera.K.copy())")
     if isinstance(exc, IndexError) and "out of bounds" in str(exc):
         return one_based
     if isinstance(exc, ValueError) and "broadcast" in str(exc) and re.search(r"\(\d+,0\)|\(0,", str(exc)):
@@ -280,7 +297,9 @@ def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | N
     """Why ``got`` is the wrong type of answer for an array or a number ``expected``, or None.
 
     Catches what numpy cannot turn into numbers (a string, a list holding an array and a
-    number) and, with ``ndarray_only``, a list or tuple where the prompt asks for an array.
+    number), what it would turn into numbers only by reading text or dropping an imaginary
+    part (arrays of strings, complex arrays: :func:`_not_real_numbers`) and, with
+    ``ndarray_only``, a list or tuple where the prompt asks for an array.
     Answers of other kinds (pairs of arrays...) are left to the exercise's compare and diagnose.
     """
     if isinstance(expected, np.ndarray):
@@ -290,6 +309,9 @@ def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | N
     else:
         return None
     kind = type(got).__name__
+    not_real = _not_real_numbers(got, kind, wanted)
+    if not_real:
+        return not_real
     try:
         np.asarray(got, dtype=float)
     except (TypeError, ValueError):
@@ -299,6 +321,42 @@ def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | N
         return f"you returned a {kind}, which is not numbers; {wanted}"
     if ndarray_only and not isinstance(got, np.ndarray):
         return f"you returned a {kind}; {wanted}: wrap the values in np.array(...)"
+    return None
+
+
+def _a(value: Any) -> str:
+    """'a list', 'an ndarray': the value's type with its article."""
+    kind = type(value).__name__
+    return f"an {kind}" if kind[0] in "aeiou" or kind == "ndarray" else f"a {kind}"
+
+
+def _not_real_numbers(got: Any, kind: str, wanted: str) -> str | None:
+    """Why an answer is not real numbers although numpy could cast it to float, or None.
+
+    ``np.asarray(x, dtype=float)`` reads text such as '2.5' and drops an imaginary part (with
+    only a warning), so without this check an array of strings or of complex numbers would
+    pass as the right answer.
+    """
+    if isinstance(got, str):
+        return f"you returned a str, which is not numbers; {wanted}"
+    a_kind = _a(got)
+    try:
+        dtype = np.asarray(got).dtype
+    except (TypeError, ValueError):
+        return None  # a ragged list: the float cast in type_problem names it
+    if dtype.kind in "US":
+        return (f"you returned {a_kind} of text (dtype {dtype}), not of numbers: the values were turned into "
+                f"strings (str(), an f-string, or np.array of numbers mixed with text); {wanted} built from the "
+                f"numbers themselves")
+    if dtype.kind == "c":
+        what = f"{a_kind} of complex numbers" if np.ndim(got) else "a complex number"
+        return (f"you returned {what} (dtype {dtype}), but the answer is real, and "
+                f"comparing it as real would silently drop the imaginary part: a complex value crept in "
+                f"(a 1j, or a result of np.linalg.eig or np.roots); keep the computation real, or take .real once "
+                f"you have checked that the imaginary part is 0; {wanted}")
+    if dtype.kind == "O" and isinstance(got, np.ndarray):  # other objects (a dict) fail the float cast
+        return (f"you returned {a_kind} of Python objects (dtype object), not an array of numbers (dtype=object, "
+                f"or arrays mixed with numbers?); {wanted}: {_JOIN}")
     return None
 
 

@@ -30,15 +30,45 @@ COLOURS = {"perspective": palette.RED, "weak perspective": palette.BLUE, "para-p
 STYLES = {"perspective": "-", "weak perspective": "--", "para-perspective": ":", "orthographic": "-"}
 
 
+# The reference point X0 of every affine approximation (or its image), one marker in every lesson-05 figure.
+REFERENCE_MARKER = dict(marker="D", ms=6, mfc="white", mec="0.1", mew=1.3, ls="none")
+REFERENCE_LABEL = "X0, the reference point"
+
+
+def reference_marker(ax, label=True, zorder=4):
+    """The X0 marker, with its "X0" label beside it if ``label`` (a figure whose legend names the marker
+    needs none), on ``ax``: a tuple of artists, empty until :func:`place_reference` moves them."""
+    (marker,) = ax.plot([], [], zorder=zorder, **REFERENCE_MARKER)
+    if not label:
+        return (marker,)
+    text = ax.text(0, 0, "  X0", fontsize=8, color="0.1", va="center", zorder=zorder, path_effects=palette.halo(1.0))
+    return marker, text
+
+
+def place_reference(artists, xy):
+    """Move the X0 marker (and label) made by :func:`reference_marker` to the point ``xy``."""
+    artists[0].set_data([xy[0]], [xy[1]])
+    for text in artists[1:]:
+        text.set_position((float(xy[0]), float(xy[1])))
+
+
 def model_line(ax, model, lw=1.1, **kw):
     """An empty line in ``model``'s colour and style, labelled with the model's name (for legends)."""
     (ln,) = ax.plot([], [], color=COLOURS[model], ls=STYLES[model], lw=lw, label=model, **kw)
     return ln
 
 
-def model_legend(fig, models, **kw):
-    """One legend above the figure naming each model's colour (drawn once, outside the data)."""
+PRINCIPAL_POINT_MARKER = dict(marker="+", color=palette.GREY, ms=10, mew=1, ls="none")
+
+
+def model_legend(fig, models, reference=False, principal_point=False, **kw):
+    """One legend above the figure naming each model's colour (drawn once, outside the data), the
+    X0 marker if ``reference`` and the principal point's if ``principal_point``."""
     handles = [Line2D([], [], color=COLOURS[m], ls=STYLES[m], lw=1.5, label=m) for m in models]
+    if reference:
+        handles.append(Line2D([], [], label=REFERENCE_LABEL, **REFERENCE_MARKER))
+    if principal_point:
+        handles.append(Line2D([], [], label="principal point", **PRINCIPAL_POINT_MARKER))
     return fig.legend(handles=handles, loc="outside upper center", ncols=len(handles), fontsize=8, frameon=False, **kw)
 
 
@@ -67,8 +97,10 @@ def three_cameras():
     axes[2].tick_params(labelsize=7)
     orth = model_line(axes[2], "orthographic")
     ghost = model_line(axes[1], "perspective", lw=0.8, zorder=1.5)  # under the blue dashes, live and redrawn alike
-    model_legend(view.fig, ("perspective", "weak perspective", "orthographic"))
+    model_legend(view.fig, ("perspective", "weak perspective", "orthographic"), reference=True)
     view.animate(persp, ghost, weak, orth)
+    X0 = scene.reshape(-1, 3).mean(axis=0)  # the weak-perspective camera's reference point (three_images)
+    references = [(view.animate(*reference_marker(ax, label=False)),) for ax in axes]  # the legend names it
     controls = {
         "azimuth": slider(-40, -180, 180, 2, "azimuth (deg)"),
         "elevation": slider(20, 0, 80, 1, "elevation (deg)"),
@@ -78,12 +110,16 @@ def three_cameras():
     def update(v, state):
         cam = af.dolly_zoom_camera(v["distance"], *np.radians([v["azimuth"], v["elevation"]]), TARGET, F0, D0)
         f = float(cam.K[0, 0])
-        p, w, o, P_weak, _ = af.three_images(cam, scene)
+        p, w, o, P_weak, P_orth = af.three_images(cam, scene)
         scene3d.update_segments(persp, p)
         scene3d.update_segments(weak, w)
         scene3d.update_segments(ghost, p)
         scene3d.update_segments(orth, o)
-        state.update(camera=cam, P_weak=P_weak, focal=f, max_difference=af.largest_gap_in_frame(cam, P_weak, scene))
+        images_of_X0 = [cam.project(X0), cm.project_points(P_weak, X0), cm.project_points(P_orth, X0)]
+        for artists, xy in zip(references, images_of_X0):
+            place_reference(artists, xy)
+        state.update(camera=cam, P_weak=P_weak, focal=f, max_difference=af.largest_gap_in_frame(cam, P_weak, scene),
+                     reference_point=X0, reference_images=images_of_X0)
 
     return build_demo("three_cameras", controls, view, update,
                       title="One scene, three cameras (the middle panel repeats the perspective image in red)")
@@ -99,42 +135,58 @@ def dolly_curves(offset: float, distances: np.ndarray) -> dict:
 APPROXIMATIONS = {"weak perspective": af.affine_approximation, "para-perspective": af.paraperspective_approximation}
 
 
+def _dolly_error_axes(ax, distances):
+    """The dolly zoom's log-log error panel: one (empty) curve and one marker per affine model."""
+    from matplotlib.ticker import NullLocator
+
+    curves = {m: ax.loglog(distances, np.ones_like(distances), color=COLOURS[m], ls=STYLES[m], lw=1.5)[0]
+              for m in APPROXIMATIONS}
+    ax.set_xlim(distances[0] / 1.08, distances[-1] * 1.08)  # room for the marker at the slider's ends
+    ax.set_ylim(0.005, 200)
+    ax.set_title("RMS distance to the perspective image", fontsize=9)
+    ax.set_xlabel(f"distance d (m); focal length f = {F0:.0f} d / {D0:.0f} px", fontsize=8)
+    ax.set_ylabel("RMS difference (px)", fontsize=8)
+    ax.tick_params(labelsize=7)
+    ax.axhline(1.0, color="0.5", lw=0.8, ls=":")
+    ax.text(distances[-1], 1.15, "1 px", ha="right", va="bottom", fontsize=7, color="0.4")
+    ax.grid(True, which="major", alpha=0.3)
+    # Plain tick labels and no minor ticks: log axes' default mathtext labels cost ~20 ms a redraw.
+    for axis, ticks in ((ax.xaxis, [2, 5, 10, 20, 50, 100]), (ax.yaxis, [0.01, 0.1, 1, 10, 100])):
+        axis.set_minor_locator(NullLocator())
+        axis.set_ticks(ticks, labels=[f"{t:g}" for t in ticks])
+    markers = {m: ax.plot([], [], "o", color=COLOURS[m], ms=7)[0] for m in APPROXIMATIONS}
+    return curves, markers
+
+
 @register(lesson="05", sweep={"distance": [2.0, 6.0, 40.0, 150.0], "offset": [0, 50, 100]})
 def dolly_zoom():
     """Move the camera away while zooming in (f = f0 d / D0): the object keeps its size, the
     perspective image approaches its affine approximations and their error falls like 1/d. Off
     the image centre, para-perspective stays closer than weak perspective; on the axis (offset 0)
-    the two coincide."""
-    view = FigureView(figsize=(9, 4.0))
-    ax_img, ax_err = view.fig.subplots(1, 2, width_ratios=(1.25, 1.0))
+    the two coincide. Each affine image has its own panel over the perspective one, so neither
+    hides the other."""
+    view = FigureView(figsize=(10, 3.9))
+    ax_weak, ax_para, ax_err = view.fig.subplots(1, 3, width_ratios=(1.0, 1.0, 0.95))
     cube = scenes.box_wireframe((0.0, 0.0, 0.5), (1.0, 1.0, 1.0))
     pts = cube.reshape(-1, 3)
     models = ("perspective", "weak perspective", "para-perspective")
-    scene3d.image_axes(ax_img, (640, 480), labels=False)
-    ax_img.set_title("a 1 m cube (u right, v down, px)", fontsize=9)
-    lines = {m: model_line(ax_img, m, lw=1.3) for m in models}
-    (centre,) = ax_img.plot([319.5], [239.5], "+", color=palette.GREY, ms=10, mew=1)  # the principal point
+    lines, under, readouts, references = {}, {}, {}, {}
+    for ax, m in ((ax_weak, "weak perspective"), (ax_para, "para-perspective")):
+        scene3d.image_axes(ax, (640, 480), labels=False)
+        ax.set_title(f"{m} over perspective (px)", fontsize=9)
+        ax.tick_params(labelleft=ax is ax_weak)
+        under[m] = model_line(ax, "perspective", lw=0.9, zorder=1.5)  # red under the affine cube, as in three_cameras
+        lines[m] = model_line(ax, m, lw=1.6)
+        ax.plot([319.5], [239.5], **PRINCIPAL_POINT_MARKER)
+        references[m] = reference_marker(ax, label=False)
+        # The readout sits under the axes, where no part of the cube can be.
+        readouts[m] = ax.text(0.5, -0.12, "", transform=ax.transAxes, fontsize=8, ha="center", va="top")
     distances = np.geomspace(*DOLLY_DISTANCES, 60)
-    curves = {m: ax_err.loglog(distances, np.ones_like(distances), color=COLOURS[m], ls=STYLES[m], lw=1.5)[0]
-              for m in APPROXIMATIONS}
-    ax_err.set_xlim(distances[0] / 1.08, distances[-1] * 1.08)  # room for the marker at the slider's ends
-    ax_err.set_ylim(0.005, 200)
-    ax_err.set_title("RMS distance to the perspective image", fontsize=9)
-    ax_err.set_xlabel(f"distance d (m); focal length f = {F0:.0f} d / {D0:.0f} px", fontsize=8)
-    ax_err.set_ylabel("RMS difference (px)", fontsize=8)
-    ax_err.tick_params(labelsize=7)
-    ax_err.axhline(1.0, color="0.5", lw=0.8, ls=":")
-    ax_err.text(distances[-1], 1.15, "1 px", ha="right", va="bottom", fontsize=7, color="0.4")
-    ax_err.grid(True, which="major", alpha=0.3)
-    # Plain tick labels and no minor ticks: log axes' default mathtext labels cost ~20 ms a redraw.
-    from matplotlib.ticker import NullLocator
-
-    for axis, ticks in ((ax_err.xaxis, [2, 5, 10, 20, 50, 100]), (ax_err.yaxis, [0.01, 0.1, 1, 10, 100])):
-        axis.set_minor_locator(NullLocator())
-        axis.set_ticks(ticks, labels=[f"{t:g}" for t in ticks])
-    markers = {m: ax_err.plot([], [], "o", color=COLOURS[m], ms=7)[0] for m in APPROXIMATIONS}
-    model_legend(view.fig, models)
-    view.animate(*lines.values(), *curves.values(), *markers.values())
+    curves, markers = _dolly_error_axes(ax_err, distances)
+    model_legend(view.fig, models, reference=True, principal_point=True)
+    view.animate(*under.values(), *lines.values(), *readouts.values(), *curves.values(), *markers.values())
+    for artists in references.values():
+        view.animate(*artists)
     controls = {"distance": slider(D0, DOLLY_DISTANCES[0], DOLLY_DISTANCES[1], 0.2, "distance d (m)"),
                 "offset": slider(DOLLY_OFFSET, 0, 100, 10, "cube right of centre (px)")}
     cache: dict = {}
@@ -144,17 +196,21 @@ def dolly_zoom():
         if offset not in cache:  # the curves depend on the offset only
             cache[offset] = dolly_curves(offset, distances)
         cam = af.dolly_zoom_camera(d, *DOLLY_VIEW, TARGET, F0, D0, image_offset=offset)
-        scene3d.update_segments(lines["perspective"], cm.project_segments(cam, cube))
+        perspective = cm.project_segments(cam, cube)
+        x_X0 = cam.project(TARGET)  # every affine approximation images X0 where the perspective camera does
         rms = {}
         for m, approximate in APPROXIMATIONS.items():
+            scene3d.update_segments(under[m], perspective)
             scene3d.update_segments(lines[m], cm.project_segments(approximate(cam, TARGET), cube))
+            place_reference(references[m], x_X0)
             e = af.weak_perspective_error(cam, pts, TARGET, approximate)
             rms[m] = float(np.sqrt(np.mean(e ** 2)))
+            readouts[m].set_text(f"RMS {rms[m]:.1f} px")  # short: each glyph costs time in every frame
             markers[m].set_data([d], [rms[m]])
             curves[m].set_ydata(cache[offset][m])
         state.update(distance=d, offset=offset, focal=float(cam.K[0, 0]), rms_error=rms["weak perspective"],
                      rms_paraperspective=rms["para-perspective"], curve=(distances, cache[offset]["weak perspective"]),
-                     curves=cache[offset], camera=cam)
+                     curves=cache[offset], camera=cam, reference_image=x_X0)
 
     return build_demo("dolly_zoom", controls, view, update, title="Dolly zoom: when is an affine camera good enough?")
 
@@ -200,9 +256,7 @@ def parallel_rails():
     (vp,) = ax_p.plot([], [], "o", color=COLOURS["perspective"], ms=8, mfc="white", mew=2)
     (horizon,) = ax_p.plot([], [], color=palette.GREY, lw=0.8, ls="--")
     view.animate(*lines, vp, horizon, *texts)
-    (ref,) = ax_a.plot([], [], "o", color=palette.GREY, ms=5)
-    ref_label = ax_a.text(0, 0, "  X0", fontsize=8, color="0.2", va="center", path_effects=palette.halo(1.0))
-    view.animate(ref, ref_label)
+    references = [view.animate(*reference_marker(ax)) for ax in (ax_p, ax_a)]  # where the two images agree
     controls = {"yaw": slider(0, -15, 15, 1, "yaw (deg)"), "pitch": slider(15, 10, 18, 1, "pitch down (deg)")}
 
     def update(v, state):
@@ -218,8 +272,8 @@ def parallel_rails():
         us = np.array([-1.0, 641.0])
         horizon.set_data(us, -(l_h[0] * us + l_h[2]) / l_h[1] if abs(l_h[1]) > 1e-12 else [np.nan, np.nan])
         x0 = cm.project_points(P_aff, RAIL_REFERENCE)
-        ref.set_data([x0[0]], [x0[1]])
-        ref_label.set_position(x0)
+        for artists, xy in zip(references, (cam.project(RAIL_REFERENCE), x0)):
+            place_reference(artists, xy)
         gaps = {"perspective": scenes.sleeper_gaps(cam.P, RAIL_SAMPLES), "affine": scenes.sleeper_gaps(P_aff, RAIL_SAMPLES)}
         for text, (near, far) in zip(texts, gaps.values()):
             text.set_text(f"1 m of track: {near:5.1f} px at {RAIL_SAMPLES[0]:.0f} m, {far:5.1f} px at {RAIL_SAMPLES[1]:.0f} m")
@@ -244,7 +298,8 @@ def _joined(*polylines):
 def projection_rays():
     """A top view of four camera models (after H&Z §6.3 and Szeliski fig. 2.7): how each sends the
     corners of a block to the image line. Move the block sideways: on the optical axis weak and
-    para-perspective coincide; off it, para-perspective's rays follow the line of sight to X0."""
+    para-perspective coincide; off it, para-perspective's rays run parallel to the line of sight to X0
+    (drawn dashed), its viewing direction, as weak perspective's run parallel to the optical axis."""
     view = FigureView(figsize=(10, 4.4))
     axes = view.fig.subplots(1, 4, sharey=True)
     artists = {}
@@ -265,9 +320,12 @@ def projection_rays():
         to_centre = ax.plot([], [], color=COLOURS[model], lw=0.7, ls=(0, (2, 2)))[0]
         images = ax.plot([], [], "o", color=COLOURS[model], ms=4)[0]
         truth = ax.plot([], [], "|", color=COLOURS["perspective"], ms=10, mew=1.5)[0]  # perspective, to compare
-        x0 = ax.plot([], [], "+", color="0.1", ms=8, mew=1.5)[0]
+        x0 = ax.plot([], [], zorder=4, **REFERENCE_MARKER)[0]
         artists[model] = (block, rays, to_centre, images, truth, x0)
         view.animate(*artists[model])
+    # Para-perspective's rays are parallel to the line of sight to X0 (its viewing direction), as weak
+    # perspective's are to the optical axis (the dotted vertical).
+    sight = view.animate(axes[2].plot([], [], color="0.35", lw=0.9, ls=(0, (6, 3)), zorder=1.8)[0])
     axes[0].set_ylabel("depth z (m)", fontsize=8)
     axes[0].set_yticks([0, RAY_IMAGE, RAY_DEPTH], labels=["camera 0", f"image {RAY_IMAGE:g}", f"d0 = {RAY_DEPTH:g}"])
     controls = {"offset": slider(2.0, 0.0, 2.5, 0.25, "block's x offset (m)")}
@@ -288,8 +346,10 @@ def projection_rays():
             truth.set_data(*(perspective.T if compare else ([], [])))
             x0.set_data([reference[0]], [reference[1]])
             images_x[model] = r[:, 2, 0]
+        top = 7.4 / RAY_DEPTH  # the line of sight from the centre through X0 to the top of the axes
+        sight.set_data([0.0, top * reference[0]], [0.0, top * reference[1]])
         state.update(reference=reference, image_x=images_x)
 
     return build_demo("projection_rays", controls, view, update,
                       title="Four cameras from above: where each sends the block's corners "
-                            "(red ticks: the perspective images)")
+                            "(red ticks: the perspective images; grey dashes: the line of sight to X0)")

@@ -42,9 +42,10 @@ def stack_check() -> Demo:
         moved = pj.map_points(H, HOUSE)
         house.set_data(moved[:, 0], moved[:, 1])
         tip.set_data(moved[3:4, 0], moved[3:4, 1])
-        state.update(H=H, house=moved)
         x, y = (round(c, 2) + 0.0 for c in moved[3])  # + 0.0 turns a rounded -0.0 into 0.0
         readout.value = monospace(f"roof tip (orange dot) at ({x:+.2f}, {y:+.2f})")
+        # tip: where the orange dot is drawn (lesson 00 recomputes it by hand); readout: the text beside it
+        state.update(H=H, house=moved, tip=moved[3].copy(), readout=f"({x:+.2f}, {y:+.2f})")
 
     controls = {
         "angle": slider(20.0, -180.0, 180.0, 1.0, "angle (°)", readout_format=".0f"),
