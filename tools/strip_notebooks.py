@@ -85,6 +85,18 @@ def strip(path: str | Path) -> bool:
     return new != text
 
 
+def main(argv: list[str]) -> int:
+    if not argv or any(a in ("-h", "--help") for a in argv):
+        print(__doc__.split("\n\n")[1] if argv else "give the notebooks to normalise, e.g. lessons/*.ipynb")
+        return 0 if argv else 2
+    missing = [a for a in argv if not Path(a).is_file()]
+    if missing:
+        print(f"not a notebook file: {', '.join(missing)} (give .ipynb paths, e.g. lessons/*.ipynb)", file=sys.stderr)
+        return 2
+    changed = [p for p in argv if strip(p)]
+    print(f"normalised {len(changed)} of {len(argv)} notebooks" + (f": {', '.join(changed)}" if changed else ""))
+    return 0
+
+
 if __name__ == "__main__":
-    changed = [p for p in sys.argv[1:] if strip(p)]
-    print(f"normalised {len(changed)} of {len(sys.argv) - 1} notebooks" + (f": {', '.join(changed)}" if changed else ""))
+    sys.exit(main(sys.argv[1:]))
