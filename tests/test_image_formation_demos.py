@@ -81,6 +81,10 @@ def test_thin_lens_and_dof_state():
     demo = lenses_and_distortion.thin_lens()
     demo.set(focal_mm=40, object_m=0.12)
     assert demo.state["image_distance"] == pytest.approx(0.06) and demo.state["magnification"] == pytest.approx(-0.5)
+    assert not demo.state["object_held"] and "held" not in demo.view.fig.axes[0].get_title()
+    demo.set(focal_mm=90, object_m=0.06)    # the slider inside f: the object is held at 1.05 f, and the readout says so
+    assert demo.state["object_held"] and demo.state["image_distance"] == pytest.approx(0.09 * 21)
+    assert "z_o = 0.060 m is inside 1.05 f: object held at 0.095 m" in demo.view.fig.axes[0].get_title()
     dof = lenses_and_distortion.depth_of_field()
     dof.set(f_number=16.0, focus_m=1.2)
     wide = dof.state["far"] - dof.state["near"]
