@@ -152,7 +152,14 @@ def test_sensor_demos_show_what_they_claim():
     assert raw_panel.get_array().shape[:2] == (digital_sensor.CROP,) * 2
     assert raw_panel.get_extent() == [-0.5, digital_sensor.CROP - 0.5, digital_sensor.CROP - 0.5, -0.5]  # no stretching
     s = digital_sensor.sampling_aliasing()
-    assert all(im.get_interpolation() == "antialiased" for ax in s.figure.axes for im in ax.images)
+    scene, samples = (ax.images[0] for ax in s.figure.axes[:2])
+    assert scene.get_interpolation() == "antialiased"          # 384 px drawn smaller: smoothed, no display moire
+    for factor in (2, 4, 8):   # the samples drawn larger than their size: crisp blocks, none smoothed into the next
+        s.set(factor=factor)
+        assert samples.get_interpolation() == "nearest" and samples.get_array().shape == (384 // factor,) * 2
+        assert samples.get_extent() == [-0.5, 383.5, 383.5, -0.5]     # at the scene's scale
+    s.set(factor=1)
+    assert samples.get_interpolation() == "antialiased"
     b = digital_sensor.bit_depth_and_noise()
     ax_img, ax_p = b.figure.axes[:2]
     animated = b.view._animated

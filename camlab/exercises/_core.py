@@ -59,6 +59,9 @@ class Exercise:
     teaching: Callable[..., Any] | None = None
     ndarray_only: bool = False
     """The prompt asks for a numpy array: a list or tuple of the right numbers is rejected too."""
+    crash_hint: Callable[[tuple, Exception], str] | None = None
+    """The likely cause of a crash on ``args`` that only this exercise can name ('' to fall back on the
+    generic hints): an np.tile mask one row short on an odd-sized mosaic is no 'broadcasting slip'."""
 
 
 EXERCISES: dict[str, Exercise] = {}
@@ -208,7 +211,7 @@ def _run_student(name: str, student_function: Callable[..., Any], args: tuple, i
     except Exception as exc:
         raise AssertionError(
             f"{name}: your function raised {type(exc).__name__}: {exc}\n"
-            f"  on input {_fmt(args)}" + _exception_hint(exc)
+            f"  on input {_fmt(args)}" + (_own_crash_hint(name, args, exc) or _exception_hint(exc))
         ) from exc
     changed = _inputs_changed(args, passed)
     if changed:
@@ -251,6 +254,13 @@ def check(name: str, student_function: Callable[..., Any]) -> CheckResult:
             )
     print(f"{name}: correct on all {len(cases)} test inputs. Well done!")
     return CheckResult(name, True)
+
+
+def _own_crash_hint(name: str, args: tuple, exc: Exception) -> str:
+    """The exercise's own hint for this crash (``Exercise.crash_hint``), as a 'likely cause' line, or ''."""
+    exercise = EXERCISES.get(name)
+    hint = exercise.crash_hint(args, exc) if exercise is not None and exercise.crash_hint else ""
+    return f"\n  likely cause: {hint}" if hint else ""
 
 
 def _exception_hint(exc: Exception) -> str:
