@@ -291,7 +291,7 @@ def update_thin_lens(art: dict, f: float, zo: float, requested: float | None = N
     art["rays"][2].set_data([xo, 0, xi], [1, m, m])
     note = _thin_lens_note(xo, xi, m)
     if requested is not None and not np.isclose(requested, zo):
-        held = f"z_o = {requested:.3f} m is inside 1.05 f: object held at {zo:.3f} m"
+        held = f"z_o = {requested:.3f} m is inside 1.05 f: held at {zo:.3f} m"
         note = f"{held}; {note}" if note else held
     art["text"].set_text(f"f = {f * 1e3:.0f} mm   z_o = {zo:.3f} m = {-xo:.2f} f   z_i = {zi:.3f} m = {xi:.2f} f"
                          f"   m = {m:.3f}\n{note or 'object (green) and image (red) arrows; move the object towards F'}")
