@@ -332,6 +332,14 @@ def _undistort_diagnosis(args, got, expected) -> str:
             "of x L(r^2), evaluated at the current x; start from x = x_d and take exactly `steps` steps")
 
 
+def _undistort_crash_hint(args, exc) -> str:
+    """np.linalg.solve on a stack: the right-hand side must be (N, 2, 1), not (N, 2)."""
+    if isinstance(exc, (ValueError, np.linalg.LinAlgError)) and ("solve" in str(exc) or "core dimension" in str(exc)):
+        return ("np.linalg.solve on a stack of N systems: J is (N, 2, 2), so give the right-hand side as (N, 2, 1), "
+                "residual[:, :, None], and take [:, :, 0] of the result (an (N, 2) b is read as one N x 2 matrix)")
+    return ""
+
+
 def undistort_newton(x_d, k1, k2, steps=8):
     """Invert x_d = x L(r^2), L = 1 + k1 r^2 + k2 r^4, for (N, 2) normalised points by `steps` Newton steps."""
     x = np.array(x_d, dtype=float)                     # start at the distorted point (a copy: x_d stays as it is)
@@ -356,6 +364,17 @@ def _until_converged(x_d, k1, k2, steps):
     return undistort_newton(x_d, k1, k2, 40)
 
 
+def _flat_rhs_newton(x_d, k1, k2, steps):
+    """np.linalg.solve(J, residual) with an (N, 2) residual: a ValueError in NumPy 2."""
+    x = np.array(x_d, dtype=float)
+    for _ in range(steps):
+        r2 = (x**2).sum(axis=1, keepdims=True)
+        L = 1 + k1 * r2 + k2 * r2**2
+        J = L[:, :, None] * np.eye(2) + (2 * k1 + 4 * k2 * r2)[:, :, None] * x[:, :, None] * x[:, None, :]
+        x = x - np.linalg.solve(J, x * L - x_d)
+    return x
+
+
 register_exercise(Exercise(
     name="undistort_newton",
     lesson="02",
@@ -363,6 +382,7 @@ register_exercise(Exercise(
     cases=_undistort_cases,
     compare=same_array(rtol=0, atol=1e-9),
     diagnose=_undistort_diagnosis,
+    crash_hint=_undistort_crash_hint,
     wrong_variants=(
         (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, steps=1)[0], "you took 1 Newton step"),
         (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, steps=steps + 1)[-1], "but steps ="),
@@ -385,6 +405,7 @@ register_exercise(Exercise(
         (lambda x_d, k1, k2, steps: x_d * (1 + k1 * (x_d**2).sum(1, keepdims=True)
                                            + k2 * (x_d**2).sum(1, keepdims=True) ** 2), "distorted x_d again"),
         (lambda x_d, k1, k2, steps: _in_place_newton(x_d, k1, k2, steps), "in place"),
+        (_flat_rhs_newton, "residual[:, :, None]"),
     ),
     teaching=undistort_newton,
 ))
@@ -394,3 +415,4 @@ def _in_place_newton(x_d, k1, k2, steps):
     x = undistort_newton(x_d, k1, k2, steps)
     x_d[:] = x  # overwrites the caller's points
     return x
+
