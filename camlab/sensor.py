@@ -259,8 +259,9 @@ def demosaic_bilinear(raw: ArrayLike, pattern: str = "RGGB") -> np.ndarray:
     return out
 
 
-# OpenCV names a Bayer pattern by the 2nd and 3rd pixels of its 2nd row, so RGGB is "BayerBG".
-_CV_NAMES = {"RGGB": "BG", "BGGR": "RG", "GRBG": "GB", "GBRG": "GR"}
+# OpenCV's four-letter codes name a Bayer pattern as camlab does, by its top-left 2x2 block
+# (COLOR_BayerRGGB2RGB); the older two-letter ones (COLOR_BayerBG2RGB, the same constant) by the
+# 2nd and 3rd pixels of its 2nd row, so COLOR_BayerRG2RGB is BGGR. Both exist in OpenCV >= 4.12.
 
 
 def demosaic_opencv(raw: ArrayLike, pattern: str = "RGGB", method: str = "bilinear") -> np.ndarray:
@@ -279,7 +280,7 @@ def demosaic_opencv(raw: ArrayLike, pattern: str = "RGGB", method: str = "biline
         raise CamlabInputError(f"method: expected 'bilinear', 'vng' or 'ea', got {method!r}")
     if method == "vng" and r.dtype != np.uint8:
         raise CamlabInputError("raw: OpenCV's VNG demosaicing accepts uint8 only; quantise to 8 bits first")
-    code = getattr(cv2, f"COLOR_Bayer{_CV_NAMES[check_bayer_pattern(pattern)]}2RGB{suffix[method]}")
+    code = getattr(cv2, f"COLOR_Bayer{check_bayer_pattern(pattern)}2RGB{suffix[method]}")
     return cv2.cvtColor(np.ascontiguousarray(r), code)
 
 

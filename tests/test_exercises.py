@@ -85,6 +85,19 @@ def test_teaching_solution_is_self_contained_numpy(name):
             f"{name}: the teaching solution uses {used!r}; it may use only numpy (np) and builtins"
 
 
+@pytest.mark.parametrize("name", TEACHING)
+def test_printed_solution_runs_on_its_own(name, capsys):
+    """What solution() prints, pasted into a fresh namespace with only numpy, defines a function that passes.
+
+    The globals check above cannot see a default argument naming a module constant
+    (``steps=NEWTON_STEPS`` raised NameError once pasted into a lesson).
+    """
+    source = solution(name).split("\n# camlab's own")[0]
+    namespace = {"np": np}
+    exec(compile(source, f"<solution {name}>", "exec"), namespace)
+    assert check(name, namespace[name]).passed is True
+
+
 def test_teaching_solution_check_catches_a_call_into_camlab():
     def leaky(x):
         return camlab_helper(x)  # noqa: F821

@@ -81,6 +81,10 @@ def test_thin_lens_and_dof_state():
     demo = lenses_and_distortion.thin_lens()
     demo.set(focal_mm=40, object_m=0.12)
     assert demo.state["image_distance"] == pytest.approx(0.06) and demo.state["magnification"] == pytest.approx(-0.5)
+    assert not demo.state["object_held"] and "held" not in demo.view.fig.axes[0].get_title()
+    demo.set(focal_mm=90, object_m=0.06)    # the slider inside f: the object is held at 1.05 f, and the readout says so
+    assert demo.state["object_held"] and demo.state["image_distance"] == pytest.approx(0.09 * 21)
+    assert "z_o = 0.060 m is inside 1.05 f: held at 0.095 m" in demo.view.fig.axes[0].get_title()
     dof = lenses_and_distortion.depth_of_field()
     dof.set(f_number=16.0, focus_m=1.2)
     wide = dof.state["far"] - dof.state["near"]
@@ -148,7 +152,14 @@ def test_sensor_demos_show_what_they_claim():
     assert raw_panel.get_array().shape[:2] == (digital_sensor.CROP,) * 2
     assert raw_panel.get_extent() == [-0.5, digital_sensor.CROP - 0.5, digital_sensor.CROP - 0.5, -0.5]  # no stretching
     s = digital_sensor.sampling_aliasing()
-    assert all(im.get_interpolation() == "antialiased" for ax in s.figure.axes for im in ax.images)
+    scene, samples = (ax.images[0] for ax in s.figure.axes[:2])
+    assert scene.get_interpolation() == "antialiased"          # 384 px drawn smaller: smoothed, no display moire
+    for factor in (2, 4, 8):   # the samples drawn larger than their size: crisp blocks, none smoothed into the next
+        s.set(factor=factor)
+        assert samples.get_interpolation() == "nearest" and samples.get_array().shape == (384 // factor,) * 2
+        assert samples.get_extent() == [-0.5, 383.5, 383.5, -0.5]     # at the scene's scale
+    s.set(factor=1)
+    assert samples.get_interpolation() == "antialiased"
     b = digital_sensor.bit_depth_and_noise()
     ax_img, ax_p = b.figure.axes[:2]
     animated = b.view._animated

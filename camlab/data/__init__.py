@@ -13,7 +13,7 @@ One module per set, each with its generator and loader:
 :mod:`camlab.data.stereo`
     ``stereo/``: a rendered stereo rig with true disparity and calibration views (lesson 11).
 :mod:`camlab.data.photos`
-    ``photos/``: real photographs (mvtb-data, MIT), downscaled; shipped, not generated.
+    ``photos/``: real photographs (mvtb-data, MIT; the chessboard views are OpenCV's samples, Apache-2.0).
 
 ``python -m camlab.data [DIR]`` regenerates every rendered set deterministically
 (:mod:`camlab.data.regenerate`); ``$CAMLAB_DATA`` points the loaders at regenerated sets.

@@ -1,8 +1,9 @@
 """Real photographs shipped with camlab: ``data/photos/``.
 
-A few photographs from the MIT-licensed mvtb-data package by Peter Corke (a chessboard set,
-facades, a street, a sign on a wall, stereo pairs), downscaled and re-encoded; shipped, not
-generated, and listed with their source in ``data/photos/ATTRIBUTION.md``.
+A few photographs from the MIT-licensed mvtb-data package by Peter Corke (facades, a street,
+a sign on a wall, stereo pairs), downscaled and re-encoded, and OpenCV's chessboard sample
+images (``calib_left01`` ... ``calib_left14``, Apache-2.0, unchanged); shipped, not generated,
+and listed with their source and licence in ``data/photos/ATTRIBUTION.md``.
 """
 from __future__ import annotations
 

@@ -62,8 +62,9 @@ class Exercise:
     ndarray_only: bool = False
     """The prompt asks for a numpy array: a list or tuple of the right numbers is rejected too."""
     exception_hint: Callable[[Exception, tuple], str] | None = None
-    """``exception_hint(exc, args)``: the likely cause when the student's function raises ``exc`` on
-    ``args``, as ``"\n  likely cause: ..."``, or '' to fall back on the hints every check shares."""
+    """``exception_hint(exc, args)``: the likely cause, as plain text, when the student's function raises
+    ``exc`` on ``args`` and only this exercise can name it (an np.tile mask one row short on an odd-sized
+    mosaic is no 'broadcasting slip'), or '' to fall back on the hints every check shares."""
 
 
 EXERCISES: dict[str, Exercise] = {}
@@ -260,10 +261,11 @@ def check(name: str, student_function: Callable[..., Any]) -> CheckResult:
 
 
 def _exercise_exception_hint(name: str, exc: Exception, args: tuple) -> str:
-    """The exercise's own hint for ``exc`` (its ``exception_hint``), else the shared one."""
+    """The exercise's own hint for ``exc`` (its ``exception_hint``) as a 'likely cause' line, else the shared one."""
     exercise = EXERCISES.get(name)
     own = exercise.exception_hint(exc, args) if exercise is not None and exercise.exception_hint else ""
-    return own or _exception_hint(exc)
+    return f"
+  likely cause: {own}" if own else _exception_hint(exc)
 
 
 def _exception_hint(exc: Exception) -> str:

@@ -106,25 +106,78 @@ register_exercise(Exercise(
 
 
 def _demosaic_cases():
-    """Odd and even sizes, all four patterns, and a uint8 mosaic as the lesson's own raw is."""
+    """Random colours first (every interpolation direction matters), then odd sizes, all four patterns, a smooth
+    ramp, and a uint8 mosaic as the lesson's own raw is."""
     rng = np.random.default_rng(4)
     yy, xx = np.mgrid[0:7, 0:10].astype(float)
     smooth = np.stack([0.05 * xx, 0.04 * yy + 0.1, 0.5 - 0.02 * xx], axis=2)
     return [
-        (sensor.mosaic(smooth, "RGGB"), "RGGB"),
         (sensor.mosaic(rng.uniform(size=(6, 6, 3)), "RGGB"), "RGGB"),
         (sensor.mosaic(rng.uniform(size=(6, 8, 3)), "GBRG"), "GBRG"),
         (sensor.mosaic(rng.uniform(size=(5, 7, 3)), "BGGR"), "BGGR"),
         (sensor.mosaic(rng.uniform(size=(7, 6, 3)), "GRBG"), "GRBG"),
+        (sensor.mosaic(smooth, "RGGB"), "RGGB"),
         (sensor.quantize(sensor.mosaic(rng.uniform(size=(7, 9, 3)), "RGGB")), "RGGB"),   # uint8, 0..255
     ]
 
 
+def _tile_hint(shape) -> str:
+    """Why np.tile masks fail on a mosaic of ``shape`` with an odd side."""
+    H, W = shape
+    odd = " and ".join(what for n, what in ((H, "rows"), (W, "columns")) if n % 2)
+    return (f"this mosaic is {H} x {W} pixels, an odd number of {odd}: a mask built with np.tile(block, (H // 2, "
+            f"W // 2)) comes out {H // 2 * 2} x {W // 2 * 2}, short of the image (a sensor crop may end mid-block). "
+            f"Tile ((H + 1) // 2, (W + 1) // 2) times and crop [:H, :W], or build each mask by slicing: "
+            f"m = np.zeros((H, W)); m[0::2, 0::2] = 1")
+
+
+def _demosaic_exception_hint(exc, args) -> str:
+    raw = np.asarray(args[0])
+    if raw.ndim == 2 and (raw.shape[0] % 2 or raw.shape[1] % 2) and isinstance(exc, (ValueError, IndexError)) and (
+            "broadcast" in str(exc) or "boolean index" in str(exc) or "shape" in str(exc)):
+        return _tile_hint(raw.shape)
+    return ""
+
+
+def _line_mean(values, mask, axis: int) -> np.ndarray:
+    """Mean of the available same-colour neighbours on one line (axis 1: left and right; 0: above and below)."""
+    total, count = np.zeros(values.shape), np.zeros(values.shape)
+    for shift in (-1, 1):
+        v, m = np.zeros(values.shape), np.zeros(values.shape)
+        src = [slice(None)] * 2
+        dst = [slice(None)] * 2
+        src[axis], dst[axis] = (slice(1, None), slice(None, -1)) if shift > 0 else (slice(None, -1), slice(1, None))
+        v[tuple(dst)], m[tuple(dst)] = (values * mask)[tuple(src)], mask[tuple(src)]
+        total, count = total + v, count + m
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return total / count
+
+
+def _site_problems(raw, pattern, g, e) -> list[str]:
+    """What is wrong where, inside the 1-pixel border: green at red/blue sites, red/blue at each other's and at green."""
+    m = sensor.bayer_masks(raw.shape, pattern)
+    inner = np.zeros(raw.shape, bool)
+    inner[1:-1, 1:-1] = True
+    bad = ~np.isclose(g, e, rtol=1e-5, atol=1e-9)
+    problems = []
+    if np.any(bad[..., 1] & ~m[..., 1] & inner):
+        problems.append("green at a red or blue site is the mean of its 4 green neighbours (left, right, above, below)")
+    if np.any((bad[..., 0] & m[..., 2] | bad[..., 2] & m[..., 0]) & inner):
+        problems.append("red at a blue site (and blue at a red one) is the mean of its 4 diagonal neighbours")
+    if np.any((bad[..., 0] | bad[..., 2]) & m[..., 1] & inner):
+        problems.append("red or blue at a green site is the mean of its 2 nearest samples of that colour: left and "
+                        "right, or above and below, whichever line holds that colour")
+    return problems
+
+
 def _demosaic_diagnosis(args, got, expected) -> str:
+    raw, pattern = args
     problem = _not_an_array(got) or shape_problem(got, expected)
     if problem:
+        H, W = np.shape(raw)
+        if (H % 2 or W % 2) and np.shape(got)[:2] == (H // 2 * 2, W // 2 * 2):
+            return _tile_hint((H, W))
         return problem + ". Return an (H, W, 3) RGB image."
-    raw, pattern = args
     g = np.asarray(got, dtype=float)
     e = np.asarray(expected)
     if np.allclose(g[..., ::-1], e):
@@ -132,18 +185,32 @@ def _demosaic_diagnosis(args, got, expected) -> str:
                 "which colour sits where in the pattern (RGGB: R at row 0, column 0)")
     if np.allclose(g * 255, e) or np.allclose(g, e * 255):
         return "the values are scaled by 255: keep the units of the mosaic (do not divide or multiply by 255)"
+    whole = "the mean of two samples falls between codes (100 and 101 give 100.5)"
+    if np.issubdtype(np.asarray(got).dtype, np.integer):
+        return (f"you returned integers (dtype {np.asarray(got).dtype}): {whole}, so casting back to the mosaic's "
+                f"dtype loses it; return the float image (leave out .astype(np.uint8))")
+    if any(np.allclose(g, rounding(e)) for rounding in (np.rint, np.floor)) and not np.allclose(np.rint(e), e):
+        return f"you rounded the interpolated values to whole numbers: {whole}; return them unrounded, as floats"
     m = sensor.bayer_masks(raw.shape, pattern)
     if not np.allclose(g[m], e[m]):
         return ("the measured samples changed: keep each pixel's own colour as measured, and check which "
                 "colour sits where in the pattern (RGGB: R at row 0, column 0)")
     if np.issubdtype(raw.dtype, np.integer):
-        return (f"this mosaic is {raw.dtype}, as a raw file's is: integer arithmetic wraps around (uint8 at 255) and "
-                f"scipy's convolve returns the input's dtype, truncating the means; convert first: raw.astype(float)")
+        return (f"this mosaic is {raw.dtype}, as a raw file's is: sums of its values wrap around (uint8 stops at 255) "
+                f"and scipy's convolve keeps the input's dtype, truncating the means; convert first: raw.astype(float)")
+    r = np.asarray(raw, dtype=float)
     inner = (slice(1, -1), slice(1, -1))
-    if np.allclose(g[inner], e[inner]):
-        return ("right inside, wrong at the border: average only the neighbours that exist "
-                "(divide by the sum of the weights of available samples)")
-    return "each missing value is the mean of the nearest samples of that colour (2 or 4 neighbours)"
+    others = ~m[..., 1]
+    for axis, line, missing in ((1, "on its left and right", "above and below"), (0, "above and below", "on the left and right")):
+        one_line = np.where(m[..., 1], r, _line_mean(r, m[..., 1], axis))
+        if np.allclose(g[..., 1][inner][others[inner]], one_line[inner][others[inner]]):
+            return (f"green at a red or blue site averages only the green neighbours {line}; it has 4: add the ones "
+                    f"{missing} (green is sampled on a checkerboard, so every red or blue site has green on all 4 sides)")
+    problems = _site_problems(raw, pattern, g, e)
+    if problems:
+        return "; ".join(problems)
+    return ("right inside, wrong at the border: average only the neighbours that exist "
+            "(divide by the sum of the weights of available samples)")
 
 
 def _zero_padded_demosaic(raw, pattern):
@@ -168,6 +235,33 @@ def _uncast_demosaic(raw, pattern):
     est = np.stack([convolve(raw * m[..., c], k, mode="constant") / convolve(m[..., c] * 1.0, k, mode="constant")
                     for c in range(3)], axis=2)
     return np.where(m, raw[..., None], est)
+
+
+def _tiled_masks_demosaic(raw, pattern):
+    """Masks from np.tile(block, (H // 2, W // 2)): one row or column short on an odd-sized mosaic."""
+    raw = np.asarray(raw, dtype=float)
+    H, W = raw.shape
+    blocks = [np.array([[pattern[0], pattern[1]], [pattern[2], pattern[3]]]) == c for c in "RGB"]
+    masks = np.stack([np.tile(b, (H // 2, W // 2)) for b in blocks], axis=2)
+    return np.where(masks, raw[..., None], sensor.demosaic_bilinear(raw, pattern))   # crashes: (H, W, 1) vs masks
+
+
+def _one_line_green_demosaic(raw, pattern, axis=1):
+    """Green at red and blue sites from its left and right neighbours only (axis 0: above and below)."""
+    out = sensor.demosaic_bilinear(raw, pattern)
+    r = np.asarray(raw, dtype=float)
+    green = sensor.bayer_masks(r.shape, pattern)[..., 1]
+    out[..., 1] = np.where(green, r, _line_mean(r, green, axis))
+    return out
+
+
+def _diagonal_only_demosaic(raw, pattern):
+    """Red and blue at green sites from the 4 diagonals (there are none: NaN-free, but the wrong neighbours)."""
+    out = sensor.demosaic_bilinear(raw, pattern)
+    m = sensor.bayer_masks(np.shape(raw), pattern)
+    for c in (0, 2):
+        out[..., c] = np.where(m[..., 1], out[..., 1], out[..., c])   # a common shortcut: copy green there
+    return out
 
 
 def demosaic_bilinear(raw, pattern):
@@ -200,6 +294,7 @@ register_exercise(Exercise(
     cases=_demosaic_cases,
     compare=SameArray(Tolerance(1e-5, 1e-9)),
     diagnose=_demosaic_diagnosis,
+    exception_hint=_demosaic_exception_hint,
     ndarray_only=True,
     wrong_variants=(
         (_zero_padded_demosaic, "border"),
@@ -208,6 +303,122 @@ register_exercise(Exercise(
         (lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern) / 255, "scaled by 255"),
         (lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern).tolist(), "you returned a list"),
         (_uncast_demosaic, "convert first: raw.astype"),
+        (_tiled_masks_demosaic, "a mask built with np.tile"),
+        (_one_line_green_demosaic, "only the green neighbours on its left and right"),
+        (lambda raw, pattern: _one_line_green_demosaic(raw, pattern, axis=0), "only the green neighbours above"),
+        (lambda raw, pattern: np.rint(sensor.demosaic_bilinear(raw, pattern)), "you rounded"),
+        (lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern).astype(np.asarray(raw).dtype), "you returned integers"),
+        (_diagonal_only_demosaic, "red or blue at a green site"),
     ),
     teaching=demosaic_bilinear,
+))
+
+
+# -- intrinsics_from_datasheet -----------------------------------------------------------------
+
+def _datasheet_cases():
+    """A phone, a full-frame camera, a sensor with non-square pixels (10 x 9.375 µm), odd pixel counts."""
+    return [
+        (4.25, (5.6, 4.2), (4032, 3024)),
+        (50.0, (36.0, 24.0), (6000, 4000)),
+        (8.0, (6.4, 4.8), (640, 512)),
+        (3.6, (4.8, 3.6), (801, 601)),
+    ]
+
+
+def _datasheet_reference(f_mm, sensor_mm, size):
+    """camlab's K from metres: pitch = sensor size / pixel count."""
+    W, H = size
+    return sensor.intrinsics_from_sensor(f_mm * 1e-3, (sensor_mm[0] * 1e-3 / W, sensor_mm[1] * 1e-3 / H), size)
+
+
+def _datasheet_diagnosis(args, got, expected) -> str:
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + " (K is 3 x 3)"
+    f_mm, (w_mm, h_mm), (W, H) = args
+    g, e = np.asarray(got, dtype=float), np.asarray(expected)
+    fx, fy, cx, cy = e[0, 0], e[1, 1], e[0, 2], e[1, 2]
+
+    def near(a, b):
+        return np.isclose(a, b, rtol=1e-6, atol=1e-9)
+
+    if np.allclose(g, e.T):
+        return ("K is transposed: the principal point goes in the last column, K[0, 2] = c_x and K[1, 2] = c_y, "
+                "and the bottom row is (0, 0, 1)")
+    if not near(g[2], [0, 0, 1]).all():
+        return "the bottom row of K is (0, 0, 1): it keeps the homogeneous coordinate, K @ (x, y, 1) = (u, v, 1)"
+    if near(g[0, 2], cy) and near(g[1, 2], cx) and not near(cx, cy):
+        return ("c_x and c_y are swapped: c_x = (W - 1) / 2 comes from the width W = size[0], c_y = (H - 1) / 2 from "
+                "the height H = size[1] (sizes are (width, height), as in OpenCV; an array's shape is (H, W))")
+    if near(g[0, 2], W / 2) or near(g[1, 2], H / 2):
+        return ("half a pixel off: with pixel centres at integers, u runs from 0 to W - 1, so the centre is "
+                "(W - 1) / 2, not W / 2 (that is the centre in a pixel-corner convention)")
+    if near(g[0, 2], W - 1) or near(g[0, 2], W) or near(g[1, 2], H - 1):
+        return "the principal point is the image centre, (W - 1) / 2 and (H - 1) / 2, not the image size"
+    if near(g[0, 0], f_mm) or near(g[1, 1], f_mm):
+        return ("f_x is in pixels, not millimetres: divide the focal length by the pixel pitch, f_x = f / s_x with "
+                "s_x = sensor width / W (both in mm, so the units cancel)")
+    for factor, unit in ((1e3, "1000 times too large"), (1e-3, "1000 times too small"), (1e6, "a million times too large"),
+                         (1e-6, "a million times too small")):
+        if near(g[0, 0], fx * factor) and near(g[1, 1], fy * factor):
+            return (f"f_x and f_y are {unit}: a unit slip between mm, µm and m; keep f and the pitch in the same unit "
+                    f"(mm: s_x = sensor width / W), so f / s_x is in pixels")
+    if near(g[0, 0], 1 / fx) or near(g[0, 0], w_mm / W / f_mm):
+        return "f_x = f / s_x, not s_x / f: the focal length in units of the pixel pitch"
+    if near(g[0, 0], f_mm * (W - 1) / w_mm) or near(g[1, 1], f_mm * (H - 1) / h_mm):
+        return "the pitch is sensor width / W: W pixels tile the width (W - 1 counts the gaps between centres)"
+    if near(g[0, 0], fy) and near(g[1, 1], fx) and not near(fx, fy):
+        return ("f_x and f_y are swapped: f_x = f / s_x with the horizontal pitch s_x = width / W, f_y = f / s_y with "
+                "s_y = height / H")
+    if (near(g[1, 1], fx) or near(g[0, 0], fy)) and not near(fx, fy):
+        return (f"pixels need not be square: here s_x = {w_mm / W * 1e3:.4g} µm and s_y = {h_mm / H * 1e3:.4g} µm, so "
+                f"f_x = f / s_x and f_y = f / s_y differ; compute each from its own axis")
+    if not near(g[0, 1], 0):
+        return "K[0, 1] is the skew, 0 for a sensor with perpendicular rows and columns"
+    return "K = [[f / s_x, 0, (W - 1) / 2], [0, f / s_y, (H - 1) / 2], [0, 0, 1]] with s_x = width / W, s_y = height / H"
+
+
+def intrinsics_from_datasheet(f_mm, sensor_mm, size):
+    """K in pixels from a datasheet: focal length (mm), sensor (width, height) in mm, resolution (W, H) in pixels."""
+    W, H = size
+    sx, sy = sensor_mm[0] / W, sensor_mm[1] / H       # pixel pitch, mm per pixel (need not be square)
+    return np.array([[f_mm / sx, 0.0, (W - 1) / 2],   # f in pixels: f / pitch, both in mm
+                     [0.0, f_mm / sy, (H - 1) / 2],   # pixel centres at integers: the centre is (W - 1) / 2
+                     [0.0, 0.0, 1.0]])
+
+
+def _datasheet_variant(f_mm, sensor_mm, size, *, fx=None, fy=None, cx=None, cy=None):
+    K = _datasheet_reference(f_mm, sensor_mm, size)
+    for (i, j), v in (((0, 0), fx), ((1, 1), fy), ((0, 2), cx), ((1, 2), cy)):
+        if v is not None:
+            K[i, j] = v
+    return K
+
+
+register_exercise(Exercise(
+    name="intrinsics_from_datasheet",
+    lesson="03",
+    reference=_datasheet_reference,
+    cases=_datasheet_cases,
+    compare=SameArray(Tolerance(1e-9, 1e-9)),
+    diagnose=_datasheet_diagnosis,
+    wrong_variants=(
+        (lambda f, s, n: _datasheet_reference(f, s, n).T, "transposed"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, cx=(n[1] - 1) / 2, cy=(n[0] - 1) / 2), "swapped"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, cx=n[0] / 2, cy=n[1] / 2), "half a pixel off"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, fx=f, fy=f), "not millimetres"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, fx=f / (s[0] / n[0] * 1e3), fy=f / (s[1] / n[1] * 1e3)),
+         "1000 times too small"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, fx=f * 1e-3 / (s[0] / n[0] * 1e-6), fy=f * 1e-3 / (s[1] / n[1] * 1e-6)),
+         "1000 times too large"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, fx=s[0] / n[0] / f, fy=s[1] / n[1] / f), "not s_x / f"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, fx=f * (n[0] - 1) / s[0], fy=f * (n[1] - 1) / s[1]), "W pixels tile"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, fx=f * n[0] / s[0], fy=f * n[0] / s[0]), "need not be square"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, fx=f * n[1] / s[1], fy=f * n[0] / s[0]), "f_x and f_y are swapped"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, cx=n[0] - 1, cy=n[1] - 1), "not the image size"),
+        (lambda f, s, n: _datasheet_reference(f, s, n)[:2], "shape (3, 3)"),
+        (lambda f, s, n: None, "return"),
+    ),
+    teaching=intrinsics_from_datasheet,
 ))

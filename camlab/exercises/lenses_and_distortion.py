@@ -232,35 +232,48 @@ register_exercise(Exercise(
 
 # -- undistort_newton ------------------------------------------------------------------------
 
-NEWTON_STEPS = 8  # the teaching solution's steps: from x = x_d, quadratic convergence reaches 1e-12 in 4-6
-
-
 def _undistort_cases():
+    """Three problems solved to convergence (8 steps), then two cut short at 1 and 2 steps.
+
+    A Newton iteration with a wrong Jacobian still converges, only more slowly, so the
+    converged answers cannot see it: the short runs can (each step is fixed by J).
+    """
     rng = np.random.default_rng(5)
     pts = rng.uniform(-0.4, 0.4, (8, 2))
+    strong = np.array([[0.45, -0.2], [0.0, 0.0], [-0.3, 0.35]])  # strong barrel, inside its fold (0.609)
     return [
-        (pts, -0.25, 0.05),
-        (pts, 0.12, 0.0),
-        (np.array([[0.45, -0.2], [0.0, 0.0], [-0.3, 0.35]]), -0.4, 0.0),  # strong barrel, inside its fold (0.609)
+        (pts, -0.25, 0.05, 8),
+        (pts, 0.12, 0.0, 8),
+        (strong, -0.4, 0.0, 8),
+        (pts, -0.25, 0.05, 1),
+        (strong, -0.4, 0.1, 2),
     ]
 
 
-def _undistort_reference(x_d, k1, k2):
-    return distortion.undistort_points(x_d, [k1, k2, 0.0, 0.0, 0.0])
+def _undistort_reference(x_d, k1, k2, steps):
+    """camlab's Newton iteration run for exactly ``steps`` steps from x = x_d (converged after 8 here)."""
+    return distortion.newton_undistort(np.array(x_d, dtype=float), distortion.as_dist([k1, k2, 0, 0, 0]),
+                                       tol=0.0, max_iter=steps).points
 
 
-def _radial_iterates(x_d, k1, k2, *, chain: float = 2.0, step_sign: float = -1.0, steps: int = 40) -> list:
-    """Iterates of x <- x + step_sign J^-1 (x L - x_d) from x = x_d, with J = L I + chain (k1 + 2 k2 r^2) x x^T.
+def _radial_iterates(x_d, k1, k2, *, chain: float = 2.0, k2_chain: float = 4.0, step_sign: float = -1.0,
+                     frozen: bool = False, steps: int = 40) -> list:
+    """Iterates of x <- x + step_sign J^-1 (x L - x_d) from x = x_d, with J = L I + (chain k1 + k2_chain k2 r^2) x x^T.
 
-    chain = 2 is Newton; chain = 0 (J = L I) is the fixed-point iteration x = x_d / L; chain = 1 drops the
-    chain rule's 2; step_sign = +1 steps along the residual.
+    chain = 2, k2_chain = 4 is Newton; chain = k2_chain = 0 (J = L I) is the fixed-point iteration
+    x = x_d / L; chain = 1 drops the chain rule's 2; k2_chain = 2 differentiates r^4 as 2 r^2 x;
+    step_sign = +1 steps along the residual; frozen keeps the J of x_d for every step (the chord method).
     """
     x, out = np.array(x_d, dtype=float), []
+    J0 = None
     with np.errstate(all="ignore"):
         for _ in range(steps):
             r2 = (x**2).sum(axis=1, keepdims=True)
             L = 1 + k1 * r2 + k2 * r2**2
-            J = L[:, :, None] * np.eye(2) + (chain * (k1 + 2 * k2 * r2))[:, :, None] * x[:, :, None] * x[:, None, :]
+            J = L[:, :, None] * np.eye(2) + ((chain * k1 + k2_chain * k2 * r2))[:, :, None] * x[:, :, None] * x[:, None, :]
+            if frozen:
+                J0 = J if J0 is None else J0
+                J = J0
             x = x + step_sign * np.linalg.solve(J, (x * L - x_d)[:, :, None])[:, :, 0]
             out.append(x)
     return out
@@ -268,41 +281,69 @@ def _radial_iterates(x_d, k1, k2, *, chain: float = 2.0, step_sign: float = -1.0
 
 def _matches_an_iterate(g, iterates) -> int:
     """1-based index of the iterate ``g`` equals (0 if none)."""
-    return next((k + 1 for k, it in enumerate(iterates) if np.allclose(g, it, rtol=0, atol=1e-12)), 0)
+    return next((k + 1 for k, it in enumerate(iterates) if np.allclose(g, it, rtol=0, atol=1e-10)), 0)
+
+
+_WRONG_JACOBIANS = (
+    (dict(chain=0.0, k2_chain=0.0),
+     "you used J = L I, leaving out how L changes with x: that is the fixed-point iteration x = x_d / L(x), which "
+     "converges slowly; differentiate x L(r^2) with the product rule: J = L I + x (dL/dx)^T"),
+    (dict(chain=1.0, k2_chain=2.0),
+     "the Jacobian misses the chain rule's factor 2: d(r^2)/dx = 2 x, so dL/dx = (2 k1 + 4 k2 r^2) x "
+     "(with it Newton converges in a few steps)"),
+    (dict(chain=2.0, k2_chain=2.0),
+     "the k2 term of the Jacobian is off: d(r^4)/dx = 2 r^2 d(r^2)/dx = 4 r^2 x, so dL/dx = (2 k1 + 4 k2 r^2) x"),
+    (dict(chain=1.0, k2_chain=4.0),
+     "the k1 term of the Jacobian misses the chain rule's factor 2: d(r^2)/dx = 2 x, so dL/dx = (2 k1 + 4 k2 r^2) x"),
+    (dict(frozen=True),
+     "you computed J once, at x_d, and reused it for every step (a chord method, which converges only linearly): "
+     "recompute r^2, L and J from the current x inside the loop"),
+    (dict(step_sign=1.0),
+     "step against the residual: x <- x - J^-1 (x L - x_d); stepping along it walks away from the answer"),
+)
 
 
 def _undistort_diagnosis(args, got, expected) -> str:
     problem = shape_problem(got, expected)
     if problem:
         return problem
-    x_d, k1, k2 = args
+    x_d, k1, k2, steps = args
     g = np.asarray(got, dtype=float)
     r2 = (x_d**2).sum(axis=1, keepdims=True)
     if np.allclose(g, x_d * (1 + k1 * r2 + k2 * r2**2)):
         return "you distorted x_d again; undistorting solves x L(r^2) = x_d for x, where r^2 = x^2 + y^2 of the unknown x"
-    steps = _matches_an_iterate(g, _radial_iterates(x_d, k1, k2))
-    if steps:
-        return (f"you stopped after {steps} Newton step{'s' * (steps > 1)}; the error squares each step but starts "
-                f"near k1 r^3: repeat until the step is below 1e-12 (about {NEWTON_STEPS} steps)")
-    if _matches_an_iterate(g, _radial_iterates(x_d, k1, k2, chain=0.0)):
-        return ("you used J = L I, leaving out how L changes with x: that is the fixed-point iteration x = x_d / L(x), "
-                "which converges slowly; differentiate x L(r^2) with the product rule: J = L I + x (dL/dx)^T")
-    if _matches_an_iterate(g, _radial_iterates(x_d, k1, k2, chain=1.0)):
-        return ("the Jacobian misses the chain rule's factor 2: d(r^2)/dx = 2 x, so dL/dx = (2 k1 + 4 k2 r^2) x "
-                "(with it Newton converges in a few steps)")
-    if _matches_an_iterate(g, _radial_iterates(x_d, k1, k2, step_sign=1.0)) or not np.all(np.abs(g) < 10):
-        return "step against the residual: x <- x - J^-1 (x L - x_d); stepping along it walks away from the answer"
+    newton = [np.asarray(x_d, dtype=float)] + _radial_iterates(x_d, k1, k2)   # newton[k]: after k steps
+    taken = _matches_an_iterate(g, newton) - 1
+    if steps < 8 and np.allclose(g, newton[-1], rtol=0, atol=1e-10):
+        return (f"you ran to convergence, but this test asked for steps = {steps}: take exactly `steps` Newton steps "
+                f"(`for _ in range(steps)`); the check stops you early to see each step, and so your Jacobian")
+    if taken >= 0:
+        return (f"you took {taken} Newton step{'s' * (taken != 1)}, but steps = {steps}: loop `for _ in range(steps)` "
+                f"and step once per pass, starting from x = x_d")
+    for wrong, hint in _WRONG_JACOBIANS:
+        if _matches_an_iterate(g, _radial_iterates(x_d, k1, k2, steps=max(steps, 40), **wrong)):
+            return hint
+    if not np.all(np.abs(g) < 10):
+        return _WRONG_JACOBIANS[-1][1]
     r = np.sqrt((g**2).sum(axis=1, keepdims=True))
     if np.allclose(g * (1 + k1 * r + k2 * r**2), x_d, atol=1e-9):
         return "the radial factor uses even powers of r: L = 1 + k1 r^2 + k2 r^4 with r^2 = x^2 + y^2"
-    return ("one Newton step solves J dx = -(x L - x_d) with J the 2 x 2 Jacobian of x L(r^2); start from x = x_d and "
-            "repeat until dx is tiny")
+    return ("one Newton step solves J dx = -(x L - x_d) with J = L I + (2 k1 + 4 k2 r^2) x x^T, the 2 x 2 Jacobian "
+            "of x L(r^2), evaluated at the current x; start from x = x_d and take exactly `steps` steps")
 
 
-def undistort_newton(x_d, k1, k2, steps=NEWTON_STEPS):
-    """Invert x_d = x L(r^2), L = 1 + k1 r^2 + k2 r^4, for (N, 2) normalised points by Newton's method."""
+def _undistort_exception_hint(exc, args) -> str:
+    """np.linalg.solve on a stack: the right-hand side must be (N, 2, 1), not (N, 2)."""
+    if isinstance(exc, (ValueError, np.linalg.LinAlgError)) and ("solve" in str(exc) or "core dimension" in str(exc)):
+        return ("np.linalg.solve on a stack of N systems: J is (N, 2, 2), so give the right-hand side as (N, 2, 1), "
+                "residual[:, :, None], and take [:, :, 0] of the result (an (N, 2) b is read as one N x 2 matrix)")
+    return ""
+
+
+def undistort_newton(x_d, k1, k2, steps=8):
+    """Invert x_d = x L(r^2), L = 1 + k1 r^2 + k2 r^4, for (N, 2) normalised points by `steps` Newton steps."""
     x = np.array(x_d, dtype=float)                     # start at the distorted point (a copy: x_d stays as it is)
-    for _ in range(steps):
+    for _ in range(steps):                             # from x = x_d, 8 steps reach 1e-12 inside the fold
         r2 = (x**2).sum(axis=1, keepdims=True)         # (N, 1)
         L = 1 + k1 * r2 + k2 * r2**2
         residual = x * L - x_d                         # F(x) - x_d: zero at the answer
@@ -318,6 +359,22 @@ def _in_place_distortion(x, d):
     return out
 
 
+def _until_converged(x_d, k1, k2, steps):
+    """Ignores ``steps``: Newton until the step is tiny (right at 8 steps, wrong when the check asks for 1 or 2)."""
+    return undistort_newton(x_d, k1, k2, 40)
+
+
+def _flat_rhs_newton(x_d, k1, k2, steps):
+    """np.linalg.solve(J, residual) with an (N, 2) residual: a ValueError in NumPy 2."""
+    x = np.array(x_d, dtype=float)
+    for _ in range(steps):
+        r2 = (x**2).sum(axis=1, keepdims=True)
+        L = 1 + k1 * r2 + k2 * r2**2
+        J = L[:, :, None] * np.eye(2) + (2 * k1 + 4 * k2 * r2)[:, :, None] * x[:, :, None] * x[:, None, :]
+        x = x - np.linalg.solve(J, x * L - x_d)
+    return x
+
+
 register_exercise(Exercise(
     name="undistort_newton",
     lesson="02",
@@ -325,20 +382,37 @@ register_exercise(Exercise(
     cases=_undistort_cases,
     compare=same_array(rtol=0, atol=1e-9),
     diagnose=_undistort_diagnosis,
+    exception_hint=_undistort_exception_hint,
     wrong_variants=(
-        (lambda x_d, k1, k2: _radial_iterates(x_d, k1, k2, steps=1)[0], "stopped after 1 Newton step"),
-        (lambda x_d, k1, k2: _radial_iterates(x_d, k1, k2, chain=0.0, steps=8)[-1], "fixed-point iteration"),
-        (lambda x_d, k1, k2: _radial_iterates(x_d, k1, k2, chain=1.0, steps=3)[-1], "chain rule"),
-        (lambda x_d, k1, k2: _radial_iterates(x_d, k1, k2, step_sign=1.0, steps=8)[-1], "against the residual"),
-        (lambda x_d, k1, k2: x_d * (1 + k1 * (x_d**2).sum(1, keepdims=True)
-                                    + k2 * (x_d**2).sum(1, keepdims=True) ** 2), "distorted x_d again"),
-        (lambda x_d, k1, k2: _in_place_newton(x_d, k1, k2), "in place"),
+        (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, steps=1)[0], "you took 1 Newton step"),
+        (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, steps=steps + 1)[-1], "but steps ="),
+        (lambda x_d, k1, k2, steps: ([np.array(x_d)] + _radial_iterates(x_d, k1, k2, steps=steps))[steps - 1],
+         "but steps ="),
+        (_until_converged, "you ran to convergence"),
+        (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, chain=0.0, k2_chain=0.0, steps=8)[-1],
+         "fixed-point iteration"),
+        # a wrong J run to convergence passes the 8-step tests; the short ones first ask for `steps`, then see J
+        (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, chain=0.0, k2_chain=0.0, steps=max(steps, 60))[-1],
+         "you ran to convergence"),
+        (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, chain=1.0, k2_chain=2.0, steps=steps)[-1],
+         "chain rule's factor 2"),
+        (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, chain=1.0, k2_chain=2.0, steps=max(steps, 40))[-1],
+         "you ran to convergence"),
+        (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, k2_chain=2.0, steps=steps)[-1], "k2 term"),
+        (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, frozen=True, steps=steps)[-1], "computed J once"),
+        (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, step_sign=1.0, steps=steps)[-1],
+         "against the residual"),
+        (lambda x_d, k1, k2, steps: x_d * (1 + k1 * (x_d**2).sum(1, keepdims=True)
+                                           + k2 * (x_d**2).sum(1, keepdims=True) ** 2), "distorted x_d again"),
+        (lambda x_d, k1, k2, steps: _in_place_newton(x_d, k1, k2, steps), "in place"),
+        (_flat_rhs_newton, "residual[:, :, None]"),
     ),
     teaching=undistort_newton,
 ))
 
 
-def _in_place_newton(x_d, k1, k2):
-    x = undistort_newton(x_d, k1, k2)
+def _in_place_newton(x_d, k1, k2, steps):
+    x = undistort_newton(x_d, k1, k2, steps)
     x_d[:] = x  # overwrites the caller's points
     return x
+

@@ -22,22 +22,22 @@ def _batch_code_hint(exc: Exception, args: tuple) -> str:
     """
     text = str(exc)
     if "has no attribute 'append'" in text:
-        return ("\n  likely cause: p.append(1.0) is how a Python list grows; a numpy array has no .append method "
+        return ("p.append(1.0) is how a Python list grows; a numpy array has no .append method "
                 "(its size is fixed): np.append(p, 1.0) returns a new, longer array")
     if "zero-dimensional arrays cannot be concatenated" in text:
-        return ("\n  likely cause: np.concatenate takes one sequence of arrays, and its second argument is the "
+        return ("np.concatenate takes one sequence of arrays, and its second argument is the "
                 "axis: np.concatenate([p, [1.0]]), or simply np.append(p, 1.0)")
     if "same number of dimensions" in text and "0 dimension(s)" in text:
-        return ("\n  likely cause: np.concatenate joins arrays, and the 1 is a bare number (0-D): write it as "
+        return ("np.concatenate joins arrays, and the 1 is a bare number (0-D): write it as "
                 "[1.0], np.concatenate([p, [1.0]]), or use np.append(p, 1.0) or np.hstack([p, 1.0]), which accept it")
     if "same number of dimensions" in text:
-        return (f"\n  likely cause: batch code on one point: {_ONE_POINT}, so np.hstack([p, np.ones((len(p), 1))]) "
+        return (f"batch code on one point: {_ONE_POINT}, so np.hstack([p, np.ones((len(p), 1))]) "
                 f"joins a 1-D array to a 2-D column; for one point append one number: np.append(p, 1.0)")
     if "too many indices" in text or "out of bounds for array of dimension 1" in text:
-        return (f"\n  likely cause: batch code on one point: {_ONE_POINT}, so it has no second axis (p[:, :2], "
+        return (f"batch code on one point: {_ONE_POINT}, so it has no second axis (p[:, :2], "
                 f"axis=1); its coordinates are p[0] and p[1], and np.append(p, 1.0) lifts it")
     if "except for the concatenation axis" in text:
-        return (f"\n  likely cause: np.c_ and np.column_stack join columns, so they treat x and y as two rows: "
+        return (f"np.c_ and np.column_stack join columns, so they treat x and y as two rows: "
                 f"{_ONE_POINT}; append one number instead: np.append(p, 1.0) or np.r_[p, 1.0]")
     return ""
 

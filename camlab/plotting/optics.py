@@ -270,8 +270,13 @@ def _thin_lens_note(xo: float, xi: float, m: float) -> str:
     return "; ".join(n for n in notes if n)
 
 
-def update_thin_lens(art: dict, f: float, zo: float) -> dict:
-    """Move the diagram to focal length ``f`` and object distance ``zo``; returns the computed values."""
+def update_thin_lens(art: dict, f: float, zo: float, requested: float | None = None) -> dict:
+    """Move the diagram to focal length ``f`` and object distance ``zo``; returns the computed values.
+
+    ``requested``: the object distance the control asked for, when the caller held the object
+    at ``zo`` instead (a control inside the focal length, where no real image forms); the
+    readout then says so, so the numbers never disagree silently with the control.
+    """
     zi = float(_lens.image_distance(f, zo))
     m = float(_lens.magnification(f, zo))
     xo, xi = -zo / f, zi / f                       # units of f
@@ -285,6 +290,9 @@ def update_thin_lens(art: dict, f: float, zo: float) -> dict:
     art["rays"][1].set_data([xo, xi], [1, m])
     art["rays"][2].set_data([xo, 0, xi], [1, m, m])
     note = _thin_lens_note(xo, xi, m)
+    if requested is not None and not np.isclose(requested, zo):
+        held = f"z_o = {requested:.3f} m is inside 1.05 f: held at {zo:.3f} m"
+        note = f"{held}; {note}" if note else held
     art["text"].set_text(f"f = {f * 1e3:.0f} mm   z_o = {zo:.3f} m = {-xo:.2f} f   z_i = {zi:.3f} m = {xi:.2f} f"
                          f"   m = {m:.3f}\n{note or 'object (green) and image (red) arrows; move the object towards F'}")
     return {"image_distance": zi, "magnification": m}

@@ -72,8 +72,12 @@ def sampling_aliasing():
     def update(values, state):
         k = int(values["factor"])
         s = sensor.sample(zp, k, prefilter=values["prefilter"])
-        # show the coarse samples as blocks at the scene's scale
-        im.set_data(np.kron(s, np.ones((k, k))))
+        # the coarse samples as crisp blocks at the scene's scale: drawn larger than their size (k > 1), so
+        # "nearest" (no smoothing across a block's edge); at k = 1 the 384 samples are drawn smaller: antialiased.
+        # The mode first: set_data fits the array to the screen with it (camlab.widgets._transport)
+        im.set_interpolation("nearest" if k > 1 else "antialiased")
+        im.set_data(s)
+        im.set_extent((-0.5, zp.shape[1] - 0.5, zp.shape[0] - 0.5, -0.5))
         # the local frequency (pi / 768) x / pi cycles per fine px reaches 0.5 cycle per coarse px at x = 384 / k
         r = zp.shape[0] / k
         cx, cy = (zp.shape[1] - 1) / 2, (zp.shape[0] - 1) / 2

@@ -29,10 +29,9 @@ def thin_lens():
     view.animate(art["object"], art["image"], *art["rays"], art["text"])
 
     def update(values, state):
-        f, zo = values["focal_mm"] * 1e-3, values["object_m"]
-        if zo <= f * 1.05:  # slider corner: keep the object outside the focal length
-            zo = f * 1.05
-        state.update(optics.update_thin_lens(art, f, zo))
+        f, asked = values["focal_mm"] * 1e-3, values["object_m"]
+        zo = max(asked, f * 1.05)  # slider corner (f > 57 mm): keep the object outside the focal length, and say so
+        state.update(optics.update_thin_lens(art, f, zo, requested=asked), object_held=zo != asked)
 
     return build_demo("thin_lens", controls, view, update, title="Thin lens")
 
