@@ -264,8 +264,7 @@ def _exercise_exception_hint(name: str, exc: Exception, args: tuple) -> str:
     """The exercise's own hint for ``exc`` (its ``exception_hint``) as a 'likely cause' line, else the shared one."""
     exercise = EXERCISES.get(name)
     own = exercise.exception_hint(exc, args) if exercise is not None and exercise.exception_hint else ""
-    return f"
-  likely cause: {own}" if own else _exception_hint(exc)
+    return f"\n  likely cause: {own}" if own else _exception_hint(exc)
 
 
 def _exception_hint(exc: Exception) -> str:
