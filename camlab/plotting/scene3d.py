@@ -207,7 +207,7 @@ def draw_world_axes(ax, length: float = 1.0, origin: ArrayLike = (0.0, 0.0, 0.0)
         (ln,) = ax.plot(*np.c_[o, e], color=c, lw=2.0)
         out.append(ln)
         out.append(ax.text(*(o + (e - o) * 1.12), name, color=c, fontsize=9, fontweight="bold",
-                           ha="center", va="center"))
+                           ha="center", va="center", path_effects=palette.halo()))   # readable over the scene
     return out
 
 
@@ -320,7 +320,7 @@ class CameraArtist:
                 (ln,) = ax.plot([], [], [], color=c, lw=2.0)
                 self.axes_lines.append(ln)
                 self.axes_text.append(ax.text(0, 0, 0, name, color=c, fontsize=9, fontweight="bold",
-                                              ha="center", va="center"))
+                                              ha="center", va="center", path_effects=palette.halo()))
         (self.centre_marker,) = ax.plot([], [], [], "o", color=color, ms=4)
         self.label = ax.text(0, 0, 0, label, color=color, fontsize=9) if label else None
         (self.lines,) = ax.plot([], [], [], color=line_color, lw=1.3, gid="thumbnail")  # the image panel, in small

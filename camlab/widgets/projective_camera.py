@@ -24,6 +24,7 @@ TARGET = np.array([0.0, 0.0, 0.7])
 # everything up; from this side the picture on the image plane stays clear of the house behind it.
 VIEWER_OFFSET = -35.0
 FAR_M = 6.0  # an estimated camera farther than this from the true one is shown by an arrow, not fitted into view
+EYE_GL = np.array([2.6, -2.6, 1.0])  # opencv_vs_opengl's camera, far enough from the house that "z forward" clears it
 
 
 def _fmt(v: np.ndarray) -> str:
@@ -258,7 +259,8 @@ def resectioning():
 @register(lesson="04", sweep={"yaw": [-60, 60], "frame": ["OpenGL / Blender", "OpenCV"]})
 def opencv_vs_opengl():
     """The same camera with OpenCV axes (x right, y down, z forward) or OpenGL/Blender axes
-    (x right, y up, z backward): only the labels of the camera axes change, R_gl = F R."""
+    (x right, y up, z backward): the camera stays put, its y and z axes flip (R_gl = F R, F = diag(1, -1, -1))
+    and are relabelled."""
     from mpl_toolkits.mplot3d import Axes3D  # noqa: F401  (registers the 3-D projection)
 
     view = FigureView(figsize=(5.0, 3.4))
@@ -268,7 +270,7 @@ def opencv_vs_opengl():
     world = scene3d.draw_world_axes(ax, 0.6)
     house_segments = scenes.house_wireframe((0.0, 0.0, 0.0), 0.6)
     house = scene3d.draw_segments(ax, house_segments, color=palette.GREY)
-    cam0 = cm.Camera.look_at([2.0, -2.0, 1.0], [0.0, 0.0, 0.4])
+    cam0 = cm.Camera.look_at(EYE_GL, [0.0, 0.0, 0.4])
     art = scene3d.CameraArtist(ax, cam0, size=0.45, show_axes=False)  # shorter than the axes, so labels clear it
     lines, texts = [], []
     for c in scene3d.AXIS_COLOURS:
@@ -285,7 +287,7 @@ def opencv_vs_opengl():
     }
 
     def update(v, state):
-        eye = cm.rotation_z(np.deg2rad(v["yaw"])) @ np.array([2.0, -2.0, 1.0])
+        eye = cm.rotation_z(np.deg2rad(v["yaw"])) @ EYE_GL
         cam = cm.Camera.look_at(eye, [0.0, 0.0, 0.4])
         art.update(cam)
         gl = v["frame"] != "OpenCV"
@@ -294,9 +296,7 @@ def opencv_vs_opengl():
         C = cam.centre
         # The limits fit both frames' label tips, so toggling the frame changes only the labels
         label_tips = C + 1.3 * np.vstack([cam.R, -cam.R[1:]])
-        scene3d.set_equal_aspect(ax, [house_segments, np.zeros(3), label_tips, art.extent_points(cam)], zoom=0.95,
-                                 tight=True)
-        scene3d.refresh_projection(ax)
+        scene3d.fit_view(ax, [house_segments, np.zeros(3), label_tips, art.extent_points(cam)], fill=0.78)
         for i, (ln, tx) in enumerate(zip(lines, texts)):
             e = C + 0.9 * R_axes[i]  # row i of R = camera axis i in world coordinates
             ln.set_data_3d([C[0], e[0]], [C[1], e[1]], [C[2], e[2]])
