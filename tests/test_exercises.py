@@ -450,3 +450,54 @@ def test_lift_names_the_worked_examples_batch_code_copied_for_one_point(batch_co
     with pytest.raises(AssertionError, match=phrase) as info:
         check("lift", batch_code)
     assert "1-based" not in str(info.value) and "counting columns from 1" not in str(info.value)
+
+
+def _dlt_variant(X, uv, rows=2, normaliser="isotropic"):
+    """A normalised DLT in another valid form: all three rows of u x P X, or per-axis normalisation."""
+    X, uv = np.asarray(X, dtype=float), np.asarray(uv, dtype=float)
+
+    def similarity(p):
+        c = p.mean(axis=0)
+        s = 1.0 / p.std(axis=0) if normaliser == "per-axis" else np.full(p.shape[1], np.sqrt(p.shape[1]) / np.mean(
+            np.linalg.norm(p - c, axis=1)))
+        T = np.diag(np.append(s, 1.0))
+        T[:-1, -1] = -s * c
+        return T
+
+    U, T = similarity(X), similarity(uv)
+    Xn = np.c_[X, np.ones(len(X))] @ U.T
+    un = np.c_[uv, np.ones(len(uv))] @ T.T
+    blocks = []
+    for Xh, (u, v, w) in zip(Xn, un):
+        z = np.zeros(4)
+        rows_i = [np.r_[w * Xh, z, -u * Xh], np.r_[z, w * Xh, -v * Xh], np.r_[-v * Xh, u * Xh, z]]
+        blocks += rows_i[:rows]
+    P_hat = np.linalg.svd(np.array(blocks))[2][-1].reshape(3, 4)
+    return np.linalg.inv(T) @ P_hat @ U
+
+
+@pytest.mark.parametrize("right", [lambda X, uv: _dlt_variant(X, uv, rows=3),
+                                   lambda X, uv: _dlt_variant(X, uv, normaliser="per-axis"),
+                                   lambda X, uv: __import__("camlab").camera.estimate_projection_matrix(X, uv, refine=True)],
+                         ids=["three rows of the cross product", "per-axis normalisation", "refined by LM"])
+def test_estimate_projection_matrix_passes_other_valid_normalised_answers(right, capsys):
+    """Round 2 of lesson 04's review: these were rejected at 1.19 px and 0.06 px from camlab's estimate."""
+    assert check("estimate_projection_matrix", right).passed is True
+
+
+def test_estimate_projection_matrix_names_which_half_was_not_normalised():
+    from camlab.exercises.projective_camera import _dlt_half
+
+    with pytest.raises(AssertionError, match=r"(?s)different camera.*likely cause: you normalised only the pixels"):
+        check("estimate_projection_matrix", lambda X, uv: _dlt_half(X, uv, world=False))
+    with pytest.raises(AssertionError, match=r"(?s)different camera.*likely cause: you normalised only the world"):
+        check("estimate_projection_matrix", lambda X, uv: _dlt_half(X, uv, pixels=False))
+
+
+def test_rq_decomposition_has_a_negative_determinant_case_with_a_reflection():
+    from camlab.exercises.projective_camera import _rq_cases
+
+    M = [m for (m,) in _rq_cases() if np.linalg.det(m) < 0]
+    assert M, "no det M < 0 input: flipping M inside rq_decomposition would pass"
+    K, R = __import__("camlab").camera.rq_decomposition(M[0])
+    assert np.linalg.det(R) < 0 and np.all(np.diag(K) > 0)

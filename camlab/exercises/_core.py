@@ -65,6 +65,11 @@ class Exercise:
     """``exception_hint(exc, args)``: the likely cause, as plain text, when the student's function raises
     ``exc`` on ``args`` and only this exercise can name it (an np.tile mask one row short on an odd-sized
     mosaic is no 'broadcasting slip'), or '' to fall back on the hints every check shares."""
+    follow_up: Callable[[Callable[..., Any]], str | None] | None = None
+    """Checks beyond answer-against-answer, run once every test input has passed: called with a
+    function that runs the student's function on given arguments (under the same time limit and
+    in-place check), it returns what is wrong or None. For properties a single input cannot show,
+    such as an estimate that must not depend on the units of its input."""
 
 
 EXERCISES: dict[str, Exercise] = {}
@@ -256,6 +261,10 @@ def check(name: str, student_function: Callable[..., Any]) -> CheckResult:
                 + worst_mismatch(got, expected, tolerance)
                 + f"  likely cause: {exercise.diagnose(args, got, expected)}"
             )
+    if exercise.follow_up is not None:
+        problem = exercise.follow_up(lambda *args: _run_student(name, student_function, args, len(cases), len(cases) + 1))
+        if problem:
+            raise AssertionError(f"{name}: correct on all {len(cases)} test inputs, but {problem}")
     print(f"{name}: correct on all {len(cases)} test inputs. Well done!")
     return CheckResult(name, True)
 

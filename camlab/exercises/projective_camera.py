@@ -48,6 +48,13 @@ def _project_diagnosis(args, got, expected) -> str:
         return "you kept (x, y) without dividing by the third coordinate w = depth: u = x / w, v = y / w."
     if np.allclose(g, (X @ P[:, :3].T)[:, :2] / (X @ P[:, :3].T)[:, 2:], rtol=1e-6):
         return "you ignored the fourth column of P (the translation): lift X to (X, Y, Z, 1) first."
+    if np.all(x[:, 2] < 0) and np.allclose(g, x[:, :2] / np.abs(x[:, 2:]), rtol=1e-6, atol=1e-6):
+        return ("you divided by |w|. This P is -3 times a camera, the same camera at another scale, so w is "
+                "negative for points in front of it; (x / w, y / w) gives the same pixels for P and -3 P, "
+                "(x / |w|, y / |w|) does not. Divide by w itself.")
+    if np.allclose(g, -np.asarray(expected, dtype=float), rtol=1e-6, atol=1e-6):
+        return ("every pixel has the wrong sign: (u, v) = (x / w, y / w) with x = P (X, Y, Z, 1)^T, no minus sign "
+                "(the pinhole's image inversion is already in K: v grows downwards).")
     return _pixel_slip(g, np.asarray(expected, dtype=float))
 
 
@@ -90,6 +97,8 @@ register_exercise(Exercise(
         (lambda P, X: cm.project_points(P, X)[:, ::-1], "swapped"),
         (lambda P, X: cm.project_points(P, X) * [1.0, -1.0] + [0.0, 479.0], "v is flipped"),
         (lambda P, X: np.hstack([X, np.ones((len(X), 1))]) @ P, "X @ M.T"),
+        (lambda P, X: (lambda x: x[:, :2] / np.abs(x[:, 2:]))(np.hstack([X, np.ones((len(X), 1))]) @ P.T), "|w|"),
+        (lambda P, X: -cm.project_points(P, X), "wrong sign"),
     ),
     teaching=project_points,
 ))
@@ -132,6 +141,13 @@ def _centre_slip(P, got, expected) -> str | None:
                 "The centre is a right singular vector, a 4-vector: the last row of Vt, Vt[-1].")
     if np.allclose(got[:3], -expected[:3], rtol=1e-6) and np.isclose(got[3], 1.0):
         return "the sign is flipped: P C = M C + p4 = 0 gives C = -M^-1 p4 (with the minus)."
+    M, p4 = P[:, :3], P[:, 3]
+    if np.allclose(got[:3], -M.T @ p4, rtol=1e-6):
+        return ("you used M^T for M^-1 (C = -M^T p4, as in C = -R^T t). M = K R is not a rotation, so its inverse "
+                "is not its transpose: C = -M^-1 p4, np.linalg.solve(M, -p4), or the last row of Vt.")
+    if np.isclose(got[3], 1.0) and same_up_to_scale(got[:3], expected[:3], rtol=1e-6):
+        return ("your (X, Y, Z) points the right way but has the wrong length: you set the last entry to 1 instead "
+                "of dividing the whole null vector by it. C = v / v[3].")
     if same_up_to_scale(got[:3], P[:, 3], rtol=1e-6):
         return ("p4 (P's last column) is the image of the world origin, not the centre. The centre solves "
                 "M C + p4 = 0: C = -M^-1 p4, or the last row of Vt.")
@@ -159,6 +175,8 @@ register_exercise(Exercise(
         (lambda P: np.append(np.linalg.svd(P)[0][:, -1], 1.0), "left singular vector"),
         (lambda P: np.append(np.linalg.solve(P[:, :3], P[:, 3]), 1.0), "sign is flipped"),
         (lambda P: np.linalg.svd(P)[2][-1], "last coordinate is 1"),  # the unit null vector, not scaled
+        (lambda P: np.append(-P[:, :3].T @ P[:, 3], 1.0), "not a rotation"),
+        (lambda P: np.append(np.linalg.svd(P)[2][-1][:3], 1.0), "instead of dividing"),
     ),
     teaching=camera_centre,
 ))
@@ -171,7 +189,8 @@ register_exercise(Exercise(
 def _rq_cases():
     cams = _cameras()
     return [(cams[0].P[:, :3],), (2.5 * cams[1].P[:, :3],), (0.003 * cams[2].P[:, :3],),
-            (cm.intrinsic_matrix(700, 650, 300, 200, 5.0) @ cm.rotation_from_axis_angle([0.3, -2.0, 0.5]),)]
+            (cm.intrinsic_matrix(700, 650, 300, 200, 5.0) @ cm.rotation_from_axis_angle([0.3, -2.0, 0.5]),),
+            (-2.5 * cams[0].P[:, :3],)]   # det M < 0 (lesson 04, section 4): K R = M still, so det R = -1
 
 
 def _rq_compare(got, expected) -> bool:
@@ -190,6 +209,12 @@ def _rq_diagnosis(args, got, expected) -> str:
         assert K.shape == R.shape == (3, 3)
     except (TypeError, ValueError, AssertionError):
         return "return a pair (K, R) of (3, 3) arrays"
+    scale = 1e-6 * np.abs(M).max()
+    if np.linalg.det(M) < 0 and np.allclose(K @ R, -M, rtol=1e-6, atol=scale):
+        return ("K R = -M: you flipped the sign of M inside rq_decomposition (step 1 of section 4). That step "
+                "belongs to decomposing a camera, where -P is the same camera; here M must come back as K R "
+                "exactly. For det M < 0 a K with a positive diagonal forces det R = -1, a reflection: the sign "
+                "that tells the camera decomposition to flip P first.")
     if np.isclose(K[2, 2], 1.0) and not np.isclose(abs(M[2] @ M[2]), 1.0):
         return ("you divided K by K[2, 2], so K R = M / K[2, 2] and no longer M; and a negative K[2, 2] "
                 "does not fix the signs. Keep K unnormalised (K[2, 2] carries M's scale) and fix the signs "
@@ -309,16 +334,23 @@ register_exercise(Exercise(
         (lambda M: cm.rq_decomposition(M)[::-1], "order is swapped"),
         (_rq_sign_fix_on_columns_of_r, "R's columns"),
         (_rq_sign_fix_on_rows_of_k, "K's rows"),
+        (lambda M: cm.rq_decomposition(np.sign(np.linalg.det(M)) * np.asarray(M)), "flipped the sign of M"),
     ),
     teaching=rq_decomposition,
 ))
 
 
 # -- estimate_projection_matrix (the normalised DLT) -------------------------------------------
-# Noise-free cases pass any correct DLT, normalised or not. The last case is where the
-# difference shows: noisy pixels of a 4000 x 3000 photo of points in survey coordinates
-# (tens of metres from the world origin). There the unnormalised DLT is off by pixels, while
-# any Hartley-style normalisation (mean or RMS distance) agrees with camlab far below 0.05 px.
+# The test inputs are exact pixels, where any correct DLT (normalised or not, two or three rows of
+# the cross product, refined or not) gives the true camera up to scale. What normalisation buys
+# shows only with noise, and there no single answer is "the" right one. So once those pass, the
+# follow-up (_dlt_follow_up) runs the student's function on a noisy survey:
+#   1. accuracy against the TRUE camera, within a tolerance derived from the noise (first-order
+#      covariance propagation, H&Z 5.2): catches answers that exact data cannot tell apart;
+#   2. the same survey in other units and origins (world points in millimetres from the site's
+#      corner; pixels at half size from the image centre). A normalised DLT is invariant to such
+#      changes (the normalised coordinates are the same numbers, H&Z 4.4.4), a refined one too;
+#      an unnormalised or half-normalised one is not, and which half changes names the cause.
 
 def _survey_camera():
     K = cm.intrinsic_matrix(3200.0, 3200.0, 1999.5, 1499.5)
@@ -329,7 +361,14 @@ def _survey_points(n, rng):
     return rng.uniform([48.0, 48.0, 0.0], [52.0, 52.0, 2.0], (n, 3))    # a 4 m site, 70 m from the origin
 
 
-_SURVEY_TEST_POINTS = _survey_points(50, np.random.default_rng(12))   # where a noisy-case answer is compared
+SURVEY_NOISE_PX = 1.0                                                  # pixel noise per coordinate
+SURVEY_TOLERANCE = 5.0                                                 # times the predicted RMS error
+_SURVEY_TEST_POINTS = _survey_points(50, np.random.default_rng(12))   # where cameras are compared
+# Other units and origins for the same survey: world in millimetres from the site's corner (48, 48, 0) m,
+# pixels at half size from the image centre. As 4 x 4 and 3 x 3 maps of homogeneous points.
+_WORLD_IN_MM = np.array([[1e3, 0, 0, -48e3], [0, 1e3, 0, -48e3], [0, 0, 1e3, 0], [0, 0, 0, 1.0]])
+_PIXELS_FROM_CENTRE = np.array([[0.5, 0, -999.75], [0, 0.5, -749.75], [0, 0, 1.0]])
+_INVARIANCE_PX = 1e-3   # a normalised DLT gives 1e-11 px, a refined one 1e-6; half-normalised ones 0.02 px and more
 
 
 def _dlt_cases():
@@ -338,9 +377,16 @@ def _dlt_cases():
     for cam, n in zip(_cameras(), (6, 10, 14)):                   # exact pixels, six or more points
         X = rng.uniform(-1.0, 1.0, (n, 3)) + [0.0, 0.0, 0.5]
         cases.append((X, cm.project_points(cam.P, X)))
-    X = _survey_points(12, rng)
-    cases.append((X, cm.project_points(_survey_camera().P, X) + rng.normal(0.0, 1.0, (12, 2))))
+    X = _survey_points(12, rng)                                   # exact pixels far from the world origin
+    cases.append((X, cm.project_points(_survey_camera().P, X)))
     return cases
+
+
+def _noisy_survey():
+    """20 survey points and their pixels with 1 px noise (seeded)."""
+    rng = np.random.default_rng(3)
+    X = _survey_points(20, rng)
+    return X, cm.project_points(_survey_camera().P, X) + rng.normal(0.0, SURVEY_NOISE_PX, (20, 2))
 
 
 def _pixels_of(P, X):
@@ -354,17 +400,90 @@ def _pixel_gap(got, expected, X) -> float:
     return float(np.nanmax(np.linalg.norm(_pixels_of(got, X) - _pixels_of(expected, X), axis=1)))
 
 
-def _same_camera_matrix(got, expected) -> bool:
-    """Equal up to scale and sign, or (noisy case) imaging the survey area within 0.05 px of camlab."""
-    if same_up_to_scale(got, expected, rtol=1e-6):
-        return True
+def _rms_gap(got, expected, X) -> float:
+    """The RMS distance (px) between the pixels of X under the two matrices."""
+    return float(np.sqrt(np.mean(np.sum((_pixels_of(got, X) - _pixels_of(expected, X)) ** 2, axis=1))))
+
+
+def predicted_rms_error(P, X, sigma, X_test) -> float:
+    r"""The RMS pixel error at ``X_test`` expected of a least-squares camera fitted to ``X`` with noise ``sigma``.
+
+    First-order covariance propagation (H&Z 5.2): with J the Jacobian of the fitted pixels with
+    respect to P's 12 entries (P normalised to unit norm), the estimate's covariance is
+    :math:`\Sigma_p = \sigma^2 (J^\top J)^+` (the pseudo-inverse drops the scale direction), and a test
+    point's pixels have covariance :math:`J_t \Sigma_p J_t^\top`. Returns the square root of the mean trace.
+    """
+    p0 = np.asarray(P, dtype=float).ravel() / np.linalg.norm(P)
+
+    def jacobian(points):
+        J, h = np.zeros((2 * len(points), 12)), 1e-7
+        for k in range(12):
+            d = np.zeros(12)
+            d[k] = h
+            J[:, k] = (_pixels_of((p0 + d).reshape(3, 4), points) - _pixels_of((p0 - d).reshape(3, 4), points)).ravel() / (2 * h)
+        return J
+
+    J, J_test = jacobian(np.asarray(X, dtype=float)), jacobian(np.asarray(X_test, dtype=float))
+    cov = sigma ** 2 * np.linalg.pinv(J.T @ J, rcond=1e-10)
+    return float(np.sqrt(np.trace(J_test @ cov @ J_test.T) / len(X_test)))
+
+
+def _as_camera_matrix(got):
+    """``got`` as a finite (3, 4) float array, or None."""
     try:
         g = np.asarray(got, dtype=float)
     except (TypeError, ValueError):
-        return False
-    if g.shape != (3, 4) or not np.isfinite(g).all():
-        return False
-    return _pixel_gap(g, expected, _SURVEY_TEST_POINTS) < 0.05
+        return None
+    return g if g.shape == (3, 4) and np.isfinite(g).all() and np.any(g) else None
+
+
+def _dlt_follow_up(run) -> str | None:
+    """Accuracy against the true camera on a noisy survey, then invariance to units and origins."""
+    X, uv = _noisy_survey()
+    truth = _survey_camera().P
+    where = "on a noisy survey (20 points, 1 px noise, a 4000 x 3000 photo of a site 70 m from the world origin)"
+    P = _as_camera_matrix(run(X, uv))
+    if P is None:
+        return f"{where} your function did not return a finite, non-zero (3, 4) array."
+    allowed = SURVEY_TOLERANCE * predicted_rms_error(truth, X, SURVEY_NOISE_PX, _SURVEY_TEST_POINTS)
+    error = _rms_gap(P, truth, _SURVEY_TEST_POINTS)
+    accurate = error <= allowed
+    P_world = _as_camera_matrix(run(X @ _WORLD_IN_MM[:3, :3].T + _WORLD_IN_MM[:3, 3], uv))
+    P_pixels = _as_camera_matrix(run(X, uv @ _PIXELS_FROM_CENTRE[:2, :2].T + _PIXELS_FROM_CENTRE[:2, 2]))
+    if P_world is None or P_pixels is None:
+        return (f"{where}, given the same points in other units, your function did not return a finite (3, 4) "
+                f"array.")
+    # Both back in metres and full-size pixels: P' = S_pix P S_world^-1, so P = S_pix^-1 P' S_world.
+    moved_world = _pixel_gap(P_world @ _WORLD_IN_MM, P, _SURVEY_TEST_POINTS) > _INVARIANCE_PX
+    moved_pixels = _pixel_gap(np.linalg.inv(_PIXELS_FROM_CENTRE) @ P_pixels, P, _SURVEY_TEST_POINTS) > _INVARIANCE_PX
+    if accurate and not (moved_world or moved_pixels):
+        return None
+    findings = []
+    if not accurate:
+        findings.append(f"your P images the site {error:.3g} px (RMS) from the true camera: 1 px of noise moves a "
+                        f"least-squares camera by about {allowed / SURVEY_TOLERANCE:.2g} px (first-order error "
+                        f"propagation, H&Z 5.2), and the check allows {SURVEY_TOLERANCE:g} times that, {allowed:.2g} px")
+    if moved_world:
+        findings.append("given the same points in millimetres from the site's corner, your function finds a "
+                        "different camera")
+    if moved_pixels:
+        findings.append("given the pixels at half size from the image centre, your function finds a different camera")
+    if moved_world and moved_pixels:
+        cause = ("no normalisation: A's columns range from 1 to u X ~ 1e5, and which equations dominate depends "
+                 "on the units. Normalise both sides: T for the pixels (centroid 0, mean distance sqrt(2)), U for "
+                 "the world points (centroid 0, mean distance sqrt(3)); solve for P_hat; then P = inv(T) @ P_hat @ U")
+    elif moved_world:
+        cause = ("you normalised only the pixels (T), not the world points: normalise them too, with U "
+                 "(centroid 0, mean distance sqrt(3)), and undo both: P = inv(T) @ P_hat @ U")
+    elif moved_pixels:
+        cause = ("you normalised only the world points (U), not the pixels: normalise them too, with T "
+                 "(centroid 0, mean distance sqrt(2)), and undo both: P = inv(T) @ P_hat @ U")
+    else:
+        cause = ("the estimate is not a least-squares fit of the DLT equations: two rows of u x P X = 0 per "
+                 "point from normalised coordinates, the last row of Vt, then P = inv(T) @ P_hat @ U")
+    invariance = (" A normalised DLT finds the same camera in any units and origins: the normalised coordinates are "
+                  "the same numbers." if moved_world or moved_pixels else "")
+    return f"{where}: " + "; ".join(findings) + "." + invariance + f"\n  likely cause: {cause}."
 
 
 def _normalisers(X, uv):
@@ -372,12 +491,39 @@ def _normalisers(X, uv):
     return hartley_normalization(X), hartley_normalization(uv)
 
 
-def _dlt_unnormalised(X, uv):
-    """The plain DLT in metres and pixels (a plausible student answer)."""
+def _rms_normalisers(X, uv):
+    """U and T with H&Z's RMS distances (sqrt(3), sqrt(2)) instead of mean distances."""
+    def normaliser(p):
+        c = p.mean(axis=0)
+        s = np.sqrt(p.shape[1] / np.mean(np.sum((p - c) ** 2, axis=1)))
+        return np.block([[s * np.eye(p.shape[1]), -s * c[:, None]], [np.zeros((1, p.shape[1])), np.ones((1, 1))]])
+    return normaliser(X), normaliser(uv)
+
+
+def _in_frame(T, points):
+    return (np.column_stack([points, np.ones(len(points))]) @ T.T)[:, :-1]
+
+
+def _dlt_rows(X, uv, sign=-1.0):
+    """The 2N x 12 DLT matrix (two rows of u x P X = 0 per point); sign=+1 is the sign slip in -u, -v."""
     Xh = np.column_stack([X, np.ones(len(X))])
     zero = np.zeros_like(Xh)
-    A = np.vstack([np.hstack([Xh, zero, -uv[:, :1] * Xh]), np.hstack([zero, Xh, -uv[:, 1:] * Xh])])
-    return np.linalg.svd(A)[2][-1].reshape(3, 4)
+    return np.vstack([np.hstack([Xh, zero, sign * uv[:, :1] * Xh]), np.hstack([zero, Xh, sign * uv[:, 1:] * Xh])])
+
+
+def _dlt_unnormalised(X, uv):
+    """The plain DLT in metres and pixels (a plausible student answer)."""
+    return np.linalg.svd(_dlt_rows(X, uv))[2][-1].reshape(3, 4)
+
+
+def _dlt_half(X, uv, world=True, pixels=True, undo="both", sign=-1.0, column=False):
+    """Normalised DLT variants, right and wrong: which sides are normalised and undone, the sign in A, Vt's row or column."""
+    X, uv = np.asarray(X, dtype=float), np.asarray(uv, dtype=float)
+    U, T = _normalisers(X, uv)
+    U, T = (U if world else np.eye(4)), (T if pixels else np.eye(3))
+    Vt = np.linalg.svd(_dlt_rows(_in_frame(U, X), _in_frame(T, uv), sign))[2]
+    P_hat = (Vt[:, -1] if column else Vt[-1]).reshape(3, 4)
+    return {"both": np.linalg.inv(T) @ P_hat @ U, "T": np.linalg.inv(T) @ P_hat, "U": P_hat @ U}[undo]
 
 
 def _dlt_not_undone(X, uv):
@@ -402,26 +548,41 @@ def _dlt_diagnosis(args, got, expected) -> str:
     if same_up_to_scale(g, expected.ravel().reshape((3, 4), order="F"), rtol=1e-5):
         return ("your 12 numbers are P's entries in the wrong order (column by column): A's columns list "
                 "P row by row (p^1, p^2, p^3), so read the null vector back with p.reshape(3, 4).")
-    U, T = _normalisers(X, uv)
-    P_hat = T @ expected @ np.linalg.inv(U)
-    if same_up_to_scale(g, P_hat, rtol=1e-5):
-        return ("you returned P_hat, the camera of the normalised points: the normalisation is not undone. "
-                "P_hat maps U X to T u, so P = inv(T) @ P_hat @ U.")
-    for wrong, how in ((T @ P_hat @ np.linalg.inv(U), "T @ P_hat @ inv(U)"),
-                       (np.linalg.inv(T) @ P_hat @ np.linalg.inv(U), "inv(T) @ P_hat @ inv(U)"),
-                       (T @ P_hat @ U, "T @ P_hat @ U")):
-        if same_up_to_scale(g, wrong, rtol=1e-5):
-            return (f"you undid the normalisation the wrong way round ({how}). P_hat maps U X to T u: "
-                    f"T u ~ P_hat U X, so u ~ inv(T) P_hat U X and P = inv(T) @ P_hat @ U.")
-    if np.linalg.norm(X.mean(axis=0)) > 20:
-        return (f"these are noisy pixels (1 px) of a 4000 x 3000 photo, 40 m from a site "
-                f"70 m from the world origin, and your P images them up to {_pixel_gap(g, expected, X):.3g} px from the "
-                f"normalised DLT's. Exact data hides it, noise does not: A's columns range from 1 to "
-                f"u X ~ 1e5, so A is badly conditioned. Normalise first (Hartley: pixels to centroid 0 and "
-                f"mean distance sqrt(2) by T, world points to mean distance sqrt(3) by U), solve for P_hat, "
-                f"then undo: P = inv(T) @ P_hat @ U.")
-    return ("P does not image X at uv. Build two rows of u x P X = 0 per point, take the right singular "
-            "vector of A with the smallest singular value (the last row of Vt) and reshape it to (3, 4).")
+    for U, T in (_normalisers(X, uv), _rms_normalisers(X, uv)):   # mean or RMS distances: either is right
+        P_hat = T @ expected @ np.linalg.inv(U)
+        if same_up_to_scale(g, P_hat, rtol=1e-5):
+            return ("you returned P_hat, the camera of the normalised points: the normalisation is not undone. "
+                    "P_hat maps U X to T u, so P = inv(T) @ P_hat @ U.")
+        for wrong, how in ((T @ P_hat @ np.linalg.inv(U), "T @ P_hat @ inv(U)"),
+                           (np.linalg.inv(T) @ P_hat @ np.linalg.inv(U), "inv(T) @ P_hat @ inv(U)"),
+                           (T @ P_hat @ U, "T @ P_hat @ U")):
+            if same_up_to_scale(g, wrong, rtol=1e-5):
+                return (f"you undid the normalisation the wrong way round ({how}). P_hat maps U X to T u: "
+                        f"T u ~ P_hat U X, so u ~ inv(T) P_hat U X and P = inv(T) @ P_hat @ U.")
+        if same_up_to_scale(g, np.linalg.inv(T) @ P_hat, rtol=1e-5):
+            return ("you undid only the pixels' normalisation (inv(T) @ P_hat): P_hat still expects normalised "
+                    "world points U X. Undo both: P = inv(T) @ P_hat @ U.")
+        if same_up_to_scale(g, P_hat @ U, rtol=1e-5):
+            return ("you undid only the world points' normalisation (P_hat @ U): the result still gives "
+                    "normalised pixels T u. Undo both: P = inv(T) @ P_hat @ U.")
+    pixels = _pixels_of(g, X)
+    for reflected in (-uv, 2 * uv.mean(axis=0) - uv):   # +u, +v in A: the camera of the mirrored pixels
+        if np.allclose(pixels, reflected, atol=1e-4 * max(1.0, np.abs(uv).max())):
+            return ("your P images every point at the pixels mirrored through the origin of the (normalised) pixel "
+                    "coordinates: a sign slip in A. u x P X = 0 gives the rows (X^T, 0, -u X^T) and (0, X^T, -v X^T), "
+                    "with minus signs.")
+    for column_variant in (_dlt_half(X, uv, column=True), _dlt_unnormalised_column(X, uv)):
+        if same_up_to_scale(g, column_variant, rtol=1e-5):
+            return ("you took a column of Vt. np.linalg.svd returns Vt, V transposed: the right singular vectors "
+                    "are its rows, so the null vector is the last row, Vt[-1], not Vt[:, -1].")
+    gap = _pixel_gap(g, expected, X)
+    return (f"P does not image X at uv (exact pixels here, and your P is up to {gap:.3g} px off). Build two rows "
+            f"of u x P X = 0 per point, (X^T, 0, -u X^T) and (0, X^T, -v X^T), take the right singular vector of A "
+            f"with the smallest singular value (the last row of Vt, Vt[-1]) and reshape it row by row to (3, 4).")
+
+
+def _dlt_unnormalised_column(X, uv):
+    return np.linalg.svd(_dlt_rows(np.asarray(X, dtype=float), np.asarray(uv, dtype=float)))[2][:, -1].reshape(3, 4)
 
 
 def estimate_projection_matrix(X, uv):
@@ -451,12 +612,19 @@ register_exercise(Exercise(
     lesson="04",
     reference=cm.estimate_projection_matrix,
     cases=_dlt_cases,
-    compare=_same_camera_matrix,
+    compare=lambda got, expected: same_up_to_scale(got, expected, rtol=1e-6),   # exact pixels: P up to scale
     diagnose=_dlt_diagnosis,
+    follow_up=_dlt_follow_up,
     wrong_variants=(
         (_dlt_not_undone, "not undone"),
         (_dlt_undone_wrong_order, "wrong way round"),
-        (lambda X, uv: _dlt_unnormalised(np.asarray(X), np.asarray(uv)), "badly conditioned"),
+        (lambda X, uv: _dlt_unnormalised(np.asarray(X), np.asarray(uv)), "no normalisation"),
+        (lambda X, uv: _dlt_half(X, uv, world=False), "normalised only the pixels"),
+        (lambda X, uv: _dlt_half(X, uv, pixels=False), "normalised only the world points"),
+        (lambda X, uv: _dlt_half(X, uv, undo="T"), "undid only the pixels'"),
+        (lambda X, uv: _dlt_half(X, uv, undo="U"), "undid only the world points'"),
+        (lambda X, uv: _dlt_half(X, uv, sign=1.0), "sign slip in A"),
+        (lambda X, uv: _dlt_half(X, uv, column=True), "Vt[-1], not Vt[:, -1]"),
         (lambda X, uv: cm.estimate_projection_matrix(X, uv).T, "transposed"),
         (lambda X, uv: cm.estimate_projection_matrix(X, uv).ravel().reshape((3, 4), order="F"), "wrong order"),
     ),

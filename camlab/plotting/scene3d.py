@@ -40,7 +40,7 @@ from . import palette
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
 
 __all__ = ["AXIS_COLOURS", "CameraArtist", "SceneView", "axes3d", "clip_segments", "draw_points", "draw_segments",
-           "draw_world_axes", "image_axes", "polyline_data", "refresh_projection", "set_equal_aspect",
+           "draw_world_axes", "fit_view", "image_axes", "polyline_data", "refresh_projection", "set_equal_aspect",
            "update_segments"]
 
 
@@ -85,6 +85,52 @@ def set_equal_aspect(ax, points: ArrayLike | Sequence[ArrayLike], margin: float 
     ax.set_ylim(centre[1] - half, centre[1] + half)
     ax.set_zlim(centre[2] - half, centre[2] + half)
     ax.set_box_aspect((1, 1, 1), zoom=zoom)
+
+
+def fit_view(ax, points: ArrayLike | Sequence[ArrayLike], fill: float = 0.92, max_zoom: float = 3.0) -> None:
+    """Equal-aspect limits around ``points``, centred and zoomed so that their picture fills the axes.
+
+    :func:`set_equal_aspect` fits a cube around the points, but what shows is the cube's *projection*:
+    a flat scene seen from the side fills a third of it. Here the cube is then shifted across the
+    line of sight until the points' projection is centred, and zoomed until its larger side spans
+    ``fill`` of the (square) 3-D axes. Call after ``view_init``; the points must all stay in view.
+    """
+    from mpl_toolkits.mplot3d import proj3d
+
+    if isinstance(points, (list, tuple)):
+        pts = np.vstack([np.reshape(np.asarray(p, dtype=float), (-1, 3)) for p in points])
+    else:
+        pts = np.reshape(np.asarray(points, dtype=float), (-1, 3))
+    pts = pts[np.isfinite(pts).all(axis=1)]
+    set_equal_aspect(ax, pts, zoom=1.0)
+    lim = np.array([ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d()])
+    half = (lim[:, 1] - lim[:, 0]) / 2.0
+    view = ax.viewLim
+    target = np.array([(view.x0 + view.x1) / 2.0, (view.y0 + view.y1) / 2.0])
+
+    def picture(centre, zoom):
+        ax.set_xlim3d(centre[0] - half[0], centre[0] + half[0])
+        ax.set_ylim3d(centre[1] - half[1], centre[1] + half[1])
+        ax.set_zlim3d(centre[2] - half[2], centre[2] + half[2])
+        ax.set_box_aspect((1, 1, 1), zoom=zoom)
+        xs, ys, _ = proj3d.proj_transform(*pts.T, ax.get_proj())
+        return np.array([xs.min(), ys.min()]), np.array([xs.max(), ys.max()])
+
+    az, el = np.radians(ax.azim), np.radians(ax.elev)
+    across = np.array([[-np.sin(az), np.cos(az), 0.0],                                  # screen right, up
+                       [-np.cos(az) * np.sin(el), -np.sin(az) * np.sin(el), np.cos(el)]])
+    centre, zoom = lim.mean(axis=1), 1.0
+    for _ in range(3):
+        lo, hi = picture(centre, zoom)
+        offset = (lo + hi) / 2.0 - target
+        step = 1e-3 * half.max()
+        jac = np.column_stack([(sum(picture(centre + step * d, zoom)) / 2.0 - (lo + hi) / 2.0) / step for d in across])
+        centre = centre - across.T @ np.linalg.lstsq(jac, offset, rcond=None)[0]
+        lo, hi = picture(centre, zoom)
+        span = float(max(hi - lo))
+        zoom = float(np.clip(zoom * fill * (view.x1 - view.x0) / max(span, 1e-12), 0.2, max_zoom))
+    picture(centre, zoom)
+    refresh_projection(ax)
 
 
 def refresh_projection(ax) -> None:
@@ -161,7 +207,7 @@ def draw_world_axes(ax, length: float = 1.0, origin: ArrayLike = (0.0, 0.0, 0.0)
         (ln,) = ax.plot(*np.c_[o, e], color=c, lw=2.0)
         out.append(ln)
         out.append(ax.text(*(o + (e - o) * 1.12), name, color=c, fontsize=9, fontweight="bold",
-                           ha="center", va="center"))
+                           ha="center", va="center", path_effects=palette.halo()))   # readable over the scene
     return out
 
 
@@ -252,15 +298,18 @@ class CameraArtist:
         Pixel segments (e.g. the projected wireframe) drawn on the image plane.
     show_axes : bool
         Draw the camera's x (right), y (down), z (forward) axes, labelled.
+    axis_length : float, optional
+        Length of those axes in metres (default: 0.6 ``size``).
     """
 
     def __init__(self, ax, camera: Camera, size: float = 0.5, color: str = palette.PURPLE, label: str = "",
                  image: np.ndarray | None = None, image_lines: ArrayLike | None = None,
                  show_axes: bool = True, image_grid: tuple[int, int] = (24, 18), line_color: str = "0.15",
-                 label_offset: tuple[float, float] = (-0.15, -0.25)):
+                 label_offset: tuple[float, float] = (-0.15, -0.25), axis_length: float | None = None):
         from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
         self.ax, self.size, self.image_grid = ax, float(size), image_grid
+        self.axis_length = axis_length
         self.camera, self.label_offset = camera, label_offset
         (self.frustum,) = ax.plot([], [], [], color=color, lw=1.2, path_effects=palette.halo(1.2))
         self.plane = Poly3DCollection([np.zeros((4, 3))], facecolor=color, alpha=0.12, edgecolor=color, lw=1.0)
@@ -271,10 +320,10 @@ class CameraArtist:
                 (ln,) = ax.plot([], [], [], color=c, lw=2.0)
                 self.axes_lines.append(ln)
                 self.axes_text.append(ax.text(0, 0, 0, name, color=c, fontsize=9, fontweight="bold",
-                                              ha="center", va="center"))
+                                              ha="center", va="center", path_effects=palette.halo()))
         (self.centre_marker,) = ax.plot([], [], [], "o", color=color, ms=4)
         self.label = ax.text(0, 0, 0, label, color=color, fontsize=9) if label else None
-        (self.lines,) = ax.plot([], [], [], color=line_color, lw=0.9, gid="thumbnail")  # the image panel, in small
+        (self.lines,) = ax.plot([], [], [], color=line_color, lw=1.3, gid="thumbnail")  # the image panel, in small
         self.mesh, self._pixels = None, None
         if image is not None:
             self.mesh = Poly3DCollection([np.zeros((4, 3))], lw=0.0)
@@ -293,10 +342,22 @@ class CameraArtist:
         uv = np.array([[-0.5, -0.5], [w - 0.5, -0.5], [w - 0.5, h - 0.5], [-0.5, h - 0.5]])
         return _plane_points(cam, uv, self.size)
 
+    def _axis_tips(self, camera: Camera) -> np.ndarray:
+        """Where the camera's axis labels sit (3, 3): 1.2 axis lengths from the centre along x, y, z."""
+        L = self.axis_length if self.axis_length is not None else self.size * 0.6
+        return camera.centre + 1.2 * L * camera.R
+
     def extent_points(self, camera: Camera | None = None) -> np.ndarray:
-        """Points to include when setting equal-aspect limits: centre and plane corners."""
+        """Points to include when setting equal-aspect limits: centre, plane corners and axis labels."""
         cam = camera or self.camera
-        return np.vstack([cam.centre, self.corners(cam)])
+        tips = [self._axis_tips(cam)] if self.axes_text else []
+        if self.label is not None:
+            tips.append(self._label_position(cam))
+        return np.vstack([cam.centre, self.corners(cam), *tips])
+
+    def _label_position(self, camera: Camera) -> np.ndarray:
+        right, down = self.label_offset   # in image-plane depths, at least 0.5 m: a tiny frustum's label clears it
+        return camera.centre + max(self.size, 0.5) * (right * camera.R[0] + down * camera.R[1])
 
     def update(self, camera: Camera, image: np.ndarray | None = None, image_lines: ArrayLike | None = None) -> None:
         """Move every artist to ``camera``; redraw the image content if given."""
@@ -311,15 +372,14 @@ class CameraArtist:
         self.plane.set_verts([corners])
         if getattr(self.ax, "M", None) is not None:  # blitting draws polygons from their last projection
             self.plane.do_3d_projection()
-        L = self.size * 0.6
+        tips = self._axis_tips(camera)
         for i, (ln, tx) in enumerate(zip(self.axes_lines, self.axes_text)):
-            e = C + L * camera.R[i]  # camera axis i in world coordinates is row i of R
+            e = C + (tips[i] - C) / 1.2  # camera axis i in world coordinates is row i of R
             ln.set_data_3d([C[0], e[0]], [C[1], e[1]], [C[2], e[2]])
-            tx.set_position_3d(C + 1.2 * L * camera.R[i])
+            tx.set_position_3d(tips[i])
         self.centre_marker.set_data_3d([C[0]], [C[1]], [C[2]])
         if self.label is not None:
-            right, down = self.label_offset
-            self.label.set_position_3d(C + self.size * (right * camera.R[0] + down * camera.R[1]))
+            self.label.set_position_3d(self._label_position(camera))
         if image_lines is not None:  # only what the camera sees is drawn on its image plane
             self._pixels = clip_segments(image_lines, camera.image_size)
         if self._pixels is not None:  # without new pixels, the old ones move with the camera
@@ -361,7 +421,9 @@ class SceneView:
     ``SceneView(fig, camera, segments)`` adds two axes to ``fig`` (3-D on the left, the
     image on the right), draws the world wireframe, world axes and the camera (with the
     projected wireframe on its image plane), and ``update(camera)`` moves everything.
-    The 3-D limits are fixed at construction from ``extent`` (world points to keep in view).
+    The 3-D limits fit the scene, the camera and ``extent`` (more world points to keep in view)
+    with :func:`fit_view`, at construction and after every update, so nothing leaves the view;
+    :meth:`fit` refits them to include more points (a second camera).
     ``thumbnail``: the segments drawn small on the image plane (default: all); pick the main
     object, as a whole scene is a tangle at that size.
     """
@@ -369,12 +431,13 @@ class SceneView:
     def __init__(self, fig, camera: Camera, segments: ArrayLike, extent: ArrayLike | None = None,
                  axes: tuple | None = None, plane_size: float = 0.8, world_axes: float = 0.8,
                  image_title: str = "camera image", elev: float = 24.0, azim: float = 15.0,
-                 axis_off: bool = True, thumbnail: ArrayLike | None = None):
+                 axis_off: bool = True, thumbnail: ArrayLike | None = None, camera_axes: bool = True,
+                 camera_axis_length: float | None = None, width_ratios: tuple[float, float] = (1.15, 1.0)):
         self.segments = np.asarray(segments, dtype=float)
         # what the small picture on the image plane shows: a whole scene is a tangle at that size
         self.thumbnail = self.segments if thumbnail is None else np.asarray(thumbnail, dtype=float)
         if axes is None:
-            gs = fig.add_gridspec(1, 2, width_ratios=(1.15, 1.0))
+            gs = fig.add_gridspec(1, 2, width_ratios=width_ratios)
             ax3 = axes3d(fig, gs[0, 0], elev=elev, azim=azim)
             ax2 = fig.add_subplot(gs[0, 1])
         else:
@@ -382,14 +445,16 @@ class SceneView:
         self.ax3d, self.ax_image = ax3, ax2
         if axis_off:  # no panes, ticks or tick labels: the world axes carry the frame; 5x faster
             ax3.set_axis_off()
-        self.world_axes = draw_world_axes(ax3, world_axes) if world_axes else []
+        # Created in the order artists() lists them, so a full draw and a live frame stack them alike
+        # (the world axes over the ground grid in both).
         self.world = draw_segments(ax3, self.segments)
+        self.world_axes = draw_world_axes(ax3, world_axes) if world_axes else []
         pix = project_segments(camera, self.segments)
         self.camera_artist = CameraArtist(ax3, camera, size=plane_size, image_lines=self._thumbnail_pixels(camera, pix),
-                                          label="C")
+                                          label="C", show_axes=camera_axes, axis_length=camera_axis_length)
         self.extent = None if extent is None else np.reshape(np.asarray(extent, dtype=float), (-1, 3))
-        self.zoom = 1.25 if axis_off else 1.0
-        self._fit()
+        self.axis_off = axis_off
+        self.fit()
         image_axes(ax2, camera.image_size, image_title, labels=not axis_off)
         d = polyline_data(pix)
         (self.image_lines,) = ax2.plot(d[:, 0], d[:, 1], color="k", lw=1.2)
@@ -398,12 +463,17 @@ class SceneView:
     def _thumbnail_pixels(self, camera: Camera, pix: np.ndarray) -> np.ndarray:
         return pix if self.thumbnail is self.segments else project_segments(camera, self.thumbnail)
 
-    def _fit(self, camera: Camera | None = None) -> None:
+    def fit(self, camera: Camera | None = None, extra: ArrayLike | None = None) -> None:
+        """Refit the 3-D limits to the scene, the camera (default: the current one), ``extent`` and ``extra``."""
         pts = [self.segments.reshape(-1, 3), self.camera_artist.extent_points(camera)]
-        if self.extent is not None:
-            pts.append(self.extent)
-        set_equal_aspect(self.ax3d, pts, zoom=self.zoom)
-        refresh_projection(self.ax3d)
+        pts += [np.reshape(np.asarray(p, dtype=float), (-1, 3)) for p in (self.extent, extra) if p is not None]
+        if self.world_axes:
+            pts.append(1.15 * np.eye(3) * max(np.linalg.norm(self.world_axes[0].get_data_3d(), axis=0)))
+        if self.axis_off:
+            fit_view(self.ax3d, pts, fill=0.85)   # a margin for the labels, which extend beyond their anchors
+        else:  # with panes and ticks, the labels need the margin a fitted view would take
+            set_equal_aspect(self.ax3d, pts)
+            refresh_projection(self.ax3d)
 
     def artists(self) -> list:
         """The artists that move: everything in the 3-D axes (its projection follows the
@@ -415,7 +485,7 @@ class SceneView:
 
         The 3-D limits follow the camera so it never leaves the view."""
         pix = project_segments(camera, self.segments)
-        self._fit(camera)
+        self.fit(camera)
         self.camera_artist.update(camera, image_lines=self._thumbnail_pixels(camera, pix))
         update_segments(self.image_lines, pix)
         w, h = camera.image_size
@@ -423,4 +493,3 @@ class SceneView:
             image_axes(self.ax_image, (w, h), labels=False)
         self.camera = camera
         return pix
-

@@ -16,7 +16,7 @@ data generators (:mod:`camlab.data`) build the same scenes:
   :func:`house_wireframe`, :func:`ground_grid`, :func:`plane_outlines`;
 - **the lessons' scenes and synthetic data**, built here once for the lesson and its demos:
   :func:`box_before_wall` (01), :func:`depth_of_field_scene` (02), :func:`photo_and_page` (03),
-  :func:`house_scene`, :func:`resection_set` (04), :func:`box_and_rails`, :func:`rail_track`,
+  :func:`house_scene`, :func:`resection_set`, :func:`resection_trial` (04), :func:`box_and_rails`, :func:`rail_track`,
   :func:`sleeper_gaps` (05), :func:`ground_plane_view` (06), :func:`outlier_matches` (07),
   :func:`stereo_pair`, :func:`forward_pair` (11).
 
@@ -73,7 +73,9 @@ from .lessons import (
     photo_and_page,
     rail_track,
     resection_set,
+    resection_trial,
     ResectionSet,
+    ResectionTrial,
     sleeper_gaps,
     stereo_pair,
     WALL_DISTANCE,
@@ -85,6 +87,6 @@ __all__ = [
     "ground_plane_view", "GroundView", "house_picture", "house_scene", "house_wireframe", "letter_chart", "look_at_plane",
     "noise_texture", "outlier_matches", "OutlierMatches", "page_texture", "painting_texture", "photo_and_page",
     "photo_plane", "photograph_plane", "Plane", "plane_outlines", "PlanePhoto", "portrait", "rail_track",
-    "resection_set", "ResectionSet", "sample_photo", "sleeper_gaps", "stereo_pair", "text_page", "textured_plane",
+    "resection_set", "ResectionSet", "resection_trial", "ResectionTrial", "sample_photo", "sleeper_gaps", "stereo_pair", "text_page", "textured_plane",
     "wall_texture", "WALL_DISTANCE",
 ]

@@ -7,7 +7,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validate import CamlabInputError, check_integer, check_number, check_positive, check_size
-from ..camera import Camera, look_at_rotation, orbit_eye, project_points, rotation_from_axis_angle, rotation_from_euler
+from ..camera import (Camera, estimate_projection_matrix, look_at_rotation, orbit_eye, project_points,
+                      reprojection_errors, rotation_from_axis_angle, rotation_from_euler)
 from ..projective import map_points
 from .planes import Plane, box, checkerboard, photo_plane, text_page, textured_plane
 from .textures import portrait
@@ -197,6 +198,41 @@ def resection_set(n_points: int, noise_px: float, seed: int | None = 0) -> Resec
     X[n1:] = np.column_stack([a[n1:, 0], np.full(n_points - n1, -1.0), 1.0 + a[n1:, 1]])
     uv = cam.project(X) + rng.normal(0.0, sigma, (n_points, 2))
     return ResectionSet(cam, X, uv)
+
+class ResectionTrial(NamedTuple):
+    """One run of lesson 04's resectioning demo: the data, one pair possibly moved, and the fitted P.
+
+    Attributes
+    ----------
+    camera : Camera
+        The true camera.
+    points_world, points_image : (N, 3), (N, 2) ndarray
+        The correspondences as fitted (the moved pixels included).
+    P : (3, 4) ndarray
+        The estimated camera matrix.
+    errors : (N,) ndarray
+        Each pair's reprojection error under P, pixels (NaN behind the estimated camera).
+    """
+
+    camera: Camera
+    points_world: np.ndarray
+    points_image: np.ndarray
+    P: np.ndarray
+    errors: np.ndarray
+
+
+def resection_trial(n_points: int, noise_px: float, pair: int = 0, shift: ArrayLike = (0.0, 0.0),
+                    refine: bool = False, moved: dict | None = None) -> ResectionTrial:
+    """:func:`resection_set`, with pair ``pair``'s pixel shifted by ``shift`` (u, v pixels) and any pixels
+    in ``moved`` (index -> (u, v)) put there, then P estimated by the normalised DLT (``refine``: then
+    Levenberg-Marquardt on the reprojection error). What the resectioning demo shows at its settings."""
+    cam, X, uv = resection_set(n_points, noise_px)
+    uv[int(pair)] += np.asarray(shift, dtype=float)
+    for i, where in (moved or {}).items():
+        uv[i] = where
+    P = estimate_projection_matrix(X, uv, refine=refine)
+    return ResectionTrial(cam, X, uv, P, reprojection_errors(P, X, uv))
+
 
 class GroundView(NamedTuple):
     """A ground grid seen by a tilted camera (lesson 06), with its exact vanishing geometry.

@@ -19,56 +19,91 @@ from .controls import int_slider
 from ..plotting import palette
 
 TARGET = np.array([0.0, 0.0, 0.7])
-# The explorer's 3-D viewer orbits with the camera, this many degrees ahead of it: at a fixed viewer
-# angle, one orbit position looked straight down the camera's axis and piled everything up.
-VIEWER_OFFSET = 40.0
+# The explorer's 3-D viewer orbits with the camera, this many degrees behind it (clockwise seen from
+# above): at a fixed viewer angle, one orbit position looked straight down the camera's axis and piled
+# everything up; from this side the picture on the image plane stays clear of the house behind it.
+VIEWER_OFFSET = -35.0
+FAR_M = 6.0  # an estimated camera farther than this from the true one is shown by an arrow, not fitted into view
+EYE_GL = np.array([2.6, -2.6, 1.0])  # opencv_vs_opengl's camera, far enough from the house that "z forward" clears it
 
 
 def _fmt(v: np.ndarray) -> str:
-    return "(" + ", ".join(f"{x:+.2f}" for x in v) + ")"
+    return "(" + ", ".join(f"{x + 0.0:+.2f}" for x in np.round(v, 2)) + ")"   # + 0.0: no "-0.00"
 
 
-@register(lesson="04", sweep={"fx": [400, 1200], "fy": [500, 1100], "cx": [199.5, 419.5], "cy": [159.5, 319.5],
-                              "skew": [-150, 150], "azimuth": [-140, -20], "elevation": [5, 60],
-                              "distance": [3.5, 8.0]})
+def _matrix(name: str, A: np.ndarray, digits: int) -> str:
+    """A small matrix as aligned text rows, for a readout."""
+    rows = [" ".join(f"{x + 0.0:9.{digits}f}" for x in np.round(row, digits)) for row in A]
+    pad = " " * (len(name) + 3)
+    return "\n".join((f"{name} = [" if i == 0 else pad + "[") + r + "]" for i, r in enumerate(rows))
+
+
+def explorer_camera(fx=800.0, fy=800.0, cx=319.5, cy=239.5, skew=0.0, azimuth=-60.0, elevation=25.0, distance=5.0,
+                    pan=0.0, roll=0.0, slide=0.0) -> cm.Camera:
+    """The camera explorer's camera: K from the intrinsics, then a pose in three steps.
+
+    1. ``look_at`` from the orbit position (``azimuth``, ``elevation`` in degrees, ``distance`` in
+       metres about the house's centre): the camera's z axis points from the eye to the target,
+       x = z x up (up = world Z), y = z x x (lesson 04, section 3);
+    2. turn in place (the centre C stays): ``pan`` degrees about the camera's own y axis, then
+       ``roll`` degrees about its own z axis, R <- R_z(roll) R_y(pan) R;
+    3. ``slide`` metres along the camera's own x axis with R fixed: C <- C + slide r1 (r1 = R's first row).
+    Finally t = -R C.
+    """
+    K = cm.intrinsic_matrix(fx, fy, cx, cy, skew)
+    base = cm.Camera.look_at(cm.orbit_eye(*np.radians([azimuth, elevation]), distance, TARGET), TARGET, K=K)
+    R = cm.rotation_z(np.radians(roll)) @ cm.rotation_y(np.radians(pan)) @ base.R   # about the camera's own axes
+    C = base.centre + slide * R[0]
+    return cm.Camera(K, R, -R @ C)
+
+
+@register(lesson="04", sweep={"fx": [200, 1600], "fy": [500, 1100], "cx": [-0.5, 639.5], "cy": [159.5, 319.5],
+                              "skew": [-300, 300], "azimuth": [-180, 100], "elevation": [-10, 80],
+                              "distance": [2.5, 9.0], "pan": [-25, 25], "roll": [-45, 45], "slide": [-2.0, 2.0]})
 def camera_explorer():
     """Intrinsics and pose sliders beside a live 3-D frustum view and the camera's image.
 
-    The text under the image shows t (the world origin in camera coordinates) next to
-    the centre C = -R^T t (the camera in world coordinates): two different vectors.
+    The pose moves three ways: orbit (the camera looks at the house from anywhere on a sphere),
+    turn in place (pan, roll: R changes, C stays) and slide (C moves along the camera's x axis,
+    R stays). The text beside the figure shows K, R, t, the centre C = -R^T t and P = K [R | t].
     """
     view = FigureView(figsize=(9, 4.2))
     scene = scenes.house_scene()
-    cam0 = cm.Camera.look_at(cm.orbit_eye(np.radians(-60), np.radians(25), 5.0, TARGET), TARGET)
+    cam0 = explorer_camera()
     # Seen from behind the camera's shoulder, with only the house on the image plane: the small picture
     # stays readable (the whole grid, seen edge-on, was a tangle).
     sv = scene3d.SceneView(view.fig, cam0, scene, plane_size=2.0, thumbnail=scenes.house_wireframe(),
-                           azim=-60 + VIEWER_OFFSET, elev=16)
+                           azim=-60 + VIEWER_OFFSET, elev=18, camera_axis_length=0.8, width_ratios=(1.3, 1.0))
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
-    (pp,) = sv.ax_image.plot([], [], "+", color="tab:purple", ms=10, mew=2)
+    (pp,) = sv.ax_image.plot([], [], "+", color=palette.PURPLE, ms=10, mew=2)
     view.animate(*sv.artists(), pp)
     controls = {
-        "fx": slider(800, 200, 1600, 10, "fx (px)"),
-        "fy": slider(800, 200, 1600, 10, "fy (px)"),
+        "fx": slider(800, 200, 1600, 10, "fx (px)", readout_format=".0f"),
+        "fy": slider(800, 200, 1600, 10, "fy (px)", readout_format=".0f"),
         # The image centre is ((W - 1) / 2, (H - 1) / 2) with pixel centres at integers (docs/conventions.md).
-        "cx": slider(319.5, -0.5, 639.5, 5, "cx (px)"),
-        "cy": slider(239.5, -0.5, 479.5, 5, "cy (px)"),
-        "skew": slider(0, -300, 300, 10, "skew s (px)"),
-        "azimuth": slider(-60, -180, 180, 2, "azimuth (deg)"),
-        "elevation": slider(25, -10, 80, 1, "elevation (deg)"),
-        "distance": slider(5.0, 2.5, 9.0, 0.1, "distance (m)"),
+        "cx": slider(319.5, -0.5, 639.5, 5, "cx (px)", readout_format=".1f"),
+        "cy": slider(239.5, -0.5, 479.5, 5, "cy (px)", readout_format=".1f"),
+        "skew": slider(0, -300, 300, 10, "skew s (px)", readout_format=".0f"),
+        "azimuth": slider(-60, -180, 180, 2, "orbit: azimuth (deg)", readout_format=".0f"),
+        "elevation": slider(25, -10, 80, 1, "orbit: elevation (deg)", readout_format=".0f"),
+        "distance": slider(5.0, 2.5, 9.0, 0.1, "orbit: distance (m)", readout_format=".1f"),
+        "pan": slider(0, -30, 30, 1, "turn in place: pan (deg)", readout_format=".0f"),
+        "roll": slider(0, -90, 90, 1, "turn in place: roll (deg)", readout_format=".0f"),
+        "slide": slider(0.0, -2.0, 2.0, 0.1, "slide along camera x (m)", readout_format=".1f"),
     }
 
     def update(v, state):
-        K = cm.intrinsic_matrix(v["fx"], v["fy"], v["cx"], v["cy"], v["skew"])
-        cam = cm.Camera.look_at(cm.orbit_eye(*np.radians([v["azimuth"], v["elevation"]]), v["distance"], TARGET), TARGET,
-                                K=K)
-        sv.ax3d.view_init(elev=16, azim=v["azimuth"] + VIEWER_OFFSET)   # sv.update refreshes the projection
+        cam = explorer_camera(**v)
+        # The image plane stays in front of the house (it would cut through it at close range).
+        sv.camera_artist.size = min(2.0, 0.4 * v["distance"])
+        sv.ax3d.view_init(elev=18, azim=v["azimuth"] + VIEWER_OFFSET)   # sv.update refreshes the projection
         sv.update(cam)
         pp.set_data([cam.principal_point[0]], [cam.principal_point[1]])
-        info.value = (f"<pre>t = {_fmt(cam.t)} m  (world origin in camera frame)\n"
-                      f"C = -R^T t = {_fmt(cam.centre)} m  (camera in world)</pre>")
-        state.update(camera=cam, K=K, R=cam.R, t=cam.t, centre=cam.centre, P=cam.P)
+        info.value = ("<pre>" + _matrix("K", cam.K, 1) + "\n" + _matrix("R", cam.R, 3) + "\n"
+                      f"t = {_fmt(cam.t)} m  (world origin in camera frame)\n"
+                      f"C = -R^T t = {_fmt(cam.centre)} m  (camera in world)\n"
+                      + _matrix("P", cam.P / cam.P[2, 3], 2) + "\n(P scaled so that P[2, 3] = 1)</pre>")
+        state.update(camera=cam, K=cam.K, R=cam.R, t=cam.t, centre=cam.centre, P=cam.P)
 
     return build_demo("camera_explorer", controls, view, update,
                       title="Drag the intrinsics and the pose: P = K [R | t]", extra=[info])
@@ -82,32 +117,58 @@ def resectioning():
     Click in the image to move the nearest measured pixel there (a mismatched
     correspondence); without a mouse, the ``outlier`` and ``outlier_v`` sliders shift the
     pixel of correspondence ``pair`` along u and v. Changing N or the noise starts from
-    fresh measurements.
+    fresh measurements. The 3-D view fits both cameras; an estimate more than FAR_M metres
+    from the truth is shown by an arrow towards it, labelled with its distance.
     """
-    view = FigureView(figsize=(9, 4.2))
+    from matplotlib.lines import Line2D
+
+    view = FigureView(figsize=(9, 4.6))
     cam, X, uv = scenes.resection_set(12, 0.5)
     frame = np.concatenate([scenes.box_wireframe((0.0, 0.0, 1.0), (2.0, 2.0, 2.0)), scenes.ground_grid(2.0, 1.0)])
-    sv = scene3d.SceneView(view.fig, cam, frame, plane_size=1.0, image_title="measured (o) vs reprojected (+)")
+    # No world or camera axes here: red, green and blue would mean axes in one place and data in another.
+    sv = scene3d.SceneView(view.fig, cam, frame, plane_size=1.0, image_title="measured (o) vs reprojected (+)",
+                           world_axes=0.0, camera_axes=False, azim=15, elev=24)
+    # The labels hang off each centre on screen, "true" above-left and "est." below-left (the frustums
+    # point right, towards the box), so they clear each other and their own lines at any zoom.
+    sv.camera_artist.label.set(text="true ", ha="right", va="bottom")
+    sv.camera_artist.label_offset = (0.0, 0.0)
     sv.camera_artist.lines.set_alpha(0.4)
-    # "est." below-right of its centre, the true camera's "C" above-left: the two sit close together
-    est_art = scene3d.CameraArtist(sv.ax3d, cam, size=1.0, color=palette.ORANGE, show_axes=False, label="est.",
-                                   label_offset=(0.1, 0.35))
-    pts3d = scene3d.draw_points(sv.ax3d, X, color="tab:blue")
+    est_art = scene3d.CameraArtist(sv.ax3d, cam, size=1.0, color=palette.ORANGE, show_axes=False, label="est. ",
+                                   label_offset=(0.0, 0.0))
+    est_art.label.set(ha="right", va="top")
+    pts3d = scene3d.draw_points(sv.ax3d, X, color="k", ms=3)
     # the moved correspondence(s), ringed in both panels: after the fit every residual grows, so
-    # without a mark the mismatch cannot be found
-    ring = dict(marker="o", ms=13, mfc="none", mec=palette.RED, mew=2.0, ls="none")
-    (moved_img,) = sv.ax_image.plot([], [], **ring)
+    # without a mark the mismatch is hard to find
+    ring = dict(marker="o", ms=14, mfc="none", mec="k", mew=2.0, ls="none")
     (moved_3d,) = sv.ax3d.plot([], [], [], **ring)
-    (meas,) = sv.ax_image.plot([], [], "o", mfc="none", color="tab:blue", ms=6)
+    (pointer,) = sv.ax3d.plot([], [], [], color=palette.ORANGE, lw=2.0, ls=(0, (4, 2)))   # towards a far estimate
+    pointer_text = sv.ax3d.text(0, 0, 0, "", color=palette.ORANGE, fontsize=9, fontweight="bold", ha="center",
+                                va="bottom")
+    (moved_img,) = sv.ax_image.plot([], [], **ring)
+    (meas,) = sv.ax_image.plot([], [], "o", mfc="none", color="k", ms=6)
     (reproj,) = sv.ax_image.plot([], [], "+", color=palette.ORANGE, ms=8, mew=1.5)
     (est_lines,) = sv.ax_image.plot([], [], color=palette.ORANGE, lw=1.0, ls="--")
+    sv.image_lines.set_color("0.35")
+    # What the line styles mean, on the figure: true camera solid (purple in 3-D, its view black-grey in
+    # the image), the estimate dashed orange; drawn once, outside the axes, so it covers no data.
+    keys = [Line2D([], [], color=palette.PURPLE, lw=1.2), Line2D([], [], color=palette.ORANGE, lw=1.2),
+            Line2D([], [], color="0.35", lw=1.2), Line2D([], [], color=palette.ORANGE, lw=1.0, ls="--"),
+            Line2D([], [], marker="o", mfc="none", color="k", ls="none"),
+            Line2D([], [], marker="+", color=palette.ORANGE, mew=1.5, ls="none"),
+            Line2D([], [], marker="o", ms=10, mfc="none", mec="k", mew=2.0, ls="none")]
+    view.fig.legend(keys, ["true camera", "estimated camera", "scene seen by the true camera",
+                           "seen by the estimate", "measured pixel", "reprojected by the estimate",
+                           "moved pair"], loc="outside lower center", ncols=4, fontsize=8, frameon=False)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
-    view.animate(*est_art.artists(), pts3d, meas, reproj, est_lines, moved_img, moved_3d)
+    # Registered in the order they were created (the true camera's view first), so a live frame stacks
+    # them as a full draw does; the 3-D limits follow the estimate, so everything in the 3-D axes moves.
+    view.animate(*sv.artists(), *est_art.artists(), pts3d, moved_3d, pointer, pointer_text, moved_img, meas, reproj,
+                 est_lines)
     controls = {
         "noise": slider(0.5, 0.0, 5.0, 0.1, "pixel noise sigma (px)"),
         "n_points": int_slider(12, 6, 60, "correspondences N"),
-        "outlier": slider(0.0, -100.0, 100.0, 2.0, "shift pair k along u (px)"),
-        "outlier_v": slider(0.0, -100.0, 100.0, 2.0, "shift pair k along v (px)"),
+        "outlier": slider(0.0, -100.0, 100.0, 2.0, "shift pair k along u (px)", readout_format=".0f"),
+        "outlier_v": slider(0.0, -100.0, 100.0, 2.0, "shift pair k along v (px)", readout_format=".0f"),
         "pair": int_slider(0, 0, 5, "pair k (0-5) to shift"),
         "refine": W.Checkbox(value=False, description="refine (minimise reprojection error)"),
     }
@@ -119,22 +180,34 @@ def resectioning():
         if last_data.get("key") != key:
             clicked.clear()
             last_data["key"] = key
-        cam_true, Xw, uvn = scenes.resection_set(*key)
-        uvn[v["pair"]] += float(v["outlier"]), float(v["outlier_v"])
-        for i, uv_click in clicked.items():
-            uvn[i] = uv_click
+        trial = scenes.resection_trial(*key, pair=int(v["pair"]), shift=(float(v["outlier"]), float(v["outlier_v"])),
+                                       refine=bool(v["refine"]), moved=clicked)
+        cam_true, Xw, uvn, P = trial.camera, trial.points_world, trial.points_image, trial.P
         moved = sorted(set(clicked) | ({int(v["pair"])} if v["outlier"] or v["outlier_v"] else set()))
         moved_img.set_data(uvn[moved, 0], uvn[moved, 1])
         moved_3d.set_data_3d(Xw[moved, 0], Xw[moved, 1], Xw[moved, 2])
-        P = cm.estimate_projection_matrix(Xw, uvn, refine=bool(v["refine"]))
         K, R, t, C = cm.decompose_projection_matrix(P)
         est = cm.Camera(K, R, t)
-        err = cm.reprojection_errors(P, Xw, uvn)
+        err = trial.errors
         # A wild fit (N = 6 with an outlier) can have a focal length of a few tens of pixels; its frustum at
         # the usual depth would be metres wide and cover the view, so shorten it to at most 1.2 m across.
         w, h = est.image_size
         est_art.size = min(1.0, 0.6 / max(w / 2 / abs(K[0, 0]), h / 2 / abs(K[1, 1])))
         est_art.update(est)
+        centre_err = float(np.linalg.norm(C - cam_true.centre))
+        far = centre_err > FAR_M
+        d = (C - cam_true.centre) / max(centre_err, 1e-12)
+        tip = cam_true.centre + 1.5 * d     # far: a 1.5 m pointer from the true camera towards the estimate
+        sv.fit(extra=np.vstack([tip, tip + 0.3 * d]) if far else est_art.extent_points(est))
+        for artist in est_art.artists():
+            artist.set_visible(not far)
+        if far:
+            pointer.set_data_3d(*np.c_[cam_true.centre, tip])
+            pointer_text.set_position_3d(tip)                   # centred over the pointer's tip, inside the view
+            pointer_text.set_text(f"est. camera:\n{centre_err:.1f} m this way")
+        else:
+            pointer.set_data_3d([], [], [])
+            pointer_text.set_text("")
         pts3d.set_data_3d(Xw[:, 0], Xw[:, 1], Xw[:, 2])
         meas.set_data(uvn[:, 0], uvn[:, 1])
         r = cm.project_points(P, Xw)
@@ -143,7 +216,6 @@ def resectioning():
         behind = int(np.count_nonzero(~np.isfinite(err)))  # points behind the estimated camera have no image
         rms = float(np.sqrt(np.mean(err ** 2)))
         focal_err = float(abs(K[0, 0] - cam_true.K[0, 0]))
-        centre_err = float(np.linalg.norm(C - cam_true.centre))
         n = len(Xw)
         redundancy = 2 * n - 11  # equations minus unknowns: the noise the residuals can show
         # The expected RMS residual of the maximum-likelihood fit (H&Z 5.1.3); the true camera leaves sigma sqrt(2).
@@ -153,14 +225,18 @@ def resectioning():
         rms_text = (f"RMS reprojection {rms:.2f} px" if not behind else
                     f"<b>{behind} of {n} points lie behind the estimated camera:\n"
                     f"no reprojection error; the fit has failed</b>")
-        info.value = (f"<pre>{rms_text}\n|fx - fx_true| = {focal_err:.1f} px\n"
+        worst = "" if behind or not moved else (
+            f"\nlargest residual: pair {int(np.argmax(err))} ({err.max():.1f} px)"
+            f"\nmoved pair {', '.join(map(str, moved))}: {', '.join(f'{err[i]:.1f}' for i in moved)} px")
+        info.value = (f"<pre>{rms_text}{worst}\n|fx - fx_true| = {focal_err:.1f} px\n"
                       f"|C - C_true| = {100 * centre_err:.1f} cm\n\n"
                       f"redundancy 2N - 11 = {redundancy}\n"
                       f"RMS expected of the fitted camera:\n  sigma sqrt(2) sqrt((2N - 11) / 2N) = {expected:.2f} px\n"
                       f"(the true camera leaves sigma sqrt(2) = {float(v['noise']) * np.sqrt(2.0):.2f} px)"
                       f"{warning}</pre>")
         state.update(P=P, K=K, R=R, t=t, centre=C, rms=rms, focal_error=focal_err, centre_error=centre_err,
-                     points_image=uvn, redundancy=redundancy, expected_rms=expected, behind=behind, moved=moved)
+                     points_image=uvn, redundancy=redundancy, expected_rms=expected, behind=behind, moved=moved,
+                     errors=err, far=far)
 
     demo = build_demo("resectioning", controls, view, update,
                       title="Resection: estimate P from N point pairs (DLT); click the image (or use the shift sliders) to move a pixel",
@@ -183,7 +259,8 @@ def resectioning():
 @register(lesson="04", sweep={"yaw": [-60, 60], "frame": ["OpenGL / Blender", "OpenCV"]})
 def opencv_vs_opengl():
     """The same camera with OpenCV axes (x right, y down, z forward) or OpenGL/Blender axes
-    (x right, y up, z backward): only the labels of the camera axes change, R_gl = F R."""
+    (x right, y up, z backward): the camera stays put, its y and z axes flip (R_gl = F R, F = diag(1, -1, -1))
+    and are relabelled."""
     from mpl_toolkits.mplot3d import Axes3D  # noqa: F401  (registers the 3-D projection)
 
     view = FigureView(figsize=(5.0, 3.4))
@@ -193,7 +270,7 @@ def opencv_vs_opengl():
     world = scene3d.draw_world_axes(ax, 0.6)
     house_segments = scenes.house_wireframe((0.0, 0.0, 0.0), 0.6)
     house = scene3d.draw_segments(ax, house_segments, color=palette.GREY)
-    cam0 = cm.Camera.look_at([2.0, -2.0, 1.0], [0.0, 0.0, 0.4])
+    cam0 = cm.Camera.look_at(EYE_GL, [0.0, 0.0, 0.4])
     art = scene3d.CameraArtist(ax, cam0, size=0.45, show_axes=False)  # shorter than the axes, so labels clear it
     lines, texts = [], []
     for c in scene3d.AXIS_COLOURS:
@@ -210,7 +287,7 @@ def opencv_vs_opengl():
     }
 
     def update(v, state):
-        eye = cm.rotation_z(np.deg2rad(v["yaw"])) @ np.array([2.0, -2.0, 1.0])
+        eye = cm.rotation_z(np.deg2rad(v["yaw"])) @ EYE_GL
         cam = cm.Camera.look_at(eye, [0.0, 0.0, 0.4])
         art.update(cam)
         gl = v["frame"] != "OpenCV"
@@ -219,9 +296,7 @@ def opencv_vs_opengl():
         C = cam.centre
         # The limits fit both frames' label tips, so toggling the frame changes only the labels
         label_tips = C + 1.3 * np.vstack([cam.R, -cam.R[1:]])
-        scene3d.set_equal_aspect(ax, [house_segments, np.zeros(3), label_tips, art.extent_points(cam)], zoom=0.95,
-                                 tight=True)
-        scene3d.refresh_projection(ax)
+        scene3d.fit_view(ax, [house_segments, np.zeros(3), label_tips, art.extent_points(cam)], fill=0.78)
         for i, (ln, tx) in enumerate(zip(lines, texts)):
             e = C + 0.9 * R_axes[i]  # row i of R = camera axis i in world coordinates
             ln.set_data_3d([C[0], e[0]], [C[1], e[1]], [C[2], e[2]])
