@@ -69,11 +69,12 @@ def pinhole_projection():
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
     width_bar = ax_img.plot([], [], color="k", lw=2, path_effects=palette.halo(2))[0]
     bar_ends = ax_img.plot([], [], ls="none", color="k", marker="|", ms=10, mew=2, path_effects=palette.halo(2))[0]
-    view.fig.text(0.01, 0.985, f"not to scale: depth z drawn {squeeze:.1f} x shorter than x and y;\n"
-                  "image planes and their sensors (frames) enlarged, see below", fontsize=8.5, va="top")
+    view.fig.text(0.01, 0.985, f"not to scale: depth z drawn {squeeze:.1f} x shorter than x and y", fontsize=8.5,
+                  va="top")
+    scale_note = view.fig.text(0.01, 0.935, "", fontsize=8.5, va="top")  # for readers of the static picture too
     readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
     # everything that moves is blitted over the cached static figure (the pinhole too: a ray passes over it)
-    view.animate(im, width_bar, bar_ends, ax_img.title, art["box"], art["rays"], art["real"], art["virtual"],
+    view.animate(im, width_bar, bar_ends, ax_img.title, scale_note, art["box"], art["rays"], art["real"], art["virtual"],
                  art["pinhole"], *art["planes"].values(), *art["fills"].values())
     on_top(view, ax_img)
 
@@ -103,8 +104,10 @@ def pinhole_projection():
         state.update(K=K, fx=K[0, 0], box_width_px=span, image=img, centre=centre, fov_deg=fov,
                      plane="real" if values["real_plane"] else "virtual", f_draw=f_draw, draw_scale=scale,
                      depth_squeeze=squeeze, bar_clipped=len(ends) < 2)
-        ax_img.set_title("real image (rotated 180 deg)" if values["real_plane"]
-                         else "virtual image (upright)", fontsize=10)
+        ax_img.set_title(("real image (rotated 180 deg)" if values["real_plane"] else "virtual image (upright)")
+                         + f"\nfield of view {fov:.1f} deg; box {span:.0f} px wide", fontsize=9)
+        scale_note.set_text(f"image planes at {scale:.1f} f from the pinhole (black dot),"
+                            f" their sensor frames {scale:.1f} x enlarged")
         wider = f", wider than the image ({SIZE[0]} px)" if span > SIZE[0] else ""
         readout.value = monospace(f"fx = f / pixel pitch = {K[0, 0]:.0f} px\n"
                                   f"field of view 2 atan(w / 2f) = {fov:.1f} deg (w = 36 mm)\n"
@@ -168,7 +171,7 @@ def relative_exposure(d: float, f: float) -> float:
 
 
 @register(lesson="01", sweep={"diameter_mm": [0.03, 0.05, 0.35, 1.5, 2.5], "focal_mm": [30, 100, 200],
-                              "fixed_exposure": [True]})
+                              "fixed_exposure": [True, False]})
 def pinhole_size():
     """Blur against pinhole diameter (geometric versus diffraction) and the blurred chart it gives."""
     controls = {
@@ -186,9 +189,9 @@ def pinhole_size():
     chart = scenes.letter_chart(0.3, t=(0, 0, PAGE_Z))
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
     ax_img.set_title(" \n ", fontsize=9)
-    ax_plot.set_title(f"blur against pinhole size, object at Z = {PAGE_Z:g} m", fontsize=10)
+    ax_plot.set_title(" \n ", fontsize=9)
     readout = W.HTML()
-    view.animate(im, ax_img.title, art["geometric"], art["diffraction"], art["total"],
+    view.animate(im, ax_img.title, ax_plot.title, art["geometric"], art["diffraction"], art["total"],
                  art["marker"], art["best"])
     on_top(view, ax_img)
 
@@ -215,6 +218,8 @@ def pinhole_size():
         limited_by = ("balanced" if abs(b.diffraction - b.geometric) < BALANCED * b.total
                       else "diffraction-limited" if b.diffraction > b.geometric else "geometry-limited")
         f_number = f / d
+        ax_plot.set_title(f"blur against pinhole size, object at Z = {PAGE_Z:g} m\nd = {d * 1e3:.2f} mm: blur"
+                          f" {float(b.total) * 1e3:.2f} mm = {blur_px:.1f} px, {limited_by}", fontsize=9)
         state.update(blur_mm=float(b.total) * 1e3, blur_px=blur_px, best_mm=best * 1e3, legible_rows=legible,
                      limited_by=limited_by, blur_mrad=float(b.total) / f * 1e3, f_number=f_number,
                      exposure_vs_f2_8=(f_number / 2.8) ** 2, light=light, image=img)
