@@ -71,7 +71,8 @@ def pinhole_projection():
     bar_ends = ax_img.plot([], [], ls="none", color="k", marker="|", ms=10, mew=2, path_effects=palette.halo(2))[0]
     view.fig.text(0.01, 0.985, f"not to scale: depth z drawn {squeeze:.1f} x shorter than x and y", fontsize=8.5,
                   va="top")
-    scale_note = view.fig.text(0.01, 0.935, "", fontsize=8.5, va="top")  # for readers of the static picture too
+    # for readers of the static picture too; an axes' child, since a saved figure leaves out animated figure texts
+    scale_note = ax_img.text(0.01, 0.935, "", transform=view.fig.transFigure, fontsize=8.5, va="top", clip_on=False)
     readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
     # everything that moves is blitted over the cached static figure (the pinhole too: a ray passes over it)
     view.animate(im, width_bar, bar_ends, ax_img.title, scale_note, art["box"], art["rays"], art["real"], art["virtual"],
