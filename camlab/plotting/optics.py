@@ -114,6 +114,11 @@ def draw_pinhole_3d(ax, edges: np.ndarray, f_draw: float, plane_half: float | No
         for name, z in (("box", _Z_BOX_FILL), ("real", _Z_PLANE["real"] + 0.1), ("virtual", _Z_PLANE["virtual"] + 0.1)):
             art["fills"][name] = ax.add_collection3d(Poly3DCollection([], edgecolor="none", shade=False, zorder=z))
     art["rays"] = ax.plot([], [], [], color=palette.GREY, lw=0.6, path_effects=palette.halo(0.6), zorder=_Z_RAYS)[0]
+    # a 3-D axes' clip box is its 2-D box, which a box aspect narrows: an image plane near the view's end
+    # would lose the edge that projects outside it
+    for artist in (art["box"], art["pinhole"], art["rays"], *art["planes"].values(), *art["fills"].values(),
+                   art["real"], art["virtual"]):
+        artist.set_clip_on(False)
     label_camera_axes(ax)
     ax.view_init(**PINHOLE_VIEW)
     art["plane_half"] = plane_half
