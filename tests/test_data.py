@@ -196,3 +196,32 @@ def test_panorama_rotation_helpers_say_their_direction():
     ahead_right = np.array([np.sin(0.3), 0.0, np.cos(0.3)])
     assert np.allclose(panorama._rot(0.3, 0, 0) @ [0, 0, 1.0], ahead_right)  # world_from_cam maps its axis out
     assert np.allclose(Rc @ panorama._rot(0.3, -0.1, 0.05), np.eye(3))
+
+
+def test_lesson_01_church_window_heights_are_where_the_photo_says():
+    """Lesson 01 measures five windows down their middle columns, each edge at the row where the brightness
+    crosses half-way between the white frame and the dark glass, rounded: each end within half a pixel."""
+    import ast
+
+    import nbformat
+
+    lesson = nbformat.read(Path(__file__).parent.parent / "lessons" / "01_pinhole_camera.ipynb", as_version=4)
+    source = next(c.source for c in lesson.cells if c.cell_type == "code" and "windows = {" in c.source)
+    windows = ast.literal_eval(re.search(r"windows = (\{[^}]*\})", source).group(1))
+    grey = data.load_photo("church").astype(float).mean(axis=2)
+
+    def half_way(column, row, step):
+        """Sub-pixel row where the profile crosses half-way, walking from the bright frame at ``row`` by ``step``."""
+        bright = column[row]
+        dark = np.median(column[row + 4 * step:row + 12 * step:step])
+        level = (bright + dark) / 2
+        while (column[row] - level) * (column[row + step] - level) > 0:
+            row += step
+        return row + step * (column[row] - level) / (column[row] - column[row + step])
+
+    for u, (top, bottom) in windows.items():
+        column = grey[:, u]
+        frame_above = top - 1 - int(np.argmax(column[top - 1:top - 6:-1] > 170))   # last white row above the glass
+        frame_below = bottom + 1 + int(np.argmax(column[bottom + 1:bottom + 6] > 170))
+        assert abs(half_way(column, frame_above, 1) - top) <= 0.5, (u, "top")
+        assert abs(half_way(column, frame_below, -1) - bottom) <= 0.5, (u, "bottom")

@@ -501,3 +501,71 @@ def test_rq_decomposition_has_a_negative_determinant_case_with_a_reflection():
     assert M, "no det M < 0 input: flipping M inside rq_decomposition would pass"
     K, R = __import__("camlab").camera.rq_decomposition(M[0])
     assert np.linalg.det(R) < 0 and np.all(np.diag(K) > 0)
+
+
+# lesson 01's exercises: right answers in other valid forms pass, the typical slips get their own causes
+
+def _K_form(X, f, pitch, size):
+    K = np.array([[f / pitch, 0, (size[0] - 1) / 2], [0, f / pitch, (size[1] - 1) / 2], [0, 0, 1]])
+    x = np.asarray(X) @ K.T
+    return x[:, :2] / x[:, 2:]
+
+
+@pytest.mark.parametrize("right", [
+    _K_form,
+    lambda X, f, p, size: np.array([[f / p * x / z + (size[0] - 1) / 2, f / p * y / z + (size[1] - 1) / 2] for x, y, z in X]),
+    lambda X, f, p, size: np.column_stack([f / p * X[:, 0] / X[:, 2] + size[0] / 2 - 0.5,
+                                           f / p * X[:, 1] / X[:, 2] + size[1] / 2 - 0.5]),
+    lambda X, f, p, size: (f / p * np.asarray(X)[:, :2] / np.asarray(X)[:, [2]] + np.subtract(size, 1) / 2).astype(np.float32),
+], ids=["K matrix", "loop", "column_stack", "float32"])
+def test_project_to_pixels_passes_right_answers_in_other_forms(right, capsys):
+    assert check("project_to_pixels", right).passed is True
+
+
+@pytest.mark.parametrize("wrong, cause", [
+    (lambda X, f, p, size: f / p * X[:, :2] / X[:, 2:3] + np.array(size) / 2, "half-pixel offset"),
+    (lambda X, f, p, size: f / p * X[:, :2] / X[:, 2:3] + (np.array([size[1], size[0]]) - 1) / 2, "width and height swapped"),
+    (lambda X, f, p, size: (f / p * X[:, :2] / X[:, 2:3] + (np.array(size) - 1) / 2).tolist(), "you returned a list"),
+    (lambda X, f, p, size: str(f / p * X[:, :2] / X[:, 2:3] + (np.array(size) - 1) / 2), "you returned a str"),
+    (lambda X, f, p, size: f / p * X[:, :2] / np.linalg.norm(X, axis=1, keepdims=True) + (np.array(size) - 1) / 2,
+     "distance to the point"),
+    (lambda X, f, p, size: (f / p * X[:, :2] / X[:, 2:3]) * [1, -1] + (np.array(size) - 1) / 2, "flipped v"),
+])
+def test_project_to_pixels_names_the_slip(wrong, cause):
+    with pytest.raises(AssertionError, match=cause):
+        check("project_to_pixels", wrong)
+
+
+@pytest.mark.parametrize("right", [
+    lambda fov, size: size[0] / 2 / np.tan(np.deg2rad(fov) / 2),
+    lambda fov, size: 0.5 * size[0] / np.tan(fov * np.pi / 360),
+    lambda fov, size: np.asarray(size[0] / (2 * np.tan(np.radians(fov / 2)))),   # a 0-d array is one number
+    lambda fov, size: size[0] / 2 / __import__("math").tan(__import__("math").radians(fov) / 2),
+], ids=["deg2rad", "pi/360", "0-d array", "math"])
+def test_focal_length_pixels_passes_right_answers_in_other_forms(right, capsys):
+    assert check("focal_length_pixels", right).passed is True
+
+
+def test_focal_length_pixels_rejects_a_one_element_list_naming_the_fix():
+    with pytest.raises(AssertionError, match=r"you returned a list of shape \(1,\); return one number"):
+        check("focal_length_pixels", lambda fov, size: [size[0] / 2 / np.tan(np.radians(fov) / 2)])
+
+
+def test_best_pinhole_exposure_accepts_a_numerical_best_hole_and_rejects_a_few_percent_off(capsys):
+    from scipy.optimize import minimize_scalar
+
+    def numerical(f, lam, t, N):
+        d = minimize_scalar(lambda d: d + 2.44 * lam * f / d, bounds=(1e-6, 1e-2), method="bounded").x
+        return t * (f / d / N) ** 2
+
+    assert check("best_pinhole_exposure", numerical).passed is True
+    assert check("best_pinhole_exposure", lambda f, lam, t, N: t * f / (2.44 * lam * N ** 2)).passed is True
+    with pytest.raises(AssertionError, match="wrong answer"):
+        check("best_pinhole_exposure", lambda f, lam, t, N: 1.03 * t * f / (2.44 * lam * N ** 2))
+
+
+@pytest.mark.parametrize("name", ["best_pinhole_diameter", "focal_length_pixels", "best_pinhole_exposure"])
+def test_a_number_written_as_a_string_is_rejected(name):
+    reference = EXERCISES[name].reference
+    with pytest.raises(AssertionError, match="you returned a str, which is not numbers"):
+        check(name, lambda *args: f"{reference(*args):.6g}")

@@ -40,7 +40,14 @@ def test_pinhole_projection_box_width_follows_f_over_z():
     assert demo.state["box_width_px"] == pytest.approx(w1, rel=0.1)   # about f / Z (the box has depth)
     for f_mm, Z in ((100, 0.8), (15, 0.8), (100, 4.0)):
         demo.set(focal_mm=f_mm, distance=Z)
-        assert 0 < demo.state["f_draw"] < 0.5 * Z   # the drawn image planes stay between pinhole and box
+        nearest = np.unique(scenes.plane_outlines(scenes.box_before_wall(Z)[0]).reshape(-1, 3), axis=0)[:, 2].min()
+        assert 0 < demo.state["f_draw"] < nearest   # the drawn image planes stay between pinhole and box
+    demo.set(focal_mm=50, distance=2.0)
+    drawn = demo.state["f_draw"]
+    demo.set(focal_mm=100)   # the 3-D planes move out with f (lesson 01's complaint: frozen above 50 mm)
+    assert demo.state["f_draw"] == pytest.approx(2 * drawn) and demo.state["draw_scale"] == pytest.approx(12)
+    demo.set(focal_mm=100, distance=0.8)
+    assert demo.state["bar_clipped"] and demo.state["box_width_px"] > pinhole_camera.SIZE[0]
     demo.set(focal_mm=50, distance=2.0)
     upright = demo.state["image"].copy()
     demo.set(real_plane=True)
@@ -61,8 +68,36 @@ def test_pinhole_size_regimes():
     assert rows == {0.05: 1, 0.35: 4, 1.5: 2}
     demo.set(diameter_mm=0.35)  # within 5 % of the best 0.349 mm: the two terms are equal to 0.5 %
     assert demo.state["limited_by"] == "balanced"
-    demo.set(focal_mm=200)  # the field of view stays: blur grows in mm but falls per field angle, as 1 / sqrt(f)
+    demo.set(focal_mm=200)  # the hole left at 0.35 mm, now too small: diffraction-limited
     assert demo.state["blur_mm"] == pytest.approx(1.19, abs=0.01) and demo.state["blur_px"] == pytest.approx(5.3, abs=0.1)
+    assert demo.state["limited_by"] == "diffraction-limited"
+    demo.set(diameter_mm=demo.state["best_mm"])  # at f = 200 mm's own best hole: 1.14 mm, 5.0 px (lesson 01, cell 19)
+    assert demo.state["blur_mm"] == pytest.approx(1.14, abs=0.01) and demo.state["blur_px"] == pytest.approx(5.0, abs=0.1)
+
+
+def test_pinhole_size_shows_the_light_a_hole_costs():
+    demo = pinhole_camera.pinhole_size()
+    compensated = demo.state["image"].copy()
+    demo.set(fixed_exposure=True)   # the default's own exposure: the same picture
+    assert np.allclose(demo.state["image"], compensated) and demo.state["light"] == pytest.approx(1.0)
+    demo.set(diameter_mm=0.05)      # 1/49 of the light: nearly black
+    assert demo.state["light"] == pytest.approx(1 / 49) and demo.state["image"].max() < 0.03
+    demo.set(diameter_mm=1.5)       # 18.4 times the light: the white page burns out
+    assert demo.state["light"] == pytest.approx(18.37, abs=0.01) and np.mean(demo.state["image"] >= 1.0) > 0.5
+    demo.set(fixed_exposure=False)
+    assert 0.2 < demo.state["image"].mean() < 0.9
+
+
+def test_pinhole_wall_is_sharp_at_the_longest_focal_length():
+    """An ideal pinhole has no depth of field: the wall's square edges rise over about a pixel, not ten."""
+    demo = pinhole_camera.pinhole_projection()
+    demo.set(focal_mm=100, distance=4.0)
+    row = demo.state["image"][30]                       # above the box: only the wall
+    steps = np.abs(np.diff(row))
+    edge = int(np.argmax(steps))
+    lo, hi = sorted((row[edge - 6], row[edge + 7]))
+    rising = np.flatnonzero((row[edge - 6:edge + 7] > lo + 0.1 * (hi - lo)) & (row[edge - 6:edge + 7] < lo + 0.9 * (hi - lo)))
+    assert hi - lo > 0.15 and len(rising) <= 2          # contrast 0.08 vs 0.26, a 10-90 % rise within 2 px
 
 
 def test_letter_chart_rows_shrink():
@@ -126,7 +161,8 @@ def test_sensor_demos_state():
     assert ours >= d.state["psnr"] - 0.05
 
 
-@pytest.mark.parametrize("name", ["pinhole_projection", "best_pinhole_diameter", "thin_lens_image_distance",
+@pytest.mark.parametrize("name", ["project_to_pixels", "focal_length_pixels", "best_pinhole_exposure",
+                                  "pinhole_projection", "best_pinhole_diameter", "thin_lens_image_distance",
                                   "distort_points", "quantize_image", "demosaic_bilinear"])
 def test_exercises_accept_reference_and_catch_mistakes(name):
     ex = all_exercises()[name]
@@ -189,6 +225,54 @@ def test_similar_triangles_ratios_agree():
         demo.set(f=f, Z=Z, Y=Y)
         assert demo.state["ratio_image"] == pytest.approx(demo.state["ratio_object"])
         assert demo.state["y"] == pytest.approx(f * Y / Z)
+
+
+@pytest.mark.parametrize("f, Z, Y", [(0.8, 3.0, -0.8), (0.3, 1.2, -1.0), (1.0, 1.2, 1.0), (1.0, 5.0, 0.4), (0.3, 5.0, 1.0),
+                                     (0.8, 1.2, -0.8), (1.0, 1.2, -1.0)])
+def test_similar_triangles_labels_keep_off_the_triangles(f, Z, Y):
+    """The image labels sit beyond their bars' tips: no corner of their boxes inside a shaded triangle."""
+    demo = pinhole_camera.similar_triangles()
+    demo.set(f=f, Z=Z, Y=Y)
+    fig = demo.figure
+    fig.canvas.draw()
+    ax = fig.axes[0]
+    triangles = [patch for patch in ax.patches if patch.get_alpha() in (0.15, 0.3)]
+    assert len(triangles) == 2
+    to_data = ax.transData.inverted()
+    for text in ax.texts:
+        if "cm" not in text.get_text():
+            continue
+        box = text.get_window_extent(fig.canvas.get_renderer()).expanded(1.05, 1.1)
+        corners = to_data.transform(box.corners())
+        for triangle in triangles:
+            assert not triangle.get_path().contains_points(corners).any(), text.get_text()
+
+
+def test_similar_triangles_at_y_zero_print_no_negative_zero_and_hide_collapsed_arrows():
+    demo = pinhole_camera.similar_triangles()
+    demo.set(Y=0.0)
+    ax = demo.figure.axes[0]
+    texts = " ".join(t.get_text() for t in ax.texts)
+    assert "-0.0" not in texts and "+0.0 cm" in texts
+    arrows = [a for a in ax.texts if getattr(a, "arrowprops", None) and a.arrowprops.get("arrowstyle") == "<->"]
+    hidden = [a for a in arrows if not a.get_visible()]
+    assert len(hidden) == 3   # Y, y and the real image's arrows: zero long
+
+
+def test_cone_figure_is_drawn_to_scale_so_rays_run_straight():
+    import matplotlib.pyplot as plt
+
+    from camlab.plotting import optics
+
+    fig, ax = plt.subplots()
+    optics.draw_pinhole_cones(ax, 2e-3, focal_length=0.1, object_distance=1.0, heights=(-0.01, 0.01))
+    cones = [np.asarray(p.get_xy()) for p in ax.patches if p.get_alpha() == 0.35]
+    before, after = cones[0][:4], cones[1][:4]   # the first point's cone before and after the hole
+    (x_in, upper), (_, a) = before[0], before[1]
+    (_, a2), (x_img, top) = after[0], after[1]
+    assert a == a2 and x_in == pytest.approx(-300) and x_img == pytest.approx(100)
+    assert (a - upper) / (0 - x_in) == pytest.approx((top - a) / x_img)   # the ray through the hole's top edge
+    plt.close(fig)
 
 
 def test_sensor_demos_read_as_the_lesson_says():

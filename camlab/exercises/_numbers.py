@@ -7,7 +7,9 @@ from ._core import SameArray, Tolerance
 
 
 def is_number(x) -> bool:
-    """True for a finite real scalar (a Python float, a 0-d array...)."""
+    """True for a finite real scalar (a Python float, a 0-d array...); never a string such as "0.37"."""
+    if isinstance(x, (str, bytes)) or (isinstance(x, np.ndarray) and x.dtype.kind in "USO"):
+        return False
     try:
         return np.ndim(x) == 0 and bool(np.isfinite(float(x)))
     except (TypeError, ValueError):

@@ -1,11 +1,18 @@
-"""Exercises for lesson 01, the pinhole camera."""
+"""Exercises for lesson 01, the pinhole camera.
+
+The lesson asks for three: ``project_to_pixels`` (the pinhole projection in pixels),
+``focal_length_pixels`` (f_x from a field of view) and ``best_pinhole_exposure`` (the light a
+best pinhole costs). ``pinhole_projection`` and ``best_pinhole_diameter``, the lesson's first
+two exercises (their answers are printed in the lesson itself), stay registered: the course's
+tests of the check machinery use them.
+"""
 from __future__ import annotations
 
 import numpy as np
 
 from .. import pinhole
-from ._numbers import is_number
-from ._core import Exercise, register_exercise, same_array, shape_problem, unit_slip
+from ._numbers import SameNumber, is_number
+from ._core import Exercise, Tolerance, register_exercise, same_array, shape_problem, unit_slip
 
 
 def _projection_cases():
@@ -171,4 +178,280 @@ register_exercise(Exercise(
         (lambda f, lam: float(np.sqrt(2.44 * 550e-9 * f)), "wavelength"),
     ),
     teaching=best_pinhole_diameter,
+))
+
+
+# ---------------------------------------------------------------- project_to_pixels
+
+def _pixel_reference(X, f, pitch, size):
+    """u = (f / s) X / Z + (W - 1) / 2, v = (f / s) Y / Z + (H - 1) / 2: camlab's projection, in pixels."""
+    W, H = size
+    return pinhole.project_pinhole(X, f) / pitch + [(W - 1) / 2, (H - 1) / 2]
+
+
+def _pixel_cases():
+    rng = np.random.default_rng(7)
+    pts = np.column_stack([rng.uniform(-0.8, 0.8, (6, 2)), rng.uniform(1.5, 6, 6)])
+    return [
+        (np.array([[0.15, -0.15, 1.85]]), 0.05, 112.5e-6, (320, 240)),        # the worked example's corner
+        (np.array([[0.4, 0.1, 2.0], [-0.2, 0.3, 4.0]]), 0.03, 6e-6, (640, 480)),  # (2, 2) / (2,) broadcasts
+        (pts, 0.024, 4e-6, (1280, 720)),
+    ]
+
+
+def _pixel_slips(X, f, pitch, size, e):
+    """(what a slip returns, its likely cause) for the pixel projection, given the right answer ``e``."""
+    W, H = size
+    c = np.array([(W - 1) / 2, (H - 1) / 2])
+    m = e - c  # the projection in pixels, before the centre is added
+    metres = f * X[:, :2] / X[:, 2:3]
+    return (
+        (e + 0.5, "a half-pixel offset: with pixel centres at integers the image's centre is at ((W - 1) / 2,"
+                  " (H - 1) / 2), e.g. 159.5 for 320 pixels, not W / 2"),
+        (m + c[::-1], "width and height swapped: size is (width, height), so c_u = (W - 1) / 2 comes from size[0]"
+                      " and c_v = (H - 1) / 2 from size[1]"),
+        (m + c[::-1] + 0.5, "width and height swapped (size is (width, height)) and a half-pixel offset (the centre"
+                            " is (W - 1) / 2, not W / 2)"),
+        (m, "you left out the principal point: pixel (0, 0) is the image's top-left pixel, so add the centre"
+            " ((W - 1) / 2, (H - 1) / 2)"),
+        (c - m, "your image is rotated by 180 degrees: that is the real image behind the pinhole; use the virtual"
+                " plane, u = f_x X / Z + c_u"),
+        (np.column_stack([e[:, 0], c[1] - m[:, 1]]), "you flipped v: in the camera frame y points down, and so does v"
+                                                      " (row numbers grow downwards): v = f_y Y / Z + c_v, no minus"),
+        (metres + c, "you added the centre (pixels) to x = f X / Z (metres): divide by the pixel pitch first,"
+                     " f_x = f / pitch"),
+        (metres * pitch + c, "you multiplied by the pitch; divide by it: f_x = f / pitch pixels"),
+        (m * 1e3 + c, "the projection is 1000 times too large: f in millimetres with the pitch in metres? Keep both in"
+                      " metres (f_x = f / pitch is a pure number of pixels)"),
+        (m / 1e3 + c, "the projection is 1000 times too small: the pitch in millimetres with f in metres? Keep both"
+                      " in metres"),
+        (f / pitch * X[:, :2] + c, "you did not divide by the depth Z: u = f_x X / Z + c_u"),
+        (f / pitch * X[:, 1:3] / X[:, 2:3] + c, "you took columns 1 and 2 (Y and Z): Python counts from 0, so X is"
+                                                " column 0, Y column 1 and Z column 2"),
+        (f / pitch * X[:, :2] / np.linalg.norm(X, axis=1, keepdims=True) + c,
+         "you divided by the distance to the point; divide by its depth Z (the third coordinate)"),
+        (m[:, ::-1] + c, "u and v are swapped: column 0 is u (from X), column 1 is v (from Y)"),
+    )
+
+
+def _pixel_diagnosis(args, got, expected) -> str:
+    X, f, pitch, size = args
+    g = np.asarray(got, dtype=float) if not isinstance(got, (str, bytes)) else None
+    if g is not None and g.shape == expected.T.shape and g.shape != expected.shape and np.allclose(g.T, expected):
+        return "your array is transposed: return one (u, v) row per point, shape (N, 2) (use .T, or np.column_stack)"
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + ". Return one (u, v) row per point."
+    W, H = size
+    c = np.array([(W - 1) / 2, (H - 1) / 2])
+    if np.allclose(g, f / pitch * X[:, :2] / X[:, 2] + c):
+        return ("a broadcasting slip: X[:, :2] / X[:, 2] divides column j by the depth of point j; keep the depth"
+                " column 2-D, X[:, 2:3], so each row is divided by its own Z")
+    for variant, cause in _pixel_slips(X, f, pitch, size, expected):
+        if np.allclose(g, variant, rtol=1e-9, atol=1e-6):
+            return cause
+    return "check each step: x = f X / Z (metres), divide by the pitch (pixels), add the centre ((W - 1) / 2, (H - 1) / 2)"
+
+
+def project_to_pixels(X, f, pitch, size):
+    """Pixel coordinates (u, v) of camera-frame points on the virtual image.
+
+    x = f X / Z on the image plane (metres); divide by the pitch for pixels, f_x = f / pitch;
+    add the principal point, the centre of a W x H image with pixel centres at integers.
+    """
+    X = np.asarray(X, dtype=float)
+    W, H = size
+    fx = f / pitch                                   # focal length in pixels
+    centre = np.array([(W - 1) / 2, (H - 1) / 2])    # (c_u, c_v)
+    return fx * X[:, :2] / X[:, 2:3] + centre        # X[:, 2:3] keeps Z as a column: one depth per row
+
+
+register_exercise(Exercise(
+    name="project_to_pixels",
+    lesson="01",
+    reference=_pixel_reference,
+    cases=_pixel_cases,
+    compare=same_array(rtol=1e-9, atol=1e-6),
+    diagnose=_pixel_diagnosis,
+    ndarray_only=True,
+    wrong_variants=(
+        (lambda X, f, s, size: f / s * X[:, :2] / X[:, 2:3] + np.array(size) / 2, "half-pixel"),
+        (lambda X, f, s, size: f / s * X[:, :2] / X[:, 2:3] + (np.array(size[::-1]) - 1) / 2, "width and height"),
+        (lambda X, f, s, size: f / s * X[:, :2] / X[:, 2:3], "principal point"),
+        (lambda X, f, s, size: f * X[:, :2] / X[:, 2:3] + (np.array(size) - 1) / 2, "divide by the pixel pitch"),
+        (lambda X, f, s, size: 1e3 * f / s * X[:, :2] / X[:, 2:3] + (np.array(size) - 1) / 2, "millimetres"),
+        (lambda X, f, s, size: f / s * X[:, :2] / X[:, 2] + (np.array(size) - 1) / 2, "broadcasting"),
+        (lambda X, f, s, size: (np.array(size) - 1) / 2 - f / s * X[:, :2] / X[:, 2:3], "real image"),
+        (lambda X, f, s, size: (f / s * X[:, :2] / X[:, 2:3] * [1, -1] + (np.array(size) - 1) / 2), "flipped v"),
+        (lambda X, f, s, size: (f / s * X[:, :2] / X[:, 2:3] + (np.array(size) - 1) / 2).T, "transposed"),
+        (lambda X, f, s, size: (f / s * X[:, :2] / X[:, 2:3] + (np.array(size) - 1) / 2).tolist(), "numpy array"),
+        (lambda X, f, s, size: f / s * X[:, 1:3] / X[:, 3:4] + (np.array(size) - 1) / 2, "counting columns from 1"),
+        (lambda X, f, s, size: f"{f / s * X[0, 0] / X[0, 2]:.1f}", "you returned a str"),
+    ),
+    teaching=project_to_pixels,
+))
+
+
+# ---------------------------------------------------------------- focal_length_pixels
+
+def _fx_reference(fov_deg, size):
+    """f_x = (W / 2) / tan(FOV / 2): the sensor's half-width W / 2 pixels seen at half the field of view."""
+    W = size[0]
+    return float(W / 2 / np.tan(np.radians(fov_deg) / 2))
+
+
+def _fx_cases():
+    return [(60.0, (640, 480)), (90.0, (1920, 1080)), (39.6, (320, 240))]
+
+
+def _one_number(got, what: str) -> str | None:
+    """Why ``got`` is not one number (a list or an array of numbers, say), or None."""
+    if np.ndim(got) != 0:
+        kind = "numpy array" if isinstance(got, np.ndarray) else type(got).__name__
+        return (f"you returned a {kind} of shape {np.shape(got)}; return one number, {what} (a float:"
+                f" take the entry out, x[0], or build a number, not a list or an array)")
+    try:
+        float(got)
+    except (TypeError, ValueError):
+        return f"return one number: {what}"
+    return None
+
+
+def _fx_diagnosis(args, got, expected) -> str:
+    fov, (W, H) = args
+    problem = _one_number(got, "f_x in pixels")
+    if problem:
+        return problem
+    g = float(got)
+    half, full = np.radians(fov) / 2, np.radians(fov)
+    for wrong, cause in (
+        (W / 2 / np.tan(fov / 2), "np.tan takes radians: convert the field of view with np.radians(fov_deg) first"),
+        (W / np.tan(fov / 2), "np.tan takes radians (np.radians(fov_deg)), and the half-width is W / 2"),
+        (W / 2 / np.tan(full), "use half the field of view: the ray to the sensor's edge makes FOV / 2 with the axis,"
+                               " so tan(FOV / 2) = (W / 2) / f_x"),
+        (W / np.tan(half), "the ray to the sensor's edge runs W / 2 pixels sideways, not W: tan(FOV / 2) = (W / 2) / f_x"),
+        (W / np.tan(full), "both halves missing: tan(FOV / 2) = (W / 2) / f_x (half the angle, half the width)"),
+        ((W - 1) / 2 / np.tan(half), "the sensor spans all W pixels: its edges are the outer edges of the first and"
+                                     " last pixels, W pixels apart; (W - 1) / 2 is the centre's coordinate, not the"
+                                     " half-width"),
+        (H / 2 / np.tan(half), "size is (width, height): the horizontal field of view spans the width, size[0]"),
+        (W / 2 / np.sin(half), "tan, not sin: the right triangle has legs f_x (along the axis) and W / 2 (across)"),
+        (2 * np.tan(half) / W, "upside down: tan(FOV / 2) = (W / 2) / f_x, so f_x = (W / 2) / tan(FOV / 2)"),
+        (np.degrees(2 * np.arctan(W / (2 * fov))), "that is the field-of-view formula run the other way; solve"
+                                                   " FOV = 2 atan(W / (2 f_x)) for f_x"),
+    ):
+        if np.isclose(g, wrong, rtol=1e-6):
+            return cause
+    return "tan(FOV / 2) = (W / 2) / f_x: solve for f_x, with the angle in radians"
+
+
+def focal_length_pixels(fov_deg, size):
+    """f_x in pixels for a horizontal field of view ``fov_deg`` (degrees) and an image ``size`` (width, height).
+
+    The edge ray makes FOV / 2 with the axis and meets the sensor W / 2 pixels from its centre:
+    tan(FOV / 2) = (W / 2) / f_x.
+    """
+    width = size[0]
+    half_angle = np.radians(fov_deg) / 2
+    return float(width / 2 / np.tan(half_angle))
+
+
+register_exercise(Exercise(
+    name="focal_length_pixels",
+    lesson="01",
+    reference=_fx_reference,
+    cases=_fx_cases,
+    compare=SameNumber(Tolerance(1e-6, 0.0)),
+    diagnose=_fx_diagnosis,
+    wrong_variants=(
+        (lambda fov, size: size[0] / 2 / np.tan(fov / 2), "radians"),
+        (lambda fov, size: size[0] / 2 / np.tan(np.radians(fov)), "half the field of view"),
+        (lambda fov, size: size[0] / np.tan(np.radians(fov) / 2), "W / 2"),
+        (lambda fov, size: (size[0] - 1) / 2 / np.tan(np.radians(fov) / 2), "all W pixels"),
+        (lambda fov, size: size[1] / 2 / np.tan(np.radians(fov) / 2), "(width, height)"),
+        (lambda fov, size: np.array([size[0] / 2 / np.tan(np.radians(fov) / 2)]), "one number"),
+        (lambda fov, size: f"{size[0] / 2 / np.tan(np.radians(fov) / 2):.1f}", "you returned a str"),
+    ),
+    teaching=focal_length_pixels,
+))
+
+
+# ---------------------------------------------------------------- best_pinhole_exposure
+
+def _exposure_reference(f, wavelength, t_lens, N_lens):
+    """Seconds a best pinhole (distant object) must expose to match a lens at f-number N_lens exposing t_lens."""
+    d_star = pinhole.optimal_pinhole_diameter(f, wavelength)
+    return float(t_lens * (f / d_star / N_lens) ** 2)
+
+
+def _exposure_cases():
+    return [(0.1, 550e-9, 1 / 100, 2.8), (0.05, 450e-9, 1 / 250, 4.0), (0.3, 650e-9, 1 / 60, 8.0)]
+
+
+def _exposure_diagnosis(args, got, expected) -> str:
+    f, lam, t, N = args
+    problem = _one_number(got, "the exposure time in seconds")
+    if problem:
+        return problem
+    g = float(got)
+    d = np.sqrt(2.44 * lam * f)
+    Np = f / d
+    for wrong, cause in (
+        (t * Np / N, "light goes as the hole's area, (d / f)^2: square the ratio of the f-numbers"),
+        (t * (N / Np) ** 2, "upside down: the pinhole gathers less light than the lens, so it needs the longer"
+                            " exposure, t (N_pinhole / N_lens)^2"),
+        (t * (d / f / N) ** 2, "the f-number is f / d (a large number for a pinhole), not d / f"),
+        (t * (d / N) ** 2, "the f-number is f / d, a ratio of lengths: divide f by the hole's diameter"),
+        (t * (f / np.sqrt(lam * f) / N) ** 2, "you dropped the 2.44 from d* = sqrt(2.44 lambda f)"),
+        (t * (f / np.sqrt(1.22 * lam * f) / N) ** 2, "you used the Airy radius's 1.22; the best hole (section 3) is"
+                                                     " d* = sqrt(2.44 lambda f)"),
+        (t * (f / (1.9 * np.sqrt(lam * f)) / N) ** 2, "that is Rayleigh's hole, 1.9 sqrt(lambda f); this lesson's best"
+                                                      " hole is d* = sqrt(2.44 lambda f)"),
+        (t * (f / (2.44 * lam * f) / N) ** 2, "d* needs the square root: d* = sqrt(2.44 lambda f)"),
+        (t * (f / (d / 2) / N) ** 2, "you used the hole's radius; the f-number is f over the diameter d*"),
+        (Np, "you returned the pinhole's f-number f / d*; return the exposure time in seconds"),
+        (d, "you returned the best diameter d*; return the exposure time in seconds"),
+    ):
+        if np.isclose(g, wrong, rtol=1e-3):
+            return cause
+    slip = unit_slip(got, expected)
+    if slip:
+        return slip
+    ratio = g / expected
+    k = np.log10(ratio) / 3
+    if abs(k - round(k)) < 0.01 and round(k) != 0:
+        return (f"your answer is {ratio:.3g} times the expected one: a unit slip (the wavelength in nm or um, or f in"
+                " mm?); keep every length in metres and the times in seconds")
+    return "exposure time t_lens (N / N_lens)^2, with the pinhole's f-number N = f / d* and d* = sqrt(2.44 lambda f)"
+
+
+def best_pinhole_exposure(f, wavelength, t_lens, N_lens):
+    """Exposure time (s) of a pinhole camera of length f with its best hole, matching a lens at N_lens for t_lens.
+
+    The light on the image goes as (d / f)^2 = 1 / N^2, so the exposure time goes as N^2.
+    """
+    d_star = np.sqrt(2.44 * wavelength * f)   # the best hole for a distant object (section 3)
+    N = f / d_star                            # its f-number
+    return float(t_lens * (N / N_lens) ** 2)
+
+
+register_exercise(Exercise(
+    name="best_pinhole_exposure",
+    lesson="01",
+    reference=_exposure_reference,
+    cases=_exposure_cases,
+    compare=SameNumber(Tolerance(0.01, 0.0)),
+    diagnose=_exposure_diagnosis,
+    wrong_variants=(
+        (lambda f, lam, t, N: t * f / np.sqrt(2.44 * lam * f) / N, "square the ratio"),
+        (lambda f, lam, t, N: t * (N * np.sqrt(2.44 * lam * f) / f) ** 2, "upside down"),
+        (lambda f, lam, t, N: t * (np.sqrt(2.44 * lam * f) / f / N) ** 2, "not d / f"),
+        (lambda f, lam, t, N: t * (f / np.sqrt(lam * f) / N) ** 2, "2.44"),
+        (lambda f, lam, t, N: t * (f / (1.9 * np.sqrt(lam * f)) / N) ** 2, "Rayleigh"),
+        (lambda f, lam, t, N: t * (f / np.sqrt(2.44 * lam * 1e-9 * f) / N) ** 2, "unit slip"),
+        (lambda f, lam, t, N: f / np.sqrt(2.44 * lam * f), "f-number"),
+        (lambda f, lam, t, N: [t * (f / np.sqrt(2.44 * lam * f) / N) ** 2], "one number"),
+        (lambda f, lam, t, N: f"{t * (f / np.sqrt(2.44 * lam * f) / N) ** 2:.0f} s", "you returned a str"),
+    ),
+    teaching=best_pinhole_exposure,
 ))

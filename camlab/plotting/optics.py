@@ -11,7 +11,7 @@ from .. import lens as _lens
 from .. import pinhole as _pinhole
 from . import palette
 
-__all__ = ["box_edges", "label_camera_axes", "plane_faces", "draw_pinhole_3d", "update_pinhole_3d", "draw_similar_triangles", "update_similar_triangles",
+__all__ = ["axis_scales", "box_edges", "label_camera_axes", "PINHOLE_VIEW", "plane_faces", "draw_pinhole_3d", "update_pinhole_3d", "draw_similar_triangles", "update_similar_triangles",
            "draw_thin_lens", "update_thin_lens", "draw_focus_cone", "update_focus_cone",
            "draw_pinhole_blur", "update_pinhole_blur", "draw_pinhole_cones"]
 
@@ -65,13 +65,25 @@ def _polyline(segments: np.ndarray) -> tuple:
     return _to_plot(pts)
 
 
-# Drawing order of the 3-D pinhole view, fixed (not by depth): a live frame that redraws the moving
-# artists in zorder then shows what a full draw shows. Rays go under the pictures on the image planes.
-_Z_RAYS, _Z_FILLS, _Z_PLANES, _Z_IMAGES, _Z_BOX, _Z_PINHOLE = 1.0, 1.5, 2.0, 2.5, 3.0, 4.0
+# The 3-D pinhole view looks over the camera's right shoulder, from behind and above: the image planes
+# are seen from behind, as the camera records them (the virtual plane's picture upright, the real
+# plane's rotated 180 degrees, as on a ground-glass screen seen from behind), and the box from the side
+# the pinhole sees. Drawing order is fixed (not by depth), nearest the viewer last: box, rays, virtual
+# plane, pinhole, real plane. A live frame that redraws the moving artists in zorder then shows what a
+# full draw shows.
+PINHOLE_VIEW = {"elev": 20, "azim": -125}
+_Z_BOX_FILL, _Z_BOX, _Z_RAYS, _Z_PINHOLE = 1.0, 1.1, 1.5, 3.0
+_Z_PLANE = {"virtual": 2.0, "real": 4.0}  # + 0.1 for the picture, + 0.2 for its outline
+
+
+def axis_scales(ax) -> np.ndarray:
+    """Drawn length per metre along a 3-D axes' plot x, y and z (box aspect over data range), for captions."""
+    ranges = np.array([np.ptp(ax.get_xlim()), np.ptp(ax.get_ylim()), np.ptp(ax.get_zlim())])
+    return np.asarray(ax.get_box_aspect(), float) / ranges
 
 
 def draw_pinhole_3d(ax, edges: np.ndarray, f_draw: float, plane_half: float | None = None,
-                    faces: tuple[np.ndarray, np.ndarray] | None = None) -> dict:
+                    faces: tuple[np.ndarray, np.ndarray] | None = None, to_scale: bool = False) -> dict:
     """Box edges, the pinhole, the real (behind) and virtual (in front) image planes and the rays.
 
     ``edges`` is (K, 2, 3) camera-frame segments (metres); the image planes are drawn at
@@ -80,7 +92,9 @@ def draw_pinhole_3d(ax, edges: np.ndarray, f_draw: float, plane_half: float | No
     if given, is ``(polygons, shades)`` (see :func:`plane_faces`): (F, 4, 3) camera-frame face
     corners and F greys in [0, 1]; the faces the camera sees are then filled on the box and,
     projected, on both image planes, so each plane shows a picture of the box rather than its
-    wire frame. The axes are labelled in camera coordinates (:func:`label_camera_axes`).
+    wire frame. The axes are labelled in camera coordinates (:func:`label_camera_axes`) and
+    seen from :data:`PINHOLE_VIEW`. ``to_scale``: one length per metre on all three axes
+    (otherwise depth is drawn shorter; :func:`axis_scales` says by how much).
     """
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
@@ -92,16 +106,21 @@ def draw_pinhole_3d(ax, edges: np.ndarray, f_draw: float, plane_half: float | No
     art["planes"] = {}
     art["fills"] = {}
     for name, color in (("real", palette.RED), ("virtual", palette.GREEN)):
-        art["planes"][name] = ax.plot([], [], [], color=color, lw=1.2, zorder=_Z_PLANES)[0]
+        z = _Z_PLANE[name]
+        art["planes"][name] = ax.plot([], [], [], color=color, lw=1.2, zorder=z + 0.15)[0]  # the frame over the picture
         # the image's edges: the picture when no faces are given; the filled faces are the picture otherwise
-        art[name] = ax.plot([], [], [], color=color, lw=2.0, zorder=_Z_IMAGES, visible=faces is None)[0]
+        art[name] = ax.plot([], [], [], color=color, lw=2.0, zorder=z + 0.2, visible=faces is None)[0]
     if faces is not None:
-        for name in ("box", "real", "virtual"):
-            art["fills"][name] = ax.add_collection3d(Poly3DCollection([], edgecolor="none", shade=False,
-                                                                      zorder=_Z_FILLS))
+        for name, z in (("box", _Z_BOX_FILL), ("real", _Z_PLANE["real"] + 0.1), ("virtual", _Z_PLANE["virtual"] + 0.1)):
+            art["fills"][name] = ax.add_collection3d(Poly3DCollection([], edgecolor="none", shade=False, zorder=z))
     art["rays"] = ax.plot([], [], [], color=palette.GREY, lw=0.6, path_effects=palette.halo(0.6), zorder=_Z_RAYS)[0]
+    # a 3-D axes' clip box is its 2-D box, which a box aspect narrows: an image plane near the view's end
+    # would lose the edge that projects outside it
+    for artist in (art["box"], art["pinhole"], art["rays"], *art["planes"].values(), *art["fills"].values(),
+                   art["real"], art["virtual"]):
+        artist.set_clip_on(False)
     label_camera_axes(ax)
-    ax.view_init(elev=18, azim=-55)
+    ax.view_init(**PINHOLE_VIEW)
     art["plane_half"] = plane_half
     update_pinhole_3d(art, edges, f_draw, faces)
     pts = edges.reshape(-1, 3)
@@ -109,16 +128,18 @@ def draw_pinhole_3d(ax, edges: np.ndarray, f_draw: float, plane_half: float | No
     ax.set_xlim(-1.3 * f_draw, pts[:, 2].max() * 1.05)
     ax.set_ylim(-half, half)
     ax.set_zlim(-half, half)
-    ax.set_box_aspect((3, 1.2, 1.2))
+    ax.set_box_aspect((np.ptp(ax.get_xlim()), 2 * half, 2 * half) if to_scale else (3, 1.2, 1.2))
     return art
 
 
 def update_pinhole_3d(art: dict, edges: np.ndarray, f_draw: float,
-                      faces: tuple[np.ndarray, np.ndarray] | None = None) -> None:
-    """Move the box to ``edges`` (and its ``faces``, see :func:`draw_pinhole_3d`) and the image planes to ``f_draw``."""
-    art["box"].set_data_3d(*_polyline(edges))
+                      faces: tuple[np.ndarray, np.ndarray] | None = None, plane_half: float | None = None) -> None:
+    """Move the box to ``edges`` (and its ``faces``, see :func:`draw_pinhole_3d`) and the image planes to ``f_draw``.
+
+    ``plane_half``: the planes' half-width this time (metres; e.g. the sensor's, scaled like ``f_draw``).
+    """
     corners = np.unique(edges.reshape(-1, 3), axis=0)
-    h = art["plane_half"] or 1.25 * float(np.abs(_pinhole.project_pinhole(corners, f_draw)).max())
+    h = plane_half or art["plane_half"] or 1.25 * float(np.abs(_pinhole.project_pinhole(corners, f_draw)).max())
     art["plane_half_drawn"] = h
     if faces is not None and art["fills"]:
         polygons, shades = (np.asarray(a, float) for a in faces)
@@ -130,6 +151,11 @@ def update_pinhole_3d(art: dict, edges: np.ndarray, f_draw: float,
         colours = [(shades[k],) * 3 for k in seen_faces]
         art["fills"]["box"].set_verts([np.column_stack(_to_plot(polygons[k])) for k in seen_faces])
         art["fills"]["box"].set_facecolor(colours)
+        # the view looks from the pinhole's side: draw the seen faces' edges (not the hidden ones through the
+        # fills) and the rays from their corners
+        edges = np.concatenate([np.stack([polygons[k], np.roll(polygons[k], -1, axis=0)], axis=1) for k in seen_faces])
+        corners = np.unique(np.round(polygons[seen_faces].reshape(-1, 3), 12), axis=0)
+    art["box"].set_data_3d(*_polyline(edges))
     for name, sign in (("real", -1), ("virtual", 1)):
         z = sign * f_draw
         sq = np.array([[-h, -h * 0.75, z], [h, -h * 0.75, z], [h, h * 0.75, z], [-h, h * 0.75, z], [-h, -h * 0.75, z]])
@@ -154,11 +180,24 @@ def _dimension(ax, color: str) -> dict:
     return {"arrow": arrow, "label": label}
 
 
-def _set_dimension(dim: dict, a, b, text: str, offset=(0.0, 0.0), ha: str = "center") -> None:
+def _set_dimension(dim: dict, a, b, text: str, offset=(0.0, 0.0), ha: str = "center", va: str = "center",
+                   label_at=None, min_arrow: float = 0.0) -> None:
+    """Place a dimension line from ``a`` to ``b`` and its label (at the middle plus ``offset``, or at ``label_at``).
+
+    An arrow shorter than ``min_arrow`` (data units) is hidden: its two heads would overlap into a star.
+    """
     dim["arrow"].xy, dim["arrow"].xyann = tuple(b), tuple(a)
-    dim["label"].set_position(((a[0] + b[0]) / 2 + offset[0], (a[1] + b[1]) / 2 + offset[1]))
+    dim["arrow"].set_visible(bool(np.hypot(b[0] - a[0], b[1] - a[1]) >= min_arrow))
+    at = label_at if label_at is not None else ((a[0] + b[0]) / 2 + offset[0], (a[1] + b[1]) / 2 + offset[1])
+    dim["label"].set_position(at)
     dim["label"].set_text(text)
     dim["label"].set_horizontalalignment(ha)
+    dim["label"].set_verticalalignment(va)
+
+
+def _signed(value: float, digits: int = 1) -> str:
+    """``value`` with a sign and ``digits`` decimals, never "-0.0" (a value that rounds to zero prints +0.0)."""
+    return f"{round(value, digits) + 0.0:+.{digits}f}"
 
 
 def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
@@ -195,6 +234,9 @@ def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
     return art
 
 
+SHORTEST_ARROW = 0.15  # metres: a shorter dimension arrow is hidden (its heads would overlap)
+
+
 def update_similar_triangles(art: dict, f: float, Z: float, Y: float) -> float:
     """Redraw for focal length ``f``, object depth ``Z`` and ``Y`` (metres, camera frame: y down); returns y.
 
@@ -215,12 +257,17 @@ def update_similar_triangles(art: dict, f: float, Z: float, Y: float) -> float:
     d = art["dims"]
     _set_dimension(d["Z"], (0, 3 * away), (Z, 3 * away), f"Z = {Z:.2f} m")
     _set_dimension(d["f"], (0, away), (f, away), f"f = {f:.2f} m", offset=(0, away))
-    _set_dimension(d["Y"], (Z + 0.1, 0), (Z + 0.1, up), f" Y = {Y:+.2f} m", offset=(0.05, 0), ha="left")
-    room = Z - f > 1.3  # else y's label would sit on Y's: put it left of the plane
-    _set_dimension(d["y"], (f + 0.06, 0), (f + 0.06, up_img), f" y = {y * 100:+.1f} cm ",
-                   offset=(0.05 if room else -0.17, 0), ha="left" if room else "right")
-    _set_dimension(d["y_real"], (-f - 0.06, 0), (-f - 0.06, y), f"real\n{-y * 100:+.1f} cm",
-                   offset=(-0.05, 0), ha="right")
+    _set_dimension(d["Y"], (Z + 0.1, 0), (Z + 0.1, up), f" Y = {_signed(Y, 2)} m", offset=(0.05, 0), ha="left",
+                   min_arrow=SHORTEST_ARROW)
+    # the image labels sit beyond the tips of their bars, left of the planes: outside both triangles, off the ray
+    # (left of z = f the ray runs nearer the axis than the tip), never over the bars or the axis
+    beyond = 1.0 if up_img >= 0 else -1.0
+    _set_dimension(d["y"], (f + 0.06, 0), (f + 0.06, up_img), f"virtual\ny = {_signed(y * 100)} cm",
+                   ha="right", va="bottom" if beyond > 0 else "top", label_at=(f - 0.04, up_img + 0.04 * beyond),
+                   min_arrow=SHORTEST_ARROW)
+    _set_dimension(d["y_real"], (-f - 0.06, 0), (-f - 0.06, -up_img), f"real\n{_signed(-y * 100)} cm",
+                   ha="right", va="top" if beyond > 0 else "bottom", label_at=(-f - 0.1, -up_img - 0.04 * beyond),
+                   min_arrow=SHORTEST_ARROW)
     art["pinhole"].xyann = (0, 4.6 * away)
     return y
 
@@ -417,40 +464,54 @@ def update_pinhole_blur(art: dict, focal_length: float, diameter: float, wavelen
     art["best"].set_data([best * 1e3], [float(best_blur) * 1e3])
 
 
+CONE_BEFORE = 3.0   # the cone figure shows the last 3 f of the rays before the pinhole (units of f)
+
+
 def draw_pinhole_cones(ax, diameter: float, focal_length: float, object_distance: float,
                        heights=(-0.02, 0.02), wavelength: float = 550e-9) -> dict:
-    """Side view of pinhole blur: each object point's cone of rays through a hole of ``diameter``.
+    """Side view of pinhole blur, to scale: each object point's cone of rays through a hole of ``diameter``.
 
     Two points at ``heights`` (metres, camera y) and distance ``object_distance`` send cones
     through the hole; each cone cuts the image plane ``focal_length`` behind it in a disc of
     diameter d (1 + f/Z) (drawn in the point's colour), widened by diffraction to the Airy
-    disc 2.44 lambda f / d (the pale band). Heights are millimetres; the object side is
-    drawn on [-1, 0] and the image side on [0, 1] (two horizontal scales, as in
-    :func:`draw_focus_cone`). Returns the blur terms in metres.
+    disc 2.44 lambda f / d (the pale band). Both axes are millimetres, each with one scale, so
+    every ray is straight: the figure shows the last :data:`CONE_BEFORE` f of the rays before
+    the hole, and the points themselves, further left, are named where their rays come in.
+    Returns the blur terms in metres.
     """
     Z, f, d = object_distance, focal_length, diameter
     b = _pinhole.pinhole_blur(d, f, Z, wavelength)
     a = d / 2 * 1e3
+    x_in, x_img = -CONE_BEFORE * f * 1e3, f * 1e3       # plot x, mm: the left edge and the image plane
+    entry = []
     for Y, colour in zip(heights, (palette.BLUE, palette.PURPLE)):  # objects: blue and purple (green is the virtual plane)
         y_obj = -Y * 1e3                    # mm, drawn up
         y_img = Y * f / Z * 1e3             # the real image is inverted: -f Y / Z, drawn up as +
         top, bottom = y_img + b.geometric / 2 * 1e3, y_img - b.geometric / 2 * 1e3
         halo = b.total / 2 * 1e3
-        ax.fill([0, 1, 1, 0], [a, y_img + halo, y_img - halo, -a], color=colour, alpha=0.12, lw=0)  # diffraction
-        ax.fill([-1, 0, 0], [y_obj, a, -a], color=colour, alpha=0.35, lw=0)
-        ax.fill([0, 1, 1, 0], [a, top, bottom, -a], color=colour, alpha=0.35, lw=0)
-        ax.plot([1, 1], [y_img - halo, y_img + halo], color=colour, lw=8, alpha=0.3, solid_capstyle="butt")
-        ax.plot([1, 1], [bottom, top], color=colour, lw=4, solid_capstyle="butt")
-        ax.plot([-1], [y_obj], "o", color=colour, ms=6)
-    wall = 1.15 * max(abs(h) for h in heights) * 1e3
+        s_in = 1 + x_in * 1e-3 / Z          # where the left edge sits along the ray, from the point (0) to the hole (1)
+        upper, lower = y_obj + (a - y_obj) * s_in, y_obj + (-a - y_obj) * s_in
+        ax.fill([0, x_img, x_img, 0], [a, y_img + halo, y_img - halo, -a], color=colour, alpha=0.12, lw=0)  # diffraction
+        ax.fill([x_in, 0, 0, x_in], [upper, a, -a, lower], color=colour, alpha=0.35, lw=0)
+        ax.fill([0, x_img, x_img, 0], [a, top, bottom, -a], color=colour, alpha=0.35, lw=0)
+        ax.plot([x_img, x_img], [y_img - halo, y_img + halo], color=colour, lw=8, alpha=0.3, solid_capstyle="butt")
+        ax.plot([x_img, x_img], [bottom, top], color=colour, lw=4, solid_capstyle="butt")
+        entry.append((y_obj, (upper + lower) / 2, colour))
+    wall = 1.6 * max(abs(e[1]) for e in entry)   # the same for every d: panels can share the height axis
+    for y_obj, y_in, colour in entry:   # the points lie off the left edge: say which ray comes from where
+        side = 1 if y_in > 0 else -1
+        where = "above" if y_obj > 0 else "below"
+        ax.annotate(f"from a point {abs(y_obj):.0f} mm {where}\nthe axis, {Z:g} m away", (x_in, y_in),
+                    xytext=(x_in + 0.25 * f * 1e3, side * 0.97 * wall), ha="left", va="top" if side > 0 else "bottom",
+                    fontsize=8, color=colour, arrowprops=dict(arrowstyle="->", color=colour, lw=1, shrinkA=1, shrinkB=0))
     ax.plot([0, 0, np.nan, 0, 0], [wall, a, np.nan, -a, -wall], color="k", lw=3, solid_capstyle="butt")
     ax.axhline(0, color=palette.GREY, lw=0.6, zorder=0)
-    ax.axvline(1, color="0.3", lw=1, ls="--")
-    ax.set_xlim(-1.05, 1.12)
+    ax.axvline(x_img, color="0.3", lw=1, ls="--")
+    ax.set_xlim(x_in, x_img * 1.12)
     ax.set_ylim(-wall, wall)
-    ax.set_xticks([-1, 0, 1], [f"object\nZ = {Z:g} m", "pinhole", f"image plane\nf = {f * 1e3:g} mm"])
+    ax.set_xticks(np.arange(x_in, x_img + 1, 100))
+    ax.set_xlabel(f"distance from the pinhole (mm);\nimage plane (dashed) at {x_img:.0f} mm", fontsize=9)
     ax.set_ylabel("height (mm)")
-    ax.set_title(f"d = {d * 1e3:g} mm", fontsize=10)
-    ax.text(0.5, 0.97, f"disc of rays {b.geometric * 1e3:.2f} mm\n+ diffraction {b.diffraction * 1e3:.2f} mm",
-            transform=ax.transAxes, fontsize=8, va="top", ha="center", bbox=dict(fc="white", ec="0.8", pad=2))
+    ax.set_title(f"d = {d * 1e3:g} mm\ndisc of rays {b.geometric * 1e3:.2f} mm + diffraction {b.diffraction * 1e3:.2f} mm",
+                 fontsize=9)
     return {"geometric": b.geometric, "diffraction": b.diffraction, "total": b.total}

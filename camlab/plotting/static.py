@@ -54,7 +54,8 @@ def _describe_axes(ax: Any) -> str:
     title = " ".join(t for t in (ax.get_title("left"), ax.get_title(), ax.get_title("right")) if t)
     kind = "3-D view" if ax.name == "3d" else ("image" if ax.images and not ax.lines else "plot")
     words = [f"{kind} '{title}'" if title else kind]
-    labels = [lab for lab in (ax.get_xlabel(), ax.get_ylabel()) if lab]
+    z_label = ax.get_zlabel() if ax.name == "3d" else ""  # a 3-D view has a third axis to name
+    labels = [lab for lab in (ax.get_xlabel(), ax.get_ylabel(), z_label) if lab]
     if labels:
         words.append("axes " + _quoted(labels))
     legend = ax.get_legend()

@@ -1,6 +1,8 @@
 """The lessons' scenes and synthetic data sets, built here once for each lesson and its demos."""
 from __future__ import annotations
 
+from dataclasses import replace
+from functools import lru_cache
 from typing import NamedTuple, Sequence
 
 import numpy as np
@@ -16,23 +18,40 @@ from .wireframes import box_wireframe, ground_grid, house_wireframe
 
 
 WALL_DISTANCE = 6.0  # metres: lesson 01's checkered wall behind the box
+WALL_TEXELS = 128  # texels per 1 m square: at f = 100 mm a square is 148 px, so an edge ramps over ~1 px
+WALL_GREYS = (0.08, 0.26)  # the wall's two greys: darker than every box face, but the squares read clearly
+
+
+@lru_cache(maxsize=1)
+def _wall() -> Plane:
+    """Lesson 01's wall (built once: the renderer caches each texture's mipmaps while the array lives)."""
+    dark, light = WALL_GREYS
+    squares = (np.indices((12, 16)).sum(axis=0) % 2) * (light - dark) + dark  # 12 rows x 16 columns of 1 m squares
+    return textured_plane(np.kron(squares, np.ones((WALL_TEXELS, WALL_TEXELS), np.float32)), 16.0,
+                          t=(0, 0, WALL_DISTANCE), name="wall")
+
+
+@lru_cache(maxsize=1)
+def _box_at_origin() -> tuple:
+    """Lesson 01's turned 0.3 m box centred on the origin, its textures built once (see :func:`_wall`)."""
+    return tuple(box([0.0, 0.0, 0.0], (0.3, 0.3, 0.3), R=rotation_from_euler(0.35, 0.6, 0.0), texels=160, rng=0))
 
 
 def box_before_wall(distance: float) -> list:
     """Lesson 01: a turned 0.3 m box ``distance`` metres in front of the pinhole and a checkered wall behind it.
 
     Returns ``[faces, wall]``: the box's six faces (a list of :class:`Plane`, its top face
-    darkest) and a wall (a :class:`Plane`) 16 m x 12 m of 1 m squares in two dark greys at
-    z = :data:`WALL_DISTANCE`, wide enough to fill the widest view lesson 01 shows, a scene for
-    :func:`camlab.render.render`. The wall stays put while the box moves, so its squares show
-    the perspective a focal length and a distance give (a dolly zoom keeps the box's size and
-    changes the wall's). :func:`plane_outlines` of ``faces`` gives the (24, 2, 3) box edges.
+    darkest) and a wall (a :class:`Plane`) 16 m x 12 m of 1 m squares in two dark greys
+    (:data:`WALL_GREYS`) at z = :data:`WALL_DISTANCE`, wide enough to fill the widest view
+    lesson 01 shows, a scene for :func:`camlab.render.render`. The wall stays put while the
+    box moves, so its squares show the perspective a focal length and a distance give (a dolly
+    zoom keeps the box's size and changes the wall's). Both are textured finely enough
+    (:data:`WALL_TEXELS`, 160 texels a box face) to look sharp at lesson 01's longest focal
+    length, as a pinhole image is: an ideal pinhole has no depth of field.
+    :func:`plane_outlines` of ``faces`` gives the (24, 2, 3) box edges.
     """
     d = check_positive(distance, "distance", "metres")
-    squares = (np.indices((12, 16)).sum(axis=0) % 2) * 0.08 + 0.12  # 12 rows x 16 columns of 1 m squares
-    checker = np.kron(squares, np.ones((8, 8)))  # 8 texels per square keep the edges sharp
-    return [box([0.0, 0.0, d], (0.3, 0.3, 0.3), R=rotation_from_euler(0.35, 0.6, 0.0), rng=0),
-            textured_plane(checker, 16.0, t=(0, 0, WALL_DISTANCE), name="wall")]
+    return [[replace(face, t=face.t + [0.0, 0.0, d]) for face in _box_at_origin()], _wall()]
 
 
 def depth_of_field_scene() -> list[Plane]:

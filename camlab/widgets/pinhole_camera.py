@@ -14,9 +14,23 @@ from ..scenes.planes import CHART_ROW_HEIGHTS
 
 SIZE = (320, 240)
 PITCH = 36e-3 / SIZE[0]  # a 36 mm wide sensor with 320 pixels: 112.5 um pixels
-DRAW_SCALE = 16.0  # the 3-D view draws the image planes up to 16x further from the pinhole than f...
-PLANE_ROOM = 0.45  # ...but never beyond 45 % of the way to the box's nearest corner...
-PLANE_MAX = 0.95  # ...nor beyond the 3-D view's near end at z = -1.1 m (the real plane's frame)
+SENSOR = (SIZE[0] * PITCH, SIZE[1] * PITCH)  # its width and height, metres (36 mm x 27 mm)
+# The 3-D view draws the image planes PLANE_SCALE f from the pinhole, so they move out as f grows, but
+# never more than PLANE_ROOM of the way to the box's nearest corner nor beyond PLANE_MAX (the view's
+# near end holds the real plane). Each plane's frame is the sensor as seen from the pinhole at that
+# distance, w f_draw / f wide: it frames the picture as the sensor frames the image beside it, and
+# narrows around the picture as f grows (the field of view) even where the planes stop moving.
+PLANE_SCALE = 12.0
+PLANE_ROOM = 0.8
+PLANE_MAX = 1.2
+DEPTH_RANGE = (-1.3, 4.5)  # the 3-D view's z limits (metres): the real plane at PLANE_MAX to the box at 4 m
+SIDE_RANGE = 0.3  # ...and its x and y half-range
+
+
+def plane_distance(f: float, box_nearest_z: float) -> float:
+    """Where the 3-D view draws the image planes (metres from the pinhole) for focal length ``f`` and a box
+    whose nearest corner is ``box_nearest_z`` metres away (see PLANE_SCALE)."""
+    return min(PLANE_SCALE * f, PLANE_ROOM * box_nearest_z, PLANE_MAX)
 
 
 def _box_outline(faces) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray]]:
@@ -24,7 +38,14 @@ def _box_outline(faces) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray]]:
     return scenes.plane_outlines(faces), optics.plane_faces(faces)
 
 
-@register(lesson="01", sweep={"focal_mm": [20, 50, 90], "distance": [1.0, 2.0, 3.5], "real_plane": [True, False]})
+def _bar_ends(u_min: float, u_max: float, width: int) -> tuple[list, list]:
+    """The width bar clipped to the image, and the end marks that fall inside it (a clipped end has none)."""
+    lo, hi = -0.5, width - 0.5
+    ends = [u for u in (u_min, u_max) if lo <= u <= hi]
+    return [max(u_min, lo), min(u_max, hi)], ends
+
+
+@register(lesson="01", sweep={"focal_mm": [15, 50, 100], "distance": [0.8, 2.0, 4.0], "real_plane": [True, False]})
 def pinhole_projection():
     """A box, the pinhole and both image planes in 3-D beside the image the camera records."""
     controls = {
@@ -34,23 +55,28 @@ def pinhole_projection():
     }
     view = FigureView(figsize=(8.8, 4.0))
     view.fig.set_layout_engine("none")  # placed by hand: the layout engine does not see the 3-D axis labels
-    ax3 = view.fig.add_axes((-0.06, -0.0, 0.7, 1.0), projection="3d")
+    ax3 = view.fig.add_axes((0.05, 0.04, 0.63, 0.9), projection="3d")
     ax_img = view.fig.add_axes((0.69, 0.15, 0.3, 0.7))
     edges, faces = _box_outline(scenes.box_before_wall(2.0)[0])
-    art = optics.draw_pinhole_3d(ax3, edges, 0.05 * DRAW_SCALE, faces=faces)
-    ax3.set_xlim(-1.1, 4.5)
-    ax3.set_ylim(-0.3, 0.3)
-    ax3.set_zlim(-0.3, 0.3)
-    ax3.set_box_aspect((2.6, 1, 1), zoom=1.2)
+    art = optics.draw_pinhole_3d(ax3, edges, 0.6, faces=faces)
+    ax3.set_xlim(*DEPTH_RANGE)
+    ax3.set_ylim(-SIDE_RANGE, SIDE_RANGE)
+    ax3.set_zlim(-SIDE_RANGE, SIDE_RANGE)
+    ax3.set_box_aspect((2.6, 1, 1), zoom=1.25)
     optics.label_camera_axes(ax3, labelpad=1)
-    ax3.xaxis.labelpad = 9  # below the middle tick label
+    ax3.xaxis.labelpad = 8  # clear of the depth axis' tick labels
+    squeeze = optics.axis_scales(ax3)[1] / optics.axis_scales(ax3)[0]  # x, y per metre against z per metre
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
-    width_bar = ax_img.plot([], [], color="k", lw=2, marker="|", ms=10, mew=2, path_effects=palette.halo(2))[0]
-    view.fig.text(0.02, 0.97, "pinhole (black dot) at 0; image planes drawn enlarged", fontsize=9, va="top")
+    width_bar = ax_img.plot([], [], color="k", lw=2, path_effects=palette.halo(2))[0]
+    bar_ends = ax_img.plot([], [], ls="none", color="k", marker="|", ms=10, mew=2, path_effects=palette.halo(2))[0]
+    view.fig.text(0.01, 0.985, f"not to scale: depth z drawn {squeeze:.1f} x shorter than x and y", fontsize=8.5,
+                  va="top")
+    # for readers of the static picture too; an axes' child, since a saved figure leaves out animated figure texts
+    scale_note = ax_img.text(0.01, 0.935, "", transform=view.fig.transFigure, fontsize=8.5, va="top", clip_on=False)
     readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
     # everything that moves is blitted over the cached static figure (the pinhole too: a ray passes over it)
-    view.animate(im, width_bar, ax_img.title, art["box"], art["rays"], art["real"], art["virtual"], art["pinhole"],
-                 *art["planes"].values(), *art["fills"].values())
+    view.animate(im, width_bar, bar_ends, ax_img.title, scale_note, art["box"], art["rays"], art["real"], art["virtual"],
+                 art["pinhole"], *art["planes"].values(), *art["fills"].values())
     on_top(view, ax_img)
 
     def update(values, state):
@@ -59,9 +85,9 @@ def pinhole_projection():
         scene = scenes.box_before_wall(Z)
         e, faces = _box_outline(scene[0])
         corners = np.unique(e.reshape(-1, 3), axis=0)
-        # the image planes as far out as fits (a big picture of the box), always between pinhole and box
-        f_draw = min(DRAW_SCALE * f, PLANE_ROOM * corners[:, 2].min(), PLANE_MAX)
-        optics.update_pinhole_3d(art, e, f_draw, faces)
+        f_draw = plane_distance(f, corners[:, 2].min())
+        scale = f_draw / f
+        optics.update_pinhole_3d(art, e, f_draw, faces, plane_half=scale * SENSOR[0] / 2)  # the sensor's frame
         K = sensor.intrinsics_from_sensor(f, (PITCH, PITCH), SIZE)
         img = render.render(scene, K, SIZE).irradiance
         u = K[0, 0] * corners[:, 0] / corners[:, 2] + K[0, 2]  # the corners' columns, x = f X / Z in pixels
@@ -70,26 +96,33 @@ def pinhole_projection():
             img = img[::-1, ::-1]  # the real image in the camera's axes: rotated 180 degrees
             u = SIZE[0] - 1 - u
         im.set_data(img)
-        width_bar.set_data([u.min(), u.max()], [v_bar, v_bar])
+        bar, ends = _bar_ends(u.min(), u.max(), SIZE[0])
+        width_bar.set_data(bar, [v_bar, v_bar])
+        bar_ends.set_data(ends, [v_bar] * len(ends))
         centre = pinhole.project_pinhole([0.0, 0.0, Z], f)
-        fov = np.degrees(2 * np.arctan(SIZE[0] * PITCH / (2 * f)))  # the sensor's width w seen from the pinhole
-        state.update(K=K, fx=K[0, 0], box_width_px=float(u.max() - u.min()), image=img, centre=centre, fov_deg=fov,
-                     plane="real" if values["real_plane"] else "virtual", f_draw=f_draw)
-        ax_img.set_title("real image (rotated 180 deg)" if values["real_plane"]
-                         else "virtual image (upright)", fontsize=10)
+        fov = np.degrees(2 * np.arctan(SENSOR[0] / (2 * f)))  # the sensor's width w seen from the pinhole
+        span = float(u.max() - u.min())
+        state.update(K=K, fx=K[0, 0], box_width_px=span, image=img, centre=centre, fov_deg=fov,
+                     plane="real" if values["real_plane"] else "virtual", f_draw=f_draw, draw_scale=scale,
+                     depth_squeeze=squeeze, bar_clipped=len(ends) < 2)
+        ax_img.set_title(("real image (rotated 180 deg)" if values["real_plane"] else "virtual image (upright)")
+                         + f"\nfield of view {fov:.1f} deg; box {span:.0f} px wide", fontsize=9)
+        scale_note.set_text(f"image planes at {scale:.1f} f from the pinhole (black dot),"
+                            f" their sensor frames {scale:.1f} x enlarged")
+        wider = f", wider than the image ({SIZE[0]} px)" if span > SIZE[0] else ""
         readout.value = monospace(f"fx = f / pixel pitch = {K[0, 0]:.0f} px\n"
                                   f"field of view 2 atan(w / 2f) = {fov:.1f} deg (w = 36 mm)\n"
-                                  f"box spans {state['box_width_px']:.0f} px (black bar)\n"
-                                  f"image planes drawn {f_draw / f:.1f} f from the pinhole\n"
+                                  f"box spans {span:.0f} px (black bar){wider}\n"
+                                  f"3-D view: image planes at {scale:.1f} f, sensor frames {scale:.1f} x enlarged\n"
                                   f"wall of 1 m squares at {scenes.WALL_DISTANCE:g} m (beyond the 3-D view)")
 
     return build_demo("pinhole_projection", controls, view, update, title="Pinhole projection x = f X / Z",
                       extra=[readout])
 
 
-@register(lesson="01", sweep={"f": [0.3, 1.0], "Z": [1.2, 5.0], "Y": [-1.0, 0.4, 1.0]})
+@register(lesson="01", sweep={"f": [0.3, 1.0], "Z": [1.2, 5.0], "Y": [-1.0, 0.0, 0.4, 1.0]})
 def similar_triangles():
-    """A side view of a room-sized camera obscura: drag the object point and read x / f = X / Z off the triangles."""
+    """A side view of a room-sized camera obscura: drag the object point and read y / f = Y / Z off the triangles."""
     controls = {
         "f": slider(0.8, 0.3, 1.0, 0.05, "focal length f (m)"),
         "Z": slider(3.0, 1.2, 5.0, 0.05, "object depth Z (m)"),
@@ -128,9 +161,18 @@ def similar_triangles():
 
 PAGE_Z = 1.0  # the chart's distance in pinhole_size (metres)
 BALANCED = 0.05  # the readout calls the blur "balanced" while its two terms differ by under 5 % of the total
+REFERENCE = (0.35e-3, 0.1)  # the (d, f) whose exposure time "fixed exposure" keeps: the demo's default
 
 
-@register(lesson="01", sweep={"diameter_mm": [0.05, 0.35, 1.5], "focal_mm": [50, 100, 200]})
+def relative_exposure(d: float, f: float) -> float:
+    r"""Light on the sensor per unit time through a hole ``d`` at ``f``, relative to :data:`REFERENCE`: (d/f)^2 over
+    (d_ref/f_ref)^2 (irradiance goes as the hole's solid angle seen from the image, :math:`\propto (d/f)^2`)."""
+    d_ref, f_ref = REFERENCE
+    return (d / f) ** 2 / (d_ref / f_ref) ** 2
+
+
+@register(lesson="01", sweep={"diameter_mm": [0.03, 0.05, 0.35, 1.5, 2.5], "focal_mm": [30, 100, 200],
+                              "fixed_exposure": [True, False]})
 def pinhole_size():
     """Blur against pinhole diameter (geometric versus diffraction) and the blurred chart it gives."""
     controls = {
@@ -138,6 +180,7 @@ def pinhole_size():
                                         description="pinhole d (mm)", continuous_update=True,
                                         style={"description_width": "initial"}, layout=W.Layout(width="300px")),
         "focal_mm": slider(100, 30, 200, 5, "focal length f (mm)"),
+        "fixed_exposure": W.Checkbox(value=False, description="fixed exposure time (true brightness)"),
     }
     view = FigureView(figsize=(8.8, 4))
     ax_plot, ax_img = view.fig.subplots(1, 2)
@@ -146,10 +189,10 @@ def pinhole_size():
     ax_plot.minorticks_off()
     chart = scenes.letter_chart(0.3, t=(0, 0, PAGE_Z))
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
-    ax_img.set_title(f"a letter chart at Z = {PAGE_Z:g} m, seen through the pinhole", fontsize=10)
-    ax_plot.set_title(f"blur against pinhole size, object at Z = {PAGE_Z:g} m", fontsize=10)
+    ax_img.set_title(" \n ", fontsize=9)
+    ax_plot.set_title(" \n ", fontsize=9)
     readout = W.HTML()
-    view.animate(im, art["geometric"], art["diffraction"], art["total"],
+    view.animate(im, ax_img.title, ax_plot.title, art["geometric"], art["diffraction"], art["total"],
                  art["marker"], art["best"])
     on_top(view, ax_img)
 
@@ -161,22 +204,33 @@ def pinhole_size():
         pitch = f * 0.36 / SIZE[0]
         K = sensor.intrinsics_from_sensor(f, (pitch, pitch), SIZE)
         blur_px = float(b.total) / pitch
-        im.set_data(render.render(chart, K, SIZE, blur=blur_px).irradiance)
+        img = render.render(chart, K, SIZE, blur=blur_px).irradiance
+        light = relative_exposure(d, f)
+        ref = f"d = {REFERENCE[0] * 1e3:g} mm, f = {REFERENCE[1] * 1e3:g} mm"
+        if values["fixed_exposure"]:  # the reference's exposure time: the image darkens (or burns out) with (d/f)^2
+            img = np.clip(img * light, 0.0, 1.0)
+            ax_img.set_title(f"the exposure time of {ref}:\n{light:.3g} x its light", fontsize=9)
+        else:
+            ax_img.set_title(f"exposure time {1 / light:.3g} x that of {ref}:\nbrightness compensated", fontsize=9)
+        im.set_data(img)
         best = pinhole.optimal_pinhole_diameter(f, object_distance=PAGE_Z)
         rows_px = np.array(CHART_ROW_HEIGHTS) * 0.3 / 600 * f / PAGE_Z / pitch  # cap heights on the sensor
         legible = int(np.sum(rows_px > 1.5 * blur_px))  # by eye: a letter survives a blur up to 2/3 of its height
         limited_by = ("balanced" if abs(b.diffraction - b.geometric) < BALANCED * b.total
                       else "diffraction-limited" if b.diffraction > b.geometric else "geometry-limited")
         f_number = f / d
+        ax_plot.set_title(f"blur against pinhole size, object at Z = {PAGE_Z:g} m\nd = {d * 1e3:.2f} mm: blur"
+                          f" {float(b.total) * 1e3:.2f} mm = {blur_px:.1f} px, {limited_by}", fontsize=9)
         state.update(blur_mm=float(b.total) * 1e3, blur_px=blur_px, best_mm=best * 1e3, legible_rows=legible,
                      limited_by=limited_by, blur_mrad=float(b.total) / f * 1e3, f_number=f_number,
-                     exposure_vs_f2_8=(f_number / 2.8) ** 2)
+                     exposure_vs_f2_8=(f_number / 2.8) ** 2, light=light, image=img)
         readout.value = monospace(f"best d = {best * 1e3:.2f} mm (star) for Z = {PAGE_Z:g} m\n"
                                   f"your d = {d * 1e3:.2f} mm (grey line): {limited_by}\n"
                                   f"blur {state['blur_mm']:.2f} mm = {blur_px:.1f} px;"
                                   f" blur / f = {state['blur_mrad']:.1f} mrad\n"
                                   f"rows legible: {legible} of {len(rows_px)} (letters over 1.5 x blur)\n"
-                                  f"f/d = f/{f_number:.0f}: {state['exposure_vs_f2_8']:,.0f} x the exposure of f/2.8")
+                                  f"f/d = f/{f_number:.0f}: {state['exposure_vs_f2_8']:,.0f} x the exposure of f/2.8\n"
+                                  f"light per second: {light:.3g} x that of {ref}")
 
     return build_demo("pinhole_size", controls, view, update, title="How big should the pinhole be?",
                       extra=[readout])
