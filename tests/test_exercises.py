@@ -513,3 +513,23 @@ def test_lift_names_the_worked_examples_batch_code_copied_for_one_point(batch_co
     with pytest.raises(AssertionError, match=phrase) as info:
         check("lift", batch_code)
     assert "1-based" not in str(info.value) and "counting columns from 1" not in str(info.value)
+
+
+@pytest.mark.parametrize("wrap, phrase", [(lambda a: (a,), "a trailing comma, `return x,`, makes a tuple"),
+                                          (lambda a: [a], "brackets, `[x]`, make a list")], ids=["tuple", "list"])
+def test_an_array_wrapped_in_a_tuple_or_list_is_named(wrap, phrase):
+    from camlab.exercises import type_problem
+
+    answer = np.array([2.5, 4.25, 1.0])
+    assert phrase in type_problem(wrap(answer), answer, ndarray_only=True)
+
+
+def test_an_unfilled_np_empty_answer_fails_instead_of_passing_on_freed_memory():
+    """np.empty(3) would often hold the reference answer the check has just computed and freed."""
+    def lift(p):
+        out = np.empty(3)
+        out[:2] = p   # w never set
+        return out
+
+    with pytest.raises(AssertionError, match=r"w is NaN and x and y are right: an array made with np\.empty\(3\)"):
+        check("lift", lift)

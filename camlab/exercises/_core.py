@@ -250,6 +250,7 @@ def check(name: str, student_function: Callable[..., Any], *, time_limit_s: floa
     cases = list(exercise.cases())
     for i, args in enumerate(cases):
         expected = exercise.reference(*_copy(args))
+        _leave_nan_in_freed_memory(expected)
         try:
             got = _run_student(name, student_function, args, i, len(cases), seconds)
         except NotImplementedError:
@@ -279,6 +280,18 @@ def check(name: str, student_function: Callable[..., Any], *, time_limit_s: floa
             )
     print(f"{name}: correct on all {len(cases)} test inputs. Well done!")
     return CheckResult(name, True)
+
+
+def _leave_nan_in_freed_memory(expected: Any) -> None:
+    """Free a NaN-filled array of the answer's size just before the student's function runs.
+
+    numpy reuses the memory of small arrays it has just freed, so an answer built with
+    ``np.empty(3)`` and left partly unfilled would otherwise hold the numbers of the reference
+    answer (the array the check just computed) and pass by luck. After this it holds NaN, and the
+    check fails, naming it.
+    """
+    if isinstance(expected, np.ndarray) and expected.dtype.kind == "f" and 0 < expected.nbytes <= 1024:
+        np.full(expected.shape, np.nan, dtype=expected.dtype)  # made and freed at once
 
 
 def _exercise_exception_hint(name: str, exc: Exception, args: tuple) -> str:
@@ -331,6 +344,10 @@ def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | N
     else:
         return None
     kind = type(got).__name__
+    if (isinstance(got, (tuple, list)) and len(got) == 1 and isinstance(got[0], np.ndarray)
+            and isinstance(expected, np.ndarray) and got[0].shape == expected.shape):
+        made = "a trailing comma, `return x,`, makes a tuple" if isinstance(got, tuple) else "brackets, `[x]`, make a list"
+        return f"you returned a {kind} holding your array: {made}; return the array itself"
     not_real = _not_real_numbers(got, kind, wanted)
     if not_real:
         return not_real
@@ -527,7 +544,8 @@ def shape_problem(got: Any, expected: np.ndarray) -> str | None:
     if g.shape != np.shape(expected):
         return f"expected an array of shape {np.shape(expected)}, got shape {g.shape}"
     if not np.isfinite(g).all():
-        return "the result holds NaN or inf: did you divide by a coordinate that can be 0?"
+        return ("the result holds NaN or inf: did you divide by a coordinate that can be 0, or leave entries of an "
+                "array made with np.empty unfilled (np.empty keeps whatever was in memory)?")
     return None
 
 

@@ -77,6 +77,15 @@ def _batch_code_hint(exc: Exception, args: tuple) -> str:
     called, _ = _raised_where(exc)
     if isinstance(exc, IndexError) and "out of bounds for axis 0" in text:
         return _index_hint(exc)
+    if isinstance(exc, IndexError) and "list assignment index out of range" in text:
+        return ("assigning q[2] = ... cannot grow a Python list (nor a numpy array): a list grows with "
+                f"q.append(1.0); for the array this exercise wants, {_APPEND}")
+    if isinstance(exc, IndexError) and "list index out of range" in text:
+        return (f"counting from 1: Python counts from 0, so the point's coordinates are p[0] (x) and p[1] (y); "
+                f"then append the 1: {_APPEND}")
+    if "cannot reshape array of size 2" in text:
+        return ("reshape rearranges the numbers an array holds, and p holds 2: it cannot make a third; "
+                f"append it: {_APPEND}")
     if "has no attribute 'append'" in text:
         return ("p.append(1.0) is how a Python list grows; a numpy array has no .append method "
                 f"(its size is fixed): {_APPEND} returns a new, longer array")
@@ -90,8 +99,9 @@ def _batch_code_hint(exc: Exception, args: tuple) -> str:
         return ("np.concatenate joins arrays, and the 1 is a bare number (0-D): write it as "
                 "[1.0], np.concatenate([p, [1.0]]), or use np.append(p, 1.0) or np.hstack([p, 1.0]), which accept it")
     if "same number of dimensions" in text:
-        return (f"batch code on one point: {_ONE_POINT}, so np.hstack([p, np.ones((len(p), 1))]) "
-                f"joins a 1-D array to a 2-D column; for one point append one number: {_APPEND}")
+        joined = called if called in ("np.hstack", "np.vstack") else "np.concatenate"
+        return (f"batch code on one point: {_ONE_POINT}, so {joined} joins a 1-D array to a 2-D one (a column "
+                f"such as np.ones((len(p), 1)) or [[1.0]]); for one point append one number: {_APPEND}")
     if "too many indices" in text or "out of bounds for array of dimension 1" in text:
         return (f"batch code on one point: {_ONE_POINT}, so it has no second axis (p[:, :2], "
                 f"axis=1); its coordinates are p[0] and p[1], and {_APPEND} lifts it")
@@ -135,12 +145,16 @@ def _shape_slip(got_shape: tuple, g: np.ndarray, p: np.ndarray) -> str:
 def _diagnose(args, got, expected) -> str:
     """The likely cause of a (3,) answer with the wrong numbers: what is wrong with x and y, and with w."""
     problem = shape_problem(got, expected)  # check() has already named an answer that is not numbers
-    if problem:
-        if np.shape(got) != np.shape(expected):
-            return f"{problem}: {_shape_slip(np.shape(got), np.asarray(got, dtype=float).ravel(), args[0])}"
-        return problem
-    g = np.asarray(got, dtype=float)
+    g = np.asarray(got, dtype=float).ravel() if problem else np.asarray(got, dtype=float)
     p = np.asarray(args[0], dtype=float)
+    if problem and np.shape(got) != np.shape(expected):
+        return f"{problem}: {_shape_slip(np.shape(got), g, p)}"
+    if problem and np.isnan(g[-1]) and np.allclose(g[:2], p):  # x and y filled in, w left as it was
+        return ("w is NaN and x and y are right: an array made with np.empty(3) keeps whatever was in memory until "
+                "you fill it (here NaN, which the check leaves there), so set w too, or build the answer from p: "
+                f"{_APPEND}")
+    if problem:
+        return problem
     w = g[-1]
     if np.allclose(g, [1.0, *p]):
         return "you put the 1 first; by convention w is the last coordinate: (x, y, 1)"
@@ -154,6 +168,9 @@ def _diagnose(args, got, expected) -> str:
         return (f"({shown}) is the same point scaled by {w:g} (homogeneous coordinates are defined up to scale), "
                 f"but this exercise fixes w = 1: {_KEEP}")
     xy = _xy_slip(g[:2], p)
+    if not xy and w == p[0] and w != 1:
+        return ("w is x again: np.resize (or np.tile) repeats the array to fill the new length; append the 1 "
+                f"instead: {_APPEND}")
     if w == 0:
         w_slip = ("w = 0 makes an ideal point, a direction (lesson 06 §3), not the point itself: w must be 1")
     elif w != 1:
@@ -238,11 +255,25 @@ def _list_append(p):
     return p
 
 
+def _list_grow(p):
+    """A list grown by assignment (a wrong variant for the tests)."""
+    q = list(p)
+    q[2] = 1.0
+    return np.array(q)
+
+
 def _grow_by_assignment(p):
     """MATLAB's way to grow, tried on an array (a wrong variant for the tests)."""
     q = p.copy()
     q[2] = 1.0
     return q
+
+
+def _empty_unfilled(p):
+    """np.empty with w never set: it holds whatever the memory held (a wrong variant for the tests)."""
+    out = np.empty(3)
+    out[:2] = p
+    return out
 
 
 def _zeros_never_filled(p):
@@ -299,7 +330,7 @@ register_exercise(Exercise(
         (lambda p: np.append(p, 1.0) + 0j, "complex numbers"),
         (lambda p: np.append(p, 1.0).astype(object), "Python objects"),
         # the worked example's batch code, copied for one point
-        (lambda p: np.hstack([p, np.ones((len(p), 1))]), "joins a 1-D array to a 2-D column"),
+        (lambda p: np.hstack([p, np.ones((len(p), 1))]), "np.hstack joins a 1-D array to a 2-D one (a column"),
         (lambda p: np.hstack([p[:, :2], np.ones((len(p), 1))]), "p[0] and p[1]"),
         (lambda p: np.concatenate([p, np.ones((len(p), 1))], axis=1), "no second axis"),
         (lambda p: np.column_stack([p, np.ones(len(p))]), "each coordinate a row"),
@@ -308,6 +339,12 @@ register_exercise(Exercise(
         (lambda p: np.hstack([p[None], [[1.0]]]), "one point in, one point out"),
         (lambda p: np.append(p, 1.0)[:, None], "a column; points are rows"),
         (lambda p: np.append(p, np.ones(len(p))), "two 1s"),
+        (_empty_unfilled, "w is NaN and x and y are right: an array made with np.empty(3)"),
+        (lambda p: np.resize(p, 3), "np.resize (or np.tile) repeats the array"),
+        (lambda p: p.reshape(3), "reshape rearranges the numbers"),
+        (lambda p: np.hstack([p, [[1.0]]]), "np.hstack joins a 1-D array to a 2-D one"),
+        (lambda p: (np.append(p, 1.0),), "a trailing comma, `return x,`, makes a tuple"),
+        (_list_grow, "cannot grow a Python list"),
         # index slips, and joining functions that do not append
         (_grow_by_assignment, "cannot grow an array"),
         (lambda p: np.array([p[1], p[2], 1.0]), "counting from 1"),
