@@ -29,7 +29,7 @@ def draw_pixel_grid(ax: Axes, size: tuple[int, int], points: np.ndarray, marked:
     u, v = np.meshgrid(np.arange(width), np.arange(height))
     image = ax.imshow((u + v) % 2, cmap="Greys", vmin=0, vmax=8)  # a light checkerboard: one square per pixel
     image_axes(ax, size)
-    ax.set_title(f"a {width} x {height} image: centres at integers", fontsize=10)
+    ax.set_title(f"a {width} x {height} image:\npixel centres at whole numbers", fontsize=10)
     ax.set_anchor("N")  # the top of its slot, like the panels beside it, so their titles line up
     ax.set_xlabel("u (px): column, along the camera's x", color=X_COLOUR)
     ax.set_ylabel("v (px): row, along y", color=Y_COLOUR)
@@ -61,7 +61,7 @@ def draw_point_rows(ax: Axes, points: np.ndarray, notes: Sequence[str]) -> None:
     ax.set_anchor("N")
     ax.set_xlim(0, 1)
     ax.set_ylim(1, 0)
-    ax.set_title(f"points are rows: X, shape {points.shape}", fontsize=10)
+    ax.set_title(f"points are rows:\nX, shape {points.shape}", fontsize=10)
     mono = dict(family="monospace", fontsize=9.5, va="center")
     rows = [f"X[{k}]  {pu:4.1f} {pv:4.1f}  {note}" for k, ((pu, pv), note) in enumerate(zip(points, notes))]
     top, step = 0.12, 0.13
@@ -84,7 +84,7 @@ def draw_camera_frame(ax: Axes) -> None:
     ax.set_ylim(1.75, -1.25)  # y down; the box is 4:3 like the image beside it
     ax.set_aspect("equal")
     ax.set_axis_off()
-    ax.set_title("the camera frame, from behind", fontsize=10)
+    ax.set_title("the camera frame,\nseen from behind", fontsize=10)
     ax.set_anchor("N")
     w, h = 1.0, 0.75  # half the image plane's width and height (4:3)
     ax.add_patch(Rectangle((-w, -h), 2 * w, 2 * h, facecolor="0.95", edgecolor="0.55", lw=1))

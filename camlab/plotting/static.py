@@ -99,8 +99,8 @@ def _format_value(control: Any) -> str:
 
 
 def demo_alt_text(description: str, controls: Mapping[str, Any], fig: Figure | None = None) -> str:
-    """Alt text for a demo: what it shows, its panels, the readout in its figure (texts with gid 'readout'),
-    and the settings it was drawn at."""
+    """Alt text for a demo: what it shows, its panels, the readout in its figure (its texts with gid
+    'readout', joined in order), and the settings it was drawn at."""
     text = " ".join(description.split())
     if text and text[-1] not in ".!?":
         text += "."
@@ -111,10 +111,11 @@ def demo_alt_text(description: str, controls: Mapping[str, Any], fig: Figure | N
         titles = [" ".join(ax.get_title().split()) for ax in fig.axes if ax.get_visible() and ax.get_title()]
         if titles:
             text += " Panels: " + _quoted(titles) + "."
-        readouts = [" ".join(t.get_text().split()) for t in [*fig.texts, *(t for ax in fig.axes for t in ax.texts)]
-                    if t.get_gid() == "readout" and t.get_text().strip()]  # numbers a demo shows in its figure
-        if readouts:
-            text += " Readout: " + _quoted(readouts) + "."
+        # Numbers a demo shows in its figure: texts with gid 'readout', read in order (a label, then its numbers).
+        readout = " ".join("".join(t.get_text() for t in [*fig.texts, *(t for ax in fig.axes for t in ax.texts)]
+                                   if t.get_gid() == "readout").split())
+        if readout:
+            text += f" Readout: '{readout}'."
     settings = [f"{(c.description or name).strip().rstrip('=:').strip()} = {_format_value(c)}"
                 for name, c in controls.items()]
     if settings:
