@@ -51,7 +51,7 @@ def _quoted(texts: list[str]) -> str:
 
 
 def _describe_axes(ax: Any) -> str:
-    title = " ".join(t for t in (ax.get_title("left"), ax.get_title(), ax.get_title("right")) if t)
+    title = " ".join(" ".join(t.split()) for t in (ax.get_title("left"), ax.get_title(), ax.get_title("right")) if t)
     kind = "3-D view" if ax.name == "3d" else ("image" if ax.images and not ax.lines else "plot")
     words = [f"{kind} '{title}'" if title else kind]
     labels = [lab for lab in (ax.get_xlabel(), ax.get_ylabel()) if lab]
