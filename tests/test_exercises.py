@@ -255,12 +255,9 @@ def test_check_result_is_falsy_for_a_stub_and_prints_nothing_in_ipython(capsys):
 
 @pytest.fixture
 def short_time_limit(monkeypatch):
-    import signal
-    import threading
-
     from camlab.exercises import _core
 
-    if not hasattr(signal, "setitimer") or threading.current_thread() is not threading.main_thread():
+    if not _core.time_limit_applies():
         pytest.skip("the time limit needs SIGALRM in the main thread")
     monkeypatch.setattr(_core, "TIME_LIMIT_S", 0.3)
 
@@ -297,6 +294,42 @@ def test_time_limit_on_a_later_input_names_that_input(short_time_limit):
 
     with pytest.raises(AssertionError, match="on test input 2 of"):
         check("intersect_lines", slow_on_the_second)
+
+
+def test_check_takes_a_shorter_time_limit_as_lesson_00_shows_it():
+    """Lesson 00 runs a never-ending lift under check_lift(..., time_limit_s=1) where the limit applies."""
+    import time
+
+    from camlab.exercises import TIME_LIMIT_S, time_limit_applies
+
+    if not time_limit_applies():
+        pytest.skip("the time limit needs SIGALRM in the main thread")
+    start = time.monotonic()
+    with pytest.raises(AssertionError, match=r"still running after 0.4 s on test input 1 of 3, so the check stopped it"):
+        exercises.check_lift(_never_returns, time_limit_s=0.4)
+    assert time.monotonic() - start < 3 and TIME_LIMIT_S == 30
+
+
+@pytest.mark.parametrize("bad", [0, -1.0, float("nan")])
+def test_a_time_limit_that_is_not_a_positive_number_is_a_clear_error(bad):
+    from camlab import CamlabInputError
+
+    with pytest.raises(CamlabInputError, match=r"check: time_limit_s: expected a positive number of seconds, got"):
+        check("lift", EXERCISES["lift"].reference, time_limit_s=bad)
+
+
+def test_time_limit_applies_only_where_sigalrm_can_interrupt_the_main_thread():
+    import signal
+    import threading
+
+    from camlab.exercises import time_limit_applies
+
+    assert time_limit_applies() == (hasattr(signal, "setitimer") and threading.current_thread() is threading.main_thread())
+    seen = []
+    worker = threading.Thread(target=lambda: seen.append(time_limit_applies()))
+    worker.start()
+    worker.join()
+    assert seen == [False]
 
 
 def test_time_limit_restores_an_outer_timer():
@@ -441,6 +474,36 @@ def test_a_number_as_text_or_complex_is_not_a_number(answer):
     assert "complex number" in (type_problem(np.complex128(2.5), 2.5) or "")
 
 
+def _grow(p):
+    p = p.copy()
+    p[2] = 1.0   # MATLAB grows an array this way; numpy cannot
+    return p
+
+
+def _read_from_1(p):
+    return np.array([p[1], p[2], 1.0])
+
+
+@pytest.mark.parametrize("wrong, causes, not_said", [
+    (_grow, ["cannot grow an array: a numpy array has a fixed size"], "counting"),
+    (_read_from_1, ["counting from 1: numpy counts from 0, so the point's coordinates are p[0] (x) and p[1] (y)"], "grow"),
+    (lambda p: np.vstack([p, 1.0]), ["np.vstack stacks its arguments as rows"], "np.c_"),
+    (lambda p: np.zeros(3), ["x and y are 0: the array was created", "w = 0 makes an ideal point"], None),
+    (lambda p: np.r_[p[::-1], 0.0], ["x and y are swapped", "w = 0 makes an ideal point"], None),
+    (lambda p: np.r_[-p[0], p[1], 1.0], ["x changed sign"], "a unit change"),
+], ids=["p[2] = 1", "1-based", "vstack", "zeros", "swapped and w = 0", "x sign"])
+def test_lift_hints_name_the_real_cause_not_the_batch_exercises(wrong, causes, not_said):
+    """Index and joining slips on one (2,) point get hints about that point, not an (N, 3) array's columns;
+    an answer wrong in x and y and in w is told both."""
+    with pytest.raises(AssertionError) as info:
+        check("lift", wrong)
+    message = str(info.value)
+    hint = message.split("likely cause")[-1]
+    assert all(cause in hint for cause in causes), message
+    assert "(N, 3)" not in message and "counting columns" not in message, message
+    assert not not_said or not_said not in hint, message
+
+
 @pytest.mark.parametrize("batch_code, phrase", [
     (lambda p: np.hstack([p, np.ones((len(p), 1))]), r"batch code on one point(.|\n)*np\.append\(p, 1\.0\)"),
     (lambda p: np.c_[p[:, 0], p[:, 1], np.ones(len(p))], r"no second axis(.|\n)*p\[0\] and p\[1\]"),
@@ -569,3 +632,23 @@ def test_a_number_written_as_a_string_is_rejected(name):
     reference = EXERCISES[name].reference
     with pytest.raises(AssertionError, match="you returned a str, which is not numbers"):
         check(name, lambda *args: f"{reference(*args):.6g}")
+
+
+@pytest.mark.parametrize("wrap, phrase", [(lambda a: (a,), "a trailing comma, `return x,`, makes a tuple"),
+                                          (lambda a: [a], "brackets, `[x]`, make a list")], ids=["tuple", "list"])
+def test_an_array_wrapped_in_a_tuple_or_list_is_named(wrap, phrase):
+    from camlab.exercises import type_problem
+
+    answer = np.array([2.5, 4.25, 1.0])
+    assert phrase in type_problem(wrap(answer), answer, ndarray_only=True)
+
+
+def test_an_unfilled_np_empty_answer_fails_instead_of_passing_on_freed_memory():
+    """np.empty(3) would often hold the reference answer the check has just computed and freed."""
+    def lift(p):
+        out = np.empty(3)
+        out[:2] = p   # w never set
+        return out
+
+    with pytest.raises(AssertionError, match=r"w is NaN and x and y are right: an array made with np\.empty\(3\)"):
+        check("lift", lift)

@@ -44,10 +44,11 @@ def test_demo_bundle_has_widget_png_and_alt_text(name):
 
 def test_alt_text_follows_the_settings():
     demo = DEMOS["stack_check"].builder()
-    assert "angle (°) = 20; scale = 1." in demo.alt_text
+    assert "angle θ (°) = 20; scale s = 1." in demo.alt_text
     demo.set(angle=-35.0, scale=1.5)
-    assert "angle (°) = -35; scale = 1.5." in demo.alt_text
-    assert "Panels: 'a house on axes with y pointing down'" in demo.alt_text
+    assert "angle θ (°) = -35; scale s = 1.5." in demo.alt_text
+    assert "Panels: 'y down, as in images: θ > 0 turns it clockwise', 'y up, as in maths textbooks" in demo.alt_text
+    assert "Readout: 'roof tip (orange dot) at (-1.20, -1.72)'." in demo.alt_text
 
 
 def test_selection_controls_show_their_label():

@@ -280,8 +280,29 @@ def test_a_demo_whose_defaults_fail_raises_when_built():
         build_demo("broken", {"x": W.FloatSlider(value=1.0)}, FigureView(figsize=(2, 2)), update)
 
 
+def _stack_check_readout(demo):
+    (readout,) = [t for t in demo.figure.axes[0].texts if t.get_gid() == "readout" and t.get_animated()]
+    return readout
+
+
+def test_stack_check_static_picture_shows_the_readout_like_the_live_frame():
+    """The PNG a notebook keeps for readers without a kernel (a saved figure) shows what the live frame shows,
+    readout included: a figure-level animated text would be left out of it."""
+    import io
+
+    import matplotlib.pyplot as plt
+    from camlab.plotting.static import figure_png
+
+    demo = DEMOS["stack_check"].builder()
+    demo.set(angle=120.0, scale=1.5)
+    live = demo.view.pixels()[..., :3].astype(int)
+    saved = (plt.imread(io.BytesIO(figure_png(demo.figure)))[..., :3] * 255).round().astype(int)
+    assert saved.shape == live.shape
+    assert np.abs(saved - live).max() <= 2, "the static picture differs from the live frame"
+
+
 @pytest.mark.parametrize("angle", [-180.0, -60.0, 20.0, 90.0, 180.0])
-def test_stack_check_legend_stays_off_the_house_at_every_angle_and_the_largest_scale(angle):
+def test_stack_check_legend_and_readout_stay_off_the_house_at_every_angle_and_the_largest_scale(angle):
     from matplotlib.transforms import Bbox
 
     demo = DEMOS["stack_check"].builder()
@@ -289,17 +310,17 @@ def test_stack_check_legend_stays_off_the_house_at_every_angle_and_the_largest_s
     fig = demo.figure
     fig.canvas.draw()
     renderer = fig.canvas.get_renderer()
-    (ax,), legend = fig.axes, fig.legends[0]
-    box = legend.get_window_extent(renderer)
-    assert np.abs(demo.state["house"]).max() <= 3.0  # the whole house is inside the axes ...
-    assert not Bbox.intersection(box, ax.get_window_extent(renderer)), "the legend overlaps the axes"  # ... the legend not
+    assert np.abs(demo.state["house"]).max() <= 3.0 and np.abs(demo.state["path"]).max() <= 3.0  # all inside the axes ...
+    for text in (fig.legends[0], _stack_check_readout(demo)):
+        box = text.get_window_extent(renderer)
+        for ax in fig.axes:  # ... the legend under them and the readout over them, on neither
+            assert not Bbox.intersection(box, ax.get_window_extent(renderer)), f"{text} overlaps {ax.get_title()!r}"
 
 
 def test_stack_check_readout_marks_the_roof_tip_without_a_signed_zero():
     demo = DEMOS["stack_check"].builder()
     demo.set(angle=-180.0, scale=1.0)
-    readout = demo.widget.children[0].children[-1].value
-    assert "roof tip (orange dot) at (+0.00, +1.40)" in readout, readout
+    assert _stack_check_readout(demo).get_text() == "(+0.00, +1.40)"
 
 
 @pytest.mark.parametrize("angle, scale", [(20.0, 1.0), (-135.0, 1.7)])
@@ -307,11 +328,32 @@ def test_stack_check_state_tip_is_the_orange_dot_and_the_readout(angle, scale):
     """Lesson 00 checks its hand computation against demo.state["tip"]: it must be what the figure shows."""
     demo = DEMOS["stack_check"].builder()
     demo.set(angle=angle, scale=scale)
-    (tip_line,) = [ln for ln in demo.figure.axes[0].lines if ln.get_label() == "roof tip"]
-    assert np.allclose(np.column_stack(tip_line.get_data())[0], demo.state["tip"])
-    assert demo.state["readout"] in demo.widget.children[0].children[-1].value
+    for ax in demo.figure.axes:  # the same numbers in both panels
+        (tip_line,) = [ln for ln in ax.lines if ln.get_label() == "roof tip"]
+        assert np.allclose(np.column_stack(tip_line.get_data())[0], demo.state["tip"])
+    assert demo.state["readout"] in _stack_check_readout(demo).get_text()
     t = np.radians(angle)
     assert np.allclose(demo.state["tip"], scale * np.array([1.4 * np.sin(t), -1.4 * np.cos(t)]))
+
+
+@pytest.mark.parametrize("angle, down, up", [(20.0, "clockwise", "anticlockwise"), (-45.0, "anticlockwise", "clockwise"),
+                                             (0.0, "no turn", "no turn"),
+                                             (180.0, "clockwise, half a turn", "anticlockwise, half a turn")])
+def test_stack_check_names_the_turn_each_panel_shows(angle, down, up):
+    """The titles say which way a positive angle turns the house on y-down and y-up axes, and the path of the
+    roof tip turns the way state["turns"] names on screen (the sign of its cross product in display coordinates)."""
+    demo = DEMOS["stack_check"].builder()
+    demo.set(angle=angle, scale=1.0)
+    ax_down, ax_up = demo.figure.axes
+    assert demo.state["turns"] == {"y down": down, "y up": up}
+    assert ax_down.get_title().endswith("θ > 0 turns it clockwise") and ax_up.get_title().endswith("anticlockwise")
+    for ax, words in ((ax_down, down), (ax_up, up)):
+        assert ax.yaxis_inverted() == (ax is ax_down)
+        if angle:
+            screen = ax.transData.transform(demo.state["path"]) * [1, -1]  # display y runs up; screen y runs down
+            steps = np.diff(screen, axis=0)
+            turn = np.sum(steps[:-1, 0] * steps[1:, 1] - steps[:-1, 1] * steps[1:, 0])  # > 0: clockwise on screen
+            assert (turn > 0) == words.startswith("clockwise"), (ax.get_title(), turn)
 
 
 def test_stack_report_names_the_versions_and_whether_figures_are_live():

@@ -18,11 +18,11 @@ import importlib
 import pkgutil
 
 from ._core import (EXERCISES, TIME_LIMIT_S, Exercise, check, register_exercise, same_array, same_up_to_scale,
-                    shape_problem, type_problem, unit_slip, worst_mismatch)
+                    shape_problem, time_limit_applies, type_problem, unit_slip, worst_mismatch)
 from ._core import solution as _solution
 
 __all__ = ["EXERCISES", "TIME_LIMIT_S", "Exercise", "all_exercises", "check", "register_exercise", "same_array", "same_up_to_scale",
-           "shape_problem", "solution", "type_problem", "unit_slip", "worst_mismatch"]
+           "shape_problem", "solution", "time_limit_applies", "type_problem", "unit_slip", "worst_mismatch"]
 
 
 def all_exercises() -> dict[str, Exercise]:

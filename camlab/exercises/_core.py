@@ -14,7 +14,8 @@ comparison and a diagnosis. ``check`` runs the student's function on every input
 * an exercise may name the likely cause of an exception its typical mistakes raise
   (``Exercise.exception_hint``); the shared hints cover the rest;
 * a function still running after :data:`TIME_LIMIT_S` seconds on one input is stopped,
-  and the AssertionError names that input (see :func:`time_limit`);
+  and the AssertionError names that input, where a timer can interrupt it (Linux and macOS,
+  in the main thread: :func:`time_limit_applies`; see :func:`time_limit`);
 * a right answer prints a congratulation and returns a true :class:`CheckResult`.
 
 The result prints nothing when it ends a cell (the verdict is already printed), and
@@ -41,6 +42,8 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, Iterator, Sequence
 
 import numpy as np
+
+from .._validate import CamlabInputError
 
 
 @dataclass(frozen=True)
@@ -130,6 +133,15 @@ TIME_LIMIT_S = 30.0
 """Seconds a student's function may run on one test input (a slow loop, not an endless one, fits)."""
 
 
+def time_limit_applies() -> bool:
+    """Whether :func:`time_limit` can stop a running function here: SIGALRM in the main thread.
+
+    True on Linux and macOS in a Jupyter kernel (cells run in its main thread); False on
+    Windows, which has no SIGALRM, and in a worker thread.
+    """
+    return hasattr(signal, "setitimer") and threading.current_thread() is threading.main_thread()
+
+
 class OutOfTime(TimeoutError):
     """Raised by :func:`time_limit` when its body ran too long."""
 
@@ -147,7 +159,7 @@ def time_limit(seconds: float) -> Iterator[None]:
     already running (pytest-timeout's) is put back with its remaining time afterwards, and
     wins if it is due first.
     """
-    if not hasattr(signal, "setitimer") or threading.current_thread() is not threading.main_thread():
+    if not time_limit_applies():
         yield
         return
     outer_delay, outer_interval = signal.getitimer(signal.ITIMER_REAL)
@@ -202,18 +214,19 @@ def _in_place_message(name: str, student_function: Callable[..., Any], changed: 
             f"build a new array instead (`x * L`), or work on a copy first (`x = np.array(x, dtype=float)`)")
 
 
-def _run_student(name: str, student_function: Callable[..., Any], args: tuple, i: int, n: int) -> Any:
-    """The student's answer on test input ``i`` of ``n``; AssertionError on a crash, an endless run or
-    an input changed in place."""
+def _run_student(name: str, student_function: Callable[..., Any], args: tuple, i: int, n: int,
+                 seconds: float) -> Any:
+    """The student's answer on test input ``i`` of ``n``; AssertionError on a crash, a run longer than
+    ``seconds`` or an input changed in place."""
     passed = _copy(args)
     try:
-        with time_limit(TIME_LIMIT_S):
+        with time_limit(seconds):
             got = student_function(*passed)
     except NotImplementedError:
         raise
     except OutOfTime:
         raise AssertionError(
-            f"{name}: your function was still running after {TIME_LIMIT_S:g} s on test input {i + 1} of {n}, "
+            f"{name}: your function was still running after {seconds:g} s on test input {i + 1} of {n}, "
             f"so the check stopped it\n"
             f"  input    {_fmt(args)}\n"
             f"  likely cause: a loop that never ends (a `while` whose condition stays true?)") from None
@@ -228,14 +241,23 @@ def _run_student(name: str, student_function: Callable[..., Any], args: tuple, i
     return got
 
 
-def check(name: str, student_function: Callable[..., Any]) -> CheckResult:
-    """Check ``student_function`` against exercise ``name`` (see the module docstring)."""
+def check(name: str, student_function: Callable[..., Any], *, time_limit_s: float | None = None) -> CheckResult:
+    """Check ``student_function`` against exercise ``name`` (see the module docstring).
+
+    ``time_limit_s`` replaces :data:`TIME_LIMIT_S`, the seconds allowed per test input (lesson 00
+    shows the limit at work with a short one); it applies only where :func:`time_limit_applies`.
+    """
+    if time_limit_s is not None and not time_limit_s > 0:
+        raise CamlabInputError(f"check: time_limit_s: expected a positive number of seconds, got {time_limit_s!r}; "
+                         f"leave it out for the usual {TIME_LIMIT_S:g} s")
+    seconds = TIME_LIMIT_S if time_limit_s is None else float(time_limit_s)
     exercise = EXERCISES[name]
     cases = list(exercise.cases())
     for i, args in enumerate(cases):
         expected = exercise.reference(*_copy(args))
+        _leave_nan_in_freed_memory(expected)
         try:
-            got = _run_student(name, student_function, args, i, len(cases))
+            got = _run_student(name, student_function, args, i, len(cases), seconds)
         except NotImplementedError:
             print(f"{name}: not attempted yet. Fill in the function above, run its cell, then this one.")
             return CheckResult(name, False)
@@ -267,6 +289,18 @@ def check(name: str, student_function: Callable[..., Any]) -> CheckResult:
             raise AssertionError(f"{name}: correct on all {len(cases)} test inputs, but {problem}")
     print(f"{name}: correct on all {len(cases)} test inputs. Well done!")
     return CheckResult(name, True)
+
+
+def _leave_nan_in_freed_memory(expected: Any) -> None:
+    """Free a NaN-filled array of the answer's size just before the student's function runs.
+
+    numpy reuses the memory of small arrays it has just freed, so an answer built with
+    ``np.empty(3)`` and left partly unfilled would otherwise hold the numbers of the reference
+    answer (the array the check just computed) and pass by luck. After this it holds NaN, and the
+    check fails, naming it.
+    """
+    if isinstance(expected, np.ndarray) and expected.dtype.kind == "f" and 0 < expected.nbytes <= 1024:
+        np.full(expected.shape, np.nan, dtype=expected.dtype)  # made and freed at once
 
 
 def _exercise_exception_hint(name: str, exc: Exception, args: tuple) -> str:
@@ -319,6 +353,10 @@ def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | N
     else:
         return None
     kind = type(got).__name__
+    if (isinstance(got, (tuple, list)) and len(got) == 1 and isinstance(got[0], np.ndarray)
+            and isinstance(expected, np.ndarray) and got[0].shape == expected.shape):
+        made = "a trailing comma, `return x,`, makes a tuple" if isinstance(got, tuple) else "brackets, `[x]`, make a list"
+        return f"you returned a {kind} holding your array: {made}; return the array itself"
     not_real = _not_real_numbers(got, kind, wanted)
     if not_real:
         return not_real
@@ -515,7 +553,8 @@ def shape_problem(got: Any, expected: np.ndarray) -> str | None:
     if g.shape != np.shape(expected):
         return f"expected an array of shape {np.shape(expected)}, got shape {g.shape}"
     if not np.isfinite(g).all():
-        return "the result holds NaN or inf: did you divide by a coordinate that can be 0?"
+        return ("the result holds NaN or inf: did you divide by a coordinate that can be 0, or leave entries of an "
+                "array made with np.empty unfilled (np.empty keeps whatever was in memory)?")
     return None
 
 

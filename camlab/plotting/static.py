@@ -51,7 +51,7 @@ def _quoted(texts: list[str]) -> str:
 
 
 def _describe_axes(ax: Any) -> str:
-    title = " ".join(t for t in (ax.get_title("left"), ax.get_title(), ax.get_title("right")) if t)
+    title = " ".join(" ".join(t.split()) for t in (ax.get_title("left"), ax.get_title(), ax.get_title("right")) if t)
     kind = "3-D view" if ax.name == "3d" else ("image" if ax.images and not ax.lines else "plot")
     words = [f"{kind} '{title}'" if title else kind]
     z_label = ax.get_zlabel() if ax.name == "3d" else ""  # a 3-D view has a third axis to name
@@ -100,14 +100,23 @@ def _format_value(control: Any) -> str:
 
 
 def demo_alt_text(description: str, controls: Mapping[str, Any], fig: Figure | None = None) -> str:
-    """Alt text for a demo: what it shows, its panels, and the settings it was drawn at."""
+    """Alt text for a demo: what it shows, its panels, the readout in its figure (its texts with gid
+    'readout', joined in order), and the settings it was drawn at."""
     text = " ".join(description.split())
     if text and text[-1] not in ".!?":
         text += "."
     if fig is not None:
-        titles = [ax.get_title() for ax in fig.axes if ax.get_visible() and ax.get_title()]
+        heading = " ".join(fig.get_suptitle().split())  # the figure's own title
+        if heading:
+            text += f" Above the panels: '{heading}'."
+        titles = [" ".join(ax.get_title().split()) for ax in fig.axes if ax.get_visible() and ax.get_title()]
         if titles:
             text += " Panels: " + _quoted(titles) + "."
+        # Numbers a demo shows in its figure: texts with gid 'readout', read in order (a label, then its numbers).
+        readout = " ".join("".join(t.get_text() for t in [*fig.texts, *(t for ax in fig.axes for t in ax.texts)]
+                                   if t.get_gid() == "readout").split())
+        if readout:
+            text += f" Readout: '{readout}'."
     settings = [f"{(c.description or name).strip().rstrip('=:').strip()} = {_format_value(c)}"
                 for name, c in controls.items()]
     if settings:

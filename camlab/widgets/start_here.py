@@ -4,54 +4,126 @@ from __future__ import annotations
 import ipywidgets as W
 import numpy as np
 from matplotlib.colors import to_rgba
+from matplotlib.markers import MarkerStyle
+from matplotlib.transforms import Affine2D
 
-from .. import projective as pj
 from ..plotting.plane import plane_axes
 from ._base import Demo, FigureView, display_mode, build_demo, register, slider
-from .controls import monospace
 from ..plotting import palette
 
 # A little house outline, in plot units: the course's running example of a shape. y points down, as in
 # every image of the course, so the roof (drawn on top) has the most negative y.
 HOUSE = np.array([[-1, 1], [1, 1], [1, -0.6], [0, -1.4], [-1, -0.6], [-1, 1]], dtype=float)
+ROOF_TIP = 3  # HOUSE[3] is the roof tip, (0, -1.4)
+MOVED = "0.15"  # the moved house: near-black, so colour stays for the points the lesson reads (orange)
 
 
-@register(lesson="00", sweep={"angle": [-180.0, 0.0, 45.0, 120.0, 180.0], "scale": [0.3, 0.5, 1.5, 2.0]})
-def stack_check() -> Demo:
-    """Rotate and scale a house with two sliders; if it moves, the interactive stack works.
+def turn_path(angle_deg: float, scale: float, start: np.ndarray, samples: int = 61) -> np.ndarray:
+    r"""The path of ``start`` as the house turns and grows from (0°, 1) to (``angle_deg``, ``scale``): (samples, 2).
 
-    The axes have y down, like every image in the course, so a positive angle turns the house clockwise:
-    the house is mapped by x' = s R(angle) x. The legend sits under the axes, since at scale 2 the house
-    reaches every corner of them.
+    Angle and scale grow together, :math:`x(t) = (1 + t (s - 1))\, R(t \theta)\, x_0` for t from 0 to 1:
+    an arc for s = 1, a spiral otherwise. Its direction on screen is the turn's: clockwise on y-down
+    axes for θ > 0, anticlockwise on y-up axes.
     """
-    view = FigureView(figsize=(4.5, 4.9))
-    ax = plane_axes(view.fig.subplots(), 3, "a house on axes with y pointing down",
-                    xlabel="x, right (plot units)", ylabel="y, down (plot units)")
-    ax.invert_yaxis()  # y down, as in images and in the camera frame
+    t = np.linspace(0.0, 1.0, samples)[:, None]
+    theta = np.radians(angle_deg) * t
+    grow = 1.0 + t * (scale - 1.0)
+    x, y = start
+    return grow * np.hstack([x * np.cos(theta) - y * np.sin(theta), x * np.sin(theta) + y * np.cos(theta)])
+
+
+def turn_words(angle_deg: float, y_down: bool) -> str:
+    """How R(angle) turns a shape, from angle 0, as drawn on y-down or y-up axes: 'clockwise', 'anticlockwise'...
+
+    A positive angle turns x towards y: clockwise on screen when y points down, anticlockwise when it
+    points up. At ±180° both ways end at the same place; the words name the way the angle went.
+    """
+    if angle_deg == 0:
+        return "no turn"
+    way = "clockwise" if (angle_deg > 0) == y_down else "anticlockwise"
+    return f"{way}, half a turn" if abs(angle_deg) == 180 else way
+
+
+def _house_panel(ax, y_down: bool, view: FigureView) -> dict:
+    """One panel: the original house, the moved one, the roof tip and its path; returns the animated artists."""
+    plane_axes(ax, 3, xlabel="x, right (plot units)",
+               ylabel=f"y, {'down' if y_down else 'up'} (plot units)")
+    if y_down:
+        ax.invert_yaxis()  # y down, as in images and in the camera frame
     # A light fill keeps the original visible where the moved outline covers its edge (angle 0, scale 1).
     ax.fill(HOUSE[:, 0], HOUSE[:, 1], facecolor=to_rgba(palette.GREY, 0.2), edgecolor=palette.GREY, lw=1, ls="--",
             label="original")
-    house = view.animate(ax.plot([], [], color=palette.BLUE, lw=2, label="rotated and scaled")[0])
+    # A white outline keeps the dotted path apart from the original's dashed edge it starts on.
+    path = view.animate(ax.plot([], [], ":", color=palette.ORANGE, lw=1.6, label="path of the roof tip",
+                                path_effects=palette.halo(1.6))[0])
+    arrow = view.animate(ax.plot([], [], ls="none", marker=">", ms=8, color=palette.ORANGE, label="_the way")[0])
+    house = view.animate(ax.plot([], [], color=MOVED, lw=2, label="rotated and scaled")[0])
     tip = view.animate(ax.plot([], [], "o", color=palette.ORANGE, ms=7, label="roof tip")[0])
-    view.fig.legend(loc="outside lower center", ncols=3, fontsize=9)
-    readout = W.HTML()
+    # Static titles (a text redrawn in every frame costs more than all the lines): the rule, for θ > 0.
+    ax.set_title(f"y {'down, as in images' if y_down else 'up, as in maths textbooks'}:\n"
+                 f"θ > 0 turns it {turn_words(1.0, y_down)}", fontsize=10)
+    return dict(path=path, arrow=arrow, house=house, tip=tip, y_down=y_down)
+
+
+def _point_arrow(arrow, at: np.ndarray, way: np.ndarray, y_down: bool) -> None:
+    """Put the arrowhead marker at ``at``, pointing along ``way`` as drawn (none for a path of length 0).
+
+    The axes have equal aspect, so a direction in plot units keeps its angle on screen, with y
+    mirrored on y-down axes; the marker ">" points right before it is turned.
+    """
+    if np.hypot(*way) < 1e-9:
+        arrow.set_data([], [])
+        return
+    angle = np.degrees(np.arctan2(-way[1] if y_down else way[1], way[0]))
+    arrow.set_marker(MarkerStyle(">", transform=Affine2D().rotate_deg(angle)))
+    arrow.set_data([at[0]], [at[1]])
+
+
+@register(lesson="00", sweep={"angle": [-180.0, -45.0, 0.0, 45.0, 120.0, 180.0], "scale": [0.3, 0.5, 1.5, 2.0]})
+def stack_check() -> Demo:
+    """Rotate and scale a house with two sliders, drawn on y-down axes (images) and y-up axes (textbooks).
+
+    Both panels draw the same numbers, x' = s R(angle) x: on y-down axes a positive angle turns the
+    house clockwise, on y-up axes anticlockwise; the dotted path of the roof tip shows the way. The
+    readout above the panels gives the roof tip's coordinates; the legend sits under the axes, since
+    at scale 2 the house reaches every corner of them.
+    """
+    view = FigureView(figsize=(7.0, 4.55))
+    ax_down, ax_up = view.fig.subplots(1, 2)
+    panels = [_house_panel(ax_down, True, view), _house_panel(ax_up, False, view)]
+    # The readout over both panels: a static label, and the numbers (few glyphs: each costs time in every
+    # frame). An axes' animated text is drawn when the figure is saved (the static picture a notebook keeps),
+    # a figure's is not; the blank title keeps the room for the readout in the layout.
+    view.fig.suptitle(" ", fontsize=18)  # a little taller than the readout: a gap above the titles
+    where = dict(transform=view.fig.transFigure, va="top", fontsize=11, in_layout=False, gid="readout")
+    ax_down.text(0.5, 0.98, "roof tip (orange dot) at ", ha="right", **where)
+    readout = view.animate(ax_down.text(0.5, 0.98, "", ha="left", **where))
+    view.fig.legend(*ax_down.get_legend_handles_labels(), loc="outside lower center", ncols=2, fontsize=9)
 
     def update(v: dict, state: dict) -> None:
-        t, s = np.radians(v["angle"]), v["scale"]
-        H = np.array([[s * np.cos(t), -s * np.sin(t), 0], [s * np.sin(t), s * np.cos(t), 0], [0, 0, 1]])
-        moved = pj.map_points(H, HOUSE)
-        house.set_data(moved[:, 0], moved[:, 1])
-        tip.set_data(moved[3:4, 0], moved[3:4, 1])
-        x, y = (round(c, 2) + 0.0 for c in moved[3])  # + 0.0 turns a rounded -0.0 into 0.0
-        readout.value = monospace(f"roof tip (orange dot) at ({x:+.2f}, {y:+.2f})")
-        # tip: where the orange dot is drawn (lesson 00 recomputes it by hand); readout: the text beside it
-        state.update(H=H, house=moved, tip=moved[3].copy(), readout=f"({x:+.2f}, {y:+.2f})")
+        angle, s = v["angle"], v["scale"]
+        t = np.radians(angle)
+        A = s * np.array([[np.cos(t), -np.sin(t)], [np.sin(t), np.cos(t)]])  # x' = s R(angle) x
+        moved = HOUSE @ A.T  # points are rows: the textbook's A x for every corner at once
+        path = turn_path(angle, s, HOUSE[ROOF_TIP])
+        middle = len(path) // 2
+        way = path[middle + 1] - path[middle - 1]  # the path's direction half-way, in plot units
+        for panel in panels:
+            panel["house"].set_data(moved[:, 0], moved[:, 1])
+            panel["tip"].set_data(moved[ROOF_TIP:ROOF_TIP + 1, 0], moved[ROOF_TIP:ROOF_TIP + 1, 1])
+            panel["path"].set_data(path[:, 0], path[:, 1])
+            _point_arrow(panel["arrow"], path[middle], way, panel["y_down"])
+        x, y = (round(c, 2) + 0.0 for c in moved[ROOF_TIP])  # + 0.0 turns a rounded -0.0 into 0.0
+        readout.set_text(f"({x:+.2f}, {y:+.2f})")
+        # tip: where the orange dot is drawn (lesson 00 recomputes it by hand); readout: the numbers shown
+        state.update(A=A, house=moved, tip=moved[ROOF_TIP].copy(), path=path, readout=f"({x:+.2f}, {y:+.2f})",
+                     turns={"y down": turn_words(angle, True), "y up": turn_words(angle, False)})
 
     controls = {
-        "angle": slider(20.0, -180.0, 180.0, 1.0, "angle (°)", readout_format=".0f"),
-        "scale": slider(1.0, 0.3, 2.0, 0.05, "scale"),
+        "angle": slider(20.0, -180.0, 180.0, 1.0, "angle θ (°)", readout_format=".0f"),
+        "scale": slider(1.0, 0.3, 2.0, 0.05, "scale s"),
     }
-    return build_demo("stack_check", controls, view, update, title="Is everything working?", extra=[readout])
+    return build_demo("stack_check", controls, view, update, title="Is everything working?")
 
 
 def stack_report() -> str:
