@@ -126,8 +126,8 @@ def test_sensor_demos_state():
     assert ours >= d.state["psnr"] - 0.05
 
 
-@pytest.mark.parametrize("name", ["pinhole_projection", "best_pinhole_diameter", "thin_lens_image_distance",
-                                  "distort_points", "quantize_image", "demosaic_bilinear"])
+@pytest.mark.parametrize("name", ["pinhole_projection", "best_pinhole_diameter", "field_of_view", "distort_pixels",
+                                  "f_number_for_depth", "newton_step", "quantize_image", "demosaic_bilinear"])
 def test_exercises_accept_reference_and_catch_mistakes(name):
     ex = all_exercises()[name]
     with contextlib.redirect_stdout(io.StringIO()) as out:
@@ -138,8 +138,38 @@ def test_exercises_accept_reference_and_catch_mistakes(name):
             check(name, wrong)
 
 
-def test_thin_lens_exercise_uses_textbook_numbers():
-    assert lens.image_distance(0.05, 0.1) == pytest.approx(0.1)
+def test_lesson_02_exercises_start_where_slips_show():
+    """No degenerate first case: 1:1 focusing (z_i = z_o) or a start on the ray through x_d hides slips."""
+    from camlab.exercises.lenses_and_distortion import _field_of_view_cases, _newton_cases
+
+    f, z_o, _ = _field_of_view_cases()[0]
+    z_i = lens.image_distance(f, z_o)
+    assert not np.isclose(z_i, z_o) and z_i > 1.1 * f          # focused close: z_i differs from f and from z_o
+    x, x_d, _, _ = _newton_cases()[0]
+    across = np.abs(x[:, 0] * x_d[:, 1] - x[:, 1] * x_d[:, 0]) / np.hypot(*x_d.T)
+    assert across.min() > 0.01                                   # every start is off the ray through its x_d
+    assert all(len(case[0]) != 2 for case in _newton_cases())   # N = 2 would let solve(J, (N, 2)) pass silently
+
+
+def test_newton_step_check_rejects_wrong_jacobians_with_the_right_radial_part():
+    """Round 3's defect: from x = x_d only J's radial eigenvalue acts, so these passed."""
+    def step(J_of):
+        def newton_step(x, x_d, k1, k2):
+            r2 = (x**2).sum(1, keepdims=True)
+            L = 1 + k1 * r2 + k2 * r2**2
+            return x - np.linalg.solve(J_of(x, L, r2, k1, k2), (x * L - x_d)[:, :, None])[:, :, 0]
+        return newton_step
+
+    outer = lambda x: x[:, :, None] * x[:, None, :]  # noqa: E731
+    right = lambda x, L, r2, k1, k2: L[:, :, None] * np.eye(2) + (2 * k1 + 4 * k2 * r2)[:, :, None] * outer(x)  # noqa: E731
+    scalar = lambda x, L, r2, k1, k2: (L + (2 * k1 + 4 * k2 * r2) * r2)[:, :, None] * np.eye(2)  # noqa: E731
+    tilted = lambda x, L, r2, k1, k2: right(x, L, r2, k1, k2) + 5 * (r2[:, :, None] * np.eye(2) - outer(x))  # noqa: E731
+    with contextlib.redirect_stdout(io.StringIO()):
+        assert check("newton_step", step(right))
+    with pytest.raises(AssertionError, match="you wrote x\\^T x"):
+        check("newton_step", step(scalar))
+    with pytest.raises(AssertionError, match="wrong answer"):
+        check("newton_step", step(tilted))
 
 
 def test_sensor_demos_show_what_they_claim():
