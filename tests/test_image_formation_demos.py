@@ -236,3 +236,26 @@ def test_sensor_demos_read_as_the_lesson_says():
     # lesson 03: VNG several dB above bilinear, OpenCV's EA about the same as bilinear
     assert psnr["OpenCV VNG"] > psnr["camlab bilinear"] + 3
     assert abs(psnr["OpenCV edge-aware"] - psnr["camlab bilinear"]) < 0.5
+
+
+def test_lesson_02_demos_show_what_the_prose_says():
+    dof = lenses_and_distortion.depth_of_field()
+    dof.figure.canvas.draw()
+    ax_img = dof.figure.axes[0]
+    # "drawn at least 1:1": the 480 x 360 image gets no fewer screen pixels than it has
+    assert ax_img.get_window_extent().width >= lenses_and_distortion.SIZE[0]
+    assert dof.figure.get_figwidth() * dof.figure.dpi + 8 + 300 <= 968   # beside the controls at 1400 px
+    blur = lenses_and_distortion.focus_and_blur()
+    assert blur.state["c"] * 1e6 == pytest.approx(313, abs=1) and blur.state["focus"] == pytest.approx(1.0, abs=0.005)
+    for c_um in (30, 500):   # a disc from 30 to 500 µm fits the face-on view and is at least 9 screen pixels wide
+        ax = blur.figure.axes[1]
+        blur.figure.canvas.draw()
+        px_per_um = ax.get_window_extent().width / np.diff(ax.get_xlim())[0]
+        assert c_um * px_per_um >= 9 and c_um <= np.diff(ax.get_xlim())[0]
+    blur.set(f_number=32.0)
+    assert blur.state["airy"] > lenses_and_distortion.COC_OK   # "at f/32 the Airy disc alone is larger than 30 µm"
+    dist = lenses_and_distortion.lens_distortion()
+    dist.set(k1=-0.35, undistort=True)
+    assert dist.state["grid_error"] < 1e-6                      # the grid panel straightens with the checkbox
+    dist.set(k1=-0.1, k2=0.3, undistort=False)
+    assert dist.state["kind"] == "mustache"                     # the setting the lesson suggests for it
