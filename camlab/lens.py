@@ -111,8 +111,13 @@ def angle_of_view(focal_length: float, sensor_size: float, focus_distance: float
     """
     f = check_positive(focal_length, "focal_length", "metres")
     w = check_positive(sensor_size, "sensor_size", "metres")
-    s = float(focus_distance)
-    z_i = f if np.isinf(s) and s > 0 else float(image_distance(f, s))
+    focused_at_infinity = isinstance(focus_distance, (int, float, np.floating)) and focus_distance == np.inf
+    if focused_at_infinity:
+        z_i = f
+    else:
+        s = check_positive(focus_distance, "focus_distance", "metres (or np.inf)")
+        _outside_focal_length(np.asarray(s), f, "focus_distance")
+        z_i = f * s / (s - f)
     return float(2.0 * np.arctan(w / (2.0 * z_i)))
 
 

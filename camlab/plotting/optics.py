@@ -327,14 +327,15 @@ def draw_focus_cone(ax, half_height_mm: float = 20.0, sensor_height_mm: float = 
     light orange, the image (where the rays meet, and the blur on the sensor) red.
     :func:`update_focus_cone` moves everything and returns the blur circle on the sensor.
     """
-    ax.axhline(0, color=palette.GREY, lw=0.8)
+    ax.axhline(0, color="0.4", lw=0.8)   # the optical axis (dark enough to read through the cone)
     art = {
         "stop": ax.plot([], [], color="k", lw=4, solid_capstyle="butt", label="aperture stop")[0],
         "lens": ax.plot([], [], color=palette.BLUE, lw=3, label="lens, aperture A = f/N")[0],
         "cone_in": ax.fill([0, 0, 0], [0, 0, 0], color=palette.ORANGE, alpha=0.22, lw=0, label="cone of light")[0],
         "cone_out": ax.fill([0, 0, 0, 0], [0, 0, 0, 0], color=palette.ORANGE, alpha=0.22, lw=0)[0],
-        "rays": ax.plot([], [], color=palette.ORANGE, lw=1)[0],
-        "beyond": ax.plot([], [], color=palette.ORANGE, lw=1, ls=":", label="rays beyond the sensor (blocked)")[0],
+        "rays": ax.plot([], [], color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0],
+        "beyond": ax.plot([], [], color=palette.ORANGE, lw=1, ls=":", path_effects=palette.halo(1),
+                          label="rays beyond the sensor (blocked)")[0],
         "point": ax.plot([], [], "o", color=palette.GREEN, ms=7, label="object point")[0],
         "sensor": ax.plot([], [], color="0.3", lw=2, label=f"sensor ({sensor_height_mm:g} mm tall)")[0],
         "focus": ax.plot([], [], "x", color=palette.RED, ms=8, mew=2, label="image point z_i (rays meet)")[0],
@@ -386,7 +387,7 @@ def update_focus_cone(art: dict, f: float, N: float, z_o: float, z_s: float) -> 
     return {"z_i": z_i, "A": A, "c": c, "airy": airy}
 
 
-def draw_blur_disc(ax, half_width_um: float = 300.0, coc_um: float = 30.0) -> dict:
+def draw_blur_disc(ax, half_width_um: float = 250.0, coc_um: float = 30.0) -> dict:
     """The sensor seen face on around the image point, in micrometres: the blur disc (red), the
     acceptable blur ``coc_um`` (purple dashes) and the Airy disc (brown dots), to scale with each other.
 
