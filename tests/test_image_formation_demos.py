@@ -142,7 +142,7 @@ def test_lesson_02_exercises_start_where_slips_show():
     """No degenerate first case: 1:1 focusing (z_i = z_o) or a start on the ray through x_d hides slips."""
     from camlab.exercises.lenses_and_distortion import _field_of_view_cases, _newton_cases
 
-    f, z_o, _ = _field_of_view_cases()[0]
+    f, _, z_o = _field_of_view_cases()[0]
     z_i = lens.image_distance(f, z_o)
     assert not np.isclose(z_i, z_o) and z_i > 1.1 * f          # focused close: z_i differs from f and from z_o
     x, x_d, _, _ = _newton_cases()[0]

@@ -19,15 +19,11 @@ from ._core import Exercise, register_exercise, same_array, shape_problem
 
 def _field_of_view_cases():
     # the first case focuses close (z_i = 1.2 f), so every slip in z_i or in the angle shows at once
-    return [(0.05, 0.3, 0.036), (0.035, 2.0, 0.0236), (0.1, 0.25, 0.036), (0.024, 0.1, 0.0063)]
-
-
-def _field_of_view_reference(f, z_o, w):
-    return lens.angle_of_view(f, w, z_o)
+    return [(0.05, 0.036, 0.3), (0.035, 0.0236, 2.0), (0.1, 0.036, 0.25), (0.024, 0.0063, 0.1)]
 
 
 def _field_of_view_diagnosis(args, got, expected) -> str:
-    f, zo, w = args
+    f, w, zo = args
     if not _is_number(got):
         return "return one number: the field of view in radians"
     g = float(got)
@@ -64,7 +60,7 @@ def _field_of_view_diagnosis(args, got, expected) -> str:
     return "find z_i from 1/f = 1/z_o + 1/z_i, then the field of view 2 arctan(w / (2 z_i)) in radians"
 
 
-def field_of_view(f, z_o, w):
+def field_of_view(f, w, z_o):
     """Horizontal field of view (radians) of a lens f focused at z_o on a sensor w wide (metres)."""
     z_i = f * z_o / (z_o - f)               # the sensor's distance behind the lens: the pinhole focal length
     return 2 * np.arctan(w / (2 * z_i))      # half the width over z_i is the tangent of the half-angle
@@ -73,21 +69,21 @@ def field_of_view(f, z_o, w):
 register_exercise(Exercise(
     name="field_of_view",
     lesson="02",
-    reference=_field_of_view_reference,
+    reference=lens.angle_of_view,
     cases=_field_of_view_cases,
     compare=same_number(rtol=1e-9),
     diagnose=_field_of_view_diagnosis,
     wrong_variants=(
-        (lambda f, zo, w: 2 * np.arctan(w / (2 * f)), "focused at infinity"),
-        (lambda f, zo, w: np.degrees(2 * np.arctan(w / (2 * f * zo / (zo - f)))), "degrees"),
-        (lambda f, zo, w: np.arctan(w / (2 * f * zo / (zo - f))), "half-angle"),
-        (lambda f, zo, w: 2 * np.arctan(w / (f * zo / (zo - f))), "half the sensor width"),
-        (lambda f, zo, w: w / (f * zo / (zo - f)), "small-angle"),
-        (lambda f, zo, w: 2 * np.arctan(w / (2 * f * zo / (zo + f))), "sign slip"),
-        (lambda f, zo, w: 2 * np.arctan(w / (2 * f**2 / (zo - f))), "Newton's form"),
-        (lambda f, zo, w: 2 * np.arctan(w / (2 * zo)), "object distance"),
-        (lambda f, zo, w: 2 * np.arctan(1e3 * w / (2 * f * zo / (zo - f))), "mixed units"),
-        (lambda f, zo, w: [2 * np.arctan(w / (2 * f * zo / (zo - f)))], "return one number"),
+        (lambda f, w, zo: 2 * np.arctan(w / (2 * f)), "focused at infinity"),
+        (lambda f, w, zo: np.degrees(2 * np.arctan(w / (2 * f * zo / (zo - f)))), "degrees"),
+        (lambda f, w, zo: np.arctan(w / (2 * f * zo / (zo - f))), "half-angle"),
+        (lambda f, w, zo: 2 * np.arctan(w / (f * zo / (zo - f))), "half the sensor width"),
+        (lambda f, w, zo: w / (f * zo / (zo - f)), "small-angle"),
+        (lambda f, w, zo: 2 * np.arctan(w / (2 * f * zo / (zo + f))), "sign slip"),
+        (lambda f, w, zo: 2 * np.arctan(w / (2 * f**2 / (zo - f))), "Newton's form"),
+        (lambda f, w, zo: 2 * np.arctan(w / (2 * zo)), "object distance"),
+        (lambda f, w, zo: 2 * np.arctan(1e3 * w / (2 * f * zo / (zo - f))), "mixed units"),
+        (lambda f, w, zo: [2 * np.arctan(w / (2 * f * zo / (zo - f)))], "return one number"),
     ),
     teaching=field_of_view,
 ))
@@ -195,6 +191,7 @@ def _distort_pixels_diagnosis(args, got, expected) -> str:
                 (f, 0 * c, "subtract the principal point before dividing by the focal length, x = (u - c_x) / f_x, "
                            "and add it back afterwards: distortion grows from the optical axis, not from pixel (0, 0)"),
                 (f[[0, 0]], c, "v goes with f_y = K[1, 1], not f_x: x = (u - c_x) / f_x, y = (v - c_y) / f_y"),
+                (f[::-1], c, "f_x = K[0, 0] goes with u and f_y = K[1, 1] with v: you swapped them"),
                 (f, c[::-1], "c_x = K[0, 2] and c_y = K[1, 2]: you swapped them"),
                 (f, c + 0.5, "a half-pixel shift: the principal point is K[0, 2], K[1, 2] as it is (pixel centres sit at "
                              "integers)"),
@@ -275,7 +272,9 @@ register_exercise(Exercise(
         (lambda uv, K, d: distortion.distort_points(uv / K[[0, 1], [0, 1]], d) * K[[0, 1], [0, 1]], "principal point"),
         (lambda uv, K, d: distortion.distort_points((uv - K[:2, 2]) / K[0, 0], d) * K[0, 0] + K[:2, 2], "f_y"),
         (lambda uv, K, d: distortion.distort_points((uv - K[:2, 2][::-1]) / K[[0, 1], [0, 1]], d) * K[[0, 1], [0, 1]]
-         + K[:2, 2][::-1], "swapped them"),
+         + K[:2, 2][::-1], "and c_y = K"),
+        (lambda uv, K, d: distortion.distort_points((uv - K[:2, 2]) / K[[1, 0], [1, 0]], d) * K[[1, 0], [1, 0]] + K[:2, 2],
+         "goes with u and f_y"),
         (lambda uv, K, d: distortion.distort_points((uv - K[:2, 2] - 0.5) / K[[0, 1], [0, 1]], d) * K[[0, 1], [0, 1]]
          + K[:2, 2] + 0.5, "half-pixel"),
         (lambda uv, K, d: distortion.distort_pixels(uv, K, d) - uv, "shift in pixels"),
@@ -337,6 +336,8 @@ def _f_number_diagnosis(args, got, expected) -> str:
         return "you doubled c; c is the blur circle's diameter already"
     if np.isclose(g, expected * 1e3) or np.isclose(g, expected * 1e-3):
         return "N is 1000 times off: mixed units (c in millimetres, f in metres?); keep every length in metres"
+    if np.isclose(g, f**2 * (s - n) / (c * n * (s + f))):
+        return "the sign of f: the sensor sits at f s / (s - f), so the cone's factor is f / (s - f), not f / (s + f)"
     if np.isclose(g, expected / f):
         return "f enters squared: the aperture A = f / N and the cone's f / (s - f) each bring one f"
     return ("first the focus s with c(near) = c(far), i.e. (s - near) / near = (far - s) / far; then N from "
@@ -366,6 +367,7 @@ register_exercise(Exercise(
         (lambda f, c, n, r: 1 / _f_number_reference(f, c, n, r), "1/N"),
         (lambda f, c, n, r: 2 * n * r / (n + r), "focus distance"),
         (lambda f, c, n, r: _f_number_reference(f, c, n, r) / f, "f enters squared"),
+        (lambda f, c, n, r: f**2 * (2 * n * r / (n + r) - n) / (c * n * (2 * n * r / (n + r) + f)), "the sign of f"),
         (lambda f, c, n, r: np.array([_f_number_reference(f, c, n, r)]), "return one number"),
     ),
     teaching=f_number_for_depth,
