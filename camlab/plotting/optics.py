@@ -284,8 +284,8 @@ def update_thin_lens(art: dict, f: float, zo: float, requested: float | None = N
     lo, hi = THIN_LENS_X
     art["object"].xy, art["object"].xyann = (xo, 1.0), (xo, 0)
     art["image"].xy, art["image"].xyann = (xi, m), (xi, 0)
-    # the arrow head scales with a small image, so its tip still marks where the rays meet, not a blob past it
-    art["image"].arrow_patch.set_mutation_scale(10 * min(1.0, max(abs(m), 0.25) / 0.5) + 2)
+    # the head shrinks with a small image (true to size, never a blob larger than the image); its tip is where the rays meet
+    art["image"].arrow_patch.set_mutation_scale(10 * min(1.0, abs(m) / 0.3) + 1)
     art["object"].set_visible(xo >= lo)  # an arrow at the edge would not meet its rays
     art["image"].set_visible(xi <= hi)
     # parallel ray -> through F'; central ray undeviated; ray through F -> parallel (exact lines, clipped by the axes)
