@@ -24,8 +24,9 @@ from numpy.typing import ArrayLike
 from ._validate import CamlabInputError, as_float, check_positive
 
 __all__ = [
-    "DepthOfField", "aperture_diameter", "circle_of_confusion", "depth_of_field",
-    "hyperfocal_distance", "image_distance", "magnification", "object_distance",
+    "DepthOfField", "FocusSetting", "angle_of_view", "aperture_diameter", "aperture_for_depth_of_field",
+    "circle_of_confusion", "depth_of_field", "hyperfocal_distance", "image_distance", "magnification",
+    "object_distance",
 ]
 
 
@@ -90,6 +91,68 @@ def magnification(focal_length: float, object_distance_: ArrayLike) -> np.ndarra
     _outside_focal_length(z, f, "object_distance")
     out = f / (f - z)
     return float(out) if out.ndim == 0 else out
+
+
+def angle_of_view(focal_length: float, sensor_size: float, focus_distance: float = np.inf) -> float:
+    r"""The angle (radians) a sensor dimension ``sensor_size`` spans through a lens focused at ``focus_distance``.
+
+    Focused at :math:`s` the sensor sits at :math:`z_i = f s / (s - f)` behind the lens, so
+    the pinhole model's focal length is :math:`z_i`, not :math:`f`, and
+
+    .. math:: \theta = 2 \arctan \frac{w}{2 z_i},
+
+    which is :math:`2 \arctan(w / 2f)` focused at infinity (the default) and narrower
+    focused closer (*focus breathing*). All lengths in metres.
+
+    >>> round(float(np.degrees(angle_of_view(0.05, 0.036))), 2)          # 50 mm, full-frame width
+    39.6
+    >>> round(float(np.degrees(angle_of_view(0.05, 0.036, 0.5))), 2)     # focused at 0.5 m
+    35.9
+    """
+    f = check_positive(focal_length, "focal_length", "metres")
+    w = check_positive(sensor_size, "sensor_size", "metres")
+    focused_at_infinity = isinstance(focus_distance, (int, float, np.floating)) and focus_distance == np.inf
+    if focused_at_infinity:
+        z_i = f
+    else:
+        s = check_positive(focus_distance, "focus_distance", "metres (or np.inf)")
+        _outside_focal_length(np.asarray(s), f, "focus_distance")
+        z_i = f * s / (s - f)
+    return float(2.0 * np.arctan(w / (2.0 * z_i)))
+
+
+class FocusSetting(NamedTuple):
+    """Where to focus (metres) and at which f-number: the result of :func:`aperture_for_depth_of_field`."""
+
+    focus_distance: float
+    f_number: float
+
+
+def aperture_for_depth_of_field(focal_length: float, coc: float, near: float, far: float) -> FocusSetting:
+    r"""The focus distance and f-number whose depth of field is exactly ``[near, far]`` for acceptable blur ``coc``.
+
+    The blur :math:`c(z) = \frac{f}{N} \frac{f}{s - f} \frac{|z - s|}{z}` must equal ``coc``
+    at both ends. Equal blur at ``near`` and ``far`` needs :math:`(s - n)/n = (r - s)/r`
+    (writing :math:`n, r` for near and far), so the focus is their harmonic mean,
+
+    .. math:: s = \frac{2 n r}{n + r}, \qquad
+              N = \frac{f^2}{c\,(s - f)} \frac{s - n}{n} = \frac{f^2}{c\,(s - f)} \frac{r - n}{r + n}.
+
+    A lens offers a discrete set of f-numbers: take the next larger one. All lengths in metres.
+
+    >>> setting = aperture_for_depth_of_field(0.05, 0.03e-3, 2.0, 4.0)   # 50 mm, sharp from 2 m to 4 m
+    >>> round(setting.focus_distance, 3), round(setting.f_number, 2)
+    (2.667, 10.62)
+    """
+    f = check_positive(focal_length, "focal_length", "metres")
+    c = check_positive(coc, "coc", "metres")
+    n = check_positive(near, "near", "metres")
+    r = check_positive(far, "far", "metres")
+    if not n < r:
+        raise CamlabInputError(f"near, far: expected near < far (metres), got near = {near!r}, far = {far!r}; swap them")
+    _outside_focal_length(np.asarray(n), f, "near")
+    s = 2.0 * n * r / (n + r)
+    return FocusSetting(float(s), float(f * f / (c * (s - f)) * (r - n) / (r + n)))
 
 
 def aperture_diameter(focal_length: float, f_number: float) -> float:

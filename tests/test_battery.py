@@ -161,6 +161,8 @@ BASELINES: dict[str, Callable[[dict], dict]] = {
     "lens.image_distance": lambda v: {"focal_length": 0.05, "object_distance": 2.0},
     "lens.aperture_diameter": lambda v: {"focal_length": 0.05, "f_number": 2.8},
     "lens.hyperfocal_distance": lambda v: {"focal_length": 0.05, "f_number": 2.8, "coc": 3e-5},
+    "lens.angle_of_view": lambda v: {"focal_length": 0.05, "sensor_size": 0.036, "focus_distance": 0.5},
+    "lens.aperture_for_depth_of_field": lambda v: {"focal_length": 0.05, "coc": 3e-5, "near": 2.0, "far": 4.0},
     "lens.depth_of_field": lambda v: {"focal_length": 0.05, "f_number": 2.8, "focus_distance": 3.0, "coc": 3e-5},
     "lens.circle_of_confusion": lambda v: {"focal_length": 0.05, "f_number": 2.8, "focus_distance": 3.0,
                                            "depth": 4.0},
@@ -243,6 +245,7 @@ ALLOWED_RULES: list[tuple[set[str], set[str], set[str], str]] = [
      {"r", "object_distance", "depth", "diameter"}, {"empty", "extra axis", "one short", "list"},
      "element-wise over an array of any shape (curves for plots)"),
     ({"affine.dolly_zoom_errors"}, {"distances"}, {"one short"}, "any number of distances (one value each)"),
+    ({"lens.angle_of_view"}, {"focus_distance"}, {"inf"}, "focused at infinity: the default"),
     ({"sensor.intrinsics_from_sensor", "sensor.metric_to_pixels", "sensor.pixels_to_metric"},
      {"pitch", "principal_point"}, {"fractional size"}, "a pitch (metres) and a principal point (pixels) are real numbers"),
     ({"sensor.metric_to_pixels", "sensor.pixels_to_metric"}, {"principal_point"}, {"zero size", "negative size"},
@@ -271,7 +274,8 @@ def allowed(qualname: str, name: str, label: str) -> str | None:
 POSITIVE = {
     "focal_length", "f_number", "coc", "object_distance", "focus_distance", "depth", "diameter", "threshold",
     "max_iters", "square_size", "scale", "ax", "ay", "f0", "d0", "d", "fx", "fy", "bits", "factor", "levels",
-    "max_features", "ratio", "width", "height", "baseline", "max_disparity", "block_size", "peak",
+    "max_features", "ratio", "width", "height", "baseline", "max_disparity", "block_size", "peak", "sensor_size",
+    "near", "far",
 }
 SIZES = {"size", "image_size", "pattern_size", "shape", "output_shape", "pitch", "principal_point", "image_shape"}
 PATHS = {"path"}

@@ -405,18 +405,18 @@ def test_a_right_answer_that_changes_its_input_in_place_fails_naming_the_argumen
     """An in-place change of the caller's array (a typical mistake) fails, even when the answer is right."""
     from camlab import distortion
 
-    def scaled_in_place(x, dist):
-        out = distortion.distort_points(x, dist)
-        x *= 1.0 + 0 * x  # a no-op in value: nothing changes, so this passes
+    def scaled_in_place(uv, K, dist):
+        out = distortion.distort_pixels(uv, K, dist)
+        uv *= 1.0 + 0 * uv  # a no-op in value: nothing changes, so this passes
         return out
 
-    def overwritten(x, dist):
-        x[:] = distortion.distort_points(x, dist)
-        return x
+    def overwritten(uv, K, dist):
+        uv[:] = distortion.distort_pixels(uv, K, dist)
+        return uv
 
-    assert check("distort_points", scaled_in_place)
-    with pytest.raises(AssertionError, match=r"changed its input `x` in place.*\n.*likely cause: an in-place operation"):
-        check("distort_points", overwritten)
+    assert check("distort_pixels", scaled_in_place)
+    with pytest.raises(AssertionError, match=r"changed its input `uv` in place.*\n.*likely cause: an in-place operation"):
+        check("distort_pixels", overwritten)
 
 
 def _dlt_rms_normalised(X, uv):

@@ -162,8 +162,8 @@ def test_sensor_demos_state():
 
 
 @pytest.mark.parametrize("name", ["project_to_pixels", "focal_length_pixels", "best_pinhole_exposure",
-                                  "pinhole_projection", "best_pinhole_diameter", "thin_lens_image_distance",
-                                  "distort_points", "quantize_image", "demosaic_bilinear"])
+                                  "pinhole_projection", "best_pinhole_diameter", "field_of_view", "distort_pixels",
+                                  "f_number_for_depth", "newton_step", "quantize_image", "demosaic_bilinear"])
 def test_exercises_accept_reference_and_catch_mistakes(name):
     ex = all_exercises()[name]
     with contextlib.redirect_stdout(io.StringIO()) as out:
@@ -174,8 +174,38 @@ def test_exercises_accept_reference_and_catch_mistakes(name):
             check(name, wrong)
 
 
-def test_thin_lens_exercise_uses_textbook_numbers():
-    assert lens.image_distance(0.05, 0.1) == pytest.approx(0.1)
+def test_lesson_02_exercises_start_where_slips_show():
+    """No degenerate first case: 1:1 focusing (z_i = z_o) or a start on the ray through x_d hides slips."""
+    from camlab.exercises.lenses_and_distortion import _field_of_view_cases, _newton_cases
+
+    f, _, z_o = _field_of_view_cases()[0]
+    z_i = lens.image_distance(f, z_o)
+    assert not np.isclose(z_i, z_o) and z_i > 1.1 * f          # focused close: z_i differs from f and from z_o
+    x, x_d, _, _ = _newton_cases()[0]
+    across = np.abs(x[:, 0] * x_d[:, 1] - x[:, 1] * x_d[:, 0]) / np.hypot(*x_d.T)
+    assert across.min() > 0.01                                   # every start is off the ray through its x_d
+    assert all(len(case[0]) != 2 for case in _newton_cases())   # N = 2 would let solve(J, (N, 2)) pass silently
+
+
+def test_newton_step_check_rejects_wrong_jacobians_with_the_right_radial_part():
+    """Round 3's defect: from x = x_d only J's radial eigenvalue acts, so these passed."""
+    def step(J_of):
+        def newton_step(x, x_d, k1, k2):
+            r2 = (x**2).sum(1, keepdims=True)
+            L = 1 + k1 * r2 + k2 * r2**2
+            return x - np.linalg.solve(J_of(x, L, r2, k1, k2), (x * L - x_d)[:, :, None])[:, :, 0]
+        return newton_step
+
+    outer = lambda x: x[:, :, None] * x[:, None, :]  # noqa: E731
+    right = lambda x, L, r2, k1, k2: L[:, :, None] * np.eye(2) + (2 * k1 + 4 * k2 * r2)[:, :, None] * outer(x)  # noqa: E731
+    scalar = lambda x, L, r2, k1, k2: (L + (2 * k1 + 4 * k2 * r2) * r2)[:, :, None] * np.eye(2)  # noqa: E731
+    tilted = lambda x, L, r2, k1, k2: right(x, L, r2, k1, k2) + 5 * (r2[:, :, None] * np.eye(2) - outer(x))  # noqa: E731
+    with contextlib.redirect_stdout(io.StringIO()):
+        assert check("newton_step", step(right))
+    with pytest.raises(AssertionError, match="you wrote x\\^T x"):
+        check("newton_step", step(scalar))
+    with pytest.raises(AssertionError, match="wrong answer"):
+        check("newton_step", step(tilted))
 
 
 def test_sensor_demos_show_what_they_claim():
@@ -290,3 +320,26 @@ def test_sensor_demos_read_as_the_lesson_says():
     # lesson 03: VNG several dB above bilinear, OpenCV's EA about the same as bilinear
     assert psnr["OpenCV VNG"] > psnr["camlab bilinear"] + 3
     assert abs(psnr["OpenCV edge-aware"] - psnr["camlab bilinear"]) < 0.5
+
+
+def test_lesson_02_demos_show_what_the_prose_says():
+    dof = lenses_and_distortion.depth_of_field()
+    dof.figure.canvas.draw()
+    ax_img = dof.figure.axes[0]
+    # "drawn at least 1:1": the 480 x 360 image gets no fewer screen pixels than it has
+    assert ax_img.get_window_extent().width >= lenses_and_distortion.SIZE[0]
+    assert dof.figure.get_figwidth() * dof.figure.dpi + 8 + 300 <= 968   # beside the controls at 1400 px
+    blur = lenses_and_distortion.focus_and_blur()
+    assert blur.state["c"] * 1e6 == pytest.approx(313, abs=1) and blur.state["focus"] == pytest.approx(1.0, abs=0.005)
+    for c_um in (30, 500):   # a disc from 30 to 500 µm fits the face-on view and is at least 9 screen pixels wide
+        ax = blur.figure.axes[1]
+        blur.figure.canvas.draw()
+        px_per_um = ax.get_window_extent().width / np.diff(ax.get_xlim())[0]
+        assert c_um * px_per_um >= 9 and c_um <= np.diff(ax.get_xlim())[0]
+    blur.set(f_number=32.0)
+    assert blur.state["airy"] > lenses_and_distortion.COC_OK   # "at f/32 the Airy disc alone is larger than 30 µm"
+    dist = lenses_and_distortion.lens_distortion()
+    dist.set(k1=-0.35, undistort=True)
+    assert dist.state["grid_error"] < 1e-6                      # the grid panel straightens with the checkbox
+    dist.set(k1=-0.1, k2=0.3, undistort=False)
+    assert dist.state["kind"] == "mustache"                     # the setting the lesson suggests for it

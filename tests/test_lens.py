@@ -64,3 +64,23 @@ def test_bad_physical_inputs():
         lens.aperture_diameter(0.05, 0)
     with pytest.raises(CamlabInputError, match=r"focus_distance: object at 0.04 m is inside"):
         lens.depth_of_field(0.05, 2, 0.04, 0.03e-3)
+
+
+def test_angle_of_view_narrows_when_focused_close():
+    w = 0.036
+    assert lens.angle_of_view(0.05, w) == pytest.approx(2 * np.arctan(w / 0.1))
+    near = lens.angle_of_view(0.05, w, 0.5)        # the pinhole focal length is z_i = 55.6 mm
+    assert near == pytest.approx(2 * np.arctan(w / (2 * lens.image_distance(0.05, 0.5))))
+    assert near < lens.angle_of_view(0.05, w, 5.0) < lens.angle_of_view(0.05, w)
+    with pytest.raises(CamlabInputError, match="focus_distance"):
+        lens.angle_of_view(0.05, w, 0.04)
+
+
+def test_aperture_for_depth_of_field_gives_exactly_that_depth_of_field():
+    for f, c, near, far in ((0.05, 3e-5, 2.0, 4.0), (0.028, 2e-5, 0.8, 1.6), (0.1, 1.5e-5, 9.0, 11.0)):
+        s, N = lens.aperture_for_depth_of_field(f, c, near, far)
+        dof = lens.depth_of_field(f, N, s, c)
+        assert (dof.near, dof.far) == pytest.approx((near, far), rel=1e-9)
+        assert lens.circle_of_confusion(f, N, s, near) == pytest.approx(c)
+    with pytest.raises(CamlabInputError, match="near < far"):
+        lens.aperture_for_depth_of_field(0.05, 3e-5, 4.0, 2.0)

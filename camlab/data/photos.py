@@ -1,9 +1,10 @@
 """Real photographs shipped with camlab: ``data/photos/``.
 
 A few photographs from the MIT-licensed mvtb-data package by Peter Corke (facades, a street,
-a sign on a wall, stereo pairs), downscaled and re-encoded, and OpenCV's chessboard sample
-images (``calib_left01`` ... ``calib_left14``, Apache-2.0, unchanged); shipped, not generated,
-and listed with their source and licence in ``data/photos/ATTRIBUTION.md``.
+a sign on a wall, stereo pairs), downscaled and re-encoded, and 14 chessboard views
+(``calib_left01`` ... ``calib_left14``, unchanged): 13 of them OpenCV's sample images
+(Apache-2.0), ``calib_left10`` from mvtb-data only; shipped, not generated, and listed with
+their source and licence in ``data/photos/ATTRIBUTION.md``.
 """
 from __future__ import annotations
 

@@ -1,82 +1,121 @@
-"""Exercises for lesson 02: the thin lens and lens distortion."""
+"""Exercises for lesson 02: focus and field of view, depth of field, and lens distortion.
+
+Each exercise asks for something the lesson has not printed: the field of view of a lens
+focused closer than infinity (the thin lens of section 1 with the field of view of
+section 3), distortion in pixels (section 4's model between K^-1 and K), the aperture that
+makes a given depth range sharp (section 2's c(z) solved the other way), and one Newton
+step of undistortion from any current estimate (so the whole 2 x 2 Jacobian matters).
+"""
 from __future__ import annotations
 
 import numpy as np
 
 from .. import distortion, lens
 from ._numbers import is_number as _is_number, same_number
-from ._core import Exercise, register_exercise, same_array, shape_problem, unit_slip
+from ._core import Exercise, register_exercise, same_array, shape_problem
 
 
-def _thin_lens_cases():
-    return [(0.05, 0.1), (0.05, 2.0), (0.2, 0.35), (0.018, 0.5)]
+# -- field_of_view ----------------------------------------------------------------------------
+
+def _field_of_view_cases():
+    # the first case focuses close (z_i = 1.2 f), so every slip in z_i or in the angle shows at once
+    return [(0.05, 0.036, 0.3), (0.035, 0.0236, 2.0), (0.1, 0.036, 0.25), (0.024, 0.0063, 0.1)]
 
 
-def _thin_lens_diagnosis(args, got, expected) -> str:
-    f, zo = args
+def _field_of_view_diagnosis(args, got, expected) -> str:
+    f, w, zo = args
     if not _is_number(got):
-        return "return one number: the image distance in metres"
-    slip = unit_slip(got, expected)
-    if slip:
-        return slip
+        return "return one number: the field of view in radians"
     g = float(got)
-    if np.isclose(g, f * zo / (zo + f)):
-        return "sign slip: 1/z_i = 1/f - 1/z_o, so z_i = f z_o / (z_o - f)"
-    if np.isclose(g, f * zo / (f - zo)):
-        return ("sign slip: z_i = f z_o / (z_o - f), not / (f - z_o); your z_i is negative, but an object beyond f "
-                "forms a real image behind the lens, z_i > 0")
-    if np.isclose(g, 1 / f - 1 / zo) or np.isclose(g, 1 / f + 1 / zo):
-        return "you returned 1/z_i; invert it to get the distance"
-    if np.isclose(g, f**2 / (zo - f)):
-        return ("that is Newton's form f^2 / (z_o - f), the distance from the focal point F' to the image, not from the "
-                "lens; add f (z_i = f + f^2 / (z_o - f) = f z_o / (z_o - f))")
-    if np.isclose(g, -f / (zo - f)) or np.isclose(g, f / (zo - f)):
-        return "you returned the magnification m = -z_i / z_o; the exercise asks for the distance z_i"
-    return "solve 1/f = 1/z_o + 1/z_i for z_i"
+    zi = f * zo / (zo - f)
+
+    def fov(distance, width=w):
+        return 2 * np.arctan(width / (2 * distance))
+
+    if np.isclose(g, np.degrees(expected)):
+        return "that is the angle in degrees; the course's functions return radians (np.degrees only for printing)"
+    if np.isclose(g, fov(f)):
+        return ("that is the field of view focused at infinity, 2 arctan(w / 2f); focused at z_o the sensor sits at "
+                "z_i = f z_o / (z_o - f), farther than f, so the pinhole focal length is z_i: 2 arctan(w / (2 z_i))")
+    if np.isclose(g, fov(zo)):
+        return ("you used the object distance z_o; the angle is set on the sensor's side: half the sensor width "
+                "over the lens-to-sensor distance z_i = f z_o / (z_o - f)")
+    if np.isclose(g, np.arctan(w / (2 * zi))):
+        return "that is the half-angle; the field of view spans both sides of the axis: 2 arctan(w / (2 z_i))"
+    if np.isclose(g, 2 * np.arctan(w / zi)) or np.isclose(g, np.arctan(w / zi)):
+        return ("half the sensor width goes with the half-angle: tan(FOV / 2) = (w / 2) / z_i, so "
+                "FOV = 2 arctan(w / (2 z_i))")
+    if np.isclose(g, w / zi):
+        return "w / z_i is the small-angle approximation; take the arctangent: 2 arctan(w / (2 z_i))"
+    for wrong, hint in ((f * zo / (zo + f), "sign slip in the thin lens: 1/z_i = 1/f - 1/z_o, so z_i = f z_o / (z_o - f)"),
+                        (f**2 / (zo - f), "f^2 / (z_o - f) is Newton's form, the distance from the focal point F' to "
+                                          "the image; the lens-to-sensor distance is f plus that: z_i = f z_o / (z_o - f)"),
+                        (1 / f - 1 / zo, "you used 1/z_i as the distance; invert it: z_i = 1 / (1/f - 1/z_o)")):
+        if np.isclose(g, fov(wrong)):
+            return hint
+    for factor in (1e3, 1e-3):
+        if np.isclose(g, fov(zi, w * factor)):
+            return ("mixed units: the width and the distance must be in one unit (the inputs are all in metres; "
+                    "0.036 is 36 mm)")
+    return "find z_i from 1/f = 1/z_o + 1/z_i, then the field of view 2 arctan(w / (2 z_i)) in radians"
 
 
-def thin_lens_image_distance(f, z_o):
-    """Solve the thin-lens equation 1/f = 1/z_o + 1/z_i for z_i (all in metres)."""
-    return f * z_o / (z_o - f)
+def field_of_view(f, w, z_o):
+    """Horizontal field of view (radians) of a lens f focused at z_o on a sensor w wide (metres)."""
+    z_i = f * z_o / (z_o - f)               # the sensor's distance behind the lens: the pinhole focal length
+    return 2 * np.arctan(w / (2 * z_i))      # half the width over z_i is the tangent of the half-angle
 
 
 register_exercise(Exercise(
-    name="thin_lens_image_distance",
+    name="field_of_view",
     lesson="02",
-    reference=lens.image_distance,
-    cases=_thin_lens_cases,
+    reference=lens.angle_of_view,
+    cases=_field_of_view_cases,
     compare=same_number(rtol=1e-9),
-    diagnose=_thin_lens_diagnosis,
+    diagnose=_field_of_view_diagnosis,
     wrong_variants=(
-        (lambda f, zo: f * zo / (zo + f), "sign slip"),
-        (lambda f, zo: 1 / f - 1 / zo, "invert it"),
-        (lambda f, zo: 1e3 * f * zo / (zo - f), "millimetres"),
-        (lambda f, zo: f * zo / (f - zo), "your z_i is negative"),
-        (lambda f, zo: f**2 / (zo - f), "from the focal point"),
-        (lambda f, zo: -f / (zo - f), "magnification"),
+        (lambda f, w, zo: 2 * np.arctan(w / (2 * f)), "focused at infinity"),
+        (lambda f, w, zo: np.degrees(2 * np.arctan(w / (2 * f * zo / (zo - f)))), "degrees"),
+        (lambda f, w, zo: np.arctan(w / (2 * f * zo / (zo - f))), "half-angle"),
+        (lambda f, w, zo: 2 * np.arctan(w / (f * zo / (zo - f))), "half the sensor width"),
+        (lambda f, w, zo: w / (f * zo / (zo - f)), "small-angle"),
+        (lambda f, w, zo: 2 * np.arctan(w / (2 * f * zo / (zo + f))), "sign slip"),
+        (lambda f, w, zo: 2 * np.arctan(w / (2 * f**2 / (zo - f))), "Newton's form"),
+        (lambda f, w, zo: 2 * np.arctan(w / (2 * zo)), "object distance"),
+        (lambda f, w, zo: 2 * np.arctan(1e3 * w / (2 * f * zo / (zo - f))), "mixed units"),
+        (lambda f, w, zo: [2 * np.arctan(w / (2 * f * zo / (zo - f)))], "return one number"),
     ),
-    teaching=thin_lens_image_distance,
+    teaching=field_of_view,
 ))
+
+
+# -- distort_pixels ---------------------------------------------------------------------------
+
+_K_TEST = np.array([[800.0, 0.0, 331.2], [0.0, 790.0, 247.9], [0.0, 0.0, 1.0]])  # f_x != f_y, c off the centre
 
 
 def _distort_cases():
     rng = np.random.default_rng(2)
-    pts = rng.uniform(-0.5, 0.5, (8, 2))
+    uv = rng.uniform((0, 0), (639, 479), (8, 2))
     return [
-        (pts, np.array([-0.2, 0.0, 0.0, 0.0, 0.0])),
-        (pts, np.array([-0.25, 0.08, 0.0, 0.0, -0.01])),
-        (pts, np.array([0.1, -0.02, 0.004, -0.003, 0.0])),
-        (np.array([[0.3, 0.4]]), np.array([-0.1, 0.02, 0.01, 0.02, 0.005])),
+        (uv, _K_TEST, np.array([-0.2, 0.0, 0.0, 0.0, 0.0])),
+        (uv, _K_TEST, np.array([-0.25, 0.08, 0.0, 0.0, -0.01])),
+        (uv, _K_TEST, np.array([0.1, -0.02, 0.004, -0.003, 0.0])),
+        (np.array([[600.0, 60.0]]), _K_TEST, np.array([-0.1, 0.02, 0.01, 0.02, 0.005])),
     ]
 
 
-def _brown_variant(x, d, cross: float = 2.0, squares_swapped: bool = False, divide: bool = False) -> np.ndarray:
-    """The Brown-Conrady model with one typical slip: the cross term's 2, x^2 / y^2 swapped, or x / L for x L."""
+def _brown_variant(x, d, cross: float = 2.0, squares_swapped: bool = False, divide: bool = False,
+                   no_one: bool = False, y_copied: bool = False) -> np.ndarray:
+    """The Brown-Conrady model with one typical slip: the cross term's 2, x^2 / y^2 swapped, x / L for x L,
+    L without its 1 (the displacement), or y_d's p1 term copied from x_d's p2 term (r^2 + 2 x^2)."""
     k1, k2, p1, p2, k3 = d
     u, v = x[:, 0], x[:, 1]
     r2 = u**2 + v**2
-    L = 1 + k1 * r2 + k2 * r2**2 + k3 * r2**3
+    L = 1 + k1 * r2 + k2 * r2**2 + k3 * r2**3 - (1 if no_one else 0)
     su, sv = (v, u) if squares_swapped else (u, v)
+    if y_copied:
+        sv = u
     radial = np.column_stack([u, v]) / L[:, None] if divide else np.column_stack([u, v]) * L[:, None]
     return radial + np.column_stack([cross * p1 * u * v + p2 * (r2 + 2 * su**2),
                                      p1 * (r2 + 2 * sv**2) + cross * p2 * u * v])
@@ -97,242 +136,357 @@ def _sign_slip(x, d, g) -> str:
     return ""
 
 
-def _distort_diagnosis(args, got, expected) -> str:
-    problem = shape_problem(got, expected)
-    if problem:
-        return problem
-    x, d = args
-    g = np.asarray(got, dtype=float)
+def _model_diagnosis(x, d, g, expected) -> str:
+    """The likely slip in the Brown-Conrady model itself, on normalised points ('' if none is recognised)."""
     k1, k2, p1, p2, k3 = d
     if (p1 or p2 or k3) and np.allclose(g, distortion.distort_points(x, [k1, k2, p2, k3, p1])):
         return ("you read dist as (k1, k2, k3, p1, p2); OpenCV's order is (k1, k2, p1, p2, k3): "
                 "k3 comes last, after the tangential p1, p2")
-    swapped = distortion.distort_points(x, [k1, k2, p2, p1, k3])
-    if np.allclose(g, swapped):
+    if (p1 or p2) and np.allclose(g, distortion.distort_points(x, [k1, k2, p2, p1, k3])):
         return "p1 and p2 are swapped: OpenCV's order is (k1, k2, p1, p2, k3), and x gets 2 p1 x y + p2 (r^2 + 2 x^2)"
     if (p1 or p2) and np.allclose(g, _brown_variant(x, d, cross=1.0)):
         return "the cross terms need their factor 2: x gets 2 p1 x y, y gets 2 p2 x y"
     if (p1 or p2) and np.allclose(g, _brown_variant(x, d, squares_swapped=True)):
         return "x^2 and y^2 are swapped in the tangential terms: x gets p2 (r^2 + 2 x^2), y gets p1 (r^2 + 2 y^2)"
+    if p1 and np.allclose(g, _brown_variant(x, d, y_copied=True)):
+        return "y_d's p1 term is p1 (r^2 + 2 y^2), with y; yours has 2 x^2, copied from x_d's p2 term"
     if np.allclose(g, _brown_variant(x, d, divide=True)):
         return "you divided by the radial factor L; distortion multiplies: x_d = x L + ... (dividing is a rough inverse)"
+    if np.allclose(g, _brown_variant(x, d, no_one=True)):
+        return ("your radial factor lacks its 1: L = 1 + k1 r^2 + k2 r^4 + k3 r^6, so x L is the point itself plus "
+                "the radial shift; without the 1 you return only the shift")
+    if np.allclose(g - x, expected) or np.allclose(x - g, expected):
+        return "you returned the shift x_d - x (or x - x_d); return the distorted point x_d itself"
     sign = _sign_slip(x, d, g)
     if sign:
         return sign
-    radial_only = distortion.distort_points(x, [k1, k2, 0, 0, k3])
-    if np.allclose(g, radial_only) and (p1 or p2):
+    if (p1 or p2) and np.allclose(g, distortion.distort_points(x, [k1, k2, 0, 0, k3])):
         return "you left out the tangential terms p1, p2"
     r = np.hypot(x[:, 0], x[:, 1])
     wrong_r = x * (1 + k1 * r + k2 * r**2 + k3 * r**3)[:, None]
-    if np.allclose(g[:, :2], wrong_r) or np.allclose(g, wrong_r + (expected - radial_only)):
+    radial_only = distortion.distort_points(x, [k1, k2, 0, 0, k3])
+    if np.allclose(g, wrong_r) or np.allclose(g, wrong_r + (expected - radial_only)):
         return "the radial factor uses even powers of r: 1 + k1 r^2 + k2 r^4 + k3 r^6 with r^2 = x^2 + y^2"
-    if np.allclose(g, distortion.distort_points(x, [k1, k2, p1, p2, 0])) and k3:
+    if k3 and np.allclose(g, distortion.distort_points(x, [k1, k2, p1, p2, 0])):
         return "you dropped k3 (the fifth coefficient, r^6)"
-    return "compare term by term with the model in the lesson: radial factor, then the two tangential terms"
+    return ""
 
 
-def distort_points(x, dist):
-    """Brown-Conrady distortion of (N, 2) normalised points, dist in OpenCV's order."""
-    k1, k2, p1, p2, k3 = dist                      # note: k3 comes last
-    u, v = x[:, 0], x[:, 1]
-    r2 = u**2 + v**2
-    radial = 1 + k1 * r2 + k2 * r2**2 + k3 * r2**3  # even powers of r
-    ud = u * radial + 2 * p1 * u * v + p2 * (r2 + 2 * u**2)
-    vd = v * radial + p1 * (r2 + 2 * v**2) + 2 * p2 * u * v
-    return np.column_stack([ud, vd])
-
-
-register_exercise(Exercise(
-    name="distort_points",
-    lesson="02",
-    reference=distortion.distort_points,
-    cases=_distort_cases,
-    compare=same_array(rtol=0, atol=1e-12),
-    diagnose=_distort_diagnosis,
-    wrong_variants=(
-        (lambda x, d: distortion.distort_points(x, [d[0], d[1], d[3], d[2], d[4]]), "p1 and p2 are swapped"),
-        (lambda x, d: distortion.distort_points(x, [d[0], d[1], 0, 0, d[4]]), "tangential"),
-        (lambda x, d: distortion.distort_points(x, [d[0], d[1], d[3], d[4], d[2]]), "k3 comes last"),
-        (lambda x, d: x * (1 + d[0] * np.hypot(*x.T) + d[1] * np.hypot(*x.T) ** 2
-                           + d[4] * np.hypot(*x.T) ** 3)[:, None], "even powers"),
-        (lambda x, d: _brown_variant(x, d, cross=1.0), "factor 2"),
-        (lambda x, d: _brown_variant(x, d, squares_swapped=True), "swapped in the tangential terms"),
-        (lambda x, d: _brown_variant(x, d, divide=True), "divided by the radial factor"),
-        (lambda x, d: distortion.distort_points(x, [-d[0], -d[1], d[2], d[3], -d[4]]), "radial terms have the wrong sign"),
-        (lambda x, d: distortion.distort_points(x, [d[0], d[1], -d[2], -d[3], d[4]]), "tangential terms have the wrong"),
-        (lambda x, d: _in_place_distortion(x, d), "in place"),
-    ),
-    teaching=distort_points,
-))
-
-
-# -- hyperfocal_distance ------------------------------------------------------------------
-
-def _hyperfocal_cases():
-    return [(0.05, 8.0, 0.03e-3), (0.028, 2.8, 0.02e-3), (0.1, 16.0, 0.03e-3), (0.018, 5.6, 0.015e-3)]
-
-
-def _hyperfocal_diagnosis(args, got, expected) -> str:
-    f, N, c = args
-    if not _is_number(got):
-        return "return one number: the hyperfocal distance in metres"
-    slip = unit_slip(got, expected)
-    if slip:
-        return slip
-    g = float(got)
-    if np.isclose(g, f**2 / (N * c), rtol=1e-9):
-        return "you dropped the + f: H = f^2 / (N c) + f (small, but it is where the thin-lens algebra puts it)"
-    if np.isclose(g, f**2 / (N * c) - f, rtol=1e-9):
-        return "the sign of f: c = A f / (H - f) gives H - f = f^2 / (N c), so H = f^2 / (N c) + f"
-    if np.isclose(g, expected / 2, rtol=1e-9):
-        return "you returned H / 2, the near limit of the depth of field when focused at H; H itself is f^2 / (N c) + f"
-    if np.isclose(g, f**2 * N / c, rtol=1e-9) or np.isclose(g, f**2 * N / c + f, rtol=1e-9):
-        return "N belongs in the denominator: a larger f-number (smaller aperture) brings H closer"
-    if np.isclose(g, f / (N * c) + f, rtol=1e-9) or np.isclose(g, f / (N * c), rtol=1e-9):
-        return "square the focal length: H = f^2 / (N c) + f"
-    for scale, hint in ((1e-3, "c arrives in metres already (0.03 mm is 3e-05): multiplying it by 1e-3 again makes "
-                               "H about 1000 times too large"),
-                        (1e3, "c arrives in metres (0.03 mm is 3e-05), not millimetres: multiplying it by 1000 "
-                              "makes H about 1000 times too small"),
-                        (0.5, "c is the blur circle's diameter, not its radius: use c itself, H = f^2 / (N c) + f")):
-        if np.isclose(g, f**2 / (N * c * scale) + f, rtol=1e-9) or np.isclose(g, f**2 / (N * c * scale), rtol=1e-9):
-            return hint
-    if np.isclose(g, f**2 / (N**2 * c) + f, rtol=1e-9):
-        return "N enters once: A = f / N, so c = A f / (H - f) gives H - f = f^2 / (N c)"
-    return "set the blur circle of a point at infinity, A f / (H - f) with A = f / N, equal to c and solve for H"
-
-
-def hyperfocal_distance(f, N, c):
-    """Focus here and everything from H/2 to infinity is sharp: the far limit of the depth of field reaches infinity."""
-    return f**2 / (N * c) + f     # all lengths in metres
-
-
-register_exercise(Exercise(
-    name="hyperfocal_distance",
-    lesson="02",
-    reference=lens.hyperfocal_distance,
-    cases=_hyperfocal_cases,
-    compare=same_number(rtol=1e-9),
-    diagnose=_hyperfocal_diagnosis,
-    wrong_variants=(
-        (lambda f, N, c: f**2 / (N * c), "dropped the + f"),
-        (lambda f, N, c: f**2 * N / c + f, "denominator"),
-        (lambda f, N, c: f / (N * c) + f, "square the focal length"),
-        (lambda f, N, c: 1e3 * (f**2 / (N * c) + f), "millimetres"),
-        (lambda f, N, c: f**2 / (N * c) - f, "the sign of f"),
-        (lambda f, N, c: (f**2 / (N * c) + f) / 2, "H / 2"),
-        (lambda f, N, c: f**2 / (N * c * 1e-3) + f, "metres already"),
-        (lambda f, N, c: f**2 / (N * c * 1e3) + f, "not millimetres"),
-        (lambda f, N, c: f**2 / (N * c / 2) + f, "not its radius"),
-        (lambda f, N, c: f**2 / (N**2 * c) + f, "N enters once"),
-    ),
-    teaching=hyperfocal_distance,
-))
-
-
-# -- undistort_newton ------------------------------------------------------------------------
-
-def _undistort_cases():
-    """Three problems solved to convergence (8 steps), then two cut short at 1 and 2 steps.
-
-    A Newton iteration with a wrong Jacobian still converges, only more slowly, so the
-    converged answers cannot see it: the short runs can (each step is fixed by J).
-    """
-    rng = np.random.default_rng(5)
-    pts = rng.uniform(-0.4, 0.4, (8, 2))
-    strong = np.array([[0.45, -0.2], [0.0, 0.0], [-0.3, 0.35]])  # strong barrel, inside its fold (0.609)
-    return [
-        (pts, -0.25, 0.05, 8),
-        (pts, 0.12, 0.0, 8),
-        (strong, -0.4, 0.0, 8),
-        (pts, -0.25, 0.05, 1),
-        (strong, -0.4, 0.1, 2),
-    ]
-
-
-def _undistort_reference(x_d, k1, k2, steps):
-    """camlab's Newton iteration run for exactly ``steps`` steps from x = x_d (converged after 8 here)."""
-    return distortion.newton_undistort(np.array(x_d, dtype=float), distortion.as_dist([k1, k2, 0, 0, 0]),
-                                       tol=0.0, max_iter=steps).points
-
-
-def _radial_iterates(x_d, k1, k2, *, chain: float = 2.0, k2_chain: float = 4.0, step_sign: float = -1.0,
-                     frozen: bool = False, steps: int = 40) -> list:
-    """Iterates of x <- x + step_sign J^-1 (x L - x_d) from x = x_d, with J = L I + (chain k1 + k2_chain k2 r^2) x x^T.
-
-    chain = 2, k2_chain = 4 is Newton; chain = k2_chain = 0 (J = L I) is the fixed-point iteration
-    x = x_d / L; chain = 1 drops the chain rule's 2; k2_chain = 2 differentiates r^4 as 2 r^2 x;
-    step_sign = +1 steps along the residual; frozen keeps the J of x_d for every step (the chord method).
-    """
-    x, out = np.array(x_d, dtype=float), []
-    J0 = None
-    with np.errstate(all="ignore"):
-        for _ in range(steps):
-            r2 = (x**2).sum(axis=1, keepdims=True)
-            L = 1 + k1 * r2 + k2 * r2**2
-            J = L[:, :, None] * np.eye(2) + ((chain * k1 + k2_chain * k2 * r2))[:, :, None] * x[:, :, None] * x[:, None, :]
-            if frozen:
-                J0 = J if J0 is None else J0
-                J = J0
-            x = x + step_sign * np.linalg.solve(J, (x * L - x_d)[:, :, None])[:, :, 0]
-            out.append(x)
-    return out
-
-
-def _matches_an_iterate(g, iterates) -> int:
-    """1-based index of the iterate ``g`` equals (0 if none)."""
-    return next((k + 1 for k, it in enumerate(iterates) if np.allclose(g, it, rtol=0, atol=1e-10)), 0)
-
-
-_WRONG_JACOBIANS = (
-    (dict(chain=0.0, k2_chain=0.0),
-     "you used J = L I, leaving out how L changes with x: that is the fixed-point iteration x = x_d / L(x), which "
-     "converges slowly; differentiate x L(r^2) with the product rule: J = L I + x (dL/dx)^T"),
-    (dict(chain=1.0, k2_chain=2.0),
-     "the Jacobian misses the chain rule's factor 2: d(r^2)/dx = 2 x, so dL/dx = (2 k1 + 4 k2 r^2) x "
-     "(with it Newton converges in a few steps)"),
-    (dict(chain=2.0, k2_chain=2.0),
-     "the k2 term of the Jacobian is off: d(r^4)/dx = 2 r^2 d(r^2)/dx = 4 r^2 x, so dL/dx = (2 k1 + 4 k2 r^2) x"),
-    (dict(chain=1.0, k2_chain=4.0),
-     "the k1 term of the Jacobian misses the chain rule's factor 2: d(r^2)/dx = 2 x, so dL/dx = (2 k1 + 4 k2 r^2) x"),
-    (dict(frozen=True),
-     "you computed J once, at x_d, and reused it for every step (a chord method, which converges only linearly): "
-     "recompute r^2, L and J from the current x inside the loop"),
-    (dict(step_sign=1.0),
-     "step against the residual: x <- x - J^-1 (x L - x_d); stepping along it walks away from the answer"),
-)
-
-
-def _undistort_diagnosis(args, got, expected) -> str:
+def _distort_pixels_diagnosis(args, got, expected) -> str:
     problem = shape_problem(got, expected)
     if problem:
         return problem
-    x_d, k1, k2, steps = args
+    uv, K, d = args
     g = np.asarray(got, dtype=float)
-    r2 = (x_d**2).sum(axis=1, keepdims=True)
-    if np.allclose(g, x_d * (1 + k1 * r2 + k2 * r2**2)):
-        return "you distorted x_d again; undistorting solves x L(r^2) = x_d for x, where r^2 = x^2 + y^2 of the unknown x"
-    newton = [np.asarray(x_d, dtype=float)] + _radial_iterates(x_d, k1, k2)   # newton[k]: after k steps
-    taken = _matches_an_iterate(g, newton) - 1
-    if steps < 8 and np.allclose(g, newton[-1], rtol=0, atol=1e-10):
-        return (f"you ran to convergence, but this test asked for steps = {steps}: take exactly `steps` Newton steps "
-                f"(`for _ in range(steps)`); the check stops you early to see each step, and so your Jacobian")
-    if taken >= 0:
-        return (f"you took {taken} Newton step{'s' * (taken != 1)}, but steps = {steps}: loop `for _ in range(steps)` "
-                f"and step once per pass, starting from x = x_d")
-    for wrong, hint in _WRONG_JACOBIANS:
-        if _matches_an_iterate(g, _radial_iterates(x_d, k1, k2, steps=max(steps, 40), **wrong)):
+    f, c = np.array([K[0, 0], K[1, 1]]), np.array([K[0, 2], K[1, 2]])
+    x = (uv - c) / f                                   # the ideal points, normalised
+    x_d = distortion.distort_points(x, d)
+    with np.errstate(all="ignore"):
+        if np.allclose(g, distortion.distort_points(uv, d)):
+            return ("you applied the model to pixel coordinates; it works on normalised ones: x = (u - c_x) / f_x, "
+                    "y = (v - c_y) / f_y first, then u_d = f_x x_d + c_x, v_d = f_y y_d + c_y")
+        if np.allclose(g, x_d):
+            return "you returned normalised coordinates; map them back to pixels: u_d = f_x x_d + c_x, v_d = f_y y_d + c_y"
+        for f_wrong, c_wrong, hint in (
+                (f, 0 * c, "subtract the principal point before dividing by the focal length, x = (u - c_x) / f_x, "
+                           "and add it back afterwards: distortion grows from the optical axis, not from pixel (0, 0)"),
+                (f[[0, 0]], c, "v goes with f_y = K[1, 1], not f_x: x = (u - c_x) / f_x, y = (v - c_y) / f_y"),
+                (f[::-1], c, "f_x = K[0, 0] goes with u and f_y = K[1, 1] with v: you swapped them"),
+                (f, c[::-1], "c_x = K[0, 2] and c_y = K[1, 2]: you swapped them"),
+                (f, c + 0.5, "a half-pixel shift: the principal point is K[0, 2], K[1, 2] as it is (pixel centres sit at "
+                             "integers)"),
+                (f, c - 0.5, "a half-pixel shift: the principal point is K[0, 2], K[1, 2] as it is (pixel centres sit at "
+                             "integers)")):
+            xw = (uv - c_wrong) / f_wrong
+            if np.allclose(g, distortion.distort_points(xw, d) * f_wrong + c_wrong) or \
+                    np.allclose(g, distortion.distort_points(xw, d) * f_wrong + c):
+                return hint
+        if _transposed_k(uv, K, d, g):
+            return ("points are rows, so a matrix acts from the right transposed: normalise with "
+                    "np.c_[uv, ones] @ np.linalg.inv(K).T and map back with np.c_[x_d, ones] @ K.T (or write "
+                    "x = (u - c_x) / f_x, y = (v - c_y) / f_y out); K without .T mixes c_x into the third coordinate")
+        if np.allclose(g, (x_d - x) * f) or np.allclose(g, (x - x_d) * f):
+            return "you returned the shift in pixels; return where the point lands: u_d = f_x x_d + c_x, v_d = f_y y_d + c_y"
+        g_normalised = (g - c) / f
+    model = _model_diagnosis(x, np.asarray(d, dtype=float), g_normalised, x_d)
+    if model:
+        return model
+    return ("normalise with K (x = (u - c_x) / f_x, y = (v - c_y) / f_y), apply the model of section 4 term by term "
+            "(radial factor, then the two tangential terms), then back to pixels")
+
+
+def _transposed_k(uv, K, d, g) -> bool:
+    """True when ``g`` is distort_pixels with K (or its inverse) applied to row points without .T, either way."""
+    K = np.asarray(K, dtype=float)
+    rows = np.c_[uv, np.ones(len(uv))]
+
+    def dehomogenise(h):
+        return h[:, :2] / h[:, 2:]
+
+    forward = {"right": dehomogenise(rows @ np.linalg.inv(K).T), "no .T": dehomogenise(rows @ np.linalg.inv(K))}
+    for way_in, x in forward.items():
+        h = np.c_[distortion.distort_points(x, d), np.ones(len(x))]
+        for way_out, back in (("right", dehomogenise(h @ K.T)), ("no .T", dehomogenise(h @ K)), ("no .T", (h @ K)[:, :2])):
+            if (way_in, way_out) != ("right", "right") and np.allclose(g, back):
+                return True
+    return False
+
+
+def distort_pixels(uv, K, dist):
+    """Where a lens with Brown-Conrady coefficients dist (OpenCV's order) moves (N, 2) ideal pixel positions."""
+    k1, k2, p1, p2, k3 = dist                           # note: k3 comes last
+    fx, fy, cx, cy = K[0, 0], K[1, 1], K[0, 2], K[1, 2]
+    x, y = (uv[:, 0] - cx) / fx, (uv[:, 1] - cy) / fy   # normalised: the model works at f = 1, from the axis
+    r2 = x**2 + y**2
+    radial = 1 + k1 * r2 + k2 * r2**2 + k3 * r2**3      # even powers of r
+    xd = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x**2)
+    yd = y * radial + p1 * (r2 + 2 * y**2) + 2 * p2 * x * y
+    return np.column_stack([fx * xd + cx, fy * yd + cy])   # back to pixels
+
+
+def _in_place_distortion(uv, K, d):
+    out = distortion.distort_pixels(uv, K, d)
+    uv[:] = out  # the typical slip: the answer written over the caller's points
+    return out
+
+
+def _pixel_variant(model):
+    """A student's distort_pixels whose normalisation is right and whose model is ``model(x, d)``."""
+    def wrong(uv, K, d):
+        f, c = np.array([K[0, 0], K[1, 1]]), np.array([K[0, 2], K[1, 2]])
+        return model((uv - c) / f, np.asarray(d, dtype=float)) * f + c
+    return wrong
+
+
+register_exercise(Exercise(
+    name="distort_pixels",
+    lesson="02",
+    reference=distortion.distort_pixels,
+    cases=_distort_cases,
+    compare=same_array(rtol=0, atol=1e-9),
+    diagnose=_distort_pixels_diagnosis,
+    ndarray_only=True,
+    wrong_variants=(
+        (lambda uv, K, d: distortion.distort_points(uv, d), "pixel coordinates"),
+        (lambda uv, K, d: distortion.distort_points((uv - K[:2, 2]) / K[[0, 1], [0, 1]], d), "normalised coordinates"),
+        (lambda uv, K, d: distortion.distort_points(uv / K[[0, 1], [0, 1]], d) * K[[0, 1], [0, 1]], "principal point"),
+        (lambda uv, K, d: distortion.distort_points((uv - K[:2, 2]) / K[0, 0], d) * K[0, 0] + K[:2, 2], "f_y"),
+        (lambda uv, K, d: distortion.distort_points((uv - K[:2, 2][::-1]) / K[[0, 1], [0, 1]], d) * K[[0, 1], [0, 1]]
+         + K[:2, 2][::-1], "and c_y = K"),
+        (lambda uv, K, d: distortion.distort_points((uv - K[:2, 2]) / K[[1, 0], [1, 0]], d) * K[[1, 0], [1, 0]] + K[:2, 2],
+         "goes with u and f_y"),
+        (lambda uv, K, d: distortion.distort_points((uv - K[:2, 2] - 0.5) / K[[0, 1], [0, 1]], d) * K[[0, 1], [0, 1]]
+         + K[:2, 2] + 0.5, "half-pixel"),
+        (lambda uv, K, d: distortion.distort_pixels(uv, K, d) - uv, "shift in pixels"),
+        (lambda uv, K, d: (np.c_[distortion.distort_points(np.c_[uv, np.ones(len(uv))] @ np.linalg.inv(K).T[:, :2], d),
+                                 np.ones(len(uv))] @ K)[:, :2], "a matrix acts from the right transposed"),
+        (_pixel_variant(lambda x, d: distortion.distort_points(x, [d[0], d[1], d[3], d[2], d[4]])), "p1 and p2 are swapped"),
+        (_pixel_variant(lambda x, d: distortion.distort_points(x, [d[0], d[1], 0, 0, d[4]])), "tangential"),
+        (_pixel_variant(lambda x, d: distortion.distort_points(x, [d[0], d[1], d[3], d[4], d[2]])), "k3 comes last"),
+        (_pixel_variant(lambda x, d: x * (1 + d[0] * np.hypot(*x.T) + d[1] * np.hypot(*x.T) ** 2
+                                          + d[4] * np.hypot(*x.T) ** 3)[:, None]), "even powers"),
+        (_pixel_variant(lambda x, d: _brown_variant(x, d, cross=1.0)), "factor 2"),
+        (_pixel_variant(lambda x, d: _brown_variant(x, d, squares_swapped=True)), "swapped in the tangential terms"),
+        (_pixel_variant(lambda x, d: _brown_variant(x, d, y_copied=True)), "copied from x_d's p2 term"),
+        (_pixel_variant(lambda x, d: _brown_variant(x, d, divide=True)), "divided by the radial factor"),
+        (_pixel_variant(lambda x, d: _brown_variant(x, d, no_one=True)), "lacks its 1"),
+        (_pixel_variant(lambda x, d: distortion.distort_points(x, [-d[0], -d[1], d[2], d[3], -d[4]])),
+         "radial terms have the wrong sign"),
+        (_pixel_variant(lambda x, d: distortion.distort_points(x, [d[0], d[1], -d[2], -d[3], d[4]])),
+         "tangential terms have the wrong"),
+        (_pixel_variant(lambda x, d: distortion.distort_points(x, [d[0], d[1], d[2], d[3], 0])), "dropped k3"),
+        (lambda uv, K, d: distortion.distort_pixels(uv, K, d).tolist(), "wrap the values in np.array"),
+        (lambda uv, K, d: distortion.distort_pixels(uv, K, d).T, "expected an array of shape"),
+        (_in_place_distortion, "in place"),
+    ),
+    teaching=distort_pixels,
+))
+
+
+# -- f_number_for_depth -------------------------------------------------------------------------
+
+def _f_number_cases():
+    return [(0.05, 0.03e-3, 2.0, 4.0), (0.028, 0.02e-3, 0.8, 1.6), (0.085, 0.03e-3, 1.9, 2.1), (0.1, 0.015e-3, 9.0, 11.0)]
+
+
+def _f_number_reference(f, c, near, far):
+    return lens.aperture_for_depth_of_field(f, c, near, far).f_number
+
+
+def _f_number_diagnosis(args, got, expected) -> str:
+    f, c, n, r = args
+    if not _is_number(got):
+        return "return one number: the f-number N"
+    g = float(got)
+    s = 2 * n * r / (n + r)
+    if np.isclose(g, 1 / expected):
+        return "you returned 1/N; N = f / A is large for a small aperture (f/11 is N = 11)"
+    if np.isclose(g, s) or np.isclose(g, (n + r) / 2):
+        return "that is a focus distance; the function returns the f-number N (the focus is only a step on the way)"
+    mid = (n + r) / 2
+    if np.isclose(g, f**2 * (mid - n) / (c * n * (mid - f))) or np.isclose(g, f**2 * (r - mid) / (c * r * (mid - f))):
+        return ("you focused at the midpoint (near + far) / 2; the blur grows as |z - s| / z, faster in front of the "
+                "focus than behind it, so equal blur at both ends needs s = 2 near far / (near + far), the harmonic mean")
+    if np.isclose(g, f**2 * (r - n) / (2 * c * n * r)):
+        return ("you dropped f from s - f: the sensor sits at f s / (s - f), and c(z) = (f/N) (f/(s - f)) |z - s| / z; "
+                "the check wants the exact thin-lens N (neglecting f against s is the usual approximation)")
+    if np.isclose(g, 2 * expected):
+        return "c is the blur circle's diameter, not its radius: you used c / 2"
+    if np.isclose(g, expected / 2):
+        return "you doubled c; c is the blur circle's diameter already"
+    if np.isclose(g, expected * 1e3) or np.isclose(g, expected * 1e-3):
+        return "N is 1000 times off: mixed units (c in millimetres, f in metres?); keep every length in metres"
+    if np.isclose(g, f**2 * (s - n) / (c * n * (s + f))):
+        return "the sign of f: the sensor sits at f s / (s - f), so the cone's factor is f / (s - f), not f / (s + f)"
+    if np.isclose(g, expected / f):
+        return "f enters squared: the aperture A = f / N and the cone's f / (s - f) each bring one f"
+    return ("first the focus s with c(near) = c(far), i.e. (s - near) / near = (far - s) / far; then N from "
+            "c(near) = c, with c(z) = (f/N) (f/(s - f)) |z - s| / z")
+
+
+def f_number_for_depth(f, c, near, far):
+    """The f-number that keeps blur <= c from near to far (metres), focused where both ends blur equally."""
+    s = 2 * near * far / (near + far)            # (s - near) / near = (far - s) / far: the harmonic mean
+    return f**2 * (s - near) / (c * near * (s - f))   # c(near) = (f/N) (f/(s - f)) (s - near) / near = c
+
+
+register_exercise(Exercise(
+    name="f_number_for_depth",
+    lesson="02",
+    reference=_f_number_reference,
+    cases=_f_number_cases,
+    compare=same_number(rtol=1e-9),
+    diagnose=_f_number_diagnosis,
+    wrong_variants=(
+        (lambda f, c, n, r: f**2 * ((n + r) / 2 - n) / (c * n * ((n + r) / 2 - f)), "harmonic mean"),
+        (lambda f, c, n, r: f**2 * (r - (n + r) / 2) / (c * r * ((n + r) / 2 - f)), "harmonic mean"),
+        (lambda f, c, n, r: f**2 * (r - n) / (2 * c * n * r), "dropped f from s - f"),
+        (lambda f, c, n, r: 2 * _f_number_reference(f, c, n, r), "not its radius"),
+        (lambda f, c, n, r: _f_number_reference(f, c, n, r) / 2, "you doubled c"),
+        (lambda f, c, n, r: 1e3 * _f_number_reference(f, c, n, r), "mixed units"),
+        (lambda f, c, n, r: 1 / _f_number_reference(f, c, n, r), "1/N"),
+        (lambda f, c, n, r: 2 * n * r / (n + r), "focus distance"),
+        (lambda f, c, n, r: _f_number_reference(f, c, n, r) / f, "f enters squared"),
+        (lambda f, c, n, r: f**2 * (2 * n * r / (n + r) - n) / (c * n * (2 * n * r / (n + r) + f)), "the sign of f"),
+        (lambda f, c, n, r: np.array([_f_number_reference(f, c, n, r)]), "return one number"),
+    ),
+    teaching=f_number_for_depth,
+))
+
+
+# -- newton_step --------------------------------------------------------------------------------
+
+def _newton_cases():
+    """Starts off the ray through x_d (rotated and scaled), where the residual has a part across the ray.
+
+    From x = x_d a radial model keeps every iterate on that ray, so only J's radial
+    eigenvalue acts; off it, the whole 2 x 2 Jacobian does (a scalar J or a dropped
+    off-diagonal gives another step). The last case starts at x_d, as undistortion does.
+    """
+    rng = np.random.default_rng(5)
+    x_d = rng.uniform(-0.4, 0.4, (8, 2))
+    turn = np.array([[np.cos(0.3), -np.sin(0.3)], [np.sin(0.3), np.cos(0.3)]])
+    x_a = 1.1 * x_d @ turn.T + rng.normal(0, 0.02, (8, 2))
+    strong_d = np.array([[0.45, -0.2], [0.05, 0.02], [-0.3, 0.35]])     # strong barrel, inside its fold (0.609)
+    strong_x = np.array([[0.5, -0.3], [0.0, 0.06], [-0.42, 0.4]])
+    return [
+        (x_a, x_d, -0.25, 0.05),
+        (x_a, x_d, 0.12, 0.0),
+        (strong_x, strong_d, -0.4, 0.1),
+        (x_d, x_d, -0.25, 0.05),
+    ]
+
+
+def _newton_step_reference(x, x_d, k1, k2):
+    """camlab's Jacobian and model: x - J(x)^-1 (F(x) - x_d) for the radial model (k1, k2)."""
+    d = [k1, k2, 0.0, 0.0, 0.0]
+    J = distortion.distortion_jacobian(x, d)
+    return x - np.linalg.solve(J, (distortion.distort_points(x, d) - x_d)[:, :, None])[:, :, 0]
+
+
+def _wrong_step(x, x_d, k1, k2, *, jacobian: str = "newton", chain: float = 2.0, k2_chain: float = 4.0,
+                j_at_target: bool = False, l_at_target: bool = False, step_sign: float = -1.0,
+                start_at_target: bool = False, return_delta: bool = False) -> np.ndarray:
+    """One step x - J^-1 (F(x) - x_d) with one typical slip (see :data:`_WRONG_STEPS`)."""
+    x = np.array(x_d if start_at_target else x, dtype=float)
+    where_j = np.asarray(x_d, dtype=float) if j_at_target else x
+    r2 = (where_j**2).sum(axis=1, keepdims=True)
+    L = 1 + k1 * r2 + k2 * r2**2
+    slope = chain * k1 + k2_chain * k2 * r2                      # (1/x) dL/dx, times x x^T below
+    outer = where_j[:, :, None] * where_j[:, None, :]
+    eye = np.eye(2)
+    J = {"newton": L[:, :, None] * eye + slope[:, :, None] * outer,
+         "scalar": (L + slope * r2)[:, :, None] * eye,                                  # x^T x for x x^T
+         "diagonal": (L[:, :, None] + slope[:, :, None] * where_j[:, :, None] ** 2) * eye,
+         "minus": L[:, :, None] * eye - slope[:, :, None] * outer,
+         "fixed": L[:, :, None] * eye}[jacobian]
+    r2x = (x**2).sum(axis=1, keepdims=True)
+    L_res = (1 + k1 * (x_d**2).sum(1, keepdims=True) + k2 * (x_d**2).sum(1, keepdims=True) ** 2) if l_at_target \
+        else 1 + k1 * r2x + k2 * r2x**2
+    with np.errstate(all="ignore"):
+        delta = step_sign * np.linalg.solve(J, (x * L_res - x_d)[:, :, None])[:, :, 0]
+    return delta if return_delta else x + delta
+
+
+_WRONG_STEPS = (
+    (dict(jacobian="scalar"),
+     "your J is a number times I: you wrote x^T x (the number r^2) where the outer product x x^T (a 2 x 2 matrix) "
+     "belongs. J = L I + (2 k1 + 4 k2 r^2) x x^T; for a stack of points x[:, :, None] * x[:, None, :]. (From "
+     "x = x_d both give the same step, because the iterates stay on the ray; off it they differ)"),
+    (dict(jacobian="diagonal"),
+     "your J has no off-diagonal terms: d(x L)/dy = x dL/dy = 2 x y (k1 + 2 k2 r^2) is not 0. "
+     "J = L I + (2 k1 + 4 k2 r^2) x x^T, whose off-diagonal entries are (2 k1 + 4 k2 r^2) x y"),
+    (dict(jacobian="minus"),
+     "the x x^T term of J has the wrong sign: J = L I + (2 k1 + 4 k2 r^2) x x^T (product rule: d(x L) = L dx + x dL)"),
+    (dict(jacobian="fixed"),
+     "you used J = L I, leaving out how L changes with x: that is the fixed-point step x = x_d / L(x); "
+     "differentiate x L(r^2) with the product rule: J = L I + x (dL/dx)^T = L I + (2 k1 + 4 k2 r^2) x x^T"),
+    (dict(chain=1.0, k2_chain=2.0),
+     "the Jacobian misses the chain rule's factor 2: d(r^2)/dx = 2 x, so dL/dx = (2 k1 + 4 k2 r^2) x"),
+    (dict(chain=1.0, k2_chain=4.0),
+     "the k1 term of the Jacobian misses the chain rule's factor 2: d(r^2)/dx = 2 x, so dL/dx = (2 k1 + 4 k2 r^2) x"),
+    (dict(k2_chain=2.0),
+     "the k2 term of the Jacobian is off: d(r^4)/dx = 2 r^2 d(r^2)/dx = 4 r^2 x, so dL/dx = (2 k1 + 4 k2 r^2) x"),
+    (dict(j_at_target=True),
+     "you evaluated J at x_d; Newton's J belongs to the current estimate x (recompute r^2, L and J from x)"),
+    (dict(l_at_target=True),
+     "your residual uses L of x_d: F(x) = x L(r^2) with r^2 = x^2 + y^2 of the current x, so the residual is "
+     "x L(x) - x_d"),
+    (dict(step_sign=1.0),
+     "step against the residual: x + delta with J delta = -(F(x) - x_d); stepping along it walks away from the answer"),
+    (dict(start_at_target=True),
+     "you stepped from x_d, not from the current estimate x: the step is x + delta with J(x) delta = -(F(x) - x_d) "
+     "(the check's x is off the ray through x_d, where the whole 2 x 2 J matters)"),
+    (dict(return_delta=True),
+     "you returned the step delta; return the new estimate x + delta"),
+)
+
+
+def _newton_diagnosis(args, got, expected) -> str:
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem
+    x, x_d, k1, k2 = args
+    g = np.asarray(got, dtype=float)
+    for slip, hint in _WRONG_STEPS:
+        if np.allclose(g, _wrong_step(x, x_d, k1, k2, **slip), rtol=0, atol=1e-10):
             return hint
-    if not np.all(np.abs(g) < 10):
-        return _WRONG_JACOBIANS[-1][1]
-    r = np.sqrt((g**2).sum(axis=1, keepdims=True))
-    if np.allclose(g * (1 + k1 * r + k2 * r**2), x_d, atol=1e-9):
+    r2 = (x**2).sum(axis=1, keepdims=True)
+    if np.allclose(g, x * (1 + k1 * r2 + k2 * r2**2)):
+        return "you returned F(x), the current estimate distorted; return x + delta, with J(x) delta = -(F(x) - x_d)"
+    r = np.sqrt(r2)
+    L_odd = 1 + k1 * r + k2 * r**2
+    J_odd = L_odd[:, :, None] * np.eye(2) + ((k1 + 2 * k2 * r) / np.maximum(r, 1e-300))[:, :, None] * \
+        x[:, :, None] * x[:, None, :]
+    with np.errstate(all="ignore"):
+        odd = x - np.linalg.solve(J_odd, (x * L_odd - x_d)[:, :, None])[:, :, 0]
+    if np.allclose(g, odd):
         return "the radial factor uses even powers of r: L = 1 + k1 r^2 + k2 r^4 with r^2 = x^2 + y^2"
-    return ("one Newton step solves J dx = -(x L - x_d) with J = L I + (2 k1 + 4 k2 r^2) x x^T, the 2 x 2 Jacobian "
-            "of x L(r^2), evaluated at the current x; start from x = x_d and take exactly `steps` steps")
+    return ("one Newton step from the current x: J delta = -(x L - x_d) with J = L I + (2 k1 + 4 k2 r^2) x x^T, "
+            "L and r^2 of x; return x + delta")
 
 
-def _undistort_exception_hint(exc, args) -> str:
+def _newton_exception_hint(exc, args) -> str:
     """np.linalg.solve on a stack: the right-hand side must be (N, 2, 1), not (N, 2)."""
     if isinstance(exc, (ValueError, np.linalg.LinAlgError)) and ("solve" in str(exc) or "core dimension" in str(exc)):
         return ("np.linalg.solve on a stack of N systems: J is (N, 2, 2), so give the right-hand side as (N, 2, 1), "
@@ -340,79 +494,53 @@ def _undistort_exception_hint(exc, args) -> str:
     return ""
 
 
-def undistort_newton(x_d, k1, k2, steps=8):
-    """Invert x_d = x L(r^2), L = 1 + k1 r^2 + k2 r^4, for (N, 2) normalised points by `steps` Newton steps."""
-    x = np.array(x_d, dtype=float)                     # start at the distorted point (a copy: x_d stays as it is)
-    for _ in range(steps):                             # from x = x_d, 8 steps reach 1e-12 inside the fold
-        r2 = (x**2).sum(axis=1, keepdims=True)         # (N, 1)
-        L = 1 + k1 * r2 + k2 * r2**2
-        residual = x * L - x_d                         # F(x) - x_d: zero at the answer
-        # J = dF/dx = L I + x (dL/dx)^T, with dL/dx = (2 k1 + 4 k2 r^2) x (chain rule: d(r^2)/dx = 2x)
-        J = L[:, :, None] * np.eye(2) + (2 * k1 + 4 * k2 * r2)[:, :, None] * x[:, :, None] * x[:, None, :]
-        x = x - np.linalg.solve(J, residual[:, :, None])[:, :, 0]   # the Newton step: J dx = -residual
-    return x
+def newton_step(x, x_d, k1, k2):
+    """One Newton step towards x L(r^2) = x_d (L = 1 + k1 r^2 + k2 r^4) from the current (N, 2) estimate x."""
+    r2 = (x**2).sum(axis=1, keepdims=True)                # (N, 1), of the current x
+    L = 1 + k1 * r2 + k2 * r2**2
+    residual = x * L - x_d                                # F(x) - x_d: zero at the answer
+    # J = dF/dx = L I + x (dL/dx)^T, with dL/dx = (2 k1 + 4 k2 r^2) x (chain rule: d(r^2)/dx = 2x)
+    J = L[:, :, None] * np.eye(2) + (2 * k1 + 4 * k2 * r2)[:, :, None] * x[:, :, None] * x[:, None, :]
+    delta = np.linalg.solve(J, -residual[:, :, None])[:, :, 0]   # J delta = -residual, one 2 x 2 system per point
+    return x + delta                                      # a new array: x and x_d stay as they are
 
 
-def _in_place_distortion(x, d):
-    out = distortion.distort_points(x, d)
-    x[:] = out  # the typical slip: the answer written over the caller's points
+def _in_place_newton(x, x_d, k1, k2):
+    out = _newton_step_reference(x, x_d, k1, k2)
+    x[:] = out  # `x -= ...`: overwrites the caller's estimate
     return out
 
 
-def _until_converged(x_d, k1, k2, steps):
-    """Ignores ``steps``: Newton until the step is tiny (right at 8 steps, wrong when the check asks for 1 or 2)."""
-    return undistort_newton(x_d, k1, k2, 40)
-
-
-def _flat_rhs_newton(x_d, k1, k2, steps):
+def _flat_rhs_newton(x, x_d, k1, k2):
     """np.linalg.solve(J, residual) with an (N, 2) residual: a ValueError in NumPy 2."""
-    x = np.array(x_d, dtype=float)
-    for _ in range(steps):
-        r2 = (x**2).sum(axis=1, keepdims=True)
-        L = 1 + k1 * r2 + k2 * r2**2
-        J = L[:, :, None] * np.eye(2) + (2 * k1 + 4 * k2 * r2)[:, :, None] * x[:, :, None] * x[:, None, :]
-        x = x - np.linalg.solve(J, x * L - x_d)
-    return x
+    r2 = (x**2).sum(axis=1, keepdims=True)
+    L = 1 + k1 * r2 + k2 * r2**2
+    J = L[:, :, None] * np.eye(2) + (2 * k1 + 4 * k2 * r2)[:, :, None] * x[:, :, None] * x[:, None, :]
+    return x - np.linalg.solve(J, x * L - x_d)
 
 
 register_exercise(Exercise(
-    name="undistort_newton",
+    name="newton_step",
     lesson="02",
-    reference=_undistort_reference,
-    cases=_undistort_cases,
-    compare=same_array(rtol=0, atol=1e-9),
-    diagnose=_undistort_diagnosis,
-    exception_hint=_undistort_exception_hint,
-    wrong_variants=(
-        (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, steps=1)[0], "you took 1 Newton step"),
-        (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, steps=steps + 1)[-1], "but steps ="),
-        (lambda x_d, k1, k2, steps: ([np.array(x_d)] + _radial_iterates(x_d, k1, k2, steps=steps))[steps - 1],
-         "but steps ="),
-        (_until_converged, "you ran to convergence"),
-        (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, chain=0.0, k2_chain=0.0, steps=8)[-1],
-         "fixed-point iteration"),
-        # a wrong J run to convergence passes the 8-step tests; the short ones first ask for `steps`, then see J
-        (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, chain=0.0, k2_chain=0.0, steps=max(steps, 60))[-1],
-         "you ran to convergence"),
-        (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, chain=1.0, k2_chain=2.0, steps=steps)[-1],
-         "chain rule's factor 2"),
-        (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, chain=1.0, k2_chain=2.0, steps=max(steps, 40))[-1],
-         "you ran to convergence"),
-        (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, k2_chain=2.0, steps=steps)[-1], "k2 term"),
-        (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, frozen=True, steps=steps)[-1], "computed J once"),
-        (lambda x_d, k1, k2, steps: _radial_iterates(x_d, k1, k2, step_sign=1.0, steps=steps)[-1],
-         "against the residual"),
-        (lambda x_d, k1, k2, steps: x_d * (1 + k1 * (x_d**2).sum(1, keepdims=True)
-                                           + k2 * (x_d**2).sum(1, keepdims=True) ** 2), "distorted x_d again"),
-        (lambda x_d, k1, k2, steps: _in_place_newton(x_d, k1, k2, steps), "in place"),
-        (_flat_rhs_newton, "residual[:, :, None]"),
+    reference=_newton_step_reference,
+    cases=_newton_cases,
+    compare=same_array(rtol=0, atol=1e-10),
+    diagnose=_newton_diagnosis,
+    exception_hint=_newton_exception_hint,
+    ndarray_only=True,
+    wrong_variants=tuple(
+        (lambda x, x_d, k1, k2, slip=slip: _wrong_step(x, x_d, k1, k2, **slip), phrase)
+        for (slip, _), phrase in zip(_WRONG_STEPS, (
+            "your J is a number times I", "no off-diagonal terms", "term of J has the wrong sign", "fixed-point step",
+            "misses the chain rule's factor 2", "the k1 term of the Jacobian", "the k2 term of the Jacobian",
+            "you evaluated J at x_d", "your residual uses L of x_d", "step against the residual",
+            "you stepped from x_d", "you returned the step delta"))
+    ) + (
+        (lambda x, x_d, k1, k2: x * (1 + k1 * (x**2).sum(1, keepdims=True) + k2 * (x**2).sum(1, keepdims=True) ** 2),
+         "the current estimate distorted"),
+        (_in_place_newton, "in place"),
+        (_flat_rhs_newton, "np.linalg.solve on a stack"),
+        (lambda x, x_d, k1, k2: _newton_step_reference(x, x_d, k1, k2).tolist(), "wrap the values in np.array"),
     ),
-    teaching=undistort_newton,
+    teaching=newton_step,
 ))
-
-
-def _in_place_newton(x_d, k1, k2, steps):
-    x = undistort_newton(x_d, k1, k2, steps)
-    x_d[:] = x  # overwrites the caller's points
-    return x
-

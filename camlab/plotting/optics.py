@@ -12,7 +12,7 @@ from .. import pinhole as _pinhole
 from . import palette
 
 __all__ = ["axis_scales", "box_edges", "label_camera_axes", "PINHOLE_VIEW", "plane_faces", "draw_pinhole_3d", "update_pinhole_3d", "draw_similar_triangles", "update_similar_triangles",
-           "draw_thin_lens", "update_thin_lens", "draw_focus_cone", "update_focus_cone",
+           "draw_thin_lens", "update_thin_lens", "draw_focus_cone", "update_focus_cone", "draw_blur_disc", "update_blur_disc",
            "draw_pinhole_blur", "update_pinhole_blur", "draw_pinhole_cones"]
 
 _EDGES = [(0, 1), (1, 3), (3, 2), (2, 0), (4, 5), (5, 7), (7, 6), (6, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
@@ -285,21 +285,22 @@ def draw_thin_lens(ax, focal_length: float, object_distance: float) -> dict:
     the title, above the axes and off the rays, gives the numbers and says where it is.
     Fixed axes also keep the diagram blittable.
     """
-    colours = (palette.ORANGE, palette.PURPLE, palette.BROWN)
+    styles = ("-", "--", "-.")   # one colour for light (orange), three line styles for the three rays
     names = ("parallel, then through F'", "through the centre, straight", "through F, then parallel")
+    arrow = dict(arrowstyle="-|>", lw=2, shrinkA=0, shrinkB=0)  # the tip exactly where the rays meet
     art = {
         "lens": ax.axvline(0, color=palette.BLUE, lw=2),
         "axis": ax.axhline(0, color="0.5", lw=0.8),
         "foci": ax.plot([-1, 1], [0, 0], "k+", ms=10, mew=1.5)[0],
-        "object": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="-|>", color=palette.GREEN, lw=2)),
-        "image": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="-|>", color=palette.RED, lw=2)),
-        "rays": [ax.plot([], [], color=c, lw=1.2, label=n)[0] for c, n in zip(colours, names)],
+        "object": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrow, color=palette.GREEN)),
+        "image": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrow, color=palette.RED)),
+        "rays": [ax.plot([], [], color=palette.ORANGE, ls=ls, lw=1.3, label=n)[0] for ls, n in zip(styles, names)],
         "text": ax.set_title(" \n ", fontsize=9, family="monospace"),
     }
     for x, label in ((-1, "F"), (1, "F'")):
         ax.annotate(label, (x, 0), xytext=(5, 4), textcoords="offset points", ha="left", va="bottom", fontsize=10)
     lo, hi = THIN_LENS_X
-    ax.set(xlim=THIN_LENS_X, ylim=(-THIN_LENS_Y, THIN_LENS_Y), yticks=[-2, -1, 0, 1, 2],
+    ax.set(xlim=THIN_LENS_X, ylim=(-THIN_LENS_Y, THIN_LENS_Y), yticks=[-3, -2, -1, 0, 1, 2, 3],
            xticks=[t for t in range(int(lo), int(hi) + 1) if t % 2 == 0])
     ax.set_xlabel("distance from the lens, in units of f (object side left, image side right)")
     ax.set_ylabel("height / object height")
@@ -330,6 +331,8 @@ def update_thin_lens(art: dict, f: float, zo: float, requested: float | None = N
     lo, hi = THIN_LENS_X
     art["object"].xy, art["object"].xyann = (xo, 1.0), (xo, 0)
     art["image"].xy, art["image"].xyann = (xi, m), (xi, 0)
+    # the head shrinks with a small image (true to size, never a blob larger than the image); its tip is where the rays meet
+    art["image"].arrow_patch.set_mutation_scale(10 * min(1.0, abs(m) / 0.3) + 1)
     art["object"].set_visible(xo >= lo)  # an arrow at the edge would not meet its rays
     art["image"].set_visible(xi <= hi)
     # parallel ray -> through F'; central ray undeviated; ray through F -> parallel (exact lines, clipped by the axes)
@@ -340,8 +343,9 @@ def update_thin_lens(art: dict, f: float, zo: float, requested: float | None = N
     if requested is not None and not np.isclose(requested, zo):
         held = f"z_o = {requested:.3f} m is inside 1.05 f: held at {zo:.3f} m"
         note = f"{held}; {note}" if note else held
+    hint = "the object (green) and its image (red), where the rays meet"
     art["text"].set_text(f"f = {f * 1e3:.0f} mm   z_o = {zo:.3f} m = {-xo:.2f} f   z_i = {zi:.3f} m = {xi:.2f} f"
-                         f"   m = {m:.3f}\n{note or 'object (green) and image (red) arrows; move the object towards F'}")
+                         f"   m = {m:.3f}\n{note or hint}")
     return {"image_distance": zi, "magnification": m}
 
 
@@ -360,35 +364,40 @@ def _cone_x(z):
     return np.where(z < 0, z / CONE_OBJECT_MAX, z / CONE_IMAGE_MAX)
 
 
-def draw_focus_cone(ax, half_height_mm: float = 20.0) -> dict:
+def draw_focus_cone(ax, half_height_mm: float = 20.0, sensor_height_mm: float = 24.0) -> dict:
     """A point on the axis, the aperture, the cone of light behind the lens and a movable sensor.
 
     Vertical positions are millimetres; horizontally the object side is in metres and the
-    image side in millimetres (marked on the axis), so both fit. :func:`update_focus_cone`
-    moves everything and returns the blur circle on the sensor.
+    image side in millimetres (marked on the axis), so both fit. The light stops at the
+    sensor: where the rays would meet behind it, their continuation is dotted. The sensor is
+    ``sensor_height_mm`` tall (24 mm: full frame). Colours: the object green, the lens blue,
+    light orange, the image (where the rays meet, and the blur on the sensor) red.
+    :func:`update_focus_cone` moves everything and returns the blur circle on the sensor.
     """
-    ax.axhline(0, color=palette.GREY, lw=0.8)
-    ax.axvline(0, color="tab:blue", lw=1, alpha=0.3, gid="grid")
+    ax.axhline(0, color="0.4", lw=0.8)   # the optical axis (dark enough to read through the cone)
     art = {
-        "stop": ax.plot([], [], color="k", lw=4, solid_capstyle="butt")[0],
-        "lens": ax.plot([], [], color="tab:blue", lw=3)[0],
-        "cone_in": ax.fill([0, 0, 0], [0, 0, 0], color="gold", alpha=0.35, lw=0)[0],
-        "cone_out": ax.fill([0, 0, 0, 0], [0, 0, 0, 0], color="gold", alpha=0.35, lw=0)[0],
+        "stop": ax.plot([], [], color="k", lw=4, solid_capstyle="butt", label="aperture stop")[0],
+        "lens": ax.plot([], [], color=palette.BLUE, lw=3, label="lens, aperture A = f/N")[0],
+        "cone_in": ax.fill([0, 0, 0], [0, 0, 0], color=palette.ORANGE, alpha=0.22, lw=0, label="cone of light")[0],
+        "cone_out": ax.fill([0, 0, 0, 0], [0, 0, 0, 0], color=palette.ORANGE, alpha=0.22, lw=0)[0],
         "rays": ax.plot([], [], color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0],
-        "point": ax.plot([], [], "o", color=palette.GREEN, ms=7)[0],
-        "focus": ax.plot([], [], "x", color=palette.ORANGE, ms=8, mew=2)[0],
-        "sensor": ax.plot([], [], color="0.3", lw=2)[0],
-        "blur": ax.plot([], [], color="tab:red", lw=6, solid_capstyle="butt")[0],
+        "beyond": ax.plot([], [], color=palette.ORANGE, lw=1, ls=":", path_effects=palette.halo(1),
+                          label="rays beyond the sensor (blocked)")[0],
+        "point": ax.plot([], [], "o", color=palette.GREEN, ms=7, label="object point")[0],
+        "sensor": ax.plot([], [], color="0.3", lw=2, label=f"sensor ({sensor_height_mm:g} mm tall)")[0],
+        "focus": ax.plot([], [], "x", color=palette.RED, ms=8, mew=2, label="image point z_i (rays meet)")[0],
+        "blur": ax.plot([], [], color=palette.RED, lw=6, solid_capstyle="butt", label="blur circle c (on the sensor)")[0],
         "text": ax.set_title(" \n ", fontsize=8.5, family="monospace"),  # above the axes: never over the cone
         "half": half_height_mm,
+        "sensor_half": sensor_height_mm / 2,
     }
-    ticks_m = [-2.0, -1.5, -1.0, -0.5]
-    ticks_mm = [25, 50, 75]
+    ticks_m = [-2.0, -1.0]
+    ticks_mm = [40, 80]
     ax.set_xticks([float(_cone_x(t)) for t in ticks_m] + [0.0] + [float(_cone_x(t * 1e-3)) for t in ticks_mm])
     ax.set_xticklabels([f"{-t:g} m" for t in ticks_m] + ["lens"] + [f"{t} mm" for t in ticks_mm])
     ax.set_xlim(-1.06, 1.0)  # room for the object dot at the left end (2 m)
     ax.set_ylim(-half_height_mm, half_height_mm)
-    ax.set_xlabel("distance from the lens (object side in metres, image side in millimetres)")
+    ax.set_xlabel("distance from the lens\n(object side in metres, image side in millimetres)")
     ax.set_ylabel("height (mm)")
     return art
 
@@ -398,30 +407,64 @@ def update_focus_cone(art: dict, f: float, N: float, z_o: float, z_s: float) -> 
 
     The cone from the aperture (diameter A = f / N) converges to the image point at
     :math:`z_i` and cuts the sensor in a disc of diameter :math:`c = A\,|z_s - z_i| / z_i`
-    (similar triangles). Returns ``{"z_i", "A", "c"}`` in metres.
+    (similar triangles). The cone is drawn up to the sensor, where the light stops.
+    Returns ``{"z_i", "A", "c", "airy"}`` in metres (``airy``: the Airy disc
+    :math:`2.44 \lambda N` in green light).
     """
     A = _lens.aperture_diameter(f, N)
     z_i = float(_lens.image_distance(f, z_o))
     a = A / 2 * 1e3  # mm
     c = A * abs(z_s - z_i) / z_i
     xo, xi, xs = float(_cone_x(-z_o)), float(_cone_x(z_i)), float(_cone_x(z_s))
-    far = max(z_s, z_i) * 1.15  # draw the cone a little past the sensor or the focus
-    y_far = a * (1 - far / z_i)   # the upper ray at distance `far` (it crosses the axis at z_i)
-    xf = float(_cone_x(far))
+    y_s = a * (1 - z_s / z_i)   # the upper ray at the sensor (it crosses the axis at z_i)
     art["stop"].set_data([0, 0, np.nan, 0, 0], [art["half"], a, np.nan, -a, -art["half"]])
     art["lens"].set_data([0, 0], [-a, a])
     art["cone_in"].set_xy([[xo, 0], [0, a], [0, -a]])
-    art["cone_out"].set_xy([[0, a], [xf, y_far], [xf, -y_far], [0, -a]])
-    art["rays"].set_data([xo, 0, xf, np.nan, xo, 0, xf], [0, a, y_far, np.nan, 0, -a, -y_far])
+    art["cone_out"].set_xy([[0, a], [xs, y_s], [xs, -y_s], [0, -a]])   # a bow tie when the rays cross before z_s
+    art["rays"].set_data([xo, 0, xs, np.nan, xo, 0, xs], [0, a, y_s, np.nan, 0, -a, -y_s])
+    art["beyond"].set_data(*(([xs, xi, np.nan, xs, xi], [y_s, 0, np.nan, -y_s, 0]) if z_i > z_s else ([], [])))
     art["point"].set_data([xo], [0])
     art["focus"].set_data([xi], [0])
-    art["sensor"].set_data([xs, xs], [-0.8 * art["half"], 0.8 * art["half"]])
+    art["sensor"].set_data([xs, xs], [-art["sensor_half"], art["sensor_half"]])
     half_c = c / 2 * 1e3
     art["blur"].set_data([xs, xs], [-max(half_c, 0.15), max(half_c, 0.15)])
     airy = 2.44 * GREEN_LIGHT * N  # the diffraction blur, which stopping down makes worse
-    art["text"].set_text(f"A = f/N = {A * 1e3:.1f} mm   z_i = {z_i * 1e3:.2f} mm   z_s = {z_s * 1e3:.2f} mm\n"
-                         f"c = A |z_s - z_i| / z_i = {c * 1e6:.0f} µm   Airy disc 2.44 λN = {airy * 1e6:.0f} µm")
+    art["text"].set_text(f"A = f/N = {A * 1e3:.1f} mm   z_i = {z_i * 1e3:.2f} mm\n"
+                         f"z_s = {z_s * 1e3:.2f} mm   c = A |z_s - z_i| / z_i")
     return {"z_i": z_i, "A": A, "c": c, "airy": airy}
+
+
+def draw_blur_disc(ax, half_width_um: float = 250.0, coc_um: float = 30.0) -> dict:
+    """The sensor seen face on around the image point, in micrometres: the blur disc (red), the
+    acceptable blur ``coc_um`` (purple dashes) and the Airy disc (brown dots), to scale with each other.
+
+    :func:`update_blur_disc` sets the two discs' diameters.
+    """
+    from matplotlib.patches import Circle
+
+    art = {
+        "blur": ax.add_patch(Circle((0, 0), 1, facecolor=palette.RED, alpha=0.45, edgecolor=palette.RED, lw=1.2)),
+        "ok": ax.add_patch(Circle((0, 0), coc_um / 2, fill=False, edgecolor=palette.PURPLE, ls="--", lw=1.2,
+                                  label=f"acceptable c = {coc_um:g} µm")),
+        "airy": ax.add_patch(Circle((0, 0), 1, fill=False, edgecolor=palette.BROWN, ls=":", lw=1.8,
+                                    label="Airy disc 2.44 λN")),
+        "text": ax.set_title(" \n ", fontsize=8.5, family="monospace"),
+        "half": half_width_um,
+    }
+    ax.set_xlim(-half_width_um, half_width_um)
+    ax.set_ylim(-half_width_um, half_width_um)
+    ax.set_aspect("equal")
+    ax.set_xlabel("on the sensor, face on (µm)")
+    return art
+
+
+def update_blur_disc(art: dict, c: float, airy: float, pixel: float) -> None:
+    """Blur circle ``c`` and Airy disc ``airy`` (diameters, metres); the title gives c in µm and in pixels of ``pixel`` m."""
+    art["blur"].set_radius(max(c * 1e6 / 2, 0.5))
+    art["airy"].set_radius(airy * 1e6 / 2)
+    over = ", beyond this view" if c * 1e6 > 2 * art["half"] else ""
+    art["text"].set_text(f"c = {c * 1e6:.0f} µm = {c / pixel:.1f} px\n"
+                         f"Airy disc {airy * 1e6:.0f} µm{over}")
 
 
 def draw_pinhole_blur(ax, focal_length: float, wavelength: float = 550e-9, object_distance: float = np.inf) -> dict:

@@ -12,7 +12,7 @@ from .._validate import CamlabInputError, check_integer, check_number, check_pos
 from ..camera import (Camera, estimate_projection_matrix, look_at_rotation, orbit_eye, project_points,
                       reprojection_errors, rotation_from_axis_angle, rotation_from_euler)
 from ..projective import map_points
-from .planes import Plane, box, checkerboard, photo_plane, text_page, textured_plane
+from .planes import Plane, box, checkerboard, letter_chart, photo_plane, text_page, textured_plane
 from .textures import portrait
 from .wireframes import box_wireframe, ground_grid, house_wireframe
 
@@ -55,15 +55,17 @@ def box_before_wall(distance: float) -> list:
 
 
 def depth_of_field_scene() -> list[Plane]:
-    """Lesson 02: four planes at 0.6, 1.2, 2.4 and 4 m (near board, text page, far board, portrait wall).
+    """Lesson 02: four planes at 0.6, 1.2, 2.4 and 4 m (small board, letter chart, large board, portrait wall).
 
     Seen by a camera at the origin looking along +z; a list of :class:`Plane` for
-    :func:`camlab.render.render`, named ``"near"``, ``"page"``, ``"far"``, ``"wall"``.
+    :func:`camlab.render.render`, named ``"near"``, ``"chart"``, ``"far"``, ``"wall"``. The chart's
+    rows of capitals shrink row by row (lesson 01's :func:`letter_chart`), so how many rows stay
+    legible shows the blur; the wall, 3.6 m wide, fills the frame of lesson 02's 28 mm camera.
     """
     return [checkerboard((5, 4), 0.04, t=(-0.33, -0.02, 0.6), name="near", px_per_square=32),
-            text_page(0.3, t=(0.0, -0.02, 1.2)),
+            letter_chart(0.36, t=(0.02, -0.02, 1.2)),
             checkerboard((7, 5), 0.12, t=(0.1, -0.55, 2.4), name="far", px_per_square=32),
-            textured_plane(portrait(), 3.2, t=(0, 0, 4.0), name="wall")]
+            textured_plane(portrait(), 3.6, t=(0, 0, 4.0), name="wall")]
 
 
 def photo_and_page(linear: bool = False) -> list[Plane]:

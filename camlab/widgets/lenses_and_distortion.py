@@ -38,88 +38,101 @@ def thin_lens():
 
 F_CONE = 0.05      # the focus-and-blur demo's 50 mm lens
 COC_OK = 0.03e-3   # acceptable blur circle, 0.03 mm (a 35 mm camera viewed as a print)
-F_NUMBERS = [1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0, 16.0]
+PIXEL = 5e-6       # a pixel pitch to count the blur in (a 36 x 24 mm sensor of 7200 x 4800 pixels)
+F_NUMBERS = [1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0, 16.0, 22.0, 32.0]
 
 
 def blur_curve_depths(focus: float) -> np.ndarray:
-    """Depths (m) for the c(z) curve: 0.25-5 m, dense near ``focus`` where its V is narrower than 1 cm."""
+    """Depths (m) for the c(z) curve: 0.2-5 m, dense near ``focus`` where its V is narrower than 1 cm."""
     near_focus = focus * (1 + np.linspace(-0.03, 0.03, 61))
-    return np.unique(np.concatenate([np.linspace(0.25, 5.0, 300), near_focus, [focus]]))
+    return np.unique(np.concatenate([np.linspace(0.2, 5.0, 300), near_focus, [focus]]))
 
 
-@register(lesson="02", sweep={"f_number": [1.4, 8.0, 16.0], "object_m": [0.3, 1.0, 2.0], "sensor_mm": [50.6, 52.6, 60.0]})
+@register(lesson="02", sweep={"f_number": [1.4, 8.0, 16.0, 32.0], "object_m": [0.3, 1.0, 2.0],
+                              "sensor_mm": [50.6, 52.63, 60.0]})
 def focus_and_blur():
-    """The cone of light from a point through the aperture, a movable sensor, and the blur circle c(z) it gives."""
+    """The cone of light from a point through the aperture, a movable sensor, the blur disc it cuts there
+    (magnified, face on) and the blur circle c(z) of every depth."""
     controls = {
         "f_number": W.SelectionSlider(options=F_NUMBERS, value=2.8, description="f-number N", continuous_update=True,
                                       style={"description_width": "initial"}, layout=W.Layout(width="300px")),
-        "object_m": slider(1.0, 0.3, 2.0, 0.01, "object distance z (m)"),
-        "sensor_mm": slider(52.6, 50.6, 60.0, 0.1, "sensor behind lens z_s (mm)"),
+        "object_m": slider(1.5, 0.3, 2.0, 0.01, "object distance z (m)"),
+        "sensor_mm": slider(52.63, 50.6, 60.0, 0.01, "sensor behind lens z_s (mm)"),
     }
-    view = FigureView(figsize=(8.8, 4.8))
-    ax_cone, ax_c = view.fig.subplots(1, 2, width_ratios=[1.45, 1])
+    view = FigureView(figsize=(9.8, 5.2))
+    ax_cone, ax_disc, ax_c = view.fig.subplots(1, 3, width_ratios=[1.5, 0.85, 1.1])
     art = optics.draw_focus_cone(ax_cone)
-    view.fig.suptitle("f = 50 mm lens: the cone of light meets the sensor in a disc (red), the blur circle c",
-                      fontsize=10)
-    curve, = ax_c.plot([], [], "k", label="c(z), sensor fixed")
-    band = ax_c.axvspan(1, 2, color="tab:green", alpha=0.2, label="depth of field")
-    ax_c.axhline(COC_OK * 1e6, color="tab:red", ls="--", lw=1, label="acceptable c = 30 µm")
-    marker, = ax_c.plot([], [], "o", color="tab:green", mec="k", ms=7, label="the point")
-    ax_c.set(xlim=(0.25, 5.0), yscale="log", ylim=(1, 1e4), xlabel="object distance z (m)",
+    disc = optics.draw_blur_disc(ax_disc, coc_um=COC_OK * 1e6)
+    ax_disc.set_xlabel(f"on the sensor, face on (µm;\npixels of {PIXEL * 1e6:g} µm)")
+    curve, = ax_c.plot([], [], "k", label="c(z), this sensor position")
+    band = ax_c.axvspan(1, 2, color=palette.PURPLE, alpha=0.3, lw=0, label="depth of field (c < 30 µm)")
+    ax_c.axhline(COC_OK * 1e6, color=palette.PURPLE, ls="--", lw=1.2)
+    airy = ax_c.axhline(1, color=palette.BROWN, ls=":", lw=1.8)
+    marker, = ax_c.plot([], [], "o", color=palette.GREEN, mec="k", ms=7)
+    ax_c.set_title(" \n \n ", fontsize=9)  # room for the three lines update writes
+    ax_c.set(xlim=(0.2, 5.0), yscale="log", ylim=(1, 1e4), xlabel="object distance z (m)",
              ylabel="blur circle c (µm, log scale)")
-    # below the plot, never over the band or the curve
-    ax_c.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2)
-    view.animate(*[art[k] for k in ("stop", "lens", "cone_in", "cone_out", "rays", "point", "focus", "sensor", "blur",
-                                     "text")], curve, band, marker, ax_c.title)
+    # one legend for the three panels, under them: never over the cone, the discs, the band or the curve
+    handles = {}
+    for ax in (ax_cone, ax_disc, ax_c):
+        for h, label in zip(*ax.get_legend_handles_labels()):
+            handles.setdefault(label, h)
+    view.fig.legend(handles.values(), handles.keys(), loc="outside lower center", ncol=4, fontsize=8)
+    view.animate(*[art[k] for k in ("stop", "lens", "cone_in", "cone_out", "rays", "beyond", "point", "sensor", "focus",
+                                     "blur", "text")], disc["blur"], disc["ok"], disc["airy"], disc["text"],
+                 curve, band, airy, marker, ax_c.title)
 
     def update(values, state):
         N, z_o, z_s = float(values["f_number"]), values["object_m"], values["sensor_mm"] * 1e-3
         state.update(optics.update_focus_cone(art, F_CONE, N, z_o, z_s))
+        optics.update_blur_disc(disc, state["c"], state["airy"], PIXEL)
         s = float(lens.object_distance(F_CONE, z_s))  # the distance this sensor position focuses
         z = blur_curve_depths(s)
         curve.set_data(z, np.maximum(lens.circle_of_confusion(F_CONE, N, s, z) * 1e6, 0.5))  # c = 0 at s: log floor
+        airy.set_ydata([state["airy"] * 1e6] * 2)
         dof = lens.depth_of_field(F_CONE, N, s, COC_OK)
         band.set_x(dof.near)
         band.set_width(min(dof.far, 10.0) - dof.near)
         marker.set_data([z_o], [float(np.clip(state["c"] * 1e6, 1.3, 9e3))])
         far = f"{dof.far:.3f} m" if np.isfinite(dof.far) else "infinity"
-        ax_c.set_title(f"focused at {s:.3f} m:\nsharp from {dof.near:.3f} m to {far}", fontsize=9)
-        state.update(focus=s, near=dof.near, far=dof.far)
+        soft = "but the Airy disc alone > 30 µm" if state["airy"] > COC_OK else " "   # 3 lines always: the layout
+        ax_c.set_title(f"focused at {s:.3f} m; geometrically sharp\nfrom {dof.near:.3f} m to {far}\n{soft}", fontsize=9)
+        state.update(focus=s, near=dof.near, far=dof.far, c_px=state["c"] / PIXEL)
 
     return build_demo("focus_and_blur", controls, view, update, title="Focus, aperture and the blur circle")
 
 
-@register(lesson="02", sweep={"f_number": [1.4, 4.0, 16.0], "focus_m": [0.6, 1.2, 2.4]})
+@register(lesson="02", sweep={"f_number": [1.4, 4.0, 16.0], "focus_m": [0.5, 0.6, 1.2, 2.4, 4.0]})
 def depth_of_field():
-    """A scene of planes at 0.6, 1.2, 2.4 and 4 m rendered with thin-lens blur, beside its blur curve."""
+    """A scene of planes at 0.6, 1.2, 2.4 and 4 m rendered with thin-lens blur, above its blur curve."""
     controls = {
         "f_number": W.SelectionSlider(options=[1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0, 16.0], value=2.8,
                                       description="f-number N", continuous_update=True,
                                       style={"description_width": "initial"}, layout=W.Layout(width="300px")),
         "focus_m": slider(1.2, 0.5, 4.0, 0.05, "focus distance (m)"),
     }
-    view = FigureView(figsize=(8.8, 5.4))  # the 480 x 360 image at no less than 1:1, so 2 px of blur can be judged
-    ax_img, ax_c = view.fig.subplots(1, 2, width_ratios=[2.75, 1])
+    # 6.5 in at 90 dpi: the 480 x 360 image at no less than 1:1 (so 2 px of blur can be judged), with the
+    # blur curve under it; 585 px wide, it fits beside the 300 px controls in JupyterLab's 968 px output area
+    view = FigureView(figsize=(6.5, 7.5))
+    ax_img, ax_c = view.fig.subplots(2, 1, height_ratios=[SIZE[1], 190])
     scene = scenes.depth_of_field_scene()
     im = images.show_image(ax_img, np.zeros((SIZE[1], SIZE[0], 3)))
     z = np.linspace(0.3, 5, 400)
     curve, = ax_c.plot(z, np.full_like(z, 100.0), "k", zorder=3)  # over the plane markers, live and redrawn
-    band = ax_c.axvspan(1, 2, color="tab:green", alpha=0.2)
-    ax_c.axhline(2 * PITCH_DOF * 1e6, color="tab:red", ls="--", lw=1)
-    planes = {"small board": (0.6, palette.BLUE), "page": (1.2, palette.ORANGE), "large board": (2.4, palette.PURPLE),
-              "wall": (4.0, palette.BROWN)}
-    for zp, c in planes.values():
-        ax_c.axvline(zp, color=c, lw=1.5, path_effects=palette.halo(1.5))
+    band = ax_c.axvspan(1, 2, color=palette.PURPLE, alpha=0.15, lw=0)
+    ax_c.axhline(2 * PITCH_DOF * 1e6, color=palette.PURPLE, ls="--", lw=1.2)
+    planes = {"small board": 0.6, "chart": 1.2, "large board": 2.4, "wall": 4.0}
+    for zp in planes.values():
+        ax_c.axvline(zp, color="0.4", lw=1.2, ls=(0, (4, 2)))   # dark enough on the purple band (WCAG 1.4.11)
     # the planes named on a top axis, each above its line: no legend over the band or the curve
-    # (black text: the orange line's colour is too light for text, WCAG 1.4.3)
     top = ax_c.secondary_xaxis("top")
-    top.set_xticks([zp for zp, _ in planes.values()], ["board", "page", "board", "wall"], fontsize=8, rotation=90)
+    top.set_xticks(list(planes.values()), list(planes), fontsize=8)
     ax_c.set_xlim(0.3, 5)
     ax_c.set_ylim(5, 5000)
     ax_c.set_yscale("log")  # from the 2-px line to the blur at f/16 and f/1.4 on one readable scale
-    ax_c.set_xlabel("depth z (m)")
-    ax_c.set_ylabel("blur circle c on the sensor (µm)")
-    ax_c.set_title(f"green: sharp, c < 2 px\n(red dashes: 2 px = {2 * PITCH_DOF * 1e6:.0f} µm)", fontsize=9)
+    ax_c.set_xlabel("depth z (m); purple: sharp, c < 2 px (dashes: 2 px = "
+                    f"{2 * PITCH_DOF * 1e6:.0f} µm)", fontsize=9)
+    ax_c.set_ylabel("blur circle c (µm)")
     ax_img.set_title(f"f = {F_DOF * 1e3:.0f} mm thin lens; planes at 0.6, 1.2, 2.4 and 4 m", fontsize=10)
     ax_img.set_xlabel(f"sensor: {SIZE[0]} x {SIZE[1]} pixels of {PITCH_DOF * 1e6:.0f} µm "
                       f"({SIZE[0] * PITCH_DOF * 1e3:.0f} x {SIZE[1] * PITCH_DOF * 1e3:.0f} mm)", fontsize=9)
@@ -140,9 +153,9 @@ def depth_of_field():
         state.update(near=dof.near, far=dof.far, coc_px={zp: float(lens.circle_of_confusion(F_DOF, N, s, zp)) / PITCH_DOF
                                                          for zp in (0.6, 1.2, 2.4, 4.0)})
         far_text = f"{dof.far:.2f} m" if np.isfinite(dof.far) else "infinity"
-        blurs = ", ".join(f"{zp:g} m {c:.1f}" for zp, c in state["coc_px"].items())
+        blurs = "\n".join(f"  {name:<12}{zp:g} m: {state['coc_px'][zp]:.1f}" for name, zp in planes.items())
         readout.value = monospace(f"N = {N}, focused at {s:.2f} m\nsharp (c < 2 px) from {dof.near:.2f} m to {far_text}\n"
-                                  f"blur circle (px): {blurs}")
+                                  f"blur circle (px):\n{blurs}")
 
     return build_demo("depth_of_field", controls, view, update, title="Depth of field", extra=[readout])
 
@@ -160,36 +173,39 @@ def _grid_lines(n: int = 9, samples: int = 60) -> np.ndarray:
     return np.array(lines)
 
 
-@register(lesson="02", sweep={"k1": [-0.35, 0.0, 0.25], "k2": [-0.05, 0.1], "p1": [-0.03, 0.03],
-                              "p2": [-0.03, 0.03], "undistort": [True, False]})
+@register(lesson="02", sweep={"k1": [-0.4, -0.35, 0.0, 0.25, 0.3], "k2": [-0.1, 0.1, 0.3], "p1": [-0.04, 0.03],
+                              "p2": [-0.03, 0.04], "undistort": [True, False]})
 def lens_distortion():
-    """Distortion sliders warp a rendered checkerboard and a grid; tick 'undistort' to undo it."""
+    """Distortion sliders warp a rendered checkerboard and a grid; tick 'undistort' to undo it in both."""
     controls = {
         "k1": slider(-0.25, -0.4, 0.3, 0.01, "k1 (radial)"),
-        "k2": slider(0.05, -0.1, 0.15, 0.005, "k2 (radial)"),
+        "k2": slider(0.05, -0.1, 0.3, 0.005, "k2 (radial)"),
         "p1": slider(0.0, -0.04, 0.04, 0.002, "p1 (tangential)", readout_format=".3f"),
         "p2": slider(0.0, -0.04, 0.04, 0.002, "p2 (tangential)", readout_format=".3f"),
         "undistort": W.Checkbox(value=False, description="undistort (cv2.remap with our map)"),
     }
-    view = FigureView(figsize=(8.6, 4))
+    view = FigureView(figsize=(8.6, 4.5))
     ax_img, ax_grid = view.fig.subplots(1, 2)
     board = render.checkerboard((11, 8), 0.04, t=(-0.2, -0.14, 0.45), px_per_square=32)
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=255)
     dots, = ax_img.plot([], [], "o", color=palette.RED, ms=3.5, path_effects=palette.halo())
     ideal = _grid_lines()
-    for ln in ideal:  # the undistorted grid, drawn once in grey behind the bent one
-        ax_grid.plot(*ln.T, color=palette.GREY, lw=0.8)
-    bent = [ax_grid.plot(*ln.T, color="tab:blue", lw=1.2)[0] for ln in ideal]
+    for k, ln in enumerate(ideal):  # the undistorted grid, drawn once in grey behind the bent one
+        ax_grid.plot(*ln.T, color=palette.GREY, lw=0.8, label="no lens" if k == 0 else None)
+    bent = [ax_grid.plot(*ln.T, color=palette.BLUE, lw=1.2, label="through the lens" if k == 0 else None)[0]
+            for k, ln in enumerate(ideal)]
     ax_grid.set_xlim(-60, SIZE[0] + 60)
     ax_grid.set_ylim(SIZE[1] + 60, -60)
     ax_grid.set_aspect("equal")
-    ax_grid.plot([-0.5, SIZE[0] - 0.5, SIZE[0] - 0.5, -0.5, -0.5], [-0.5, -0.5, SIZE[1] - 0.5, SIZE[1] - 0.5, -0.5], "k", lw=1)
-    ax_grid.set_title("a straight grid through the lens (grey: without it)", fontsize=10)
+    ax_grid.plot([-0.5, SIZE[0] - 0.5, SIZE[0] - 0.5, -0.5, -0.5], [-0.5, -0.5, SIZE[1] - 0.5, SIZE[1] - 0.5, -0.5], "k",
+                 lw=1, label="image frame")
     ax_grid.set_xlabel("u (px)")
     ax_grid.set_ylabel("v (px)")
+    ax_grid.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.15), ncol=3)  # below: never over the grid
     ax_img.set_title("rendered board (red: true corners)", fontsize=10)
+    grid_title = ax_grid.set_title(" \n ", fontsize=10)  # two lines, as update writes
     readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
-    view.animate(im, dots, *bent)
+    view.animate(im, dots, *bent, grid_title)
 
     def update(values, state):
         d = np.array([values["k1"], values["k2"], values["p1"], values["p2"], 0.0])
@@ -197,16 +213,21 @@ def lens_distortion():
         out = render.render(board, K_D, SIZE, dist=d, supersample=1)
         img = out.image
         corners = out.truth.corners()
+        through = [distortion.distort_pixels(ln, K_D, d) for ln in ideal]
         if values["undistort"]:
             img = distortion.undistort_image(img, K_D, d)
             corners = distortion.undistort_pixels(corners, K_D, d)
+            through = [distortion.undistort_pixels(ln, K_D, d) for ln in through]   # back onto the straight grid
         im.set_data(img)
         dots.set_data(corners[:, 0], corners[:, 1])
-        for line, ln in zip(bent, ideal):
-            line.set_data(*distortion.distort_pixels(ln, K_D, d).T)
+        for line, ln in zip(bent, through):
+            line.set_data(*ln.T)
+        grid_title.set_text("the grid through the lens, then undistorted:\nstraight again" if values["undistort"]
+                            else "a straight grid through the lens\n(grey: the same grid without it)")
         kind = distortion.classify_distortion(d, r_max=float(np.hypot(*SIZE) / 2 / K_D[0, 0]))
         state.update(kind=kind, corner0=corners[0], max_shift=float(np.abs(
-            distortion.distort_pixels(ideal.reshape(-1, 2), K_D, d) - ideal.reshape(-1, 2)).max()))
+            distortion.distort_pixels(ideal.reshape(-1, 2), K_D, d) - ideal.reshape(-1, 2)).max()),
+            grid_error=float(max(np.abs(ln - i).max() for ln, i in zip(through, ideal))))
         readout.value = monospace(f"distortion: {kind}\nlargest shift {state['max_shift']:.1f} px\n"
                                   + ("left: undistorted, lines straight again" if values["undistort"]
                                      else "left: as the lens records it"))
