@@ -124,11 +124,11 @@ register_exercise(Exercise(
         (lambda img, bits: np.clip(np.rint(img * (2**bits - 1)).astype(np.uint8 if bits <= 8 else np.uint16),
                                    0, 2**bits - 1), "cast to an unsigned type before clipping"),
         (lambda img, bits: np.clip(np.rint(img * (2**bits - 1)), 0, 1).astype(np.uint8 if bits <= 8 else np.uint16),
-         "clipped to [0, 1] after scaling"),
+         "after scaling: by then"),
         (lambda img, bits: np.clip(np.rint(img * (2 ** (bits - 1) - 1)), 0, 2 ** (bits - 1) - 1).astype(
-            np.uint8 if bits <= 8 else np.uint16), "from 2**(bits - 1)"),
+            np.uint8 if bits <= 8 else np.uint16), "top code is"),
         (lambda img, bits: np.clip(np.rint(img * 2 ** (bits - 1)), 0, 2 ** (bits - 1)).astype(
-            np.uint8 if bits <= 8 else np.uint16), "from 2**(bits - 1)"),
+            np.uint8 if bits <= 8 else np.uint16), "top code is"),
     ),
     teaching=quantize_image,
 ))
@@ -370,7 +370,7 @@ register_exercise(Exercise(
         (lambda raw, pattern: np.rint(sensor.demosaic_bilinear(raw, pattern)), "you rounded"),
         (lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern).astype(np.asarray(raw).dtype), "you returned integers"),
         (_diagonal_only_demosaic, "red or blue at a green site"),
-        (_cross_kernel_demosaic, "cross neighbours (left, right, above, below) are all green"),
+        (_cross_kernel_demosaic, "are all green"),
     ),
     teaching=demosaic_bilinear,
 ))

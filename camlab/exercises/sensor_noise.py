@@ -157,7 +157,7 @@ register_exercise(Exercise(
         (lambda d, f: _estimate(d, f, spread=np.std), "standard deviation"),
         (lambda d, f: _estimate(d, f, through_origin=True), "black level"),
         (lambda d, f: _estimate(d, f, read_in_dn=True), "multiply by the gain"),
-        (lambda d, f: _estimate(d, f, dark_halve=False), "sqrt(2) too large"),
+        (lambda d, f: _estimate(d, f, dark_halve=False), "too large: d1 - d2"),
         (lambda d, f: _estimate(d, f, dark_one_frame=True), "fixed offset"),
         (lambda d, f: reference(d, f)[::-1], "swapped"),
         (_wrapped_difference, "wrap around"),
