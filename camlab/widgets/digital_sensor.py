@@ -119,7 +119,7 @@ def bit_depth_and_noise():
     marker = ax_img.axhline(row, color=palette.RED, lw=1, path_effects=palette.halo(1))
     # the truth wide and pale beneath, the recording thin on top: both stay visible where they agree;
     # the title names them, so no legend covers the profile
-    ax_p.plot(clean[row], color=palette.GREY, lw=4, alpha=0.45, solid_capstyle="butt")
+    ax_p.plot(clean[row], color=palette.GREY, lw=3.5, solid_capstyle="butt")
     prof, = ax_p.plot(clean[row], color=palette.RED, lw=1)
     ax_p.set_ylim(-0.05, 1.08)
     ax_p.set_xlabel("u (px)")
