@@ -86,7 +86,12 @@ def sampling_aliasing():
         outer = np.maximum(abs(x), abs(y)) * k > r * 1.1     # beyond the Nyquist square, where aliases live
         state.update(samples=s.shape, nyquist_half_side=r,
                      alias_contrast=float(s[outer].std()) if outer.any() else 0.0)
-        where = "red square: Nyquist limit" if r < cx else "Nyquist limit beyond the frame: no aliasing"
+        if r > cx + 1:        # pixel size 1: the scene's finest detail, 0.25 cycle per px, is below the limit
+            where = "Nyquist limit beyond the frame: no aliasing"
+        elif r >= cx:         # pixel size 2: the edges reach 0.5 cycle per px, the fold's half systems show there
+            where = "red square: Nyquist limit, on the frame's edge"
+        else:
+            where = "red square: Nyquist limit"
         ax_s.set_title(f"{'box' if values['prefilter'] else 'point'}-sampled, 1 px = {k} fine px\n({where})",
                        fontsize=10)
 
@@ -146,7 +151,7 @@ def bit_depth_and_noise():
                      electrons=electrons, dn_electrons=step)
         ax_p.set_title(f"row {row} (red line): recorded (red) against true (wide grey)\n"
                        f"electrons: white {electrons['white']:.0f}, dark uniform {electrons['uniform']:.1f}, "
-                       f"1 DN = {step:.3g}", fontsize=9)
+                       f"1 DN = {step:.0f}" if step >= 10 else f"1 DN = {step:.3g}", fontsize=9)
         readout.value = monospace(f"{2**bits} levels\nSNR {snr:.1f} at mid-grey\n"
                                   f"rms error {state['rms_error']:.3f} of full scale")
 
