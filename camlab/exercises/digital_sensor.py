@@ -425,6 +425,9 @@ def _datasheet_diagnosis(args, got, expected) -> str:
     if (W % 2 == 0 and near(g[0, 2], (W - 1) // 2)) or (H % 2 == 0 and near(g[1, 2], (H - 1) // 2)):
         return (f"integer division: (W - 1) // 2 drops the .5, giving {(W - 1) // 2} for W = {W} instead of "
                 f"{(W - 1) / 2}; use / (the centre of an even number of pixels lies between two of them)")
+    if (W % 2 and near(g[0, 2], W // 2 - 0.5)) or (H % 2 and near(g[1, 2], H // 2 - 0.5)):
+        return (f"W // 2 - 0.5 is the centre only for an even W: for W = {W} it gives {W // 2 - 0.5}, half a pixel "
+                f"short of {(W - 1) / 2}; (W - 1) / 2 holds for both")
     if near(g[0, 2], cy) and near(g[1, 2], cx) and not near(cx, cy):
         return ("c_x and c_y are swapped: c_x = (W - 1) / 2 comes from the width W = size[0], c_y = (H - 1) / 2 from "
                 "the height H = size[1] (sizes are (width, height), as in OpenCV; an array's shape is (H, W))")
@@ -500,6 +503,7 @@ register_exercise(Exercise(
         (lambda f, s, n: _datasheet_variant(f, s, n, fy=-f * n[1] / s[1]), "no minus sign"),
         (lambda f, s, n: _datasheet_variant(f, s, n, cx=(n[0] + 1) / 2, cy=(n[1] + 1) / 2), "numbered from 1"),
         (lambda f, s, n: _datasheet_variant(f, s, n, cx=(n[0] - 1) // 2, cy=(n[1] - 1) // 2), "integer division"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, cx=n[0] // 2 - 0.5, cy=n[1] // 2 - 0.5), "only for an even W"),
         (lambda f, s, n: _datasheet_reference(f, s, n)[:2], "shape (3, 3)"),
         (lambda f, s, n: None, "return"),
     ),

@@ -49,11 +49,16 @@ def _as_float(pairs):
 
 
 def _estimate(darks, flats, *, one_frame=False, halve=True, through_origin=False, spread=np.var,
-              dark_one_frame=False, dark_halve=True, read_in_dn=False, slope_not_gain=False):
+              dark_one_frame=False, dark_halve=True, read_in_dn=False, slope_not_gain=False,
+              ratios=False, mean_of_difference=False):
     """The reference and, with a flag, each typical mistake (for the diagnosis)."""
     d1, d2 = (np.asarray(d, dtype=float) for d in darks)
     means, variances = _pair_stats(flats, one_frame, halve, spread=spread)
-    if through_origin:
+    if mean_of_difference:
+        means = np.array([np.mean(a - b) for a, b in _as_float(flats)])
+    if ratios:                                     # g = mean / var per pair, averaged, black level kept in
+        slope = 1 / np.mean(means / variances)
+    elif through_origin:
         slope = np.sum(means * variances) / np.sum(means * means)
     else:
         slope = np.polyfit(means, variances, 1)[0]
@@ -84,6 +89,12 @@ _MISTAKES = (
      "the gain is a little off: a line through the origin ignores the black level (the frames' mean at no light, "
      "about the darks' mean) and the read-noise floor; fit a line with an intercept (np.polyfit(mean, var, 1)), "
      "or subtract the darks' mean from the flats' means"),
+    (0, dict(ratios=True),
+     "the gain is off: mean / var per pair counts the black level (the frames' mean at no light, the darks' mean) "
+     "as signal; subtract the darks' mean from each flat pair's mean first, or fit a line with an intercept"),
+    (0, dict(mean_of_difference=True),
+     "the means are the mean of a - b, about 0: the photon-transfer curve plots each pair's variance against the "
+     "frames' own mean level, (a.mean() + b.mean()) / 2"),
     (1, dict(read_in_dn=True),
      "the read noise is in DN: multiply by the gain g (electrons per DN) to get electrons"),
     (1, dict(dark_halve=False),
@@ -159,6 +170,8 @@ register_exercise(Exercise(
         (lambda d, f: _estimate(d, f, read_in_dn=True), "multiply by the gain"),
         (lambda d, f: _estimate(d, f, dark_halve=False), "too large: d1 - d2"),
         (lambda d, f: _estimate(d, f, dark_one_frame=True), "fixed offset"),
+        (lambda d, f: _estimate(d, f, ratios=True), "mean / var per pair"),
+        (lambda d, f: _estimate(d, f, mean_of_difference=True), "mean of a - b"),
         (lambda d, f: reference(d, f)[::-1], "swapped"),
         (_wrapped_difference, "wrap around"),
     ),
