@@ -254,6 +254,11 @@ def _demosaic_diagnosis(args, got, expected) -> str:
         if np.allclose(g[..., 1][inner][others[inner]], one_line[inner][others[inner]]):
             return (f"green at a red or blue site averages only the green neighbours {line}; it has 4: add the ones "
                     f"{missing} (green is sampled on a checkerboard, so every red or blue site has green on all 4 sides)")
+    inner_sites = others[inner]
+    if np.allclose(g[..., 1][inner][inner_sites], 2 * e[..., 1][inner][inner_sites]):
+        return ("green at red and blue sites is twice the mean: there the tent kernel's 4 cross weights are 1/2 each and "
+                "sum to 2; divide by the weights actually used (k * m), or use green's cross kernel "
+                "[[0, 1, 0], [1, 4, 1], [0, 1, 0]] / 4, whose 4 weights sum to 1")
     problems = _site_problems(raw, pattern, g, e)
     if problems:
         return "; ".join(problems)
@@ -272,6 +277,17 @@ def _zero_padded_demosaic(raw, pattern):
     for c, k in zip(range(3), (kr, kg, kr)):
         out[..., c] = convolve(raw * m[..., c], k, mode="constant")
     return out
+
+
+def _unnormalised_tent_demosaic(raw, pattern):
+    """The tent kernel for every colour as a plain convolution: green at red and blue sites comes out doubled."""
+    from scipy.ndimage import convolve
+
+    raw = np.asarray(raw, dtype=float)
+    m = sensor.bayer_masks(raw.shape, pattern)
+    k = np.array([[1, 2, 1], [2, 4, 2], [1, 2, 1]]) / 4.0
+    est = np.stack([convolve(raw * m[..., c], k, mode="constant") for c in range(3)], axis=2)
+    return np.where(m, raw[..., None], est)
 
 
 def _uncast_demosaic(raw, pattern):
@@ -371,6 +387,7 @@ register_exercise(Exercise(
         (lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern).astype(np.asarray(raw).dtype), "you returned integers"),
         (_diagonal_only_demosaic, "red or blue at a green site"),
         (_cross_kernel_demosaic, "are all green"),
+        (_unnormalised_tent_demosaic, "twice the mean"),
     ),
     teaching=demosaic_bilinear,
 ))
