@@ -175,6 +175,10 @@ def test_sensor_demos_show_what_they_claim():
     e = b.state["electrons"]
     assert e["white"] == pytest.approx(200) and e["background"] == pytest.approx(40) and 0.5 < e["uniform"] < 2
     assert f"dark uniform {e['uniform']:.1f}" in ax_p.get_title()
+    b.set(bits=12)                                 # a fraction of an electron per DN: the whole title stays
+    assert "row 150" in ax_p.get_title() and "dark uniform 1.0" in ax_p.get_title() and "1 DN = 0.0488" in ax_p.get_title()
+    b.set(bits=1, exposure=0.3)
+    assert "1 DN = 3000" in ax_p.get_title()
 
 
 def test_focus_and_blur_follows_the_cone():

@@ -149,9 +149,10 @@ def bit_depth_and_noise():
                      "background": BACKGROUND * expo * full_well}
         state.update(levels=2**bits, snr=float(snr), rms_error=float(np.sqrt(np.mean((shown - clean) ** 2))),
                      electrons=electrons, dn_electrons=step)
+        dn = f"{step:.0f}" if step >= 10 else f"{step:.3g}"
         ax_p.set_title(f"row {row} (red line): recorded (red) against true (wide grey)\n"
                        f"electrons: white {electrons['white']:.0f}, dark uniform {electrons['uniform']:.1f}, "
-                       f"1 DN = {step:.0f}" if step >= 10 else f"1 DN = {step:.3g}", fontsize=9)
+                       f"1 DN = {dn}", fontsize=9)
         readout.value = monospace(f"{2**bits} levels\nSNR {snr:.1f} at mid-grey\n"
                                   f"rms error {state['rms_error']:.3f} of full scale")
 
