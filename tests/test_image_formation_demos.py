@@ -230,12 +230,21 @@ def test_sensor_demos_show_what_they_claim():
     ax_img, ax_p = b.figure.axes[:2]
     animated = b.view._animated
     assert ax_img.lines[0] in animated   # the row marker is drawn over the blitted image
-    # the static legend sits above 1.0, which the clipped, dequantised profile never exceeds
-    b.figure.canvas.draw()
-    legend_box = ax_p.get_legend().get_window_extent().transformed(ax_p.transData.inverted())
-    assert legend_box.y0 > 1.0 and ax_p.get_legend() not in animated
+    # no legend over the profile: the title names the lines, and the truth is drawn wide beneath the recording
+    assert ax_p.get_legend() is None and ax_p.lines[0].get_linewidth() > 2 * ax_p.lines[1].get_linewidth()
     b.set(bits=1, exposure=1.0, read_noise=40.0)
-    assert ax_p.lines[1].get_ydata().max() <= 1.0
+    assert ax_p.lines[1].get_ydata().max() <= 1.0 < ax_p.get_ylim()[1]
+    # lesson 03, cell "Interactive: bit depth and noise": the electrons the prose quotes, at the settings it names
+    b.set(bits=4, exposure=0.3, read_noise=5.0)
+    assert b.state["dn_electrons"] == pytest.approx(200)
+    b.set(exposure=0.02)
+    e = b.state["electrons"]
+    assert e["white"] == pytest.approx(200) and e["background"] == pytest.approx(40) and 0.5 < e["uniform"] < 2
+    assert f"dark uniform {e['uniform']:.1f}" in ax_p.get_title()
+    b.set(bits=12)                                 # a fraction of an electron per DN: the whole title stays
+    assert "row 150" in ax_p.get_title() and "dark uniform 1.0" in ax_p.get_title() and "1 DN = 0.0488" in ax_p.get_title()
+    b.set(bits=1, exposure=0.3)
+    assert "1 DN = 3000" in ax_p.get_title()
 
 
 def test_focus_and_blur_follows_the_cone():

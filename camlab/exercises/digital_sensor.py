@@ -49,6 +49,26 @@ def _quantize_diagnosis(args, got, expected) -> str:
         return (f"{bits}-bit numbers reach {levels}, but uint8 stops at 255 and wraps around: "
                 f"use np.uint16 above 8 bits")
     clipped = np.clip(img, 0, 1)
+    right = _right_quantize_numbers(img, bits)
+    if np.issubdtype(g.dtype, np.floating) and _same_after_cast(g, right / levels):
+        return (f"you returned fractions of full scale, DN / (2**bits - 1) (the dequantised values); return the "
+                f"digital numbers themselves, whole numbers from 0 to 2**bits - 1 = {levels}")
+    with np.errstate(invalid="ignore", over="ignore"):
+        wrapped = [np.rint(img * levels).astype(t).astype(g.dtype) for t in (g.dtype, np.int64)]
+    if any(_same_after_cast(g, np.clip(w, 0, levels)) for w in wrapped) and not _same_after_cast(g, right):
+        return ("you cast to an unsigned type before clipping: a value below 0 (-0.2 x 7 rounds to -1) wraps around "
+                "in uint8 to 255, so the clip sees a bright pixel; clip first (np.clip(..., 0, 2**bits - 1)), "
+                "then cast")
+    if any(_same_after_cast(g, np.clip(f(img * levels), 0, 1)) for f in (np.rint, np.floor)) or \
+            _same_after_cast(g, np.rint(np.clip(img * levels, 0, 1))):
+        return (f"you clipped to [0, 1] after scaling: by then the values are digital numbers from 0 to "
+                f"{levels}; clip the fraction I to [0, 1] before scaling, or the digital numbers to "
+                f"[0, 2**bits - 1] after")
+    for top in {2 ** (bits - 1) - 1, 2 ** (bits - 1)} - {levels}:
+        if top > 0 and any(_same_after_cast(g, c) for c in (np.clip(np.rint(img * top), 0, top),
+                                                            np.clip(np.rint(clipped * top), 0, levels))):
+            return (f"your top code is {top}, from 2**(bits - 1): {bits} bits give 2**bits = {2**bits} levels, "
+                    f"0 to 2**bits - 1 = {levels} (2**(bits - 1) is half of them, the sign bit's worth)")
     if _same_after_cast(g, np.floor(clipped * levels)):
         return "you truncated (floor); round to the nearest level so the error is at most half a step"
     if _same_after_cast(g, np.ceil(clipped * levels)):
@@ -100,6 +120,15 @@ register_exercise(Exercise(
         (lambda img, bits: np.clip(np.rint(img * 2**bits), 0, 2**bits - 1).astype(np.uint16), "you scaled by 2**bits"),
         (lambda img, bits: np.clip(np.ceil(img * (2**bits - 1)), 0, 2**bits - 1).astype(np.uint16), "ceil"),
         (lambda img, bits: np.rint(img * (2**bits - 1)).astype(np.uint8 if bits <= 8 else np.uint16), "saturate"),
+        (lambda img, bits: _right_quantize_numbers(img, bits) / (2**bits - 1), "fractions of full scale"),
+        (lambda img, bits: np.clip(np.rint(img * (2**bits - 1)).astype(np.uint8 if bits <= 8 else np.uint16),
+                                   0, 2**bits - 1), "cast to an unsigned type before clipping"),
+        (lambda img, bits: np.clip(np.rint(img * (2**bits - 1)), 0, 1).astype(np.uint8 if bits <= 8 else np.uint16),
+         "after scaling: by then"),
+        (lambda img, bits: np.clip(np.rint(img * (2 ** (bits - 1) - 1)), 0, 2 ** (bits - 1) - 1).astype(
+            np.uint8 if bits <= 8 else np.uint16), "top code is"),
+        (lambda img, bits: np.clip(np.rint(img * 2 ** (bits - 1)), 0, 2 ** (bits - 1)).astype(
+            np.uint8 if bits <= 8 else np.uint16), "top code is"),
     ),
     teaching=quantize_image,
 ))
@@ -170,8 +199,27 @@ def _site_problems(raw, pattern, g, e) -> list[str]:
     return problems
 
 
+def _nan_hint(raw, pattern, got) -> str | None:
+    """Where 0 / 0 struck: red at blue sites (or blue at red ones) means a kernel that misses the diagonals."""
+    g = np.asarray(got, dtype=float)
+    if g.shape != np.shape(raw) + (3,) or np.isfinite(g).all():
+        return None
+    m = sensor.bayer_masks(np.shape(raw), pattern)
+    bad = ~np.isfinite(g)
+    if np.any(bad[..., 0] & m[..., 2]) or np.any(bad[..., 2] & m[..., 0]):
+        return ("NaN at red's value at blue sites (or blue's at red ones): their 4 cross neighbours (left, right, "
+                "above, below) are all green, so a cross kernel such as green's [[0, 1, 0], [1, 4, 1], [0, 1, 0]] "
+                "finds no red there, k * m is 0 and 0 / 0 is NaN. Red and blue need the 3 x 3 tent kernel "
+                "[[1, 2, 1], [2, 4, 2], [1, 2, 1]] / 4, whose corners reach the 4 diagonal neighbours")
+    return ("NaN where your kernel reaches no sample of that colour (0 / 0): a missing value needs at least one "
+            "same-colour neighbour within the kernel; the 3 x 3 tent kernel reaches one for every colour and site")
+
+
 def _demosaic_diagnosis(args, got, expected) -> str:
     raw, pattern = args
+    nan = isinstance(got, np.ndarray) and _nan_hint(raw, pattern, got)
+    if nan:
+        return nan
     problem = _not_an_array(got) or shape_problem(got, expected)
     if problem:
         H, W = np.shape(raw)
@@ -206,6 +254,11 @@ def _demosaic_diagnosis(args, got, expected) -> str:
         if np.allclose(g[..., 1][inner][others[inner]], one_line[inner][others[inner]]):
             return (f"green at a red or blue site averages only the green neighbours {line}; it has 4: add the ones "
                     f"{missing} (green is sampled on a checkerboard, so every red or blue site has green on all 4 sides)")
+    inner_sites = others[inner]
+    if np.allclose(g[..., 1][inner][inner_sites], 2 * e[..., 1][inner][inner_sites]):
+        return ("green at red and blue sites is twice the mean: there the tent kernel's 4 cross weights are 1/2 each and "
+                "sum to 2; divide by the weights actually used (k * m), or use green's cross kernel "
+                "[[0, 1, 0], [1, 4, 1], [0, 1, 0]] / 4, whose 4 weights sum to 1")
     problems = _site_problems(raw, pattern, g, e)
     if problems:
         return "; ".join(problems)
@@ -224,6 +277,17 @@ def _zero_padded_demosaic(raw, pattern):
     for c, k in zip(range(3), (kr, kg, kr)):
         out[..., c] = convolve(raw * m[..., c], k, mode="constant")
     return out
+
+
+def _unnormalised_tent_demosaic(raw, pattern):
+    """The tent kernel for every colour as a plain convolution: green at red and blue sites comes out doubled."""
+    from scipy.ndimage import convolve
+
+    raw = np.asarray(raw, dtype=float)
+    m = sensor.bayer_masks(raw.shape, pattern)
+    k = np.array([[1, 2, 1], [2, 4, 2], [1, 2, 1]]) / 4.0
+    est = np.stack([convolve(raw * m[..., c], k, mode="constant") for c in range(3)], axis=2)
+    return np.where(m, raw[..., None], est)
 
 
 def _uncast_demosaic(raw, pattern):
@@ -262,6 +326,19 @@ def _diagonal_only_demosaic(raw, pattern):
     for c in (0, 2):
         out[..., c] = np.where(m[..., 1], out[..., 1], out[..., c])   # a common shortcut: copy green there
     return out
+
+
+def _cross_kernel_demosaic(raw, pattern):
+    """Green's cross kernel used for red and blue too: 0 / 0 (NaN) at red's blue sites and blue's red ones."""
+    from scipy.ndimage import convolve
+
+    raw = np.asarray(raw, dtype=float)
+    m = sensor.bayer_masks(raw.shape, pattern).astype(float)
+    k = np.array([[0, 1, 0], [1, 4, 1], [0, 1, 0]]) / 4.0
+    with np.errstate(invalid="ignore", divide="ignore"):
+        est = np.stack([convolve(raw * m[..., c], k, mode="constant") / convolve(m[..., c], k, mode="constant")
+                        for c in range(3)], axis=2)
+    return np.where(m == 1, raw[..., None], est)
 
 
 def demosaic_bilinear(raw, pattern):
@@ -309,6 +386,8 @@ register_exercise(Exercise(
         (lambda raw, pattern: np.rint(sensor.demosaic_bilinear(raw, pattern)), "you rounded"),
         (lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern).astype(np.asarray(raw).dtype), "you returned integers"),
         (_diagonal_only_demosaic, "red or blue at a green site"),
+        (_cross_kernel_demosaic, "are all green"),
+        (_unnormalised_tent_demosaic, "twice the mean"),
     ),
     teaching=demosaic_bilinear,
 ))
@@ -348,6 +427,24 @@ def _datasheet_diagnosis(args, got, expected) -> str:
                 "and the bottom row is (0, 0, 1)")
     if not near(g[2], [0, 0, 1]).all():
         return "the bottom row of K is (0, 0, 1): it keeps the homogeneous coordinate, K @ (x, y, 1) = (u, v, 1)"
+    if near(g[0, 0], f_mm * H / w_mm) and near(g[1, 1], f_mm * W / h_mm) and near(g[0, 2], cy):
+        return ("you unpacked size as H, W = size: size is (width, height), as in OpenCV, so W, H = size; with the "
+                "two swapped, f_x, f_y, c_x and c_y all come out wrong (an array's shape is (H, W), a size is not)")
+    if near(g[0, 0], f_mm * W / h_mm) and near(g[1, 1], f_mm * H / w_mm) and not near(fx, f_mm * W / h_mm):
+        return ("sensor_mm is (width, height), like size: s_x = sensor_mm[0] / W = width / W, "
+                "s_y = sensor_mm[1] / H; you divided the height by W and the width by H")
+    if near(g[0, 0], -fx) or near(g[1, 1], -fy):
+        return ("f_x and f_y are positive here: the course's image plane has y down, like v down the image, so "
+                "f_y = f / s_y needs no minus sign (a y-up convention flips it; see docs/conventions.md)")
+    if near(g[0, 2], (W + 1) / 2) or near(g[1, 2], (H + 1) / 2):
+        return ("(W + 1) / 2 is the centre when pixels are numbered from 1 (MATLAB's convention); numpy and camlab "
+                "number them from 0, so u runs from 0 to W - 1 and the centre is (W - 1) / 2")
+    if (W % 2 == 0 and near(g[0, 2], (W - 1) // 2)) or (H % 2 == 0 and near(g[1, 2], (H - 1) // 2)):
+        return (f"integer division: (W - 1) // 2 drops the .5, giving {(W - 1) // 2} for W = {W} instead of "
+                f"{(W - 1) / 2}; use / (the centre of an even number of pixels lies between two of them)")
+    if (W % 2 and near(g[0, 2], W // 2 - 0.5)) or (H % 2 and near(g[1, 2], H // 2 - 0.5)):
+        return (f"W // 2 - 0.5 is the centre only for an even W: for W = {W} it gives {W // 2 - 0.5}, half a pixel "
+                f"short of {(W - 1) / 2}; (W - 1) / 2 holds for both")
     if near(g[0, 2], cy) and near(g[1, 2], cx) and not near(cx, cy):
         return ("c_x and c_y are swapped: c_x = (W - 1) / 2 comes from the width W = size[0], c_y = (H - 1) / 2 from "
                 "the height H = size[1] (sizes are (width, height), as in OpenCV; an array's shape is (H, W))")
@@ -417,6 +514,13 @@ register_exercise(Exercise(
         (lambda f, s, n: _datasheet_variant(f, s, n, fx=f * n[0] / s[0], fy=f * n[0] / s[0]), "need not be square"),
         (lambda f, s, n: _datasheet_variant(f, s, n, fx=f * n[1] / s[1], fy=f * n[0] / s[0]), "f_x and f_y are swapped"),
         (lambda f, s, n: _datasheet_variant(f, s, n, cx=n[0] - 1, cy=n[1] - 1), "not the image size"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, fx=f * n[1] / s[0], fy=f * n[0] / s[1], cx=(n[1] - 1) / 2,
+                                            cy=(n[0] - 1) / 2), "H, W = size"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, fx=f * n[0] / s[1], fy=f * n[1] / s[0]), "sensor_mm is (width, height)"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, fy=-f * n[1] / s[1]), "no minus sign"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, cx=(n[0] + 1) / 2, cy=(n[1] + 1) / 2), "numbered from 1"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, cx=(n[0] - 1) // 2, cy=(n[1] - 1) // 2), "integer division"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, cx=n[0] // 2 - 0.5, cy=n[1] // 2 - 0.5), "only for an even W"),
         (lambda f, s, n: _datasheet_reference(f, s, n)[:2], "shape (3, 3)"),
         (lambda f, s, n: None, "return"),
     ),

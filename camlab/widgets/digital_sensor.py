@@ -86,11 +86,20 @@ def sampling_aliasing():
         outer = np.maximum(abs(x), abs(y)) * k > r * 1.1     # beyond the Nyquist square, where aliases live
         state.update(samples=s.shape, nyquist_half_side=r,
                      alias_contrast=float(s[outer].std()) if outer.any() else 0.0)
-        where = "red square: Nyquist limit" if r < cx else "Nyquist limit beyond the frame: no aliasing"
+        if r > cx + 1:        # pixel size 1: the scene's finest detail, 0.25 cycle per px, is below the limit
+            where = "Nyquist limit beyond the frame: no aliasing"
+        elif r >= cx:         # pixel size 2: the edges reach 0.5 cycle per px, the fold's half systems show there
+            where = "red square: Nyquist limit, on the frame's edge"
+        else:
+            where = "red square: Nyquist limit"
         ax_s.set_title(f"{'box' if values['prefilter'] else 'point'}-sampled, 1 px = {k} fine px\n({where})",
                        fontsize=10)
 
     return build_demo("sampling_aliasing", controls, view, update, title="Sampling and aliasing")
+
+
+BACKGROUND = 0.2            # the grey around the photo, linear
+UNIFORM = slice(100, 140)   # where the profile row crosses the dark uniform
 
 
 @register(lesson="03", sweep={"bits": [1, 3, 8], "exposure": [0.02, 0.3, 1.0], "read_noise": [0.0, 20.0]})
@@ -109,19 +118,20 @@ def bit_depth_and_noise():
     K = np.array([[330.0, 0, 159.5], [0, 330.0, 119.5], [0, 0, 1]])
     # linear light, as a sensor counts it (the photo's JPEG values decoded), shown through sRGB
     clean = render.render([render.photo_plane(0.5, t=(0.0, 0, 1.0), linear=True)], K, SIZE, color=False,
-                          background=0.2).irradiance
+                          background=BACKGROUND).irradiance
     im = images.show_image(ax_img, sensor.gamma_encode(clean), "recorded, shown through sRGB", vmax=1.0)
     row = 150
     marker = ax_img.axhline(row, color=palette.RED, lw=1, path_effects=palette.halo(1))
-    ax_p.plot(clean[row], color=palette.GREY, lw=1, label="true irradiance")
-    prof, = ax_p.plot(clean[row], color=palette.RED, lw=1, label="recorded")
-    ax_p.set_ylim(-0.05, 1.3)  # headroom: the legend sits above the profile
+    # the truth wide and pale beneath, the recording thin on top: both stay visible where they agree;
+    # the title names them, so no legend covers the profile
+    ax_p.plot(clean[row], color=palette.GREY, lw=3.5, solid_capstyle="butt")
+    prof, = ax_p.plot(clean[row], color=palette.RED, lw=1)
+    ax_p.set_ylim(-0.05, 1.08)
     ax_p.set_xlabel("u (px)")
     ax_p.set_ylabel("linear value / full scale")
-    ax_p.legend(fontsize=8, loc="upper center", ncols=2)  # above 1.0, where the clipped profile never reaches
-    ax_p.set_title(f"row {row} (red line), recorded against true", fontsize=10)
+    ax_p.set_title("", fontsize=9)
     readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
-    view.animate(im, marker, prof)
+    view.animate(im, marker, prof, ax_p.title)
     full_well = 10000.0
     rng = np.random.default_rng(0)
 
@@ -135,7 +145,14 @@ def bit_depth_and_noise():
         signal = 0.5 * expo * full_well
         step = full_well * expo / (2**bits - 1)  # one DN in electrons: the gain g of section 3 at this exposure
         snr = signal / np.sqrt(signal + values["read_noise"] ** 2 + step**2 / 12)
-        state.update(levels=2**bits, snr=float(snr), rms_error=float(np.sqrt(np.mean((shown - clean) ** 2))))
+        electrons = {"white": expo * full_well, "uniform": float(clean[row, UNIFORM].mean()) * expo * full_well,
+                     "background": BACKGROUND * expo * full_well}
+        state.update(levels=2**bits, snr=float(snr), rms_error=float(np.sqrt(np.mean((shown - clean) ** 2))),
+                     electrons=electrons, dn_electrons=step)
+        dn = f"{step:.0f}" if step >= 10 else f"{step:.3g}"
+        ax_p.set_title(f"row {row} (red line): recorded (red) against true (wide grey)\n"
+                       f"electrons: white {electrons['white']:.0f}, dark uniform {electrons['uniform']:.1f}, "
+                       f"1 DN = {dn}", fontsize=9)
         readout.value = monospace(f"{2**bits} levels\nSNR {snr:.1f} at mid-grey\n"
                                   f"rms error {state['rms_error']:.3f} of full scale")
 
@@ -168,7 +185,7 @@ def demosaicing():
     ax_raw, ax_full, ax_zoom = view.fig.subplots(1, 3, width_ratios=[0.75, 1, 0.75])
     # linear light (the photo's JPEG values decoded), as a sensor records it; every panel is shown through sRGB
     truth = render.render(scenes.photo_and_page(linear=True), K_DEMOSAIC, SIZE, color=True, background=0.2).irradiance
-    im_raw = images.show_image(ax_raw, np.zeros((CROP, CROP, 3)), "Bayer mosaic (zoom)")
+    im_raw = images.show_image(ax_raw, np.zeros((CROP, CROP, 3)), "Bayer mosaic (zoom, through sRGB)")
     im_full = images.show_image(ax_full, sensor.gamma_encode(truth), "method")
     im_zoom = images.show_image(ax_zoom, sensor.gamma_encode(truth[:CROP, :CROP]), "zoom (shown through sRGB)")
     box = images.zoom_box(ax_full, 120, 100, CROP)

@@ -1,0 +1,179 @@
+"""Exercise for lesson 03, section 3: measure a sensor's gain and read noise from dark and flat frames."""
+from __future__ import annotations
+
+import numpy as np
+
+from ._core import Exercise, register_exercise
+
+TOP = 4095          # a 12-bit converter
+
+
+def _frames(full_well: float, read_noise: float, black: int, seed: int):
+    """Two dark frames and six pairs of flat frames (uint16 DN) of a simulated 12-bit sensor.
+
+    DN = round(black + electrons / g) with g = full_well / (TOP - black) e-/DN; electrons are
+    Poisson(light x pixel gain) plus Gaussian read noise. Each pixel's gain (PRNU, 1 %) and its
+    dark offset (DSNU, 1.5 DN) are fixed across frames: a fixed pattern, as on a real sensor.
+    """
+    rng = np.random.default_rng(seed)
+    shape = (96, 96)
+    g = full_well / (TOP - black)
+    prnu = 1 + 0.01 * rng.standard_normal(shape)
+    dsnu = 1.5 * rng.standard_normal(shape)
+
+    def frame(level):
+        electrons = rng.poisson(level * full_well * prnu) + rng.normal(0, read_noise, shape)
+        return np.clip(np.rint(black + dsnu + electrons / g), 0, TOP).astype(np.uint16)
+
+    darks = (frame(0.0), frame(0.0))
+    flats = [(frame(level), frame(level)) for level in np.linspace(0.05, 0.85, 6)]
+    return darks, flats
+
+
+def _cases():
+    """A machine-vision camera (10 000 e-, 5 e-), a large-pixel one with a high black level, a small pixel."""
+    return [_frames(10_000, 5.0, 64, 11), _frames(30_000, 12.0, 256, 12), _frames(4_000, 2.0, 100, 13)]
+
+
+def _pair_stats(flats, one_frame=False, halve=True, black=0.0, spread=np.var):
+    means = np.array([(a.mean() + b.mean()) / 2 for a, b in _as_float(flats)]) - black
+    if one_frame:
+        variances = np.array([spread(a) for a, b in _as_float(flats)])
+    else:
+        variances = np.array([spread(a - b) / (2 if halve else 1) for a, b in _as_float(flats)])
+    return means, variances
+
+
+def _as_float(pairs):
+    return [(np.asarray(a, dtype=float), np.asarray(b, dtype=float)) for a, b in pairs]
+
+
+def _estimate(darks, flats, *, one_frame=False, halve=True, through_origin=False, spread=np.var,
+              dark_one_frame=False, dark_halve=True, read_in_dn=False, slope_not_gain=False,
+              ratios=False, mean_of_difference=False):
+    """The reference and, with a flag, each typical mistake (for the diagnosis)."""
+    d1, d2 = (np.asarray(d, dtype=float) for d in darks)
+    means, variances = _pair_stats(flats, one_frame, halve, spread=spread)
+    if mean_of_difference:
+        means = np.array([np.mean(a - b) for a, b in _as_float(flats)])
+    if ratios:                                     # g = mean / var per pair, averaged, black level kept in
+        slope = 1 / np.mean(means / variances)
+    elif through_origin:
+        slope = np.sum(means * variances) / np.sum(means * means)
+    else:
+        slope = np.polyfit(means, variances, 1)[0]
+    gain = 1 / slope
+    dark_var = spread(d1) if dark_one_frame else spread(d1 - d2) / (2 if dark_halve else 1)
+    read = np.sqrt(dark_var) * (1 if read_in_dn else gain)
+    return np.array([slope if slope_not_gain else gain, read])
+
+
+def reference(darks, flats):
+    """(gain in e-/DN, read noise in e-) from the photon-transfer fit and the dark pair."""
+    return _estimate(darks, flats)
+
+
+_MISTAKES = (
+    (0, dict(one_frame=True),
+     "the gain is off: you took one flat frame's variance, which holds the fixed pattern too (each pixel's gain "
+     "differs by about 1 %, adding (0.01 mean)**2, which grows with the light); the difference of a pair, a - b, "
+     "cancels it: use var(a - b) / 2"),
+    (0, dict(halve=False),
+     "the gain is half the right one: a - b carries the temporal noise of two frames, so one frame's variance is "
+     "var(a - b) / 2"),
+    (0, dict(slope_not_gain=True),
+     "you returned the slope of variance against mean, 1 / g (DN per electron); the gain is its inverse, g = 1 / slope"),
+    (0, dict(spread=np.std),
+     "you used the standard deviation; the photon-transfer line is in the variance: var = mean / g + constant"),
+    (0, dict(through_origin=True),
+     "the gain is a little off: a line through the origin ignores the black level (the frames' mean at no light, "
+     "about the darks' mean) and the read-noise floor; fit a line with an intercept (np.polyfit(mean, var, 1)), "
+     "or subtract the darks' mean from the flats' means"),
+    (0, dict(ratios=True),
+     "the gain is off: mean / var per pair counts the black level (the frames' mean at no light, the darks' mean) "
+     "as signal; subtract the darks' mean from each flat pair's mean first, or fit a line with an intercept"),
+    (0, dict(mean_of_difference=True),
+     "the means are the mean of a - b, about 0: the photon-transfer curve plots each pair's variance against the "
+     "frames' own mean level, (a.mean() + b.mean()) / 2"),
+    (1, dict(read_in_dn=True),
+     "the read noise is in DN: multiply by the gain g (electrons per DN) to get electrons"),
+    (1, dict(dark_halve=False),
+     "the read noise is sqrt(2) too large: d1 - d2 carries the read noise of two frames, so use var(d1 - d2) / 2"),
+    (1, dict(dark_one_frame=True),
+     "the read noise is too large: one dark frame's spread holds each pixel's own fixed offset (dark-signal "
+     "non-uniformity) too; the difference of the two darks cancels it: sqrt(var(d1 - d2) / 2)"),
+)
+
+
+def _diagnose(args, got, expected) -> str:
+    g = np.asarray(got, dtype=float).ravel()
+    e = np.asarray(expected)
+    if g.shape != (2,):
+        return f"return two numbers, (gain, read_noise): got {g.size} value(s)"
+    if not np.isfinite(g).all():
+        return "a NaN or inf: did a fit get fewer than two points, or a variance of 0 (a frame minus itself)?"
+    if np.allclose(g[::-1], e, rtol=0.03):
+        return "the two numbers are swapped: return (gain, read_noise), the gain first"
+    with np.errstate(all="ignore"):
+        wrapped = np.asarray(_wrapped_difference(*args))
+    if np.isclose(g[0], wrapped[0], rtol=0.03):
+        return ("uint16 frames subtracted as they are wrap around: a - b below 0 becomes 65536 + (a - b), a huge "
+                "variance; convert to float first, np.asarray(a, dtype=float)")
+    for i, flags, hint in _MISTAKES:
+        candidate = _estimate(*args, **flags)
+        if np.isclose(g[i], candidate[i], rtol=0.03) and not np.isclose(candidate[i], e[i], rtol=0.03):
+            return hint
+    if np.isclose(g[0], e[0], rtol=0.03):
+        return ("the gain is right, the read noise is not: it is the spread of the darks' difference, "
+                "g * sqrt(var(d1 - d2) / 2), in electrons")
+    return ("per flat pair: mean = (a.mean() + b.mean()) / 2, var = np.var(a - b) / 2 (in float); g = 1 / slope "
+            "of the line var = mean / g + c; read noise = g * sqrt(var(d1 - d2) / 2)")
+
+
+def gain_and_read_noise(darks, flats):
+    """(g in electrons per DN, read noise in electrons) from a dark pair and pairs of flat frames (DN)."""
+    d1, d2 = (np.asarray(d, dtype=float) for d in darks)           # float: uint16 differences would wrap
+    means, variances = [], []
+    for a, b in flats:
+        a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+        means.append((a.mean() + b.mean()) / 2)
+        variances.append(np.var(a - b) / 2)          # one frame's temporal variance; the fixed pattern cancels
+    slope, intercept = np.polyfit(means, variances, 1)   # var = mean / g + c (c: black level, read noise, 1/12)
+    g = 1 / slope
+    read_noise = g * np.sqrt(np.var(d1 - d2) / 2)    # DN to electrons
+    return g, read_noise
+
+
+def _wrapped_difference(darks, flats):
+    """The uint16 frames subtracted as they are: a - b wraps around below 0."""
+    d1, d2 = darks
+    means = np.array([(a.mean() + b.mean()) / 2 for a, b in flats])
+    variances = np.array([np.var(a - b) / 2 for a, b in flats])
+    g = 1 / np.polyfit(means, variances, 1)[0]
+    return g, g * np.sqrt(np.var(d1 - d2) / 2)
+
+
+register_exercise(Exercise(
+    name="gain_and_read_noise",
+    lesson="03",
+    reference=reference,
+    cases=_cases,
+    compare=lambda got, exp: np.shape(np.asarray(got, dtype=float).ravel()) == (2,)
+    and np.allclose(np.asarray(got, dtype=float).ravel(), exp, rtol=0.03),
+    diagnose=_diagnose,
+    wrong_variants=(
+        (lambda d, f: _estimate(d, f, one_frame=True), "one flat frame's variance"),
+        (lambda d, f: _estimate(d, f, halve=False), "two frames"),
+        (lambda d, f: _estimate(d, f, slope_not_gain=True), "the gain is its inverse"),
+        (lambda d, f: _estimate(d, f, spread=np.std), "standard deviation"),
+        (lambda d, f: _estimate(d, f, through_origin=True), "black level"),
+        (lambda d, f: _estimate(d, f, read_in_dn=True), "multiply by the gain"),
+        (lambda d, f: _estimate(d, f, dark_halve=False), "too large: d1 - d2"),
+        (lambda d, f: _estimate(d, f, dark_one_frame=True), "fixed offset"),
+        (lambda d, f: _estimate(d, f, ratios=True), "mean / var per pair"),
+        (lambda d, f: _estimate(d, f, mean_of_difference=True), "mean of a - b"),
+        (lambda d, f: reference(d, f)[::-1], "swapped"),
+        (_wrapped_difference, "wrap around"),
+    ),
+    teaching=gain_and_read_noise,
+))
