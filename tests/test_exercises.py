@@ -551,10 +551,33 @@ def test_estimate_projection_matrix_passes_other_valid_normalised_answers(right,
 def test_estimate_projection_matrix_names_which_half_was_not_normalised():
     from camlab.exercises.projective_camera import _dlt_half
 
-    with pytest.raises(AssertionError, match=r"(?s)different camera.*likely cause: you normalised only the pixels"):
+    with pytest.raises(AssertionError, match=r"(?s)different camera.*likely cause: the world points are not normalised"):
         check("estimate_projection_matrix", lambda X, uv: _dlt_half(X, uv, world=False))
-    with pytest.raises(AssertionError, match=r"(?s)different camera.*likely cause: you normalised only the world"):
+    with pytest.raises(AssertionError, match=r"(?s)different camera.*likely cause: the pixels are not normalised"):
         check("estimate_projection_matrix", lambda X, uv: _dlt_half(X, uv, pixels=False))
+
+
+@pytest.mark.parametrize("world, pixels, cause", [
+    ((True, False), (True, False), "the world points are centred but not scaled"),
+    ((True, True), (True, False), "the pixels are centred but not scaled"),
+    ((False, True), (False, True), "the world points are scaled but not centred"),
+    ((True, True), (False, True), "the pixels are scaled but not centred"),
+], ids=["centred not scaled", "pixels centred not scaled", "scaled not centred", "pixels scaled not centred"])
+def test_estimate_projection_matrix_names_the_missing_part_of_a_normalisation(world, pixels, cause):
+    """Final review of lesson 04: half normalisations were blamed on the wrong side or called 'no normalisation'."""
+    from camlab.exercises.projective_camera import _dlt_partial
+
+    with pytest.raises(AssertionError, match=r"(?s)likely cause: .*" + cause) as info:
+        check("estimate_projection_matrix", lambda X, uv: _dlt_partial(X, uv, world=world, pixels=pixels))
+    assert "no normalisation" not in str(info.value) and "you normalised only" not in str(info.value)
+
+
+def test_estimate_projection_matrix_names_the_classic_p34_dlt():
+    """p34 = 1 by least squares without normalising is pixel-invariant: it was reported as 'pixels normalised'."""
+    from camlab.exercises.projective_camera import _dlt_p34
+
+    with pytest.raises(AssertionError, match=r"(?s)likely cause: you fixed p34 = 1"):
+        check("estimate_projection_matrix", _dlt_p34)
 
 
 def test_rq_decomposition_has_a_negative_determinant_case_with_a_reflection():
@@ -652,3 +675,13 @@ def test_an_unfilled_np_empty_answer_fails_instead_of_passing_on_freed_memory():
 
     with pytest.raises(AssertionError, match=r"w is NaN and x and y are right: an array made with np\.empty\(3\)"):
         check("lift", lift)
+
+
+def test_rq_mismatch_names_matrix_row_column_and_no_negative_zero():
+    """Final review of lesson 04: an index into the (K, R) pair was labelled (row, column, channel)."""
+    from camlab.exercises.projective_camera import _rq_forced_rotation
+
+    with pytest.raises(AssertionError, match=r"\(matrix, row, column\)") as info:
+        check("rq_decomposition", _rq_forced_rotation)
+    assert "channel" not in str(info.value) and "R must be" not in str(info.value)
+    assert "a reflection" in str(info.value)

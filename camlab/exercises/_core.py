@@ -436,10 +436,13 @@ def worst_mismatch(got: Any, expected: Any, tolerance: Tolerance | None = None) 
     if not np.any(err > 0):
         return ""
     index = np.unravel_index(int(np.argmax(err)), e.shape)
-    where = {2: "(row, column)", 3: "(row, column, channel)"}.get(e.ndim, "index")
+    if isinstance(expected, (tuple, list)) and e.ndim == 3:   # a pair of matrices, e.g. (K, R)
+        where = "(matrix, row, column)"
+    else:
+        where = {2: "(row, column)", 3: "(row, column, channel)"}.get(e.ndim, "index")
     tol = (tolerance or Tolerance()).for_answer(got, expected)
     wrong = int(np.sum(~tol.close(g, e)))
-    shown_got, shown_expected = f"{g[index]:.6g}", f"{e[index]:.6g}"
+    shown_got, shown_expected = f"{g[index] + 0.0:.6g}", f"{e[index] + 0.0:.6g}"   # + 0.0: no "-0"
     if shown_got == shown_expected:
         shown_got, shown_expected = repr(float(g[index])), repr(float(e[index]))
     return (f"  worst    {where} {tuple(int(i) for i in index)}: got {shown_got}, expected {shown_expected}"

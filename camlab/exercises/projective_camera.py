@@ -30,8 +30,11 @@ def _project_cases():
 
 
 def _project_diagnosis(args, got, expected) -> str:
-    problem = shape_problem(got, expected)
     P, X = args
+    behind = _masked_by_w(P, X, got, expected)
+    if behind:
+        return behind
+    problem = shape_problem(got, expected)
     if problem:
         if np.shape(got) == (len(X), 3):
             return problem + ". You returned homogeneous pixels: divide by the third coordinate and drop it."
@@ -56,6 +59,24 @@ def _project_diagnosis(args, got, expected) -> str:
         return ("every pixel has the wrong sign: (u, v) = (x / w, y / w) with x = P (X, Y, Z, 1)^T, no minus sign "
                 "(the pinhole's image inversion is already in K: v grows downwards).")
     return _pixel_slip(g, np.asarray(expected, dtype=float))
+
+
+def _masked_by_w(P, X, got, expected) -> str | None:
+    """The cause when the answer puts NaN exactly where w <= 0: "behind the camera" tested as w > 0."""
+    try:
+        g = np.asarray(got, dtype=float)
+    except (TypeError, ValueError):
+        return None
+    if g.shape != np.shape(expected) or not np.isnan(g).any():
+        return None
+    w = np.hstack([X, np.ones((len(X), 1))]) @ np.asarray(P, dtype=float)[2]
+    nan_rows = np.isnan(g).any(axis=1)
+    if not np.array_equal(nan_rows, w <= 0):
+        return None
+    return ("you set the pixels of points with w <= 0 to NaN, as behind the camera. But this P is -3 times a "
+            "camera (the same camera at another scale and sign), so w < 0 for points in front of it: w is the depth "
+            "z_c only for P = K [R | t]. A point is in front when sign(det M) w > 0, M = P[:, :3] (section 4b, "
+            "the depth of a point); or simply return x / w for every point.")
 
 
 def _pixel_slip(got, expected) -> str:
@@ -99,6 +120,8 @@ register_exercise(Exercise(
         (lambda P, X: np.hstack([X, np.ones((len(X), 1))]) @ P, "X @ M.T"),
         (lambda P, X: (lambda x: x[:, :2] / np.abs(x[:, 2:]))(np.hstack([X, np.ones((len(X), 1))]) @ P.T), "|w|"),
         (lambda P, X: -cm.project_points(P, X), "wrong sign"),
+        (lambda P, X: (lambda x: np.where(x[:, 2:] > 0, x[:, :2] / x[:, 2:], np.nan))(
+            np.hstack([X, np.ones((len(X), 1))]) @ P.T), "sign(det M) w > 0"),
     ),
     teaching=project_points,
 ))
@@ -235,6 +258,12 @@ def _rq_diagnosis(args, got, expected) -> str:
         return "K R does not reproduce M; an RQ decomposition must satisfy M = K R exactly."
     if np.abs(np.tril(K, -1)).max() > 1e-9 * np.abs(K).max():
         return "K must be upper triangular."
+    if np.any(np.diag(K) < 0) and np.linalg.det(M) < 0 and np.linalg.det(R) > 0:
+        return ("det M < 0 here, and your R is a rotation (det R = +1), so K must carry the minus sign: K R = M with "
+                "a positive-diagonal K forces det K > 0 and so det R = det M / det K < 0, a reflection. Do not "
+                "negate K and R (or K's last column and R's last row) to make det R = +1; fix only the signs of "
+                "diag(K) with D = diag(sign(diag(K))), K D and D R, and let det R = -1. Making det R = +1 by "
+                "flipping P belongs to decomposing a camera (section 4, step 1), not to the RQ decomposition.")
     if np.any(np.diag(K) < 0):
         return ("K has a negative diagonal entry: fix the signs. RQ is unique only up to D = diag(+-1); "
                 "use K D and D R with D = diag(sign(diag(K))).")
@@ -304,6 +333,12 @@ def _rq_sign_fix_on_rows_of_k(M):
     return D @ K, D @ R
 
 
+def _rq_forced_rotation(M):
+    """Signs fixed, then K and R negated to make det R = +1 (K R = M still, but diag K < 0 when det M < 0)."""
+    K, R = cm.rq_decomposition(M)
+    return (-K, -R) if np.linalg.det(R) < 0 else (K, R)
+
+
 def _rq_qr(M):
     Q, U = np.linalg.qr(M)
     return U, Q
@@ -335,6 +370,7 @@ register_exercise(Exercise(
         (_rq_sign_fix_on_columns_of_r, "R's columns"),
         (_rq_sign_fix_on_rows_of_k, "K's rows"),
         (lambda M: cm.rq_decomposition(np.sign(np.linalg.det(M)) * np.asarray(M)), "flipped the sign of M"),
+        (_rq_forced_rotation, "R is a rotation (det R = +1)"),
     ),
     teaching=rq_decomposition,
 ))
@@ -347,8 +383,8 @@ register_exercise(Exercise(
 # follow-up (_dlt_follow_up) runs the student's function on a noisy survey:
 #   1. accuracy against the TRUE camera, within a tolerance derived from the noise (first-order
 #      covariance propagation, H&Z 5.2): catches answers that exact data cannot tell apart;
-#   2. the same survey in other units and origins (world points in millimetres from the site's
-#      corner; pixels at half size from the image centre). A normalised DLT is invariant to such
+#   2. the same survey in other units and origins, one change at a time (world origin at the site's
+#      corner; world in millimetres and in kilometres; pixel origin at the image centre; pixels as fractions of the width). A normalised DLT is invariant to such
 #      changes (the normalised coordinates are the same numbers, H&Z 4.4.4), a refined one too;
 #      an unnormalised or half-normalised one is not, and which half changes names the cause.
 
@@ -364,10 +400,15 @@ def _survey_points(n, rng):
 SURVEY_NOISE_PX = 1.0                                                  # pixel noise per coordinate
 SURVEY_TOLERANCE = 5.0                                                 # times the predicted RMS error
 _SURVEY_TEST_POINTS = _survey_points(50, np.random.default_rng(12))   # where cameras are compared
-# Other units and origins for the same survey: world in millimetres from the site's corner (48, 48, 0) m,
-# pixels at half size from the image centre. As 4 x 4 and 3 x 3 maps of homogeneous points.
-_WORLD_IN_MM = np.array([[1e3, 0, 0, -48e3], [0, 1e3, 0, -48e3], [0, 0, 1e3, 0], [0, 0, 0, 1.0]])
-_PIXELS_FROM_CENTRE = np.array([[0.5, 0, -999.75], [0, 0.5, -749.75], [0, 0, 1.0]])
+# Other units and origins for the same survey, one change at a time, as 4 x 4 and 3 x 3 maps of homogeneous
+# points: the world origin moved to the site's corner (48, 48, 0) m, the world in millimetres or kilometres, the pixel origin
+# moved to the image centre, the pixels as fractions of the image width. A DLT that centres a side is unmoved by its shift, one
+# that scales a side is unmoved by its change of units; so which change moves the camera names what is missing.
+_WORLD_SHIFT = np.array([[1.0, 0, 0, -48.0], [0, 1.0, 0, -48.0], [0, 0, 1.0, 0], [0, 0, 0, 1.0]])
+_WORLD_IN_MM = np.diag([1e3, 1e3, 1e3, 1.0])     # one scale-up and one scale-down: either alone can move a
+_WORLD_IN_KM = np.diag([1e-3, 1e-3, 1e-3, 1.0])  # half-normalised DLT too little to see
+_PIXEL_SHIFT = np.array([[1.0, 0, -1999.5], [0, 1.0, -1499.5], [0, 0, 1.0]])
+_PIXELS_HALF = np.diag([1 / 4000, 1 / 4000, 1.0])   # fractions of the image width (a 0.5 scale moves too little)
 _INVARIANCE_PX = 1e-3   # a normalised DLT gives 1e-11 px, a refined one 1e-6; half-normalised ones 0.02 px and more
 
 
@@ -448,42 +489,88 @@ def _dlt_follow_up(run) -> str | None:
     allowed = SURVEY_TOLERANCE * predicted_rms_error(truth, X, SURVEY_NOISE_PX, _SURVEY_TEST_POINTS)
     error = _rms_gap(P, truth, _SURVEY_TEST_POINTS)
     accurate = error <= allowed
-    P_world = _as_camera_matrix(run(X @ _WORLD_IN_MM[:3, :3].T + _WORLD_IN_MM[:3, 3], uv))
-    P_pixels = _as_camera_matrix(run(X, uv @ _PIXELS_FROM_CENTRE[:2, :2].T + _PIXELS_FROM_CENTRE[:2, 2]))
-    if P_world is None or P_pixels is None:
-        return (f"{where}, given the same points in other units, your function did not return a finite (3, 4) "
-                f"array.")
-    # Both back in metres and full-size pixels: P' = S_pix P S_world^-1, so P = S_pix^-1 P' S_world.
-    moved_world = _pixel_gap(P_world @ _WORLD_IN_MM, P, _SURVEY_TEST_POINTS) > _INVARIANCE_PX
-    moved_pixels = _pixel_gap(np.linalg.inv(_PIXELS_FROM_CENTRE) @ P_pixels, P, _SURVEY_TEST_POINTS) > _INVARIANCE_PX
-    if accurate and not (moved_world or moved_pixels):
+    moved = {}
+    for key, S in (("world shift", _WORLD_SHIFT), ("world units", _WORLD_IN_MM), ("world units", _WORLD_IN_KM)):
+        P_other = _as_camera_matrix(run(X @ S[:3, :3].T + S[:3, 3], uv))
+        if P_other is None:
+            return f"{where}, given the same points in other units, your function did not return a finite (3, 4) array."
+        gap = _pixel_gap(P_other @ S, P, _SURVEY_TEST_POINTS)      # back in metres
+        moved[key] = moved.get(key, False) or gap > _INVARIANCE_PX
+    for key, S in (("pixel shift", _PIXEL_SHIFT), ("pixel units", _PIXELS_HALF)):
+        P_other = _as_camera_matrix(run(X, uv @ S[:2, :2].T + S[:2, 2]))
+        if P_other is None:
+            return f"{where}, given the same pixels in other units, your function did not return a finite (3, 4) array."
+        moved[key] = _pixel_gap(np.linalg.inv(S) @ P_other, P, _SURVEY_TEST_POINTS) > _INVARIANCE_PX
+    if accurate and not any(moved.values()):
         return None
     findings = []
     if not accurate:
         findings.append(f"your P images the site {error:.3g} px (RMS) from the true camera: 1 px of noise moves a "
                         f"least-squares camera by about {allowed / SURVEY_TOLERANCE:.2g} px (first-order error "
                         f"propagation, H&Z 5.2), and the check allows {SURVEY_TOLERANCE:g} times that, {allowed:.2g} px")
-    if moved_world:
-        findings.append("given the same points in millimetres from the site's corner, your function finds a "
-                        "different camera")
-    if moved_pixels:
-        findings.append("given the pixels at half size from the image centre, your function finds a different camera")
-    if moved_world and moved_pixels:
-        cause = ("no normalisation: A's columns range from 1 to u X ~ 1e5, and which equations dominate depends "
-                 "on the units. Normalise both sides: T for the pixels (centroid 0, mean distance sqrt(2)), U for "
-                 "the world points (centroid 0, mean distance sqrt(3)); solve for P_hat; then P = inv(T) @ P_hat @ U")
-    elif moved_world:
-        cause = ("you normalised only the pixels (T), not the world points: normalise them too, with U "
-                 "(centroid 0, mean distance sqrt(3)), and undo both: P = inv(T) @ P_hat @ U")
-    elif moved_pixels:
-        cause = ("you normalised only the world points (U), not the pixels: normalise them too, with T "
-                 "(centroid 0, mean distance sqrt(2)), and undo both: P = inv(T) @ P_hat @ U")
-    else:
-        cause = ("the estimate is not a least-squares fit of the DLT equations: two rows of u x P X = 0 per "
-                 "point from normalised coordinates, the last row of Vt, then P = inv(T) @ P_hat @ U")
+    changes = {"world shift": "with the world origin moved to the site's corner",
+               "world units": "with the world points in millimetres or kilometres",
+               "pixel shift": "with the pixel origin moved to the image centre",
+               "pixel units": "with the pixels as fractions of the image width"}
+    moved_by = [changes[k] for k in changes if moved[k]]
+    if moved_by:
+        findings.append("given the same survey " + " or ".join(moved_by) + ", your function finds a different camera")
     invariance = (" A normalised DLT finds the same camera in any units and origins: the normalised coordinates are "
-                  "the same numbers." if moved_world or moved_pixels else "")
-    return f"{where}: " + "; ".join(findings) + "." + invariance + f"\n  likely cause: {cause}."
+                  "the same numbers." if moved_by else "")
+    return f"{where}: " + "; ".join(findings) + "." + invariance + f"\n  likely cause: {_dlt_cause(moved, X, uv, P)}."
+
+
+def _dlt_cause(moved, X, uv, P) -> str:
+    """Name what is missing from the normalisation, side by side: the centroid shift, the scale, or both."""
+    if same_up_to_scale(P, _dlt_p34(X, uv), rtol=1e-4):
+        return ("you fixed p34 = 1 and solved the rest by least squares on raw metres and pixels (the classic DLT). "
+                "That is unmoved by the pixels' units and origin and by the world's units, but p34 = 1 ties the "
+                "answer to the world origin (p34 is the depth of the origin, and the fit fails if the origin lies "
+                "near the camera's principal plane). Normalise both sides (centroid 0, mean distance sqrt(3) and "
+                "sqrt(2)), take the last row of Vt as P_hat, then P = inv(T) @ P_hat @ U")
+    if all(moved.values()):
+        return ("no normalisation: A's columns range from 1 to u X ~ 1e5, and which equations dominate depends "
+                "on the units. Normalise both sides: T for the pixels (centroid 0, mean distance sqrt(2)), U for "
+                "the world points (centroid 0, mean distance sqrt(3)); solve for P_hat; then P = inv(T) @ P_hat @ U")
+    missing = []
+    for side, shift, units, norm, dist in (("world points", "world shift", "world units", "U", "sqrt(3)"),
+                                           ("pixels", "pixel shift", "pixel units", "T", "sqrt(2)")):
+        if moved[shift] and moved[units]:
+            missing.append(f"the {side} are not normalised at all (neither centred nor scaled): normalise them "
+                           f"with {norm} (centroid 0, mean distance {dist})")
+        elif moved[shift]:
+            missing.append(f"the {side} are scaled but not centred: subtract their centroid before scaling "
+                           f"(moving the origin must not change the normalised {side})")
+        elif moved[units]:
+            missing.append(f"the {side} are centred but not scaled, so A still depends on their units: divide by "
+                           f"the mean distance to the centroid and multiply by {dist}")
+    if not missing:
+        return ("the estimate is not a least-squares fit of the DLT equations: two rows of u x P X = 0 per "
+                "point from normalised coordinates, the last row of Vt, then P = inv(T) @ P_hat @ U")
+    return "; ".join(missing) + "; and undo both: P = inv(T) @ P_hat @ U"
+
+
+def _dlt_p34(X, uv):
+    """The classic DLT (Abdel-Aziz and Karara): p34 = 1, the other 11 entries by least squares, no normalisation."""
+    A = _dlt_rows(np.asarray(X, dtype=float), np.asarray(uv, dtype=float))
+    p = np.linalg.lstsq(A[:, :11], -A[:, 11], rcond=None)[0]
+    return np.append(p, 1.0).reshape(3, 4)
+
+
+def _dlt_partial(X, uv, world=(True, True), pixels=(True, True)):
+    """A DLT whose normalisers only centre, only scale, or both, per side: (centre, scale)."""
+    X, uv = np.asarray(X, dtype=float), np.asarray(uv, dtype=float)
+
+    def normaliser(p, centre, scale):
+        c = p.mean(axis=0) if centre else np.zeros(p.shape[1])
+        s = np.sqrt(p.shape[1]) / np.mean(np.linalg.norm(p - c, axis=1)) if scale else 1.0
+        N = s * np.eye(p.shape[1] + 1)
+        N[:-1, -1], N[-1, -1] = -s * c, 1.0
+        return N
+
+    U, T = normaliser(X, *world), normaliser(uv, *pixels)
+    P_hat = np.linalg.svd(_dlt_rows(_in_frame(U, X), _in_frame(T, uv)))[2][-1].reshape(3, 4)
+    return np.linalg.inv(T) @ P_hat @ U
 
 
 def _normalisers(X, uv):
@@ -619,8 +706,13 @@ register_exercise(Exercise(
         (_dlt_not_undone, "not undone"),
         (_dlt_undone_wrong_order, "wrong way round"),
         (lambda X, uv: _dlt_unnormalised(np.asarray(X), np.asarray(uv)), "no normalisation"),
-        (lambda X, uv: _dlt_half(X, uv, world=False), "normalised only the pixels"),
-        (lambda X, uv: _dlt_half(X, uv, pixels=False), "normalised only the world points"),
+        (lambda X, uv: _dlt_half(X, uv, world=False), "world points are not normalised at all"),
+        (lambda X, uv: _dlt_half(X, uv, pixels=False), "pixels are not normalised at all"),
+        (lambda X, uv: _dlt_partial(X, uv, world=(True, False), pixels=(True, False)), "centred but not scaled"),
+        (lambda X, uv: _dlt_partial(X, uv, world=(True, False)), "world points are centred but not scaled"),
+        (lambda X, uv: _dlt_partial(X, uv, world=(False, True), pixels=(False, True)), "scaled but not centred"),
+        (lambda X, uv: _dlt_partial(X, uv, pixels=(False, True)), "pixels are scaled but not centred"),
+        (_dlt_p34, "p34 = 1"),
         (lambda X, uv: _dlt_half(X, uv, undo="T"), "undid only the pixels'"),
         (lambda X, uv: _dlt_half(X, uv, undo="U"), "undid only the world points'"),
         (lambda X, uv: _dlt_half(X, uv, sign=1.0), "sign slip in A"),

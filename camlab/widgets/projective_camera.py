@@ -27,6 +27,17 @@ FAR_M = 6.0  # an estimated camera farther than this from the true one is shown 
 EYE_GL = np.array([2.6, -2.6, 1.0])  # opencv_vs_opengl's camera, far enough from the house that "z forward" clears it
 
 
+# opencv_vs_opengl's viewer turns half as fast as the camera orbits. The camera's horizontal x axis points
+# at azimuth yaw + 45 deg, so it stays 30 to 120 deg from the line of sight (yaw in [-90, 90]) and never
+# folds onto y down; a fixed viewer would see x point at it, drawn straight down over y, at some yaw.
+# From this side "z forward" points away from the house, up the screen.
+VIEW_GL_ELEV = 30.0
+
+
+def _view_gl_azim(yaw: float) -> float:
+    return -30.0 + 0.5 * yaw
+
+
 def _fmt(v: np.ndarray) -> str:
     return "(" + ", ".join(f"{x + 0.0:+.2f}" for x in np.round(v, 2)) + ")"   # + 0.0: no "-0.00"
 
@@ -102,7 +113,8 @@ def camera_explorer():
         info.value = ("<pre>" + _matrix("K", cam.K, 1) + "\n" + _matrix("R", cam.R, 3) + "\n"
                       f"t = {_fmt(cam.t)} m  (world origin in camera frame)\n"
                       f"C = -R^T t = {_fmt(cam.centre)} m  (camera in world)\n"
-                      + _matrix("P", cam.P / cam.P[2, 3], 2) + "\n(P scaled so that P[2, 3] = 1)</pre>")
+                      + _matrix("P", cam.P / np.linalg.norm(cam.P[2, :3]), 3)
+                      + "\n(P scaled so that |m3| = 1: row 3 is the principal\n axis and the world origin's depth)</pre>")
         state.update(camera=cam, K=cam.K, R=cam.R, t=cam.t, centre=cam.centre, P=cam.P)
 
     return build_demo("camera_explorer", controls, view, update,
@@ -264,7 +276,7 @@ def opencv_vs_opengl():
     from mpl_toolkits.mplot3d import Axes3D  # noqa: F401  (registers the 3-D projection)
 
     view = FigureView(figsize=(5.0, 3.4))
-    ax = scene3d.axes3d(view.fig, 1, 1, 1, elev=20, azim=-130)
+    ax = scene3d.axes3d(view.fig, 1, 1, 1, elev=VIEW_GL_ELEV, azim=_view_gl_azim(0.0))
     ax.set_axis_off()
     ax.set_position((0.0, -0.12, 1.0, 1.2))  # 3-D axes keep a square box: let it fill the wide canvas
     world = scene3d.draw_world_axes(ax, 0.6)
@@ -289,6 +301,7 @@ def opencv_vs_opengl():
     def update(v, state):
         eye = cm.rotation_z(np.deg2rad(v["yaw"])) @ EYE_GL
         cam = cm.Camera.look_at(eye, [0.0, 0.0, 0.4])
+        ax.view_init(elev=VIEW_GL_ELEV, azim=_view_gl_azim(v["yaw"]))   # before fit_view, which refreshes
         art.update(cam)
         gl = v["frame"] != "OpenCV"
         R_axes = cm.opengl_from_opencv(cam.R, cam.t)[0] if gl else cam.R
