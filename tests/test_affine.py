@@ -424,3 +424,24 @@ def test_projection_rays_marks_X0_in_all_four_panels_and_the_line_of_sight_in_pa
     (sight,) = from_centre                                   # one dashed line from the camera centre ...
     x, z = sight.get_data()
     assert np.isclose(x[1] / z[1], 2.5 / demos.RAY_DEPTH)    # ... through X0: the para-perspective rays' direction
+
+
+def test_dolly_zoom_error_axis_fits_its_curves_and_the_distance_slider_is_logarithmic():
+    """The y axis spans the curves at every offset (no empty decades), the markers are not clipped at the
+    slider's ends, and the distance slider moves in equal ratios, as the log x axis does."""
+    import ipywidgets as W
+
+    from camlab.widgets import affine_cameras as demos
+
+    lo, hi = demos.DOLLY_ERROR_LIMITS
+    distances = np.geomspace(*demos.DOLLY_DISTANCES, 60)
+    curves = [c for offset in (0, 50, 100) for c in demos.dolly_curves(offset, distances).values()]
+    assert all(lo < c.min() and c.max() < hi for c in curves)
+    assert min(c.min() for c in curves) < 2 * lo and max(c.max() for c in curves) > hi / 2   # no empty decade
+    d = demos.dolly_zoom()
+    assert isinstance(d.controls["distance"], W.FloatLogSlider)
+    for marker in d.figure.axes[2].lines[-2:]:
+        assert marker.get_marker() == "o" and not marker.get_clip_on()
+    pp = [ln for ln in d.figure.axes[0].lines if ln.get_marker() == "+"]
+    (marker,) = _reference_markers(d.figure.axes[0])
+    assert pp and pp[0].get_zorder() > marker.get_zorder()       # the + stays visible on the diamond at offset 0
