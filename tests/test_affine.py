@@ -58,7 +58,7 @@ def test_affine_approximation_exact_at_reference(cam, rng):
 
 
 def test_affine_approximation_error_formula(cam, rng):
-    """H&Z eq. 6.17: x_proj - x0 = d0 / (d0 + Delta) (x_affine - x0), x0 the principal point."""
+    """H&Z §6.3.2: x_proj - x0 = d0 / (d0 + Delta) (x_affine - x0), x0 the principal point."""
     X0 = np.array([0.0, 0.0, 0.5])
     PA = af.affine_approximation(cam, X0)
     X = rng.uniform(-1, 1, (20, 3)) + X0

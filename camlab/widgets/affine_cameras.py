@@ -269,7 +269,7 @@ def parallel_rails():
     view.animate(*lines, vp, horizon, *measured, *texts)
     references = [(view.animate(*reference_marker(ax)),) for ax in (ax_p, ax_a)]  # where the two images agree
     model_legend(view.fig, (), reference=True, extra=(
-        Line2D([], [], color="0.1", lw=3.5, label=f"the metres measured below ({RAIL_SAMPLES[0]:.0f} and "
+        Line2D([], [], color="0.1", lw=3.5, label=f"the metres the readouts measure ({RAIL_SAMPLES[0]:.0f} and "
                                                   f"{RAIL_SAMPLES[1]:.0f} m out)"),
         Line2D([], [], marker="o", color=COLOURS["perspective"], ms=8, mfc="white", mew=2, ls="none",
                label="vanishing point"),
@@ -308,7 +308,9 @@ def parallel_rails():
 
 RAY_DEPTH = 6.0  # d0: depth of the object's centre in the ray diagram (metres)
 RAY_IMAGE = 3.0  # where the ray diagram draws the image line (z, metres)
-RAY_OBJECT = np.array([[-0.8, -1.0], [0.8, -1.0], [0.8, 1.0], [-0.8, 1.0]])  # a 1.6 m x 2 m block about X0 (x, z)
+_TURN = np.radians(12.0)  # the block is turned, so rays parallel to the axis do not run along its sides
+RAY_OBJECT = np.array([[-0.8, -1.0], [0.8, -1.0], [0.8, 1.0], [-0.8, 1.0]]) @ np.array(
+    [[np.cos(_TURN), np.sin(_TURN)], [-np.sin(_TURN), np.cos(_TURN)]])  # a 1.6 m x 2 m block about X0 (x, z), metres
 
 
 def _joined(*polylines):
@@ -319,7 +321,7 @@ def _joined(*polylines):
 
 @register(lesson="05", sweep={"offset": [0.0, 1.0, 2.5]})
 def projection_rays():
-    """A top view of four camera models (after H&Z §6.3 and Szeliski fig. 2.7): how each sends the
+    """A top view of four camera models (after Szeliski fig. 2.7): how each sends the
     corners of a block to the image line. Move the block sideways: on the optical axis weak and
     para-perspective coincide; off it, para-perspective's rays run parallel to the line of sight to X0
     (drawn dashed), its viewing direction, as weak perspective's run parallel to the optical axis."""
@@ -327,7 +329,7 @@ def projection_rays():
     axes = view.fig.subplots(1, 4, sharey=True)
     artists = {}
     for ax, model in zip(axes, af.PROJECTION_MODELS):
-        ax.set_xlim(-1.0, 4.0)
+        ax.set_xlim(-1.3, 4.0)  # the turned block reaches x = -0.99 m at offset 0
         ax.set_ylim(-0.4, 7.4)
         ax.set_aspect("equal")
         ax.set_title(model, fontsize=9, color=COLOURS[model])
