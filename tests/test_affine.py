@@ -445,3 +445,18 @@ def test_dolly_zoom_error_axis_fits_its_curves_and_the_distance_slider_is_logari
     pp = [ln for ln in d.figure.axes[0].lines if ln.get_marker() == "+"]
     (marker,) = _reference_markers(d.figure.axes[0])
     assert pp and pp[0].get_zorder() > marker.get_zorder()       # the + stays visible on the diamond at offset 0
+
+
+def test_affine_departure_maps_the_gap_over_the_frame_and_at_given_points():
+    H = np.array([[1.0, 0.02, 3.0], [0.01, 0.98, -2.0], [2e-4, -1e-4, 1.0]])
+    pts = np.array([[0.0, 0.0], [639.0, 479.0], [320.0, 240.0]])
+    dep = af.affine_departure(H, (640, 480), samples=20, points=pts)
+    assert dep.u.shape == dep.v.shape == dep.distance.shape == (20, 20) and dep.at_points.shape == (3,)
+    assert dep.distance.max() == af.affine_fit_departure(H, (640, 480), samples=20)
+    corners = dep.distance[[0, -1], :][:, [0, -1]]                   # grid corners = the frame's corner pixels
+    assert np.isclose(dep.at_points[0], corners[0, 0]) and np.isclose(dep.at_points[1], corners[1, 1])
+    affine = af.affine_departure([[1.1, 0.2, 5], [0.1, 0.9, -3], [0, 0, 1]], (640, 480), points=pts)
+    assert affine.distance.max() < 1e-9 and affine.at_points.max() < 1e-9
+    assert af.affine_departure(H, (640, 480)).at_points.size == 0
+    with pytest.raises(CamlabInputError, match="points"):
+        af.affine_departure(H, (640, 480), points=[1.0, 2.0, 3.0])
