@@ -90,7 +90,8 @@ def _what_differs(g, expected, camera, X0) -> str:
         else:
             bad = ~np.isclose(M, M_e, rtol=1e-7, atol=1e-7)
             r, c = np.unravel_index(int(np.argmax(np.abs(M - M_e))), M.shape)
-            parts.append(f"{int(bad.sum())} of the 6 entries of the 2x3 block differ, most at ({r}, {c}): "
+            count = "all 6" if bad.all() else f"{int(bad.sum())} of the 6"
+            parts.append(f"{count} entries of the 2x3 block differ, most at ({r}, {c}): "
                          f"{M[r, c]:.6g} for {M_e[r, c]:.6g}")
     if np.allclose(m, m_e, rtol=1e-7, atol=1e-6):
         parts.append("the last column is right")
@@ -101,6 +102,15 @@ def _what_differs(g, expected, camera, X0) -> str:
              else f"it images X0 at ({got_X0[0]:.2f}, {got_X0[1]:.2f}) px, but the perspective camera, and every "
                   f"approximation about X0, at ({x_X0[0]:.2f}, {x_X0[1]:.2f}) px")
     return "; ".join(parts) + "; " + where
+
+
+def _image_of_X0_as_translation(g, expected, camera, X0) -> str | None:
+    """The cause when M2 is right and the last column is X0's image x_X0 (a first-order expansion about X0
+    written as x_X0 + M2 X instead of x_X0 + M2 (X - X0))."""
+    if _same(g[:2, :3], expected[:2, :3]) and _same(g[:2, 3], camera.project(X0)):
+        return ("the 2x3 block is right, but the last column is X0's image x_X0: the camera maps X0 to M2 X0 + t2, "
+                "so t2 = x_X0 - M2 X0 (the expansion is x_X0 + M2 (X - X0)).")
+    return None
 
 
 def _principal_point_cause(offset, c) -> str | None:
@@ -237,6 +247,9 @@ def _approx_top_rows_cause(g, expected, camera, X0, d0) -> str:
                 f"d0 = r3 . X0 + t3, the depth of the reference point along the optical axis.")
     if _same(g[[1, 0]], expected[:2]):
         return "the two rows are swapped: row 1 gives u (from r1 and fx), row 2 gives v (from r2 and fy)."
+    slip = _image_of_X0_as_translation(g, expected, camera, X0)
+    if slip:
+        return slip
     if _same(M, M_e):
         if _same(m, m_e - c):
             return (f"the principal point is missing from the last column: K's third column (cx, cy, 1) times d0, "
@@ -411,6 +424,9 @@ def _para_specific(camera, X0):
          "the last column has -(a, b) t3 where it needs -(a, b) (t3 - d0): the -d0 of z - d0 is missing there."),
         (_p_para(K, R, t, d0, ab, t_term=-d0),
          "the last column has +(a, b) d0 where it needs -(a, b) (t3 - d0): the t3 of z = r3 . X + t3 is missing."),
+        (_p_para(K, R, t, d0, ab, t_term=d0 - t[2]),
+         "the last column has +(a, b) (t3 - d0) where it needs -(a, b) (t3 - d0): the rows are right, but the sign of "
+         "the a and b terms in E's last column is flipped."),
         (_p_para(K, R, t, d0, uv_X0), "you used X0's pixel coordinates as (a, b): they are its normalised image "
                                       "position, (x_c, y_c) / d0 with x_c = R X0 + t (metres over metres), or "
                                       "K^-1 (u, v, 1)."),
@@ -440,6 +456,9 @@ def _para_diagnosis(args, got, expected) -> str:
         return cause
     if not np.allclose(g[2], [0.0, 0.0, 0.0, 1.0], atol=1e-9):
         return _last_row_cause(g, d0, expected, _P_PARA)
+    slip = _image_of_X0_as_translation(g, expected, camera, X0)
+    if slip:
+        return slip
     if _same(g[:2, :3], expected[:2, :3]):
         slip = _principal_point_cause(g[:2, 3] - expected[:2, 3], camera.K[:2, 2])
         if slip:
@@ -462,6 +481,13 @@ def _para_ab_without_skew(camera, X0):
     K, x_c = camera.K, camera.R @ X0 + camera.t
     ab = (camera.project(X0) - K[:2, 2]) / np.diag(K)[:2]
     return _p_para(K, camera.R, camera.t, x_c[2], ab)
+
+
+def _para_image_of_X0_as_t(camera, X0):
+    """The first-order expansion written as x_X0 + M2 X: M2 right, the last column X0's image."""
+    P = af.paraperspective_approximation(camera, X0)
+    P[:2, 3] = camera.project(X0)
+    return P
 
 
 def _para_no_skew(camera, X0):
@@ -497,10 +523,12 @@ register_exercise(Exercise(
         (lambda camera, X0: _para_specific(camera, X0)[3][0], "lacks -(a, b) (t3 - d0)"),
         (lambda camera, X0: _para_specific(camera, X0)[4][0], "the -d0 of z - d0 is missing"),
         (lambda camera, X0: _para_specific(camera, X0)[5][0], "the t3 of z"),
-        (lambda camera, X0: _para_specific(camera, X0)[6][0], "pixel coordinates as (a, b)"),
+        (lambda camera, X0: _para_specific(camera, X0)[6][0], "sign of the a and b terms in E's last column"),
+        (lambda camera, X0: _para_specific(camera, X0)[7][0], "pixel coordinates as (a, b)"),
         (_para_ab_without_skew, "ignores this camera's skew"),
-        (lambda camera, X0: _para_specific(camera, X0)[8][0], "world coordinates"),
-        (lambda camera, X0: _para_specific(camera, X0)[9][0], "distance |x_c|"),
+        (lambda camera, X0: _para_specific(camera, X0)[9][0], "world coordinates"),
+        (lambda camera, X0: _para_specific(camera, X0)[10][0], "distance |x_c|"),
+        (_para_image_of_X0_as_t, "t2 = x_X0 - M2 X0"),
         (_para_mistake(0), "depth of the world origin"),
         (_para_mistake(2), "t3 has the wrong sign"),
         (_para_mistake(7), "left out K"),
