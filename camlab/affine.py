@@ -22,7 +22,7 @@ a segment images to the midpoint of its image. The family, from special to gener
 A perspective camera looking at an object of depth range :math:`\Delta` at distance
 :math:`d_0` is close to affine when :math:`\Delta \ll d_0`: the weak-perspective
 image of a point differs from its perspective image by the factor
-:math:`\Delta / d_0` times its distance from the principal point (H&Z eq. 6.17).
+:math:`\Delta / d_0` times its distance from the principal point (H&Z §6.3.2).
 
 Conventions (docs/conventions.md): R, t are cam_from_world, camera frame x right,
 y down, z forward; pixels (u, v) = (column, row); points are rows. See lesson 05.
@@ -40,7 +40,7 @@ from ._validate import (
 from .camera import Camera, intrinsic_matrix, orbit_eye, project_points, project_segments
 
 __all__ = [
-    "affine_approximation", "affine_fit_departure", "dolly_zoom_camera", "dolly_zoom_errors", "dolly_zoom_focal", "estimate_affine_camera", "image_of_direction",
+    "AffineDeparture", "affine_approximation", "affine_departure", "affine_fit_departure", "dolly_zoom_camera", "dolly_zoom_errors", "dolly_zoom_focal", "estimate_affine_camera", "image_of_direction",
     "is_affine", "largest_gap_in_frame", "orthographic_matrix", "paraperspective_approximation", "projection_rays", "PROJECTION_MODELS",
     "scaled_orthographic_matrix", "ThreeImages", "three_images",
     "weak_perspective_error", "weak_perspective_matrix",
@@ -145,7 +145,7 @@ def affine_approximation(camera: Camera, reference_point: ArrayLike) -> np.ndarr
 
     Every point's depth is replaced by the reference point's depth (zeroth order in depth;
     :func:`paraperspective_approximation` is the first-order one). With :math:`d_0 = r_3 \cdot X_0 + t_3` the depth of the reference point
-    :math:`X_0`, replacing every point's depth by :math:`d_0` gives (H&Z eq. 6.16)
+    :math:`X_0`, replacing every point's depth by :math:`d_0` gives (H&Z §6.3.1)
 
     .. math:: P_\infty = K \begin{pmatrix} r_1^\top & t_1 \\ r_2^\top & t_2 \\ 0^\top & d_0 \end{pmatrix},
 
@@ -193,7 +193,8 @@ def paraperspective_approximation(camera: Camera, reference_point: ArrayLike) ->
 
     Weak perspective (:func:`affine_approximation`) projects every point onto the plane
     :math:`z = d_0` through the reference point :math:`X_0` **along the optical axis**, then
-    divides by :math:`d_0`. Para-perspective (Aloimonos 1990; Szeliski §2.1.4) projects along
+    divides by :math:`d_0`. Para-perspective (Ohta, Maenobu and Sakai 1981; Aloimonos 1990; Szeliski §2.1.4)
+    projects along
     the **ray through** :math:`X_0` instead, so its rays, and its centre at infinity
     :math:`(d, 0)`, point along the line of sight to :math:`X_0`, not along :math:`r_3`. In camera coordinates, with
     :math:`(a, b) = (x_0 / d_0, y_0 / d_0)` the reference point's normalised image position,
@@ -207,8 +208,9 @@ def paraperspective_approximation(camera: Camera, reference_point: ArrayLike) ->
 
     :math:`\Delta / d_0` times its perspective image's distance from the image of :math:`X_0`, where weak
     perspective has the distance from the principal point (:func:`affine_approximation`). So the two
-    coincide when :math:`X_0` is on the optical axis, and para-perspective is much better for an object
-    seen off-centre. It is still an affine camera (last row (0, 0, 0, 1)), but not a weak-perspective
+    coincide when :math:`X_0` is on the optical axis, and para-perspective is the closer one for points imaged
+    nearer :math:`x_{X_0}` than the principal point (most points of a compact object seen off-centre); at the
+    principal point weak perspective is exact. It is still an affine camera (last row (0, 0, 0, 1)), but not a weak-perspective
     one: in general (:math:`a b \neq 0`) the rows of its :math:`M_2` are neither orthogonal nor of equal
     length, so it is a general affine camera (8 degrees of freedom, H&Z §6.3.4).
 
@@ -414,10 +416,58 @@ def image_of_direction(P: ArrayLike, direction: ArrayLike) -> np.ndarray:
     return Pm[:, :3] @ d
 
 
+class AffineDeparture(NamedTuple):
+    """How far a homography is from its best affine fit, over an image (:func:`affine_departure`).
+
+    Attributes
+    ----------
+    u, v : (S, S) ndarray
+        The grid of pixel centres spanning the image (pixels).
+    distance : (S, S) ndarray
+        At each grid point, the distance (pixels) between the homography's and the affine fit's images.
+    at_points : (N,) ndarray
+        The same distance at the given points (empty without points).
+    """
+
+    u: np.ndarray
+    v: np.ndarray
+    distance: np.ndarray
+    at_points: np.ndarray
+
+
+def affine_departure(H: ArrayLike, size: tuple[int, int], samples: int = 30,
+                     points: ArrayLike | None = None) -> AffineDeparture:
+    r"""The distance between the homography ``H`` and its least-squares affine fit, everywhere on a
+    ``samples`` x ``samples`` grid of pixel centres spanning a ``size`` = (width, height) image, and at
+    ``points`` ((N, 2) pixels, e.g. the matches ``H`` was fitted to, where it is not extrapolated).
+
+    The affine fit minimises the squared distance over the grid. See :func:`affine_fit_departure`
+    (the largest of these distances) and lesson 05, section 3.
+    """
+    Hm = check_matrix(H, (3, 3), "H")
+    width, height = (int(check_positive(n, "size", "pixels")) for n in size)
+    u, v = np.meshgrid(np.linspace(0, width - 1, samples), np.linspace(0, height - 1, samples))
+
+    def lifted(uv):
+        return np.column_stack([uv, np.ones(len(uv))])
+
+    def mapped(g):
+        m = g @ Hm.T
+        return m[:, :2] / m[:, 2:]
+
+    grid = lifted(np.column_stack([u.ravel(), v.ravel()]))
+    A = np.linalg.lstsq(grid, mapped(grid), rcond=None)[0]
+    distance = np.linalg.norm(grid @ A - mapped(grid), axis=1).reshape(u.shape)
+    if points is None:
+        return AffineDeparture(u, v, distance, np.empty(0))
+    pts = lifted(as_points(points, 2, "points").array)
+    return AffineDeparture(u, v, distance, np.linalg.norm(pts @ A - mapped(pts), axis=1))
+
+
 def affine_fit_departure(H: ArrayLike, size: tuple[int, int], samples: int = 30) -> float:
     r"""How far the homography ``H`` is from an affine map over a ``size`` = (width, height) image: the
     largest distance (pixels) between ``H`` and its least-squares affine fit on a ``samples`` x ``samples``
-    grid of pixel centres spanning the image.
+    grid of pixel centres spanning the image (:func:`affine_departure`).
 
     Two affine cameras see a plane through affine maps, so two views of a plane are related by an
     affinity; for perspective cameras the map is a homography. It is affine exactly when it keeps the
@@ -427,14 +477,7 @@ def affine_fit_departure(H: ArrayLike, size: tuple[int, int], samples: int = 30)
     turning. So a large departure proves perspective matters for the plane in at least one view; a
     small one does not prove affine cameras. See lesson 05, section 3.
     """
-    Hm = check_matrix(H, (3, 3), "H")
-    width, height = (int(check_positive(n, "size", "pixels")) for n in size)
-    u, v = np.meshgrid(np.linspace(0, width - 1, samples), np.linspace(0, height - 1, samples))
-    grid = np.column_stack([u.ravel(), v.ravel(), np.ones(u.size)])
-    mapped = grid @ Hm.T
-    mapped = mapped[:, :2] / mapped[:, 2:]
-    A = np.linalg.lstsq(grid, mapped, rcond=None)[0]
-    return float(np.linalg.norm(grid @ A - mapped, axis=1).max())
+    return float(affine_departure(H, size, samples).distance.max())
 
 
 PROJECTION_MODELS = ("orthographic", "weak perspective", "para-perspective", "perspective")

@@ -58,7 +58,7 @@ def test_affine_approximation_exact_at_reference(cam, rng):
 
 
 def test_affine_approximation_error_formula(cam, rng):
-    """H&Z eq. 6.17: x_proj - x0 = d0 / (d0 + Delta) (x_affine - x0), x0 the principal point."""
+    """H&Z §6.3.2: x_proj - x0 = d0 / (d0 + Delta) (x_affine - x0), x0 the principal point."""
     X0 = np.array([0.0, 0.0, 0.5])
     PA = af.affine_approximation(cam, X0)
     X = rng.uniform(-1, 1, (20, 3)) + X0
@@ -424,3 +424,39 @@ def test_projection_rays_marks_X0_in_all_four_panels_and_the_line_of_sight_in_pa
     (sight,) = from_centre                                   # one dashed line from the camera centre ...
     x, z = sight.get_data()
     assert np.isclose(x[1] / z[1], 2.5 / demos.RAY_DEPTH)    # ... through X0: the para-perspective rays' direction
+
+
+def test_dolly_zoom_error_axis_fits_its_curves_and_the_distance_slider_is_logarithmic():
+    """The y axis spans the curves at every offset (no empty decades), the markers are not clipped at the
+    slider's ends, and the distance slider moves in equal ratios, as the log x axis does."""
+    import ipywidgets as W
+
+    from camlab.widgets import affine_cameras as demos
+
+    lo, hi = demos.DOLLY_ERROR_LIMITS
+    distances = np.geomspace(*demos.DOLLY_DISTANCES, 60)
+    curves = [c for offset in (0, 50, 100) for c in demos.dolly_curves(offset, distances).values()]
+    assert all(lo < c.min() and c.max() < hi for c in curves)
+    assert min(c.min() for c in curves) < 2 * lo and max(c.max() for c in curves) > hi / 2   # no empty decade
+    d = demos.dolly_zoom()
+    assert isinstance(d.controls["distance"], W.FloatLogSlider)
+    for marker in d.figure.axes[2].lines[-2:]:
+        assert marker.get_marker() == "o" and not marker.get_clip_on()
+    pp = [ln for ln in d.figure.axes[0].lines if ln.get_marker() == "+"]
+    (marker,) = _reference_markers(d.figure.axes[0])
+    assert pp and pp[0].get_zorder() > marker.get_zorder()       # the + stays visible on the diamond at offset 0
+
+
+def test_affine_departure_maps_the_gap_over_the_frame_and_at_given_points():
+    H = np.array([[1.0, 0.02, 3.0], [0.01, 0.98, -2.0], [2e-4, -1e-4, 1.0]])
+    pts = np.array([[0.0, 0.0], [639.0, 479.0], [320.0, 240.0]])
+    dep = af.affine_departure(H, (640, 480), samples=20, points=pts)
+    assert dep.u.shape == dep.v.shape == dep.distance.shape == (20, 20) and dep.at_points.shape == (3,)
+    assert dep.distance.max() == af.affine_fit_departure(H, (640, 480), samples=20)
+    corners = dep.distance[[0, -1], :][:, [0, -1]]                   # grid corners = the frame's corner pixels
+    assert np.isclose(dep.at_points[0], corners[0, 0]) and np.isclose(dep.at_points[1], corners[1, 1])
+    affine = af.affine_departure([[1.1, 0.2, 5], [0.1, 0.9, -3], [0, 0, 1]], (640, 480), points=pts)
+    assert affine.distance.max() < 1e-9 and affine.at_points.max() < 1e-9
+    assert af.affine_departure(H, (640, 480)).at_points.size == 0
+    with pytest.raises(CamlabInputError, match="points"):
+        af.affine_departure(H, (640, 480), points=[1.0, 2.0, 3.0])

@@ -197,9 +197,32 @@ def test_solution_ending_a_cell_shows_no_second_copy(capsys):
 
 
 def test_estimate_affine_camera_accepts_a_column_of_ones_instead_of_centring(capsys):
-    from camlab.exercises.affine_cameras import _estimate_with_ones
+    from camlab.exercises.affine_cameras.estimation import _estimate_with_ones
 
     assert check("estimate_affine_camera", _estimate_with_ones).passed is True
+
+
+@pytest.mark.parametrize("solve", [
+    lambda A, uv: np.linalg.pinv(A) @ uv,                      # the pseudo-inverse
+    lambda A, uv: np.linalg.solve(A.T @ A, A.T @ uv),          # the normal equations
+])
+def test_estimate_affine_camera_accepts_other_least_squares_solvers(solve, capsys):
+    def student(X, uv):
+        A = np.c_[X, np.ones(len(X))]
+        return np.vstack([solve(A, uv).T, [0.0, 0.0, 0.0, 1.0]])
+
+    assert check("estimate_affine_camera", student).passed is True
+
+
+def test_paraperspective_accepts_the_first_order_taylor_expansion_by_central_differences(capsys):
+    """Para-perspective is perspective linearised at X0: a camera built from the numerical Jacobian
+    of the projection at X0 is a right answer in another form."""
+    def student(camera, X0):
+        J = np.column_stack([(camera.project(X0 + e) - camera.project(X0 - e)) / 2e-4 for e in 1e-4 * np.eye(3)])
+        x0 = camera.project(X0)
+        return np.vstack([np.c_[J, x0 - J @ X0], [0.0, 0.0, 0.0, 1.0]])
+
+    assert check("paraperspective_approximation", student).passed is True
 
 
 def _in_float32(value):

@@ -16,6 +16,7 @@ from .. import camera as cm
 from .. import scenes
 from ..plotting import palette, scene3d
 from ._base import FigureView, build_demo, register, slider
+from .controls import int_slider, log_slider
 
 TARGET = np.array([0.0, 0.0, 0.5])
 F0, D0 = 800.0, 4.0  # reference focal length (px) and distance (m) for the dolly zoom
@@ -35,21 +36,16 @@ REFERENCE_MARKER = dict(marker="D", ms=6, mfc="white", mec="0.1", mew=1.3, ls="n
 REFERENCE_LABEL = "X0, the reference point"
 
 
-def reference_marker(ax, label=True, zorder=4):
-    """The X0 marker, with its "X0" label beside it if ``label`` (a figure whose legend names the marker
-    needs none), on ``ax``: a tuple of artists, empty until :func:`place_reference` moves them."""
+def reference_marker(ax, zorder=4):
+    """The X0 marker on ``ax`` (a figure legend names it: a label beside it would cover the data), as a
+    one-artist tuple, empty until :func:`place_reference` moves it."""
     (marker,) = ax.plot([], [], zorder=zorder, **REFERENCE_MARKER)
-    if not label:
-        return (marker,)
-    text = ax.text(0, 0, "  X0", fontsize=8, color="0.1", va="center", zorder=zorder, path_effects=palette.halo(1.0))
-    return marker, text
+    return (marker,)
 
 
 def place_reference(artists, xy):
-    """Move the X0 marker (and label) made by :func:`reference_marker` to the point ``xy``."""
+    """Move the X0 marker made by :func:`reference_marker` to the point ``xy``."""
     artists[0].set_data([xy[0]], [xy[1]])
-    for text in artists[1:]:
-        text.set_position((float(xy[0]), float(xy[1])))
 
 
 def model_line(ax, model, lw=1.1, **kw):
@@ -58,17 +54,19 @@ def model_line(ax, model, lw=1.1, **kw):
     return ln
 
 
-PRINCIPAL_POINT_MARKER = dict(marker="+", color=palette.GREY, ms=10, mew=1, ls="none")
+# Drawn above the X0 diamond (zorder 4), so the + stays visible where X0 images on the principal point.
+PRINCIPAL_POINT_MARKER = dict(marker="+", color="0.3", ms=11, mew=1.2, ls="none", zorder=5)
 
 
-def model_legend(fig, models, reference=False, principal_point=False, **kw):
+def model_legend(fig, models, reference=False, principal_point=False, extra=(), **kw):
     """One legend above the figure naming each model's colour (drawn once, outside the data), the
-    X0 marker if ``reference`` and the principal point's if ``principal_point``."""
+    X0 marker if ``reference``, the principal point's if ``principal_point`` and ``extra`` handles."""
     handles = [Line2D([], [], color=COLOURS[m], ls=STYLES[m], lw=1.5, label=m) for m in models]
     if reference:
         handles.append(Line2D([], [], label=REFERENCE_LABEL, **REFERENCE_MARKER))
     if principal_point:
         handles.append(Line2D([], [], label="principal point", **PRINCIPAL_POINT_MARKER))
+    handles += list(extra)
     return fig.legend(handles=handles, loc="outside upper center", ncols=len(handles), fontsize=8, frameon=False, **kw)
 
 
@@ -100,10 +98,10 @@ def three_cameras():
     model_legend(view.fig, ("perspective", "weak perspective", "orthographic"), reference=True)
     view.animate(persp, ghost, weak, orth)
     X0 = scene.reshape(-1, 3).mean(axis=0)  # the weak-perspective camera's reference point (three_images)
-    references = [(view.animate(*reference_marker(ax, label=False)),) for ax in axes]  # the legend names it
+    references = [(view.animate(*reference_marker(ax)),) for ax in axes]  # the legend names it
     controls = {
-        "azimuth": slider(-40, -180, 180, 2, "azimuth (deg)"),
-        "elevation": slider(20, 0, 80, 1, "elevation (deg)"),
+        "azimuth": int_slider(-40, -180, 180, "azimuth (deg)", step=2),
+        "elevation": int_slider(20, 0, 80, "elevation (deg)"),
         "distance": slider(4.0, 2.0, 20.0, 0.25, "distance (m), dolly zoom"),
     }
 
@@ -135,26 +133,33 @@ def dolly_curves(offset: float, distances: np.ndarray) -> dict:
 APPROXIMATIONS = {"weak perspective": af.affine_approximation, "para-perspective": af.paraperspective_approximation}
 
 
+DOLLY_ERROR_LIMITS = (0.2, 60.0)  # px: every curve at every offset lies in 0.30 .. 40 px (tests/test_affine.py)
+
+
 def _dolly_error_axes(ax, distances):
-    """The dolly zoom's log-log error panel: one (empty) curve and one marker per affine model."""
+    """The dolly zoom's log-log error panel: one (empty) curve and one marker per affine model, a slope -1
+    guide and the 1 px line."""
     from matplotlib.ticker import NullLocator
 
     curves = {m: ax.loglog(distances, np.ones_like(distances), color=COLOURS[m], ls=STYLES[m], lw=1.5)[0]
               for m in APPROXIMATIONS}
-    ax.set_xlim(distances[0] / 1.08, distances[-1] * 1.08)  # room for the marker at the slider's ends
-    ax.set_ylim(0.005, 200)
+    ax.set_xlim(distances[0] / 1.15, distances[-1] * 1.15)  # room for the whole marker at the slider's ends
+    ax.set_ylim(*DOLLY_ERROR_LIMITS)
     ax.set_title("RMS distance to the perspective image", fontsize=9)
     ax.set_xlabel(f"distance d (m); focal length f = {F0:.0f} d / {D0:.0f} px", fontsize=8)
     ax.set_ylabel("RMS difference (px)", fontsize=8)
     ax.tick_params(labelsize=7)
     ax.axhline(1.0, color="0.5", lw=0.8, ls=":")
     ax.text(distances[-1], 1.15, "1 px", ha="right", va="bottom", fontsize=7, color="0.4")
+    ax.loglog(distances, 5.0 * distances[0] / distances, color=palette.GREY, lw=0.8, zorder=1)  # below the curves
+    ax.text(distances[0] * 1.05, DOLLY_ERROR_LIMITS[0] * 1.15, "grey: slope -1 (error ~ 1/d)", fontsize=7,
+            color="0.35", va="bottom")  # under the guide, which passes 0.3 px only beyond 30 m
     ax.grid(True, which="major", alpha=0.3)
     # Plain tick labels and no minor ticks: log axes' default mathtext labels cost ~20 ms a redraw.
-    for axis, ticks in ((ax.xaxis, [2, 5, 10, 20, 50, 100]), (ax.yaxis, [0.01, 0.1, 1, 10, 100])):
+    for axis, ticks in ((ax.xaxis, [2, 5, 10, 20, 50, 100]), (ax.yaxis, [0.3, 1, 3, 10, 30])):
         axis.set_minor_locator(NullLocator())
         axis.set_ticks(ticks, labels=[f"{t:g}" for t in ticks])
-    markers = {m: ax.plot([], [], "o", color=COLOURS[m], ms=7)[0] for m in APPROXIMATIONS}
+    markers = {m: ax.plot([], [], "o", color=COLOURS[m], ms=7, clip_on=False, zorder=3)[0] for m in APPROXIMATIONS}
     return curves, markers
 
 
@@ -178,7 +183,7 @@ def dolly_zoom():
         under[m] = model_line(ax, "perspective", lw=0.9, zorder=1.5)  # red under the affine cube, as in three_cameras
         lines[m] = model_line(ax, m, lw=1.6)
         ax.plot([319.5], [239.5], **PRINCIPAL_POINT_MARKER)
-        references[m] = reference_marker(ax, label=False)
+        references[m] = reference_marker(ax)
         # The readout sits under the axes, where no part of the cube can be.
         readouts[m] = ax.text(0.5, -0.12, "", transform=ax.transAxes, fontsize=8, ha="center", va="top")
     distances = np.geomspace(*DOLLY_DISTANCES, 60)
@@ -187,7 +192,9 @@ def dolly_zoom():
     view.animate(*under.values(), *lines.values(), *readouts.values(), *curves.values(), *markers.values())
     for artists in references.values():
         view.animate(*artists)
-    controls = {"distance": slider(D0, DOLLY_DISTANCES[0], DOLLY_DISTANCES[1], 0.2, "distance d (m)"),
+    # A log slider, as the error axis: the curves change fastest at a few metres.
+    controls = {"distance": log_slider(D0, DOLLY_DISTANCES[0], DOLLY_DISTANCES[1], 0.01, "distance d (m)",
+                                       readout_format=".3g"),
                 "offset": slider(DOLLY_OFFSET, 0, 100, 10, "cube right of centre (px)")}
     cache: dict = {}
 
@@ -238,7 +245,7 @@ def rail_cameras(yaw: float, pitch: float):
 def parallel_rails():
     """Parallel rails meet at a vanishing point in perspective; an affine image keeps them parallel,
     and keeps equal sleepers equal at every depth (no shrinking with distance)."""
-    view = FigureView(figsize=(10, 4.3))
+    view = FigureView(figsize=(10, 4.6))
     ax_p, ax_a = view.fig.subplots(1, 2)
     scene = scenes.rail_track(*RAIL_TRACK)
     ax_p.set_title("perspective: rails meet, far sleepers crowd", fontsize=9)
@@ -249,15 +256,26 @@ def parallel_rails():
         ax.tick_params(labelleft=ax is ax_p)
         lines.append(model_line(ax, model, lw=1.0))
         lines[-1].set_linestyle("-")  # dashes would break up sleepers a few pixels apart
-        # The readout sits under the axes, where no rail can run.
-        texts.append(ax.text(0.5, -0.11, "", transform=ax.transAxes, fontsize=8, family="monospace",
-                             ha="center", va="top"))
+        # Each readout sits where no rail runs at any yaw and pitch: above the horizon (>= 75 px below the
+        # top) in perspective, below the affine track (which ends above v = 310) in weak perspective.
+        at = (0.02, 0.975, "left", "top") if model == "perspective" else (0.5, 0.025, "center", "bottom")
+        texts.append(ax.text(at[0], at[1], "", transform=ax.transAxes, fontsize=8, family="monospace",
+                             ha=at[2], va=at[3]))
     ax_a.set_ylabel("")
     (vp,) = ax_p.plot([], [], "o", color=COLOURS["perspective"], ms=8, mfc="white", mew=2)
     (horizon,) = ax_p.plot([], [], color=palette.GREY, lw=0.8, ls="--")
-    view.animate(*lines, vp, horizon, *texts)
-    references = [view.animate(*reference_marker(ax)) for ax in (ax_p, ax_a)]  # where the two images agree
-    controls = {"yaw": slider(0, -15, 15, 1, "yaw (deg)"), "pitch": slider(15, 10, 18, 1, "pitch down (deg)")}
+    # The two metres of track the readouts measure (x = 0, from y to y + 1), thick and dark in both panels.
+    measured = [ax.plot([], [], color="0.1", lw=3.5, solid_capstyle="butt", zorder=3)[0] for ax in (ax_p, ax_a)]
+    view.animate(*lines, vp, horizon, *measured, *texts)
+    references = [(view.animate(*reference_marker(ax)),) for ax in (ax_p, ax_a)]  # where the two images agree
+    model_legend(view.fig, (), reference=True, extra=(
+        Line2D([], [], color="0.1", lw=3.5, label=f"the metres the readouts measure ({RAIL_SAMPLES[0]:.0f} and "
+                                                  f"{RAIL_SAMPLES[1]:.0f} m out)"),
+        Line2D([], [], marker="o", color=COLOURS["perspective"], ms=8, mfc="white", mew=2, ls="none",
+               label="vanishing point"),
+        Line2D([], [], color=palette.GREY, lw=0.8, ls="--", label="horizon")))
+    controls = {"yaw": int_slider(0, -15, 15, "yaw (deg, + turns right)"),
+                "pitch": int_slider(15, 10, 18, "pitch down (deg)")}
 
     def update(v, state):
         cam, P_aff = rail_cameras(*np.deg2rad([v["yaw"], v["pitch"]]))
@@ -274,6 +292,11 @@ def parallel_rails():
         x0 = cm.project_points(P_aff, RAIL_REFERENCE)
         for artists, xy in zip(references, (cam.project(RAIL_REFERENCE), x0)):
             place_reference(artists, xy)
+        ys = np.repeat(RAIL_SAMPLES, 2) + [0.0, 1.0, 0.0, 1.0]
+        ground = np.column_stack([np.zeros(4), ys, np.zeros(4)])
+        for line, P_ in zip(measured, (cam.P, P_aff)):
+            ends = cm.project_points(P_, ground)
+            line.set_data(*np.insert(ends, 2, np.nan, axis=0).T)
         gaps = {"perspective": scenes.sleeper_gaps(cam.P, RAIL_SAMPLES), "affine": scenes.sleeper_gaps(P_aff, RAIL_SAMPLES)}
         for text, (near, far) in zip(texts, gaps.values()):
             text.set_text(f"1 m of track: {near:5.1f} px at {RAIL_SAMPLES[0]:.0f} m, {far:5.1f} px at {RAIL_SAMPLES[1]:.0f} m")
@@ -285,7 +308,9 @@ def parallel_rails():
 
 RAY_DEPTH = 6.0  # d0: depth of the object's centre in the ray diagram (metres)
 RAY_IMAGE = 3.0  # where the ray diagram draws the image line (z, metres)
-RAY_OBJECT = np.array([[-0.8, -1.0], [0.8, -1.0], [0.8, 1.0], [-0.8, 1.0]])  # a 1.6 m x 2 m block about X0 (x, z)
+_TURN = np.radians(12.0)  # the block is turned, so rays parallel to the axis do not run along its sides
+RAY_OBJECT = np.array([[-0.8, -1.0], [0.8, -1.0], [0.8, 1.0], [-0.8, 1.0]]) @ np.array(
+    [[np.cos(_TURN), np.sin(_TURN)], [-np.sin(_TURN), np.cos(_TURN)]])  # a 1.6 m x 2 m block about X0 (x, z), metres
 
 
 def _joined(*polylines):
@@ -296,7 +321,7 @@ def _joined(*polylines):
 
 @register(lesson="05", sweep={"offset": [0.0, 1.0, 2.5]})
 def projection_rays():
-    """A top view of four camera models (after H&Z §6.3 and Szeliski fig. 2.7): how each sends the
+    """A top view of four camera models (after Szeliski fig. 2.7): how each sends the
     corners of a block to the image line. Move the block sideways: on the optical axis weak and
     para-perspective coincide; off it, para-perspective's rays run parallel to the line of sight to X0
     (drawn dashed), its viewing direction, as weak perspective's run parallel to the optical axis."""
@@ -304,7 +329,7 @@ def projection_rays():
     axes = view.fig.subplots(1, 4, sharey=True)
     artists = {}
     for ax, model in zip(axes, af.PROJECTION_MODELS):
-        ax.set_xlim(-1.0, 4.0)
+        ax.set_xlim(-1.3, 4.0)  # the turned block reaches x = -0.99 m at offset 0
         ax.set_ylim(-0.4, 7.4)
         ax.set_aspect("equal")
         ax.set_title(model, fontsize=9, color=COLOURS[model])
@@ -312,7 +337,8 @@ def projection_rays():
         ax.tick_params(labelsize=7)
         ax.axvline(0.0, color=palette.GREY, lw=0.6, ls=":")  # the optical axis
         ax.axhline(RAY_IMAGE, color="0.3", lw=1.0)  # the image line
-        ax.plot([0], [0], "o", color="0.2", ms=4)
+        if model != "orthographic":  # an orthographic camera has no centre (it is at infinity)
+            ax.plot([0], [0], "o", color="0.2", ms=4)
         if model in ("weak perspective", "para-perspective"):
             ax.axhline(RAY_DEPTH, color="0.4", lw=0.8, ls="--")  # the plane z = d0 (dark enough over the block)
         block = ax.fill([], [], color=palette.GREY, alpha=0.18, lw=0)[0]  # light: rays and the plane z = d0 cross it
@@ -327,7 +353,7 @@ def projection_rays():
     # perspective's are to the optical axis (the dotted vertical).
     sight = view.animate(axes[2].plot([], [], color="0.35", lw=0.9, ls=(0, (6, 3)), zorder=1.8)[0])
     axes[0].set_ylabel("depth z (m)", fontsize=8)
-    axes[0].set_yticks([0, RAY_IMAGE, RAY_DEPTH], labels=["camera 0", f"image {RAY_IMAGE:g}", f"d0 = {RAY_DEPTH:g}"])
+    axes[0].set_yticks([0, RAY_IMAGE, RAY_DEPTH], labels=["0: centre", f"{RAY_IMAGE:g}: image", f"{RAY_DEPTH:g}: d0"])
     controls = {"offset": slider(2.0, 0.0, 2.5, 0.25, "block's x offset (m)")}
 
     def update(v, state):

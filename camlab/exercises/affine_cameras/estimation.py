@@ -1,0 +1,379 @@
+"""Lesson 05's third exercise: the least-squares affine camera from noisy correspondences
+(see the package docstring)."""
+from __future__ import annotations
+
+import numpy as np
+
+from ... import affine as af
+from ... import camera as cm
+from .._core import Exercise, register_exercise, same_array, shape_problem
+
+
+# -- estimate_affine_camera -------------------------------------------------------------------
+
+_LSQ = "centre both point sets, M2^T = lstsq(X - mean(X), uv - mean(uv)), t2 = mean(uv) - M2 @ mean(X)"
+
+
+def _estimate_cases():
+    rng = np.random.default_rng(5)
+    out = []
+    for k in range(3):
+        R = cm.rotation_from_euler(*rng.uniform(-0.5, 0.5, 3))
+        P = af.weak_perspective_matrix(R, [0.1 * k, -0.2, 5.0], 160 + 20 * k, 150, 0.0, (320, 240))
+        X = rng.uniform(-1.0, 1.0, (10 + 5 * k, 3))
+        uv = cm.project_points(P, X) + rng.normal(0.0, 1.0, (len(X), 2))  # noisy: least squares matters
+        out.append((X, uv))
+    return out
+
+
+def _rms(X, P2, uv) -> float:
+    """RMS pixel residual of the top rows P2 = [M2 | t2] over the points."""
+    return float(np.sqrt(np.mean(np.sum((X @ P2[:, :3].T + P2[:, 3] - uv) ** 2, axis=1))))
+
+
+def _algebraic_fit(X, uv):
+    """The homogeneous system [X 1 0 -u; 0 X 1 -v] h = 0 with a 9th unknown (the scale) solved by SVD, as for
+    the DLT: it minimises an algebraic error, not the pixel error."""
+    n = len(X)
+    A = np.zeros((2 * n, 9))
+    A[0::2, :3], A[0::2, 3], A[0::2, 8] = X, 1.0, -uv[:, 0]
+    A[1::2, 4:7], A[1::2, 7], A[1::2, 8] = X, 1.0, -uv[:, 1]
+    h = np.linalg.svd(A)[2][-1]
+    return h[:8].reshape(2, 4) / h[8]
+
+
+def _estimate_forms(X, uv, expected):
+    """(top rows, cause) for answers that are the least-squares numbers, rearranged or from a wrong fit."""
+    Xm, um = X.mean(axis=0), uv.mean(axis=0)
+    M2, t2 = expected[:2, :3], expected[:2, 3]
+    ones_last = expected[:2].T  # lstsq(np.c_[X, ones], uv)[0]: (4, 2), rows M2^T then t2
+    ones_first = np.vstack([t2, M2.T])
+    centred_pixels_only = np.linalg.lstsq(X, uv - um, rcond=None)[0].T
+    return [
+        (ones_last.reshape(2, 4), "P's top rows are scrambled: lstsq with a column of ones returns the (4, 2) "
+                                  "matrix [M2 | t2]^T; transpose it (.T), do not reshape it to (2, 4)."),
+        (np.c_[t2, M2], "your first column holds t2: with the column of ones first, np.c_[ones, X], lstsq's first "
+                        "row is the translation; put the ones last (np.c_[X, ones]), or move that row: "
+                        "P[:2] = np.c_[A[1:].T, A[0]]."),
+        (ones_first.reshape(2, 4), "P's top rows are scrambled twice: with the column of ones first, lstsq's first "
+                                   "row is t2, and its (4, 2) result needs a transpose (.T), not a reshape."),
+        (np.c_[centred_pixels_only, um - centred_pixels_only @ Xm],
+         "you centred the pixels but not the world points: with no constant term, regressing uv - mean(uv) on the "
+         "raw X makes M2 absorb X's mean; centre X too (X - mean(X)), or append a column of ones to X."),
+        (np.c_[centred_pixels_only, np.zeros(2)],
+         "you centred the pixels but not the world points, and left t2 at 0: centre X too, then "
+         "t2 = mean(uv) - M2 @ mean(X)."),
+        (np.c_[centred_pixels_only, um],
+         "you centred the pixels but not the world points: centre X too (X - mean(X)); then "
+         "t2 = mean(uv) - M2 @ mean(X)."),
+        (_algebraic_fit(X, uv),
+         "you minimised an algebraic error: the homogeneous system [X, 1, 0, -u; 0, X, 1, -v] h = 0 with the scale "
+         "as a 9th unknown, solved by SVD as for the DLT, is close to the least-squares camera but not it. An "
+         "affine camera's pixels are linear in its 8 entries, so solve the inhomogeneous system [X, 1] m = u by "
+         "least squares (np.linalg.lstsq) for the pixel error itself."),
+    ]
+
+
+def _estimate_diagnosis(args, got, expected) -> str:
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + ". Return the 3x4 affine camera with last row (0, 0, 0, 1)."
+    X, uv = args
+    g = np.asarray(got, dtype=float)
+    if not np.allclose(g[2], [0.0, 0.0, 0.0, 1.0], atol=1e-9):
+        k = g[2, 3]
+        if np.allclose(g[2, :3], 0.0, atol=1e-9) and abs(k) > 1e-12 and np.allclose(g / k, expected, atol=1e-6):
+            return (f"your camera is {k:.4g} times the least-squares one: the same camera projectively, but an "
+                    f"affine camera's last row is fixed to (0, 0, 0, 1); divide by its last entry.")
+        return "the last row of an affine camera is (0, 0, 0, 1); estimate only the top 2x4 block (8 numbers)."
+    for top, cause in _estimate_forms(X, uv, expected):
+        if np.allclose(g[:2], top, rtol=1e-9, atol=1e-7):  # strict: the algebraic fit is within 1e-5 of the answer
+            return cause
+    M2, t2 = g[:2, :3], g[:2, 3]
+    M2_expected, t2_expected = expected[:2, :3], expected[:2, 3]
+    Xm, um = X.mean(axis=0), uv.mean(axis=0)
+    for wrong_mean, cause in ((_fit_centred(X, uv, X.mean(axis=1, keepdims=True), uv.mean(axis=1, keepdims=True)),
+                               "you averaged along axis=1, each point's own coordinates (x, y, z): the centroid of "
+                               "N points is X.mean(axis=0), one mean per coordinate"),
+                              (_fit_centred(X, uv, X.mean(), uv.mean()),
+                               "you took the mean of every entry together (X.mean() with no axis), a single number: "
+                               "the centroid is X.mean(axis=0), one mean per coordinate")):
+        if np.allclose(M2, wrong_mean, atol=1e-6):
+            return cause + "; then t2 = mean(uv) - M2 @ mean(X)."
+    if np.linalg.matrix_rank(M2, tol=1e-9 * max(np.abs(M2).max(), 1e-300)) < 2:
+        return ("M2 has rank < 2 (its rows are parallel or zero), so every point would image onto one line: each "
+                "row of M2 is fitted to its own pixel coordinate; did you fit the same column of uv twice, or "
+                "broadcast one row?")
+    if np.allclose(M2, M2_expected.T.reshape(2, 3), atol=1e-6):
+        return "M2 is scrambled: lstsq returns the (3, 2) matrix M2^T; transpose it (.T), do not reshape it to (2, 3)."
+    if np.allclose(g[:2], expected[1::-1], atol=1e-6):
+        return "u and v are swapped: uv[:, 0] is u (the column), uv[:, 1] is v (the row), and row 1 of P predicts u."
+    if np.allclose(M2, np.linalg.lstsq(uv - um, X - Xm, rcond=None)[0], atol=1e-6):
+        return ("you regressed the world points on the pixels (lstsq(uv, X)); the camera predicts pixels from "
+                "points: lstsq(X - mean(X), uv - mean(uv)) gives M2^T.")
+    if np.allclose(M2, np.linalg.lstsq(X, uv, rcond=None)[0].T, atol=1e-6):
+        return ("you regressed the pixels on the raw world points, so the fit had no constant term and M2 absorbed "
+                "the offset: centre both point sets first (or append a column of ones to X).")
+    if np.allclose(M2, M2_expected, atol=1e-6):
+        return _translation_cause(t2, t2_expected, um, M2 @ Xm)
+    return _estimate_other_cause(g, expected, X, uv)
+
+
+def _estimate_other_cause(g, expected, X, uv) -> str:
+    """Unit slips, a lost normalisation, a DLT, an exact fit to a few points, rounding; else what differs."""
+    scale = _image_scaling(g, expected, X)
+    if scale is not None and (np.isclose(scale, 1e-3, rtol=1e-4) or np.isclose(scale, 1e3, rtol=1e-4)):
+        small = scale < 1
+        return (f"your camera's image is {scale:g} times the size of the least-squares one: a unit slip by 1000 "
+                f"(metres and millimetres). The world points X are in metres and the pixels uv in pixels; fit them "
+                f"as they are ({'X * 1000 or uv / 1000' if small else 'X / 1000 or uv * 1000'} gives this).")
+    if scale is not None:
+        return (f"your camera's image is the least-squares one scaled by {scale:.4g} (and shifted): did you "
+                f"normalise the points (divide by their spread) and not undo it? Map the fitted camera back: "
+                f"P = T_uv^-1 P_normalised T_X.")
+    if _same_up_to_scale(g[:2], cm.estimate_projection_matrix(X, uv)[:2]):
+        return ("this is a projective camera (DLT) with its last row overwritten: it does not minimise the pixel "
+                "error of an affine camera; fit the 8 affine parameters directly by linear least squares.")
+    exact = np.linalg.norm(X @ g[:2, :3].T + g[:2, 3] - uv, axis=1) < 1e-6
+    if exact.sum() >= 4:
+        return (f"your camera passes exactly through {int(exact.sum())} of the {len(X)} noisy points: an exact solve "
+                f"on a few of them (np.linalg.solve on 4 points?) fits their noise too. Use all the points in one "
+                f"least-squares solve: {_LSQ}.")
+    for decimals in range(5):
+        if np.allclose(g, np.round(expected, decimals), rtol=0, atol=1e-9):
+            step = "whole numbers" if decimals == 0 else f"{decimals} decimals"
+            return (f"your entries are the least-squares ones rounded to {step}; return them unrounded: rounding "
+                    f"an entry of M2 by up to {0.5 * 10.0 ** -decimals:g} moves the image of a point 1 m from the "
+                    f"centroid by as many pixels.")
+    for order in ((0, 2, 1), (1, 0, 2), (1, 2, 0), (2, 0, 1), (2, 1, 0)):
+        if np.allclose(g[:2, :3][:, order], expected[:2, :3], rtol=1e-9, atol=1e-7):
+            return (f"the columns of M2 are in the order {order} of the right ones: column j of M2 multiplies "
+                    f"coordinate j of X (x, y, z); keep X's columns in that order in the fit and in P.")
+    r_got, r_exp = _rms(X, g[:2], uv), _rms(X, expected[:2], uv)
+    dM = np.abs(g[:2, :3] - expected[:2, :3])
+    r, c = np.unravel_index(int(np.argmax(dM)), dM.shape)
+    du, dv = g[:2, 3] - expected[:2, 3]
+    return (f"M2 differs from the least-squares one by up to {dM[r, c]:.4g} (entry ({r}, {c}): {g[r, c]:.6g} for "
+            f"{expected[r, c]:.6g}), t2 by ({du:+.4g}, {dv:+.4g}) px. Over the {len(X)} points your camera's RMS "
+            f"residual is {r_got:.6f} px against the least-squares minimum {r_exp:.6f} px ({r_got - r_exp:.2g} px "
+            f"more): the least-squares camera is the one with the smallest residual, and yours is not it. "
+            f"Compare your steps with: {_LSQ}.")
+
+
+def _translation_cause(t2, t2_expected, um, M2Xm) -> str:
+    """Why t2 is wrong when M2 is right."""
+    if np.allclose(t2, um + M2Xm, atol=1e-6):
+        return "t2 has a sign flipped: the centroids correspond, mean(uv) = M2 @ mean(X) + t2, so t2 = mean(uv) - M2 @ mean(X)."
+    if np.allclose(t2, um, atol=1e-6):
+        return ("t2 = mean(uv) is the translation column for the centred points X - mean(X); for the world points "
+                "themselves subtract M2's image of their centroid: t2 = mean(uv) - M2 @ mean(X).")
+    if np.allclose(t2, 0.0, atol=1e-9):
+        return ("the translation column is zero: after fitting M2 on centred points, the centroids must "
+                "correspond, t2 = mean(uv) - M2 @ mean(X).")
+    offset = t2 - t2_expected
+    if np.allclose(np.abs(offset), 0.5, atol=1e-6):
+        return ("t2 is off by half a pixel: pixel centres are at integers (docs/conventions.md), so no 0.5 "
+                "belongs in the fit; t2 = mean(uv) - M2 @ mean(X).")
+    if np.allclose(np.abs(offset), 1.0, atol=1e-6):
+        return ("t2 is off by one pixel: pixels count from 0 in numpy and this course, not from 1 (a 1-based "
+                "index?); fit the pixels as given, t2 = mean(uv) - M2 @ mean(X).")
+    return (f"M2 is right but the translation column is off by ({offset[0]:+.4g}, {offset[1]:+.4g}) px: after "
+            f"fitting M2 on centred points, the centroids must correspond, t2 = mean(uv) - M2 @ mean(X).")
+
+
+def _estimate_exception_hint(exc, args) -> str:
+    if isinstance(exc, np.linalg.LinAlgError) and "square" in str(exc):
+        X = np.asarray(args[0])
+        return (f"np.linalg.solve (and np.linalg.inv) need a square system, but {len(X)} points give "
+                f"{2 * len(X)} equations for 8 unknowns (or {len(X)} rows per pixel coordinate): the system is "
+                f"over-determined. Solve it by least squares, np.linalg.lstsq(A, b, rcond=None)[0] (or the normal "
+                f"equations np.linalg.solve(A.T @ A, A.T @ b)).")
+    return ""
+
+
+def _fit_centred(X, uv, X_mean, uv_mean):
+    """M2 fitted after subtracting the given (possibly wrong) means."""
+    return np.linalg.lstsq(X - X_mean, uv - uv_mean, rcond=None)[0].T
+
+
+def _image_scaling(got, expected, X):
+    """s if ``got`` images every point at s (expected's image) + b for one scalar s != 1, else None."""
+    a, b = X @ got[:2, :3].T + got[:2, 3], X @ expected[:2, :3].T + expected[:2, 3]
+    A = np.column_stack([b.ravel(), np.tile(np.eye(2), (len(X), 1))])
+    sol, *_ = np.linalg.lstsq(A, a.ravel(), rcond=None)
+    if np.allclose(A @ sol, a.ravel(), atol=1e-6) and not np.isclose(sol[0], 1.0, rtol=1e-6):
+        return float(sol[0])
+    return None
+
+
+def _same_up_to_scale(a, b) -> bool:
+    a, b = np.ravel(a), np.ravel(b)
+    k = (a @ b) / (b @ b) if b @ b > 0 else 0.0
+    return bool(k != 0 and np.allclose(a, k * b, atol=1e-6 * np.abs(a).max()))
+
+
+def _as_camera(top):
+    return np.vstack([top, [0.0, 0.0, 0.0, 1.0]])
+
+
+def _estimate_with_ones(X, uv):
+    """A right answer in another form: one lstsq with a column of ones, no centring."""
+    return _as_camera(np.linalg.lstsq(np.c_[X, np.ones(len(X))], uv, rcond=None)[0].T)
+
+
+def _estimate_ones_reshaped(X, uv):
+    return _as_camera(np.linalg.lstsq(np.c_[X, np.ones(len(X))], uv, rcond=None)[0].reshape(2, 4))
+
+
+def _estimate_ones_first(X, uv):
+    return _as_camera(np.linalg.lstsq(np.c_[np.ones(len(X)), X], uv, rcond=None)[0].T)
+
+
+def _estimate_centred_pixels_only(X, uv):
+    um = uv.mean(axis=0)
+    M2 = np.linalg.lstsq(X, uv - um, rcond=None)[0].T
+    return _as_camera(np.c_[M2, um - M2 @ X.mean(axis=0)])
+
+
+def _estimate_centred_points_only(X, uv):
+    """lstsq(np.c_[X - mean(X), ones], uv): M2 right, t2 = mean(uv), the translation for centred points."""
+    A = np.linalg.lstsq(np.c_[X - X.mean(axis=0), np.ones(len(X))], uv, rcond=None)[0].T
+    return _as_camera(A)
+
+
+def _estimate_solve(X, uv):
+    A = np.c_[X, np.ones(len(X))]
+    return _as_camera(np.linalg.solve(A, uv).T)
+
+
+def _estimate_reshaped(X, uv):
+    Xm, um = X.mean(axis=0), uv.mean(axis=0)
+    M2 = np.linalg.lstsq(X - Xm, uv - um, rcond=None)[0].reshape(2, 3)
+    return _as_camera(np.c_[M2, um - M2 @ Xm])
+
+
+def _estimate_uncentred(X, uv):
+    M2 = np.linalg.lstsq(X, uv, rcond=None)[0].T
+    return _as_camera(np.c_[M2, uv.mean(axis=0) - M2 @ X.mean(axis=0)])
+
+
+def _estimate_no_translation(X, uv):
+    return _as_camera(np.c_[af.estimate_affine_camera(X, uv)[:2, :3], np.zeros(2)])
+
+
+def _estimate_dlt_last_row_forced(X, uv):
+    P = cm.estimate_projection_matrix(X, uv)
+    P[2] = [0.0, 0.0, 0.0, 1.0]
+    return P
+
+
+def _estimate_t2_sign(X, uv):
+    P = af.estimate_affine_camera(X, uv)
+    P[:2, 3] = uv.mean(axis=0) + P[:2, :3] @ X.mean(axis=0)
+    return P
+
+
+def _estimate_shifted(shift):
+    return lambda X, uv: af.estimate_affine_camera(X, uv) + np.c_[np.zeros((3, 3)), [shift, shift, 0.0]]
+
+
+def _estimate_scaling_not_undone(X, uv):
+    um, s = uv.mean(axis=0), uv.std()
+    return af.estimate_affine_camera(X, (uv - um) / s)
+
+
+def _estimate_points_on_pixels(X, uv):
+    Xm, um = X.mean(axis=0), uv.mean(axis=0)
+    M2 = np.linalg.lstsq(uv - um, X - Xm, rcond=None)[0]
+    return _as_camera(np.c_[M2, um - M2 @ Xm])
+
+
+def _estimate_rank_two(X, uv):
+    P = af.estimate_affine_camera(X, uv)
+    P[1, :3] = P[0, :3]   # the same row fitted twice
+    return P
+
+
+def _estimate_centred_in_place(X, uv):
+    """Right numbers, but centres the caller's arrays in place (X -= ..., uv -= ...)."""
+    Xm, um = X.mean(axis=0), uv.mean(axis=0)
+    X -= Xm
+    uv -= um
+    M2 = np.linalg.lstsq(X, uv, rcond=None)[0].T
+    return _as_camera(np.c_[M2, um - M2 @ Xm])
+
+
+def _estimate_mean_axis_1(X, uv):
+    Xm, um = X.mean(axis=1, keepdims=True), uv.mean(axis=1, keepdims=True)
+    M2 = np.linalg.lstsq(X - Xm, uv - um, rcond=None)[0].T
+    return _as_camera(np.c_[M2, uv.mean(axis=0) - M2 @ X.mean(axis=0)])
+
+
+def _estimate_mean_of_everything(X, uv):
+    Xm, um = X.mean(), uv.mean()
+    M2 = np.linalg.lstsq(X - Xm, uv - um, rcond=None)[0].T
+    return _as_camera(np.c_[M2, um - M2 @ np.full(3, Xm)])
+
+
+def _estimate_scaled_orthographic(X, uv):
+    """M2 forced to equal-length orthogonal rows (another camera model): the fallback says what differs."""
+    P = af.estimate_affine_camera(X, uv)
+    U, s, Vt = np.linalg.svd(P[:2, :3], full_matrices=False)
+    P[:2, :3] = s.mean() * U @ Vt
+    return P
+
+
+def estimate_affine_camera(X, uv):
+    """Least-squares affine camera (H&Z algorithm 7.2): centre both point sets, then solve for M2."""
+    Xm, um = X.mean(axis=0), uv.mean(axis=0)
+    M2 = np.linalg.lstsq(X - Xm, uv - um, rcond=None)[0].T   # (2, 3): uv - um = M2 (X - Xm)
+    P = np.zeros((3, 4))
+    P[:2, :3], P[:2, 3] = M2, um - M2 @ Xm                   # the centroids correspond
+    P[2, 3] = 1.0
+    return P
+
+
+register_exercise(Exercise(
+    name="estimate_affine_camera",
+    lesson="05",
+    reference=af.estimate_affine_camera,
+    cases=_estimate_cases,
+    compare=same_array(rtol=1e-7, atol=1e-7),
+    diagnose=_estimate_diagnosis,
+    exception_hint=_estimate_exception_hint,
+    ndarray_only=True,
+    wrong_variants=(
+        (lambda X, uv: af.estimate_affine_camera(X[:4], uv[:4]), "passes exactly through 4"),
+        (lambda X, uv: cm.estimate_projection_matrix(X, uv), "last row of an affine camera"),
+        (_estimate_reshaped, "transpose it"),
+        (_estimate_ones_reshaped, "do not reshape it to (2, 4)"),
+        (_estimate_ones_first, "your first column holds t2"),
+        (lambda X, uv: _as_camera(np.linalg.lstsq(np.c_[np.ones(len(X)), X], uv, rcond=None)[0].reshape(2, 4)),
+         "scrambled twice"),
+        (_estimate_centred_pixels_only, "centred the pixels but not the world points"),
+        (_estimate_centred_points_only, "translation column for the centred points"),
+        (_estimate_solve, "over-determined"),
+        (lambda X, uv: _as_camera(_algebraic_fit(X, uv)), "algebraic error"),
+        (_estimate_uncentred, "centre both point sets"),
+        (_estimate_no_translation, "translation column is zero"),
+        (_estimate_dlt_last_row_forced, "last row overwritten"),
+        (lambda X, uv: af.estimate_affine_camera(X, uv[:, ::-1]), "u and v are swapped"),
+        (_estimate_t2_sign, "sign flipped"),
+        (_estimate_shifted(0.5), "half a pixel"),
+        (_estimate_scaling_not_undone, "not undo it"),
+        (_estimate_points_on_pixels, "regressed the world points on the pixels"),
+        (_estimate_rank_two, "rank < 2"),
+        (_estimate_centred_in_place, "changed its input `X`, `uv` in place"),
+        (lambda X, uv: af.estimate_affine_camera(1000 * X, uv), "unit slip by 1000"),
+        (lambda X, uv: af.estimate_affine_camera(X, 1000 * uv), "unit slip by 1000"),
+        (lambda X, uv: af.estimate_affine_camera(X, uv + 1), "off by one pixel"),
+        (lambda X, uv: -af.estimate_affine_camera(X, uv), "-1 times the least-squares one"),
+        (_estimate_mean_axis_1, "axis=1"),
+        (_estimate_mean_of_everything, "no axis"),
+        (lambda X, uv: np.round(af.estimate_affine_camera(X, uv), 2), "rounded to 2 decimals"),
+        (lambda X, uv: af.estimate_affine_camera(X, uv)[:, [1, 0, 2, 3]], "columns of M2 are in the order"),
+        (_estimate_scaled_orthographic, "RMS residual is"),
+        (lambda X, uv: af.estimate_affine_camera(X, uv).tolist(), "you returned a list"),
+    ),
+    teaching=estimate_affine_camera,
+))
