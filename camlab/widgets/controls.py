@@ -167,9 +167,3 @@ def connect_corner_drag(view: FigureView, ax: Any, control: W.Text, get_corners:
         view.fig.canvas.mpl_connect(name, fn)
     return handlers
 
-
-def on_top(view: FigureView, ax: Any) -> None:
-    """Draw the axes' spines (and legend) after the animated image, so it cannot hide them."""
-    view.animate(*ax.spines.values())
-    if ax.get_legend() is not None:
-        view.animate(ax.get_legend())
