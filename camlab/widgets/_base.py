@@ -32,6 +32,16 @@ from matplotlib.spines import Spine
 from ..plotting.static import demo_alt_text, static_bundle
 from ._transport import halo_in_two_passes, show_at_display_resolution, use_fast_png
 from .controls import slider as slider  # re-exported: every demo module imports it from here
+from .controls import whole_label
+
+
+MAX_DEMO_WIDTH_PX = 960
+"""The widest a demo may be, controls or figure: JupyterLab's output area is 968 px wide in a
+1400 px window with the file browser open (measured in headless Chromium, issue 28)."""
+PANEL_WIDTH_PX = 300
+"""The width of the controls' column (every slider is 300 px wide: :mod:`.controls`)."""
+CANVAS_FRAME_PX = 8
+"""What ipympl's canvas widget adds to its figure's width (measured: 908 px for a 900 px figure)."""
 
 
 def display_mode() -> str:
@@ -67,6 +77,11 @@ class FigureView:
     """
 
     def __init__(self, figsize: tuple[float, float] = (8, 4), mode: str | None = None, dpi: float = 90):
+        widest = (MAX_DEMO_WIDTH_PX - CANVAS_FRAME_PX) / dpi
+        if figsize[0] > widest:
+            raise ValueError(f"FigureView: expected a figure at most {widest:.2f} in wide at {dpi:g} dpi "
+                             f"({MAX_DEMO_WIDTH_PX} px with the canvas frame, the output area of JupyterLab at 1400 px "
+                             f"with the file browser open), got figsize {tuple(figsize)}; make it narrower")
         self.mode = mode or display_mode()
         self._animated: list[Any] = []
         self._background = None
@@ -266,6 +281,11 @@ def build_demo(
     :func:`~camlab.widgets.controls.corner_keys` write the corners text): they are shown,
     set and swept like controls but not observed, so each change updates the figure once.
 
+    The controls' column (each control showing its whole label: :func:`.controls.whole_label`)
+    sits beside the figure where the output area is wide enough for both, and the figure wraps
+    under it where not; so a demo needs only its wider part, at most :data:`MAX_DEMO_WIDTH_PX`
+    (a :class:`FigureView` refuses a wider figure).
+
     A demo never dies: a control holding NaN, or a change that makes ``update`` (or the
     redraw) raise, is reported under the controls naming the control (``Demo.problem``),
     and the figure and ``state`` stay at the last settings that worked. Only the first
@@ -277,10 +297,10 @@ def build_demo(
     panel: list[W.Widget] = []
     if title:
         panel.append(W.HTML(f"<b>{title}</b>"))
-    panel += list(demo_controls.values()) + [problem_line] + list(extra)  # the problem under the controls
+    panel += [whole_label(c) for c in demo_controls.values()] + [problem_line] + list(extra)  # the problem under them
     box = W.HBox(
-        [W.VBox(panel, layout=W.Layout(min_width="300px")), view.widget],
-        layout=W.Layout(align_items="flex-start"),
+        [W.VBox(panel, layout=W.Layout(flex=f"1 1 {PANEL_WIDTH_PX}px", min_width="min-content")), view.widget],
+        layout=W.Layout(align_items="flex-start", flex_flow="row wrap"),  # the figure goes under the controls if need be
     )
     box.add_class(f"camlab-demo-{name.replace('_', '-')}")
     demo = Demo(name=name, widget=box, controls=demo_controls, view=view, state=state)
