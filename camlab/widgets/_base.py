@@ -29,19 +29,16 @@ from matplotlib.figure import Figure
 from matplotlib.image import AxesImage
 from matplotlib.spines import Spine
 
-from ..plotting.static import demo_alt_text, static_bundle
+from ..plotting.static import CANVAS_FRAME_PX, OUTPUT_WIDTH_PX, demo_alt_text, static_bundle
 from ._transport import halo_in_two_passes, show_at_display_resolution, use_fast_png
 from .controls import slider as slider  # re-exported: every demo module imports it from here
 from .controls import whole_label
 
 
-MAX_DEMO_WIDTH_PX = 960
-"""The widest a demo may be, controls or figure: JupyterLab's output area is 968 px wide in a
-1400 px window with the file browser open (measured in headless Chromium, issue 28)."""
+MAX_DEMO_WIDTH_PX = OUTPUT_WIDTH_PX
+"""The widest a demo may be, its controls or its figure (:data:`camlab.plotting.static.OUTPUT_WIDTH_PX`)."""
 PANEL_WIDTH_PX = 300
 """The width of the controls' column (every slider is 300 px wide: :mod:`.controls`)."""
-CANVAS_FRAME_PX = 8
-"""What ipympl's canvas widget adds to its figure's width (measured: 908 px for a 900 px figure)."""
 
 
 def display_mode() -> str:
