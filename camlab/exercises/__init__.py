@@ -20,9 +20,10 @@ import pkgutil
 from ._core import (EXERCISES, Exercise, check, register_exercise, same_array, same_up_to_scale, shape_problem,
                     type_problem, unit_slip, worst_mismatch)
 from ._core import solution as _solution
+from ._core import solution_source as _solution_source
 
 __all__ = ["EXERCISES", "Exercise", "all_exercises", "check", "register_exercise", "same_array", "same_up_to_scale",
-           "shape_problem", "solution", "type_problem", "unit_slip", "worst_mismatch"]
+           "shape_problem", "solution", "solution_source", "type_problem", "unit_slip", "worst_mismatch"]
 
 
 def all_exercises() -> dict[str, Exercise]:
@@ -33,11 +34,21 @@ def all_exercises() -> dict[str, Exercise]:
     return dict(EXERCISES)
 
 
-def solution(name: str) -> str:
-    """Print (and return) the teaching solution of exercise ``name`` (numpy only)."""
+def _known(name: str, caller: str) -> None:
     if name not in all_exercises():
-        raise KeyError(f"solution: no exercise {name!r}; exercises are {sorted(EXERCISES)}")
-    return _solution(name)
+        raise KeyError(f"{caller}: no exercise {name!r}; exercises are {sorted(EXERCISES)}")
+
+
+def solution(name: str) -> None:
+    """Print the teaching solution of exercise ``name`` (numpy only); returns None, so it shows once."""
+    _known(name, "solution")
+    _solution(name)
+
+
+def solution_source(name: str) -> str:
+    """The text :func:`solution` prints, for tools and tests."""
+    _known(name, "solution_source")
+    return _solution_source(name)
 
 
 def __getattr__(attr: str):
