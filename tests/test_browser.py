@@ -16,11 +16,24 @@ sys.path.insert(0, str(REPO / "tools"))
 import browser  # noqa: E402
 
 
+def write_every_demo_notebook(path: Path) -> None:
+    """A notebook that shows every registered demo, one per cell, live (``%matplotlib widget``)."""
+    import nbformat
+
+    from camlab.widgets import all_demos
+
+    cells = [nbformat.v4.new_code_cell("%matplotlib widget\nfrom camlab.widgets import all_demos\nDEMOS = all_demos()")]
+    cells += [nbformat.v4.new_code_cell(f"DEMOS[{name!r}].builder()") for name in sorted(all_demos())]
+    kernel = {"name": "python3", "display_name": "Python 3 (ipykernel)", "language": "python"}
+    nbformat.write(nbformat.v4.new_notebook(cells=cells, metadata={"kernelspec": kernel}), path)
+
+
 @pytest.fixture(scope="module")
 def lab(tmp_path_factory):
     browser.require_chromium()
     base = tmp_path_factory.mktemp("lab")
     shutil.copytree(REPO / "lessons", base / "root" / "lessons")
+    write_every_demo_notebook(base / "root" / "every_demo.ipynb")
     with browser.jupyterlab(base / "root", base) as lab:
         yield lab
 
@@ -69,3 +82,49 @@ def test_lesson_06_runs_and_a_slider_moves_the_figure(lab):
     assert live_canvases >= 6, f"expected the 6 live figures of lesson 06, found {live_canvases} canvases"
     assert sliders >= 10 and unnamed == 0, f"{unnamed} of {sliders} slider handles have no accessible name"
     assert focused_before and not still_in_figure, "Tab does not leave a focused figure (a keyboard trap)"
+
+
+MEASURE_DEMOS = """() => [...document.querySelectorAll('[class*=camlab-demo-]')].map((demo) => {
+  const out = demo.closest('.jp-OutputArea-output'), canvas = demo.querySelector('canvas');
+  const [panel, figure] = demo.children, a = panel.getBoundingClientRect(), b = figure.getBoundingClientRect();
+  const overlap = Math.max(0, Math.min(a.right, b.right) - Math.max(a.left, b.left))
+                * Math.max(0, Math.min(a.bottom, b.bottom) - Math.max(a.top, b.top));
+  return {name: [...demo.classList].find((c) => c.startsWith('camlab-demo-')), area: out.clientWidth,
+          needs: demo.scrollWidth, canvasRight: canvas ? canvas.getBoundingClientRect().right : null,
+          areaRight: out.getBoundingClientRect().right, panelNeeds: panel.scrollWidth, panel: panel.clientWidth,
+          overlap: overlap};
+})"""
+
+
+def test_every_demo_fits_at_1400_px_with_the_file_browser_open(lab):
+    """Nothing clipped in JupyterLab's output area at a 1400 px window with the file browser open
+    (968 px): the controls and the figure sit side by side where both fit, else the figure wraps
+    under the controls (issue 28: demos 1100 px wide were cut off on the right)."""
+    from playwright.sync_api import sync_playwright
+
+    from camlab.widgets import all_demos
+
+    with sync_playwright() as p:
+        context = browser.launch(p, lab["profile"])  # a 1400 x 1000 window
+        try:
+            page = context.new_page()
+            page.set_default_timeout(180_000)
+            browser.run_notebook(page, lab, "every_demo.ipynb")
+            page.wait_for_function(browser.ALL_CELLS_RUN, polling=500)
+            if page.evaluate("() => document.querySelector('#jp-left-stack').getBoundingClientRect().width") < 100:
+                page.evaluate("() => window.jupyterapp.commands.execute('filebrowser:activate')")
+            page.wait_for_function("() => document.querySelector('#jp-left-stack').getBoundingClientRect().width > 200")
+            for demo in page.locator("[class*=camlab-demo-]").all():  # drawn only once scrolled into view
+                demo.scroll_into_view_if_needed()
+                demo.locator("canvas").first.wait_for(state="visible")
+            page.wait_for_timeout(1000)
+            measured = page.evaluate(MEASURE_DEMOS)
+        finally:
+            context.close()
+    assert len(measured) == len(all_demos())
+    assert all(940 <= m["area"] <= 1000 for m in measured), f"not the setting of the check: {measured[:2]}"
+    clipped = [f"{m['name']}: needs {m['needs']} px, canvas ends at {m['canvasRight']} of {m['areaRight']:.0f}, "
+               f"controls need {m['panelNeeds']} of {m['panel']} px, {m['overlap']:.0f} px2 under the figure"
+               for m in measured if m["needs"] > m["area"] or m["canvasRight"] is None
+               or m["canvasRight"] > m["areaRight"] + 1 or m["panelNeeds"] > m["panel"] + 1 or m["overlap"] > 0]
+    assert not clipped, "demos clipped at 1400 px with the file browser open:\n  " + "\n  ".join(clipped)

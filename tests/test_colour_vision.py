@@ -143,3 +143,33 @@ def test_palette_series_stays_apart_for_every_vision():
     for c1, c2 in itertools.combinations(palette.SERIES, 2):
         for vision in VISIONS:
             assert delta_e(c1, c2, vision) >= MIN_DELTA_E, f"{c1} vs {c2} merge for {vision}"
+
+
+def test_every_camera_frame_has_one_colour_code():
+    """x red, y green, z blue (palette.AXIS_COLOURS) in lesson 00's camera frame, lesson 04's 3-D
+    cameras and world axes, and the camera_explorer/opencv_vs_opengl demos: one code for the course,
+    and colours that stay apart for every vision (the tab: colours did not, red against green)."""
+    import matplotlib.pyplot as plt
+
+    from camlab import camera as cm
+    from camlab.plotting import conventions, palette, scene3d
+
+    def axis_colours(texts) -> dict[str, str]:
+        return {t.get_text().split(",")[0].strip().lower(): to_rgba(t.get_color()) for t in texts
+                if t.get_text().split(",")[0].strip().lower() in ("x", "y", "z")}
+
+    want = {name: to_rgba(c) for name, c in zip("xyz", palette.AXIS_COLOURS)}
+    fig = plt.figure()
+    ax2 = fig.add_subplot(1, 2, 1)
+    conventions.draw_camera_frame(ax2)
+    frame = axis_colours(ax2.texts)  # "x, right", "y, down", "z, forward: into the page ..."
+    ax3 = scene3d.axes3d(fig, 1, 2, 2)
+    world = scene3d.draw_world_axes(ax3)
+    camera = scene3d.CameraArtist(ax3, cm.Camera.look_at([2.0, -2.0, 1.0], [0.0, 0.0, 0.0]))
+    plt.close(fig)
+    assert frame == want
+    assert axis_colours(camera.axes_text) == want
+    assert axis_colours([a for a in world if hasattr(a, "get_text")]) == want
+    for c1, c2 in itertools.combinations(palette.AXIS_COLOURS, 2):
+        for vision in VISIONS:
+            assert delta_e(c1, c2, vision) >= MIN_DELTA_E, f"{c1} vs {c2} merge for {vision}"

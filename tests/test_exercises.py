@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from camlab import exercises
-from camlab.exercises import all_exercises, check, solution, worst_mismatch
+from camlab.exercises import all_exercises, check, solution, solution_source, worst_mismatch
 
 EXERCISES = all_exercises()
 
@@ -48,10 +48,11 @@ TEACHING = sorted(n for n, e in EXERCISES.items() if e.teaching is not None)
 @pytest.mark.parametrize("name", sorted(EXERCISES))
 def test_solution_prints_the_teaching_solution_or_the_library_source(name, capsys):
     exercise = EXERCISES[name]
-    source = solution(name)
+    assert solution(name) is None  # a bare call ending a cell shows the code once, not again as Out[]
+    source = solution_source(name)
     shown = exercise.teaching or exercise.reference
     assert f"def {shown.__name__}(" in source
-    assert source in capsys.readouterr().out
+    assert capsys.readouterr().out == source + "\n"
 
 
 @pytest.mark.parametrize("name", sorted(n for n, e in EXERCISES.items() if e.lesson in TEACHING_LESSONS))
@@ -189,11 +190,19 @@ def test_a_wrong_number_prints_as_a_plain_float():
     assert "np.float64" not in str(info.value) and "got      1.0" in str(info.value)
 
 
-def test_solution_ending_a_cell_shows_no_second_copy(capsys):
-    source = solution("pinhole_projection")
-    assert isinstance(source, str) and "def pinhole_projection(" in source
-    assert hasattr(source, "_ipython_display_")  # IPython calls it instead of printing an escaped Out[] repr
-    assert source._ipython_display_() is None and capsys.readouterr().out.count("def pinhole_projection(") == 1
+def test_solution_ending_a_cell_shows_no_second_copy():
+    """Through IPython's own display path: the printed code once, and no Out[] after it."""
+    from IPython.core.interactiveshell import InteractiveShell
+    from IPython.utils.capture import capture_output
+
+    shell = InteractiveShell.instance()
+    try:
+        with capture_output() as shown:
+            result = shell.run_cell('from camlab.exercises import solution\nsolution("pinhole_projection")')
+    finally:
+        InteractiveShell.clear_instance()
+    assert result.success and result.result is None
+    assert shown.stdout.count("def pinhole_projection(") == 1 and "Out[" not in shown.stdout
 
 
 def test_estimate_affine_camera_accepts_a_column_of_ones_instead_of_centring(capsys):

@@ -97,3 +97,24 @@ def test_ipympl_canvas_display_carries_png_and_alt_text_in_a_shell():
     assert WIDGET_VIEW in data and "text/html" not in data
     assert _png_pixels(data["image/png"]).shape[:2] == (160, 240)
     assert metadata["image/png"]["alt"] == "Figure: plot 'join and meet'."
+
+
+def test_a_plain_figure_wider_than_the_output_area_is_drawn_to_fit_it():
+    """A 10 x 3 in figure at 100 dpi (lesson 04) is 1008 px with ipympl's frame; the output area
+    is 968 px at 1400 px with the file browser open. Its canvas is drawn at a lower dpi instead."""
+    from IPython.core.interactiveshell import InteractiveShell
+    from ipympl.backend_nbagg import Canvas
+
+    shell = InteractiveShell.instance()
+    try:
+        assert static.install_canvas_formatter()
+        wide, narrow = Figure(figsize=(10, 3), dpi=100), Figure(figsize=(6, 3), dpi=100)
+        for fig in (wide, narrow):
+            Canvas(fig)
+            fig.subplots().set_title("three cameras")
+        (wide_png, _), (narrow_png, _) = (shell.display_formatter.format(f.canvas) for f in (wide, narrow))
+    finally:
+        InteractiveShell.clear_instance()
+    assert wide.get_figwidth() == 10 and wide.dpi * 10 + static.CANVAS_FRAME_PX == static.OUTPUT_WIDTH_PX
+    assert _png_pixels(wide_png["image/png"]).shape[1] == 952
+    assert narrow.dpi == 100 and _png_pixels(narrow_png["image/png"]).shape[:2] == (300, 600)

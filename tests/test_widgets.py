@@ -92,6 +92,58 @@ def test_nothing_static_hides_under_an_animated_image(name):
     assert not hidden, f"{name}: static artists under an animated image: {hidden}"
 
 
+def _fixed_width_px(widget) -> float:
+    """How wide a control stays however narrow the output area (0 for text, which wraps).
+
+    Sliders, dropdowns and text boxes are ipywidgets' inline width, 300 px, unless their layout
+    says otherwise ("auto": as wide as the column); toggle buttons are their buttons side by side
+    with their 2 px margins, after a label of about 8 px per character.
+    """
+    import ipywidgets as W
+
+    if isinstance(widget, W.Box):
+        return max((_fixed_width_px(child) for child in widget.children), default=0.0)
+    if isinstance(widget, W.ToggleButtons):
+        button = float(str(widget.style.button_width or "148px").removesuffix("px"))
+        return len(widget.options) * (button + 4) + 8 * len(widget.description) + 8
+    width = widget.layout.width
+    if width == "auto":
+        return 0.0
+    if width:
+        assert str(width).endswith("px"), f"{type(widget).__name__} width {width!r}: give demo controls pixel widths"
+        return float(str(width).removesuffix("px"))
+    return 0.0 if isinstance(widget, (W.HTML, W.Label)) else 300.0
+
+
+@pytest.mark.parametrize("name", sorted(DEMOS))
+def test_demo_fits_the_output_area_with_the_file_browser_open(name):
+    """Nothing clipped at a 1400 px window with JupyterLab's file browser open (968 px of output).
+
+    The controls and the figure sit side by side where both fit, else the figure wraps under
+    the controls (``flex_flow="row wrap"``), so the demo needs only its widest part.
+    """
+    import ipywidgets as W
+
+    from camlab.widgets._base import CANVAS_FRAME_PX, MAX_DEMO_WIDTH_PX, PANEL_WIDTH_PX
+
+    demo = DEMOS[name].builder()
+    panel, canvas = demo.widget.children
+    assert "wrap" in demo.widget.layout.flex_flow and canvas is demo.view.widget
+    figure_px = demo.figure.get_figwidth() * demo.figure.dpi + CANVAS_FRAME_PX
+    controls_px = max(PANEL_WIDTH_PX, _fixed_width_px(panel))
+    assert max(figure_px, controls_px) <= MAX_DEMO_WIDTH_PX, \
+        f"{name}: figure {figure_px:.0f} px, controls {controls_px:.0f} px; the output area is {MAX_DEMO_WIDTH_PX} px"
+    cut = [key for key, control in demo.controls.items()  # ipywidgets' defaults cut labels at 80 px
+           if (control.indent if isinstance(control, W.Checkbox)
+               else control.description and not control.style.description_width)]
+    assert not cut, f"{name}: controls whose label is cut short: {cut}"
+
+
+def test_a_figure_too_wide_for_the_output_area_is_refused():
+    with pytest.raises(ValueError, match=r"at most 10.58 in wide at 90 dpi .* got figsize \(11, 4\)"):
+        FigureView(figsize=(11, 4), mode="agg")
+
+
 def test_png_mode_sends_an_image_that_changes():
     view = FigureView(figsize=(3, 2), mode="png")
     ax = view.fig.subplots()

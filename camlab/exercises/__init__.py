@@ -20,9 +20,11 @@ import pkgutil
 from ._core import (EXERCISES, TIME_LIMIT_S, Exercise, check, register_exercise, same_array, same_up_to_scale,
                     shape_problem, time_limit_applies, type_problem, unit_slip, worst_mismatch)
 from ._core import solution as _solution
+from ._core import solution_source as _solution_source
 
-__all__ = ["EXERCISES", "TIME_LIMIT_S", "Exercise", "all_exercises", "check", "register_exercise", "same_array", "same_up_to_scale",
-           "shape_problem", "solution", "time_limit_applies", "type_problem", "unit_slip", "worst_mismatch"]
+__all__ = ["EXERCISES", "TIME_LIMIT_S", "Exercise", "all_exercises", "check", "register_exercise", "same_array",
+           "same_up_to_scale", "shape_problem", "solution", "solution_source", "time_limit_applies", "type_problem",
+           "unit_slip", "worst_mismatch"]
 
 
 def all_exercises() -> dict[str, Exercise]:
@@ -33,11 +35,21 @@ def all_exercises() -> dict[str, Exercise]:
     return dict(EXERCISES)
 
 
-def solution(name: str) -> str:
-    """Print (and return) the teaching solution of exercise ``name`` (numpy only)."""
+def _known(name: str, caller: str) -> None:
     if name not in all_exercises():
-        raise KeyError(f"solution: no exercise {name!r}; exercises are {sorted(EXERCISES)}")
-    return _solution(name)
+        raise KeyError(f"{caller}: no exercise {name!r}; exercises are {sorted(EXERCISES)}")
+
+
+def solution(name: str) -> None:
+    """Print the teaching solution of exercise ``name`` (numpy only); returns None, so it shows once."""
+    _known(name, "solution")
+    _solution(name)
+
+
+def solution_source(name: str) -> str:
+    """The text :func:`solution` prints, for tools and tests."""
+    _known(name, "solution_source")
+    return _solution_source(name)
 
 
 def __getattr__(attr: str):

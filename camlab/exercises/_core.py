@@ -449,25 +449,25 @@ def worst_mismatch(got: Any, expected: Any, tolerance: Tolerance | None = None) 
             f" ({wrong} of {e.size} entries differ by more than {tol})\n")
 
 
-def solution(name: str) -> str:
-    """Print (and return) the teaching solution of ``name`` (the library's source if it has none)."""
+def solution_source(name: str) -> str:
+    """The text :func:`solution` prints: the teaching solution of ``name`` (the library's source if it has none)."""
     exercise = EXERCISES[name]
     reference = exercise.reference
     where = f"{reference.__module__}.{reference.__qualname__}"
     if exercise.teaching is None:
-        source = inspect.getsource(reference)
-    else:
-        source = (inspect.getsource(exercise.teaching)
-                  + f"\n# camlab's own, tested implementation: {where} (read it with {where}??)\n")
-    print(source)
-    return _PrintedText(source)
+        return inspect.getsource(reference)
+    return (inspect.getsource(exercise.teaching)
+            + f"\n# camlab's own, tested implementation: {where} (read it with {where}??)\n")
 
 
-class _PrintedText(str):
-    """A string already printed: ending a cell, it shows nothing more (no escaped ``Out[]`` copy)."""
+def solution(name: str) -> None:
+    """Print the teaching solution of ``name``; returns None.
 
-    def _ipython_display_(self) -> None:
-        """IPython's display hook: the text is on the page already."""
+    None, so that a bare ``solution("name")`` ending a cell shows the code once: a returned
+    string would also be echoed as the cell's ``Out[]``, escaped, on one line. Tools that need
+    the text call :func:`solution_source`.
+    """
+    print(solution_source(name))
 
 
 def same_up_to_scale(got: Any, expected: np.ndarray, rtol: float = 1e-6) -> bool:

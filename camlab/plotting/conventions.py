@@ -12,7 +12,7 @@ from . import palette
 from .plane import image_axes
 
 # The camera frame's axes, here and wherever lesson 00 ties u and v to them (one home for the three).
-X_COLOUR, Y_COLOUR, Z_COLOUR = palette.BLUE, palette.GREEN, palette.PURPLE
+X_COLOUR, Y_COLOUR, Z_COLOUR = palette.AXIS_COLOURS  # x red, y green, z blue, as every 3-D camera
 POINT_COLOUR = palette.ORANGE  # the points lesson 00 reads: the demo's roof tip, the rows of X here
 
 

@@ -25,6 +25,11 @@ GREY = "#808080"  # 4.0:1: reference lines ("before", "original", construction)
 
 SERIES = (BLUE, ORANGE, GREEN, RED, PURPLE, BROWN)  # for numbered things: image 0, 1, 2...
 
+AXIS_COLOURS = (RED, GREEN, BLUE)
+"""The x, y and z axes of every frame, camera or world, in every lesson: red, green, blue (RGB = xyz,
+as in RViz, Blender and pytransform3d): lesson 00's camera frame, the 3-D cameras and world axes
+of lesson 04 (``scene3d``), its vanishing points of X, Y and Z; see docs/conventions.md."""
+
 
 def halo(linewidth: float = 0.0, colour: str = "white") -> list:
     """Path effects that outline a line of ``linewidth`` points (0: a text or a marker) in ``colour``.

@@ -37,7 +37,7 @@ from numpy.typing import ArrayLike
 from ..camera import Camera, project_segments
 from . import palette
 
-AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
+AXIS_COLOURS = palette.AXIS_COLOURS  # x red, y green, z blue: defined once, in palette (docs/conventions.md)
 
 __all__ = ["AXIS_COLOURS", "CameraArtist", "SceneView", "axes3d", "clip_segments", "draw_points", "draw_segments",
            "draw_world_axes", "fit_view", "image_axes", "polyline_data", "refresh_projection", "set_equal_aspect",
@@ -201,7 +201,7 @@ def draw_world_axes(ax, length: float = 1.0, origin: ArrayLike = (0.0, 0.0, 0.0)
     """World axes as three coloured arrows-as-lines from ``origin``, labelled X, Y, Z."""
     o = np.asarray(origin, dtype=float)
     out = []
-    for i, (c, name) in enumerate(zip(AXIS_COLOURS, labels)):
+    for i, (c, name) in enumerate(zip(palette.AXIS_COLOURS, labels)):
         e = o.copy()
         e[i] += length
         (ln,) = ax.plot(*np.c_[o, e], color=c, lw=2.0)
@@ -316,7 +316,7 @@ class CameraArtist:
         ax.add_collection3d(self.plane)
         self.axes_lines, self.axes_text = [], []
         if show_axes:
-            for c, name in zip(AXIS_COLOURS, ("x", "y", "z")):
+            for c, name in zip(palette.AXIS_COLOURS, ("x", "y", "z")):
                 (ln,) = ax.plot([], [], [], color=c, lw=2.0)
                 self.axes_lines.append(ln)
                 self.axes_text.append(ax.text(0, 0, 0, name, color=c, fontsize=9, fontweight="bold",

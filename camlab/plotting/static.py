@@ -30,6 +30,11 @@ from typing import Any, Mapping
 from matplotlib.figure import Figure
 
 WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
+OUTPUT_WIDTH_PX = 960
+"""The widest a live figure (or a demo) may be: JupyterLab's output area is 968 px wide in a
+1400 px window with the file browser open (measured in headless Chromium, issue 28)."""
+CANVAS_FRAME_PX = 8
+"""What ipympl's canvas widget adds to its figure's width (measured: 1008 px for a 1000 px figure)."""
 _ALT: "weakref.WeakKeyDictionary[Figure, str]" = weakref.WeakKeyDictionary()
 
 
@@ -147,13 +152,32 @@ def static_bundle(data: Mapping[str, Any], fig: Figure, alt: str, png: bytes | N
     return out, metadata
 
 
+def fit_output_width(fig: Figure) -> Figure:
+    """Lower ``fig``'s dpi so that its canvas fits :data:`OUTPUT_WIDTH_PX`; returns ``fig``.
+
+    An ipympl canvas keeps its figure's size in pixels, so a figure 10 inches wide at 100 dpi
+    ran 40 px past the output area with the file browser open. Drawn at a lower dpi it keeps
+    its layout and scales as a whole, as an inline PNG scales down to fit.
+    """
+    widest = OUTPUT_WIDTH_PX - CANVAS_FRAME_PX
+    dpi = getattr(fig, "_original_dpi", fig.dpi)  # the dpi asked for; a HiDPI screen draws at a multiple of it
+    if fig.get_figwidth() * dpi > widest:
+        ratio = fig.dpi / dpi
+        # matplotlib keeps the asked dpi apart: savefig(dpi="figure") and a screen's pixel ratio start from it
+        fig._original_dpi = widest / fig.get_figwidth()
+        fig.set_dpi(fig._original_dpi * ratio)
+    return fig
+
+
 def _canvas_bundle(canvas: Any) -> tuple[dict, dict]:
     """Display bundle of an ipympl canvas (a plain figure under ``%matplotlib widget``).
 
     The canvas loses ipympl's header, a title bar reading "Figure N" that says nothing
     (the figure's own titles do), as the demos' canvases do (``widgets._base.FigureView``).
+    A figure wider than the output area is fitted to it (:func:`fit_output_width`).
     """
     canvas.header_visible = False
+    fit_output_width(canvas.figure)
     data = canvas._repr_mimebundle_()  # ipympl registers the view and renders its PNG once
     png = base64.b64decode(data["image/png"]) if "image/png" in data else None
     return static_bundle(data, canvas.figure, describe_figure(canvas.figure), png)

@@ -27,10 +27,18 @@ import matplotlib
 import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.image import AxesImage
+from matplotlib.spines import Spine
 
-from ..plotting.static import demo_alt_text, static_bundle
+from ..plotting.static import CANVAS_FRAME_PX, OUTPUT_WIDTH_PX, demo_alt_text, static_bundle
 from ._transport import halo_in_two_passes, show_at_display_resolution, use_fast_png
 from .controls import slider as slider  # re-exported: every demo module imports it from here
+from .controls import whole_label
+
+
+MAX_DEMO_WIDTH_PX = OUTPUT_WIDTH_PX
+"""The widest a demo may be, its controls or its figure (:data:`camlab.plotting.static.OUTPUT_WIDTH_PX`)."""
+PANEL_WIDTH_PX = 300
+"""The width of the controls' column (every slider is 300 px wide: :mod:`.controls`)."""
 
 
 def display_mode() -> str:
@@ -51,6 +59,11 @@ def display_mode() -> str:
     return "agg"
 
 
+def _draws_frame(ax: Any) -> bool:
+    """True if a full draw of ``ax`` draws its spines (as ``Axes.draw`` decides: visible, axis on, frame on)."""
+    return ax is not None and ax.get_visible() and ax.axison and ax.get_frame_on()
+
+
 class FigureView:
     """One matplotlib figure inside a widget, redrawn in place (see the module docstring).
 
@@ -61,6 +74,11 @@ class FigureView:
     """
 
     def __init__(self, figsize: tuple[float, float] = (8, 4), mode: str | None = None, dpi: float = 90):
+        widest = (MAX_DEMO_WIDTH_PX - CANVAS_FRAME_PX) / dpi
+        if figsize[0] > widest:
+            raise ValueError(f"FigureView: expected a figure at most {widest:.2f} in wide at {dpi:g} dpi "
+                             f"({MAX_DEMO_WIDTH_PX} px with the canvas frame, the output area of JupyterLab at 1400 px "
+                             f"with the file browser open), got figsize {tuple(figsize)}; make it narrower")
         self.mode = mode or display_mode()
         self._animated: list[Any] = []
         self._background = None
@@ -89,7 +107,12 @@ class FigureView:
         """Register artists that updates move; returns them (one artist if one was given).
 
         Images among them keep their data at the resolution they are shown; haloed lines draw
-        their halo as a plain pass (see :mod:`._transport`).
+        their halo as a plain pass (see :mod:`._transport`). Anything static that must show
+        *above* an animated artist (a marker on a moving line) must be animated too: the live
+        path paints the animated artists over the cached background, in zorder, as a full draw
+        does (a legend over an image: ``tests/test_widgets.py`` finds any left static). An
+        animated image's frame, its axes' spines, is animated with it before the first full
+        draw (:meth:`_frame_images`), so no demo has to remember it.
         """
         for artist in artists:
             if isinstance(artist, AxesImage):
@@ -98,6 +121,19 @@ class FigureView:
             artist.set_animated(True)
             self._animated.append(artist)
         return artists[0] if len(artists) == 1 else artists
+
+    def _frame_images(self) -> None:
+        """Animate the spines of every axes that holds an animated image.
+
+        A full draw paints the spines (zorder 2.5) over the image (zorder 0). Left static, they
+        would be in the cached background, and every live frame would paint the image over
+        them: the top and left frame lines lost the half inside the axes in every lesson
+        (issue 28). Called before the first full draw; the spines of an axes turned off after
+        that are not drawn live either (:meth:`_in_draw_order`).
+        """
+        animated = {id(a) for a in self._animated}
+        for ax in dict.fromkeys(a.axes for a in self._animated if isinstance(a, AxesImage) and a.axes is not None):
+            self.animate(*(s for s in ax.spines.values() if id(s) not in animated))
 
     def _on_full_draw(self, _event: Any = None) -> None:
         canvas = self.fig.canvas
@@ -113,11 +149,14 @@ class FigureView:
         """The animated artists in the order a full draw paints them: axes by axes (figure texts last), then zorder.
 
         Drawing them in registration order would let a fill registered after a line cover it
-        live but not in a full redraw (a colour that changes on the first move).
+        live but not in a full redraw (a colour that changes on the first move). The spines of
+        an axes that a full draw leaves unframed (``set_axis_off``, ``set_frame_on(False)``) are
+        left out, as ``Axes.draw`` leaves them out.
         """
         axes = self.fig.axes
-        return sorted(self._animated, key=lambda a: (axes.index(a.axes) if getattr(a, "axes", None) in axes else len(axes),
-                                                     a.get_zorder()))
+        drawn = [a for a in self._animated if not isinstance(a, Spine) or _draws_frame(a.axes)]
+        return sorted(drawn, key=lambda a: (axes.index(a.axes) if getattr(a, "axes", None) in axes else len(axes),
+                                            a.get_zorder()))
 
     def _draw_animated(self) -> None:
         for artist in self._in_draw_order():
@@ -135,6 +174,8 @@ class FigureView:
             self.widget.value = buf.getvalue()
             return
         canvas = self.fig.canvas
+        if self._background is None:
+            self._frame_images()
         if self._animated and self._background is not None:
             canvas.restore_region(self._background)
             self._draw_animated()
@@ -237,6 +278,11 @@ def build_demo(
     :func:`~camlab.widgets.controls.corner_keys` write the corners text): they are shown,
     set and swept like controls but not observed, so each change updates the figure once.
 
+    The controls' column (each control showing its whole label: :func:`.controls.whole_label`)
+    sits beside the figure where the output area is wide enough for both, and the figure wraps
+    under it where not; so a demo needs only its wider part, at most :data:`MAX_DEMO_WIDTH_PX`
+    (a :class:`FigureView` refuses a wider figure).
+
     A demo never dies: a control holding NaN, or a change that makes ``update`` (or the
     redraw) raise, is reported under the controls naming the control (``Demo.problem``),
     and the figure and ``state`` stay at the last settings that worked. Only the first
@@ -248,10 +294,10 @@ def build_demo(
     panel: list[W.Widget] = []
     if title:
         panel.append(W.HTML(f"<b>{title}</b>"))
-    panel += list(demo_controls.values()) + [problem_line] + list(extra)  # the problem under the controls
+    panel += [whole_label(c) for c in demo_controls.values()] + [problem_line] + list(extra)  # the problem under them
     box = W.HBox(
-        [W.VBox(panel, layout=W.Layout(min_width="300px")), view.widget],
-        layout=W.Layout(align_items="flex-start"),
+        [W.VBox(panel, layout=W.Layout(flex=f"1 1 {PANEL_WIDTH_PX}px", min_width="min-content")), view.widget],
+        layout=W.Layout(align_items="flex-start", flex_flow="row wrap"),  # the figure goes under the controls if need be
     )
     box.add_class(f"camlab-demo-{name.replace('_', '-')}")
     demo = Demo(name=name, widget=box, controls=demo_controls, view=view, state=state)

@@ -41,6 +41,22 @@ def choice_slider(options: Sequence[Any], value: Any, description: str, **kw: An
     return W.SelectionSlider(options=list(options), value=value, description=description, **_look(kw))
 
 
+def whole_label(control: W.Widget) -> W.Widget:
+    """Let ``control`` show its whole description (``build_demo`` applies it to every control); returns it.
+
+    ipywidgets' defaults cut labels short: a dropdown's description gets 80 px ("sensor's p...")
+    and a checkbox's sits after an empty 80 px indent in a 300 px box ("show the real image
+    (rotat..."). Labels get the width they need, and a checkbox its label right after the box.
+    """
+    if isinstance(control, W.Checkbox):
+        control.indent = False
+        if not control.layout.width:
+            control.layout.width = "auto"
+    elif getattr(control, "description", "") and not getattr(control.style, "description_width", "initial"):
+        control.style.description_width = "initial"
+    return control
+
+
 def monospace(text: str) -> str:
     """HTML for a monospace readout beside the sliders (text in the figure is slow to draw)."""
     return f"<pre style='font-size: 12px; line-height: 1.3; margin: 4px 0'>{text}</pre>"
@@ -167,9 +183,3 @@ def connect_corner_drag(view: FigureView, ax: Any, control: W.Text, get_corners:
         view.fig.canvas.mpl_connect(name, fn)
     return handlers
 
-
-def on_top(view: FigureView, ax: Any) -> None:
-    """Draw the axes' spines (and legend) after the animated image, so it cannot hide them."""
-    view.animate(*ax.spines.values())
-    if ax.get_legend() is not None:
-        view.animate(ax.get_legend())

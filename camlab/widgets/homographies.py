@@ -20,7 +20,7 @@ from ..projective import cross_ratio, map_points, splits_at_infinity
 from ..warp import forward_warp, warp_perspective
 from ..robust import required_iterations
 from ._base import Demo, FigureView, build_demo, register, slider
-from .controls import connect_corner_drag, corner_keys, corner_text, format_corners, monospace, on_top, parse_corners
+from .controls import connect_corner_drag, corner_keys, corner_text, format_corners, monospace, parse_corners
 
 
 def _warning(view: FigureView, ax: Any, x: float = 0.02, y: float = 0.02, ha: str = "left",
@@ -76,7 +76,6 @@ def transformation_hierarchy() -> Demo:
     ax.set_title("the picture mapped by H (group and dof in the readout)", fontsize=10)
     # beside the axes: over the warped picture the legend would need a redraw per update
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
-    on_top(view, ax)
     warning = _warning(view, ax)
     picture_corners = np.array([[0, 0], [pw - 1, 0], [pw - 1, ph - 1], [0, ph - 1]], float)
     readout = W.HTML()
@@ -148,7 +147,6 @@ def drag_homography() -> Demo:
     quad = view.animate(ax_t.plot([], [], "-", color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0])
     handles = view.animate(ax_t.plot([], [], "o", color=palette.ORANGE, ms=10, mec="k")[0])
     chosen = view.animate(ax_t.plot([], [], "o", ms=17, mfc="none", mec="k", mew=2)[0])  # the corner the keys move
-    on_top(view, ax_t)
     warning = _warning(view, ax_t)
     readout = W.HTML()
     control = corner_text(format_corners(_DRAG_START), "corners (u, v; ...)")
@@ -307,8 +305,6 @@ def forward_vs_inverse() -> Demo:
     blank = np.zeros((*out_hw, 3), np.uint8)
     im_f = view.animate(ax_f.imshow(blank, interpolation="nearest"))
     im_i = view.animate(ax_i.imshow(blank, interpolation="nearest"))
-    on_top(view, ax_f)
-    on_top(view, ax_i)
     ax_f.set_title("forward: push each source pixel", fontsize=10, pad=3)
     ax_i.set_title("inverse: pull each output pixel", fontsize=10, pad=3)
     readout = W.HTML()

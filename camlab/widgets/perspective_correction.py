@@ -15,7 +15,7 @@ import numpy as np
 
 from .. import perspective as pp
 from ._base import Demo, FigureView, build_demo, register, slider
-from .controls import connect_corner_drag, corner_keys, corner_text, format_corners, monospace, on_top, parse_corners
+from .controls import connect_corner_drag, corner_keys, corner_text, format_corners, monospace, parse_corners
 from ..plotting import palette
 
 _SHOW = 260  # the rectified view is drawn into a _SHOW x _SHOW box
@@ -62,7 +62,6 @@ def _photo_demo(photo_title: str, result_title: str, outline: dict):
     ax_p.set_title(photo_title, fontsize=10, pad=3)
     ax_r.set_title(result_title, fontsize=10, pad=3)
     line = view.animate(ax_p.plot([], [], **outline)[0])
-    on_top(view, ax_p)
     return view, ax_p, ax_r, im_p, im_r, line
 
 

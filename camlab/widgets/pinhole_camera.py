@@ -8,7 +8,7 @@ from .. import pinhole, render, scenes, sensor
 from ..plotting import images, optics
 
 from ._base import FigureView, build_demo, register, slider
-from .controls import monospace, on_top
+from .controls import monospace
 from ..plotting import palette
 from ..scenes.planes import CHART_ROW_HEIGHTS
 
@@ -77,7 +77,6 @@ def pinhole_projection():
     # everything that moves is blitted over the cached static figure (the pinhole too: a ray passes over it)
     view.animate(im, width_bar, bar_ends, ax_img.title, scale_note, art["box"], art["rays"], art["real"], art["virtual"],
                  art["pinhole"], *art["planes"].values(), *art["fills"].values())
-    on_top(view, ax_img)
 
     def update(values, state):
         f = values["focal_mm"] * 1e-3
@@ -194,7 +193,6 @@ def pinhole_size():
     readout = W.HTML()
     view.animate(im, ax_img.title, ax_plot.title, art["geometric"], art["diffraction"], art["total"],
                  art["marker"], art["best"])
-    on_top(view, ax_img)
 
     def update(values, state):
         f, d = values["focal_mm"] * 1e-3, values["diameter_mm"] * 1e-3

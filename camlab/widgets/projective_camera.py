@@ -285,7 +285,7 @@ def opencv_vs_opengl():
     cam0 = cm.Camera.look_at(EYE_GL, [0.0, 0.0, 0.4])
     art = scene3d.CameraArtist(ax, cam0, size=0.45, show_axes=False)  # shorter than the axes, so labels clear it
     lines, texts = [], []
-    for c in scene3d.AXIS_COLOURS:
+    for c in palette.AXIS_COLOURS:
         (ln,) = ax.plot([], [], [], color=c, lw=2.5)
         lines.append(ln)
         texts.append(ax.text(0, 0, 0, "", color=c, fontsize=9, fontweight="bold"))
