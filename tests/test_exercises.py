@@ -93,7 +93,7 @@ def test_printed_solution_runs_on_its_own(name, capsys):
     The globals check above cannot see a default argument naming a module constant
     (``steps=NEWTON_STEPS`` raised NameError once pasted into a lesson).
     """
-    source = solution(name).split("\n# camlab's own")[0]
+    source = solution_source(name).split("\n# camlab's own")[0]
     namespace = {"np": np}
     exec(compile(source, f"<solution {name}>", "exec"), namespace)
     assert check(name, namespace[name]).passed is True

@@ -284,7 +284,7 @@ def check(name: str, student_function: Callable[..., Any], *, time_limit_s: floa
                 + f"  likely cause: {exercise.diagnose(args, got, expected)}"
             )
     if exercise.follow_up is not None:
-        problem = exercise.follow_up(lambda *args: _run_student(name, student_function, args, len(cases), len(cases) + 1))
+        problem = exercise.follow_up(lambda *args: _run_student(name, student_function, args, len(cases), len(cases) + 1, seconds))
         if problem:
             raise AssertionError(f"{name}: correct on all {len(cases)} test inputs, but {problem}")
     print(f"{name}: correct on all {len(cases)} test inputs. Well done!")
