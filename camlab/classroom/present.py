@@ -44,11 +44,27 @@ ACCESSIBILITY_SCRIPT = "%%javascript\n" + access.SCRIPT  # the import's copy run
 VOILA_DATA = Path(__file__).with_name("jupyter_data")  # voila/templates/camlab, found through JUPYTER_PATH
 
 
-def is_demo_cell(cell: dict) -> bool:
-    """True for a cell that is one call ``demos.<name>(...)`` (the lesson's interactive demos)."""
-    stmt = only_statement(cell)
-    func = stmt.value.func if isinstance(stmt, ast.Expr) and isinstance(stmt.value, ast.Call) else None
+def _is_demo_call(node: ast.AST | None) -> bool:
+    func = node.func if isinstance(node, ast.Call) else None
     return isinstance(func, ast.Attribute) and isinstance(func.value, ast.Name) and func.value.id == "demos"
+
+
+def is_demo_cell(cell: dict) -> bool:
+    """True for a lesson's interactive demo: one call ``demos.<name>(...)``, or ``d = demos.<name>(...)``
+    followed by ``d`` (the form a lesson uses when a later cell reads the demo's state)."""
+    stmt = only_statement(cell)
+    if stmt is not None:
+        return isinstance(stmt, ast.Expr) and _is_demo_call(stmt.value)
+    if cell["cell_type"] != "code":
+        return False
+    try:
+        body = ast.parse("".join(cell["source"])).body
+    except SyntaxError:
+        return False
+    return (len(body) == 2 and isinstance(body[0], ast.Assign) and len(body[0].targets) == 1
+            and isinstance(body[0].targets[0], ast.Name) and _is_demo_call(body[0].value)
+            and isinstance(body[1], ast.Expr) and isinstance(body[1].value, ast.Name)
+            and body[1].value.id == body[0].targets[0].id)
 
 
 def _is_exercise(cell: dict) -> bool:
