@@ -14,8 +14,41 @@ Conventions (full page: docs/conventions.md):
 9. Random functions take rng: np.random.Generator | None; lessons seed everything.
 10. OpenCV is the reference and the workhorse, never the teaching path.
 
-Submodules load on first use (``camlab.homography``...), so ``import camlab`` stays fast
-and never imports matplotlib, ipywidgets or cv2.
+The package map (``dir(camlab)`` and tab completion show it): one module per topic, in the
+order the lessons teach them, and the main function of each topic by its bare name
+(``camlab.estimate_homography`` is ``camlab.homography.estimate_homography``). Topics load on
+first use, so ``import camlab`` stays fast and never imports matplotlib, ipywidgets or cv2.
+
+======================  ==================================================================
+topic                   main functions
+======================  ==================================================================
+``pinhole`` (01)        project_pinhole, pinhole_blur, optimal_pinhole_diameter
+``lens`` (02)           depth_of_field, circle_of_confusion, angle_of_view
+``distortion`` (02)     distort_points, undistort_points, undistort_image
+``sensor`` (03)         mosaic, demosaic_bilinear, intrinsics_from_sensor, add_noise
+``camera`` (04)         Camera, intrinsic_matrix, project_points, estimate_projection_matrix,
+                        decompose_projection_matrix, rq_decomposition
+``affine`` (05)         affine_approximation, estimate_affine_camera
+``projective`` (06)     join, meet, vanishing_point, horizon, cross_ratio (imported eagerly)
+``homography`` (07)     estimate_homography, ransac_homography, refine_homography
+``warp`` (07)           warp_perspective, forward_warp
+``calibration`` (08)    calibrate_camera, calibrate_from_images, find_chessboard
+``stitching`` (09)      stitch, register_pair, match_graph, blend
+``features`` (09)       detect_features, match_features
+``perspective`` (10)    rectify_quadrilateral, estimate_aspect_ratio, find_document
+``epipolar`` (11)       estimate_fundamental_matrix, ransac_fundamental_matrix,
+                        essential_matrix, recover_pose, triangulate_points
+``rectification`` (11)  rectify_calibrated, rectify_uncalibrated
+``disparity`` (11)      block_matching_disparity, sgbm_disparity, disparity_to_depth
+``robust``, ``optimize`` the shared engines: ransac, levenberg_marquardt
+``render``, ``scenes``  the virtual camera with ground truth, and the lessons' scenes
+``data``                the shipped photographs and data sets (load_photo ...)
+``plotting``,           figures, the demos behind the lessons, the checked exercises
+``widgets``,
+``exercises``
+======================  ==================================================================
+
+docs/architecture.md says which module may import which, and where new code goes.
 """
 from __future__ import annotations
 
@@ -44,10 +77,46 @@ __all__ = [
 ]
 
 
+# The main function(s) of each topic, importable as camlab.<name>; resolved on first access.
+# One home per name: the module that defines it (tests/test_package_map.py).
+_MAIN: dict[str, tuple[str, ...]] = {
+    "pinhole": ("project_pinhole", "pinhole_blur", "optimal_pinhole_diameter"),
+    "lens": ("depth_of_field", "circle_of_confusion", "angle_of_view"),
+    "distortion": ("distort_points", "undistort_points", "undistort_image"),
+    "sensor": ("mosaic", "demosaic_bilinear", "intrinsics_from_sensor", "add_noise"),
+    "camera": ("Camera", "intrinsic_matrix", "project_points", "estimate_projection_matrix",
+               "decompose_projection_matrix", "rq_decomposition"),
+    "affine": ("affine_approximation", "estimate_affine_camera"),
+    "homography": ("estimate_homography", "ransac_homography", "refine_homography"),
+    "warp": ("warp_perspective", "forward_warp"),
+    "calibration": ("calibrate_camera", "calibrate_from_images", "find_chessboard"),
+    "stitching": ("stitch", "register_pair", "match_graph", "blend"),
+    "features": ("detect_features", "match_features"),
+    "perspective": ("rectify_quadrilateral", "estimate_aspect_ratio", "find_document"),
+    "epipolar": ("estimate_fundamental_matrix", "ransac_fundamental_matrix", "essential_matrix",
+                 "recover_pose", "triangulate_points"),
+    "rectification": ("rectify_calibrated", "rectify_uncalibrated"),
+    "disparity": ("block_matching_disparity", "sgbm_disparity", "disparity_to_depth"),
+    "robust": ("ransac",),
+    "optimize": ("levenberg_marquardt",),
+    "data": ("load_photo",),
+}
+_HOME = {name: topic for topic, names in _MAIN.items() for name in names}
+_TOPICS = (*_MAIN, "projective", "render", "scenes", "plotting", "widgets", "exercises")
+
+
+def __dir__() -> list[str]:
+    return sorted({*__all__, *_TOPICS, *_HOME, "__version__"})
+
+
 def __getattr__(name: str):
-    # Lazy submodules: camlab.<topic> imports camlab/<topic>.py on first access.
+    # camlab.<main function> and camlab.<topic>, imported on first access and then cached.
     if name.startswith("_"):
         raise AttributeError(name)
+    if name in _HOME:
+        value = getattr(importlib.import_module(f"{__name__}.{_HOME[name]}"), name)
+        globals()[name] = value
+        return value
     try:
         module = importlib.import_module(f"{__name__}.{name}")
     except ModuleNotFoundError as exc:
