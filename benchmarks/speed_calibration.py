@@ -3,7 +3,7 @@
 Run: ``python benchmarks/speed_calibration.py``. Every number is the median of repeated
 timings in this one run; ratio = camlab time / OpenCV time.
 
-Target (issue 6): ``calibrate_camera`` on 25 views of 54 corners (sigma = 0.2 px) within 5x
+Target: ``calibrate_camera`` on 25 views of 54 corners (sigma = 0.2 px) within 5x
 of ``cv2.calibrateCamera`` with the same model (fx, fy, cx, cy, k1, k2, p1, p2, k3).
 Also printed: camlab versus OpenCV on the same corners and both versus the truth.
 """

@@ -2,7 +2,7 @@
 
 Run: ``python benchmarks/speed_epipolar.py``. Every number is the median of repeated
 timings measured in this one run; ratios are camlab time / OpenCV time. camlab's versions
-are the readable numpy teaching path. Issue 8 sets no speed targets; the ones below were
+are the readable numpy teaching path. No speed targets were set; the ones below were
 chosen for this script after measuring on the loaded 2-core machine (numpy within 15-30x
 of OpenCV's C++ for the small geometric solvers, looser for the per-pixel numpy paths, and
 the cv2 fast path within 3x). The accuracy of the same calls

@@ -3,7 +3,7 @@
 Run: ``python benchmarks/speed_homography.py``. Every number is the median of repeated
 timings measured in this one run; ratios are camlab time / reference time.
 
-Targets (issue 5): ransac_homography within 10x of cv2.findHomography(RANSAC) on 1000
+Targets: ransac_homography within 10x of cv2.findHomography(RANSAC) on 1000
 pairs with 30% outliers (and at least 5x faster than skimage.measure.ransac with
 ProjectiveTransform, if installed); estimate_homography on 1000 pairs within 3x of
 cv2.findHomography(..., 0); numpy warp_perspective of a 640x480 RGB image within 10x of

@@ -61,7 +61,7 @@ def _is_module(dotted: str) -> bool:
 
 
 def test_no_module_imports_another_modules_private_names():
-    """STYLE.md section 12: if two modules need a helper, it becomes a public name."""
+    """If two modules need a helper, it becomes a public name (a private name is one module's business)."""
     assert private_imports() == []
 
 
@@ -87,7 +87,7 @@ def _decorator_name(node: ast.expr) -> str:
 def widget_data_caches(widgets: Path) -> list[str]:
     """Module-level cached functions in the widget modules: data computed once and kept for every demo.
 
-    Issue 12 item 8: widget modules hold controls, artists and ``update``; data sets and the
+    Widget modules hold controls, artists and ``update``; data sets and the
     pipelines that prepare them are core (camlab.data, camlab.stitching ...), public and
     tested. Every such pipeline found in a widget module was a module-level ``lru_cache``;
     a memo local to one demo's builder (what its sliders revisit) is part of ``update``.
@@ -118,7 +118,7 @@ BENCHMARKS = ROOT.parent / "benchmarks"
 
 
 def test_benchmark_scripts_share_one_timing_module(monkeypatch):
-    """Issue 12 item 9: the timing and table helpers live in benchmarks/_timing.py only."""
+    """The timing and table helpers live in benchmarks/_timing.py only."""
     monkeypatch.syspath_prepend(str(BENCHMARKS))
     import _timing
 
@@ -139,7 +139,7 @@ def test_benchmark_scripts_share_one_timing_module(monkeypatch):
 
 
 def test_no_unused_function_parameters():
-    """Issue 12 item 9: a parameter nobody reads is a lie in the signature (pyflakes misses them; ruff's ARG001
+    """A parameter nobody reads is a lie in the signature (pyflakes misses them; ruff's ARG001
     finds them). Exercise checkers are left out: their ``diagnose(args, got, expected)`` and wrong-answer
     variants keep the signature of the function the learner writes."""
     import shutil

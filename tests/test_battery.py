@@ -16,7 +16,7 @@ Some generated values are legitimate for some arguments (``inf`` as a focus dist
 ``-1`` as a coordinate); those are listed in ``ALLOWED_RULES`` with the reason, and
 must then work. Degenerate
 geometry that cannot be generated from a value's kind (zero baseline, points behind the
-camera, all-wrong matches...) is in ``tests/test_bad_geometry.py``.
+camera, all-wrong matches...) is tested beside each estimator (``tests/test_epipolar.py``, ``tests/test_rectification.py``) and fuzzed by ``tests/test_fuzz_estimators.py``.
 
 Run ``python tests/test_battery.py`` for the counts by outcome.
 """

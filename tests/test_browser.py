@@ -99,7 +99,7 @@ MEASURE_DEMOS = """() => [...document.querySelectorAll('[class*=camlab-demo-]')]
 def test_every_demo_fits_at_1400_px_with_the_file_browser_open(lab):
     """Nothing clipped in JupyterLab's output area at a 1400 px window with the file browser open
     (968 px): the controls and the figure sit side by side where both fit, else the figure wraps
-    under the controls (issue 28: demos 1100 px wide were cut off on the right)."""
+    under the controls (demos 1100 px wide were once cut off on the right)."""
     from playwright.sync_api import sync_playwright
 
     from camlab.widgets import all_demos

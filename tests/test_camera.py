@@ -627,7 +627,7 @@ def test_nearest_rotation_has_one_home():
 
 
 def test_functions_returning_a_pose_or_factors_name_them():
-    """Issue 12: no bare tuples; each unpacks as before (``R, t = ...``) and reads by name."""
+    """No bare tuples (docs/conventions.md); each unpacks as before (``R, t = ...``) and reads by name."""
     from camlab import epipolar as ep
     from camlab import render
     from camlab.calibration import extrinsics_from_homography

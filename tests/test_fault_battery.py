@@ -1,6 +1,6 @@
 """A battery of faults a user meets with the photo commands (calibrate, undistort, stitch, rectify).
 
-Grown from the cases of issue 26: outputs that would overwrite the inputs, a full disk, a
+Grown from a fault battery run by hand: outputs that would overwrite the inputs, a full disk, a
 calibration from ROS, truncated photos, photos a phone stored sideways with an EXIF
 orientation tag, phone-size photos, a flat scene given to ``rectify``, two panoramas in one
 folder. Each case drives ``camlab.cli.main`` as a user would and is classified:

@@ -52,7 +52,7 @@ def image_frames_lost(view, live: np.ndarray, full: np.ndarray, band: int = 2, l
 
     A spine is a one-pixel line on the edge of the image's axes: :func:`frame_difference` forgives
     it (a one-pixel shift) and it is far below its share of pixels, yet a reader sees the frame
-    open at the top and the left (issue 28, in every lesson). So along each side of every framed
+    open at the top and the left (in every lesson, once). So along each side of every framed
     axes that holds an animated image, compare the darkest pixel across a band of ``band`` pixels
     either side of the edge, live against full, with no shift forgiven; a side counts as lost
     where over 2 % of its length differs by more than ``levels`` grey levels.
@@ -88,7 +88,7 @@ def sweep_points(spec) -> list[tuple[str, object]]:
 # triaged (issues 28 and 29; lesson 09's panorama_canvas has the stale axis limits the review
 # found). Strict: a fix that makes one pass must take it off this list.
 KNOWN_DIFFERENT = {"epipolar_lines", "panorama_canvas", "ransac_outliers"}
-# (undistort_alpha passed once every animated image's spines were drawn live, issue 28)
+# (undistort_alpha passed once every animated image's spines were drawn live)
 
 
 @pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason="issues 28/29"))
@@ -122,7 +122,7 @@ def test_known_different_demos_keep_their_image_frames(name):
 
 
 def test_the_frame_check_catches_an_image_painted_over_its_spines():
-    """As every demo was before issue 28: static spines in the cached background, under the image."""
+    """As every demo once was: static spines in the cached background, under the image."""
     from camlab.widgets.digital_sensor import bit_depth_and_noise
 
     from matplotlib.image import AxesImage

@@ -137,7 +137,7 @@ def _canvas_problems(nb: dict) -> list[str]:
 
 
 def output_problems(nb: dict) -> list[str]:
-    """Everything in an executed lesson that a student should not see (issue 26, item 5).
+    """Everything in an executed lesson that a student should not see.
 
     A stray ``True``/``False`` or matplotlib repr ending a cell, a warning naming a local or
     temporary path, and a live figure with ipympl's "Figure N" header.

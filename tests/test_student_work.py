@@ -1,4 +1,4 @@
-"""A student's work is never lost, and a classroom run never leaves a torn folder (issue 26, items 2-4).
+"""A student's work is never lost, and a classroom run never leaves a torn folder.
 
 `camlab lessons` judges a lesson by its cells (JupyterLab's save is not an edit), keeps what
 it replaces, copies atomically, survives a torn manifest, a torn notebook, a full disk and a

@@ -231,7 +231,7 @@ def test_unknown_control_is_a_clear_error():
 
 
 def test_a_demo_takes_no_ad_hoc_attributes():
-    """STYLE.md 12: state lives in ``demo.state`` and handlers in ``demo.handlers``, never on new attributes."""
+    """State lives in ``demo.state`` and handlers in ``demo.handlers``, never on new attributes."""
     demo = DEMOS["camera_explorer"].builder()
     with pytest.raises(AttributeError):
         demo.cache = {}  # a slotted dataclass: a typo or a stash fails loudly
@@ -251,7 +251,7 @@ def test_shared_control_helpers_give_one_look():
     assert not controls.int_slider(7, 3, 21, "e", continuous_update=False).continuous_update
 
 
-# Values a student can type or a slider can report that no demo can draw (issue 26, 2b).
+# Values a student can type or a slider can report that no demo can draw.
 BAD_FLOATS = [float("nan"), 1e308]
 UNDRAWABLE_CORNERS = ["", "garbage", "nan, 1; 2, 3; 4, 5; 6, 7", "5, 5; 5, 5; 5, 5; 5, 5",
                       "1e308, 1e308; -1e308, 1e308; 1e308, -1e308; 0, 0"]

@@ -32,7 +32,7 @@ from matplotlib.figure import Figure
 WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
 OUTPUT_WIDTH_PX = 960
 """The widest a live figure (or a demo) may be: JupyterLab's output area is 968 px wide in a
-1400 px window with the file browser open (measured in headless Chromium, issue 28)."""
+1400 px window with the file browser open (measured in headless Chromium)."""
 CANVAS_FRAME_PX = 8
 """What ipympl's canvas widget adds to its figure's width (measured: 1008 px for a 1000 px figure)."""
 _ALT: "weakref.WeakKeyDictionary[Figure, str]" = weakref.WeakKeyDictionary()

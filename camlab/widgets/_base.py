@@ -127,8 +127,8 @@ class FigureView:
 
         A full draw paints the spines (zorder 2.5) over the image (zorder 0). Left static, they
         would be in the cached background, and every live frame would paint the image over
-        them: the top and left frame lines lost the half inside the axes in every lesson
-        (issue 28). Called before the first full draw; the spines of an axes turned off after
+        them: the top and left frame lines lost the half inside the axes in every lesson.
+        Called before the first full draw; the spines of an axes turned off after
         that are not drawn live either (:meth:`_in_draw_order`).
         """
         animated = {id(a) for a in self._animated}
