@@ -717,3 +717,22 @@ def test_rq_mismatch_names_matrix_row_column_and_no_negative_zero():
         check("rq_decomposition", _rq_forced_rotation)
     assert "channel" not in str(info.value) and "R must be" not in str(info.value)
     assert "a reflection" in str(info.value)
+
+
+def test_lift_names_a_notebook_variable_read_instead_of_p(monkeypatch):
+    """A lift that reads a variable of the notebook (the worked example's `points`) instead of its argument gets
+    a hint naming that variable; the in-place hint for a (2,) point speaks of p, not of batch code."""
+    import __main__
+
+    monkeypatch.setattr(__main__, "points", np.array([[319.5, 239.5], [0.0, 0.0]]), raising=False)
+    with pytest.raises(AssertionError, match=r"those of the notebook's `points\[0\]`, not of p"):
+        check("lift", lambda p: np.append(__main__.points[0], 1.0))
+
+    def lift_in_place(p):
+        out = np.append(p, 1.0)
+        p[0] = 99.0
+        return out
+
+    with pytest.raises(AssertionError, match=r"changed its input `p` in place") as caught:
+        check("lift", lift_in_place)
+    assert "`p[1] = -p[1]`" in str(caught.value) and "x *= L" not in str(caught.value) and "[:, 0]" not in str(caught.value)

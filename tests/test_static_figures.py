@@ -44,10 +44,10 @@ def test_demo_bundle_has_widget_png_and_alt_text(name):
 
 def test_alt_text_follows_the_settings():
     demo = DEMOS["stack_check"].builder()
-    assert "angle θ (°) = 20; scale s = 1." in demo.alt_text
+    assert "angle θ (°) = 40; scale s = 1." in demo.alt_text
     demo.set(angle=-35.0, scale=1.5)
     assert "angle θ (°) = -35; scale s = 1.5." in demo.alt_text
-    assert "Panels: 'y down, as in images: θ > 0 turns it clockwise', 'y up, as in maths textbooks" in demo.alt_text
+    assert "Panels: 'y down, as in images: θ > 0 clockwise, θ < 0 anticlockwise', 'y up, as in maths textbooks" in demo.alt_text
     assert "Readout: 'roof tip (orange dot) at (-1.20, -1.72)'." in demo.alt_text
 
 
@@ -118,3 +118,34 @@ def test_a_plain_figure_wider_than_the_output_area_is_drawn_to_fit_it():
     assert wide.get_figwidth() == 10 and wide.dpi * 10 + static.CANVAS_FRAME_PX == static.OUTPUT_WIDTH_PX
     assert _png_pixels(wide_png["image/png"]).shape[1] == 952
     assert narrow.dpi == 100 and _png_pixels(narrow_png["image/png"]).shape[:2] == (300, 600)
+
+
+def test_camera_frame_puts_pixel_0_0_half_a_pixel_in_and_its_labels_off_the_axes():
+    """Lesson 00's camera frame: (u, v) = (0, 0) is the top-left pixel's centre, half a pixel in from the image
+    plane's corner (the convention the panel beside it teaches), and no label sits on an axis arrow."""
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Rectangle
+    from matplotlib.text import Text
+    from matplotlib.transforms import Bbox
+
+    from camlab.plotting import conventions
+
+    fig, ax = plt.subplots(figsize=(3.2, 3.0))
+    conventions.draw_camera_frame(ax, (4, 3))
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    (plane,) = [p for p in ax.patches if isinstance(p, Rectangle)]
+    pixel = plane.get_width() / 4
+    assert np.isclose(plane.get_height(), 3 * pixel)
+    (origin,) = [a for a in ax.texts if a.get_text().startswith("(0, 0)")]
+    assert np.allclose(origin.xy, np.add(plane.get_xy(), pixel / 2))  # half a pixel in, not on the corner
+    axes_arrows = [a.arrow_patch for a in ax.texts if not a.get_text() and getattr(a, "arrow_patch", None)]
+    assert len(axes_arrows) == 4  # u, v, x and y
+    for text in ax.texts:
+        if not text.get_text():
+            continue
+        box = Text.get_window_extent(text, renderer)  # the words alone (an annotation's box includes its arrow)
+        for arrow in axes_arrows:
+            assert not Bbox.intersection(box, arrow.get_window_extent(renderer).shrunk(0.9, 0.9)) or \
+                text.get_text() in ("u", "v"), f"{text.get_text()!r} lies on an arrow"
+    plt.close(fig)

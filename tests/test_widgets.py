@@ -398,7 +398,8 @@ def test_stack_check_names_the_turn_each_panel_shows(angle, down, up):
     demo.set(angle=angle, scale=1.0)
     ax_down, ax_up = demo.figure.axes
     assert demo.state["turns"] == {"y down": down, "y up": up}
-    assert ax_down.get_title().endswith("θ > 0 turns it clockwise") and ax_up.get_title().endswith("anticlockwise")
+    assert ax_down.get_title().endswith("θ > 0 clockwise, θ < 0 anticlockwise")
+    assert ax_up.get_title().endswith("θ > 0 anticlockwise, θ < 0 clockwise")
     for ax, words in ((ax_down, down), (ax_up, up)):
         assert ax.yaxis_inverted() == (ax is ax_down)
         if angle:
@@ -406,6 +407,41 @@ def test_stack_check_names_the_turn_each_panel_shows(angle, down, up):
             steps = np.diff(screen, axis=0)
             turn = np.sum(steps[:-1, 0] * steps[1:, 1] - steps[:-1, 1] * steps[1:, 0])  # > 0: clockwise on screen
             assert (turn > 0) == words.startswith("clockwise"), (ax.get_title(), turn)
+
+
+@pytest.mark.parametrize("angle, scale", [(40.0, 1.0), (45.0, 1.0), (-45.0, 1.0), (120.0, 1.0), (-90.0, 0.3),
+                                          (135.0, 2.0), (180.0, 1.0), (-180.0, 1.0)])
+def test_stack_check_arrowhead_points_along_the_turn_on_screen(angle, scale):
+    """The arrowhead on the roof tip's path points the way the tip moves on screen, in both panels: its marker's
+    tip, turned by the marker's own transform, lies along the arc's screen tangent (display coordinates), and the
+    arc is the turn at the house's own size (radius 1.4), whatever the scale."""
+    demo = DEMOS["stack_check"].builder()
+    demo.set(angle=angle, scale=scale)
+    fig = demo.figure
+    fig.canvas.draw()
+    arc = demo.state["path"][:-1]
+    assert np.allclose(np.hypot(*arc.T), 1.4) and np.allclose(demo.state["path"][-1], demo.state["tip"])
+    at = demo.state["arrow"]["at"]
+    k = int(np.argmin(np.hypot(*(arc - at).T)))
+    assert 0 < k < len(arc) - 1
+    for ax, key in zip(fig.axes, ("y down", "y up")):
+        (arrow,) = [ln for ln in ax.lines if ln.get_label() == "_the way"]
+        assert np.allclose(np.column_stack(arrow.get_data())[0], at)
+        screen = ax.transData.transform(arc[[k - 1, k + 1]])  # display coordinates: x right, y up
+        tangent = np.degrees(np.arctan2(*(screen[1] - screen[0])[::-1]))
+        marker_tip = arrow._marker.get_transform().transform([[1.0, 0.0], [0.0, 0.0]])
+        pointing = np.degrees(np.arctan2(*(marker_tip[0] - marker_tip[1])[::-1]))
+        assert abs((pointing - tangent + 180) % 360 - 180) < 2, (key, pointing, tangent)
+        assert np.isclose(demo.state["arrow"][key], pointing)
+
+
+def test_stack_check_has_no_arrowhead_without_a_turn():
+    demo = DEMOS["stack_check"].builder()
+    demo.set(angle=0.0, scale=1.5)
+    assert demo.state["arrow"]["y down"] is None and demo.state["arrow"]["y up"] is None
+    for ax in demo.figure.axes:
+        (arrow,) = [ln for ln in ax.lines if ln.get_label() == "_the way"]
+        assert len(arrow.get_xdata()) == 0
 
 
 def test_stack_report_names_the_versions_and_whether_figures_are_live():

@@ -206,12 +206,24 @@ def _parameter_name(function: Callable[..., Any], position: int) -> str:
     return f"`{names[position]}`" if position < len(names) else f"argument {position + 1}"
 
 
-def _in_place_message(name: str, student_function: Callable[..., Any], changed: list[int], i: int, n: int) -> str:
+def _in_place_message(name: str, student_function: Callable[..., Any], changed: list[int], i: int, n: int,
+                      args: tuple) -> str:
+    """The diagnosis of an input changed in place, with examples written for the first changed argument.
+
+    The examples use that argument's own name and shape: ``p[1] = -p[1]`` for one point (a 1-D array),
+    ``X[:, 0] = ...`` for a batch, so a warm-up on one point does not read batch code in its hint.
+    """
     what = ", ".join(_parameter_name(student_function, k) for k in changed)
+    first = _parameter_name(student_function, changed[0]).strip("`")
+    a = first if first.isidentifier() else "x"
+    if np.ndim(args[changed[0]]) == 1:
+        examples, new = f"`{a}[1] = -{a}[1]`, `{a} += d`, `{a}.sort()`", f"`{a} + d`, `np.append({a}, 1.0)`"
+    else:
+        examples, new = f"`{a} *= L`, `{a}[:, 0] = ...`, `{a} += d`", f"`{a} * L`"
     return (f"{name}: your function changed its input {what} in place (test input {i + 1} of {n}); the caller's "
             f"array must come back as it went in\n"
-            f"  likely cause: an in-place operation on an argument (`x *= L`, `x[:, 0] = ...`, `x += ...`); "
-            f"build a new array instead (`x * L`), or work on a copy first (`x = np.array(x, dtype=float)`)")
+            f"  likely cause: an in-place operation on an argument ({examples}); "
+            f"build a new array instead ({new}), or work on a copy first (`{a} = np.array({a}, dtype=float)`)")
 
 
 def _run_student(name: str, student_function: Callable[..., Any], args: tuple, i: int, n: int,
@@ -237,7 +249,7 @@ def _run_student(name: str, student_function: Callable[..., Any], args: tuple, i
         ) from exc
     changed = _inputs_changed(args, passed)
     if changed:
-        raise AssertionError(_in_place_message(name, student_function, changed, i, n))
+        raise AssertionError(_in_place_message(name, student_function, changed, i, n, args))
     return got
 
 

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import dis
 import re
+import sys
 from types import TracebackType
 
 import numpy as np
@@ -197,7 +198,7 @@ def _xy_slip(xy: np.ndarray, p: np.ndarray, swapped: bool = False) -> str:
     fractional = not np.array_equal(p, np.trunc(p))
     if fractional and (np.allclose(xy, np.trunc(p)) or np.allclose(xy, np.round(p))):
         return ("the coordinates lost their fractions: you cast to int or rounded, but image points are real "
-                "numbers (sub-pixel positions such as -1.5); keep floats")
+                f"numbers (sub-pixel positions, such as this input's ({p[0]:g}, {p[1]:g})); keep floats")
     for shift, cause in ((0.5, "pixel centres sit at whole numbers in this course (section 3), so a point needs no "
                                "half-pixel shift"),
                          (1.0, "numpy and this course count pixels from 0, not 1 (a 1-based index?)")):
@@ -221,6 +222,10 @@ def _xy_slip(xy: np.ndarray, p: np.ndarray, swapped: bool = False) -> str:
                     "homogeneous coordinates, lesson 04 §0), and lifting divides nothing")
         if np.isclose(k, 1 / np.linalg.norm(p)):
             return "you divided by the point's length: lifting normalises nothing"
+        if np.isclose(k, np.pi / 180) or np.isclose(k, 180 / np.pi):
+            way = "degrees to radians (np.radians)" if k < 1 else "radians to degrees (np.degrees)"
+            return (f"x and y are {k:g} times the point's: the factor that converts {way}; a point's coordinates "
+                    f"are pixels, not angles, and lifting converts nothing")
         cause = "a sign flip" if k == -1 else "a unit change or a stray factor"
         return f"x and y are {k:g} times the point's ({cause})"
     if not swapped and not np.allclose(p, p[::-1]):
@@ -232,10 +237,45 @@ def _xy_slip(xy: np.ndarray, p: np.ndarray, swapped: bool = False) -> str:
     return _one_coordinate_slip(xy, p)
 
 
+def _cases() -> list[tuple[np.ndarray]]:
+    """The check's test inputs: the first has fractions, so an int cast shows at once; the last is the
+    bottom-right pixel of 640 x 480."""
+    return [(np.array([2.5, 4.25]),), (np.array([-1.5, 0.0]),), (np.array([639.0, 479.0]),)]
+
+
+def _not_from_p(xy: np.ndarray, p: np.ndarray) -> str:
+    """Why x and y, both wrong, do not come from ``p`` at all: another test input's point, or a notebook variable.
+
+    A function that returns the same numbers for every point was written for one input (copied from a
+    check's message) or reads a variable of the notebook (``points[0]``, ``roof_tip``) instead of its
+    argument; '' when neither explains ``xy``.
+    """
+    for k, (other,) in enumerate(_cases()):
+        if not np.allclose(other, p) and np.allclose(xy, other):
+            return (f"x and y are ({xy[0]:g}, {xy[1]:g}), test input {k + 1}'s point, not this input's: the answer "
+                    f"does not depend on p; build it from the argument p, not from fixed numbers: {_APPEND}")
+    main = sys.modules.get("__main__")
+    for name, value in (vars(main).items() if main is not None else ()):
+        if (name.startswith("_") or not isinstance(value, np.ndarray) or value.dtype.kind not in "iuf"
+                or value.ndim not in (1, 2) or value.shape[-1] not in (2, 3) or value.size > 3000):
+            continue
+        rows = value.reshape(-1, value.shape[-1])
+        for k, row in enumerate(rows):
+            if np.allclose(row[:2], xy):
+                where = name if value.ndim == 1 else f"{name}[{k}]"
+                return (f"x and y are ({xy[0]:g}, {xy[1]:g}), those of the notebook's `{where}`, not of p: your "
+                        f"function reads a variable of the notebook instead of its argument p; lift p: {_APPEND}")
+    return ""
+
+
 def _one_coordinate_slip(xy: np.ndarray, p: np.ndarray) -> str:
     """Name the coordinate that is wrong, and what it holds when that is recognisable (x twice, a 0)."""
     names = ("x", "y")
     wrong = [k for k in range(2) if not np.isclose(xy[k], p[k])]
+    if len(wrong) == 2:
+        fixed = _not_from_p(xy, p)
+        if fixed:
+            return fixed
     parts = []
     for k in wrong:
         holds = ""
@@ -298,8 +338,7 @@ register_exercise(Exercise(
     name="lift",
     lesson="00",
     reference=projective.to_homogeneous,
-    # The first input has fractions, so an int cast shows at once; the last is the bottom-right pixel of 640 x 480.
-    cases=lambda: [(np.array([2.5, 4.25]),), (np.array([-1.5, 0.0]),), (np.array([639.0, 479.0]),)],
+    cases=_cases,
     compare=same_array(),
     diagnose=_diagnose,
     ndarray_only=True,
@@ -363,6 +402,8 @@ register_exercise(Exercise(
         (lambda p: np.r_[p[0], p[0], 1.0], "it holds x"),
         (lambda p: np.append(p / p[-1], 1.0), "you divided by p[-1], which is y"),
         (lambda p: np.append(p - p.mean(), 1.0), "subtracted the mean"),
+        (lambda p: np.append(np.radians(p), 1.0), "converts degrees to radians"),
+        (lambda p: np.array([2.5, 4.25, 1.0]), "test input 1's point, not this input's: the answer does not depend on p"),
         (_list_append, "no .append method"),
         (lambda p: p + [1.0], "not the list concatenation"),
         (lambda p: np.concatenate(p, 1), "its second argument is the axis"),

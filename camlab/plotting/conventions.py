@@ -33,9 +33,11 @@ def draw_pixel_grid(ax: Axes, size: tuple[int, int], points: np.ndarray, marked:
     ax.set_anchor("N")  # the top of its slot, like the panels beside it, so their titles line up
     ax.set_xlabel("u (px): column, along the camera's x", color=X_COLOUR)
     ax.set_ylabel("v (px): row, along y", color=Y_COLOUR)
-    for set_ticks, n in ((ax.set_xticks, width), (ax.set_yticks, height)):  # the centres, and the edges -0.5 and n - 0.5
-        ticks = [-0.5, *range(n), n - 0.5]
-        set_ticks(ticks, [f"{t:g}" for t in ticks])
+    for axis, n in ((ax.xaxis, width), (ax.yaxis, height)):  # the centres, and the edges -0.5 and n - 0.5
+        axis.set_ticks(range(n))
+        axis.set_ticks([-0.5, n - 0.5], [f"{t:g}" for t in (-0.5, n - 0.5)], minor=True)
+    # The image's edges, half a pixel out, in small grey type, so they are not read as centres at a glance.
+    ax.tick_params(which="minor", length=2.5, labelsize=7.5, labelcolor="0.45", color="0.45")
     ax.plot(u.ravel(), v.ravel(), ".", color="0.45", ms=3)
     points = np.asarray(points, dtype=float)
     ax.plot(points[:, 0], points[:, 1], "o", color=POINT_COLOUR, ms=7)
@@ -74,31 +76,42 @@ def draw_point_rows(ax: Axes, points: np.ndarray, notes: Sequence[str]) -> None:
             linespacing=1.6, **(mono | dict(va="top")))
 
 
-def draw_camera_frame(ax: Axes) -> None:
+def draw_camera_frame(ax: Axes, size: tuple[int, int] = (4, 3)) -> None:
     """The camera frame seen from behind the camera, looking where it looks: x right, y down, z into the page.
 
     The image plane (in front of the camera, where the virtual image of lesson 01 forms) is the
-    rectangle around the principal axis; its u runs along x from the top-left corner, v along y.
+    rectangle around the principal axis, divided into the ``size = (W, H)`` pixels of
+    :func:`draw_pixel_grid`'s image (faint lines). Its u runs along x and v along y
+    from (u, v) = (0, 0), the centre of the top-left pixel, half a pixel in from the plane's corner;
+    the image's centre ((W - 1)/2, (H - 1)/2) is on the principal axis.
     """
+    width, height = size
     ax.set_xlim(-1.45, 2.55)
     ax.set_ylim(1.75, -1.25)  # y down; the box is 4:3 like the image beside it
     ax.set_aspect("equal")
     ax.set_axis_off()
     ax.set_title("the camera frame,\nseen from behind", fontsize=10)
     ax.set_anchor("N")
-    w, h = 1.0, 0.75  # half the image plane's width and height (4:3)
-    ax.add_patch(Rectangle((-w, -h), 2 * w, 2 * h, facecolor="0.95", edgecolor="0.55", lw=1))
-    ax.text(-w + 0.05, h - 0.05, "image plane", color="0.35", ha="left", va="bottom", fontsize=8.5)
-    # (u, v) = (0, 0) is the centre of the top-left pixel, a little inside the corner (pixels drawn 0.07 wide).
-    u0, v0 = -w + 0.035, -h + 0.035
-    thin = dict(arrowstyle="-|>", lw=1.5, mutation_scale=12)
-    ax.annotate("", (u0 + 0.7, v0), (u0, v0), arrowprops=dict(color=X_COLOUR, **thin))
-    ax.annotate("", (u0, v0 + 0.55), (u0, v0), arrowprops=dict(color=Y_COLOUR, **thin))
-    ax.text(u0 + 0.72, v0 - 0.04, "u", color=X_COLOUR, ha="left", va="bottom", fontsize=10, fontweight="bold")
-    ax.text(u0 - 0.08, v0 + 0.57, "v", color=Y_COLOUR, ha="right", va="top", fontsize=10, fontweight="bold")
-    ax.plot(u0, v0, "o", color="0.35", ms=4)
-    ax.text(u0 - 0.06, v0 - 0.06, "(0, 0): top-left\npixel's centre", color="0.35", ha="right", va="bottom", fontsize=8,
-            linespacing=1.1)
+    w = 1.0  # half the image plane's width; a pixel is 2 w / W wide and as tall
+    pixel = 2 * w / width
+    h = pixel * height / 2
+    ax.add_patch(Rectangle((-w, -h), 2 * w, 2 * h, facecolor="0.95", edgecolor="0.45", lw=1))
+    for k in range(1, width):
+        ax.plot([-w + k * pixel] * 2, [-h, h], color="0.82", lw=0.6)
+    for k in range(1, height):
+        ax.plot([-w, w], [-h + k * pixel] * 2, color="0.82", lw=0.6)
+    ax.text(0.12, h + 0.06, "image plane", color="0.25", ha="left", va="top", fontsize=9)  # right of the y axis
+    # (u, v) = (0, 0): the centre of the top-left pixel, half a pixel in from the corner.
+    u0, v0 = -w + pixel / 2, -h + pixel / 2
+    thin = dict(arrowstyle="-|>", lw=1.5, mutation_scale=12, shrinkA=0, shrinkB=0)
+    ax.annotate("", (u0 + pixel, v0), (u0, v0), arrowprops=dict(color=X_COLOUR, **thin))  # one pixel along u ...
+    ax.annotate("", (u0, v0 + pixel), (u0, v0), arrowprops=dict(color=Y_COLOUR, **thin))  # ... and along v
+    ax.text(u0 + pixel + 0.05, v0, "u", color=X_COLOUR, ha="left", va="center", fontsize=10, fontweight="bold")
+    ax.text(u0 - 0.06, v0 + pixel, "v", color=Y_COLOUR, ha="right", va="center", fontsize=10, fontweight="bold")
+    ax.plot(u0, v0, "o", color="0.2", ms=5)
+    ax.annotate("(0, 0): the top-left pixel's centre,\nhalf a pixel in from the corner", (u0, v0),
+                xytext=(-w - 0.4, -h - 0.12), color="0.2", ha="left", va="bottom", fontsize=9, linespacing=1.1,
+                arrowprops=dict(arrowstyle="-", color="0.4", lw=0.8, shrinkA=1, shrinkB=3))
     thick = dict(arrowstyle="-|>", lw=2, mutation_scale=18)
     ax.annotate("", (1.5, 0), (0, 0), arrowprops=dict(color=X_COLOUR, **thick))
     ax.annotate("", (0, 1.3), (0, 0), arrowprops=dict(color=Y_COLOUR, **thick))

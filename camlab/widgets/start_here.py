@@ -5,6 +5,7 @@ import ipywidgets as W
 import numpy as np
 from matplotlib.colors import to_rgba
 from matplotlib.markers import MarkerStyle
+from matplotlib.path import Path
 from matplotlib.transforms import Affine2D
 
 from ..plotting.plane import plane_axes
@@ -15,21 +16,29 @@ from ..plotting import palette
 # every image of the course, so the roof (drawn on top) has the most negative y.
 HOUSE = np.array([[-1, 1], [1, 1], [1, -0.6], [0, -1.4], [-1, -0.6], [-1, 1]], dtype=float)
 ROOF_TIP = 3  # HOUSE[3] is the roof tip, (0, -1.4)
+DEFAULT_ANGLE = 40.0  # degrees: a turn whose arc (0.98 plot units) shows the path on both sides of its arrowhead
+ARC_SAMPLES = 61  # points on the arc of the roof tip's turn
 MOVED = "0.15"  # the moved house: near-black, so colour stays for the points the lesson reads (orange)
+# The arrowhead on the roof tip's path: a slim dart pointing along +x (apex 39°, notched back), so it reads
+# one way at every rotation; matplotlib's ">" is nearly equilateral and, turned by 60°, seems to point elsewhere.
+ARROWHEAD = Path([(1.0, 0.0), (-0.7, 0.6), (-0.3, 0.0), (-0.7, -0.6), (1.0, 0.0)],
+                 [Path.MOVETO, Path.LINETO, Path.LINETO, Path.LINETO, Path.CLOSEPOLY])
 
 
 def turn_path(angle_deg: float, scale: float, start: np.ndarray, samples: int = 61) -> np.ndarray:
-    r"""The path of ``start`` as the house turns and grows from (0°, 1) to (``angle_deg``, ``scale``): (samples, 2).
+    r"""The path of ``start`` as the house turns by ``angle_deg``, then scales by ``scale``: (samples + 1, 2).
 
-    Angle and scale grow together, :math:`x(t) = (1 + t (s - 1))\, R(t \theta)\, x_0` for t from 0 to 1:
-    an arc for s = 1, a spiral otherwise. Its direction on screen is the turn's: clockwise on y-down
-    axes for θ > 0, anticlockwise on y-up axes.
+    The first ``samples`` points are the turn, :math:`R(t \theta)\, x_0` for t from 0 to 1: an arc of the
+    circle through ``start`` about the origin, clockwise on y-down axes for θ > 0 and anticlockwise on
+    y-up axes. The last point is :math:`s R(\theta)\, x_0`, so the scaling is the straight step out
+    (s > 1) or in (s < 1) along the radius, where the roof tip ends. The order is immaterial, since
+    :math:`s R = R s`; turning first keeps the arc at the house's own size, where the turn shows.
     """
     t = np.linspace(0.0, 1.0, samples)[:, None]
     theta = np.radians(angle_deg) * t
-    grow = 1.0 + t * (scale - 1.0)
     x, y = start
-    return grow * np.hstack([x * np.cos(theta) - y * np.sin(theta), x * np.sin(theta) + y * np.cos(theta)])
+    arc = np.hstack([x * np.cos(theta) - y * np.sin(theta), x * np.sin(theta) + y * np.cos(theta)])
+    return np.vstack([arc, scale * arc[-1]])
 
 
 def turn_words(angle_deg: float, y_down: bool) -> str:
@@ -54,37 +63,41 @@ def _house_panel(ax, y_down: bool, view: FigureView) -> dict:
     ax.fill(HOUSE[:, 0], HOUSE[:, 1], facecolor=to_rgba(palette.GREY, 0.2), edgecolor=palette.GREY, lw=1, ls="--",
             label="original")
     # A white outline keeps the dotted path apart from the original's dashed edge it starts on.
-    path = view.animate(ax.plot([], [], ":", color=palette.ORANGE, lw=1.6, label="path of the roof tip",
+    path = view.animate(ax.plot([], [], ":", color=palette.ORANGE, lw=1.6, label="roof tip's path: turn, then scale",
                                 path_effects=palette.halo(1.6))[0])
-    arrow = view.animate(ax.plot([], [], ls="none", marker=">", ms=8, color=palette.ORANGE, label="_the way")[0])
+    arrow = view.animate(ax.plot([], [], ls="none", marker=ARROWHEAD, ms=15, color=palette.ORANGE, mec="white",
+                                 mew=0.6, label="_the way")[0])
     house = view.animate(ax.plot([], [], color=MOVED, lw=2, label="rotated and scaled")[0])
     tip = view.animate(ax.plot([], [], "o", color=palette.ORANGE, ms=7, label="roof tip")[0])
-    # Static titles (a text redrawn in every frame costs more than all the lines): the rule, for θ > 0.
+    # Static titles (a text redrawn in every frame costs more than all the lines): the rule, both signs.
     ax.set_title(f"y {'down, as in images' if y_down else 'up, as in maths textbooks'}:\n"
-                 f"θ > 0 turns it {turn_words(1.0, y_down)}", fontsize=10)
+                 f"θ > 0 {turn_words(1.0, y_down)}, θ < 0 {turn_words(-1.0, y_down)}", fontsize=10)
     return dict(path=path, arrow=arrow, house=house, tip=tip, y_down=y_down)
 
 
-def _point_arrow(arrow, at: np.ndarray, way: np.ndarray, y_down: bool) -> None:
-    """Put the arrowhead marker at ``at``, pointing along ``way`` as drawn (none for a path of length 0).
+def _point_arrow(arrow, at: np.ndarray, way: np.ndarray, y_down: bool) -> float | None:
+    """Put the arrowhead marker at ``at``, pointing along ``way`` as drawn; returns its angle on screen.
 
-    The axes have equal aspect, so a direction in plot units keeps its angle on screen, with y
-    mirrored on y-down axes; the marker ">" points right before it is turned.
+    The angle is in degrees, anticlockwise from screen-right (None, and no marker, for a path of
+    length 0). The axes have equal aspect, so a direction in plot units keeps its angle on screen,
+    with y mirrored on y-down axes; :data:`ARROWHEAD` points right before it is turned.
     """
     if np.hypot(*way) < 1e-9:
         arrow.set_data([], [])
-        return
-    angle = np.degrees(np.arctan2(-way[1] if y_down else way[1], way[0]))
-    arrow.set_marker(MarkerStyle(">", transform=Affine2D().rotate_deg(angle)))
+        return None
+    angle = float(np.degrees(np.arctan2(-way[1] if y_down else way[1], way[0])))
+    arrow.set_marker(MarkerStyle(ARROWHEAD, transform=Affine2D().rotate_deg(angle)))
     arrow.set_data([at[0]], [at[1]])
+    return angle
 
 
-@register(lesson="00", sweep={"angle": [-180.0, -45.0, 0.0, 45.0, 120.0, 180.0], "scale": [0.3, 0.5, 1.5, 2.0]})
+@register(lesson="00", sweep={"angle": [-180.0, -90.0, -30.0, 0.0, 90.0, 135.0, 180.0], "scale": [0.3, 0.5, 1.5, 2.0]})
 def stack_check() -> Demo:
     """Rotate and scale a house with two sliders, drawn on y-down axes (images) and y-up axes (textbooks).
 
     Both panels draw the same numbers, x' = s R(angle) x: on y-down axes a positive angle turns the
-    house clockwise, on y-up axes anticlockwise; the dotted path of the roof tip shows the way. The
+    house clockwise, on y-up axes anticlockwise. The dotted path of the roof tip is the turn (an arc,
+    whose arrowhead shows the way), then the scaling (a straight step along the radius). The
     readout above the panels gives the roof tip's coordinates; the legend sits under the axes, since
     at scale 2 the house reaches every corner of them.
     """
@@ -105,22 +118,26 @@ def stack_check() -> Demo:
         t = np.radians(angle)
         A = s * np.array([[np.cos(t), -np.sin(t)], [np.sin(t), np.cos(t)]])  # x' = s R(angle) x
         moved = HOUSE @ A.T  # points are rows: the textbook's A x for every corner at once
-        path = turn_path(angle, s, HOUSE[ROOF_TIP])
-        middle = len(path) // 2
-        way = path[middle + 1] - path[middle - 1]  # the path's direction half-way, in plot units
+        path = turn_path(angle, s, HOUSE[ROOF_TIP], samples=ARC_SAMPLES)
+        middle = ARC_SAMPLES // 2  # the arrowhead sits half-way along the turn
+        way = path[middle + 1] - path[middle - 1]  # the turn's direction there, in plot units
+        arrows = {}
         for panel in panels:
             panel["house"].set_data(moved[:, 0], moved[:, 1])
             panel["tip"].set_data(moved[ROOF_TIP:ROOF_TIP + 1, 0], moved[ROOF_TIP:ROOF_TIP + 1, 1])
             panel["path"].set_data(path[:, 0], path[:, 1])
-            _point_arrow(panel["arrow"], path[middle], way, panel["y_down"])
+            arrows["y down" if panel["y_down"] else "y up"] = _point_arrow(panel["arrow"], path[middle], way,
+                                                                          panel["y_down"])
         x, y = (round(c, 2) + 0.0 for c in moved[ROOF_TIP])  # + 0.0 turns a rounded -0.0 into 0.0
         readout.set_text(f"({x:+.2f}, {y:+.2f})")
         # tip: where the orange dot is drawn (lesson 00 recomputes it by hand); readout: the numbers shown
+        # arrow: where the arrowhead sits, and its angle on screen in each panel (None: no turn to show)
         state.update(A=A, house=moved, tip=moved[ROOF_TIP].copy(), path=path, readout=f"({x:+.2f}, {y:+.2f})",
+                     arrow=dict(at=path[middle].copy(), **arrows),
                      turns={"y down": turn_words(angle, True), "y up": turn_words(angle, False)})
 
     controls = {
-        "angle": slider(20.0, -180.0, 180.0, 1.0, "angle θ (°)", readout_format=".0f"),
+        "angle": slider(DEFAULT_ANGLE, -180.0, 180.0, 1.0, "angle θ (°)", readout_format=".0f"),
         "scale": slider(1.0, 0.3, 2.0, 0.05, "scale s"),
     }
     return build_demo("stack_check", controls, view, update, title="Is everything working?")
