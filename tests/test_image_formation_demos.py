@@ -68,11 +68,12 @@ def test_pinhole_size_regimes():
     assert rows == {0.05: 1, 0.35: 4, 1.5: 2}
     demo.set(diameter_mm=0.35)  # within 5 % of the best 0.349 mm: the two terms are equal to 0.5 %
     assert demo.state["limited_by"] == "balanced"
-    demo.set(focal_mm=200)  # the hole left at 0.35 mm, now too small: diffraction-limited
-    assert demo.state["blur_mm"] == pytest.approx(1.19, abs=0.01) and demo.state["blur_px"] == pytest.approx(5.3, abs=0.1)
-    assert demo.state["limited_by"] == "diffraction-limited"
-    demo.set(diameter_mm=demo.state["best_mm"])  # at f = 200 mm's own best hole: 1.14 mm, 5.0 px (lesson 01, cell 19)
-    assert demo.state["blur_mm"] == pytest.approx(1.14, abs=0.01) and demo.state["blur_px"] == pytest.approx(5.0, abs=0.1)
+    demo.set(focal_mm=300)  # the hole left at 0.35 mm, now too small: diffraction-limited
+    assert demo.state["blur_mm"] == pytest.approx(1.61, abs=0.01) and demo.state["blur_px"] == pytest.approx(4.8, abs=0.1)
+    assert demo.state["limited_by"] == "diffraction-limited" and demo.state["legible_rows"] == 4
+    demo.set(diameter_mm=demo.state["best_mm"])  # at f = 300 mm's own best hole: 1.45 mm, 4.3 px (lesson 01, cell 19)
+    assert demo.state["blur_mm"] == pytest.approx(1.45, abs=0.01) and demo.state["blur_px"] == pytest.approx(4.3, abs=0.1)
+    assert demo.state["legible_rows"] == 5   # the long camera is sharper: the fifth row comes back
 
 
 def test_pinhole_size_shows_the_light_a_hole_costs():
@@ -309,7 +310,7 @@ def test_cone_figure_is_drawn_to_scale_so_rays_run_straight():
     before, after = cones[0][:4], cones[1][:4]   # the first point's cone before and after the hole
     (x_in, upper), (_, a) = before[0], before[1]
     (_, a2), (x_img, top) = after[0], after[1]
-    assert a == a2 and x_in == pytest.approx(-300) and x_img == pytest.approx(100)
+    assert a == a2 and x_in == pytest.approx(300) and x_img == pytest.approx(-100)   # drawn as cell 6: z right
     assert (a - upper) / (0 - x_in) == pytest.approx((top - a) / x_img)   # the ray through the hole's top edge
     plt.close(fig)
 

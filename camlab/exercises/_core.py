@@ -468,6 +468,9 @@ def solution_source(name: str) -> str:
     where = f"{reference.__module__}.{reference.__qualname__}"
     if exercise.teaching is None:
         return inspect.getsource(reference)
+    if reference.__name__.startswith("_"):   # a private helper is no place to send a student: say what it computes
+        summary = (inspect.getdoc(reference) or "").split("\n")[0]
+        return inspect.getsource(exercise.teaching) + f"\n# camlab's own, tested reference: {summary}\n"
     return (inspect.getsource(exercise.teaching)
             + f"\n# camlab's own, tested implementation: {where} (read it with {where}??)\n")
 

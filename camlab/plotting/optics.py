@@ -132,6 +132,29 @@ def draw_pinhole_3d(ax, edges: np.ndarray, f_draw: float, plane_half: float | No
     return art
 
 
+def _clip_to_frame(polygon: np.ndarray, half_width: float, half_height: float) -> np.ndarray:
+    """The part of a convex (K, 2) ``polygon`` inside the frame |x| <= half_width, |y| <= half_height.
+
+    Sutherland-Hodgman: cut by each of the frame's four edges in turn, keeping the inside part
+    (an edge that crosses the line contributes the crossing). Returns (M, 2), M = 0 if nothing is inside.
+    """
+    points = [tuple(p) for p in np.asarray(polygon, float)]
+    for axis, limit in ((0, half_width), (0, -half_width), (1, half_height), (1, -half_height)):
+        inside = (lambda p, a=axis, b=limit: p[a] <= b) if limit > 0 else (lambda p, a=axis, b=limit: p[a] >= b)
+        kept = []
+        for k, current in enumerate(points):
+            previous = points[k - 1]
+            if inside(current) != inside(previous):   # the edge crosses the line: keep the crossing
+                t = (limit - previous[axis]) / (current[axis] - previous[axis])
+                kept.append(tuple(np.asarray(previous) + t * (np.asarray(current) - np.asarray(previous))))
+            if inside(current):
+                kept.append(current)
+        points = kept
+        if not points:
+            break
+    return np.array(points, float).reshape(-1, 2)
+
+
 def update_pinhole_3d(art: dict, edges: np.ndarray, f_draw: float,
                       faces: tuple[np.ndarray, np.ndarray] | None = None, plane_half: float | None = None) -> None:
     """Move the box to ``edges`` (and its ``faces``, see :func:`draw_pinhole_3d`) and the image planes to ``f_draw``.
@@ -163,10 +186,13 @@ def update_pinhole_3d(art: dict, edges: np.ndarray, f_draw: float,
         img = _pinhole.project_pinhole(edges.reshape(-1, 3), f_draw, plane=name).reshape(-1, 2, 2)
         art[name].set_data_3d(*_polyline(np.concatenate([img, np.full(img.shape[:2] + (1,), z)], axis=2)))
         if faces is not None and art["fills"]:
-            flat = [np.column_stack([_pinhole.project_pinhole(polygons[k], f_draw, plane=name), np.full(4, z)])
-                    for k in seen_faces]
-            art["fills"][name].set_verts([np.column_stack(_to_plot(p)) for p in flat])
-            art["fills"][name].set_facecolor(colours)
+            # each face's picture, cut at the frame as the sensor cuts the image: what falls outside is not recorded
+            cut = [(_clip_to_frame(_pinhole.project_pinhole(polygons[k], f_draw, plane=name), h, 0.75 * h), colour)
+                   for k, colour in zip(seen_faces, colours)]
+            cut = [(p, colour) for p, colour in cut if len(p) >= 3]
+            art["fills"][name].set_verts([np.column_stack(_to_plot(np.column_stack([p, np.full(len(p), z)])))
+                                          for p, _ in cut])
+            art["fills"][name].set_facecolor([colour for _, colour in cut])
     ends = -corners * f_draw / corners[:, 2:3]  # through the pinhole to the real plane
     art["rays"].set_data_3d(*_polyline(np.stack([corners, ends], axis=1)))
 
@@ -226,6 +252,8 @@ def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
         "dims": {k: _dimension(ax, c) for k, c in (("f", "k"), ("Z", "k"), ("Y", palette.BLUE), ("y", palette.GREEN),
                                                     ("y_real", palette.RED))},
     }
+    for key in ("y", "y_real"):
+        art["dims"][key]["label"].set_fontsize(9)
     ax.set_xlim(-0.36 * z_max, 1.14 * z_max)  # room for the real plane's label at f = 1 m and for Y's at Z = 5 m
     ax.set_ylim(-h_max, h_max)
     ax.set_aspect("equal")  # similar triangles look similar only at equal scales
@@ -235,6 +263,7 @@ def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
 
 
 SHORTEST_ARROW = 0.15  # metres: a shorter dimension arrow is hidden (its heads would overlap)
+Z_LABEL_ROOM = 2.2  # metres: a Z arrow shorter than this cannot hold its label "Z = 1.20 m" between its heads
 
 
 def update_similar_triangles(art: dict, f: float, Z: float, Y: float) -> float:
@@ -249,25 +278,27 @@ def update_similar_triangles(art: dict, f: float, Z: float, Y: float) -> float:
     art["object"].set_data([Z, Z], [0, up])
     art["point"].set_data([Z], [up])
     art["ray"].set_data([-f, Z], [y, up])
-    h = art["planes"].axes.get_ylim()[1] * 0.9
+    h = art["planes"].axes.get_ylim()[1] * 0.85
     art["planes"].set_data([-f, -f, np.nan, f, f], [-h, h, np.nan, -h, h])
     art["virtual"].set_data([f, f], [0, up_img])
     art["real"].set_data([-f, -f], [0, y])
     away = -0.12 * h if up >= 0 else 0.12 * h  # dimension lines go on the side away from the object
     d = art["dims"]
-    _set_dimension(d["Z"], (0, 3 * away), (Z, 3 * away), f"Z = {Z:.2f} m")
+    # the Z label inside its arrow when the arrow is long enough to hold it, else just beyond its end
+    inside = Z >= Z_LABEL_ROOM
+    _set_dimension(d["Z"], (0, 3 * away), (Z, 3 * away), f"Z = {Z:.2f} m", ha="center" if inside else "left",
+                   label_at=None if inside else (Z + 0.08, 3 * away))
     _set_dimension(d["f"], (0, away), (f, away), f"f = {f:.2f} m", offset=(0, away))
-    _set_dimension(d["Y"], (Z + 0.1, 0), (Z + 0.1, up), f" Y = {_signed(Y, 2)} m", offset=(0.05, 0), ha="left",
+    # at Y near 0 the label would sit on the axis line: lift it clear (above, or below for an object below)
+    lift = 0.0 if abs(up) >= 0.3 else (0.15 if away < 0 else -0.15) - up / 2
+    _set_dimension(d["Y"], (Z + 0.1, 0), (Z + 0.1, up), f" Y = {_signed(Y, 2)} m", offset=(0.05, lift), ha="left",
                    min_arrow=SHORTEST_ARROW)
-    # the image labels sit beyond the tips of their bars, left of the planes: outside both triangles, off the ray
-    # (left of z = f the ray runs nearer the axis than the tip), never over the bars or the axis
-    beyond = 1.0 if up_img >= 0 else -1.0
-    _set_dimension(d["y"], (f + 0.06, 0), (f + 0.06, up_img), f"virtual\ny = {_signed(y * 100)} cm",
-                   ha="right", va="bottom" if beyond > 0 else "top", label_at=(f - 0.04, up_img + 0.04 * beyond),
-                   min_arrow=SHORTEST_ARROW)
-    _set_dimension(d["y_real"], (-f - 0.06, 0), (-f - 0.06, -up_img), f"real\n{_signed(-y * 100)} cm",
-                   ha="right", va="top" if beyond > 0 else "bottom", label_at=(-f - 0.1, -up_img - 0.04 * beyond),
-                   min_arrow=SHORTEST_ARROW)
+    # each image's label at the far end of its plane's dashed line (virtual at the top, real at the bottom):
+    # outside both triangles and off the ray at every setting, and never between two planes a short f puts close
+    _set_dimension(d["y"], (f + 0.06, 0), (f + 0.06, up_img), f"virtual: y = {_signed(y * 100)} cm",
+                   va="bottom", label_at=(f, h + 0.02), min_arrow=SHORTEST_ARROW)
+    _set_dimension(d["y_real"], (-f - 0.06, 0), (-f - 0.06, -up_img), f"real: {_signed(-y * 100)} cm",
+                   va="top", label_at=(-f, -h - 0.02), min_arrow=SHORTEST_ARROW)
     art["pinhole"].xyann = (0, 4.6 * away)
     return y
 
@@ -514,25 +545,26 @@ def draw_pinhole_cones(ax, diameter: float, focal_length: float, object_distance
                        heights=(-0.02, 0.02), wavelength: float = 550e-9) -> dict:
     """Side view of pinhole blur, to scale: each object point's cone of rays through a hole of ``diameter``.
 
-    Two points at ``heights`` (metres, camera y) and distance ``object_distance`` send cones
-    through the hole; each cone cuts the image plane ``focal_length`` behind it in a disc of
-    diameter d (1 + f/Z) (drawn in the point's colour), widened by diffraction to the Airy
-    disc 2.44 lambda f / d (the pale band). Both axes are millimetres, each with one scale, so
-    every ray is straight: the figure shows the last :data:`CONE_BEFORE` f of the rays before
-    the hole, and the points themselves, further left, are named where their rays come in.
-    Returns the blur terms in metres.
+    Drawn as lesson 01's other side view (:func:`draw_similar_triangles`): depth z to the right, the
+    objects on the +z side, the real image plane at z = -f on the left, height -y upwards. Two points
+    at ``heights`` (metres, camera y) and distance ``object_distance`` send cones through the hole in
+    the screen; each cone cuts the image plane ``focal_length`` behind it in a disc of diameter
+    d (1 + f/Z) (drawn in the point's colour), widened by diffraction to the Airy disc
+    2.44 lambda f / d (the pale band). Both axes are millimetres, each with one scale, so every ray is
+    straight: the figure shows the last :data:`CONE_BEFORE` f of the rays before the hole, and the
+    points themselves, further right, are named where their rays come in. Returns the blur terms in metres.
     """
     Z, f, d = object_distance, focal_length, diameter
     b = _pinhole.pinhole_blur(d, f, Z, wavelength)
     a = d / 2 * 1e3
-    x_in, x_img = -CONE_BEFORE * f * 1e3, f * 1e3       # plot x, mm: the left edge and the image plane
+    x_in, x_img = CONE_BEFORE * f * 1e3, -f * 1e3       # plot x = depth z, mm: the right edge and the image plane
     entry = []
     for Y, colour in zip(heights, (palette.BLUE, palette.PURPLE)):  # objects: blue and purple (green is the virtual plane)
         y_obj = -Y * 1e3                    # mm, drawn up
         y_img = Y * f / Z * 1e3             # the real image is inverted: -f Y / Z, drawn up as +
         top, bottom = y_img + b.geometric / 2 * 1e3, y_img - b.geometric / 2 * 1e3
         halo = b.total / 2 * 1e3
-        s_in = 1 + x_in * 1e-3 / Z          # where the left edge sits along the ray, from the point (0) to the hole (1)
+        s_in = 1 - x_in * 1e-3 / Z          # where the right edge sits along the ray, from the point (0) to the hole (1)
         upper, lower = y_obj + (a - y_obj) * s_in, y_obj + (-a - y_obj) * s_in
         ax.fill([0, x_img, x_img, 0], [a, y_img + halo, y_img - halo, -a], color=colour, alpha=0.12, lw=0)  # diffraction
         ax.fill([x_in, 0, 0, x_in], [upper, a, -a, lower], color=colour, alpha=0.35, lw=0)
@@ -541,20 +573,23 @@ def draw_pinhole_cones(ax, diameter: float, focal_length: float, object_distance
         ax.plot([x_img, x_img], [bottom, top], color=colour, lw=4, solid_capstyle="butt")
         entry.append((y_obj, (upper + lower) / 2, colour))
     wall = 1.6 * max(abs(e[1]) for e in entry)   # the same for every d: panels can share the height axis
-    for y_obj, y_in, colour in entry:   # the points lie off the left edge: say which ray comes from where
+    for y_obj, y_in, colour in entry:   # the points lie off the right edge: say which ray comes from where
         side = 1 if y_in > 0 else -1
         where = "above" if y_obj > 0 else "below"
         ax.annotate(f"from a point {abs(y_obj):.0f} mm {where}\nthe axis, {Z:g} m away", (x_in, y_in),
-                    xytext=(x_in + 0.25 * f * 1e3, side * 0.97 * wall), ha="left", va="top" if side > 0 else "bottom",
+                    xytext=(x_in - 0.25 * f * 1e3, side * 0.97 * wall), ha="right", va="top" if side > 0 else "bottom",
                     fontsize=8, color=colour, arrowprops=dict(arrowstyle="->", color=colour, lw=1, shrinkA=1, shrinkB=0))
     ax.plot([0, 0, np.nan, 0, 0], [wall, a, np.nan, -a, -wall], color="k", lw=3, solid_capstyle="butt")
+    # between the image plane and the screen, above the cones: the screen, whose gap on the axis is the hole
+    ax.annotate("screen,\nhole d", (0, 0.75 * wall), xytext=(0.5 * x_img, 0.75 * wall), ha="center", va="center",
+                fontsize=8, arrowprops=dict(arrowstyle="-", color="k", lw=0.8, shrinkA=2, shrinkB=2))
     ax.axhline(0, color=palette.GREY, lw=0.6, zorder=0)
     ax.axvline(x_img, color="0.3", lw=1, ls="--")
-    ax.set_xlim(x_in, x_img * 1.12)
+    ax.set_xlim(x_img * 1.12, x_in)
     ax.set_ylim(-wall, wall)
-    ax.set_xticks(np.arange(x_in, x_img + 1, 100))
-    ax.set_xlabel(f"distance from the pinhole (mm);\nimage plane (dashed) at {x_img:.0f} mm", fontsize=9)
-    ax.set_ylabel("height (mm)")
+    ax.set_xticks(np.arange(x_img, x_in + 1, 100))
+    ax.set_xlabel(f"depth z (mm), pinhole at 0;\nreal image plane (dashed) at z = {x_img:.0f} mm", fontsize=9)
+    ax.set_ylabel("height -y, up (mm)")
     ax.set_title(f"d = {d * 1e3:g} mm\ndisc of rays {b.geometric * 1e3:.2f} mm + diffraction {b.diffraction * 1e3:.2f} mm",
                  fontsize=9)
     return {"geometric": b.geometric, "diffraction": b.diffraction, "total": b.total}

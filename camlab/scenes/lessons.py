@@ -20,6 +20,8 @@ from .wireframes import box_wireframe, ground_grid, house_wireframe
 WALL_DISTANCE = 6.0  # metres: lesson 01's checkered wall behind the box
 WALL_TEXELS = 128  # texels per 1 m square: at f = 100 mm a square is 148 px, so an edge ramps over ~1 px
 WALL_GREYS = (0.08, 0.26)  # the wall's two greys: darker than every box face, but the squares read clearly
+WALL_MARK = 0.45  # one lighter square, up and left of the optical axis: a checkerboard alone looks the same
+# turned by 180 degrees, so without it only the box would show that the real image is rotated
 
 
 @lru_cache(maxsize=1)
@@ -27,6 +29,7 @@ def _wall() -> Plane:
     """Lesson 01's wall (built once: the renderer caches each texture's mipmaps while the array lives)."""
     dark, light = WALL_GREYS
     squares = (np.indices((12, 16)).sum(axis=0) % 2) * (light - dark) + dark  # 12 rows x 16 columns of 1 m squares
+    squares[5, 7] = WALL_MARK  # the square x in [-1, 0] m, y in [-1, 0] m: up and left of the axis (y points down)
     return textured_plane(np.kron(squares, np.ones((WALL_TEXELS, WALL_TEXELS), np.float32)), 16.0,
                           t=(0, 0, WALL_DISTANCE), name="wall")
 
@@ -42,7 +45,7 @@ def box_before_wall(distance: float) -> list:
 
     Returns ``[faces, wall]``: the box's six faces (a list of :class:`Plane`, its top face
     darkest) and a wall (a :class:`Plane`) 16 m x 12 m of 1 m squares in two dark greys
-    (:data:`WALL_GREYS`) at z = :data:`WALL_DISTANCE`, wide enough to fill the widest view
+    (:data:`WALL_GREYS`), one square up and left of the axis lighter (:data:`WALL_MARK`), at z = :data:`WALL_DISTANCE`, wide enough to fill the widest view
     lesson 01 shows, a scene for :func:`camlab.render.render`. The wall stays put while the
     box moves, so its squares show the perspective a focal length and a distance give (a dolly
     zoom keeps the box's size and changes the wall's). Both are textured finely enough

@@ -21,7 +21,7 @@ SENSOR = (SIZE[0] * PITCH, SIZE[1] * PITCH)  # its width and height, metres (36 
 # distance, w f_draw / f wide: it frames the picture as the sensor frames the image beside it, and
 # narrows around the picture as f grows (the field of view) even where the planes stop moving.
 PLANE_SCALE = 12.0
-PLANE_ROOM = 0.8
+PLANE_ROOM = 0.7
 PLANE_MAX = 1.2
 DEPTH_RANGE = (-1.3, 4.5)  # the 3-D view's z limits (metres): the real plane at PLANE_MAX to the box at 4 m
 SIDE_RANGE = 0.3  # ...and its x and y half-range
@@ -111,7 +111,7 @@ def pinhole_projection():
         wider = f", wider than the image ({SIZE[0]} px)" if span > SIZE[0] else ""
         readout.value = monospace(f"fx = f / pixel pitch = {K[0, 0]:.0f} px\n"
                                   f"field of view 2 atan(w / 2f) = {fov:.1f} deg (w = 36 mm)\n"
-                                  f"box spans {span:.0f} px (black bar){wider}\n"
+                                  f"box spans {span:.0f} px (the bar under the box){wider}\n"
                                   f"3-D view: image planes at {scale:.1f} f, sensor frames {scale:.1f} x enlarged\n"
                                   f"wall of 1 m squares at {scenes.WALL_DISTANCE:g} m (beyond the 3-D view)")
 
@@ -163,6 +163,26 @@ BALANCED = 0.05  # the readout calls the blur "balanced" while its two terms dif
 REFERENCE = (0.35e-3, 0.1)  # the (d, f) whose exposure time "fixed exposure" keeps: the demo's default
 
 
+LEGIBLE = 1.5  # a chart row counts as legible while its letters are taller than 1.5 times the blur diameter
+
+
+def legible_rows(blur_px: float) -> int:
+    """How many rows of the demo's letter chart stay legible under a blur of ``blur_px`` pixels (the readout's count).
+
+    The chart's rows are :data:`CHART_ROW_HEIGHTS` tall on a 0.3 m chart of 600 texels; the demo's sensor
+    spans the same field of view at every f (0.36 f wide, 320 pixels) with the chart at :data:`PAGE_Z`, so
+    each row's height in pixels, H 0.3 / 600 x (320 / 0.36 / PAGE_Z), is the same at every f (40 px down
+    to 7 px). By eye a letter survives a blur up to 2/3 of its height.
+    """
+    rows_px = np.array(CHART_ROW_HEIGHTS) * 0.3 / 600 * SIZE[0] / (0.36 * PAGE_Z)
+    return int(np.sum(rows_px > LEGIBLE * blur_px))
+
+
+def _times(x: float) -> str:
+    """A factor for a title: whole above 10, one decimal from 1 to 10, two significant digits below 1."""
+    return f"{x:,.0f}" if x >= 10 else f"{x:.1f}" if x >= 1 else f"{x:.2g}"
+
+
 def relative_exposure(d: float, f: float) -> float:
     r"""Light on the sensor per unit time through a hole ``d`` at ``f``, relative to :data:`REFERENCE`: (d/f)^2 over
     (d_ref/f_ref)^2 (irradiance goes as the hole's solid angle seen from the image, :math:`\propto (d/f)^2`)."""
@@ -170,7 +190,7 @@ def relative_exposure(d: float, f: float) -> float:
     return (d / f) ** 2 / (d_ref / f_ref) ** 2
 
 
-@register(lesson="01", sweep={"diameter_mm": [0.03, 0.05, 0.35, 1.5, 2.5], "focal_mm": [30, 100, 200],
+@register(lesson="01", sweep={"diameter_mm": [0.03, 0.05, 0.35, 1.5, 2.5], "focal_mm": [30, 100, 300],
                               "fixed_exposure": [True, False]})
 def pinhole_size():
     """Blur against pinhole diameter (geometric versus diffraction) and the blurred chart it gives."""
@@ -178,7 +198,7 @@ def pinhole_size():
         "diameter_mm": W.FloatLogSlider(value=0.35, base=10, min=np.log10(0.03), max=np.log10(2.5), step=0.02,
                                         description="pinhole d (mm)", continuous_update=True,
                                         style={"description_width": "initial"}, layout=W.Layout(width="300px")),
-        "focal_mm": slider(100, 30, 200, 5, "focal length f (mm)"),
+        "focal_mm": slider(100, 30, 300, 5, "focal length f (mm)"),
         "fixed_exposure": W.Checkbox(value=False, description="fixed exposure time (true brightness)"),
     }
     view = FigureView(figsize=(8.8, 4))
@@ -186,8 +206,13 @@ def pinhole_size():
     art = optics.draw_pinhole_blur(ax_plot, 0.1, object_distance=PAGE_Z)
     ax_plot.set_ylim(0.01, 30)
     ax_plot.minorticks_off()
+    ax_plot.set_xticks([0.03, 0.1, 0.3, 1, 3], ["0.03", "0.1", "0.3", "1", "3"])   # plain numbers: read d = 0.35 off
+    ax_plot.set_yticks([0.01, 0.1, 1, 10], ["0.01", "0.1", "1", "10"])
     chart = scenes.letter_chart(0.3, t=(0, 0, PAGE_Z))
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
+    for spine in ax_img.spines.values():   # a frame that stays visible round a burnt-out (white) or black chart
+        spine.set_linewidth(1.5)
+        spine.set_color(palette.GREY)
     ax_img.set_title(" \n ", fontsize=9)
     ax_plot.set_title(" \n ", fontsize=9)
     readout = W.HTML()
@@ -204,16 +229,20 @@ def pinhole_size():
         blur_px = float(b.total) / pitch
         img = render.render(chart, K, SIZE, blur=blur_px).irradiance
         light = relative_exposure(d, f)
-        ref = f"d = {REFERENCE[0] * 1e3:g} mm, f = {REFERENCE[1] * 1e3:g} mm"
+        ref = f"the default (d = {REFERENCE[0] * 1e3:g} mm, f = {REFERENCE[1] * 1e3:g} mm)"
+        default = f"(d = {REFERENCE[0] * 1e3:g} mm, f = {REFERENCE[1] * 1e3:g} mm)"
         if values["fixed_exposure"]:  # the reference's exposure time: the image darkens (or burns out) with (d/f)^2
             img = np.clip(img * light, 0.0, 1.0)
-            ax_img.set_title(f"the exposure time of {ref}:\n{light:.3g} x its light", fontsize=9)
+            white = float(np.mean(img >= 1.0))
+            note = (f", burnt out: {white:.0%} of pixels white" if white > 0.5
+                    else ", nearly black" if img.max() < 0.1 else "")
+            ax_img.set_title(f"the default's exposure time {default}:\n{_times(light)} x the light{note}", fontsize=9)
         else:
-            ax_img.set_title(f"exposure time {1 / light:.3g} x that of {ref}:\nbrightness compensated", fontsize=9)
+            ax_img.set_title(f"exposure time {_times(1 / light)} x the default's\n{default}: brightness compensated",
+                             fontsize=9)
         im.set_data(img)
         best = pinhole.optimal_pinhole_diameter(f, object_distance=PAGE_Z)
-        rows_px = np.array(CHART_ROW_HEIGHTS) * 0.3 / 600 * f / PAGE_Z / pitch  # cap heights on the sensor
-        legible = int(np.sum(rows_px > 1.5 * blur_px))  # by eye: a letter survives a blur up to 2/3 of its height
+        legible = legible_rows(blur_px)
         limited_by = ("balanced" if abs(b.diffraction - b.geometric) < BALANCED * b.total
                       else "diffraction-limited" if b.diffraction > b.geometric else "geometry-limited")
         f_number = f / d
@@ -226,9 +255,9 @@ def pinhole_size():
                                   f"your d = {d * 1e3:.2f} mm (grey line): {limited_by}\n"
                                   f"blur {state['blur_mm']:.2f} mm = {blur_px:.1f} px;"
                                   f" blur / f = {state['blur_mrad']:.1f} mrad\n"
-                                  f"rows legible: {legible} of {len(rows_px)} (letters over 1.5 x blur)\n"
+                                  f"rows legible: {legible} of {len(CHART_ROW_HEIGHTS)} (letters over {LEGIBLE:g} x blur)\n"
                                   f"f/d = f/{f_number:.0f}: {state['exposure_vs_f2_8']:,.0f} x the exposure of f/2.8\n"
-                                  f"light per second: {light:.3g} x that of {ref}")
+                                  f"light per second: {_times(light)} x that of {ref}")
 
     return build_demo("pinhole_size", controls, view, update, title="How big should the pinhole be?",
                       extra=[readout])
