@@ -50,13 +50,24 @@ def _same(a, b) -> bool:
     return bool(np.allclose(a, b, rtol=1e-9, atol=1e-7))
 
 
+def _same_up_to_scale(a, b) -> bool:
+    a, b = np.ravel(a), np.ravel(b)
+    k = float(a @ b / (b @ b))
+    return bool(k != 0 and np.allclose(a, k * b, rtol=1e-9, atol=1e-9 * np.abs(a).max()))
+
+
 def _depth_and_ab(camera, X0):
     x_c = camera.R @ X0 + camera.t
     return float(x_c[2]), x_c[:2] / x_c[2]
 
 
-def _last_row_cause(g, d0, expected, fix) -> str:
-    """Why the last row is not (0, 0, 0, 1)."""
+def _last_row_cause(g, d0, expected, fix, r3=None) -> str:
+    """Why the last row is not (0, 0, 0, 1) (``r3``: the camera's optical axis, to recognise a kept r3)."""
+    if r3 is not None and np.linalg.norm(g[2, :3]) > 1e-9:
+        k = float(g[2, :3] @ r3)
+        if np.allclose(g[2, :3], k * r3, rtol=1e-6, atol=1e-9):
+            return (f"the last row still holds r3 (its first three entries are {k:.4g} r3): E's third row must be "
+                    f"(0, 0, 0, d0), every depth replaced by the constant d0, so set E[2, :3] to 0; {fix}.")
     if abs(g[2, 3]) > 1e-12 and np.allclose(g[2, :3], 0.0, atol=1e-9):
         if np.isclose(g[2, 3], 1.0 / d0, rtol=1e-6):
             return (f"the last row is (0, 0, 0, 1/d0): the (3, 4) entry of E is the depth d0 = {d0:.4g} m, not 1; "
@@ -243,7 +254,10 @@ def _approx_diagnosis(args, got, expected) -> str:
     if cause:
         return cause
     if not np.allclose(g[2], [0.0, 0.0, 0.0, 1.0], atol=1e-9):
-        return _last_row_cause(g, d0, expected, _P_INF)
+        if _same_up_to_scale(g, camera.P):
+            return ("this is the perspective camera P = K [R | t] itself (up to scale): its last row (r3, t3) gives "
+                    f"every point its own depth. The affine camera replaces that row by the constant depth d0: {_P_INF}.")
+        return _last_row_cause(g, d0, expected, _P_INF, camera.R[2])
     return _approx_top_rows_cause(g, expected, camera, X0, d0)
 
 
@@ -301,6 +315,14 @@ def _approx_only_block_divided(camera, X0):
     P[:, :3] /= E[2, 3]
     P[2] = [0.0, 0.0, 0.0, 1.0]
     return P
+
+
+def _approx_r3_kept(camera, X0):
+    """E = [R | t] with only its (3, 4) entry set to d0: the third row keeps r3."""
+    d0 = camera.R[2] @ X0 + camera.t[2]
+    E = np.c_[camera.R, camera.t]
+    E[2, 3] = d0
+    return camera.K @ E / d0
 
 
 def _approx_e_last_one(camera, X0):
@@ -383,7 +405,7 @@ register_exercise(Exercise(
     ndarray_only=True,
     wrong_variants=(
         (_approx_unnormalised, "did not divide by d0"),
-        (lambda camera, X0: camera.P, "last row must be"),
+        (lambda camera, X0: camera.P, "perspective camera P = K [R | t] itself"),
         (lambda camera, X0: -af.affine_approximation(camera, X0), "minus the answer"),
         (_mistake(0), "depth of the world origin"),
         (_mistake(1), "lacks t3"),
@@ -416,6 +438,7 @@ register_exercise(Exercise(
         (lambda camera, X0: _p_inf(camera.K, camera.R, camera.t, camera.R[2] @ X0 + camera.t[2] + 0.5),
          "is P_inf for the depth"),
         (_approx_e_last_one, "the (3, 4) entry"),
+        (_approx_r3_kept, "the last row still holds r3"),
         (_approx_fx_fy_only, "skew K[0, 1] is missing"),
         (lambda camera, X0: af.paraperspective_approximation(camera, X0), "para-perspective camera"),
         (lambda camera, X0: af.affine_approximation(camera, X0)[[1, 0, 2]], "rows are swapped"),
@@ -497,7 +520,7 @@ def _para_diagnosis(args, got, expected) -> str:
     if cause:
         return cause
     if not np.allclose(g[2], [0.0, 0.0, 0.0, 1.0], atol=1e-9):
-        return _last_row_cause(g, d0, expected, _P_PARA)
+        return _last_row_cause(g, d0, expected, _P_PARA, camera.R[2])
     slip = _image_of_X0_as_translation(g, expected, camera, X0)
     if slip:
         return slip

@@ -129,7 +129,18 @@ def _estimate_forms(X, uv, expected):
     ones_last = expected[:2].T  # lstsq(np.c_[X, ones], uv)[0]: (4, 2), rows M2^T then t2
     ones_first = np.vstack([t2, M2.T])
     centred_pixels_only = np.linalg.lstsq(X, uv - um, rcond=None)[0].T
+    n = len(X)
+    interleaved, stacked = np.zeros((2 * n, 8)), np.zeros((2 * n, 8))
+    interleaved[0::2, :3], interleaved[0::2, 3], interleaved[1::2, 4:7], interleaved[1::2, 7] = X, 1.0, X, 1.0
+    stacked[:n, :3], stacked[:n, 3], stacked[n:, 4:7], stacked[n:, 7] = X, 1.0, X, 1.0
+    order = ("the rows of your design matrix and of its right-hand side are in different orders: {a} rows "
+             "with {b} right-hand side. Build both the same way: interleaved rows (u1, v1, u2, v2, ...) go with "
+             "uv.ravel(), stacked rows (all u, then all v) with np.r_[uv[:, 0], uv[:, 1]] (uv.T.ravel()).")
     return [
+        (np.linalg.lstsq(interleaved, uv.T.ravel(), rcond=None)[0].reshape(2, 4),
+         order.format(a="interleaved (u1, v1, u2, v2, ...)", b="a stacked (all u, then all v)")),
+        (np.linalg.lstsq(stacked, uv.ravel(), rcond=None)[0].reshape(2, 4),
+         order.format(a="stacked (all u, then all v)", b="an interleaved (u1, v1, u2, v2, ...)")),
         (ones_last.reshape(2, 4), "P's top rows are scrambled: lstsq with a column of ones returns the (4, 2) "
                                   "matrix [M2 | t2]^T; transpose it (.T), do not reshape it to (2, 4)."),
         (np.c_[t2, M2], "your first column holds t2: with the column of ones first, np.c_[ones, X], lstsq's first "
@@ -384,6 +395,21 @@ def _estimate_normalised(how):
     return fit
 
 
+def _estimate_rows_mismatched(interleaved_rows):
+    """The 2N x 8 system with its rows interleaved and its right-hand side stacked, or the other way round."""
+    def fit(X, uv):
+        n = len(X)
+        A = np.zeros((2 * n, 8))
+        if interleaved_rows:
+            A[0::2, :3], A[0::2, 3], A[1::2, 4:7], A[1::2, 7] = X, 1.0, X, 1.0
+            b = uv.T.ravel()
+        else:
+            A[:n, :3], A[:n, 3], A[n:, 4:7], A[n:, 7] = X, 1.0, X, 1.0
+            b = uv.ravel()
+        return _as_camera(np.linalg.lstsq(A, b, rcond=None)[0].reshape(2, 4))
+    return fit
+
+
 def _estimate_null_vector_unscaled(X, uv):
     """The homogeneous system solved by SVD, its null vector used without dividing by its 9th entry."""
     n = len(X)
@@ -483,6 +509,8 @@ register_exercise(Exercise(
         (_estimate_normalised("pixels only"), "points' normalisation T_X"),
         (_estimate_normalised("std"), "undid it in the wrong order"),
         (_estimate_null_vector_unscaled, "divide by its 9th entry"),
+        (_estimate_rows_mismatched(True), "interleaved (u1, v1, u2, v2, ...) rows with a stacked"),
+        (_estimate_rows_mismatched(False), "stacked (all u, then all v) rows with an interleaved"),
         (lambda X, uv: af.estimate_affine_camera(X, uv).astype(int), "truncated towards zero"),
         (_estimate_points_on_pixels, "regressed the world points on the pixels"),
         (_estimate_rank_two, "rank < 2"),
