@@ -211,6 +211,14 @@ def test_estimate_affine_camera_accepts_a_column_of_ones_instead_of_centring(cap
     assert check("estimate_affine_camera", _estimate_with_ones).passed is True
 
 
+def test_estimate_affine_camera_accepts_hz_normalisation_undone_in_the_right_order(capsys):
+    """H&Z algorithm 7.2: normalise both point sets, fit, then P = inv(T_uv) @ P_n @ T_X (the check's
+    diagnosis names the wrong order, T_uv @ P_n @ inv(T_X), as such)."""
+    from camlab.exercises.affine_cameras.estimation import _estimate_normalised
+
+    assert check("estimate_affine_camera", _estimate_normalised("right")).passed is True
+
+
 @pytest.mark.parametrize("solve", [
     lambda A, uv: np.linalg.pinv(A) @ uv,                      # the pseudo-inverse
     lambda A, uv: np.linalg.solve(A.T @ A, A.T @ uv),          # the normal equations

@@ -71,23 +71,27 @@ def model_legend(fig, models, reference=False, principal_point=False, extra=(), 
 
 
 def _image_panel(ax, title, model, size=(640, 480), tick_labels=True):
-    # Short titles and few tick labels: every text costs about 1 ms per redraw.
-    scene3d.image_axes(ax, size, labels=False)
+    # Short titles and few tick labels. Axis labels are static (drawn once into the background), so they
+    # cost nothing per frame.
+    scene3d.image_axes(ax, size)
     ax.set_title(title, fontsize=9)
     ax.tick_params(labelleft=tick_labels, labelbottom=tick_labels)
     return model_line(ax, model)
 
 
-@register(lesson="05", sweep={"azimuth": [-180, -80, 10, 180], "elevation": [0, 50, 80], "distance": [2.0, 12.0, 20.0]})
+@register(lesson="05", sweep={"azimuth": [-180, -80, 10, 100], "elevation": [0, 50, 80], "distance": [2.0, 12.0, 20.0]})
 def three_cameras():
     """Perspective, weak-perspective and orthographic images of the same scene side by side."""
-    view = FigureView(figsize=(9.5, 3.4))
+    view = FigureView(figsize=(9.5, 3.35))
     axes = view.fig.subplots(1, 3)
     scene = scenes.box_and_rails()
     persp = _image_panel(axes[0], "perspective (px)", "perspective")
     weak = _image_panel(axes[1], "weak perspective over perspective (px)", "weak perspective")
+    axes[1].set_ylabel("")
     axes[2].set_aspect("equal")
-    axes[2].set_title("orthographic (metres)", fontsize=9)
+    axes[2].set_title("orthographic (m; camera x right, y down)", fontsize=9)
+    axes[2].set_xlabel("x (m)", fontsize=8)
+    axes[2].set_ylabel("y (m)", fontsize=8)
     axes[2].set_xlim(-2.2, 2.2)
     axes[2].set_ylim(1.65, -1.65)
     axes[2].set_xticks([-2, 0, 2])
@@ -159,7 +163,11 @@ def _dolly_error_axes(ax, distances):
     for axis, ticks in ((ax.xaxis, [2, 5, 10, 20, 50, 100]), (ax.yaxis, [0.3, 1, 3, 10, 30])):
         axis.set_minor_locator(NullLocator())
         axis.set_ticks(ticks, labels=[f"{t:g}" for t in ticks])
-    markers = {m: ax.plot([], [], "o", color=COLOURS[m], ms=7, clip_on=False, zorder=3)[0] for m in APPROXIMATIONS}
+    # Weak perspective's marker larger than para-perspective's: on the axis (offset 0) the two coincide,
+    # and the blue ring around the green dot shows both.
+    sizes = {"weak perspective": 10, "para-perspective": 5}
+    markers = {m: ax.plot([], [], "o", color=COLOURS[m], ms=sizes[m], clip_on=False, zorder=3)[0]
+               for m in APPROXIMATIONS}
     return curves, markers
 
 
@@ -266,11 +274,15 @@ def parallel_rails():
     (horizon,) = ax_p.plot([], [], color=palette.GREY, lw=0.8, ls="--")
     # The two metres of track the readouts measure (x = 0, from y to y + 1), thick and dark in both panels.
     measured = [ax.plot([], [], color="0.1", lw=3.5, solid_capstyle="butt", zorder=3)[0] for ax in (ax_p, ax_a)]
-    view.animate(*lines, vp, horizon, *measured, *texts)
+    # The far metre images only a few pixels long in perspective: a ring shows where it is.
+    (ring,) = ax_p.plot([], [], "o", ms=15, mfc="none", mec="0.1", mew=1.1, zorder=3)
+    view.animate(*lines, vp, horizon, *measured, ring, *texts)
     references = [(view.animate(*reference_marker(ax)),) for ax in (ax_p, ax_a)]  # where the two images agree
     model_legend(view.fig, (), reference=True, extra=(
         Line2D([], [], color="0.1", lw=3.5, label=f"the metres the readouts measure ({RAIL_SAMPLES[0]:.0f} and "
                                                   f"{RAIL_SAMPLES[1]:.0f} m out)"),
+        Line2D([], [], marker="o", ms=12, mfc="none", mec="0.1", mew=1.1, ls="none",
+               label=f"ring: the tiny {RAIL_SAMPLES[1]:.0f} m one"),
         Line2D([], [], marker="o", color=COLOURS["perspective"], ms=8, mfc="white", mew=2, ls="none",
                label="vanishing point"),
         Line2D([], [], color=palette.GREY, lw=0.8, ls="--", label="horizon")))
@@ -297,6 +309,8 @@ def parallel_rails():
         for line, P_ in zip(measured, (cam.P, P_aff)):
             ends = cm.project_points(P_, ground)
             line.set_data(*np.insert(ends, 2, np.nan, axis=0).T)
+        far_metre = cm.project_points(cam.P, ground[2:]).mean(axis=0)
+        ring.set_data([far_metre[0]], [far_metre[1]])
         gaps = {"perspective": scenes.sleeper_gaps(cam.P, RAIL_SAMPLES), "affine": scenes.sleeper_gaps(P_aff, RAIL_SAMPLES)}
         for text, (near, far) in zip(texts, gaps.values()):
             text.set_text(f"1 m of track: {near:5.1f} px at {RAIL_SAMPLES[0]:.0f} m, {far:5.1f} px at {RAIL_SAMPLES[1]:.0f} m")
@@ -325,7 +339,7 @@ def projection_rays():
     corners of a block to the image line. Move the block sideways: on the optical axis weak and
     para-perspective coincide; off it, para-perspective's rays run parallel to the line of sight to X0
     (drawn dashed), its viewing direction, as weak perspective's run parallel to the optical axis."""
-    view = FigureView(figsize=(10, 4.4))
+    view = FigureView(figsize=(10, 4.75))
     axes = view.fig.subplots(1, 4, sharey=True)
     artists = {}
     for ax, model in zip(axes, af.PROJECTION_MODELS):
@@ -352,6 +366,18 @@ def projection_rays():
     # Para-perspective's rays are parallel to the line of sight to X0 (its viewing direction), as weak
     # perspective's are to the optical axis (the dotted vertical).
     sight = view.animate(axes[2].plot([], [], color="0.35", lw=0.9, ls=(0, (6, 3)), zorder=1.8)[0])
+    grey = "0.25"
+    view.fig.legend(handles=[
+        Line2D([], [], color=grey, lw=1.0, label="ray to the image line (solid)"),
+        Line2D([], [], color=grey, lw=0.7, ls=(0, (2, 2)), label="on to the centre: scaling f / d0"),
+        Line2D([], [], color="0.4", lw=0.8, ls="--", label="the plane z = d0"),
+        Line2D([], [], color=palette.GREY, lw=0.8, ls=":", label="optical axis"),
+        Line2D([], [], marker="o", color=grey, ms=4, ls="none", label="image of a corner"),
+        Line2D([], [], marker="|", color=COLOURS["perspective"], ms=10, mew=1.5, ls="none",
+               label="perspective image, to compare"),
+        Line2D([], [], color="0.35", lw=0.9, ls=(0, (6, 3)), label="line of sight to X0"),
+        Line2D([], [], label=REFERENCE_LABEL, **REFERENCE_MARKER)],
+        loc="outside upper center", ncols=4, fontsize=8, frameon=False)
     axes[0].set_ylabel("depth z (m)", fontsize=8)
     axes[0].set_yticks([0, RAY_IMAGE, RAY_DEPTH], labels=["0: centre", f"{RAY_IMAGE:g}: image", f"{RAY_DEPTH:g}: d0"])
     controls = {"offset": slider(2.0, 0.0, 2.5, 0.25, "block's x offset (m)")}
@@ -377,5 +403,4 @@ def projection_rays():
         state.update(reference=reference, image_x=images_x)
 
     return build_demo("projection_rays", controls, view, update,
-                      title="Four cameras from above: where each sends the block's corners "
-                            "(red ticks: the perspective images; grey dashes: the line of sight to X0)")
+                      title="Four cameras from above: where each sends the block's corners")

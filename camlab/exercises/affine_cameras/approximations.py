@@ -50,13 +50,24 @@ def _same(a, b) -> bool:
     return bool(np.allclose(a, b, rtol=1e-9, atol=1e-7))
 
 
+def _same_up_to_scale(a, b) -> bool:
+    a, b = np.ravel(a), np.ravel(b)
+    k = float(a @ b / (b @ b))
+    return bool(k != 0 and np.allclose(a, k * b, rtol=1e-9, atol=1e-9 * np.abs(a).max()))
+
+
 def _depth_and_ab(camera, X0):
     x_c = camera.R @ X0 + camera.t
     return float(x_c[2]), x_c[:2] / x_c[2]
 
 
-def _last_row_cause(g, d0, expected, fix) -> str:
-    """Why the last row is not (0, 0, 0, 1)."""
+def _last_row_cause(g, d0, expected, fix, r3=None) -> str:
+    """Why the last row is not (0, 0, 0, 1) (``r3``: the camera's optical axis, to recognise a kept r3)."""
+    if r3 is not None and np.linalg.norm(g[2, :3]) > 1e-9:
+        k = float(g[2, :3] @ r3)
+        if np.allclose(g[2, :3], k * r3, rtol=1e-6, atol=1e-9):
+            return (f"the last row still holds r3 (its first three entries are {k:.4g} r3): E's third row must be "
+                    f"(0, 0, 0, d0), every depth replaced by the constant d0, so set E[2, :3] to 0; {fix}.")
     if abs(g[2, 3]) > 1e-12 and np.allclose(g[2, :3], 0.0, atol=1e-9):
         if np.isclose(g[2, 3], 1.0 / d0, rtol=1e-6):
             return (f"the last row is (0, 0, 0, 1/d0): the (3, 4) entry of E is the depth d0 = {d0:.4g} m, not 1; "
@@ -174,6 +185,16 @@ def _common_mistakes(camera, X0, fix):
                                          "camera and the exercise give them."),
         (dict(K=K_no_skew if K[0, 1] else np.full((3, 3), np.nan)), f"the skew K[0, 1] is missing (this camera's is {K[0, 1]:g} px): build the matrix from "
                             f"the whole K, not from fx, fy, cx and cy alone: {fix}."),
+        (dict(d0=(X0 - camera.centre)[2]),
+         f"you used the world z of X0 - C (here {(X0 - camera.centre)[2]:.4g} m) as d0: the world's z axis is not "
+         f"the camera's. The depth is measured along the optical axis r3: d0 = r3 . (X0 - C) = r3 . X0 + t3 "
+         f"= {d0:.4g} m."),
+        (dict(t=-t, d0=R[2] @ X0 - t[2]), "t has the wrong sign everywhere (in E's last column and in d0): "
+                                           "camlab's extrinsics are X_cam = R X + t, so E holds +t1, +t2 and "
+                                           "d0 = r3 . X0 + t3."),
+        (dict(t=-R @ t, d0=R[2] @ (X0 - t)), "you used t as the camera centre, X_cam = R (X - t): camlab's t is "
+                                              "the translation of X_cam = R X + t (the centre is C = -R^T t, "
+                                              "camera.centre), so E holds t1, t2 as they are and d0 = r3 . X0 + t3."),
     ]
 
 
@@ -201,7 +222,11 @@ def _approx_specific(camera, X0):
     only_row3[2] = [0.0, 0.0, 0.0, 1.0]
     no_division = _p_inf(K, R, t, d0) * d0
     no_division[2] = [0.0, 0.0, 0.0, 1.0]
+    last_column_undivided = _p_inf(K, R, t, d0)
+    last_column_undivided[:2, 3] *= d0
     return [
+        (last_column_undivided, "the 2x3 block is right, but the last column is K (t1, t2, d0) undivided: divide "
+                                f"all of K E by d0, its last column too: that column is K (t1, t2, d0) / d0; {_P_INF}."),
         (only_row3, "you replaced only P's third row: P's first two rows also hold the depth, through K's third "
                     f"column times r3 . X + t3. Replace the depth inside [R | t] before K multiplies: {_P_INF}."),
         (no_division, "you set the last row to (0, 0, 0, 1) but did not divide the top two rows by d0, so the image "
@@ -229,7 +254,10 @@ def _approx_diagnosis(args, got, expected) -> str:
     if cause:
         return cause
     if not np.allclose(g[2], [0.0, 0.0, 0.0, 1.0], atol=1e-9):
-        return _last_row_cause(g, d0, expected, _P_INF)
+        if _same_up_to_scale(g, camera.P):
+            return ("this is the perspective camera P = K [R | t] itself (up to scale): its last row (r3, t3) gives "
+                    f"every point its own depth. The affine camera replaces that row by the constant depth d0: {_P_INF}.")
+        return _last_row_cause(g, d0, expected, _P_INF, camera.R[2])
     return _approx_top_rows_cause(g, expected, camera, X0, d0)
 
 
@@ -240,10 +268,11 @@ def _approx_top_rows_cause(g, expected, camera, X0, d0) -> str:
     M_e, m_e = expected[:2, :3], expected[:2, 3]
     c = camera.K[:2, 2]
     k = float(np.sum(M * M_e) / np.sum(M_e * M_e))  # the best scalar with M = k M_e
-    if not np.isclose(k, 1.0, rtol=1e-6) and k > 0 and _same(M, k * M_e) and _same(m, c + k * (m_e - c)):
+    if not np.isclose(k, 1.0, rtol=1e-6) and k != 0 and _same(M, k * M_e) and _same(m, c + k * (m_e - c)):
         used = d0 / k
         unit = {1000.0: " (millimetres?)", 0.001: " (kilometres?)"}.get(round(used / d0, 6), "")
-        return (f"your matrix is P_inf for the depth d0 = {used:.4g} m{unit}, but X0 is {d0:.4g} m deep: "
+        sign = " (negative: a point in front of the camera has a positive depth)" if used < 0 else ""
+        return (f"your matrix is P_inf for the depth d0 = {used:.4g} m{unit}{sign}, but X0 is {d0:.4g} m deep: "
                 f"d0 = r3 . X0 + t3, the depth of the reference point along the optical axis.")
     if _same(g[[1, 0]], expected[:2]):
         return "the two rows are swapped: row 1 gives u (from r1 and fx), row 2 gives v (from r2 and fy)."
@@ -275,6 +304,25 @@ def _mistake(index):
 def _approx_unnormalised(camera, X0):
     d0 = camera.R[2] @ X0 + camera.t[2]
     return _p_inf(camera.K, camera.R, camera.t, d0) * d0
+
+
+def _approx_only_block_divided(camera, X0):
+    """K E with only its 2x3 block divided by d0 (P[:, :3] /= d0), then the last row set to (0, 0, 0, 1)."""
+    K, R, t = camera.K, camera.R, camera.t
+    E = np.zeros((3, 4))
+    E[:2, :3], E[:2, 3], E[2, 3] = R[:2], t[:2], R[2] @ X0 + t[2]
+    P = K @ E
+    P[:, :3] /= E[2, 3]
+    P[2] = [0.0, 0.0, 0.0, 1.0]
+    return P
+
+
+def _approx_r3_kept(camera, X0):
+    """E = [R | t] with only its (3, 4) entry set to d0: the third row keeps r3."""
+    d0 = camera.R[2] @ X0 + camera.t[2]
+    E = np.c_[camera.R, camera.t]
+    E[2, 3] = d0
+    return camera.K @ E / d0
 
 
 def _approx_e_last_one(camera, X0):
@@ -357,7 +405,7 @@ register_exercise(Exercise(
     ndarray_only=True,
     wrong_variants=(
         (_approx_unnormalised, "did not divide by d0"),
-        (lambda camera, X0: camera.P, "last row must be"),
+        (lambda camera, X0: camera.P, "perspective camera P = K [R | t] itself"),
         (lambda camera, X0: -af.affine_approximation(camera, X0), "minus the answer"),
         (_mistake(0), "depth of the world origin"),
         (_mistake(1), "lacks t3"),
@@ -375,14 +423,22 @@ register_exercise(Exercise(
         (_mistake(13), "t1 and t2 have the wrong sign"),
         (_mistake(14), "millimetres"),
         (_approx_no_skew, "skew K[0, 1] is missing"),
-        (lambda camera, X0: _approx_specific(camera, X0)[0][0], "only P's third row"),
-        (lambda camera, X0: _approx_specific(camera, X0)[1][0], "did not divide the top two rows"),
-        (lambda camera, X0: _approx_specific(camera, X0)[2][0], "principal point is divided by d0"),
+        (_mistake(16), "world z of X0 - C"),
+        (_mistake(17), "t has the wrong sign everywhere"),
+        (_mistake(18), "t as the camera centre"),
+        (lambda camera, X0: _approx_specific(camera, X0)[0][0], "last column is K (t1, t2, d0) undivided"),
+        (_approx_only_block_divided, "last column is K (t1, t2, d0) undivided"),
+        (lambda camera, X0: _p_inf(camera.K, camera.R, camera.t, -0.5 * (camera.R[2] @ X0 + camera.t[2])),
+         "negative: a point in front"),
+        (lambda camera, X0: _approx_specific(camera, X0)[1][0], "only P's third row"),
+        (lambda camera, X0: _approx_specific(camera, X0)[2][0], "did not divide the top two rows"),
+        (lambda camera, X0: _approx_specific(camera, X0)[3][0], "principal point is divided by d0"),
         (lambda camera, X0: _p_inf(camera.K, camera.R, camera.t, 1000 * (camera.R[2] @ X0 + camera.t[2])),
          "millimetres?"),
         (lambda camera, X0: _p_inf(camera.K, camera.R, camera.t, camera.R[2] @ X0 + camera.t[2] + 0.5),
          "is P_inf for the depth"),
         (_approx_e_last_one, "the (3, 4) entry"),
+        (_approx_r3_kept, "the last row still holds r3"),
         (_approx_fx_fy_only, "skew K[0, 1] is missing"),
         (lambda camera, X0: af.paraperspective_approximation(camera, X0), "para-perspective camera"),
         (lambda camera, X0: af.affine_approximation(camera, X0)[[1, 0, 2]], "rows are swapped"),
@@ -437,6 +493,15 @@ def _para_specific(camera, X0):
                                                "camera-frame coordinates, x_c = R X0 + t, (a, b) = x_c[:2] / x_c[2]."),
         (_p_para(K, R, t, d0, x_c[:2] / np.linalg.norm(x_c)),
          "you divided (x_c, y_c) by X0's distance |x_c|; (a, b) divide by its depth, x_c[2] = d0."),
+        (_p_para(K, R, t, d0, (uv_X0 - K[:2, 2]) / K[0, 0]) if K[0, 0] != K[1, 1] else np.full((3, 4), np.nan),
+         f"(a, b) = (u - cx, v - cy) / fx divides both offsets by fx, but this camera's fy = {K[1, 1]:g} px is not "
+         f"fx = {K[0, 0]:g} px: b = (v - cy) / fy. Safer: (a, b) = (x_c, y_c) / d0 from x_c = R X0 + t."),
+        (_p_para(K, R, t, d0, ab / d0), "you divided (x_c, y_c) by d0 twice: (a, b) = (x_c, y_c) / d0 once, and "
+                                        "the whole matrix is divided by d0 at the end."),
+        (af.affine_approximation(camera, X0) - np.r_[np.outer(uv_X0, np.r_[R[2], t[2] - d0]) / d0, np.zeros((1, 4))],
+         "you wrote the pixel form P_inf - x_X0 (r3, t3 - d0) / d0 with X0's pixel position: it needs the offset from "
+         "the principal point, P_para = P_inf - (x_X0 - x0) (r3, t3 - d0) / d0 in the top two rows (K (a, b, 0) "
+         "is x_X0 - x0)."),
     ]
 
 
@@ -455,7 +520,7 @@ def _para_diagnosis(args, got, expected) -> str:
     if cause:
         return cause
     if not np.allclose(g[2], [0.0, 0.0, 0.0, 1.0], atol=1e-9):
-        return _last_row_cause(g, d0, expected, _P_PARA)
+        return _last_row_cause(g, d0, expected, _P_PARA, camera.R[2])
     slip = _image_of_X0_as_translation(g, expected, camera, X0)
     if slip:
         return slip
@@ -481,6 +546,12 @@ def _para_ab_without_skew(camera, X0):
     K, x_c = camera.K, camera.R @ X0 + camera.t
     ab = (camera.project(X0) - K[:2, 2]) / np.diag(K)[:2]
     return _p_para(K, camera.R, camera.t, x_c[2], ab)
+
+
+def _para_ab_over_fx(camera, X0):
+    """(a, b) = (u - cx, v - cy) / fx from X0's pixels: right only where fy = fx and there is no skew."""
+    K, x_c = camera.K, camera.R @ X0 + camera.t
+    return _p_para(K, camera.R, camera.t, x_c[2], (camera.project(X0) - K[:2, 2]) / K[0, 0])
 
 
 def _para_image_of_X0_as_t(camera, X0):
@@ -529,6 +600,10 @@ register_exercise(Exercise(
         (lambda camera, X0: _para_specific(camera, X0)[9][0], "world coordinates"),
         (lambda camera, X0: _para_specific(camera, X0)[10][0], "distance |x_c|"),
         (_para_image_of_X0_as_t, "t2 = x_X0 - M2 X0"),
+        (_para_ab_over_fx, "divides both offsets by fx"),
+        (lambda camera, X0: _para_specific(camera, X0)[12][0], "by d0 twice"),
+        (lambda camera, X0: _para_specific(camera, X0)[13][0], "offset from the principal point"),
+        (_para_mistake(17), "t has the wrong sign everywhere"),
         (_para_mistake(0), "depth of the world origin"),
         (_para_mistake(2), "t3 has the wrong sign"),
         (_para_mistake(7), "left out K"),

@@ -42,6 +42,86 @@ def _algebraic_fit(X, uv):
     return h[:8].reshape(2, 4) / h[8]
 
 
+def _similarity(points, scale):
+    """The normalising similarity T = [[s I, -s mean], [0, 1]] of (N, D) points for scale s."""
+    D = points.shape[1]
+    T = np.eye(D + 1)
+    T[:D, :D] *= scale
+    T[:D, D] = -scale * points.mean(axis=0)
+    return T
+
+
+def _normalisation_scales(points):
+    """Scales s a student may normalise (N, D) points with: H&Z's isotropic sqrt(D) / mean distance
+    (and sqrt(2) for 3-D points, copied from the 2-D DLT), sqrt(D) / RMS distance, 1 / std."""
+    D = points.shape[1]
+    c = points - points.mean(axis=0)
+    dist = np.linalg.norm(c, axis=1)
+    return {f"sqrt({D}) / mean distance": np.sqrt(D) / dist.mean(),
+            "sqrt(2) / mean distance": np.sqrt(2.0) / dist.mean(),
+            f"sqrt({D}) / RMS distance": np.sqrt(D) / np.sqrt(np.mean(dist ** 2)),
+            "1 / std": 1.0 / points.std()}
+
+
+# How a normalised fit P_n = T_uv P inv(T_X) may be mapped back: what the student wrote, and the result as
+# T_uv^a P T_X^b in terms of the least-squares camera P (the right way, inv(T_uv) @ P_n @ T_X, gives a = b = 0).
+_UNDO = (
+    ("T_uv @ P_n @ inv(T_X)", 2, -2),
+    ("P_n", 1, -1),
+    ("inv(T_uv) @ P_n", 0, -1),
+    ("P_n @ T_X", 1, 0),
+    ("inv(T_uv) @ P_n @ inv(T_X)", 0, -2),
+    ("T_uv @ P_n @ T_X", 2, 0),
+)
+
+
+def _normalisation_slip(g, expected, X, uv) -> str | None:
+    """The cause when ``g`` is the least-squares camera with a similarity normalisation (of a kind in
+    :func:`_normalisation_scales`) left in it, or undone in the wrong order."""
+    power = lambda T, k: np.linalg.matrix_power(T, k) if k >= 0 else np.linalg.matrix_power(np.linalg.inv(T), -k)
+    undo = "P = inv(T_uv) @ P_n @ T_X"
+    for name_x, s_x in _normalisation_scales(X).items():
+        T_x = _similarity(X, s_x)
+        for name_u, s_u in _normalisation_scales(uv).items():
+            T_u = _similarity(uv, s_u)
+            both = f"(T_X scaling by {name_x}, T_uv by {name_u})"
+            for written, a, b in _UNDO:
+                candidate = power(T_u, a) @ expected @ power(T_x, b)
+                if not np.allclose(g, candidate, rtol=1e-6, atol=1e-9 * np.abs(candidate).max()):
+                    continue
+                return {
+                    "T_uv @ P_n @ inv(T_X)":
+                        f"you normalised the points {both} and undid it in the wrong order: {written} applies the "
+                        f"normalisation a second time. The fit P_n = T_uv P inv(T_X) maps normalised points to "
+                        f"normalised pixels, so {undo}.",
+                    "P_n": f"you normalised the points {both} and did not undo it: your camera maps normalised "
+                           f"points to normalised pixels. Map it back: {undo}.",
+                    "inv(T_uv) @ P_n": f"the points' normalisation T_X (scaling by {name_x}) is still in your "
+                                       f"camera: you did not undo it (or undid only T_uv); {undo}.",
+                    "P_n @ T_X": f"the pixels' normalisation T_uv (scaling by {name_u}) is still in your camera: "
+                                 f"you did not undo it (or undid only T_X); {undo}.",
+                    "inv(T_uv) @ P_n @ inv(T_X)": f"you normalised the points {both} and undid it as {written}: "
+                                                  f"that undoes T_uv but applies T_X a second time; {undo}.",
+                    "T_uv @ P_n @ T_X": f"you normalised the points {both} and undid it as {written}: that undoes "
+                                        f"T_X but applies T_uv a second time; {undo}.",
+                }[written]
+    return None
+
+
+def _unscaled_null_vector(g, X, uv) -> str | None:
+    """The cause when g's top rows are the homogeneous system's null vector h[:8] not divided by h[8]."""
+    A = _algebraic_fit(X, uv)
+    k = float(np.sum(g[:2] * A) / np.sum(A * A))
+    if not np.isclose(k, 1.0, rtol=1e-6) and k != 0 and np.allclose(g[:2], k * A, rtol=1e-6,
+                                                                      atol=1e-9 * np.abs(g[:2]).max()):
+        return (f"your top rows are the SVD null vector h of [X, 1, 0, -u; 0, X, 1, -v] h = 0 as it comes (a unit "
+                f"vector), {k:.4g} times the camera's: a null vector is fixed only up to scale, so divide by its "
+                f"9th entry (the scale) first, P[:2] = (h[:8] / h[8]).reshape(2, 4). Better still, solve the "
+                f"inhomogeneous system [X, 1] m = u by least squares: that minimises the pixel error itself "
+                f"(the homogeneous one minimises an algebraic error).")
+    return None
+
+
 def _estimate_forms(X, uv, expected):
     """(top rows, cause) for answers that are the least-squares numbers, rearranged or from a wrong fit."""
     Xm, um = X.mean(axis=0), uv.mean(axis=0)
@@ -49,7 +129,18 @@ def _estimate_forms(X, uv, expected):
     ones_last = expected[:2].T  # lstsq(np.c_[X, ones], uv)[0]: (4, 2), rows M2^T then t2
     ones_first = np.vstack([t2, M2.T])
     centred_pixels_only = np.linalg.lstsq(X, uv - um, rcond=None)[0].T
+    n = len(X)
+    interleaved, stacked = np.zeros((2 * n, 8)), np.zeros((2 * n, 8))
+    interleaved[0::2, :3], interleaved[0::2, 3], interleaved[1::2, 4:7], interleaved[1::2, 7] = X, 1.0, X, 1.0
+    stacked[:n, :3], stacked[:n, 3], stacked[n:, 4:7], stacked[n:, 7] = X, 1.0, X, 1.0
+    order = ("the rows of your design matrix and of its right-hand side are in different orders: {a} rows "
+             "with {b} right-hand side. Build both the same way: interleaved rows (u1, v1, u2, v2, ...) go with "
+             "uv.ravel(), stacked rows (all u, then all v) with np.r_[uv[:, 0], uv[:, 1]] (uv.T.ravel()).")
     return [
+        (np.linalg.lstsq(interleaved, uv.T.ravel(), rcond=None)[0].reshape(2, 4),
+         order.format(a="interleaved (u1, v1, u2, v2, ...)", b="a stacked (all u, then all v)")),
+        (np.linalg.lstsq(stacked, uv.ravel(), rcond=None)[0].reshape(2, 4),
+         order.format(a="stacked (all u, then all v)", b="an interleaved (u1, v1, u2, v2, ...)")),
         (ones_last.reshape(2, 4), "P's top rows are scrambled: lstsq with a column of ones returns the (4, 2) "
                                   "matrix [M2 | t2]^T; transpose it (.T), do not reshape it to (2, 4)."),
         (np.c_[t2, M2], "your first column holds t2: with the column of ones first, np.c_[ones, X], lstsq's first "
@@ -89,6 +180,9 @@ def _estimate_diagnosis(args, got, expected) -> str:
     for top, cause in _estimate_forms(X, uv, expected):
         if np.allclose(g[:2], top, rtol=1e-9, atol=1e-7):  # strict: the algebraic fit is within 1e-5 of the answer
             return cause
+    for slip in (_unscaled_null_vector(g, X, uv), _normalisation_slip(g, expected, X, uv)):
+        if slip:
+            return slip
     M2, t2 = g[:2, :3], g[:2, 3]
     M2_expected, t2_expected = expected[:2, :3], expected[:2, 3]
     Xm, um = X.mean(axis=0), uv.mean(axis=0)
@@ -128,9 +222,10 @@ def _estimate_other_cause(g, expected, X, uv) -> str:
                 f"(metres and millimetres). The world points X are in metres and the pixels uv in pixels; fit them "
                 f"as they are ({'X * 1000 or uv / 1000' if small else 'X / 1000 or uv * 1000'} gives this).")
     if scale is not None:
-        return (f"your camera's image is the least-squares one scaled by {scale:.4g} (and shifted): did you "
-                f"normalise the points (divide by their spread) and not undo it? Map the fitted camera back: "
-                f"P = T_uv^-1 P_normalised T_X.")
+        return (f"your camera's image is the least-squares one scaled by {scale:.4g} (and shifted): a "
+                f"normalisation of the points left in it. If you normalised X and uv (x_n = T x), the fit "
+                f"P_n maps normalised points to normalised pixels; undo each transform once, on its own side "
+                f"and in this order: P = inv(T_uv) @ P_n @ T_X (T_uv @ P_n @ inv(T_X) normalises a second time).")
     if _same_up_to_scale(g[:2], cm.estimate_projection_matrix(X, uv)[:2]):
         return ("this is a projective camera (DLT) with its last row overwritten: it does not minimise the pixel "
                 "error of an affine camera; fit the 8 affine parameters directly by linear least squares.")
@@ -145,6 +240,12 @@ def _estimate_other_cause(g, expected, X, uv) -> str:
             return (f"your entries are the least-squares ones rounded to {step}; return them unrounded: rounding "
                     f"an entry of M2 by up to {0.5 * 10.0 ** -decimals:g} moves the image of a point 1 m from the "
                     f"centroid by as many pixels.")
+    for name, cut in (("truncated towards zero (.astype(int) or int())", np.trunc),
+                      ("rounded down (np.floor or //)", np.floor)):
+        if np.allclose(g, cut(expected), rtol=0, atol=1e-9):
+            return (f"your entries are whole numbers, the least-squares ones {name}: return the float array "
+                    f"as it is: dropping up to 1 from each entry moves every image point by up to a pixel through "
+                    f"t2, and by more through M2 for points far from the world origin.")
     for order in ((0, 2, 1), (1, 0, 2), (1, 2, 0), (2, 0, 1), (2, 1, 0)):
         if np.allclose(g[:2, :3][:, order], expected[:2, :3], rtol=1e-9, atol=1e-7):
             return (f"the columns of M2 are in the order {order} of the right ones: column j of M2 multiplies "
@@ -277,6 +378,48 @@ def _estimate_shifted(shift):
     return lambda X, uv: af.estimate_affine_camera(X, uv) + np.c_[np.zeros((3, 3)), [shift, shift, 0.0]]
 
 
+def _estimate_normalised(how):
+    """H&Z algorithm 7.2 with similarity normalisation, undone ``how``: "right", "wrong order" (T_uv @ P_n @
+    inv(T_X)), "not undone", "pixels only" (inv(T_uv) @ P_n), or "std" (the wrong order, with 1/std scales)."""
+    def fit(X, uv):
+        if how == "std":
+            T_x, T_u = _similarity(X, 1.0 / X.std()), _similarity(uv, 1.0 / uv.std())
+        else:
+            T_x = _similarity(X, np.sqrt(3.0) / np.linalg.norm(X - X.mean(axis=0), axis=1).mean())
+            T_u = _similarity(uv, np.sqrt(2.0) / np.linalg.norm(uv - uv.mean(axis=0), axis=1).mean())
+        Xn = X @ T_x[:3, :3].T + T_x[:3, 3]
+        un = uv @ T_u[:2, :2].T + T_u[:2, 2]
+        P_n = _as_camera(np.linalg.lstsq(np.c_[Xn, np.ones(len(X))], un, rcond=None)[0].T)
+        return {"right": np.linalg.inv(T_u) @ P_n @ T_x, "not undone": P_n, "pixels only": np.linalg.inv(T_u) @ P_n,
+                "wrong order": T_u @ P_n @ np.linalg.inv(T_x), "std": T_u @ P_n @ np.linalg.inv(T_x)}[how]
+    return fit
+
+
+def _estimate_rows_mismatched(interleaved_rows):
+    """The 2N x 8 system with its rows interleaved and its right-hand side stacked, or the other way round."""
+    def fit(X, uv):
+        n = len(X)
+        A = np.zeros((2 * n, 8))
+        if interleaved_rows:
+            A[0::2, :3], A[0::2, 3], A[1::2, 4:7], A[1::2, 7] = X, 1.0, X, 1.0
+            b = uv.T.ravel()
+        else:
+            A[:n, :3], A[:n, 3], A[n:, 4:7], A[n:, 7] = X, 1.0, X, 1.0
+            b = uv.ravel()
+        return _as_camera(np.linalg.lstsq(A, b, rcond=None)[0].reshape(2, 4))
+    return fit
+
+
+def _estimate_null_vector_unscaled(X, uv):
+    """The homogeneous system solved by SVD, its null vector used without dividing by its 9th entry."""
+    n = len(X)
+    A = np.zeros((2 * n, 9))
+    A[0::2, :3], A[0::2, 3], A[0::2, 8] = X, 1.0, -uv[:, 0]
+    A[1::2, 4:7], A[1::2, 7], A[1::2, 8] = X, 1.0, -uv[:, 1]
+    h = np.linalg.svd(A)[2][-1]
+    return _as_camera(h[:8].reshape(2, 4))
+
+
 def _estimate_scaling_not_undone(X, uv):
     um, s = uv.mean(axis=0), uv.std()
     return af.estimate_affine_camera(X, (uv - um) / s)
@@ -361,6 +504,14 @@ register_exercise(Exercise(
         (_estimate_t2_sign, "sign flipped"),
         (_estimate_shifted(0.5), "half a pixel"),
         (_estimate_scaling_not_undone, "not undo it"),
+        (_estimate_normalised("wrong order"), "undid it in the wrong order"),
+        (_estimate_normalised("not undone"), "did not undo it"),
+        (_estimate_normalised("pixels only"), "points' normalisation T_X"),
+        (_estimate_normalised("std"), "undid it in the wrong order"),
+        (_estimate_null_vector_unscaled, "divide by its 9th entry"),
+        (_estimate_rows_mismatched(True), "interleaved (u1, v1, u2, v2, ...) rows with a stacked"),
+        (_estimate_rows_mismatched(False), "stacked (all u, then all v) rows with an interleaved"),
+        (lambda X, uv: af.estimate_affine_camera(X, uv).astype(int), "truncated towards zero"),
         (_estimate_points_on_pixels, "regressed the world points on the pixels"),
         (_estimate_rank_two, "rank < 2"),
         (_estimate_centred_in_place, "changed its input `X`, `uv` in place"),
