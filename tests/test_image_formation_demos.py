@@ -364,3 +364,15 @@ def test_lesson_02_demos_show_what_the_prose_says():
     assert dist.state["grid_error"] < 1e-6                      # the grid panel straightens with the checkbox
     dist.set(k1=-0.1, k2=0.3, undistort=False)
     assert dist.state["kind"] == "mustache"                     # the setting the lesson suggests for it
+
+
+def test_field_of_view_check_answers_the_prompts_question_and_names_a_one_tuple():
+    """Exercise 1 asks how much narrower 0.3 m focus makes a 50 mm view; a passing check answers with the
+    student's own function. A 1-tuple answer prints as a tuple, not as a number."""
+    from camlab.exercises._core import _fmt
+    from camlab.exercises.lenses_and_distortion import field_of_view
+
+    with contextlib.redirect_stdout(io.StringIO()) as out:
+        assert check("field_of_view", field_of_view)
+    assert "39.6 deg focused at infinity and 33.4 deg focused at 0.3 m" in out.getvalue()
+    assert _fmt((0.5829,)) == "(0.5829,)" and _fmt((1.0, 2.0)) == "(1.0, 2.0)"
