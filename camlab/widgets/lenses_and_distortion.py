@@ -199,7 +199,8 @@ def lens_distortion():
     view = FigureView(figsize=(8.6, 4.5))
     ax_img, ax_grid = view.fig.subplots(1, 2)
     board = render.checkerboard((11, 8), 0.04, t=(-0.2, -0.14, 0.45), px_per_square=32)
-    im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=255)
+    # drawn smaller than its 480 x 360 pixels: area-averaged, or the square edges alias
+    im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=255, interpolation="antialiased")
     dots, = ax_img.plot([], [], "o", color=palette.RED, ms=3.5, path_effects=palette.halo())
     ideal = _grid_lines()
     for k, ln in enumerate(ideal):  # the undistorted grid, drawn once in grey behind the bent one
