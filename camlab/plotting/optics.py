@@ -463,11 +463,13 @@ def draw_blur_disc(ax, coc_um: float = 30.0) -> dict:
     blittable); a scale bar and the title give the scale. :func:`update_blur_disc` sets it all.
     """
     from matplotlib.collections import LineCollection
+    from matplotlib.colors import to_rgba
     from matplotlib.patches import Circle
 
     art = {
         "grid": ax.add_collection(LineCollection([], colors="0.82", linewidths=0.6, zorder=0.5)),
-        "blur": ax.add_patch(Circle((0, 0), 1, facecolor=palette.RED, alpha=0.45, edgecolor=palette.RED, lw=1.2)),
+        # a pale face and an opaque edge: a disc a pixel wide still reads as a red dot
+        "blur": ax.add_patch(Circle((0, 0), 1, facecolor=to_rgba(palette.RED, 0.45), edgecolor=palette.RED, lw=1.2)),
         "ok": ax.add_patch(Circle((0, 0), 1, fill=False, edgecolor=palette.PURPLE, ls="--", lw=1.2,
                                   label=f"acceptable c = {coc_um:g} µm")),
         "airy": ax.add_patch(Circle((0, 0), 1, fill=False, edgecolor=palette.BROWN, ls=":", lw=1.8,
@@ -505,7 +507,10 @@ def update_blur_disc(art: dict, c: float, airy: float, pixel: float) -> dict:
     art["bar"].set_data([-0.92, -0.92 + bar / half], [-0.9, -0.9])
     art["bar_text"].set_text(f"{bar:g} µm = {bar / pixel_um:g} px")
     width = f"{2 * half / 1000:g} mm" if half >= 500 else f"{2 * half:g} µm"
-    art["text"].set_text(f"c = {c_um:.0f} µm = {c / pixel:.1f} px\nAiry disc {airy_um:.0f} µm\n"
+    def um(value: float) -> str:   # one decimal below 10 µm: a 0.5 µm disc is not "1 µm"
+        return f"{value:.1f}" if value < 10 else f"{value:.0f}"
+
+    art["text"].set_text(f"c = {um(c_um)} µm = {c / pixel:.1f} px\nAiry disc {um(airy_um)} µm\n"
                          f"view {width} wide, grid {grid_px} px")
     return {"half_um": half, "grid_px": grid_px}
 

@@ -41,7 +41,7 @@ F_CONE = 0.05      # the focus-and-blur demo's 50 mm lens
 COC_OK = 0.03e-3   # acceptable blur circle, 0.03 mm (a 35 mm camera viewed as a print)
 PIXEL = 5e-6       # a pixel pitch to count the blur in (a 36 x 24 mm sensor of 7200 x 4800 pixels)
 F_NUMBERS = [1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0, 16.0, 22.0, 32.0]
-SENSOR_MIN_MM = 50.04  # focuses at 62.5 m: beyond the hyperfocal distance of every f-number (f/1.4: 59.6 m at 30 µm)
+SENSOR_MIN_MM = 50.04  # focuses at 62.6 m: beyond the hyperfocal distance of every f-number (f/1.4: 59.6 m at 30 µm)
 
 
 def blur_curve_depths(focus: float) -> np.ndarray:
@@ -54,7 +54,7 @@ def blur_curve_depths(focus: float) -> np.ndarray:
                               "sensor_mm": [SENSOR_MIN_MM, 52.63, 60.0]})
 def focus_and_blur():
     """The cone of light from a point through the aperture, a movable sensor, the blur disc it cuts there
-    (magnified, face on) and the blur circle c(z) of every depth."""
+    (face on, zoomed to fit, over the sensor's pixels) and the blur circle c(z) of every depth."""
     controls = {
         "f_number": W.SelectionSlider(options=F_NUMBERS, value=2.8, description="f-number N", continuous_update=True,
                                       style={"description_width": "initial"}, layout=W.Layout(width="300px")),
