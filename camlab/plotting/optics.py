@@ -500,7 +500,8 @@ def update_blur_disc(art: dict, c: float, airy: float, pixel: float) -> dict:
     step = grid_px * pixel_um / half
     ticks = np.arange(step / 2, 1, step)   # the image point sits at a pixel's centre
     ticks = np.concatenate([-ticks[::-1], ticks])
-    art["grid"].set_segments([[(t, -1), (t, 1)] for t in ticks] + [[(-1, t), (1, t)] for t in ticks])
+    end = 0.99   # short of the frame: a live frame paints the grid over the cached spines, a full draw under them
+    art["grid"].set_segments([[(t, -end), (t, end)] for t in ticks] + [[(-end, t), (end, t)] for t in ticks])
     art["blur"].set_radius(max(c_um / 2, 0.006 * half) / half)   # a dot at least ~2 screen pixels wide
     art["airy"].set_radius(airy_um / 2 / half)
     art["ok"].set_radius(art["coc"] / 2 / half)

@@ -67,7 +67,7 @@ def focus_and_blur():
     disc = optics.draw_blur_disc(ax_disc, coc_um=COC_OK * 1e6)
     curve, = ax_c.plot([], [], "k", label="c(z), this sensor position")
     band = ax_c.axvspan(1, 2, color=palette.PURPLE, alpha=0.3, lw=0, label="depth of field (c < 30 µm)")
-    ax_c.axhline(COC_OK * 1e6, color=palette.PURPLE, ls="--", lw=1.2)
+    coc_line = ax_c.axhline(COC_OK * 1e6, color=palette.PURPLE, ls="--", lw=1.2)   # animated below: over the band
     airy = ax_c.axhline(1, color=palette.BROWN, ls=":", lw=1.8)
     marker, = ax_c.plot([], [], "o", color=palette.GREEN, mec="k", ms=7)
     ax_c.set_title(" \n \n ", fontsize=9)  # room for the three lines update writes
@@ -82,7 +82,7 @@ def focus_and_blur():
     view.animate(*[art[k] for k in ("stop", "lens", "cone_in", "cone_out", "rays", "beyond", "point", "sensor", "focus",
                                      "blur", "text")],
                  *[disc[k] for k in ("grid", "blur", "ok", "airy", "bar", "bar_text", "text")],
-                 curve, band, airy, marker, ax_c.title)
+                 curve, band, coc_line, airy, marker, ax_c.title)
 
     def update(values, state):
         N, z_o, z_s = float(values["f_number"]), values["object_m"], values["sensor_mm"] * 1e-3
@@ -127,10 +127,11 @@ def depth_of_field():
     z = np.linspace(0.3, 5, 400)
     curve, = ax_c.plot(z, np.full_like(z, 100.0), "k", zorder=3)  # over the plane markers, live and redrawn
     band = ax_c.axvspan(1, 2, color=palette.PURPLE, alpha=0.15, lw=0)
-    ax_c.axhline(2 * PITCH_DOF * 1e6, color=palette.PURPLE, ls="--", lw=1.2)
+    # zorder 2.6: over the spines in a full draw too, as a live frame paints them over the cached background
+    lines = [ax_c.axhline(2 * PITCH_DOF * 1e6, color=palette.PURPLE, ls="--", lw=1.2, zorder=2.6)]
     planes = {"small board": 0.6, "chart": 1.2, "large board": 2.4, "wall": 4.0}
-    for zp in planes.values():
-        ax_c.axvline(zp, color="0.4", lw=1.2, ls=(0, (4, 2)))   # dark enough on the purple band (WCAG 1.4.11)
+    for zp in planes.values():   # dark enough on the purple band (WCAG 1.4.11)
+        lines.append(ax_c.axvline(zp, color="0.4", lw=1.2, ls=(0, (4, 2)), zorder=2.6))
     # the planes named on a top axis, each above its line: no legend over the band or the curve
     top = ax_c.secondary_xaxis("top")
     top.set_xticks(list(planes.values()), list(planes), fontsize=8)
@@ -148,7 +149,7 @@ def depth_of_field():
     # axes' text, 62 px under it: a saved figure draws an axes' animated artists, not the figure's)
     limits = ax_c.text(0.5, 0, "", ha="center", va="bottom", fontsize=9, clip_on=False,
                        transform=offset_copy(ax_c.transAxes, fig=view.fig, y=-62, units="dots"))
-    view.animate(im, curve, band, limits)
+    view.animate(im, curve, band, limits, *lines)   # the lines too: over the moving band, live as in a full draw
 
     def update(values, state):
         N, s = float(values["f_number"]), values["focus_m"]
