@@ -336,16 +336,28 @@ def test_lesson_02_demos_show_what_the_prose_says():
     dof = lenses_and_distortion.depth_of_field()
     dof.figure.canvas.draw()
     ax_img = dof.figure.axes[0]
-    # "drawn at least 1:1": the 480 x 360 image gets no fewer screen pixels than it has
-    assert ax_img.get_window_extent().width >= lenses_and_distortion.SIZE[0]
+    # "drawn 1:1": the 480 x 360 image on exactly 480 x 360 whole canvas pixels, so neither the live frame nor a full
+    # draw resamples it (they placed its pixels differently at 493 x 370)
+    box = ax_img.get_window_extent()
+    assert np.allclose([box.width, box.height], lenses_and_distortion.SIZE) and np.allclose(box.p0, np.round(box.p0))
     assert dof.figure.get_figwidth() * dof.figure.dpi + 8 + 300 <= 968   # beside the controls at 1400 px
     blur = lenses_and_distortion.focus_and_blur()
     assert blur.state["c"] * 1e6 == pytest.approx(313, abs=1) and blur.state["focus"] == pytest.approx(1.0, abs=0.005)
-    for c_um in (30, 500):   # a disc from 30 to 500 µm fits the face-on view and is at least 9 screen pixels wide
-        ax = blur.figure.axes[1]
+    # the face-on view zooms: the largest disc fills 40-84 % of it at every setting, and the 4 µm Airy ring beside
+    # a 1 µm disc at the focus ("shrinks to a dot, no larger than the Airy disc") is at least 9 screen pixels wide
+    ax = blur.figure.axes[1]
+    for setting in ({}, {"object_m": 1.0}, {"f_number": 1.4, "object_m": 0.3, "sensor_mm": lenses_and_distortion.SENSOR_MIN_MM},
+                    {"f_number": 32.0, "object_m": 1.0}, {"f_number": 1.4, "object_m": 2.0, "sensor_mm": 60.0}):
+        blur.set(**{"f_number": 2.8, "object_m": 1.5, "sensor_mm": 52.63, **setting})
+        largest = max(blur.state["c"], blur.state["airy"], lenses_and_distortion.COC_OK) * 1e6
+        assert 0.4 <= largest / (2 * blur.state["half_um"]) <= 5 / 6, setting
         blur.figure.canvas.draw()
-        px_per_um = ax.get_window_extent().width / np.diff(ax.get_xlim())[0]
-        assert c_um * px_per_um >= 9 and c_um <= np.diff(ax.get_xlim())[0]
+        px_per_um = ax.get_window_extent().width / (2 * blur.state["half_um"])
+        if setting == {"object_m": 1.0}:
+            assert blur.state["c"] < blur.state["airy"] and blur.state["airy"] * 1e6 * px_per_um >= 9
+    blur.set(f_number=2.8, object_m=1.5, sensor_mm=lenses_and_distortion.SENSOR_MIN_MM)
+    assert blur.state["far"] == np.inf    # the slider's low end focuses beyond every hyperfocal distance
+    blur.set(sensor_mm=52.63)
     blur.set(f_number=32.0)
     assert blur.state["airy"] > lenses_and_distortion.COC_OK   # "at f/32 the Airy disc alone is larger than 30 µm"
     dist = lenses_and_distortion.lens_distortion()
@@ -353,3 +365,15 @@ def test_lesson_02_demos_show_what_the_prose_says():
     assert dist.state["grid_error"] < 1e-6                      # the grid panel straightens with the checkbox
     dist.set(k1=-0.1, k2=0.3, undistort=False)
     assert dist.state["kind"] == "mustache"                     # the setting the lesson suggests for it
+
+
+def test_field_of_view_check_answers_the_prompts_question_and_names_a_one_tuple():
+    """Exercise 1 asks how much narrower 0.3 m focus makes a 50 mm view; a passing check answers with the
+    student's own function. A 1-tuple answer prints as a tuple, not as a number."""
+    from camlab.exercises._core import _fmt
+    from camlab.exercises.lenses_and_distortion import field_of_view
+
+    with contextlib.redirect_stdout(io.StringIO()) as out:
+        assert check("field_of_view", field_of_view)
+    assert "39.6 deg focused at infinity and 33.4 deg focused at 0.3 m" in out.getvalue()
+    assert _fmt((0.5829,)) == "(0.5829,)" and _fmt((1.0, 2.0)) == "(1.0, 2.0)"

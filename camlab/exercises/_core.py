@@ -73,6 +73,9 @@ class Exercise:
     function that runs the student's function on given arguments (under the same time limit and
     in-place check), it returns what is wrong or None. For properties a single input cannot show,
     such as an estimate that must not depend on the units of its input."""
+    success_note: Callable[[Callable[..., Any]], str] | None = None
+    """Called like ``follow_up`` once the function has passed, it returns a line printed under the congratulation:
+    the answer to a question the prompt asked, computed with the student's own function."""
 
 
 EXERCISES: dict[str, Exercise] = {}
@@ -98,7 +101,7 @@ def _fmt(value: Any) -> str:
         return repr(value.item())  # 2.5, not np.float64(2.5)
     if isinstance(value, (tuple, list)):
         inner = ", ".join(_fmt(v) for v in value)
-        return f"[{inner}]" if isinstance(value, list) else f"({inner})"
+        return f"[{inner}]" if isinstance(value, list) else f"({inner},)" if len(value) == 1 else f"({inner})"
     return repr(value)
 
 
@@ -300,6 +303,9 @@ def check(name: str, student_function: Callable[..., Any], *, time_limit_s: floa
         if problem:
             raise AssertionError(f"{name}: correct on all {len(cases)} test inputs, but {problem}")
     print(f"{name}: correct on all {len(cases)} test inputs. Well done!")
+    if exercise.success_note is not None:
+        print(exercise.success_note(lambda *args: _run_student(name, student_function, args, len(cases), len(cases) + 1,
+                                                               seconds)))
     return CheckResult(name, True)
 
 

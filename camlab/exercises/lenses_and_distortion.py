@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import distortion, lens
-from ._numbers import is_number as _is_number, same_number
+from ._numbers import is_number as _is_number, not_one_number, same_number
 from ._core import Exercise, register_exercise, same_array, shape_problem
 
 
@@ -25,7 +25,7 @@ def _field_of_view_cases():
 def _field_of_view_diagnosis(args, got, expected) -> str:
     f, w, zo = args
     if not _is_number(got):
-        return "return one number: the field of view in radians"
+        return not_one_number(got, "the field of view in radians")
     g = float(got)
     zi = f * zo / (zo - f)
 
@@ -34,6 +34,10 @@ def _field_of_view_diagnosis(args, got, expected) -> str:
 
     if np.isclose(g, np.degrees(expected)):
         return "that is the angle in degrees; the course's functions return radians (np.degrees only for printing)"
+    if np.isclose(-g, expected):
+        return "the angle came out negative: a sign slip; the field of view 2 arctan(w / (2 z_i)) is positive"
+    if np.isclose(g, 2 * np.tan(w / (2 * zi))):
+        return "you took the tangent of the ratio; the angle is its arctangent: 2 np.arctan(w / (2 z_i))"
     if np.isclose(g, fov(f)):
         return ("that is the field of view focused at infinity, 2 arctan(w / 2f); focused at z_o the sensor sits at "
                 "z_i = f z_o / (z_o - f), farther than f, so the pinhole focal length is z_i: 2 arctan(w / (2 z_i))")
@@ -53,11 +57,27 @@ def _field_of_view_diagnosis(args, got, expected) -> str:
                         (1 / f - 1 / zo, "you used 1/z_i as the distance; invert it: z_i = 1 / (1/f - 1/z_o)")):
         if np.isclose(g, fov(wrong)):
             return hint
+    if np.isclose(g, fov(zo - f)):
+        return ("z_o - f is not where the image forms (it is the object's distance from the focal point F); the "
+                "thin lens puts it at z_i = f z_o / (z_o - f), from 1/f = 1/z_o + 1/z_i")
+    for diagonal in (np.hypot(w, 2 * w / 3), np.hypot(w, 3 * w / 4), 0.0433):
+        if np.isclose(g, fov(zi, diagonal)) or np.isclose(g, fov(f, diagonal)):
+            return ("that is the diagonal field of view; the horizontal one uses the sensor's width w as given: "
+                    "2 arctan(w / (2 z_i))")
+    if np.isclose(g, fov(zi, f)) or (zo > w and np.isclose(g, 2 * np.arctan(f / (2 * w * zo / (zo - w))))):
+        return "w and f are swapped: the sensor width w goes over the lens-to-sensor distance, 2 arctan(w / (2 z_i))"
     for factor in (1e3, 1e-3):
         if np.isclose(g, fov(zi, w * factor)):
             return ("mixed units: the width and the distance must be in one unit (the inputs are all in metres; "
                     "0.036 is 36 mm)")
     return "find z_i from 1/f = 1/z_o + 1/z_i, then the field of view 2 arctan(w / (2 z_i)) in radians"
+
+
+def _field_of_view_note(run) -> str:
+    """Exercise 1's question, answered with the student's own function once it passes."""
+    close, far = np.degrees(run(0.05, 0.036, 0.3)), np.degrees(2 * np.arctan(0.036 / (2 * 0.05)))
+    return (f"The question: a 50 mm lens on full frame (w = 36 mm) sees {far:.1f} deg focused at infinity and "
+            f"{close:.1f} deg focused at 0.3 m (z_i = 60 mm): {far - close:.1f} deg, {1 - close / far:.0%} narrower.")
 
 
 def field_of_view(f, w, z_o):
@@ -73,6 +93,7 @@ register_exercise(Exercise(
     cases=_field_of_view_cases,
     compare=same_number(rtol=1e-9),
     diagnose=_field_of_view_diagnosis,
+    success_note=_field_of_view_note,
     wrong_variants=(
         (lambda f, w, zo: 2 * np.arctan(w / (2 * f)), "focused at infinity"),
         (lambda f, w, zo: np.degrees(2 * np.arctan(w / (2 * f * zo / (zo - f)))), "degrees"),
@@ -84,6 +105,12 @@ register_exercise(Exercise(
         (lambda f, w, zo: 2 * np.arctan(w / (2 * zo)), "object distance"),
         (lambda f, w, zo: 2 * np.arctan(1e3 * w / (2 * f * zo / (zo - f))), "mixed units"),
         (lambda f, w, zo: [2 * np.arctan(w / (2 * f * zo / (zo - f)))], "return one number"),
+        (lambda f, w, zo: (2 * np.arctan(w / (2 * f * zo / (zo - f))),), "a trailing comma"),
+        (lambda f, w, zo: 2 * np.arctan(w / (2 * (zo - f))), "z_o - f is not where the image forms"),
+        (lambda f, w, zo: 2 * np.arctan(np.hypot(w, 2 * w / 3) / (2 * f * zo / (zo - f))), "diagonal field of view"),
+        (lambda f, w, zo: 2 * np.arctan(f / (2 * w * zo / (zo - w))), "w and f are swapped"),
+        (lambda f, w, zo: -2 * np.arctan(w / (2 * f * zo / (zo - f))), "a sign slip"),
+        (lambda f, w, zo: 2 * np.tan(w / (2 * f * zo / (zo - f))), "its arctangent"),
     ),
     teaching=field_of_view,
 ))
@@ -193,6 +220,10 @@ def _distort_pixels_diagnosis(args, got, expected) -> str:
                 (f[[0, 0]], c, "v goes with f_y = K[1, 1], not f_x: x = (u - c_x) / f_x, y = (v - c_y) / f_y"),
                 (f[::-1], c, "f_x = K[0, 0] goes with u and f_y = K[1, 1] with v: you swapped them"),
                 (f, c[::-1], "c_x = K[0, 2] and c_y = K[1, 2]: you swapped them"),
+                (f, np.array([319.5, 239.5]), "you used the image centre as the principal point; take it from K, "
+                                              "c_x = K[0, 2], c_y = K[1, 2]: a calibrated camera's is off the centre"),
+                (f, np.array([320.0, 240.0]), "you used the image centre as the principal point; take it from K, "
+                                              "c_x = K[0, 2], c_y = K[1, 2]: a calibrated camera's is off the centre"),
                 (f, c + 0.5, "a half-pixel shift: the principal point is K[0, 2], K[1, 2] as it is (pixel centres sit at "
                              "integers)"),
                 (f, c - 0.5, "a half-pixel shift: the principal point is K[0, 2], K[1, 2] as it is (pixel centres sit at "
@@ -201,6 +232,24 @@ def _distort_pixels_diagnosis(args, got, expected) -> str:
             if np.allclose(g, distortion.distort_points(xw, d) * f_wrong + c_wrong) or \
                     np.allclose(g, distortion.distort_points(xw, d) * f_wrong + c):
                 return hint
+        if np.allclose(g, x_d * f):
+            return ("your u_d, v_d lack the principal point: after scaling by f, add c back, u_d = f_x x_d + c_x, "
+                    "v_d = f_y y_d + c_y. (With a matrix on row points, np.c_[x_d, ones] @ K without .T puts c_x into "
+                    "the third coordinate, which [:, :2] then drops: use @ K.T)")
+        if np.allclose(g, expected[:, ::-1]):
+            return ("your columns come out as (v, u); return (u, v), the column u first, as uv came in: "
+                    "np.column_stack([u_d, v_d])")
+        if np.allclose(g, distortion.distort_pixels(uv[:, ::-1], K, d)) or \
+                np.allclose(g, distortion.distort_pixels(uv[:, ::-1], K, d)[:, ::-1]):
+            return ("you read uv as (v, u), width and height swapped: uv[:, 0] is u, the column (with f_x and c_x), "
+                    "uv[:, 1] is v, the row (with f_y and c_y)")
+        for way_in, way_out in (("wrong", "wrong"), ("wrong", "right"), ("right", "wrong")):
+            xw = uv / f - c if way_in == "wrong" else x
+            back = distortion.distort_points(xw, d)
+            if np.allclose(g, (back + c) * f if way_out == "wrong" else back * f + c):
+                return ("normalising is subtract, then divide: x = (u - c_x) / f_x (u / f_x - c_x takes a pixel offset "
+                        "from a normalised number); undo it in the reverse order, multiply, then add: "
+                        "u_d = f_x x_d + c_x")
         if _transposed_k(uv, K, d, g):
             return ("points are rows, so a matrix acts from the right transposed: normalise with "
                     "np.c_[uv, ones] @ np.linalg.inv(K).T and map back with np.c_[x_d, ones] @ K.T (or write "
@@ -278,8 +327,18 @@ register_exercise(Exercise(
         (lambda uv, K, d: distortion.distort_points((uv - K[:2, 2] - 0.5) / K[[0, 1], [0, 1]], d) * K[[0, 1], [0, 1]]
          + K[:2, 2] + 0.5, "half-pixel"),
         (lambda uv, K, d: distortion.distort_pixels(uv, K, d) - uv, "shift in pixels"),
+        (lambda uv, K, d: distortion.distort_points((uv - [319.5, 239.5]) / K[[0, 1], [0, 1]], d) * K[[0, 1], [0, 1]]
+         + [319.5, 239.5], "image centre as the principal point"),
+        (lambda uv, K, d: distortion.distort_points((uv - K[:2, 2]) / K[[0, 1], [0, 1]], d) * K[[0, 1], [0, 1]],
+         "lack the principal point"),
+        (lambda uv, K, d: distortion.distort_pixels(uv, K, d)[:, ::-1], "come out as"),
+        (lambda uv, K, d: distortion.distort_pixels(uv[:, ::-1], K, d), "width and height swapped"),
+        (lambda uv, K, d: (distortion.distort_points(uv / K[[0, 1], [0, 1]] - K[:2, 2], d) + K[:2, 2]) * K[[0, 1], [0, 1]],
+         "subtract, then divide"),
+        (lambda uv, K, d: distortion.distort_points(uv / K[[0, 1], [0, 1]] - K[:2, 2], d) * K[[0, 1], [0, 1]] + K[:2, 2],
+         "subtract, then divide"),
         (lambda uv, K, d: (np.c_[distortion.distort_points(np.c_[uv, np.ones(len(uv))] @ np.linalg.inv(K).T[:, :2], d),
-                                 np.ones(len(uv))] @ K)[:, :2], "a matrix acts from the right transposed"),
+                                 np.ones(len(uv))] @ K)[:, :2], "without .T puts c_x into"),
         (_pixel_variant(lambda x, d: distortion.distort_points(x, [d[0], d[1], d[3], d[2], d[4]])), "p1 and p2 are swapped"),
         (_pixel_variant(lambda x, d: distortion.distort_points(x, [d[0], d[1], 0, 0, d[4]])), "tangential"),
         (_pixel_variant(lambda x, d: distortion.distort_points(x, [d[0], d[1], d[3], d[4], d[2]])), "k3 comes last"),
@@ -315,10 +374,21 @@ def _f_number_reference(f, c, near, far):
 
 def _f_number_diagnosis(args, got, expected) -> str:
     f, c, n, r = args
+    if isinstance(got, (tuple, list, np.ndarray)) and np.size(got) == 2 and np.isclose(np.ravel(got), expected).any():
+        return "return N alone, one number: the focus distance s is only a step on the way"
     if not _is_number(got):
-        return "return one number: the f-number N"
+        return not_one_number(got, "the f-number N")
     g = float(got)
     s = 2 * n * r / (n + r)
+    stop = [N for N in _MARKED_STOPS if np.isclose(g, N, rtol=1e-9)]
+    if (stop or np.isclose(g, np.ceil(expected)) or np.isclose(g, np.round(expected))) and not np.isclose(g, expected):
+        return (f"you rounded N (to {g:g}); return the exact f-number, {expected:.4g} here: picking the next marked "
+                f"stop on the lens is your step afterwards, not the function's")
+    geometric = np.sqrt(n * r)
+    if np.isclose(g, f**2 * (geometric - n) / (c * n * (geometric - f))) or \
+            np.isclose(g, f**2 * (r - geometric) / (c * r * (geometric - f))):
+        return ("you focused at the geometric mean sqrt(near far); equal blur at both ends needs "
+                "(s - near) / near = (far - s) / far, whose solution is the harmonic mean 2 near far / (near + far)")
     if np.isclose(g, 1 / expected):
         return "you returned 1/N; N = f / A is large for a small aperture (f/11 is N = 11)"
     if np.isclose(g, s) or np.isclose(g, (n + r) / 2):
@@ -340,8 +410,19 @@ def _f_number_diagnosis(args, got, expected) -> str:
         return "the sign of f: the sensor sits at f s / (s - f), so the cone's factor is f / (s - f), not f / (s + f)"
     if np.isclose(g, expected / f):
         return "f enters squared: the aperture A = f / N and the cone's f / (s - f) each bring one f"
+    if np.isclose(g, -expected):
+        return ("|z - s| with the wrong sign: the near end is in front of the focus, |near - s| = s - near; the far "
+                "end behind it, |far - s| = far - s")
+    if np.isclose(g, f / expected):
+        return "that is the aperture's diameter A = f / N (metres); return the f-number N itself"
+    if g < 0:
+        return ("N came out negative: an |z - s| taken with the wrong sign, or s - f < 0 because f and the "
+                "distances are in different units (f in millimetres, s in metres?); keep every length in metres")
     return ("first the focus s with c(near) = c(far), i.e. (s - near) / near = (far - s) / far; then N from "
             "c(near) = c, with c(z) = (f/N) (f/(s - f)) |z - s| / z")
+
+
+_MARKED_STOPS = (1.0, 1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0, 16.0, 22.0, 32.0, 45.0, 64.0)
 
 
 def f_number_for_depth(f, c, near, far):
@@ -369,6 +450,14 @@ register_exercise(Exercise(
         (lambda f, c, n, r: _f_number_reference(f, c, n, r) / f, "f enters squared"),
         (lambda f, c, n, r: f**2 * (2 * n * r / (n + r) - n) / (c * n * (2 * n * r / (n + r) + f)), "the sign of f"),
         (lambda f, c, n, r: np.array([_f_number_reference(f, c, n, r)]), "return one number"),
+        (lambda f, c, n, r: min(N for N in _MARKED_STOPS if N >= _f_number_reference(f, c, n, r)), "you rounded N"),
+        (lambda f, c, n, r: float(np.ceil(_f_number_reference(f, c, n, r))), "you rounded N"),
+        (lambda f, c, n, r: f**2 * (np.sqrt(n * r) - n) / (c * n * (np.sqrt(n * r) - f)), "geometric mean"),
+        (lambda f, c, n, r: f**2 * (2 * n * r / (n + r) - r) / (c * r * (2 * n * r / (n + r) - f)), "the wrong sign"),
+        (lambda f, c, n, r: f / _f_number_reference(f, c, n, r), "the aperture's diameter"),
+        (lambda f, c, n, r: (2 * n * r / (n + r), _f_number_reference(f, c, n, r)), "return N alone"),
+        (lambda f, c, n, r: (1e3 * f) ** 2 * (2 * n * r / (n + r) - n) / (c * n * (2 * n * r / (n + r) - 1e3 * f)),
+         "N came out negative"),
     ),
     teaching=f_number_for_depth,
 ))
@@ -447,6 +536,8 @@ _WRONG_STEPS = (
      "the k1 term of the Jacobian misses the chain rule's factor 2: d(r^2)/dx = 2 x, so dL/dx = (2 k1 + 4 k2 r^2) x"),
     (dict(k2_chain=2.0),
      "the k2 term of the Jacobian is off: d(r^4)/dx = 2 r^2 d(r^2)/dx = 4 r^2 x, so dL/dx = (2 k1 + 4 k2 r^2) x"),
+    (dict(k2_chain=0.0),
+     "your J has no k2 term: L's k2 r^4 changes with x too, d(r^4)/dx = 4 r^2 x, so dL/dx = (2 k1 + 4 k2 r^2) x"),
     (dict(j_at_target=True),
      "you evaluated J at x_d; Newton's J belongs to the current estimate x (recompute r^2, L and J from x)"),
     (dict(l_at_target=True),
@@ -468,6 +559,14 @@ def _newton_diagnosis(args, got, expected) -> str:
         return problem
     x, x_d, k1, k2 = args
     g = np.asarray(got, dtype=float)
+    if k1 != k2 and np.allclose(g, _newton_step_reference(x, x_d, k2, k1), rtol=0, atol=1e-10):
+        return "k1 and k2 are swapped: L = 1 + k1 r^2 + k2 r^4 (k1 with r^2), and J = L I + (2 k1 + 4 k2 r^2) x x^T"
+    if k2 and np.allclose(g, _newton_step_reference(x, x_d, k1, 0.0), rtol=0, atol=1e-10):
+        return "you left k2 out: L = 1 + k1 r^2 + k2 r^4, and J = L I + (2 k1 + 4 k2 r^2) x x^T"
+    converged = distortion.undistort_points(x_d, [k1, k2, 0.0, 0.0, 0.0])
+    if np.allclose(g, converged, rtol=0, atol=1e-8):
+        return ("that is the converged answer, after many steps; newton_step takes one step only, from the x it is "
+                "given: return x + delta with J(x) delta = -(F(x) - x_d) (the loop that repeats it is the caller's)")
     for slip, hint in _WRONG_STEPS:
         if np.allclose(g, _wrong_step(x, x_d, k1, k2, **slip), rtol=0, atol=1e-10):
             return hint
@@ -533,12 +632,15 @@ register_exercise(Exercise(
         for (slip, _), phrase in zip(_WRONG_STEPS, (
             "your J is a number times I", "no off-diagonal terms", "term of J has the wrong sign", "fixed-point step",
             "misses the chain rule's factor 2", "the k1 term of the Jacobian", "the k2 term of the Jacobian",
-            "you evaluated J at x_d", "your residual uses L of x_d", "step against the residual",
+            "no k2 term", "you evaluated J at x_d", "your residual uses L of x_d", "step against the residual",
             "you stepped from x_d", "you returned the step delta"))
     ) + (
         (lambda x, x_d, k1, k2: x * (1 + k1 * (x**2).sum(1, keepdims=True) + k2 * (x**2).sum(1, keepdims=True) ** 2),
          "the current estimate distorted"),
         (_in_place_newton, "in place"),
+        (lambda x, x_d, k1, k2: _newton_step_reference(x, x_d, k2, k1), "k1 and k2 are swapped"),
+        (lambda x, x_d, k1, k2: _newton_step_reference(x, x_d, k1, 0.0), "you left k2 out"),
+        (lambda x, x_d, k1, k2: distortion.undistort_points(x_d, [k1, k2, 0, 0, 0]), "the converged answer"),
         (_flat_rhs_newton, "np.linalg.solve on a stack"),
         (lambda x, x_d, k1, k2: _newton_step_reference(x, x_d, k1, k2).tolist(), "wrap the values in np.array"),
     ),

@@ -303,8 +303,9 @@ def update_similar_triangles(art: dict, f: float, Z: float, Y: float) -> float:
     return y
 
 
-THIN_LENS_X = (-12.0, 9.0)   # the ray diagram's horizontal range, in units of f
-THIN_LENS_Y = 3.2            # ... and its vertical half-range, in object heights
+THIN_LENS_X = (-12.0, 7.0)   # the ray diagram's horizontal range, in units of f
+THIN_LENS_Y = (-5.6, 1.4)    # ... and its vertical range, in object heights: a real image is inverted (m < 0), so
+                             # the room is below the axis, down to m = -5.6 (z_o = 1.18 f, z_i = 6.6 f: the x range)
 
 
 def draw_thin_lens(ax, focal_length: float, object_distance: float) -> dict:
@@ -312,9 +313,10 @@ def draw_thin_lens(ax, focal_length: float, object_distance: float) -> dict:
 
     Distances are drawn in units of f (the diagram depends only on z_o / f) and heights in
     units of the object's height, on fixed axes: as the object nears F the image runs off to
-    the right and grows. An object or image beyond the axes is not drawn (its rays still are);
-    the title, above the axes and off the rays, gives the numbers and says where it is.
-    Fixed axes also keep the diagram blittable.
+    the right and grows. The axes reach down to m = -5.6 (an object at 1.18 f), since a real
+    image is inverted. An object or image beyond the axes is not drawn (its rays still are);
+    the title, above the axes and off the rays, gives the numbers and says where it is. The
+    legend sits under the axes, never over a ray. Fixed axes also keep the diagram blittable.
     """
     styles = ("-", "--", "-.")   # one colour for light (orange), three line styles for the three rays
     names = ("parallel, then through F'", "through the centre, straight", "through F, then parallel")
@@ -331,11 +333,12 @@ def draw_thin_lens(ax, focal_length: float, object_distance: float) -> dict:
     for x, label in ((-1, "F"), (1, "F'")):
         ax.annotate(label, (x, 0), xytext=(5, 4), textcoords="offset points", ha="left", va="bottom", fontsize=10)
     lo, hi = THIN_LENS_X
-    ax.set(xlim=THIN_LENS_X, ylim=(-THIN_LENS_Y, THIN_LENS_Y), yticks=[-3, -2, -1, 0, 1, 2, 3],
+    ax.set(xlim=THIN_LENS_X, ylim=THIN_LENS_Y, yticks=range(int(np.ceil(THIN_LENS_Y[0])), int(THIN_LENS_Y[1]) + 1),
            xticks=[t for t in range(int(lo), int(hi) + 1) if t % 2 == 0])
     ax.set_xlabel("distance from the lens, in units of f (object side left, image side right)")
     ax.set_ylabel("height / object height")
-    ax.legend(loc="upper right", fontsize=8, title="principal rays", title_fontsize=8)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncols=3, fontsize=8, title="principal rays",
+              title_fontsize=8)
     update_thin_lens(art, focal_length, object_distance)
     return art
 
@@ -344,7 +347,7 @@ def _thin_lens_note(xo: float, xi: float, m: float) -> str:
     """Where the object or image is when it lies beyond the axes ('' when both are on them)."""
     lo, hi = THIN_LENS_X
     notes = [f"object at {-xo:.1f} f, beyond the left edge" if xo < lo else ""]
-    if xi > hi or abs(m) > THIN_LENS_Y:
+    if xi > hi or not THIN_LENS_Y[0] <= m <= THIN_LENS_Y[1]:
         notes.append(f"image at {xi:.1f} f, m = {m:.1f}: beyond the {'right edge' if xi > hi else 'axes'}")
     return "; ".join(n for n in notes if n)
 
@@ -405,7 +408,9 @@ def draw_focus_cone(ax, half_height_mm: float = 20.0, sensor_height_mm: float = 
     light orange, the image (where the rays meet, and the blur on the sensor) red.
     :func:`update_focus_cone` moves everything and returns the blur circle on the sensor.
     """
-    ax.axhline(0, color="0.4", lw=0.8)   # the optical axis (dark enough to read through the cone)
+    # the optical axis (dark enough to read through the cone), under the cone: live frames paint the cone over
+    # the cached background, so a full draw must too
+    ax.axhline(0, color="0.4", lw=0.8, zorder=0.5)
     art = {
         "stop": ax.plot([], [], color="k", lw=4, solid_capstyle="butt", label="aperture stop")[0],
         "lens": ax.plot([], [], color=palette.BLUE, lw=3, label="lens, aperture A = f/N")[0],
@@ -465,37 +470,81 @@ def update_focus_cone(art: dict, f: float, N: float, z_o: float, z_s: float) -> 
     return {"z_i": z_i, "A": A, "c": c, "airy": airy}
 
 
-def draw_blur_disc(ax, half_width_um: float = 250.0, coc_um: float = 30.0) -> dict:
-    """The sensor seen face on around the image point, in micrometres: the blur disc (red), the
-    acceptable blur ``coc_um`` (purple dashes) and the Airy disc (brown dots), to scale with each other.
+# The face-on view zooms in steps so the largest of the three discs (blur, Airy, acceptable) fills at most
+# 5/6 of it: (half-width, scale bar) in µm, and the pixel grid's spacing in pixels.
+BLUR_VIEWS = ((25, 10), (50, 20), (100, 40), (250, 100), (500, 200), (1000, 400), (2500, 1000), (5000, 2000))
 
-    :func:`update_blur_disc` sets the two discs' diameters.
+
+def blur_view(diameter_um: float) -> tuple[float, float]:
+    """(half-width, scale-bar length) in µm of the face-on view for the largest disc ``diameter_um``."""
+    for half, bar in BLUR_VIEWS:
+        if diameter_um <= 2 * half * 5 / 6:
+            return half, bar
+    return BLUR_VIEWS[-1]
+
+
+def draw_blur_disc(ax, coc_um: float = 30.0) -> dict:
+    """The sensor seen face on around the image point: the blur disc (red), the acceptable blur
+    ``coc_um`` (purple dashes) and the Airy disc (brown dots), to scale with each other and
+    with a grid of the sensor's pixels.
+
+    The view zooms (:data:`BLUR_VIEWS`) so that the largest disc fills at most 5/6 of it: a
+    1 µm disc beside a 4 µm Airy ring is as visible as a 6 mm disc. The axes run from -1 to
+    1 in units of the view's half-width, so the zoom needs no new axis limits (the demo stays
+    blittable); a scale bar and the title give the scale. :func:`update_blur_disc` sets it all.
     """
+    from matplotlib.collections import LineCollection
+    from matplotlib.colors import to_rgba
     from matplotlib.patches import Circle
 
     art = {
-        "blur": ax.add_patch(Circle((0, 0), 1, facecolor=palette.RED, alpha=0.45, edgecolor=palette.RED, lw=1.2)),
-        "ok": ax.add_patch(Circle((0, 0), coc_um / 2, fill=False, edgecolor=palette.PURPLE, ls="--", lw=1.2,
+        "grid": ax.add_collection(LineCollection([], colors="0.82", linewidths=0.6, zorder=0.5)),
+        # a pale face and an opaque edge: a disc a pixel wide still reads as a red dot
+        "blur": ax.add_patch(Circle((0, 0), 1, facecolor=to_rgba(palette.RED, 0.45), edgecolor=palette.RED, lw=1.2)),
+        "ok": ax.add_patch(Circle((0, 0), 1, fill=False, edgecolor=palette.PURPLE, ls="--", lw=1.2,
                                   label=f"acceptable c = {coc_um:g} µm")),
         "airy": ax.add_patch(Circle((0, 0), 1, fill=False, edgecolor=palette.BROWN, ls=":", lw=1.8,
                                     label="Airy disc 2.44 λN")),
-        "text": ax.set_title(" \n ", fontsize=8.5, family="monospace"),
-        "half": half_width_um,
+        "bar": ax.plot([], [], color="k", lw=2.5, solid_capstyle="butt")[0],
+        "bar_text": ax.text(-0.92, -0.84, "", fontsize=8, ha="left", va="bottom"),
+        "text": ax.set_title(" \n \n ", fontsize=8.5, family="monospace"),
+        "coc": coc_um,
     }
-    ax.set_xlim(-half_width_um, half_width_um)
-    ax.set_ylim(-half_width_um, half_width_um)
+    ax.set_xlim(-1, 1)
+    ax.set_ylim(-1, 1)
     ax.set_aspect("equal")
-    ax.set_xlabel("on the sensor, face on (µm)")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    ax.set_xlabel("on the sensor, face on\n(grey grid: pixels, see the title)")
     return art
 
 
-def update_blur_disc(art: dict, c: float, airy: float, pixel: float) -> None:
-    """Blur circle ``c`` and Airy disc ``airy`` (diameters, metres); the title gives c in µm and in pixels of ``pixel`` m."""
-    art["blur"].set_radius(max(c * 1e6 / 2, 0.5))
-    art["airy"].set_radius(airy * 1e6 / 2)
-    over = ", beyond this view" if c * 1e6 > 2 * art["half"] else ""
-    art["text"].set_text(f"c = {c * 1e6:.0f} µm = {c / pixel:.1f} px\n"
-                         f"Airy disc {airy * 1e6:.0f} µm{over}")
+def update_blur_disc(art: dict, c: float, airy: float, pixel: float) -> dict:
+    """Blur circle ``c`` and Airy disc ``airy`` (diameters, metres) on pixels of ``pixel`` m, zoomed to fit.
+
+    The title gives c in µm and in pixels, the Airy disc, and the view's width; returns
+    ``{"half_um", "grid_px"}``: the view's half-width (µm) and the grid's spacing (pixels).
+    """
+    c_um, airy_um, pixel_um = c * 1e6, airy * 1e6, pixel * 1e6
+    half, bar = blur_view(max(c_um, airy_um, art["coc"]))
+    grid_px = 1 if half <= 50 else (10 if half <= 500 else 100)   # at most 20 lines across
+    step = grid_px * pixel_um / half
+    ticks = np.arange(step / 2, 1, step)   # the image point sits at a pixel's centre
+    ticks = np.concatenate([-ticks[::-1], ticks])
+    end = 0.99   # short of the frame: a live frame paints the grid over the cached spines, a full draw under them
+    art["grid"].set_segments([[(t, -end), (t, end)] for t in ticks] + [[(-end, t), (end, t)] for t in ticks])
+    art["blur"].set_radius(max(c_um / 2, 0.006 * half) / half)   # a dot at least ~2 screen pixels wide
+    art["airy"].set_radius(airy_um / 2 / half)
+    art["ok"].set_radius(art["coc"] / 2 / half)
+    art["bar"].set_data([-0.92, -0.92 + bar / half], [-0.9, -0.9])
+    art["bar_text"].set_text(f"{bar:g} µm = {bar / pixel_um:g} px")
+    width = f"{2 * half / 1000:g} mm" if half >= 500 else f"{2 * half:g} µm"
+    def um(value: float) -> str:   # one decimal below 10 µm: a 0.5 µm disc is not "1 µm"
+        return f"{value:.1f}" if value < 10 else f"{value:.0f}"
+
+    art["text"].set_text(f"c = {um(c_um)} µm = {c / pixel:.1f} px\nAiry disc {um(airy_um)} µm\n"
+                         f"view {width} wide, grid {grid_px} px")
+    return {"half_um": half, "grid_px": grid_px}
 
 
 def draw_pinhole_blur(ax, focal_length: float, wavelength: float = 550e-9, object_distance: float = np.inf) -> dict:

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import ipywidgets as W
 import numpy as np
+from matplotlib.transforms import offset_copy
 
 from .. import distortion, lens, render, scenes
 from ..plotting import images, optics, palette
@@ -40,6 +41,7 @@ F_CONE = 0.05      # the focus-and-blur demo's 50 mm lens
 COC_OK = 0.03e-3   # acceptable blur circle, 0.03 mm (a 35 mm camera viewed as a print)
 PIXEL = 5e-6       # a pixel pitch to count the blur in (a 36 x 24 mm sensor of 7200 x 4800 pixels)
 F_NUMBERS = [1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0, 16.0, 22.0, 32.0]
+SENSOR_MIN_MM = 50.04  # focuses at 62.6 m: beyond the hyperfocal distance of every f-number (f/1.4: 59.6 m at 30 µm)
 
 
 def blur_curve_depths(focus: float) -> np.ndarray:
@@ -49,24 +51,23 @@ def blur_curve_depths(focus: float) -> np.ndarray:
 
 
 @register(lesson="02", sweep={"f_number": [1.4, 8.0, 16.0, 32.0], "object_m": [0.3, 1.0, 2.0],
-                              "sensor_mm": [50.6, 52.63, 60.0]})
+                              "sensor_mm": [SENSOR_MIN_MM, 52.63, 60.0]})
 def focus_and_blur():
     """The cone of light from a point through the aperture, a movable sensor, the blur disc it cuts there
-    (magnified, face on) and the blur circle c(z) of every depth."""
+    (face on, zoomed to fit, over the sensor's pixels) and the blur circle c(z) of every depth."""
     controls = {
         "f_number": W.SelectionSlider(options=F_NUMBERS, value=2.8, description="f-number N", continuous_update=True,
                                       style={"description_width": "initial"}, layout=W.Layout(width="300px")),
         "object_m": slider(1.5, 0.3, 2.0, 0.01, "object distance z (m)"),
-        "sensor_mm": slider(52.63, 50.6, 60.0, 0.01, "sensor behind lens z_s (mm)"),
+        "sensor_mm": slider(52.63, SENSOR_MIN_MM, 60.0, 0.01, "sensor behind lens z_s (mm)"),
     }
     view = FigureView(figsize=(9.8, 5.2))
     ax_cone, ax_disc, ax_c = view.fig.subplots(1, 3, width_ratios=[1.5, 0.85, 1.1])
     art = optics.draw_focus_cone(ax_cone)
     disc = optics.draw_blur_disc(ax_disc, coc_um=COC_OK * 1e6)
-    ax_disc.set_xlabel(f"on the sensor, face on (µm;\npixels of {PIXEL * 1e6:g} µm)")
     curve, = ax_c.plot([], [], "k", label="c(z), this sensor position")
     band = ax_c.axvspan(1, 2, color=palette.PURPLE, alpha=0.3, lw=0, label="depth of field (c < 30 µm)")
-    ax_c.axhline(COC_OK * 1e6, color=palette.PURPLE, ls="--", lw=1.2)
+    coc_line = ax_c.axhline(COC_OK * 1e6, color=palette.PURPLE, ls="--", lw=1.2)   # animated below: over the band
     airy = ax_c.axhline(1, color=palette.BROWN, ls=":", lw=1.8)
     marker, = ax_c.plot([], [], "o", color=palette.GREEN, mec="k", ms=7)
     ax_c.set_title(" \n \n ", fontsize=9)  # room for the three lines update writes
@@ -79,20 +80,21 @@ def focus_and_blur():
             handles.setdefault(label, h)
     view.fig.legend(handles.values(), handles.keys(), loc="outside lower center", ncol=4, fontsize=8)
     view.animate(*[art[k] for k in ("stop", "lens", "cone_in", "cone_out", "rays", "beyond", "point", "sensor", "focus",
-                                     "blur", "text")], disc["blur"], disc["ok"], disc["airy"], disc["text"],
-                 curve, band, airy, marker, ax_c.title)
+                                     "blur", "text")],
+                 *[disc[k] for k in ("grid", "blur", "ok", "airy", "bar", "bar_text", "text")],
+                 curve, band, coc_line, airy, marker, ax_c.title)
 
     def update(values, state):
         N, z_o, z_s = float(values["f_number"]), values["object_m"], values["sensor_mm"] * 1e-3
         state.update(optics.update_focus_cone(art, F_CONE, N, z_o, z_s))
-        optics.update_blur_disc(disc, state["c"], state["airy"], PIXEL)
+        state.update(optics.update_blur_disc(disc, state["c"], state["airy"], PIXEL))
         s = float(lens.object_distance(F_CONE, z_s))  # the distance this sensor position focuses
         z = blur_curve_depths(s)
         curve.set_data(z, np.maximum(lens.circle_of_confusion(F_CONE, N, s, z) * 1e6, 0.5))  # c = 0 at s: log floor
         airy.set_ydata([state["airy"] * 1e6] * 2)
         dof = lens.depth_of_field(F_CONE, N, s, COC_OK)
         band.set_x(dof.near)
-        band.set_width(min(dof.far, 10.0) - dof.near)
+        band.set_width(max(min(dof.far, 10.0) - dof.near, 0.0))   # focused far, the band may start beyond the view
         marker.set_data([z_o], [float(np.clip(state["c"] * 1e6, 1.3, 9e3))])
         far = f"{dof.far:.3f} m" if np.isfinite(dof.far) else "infinity"
         soft = "but the Airy disc alone > 30 µm" if state["airy"] > COC_OK else " "   # 3 lines always: the layout
@@ -111,33 +113,43 @@ def depth_of_field():
                                       style={"description_width": "initial"}, layout=W.Layout(width="300px")),
         "focus_m": slider(1.2, 0.5, 4.0, 0.05, "focus distance (m)"),
     }
-    # 6.5 in at 90 dpi: the 480 x 360 image at no less than 1:1 (so 2 px of blur can be judged), with the
-    # blur curve under it; 585 px wide, it fits beside the 300 px controls in JupyterLab's 968 px output area
-    view = FigureView(figsize=(6.5, 7.5))
-    ax_img, ax_c = view.fig.subplots(2, 1, height_ratios=[SIZE[1], 190])
+    # 6.5 in at 90 dpi, 585 px wide: it fits beside the 300 px controls in JupyterLab's 968 px output area. The
+    # 480 x 360 image is drawn exactly 1:1 on whole canvas pixels (so 2 px of blur is what you see, and the live
+    # frame and a full draw place the same pixels: no resampling either way), the blur curve under it
+    view = FigureView(figsize=(6.5, 7.8))
+    width, height = view.fig.bbox.width, view.fig.bbox.height
+    left, bottom = 64, 300   # canvas pixels: room for the curve's y label, and for the curve under the image
+    ax_img = view.fig.add_axes((left / width, bottom / height, SIZE[0] / width, SIZE[1] / height))
+    ax_c = view.fig.add_axes((left / width, 68 / height, SIZE[0] / width, 194 / height))
+    view.fig.set_layout_engine("none")   # fixed pixel boxes, not constrained layout
     scene = scenes.depth_of_field_scene()
     im = images.show_image(ax_img, np.zeros((SIZE[1], SIZE[0], 3)))
     z = np.linspace(0.3, 5, 400)
     curve, = ax_c.plot(z, np.full_like(z, 100.0), "k", zorder=3)  # over the plane markers, live and redrawn
     band = ax_c.axvspan(1, 2, color=palette.PURPLE, alpha=0.15, lw=0)
-    ax_c.axhline(2 * PITCH_DOF * 1e6, color=palette.PURPLE, ls="--", lw=1.2)
+    # zorder 2.6: over the spines in a full draw too, as a live frame paints them over the cached background
+    lines = [ax_c.axhline(2 * PITCH_DOF * 1e6, color=palette.PURPLE, ls="--", lw=1.2, zorder=2.6)]
     planes = {"small board": 0.6, "chart": 1.2, "large board": 2.4, "wall": 4.0}
-    for zp in planes.values():
-        ax_c.axvline(zp, color="0.4", lw=1.2, ls=(0, (4, 2)))   # dark enough on the purple band (WCAG 1.4.11)
+    for zp in planes.values():   # dark enough on the purple band (WCAG 1.4.11)
+        lines.append(ax_c.axvline(zp, color="0.4", lw=1.2, ls=(0, (4, 2)), zorder=2.6))
     # the planes named on a top axis, each above its line: no legend over the band or the curve
     top = ax_c.secondary_xaxis("top")
     top.set_xticks(list(planes.values()), list(planes), fontsize=8)
     ax_c.set_xlim(0.3, 5)
     ax_c.set_ylim(5, 5000)
     ax_c.set_yscale("log")  # from the 2-px line to the blur at f/16 and f/1.4 on one readable scale
-    ax_c.set_xlabel("depth z (m); purple: sharp, c < 2 px (dashes: 2 px = "
+    ax_c.set_xlabel("depth z (m); purple band: sharp, c < 2 px (purple dashes: 2 px = "
                     f"{2 * PITCH_DOF * 1e6:.0f} µm)", fontsize=9)
     ax_c.set_ylabel("blur circle c (µm)")
     ax_img.set_title(f"f = {F_DOF * 1e3:.0f} mm thin lens; planes at 0.6, 1.2, 2.4 and 4 m", fontsize=10)
     ax_img.set_xlabel(f"sensor: {SIZE[0]} x {SIZE[1]} pixels of {PITCH_DOF * 1e6:.0f} µm "
                       f"({SIZE[0] * PITCH_DOF * 1e3:.0f} x {SIZE[1] * PITCH_DOF * 1e3:.0f} mm)", fontsize=9)
-    readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
-    view.animate(im, curve, band)
+    readout = W.HTML()  # the blur of each plane beside the sliders: canvas text costs ~4 ms per line per redraw
+    # the limits in the figure too (a screenshot keeps them), under the curve's x label: never over the band (an
+    # axes' text, 62 px under it: a saved figure draws an axes' animated artists, not the figure's)
+    limits = ax_c.text(0.5, 0, "", ha="center", va="bottom", fontsize=9, clip_on=False,
+                       transform=offset_copy(ax_c.transAxes, fig=view.fig, y=-62, units="dots"))
+    view.animate(im, curve, band, limits, *lines)   # the lines too: over the moving band, live as in a full draw
 
     def update(values, state):
         N, s = float(values["f_number"]), values["focus_m"]
@@ -149,10 +161,11 @@ def depth_of_field():
         dof = lens.depth_of_field(F_DOF, N, s, 2 * PITCH_DOF)
         far = min(dof.far, 5.0)
         band.set_x(dof.near)
-        band.set_width(far - dof.near)
+        band.set_width(max(far - dof.near, 0.0))
         state.update(near=dof.near, far=dof.far, coc_px={zp: float(lens.circle_of_confusion(F_DOF, N, s, zp)) / PITCH_DOF
                                                          for zp in (0.6, 1.2, 2.4, 4.0)})
         far_text = f"{dof.far:.2f} m" if np.isfinite(dof.far) else "infinity"
+        limits.set_text(f"f/{N:g}, focused at {s:.2f} m: sharp (purple band) from {dof.near:.2f} m to {far_text}")
         blurs = "\n".join(f"  {name:<12}{zp:g} m: {state['coc_px'][zp]:.1f}" for name, zp in planes.items())
         readout.value = monospace(f"N = {N}, focused at {s:.2f} m\nsharp (c < 2 px) from {dof.near:.2f} m to {far_text}\n"
                                   f"blur circle (px):\n{blurs}")
@@ -187,7 +200,8 @@ def lens_distortion():
     view = FigureView(figsize=(8.6, 4.5))
     ax_img, ax_grid = view.fig.subplots(1, 2)
     board = render.checkerboard((11, 8), 0.04, t=(-0.2, -0.14, 0.45), px_per_square=32)
-    im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=255)
+    # drawn smaller than its 480 x 360 pixels: area-averaged, or the square edges alias
+    im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=255, interpolation="antialiased")
     dots, = ax_img.plot([], [], "o", color=palette.RED, ms=3.5, path_effects=palette.halo())
     ideal = _grid_lines()
     for k, ln in enumerate(ideal):  # the undistorted grid, drawn once in grey behind the bent one
