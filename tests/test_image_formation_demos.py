@@ -333,7 +333,7 @@ def test_sensor_demos_read_as_the_lesson_says():
     assert "contrast 0.06" in s.figure.axes[1].get_title()
     s.set(factor=2)                   # the square is the frame's edge: drawn just inside it, so it shows
     square = s.figure.axes[1].patches[0]
-    assert -0.5 < square.get_x() < 2 and square.get_x() + square.get_width() < 383.5
+    assert -0.5 < square.get_x() < 6 and square.get_x() + square.get_width() < 383.5
     d = digital_sensor.demosaicing()
     psnr = {}
     for method in ("camlab bilinear", "OpenCV VNG", "OpenCV edge-aware"):

@@ -84,8 +84,8 @@ def sampling_aliasing():
         # the local frequency (pi / 768) x / pi cycles per fine px reaches 0.5 cycle per coarse px at x = 384 / k
         r = zp.shape[0] / k
         cx, cy = (zp.shape[1] - 1) / 2, (zp.shape[0] - 1) / 2
-        # at pixel size 2 the square is the frame's own edge: draw it 2 fine px inside, where it shows
-        shown = min(r, cx - 1.5)
+        # at pixel size 2 the square is the frame's own edge: draw it 5 fine px inside, where it shows
+        shown = min(r, cx - 5)
         nyq.set_bounds(cx - shown, cy - shown, 2 * shown, 2 * shown)
         x, y = np.meshgrid(np.arange(s.shape[1]) - (s.shape[1] - 1) / 2, np.arange(s.shape[0]) - (s.shape[0] - 1) / 2)
         outer = np.maximum(abs(x), abs(y)) * k > r * 1.1     # beyond the Nyquist square, where aliases live
@@ -94,7 +94,7 @@ def sampling_aliasing():
         if r > cx + 1:        # pixel size 1: the scene's finest detail, 0.25 cycle per px, is below the limit
             where = "Nyquist limit beyond the frame: no aliasing"
         elif r >= cx:         # pixel size 2: the edges reach 0.5 cycle per px, the fold's half systems show there
-            where = "red square: Nyquist limit, on the frame's edge"
+            where = "red square: Nyquist limit = the frame's edge, drawn just inside"
         else:                 # the number section 2 prints for the static figure (0.35 point, 0.06 box at 6)
             where = f"red square: Nyquist limit; false-ring contrast {state['alias_contrast']:.2f}"
         kind = "box samples (pixel areas)" if values["prefilter"] else "point samples"
@@ -133,7 +133,7 @@ def bit_depth_and_noise():
     prof, = ax_p.plot(clean[row], color=palette.RED, lw=1)
     ax_p.set_ylim(-0.05, 1.08)
     ax_p.set_xlabel("u (px)")
-    ax_p.set_ylabel("linear value / full scale")
+    ax_p.set_ylabel("linear value (1: the photo's white)")
     ax_p.set_title("", fontsize=9)
     readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
     view.animate(im, marker, prof, ax_p.title)
