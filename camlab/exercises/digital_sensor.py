@@ -78,6 +78,10 @@ def _quantize_diagnosis(args, got, expected) -> str:
                                                             np.clip(np.rint(clipped * top), 0, levels))):
             return (f"your top code is {top}, from 2**(bits - 1): {bits} bits give 2**bits = {2**bits} levels, "
                     f"0 to 2**bits - 1 = {levels} (2**(bits - 1) is half of them, the sign bit's worth)")
+    if any(_same_after_cast(g, c) for c in (np.clip(np.rint(img * levels), 1, levels + 1),
+                                            np.clip(np.rint(img * levels) + 1, 1, levels + 1))):
+        return (f"your codes run from 1 to 2**bits = {levels + 1}: digital numbers count from 0, like Python's "
+                f"indices, so black is 0 and white is 2**bits - 1 = {levels}; clip to [0, 2**bits - 1]")
     if _same_after_cast(g, np.floor(clipped * levels)):
         return "you truncated (floor); round to the nearest level so the error is at most half a step"
     if _same_after_cast(g, np.ceil(clipped * levels)):
@@ -140,6 +144,8 @@ register_exercise(Exercise(
             np.uint8 if bits <= 8 else np.uint16), "top code is"),
         (lambda img, bits: np.clip(np.rint(img * 2**bits - 1), 0, 2**bits - 1).astype(
             np.uint8 if bits <= 8 else np.uint16), "multiplies before it subtracts"),
+        (lambda img, bits: np.clip(np.rint(img * (2**bits - 1)), 1, 2**bits).astype(
+            np.uint8 if bits <= 8 else np.uint16), "count from 0"),
         (lambda img, bits: np.minimum(np.rint(img * (2**bits - 1)), 2**bits - 1).astype(
             np.uint8 if bits <= 8 else np.uint16), "clipped only the top"),
     ),
@@ -475,7 +481,8 @@ def _datasheet_diagnosis(args, got, expected) -> str:
                 "the height H = size[1] (sizes are (width, height), as in OpenCV; an array's shape is (H, W))")
     if near(g[0, 2], W / 2) or near(g[1, 2], H / 2):
         return ("half a pixel off: with pixel centres at integers, u runs from 0 to W - 1, so the centre is "
-                "(W - 1) / 2, not W / 2 (that is the centre in a pixel-corner convention)")
+                "(W - 1) / 2, not W / 2 (that is the centre in a pixel-corner convention), and not (W - 1) / 2 "
+                "rounded to a whole pixel: keep the .5, the centre of an even number of pixels lies between two")
     if near(g[0, 2], W - 1) or near(g[0, 2], W) or near(g[1, 2], H - 1):
         return "the principal point is the image centre, (W - 1) / 2 and (H - 1) / 2, not the image size"
     if near(g[0, 0], f_mm) or near(g[1, 1], f_mm):
@@ -565,6 +572,8 @@ register_exercise(Exercise(
         (lambda f, s, n: _datasheet_variant(f, s, n, cx=n[0] // 2 - 0.5, cy=n[1] // 2 - 0.5), "only for an even W"),
         (lambda f, s, n: _datasheet_reference(f, s, n)[:2], "shape (3, 3)"),
         (lambda f, s, n: _datasheet_reference(f, s, n).astype(int), "integer array"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, cx=np.round((n[0] - 1) / 2), cy=np.round((n[1] - 1) / 2)),
+         "keep the .5"),
         (lambda f, s, n: _datasheet_reference(f, s, n).tolist(), "you returned a list"),
         (lambda f, s, n: _datasheet_variant(f, s, n, fx=f / 10 * n[0] / s[0], fy=f / 10 * n[1] / s[1]), "centimetre"),
         (lambda f, s, n: _datasheet_variant(f, s, n, fx=f * np.hypot(*n) / np.hypot(*s), fy=f * np.hypot(*n) / np.hypot(*s)),

@@ -56,7 +56,7 @@ def _as_float(pairs):
 def _estimate(darks, flats, *, one_frame=False, halve=True, through_origin=False, spread=np.var,
               dark_one_frame=False, dark_halve=True, read_in_dn=False, slope_not_gain=False,
               ratios=False, mean_of_difference=False, dark_subtracted_ratios=False, swapped_axes=False,
-              read_from_intercept=False, black_subtracted=False):
+              read_from_intercept=False, black_subtracted=False, read_over_gain=False):
     """The reference and, with a flag, each typical mistake (for the diagnosis)."""
     d1, d2 = (np.asarray(d, dtype=float) for d in darks)
     means, variances = _pair_stats(flats, one_frame, halve, spread=spread)
@@ -80,6 +80,8 @@ def _estimate(darks, flats, *, one_frame=False, halve=True, through_origin=False
         dark_var = np.polyfit(means, variances, 1)[1] - 1 / 12
     with np.errstate(invalid="ignore"):            # a negative intercept: NaN, as the student's code gets
         read = np.sqrt(dark_var) * (1 if read_in_dn else gain)
+    if read_over_gain:
+        read = np.sqrt(dark_var) / gain
     return np.array([slope if slope_not_gain else gain, read])
 
 
@@ -121,6 +123,9 @@ _MISTAKES = (
      "the read noise from the fit's intercept, g * sqrt(c - 1/12), is imprecise: the line is fitted to bright pairs "
      "whose variance is hundreds of DN**2, and sigma_r**2 / g**2 is a few DN**2 at its far end. Measure it where it "
      "is the whole signal, in the dark pair: read noise = g * sqrt(var(d1 - d2) / 2)"),
+    (1, dict(read_over_gain=True),
+     "you divided the read noise in DN by the gain: g is in electrons per DN, so DN x (electrons per DN) = "
+     "electrons: multiply, g * sqrt(var(d1 - d2) / 2)"),
     (1, dict(read_in_dn=True),
      "the read noise is in DN: multiply by the gain g (electrons per DN) to get electrons"),
     (1, dict(dark_halve=False),
@@ -212,6 +217,7 @@ register_exercise(Exercise(
         (lambda d, f: _estimate(d, f, spread=np.std), "standard deviation"),
         (lambda d, f: _estimate(d, f, through_origin=True), "black level"),
         (lambda d, f: _estimate(d, f, read_in_dn=True), "multiply by the gain"),
+        (lambda d, f: _estimate(d, f, read_over_gain=True), "divided the read noise in DN by the gain"),
         (lambda d, f: _estimate(d, f, dark_halve=False), "too large: d1 - d2"),
         (lambda d, f: _estimate(d, f, dark_one_frame=True), "fixed offset"),
         (lambda d, f: _estimate(d, f, ratios=True), "mean / var per pair"),
