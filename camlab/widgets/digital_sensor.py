@@ -94,7 +94,7 @@ def sampling_aliasing():
         if r > cx + 1:        # pixel size 1: the scene's finest detail, 0.25 cycle per px, is below the limit
             where = "Nyquist limit beyond the frame: no aliasing"
         elif r >= cx:         # pixel size 2: the edges reach 0.5 cycle per px, the fold's half systems show there
-            where = "red square: Nyquist limit = the frame's edge, drawn just inside"
+            where = "red square: Nyquist limit, at the frame's edge"
         else:                 # the number section 2 prints for the static figure (0.35 point, 0.06 box at 6)
             where = f"red square: Nyquist limit; false-ring contrast {state['alias_contrast']:.2f}"
         kind = "box samples (pixel areas)" if values["prefilter"] else "point samples"
