@@ -152,9 +152,12 @@ def add_noise(image: ArrayLike, noise: NoiseModel = NoiseModel(), rng: np.random
 def sample(image: ArrayLike, factor: int, prefilter: bool = False) -> np.ndarray:
     """Sample a fine image with a coarser pixel grid ``factor`` times larger.
 
-    ``prefilter=False`` takes the value at each coarse pixel's centre (an ideal point
-    sampler: frequencies above Nyquist alias); ``True`` averages the ``factor x factor``
-    area each pixel covers (a real pixel's box filter, which suppresses most aliasing).
+    ``prefilter=False`` takes one fine pixel per coarse pixel (an ideal point sampler:
+    frequencies above Nyquist alias), the one at index ``(factor - 1) // 2`` in each block:
+    exactly the block's centre for an odd ``factor``; for an even one the centre falls between
+    fine pixels and the sample sits half a fine pixel up and left of it. ``True`` averages the
+    ``factor x factor`` area each pixel covers (a real pixel's box filter, which suppresses
+    most aliasing); its value belongs to the block's true centre.
     """
     a = check_image(image).astype(float)
     if not isinstance(factor, (int, np.integer)) or factor < 1:
@@ -162,7 +165,7 @@ def sample(image: ArrayLike, factor: int, prefilter: bool = False) -> np.ndarray
     h, w = (a.shape[0] // factor) * factor, (a.shape[1] // factor) * factor
     a = a[:h, :w]
     if not prefilter:
-        # the fine pixel nearest the coarse pixel's centre
+        # the fine pixel at the coarse pixel's centre (odd factor), or half a fine pixel before it (even)
         c = (factor - 1) // 2
         return a[c::factor, c::factor].copy()
     return a.reshape(h // factor, factor, w // factor, factor, *a.shape[2:]).mean(axis=(1, 3))

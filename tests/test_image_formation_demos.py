@@ -322,11 +322,29 @@ def test_sensor_demos_read_as_the_lesson_says():
     assert ax.get_xlabel() == "u (px)" and ax.get_ylabel() == "v (px)" and len(ax.get_xticks()) > 3
     centre, principal = (line.get_xydata()[0] for line in ax.lines)
     assert np.allclose(centre, (159.5, 119.5)) and np.allclose(principal, (199.5, 119.5))  # the shift reads on u
+    # lesson 03, "Interactive: pixel pitch": f_x and the field of view in the figure itself, not only beside it
+    for pitch, fx, fov in ((6.0, 500, 35.5), (2.0, 1500, 12.2), (15.0, 200, 77.3)):
+        p.set(pitch_um=pitch)
+        assert f"f_x = f / s_x = {fx} px" in ax.get_title() and f"field of view {fov:.1f}°" in ax.get_title()
+    # lesson 03, "Interactive: sampling and aliasing": the title's false-ring contrast is section 2's 0.35 and 0.06
+    s = digital_sensor.sampling_aliasing()
+    s.set(factor=6, prefilter=False)
+    assert "contrast 0.35" in s.figure.axes[1].get_title()
+    s.set(prefilter=True)
+    assert "contrast 0.06" in s.figure.axes[1].get_title()
+    s.set(factor=2)                   # the square is the frame's edge: drawn just inside it, so it shows
+    square = s.figure.axes[1].patches[0]
+    assert -0.5 < square.get_x() < 6 and square.get_x() + square.get_width() < 383.5
     d = digital_sensor.demosaicing()
     psnr = {}
     for method in ("camlab bilinear", "OpenCV VNG", "OpenCV edge-aware"):
         d.set(method=method)
         psnr[method] = d.state["psnr"]
+    # the zoom's last position still shows the face, not only the flat background
+    d.set(method="truth", zoom_u=digital_sensor.ZOOM_MAX)
+    zoom = d.figure.axes[2].images[0].get_array()
+    assert np.ptp(np.asarray(zoom, float)) > 0.3
+    d.set(zoom_u=120)
     # lesson 03: VNG several dB above bilinear, OpenCV's EA about the same as bilinear
     assert psnr["OpenCV VNG"] > psnr["camlab bilinear"] + 3
     assert abs(psnr["OpenCV edge-aware"] - psnr["camlab bilinear"]) < 0.5

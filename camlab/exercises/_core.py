@@ -76,6 +76,9 @@ class Exercise:
     success_note: Callable[[Callable[..., Any]], str] | None = None
     """Called like ``follow_up`` once the function has passed, it returns a line printed under the congratulation:
     the answer to a question the prompt asked, computed with the student's own function."""
+    describe_input: Callable[[tuple], str] | None = None
+    """``describe_input(args)``: the test input summarised in one line for messages, where printing it
+    (stacks of frames, say) would bury the likely cause under hundreds of characters."""
 
 
 EXERCISES: dict[str, Exercise] = {}
@@ -103,6 +106,14 @@ def _fmt(value: Any) -> str:
         inner = ", ".join(_fmt(v) for v in value)
         return f"[{inner}]" if isinstance(value, list) else f"({inner},)" if len(value) == 1 else f"({inner})"
     return repr(value)
+
+
+def _input_text(name: str, args: tuple) -> str:
+    """The test input as a message shows it: the exercise's own summary, else each argument printed."""
+    exercise = EXERCISES.get(name)
+    if exercise is not None and exercise.describe_input is not None:
+        return exercise.describe_input(args)
+    return _fmt(args)
 
 
 def _copy(args: tuple) -> tuple:
@@ -243,12 +254,12 @@ def _run_student(name: str, student_function: Callable[..., Any], args: tuple, i
         raise AssertionError(
             f"{name}: your function was still running after {seconds:g} s on test input {i + 1} of {n}, "
             f"so the check stopped it\n"
-            f"  input    {_fmt(args)}\n"
+            f"  input    {_input_text(name, args)}\n"
             f"  likely cause: a loop that never ends (a `while` whose condition stays true?)") from None
     except Exception as exc:
         raise AssertionError(
             f"{name}: your function raised {type(exc).__name__}: {exc}\n"
-            f"  on input {_fmt(args)}" + _exercise_exception_hint(name, exc, args)
+            f"  on input {_input_text(name, args)}" + _exercise_exception_hint(name, exc, args)
         ) from exc
     changed = _inputs_changed(args, passed)
     if changed:
@@ -283,7 +294,7 @@ def check(name: str, student_function: Callable[..., Any], *, time_limit_s: floa
         if wrong_type:
             raise AssertionError(
                 f"{name}: wrong type of answer on test input {i + 1} of {len(cases)}\n"
-                f"  input    {_fmt(args)}\n"
+                f"  input    {_input_text(name, args)}\n"
                 f"  got      {_fmt(got)}  ({_a(got)})\n"
                 f"  expected {_fmt(expected)}\n"
                 f"  likely cause: {wrong_type}"
@@ -292,7 +303,7 @@ def check(name: str, student_function: Callable[..., Any], *, time_limit_s: floa
             tolerance = exercise.compare.tolerance if isinstance(exercise.compare, SameArray) else None
             raise AssertionError(
                 f"{name}: wrong answer on test input {i + 1} of {len(cases)}\n"
-                f"  input    {_fmt(args)}\n"
+                f"  input    {_input_text(name, args)}\n"
                 f"  got      {_fmt(_as_array(got))}\n"
                 f"  expected {_fmt(expected)}\n"
                 + worst_mismatch(got, expected, tolerance)

@@ -59,6 +59,15 @@ def _quantize_diagnosis(args, got, expected) -> str:
         return ("you cast to an unsigned type before clipping: a value below 0 (-0.2 x 7 rounds to -1) wraps around "
                 "in uint8 to 255, so the clip sees a bright pixel; clip first (np.clip(..., 0, 2**bits - 1)), "
                 "then cast")
+    with np.errstate(invalid="ignore", over="ignore"):
+        top_only = np.minimum(np.rint(img * levels), levels)
+    if np.any(img < 0) and g.dtype.kind == "u" and _same_after_cast(g, top_only) and not _same_after_cast(g, right):
+        return ("you clipped only the top: a value below 0 (-0.2 x 7 rounds to -1) wraps around in an unsigned type, "
+                "to 255 in uint8, a bright pixel; clip both ends, np.clip(..., 0, 2**bits - 1), before the cast")
+    if any(_same_after_cast(g, c) for c in (np.clip(np.rint(img * 2**bits - 1), 0, levels), np.rint(img * 2**bits - 1),
+                                            np.clip(np.rint(clipped * 2**bits - 1), 0, levels))):
+        return ("I * 2**bits - 1 is (I * 2**bits) - 1: Python multiplies before it subtracts, so white lands on "
+                "2**bits - 1 but every other code is off; write I * (2**bits - 1), with the brackets")
     if any(_same_after_cast(g, np.clip(f(img * levels), 0, 1)) for f in (np.rint, np.floor)) or \
             _same_after_cast(g, np.rint(np.clip(img * levels, 0, 1))):
         return (f"you clipped to [0, 1] after scaling: by then the values are digital numbers from 0 to "
@@ -69,6 +78,10 @@ def _quantize_diagnosis(args, got, expected) -> str:
                                                             np.clip(np.rint(clipped * top), 0, levels))):
             return (f"your top code is {top}, from 2**(bits - 1): {bits} bits give 2**bits = {2**bits} levels, "
                     f"0 to 2**bits - 1 = {levels} (2**(bits - 1) is half of them, the sign bit's worth)")
+    if any(_same_after_cast(g, c) for c in (np.clip(np.rint(img * levels), 1, levels + 1),
+                                            np.clip(np.rint(img * levels) + 1, 1, levels + 1))):
+        return (f"your codes run from 1 to 2**bits = {levels + 1}: digital numbers count from 0, like Python's "
+                f"indices, so black is 0 and white is 2**bits - 1 = {levels}; clip to [0, 2**bits - 1]")
     if _same_after_cast(g, np.floor(clipped * levels)):
         return "you truncated (floor); round to the nearest level so the error is at most half a step"
     if _same_after_cast(g, np.ceil(clipped * levels)):
@@ -129,6 +142,12 @@ register_exercise(Exercise(
             np.uint8 if bits <= 8 else np.uint16), "top code is"),
         (lambda img, bits: np.clip(np.rint(img * 2 ** (bits - 1)), 0, 2 ** (bits - 1)).astype(
             np.uint8 if bits <= 8 else np.uint16), "top code is"),
+        (lambda img, bits: np.clip(np.rint(img * 2**bits - 1), 0, 2**bits - 1).astype(
+            np.uint8 if bits <= 8 else np.uint16), "multiplies before it subtracts"),
+        (lambda img, bits: np.clip(np.rint(img * (2**bits - 1)), 1, 2**bits).astype(
+            np.uint8 if bits <= 8 else np.uint16), "count from 0"),
+        (lambda img, bits: np.minimum(np.rint(img * (2**bits - 1)), 2**bits - 1).astype(
+            np.uint8 if bits <= 8 else np.uint16), "clipped only the top"),
     ),
     teaching=quantize_image,
 ))
@@ -228,6 +247,11 @@ def _demosaic_diagnosis(args, got, expected) -> str:
         return problem + ". Return an (H, W, 3) RGB image."
     g = np.asarray(got, dtype=float)
     e = np.asarray(expected)
+    column_major = pattern[0] + pattern[2] + pattern[1] + pattern[3]
+    if column_major != pattern and np.allclose(g, sensor.demosaic_bilinear(raw, column_major)):
+        return (f"you read the pattern column by column, as {column_major}: its letters go row by row, top-left, "
+                f"top-right, bottom-left, bottom-right, so {pattern} has {pattern[0]} {pattern[1]} on row 0 and "
+                f"{pattern[2]} {pattern[3]} on row 1 (for {pattern} that swaps red and blue)")
     if np.allclose(g[..., ::-1], e):
         return ("red and blue are swapped: return the channels as R, G, B (not OpenCV's BGR order), and check "
                 "which colour sits where in the pattern (RGGB: R at row 0, column 0)")
@@ -377,6 +401,8 @@ register_exercise(Exercise(
         (_zero_padded_demosaic, "border"),
         (lambda raw, pattern: sensor.demosaic_bilinear(raw, "GRBG" if pattern == "RGGB" else "RGGB"), "measured samples"),
         (lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern)[..., ::-1], "not OpenCV's BGR order"),
+        (lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern[0] + pattern[2] + pattern[1] + pattern[3]),
+         "column by column"),
         (lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern) / 255, "scaled by 255"),
         (lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern).tolist(), "you returned a list"),
         (_uncast_demosaic, "convert first: raw.astype"),
@@ -422,6 +448,11 @@ def _datasheet_diagnosis(args, got, expected) -> str:
     def near(a, b):
         return np.isclose(a, b, rtol=1e-6, atol=1e-9)
 
+    if np.issubdtype(np.asarray(got).dtype, np.integer):
+        return (f"K is an integer array (dtype {np.asarray(got).dtype}): it cannot hold c_x = (W - 1) / 2 = {cx:g} or "
+                f"f_x = {fx:.6g}, so they were cut to whole numbers. Build K from floats (np.array([[...]], dtype=float), "
+                f"or write 0.0 and 1.0) and leave out .astype(int)")
+
     if np.allclose(g, e.T):
         return ("K is transposed: the principal point goes in the last column, K[0, 2] = c_x and K[1, 2] = c_y, "
                 "and the bottom row is (0, 0, 1)")
@@ -450,7 +481,8 @@ def _datasheet_diagnosis(args, got, expected) -> str:
                 "the height H = size[1] (sizes are (width, height), as in OpenCV; an array's shape is (H, W))")
     if near(g[0, 2], W / 2) or near(g[1, 2], H / 2):
         return ("half a pixel off: with pixel centres at integers, u runs from 0 to W - 1, so the centre is "
-                "(W - 1) / 2, not W / 2 (that is the centre in a pixel-corner convention)")
+                "(W - 1) / 2, not W / 2 (that is the centre in a pixel-corner convention), and not (W - 1) / 2 "
+                "rounded to a whole pixel: keep the .5, the centre of an even number of pixels lies between two")
     if near(g[0, 2], W - 1) or near(g[0, 2], W) or near(g[1, 2], H - 1):
         return "the principal point is the image centre, (W - 1) / 2 and (H - 1) / 2, not the image size"
     if near(g[0, 0], f_mm) or near(g[1, 1], f_mm):
@@ -461,6 +493,19 @@ def _datasheet_diagnosis(args, got, expected) -> str:
         if near(g[0, 0], fx * factor) and near(g[1, 1], fy * factor):
             return (f"f_x and f_y are {unit}: a unit slip between mm, µm and m; keep f and the pitch in the same unit "
                     f"(mm: s_x = sensor width / W), so f / s_x is in pixels")
+    for factor, unit in ((0.1, "10 times too small"), (10, "10 times too large")):
+        if near(g[0, 0], fx * factor) and near(g[1, 1], fy * factor):
+            return (f"f_x and f_y are {unit}: a centimetre slip? f_mm = {f_mm:g} is already in millimetres, like "
+                    f"sensor_mm; f / s_x with both in mm is in pixels")
+    diagonal = f_mm * np.hypot(W, H) / np.hypot(w_mm, h_mm)        # f over the pitch along the sensor's diagonal
+    if near(g[0, 0], diagonal) and near(g[1, 1], diagonal) and not near(fx, fy):
+        return (f"you took the pitch along the diagonal, sqrt(w**2 + h**2) / sqrt(W**2 + H**2); that is each axis's "
+                f"pitch only for square pixels, and here s_x = {w_mm / W * 1e3:.4g} µm, s_y = {h_mm / H * 1e3:.4g} µm: "
+                f"s_x = width / W and s_y = height / H, each from its own axis")
+    if near(g[1, 1], f_mm * H / w_mm) and not near(fy, f_mm * H / w_mm):
+        return "s_y = height / H: you divided the sensor's width by H (sensor_mm = (width, height): height is sensor_mm[1])"
+    if near(g[0, 0], f_mm * W / h_mm) and not near(fx, f_mm * W / h_mm):
+        return "s_x = width / W: you divided the sensor's height by W (sensor_mm = (width, height): width is sensor_mm[0])"
     if near(g[0, 0], 1 / fx) or near(g[0, 0], w_mm / W / f_mm):
         return "f_x = f / s_x, not s_x / f: the focal length in units of the pixel pitch"
     if near(g[0, 0], f_mm * (W - 1) / w_mm) or near(g[1, 1], f_mm * (H - 1) / h_mm):
@@ -473,6 +518,9 @@ def _datasheet_diagnosis(args, got, expected) -> str:
                 f"f_x = f / s_x and f_y = f / s_y differ; compute each from its own axis")
     if not near(g[0, 1], 0):
         return "K[0, 1] is the skew, 0 for a sensor with perpendicular rows and columns"
+    if np.allclose(g, e, rtol=0.01, atol=0):
+        return ("within 1 % but not exact: a rounded intermediate value, such as the pitch rounded to a few digits "
+                f"({w_mm / W * 1e3:.2f} µm for {w_mm / W * 1e3:.6g} µm)? Keep full precision; the check allows 1e-9")
     return "K = [[f / s_x, 0, (W - 1) / 2], [0, f / s_y, (H - 1) / 2], [0, 0, 1]] with s_x = width / W, s_y = height / H"
 
 
@@ -500,6 +548,7 @@ register_exercise(Exercise(
     cases=_datasheet_cases,
     compare=SameArray(Tolerance(1e-9, 1e-9)),
     diagnose=_datasheet_diagnosis,
+    ndarray_only=True,           # the prompt asks for a numpy array, as every other matrix exercise does
     wrong_variants=(
         (lambda f, s, n: _datasheet_reference(f, s, n).T, "transposed"),
         (lambda f, s, n: _datasheet_variant(f, s, n, cx=(n[1] - 1) / 2, cy=(n[0] - 1) / 2), "swapped"),
@@ -522,6 +571,16 @@ register_exercise(Exercise(
         (lambda f, s, n: _datasheet_variant(f, s, n, cx=(n[0] - 1) // 2, cy=(n[1] - 1) // 2), "integer division"),
         (lambda f, s, n: _datasheet_variant(f, s, n, cx=n[0] // 2 - 0.5, cy=n[1] // 2 - 0.5), "only for an even W"),
         (lambda f, s, n: _datasheet_reference(f, s, n)[:2], "shape (3, 3)"),
+        (lambda f, s, n: _datasheet_reference(f, s, n).astype(int), "integer array"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, cx=np.round((n[0] - 1) / 2), cy=np.round((n[1] - 1) / 2)),
+         "keep the .5"),
+        (lambda f, s, n: _datasheet_reference(f, s, n).tolist(), "you returned a list"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, fx=f / 10 * n[0] / s[0], fy=f / 10 * n[1] / s[1]), "centimetre"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, fx=f * np.hypot(*n) / np.hypot(*s), fy=f * np.hypot(*n) / np.hypot(*s)),
+         "along the diagonal"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, fy=f * n[1] / s[0]), "divided the sensor's width by H"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, fx=f / round(s[0] / n[0], 5), fy=f / round(s[1] / n[1], 5)),
+         "rounded"),
         (lambda f, s, n: None, "return"),
     ),
     teaching=intrinsics_from_datasheet,

@@ -3,13 +3,18 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._core import Exercise, register_exercise
+from ._core import Exercise, SameArray, Tolerance, register_exercise
 
 TOP = 4095          # a 12-bit converter
 
 
+LEVELS = (0.01, 0.05, 0.21, 0.37, 0.53, 0.69, 0.85)
+"""The flat pairs' light, as a fraction of full well: one dim pair (where read noise is a sizeable part of the
+variance, so a per-pair gain that leaves the darks' variance in comes out several percent low), then bright ones."""
+
+
 def _frames(full_well: float, read_noise: float, black: int, seed: int):
-    """Two dark frames and six pairs of flat frames (uint16 DN) of a simulated 12-bit sensor.
+    """Two dark frames and seven pairs of flat frames (uint16 DN) of a simulated 12-bit sensor.
 
     DN = round(black + electrons / g) with g = full_well / (TOP - black) e-/DN; electrons are
     Poisson(light x pixel gain) plus Gaussian read noise. Each pixel's gain (PRNU, 1 %) and its
@@ -26,7 +31,7 @@ def _frames(full_well: float, read_noise: float, black: int, seed: int):
         return np.clip(np.rint(black + dsnu + electrons / g), 0, TOP).astype(np.uint16)
 
     darks = (frame(0.0), frame(0.0))
-    flats = [(frame(level), frame(level)) for level in np.linspace(0.05, 0.85, 6)]
+    flats = [(frame(level), frame(level)) for level in LEVELS]
     return darks, flats
 
 
@@ -50,21 +55,33 @@ def _as_float(pairs):
 
 def _estimate(darks, flats, *, one_frame=False, halve=True, through_origin=False, spread=np.var,
               dark_one_frame=False, dark_halve=True, read_in_dn=False, slope_not_gain=False,
-              ratios=False, mean_of_difference=False):
+              ratios=False, mean_of_difference=False, dark_subtracted_ratios=False, swapped_axes=False,
+              read_from_intercept=False, black_subtracted=False, read_over_gain=False):
     """The reference and, with a flag, each typical mistake (for the diagnosis)."""
     d1, d2 = (np.asarray(d, dtype=float) for d in darks)
     means, variances = _pair_stats(flats, one_frame, halve, spread=spread)
+    if black_subtracted:
+        means = means - (d1.mean() + d2.mean()) / 2
     if mean_of_difference:
         means = np.array([np.mean(a - b) for a, b in _as_float(flats)])
     if ratios:                                     # g = mean / var per pair, averaged, black level kept in
         slope = 1 / np.mean(means / variances)
+    elif dark_subtracted_ratios:                   # per pair, above the dark mean, the darks' variance left in
+        slope = 1 / np.mean((means - (d1.mean() + d2.mean()) / 2) / variances)
+    elif swapped_axes:                             # np.polyfit(var, mean, 1): that slope is already about g
+        slope = np.polyfit(variances, means, 1)[0]
     elif through_origin:
         slope = np.sum(means * variances) / np.sum(means * means)
     else:
         slope = np.polyfit(means, variances, 1)[0]
     gain = 1 / slope
     dark_var = spread(d1) if dark_one_frame else spread(d1 - d2) / (2 if dark_halve else 1)
-    read = np.sqrt(dark_var) * (1 if read_in_dn else gain)
+    if read_from_intercept:                        # var = mean / g + sigma_r**2 / g**2 + 1/12 read at mean 0
+        dark_var = np.polyfit(means, variances, 1)[1] - 1 / 12
+    with np.errstate(invalid="ignore"):            # a negative intercept: NaN, as the student's code gets
+        read = np.sqrt(dark_var) * (1 if read_in_dn else gain)
+    if read_over_gain:
+        read = np.sqrt(dark_var) / gain
     return np.array([slope if slope_not_gain else gain, read])
 
 
@@ -82,7 +99,9 @@ _MISTAKES = (
      "the gain is half the right one: a - b carries the temporal noise of two frames, so one frame's variance is "
      "var(a - b) / 2"),
     (0, dict(slope_not_gain=True),
-     "you returned the slope of variance against mean, 1 / g (DN per electron); the gain is its inverse, g = 1 / slope"),
+     "your gain is 1 / g (DN per electron): either you returned the slope of variance against mean, which is 1 / g, "
+     "instead of its inverse, or you fitted the axes the other way round, np.polyfit(var, mean, 1), whose slope is "
+     "already g, and then inverted it; fit var against mean, np.polyfit(mean, var, 1), and take g = 1 / slope"),
     (0, dict(spread=np.std),
      "you used the standard deviation; the photon-transfer line is in the variance: var = mean / g + constant"),
     (0, dict(through_origin=True),
@@ -92,9 +111,21 @@ _MISTAKES = (
     (0, dict(ratios=True),
      "the gain is off: mean / var per pair counts the black level (the frames' mean at no light, the darks' mean) "
      "as signal; subtract the darks' mean from each flat pair's mean first, or fit a line with an intercept"),
+    (0, dict(dark_subtracted_ratios=True),
+     "the gain is a few percent low: per pair, (mean - dark mean) / var leaves the read noise and quantisation in "
+     "the variance (sigma_r**2 / g**2 + 1/12 DN**2, the darks' var(d1 - d2) / 2), which matters at the dim pair; "
+     "subtract the darks' temporal variance too, g = (mean - dark mean) / (var - dark var), as EMVA 1288 does, or "
+     "fit a line with an intercept, which absorbs it"),
     (0, dict(mean_of_difference=True),
      "the means are the mean of a - b, about 0: the photon-transfer curve plots each pair's variance against the "
      "frames' own mean level, (a.mean() + b.mean()) / 2"),
+    (1, dict(read_from_intercept=True, black_subtracted=True),
+     "the read noise from the fit's intercept, g * sqrt(c - 1/12), is imprecise: the line is fitted to bright pairs "
+     "whose variance is hundreds of DN**2, and sigma_r**2 / g**2 is a few DN**2 at its far end. Measure it where it "
+     "is the whole signal, in the dark pair: read noise = g * sqrt(var(d1 - d2) / 2)"),
+    (1, dict(read_over_gain=True),
+     "you divided the read noise in DN by the gain: g is in electrons per DN, so DN x (electrons per DN) = "
+     "electrons: multiply, g * sqrt(var(d1 - d2) / 2)"),
     (1, dict(read_in_dn=True),
      "the read noise is in DN: multiply by the gain g (electrons per DN) to get electrons"),
     (1, dict(dark_halve=False),
@@ -110,6 +141,14 @@ def _diagnose(args, got, expected) -> str:
     e = np.asarray(expected)
     if g.shape != (2,):
         return f"return two numbers, (gain, read_noise): got {g.size} value(s)"
+    if np.isfinite(g[0]) and not np.isfinite(g[1]):
+        with np.errstate(all="ignore"):
+            intercept = _estimate(*args, read_from_intercept=True)[1]
+        if not np.isfinite(intercept):
+            return ("the read noise is NaN: taken from the fit's intercept, g * sqrt(c - 1/12)? These frames carry a "
+                    "black level, so the means count it too and the intercept is c = sigma_r**2 / g**2 + 1/12 - "
+                    "black / g, negative here (cell 11's formula holds for the mean above the black level). Take the "
+                    "read noise from the dark pair instead: g * sqrt(var(d1 - d2) / 2)")
     if not np.isfinite(g).all():
         return "a NaN or inf: did a fit get fewer than two points, or a variance of 0 (a frame minus itself)?"
     if np.allclose(g[::-1], e, rtol=0.03):
@@ -144,6 +183,16 @@ def gain_and_read_noise(darks, flats):
     return g, read_noise
 
 
+def _describe(args) -> str:
+    """One line for the test input: frame counts, size, dtype and levels, not the 9216 values of each frame."""
+    darks, flats = args
+    d = np.asarray(darks[0])
+    dark_mean = np.mean([np.mean(np.asarray(x, dtype=float)) for x in darks])
+    means = [np.mean(np.asarray(a, dtype=float)) for a, _ in flats]
+    return (f"darks: {len(darks)} frames of {d.shape[0]} x {d.shape[1]} {d.dtype}, mean {dark_mean:.0f} DN (the black "
+            f"level); flats: {len(flats)} pairs, means {min(means):.0f} .. {max(means):.0f} DN")
+
+
 def _wrapped_difference(darks, flats):
     """The uint16 frames subtracted as they are: a - b wraps around below 0."""
     d1, d2 = darks
@@ -158,20 +207,25 @@ register_exercise(Exercise(
     lesson="03",
     reference=reference,
     cases=_cases,
-    compare=lambda got, exp: np.shape(np.asarray(got, dtype=float).ravel()) == (2,)
-    and np.allclose(np.asarray(got, dtype=float).ravel(), exp, rtol=0.03),
+    compare=SameArray(Tolerance(rtol=0.03, atol=0.0)),      # the 3 % the prompt promises
     diagnose=_diagnose,
+    describe_input=_describe,
     wrong_variants=(
         (lambda d, f: _estimate(d, f, one_frame=True), "one flat frame's variance"),
         (lambda d, f: _estimate(d, f, halve=False), "two frames"),
-        (lambda d, f: _estimate(d, f, slope_not_gain=True), "the gain is its inverse"),
+        (lambda d, f: _estimate(d, f, slope_not_gain=True), "instead of its inverse"),
         (lambda d, f: _estimate(d, f, spread=np.std), "standard deviation"),
         (lambda d, f: _estimate(d, f, through_origin=True), "black level"),
         (lambda d, f: _estimate(d, f, read_in_dn=True), "multiply by the gain"),
+        (lambda d, f: _estimate(d, f, read_over_gain=True), "divided the read noise in DN by the gain"),
         (lambda d, f: _estimate(d, f, dark_halve=False), "too large: d1 - d2"),
         (lambda d, f: _estimate(d, f, dark_one_frame=True), "fixed offset"),
         (lambda d, f: _estimate(d, f, ratios=True), "mean / var per pair"),
         (lambda d, f: _estimate(d, f, mean_of_difference=True), "mean of a - b"),
+        (lambda d, f: _estimate(d, f, dark_subtracted_ratios=True), "subtract the darks' temporal variance too"),
+        (lambda d, f: _estimate(d, f, swapped_axes=True), "np.polyfit(var, mean, 1)"),
+        (lambda d, f: _estimate(d, f, read_from_intercept=True), "the intercept is c = sigma_r**2"),
+        (lambda d, f: _estimate(d, f, read_from_intercept=True, black_subtracted=True), "from the fit's intercept"),
         (lambda d, f: reference(d, f)[::-1], "swapped"),
         (_wrapped_difference, "wrap around"),
     ),

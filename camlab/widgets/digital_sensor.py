@@ -14,7 +14,7 @@ from ..plotting import palette
 SIZE = (320, 240)
 
 
-@register(lesson="03", sweep={"pitch_um": [3.0, 6.0, 12.0], "cx_offset": [-40, 0, 40]})
+@register(lesson="03", sweep={"pitch_um": [2.0, 3.0, 6.0, 12.0, 15.0], "cx_offset": [-60, -40, 0, 40, 60]})
 def pixel_pitch():
     """The same 3 mm lens on sensors with different pixel pitch and principal point offset."""
     controls = {
@@ -34,7 +34,7 @@ def pixel_pitch():
     ax_img.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=9, borderaxespad=0)
     ax_img.set_title("f = 3 mm, always 320 x 240 pixels", fontsize=10)
     readout = W.HTML()  # the numbers beside the sliders: canvas text costs ~15 ms per redraw
-    view.animate(im, mark, pp)  # the centre mark too, or the blitted image covers it
+    view.animate(im, mark, pp, ax_img.title)  # the centre mark too, or the blitted image covers it
 
     def update(values, state):
         pitch = values["pitch_um"] * 1e-6
@@ -43,6 +43,9 @@ def pixel_pitch():
         pp.set_data([K[0, 2]], [K[1, 2]])
         fov = 2 * np.degrees(np.arctan(SIZE[0] / 2 / K[0, 0]))
         state.update(K=K, fov_deg=fov)
+        # f_x and the field of view in the figure too, so a printed or rendered page shows what the prose asks for
+        ax_img.set_title(f"f = 3 mm, always 320 x 240 pixels of {values['pitch_um']:g} µm\n"
+                         f"f_x = f / s_x = {K[0, 0]:.0f} px, horizontal field of view {fov:.1f}°", fontsize=10)
         readout.value = monospace(f"f_x = f / s_x = {K[0, 0]:.0f} px\nc_x = {K[0, 2]:.1f}, c_y = {K[1, 2]:.1f}\n"
                                   f"sensor {SIZE[0] * pitch * 1e3:.2f} x {SIZE[1] * pitch * 1e3:.2f} mm\n"
                                   f"horizontal FOV {fov:.1f} deg")
@@ -50,7 +53,7 @@ def pixel_pitch():
     return build_demo("pixel_pitch", controls, view, update, title="Pixel pitch and principal point", extra=[readout])
 
 
-@register(lesson="03", sweep={"factor": [1, 3, 6], "prefilter": [True, False]})
+@register(lesson="03", sweep={"factor": [1, 2, 3, 6, 8], "prefilter": [True, False]})
 def sampling_aliasing():
     """A zone plate sampled by coarser pixels: ideal point samples alias, real (box) pixels much less."""
     controls = {
@@ -81,7 +84,9 @@ def sampling_aliasing():
         # the local frequency (pi / 768) x / pi cycles per fine px reaches 0.5 cycle per coarse px at x = 384 / k
         r = zp.shape[0] / k
         cx, cy = (zp.shape[1] - 1) / 2, (zp.shape[0] - 1) / 2
-        nyq.set_bounds(cx - r, cy - r, 2 * r, 2 * r)
+        # at pixel size 2 the square is the frame's own edge: draw it 5 fine px inside, where it shows
+        shown = min(r, cx - 5)
+        nyq.set_bounds(cx - shown, cy - shown, 2 * shown, 2 * shown)
         x, y = np.meshgrid(np.arange(s.shape[1]) - (s.shape[1] - 1) / 2, np.arange(s.shape[0]) - (s.shape[0] - 1) / 2)
         outer = np.maximum(abs(x), abs(y)) * k > r * 1.1     # beyond the Nyquist square, where aliases live
         state.update(samples=s.shape, nyquist_half_side=r,
@@ -89,11 +94,11 @@ def sampling_aliasing():
         if r > cx + 1:        # pixel size 1: the scene's finest detail, 0.25 cycle per px, is below the limit
             where = "Nyquist limit beyond the frame: no aliasing"
         elif r >= cx:         # pixel size 2: the edges reach 0.5 cycle per px, the fold's half systems show there
-            where = "red square: Nyquist limit, on the frame's edge"
-        else:
-            where = "red square: Nyquist limit"
-        ax_s.set_title(f"{'box' if values['prefilter'] else 'point'}-sampled, 1 px = {k} fine px\n({where})",
-                       fontsize=10)
+            where = "red square: Nyquist limit, at the frame's edge"
+        else:                 # the number section 2 prints for the static figure (0.35 point, 0.06 box at 6)
+            where = f"red square: Nyquist limit; false-ring contrast {state['alias_contrast']:.2f}"
+        kind = "box samples (pixel areas)" if values["prefilter"] else "point samples"
+        ax_s.set_title(f"{kind}, 1 px = {k} fine px\n({where})", fontsize=10)
 
     return build_demo("sampling_aliasing", controls, view, update, title="Sampling and aliasing")
 
@@ -102,7 +107,7 @@ BACKGROUND = 0.2            # the grey around the photo, linear
 UNIFORM = slice(100, 140)   # where the profile row crosses the dark uniform
 
 
-@register(lesson="03", sweep={"bits": [1, 3, 8], "exposure": [0.02, 0.3, 1.0], "read_noise": [0.0, 20.0]})
+@register(lesson="03", sweep={"bits": [1, 3, 8, 12], "exposure": [0.01, 0.02, 0.3, 1.0], "read_noise": [0.0, 20.0, 40.0]})
 def bit_depth_and_noise():
     """Quantisation and noise on a rendered photo, with a row profile."""
     controls = {
@@ -128,7 +133,7 @@ def bit_depth_and_noise():
     prof, = ax_p.plot(clean[row], color=palette.RED, lw=1)
     ax_p.set_ylim(-0.05, 1.08)
     ax_p.set_xlabel("u (px)")
-    ax_p.set_ylabel("linear value / full scale")
+    ax_p.set_ylabel("linear value (1: the photo's white)")
     ax_p.set_title("", fontsize=9)
     readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
     view.animate(im, marker, prof, ax_p.title)
@@ -149,7 +154,7 @@ def bit_depth_and_noise():
                      "background": BACKGROUND * expo * full_well}
         state.update(levels=2**bits, snr=float(snr), rms_error=float(np.sqrt(np.mean((shown - clean) ** 2))),
                      electrons=electrons, dn_electrons=step)
-        dn = f"{step:.0f}" if step >= 10 else f"{step:.3g}"
+        dn = f"{step:.{max(0, 2 - int(np.floor(np.log10(step))))}f}"   # 3 significant figures: 11.8, 0.733, 3000
         ax_p.set_title(f"row {row} (red line): recorded (red) against true (wide grey)\n"
                        f"electrons: white {electrons['white']:.0f}, dark uniform {electrons['uniform']:.1f}, "
                        f"1 DN = {dn}", fontsize=9)
@@ -167,9 +172,10 @@ K_DEMOSAIC = np.array([[900.0, 0, 159.5], [0, 900.0, 119.5], [0, 0, 1]])
 
 _SAME = "same as the sensor"
 CROP = 48
+ZOOM_MAX = 216   # the zoom's last position still holds the face's right side, not only the flat background
 
 
-@register(lesson="03", sweep={"pattern": ["RGGB", "GBRG"], "method": list(_METHODS), "zoom_u": [40, 200],
+@register(lesson="03", sweep={"pattern": ["RGGB", "GBRG"], "method": list(_METHODS), "zoom_u": [0, 40, 200, ZOOM_MAX],
                               "assume": ["BGGR", _SAME]})
 def demosaicing():
     """Bayer mosaic and demosaicing methods side by side, with a zoomed crop and PSNR; try the wrong pattern."""
@@ -179,7 +185,7 @@ def demosaicing():
         "assume": W.Dropdown(options=[_SAME] + patterns, value=_SAME, description="demosaic as",
                              style={"description_width": "initial"}),
         "method": W.Dropdown(options=list(_METHODS), value="camlab bilinear", description="method"),
-        "zoom_u": W.IntSlider(value=120, min=0, max=SIZE[0] - CROP, description="zoom at u", continuous_update=True),
+        "zoom_u": W.IntSlider(value=120, min=0, max=ZOOM_MAX, description="zoom at u", continuous_update=True),
     }
     view = FigureView(figsize=(10, 3.9))
     ax_raw, ax_full, ax_zoom = view.fig.subplots(1, 3, width_ratios=[0.75, 1, 0.75])
@@ -188,7 +194,8 @@ def demosaicing():
     im_raw = images.show_image(ax_raw, np.zeros((CROP, CROP, 3)), "Bayer mosaic (zoom, through sRGB)")
     im_full = images.show_image(ax_full, sensor.gamma_encode(truth), "method")
     im_zoom = images.show_image(ax_zoom, sensor.gamma_encode(truth[:CROP, :CROP]), "zoom (shown through sRGB)")
-    box = images.zoom_box(ax_full, 120, 100, CROP)
+    box = images.zoom_box(ax_full, 120, 100, CROP, color="white")   # white on a black outline: seen on the red stripes too
+    box.set_path_effects(palette.halo(1.5, "black"))
     ax_full.set_title("camlab bilinear: PSNR 00.00 dB (linear)", fontsize=10)
     view.animate(im_raw, im_full, im_zoom, box, ax_full.title)
     v0 = 100
