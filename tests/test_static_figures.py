@@ -118,3 +118,11 @@ def test_a_plain_figure_wider_than_the_output_area_is_drawn_to_fit_it():
     assert wide.get_figwidth() == 10 and wide.dpi * 10 + static.CANVAS_FRAME_PX == static.OUTPUT_WIDTH_PX
     assert _png_pixels(wide_png["image/png"]).shape[1] == 952
     assert narrow.dpi == 100 and _png_pixels(narrow_png["image/png"]).shape[:2] == (300, 600)
+
+
+def test_a_3d_view_with_its_axes_switched_off_is_not_described_by_axis_labels():
+    fig = Figure()
+    ax = fig.add_subplot(projection="3d")
+    ax.set(xlabel="X (m)", ylabel="Y (m)", zlabel="Z (m)", title="the camera in the world")
+    ax.set_axis_off()
+    assert static.describe_figure(fig) == "Figure: 3-D view (no axes drawn) 'the camera in the world'."

@@ -832,3 +832,73 @@ register_exercise(Exercise(
     ),
     teaching=estimate_projection_matrix,
 ))
+
+
+# -- blender_matrix_world (OpenCV pose -> Blender camera) -----------------------------------------
+
+_F = np.diag([1.0, -1.0, -1.0])
+
+
+def _blender_cases():
+    return [(c.R, c.t) for c in _cameras()]
+
+
+def _blender_diagnosis(args, got, expected) -> str:
+    R, t = (np.asarray(a, dtype=float) for a in args)
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + ". Return the 4 x 4 matrix [[R_gl^T, C], [0, 0, 0, 1]]."
+    g = np.asarray(got, dtype=float)
+    if not np.allclose(g[3], [0.0, 0.0, 0.0, 1.0]):
+        return "the last row of a rigid motion in homogeneous form is (0, 0, 0, 1)."
+    A, c = g[:3, :3], g[:3, 3]
+    C = -R.T @ t
+    rotation_right = np.allclose(A, R.T @ _F, atol=1e-9)
+    if np.allclose(A, _F @ R, atol=1e-9) and np.allclose(c, _F @ t, atol=1e-9):
+        return ("you returned the OpenGL pose (R_gl, t_gl) = (F R, F t) itself: that is still cam_from_world. "
+                "matrix_world is world_from_cam, its inverse: [[R_gl^T, -R_gl^T t_gl], [0, 1]].")
+    if np.allclose(A, R.T, atol=1e-9):
+        return ("your rotation block is R^T: the inverse without the axis flip, so the camera would look along +z "
+                "with y down, the OpenCV way. Flip first, R_gl = F R with F = diag(1, -1, -1), then R_gl^T = R^T F.")
+    if np.allclose(A, _F @ R.T, atol=1e-9) or np.allclose(A, _F @ R.T @ _F, atol=1e-9):
+        return ("F multiplies on the wrong side: R_gl = F R flips the camera's axes (R's rows), so R_gl^T = R^T F "
+                "flips the columns of R^T. F R^T flips the world's Y and Z instead.")
+    if np.allclose(A, _F @ R, atol=1e-9):
+        return "your rotation block is R_gl, not its transpose: world_from_cam needs R_gl^T = R^T F."
+    if rotation_right and np.allclose(c, t, atol=1e-9):
+        return "the last column is t, the world origin in camera coordinates; matrix_world's is the camera centre C = -R^T t."
+    if rotation_right and (np.allclose(c, _F @ C, atol=1e-9) or np.allclose(c, _F @ t, atol=1e-9)
+                           or np.allclose(c, -C, atol=1e-9)):
+        return ("the last column must be the camera centre in the world, C = -R^T t (= -R_gl^T t_gl): the centre "
+                "is the same point in both conventions, so F does not touch it, and it has a minus sign.")
+    return "matrix_world = [[R_gl^T, -R_gl^T t_gl], [0, 0, 0, 1]] with R_gl = F R, t_gl = F t, F = diag(1, -1, -1)."
+
+
+def blender_matrix_world(R, t):
+    """Blender's matrix_world (world_from_cam, OpenGL axes) for the OpenCV pose cam_from_world (R, t)."""
+    F = np.diag([1.0, -1.0, -1.0])           # flip the camera's y and z: y up, z backward
+    R_gl, t_gl = F @ np.asarray(R), F @ np.asarray(t)
+    M = np.eye(4)
+    M[:3, :3] = R_gl.T                       # invert the rigid motion: world_from_cam
+    M[:3, 3] = -R_gl.T @ t_gl                # = -R^T t, the camera centre C
+    return M
+
+
+register_exercise(Exercise(
+    name="blender_matrix_world",
+    lesson="04",
+    reference=cm.blender_matrix_world,
+    cases=_blender_cases,
+    compare=same_array(rtol=1e-8, atol=1e-9),
+    diagnose=_blender_diagnosis,
+    wrong_variants=(
+        (lambda R, t: np.block([[_F @ R, (_F @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]), "OpenGL pose"),
+        (lambda R, t: np.block([[R.T, (-R.T @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]), "without the axis flip"),
+        (lambda R, t: np.block([[_F @ R.T, (-R.T @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]), "wrong side"),
+        (lambda R, t: np.block([[R.T @ _F, t[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]), "the last column is t"),
+        (lambda R, t: np.block([[R.T @ _F, (_F @ -R.T @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]),
+         "F does not touch it"),
+        (lambda R, t: np.block([[_F @ R, (-R.T @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]), "not its transpose"),
+    ),
+    teaching=blender_matrix_world,
+))
