@@ -70,6 +70,9 @@ def explorer_camera(fx=800.0, fy=800.0, cx=319.5, cy=239.5, skew=0.0, azimuth=-6
 
 # The lowest elevation keeps the eye above the ground at every distance: 0.7 m - 9 m sin 4 deg = 0.07 m.
 ELEVATION_MIN = -4.0
+# Sliding left moves the camera towards the viewer's line to the house: past -0.5 m its image plane covers the house
+# on screen (the viewer does not follow the slide); at +2 m the house reaches the image's left edge.
+SLIDE_MIN = -0.5
 WORLD_AXES_M = 1.25   # the world axes reach out of the house (1.0 x 1.4 m, 1.55 m high), so their labels clear it
 
 
@@ -81,7 +84,7 @@ def explorer_plane_size(distance: float) -> float:
 
 @register(lesson="04", sweep={"fx": [200, 1600], "fy": [200, 1600], "cx": [-0.5, 639.5], "cy": [-0.5, 479.5],
                               "skew": [-300, 300], "azimuth": [-180, 100, 180], "elevation": [ELEVATION_MIN, 80],
-                              "distance": [2.5, 9.0], "pan": [-30, 30], "roll": [-90, 90], "slide": [-2.0, 2.0]})
+                              "distance": [2.5, 9.0], "pan": [-30, 30], "roll": [-90, 90], "slide": [SLIDE_MIN, 2.0]})
 def camera_explorer():
     """Intrinsics and pose sliders beside a live 3-D frustum view and the camera's image.
 
@@ -115,7 +118,7 @@ def camera_explorer():
         "distance": slider(5.0, 2.5, 9.0, 0.1, "orbit: distance (m)", readout_format=".1f"),
         "pan": slider(0, -30, 30, 1, "turn in place: pan (deg)", readout_format=".0f"),
         "roll": slider(0, -90, 90, 1, "turn in place: roll (deg)", readout_format=".0f"),
-        "slide": slider(0.0, -2.0, 2.0, 0.1, "slide along camera x (m)", readout_format=".1f"),
+        "slide": slider(0.0, SLIDE_MIN, 2.0, 0.1, "slide along camera x (m)", readout_format=".1f"),
     }
 
     def update(v, state):
