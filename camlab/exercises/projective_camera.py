@@ -180,6 +180,11 @@ def _centre_slip(P, got, expected) -> str | None:
     if same_up_to_scale(got, Vt[:, -1], rtol=1e-6):
         return ("you took the last column of Vt. np.linalg.svd returns Vt, V transposed: the right singular "
                 "vectors are its rows, so the null vector is the last row, Vt[-1], not Vt[:, -1].")
+    reduced = np.linalg.svd(P, full_matrices=False)[2][-1]
+    if same_up_to_scale(got, reduced, rtol=1e-6) or same_up_to_scale(got, reduced / reduced[3], rtol=1e-6):
+        return ("you called np.linalg.svd(P, full_matrices=False): for a 3 x 4 P it returns only three right singular "
+                "vectors, those of the three non-zero singular values, so its last row is not the null vector. Use the "
+                "full SVD, np.linalg.svd(P), whose Vt is 4 x 4: the centre is Vt[-1].")
     if same_up_to_scale(got[:3], U[:, -1], rtol=1e-6):
         return ("you took the last column of U, a left singular vector (3 numbers, on the image side). "
                 "The centre is a right singular vector, a 4-vector: the last row of Vt, Vt[-1].")
@@ -241,6 +246,7 @@ register_exercise(Exercise(
         (lambda P: np.append(-np.linalg.solve(P[:, :3], P[:, 3]) / np.linalg.norm(P[2, :3]), 1.0), "times the centre"),
         (lambda P: np.linalg.svd(np.asarray(P).T)[2][-1], "left singular vector"),
         (lambda P: (lambda v: v / v[3])(np.linalg.svd(np.asarray(P).T)[2][-1]), "np.linalg.svd(P.T)"),
+        (lambda P: (lambda v: v / v[3])(np.linalg.svd(P, full_matrices=False)[2][-1]), "full_matrices=False"),
     ),
     exception_hint=lambda exc, args: _centre_exception_hint(exc, args),
     teaching=camera_centre,

@@ -57,6 +57,7 @@ def _quoted(texts: list[str]) -> str:
 
 def _describe_axes(ax: Any) -> str:
     title = " ".join(" ".join(t.split()) for t in (ax.get_title("left"), ax.get_title(), ax.get_title("right")) if t)
+    title = title.replace("$", "")  # mathtext's dollars mean nothing read aloud: "$c_x$ = 200" reads "c_x = 200"
     kind = "3-D view" if ax.name == "3d" else ("image" if ax.images and not ax.lines else "plot")
     words = [f"{kind} '{title}'" if title else kind]
     z_label = ax.get_zlabel() if ax.name == "3d" else ""  # a 3-D view has a third axis to name
