@@ -53,7 +53,7 @@ __all__ = [
     "Camera", "Decomposition", "CV_FROM_GL", "Pose", "RQ", "axis_angle_from_rotation", "camera_centre",
     "check_rotation", "decompose_projection_matrix", "estimate_projection_matrix",
     "euler_from_rotation", "intrinsic_matrix", "is_rotation", "look_at_rotation", "nearest_rotation", "orbit_eye",
-    "opencv_from_opengl", "opengl_from_opencv", "project_points", "reprojection_errors",
+    "blender_matrix_world", "opencv_from_opengl", "opengl_from_opencv", "project_points", "reprojection_errors",
     "rotation_from_axis_angle", "rotation_from_euler", "rq_decomposition", "rotation_x", "rotation_y", "rotation_z",
     "scale_intrinsics",
     "project_segments",
@@ -330,6 +330,28 @@ def opencv_from_opengl(R_gl: ArrayLike, t_gl: ArrayLike) -> Pose:
     Rm = check_rotation(R_gl, "R_gl")
     tv = check_matrix(t_gl, (3,), "t_gl")
     return Pose(CV_FROM_GL @ Rm, CV_FROM_GL @ tv)
+
+
+def blender_matrix_world(R: ArrayLike, t: ArrayLike) -> np.ndarray:
+    r"""A Blender camera's ``matrix_world`` for the OpenCV pose cam_from_world ``(R, t)``.
+
+    ``matrix_world`` is world_from_cam in the OpenGL/Blender camera frame, so two steps: flip the
+    camera's y and z axes, :math:`R_{gl} = F R`, :math:`t_{gl} = F t` (:func:`opengl_from_opencv`),
+    then invert the rigid motion:
+
+    .. math:: \begin{pmatrix} R_{gl}^\top & -R_{gl}^\top t_{gl} \\ 0 & 1 \end{pmatrix}
+              = \begin{pmatrix} R^\top F & C \\ 0 & 1 \end{pmatrix}, \qquad C = -R^\top t .
+
+    Its columns are the camera's axes in the world (x right, y up, z backward) and its centre.
+
+    Returns
+    -------
+    (4, 4) ndarray
+    """
+    R_gl, t_gl = opengl_from_opencv(R, t)
+    out = np.eye(4)
+    out[:3, :3], out[:3, 3] = R_gl.T, -R_gl.T @ t_gl
+    return out
 
 
 # ---------------------------------------------------------------------------------------

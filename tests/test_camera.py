@@ -671,3 +671,13 @@ def test_resectioning_keeps_a_wild_fit_in_view_and_says_when_it_failed():
             yield from texts(child)
 
     assert any("behind the estimated camera" in text for text in texts(d.widget))  # said, not a silent 'nan'
+
+
+def test_blender_matrix_world_is_world_from_cam_in_the_opengl_frame():
+    cam = cm.Camera.look_at([4.0, -3.5, 2.5], [0.0, 0.0, 0.7])
+    M = cm.blender_matrix_world(cam.R, cam.t)
+    assert np.allclose(M[:3, 3], cam.centre) and np.allclose(M[3], [0, 0, 0, 1])
+    assert np.allclose(M[:3, 2], -cam.R[2])          # Blender's camera z points backward, away from the view
+    assert np.allclose(M[:3, 1], -cam.R[1])          # and its y up
+    R_gl, t_gl = cm.opengl_from_opencv(cam.R, cam.t)
+    assert np.allclose(np.linalg.inv(M), np.block([[R_gl, t_gl[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]))

@@ -149,3 +149,11 @@ def test_camera_frame_puts_pixel_0_0_half_a_pixel_in_and_its_labels_off_the_axes
             assert not Bbox.intersection(box, arrow.get_window_extent(renderer).shrunk(0.9, 0.9)) or \
                 text.get_text() in ("u", "v"), f"{text.get_text()!r} lies on an arrow"
     plt.close(fig)
+
+
+def test_a_3d_view_with_its_axes_switched_off_is_not_described_by_axis_labels():
+    fig = Figure()
+    ax = fig.add_subplot(projection="3d")
+    ax.set(xlabel="X (m)", ylabel="Y (m)", zlabel="Z (m)", title="the camera in the world")
+    ax.set_axis_off()
+    assert static.describe_figure(fig) == "Figure: 3-D view (no axes drawn) 'the camera in the world'."

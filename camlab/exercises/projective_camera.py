@@ -55,6 +55,12 @@ def _project_diagnosis(args, got, expected) -> str:
         return ("you divided by |w|. This P is -3 times a camera, the same camera at another scale, so w is "
                 "negative for points in front of it; (x / w, y / w) gives the same pixels for P and -3 P, "
                 "(x / |w|, y / |w|) does not. Divide by w itself.")
+    for factor, unit in ((1e3, "millimetres"), (1e-3, "kilometres")):
+        x_other = np.hstack([factor * X, np.ones((len(X), 1))]) @ P.T
+        with np.errstate(divide="ignore", invalid="ignore"):
+            if np.allclose(g, x_other[:, :2] / x_other[:, 2:], rtol=1e-6, atol=1e-6):
+                return (f"you projected the world points in {unit} (X times {factor:g}); this P maps metres to pixels "
+                        f"(its last column, the translation, is in metres), so lift X as it is: (X, Y, Z, 1).")
     if np.allclose(g, -np.asarray(expected, dtype=float), rtol=1e-6, atol=1e-6):
         return ("every pixel has the wrong sign: (u, v) = (x / w, y / w) with x = P (X, Y, Z, 1)^T, no minus sign "
                 "(the pinhole's image inversion is already in K: v grows downwards).")
@@ -85,6 +91,13 @@ def _pixel_slip(got, expected) -> str:
     if np.allclose(shift, shift[0], atol=1e-6) and np.allclose(np.abs(shift[0]), 0.5, atol=1e-6):
         return ("every pixel is off by half a pixel: P already puts pixel centres at integers (the principal "
                 "point is in P), so return x / w as it is, with no +-0.5.")
+    if np.allclose(shift, shift[0], atol=1e-6) and np.allclose(np.abs(shift[0]), 1.0, atol=1e-6):
+        return ("every pixel is off by one: pixel indices start at 0 (the top-left pixel's centre is (0, 0), in numpy "
+                "as in camlab and OpenCV), and P already puts them there; return x / w as it is, with no +-1.")
+    for factor in (1e3, 1e-3):
+        if np.allclose(got, factor * expected, rtol=1e-6, atol=1e-9):
+            return (f"every pixel is {factor:g} times the right one: a unit conversion slipped in (pixels in "
+                    f"thousands, or a factor of 1000 for millimetres). P maps metres to pixels: return x / w as it is.")
     if np.allclose(got, expected[:, ::-1], rtol=1e-6, atol=1e-6):
         return "u and v are swapped: column 0 is u = x / w (right), column 1 is v = y / w (down)."
     flipped = got[:, 1] + expected[:, 1]
@@ -120,6 +133,9 @@ register_exercise(Exercise(
         (lambda P, X: np.hstack([X, np.ones((len(X), 1))]) @ P, "X @ M.T"),
         (lambda P, X: (lambda x: x[:, :2] / np.abs(x[:, 2:]))(np.hstack([X, np.ones((len(X), 1))]) @ P.T), "|w|"),
         (lambda P, X: -cm.project_points(P, X), "wrong sign"),
+        (lambda P, X: cm.project_points(P, X) + 1.0, "off by one"),
+        (lambda P, X: cm.project_points(P, X) / 1000.0, "0.001 times the right one"),
+        (lambda P, X: project_points(P, 1000.0 * np.asarray(X)), "in millimetres"),
         (lambda P, X: (lambda x: np.where(x[:, 2:] > 0, x[:, :2] / x[:, 2:], np.nan))(
             np.hstack([X, np.ones((len(X), 1))]) @ P.T), "sign(det M) w > 0"),
     ),
@@ -130,13 +146,18 @@ register_exercise(Exercise(
 # -- camera_centre ----------------------------------------------------------------------
 
 def _centre_cases():
-    return [(c.P,) for c in _cameras()] + [(-0.01 * _cameras()[1].P,)]
+    # P at other scales (|m3| != 1 in all but the first): a centre scaled by the wrong number fails early
+    return [(s * c.P,) for s, c in zip((1.0, 2.5, 0.02), _cameras())] + [(-0.01 * _cameras()[1].P,)]
 
 
 def _centre_diagnosis(args, got, expected) -> str:
     (P,) = args
     g = np.asarray(got, dtype=float) if got is not None else None
     if g is not None and g.shape == (3,):
+        if same_up_to_scale(g, np.linalg.svd(P)[0][:, -1], rtol=1e-6):
+            return ("you returned a left singular vector (3 numbers, on the image side): the SVD of P.T, or U of "
+                    "np.linalg.svd(P). The centre is P's right null vector, 4 numbers: U, S, Vt = np.linalg.svd(P), "
+                    "C = Vt[-1], then divide it by C[3].")
         return ("you returned a 3-vector; return the homogeneous centre (X, Y, Z, 1), "
                 "the null vector of P (P C = 0).")
     problem = shape_problem(got, expected)
@@ -159,6 +180,11 @@ def _centre_slip(P, got, expected) -> str | None:
     if same_up_to_scale(got, Vt[:, -1], rtol=1e-6):
         return ("you took the last column of Vt. np.linalg.svd returns Vt, V transposed: the right singular "
                 "vectors are its rows, so the null vector is the last row, Vt[-1], not Vt[:, -1].")
+    reduced = np.linalg.svd(P, full_matrices=False)[2][-1]
+    if same_up_to_scale(got, reduced, rtol=1e-6) or same_up_to_scale(got, reduced / reduced[3], rtol=1e-6):
+        return ("you called np.linalg.svd(P, full_matrices=False): for a 3 x 4 P it returns only three right singular "
+                "vectors, those of the three non-zero singular values, so its last row is not the null vector. Use the "
+                "full SVD, np.linalg.svd(P), whose Vt is 4 x 4: the centre is Vt[-1].")
     if same_up_to_scale(got[:3], U[:, -1], rtol=1e-6):
         return ("you took the last column of U, a left singular vector (3 numbers, on the image side). "
                 "The centre is a right singular vector, a 4-vector: the last row of Vt, Vt[-1].")
@@ -169,12 +195,29 @@ def _centre_slip(P, got, expected) -> str | None:
         return ("you used M^T for M^-1 (C = -M^T p4, as in C = -R^T t). M = K R is not a rotation, so its inverse "
                 "is not its transpose: C = -M^-1 p4, np.linalg.solve(M, -p4), or the last row of Vt.")
     if np.isclose(got[3], 1.0) and same_up_to_scale(got[:3], expected[:3], rtol=1e-6):
-        return ("your (X, Y, Z) points the right way but has the wrong length: you set the last entry to 1 instead "
-                "of dividing the whole null vector by it. C = v / v[3].")
+        if same_up_to_scale(np.abs(got[:3]), np.abs(Vt[-1, :3]), rtol=1e-6) and np.allclose(
+                np.abs(got[:3]), np.abs(Vt[-1, :3]), rtol=1e-6):
+            return ("your (X, Y, Z) are the first three entries of the unit null vector: you set the last entry to 1 "
+                    "instead of dividing the whole null vector by it. C = v / v[3].")
+        ratio = float(np.dot(got[:3], expected[:3]) / np.dot(expected[:3], expected[:3]))
+        return (f"your (X, Y, Z) points the right way but is {ratio:.4g} times the centre: it was divided (or "
+                f"multiplied) by a number other than the null vector's last entry, such as P's scale or |m3|. "
+                f"The centre solves M C + p4 = 0 whatever P's scale: C = -M^-1 p4 exactly, or v / v[3] for the "
+                f"null vector v.")
     if same_up_to_scale(got[:3], P[:, 3], rtol=1e-6):
         return ("p4 (P's last column) is the image of the world origin, not the centre. The centre solves "
                 "M C + p4 = 0: C = -M^-1 p4, or the last row of Vt.")
     return None
+
+
+def _centre_exception_hint(exc, args) -> str:
+    """The cause when indexing entry 3 of a 3-vector fails: the SVD of P.T, or -M^-1 p4 without its 1."""
+    if isinstance(exc, IndexError) and "size 3" in str(exc):
+        return ("you indexed entry 3 (the fourth) of a vector with 3 entries. If it came from np.linalg.svd(P.T): "
+                "that SVD's Vt is 3 x 3 and holds the image-side (left) singular vectors of P; the centre is P's "
+                "right null vector, 4 numbers: U, S, Vt = np.linalg.svd(P), v = Vt[-1], C = v / v[3]. If it came "
+                "from C = -M^-1 p4, it has no fourth entry to divide by: return np.append(C, 1.0).")
+    return ""
 
 
 def camera_centre(P):
@@ -200,7 +243,12 @@ register_exercise(Exercise(
         (lambda P: np.linalg.svd(P)[2][-1], "last coordinate is 1"),  # the unit null vector, not scaled
         (lambda P: np.append(-P[:, :3].T @ P[:, 3], 1.0), "not a rotation"),
         (lambda P: np.append(np.linalg.svd(P)[2][-1][:3], 1.0), "instead of dividing"),
+        (lambda P: np.append(-np.linalg.solve(P[:, :3], P[:, 3]) / np.linalg.norm(P[2, :3]), 1.0), "times the centre"),
+        (lambda P: np.linalg.svd(np.asarray(P).T)[2][-1], "left singular vector"),
+        (lambda P: (lambda v: v / v[3])(np.linalg.svd(np.asarray(P).T)[2][-1]), "np.linalg.svd(P.T)"),
+        (lambda P: (lambda v: v / v[3])(np.linalg.svd(P, full_matrices=False)[2][-1]), "full_matrices=False"),
     ),
+    exception_hint=lambda exc, args: _centre_exception_hint(exc, args),
     teaching=camera_centre,
 ))
 
@@ -238,11 +286,20 @@ def _rq_diagnosis(args, got, expected) -> str:
                 "belongs to decomposing a camera, where -P is the same camera; here M must come back as K R "
                 "exactly. For det M < 0 a K with a positive diagonal forces det R = -1, a reflection: the sign "
                 "that tells the camera decomposition to flip P first.")
-    if np.isclose(K[2, 2], 1.0) and not np.isclose(abs(M[2] @ M[2]), 1.0):
+    reproduces = np.allclose(K @ R, M, rtol=1e-6, atol=1e-6 * np.abs(M).max())
+    orthogonal = np.allclose(R @ R.T, np.eye(3), atol=1e-6)
+    if reproduces and not orthogonal:
+        gram = np.diag(R @ R.T)
+        if np.allclose(gram, gram[0], rtol=1e-6):
+            return (f"K R = M, but R is not orthogonal: R R^T = {gram[0]:.4g} I, so R carries a scale (did you divide "
+                    f"K by K[2, 2] and multiply R by it?). R must be a rotation or reflection, R R^T = I; the scale of M "
+                    f"stays in K (K[2, 2] carries it).")
+        return "K R = M, but R is not orthogonal (R R^T != I): R must be a rotation or a reflection."
+    if np.isclose(K[2, 2], 1.0) and not reproduces and not np.isclose(abs(M[2] @ M[2]), 1.0):
         return ("you divided K by K[2, 2], so K R = M / K[2, 2] and no longer M; and a negative K[2, 2] "
                 "does not fix the signs. Keep K unnormalised (K[2, 2] carries M's scale) and fix the signs "
                 "with D = diag(sign(diag(K))): K D and D R.")
-    if not np.allclose(K @ R, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
+    if not reproduces:
         if np.allclose(R @ K, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
             if np.abs(np.tril(K, -1)).max() > 1e-6 * np.abs(K).max() and np.allclose(K @ K.T, np.eye(3), atol=1e-6):
                 return "you returned (R, K): the order is swapped. Return K first, then R: `return K, R`."
@@ -371,6 +428,7 @@ register_exercise(Exercise(
         (_rq_sign_fix_on_rows_of_k, "K's rows"),
         (lambda M: cm.rq_decomposition(np.sign(np.linalg.det(M)) * np.asarray(M)), "flipped the sign of M"),
         (_rq_forced_rotation, "R is a rotation (det R = +1)"),
+        (lambda M: (lambda K, R: (K / K[2, 2], R * K[2, 2]))(*cm.rq_decomposition(M)), "R is not orthogonal"),
     ),
     teaching=rq_decomposition,
 ))
@@ -410,6 +468,7 @@ _WORLD_IN_KM = np.diag([1e-3, 1e-3, 1e-3, 1.0])  # half-normalised DLT too littl
 _PIXEL_SHIFT = np.array([[1.0, 0, -1999.5], [0, 1.0, -1499.5], [0, 0, 1.0]])
 _PIXELS_HALF = np.diag([1 / 4000, 1 / 4000, 1.0])   # fractions of the image width (a 0.5 scale moves too little)
 _INVARIANCE_PX = 1e-3   # a normalised DLT gives 1e-11 px, a refined one 1e-6; half-normalised ones 0.02 px and more
+# (LM on P's raw entries moves by up to 0.06 px between frames: it passes as a refinement, see _refinement)
 
 
 def _dlt_cases():
@@ -489,18 +548,22 @@ def _dlt_follow_up(run) -> str | None:
     allowed = SURVEY_TOLERANCE * predicted_rms_error(truth, X, SURVEY_NOISE_PX, _SURVEY_TEST_POINTS)
     error = _rms_gap(P, truth, _SURVEY_TEST_POINTS)
     accurate = error <= allowed
-    moved = {}
+    moved, answers = {}, [P]
     for key, S in (("world shift", _WORLD_SHIFT), ("world units", _WORLD_IN_MM), ("world units", _WORLD_IN_KM)):
         P_other = _as_camera_matrix(run(X @ S[:3, :3].T + S[:3, 3], uv))
         if P_other is None:
             return f"{where}, given the same points in other units, your function did not return a finite (3, 4) array."
-        gap = _pixel_gap(P_other @ S, P, _SURVEY_TEST_POINTS)      # back in metres
-        moved[key] = moved.get(key, False) or gap > _INVARIANCE_PX
+        answers.append(P_other @ S)                                 # back in metres
+        moved[key] = moved.get(key, False) or _pixel_gap(answers[-1], P, _SURVEY_TEST_POINTS) > _INVARIANCE_PX
     for key, S in (("pixel shift", _PIXEL_SHIFT), ("pixel units", _PIXELS_HALF)):
         P_other = _as_camera_matrix(run(X, uv @ S[:2, :2].T + S[:2, 2]))
         if P_other is None:
             return f"{where}, given the same pixels in other units, your function did not return a finite (3, 4) array."
-        moved[key] = _pixel_gap(np.linalg.inv(S) @ P_other, P, _SURVEY_TEST_POINTS) > _INVARIANCE_PX
+        answers.append(np.linalg.inv(S) @ P_other)                  # back in pixels
+        moved[key] = _pixel_gap(answers[-1], P, _SURVEY_TEST_POINTS) > _INVARIANCE_PX
+    refinement = _refinement(answers, X, uv)
+    if refinement == "converged":   # the maximum-likelihood camera, in every frame: it depends on no units or origin
+        moved = dict.fromkeys(moved, False)
     if accurate and not any(moved.values()):
         return None
     findings = []
@@ -517,7 +580,39 @@ def _dlt_follow_up(run) -> str | None:
         findings.append("given the same survey " + " or ".join(moved_by) + ", your function finds a different camera")
     invariance = (" A normalised DLT finds the same camera in any units and origins: the normalised coordinates are "
                   "the same numbers." if moved_by else "")
-    return f"{where}: " + "; ".join(findings) + "." + invariance + f"\n  likely cause: {_dlt_cause(moved, X, uv, P)}."
+    cause = _REFINED_BUT_MOVED if refinement == "partial" and moved_by else _dlt_cause(moved, X, uv, P)
+    return f"{where}: " + "; ".join(findings) + "." + invariance + f"\n  likely cause: {cause}."
+
+
+_REFINED_BUT_MOVED = (
+    "your P fits the measured pixels better than a linear DLT, so you refined it; but in other units the "
+    "refinement stops short of that fit, or never leaves its start: Levenberg-Marquardt on P's raw entries "
+    "(metres against pixels, entries from 1e-3 to 1e3) is badly conditioned, like the unnormalised DLT. Refine in the normalised coordinates (T u and "
+    "U X, starting from P_hat), then undo: P = inv(T) @ P_hat_refined @ U (H&Z's Gold Standard, Algorithm 7.1); "
+    "the reprojection error in pixels is then minimised exactly, in any units")
+
+
+def _residual_rms(P, X, uv) -> float:
+    return float(np.sqrt(np.mean(np.sum((_pixels_of(P, X) - uv) ** 2, axis=1))))
+
+
+def _refinement(answers, X, uv) -> str | None:
+    """'converged' if every answer (one per units and origins, mapped back) is a refined camera, 'partial' if the
+    first is and another is not, else None.
+
+    The maximum-likelihood camera minimises the reprojection error in pixels, which no change of world units
+    or origin, and no similarity of the pixels, alters. A linear DLT leaves an RMS residual a little above its
+    floor (0.2 mpx on the survey); "refined" means less than half of that excess. LM on P's raw entries reaches
+    it in every frame, though its path moves the camera by up to 0.06 px between frames (0.43 of the excess at
+    worst); every half-normalised DLT leaves 0.76 of it or more in some frame (1.06 at least in its worst),
+    so it is not mistaken for a refinement.
+    """
+    floor = _residual_rms(cm.estimate_projection_matrix(X, uv, refine=True), X, uv)
+    linear = _residual_rms(cm.estimate_projection_matrix(X, uv), X, uv) - floor
+    refined = [_residual_rms(A, X, uv) - floor <= 0.5 * linear for A in answers]
+    if all(refined):
+        return "converged"
+    return "partial" if refined[0] else None
 
 
 def _dlt_cause(moved, X, uv, P) -> str:
@@ -603,13 +698,18 @@ def _dlt_unnormalised(X, uv):
     return np.linalg.svd(_dlt_rows(X, uv))[2][-1].reshape(3, 4)
 
 
-def _dlt_half(X, uv, world=True, pixels=True, undo="both", sign=-1.0, column=False):
-    """Normalised DLT variants, right and wrong: which sides are normalised and undone, the sign in A, Vt's row or column."""
+def _dlt_half(X, uv, world=True, pixels=True, undo="both", sign=-1.0, column=False, interleave=False,
+              order="C"):
+    """Normalised DLT variants, right and wrong: which sides are normalised and undone, the sign in A, Vt's row or
+    column, A's rows stacked (u rows, then v rows) or interleaved per point, the null vector read row by row or not."""
     X, uv = np.asarray(X, dtype=float), np.asarray(uv, dtype=float)
     U, T = _normalisers(X, uv)
     U, T = (U if world else np.eye(4)), (T if pixels else np.eye(3))
-    Vt = np.linalg.svd(_dlt_rows(_in_frame(U, X), _in_frame(T, uv), sign))[2]
-    P_hat = (Vt[:, -1] if column else Vt[-1]).reshape(3, 4)
+    A = _dlt_rows(_in_frame(U, X), _in_frame(T, uv), sign)
+    if interleave:
+        A = A.reshape(2, -1, 12).transpose(1, 0, 2).reshape(-1, 12)    # u row, v row of point 0, then point 1, ...
+    Vt = np.linalg.svd(A)[2]
+    P_hat = (Vt[:, -1] if column else Vt[-1]).reshape((3, 4), order=order)
     return {"both": np.linalg.inv(T) @ P_hat @ U, "T": np.linalg.inv(T) @ P_hat, "U": P_hat @ U}[undo]
 
 
@@ -632,10 +732,14 @@ def _dlt_diagnosis(args, got, expected) -> str:
     problem = shape_problem(got, expected)
     if problem:
         return problem + ". Return P as a (3, 4) array: p.reshape(3, 4)."
-    if same_up_to_scale(g, expected.ravel().reshape((3, 4), order="F"), rtol=1e-5):
-        return ("your 12 numbers are P's entries in the wrong order (column by column): A's columns list "
-                "P row by row (p^1, p^2, p^3), so read the null vector back with p.reshape(3, 4).")
-    for U, T in (_normalisers(X, uv), _rms_normalisers(X, uv)):   # mean or RMS distances: either is right
+    frames = (_normalisers(X, uv), _rms_normalisers(X, uv), (np.eye(4), np.eye(3)))   # mean, RMS or none
+    for U, T in frames:       # the null vector read column by column, before or without undoing the normalisation
+        P_hat_got = T @ g @ np.linalg.inv(U)
+        if same_up_to_scale(P_hat_got.ravel(order="F").reshape(3, 4), T @ expected @ np.linalg.inv(U), rtol=1e-5):
+            return ("your 12 numbers are P's entries in the wrong order (column by column, reshape(..., order='F') "
+                    "or reshape(4, 3).T): A's columns list P row by row (p^1, p^2, p^3), so read the null vector "
+                    "back with p.reshape(3, 4), before undoing the normalisation.")
+    for U, T in frames[:2]:   # mean or RMS distances: either is right
         P_hat = T @ expected @ np.linalg.inv(U)
         if same_up_to_scale(g, P_hat, rtol=1e-5):
             return ("you returned P_hat, the camera of the normalised points: the normalisation is not undone. "
@@ -658,18 +762,27 @@ def _dlt_diagnosis(args, got, expected) -> str:
             return ("your P images every point at the pixels mirrored through the origin of the (normalised) pixel "
                     "coordinates: a sign slip in A. u x P X = 0 gives the rows (X^T, 0, -u X^T) and (0, X^T, -v X^T), "
                     "with minus signs.")
-    for column_variant in (_dlt_half(X, uv, column=True), _dlt_unnormalised_column(X, uv)):
-        if same_up_to_scale(g, column_variant, rtol=1e-5):
-            return ("you took a column of Vt. np.linalg.svd returns Vt, V transposed: the right singular vectors "
-                    "are its rows, so the null vector is the last row, Vt[-1], not Vt[:, -1].")
+    if _is_vt_column(g, X, uv):
+        return ("you took a column of Vt. np.linalg.svd returns Vt, V transposed: the right singular vectors "
+                "are its rows, so the null vector is the last row, Vt[-1], not Vt[:, -1].")
     gap = _pixel_gap(g, expected, X)
     return (f"P does not image X at uv (exact pixels here, and your P is up to {gap:.3g} px off). Build two rows "
             f"of u x P X = 0 per point, (X^T, 0, -u X^T) and (0, X^T, -v X^T), take the right singular vector of A "
             f"with the smallest singular value (the last row of Vt, Vt[-1]) and reshape it row by row to (3, 4).")
 
 
-def _dlt_unnormalised_column(X, uv):
-    return np.linalg.svd(_dlt_rows(np.asarray(X, dtype=float), np.asarray(uv, dtype=float)))[2][:, -1].reshape(3, 4)
+def _is_vt_column(got, X, uv) -> bool:
+    """True if ``got`` is Vt[:, -1] (the last entry of every right singular vector) in place of Vt[-1].
+
+    Each singular vector's sign is LAPACK's choice, and it changes with A's row order (all u rows, then
+    all v rows, or interleaved per point), so compare magnitudes entry by entry, in each normalised frame.
+    """
+    for U, T in (_normalisers(X, uv), _rms_normalisers(X, uv), (np.eye(4), np.eye(3))):
+        column = np.abs(np.linalg.svd(_dlt_rows(_in_frame(U, X), _in_frame(T, uv)))[2][:, -1])
+        P_hat = np.abs(T @ got @ np.linalg.inv(U)).ravel()
+        if np.abs(P_hat).max() > 0 and np.allclose(P_hat / np.abs(P_hat).max(), column / column.max(), atol=1e-6):
+            return True
+    return False
 
 
 def estimate_projection_matrix(X, uv):
@@ -717,8 +830,81 @@ register_exercise(Exercise(
         (lambda X, uv: _dlt_half(X, uv, undo="U"), "undid only the world points'"),
         (lambda X, uv: _dlt_half(X, uv, sign=1.0), "sign slip in A"),
         (lambda X, uv: _dlt_half(X, uv, column=True), "Vt[-1], not Vt[:, -1]"),
+        (lambda X, uv: _dlt_half(X, uv, column=True, interleave=True), "Vt[-1], not Vt[:, -1]"),
+        (lambda X, uv: _dlt_half(X, uv, order="F"), "column by column"),
+        (lambda X, uv: _dlt_half(X, uv, order="F", interleave=True), "column by column"),
         (lambda X, uv: cm.estimate_projection_matrix(X, uv).T, "transposed"),
         (lambda X, uv: cm.estimate_projection_matrix(X, uv).ravel().reshape((3, 4), order="F"), "wrong order"),
     ),
     teaching=estimate_projection_matrix,
+))
+
+
+# -- blender_matrix_world (OpenCV pose -> Blender camera) -----------------------------------------
+
+_F = np.diag([1.0, -1.0, -1.0])
+
+
+def _blender_cases():
+    return [(c.R, c.t) for c in _cameras()]
+
+
+def _blender_diagnosis(args, got, expected) -> str:
+    R, t = (np.asarray(a, dtype=float) for a in args)
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + ". Return the 4 x 4 matrix [[R_gl^T, C], [0, 0, 0, 1]]."
+    g = np.asarray(got, dtype=float)
+    if not np.allclose(g[3], [0.0, 0.0, 0.0, 1.0]):
+        return "the last row of a rigid motion in homogeneous form is (0, 0, 0, 1)."
+    A, c = g[:3, :3], g[:3, 3]
+    C = -R.T @ t
+    rotation_right = np.allclose(A, R.T @ _F, atol=1e-9)
+    if np.allclose(A, _F @ R, atol=1e-9) and np.allclose(c, _F @ t, atol=1e-9):
+        return ("you returned the OpenGL pose (R_gl, t_gl) = (F R, F t) itself: that is still cam_from_world. "
+                "matrix_world is world_from_cam, its inverse: [[R_gl^T, -R_gl^T t_gl], [0, 1]].")
+    if np.allclose(A, R.T, atol=1e-9):
+        return ("your rotation block is R^T: the inverse without the axis flip, so the camera would look along +z "
+                "with y down, the OpenCV way. Flip first, R_gl = F R with F = diag(1, -1, -1), then R_gl^T = R^T F.")
+    if np.allclose(A, _F @ R.T, atol=1e-9) or np.allclose(A, _F @ R.T @ _F, atol=1e-9):
+        return ("F multiplies on the wrong side: R_gl = F R flips the camera's axes (R's rows), so R_gl^T = R^T F "
+                "flips the columns of R^T. F R^T flips the world's Y and Z instead.")
+    if np.allclose(A, _F @ R, atol=1e-9):
+        return "your rotation block is R_gl, not its transpose: world_from_cam needs R_gl^T = R^T F."
+    if rotation_right and np.allclose(c, t, atol=1e-9):
+        return "the last column is t, the world origin in camera coordinates; matrix_world's is the camera centre C = -R^T t."
+    if rotation_right and (np.allclose(c, _F @ C, atol=1e-9) or np.allclose(c, _F @ t, atol=1e-9)
+                           or np.allclose(c, -C, atol=1e-9)):
+        return ("the last column must be the camera centre in the world, C = -R^T t (= -R_gl^T t_gl): the centre "
+                "is the same point in both conventions, so F does not touch it, and it has a minus sign.")
+    return "matrix_world = [[R_gl^T, -R_gl^T t_gl], [0, 0, 0, 1]] with R_gl = F R, t_gl = F t, F = diag(1, -1, -1)."
+
+
+def blender_matrix_world(R, t):
+    """Blender's matrix_world (world_from_cam, OpenGL axes) for the OpenCV pose cam_from_world (R, t)."""
+    F = np.diag([1.0, -1.0, -1.0])           # flip the camera's y and z: y up, z backward
+    R_gl, t_gl = F @ np.asarray(R), F @ np.asarray(t)
+    M = np.eye(4)
+    M[:3, :3] = R_gl.T                       # invert the rigid motion: world_from_cam
+    M[:3, 3] = -R_gl.T @ t_gl                # = -R^T t, the camera centre C
+    return M
+
+
+register_exercise(Exercise(
+    name="blender_matrix_world",
+    lesson="04",
+    reference=cm.blender_matrix_world,
+    cases=_blender_cases,
+    compare=same_array(rtol=1e-8, atol=1e-9),
+    diagnose=_blender_diagnosis,
+    wrong_variants=(
+        (lambda R, t: np.block([[_F @ R, (_F @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]), "OpenGL pose"),
+        (lambda R, t: np.block([[R.T, (-R.T @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]), "without the axis flip"),
+        (lambda R, t: np.block([[_F @ R.T, (-R.T @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]), "wrong side"),
+        (lambda R, t: np.block([[R.T @ _F, t[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]), "the last column is t"),
+        (lambda R, t: np.block([[R.T @ _F, (_F @ -R.T @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]),
+         "F does not touch it"),
+        (lambda R, t: np.block([[_F @ R, (-R.T @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]), "not its transpose"),
+    ),
+    teaching=blender_matrix_world,
 ))

@@ -57,10 +57,15 @@ def _quoted(texts: list[str]) -> str:
 
 def _describe_axes(ax: Any) -> str:
     title = " ".join(" ".join(t.split()) for t in (ax.get_title("left"), ax.get_title(), ax.get_title("right")) if t)
+    title = title.replace("$", "")  # mathtext's dollars mean nothing read aloud: "$c_x$ = 200" reads "c_x = 200"
     kind = "3-D view" if ax.name == "3d" else ("image" if ax.images and not ax.lines else "plot")
     words = [f"{kind} '{title}'" if title else kind]
     z_label = ax.get_zlabel() if ax.name == "3d" else ""  # a 3-D view has a third axis to name
     labels = [lab for lab in (ax.get_xlabel(), ax.get_ylabel(), z_label) if lab]
+    if not ax.axison:  # axes switched off (set_axis_off): their labels are not drawn, so not described
+        labels = []
+        if ax.name == "3d":
+            words[0] = words[0].replace("3-D view", "3-D view (no axes drawn)", 1)
     if labels:
         words.append("axes " + _quoted(labels))
     legend = ax.get_legend()

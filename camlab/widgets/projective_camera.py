@@ -68,9 +68,23 @@ def explorer_camera(fx=800.0, fy=800.0, cx=319.5, cy=239.5, skew=0.0, azimuth=-6
     return cm.Camera(K, R, -R @ C)
 
 
-@register(lesson="04", sweep={"fx": [200, 1600], "fy": [500, 1100], "cx": [-0.5, 639.5], "cy": [159.5, 319.5],
-                              "skew": [-300, 300], "azimuth": [-180, 100], "elevation": [-10, 80],
-                              "distance": [2.5, 9.0], "pan": [-25, 25], "roll": [-45, 45], "slide": [-2.0, 2.0]})
+# The lowest elevation keeps the eye above the ground at every distance: 0.7 m - 9 m sin 4 deg = 0.07 m.
+ELEVATION_MIN = -4.0
+# Sliding left moves the camera towards the viewer's line to the house: past -0.5 m its image plane covers the house
+# on screen (the viewer does not follow the slide); at +2 m the house reaches the image's left edge.
+SLIDE_MIN = -0.5
+WORLD_AXES_M = 1.25   # the world axes reach out of the house (1.0 x 1.4 m, 1.55 m high), so their labels clear it
+
+
+def explorer_plane_size(distance: float) -> float:
+    """The explorer's image-plane depth (m): 0.4 of the distance, so the plane always stands between the
+    camera and the house and the small picture on it keeps its size on screen as the camera backs off."""
+    return 0.4 * float(distance)
+
+
+@register(lesson="04", sweep={"fx": [200, 1600], "fy": [200, 1600], "cx": [-0.5, 639.5], "cy": [-0.5, 479.5],
+                              "skew": [-300, 300], "azimuth": [-180, 100, 180], "elevation": [ELEVATION_MIN, 80],
+                              "distance": [2.5, 9.0], "pan": [-30, 30], "roll": [-90, 90], "slide": [SLIDE_MIN, 2.0]})
 def camera_explorer():
     """Intrinsics and pose sliders beside a live 3-D frustum view and the camera's image.
 
@@ -83,8 +97,12 @@ def camera_explorer():
     cam0 = explorer_camera()
     # Seen from behind the camera's shoulder, with only the house on the image plane: the small picture
     # stays readable (the whole grid, seen edge-on, was a tangle).
-    sv = scene3d.SceneView(view.fig, cam0, scene, plane_size=2.0, thumbnail=scenes.house_wireframe(),
-                           azim=-60 + VIEWER_OFFSET, elev=18, camera_axis_length=0.8, width_ratios=(1.3, 1.0))
+    sv = scene3d.SceneView(view.fig, cam0, scene, plane_size=explorer_plane_size(5.0), thumbnail=scenes.house_wireframe(),
+                           azim=-60 + VIEWER_OFFSET, elev=18, camera_axis_length=0.8, width_ratios=(1.3, 1.0),
+                           world_axes=WORLD_AXES_M)
+    # "C" hangs just above-left of the centre dot, its corner at the dot, not half a metre away
+    sv.camera_artist.label.set(ha="right", va="bottom")
+    sv.camera_artist.label_offset = (-0.02, -0.04)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
     (pp,) = sv.ax_image.plot([], [], "+", color=palette.PURPLE, ms=10, mew=2)
     view.animate(*sv.artists(), pp)
@@ -96,17 +114,16 @@ def camera_explorer():
         "cy": slider(239.5, -0.5, 479.5, 5, "cy (px)", readout_format=".1f"),
         "skew": slider(0, -300, 300, 10, "skew s (px)", readout_format=".0f"),
         "azimuth": slider(-60, -180, 180, 2, "orbit: azimuth (deg)", readout_format=".0f"),
-        "elevation": slider(25, -10, 80, 1, "orbit: elevation (deg)", readout_format=".0f"),
+        "elevation": slider(25, ELEVATION_MIN, 80, 1, "orbit: elevation (deg)", readout_format=".0f"),
         "distance": slider(5.0, 2.5, 9.0, 0.1, "orbit: distance (m)", readout_format=".1f"),
         "pan": slider(0, -30, 30, 1, "turn in place: pan (deg)", readout_format=".0f"),
         "roll": slider(0, -90, 90, 1, "turn in place: roll (deg)", readout_format=".0f"),
-        "slide": slider(0.0, -2.0, 2.0, 0.1, "slide along camera x (m)", readout_format=".1f"),
+        "slide": slider(0.0, SLIDE_MIN, 2.0, 0.1, "slide along camera x (m)", readout_format=".1f"),
     }
 
     def update(v, state):
         cam = explorer_camera(**v)
-        # The image plane stays in front of the house (it would cut through it at close range).
-        sv.camera_artist.size = min(2.0, 0.4 * v["distance"])
+        sv.camera_artist.size = explorer_plane_size(v["distance"])
         sv.ax3d.view_init(elev=18, azim=v["azimuth"] + VIEWER_OFFSET)   # sv.update refreshes the projection
         sv.update(cam)
         pp.set_data([cam.principal_point[0]], [cam.principal_point[1]])
@@ -136,7 +153,9 @@ def resectioning():
 
     view = FigureView(figsize=(9, 4.6))
     cam, X, uv = scenes.resection_set(12, 0.5)
-    frame = np.concatenate([scenes.box_wireframe((0.0, 0.0, 1.0), (2.0, 2.0, 2.0)), scenes.ground_grid(2.0, 1.0)])
+    box = scenes.box_wireframe((0.0, 0.0, 1.0), (2.0, 2.0, 2.0))
+    # The box's bottom edges lie on grid lines: drawn twice, two dash patterns interleave into a solid line.
+    frame = np.concatenate([box[np.any(box[:, :, 2] > 0, axis=1)], scenes.ground_grid(2.0, 1.0)])
     # No world or camera axes here: red, green and blue would mean axes in one place and data in another.
     sv = scene3d.SceneView(view.fig, cam, frame, plane_size=1.0, image_title="measured (o) vs reprojected (+)",
                            world_axes=0.0, camera_axes=False, azim=15, elev=24)
@@ -213,6 +232,7 @@ def resectioning():
         sv.fit(extra=np.vstack([tip, tip + 0.3 * d]) if far else est_art.extent_points(est))
         for artist in est_art.artists():
             artist.set_visible(not far)
+        _place_camera_labels(sv.ax3d, sv.camera_artist, est_art)
         if far:
             pointer.set_data_3d(*np.c_[cam_true.centre, tip])
             pointer_text.set_position_3d(tip)                   # centred over the pointer's tip, inside the view
@@ -268,7 +288,25 @@ def resectioning():
     return demo
 
 
-@register(lesson="04", sweep={"yaw": [-60, 60], "frame": ["OpenGL / Blender", "OpenCV"]})
+def _place_camera_labels(ax, true_artist, est_artist) -> None:
+    """Hang "true" and "est." off their centres on the sides facing away from each other on screen.
+
+    Both frustums point right, towards the box, so the labels go left of their centres; the camera that is
+    higher on screen takes its label above (along its -y, the image's up), the other below, so neither lands
+    on the other camera. (Text3D's vertical alignment barely moves a label; an offset in the world does.)
+    """
+    from mpl_toolkits.mplot3d import proj3d
+
+    cams = (true_artist.camera, est_artist.camera)
+    (_, _), (y_true, y_est), _ = proj3d.proj_transform(*np.c_[cams[0].centre, cams[1].centre], ax.M)
+    up, down = (-0.05, -0.3), (-0.05, 0.3)
+    for artist, offset in zip((true_artist, est_artist), (up, down) if y_true >= y_est else (down, up)):
+        artist.label_offset = offset
+        artist.label.set(ha="right", va="center", path_effects=palette.halo())   # readable over a grid line
+        artist.label.set_position_3d(artist._label_position(artist.camera))
+
+
+@register(lesson="04", sweep={"yaw": [-90, -60, 60, 90], "frame": ["OpenGL / Blender", "OpenCV"]})
 def opencv_vs_opengl():
     """The same camera with OpenCV axes (x right, y down, z forward) or OpenGL/Blender axes
     (x right, y up, z backward): the camera stays put, its y and z axes flip (R_gl = F R, F = diag(1, -1, -1))
