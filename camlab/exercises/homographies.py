@@ -189,8 +189,8 @@ register_exercise(Exercise(
         (_dlt_undone_wrong_order, "wrong way round"),
         (lambda s, d: _dlt_undone_one_side(s, d, "dst"), "undid only the destination's"),
         (lambda s, d: _dlt_undone_one_side(s, d, "src"), "undid only the source's"),
-        (lambda s, d: _dlt_normalised_column(s, d), "Vt[-1], not Vt[:, -1]"),
-        (lambda s, d: _dlt_unnormalised(s, d, column=True), "Vt[-1], not Vt[:, -1]"),
+        (lambda s, d: _dlt_normalised_column(s, d), "a column of Vt"),
+        (lambda s, d: _dlt_unnormalised(s, d, column=True), "a column of Vt"),
     ),
     teaching=dlt_homography,
 ))
