@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import homography as hg
-from ..projective import map_points
+from ..projective import hartley_normalization, map_points
 from ._core import Exercise, register_exercise, same_array, same_up_to_scale, shape_problem
 
 
@@ -52,6 +52,9 @@ def _dlt_diagnosis(args, got, expected) -> str:
         return "your H maps dst to src: it is the inverse. Did you swap src and dst when building A?"
     if same_up_to_scale(g.T, expected, rtol=1e-5):
         return "your H is transposed: h lists H row by row, so use h.reshape(3, 3), not column by column."
+    cause = _normalisation_slip(g, src, dst, expected)
+    if cause:
+        return cause
     try:
         moved = map_points(g, src[0])
     except Exception:  # a singular H
@@ -63,16 +66,90 @@ def _dlt_diagnosis(args, got, expected) -> str:
                 f"A is badly conditioned. Normalise each point set first (Hartley: centroid to 0, mean "
                 f"distance sqrt(2)), solve, then undo it with H = inv(T_dst) @ H_n @ T_src.")
     return (f"H maps src[0] = {np.round(src[0], 2)} to {np.round(moved, 2)}; expected {np.round(dst[0], 2)}. "
-            f"Take the right singular vector with the smallest singular value (the last row of Vt).")
+            f"Build two rows of x' x Hx = 0 per pair, (0, -x^T, v' x^T) and (x^T, 0, -u' x^T), take the right "
+            f"singular vector with the smallest singular value (the last row of Vt) and reshape it row by row.")
 
 
-def _dlt_unnormalised(src, dst, pick=-1):
-    """The plain DLT in pixels (a plausible student answer); ``pick`` chooses the singular vector."""
+def _normalisers(src, dst):
+    """Hartley's T_src, T_dst with mean distance sqrt(2) (camlab's) and with RMS distance sqrt(2) (H&Z's)."""
+    def rms(p):
+        c = p.mean(axis=0)
+        k = np.sqrt(2 / np.mean(np.sum((p - c) ** 2, axis=1)))
+        return np.array([[k, 0, -k * c[0]], [0, k, -k * c[1]], [0, 0, 1]])
+    return [(hartley_normalization(src), hartley_normalization(dst)), (rms(src), rms(dst))]
+
+
+def _normalisation_slip(g, src, dst, expected) -> str:
+    """Name a normalised DLT whose normalisation is not undone, undone the wrong way round or on one
+    side only, or whose null vector is a column of Vt; "" if none fits."""
+    inv = np.linalg.inv
+    for Ts, Td in _normalisers(src, dst):
+        Hn = Td @ expected @ inv(Ts)                    # the homography of the normalised points
+        if same_up_to_scale(g, Hn, rtol=1e-5):
+            return ("you returned H_n, the homography of the normalised points: the normalisation is not "
+                    "undone. H_n maps T_src x to T_dst x', so H = inv(T_dst) @ H_n @ T_src.")
+        for wrong, how in ((Td @ Hn @ inv(Ts), "T_dst @ H_n @ inv(T_src)"),
+                           (inv(Td) @ Hn @ inv(Ts), "inv(T_dst) @ H_n @ inv(T_src)"),
+                           (Td @ Hn @ Ts, "T_dst @ H_n @ T_src"),
+                           (inv(Ts) @ Hn @ Td, "inv(T_src) @ H_n @ T_dst")):
+            if same_up_to_scale(g, wrong, rtol=1e-5):
+                return (f"you undid the normalisation the wrong way round ({how}). H_n maps normalised points: "
+                        f"T_dst x' ~ H_n T_src x, so x' ~ inv(T_dst) H_n T_src x and H = inv(T_dst) @ H_n @ T_src.")
+        if same_up_to_scale(g, inv(Td) @ Hn, rtol=1e-5):
+            return ("you undid only the destination's normalisation (inv(T_dst) @ H_n): the result still "
+                    "expects normalised source points T_src x. Undo both: H = inv(T_dst) @ H_n @ T_src.")
+        if same_up_to_scale(g, Hn @ Ts, rtol=1e-5):
+            return ("you undid only the source's normalisation (H_n @ T_src): the result still gives "
+                    "normalised destination points T_dst x'. Undo both: H = inv(T_dst) @ H_n @ T_src.")
+    for column in (_dlt_unnormalised(src, dst, column=True), _dlt_normalised_column(src, dst)):
+        if same_up_to_scale(g, column, rtol=1e-5):
+            return ("you took a column of Vt. np.linalg.svd returns Vt, V transposed: the right singular "
+                    "vectors are its rows, so the null vector is the last row, Vt[-1], not Vt[:, -1].")
+    return ""
+
+
+def _dlt_rows(src, dst):
     rows = []
     for (u, v), (up, vp) in zip(np.asarray(src, float), np.asarray(dst, float)):
         x = np.array([u, v, 1.0])
         rows += [np.concatenate([np.zeros(3), -x, vp * x]), np.concatenate([x, np.zeros(3), -up * x])]
-    return np.linalg.svd(np.array(rows))[2][pick].reshape(3, 3)
+    return np.array(rows)
+
+
+def _dlt_unnormalised(src, dst, pick=-1, column=False):
+    """The plain DLT in pixels (a plausible student answer); ``pick`` chooses the singular vector,
+    ``column`` reads it from a column of Vt (a slip)."""
+    Vt = np.linalg.svd(_dlt_rows(src, dst))[2]
+    return (Vt[:, pick] if column else Vt[pick]).reshape(3, 3)
+
+
+def _dlt_normalised_parts(src, dst, column=False):
+    """T_src, T_dst and the normalised DLT's H_n (from Vt's last row, or its last column: a slip)."""
+    src, dst = np.asarray(src, dtype=float), np.asarray(dst, dtype=float)
+    Ts, Td = hartley_normalization(src), hartley_normalization(dst)
+    sn = (np.column_stack([src, np.ones(len(src))]) @ Ts.T)[:, :2]
+    dn = (np.column_stack([dst, np.ones(len(dst))]) @ Td.T)[:, :2]
+    Vt = np.linalg.svd(_dlt_rows(sn, dn))[2]
+    return Ts, Td, (Vt[:, -1] if column else Vt[-1]).reshape(3, 3)
+
+
+def _dlt_normalised_column(src, dst):
+    Ts, Td, Hn = _dlt_normalised_parts(src, dst, column=True)
+    return np.linalg.inv(Td) @ Hn @ Ts
+
+
+def _dlt_not_undone(src, dst):
+    return _dlt_normalised_parts(src, dst)[2]                       # H_n itself
+
+
+def _dlt_undone_wrong_order(src, dst):
+    Ts, Td, Hn = _dlt_normalised_parts(src, dst)
+    return Td @ Hn @ np.linalg.inv(Ts)                                # T_dst H_n T_src^-1
+
+
+def _dlt_undone_one_side(src, dst, side):
+    Ts, Td, Hn = _dlt_normalised_parts(src, dst)
+    return np.linalg.inv(Td) @ Hn if side == "dst" else Hn @ Ts
 
 
 def dlt_homography(src, dst):
@@ -108,6 +185,12 @@ register_exercise(Exercise(
         (lambda s, d: hg.estimate_homography(s, d).T, "transposed"),
         (lambda s, d: _dlt_unnormalised(s, d, pick=0), "smallest singular value"),
         (_dlt_unnormalised, "Normalise each point set"),
+        (_dlt_not_undone, "not undone"),
+        (_dlt_undone_wrong_order, "wrong way round"),
+        (lambda s, d: _dlt_undone_one_side(s, d, "dst"), "undid only the destination's"),
+        (lambda s, d: _dlt_undone_one_side(s, d, "src"), "undid only the source's"),
+        (lambda s, d: _dlt_normalised_column(s, d), "a column of Vt"),
+        (lambda s, d: _dlt_unnormalised(s, d, column=True), "a column of Vt"),
     ),
     teaching=dlt_homography,
 ))

@@ -7,6 +7,7 @@ control ``"u0, v0; u1, v1; u2, v2; u3, v3"`` so tests and static pages drive the
 """
 from __future__ import annotations
 
+import textwrap
 from functools import lru_cache
 from typing import Any, Callable
 
@@ -73,9 +74,12 @@ def transformation_hierarchy() -> Demo:
     grid_lines += [np.column_stack([np.linspace(0, pw - 1, 20), np.full(20, y)]) for y in np.linspace(0, ph - 1, 4)]
     grid_points = np.vstack(grid_lines)  # every line has 20 points; drawn as one artist, NaN-separated,
     grid_art = view.animate(ax.plot([], [], color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0])  # one outline
-    ax.set_title("the picture mapped by H (group and dof in the readout)", fontsize=10)
+    ax.set_title("the picture mapped by H (its group, dof and invariants at the right)", fontsize=10)
     # beside the axes: over the warped picture the legend would need a redraw per update
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
+    # The group, its dof and what it keeps, in the figure itself (a static page has no readout).
+    facts = view.animate(ax.text(1.03, 0.86, "", transform=ax.transAxes, ha="left", va="top", fontsize=8,
+                                 linespacing=1.35))
     warning = _warning(view, ax)
     picture_corners = np.array([[0, 0], [pw - 1, 0], [pw - 1, ph - 1], [0, ph - 1]], float)
     readout = W.HTML()
@@ -94,6 +98,8 @@ def transformation_hierarchy() -> Demo:
         torn = splits_at_infinity(H, picture_corners)
         warning(TORN if torn else "")
         state.update(H=Hg, group=v["group"], classified=kind, dof=info["dof"], torn=torn)
+        facts.set_text(f"{v['group']}: {info['dof']} dof\n(H itself is {kind})\n\nkeeps:\n" + "\n".join(
+            "\n".join(textwrap.wrap(f"- {name}", 22, subsequent_indent="  ")) for name in info["invariants"]))
         readout.value = monospace(f"{v['group']}: {info['dof']} dof\nH =\n" + np.array2string(Hg, precision=4, suppress_small=True)
                              + f"\nsmallest group holding H: {kind}\nkeeps: " + ", ".join(info["invariants"][:4]))
 
@@ -206,9 +212,9 @@ def ransac_outliers() -> Demo:
     from matplotlib.collections import LineCollection
     from matplotlib.colors import to_rgba
 
-    view = FigureView(figsize=(9.6, 4.3))
+    view = FigureView(figsize=(9.6, 4.8))
     ax, ax_k = view.fig.subplots(1, 2, width_ratios=[1.35, 1])
-    ax.set(xlim=(-10, 450), ylim=(340, -10), aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)")
+    ax.set(xlim=(-10, 480), ylim=(340, -10), aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)")
     ax.set_title("each pair as an arrow src → dst", fontsize=10, pad=3)
     arrows = view.animate(ax.add_collection(LineCollection([], lw=1.0)))
     heads = view.animate(ax.scatter(np.zeros(0), np.zeros(0), s=6))
@@ -217,7 +223,8 @@ def ransac_outliers() -> Demo:
     best = view.animate(ax.plot([], [], "o", mfc="none", mec="k", mew=2, ms=11, label="the winning sample of 4")[0])
     for name, colour in _VERDICTS:
         ax.plot([], [], "-", color=colour, lw=2, label=name)
-    ax.legend(loc="lower right", fontsize=7, ncol=2, framealpha=0.9)
+    # Below the figure (the layout makes room), never over the arrows; under the left panel it describes.
+    view.fig.legend(*ax.get_legend_handles_labels(), loc="outside lower left", fontsize=7, ncol=3)
     failure = _warning(view, ax, 0.5, 0.55, "center", "center")
     eps = np.linspace(0.0, 0.97, 300)
     k_curve = [required_iterations(1.0 - e, CONFIDENCE, 4) for e in eps]
