@@ -85,9 +85,8 @@ def sweep_points(spec) -> list[tuple[str, object]]:
 
 
 # Live frames that differ from a full redraw today by 0.1-1.7 % of their pixels, not yet
-# triaged (issues 28 and 29; lesson 09's panorama_canvas has the stale axis limits the review
-# found). Strict: a fix that makes one pass must take it off this list.
-KNOWN_DIFFERENT = {"epipolar_lines", "panorama_canvas", "ransac_outliers"}
+# triaged (issues 28 and 29). Strict: a fix that makes one pass must take it off this list.
+KNOWN_DIFFERENT = {"epipolar_lines", "ransac_outliers"}
 # (undistort_alpha passed once every animated image's spines were drawn live)
 
 
