@@ -369,10 +369,10 @@ def _gallery() -> dict:
 
 
 def _place(rgba: np.ndarray) -> np.ndarray:
-    """An RGBA image that fits in :data:`BOX`, placed at the top centre of a white BOX."""
+    """An RGBA image that fits in :data:`BOX`, placed in the middle of a white BOX."""
     out = np.full((*BOX, 4), 255, np.uint8)
-    x0 = (BOX[1] - rgba.shape[1]) // 2
-    out[:rgba.shape[0], x0:x0 + rgba.shape[1]] = rgba
+    x0, y0 = (BOX[1] - rgba.shape[1]) // 2, (BOX[0] - rgba.shape[0]) // 2
+    out[y0:y0 + rgba.shape[0], x0:x0 + rgba.shape[1]] = rgba
     return out
 
 
