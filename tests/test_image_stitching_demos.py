@@ -31,6 +31,29 @@ def test_ransac_demo_threshold():
     assert d.state["false_inliers"] > 5  # a loose threshold lets wrong matches in
     d.set(threshold=0.3)
     assert d.state["inliers"] < at3  # a tight threshold rejects good matches too
+    d.set(threshold=0.05)
+    assert not d.state["accepted"] and d.state["inliers"] < 0.3 * at3  # tighter than the features' noise: the fit starves
+
+
+def image_fills_the_axes(d) -> bool:
+    """The demo's picture touches both sides of its axes in one direction (no stale limits)."""
+    from matplotlib.image import AxesImage
+
+    im = next(a for a in d.view._animated if isinstance(a, AxesImage))
+    left, right, bottom, top = im.get_extent()
+    x0, x1 = im.axes.get_xlim()
+    y0, y1 = im.axes.get_ylim()
+    return (abs(left - x0) < 1e-6 and abs(right - x1) < 1e-6) or (abs(bottom - y0) < 1e-6 and abs(top - y1) < 1e-6)
+
+
+@pytest.mark.parametrize("name, control, values", [("panorama_canvas", "reference", [0, 1, 2, 3]),
+                                                    ("full_panorama", "projection", ["planar", "cylindrical"]),
+                                                    ("parallax_ghosting", "baseline", [0.0, 0.2, 0.4])])
+def test_every_canvas_fills_the_axes(name, control, values):
+    d = getattr(demos, name)()
+    for v in values:
+        d.set(**{control: v})
+        assert image_fills_the_axes(d), f"{name} {control}={v}: the picture sits in a corner of stale axis limits"
 
 
 def test_canvas_demo_reference_changes_canvas():
@@ -70,6 +93,9 @@ def test_full_panorama_demo():
     planar = d.state["shape"]
     d.set(projection="cylindrical")
     assert d.state["shape"][1] < planar[1]  # the cylinder does not stretch the ends
+    assert d.state["legend"]
+    d.set(outlines=False)
+    assert d.state["outlines_drawn"] == 0 and not d.state["legend"]  # no legend for outlines not drawn
 
 
 @pytest.mark.parametrize("name", ["canvas_box", "feather_weights"])

@@ -85,14 +85,14 @@ def sweep_points(spec) -> list[tuple[str, object]]:
 
 
 # Live frames that differ from a full redraw today by 0.1-1.7 % of their pixels, not yet
-# triaged (issues 28 and 29; lesson 09's panorama_canvas has the stale axis limits the review
-# found). Strict: a fix that makes one pass must take it off this list.
-KNOWN_DIFFERENT = {"epipolar_lines", "panorama_canvas"}
+# not yet triaged. Strict: a fix that makes one pass must take it off this list.
+KNOWN_DIFFERENT = {"epipolar_lines"}
 # (undistort_alpha passed once every animated image's spines were drawn live)
-# (ransac_outliers passed once its legend moved off the animated arrows, below the figure)
+# (ransac_outliers passed once its legend moved off the animated arrows, below the figure; panorama_canvas
+# once its canvas filled fixed axes)
 
 
-@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason="issues 28/29"))
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason="a known live/full difference"))
                                   if n in KNOWN_DIFFERENT else n for n in sorted(DEMOS)])
 def test_live_frame_equals_a_full_redraw_at_every_sweep_end(name):
     spec = DEMOS[name]

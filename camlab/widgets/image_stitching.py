@@ -18,7 +18,7 @@ from ..plotting import palette
 from ..plotting.stitching import draw_keypoints, draw_matches, match_segments, outline
 from ..projective import map_points
 from ._base import Demo, FigureView, build_demo, register, slider
-from .controls import monospace
+from .controls import log_slider, monospace
 
 def _rgba(image: np.ndarray) -> np.ndarray:
     """An image as opaque uint8 RGBA: what Agg draws fastest (no conversion at every redraw)."""
@@ -69,7 +69,7 @@ def feature_matches() -> Demo:
 
 # ----------------------------------------------------------------------------- RANSAC
 
-@register(lesson="09", sweep={"threshold": [0.5, 3.0, 15.0, 40.0], "ratio": [0.95, 0.7]})
+@register(lesson="09", sweep={"threshold": [0.03, 0.05, 3.0, 15.0, 40.0], "ratio": [0.95, 0.7]})
 def ransac_registration() -> Demo:
     """RANSAC on real matches: the threshold decides which matches count as inliers, and the H you get."""
     s, imgs, feats, knn = pe.panorama_example()
@@ -88,10 +88,13 @@ def ransac_registration() -> Demo:
     ax.set(xlim=(-0.5, w - 0.5), ylim=(h - 0.5, -0.5))
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.02), ncols=4, fontsize=7, facecolor="0.75")
     ax_e.set(xlabel="transfer error per match (px, log scale)",
-             ylabel="number of matches\n(relative to the tallest bar)", xscale="log", xlim=(0.03, 300), ylim=(0, 1))
+             ylabel="number of matches\n(relative to the tallest bar)", xscale="log", xlim=(0.02, 300), ylim=(0, 1.55),
+             yticks=[0, 0.5, 1])
+    # the verdict in the figure (the static picture has no side panel), above the tallest bar
+    verdict = view.animate(ax_e.text(0.5, 0.97, "", transform=ax_e.transAxes, ha="center", va="top", fontsize=8))
     ax_e.set_title("residuals under H (red: threshold)", fontsize=9)
-    bins = np.logspace(np.log10(0.03), np.log10(300), 41)
-    bars = ax_e.bar(bins[:-1], np.zeros(40), width=np.diff(bins), align="edge", color="0.6")
+    bins = np.logspace(np.log10(0.02), np.log10(300), 43)  # the first bar also counts errors below 0.02 px
+    bars = ax_e.bar(bins[:-1], np.zeros(len(bins) - 1), width=np.diff(bins), align="edge", color="0.6")
     view.animate(*bars)
     thr_line = view.animate(ax_e.axvline(3, color="tab:red", lw=1.5))
     readout = W.HTML()
@@ -108,13 +111,14 @@ def ransac_registration() -> Demo:
             est_box.set_data([], [])
             state.update(inliers=0, corner_error=float("nan"), accepted=False)
             readout.value = monospace(r.reason)
+            verdict.set_text(f"{len(m.src)} matches: no homography\n{r.reason.split(';')[0]}")
             return
         inl.set_data(m.dst[r.inliers, 0], m.dst[r.inliers, 1])
         outl.set_data(m.dst[~r.inliers, 0], m.dst[~r.inliers, 1])
         box = map_points(r.H, np.vstack([corners, corners[:1]]))
         est_box.set_data(box[:, 0], box[:, 1])
         res = hg.symmetric_transfer_error(r.H, m.src, m.dst)
-        counts, _ = np.histogram(np.clip(res, 0.031, 299), bins)
+        counts, _ = np.histogram(np.clip(res, 0.0201, 299), bins)
         top = max(counts.max(), 1)
         for b, c in zip(bars, counts):
             b.set_height(c / top)
@@ -122,13 +126,18 @@ def ransac_registration() -> Demo:
         good = pe.correct_matches(s, i, j, m.src, m.dst)
         state.update(inliers=int(r.inliers.sum()), corner_error=err, accepted=r.accepted,
                      false_inliers=int((r.inliers & ~good).sum()))
+        need = max(15, int(np.floor(8 + 0.3 * len(m.src))) + 1)  # register_pair's acceptance test
+        verdict.set_text(f"{int(r.inliers.sum())} of {len(m.src)} matches are inliers "
+                         f"({int((r.inliers & ~good).sum())} of them wrong)\n"
+                         f"worst corner vs the true H: {err:.2f} px\n"
+                         + ("accepted" if r.accepted else f"rejected: {r.reason.split(':')[0]} (need {need})"))
         readout.value = monospace(f"matches: {len(m.src)}\ninliers: {int(r.inliers.sum())} "
                              f"({int((r.inliers & ~good).sum())} of them wrong)\n"
                              f"inlier RMS: {r.residual_rms:.2f} px\nworst corner vs truth: {err:.2f} px\n"
                              f"accepted: {r.accepted} {r.reason}")
 
     controls = {
-        "threshold": slider(3.0, 0.3, 40.0, 0.1, "threshold (px)"),
+        "threshold": log_slider(3.0, 0.03, 40.0, 0.01, "threshold (px)"),
         "ratio": slider(0.9, 0.5, 1.0, 0.01, "ratio test r"),
     }
     return build_demo("ransac_registration", controls, view, update, title="RANSAC on SIFT matches", extra=[readout])
@@ -142,38 +151,87 @@ def _frame(shape) -> np.ndarray:
     return np.array([[-0.5, -0.5], [w - 0.5, -0.5], [w - 0.5, h - 0.5], [-0.5, h - 0.5], [-0.5, -0.5]])
 
 
+def _fit(shape, box) -> tuple[float, float, float]:
+    r"""Scale and offset that draw an image of ``shape`` as large as fits in ``box``, centred.
+
+    Canvas pixel :math:`(u, v)` is drawn at :math:`(o_x + s u,\ o_y + s v)` in the axes' units,
+    whose limits are the box's pixel edges :math:`[-\tfrac12, B_w - \tfrac12] \times [-\tfrac12, B_h - \tfrac12]`.
+    The image's edges :math:`u = -\tfrac12` and :math:`u = w - \tfrac12` land at
+    :math:`(B_w - s w)/2 - \tfrac12` and :math:`(B_w + s w)/2 - \tfrac12`, so
+    :math:`o_x = (B_w - s w)/2 - \tfrac12 + \tfrac{s}{2}` (likewise :math:`o_y`) with
+    :math:`s = \min(B_w / w, B_h / h)`.
+
+    The axes' limits stay those of the box whatever is shown (a live frame cannot change
+    them: :class:`._base.FigureView`), so every canvas fills the axes instead of sitting in
+    the corner of the largest one.
+
+    Parameters
+    ----------
+    shape : (h, w) or (h, w, c) tuple
+        The shown image's shape, pixels.
+    box : (height, width) tuple
+        The axes' box, in the axes' units.
+
+    Returns
+    -------
+    s, ox, oy : float
+    """
+    hh, ww = shape[:2]
+    bh, bw = box
+    s = min(bw / ww, bh / hh)
+    return s, (bw - s * ww) / 2 - 0.5 + s / 2, (bh - s * hh) / 2 - 0.5 + s / 2
+
+
+def _fitted_extent(shape, box) -> tuple[float, float, float, float]:
+    """The ``imshow`` extent (left, right, bottom, top) that :func:`_fit` gives an image of ``shape``."""
+    s, ox, oy = _fit(shape, box)
+    hh, ww = shape[:2]
+    return ox - s / 2, ox + (ww - 0.5) * s, oy + (hh - 0.5) * s, oy - s / 2
+
+
+def _fitted_points(points: np.ndarray, shape, box) -> np.ndarray:
+    """(N, 2) canvas pixels (u, v) in the axes' units of :func:`_fit`."""
+    s, ox, oy = _fit(shape, box)
+    return np.asarray(points, float) * s + [ox, oy]
+
+
 @register(lesson="09", sweep={"reference": [0, 1, 3]})
 def panorama_canvas() -> Demo:
     """Every image warped onto one canvas; the reference image decides the shape (and the stretch).
 
-    Shown at quarter size (160 x 120 images) so that even the widest canvas warps quickly.
+    Shown at quarter size (160 x 120 images) so that even the widest canvas warps quickly;
+    each canvas is scaled to fill the picture (the title gives its size in pixels).
     """
     graph = pe.panorama_graph()
     small, canvases = pe.reference_canvases()
-    hmax = max(c.shape[0] for c in canvases.values())
-    wmax = max(c.shape[1] for c in canvases.values())
+    box = (300, 800)  # the axes' units: (height, width), about the shape the axes get
     view = FigureView(figsize=(9, 3.6))
     ax = view.fig.subplots()
-    im = view.animate(ax.imshow(np.zeros((10, 10, 3)), interpolation="nearest"))
+    im = view.animate(ax.imshow(np.zeros((10, 10, 3))))
     colors = palette.SERIES[:4]
-    lines = [view.animate(ax.plot([], [], color=c, lw=1.5, path_effects=palette.halo(1.5), label=f"image {k}")[0]) for k, c in enumerate(colors)]
-    ax.legend(loc="lower right", fontsize=7, ncols=4)
-    ax.set(xlim=(-0.5, wmax - 0.5), ylim=(hmax - 0.5, -0.5), aspect="equal")
+    lines = [view.animate(ax.plot([], [], color=c, lw=1.5, path_effects=palette.halo(1.5), label=f"image {k}")[0])
+             for k, c in enumerate(colors)]
+    # below the axes: over the (animated) panorama it would be hidden by every live frame
+    ax.legend(handles=lines, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncols=4, fontsize=8, title="outline of")
+    ax.set(xlim=(-0.5, box[1] - 0.5), ylim=(box[0] - 0.5, -0.5), aspect="equal")
     ax.set_xticks([])
     ax.set_yticks([])
+    title = view.animate(ax.set_title(" ", fontsize=9))
     readout = W.HTML()
     shown = {ref: _rgba(c.panorama) for ref, c in canvases.items()}
 
     def update(v: dict, state: dict) -> None:
         ref = int(v["reference"])
         c = canvases[ref]
+        im.set_extent(_fitted_extent(c.shape, box))
         im.set_data(shown[ref])
         hh, ww = c.shape
-        im.set_extent((-0.5, ww - 0.5, hh - 0.5, -0.5))
         for k, ln in enumerate(lines):
-            p = map_points(c.homographies[k], _frame(small[k].shape))
+            p = _fitted_points(map_points(c.homographies[k], _frame(small[k].shape)), c.shape, box)
             ln.set_data(p[:, 0], p[:, 1])
-        state.update(reference=ref, canvas=(hh, ww), T=c.T)
+        scale = _fit(c.shape, box)[0]
+        title.set_text(f"reference image {ref}: canvas {ww} x {hh} px (160 x 120 images), shown x{scale:.2f} to fit")
+        state.update(reference=ref, canvas=(hh, ww), T=c.T, display_scale=scale)
         readout.value = monospace(f"reference image: {ref}\ncanvas: {ww} x {hh} px\n"
                              f"translation T: ({int(round(c.T[0, 2])):+d}, {int(round(c.T[1, 2])):+d}) px\n"
                              f"best-connected image: {graph.reference}")
@@ -244,36 +302,43 @@ def blending_seams() -> Demo:
 
 @register(lesson="09", sweep={"projection": ["planar", "cylindrical"], "outlines": [True, False]})
 def full_panorama() -> Demo:
-    """The four-image panorama, planar or cylindrical, multi-band blended, with each image's footprint."""
+    """The four-image panorama, planar or cylindrical, multi-band blended, with each image's footprint.
+
+    Each panorama is scaled to fill the picture (the title gives its size in pixels).
+    """
     pans = pe.stitched_panoramas()
-    view = FigureView(figsize=(9, 3.4))
+    box = (300, 780)  # the axes' units: (height, width), about the shape the axes get
+    view = FigureView(figsize=(9, 3.6))
     ax = view.fig.subplots()
-    im = view.animate(ax.imshow(pans["planar"].panorama, interpolation="nearest"))
+    im = view.animate(ax.imshow(np.zeros((10, 10, 3))))
     colors = palette.SERIES[:4]
     lines = [view.animate(ax.plot([], [], color=c, lw=1.2, path_effects=palette.halo(1.2), label=f"view {k}")[0]) for k, c in enumerate(colors)]
-    # below the axes: over the (animated) panorama it would be hidden, or cost a redraw per update
-    ax.legend(handles=lines, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncols=4, fontsize=8, title="outline of")
-    hmax = max(p.panorama.shape[0] for p in pans.values())
-    wmax = max(p.panorama.shape[1] for p in pans.values())
-    ax.set(xlim=(-0.5, wmax - 0.5), ylim=(hmax - 0.5, -0.5), aspect="equal")
+    # below the axes (over the animated panorama it would be hidden); animated, so it goes with the outlines
+    legend = view.animate(ax.legend(handles=lines, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncols=4, fontsize=8,
+                                    title="outline of"))
+    ax.set(xlim=(-0.5, box[1] - 0.5), ylim=(box[0] - 0.5, -0.5), aspect="equal")
     ax.set_xticks([])
     ax.set_yticks([])
+    title = view.animate(ax.set_title(" ", fontsize=9))
     readout = W.HTML()
     shown = {k: _rgba(p.panorama) for k, p in pans.items()}
 
     def update(v: dict, state: dict) -> None:
         r = pans[v["projection"]]
-        im.set_data(shown[v["projection"]])
         hh, ww = r.panorama.shape[:2]
-        im.set_extent((-0.5, ww - 0.5, hh - 0.5, -0.5))
+        im.set_extent(_fitted_extent((hh, ww), box))
+        im.set_data(shown[v["projection"]])
         for k, ln in enumerate(lines):
             if v["outlines"] and r.outlines[k] is not None:
-                p = np.vstack([r.outlines[k], r.outlines[k][:1]])
+                p = _fitted_points(np.vstack([r.outlines[k], r.outlines[k][:1]]), (hh, ww), box)
                 ln.set_data(p[:, 0], p[:, 1])
             else:
                 ln.set_data([], [])
-        state.update(projection=v["projection"], shape=(hh, ww), reference=r.reference,
-                     outlines_drawn=sum(len(ln.get_xdata()) > 0 for ln in lines))
+        legend.set_visible(bool(v["outlines"]))
+        scale = _fit((hh, ww), box)[0]
+        title.set_text(f"{v['projection']} canvas: {ww} x {hh} px, reference view {r.reference}, shown x{scale:.2f} to fit")
+        state.update(projection=v["projection"], shape=(hh, ww), reference=r.reference, display_scale=scale,
+                     outlines_drawn=sum(len(ln.get_xdata()) > 0 for ln in lines), legend=legend.get_visible())
         rows = "\n".join(f"{p.i}-{p.j}: {p.matches:4d} matches {p.inliers:4d} inliers "
                          f"rms {p.residual_rms:.2f} {'ok' if p.accepted else 'rejected'}" for p in r.pairs)
         readout.value = monospace(f"{v['projection']}: {ww} x {hh} px, reference {r.reference}\n{rows}")
@@ -304,10 +369,10 @@ def _gallery() -> dict:
 
 
 def _place(rgba: np.ndarray) -> np.ndarray:
-    """An RGBA image that fits in :data:`BOX`, placed at the top centre of a white BOX."""
+    """An RGBA image that fits in :data:`BOX`, placed in the middle of a white BOX."""
     out = np.full((*BOX, 4), 255, np.uint8)
-    x0 = (BOX[1] - rgba.shape[1]) // 2
-    out[:rgba.shape[0], x0:x0 + rgba.shape[1]] = rgba
+    x0, y0 = (BOX[1] - rgba.shape[1]) // 2, (BOX[0] - rgba.shape[0]) // 2
+    out[y0:y0 + rgba.shape[0], x0:x0 + rgba.shape[1]] = rgba
     return out
 
 
@@ -365,14 +430,21 @@ def _with_edges(rgba: np.ndarray, edges) -> np.ndarray:
 def parallax_ghosting() -> Demo:
     """Move the camera sideways between shots: near objects no longer fit the homography and ghost."""
     pairs = pe.parallax_pairs()
-    view = FigureView(figsize=(9, 3.4))
+    box = (280, 460)  # the axes' units: (height, width); every baseline's canvas is scaled to fill it
+    view = FigureView(figsize=(9, 3.6))
     ax = view.fig.subplots()
-    im = view.animate(ax.imshow(np.zeros((10, 10, 3)), interpolation="nearest"))
-    hmax = max(p.warped.shape[0] for p in pairs.values())
-    wmax = max(p.warped.shape[1] for p in pairs.values())
-    ax.set(xlim=(-0.5, wmax - 0.5), ylim=(hmax - 0.5, -0.5), aspect="equal")
+    im = view.animate(ax.imshow(np.zeros((10, 10, 3)), interpolation="nearest"))  # one-pixel edges stay crisp
+    ax.set(xlim=(-0.5, box[1] - 0.5), ylim=(box[0] - 0.5, -0.5), aspect="equal")
     ax.set_xticks([])
     ax.set_yticks([])
+    title = view.animate(ax.set_title(" ", fontsize=9))
+    from matplotlib.patches import Patch
+
+    key = [Patch(facecolor=np.array(c) / 255, edgecolor="0.3", label=t) for c, t in
+           (((255, 40, 40), "edge in view 0 only"), ((0, 230, 255), "edge in view 1 only"), ((255, 255, 255), "edge in both"))]
+    # beside the picture, not over it; shown only while the edges are painted
+    legend = view.animate(ax.legend(handles=key, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8,
+                                    title="edges", facecolor="0.55"))
     readout = W.HTML()
 
     shown = {(b, m, e): _with_edges(_rgba(out), p.edges if e else None)
@@ -382,11 +454,14 @@ def parallax_ghosting() -> Demo:
         b = float(v["baseline"])
         p = pairs[b]
         wi, reg, out = p.warped, p.registration, p.blends[v["method"]]
-        im.set_data(shown[(b, v["method"], bool(v["edges"]))])
         hh, ww = wi.shape
-        im.set_extent((-0.5, ww - 0.5, hh - 0.5, -0.5))
+        im.set_extent(_fitted_extent((hh, ww), box))
+        im.set_data(shown[(b, v["method"], bool(v["edges"]))])
+        legend.set_visible(bool(v["edges"]))
         n, k = len(reg.matches.src), int(reg.inliers.sum())
         diff = 255 * p.misalignment
+        title.set_text(f"camera moved {100 * b:.0f} cm: {k} of {n} matches fit one homography, "
+                       f"mean |view 0 - view 1| on the overlap {diff:.1f} grey levels")
         state.update(baseline=b, edges=bool(v["edges"]), inlier_fraction=k / max(n, 1), residual_rms=reg.residual_rms,
                      misalignment=diff, method=v["method"], image=out)
         readout.value = monospace(f"camera moved {100 * b:.0f} cm\nmatches: {n}\n"
