@@ -84,7 +84,7 @@ def sweep_points(spec) -> list[tuple[str, object]]:
     return [(control, value) for control, values in spec.sweep.items() for value in (values[0], values[-1])]
 
 
-# Live frames that differ from a full redraw today by 0.1-1.7 % of their pixels, not yet
+# Live frames that differ from a full redraw today by 0.1-1.7 % of their pixels,
 # not yet triaged. Strict: a fix that makes one pass must take it off this list.
 KNOWN_DIFFERENT = {"epipolar_lines"}
 # (undistort_alpha passed once every animated image's spines were drawn live)
