@@ -531,7 +531,12 @@ def _read_from_1(p):
     (lambda p: np.zeros(3), ["x and y are 0: the array was created", "w = 0 makes an ideal point"], None),
     (lambda p: np.r_[p[::-1], 0.0], ["x and y are swapped", "w = 0 makes an ideal point"], None),
     (lambda p: np.r_[-p[0], p[1], 1.0], ["x changed sign"], "a unit change"),
-], ids=["p[2] = 1", "1-based", "vstack", "zeros", "swapped and w = 0", "x sign"])
+    (lambda p: np.r_[p[0], 479.5 - p[1], 1.0], ["flipped it to a y-up convention"], "sign"),
+    (lambda p: np.r_[p - [319.5, 239.5], 1.0], ["subtracted the image centre (319.5, 239.5)"], "mean"),
+    (lambda p: np.r_[p / [640, 480], 1.0], ["divided by the image size (640, 480)"], "stray factor"),
+    (lambda p: np.r_[p / 1000, 1.0], ["millimetre-metre conversion"], "stray factor"),
+], ids=["p[2] = 1", "1-based", "vstack", "zeros", "swapped and w = 0", "x sign", "y up", "centred", "over size",
+        "mm"])
 def test_lift_hints_name_the_real_cause_not_the_batch_exercises(wrong, causes, not_said):
     """Index and joining slips on one (2,) point get hints about that point, not an (N, 3) array's columns;
     an answer wrong in x and y and in w is told both."""

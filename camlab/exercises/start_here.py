@@ -213,6 +213,9 @@ def _xy_slip(xy: np.ndarray, p: np.ndarray, swapped: bool = False) -> str:
         return ("you subtracted the mean of the point's two coordinates (p - p.mean()): centring belongs to a batch "
                 "of points, one mean per column (the normalisation of lesson 04 §5), and lifting changes neither "
                 "coordinate")
+    image_slip = _image_convention_slip(xy, p)
+    if image_slip:
+        return image_slip
     nonzero = np.abs(p) > 0
     factor = xy[nonzero] / p[nonzero]
     if np.allclose(factor, factor[0]) and np.allclose(xy, factor[0] * p):
@@ -226,6 +229,9 @@ def _xy_slip(xy: np.ndarray, p: np.ndarray, swapped: bool = False) -> str:
             way = "degrees to radians (np.radians)" if k < 1 else "radians to degrees (np.degrees)"
             return (f"x and y are {k:g} times the point's: the factor that converts {way}; a point's coordinates "
                     f"are pixels, not angles, and lifting converts nothing")
+        if np.isclose(k, 1e-3) or np.isclose(k, 1e3):
+            return (f"x and y are {k:g} times the point's: a millimetre-metre conversion? A point's coordinates are "
+                    "pixels, and lifting converts nothing")
         cause = "a sign flip" if k == -1 else "a unit change or a stray factor"
         return f"x and y are {k:g} times the point's ({cause})"
     if not swapped and not np.allclose(p, p[::-1]):
@@ -235,6 +241,28 @@ def _xy_slip(xy: np.ndarray, p: np.ndarray, swapped: bool = False) -> str:
         if also and not also.startswith(("x is", "y is")):
             return f"x and y are swapped (keep the point's order, (x, y) = (u, v)), and {also}"
     return _one_coordinate_slip(xy, p)
+
+
+# The 640 x 480 image of the lesson's examples: its size, its centre, and its y-up heights (OpenGL, section 3).
+_SIZE = np.array([640.0, 480.0])
+
+
+def _image_convention_slip(xy: np.ndarray, p: np.ndarray) -> str:
+    """Slips that bring in section 3's image conventions: a y-up flip, the centre subtracted, a division by the size."""
+    H = _SIZE[1]
+    for flipped in (H - 0.5, H - 1.0, H):
+        if np.isclose(xy[0], p[0]) and np.isclose(xy[1], flipped - p[1]):
+            return (f"y is {xy[1]:g} = {flipped:g} - v: you flipped it to a y-up convention (OpenGL's rows count from "
+                    "the bottom); the course keeps y down, and lifting changes no coordinate")
+    for centre in (_SIZE - 1) / 2, _SIZE / 2:
+        if np.allclose(xy, p - centre):
+            return (f"you subtracted the image centre ({centre[0]:g}, {centre[1]:g}): lifting keeps the pixel "
+                    "coordinates, with the origin at the top-left pixel's centre")
+    for size in _SIZE, _SIZE - 1:
+        if np.allclose(xy, p / size):
+            return (f"you divided by the image size ({size[0]:g}, {size[1]:g}): lifting keeps pixels as they are; it "
+                    "does not rescale them to [0, 1]")
+    return ""
 
 
 def _cases() -> list[tuple[np.ndarray]]:

@@ -37,7 +37,7 @@ def draw_pixel_grid(ax: Axes, size: tuple[int, int], points: np.ndarray, marked:
         axis.set_ticks(range(n))
         axis.set_ticks([-0.5, n - 0.5], [f"{t:g}" for t in (-0.5, n - 0.5)], minor=True)
     # The image's edges, half a pixel out, in small grey type, so they are not read as centres at a glance.
-    ax.tick_params(which="minor", length=2.5, labelsize=7.5, labelcolor="0.45", color="0.45")
+    ax.tick_params(which="minor", length=2.5, labelsize=8.5, labelcolor="0.35", color="0.45")
     ax.plot(u.ravel(), v.ravel(), ".", color="0.45", ms=3)
     points = np.asarray(points, dtype=float)
     ax.plot(points[:, 0], points[:, 1], "o", color=POINT_COLOUR, ms=7)
