@@ -822,3 +822,12 @@ def test_estimate_projection_matrix_names_a_refinement_that_stalls_in_other_unit
         check("estimate_projection_matrix", lambda X, uv: _dlt_refined_in_raw_coordinates(X, uv, method="trf"))
     assert "you refined it" in str(info.value) and "Gold Standard" in str(info.value)
     assert "no normalisation" not in str(info.value)
+
+
+@pytest.mark.parametrize("name", sorted(EXERCISES))
+def test_a_printed_solution_never_ends_in_an_empty_reference_line(name):
+    """solution() names what a private reference computes from its docstring's first line: it must have one."""
+    from camlab.exercises import solution_source
+
+    text = solution_source(name)
+    assert not text.rstrip().endswith("tested reference:"), text[-200:]

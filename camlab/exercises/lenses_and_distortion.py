@@ -369,6 +369,7 @@ def _f_number_cases():
 
 
 def _f_number_reference(f, c, near, far):
+    """camlab.lens.aperture_for_depth_of_field(f, c, near, far).f_number: the same two equal-blur conditions."""
     return lens.aperture_for_depth_of_field(f, c, near, far).f_number
 
 
