@@ -157,3 +157,15 @@ def test_a_3d_view_with_its_axes_switched_off_is_not_described_by_axis_labels():
     ax.set(xlabel="X (m)", ylabel="Y (m)", zlabel="Z (m)", title="the camera in the world")
     ax.set_axis_off()
     assert static.describe_figure(fig) == "Figure: 3-D view (no axes drawn) 'the camera in the world'."
+
+
+def test_image_panels_tick_the_centre_where_the_course_puts_it():
+    """Lesson 00 teaches (319.5, 239.5) as the centre of 640 x 480; image panels must not tick 320 and 240."""
+    from camlab.plotting import scene3d
+
+    fig = Figure()
+    ax = fig.add_subplot()
+    scene3d.image_axes(ax, (640, 480))
+    assert list(ax.get_xticks()) == [0, 319.5, 639] and list(ax.get_yticks()) == [0, 239.5, 479]
+    assert [t.get_text() for t in ax.get_xticklabels()] == ["0", "319.5", "639"]
+    assert ax.get_xlim() == (-0.5, 639.5) and ax.get_ylim() == (479.5, -0.5)

@@ -226,10 +226,11 @@ def image_axes(ax, image_size: tuple[int, int], title: str = "", labels: bool = 
         ax.set_ylabel("v (px)", fontsize=8)
     elif title:
         title = f"{title} (u right, v down, px)"
-    # Ticks on pixel centres, not at W and H: the image spans -0.5 .. W - 0.5 (a tick at W would
-    # also widen the limits past the last pixel's edge).
-    ax.set_xticks([0, w // 2, w - 1])
-    ax.set_yticks([0, h // 2, h - 1])
+    # Ticks on the first and last pixel centres and the image's centre ((W - 1)/2, (H - 1)/2): 319.5, not
+    # 320, for 640 (docs/conventions.md); a tick at W would widen the limits past the last pixel's edge.
+    for axis, n in ((ax.xaxis, w), (ax.yaxis, h)):
+        ticks = [0, (n - 1) / 2, n - 1]
+        axis.set_ticks(ticks, [f"{t:g}" for t in ticks])
     ax.set_xlim(-0.5, w - 0.5)
     ax.set_ylim(h - 0.5, -0.5)
     ax.tick_params(labelsize=7)
