@@ -123,6 +123,11 @@ def pinhole_projection():
                       extra=[readout])
 
 
+def _signed(x: float, digits: int) -> str:
+    """``x`` with its sign, "+0.133" or "-0.267", and a plain "0.000" where it rounds to zero (never "-0.000")."""
+    return f"{x:+.{digits}f}" if round(x, digits) != 0 else f"{0:.{digits}f}"
+
+
 @register(lesson="01", sweep={"f": [0.3, 1.0], "Z": [1.2, 5.0], "Y": [-1.0, 0.0, 0.4, 1.0]})
 def similar_triangles():
     """A side view of a room-sized camera obscura: drag the object point and read y / f = Y / Z off the triangles."""
@@ -146,8 +151,9 @@ def similar_triangles():
         f, Z, Y = values["f"], values["Z"], values["Y"]
         y = optics.update_similar_triangles(art, f, Z, Y)
         state.update(y=y, ratio_image=y / f, ratio_object=Y / Z)
-        ax.set_title(f"y / f = {y * 100:+.1f} cm / {f * 100:.0f} cm = {y / f:+.3f}   and   Y / Z = {Y:+.2f} m /"
-                     f" {Z:.2f} m = {Y / Z:+.3f}\nclick or drag in the figure to move the object point", fontsize=9)
+        ax.set_title(f"y / f = {_signed(y * 100, 1)} cm / {f * 100:.0f} cm = {_signed(y / f, 3)}   and   Y / Z ="
+                     f" {_signed(Y, 2)} m / {Z:.2f} m = {_signed(Y / Z, 3)}\nclick or drag in the figure to move the object"
+                     " point", fontsize=9)
         readout.value = monospace(f"y / f = {y / f:+.3f}\nY / Z = {Y / Z:+.3f}\n=> y = f Y / Z = {y * 100:+.1f} cm")
 
     demo = build_demo("similar_triangles", controls, view, update, title="Similar triangles: y / f = Y / Z",
