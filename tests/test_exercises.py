@@ -669,7 +669,7 @@ def test_project_to_pixels_passes_right_answers_in_other_forms(right, capsys):
     (lambda X, f, p, size: f / p * X[:, :2] / X[:, 2:3] + (np.array(size) + 1) / 2, "1-based pixels"),
     (lambda X, f, p, size: f / p * X[:, :2] / X[:, 2:3] + [(size[0] - 1) / 2, size[1] / 2], "half-pixel offset in v only"),
     (lambda X, f, p, size: f / p * X[:, :2] / X[:, 2:3] + (size[0] - 1) / 2, r"\(W - 1\) / 2 for both"),
-    (lambda X, f, p, size: f / p * X[:, :2] / X[:, 2:3] + np.array(size) / 2 - 1, "not W / 2 - 1"),
+    (lambda X, f, p, size: f / p * X[:, :2] / X[:, 2:3] + np.array(size) / 2 - 1, "yours is W / 2 - 1"),
     (lambda X, f, p, size: np.round(f / p * X[:, :2] / X[:, 2:3] + (np.array(size) - 1) / 2), "rounded to whole pixels"),
     (lambda X, f, p, size: f / p * X[:, :2] / (X[:, 2:3] + f) + (np.array(size) - 1) / 2, "divided by Z \\+ f"),
     (lambda X, f, p, size: f / p * X[:, :2] / X[:, 2:3] + [(size[0] - 1) / 2, 0], "left out c_v"),

@@ -42,10 +42,14 @@ def test_pinhole_projection_box_width_follows_f_over_z():
         demo.set(focal_mm=f_mm, distance=Z)
         nearest = np.unique(scenes.plane_outlines(scenes.box_before_wall(Z)[0]).reshape(-1, 3), axis=0)[:, 2].min()
         assert 0 < demo.state["f_draw"] < nearest   # the drawn image planes stay between pinhole and box
-    demo.set(focal_mm=50, distance=2.0)
+    demo.set(focal_mm=50, distance=4.0)
     drawn = demo.state["f_draw"]
     demo.set(focal_mm=100)   # the 3-D planes move out with f (lesson 01's complaint: frozen above 50 mm)
     assert demo.state["f_draw"] == pytest.approx(2 * drawn) and demo.state["draw_scale"] == pytest.approx(12)
+    demo.set(focal_mm=50, distance=2.0)
+    drawn = demo.state["f_draw"]
+    demo.set(focal_mm=100)   # nearer the box they stop half way to it, still further out than at 50 mm
+    assert drawn < demo.state["f_draw"] <= pinhole_camera.PLANE_ROOM * 1.76
     demo.set(focal_mm=100, distance=0.8)
     assert demo.state["bar_clipped"] and demo.state["box_width_px"] > pinhole_camera.SIZE[0]
     demo.set(focal_mm=50, distance=2.0)
@@ -70,10 +74,11 @@ def test_pinhole_size_regimes():
     assert demo.state["limited_by"] == "balanced"
     demo.set(focal_mm=300)  # the hole left at 0.35 mm, now too small: diffraction-limited
     assert demo.state["blur_mm"] == pytest.approx(1.61, abs=0.01) and demo.state["blur_px"] == pytest.approx(4.8, abs=0.1)
-    assert demo.state["limited_by"] == "diffraction-limited" and demo.state["legible_rows"] == 4
-    demo.set(diameter_mm=demo.state["best_mm"])  # at f = 300 mm's own best hole: 1.45 mm, 4.3 px (lesson 01, cell 19)
+    assert demo.state["limited_by"] == "diffraction-limited"
+    assert demo.state["legible_rows"] == 5   # the long camera is sharper: the fifth row comes back even at d = 0.35 mm
+    demo.set(diameter_mm=demo.state["best_mm"])  # at f = 300 mm's own best hole: 1.45 mm, 4.3 px (lesson 01)
     assert demo.state["blur_mm"] == pytest.approx(1.45, abs=0.01) and demo.state["blur_px"] == pytest.approx(4.3, abs=0.1)
-    assert demo.state["legible_rows"] == 5   # the long camera is sharper: the fifth row comes back
+    assert demo.state["legible_rows"] == 5
 
 
 def test_pinhole_size_shows_the_light_a_hole_costs():

@@ -386,6 +386,10 @@ def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | N
             and isinstance(expected, np.ndarray) and got[0].shape == expected.shape):
         made = "a trailing comma, `return x,`, makes a tuple" if isinstance(got, tuple) else "brackets, `[x]`, make a list"
         return f"you returned a {kind} holding your array: {made}; return the array itself"
+    if (isinstance(got, (tuple, list)) and len(got) == 1 and isinstance(expected, (float, int, np.number))
+            and np.ndim(got[0]) == 0 and not isinstance(got[0], (str, bytes))):
+        made = "a trailing comma, `return x,`, makes a tuple" if isinstance(got, tuple) else "brackets, `[x]`, make a list"
+        return f"you returned a {kind} of shape (1,); return one number: {made}; return the number itself"
     not_real = _not_real_numbers(got, kind, wanted)
     if not_real:
         return not_real

@@ -193,7 +193,7 @@ def _pixel_cases():
     rng = np.random.default_rng(7)
     pts = np.column_stack([rng.uniform(-0.8, 0.8, (6, 2)), rng.uniform(1.5, 6, 6)])
     return [
-        (np.array([[0.15, -0.15, 1.85]]), 0.05, 112.5e-6, (320, 240)),        # the worked example's corner
+        (np.array([[0.15, -0.15, 1.85]]), 0.05, 112.5e-6, (320, 240)),        # the worked example's camera, an unturned box corner
         (np.array([[0.4, 0.1, 2.0], [-0.2, 0.3, 4.0]]), 0.03, 6e-6, (640, 480)),  # (2, 2) / (2,) broadcasts
         (pts, 0.024, 4e-6, (1280, 720)),
     ]
@@ -242,7 +242,8 @@ def _pixel_slips(X, f, pitch, size, e):
         (m[:, ::-1] + c, "u and v are swapped: column 0 is u (from X), column 1 is v (from Y)"),
         (e + 1, "off by one: 1-based pixels. Python and OpenCV count pixels from 0, so the centre of a W-pixel row is"
                 " (W - 1) / 2 (159.5 for 320 pixels), not (W + 1) / 2"),
-        (e - 0.5, "the centre is (W - 1) / 2 = W / 2 - 0.5 (159.5 for 320 pixels), not W / 2 - 1"),
+        (e - 0.5, "the centre is (W - 1) / 2 = W / 2 - 0.5, a half-integer (159.5 for 320 pixels); yours is"
+                  " W / 2 - 1 (159): an integer division (W - 1) // 2 drops the .5 (divide with /, not //)"),
         (e + [0.5, 0], "a half-pixel offset in u only: c_u = (W - 1) / 2, as c_v = (H - 1) / 2 (not W / 2)"),
         (e + [0, 0.5], "a half-pixel offset in v only: c_v = (H - 1) / 2, as c_u = (W - 1) / 2 (not H / 2)"),
         (m + c[0], "you used (W - 1) / 2 for both coordinates: c_v = (H - 1) / 2 comes from the height, size[1]"),
@@ -328,6 +329,7 @@ register_exercise(Exercise(
         (lambda X, f, s, size: (f / s * X[:, :2] / X[:, 2:3] + (np.array(size) - 1) / 2).T, "transposed"),
         (lambda X, f, s, size: (f / s * X[:, :2] / X[:, 2:3] + (np.array(size) - 1) / 2).tolist(), "numpy array"),
         (lambda X, f, s, size: f / s * X[:, 1:3] / X[:, 3:4] + (np.array(size) - 1) / 2, "counting columns from 1"),
+        (lambda X, f, s, size: f / s * X[:, :2] / X[:, 2:3] + (np.array(size) - 1) // 2, "integer division"),
         (lambda X, f, s, size: f"{f / s * X[0, 0] / X[0, 2]:.1f}", "you returned a str"),
     ),
     teaching=project_to_pixels,
@@ -381,6 +383,19 @@ def _fx_diagnosis(args, got, expected) -> str:
         ((W - 1) / 2 / np.tan(half), "the sensor spans all W pixels: its edges are the outer edges of the first and"
                                      " last pixels, W pixels apart; (W - 1) / 2 is the centre's coordinate, not the"
                                      " half-width"),
+        ((W + 1) / 2 / np.tan(half), "off by one, 1-based: (W + 1) / 2 is the centre pixel counted from 1; the half-width is W / 2,"
+                                     " since the sensor's edges are the outer edges of its first and last pixels"),
+        ((W - 1) // 2 / np.tan(half), "(W - 1) // 2 is the centre pixel's index rounded down by the integer division"
+                                      " //; the half-width is W / 2 (the sensor's edges are the outer edges of its"
+                                      " first and last pixels), and divide with /"),
+        (W / full, "the small-angle shortcut tan(a) ~ a: FOV / 2 is no small angle (tan 25 deg is 0.466, against"
+                   " 0.436 rad); use the tangent itself, f_x = (W / 2) / tan(FOV / 2)"),
+        (W / 2 / np.arctan(half), "arctan is the inverse of tan: tan(FOV / 2) = (W / 2) / f_x needs np.tan, not"
+                                  " np.arctan"),
+        (W / 2 / np.radians(np.tan(fov / 2)), "np.radians(np.tan(...)) converts the tangent, a plain number, as if it"
+                                              " were an angle: convert the angle first, np.tan(np.radians(fov_deg) / 2)"),
+        (W / 2 / np.tan(half / 2), "the angle is halved twice: np.radians(fov_deg) / 2 is already FOV / 2 (or"
+                                   " np.radians(fov_deg / 2)); do not halve it again"),
         (H / 2 / np.tan(half), "size is (width, height): the horizontal field of view spans the width, size[0]"),
         (W / 2 / np.sin(half), "tan, not sin: the right triangle has legs f_x (along the axis) and W / 2 (across)"),
         (2 * np.tan(half) / W, "upside down: tan(FOV / 2) = (W / 2) / f_x, so f_x = (W / 2) / tan(FOV / 2)"),
@@ -434,6 +449,12 @@ register_exercise(Exercise(
         (lambda fov, size: float(int(size[0] / 2 / np.tan(np.radians(fov) / 2))), "rounded"),
         (lambda fov, size: np.hypot(*size) / 2 / np.tan(np.radians(fov) / 2), "diagonal"),
         (lambda fov, size: 0.018 / np.tan(np.radians(fov) / 2), "f in metres"),
+        (lambda fov, size: (size[0] + 1) / 2 / np.tan(np.radians(fov) / 2), "1-based"),
+        (lambda fov, size: (size[0] - 1) // 2 / np.tan(np.radians(fov) / 2), "integer division"),
+        (lambda fov, size: size[0] / np.radians(fov), "small-angle"),
+        (lambda fov, size: size[0] / 2 / np.arctan(np.radians(fov) / 2), "arctan is the inverse"),
+        (lambda fov, size: size[0] / 2 / np.tan(np.radians(fov / 2) / 2), "halved twice"),
+        (lambda fov, size: (size[0] / 2 / np.tan(np.radians(fov) / 2),), "trailing comma"),
         (lambda fov, size: f"{size[0] / 2 / np.tan(np.radians(fov) / 2):.1f}", "you returned a str"),
     ),
     teaching=focal_length_pixels,
@@ -495,6 +516,13 @@ def _exposure_diagnosis(args, got, expected) -> str:
         (t * (f / (d / 2) / N) ** 2, "you used the hole's radius; the f-number is f over the diameter d*"),
         (Np, "you returned the pinhole's f-number f / d*; return the exposure time in seconds"),
         (d, "you returned the best diameter d*; return the exposure time in seconds"),
+        (t * Np ** 2 / N, "square N_lens too: the light goes as 1 / N^2 for the lens as for the pinhole, so the"
+                          " time is t_lens (N / N_lens)^2 = t_lens N^2 / N_lens^2"),
+        (t * Np / N ** 2, "square the pinhole's f-number too: the time is t_lens (N / N_lens)^2 = t_lens N^2 / N_lens^2"),
+        (t * np.sqrt(Np / N), "square the ratio, do not take its root: light goes as the hole's area, (d / f)^2, so"
+                              " the time is t_lens (N / N_lens)^2"),
+        (t * (f / (2 * d) / N) ** 2, "you used the best blur, 2 d*, as the hole: b(d*) = d* + d* = 2 d* is the blur"
+                                     " at the best hole; the hole itself is d* = sqrt(2.44 lambda f)"),
         ((Np / N) ** 2, "you returned the ratio of the exposure times, (N / N_lens)^2; multiply by the lens's time"
                         " t_lens for the pinhole's time in seconds"),
         (1e3 * expected, "your answer is 1000 times the expected one: milliseconds, or f in millimetres (the time"
@@ -512,7 +540,7 @@ def _exposure_diagnosis(args, got, expected) -> str:
             return cause
     ratio = g / expected
     k = np.log10(ratio) / 3
-    if abs(k - round(k)) < 0.01 and round(k) != 0:
+    if abs(k - round(k)) < 1.5e-4 and round(k) != 0:   # within 0.1 % of a power of 1000: true unit slips are exact
         return (f"your answer is {ratio:.3g} times the expected one: a unit slip (the wavelength in nm or um, or f in"
                 " mm?); keep every length in metres, and the time in seconds")
     return "exposure time t_lens (N / N_lens)^2, with the pinhole's f-number N = f / d* and d* = sqrt(2.44 lambda f)"
@@ -548,7 +576,10 @@ register_exercise(Exercise(
         (lambda f, lam, t, N: t * (f / np.sqrt(2.44 * 550e-9 * f) / N) ** 2, "you used 550 nm"),
         (lambda f, lam, t, N: t * (f / np.sqrt(2.44 * lam * f / (1 + f)) / N) ** 2, "distant object"),
         (lambda f, lam, t, N: t * (f / np.sqrt(2.44 * lam * f) / N) ** 2 / 60, "minutes"),
-        (lambda f, lam, t, N: [t * (f / np.sqrt(2.44 * lam * f) / N) ** 2], "one number"),
+        (lambda f, lam, t, N: t * (f / np.sqrt(2.44 * lam * f)) ** 2 / N, "square N_lens too"),
+        (lambda f, lam, t, N: t * np.sqrt(f / np.sqrt(2.44 * lam * f) / N), "do not take its root"),
+        (lambda f, lam, t, N: t * (f / (2 * np.sqrt(2.44 * lam * f)) / N) ** 2, "the best blur, 2 d*, as the hole"),
+        (lambda f, lam, t, N: [t * (f / np.sqrt(2.44 * lam * f) / N) ** 2], "brackets"),
         (lambda f, lam, t, N: f"{t * (f / np.sqrt(2.44 * lam * f) / N) ** 2:.0f} s", "you returned a str"),
     ),
     teaching=best_pinhole_exposure,

@@ -254,7 +254,7 @@ def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
     }
     for key in ("y", "y_real"):
         art["dims"][key]["label"].set_fontsize(9)
-    ax.set_xlim(-0.36 * z_max, 1.14 * z_max)  # room for the real plane's label at f = 1 m and for Y's at Z = 5 m
+    ax.set_xlim(-0.28 * z_max, 1.14 * z_max)  # room for the real plane's label at f = 1 m and for Y's at Z = 5 m
     ax.set_ylim(-h_max, h_max)
     ax.set_aspect("equal")  # similar triangles look similar only at equal scales
     ax.set_xlabel("depth z (m)")
@@ -631,7 +631,9 @@ def draw_pinhole_cones(ax, diameter: float, focal_length: float, object_distance
     ax.plot([0, 0, np.nan, 0, 0], [wall, a, np.nan, -a, -wall], color="k", lw=3, solid_capstyle="butt")
     # between the image plane and the screen, above the cones: the screen, whose gap on the axis is the hole
     ax.annotate("screen,\nhole d", (0, 0.75 * wall), xytext=(0.5 * x_img, 0.75 * wall), ha="center", va="center",
-                fontsize=8, arrowprops=dict(arrowstyle="-", color="k", lw=0.8, shrinkA=2, shrinkB=2))
+                fontsize=8, arrowprops=dict(arrowstyle="->", color="k", lw=0.8, shrinkA=1, shrinkB=2))
+    ax.annotate("image\nplane", (x_img, -0.75 * wall), xytext=(0.5 * x_img, -0.75 * wall), ha="center", va="center",
+                fontsize=8, arrowprops=dict(arrowstyle="->", color="k", lw=0.8, shrinkA=1, shrinkB=1))
     ax.axhline(0, color=palette.GREY, lw=0.6, zorder=0)
     ax.axvline(x_img, color="0.3", lw=1, ls="--")
     ax.set_xlim(x_img * 1.12, x_in)

@@ -66,7 +66,8 @@ def letter_chart(width: float = 0.3, *, R: ArrayLike = np.eye(3), t: ArrayLike =
     """An optician's chart (6 : 5): rows of capitals, each row smaller, for judging blur by eye.
 
     The rows' cap heights are ``CHART_ROW_HEIGHTS`` / 600 of ``width`` (metres): the smallest row
-    is still legible while the blur is smaller than about half its height.
+    is still legible while the blur is smaller than about 4/5 of its height (lesson 01's
+    ``camlab.widgets.pinhole_camera.LEGIBLE``, set by eye on that demo's pictures).
     """
     return textured_plane(_chart_texture(int(seed)), width, R=R, t=t, name=name)
 

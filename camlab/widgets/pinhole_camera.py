@@ -21,7 +21,7 @@ SENSOR = (SIZE[0] * PITCH, SIZE[1] * PITCH)  # its width and height, metres (36 
 # distance, w f_draw / f wide: it frames the picture as the sensor frames the image beside it, and
 # narrows around the picture as f grows (the field of view) even where the planes stop moving.
 PLANE_SCALE = 12.0
-PLANE_ROOM = 0.7
+PLANE_ROOM = 0.5
 PLANE_MAX = 1.2
 DEPTH_RANGE = (-1.3, 4.5)  # the 3-D view's z limits (metres): the real plane at PLANE_MAX to the box at 4 m
 SIDE_RANGE = 0.3  # ...and its x and y half-range
@@ -49,7 +49,7 @@ def _bar_ends(u_min: float, u_max: float, width: int) -> tuple[list, list]:
 def pinhole_projection():
     """A box, the pinhole and both image planes in 3-D beside the image the camera records."""
     controls = {
-        "focal_mm": slider(50, 15, 100, 1, "focal length f (mm)"),
+        "focal_mm": slider(50, 15, 100, 1, "focal length f (mm)", readout_format=".0f"),
         "distance": slider(2.0, 0.8, 4.0, 0.1, "box distance Z (m)"),
         "real_plane": W.Checkbox(value=False, description="show the real image (rotated 180 degrees)"),
     }
@@ -67,6 +67,10 @@ def pinhole_projection():
     ax3.xaxis.labelpad = 8  # clear of the depth axis' tick labels
     squeeze = optics.axis_scales(ax3)[1] / optics.axis_scales(ax3)[0]  # x, y per metre against z per metre
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
+    ax_img.set_xticks([0, 160, SIZE[0] - 1]); ax_img.set_yticks([0, 120, SIZE[1] - 1])   # pixels, as the title counts
+    ax_img.tick_params(labelsize=7, length=2, pad=1)
+    ax_img.set_xlabel("u (px)", fontsize=7, labelpad=0)
+    ax_img.set_ylabel("v (px)", fontsize=7, labelpad=0)
     width_bar = ax_img.plot([], [], color="k", lw=2, path_effects=palette.halo(2))[0]
     bar_ends = ax_img.plot([], [], ls="none", color="k", marker="|", ms=10, mew=2, path_effects=palette.halo(2))[0]
     view.fig.text(0.01, 0.985, f"not to scale: depth z drawn {squeeze:.1f} x shorter than x and y", fontsize=8.5,
@@ -119,6 +123,11 @@ def pinhole_projection():
                       extra=[readout])
 
 
+def _signed(x: float, digits: int) -> str:
+    """``x`` with its sign, "+0.133" or "-0.267", and a plain "0.000" where it rounds to zero (never "-0.000")."""
+    return f"{x:+.{digits}f}" if round(x, digits) != 0 else f"{0:.{digits}f}"
+
+
 @register(lesson="01", sweep={"f": [0.3, 1.0], "Z": [1.2, 5.0], "Y": [-1.0, 0.0, 0.4, 1.0]})
 def similar_triangles():
     """A side view of a room-sized camera obscura: drag the object point and read y / f = Y / Z off the triangles."""
@@ -130,10 +139,10 @@ def similar_triangles():
     view = FigureView(figsize=(8.8, 4))
     ax = view.fig.subplots()
     art = optics.draw_similar_triangles(ax, z_max=5.6, h_max=1.3)
-    ax.set_title("click or drag in the figure to move the object point", fontsize=9)
+    ax.set_title(" \n ", fontsize=9)   # the two ratios, set by update: the lesson's equality in the picture itself
     readout = W.HTML()  # beside the sliders, where it never covers the object point
-    movers = [art[k] for k in ("big", "small", "object", "point", "ray", "planes", "virtual", "real", "pinhole",
-                               "pinhole_dot")]
+    movers = [ax.title] + [art[k] for k in ("big", "small", "object", "point", "ray", "planes", "virtual", "real",
+                                            "pinhole", "pinhole_dot")]
     for dim in art["dims"].values():
         movers += [dim["arrow"], dim["label"]]
     view.animate(*movers)
@@ -142,6 +151,9 @@ def similar_triangles():
         f, Z, Y = values["f"], values["Z"], values["Y"]
         y = optics.update_similar_triangles(art, f, Z, Y)
         state.update(y=y, ratio_image=y / f, ratio_object=Y / Z)
+        ax.set_title(f"y / f = {_signed(y * 100, 1)} cm / {f * 100:.0f} cm = {_signed(y / f, 3)}   and   Y / Z ="
+                     f" {_signed(Y, 2)} m / {Z:.2f} m = {_signed(Y / Z, 3)}\nclick or drag in the figure to move the object"
+                     " point", fontsize=9)
         readout.value = monospace(f"y / f = {y / f:+.3f}\nY / Z = {Y / Z:+.3f}\n=> y = f Y / Z = {y * 100:+.1f} cm")
 
     demo = build_demo("similar_triangles", controls, view, update, title="Similar triangles: y / f = Y / Z",
@@ -163,7 +175,8 @@ BALANCED = 0.05  # the readout calls the blur "balanced" while its two terms dif
 REFERENCE = (0.35e-3, 0.1)  # the (d, f) whose exposure time "fixed exposure" keeps: the demo's default
 
 
-LEGIBLE = 1.5  # a chart row counts as legible while its letters are taller than 1.5 times the blur diameter
+LEGIBLE = 1.25  # a chart row counts as legible while its letters are taller than 1.25 times the blur diameter
+# (set by eye on the demo's own pictures: letters 1.47 times the blur read, 1.07 times do not)
 
 
 def legible_rows(blur_px: float) -> int:
@@ -172,7 +185,7 @@ def legible_rows(blur_px: float) -> int:
     The chart's rows are :data:`CHART_ROW_HEIGHTS` tall on a 0.3 m chart of 600 texels; the demo's sensor
     spans the same field of view at every f (0.36 f wide, 320 pixels) with the chart at :data:`PAGE_Z`, so
     each row's height in pixels, H 0.3 / 600 x (320 / 0.36 / PAGE_Z), is the same at every f (40 px down
-    to 7 px). By eye a letter survives a blur up to 2/3 of its height.
+    to 7 px). By eye a letter survives a blur up to 4/5 of its height (:data:`LEGIBLE`).
     """
     rows_px = np.array(CHART_ROW_HEIGHTS) * 0.3 / 600 * SIZE[0] / (0.36 * PAGE_Z)
     return int(np.sum(rows_px > LEGIBLE * blur_px))
@@ -190,15 +203,22 @@ def relative_exposure(d: float, f: float) -> float:
     return (d / f) ** 2 / (d_ref / f_ref) ** 2
 
 
+# The d slider steps in log10(d) from D_LOG_MIN; the grid runs through the default 0.35 mm, so a drag back lands on
+# it, and 0.003 per step puts a stop within 0.3 % of every d the lesson names (0.05, 0.56 and 1.5 mm).
+D_LOG_STEP = 0.003
+D_LOG_MIN = np.log10(0.35) - 356 * D_LOG_STEP   # 0.0299 mm
+D_LOG_MAX = np.log10(0.35) + 285 * D_LOG_STEP   # 2.51 mm
+
+
 @register(lesson="01", sweep={"diameter_mm": [0.03, 0.05, 0.35, 1.5, 2.5], "focal_mm": [30, 100, 300],
                               "fixed_exposure": [True, False]})
 def pinhole_size():
     """Blur against pinhole diameter (geometric versus diffraction) and the blurred chart it gives."""
     controls = {
-        "diameter_mm": W.FloatLogSlider(value=0.35, base=10, min=np.log10(0.03), max=np.log10(2.5), step=0.02,
-                                        description="pinhole d (mm)", continuous_update=True,
+        "diameter_mm": W.FloatLogSlider(value=0.35, base=10, min=D_LOG_MIN, max=D_LOG_MAX, step=D_LOG_STEP,
+                                        description="pinhole d (mm)", continuous_update=True, readout_format=".2f",
                                         style={"description_width": "initial"}, layout=W.Layout(width="300px")),
-        "focal_mm": slider(100, 30, 300, 5, "focal length f (mm)"),
+        "focal_mm": slider(100, 30, 300, 5, "focal length f (mm)", readout_format=".0f"),
         "fixed_exposure": W.Checkbox(value=False, description="fixed exposure time (true brightness)"),
     }
     view = FigureView(figsize=(8.8, 4))
@@ -233,8 +253,8 @@ def pinhole_size():
         default = f"(d = {REFERENCE[0] * 1e3:g} mm, f = {REFERENCE[1] * 1e3:g} mm)"
         if values["fixed_exposure"]:  # the reference's exposure time: the image darkens (or burns out) with (d/f)^2
             img = np.clip(img * light, 0.0, 1.0)
-            white = float(np.mean(img >= 1.0))
-            note = (f", burnt out: {white:.0%} of pixels white" if white > 0.5
+            grey = int(np.sum(img < 1.0))   # a count, never a percentage rounded up to "100 %"
+            note = (f", burnt out: all but {grey} pixels white" if grey < 0.5 * img.size
                     else ", nearly black" if img.max() < 0.1 else "")
             ax_img.set_title(f"the default's exposure time {default}:\n{_times(light)} x the light{note}", fontsize=9)
         else:
