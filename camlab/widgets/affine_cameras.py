@@ -194,7 +194,7 @@ def dolly_zoom():
         if ax is ax_para:
             ax.set_ylabel("")
         under[m] = model_line(ax, "perspective", lw=0.9, zorder=1.5)  # red under the affine cube, as in three_cameras
-        lines[m] = model_line(ax, m, lw=1.6)
+        lines[m] = model_line(ax, m, lw=1.6 if m == "weak perspective" else 1.9)  # the dots thicker, to read
         ax.plot([319.5], [239.5], **PRINCIPAL_POINT_MARKER)
         references[m] = reference_marker(ax)
         # The readout sits in the top-left corner, where no part of the cube comes at any setting (its images
@@ -348,7 +348,7 @@ def projection_rays():
     """A top view of four camera models (after Szeliski fig. 2.7): how each sends the
     corners of a block to the image line. Move the block sideways: on the optical axis weak and
     para-perspective coincide; off it, para-perspective's rays run parallel to the line of sight to X0
-    (drawn dashed), its viewing direction, as weak perspective's run parallel to the optical axis."""
+    (drawn dash-dot), its viewing direction, as weak perspective's run parallel to the optical axis."""
     view = FigureView(figsize=(10, 4.75))
     axes = view.fig.subplots(1, 4, sharey=True)
     artists = {}
