@@ -536,6 +536,9 @@ def _para_specific(camera, X0):
         (_para_outer_reshaped(camera, X0),
          "np.outer(R[2], ab) is (3, 2), and reshaping it to (2, 3) scrambles its entries: the block of a r3 and "
          "b r3 is np.outer(ab, R[2]) (2, 3), or ab[:, None] * R[2]."),
+        (_p_para(K, R, t, d0, np.arctan(ab)),
+         "your (a, b) are angles, arctan(x_c / d0) and arctan(y_c / d0): (a, b) are the tangents themselves, "
+         "(x_c, y_c) / d0, X0's normalised image position (no arctan, no degrees)."),
     ]
 
 
@@ -669,6 +672,7 @@ register_exercise(Exercise(
         (lambda camera, X0: _para_specific(camera, X0)[17][0], "both rows use a"),
         (lambda camera, X0: _para_specific(camera, X0)[18][0], "both rows use b"),
         (_para_outer_reshaped, "np.outer(ab, R[2])"),
+        (lambda camera, X0: _para_specific(camera, X0)[20][0], "your (a, b) are angles"),
     ),
     teaching=paraperspective_approximation,
 ))
