@@ -259,8 +259,9 @@ def dolly_zoom_camera(distance: float, azimuth: float, elevation: float, target:
     """
     distance = check_positive(distance, "distance", "metres")
     f = dolly_zoom_focal(f0, d0, distance)
+    eye = orbit_eye(azimuth, elevation, distance, target)  # checks target: a 3-D point
     target = np.asarray(target, dtype=float)
-    R = Camera.look_at(orbit_eye(azimuth, elevation, distance, target), target).R
+    R = Camera.look_at(eye, target).R
     shift = float(image_offset) * d0 / f0  # metres right of the principal axis (camera x)
     centre = target - shift * R[0] - distance * R[2]
     return Camera(intrinsic_matrix(f, f, *principal_point), R, -R @ centre)
