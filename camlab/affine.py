@@ -239,23 +239,32 @@ def paraperspective_approximation(camera: Camera, reference_point: ArrayLike) ->
 def dolly_zoom_camera(distance: float, azimuth: float, elevation: float, target: ArrayLike, f0: float = 800.0,
                       d0: float = 4.0, principal_point: tuple[float, float] = (319.5, 239.5),
                       image_offset: float = 0.0) -> Camera:
-    """A camera ``distance`` metres from ``target`` on the orbit (``azimuth``, ``elevation``, radians:
-    :func:`camlab.camera.orbit_eye`), looking at it, zoomed to :func:`dolly_zoom_focal` ``(f0, d0, distance)``
-    so the target keeps the size it has at ``d0`` with focal length ``f0`` (pixels). See lesson 05, section 2.
+    r"""A camera on a dolly zoom towards ``target``, its depth ``distance`` metres, zoomed to
+    :func:`dolly_zoom_focal` ``(f0, d0, distance)`` so the target keeps the size it has at depth ``d0`` with
+    focal length ``f0`` (pixels). See lesson 05, section 2.
 
-    ``image_offset`` (pixels) turns the camera so the target images about that far right of the
-    principal point, at every distance (off the optical axis, where weak and para-perspective differ).
+    The camera keeps one orientation R at every distance: that of a camera on the orbit (``azimuth``,
+    ``elevation``, radians: :func:`camlab.camera.orbit_eye`) looking at the target. It moves along its own
+    principal axis, as in H&Z §6.3.1: :math:`C = X_T - s\,r_1 - d\,r_3`, so the target has camera
+    coordinates :math:`(s, 0, d)`, depth ``distance`` = d. ``image_offset`` (pixels) sets the sideways
+    shift :math:`s = \text{image\_offset}\; d_0 / f_0` metres, which images the target exactly
+    ``image_offset`` px right of the principal point at every distance (:math:`f s / d = f_0 s / d_0`, as
+    f grows like d). With ``image_offset = 0`` the camera looks straight at the target from ``distance``
+    metres on the orbit.
+
+    As the camera keeps R and moves along r3, every point's lateral camera coordinates (x, y) stay fixed
+    and its depth grows by the same amount, while f / d stays f0 / d0: the affine approximation
+    :math:`P_\infty` about the target is the same matrix at every distance, the fixed image the
+    perspective one converges to.
     """
     distance = check_positive(distance, "distance", "metres")
     f = dolly_zoom_focal(f0, d0, distance)
-    eye = orbit_eye(azimuth, elevation, distance, target)
-    K = intrinsic_matrix(f, f, *principal_point)
-    on_axis = Camera.look_at(eye, target, K=K)
-    if image_offset == 0:
-        return on_axis
-    # A lateral shift s of the aim point at distance d moves the target by f s / d = image_offset pixels.
-    aim = np.asarray(target, dtype=float) - float(image_offset) * distance / f * on_axis.R[0]
-    return Camera.look_at(eye, aim, K=K)
+    eye = orbit_eye(azimuth, elevation, distance, target)  # checks target: a 3-D point
+    target = np.asarray(target, dtype=float)
+    R = Camera.look_at(eye, target).R
+    shift = float(image_offset) * d0 / f0  # metres right of the principal axis (camera x)
+    centre = target - shift * R[0] - distance * R[2]
+    return Camera(intrinsic_matrix(f, f, *principal_point), R, -R @ centre)
 
 
 def dolly_zoom_errors(points_world: ArrayLike, distances: ArrayLike, azimuth: float, elevation: float,

@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 from camlab import affine as af
 from camlab import camera as cm
 from camlab._validate import CamlabInputError, DegenerateError
-from camlab.scenes import box_wireframe
+from camlab.scenes import box_and_rails, box_wireframe
 
 os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
 
@@ -167,6 +167,11 @@ def test_three_cameras_demo_difference_shrinks_with_distance():
     d.set(distance=18.0)
     assert d.state["max_difference"] < near / 3      # the largest gap inside the frame (px)
     assert af.is_affine(d.state["P_weak"])
+    # a half turn about the vertical leaves the scene as it is: azimuth -90 .. 90 shows every view once
+    segments = lambda S: {frozenset(map(tuple, np.round(seg, 9) + 0.0)) for seg in S}
+    scene = box_and_rails()
+    assert segments(scene * [-1, -1, 1]) == segments(scene)    # demos.TARGET is on the vertical axis x = y = 0
+    assert (d.controls["azimuth"].min, d.controls["azimuth"].max) == (-90, 90)
     d.set(distance=2.0)                                # the slider's minimum: the near rails run behind the
     u, v = d.figure.axes[0].lines[0].get_data()        # camera, and are clipped there, not dropped
     assert np.isfinite(u).sum() == 2 * (12 + 4)        # both ends of the 12 cube edges and the 4 rails
@@ -308,9 +313,16 @@ def test_dolly_zoom_camera_keeps_the_target_size_and_the_error_falls_like_one_ov
     near, far = (af.dolly_zoom_camera(d, np.radians(-40), np.radians(20), target) for d in (4.0, 16.0))
     assert np.isclose(np.linalg.norm(near.centre - target), 4.0) and np.isclose(far.K[0, 0], 4 * near.K[0, 0])
     np.testing.assert_allclose(near.project(target), [319.5, 239.5], atol=1e-9)  # looking at it
-    for d in (4.0, 16.0, 64.0):                    # image_offset keeps the target about that far off centre
-        off = af.dolly_zoom_camera(d, np.radians(-40), np.radians(20), target, image_offset=100.0)
-        assert off.project(target)[0] - 319.5 == pytest.approx(100.0, rel=0.01)
+    # image_offset slides the camera sideways; it then moves along its own principal axis (H&Z 6.3.1):
+    # one R, the target exactly 100 px right at depth d, and P_inf about the target one fixed matrix.
+    off = [af.dolly_zoom_camera(d, np.radians(-40), np.radians(20), target, image_offset=100.0) for d in (2.0, 16.0, 64.0)]
+    for d, cam in zip((2.0, 16.0, 64.0), off):
+        np.testing.assert_allclose(cam.project(target), [419.5, 239.5], atol=1e-9)
+        assert cam.depth(target) == pytest.approx(d) and np.allclose(cam.R, near.R)
+        np.testing.assert_allclose(af.affine_approximation(cam, target), af.affine_approximation(off[0], target),
+                                   atol=1e-9)
+    step = off[1].centre - off[0].centre
+    np.testing.assert_allclose(step, -14.0 * near.R[2], atol=1e-9)   # along the principal axis
     cube = box_wireframe((0, 0, 0.5), (1, 1, 1)).reshape(-1, 3)
     d = np.array([8.0, 16.0, 32.0])
     rms = af.dolly_zoom_errors(cube, d, np.radians(-40), np.radians(20), target)
@@ -369,7 +381,7 @@ def _reference_markers(ax):
     return [ln for ln in ax.lines if ln.get_marker() == REFERENCE_MARKER["marker"]]
 
 
-@pytest.mark.parametrize("settings", [{}, {"azimuth": 180, "distance": 2.0}, {"elevation": 80}])
+@pytest.mark.parametrize("settings", [{}, {"azimuth": 90, "distance": 2.0}, {"elevation": 80}])
 def test_three_cameras_marks_X0_in_every_panel_where_it_images(settings):
     from camlab.widgets import affine_cameras as demos
 
@@ -419,9 +431,9 @@ def test_projection_rays_marks_X0_in_all_four_panels_and_the_line_of_sight_in_pa
     for ax in d.figure.axes:
         (marker,) = _reference_markers(ax)
         assert np.allclose(np.column_stack(marker.get_data())[0], d.state["reference"])
-    from_centre = [ln for ln in d.figure.axes[2].lines if len(ln.get_xdata()) == 2 and ln.get_linestyle() == "--"
+    from_centre = [ln for ln in d.figure.axes[2].lines if len(ln.get_xdata()) == 2 and ln.get_linestyle() == "-."
                    and np.allclose([ln.get_xdata()[0], ln.get_ydata()[0]], 0.0)]
-    (sight,) = from_centre                                   # one dashed line from the camera centre ...
+    (sight,) = from_centre                                   # one dash-dot line from the camera centre ...
     x, z = sight.get_data()
     assert np.isclose(x[1] / z[1], 2.5 / demos.RAY_DEPTH)    # ... through X0: the para-perspective rays' direction
 

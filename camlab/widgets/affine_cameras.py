@@ -9,6 +9,7 @@ In a lesson::
 from __future__ import annotations
 
 import numpy as np
+from matplotlib.legend_handler import HandlerTuple
 from matplotlib.lines import Line2D
 
 from .. import affine as af
@@ -79,7 +80,9 @@ def _image_panel(ax, title, model, size=(640, 480), tick_labels=True):
     return model_line(ax, model)
 
 
-@register(lesson="05", sweep={"azimuth": [-180, -80, 10, 100], "elevation": [0, 50, 80], "distance": [2.0, 12.0, 20.0]})
+# The scene (a cube on the target, four rails through it) looks the same after a half turn about the vertical,
+# so azimuth -90 .. 90 shows every view once.
+@register(lesson="05", sweep={"azimuth": [-90, 10, 90], "elevation": [0, 50, 80], "distance": [2.0, 12.0, 20.0]})
 def three_cameras():
     """Perspective, weak-perspective and orthographic images of the same scene side by side."""
     view = FigureView(figsize=(9.5, 3.35))
@@ -104,7 +107,7 @@ def three_cameras():
     X0 = scene.reshape(-1, 3).mean(axis=0)  # the weak-perspective camera's reference point (three_images)
     references = [(view.animate(*reference_marker(ax)),) for ax in axes]  # the legend names it
     controls = {
-        "azimuth": int_slider(-40, -180, 180, "azimuth (deg)", step=2),
+        "azimuth": int_slider(-40, -90, 90, "azimuth (deg)", step=2),
         "elevation": int_slider(20, 0, 80, "elevation (deg)"),
         "distance": slider(4.0, 2.0, 20.0, 0.25, "distance (m), dolly zoom"),
     }
@@ -149,9 +152,9 @@ def _dolly_error_axes(ax, distances):
               for m in APPROXIMATIONS}
     ax.set_xlim(distances[0] / 1.15, distances[-1] * 1.15)  # room for the whole marker at the slider's ends
     ax.set_ylim(*DOLLY_ERROR_LIMITS)
-    ax.set_title("RMS distance to the perspective image", fontsize=9)
+    ax.set_title("RMS distance to the perspective image", fontsize=9)  # as the axis label says
     ax.set_xlabel(f"distance d (m); focal length f = {F0:.0f} d / {D0:.0f} px", fontsize=8)
-    ax.set_ylabel("RMS difference (px)", fontsize=8)
+    ax.set_ylabel("RMS distance (px)", fontsize=8)
     ax.tick_params(labelsize=7)
     ax.axhline(1.0, color="0.5", lw=0.8, ls=":")
     ax.text(distances[-1], 1.15, "1 px", ha="right", va="bottom", fontsize=7, color="0.4")
@@ -185,15 +188,18 @@ def dolly_zoom():
     models = ("perspective", "weak perspective", "para-perspective")
     lines, under, readouts, references = {}, {}, {}, {}
     for ax, m in ((ax_weak, "weak perspective"), (ax_para, "para-perspective")):
-        scene3d.image_axes(ax, (640, 480), labels=False)
-        ax.set_title(f"{m} over perspective (px)", fontsize=9)
+        scene3d.image_axes(ax, (640, 480))
+        ax.set_title(f"{m} over perspective", fontsize=9)
         ax.tick_params(labelleft=ax is ax_weak)
+        if ax is ax_para:
+            ax.set_ylabel("")
         under[m] = model_line(ax, "perspective", lw=0.9, zorder=1.5)  # red under the affine cube, as in three_cameras
-        lines[m] = model_line(ax, m, lw=1.6)
+        lines[m] = model_line(ax, m, lw=1.6 if m == "weak perspective" else 1.9)  # the dots thicker, to read
         ax.plot([319.5], [239.5], **PRINCIPAL_POINT_MARKER)
         references[m] = reference_marker(ax)
-        # The readout sits under the axes, where no part of the cube can be.
-        readouts[m] = ax.text(0.5, -0.12, "", transform=ax.transAxes, fontsize=8, ha="center", va="top")
+        # The readout sits in the top-left corner, where no part of the cube comes at any setting (its images
+        # stay right of u = 170 px and below v = 95 px).
+        readouts[m] = ax.text(0.02, 0.975, "", transform=ax.transAxes, fontsize=8, ha="left", va="top")
     distances = np.geomspace(*DOLLY_DISTANCES, 60)
     curves, markers = _dolly_error_axes(ax_err, distances)
     model_legend(view.fig, models, reference=True, principal_point=True)
@@ -203,7 +209,7 @@ def dolly_zoom():
     # A log slider, as the error axis: the curves change fastest at a few metres.
     controls = {"distance": log_slider(D0, DOLLY_DISTANCES[0], DOLLY_DISTANCES[1], 0.01, "distance d (m)",
                                        readout_format=".3g"),
-                "offset": slider(DOLLY_OFFSET, 0, 100, 10, "cube right of centre (px)")}
+                "offset": int_slider(int(DOLLY_OFFSET), 0, 100, "cube right of centre (px)", step=10)}
     cache: dict = {}
 
     def update(v, state):
@@ -280,7 +286,7 @@ def parallel_rails():
     references = [(view.animate(*reference_marker(ax)),) for ax in (ax_p, ax_a)]  # where the two images agree
     model_legend(view.fig, (), reference=True, extra=(
         Line2D([], [], color="0.1", lw=3.5, label=f"the metres the readouts measure ({RAIL_SAMPLES[0]:.0f} and "
-                                                  f"{RAIL_SAMPLES[1]:.0f} m out)"),
+                                                  f"{RAIL_SAMPLES[1]:.0f} m along the track)"),
         Line2D([], [], marker="o", ms=12, mfc="none", mec="0.1", mew=1.1, ls="none",
                label=f"ring: the tiny {RAIL_SAMPLES[1]:.0f} m one"),
         Line2D([], [], marker="o", color=COLOURS["perspective"], ms=8, mfc="white", mew=2, ls="none",
@@ -320,6 +326,10 @@ def parallel_rails():
     return build_demo("parallel_rails", controls, view, update, title="Parallel lines: vanishing versus parallel")
 
 
+CENTRE_MARKER = dict(marker="o", color="0.1", ms=5, ls="none")  # the camera centre in the top views
+SCALING_STYLE = (0, (1.5, 2))  # the uniform scaling f / d0 of weak and para-perspective, after their rays
+SIGHT_STYLE = dict(color="0.2", lw=1.0, ls="-.")  # the line of sight to X0: dash-dot, unlike every other line
+
 RAY_DEPTH = 6.0  # d0: depth of the object's centre in the ray diagram (metres)
 RAY_IMAGE = 3.0  # where the ray diagram draws the image line (z, metres)
 _TURN = np.radians(12.0)  # the block is turned, so rays parallel to the axis do not run along its sides
@@ -338,7 +348,7 @@ def projection_rays():
     """A top view of four camera models (after Szeliski fig. 2.7): how each sends the
     corners of a block to the image line. Move the block sideways: on the optical axis weak and
     para-perspective coincide; off it, para-perspective's rays run parallel to the line of sight to X0
-    (drawn dashed), its viewing direction, as weak perspective's run parallel to the optical axis."""
+    (drawn dash-dot), its viewing direction, as weak perspective's run parallel to the optical axis."""
     view = FigureView(figsize=(10, 4.75))
     axes = view.fig.subplots(1, 4, sharey=True)
     artists = {}
@@ -352,32 +362,37 @@ def projection_rays():
         ax.axvline(0.0, color=palette.GREY, lw=0.6, ls=":")  # the optical axis
         ax.axhline(RAY_IMAGE, color="0.3", lw=1.0)  # the image line
         if model != "orthographic":  # an orthographic camera has no centre (it is at infinity)
-            ax.plot([0], [0], "o", color="0.2", ms=4)
+            ax.plot([0], [0], **CENTRE_MARKER)
         if model in ("weak perspective", "para-perspective"):
             ax.axhline(RAY_DEPTH, color="0.4", lw=0.8, ls="--")  # the plane z = d0 (dark enough over the block)
         block = ax.fill([], [], color=palette.GREY, alpha=0.18, lw=0)[0]  # light: rays and the plane z = d0 cross it
         rays = ax.plot([], [], color=COLOURS[model], lw=1.0)[0]
-        to_centre = ax.plot([], [], color=COLOURS[model], lw=0.7, ls=(0, (2, 2)))[0]
+        scaling = ax.plot([], [], color=COLOURS[model], lw=0.7, ls=SCALING_STYLE)[0]
         images = ax.plot([], [], "o", color=COLOURS[model], ms=4)[0]
         truth = ax.plot([], [], "|", color=COLOURS["perspective"], ms=10, mew=1.5)[0]  # perspective, to compare
         x0 = ax.plot([], [], zorder=4, **REFERENCE_MARKER)[0]
-        artists[model] = (block, rays, to_centre, images, truth, x0)
+        artists[model] = (block, rays, scaling, images, truth, x0)
         view.animate(*artists[model])
     # Para-perspective's rays are parallel to the line of sight to X0 (its viewing direction), as weak
     # perspective's are to the optical axis (the dotted vertical).
-    sight = view.animate(axes[2].plot([], [], color="0.35", lw=0.9, ls=(0, (6, 3)), zorder=1.8)[0])
-    grey = "0.25"
+    sight = view.animate(axes[2].plot([], [], zorder=1.8, **SIGHT_STYLE)[0])
+    corner_images = tuple(Line2D([], [], marker="o", color=COLOURS[m], ms=4, ls="none") for m in af.PROJECTION_MODELS)
     view.fig.legend(handles=[
-        Line2D([], [], color=grey, lw=1.0, label="ray to the image line (solid)"),
-        Line2D([], [], color=grey, lw=0.7, ls=(0, (2, 2)), label="on to the centre: scaling f / d0"),
+        Line2D([], [], color="0.25", lw=1.0, label="ray (solid; weak and para-perspective: up to z = d0)"),
+        Line2D([], [], color="0.25", lw=0.7, ls=SCALING_STYLE, label="then the scaling f / d0 towards the centre"),
         Line2D([], [], color="0.4", lw=0.8, ls="--", label="the plane z = d0"),
         Line2D([], [], color=palette.GREY, lw=0.8, ls=":", label="optical axis"),
-        Line2D([], [], marker="o", color=grey, ms=4, ls="none", label="image of a corner"),
+        Line2D([], [], label="camera centre", **CENTRE_MARKER),
+        corner_images,
         Line2D([], [], marker="|", color=COLOURS["perspective"], ms=10, mew=1.5, ls="none",
                label="perspective image, to compare"),
-        Line2D([], [], color="0.35", lw=0.9, ls=(0, (6, 3)), label="line of sight to X0"),
+        Line2D([], [], label="line of sight to X0", **SIGHT_STYLE),
         Line2D([], [], label=REFERENCE_LABEL, **REFERENCE_MARKER)],
-        loc="outside upper center", ncols=4, fontsize=8, frameon=False)
+        labels=["ray (solid; weak and para-perspective: up to z = d0)", "then the scaling f / d0 towards the centre",
+                "the plane z = d0", "optical axis", "camera centre", "image of a corner (each camera's colour)",
+                "perspective image, to compare", "line of sight to X0", REFERENCE_LABEL],
+        handler_map={tuple: HandlerTuple(ndivide=None, pad=0.1)},
+        loc="outside upper center", ncols=3, fontsize=8, frameon=False)
     axes[0].set_ylabel("depth z (m)", fontsize=8)
     axes[0].set_yticks([0, RAY_IMAGE, RAY_DEPTH], labels=["0: centre", f"{RAY_IMAGE:g}: image", f"{RAY_DEPTH:g}: d0"])
     controls = {"offset": slider(2.0, 0.0, 2.5, 0.25, "block's x offset (m)")}
@@ -387,12 +402,17 @@ def projection_rays():
         corners = RAY_OBJECT + reference
         perspective = af.projection_rays(corners, reference, "perspective", RAY_IMAGE)[:, 2]
         images_x = {}
-        for model, (block, rays, to_centre, images, truth, x0) in artists.items():
+        for model, (block, rays, scaling, images, truth, x0) in artists.items():
             r = af.projection_rays(corners, reference, model, RAY_IMAGE)
             block.set_xy(corners)
-            rays.set_data(*_joined(*r))
-            central = model != "orthographic"
-            to_centre.set_data(*_joined(*([p, [0.0, 0.0]] for p in r[:, 2])) if central else ([], []))
+            if model == "perspective":       # the ray runs on through the image line to the centre
+                rays.set_data(*_joined(*([p, [0.0, 0.0]] for p in r[:, 0])))
+            elif model == "orthographic":    # parallel to the axis, straight onto the image line
+                rays.set_data(*_joined(*r[:, [0, 2]]))
+            else:                            # parallel onto z = d0, then only the uniform scaling f / d0
+                rays.set_data(*_joined(*r[:, :2]))
+            scaled = model in ("weak perspective", "para-perspective")
+            scaling.set_data(*_joined(*([p, [0.0, 0.0]] for p in r[:, 1])) if scaled else ([], []))
             images.set_data(*r[:, 2].T)
             compare = model in ("weak perspective", "para-perspective")  # same image scale as perspective
             truth.set_data(*(perspective.T if compare else ([], [])))

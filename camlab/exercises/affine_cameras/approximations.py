@@ -109,7 +109,8 @@ def _what_differs(g, expected, camera, X0) -> str:
     else:
         du, dv = m - m_e
         parts.append(f"the last column is off by ({du:+.4g}, {dv:+.4g}) px")
-    where = ("it images X0 where the perspective camera does, as it must" if np.allclose(got_X0, x_X0, atol=1e-6)
+    where = ("it does image X0 where the perspective camera does, but every approximation about X0 must, so that "
+             "alone does not make it right" if np.allclose(got_X0, x_X0, atol=1e-6)
              else f"it images X0 at ({got_X0[0]:.2f}, {got_X0[1]:.2f}) px, but the perspective camera, and every "
                   f"approximation about X0, at ({x_X0[0]:.2f}, {x_X0[1]:.2f}) px")
     return "; ".join(parts) + "; " + where
@@ -224,6 +225,7 @@ def _approx_specific(camera, X0):
     no_division[2] = [0.0, 0.0, 0.0, 1.0]
     last_column_undivided = _p_inf(K, R, t, d0)
     last_column_undivided[:2, 3] *= d0
+    X0_mm = 1000 * np.asarray(X0, dtype=float)
     return [
         (last_column_undivided, "the 2x3 block is right, but the last column is K (t1, t2, d0) undivided: divide "
                                 f"all of K E by d0, its last column too: that column is K (t1, t2, d0) / d0; {_P_INF}."),
@@ -237,6 +239,9 @@ def _approx_specific(camera, X0):
         (af.paraperspective_approximation(camera, X0),
          "this is the para-perspective camera (section 2, the next exercise), which projects along the line of "
          f"sight to X0; this exercise asks for P_inf, every depth replaced by d0 with no r3 terms in M2: {_P_INF}."),
+        (_p_inf(K, R, t, R[2] @ X0_mm + t[2]),
+         f"X0 was scaled by 1000 (millimetres?): its depth came out as r3 . (1000 X0) + t3 = {R[2] @ X0_mm + t[2]:.4g} "
+         f"m where X0 is {d0:.4g} m deep. The camera's t and X0 are both in metres; use X0 as given: {_P_INF}."),
     ]
 
 
@@ -449,6 +454,7 @@ register_exercise(Exercise(
         (_approx_shifted(-1.0), "one pixel"),
         (lambda camera, X0: np.round(af.affine_approximation(camera, X0), 1), "entries of the 2x3 block differ"),
         (lambda camera, X0: af.affine_approximation(camera, X0).tolist(), "you returned a list"),
+        (lambda camera, X0: affine_approximation(camera, 1000 * np.asarray(X0)), "scaled by 1000 (millimetres?)"),
         (_approx_centred_in_place, "changed its input `X0` in place"),
         (_approx_K_in_place, "camera.K.copy()"),
     ),
@@ -458,6 +464,16 @@ register_exercise(Exercise(
 
 # -- paraperspective_approximation -----------------------------------------------------------------
 
+def _para_outer_reshaped(camera, X0):
+    """The block of a r3 and b r3 built as np.outer(R[2], ab) (3, 2), reshaped to (2, 3): scrambled."""
+    K, R, t = camera.K, camera.R, camera.t
+    x_c = R @ X0 + t
+    d0, ab = x_c[2], x_c[:2] / x_c[2]
+    E = np.zeros((3, 4))
+    E[:2, :3], E[:2, 3], E[2, 3] = R[:2] - np.outer(R[2], ab).reshape(2, 3), t[:2] - ab * (t[2] - d0), d0
+    return K @ E / d0
+
+
 def _para_specific(camera, X0):
     """(matrix, cause) for mistakes only para-perspective meets."""
     K, R, t = camera.K, camera.R, camera.t
@@ -465,6 +481,11 @@ def _para_specific(camera, X0):
     d0, ab = float(x_c[2]), x_c[:2] / x_c[2]
     uv_X0 = camera.project(X0)
     no_skew = (uv_X0 - K[:2, 2]) / np.diag(K)[:2]
+    x_mm = R @ (1000 * np.asarray(X0, dtype=float)) + t
+    ray = np.asarray(X0, dtype=float) - camera.centre          # the line of sight to X0, in world coordinates
+    unrotated = ("you took (a, b) from X0 - C, the line of sight in world coordinates: (a, b) is X0's position in "
+                 "the camera frame, so rotate the ray first, R (X0 - C) = R X0 + t = x_c, then (a, b) = x_c[:2] / "
+                 "x_c[2]; the world's axes are not the camera's.")
     return [
         (af.affine_approximation(camera, X0),
          "this is the weak-perspective camera P_inf (the first exercise): para-perspective also takes a r3 and "
@@ -502,6 +523,22 @@ def _para_specific(camera, X0):
          "you wrote the pixel form P_inf - x_X0 (r3, t3 - d0) / d0 with X0's pixel position: it needs the offset from "
          "the principal point, P_para = P_inf - (x_X0 - x0) (r3, t3 - d0) / d0 in the top two rows (K (a, b, 0) "
          "is x_X0 - x0)."),
+        (_p_para(K, R, t, x_mm[2], x_mm[:2] / x_mm[2]),
+         f"X0 was scaled by 1000 (millimetres?): its depth came out as {x_mm[2]:.4g} m where X0 is {d0:.4g} m deep, "
+         f"and (a, b) as {x_mm[0] / x_mm[2]:.4g}, {x_mm[1] / x_mm[2]:.4g} for {ab[0]:.4g}, {ab[1]:.4g}. The camera's "
+         f"t and X0 are both in metres; use X0 as given: {_P_PARA}."),
+        (_p_para(K, R, t, d0, ray[:2] / ray[2]), unrotated),
+        (_p_para(K, R, t, d0, ray[:2] / d0), unrotated),
+        (_p_para(K, R, t, d0, (ab[0], ab[0])), "both rows use a: the second row is r2 - b r3 with its own "
+                                               "b = y_c / d0 (and t2 - b (t3 - d0))."),
+        (_p_para(K, R, t, d0, (ab[1], ab[1])), "both rows use b: the first row is r1 - a r3 with a = x_c / d0 "
+                                               "(and t1 - a (t3 - d0))."),
+        (_para_outer_reshaped(camera, X0),
+         "np.outer(R[2], ab) is (3, 2), and reshaping it to (2, 3) scrambles its entries: the block of a r3 and "
+         "b r3 is np.outer(ab, R[2]) (2, 3), or ab[:, None] * R[2]."),
+        (_p_para(K, R, t, d0, np.arctan(ab)),
+         "your (a, b) are angles, arctan(x_c / d0) and arctan(y_c / d0): (a, b) are the tangents themselves, "
+         "(x_c, y_c) / d0, X0's normalised image position (no arctan, no degrees)."),
     ]
 
 
@@ -579,6 +616,16 @@ def paraperspective_approximation(camera, X0):
     return K @ E / d0
 
 
+def _para_exception_hint(exc, args) -> str:
+    """A broadcasting slip in the rows r_i - ab_i r3 (ab is (2,), r3 is (3,))."""
+    if isinstance(exc, ValueError) and "broadcast" in str(exc):
+        return ("a broadcasting slip building the rows r1 - a r3 and r2 - b r3: ab = (a, b) is (2,) and r3 = R[2] is "
+                "(3,), so ab * R[2] (or R[:2] - ab * R[2][:2]) cannot line up. Make the (2, 3) block with "
+                "np.outer(ab, R[2]) or ab[:, None] * R[2], then R[:2] - that block; the last column takes "
+                "ab * (t3 - d0), a (2,) vector.")
+    return ""
+
+
 register_exercise(Exercise(
     name="paraperspective_approximation",
     lesson="05",
@@ -586,6 +633,7 @@ register_exercise(Exercise(
     cases=_approx_cases,
     compare=same_array(rtol=1e-7, atol=1e-7),
     diagnose=_para_diagnosis,
+    exception_hint=_para_exception_hint,
     ndarray_only=True,
     wrong_variants=(
         (lambda camera, X0: af.affine_approximation(camera, X0), "weak-perspective camera P_inf"),
@@ -618,6 +666,13 @@ register_exercise(Exercise(
          "half a pixel"),
         (lambda camera, X0: np.round(af.paraperspective_approximation(camera, X0), 2),
          "entries of the 2x3 block differ"),
+        (lambda camera, X0: _para_specific(camera, X0)[14][0], "scaled by 1000 (millimetres?)"),
+        (lambda camera, X0: _para_specific(camera, X0)[15][0], "line of sight in world coordinates"),
+        (lambda camera, X0: _para_specific(camera, X0)[16][0], "line of sight in world coordinates"),
+        (lambda camera, X0: _para_specific(camera, X0)[17][0], "both rows use a"),
+        (lambda camera, X0: _para_specific(camera, X0)[18][0], "both rows use b"),
+        (_para_outer_reshaped, "np.outer(ab, R[2])"),
+        (lambda camera, X0: _para_specific(camera, X0)[20][0], "your (a, b) are angles"),
     ),
     teaching=paraperspective_approximation,
 ))

@@ -186,14 +186,9 @@ def _estimate_diagnosis(args, got, expected) -> str:
     M2, t2 = g[:2, :3], g[:2, 3]
     M2_expected, t2_expected = expected[:2, :3], expected[:2, 3]
     Xm, um = X.mean(axis=0), uv.mean(axis=0)
-    for wrong_mean, cause in ((_fit_centred(X, uv, X.mean(axis=1, keepdims=True), uv.mean(axis=1, keepdims=True)),
-                               "you averaged along axis=1, each point's own coordinates (x, y, z): the centroid of "
-                               "N points is X.mean(axis=0), one mean per coordinate"),
-                              (_fit_centred(X, uv, X.mean(), uv.mean()),
-                               "you took the mean of every entry together (X.mean() with no axis), a single number: "
-                               "the centroid is X.mean(axis=0), one mean per coordinate")):
-        if np.allclose(M2, wrong_mean, atol=1e-6):
-            return cause + "; then t2 = mean(uv) - M2 @ mean(X)."
+    slip = _wrong_mean_cause(M2, X, uv)
+    if slip:
+        return slip
     if np.linalg.matrix_rank(M2, tol=1e-9 * max(np.abs(M2).max(), 1e-300)) < 2:
         return ("M2 has rank < 2 (its rows are parallel or zero), so every point would image onto one line: each "
                 "row of M2 is fitted to its own pixel coordinate; did you fit the same column of uv twice, or "
@@ -289,7 +284,40 @@ def _estimate_exception_hint(exc, args) -> str:
                 f"{2 * len(X)} equations for 8 unknowns (or {len(X)} rows per pixel coordinate): the system is "
                 f"over-determined. Solve it by least squares, np.linalg.lstsq(A, b, rcond=None)[0] (or the normal "
                 f"equations np.linalg.solve(A.T @ A, A.T @ b)).")
+    if isinstance(exc, ValueError) and "broadcast" in str(exc):
+        n = len(np.asarray(args[0]))
+        if f"({n},)" in str(exc).replace(" ", ""):
+            return (f"a mean along the wrong axis: X.mean(axis=1) (or uv.mean(axis=1)) is one number per point, "
+                    f"shape ({n},), and cannot be subtracted from the ({n}, 3) points. The centroid is "
+                    f"X.mean(axis=0), shape (3,), one mean per coordinate (and uv.mean(axis=0), shape (2,)).")
+        return ("a broadcasting slip: X is (N, 3) and uv (N, 2); X - X.mean(axis=0) and uv - uv.mean(axis=0) "
+                "broadcast their centroids over the rows, M2 is (2, 3) and t2 (2,), so t2 = mean(uv) - M2 @ mean(X).")
     return ""
+
+
+def _wrong_mean_cause(M2, X, uv) -> str | None:
+    """The cause when M2 is the fit after centring X or uv (or both) with a wrong mean: along axis=1 (each
+    point's own coordinates) or over every entry (no axis)."""
+    means = {"axis=0": lambda A: A.mean(axis=0), "axis=1": lambda A: A.mean(axis=1, keepdims=True),
+             "none": lambda A: A.mean()}
+    why = {"axis=1": "averaged along axis=1, each point's own coordinates, where the centroid of N points is "
+                     "{name}.mean(axis=0), one mean per coordinate",
+           "none": "took the mean of every entry together ({name}.mean() with no axis), a single number, where the "
+                   "centroid is {name}.mean(axis=0), one mean per coordinate"}
+    if np.allclose(M2, _fit_centred(X, uv, X.mean(axis=0), uv.mean(axis=0)), atol=1e-6):
+        return None               # a constant taken from uv leaves M2 as it is: the cause is elsewhere (t2)
+    for how_X, mean_X in means.items():
+        for how_uv, mean_uv in means.items():
+            if how_X == how_uv == "axis=0" or not np.allclose(M2, _fit_centred(X, uv, mean_X(X), mean_uv(uv)),
+                                                              atol=1e-6):
+                continue
+            if how_X == how_uv:
+                return (f"you {why[how_X].format(name='X')} (and the same for uv); then "
+                        f"t2 = mean(uv) - M2 @ mean(X).")
+            wrong = [(name, how) for name, how in (("X", how_X), ("uv", how_uv)) if how != "axis=0"]
+            return "; ".join(f"for {name} you {why[how].format(name=name)}" for name, how in wrong) + \
+                   "; centre both with axis=0, then t2 = mean(uv) - M2 @ mean(X)."
+    return None
 
 
 def _fit_centred(X, uv, X_mean, uv_mean):
@@ -452,6 +480,19 @@ def _estimate_mean_axis_1(X, uv):
     return _as_camera(np.c_[M2, uv.mean(axis=0) - M2 @ X.mean(axis=0)])
 
 
+def _estimate_mean_axis_1_points_only(X, uv):
+    """Only the world points centred with axis=1 (keepdims), the pixels right."""
+    um = uv.mean(axis=0)
+    M2 = np.linalg.lstsq(X - X.mean(axis=1, keepdims=True), uv - um, rcond=None)[0].T
+    return _as_camera(np.c_[M2, um - M2 @ X.mean(axis=0)])
+
+
+def _estimate_mean_axis_1_no_keepdims(X, uv):
+    """X - X.mean(axis=1): an (N, 3) minus an (N,) raises a broadcasting ValueError."""
+    M2 = np.linalg.lstsq(X - X.mean(axis=1), uv - uv.mean(axis=0), rcond=None)[0].T
+    return _as_camera(np.c_[M2, uv.mean(axis=0) - M2 @ X.mean(axis=0)])
+
+
 def _estimate_mean_of_everything(X, uv):
     Xm, um = X.mean(), uv.mean()
     M2 = np.linalg.lstsq(X - Xm, uv - um, rcond=None)[0].T
@@ -521,6 +562,8 @@ register_exercise(Exercise(
         (lambda X, uv: -af.estimate_affine_camera(X, uv), "-1 times the least-squares one"),
         (_estimate_mean_axis_1, "axis=1"),
         (_estimate_mean_of_everything, "no axis"),
+        (_estimate_mean_axis_1_points_only, "for X you averaged along axis=1"),
+        (_estimate_mean_axis_1_no_keepdims, "a mean along the wrong axis"),
         (lambda X, uv: np.round(af.estimate_affine_camera(X, uv), 2), "rounded to 2 decimals"),
         (lambda X, uv: af.estimate_affine_camera(X, uv)[:, [1, 0, 2, 3]], "columns of M2 are in the order"),
         (_estimate_scaled_orthographic, "RMS residual is"),
