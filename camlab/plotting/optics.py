@@ -498,7 +498,7 @@ def draw_blur_disc(ax, coc_um: float = 30.0) -> dict:
     from matplotlib.patches import Circle
 
     art = {
-        "grid": ax.add_collection(LineCollection([], colors="0.82", linewidths=0.6, zorder=0.5)),
+        "grid": ax.add_collection(LineCollection([], colors="0.82", linewidths=0.6, zorder=0.5, gid="grid")),
         # a pale face and an opaque edge: a disc a pixel wide still reads as a red dot
         "blur": ax.add_patch(Circle((0, 0), 1, facecolor=to_rgba(palette.RED, 0.45), edgecolor=palette.RED, lw=1.2)),
         "ok": ax.add_patch(Circle((0, 0), 1, fill=False, edgecolor=palette.PURPLE, ls="--", lw=1.2,
