@@ -831,3 +831,12 @@ def test_a_printed_solution_never_ends_in_an_empty_reference_line(name):
 
     text = solution_source(name)
     assert not text.rstrip().endswith("tested reference:"), text[-200:]
+
+
+@pytest.mark.parametrize("wrong", [lambda f, lam, t, N: -t * f / (2.44 * lam * N ** 2),
+                                   lambda f, lam, t, N: float("nan"), lambda f, lam, t, N: 0.0],
+                         ids=["negative", "nan", "zero"])
+def test_best_pinhole_exposure_explains_a_negative_nan_or_zero_time_instead_of_crashing(wrong):
+    """A sign slip once crashed the diagnosis (log10 of a negative ratio, then round(nan))."""
+    with pytest.raises(AssertionError, match=r"likely cause: an exposure time is a positive number of seconds"):
+        check("best_pinhole_exposure", wrong)

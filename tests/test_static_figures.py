@@ -156,7 +156,7 @@ def test_a_3d_view_with_its_axes_switched_off_is_not_described_by_axis_labels():
     ax = fig.add_subplot(projection="3d")
     ax.set(xlabel="X (m)", ylabel="Y (m)", zlabel="Z (m)", title="the camera in the world")
     ax.set_axis_off()
-    assert static.describe_figure(fig) == "Figure: 3-D view (no axes drawn) 'the camera in the world'."
+    assert static.describe_figure(fig) == "Figure: 3-D view 'the camera in the world'."
 
 
 def test_image_panels_tick_the_centre_where_the_course_puts_it():

@@ -536,8 +536,11 @@ def _exposure_diagnosis(args, got, expected) -> str:
          "you used the best hole for an object 1 m away, sqrt(2.44 lambda f / (1 + f/Z)); this camera looks at a"
          " distant object (Z -> infinity): d* = sqrt(2.44 lambda f)"),
     ):
-        if np.isclose(g, wrong, rtol=1e-3):
+        if np.isclose(g, wrong, rtol=1e-3, atol=0):   # atol=0: a tiny variant must not match an answer of 0
             return cause
+    if not np.isfinite(g) or g <= 0:
+        return (f"an exposure time is a positive number of seconds, but you returned {g:g}: check the signs, and that "
+                "the square root's argument 2.44 lambda f is positive (every length in metres)")
     ratio = g / expected
     k = np.log10(ratio) / 3
     if abs(k - round(k)) < 1.5e-4 and round(k) != 0:   # within 0.1 % of a power of 1000: true unit slips are exact

@@ -62,10 +62,8 @@ def _describe_axes(ax: Any) -> str:
     words = [f"{kind} '{title}'" if title else kind]
     z_label = ax.get_zlabel() if ax.name == "3d" else ""  # a 3-D view has a third axis to name
     labels = [lab for lab in (ax.get_xlabel(), ax.get_ylabel(), z_label) if lab]
-    if not ax.axison:  # axes switched off (set_axis_off): their labels are not drawn, so not described
-        labels = []
-        if ax.name == "3d":
-            words[0] = words[0].replace("3-D view", "3-D view (no axes drawn)", 1)
+    if not ax.axison:  # axes switched off (set_axis_off): their labels are not drawn, so not described (a figure
+        labels = []    # may draw axes of its own, as arrows: saying "no axes" would then be false)
     if labels:
         words.append("axes " + _quoted(labels))
     legend = ax.get_legend()
