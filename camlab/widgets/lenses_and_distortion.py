@@ -147,7 +147,7 @@ def depth_of_field():
     ax_c.set_yscale("log")  # from the 2-px line to the blur at f/16 and f/1.4 on one readable scale
     ax_c.set_xlabel("depth z (m); purple band: sharp, c < 2 px (purple dashes: 2 px = "
                     f"{2 * PITCH_DOF * 1e6:.0f} µm)", fontsize=9)
-    ax_c.set_ylabel("blur circle c (µm)")
+    ax_c.set_ylabel("blur circle c (µm, log scale)")
     ax_img.set_title(f"f = {F_DOF * 1e3:.0f} mm thin lens; planes at 0.6, 1.2, 2.4 and 4 m", fontsize=10)
     ax_img.set_xlabel(f"sensor: {SIZE[0]} x {SIZE[1]} pixels of {PITCH_DOF * 1e6:.0f} µm "
                       f"({SIZE[0] * PITCH_DOF * 1e3:.0f} x {SIZE[1] * PITCH_DOF * 1e3:.0f} mm)", fontsize=9)
