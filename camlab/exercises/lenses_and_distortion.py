@@ -728,7 +728,7 @@ register_exercise(Exercise(
             "misses the chain rule's factor 2", "the k1 term of the Jacobian", "the k2 term of the Jacobian",
             "no k2 term", "you evaluated J at x_d", "your residual uses L of x_d", "step against the residual",
             "you stepped from x_d", "you returned the step delta", "you multiplied the residual by J",
-            "your residual is F(x) - x", "has an extra r", "has r^4 where r^2 belongs"))
+            "measures how far", "has an extra r", "the k2 term of the Jacobian has r"))
     ) + (
         (lambda x, x_d, k1, k2: x * (1 + k1 * (x**2).sum(1, keepdims=True) + k2 * (x**2).sum(1, keepdims=True) ** 2),
          "the current estimate distorted"),
