@@ -429,11 +429,13 @@ def _draw_plane(canvas: np.ndarray, g: _CameraPlane, Kc: np.ndarray, c_px: float
         tex = np.ascontiguousarray(tex @ np.array([0.299, 0.587, 0.114], dtype=np.float32))
     # a grey texture in a colour render stays one channel: compositing broadcasts it
     quad = cv2.perspectiveTransform(g.poly[None].astype(np.float64), Hplane)[0]  # visible outline, canvas px
-    # work only inside the plane's bounding box (plus room for its blur)
+    # work only inside the plane's bounding box plus room for its blur, reaching that far past the canvas's edges
+    # too: a plane that continues beyond the frame must blur into the frame as it is, not fade into the backdrop
+    # (a blur cut at the canvas edge would mix in empty coverage there)
     pad = int(np.ceil(c_px / 2)) + 2
-    bx0, by0 = np.maximum(np.floor(quad.min(axis=0)).astype(int) - pad, 0)
-    bx1, by1 = np.minimum(np.ceil(quad.max(axis=0)).astype(int) + pad + 1, [cw, ch])
-    if bx1 <= bx0 or by1 <= by0:
+    bx0, by0 = np.maximum(np.floor(quad.min(axis=0)).astype(int) - pad, -pad)
+    bx1, by1 = np.minimum(np.ceil(quad.max(axis=0)).astype(int) + pad + 1, [cw + pad, ch + pad])
+    if min(bx1, cw) <= max(bx0, 0) or min(by1, ch) <= max(by0, 0):
         return
     T = np.array([[1.0, 0, -bx0], [0, 1.0, -by0], [0, 0, 1]])
     layer = cv2.warpPerspective(tex, T @ H, (int(bx1 - bx0), int(by1 - by0)), flags=cv2.INTER_LINEAR,
@@ -451,7 +453,9 @@ def _draw_plane(canvas: np.ndarray, g: _CameraPlane, Kc: np.ndarray, c_px: float
         if layer.ndim == 2:
             layer = layer[..., None]
         layer = layer / np.maximum(alpha, 1e-6)[..., None]
-    roi = canvas[by0:by1, bx0:bx1]
+    inside = np.s_[max(-by0, 0):(by1 - by0) - max(by1 - ch, 0), max(-bx0, 0):(bx1 - bx0) - max(bx1 - cw, 0)]
+    layer, alpha = layer[inside], alpha[inside]     # the part on the canvas
+    roi = canvas[max(by0, 0):min(by1, ch), max(bx0, 0):min(bx1, cw)]
     roi += alpha[..., None] * (layer - roi)
 
 

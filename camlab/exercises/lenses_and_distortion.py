@@ -36,6 +36,9 @@ def _field_of_view_diagnosis(args, got, expected) -> str:
         return "that is the angle in degrees; the course's functions return radians (np.degrees only for printing)"
     if np.isclose(-g, expected):
         return "the angle came out negative: a sign slip; the field of view 2 arctan(w / (2 z_i)) is positive"
+    if g < 0:
+        return ("the angle came out negative, so your z_i is negative: 1/f - 1/z_o < 0 means z_o < f in your units. "
+                "Mixed units? (f in millimetres, z_o in metres: 50 mm 'inside' 0.3 m); keep every length in metres")
     if np.isclose(g, 2 * np.tan(w / (2 * zi))):
         return "you took the tangent of the ratio; the angle is its arctangent: 2 np.arctan(w / (2 z_i))"
     if np.isclose(g, fov(f)):
@@ -51,9 +54,14 @@ def _field_of_view_diagnosis(args, got, expected) -> str:
                 "FOV = 2 arctan(w / (2 z_i))")
     if np.isclose(g, w / zi):
         return "w / z_i is the small-angle approximation; take the arctangent: 2 arctan(w / (2 z_i))"
+    m = -f / (zo - f)                         # the signed magnification, negative for a real image
     for wrong, hint in ((f * zo / (zo + f), "sign slip in the thin lens: 1/z_i = 1/f - 1/z_o, so z_i = f z_o / (z_o - f)"),
-                        (f**2 / (zo - f), "f^2 / (z_o - f) is Newton's form, the distance from the focal point F' to "
-                                          "the image; the lens-to-sensor distance is f plus that: z_i = f z_o / (z_o - f)"),
+                        (f * (1 + m), "z_i = (1 + |m|) f takes the size of m; the signed m = -f / (z_o - f) is negative "
+                                      "for a real image, so f (1 + m) comes out shorter than f instead of longer"),
+                        (f * (1 + f / zo), "f (1 + f / z_o) is the first-order approximation of z_i (good only for "
+                                           "z_o >> f); the check wants the exact thin lens, z_i = f z_o / (z_o - f)"),
+                        (f**2 / (zo - f), "f^2 / (z_o - f) is the image's distance from the focal point F', not from "
+                                          "the lens; the lens-to-sensor distance is f plus that: z_i = f z_o / (z_o - f)"),
                         (1 / f - 1 / zo, "you used 1/z_i as the distance; invert it: z_i = 1 / (1/f - 1/z_o)")):
         if np.isclose(g, fov(wrong)):
             return hint
@@ -101,7 +109,10 @@ register_exercise(Exercise(
         (lambda f, w, zo: 2 * np.arctan(w / (f * zo / (zo - f))), "half the sensor width"),
         (lambda f, w, zo: w / (f * zo / (zo - f)), "small-angle"),
         (lambda f, w, zo: 2 * np.arctan(w / (2 * f * zo / (zo + f))), "sign slip"),
-        (lambda f, w, zo: 2 * np.arctan(w / (2 * f**2 / (zo - f))), "Newton's form"),
+        (lambda f, w, zo: 2 * np.arctan(w / (2 * f**2 / (zo - f))), "from the focal point F', not from"),
+        (lambda f, w, zo: 2 * np.arctan(w / (2 * f * (1 - f / (zo - f)))), "takes the size of m"),
+        (lambda f, w, zo: 2 * np.arctan(w / (2 * f * (1 + f / zo))), "first-order approximation"),
+        (lambda f, w, zo: 2 * np.arctan(w / (2 * 1e3 * f * zo / (zo - 1e3 * f))), "came out negative, so your z_i"),
         (lambda f, w, zo: 2 * np.arctan(w / (2 * zo)), "object distance"),
         (lambda f, w, zo: 2 * np.arctan(1e3 * w / (2 * f * zo / (zo - f))), "mixed units"),
         (lambda f, w, zo: [2 * np.arctan(w / (2 * f * zo / (zo - f)))], "return one number"),
@@ -148,6 +159,18 @@ def _brown_variant(x, d, cross: float = 2.0, squares_swapped: bool = False, divi
                                      p1 * (r2 + 2 * sv**2) + cross * p2 * u * v])
 
 
+_TANGENTIAL_TERMS = ("x_d's 2 p1 x y", "x_d's p2 (r^2 + 2 x^2)", "y_d's p1 (r^2 + 2 y^2)", "y_d's 2 p2 x y")
+
+
+def _tangential_terms(x, d) -> np.ndarray:
+    """(4, N, 2): the model's four tangential terms one by one, each in its own coordinate (the other column 0)."""
+    _, _, p1, p2, _ = d
+    u, v = x[:, 0], x[:, 1]
+    r2, zero = u**2 + v**2, np.zeros(len(x))
+    return np.array([np.column_stack([2 * p1 * u * v, zero]), np.column_stack([p2 * (r2 + 2 * u**2), zero]),
+                     np.column_stack([zero, p1 * (r2 + 2 * v**2)]), np.column_stack([zero, 2 * p2 * u * v])])
+
+
 def _sign_slip(x, d, g) -> str:
     """A hint when ``g`` is the model with the radial or a tangential coefficient's sign flipped ('' if not)."""
     k1, k2, p1, p2, k3 = d
@@ -177,6 +200,9 @@ def _model_diagnosis(x, d, g, expected) -> str:
         return "x^2 and y^2 are swapped in the tangential terms: x gets p2 (r^2 + 2 x^2), y gets p1 (r^2 + 2 y^2)"
     if p1 and np.allclose(g, _brown_variant(x, d, y_copied=True)):
         return "y_d's p1 term is p1 (r^2 + 2 y^2), with y; yours has 2 x^2, copied from x_d's p2 term"
+    for k, term in enumerate(_TANGENTIAL_TERMS):
+        if np.allclose(g, expected - 2 * _tangential_terms(x, d)[k]) and _tangential_terms(x, d)[k].any():
+            return f"the sign of one tangential term: {term} enters with a plus sign (OpenCV's model, section 4)"
     if np.allclose(g, _brown_variant(x, d, divide=True)):
         return "you divided by the radial factor L; distortion multiplies: x_d = x L + ... (dividing is a rough inverse)"
     if np.allclose(g, _brown_variant(x, d, no_one=True)):
@@ -189,6 +215,9 @@ def _model_diagnosis(x, d, g, expected) -> str:
         return sign
     if (p1 or p2) and np.allclose(g, distortion.distort_points(x, [k1, k2, 0, 0, k3])):
         return "you left out the tangential terms p1, p2"
+    if (k2 or k3 or p1 or p2) and np.allclose(g, distortion.distort_points(x, [k1, 0, 0, 0, 0])):
+        return ("you used k1 alone; dist holds five coefficients (k1, k2, p1, p2, k3), and every one of them counts: "
+                "L = 1 + k1 r^2 + k2 r^4 + k3 r^6, then the tangential terms with p1 and p2")
     r = np.hypot(x[:, 0], x[:, 1])
     wrong_r = x * (1 + k1 * r + k2 * r**2 + k3 * r**3)[:, None]
     radial_only = distortion.distort_points(x, [k1, k2, 0, 0, k3])
@@ -214,9 +243,19 @@ def _distort_pixels_diagnosis(args, got, expected) -> str:
                     "y = (v - c_y) / f_y first, then u_d = f_x x_d + c_x, v_d = f_y y_d + c_y")
         if np.allclose(g, x_d):
             return "you returned normalised coordinates; map them back to pixels: u_d = f_x x_d + c_x, v_d = f_y y_d + c_y"
+        if np.any(d) and np.allclose(g, distortion.undistort_pixels(uv, K, d), atol=1e-6):
+            return ("you undistorted: that maps a distorted pixel to the ideal one. This function goes forward, ideal "
+                    "uv in, distorted out: normalise, apply x_d = x L + (tangential terms) as section 4 writes it, "
+                    "back to pixels (no inverse, no iteration)")
+        tangential = _tangential_terms(x, d).sum(axis=0)
+        if tangential.any() and np.allclose(g, (x_d - tangential) * f + c + tangential):
+            return ("your tangential terms are in normalised units but were added to pixels (so they shrink to "
+                    "~1e-3 px): add them to x L before scaling, u_d = f_x (x L + 2 p1 x y + p2 (r^2 + 2 x^2)) + c_x")
         for f_wrong, c_wrong, hint in (
                 (f, 0 * c, "subtract the principal point before dividing by the focal length, x = (u - c_x) / f_x, "
-                           "and add it back afterwards: distortion grows from the optical axis, not from pixel (0, 0)"),
+                           "and add it back afterwards: distortion grows from the optical axis, not from pixel (0, 0). "
+                           "(With matrices on row points: np.c_[uv, ones] @ np.linalg.inv(K) without .T, its first two "
+                           "columns taken, drops c just so; use @ np.linalg.inv(K).T, then @ K.T, and divide by w)"),
                 (f[[0, 0]], c, "v goes with f_y = K[1, 1], not f_x: x = (u - c_x) / f_x, y = (v - c_y) / f_y"),
                 (f[::-1], c, "f_x = K[0, 0] goes with u and f_y = K[1, 1] with v: you swapped them"),
                 (f, c[::-1], "c_x = K[0, 2] and c_y = K[1, 2]: you swapped them"),
@@ -357,6 +396,16 @@ register_exercise(Exercise(
         (lambda uv, K, d: distortion.distort_pixels(uv, K, d).tolist(), "wrap the values in np.array"),
         (lambda uv, K, d: distortion.distort_pixels(uv, K, d).T, "expected an array of shape"),
         (_in_place_distortion, "in place"),
+        (lambda uv, K, d: distortion.undistort_pixels(uv, K, d), "you undistorted"),
+        (_pixel_variant(lambda x, d: distortion.distort_points(x, [d[0], 0, 0, 0, 0])), "you used k1 alone"),
+        (_pixel_variant(lambda x, d: distortion.distort_points(x, d) - 2 * _tangential_terms(x, d)[3]),
+         "y_d's 2 p2 x y enters with a plus sign"),
+        (_pixel_variant(lambda x, d: distortion.distort_points(x, d) - 2 * _tangential_terms(x, d)[0]),
+         "x_d's 2 p1 x y enters with a plus sign"),
+        (lambda uv, K, d: distortion.distort_pixels(uv, K, [d[0], d[1], 0, 0, d[4]]) + _tangential_terms(
+            (uv - K[:2, 2]) / K[[0, 1], [0, 1]], d).sum(axis=0), "in normalised units but were added to pixels"),
+        (lambda uv, K, d: (np.c_[distortion.distort_points((np.c_[uv, np.ones(len(uv))] @ np.linalg.inv(K))[:, :2], d),
+                                 np.ones(len(uv))] @ K)[:, :2], "without .T, its first two"),
     ),
     teaching=distort_pixels,
 ))
@@ -382,7 +431,11 @@ def _f_number_diagnosis(args, got, expected) -> str:
     g = float(got)
     s = 2 * n * r / (n + r)
     stop = [N for N in _MARKED_STOPS if np.isclose(g, N, rtol=1e-9)]
-    if (stop or np.isclose(g, np.ceil(expected)) or np.isclose(g, np.round(expected))) and not np.isclose(g, expected):
+    # a whole number (int, floor, ceil, round), a marked full stop, or an exact half or third stop 2^(k/4), 2^(k/6)
+    fraction_stop = g > 0 and any(np.isclose(k * np.log2(g), round(k * np.log2(g)), rtol=0, atol=1e-9) for k in (4, 6))
+    near_it = g > 0 and abs(np.log2(g / expected)) < 1           # within a stop of the answer
+    if (stop or fraction_stop or np.isclose(g, np.floor(expected)) or np.isclose(g, np.ceil(expected))
+            or np.isclose(g, np.round(expected))) and near_it and not np.isclose(g, expected):
         return (f"you rounded N (to {g:g}); return the exact f-number, {expected:.4g} here: picking the next marked "
                 f"stop on the lens is your step afterwards, not the function's")
     geometric = np.sqrt(n * r)
@@ -400,7 +453,17 @@ def _f_number_diagnosis(args, got, expected) -> str:
                 "focus than behind it, so equal blur at both ends needs s = 2 near far / (near + far), the harmonic mean")
     if np.isclose(g, f**2 * (r - n) / (2 * c * n * r)):
         return ("you dropped f from s - f: the sensor sits at f s / (s - f), and c(z) = (f/N) (f/(s - f)) |z - s| / z; "
-                "the check wants the exact thin-lens N (neglecting f against s is the usual approximation)")
+                "the check wants the exact thin-lens N (neglecting f against s is the usual approximation, and the "
+                "same as the textbook's H = f^2 / (N c) with near = H s / (H + s), far = H s / (H - s))")
+    H_plain = (n * (s - 2 * f) + s * f) / (s - n)    # near = s (H - f) / (H + s - 2 f) solved for H
+    if np.isclose(g, f**2 / (c * H_plain)):
+        return ("H is off by f: with section 2's exact limits the hyperfocal distance is H = f^2 / (N c) + f, so "
+                "N = f^2 / (c (H - f)); the + f belongs to the thin lens's exact H")
+    for end in (n, r):   # similar triangles with the apex at the sensor instead of the image point
+        z_s, z_i = f * s / (s - f), f * end / (end - f)
+        if np.isclose(g, f / c * abs(z_s - z_i) / z_s):
+            return ("the cone's apex is the image point z_i, so similar triangles give c / A = |z_s - z_i| / z_i: "
+                    "divide by z_i (the end point's image distance), not by the sensor distance z_s")
     if np.isclose(g, 2 * expected):
         return "c is the blur circle's diameter, not its radius: you used c / 2"
     if np.isclose(g, expected / 2):
@@ -453,6 +516,12 @@ register_exercise(Exercise(
         (lambda f, c, n, r: np.array([_f_number_reference(f, c, n, r)]), "return one number"),
         (lambda f, c, n, r: min(N for N in _MARKED_STOPS if N >= _f_number_reference(f, c, n, r)), "you rounded N"),
         (lambda f, c, n, r: float(np.ceil(_f_number_reference(f, c, n, r))), "you rounded N"),
+        (lambda f, c, n, r: int(_f_number_reference(f, c, n, r)), "you rounded N"),
+        (lambda f, c, n, r: 2 ** (np.ceil(4 * np.log2(_f_number_reference(f, c, n, r))) / 4), "you rounded N"),
+        (lambda f, c, n, r: f**2 / (c * ((n * (2 * n * r / (n + r) - 2 * f) + 2 * n * r / (n + r) * f)
+                                          / (2 * n * r / (n + r) - n))), "H is off by f"),
+        (lambda f, c, n, r: f / c * abs(f * 2 * n * r / (n + r) / (2 * n * r / (n + r) - f) - f * n / (n - f))
+         / (f * 2 * n * r / (n + r) / (2 * n * r / (n + r) - f)), "not by the sensor distance z_s"),
         (lambda f, c, n, r: f**2 * (np.sqrt(n * r) - n) / (c * n * (np.sqrt(n * r) - f)), "geometric mean"),
         (lambda f, c, n, r: f**2 * (2 * n * r / (n + r) - r) / (c * r * (2 * n * r / (n + r) - f)), "the wrong sign"),
         (lambda f, c, n, r: f / _f_number_reference(f, c, n, r), "the aperture's diameter"),
@@ -488,21 +557,26 @@ def _newton_cases():
 
 
 def _newton_step_reference(x, x_d, k1, k2):
-    """camlab's Jacobian and model: x - J(x)^-1 (F(x) - x_d) for the radial model (k1, k2)."""
+    """x - J(x)^-1 (F(x) - x_d) with camlab.distortion.distortion_jacobian and distort_points (dist = (k1, k2, 0, 0, 0)); camlab.distortion.newton_undistort repeats the step until it converges."""
     d = [k1, k2, 0.0, 0.0, 0.0]
     J = distortion.distortion_jacobian(x, d)
     return x - np.linalg.solve(J, (distortion.distort_points(x, d) - x_d)[:, :, None])[:, :, 0]
 
 
 def _wrong_step(x, x_d, k1, k2, *, jacobian: str = "newton", chain: float = 2.0, k2_chain: float = 4.0,
-                j_at_target: bool = False, l_at_target: bool = False, step_sign: float = -1.0,
-                start_at_target: bool = False, return_delta: bool = False) -> np.ndarray:
-    """One step x - J^-1 (F(x) - x_d) with one typical slip (see :data:`_WRONG_STEPS`)."""
+                k1_power: float = 0.0, k2_power: float = 1.0, j_at_target: bool = False, l_at_target: bool = False,
+                step_sign: float = -1.0, start_at_target: bool = False, return_delta: bool = False,
+                residual_to_x: bool = False, multiply: bool = False) -> np.ndarray:
+    """One step x - J^-1 (F(x) - x_d) with one typical slip (see :data:`_WRONG_STEPS`).
+
+    ``k1_power``, ``k2_power``: the slope's k1 and k2 terms carry r^2 to these powers (right: 0 and 1);
+    ``residual_to_x``: the residual x L - x; ``multiply``: delta = -J (F(x) - x_d), J not inverted.
+    """
     x = np.array(x_d if start_at_target else x, dtype=float)
     where_j = np.asarray(x_d, dtype=float) if j_at_target else x
     r2 = (where_j**2).sum(axis=1, keepdims=True)
     L = 1 + k1 * r2 + k2 * r2**2
-    slope = chain * k1 + k2_chain * k2 * r2                      # (1/x) dL/dx, times x x^T below
+    slope = chain * k1 * r2**k1_power + k2_chain * k2 * r2**k2_power   # (1/x) dL/dx, times x x^T below
     outer = where_j[:, :, None] * where_j[:, None, :]
     eye = np.eye(2)
     J = {"newton": L[:, :, None] * eye + slope[:, :, None] * outer,
@@ -513,8 +587,9 @@ def _wrong_step(x, x_d, k1, k2, *, jacobian: str = "newton", chain: float = 2.0,
     r2x = (x**2).sum(axis=1, keepdims=True)
     L_res = (1 + k1 * (x_d**2).sum(1, keepdims=True) + k2 * (x_d**2).sum(1, keepdims=True) ** 2) if l_at_target \
         else 1 + k1 * r2x + k2 * r2x**2
+    residual = x * L_res - (x if residual_to_x else x_d)
     with np.errstate(all="ignore"):
-        delta = step_sign * np.linalg.solve(J, (x * L_res - x_d)[:, :, None])[:, :, 0]
+        delta = step_sign * (J @ residual[:, :, None] if multiply else np.linalg.solve(J, residual[:, :, None]))[:, :, 0]
     return delta if return_delta else x + delta
 
 
@@ -551,6 +626,18 @@ _WRONG_STEPS = (
      "(the check's x is off the ray through x_d, where the whole 2 x 2 J matters)"),
     (dict(return_delta=True),
      "you returned the step delta; return the new estimate x + delta"),
+    (dict(multiply=True),
+     "you multiplied the residual by J; Newton divides by it: solve J delta = -(F(x) - x_d), "
+     "delta = np.linalg.solve(J, -residual[:, :, None])[:, :, 0] (J^-1, not J)"),
+    (dict(residual_to_x=True),
+     "your residual is F(x) - x; it measures how far F(x) is from the distorted point x_d: F(x) - x_d, "
+     "which is zero at the answer"),
+    (dict(k1_power=0.5),
+     "the k1 term of the Jacobian has an extra r: d(k1 r^2)/dx = 2 k1 x (r^2 = x^2 + y^2, no square root), "
+     "so dL/dx = (2 k1 + 4 k2 r^2) x"),
+    (dict(k2_power=2.0),
+     "the k2 term of the Jacobian has r^4 where r^2 belongs: d(k2 r^4)/dx = 4 k2 r^2 x, so "
+     "dL/dx = (2 k1 + 4 k2 r^2) x"),
 )
 
 
@@ -565,6 +652,12 @@ def _newton_diagnosis(args, got, expected) -> str:
     if k2 and np.allclose(g, _newton_step_reference(x, x_d, k1, 0.0), rtol=0, atol=1e-10):
         return "you left k2 out: L = 1 + k1 r^2 + k2 r^4, and J = L I + (2 k1 + 4 k2 r^2) x x^T"
     converged = distortion.undistort_points(x_d, [k1, k2, 0.0, 0.0, 0.0])
+    estimate = _newton_step_reference(x, x_d, k1, k2)
+    for steps in (2, 3):   # a loop inside the step (not yet converged: that case follows)
+        estimate = _newton_step_reference(estimate, x_d, k1, k2)
+        if np.allclose(g, estimate, rtol=0, atol=1e-10) and not np.allclose(g, converged, rtol=0, atol=1e-8):
+            return (f"that is {steps} Newton steps from x; newton_step takes exactly one, from the x it is given "
+                    "(the loop that repeats it is the caller's)")
     if np.allclose(g, converged, rtol=0, atol=1e-8):
         return ("that is the converged answer, after many steps; newton_step takes one step only, from the x it is "
                 "given: return x + delta with J(x) delta = -(F(x) - x_d) (the loop that repeats it is the caller's)")
@@ -634,7 +727,8 @@ register_exercise(Exercise(
             "your J is a number times I", "no off-diagonal terms", "term of J has the wrong sign", "fixed-point step",
             "misses the chain rule's factor 2", "the k1 term of the Jacobian", "the k2 term of the Jacobian",
             "no k2 term", "you evaluated J at x_d", "your residual uses L of x_d", "step against the residual",
-            "you stepped from x_d", "you returned the step delta"))
+            "you stepped from x_d", "you returned the step delta", "you multiplied the residual by J",
+            "measures how far", "has an extra r", "the k2 term of the Jacobian has r"))
     ) + (
         (lambda x, x_d, k1, k2: x * (1 + k1 * (x**2).sum(1, keepdims=True) + k2 * (x**2).sum(1, keepdims=True) ** 2),
          "the current estimate distorted"),
@@ -642,6 +736,7 @@ register_exercise(Exercise(
         (lambda x, x_d, k1, k2: _newton_step_reference(x, x_d, k2, k1), "k1 and k2 are swapped"),
         (lambda x, x_d, k1, k2: _newton_step_reference(x, x_d, k1, 0.0), "you left k2 out"),
         (lambda x, x_d, k1, k2: distortion.undistort_points(x_d, [k1, k2, 0, 0, 0]), "the converged answer"),
+        (lambda x, x_d, k1, k2: newton_step(newton_step(x, x_d, k1, k2), x_d, k1, k2), "that is 2 Newton steps"),
         (_flat_rhs_newton, "np.linalg.solve on a stack"),
         (lambda x, x_d, k1, k2: _newton_step_reference(x, x_d, k1, k2).tolist(), "wrap the values in np.array"),
     ),

@@ -304,6 +304,7 @@ def update_similar_triangles(art: dict, f: float, Z: float, Y: float) -> float:
 
 
 THIN_LENS_X = (-12.0, 7.0)   # the ray diagram's horizontal range, in units of f
+IMAGE_HEAD_MIN = 0.25        # object heights: a shorter image arrow is drawn without its head
 THIN_LENS_Y = (-5.6, 1.4)    # ... and its vertical range, in object heights: a real image is inverted (m < 0), so
                              # the room is below the axis, down to m = -5.6 (z_o = 1.18 f, z_i = 6.6 f: the x range)
 
@@ -324,14 +325,17 @@ def draw_thin_lens(ax, focal_length: float, object_distance: float) -> dict:
     art = {
         "lens": ax.axvline(0, color=palette.BLUE, lw=2),
         "axis": ax.axhline(0, color="0.5", lw=0.8),
-        "foci": ax.plot([-1, 1], [0, 0], "k+", ms=10, mew=1.5)[0],
+        # over the arrows (an image at F' in the pinhole limit, an object at 1.05 f): animated with them
+        "foci": ax.plot([-1, 1], [0, 0], "k+", ms=10, mew=1.5, zorder=4)[0],
         "object": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrow, color=palette.GREEN)),
         "image": ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrow, color=palette.RED)),
         "rays": [ax.plot([], [], color=palette.ORANGE, ls=ls, lw=1.3, label=n)[0] for ls, n in zip(styles, names)],
         "text": ax.set_title(" \n ", fontsize=9, family="monospace"),
     }
-    for x, label in ((-1, "F"), (1, "F'")):
-        ax.annotate(label, (x, 0), xytext=(5, 4), textcoords="offset points", ha="left", va="bottom", fontsize=10)
+    # F below the axis, left of its cross (on the object side every ray and the object arrow stay above the
+    # axis); F' above it, right of its cross (on the image side the rays and a real image stay below it)
+    ax.annotate("F", (-1, 0), xytext=(-4, -4), textcoords="offset points", ha="right", va="top", fontsize=10)
+    ax.annotate("F'", (1, 0), xytext=(5, 4), textcoords="offset points", ha="left", va="bottom", fontsize=10)
     lo, hi = THIN_LENS_X
     ax.set(xlim=THIN_LENS_X, ylim=THIN_LENS_Y, yticks=range(int(np.ceil(THIN_LENS_Y[0])), int(THIN_LENS_Y[1]) + 1),
            xticks=[t for t in range(int(lo), int(hi) + 1) if t % 2 == 0])
@@ -365,7 +369,11 @@ def update_thin_lens(art: dict, f: float, zo: float, requested: float | None = N
     lo, hi = THIN_LENS_X
     art["object"].xy, art["object"].xyann = (xo, 1.0), (xo, 0)
     art["image"].xy, art["image"].xyann = (xi, m), (xi, 0)
-    # the head shrinks with a small image (true to size, never a blob larger than the image); its tip is where the rays meet
+    # to scale: an image shorter than IMAGE_HEAD_MIN object heights (~9 screen px) has no room for a head, whose
+    # base would rise above the axis onto the upright side; it is drawn as a plain red tick, from the axis to
+    # where the rays meet
+    headless = abs(m) < IMAGE_HEAD_MIN
+    art["image"].arrow_patch.set_arrowstyle("-" if headless else "-|>")
     art["image"].arrow_patch.set_mutation_scale(10 * min(1.0, abs(m) / 0.3) + 1)
     art["object"].set_visible(xo >= lo)  # an arrow at the edge would not meet its rays
     art["image"].set_visible(xi <= hi)
@@ -380,7 +388,7 @@ def update_thin_lens(art: dict, f: float, zo: float, requested: float | None = N
     hint = "the object (green) and its image (red), where the rays meet"
     art["text"].set_text(f"f = {f * 1e3:.0f} mm   z_o = {zo:.3f} m = {-xo:.2f} f   z_i = {zi:.3f} m = {xi:.2f} f"
                          f"   m = {m:.3f}\n{note or hint}")
-    return {"image_distance": zi, "magnification": m}
+    return {"image_distance": zi, "magnification": m, "image_head": not headless}
 
 
 # The focus-cone diagram has two horizontal scales: the object side in metres, the image side
@@ -539,10 +547,11 @@ def update_blur_disc(art: dict, c: float, airy: float, pixel: float) -> dict:
     art["bar"].set_data([-0.92, -0.92 + bar / half], [-0.9, -0.9])
     art["bar_text"].set_text(f"{bar:g} µm = {bar / pixel_um:g} px")
     width = f"{2 * half / 1000:g} mm" if half >= 500 else f"{2 * half:g} µm"
-    def um(value: float) -> str:   # one decimal below 10 µm: a 0.5 µm disc is not "1 µm"
-        return f"{value:.1f}" if value < 10 else f"{value:.0f}"
+    def short(value: float, whole_from: float = np.inf) -> str:   # two decimals below 0.1: a 0.04 µm blur is not "0.0"
+        return f"{value:.0f}" if value >= whole_from else f"{value:.1f}" if value >= 0.1 or value == 0 else f"{value:.2f}"
 
-    art["text"].set_text(f"c = {um(c_um)} µm = {c / pixel:.1f} px\nAiry disc {um(airy_um)} µm\n"
+    # µm: one decimal below 10 (a 0.5 µm disc is not "1 µm")
+    art["text"].set_text(f"c = {short(c_um, 10)} µm = {short(c / pixel)} px\nAiry disc {short(airy_um, 10)} µm\n"
                          f"view {width} wide, grid {grid_px} px")
     return {"half_um": half, "grid_px": grid_px}
 

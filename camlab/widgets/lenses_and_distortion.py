@@ -27,7 +27,7 @@ def thin_lens():
     view = FigureView(figsize=(8.6, 4))
     ax = view.fig.subplots()
     art = optics.draw_thin_lens(ax, 0.05, 0.2)
-    view.animate(art["object"], art["image"], *art["rays"], art["text"])
+    view.animate(art["object"], art["image"], *art["rays"], art["foci"], art["text"])   # the foci over the arrows
 
     def update(values, state):
         f, asked = values["focal_mm"] * 1e-3, values["object_m"]
@@ -41,6 +41,7 @@ F_CONE = 0.05      # the focus-and-blur demo's 50 mm lens
 COC_OK = 0.03e-3   # acceptable blur circle, 0.03 mm (a 35 mm camera viewed as a print)
 PIXEL = 5e-6       # a pixel pitch to count the blur in (a 36 x 24 mm sensor of 7200 x 4800 pixels)
 F_NUMBERS = [1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0, 16.0, 22.0, 32.0]
+C_AXIS_UM = (0.1, 1e4)   # the c(z) panel's blur axis (µm, log): a 0.5 µm blur drawn at its value
 SENSOR_MIN_MM = 50.04  # focuses at 62.6 m: beyond the hyperfocal distance of every f-number (f/1.4: 59.6 m at 30 µm)
 
 
@@ -67,11 +68,12 @@ def focus_and_blur():
     disc = optics.draw_blur_disc(ax_disc, coc_um=COC_OK * 1e6)
     curve, = ax_c.plot([], [], "k", label="c(z), this sensor position")
     band = ax_c.axvspan(1, 2, color=palette.PURPLE, alpha=0.3, lw=0, label="depth of field (c < 30 µm)")
-    coc_line = ax_c.axhline(COC_OK * 1e6, color=palette.PURPLE, ls="--", lw=1.2)   # animated below: over the band
-    airy = ax_c.axhline(1, color=palette.BROWN, ls=":", lw=1.8)
-    marker, = ax_c.plot([], [], "o", color=palette.GREEN, mec="k", ms=7)
+    # animated below: over the band; zorder 2.6, over the spines in a full draw as in a live frame
+    coc_line = ax_c.axhline(COC_OK * 1e6, color=palette.PURPLE, ls="--", lw=1.2, zorder=2.6)
+    airy = ax_c.axhline(1, color=palette.BROWN, ls=":", lw=1.8, zorder=2.6)
+    marker, = ax_c.plot([], [], "o", color=palette.GREEN, mec="k", ms=7, zorder=3, clip_on=False)
     ax_c.set_title(" \n \n ", fontsize=9)  # room for the three lines update writes
-    ax_c.set(xlim=(0.2, 5.0), yscale="log", ylim=(1, 1e4), xlabel="object distance z (m)",
+    ax_c.set(xlim=(0.2, 5.0), yscale="log", ylim=C_AXIS_UM, xlabel="object distance z (m)",
              ylabel="blur circle c (µm, log scale)")
     # one legend for the three panels, under them: never over the cone, the discs, the band or the curve
     handles = {}
@@ -90,16 +92,21 @@ def focus_and_blur():
         state.update(optics.update_blur_disc(disc, state["c"], state["airy"], PIXEL))
         s = float(lens.object_distance(F_CONE, z_s))  # the distance this sensor position focuses
         z = blur_curve_depths(s)
-        curve.set_data(z, np.maximum(lens.circle_of_confusion(F_CONE, N, s, z) * 1e6, 0.5))  # c = 0 at s: log floor
+        # c = 0 at s: a floor below the axis, so the V runs off its bottom there
+        curve.set_data(z, np.maximum(lens.circle_of_confusion(F_CONE, N, s, z) * 1e6, C_AXIS_UM[0] / 2))
         airy.set_ydata([state["airy"] * 1e6] * 2)
         dof = lens.depth_of_field(F_CONE, N, s, COC_OK)
         band.set_x(dof.near)
         band.set_width(max(min(dof.far, 10.0) - dof.near, 0.0))   # focused far, the band may start beyond the view
-        marker.set_data([z_o], [float(np.clip(state["c"] * 1e6, 1.3, 9e3))])
+        # the marker at its value; below the axis's floor, a down-pointing triangle on the bottom edge (off scale)
+        c_um = state["c"] * 1e6
+        below = c_um < C_AXIS_UM[0]
+        marker.set_data([z_o], [C_AXIS_UM[0] if below else c_um])
+        marker.set_marker("v" if below else "o")
         far = f"{dof.far:.3f} m" if np.isfinite(dof.far) else "infinity"
         soft = "but the Airy disc alone > 30 µm" if state["airy"] > COC_OK else " "   # 3 lines always: the layout
         ax_c.set_title(f"focused at {s:.3f} m; geometrically sharp\nfrom {dof.near:.3f} m to {far}\n{soft}", fontsize=9)
-        state.update(focus=s, near=dof.near, far=dof.far, c_px=state["c"] / PIXEL)
+        state.update(focus=s, near=dof.near, far=dof.far, c_px=state["c"] / PIXEL, marker_off_scale=bool(below))
 
     return build_demo("focus_and_blur", controls, view, update, title="Focus, aperture and the blur circle")
 
@@ -140,7 +147,7 @@ def depth_of_field():
     ax_c.set_yscale("log")  # from the 2-px line to the blur at f/16 and f/1.4 on one readable scale
     ax_c.set_xlabel("depth z (m); purple band: sharp, c < 2 px (purple dashes: 2 px = "
                     f"{2 * PITCH_DOF * 1e6:.0f} µm)", fontsize=9)
-    ax_c.set_ylabel("blur circle c (µm)")
+    ax_c.set_ylabel("blur circle c (µm, log scale)")
     ax_img.set_title(f"f = {F_DOF * 1e3:.0f} mm thin lens; planes at 0.6, 1.2, 2.4 and 4 m", fontsize=10)
     ax_img.set_xlabel(f"sensor: {SIZE[0]} x {SIZE[1]} pixels of {PITCH_DOF * 1e6:.0f} µm "
                       f"({SIZE[0] * PITCH_DOF * 1e3:.0f} x {SIZE[1] * PITCH_DOF * 1e3:.0f} mm)", fontsize=9)
@@ -216,10 +223,10 @@ def lens_distortion():
     ax_grid.set_xlabel("u (px)")
     ax_grid.set_ylabel("v (px)")
     ax_grid.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.15), ncol=3)  # below: never over the grid
-    ax_img.set_title("rendered board (red: true corners)", fontsize=10)
+    img_title = ax_img.set_title(" \n ", fontsize=10)  # two lines, as update writes
     grid_title = ax_grid.set_title(" \n ", fontsize=10)  # two lines, as update writes
     readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
-    view.animate(im, dots, *bent, grid_title)
+    view.animate(im, dots, *bent, img_title, grid_title)
 
     def update(values, state):
         d = np.array([values["k1"], values["k2"], values["p1"], values["p2"], 0.0])
@@ -236,6 +243,8 @@ def lens_distortion():
         dots.set_data(corners[:, 0], corners[:, 1])
         for line, ln in zip(bent, through):
             line.set_data(*ln.T)
+        img_title.set_text("the rendered board, undistorted\n(red: the true corners, undistorted)" if values["undistort"]
+                           else "the rendered board, as the lens\nrecords it (red: the true corners)")
         grid_title.set_text("the grid through the lens, then undistorted:\nstraight again" if values["undistort"]
                             else "a straight grid through the lens\n(grey: the same grid without it)")
         kind = distortion.classify_distortion(d, r_max=float(np.hypot(*SIZE) / 2 / K_D[0, 0]))
