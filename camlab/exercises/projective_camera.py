@@ -381,6 +381,8 @@ def _rq_diagnosis(args, got, expected) -> str:
             return misplaced
         if np.allclose(K @ R.T, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
             return "R is transposed: M = K R."
+        if np.allclose(K.T @ R, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
+            return "K is transposed (lower triangular): M = K R with K upper triangular; return K itself, not K.T."
         if _signs_fixed_in_k_only(K, R, M):
             return ("you fixed the signs of K (K D) but not of R: K R = (K D)(D R), so apply the same "
                     "D = diag(sign(diag(K))) to R's rows too (D R), or K R no longer equals M.")
@@ -495,6 +497,7 @@ register_exercise(Exercise(
         (_rq_qr, "QR decomposition"),
         (_rq_signs_of_k_only, "apply the same"),
         (lambda M: (lambda K, R: (K, R.T))(*cm.rq_decomposition(M)), "transposed"),
+        (lambda M: (lambda K, R: (K.T, R))(*cm.rq_decomposition(M)), "K is transposed"),
         (lambda M: cm.rq_decomposition(M)[::-1], "order is swapped"),
         (_rq_sign_fix_on_columns_of_r, "R's columns"),
         (_rq_sign_fix_on_rows_of_k, "K's rows"),
@@ -919,7 +922,9 @@ _F = np.diag([1.0, -1.0, -1.0])
 
 
 def _blender_cases():
-    return [(c.R, c.t) for c in _cameras()]
+    # the camera with t_x != 0 first: a look-at camera aimed above the origin has t_x = 0, where
+    # -R^T F t (t not flipped) equals R^T t (a sign slip), so its diagnosis could not tell them apart
+    return [(c.R, c.t) for c in _cameras()[::-1]]
 
 
 def _blender_diagnosis(args, got, expected) -> str:
@@ -929,6 +934,9 @@ def _blender_diagnosis(args, got, expected) -> str:
         return problem + ". Return the 4 x 4 matrix [[R_gl^T, C], [0, 0, 0, 1]]."
     g = np.asarray(got, dtype=float)
     if not np.allclose(g[3], [0.0, 0.0, 0.0, 1.0]):
+        if np.allclose(g[:, 3], [0.0, 0.0, 0.0, 1.0]) and np.allclose(g.T, expected, atol=1e-9):
+            return ("your matrix is transposed: its last row holds C, its last column (0, 0, 0, 1). matrix_world "
+                    "is [[R_gl^T, C], [0, 0, 0, 1]]: the centre is the last column.")
         return "the last row of a rigid motion in homogeneous form is (0, 0, 0, 1)."
     A, c = g[:3, :3], g[:3, 3]
     C = -R.T @ t
@@ -962,10 +970,15 @@ def _blender_diagnosis(args, got, expected) -> str:
         return "your rotation block is R_gl, not its transpose: world_from_cam needs R_gl^T = R^T F."
     if rotation_right and np.allclose(c, t, atol=1e-9):
         return "the last column is t, the world origin in camera coordinates; matrix_world's is the camera centre C = -R^T t."
-    if rotation_right and (np.allclose(c, _F @ C, atol=1e-9) or np.allclose(c, _F @ t, atol=1e-9)
-                           or np.allclose(c, -C, atol=1e-9)):
-        return ("the last column must be the camera centre in the world, C = -R^T t (= -R_gl^T t_gl): the centre "
-                "is the same point in both conventions, so F does not touch it, and it has a minus sign.")
+    if rotation_right and np.allclose(c, _F @ t, atol=1e-9):
+        return ("the last column is t_gl = F t, the world origin in the OpenGL camera's coordinates; matrix_world's "
+                "last column is the camera centre in the world, -R_gl^T t_gl = -R^T t = C.")
+    if rotation_right and np.allclose(c, _F @ C, atol=1e-9):
+        return ("the last column is F C: you flipped the centre. F flips the camera's own axes; the centre is a point "
+                "of the world, the same in both conventions, so F does not touch it: C = -R^T t.")
+    if rotation_right and np.allclose(c, -C, atol=1e-9):
+        return ("the last column has the wrong sign: it is R^T t = -C. The centre solves R C + t = 0, so "
+                "C = -R^T t (= -R_gl^T t_gl), with the minus sign.")
     return "matrix_world = [[R_gl^T, -R_gl^T t_gl], [0, 0, 0, 1]] with R_gl = F R, t_gl = F t, F = diag(1, -1, -1)."
 
 
@@ -993,6 +1006,9 @@ register_exercise(Exercise(
         (lambda R, t: np.block([[R.T @ _F, t[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]), "the last column is t"),
         (lambda R, t: np.block([[R.T @ _F, (_F @ -R.T @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]),
          "F does not touch it"),
+        (lambda R, t: np.block([[R.T @ _F, (_F @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]), "t_gl = F t, the"),
+        (lambda R, t: np.block([[R.T @ _F, (R.T @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]), "wrong sign"),
+        (lambda R, t: cm.blender_matrix_world(R, t).T, "transposed"),
         (lambda R, t: np.block([[_F @ R, (-R.T @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]), "not its transpose"),
         (lambda R, t: np.block([[R.T @ _F, (-R.T @ _F @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]),
          "flipped R but not t"),

@@ -28,14 +28,14 @@ EYE_GL = np.array([2.6, -2.6, 1.0])  # opencv_vs_opengl's camera, far enough fro
 
 
 # opencv_vs_opengl's viewer turns half as fast as the camera orbits. The camera's horizontal x axis points
-# at azimuth yaw + 45 deg, so it stays 30 to 120 deg from the line of sight (yaw in [-90, 90]) and never
-# folds onto y down; a fixed viewer would see x point at it, drawn straight down over y, at some yaw.
+# at azimuth orbit + 45 deg, so it stays 30 to 120 deg from the line of sight (orbit in [-90, 90]) and never
+# folds onto y down; a fixed viewer would see x point at it, drawn straight down over y, at some orbit angle.
 # From this side "z forward" points away from the house, up the screen.
 VIEW_GL_ELEV = 30.0
 
 
-def _view_gl_azim(yaw: float) -> float:
-    return -30.0 + 0.5 * yaw
+def _view_gl_azim(orbit: float) -> float:
+    return -30.0 + 0.5 * orbit
 
 
 def _fmt(v: np.ndarray) -> str:
@@ -319,7 +319,7 @@ def k_readout(K, image_size=(640, 480)) -> str:
     odd = [what for what, bad in (("fy != fx", abs(fy / fx - 1) > 0.05), ("skew", abs(s) > 0.02 * abs(fx)),
                                   ("principal point off the image", not (0 <= cx <= w - 1 and 0 <= cy <= h - 1)))
            if bad]
-    return text + (f"\n<b>no real camera has this K ({', '.join(odd)}):\nthe resection has failed</b>" if odd else "")
+    return text + (f"\n<b>no real camera has this K ({', '.join(odd)}):\ndistrust this resection</b>" if odd else "")
 
 
 def _place_camera_labels(ax, true_artist, est_artist) -> None:
@@ -340,7 +340,7 @@ def _place_camera_labels(ax, true_artist, est_artist) -> None:
         artist.label.set_position_3d(artist._label_position(artist.camera))
 
 
-@register(lesson="04", sweep={"yaw": [-90, -60, 60, 90], "frame": ["OpenGL / Blender", "OpenCV"]})
+@register(lesson="04", sweep={"orbit": [-90, -60, 60, 90], "frame": ["OpenGL / Blender", "OpenCV"]})
 def opencv_vs_opengl():
     """The same camera with OpenCV axes (x right, y down, z forward) or OpenGL/Blender axes
     (x right, y up, z backward): the camera stays put, its y and z axes flip (R_gl = F R, F = diag(1, -1, -1))
@@ -355,7 +355,7 @@ def opencv_vs_opengl():
     house_segments = scenes.house_wireframe((0.0, 0.0, 0.0), 0.6)
     house = scene3d.draw_segments(ax, house_segments, color=palette.GREY)
     cam0 = cm.Camera.look_at(EYE_GL, [0.0, 0.0, 0.4])
-    art = scene3d.CameraArtist(ax, cam0, size=0.45, show_axes=False)  # shorter than the axes, so labels clear it
+    art = scene3d.CameraArtist(ax, cam0, size=0.65, show_axes=False)  # shorter than the axes, so labels clear it
     lines, texts = [], []
     for c in palette.AXIS_COLOURS:
         (ln,) = ax.plot([], [], [], color=c, lw=2.5)
@@ -366,14 +366,14 @@ def opencv_vs_opengl():
     # everything in the 3-D axes moves with the projection and is animated.
     view.animate(*world, house, *art.artists(), *lines, *texts)
     controls = {
-        "yaw": slider(0, -90, 90, 2, "orbit (deg)"),
+        "orbit": slider(0, -90, 90, 2, "orbit (deg)"),
         "frame": W.ToggleButtons(options=["OpenCV", "OpenGL / Blender"], value="OpenCV", description="frame"),
     }
 
     def update(v, state):
-        eye = cm.rotation_z(np.deg2rad(v["yaw"])) @ EYE_GL
+        eye = cm.rotation_z(np.deg2rad(v["orbit"])) @ EYE_GL
         cam = cm.Camera.look_at(eye, [0.0, 0.0, 0.4])
-        ax.view_init(elev=VIEW_GL_ELEV, azim=_view_gl_azim(v["yaw"]))   # before fit_view, which refreshes
+        ax.view_init(elev=VIEW_GL_ELEV, azim=_view_gl_azim(v["orbit"]))   # before fit_view, which refreshes
         art.update(cam)
         gl = v["frame"] != "OpenCV"
         R_axes = cm.opengl_from_opencv(cam.R, cam.t)[0] if gl else cam.R
