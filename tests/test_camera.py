@@ -681,3 +681,33 @@ def test_blender_matrix_world_is_world_from_cam_in_the_opengl_frame():
     assert np.allclose(M[:3, 1], -cam.R[1])          # and its y up
     R_gl, t_gl = cm.opengl_from_opencv(cam.R, cam.t)
     assert np.allclose(np.linalg.inv(M), np.block([[R_gl, t_gl[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]))
+
+
+def test_explorer_pan_turns_about_the_world_vertical_and_roll_is_right_handed():
+    """+pan turns the camera left (anticlockwise seen from above) with the horizon level; +roll turns the picture
+    anticlockwise; a short focal length never makes the image plane wider than at the default."""
+    from camlab.widgets import projective_camera as demos
+
+    cam0, panned = demos.explorer_camera(), demos.explorer_camera(pan=10.0)
+    assert np.cross(cam0.R[2], panned.R[2])[2] > 0 and np.isclose(panned.R[0, 2], 0.0)   # left turn, x horizontal
+    assert np.allclose(panned.centre, cam0.centre)
+    right = cam0.centre + 5.0 * cam0.R[2] + cam0.R[0]          # a point right of the axis rises when +roll
+    assert demos.explorer_camera(roll=10.0).project(right)[1] < cam0.project(right)[1] - 10
+    default = demos.explorer_plane_size(5.0, cam0.K)
+    assert default == demos.explorer_plane_size(5.0) == 2.0
+    for k in (dict(fx=200), dict(fy=200), dict(cx=639.5), dict(skew=300)):
+        K = demos.explorer_camera(**k).K
+        corners = np.array([[-0.5, -0.5, 1.0], [639.5, 479.5, 1.0], [639.5, -0.5, 1.0], [-0.5, 479.5, 1.0]])
+        reach = demos.explorer_plane_size(5.0, K) * np.linalg.norm(np.linalg.solve(K, corners.T)[:2], axis=0).max()
+        assert reach <= 2.0 * 0.5 + 1e-9                     # no corner farther from the axis than the default's
+
+
+def test_resectioning_readout_flags_a_k_no_camera_has():
+    from camlab.widgets import projective_camera as demos
+
+    d = demos.resectioning()
+    readout = lambda: d.widget.children[0].children[-1].value   # noqa: E731
+    assert "estimated K" in readout() and "no real camera" not in readout()
+    d.set(refine=True, outlier=60.0, pair=5)
+    assert "fx 1564, fy 1444, skew -96" in readout() and "principal point (138, -340)" in readout()
+    assert "no real camera has this K (fy != fx, skew, principal point off the image)" in readout()

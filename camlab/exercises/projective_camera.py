@@ -49,6 +49,13 @@ def _project_diagnosis(args, got, expected) -> str:
     x = Xh @ P.T
     if np.allclose(g, x[:, :2], rtol=1e-6, atol=1e-6):
         return "you kept (x, y) without dividing by the third coordinate w = depth: u = x / w, v = y / w."
+    if same_up_to_scale(g, x[:, :2], rtol=1e-6):
+        return ("you kept (x, y) of a rescaled P (P / P[2, 3] or similar) without dividing by w. Rescaling P cannot "
+                "make w = 1 for every point: w is each point's own depth (times P's scale). Divide per point: "
+                "u = x / w, v = y / w.")
+    if np.allclose(g[:, 1], 1.0) and np.allclose(g[:, 0], x[:, 1] / x[:, 2], rtol=1e-6, atol=1e-6):
+        return ("your second column is all 1 and your first is v: you sliced x[:, 1:3] / x[:, 2:3], counting the columns "
+                "from 1. Python counts from 0: u and v are columns 0 and 1, x[:, 0:2] / x[:, 2:3] (or x[:, :2]).")
     if np.allclose(g, (X @ P[:, :3].T)[:, :2] / (X @ P[:, :3].T)[:, 2:], rtol=1e-6):
         return "you ignored the fourth column of P (the translation): lift X to (X, Y, Z, 1) first."
     if np.all(x[:, 2] < 0) and np.allclose(g, x[:, :2] / np.abs(x[:, 2:]), rtol=1e-6, atol=1e-6):
@@ -64,7 +71,7 @@ def _project_diagnosis(args, got, expected) -> str:
     if np.allclose(g, -np.asarray(expected, dtype=float), rtol=1e-6, atol=1e-6):
         return ("every pixel has the wrong sign: (u, v) = (x / w, y / w) with x = P (X, Y, Z, 1)^T, no minus sign "
                 "(the pinhole's image inversion is already in K: v grows downwards).")
-    return _pixel_slip(g, np.asarray(expected, dtype=float))
+    return _pixel_slip(g, np.asarray(expected, dtype=float), P)
 
 
 def _masked_by_w(P, X, got, expected) -> str | None:
@@ -85,15 +92,30 @@ def _masked_by_w(P, X, got, expected) -> str | None:
             "the depth of a point); or simply return x / w for every point.")
 
 
-def _pixel_slip(got, expected) -> str:
-    """The cause when right pixels were then shifted, swapped or flipped."""
+def _pixel_slip(got, expected, P=None) -> str:
+    """The cause when right pixels were then rounded, shifted, swapped or flipped."""
     shift = got - expected
+    if np.allclose(got, np.round(expected), atol=1e-9) and not np.allclose(got, expected, atol=1e-6):
+        return ("you rounded to whole pixels. A projection lands between pixel centres (sub-pixel positions are "
+                "what calibration and matching measure), so return x / w as it is: no np.round, no .astype(int).")
+    if P is not None:
+        M = np.asarray(P, dtype=float)[:, :3]
+        x0 = M @ M[2]                                        # the principal point M m3 (section 4b)
+        for sign, how in ((-1.0, "subtracted"), (1.0, "added")):
+            if np.allclose(shift, sign * x0[:2] / x0[2], atol=1e-6):
+                return (f"you {how} the principal point (c_x, c_y). P = K [R | t] already contains it (K's last "
+                        f"column), so x / w is the pixel itself, counted from the top-left pixel's centre: return "
+                        f"x / w with nothing {how}.")
     if np.allclose(shift, shift[0], atol=1e-6) and np.allclose(np.abs(shift[0]), 0.5, atol=1e-6):
         return ("every pixel is off by half a pixel: P already puts pixel centres at integers (the principal "
                 "point is in P), so return x / w as it is, with no +-0.5.")
     if np.allclose(shift, shift[0], atol=1e-6) and np.allclose(np.abs(shift[0]), 1.0, atol=1e-6):
         return ("every pixel is off by one: pixel indices start at 0 (the top-left pixel's centre is (0, 0), in numpy "
                 "as in camlab and OpenCV), and P already puts them there; return x / w as it is, with no +-1.")
+    if np.allclose(shift, shift[0], atol=1e-6) and np.abs(shift[0]).max() > 1.0:
+        return (f"every pixel is shifted by the same ({shift[0, 0]:.4g}, {shift[0, 1]:.4g}) px: did you subtract an image "
+                f"centre such as (320, 240)? Pixels count from the top-left pixel's centre, and P already puts them "
+                f"there (the principal point is inside P): return x / w with nothing added or subtracted.")
     for factor in (1e3, 1e-3):
         if np.allclose(got, factor * expected, rtol=1e-6, atol=1e-9):
             return (f"every pixel is {factor:g} times the right one: a unit conversion slipped in (pixels in "
@@ -105,6 +127,24 @@ def _pixel_slip(got, expected) -> str:
         return ("v is flipped (v measured upwards): in pixels v grows downwards and P already says so; "
                 "return v = y / w without negating it or subtracting it from the height.")
     return "project with x = P (X, Y, Z, 1)^T, then (u, v) = (x / w, y / w)."
+
+
+def _project_exception_hint(exc, args) -> str:
+    """The cause of a broadcasting error: p4 added as a row to the (3, N) product, or w without keepdims."""
+    message = str(exc)
+    if not (isinstance(exc, ValueError) and "broadcast" in message):
+        return ""
+    n = len(np.asarray(args[1]))
+    if f"(3,{n}) (3,)" in message:
+        return (f"a broadcasting slip: you added p4 = P[:, 3], shape (3,), to a (3, {n}) array (M X^T, one column per "
+                f"point). Broadcasting lines a (3,) vector up with the LAST axis, the {n} points, not the 3 rows. Make it "
+                f"a column, P[:, 3:4] or P[:, 3, None], or lift X to (X, Y, Z, 1) and use one product, X_h @ P.T.")
+    for k in (2, 3):
+        if f"({n},{k}) ({n},)" in message:
+            return (f"a broadcasting slip: you divided a ({n}, {k}) array by w of shape ({n},), which broadcasting "
+                    f"lines up with the last axis (the {k} columns), not with the {n} rows (points). Keep w 2-D: "
+                    f"x[:, 2:3], x[:, 2, None] or keepdims=True.")
+    return ""
 
 
 def project_points(P, X):
@@ -138,7 +178,15 @@ register_exercise(Exercise(
         (lambda P, X: project_points(P, 1000.0 * np.asarray(X)), "in millimetres"),
         (lambda P, X: (lambda x: np.where(x[:, 2:] > 0, x[:, :2] / x[:, 2:], np.nan))(
             np.hstack([X, np.ones((len(X), 1))]) @ P.T), "sign(det M) w > 0"),
+        (lambda P, X: (P[:, :3] @ np.asarray(X).T + P[:, 3]).T, "P[:, 3:4]"),           # p4 added as a row
+        (lambda P, X: np.round(cm.project_points(P, X)).astype(int), "rounded to whole pixels"),
+        (lambda P, X: cm.project_points(P, X) - (lambda x0: x0[:2] / x0[2])(P[:, :3] @ P[2, :3]),
+         "subtracted the principal point"),
+        (lambda P, X: cm.project_points(P, X) - [320.0, 240.0], "shifted by the same"),
+        (lambda P, X: (lambda x: x[:, 1:3] / x[:, 2:3])(np.hstack([X, np.ones((len(X), 1))]) @ P.T), "counting the columns"),
+        (lambda P, X: (np.hstack([X, np.ones((len(X), 1))]) @ (P / P[2, 3]).T)[:, :2], "rescaled P"),
     ),
+    exception_hint=lambda exc, args: _project_exception_hint(exc, args),
     teaching=project_points,
 ))
 
@@ -150,8 +198,26 @@ def _centre_cases():
     return [(s * c.P,) for s, c in zip((1.0, 2.5, 0.02), _cameras())] + [(-0.01 * _cameras()[1].P,)]
 
 
+def _flat_centre(got):
+    """A (4, 1) column or (1, 4) row as the 4-vector it holds (H&Z writes C as a column; scipy's null_space
+    returns one); anything else unchanged."""
+    try:
+        g = np.asarray(got, dtype=float)
+    except (TypeError, ValueError):
+        return got
+    return g.ravel() if g.shape in ((4, 1), (1, 4)) else got
+
+
+_same_centre = same_array(rtol=1e-8, atol=1e-10)   # the prompt fixes the scale: last entry 1
+
+
+def _centre_compare(got, expected) -> bool:
+    return _same_centre(_flat_centre(got), expected)
+
+
 def _centre_diagnosis(args, got, expected) -> str:
     (P,) = args
+    got = _flat_centre(got)
     g = np.asarray(got, dtype=float) if got is not None else None
     if g is not None and g.shape == (3,):
         if same_up_to_scale(g, np.linalg.svd(P)[0][:, -1], rtol=1e-6):
@@ -212,6 +278,9 @@ def _centre_slip(P, got, expected) -> str | None:
 
 def _centre_exception_hint(exc, args) -> str:
     """The cause when indexing entry 3 of a 3-vector fails: the SVD of P.T, or -M^-1 p4 without its 1."""
+    if isinstance(exc, IndexError) and "index 4" in str(exc) and "size 4" in str(exc):
+        return ("you indexed entry 4 of the null vector, which has 4 entries, indices 0 .. 3 (Python counts from 0): "
+                "its last entry is v[3], or v[-1], so C = v / v[3].")
     if isinstance(exc, IndexError) and "size 3" in str(exc):
         return ("you indexed entry 3 (the fourth) of a vector with 3 entries. If it came from np.linalg.svd(P.T): "
                 "that SVD's Vt is 3 x 3 and holds the image-side (left) singular vectors of P; the centre is P's "
@@ -223,7 +292,7 @@ def _centre_exception_hint(exc, args) -> str:
 def camera_centre(P):
     """The homogeneous centre C with P C = 0: P's right null vector, scaled to w = 1."""
     _, _, Vt = np.linalg.svd(P)
-    C = Vt[-1]                 # the right singular vector of the zero singular value
+    C = Vt[-1]                 # the null vector: the full SVD's 4th right singular vector (its singular value, 0, is not in S)
     return C / C[3]
 
 
@@ -232,7 +301,7 @@ register_exercise(Exercise(
     lesson="04",
     reference=cm.camera_centre,
     cases=_centre_cases,
-    compare=same_array(rtol=1e-8, atol=1e-10),  # the prompt fixes the scale: last entry 1
+    compare=_centre_compare,   # a flat 4-vector, or a (4, 1) column, with last entry 1
     diagnose=_centre_diagnosis,
     wrong_variants=(
         (lambda P: -np.linalg.solve(P[:, :3], P[:, 3]), "returned a 3-vector"),
@@ -247,6 +316,8 @@ register_exercise(Exercise(
         (lambda P: np.linalg.svd(np.asarray(P).T)[2][-1], "left singular vector"),
         (lambda P: (lambda v: v / v[3])(np.linalg.svd(np.asarray(P).T)[2][-1]), "np.linalg.svd(P.T)"),
         (lambda P: (lambda v: v / v[3])(np.linalg.svd(P, full_matrices=False)[2][-1]), "full_matrices=False"),
+        (lambda P: (lambda v: v / v[4])(np.linalg.svd(P)[2][-1]), "indices 0 .. 3"),
+        (lambda P: np.linalg.svd(P)[2][-1][:, None], "last coordinate is 1"),   # a column, unscaled
     ),
     exception_hint=lambda exc, args: _centre_exception_hint(exc, args),
     teaching=camera_centre,
@@ -282,10 +353,11 @@ def _rq_diagnosis(args, got, expected) -> str:
         return "return a pair (K, R) of (3, 3) arrays"
     scale = 1e-6 * np.abs(M).max()
     if np.linalg.det(M) < 0 and np.allclose(K @ R, -M, rtol=1e-6, atol=scale):
-        return ("K R = -M: you flipped the sign of M inside rq_decomposition (step 1 of section 4). That step "
-                "belongs to decomposing a camera, where -P is the same camera; here M must come back as K R "
-                "exactly. For det M < 0 a K with a positive diagonal forces det R = -1, a reflection: the sign "
-                "that tells the camera decomposition to flip P first.")
+        return ("K R = -M: you made det R = +1 by a sign change, either negating R after the sign fix or factoring "
+                "-M instead of M (step 1 of section 4); both give this same pair. Flipping the sign belongs to "
+                "decomposing a camera, where -P is the same camera; here M must come back as K R exactly. For "
+                "det M < 0 a K with a positive diagonal forces det R = -1, a reflection: the sign that tells the "
+                "camera decomposition to flip P first.")
     reproduces = np.allclose(K @ R, M, rtol=1e-6, atol=1e-6 * np.abs(M).max())
     orthogonal = np.allclose(R @ R.T, np.eye(3), atol=1e-6)
     if reproduces and not orthogonal:
@@ -309,6 +381,8 @@ def _rq_diagnosis(args, got, expected) -> str:
             return misplaced
         if np.allclose(K @ R.T, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
             return "R is transposed: M = K R."
+        if np.allclose(K.T @ R, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
+            return "K is transposed (lower triangular): M = K R with K upper triangular; return K itself, not K.T."
         if _signs_fixed_in_k_only(K, R, M):
             return ("you fixed the signs of K (K D) but not of R: K R = (K D)(D R), so apply the same "
                     "D = diag(sign(diag(K))) to R's rows too (D R), or K R no longer equals M.")
@@ -423,10 +497,12 @@ register_exercise(Exercise(
         (_rq_qr, "QR decomposition"),
         (_rq_signs_of_k_only, "apply the same"),
         (lambda M: (lambda K, R: (K, R.T))(*cm.rq_decomposition(M)), "transposed"),
+        (lambda M: (lambda K, R: (K.T, R))(*cm.rq_decomposition(M)), "K is transposed"),
         (lambda M: cm.rq_decomposition(M)[::-1], "order is swapped"),
         (_rq_sign_fix_on_columns_of_r, "R's columns"),
         (_rq_sign_fix_on_rows_of_k, "K's rows"),
-        (lambda M: cm.rq_decomposition(np.sign(np.linalg.det(M)) * np.asarray(M)), "flipped the sign of M"),
+        (lambda M: cm.rq_decomposition(np.sign(np.linalg.det(M)) * np.asarray(M)), "factoring -M instead of M"),
+        (lambda M: (lambda K, R: (K, np.sign(np.linalg.det(R)) * R))(*cm.rq_decomposition(M)), "negating R"),
         (_rq_forced_rotation, "R is a rotation (det R = +1)"),
         (lambda M: (lambda K, R: (K / K[2, 2], R * K[2, 2]))(*cm.rq_decomposition(M)), "R is not orthogonal"),
     ),
@@ -846,7 +922,9 @@ _F = np.diag([1.0, -1.0, -1.0])
 
 
 def _blender_cases():
-    return [(c.R, c.t) for c in _cameras()]
+    # the camera with t_x != 0 first: a look-at camera aimed above the origin has t_x = 0, where
+    # -R^T F t (t not flipped) equals R^T t (a sign slip), so its diagnosis could not tell them apart
+    return [(c.R, c.t) for c in _cameras()[::-1]]
 
 
 def _blender_diagnosis(args, got, expected) -> str:
@@ -856,10 +934,29 @@ def _blender_diagnosis(args, got, expected) -> str:
         return problem + ". Return the 4 x 4 matrix [[R_gl^T, C], [0, 0, 0, 1]]."
     g = np.asarray(got, dtype=float)
     if not np.allclose(g[3], [0.0, 0.0, 0.0, 1.0]):
+        if np.allclose(g[:, 3], [0.0, 0.0, 0.0, 1.0]) and np.allclose(g.T, expected, atol=1e-9):
+            return ("your matrix is transposed: its last row holds C, its last column (0, 0, 0, 1). matrix_world "
+                    "is [[R_gl^T, C], [0, 0, 0, 1]]: the centre is the last column.")
         return "the last row of a rigid motion in homogeneous form is (0, 0, 0, 1)."
     A, c = g[:3, :3], g[:3, 3]
     C = -R.T @ t
     rotation_right = np.allclose(A, R.T @ _F, atol=1e-9)
+    if rotation_right and np.allclose(c, -R.T @ _F @ t, atol=1e-9):
+        return ("you flipped R but not t: t_gl = F t as well, so the last column is -R_gl^T t_gl = -R^T F F t = "
+                "-R^T t = C (or write C = -R^T t directly); -R^T F t is not the camera centre.")
+    if np.allclose(A, _F @ R.T, atol=1e-9) and np.allclose(c, _F @ C, atol=1e-9):
+        return ("you flipped the world's Y and Z (diag(1, -1, -1, 1) @ world_from_cam): F multiplies on the wrong "
+                "side. R_gl = F R flips the camera's axes, the columns of R^T (R^T F), and leaves the world alone, so "
+                "the last column stays the camera centre C = -R^T t, not F C.")
+    for G in _sign_flips():
+        if not np.allclose(G, _F) and np.allclose(A, R.T @ G, atol=1e-9) and np.allclose(c, C, atol=1e-9):
+            flipped = " and ".join("xyz"[i] for i in range(3) if G[i, i] < 0)
+            if np.linalg.det(G) < 0:
+                return (f"you flipped only the camera's {flipped} axis: one flipped axis is a mirror (det = -1), "
+                        f"no rotation, and Blender would render a mirrored picture. The OpenGL frame flips two axes, "
+                        f"y and z: F = diag(1, -1, -1), so R_gl^T = R^T F.")
+            return (f"you flipped the camera's {flipped} axes; OpenGL keeps x right and flips y (up) and z (backward): "
+                    f"F = diag(1, -1, -1), so R_gl^T = R^T F.")
     if np.allclose(A, _F @ R, atol=1e-9) and np.allclose(c, _F @ t, atol=1e-9):
         return ("you returned the OpenGL pose (R_gl, t_gl) = (F R, F t) itself: that is still cam_from_world. "
                 "matrix_world is world_from_cam, its inverse: [[R_gl^T, -R_gl^T t_gl], [0, 1]].")
@@ -873,10 +970,15 @@ def _blender_diagnosis(args, got, expected) -> str:
         return "your rotation block is R_gl, not its transpose: world_from_cam needs R_gl^T = R^T F."
     if rotation_right and np.allclose(c, t, atol=1e-9):
         return "the last column is t, the world origin in camera coordinates; matrix_world's is the camera centre C = -R^T t."
-    if rotation_right and (np.allclose(c, _F @ C, atol=1e-9) or np.allclose(c, _F @ t, atol=1e-9)
-                           or np.allclose(c, -C, atol=1e-9)):
-        return ("the last column must be the camera centre in the world, C = -R^T t (= -R_gl^T t_gl): the centre "
-                "is the same point in both conventions, so F does not touch it, and it has a minus sign.")
+    if rotation_right and np.allclose(c, _F @ t, atol=1e-9):
+        return ("the last column is t_gl = F t, the world origin in the OpenGL camera's coordinates; matrix_world's "
+                "last column is the camera centre in the world, -R_gl^T t_gl = -R^T t = C.")
+    if rotation_right and np.allclose(c, _F @ C, atol=1e-9):
+        return ("the last column is F C: you flipped the centre. F flips the camera's own axes; the centre is a point "
+                "of the world, the same in both conventions, so F does not touch it: C = -R^T t.")
+    if rotation_right and np.allclose(c, -C, atol=1e-9):
+        return ("the last column has the wrong sign: it is R^T t = -C. The centre solves R C + t = 0, so "
+                "C = -R^T t (= -R_gl^T t_gl), with the minus sign.")
     return "matrix_world = [[R_gl^T, -R_gl^T t_gl], [0, 0, 0, 1]] with R_gl = F R, t_gl = F t, F = diag(1, -1, -1)."
 
 
@@ -904,7 +1006,16 @@ register_exercise(Exercise(
         (lambda R, t: np.block([[R.T @ _F, t[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]), "the last column is t"),
         (lambda R, t: np.block([[R.T @ _F, (_F @ -R.T @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]),
          "F does not touch it"),
+        (lambda R, t: np.block([[R.T @ _F, (_F @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]), "t_gl = F t, the"),
+        (lambda R, t: np.block([[R.T @ _F, (R.T @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]), "wrong sign"),
+        (lambda R, t: cm.blender_matrix_world(R, t).T, "transposed"),
         (lambda R, t: np.block([[_F @ R, (-R.T @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]), "not its transpose"),
+        (lambda R, t: np.block([[R.T @ _F, (-R.T @ _F @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]),
+         "flipped R but not t"),
+        (lambda R, t: np.diag([1.0, -1.0, -1.0, 1.0]) @ np.block([[R.T, (-R.T @ t)[:, None]], [np.zeros((1, 3)),
+                                                                   np.ones((1, 1))]]), "not F C"),
+        (lambda R, t: np.block([[R.T @ np.diag([1.0, 1.0, -1.0]), (-R.T @ t)[:, None]], [np.zeros((1, 3)),
+                                                                                         np.ones((1, 1))]]), "a mirror"),
     ),
     teaching=blender_matrix_world,
 ))

@@ -28,14 +28,14 @@ EYE_GL = np.array([2.6, -2.6, 1.0])  # opencv_vs_opengl's camera, far enough fro
 
 
 # opencv_vs_opengl's viewer turns half as fast as the camera orbits. The camera's horizontal x axis points
-# at azimuth yaw + 45 deg, so it stays 30 to 120 deg from the line of sight (yaw in [-90, 90]) and never
-# folds onto y down; a fixed viewer would see x point at it, drawn straight down over y, at some yaw.
+# at azimuth orbit + 45 deg, so it stays 30 to 120 deg from the line of sight (orbit in [-90, 90]) and never
+# folds onto y down; a fixed viewer would see x point at it, drawn straight down over y, at some orbit angle.
 # From this side "z forward" points away from the house, up the screen.
 VIEW_GL_ELEV = 30.0
 
 
-def _view_gl_azim(yaw: float) -> float:
-    return -30.0 + 0.5 * yaw
+def _view_gl_azim(orbit: float) -> float:
+    return -30.0 + 0.5 * orbit
 
 
 def _fmt(v: np.ndarray) -> str:
@@ -56,14 +56,18 @@ def explorer_camera(fx=800.0, fy=800.0, cx=319.5, cy=239.5, skew=0.0, azimuth=-6
     1. ``look_at`` from the orbit position (``azimuth``, ``elevation`` in degrees, ``distance`` in
        metres about the house's centre): the camera's z axis points from the eye to the target,
        x = z x up (up = world Z), y = z x x (lesson 04, section 3);
-    2. turn in place (the centre C stays): ``pan`` degrees about the camera's own y axis, then
-       ``roll`` degrees about its own z axis, R <- R_z(roll) R_y(pan) R;
+    2. turn in place (the centre C stays), both right-handed: ``pan`` degrees about the world's vertical
+       Z through C, a tripod's pan (positive turns the camera to its left, anticlockwise seen from above,
+       and keeps the horizon level), then ``roll`` degrees about the camera's own z axis (positive turns
+       its x towards its y: clockwise seen from behind, so the picture turns anticlockwise).
+       The camera's pose in the world, world_from_cam = R^T, turns as R^T <- R_Z(pan) R^T R_z(roll),
+       so R <- R_z(-roll) R R_Z(-pan);
     3. ``slide`` metres along the camera's own x axis with R fixed: C <- C + slide r1 (r1 = R's first row).
     Finally t = -R C.
     """
     K = cm.intrinsic_matrix(fx, fy, cx, cy, skew)
     base = cm.Camera.look_at(cm.orbit_eye(*np.radians([azimuth, elevation]), distance, TARGET), TARGET, K=K)
-    R = cm.rotation_z(np.radians(roll)) @ cm.rotation_y(np.radians(pan)) @ base.R   # about the camera's own axes
+    R = cm.rotation_z(-np.radians(roll)) @ base.R @ cm.rotation_z(-np.radians(pan))   # pan about world Z, roll about z
     C = base.centre + slide * R[0]
     return cm.Camera(K, R, -R @ C)
 
@@ -76,10 +80,21 @@ SLIDE_MIN = -0.5
 WORLD_AXES_M = 1.25   # the world axes reach out of the house (1.0 x 1.4 m, 1.55 m high), so their labels clear it
 
 
-def explorer_plane_size(distance: float) -> float:
+def explorer_plane_size(distance: float, K=None) -> float:
     """The explorer's image-plane depth (m): 0.4 of the distance, so the plane always stands between the
-    camera and the house and the small picture on it keeps its size on screen as the camera backs off."""
-    return 0.4 * float(distance)
+    camera and the house and the small picture on it keeps its size on screen as the camera backs off.
+
+    With ``K``, the plane is never larger than the default camera's (f = 800 px, principal point at the centre):
+    a corner of the image lies r = |K^-1 (u, v, 1)|'s (x, y) from the axis per metre of depth (0.5 by default),
+    and a short focal length or a shifted principal point raises r, so the depth shrinks by 0.5 / r: at
+    f = 200 px the plane would otherwise be 6.4 m wide and cover the house on screen.
+    """
+    depth = 0.4 * float(distance)
+    if K is None:
+        return depth
+    corners = np.array([[-0.5, -0.5, 1.0], [639.5, -0.5, 1.0], [-0.5, 479.5, 1.0], [639.5, 479.5, 1.0]])
+    reach = np.linalg.norm(np.linalg.solve(np.asarray(K, dtype=float), corners.T)[:2], axis=0).max()
+    return depth * min(1.0, 0.5 / reach)
 
 
 @register(lesson="04", sweep={"fx": [200, 1600], "fy": [200, 1600], "cx": [-0.5, 639.5], "cy": [-0.5, 479.5],
@@ -116,14 +131,14 @@ def camera_explorer():
         "azimuth": slider(-60, -180, 180, 2, "orbit: azimuth (deg)", readout_format=".0f"),
         "elevation": slider(25, ELEVATION_MIN, 80, 1, "orbit: elevation (deg)", readout_format=".0f"),
         "distance": slider(5.0, 2.5, 9.0, 0.1, "orbit: distance (m)", readout_format=".1f"),
-        "pan": slider(0, -30, 30, 1, "turn in place: pan (deg)", readout_format=".0f"),
+        "pan": slider(0, -30, 30, 1, "turn in place: pan (deg, + left)", readout_format=".0f"),
         "roll": slider(0, -90, 90, 1, "turn in place: roll (deg)", readout_format=".0f"),
         "slide": slider(0.0, SLIDE_MIN, 2.0, 0.1, "slide along camera x (m)", readout_format=".1f"),
     }
 
     def update(v, state):
         cam = explorer_camera(**v)
-        sv.camera_artist.size = explorer_plane_size(v["distance"])
+        sv.camera_artist.size = explorer_plane_size(v["distance"], cam.K)
         sv.ax3d.view_init(elev=18, azim=v["azimuth"] + VIEWER_OFFSET)   # sv.update refreshes the projection
         sv.update(cam)
         pp.set_data([cam.principal_point[0]], [cam.principal_point[1]])
@@ -189,7 +204,8 @@ def resectioning():
             Line2D([], [], marker="o", ms=10, mfc="none", mec="k", mew=2.0, ls="none")]
     view.fig.legend(keys, ["true camera", "estimated camera", "scene seen by the true camera",
                            "seen by the estimate", "measured pixel", "reprojected by the estimate",
-                           "moved pair"], loc="outside lower center", ncols=4, fontsize=8, frameon=False)
+                           "pair k (the shift sliders move it)"], loc="outside lower center", ncols=4, fontsize=8,
+                   frameon=False)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
     # Registered in the order they were created (the true camera's view first), so a live frame stacks
     # them as a full draw does; the 3-D limits follow the estimate, so everything in the 3-D axes moves.
@@ -215,8 +231,9 @@ def resectioning():
                                        refine=bool(v["refine"]), moved=clicked)
         cam_true, Xw, uvn, P = trial.camera, trial.points_world, trial.points_image, trial.P
         moved = sorted(set(clicked) | ({int(v["pair"])} if v["outlier"] or v["outlier_v"] else set()))
-        moved_img.set_data(uvn[moved, 0], uvn[moved, 1])
-        moved_3d.set_data_3d(Xw[moved, 0], Xw[moved, 1], Xw[moved, 2])
+        ringed = sorted(set(moved) | {int(v["pair"])})   # pair k is ringed before it moves, so you see which it is
+        moved_img.set_data(uvn[ringed, 0], uvn[ringed, 1])
+        moved_3d.set_data_3d(Xw[ringed, 0], Xw[ringed, 1], Xw[ringed, 2])
         K, R, t, C = cm.decompose_projection_matrix(P)
         est = cm.Camera(K, R, t)
         err = trial.errors
@@ -261,7 +278,8 @@ def resectioning():
             f"\nlargest residual: pair {int(np.argmax(err))} ({err.max():.1f} px)"
             f"\nmoved pair {', '.join(map(str, moved))}: {', '.join(f'{err[i]:.1f}' for i in moved)} px")
         info.value = (f"<pre>{rms_text}{worst}\n|fx - fx_true| = {focal_err:.1f} px\n"
-                      f"|C - C_true| = {100 * centre_err:.1f} cm\n\n"
+                      f"|C - C_true| = {100 * centre_err:.1f} cm\n"
+                      f"{k_readout(K, cam_true.image_size)}\n\n"
                       f"redundancy 2N - 11 = {redundancy}\n"
                       f"RMS expected of the fitted camera:\n  sigma sqrt(2) sqrt((2N - 11) / 2N) = {expected:.2f} px\n"
                       f"(the true camera leaves sigma sqrt(2) = {float(v['noise']) * np.sqrt(2.0):.2f} px)"
@@ -288,6 +306,22 @@ def resectioning():
     return demo
 
 
+def k_readout(K, image_size=(640, 480)) -> str:
+    """The estimated K as a camera maker would read it, and a warning when no real camera has it.
+
+    A real camera has square pixels (f_y = f_x within a few per cent), no skew and its principal point on
+    the image; an estimate that breaks any of these is a failed resection, whatever its residual.
+    """
+    K = np.asarray(K, dtype=float) / K[2, 2]
+    (fx, s, cx), (_, fy, cy) = K[0], K[1]
+    w, h = image_size
+    text = f"estimated K: fx {fx:.0f}, fy {fy:.0f}, skew {s:.0f} px,\n  principal point ({cx:.0f}, {cy:.0f})"
+    odd = [what for what, bad in (("fy != fx", abs(fy / fx - 1) > 0.05), ("skew", abs(s) > 0.02 * abs(fx)),
+                                  ("principal point off the image", not (0 <= cx <= w - 1 and 0 <= cy <= h - 1)))
+           if bad]
+    return text + (f"\n<b>no real camera has this K ({', '.join(odd)}):\ndistrust this resection</b>" if odd else "")
+
+
 def _place_camera_labels(ax, true_artist, est_artist) -> None:
     """Hang "true" and "est." off their centres on the sides facing away from each other on screen.
 
@@ -306,7 +340,7 @@ def _place_camera_labels(ax, true_artist, est_artist) -> None:
         artist.label.set_position_3d(artist._label_position(artist.camera))
 
 
-@register(lesson="04", sweep={"yaw": [-90, -60, 60, 90], "frame": ["OpenGL / Blender", "OpenCV"]})
+@register(lesson="04", sweep={"orbit": [-90, -60, 60, 90], "frame": ["OpenGL / Blender", "OpenCV"]})
 def opencv_vs_opengl():
     """The same camera with OpenCV axes (x right, y down, z forward) or OpenGL/Blender axes
     (x right, y up, z backward): the camera stays put, its y and z axes flip (R_gl = F R, F = diag(1, -1, -1))
@@ -321,7 +355,7 @@ def opencv_vs_opengl():
     house_segments = scenes.house_wireframe((0.0, 0.0, 0.0), 0.6)
     house = scene3d.draw_segments(ax, house_segments, color=palette.GREY)
     cam0 = cm.Camera.look_at(EYE_GL, [0.0, 0.0, 0.4])
-    art = scene3d.CameraArtist(ax, cam0, size=0.45, show_axes=False)  # shorter than the axes, so labels clear it
+    art = scene3d.CameraArtist(ax, cam0, size=0.65, show_axes=False)  # shorter than the axes, so labels clear it
     lines, texts = [], []
     for c in palette.AXIS_COLOURS:
         (ln,) = ax.plot([], [], [], color=c, lw=2.5)
@@ -332,14 +366,14 @@ def opencv_vs_opengl():
     # everything in the 3-D axes moves with the projection and is animated.
     view.animate(*world, house, *art.artists(), *lines, *texts)
     controls = {
-        "yaw": slider(0, -90, 90, 2, "orbit (deg)"),
+        "orbit": slider(0, -90, 90, 2, "orbit (deg)"),
         "frame": W.ToggleButtons(options=["OpenCV", "OpenGL / Blender"], value="OpenCV", description="frame"),
     }
 
     def update(v, state):
-        eye = cm.rotation_z(np.deg2rad(v["yaw"])) @ EYE_GL
+        eye = cm.rotation_z(np.deg2rad(v["orbit"])) @ EYE_GL
         cam = cm.Camera.look_at(eye, [0.0, 0.0, 0.4])
-        ax.view_init(elev=VIEW_GL_ELEV, azim=_view_gl_azim(v["yaw"]))   # before fit_view, which refreshes
+        ax.view_init(elev=VIEW_GL_ELEV, azim=_view_gl_azim(v["orbit"]))   # before fit_view, which refreshes
         art.update(cam)
         gl = v["frame"] != "OpenCV"
         R_axes = cm.opengl_from_opencv(cam.R, cam.t)[0] if gl else cam.R
