@@ -260,6 +260,43 @@ def test_right_answer_in_float32_passes(name, capsys):
     assert "correct on all" in capsys.readouterr().out
 
 
+def _in_float16(value):
+    """A right answer cast to float16, as in round 5's review of lesson 03 (it passed a half-pixel slip)."""
+    if isinstance(value, tuple) and hasattr(value, "_fields"):
+        return type(value)(*(_in_float16(v) for v in value))
+    if isinstance(value, (tuple, list)):
+        return type(value)(_in_float16(v) for v in value)
+    if np.asarray(value).dtype.kind == "f":
+        with np.errstate(over="ignore"):          # entries beyond float16's 65504 become inf: still float16
+            return np.float16(value) if np.ndim(value) == 0 else np.asarray(value, dtype=np.float16)
+    return value
+
+
+@pytest.mark.parametrize("name", sorted(EXERCISES))
+def test_float16_answer_is_rejected_naming_its_precision(name, capsys):
+    """float16 cannot tell 2015.5 from 2016: no tolerance fits it, so its type is named instead."""
+    from camlab.exercises._core import _holds_floats
+
+    exercise = EXERCISES[name]
+    if not _holds_floats(exercise.reference(*exercise.cases()[0])):
+        pytest.skip("the answer holds no floats")
+    with pytest.raises(AssertionError, match="your answer is float16"):
+        check(name, lambda *args: _in_float16(exercise.reference(*args)))
+
+
+def test_float16_slips_of_lesson_03_are_rejected():
+    """Round 5 (D2): these passed as float16 through a tolerance widened to 100 float16 epsilons."""
+    from camlab.exercises.digital_sensor import _datasheet_variant, _reflect_border_demosaic
+
+    slips = {"intrinsics_from_datasheet": (lambda f, s, n: _datasheet_variant(f, s, n, cx=n[0] / 2, cy=n[1] / 2),
+                                           lambda f, s, n: _datasheet_variant(f, s, n, fy=f * n[0] / s[0])),
+             "demosaic_bilinear": (_reflect_border_demosaic,)}
+    for name, wrongs in slips.items():
+        for wrong in wrongs:
+            with pytest.raises(AssertionError, match="float16"):
+                check(name, lambda *args, wrong=wrong: np.asarray(wrong(*args), dtype=np.float16))
+
+
 def test_float32_answer_is_held_to_float32_precision_not_beyond():
     from camlab.exercises._core import Tolerance
 
@@ -840,3 +877,16 @@ def test_best_pinhole_exposure_explains_a_negative_nan_or_zero_time_instead_of_c
     """A sign slip once crashed the diagnosis (log10 of a negative ratio, then round(nan))."""
     with pytest.raises(AssertionError, match=r"likely cause: an exposure time is a positive number of seconds"):
         check("best_pinhole_exposure", wrong)
+
+
+def test_no_hint_cites_a_cell_number():
+    """Cells move when a lesson is edited (round 5 of lesson 03: 'cell 11's formula' pointed at a plot): hints
+    name the section instead."""
+    import pathlib
+    import re
+
+    import camlab.exercises as package
+
+    for path in pathlib.Path(package.__file__).parent.rglob("*.py"):
+        cited = re.findall(r"\bcells? \d+", path.read_text(encoding="utf-8"))
+        assert not cited, f"{path.name} cites {cited}"

@@ -21,7 +21,10 @@ comparison and a diagnosis. ``check`` runs the student's function on every input
 The result prints nothing when it ends a cell (the verdict is already printed), and
 ``assert check_<name>(<name>)`` works as with a bool (graded assignments use that).
 Float answers are compared in float64 within the exercise's :class:`Tolerance`; an
-answer computed in float32 is held to what float32 can represent.
+answer computed in float32 is held to what float32 can represent, and one in float16 (about
+3 significant digits: it cannot tell 2015.5 from 2016) is rejected, naming its type
+(:func:`precision_problem`), since no tolerance wide enough for it would still catch a
+half-pixel slip.
 
 A wrong answer's message stays short: an image-sized array is summarised (shape, dtype,
 range, worst entry) instead of printed. ``solution(name)`` prints the exercise's *teaching
@@ -299,6 +302,14 @@ def check(name: str, student_function: Callable[..., Any], *, time_limit_s: floa
                 f"  expected {_fmt(expected)}\n"
                 f"  likely cause: {wrong_type}"
             )
+        too_coarse = precision_problem(got, expected)
+        if too_coarse:
+            raise AssertionError(
+                f"{name}: answer too imprecise on test input {i + 1} of {len(cases)}\n"
+                f"  input    {_input_text(name, args)}\n"
+                f"  got      {_fmt(_as_array(got))}\n"
+                f"  likely cause: {too_coarse}"
+            )
         if not exercise.compare(got, expected):
             tolerance = exercise.compare.tolerance if isinstance(exercise.compare, SameArray) else None
             raise AssertionError(
@@ -403,6 +414,43 @@ def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | N
     if ndarray_only and not isinstance(got, np.ndarray):
         return f"you returned a {kind}; {wanted}: wrap the values in np.array(...)"
     return None
+
+
+def precision_problem(got: Any, expected: Any) -> str | None:
+    """Why a float answer is too coarse to judge (float16 and shorter), or None.
+
+    float16 keeps 11 significant bits, about 3 decimal digits: between 1024 and 2048 it steps by
+    whole numbers, so c_x = 2015.5 and the half-pixel slip W / 2 = 2016 are the same float16
+    number. A tolerance wide enough for it would pass real mistakes, so such an answer is
+    rejected (float32, 7 digits, is held to its own precision instead: :class:`Tolerance`).
+    """
+    if not _holds_floats(expected):      # integer answers (digital numbers) have their own dtype checks
+        return None
+    if _coarsest_eps(got) <= np.finfo(np.float32).eps:
+        return None
+    coarse = _coarsest_dtype(got)
+    return (f"your answer is {coarse}, which keeps only about {np.finfo(coarse).precision} significant digits "
+            f"(between 1024 and 2048 it steps by whole numbers: 2015.5 and 2016 are the same {coarse} number), too "
+            f"coarse to tell a right answer from a slip; compute in float64, numpy's default (float32 also "
+            f"passes), and leave out .astype(np.{coarse})")
+
+
+def _holds_floats(value: Any) -> bool:
+    """Whether ``value`` (an array, a number, or a tuple or list of them) holds floats."""
+    if isinstance(value, (tuple, list)):
+        return any(_holds_floats(v) for v in value)
+    try:
+        return np.asarray(value).dtype.kind == "f"
+    except (TypeError, ValueError):
+        return False
+
+
+def _coarsest_dtype(value: Any) -> np.dtype:
+    """The float dtype with the largest epsilon in ``value`` (float64 if there is none)."""
+    if isinstance(value, (tuple, list)):
+        return max((_coarsest_dtype(v) for v in value), key=lambda d: np.finfo(d).eps, default=np.dtype(np.float64))
+    dtype = getattr(value, "dtype", None)
+    return np.dtype(dtype) if dtype is not None and np.issubdtype(dtype, np.floating) else np.dtype(np.float64)
 
 
 def _a(value: Any) -> str:
@@ -535,9 +583,11 @@ def _coarsest_eps(value: Any) -> float:
 class Tolerance:
     """How close a float answer must be, entry by entry: ``|got - expected| <= atol + rtol |expected|``.
 
-    Compared in float64. An answer computed in float32 (or float16) cannot come closer than
-    its own rounding, so :meth:`for_answer` widens both tolerances to
-    :data:`REDUCED_PRECISION_SLACK` of its epsilons (``atol`` relative to the largest expected entry).
+    Compared in float64. An answer computed in float32 cannot come closer than its own
+    rounding, so :meth:`for_answer` widens both tolerances to :data:`REDUCED_PRECISION_SLACK`
+    of its epsilons (``atol`` relative to the largest expected entry). Coarser floats (float16)
+    never get here: :func:`check` rejects them (:func:`precision_problem`), since 100 of their
+    epsilons, about 0.1 relative, would pass a half-pixel slip.
     """
 
     rtol: float = 1e-5

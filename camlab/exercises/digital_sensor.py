@@ -73,19 +73,25 @@ def _quantize_diagnosis(args, got, expected) -> str:
         return (f"you clipped to [0, 1] after scaling: by then the values are digital numbers from 0 to "
                 f"{levels}; clip the fraction I to [0, 1] before scaling, or the digital numbers to "
                 f"[0, 2**bits - 1] after")
-    for top in {2 ** (bits - 1) - 1, 2 ** (bits - 1)} - {levels}:
+    for top in sorted({2 ** (bits - 1) - 1, 2 ** (bits - 1), 2**bits - 2} - {levels}):
         if top > 0 and any(_same_after_cast(g, c) for c in (np.clip(np.rint(img * top), 0, top),
                                                             np.clip(np.rint(clipped * top), 0, levels))):
-            return (f"your top code is {top}, from 2**(bits - 1): {bits} bits give 2**bits = {2**bits} levels, "
-                    f"0 to 2**bits - 1 = {levels} (2**(bits - 1) is half of them, the sign bit's worth)")
+            causes = [cause for value, cause in ((2 ** (bits - 1), "2**(bits - 1), half of the levels (the sign bit's "
+                                                  "worth)"), (2 ** (bits - 1) - 1, "2**(bits - 1) - 1, half of the "
+                                                  "levels"), (2**bits - 2, "2**bits - 2, one level too few (an "
+                                                  "off-by-one: 2**bits - 1 is already the top code)")) if value == top]
+            return (f"your top code is {top}, from {' or from '.join(causes)}: {bits} bits give 2**bits = {2**bits} "
+                    f"levels, 0 to 2**bits - 1 = {levels}; scale by 2**bits - 1")
     if any(_same_after_cast(g, c) for c in (np.clip(np.rint(img * levels), 1, levels + 1),
                                             np.clip(np.rint(img * levels) + 1, 1, levels + 1))):
         return (f"your codes run from 1 to 2**bits = {levels + 1}: digital numbers count from 0, like Python's "
                 f"indices, so black is 0 and white is 2**bits - 1 = {levels}; clip to [0, 2**bits - 1]")
     if _same_after_cast(g, np.floor(clipped * levels)):
         return "you truncated (floor); round to the nearest level so the error is at most half a step"
-    if _same_after_cast(g, np.ceil(clipped * levels)):
-        return "you rounded up (ceil); round to the nearest level (np.rint) so the error is at most half a step"
+    if _same_after_cast(g, np.ceil(clipped * levels)) or _same_after_cast(g, np.clip(np.rint(img * levels + 0.5), 0, levels)):
+        return ("you rounded up: np.ceil, or np.round(x + 0.5), which adds a half step that np.round does not need "
+                "(the + 0.5 belongs to np.floor(x + 0.5), the other way to round to nearest); round once, "
+                "np.round(x) or np.floor(x + 0.5), so the error is at most half a step")
     adc = np.floor(clipped * 2**bits)   # many real converters: 2**bits bins of width 1 / 2**bits
     if _same_after_cast(g, adc) or _same_after_cast(g, np.minimum(adc, levels)):
         return ("you used an ADC's floor(I * 2**bits); this lesson's DN = round(I * (2**bits - 1)) maps 0 and 1 "
@@ -132,6 +138,10 @@ register_exercise(Exercise(
         (lambda img, bits: _right_quantize_numbers(img, bits).astype(np.uint16).tolist(), "you returned a list"),
         (lambda img, bits: np.clip(np.rint(img * 2**bits), 0, 2**bits - 1).astype(np.uint16), "you scaled by 2**bits"),
         (lambda img, bits: np.clip(np.ceil(img * (2**bits - 1)), 0, 2**bits - 1).astype(np.uint16), "ceil"),
+        (lambda img, bits: np.clip(np.round(img * (2**bits - 1) + 0.5), 0, 2**bits - 1).astype(
+            np.uint8 if bits <= 8 else np.uint16), "np.round(x + 0.5)"),
+        (lambda img, bits: np.clip(np.rint(img * (2**bits - 2)), 0, 2**bits - 2).astype(
+            np.uint8 if bits <= 8 else np.uint16), "2**bits - 2, one level too few"),
         (lambda img, bits: np.rint(img * (2**bits - 1)).astype(np.uint8 if bits <= 8 else np.uint16), "saturate"),
         (lambda img, bits: _right_quantize_numbers(img, bits) / (2**bits - 1), "fractions of full scale"),
         (lambda img, bits: np.clip(np.rint(img * (2**bits - 1)).astype(np.uint8 if bits <= 8 else np.uint16),
@@ -286,8 +296,35 @@ def _demosaic_diagnosis(args, got, expected) -> str:
     problems = _site_problems(raw, pattern, g, e)
     if problems:
         return "; ".join(problems)
+    # a 3 x 3 kernel reaches one pixel out, where 'reflect' and 'nearest' both repeat the edge pixel
+    for mode, what in (("reflect", "mode='reflect', scipy.ndimage.convolve's default (or mode='nearest', the same "
+                                   "one pixel out)"),
+                       ("mirror", "mode='mirror' (cv2.filter2D's default border, BORDER_REFLECT_101)"),
+                       ("wrap", "mode='wrap'")):
+        if np.allclose(g, _padded_demosaic(raw, pattern, mode)):
+            return (f"right inside, wrong at the border: with {what} the convolution invents samples beyond the "
+                    f"frame, mirrored or copied from inside it, and both k * (m r) and k * m count them (and a "
+                    f"mirrored copy of a Bayer mosaic does not even keep the pattern); use mode='constant' (zeros "
+                    f"outside; cv2.BORDER_CONSTANT) for both, so the ratio averages only the samples that exist")
     return ("right inside, wrong at the border: average only the neighbours that exist "
             "(divide by the sum of the weights of available samples)")
+
+
+def _padded_demosaic(raw, pattern, mode):
+    """Normalised convolution with scipy's border ``mode``: 'constant' is right, the others count invented samples."""
+    from scipy.ndimage import convolve
+
+    raw = np.asarray(raw, dtype=float)
+    m = sensor.bayer_masks(raw.shape, pattern).astype(float)
+    k = np.array([[1, 2, 1], [2, 4, 2], [1, 2, 1]]) / 4.0
+    est = np.stack([convolve(raw * m[..., c], k, mode=mode) / convolve(m[..., c], k, mode=mode) for c in range(3)],
+                   axis=2)
+    return np.where(m == 1, raw[..., None], est)
+
+
+def _reflect_border_demosaic(raw, pattern):
+    """scipy.ndimage.convolve with its default border, mode='reflect': mirrored samples beyond the frame count."""
+    return _padded_demosaic(raw, pattern, "reflect")
 
 
 def _zero_padded_demosaic(raw, pattern):
@@ -366,26 +403,19 @@ def _cross_kernel_demosaic(raw, pattern):
 
 
 def demosaic_bilinear(raw, pattern):
-    """Keep each measured sample; fill the rest with the weighted mean of available neighbours."""
-    raw = np.asarray(raw, dtype=float)
+    """Section 4's formula, c = k * (m r) / (k * m) at the missing sites; measured samples kept."""
+    raw = np.asarray(raw, dtype=float)                 # float: uint8 sums would wrap around
     H, W = raw.shape
-    masks = np.zeros((H, W, 3))                    # which pixel measured which colour
+    m = np.zeros((H, W, 3))                            # m[..., c] = 1 where the pixel measured colour c
     for (dy, dx), colour in zip([(0, 0), (0, 1), (1, 0), (1, 1)], pattern):
-        masks[dy::2, dx::2, "RGB".index(colour)] = 1
-    # a missing site's same-colour neighbours are all equidistant (cross or diagonal), so these weights
-    # give their plain mean; they matter only in that one kernel serves every colour and site
-    weights = np.array([[1, 2, 1], [2, 4, 2], [1, 2, 1]]) / 4
-    out = np.empty((H, W, 3))
-    for c in range(3):
-        m = masks[..., c]
-        padded_values, padded_mask = np.pad(raw * m, 1), np.pad(m, 1)
-        total, weight = np.zeros((H, W)), np.zeros((H, W))
-        for dy in range(3):
-            for dx in range(3):
-                total += weights[dy, dx] * padded_values[dy:dy + H, dx:dx + W]
-                weight += weights[dy, dx] * padded_mask[dy:dy + H, dx:dx + W]
-        out[..., c] = np.where(m == 1, raw, total / weight)   # only existing neighbours count
-    return out
+        m[dy::2, dx::2, "RGB".index(colour)] = 1
+    k = np.outer([1, 2, 1], [1, 2, 1]) / 4             # the tent kernel
+
+    def conv(a):                                       # k * a, with zeros beyond the border (k is symmetric)
+        p = np.pad(a, ((1, 1), (1, 1), (0, 0)))
+        return sum(k[i, j] * p[i:i + H, j:j + W] for i in range(3) for j in range(3))
+
+    return np.where(m == 1, raw[..., None], conv(m * raw[..., None]) / conv(m))
 
 
 register_exercise(Exercise(
@@ -414,6 +444,9 @@ register_exercise(Exercise(
         (_diagonal_only_demosaic, "red or blue at a green site"),
         (_cross_kernel_demosaic, "are all green"),
         (_unnormalised_tent_demosaic, "twice the mean"),
+        (_reflect_border_demosaic, "mode='reflect', scipy.ndimage.convolve's default"),
+        (lambda raw, pattern: _padded_demosaic(raw, pattern, "mirror"), "BORDER_REFLECT_101"),
+        (lambda raw, pattern: _padded_demosaic(raw, pattern, "nearest"), "or mode='nearest'"),
     ),
     teaching=demosaic_bilinear,
 ))
@@ -432,7 +465,7 @@ def _datasheet_cases():
 
 
 def _datasheet_reference(f_mm, sensor_mm, size):
-    """camlab's K from metres: pitch = sensor size / pixel count."""
+    """camlab.sensor.intrinsics_from_sensor(f, pitch, size), in metres, with pitch = sensor size / pixel count."""
     W, H = size
     return sensor.intrinsics_from_sensor(f_mm * 1e-3, (sensor_mm[0] * 1e-3 / W, sensor_mm[1] * 1e-3 / H), size)
 
@@ -449,9 +482,12 @@ def _datasheet_diagnosis(args, got, expected) -> str:
         return np.isclose(a, b, rtol=1e-6, atol=1e-9)
 
     if np.issubdtype(np.asarray(got).dtype, np.integer):
-        return (f"K is an integer array (dtype {np.asarray(got).dtype}): it cannot hold c_x = (W - 1) / 2 = {cx:g} or "
-                f"f_x = {fx:.6g}, so they were cut to whole numbers. Build K from floats (np.array([[...]], dtype=float), "
-                f"or write 0.0 and 1.0) and leave out .astype(int)")
+        named = {"f_x": fx, "f_y": fy, "c_x = (W - 1) / 2": cx, "c_y = (H - 1) / 2": cy}
+        cut = [f"{what} = {value:.6g}" for what, value in named.items() if not float(value).is_integer()]
+        lost = (f"it cannot hold {' or '.join(cut)}, so {'they were' if len(cut) > 1 else 'it was'} cut to "
+                f"{'whole numbers' if len(cut) > 1 else 'a whole number'}") if cut else "it holds whole numbers only"
+        return (f"K is an integer array (dtype {np.asarray(got).dtype}): {lost}. Build K from floats "
+                f"(np.array([[...]], dtype=float), or write 0.0 and 1.0) and leave out .astype(int)")
 
     if np.allclose(g, e.T):
         return ("K is transposed: the principal point goes in the last column, K[0, 2] = c_x and K[1, 2] = c_y, "
@@ -464,18 +500,24 @@ def _datasheet_diagnosis(args, got, expected) -> str:
     if near(g[0, 0], f_mm * W / h_mm) and near(g[1, 1], f_mm * H / w_mm) and not near(fx, f_mm * W / h_mm):
         return ("sensor_mm is (width, height), like size: s_x = sensor_mm[0] / W = width / W, "
                 "s_y = sensor_mm[1] / H; you divided the height by W and the width by H")
-    if near(g[0, 0], -fx) or near(g[1, 1], -fy):
+    if near(g[1, 1], -fy) and not near(g[0, 0], -fx):
         return ("f_x and f_y are positive here: the course's image plane has y down, like v down the image, so "
                 "f_y = f / s_y needs no minus sign (a y-up convention flips it; see docs/conventions.md)")
+    if near(g[0, 0], -fx) or near(g[1, 1], -fy):
+        return ("f_x = f / s_x is positive: a focal length and a pitch are both positive lengths, so there is no "
+                "minus sign in K (the course's x points right on the image plane, like u; docs/conventions.md)")
     if near(g[0, 2], (W + 1) / 2) or near(g[1, 2], (H + 1) / 2):
         return ("(W + 1) / 2 is the centre when pixels are numbered from 1 (MATLAB's convention); numpy and camlab "
                 "number them from 0, so u runs from 0 to W - 1 and the centre is (W - 1) / 2")
     if (W % 2 == 0 and near(g[0, 2], (W - 1) // 2)) or (H % 2 == 0 and near(g[1, 2], (H - 1) // 2)):
-        return (f"integer division: (W - 1) // 2 drops the .5, giving {(W - 1) // 2} for W = {W} instead of "
-                f"{(W - 1) / 2}; use / (the centre of an even number of pixels lies between two of them)")
+        return (f"c_x = {(W - 1) // 2} for W = {W} is the centre {(W - 1) / 2} cut short by half a pixel: integer "
+                f"division, (W - 1) // 2, or int() drops the .5, and W / 2 - 1 (or (W - 1) / 2 - 0.5) subtracts a whole "
+                f"pixel where the centre needs half of one; use (W - 1) / 2 = W / 2 - 0.5 (the centre of an even "
+                f"number of pixels lies between two of them)")
     if (W % 2 and near(g[0, 2], W // 2 - 0.5)) or (H % 2 and near(g[1, 2], H // 2 - 0.5)):
         return (f"W // 2 - 0.5 is the centre only for an even W: for W = {W} it gives {W // 2 - 0.5}, half a pixel "
-                f"short of {(W - 1) / 2}; (W - 1) / 2 holds for both")
+                f"short of {(W - 1) / 2} (so does W / 2 - 1, which takes a whole pixel off the half-way point "
+                f"W / 2 instead of half of one); (W - 1) / 2 holds for both")
     if near(g[0, 2], cy) and near(g[1, 2], cx) and not near(cx, cy):
         return ("c_x and c_y are swapped: c_x = (W - 1) / 2 comes from the width W = size[0], c_y = (H - 1) / 2 from "
                 "the height H = size[1] (sizes are (width, height), as in OpenCV; an array's shape is (H, W))")
@@ -483,6 +525,12 @@ def _datasheet_diagnosis(args, got, expected) -> str:
         return ("half a pixel off: with pixel centres at integers, u runs from 0 to W - 1, so the centre is "
                 "(W - 1) / 2, not W / 2 (that is the centre in a pixel-corner convention), and not (W - 1) / 2 "
                 "rounded to a whole pixel: keep the .5, the centre of an even number of pixels lies between two")
+    if near(g[0, 2], cy) and not near(cx, cy):
+        return (f"c_x comes from the width: (W - 1) / 2 with W = size[0] = {W}; you used the height H = {H} "
+                f"(size is (width, height), as in OpenCV)")
+    if near(g[1, 2], cx) and not near(cx, cy):
+        return (f"c_y comes from the height: (H - 1) / 2 with H = size[1] = {H}; you used the width W = {W} "
+                f"(size is (width, height), as in OpenCV)")
     if near(g[0, 2], W - 1) or near(g[0, 2], W) or near(g[1, 2], H - 1):
         return "the principal point is the image centre, (W - 1) / 2 and (H - 1) / 2, not the image size"
     if near(g[0, 0], f_mm) or near(g[1, 1], f_mm):
@@ -490,8 +538,10 @@ def _datasheet_diagnosis(args, got, expected) -> str:
                 "s_x = sensor width / W (both in mm, so the units cancel)")
     for factor, unit in ((1e3, "1000 times too large"), (1e-3, "1000 times too small"), (1e6, "a million times too large"),
                          (1e-6, "a million times too small")):
-        if near(g[0, 0], fx * factor) and near(g[1, 1], fy * factor):
-            return (f"f_x and f_y are {unit}: a unit slip between mm, µm and m; keep f and the pitch in the same unit "
+        x_off, y_off = near(g[0, 0], fx * factor), near(g[1, 1], fy * factor)
+        if x_off or y_off:
+            which = "f_x and f_y are" if x_off and y_off else "f_x is" if x_off else "f_y is"
+            return (f"{which} {unit}: a unit slip between mm, µm and m; keep f and the pitch in the same unit "
                     f"(mm: s_x = sensor width / W), so f / s_x is in pixels")
     for factor, unit in ((0.1, "10 times too small"), (10, "10 times too large")):
         if near(g[0, 0], fx * factor) and near(g[1, 1], fy * factor):
@@ -508,6 +558,16 @@ def _datasheet_diagnosis(args, got, expected) -> str:
         return "s_x = width / W: you divided the sensor's height by W (sensor_mm = (width, height): width is sensor_mm[0])"
     if near(g[0, 0], 1 / fx) or near(g[0, 0], w_mm / W / f_mm):
         return "f_x = f / s_x, not s_x / f: the focal length in units of the pixel pitch"
+    if near(g[0, 0], f_mm * w_mm / W) or near(g[1, 1], f_mm * h_mm / H):
+        return ("you multiplied the focal length by the pitch, f * s_x; divide: f_x = f / s_x counts how many pixel "
+                "pitches fit in the focal length, so finer pixels give a larger f_x")
+    if near(g[0, 0], fx / 2) or near(g[1, 1], fy / 2):
+        return ("f_x is half the right value: did you use half the sensor (width / 2) or double the pitch? "
+                "f_x = f / s_x with s_x = width / W, the pitch of one pixel; the half width belongs to the field "
+                "of view, tan(fov / 2) = (width / 2) / f")
+    if near(g[0, 0], 2 * fx) or near(g[1, 1], 2 * fy):
+        return ("f_x is twice the right value: did you halve the pitch (width / 2 / W)? "
+                "f_x = f / s_x with s_x = width / W, the pitch of one pixel")
     if near(g[0, 0], f_mm * (W - 1) / w_mm) or near(g[1, 1], f_mm * (H - 1) / h_mm):
         return "the pitch is sensor width / W: W pixels tile the width (W - 1 counts the gaps between centres)"
     if near(g[0, 0], fy) and near(g[1, 1], fx) and not near(fx, fy):
@@ -582,6 +642,12 @@ register_exercise(Exercise(
         (lambda f, s, n: _datasheet_variant(f, s, n, fx=f / round(s[0] / n[0], 5), fy=f / round(s[1] / n[1], 5)),
          "rounded"),
         (lambda f, s, n: None, "return"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, cx=n[0] / 2 - 1, cy=n[1] / 2 - 1), "W / 2 - 1"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, fx=f * s[0] / n[0], fy=f * s[1] / n[1]), "multiplied the focal"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, fx=f * n[0] / s[0] / 2, fy=f * n[1] / s[1] / 2), "half the sensor"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, fx=f * n[0] / s[0] * 1e3), "f_x is 1000 times too large"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, cx=(n[1] - 1) / 2), "c_x comes from the width"),
+        (lambda f, s, n: _datasheet_variant(f, s, n, fx=-f * n[0] / s[0]), "both positive lengths"),
     ),
     teaching=intrinsics_from_datasheet,
 ))

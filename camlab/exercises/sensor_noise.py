@@ -147,7 +147,8 @@ def _diagnose(args, got, expected) -> str:
         if not np.isfinite(intercept):
             return ("the read noise is NaN: taken from the fit's intercept, g * sqrt(c - 1/12)? These frames carry a "
                     "black level, so the means count it too and the intercept is c = sigma_r**2 / g**2 + 1/12 - "
-                    "black / g, negative here (cell 11's formula holds for the mean above the black level). Take the "
+                    "black / g, negative here (section 3's formula, var = mu / g + sigma_r**2 / g**2 + 1/12, holds "
+                    "for the mean mu above the black level). Take the "
                     "read noise from the dark pair instead: g * sqrt(var(d1 - d2) / 2)")
     if not np.isfinite(g).all():
         return "a NaN or inf: did a fit get fewer than two points, or a variance of 0 (a frame minus itself)?"
