@@ -149,8 +149,8 @@ def add_noise(image: ArrayLike, noise: NoiseModel = NoiseModel(), rng: np.random
     return electrons / fw
 
 
-def sample(image: ArrayLike, factor: int, prefilter: bool = False) -> np.ndarray:
-    """Sample a fine image with a coarser pixel grid ``factor`` times larger.
+def sample(image: ArrayLike, factor: int, prefilter: bool = False, blur: float = 0.0) -> np.ndarray:
+    r"""Sample a fine image with a coarser pixel grid ``factor`` times larger.
 
     ``prefilter=False`` takes one fine pixel per coarse pixel (an ideal point sampler:
     frequencies above Nyquist alias), the one at index ``(factor - 1) // 2`` in each block:
@@ -158,10 +158,24 @@ def sample(image: ArrayLike, factor: int, prefilter: bool = False) -> np.ndarray
     fine pixels and the sample sits half a fine pixel up and left of it. ``True`` averages the
     ``factor x factor`` area each pixel covers (a real pixel's box filter, which suppresses
     most aliasing); its value belongs to the block's true centre.
+
+    ``blur`` is the standard deviation, in coarse pixels, of a Gaussian blur applied to the
+    fine image first: the lens's own blur (or, roughly, an optical low-pass filter). Its
+    frequency response is :math:`e^{-2\pi^2 \sigma^2 f^2}` (f in cycles per coarse pixel): at
+    ``blur=0.5`` it keeps 29 % of the contrast at the Nyquist limit, 0.7 % at 1 cycle per pixel.
+    Only the first ``(H // factor) * factor`` rows and columns are sampled.
     """
     a = check_image(image).astype(float)
     if not isinstance(factor, (int, np.integer)) or factor < 1:
         raise CamlabInputError(f"factor: expected an integer >= 1, got {factor!r}")
+    if not (np.isfinite(blur) and blur >= 0):
+        raise CamlabInputError(f"blur: expected a standard deviation >= 0 in coarse pixels, got {blur!r}; use 0 "
+                               f"for no blur")
+    if blur > 0:
+        from scipy.ndimage import gaussian_filter
+
+        sigma = (blur * factor, blur * factor) + (0,) * (a.ndim - 2)   # no blur across colour channels
+        a = gaussian_filter(a, sigma, mode="reflect")
     h, w = (a.shape[0] // factor) * factor, (a.shape[1] // factor) * factor
     a = a[:h, :w]
     if not prefilter:

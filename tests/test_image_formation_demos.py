@@ -328,9 +328,15 @@ def test_sensor_demos_read_as_the_lesson_says():
     centre, principal = (line.get_xydata()[0] for line in ax.lines)
     assert np.allclose(centre, (159.5, 119.5)) and np.allclose(principal, (199.5, 119.5))  # the shift reads on u
     # lesson 03, "Interactive: pixel pitch": f_x and the field of view in the figure itself, not only beside it
+    p.set(cx_offset=0)
     for pitch, fx, fov in ((6.0, 500, 35.5), (2.0, 1500, 12.2), (15.0, 200, 77.3)):
         p.set(pitch_um=pitch)
         assert f"f_x = f / s_x = {fx} px" in ax.get_title() and f"field of view {fov:.1f}°" in ax.get_title()
+    # round 5: off centre, the frame's edges seen from the principal point, not 2 atan(W / 2 / f_x)
+    p.set(pitch_um=6.0, cx_offset=60)
+    left, right = p.state["fov_left_right"]
+    assert left == pytest.approx(np.degrees(np.arctan(220 / 500))) and right == pytest.approx(np.degrees(np.arctan(100 / 500)))
+    assert "field of view 35.1°" in ax.get_title()
     # lesson 03, "Interactive: sampling and aliasing": the title's false-ring contrast is section 2's 0.35 and 0.06
     s = digital_sensor.sampling_aliasing()
     s.set(factor=6, prefilter=False)
@@ -339,7 +345,14 @@ def test_sensor_demos_read_as_the_lesson_says():
     assert "contrast 0.06" in s.figure.axes[1].get_title()
     s.set(factor=2)                   # the square is the frame's edge: drawn just inside it, so it shows
     square = s.figure.axes[1].patches[0]
-    assert -0.5 < square.get_x() < 6 and square.get_x() + square.get_width() < 383.5
+    assert -0.5 < square.get_x() < 6 and square.get_x() + square.get_width() < 383.5 and square.get_visible()
+    s.set(factor=1)                   # round 5: the limit lies beyond the frame, so no square is drawn
+    assert not square.get_visible() and "beyond the frame" in s.figure.axes[1].get_title()
+    s.set(factor=7)                   # 54 samples of 7 fine px cover 378 of the 384: drawn there, not stretched
+    assert s.figure.axes[1].images[0].get_extent() == [-0.5, 377.5, 377.5, -0.5]
+    assert s.figure.axes[1].get_xlim() == (-0.5, 383.5)
+    s.set(factor=6, prefilter=False, blur=0.5)   # a lens blur of half a pixel: the false rings all but gone
+    assert "contrast 0.01" in s.figure.axes[1].get_title() and "lens blur 0.5 px" in s.figure.axes[1].get_title()
     d = digital_sensor.demosaicing()
     psnr = {}
     for method in ("camlab bilinear", "OpenCV VNG", "OpenCV edge-aware"):

@@ -123,3 +123,16 @@ def test_white_balance_neutralises_the_white_and_grey_world():
         S.white_balance(seen, white=[1.0, 0.0, 1.0])
     with pytest.raises(CamlabInputError, match=r"rgb: expected an image of shape \(H, W, 3\)"):
         S.white_balance(seen[..., 0])
+
+
+def test_sample_blur_is_a_gaussian_in_coarse_pixels():
+    """blur = sigma in coarse pixels: a cosine of f cycles per coarse pixel keeps exp(-2 pi^2 sigma^2 f^2)."""
+    factor, f = 4, 0.25                                  # 0.25 cycle per coarse pixel = 1/16 per fine pixel
+    x = np.arange(512)
+    image = np.tile(np.cos(2 * np.pi * f / factor * x), (8, 1))
+    sharp = np.ptp(S.sample(image, factor)[1, 16:-16])
+    for blur in (0.5, 1.0):
+        kept = np.ptp(S.sample(image, factor, prefilter=False, blur=blur)[1, 16:-16]) / sharp
+        assert kept == pytest.approx(np.exp(-2 * np.pi**2 * blur**2 * f**2), rel=0.02)
+    with pytest.raises(CamlabInputError, match="blur: expected a standard deviation >= 0"):
+        S.sample(image, factor, blur=-1)

@@ -139,7 +139,7 @@ register_exercise(Exercise(
         (lambda img, bits: np.clip(np.rint(img * 2**bits), 0, 2**bits - 1).astype(np.uint16), "you scaled by 2**bits"),
         (lambda img, bits: np.clip(np.ceil(img * (2**bits - 1)), 0, 2**bits - 1).astype(np.uint16), "ceil"),
         (lambda img, bits: np.clip(np.round(img * (2**bits - 1) + 0.5), 0, 2**bits - 1).astype(
-            np.uint8 if bits <= 8 else np.uint16), "np.round(x + 0.5)"),
+            np.uint8 if bits <= 8 else np.uint16), "adds a half step"),
         (lambda img, bits: np.clip(np.rint(img * (2**bits - 2)), 0, 2**bits - 2).astype(
             np.uint8 if bits <= 8 else np.uint16), "2**bits - 2, one level too few"),
         (lambda img, bits: np.rint(img * (2**bits - 1)).astype(np.uint8 if bits <= 8 else np.uint16), "saturate"),

@@ -27,7 +27,7 @@ def pixel_pitch():
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
     centre = ((SIZE[0] - 1) / 2, (SIZE[1] - 1) / 2)
     mark, = ax_img.plot(*centre, "x", color=palette.BLUE, ms=10, mew=2, path_effects=palette.halo(), label="image centre")
-    pp, = ax_img.plot([], [], "+", color=palette.RED, ms=16, mew=2, path_effects=palette.halo(), label="principal point")
+    pp, = ax_img.plot([], [], "+", color=palette.ORANGE, ms=16, mew=2, path_effects=palette.halo(), label="principal point")
     ax_img.set_xticks(np.arange(0, SIZE[0], 40))
     ax_img.set_yticks(np.arange(0, SIZE[1], 40))
     ax_img.set(xlabel="u (px)", ylabel="v (px)")
@@ -41,25 +41,29 @@ def pixel_pitch():
         K = sensor.intrinsics_from_sensor(3e-3, (pitch, pitch), SIZE, (values["cx_offset"], 0.0))
         im.set_data(render.render(scene, K, SIZE).irradiance)
         pp.set_data([K[0, 2]], [K[1, 2]])
-        fov = 2 * np.degrees(np.arctan(SIZE[0] / 2 / K[0, 0]))
-        state.update(K=K, fov_deg=fov)
+        # the frame's left and right edges, u = -0.5 and W - 0.5, seen from the principal point: with c_x off
+        # centre the two halves differ, and their sum is a little less than 2 atan(W / 2 / f_x)
+        left, right = (np.degrees(np.arctan(d / K[0, 0])) for d in (K[0, 2] + 0.5, SIZE[0] - 0.5 - K[0, 2]))
+        fov = left + right
+        state.update(K=K, fov_deg=fov, fov_left_right=(left, right))
         # f_x and the field of view in the figure too, so a printed or rendered page shows what the prose asks for
         ax_img.set_title(f"f = 3 mm, always 320 x 240 pixels of {values['pitch_um']:g} µm\n"
                          f"f_x = f / s_x = {K[0, 0]:.0f} px, horizontal field of view {fov:.1f}°", fontsize=10)
         readout.value = monospace(f"f_x = f / s_x = {K[0, 0]:.0f} px\nc_x = {K[0, 2]:.1f}, c_y = {K[1, 2]:.1f}\n"
                                   f"sensor {SIZE[0] * pitch * 1e3:.2f} x {SIZE[1] * pitch * 1e3:.2f} mm\n"
-                                  f"horizontal FOV {fov:.1f} deg")
+                                  f"horizontal FOV {fov:.1f} deg\n  = {left:.1f} left + {right:.1f} right of the axis")
 
     return build_demo("pixel_pitch", controls, view, update, title="Pixel pitch and principal point", extra=[readout])
 
 
-@register(lesson="03", sweep={"factor": [1, 2, 3, 6, 8], "prefilter": [True, False]})
+@register(lesson="03", sweep={"factor": [1, 2, 3, 6, 7, 8], "prefilter": [True, False], "blur": [0.0, 0.5, 1.0]})
 def sampling_aliasing():
-    """A zone plate sampled by coarser pixels: ideal point samples alias, real (box) pixels much less."""
+    """A zone plate sampled by coarser pixels: ideal point samples alias, real (box) pixels and a lens blur much less."""
     controls = {
         "factor": W.IntSlider(value=4, min=1, max=8, description="pixel size (fine px)", continuous_update=True,
                               style={"description_width": "initial"}, layout=W.Layout(width="300px")),
         "prefilter": W.Checkbox(value=False, description="average over the pixel area (box filter)"),
+        "blur": slider(0.0, 0.0, 1.0, 0.1, "lens blur σ (pixels)"),
     }
     view = FigureView(figsize=(9, 4))
     ax_t, ax_s = view.fig.subplots(1, 2)
@@ -69,24 +73,30 @@ def sampling_aliasing():
     im = images.show_image(ax_s, zp, "sampled", interpolation="antialiased")
     # A square grid samples each axis separately: the alias-free region is a square (|fx|, |fy| < 1/2 cycle per
     # coarse px), not a circle; the zone plate's local frequency is (x, y) k / pi, so the square is |x|, |y| < r.
-    nyq = ax_s.add_patch(Rectangle((0, 0), 1, 1, fill=False, color=palette.RED, ls="--", lw=1.5))
+    # short dashes with long gaps: the fold's grey ring systems, centred on the square's sides, show between them
+    nyq = ax_s.add_patch(Rectangle((0, 0), 1, 1, fill=False, color=palette.RED, ls=(0, (4, 6)), lw=1.5))
+    ax_s.set_xlim(-0.5, zp.shape[1] - 0.5)
+    ax_s.set_ylim(zp.shape[0] - 0.5, -0.5)
+    ax_s.set_autoscale_on(False)      # the frame stays the scene's, whatever part of it a pixel size samples
     view.animate(im, nyq, ax_s.title)
 
     def update(values, state):
         k = int(values["factor"])
-        s = sensor.sample(zp, k, prefilter=values["prefilter"])
+        s = sensor.sample(zp, k, prefilter=values["prefilter"], blur=float(values["blur"]))
         # the coarse samples as crisp blocks at the scene's scale: drawn larger than their size (k > 1), so
         # "nearest" (no smoothing across a block's edge); at k = 1 the 384 samples are drawn smaller: antialiased.
         # The mode first: set_data fits the array to the screen with it (camlab.widgets._transport)
         im.set_interpolation("nearest" if k > 1 else "antialiased")
         im.set_data(s)
-        im.set_extent((-0.5, zp.shape[1] - 0.5, zp.shape[0] - 0.5, -0.5))
+        # the samples cover the whole blocks only: (384 // k) k fine px (378 at k = 7), not stretched to 384
+        im.set_extent((-0.5, s.shape[1] * k - 0.5, s.shape[0] * k - 0.5, -0.5))
         # the local frequency (pi / 768) x / pi cycles per fine px reaches 0.5 cycle per coarse px at x = 384 / k
         r = zp.shape[0] / k
         cx, cy = (zp.shape[1] - 1) / 2, (zp.shape[0] - 1) / 2
         # at pixel size 2 the square is the frame's own edge: draw it 5 fine px inside, where it shows
         shown = min(r, cx - 5)
         nyq.set_bounds(cx - shown, cy - shown, 2 * shown, 2 * shown)
+        nyq.set_visible(r <= cx + 1)      # at pixel size 1 the limit lies beyond the frame: nothing to draw
         x, y = np.meshgrid(np.arange(s.shape[1]) - (s.shape[1] - 1) / 2, np.arange(s.shape[0]) - (s.shape[0] - 1) / 2)
         outer = np.maximum(abs(x), abs(y)) * k > r * 1.1     # beyond the Nyquist square, where aliases live
         state.update(samples=s.shape, nyquist_half_side=r,
@@ -98,7 +108,8 @@ def sampling_aliasing():
         else:                 # the number section 2 prints for the static figure (0.35 point, 0.06 box at 6)
             where = f"red square: Nyquist limit; false-ring contrast {state['alias_contrast']:.2f}"
         kind = "box samples (pixel areas)" if values["prefilter"] else "point samples"
-        ax_s.set_title(f"{kind}, 1 px = {k} fine px\n({where})", fontsize=10)
+        blurred = f", lens blur {values['blur']:.1f} px" if values["blur"] else ""
+        ax_s.set_title(f"{kind}, 1 px = {k} fine px{blurred}\n({where})", fontsize=10)
 
     return build_demo("sampling_aliasing", controls, view, update, title="Sampling and aliasing")
 
@@ -126,17 +137,19 @@ def bit_depth_and_noise():
                           background=BACKGROUND).irradiance
     im = images.show_image(ax_img, sensor.gamma_encode(clean), "recorded, shown through sRGB", vmax=1.0)
     row = 150
-    marker = ax_img.axhline(row, color=palette.RED, lw=1, path_effects=palette.halo(1))
+    # ticks on the image's left and right edges, not a line over the very row the profile shows
+    marker, = ax_img.plot([-6], [row], ls="none", marker=">", ms=9, color=palette.BLUE, clip_on=False)
+    marker_right, = ax_img.plot([SIZE[0] + 5], [row], ls="none", marker="<", ms=9, color=palette.BLUE, clip_on=False)
     # the truth wide and pale beneath, the recording thin on top: both stay visible where they agree;
     # the title names them, so no legend covers the profile
     ax_p.plot(clean[row], color=palette.GREY, lw=3.5, solid_capstyle="butt")
-    prof, = ax_p.plot(clean[row], color=palette.RED, lw=1)
+    prof, = ax_p.plot(clean[row], color=palette.BLUE, lw=1)
     ax_p.set_ylim(-0.05, 1.08)
     ax_p.set_xlabel("u (px)")
     ax_p.set_ylabel("linear value (1: the photo's white)")
     ax_p.set_title("", fontsize=9)
     readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
-    view.animate(im, marker, prof, ax_p.title)
+    view.animate(im, marker, marker_right, prof, ax_p.title)
     full_well = 10000.0
     rng = np.random.default_rng(0)
 
@@ -155,10 +168,10 @@ def bit_depth_and_noise():
         state.update(levels=2**bits, snr=float(snr), rms_error=float(np.sqrt(np.mean((shown - clean) ** 2))),
                      electrons=electrons, dn_electrons=step)
         dn = f"{step:.{max(0, 2 - int(np.floor(np.log10(step))))}f}"   # 3 significant figures: 11.8, 0.733, 3000
-        ax_p.set_title(f"row {row} (red line): recorded (red) against true (wide grey)\n"
+        ax_p.set_title(f"row {row} (blue ticks): recorded (blue) against true (wide grey)\n"
                        f"electrons: white {electrons['white']:.0f}, dark uniform {electrons['uniform']:.1f}, "
                        f"1 DN = {dn}", fontsize=9)
-        readout.value = monospace(f"{2**bits} levels\nSNR {snr:.1f} at mid-grey\n"
+        readout.value = monospace(f"{2**bits} levels\nSNR {snr:.1f} at half of white\n"
                                   f"rms error {state['rms_error']:.3f} of full scale")
 
     return build_demo("bit_depth_and_noise", controls, view, update, title="Bit depth and noise", extra=[readout])
