@@ -137,9 +137,9 @@ def bit_depth_and_noise():
                           background=BACKGROUND).irradiance
     im = images.show_image(ax_img, sensor.gamma_encode(clean), "recorded, shown through sRGB", vmax=1.0)
     row = 150
-    # ticks on the image's left and right edges, not a line over the very row the profile shows
-    marker, = ax_img.plot([-6], [row], ls="none", marker=">", ms=9, color=palette.BLUE, clip_on=False)
-    marker_right, = ax_img.plot([SIZE[0] + 5], [row], ls="none", marker="<", ms=9, color=palette.BLUE, clip_on=False)
+    # the row marked by ticks on the image's left and right edges, not by a line over the very row the profile shows
+    ax_img.set_yticks([row], [""])            # the profile's title names the row
+    ax_img.tick_params(axis="y", colors=palette.BLUE, length=9, width=2.5, left=True, right=True, labelsize=9)
     # the truth wide and pale beneath, the recording thin on top: both stay visible where they agree;
     # the title names them, so no legend covers the profile
     ax_p.plot(clean[row], color=palette.GREY, lw=3.5, solid_capstyle="butt")
@@ -149,7 +149,7 @@ def bit_depth_and_noise():
     ax_p.set_ylabel("linear value (1: the photo's white)")
     ax_p.set_title("", fontsize=9)
     readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
-    view.animate(im, marker, marker_right, prof, ax_p.title)
+    view.animate(im, prof, ax_p.title)
     full_well = 10000.0
     rng = np.random.default_rng(0)
 
