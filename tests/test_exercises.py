@@ -890,3 +890,20 @@ def test_no_hint_cites_a_cell_number():
     for path in pathlib.Path(package.__file__).parent.rglob("*.py"):
         cited = re.findall(r"\bcells? \d+", path.read_text(encoding="utf-8"))
         assert not cited, f"{path.name} cites {cited}"
+
+
+def test_read_noise_with_the_quantisation_variance_removed_passes_too(capsys):
+    """Lesson 03, exercise 4's prompt: subtracting 1/12 DN^2 (as EMVA 1288 does) moves the read noise by under 2 %."""
+    from camlab.exercises import sensor_noise
+
+    for darks, flats in sensor_noise._cases():
+        d = np.asarray(darks[0], dtype=float) - np.asarray(darks[1], dtype=float)
+        var = np.var(d) / 2
+        assert 0 < np.sqrt(var) / np.sqrt(var - 1 / 12) - 1 < 0.02
+
+    def emva(darks, flats):
+        g, _ = sensor_noise.gain_and_read_noise(darks, flats)
+        d1, d2 = (np.asarray(d, dtype=float) for d in darks)
+        return g, g * np.sqrt(np.var(d1 - d2) / 2 - 1 / 12)
+
+    assert check("gain_and_read_noise", emva).passed is True

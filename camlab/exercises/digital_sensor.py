@@ -265,6 +265,16 @@ def _demosaic_diagnosis(args, got, expected) -> str:
     if np.allclose(g[..., ::-1], e):
         return ("red and blue are swapped: return the channels as R, G, B (not OpenCV's BGR order), and check "
                 "which colour sits where in the pattern (RGGB: R at row 0, column 0)")
+    if g.shape[0] == g.shape[1] and np.allclose(g, e.transpose(1, 0, 2)) and not np.allclose(e, e.transpose(1, 0, 2)):
+        return ("your image is transposed: rows and columns swapped (a .T, or an index [u, v] where the image is "
+                "img[v, u]: row v first, then column u)")
+    shifted = {"one column": pattern[1] + pattern[0] + pattern[3] + pattern[2],
+               "one row": pattern[2] + pattern[3] + pattern[0] + pattern[1]}
+    for how, wrong in shifted.items():
+        if wrong != pattern and np.allclose(g, sensor.demosaic_bilinear(raw, wrong)):
+            return (f"your masks sit {how} off, as if the pattern were {wrong}: started at 1 (m[1::2, ...]), as in "
+                    f"1-based MATLAB? Python counts from 0: {pattern}'s {pattern[0]} is at row 0, column 0, "
+                    f"m[0::2, 0::2]")
     if np.allclose(g * 255, e) or np.allclose(g, e * 255):
         return "the values are scaled by 255: keep the units of the mosaic (do not divide or multiply by 255)"
     whole = "the mean of two samples falls between codes (100 and 101 give 100.5)"
@@ -429,7 +439,7 @@ register_exercise(Exercise(
     ndarray_only=True,
     wrong_variants=(
         (_zero_padded_demosaic, "border"),
-        (lambda raw, pattern: sensor.demosaic_bilinear(raw, "GRBG" if pattern == "RGGB" else "RGGB"), "measured samples"),
+        (lambda raw, pattern: sensor.demosaic_bilinear(raw, "GRBG" if pattern == "RGGB" else "RGGB"), "off, as if the pattern were"),
         (lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern)[..., ::-1], "not OpenCV's BGR order"),
         (lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern[0] + pattern[2] + pattern[1] + pattern[3]),
          "column by column"),
@@ -445,6 +455,11 @@ register_exercise(Exercise(
         (_cross_kernel_demosaic, "are all green"),
         (_unnormalised_tent_demosaic, "twice the mean"),
         (_reflect_border_demosaic, "mode='reflect', scipy.ndimage.convolve's default"),
+        (lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern[1] + pattern[0] + pattern[3] + pattern[2]),
+         "one column off"),
+        (lambda raw, pattern: sensor.demosaic_bilinear(np.asarray(raw).T, pattern[0] + pattern[2] + pattern[1]
+                                                       + pattern[3]) if np.shape(raw)[0] == np.shape(raw)[1] else
+         sensor.demosaic_bilinear(raw, pattern)[::-1], "transposed"),
         (lambda raw, pattern: _padded_demosaic(raw, pattern, "mirror"), "BORDER_REFLECT_101"),
         (lambda raw, pattern: _padded_demosaic(raw, pattern, "nearest"), "or mode='nearest'"),
     ),
@@ -483,7 +498,7 @@ def _datasheet_diagnosis(args, got, expected) -> str:
 
     if np.issubdtype(np.asarray(got).dtype, np.integer):
         named = {"f_x": fx, "f_y": fy, "c_x = (W - 1) / 2": cx, "c_y = (H - 1) / 2": cy}
-        cut = [f"{what} = {value:.6g}" for what, value in named.items() if not float(value).is_integer()]
+        cut = [f"{what} = {value:.6g}" for what, value in named.items() if not np.isclose(value, np.round(value))]
         lost = (f"it cannot hold {' or '.join(cut)}, so {'they were' if len(cut) > 1 else 'it was'} cut to "
                 f"{'whole numbers' if len(cut) > 1 else 'a whole number'}") if cut else "it holds whole numbers only"
         return (f"K is an integer array (dtype {np.asarray(got).dtype}): {lost}. Build K from floats "

@@ -163,6 +163,13 @@ def _diagnose(args, got, expected) -> str:
         candidate = _estimate(*args, **flags)
         if np.isclose(g[i], candidate[i], rtol=0.03) and not np.isclose(candidate[i], e[i], rtol=0.03):
             return hint
+    dark_var = np.var(np.asarray(args[0][0], dtype=float) - np.asarray(args[0][1], dtype=float)) / 2
+    if np.isclose(g[0], e[0], rtol=0.03) and np.isclose(g[1], e[1] ** 2, rtol=0.06):
+        return ("the read noise is the square of the right one: you returned a variance (electrons squared); "
+                "the read noise is its standard deviation, g * sqrt(var(d1 - d2) / 2)")
+    if np.isclose(g[0], e[0], rtol=0.03) and np.isclose(g[1], dark_var, rtol=0.03):
+        return ("you returned the darks' temporal variance in DN**2, var(d1 - d2) / 2: the read noise is its square "
+                "root, in DN, times the gain g (electrons per DN)")
     if np.isclose(g[0], e[0], rtol=0.03):
         return ("the gain is right, the read noise is not: it is the spread of the darks' difference, "
                 "g * sqrt(var(d1 - d2) / 2), in electrons")
@@ -228,6 +235,9 @@ register_exercise(Exercise(
         (lambda d, f: _estimate(d, f, read_from_intercept=True), "the intercept is c = sigma_r**2"),
         (lambda d, f: _estimate(d, f, read_from_intercept=True, black_subtracted=True), "from the fit's intercept"),
         (lambda d, f: reference(d, f)[::-1], "swapped"),
+        (lambda d, f: reference(d, f) ** [1, 2], "returned a variance"),
+        (lambda d, f: (reference(d, f)[0], np.var(np.asarray(d[0], dtype=float) - np.asarray(d[1], dtype=float)) / 2),
+         "temporal variance in DN"),
         (_wrapped_difference, "wrap around"),
     ),
     teaching=gain_and_read_noise,
