@@ -234,7 +234,6 @@ def test_sensor_demos_show_what_they_claim():
     assert samples.get_interpolation() == "antialiased"
     b = digital_sensor.bit_depth_and_noise()
     ax_img, ax_p = b.figure.axes[:2]
-    animated = b.view._animated
     # the row is marked by ticks beside the image (round 5: a line over it hid the very row the profile shows)
     assert not ax_img.lines and list(ax_img.get_yticks()) == [150]
     # no legend over the profile: the title names the lines, and the truth is drawn wide beneath the recording
