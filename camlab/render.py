@@ -432,9 +432,11 @@ def _draw_plane(canvas: np.ndarray, g: _CameraPlane, Kc: np.ndarray, c_px: float
     # work only inside the plane's bounding box plus room for its blur, reaching that far past the canvas's edges
     # too: a plane that continues beyond the frame must blur into the frame as it is, not fade into the backdrop
     # (a blur cut at the canvas edge would mix in empty coverage there)
+    # (only a blurred plane reaches out: a sharp one is drawn exactly as the bundled data sets were made)
     pad = int(np.ceil(c_px / 2)) + 2
-    bx0, by0 = np.maximum(np.floor(quad.min(axis=0)).astype(int) - pad, -pad)
-    bx1, by1 = np.minimum(np.ceil(quad.max(axis=0)).astype(int) + pad + 1, [cw + pad, ch + pad])
+    reach = pad if c_px > 0 else 0
+    bx0, by0 = np.maximum(np.floor(quad.min(axis=0)).astype(int) - pad, -reach)
+    bx1, by1 = np.minimum(np.ceil(quad.max(axis=0)).astype(int) + pad + 1, [cw + reach, ch + reach])
     if min(bx1, cw) <= max(bx0, 0) or min(by1, ch) <= max(by0, 0):
         return
     T = np.array([[1.0, 0, -bx0], [0, 1.0, -by0], [0, 0, 1]])

@@ -421,7 +421,9 @@ def draw_focus_cone(ax, half_height_mm: float = 20.0, sensor_height_mm: float = 
     ax.axhline(0, color="0.4", lw=0.8, zorder=0.5)
     art = {
         "stop": ax.plot([], [], color="k", lw=4, solid_capstyle="butt", label="aperture stop")[0],
-        "lens": ax.plot([], [], color=palette.BLUE, lw=3, label="lens, aperture A = f/N")[0],
+        # a white halo: over the orange cone the blue fell to 2.98:1 with matplotlib 3.9's antialiasing
+        "lens": ax.plot([], [], color=palette.BLUE, lw=3, label="lens, aperture A = f/N",
+                        path_effects=palette.halo(3))[0],
         "cone_in": ax.fill([0, 0, 0], [0, 0, 0], color=palette.ORANGE, alpha=0.22, lw=0, label="cone of light")[0],
         "cone_out": ax.fill([0, 0, 0, 0], [0, 0, 0, 0], color=palette.ORANGE, alpha=0.22, lw=0)[0],
         "rays": ax.plot([], [], color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0],
