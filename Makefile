@@ -15,7 +15,7 @@ STAMP  := $(if $(LOCKED),-locked,)
 # installing one flavour (locked or not) invalidates the other's stamps
 OTHER_STAMPS := $(if $(LOCKED),$(VENV)/.installed-lab $(VENV)/.installed-test,$(VENV)/.installed-lab-locked $(VENV)/.installed-test-locked)
 
-.PHONY: lab test test-fast test-wheel test-oldest lint lock binder-link bench bench-browser strip browser-deps clean
+.PHONY: lab test test-fast test-wheel test-oldest lint format lock binder-link bench bench-browser strip browser-deps clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -112,6 +112,11 @@ test-oldest: $(OLDEST_VENV)/.installed
 # pyflakes rules (unused imports, undefined names, ...): configured in pyproject.toml.
 lint: $(VENV)/.installed-test$(STAMP)
 	$(BIN)/ruff check .
+	$(BIN)/ruff format --check .
+
+# Lay out every Python file the way `make lint` checks (ruff's formatter; lessons are notebooks)
+format: $(VENV)/.installed-test$(STAMP)
+	$(BIN)/ruff format .
 
 # Re-pin both locks from pyproject.toml, for Python 3.11 on every platform: requirements/lock.txt
 # with every extra (CI, developers, instructors: LOCKED=1) and requirements/students.txt with

@@ -5,6 +5,7 @@ They are the one copy of each asset; this maps them to the package resources
 importlib.resources. Each of their folders is listed as a (resource-only) package so
 setuptools copies its files. Everything else about the package is in pyproject.toml.
 """
+
 from pathlib import Path
 
 from setuptools import find_packages, setup
@@ -34,6 +35,9 @@ RESOURCE_DATA = resource_packages()
 setup(
     packages=find_packages(include=["camlab", "camlab.*"]) + list(RESOURCE_DATA),
     package_dir={package: root for package, (root, _, _) in RESOURCES.items()},
-    package_data={"camlab": ["py.typed"], "camlab.classroom": ["jupyter_data/voila/templates/camlab/*"],  # present.py
-                  **RESOURCE_DATA},
+    package_data={
+        "camlab": ["py.typed"],
+        "camlab.classroom": ["jupyter_data/voila/templates/camlab/*"],  # present.py
+        **RESOURCE_DATA,
+    },
 )

@@ -1,4 +1,5 @@
 """Timing and table helpers shared by the benchmark scripts."""
+
 from __future__ import annotations
 
 import time
@@ -31,7 +32,9 @@ def median_ms(fn: Callable[[], Any], repeat: int = 20, warmup: int = 2) -> float
     return float(np.median(time_calls(fn, repeat, warmup)) * 1e3)
 
 
-def paired_ms(ours: Callable[[], Any], ref: Callable[[], Any], repeat: int = 25) -> tuple[float, float]:
+def paired_ms(
+    ours: Callable[[], Any], ref: Callable[[], Any], repeat: int = 25
+) -> tuple[float, float]:
     """Median milliseconds of two functions timed alternately, so both see the same machine load
     (the 2-core machines these run on are shared; sequential blocks drift apart)."""
     ours(), ref()
@@ -46,17 +49,31 @@ def paired_ms(ours: Callable[[], Any], ref: Callable[[], Any], repeat: int = 25)
     return float(np.median(a) * 1e3), float(np.median(b) * 1e3)
 
 
-def ratio_row(case: str, camlab_fn: Callable[[], Any], opencv_fn: Callable[[], Any], target: float,
-              repeat: int = 20) -> dict:
+def ratio_row(
+    case: str,
+    camlab_fn: Callable[[], Any],
+    opencv_fn: Callable[[], Any],
+    target: float,
+    repeat: int = 20,
+) -> dict:
     """Time camlab against OpenCV in one run; ``ok`` if camlab is within ``target`` x OpenCV."""
     c, o = median_ms(camlab_fn, repeat), median_ms(opencv_fn, repeat)
-    return {"case": case, "camlab_ms": c, "opencv_ms": o, "ratio": c / o, "target": f"<= {target:g}x",
-            "ok": c / o <= target}
+    return {
+        "case": case,
+        "camlab_ms": c,
+        "opencv_ms": o,
+        "ratio": c / o,
+        "target": f"<= {target:g}x",
+        "ok": c / o <= target,
+    }
 
 
-def print_table(rows: Sequence[dict], columns: Sequence[str] | None = None, title: str = "") -> None:
+def print_table(
+    rows: Sequence[dict], columns: Sequence[str] | None = None, title: str = ""
+) -> None:
     """Print rows as a Markdown table (floats with 2 decimals); ``columns`` default to the first row's keys."""
     columns = list(rows[0]) if columns is None else columns
+
     def fmt(v: Any) -> str:
         if isinstance(v, (bool, np.bool_)):
             return "yes" if v else "NO"

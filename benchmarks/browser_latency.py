@@ -8,6 +8,7 @@ websocket, and the browser's decode and paint, as a student's eye would see it.
 
 Usage: python benchmarks/browser_latency.py [--presses N]   (``make bench-browser``)
 """
+
 from __future__ import annotations
 
 import argparse
@@ -89,7 +90,11 @@ def stages(sample: dict) -> dict[str, float]:
     frames = [(t, n) for t, n in sample["frames"] if t <= sample["pixels"]]
     if sample["pixels"] < 0 or not frames:
         return {"pixels_ms": float("nan"), "reply_ms": float("nan"), "frame_ms": float("nan")}
-    return {"pixels_ms": sample["pixels"], "reply_ms": frames[0][0], "frame_ms": max(frames, key=lambda f: f[1])[0]}
+    return {
+        "pixels_ms": sample["pixels"],
+        "reply_ms": frames[0][0],
+        "frame_ms": max(frames, key=lambda f: f[1])[0],
+    }
 
 
 def slider_demos() -> dict[str, str]:
@@ -107,7 +112,10 @@ def slider_demos() -> dict[str, str]:
         if spec.lesson in chosen:
             continue
         demo = spec.builder()
-        if any(isinstance(c, (W.FloatSlider, W.IntSlider)) and not c.disabled for c in demo.controls.values()):
+        if any(
+            isinstance(c, (W.FloatSlider, W.IntSlider)) and not c.disabled
+            for c in demo.controls.values()
+        ):
             chosen[spec.lesson] = name
         plt.close(demo.figure)
     return chosen
@@ -116,10 +124,24 @@ def slider_demos() -> dict[str, str]:
 def _notebook(names: list[str]) -> dict:
     cells = ["%matplotlib widget\nfrom camlab.widgets import all_demos\nspecs = all_demos()"]
     cells += [f"specs[{n!r}].builder()" for n in names]
-    return {"nbformat": 4, "nbformat_minor": 5, "metadata": {"kernelspec": {"name": "python3", "display_name": "Python 3",
-                                                                            "language": "python"}},
-            "cells": [{"cell_type": "code", "metadata": {}, "source": c, "outputs": [], "execution_count": None,
-                       "id": f"c{i}"} for i, c in enumerate(cells)]}
+    return {
+        "nbformat": 4,
+        "nbformat_minor": 5,
+        "metadata": {
+            "kernelspec": {"name": "python3", "display_name": "Python 3", "language": "python"}
+        },
+        "cells": [
+            {
+                "cell_type": "code",
+                "metadata": {},
+                "source": c,
+                "outputs": [],
+                "execution_count": None,
+                "id": f"c{i}",
+            }
+            for i, c in enumerate(cells)
+        ],
+    }
 
 
 def measure(presses: int = 7) -> dict[str, dict[str, float]]:
@@ -152,10 +174,14 @@ def measure(presses: int = 7) -> dict[str, dict[str, float]]:
                         handle.focus()
                         page.evaluate(ARM_KEY_TO_PIXELS, selector)  # never awaits a promise
                         page.keyboard.press("ArrowRight" if i % 2 == 0 else "ArrowLeft")
-                        page.wait_for_function("() => window.__camlabLatency !== undefined", polling=50)
+                        page.wait_for_function(
+                            "() => window.__camlabLatency !== undefined", polling=50
+                        )
                         samples.append(stages(page.evaluate("() => window.__camlabLatency")))
                         page.wait_for_timeout(300)
-                    results[name] = {k: float(np.nanmedian([s[k] for s in samples])) for k in samples[0]}
+                    results[name] = {
+                        k: float(np.nanmedian([s[k] for s in samples])) for k in samples[0]
+                    }
             finally:
                 context.close()
     return results
@@ -170,8 +196,11 @@ def main() -> None:
     specs = all_demos()
     measured = measure(args.presses)
     rows = [{"lesson": specs[n].lesson, "demo": n, **ms} for n, ms in measured.items()]
-    print_table(rows, ["lesson", "demo", "pixels_ms", "reply_ms", "frame_ms"],
-                "Slider keydown to changed canvas pixels, JupyterLab in headless Chromium (median; see stages())")
+    print_table(
+        rows,
+        ["lesson", "demo", "pixels_ms", "reply_ms", "frame_ms"],
+        "Slider keydown to changed canvas pixels, JupyterLab in headless Chromium (median; see stages())",
+    )
 
 
 if __name__ == "__main__":

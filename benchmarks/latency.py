@@ -18,6 +18,7 @@ kernel's first reply), which no demo can make faster.
 
 Usage: python benchmarks/latency.py [--rounds N] [--browser] [demo names...]
 """
+
 from __future__ import annotations
 
 import argparse
@@ -101,10 +102,19 @@ def demo_latency(spec, rounds: int) -> dict:
     def stage(values):
         return float(np.median(values) * 1e3) if values else float("nan")
 
-    return {"lesson": spec.lesson, "demo": spec.name, "updates": len(web), "median_ms": median, "p95_ms": p95,
-            "ok": median <= TARGET_MEDIAN_MS and p95 <= TARGET_P95_MS, "compute_ms": stage(stages.compute),
-            "draw_ms": stage(stages.draw), "encode_ms": stage(stages.encode), "cpu_median_ms": float(np.median(cpu)),
-            "agg_median_ms": float(np.median(agg))}
+    return {
+        "lesson": spec.lesson,
+        "demo": spec.name,
+        "updates": len(web),
+        "median_ms": median,
+        "p95_ms": p95,
+        "ok": median <= TARGET_MEDIAN_MS and p95 <= TARGET_P95_MS,
+        "compute_ms": stage(stages.compute),
+        "draw_ms": stage(stages.draw),
+        "encode_ms": stage(stages.encode),
+        "cpu_median_ms": float(np.median(cpu)),
+        "agg_median_ms": float(np.median(agg)),
+    }
 
 
 def import_time() -> float:
@@ -121,19 +131,35 @@ def rows(rounds: int = 5, names: list[str] | None = None) -> list[dict]:
     from camlab.widgets import all_demos
 
     demos = all_demos()
-    return [demo_latency(demos[n], rounds) for n in sorted(demos, key=lambda n: (demos[n].lesson, n))
-            if not names or n in names]
+    return [
+        demo_latency(demos[n], rounds)
+        for n in sorted(demos, key=lambda n: (demos[n].lesson, n))
+        if not names or n in names
+    ]
 
 
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rounds", type=int, default=5)
-    parser.add_argument("--browser", action="store_true", help="add the real-browser column (headless Chromium)")
+    parser.add_argument(
+        "--browser", action="store_true", help="add the real-browser column (headless Chromium)"
+    )
     parser.add_argument("names", nargs="*")
     args = parser.parse_args(argv)
     table = rows(args.rounds, args.names)
-    columns = ["lesson", "demo", "updates", "median_ms", "p95_ms", "ok", "compute_ms", "draw_ms", "encode_ms",
-               "cpu_median_ms", "agg_median_ms"]
+    columns = [
+        "lesson",
+        "demo",
+        "updates",
+        "median_ms",
+        "p95_ms",
+        "ok",
+        "compute_ms",
+        "draw_ms",
+        "encode_ms",
+        "cpu_median_ms",
+        "agg_median_ms",
+    ]
     if args.browser:
         import browser_latency
 
@@ -143,14 +169,22 @@ def main(argv: list[str] | None = None) -> None:
             row["browser_ms"] = stages.get("pixels_ms", "")
             row["browser_reply_ms"] = stages.get("reply_ms", "")
         columns += ["browser_ms", "browser_reply_ms"]
-    print_table(table, columns, f"Demo update latency as the browser receives it (ipympl path; target median <= "
-                                f"{TARGET_MEDIAN_MS:g} ms, p95 <= {TARGET_P95_MS:g} ms)")
+    print_table(
+        table,
+        columns,
+        f"Demo update latency as the browser receives it (ipympl path; target median <= "
+        f"{TARGET_MEDIAN_MS:g} ms, p95 <= {TARGET_P95_MS:g} ms)",
+    )
     missed = [r["demo"] for r in table if not r["ok"]]
     medians = [r["median_ms"] for r in table]
-    print(f"\n{len(table) - len(missed)} of {len(table)} demos within target; median of medians "
-          f"{np.median(medians):.1f} ms" + (f"; missed: {', '.join(missed)}" if missed else ""))
+    print(
+        f"\n{len(table) - len(missed)} of {len(table)} demos within target; median of medians "
+        f"{np.median(medians):.1f} ms" + (f"; missed: {', '.join(missed)}" if missed else "")
+    )
     t = import_time()
-    print(f"\n`python -c \"import camlab\"`: {t:.3f} s (target <= 0.3 s): {'ok' if t <= 0.3 else 'TOO SLOW'}")
+    print(
+        f'\n`python -c "import camlab"`: {t:.3f} s (target <= 0.3 s): {"ok" if t <= 0.3 else "TOO SLOW"}'
+    )
 
 
 if __name__ == "__main__":

@@ -20,6 +20,7 @@ matches, many of them wrong, the hard case. The last table runs
 ``ransac_fundamental_matrix`` on the real stereo pairs and on the same matches with
 ``x2`` shuffled (all wrong), where it must raise ``DegenerateError``.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -45,8 +46,11 @@ SETTINGS = {"all": (2500, 0.8), "few": (300, 0.9)}
 
 
 def matches(a: str, b: str, max_features: int, ratio: float) -> tuple[np.ndarray, np.ndarray]:
-    m = match_features(detect_features(load_photo(a), max_features=max_features),
-                       detect_features(load_photo(b), max_features=max_features), ratio)
+    m = match_features(
+        detect_features(load_photo(a), max_features=max_features),
+        detect_features(load_photo(b), max_features=max_features),
+        ratio,
+    )
     return m.src, m.dst
 
 
@@ -54,7 +58,11 @@ def _quality(H: np.ndarray, src: np.ndarray, dst: np.ndarray) -> tuple[int, floa
     """(inliers, RMS error of the inliers in px, MSAC cost on all pairs) of one model, one measure for all."""
     e = symmetric_transfer_error(H, src, dst)
     inl = e < THRESHOLD
-    return int(inl.sum()), float(np.sqrt(np.mean(e[inl] ** 2))), float(np.sum(np.minimum(e, THRESHOLD) ** 2))
+    return (
+        int(inl.sum()),
+        float(np.sqrt(np.mean(e[inl] ** 2))),
+        float(np.sum(np.minimum(e, THRESHOLD) ** 2)),
+    )
 
 
 def homography_row(case: str, src: np.ndarray, dst: np.ndarray, seeds: int) -> dict:
@@ -73,7 +81,9 @@ def homography_row(case: str, src: np.ndarray, dst: np.ndarray, seeds: int) -> d
     row = {"case": case, "N": len(src)}
     for name, q in runs.items():
         q = np.array(q)
-        row[f"{name} inliers"] = f"{q[:, 0].min():.0f} / {np.median(q[:, 0]):.0f} / {q[:, 0].max():.0f}"
+        row[f"{name} inliers"] = (
+            f"{q[:, 0].min():.0f} / {np.median(q[:, 0]):.0f} / {q[:, 0].max():.0f}"
+        )
         row[f"{name} rms px"] = f"{np.median(q[:, 1]):.2f}"
         row[f"{name} MSAC"] = f"{np.median(q[:, 2]):.0f}"
     ratio = np.array(times["camlab"]) / np.array(times["RANSAC"])
@@ -92,7 +102,9 @@ def fundamental_rows(seeds: int) -> list[dict]:
             fit, seconds = timed(lambda: ransac_fundamental_matrix(x1, x2, 1.0, rng=seed))
             counts.append(int(fit.inliers.sum()))
             times.append(seconds)
-            (_, mask), seconds = timed(lambda: cv2.findFundamentalMat(x1, x2, cv2.FM_RANSAC, 1.0, 0.999))
+            (_, mask), seconds = timed(
+                lambda: cv2.findFundamentalMat(x1, x2, cv2.FM_RANSAC, 1.0, 0.999)
+            )
             cv_times.append(seconds)
         magsac = cv2.findFundamentalMat(x1, x2, cv2.USAC_MAGSAC, 1.0, 0.999)[1]
         wrong = x2[np.random.default_rng(0).permutation(len(x2))]
@@ -102,11 +114,21 @@ def fundamental_rows(seeds: int) -> list[dict]:
         except DegenerateError as exc:
             shuffled = "DegenerateError: " + str(exc).split(": ")[1]
         cv_wrong = cv2.findFundamentalMat(x1, wrong, cv2.FM_RANSAC, 1.0, 0.999)[1]
-        rows.append({"pair": f"{a}/{b}", "N": len(x1), "camlab inliers": f"{min(counts)} / {np.median(counts):.0f} / "
-                     f"{max(counts)}", "cv RANSAC": int(mask.sum()), "cv MAGSAC": int(magsac.sum()),
-                     "camlab ms": f"{1e3 * np.median(times):.1f}", "cv ms": f"{1e3 * np.median(cv_times):.1f}",
-                     "all wrong: camlab": shuffled,
-                     "all wrong: cv RANSAC": "no model" if cv_wrong is None else f"{int(cv_wrong.sum())} inliers"})
+        rows.append(
+            {
+                "pair": f"{a}/{b}",
+                "N": len(x1),
+                "camlab inliers": f"{min(counts)} / {np.median(counts):.0f} / {max(counts)}",
+                "cv RANSAC": int(mask.sum()),
+                "cv MAGSAC": int(magsac.sum()),
+                "camlab ms": f"{1e3 * np.median(times):.1f}",
+                "cv ms": f"{1e3 * np.median(cv_times):.1f}",
+                "all wrong: camlab": shuffled,
+                "all wrong: cv RANSAC": "no model"
+                if cv_wrong is None
+                else f"{int(cv_wrong.sum())} inliers",
+            }
+        )
     return rows
 
 
@@ -119,9 +141,15 @@ def main(argv: list[str] | None = None) -> int:
         for label, (nf, ratio) in SETTINGS.items():
             src, dst = matches(a, b, nf, ratio)
             rows.append(homography_row(f"{a[-1]}->{b[-1]} {label}", src, dst, args.seeds))
-    print_table(rows, title=f"Homography on real photo pairs, {args.seeds} seeds, threshold {THRESHOLD} px "
-                      f"(inliers min / median / max)")
-    print_table(fundamental_rows(args.seeds), title=f"Fundamental matrix on real stereo pairs, {args.seeds} seeds, 1 px")
+    print_table(
+        rows,
+        title=f"Homography on real photo pairs, {args.seeds} seeds, threshold {THRESHOLD} px "
+        f"(inliers min / median / max)",
+    )
+    print_table(
+        fundamental_rows(args.seeds),
+        title=f"Fundamental matrix on real stereo pairs, {args.seeds} seeds, 1 px",
+    )
     return 0
 
 

@@ -4,6 +4,7 @@ camlab-versus-OpenCV speed ratios.
 Each `benchmarks/speed_<topic>.py` provides `rows()` returning dicts with case, camlab_ms,
 opencv_ms, ratio, target and ok; this script prints them all as tables.
 """
+
 from __future__ import annotations
 
 import importlib
@@ -23,7 +24,11 @@ def main() -> int:
     for path in sorted(HERE.glob("speed_*.py")):
         module = importlib.import_module(path.stem)
         rows = module.rows()
-        print_table(rows, ["case", "camlab_ms", "opencv_ms", "ratio", "target", "ok"], f"{path.stem}: camlab vs OpenCV")
+        print_table(
+            rows,
+            ["case", "camlab_ms", "opencv_ms", "ratio", "target", "ok"],
+            f"{path.stem}: camlab vs OpenCV",
+        )
         failed += [f"{path.stem}: {r['case']}" for r in rows if not r["ok"]]
     if failed:
         print("\nMissed targets:\n- " + "\n- ".join(failed))

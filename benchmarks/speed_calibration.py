@@ -7,6 +7,7 @@ Target: ``calibrate_camera`` on 25 views of 54 corners (sigma = 0.2 px) within 5
 of ``cv2.calibrateCamera`` with the same model (fx, fy, cx, cy, k1, k2, p1, p2, k3).
 Also printed: camlab versus OpenCV on the same corners and both versus the truth.
 """
+
 from __future__ import annotations
 
 import sys
@@ -32,10 +33,20 @@ def rows(repeat: int = 7) -> list[dict]:
     out = []
     for n_views, target in ((25, 5.0), (10, 5.0)):
         s = make_synthetic_views(n_views, 0.2, rng=np.random.default_rng(2026))
-        ours = median_ms(lambda: calibrate_camera(s.object_points, s.image_points, s.image_size), repeat, 1)
+        ours = median_ms(
+            lambda: calibrate_camera(s.object_points, s.image_points, s.image_size), repeat, 1
+        )
         ref = median_ms(_opencv(s), repeat, 1)
-        out.append({"case": f"calibrate_camera, {n_views} views x 54 corners", "camlab_ms": ours, "opencv_ms": ref,
-                    "ratio": ours / ref, "target": f"<= {target:g}x", "ok": ours / ref <= target})
+        out.append(
+            {
+                "case": f"calibrate_camera, {n_views} views x 54 corners",
+                "camlab_ms": ours,
+                "opencv_ms": ref,
+                "ratio": ours / ref,
+                "target": f"<= {target:g}x",
+                "ok": ours / ref <= target,
+            }
+        )
     return out
 
 
@@ -49,27 +60,58 @@ def accuracy_rows(n_views: int = 15, noise: float = 0.2, seed: int = 7) -> list[
     out = []
     for name in ("fx", "fy", "cx", "cy"):
         ours = res.intrinsics[name]
-        out.append({"param": name, "truth": true[name], "camlab": ours, "opencv": cv[name],
-                    "camlab - opencv": ours - cv[name], "camlab - truth": ours - true[name],
-                    "camlab std": res.std[name]})
+        out.append(
+            {
+                "param": name,
+                "truth": true[name],
+                "camlab": ours,
+                "opencv": cv[name],
+                "camlab - opencv": ours - cv[name],
+                "camlab - truth": ours - true[name],
+                "camlab std": res.std[name],
+            }
+        )
     for i, name in enumerate(("k1", "k2", "p1", "p2", "k3")):
-        out.append({"param": name, "truth": s.dist[i], "camlab": res.dist[i], "opencv": float(dist.ravel()[i]),
-                    "camlab - opencv": res.dist[i] - float(dist.ravel()[i]), "camlab - truth": res.dist[i] - s.dist[i],
-                    "camlab std": res.std[name]})
-    out.append({"param": "rms (px)", "truth": np.nan, "camlab": res.rms, "opencv": rms,
-                "camlab - opencv": res.rms - rms, "camlab - truth": np.nan, "camlab std": np.nan})
+        out.append(
+            {
+                "param": name,
+                "truth": s.dist[i],
+                "camlab": res.dist[i],
+                "opencv": float(dist.ravel()[i]),
+                "camlab - opencv": res.dist[i] - float(dist.ravel()[i]),
+                "camlab - truth": res.dist[i] - s.dist[i],
+                "camlab std": res.std[name],
+            }
+        )
+    out.append(
+        {
+            "param": "rms (px)",
+            "truth": np.nan,
+            "camlab": res.rms,
+            "opencv": rms,
+            "camlab - opencv": res.rms - rms,
+            "camlab - truth": np.nan,
+            "camlab std": np.nan,
+        }
+    )
     return out
 
 
 def main() -> None:
-    print_table(rows(), ["case", "camlab_ms", "opencv_ms", "ratio", "target", "ok"], "calibrate_camera vs OpenCV")
+    print_table(
+        rows(),
+        ["case", "camlab_ms", "opencv_ms", "ratio", "target", "ok"],
+        "calibrate_camera vs OpenCV",
+    )
     acc = accuracy_rows()
     print("\n### Same corners (15 views, sigma 0.2 px): camlab vs cv2.calibrateCamera vs truth\n")
     cols = ["param", "truth", "camlab", "opencv", "camlab - opencv", "camlab - truth", "camlab std"]
     print("| " + " | ".join(cols) + " |")
     print("|" + "---|" * len(cols))
     for r in acc:
-        print("| " + " | ".join(r[c] if isinstance(r[c], str) else f"{r[c]:.6g}" for c in cols) + " |")
+        print(
+            "| " + " | ".join(r[c] if isinstance(r[c], str) else f"{r[c]:.6g}" for c in cols) + " |"
+        )
 
 
 if __name__ == "__main__":

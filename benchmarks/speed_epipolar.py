@@ -8,6 +8,7 @@ of OpenCV's C++ for the small geometric solvers, looser for the per-pixel numpy 
 the cv2 fast path within 3x). The accuracy of the same calls
 is asserted in tests/test_epipolar.py and tests/test_rectification.py.
 """
+
 from __future__ import annotations
 
 import sys
@@ -53,13 +54,25 @@ def _rows() -> list[dict]:
     c1, c2, x1, x2, bad = _matches()
     good1, good2 = x1[~bad], x2[~bad]
     out = [
-        ratio_row("8-point F, 350 pairs", lambda: ep.estimate_fundamental_matrix(good1, good2),
-                  lambda: cv2.findFundamentalMat(good1, good2, cv2.FM_8POINT), 15),
-        ratio_row("RANSAC F, 500 pairs, 30% outliers",
-                  lambda: ep.ransac_fundamental_matrix(x1, x2, 1.0, 0.999, rng=np.random.default_rng(1)),
-                  lambda: cv2.findFundamentalMat(x1, x2, cv2.FM_RANSAC, 1.0, 0.999), 10, repeat=10),
-        ratio_row("triangulate 350 points (linear)", lambda: ep.triangulate_points(c1, c2, good1, good2),
-                  lambda: cv2.triangulatePoints(c1.P, c2.P, good1.T, good2.T), 20),
+        ratio_row(
+            "8-point F, 350 pairs",
+            lambda: ep.estimate_fundamental_matrix(good1, good2),
+            lambda: cv2.findFundamentalMat(good1, good2, cv2.FM_8POINT),
+            15,
+        ),
+        ratio_row(
+            "RANSAC F, 500 pairs, 30% outliers",
+            lambda: ep.ransac_fundamental_matrix(x1, x2, 1.0, 0.999, rng=np.random.default_rng(1)),
+            lambda: cv2.findFundamentalMat(x1, x2, cv2.FM_RANSAC, 1.0, 0.999),
+            10,
+            repeat=10,
+        ),
+        ratio_row(
+            "triangulate 350 points (linear)",
+            lambda: ep.triangulate_points(c1, c2, good1, good2),
+            lambda: cv2.triangulatePoints(c1.P, c2.P, good1.T, good2.T),
+            20,
+        ),
     ]
     rig = load_stereo_rig()
     a, b = rig.camera1, rig.camera2
@@ -67,31 +80,64 @@ def _rows() -> list[dict]:
     dist1, dist2 = np.array(a.dist), np.array(b.dist)
 
     def cv_calibrated():
-        R1, R2, P1, P2, *_ = cv2.stereoRectify(a.K, dist1, b.K, dist2, a.image_size, R, t.reshape(3, 1), alpha=0)
-        return [cv2.initUndistortRectifyMap(c.K, d, Rr, P[:3, :3], a.image_size, cv2.CV_32FC1)
-                for c, d, Rr, P in ((a, dist1, R1, P1), (b, dist2, R2, P2))]
+        R1, R2, P1, P2, *_ = cv2.stereoRectify(
+            a.K, dist1, b.K, dist2, a.image_size, R, t.reshape(3, 1), alpha=0
+        )
+        return [
+            cv2.initUndistortRectifyMap(c.K, d, Rr, P[:3, :3], a.image_size, cv2.CV_32FC1)
+            for c, d, Rr, P in ((a, dist1, R1, P1), (b, dist2, R2, P2))
+        ]
 
-    out.append(ratio_row("calibrated rectification + maps, 640x480 (numpy maps)",
-                         lambda: rc.rectify_calibrated(a, b, 0.0), cv_calibrated, 40, repeat=10))
-    out.append(ratio_row("calibrated rectification + maps, 640x480 (cv2 maps)",
-                         lambda: rc.rectify_calibrated(a, b, 0.0, method="cv2"), cv_calibrated, 3, repeat=10))
+    out.append(
+        ratio_row(
+            "calibrated rectification + maps, 640x480 (numpy maps)",
+            lambda: rc.rectify_calibrated(a, b, 0.0),
+            cv_calibrated,
+            40,
+            repeat=10,
+        )
+    )
+    out.append(
+        ratio_row(
+            "calibrated rectification + maps, 640x480 (cv2 maps)",
+            lambda: rc.rectify_calibrated(a, b, 0.0, method="cv2"),
+            cv_calibrated,
+            3,
+            repeat=10,
+        )
+    )
     F = ep.fundamental_from_cameras(a.replace(dist=(0.0,) * 5), b.replace(dist=(0.0,) * 5))
     rng = np.random.default_rng(2)
     X = rng.uniform([-0.6, 1.5, 0.5], [0.6, 3.5, 1.4], (300, 3))
     u1 = a.replace(dist=(0.0,) * 5).project(X) + rng.normal(0, 0.3, (300, 2))
     u2 = b.replace(dist=(0.0,) * 5).project(X) + rng.normal(0, 0.3, (300, 2))
-    out.append(ratio_row("uncalibrated rectification, 300 matches", lambda: rc.rectify_uncalibrated(u1, u2, F, (640, 480)),
-                         lambda: cv2.stereoRectifyUncalibrated(u1, u2, F, (640, 480)), 30))
+    out.append(
+        ratio_row(
+            "uncalibrated rectification, 300 matches",
+            lambda: rc.rectify_uncalibrated(u1, u2, F, (640, 480)),
+            lambda: cv2.stereoRectifyUncalibrated(u1, u2, F, (640, 480)),
+            30,
+        )
+    )
     rect = rc.rectify_calibrated(a, b, 0.0)
     L, Rr = rc.rectify_images(rect, rig.left, rig.right)
     band = slice(150, 330)
     sgbm = cv2.StereoBM_create(numDisparities=80, blockSize=9)
-    out.append(ratio_row("block matching 640x180, 73 disparities (numpy vs cv2.StereoBM)",
-                         lambda: dp.block_matching_disparity(L[band], Rr[band], 88, 9, min_disparity=16),
-                         lambda: sgbm.compute(L[band], Rr[band]), 60, repeat=3))
+    out.append(
+        ratio_row(
+            "block matching 640x180, 73 disparities (numpy vs cv2.StereoBM)",
+            lambda: dp.block_matching_disparity(L[band], Rr[band], 88, 9, min_disparity=16),
+            lambda: sgbm.compute(L[band], Rr[band]),
+            60,
+            repeat=3,
+        )
+    )
     return out
 
 
 if __name__ == "__main__":
-    print_table(rows(), ["case", "camlab_ms", "opencv_ms", "ratio", "target", "ok"],
-                title="camlab two-view geometry vs OpenCV (median ms)")
+    print_table(
+        rows(),
+        ["case", "camlab_ms", "opencv_ms", "ratio", "target", "ok"],
+        title="camlab two-view geometry vs OpenCV (median ms)",
+    )

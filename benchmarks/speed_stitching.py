@@ -26,6 +26,7 @@ the Stitcher's cameras) on *independent* matches: ORB features at full resolutio
 pair keeps them. Median over every overlapping pair, pixels. Focal lengths: camlab's and
 the Stitcher's per image, and the truth where it is known.
 """
+
 from __future__ import annotations
 
 import os
@@ -56,12 +57,17 @@ def sets() -> dict:
     ex = pd.turning_set("exposures")
     aerial = pd.load_aerial_mosaic(6)
     f_true = float(t3.K[0, 0])
-    return {"turn3+unrelated": (t3.images, t3.names, f_true), "exposures": (ex.images, ex.names, f_true),
-            "aerial6": (aerial, [f"aerial_{k + 1}" for k in range(6)], None)}
+    return {
+        "turn3+unrelated": (t3.images, t3.names, f_true),
+        "exposures": (ex.images, ex.names, f_true),
+        "aerial6": (aerial, [f"aerial_{k + 1}" for k in range(6)], None),
+    }
 
 
 def _bgr(img: np.ndarray) -> np.ndarray:
-    return np.ascontiguousarray(cv2.cvtColor(img, cv2.COLOR_GRAY2BGR) if img.ndim == 2 else img[..., ::-1])
+    return np.ascontiguousarray(
+        cv2.cvtColor(img, cv2.COLOR_GRAY2BGR) if img.ndim == 2 else img[..., ::-1]
+    )
 
 
 def cv_stitch(images, mode: int = cv2.Stitcher_PANORAMA):
@@ -120,7 +126,11 @@ def independent_matches(images, pairs) -> dict:
     out = {}
     for i, j in pairs:
         (ki, di), (kj, dj) = kd[i], kd[j]
-        good = [m for m, n in (p for p in bf.knnMatch(di, dj, k=2) if len(p) == 2) if m.distance < 0.75 * n.distance]
+        good = [
+            m
+            for m, n in (p for p in bf.knnMatch(di, dj, k=2) if len(p) == 2)
+            if m.distance < 0.75 * n.distance
+        ]
         if len(good) < 20:
             continue
         a = np.array([ki[m.queryIdx].pt for m in good])
@@ -141,7 +151,16 @@ def transfer_median(maps: dict, matches: dict) -> float:
     return float(np.median(np.concatenate(errs))) if errs else float("nan")
 
 
-STAGES = ["features", "matching", "estimation", "bundle_adjustment", "warping", "exposure", "seams", "compositing"]
+STAGES = [
+    "features",
+    "matching",
+    "estimation",
+    "bundle_adjustment",
+    "warping",
+    "exposure",
+    "seams",
+    "compositing",
+]
 
 
 def rows(repeat: int = 3) -> list[dict]:
@@ -167,21 +186,41 @@ def rows(repeat: int = 3) -> list[dict]:
         cam, ocv = 1e3 * float(np.median(tc)), 1e3 * float(np.median(to))
         pairs = [(i, j) for i in range(len(images)) for j in range(i + 1, len(images))]
         indep = independent_matches(images, pairs)
-        cv_maps = cv_mappings(stitcher, images) if status == cv2.Stitcher_OK and mode == cv2.Stitcher_PANORAMA else {}
+        cv_maps = (
+            cv_mappings(stitcher, images)
+            if status == cv2.Stitcher_OK and mode == cv2.Stitcher_PANORAMA
+            else {}
+        )
         e_cam, e_cv = transfer_median(camlab_mappings(res), indep), transfer_median(cv_maps, indep)
         f_cam = [round(float(c[0][0, 0]), 1) for c in res.cameras if c is not None]
         f_cv = [round(float(M_inv_focal(m)), 1) for m in cv_maps.values()]
-        out.append({"case": f"{name} ({len(images)} photos, {images[0].shape[1]}x{images[0].shape[0]})",
-                    "camlab_ms": cam, "opencv_ms": ocv, "ratio": cam / ocv, "target": f"<= {TARGET:g}x",
-                    "ok": cam / ocv <= TARGET and status == cv2.Stitcher_OK,
-                    "runs": ", ".join(f"{a / b:.2f}" for a, b in zip(tc, to)),
-                    "cpu_ratio": float(np.median(cc) / np.median(co)),
-                    "camlab_px": e_cam, "opencv_px": e_cv, "model": f"{res.model}/{res.projection}",
-                    "opencv_mode": mode_name,
-                    "left_out": ", ".join(res.names[k] for k in res.unconnected) or "-",
-                    "f_camlab": f_cam or "-", "f_opencv": f_cv or "-", "f_true": f_true or "-"})
-        stages.append({"set": name, **{k: 1e3 * float(np.median([t.get(k, 0.0) for t in st_runs])) for k in STAGES},
-                       "total": cam})
+        out.append(
+            {
+                "case": f"{name} ({len(images)} photos, {images[0].shape[1]}x{images[0].shape[0]})",
+                "camlab_ms": cam,
+                "opencv_ms": ocv,
+                "ratio": cam / ocv,
+                "target": f"<= {TARGET:g}x",
+                "ok": cam / ocv <= TARGET and status == cv2.Stitcher_OK,
+                "runs": ", ".join(f"{a / b:.2f}" for a, b in zip(tc, to)),
+                "cpu_ratio": float(np.median(cc) / np.median(co)),
+                "camlab_px": e_cam,
+                "opencv_px": e_cv,
+                "model": f"{res.model}/{res.projection}",
+                "opencv_mode": mode_name,
+                "left_out": ", ".join(res.names[k] for k in res.unconnected) or "-",
+                "f_camlab": f_cam or "-",
+                "f_opencv": f_cv or "-",
+                "f_true": f_true or "-",
+            }
+        )
+        stages.append(
+            {
+                "set": name,
+                **{k: 1e3 * float(np.median([t.get(k, 0.0) for t in st_runs])) for k in STAGES},
+                "total": cam,
+            }
+        )
     rows.stages = stages
     return out
 
@@ -189,9 +228,30 @@ def rows(repeat: int = 3) -> list[dict]:
 if __name__ == "__main__":
     r = rows()
     load = ", ".join(f"{x:.2f}" for x in rows.load)
-    print_table(r, ["case", "camlab_ms", "opencv_ms", "ratio", "runs", "cpu_ratio", "target", "ok", "model",
-                    "opencv_mode", "left_out"],
-                title=f"camlab.stitch vs cv2.Stitcher, one thread (median ms; ratio per run; 1-min load {load})")
-    print_table(r, ["case", "camlab_px", "opencv_px", "f_camlab", "f_opencv", "f_true"],
-                title="Transfer error on independent ORB matches (median px) and focal lengths (px)")
-    print_table(rows.stages, ["set"] + STAGES + ["total"], title="camlab per stage (median ms over the runs)")
+    print_table(
+        r,
+        [
+            "case",
+            "camlab_ms",
+            "opencv_ms",
+            "ratio",
+            "runs",
+            "cpu_ratio",
+            "target",
+            "ok",
+            "model",
+            "opencv_mode",
+            "left_out",
+        ],
+        title=f"camlab.stitch vs cv2.Stitcher, one thread (median ms; ratio per run; 1-min load {load})",
+    )
+    print_table(
+        r,
+        ["case", "camlab_px", "opencv_px", "f_camlab", "f_opencv", "f_true"],
+        title="Transfer error on independent ORB matches (median px) and focal lengths (px)",
+    )
+    print_table(
+        rows.stages,
+        ["set"] + STAGES + ["total"],
+        title="camlab per stage (median ms over the runs)",
+    )

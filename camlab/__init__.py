@@ -50,6 +50,7 @@ topic                   main functions
 
 docs/architecture.md says which module may import which, and where new code goes.
 """
+
 from __future__ import annotations
 
 import importlib
@@ -71,8 +72,18 @@ from .projective import (
 __version__ = "0.1.0"
 
 __all__ = [
-    "CamlabInputError", "ConvergenceError", "DegenerateError", "cross_ratio", "from_homogeneous",
-    "horizon", "join", "map_lines", "map_points", "meet", "projective", "to_homogeneous",
+    "CamlabInputError",
+    "ConvergenceError",
+    "DegenerateError",
+    "cross_ratio",
+    "from_homogeneous",
+    "horizon",
+    "join",
+    "map_lines",
+    "map_points",
+    "meet",
+    "projective",
+    "to_homogeneous",
     "vanishing_point",
 ]
 
@@ -84,8 +95,14 @@ _MAIN: dict[str, tuple[str, ...]] = {
     "lens": ("depth_of_field", "circle_of_confusion", "angle_of_view"),
     "distortion": ("distort_points", "undistort_points", "undistort_image"),
     "sensor": ("mosaic", "demosaic_bilinear", "intrinsics_from_sensor", "add_noise"),
-    "camera": ("Camera", "intrinsic_matrix", "project_points", "estimate_projection_matrix",
-               "decompose_projection_matrix", "rq_decomposition"),
+    "camera": (
+        "Camera",
+        "intrinsic_matrix",
+        "project_points",
+        "estimate_projection_matrix",
+        "decompose_projection_matrix",
+        "rq_decomposition",
+    ),
     "affine": ("affine_approximation", "estimate_affine_camera"),
     "homography": ("estimate_homography", "ransac_homography", "refine_homography"),
     "warp": ("warp_perspective", "forward_warp"),
@@ -93,8 +110,13 @@ _MAIN: dict[str, tuple[str, ...]] = {
     "stitching": ("stitch", "register_pair", "match_graph", "blend"),
     "features": ("detect_features", "match_features"),
     "perspective": ("rectify_quadrilateral", "estimate_aspect_ratio", "find_document"),
-    "epipolar": ("estimate_fundamental_matrix", "ransac_fundamental_matrix", "essential_matrix",
-                 "recover_pose", "triangulate_points"),
+    "epipolar": (
+        "estimate_fundamental_matrix",
+        "ransac_fundamental_matrix",
+        "essential_matrix",
+        "recover_pose",
+        "triangulate_points",
+    ),
     "rectification": ("rectify_calibrated", "rectify_uncalibrated"),
     "disparity": ("block_matching_disparity", "sgbm_disparity", "disparity_to_depth"),
     "robust": ("ransac",),

@@ -14,6 +14,7 @@ lecture view, with axe-core; see ``docs/accessibility.md``):
 It also draws a clear focus ring on controls and figures (the widgets only tint a focused
 slider handle, as on hover).
 """
+
 from __future__ import annotations
 
 SCRIPT = """(function () {

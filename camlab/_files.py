@@ -12,6 +12,7 @@ not empty, not truncated, and optionally read back) and moves it over the target
 then, with the permissions the user's umask asks for, so the target is either the old
 file or the complete new one, never a torn or empty one.
 """
+
 from __future__ import annotations
 
 import contextlib
@@ -24,8 +25,15 @@ import numpy as np
 
 from ._validate import CamlabInputError
 
-__all__ = ["PhotoReadError", "atomic_output", "check_not_an_input", "check_output_path", "damaged_image_file",
-           "output_folder", "read_photo"]
+__all__ = [
+    "PhotoReadError",
+    "atomic_output",
+    "check_not_an_input",
+    "check_output_path",
+    "damaged_image_file",
+    "output_folder",
+    "read_photo",
+]
 
 PHOTO_MODES = ("rgb", "grey", "stored")
 
@@ -80,13 +88,19 @@ def read_photo(path: str | os.PathLike, mode: str = "rgb") -> np.ndarray:
     """
     import cv2
 
-    flags = {"rgb": cv2.IMREAD_COLOR, "grey": cv2.IMREAD_GRAYSCALE,
-             "stored": cv2.IMREAD_ANYDEPTH | cv2.IMREAD_ANYCOLOR}
+    flags = {
+        "rgb": cv2.IMREAD_COLOR,
+        "grey": cv2.IMREAD_GRAYSCALE,
+        "stored": cv2.IMREAD_ANYDEPTH | cv2.IMREAD_ANYCOLOR,
+    }
     if mode not in flags:
         raise CamlabInputError(f"mode: expected one of {PHOTO_MODES}, got {mode!r}")
     p = Path(path)
     if not p.is_file():
-        raise PhotoReadError(p, "could not read the file: " + ("it is a folder" if p.is_dir() else "it does not exist"))
+        raise PhotoReadError(
+            p,
+            "could not read the file: " + ("it is a folder" if p.is_dir() else "it does not exist"),
+        )
     try:
         data = p.read_bytes()
     except OSError as exc:
@@ -109,17 +123,22 @@ def check_output_path(path, name: str, suffixes: tuple[str, ...] | None = None) 
         raise CamlabInputError(f"{name}: expected a file path, got {path!r}")
     p = Path(path)
     if suffixes is not None and p.suffix.lower() not in suffixes:
-        raise CamlabInputError(f"{name}: expected a file name ending in {', '.join(suffixes)}, got {str(path)!r}")
+        raise CamlabInputError(
+            f"{name}: expected a file name ending in {', '.join(suffixes)}, got {str(path)!r}"
+        )
     if p.is_dir():
         raise CamlabInputError(f"{name}: {str(path)!r} is a folder; give a file name inside it")
     folder = p.parent if str(p.parent) else Path(".")
     if not folder.is_dir():
-        raise CamlabInputError(f"{name}: the folder {str(folder)!r} does not exist; create it first")
+        raise CamlabInputError(
+            f"{name}: the folder {str(folder)!r} does not exist; create it first"
+        )
     try:
         fd, probe = tempfile.mkstemp(dir=folder, prefix=".camlab-probe-")
     except OSError as exc:
-        raise CamlabInputError(f"{name}: cannot write in {str(folder)!r} ({exc.strerror}); choose another "
-                               f"folder") from None
+        raise CamlabInputError(
+            f"{name}: cannot write in {str(folder)!r} ({exc.strerror}); choose another folder"
+        ) from None
     os.close(fd)
     os.unlink(probe)
     return p
@@ -134,13 +153,17 @@ def output_folder(path, name: str) -> Path:
         raise CamlabInputError(f"{name}: expected a folder path, got {path!r}")
     p = Path(path)
     if p.exists() and not p.is_dir():
-        raise CamlabInputError(f"{name}: {str(path)!r} is a file, not a folder; name a folder (a missing one is "
-                               f"created)")
+        raise CamlabInputError(
+            f"{name}: {str(path)!r} is a file, not a folder; name a folder (a missing one is "
+            f"created)"
+        )
     try:
         p.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
-        raise CamlabInputError(f"{name}: cannot create the folder {str(path)!r} ({exc.strerror}); choose another "
-                               f"folder") from None
+        raise CamlabInputError(
+            f"{name}: cannot create the folder {str(path)!r} ({exc.strerror}); choose another "
+            f"folder"
+        ) from None
     return p
 
 
@@ -154,8 +177,9 @@ def _same_file(a: Path, b: Path) -> bool:
         return False
 
 
-def check_not_an_input(outputs: Iterable[str | os.PathLike], name: str, inputs: Iterable[str | os.PathLike],
-                       fix: str) -> None:
+def check_not_an_input(
+    outputs: Iterable[str | os.PathLike], name: str, inputs: Iterable[str | os.PathLike], fix: str
+) -> None:
     """Raise, naming ``name``, if writing any of ``outputs`` would overwrite one of ``inputs``.
 
     Paths are compared resolved (``.``, ``..`` and symbolic links followed) and by inode, so
@@ -166,7 +190,9 @@ def check_not_an_input(outputs: Iterable[str | os.PathLike], name: str, inputs: 
     for out in outputs:
         hit = next((x for x in ins if _same_file(Path(out), x)), None)
         if hit is not None:
-            raise CamlabInputError(f"{name}: writing {str(out)!r} would overwrite the input photo {str(hit)!r}; {fix}")
+            raise CamlabInputError(
+                f"{name}: writing {str(out)!r} would overwrite the input photo {str(hit)!r}; {fix}"
+            )
 
 
 def _umask_mode() -> int:
@@ -202,8 +228,9 @@ def _written_problem(tmp: Path, verify: Callable[[Path], str | None] | None) -> 
 
 
 @contextlib.contextmanager
-def atomic_output(path: str | os.PathLike, name: str = "path",
-                  verify: Callable[[Path], str | None] | None = None) -> Iterator[Path]:
+def atomic_output(
+    path: str | os.PathLike, name: str = "path", verify: Callable[[Path], str | None] | None = None
+) -> Iterator[Path]:
     """Yield a temporary path beside ``path`` (same suffix); move it over ``path`` once it is checked.
 
     After the body has written the temporary file it is flushed to disk (``fsync``) and
@@ -215,7 +242,9 @@ def atomic_output(path: str | os.PathLike, name: str = "path",
     naming ``name``.
     """
     p = Path(path)
-    fd, tmp_name = tempfile.mkstemp(dir=p.parent if str(p.parent) else ".", prefix=f".{p.stem}-", suffix=p.suffix)
+    fd, tmp_name = tempfile.mkstemp(
+        dir=p.parent if str(p.parent) else ".", prefix=f".{p.stem}-", suffix=p.suffix
+    )
     os.close(fd)
     tmp = Path(tmp_name)
     kept = "the previous file is unchanged" if p.exists() else "no file was left behind"
@@ -226,8 +255,10 @@ def atomic_output(path: str | os.PathLike, name: str = "path",
         except OSError as exc:
             why = exc.strerror or str(exc)
         if why:
-            raise CamlabInputError(f"{name}: could not write {str(p)!r}: {why}; {kept}. Free some disk space or "
-                                   f"choose another folder") from None
+            raise CamlabInputError(
+                f"{name}: could not write {str(p)!r}: {why}; {kept}. Free some disk space or "
+                f"choose another folder"
+            ) from None
         os.chmod(tmp, p.stat().st_mode & 0o7777 if p.exists() else _umask_mode())
         os.replace(tmp, p)
     finally:

@@ -11,6 +11,7 @@ is the temporary file ipykernel compiles each cell into, so a student reads::
 (the cell it came from is the one showing it). Warnings attributed to real files keep
 Python's format.
 """
+
 from __future__ import annotations
 
 import sys
@@ -21,11 +22,19 @@ from typing import Any, TextIO
 
 def is_cell_file(filename: str) -> bool:
     """True for the file name IPython gives a cell's code (ipykernel's temporary file, or ``<ipython-input-...>``)."""
-    return Path(filename).parent.name.startswith("ipykernel_") or filename.startswith("<ipython-input-")
+    return Path(filename).parent.name.startswith("ipykernel_") or filename.startswith(
+        "<ipython-input-"
+    )
 
 
-def _show_warning(message: Warning | str, category: type[Warning], filename: str, lineno: int,
-                  file: TextIO | None = None, line: str | None = None) -> None:
+def _show_warning(
+    message: Warning | str,
+    category: type[Warning],
+    filename: str,
+    lineno: int,
+    file: TextIO | None = None,
+    line: str | None = None,
+) -> None:
     """``warnings.showwarning`` in a kernel: Python's format, without the path for a cell's warning."""
     if is_cell_file(filename):
         text = f"{category.__name__}: {message}\n"

@@ -3,6 +3,7 @@
 Errors name the argument, what was expected, what arrived, and how to fix it, so a
 learner sees the mistake instead of a bare numpy traceback.
 """
+
 from __future__ import annotations
 
 from typing import NamedTuple
@@ -110,8 +111,7 @@ def as_points(
         )
     if len(a) < min_count:
         raise CamlabInputError(
-            f"{name}: expected at least {min_count} points, got {len(a)}; "
-            f"supply more points"
+            f"{name}: expected at least {min_count} points, got {len(a)}; supply more points"
         )
     if finite:
         check_finite(a, name)
@@ -179,7 +179,9 @@ def as_point_pairs(
     return PointPairs(p1.array, p2.array, p1.single and p2.single)
 
 
-def check_matrix(x: ArrayLike, shape: tuple[int, ...], name: str, *, finite: bool = True) -> np.ndarray:
+def check_matrix(
+    x: ArrayLike, shape: tuple[int, ...], name: str, *, finite: bool = True
+) -> np.ndarray:
     """Return ``x`` as a float array of exactly ``shape`` or raise a clear error.
 
     >>> check_matrix(np.eye(3), (3, 3), "H").shape
@@ -200,11 +202,15 @@ def check_matrix(x: ArrayLike, shape: tuple[int, ...], name: str, *, finite: boo
 def _number(value, name: str, what: str) -> float:
     """``value`` as a float; strings, None and other non-numbers raise naming ``name``."""
     if isinstance(value, (str, bytes, bool)) or value is None:
-        raise CamlabInputError(f"{name}: expected {what}, got {type(value).__name__} {value!r}; pass a number")
+        raise CamlabInputError(
+            f"{name}: expected {what}, got {type(value).__name__} {value!r}; pass a number"
+        )
     try:
         return float(value)
     except (TypeError, ValueError):
-        raise CamlabInputError(f"{name}: expected {what}, got {type(value).__name__} {value!r}; pass a number") from None
+        raise CamlabInputError(
+            f"{name}: expected {what}, got {type(value).__name__} {value!r}; pass a number"
+        ) from None
 
 
 def check_positive(value: float, name: str, unit: str = "") -> float:
@@ -243,12 +249,18 @@ def check_size(size, name: str = "size", *, minimum: int = 1) -> tuple[int, int]
         vals = [v for v in size] if not isinstance(size, (str, bytes)) else None
     except TypeError:
         vals = None
-    if vals is None or len(vals) != 2 or any(isinstance(v, (str, bytes, bool)) or v is None for v in vals):
+    if (
+        vals is None
+        or len(vals) != 2
+        or any(isinstance(v, (str, bytes, bool)) or v is None for v in vals)
+    ):
         raise CamlabInputError(f"{name}: expected (width, height) in pixels, got {size!r}")
     try:
         f = np.array(vals, dtype=float)
     except (TypeError, ValueError):
-        raise CamlabInputError(f"{name}: expected (width, height) in pixels, got {size!r}") from None
+        raise CamlabInputError(
+            f"{name}: expected (width, height) in pixels, got {size!r}"
+        ) from None
     if f.shape != (2,) or not np.isfinite(f).all():
         raise CamlabInputError(f"{name}: expected (width, height) in pixels, got {size!r}")
     if np.any(f != np.round(f)):
@@ -369,7 +381,9 @@ def check_integer(value, name: str, minimum: int = 1) -> int:
     """
     v = _number(value, name, f"a whole number >= {minimum}")
     if not np.isfinite(v) or v != round(v):
-        raise CamlabInputError(f"{name}: expected a whole number >= {minimum}, got {value!r}; round it first")
+        raise CamlabInputError(
+            f"{name}: expected a whole number >= {minimum}, got {value!r}; round it first"
+        )
     if v < minimum:
         raise CamlabInputError(f"{name}: expected a whole number >= {minimum}, got {value!r}")
     return int(v)
@@ -390,14 +404,23 @@ def check_image(image, name: str = "image", *, channels: tuple[int, ...] = (1, 3
     camlab._validate.CamlabInputError: image: expected an image of integer or float pixels, got dtype object; convert with np.asarray(image, dtype=np.uint8) or float
     """
     if image is None or isinstance(image, (str, bytes)):
-        raise CamlabInputError(f"{name}: expected an image array (H, W) or (H, W, C), got {type(image).__name__}; "
-                               f"load a file with cv2.imread or camlab.data.load_photo first")
+        raise CamlabInputError(
+            f"{name}: expected an image array (H, W) or (H, W, C), got {type(image).__name__}; "
+            f"load a file with cv2.imread or camlab.data.load_photo first"
+        )
     a = np.asarray(image)
     if a.dtype.kind not in "uif" or a.dtype == np.float16:
-        raise CamlabInputError(f"{name}: expected an image of integer or float pixels, got dtype {a.dtype}; "
-                               f"convert with np.asarray(image, dtype=np.uint8) or float")
-    if not ((a.ndim == 2 and 1 in channels) or (a.ndim == 3 and a.shape[2] in channels)) or a.size == 0:
-        want = " or ".join(["(H, W)"] * (1 in channels) + [f"(H, W, {c})" for c in channels if c != 1])
+        raise CamlabInputError(
+            f"{name}: expected an image of integer or float pixels, got dtype {a.dtype}; "
+            f"convert with np.asarray(image, dtype=np.uint8) or float"
+        )
+    if (
+        not ((a.ndim == 2 and 1 in channels) or (a.ndim == 3 and a.shape[2] in channels))
+        or a.size == 0
+    ):
+        want = " or ".join(
+            ["(H, W)"] * (1 in channels) + [f"(H, W, {c})" for c in channels if c != 1]
+        )
         raise CamlabInputError(f"{name}: expected an image of shape {want}, got shape {a.shape}")
     if a.dtype.kind == "f":
         check_finite(a, name)
@@ -415,8 +438,11 @@ def check_shape(shape, name: str = "shape", *, minimum: int = 1) -> tuple[int, i
     camlab._validate.CamlabInputError: shape: expected (height, width) as whole numbers of pixels >= 1, got (480, 0.5)
     """
     try:
-        w, h = check_size(tuple(shape)[::-1] if isinstance(shape, (tuple, list, np.ndarray)) else shape, name,
-                          minimum=minimum)
+        w, h = check_size(
+            tuple(shape)[::-1] if isinstance(shape, (tuple, list, np.ndarray)) else shape,
+            name,
+            minimum=minimum,
+        )
     except CamlabInputError:
         raise CamlabInputError(
             f"{name}: expected (height, width) as whole numbers of pixels >= {minimum}, got {shape!r}"
@@ -434,7 +460,11 @@ def check_pair(value, name: str, unit: str = "", *, positive: bool = False) -> t
     """
     what = f"a pair of {'positive ' if positive else ''}numbers{' ' + unit if unit else ''}"
     if isinstance(value, (str, bytes)) or np.ndim(value) == 0:
-        fix = f"; for equal values pass ({value!r}, {value!r})" if isinstance(value, (int, float)) else ""
+        fix = (
+            f"; for equal values pass ({value!r}, {value!r})"
+            if isinstance(value, (int, float))
+            else ""
+        )
         raise CamlabInputError(f"{name}: expected {what}, got {value!r}{fix}")
     a = check_matrix(np.ravel(as_float(value, name)), (2,), name)
     if positive and np.any(a <= 0):

@@ -27,6 +27,7 @@ image of a point differs from its perspective image by the factor
 Conventions (docs/conventions.md): R, t are cam_from_world, camera frame x right,
 y down, z forward; pixels (u, v) = (column, row); points are rows. See lesson 05.
 """
+
 from __future__ import annotations
 
 from typing import Callable, NamedTuple
@@ -35,15 +36,39 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._validate import (
-    CamlabInputError, DegenerateError, as_float, as_point_pairs, as_points, check_finite, check_matrix, check_positive, check_rotation,
+    CamlabInputError,
+    DegenerateError,
+    as_float,
+    as_point_pairs,
+    as_points,
+    check_finite,
+    check_matrix,
+    check_positive,
+    check_rotation,
 )
 from .camera import Camera, intrinsic_matrix, orbit_eye, project_points, project_segments
 
 __all__ = [
-    "AffineDeparture", "affine_approximation", "affine_departure", "affine_fit_departure", "dolly_zoom_camera", "dolly_zoom_errors", "dolly_zoom_focal", "estimate_affine_camera", "image_of_direction",
-    "is_affine", "largest_gap_in_frame", "orthographic_matrix", "paraperspective_approximation", "projection_rays", "PROJECTION_MODELS",
-    "scaled_orthographic_matrix", "ThreeImages", "three_images",
-    "weak_perspective_error", "weak_perspective_matrix",
+    "AffineDeparture",
+    "affine_approximation",
+    "affine_departure",
+    "affine_fit_departure",
+    "dolly_zoom_camera",
+    "dolly_zoom_errors",
+    "dolly_zoom_focal",
+    "estimate_affine_camera",
+    "image_of_direction",
+    "is_affine",
+    "largest_gap_in_frame",
+    "orthographic_matrix",
+    "paraperspective_approximation",
+    "projection_rays",
+    "PROJECTION_MODELS",
+    "scaled_orthographic_matrix",
+    "ThreeImages",
+    "three_images",
+    "weak_perspective_error",
+    "weak_perspective_matrix",
 ]
 
 
@@ -82,14 +107,20 @@ def orthographic_matrix(R: ArrayLike, t: ArrayLike) -> np.ndarray:
     return scaled_orthographic_matrix(R, t, 1.0, (0.0, 0.0))
 
 
-def scaled_orthographic_matrix(R: ArrayLike, t: ArrayLike, k: float, principal_point: ArrayLike = (0.0, 0.0)) -> np.ndarray:
+def scaled_orthographic_matrix(
+    R: ArrayLike, t: ArrayLike, k: float, principal_point: ArrayLike = (0.0, 0.0)
+) -> np.ndarray:
     r"""Scaled orthographic: orthographic projection times ``k`` pixels per metre, plus the
     principal point (cx, cy): :math:`u = k (r_1 \cdot X + t_1) + c_x`, likewise v."""
     return weak_perspective_matrix(R, t, k, k, 0.0, principal_point)
 
 
 def weak_perspective_matrix(
-    R: ArrayLike, t: ArrayLike, ax: float, ay: float, skew: float = 0.0,
+    R: ArrayLike,
+    t: ArrayLike,
+    ax: float,
+    ay: float,
+    skew: float = 0.0,
     principal_point: ArrayLike = (0.0, 0.0),
 ) -> np.ndarray:
     r"""A weak-perspective camera, or with ``skew`` a general affine camera (H&Z §6.3.4):
@@ -137,7 +168,9 @@ def is_affine(P: ArrayLike, tol: float = 1e-12) -> bool:
     """True if P's last row is proportional to (0, 0, 0, 1) (its centre is at infinity)."""
     a = check_matrix(P, (3, 4), "P")
     last = a[2]
-    return bool(abs(last[3]) > 0 and np.abs(last[:3]).max() <= tol * max(abs(last[3]), np.abs(a).max()))
+    return bool(
+        abs(last[3]) > 0 and np.abs(last[:3]).max() <= tol * max(abs(last[3]), np.abs(a).max())
+    )
 
 
 def affine_approximation(camera: Camera, reference_point: ArrayLike) -> np.ndarray:
@@ -177,7 +210,9 @@ def affine_approximation(camera: Camera, reference_point: ArrayLike) -> np.ndarr
 def _reference_depth(camera: Camera, reference_point: ArrayLike) -> tuple[np.ndarray, float]:
     """The reference point as a (3,) array and its depth d0 > 0 in ``camera``."""
     if not isinstance(camera, Camera):
-        raise CamlabInputError(f"camera: expected a camlab.camera.Camera, got {type(camera).__name__}")
+        raise CamlabInputError(
+            f"camera: expected a camlab.camera.Camera, got {type(camera).__name__}"
+        )
     X0 = check_matrix(reference_point, (3,), "reference_point")
     d0 = float(camera.R[2] @ X0 + camera.t[2])
     if d0 <= 0:
@@ -236,9 +271,16 @@ def paraperspective_approximation(camera: Camera, reference_point: ArrayLike) ->
     return camera.K @ E / d0
 
 
-def dolly_zoom_camera(distance: float, azimuth: float, elevation: float, target: ArrayLike, f0: float = 800.0,
-                      d0: float = 4.0, principal_point: tuple[float, float] = (319.5, 239.5),
-                      image_offset: float = 0.0) -> Camera:
+def dolly_zoom_camera(
+    distance: float,
+    azimuth: float,
+    elevation: float,
+    target: ArrayLike,
+    f0: float = 800.0,
+    d0: float = 4.0,
+    principal_point: tuple[float, float] = (319.5, 239.5),
+    image_offset: float = 0.0,
+) -> Camera:
     r"""A camera on a dolly zoom towards ``target``, its depth ``distance`` metres, zoomed to
     :func:`dolly_zoom_focal` ``(f0, d0, distance)`` so the target keeps the size it has at depth ``d0`` with
     focal length ``f0`` (pixels). See lesson 05, section 2.
@@ -267,10 +309,17 @@ def dolly_zoom_camera(distance: float, azimuth: float, elevation: float, target:
     return Camera(intrinsic_matrix(f, f, *principal_point), R, -R @ centre)
 
 
-def dolly_zoom_errors(points_world: ArrayLike, distances: ArrayLike, azimuth: float, elevation: float,
-                      target: ArrayLike, f0: float = 800.0, d0: float = 4.0,
-                      approximation: Callable[[Camera, ArrayLike], np.ndarray] | None = None,
-                      image_offset: float = 0.0) -> np.ndarray:
+def dolly_zoom_errors(
+    points_world: ArrayLike,
+    distances: ArrayLike,
+    azimuth: float,
+    elevation: float,
+    target: ArrayLike,
+    f0: float = 800.0,
+    d0: float = 4.0,
+    approximation: Callable[[Camera, ArrayLike], np.ndarray] | None = None,
+    image_offset: float = 0.0,
+) -> np.ndarray:
     """RMS pixel distance between the perspective and weak-perspective images of ``points_world`` along a
     dolly zoom: one value per distance of :func:`dolly_zoom_camera`, weak perspective about ``target``
     (or ``approximation(camera, target)``, e.g. :func:`paraperspective_approximation`).
@@ -280,12 +329,16 @@ def dolly_zoom_errors(points_world: ArrayLike, distances: ArrayLike, azimuth: fl
     """
     ds = as_float(distances, "distances")
     if ds.ndim != 1 or len(ds) == 0 or not np.all(np.isfinite(ds) & (ds > 0)):
-        raise CamlabInputError(f"distances: expected a non-empty 1-D array of positive distances in metres, got "
-                               f"{np.array2string(ds, precision=3, threshold=6)} (shape {ds.shape})")
+        raise CamlabInputError(
+            f"distances: expected a non-empty 1-D array of positive distances in metres, got "
+            f"{np.array2string(ds, precision=3, threshold=6)} (shape {ds.shape})"
+        )
     out = []
     for d in ds:
         cam = dolly_zoom_camera(d, azimuth, elevation, target, f0, d0, image_offset=image_offset)
-        out.append(np.sqrt(np.mean(weak_perspective_error(cam, points_world, target, approximation) ** 2)))
+        out.append(
+            np.sqrt(np.mean(weak_perspective_error(cam, points_world, target, approximation) ** 2))
+        )
     return np.array(out)
 
 
@@ -313,31 +366,53 @@ def three_images(camera: Camera, segments: ArrayLike) -> ThreeImages:
     the same pose (:func:`orthographic_matrix`). See lesson 05, section 1.
     """
     perspective = project_segments(camera, segments)  # validates the segments
-    segs = check_finite(np.asarray(segments, dtype=float), "segments")  # the centroid needs every end point
+    segs = check_finite(
+        np.asarray(segments, dtype=float), "segments"
+    )  # the centroid needs every end point
     P_weak = affine_approximation(camera, segs.reshape(-1, 3).mean(axis=0))
     P_orth = orthographic_matrix(camera.R, camera.t)
-    return ThreeImages(perspective, project_segments(P_weak, segs), project_segments(P_orth, segs), P_weak, P_orth)
+    return ThreeImages(
+        perspective, project_segments(P_weak, segs), project_segments(P_orth, segs), P_weak, P_orth
+    )
 
 
-def largest_gap_in_frame(camera: Camera, P_affine: ArrayLike, segments: ArrayLike, size: tuple[int, int] = (640, 480),
-                         samples: int = 41) -> float:
+def largest_gap_in_frame(
+    camera: Camera,
+    P_affine: ArrayLike,
+    segments: ArrayLike,
+    size: tuple[int, int] = (640, 480),
+    samples: int = 41,
+) -> float:
     """The largest distance (pixels) between the perspective and the affine image of the same world point,
     over ``samples`` points along each (M, 2, 3) segment whose two images both fall inside the
     ``size`` = (width, height) frame (NaN if none does): what a reader can see in the picture."""
     segs = check_finite(np.asarray(segments, dtype=float), "segments")
     if segs.ndim != 3 or segs.shape[1:] != (2, 3):
-        raise CamlabInputError(f"segments: expected (M, 2, 3) pairs of world points, got shape {segs.shape}")
+        raise CamlabInputError(
+            f"segments: expected (M, 2, 3) pairs of world points, got shape {segs.shape}"
+        )
     s = np.linspace(0.0, 1.0, samples)[None, :, None]
     X = (segs[:, :1] + s * (segs[:, 1:] - segs[:, :1])).reshape(-1, 3)
     a, b = camera.replace(dist=(0.0,) * 5).project(X), project_points(P_affine, X)
     w, h = size
-    inside = np.all([(p[:, 0] >= -0.5) & (p[:, 0] <= w - 0.5) & (p[:, 1] >= -0.5) & (p[:, 1] <= h - 0.5)
-                     for p in (a, b)], axis=0)
-    return float(np.linalg.norm(a[inside] - b[inside], axis=1).max()) if inside.any() else float("nan")
+    inside = np.all(
+        [
+            (p[:, 0] >= -0.5) & (p[:, 0] <= w - 0.5) & (p[:, 1] >= -0.5) & (p[:, 1] <= h - 0.5)
+            for p in (a, b)
+        ],
+        axis=0,
+    )
+    return (
+        float(np.linalg.norm(a[inside] - b[inside], axis=1).max()) if inside.any() else float("nan")
+    )
 
 
-def weak_perspective_error(camera: Camera, points_world: ArrayLike, reference_point: ArrayLike | None = None,
-                           approximation: Callable[[Camera, ArrayLike], np.ndarray] | None = None) -> np.ndarray:
+def weak_perspective_error(
+    camera: Camera,
+    points_world: ArrayLike,
+    reference_point: ArrayLike | None = None,
+    approximation: Callable[[Camera, ArrayLike], np.ndarray] | None = None,
+) -> np.ndarray:
     r"""Per-point pixel distance between perspective and weak-perspective images.
 
     The weak-perspective camera is :func:`affine_approximation` about ``reference_point``
@@ -353,14 +428,20 @@ def weak_perspective_error(camera: Camera, points_world: ArrayLike, reference_po
     X = as_points(points_world, 3, "points_world").array
     X0 = X.mean(axis=0) if reference_point is None else reference_point
     PA = (approximation or affine_approximation)(camera, X0)
-    return np.linalg.norm(camera.replace(dist=(0.0,) * 5).project(X) - project_points(PA, X), axis=1)
+    return np.linalg.norm(
+        camera.replace(dist=(0.0,) * 5).project(X) - project_points(PA, X), axis=1
+    )
 
 
 def dolly_zoom_focal(f0: float, d0: float, d: float) -> float:
     r"""The focal length that keeps an object's image size fixed when the camera moves
     from distance ``d0`` to ``d``: the image size is :math:`\propto f / d`, so
     :math:`f = f_0 \, d / d_0` (the "Vertigo" dolly zoom)."""
-    return check_positive(f0, "f0", "pixels") * check_positive(d, "d", "metres") / check_positive(d0, "d0", "metres")
+    return (
+        check_positive(f0, "f0", "pixels")
+        * check_positive(d, "d", "metres")
+        / check_positive(d0, "d0", "metres")
+    )
 
 
 def estimate_affine_camera(points_world: ArrayLike, points_image: ArrayLike) -> np.ndarray:
@@ -391,9 +472,15 @@ def estimate_affine_camera(points_world: ArrayLike, points_image: ArrayLike) -> 
     DegenerateError
         Coplanar world points (M_2 is then not determined).
     """
-    X, uv, _ = as_point_pairs(points_world, points_image, ("points_world", "points_image"), (3, 2), min_count=4,
-                              why="an affine camera has 8 degrees of freedom and each point gives 2 equations; "
-                                  "add more points")
+    X, uv, _ = as_point_pairs(
+        points_world,
+        points_image,
+        ("points_world", "points_image"),
+        (3, 2),
+        min_count=4,
+        why="an affine camera has 8 degrees of freedom and each point gives 2 equations; "
+        "add more points",
+    )
     Xm, um = X.mean(axis=0), uv.mean(axis=0)
     Xc, uc = X - Xm, uv - um
     sv = np.linalg.svd(Xc, compute_uv=False)
@@ -444,8 +531,9 @@ class AffineDeparture(NamedTuple):
     at_points: np.ndarray
 
 
-def affine_departure(H: ArrayLike, size: tuple[int, int], samples: int = 30,
-                     points: ArrayLike | None = None) -> AffineDeparture:
+def affine_departure(
+    H: ArrayLike, size: tuple[int, int], samples: int = 30, points: ArrayLike | None = None
+) -> AffineDeparture:
     r"""The distance between the homography ``H`` and its least-squares affine fit, everywhere on a
     ``samples`` x ``samples`` grid of pixel centres spanning a ``size`` = (width, height) image, and at
     ``points`` ((N, 2) pixels, e.g. the matches ``H`` was fitted to, where it is not extrapolated).
@@ -492,7 +580,9 @@ def affine_fit_departure(H: ArrayLike, size: tuple[int, int], samples: int = 30)
 PROJECTION_MODELS = ("orthographic", "weak perspective", "para-perspective", "perspective")
 
 
-def projection_rays(points_xz: ArrayLike, reference_xz: ArrayLike, model: str, image_depth: float = 1.0) -> np.ndarray:
+def projection_rays(
+    points_xz: ArrayLike, reference_xz: ArrayLike, model: str, image_depth: float = 1.0
+) -> np.ndarray:
     r"""The rays of one camera model in a top view (camera x across, z forward; centre at the origin).
 
     Each point travels to its image on the line :math:`z =` ``image_depth`` (H&Z §6.3; Szeliski

@@ -20,6 +20,7 @@ Hartley & Zisserman); ``R, t`` are *cam_from_world*; the camera centre is
 top-left pixel; points are rows, so the textbook :math:`x = P X` is ``X_h @ P.T``;
 angles in radians. See lesson 04.
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -50,11 +51,33 @@ from ._validate import (
 )
 
 __all__ = [
-    "Camera", "Decomposition", "CV_FROM_GL", "Pose", "RQ", "axis_angle_from_rotation", "camera_centre",
-    "check_rotation", "decompose_projection_matrix", "estimate_projection_matrix",
-    "euler_from_rotation", "intrinsic_matrix", "is_rotation", "look_at_rotation", "nearest_rotation", "orbit_eye",
-    "blender_matrix_world", "opencv_from_opengl", "opengl_from_opencv", "project_points", "reprojection_errors",
-    "rotation_from_axis_angle", "rotation_from_euler", "rq_decomposition", "rotation_x", "rotation_y", "rotation_z",
+    "Camera",
+    "Decomposition",
+    "CV_FROM_GL",
+    "Pose",
+    "RQ",
+    "axis_angle_from_rotation",
+    "camera_centre",
+    "check_rotation",
+    "decompose_projection_matrix",
+    "estimate_projection_matrix",
+    "euler_from_rotation",
+    "intrinsic_matrix",
+    "is_rotation",
+    "look_at_rotation",
+    "nearest_rotation",
+    "orbit_eye",
+    "blender_matrix_world",
+    "opencv_from_opengl",
+    "opengl_from_opencv",
+    "project_points",
+    "reprojection_errors",
+    "rotation_from_axis_angle",
+    "rotation_from_euler",
+    "rq_decomposition",
+    "rotation_x",
+    "rotation_y",
+    "rotation_z",
     "scale_intrinsics",
     "project_segments",
 ]
@@ -67,6 +90,7 @@ z forward). It is its own inverse: :math:`F^{-1} = F`."""
 # ---------------------------------------------------------------------------------------
 # Intrinsics and rotations
 # ---------------------------------------------------------------------------------------
+
 
 def intrinsic_matrix(fx: float, fy: float, cx: float, cy: float, skew: float = 0.0) -> np.ndarray:
     r"""The calibration matrix :math:`K` (pixels).
@@ -214,9 +238,11 @@ def nearest_rotation(M: ArrayLike) -> np.ndarray:
     Mm = check_matrix(M, (3, 3), "M")
     U, sv, Vt = np.linalg.svd(Mm)
     if sv[1] <= 1e-12 * max(sv[0], 1e-300):
-        raise DegenerateError(f"M: rank {int(np.sum(sv > 1e-12 * sv[0]))} (singular values "
-                              f"{np.array2string(sv, precision=3)}), so no rotation is nearest to it; "
-                              f"at least two of its columns must be independent")
+        raise DegenerateError(
+            f"M: rank {int(np.sum(sv > 1e-12 * sv[0]))} (singular values "
+            f"{np.array2string(sv, precision=3)}), so no rotation is nearest to it; "
+            f"at least two of its columns must be independent"
+        )
     D = np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Vt))])
     return U @ D @ Vt
 
@@ -252,7 +278,9 @@ def scale_intrinsics(K: ArrayLike, scale: float) -> np.ndarray:
     return S @ check_matrix(K, (3, 3), "K")
 
 
-def orbit_eye(azimuth: float, elevation: float, distance: float, target: ArrayLike = (0.0, 0.0, 0.0)) -> np.ndarray:
+def orbit_eye(
+    azimuth: float, elevation: float, distance: float, target: ArrayLike = (0.0, 0.0, 0.0)
+) -> np.ndarray:
     r"""A camera position on the sphere of radius ``distance`` (metres) about ``target``, for a look-at.
 
     ``azimuth`` turns from world +x towards +y and ``elevation`` rises towards +z (up), in
@@ -262,12 +290,18 @@ def orbit_eye(azimuth: float, elevation: float, distance: float, target: ArrayLi
     array([0., 2., 1.])
     """
     d = check_positive(distance, "distance", "metres")
-    a, e = check_number(azimuth, "azimuth", "radians"), check_number(elevation, "elevation", "radians")
-    return check_matrix(target, (3,), "target") + d * np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a),
-                                                                 np.sin(e)])
+    a, e = (
+        check_number(azimuth, "azimuth", "radians"),
+        check_number(elevation, "elevation", "radians"),
+    )
+    return check_matrix(target, (3,), "target") + d * np.array(
+        [np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)]
+    )
 
 
-def look_at_rotation(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0.0, 0.0, 1.0)) -> np.ndarray:
+def look_at_rotation(
+    eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0.0, 0.0, 1.0)
+) -> np.ndarray:
     r"""The cam_from_world rotation of a camera at ``eye`` looking at ``target``.
 
     The rows of R are the camera axes written in world coordinates: z (forward) points
@@ -284,7 +318,9 @@ def look_at_rotation(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0.0, 0.
     u = check_matrix(up, (3,), "up")
     z = g - e
     if np.linalg.norm(z) < 1e-12:
-        raise DegenerateError("look_at: eye and target coincide, so there is no viewing direction; move the eye")
+        raise DegenerateError(
+            "look_at: eye and target coincide, so there is no viewing direction; move the eye"
+        )
     z = z / np.linalg.norm(z)
     x = np.cross(z, u)
     if np.linalg.norm(x) < 1e-9 * max(np.linalg.norm(u), 1e-300):
@@ -358,6 +394,7 @@ def blender_matrix_world(R: ArrayLike, t: ArrayLike) -> np.ndarray:
 # The Camera
 # ---------------------------------------------------------------------------------------
 
+
 def _frozen(a: np.ndarray) -> np.ndarray:
     a = np.array(a, dtype=float)
     a.flags.writeable = False
@@ -429,8 +466,10 @@ class Camera:
         """
         fov = float(fov_x)
         if not 0.0 < fov < np.pi:
-            raise CamlabInputError(f"fov_x: expected a field of view in radians in (0, pi), got {fov_x!r}; "
-                                   f"use np.deg2rad(60) for 60 degrees")
+            raise CamlabInputError(
+                f"fov_x: expected a field of view in radians in (0, pi), got {fov_x!r}; "
+                f"use np.deg2rad(60) for 60 degrees"
+            )
         w, h = (int(v) for v in image_size)
         f = (w / 2.0) / np.tan(fov / 2.0)
         K = intrinsic_matrix(f, f, (w - 1) / 2.0, (h - 1) / 2.0)
@@ -547,7 +586,9 @@ class Camera:
             xn = Xc[:, :2] / np.where(z > 0, z, np.nan)[:, None]
         if any(self.dist):
             ok = np.isfinite(xn).all(axis=1)  # points behind the camera stay NaN
-            far = beyond_valid_radius(xn, self.dist)  # the model folds back there: no pixel, not a mirrored one
+            far = beyond_valid_radius(
+                xn, self.dist
+            )  # the model folds back there: no pixel, not a mirrored one
             if ok.any():
                 xn[ok] = distort_points(xn[ok], self.dist)
             xn[far] = np.nan
@@ -593,11 +634,15 @@ class Camera:
             return p.restore(d / np.linalg.norm(d, axis=1, keepdims=True))
         z = np.asarray(depth, dtype=float)
         if z.ndim > 1 or (z.ndim == 1 and len(z) != len(p.array)):
-            raise CamlabInputError(f"depth: expected a number or one depth per pixel ({len(p.array)}), "
-                                   f"got shape {z.shape}")
+            raise CamlabInputError(
+                f"depth: expected a number or one depth per pixel ({len(p.array)}), "
+                f"got shape {z.shape}"
+            )
         if not np.all(np.isfinite(z)) or np.any(z <= 0):
-            raise CamlabInputError(f"depth: expected depths > 0 (metres in front of the camera), got {depth!r}; "
-                                   f"points at depth <= 0 are behind the camera and have no pixel")
+            raise CamlabInputError(
+                f"depth: expected depths > 0 (metres in front of the camera), got {depth!r}; "
+                f"points at depth <= 0 are behind the camera and have no pixel"
+            )
         Xc = rays_c * np.reshape(z, (-1, 1))
         return p.restore((Xc - self.t) @ self.R)
 
@@ -612,13 +657,16 @@ class Camera:
     def __repr__(self) -> str:
         fx, fy, cx, cy = self.K[0, 0], self.K[1, 1], self.K[0, 2], self.K[1, 2]
         C = np.round(self.centre, 4)
-        return (f"Camera(fx={fx:.6g}, fy={fy:.6g}, cx={cx:.6g}, cy={cy:.6g}, skew={self.K[0, 1]:.3g}, "
-                f"centre={C.tolist()}, image_size={self.image_size})")
+        return (
+            f"Camera(fx={fx:.6g}, fy={fy:.6g}, cx={cx:.6g}, cy={cy:.6g}, skew={self.K[0, 1]:.3g}, "
+            f"centre={C.tolist()}, image_size={self.image_size})"
+        )
 
 
 # ---------------------------------------------------------------------------------------
 # General projection matrices
 # ---------------------------------------------------------------------------------------
+
 
 def _check_P(P: ArrayLike, name: str = "P") -> np.ndarray:
     a = check_matrix(P, (3, 4), name)
@@ -655,7 +703,7 @@ def project_points(P: ArrayLike, points_world: ArrayLike) -> np.ndarray:
     w = x[:, 2]
     det = np.linalg.det(Pm[:, :3])
     scale = np.abs(Pm).max()
-    if abs(det) > 1e-12 * scale ** 3:
+    if abs(det) > 1e-12 * scale**3:
         behind = np.sign(det) * w <= 0
     else:
         behind = w == 0
@@ -733,8 +781,10 @@ def rq_decomposition(M: ArrayLike) -> RQ:
     """
     Mm = check_matrix(M, (3, 3), "M")
     if abs(np.linalg.det(Mm)) <= 1e-12 * max(np.abs(Mm).max(), 1e-300) ** 3:
-        raise DegenerateError("rq_decomposition: M is singular, so K would have a zero on its diagonal; "
-                              "a finite camera has an invertible left 3x3 block")
+        raise DegenerateError(
+            "rq_decomposition: M is singular, so K would have a zero on its diagonal; "
+            "a finite camera has an invertible left 3x3 block"
+        )
     E = np.eye(3)[::-1]
     Q, U = np.linalg.qr((E @ Mm).T)
     K, R = E @ U.T @ E, E @ Q.T
@@ -803,9 +853,14 @@ def decompose_projection_matrix(P: ArrayLike) -> Decomposition:
 # Resectioning: the DLT for cameras
 # ---------------------------------------------------------------------------------------
 
-def reprojection_errors(P: ArrayLike, points_world: ArrayLike, points_image: ArrayLike) -> np.ndarray:
+
+def reprojection_errors(
+    P: ArrayLike, points_world: ArrayLike, points_image: ArrayLike
+) -> np.ndarray:
     """(N,) distances in pixels between ``points_image`` and the projections of ``points_world`` by P."""
-    X, uv, _ = as_point_pairs(points_world, points_image, ("points_world", "points_image"), (3, 2), finite=False)
+    X, uv, _ = as_point_pairs(
+        points_world, points_image, ("points_world", "points_image"), (3, 2), finite=False
+    )
     check_finite(uv, "points_image")
     return np.linalg.norm(project_points(P, X) - uv, axis=1)
 
@@ -874,8 +929,14 @@ def estimate_projection_matrix(
         plane only fixes a homography (8 of P's 11 degrees of freedom). Also raised when
         the solution is not unique for another reason.
     """
-    X, uv, _ = as_point_pairs(points_world, points_image, ("points_world", "points_image"), (3, 2), min_count=6,
-                              why="P has 11 degrees of freedom and each point gives 2 equations; add more points")
+    X, uv, _ = as_point_pairs(
+        points_world,
+        points_image,
+        ("points_world", "points_image"),
+        (3, 2),
+        min_count=6,
+        why="P has 11 degrees of freedom and each point gives 2 equations; add more points",
+    )
     sv = np.linalg.svd(X - X.mean(axis=0), compute_uv=False)
     if sv[2] <= 1e-9 * sv[0]:
         raise DegenerateError(
@@ -936,16 +997,27 @@ def _refine_projection_matrix(P0: np.ndarray, X: np.ndarray, uv: np.ndarray) -> 
         return J.reshape(-1, 12) @ unit_sphere_basis(p)
 
     p0 = P0.ravel() / np.linalg.norm(P0)
-    res = levenberg_marquardt(residuals, p0, jacobian, update=unit_sphere_update, max_iter=200,
-                              ftol=1e-15, xtol=1e-15, gtol=1e-12)
+    res = levenberg_marquardt(
+        residuals,
+        p0,
+        jacobian,
+        update=unit_sphere_update,
+        max_iter=200,
+        ftol=1e-15,
+        xtol=1e-15,
+        gtol=1e-12,
+    )
     if not np.all(np.isfinite(res.x)):
-        raise ConvergenceError(f"estimate_projection_matrix: refinement did not converge ({res.message})")
+        raise ConvergenceError(
+            f"estimate_projection_matrix: refinement did not converge ({res.message})"
+        )
     return _normalize_P(res.x.reshape(3, 4))
 
 
 # ---------------------------------------------------------------------------------------
 # Projecting wireframes (scenes from camlab.scenes)
 # ---------------------------------------------------------------------------------------
+
 
 def project_segments(camera: "Camera | ArrayLike", segments: ArrayLike) -> np.ndarray:
     """Project (M, 2, 3) world segments to (M, 2, 2) pixel segments with a Camera or a 3x4 P.
@@ -959,7 +1031,9 @@ def project_segments(camera: "Camera | ArrayLike", segments: ArrayLike) -> np.nd
         camera = _check_P(camera, "camera")
     s = as_float(segments, "segments")
     if s.ndim != 3 or s.shape[1:] != (2, 3):
-        raise CamlabInputError(f"segments: expected (M, 2, 3) pairs of world points, got shape {s.shape}")
+        raise CamlabInputError(
+            f"segments: expected (M, 2, 3) pairs of world points, got shape {s.shape}"
+        )
     s = _clip_behind(s, _signed_depth(camera, s.reshape(-1, 3)).reshape(-1, 2))
     flat = s.reshape(-1, 3)
     uv = camera.project(flat) if isinstance(camera, Camera) else project_points(camera, flat)
@@ -984,6 +1058,10 @@ def _clip_behind(segments: np.ndarray, depth: np.ndarray, near: float = 1e-3) ->
         if not half.any():
             continue
         z_b, z_f = depth[half, behind], depth[half, front]
-        s = ((1 - near) * z_f / (z_f - z_b))[:, None]  # fraction of the way from the front end to the behind end
-        out[half, behind] = segments[half, front] + s * (segments[half, behind] - segments[half, front])
+        s = ((1 - near) * z_f / (z_f - z_b))[
+            :, None
+        ]  # fraction of the way from the front end to the behind end
+        out[half, behind] = segments[half, front] + s * (
+            segments[half, behind] - segments[half, front]
+        )
     return out

@@ -13,6 +13,7 @@ interrupted copy or save) is not mistaken for an edit: it is kept beside as
 ``NN_name.torn-<date>.ipynb`` and replaced. Every file is written to a temporary name in its
 folder and renamed into place, so an interrupted run leaves each file old or new, never torn.
 """
+
 from __future__ import annotations
 
 import datetime
@@ -26,7 +27,14 @@ from typing import NamedTuple
 from ._files import atomic_output
 from ._validate import CamlabInputError
 
-__all__ = ["MANIFEST_NAME", "CopyReport", "check_dest", "copy_course", "course_files", "student_fingerprint"]
+__all__ = [
+    "MANIFEST_NAME",
+    "CopyReport",
+    "check_dest",
+    "copy_course",
+    "course_files",
+    "student_fingerprint",
+]
 
 MANIFEST_NAME = ".camlab-course.json"
 
@@ -59,17 +67,27 @@ class CopyReport(NamedTuple):
 
     def text(self) -> str:
         if self.copied or self.updated:
-            lines = [f"camlab lessons: {len(self.copied)} copied, {len(self.updated)} updated, "
-                     f"{len(self.unchanged)} unchanged, {len(self.kept)} kept in {self.dest}"]
+            lines = [
+                f"camlab lessons: {len(self.copied)} copied, {len(self.updated)} updated, "
+                f"{len(self.unchanged)} unchanged, {len(self.kept)} kept in {self.dest}"
+            ]
         else:
-            lines = [f"camlab lessons: {self.dest} is up to date ({len(self.unchanged)} files unchanged, "
-                     f"{len(self.kept)} kept)"]
+            lines = [
+                f"camlab lessons: {self.dest} is up to date ({len(self.unchanged)} files unchanged, "
+                f"{len(self.kept)} kept)"
+            ]
         for name, backup in self.backups.items():
-            lines.append(f"  replaced {name}: it was not a readable notebook (cut short, e.g. by an interrupted "
-                         f"copy); the broken file is kept as {backup}" if name in self.torn else
-                         f"  replaced your edited {name} (--force); your version is kept as {backup}")
-        lines += [f"  kept your edited {name} (you changed its cells); `camlab lessons --force` puts in this "
-                  f"version and keeps yours beside it as {_backup_pattern(name, 'mine')}" for name in self.kept]
+            lines.append(
+                f"  replaced {name}: it was not a readable notebook (cut short, e.g. by an interrupted "
+                f"copy); the broken file is kept as {backup}"
+                if name in self.torn
+                else f"  replaced your edited {name} (--force); your version is kept as {backup}"
+            )
+        lines += [
+            f"  kept your edited {name} (you changed its cells); `camlab lessons --force` puts in this "
+            f"version and keeps yours beside it as {_backup_pattern(name, 'mine')}"
+            for name in self.kept
+        ]
         lines += [f"  note: {note}" for note in self.notes]
         cd = "" if self.dest == Path(".") else f"cd {self.dest} && "
         lines.append(f"next: {cd}jupyter lab lessons/00_start_here.ipynb")
@@ -101,7 +119,11 @@ def course_files() -> dict[str, Path]:
     """``{path in the working folder: source file}`` for every lesson and doc page camlab ships."""
     from .data import docs_dir, lessons_dir
 
-    files = {f"lessons/{p.name}": p for p in sorted(lessons_dir().iterdir()) if p.suffix in (".ipynb", ".md")}
+    files = {
+        f"lessons/{p.name}": p
+        for p in sorted(lessons_dir().iterdir())
+        if p.suffix in (".ipynb", ".md")
+    }
     files.update({f"docs/{p.name}": p for p in sorted(docs_dir().glob("*.md"))})
     return files
 
@@ -128,22 +150,30 @@ def check_dest(dest: Path | str) -> Path:
     text = str(dest)
     path = Path(text).expanduser()
     if path.exists() and not path.is_dir():
-        raise CamlabInputError(f"DEST: {text!r} is a file, not a folder; name a folder for the course "
-                               f"(default ./camlab-course)")
+        raise CamlabInputError(
+            f"DEST: {text!r} is a file, not a folder; name a folder for the course "
+            f"(default ./camlab-course)"
+        )
     if (path / MANIFEST_NAME).is_file():
         return path  # an existing course: update it
     lesson = _names_a_lesson(text)
     if lesson is not None:
-        open_it = f"open lessons/{lesson}.ipynb in it" if lesson != "?" else "open a lesson in its lessons/ folder"
+        open_it = (
+            f"open lessons/{lesson}.ipynb in it"
+            if lesson != "?"
+            else "open a lesson in its lessons/ folder"
+        )
         raise CamlabInputError(
             f"DEST: {text!r} looks like a lesson, but `camlab lessons` copies the whole course into the folder DEST. "
             f"Run `camlab lessons` (into ./camlab-course) and {open_it}; `camlab present {text}` shows a lesson's "
-            f"demos. To make a folder named {text!r} anyway, write ./{text}")
+            f"demos. To make a folder named {text!r} anyway, write ./{text}"
+        )
     enclosing = next((p for p in path.resolve().parents if (p / MANIFEST_NAME).is_file()), None)
     if enclosing is not None:
         raise CamlabInputError(
             f"DEST: {str(path)!r} would be a new course inside the course folder {str(enclosing)!r}; to update that "
-            f"course run `camlab lessons {enclosing}` (or `camlab lessons .` inside it)")
+            f"course run `camlab lessons {enclosing}` (or `camlab lessons .` inside it)"
+        )
     return path
 
 
@@ -160,8 +190,10 @@ def _read_manifest(path: Path) -> tuple[dict[str, str], str | None]:
         problem = f"{type(exc).__name__}: {exc}"
     except OSError as exc:
         problem = exc.strerror or str(exc)
-    return {}, (f"the record {path} could not be read ({problem}), so it was ignored: lessons that differ from "
-                f"this version count as yours and are kept")
+    return {}, (
+        f"the record {path} could not be read ({problem}), so it was ignored: lessons that differ from "
+        f"this version count as yours and are kept"
+    )
 
 
 def _backup_pattern(name: str, kind: str) -> str:
@@ -174,7 +206,9 @@ def _backup_name(target: Path, kind: str) -> Path:
     """``NN_name.<kind>-<YYYY-MM-DD>[-n].ipynb`` beside ``target``, the first that does not exist yet."""
     stamp = datetime.date.today().isoformat()
     for n in itertools.count(1):
-        candidate = target.with_name(f"{target.stem}.{kind}-{stamp}{'' if n == 1 else f'-{n}'}{target.suffix}")
+        candidate = target.with_name(
+            f"{target.stem}.{kind}-{stamp}{'' if n == 1 else f'-{n}'}{target.suffix}"
+        )
         if not candidate.exists():
             return candidate
     raise AssertionError("unreachable")
@@ -197,10 +231,15 @@ def _decide(target: Path, new: bytes, recorded: str | None, force: bool) -> str:
     mine = student_fingerprint(have, target.name)
     if have == new or (mine is not None and mine == student_fingerprint(new, target.name)):
         return "unchanged"  # also a lesson JupyterLab saved: new ids, metadata or outputs, the same cells
-    if recorded is not None and recorded in (mine, _sha(have)):  # older records hold the bytes' hash
-        return "update"     # the student has not changed camlab's copy of an older version
+    if recorded is not None and recorded in (
+        mine,
+        _sha(have),
+    ):  # older records hold the bytes' hash
+        return "update"  # the student has not changed camlab's copy of an older version
     if mine is None and (not have.strip() or have.lstrip().startswith(b"{")):
-        return "torn"       # empty, or a notebook cut short; a file that never was one is the student's own
+        return (
+            "torn"  # empty, or a notebook cut short; a file that never was one is the student's own
+        )
     return "replace" if force else "keep"
 
 
@@ -213,8 +252,10 @@ def _write_error(exc: OSError, rel: str, done: CopyReport) -> CamlabInputError:
     else:
         fix = "fix that and run `camlab lessons` again"
     earlier = "\n".join(done.text().splitlines()[:-1])
-    return CamlabInputError(f"DEST: could not write {rel} in {done.dest} ({exc.strerror or exc}); {fix}. "
-                            f"No file is half-written. Before that:\n{earlier}")
+    return CamlabInputError(
+        f"DEST: could not write {rel} in {done.dest} ({exc.strerror or exc}); {fix}. "
+        f"No file is half-written. Before that:\n{earlier}"
+    )
 
 
 def copy_course(dest: Path | str, force: bool = False) -> CopyReport:
@@ -230,8 +271,14 @@ def copy_course(dest: Path | str, force: bool = False) -> CopyReport:
     manifest_path = dest / MANIFEST_NAME
     recorded, note = _read_manifest(manifest_path)
     report = CopyReport(dest, [], [], [], [], {}, [], [note] if note else [])
-    actions = {"copy": report.copied, "unchanged": report.unchanged, "update": report.updated,
-               "torn": report.updated, "replace": report.updated, "keep": report.kept}
+    actions = {
+        "copy": report.copied,
+        "unchanged": report.unchanged,
+        "update": report.updated,
+        "torn": report.updated,
+        "replace": report.updated,
+        "keep": report.kept,
+    }
     for rel, src in course_files().items():
         target, new = dest / rel, src.read_bytes()
         try:
@@ -257,11 +304,16 @@ def _update_manifest(path: Path, recorded: dict[str, str], report: CopyReport) -
     """Write the record if it changed; failing to is only a note (the lessons themselves are in place)."""
     from . import __version__
 
-    text = json.dumps({"camlab": __version__, "files": dict(sorted(recorded.items()))}, indent=1) + "\n"
+    text = (
+        json.dumps({"camlab": __version__, "files": dict(sorted(recorded.items()))}, indent=1)
+        + "\n"
+    )
     try:
         if path.is_file() and path.read_text(encoding="utf-8", errors="replace") == text:
             return
         _write(path, text.encode())
     except OSError as exc:
-        report.notes.append(f"could not update the record {path} ({exc.strerror or exc}); the lessons are in "
-                            f"place, and a later run treats lessons that differ from its version as yours")
+        report.notes.append(
+            f"could not update the record {path} ({exc.strerror or exc}); the lessons are in "
+            f"place, and a later run treats lessons that differ from its version as yours"
+        )

@@ -18,6 +18,7 @@ Conventions: images are (H, W) arrays indexed ``img[v, u]``; disparities are flo
 pixels with NaN where there is no reliable match; depth is in metres (the baseline's
 unit) along the rectified optical axis. See docs/conventions.md.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -25,7 +26,13 @@ from numpy.typing import ArrayLike
 
 from ._validate import CamlabInputError, as_float, check_image, check_integer, check_positive
 
-__all__ = ["block_matching_disparity", "box_sum", "disparity_to_depth", "disparity_to_points", "sgbm_disparity"]
+__all__ = [
+    "block_matching_disparity",
+    "box_sum",
+    "disparity_to_depth",
+    "disparity_to_points",
+    "sgbm_disparity",
+]
 
 
 def _grey_pair(left: ArrayLike, right: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
@@ -35,20 +42,28 @@ def _grey_pair(left: ArrayLike, right: ArrayLike) -> tuple[np.ndarray, np.ndarra
         if a.ndim == 3 and a.shape[2] == 3:
             a = a.mean(axis=2)
         if a.ndim != 2 or min(a.shape) < 3:
-            raise CamlabInputError(f"{name}: expected an (H, W) grey or (H, W, 3) colour image, got shape {np.shape(img)}")
+            raise CamlabInputError(
+                f"{name}: expected an (H, W) grey or (H, W, 3) colour image, got shape {np.shape(img)}"
+            )
         out.append(a.astype(np.float32))
     if out[0].shape != out[1].shape:
-        raise CamlabInputError(f"left, right: expected images of the same size (a rectified pair), got {out[0].shape} "
-                               f"and {out[1].shape}")
+        raise CamlabInputError(
+            f"left, right: expected images of the same size (a rectified pair), got {out[0].shape} "
+            f"and {out[1].shape}"
+        )
     return out[0], out[1]
 
 
 def _check_search(max_disparity: int, block_size: int, width: int) -> tuple[int, int]:
     D, b = check_integer(max_disparity, "max_disparity"), check_integer(block_size, "block_size")
     if D < 1 or D >= width:
-        raise CamlabInputError(f"max_disparity: expected an integer in [1, image width), got {max_disparity!r}")
+        raise CamlabInputError(
+            f"max_disparity: expected an integer in [1, image width), got {max_disparity!r}"
+        )
     if b < 1 or b % 2 == 0:
-        raise CamlabInputError(f"block_size: expected an odd window size >= 1 (pixels), got {block_size!r}")
+        raise CamlabInputError(
+            f"block_size: expected an odd window size >= 1 (pixels), got {block_size!r}"
+        )
     return D, b
 
 
@@ -72,14 +87,22 @@ def box_sum(a: np.ndarray, size: int) -> np.ndarray:
         x = np.moveaxis(out, axis, 0)
         n = x.shape[0]
         S = np.zeros((n + 2 * r + 1,) + x.shape[1:])
-        np.cumsum(x, axis=0, out=S[r + 1:n + r + 1])
-        S[n + r + 1:] = S[n + r]  # zero beyond the edge: the running sum stays flat
+        np.cumsum(x, axis=0, out=S[r + 1 : n + r + 1])
+        S[n + r + 1 :] = S[n + r]  # zero beyond the edge: the running sum stays flat
         out = np.moveaxis(S[size:] - S[:-size], 0, axis)
     return out
 
 
-def block_matching_disparity(left: ArrayLike, right: ArrayLike, max_disparity: int = 64, block_size: int = 9, *,
-                             min_disparity: int = 0, uniqueness: float = 0.05, lr_check: float = 1.0) -> np.ndarray:
+def block_matching_disparity(
+    left: ArrayLike,
+    right: ArrayLike,
+    max_disparity: int = 64,
+    block_size: int = 9,
+    *,
+    min_disparity: int = 0,
+    uniqueness: float = 0.05,
+    lr_check: float = 1.0,
+) -> np.ndarray:
     r"""Disparity of every left pixel by block matching along rows (readable numpy).
 
     1. **Cost volume.** For each candidate disparity :math:`d` (``min_disparity`` ...
@@ -120,7 +143,9 @@ def block_matching_disparity(left: ArrayLike, right: ArrayLike, max_disparity: i
     D, b = _check_search(max_disparity, block_size, w)
     d0 = int(min_disparity)
     if not 0 <= d0 < D:
-        raise CamlabInputError(f"min_disparity: expected an integer in [0, max_disparity), got {min_disparity!r}")
+        raise CamlabInputError(
+            f"min_disparity: expected an integer in [0, max_disparity), got {min_disparity!r}"
+        )
     count = box_sum(np.ones((h, w)), b)  # pixels inside each window (fewer at the border)
     Lz = L - box_sum(L, b) / count
     Rz = R - box_sum(R, b) / count
@@ -128,9 +153,9 @@ def block_matching_disparity(left: ArrayLike, right: ArrayLike, max_disparity: i
     cost = np.empty((len(ds), h, w), dtype=np.float32)
     for k, d in enumerate(ds):  # 1. the cost volume, one disparity at a time
         diff = np.zeros((h, w), dtype=np.float32)
-        diff[:, d:] = np.abs(Lz[:, d:] - Rz[:, :w - d])
+        diff[:, d:] = np.abs(Lz[:, d:] - Rz[:, : w - d])
         cost[k] = box_sum(diff, b)
-        cost[k, :, :d + b // 2] = np.inf  # the window would leave the right image
+        cost[k, :, : d + b // 2] = np.inf  # the window would leave the right image
     k = np.argmin(cost, axis=0)  # 2. winner takes all
     best = np.take_along_axis(cost, k[None], axis=0)[0]
     cm = np.take_along_axis(cost, np.clip(k - 1, 0, len(ds) - 1)[None], axis=0)[0]
@@ -153,7 +178,7 @@ def block_matching_disparity(left: ArrayLike, right: ArrayLike, max_disparity: i
         kr = np.zeros((h, w), dtype=np.int64)
         for j, d in enumerate(ds):  # right pixel u' at disparity d is left pixel u' + d
             c = np.full((h, w), np.inf, dtype=np.float32)
-            c[:, :w - d] = cost[j, :, d:]
+            c[:, : w - d] = cost[j, :, d:]
             win = c < best_r
             best_r[win], kr[win] = c[win], j
         uu = np.arange(w)[None, :] - ds[k]
@@ -163,8 +188,15 @@ def block_matching_disparity(left: ArrayLike, right: ArrayLike, max_disparity: i
     return disp
 
 
-def sgbm_disparity(left: ArrayLike, right: ArrayLike, max_disparity: int = 64, block_size: int = 5, *,
-                   min_disparity: int = 0, uniqueness: int = 5) -> np.ndarray:
+def sgbm_disparity(
+    left: ArrayLike,
+    right: ArrayLike,
+    max_disparity: int = 64,
+    block_size: int = 5,
+    *,
+    min_disparity: int = 0,
+    uniqueness: int = 5,
+) -> np.ndarray:
     """Disparity by OpenCV's semi-global block matching (``cv2.StereoSGBM``), float pixels, NaN = no match.
 
     ``max_disparity`` is rounded up to OpenCV's multiple of 16 (the search covers
@@ -176,10 +208,20 @@ def sgbm_disparity(left: ArrayLike, right: ArrayLike, max_disparity: int = 64, b
     L, R = _grey_pair(left, right)
     D, b = _check_search(max_disparity, block_size, L.shape[1])
     n = int(np.ceil((D - int(min_disparity)) / 16.0)) * 16
-    sgbm = cv2.StereoSGBM_create(minDisparity=int(min_disparity), numDisparities=max(16, n), blockSize=b,
-                                 P1=8 * b * b, P2=32 * b * b, uniquenessRatio=int(uniqueness), disp12MaxDiff=1,
-                                 speckleWindowSize=0, mode=cv2.STEREO_SGBM_MODE_SGBM)
-    to8 = [np.clip(np.round(a if a.max() > 1.5 else a * 255), 0, 255).astype(np.uint8) for a in (L, R)]
+    sgbm = cv2.StereoSGBM_create(
+        minDisparity=int(min_disparity),
+        numDisparities=max(16, n),
+        blockSize=b,
+        P1=8 * b * b,
+        P2=32 * b * b,
+        uniquenessRatio=int(uniqueness),
+        disp12MaxDiff=1,
+        speckleWindowSize=0,
+        mode=cv2.STEREO_SGBM_MODE_SGBM,
+    )
+    to8 = [
+        np.clip(np.round(a if a.max() > 1.5 else a * 255), 0, 255).astype(np.uint8) for a in (L, R)
+    ]
     raw = sgbm.compute(to8[0], to8[1]).astype(np.float64) / 16.0
     raw[raw < int(min_disparity)] = np.nan
     return raw
@@ -204,7 +246,9 @@ def disparity_to_depth(disparity: ArrayLike, focal_length: float, baseline: floa
     return np.where(ok, f * B / np.where(ok, d, 1.0), np.nan)
 
 
-def disparity_to_points(disparity: ArrayLike, K: ArrayLike, baseline: float, step: int = 1) -> np.ndarray:
+def disparity_to_points(
+    disparity: ArrayLike, K: ArrayLike, baseline: float, step: int = 1
+) -> np.ndarray:
     r"""3-D points (N, 3) in rectified camera 1's frame from a disparity map (NaN pixels skipped).
 
     :math:`Z = f B / d`, :math:`X = (u - c_x) Z / f`, :math:`Y = (v - c_y) Z / f`; the same
@@ -217,9 +261,11 @@ def disparity_to_points(disparity: ArrayLike, K: ArrayLike, baseline: float, ste
     d = np.asarray(disparity, dtype=float)
     if d.ndim != 2:
         raise CamlabInputError(f"disparity: expected an (H, W) map, got shape {d.shape}")
-    v, u = np.mgrid[0:d.shape[0]:step, 0:d.shape[1]:step]
+    v, u = np.mgrid[0 : d.shape[0] : step, 0 : d.shape[1] : step]
     dd = d[::step, ::step]
     Z = disparity_to_depth(dd, Km[0, 0], baseline)
     ok = np.isfinite(Z)
     Z = Z[ok]
-    return np.column_stack([(u[ok] - Km[0, 2]) * Z / Km[0, 0], (v[ok] - Km[1, 2]) * Z / Km[1, 1], Z])
+    return np.column_stack(
+        [(u[ok] - Km[0, 2]) * Z / Km[0, 0], (v[ok] - Km[1, 2]) * Z / Km[1, 1], Z]
+    )

@@ -18,6 +18,7 @@ Undistortion has no closed form: :func:`undistort_points` inverts the model with
 method and raises :class:`~camlab.ConvergenceError` rather than return garbage where the
 model folds over (beyond :func:`max_valid_radius`). See lesson 02, section 3.
 """
+
 from __future__ import annotations
 
 from functools import lru_cache
@@ -40,10 +41,24 @@ from ._validate import (
 )
 
 __all__ = [
-    "DistortionMaps", "NewtonUndistort", "as_dist", "beyond_valid_radius", "classify_distortion", "distort_pixels",
-    "distort_points", "distortion_jacobian", "max_valid_radius", "newton_undistort", "normalised_to_pixels",
-    "pixels_to_normalised", "radial_scale", "undistort_image",
-    "undistort_map", "undistort_pixels", "undistort_points", "distort_map",
+    "DistortionMaps",
+    "NewtonUndistort",
+    "as_dist",
+    "beyond_valid_radius",
+    "classify_distortion",
+    "distort_pixels",
+    "distort_points",
+    "distortion_jacobian",
+    "max_valid_radius",
+    "newton_undistort",
+    "normalised_to_pixels",
+    "pixels_to_normalised",
+    "radial_scale",
+    "undistort_image",
+    "undistort_map",
+    "undistort_pixels",
+    "undistort_points",
+    "distort_map",
 ]
 
 
@@ -64,7 +79,9 @@ def as_dist(dist: ArrayLike | None, name: str = "dist") -> np.ndarray:
     try:
         d = np.array(dist, dtype=float).ravel()
     except (TypeError, ValueError) as exc:
-        raise CamlabInputError(f"{name}: expected numbers, got {type(dist).__name__} ({exc})") from None
+        raise CamlabInputError(
+            f"{name}: expected numbers, got {type(dist).__name__} ({exc})"
+        ) from None
     if d.size == 4:
         d = np.append(d, 0.0)
     if d.size != 5:
@@ -207,7 +224,9 @@ class NewtonUndistort(NamedTuple):
     residual: np.ndarray
 
 
-def newton_undistort(target: np.ndarray, d: np.ndarray, tol: float = 1e-12, max_iter: int = 30) -> NewtonUndistort:
+def newton_undistort(
+    target: np.ndarray, d: np.ndarray, tol: float = 1e-12, max_iter: int = 30
+) -> NewtonUndistort:
     """The Newton iterations of :func:`undistort_points`, without raising: check ``residual`` yourself.
 
     ``target`` (N, 2) distorted normalised points, ``d`` (5,) coefficients (:func:`as_dist`).
@@ -332,6 +351,7 @@ def classify_distortion(dist: ArrayLike | None, r_max: float = 0.8, tol: float =
 
 # ---------------------------------------------------------------- pixels and images
 
+
 def pixels_to_normalised(pixels: np.ndarray, K: np.ndarray) -> np.ndarray:
     r"""Pixels (N, 2) to normalised image coordinates: :math:`(x, y, 1)^\top = K^{-1} (u, v, 1)^\top`.
 
@@ -355,21 +375,27 @@ def normalised_to_pixels(xy: np.ndarray, K: np.ndarray) -> np.ndarray:
     >>> normalised_to_pixels(np.array([[0.1, -0.05]]), K)
     array([[400., 200.]])
     """
-    return np.stack([K[0, 0] * xy[:, 0] + K[0, 1] * xy[:, 1] + K[0, 2], K[1, 1] * xy[:, 1] + K[1, 2]], axis=1)
+    return np.stack(
+        [K[0, 0] * xy[:, 0] + K[0, 1] * xy[:, 1] + K[0, 2], K[1, 1] * xy[:, 1] + K[1, 2]], axis=1
+    )
 
 
 def distort_pixels(pixels: ArrayLike, K: ArrayLike, dist: ArrayLike | None) -> np.ndarray:
     """Move ideal pixel positions (u, v) to where the distorting lens images them (same K)."""
     pts = as_points(pixels, 2, "pixels")
     K = check_intrinsics(K)
-    return pts.restore(normalised_to_pixels(_distort(pixels_to_normalised(pts.array, K), as_dist(dist)), K))
+    return pts.restore(
+        normalised_to_pixels(_distort(pixels_to_normalised(pts.array, K), as_dist(dist)), K)
+    )
 
 
 def undistort_pixels(pixels: ArrayLike, K: ArrayLike, dist: ArrayLike | None) -> np.ndarray:
     """Inverse of :func:`distort_pixels`: distorted pixels (u, v) to ideal pixels (same K)."""
     pts = as_points(pixels, 2, "pixels")
     K = check_intrinsics(K)
-    return pts.restore(normalised_to_pixels(undistort_points(pixels_to_normalised(pts.array, K), dist), K))
+    return pts.restore(
+        normalised_to_pixels(undistort_points(pixels_to_normalised(pts.array, K), dist), K)
+    )
 
 
 class DistortionMaps(NamedTuple):
@@ -380,8 +406,9 @@ class DistortionMaps(NamedTuple):
     map_v: np.ndarray
 
 
-def undistort_map(K: ArrayLike, dist: ArrayLike | None, size: tuple[int, int],
-                  new_K: ArrayLike | None = None) -> DistortionMaps:
+def undistort_map(
+    K: ArrayLike, dist: ArrayLike | None, size: tuple[int, int], new_K: ArrayLike | None = None
+) -> DistortionMaps:
     r"""Maps that undistort an image: like ``cv2.initUndistortRectifyMap`` without rectification.
 
     Each output pixel :math:`p` of the ideal (undistorted) image with intrinsics ``new_K``
@@ -409,7 +436,9 @@ def undistort_map(K: ArrayLike, dist: ArrayLike | None, size: tuple[int, int],
     xd, yd = _distort_xy(x, y, as_dist(dist))
     map_u = K[0, 0] * xd + K[0, 1] * yd + K[0, 2]  # K (xd, yd, 1)
     map_v = K[1, 1] * yd + K[1, 2]
-    return DistortionMaps(map_u.astype(np.float32), np.broadcast_to(map_v, (h, w)).astype(np.float32))
+    return DistortionMaps(
+        map_u.astype(np.float32), np.broadcast_to(map_v, (h, w)).astype(np.float32)
+    )
 
 
 @lru_cache(maxsize=16)
@@ -432,7 +461,9 @@ def _distort_map_cached(Kb: bytes, db: bytes, newKb: bytes, w: int, h: int, step
         return DistortionMaps(coarse_u[:h, :w].copy(), coarse_v[:h, :w].copy())
     import cv2
 
-    fu, fv = np.meshgrid(np.arange(w, dtype=np.float32) / step, np.arange(h, dtype=np.float32) / step)
+    fu, fv = np.meshgrid(
+        np.arange(w, dtype=np.float32) / step, np.arange(h, dtype=np.float32) / step
+    )
     mu = cv2.remap(coarse_u, fu, fv, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
     mv = cv2.remap(coarse_v, fu, fv, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
     mu.setflags(write=False)
@@ -440,8 +471,14 @@ def _distort_map_cached(Kb: bytes, db: bytes, newKb: bytes, w: int, h: int, step
     return DistortionMaps(mu, mv)
 
 
-def distort_map(K: ArrayLike, dist: ArrayLike | None, size: tuple[int, int],
-                new_K: ArrayLike | None = None, *, step: int = 4) -> DistortionMaps:
+def distort_map(
+    K: ArrayLike,
+    dist: ArrayLike | None,
+    size: tuple[int, int],
+    new_K: ArrayLike | None = None,
+    *,
+    step: int = 4,
+) -> DistortionMaps:
     r"""Maps that *apply* distortion: each distorted output pixel samples an ideal image.
 
     Output pixel :math:`p_d` (intrinsics ``K``) samples the ideal image (intrinsics
@@ -458,11 +495,14 @@ def distort_map(K: ArrayLike, dist: ArrayLike | None, size: tuple[int, int],
     w, h = check_size(size)
     if int(step) < 1:
         raise CamlabInputError(f"step: expected an integer >= 1, got {step!r}")
-    return _distort_map_cached(K.tobytes(), as_dist(dist).tobytes(), new_K.tobytes(), w, h, int(step))
+    return _distort_map_cached(
+        K.tobytes(), as_dist(dist).tobytes(), new_K.tobytes(), w, h, int(step)
+    )
 
 
-def undistort_image(image: np.ndarray, K: ArrayLike, dist: ArrayLike | None,
-                    new_K: ArrayLike | None = None) -> np.ndarray:
+def undistort_image(
+    image: np.ndarray, K: ArrayLike, dist: ArrayLike | None, new_K: ArrayLike | None = None
+) -> np.ndarray:
     """Undistort an image (H, W) or (H, W, C) with :func:`undistort_map` and ``cv2.remap`` (bilinear)."""
     import cv2
 

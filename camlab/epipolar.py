@@ -20,6 +20,7 @@ origin at the centre of the top-left pixel; ``x1`` are pixels in image 1 and ``x
 corresponding pixels in image 2, so ``x2_h @ F @ x1_h == 0``; poses are cam_from_world;
 metres. See lesson 11 and Hartley & Zisserman chapters 9-12.
 """
+
 from __future__ import annotations
 
 from typing import NamedTuple
@@ -43,20 +44,38 @@ from .projective import from_homogeneous, hartley_normalize, normalize_lines, to
 from .robust import PairModel, ransac
 
 __all__ = [
-    "EssentialDecomposition", "FundamentalModel", "FundamentalRansacResult", "RelativePose",
-    "decompose_essential_matrix", "epipolar_distance", "epipolar_lines", "epipoles",
-    "essential_from_fundamental", "essential_matrix", "estimate_fundamental_matrix",
-    "fundamental_from_cameras", "fundamental_from_essential", "normalize_fundamental",
-    "ransac_fundamental_matrix", "recover_pose", "relative_pose", "reprojection_error",
-    "sampson_distance", "skew", "triangulate_points",
+    "EssentialDecomposition",
+    "FundamentalModel",
+    "FundamentalRansacResult",
+    "RelativePose",
+    "decompose_essential_matrix",
+    "epipolar_distance",
+    "epipolar_lines",
+    "epipoles",
+    "essential_from_fundamental",
+    "essential_matrix",
+    "estimate_fundamental_matrix",
+    "fundamental_from_cameras",
+    "fundamental_from_essential",
+    "normalize_fundamental",
+    "ransac_fundamental_matrix",
+    "recover_pose",
+    "relative_pose",
+    "reprojection_error",
+    "sampson_distance",
+    "skew",
+    "triangulate_points",
 ]
 
-_PLANE_TOL = 1e-3   # px: a homography explaining every pair this well means "all points on one plane"
-_BAD_FIT = 0.05     # a least-squares F with median Sampson distance above this fraction of the spread: wrong pairs
-_RANK_TOL = 1e-9    # second-smallest singular value of the normalised 8-point system, relative
+_PLANE_TOL = (
+    1e-3  # px: a homography explaining every pair this well means "all points on one plane"
+)
+_BAD_FIT = 0.05  # a least-squares F with median Sampson distance above this fraction of the spread: wrong pairs
+_RANK_TOL = 1e-9  # second-smallest singular value of the normalised 8-point system, relative
 
 
 # --------------------------------------------------------------------------- helpers
+
 
 def skew(v: ArrayLike) -> np.ndarray:
     r"""The cross-product matrix :math:`[v]_\times` with :math:`[v]_\times w = v \times w`.
@@ -68,14 +87,18 @@ def skew(v: ArrayLike) -> np.ndarray:
     return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
 
 
-EIGHT_POINT_REASON = "the fundamental matrix has 7 degrees of freedom and the linear 8-point algorithm needs 8 pairs"
+EIGHT_POINT_REASON = (
+    "the fundamental matrix has 7 degrees of freedom and the linear 8-point algorithm needs 8 pairs"
+)
 
 
 def check_fundamental(F: ArrayLike, name: str = "F") -> np.ndarray:
     """Return F as a float (3, 3) array, or raise if it is malformed or all zeros."""
     a = check_matrix(F, (3, 3), name)
     if not np.any(a):
-        raise CamlabInputError(f"{name}: expected a non-zero (3, 3) fundamental matrix, got all zeros")
+        raise CamlabInputError(
+            f"{name}: expected a non-zero (3, 3) fundamental matrix, got all zeros"
+        )
     return a
 
 
@@ -89,7 +112,9 @@ def normalize_fundamental(F: ArrayLike) -> np.ndarray:
     """
     a = check_fundamental(F)
     a = a / np.linalg.norm(a)
-    k = np.argmax(np.round(np.abs(a), 9))  # ties (e.g. a skew-symmetric F): the first in row-major order
+    k = np.argmax(
+        np.round(np.abs(a), 9)
+    )  # ties (e.g. a skew-symmetric F): the first in row-major order
     return a * np.sign(a.flat[k])
 
 
@@ -99,12 +124,15 @@ def _as_P(cam: "Camera | ArrayLike", name: str) -> np.ndarray:
     P = check_matrix(cam, (3, 4), name)
     sv = np.linalg.svd(P, compute_uv=False)
     if sv[0] == 0 or sv[2] <= 1e-12 * sv[0]:
-        raise DegenerateError(f"{name}: a camera matrix has rank 3, this one has singular values "
-                              f"{np.array2string(sv, precision=3)}; pass a Camera or K @ [R | t]")
+        raise DegenerateError(
+            f"{name}: a camera matrix has rank 3, this one has singular values "
+            f"{np.array2string(sv, precision=3)}; pass a Camera or K @ [R | t]"
+        )
     return P
 
 
 # --------------------------------------------------------------------------- from known cameras
+
 
 def relative_pose(camera1: Camera, camera2: Camera) -> Pose:
     r"""Camera 2's pose relative to camera 1: ``(R, t)`` with :math:`X_2 = R X_1 + t`.
@@ -131,12 +159,16 @@ def essential_matrix(R: ArrayLike, t: ArrayLike) -> np.ndarray:
     Rm = check_rotation(R, "R")
     tv = check_matrix(np.ravel(as_float(t, "t")), (3,), "t")
     if not tv.any():
-        raise DegenerateError("t: zero translation gives E = 0: with no baseline the two views share one centre and "
-                              "there is no epipolar geometry (use a rotation homography instead)")
+        raise DegenerateError(
+            "t: zero translation gives E = 0: with no baseline the two views share one centre and "
+            "there is no epipolar geometry (use a rotation homography instead)"
+        )
     return skew(tv) @ Rm
 
 
-def fundamental_from_cameras(camera1: "Camera | ArrayLike", camera2: "Camera | ArrayLike") -> np.ndarray:
+def fundamental_from_cameras(
+    camera1: "Camera | ArrayLike", camera2: "Camera | ArrayLike"
+) -> np.ndarray:
     r"""The fundamental matrix of two known cameras, unit Frobenius norm.
 
     Parameters
@@ -190,7 +222,9 @@ def fundamental_from_cameras(camera1: "Camera | ArrayLike", camera2: "Camera | A
     return normalize_fundamental(skew(e2) @ P2 @ np.linalg.pinv(P1))
 
 
-def essential_from_fundamental(F: ArrayLike, K1: ArrayLike, K2: ArrayLike | None = None) -> np.ndarray:
+def essential_from_fundamental(
+    F: ArrayLike, K1: ArrayLike, K2: ArrayLike | None = None
+) -> np.ndarray:
     r""":math:`E = K_2^\top F K_1`, projected onto the essential matrices (singular values (1, 1, 0)).
 
     A true essential matrix has two equal singular values and one zero (H&Z result 9.17);
@@ -204,7 +238,9 @@ def essential_from_fundamental(F: ArrayLike, K1: ArrayLike, K2: ArrayLike | None
     return U @ np.diag([1.0, 1.0, 0.0]) @ Vt
 
 
-def fundamental_from_essential(E: ArrayLike, K1: ArrayLike, K2: ArrayLike | None = None) -> np.ndarray:
+def fundamental_from_essential(
+    E: ArrayLike, K1: ArrayLike, K2: ArrayLike | None = None
+) -> np.ndarray:
     r""":math:`F = K_2^{-\top} E K_1^{-1}`, unit Frobenius norm."""
     E = check_fundamental(E, "E")
     K1 = check_intrinsics(K1, "K1")
@@ -213,6 +249,7 @@ def fundamental_from_essential(E: ArrayLike, K1: ArrayLike, K2: ArrayLike | None
 
 
 # --------------------------------------------------------------------------- epipoles and lines
+
 
 class Epipoles(NamedTuple):
     """Homogeneous epipoles, unit norm: ``e1`` in image 1 (F e1 = 0), ``e2`` in image 2 (F^T e2 = 0).
@@ -270,12 +307,16 @@ def epipolar_lines(F: ArrayLike, points: ArrayLike, image: int = 1) -> np.ndarra
     """
     F = check_fundamental(F)
     if image not in (1, 2):
-        raise CamlabInputError(f"image: expected 1 or 2 (the image the points are in), got {image!r}")
+        raise CamlabInputError(
+            f"image: expected 1 or 2 (the image the points are in), got {image!r}"
+        )
     p = as_points(points, 2, "points")
     M = F if image == 1 else F.T
     lines = to_homogeneous(p.array) @ M.T
     if np.any(np.linalg.norm(lines[:, :2], axis=1) == 0):
-        raise DegenerateError("epipolar_lines: a point is the epipole itself, whose epipolar line is undefined")
+        raise DegenerateError(
+            "epipolar_lines: a point is the epipole itself, whose epipolar line is undefined"
+        )
     return p.restore(normalize_lines(lines))
 
 
@@ -288,15 +329,15 @@ def epipolar_distance(F: ArrayLike, x1: ArrayLike, x2: ArrayLike) -> np.ndarray:
     a, b, single = as_point_pairs(x1, x2)
     d2 = np.sum(to_homogeneous(b) * epipolar_lines(F, a, 1), axis=1)
     d1 = np.sum(to_homogeneous(a) * epipolar_lines(F, b, 2), axis=1)
-    out = np.sqrt(0.5 * (d1 ** 2 + d2 ** 2))
+    out = np.sqrt(0.5 * (d1**2 + d2**2))
     return out[0] if single else out
 
 
 def _sampson_batch(F: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """(B, N) Sampson distances for a stack of B fundamental matrices."""
     ah, bh = to_homogeneous(a), to_homogeneous(b)
-    Fx = np.einsum("bij,nj->bni", F, ah)      # (B, N, 3): lines in image 2
-    Ftx = np.einsum("bji,nj->bni", F, bh)     # (B, N, 3): lines in image 1
+    Fx = np.einsum("bij,nj->bni", F, ah)  # (B, N, 3): lines in image 2
+    Ftx = np.einsum("bji,nj->bni", F, bh)  # (B, N, 3): lines in image 1
     alg = np.sum(Fx * bh[None], axis=2)
     den = Fx[..., 0] ** 2 + Fx[..., 1] ** 2 + Ftx[..., 0] ** 2 + Ftx[..., 1] ** 2
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -326,6 +367,7 @@ def sampson_distance(F: ArrayLike, x1: ArrayLike, x2: ArrayLike) -> np.ndarray:
 
 # --------------------------------------------------------------------------- estimation
 
+
 def _eight_point_rows(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Rows of the 8-point system A f = 0 (f = F row-major); a, b: (..., N, 2)."""
     u, v = a[..., 0], a[..., 1]
@@ -341,8 +383,13 @@ def _rank2(F: np.ndarray) -> np.ndarray:
     return (U * s[..., None, :]) @ Vt
 
 
-def estimate_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, normalize: bool = True,
-                                plane_tol: float = _PLANE_TOL, sampson_iterations: int = 0) -> np.ndarray:
+def estimate_fundamental_matrix(
+    x1: ArrayLike,
+    x2: ArrayLike,
+    normalize: bool = True,
+    plane_tol: float = _PLANE_TOL,
+    sampson_iterations: int = 0,
+) -> np.ndarray:
     r"""Estimate F from N >= 8 point pairs by the normalised 8-point algorithm.
 
     Derivation (H&Z algorithm 11.1). Each pair gives one linear equation in the nine
@@ -410,7 +457,9 @@ def estimate_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, normalize: bool = 
     else:
         an, bn, T1, T2 = a, b, np.eye(3), np.eye(3)
     A = _eight_point_rows(an, bn)
-    _, s, Vt = np.linalg.svd(A, full_matrices=len(A) < 9)  # Vt must hold all 9 right singular vectors
+    _, s, Vt = np.linalg.svd(
+        A, full_matrices=len(A) < 9
+    )  # Vt must hold all 9 right singular vectors
     if s[7] <= _RANK_TOL * s[0]:  # 8 independent rows: a one-dimensional null space
         raise DegenerateError(
             f"estimate_fundamental_matrix: the {len(a)} pairs give an 8-point system of rank < 8, so F is not "
@@ -503,7 +552,9 @@ class FundamentalModel(PairModel):
             Aw = A / w[:, None]
             ev, V = np.linalg.eigh(Aw.T @ Aw)
             if ev[1] <= 1e-12 * ev[-1]:
-                raise DegenerateError("ransac_fundamental_matrix: the inliers do not fix a unique F")
+                raise DegenerateError(
+                    "ransac_fundamental_matrix: the inliers do not fix a unique F"
+                )
             Fn = _rank2(V[:, 0].reshape(3, 3))
             Fx, Ftx = ah @ Fn.T, bh @ Fn
             w = np.sqrt(Fx[:, 0] ** 2 + Fx[:, 1] ** 2 + Ftx[:, 0] ** 2 + Ftx[:, 1] ** 2)
@@ -511,16 +562,24 @@ class FundamentalModel(PairModel):
                 break
         return normalize_fundamental(self.T2.T @ Fn @ self.T1)
 
-    def residuals(self, models: np.ndarray, i1: np.ndarray | None = None,
-                  i2: np.ndarray | None = None) -> np.ndarray:
+    def residuals(
+        self, models: np.ndarray, i1: np.ndarray | None = None, i2: np.ndarray | None = None
+    ) -> np.ndarray:
         a = self.x1 if i1 is None else self.x1[i1]
         b = self.x2 if i1 is None else self.x2[i1 if i2 is None else i2]
         return _sampson_batch(models, a, b)
 
 
-def ransac_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, threshold: float = 1.0, confidence: float = 0.999,
-                              max_iters: int = 5000, rng: np.random.Generator | int | None = None, *,
-                              batch: int = 128) -> FundamentalRansacResult:
+def ransac_fundamental_matrix(
+    x1: ArrayLike,
+    x2: ArrayLike,
+    threshold: float = 1.0,
+    confidence: float = 0.999,
+    max_iters: int = 5000,
+    rng: np.random.Generator | int | None = None,
+    *,
+    batch: int = 128,
+) -> FundamentalRansacResult:
     r"""Robust F from pairs with outliers: LO-RANSAC over 8-point samples, MSAC-scored by Sampson distance.
 
     :class:`FundamentalModel` plugged into the driver :func:`camlab.robust.ransac` (its
@@ -559,10 +618,13 @@ def ransac_fundamental_matrix(x1: ArrayLike, x2: ArrayLike, threshold: float = 1
     """
     a, b, _ = as_point_pairs(x1, x2, min_count=8, why=EIGHT_POINT_REASON)
     fit = ransac(FundamentalModel(a, b), threshold, confidence, max_iters, rng, batch=batch)
-    return FundamentalRansacResult(normalize_fundamental(fit.model), fit.inliers, fit.iterations, fit.residuals)
+    return FundamentalRansacResult(
+        normalize_fundamental(fit.model), fit.inliers, fit.iterations, fit.residuals
+    )
 
 
 # --------------------------------------------------------------------------- essential matrix and pose
+
 
 class EssentialDecomposition(NamedTuple):
     """The four poses an essential matrix allows: ``R`` (4, 3, 3), ``t`` (4, 3) unit vectors.
@@ -617,7 +679,9 @@ class RelativePose(NamedTuple):
     counts: np.ndarray
 
 
-def recover_pose(E: ArrayLike, x1: ArrayLike, x2: ArrayLike, K1: ArrayLike, K2: ArrayLike | None = None) -> RelativePose:
+def recover_pose(
+    E: ArrayLike, x1: ArrayLike, x2: ArrayLike, K1: ArrayLike, K2: ArrayLike | None = None
+) -> RelativePose:
     r"""Pick the one (R, t) of the four from E that puts the points in front of both cameras.
 
     The cheirality test: triangulate every pair with :math:`P_1 = K_1 [I \mid 0]` and
@@ -643,7 +707,10 @@ def recover_pose(E: ArrayLike, x1: ArrayLike, x2: ArrayLike, K1: ArrayLike, K2: 
 
 # --------------------------------------------------------------------------- triangulation
 
-def reprojection_error(P: "Camera | ArrayLike", points_world: ArrayLike, pixels: ArrayLike) -> np.ndarray:
+
+def reprojection_error(
+    P: "Camera | ArrayLike", points_world: ArrayLike, pixels: ArrayLike
+) -> np.ndarray:
     """Distance in pixels between ``pixels`` and the projections of ``points_world`` by P (one per point)."""
     Pm = _as_P(P, "P")
     X = as_points(points_world, 3, "points_world").array
@@ -651,7 +718,9 @@ def reprojection_error(P: "Camera | ArrayLike", points_world: ArrayLike, pixels:
     return np.linalg.norm(from_homogeneous(to_homogeneous(X) @ Pm.T) - uv, axis=1)
 
 
-def _refine_points(Ps: list[np.ndarray], uvs: list[np.ndarray], X: np.ndarray, iters: int = 10) -> np.ndarray:
+def _refine_points(
+    Ps: list[np.ndarray], uvs: list[np.ndarray], X: np.ndarray, iters: int = 10
+) -> np.ndarray:
     """Minimise the summed squared reprojection error over each point independently (Gauss-Newton, damped)."""
     X = X.copy()
     lam = np.full(len(X), 1e-3)
@@ -673,20 +742,32 @@ def _refine_points(Ps: list[np.ndarray], uvs: list[np.ndarray], X: np.ndarray, i
 
     cost, JtJ, Jtr = cost_and_terms(X)
     for _ in range(iters):
-        A = JtJ + lam[:, None, None] * np.eye(3) * (np.trace(JtJ, axis1=1, axis2=2)[:, None, None] / 3 + 1e-12)
+        A = JtJ + lam[:, None, None] * np.eye(3) * (
+            np.trace(JtJ, axis1=1, axis2=2)[:, None, None] / 3 + 1e-12
+        )
         step = np.linalg.solve(A, -Jtr[:, :, None])[:, :, 0]
         Xn = X + step
         cn, JtJn, Jtrn = cost_and_terms(Xn)
         better = np.isfinite(cn) & (cn < cost)
-        X[better], cost[better], JtJ[better], Jtr[better] = Xn[better], cn[better], JtJn[better], Jtrn[better]
+        X[better], cost[better], JtJ[better], Jtr[better] = (
+            Xn[better],
+            cn[better],
+            JtJn[better],
+            Jtrn[better],
+        )
         lam = np.where(better, lam * 0.1, lam * 10.0)
         if np.all(np.abs(step[better]) < 1e-12 * (1 + np.abs(X[better]))):
             break
     return X
 
 
-def triangulate_points(P1: "Camera | ArrayLike", P2: "Camera | ArrayLike", x1: ArrayLike, x2: ArrayLike,
-                       refine: bool = False) -> np.ndarray:
+def triangulate_points(
+    P1: "Camera | ArrayLike",
+    P2: "Camera | ArrayLike",
+    x1: ArrayLike,
+    x2: ArrayLike,
+    refine: bool = False,
+) -> np.ndarray:
     r"""World points from their pixels in two cameras: linear (DLT), optionally refined.
 
     Linear triangulation (H&Z section 12.2). :math:`\tilde x \sim P X` means
@@ -724,13 +805,22 @@ def triangulate_points(P1: "Camera | ArrayLike", P2: "Camera | ArrayLike", x1: A
     A1, A2 = _as_P(P1, "P1"), _as_P(P2, "P2")
     a, b, single = as_point_pairs(x1, x2)
     C1, C2 = camera_centre(A1), camera_centre(A2)
-    if np.linalg.norm(C1 - C2) <= 1e-9 * max(np.linalg.norm(C1[:3]), np.linalg.norm(C2[:3]), 1e-300):
-        raise DegenerateError("P1, P2: both cameras have the same centre (zero baseline), so the rays of "
-                              "corresponding pixels meet only there and depth is undetermined; move one camera")
-    rows = np.stack([
-        a[:, 0:1] * A1[2] - A1[0], a[:, 1:2] * A1[2] - A1[1],
-        b[:, 0:1] * A2[2] - A2[0], b[:, 1:2] * A2[2] - A2[1],
-    ], axis=1)  # (N, 4, 4)
+    if np.linalg.norm(C1 - C2) <= 1e-9 * max(
+        np.linalg.norm(C1[:3]), np.linalg.norm(C2[:3]), 1e-300
+    ):
+        raise DegenerateError(
+            "P1, P2: both cameras have the same centre (zero baseline), so the rays of "
+            "corresponding pixels meet only there and depth is undetermined; move one camera"
+        )
+    rows = np.stack(
+        [
+            a[:, 0:1] * A1[2] - A1[0],
+            a[:, 1:2] * A1[2] - A1[1],
+            b[:, 0:1] * A2[2] - A2[0],
+            b[:, 1:2] * A2[2] - A2[1],
+        ],
+        axis=1,
+    )  # (N, 4, 4)
     rows /= np.linalg.norm(rows, axis=2, keepdims=True)
     _, _, Vt = np.linalg.svd(rows)
     X = from_homogeneous(Vt[:, -1, :])

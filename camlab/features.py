@@ -24,6 +24,7 @@ scale and lighting. Two descriptors that are close probably show the same scene 
 Pixel convention (docs/conventions.md): (u, v) = (column, row), origin at the centre of
 the top-left pixel (OpenCV's keypoint convention). See lesson 09, section 2.
 """
+
 from __future__ import annotations
 
 from typing import NamedTuple
@@ -33,8 +34,18 @@ from numpy.typing import ArrayLike
 
 from ._validate import CamlabInputError, check_image, check_integer, check_positive
 
-__all__ = ["Features", "FlannIndex", "KnnMatches", "Matches", "detect_features", "filter_matches", "flann_index",
-           "knn_match", "match_features", "to_gray_uint8"]
+__all__ = [
+    "Features",
+    "FlannIndex",
+    "KnnMatches",
+    "Matches",
+    "detect_features",
+    "filter_matches",
+    "flann_index",
+    "knn_match",
+    "match_features",
+    "to_gray_uint8",
+]
 
 _METHODS = ("sift", "orb")
 
@@ -124,18 +135,30 @@ def to_gray_uint8(image: ArrayLike, name: str = "image") -> np.ndarray:
             f"divide 0..255 values by 255 (or pass them as uint8)"
         )
     if img.ndim == 3:
-        img = img[..., 0] if img.shape[2] == 1 else img[..., :3].astype(float) @ np.array([299.0, 587.0, 114.0]) / 1000
+        img = (
+            img[..., 0]
+            if img.shape[2] == 1
+            else img[..., :3].astype(float) @ np.array([299.0, 587.0, 114.0]) / 1000
+        )
     if np.issubdtype(np.asarray(image).dtype, np.floating):
         img = np.asarray(img, dtype=float) * 255.0
     elif np.asarray(image).dtype == np.uint16:
         img = np.asarray(img, dtype=float) / 257.0
     elif np.asarray(image).dtype != np.uint8:
-        raise CamlabInputError(f"{name}: expected uint8, uint16 or float pixels, got dtype {np.asarray(image).dtype}")
+        raise CamlabInputError(
+            f"{name}: expected uint8, uint16 or float pixels, got dtype {np.asarray(image).dtype}"
+        )
     return np.clip(np.rint(img), 0, 255).astype(np.uint8)
 
 
-def detect_features(image: ArrayLike, method: str = "sift", max_features: int = 2500, *,
-                    mask: ArrayLike | None = None, contrast_threshold: float = 0.02) -> Features:
+def detect_features(
+    image: ArrayLike,
+    method: str = "sift",
+    max_features: int = 2500,
+    *,
+    mask: ArrayLike | None = None,
+    contrast_threshold: float = 0.02,
+) -> Features:
     """Detect keypoints and compute descriptors with OpenCV (SIFT by default, ORB as the fast option).
 
     Parameters
@@ -168,10 +191,14 @@ def detect_features(image: ArrayLike, method: str = "sift", max_features: int = 
     if mask is not None:
         mk = np.asarray(mask)
         if mk.shape != gray.shape:
-            raise CamlabInputError(f"mask: expected shape {gray.shape} like the image, got {mk.shape}")
+            raise CamlabInputError(
+                f"mask: expected shape {gray.shape} like the image, got {mk.shape}"
+            )
         m = mk.astype(np.uint8) * 255
     if method == "sift":
-        det = cv2.SIFT_create(nfeatures=int(max_features), contrastThreshold=float(contrast_threshold))
+        det = cv2.SIFT_create(
+            nfeatures=int(max_features), contrastThreshold=float(contrast_threshold)
+        )
     else:
         det = cv2.ORB_create(nfeatures=int(max_features), fastThreshold=10)
     kps, desc = det.detectAndCompute(gray, m)
@@ -181,14 +208,21 @@ def detect_features(image: ArrayLike, method: str = "sift", max_features: int = 
         z = np.zeros(0)
         return Features(np.zeros((0, 2)), np.zeros((0, dim), dtype), z, z.copy(), z.copy(), method)
     pts = np.array([k.pt for k in kps], dtype=float).reshape(-1, 2)
-    return Features(pts, np.asarray(desc, dtype=dtype).reshape(n, dim),
-                    np.array([k.size for k in kps], float), np.array([k.angle for k in kps], float),
-                    np.array([k.response for k in kps], float), method)
+    return Features(
+        pts,
+        np.asarray(desc, dtype=dtype).reshape(n, dim),
+        np.array([k.size for k in kps], float),
+        np.array([k.angle for k in kps], float),
+        np.array([k.response for k in kps], float),
+        method,
+    )
 
 
 def _check_features(f, name: str) -> Features:
     if not isinstance(f, Features):
-        raise CamlabInputError(f"{name}: expected camlab.features.Features from detect_features, got {type(f).__name__}")
+        raise CamlabInputError(
+            f"{name}: expected camlab.features.Features from detect_features, got {type(f).__name__}"
+        )
     return f
 
 
@@ -213,8 +247,10 @@ def flann_index(features: Features) -> FlannIndex:
 
     f = _check_features(features, "features")
     if f.method != "sift":
-        raise CamlabInputError(f"features: expected SIFT features (FLANN's k-d trees need float descriptors), "
-                               f"got {f.method}; ORB is always matched by brute force")
+        raise CamlabInputError(
+            f"features: expected SIFT features (FLANN's k-d trees need float descriptors), "
+            f"got {f.method}; ORB is always matched by brute force"
+        )
     d = np.ascontiguousarray(f.descriptors, dtype=np.float32)
     cv2.setRNGSeed(0)
     return FlannIndex(cv2.flann_Index(d, {"algorithm": 1, "trees": 4}), d)
@@ -222,14 +258,24 @@ def flann_index(features: Features) -> FlannIndex:
 
 def _flann_knn(index: FlannIndex, queries: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
     """(n, k) indices and L2 distances of the k nearest indexed descriptors (32 leaf checks); inf where none found."""
-    idx, d2 = index.index.knnSearch(np.ascontiguousarray(queries, dtype=np.float32), k, params={"checks": 32})
+    idx, d2 = index.index.knnSearch(
+        np.ascontiguousarray(queries, dtype=np.float32), k, params={"checks": 32}
+    )
     idx, d2 = np.asarray(idx, int).reshape(-1, k), np.asarray(d2, float).reshape(-1, k)
     missing = (idx < 0) | (idx >= len(index.descriptors))
-    return np.where(missing, 0, idx), np.where(missing, np.inf, np.sqrt(np.maximum(d2, 0)))  # FLANN gives squared L2
+    return np.where(missing, 0, idx), np.where(
+        missing, np.inf, np.sqrt(np.maximum(d2, 0))
+    )  # FLANN gives squared L2
 
 
-def knn_match(features1: Features, features2: Features, backward: bool = True, *,
-              approximate: bool = False, index2: FlannIndex | None = None) -> KnnMatches:
+def knn_match(
+    features1: Features,
+    features2: Features,
+    backward: bool = True,
+    *,
+    approximate: bool = False,
+    index2: FlannIndex | None = None,
+) -> KnnMatches:
     """Find the two nearest descriptors in image 2 of each descriptor of image 1, and the reverse nearest.
 
     Brute force (every pair compared) with OpenCV's matcher: L2 distance for SIFT, Hamming
@@ -247,18 +293,30 @@ def knn_match(features1: Features, features2: Features, backward: bool = True, *
     f1 = _check_features(features1, "features1")
     f2 = _check_features(features2, "features2")
     if f1.method != f2.method:
-        raise CamlabInputError(f"features2: expected {f1.method} features like features1, got {f2.method}")
+        raise CamlabInputError(
+            f"features2: expected {f1.method} features like features1, got {f2.method}"
+        )
     n1, n2 = len(f1.points), len(f2.points)
     if n1 < 1 or n2 < 2:
-        return KnnMatches(np.zeros((0, 2), int), np.zeros((0, 2)), np.full(n2, -1, dtype=int), f1.points, f2.points)
+        return KnnMatches(
+            np.zeros((0, 2), int),
+            np.zeros((0, 2)),
+            np.full(n2, -1, dtype=int),
+            f1.points,
+            f2.points,
+        )
     if f1.method == "sift" and (approximate or index2 is not None):
         nn12, d12 = _flann_knn(flann_index(f2) if index2 is None else index2, f1.descriptors, 2)
         nn21 = _flann_knn(flann_index(f1), f2.descriptors, 1)[0][:, 0] if backward else None
         return KnnMatches(nn12, d12, nn21, f1.points, f2.points)
     matcher = cv2.BFMatcher(cv2.NORM_L2 if f1.method == "sift" else cv2.NORM_HAMMING)
     knn = matcher.knnMatch(f1.descriptors, f2.descriptors, k=2)
-    nn12 = np.array([[m[min(t, len(m) - 1)].trainIdx if m else 0 for t in (0, 1)] for m in knn], dtype=int)
-    d12 = np.array([[m[t].distance if len(m) > t else np.inf for t in (0, 1)] for m in knn], dtype=float)
+    nn12 = np.array(
+        [[m[min(t, len(m) - 1)].trainIdx if m else 0 for t in (0, 1)] for m in knn], dtype=int
+    )
+    d12 = np.array(
+        [[m[t].distance if len(m) > t else np.inf for t in (0, 1)] for m in knn], dtype=float
+    )
     nn12, d12 = nn12.reshape(-1, 2), d12.reshape(-1, 2)
     nn21 = None
     if backward:
@@ -289,12 +347,18 @@ def filter_matches(knn: KnnMatches, ratio: float = 0.75, mutual: bool = False) -
     [2, 0]
     """
     if not isinstance(knn, KnnMatches):
-        raise CamlabInputError(f"knn: expected camlab.features.KnnMatches from knn_match, got {type(knn).__name__}")
+        raise CamlabInputError(
+            f"knn: expected camlab.features.KnnMatches from knn_match, got {type(knn).__name__}"
+        )
     if not 0 < check_positive(ratio, "ratio") <= 1:
-        raise CamlabInputError(f"ratio: expected a number in (0, 1] (Lowe used 0.8; 0.6-0.8 is typical), got {ratio!r}")
+        raise CamlabInputError(
+            f"ratio: expected a number in (0, 1] (Lowe used 0.8; 0.6-0.8 is typical), got {ratio!r}"
+        )
     if len(knn.nn12) == 0:
         e = np.zeros(0)
-        return Matches(np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0, int), np.zeros(0, int), e, e.copy())
+        return Matches(
+            np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0, int), np.zeros(0, int), e, e.copy()
+        )
     with np.errstate(divide="ignore", invalid="ignore"):
         r = np.where(knn.d12[:, 1] > 0, knn.d12[:, 0] / knn.d12[:, 1], 1.0)
     keep = r < ratio if ratio < 1 else np.ones(len(r), bool)
@@ -306,13 +370,28 @@ def filter_matches(knn: KnnMatches, ratio: float = 0.75, mutual: bool = False) -
         keep &= knn.nn21[j1] == i1
     order = np.argsort(r[keep], kind="stable")
     i1, j1 = i1[keep][order], j1[keep][order]
-    return Matches(knn.points1[i1].copy(), knn.points2[j1].copy(), i1, j1, knn.d12[keep, 0][order], r[keep][order])
+    return Matches(
+        knn.points1[i1].copy(),
+        knn.points2[j1].copy(),
+        i1,
+        j1,
+        knn.d12[keep, 0][order],
+        r[keep][order],
+    )
 
 
-def match_features(features1: Features, features2: Features, ratio: float = 0.75, mutual: bool = False, *,
-                   approximate: bool = False) -> Matches:
+def match_features(
+    features1: Features,
+    features2: Features,
+    ratio: float = 0.75,
+    mutual: bool = False,
+    *,
+    approximate: bool = False,
+) -> Matches:
     """Match two images' features: nearest neighbours, ratio test, optional mutual check.
 
     ``filter_matches(knn_match(features1, features2, approximate=...), ratio, mutual)``; see both.
     """
-    return filter_matches(knn_match(features1, features2, backward=mutual, approximate=approximate), ratio, mutual)
+    return filter_matches(
+        knn_match(features1, features2, backward=mutual, approximate=approximate), ratio, mutual
+    )

@@ -25,6 +25,7 @@ This module holds
 Pixel coordinates (u, v) = (column, row), origin at the centre of the top-left pixel
 (docs/conventions.md). See lesson 07.
 """
+
 from __future__ import annotations
 
 from typing import NamedTuple
@@ -49,23 +50,54 @@ from .projective import hartley_normalization, hartley_normalize, map_lines, map
 from .robust import PairModel, ransac
 
 __all__ = [
-    "GoldStandardResult", "HIERARCHY", "HomographyModel", "RansacResult", "RefineResult", "affine", "classify", "compose",
-    "correct_points", "decompose", "estimate_homography", "euclidean", "gold_standard_homography", "hartley_normalization", "hierarchy_matrix", "invert", "map_lines", "map_points",
-    "normalize_homography", "plane_homography", "pose_homography", "projective", "ransac_homography",
-    "refine_homography", "rotation_homography", "same_homography", "sampson_error", "similarity",
-    "symmetric_transfer_error", "transfer_error",
+    "GoldStandardResult",
+    "HIERARCHY",
+    "HomographyModel",
+    "RansacResult",
+    "RefineResult",
+    "affine",
+    "classify",
+    "compose",
+    "correct_points",
+    "decompose",
+    "estimate_homography",
+    "euclidean",
+    "gold_standard_homography",
+    "hartley_normalization",
+    "hierarchy_matrix",
+    "invert",
+    "map_lines",
+    "map_points",
+    "normalize_homography",
+    "plane_homography",
+    "pose_homography",
+    "projective",
+    "ransac_homography",
+    "refine_homography",
+    "rotation_homography",
+    "same_homography",
+    "sampson_error",
+    "similarity",
+    "symmetric_transfer_error",
+    "transfer_error",
 ]
 
-_COLLINEAR_TOL = 1e-9   # |det| of three Hartley-normalised points below this: collinear
-_RANK_TOL = 1e-10       # second-smallest singular value of the DLT system relative to the largest
+_COLLINEAR_TOL = 1e-9  # |det| of three Hartley-normalised points below this: collinear
+_RANK_TOL = 1e-10  # second-smallest singular value of the DLT system relative to the largest
 
 
 # --------------------------------------------------------------------------- validation
 
+
 def _pairs(src: ArrayLike, dst: ArrayLike, min_count: int = 4) -> tuple[np.ndarray, np.ndarray]:
     """Validate two (N, 2) arrays of corresponding points (:func:`camlab._validate.as_point_pairs`)."""
-    pairs = as_point_pairs(src, dst, ("src", "dst"), min_count=min_count,
-                           why="a homography has 8 degrees of freedom and each pair fixes 2")
+    pairs = as_point_pairs(
+        src,
+        dst,
+        ("src", "dst"),
+        min_count=min_count,
+        why="a homography has 8 degrees of freedom and each pair fixes 2",
+    )
     return pairs.first, pairs.second
 
 
@@ -82,6 +114,7 @@ def check_homography(H: ArrayLike, name: str = "H") -> np.ndarray:
 
 
 # --------------------------------------------------------------------------- normalisation
+
 
 def normalize_homography(H: ArrayLike) -> np.ndarray:
     """Scale H so that H[2, 2] = 1, or to unit Frobenius norm when H[2, 2] is (nearly) 0.
@@ -117,6 +150,7 @@ def same_homography(H1: ArrayLike, H2: ArrayLike, tol: float = 1e-9) -> bool:
 
 
 # --------------------------------------------------------------------------- DLT
+
 
 def _dlt_rows(s: np.ndarray, d: np.ndarray) -> np.ndarray:
     r"""The 2N x 9 DLT matrix A with :math:`A h = 0` for :math:`h` = H row-major.
@@ -244,6 +278,7 @@ def estimate_homography(src: ArrayLike, dst: ArrayLike, normalize: bool = True) 
 
 # --------------------------------------------------------------------------- errors
 
+
 def transfer_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np.ndarray:
     r"""One-way transfer error :math:`\| x'_i - \pi(H x_i) \|` in pixels, one per pair.
 
@@ -282,9 +317,9 @@ def _sq_transfer_batch(H: np.ndarray, p: np.ndarray, q: np.ndarray) -> np.ndarra
     ``p`` and ``q`` are homogeneous columns (3, N) (:func:`_columns`), so mapping all points
     by each H is one (3, 3) @ (3, N) product per homography.
     """
-    y = H @ p                                          # (B, 3, N)
+    y = H @ p  # (B, 3, N)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        e = y[:, :2] / y[:, 2:] - q[:2]                # (B, 2, N)
+        e = y[:, :2] / y[:, 2:] - q[:2]  # (B, 2, N)
         e *= e
         return e[:, 0] + e[:, 1]
 
@@ -315,12 +350,12 @@ def _sampson_batch(H: np.ndarray, s: np.ndarray, d: np.ndarray) -> np.ndarray:
     j21 = h[:, None, 0] - up * h[:, None, 6]
     j22 = h[:, None, 1] - up * h[:, None, 7]
     j23 = -Hx[..., 2]
-    a = j11 ** 2 + j12 ** 2 + j14 ** 2          # J J^T = [[a, b], [b, c]]
+    a = j11**2 + j12**2 + j14**2  # J J^T = [[a, b], [b, c]]
     b = j11 * j21 + j12 * j22
-    c = j21 ** 2 + j22 ** 2 + j23 ** 2
+    c = j21**2 + j22**2 + j23**2
     det = a * c - b * b
     with np.errstate(divide="ignore", invalid="ignore"):
-        q = (c * e1 ** 2 - 2 * b * e1 * e2 + a * e2 ** 2) / det  # e^T (J J^T)^-1 e
+        q = (c * e1**2 - 2 * b * e1 * e2 + a * e2**2) / det  # e^T (J J^T)^-1 e
     q = np.where(np.isfinite(q) & (q >= 0), q, np.inf)
     return np.sqrt(q)
 
@@ -343,6 +378,7 @@ def sampson_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np.ndarray:
 
 
 # --------------------------------------------------------------------------- RANSAC
+
 
 class RansacResult(NamedTuple):
     """What :func:`ransac_homography` found.
@@ -422,8 +458,9 @@ class HomographyModel(PairModel):
         H = self.normalised_to_pixels(V[:, 0].reshape(3, 3))
         return H / np.linalg.norm(H)
 
-    def residuals(self, models: np.ndarray, i1: np.ndarray | None = None,
-                  i2: np.ndarray | None = None) -> np.ndarray:
+    def residuals(
+        self, models: np.ndarray, i1: np.ndarray | None = None, i2: np.ndarray | None = None
+    ) -> np.ndarray:
         if self.score == "sampson":
             s = self.x1 if i1 is None else self.x1[i1]
             d = self.x2 if i1 is None else self.x2[i1 if i2 is None else i2]
@@ -497,10 +534,13 @@ def ransac_homography(
     if score not in ("transfer", "sampson"):
         raise CamlabInputError(f"score: expected 'transfer' or 'sampson', got {score!r}")
     fit = ransac(HomographyModel(s, d, score), threshold, confidence, max_iters, rng, batch=batch)
-    return RansacResult(normalize_homography(fit.model), fit.inliers, fit.iterations, fit.residuals, fit.sample)
+    return RansacResult(
+        normalize_homography(fit.model), fit.inliers, fit.iterations, fit.residuals, fit.sample
+    )
 
 
 # --------------------------------------------------------------------------- LM refinement
+
 
 class RefineResult(NamedTuple):
     """What :func:`refine_homography` did.
@@ -528,8 +568,8 @@ def _transfer_residuals_and_jacobian(h: np.ndarray, s: np.ndarray, d: np.ndarray
     n = len(s)
     xs = np.hstack([s, np.ones((n, 1))])
     xd = np.hstack([d, np.ones((n, 1))])
-    y = xs @ H.T                     # forward: y = H x
-    z = xd @ G.T                     # backward: z = H^-1 x'
+    y = xs @ H.T  # forward: y = H x
+    z = xd @ G.T  # backward: z = H^-1 x'
     p = y[:, :2] / y[:, 2:]
     q = z[:, :2] / z[:, 2:]
     r = np.concatenate([(p - d).ravel(), (q - s).ravel()])
@@ -594,7 +634,9 @@ def refine_homography(
     h /= np.linalg.norm(h)
     r0 = _transfer_residuals_and_jacobian(h, s, d)[0]
     if not np.all(np.isfinite(r0)):
-        raise ConvergenceError("refine_homography: the starting H maps some point to infinity; start from the DLT")
+        raise ConvergenceError(
+            "refine_homography: the starting H maps some point to infinity; start from the DLT"
+        )
     cache: dict = {}
 
     def evaluate(x: np.ndarray):
@@ -607,13 +649,26 @@ def refine_homography(
                 cache[key] = (np.full(4 * len(s), np.inf), None)
         return cache[key]
 
-    lm = levenberg_marquardt(lambda x: evaluate(x)[0], h, lambda x: evaluate(x)[1] @ unit_sphere_basis(x),
-                             update=unit_sphere_update, max_iter=int(max_iters), ftol=tol, xtol=1e-14, gtol=0.0)
-    return RefineResult(normalize_homography(lm.x.reshape(3, 3)), float(np.sqrt(r0 @ r0 / (2 * len(s)))),
-                        float(np.sqrt(2 * lm.cost / (2 * len(s)))), lm.iterations)
+    lm = levenberg_marquardt(
+        lambda x: evaluate(x)[0],
+        h,
+        lambda x: evaluate(x)[1] @ unit_sphere_basis(x),
+        update=unit_sphere_update,
+        max_iter=int(max_iters),
+        ftol=tol,
+        xtol=1e-14,
+        gtol=0.0,
+    )
+    return RefineResult(
+        normalize_homography(lm.x.reshape(3, 3)),
+        float(np.sqrt(r0 @ r0 / (2 * len(s)))),
+        float(np.sqrt(2 * lm.cost / (2 * len(s)))),
+        lm.iterations,
+    )
 
 
 # --------------------------------------------------------------------------- Gold Standard
+
 
 class GoldStandardResult(NamedTuple):
     """What :func:`gold_standard_homography` did.
@@ -650,7 +705,9 @@ def _project_with_jacobian(H: np.ndarray, p: np.ndarray):
     return q, D
 
 
-def correct_points(H: ArrayLike, src: ArrayLike, dst: ArrayLike, iterations: int = 10) -> np.ndarray:
+def correct_points(
+    H: ArrayLike, src: ArrayLike, dst: ArrayLike, iterations: int = 10
+) -> np.ndarray:
     r"""The points :math:`\hat x_i` minimising :math:`d(x_i, \hat x_i)^2 + d(x'_i, \pi(H \hat x_i))^2` for a fixed H.
 
     Each pair is a separate 2-parameter least-squares problem; Gauss-Newton from
@@ -670,7 +727,7 @@ def correct_points(H: ArrayLike, src: ArrayLike, dst: ArrayLike, iterations: int
     p = s.copy()
     for _ in range(int(iterations)):
         q, D = _project_with_jacobian(Hm, p)
-        Jq = D @ Hm[:, :2]                                   # d pi(H p) / d p, (N, 2, 2)
+        Jq = D @ Hm[:, :2]  # d pi(H p) / d p, (N, 2, 2)
         normal = np.eye(2) + np.einsum("nki,nkj->nij", Jq, Jq)
         grad = (p - s) + np.einsum("nki,nk->ni", Jq, q - d)
         p = p - np.linalg.solve(normal, grad[..., None])[..., 0]
@@ -690,13 +747,15 @@ class _GoldNormal(NamedTuple):
 
 
 def _gold_normal_equations(J, r):
-    Jh, Jp = J                                    # d r2 / d h (N, 2, 8) and d r2 / d p (N, 2, 2); d r1 / d p = I
+    Jh, Jp = J  # d r2 / d h (N, 2, 8) and d r2 / d p (N, 2, 2); d r1 / d p = I
     n = len(Jh)
-    r1, r2 = r[:2 * n].reshape(n, 2), r[2 * n:].reshape(n, 2)
+    r1, r2 = r[: 2 * n].reshape(n, 2), r[2 * n :].reshape(n, 2)
     U = np.einsum("nki,nkj->ij", Jh, Jh)
     V = np.eye(2) + np.einsum("nki,nkj->nij", Jp, Jp)
     W = np.einsum("nki,nkj->nij", Jh, Jp)
-    g = np.concatenate([np.einsum("nki,nk->i", Jh, r2), (r1 + np.einsum("nki,nk->ni", Jp, r2)).ravel()])
+    g = np.concatenate(
+        [np.einsum("nki,nk->i", Jh, r2), (r1 + np.einsum("nki,nk->ni", Jp, r2)).ravel()]
+    )
     return _GoldNormal(U, V, W), g
 
 
@@ -708,15 +767,16 @@ def _gold_damped_solve(A: _GoldNormal, g: np.ndarray, mu: float) -> np.ndarray:
     V = A.V + mu * np.einsum("nii->ni", A.V)[..., None] * np.eye(2)
     gh, gp = g[:8], g[8:].reshape(n, 2)
     Vinv = np.linalg.inv(V)
-    WVinv = A.W @ Vinv                                       # (N, 8, 2)
+    WVinv = A.W @ Vinv  # (N, 8, 2)
     S = U - np.einsum("nij,nkj->ik", WVinv, A.W)
     dh = np.linalg.solve(S, -gh + np.einsum("nij,nj->i", WVinv, gp))
     dp = -np.einsum("nij,nj->ni", Vinv, gp + np.einsum("nji,j->ni", A.W, dh))
     return np.concatenate([dh, dp.ravel()])
 
 
-def gold_standard_homography(H: ArrayLike, src: ArrayLike, dst: ArrayLike, max_iters: int = 50,
-                             tol: float = 1e-10) -> GoldStandardResult:
+def gold_standard_homography(
+    H: ArrayLike, src: ArrayLike, dst: ArrayLike, max_iters: int = 50, tol: float = 1e-10
+) -> GoldStandardResult:
     r"""The Gold Standard (maximum-likelihood) homography of Hartley & Zisserman, algorithm 4.3.
 
     With Gaussian noise on the points of *both* images, the most likely H minimises the
@@ -782,18 +842,36 @@ def gold_standard_homography(H: ArrayLike, src: ArrayLike, dst: ArrayLike, max_i
     x0 = np.concatenate([h, correct_points(h.reshape(3, 3), s, d).ravel()])
     r0 = residuals(x0)
     if not np.all(np.isfinite(r0)):
-        raise ConvergenceError("gold_standard_homography: the starting H maps some point to infinity; "
-                               "start from the DLT")
-    lm = levenberg_marquardt(residuals, x0, jacobian, update=update, normal_equations=_gold_normal_equations,
-                             damped_solve=_gold_damped_solve, max_iter=int(max_iters), ftol=tol, xtol=1e-14,
-                             gtol=0.0)
+        raise ConvergenceError(
+            "gold_standard_homography: the starting H maps some point to infinity; "
+            "start from the DLT"
+        )
+    lm = levenberg_marquardt(
+        residuals,
+        x0,
+        jacobian,
+        update=update,
+        normal_equations=_gold_normal_equations,
+        damped_solve=_gold_damped_solve,
+        max_iter=int(max_iters),
+        ftol=tol,
+        xtol=1e-14,
+        gtol=0.0,
+    )
     H_final = lm.x[:9].reshape(3, 3)
     p = lm.x[9:].reshape(n, 2)
-    return GoldStandardResult(normalize_homography(H_final), p, map_points(H_final, p),
-                              float(np.sqrt(r0 @ r0 / (2 * n))), float(np.sqrt(2 * lm.cost / (2 * n))), lm.iterations)
+    return GoldStandardResult(
+        normalize_homography(H_final),
+        p,
+        map_points(H_final, p),
+        float(np.sqrt(r0 @ r0 / (2 * n))),
+        float(np.sqrt(2 * lm.cost / (2 * n))),
+        lm.iterations,
+    )
 
 
 # --------------------------------------------------------------------------- algebra
+
 
 def compose(*Hs: ArrayLike) -> np.ndarray:
     r"""The product :math:`H_1 H_2 \cdots H_k`: apply :math:`H_k` first, :math:`H_1` last.
@@ -829,20 +907,38 @@ def invert(H: ArrayLike) -> np.ndarray:
 
 HIERARCHY: dict[str, dict] = {
     "euclidean": {
-        "dof": 3, "matrix": "[[R, t], [0, 1]]",
-        "invariants": ["length", "angle", "area", "parallelism", "ratio of lengths", "collinearity", "cross-ratio"],
+        "dof": 3,
+        "matrix": "[[R, t], [0, 1]]",
+        "invariants": [
+            "length",
+            "angle",
+            "area",
+            "parallelism",
+            "ratio of lengths",
+            "collinearity",
+            "cross-ratio",
+        ],
     },
     "similarity": {
-        "dof": 4, "matrix": "[[sR, t], [0, 1]]",
+        "dof": 4,
+        "matrix": "[[sR, t], [0, 1]]",
         "invariants": ["angle", "ratio of lengths", "parallelism", "collinearity", "cross-ratio"],
     },
     "affine": {
-        "dof": 6, "matrix": "[[A, t], [0, 1]]",
-        "invariants": ["parallelism", "ratio of lengths on parallel lines", "ratio of areas", "collinearity",
-                       "cross-ratio", "line at infinity"],
+        "dof": 6,
+        "matrix": "[[A, t], [0, 1]]",
+        "invariants": [
+            "parallelism",
+            "ratio of lengths on parallel lines",
+            "ratio of areas",
+            "collinearity",
+            "cross-ratio",
+            "line at infinity",
+        ],
     },
     "projective": {
-        "dof": 8, "matrix": "[[A, t], [v^T, w]]",
+        "dof": 8,
+        "matrix": "[[A, t], [v^T, w]]",
         "invariants": ["collinearity", "incidence", "tangency", "cross-ratio"],
     },
 }
@@ -868,7 +964,9 @@ def euclidean(theta: float = 0.0, tx: float = 0.0, ty: float = 0.0) -> np.ndarra
     return H
 
 
-def similarity(scale: float = 1.0, theta: float = 0.0, tx: float = 0.0, ty: float = 0.0) -> np.ndarray:
+def similarity(
+    scale: float = 1.0, theta: float = 0.0, tx: float = 0.0, ty: float = 0.0
+) -> np.ndarray:
     """Isotropic scaling, rotation and translation: ``[[s R, t], [0, 1]]``. 4 dof."""
     check_positive(scale, "scale")
     H = euclidean(theta, tx, ty)
@@ -876,8 +974,14 @@ def similarity(scale: float = 1.0, theta: float = 0.0, tx: float = 0.0, ty: floa
     return H
 
 
-def affine(theta: float = 0.0, phi: float = 0.0, sx: float = 1.0, sy: float = 1.0,
-           tx: float = 0.0, ty: float = 0.0) -> np.ndarray:
+def affine(
+    theta: float = 0.0,
+    phi: float = 0.0,
+    sx: float = 1.0,
+    sy: float = 1.0,
+    tx: float = 0.0,
+    ty: float = 0.0,
+) -> np.ndarray:
     r"""An affinity from H&Z's decomposition :math:`A = R(\theta) R(-\phi) D R(\phi)`. 6 dof.
 
     :math:`D = \mathrm{diag}(s_x, s_y)` scales along axes rotated by :math:`\phi`, then
@@ -887,13 +991,19 @@ def affine(theta: float = 0.0, phi: float = 0.0, sx: float = 1.0, sy: float = 1.
     if sx == 0 or sy == 0:
         raise DegenerateError(f"sx, sy: a zero scale collapses the plane; got sx={sx}, sy={sy}")
     H = np.eye(3)
-    H[:2, :2] = _rot(theta) @ _rot(-check_number(phi, "phi", "radians"), "phi") @ np.diag([sx, sy]) @ _rot(phi, "phi")
+    H[:2, :2] = (
+        _rot(theta)
+        @ _rot(-check_number(phi, "phi", "radians"), "phi")
+        @ np.diag([sx, sy])
+        @ _rot(phi, "phi")
+    )
     H[:2, 2] = check_number(tx, "tx", "pixels"), check_number(ty, "ty", "pixels")
     return H
 
 
-def projective(A: ArrayLike | None = None, t: ArrayLike = (0.0, 0.0), v: ArrayLike = (0.0, 0.0),
-               w: float = 1.0) -> np.ndarray:
+def projective(
+    A: ArrayLike | None = None, t: ArrayLike = (0.0, 0.0), v: ArrayLike = (0.0, 0.0), w: float = 1.0
+) -> np.ndarray:
     r"""A general homography ``[[A, t], [v^T, w]]``; v != 0 moves the line at infinity. 8 dof.
 
     >>> projective(v=[0.001, 0.0])[2]
@@ -907,9 +1017,17 @@ def projective(A: ArrayLike | None = None, t: ArrayLike = (0.0, 0.0), v: ArrayLi
     return check_homography(H)
 
 
-def hierarchy_matrix(group: str, *, theta: float = 0.0, scale: float = 1.0, shear: float = 0.0,
-                     aspect: float = 1.0, tx: float = 0.0, ty: float = 0.0,
-                     v: ArrayLike = (0.0, 0.0)) -> np.ndarray:
+def hierarchy_matrix(
+    group: str,
+    *,
+    theta: float = 0.0,
+    scale: float = 1.0,
+    shear: float = 0.0,
+    aspect: float = 1.0,
+    tx: float = 0.0,
+    ty: float = 0.0,
+    v: ArrayLike = (0.0, 0.0),
+) -> np.ndarray:
     r"""One matrix of ``group`` (a key of :data:`HIERARCHY`) from one set of parameters.
 
     Each group uses only the parameters it has and ignores the rest, which is what lesson
@@ -975,7 +1093,9 @@ def decompose(H: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """
     Hm = normalize_homography(check_homography(H))
     if abs(Hm[2, 2]) < 1e-12:
-        raise DegenerateError("decompose: H[2, 2] = 0 (the origin maps to infinity); translate first")
+        raise DegenerateError(
+            "decompose: H[2, 2] = 0 (the origin maps to infinity); translate first"
+        )
     vvec, vs = Hm[2, :2], Hm[2, 2]
     t = Hm[:2, 2]
     Aeff = Hm[:2, :2] - np.outer(t, vvec) / vs  # sRK = A - t v^T / v
@@ -999,6 +1119,7 @@ def decompose(H: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 # --------------------------------------------------------------------------- geometry
 
+
 def rotation_homography(K: ArrayLike, R: ArrayLike, K2: ArrayLike | None = None) -> np.ndarray:
     r"""The homography between two views from one centre: :math:`H = K' R K^{-1}`.
 
@@ -1020,8 +1141,9 @@ def rotation_homography(K: ArrayLike, R: ArrayLike, K2: ArrayLike | None = None)
     return normalize_homography(K2m @ check_rotation(R) @ np.linalg.inv(Km))
 
 
-def plane_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike, n: ArrayLike, d: float,
-                     K2: ArrayLike | None = None) -> np.ndarray:
+def plane_homography(
+    K: ArrayLike, R: ArrayLike, t: ArrayLike, n: ArrayLike, d: float, K2: ArrayLike | None = None
+) -> np.ndarray:
     r"""The homography induced by a plane between two views: :math:`H = K'(R - t n^T / d) K^{-1}`.
 
     Camera 1 is :math:`K[I \mid 0]`, camera 2 is :math:`K'[R \mid t]` (cam2_from_cam1).
@@ -1050,7 +1172,9 @@ def plane_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike, n: ArrayLike, d: 
     tv = check_matrix(np.ravel(as_float(t, "t")), (3,), "t")
     nv = check_matrix(np.ravel(as_float(n, "n")), (3,), "n")
     if check_number(d, "d", "metres") == 0:
-        raise DegenerateError(f"d: the plane n . X + d = 0 must not pass through camera 1's centre; got d={d!r}")
+        raise DegenerateError(
+            f"d: the plane n . X + d = 0 must not pass through camera 1's centre; got d={d!r}"
+        )
     if not np.any(nv):
         raise CamlabInputError("n: the plane normal must be non-zero")
     H = K2m @ (check_rotation(R) - np.outer(tv, nv) / d) @ np.linalg.inv(Km)

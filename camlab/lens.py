@@ -14,6 +14,7 @@ and everything whose blur stays below an acceptable :math:`c` lies in the depth 
 :math:`[z_{near}, z_{far}]`. All lengths are in metres (any one unit works if used
 consistently). See lesson 02, sections 1-2.
 """
+
 from __future__ import annotations
 
 from typing import NamedTuple
@@ -24,8 +25,16 @@ from numpy.typing import ArrayLike
 from ._validate import CamlabInputError, as_float, check_positive
 
 __all__ = [
-    "DepthOfField", "FocusSetting", "angle_of_view", "aperture_diameter", "aperture_for_depth_of_field",
-    "circle_of_confusion", "depth_of_field", "hyperfocal_distance", "image_distance", "magnification",
+    "DepthOfField",
+    "FocusSetting",
+    "angle_of_view",
+    "aperture_diameter",
+    "aperture_for_depth_of_field",
+    "circle_of_confusion",
+    "depth_of_field",
+    "hyperfocal_distance",
+    "image_distance",
+    "magnification",
     "object_distance",
 ]
 
@@ -51,8 +60,10 @@ def _conjugate(focal_length: float, z: ArrayLike, name: str) -> np.ndarray | flo
     f = check_positive(focal_length, "focal_length", "metres")
     z = _distances(z, name)
     if name == "image_distance" and np.any(z <= f):
-        raise CamlabInputError(f"image_distance: a sensor {float(np.min(z))!r} m behind the lens is not beyond the "
-                               f"focal length f = {f!r} m, so no real object is in focus there; place it beyond f")
+        raise CamlabInputError(
+            f"image_distance: a sensor {float(np.min(z))!r} m behind the lens is not beyond the "
+            f"focal length f = {f!r} m, so no real object is in focus there; place it beyond f"
+        )
     _outside_focal_length(z, f, name)
     out = f * z / (z - f)
     return float(out) if out.ndim == 0 else out
@@ -111,7 +122,9 @@ def angle_of_view(focal_length: float, sensor_size: float, focus_distance: float
     """
     f = check_positive(focal_length, "focal_length", "metres")
     w = check_positive(sensor_size, "sensor_size", "metres")
-    focused_at_infinity = isinstance(focus_distance, (int, float, np.floating)) and focus_distance == np.inf
+    focused_at_infinity = (
+        isinstance(focus_distance, (int, float, np.floating)) and focus_distance == np.inf
+    )
     if focused_at_infinity:
         z_i = f
     else:
@@ -128,7 +141,9 @@ class FocusSetting(NamedTuple):
     f_number: float
 
 
-def aperture_for_depth_of_field(focal_length: float, coc: float, near: float, far: float) -> FocusSetting:
+def aperture_for_depth_of_field(
+    focal_length: float, coc: float, near: float, far: float
+) -> FocusSetting:
     r"""The focus distance and f-number whose depth of field is exactly ``[near, far]`` for acceptable blur ``coc``.
 
     The blur :math:`c(z) = \frac{f}{N} \frac{f}{s - f} \frac{|z - s|}{z}` must equal ``coc``
@@ -149,7 +164,9 @@ def aperture_for_depth_of_field(focal_length: float, coc: float, near: float, fa
     n = check_positive(near, "near", "metres")
     r = check_positive(far, "far", "metres")
     if not n < r:
-        raise CamlabInputError(f"near, far: expected near < far (metres), got near = {near!r}, far = {far!r}; swap them")
+        raise CamlabInputError(
+            f"near, far: expected near < far (metres), got near = {near!r}, far = {far!r}; swap them"
+        )
     _outside_focal_length(np.asarray(n), f, "near")
     s = 2.0 * n * r / (n + r)
     return FocusSetting(float(s), float(f * f / (c * (s - f)) * (r - n) / (r + n)))
@@ -161,11 +178,14 @@ def aperture_diameter(focal_length: float, f_number: float) -> float:
     >>> aperture_diameter(0.05, 2.0)
     0.025
     """
-    return check_positive(focal_length, "focal_length", "metres") / check_positive(f_number, "f_number")
+    return check_positive(focal_length, "focal_length", "metres") / check_positive(
+        f_number, "f_number"
+    )
 
 
-def circle_of_confusion(focal_length: float, f_number: float, focus_distance: float,
-                        depth: ArrayLike) -> np.ndarray | float:
+def circle_of_confusion(
+    focal_length: float, f_number: float, focus_distance: float, depth: ArrayLike
+) -> np.ndarray | float:
     r"""Blur-disc diameter on the sensor (metres) for points at ``depth`` when focused at ``focus_distance``.
 
     .. math:: c = \frac{f}{N} \frac{f}{s - f} \frac{|z - s|}{z}
@@ -214,7 +234,9 @@ class DepthOfField(NamedTuple):
         return self.far - self.near
 
 
-def depth_of_field(focal_length: float, f_number: float, focus_distance: float, coc: float) -> DepthOfField:
+def depth_of_field(
+    focal_length: float, f_number: float, focus_distance: float, coc: float
+) -> DepthOfField:
     r"""Depth of field of a thin lens focused at :math:`s`, for acceptable blur :math:`c`.
 
     .. math::

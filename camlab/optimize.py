@@ -58,6 +58,7 @@ differentiates the residuals by central differences.
 exactly; wrap the residual function with it (and use the numeric Jacobian, or the chain
 rule) to down-weight outliers.
 """
+
 from __future__ import annotations
 
 from typing import Any, Callable, NamedTuple
@@ -67,8 +68,17 @@ from numpy.typing import ArrayLike
 
 from ._validate import CamlabInputError, ConvergenceError, check_finite
 
-__all__ = ["LMResult", "dense_damped_solve", "dense_normal_equations", "huber_residuals", "levenberg_marquardt",
-           "lm_step", "numeric_jacobian", "unit_sphere_basis", "unit_sphere_update"]
+__all__ = [
+    "LMResult",
+    "dense_damped_solve",
+    "dense_normal_equations",
+    "huber_residuals",
+    "levenberg_marquardt",
+    "lm_step",
+    "numeric_jacobian",
+    "unit_sphere_basis",
+    "unit_sphere_update",
+]
 
 
 class LMResult(NamedTuple):
@@ -138,7 +148,9 @@ def lm_step(J: ArrayLike, r: ArrayLike, mu: float) -> np.ndarray:
     Jm = np.array(J, dtype=float)
     rv = np.array(r, dtype=float).ravel()
     if Jm.ndim != 2 or Jm.shape[0] != rv.size:
-        raise CamlabInputError(f"J: expected an (m, n) Jacobian with m = len(r) = {rv.size}, got shape {Jm.shape}")
+        raise CamlabInputError(
+            f"J: expected an (m, n) Jacobian with m = len(r) = {rv.size}, got shape {Jm.shape}"
+        )
     if not (np.isfinite(mu) and mu >= 0):
         raise CamlabInputError(f"mu: expected a damping >= 0, got {mu!r}")
     check_finite(Jm, "J")
@@ -147,8 +159,9 @@ def lm_step(J: ArrayLike, r: ArrayLike, mu: float) -> np.ndarray:
     return dense_damped_solve(A, g, float(mu))
 
 
-def numeric_jacobian(residuals: Callable[[np.ndarray], np.ndarray], x: ArrayLike,
-                     step: float = 1e-6) -> np.ndarray:
+def numeric_jacobian(
+    residuals: Callable[[np.ndarray], np.ndarray], x: ArrayLike, step: float = 1e-6
+) -> np.ndarray:
     r"""The (m, n) Jacobian of ``residuals`` at ``x`` by central differences.
 
     :math:`J_{:, k} \approx \frac{r(x + h_k e_k) - r(x - h_k e_k)}{2 h_k}` with
@@ -165,8 +178,10 @@ def numeric_jacobian(residuals: Callable[[np.ndarray], np.ndarray], x: ArrayLike
     for k in range(x.size):
         e = np.zeros_like(x)
         e[k] = h[k]
-        cols.append((np.asarray(residuals(x + e), dtype=float) - np.asarray(residuals(x - e), dtype=float))
-                    / (2 * h[k]))
+        cols.append(
+            (np.asarray(residuals(x + e), dtype=float) - np.asarray(residuals(x - e), dtype=float))
+            / (2 * h[k])
+        )
     return np.stack(cols, axis=-1)
 
 
@@ -273,8 +288,10 @@ def levenberg_marquardt(
         jacobian = lambda x: numeric_jacobian(residuals, x)  # noqa: E731
     r = np.asarray(residuals(x), dtype=float)
     if not np.all(np.isfinite(r)):
-        raise ConvergenceError("levenberg_marquardt: the residuals at the starting point x0 are not finite; "
-                               "start from parameters where the model is defined")
+        raise ConvergenceError(
+            "levenberg_marquardt: the residuals at the starting point x0 are not finite; "
+            "start from parameters where the model is defined"
+        )
     cost = 0.5 * float(r @ r)
     J = jacobian(x)
     A, g = normal_equations(J, r)
@@ -283,7 +300,9 @@ def levenberg_marquardt(
     converged, message = False, f"stopped after max_iter = {max_iter} iterations"
     it = 0
     if np.max(np.abs(g), initial=0.0) <= gtol:
-        return LMResult(x, cost, r, np.array(costs), np.array(mus), 0, True, "gradient is zero at x0", J, (A, g))
+        return LMResult(
+            x, cost, r, np.array(costs), np.array(mus), 0, True, "gradient is zero at x0", J, (A, g)
+        )
     while it < max_iter:
         it += 1
         delta = damped_solve(A, g, mu)
@@ -323,7 +342,10 @@ def levenberg_marquardt(
             costs.append(cost)
             mus.append(mu)
             if mu > 1e20:
-                converged, message = True, "damping exploded: no step decreases the cost (at a minimum)"
+                converged, message = (
+                    True,
+                    "damping exploded: no step decreases the cost (at a minimum)",
+                )
                 break
     return LMResult(x, cost, r, np.array(costs), np.array(mus), it, converged, message, J, (A, g))
 
@@ -363,11 +385,13 @@ def huber_residuals(errors: ArrayLike, delta: float) -> np.ndarray:
     """
     e = np.asarray(errors, dtype=float)
     if e.ndim != 2:
-        raise CamlabInputError(f"errors: expected an (N, D) array of error vectors, got shape {e.shape}")
+        raise CamlabInputError(
+            f"errors: expected an (N, D) array of error vectors, got shape {e.shape}"
+        )
     if not (np.isfinite(delta) and delta > 0):
         raise CamlabInputError(f"delta: expected a positive threshold, got {delta!r}")
     s = np.linalg.norm(e, axis=1, keepdims=True)
     big = s > delta
     scale = np.ones_like(s)
-    scale[big] = np.sqrt(2 * delta * s[big] - delta ** 2) / s[big]
+    scale[big] = np.sqrt(2 * delta * s[big] - delta**2) / s[big]
     return e * scale

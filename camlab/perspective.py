@@ -17,6 +17,7 @@ and synthetic photographs of textured planes with known ground truth
 Corners are (u, v) pixels, (column, row), origin at the centre of the top-left pixel,
 in the order top-left, top-right, bottom-right, bottom-left (clockwise on screen).
 """
+
 from __future__ import annotations
 
 from typing import NamedTuple, Sequence
@@ -24,8 +25,17 @@ from typing import NamedTuple, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, DegenerateError, as_points, check_image, check_positive, check_shape, check_size
+from ._validate import (
+    CamlabInputError,
+    DegenerateError,
+    as_points,
+    check_image,
+    check_positive,
+    check_shape,
+    check_size,
+)
 from .homography import estimate_homography
+
 # The synthetic plane photos live in camlab.scenes; they are re-exported here for lesson 10.
 from .scenes import (
     PlanePhoto,
@@ -40,9 +50,23 @@ from .scenes import (
 from .warp import warp_perspective
 
 __all__ = [
-    "AspectRatio", "DocumentNotFoundError", "PlanePhoto", "Rectified", "check_quadrilateral", "desk_background",
-    "estimate_aspect_ratio", "facade_texture", "find_document", "look_at_plane", "order_corners", "rectangle_homography",
-    "page_texture", "painting_texture", "photograph_plane", "rectify_quadrilateral", "sample_photo",
+    "AspectRatio",
+    "DocumentNotFoundError",
+    "PlanePhoto",
+    "Rectified",
+    "check_quadrilateral",
+    "desk_background",
+    "estimate_aspect_ratio",
+    "facade_texture",
+    "find_document",
+    "look_at_plane",
+    "order_corners",
+    "rectangle_homography",
+    "page_texture",
+    "painting_texture",
+    "photograph_plane",
+    "rectify_quadrilateral",
+    "sample_photo",
 ]
 
 
@@ -51,6 +75,7 @@ class DocumentNotFoundError(DegenerateError):
 
 
 # --------------------------------------------------------------------------- corners
+
 
 def _quad(corners: ArrayLike) -> np.ndarray:
     q = as_points(corners, 2, "corners").array
@@ -111,7 +136,7 @@ def check_quadrilateral(corners: ArrayLike) -> np.ndarray:
     for i in range(4):
         a, b, c = q[i], q[(i + 1) % 4], q[(i + 2) % 4]
         cross = (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0])
-        if abs(cross) < 1e-9 * scale ** 2:
+        if abs(cross) < 1e-9 * scale**2:
             raise DegenerateError(
                 f"corners: corners {i}, {(i + 1) % 4}, {(i + 2) % 4} are collinear or coincide "
                 f"({a}, {b}, {c}); the four corners must form a quadrilateral"
@@ -127,8 +152,12 @@ def check_quadrilateral(corners: ArrayLike) -> np.ndarray:
             "corners: the corners go counter-clockwise on screen, so the rectified view would be mirrored; "
             "give them as top-left, top-right, bottom-right, bottom-left, or pass reorder=True"
         )
-    turns = [np.cross(np.append(q[(i + 1) % 4] - q[i], 0), np.append(q[(i + 2) % 4] - q[(i + 1) % 4], 0))[2]
-             for i in range(4)]
+    turns = [
+        np.cross(
+            np.append(q[(i + 1) % 4] - q[i], 0), np.append(q[(i + 2) % 4] - q[(i + 1) % 4], 0)
+        )[2]
+        for i in range(4)
+    ]
     if min(turns) < 0:
         raise DegenerateError(
             "corners: the quadrilateral is not convex, and no photograph of a rectangle is; check the corners"
@@ -137,6 +166,7 @@ def check_quadrilateral(corners: ArrayLike) -> np.ndarray:
 
 
 # --------------------------------------------------------------------------- aspect ratio
+
 
 class AspectRatio(NamedTuple):
     """The rectangle's shape recovered from its image.
@@ -219,8 +249,10 @@ def estimate_aspect_ratio(
     if principal_point is not None:
         pp = as_points(principal_point, 2, "principal_point").array[0]
     elif image_shape is not None:
-        image_shape = check_shape(tuple(image_shape)[:2] if isinstance(image_shape, (tuple, list)) else image_shape,
-                                  "image_shape")
+        image_shape = check_shape(
+            tuple(image_shape)[:2] if isinstance(image_shape, (tuple, list)) else image_shape,
+            "image_shape",
+        )
         pp = np.array([(image_shape[1] - 1) / 2, (image_shape[0] - 1) / 2])
     else:
         raise CamlabInputError(
@@ -240,7 +272,9 @@ def estimate_aspect_ratio(
     par2 = abs(n2[2]) < 1e-9 * np.linalg.norm(n2)
     par3 = abs(n3[2]) < 1e-9 * np.linalg.norm(n3)
     if par2 and par3:
-        return AspectRatio(float(np.linalg.norm(n2[:2]) / np.linalg.norm(n3[:2])), focal_length, "not needed")
+        return AspectRatio(
+            float(np.linalg.norm(n2[:2]) / np.linalg.norm(n3[:2])), focal_length, "not needed"
+        )
     if focal_length is not None:
         f, source = focal_length / scale, "given"
     else:
@@ -255,12 +289,13 @@ def estimate_aspect_ratio(
                     "focal_length or image_shape"
                 )
             f, source = max(image_shape[0], image_shape[1]) / scale, "assumed"
-    num = (n2[0] ** 2 + n2[1] ** 2) / f ** 2 + n2[2] ** 2
-    den = (n3[0] ** 2 + n3[1] ** 2) / f ** 2 + n3[2] ** 2
+    num = (n2[0] ** 2 + n2[1] ** 2) / f**2 + n2[2] ** 2
+    den = (n3[0] ** 2 + n3[1] ** 2) / f**2 + n3[2] ** 2
     return AspectRatio(float(np.sqrt(num / den)), float(f * scale), source)
 
 
 # --------------------------------------------------------------------------- rectification
+
 
 class Rectified(NamedTuple):
     """A rectified view.
@@ -296,7 +331,9 @@ def rectangle_homography(corners: ArrayLike, size: tuple[int, int]) -> np.ndarra
     """
     q = _quad(corners)
     width, height = check_size(size, "size", minimum=2)
-    target = np.array([[0, 0], [width - 1, 0], [width - 1, height - 1], [0, height - 1]], dtype=float)
+    target = np.array(
+        [[0, 0], [width - 1, 0], [width - 1, height - 1], [0, height - 1]], dtype=float
+    )
     return estimate_homography(q, target)
 
 
@@ -349,19 +386,24 @@ def rectify_quadrilateral(
     q = check_quadrilateral(q)
     aspect = None
     if size is None:
-        aspect = estimate_aspect_ratio(q, img.shape, focal_length=focal_length, principal_point=principal_point)
+        aspect = estimate_aspect_ratio(
+            q, img.shape, focal_length=focal_length, principal_point=principal_point
+        )
         width = max(np.linalg.norm(q[1] - q[0]), np.linalg.norm(q[2] - q[3]))
         w_out, h_out = int(round(width)), int(round(width / aspect.ratio))
     else:
         w_out, h_out = check_size(size, "size", minimum=2)
     if w_out < 2 or h_out < 2 or w_out * h_out > 40_000_000:
-        raise CamlabInputError(f"size: expected a (width, height) of at least 2 x 2 pixels, got ({w_out}, {h_out})")
+        raise CamlabInputError(
+            f"size: expected a (width, height) of at least 2 x 2 pixels, got ({w_out}, {h_out})"
+        )
     H = rectangle_homography(q, (w_out, h_out))
     out = warp_perspective(img, H, (h_out, w_out), interpolation=interpolation, method=method)
     return Rectified(out, H, q, aspect)
 
 
 # --------------------------------------------------------------------------- document finder
+
 
 def find_document(image: ArrayLike, min_area_fraction: float = 0.1) -> np.ndarray:
     """Find the largest convex quadrilateral (a page) in a photo: "scan this page".
@@ -392,7 +434,9 @@ def find_document(image: ArrayLike, min_area_fraction: float = 0.1) -> np.ndarra
 
     img = check_image(image)
     if not 0 < min_area_fraction < 1:
-        raise CamlabInputError(f"min_area_fraction: expected a number in (0, 1), got {min_area_fraction!r}")
+        raise CamlabInputError(
+            f"min_area_fraction: expected a number in (0, 1), got {min_area_fraction!r}"
+        )
     grey = img if img.ndim == 2 else cv2.cvtColor(img[..., :3].astype(np.uint8), cv2.COLOR_RGB2GRAY)
     grey = cv2.GaussianBlur(grey.astype(np.uint8), (5, 5), 0)
     med = float(np.median(grey))
@@ -409,14 +453,25 @@ def find_document(image: ArrayLike, min_area_fraction: float = 0.1) -> np.ndarra
         if best_area == 0:
             best_vertices, best_area = len(approx), area
         # The image frame itself (edges everywhere, as in noise or texture) is not a page.
-        frame = np.all((approx.min(axis=1) <= 2) | (approx[:, 0] >= grey.shape[1] - 3) | (approx[:, 1] >= grey.shape[0] - 3))
-        if len(approx) == 4 and area >= min_area_fraction and cv2.isContourConvex(approx) and not frame:
+        frame = np.all(
+            (approx.min(axis=1) <= 2)
+            | (approx[:, 0] >= grey.shape[1] - 3)
+            | (approx[:, 1] >= grey.shape[0] - 3)
+        )
+        if (
+            len(approx) == 4
+            and area >= min_area_fraction
+            and cv2.isContourConvex(approx)
+            and not frame
+        ):
             return order_corners(approx.astype(float))
     if not contours:
         why = "no edges formed a closed outline"
     else:
-        why = (f"the largest outline simplifies to {best_vertices} vertices and covers "
-               f"{100 * best_area:.0f}% of the image")
+        why = (
+            f"the largest outline simplifies to {best_vertices} vertices and covers "
+            f"{100 * best_area:.0f}% of the image"
+        )
     raise DocumentNotFoundError(
         f"find_document: no convex quadrilateral covering at least {100 * min_area_fraction:.0f}% of the image "
         f"({why}); photograph the page against a contrasting background, or give the corners by hand"
@@ -424,4 +479,3 @@ def find_document(image: ArrayLike, min_area_fraction: float = 0.1) -> np.ndarra
 
 
 # --------------------------------------------------------------------------- synthetic photos
-

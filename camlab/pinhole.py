@@ -12,6 +12,7 @@ blurs each point into a disc: geometric blur :math:`d (1 + f / Z)` grows with th
 diffraction (the Airy disc, :math:`2.44 \lambda f / d`) grows as it shrinks, and their sum
 is smallest at :math:`d^* = \sqrt{2.44 \lambda f / (1 + f/Z)}`. See lesson 01.
 """
+
 from __future__ import annotations
 
 from typing import NamedTuple
@@ -22,8 +23,12 @@ from numpy.typing import ArrayLike
 from ._validate import CamlabInputError, as_float, as_points, check_positive
 
 __all__ = [
-    "PinholeBlur", "diffraction_blur", "geometric_blur", "optimal_pinhole_diameter",
-    "pinhole_blur", "project_pinhole",
+    "PinholeBlur",
+    "diffraction_blur",
+    "geometric_blur",
+    "optimal_pinhole_diameter",
+    "pinhole_blur",
+    "project_pinhole",
 ]
 
 
@@ -67,11 +72,15 @@ def project_pinhole(points: ArrayLike, focal_length: float, plane: str = "virtua
 def _diameters(diameter: ArrayLike) -> np.ndarray:
     d = as_float(diameter, "diameter")
     if np.any(~(d > 0)) or not np.all(np.isfinite(d)):
-        raise CamlabInputError(f"diameter: expected positive finite pinhole diameters in metres, got {diameter!r}")
+        raise CamlabInputError(
+            f"diameter: expected positive finite pinhole diameters in metres, got {diameter!r}"
+        )
     return d
 
 
-def geometric_blur(diameter: ArrayLike, focal_length: float, object_distance: float = np.inf) -> np.ndarray | float:
+def geometric_blur(
+    diameter: ArrayLike, focal_length: float, object_distance: float = np.inf
+) -> np.ndarray | float:
     r"""Blur-disc diameter from the hole's size alone: :math:`d (Z + f) / Z` (metres).
 
     Rays from a point at distance Z through a hole of diameter d diverge into a cone that
@@ -82,12 +91,18 @@ def geometric_blur(diameter: ArrayLike, focal_length: float, object_distance: fl
     """
     d = _diameters(diameter)
     f = check_positive(focal_length, "focal_length", "metres")
-    Z = check_positive(object_distance, "object_distance", "metres") if np.isfinite(object_distance) else np.inf
+    Z = (
+        check_positive(object_distance, "object_distance", "metres")
+        if np.isfinite(object_distance)
+        else np.inf
+    )
     out = d * (1 + f / Z)
     return float(out) if out.ndim == 0 else out
 
 
-def diffraction_blur(diameter: ArrayLike, focal_length: float, wavelength: float = 550e-9) -> np.ndarray | float:
+def diffraction_blur(
+    diameter: ArrayLike, focal_length: float, wavelength: float = 550e-9
+) -> np.ndarray | float:
     r"""Airy-disc diameter (to the first dark ring) for a hole of ``diameter``: :math:`2.44 \lambda f / d`.
 
     >>> round(float(diffraction_blur(0.5e-3, 0.1)) * 1e3, 4)     # green light, f = 100 mm
@@ -108,16 +123,21 @@ class PinholeBlur(NamedTuple):
     total: np.ndarray | float
 
 
-def pinhole_blur(diameter: ArrayLike, focal_length: float, object_distance: float = np.inf,
-                 wavelength: float = 550e-9) -> PinholeBlur:
+def pinhole_blur(
+    diameter: ArrayLike,
+    focal_length: float,
+    object_distance: float = np.inf,
+    wavelength: float = 550e-9,
+) -> PinholeBlur:
     """Both blur terms for a pinhole of ``diameter`` and their sum (a simple, conservative total)."""
     g = geometric_blur(diameter, focal_length, object_distance)
     k = diffraction_blur(diameter, focal_length, wavelength)
     return PinholeBlur(g, k, g + k)
 
 
-def optimal_pinhole_diameter(focal_length: float, wavelength: float = 550e-9,
-                             object_distance: float = np.inf) -> float:
+def optimal_pinhole_diameter(
+    focal_length: float, wavelength: float = 550e-9, object_distance: float = np.inf
+) -> float:
     r"""The diameter minimising :func:`pinhole_blur`'s total, :math:`\sqrt{2.44 \lambda f / (1 + f/Z)}`.
 
     Setting :math:`\frac{d}{dd}\,[d m + 2.44 \lambda f / d] = 0` with :math:`m = 1 + f/Z`.
@@ -128,5 +148,9 @@ def optimal_pinhole_diameter(focal_length: float, wavelength: float = 550e-9,
     """
     f = check_positive(focal_length, "focal_length", "metres")
     lam = check_positive(wavelength, "wavelength", "metres")
-    m = 1 + f / check_positive(object_distance, "object_distance", "metres") if np.isfinite(object_distance) else 1.0
+    m = (
+        1 + f / check_positive(object_distance, "object_distance", "metres")
+        if np.isfinite(object_distance)
+        else 1.0
+    )
     return float(np.sqrt(2.44 * lam * f / m))

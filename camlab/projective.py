@@ -12,6 +12,7 @@ Conventions (docs/conventions.md): points are rows, ``(N, 2)`` Euclidean or
 rows ``(N, 3)``; homographies map points by ``x' = H x`` (``X @ H.T`` for rows) and
 lines by ``l' = H^{-T} l``. See lesson 06.
 """
+
 from __future__ import annotations
 
 from typing import NamedTuple
@@ -22,11 +23,31 @@ from numpy.typing import ArrayLike
 from ._validate import CamlabInputError, DegenerateError, as_points, check_matrix
 
 __all__ = [
-    "LINE_AT_INFINITY", "DegenerateError", "clip_line", "cross_ratio", "from_homogeneous", "horizon",
-    "ideal_point", "is_ideal", "is_on_line", "join", "map_lines", "map_points", "meet", "normalize_lines",
-    "splits_at_infinity", "VanishingPointFit", "segments_pointing_at", "vanishing_point_ransac",
-    "normalize_points", "point_line_distance", "to_homogeneous", "vanishing_point",
-    "HartleyNormalized", "hartley_normalization", "hartley_normalize",
+    "LINE_AT_INFINITY",
+    "DegenerateError",
+    "clip_line",
+    "cross_ratio",
+    "from_homogeneous",
+    "horizon",
+    "ideal_point",
+    "is_ideal",
+    "is_on_line",
+    "join",
+    "map_lines",
+    "map_points",
+    "meet",
+    "normalize_lines",
+    "splits_at_infinity",
+    "VanishingPointFit",
+    "segments_pointing_at",
+    "vanishing_point_ransac",
+    "normalize_points",
+    "point_line_distance",
+    "to_homogeneous",
+    "vanishing_point",
+    "HartleyNormalized",
+    "hartley_normalization",
+    "hartley_normalize",
 ]
 
 LINE_AT_INFINITY = np.array([0.0, 0.0, 1.0])
@@ -97,21 +118,27 @@ def _as_homogeneous_2d(x: ArrayLike, name: str) -> tuple[np.ndarray, bool]:
     if a.shape[1] == 2:
         a = np.hstack([a, np.ones((len(a), 1))])
     if np.any(np.all(a == 0, axis=1)):
-        raise CamlabInputError(f"{name}: (0, 0, 0) is not a point or a line of the projective plane")
+        raise CamlabInputError(
+            f"{name}: (0, 0, 0) is not a point or a line of the projective plane"
+        )
     return a, p.single
 
 
 def _as_lines(x: ArrayLike, name: str) -> tuple[np.ndarray, bool]:
     p = as_points(x, 3, name)
     if np.any(np.all(p.array == 0, axis=1)):
-        raise CamlabInputError(f"{name}: (0, 0, 0) is not a line; a line is (a, b, c) with ax + by + c = 0")
+        raise CamlabInputError(
+            f"{name}: (0, 0, 0) is not a line; a line is (a, b, c) with ax + by + c = 0"
+        )
     return p.array, p.single
 
 
 def _check_nonzero_H(H: ArrayLike) -> np.ndarray:
     Hm = check_matrix(H, (3, 3), "H")
     if not Hm.any():
-        raise DegenerateError("H: all zeros, which maps every point to (0, 0, 0), not a point; pass a homography")
+        raise DegenerateError(
+            "H: all zeros, which maps every point to (0, 0, 0), not a point; pass a homography"
+        )
     return Hm
 
 
@@ -119,17 +146,25 @@ def _unit_rows(a: np.ndarray) -> np.ndarray:
     return a / np.linalg.norm(a, axis=1, keepdims=True)
 
 
-def _cross(a: np.ndarray, b: np.ndarray, sa: bool, sb: bool, what: str, same_message: str) -> np.ndarray:
+def _cross(
+    a: np.ndarray, b: np.ndarray, sa: bool, sb: bool, what: str, same_message: str
+) -> np.ndarray:
     """Row-wise a x b for join and meet, refusing inputs that are equal up to scale."""
     if len(a) != len(b) and not (sa or sb):
-        raise CamlabInputError(f"{what}: expected equally many rows or a single one, got {len(a)} and {len(b)}")
+        raise CamlabInputError(
+            f"{what}: expected equally many rows or a single one, got {len(a)} and {len(b)}"
+        )
     c = np.cross(a, b)
     # Scale-free test for a zero cross product: the inputs were equal up to scale.
-    same = np.linalg.norm(c, axis=1) / (np.linalg.norm(a, axis=1) * np.linalg.norm(b, axis=1)) < _REL_TOL
+    same = (
+        np.linalg.norm(c, axis=1) / (np.linalg.norm(a, axis=1) * np.linalg.norm(b, axis=1))
+        < _REL_TOL
+    )
     if same.any():
         i = int(np.argmax(same))
-        raise DegenerateError(f"{what}: {same_message} (row {i}: {a[min(i, len(a) - 1)]} and "
-                              f"{b[min(i, len(b) - 1)]})")
+        raise DegenerateError(
+            f"{what}: {same_message} (row {i}: {a[min(i, len(a) - 1)]} and {b[min(i, len(b) - 1)]})"
+        )
     return c[0] if sa and sb else c
 
 
@@ -161,8 +196,14 @@ def join(p: ArrayLike, q: ArrayLike) -> np.ndarray:
     """
     a, sa = _as_homogeneous_2d(p, "p")
     b, sb = _as_homogeneous_2d(q, "q")
-    return _cross(a, b, sa, sb, "join", "p and q coincide, so no unique line passes through them; "
-                                        "pick two distinct points")
+    return _cross(
+        a,
+        b,
+        sa,
+        sb,
+        "join",
+        "p and q coincide, so no unique line passes through them; pick two distinct points",
+    )
 
 
 def meet(l: ArrayLike, m: ArrayLike) -> np.ndarray:
@@ -194,8 +235,14 @@ def meet(l: ArrayLike, m: ArrayLike) -> np.ndarray:
     """
     a, sa = _as_lines(l, "l")
     b, sb = _as_lines(m, "m")
-    return _cross(a, b, sa, sb, "meet", "l and m are the same line, so they share every point; "
-                                        "pick two distinct lines")
+    return _cross(
+        a,
+        b,
+        sa,
+        sb,
+        "meet",
+        "l and m are the same line, so they share every point; pick two distinct lines",
+    )
 
 
 def is_on_line(points: ArrayLike, line: ArrayLike, tol: float = 1e-9) -> np.ndarray:
@@ -400,7 +447,9 @@ def cross_ratio(points: ArrayLike) -> float:
     """
     pts = as_points(points, (2, 3), "points", min_count=4).array
     if len(pts) != 4:
-        raise CamlabInputError(f"points: expected exactly 4 collinear points A, B, C, D, got {len(pts)}")
+        raise CamlabInputError(
+            f"points: expected exactly 4 collinear points A, B, C, D, got {len(pts)}"
+        )
     x, _ = _as_homogeneous_2d(pts, "points")
     xu = _unit_rows(x)
     # The line through the two points farthest apart (in the unit-sphere sense).
@@ -408,7 +457,9 @@ def cross_ratio(points: ArrayLike) -> float:
     i, j = max(pairs, key=lambda ij: np.linalg.norm(np.cross(xu[ij[0]], xu[ij[1]])))
     line = np.cross(xu[i], xu[j])
     if np.linalg.norm(line) < _REL_TOL:
-        raise DegenerateError("points: all four points coincide; the cross-ratio needs distinct points")
+        raise DegenerateError(
+            "points: all four points coincide; the cross-ratio needs distinct points"
+        )
     line /= np.linalg.norm(line)
     off = np.abs(xu @ line)
     if off.max() > 1e-7:
@@ -424,7 +475,9 @@ def cross_ratio(points: ArrayLike) -> float:
 
     den = det(b, c) * det(a, d)
     if abs(den) < 1e-12:
-        raise DegenerateError("points: B = C or A = D, so the cross-ratio is undefined; use distinct points")
+        raise DegenerateError(
+            "points: B = C or A = D, so the cross-ratio is undefined; use distinct points"
+        )
     return det(a, c) * det(b, d) / den
 
 
@@ -465,20 +518,26 @@ def vanishing_point(segments: ArrayLike) -> np.ndarray:
         raise CamlabInputError("segments: expected finite coordinates, found NaN or inf")
     lengths = np.linalg.norm(s[:, 1] - s[:, 0], axis=1)
     if np.any(lengths == 0):
-        raise DegenerateError(f"segments: segment {int(np.argmin(lengths))} has zero length; it defines no line")
+        raise DegenerateError(
+            f"segments: segment {int(np.argmin(lengths))} has zero length; it defines no line"
+        )
     T = hartley_normalization(s.reshape(-1, 2), "segments")
     ends = [to_homogeneous(s[:, k]) @ T.T for k in (0, 1)]
     lines = normalize_lines(np.cross(ends[0], ends[1]))
     _, sv, vt = np.linalg.svd(lines)
     if sv[1] < 1e-9 * sv[0]:
-        raise DegenerateError("segments: all segments lie on one line, so they do not fix a vanishing point")
+        raise DegenerateError(
+            "segments: all segments lie on one line, so they do not fix a vanishing point"
+        )
     v = np.linalg.solve(T, vt[-1])  # undo the conditioning: v = T^-1 v_n
     if abs(v[2]) <= 1e-12 * np.linalg.norm(v[:2]):
         v[2] = 0.0  # parallel to round-off: the vanishing point is ideal, not at 1e16 px
     return normalize_points(v)
 
 
-def segments_pointing_at(segments: ArrayLike, point_h: ArrayLike, tol_deg: float = 1.5) -> np.ndarray:
+def segments_pointing_at(
+    segments: ArrayLike, point_h: ArrayLike, tol_deg: float = 1.5
+) -> np.ndarray:
     """Which segments point at the (possibly ideal) point, within ``tol_deg`` degrees.
 
     The angle is measured at each segment's midpoint m, between the segment's direction
@@ -490,7 +549,9 @@ def segments_pointing_at(segments: ArrayLike, point_h: ArrayLike, tol_deg: float
     mid, d = segs.mean(axis=1), segs[:, 1] - segs[:, 0]
     to_v = v[:2] - mid * v[2]
     with np.errstate(invalid="ignore", divide="ignore"):
-        cos = np.abs(np.sum(d * to_v, axis=1)) / (np.linalg.norm(d, axis=1) * np.linalg.norm(to_v, axis=1))
+        cos = np.abs(np.sum(d * to_v, axis=1)) / (
+            np.linalg.norm(d, axis=1) * np.linalg.norm(to_v, axis=1)
+        )
     return np.nan_to_num(np.degrees(np.arccos(np.clip(cos, 0, 1))), nan=180.0) < tol_deg
 
 
@@ -501,8 +562,12 @@ class VanishingPointFit(NamedTuple):
     inliers: np.ndarray
 
 
-def vanishing_point_ransac(segments: ArrayLike, tol_deg: float = 1.5, samples: int = 300,
-                           rng: np.random.Generator | int | None = None) -> VanishingPointFit:
+def vanishing_point_ransac(
+    segments: ArrayLike,
+    tol_deg: float = 1.5,
+    samples: int = 300,
+    rng: np.random.Generator | int | None = None,
+) -> VanishingPointFit:
     """The vanishing point most segments point at, robust to segments that belong to none.
 
     RANSAC (Fischler & Bolles): two random segments propose the meet of their lines; every
@@ -524,7 +589,9 @@ def vanishing_point_ransac(segments: ArrayLike, tol_deg: float = 1.5, samples: i
     """
     segs = np.asarray(segments, dtype=float)
     if segs.ndim != 3 or segs.shape[1:] != (2, 2) or len(segs) < 2:
-        raise CamlabInputError(f"segments: expected (N, 2, 2) with N >= 2 segments, got shape {segs.shape}")
+        raise CamlabInputError(
+            f"segments: expected (N, 2, 2) with N >= 2 segments, got shape {segs.shape}"
+        )
     rng = np.random.default_rng(rng)
     ones = np.ones((len(segs), 1))
     lines = np.cross(np.hstack([segs[:, 0], ones]), np.hstack([segs[:, 1], ones]))
@@ -538,7 +605,9 @@ def vanishing_point_ransac(segments: ArrayLike, tol_deg: float = 1.5, samples: i
         if votes.sum() > best.sum():
             best = votes
     if best.sum() < 2:
-        raise DegenerateError("segments: no two segments point at a common point; there is no vanishing point here")
+        raise DegenerateError(
+            "segments: no two segments point at a common point; there is no vanishing point here"
+        )
     return VanishingPointFit(vanishing_point(segs[best]), best)
 
 
@@ -550,8 +619,17 @@ def horizon(vp1: ArrayLike, vp2: ArrayLike) -> np.ndarray:
     """
     a, sa = _as_homogeneous_2d(vp1, "vp1")
     b, sb = _as_homogeneous_2d(vp2, "vp2")
-    return normalize_lines(_cross(a, b, sa, sb, "horizon", "vp1 and vp2 coincide, so they do not fix a line; "
-                                                          "use the vanishing points of two different directions"))
+    return normalize_lines(
+        _cross(
+            a,
+            b,
+            sa,
+            sb,
+            "horizon",
+            "vp1 and vp2 coincide, so they do not fix a line; "
+            "use the vanishing points of two different directions",
+        )
+    )
 
 
 def _interval(lim: ArrayLike, name: str) -> tuple[float, float]:
@@ -594,8 +672,10 @@ def clip_line(line: ArrayLike, xlim: tuple[float, float], ylim: tuple[float, flo
     eps = 1e-9 * span
     inside = (
         np.isfinite(hits).all(axis=1)
-        & (hits[:, 0] >= x0 - eps) & (hits[:, 0] <= x1 + eps)
-        & (hits[:, 1] >= y0 - eps) & (hits[:, 1] <= y1 + eps)
+        & (hits[:, 0] >= x0 - eps)
+        & (hits[:, 0] <= x1 + eps)
+        & (hits[:, 1] >= y0 - eps)
+        & (hits[:, 1] <= y1 + eps)
     )
     pts = hits[inside]
     if len(pts) < 2:
@@ -609,6 +689,7 @@ def clip_line(line: ArrayLike, xlim: tuple[float, float], ylim: tuple[float, flo
 
 
 # --------------------------------------------------------------------------- conditioning
+
 
 def hartley_normalization(points: ArrayLike, name: str = "points") -> np.ndarray:
     r"""Hartley's similarity T that centres (N, D) points and scales their mean distance to :math:`\sqrt D`.
@@ -650,7 +731,9 @@ def hartley_normalization(points: ArrayLike, name: str = "points") -> np.ndarray
     c = p.mean(axis=0)
     spread = np.mean(np.linalg.norm(p - c, axis=1))
     if spread == 0:
-        raise DegenerateError(f"{name}: all points coincide, so they cannot be normalised; use distinct points")
+        raise DegenerateError(
+            f"{name}: all points coincide, so they cannot be normalised; use distinct points"
+        )
     s = np.sqrt(d) / spread
     T = np.eye(d + 1)
     T[:d, :d] *= s

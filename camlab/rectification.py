@@ -25,6 +25,7 @@ cam_from_world poses; ``dist = (k1, k2, p1, p2, k3)``; metres; remap tables foll
 ``cv2.remap``: output pixel (u, v) samples the source at ``(map_u[v, u], map_v[v, u])``.
 See lesson 11.
 """
+
 from __future__ import annotations
 
 from typing import NamedTuple
@@ -40,15 +41,25 @@ from .homography import compose
 from .projective import map_points
 
 __all__ = [
-    "CalibratedRectification", "UncalibratedRectification", "VerticalDisparity",
-    "rectify_calibrated", "rectify_images", "rectify_points", "unrectify_points", "rectification_coverage",
-    "StereoCalibration", "rectify_uncalibrated", "stereo_calibrate", "vertical_disparity",
+    "CalibratedRectification",
+    "UncalibratedRectification",
+    "VerticalDisparity",
+    "rectify_calibrated",
+    "rectify_images",
+    "rectify_points",
+    "unrectify_points",
+    "rectification_coverage",
+    "StereoCalibration",
+    "rectify_uncalibrated",
+    "stereo_calibrate",
+    "vertical_disparity",
 ]
 
 _FIT_PX = 3.0  # Sampson distance (pixels) within which a pair counts as consistent with F
 
 
 # --------------------------------------------------------------------------- measuring
+
 
 class VerticalDisparity(NamedTuple):
     """Vertical disparity :math:`|v_1 - v_2|` of corresponding points, pixels.
@@ -86,6 +97,7 @@ def _finite_pairs(x1: ArrayLike, x2: ArrayLike):
 
 
 # --------------------------------------------------------------------------- calibrated
+
 
 class CalibratedRectification(NamedTuple):
     r"""Everything :func:`rectify_calibrated` computed.
@@ -152,7 +164,9 @@ def _rectified_normalised(camera: Camera, R_rect: np.ndarray, pixels: np.ndarray
         return np.where(r[:, 2:3] > 0, r[:, :2] / r[:, 2:3], np.nan)
 
 
-def _remap_tables(camera: Camera, R_rect: np.ndarray, K_new: np.ndarray, size: tuple[int, int]) -> DistortionMaps:
+def _remap_tables(
+    camera: Camera, R_rect: np.ndarray, K_new: np.ndarray, size: tuple[int, int]
+) -> DistortionMaps:
     r"""Output pixel p of the rectified image samples the original image at
     :math:`K\,\mathrm{distort}(\pi(R_{rect}^\top K_{new}^{-1} p))`: no iteration needed."""
     w, h = size
@@ -174,15 +188,25 @@ def _remap_tables(camera: Camera, R_rect: np.ndarray, K_new: np.ndarray, size: t
     return DistortionMaps(mu.astype(np.float32), mv.astype(np.float32))
 
 
-def _remap_tables_cv2(camera: Camera, R_rect: np.ndarray, K_new: np.ndarray, size: tuple[int, int]) -> DistortionMaps:
+def _remap_tables_cv2(
+    camera: Camera, R_rect: np.ndarray, K_new: np.ndarray, size: tuple[int, int]
+) -> DistortionMaps:
     import cv2
 
-    mu, mv = cv2.initUndistortRectifyMap(camera.K, np.array(camera.dist), R_rect, K_new, size, cv2.CV_32FC1)
+    mu, mv = cv2.initUndistortRectifyMap(
+        camera.K, np.array(camera.dist), R_rect, K_new, size, cv2.CV_32FC1
+    )
     return DistortionMaps(mu, mv)
 
 
-def rectify_calibrated(camera1: Camera, camera2: Camera, alpha: float = 0.0, image_size: tuple[int, int] | None = None,
-                       maps: bool = True, method: str = "numpy") -> CalibratedRectification:
+def rectify_calibrated(
+    camera1: Camera,
+    camera2: Camera,
+    alpha: float = 0.0,
+    image_size: tuple[int, int] | None = None,
+    maps: bool = True,
+    method: str = "numpy",
+) -> CalibratedRectification:
     r"""Rectify a calibrated stereo pair: rotate both cameras so the baseline is their x axis.
 
     Algorithm (Fusiello, Trucco & Verri 2000, with Bouguet's choice of orientation):
@@ -235,7 +259,9 @@ def rectify_calibrated(camera1: Camera, camera2: Camera, alpha: float = 0.0, ima
         if not isinstance(c, Camera):
             raise CamlabInputError(f"{n}: expected a camlab.camera.Camera, got {type(c).__name__}")
     if not 0.0 <= float(alpha) <= 1.0:
-        raise CamlabInputError(f"alpha: expected a number in [0, 1] (0 = no black border, 1 = keep all pixels), got {alpha!r}")
+        raise CamlabInputError(
+            f"alpha: expected a number in [0, 1] (0 = no black border, 1 = keep all pixels), got {alpha!r}"
+        )
     alpha = float(alpha)
     if method not in ("numpy", "cv2"):
         raise CamlabInputError(f"method: expected 'numpy' or 'cv2', got {method!r}")
@@ -244,8 +270,10 @@ def rectify_calibrated(camera1: Camera, camera2: Camera, alpha: float = 0.0, ima
     B = float(np.linalg.norm(base))
     scale = max(np.linalg.norm(camera1.centre), np.linalg.norm(camera2.centre), 1.0)
     if B <= 1e-9 * scale:
-        raise DegenerateError("rectify_calibrated: the two cameras have the same centre (baseline 0 m), so there "
-                              "is no epipolar geometry and nothing to rectify; move one camera")
+        raise DegenerateError(
+            "rectify_calibrated: the two cameras have the same centre (baseline 0 m), so there "
+            "is no epipolar geometry and nothing to rectify; move one camera"
+        )
     xs = camera1.R[0] + camera2.R[0]  # the cameras' mean x axis in world coordinates
     ys = camera1.R[1] + camera2.R[1]
     if abs(base @ xs) < abs(base @ ys):
@@ -254,8 +282,10 @@ def rectify_calibrated(camera1: Camera, camera2: Camera, alpha: float = 0.0, ima
             "this function makes rows match for a horizontal rig. Rotate both images by 90 degrees (and the cameras) first"
         )
     if camera1.R[2] @ camera2.R[2] <= 0:
-        raise DegenerateError("rectify_calibrated: the cameras look in opposite directions (no common view); "
-                              "their images cannot be rectified onto one common image plane")
+        raise DegenerateError(
+            "rectify_calibrated: the cameras look in opposite directions (no common view); "
+            "their images cannot be rectified onto one common image plane"
+        )
     x = base / B * np.sign(base @ xs)
     z = camera1.R[2] + camera2.R[2]
     z = z - (z @ x) * x
@@ -266,27 +296,40 @@ def rectify_calibrated(camera1: Camera, camera2: Camera, alpha: float = 0.0, ima
 
     # Where the image borders land, in rectified normalised coordinates.
     w, h = size
-    inner = [-np.inf, -np.inf, np.inf, np.inf]   # intersection of the per-image inner boxes
-    outer = [np.inf, np.inf, -np.inf, -np.inf]   # union of the images' bounding boxes
+    inner = [-np.inf, -np.inf, np.inf, np.inf]  # intersection of the per-image inner boxes
+    outer = [np.inf, np.inf, -np.inf, -np.inf]  # union of the images' bounding boxes
     for cam, Rr in ((camera1, R1), (camera2, R2)):
         px, edges = _border_pixels(cam.image_size)
         q = _rectified_normalised(cam, Rr, px)
         if not np.all(np.isfinite(q)):
-            raise DegenerateError("rectify_calibrated: part of an image would rotate behind the rectified camera "
-                                  "(the cameras are too far from parallel to rectify onto one plane)")
+            raise DegenerateError(
+                "rectify_calibrated: part of an image would rotate behind the rectified camera "
+                "(the cameras are too far from parallel to rectify onto one plane)"
+            )
         top, right, bottom, left = (q[e] for e in edges)
-        inner = [max(inner[0], left[:, 0].max()), max(inner[1], top[:, 1].max()),
-                 min(inner[2], right[:, 0].min()), min(inner[3], bottom[:, 1].min())]
-        outer = [min(outer[0], q[:, 0].min()), min(outer[1], q[:, 1].min()),
-                 max(outer[2], q[:, 0].max()), max(outer[3], q[:, 1].max())]
+        inner = [
+            max(inner[0], left[:, 0].max()),
+            max(inner[1], top[:, 1].max()),
+            min(inner[2], right[:, 0].min()),
+            min(inner[3], bottom[:, 1].min()),
+        ]
+        outer = [
+            min(outer[0], q[:, 0].min()),
+            min(outer[1], q[:, 1].min()),
+            max(outer[2], q[:, 0].max()),
+            max(outer[3], q[:, 1].max()),
+        ]
     if inner[2] <= inner[0] or inner[3] <= inner[1]:
-        raise DegenerateError("rectify_calibrated: the two rectified images have no region in common (no overlap); "
-                              "the cameras do not see a common part of the scene")
+        raise DegenerateError(
+            "rectify_calibrated: the two rectified images have no region in common (no overlap); "
+            "the cameras do not see a common part of the scene"
+        )
     f_in = max((w - 1) / (inner[2] - inner[0]), (h - 1) / (inner[3] - inner[1]))
     f_out = min((w - 1) / (outer[2] - outer[0]), (h - 1) / (outer[3] - outer[1]))
     f = (1 - alpha) * f_in + alpha * f_out
-    mid = (1 - alpha) * np.array([inner[0] + inner[2], inner[1] + inner[3]]) / 2 + \
-        alpha * np.array([outer[0] + outer[2], outer[1] + outer[3]]) / 2
+    mid = (1 - alpha) * np.array([inner[0] + inner[2], inner[1] + inner[3]]) / 2 + alpha * np.array(
+        [outer[0] + outer[2], outer[1] + outer[3]]
+    ) / 2
     cx, cy = (w - 1) / 2 - f * mid[0], (h - 1) / 2 - f * mid[1]
     K = intrinsic_matrix(f, f, cx, cy)
     P1 = K @ np.eye(3, 4)
@@ -300,20 +343,26 @@ def rectify_calibrated(camera1: Camera, camera2: Camera, alpha: float = 0.0, ima
     return CalibratedRectification(R1, R2, P1, P2, Q, K, cam1, cam2, B, m1, m2, size, alpha)
 
 
-def rectify_points(rect: CalibratedRectification, camera: Camera, pixels: ArrayLike, which: int) -> np.ndarray:
+def rectify_points(
+    rect: CalibratedRectification, camera: Camera, pixels: ArrayLike, which: int
+) -> np.ndarray:
     """Original (distorted) pixels of ``camera`` to pixels in rectified image ``which`` (1 or 2).
 
     Undistorts (iteratively), rotates by R1 or R2 and projects with the new K. NaN for
     points that rotate behind the rectified camera.
     """
     if which not in (1, 2):
-        raise CamlabInputError(f"which: expected 1 or 2 (the camera the pixels belong to), got {which!r}")
+        raise CamlabInputError(
+            f"which: expected 1 or 2 (the camera the pixels belong to), got {which!r}"
+        )
     p = as_points(pixels, 2, "pixels")
     q = _rectified_normalised(camera, rect.R1 if which == 1 else rect.R2, p.array)
     return p.restore(q @ rect.K[:2, :2].T + rect.K[:2, 2])
 
 
-def unrectify_points(rect: CalibratedRectification, camera: Camera, pixels: ArrayLike, which: int) -> np.ndarray:
+def unrectify_points(
+    rect: CalibratedRectification, camera: Camera, pixels: ArrayLike, which: int
+) -> np.ndarray:
     r"""The inverse of :func:`rectify_points`: rectified pixels to original (distorted) pixels of ``camera``.
 
     :math:`p \mapsto K\,\mathrm{distort}(\pi(R_i^\top K_{new}^{-1} \tilde p))`, exactly what the
@@ -321,9 +370,15 @@ def unrectify_points(rect: CalibratedRectification, camera: Camera, pixels: Arra
     the true disparity) back to the raw images.
     """
     if which not in (1, 2):
-        raise CamlabInputError(f"which: expected 1 or 2 (the camera the pixels belong to), got {which!r}")
+        raise CamlabInputError(
+            f"which: expected 1 or 2 (the camera the pixels belong to), got {which!r}"
+        )
     p = as_points(pixels, 2, "pixels")
-    rays = np.column_stack([p.array, np.ones(len(p.array))]) @ np.linalg.inv(rect.K).T @ (rect.R1 if which == 1 else rect.R2)
+    rays = (
+        np.column_stack([p.array, np.ones(len(p.array))])
+        @ np.linalg.inv(rect.K).T
+        @ (rect.R1 if which == 1 else rect.R2)
+    )
     with np.errstate(divide="ignore", invalid="ignore"):
         xn = np.where(rays[:, 2:3] > 0, rays[:, :2] / rays[:, 2:3], np.nan)
     if any(camera.dist):
@@ -332,8 +387,12 @@ def unrectify_points(rect: CalibratedRectification, camera: Camera, pixels: Arra
     return p.restore(xn @ camera.K[:2, :2].T + camera.K[:2, 2])
 
 
-def rectify_images(rect: "CalibratedRectification | UncalibratedRectification", image1: np.ndarray,
-                   image2: np.ndarray, interpolation: str = "bilinear") -> tuple[np.ndarray, np.ndarray]:
+def rectify_images(
+    rect: "CalibratedRectification | UncalibratedRectification",
+    image1: np.ndarray,
+    image2: np.ndarray,
+    interpolation: str = "bilinear",
+) -> tuple[np.ndarray, np.ndarray]:
     """Warp both original images into the rectified pair with ``cv2.remap`` / ``cv2.warpPerspective``.
 
     Images are (H, W) or (H, W, C) arrays indexed ``img[v, u]``; pixels without a source
@@ -345,26 +404,39 @@ def rectify_images(rect: "CalibratedRectification | UncalibratedRectification", 
 
     flags = {"bilinear": cv2.INTER_LINEAR, "nearest": cv2.INTER_NEAREST}.get(interpolation)
     if flags is None:
-        raise CamlabInputError(f"interpolation: expected 'bilinear' or 'nearest', got {interpolation!r}")
+        raise CamlabInputError(
+            f"interpolation: expected 'bilinear' or 'nearest', got {interpolation!r}"
+        )
     out = []
     for img, n in ((image1, "image1"), (image2, "image2")):
         a = np.asarray(img)
         if a.ndim not in (2, 3) or a.size == 0:
-            raise CamlabInputError(f"{n}: expected an (H, W) or (H, W, C) image, got shape {a.shape}")
+            raise CamlabInputError(
+                f"{n}: expected an (H, W) or (H, W, C) image, got shape {a.shape}"
+            )
         out.append(a)
     if isinstance(rect, CalibratedRectification):
         if rect.maps1 is None:
-            raise CamlabInputError("rect: has no remap tables; call rectify_calibrated(..., maps=True)")
-        return tuple(cv2.remap(a, m.map_u, m.map_v, flags, borderMode=cv2.BORDER_CONSTANT)
-                     for a, m in ((out[0], rect.maps1), (out[1], rect.maps2)))
+            raise CamlabInputError(
+                "rect: has no remap tables; call rectify_calibrated(..., maps=True)"
+            )
+        return tuple(
+            cv2.remap(a, m.map_u, m.map_v, flags, borderMode=cv2.BORDER_CONSTANT)
+            for a, m in ((out[0], rect.maps1), (out[1], rect.maps2))
+        )
     if isinstance(rect, UncalibratedRectification):
-        return tuple(cv2.warpPerspective(a, H, rect.image_size, flags=flags, borderMode=cv2.BORDER_CONSTANT)
-                     for a, H in ((out[0], rect.H1), (out[1], rect.H2)))
-    raise CamlabInputError(f"rect: expected a rectify_calibrated or rectify_uncalibrated result, got {type(rect).__name__}")
+        return tuple(
+            cv2.warpPerspective(a, H, rect.image_size, flags=flags, borderMode=cv2.BORDER_CONSTANT)
+            for a, H in ((out[0], rect.H1), (out[1], rect.H2))
+        )
+    raise CamlabInputError(
+        f"rect: expected a rectify_calibrated or rectify_uncalibrated result, got {type(rect).__name__}"
+    )
 
 
-def rectification_coverage(rect: CalibratedRectification, camera1: Camera, camera2: Camera,
-                           step: int = 8) -> dict[str, float]:
+def rectification_coverage(
+    rect: CalibratedRectification, camera1: Camera, camera2: Camera, step: int = 8
+) -> dict[str, float]:
     """The border / lost-pixel trade-off of a calibrated rectification, as fractions in [0, 1].
 
     ``valid1``, ``valid2``: share of rectified pixels that have a source pixel (1 - black
@@ -375,17 +447,28 @@ def rectification_coverage(rect: CalibratedRectification, camera1: Camera, camer
         raise CamlabInputError("rect: has no remap tables; call rectify_calibrated(..., maps=True)")
     out = {}
     w, h = rect.image_size
-    for k, (cam, m, which) in enumerate(((camera1, rect.maps1, 1), (camera2, rect.maps2, 2)), start=1):
+    for k, (cam, m, which) in enumerate(
+        ((camera1, rect.maps1, 1), (camera2, rect.maps2, 2)), start=1
+    ):
         cw, ch = cam.image_size
         mu, mv = m.map_u[::step, ::step], m.map_v[::step, ::step]
-        out[f"valid{k}"] = float(np.mean((mu >= -0.5) & (mu <= cw - 0.5) & (mv >= -0.5) & (mv <= ch - 0.5)))
-        gu, gv = np.meshgrid(np.arange(0, cw, step, dtype=float), np.arange(0, ch, step, dtype=float))
+        out[f"valid{k}"] = float(
+            np.mean((mu >= -0.5) & (mu <= cw - 0.5) & (mv >= -0.5) & (mv <= ch - 0.5))
+        )
+        gu, gv = np.meshgrid(
+            np.arange(0, cw, step, dtype=float), np.arange(0, ch, step, dtype=float)
+        )
         q = rectify_points(rect, cam, np.column_stack([gu.ravel(), gv.ravel()]), which)
-        out[f"kept{k}"] = float(np.mean((q[:, 0] >= -0.5) & (q[:, 0] <= w - 0.5) & (q[:, 1] >= -0.5) & (q[:, 1] <= h - 0.5)))
+        out[f"kept{k}"] = float(
+            np.mean(
+                (q[:, 0] >= -0.5) & (q[:, 0] <= w - 0.5) & (q[:, 1] >= -0.5) & (q[:, 1] <= h - 0.5)
+            )
+        )
     return out
 
 
 # --------------------------------------------------------------------------- uncalibrated
+
 
 class UncalibratedRectification(NamedTuple):
     """What :func:`rectify_uncalibrated` computed: ``H1``, ``H2`` (3, 3) homographies taking
@@ -403,7 +486,10 @@ def _shear_to_reduce_distortion(H: np.ndarray, size: tuple[int, int]) -> np.ndar
     opposite edge midpoints perpendicular again, with their original length ratio.
     """
     w, h = size
-    mids = np.array([[(w - 1) / 2, 0], [w - 1, (h - 1) / 2], [(w - 1) / 2, h - 1], [0, (h - 1) / 2]], dtype=float)
+    mids = np.array(
+        [[(w - 1) / 2, 0], [w - 1, (h - 1) / 2], [(w - 1) / 2, h - 1], [0, (h - 1) / 2]],
+        dtype=float,
+    )
     a, b, c, d = map_points(H, mids)
     xu, xv = b - d
     yu, yv = c - a
@@ -417,8 +503,9 @@ def _shear_to_reduce_distortion(H: np.ndarray, size: tuple[int, int]) -> np.ndar
     return np.array([[k1, k2, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
 
 
-def rectify_uncalibrated(x1: ArrayLike, x2: ArrayLike, F: ArrayLike, image_size: tuple[int, int],
-                         shear: bool = True) -> UncalibratedRectification:
+def rectify_uncalibrated(
+    x1: ArrayLike, x2: ArrayLike, F: ArrayLike, image_size: tuple[int, int], shear: bool = True
+) -> UncalibratedRectification:
     r"""Rectifying homographies (H1, H2) from F and matches alone (Hartley's method).
 
     Algorithm (H&Z algorithm 11.9):
@@ -508,19 +595,27 @@ def rectify_uncalibrated(x1: ArrayLike, x2: ArrayLike, F: ArrayLike, image_size:
     corners = np.array([[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]], dtype=float)
     c1, c2 = map_points(H1, corners), map_points(H2, corners)
     if not (np.all(np.isfinite(c1)) and np.all(np.isfinite(c2))):
-        raise DegenerateError("rectify_uncalibrated: an image corner maps to infinity; the epipole is too close to the image")
+        raise DegenerateError(
+            "rectify_uncalibrated: an image corner maps to infinity; the epipole is too close to the image"
+        )
     vlo, vhi = min(c1[:, 1].min(), c2[:, 1].min()), max(c1[:, 1].max(), c2[:, 1].max())
     ulen = max(np.ptp(c1[:, 0]), np.ptp(c2[:, 0]))
     k = min((w - 1) / ulen, (h - 1) / (vhi - vlo))
     out = []
     for H, cc in ((H1, c1), (H2, c2)):
-        S = np.array([[k, 0.0, (w - 1) / 2 - k * (cc[:, 0].min() + cc[:, 0].max()) / 2],
-                      [0.0, k, (h - 1) / 2 - k * (vlo + vhi) / 2], [0.0, 0.0, 1.0]])
+        S = np.array(
+            [
+                [k, 0.0, (w - 1) / 2 - k * (cc[:, 0].min() + cc[:, 0].max()) / 2],
+                [0.0, k, (h - 1) / 2 - k * (vlo + vhi) / 2],
+                [0.0, 0.0, 1.0],
+            ]
+        )
         out.append(compose(S, H))  # H first, then S
     return UncalibratedRectification(out[0], out[1], (w, h))
 
 
 # --------------------------------------------------------------------------- stereo calibration
+
 
 class StereoCalibration(NamedTuple):
     """What :func:`stereo_calibrate` found.
@@ -549,16 +644,25 @@ class StereoCalibration(NamedTuple):
 
     def cameras(self, image_size: tuple[int, int] = (640, 480)) -> tuple[Camera, Camera]:
         """The rig as two :class:`Camera` objects, camera 1 at the world origin."""
-        return (Camera(self.K1, np.eye(3), np.zeros(3), tuple(self.dist1), image_size),
-                Camera(self.K2, self.R, self.t, tuple(self.dist2), image_size))
+        return (
+            Camera(self.K1, np.eye(3), np.zeros(3), tuple(self.dist1), image_size),
+            Camera(self.K2, self.R, self.t, tuple(self.dist2), image_size),
+        )
 
 
 def _g(K: np.ndarray, dist: np.ndarray) -> np.ndarray:
     return np.array([K[0, 0], K[1, 1], K[0, 2], K[1, 2], K[0, 1], *dist], dtype=float)
 
 
-def stereo_calibrate(object_points: ArrayLike, image_points1, image_points2, image_size: tuple[int, int], *,
-                     refine_intrinsics: bool = False, max_iter: int = 50) -> StereoCalibration:
+def stereo_calibrate(
+    object_points: ArrayLike,
+    image_points1,
+    image_points2,
+    image_size: tuple[int, int],
+    *,
+    refine_intrinsics: bool = False,
+    max_iter: int = 50,
+) -> StereoCalibration:
     r"""Calibrate a two-camera rig from V >= 3 chessboard views seen by both cameras.
 
     1. Calibrate each camera alone (:func:`camlab.calibration.calibrate_camera`: Zhang's
@@ -599,12 +703,16 @@ def stereo_calibrate(object_points: ArrayLike, image_points1, image_points2, ima
     views1 = [as_points(p, 2, f"image_points1[{i}]").array for i, p in enumerate(image_points1)]
     views2 = [as_points(p, 2, f"image_points2[{i}]").array for i, p in enumerate(image_points2)]
     if len(views1) != len(views2) or len(views1) < 3:
-        raise CamlabInputError(f"image_points1, image_points2: expected the same number (>= 3) of views seen by "
-                               f"both cameras, got {len(views1)} and {len(views2)}")
+        raise CamlabInputError(
+            f"image_points1, image_points2: expected the same number (>= 3) of views seen by "
+            f"both cameras, got {len(views1)} and {len(views2)}"
+        )
     for i, (a, b) in enumerate(zip(views1, views2)):
         if len(a) != len(X) or len(b) != len(X):
-            raise CamlabInputError(f"image_points[{i}]: expected {len(X)} corners per view (one per object point), "
-                                   f"got {len(a)} and {len(b)}")
+            raise CamlabInputError(
+                f"image_points[{i}]: expected {len(X)} corners per view (one per object point), "
+                f"got {len(a)} and {len(b)}"
+            )
     c1 = cal.calibrate_camera(X, views1, image_size)
     c2 = cal.calibrate_camera(X, views2, image_size)
     Rs = [R2 @ R1.T for R1, R2 in zip(c1.R, c2.R)]
@@ -616,9 +724,9 @@ def stereo_calibrate(object_points: ArrayLike, image_points1, image_points2, ima
     obs = np.concatenate([np.stack(views1), np.stack(views2)])  # (2V, N, 2)
 
     def unpack(p):
-        rig_r, rig_t, poses = p[:3], p[3:6], p[6:6 + 6 * V].reshape(V, 6)
+        rig_r, rig_t, poses = p[:3], p[3:6], p[6 : 6 + 6 * V].reshape(V, 6)
         if refine_intrinsics:
-            g1, g2 = p[6 + 6 * V:16 + 6 * V], p[16 + 6 * V:]
+            g1, g2 = p[6 + 6 * V : 16 + 6 * V], p[16 + 6 * V :]
         else:
             g1, g2 = _g(c1.K, c1.dist), _g(c2.K, c2.dist)
         return rotation_from_axis_angle(rig_r), rig_t, poses, g1, g2
@@ -627,7 +735,9 @@ def stereo_calibrate(object_points: ArrayLike, image_points1, image_points2, ima
         Rr, tr, poses, g1, g2 = unpack(p)
         R1 = np.stack([rotation_from_axis_angle(r) for r in poses[:, :3]])
         R2 = Rr @ R1
-        poses2 = np.column_stack([[axis_angle_from_rotation(R) for R in R2], poses[:, 3:] @ Rr.T + tr])
+        poses2 = np.column_stack(
+            [[axis_angle_from_rotation(R) for R in R2], poses[:, 3:] @ Rr.T + tr]
+        )
         uv = np.concatenate([project_views(g1, poses, Xv), project_views(g2, poses2, Xv)])
         return (uv - obs).ravel()
 
@@ -640,7 +750,9 @@ def stereo_calibrate(object_points: ArrayLike, image_points1, image_points2, ima
             J[:, k] = (residuals(p + e) - residuals(p - e)) / (2 * h)
         return J
 
-    p0 = np.concatenate([axis_angle_from_rotation(R0), t0, np.column_stack([c1.rvecs, c1.tvecs]).ravel()])
+    p0 = np.concatenate(
+        [axis_angle_from_rotation(R0), t0, np.column_stack([c1.rvecs, c1.tvecs]).ravel()]
+    )
     if refine_intrinsics:
         p0 = np.concatenate([p0, _g(c1.K, c1.dist), _g(c2.K, c2.dist)])
     res = levenberg_marquardt(residuals, p0, jacobian, max_iter=max_iter)
@@ -649,7 +761,19 @@ def stereo_calibrate(object_points: ArrayLike, image_points1, image_points2, ima
     def K_of(g):
         return np.array([[g[0], g[4], g[2]], [0.0, g[1], g[3]], [0.0, 0.0, 1.0]])
 
-    rms = float(np.sqrt(np.sum(res.residuals ** 2) / (obs.size / 2)))
-    return StereoCalibration(K_of(g1), np.array(g1[5:]), K_of(g2), np.array(g2[5:]), Rr, tr, rms,
-                             float(c1.rms), float(c2.rms), poses[:, :3].copy(), poses[:, 3:].copy(),
-                             int(res.iterations), bool(res.converged))
+    rms = float(np.sqrt(np.sum(res.residuals**2) / (obs.size / 2)))
+    return StereoCalibration(
+        K_of(g1),
+        np.array(g1[5:]),
+        K_of(g2),
+        np.array(g2[5:]),
+        Rr,
+        tr,
+        rms,
+        float(c1.rms),
+        float(c2.rms),
+        poses[:, :3].copy(),
+        poses[:, 3:].copy(),
+        int(res.iterations),
+        bool(res.converged),
+    )

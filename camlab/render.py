@@ -32,6 +32,7 @@ the points, never measured on the image.
 
 See lesson 02, section 4, and docs/conventions.md.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -52,17 +53,32 @@ from ._validate import (
     check_size,
 )
 from .camera import Camera, Pose, look_at_rotation, rotation_from_euler, scale_intrinsics
+
 # The scene builders live in camlab.scenes; they are re-exported here for the lessons.
 from .scenes import Plane, box, checkerboard, photo_plane, text_page, textured_plane
 
 __all__ = [
-    "Defocus", "GroundTruth", "align_detected_corners", "Plane", "PlanePoints", "RenderResult", "Sensor", "box", "checkerboard",
-    "look_at", "photo_plane", "project", "render", "rotation_from_euler", "text_page",
+    "Defocus",
+    "GroundTruth",
+    "align_detected_corners",
+    "Plane",
+    "PlanePoints",
+    "RenderResult",
+    "Sensor",
+    "box",
+    "checkerboard",
+    "look_at",
+    "photo_plane",
+    "project",
+    "render",
+    "rotation_from_euler",
+    "text_page",
     "textured_plane",
 ]
 
 
 # ------------------------------------------------------------------------- poses
+
 
 def look_at(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0.0, 0.0, 1.0)) -> Pose:
     r"""The camera pose ``(R, t)`` (cam_from_world) of a camera at ``eye`` looking at ``target``.
@@ -83,6 +99,7 @@ def look_at(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0.0, 0.0, 1.0)) 
 # ------------------------------------------------------------------------- scene
 
 # ------------------------------------------------------------------------- camera model parts
+
 
 @dataclass(frozen=True)
 class Defocus:
@@ -111,9 +128,9 @@ class PlanePoints(NamedTuple):
     """Ground truth for one plane's named points (M of them)."""
 
     object_points: np.ndarray  # (M, 3) in the plane frame, z = 0 (metres)
-    world: np.ndarray          # (M, 3) world frame (metres)
-    pixels: np.ndarray         # (M, 2) exact distorted pixel positions (u, v)
-    visible: np.ndarray        # (M,) bool: in front of the camera, inside the image and not occluded
+    world: np.ndarray  # (M, 3) world frame (metres)
+    pixels: np.ndarray  # (M, 2) exact distorted pixel positions (u, v)
+    visible: np.ndarray  # (M,) bool: in front of the camera, inside the image and not occluded
     pattern_size: tuple[int, int] | None
 
 
@@ -150,7 +167,9 @@ class GroundTruth:
         if name is None:
             boards = [k for k, v in self.points.items() if v.pattern_size is not None]
             if len(boards) != 1:
-                raise CamlabInputError(f"corners: name the plane, the scene has checkerboards {boards}")
+                raise CamlabInputError(
+                    f"corners: name the plane, the scene has checkerboards {boards}"
+                )
             name = boards[0]
         return self.points[name].pixels
 
@@ -167,8 +186,14 @@ class RenderResult(NamedTuple):
 
 # ------------------------------------------------------------------------- projection
 
-def project(points_world: ArrayLike, K: ArrayLike, R: ArrayLike = np.eye(3), t: ArrayLike = (0, 0, 0),
-            dist: ArrayLike | None = None) -> np.ndarray:
+
+def project(
+    points_world: ArrayLike,
+    K: ArrayLike,
+    R: ArrayLike = np.eye(3),
+    t: ArrayLike = (0, 0, 0),
+    dist: ArrayLike | None = None,
+) -> np.ndarray:
     r"""Project world points to distorted pixels: the renderer's ground-truth projection.
 
     :math:`X_c = R X + t`, :math:`x = (X_c/Z_c, Y_c/Z_c)`, :math:`x_d = \mathrm{distort}(x)`,
@@ -195,7 +220,9 @@ def align_detected_corners(detected: ArrayLike, truth_pixels: ArrayLike) -> np.n
     det = np.asarray(detected, dtype=float).reshape(-1, 2)
     gt = as_points(truth_pixels, 2, "truth_pixels").array
     if det.shape != gt.shape:
-        raise CamlabInputError(f"detected: expected {gt.shape[0]} corners like truth_pixels, got {det.shape[0]}")
+        raise CamlabInputError(
+            f"detected: expected {gt.shape[0]} corners like truth_pixels, got {det.shape[0]}"
+        )
     if np.sum((det[::-1] - gt) ** 2) < np.sum((det - gt) ** 2):
         det = det[::-1]
     return det.copy()
@@ -220,14 +247,18 @@ def _texture_level(tex: np.ndarray, level: int) -> np.ndarray:
     levels = entry[1]
     while len(levels) <= level:
         a = levels[-1]
-        levels.append(cv2.resize(a, (max(1, a.shape[1] // 2), max(1, a.shape[0] // 2)), interpolation=cv2.INTER_AREA))
+        levels.append(
+            cv2.resize(
+                a, (max(1, a.shape[1] // 2), max(1, a.shape[0] // 2)), interpolation=cv2.INTER_AREA
+            )
+        )
     return levels[level]
 
 
 def _disk_kernel(diameter: float) -> np.ndarray:
     r = diameter / 2
     n = int(np.ceil(r)) + 1
-    y, x = np.mgrid[-n:n + 1, -n:n + 1]
+    y, x = np.mgrid[-n : n + 1, -n : n + 1]
     # 4x4 supersampled coverage of each kernel cell by the disc: soft, unbiased edges
     s = (np.arange(4) + 0.5) / 4 - 0.5
     cov = np.zeros(x.shape)
@@ -239,12 +270,23 @@ def _disk_kernel(diameter: float) -> np.ndarray:
     return (cov / cov.sum()).astype(np.float32)
 
 
-def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size: tuple[int, int] = (640, 480), *,
-           R: ArrayLike = np.eye(3), t: ArrayLike = (0, 0, 0), dist: ArrayLike | None = None,
-           defocus: Defocus | None = None, blur: float = 0.0, sensor: Sensor = Sensor(),
-           background: float | tuple[float, float, float] = 0.5, supersample: int = 2,
-           color: bool | None = None, depth: bool = False,
-           rng: np.random.Generator | int | None = None) -> RenderResult:
+def render(
+    scene: Plane | Iterable[Plane | Iterable[Plane]],
+    K: ArrayLike,
+    size: tuple[int, int] = (640, 480),
+    *,
+    R: ArrayLike = np.eye(3),
+    t: ArrayLike = (0, 0, 0),
+    dist: ArrayLike | None = None,
+    defocus: Defocus | None = None,
+    blur: float = 0.0,
+    sensor: Sensor = Sensor(),
+    background: float | tuple[float, float, float] = 0.5,
+    supersample: int = 2,
+    color: bool | None = None,
+    depth: bool = False,
+    rng: np.random.Generator | int | None = None,
+) -> RenderResult:
     r"""Render ``scene`` with camera ``K``, pose ``(R, t)`` and lens distortion ``dist``.
 
     Parameters
@@ -309,7 +351,9 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
     if ss < 1 or ss > 8:
         raise CamlabInputError(f"supersample: expected an integer from 1 to 8, got {supersample!r}")
     if not isinstance(sensor, Sensor):
-        raise CamlabInputError(f"sensor: expected a camlab.render.Sensor, got {type(sensor).__name__}")
+        raise CamlabInputError(
+            f"sensor: expected a camlab.render.Sensor, got {type(sensor).__name__}"
+        )
     _sensor.check_bits(sensor.bits)
     if sensor.bayer is not None:
         _sensor.check_bayer_pattern(sensor.bayer)
@@ -319,23 +363,31 @@ def render(scene: Plane | Iterable[Plane | Iterable[Plane]], K: ArrayLike, size:
         color = sensor.bayer is not None or any(p.is_color for p in planes)
     bg = _background(background, color)
 
-    geo = _visible_planes(planes, R, t)                                  # 1. geometry in the camera frame
-    canvas = _IdealCanvas.around(K, d, (w, h), ss)                        # 2. the undistorted canvas
+    geo = _visible_planes(planes, R, t)  # 1. geometry in the camera frame
+    canvas = _IdealCanvas.around(K, d, (w, h), ss)  # 2. the undistorted canvas
     pixels = np.empty((canvas.height, canvas.width, 3 if color else 1), dtype=np.float32)
     pixels[:] = bg
-    for g in sorted(geo, key=lambda g: -g.depth):                        # 3. painter's algorithm, far to near
-        _draw_plane(pixels, g, canvas.K, _coc_pixels(defocus, K, g.depth) * ss if defocus is not None else 0.0,
-                    color)
-    irradiance = _optics(pixels, canvas, d, blur, bg)                     # 4. blur, distortion, pixel area
-    image = _sensor_response(irradiance, sensor, rng)                     # 5. mosaic, noise, quantisation
-    truth = _ground_truth(planes, geo, K, d, R, t, (w, h), depth)          # 6. exact answers
+    for g in sorted(geo, key=lambda g: -g.depth):  # 3. painter's algorithm, far to near
+        _draw_plane(
+            pixels,
+            g,
+            canvas.K,
+            _coc_pixels(defocus, K, g.depth) * ss if defocus is not None else 0.0,
+            color,
+        )
+    irradiance = _optics(pixels, canvas, d, blur, bg)  # 4. blur, distortion, pixel area
+    image = _sensor_response(irradiance, sensor, rng)  # 5. mosaic, noise, quantisation
+    truth = _ground_truth(planes, geo, K, d, R, t, (w, h), depth)  # 6. exact answers
     return RenderResult(image, irradiance, truth)
 
 
 def _background(background: float | tuple[float, float, float], color: bool) -> np.ndarray:
     """The background irradiance as 3 (RGB) or 1 (grey) float32 values."""
-    bg = np.broadcast_to(np.asarray(background, dtype=np.float32).ravel(), (3,)) if np.ndim(background) else \
-        np.full(3, float(background), dtype=np.float32)
+    bg = (
+        np.broadcast_to(np.asarray(background, dtype=np.float32).ravel(), (3,))
+        if np.ndim(background)
+        else np.full(3, float(background), dtype=np.float32)
+    )
     if not color:
         bg = bg[:1] if np.ndim(background) == 0 else np.array([bg.mean()], dtype=np.float32)
     return bg
@@ -362,7 +414,9 @@ def _visible_planes(planes: list[Plane], R: np.ndarray, t: np.ndarray) -> list[_
             continue  # entirely behind the camera (or closer than NEAR): invisible
         if not p.two_sided and Rc[:, 2] @ tc >= 0:
             continue  # a one-sided face seen from behind (its normal points away from the camera)
-        poly = _clip_to_near(p.extent, Rc, tc)  # the part in front of the near plane (floors, walls)
+        poly = _clip_to_near(
+            p.extent, Rc, tc
+        )  # the part in front of the near plane (floors, walls)
         zpoly = poly @ Rc[2, :2] + tc[2]
         geo.append(_CameraPlane(p, Rc, tc, float(np.mean(zpoly)), poly))
     return geo
@@ -385,19 +439,25 @@ class _IdealCanvas(NamedTuple):
         Ks = scale_intrinsics(K, ss)  # output px -> supersampled px
         if not d.any():
             return cls(Ks, Ks, w * ss, h * ss, (w, h), ss)
-        border = np.concatenate([
-            np.column_stack([np.linspace(-0.5, w - 0.5, 64), np.full(64, -0.5)]),
-            np.column_stack([np.linspace(-0.5, w - 0.5, 64), np.full(64, h - 0.5)]),
-            np.column_stack([np.full(64, -0.5), np.linspace(-0.5, h - 0.5, 64)]),
-            np.column_stack([np.full(64, w - 0.5), np.linspace(-0.5, h - 0.5, 64)]),
-        ])
+        border = np.concatenate(
+            [
+                np.column_stack([np.linspace(-0.5, w - 0.5, 64), np.full(64, -0.5)]),
+                np.column_stack([np.linspace(-0.5, w - 0.5, 64), np.full(64, h - 0.5)]),
+                np.column_stack([np.full(64, -0.5), np.linspace(-0.5, h - 0.5, 64)]),
+                np.column_stack([np.full(64, w - 0.5), np.linspace(-0.5, h - 0.5, 64)]),
+            ]
+        )
         x, res = _dist.newton_undistort(_dist.pixels_to_normalised(border, K), d)
-        ideal = _dist.normalised_to_pixels(x[res <= 1e-9], K)  # pixels beyond the model's fold see background
+        ideal = _dist.normalised_to_pixels(
+            x[res <= 1e-9], K
+        )  # pixels beyond the model's fold see background
         if len(ideal) == 0:
             ideal = np.array([[-0.5, -0.5], [w - 0.5, h - 0.5]])
         lo = np.minimum(ideal.min(axis=0), [-0.5, -0.5]) - 2
         hi = np.maximum(ideal.max(axis=0), [w - 0.5, h - 0.5]) + 2
-        lo = np.maximum(lo, [-1.5 * w, -1.5 * h])  # cap the canvas at 4x the image in each direction
+        lo = np.maximum(
+            lo, [-1.5 * w, -1.5 * h]
+        )  # cap the canvas at 4x the image in each direction
         hi = np.minimum(hi, [2.5 * w, 2.5 * h])
         off = np.floor(-lo * ss)
         Kc = Ks.copy()
@@ -406,7 +466,9 @@ class _IdealCanvas(NamedTuple):
         return cls(Kc, Ks, cw, ch, (w, h), ss)
 
 
-def _draw_plane(canvas: np.ndarray, g: _CameraPlane, Kc: np.ndarray, c_px: float, color: bool) -> None:
+def _draw_plane(
+    canvas: np.ndarray, g: _CameraPlane, Kc: np.ndarray, c_px: float, color: bool
+) -> None:
     """Stage 3: warp one plane's texture into the canvas (in place), anti-aliased and defocused by ``c_px``."""
     import cv2
 
@@ -417,18 +479,29 @@ def _draw_plane(canvas: np.ndarray, g: _CameraPlane, Kc: np.ndarray, c_px: float
     Hplane = Kc @ np.column_stack([g.Rc[:, 0], g.Rc[:, 1], g.tc])  # plane metres -> canvas px
     mpp = _metres_per_canvas_px(Hplane, g.poly)
     level = 0
-    while level < 8 and (x1 - x0) / (p.texture.shape[1] >> (level + 1) or 1) < mpp \
-            and (p.texture.shape[1] >> (level + 1)) >= 2 and (p.texture.shape[0] >> (level + 1)) >= 2:
+    while (
+        level < 8
+        and (x1 - x0) / (p.texture.shape[1] >> (level + 1) or 1) < mpp
+        and (p.texture.shape[1] >> (level + 1)) >= 2
+        and (p.texture.shape[0] >> (level + 1)) >= 2
+    ):
         level += 1
     tex = _texture_level(p.texture, level)
     th, tw = tex.shape[:2]
-    S = np.array([[(x1 - x0) / tw, 0, x0 + 0.5 * (x1 - x0) / tw],
-                  [0, (y1 - y0) / th, y0 + 0.5 * (y1 - y0) / th], [0, 0, 1]])
+    S = np.array(
+        [
+            [(x1 - x0) / tw, 0, x0 + 0.5 * (x1 - x0) / tw],
+            [0, (y1 - y0) / th, y0 + 0.5 * (y1 - y0) / th],
+            [0, 0, 1],
+        ]
+    )
     H = Hplane @ S  # texel (c, r) -> canvas px
     if p.is_color and not color:
         tex = np.ascontiguousarray(tex @ np.array([0.299, 0.587, 0.114], dtype=np.float32))
     # a grey texture in a colour render stays one channel: compositing broadcasts it
-    quad = cv2.perspectiveTransform(g.poly[None].astype(np.float64), Hplane)[0]  # visible outline, canvas px
+    quad = cv2.perspectiveTransform(g.poly[None].astype(np.float64), Hplane)[
+        0
+    ]  # visible outline, canvas px
     # work only inside the plane's bounding box plus room for its blur, reaching that far past the canvas's edges
     # too: a plane that continues beyond the frame must blur into the frame as it is, not fade into the backdrop
     # (a blur cut at the canvas edge would mix in empty coverage there)
@@ -440,14 +513,24 @@ def _draw_plane(canvas: np.ndarray, g: _CameraPlane, Kc: np.ndarray, c_px: float
     if min(bx1, cw) <= max(bx0, 0) or min(by1, ch) <= max(by0, 0):
         return
     T = np.array([[1.0, 0, -bx0], [0, 1.0, -by0], [0, 0, 1]])
-    layer = cv2.warpPerspective(tex, T @ H, (int(bx1 - bx0), int(by1 - by0)), flags=cv2.INTER_LINEAR,
-                                borderMode=cv2.BORDER_REPLICATE)
+    layer = cv2.warpPerspective(
+        tex,
+        T @ H,
+        (int(bx1 - bx0), int(by1 - by0)),
+        flags=cv2.INTER_LINEAR,
+        borderMode=cv2.BORDER_REPLICATE,
+    )
     if layer.ndim == 2:
         layer = layer[..., None]
     # coverage: the warped rectangle, anti-aliased (LINE_AA edges, then the supersampling)
     alpha = np.zeros(layer.shape[:2], dtype=np.float32)
-    cv2.fillConvexPoly(alpha, np.round((quad - [bx0, by0]) * 16).astype(np.int32), 1.0,
-                       lineType=cv2.LINE_AA, shift=4)
+    cv2.fillConvexPoly(
+        alpha,
+        np.round((quad - [bx0, by0]) * 16).astype(np.int32),
+        1.0,
+        lineType=cv2.LINE_AA,
+        shift=4,
+    )
     if c_px > 1.0:
         kern = _disk_kernel(c_px)
         layer = cv2.filter2D(layer * alpha[..., None], -1, kern, borderType=cv2.BORDER_CONSTANT)
@@ -455,13 +538,17 @@ def _draw_plane(canvas: np.ndarray, g: _CameraPlane, Kc: np.ndarray, c_px: float
         if layer.ndim == 2:
             layer = layer[..., None]
         layer = layer / np.maximum(alpha, 1e-6)[..., None]
-    inside = np.s_[max(-by0, 0):(by1 - by0) - max(by1 - ch, 0), max(-bx0, 0):(bx1 - bx0) - max(bx1 - cw, 0)]
-    layer, alpha = layer[inside], alpha[inside]     # the part on the canvas
-    roi = canvas[max(by0, 0):min(by1, ch), max(bx0, 0):min(bx1, cw)]
+    inside = np.s_[
+        max(-by0, 0) : (by1 - by0) - max(by1 - ch, 0), max(-bx0, 0) : (bx1 - bx0) - max(bx1 - cw, 0)
+    ]
+    layer, alpha = layer[inside], alpha[inside]  # the part on the canvas
+    roi = canvas[max(by0, 0) : min(by1, ch), max(bx0, 0) : min(bx1, cw)]
     roi += alpha[..., None] * (layer - roi)
 
 
-def _optics(canvas: np.ndarray, ideal: _IdealCanvas, d: np.ndarray, blur: float, bg: np.ndarray) -> np.ndarray:
+def _optics(
+    canvas: np.ndarray, ideal: _IdealCanvas, d: np.ndarray, blur: float, bg: np.ndarray
+) -> np.ndarray:
     """Stage 4: extra blur, lens distortion (remap) and the pixels' area (box filter): irradiance in [0, 1]."""
     import cv2
 
@@ -473,8 +560,14 @@ def _optics(canvas: np.ndarray, ideal: _IdealCanvas, d: np.ndarray, blur: float,
             canvas = canvas[..., None]
     if d.any():
         maps = _dist.distort_map(ideal.Ks, d, (w * ss, h * ss), new_K=ideal.K, step=4)
-        canvas = cv2.remap(canvas, maps.map_u, maps.map_v, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT,
-                           borderValue=tuple(float(v) for v in bg) + (0,) * (4 - len(bg)))
+        canvas = cv2.remap(
+            canvas,
+            maps.map_u,
+            maps.map_v,
+            cv2.INTER_LINEAR,
+            borderMode=cv2.BORDER_CONSTANT,
+            borderValue=tuple(float(v) for v in bg) + (0,) * (4 - len(bg)),
+        )
         if canvas.ndim == 2:
             canvas = canvas[..., None]
     img = cv2.resize(canvas, (w, h), interpolation=cv2.INTER_AREA) if ss > 1 else canvas
@@ -493,29 +586,57 @@ def _sensor_response(irradiance: np.ndarray, sensor: Sensor, rng) -> np.ndarray:
     return _sensor.quantize(signal, sensor.bits)
 
 
-def _ground_truth(planes: list[Plane], geo: list[_CameraPlane], K: np.ndarray, d: np.ndarray, R: np.ndarray,
-                  t: np.ndarray, size: tuple[int, int], depth: bool) -> GroundTruth:
+def _ground_truth(
+    planes: list[Plane],
+    geo: list[_CameraPlane],
+    K: np.ndarray,
+    d: np.ndarray,
+    R: np.ndarray,
+    t: np.ndarray,
+    size: tuple[int, int],
+    depth: bool,
+) -> GroundTruth:
     """Stage 6: exact pixels of every named point (projected, never measured), visibility, depth map."""
     w, h = size
-    truth = GroundTruth(K=K, dist=d, R=R, t=t, size=(w, h), points={},
-                        depth=_depth_map(geo, K, d, w, h) if depth else None)
+    truth = GroundTruth(
+        K=K,
+        dist=d,
+        R=R,
+        t=t,
+        size=(w, h),
+        points={},
+        depth=_depth_map(geo, K, d, w, h) if depth else None,
+    )
     for g in geo:
         p = g.plane
         if len(p.points):
             wp = p.world_points
             px = project(wp, K, R, t, d)
             zc = (wp @ R.T + t)[:, 2]
-            inside = (zc > 0) & (px[:, 0] >= -0.5) & (px[:, 0] <= w - 0.5) & (px[:, 1] >= -0.5) & (px[:, 1] <= h - 0.5)
+            inside = (
+                (zc > 0)
+                & (px[:, 0] >= -0.5)
+                & (px[:, 0] <= w - 0.5)
+                & (px[:, 1] >= -0.5)
+                & (px[:, 1] <= h - 0.5)
+            )
             vis = inside.copy()
             if inside.any():  # occluded if another plane meets the point's ray in front of it
                 Xc = wp[inside] @ R.T + t
                 vis[inside] = _nearest_hit(Xc / Xc[:, 2:3], geo) >= Xc[:, 2] * (1 - 1e-6)
             truth.points[p.name] = PlanePoints(p.object_points, wp, px, vis, p.pattern_size)
-    for p in planes:  # culled planes (behind the camera, back faces) still get an entry, all invisible
+    for (
+        p
+    ) in planes:  # culled planes (behind the camera, back faces) still get an entry, all invisible
         if len(p.points) and p.name not in truth.points:
             wp = p.world_points
-            truth.points[p.name] = PlanePoints(p.object_points, wp, project(wp, K, R, t, d),
-                                               np.zeros(len(wp), bool), p.pattern_size)
+            truth.points[p.name] = PlanePoints(
+                p.object_points,
+                wp,
+                project(wp, K, R, t, d),
+                np.zeros(len(wp), bool),
+                p.pattern_size,
+            )
     return truth
 
 
@@ -526,7 +647,9 @@ def _flatten(scene) -> list[Plane]:
     try:
         items = list(scene)
     except TypeError:
-        raise CamlabInputError(f"scene: expected a Plane or a list of Planes, got {type(scene).__name__}") from None
+        raise CamlabInputError(
+            f"scene: expected a Plane or a list of Planes, got {type(scene).__name__}"
+        ) from None
     for item in items:
         out += _flatten(item)
     if not out:
@@ -560,7 +683,9 @@ def _metres_per_canvas_px(Hplane: np.ndarray, poly: np.ndarray) -> float:
     best = np.inf
     for x, y in np.vstack([poly, poly.mean(axis=0)]):
         q = Hplane @ [x, y, 1.0]
-        J = (Hplane[:2, :2] * q[2] - np.outer(q[:2], Hplane[2, :2])) / q[2] ** 2  # d canvas / d plane
+        J = (Hplane[:2, :2] * q[2] - np.outer(q[:2], Hplane[2, :2])) / q[
+            2
+        ] ** 2  # d canvas / d plane
         s = np.sqrt(abs(np.linalg.det(J)))
         if s > 0:
             best = min(best, 1.0 / s)
@@ -570,7 +695,9 @@ def _metres_per_canvas_px(Hplane: np.ndarray, poly: np.ndarray) -> float:
 def _coc_pixels(defocus: Defocus, K: np.ndarray, depth: float) -> float:
     pitch = check_positive(defocus.pixel_pitch, "pixel_pitch", "metres")
     f = defocus.focal_length if defocus.focal_length is not None else K[0, 0] * pitch
-    return float(_lens.circle_of_confusion(f, defocus.f_number, defocus.focus_distance, depth)) / pitch
+    return (
+        float(_lens.circle_of_confusion(f, defocus.f_number, defocus.focus_distance, depth)) / pitch
+    )
 
 
 def _nearest_hit(rays: np.ndarray, geo) -> np.ndarray:
@@ -582,7 +709,9 @@ def _nearest_hit(rays: np.ndarray, geo) -> np.ndarray:
             z = (n @ tc) / (rays @ n)  # the plane n . X = n . tc meets the ray z * (x, y, 1) here
             loc = (rays * z[:, None] - tc) @ Rc[:, :2]  # hit point in plane coordinates
         x0, y0, x1, y1 = p.extent
-        hit = (z > 0) & (loc[:, 0] >= x0) & (loc[:, 0] <= x1) & (loc[:, 1] >= y0) & (loc[:, 1] <= y1)
+        hit = (
+            (z > 0) & (loc[:, 0] >= x0) & (loc[:, 0] <= x1) & (loc[:, 1] >= y0) & (loc[:, 1] <= y1)
+        )
         depth = np.where(hit & (z < depth), z, depth)
     return depth
 

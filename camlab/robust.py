@@ -47,6 +47,7 @@ Chum, Matas & Kittler (2003), Locally optimized RANSAC. Lebeda, Matas & Chum (20
 Fixing the locally optimized RANSAC. Barath et al. (2020), MAGSAC++. Hartley & Zisserman,
 section 4.7.
 """
+
 from __future__ import annotations
 
 from typing import NamedTuple
@@ -55,15 +56,22 @@ import numpy as np
 
 from ._validate import CamlabInputError, DegenerateError, check_positive
 
-__all__ = ["PairModel", "RobustFit", "local_optimization", "msac_cost", "ransac", "required_iterations"]
+__all__ = [
+    "PairModel",
+    "RobustFit",
+    "local_optimization",
+    "msac_cost",
+    "ransac",
+    "required_iterations",
+]
 
-_PREVIEW = 100        # with more pairs than 4x this, hypotheses are first scored on this many
-_LO_INNER = 2         # least-squares fits on random inlier subsets per local optimisation
-_LO_STEPS = 3         # iterated least squares: thresholds from _LO_FACTOR * t down to t
+_PREVIEW = 100  # with more pairs than 4x this, hypotheses are first scored on this many
+_LO_INNER = 2  # least-squares fits on random inlier subsets per local optimisation
+_LO_STEPS = 3  # iterated least squares: thresholds from _LO_FACTOR * t down to t
 _LO_FACTOR = 3.0
-_LO_FINAL_INNER = 5   # a more thorough local optimisation of the final model
+_LO_FINAL_INNER = 5  # a more thorough local optimisation of the final model
 _LO_FINAL_STEPS = 3
-_ALPHA = 0.01         # significance level of the chance test (step 5)
+_ALPHA = 0.01  # significance level of the chance test (step 5)
 
 
 class PairModel:
@@ -95,8 +103,9 @@ class PairModel:
         """Least-squares model from the pairs ``idx`` (more than a minimal sample); raises DegenerateError."""
         raise NotImplementedError
 
-    def residuals(self, models: np.ndarray, i1: np.ndarray | None = None,
-                  i2: np.ndarray | None = None) -> np.ndarray:
+    def residuals(
+        self, models: np.ndarray, i1: np.ndarray | None = None, i2: np.ndarray | None = None
+    ) -> np.ndarray:
         """(B, M) errors in pixels of the pairs ``(x1[i1], x2[i2])`` (all pairs by default; inf if undefined)."""
         raise NotImplementedError
 
@@ -144,7 +153,7 @@ def required_iterations(inlier_ratio: float, confidence: float, sample_size: int
     >>> round(required_iterations(0.5, 0.99, 4))  # 50 % inliers, 4-point samples
     71
     """
-    w_s = inlier_ratio ** sample_size
+    w_s = inlier_ratio**sample_size
     if w_s <= 0:
         return np.inf
     if w_s >= 1:
@@ -159,15 +168,25 @@ def _check_settings(threshold, confidence, max_iters) -> tuple[float, float, int
     except (TypeError, ValueError):
         confidence = np.nan
     if not 0 < confidence < 1:
-        raise CamlabInputError(f"confidence: expected a probability strictly between 0 and 1, got {confidence!r}; "
-                               f"0.995 is usual")
+        raise CamlabInputError(
+            f"confidence: expected a probability strictly between 0 and 1, got {confidence!r}; "
+            f"0.995 is usual"
+        )
     if isinstance(max_iters, bool) or not isinstance(max_iters, (int, np.integer)) or max_iters < 1:
-        raise CamlabInputError(f"max_iters: expected a positive integer, got {max_iters!r}; 2000 is usual")
+        raise CamlabInputError(
+            f"max_iters: expected a positive integer, got {max_iters!r}; 2000 is usual"
+        )
     return threshold, confidence, int(max_iters)
 
 
-def local_optimization(model: PairModel, start: np.ndarray, threshold: float, rng: np.random.Generator,
-                       inner: int = _LO_INNER, steps: int = _LO_STEPS) -> tuple[np.ndarray, float]:
+def local_optimization(
+    model: PairModel,
+    start: np.ndarray,
+    threshold: float,
+    rng: np.random.Generator,
+    inner: int = _LO_INNER,
+    steps: int = _LO_STEPS,
+) -> tuple[np.ndarray, float]:
     r"""Improve a model by re-fitting it on its inliers (LO+, Lebeda et al. 2012); returns (model, MSAC cost).
 
     1. Take the inliers :math:`I` of ``start`` at ``threshold`` t.
@@ -186,7 +205,9 @@ def local_optimization(model: PairModel, start: np.ndarray, threshold: float, rn
     if len(inl) <= s:
         return best, best_cost
     size = min(len(inl) // 2, 7 * s)
-    subsets = [inl] + ([rng.choice(inl, size, replace=False) for _ in range(inner)] if size > s else [])
+    subsets = [inl] + (
+        [rng.choice(inl, size, replace=False) for _ in range(inner)] if size > s else []
+    )
     thresholds = np.geomspace(_LO_FACTOR * threshold, threshold, steps)
     for sub in subsets:
         try:
@@ -204,24 +225,41 @@ def local_optimization(model: PairModel, start: np.ndarray, threshold: float, rn
     return best, best_cost
 
 
-def _chance_significant(model: PairModel, fit: np.ndarray, count: int, threshold: float, drawn: int,
-                        rng: np.random.Generator) -> tuple[bool, float]:
+def _chance_significant(
+    model: PairModel,
+    fit: np.ndarray,
+    count: int,
+    threshold: float,
+    drawn: int,
+    rng: np.random.Generator,
+) -> tuple[bool, float]:
     """Step 5: is ``count`` inliers more than random pairs reach? Returns (significant, chance rate)."""
     from scipy.special import bdtrc  # binomial upper tail P(X > k)
 
     n, s = len(model), model.sample_size
     i1 = np.tile(np.arange(n), 3)
     i2 = np.concatenate([rng.permutation(n) for _ in range(3)])
-    wrong = i1 != i2                                   # pairs that cannot correspond
-    chance = float(np.mean(model.residuals(fit[None], i1[wrong], i2[wrong])[0] < threshold)) if wrong.any() else 0.0
+    wrong = i1 != i2  # pairs that cannot correspond
+    chance = (
+        float(np.mean(model.residuals(fit[None], i1[wrong], i2[wrong])[0] < threshold))
+        if wrong.any()
+        else 0.0
+    )
     extra = count - s
     p_any = drawn * bdtrc(extra - 1, n - s, chance)  # P(X >= extra) per hypothesis
     return bool(p_any < _ALPHA), chance
 
 
-def ransac(model: PairModel, threshold: float, confidence: float = 0.995, max_iters: int = 2000,
-           rng: np.random.Generator | int | None = None, *, batch: int = 64,
-           local_optimize: bool = True) -> RobustFit:
+def ransac(
+    model: PairModel,
+    threshold: float,
+    confidence: float = 0.995,
+    max_iters: int = 2000,
+    rng: np.random.Generator | int | None = None,
+    *,
+    batch: int = 64,
+    local_optimize: bool = True,
+) -> RobustFit:
     """Fit ``model`` robustly: sample, score (MSAC), optimise locally, stop adaptively, refuse chance.
 
     See the module docstring for the derivation of each step.
@@ -264,7 +302,7 @@ def ransac(model: PairModel, threshold: float, confidence: float = 0.995, max_it
         idx = rng.integers(0, n, size=(b, s))
         drawn += b
         srt = np.sort(idx, axis=1)
-        idx = idx[np.all(srt[:, 1:] != srt[:, :-1], axis=1)]      # s distinct pairs
+        idx = idx[np.all(srt[:, 1:] != srt[:, :-1], axis=1)]  # s distinct pairs
         if len(idx) == 0:
             continue
         models, ok = model.minimal(idx)
@@ -293,11 +331,15 @@ def ransac(model: PairModel, threshold: float, confidence: float = 0.995, max_it
         best_count = int(np.sum(model.residuals(best[None])[0] < threshold))
         needed = required_iterations(best_count / n, confidence, s)
     if best is not None and local_optimize:
-        best, best_cost = local_optimization(model, best, threshold, rng, inner=_LO_FINAL_INNER, steps=_LO_FINAL_STEPS)
+        best, best_cost = local_optimization(
+            model, best, threshold, rng, inner=_LO_FINAL_INNER, steps=_LO_FINAL_STEPS
+        )
         best_count = int(np.sum(model.residuals(best[None])[0] < threshold))
     if best is None:
-        raise DegenerateError(f"{model.name}: none of the {drawn} random samples gave a usable model; the points "
-                              f"may be collinear or repeated")
+        raise DegenerateError(
+            f"{model.name}: none of the {drawn} random samples gave a usable model; the points "
+            f"may be collinear or repeated"
+        )
     if best_count <= s:
         raise DegenerateError(
             f"{model.name}: too few inliers: no hypothesis from {drawn} samples was supported by any pair beyond its "

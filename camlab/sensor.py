@@ -12,6 +12,7 @@ lens of focal length :math:`f` gives :math:`f_x = f / s_x,\ f_y = f / s_y`.
 Images handled here are float arrays in [0, 1] (irradiance relative to saturation) or
 integer digital numbers after :func:`quantize`. See lesson 03.
 """
+
 from __future__ import annotations
 
 from typing import NamedTuple
@@ -31,15 +32,34 @@ from ._validate import (
 )
 
 __all__ = [
-    "BAYER_PATTERNS", "NoiseModel", "add_noise", "bayer_masks", "check_bayer_pattern", "check_bits", "demosaic_bilinear", "demosaic_opencv",
-    "dequantize", "gamma_decode", "gamma_encode", "intrinsics_from_sensor", "metric_to_pixels", "mosaic", "pixels_to_metric",
-    "psnr", "quantize", "sample", "white_balance", "zone_plate",
+    "BAYER_PATTERNS",
+    "NoiseModel",
+    "add_noise",
+    "bayer_masks",
+    "check_bayer_pattern",
+    "check_bits",
+    "demosaic_bilinear",
+    "demosaic_opencv",
+    "dequantize",
+    "gamma_decode",
+    "gamma_encode",
+    "intrinsics_from_sensor",
+    "metric_to_pixels",
+    "mosaic",
+    "pixels_to_metric",
+    "psnr",
+    "quantize",
+    "sample",
+    "white_balance",
+    "zone_plate",
 ]
 
 BAYER_PATTERNS = ("RGGB", "BGGR", "GRBG", "GBRG")
 
 
-def metric_to_pixels(points: ArrayLike, pitch: tuple[float, float], principal_point: tuple[float, float]) -> np.ndarray:
+def metric_to_pixels(
+    points: ArrayLike, pitch: tuple[float, float], principal_point: tuple[float, float]
+) -> np.ndarray:
     """Image-plane points (x, y) in metres to pixel coordinates (u, v) (see the module docstring).
 
     >>> metric_to_pixels([1e-3, -0.5e-3], (5e-6, 5e-6), (319.5, 239.5))
@@ -51,15 +71,23 @@ def metric_to_pixels(points: ArrayLike, pitch: tuple[float, float], principal_po
     return pts.restore(uv)
 
 
-def pixels_to_metric(pixels: ArrayLike, pitch: tuple[float, float], principal_point: tuple[float, float]) -> np.ndarray:
+def pixels_to_metric(
+    pixels: ArrayLike, pitch: tuple[float, float], principal_point: tuple[float, float]
+) -> np.ndarray:
     """Inverse of :func:`metric_to_pixels`: pixels (u, v) to image-plane metres (x, y)."""
     pts = as_points(pixels, 2, "pixels")
     sx, sy = check_pair(pitch, "pitch", "metres", positive=True)
-    return pts.restore((pts.array - check_pair(principal_point, "principal_point", "pixels")) * [sx, sy])
+    return pts.restore(
+        (pts.array - check_pair(principal_point, "principal_point", "pixels")) * [sx, sy]
+    )
 
 
-def intrinsics_from_sensor(focal_length: float, pitch: tuple[float, float], size: tuple[int, int],
-                           principal_offset: tuple[float, float] = (0.0, 0.0)) -> np.ndarray:
+def intrinsics_from_sensor(
+    focal_length: float,
+    pitch: tuple[float, float],
+    size: tuple[int, int],
+    principal_offset: tuple[float, float] = (0.0, 0.0),
+) -> np.ndarray:
     r"""The intrinsic matrix K of a lens on a sensor.
 
     :math:`f_x = f / s_x`, :math:`f_y = f / s_y`; the principal point is the image centre
@@ -74,9 +102,9 @@ def intrinsics_from_sensor(focal_length: float, pitch: tuple[float, float], size
     sx, sy = check_pair(pitch, "pitch", "metres", positive=True)
     w, h = check_size(size)
     ox, oy = check_pair(principal_offset, "principal_offset", "pixels")
-    return np.array([[f / sx, 0.0, (w - 1) / 2 + ox],
-                     [0.0, f / sy, (h - 1) / 2 + oy],
-                     [0.0, 0.0, 1.0]])
+    return np.array(
+        [[f / sx, 0.0, (w - 1) / 2 + ox], [0.0, f / sy, (h - 1) / 2 + oy], [0.0, 0.0, 1.0]]
+    )
 
 
 def check_bits(bits: int) -> int:
@@ -99,7 +127,9 @@ def quantize(image: ArrayLike, bits: int = 8) -> np.ndarray:
     if a.dtype.kind == "f":
         check_finite(a, "image")
     if not np.issubdtype(a.dtype, np.floating):
-        raise CamlabInputError(f"image: expected a float image with values in [0, 1], got dtype {a.dtype}")
+        raise CamlabInputError(
+            f"image: expected a float image with values in [0, 1], got dtype {a.dtype}"
+        )
     levels = (1 << b) - 1
     dn = np.clip(np.rint(a * levels), 0, levels)
     return dn.astype(np.uint8 if b <= 8 else np.uint16)
@@ -113,8 +143,10 @@ def dequantize(dn: ArrayLike, bits: int = 8) -> np.ndarray:
         raise CamlabInputError(f"dn: expected integer digital numbers, got dtype {a.dtype}")
     levels = (1 << b) - 1
     if a.size and (a.min() < 0 or a.max() > levels):
-        raise CamlabInputError(f"dn: {b}-bit digital numbers lie in [0, {levels}], got {a.min()} to {a.max()}; "
-                               f"pass the bit depth they were quantised with (bits=...)")
+        raise CamlabInputError(
+            f"dn: {b}-bit digital numbers lie in [0, {levels}], got {a.min()} to {a.max()}; "
+            f"pass the bit depth they were quantised with (bits=...)"
+        )
     return a.astype(float) / levels
 
 
@@ -125,7 +157,9 @@ class NoiseModel(NamedTuple):
     read_noise: float = 5.0
 
 
-def add_noise(image: ArrayLike, noise: NoiseModel = NoiseModel(), rng: np.random.Generator | int | None = None) -> np.ndarray:
+def add_noise(
+    image: ArrayLike, noise: NoiseModel = NoiseModel(), rng: np.random.Generator | int | None = None
+) -> np.ndarray:
     r"""Add photon shot noise and read noise to a float image in [0, 1].
 
     Electrons :math:`e \sim \mathrm{Poisson}(I \cdot FW)`, plus Gaussian read noise of
@@ -169,12 +203,16 @@ def sample(image: ArrayLike, factor: int, prefilter: bool = False, blur: float =
     if not isinstance(factor, (int, np.integer)) or factor < 1:
         raise CamlabInputError(f"factor: expected an integer >= 1, got {factor!r}")
     if not (np.isfinite(blur) and blur >= 0):
-        raise CamlabInputError(f"blur: expected a standard deviation >= 0 in coarse pixels, got {blur!r}; use 0 "
-                               f"for no blur")
+        raise CamlabInputError(
+            f"blur: expected a standard deviation >= 0 in coarse pixels, got {blur!r}; use 0 "
+            f"for no blur"
+        )
     if blur > 0:
         from scipy.ndimage import gaussian_filter
 
-        sigma = (blur * factor, blur * factor) + (0,) * (a.ndim - 2)   # no blur across colour channels
+        sigma = (blur * factor, blur * factor) + (0,) * (
+            a.ndim - 2
+        )  # no blur across colour channels
         a = gaussian_filter(a, sigma, mode="reflect")
     h, w = (a.shape[0] // factor) * factor, (a.shape[1] // factor) * factor
     a = a[:h, :w]
@@ -203,7 +241,9 @@ def check_bayer_pattern(pattern: str) -> str:
     """Return a Bayer pattern name in upper case (one of ``BAYER_PATTERNS``), else raise."""
     p = str(pattern).upper()
     if p not in BAYER_PATTERNS:
-        raise CamlabInputError(f"pattern: expected one of {', '.join(BAYER_PATTERNS)}, got {pattern!r}")
+        raise CamlabInputError(
+            f"pattern: expected one of {', '.join(BAYER_PATTERNS)}, got {pattern!r}"
+        )
     return p
 
 
@@ -240,7 +280,7 @@ def _convolve3(a: np.ndarray, k: np.ndarray) -> np.ndarray:
     for dy in range(3):
         for dx in range(3):
             if k[dy, dx]:
-                out += k[dy, dx] * p[dy:dy + h, dx:dx + w]
+                out += k[dy, dx] * p[dy : dy + h, dx : dx + w]
     return out
 
 
@@ -291,17 +331,23 @@ def demosaic_opencv(raw: ArrayLike, pattern: str = "RGGB", method: str = "biline
 
     r = check_image(raw, "raw", channels=(1,))
     if r.dtype not in (np.uint8, np.uint16):
-        raise CamlabInputError(f"raw: OpenCV demosaicing needs uint8 or uint16, got dtype {r.dtype}")
+        raise CamlabInputError(
+            f"raw: OpenCV demosaicing needs uint8 or uint16, got dtype {r.dtype}"
+        )
     suffix = {"bilinear": "", "vng": "_VNG", "ea": "_EA"}
     if method not in suffix:
         raise CamlabInputError(f"method: expected 'bilinear', 'vng' or 'ea', got {method!r}")
     if method == "vng" and r.dtype != np.uint8:
-        raise CamlabInputError("raw: OpenCV's VNG demosaicing accepts uint8 only; quantise to 8 bits first")
+        raise CamlabInputError(
+            "raw: OpenCV's VNG demosaicing accepts uint8 only; quantise to 8 bits first"
+        )
     code = getattr(cv2, f"COLOR_Bayer{check_bayer_pattern(pattern)}2RGB{suffix[method]}")
     return cv2.cvtColor(np.ascontiguousarray(r), code)
 
 
-def psnr(reference: ArrayLike, test: ArrayLike, peak: float | None = None, border: int = 0) -> float:
+def psnr(
+    reference: ArrayLike, test: ArrayLike, peak: float | None = None, border: int = 0
+) -> float:
     r"""Peak signal-to-noise ratio :math:`10 \log_{10}(peak^2 / MSE)` in dB, ignoring ``border`` pixels.
 
     ``peak`` defaults to the largest value of the reference's integer type (255 for uint8)
@@ -366,5 +412,7 @@ def white_balance(rgb: ArrayLike, white: ArrayLike | None = None) -> np.ndarray:
     img = check_image(rgb, "rgb", channels=(3,)).astype(float)
     w = img.reshape(-1, 3).mean(axis=0) if white is None else np.asarray(white, dtype=float)
     if w.shape != (3,) or not np.all(w > 0):
-        raise CamlabInputError(f"white: expected three positive channel values (R, G, B), got {np.asarray(w).tolist()}")
+        raise CamlabInputError(
+            f"white: expected three positive channel values (R, G, B), got {np.asarray(w).tolist()}"
+        )
     return np.clip(img * (w[1] / w), 0.0, 1.0)

@@ -15,6 +15,7 @@ Two implementations give the same picture: ``method="numpy"`` (the readable teac
 path) and ``method="cv2"`` (the fast path for interactive demos). See lesson 07,
 section 7.
 """
+
 from __future__ import annotations
 
 from typing import NamedTuple, Sequence
@@ -26,15 +27,24 @@ from ._validate import CamlabInputError, DegenerateError, check_image, check_sha
 from .homography import check_homography, compose
 from .projective import map_points
 
-__all__ = ["CanvasBounds", "CanvasWarp", "canvas_bounds", "forward_warp", "warp_perspective", "warp_to_canvas"]
+__all__ = [
+    "CanvasBounds",
+    "CanvasWarp",
+    "canvas_bounds",
+    "forward_warp",
+    "warp_perspective",
+    "warp_to_canvas",
+]
 
 _INTERPOLATIONS = ("nearest", "bilinear")
 _METHODS = ("numpy", "cv2")
 
 
 def _check_shape(output_shape: Sequence[int]) -> tuple[int, int]:
-    h, w = check_shape(tuple(output_shape)[:2] if isinstance(output_shape, (tuple, list)) else output_shape,
-                       "output_shape")
+    h, w = check_shape(
+        tuple(output_shape)[:2] if isinstance(output_shape, (tuple, list)) else output_shape,
+        "output_shape",
+    )
     if h * w > 50_000_000:
         raise CamlabInputError(
             f"output_shape: expected a positive (height, width) under 50 megapixels, got ({h}, {w})"
@@ -44,7 +54,9 @@ def _check_shape(output_shape: Sequence[int]) -> tuple[int, int]:
 
 def _check_options(interpolation: str, method: str) -> None:
     if interpolation not in _INTERPOLATIONS:
-        raise CamlabInputError(f"interpolation: expected one of {_INTERPOLATIONS}, got {interpolation!r}")
+        raise CamlabInputError(
+            f"interpolation: expected one of {_INTERPOLATIONS}, got {interpolation!r}"
+        )
     if method not in _METHODS:
         raise CamlabInputError(f"method: expected one of {_METHODS}, got {method!r}")
 
@@ -67,8 +79,14 @@ def _padded_planes(img: np.ndarray, fill: float) -> np.ndarray:
     return planes.reshape(chans, -1)
 
 
-def _sample(planes: np.ndarray, shape: tuple[int, int], x: np.ndarray, y: np.ndarray,
-            interpolation: str, out: np.ndarray) -> None:
+def _sample(
+    planes: np.ndarray,
+    shape: tuple[int, int],
+    x: np.ndarray,
+    y: np.ndarray,
+    interpolation: str,
+    out: np.ndarray,
+) -> None:
     r"""Sample padded planes at float source coordinates (x, y) = (u, v) into ``out`` (C, N).
 
     Coordinates are shifted by one into the padded frame and clipped into it, so samples
@@ -100,17 +118,24 @@ def _sample(planes: np.ndarray, shape: tuple[int, int], x: np.ndarray, y: np.nda
     for c, p in enumerate(planes):
         i00, i10 = np.take(p, i), np.take(p, i + 1)
         i01, i11 = np.take(p, i + W2), np.take(p, i + W2 + 1)
-        i10 -= i00; i10 *= a; i00 += i10          # top = i00 + a (i10 - i00)
-        i11 -= i01; i11 *= a; i01 += i11          # bottom = i01 + a (i11 - i01)
-        i01 -= i00; i01 *= b; i00 += i01          # top + b (bottom - top)
+        i10 -= i00
+        i10 *= a
+        i00 += i10  # top = i00 + a (i10 - i00)
+        i11 -= i01
+        i11 *= a
+        i01 += i11  # bottom = i01 + a (i11 - i01)
+        i01 -= i00
+        i01 *= b
+        i00 += i01  # top + b (bottom - top)
         out[c] = i00
 
 
 _BLOCK = 16384  # output pixels per step: keeps the temporaries in the CPU cache
 
 
-def _warp_numpy(img: np.ndarray, H: np.ndarray, shape: tuple[int, int], interpolation: str,
-                fill: float) -> np.ndarray:
+def _warp_numpy(
+    img: np.ndarray, H: np.ndarray, shape: tuple[int, int], interpolation: str, fill: float
+) -> np.ndarray:
     h, w = shape
     # Fix H's free sign so that the source origin (pixel (0, 0)) has w > 0, as with the
     # usual H[2, 2] = 1 (the image centre if H[2, 2] = 0); then an output pixel whose
@@ -140,13 +165,14 @@ def _warp_numpy(img: np.ndarray, H: np.ndarray, shape: tuple[int, int], interpol
         if hidden.any():
             X[hidden] = -2.0  # reads the fill border
             Y[hidden] = -2.0
-        _sample(planes, img.shape[:2], X, Y, interpolation, out[:, v0 * w:(v0 + len(v)) * w])
+        _sample(planes, img.shape[:2], X, Y, interpolation, out[:, v0 * w : (v0 + len(v)) * w])
     out = out.T.reshape(h, w, -1)
     return out[..., 0] if img.ndim == 2 else out
 
 
-def _warp_cv2(img: np.ndarray, H: np.ndarray, shape: tuple[int, int], interpolation: str,
-              fill: float) -> np.ndarray:
+def _warp_cv2(
+    img: np.ndarray, H: np.ndarray, shape: tuple[int, int], interpolation: str, fill: float
+) -> np.ndarray:
     import cv2
 
     flags = cv2.INTER_NEAREST if interpolation == "nearest" else cv2.INTER_LINEAR
@@ -154,8 +180,14 @@ def _warp_cv2(img: np.ndarray, H: np.ndarray, shape: tuple[int, int], interpolat
     if img.dtype not in (np.uint8, np.uint16, np.int16, np.float32, np.float64):
         src = img.astype(np.float32)
     nch = 1 if img.ndim == 2 else img.shape[2]
-    out = cv2.warpPerspective(src, H, (shape[1], shape[0]), flags=flags,
-                              borderMode=cv2.BORDER_CONSTANT, borderValue=(float(fill),) * max(nch, 1))
+    out = cv2.warpPerspective(
+        src,
+        H,
+        (shape[1], shape[0]),
+        flags=flags,
+        borderMode=cv2.BORDER_CONSTANT,
+        borderValue=(float(fill),) * max(nch, 1),
+    )
     return _to_dtype(out.reshape(shape[0], shape[1], *img.shape[2:]), img.dtype)
 
 
@@ -221,7 +253,9 @@ def warp_perspective(
     return _to_dtype(_warp_numpy(img, Hm, shape, interpolation, fill), img.dtype)
 
 
-def forward_warp(image: ArrayLike, H: ArrayLike, output_shape: Sequence[int], *, fill: float = 0) -> np.ndarray:
+def forward_warp(
+    image: ArrayLike, H: ArrayLike, output_shape: Sequence[int], *, fill: float = 0
+) -> np.ndarray:
     r"""Warp by *forward* mapping: push every source pixel to the rounded :math:`\pi(H x)`.
 
     Where H enlarges the image, neighbouring source pixels land more than one output
@@ -282,8 +316,9 @@ class CanvasBounds(NamedTuple):
     shape: tuple[int, int]
 
 
-def canvas_bounds(Hs: Sequence[ArrayLike], shapes: Sequence[Sequence[int]],
-                  max_pixels: int = 40_000_000) -> CanvasBounds:
+def canvas_bounds(
+    Hs: Sequence[ArrayLike], shapes: Sequence[Sequence[int]], max_pixels: int = 40_000_000
+) -> CanvasBounds:
     r"""The translation T and size of a canvas holding every image i warped by ``Hs[i]``.
 
     Each image's four corner pixels (0, 0), (w-1, 0), (w-1, h-1), (0, h-1) are mapped by
@@ -325,7 +360,10 @@ def canvas_bounds(Hs: Sequence[ArrayLike], shapes: Sequence[Sequence[int]],
     for i, (H, shape) in enumerate(zip(Hs, shapes)):
         Hm = check_homography(H, f"Hs[{i}]")
         h, w = int(shape[0]), int(shape[1])
-        c = np.array([[0, 0, 1], [w - 1, 0, 1], [w - 1, h - 1, 1], [0, h - 1, 1]], dtype=float) @ Hm.T
+        c = (
+            np.array([[0, 0, 1], [w - 1, 0, 1], [w - 1, h - 1, 1], [0, h - 1, 1]], dtype=float)
+            @ Hm.T
+        )
         if np.any(c[:, 2] <= 1e-12 * np.abs(c).max()):
             raise DegenerateError(
                 f"canvas_bounds: a corner of image {i} maps to or beyond infinity under Hs[{i}] (the image "

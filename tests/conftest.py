@@ -1,4 +1,5 @@
 """Shared test settings: headless figures and a fixed hypothesis profile."""
+
 import os
 
 os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
@@ -23,7 +24,9 @@ def cam():
     """A general camera (skewed K, off-centre principal point) looking at the origin from above and aside."""
     from camlab import camera as cm
 
-    return cm.Camera.look_at([4.0, -3.0, 2.0], [0.0, 0.0, 0.5], K=cm.intrinsic_matrix(810, 790, 330, 235, 1.5))
+    return cm.Camera.look_at(
+        [4.0, -3.0, 2.0], [0.0, 0.0, 0.5], K=cm.intrinsic_matrix(810, 790, 330, 235, 1.5)
+    )
 
 
 def assert_close_to_cv2_warp(ours, ref) -> None:
@@ -39,7 +42,9 @@ def assert_close_to_cv2_warp(ours, ref) -> None:
 
     diff = np.abs(np.asarray(ours).astype(int) - np.asarray(ref).astype(int))
     assert diff.max() <= 4, f"max |diff| {diff.max()} grey levels (OpenCV's fixed point allows 4)"
-    assert diff.mean() < 0.25, f"mean |diff| {diff.mean():.3f} grey levels: more than fixed-point rounding"
+    assert diff.mean() < 0.25, (
+        f"mean |diff| {diff.mean():.3f} grey levels: more than fixed-point rounding"
+    )
 
 
 def pytest_collection_modifyitems(items):

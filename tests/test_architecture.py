@@ -1,4 +1,5 @@
 """Architecture rules checked on the source: no module reaches into another module's privates."""
+
 import ast
 import sys
 from pathlib import Path
@@ -33,8 +34,11 @@ def private_imports() -> list[str]:
         aliases: dict[str, str] = {}  # local name -> camlab module it refers to
         for node in ast.walk(tree):
             if isinstance(node, ast.ImportFrom):
-                target = _resolve(name, path.name == "__init__.py", node.level, node.module) if node.level \
+                target = (
+                    _resolve(name, path.name == "__init__.py", node.level, node.module)
+                    if node.level
                     else (node.module or "")
+                )
                 if not target.startswith("camlab"):
                     continue
                 for a in node.names:
@@ -42,13 +46,19 @@ def private_imports() -> list[str]:
                         if target != name:
                             found.append(f"{name}: from {target} import {a.name}")
                     else:
-                        aliases[a.asname or a.name] = f"{target}.{a.name}" if _is_module(f"{target}.{a.name}") else ""
+                        aliases[a.asname or a.name] = (
+                            f"{target}.{a.name}" if _is_module(f"{target}.{a.name}") else ""
+                        )
             elif isinstance(node, ast.Import):
                 for a in node.names:
                     if a.name.startswith("camlab"):
                         aliases[a.asname or a.name.split(".")[0]] = a.name if a.asname else "camlab"
         for node in ast.walk(tree):
-            if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and _private(node.attr):
+            if (
+                isinstance(node, ast.Attribute)
+                and isinstance(node.value, ast.Name)
+                and _private(node.attr)
+            ):
                 module = aliases.get(node.value.id)
                 if module and module != name:
                     found.append(f"{name}: {node.value.id}.{node.attr} ({module})")
@@ -57,7 +67,9 @@ def private_imports() -> list[str]:
 
 def _is_module(dotted: str) -> bool:
     rel = Path(*dotted.split("."))
-    return (ROOT.parent / rel).with_suffix(".py").is_file() or (ROOT.parent / rel / "__init__.py").is_file()
+    return (ROOT.parent / rel).with_suffix(".py").is_file() or (
+        ROOT.parent / rel / "__init__.py"
+    ).is_file()
 
 
 def test_no_module_imports_another_modules_private_names():
@@ -73,7 +85,10 @@ def test_the_scan_finds_a_private_import(tmp_path, monkeypatch):
     (pkg / "a.py").write_text("def _helper():\n    return 1\n")
     (pkg / "b.py").write_text("from .a import _helper\nfrom . import a as _a\nx = _a._helper()\n")
     monkeypatch.setattr(sys.modules[__name__], "ROOT", pkg)
-    assert private_imports() == ["camlab.b: from camlab.a import _helper", "camlab.b: _a._helper (camlab.a)"]
+    assert private_imports() == [
+        "camlab.b: from camlab.a import _helper",
+        "camlab.b: _a._helper (camlab.a)",
+    ]
 
 
 _CACHES = {"lru_cache", "cache"}
@@ -95,7 +110,9 @@ def widget_data_caches(widgets: Path) -> list[str]:
     found = []
     for path in sorted(widgets.glob("*.py")):
         for node in ast.parse(path.read_text(), str(path)).body:
-            if isinstance(node, ast.FunctionDef) and any(_decorator_name(d) in _CACHES for d in node.decorator_list):
+            if isinstance(node, ast.FunctionDef) and any(
+                _decorator_name(d) in _CACHES for d in node.decorator_list
+            ):
                 found.append(f"{path.stem}.{node.name}")
     return found
 
@@ -110,7 +127,8 @@ def test_the_scan_finds_a_cached_pipeline_in_a_widget_module(tmp_path):
         "import functools\nfrom functools import lru_cache\n\n"
         "@lru_cache(maxsize=1)\ndef prepared():\n    return 1\n\n"
         "@functools.cache\ndef more():\n    return 2\n\n"
-        "def builder():\n    @lru_cache\n    def memo(x):\n        return x\n    return memo\n")
+        "def builder():\n    @lru_cache\n    def memo(x):\n        return x\n    return memo\n"
+    )
     assert widget_data_caches(tmp_path) == ["demo.prepared", "demo.more"]
 
 
@@ -122,8 +140,11 @@ def test_benchmark_scripts_share_one_timing_module(monkeypatch):
     monkeypatch.syspath_prepend(str(BENCHMARKS))
     import _timing
 
-    shared = {name for name, value in vars(_timing).items() if callable(value) and getattr(value, "__module__", "")
-              == "_timing"}
+    shared = {
+        name
+        for name, value in vars(_timing).items()
+        if callable(value) and getattr(value, "__module__", "") == "_timing"
+    }
     assert {"timed", "time_calls", "median_ms", "paired_ms", "print_table"} <= shared
     twins = []
     for path in sorted(BENCHMARKS.glob("*.py")):
@@ -150,7 +171,21 @@ def test_no_unused_function_parameters():
         import pytest
 
         pytest.skip("ruff is not installed (it comes with the [test] extra)")
-    out = subprocess.run([ruff, "check", "--no-cache", "--select", "ARG001", "--output-format", "concise",
-                          "--exclude", "camlab/exercises", str(ROOT)], capture_output=True, text=True,
-                         cwd=ROOT.parent)
+    out = subprocess.run(
+        [
+            ruff,
+            "check",
+            "--no-cache",
+            "--select",
+            "ARG001",
+            "--output-format",
+            "concise",
+            "--exclude",
+            "camlab/exercises",
+            str(ROOT),
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT.parent,
+    )
     assert out.returncode == 0, out.stdout

@@ -20,6 +20,7 @@ camera, all-wrong matches...) is tested beside each estimator (``tests/test_epip
 
 Run ``python tests/test_battery.py`` for the counts by outcome.
 """
+
 from __future__ import annotations
 
 import collections
@@ -39,7 +40,9 @@ from camlab._validate import CamlabInputError
 
 RNG = np.random.default_rng(0)
 K = np.array([[800.0, 0, 320], [0, 800, 240], [0, 0, 1]])
-R = np.array([[0.9950042, 0.0, 0.0998334], [0.0, 1.0, 0.0], [-0.0998334, 0.0, 0.9950042]])  # 0.1 rad about y
+R = np.array(
+    [[0.9950042, 0.0, 0.0998334], [0.0, 1.0, 0.0], [-0.0998334, 0.0, 0.9950042]]
+)  # 0.1 rad about y
 T = np.array([0.1, -0.05, 2.0])
 DIST = np.array([-0.1, 0.01, 0.001, -0.001, 0.0])
 H = np.array([[1.1, 0.05, 30.0], [-0.03, 0.95, -20.0], [2e-4, -1e-4, 1.0]])
@@ -61,9 +64,17 @@ def _lazy() -> dict[str, Any]:
     X = RNG.uniform([-0.5, -0.5, 2.0], [0.5, 0.5, 4.0], (30, 3))
     board = np.array([[i * 0.03, j * 0.03, 0.0] for j in range(6) for i in range(9)])
     return {
-        "cam1": cam1, "cam2": cam2, "X": X, "x1": cam1.project(X), "x2": cam2.project(X),
-        "F": fundamental_from_cameras(cam1, cam2), "E": essential_matrix(R, np.array([-0.2, 0.0, 0.0])),
-        "src": UV, "dst": map_points(H, UV), "board": board, "feat": detect_features(_textured()),
+        "cam1": cam1,
+        "cam2": cam2,
+        "X": X,
+        "x1": cam1.project(X),
+        "x2": cam2.project(X),
+        "F": fundamental_from_cameras(cam1, cam2),
+        "E": essential_matrix(R, np.array([-0.2, 0.0, 0.0])),
+        "src": UV,
+        "dst": map_points(H, UV),
+        "board": board,
+        "feat": detect_features(_textured()),
     }
 
 
@@ -82,7 +93,9 @@ BASELINES: dict[str, Callable[[dict], dict]] = {
     "projective.map_points": lambda v: {"H": H, "points": UV},
     "projective.map_lines": lambda v: {"H": H, "lines": [[1.0, 0, -1]]},
     "projective.cross_ratio": lambda v: {"points": [[0.0, 0], [1, 1], [2, 2], [4, 4]]},
-    "projective.vanishing_point": lambda v: {"segments": [[[0.0, 0], [10, 1]], [[0, 10], [10, 10.5]]]},
+    "projective.vanishing_point": lambda v: {
+        "segments": [[[0.0, 0], [10, 1]], [[0, 10], [10, 10.5]]]
+    },
     "projective.horizon": lambda v: {"vp1": [1000.0, 100, 1], "vp2": [-800.0, 120, 1]},
     "projective.ideal_point": lambda v: {"direction": [1.0, 2.0]},
     "projective.point_line_distance": lambda v: {"points": UV, "line": [1.0, 1, -300]},
@@ -98,27 +111,63 @@ BASELINES: dict[str, Callable[[dict], dict]] = {
     "camera.camera_centre": lambda v: {"P": K @ np.c_[R, T]},
     "camera.decompose_projection_matrix": lambda v: {"P": K @ np.c_[R, T]},
     "camera.rq_decomposition": lambda v: {"M": K @ R},
-    "camera.estimate_projection_matrix": lambda v: {"points_world": v["X"], "points_image": v["x2"]},
-    "camera.reprojection_errors": lambda v: {"P": v["cam2"].P, "points_world": v["X"], "points_image": v["x2"]},
+    "camera.estimate_projection_matrix": lambda v: {
+        "points_world": v["X"],
+        "points_image": v["x2"],
+    },
+    "camera.reprojection_errors": lambda v: {
+        "P": v["cam2"].P,
+        "points_world": v["X"],
+        "points_image": v["x2"],
+    },
     "camera.opengl_from_opencv": lambda v: {"R": R, "t": T},
-    "camera.project_segments": lambda v: {"camera": v["cam1"], "segments": [[[0.0, 0, 2], [0.1, 0, 2]]]},
-    "camera.orbit_eye": lambda v: {"azimuth": 0.3, "elevation": 0.2, "distance": 4.0, "target": [0.0, 0, 0.5]},
+    "camera.project_segments": lambda v: {
+        "camera": v["cam1"],
+        "segments": [[[0.0, 0, 2], [0.1, 0, 2]]],
+    },
+    "camera.orbit_eye": lambda v: {
+        "azimuth": 0.3,
+        "elevation": 0.2,
+        "distance": 4.0,
+        "target": [0.0, 0, 0.5],
+    },
     # affine
     "affine.orthographic_matrix": lambda v: {"R": R, "t": T},
     "affine.weak_perspective_matrix": lambda v: {"R": R, "t": T, "ax": 400.0, "ay": 400.0},
     "affine.affine_approximation": lambda v: {"camera": v["cam2"], "reference_point": [0.0, 0, 3]},
-    "affine.paraperspective_approximation": lambda v: {"camera": v["cam2"], "reference_point": [0.0, 0, 3]},
-    "affine.dolly_zoom_camera": lambda v: {"distance": 6.0, "azimuth": -0.7, "elevation": 0.35, "target": [0.0, 0, 0.5]},
-    "affine.dolly_zoom_errors": lambda v: {"points_world": X3, "distances": [4.0, 8.0], "azimuth": -0.7, "elevation": 0.35,
-                                           "target": [0.0, 0, 0.5]},
-    "affine.three_images": lambda v: {"camera": v["cam1"], "segments": [[[0.0, 0, 2], [0.1, 0, 2]], [[0.0, 0.1, 2.2], [0.1, 0.1, 2.2]]]},
+    "affine.paraperspective_approximation": lambda v: {
+        "camera": v["cam2"],
+        "reference_point": [0.0, 0, 3],
+    },
+    "affine.dolly_zoom_camera": lambda v: {
+        "distance": 6.0,
+        "azimuth": -0.7,
+        "elevation": 0.35,
+        "target": [0.0, 0, 0.5],
+    },
+    "affine.dolly_zoom_errors": lambda v: {
+        "points_world": X3,
+        "distances": [4.0, 8.0],
+        "azimuth": -0.7,
+        "elevation": 0.35,
+        "target": [0.0, 0, 0.5],
+    },
+    "affine.three_images": lambda v: {
+        "camera": v["cam1"],
+        "segments": [[[0.0, 0, 2], [0.1, 0, 2]], [[0.0, 0.1, 2.2], [0.1, 0.1, 2.2]]],
+    },
     "affine.estimate_affine_camera": lambda v: {"points_world": v["X"], "points_image": v["x1"]},
     "affine.dolly_zoom_focal": lambda v: {"f0": 0.05, "d0": 2.0, "d": 3.0},
     "affine.weak_perspective_error": lambda v: {"camera": v["cam1"], "points_world": v["X"]},
     # homography
     "homography.estimate_homography": lambda v: {"src": v["src"], "dst": v["dst"]},
-    "homography.ransac_homography": lambda v: {"src": v["src"], "dst": v["dst"], "threshold": 3.0, "max_iters": 200,
-                                               "rng": 0},
+    "homography.ransac_homography": lambda v: {
+        "src": v["src"],
+        "dst": v["dst"],
+        "threshold": 3.0,
+        "max_iters": 200,
+        "rng": 0,
+    },
     "homography.refine_homography": lambda v: {"H": H, "src": v["src"], "dst": v["dst"]},
     "homography.transfer_error": lambda v: {"H": H, "src": v["src"], "dst": v["dst"]},
     "homography.symmetric_transfer_error": lambda v: {"H": H, "src": v["src"], "dst": v["dst"]},
@@ -134,7 +183,12 @@ BASELINES: dict[str, Callable[[dict], dict]] = {
     "homography.plane_homography": lambda v: {"K": K, "R": R, "t": T, "n": [0.0, 0, 1], "d": 2.0},
     # epipolar
     "epipolar.estimate_fundamental_matrix": lambda v: {"x1": v["x1"], "x2": v["x2"]},
-    "epipolar.ransac_fundamental_matrix": lambda v: {"x1": v["x1"], "x2": v["x2"], "threshold": 1.0, "rng": 0},
+    "epipolar.ransac_fundamental_matrix": lambda v: {
+        "x1": v["x1"],
+        "x2": v["x2"],
+        "threshold": 1.0,
+        "rng": 0,
+    },
     "epipolar.epipolar_lines": lambda v: {"F": v["F"], "points": v["x1"]},
     "epipolar.epipoles": lambda v: {"F": v["F"]},
     "epipolar.sampson_distance": lambda v: {"F": v["F"], "x1": v["x1"], "x2": v["x2"]},
@@ -144,34 +198,77 @@ BASELINES: dict[str, Callable[[dict], dict]] = {
     "epipolar.fundamental_from_essential": lambda v: {"E": v["E"], "K1": K},
     "epipolar.decompose_essential_matrix": lambda v: {"E": v["E"]},
     "epipolar.recover_pose": lambda v: {"E": v["E"], "x1": v["x1"], "x2": v["x2"], "K1": K},
-    "epipolar.triangulate_points": lambda v: {"P1": v["cam1"].P, "P2": v["cam2"].P, "x1": v["x1"], "x2": v["x2"]},
+    "epipolar.triangulate_points": lambda v: {
+        "P1": v["cam1"].P,
+        "P2": v["cam2"].P,
+        "x1": v["x1"],
+        "x2": v["x2"],
+    },
     "epipolar.skew": lambda v: {"v": [1.0, 2, 3]},
     "epipolar.normalize_fundamental": lambda v: {"F": v["F"]},
-    "epipolar.reprojection_error": lambda v: {"P": v["cam1"].P, "points_world": v["X"], "pixels": v["x1"]},
+    "epipolar.reprojection_error": lambda v: {
+        "P": v["cam1"].P,
+        "points_world": v["X"],
+        "pixels": v["x1"],
+    },
     # distortion
     "distortion.distort_points": lambda v: {"points": UV / 1000, "dist": DIST},
     "distortion.undistort_points": lambda v: {"points": UV / 1000, "dist": DIST},
     "distortion.distort_pixels": lambda v: {"pixels": UV, "K": K, "dist": DIST},
     "distortion.undistort_pixels": lambda v: {"pixels": UV, "K": K, "dist": DIST},
     "distortion.undistort_map": lambda v: {"K": K, "dist": DIST, "size": (80, 60)},
-    "distortion.undistort_image": lambda v: {"image": IMG, "K": K / 8 + np.diag([0, 0, 7 / 8]), "dist": DIST},
+    "distortion.undistort_image": lambda v: {
+        "image": IMG,
+        "K": K / 8 + np.diag([0, 0, 7 / 8]),
+        "dist": DIST,
+    },
     "distortion.max_valid_radius": lambda v: {"dist": DIST},
     "distortion.radial_scale": lambda v: {"r": [0.1, 0.2], "dist": DIST},
     # lens, pinhole, sensor
     "lens.image_distance": lambda v: {"focal_length": 0.05, "object_distance": 2.0},
     "lens.aperture_diameter": lambda v: {"focal_length": 0.05, "f_number": 2.8},
     "lens.hyperfocal_distance": lambda v: {"focal_length": 0.05, "f_number": 2.8, "coc": 3e-5},
-    "lens.angle_of_view": lambda v: {"focal_length": 0.05, "sensor_size": 0.036, "focus_distance": 0.5},
-    "lens.aperture_for_depth_of_field": lambda v: {"focal_length": 0.05, "coc": 3e-5, "near": 2.0, "far": 4.0},
-    "lens.depth_of_field": lambda v: {"focal_length": 0.05, "f_number": 2.8, "focus_distance": 3.0, "coc": 3e-5},
-    "lens.circle_of_confusion": lambda v: {"focal_length": 0.05, "f_number": 2.8, "focus_distance": 3.0,
-                                           "depth": 4.0},
+    "lens.angle_of_view": lambda v: {
+        "focal_length": 0.05,
+        "sensor_size": 0.036,
+        "focus_distance": 0.5,
+    },
+    "lens.aperture_for_depth_of_field": lambda v: {
+        "focal_length": 0.05,
+        "coc": 3e-5,
+        "near": 2.0,
+        "far": 4.0,
+    },
+    "lens.depth_of_field": lambda v: {
+        "focal_length": 0.05,
+        "f_number": 2.8,
+        "focus_distance": 3.0,
+        "coc": 3e-5,
+    },
+    "lens.circle_of_confusion": lambda v: {
+        "focal_length": 0.05,
+        "f_number": 2.8,
+        "focus_distance": 3.0,
+        "depth": 4.0,
+    },
     "pinhole.project_pinhole": lambda v: {"points": X3, "focal_length": 0.05},
     "pinhole.pinhole_blur": lambda v: {"diameter": 3e-4, "focal_length": 0.05},
     "pinhole.optimal_pinhole_diameter": lambda v: {"focal_length": 0.05},
-    "sensor.intrinsics_from_sensor": lambda v: {"focal_length": 0.005, "pitch": (2e-6, 2e-6), "size": (640, 480)},
-    "sensor.metric_to_pixels": lambda v: {"points": UV * 1e-6, "pitch": (2e-6, 2e-6), "principal_point": (320, 240)},
-    "sensor.pixels_to_metric": lambda v: {"pixels": UV, "pitch": (2e-6, 2e-6), "principal_point": (320, 240)},
+    "sensor.intrinsics_from_sensor": lambda v: {
+        "focal_length": 0.005,
+        "pitch": (2e-6, 2e-6),
+        "size": (640, 480),
+    },
+    "sensor.metric_to_pixels": lambda v: {
+        "points": UV * 1e-6,
+        "pitch": (2e-6, 2e-6),
+        "principal_point": (320, 240),
+    },
+    "sensor.pixels_to_metric": lambda v: {
+        "pixels": UV,
+        "pitch": (2e-6, 2e-6),
+        "principal_point": (320, 240),
+    },
     "sensor.quantize": lambda v: {"image": IMG / 255.0, "bits": 8},
     "sensor.dequantize": lambda v: {"dn": IMG, "bits": 8},
     "sensor.psnr": lambda v: {"reference": IMG, "test": IMG // 2 * 2},
@@ -187,79 +284,185 @@ BASELINES: dict[str, Callable[[dict], dict]] = {
     "calibration.find_chessboard": lambda v: {"image": GRAY, "pattern_size": (9, 6)},
     "calibration.extrinsics_from_homography": lambda v: {"K": K, "H": K @ np.c_[R[:, :2], T]},
     "calibration.zhang_v": lambda v: {"H": H, "i": 0, "j": 1},
-    "calibration.reproject": lambda v: {"object_points": v["board"], "K": K, "dist": DIST, "rvec": [0.1, 0, 0],
-                                        "tvec": [0.0, 0, 1]},
-    "calibration.optimal_new_camera_matrix": lambda v: {"K": K, "dist": DIST, "image_size": (640, 480),
-                                                        "alpha": 0.0},
+    "calibration.reproject": lambda v: {
+        "object_points": v["board"],
+        "K": K,
+        "dist": DIST,
+        "rvec": [0.1, 0, 0],
+        "tvec": [0.0, 0, 1],
+    },
+    "calibration.optimal_new_camera_matrix": lambda v: {
+        "K": K,
+        "dist": DIST,
+        "image_size": (640, 480),
+        "alpha": 0.0,
+    },
     "calibration.load_calibration": lambda v: {"path": _calibration_file()},
-    "calibration.save_calibration": lambda v: {"result": _calibration_result(),
-                                               "path": os.path.join(tempfile.mkdtemp(), "c.json")},
+    "calibration.save_calibration": lambda v: {
+        "result": _calibration_result(),
+        "path": os.path.join(tempfile.mkdtemp(), "c.json"),
+    },
     "calibration.calibrate_camera": lambda v: _calibration_views(),
     # features, stitching, warp
     "features.to_gray_uint8": lambda v: {"image": IMG},
     "features.detect_features": lambda v: {"image": _textured(), "max_features": 100},
-    "features.match_features": lambda v: {"features1": v["feat"], "features2": v["feat"], "ratio": 0.8},
-    "stitching.laplacian_blend": lambda v: {"images": [IMG / 255.0, IMG / 255.0],
-                                            "masks": [np.ones((60, 80), bool), np.zeros((60, 80), bool)],
-                                            "levels": 3},
+    "features.match_features": lambda v: {
+        "features1": v["feat"],
+        "features2": v["feat"],
+        "ratio": 0.8,
+    },
+    "stitching.laplacian_blend": lambda v: {
+        "images": [IMG / 255.0, IMG / 255.0],
+        "masks": [np.ones((60, 80), bool), np.zeros((60, 80), bool)],
+        "levels": 3,
+    },
     "stitching.feather_weights": lambda v: {"shape": (60, 80)},
     "stitching.cylindrical_warp": lambda v: {"image": IMG, "K": K / 8 + np.diag([0, 0, 7 / 8])},
     "warp.warp_perspective": lambda v: {"image": IMG, "H": H, "output_shape": (60, 80)},
     "warp.forward_warp": lambda v: {"image": IMG, "H": H, "output_shape": (60, 80)},
     # perspective, rectification, disparity
-    "perspective.order_corners": lambda v: {"corners": [[10.0, 10], [200, 20], [210, 150], [5, 160]]},
-    "perspective.estimate_aspect_ratio": lambda v: {"corners": [[10.0, 10], [200, 20], [210, 150], [5, 160]],
-                                                    "image_shape": (240, 320)},
-    "perspective.rectangle_homography": lambda v: {"corners": [[10.0, 10], [200, 20], [210, 150], [5, 160]],
-                                                   "size": (100, 80)},
-    "perspective.rectify_quadrilateral": lambda v: {"image": IMG, "corners": [[5.0, 5], [70, 6], [72, 50], [4, 55]]},
+    "perspective.order_corners": lambda v: {
+        "corners": [[10.0, 10], [200, 20], [210, 150], [5, 160]]
+    },
+    "perspective.estimate_aspect_ratio": lambda v: {
+        "corners": [[10.0, 10], [200, 20], [210, 150], [5, 160]],
+        "image_shape": (240, 320),
+    },
+    "perspective.rectangle_homography": lambda v: {
+        "corners": [[10.0, 10], [200, 20], [210, 150], [5, 160]],
+        "size": (100, 80),
+    },
+    "perspective.rectify_quadrilateral": lambda v: {
+        "image": IMG,
+        "corners": [[5.0, 5], [70, 6], [72, 50], [4, 55]],
+    },
     "perspective.find_document": lambda v: {"image": _document()},
     "rectification.rectify_calibrated": lambda v: {"camera1": v["cam1"], "camera2": v["cam2"]},
-    "rectification.rectify_uncalibrated": lambda v: {"x1": v["x1"], "x2": v["x2"], "F": v["F"],
-                                                     "image_size": (640, 480)},
+    "rectification.rectify_uncalibrated": lambda v: {
+        "x1": v["x1"],
+        "x2": v["x2"],
+        "F": v["F"],
+        "image_size": (640, 480),
+    },
     "rectification.vertical_disparity": lambda v: {"x1": v["x1"], "x2": v["x2"]},
-    "disparity.disparity_to_depth": lambda v: {"disparity": np.full((4, 4), 8.0), "focal_length": 800.0,
-                                               "baseline": 0.1},
-    "disparity.block_matching_disparity": lambda v: {"left": GRAY, "right": GRAY, "max_disparity": 16,
-                                                     "block_size": 5},
+    "disparity.disparity_to_depth": lambda v: {
+        "disparity": np.full((4, 4), 8.0),
+        "focal_length": 800.0,
+        "baseline": 0.1,
+    },
+    "disparity.block_matching_disparity": lambda v: {
+        "left": GRAY,
+        "right": GRAY,
+        "max_disparity": 16,
+        "block_size": 5,
+    },
 }
 
 # Generated values that are legitimate for some arguments: (functions, arguments, cases, reason).
 # Each rule says why the value is not a mistake there; everything else must fail clearly.
 ALLOWED_RULES: list[tuple[set[str], set[str], set[str], str]] = [
-    ({"projective.join", "projective.horizon"}, {"p", "q", "vp1", "vp2"}, {"one short"},
-     "a (2,) point is a Euclidean point"),
-    ({"camera.project_points", "camera.reprojection_errors", "camera.project_segments"},
-     {"points_world", "segments"}, {"NaN entry", "inf entry"},
-     "projection works point by point: a NaN point gives a NaN pixel, the others are unaffected"),
-    ({"homography.pose_homography", "homography.plane_homography", "epipolar.essential_matrix",
-      "calibration.reproject"}, {"t", "n", "rvec", "tvec"}, {"extra axis"},
-     "3-vectors are accepted in any shape with 3 entries, like OpenCV's (3, 1) rvec and tvec"),
+    (
+        {"projective.join", "projective.horizon"},
+        {"p", "q", "vp1", "vp2"},
+        {"one short"},
+        "a (2,) point is a Euclidean point",
+    ),
+    (
+        {"camera.project_points", "camera.reprojection_errors", "camera.project_segments"},
+        {"points_world", "segments"},
+        {"NaN entry", "inf entry"},
+        "projection works point by point: a NaN point gives a NaN pixel, the others are unaffected",
+    ),
+    (
+        {
+            "homography.pose_homography",
+            "homography.plane_homography",
+            "epipolar.essential_matrix",
+            "calibration.reproject",
+        },
+        {"t", "n", "rvec", "tvec"},
+        {"extra axis"},
+        "3-vectors are accepted in any shape with 3 entries, like OpenCV's (3, 1) rvec and tvec",
+    ),
     ({"homography.plane_homography"}, {"d"}, {"negative"}, "the plane offset d has a sign"),
-    ({"distortion.distort_points", "distortion.undistort_points", "distortion.distort_pixels",
-      "distortion.undistort_pixels", "distortion.undistort_map", "distortion.undistort_image",
-      "distortion.max_valid_radius", "distortion.radial_scale", "calibration.reproject",
-      "calibration.optimal_new_camera_matrix"}, {"dist"}, {"None", "one short", "extra axis"},
-     "None means no distortion; 4 coefficients (k1, k2, p1, p2) are OpenCV's short form, in any shape"),
-    ({"distortion.radial_scale", "lens.image_distance", "lens.circle_of_confusion", "pinhole.pinhole_blur"},
-     {"r", "object_distance", "depth", "diameter"}, {"empty", "extra axis", "one short", "list"},
-     "element-wise over an array of any shape (curves for plots)"),
-    ({"affine.dolly_zoom_errors"}, {"distances"}, {"one short"}, "any number of distances (one value each)"),
+    (
+        {
+            "distortion.distort_points",
+            "distortion.undistort_points",
+            "distortion.distort_pixels",
+            "distortion.undistort_pixels",
+            "distortion.undistort_map",
+            "distortion.undistort_image",
+            "distortion.max_valid_radius",
+            "distortion.radial_scale",
+            "calibration.reproject",
+            "calibration.optimal_new_camera_matrix",
+        },
+        {"dist"},
+        {"None", "one short", "extra axis"},
+        "None means no distortion; 4 coefficients (k1, k2, p1, p2) are OpenCV's short form, in any shape",
+    ),
+    (
+        {
+            "distortion.radial_scale",
+            "lens.image_distance",
+            "lens.circle_of_confusion",
+            "pinhole.pinhole_blur",
+        },
+        {"r", "object_distance", "depth", "diameter"},
+        {"empty", "extra axis", "one short", "list"},
+        "element-wise over an array of any shape (curves for plots)",
+    ),
+    (
+        {"affine.dolly_zoom_errors"},
+        {"distances"},
+        {"one short"},
+        "any number of distances (one value each)",
+    ),
     ({"lens.angle_of_view"}, {"focus_distance"}, {"inf"}, "focused at infinity: the default"),
-    ({"sensor.intrinsics_from_sensor", "sensor.metric_to_pixels", "sensor.pixels_to_metric"},
-     {"pitch", "principal_point"}, {"fractional size"}, "a pitch (metres) and a principal point (pixels) are real numbers"),
-    ({"sensor.metric_to_pixels", "sensor.pixels_to_metric"}, {"principal_point"}, {"zero size", "negative size"},
-     "a principal point may lie anywhere, even outside the image"),
-    ({"sensor.quantize", "sensor.dequantize", "disparity.disparity_to_depth"}, {"image", "dn", "disparity"},
-     {"empty", "extra axis", "1-D", "4-D", "wrong shape"}, "element-wise over an array of any shape"),
-    ({"disparity.disparity_to_depth"}, {"disparity"}, {"NaN entry", "inf entry", "zeros"},
-     "NaN and 0 mean 'no match' in a disparity map and give NaN depth (documented)"),
+    (
+        {"sensor.intrinsics_from_sensor", "sensor.metric_to_pixels", "sensor.pixels_to_metric"},
+        {"pitch", "principal_point"},
+        {"fractional size"},
+        "a pitch (metres) and a principal point (pixels) are real numbers",
+    ),
+    (
+        {"sensor.metric_to_pixels", "sensor.pixels_to_metric"},
+        {"principal_point"},
+        {"zero size", "negative size"},
+        "a principal point may lie anywhere, even outside the image",
+    ),
+    (
+        {"sensor.quantize", "sensor.dequantize", "disparity.disparity_to_depth"},
+        {"image", "dn", "disparity"},
+        {"empty", "extra axis", "1-D", "4-D", "wrong shape"},
+        "element-wise over an array of any shape",
+    ),
+    (
+        {"disparity.disparity_to_depth"},
+        {"disparity"},
+        {"NaN entry", "inf entry", "zeros"},
+        "NaN and 0 mean 'no match' in a disparity map and give NaN depth (documented)",
+    ),
     ({"sensor.demosaic_bilinear"}, {"raw"}, {"transposed"}, "a transposed image is still an image"),
-    ({"calibration.board_points", "calibration.find_chessboard"}, {"pattern_size"}, {"text size"},
-     "'9x6' is the documented string form of the pattern"),
-    ({"calibration.save_calibration"}, {"path"}, {"text file"}, "saving replaces an existing file (atomically)"),
-    ({"rectification.vertical_disparity"}, {"x1", "x2"}, {"NaN entry", "inf entry"},
-     "pairs that left the rectified image (NaN) are skipped by design"),
+    (
+        {"calibration.board_points", "calibration.find_chessboard"},
+        {"pattern_size"},
+        {"text size"},
+        "'9x6' is the documented string form of the pattern",
+    ),
+    (
+        {"calibration.save_calibration"},
+        {"path"},
+        {"text file"},
+        "saving replaces an existing file (atomically)",
+    ),
+    (
+        {"rectification.vertical_disparity"},
+        {"x1", "x2"},
+        {"NaN entry", "inf entry"},
+        "pairs that left the rectified image (NaN) are skipped by design",
+    ),
 ]
 
 
@@ -270,14 +473,52 @@ def allowed(qualname: str, name: str, label: str) -> str | None:
             return reason
     return None
 
+
 # Names of arguments that must be strictly positive (zero and negative values are bad input).
 POSITIVE = {
-    "focal_length", "f_number", "coc", "object_distance", "focus_distance", "depth", "diameter", "threshold",
-    "max_iters", "square_size", "scale", "ax", "ay", "f0", "d0", "d", "fx", "fy", "bits", "factor", "levels",
-    "max_features", "ratio", "width", "height", "baseline", "max_disparity", "block_size", "peak", "sensor_size",
-    "near", "far",
+    "focal_length",
+    "f_number",
+    "coc",
+    "object_distance",
+    "focus_distance",
+    "depth",
+    "diameter",
+    "threshold",
+    "max_iters",
+    "square_size",
+    "scale",
+    "ax",
+    "ay",
+    "f0",
+    "d0",
+    "d",
+    "fx",
+    "fy",
+    "bits",
+    "factor",
+    "levels",
+    "max_features",
+    "ratio",
+    "width",
+    "height",
+    "baseline",
+    "max_disparity",
+    "block_size",
+    "peak",
+    "sensor_size",
+    "near",
+    "far",
 }
-SIZES = {"size", "image_size", "pattern_size", "shape", "output_shape", "pitch", "principal_point", "image_shape"}
+SIZES = {
+    "size",
+    "image_size",
+    "pattern_size",
+    "shape",
+    "output_shape",
+    "pitch",
+    "principal_point",
+    "image_shape",
+}
 PATHS = {"path"}
 
 
@@ -285,8 +526,11 @@ def _calibration_views() -> dict:
     from camlab.calibration import make_synthetic_views
 
     views = make_synthetic_views()
-    return {"object_points": views.object_points, "image_points": views.image_points,
-            "image_size": views.image_size}
+    return {
+        "object_points": views.object_points,
+        "image_points": views.image_points,
+        "image_size": views.image_size,
+    }
 
 
 def _calibration_result():
@@ -309,20 +553,35 @@ def _document() -> np.ndarray:
 
 # --------------------------------------------------------------------------- generated bad values
 
+
 def bad_values(name: str, value: Any) -> list[tuple[str, Any]]:
     """Bad replacements for one argument, generated from its name and its valid value's kind."""
     cases: list[tuple[str, Any]] = [("None", None), ("string", "abc")]
     if name in PATHS:
-        return [("None", None), ("directory", tempfile.gettempdir()),
-                ("unwritable", "/proc/camlab-no-such-dir/out.json"), ("missing", "/nonexistent/c.json"),
-                ("text file", _text_file())]
+        return [
+            ("None", None),
+            ("directory", tempfile.gettempdir()),
+            ("unwritable", "/proc/camlab-no-such-dir/out.json"),
+            ("missing", "/nonexistent/c.json"),
+            ("text file", _text_file()),
+        ]
     if name in SIZES:
         w = value[0] if len(value) else 1
-        cases += [("zero size", (0, value[1])), ("negative size", (-w, value[1])), ("fractional size", (w + 0.5, value[1])),
-                  ("scalar size", w), ("NaN size", (np.nan, value[1])), ("text size", f"{value[0]}x{value[1]}")]
+        cases += [
+            ("zero size", (0, value[1])),
+            ("negative size", (-w, value[1])),
+            ("fractional size", (w + 0.5, value[1])),
+            ("scalar size", w),
+            ("NaN size", (np.nan, value[1])),
+            ("text size", f"{value[0]}x{value[1]}"),
+        ]
         return cases
     if isinstance(value, str):
-        return [("None", None), ("number", 3), ("unknown text", "9.5x6" if name == "pattern" else "no-such-option")]
+        return [
+            ("None", None),
+            ("number", 3),
+            ("unknown text", "9.5x6" if name == "pattern" else "no-such-option"),
+        ]
     if isinstance(value, (bool, np.bool_)):
         return cases
     if isinstance(value, (int, float, np.integer, np.floating)):
@@ -332,19 +591,36 @@ def bad_values(name: str, value: Any) -> list[tuple[str, Any]]:
         if isinstance(value, (int, np.integer)) and name in POSITIVE:
             cases += [("fractional", value + 0.5)]
         return cases
-    if isinstance(value, list) and value and all(isinstance(a, np.ndarray) and a.ndim == 2 for a in value):
-        return cases + [("empty list", []), ("transposed views", [a.T for a in value]),
-                        ("NaN in a view", [_with(value[0], np.nan)] + list(value[1:])), ("one view", value[:1])]
+    if (
+        isinstance(value, list)
+        and value
+        and all(isinstance(a, np.ndarray) and a.ndim == 2 for a in value)
+    ):
+        return cases + [
+            ("empty list", []),
+            ("transposed views", [a.T for a in value]),
+            ("NaN in a view", [_with(value[0], np.nan)] + list(value[1:])),
+            ("one view", value[:1]),
+        ]
     arr = np.asarray(value) if not _is_object(value) else None
     if arr is None:
         return cases + [("number", 3.0)]
-    if arr.dtype.kind in "ui" and arr.ndim >= 2:           # an image
-        return cases + [("object dtype", arr.astype(object)), ("1-D", arr.ravel()), ("empty", arr[:0]),
-                        ("4-D", arr[None]), ("complex", arr.astype(complex))]
+    if arr.dtype.kind in "ui" and arr.ndim >= 2:  # an image
+        return cases + [
+            ("object dtype", arr.astype(object)),
+            ("1-D", arr.ravel()),
+            ("empty", arr[:0]),
+            ("4-D", arr[None]),
+            ("complex", arr.astype(complex)),
+        ]
     if arr.dtype == object or arr.size == 0:
         return cases
-    cases += [("NaN entry", _with(arr, np.nan)), ("inf entry", _with(arr, np.inf)), ("empty", arr.reshape(-1)[:0]),
-              ("extra axis", arr[None, None])]
+    cases += [
+        ("NaN entry", _with(arr, np.nan)),
+        ("inf entry", _with(arr, np.inf)),
+        ("empty", arr.reshape(-1)[:0]),
+        ("extra axis", arr[None, None]),
+    ]
     if arr.ndim == 2 and arr.shape[0] != arr.shape[1]:
         cases.append(("transposed", arr.T))
     if arr.ndim == 2 and arr.shape[0] == arr.shape[1]:
@@ -437,7 +713,9 @@ def test_bad_input_gives_a_clear_error(qualname, name, label):
     outcome, detail = run_case(qualname, name, label)
     if reason is not None:
         # Legitimate here: it must work (no exception), or the rule is stale.
-        assert outcome == "silent", f"{qualname}({name}={label}) is allowed ({reason}) but gave {outcome}: {detail}"
+        assert outcome == "silent", (
+            f"{qualname}({name}={label}) is allowed ({reason}) but gave {outcome}: {detail}"
+        )
         return
     assert outcome == "clear", f"{qualname}({name}={label}): {outcome}: {detail}"
 
@@ -453,8 +731,10 @@ def main() -> int:
         if outcome != "clear":
             rows.append(f"{outcome:7s} {qualname}({name}={label}): {detail}")
     print("\n".join(rows))
-    print(f"\n{sum(counts.values())} cases over {len(BASELINES)} functions: " +
-          ", ".join(f"{k} {v}" for k, v in counts.most_common()))
+    print(
+        f"\n{sum(counts.values())} cases over {len(BASELINES)} functions: "
+        + ", ".join(f"{k} {v}" for k, v in counts.most_common())
+    )
     return 0
 
 

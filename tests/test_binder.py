@@ -7,6 +7,7 @@ build context .dockerignore leaves; the heavy ones (marked ``binder``, run by ``
 test-binder``) repeat each image's install steps in a fresh venv on a copy of that context, and
 the Makefile then runs every lesson from a working folder outside both.
 """
+
 import os
 import re
 import shlex
@@ -26,8 +27,12 @@ sys.path.insert(0, str(REPO / "tools"))
 
 @pytest.fixture(scope="module")
 def dockerfile() -> str:
-    out = subprocess.run([str(BIN / "jupyter-repo2docker"), "--no-build", "--debug", str(REPO)],
-                         capture_output=True, text=True, timeout=600)
+    out = subprocess.run(
+        [str(BIN / "jupyter-repo2docker"), "--no-build", "--debug", str(REPO)],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert out.returncode == 0, out.stdout[-3000:] + out.stderr[-3000:]
     return out.stdout + out.stderr
 
@@ -35,7 +40,9 @@ def dockerfile() -> str:
 def _install_steps(dockerfile: str) -> list[str]:
     """The `pip install` commands the image runs after copying the repository in."""
     after_copy = dockerfile.split("COPY --chown=0:0 src/ ${REPO_DIR}/", 1)[1]
-    return re.findall(r"^RUN \$\{KERNEL_PYTHON_PREFIX\}/bin/(pip install .*)$", after_copy, flags=re.M)
+    return re.findall(
+        r"^RUN \$\{KERNEL_PYTHON_PREFIX\}/bin/(pip install .*)$", after_copy, flags=re.M
+    )
 
 
 def test_repo2docker_picks_python_311_and_installs_from_the_lock_not_editable(dockerfile):
@@ -43,14 +50,31 @@ def test_repo2docker_picks_python_311_and_installs_from_the_lock_not_editable(do
     assert runtime == "python-3.11"
     assert "Building conda environment for python=3.11" in dockerfile
     assert "FROM docker.io/library/buildpack-deps:" in dockerfile
-    assert "environment.yml" not in dockerfile  # the Python buildpack (binder/requirements.txt), not conda's
+    assert (
+        "environment.yml" not in dockerfile
+    )  # the Python buildpack (binder/requirements.txt), not conda's
     assert _install_steps(dockerfile) == ['pip install --no-cache-dir -r "binder/requirements.txt"']
-    requirements = [ln.strip() for ln in (REPO / "binder" / "requirements.txt").read_text().splitlines()
-                    if ln.strip() and not ln.startswith("#")]
-    assert requirements == ["-r ../requirements/students.txt", "."]  # the students' lock, then camlab, never -e
+    requirements = [
+        ln.strip()
+        for ln in (REPO / "binder" / "requirements.txt").read_text().splitlines()
+        if ln.strip() and not ln.startswith("#")
+    ]
+    assert requirements == [
+        "-r ../requirements/students.txt",
+        ".",
+    ]  # the students' lock, then camlab, never -e
     lock = STUDENTS_LOCK.read_text()
-    for package in ("numpy", "matplotlib", "ipympl", "ipywidgets", "jupyterlab", "opencv-python-headless"):
-        assert re.search(rf"^{package}==\d", lock, flags=re.M), f"{package} is not pinned in the students' lock"
+    for package in (
+        "numpy",
+        "matplotlib",
+        "ipympl",
+        "ipywidgets",
+        "jupyterlab",
+        "opencv-python-headless",
+    ):
+        assert re.search(rf"^{package}==\d", lock, flags=re.M), (
+            f"{package} is not pinned in the students' lock"
+        )
     # repo2docker's own jupyterhub-singleuser (mybinder.org's hub version) must stay
     assert not re.search(r"^jupyterhub==", lock, flags=re.M)
 
@@ -58,16 +82,27 @@ def test_repo2docker_picks_python_311_and_installs_from_the_lock_not_editable(do
 def test_binder_link_is_derived_from_the_clones_github_remote():
     from binder_link import FIRST_LESSON, binder_link, github_path
 
-    for url in ("https://github.com/ada/camera-course.git", "git@github.com:ada/camera-course.git\n",
-                "ssh://git@github.com/ada/camera-course", "https://github.com/ada/camera-course/"):
+    for url in (
+        "https://github.com/ada/camera-course.git",
+        "git@github.com:ada/camera-course.git\n",
+        "ssh://git@github.com/ada/camera-course",
+        "https://github.com/ada/camera-course/",
+    ):
         assert github_path(url) == "ada/camera-course", url
-    with pytest.raises(ValueError, match="'https://gitlab.com/ada/course.git' is not a GitHub repository"):
+    with pytest.raises(
+        ValueError, match="'https://gitlab.com/ada/course.git' is not a GitHub repository"
+    ):
         github_path("https://gitlab.com/ada/course.git")
     link = binder_link("ada/camera-course")
-    assert link == "https://mybinder.org/v2/gh/ada/camera-course/HEAD?labpath=lessons%2F00_start_here.ipynb"
+    assert (
+        link
+        == "https://mybinder.org/v2/gh/ada/camera-course/HEAD?labpath=lessons%2F00_start_here.ipynb"
+    )
     assert (REPO / FIRST_LESSON).is_file()
     readme = (REPO / "README.md").read_text()
-    assert "make binder-link" in readme and "OWNER/REPO" not in readme  # no badge that points nowhere
+    assert (
+        "make binder-link" in readme and "OWNER/REPO" not in readme
+    )  # no badge that points nowhere
 
 
 def test_binder_link_without_the_remote_says_what_to_add(capsys):
@@ -99,12 +134,28 @@ def _copy_repo(dest: Path) -> Path:
 
 
 def test_the_build_context_leaves_out_a_dev_clones_environments_builds_and_history(tmp_path):
-    left_out = [".venv/lib/python3.11/site-packages/numpy/__init__.py", ".venv-oldest/bin/python",
-                "build/venv-wheel/bin/python", "dist/camlab_course-0.1.0-py3-none-any.whl", "site/index.html",
-                ".git/HEAD", "camlab/__pycache__/pinhole.cpython-311.pyc",
-                "lessons/.ipynb_checkpoints/00_start_here-checkpoint.ipynb", "camlab_course.egg-info/PKG-INFO"]
-    kept = ["pyproject.toml", "setup.py", "README.md", "LICENSE", "camlab/pinhole.py", "requirements/students.txt",
-            "lessons/00_start_here.ipynb", "camlab/data/chessboard/left01.jpg", "hub/Dockerfile"]
+    left_out = [
+        ".venv/lib/python3.11/site-packages/numpy/__init__.py",
+        ".venv-oldest/bin/python",
+        "build/venv-wheel/bin/python",
+        "dist/camlab_course-0.1.0-py3-none-any.whl",
+        "site/index.html",
+        ".git/HEAD",
+        "camlab/__pycache__/pinhole.cpython-311.pyc",
+        "lessons/.ipynb_checkpoints/00_start_here-checkpoint.ipynb",
+        "camlab_course.egg-info/PKG-INFO",
+    ]
+    kept = [
+        "pyproject.toml",
+        "setup.py",
+        "README.md",
+        "LICENSE",
+        "camlab/pinhole.py",
+        "requirements/students.txt",
+        "lessons/00_start_here.ipynb",
+        "camlab/data/chessboard/left01.jpg",
+        "hub/Dockerfile",
+    ]
     for rel in left_out + kept:
         (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
         (tmp_path / rel).write_text("x")
@@ -114,46 +165,77 @@ def test_the_build_context_leaves_out_a_dev_clones_environments_builds_and_histo
 
 
 def test_every_tracked_file_goes_into_the_build_context():
-    tracked = subprocess.run(["git", "ls-files", "-z"], cwd=REPO, capture_output=True, text=True,
-                             check=True).stdout.split("\0")
+    tracked = subprocess.run(
+        ["git", "ls-files", "-z"], cwd=REPO, capture_output=True, text=True, check=True
+    ).stdout.split("\0")
     missing = sorted(set(filter(None, tracked)) - _build_context(REPO))
     assert not missing, f".dockerignore leaves out tracked files: {missing[:10]}"
 
 
 def _fresh_venv(folder: Path) -> tuple[Path, dict]:
-    if f"python-{sys.version_info[0]}.{sys.version_info[1]}" != (REPO / "binder" / "runtime.txt").read_text().strip():
+    if (
+        f"python-{sys.version_info[0]}.{sys.version_info[1]}"
+        != (REPO / "binder" / "runtime.txt").read_text().strip()
+    ):
         pytest.skip("this interpreter is not the Python binder/runtime.txt pins")
     subprocess.run([sys.executable, "-m", "venv", str(folder)], check=True)
-    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV", "CAMLAB_FIGURE_MODE")}
+    env = {
+        k: v
+        for k, v in os.environ.items()
+        if k not in ("PYTHONPATH", "VIRTUAL_ENV", "CAMLAB_FIGURE_MODE")
+    }
     env["PATH"] = f"{folder / 'bin'}{os.pathsep}{env['PATH']}"
     return folder / "bin" / "python", env
 
 
 def _imported_from(python: Path, cwd: Path, env: dict) -> str:
-    return subprocess.run([str(python), "-c", "import camlab; print(camlab.__file__)"], cwd=cwd, env=env,
-                          capture_output=True, text=True, check=True).stdout.strip()
+    return subprocess.run(
+        [str(python), "-c", "import camlab; print(camlab.__file__)"],
+        cwd=cwd,
+        env=env,
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout.strip()
 
 
-heavy = pytest.mark.skipif(os.environ.get("CAMLAB_TEST_BINDER") != "1",
-                           reason="installs whole environments afresh: run `make test-binder` (CI does)")
+heavy = pytest.mark.skipif(
+    os.environ.get("CAMLAB_TEST_BINDER") != "1",
+    reason="installs whole environments afresh: run `make test-binder` (CI does)",
+)
 
 
 @pytest.mark.binder
 @heavy
-def test_binder_install_step_installs_camlab_from_the_students_lock_not_editable(dockerfile, tmp_path):
+def test_binder_install_step_installs_camlab_from_the_students_lock_not_editable(
+    dockerfile, tmp_path
+):
     """The image's install command, run in a copy of the repository; `make test-binder` then runs
     every lesson against this venv from a folder outside the repository (Makefile:
     run-lessons-outside, shared with `make test-wheel`)."""
     repo = _copy_repo(tmp_path / "repo")
-    python, env = _fresh_venv(Path(os.environ.get("CAMLAB_BINDER_VENV", tmp_path / "env")).resolve())
-    for step in _install_steps(dockerfile):  # exactly the image's install command, in the copied repository
-        run = subprocess.run([str(python.parent / "pip"), *shlex.split(step)[1:]], cwd=repo, env=env,
-                             capture_output=True, text=True, timeout=1800)
+    python, env = _fresh_venv(
+        Path(os.environ.get("CAMLAB_BINDER_VENV", tmp_path / "env")).resolve()
+    )
+    for step in _install_steps(
+        dockerfile
+    ):  # exactly the image's install command, in the copied repository
+        run = subprocess.run(
+            [str(python.parent / "pip"), *shlex.split(step)[1:]],
+            cwd=repo,
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=1800,
+        )
         assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
     where = _imported_from(python, tmp_path, env)
-    assert where.startswith(str(python.parent.parent)) and "site-packages" in where, where  # not editable
-    frozen = subprocess.run([str(python.parent / "pip"), "freeze"], env=env, capture_output=True, text=True,
-                            check=True).stdout
+    assert where.startswith(str(python.parent.parent)) and "site-packages" in where, (
+        where
+    )  # not editable
+    frozen = subprocess.run(
+        [str(python.parent / "pip"), "freeze"], env=env, capture_output=True, text=True, check=True
+    ).stdout
     lock = STUDENTS_LOCK.read_text()
     for package in ("numpy", "ipympl", "opencv-python-headless", "jupyterlab"):
         pinned = re.search(rf"^{package}==([^\s;]+)", lock, flags=re.M).group(1)
@@ -163,32 +245,46 @@ def test_binder_install_step_installs_camlab_from_the_students_lock_not_editable
 class HubDockerfile(NamedTuple):
     """What the tests read from hub/Dockerfile (continuation lines joined, comments dropped)."""
 
-    base: str              # the FROM image
-    args: dict[str, str]   # ARG name -> default
-    copy_dest: str         # where COPY puts the build context
-    runs: list[str]        # the RUN steps' shell commands
+    base: str  # the FROM image
+    args: dict[str, str]  # ARG name -> default
+    copy_dest: str  # where COPY puts the build context
+    runs: list[str]  # the RUN steps' shell commands
 
 
 def _hub_dockerfile() -> HubDockerfile:
-    lines = [ln for ln in (REPO / "hub" / "Dockerfile").read_text().splitlines() if not ln.lstrip().startswith("#")]
+    lines = [
+        ln
+        for ln in (REPO / "hub" / "Dockerfile").read_text().splitlines()
+        if not ln.lstrip().startswith("#")
+    ]
     text = "\n".join(lines).replace("\\\n", " ")
-    return HubDockerfile(base=re.search(r"^FROM (\S+)$", text, flags=re.M).group(1),
-                         args=dict(re.findall(r"^ARG (\w+)=(\S+)$", text, flags=re.M)),
-                         copy_dest=re.search(r"^COPY \S+ \. (\S+)$", text, flags=re.M).group(1),
-                         runs=re.findall(r"^RUN (.*)$", text, flags=re.M))
+    return HubDockerfile(
+        base=re.search(r"^FROM (\S+)$", text, flags=re.M).group(1),
+        args=dict(re.findall(r"^ARG (\w+)=(\S+)$", text, flags=re.M)),
+        copy_dest=re.search(r"^COPY \S+ \. (\S+)$", text, flags=re.M).group(1),
+        runs=re.findall(r"^RUN (.*)$", text, flags=re.M),
+    )
 
 
 def test_the_hub_image_pins_its_base_by_date_and_installs_the_students_lock():
     image = _hub_dockerfile()
-    assert re.fullmatch(r"quay\.io/jupyter/[a-z-]+-notebook:\d{4}-\d{2}-\d{2}", image.base), image.base
-    assert any(f"-r {image.copy_dest}/requirements/students.txt" in step for step in image.runs), image.runs
-    assert "hub/Dockerfile" in (REPO / "docs" / "teaching.md").read_text()  # the page points at the file
+    assert re.fullmatch(r"quay\.io/jupyter/[a-z-]+-notebook:\d{4}-\d{2}-\d{2}", image.base), (
+        image.base
+    )
+    assert any(f"-r {image.copy_dest}/requirements/students.txt" in step for step in image.runs), (
+        image.runs
+    )
+    assert (
+        "hub/Dockerfile" in (REPO / "docs" / "teaching.md").read_text()
+    )  # the page points at the file
 
 
 def test_the_hub_images_jupyterhub_defaults_to_the_version_the_hub_test_runs():
     """Its single-user server must match the hub; by default the version of requirements/lock.txt."""
     default = _hub_dockerfile().args["JUPYTERHUB_VERSION"]
-    pinned = re.search(r"^jupyterhub==(\S+)$", (REPO / "requirements" / "lock.txt").read_text(), flags=re.M)
+    pinned = re.search(
+        r"^jupyterhub==(\S+)$", (REPO / "requirements" / "lock.txt").read_text(), flags=re.M
+    )
     assert pinned and default == pinned.group(1), (default, pinned)
 
 
@@ -204,10 +300,16 @@ def test_the_hubs_login_is_github_oauth_limited_to_the_class_organisation():
     config = yaml.safe_load((REPO / "hub" / "config.yaml").read_text())["hub"]["config"]
     name = config["JupyterHub"]["authenticator_class"]
     found = entry_points(group="jupyterhub.authenticators", name=name)
-    assert found, f"no JupyterHub authenticator {name!r} installed: install the class extra (oauthenticator)"
+    assert found, (
+        f"no JupyterHub authenticator {name!r} installed: install the class extra (oauthenticator)"
+    )
     github = next(iter(found)).load()
     assert github.__name__ == "GitHubOAuthenticator"
-    classes = {"JupyterHub": JupyterHub, "Authenticator": Authenticator, "GitHubOAuthenticator": github}
+    classes = {
+        "JupyterHub": JupyterHub,
+        "Authenticator": Authenticator,
+        "GitHubOAuthenticator": github,
+    }
     assert set(config) == set(classes)
     for section, settings in config.items():
         unknown = set(settings) - set(classes[section].class_trait_names(config=True))
@@ -215,7 +317,9 @@ def test_the_hubs_login_is_github_oauth_limited_to_the_class_organisation():
     login = github(config=Config(config))
     assert login.allowed_organizations == {"camlab-class-2026"} and "read:org" in login.scope
     assert login.admin_users == {"your-github-username"} and not login.allow_all
-    assert "client_secret" not in config["GitHubOAuthenticator"]  # secrets stay out of the repository
+    assert (
+        "client_secret" not in config["GitHubOAuthenticator"]
+    )  # secrets stay out of the repository
 
 
 @pytest.mark.binder
@@ -228,20 +332,43 @@ def test_the_hub_images_run_steps_work_in_a_fresh_venv(tmp_path):
     python, env = _fresh_venv(tmp_path / "env")
     env.update(image.args)
     for step in image.runs:
-        run = subprocess.run(["bash", "-ec", step.replace(image.copy_dest, str(repo))], env=env,
-                             capture_output=True, text=True, timeout=1800)
+        run = subprocess.run(
+            ["bash", "-ec", step.replace(image.copy_dest, str(repo))],
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=1800,
+        )
         assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
     assert not repo.exists()  # the image's clean-up ran
     where = _imported_from(python, tmp_path, env)
     assert where.startswith(str(python.parent.parent)) and "site-packages" in where, where
-    copied = subprocess.run([str(python.parent / "camlab"), "lessons", str(tmp_path / "home" / "camlab-course")],
-                            env=env, capture_output=True, text=True, timeout=120)
-    assert copied.returncode == 0 and (tmp_path / "home" / "camlab-course" / "lessons" / "00_start_here.ipynb").is_file()
-    extensions = subprocess.run([str(python.parent / "jupyter"), "server", "extension", "list"], env=env,
-                                capture_output=True, text=True, timeout=120)
+    copied = subprocess.run(
+        [str(python.parent / "camlab"), "lessons", str(tmp_path / "home" / "camlab-course")],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert (
+        copied.returncode == 0
+        and (tmp_path / "home" / "camlab-course" / "lessons" / "00_start_here.ipynb").is_file()
+    )
+    extensions = subprocess.run(
+        [str(python.parent / "jupyter"), "server", "extension", "list"],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert "nbgitpuller" in extensions.stdout + extensions.stderr
-    hub = subprocess.run([str(python.parent / "jupyterhub-singleuser"), "--version"], env=env,
-                         capture_output=True, text=True, timeout=120)
+    hub = subprocess.run(
+        [str(python.parent / "jupyterhub-singleuser"), "--version"],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert hub.stdout.strip() == image.args["JUPYTERHUB_VERSION"], hub.stdout + hub.stderr
 
 
@@ -252,7 +379,22 @@ def test_the_hub_image_resolves_with_the_jupyterhub_of_zero_to_jupyterhub(jupyte
     """docs/teaching.md's advice, `--build-arg JUPYTERHUB_VERSION='5.*'`, resolves against the students' lock."""
     extra = tmp_path / "hub.in"
     extra.write_text(f"jupyterhub=={jupyterhub}\nnbgitpuller==1.3.0\n")
-    run = subprocess.run([str(BIN / "uv"), "pip", "compile", "--quiet", "--python-version", "3.11",
-                          str(STUDENTS_LOCK), str(extra)], capture_output=True, text=True, timeout=300)
+    run = subprocess.run(
+        [
+            str(BIN / "uv"),
+            "pip",
+            "compile",
+            "--quiet",
+            "--python-version",
+            "3.11",
+            str(STUDENTS_LOCK),
+            str(extra),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert run.returncode == 0, run.stderr[-3000:]
-    assert re.search(rf"^jupyterhub=={jupyterhub.replace('.*', '.')}", run.stdout, flags=re.M), run.stdout
+    assert re.search(rf"^jupyterhub=={jupyterhub.replace('.*', '.')}", run.stdout, flags=re.M), (
+        run.stdout
+    )

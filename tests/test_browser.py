@@ -3,6 +3,7 @@
 Playwright drives the system Chromium (never `playwright install`, which downloads a browser).
 JupyterLab serves a temporary copy of the lessons so autosave never touches the repository.
 """
+
 import shutil
 import sys
 from pathlib import Path
@@ -22,8 +23,14 @@ def write_every_demo_notebook(path: Path) -> None:
 
     from camlab.widgets import all_demos
 
-    cells = [nbformat.v4.new_code_cell("%matplotlib widget\nfrom camlab.widgets import all_demos\nDEMOS = all_demos()")]
-    cells += [nbformat.v4.new_code_cell(f"DEMOS[{name!r}].builder()") for name in sorted(all_demos())]
+    cells = [
+        nbformat.v4.new_code_cell(
+            "%matplotlib widget\nfrom camlab.widgets import all_demos\nDEMOS = all_demos()"
+        )
+    ]
+    cells += [
+        nbformat.v4.new_code_cell(f"DEMOS[{name!r}].builder()") for name in sorted(all_demos())
+    ]
     kernel = {"name": "python3", "display_name": "Python 3 (ipykernel)", "language": "python"}
     nbformat.write(nbformat.v4.new_notebook(cells=cells, metadata={"kernelspec": kernel}), path)
 
@@ -52,36 +59,51 @@ def test_lesson_06_runs_and_a_slider_moves_the_figure(lab):
             demo.scroll_into_view_if_needed()
             demo.locator("canvas").first.wait_for(state="visible")
             page.wait_for_function(
-                "() => (document.querySelector('.camlab-demo-parallel-lines pre') || {}).textContent?.includes('l1 × l2')")
+                "() => (document.querySelector('.camlab-demo-parallel-lines pre') || {}).textContent?.includes('l1 × l2')"
+            )
             page.wait_for_function(browser.ALL_CELLS_RUN, polling=500)
             page.wait_for_timeout(1000)
             before_png, after_png, before_text, after_text = browser.click_slider(
-                page, "camlab-demo-parallel-lines", 0.8)  # the angle slider
+                page, "camlab-demo-parallel-lines", 0.8
+            )  # the angle slider
             # camlab.widgets' page script (camlab/_access.py): every slider handle has a name, and
             # Tab leaves a figure (ipympl's canvas would keep the focus: a keyboard trap).
             sliders = page.locator(".jp-OutputArea [role=slider]").count()
             unnamed = page.evaluate(
-                "() => [...document.querySelectorAll('.jp-OutputArea [role=slider]')].filter(h => !h.getAttribute('aria-label')).length")
+                "() => [...document.querySelectorAll('.jp-OutputArea [role=slider]')].filter(h => !h.getAttribute('aria-label')).length"
+            )
             figure = demo.locator(".jupyter-matplotlib-canvas-div").first
             figure.focus()
             focused_before = figure.evaluate("el => el === document.activeElement")
             page.keyboard.press("Tab")
             still_in_figure = figure.evaluate("el => el === document.activeElement")
-            errors = page.locator(".jp-OutputArea-output[data-mime-type='application/vnd.jupyter.stderr']")
+            errors = page.locator(
+                ".jp-OutputArea-output[data-mime-type='application/vnd.jupyter.stderr']"
+            )
             stderr = [t for t in errors.all_text_contents() if "Error" in t]
             # Each figure's bundle also carries a static PNG for readers without a kernel;
             # JupyterLab must show the live widget only, never the PNG under it.
-            static_images = page.locator(".jp-OutputArea-output[data-mime-type='image/png']").count()
+            static_images = page.locator(
+                ".jp-OutputArea-output[data-mime-type='image/png']"
+            ).count()
             live_canvases = page.locator(".jp-OutputArea-output canvas").count()
         finally:
             context.close()
     assert before_text != after_text, "the slider did not reach the kernel"
     assert before_png != after_png, "the slider moved but the figure did not change"
     assert not stderr, f"lesson 06 printed errors in the browser: {stderr[:2]}"
-    assert static_images == 0, f"JupyterLab shows {static_images} static PNGs under the live figures"
-    assert live_canvases >= 6, f"expected the 6 live figures of lesson 06, found {live_canvases} canvases"
-    assert sliders >= 10 and unnamed == 0, f"{unnamed} of {sliders} slider handles have no accessible name"
-    assert focused_before and not still_in_figure, "Tab does not leave a focused figure (a keyboard trap)"
+    assert static_images == 0, (
+        f"JupyterLab shows {static_images} static PNGs under the live figures"
+    )
+    assert live_canvases >= 6, (
+        f"expected the 6 live figures of lesson 06, found {live_canvases} canvases"
+    )
+    assert sliders >= 10 and unnamed == 0, (
+        f"{unnamed} of {sliders} slider handles have no accessible name"
+    )
+    assert focused_before and not still_in_figure, (
+        "Tab does not leave a focused figure (a keyboard trap)"
+    )
 
 
 MEASURE_DEMOS = """() => [...document.querySelectorAll('[class*=camlab-demo-]')].map((demo) => {
@@ -111,10 +133,19 @@ def test_every_demo_fits_at_1400_px_with_the_file_browser_open(lab):
             page.set_default_timeout(180_000)
             browser.run_notebook(page, lab, "every_demo.ipynb")
             page.wait_for_function(browser.ALL_CELLS_RUN, polling=500)
-            if page.evaluate("() => document.querySelector('#jp-left-stack').getBoundingClientRect().width") < 100:
+            if (
+                page.evaluate(
+                    "() => document.querySelector('#jp-left-stack').getBoundingClientRect().width"
+                )
+                < 100
+            ):
                 page.evaluate("() => window.jupyterapp.commands.execute('filebrowser:activate')")
-            page.wait_for_function("() => document.querySelector('#jp-left-stack').getBoundingClientRect().width > 200")
-            for demo in page.locator("[class*=camlab-demo-]").all():  # drawn only once scrolled into view
+            page.wait_for_function(
+                "() => document.querySelector('#jp-left-stack').getBoundingClientRect().width > 200"
+            )
+            for demo in page.locator(
+                "[class*=camlab-demo-]"
+            ).all():  # drawn only once scrolled into view
                 demo.scroll_into_view_if_needed()
                 demo.locator("canvas").first.wait_for(state="visible")
             page.wait_for_timeout(1000)
@@ -122,9 +153,19 @@ def test_every_demo_fits_at_1400_px_with_the_file_browser_open(lab):
         finally:
             context.close()
     assert len(measured) == len(all_demos())
-    assert all(940 <= m["area"] <= 1000 for m in measured), f"not the setting of the check: {measured[:2]}"
-    clipped = [f"{m['name']}: needs {m['needs']} px, canvas ends at {m['canvasRight']} of {m['areaRight']:.0f}, "
-               f"controls need {m['panelNeeds']} of {m['panel']} px, {m['overlap']:.0f} px2 under the figure"
-               for m in measured if m["needs"] > m["area"] or m["canvasRight"] is None
-               or m["canvasRight"] > m["areaRight"] + 1 or m["panelNeeds"] > m["panel"] + 1 or m["overlap"] > 0]
-    assert not clipped, "demos clipped at 1400 px with the file browser open:\n  " + "\n  ".join(clipped)
+    assert all(940 <= m["area"] <= 1000 for m in measured), (
+        f"not the setting of the check: {measured[:2]}"
+    )
+    clipped = [
+        f"{m['name']}: needs {m['needs']} px, canvas ends at {m['canvasRight']} of {m['areaRight']:.0f}, "
+        f"controls need {m['panelNeeds']} of {m['panel']} px, {m['overlap']:.0f} px2 under the figure"
+        for m in measured
+        if m["needs"] > m["area"]
+        or m["canvasRight"] is None
+        or m["canvasRight"] > m["areaRight"] + 1
+        or m["panelNeeds"] > m["panel"] + 1
+        or m["overlap"] > 0
+    ]
+    assert not clipped, "demos clipped at 1400 px with the file browser open:\n  " + "\n  ".join(
+        clipped
+    )

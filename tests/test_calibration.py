@@ -3,6 +3,7 @@
 Ground truth comes from the virtual camera (camlab.render via make_synthetic_views and the
 bundled rendered set in data/); OpenCV is run live on the same corners for cross-checks.
 """
+
 import cv2
 import numpy as np
 import pytest
@@ -38,10 +39,13 @@ def _opencv(obj, imgs, size, flags=0):
     objs = [np.asarray(obj, np.float32)] * len(imgs)
     pts = [np.asarray(p, np.float32).reshape(-1, 1, 2) for p in imgs]
     crit = (cv2.TERM_CRITERIA_COUNT + cv2.TERM_CRITERIA_EPS, 100, 1e-15)
-    return cv2.calibrateCameraExtended(objs, pts, tuple(size), None, None, flags=flags, criteria=crit)
+    return cv2.calibrateCameraExtended(
+        objs, pts, tuple(size), None, None, flags=flags, criteria=crit
+    )
 
 
 # ---------------------------------------------------------------- board and detection
+
 
 def test_board_points_order_and_units():
     P = C.board_points((9, 6), 0.025)
@@ -52,7 +56,9 @@ def test_board_points_order_and_units():
     assert C.parse_pattern("9X6") == (9, 6)
 
 
-@pytest.mark.parametrize("pattern, match", [("9-6", "expected inner corners"), ((1, 6), "at least 2 x 2")])
+@pytest.mark.parametrize(
+    "pattern, match", [("9-6", "expected inner corners"), ((1, 6), "at least 2 x 2")]
+)
 def test_board_points_bad_pattern(pattern, match):
     with pytest.raises(CamlabInputError, match=match):
         C.board_points(pattern, 0.025)
@@ -65,7 +71,7 @@ def test_find_chessboard_matches_the_rendered_truth(bundled):
     assert det.found and det.reason == "" and det.corners.shape == (54, 2)
     c = align_detected_corners(det.corners, bundled.corners[0])
     err = np.linalg.norm(c - bundled.corners[0], axis=1)
-    assert err.max() < 0.25 and np.sqrt(np.mean(err ** 2)) < 0.1
+    assert err.max() < 0.25 and np.sqrt(np.mean(err**2)) < 0.1
     # the fixed order: starts at the end nearer the image's top-left
     assert det.corners[0].sum() < det.corners[-1].sum()
     # colour input works too (and gives the same corners)
@@ -88,12 +94,14 @@ def test_find_chessboard_on_a_colour_image_of_any_dtype(bundled, dtype):
 
 def test_find_chessboard_explains_failures(bundled):
     img = bundled.images[0]
-    assert "inner corners" in C.find_chessboard(img, (10, 7)).reason and "--pattern 9x6" in \
-        C.find_chessboard(img, (10, 7)).reason
+    assert (
+        "inner corners" in C.find_chessboard(img, (10, 7)).reason
+        and "--pattern 9x6" in C.find_chessboard(img, (10, 7)).reason
+    )
     blank = C.find_chessboard(np.full_like(img, 128), (9, 6))
     assert not blank.found and blank.corners is None and "contrast" in blank.reason
     gt = bundled.corners[0]
-    cut = np.ascontiguousarray(img[:, :int(np.sort(gt[:, 0])[-15])])
+    cut = np.ascontiguousarray(img[:, : int(np.sort(gt[:, 0])[-15])])
     assert "cut off" in C.find_chessboard(cut, (9, 6)).reason
     assert "too blurry" in C.find_chessboard(cv2.GaussianBlur(img, (0, 0), 30), (9, 6)).reason
     with pytest.raises(CamlabInputError, match="image: expected an image of shape \\(H, W\\)"):
@@ -101,6 +109,7 @@ def test_find_chessboard_explains_failures(bundled):
 
 
 # ---------------------------------------------------------------- Zhang's stages, noise-free
+
 
 def _exact_views(n=6, seed=0):
     return C.make_synthetic_views(n, 0.0, dist=None, rng=np.random.default_rng(seed))
@@ -146,15 +155,16 @@ def test_linear_distortion_with_homography_poses_has_the_wrong_sign_and_the_alte
     Hs = C.view_homographies(s.object_points, s.image_points)
     K0 = C.intrinsics_from_homographies(Hs, image_size=s.image_size)
     poses = [C.extrinsics_from_homography(K0, H) for H in Hs]
-    linear = C.initial_radial_distortion(K0, s.object_points, s.image_points, [p[0] for p in poses],
-                                         [p[1] for p in poses])
-    assert linear[0] > 0 > s.dist[0]          # the poses absorbed the distortion: wrong sign
+    linear = C.initial_radial_distortion(
+        K0, s.object_points, s.image_points, [p[0] for p in poses], [p[1] for p in poses]
+    )
+    assert linear[0] > 0 > s.dist[0]  # the poses absorbed the distortion: wrong sign
     start = C.closed_form_with_distortion(s.object_points, s.image_points, s.image_size)
     assert len(start.rounds) == 3 and start.dist[2:].tolist() == [0, 0, 0]
     assert start.dist[0] == pytest.approx(s.dist[0], rel=0.03)
-    assert 0 < start.dist[1] < 2 * s.dist[1]   # right sign, right size; k2 is weakly determined
+    assert 0 < start.dist[1] < 2 * s.dist[1]  # right sign, right size; k2 is weakly determined
     np.testing.assert_allclose(np.diag(start.K)[:2], np.diag(s.K)[:2], rtol=5e-3)
-    assert start.rounds[-1][2] < start.rounds[0][2]   # the rms falls as the rounds alternate
+    assert start.rounds[-1][2] < start.rounds[0][2]  # the rms falls as the rounds alternate
 
 
 def test_closed_form_with_distortion_rejects_zero_rounds():
@@ -185,6 +195,7 @@ def test_intrinsics_from_b_rejects_an_indefinite_b():
 
 # ---------------------------------------------------------------- refinement internals
 
+
 def test_analytic_jacobian_matches_finite_differences():
     rng = np.random.default_rng(4)
     g = np.array([800.0, 790.0, 320.0, 240.0, 0.7, -0.2, 0.05, 0.001, -0.002, 0.01])
@@ -209,16 +220,22 @@ def test_analytic_jacobian_matches_finite_differences():
 def test_schur_complement_solve_equals_the_dense_solve():
     rng = np.random.default_rng(5)
     V, M, ni = 4, 10, 9
-    Ji, Jp, r = rng.normal(size=(V, 2 * M, ni)), rng.normal(size=(V, 2 * M, 6)), rng.normal(size=(V, 2 * M))
+    Ji, Jp, r = (
+        rng.normal(size=(V, 2 * M, ni)),
+        rng.normal(size=(V, 2 * M, 6)),
+        rng.normal(size=(V, 2 * M)),
+    )
     J = np.zeros((V * 2 * M, ni + 6 * V))
     for v in range(V):
-        J[v * 2 * M:(v + 1) * 2 * M, :ni] = Ji[v]
-        J[v * 2 * M:(v + 1) * 2 * M, ni + 6 * v:ni + 6 * v + 6] = Jp[v]
+        J[v * 2 * M : (v + 1) * 2 * M, :ni] = Ji[v]
+        J[v * 2 * M : (v + 1) * 2 * M, ni + 6 * v : ni + 6 * v + 6] = Jp[v]
     A = BlockNormal(Ji, Jp, r)
     np.testing.assert_allclose(A.gradient(), J.T @ r.ravel(), rtol=1e-12)
     np.testing.assert_allclose(A.diagonal(), np.diag(J.T @ J), rtol=1e-12)
     for mu in (0.0, 1e-3, 10.0):
-        np.testing.assert_allclose(A.solve(mu), dense_damped_solve(J.T @ J, J.T @ r.ravel(), mu), rtol=1e-8, atol=1e-10)
+        np.testing.assert_allclose(
+            A.solve(mu), dense_damped_solve(J.T @ J, J.T @ r.ravel(), mu), rtol=1e-8, atol=1e-10
+        )
 
 
 def test_reproject_matches_opencv_project_points():
@@ -230,6 +247,7 @@ def test_reproject_matches_opencv_project_points():
 
 
 # ---------------------------------------------------------------- calibrate_camera: accuracy
+
 
 def test_noise_free_recovery_to_1e6_relative():
     s = C.make_synthetic_views(12, 0.0, rng=np.random.default_rng(11))
@@ -263,12 +281,14 @@ def test_errors_are_consistent_with_the_reported_std():
             z.append((p[name] - true) / res.std[name])
     z = np.array(z)
     assert np.all(np.abs(z) < 3), z
-    assert 0.3 < np.sqrt(np.mean(z ** 2)) < 2.0  # neither over- nor under-confident
+    assert 0.3 < np.sqrt(np.mean(z**2)) < 2.0  # neither over- nor under-confident
 
 
 def test_agrees_with_opencv_on_the_same_corners(noisy15):
     s, res = noisy15
-    rms, K, dist, rv, tv, std_i, _, per_view = _opencv(s.object_points, s.image_points, s.image_size)
+    rms, K, dist, rv, tv, std_i, _, per_view = _opencv(
+        s.object_points, s.image_points, s.image_size
+    )
     assert abs(res.K[0, 0] / K[0, 0] - 1) < 1e-3 and abs(res.K[1, 1] / K[1, 1] - 1) < 1e-3
     assert abs(res.K[0, 2] - K[0, 2]) < 0.5 and abs(res.K[1, 2] - K[1, 2]) < 0.5
     assert res.rms == pytest.approx(rms, rel=0.01)
@@ -293,14 +313,19 @@ def test_agrees_with_opencv_on_detected_corners_of_rendered_images(bundled):
 def test_skew_and_fixed_parameters():
     K = K_TRUE.copy()
     K[0, 1] = 2.0
-    s = C.make_synthetic_views(8, 0.0, K=K, dist=[-0.2, 0.05, 0, 0, 0], rng=np.random.default_rng(8))
-    res = C.calibrate_camera(s.object_points, s.image_points, s.image_size, skew=True, fix=("p1", "p2", "k3"))
+    s = C.make_synthetic_views(
+        8, 0.0, K=K, dist=[-0.2, 0.05, 0, 0, 0], rng=np.random.default_rng(8)
+    )
+    res = C.calibrate_camera(
+        s.object_points, s.image_points, s.image_size, skew=True, fix=("p1", "p2", "k3")
+    )
     assert res.K[0, 1] == pytest.approx(2.0, abs=1e-6)
     assert res.dist[2:].tolist() == [0.0, 0.0, 0.0] and res.std["k3"] == 0.0
     assert "skew" in res.free_params and "k3" not in res.free_params
 
 
 # ---------------------------------------------------------------- calibrate_camera: bad input
+
 
 def test_bad_input_messages():
     s = C.make_synthetic_views(4, 0.1, rng=np.random.default_rng(9))
@@ -311,8 +336,11 @@ def test_bad_input_messages():
     with pytest.raises(CamlabInputError, match=r"image_points\[1\]: corner 5 is NaN"):
         C.calibrate_camera(s.object_points, bad, s.image_size)
     with pytest.raises(CamlabInputError, match=r"image_points\[2\]: expected 54 points"):
-        C.calibrate_camera(s.object_points, [p if i != 2 else p[:50] for i, p in enumerate(s.image_points)],
-                           s.image_size)
+        C.calibrate_camera(
+            s.object_points,
+            [p if i != 2 else p[:50] for i, p in enumerate(s.image_points)],
+            s.image_size,
+        )
     X3 = s.object_points.copy()
     X3[:, 2] = np.linspace(0, 0.1, len(X3))
     with pytest.raises(CamlabInputError, match="flat target with Z = 0"):
@@ -338,29 +366,40 @@ def test_boards_parallel_to_the_image_are_degenerate():
 def test_unequal_point_counts_per_view():
     s = C.make_synthetic_views(6, 0.0, rng=np.random.default_rng(12))
     keep = [np.arange(54) if v % 2 else np.arange(0, 54, 2) for v in range(6)]
-    res = C.calibrate_camera([s.object_points[k] for k in keep], [p[k] for p, k in zip(s.image_points, keep)],
-                             s.image_size)
+    res = C.calibrate_camera(
+        [s.object_points[k] for k in keep],
+        [p[k] for p, k in zip(s.image_points, keep)],
+        s.image_size,
+    )
     assert np.abs(res.K - K_TRUE).max() < 1e-5 and [len(r) for r in res.residuals][:2] == [27, 54]
 
 
 # ---------------------------------------------------------------- from images
 
+
 def test_calibrate_from_images_reports_and_skips_failures(bundled, tmp_path):
     imgs = list(bundled.images[:5])
-    imgs.insert(1, np.full((480, 640), 90, np.uint8))           # no board
-    imgs.append(bundled.images[5][:240, :320])                  # a different size
+    imgs.insert(1, np.full((480, 640), 90, np.uint8))  # no board
+    imgs.append(bundled.images[5][:240, :320])  # a different size
     out = C.calibrate_from_images(imgs + [str(tmp_path / "missing.png")], (9, 6), 0.025)
     assert out.used == [0, 2, 3, 4, 5]
     assert set(out.failed) == {1, 6, 7}
-    assert "contrast" in out.failed[1] and "differs" in out.failed[6] and "could not read" in out.failed[7]
+    assert (
+        "contrast" in out.failed[1]
+        and "differs" in out.failed[6]
+        and "could not read" in out.failed[7]
+    )
     assert out.result.n_views == 5 and "skipped image[1]" in out.report()
     assert abs(out.result.K[0, 0] / 820 - 1) < 0.01
 
 
 def test_calibrate_from_images_needs_three_good_views(bundled):
     imgs = [bundled.images[0], np.zeros((480, 640), np.uint8), bundled.images[1]]
-    with pytest.raises(CamlabInputError, match=r"need at least 3 images with the board detected, got 2 of 3:\n"
-                                               r"  image\[1\]: no chessboard found"):
+    with pytest.raises(
+        CamlabInputError,
+        match=r"need at least 3 images with the board detected, got 2 of 3:\n"
+        r"  image\[1\]: no chessboard found",
+    ):
         C.calibrate_from_images(imgs, "9x6", 0.025)
     with pytest.raises(CamlabInputError, match="no files match"):
         C.calibrate_from_images("/nonexistent/*.png", "9x6", 0.025)
@@ -368,10 +407,11 @@ def test_calibrate_from_images_needs_three_good_views(bundled):
 
 # ---------------------------------------------------------------- coach
 
+
 def test_coach_points_at_the_bad_view_and_the_empty_edge():
     s = C.make_synthetic_views(12, 0.2, rng=np.random.default_rng(13))
     pts = [p.copy() for p in s.image_points]
-    pts[4] += np.random.default_rng(0).normal(0, 2.0, pts[4].shape)   # a badly detected view
+    pts[4] += np.random.default_rng(0).normal(0, 2.0, pts[4].shape)  # a badly detected view
     res = C.calibrate_camera(s.object_points, pts, s.image_size)
     rep = C.coach(res)
     assert rep.worst_views[0] == 4 and rep.error_ratio[4] > 3
@@ -396,6 +436,7 @@ def test_projection_uncertainty_grows_towards_the_corners(noisy15):
 
 
 # ---------------------------------------------------------------- undistortion and files
+
 
 @pytest.mark.parametrize("alpha", [0.0, 0.5, 1.0])
 def test_optimal_new_camera_matrix_matches_opencv(alpha):
@@ -433,6 +474,7 @@ def test_save_is_loadable_by_opencv(noisy15, tmp_path, suffix):
 
 # ---------------------------------------------------------------- lesson 08 demos and exercises
 
+
 def test_accuracy_demo_recalibrates_and_reports_consistent_errors():
     from camlab.widgets import camera_calibration as demos
 
@@ -453,12 +495,12 @@ def test_accuracy_demo_plots_in_sigma_units_and_marks_clipped_errors():
     from camlab.widgets import camera_calibration as demos
 
     demo = demos.accuracy_vs_views()
-    demo.set(n_views=3, noise=1.0)      # the setting the lesson recommends: cx lands far outside
+    demo.set(n_views=3, noise=1.0)  # the setting the lesson recommends: cx lands far outside
     z = demo.state["z"]
     assert np.abs(z).max() > 3
     ax = demo.figure.axes[0]
     dots, above, below = (line for line in ax.get_lines() if line.get_animated())
-    assert np.all(np.abs(dots.get_ydata()) < ax.get_ylim()[1])   # every dot on the axis
+    assert np.all(np.abs(dots.get_ydata()) < ax.get_ylim()[1])  # every dot on the axis
     outside = np.abs(z) > ax.get_ylim()[1] - 0.4
     assert len(above.get_xdata()) + len(below.get_xdata()) == outside.sum()
 
@@ -467,7 +509,13 @@ def test_bundled_calibration_is_computed_once_and_read_only():
     out = bundled_calibration()
     assert bundled_calibration() is out
     assert out.used == list(range(16)) and out.failed == {}
-    for a in (out.result.K, out.result.dist, out.result.rvecs, out.result.residuals[0], out.detections[0]):
+    for a in (
+        out.result.K,
+        out.result.dist,
+        out.result.rvecs,
+        out.result.residuals[0],
+        out.detections[0],
+    ):
         with pytest.raises(ValueError, match="read-only"):
             a[0] = 0  # shared by every caller: an edit must not change the next one's answer
 
@@ -511,8 +559,14 @@ def test_warm_start_reaches_the_same_minimum(noisy15):
     s, cold = noisy15
     pts = [p + 0.05 * np.random.default_rng(1).normal(size=p.shape) for p in s.image_points]
     ref = C.calibrate_camera(s.object_points, pts, s.image_size)
-    warm = C.calibrate_camera(s.object_points, pts, s.image_size, K_guess=cold.K, dist_guess=cold.dist,
-                              pose_guess=np.column_stack([cold.rvecs, cold.tvecs]))
+    warm = C.calibrate_camera(
+        s.object_points,
+        pts,
+        s.image_size,
+        K_guess=cold.K,
+        dist_guess=cold.dist,
+        pose_guess=np.column_stack([cold.rvecs, cold.tvecs]),
+    )
     assert warm.initial["closed_form"] is False and warm.initial["homographies"] is None
     np.testing.assert_allclose(warm.K, ref.K, rtol=1e-6)  # 1e-6 of 322 px is far below the 2 px std
     np.testing.assert_allclose(warm.dist, ref.dist, rtol=1e-4, atol=1e-6)
@@ -520,4 +574,6 @@ def test_warm_start_reaches_the_same_minimum(noisy15):
     with pytest.raises(CamlabInputError, match="pose_guess: pass K_guess too"):
         C.calibrate_camera(s.object_points, pts, s.image_size, pose_guess=np.zeros((15, 6)))
     with pytest.raises(CamlabInputError, match=r"pose_guess: expected \(15, 6\)"):
-        C.calibrate_camera(s.object_points, pts, s.image_size, K_guess=cold.K, pose_guess=np.zeros((3, 6)))
+        C.calibrate_camera(
+            s.object_points, pts, s.image_size, K_guess=cold.K, pose_guess=np.zeros((3, 6))
+        )

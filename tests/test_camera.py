@@ -1,4 +1,5 @@
 """Tests for camlab.camera: P = K [R | t], decomposition, resectioning, rotations, frames."""
+
 from __future__ import annotations
 
 import os
@@ -28,6 +29,7 @@ def unit_scale(P):
 
 
 # -- intrinsics and rotations ----------------------------------------------------------------
+
 
 def test_intrinsic_matrix_known():
     K = cm.intrinsic_matrix(800, 780, 320, 240, 2.0)
@@ -76,7 +78,9 @@ def test_euler_round_trip(rx, ry, rz):
 
 def test_euler_order_is_z_y_x():
     a, b, c = 0.3, -0.2, 1.1
-    assert np.allclose(cm.rotation_from_euler(a, b, c), cm.rotation_z(c) @ cm.rotation_y(b) @ cm.rotation_x(a))
+    assert np.allclose(
+        cm.rotation_from_euler(a, b, c), cm.rotation_z(c) @ cm.rotation_y(b) @ cm.rotation_x(a)
+    )
     # rotation_z(90 deg) takes the x axis to the y axis (right-handed)
     assert np.allclose(cm.rotation_z(np.pi / 2) @ [1, 0, 0], [0, 1, 0])
 
@@ -86,22 +90,28 @@ def test_check_rotation_errors():
         cm.check_rotation(np.diag([1.0, 2.0, 1.0]))
     with pytest.raises(CamlabInputError, match=r"det R = -1 \(a reflection\)"):
         cm.check_rotation(np.diag([1.0, 1.0, -1.0]))
-    with pytest.raises(CamlabInputError, match=r"R: expected a \(3, 3\) matrix, got shape \(2, 2\)"):
+    with pytest.raises(
+        CamlabInputError, match=r"R: expected a \(3, 3\) matrix, got shape \(2, 2\)"
+    ):
         cm.check_rotation(np.eye(2))
 
 
 # -- Camera --------------------------------------------------------------------------------
+
 
 def test_camera_rejects_non_rotation():
     with pytest.raises(CamlabInputError, match="expected a rotation"):
         cm.Camera(cm.intrinsic_matrix(800, 800, 320, 240), R=np.eye(3) * 1.1)
 
 
-@pytest.mark.parametrize("K, msg", [
-    (np.diag([800.0, 0.0, 1.0]), r"fx = 800, fy = 0 \(a mirrored or singular K\)"),
-    (np.diag([800.0, 800.0, 2.0]), r"last row \(0, 0, 1\)"),
-    (np.zeros((3, 3)), r"last row \(0, 0, 1\)"),
-])
+@pytest.mark.parametrize(
+    "K, msg",
+    [
+        (np.diag([800.0, 0.0, 1.0]), r"fx = 800, fy = 0 \(a mirrored or singular K\)"),
+        (np.diag([800.0, 800.0, 2.0]), r"last row \(0, 0, 1\)"),
+        (np.zeros((3, 3)), r"last row \(0, 0, 1\)"),
+    ],
+)
 def test_camera_rejects_singular_or_bad_K(K, msg):
     with pytest.raises(CamlabInputError, match=msg):
         cm.Camera(K)
@@ -162,7 +172,9 @@ def test_from_fov():
 
 def test_project_matches_cv2_with_distortion(rng):
     K = cm.intrinsic_matrix(800, 790, 320, 240)
-    c = cm.Camera.look_at([3.0, -4.0, 2.0], [0.0, 0.0, 0.5], K=K, dist=(0.1, -0.05, 0.001, 0.002, 0.01))
+    c = cm.Camera.look_at(
+        [3.0, -4.0, 2.0], [0.0, 0.0, 0.5], K=K, dist=(0.1, -0.05, 0.001, 0.002, 0.01)
+    )
     X = box_points(rng)
     rvec, _ = cv2.Rodrigues(c.R)
     uv_cv, _ = cv2.projectPoints(X, rvec, c.t.reshape(3, 1), c.K, np.array(c.dist))
@@ -197,7 +209,9 @@ def test_project_points_matches_camera(cam, rng):
 @settings(max_examples=50, deadline=None)
 @given(st.floats(0, 639), st.floats(0, 479), st.floats(0.1, 50.0))
 def test_backproject_round_trip(u, v, depth):
-    c = cm.Camera.look_at([4.0, -3.0, 2.0], [0.0, 0.0, 0.5], K=cm.intrinsic_matrix(810, 790, 330, 235, 1.5))
+    c = cm.Camera.look_at(
+        [4.0, -3.0, 2.0], [0.0, 0.0, 0.5], K=cm.intrinsic_matrix(810, 790, 330, 235, 1.5)
+    )
     X = c.backproject([u, v], depth)
     assert np.isclose(c.depth(X), depth)
     assert np.allclose(c.project(X), [u, v], atol=1e-7)
@@ -214,13 +228,16 @@ def test_backproject_rays(cam, rng):
 def test_backproject_errors(cam):
     with pytest.raises(CamlabInputError, match=r"depth: expected depths > 0"):
         cam.backproject([100, 100], -1.0)
-    with pytest.raises(CamlabInputError, match=r"depth: expected a number or one depth per pixel \(2\)"):
+    with pytest.raises(
+        CamlabInputError, match=r"depth: expected a number or one depth per pixel \(2\)"
+    ):
         cam.backproject([[1, 2], [3, 4]], [1.0, 2.0, 3.0])
     with pytest.raises(CamlabInputError, match="lens distortion; undistort the pixels first"):
         cam.replace(dist=(0.1, 0, 0, 0, 0)).backproject([1, 2], 1.0)
 
 
 # -- OpenCV vs OpenGL frames -------------------------------------------------------------------
+
 
 def test_opengl_frame_round_trip(cam):
     R_gl, t_gl = cm.opengl_from_opencv(cam.R, cam.t)
@@ -231,10 +248,13 @@ def test_opengl_frame_round_trip(cam):
     assert np.allclose(-R_gl.T @ t_gl, cam.centre)
     X = np.array([0.0, 0.0, 0.5])
     assert (R_gl @ X + t_gl)[2] < 0
-    assert (R_gl @ (X + [0, 0, 1]) + t_gl)[1] > (R_gl @ X + t_gl)[1]  # world up is camera +y (up) in GL
+    assert (R_gl @ (X + [0, 0, 1]) + t_gl)[1] > (R_gl @ X + t_gl)[
+        1
+    ]  # world up is camera +y (up) in GL
 
 
 # -- decomposition ----------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("scale", [1.0, 3.7, -0.002, -250.0])
 def test_decompose_round_trip(cam, scale):
@@ -247,8 +267,13 @@ def test_decompose_round_trip(cam, scale):
 
 
 @settings(max_examples=40, deadline=None)
-@given(st.lists(st.floats(-3.0, 3.0), min_size=3, max_size=3), st.floats(300, 1500), st.floats(0.5, 2.0),
-       st.floats(-20, 20), st.floats(-100, 100))
+@given(
+    st.lists(st.floats(-3.0, 3.0), min_size=3, max_size=3),
+    st.floats(300, 1500),
+    st.floats(0.5, 2.0),
+    st.floats(-20, 20),
+    st.floats(-100, 100),
+)
 def test_decompose_property(rvec, f, aspect, skew, scale):
     if abs(scale) < 1e-3:
         scale = 1.0
@@ -262,8 +287,11 @@ def test_decompose_property(rvec, f, aspect, skew, scale):
 
 def test_decompose_matches_cv2(cam, rng):
     for _ in range(10):
-        c = cm.Camera(cm.intrinsic_matrix(*rng.uniform([600, 600, 280, 200], [1000, 1000, 360, 280])),
-                      cm.rotation_from_axis_angle(rng.normal(size=3)), rng.normal(size=3) + [0, 0, 6])
+        c = cm.Camera(
+            cm.intrinsic_matrix(*rng.uniform([600, 600, 280, 200], [1000, 1000, 360, 280])),
+            cm.rotation_from_axis_angle(rng.normal(size=3)),
+            rng.normal(size=3) + [0, 0, 6],
+        )
         P = rng.uniform(0.01, 100.0) * c.P  # OpenCV assumes det M > 0, see the next test
         K_cv, R_cv, C_cv = cv2.decomposeProjectionMatrix(P)[:3]
         K, R, t, C = cm.decompose_projection_matrix(P)
@@ -278,7 +306,7 @@ def test_cv2_does_not_fix_negative_scale(cam):
     assert K_cv[0, 0] > 0 and K_cv[1, 1] > 0
     assert np.isclose(K_cv[2, 2], -2.5)
     assert np.allclose(R_cv, np.diag([-1.0, -1.0, 1.0]) @ cam.R)
-    assert (K_cv / K_cv[2, 2])[0, 0] < 0          # normalising afterwards gives negative focal lengths
+    assert (K_cv / K_cv[2, 2])[0, 0] < 0  # normalising afterwards gives negative focal lengths
     dec = cm.decompose_projection_matrix(-2.5 * cam.P)
     assert dec.K[0, 0] > 0 and np.allclose(dec.K, cam.K) and np.allclose(dec.R, cam.R)
 
@@ -299,7 +327,9 @@ def test_decompose_bad_input(cam):
     affine = np.array([[800.0, 0, 0, 320], [0, 800, 0, 240], [0, 0, 0, 1]])
     with pytest.raises(DegenerateError, match="affine camera"):
         cm.decompose_projection_matrix(affine)
-    with pytest.raises(CamlabInputError, match=r"P: expected a \(3, 4\) matrix, got shape \(3, 3\)"):
+    with pytest.raises(
+        CamlabInputError, match=r"P: expected a \(3, 4\) matrix, got shape \(3, 3\)"
+    ):
         cm.decompose_projection_matrix(np.eye(3))
 
 
@@ -311,13 +341,16 @@ def test_camera_centre_of_affine_camera_is_ideal():
 
 # -- resectioning -------------------------------------------------------------------------------
 
+
 def test_dlt_noise_free_recovers_P(cam, rng):
     X = box_points(rng, 20)
     uv = cam.project(X)
     P = cm.estimate_projection_matrix(X, uv)
     assert np.abs(unit_scale(P) - unit_scale(cam.P)).max() < 1e-8
     assert np.linalg.norm(P[2, :3]) == pytest.approx(1.0)
-    assert np.allclose((np.hstack([X, np.ones((20, 1))]) @ P.T)[:, 2], cam.depth(X))  # third coord = depth
+    assert np.allclose(
+        (np.hstack([X, np.ones((20, 1))]) @ P.T)[:, 2], cam.depth(X)
+    )  # third coord = depth
     d = cm.decompose_projection_matrix(P)
     assert np.allclose(d.K, cam.K, atol=1e-5) and np.allclose(d.centre, cam.centre, atol=1e-8)
 
@@ -335,7 +368,7 @@ def test_dlt_noise_rms_near_noise_level(cam, rng, refine):
     uv = cam.project(X) + noise
     P = cm.estimate_projection_matrix(X, uv, refine=refine)
     rms = np.sqrt(np.mean(cm.reprojection_errors(P, X, uv) ** 2))
-    noise_rms = np.sqrt(np.mean(np.sum(noise ** 2, axis=1)))
+    noise_rms = np.sqrt(np.mean(np.sum(noise**2, axis=1)))
     assert abs(rms - noise_rms) <= 0.1 * noise_rms
     # and the fit beats the truth on the data it saw, but only by the 11 absorbed degrees of freedom
     assert rms <= noise_rms
@@ -345,7 +378,9 @@ def test_dlt_refine_never_worse(cam, rng):
     X = box_points(rng, 30)
     uv = cam.project(X) + rng.normal(0.0, 2.0, (30, 2))
     e0 = np.sum(cm.reprojection_errors(cm.estimate_projection_matrix(X, uv), X, uv) ** 2)
-    e1 = np.sum(cm.reprojection_errors(cm.estimate_projection_matrix(X, uv, refine=True), X, uv) ** 2)
+    e1 = np.sum(
+        cm.reprojection_errors(cm.estimate_projection_matrix(X, uv, refine=True), X, uv) ** 2
+    )
     assert e1 <= e0 + 1e-9
 
 
@@ -361,10 +396,16 @@ def test_dlt_at_building_scale(cam, rng):
 
 def test_dlt_bad_input(cam, rng):
     X = box_points(rng, 5)
-    with pytest.raises(CamlabInputError, match=r"points_world: expected \(N, 3\) with N >= 6 point pairs, got shape \(5, 3\); P has 11"):
+    with pytest.raises(
+        CamlabInputError,
+        match=r"points_world: expected \(N, 3\) with N >= 6 point pairs, got shape \(5, 3\); P has 11",
+    ):
         cm.estimate_projection_matrix(X, cam.project(X))
     X = box_points(rng, 10)
-    with pytest.raises(CamlabInputError, match="points_world, points_image: expected the same number of points .*got 10 and 9"):
+    with pytest.raises(
+        CamlabInputError,
+        match="points_world, points_image: expected the same number of points .*got 10 and 9",
+    ):
         cm.estimate_projection_matrix(X, cam.project(X)[:9])
     plane = np.column_stack([rng.uniform(-1, 1, (10, 2)), np.zeros(10)])
     with pytest.raises(DegenerateError, match="coplanar"):
@@ -382,10 +423,13 @@ def test_reprojection_errors_known(cam):
 
 # -- scenes ----------------------------------------------------------------------------------------
 
+
 def test_wireframes_and_project_segments(cam):
     box = scenes.box_wireframe((0, 0, 0), (2, 2, 2))
     assert box.shape == (12, 2, 3)
-    assert np.allclose(np.linalg.norm(box[:, 1] - box[:, 0], axis=1), 2.0)  # every edge is a cube edge
+    assert np.allclose(
+        np.linalg.norm(box[:, 1] - box[:, 0], axis=1), 2.0
+    )  # every edge is a cube edge
     house = scenes.house_wireframe()
     assert house.shape[1:] == (2, 3) and house[..., 2].min() == 0.0
     grid = scenes.ground_grid(2.0, 0.5)
@@ -397,24 +441,28 @@ def test_wireframes_and_project_segments(cam):
         cm.project_segments(cam, np.zeros((3, 3)))
 
 
-
 def test_project_segments_clips_a_segment_that_runs_behind_the_camera():
     cam = cm.Camera(cm.intrinsic_matrix(800, 800, 319.5, 239.5), np.eye(3), [0.0, 0.0, 0.0])
-    segs = np.array([[[0.5, 0.2, 4.0], [0.5, 0.2, -2.0]],     # from 4 m in front to 2 m behind
-                     [[0.0, 0.0, -1.0], [1.0, 0.0, -3.0]],     # wholly behind
-                     [[-1.0, 0.0, 2.0], [1.0, 0.0, 2.0]]])     # wholly in front
-    for camera in (cam, cam.P, -2.0 * cam.P):                 # a Camera, or P at any scale and sign
+    segs = np.array(
+        [
+            [[0.5, 0.2, 4.0], [0.5, 0.2, -2.0]],  # from 4 m in front to 2 m behind
+            [[0.0, 0.0, -1.0], [1.0, 0.0, -3.0]],  # wholly behind
+            [[-1.0, 0.0, 2.0], [1.0, 0.0, 2.0]],
+        ]
+    )  # wholly in front
+    for camera in (cam, cam.P, -2.0 * cam.P):  # a Camera, or P at any scale and sign
         pix = cm.project_segments(camera, segs)
-        assert np.allclose(pix[0, 0], [319.5 + 100, 239.5 + 40])   # the front end is untouched
-        far = pix[0, 1] - [319.5, 239.5]                          # the clipped end: same ray direction, far out
+        assert np.allclose(pix[0, 0], [319.5 + 100, 239.5 + 40])  # the front end is untouched
+        far = pix[0, 1] - [319.5, 239.5]  # the clipped end: same ray direction, far out
         assert np.all(np.isfinite(far)) and np.linalg.norm(far) > 1e4
         assert np.allclose(far / np.linalg.norm(far), np.array([0.5, 0.2]) / np.hypot(0.5, 0.2))
         assert np.isnan(pix[1]).all() and np.allclose(pix[2], [[-80.5, 239.5], [719.5, 239.5]])
     affine = cm.project_segments(np.array([[100.0, 0, 0, 0], [0, 100, 0, 0], [0, 0, 0, 1]]), segs)
-    assert np.allclose(affine[0], [[50, 20], [50, 20]])     # affine cameras clip nothing
+    assert np.allclose(affine[0], [[50, 20], [50, 20]])  # affine cameras clip nothing
 
 
 # -- 3-D views (camlab.plotting.scene3d) --------------------------------------------------------
+
 
 def _agg_figure():
     from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -430,10 +478,14 @@ def test_camera_artist_geometry_and_update(cam):
 
     fig = _agg_figure()
     ax = scene3d.axes3d(fig, 111)
-    art = scene3d.CameraArtist(ax, cam, size=0.5, image_lines=cm.project_segments(cam, scenes.box_wireframe()))
+    art = scene3d.CameraArtist(
+        ax, cam, size=0.5, image_lines=cm.project_segments(cam, scenes.box_wireframe())
+    )
     corners = art.corners()
     assert np.allclose(cam.depth(corners), 0.5)  # the image plane is z_c = size
-    assert np.allclose(cam.project(corners[0]), [-0.5, -0.5])  # top-left corner of the top-left pixel
+    assert np.allclose(
+        cam.project(corners[0]), [-0.5, -0.5]
+    )  # top-left corner of the top-left pixel
     x, y, z = art.axes_lines[2].get_data_3d()  # the z axis points along the principal axis
     assert np.allclose(np.array([x[1], y[1], z[1]]) - cam.centre, 0.3 * cam.principal_axis)
     assert [t.get_text() for t in art.axes_text] == ["x", "y", "z"]
@@ -472,6 +524,7 @@ def test_set_equal_aspect_makes_a_cube():
 
 # -- lesson 04 demos and exercises -------------------------------------------------------------
 
+
 def test_camera_explorer_state_follows_sliders():
     from camlab.widgets import projective_camera as demos
 
@@ -492,7 +545,9 @@ def test_resectioning_demo_recovers_camera():
 
     d = demos.resectioning()
     d.set(noise=0.0, n_points=20)
-    assert d.state["rms"] < 1e-6 and d.state["focal_error"] < 1e-4 and d.state["centre_error"] < 1e-8
+    assert (
+        d.state["rms"] < 1e-6 and d.state["focal_error"] < 1e-4 and d.state["centre_error"] < 1e-8
+    )
     d.set(noise=2.0)
     assert 1.0 < d.state["rms"] < 4.0
 
@@ -503,7 +558,9 @@ def test_resectioning_teaches_the_redundancy_trap():
     d = demos.resectioning()
     d.set(noise=5.0, n_points=6, refine=True)
     assert d.state["redundancy"] == 1
-    assert d.state["rms"] < 2.0 and d.state["centre_error"] > 1.0   # small residual, camera metres off
+    assert (
+        d.state["rms"] < 2.0 and d.state["centre_error"] > 1.0
+    )  # small residual, camera metres off
     assert "a small RMS" in d.widget.children[0].children[-1].value
     d.set(n_points=60)
     assert d.state["redundancy"] == 109 and d.state["centre_error"] < 0.2
@@ -514,12 +571,18 @@ def test_camera_image_plane_lines_are_clipped_to_the_picture():
     from camlab.plotting.scene3d import clip_segments
     from camlab.widgets import projective_camera as demos
 
-    seg = np.array([[[-100.0, 100.0], [700.0, 100.0]], [[700.0, -5.0], [800.0, 600.0]], [[10.0, 10.0], [20.0, 30.0]],
-                    [[np.nan, 0.0], [5.0, 5.0]]])
+    seg = np.array(
+        [
+            [[-100.0, 100.0], [700.0, 100.0]],
+            [[700.0, -5.0], [800.0, 600.0]],
+            [[10.0, 10.0], [20.0, 30.0]],
+            [[np.nan, 0.0], [5.0, 5.0]],
+        ]
+    )
     out = clip_segments(seg, (640, 480))
     assert np.allclose(out[0], [[-0.5, 100.0], [639.5, 100.0]])
-    assert np.isnan(out[1]).all() and np.isnan(out[3]).all()   # wholly outside; a NaN end
-    assert np.allclose(out[2], seg[2])                          # inside: unchanged
+    assert np.isnan(out[1]).all() and np.isnan(out[3]).all()  # wholly outside; a NaN end
+    assert np.allclose(out[2], seg[2])  # inside: unchanged
     d = demos.camera_explorer()
     d.set(fx=200, fy=1600, cx=0, cy=480, skew=300, azimuth=180, elevation=-10, distance=2.5)
     cam = d.state["camera"]  # the plane lines of the explorer's camera stay within its image plane
@@ -528,7 +591,12 @@ def test_camera_image_plane_lines_are_clipped_to_the_picture():
     xyz = xyz[np.isfinite(xyz).all(axis=1)]
     uvw = (xyz @ cam.R.T + cam.t) @ cam.K.T
     uv = uvw[:, :2] / uvw[:, 2:]
-    assert len(uv) and (uv[:, 0] > -0.6).all() and (uv[:, 0] < 639.6).all() and (uv[:, 1] < 479.6).all()
+    assert (
+        len(uv)
+        and (uv[:, 0] > -0.6).all()
+        and (uv[:, 0] < 639.6).all()
+        and (uv[:, 1] < 479.6).all()
+    )
 
 
 def test_resectioning_outlier_and_click():
@@ -539,11 +607,15 @@ def test_resectioning_outlier_and_click():
     d = demos.resectioning()
     d.set(noise=0.0, n_points=12)
     d.set(outlier=60.0)
-    assert d.state["rms"] > 5.0 and d.state["focal_error"] > 1.0  # one bad pair spoils the linear fit
+    assert (
+        d.state["rms"] > 5.0 and d.state["focal_error"] > 1.0
+    )  # one bad pair spoils the linear fit
     d.set(outlier=0.0)
     assert d.state["rms"] < 1e-6
     target = d.state["points_image"][3] + [40.0, -30.0]
-    d.handlers["button_press_event"](SimpleNamespace(inaxes=d.figure.axes[1], xdata=target[0], ydata=target[1]))
+    d.handlers["button_press_event"](
+        SimpleNamespace(inaxes=d.figure.axes[1], xdata=target[0], ydata=target[1])
+    )
     assert np.allclose(d.state["points_image"][3], target) and d.state["rms"] > 5.0
     d.set(n_points=13)  # new measurements forget the click
     assert d.state["rms"] < 1e-6
@@ -579,7 +651,9 @@ def test_every_projection_path_gives_nan_behind_the_camera():
     from camlab import calibration, pinhole, render
 
     K = cm.intrinsic_matrix(800, 800, 320, 240)
-    X = np.array([[0.1, -0.2, 2.0], [0.1, -0.2, -2.0], [0.3, 0.1, 0.0]])  # in front, behind, in the camera plane
+    X = np.array(
+        [[0.1, -0.2, 2.0], [0.1, -0.2, -2.0], [0.3, 0.1, 0.0]]
+    )  # in front, behind, in the camera plane
     dist = (-0.2, 0.05, 0.0, 0.0, 0.0)
     paths = {
         "Camera.project": cm.Camera(K, dist=dist).project(X),
@@ -601,9 +675,12 @@ def test_scale_intrinsics_and_camera_resized_agree_with_resizing_pixels():
     # pixel centres: output pixel u' covers input pixels 2u' and 2u' + 1, so u' = (u - 0.5) / 2
     X = np.array([[0.3, -0.1, 2.0], [-0.4, 0.2, 3.0]])
     np.testing.assert_allclose(half.project(X), (cam.project(X) - 0.5) / 2, atol=1e-12)
-    with pytest.raises(CamlabInputError, match=r"image_size \* scale: expected \(width, height\) as whole numbers"):
+    with pytest.raises(
+        CamlabInputError, match=r"image_size \* scale: expected \(width, height\) as whole numbers"
+    ):
         cam.resized(0.33)
     from camlab.data import panorama
+
     assert panorama.scale_intrinsics is cm.scale_intrinsics  # one home
 
 
@@ -654,15 +731,17 @@ def test_resectioning_keeps_a_wild_fit_in_view_and_says_when_it_failed():
     from camlab.widgets import projective_camera as demos
 
     d = demos.resectioning()
-    d.set(n_points=6, outlier_v=-60.0, refine=True, noise=0.0)  # the review's setting: a focal length near 60 px
+    d.set(
+        n_points=6, outlier_v=-60.0, refine=True, noise=0.0
+    )  # the review's setting: a focal length near 60 px
     assert abs(d.state["K"][0, 0]) < 100
     ax3d = d.figure.axes[0]
     frustum = [ln for ln in ax3d.lines if ln.get_color() == demos.palette.ORANGE][0]
     x, y, z = (np.asarray(a, dtype=float) for a in frustum.get_data_3d())
     pts = np.column_stack([x, y, z])[np.isfinite(x)]
-    assert np.ptp(pts, axis=0).max() < 2.0              # shortened (13 m tall before): no frustum over the view
+    assert np.ptp(pts, axis=0).max() < 2.0  # shortened (13 m tall before): no frustum over the view
     assert np.isfinite(d.state["rms"])
-    d.set(outlier_v=0.0, outlier=60.0)                  # a fit with every point behind the estimated camera
+    d.set(outlier_v=0.0, outlier=60.0)  # a fit with every point behind the estimated camera
     assert d.state["behind"] > 0 and not np.isfinite(d.state["rms"])
 
     def texts(widget):
@@ -670,17 +749,23 @@ def test_resectioning_keeps_a_wild_fit_in_view_and_says_when_it_failed():
         for child in getattr(widget, "children", ()):
             yield from texts(child)
 
-    assert any("behind the estimated camera" in text for text in texts(d.widget))  # said, not a silent 'nan'
+    assert any(
+        "behind the estimated camera" in text for text in texts(d.widget)
+    )  # said, not a silent 'nan'
 
 
 def test_blender_matrix_world_is_world_from_cam_in_the_opengl_frame():
     cam = cm.Camera.look_at([4.0, -3.5, 2.5], [0.0, 0.0, 0.7])
     M = cm.blender_matrix_world(cam.R, cam.t)
     assert np.allclose(M[:3, 3], cam.centre) and np.allclose(M[3], [0, 0, 0, 1])
-    assert np.allclose(M[:3, 2], -cam.R[2])          # Blender's camera z points backward, away from the view
-    assert np.allclose(M[:3, 1], -cam.R[1])          # and its y up
+    assert np.allclose(
+        M[:3, 2], -cam.R[2]
+    )  # Blender's camera z points backward, away from the view
+    assert np.allclose(M[:3, 1], -cam.R[1])  # and its y up
     R_gl, t_gl = cm.opengl_from_opencv(cam.R, cam.t)
-    assert np.allclose(np.linalg.inv(M), np.block([[R_gl, t_gl[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]))
+    assert np.allclose(
+        np.linalg.inv(M), np.block([[R_gl, t_gl[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]])
+    )
 
 
 def test_explorer_pan_turns_about_the_world_vertical_and_roll_is_right_handed():
@@ -689,24 +774,31 @@ def test_explorer_pan_turns_about_the_world_vertical_and_roll_is_right_handed():
     from camlab.widgets import projective_camera as demos
 
     cam0, panned = demos.explorer_camera(), demos.explorer_camera(pan=10.0)
-    assert np.cross(cam0.R[2], panned.R[2])[2] > 0 and np.isclose(panned.R[0, 2], 0.0)   # left turn, x horizontal
+    assert np.cross(cam0.R[2], panned.R[2])[2] > 0 and np.isclose(
+        panned.R[0, 2], 0.0
+    )  # left turn, x horizontal
     assert np.allclose(panned.centre, cam0.centre)
-    right = cam0.centre + 5.0 * cam0.R[2] + cam0.R[0]          # a point right of the axis rises when +roll
+    right = cam0.centre + 5.0 * cam0.R[2] + cam0.R[0]  # a point right of the axis rises when +roll
     assert demos.explorer_camera(roll=10.0).project(right)[1] < cam0.project(right)[1] - 10
     default = demos.explorer_plane_size(5.0, cam0.K)
     assert default == demos.explorer_plane_size(5.0) == 2.0
     for k in (dict(fx=200), dict(fy=200), dict(cx=639.5), dict(skew=300)):
         K = demos.explorer_camera(**k).K
-        corners = np.array([[-0.5, -0.5, 1.0], [639.5, 479.5, 1.0], [639.5, -0.5, 1.0], [-0.5, 479.5, 1.0]])
-        reach = demos.explorer_plane_size(5.0, K) * np.linalg.norm(np.linalg.solve(K, corners.T)[:2], axis=0).max()
-        assert reach <= 2.0 * 0.5 + 1e-9                     # no corner farther from the axis than the default's
+        corners = np.array(
+            [[-0.5, -0.5, 1.0], [639.5, 479.5, 1.0], [639.5, -0.5, 1.0], [-0.5, 479.5, 1.0]]
+        )
+        reach = (
+            demos.explorer_plane_size(5.0, K)
+            * np.linalg.norm(np.linalg.solve(K, corners.T)[:2], axis=0).max()
+        )
+        assert reach <= 2.0 * 0.5 + 1e-9  # no corner farther from the axis than the default's
 
 
 def test_resectioning_readout_flags_a_k_no_camera_has():
     from camlab.widgets import projective_camera as demos
 
     d = demos.resectioning()
-    readout = lambda: d.widget.children[0].children[-1].value   # noqa: E731
+    readout = lambda: d.widget.children[0].children[-1].value  # noqa: E731
     assert "estimated K" in readout() and "no real camera" not in readout()
     d.set(refine=True, outlier=60.0, pair=5)
     assert "fx 1564, fy 1444, skew -96" in readout() and "principal point (138, -340)" in readout()

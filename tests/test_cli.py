@@ -1,4 +1,5 @@
 """Tests for the camlab command line (camlab.cli)."""
+
 import shutil
 import subprocess
 import sys
@@ -27,26 +28,55 @@ def photos(tmp_path_factory):
 
 def test_calibrate_writes_an_opencv_file_and_a_report(photos, tmp_path, capsys):
     out, rep = tmp_path / "cam.json", tmp_path / "report.png"
-    code = cli.main(["calibrate", str(photos / "*.png"), "--pattern", "9x6", "--square", "0.025",
-                     "--out", str(out), "--report", str(rep)])
+    code = cli.main(
+        [
+            "calibrate",
+            str(photos / "*.png"),
+            "--pattern",
+            "9x6",
+            "--square",
+            "0.025",
+            "--out",
+            str(out),
+            "--report",
+            str(rep),
+        ]
+    )
     text = capsys.readouterr().out
     assert code == 0
     assert "6 of 8 images used" in text
-    assert "img_blank.png: no chessboard found" in text and "img_small.png: image size 320 x 240" in text
+    assert (
+        "img_blank.png: no chessboard found" in text
+        and "img_small.png: image size 320 x 240" in text
+    )
     assert "rms reprojection error" in text and "advice:" in text
     fs = cv2.FileStorage(str(out), cv2.FILE_STORAGE_READ)
     K = fs.getNode("camera_matrix").mat()
     dist = fs.getNode("distortion_coefficients").mat().ravel()
     fs.release()
-    assert abs(K[0, 0] / 820.0 - 1) < 0.01 and abs(K[1, 2] - 236.8) < 3 and abs(dist[0] + 0.21) < 0.03
+    assert (
+        abs(K[0, 0] / 820.0 - 1) < 0.01 and abs(K[1, 2] - 236.8) < 3 and abs(dist[0] + 0.21) < 0.03
+    )
     img = cv2.imread(str(rep))
     assert img is not None and img.shape[0] > 400 and img.std() > 10
 
 
 def test_yaml_output_and_no_report(photos, tmp_path, capsys):
     out = tmp_path / "cam.yaml"
-    code = cli.main(["calibrate", *sorted(str(p) for p in photos.glob("img_[0-4].png")), "--pattern", "9x6",
-                     "--square", "0.025", "--out", str(out), "--no-report", "--fix-k3"])
+    code = cli.main(
+        [
+            "calibrate",
+            *sorted(str(p) for p in photos.glob("img_[0-4].png")),
+            "--pattern",
+            "9x6",
+            "--square",
+            "0.025",
+            "--out",
+            str(out),
+            "--no-report",
+            "--fix-k3",
+        ]
+    )
     assert code == 0 and out.read_text().startswith("%YAML")
     assert "saved report" not in capsys.readouterr().out
     fs = cv2.FileStorage(str(out), cv2.FILE_STORAGE_READ)
@@ -54,24 +84,49 @@ def test_yaml_output_and_no_report(photos, tmp_path, capsys):
     fs.release()
 
 
-@pytest.mark.parametrize("args, message", [
-    (["--pattern", "10x7"], "need at least 3 images"),
-    (["--pattern", "9by6"], "--pattern: expected inner corners"),
-])
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--pattern", "10x7"], "need at least 3 images"),
+        (["--pattern", "9by6"], "--pattern: expected inner corners"),
+    ],
+)
 def test_user_errors_exit_2_with_a_message_not_a_traceback(photos, tmp_path, capsys, args, message):
-    code = cli.main(["calibrate", str(photos / "img_[0-3].png"), "--square", "0.025",
-                     "--out", str(tmp_path / "x.json"), "--no-report", *args])
+    code = cli.main(
+        [
+            "calibrate",
+            str(photos / "img_[0-3].png"),
+            "--square",
+            "0.025",
+            "--out",
+            str(tmp_path / "x.json"),
+            "--no-report",
+            *args,
+        ]
+    )
     err = capsys.readouterr().err
     assert code == 2 and message in err and "Traceback" not in err
 
 
 def test_wrong_pattern_size_is_explained(photos, tmp_path, capsys):
-    cli.main(["calibrate", str(photos / "img_[0-3].png"), "--pattern", "10x7", "--square", "0.025", "--no-report"])
+    cli.main(
+        [
+            "calibrate",
+            str(photos / "img_[0-3].png"),
+            "--pattern",
+            "10x7",
+            "--square",
+            "0.025",
+            "--no-report",
+        ]
+    )
     assert "use --pattern 9x6" in capsys.readouterr().err
 
 
 def test_no_matching_files_and_no_command(capsys):
-    assert cli.main(["calibrate", "/nonexistent/*.jpg", "--pattern", "9x6", "--square", "0.02"]) == 2
+    assert (
+        cli.main(["calibrate", "/nonexistent/*.jpg", "--pattern", "9x6", "--square", "0.02"]) == 2
+    )
     assert "no files match" in capsys.readouterr().err
     assert cli.main([]) == 2
     assert "calibrate" in capsys.readouterr().out

@@ -13,6 +13,7 @@ References
 G. M. Machado, M. M. Oliveira, L. A. F. Fernandes, "A Physiologically-based Model for
 Simulation of Color Vision Deficiency", IEEE TVCG 15(6), 2009 (severity 1.0 matrices).
 """
+
 import itertools
 
 import numpy as np
@@ -25,15 +26,27 @@ from camlab.widgets import all_demos
 DEMOS = all_demos()
 MIN_DELTA_E = 12.0
 MACHADO = {
-    "protanopia": np.array([[0.152286, 1.052583, -0.204868],
-                            [0.114503, 0.786281, 0.099216],
-                            [-0.003882, -0.048116, 1.051998]]),
-    "deuteranopia": np.array([[0.367322, 0.860646, -0.227968],
-                              [0.280085, 0.672501, 0.047413],
-                              [-0.011820, 0.042940, 0.968881]]),
-    "tritanopia": np.array([[1.255528, -0.076749, -0.178779],
-                            [-0.078411, 0.930809, 0.147602],
-                            [0.004733, 0.691367, 0.303900]]),
+    "protanopia": np.array(
+        [
+            [0.152286, 1.052583, -0.204868],
+            [0.114503, 0.786281, 0.099216],
+            [-0.003882, -0.048116, 1.051998],
+        ]
+    ),
+    "deuteranopia": np.array(
+        [
+            [0.367322, 0.860646, -0.227968],
+            [0.280085, 0.672501, 0.047413],
+            [-0.011820, 0.042940, 0.968881],
+        ]
+    ),
+    "tritanopia": np.array(
+        [
+            [1.255528, -0.076749, -0.178779],
+            [-0.078411, 0.930809, 0.147602],
+            [0.004733, 0.691367, 0.303900],
+        ]
+    ),
 }
 VISIONS = {"normal": np.eye(3), **MACHADO}
 
@@ -44,20 +57,25 @@ def _linear(srgb: np.ndarray) -> np.ndarray:
 
 def lab(rgb_linear: np.ndarray) -> np.ndarray:
     """CIELAB (D65) of linear sRGB colours (..., 3)."""
-    xyz = np.clip(rgb_linear, 0, 1) @ np.array([[0.4124, 0.3576, 0.1805],
-                                                 [0.2126, 0.7152, 0.0722],
-                                                 [0.0193, 0.1192, 0.9505]]).T
+    xyz = (
+        np.clip(rgb_linear, 0, 1)
+        @ np.array([[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]]).T
+    )
     t = xyz / np.array([0.95047, 1.0, 1.08883])
     f = np.where(t > (6 / 29) ** 3, np.cbrt(t), t / (3 * (6 / 29) ** 2) + 4 / 29)
-    return np.stack([116 * f[..., 1] - 16, 500 * (f[..., 0] - f[..., 1]), 200 * (f[..., 1] - f[..., 2])], -1)
+    return np.stack(
+        [116 * f[..., 1] - 16, 500 * (f[..., 0] - f[..., 1]), 200 * (f[..., 1] - f[..., 2])], -1
+    )
 
 
 def delta_e(c1, c2, vision: str) -> float:
     """CIE76 distance of two colours (drawn over white) as seen with ``vision``."""
+
     def seen(c):
         r, g, b, a = to_rgba(c)
         over_white = a * np.array([r, g, b]) + (1 - a)
         return lab(VISIONS[vision] @ _linear(over_white))
+
     return float(np.linalg.norm(seen(c1) - seen(c2)))
 
 
@@ -92,7 +110,11 @@ def colour_only_pairs(fig) -> list[tuple[str, str, object, object]]:
         legend = ax.get_legend()
         if legend is None or not legend.get_visible():
             continue
-        entries = [(t.get_text(), h) for t, h in zip(legend.get_texts(), legend.legend_handles) if h is not None]
+        entries = [
+            (t.get_text(), h)
+            for t, h in zip(legend.get_texts(), legend.legend_handles)
+            if h is not None
+        ]
         for (name1, h1), (name2, h2) in itertools.combinations(entries, 2):
             if _style(h1) == _style(h2):
                 pairs.append((name1, name2, _colour(h1), _colour(h2)))
@@ -114,7 +136,9 @@ def settings(spec) -> list[dict]:
 def test_simulation_matches_known_confusions():
     """Red and green collapse for a deuteranope; blue and green do not; white stays white."""
     assert delta_e("tab:red", "tab:green", "normal") > 40
-    assert delta_e("#ff0000", "#00a000", "deuteranopia") < delta_e("#ff0000", "#00a000", "normal") / 2
+    assert (
+        delta_e("#ff0000", "#00a000", "deuteranopia") < delta_e("#ff0000", "#00a000", "normal") / 2
+    )
     assert delta_e("tab:blue", "tab:orange", "deuteranopia") > 30
     for m in MACHADO.values():
         assert np.allclose(m.sum(axis=1), 1.0, atol=1e-5)
@@ -133,8 +157,12 @@ def test_demo_legends_survive_colour_vision_deficiency(name):
             for vision in VISIONS:
                 d = delta_e(c1, c2, vision)
                 if d < MIN_DELTA_E:
-                    failures.append(f"{setting or 'defaults'}: '{label1}' vs '{label2}' delta-E {d:.1f} ({vision})")
-    assert not failures, f"{name}: legend entries told apart only by colour merge:\n" + "\n".join(sorted(set(failures)))
+                    failures.append(
+                        f"{setting or 'defaults'}: '{label1}' vs '{label2}' delta-E {d:.1f} ({vision})"
+                    )
+    assert not failures, f"{name}: legend entries told apart only by colour merge:\n" + "\n".join(
+        sorted(set(failures))
+    )
 
 
 def test_palette_series_stays_apart_for_every_vision():
@@ -155,8 +183,11 @@ def test_every_camera_frame_has_one_colour_code():
     from camlab.plotting import conventions, palette, scene3d
 
     def axis_colours(texts) -> dict[str, str]:
-        return {t.get_text().split(",")[0].strip().lower(): to_rgba(t.get_color()) for t in texts
-                if t.get_text().split(",")[0].strip().lower() in ("x", "y", "z")}
+        return {
+            t.get_text().split(",")[0].strip().lower(): to_rgba(t.get_color())
+            for t in texts
+            if t.get_text().split(",")[0].strip().lower() in ("x", "y", "z")
+        }
 
     want = {name: to_rgba(c) for name, c in zip("xyz", palette.AXIS_COLOURS)}
     fig = plt.figure()

@@ -1,4 +1,5 @@
 """Tests for camlab.course and `camlab lessons`: copy the course, never clobber a student's edits."""
+
 import hashlib
 import json
 import subprocess
@@ -38,10 +39,18 @@ def test_copy_then_update_keeps_edited_lessons(tmp_path):
     (tmp_path / MANIFEST_NAME).write_text(json.dumps(manifest))
 
     again = copy_course(tmp_path)
-    assert again.kept == ["lessons/06_projective_plane.ipynb"]   # edited: left alone
-    assert again.updated == ["lessons/00_start_here.ipynb"]      # untouched copy of an old version: updated
-    assert json.loads(lesson.read_text())["cells"][1]["source"].endswith(" ") and stale.read_bytes() == (lessons_dir() / stale.name).read_bytes()
-    assert "kept your edited lessons/06_projective_plane.ipynb" in again.text() and "--force" in again.text()
+    assert again.kept == ["lessons/06_projective_plane.ipynb"]  # edited: left alone
+    assert again.updated == [
+        "lessons/00_start_here.ipynb"
+    ]  # untouched copy of an old version: updated
+    assert (
+        json.loads(lesson.read_text())["cells"][1]["source"].endswith(" ")
+        and stale.read_bytes() == (lessons_dir() / stale.name).read_bytes()
+    )
+    assert (
+        "kept your edited lessons/06_projective_plane.ipynb" in again.text()
+        and "--force" in again.text()
+    )
 
     # the edit is still recognised as an edit next time, and --force overwrites it
     assert copy_course(tmp_path).kept == ["lessons/06_projective_plane.ipynb"]
@@ -73,7 +82,12 @@ def test_version_is_single_sourced():
     from importlib.metadata import version
 
     assert version("camlab-course") == camlab.__version__
-    out = subprocess.run([sys.executable, "-m", "camlab.cli", "--version"], capture_output=True, text=True, check=True)
+    out = subprocess.run(
+        [sys.executable, "-m", "camlab.cli", "--version"],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     assert out.stdout.strip() == f"camlab {camlab.__version__}"
 
 
@@ -85,7 +99,9 @@ def test_lessons_link_no_page_outside_lessons_but_the_conventions():
 
     import nbformat
 
-    allowed = set(course_files()) - {p for p in course_files() if p.startswith("docs/")} | {"docs/conventions.md"}
+    allowed = set(course_files()) - {p for p in course_files() if p.startswith("docs/")} | {
+        "docs/conventions.md"
+    }
     outside = []
     for lesson in sorted(lessons_dir().glob("[0-9][0-9]_*.ipynb")):
         nb = nbformat.read(lesson, as_version=4)
@@ -96,4 +112,6 @@ def test_lessons_link_no_page_outside_lessons_but_the_conventions():
                 continue
             if str(Path("lessons", target)).replace("lessons/../", "") not in allowed:
                 outside.append(f"{lesson.name} -> {target}")
-    assert not outside, f"lessons link pages the site does not check (name them without a link): {outside}"
+    assert not outside, (
+        f"lessons link pages the site does not check (name them without a link): {outside}"
+    )

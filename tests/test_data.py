@@ -1,4 +1,5 @@
 """Tests for camlab.data: the bundled sets regenerate (to a stated tolerance), are true, and are found anywhere."""
+
 import fnmatch
 import hashlib
 import json
@@ -18,9 +19,9 @@ from camlab.data.regenerate import GENERATED_SETS
 
 # Regeneration must give the bundled files back. Compared as decoded pixels and parsed ground
 # truth, not bytes, so a patch release of OpenCV (its resize, libpng or libjpeg) does not break it:
-PIXEL_MEAN_TOL = 0.5   # mean |difference| per image, grey levels (0-255 scale)
-PIXEL_MAX_TOL = 24     # largest single-pixel |difference|, grey levels (a JPEG block edge may move)
-TRUTH_TOL = 1e-6       # ground-truth numbers: pixels, metres, matrix entries
+PIXEL_MEAN_TOL = 0.5  # mean |difference| per image, grey levels (0-255 scale)
+PIXEL_MAX_TOL = 24  # largest single-pixel |difference|, grey levels (a JPEG block edge may move)
+TRUTH_TOL = 1e-6  # ground-truth numbers: pixels, metres, matrix entries
 
 
 def _same_truth(a, b, where="truth.json"):
@@ -40,7 +41,9 @@ def _same_truth(a, b, where="truth.json"):
 
 
 def _manifest(path: Path) -> dict[str, tuple[str, int]]:
-    rows = [line.split() for line in path.read_text().splitlines() if line and not line.startswith("#")]
+    rows = [
+        line.split() for line in path.read_text().splitlines() if line and not line.startswith("#")
+    ]
     return {name: (sha, int(size)) for sha, size, name in rows}
 
 
@@ -60,11 +63,16 @@ def regenerated(tmp_path_factory):
     # pixels: the comparison is pinned to the lock's series, and tolerates its patch releases.
     import matplotlib
 
-    for package, version in (("opencv-python-headless", cv2.__version__), ("matplotlib", matplotlib.__version__)):
+    for package, version in (
+        ("opencv-python-headless", cv2.__version__),
+        ("matplotlib", matplotlib.__version__),
+    ):
         series = _locked_series(package)
         if not version.startswith(series + "."):
-            pytest.skip(f"the bundled data were rendered with {package} {series}.x (requirements/lock.txt); "
-                        f"this is {version}: regeneration is compared only on the locked series")
+            pytest.skip(
+                f"the bundled data were rendered with {package} {series}.x (requirements/lock.txt); "
+                f"this is {version}: regeneration is compared only on the locked series"
+            )
     root = tmp_path_factory.mktemp("data")
     data.regenerate(root)
     return root
@@ -82,10 +90,13 @@ def test_regeneration_reproduces_the_bundled_set(regenerated, name):
             continue
         a = cv2.imread(str(new), cv2.IMREAD_UNCHANGED).astype(float)
         b = cv2.imread(str(old), cv2.IMREAD_UNCHANGED).astype(float)
-        scale = 256.0 if f == "disparity.png" else 1.0  # uint16 disparity = round(256 d): compare in 1/256 px
+        scale = (
+            256.0 if f == "disparity.png" else 1.0
+        )  # uint16 disparity = round(256 d): compare in 1/256 px
         diff = np.abs(a - b) / scale
-        assert a.shape == b.shape and diff.mean() <= PIXEL_MEAN_TOL and diff.max() <= PIXEL_MAX_TOL, \
-            f"{name}/{f}: mean |diff| {diff.mean():.3f}, max {diff.max():.1f}"
+        assert (
+            a.shape == b.shape and diff.mean() <= PIXEL_MEAN_TOL and diff.max() <= PIXEL_MAX_TOL
+        ), f"{name}/{f}: mean |diff| {diff.mean():.3f}, max {diff.max():.1f}"
 
 
 def test_manifest_lists_every_generated_file_with_its_hash():
@@ -93,10 +104,14 @@ def test_manifest_lists_every_generated_file_with_its_hash():
     listed = _manifest(root / "MANIFEST.txt")
     present = {p.relative_to(root).as_posix(): p for p in root.rglob("*") if p.is_file()}
     generated = {name: p for name, p in present.items() if name.split("/")[0] in GENERATED_SETS}
-    assert sorted(listed) == sorted(generated), "data/MANIFEST.txt is stale: run `python -m camlab.data`"
+    assert sorted(listed) == sorted(generated), (
+        "data/MANIFEST.txt is stale: run `python -m camlab.data`"
+    )
     for name, path in generated.items():
-        assert listed[name] == (hashlib.sha256(path.read_bytes()).hexdigest(), path.stat().st_size), \
-            f"{name} changed since data/MANIFEST.txt was written: run `python -m camlab.data`"
+        assert listed[name] == (
+            hashlib.sha256(path.read_bytes()).hexdigest(),
+            path.stat().st_size,
+        ), f"{name} changed since data/MANIFEST.txt was written: run `python -m camlab.data`"
     total = sum(p.stat().st_size for p in present.values())
     assert total < 10e6, f"data/ holds {total / 1e6:.1f} MB; keep the shipped assets under 10 MB"
 
@@ -111,7 +126,16 @@ def test_calibration_set_ground_truth():
     # and OpenCV's detector finds them in the images
     ok, found = cv2.findChessboardCornersSB(cs.images[0], cs.pattern_size)
     assert ok
-    assert np.sqrt(np.mean(np.sum((render.align_detected_corners(found, cs.corners[0]) - cs.corners[0]) ** 2, 1))) < 0.15
+    assert (
+        np.sqrt(
+            np.mean(
+                np.sum(
+                    (render.align_detected_corners(found, cs.corners[0]) - cs.corners[0]) ** 2, 1
+                )
+            )
+        )
+        < 0.15
+    )
 
 
 def test_missing_directory(tmp_path):
@@ -141,7 +165,9 @@ def test_regeneration_never_targets_an_installed_package(monkeypatch, tmp_path):
 
 def test_python_m_camlab_data_writes_where_asked(tmp_path):
     env = dict(os.environ, CAMLAB_DATA=str(tmp_path / "unused"))
-    out = subprocess.run([sys.executable, "-m", "camlab.data", "--help"], capture_output=True, text=True, env=env)
+    out = subprocess.run(
+        [sys.executable, "-m", "camlab.data", "--help"], capture_output=True, text=True, env=env
+    )
     assert out.returncode == 0 and "usage: python -m camlab.data" in out.stdout
 
 
@@ -172,7 +198,9 @@ def test_every_shipped_file_is_attributed():
     for path in root.rglob("*"):
         if path.is_file():
             rel = path.relative_to(root).as_posix()
-            assert any(fnmatch.fnmatch(rel, p) for p in patterns), f"data/{rel} is not in data/ATTRIBUTION.md"
+            assert any(fnmatch.fnmatch(rel, p) for p in patterns), (
+                f"data/{rel} is not in data/ATTRIBUTION.md"
+            )
 
 
 def test_encode_image_raises_when_opencv_reports_failure(monkeypatch):
@@ -184,7 +212,9 @@ def test_encode_image_raises_when_opencv_reports_failure(monkeypatch):
     img = np.zeros((4, 4), np.uint8)
     assert encode_image(img, ".png")[:4] == b"\x89PNG"
     monkeypatch.setattr(cv2, "imencode", lambda *a, **k: (False, None))
-    with pytest.raises(OSError, match=r"cv2.imencode could not encode a \(4, 4\) uint8 image as .png"):
+    with pytest.raises(
+        OSError, match=r"cv2.imencode could not encode a \(4, 4\) uint8 image as .png"
+    ):
         encode_image(img, ".png")
 
 
@@ -194,7 +224,9 @@ def test_panorama_rotation_helpers_say_their_direction():
     Rc = panorama.cam_from_world(0.3, -0.1, 0.05)
     # a camera turned right by yaw sees a point that lies ahead-right of the world straight ahead
     ahead_right = np.array([np.sin(0.3), 0.0, np.cos(0.3)])
-    assert np.allclose(panorama._rot(0.3, 0, 0) @ [0, 0, 1.0], ahead_right)  # world_from_cam maps its axis out
+    assert np.allclose(
+        panorama._rot(0.3, 0, 0) @ [0, 0, 1.0], ahead_right
+    )  # world_from_cam maps its axis out
     assert np.allclose(Rc @ panorama._rot(0.3, -0.1, 0.05), np.eye(3))
 
 
@@ -206,15 +238,19 @@ def test_lesson_01_church_window_heights_are_where_the_photo_says():
 
     import nbformat
 
-    lesson = nbformat.read(Path(__file__).parent.parent / "lessons" / "01_pinhole_camera.ipynb", as_version=4)
-    source = next(c.source for c in lesson.cells if c.cell_type == "code" and "by_eye = {" in c.source)
+    lesson = nbformat.read(
+        Path(__file__).parent.parent / "lessons" / "01_pinhole_camera.ipynb", as_version=4
+    )
+    source = next(
+        c.source for c in lesson.cells if c.cell_type == "code" and "by_eye = {" in c.source
+    )
     by_eye = ast.literal_eval(re.search(r"by_eye = (\{[^}]*\})", source).group(1))
     grey = data.load_photo("church").astype(float).mean(axis=2)
 
     def half_way(column, row, step):
         """Sub-pixel row where the profile crosses half-way, walking from the bright frame at ``row`` by ``step``."""
         bright = column[row]
-        dark = np.median(column[row + 4 * step:row + 12 * step:step])
+        dark = np.median(column[row + 4 * step : row + 12 * step : step])
         level = (bright + dark) / 2
         while (column[row] - level) * (column[row + step] - level) > 0:
             row += step
@@ -223,8 +259,10 @@ def test_lesson_01_church_window_heights_are_where_the_photo_says():
     heights = []
     for u, (top, bottom) in by_eye.items():
         column = grey[:, u]
-        frame_above = top - 1 - int(np.argmax(column[top - 1:top - 6:-1] > 170))   # last white row above the glass
-        frame_below = bottom + 1 + int(np.argmax(column[bottom + 1:bottom + 6] > 170))
+        frame_above = (
+            top - 1 - int(np.argmax(column[top - 1 : top - 6 : -1] > 170))
+        )  # last white row above the glass
+        frame_below = bottom + 1 + int(np.argmax(column[bottom + 1 : bottom + 6] > 170))
         edges = half_way(column, frame_above, 1), half_way(column, frame_below, -1)
         assert abs(edges[0] - top) <= 1 and abs(edges[1] - bottom) <= 1, u
         heights.append(edges[1] - edges[0])

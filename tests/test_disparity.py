@@ -1,4 +1,5 @@
 """Tests for camlab.disparity: the numpy block matcher, SGBM, depth from disparity, on the rendered rig."""
+
 import numpy as np
 import pytest
 import scipy.ndimage as ndi
@@ -8,7 +9,9 @@ from camlab import rectification as rc
 from camlab._validate import CamlabInputError
 from camlab.data.stereo import load_stereo_rig
 
-BAND = slice(150, 330)  # rows crossing the wall, the photo, both panels and both boxes (keeps the test fast)
+BAND = slice(
+    150, 330
+)  # rows crossing the wall, the photo, both panels and both boxes (keeps the test fast)
 
 
 @pytest.fixture(scope="module")
@@ -33,7 +36,9 @@ def _depth_errors(d, pair):
 
 def test_block_matcher_depth_within_5_percent_on_textured_planes(pair):
     rect, L, R, gt, planar = pair
-    d = dp.block_matching_disparity(L[BAND], R[BAND], max_disparity=88, block_size=9, min_disparity=16)
+    d = dp.block_matching_disparity(
+        L[BAND], R[BAND], max_disparity=88, block_size=9, min_disparity=16
+    )
     rel, coverage = _depth_errors(d, pair)
     assert coverage > 0.7
     assert np.median(rel) < 0.01
@@ -74,7 +79,9 @@ def test_box_sum_matches_scipy():
 
 
 def test_depth_and_points():
-    assert np.allclose(dp.disparity_to_depth([[80.0, -1.0]], 800, 0.1), [[1.0, np.nan]], equal_nan=True)
+    assert np.allclose(
+        dp.disparity_to_depth([[80.0, -1.0]], 800, 0.1), [[1.0, np.nan]], equal_nan=True
+    )
     K = np.array([[800, 0, 320], [0, 800, 240], [0, 0, 1.0]])
     disp = np.full((480, 640), np.nan)
     disp[240, 400] = 40.0

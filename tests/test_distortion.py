@@ -1,4 +1,5 @@
 """Tests for camlab.distortion: the Brown-Conrady model, its inverse, maps, cross-checks with OpenCV."""
+
 import cv2
 import numpy as np
 import pytest
@@ -11,9 +12,9 @@ from camlab._validate import CamlabInputError
 
 K = np.array([[800.0, 0.0, 319.5], [0.0, 790.0, 239.5], [0.0, 0.0, 1.0]])
 DISTS = [
-    np.array([-0.28, 0.09, 0.0012, -0.0008, -0.01]),   # barrel, wide angle
-    np.array([0.12, -0.05, -0.0005, 0.001, 0.0]),      # pincushion
-    np.array([-0.1, 0.25, 0.002, 0.002, -0.1]),        # mixed
+    np.array([-0.28, 0.09, 0.0012, -0.0008, -0.01]),  # barrel, wide angle
+    np.array([0.12, -0.05, -0.0005, 0.001, 0.0]),  # pincushion
+    np.array([-0.1, 0.25, 0.002, 0.002, -0.1]),  # mixed
 ]
 rng = np.random.default_rng(3)
 PIX = np.column_stack([rng.uniform(0, 639, 300), rng.uniform(0, 479, 300)])
@@ -26,8 +27,13 @@ def _norm(px):
 def test_known_value_radial_and_tangential():
     # x = (0.5, 0.2): r^2 = 0.29, L = 1 - 0.1 * 0.29 = 0.971
     x = D.distort_points([0.5, 0.2], [-0.1, 0, 0.01, 0.02, 0])
-    assert np.allclose(x, [0.5 * 0.971 + 2 * 0.01 * 0.1 + 0.02 * (0.29 + 0.5),
-                           0.2 * 0.971 + 0.01 * (0.29 + 0.08) + 2 * 0.02 * 0.1])
+    assert np.allclose(
+        x,
+        [
+            0.5 * 0.971 + 2 * 0.01 * 0.1 + 0.02 * (0.29 + 0.5),
+            0.2 * 0.971 + 0.01 * (0.29 + 0.08) + 2 * 0.02 * 0.1,
+        ],
+    )
 
 
 def test_single_point_keeps_rank_and_batch_matches():
@@ -55,10 +61,12 @@ def test_undistort_matches_cv2_undistort_points(d):
     src = distorted.reshape(-1, 1, 2)
     if hasattr(cv2, "undistortPointsIter"):  # OpenCV 4.x: the variant that takes stopping criteria
         ref = cv2.undistortPointsIter(src, K, d, None, None, crit).reshape(-1, 2)
-    else:                                    # OpenCV 5.x folded it into undistortPoints
+    else:  # OpenCV 5.x folded it into undistortPoints
         ref = cv2.undistortPoints(src, K, d, None, None, criteria=crit).reshape(-1, 2)
-    assert np.abs(ours - ref).max() * 800 < 1e-4      # px
-    assert np.abs(ours - _norm(PIX)).max() * 800 < 1e-8  # we invert exactly; OpenCV's fixed point is looser
+    assert np.abs(ours - ref).max() * 800 < 1e-4  # px
+    assert (
+        np.abs(ours - _norm(PIX)).max() * 800 < 1e-8
+    )  # we invert exactly; OpenCV's fixed point is looser
 
 
 @pytest.mark.parametrize("d", DISTS)
@@ -91,12 +99,18 @@ def test_undistort_image_straightens_a_distorted_line():
     img[np.rint(ys[ok, 1]).astype(int), np.rint(ys[ok, 0]).astype(int)] = 255
     out = D.undistort_image(img, K, d)
     rows = np.nonzero(out[:, 100:540].max(axis=1) > 60)[0]
-    assert rows.min() >= 58 and rows.max() <= 62   # the bowed line is straight at v = 60 again
+    assert rows.min() >= 58 and rows.max() <= 62  # the bowed line is straight at v = 60 again
 
 
 @settings(max_examples=60, deadline=None)
-@given(st.floats(-0.4, 0.3), st.floats(-0.1, 0.1), st.floats(-0.003, 0.003), st.floats(-0.003, 0.003),
-       st.floats(0, 1), st.floats(0, 2 * np.pi))
+@given(
+    st.floats(-0.4, 0.3),
+    st.floats(-0.1, 0.1),
+    st.floats(-0.003, 0.003),
+    st.floats(-0.003, 0.003),
+    st.floats(0, 1),
+    st.floats(0, 2 * np.pi),
+)
 def test_round_trip_within_valid_field_of_view(k1, k2, p1, p2, frac, angle):
     d = [k1, k2, p1, p2, 0.0]
     r = frac * min(0.75, 0.9 * D.max_valid_radius(d))
@@ -109,25 +123,35 @@ def test_jacobian_matches_finite_differences():
     d, x = DISTS[2], np.array([0.31, -0.22])
     J = D.distortion_jacobian(x, d)
     eps = 1e-7
-    num = np.column_stack([(D.distort_points(x + e, d) - D.distort_points(x - e, d)) / (2 * eps)
-                           for e in np.eye(2) * eps])
+    num = np.column_stack(
+        [
+            (D.distort_points(x + e, d) - D.distort_points(x - e, d)) / (2 * eps)
+            for e in np.eye(2) * eps
+        ]
+    )
     assert np.allclose(J, num, atol=1e-7)
 
 
 def test_undistort_reports_non_convergence_beyond_the_fold():
     d = [-0.5, 0, 0, 0, 0]  # r L(r) peaks at r = sqrt(2/3): distorted radius 0.544 at most
     assert D.max_valid_radius(d) == pytest.approx(np.sqrt(2 / 3), abs=1e-4)
-    with pytest.raises(ConvergenceError, match=r"1 of 2 points did not converge.*valid field of view"):
+    with pytest.raises(
+        ConvergenceError, match=r"1 of 2 points did not converge.*valid field of view"
+    ):
         D.undistort_points([[0.1, 0.0], [0.7, 0.0]], d)
 
 
 def test_classification():
-    assert D.classify_distortion(DISTS[0]) == "barrel + tangential"  # p1, p2 shift corners by ~2 px at f = 800
+    assert (
+        D.classify_distortion(DISTS[0]) == "barrel + tangential"
+    )  # p1, p2 shift corners by ~2 px at f = 800
     assert D.classify_distortion(DISTS[1]) == "pincushion + tangential"
     assert D.classify_distortion([0.12, -0.05, 0, 0, 0]) == "pincushion"
     assert D.classify_distortion([-0.3, 0.6, 0, 0, 0]) == "mustache"
     assert D.classify_distortion(None) == "none"
-    assert D.classify_distortion([0, 0, 0.01, 0, 0]) == "tangential"  # the grid is bent, so not "none"
+    assert (
+        D.classify_distortion([0, 0, 0.01, 0, 0]) == "tangential"
+    )  # the grid is bent, so not "none"
     assert D.classify_distortion([0, 0, 0, -0.01, 0]) == "tangential"
     assert D.classify_distortion([0.2, 0, 0.002, 0, 0]) == "pincushion + tangential"
     assert D.classify_distortion([-0.3, 0, 1e-7, 0, 0]) == "barrel"  # below tol: invisible

@@ -1,4 +1,5 @@
 """Tests for camlab.epipolar: F, E, epipoles, epipolar lines, triangulation, with OpenCV cross-checks."""
+
 import cv2
 import numpy as np
 import pytest
@@ -25,7 +26,9 @@ def test_fundamental_from_cameras_satisfies_epipolar_constraint():
     alg = np.sum(to_homogeneous(x2) @ F * to_homogeneous(x1), axis=1)
     assert np.abs(alg).max() < 1e-10
     assert np.linalg.matrix_rank(F, tol=1e-10) == 2
-    assert np.allclose(F, ep.fundamental_from_cameras(c1.P, c2.P), atol=1e-12)  # camera and P forms agree
+    assert np.allclose(
+        F, ep.fundamental_from_cameras(c1.P, c2.P), atol=1e-12
+    )  # camera and P forms agree
 
 
 def test_estimate_equals_truth_up_to_scale_and_matches_opencv():
@@ -37,7 +40,10 @@ def test_estimate_equals_truth_up_to_scale_and_matches_opencv():
     F = ep.estimate_fundamental_matrix(n1, n2)
     Fc, _ = cv2.findFundamentalMat(n1, n2, cv2.FM_8POINT)
     # Same algorithm: the same Sampson error on the noisy data, and close to truth on the true points.
-    ours, theirs = np.median(ep.sampson_distance(F, n1, n2)), np.median(ep.sampson_distance(Fc, n1, n2))
+    ours, theirs = (
+        np.median(ep.sampson_distance(F, n1, n2)),
+        np.median(ep.sampson_distance(Fc, n1, n2)),
+    )
     assert ours <= 1.01 * theirs
     assert np.median(ep.sampson_distance(F, x1, x2)) < 0.2
 
@@ -47,7 +53,9 @@ def test_normalisation_matters():
     rng = np.random.default_rng(5)
     n1, n2 = x1 + rng.normal(0, 1.0, x1.shape), x2 + rng.normal(0, 1.0, x2.shape)
     good = np.median(ep.sampson_distance(ep.estimate_fundamental_matrix(n1, n2), x1, x2))
-    bad = np.median(ep.sampson_distance(ep.estimate_fundamental_matrix(n1, n2, normalize=False), x1, x2))
+    bad = np.median(
+        ep.sampson_distance(ep.estimate_fundamental_matrix(n1, n2, normalize=False), x1, x2)
+    )
     assert good < bad
 
 
@@ -72,15 +80,24 @@ def test_ransac_finds_inliers_and_beats_or_matches_opencv():
 def test_ransac_all_outliers_raises():
     rng = np.random.default_rng(0)
     with pytest.raises(DegenerateError, match="no hypothesis"):
-        ep.ransac_fundamental_matrix(rng.uniform(0, 640, (40, 2)), rng.uniform(0, 640, (40, 2)),
-                                     threshold=0.01, max_iters=200, rng=rng)
+        ep.ransac_fundamental_matrix(
+            rng.uniform(0, 640, (40, 2)),
+            rng.uniform(0, 640, (40, 2)),
+            threshold=0.01,
+            max_iters=200,
+            rng=rng,
+        )
 
 
 def test_bad_input_messages():
     c1, c2, X, x1, x2 = _rig()
-    with pytest.raises(CamlabInputError, match=r"x1: expected \(N, 2\) with N >= 8 point pairs, got shape \(7, 2\)"):
+    with pytest.raises(
+        CamlabInputError, match=r"x1: expected \(N, 2\) with N >= 8 point pairs, got shape \(7, 2\)"
+    ):
         ep.estimate_fundamental_matrix(x1[:7], x2[:7])
-    with pytest.raises(CamlabInputError, match=r"x1, x2: expected the same number of points .*got 120 and 119"):
+    with pytest.raises(
+        CamlabInputError, match=r"x1, x2: expected the same number of points .*got 120 and 119"
+    ):
         ep.estimate_fundamental_matrix(x1, x2[:-1])
     with pytest.raises(CamlabInputError, match="threshold"):
         ep.ransac_fundamental_matrix(x1, x2, threshold=-1)
@@ -102,7 +119,9 @@ def test_coplanar_points_are_degenerate():
     with pytest.raises(DegenerateError, match="one homography"):
         ep.estimate_fundamental_matrix(x1, c2.project(Xp))
     # A pure rotation is the same degeneracy.
-    c3 = c1.replace(R=rotation_from_euler(0.0, 0.1, 0.0) @ c1.R, t=rotation_from_euler(0.0, 0.1, 0.0) @ c1.t)
+    c3 = c1.replace(
+        R=rotation_from_euler(0.0, 0.1, 0.0) @ c1.R, t=rotation_from_euler(0.0, 0.1, 0.0) @ c1.t
+    )
     with pytest.raises(DegenerateError):
         ep.estimate_fundamental_matrix(c1.project(X), c3.project(X))
 
@@ -146,7 +165,9 @@ def test_epipolar_lines_pass_through_correspondences_and_match_opencv():
     assert np.abs(np.sum(l1 * to_homogeneous(x1), axis=1)).max() < 1e-7
     lc = cv2.computeCorrespondEpilines(x1.reshape(-1, 1, 2), 1, F).reshape(-1, 3)
     sign = np.sign(np.sum(lc[:, :2] * l2[:, :2], axis=1))[:, None]
-    assert np.allclose(lc * sign, l2, atol=1e-6)  # the same lines (both have a^2 + b^2 = 1), up to sign
+    assert np.allclose(
+        lc * sign, l2, atol=1e-6
+    )  # the same lines (both have a^2 + b^2 = 1), up to sign
     single = ep.epipolar_lines(F, x1[0])
     assert single.shape == (3,) and np.allclose(single, l2[0])
 
@@ -164,14 +185,25 @@ def test_essential_decomposition_and_recover_pose_match_opencv():
     E = ep.essential_matrix(R, t)
     cands = ep.decompose_essential_matrix(E)
     tn = t / np.linalg.norm(t)
-    assert any(np.allclose(Rc, R, atol=1e-9) and np.allclose(tc, tn, atol=1e-9) for Rc, tc in zip(cands.R, cands.t))
-    pose = ep.recover_pose(ep.essential_from_fundamental(ep.fundamental_from_cameras(c1, c2), c1.K), x1, x2, c1.K)
+    assert any(
+        np.allclose(Rc, R, atol=1e-9) and np.allclose(tc, tn, atol=1e-9)
+        for Rc, tc in zip(cands.R, cands.t)
+    )
+    pose = ep.recover_pose(
+        ep.essential_from_fundamental(ep.fundamental_from_cameras(c1, c2), c1.K), x1, x2, c1.K
+    )
     assert np.allclose(pose.R, R, atol=1e-9) and np.allclose(pose.t, tn, atol=1e-9)
     assert sorted(pose.counts)[-1] == len(X) and sorted(pose.counts)[-2] < len(X) // 2 + 1
     _, Rc, tc, _ = cv2.recoverPose(E, x1, x2, c1.K)
     assert np.allclose(Rc, pose.R, atol=1e-8) and np.allclose(tc.ravel(), pose.t, atol=1e-8)
     Ec, _ = cv2.findEssentialMat(x1, x2, c1.K, cv2.RANSAC, 0.999, 0.5)
-    assert min(np.abs(Ec[:3] / np.linalg.norm(Ec[:3]) - s * E / np.linalg.norm(E)).max() for s in (1, -1)) < 1e-5
+    assert (
+        min(
+            np.abs(Ec[:3] / np.linalg.norm(Ec[:3]) - s * E / np.linalg.norm(E)).max()
+            for s in (1, -1)
+        )
+        < 1e-5
+    )
     with pytest.raises(DegenerateError, match="not an essential matrix"):
         ep.decompose_essential_matrix(np.diag([1.0, 0.1, 0.0]))
 
@@ -250,7 +282,9 @@ def test_rendered_rig_sift_matches_estimate_equals_truth_and_matches_opencv():
     ours_on_cv = np.median(ep.sampson_distance(res.F, x1[mask], x2[mask]))
     cv_on_ours = np.median(ep.sampson_distance(Fc, x1[res.inliers], x2[res.inliers]))
     assert ours_on_cv <= 1.1 * cv_on_ours + 0.02
-    assert np.median(ep.sampson_distance(res.F, t1, t2)) <= 1.1 * np.median(ep.sampson_distance(Fc, t1, t2))
+    assert np.median(ep.sampson_distance(res.F, t1, t2)) <= 1.1 * np.median(
+        ep.sampson_distance(Fc, t1, t2)
+    )
     assert res.inliers.sum() >= 0.9 * mask.sum()
 
 
@@ -273,5 +307,7 @@ def test_exactly_eight_pairs_are_enough():
     c1, c2, X, x1, x2 = _rig(n=8, seed=3)
     F = ep.estimate_fundamental_matrix(x1, x2)
     assert np.allclose(F, ep.fundamental_from_cameras(c1, c2), atol=1e-6)
-    res = ep.ransac_fundamental_matrix(*_rig(n=9, seed=4)[3:], threshold=0.5, rng=np.random.default_rng(0))
+    res = ep.ransac_fundamental_matrix(
+        *_rig(n=9, seed=4)[3:], threshold=0.5, rng=np.random.default_rng(0)
+    )
     assert res.inliers.all()

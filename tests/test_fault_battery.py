@@ -14,6 +14,7 @@ Run ``python tests/test_fault_battery.py`` for the counts.
 
 (The generated bad-argument battery over the library's functions is ``tests/test_battery.py``.)
 """
+
 from __future__ import annotations
 
 import collections
@@ -41,9 +42,11 @@ CASES: dict[str, tuple[str, Callable[[Path], str]]] = {}
 
 def case(expected: str):
     """Register a case (a function of a fresh folder returning its classification)."""
+
     def register(fn):
         CASES[fn.__name__] = (expected, fn)
         return fn
+
     return register
 
 
@@ -94,7 +97,11 @@ def handled(r: Run, *checks: tuple[bool, str]) -> str:
     if r.exc is not None:
         return f"traceback: {type(r.exc).__name__}: {r.exc}"
     failed = [what for ok, what in checks if not ok]
-    return "handled" if not failed else f"exit {r.code}, wrong: {failed}; stderr {r.err.strip()[:200]!r}"
+    return (
+        "handled"
+        if not failed
+        else f"exit {r.code}, wrong: {failed}; stderr {r.err.strip()[:200]!r}"
+    )
 
 
 def also(outcome: str, ok: bool, what: str) -> str:
@@ -112,7 +119,9 @@ def copy_photos(folder: Path, *names: str) -> Path:
     return folder
 
 
-def calibration_file(path: Path, size=(640, 480), fmt: str = "opencv", model: str = "plumb_bob") -> Path:
+def calibration_file(
+    path: Path, size=(640, 480), fmt: str = "opencv", model: str = "plumb_bob"
+) -> Path:
     """A calibration of OpenCV's sample camera (the calib_left photos): OpenCV's FileStorage or ROS's camera_info."""
     K = np.array([[532.8, 0, 341.8], [0, 533.0, 234.1], [0, 0, 1]])
     d = np.array([-0.282, 0.044, 0.0011, -0.0003, 0.127])
@@ -125,16 +134,23 @@ def calibration_file(path: Path, size=(640, 480), fmt: str = "opencv", model: st
         fs.release()
     else:
         nums = lambda a: ", ".join(f"{v:g}" for v in np.ravel(a))  # noqa: E731
-        path.write_text(f"image_width: {size[0]}\nimage_height: {size[1]}\ncamera_name: narrow_stereo\n"
-                        f"camera_matrix:\n  rows: 3\n  cols: 3\n  data: [{nums(K)}]\n"
-                        f"distortion_model: {model}\ndistortion_coefficients:\n  rows: 1\n  cols: 5\n  data: [{nums(d)}]\n"
-                        f"rectification_matrix:\n  rows: 3\n  cols: 3\n  data: [1, 0, 0, 0, 1, 0, 0, 0, 1]\n")
+        path.write_text(
+            f"image_width: {size[0]}\nimage_height: {size[1]}\ncamera_name: narrow_stereo\n"
+            f"camera_matrix:\n  rows: 3\n  cols: 3\n  data: [{nums(K)}]\n"
+            f"distortion_model: {model}\ndistortion_coefficients:\n  rows: 1\n  cols: 5\n  data: [{nums(d)}]\n"
+            f"rectification_matrix:\n  rows: 3\n  cols: 3\n  data: [1, 0, 0, 0, 1, 0, 0, 0, 1]\n"
+        )
     return path
 
 
 def with_orientation(jpeg: bytes, orientation: int) -> bytes:
     """The JPEG with an APP1 Exif segment holding only the orientation tag (0x0112) inserted after SOI."""
-    tiff = b"II*\x00" + struct.pack("<IH", 8, 1) + struct.pack("<HHIHH", 0x0112, 3, 1, orientation, 0) + struct.pack("<I", 0)
+    tiff = (
+        b"II*\x00"
+        + struct.pack("<IH", 8, 1)
+        + struct.pack("<HHIHH", 0x0112, 3, 1, orientation, 0)
+        + struct.pack("<I", 0)
+    )
     app1 = b"Exif\x00\x00" + tiff
     return jpeg[:2] + b"\xff\xe1" + struct.pack(">H", len(app1) + 2) + app1 + jpeg[2:]
 
@@ -142,13 +158,17 @@ def with_orientation(jpeg: bytes, orientation: int) -> bytes:
 def sideways(src: Path, dst: Path) -> Path:
     """``src`` stored turned 90 degrees anticlockwise, with orientation 6 (turn clockwise to view): as a phone does."""
     turned = cv2.rotate(cv2.imread(str(src)), cv2.ROTATE_90_COUNTERCLOCKWISE)
-    dst.write_bytes(with_orientation(cv2.imencode(".jpg", turned, [cv2.IMWRITE_JPEG_QUALITY, 95])[1].tobytes(), 6))
+    dst.write_bytes(
+        with_orientation(
+            cv2.imencode(".jpg", turned, [cv2.IMWRITE_JPEG_QUALITY, 95])[1].tobytes(), 6
+        )
+    )
     return dst
 
 
 def truncated(src: Path, dst: Path) -> Path:
     data = src.read_bytes()
-    dst.write_bytes(data[:len(data) * 2 // 3])  # the end-of-image marker is lost
+    dst.write_bytes(data[: len(data) * 2 // 3])  # the end-of-image marker is lost
     return dst
 
 
@@ -193,10 +213,19 @@ THREE = ("calib_left01.jpg", "calib_left02.jpg", "calib_left03.jpg")
 def undistort_into_the_photo_folder(d: Path) -> str:
     photos = copy_photos(d / "photos", "calib_left01.jpg")
     before = (photos / "calib_left01.jpg").read_bytes()
-    r = run("undistort", photos / "calib_left01.jpg", "--calibration", calibration_file(d / "cal.yaml"),
-            "--out-dir", photos / ".." / "photos")  # the same folder, spelt differently
-    return also(clear(r, "--out-dir", "would overwrite the input photo", "--out-dir"),
-                (photos / "calib_left01.jpg").read_bytes() == before, "the photo changed")
+    r = run(
+        "undistort",
+        photos / "calib_left01.jpg",
+        "--calibration",
+        calibration_file(d / "cal.yaml"),
+        "--out-dir",
+        photos / ".." / "photos",
+    )  # the same folder, spelt differently
+    return also(
+        clear(r, "--out-dir", "would overwrite the input photo", "--out-dir"),
+        (photos / "calib_left01.jpg").read_bytes() == before,
+        "the photo changed",
+    )
 
 
 @case("clear")
@@ -204,14 +233,19 @@ def stitch_out_names_a_photo(d: Path) -> str:
     photos = copy_photos(d / "photos", "aerial_1.jpg", "aerial_2.jpg")
     before = (photos / "aerial_2.jpg").read_bytes()
     r = run("stitch", photos, "--out", photos / "aerial_2.jpg")
-    return also(clear(r, "--out", "would overwrite the input photo"), (photos / "aerial_2.jpg").read_bytes() == before,
-                "the photo changed")
+    return also(
+        clear(r, "--out", "would overwrite the input photo"),
+        (photos / "aerial_2.jpg").read_bytes() == before,
+        "the photo changed",
+    )
 
 
 @case("clear")
 def stitch_out_is_last_runs_panorama_in_the_folder(d: Path) -> str:
     photos = copy_photos(d / "photos", "aerial_1.jpg", "aerial_2.jpg")
-    shutil.copy(photos / "aerial_1.jpg", photos / "pano.jpg")  # a panorama from an earlier run, now an input
+    shutil.copy(
+        photos / "aerial_1.jpg", photos / "pano.jpg"
+    )  # a panorama from an earlier run, now an input
     return clear(run("stitch", photos, "--out", photos / "pano.jpg"), "--out", "pano.jpg")
 
 
@@ -220,16 +254,30 @@ def calibrate_report_names_a_photo(d: Path) -> str:
     photos = copy_photos(d / "photos", *THREE)
     before = (photos / THREE[0]).read_bytes()
     os.link(photos / THREE[0], d / "link.jpg")  # a hard link is the same file under another name
-    r = run("calibrate", *(photos / n for n in THREE), *CALIBRATE, "--out", d / "cal.json", "--report", d / "link.jpg")
-    return also(clear(r, "--report", "would overwrite the input photo"),
-                (photos / THREE[0]).read_bytes() == before and not (d / "cal.json").exists(), "a file changed")
+    r = run(
+        "calibrate",
+        *(photos / n for n in THREE),
+        *CALIBRATE,
+        "--out",
+        d / "cal.json",
+        "--report",
+        d / "link.jpg",
+    )
+    return also(
+        clear(r, "--report", "would overwrite the input photo"),
+        (photos / THREE[0]).read_bytes() == before and not (d / "cal.json").exists(),
+        "a file changed",
+    )
 
 
 @case("clear")
 def rectify_out_dir_holds_the_inputs_names(d: Path) -> str:
     shutil.copy(PHOTOS / "walls_left.jpg", d / "left_rectified.png")
-    return clear(run("rectify", d / "left_rectified.png", PHOTOS / "walls_right.jpg", "--out-dir", d), "--out-dir",
-                 "would overwrite")
+    return clear(
+        run("rectify", d / "left_rectified.png", PHOTOS / "walls_right.jpg", "--out-dir", d),
+        "--out-dir",
+        "would overwrite",
+    )
 
 
 # --------------------------------------------------------------------------- a full disk
@@ -250,17 +298,25 @@ def _calibrate_over_a_good_file(d: Path, *patches) -> tuple[Run, bytes, Path]:
 @case("clear")
 def calibrate_out_disk_full_on_fsync(d: Path) -> str:
     r, good, out = _calibrate_over_a_good_file(d, patched(os, "fsync", disk_full))
-    return also(clear(r, "--out", "No space left on device", "unchanged"), out.read_bytes() == good and
-                "wrote" not in r.out, "the old calibration was replaced")
+    return also(
+        clear(r, "--out", "No space left on device", "unchanged"),
+        out.read_bytes() == good and "wrote" not in r.out,
+        "the old calibration was replaced",
+    )
 
 
 @case("clear")
 def calibrate_out_disk_full_opencv_writes_an_empty_file(d: Path) -> str:
     import camlab.calibration.io as cio
 
-    r, good, out = _calibrate_over_a_good_file(d, patched(cio, "_write", lambda fs, result: fs.release()))
-    return also(clear(r, "--out", "does not read back", "unchanged"), out.read_bytes() == good,
-                "the old calibration was replaced")
+    r, good, out = _calibrate_over_a_good_file(
+        d, patched(cio, "_write", lambda fs, result: fs.release())
+    )
+    return also(
+        clear(r, "--out", "does not read back", "unchanged"),
+        out.read_bytes() == good,
+        "the old calibration was replaced",
+    )
 
 
 @case("clear")
@@ -270,12 +326,18 @@ def calibrate_out_disk_full_leaves_zero_bytes(d: Path) -> str:
     def nothing(fs, result):
         fs.release()
         Path(fs_path[0]).write_bytes(b"")
+
     fs_path = []
     real = cv2.FileStorage
     keep = lambda path, mode: (fs_path.append(path), real(path, mode))[1]  # noqa: E731
-    r, good, out = _calibrate_over_a_good_file(d, patched(cio, "_write", nothing), patched(cv2, "FileStorage", keep))
-    return also(clear(r, "--out", "0 bytes", "unchanged"), out.read_bytes() == good and
-                not [p for p in d.iterdir() if p.name.startswith(".cal")], "a file was replaced or left behind")
+    r, good, out = _calibrate_over_a_good_file(
+        d, patched(cio, "_write", nothing), patched(cv2, "FileStorage", keep)
+    )
+    return also(
+        clear(r, "--out", "0 bytes", "unchanged"),
+        out.read_bytes() == good and not [p for p in d.iterdir() if p.name.startswith(".cal")],
+        "a file was replaced or left behind",
+    )
 
 
 @case("clear")
@@ -284,18 +346,39 @@ def calibrate_report_disk_full(d: Path) -> str:
 
     photos = copy_photos(d / "photos", *THREE)
     with patched(Figure, "savefig", disk_full):
-        r = run("calibrate", photos / "*.jpg", *CALIBRATE, "--out", d / "cal.json", "--report", d / "r.png")
-    return also(clear(r, "--report", "No space left on device"), not (d / "cal.json").exists() and
-                not (d / "r.png").exists(), "files were left behind")
+        r = run(
+            "calibrate",
+            photos / "*.jpg",
+            *CALIBRATE,
+            "--out",
+            d / "cal.json",
+            "--report",
+            d / "r.png",
+        )
+    return also(
+        clear(r, "--report", "No space left on device"),
+        not (d / "cal.json").exists() and not (d / "r.png").exists(),
+        "files were left behind",
+    )
 
 
 @case("clear")
 def undistort_disk_full(d: Path) -> str:
     (d / "out").mkdir()
     with patched(os, "fsync", disk_full):
-        r = run("undistort", PHOTOS / "calib_left01.jpg", "--calibration", calibration_file(d / "cal.yaml"),
-                "--out-dir", d / "out")
-    return also(clear(r, "--out-dir", "No space left"), not list((d / "out").iterdir()), "a file was left behind")
+        r = run(
+            "undistort",
+            PHOTOS / "calib_left01.jpg",
+            "--calibration",
+            calibration_file(d / "cal.yaml"),
+            "--out-dir",
+            d / "out",
+        )
+    return also(
+        clear(r, "--out-dir", "No space left"),
+        not list((d / "out").iterdir()),
+        "a file was left behind",
+    )
 
 
 @case("handled")
@@ -303,11 +386,21 @@ def written_files_respect_the_umask(d: Path) -> str:
     photos = copy_photos(d / "photos", *THREE)
     old = os.umask(0o002)  # a shared folder: group may write
     try:
-        r = run("calibrate", photos / "*.jpg", *CALIBRATE, "--out", d / "cal.json", "--report", d / "r.png")
+        r = run(
+            "calibrate",
+            photos / "*.jpg",
+            *CALIBRATE,
+            "--out",
+            d / "cal.json",
+            "--report",
+            d / "r.png",
+        )
     finally:
         os.umask(old)
     modes = {p.name: p.stat().st_mode & 0o777 for p in (d / "cal.json", d / "r.png") if p.exists()}
-    return handled(r, (modes == {"cal.json": 0o664, "r.png": 0o664}, f"modes {modes}, expected 0o664"))
+    return handled(
+        r, (modes == {"cal.json": 0o664, "r.png": 0o664}, f"modes {modes}, expected 0o664")
+    )
 
 
 # --------------------------------------------------------------------------- calibration files
@@ -317,25 +410,45 @@ def written_files_respect_the_umask(d: Path) -> str:
 def undistort_with_a_ros_calibration(d: Path) -> str:
     for fmt in ("opencv", "ros"):
         (d / fmt).mkdir()
-        r = run("undistort", PHOTOS / "calib_left01.jpg", "--calibration", calibration_file(d / f"{fmt}.yaml", fmt=fmt),
-                "--out-dir", d / fmt)
+        r = run(
+            "undistort",
+            PHOTOS / "calib_left01.jpg",
+            "--calibration",
+            calibration_file(d / f"{fmt}.yaml", fmt=fmt),
+            "--out-dir",
+            d / fmt,
+        )
         if r.code != 0:
             return handled(r, (False, "exit 0"))
     a, b = (cv2.imread(str(d / f / "calib_left01.jpg")) for f in ("opencv", "ros"))
-    return handled(r, (a is not None and b is not None and np.array_equal(a, b), "the same image as with OpenCV's file"))
+    return handled(
+        r,
+        (
+            a is not None and b is not None and np.array_equal(a, b),
+            "the same image as with OpenCV's file",
+        ),
+    )
 
 
 @case("clear")
 def undistort_with_a_fisheye_ros_calibration(d: Path) -> str:
-    r = run("undistort", PHOTOS / "calib_left01.jpg", "--calibration",
-            calibration_file(d / "ros.yaml", fmt="ros", model="equidistant"), "--out-dir", d)
+    r = run(
+        "undistort",
+        PHOTOS / "calib_left01.jpg",
+        "--calibration",
+        calibration_file(d / "ros.yaml", fmt="ros", model="equidistant"),
+        "--out-dir",
+        d,
+    )
     return clear(r, "--calibration", "'equidistant' distortion model")
 
 
 @case("clear")
 def undistort_with_a_yaml_that_is_no_calibration(d: Path) -> str:
     (d / "cal.yaml").write_text("camera_matrix: {a: 1}\n")
-    r = run("undistort", PHOTOS / "calib_left01.jpg", "--calibration", d / "cal.yaml", "--out-dir", d)
+    r = run(
+        "undistort", PHOTOS / "calib_left01.jpg", "--calibration", d / "cal.yaml", "--out-dir", d
+    )
     return clear(r, "--calibration", "camera_matrix", "ROS")
 
 
@@ -346,10 +459,20 @@ def undistort_with_a_yaml_that_is_no_calibration(d: Path) -> str:
 def undistort_a_truncated_jpeg(d: Path) -> str:
     bad = truncated(PHOTOS / "calib_left01.jpg", d / "cut.jpg")
     (d / "out").mkdir()
-    r = run("undistort", bad, PHOTOS / "calib_left02.jpg", "--calibration", calibration_file(d / "cal.yaml"),
-            "--out-dir", d / "out")
-    return also(skipped(r, "cut.jpg", "truncated JPEG"), not (d / "out" / "cut.jpg").exists()
-                and (d / "out" / "calib_left02.jpg").exists(), "the wrong files were written")
+    r = run(
+        "undistort",
+        bad,
+        PHOTOS / "calib_left02.jpg",
+        "--calibration",
+        calibration_file(d / "cal.yaml"),
+        "--out-dir",
+        d / "out",
+    )
+    return also(
+        skipped(r, "cut.jpg", "truncated JPEG"),
+        not (d / "out" / "cut.jpg").exists() and (d / "out" / "calib_left02.jpg").exists(),
+        "the wrong files were written",
+    )
 
 
 @case("clear")
@@ -357,13 +480,22 @@ def stitch_a_truncated_jpeg(d: Path) -> str:
     photos = copy_photos(d / "photos", "aerial_1.jpg", "aerial_2.jpg")
     truncated(PHOTOS / "aerial_3.jpg", photos / "aerial_3.jpg")
     r = run("stitch", photos, "--out", d / "pano.jpg", "--max-megapixels", "0.3")
-    return also(skipped(r, "aerial_3.jpg", "truncated JPEG"), "left out: aerial_3.jpg" in r.out, "not listed as left out")
+    return also(
+        skipped(r, "aerial_3.jpg", "truncated JPEG"),
+        "left out: aerial_3.jpg" in r.out,
+        "not listed as left out",
+    )
 
 
 @case("clear")
 def rectify_a_truncated_jpeg(d: Path) -> str:
     bad = truncated(PHOTOS / "walls_right.jpg", d / "right.jpg")
-    return clear(run("rectify", PHOTOS / "walls_left.jpg", bad, "--out-dir", d), "right", "right.jpg", "truncated JPEG")
+    return clear(
+        run("rectify", PHOTOS / "walls_left.jpg", bad, "--out-dir", d),
+        "right",
+        "right.jpg",
+        "truncated JPEG",
+    )
 
 
 @case("clear")
@@ -372,8 +504,11 @@ def calibrate_an_empty_file_and_a_folder(d: Path) -> str:
     (photos / "empty.jpg").write_bytes(b"")
     (photos / "folder.jpg").mkdir()
     r = run("calibrate", photos / "*.jpg", *CALIBRATE, "--out", d / "cal.json", "--no-report")
-    return also(skipped(r._replace(code=1), "empty.jpg", "empty (0 bytes)"), r.code == 0 and
-                "folder.jpg: skipped: could not read the file" in r.out, "the folder was not named")
+    return also(
+        skipped(r._replace(code=1), "empty.jpg", "empty (0 bytes)"),
+        r.code == 0 and "folder.jpg: skipped: could not read the file" in r.out,
+        "the folder was not named",
+    )
 
 
 # --------------------------------------------------------------------------- EXIF orientation
@@ -386,13 +521,25 @@ def calibrate_and_undistort_photos_stored_sideways(d: Path) -> str:
     for n in names:
         sideways(PHOTOS / n, copy_photos(d / "phone").joinpath(n))
     (d / "out").mkdir()
-    r = run("calibrate", d / "phone" / "*.jpg", *CALIBRATE, "--fix-k3", "--out", d / "cal.yaml", "--no-report")
+    r = run(
+        "calibrate",
+        d / "phone" / "*.jpg",
+        *CALIBRATE,
+        "--fix-k3",
+        "--out",
+        d / "cal.yaml",
+        "--no-report",
+    )
     if r.code != 0:
         return handled(r, (False, "calibrate exit 0"))
-    r = run("undistort", d / "phone" / "*.jpg", "--calibration", d / "cal.yaml", "--out-dir", d / "out")
+    r = run(
+        "undistort", d / "phone" / "*.jpg", "--calibration", d / "cal.yaml", "--out-dir", d / "out"
+    )
     (d / "ref").mkdir()
     run("undistort", PHOTOS / names[0], "--calibration", d / "cal.yaml", "--out-dir", d / "ref")
-    out = cv2.imread(str(d / "out" / names[0]), cv2.IMREAD_UNCHANGED)  # UNCHANGED: it must not need a tag to show upright
+    out = cv2.imread(
+        str(d / "out" / names[0]), cv2.IMREAD_UNCHANGED
+    )  # UNCHANGED: it must not need a tag to show upright
     ref = cv2.imread(str(d / "ref" / names[0]))  # the upright original, undistorted the same way
     like = out is not None and out.shape == ref.shape and np.abs(out.astype(int) - ref).mean() < 3
     return handled(r, (r.code == 0, "exit 0"), (like, "the undistorted photo is upright"))
@@ -403,7 +550,9 @@ def undistort_with_a_calibration_from_too_few_views(d: Path) -> str:
     """Four views without --fix-k3: k3 is wild, and the model cannot be inverted at the photo's corners."""
     photos = copy_photos(d / "photos", *THREE, "calib_left04.jpg")
     run("calibrate", photos / "*.jpg", *CALIBRATE, "--out", d / "cal.yaml", "--no-report")
-    r = run("undistort", photos / "calib_left01.jpg", "--calibration", d / "cal.yaml", "--out-dir", d)
+    r = run(
+        "undistort", photos / "calib_left01.jpg", "--calibration", d / "cal.yaml", "--out-dir", d
+    )
     return clear(r, "--calibration", "cannot be undone", "--fix-k3")
 
 
@@ -417,12 +566,21 @@ def stitch_a_photo_stored_sideways(d: Path) -> str:
 
 @case("handled")
 def rectify_photos_stored_sideways(d: Path) -> str:
-    left, right = sideways(PHOTOS / "walls_left.jpg", d / "l.jpg"), sideways(PHOTOS / "walls_right.jpg", d / "r.jpg")
+    left, right = (
+        sideways(PHOTOS / "walls_left.jpg", d / "l.jpg"),
+        sideways(PHOTOS / "walls_right.jpg", d / "r.jpg"),
+    )
     (d / "out").mkdir()
     r = run("rectify", left, right, "--out-dir", d / "out")
     out = cv2.imread(str(d / "out" / "left_rectified.png"))
-    return handled(r, (r.code == 0, "exit 0"), (out is not None and out.shape == cv2.imread(str(PHOTOS / "walls_left.jpg")).shape,
-                                                 "rectified photos upright (816 x 612)"))
+    return handled(
+        r,
+        (r.code == 0, "exit 0"),
+        (
+            out is not None and out.shape == cv2.imread(str(PHOTOS / "walls_left.jpg")).shape,
+            "rectified photos upright (816 x 612)",
+        ),
+    )
 
 
 # --------------------------------------------------------------------------- phone-size photos
@@ -434,27 +592,66 @@ def calibrate_24_megapixel_photos(d: Path) -> str:
     f = 7.5
     (d / "big").mkdir()
     for n in THREE:
-        big = cv2.resize(cv2.imread(str(PHOTOS / n), cv2.IMREAD_GRAYSCALE), None, fx=f, fy=f, interpolation=cv2.INTER_CUBIC)
+        big = cv2.resize(
+            cv2.imread(str(PHOTOS / n), cv2.IMREAD_GRAYSCALE),
+            None,
+            fx=f,
+            fy=f,
+            interpolation=cv2.INTER_CUBIC,
+        )
         cv2.imwrite(str(d / "big" / n), big)
     r = run("calibrate", d / "big" / "*.jpg", *CALIBRATE, "--out", d / "big.json", "--no-report")
-    small = run("calibrate", *(PHOTOS / n for n in THREE), *CALIBRATE, "--out", d / "small.json", "--no-report")
+    small = run(
+        "calibrate",
+        *(PHOTOS / n for n in THREE),
+        *CALIBRATE,
+        "--out",
+        d / "small.json",
+        "--no-report",
+    )
     if r.code != 0 or small.code != 0:
         return handled(r, (False, f"exit 0 (got {r.code}, {small.code})"))
     from camlab.calibration import load_calibration
 
     K_big, K_small = load_calibration(d / "big.json")[0], load_calibration(d / "small.json")[0]
     fx_back = (K_big[0, 0]) / f  # focal lengths scale with the image
-    return handled(r, (r.out.count("board found") == 3, "the board found in 3 of 3"),
-                   (abs(fx_back / K_small[0, 0] - 1) < 0.01, f"fx {K_big[0, 0]:.1f} = 7.5 x {K_small[0, 0]:.1f} within 1%"))
+    return handled(
+        r,
+        (r.out.count("board found") == 3, "the board found in 3 of 3"),
+        (
+            abs(fx_back / K_small[0, 0] - 1) < 0.01,
+            f"fx {K_big[0, 0]:.1f} = 7.5 x {K_small[0, 0]:.1f} within 1%",
+        ),
+    )
 
 
 @case("handled")
 def stitch_photos_above_the_work_size(d: Path) -> str:
     photos = copy_photos(d / "photos", "aerial_1.jpg", "aerial_2.jpg")
-    r = run("stitch", photos, "--out", d / "pano.jpg", "--max-megapixels", "0.3", "--projection", "planar")
+    r = run(
+        "stitch",
+        photos,
+        "--out",
+        d / "pano.jpg",
+        "--max-megapixels",
+        "0.3",
+        "--projection",
+        "planar",
+    )
     pano = cv2.imread(str(d / "pano.jpg"))
-    return handled(r, (r.code == 0 and r.out.count("worked on at") == 2 and "900 x 720 px (1 MP), worked on at 612 x 490" in r.out, "both photos shrunk, saying so"),
-                   (pano is not None and 1.2 * 0.3e6 < pano.shape[0] * pano.shape[1] < 2 * 0.3e6, "a panorama at the work size"))
+    return handled(
+        r,
+        (
+            r.code == 0
+            and r.out.count("worked on at") == 2
+            and "900 x 720 px (1 MP), worked on at 612 x 490" in r.out,
+            "both photos shrunk, saying so",
+        ),
+        (
+            pano is not None and 1.2 * 0.3e6 < pano.shape[0] * pano.shape[1] < 2 * 0.3e6,
+            "a panorama at the work size",
+        ),
+    )
 
 
 # --------------------------------------------------------------------------- scenes the geometry cannot handle
@@ -463,8 +660,13 @@ def stitch_photos_above_the_work_size(d: Path) -> str:
 @case("clear")
 def rectify_a_flat_scene(d: Path) -> str:
     left, right = planar_pair(d, baseline=0.2)
-    return also(clear(run("rectify", left, right, "--out-dir", d), "left, right", "one plane", "--calibration"),
-                not (d / "left_rectified.png").exists(), "an output was written")
+    return also(
+        clear(
+            run("rectify", left, right, "--out-dir", d), "left, right", "one plane", "--calibration"
+        ),
+        not (d / "left_rectified.png").exists(),
+        "an output was written",
+    )
 
 
 @case("handled")
@@ -472,24 +674,38 @@ def rectify_a_flat_scene_with_its_calibration(d: Path) -> str:
     left, right = planar_pair(d, baseline=0.2)
     h, w = cv2.imread(str(left)).shape[:2]
     fs = cv2.FileStorage(str(d / "cal.yaml"), cv2.FILE_STORAGE_WRITE)
-    for k, v in (("image_width", w), ("image_height", h),
-                 ("camera_matrix", np.array([[700.0, 0, (w - 1) / 2], [0, 700.0, (h - 1) / 2], [0, 0, 1]])),
-                 ("distortion_coefficients", np.zeros((1, 5)))):
+    for k, v in (
+        ("image_width", w),
+        ("image_height", h),
+        ("camera_matrix", np.array([[700.0, 0, (w - 1) / 2], [0, 700.0, (h - 1) / 2], [0, 0, 1]])),
+        ("distortion_coefficients", np.zeros((1, 5))),
+    ):
         fs.write(k, v)
     fs.release()
     (d / "out").mkdir()
     r = run("rectify", left, right, "--calibration", d / "cal.yaml", "--out-dir", d / "out")
     after = float(r.out.split(" px after")[0].split()[-1]) if " px after" in r.out else np.inf
-    return handled(r, (r.code == 0, "exit 0"), (after < 0.5, f"vertical disparity after {after} px < 0.5"))
+    return handled(
+        r, (r.code == 0, "exit 0"), (after < 0.5, f"vertical disparity after {after} px < 0.5")
+    )
 
 
 @case("handled")
 def stitch_a_folder_of_two_panoramas(d: Path) -> str:
-    photos = copy_photos(d / "photos", "aerial_1.jpg", "aerial_2.jpg", "rocks_left.jpg", "rocks_right.jpg")
+    photos = copy_photos(
+        d / "photos", "aerial_1.jpg", "aerial_2.jpg", "rocks_left.jpg", "rocks_right.jpg"
+    )
     r = run("stitch", photos, "--out", d / "pano.jpg", "--max-megapixels", "0.3")
-    return handled(r, (r.code == 1, "exit 1 (photos left out)"),
-                   ("2 separate groups of overlapping photos" in r.out and "overlap each other" in r.out
-                    and "overlaps none" not in r.out, "both groups named"))
+    return handled(
+        r,
+        (r.code == 1, "exit 1 (photos left out)"),
+        (
+            "2 separate groups of overlapping photos" in r.out
+            and "overlap each other" in r.out
+            and "overlaps none" not in r.out,
+            "both groups named",
+        ),
+    )
 
 
 # --------------------------------------------------------------------------- the battery
@@ -510,8 +726,11 @@ def main() -> int:
             outcome = fn(Path(d))
         kind = outcome if outcome in ("clear", "handled") else "wrong"
         counts[kind] += 1
-        print(f"{kind:8} {name}" + ("" if kind != "wrong" else f": {outcome}") +
-              ("" if outcome == expected or kind == "wrong" else f" (expected {expected})"))
+        print(
+            f"{kind:8} {name}"
+            + ("" if kind != "wrong" else f": {outcome}")
+            + ("" if outcome == expected or kind == "wrong" else f" (expected {expected})")
+        )
     print(", ".join(f"{k}: {v}" for k, v in sorted(counts.items())), f"(of {len(CASES)} cases)")
     return 0 if counts["wrong"] == 0 else 1
 

@@ -1,4 +1,5 @@
 """Tests for camlab.features: detection, the ratio test, the mutual check, drawing helpers."""
+
 import cv2
 import numpy as np
 import pytest
@@ -27,11 +28,14 @@ def test_to_gray_uint8_known_values_and_types():
     assert ft.to_gray_uint8(np.full((8, 8, 4), 0.5))[0, 0] == 128
 
 
-@pytest.mark.parametrize("bad, match", [
-    (np.zeros((4, 4)), r"image: expected .* at least 8 x 8 pixels, got shape \(4, 4\)"),
-    (np.zeros((10, 10, 2)), r"got shape \(10, 10, 2\)"),
-    (np.zeros((10, 10), np.int32), r"expected uint8, uint16 or float pixels, got dtype int32"),
-])
+@pytest.mark.parametrize(
+    "bad, match",
+    [
+        (np.zeros((4, 4)), r"image: expected .* at least 8 x 8 pixels, got shape \(4, 4\)"),
+        (np.zeros((10, 10, 2)), r"got shape \(10, 10, 2\)"),
+        (np.zeros((10, 10), np.int32), r"expected uint8, uint16 or float pixels, got dtype int32"),
+    ],
+)
 def test_to_gray_uint8_bad_input(bad, match):
     with pytest.raises(CamlabInputError, match=match):
         ft.to_gray_uint8(bad)
@@ -50,7 +54,9 @@ def test_detect_sift_and_orb_shapes(pair):
 
 def test_detect_bad_options_and_mask(pair):
     s, _ = pair
-    with pytest.raises(CamlabInputError, match=r"method: expected one of \('sift', 'orb'\), got 'surf'"):
+    with pytest.raises(
+        CamlabInputError, match=r"method: expected one of \('sift', 'orb'\), got 'surf'"
+    ):
         ft.detect_features(s.images[0], "surf")
     with pytest.raises(CamlabInputError, match="max_features: expected a whole number >= 1"):
         ft.detect_features(s.images[0], max_features=0)
@@ -113,14 +119,23 @@ def test_flann_index_agrees_with_brute_force(pair):
     same = knn.nn12[:, 0] == exact.nn12[:, 0]
     assert np.allclose(knn.d12[same, 0], exact.d12[same, 0], rtol=1e-5)
     fl = ft.filter_matches(knn, 0.75)
-    both = set(zip(fl.idx1.tolist(), fl.idx2.tolist())) & set(zip(bf.idx1.tolist(), bf.idx2.tolist()))
+    both = set(zip(fl.idx1.tolist(), fl.idx2.tolist())) & set(
+        zip(bf.idx1.tolist(), bf.idx2.tolist())
+    )
     assert len(both) >= 0.9 * len(bf.idx1) and len(fl.idx1) <= 1.05 * len(bf.idx1)
     H = s.true_homography(1, 2)
-    right, right_bf = hg.transfer_error(H, fl.src, fl.dst) < 2.0, hg.transfer_error(H, bf.src, bf.dst) < 2.0
+    right, right_bf = (
+        hg.transfer_error(H, fl.src, fl.dst) < 2.0,
+        hg.transfer_error(H, bf.src, bf.dst) < 2.0,
+    )
     assert right.sum() >= 0.9 * right_bf.sum() and right.mean() >= right_bf.mean() - 0.02
-    again = ft.filter_matches(ft.knn_match(f1, f2, backward=False, index2=index), 0.75)  # the index is reusable
+    again = ft.filter_matches(
+        ft.knn_match(f1, f2, backward=False, index2=index), 0.75
+    )  # the index is reusable
     assert np.array_equal(again.idx1, fl.idx1)
-    assert (knn.nn21 >= 0).all() and (knn.nn21[fl.idx2] == fl.idx1).mean() > 0.9  # the backward pass
+    assert (knn.nn21 >= 0).all() and (
+        knn.nn21[fl.idx2] == fl.idx1
+    ).mean() > 0.9  # the backward pass
     with pytest.raises(CamlabInputError, match="features: expected SIFT features"):
         ft.flann_index(ft.detect_features(s.images[1], "orb", 500))
 
@@ -130,7 +145,9 @@ def test_flann_matches_do_not_depend_on_what_ran_before(pair):
     same features match the same way whatever was drawn before (the panorama stays the same)."""
     _, (f1, f2) = pair
     first = ft.knn_match(f1, f2, approximate=True)
-    cv2.randu(np.zeros(1000, np.float32), 0, 1)  # draws from the global generator, as other code would
+    cv2.randu(
+        np.zeros(1000, np.float32), 0, 1
+    )  # draws from the global generator, as other code would
     ft.flann_index(f1)
     again = ft.knn_match(f1, f2, approximate=True)
     assert np.array_equal(first.nn12, again.nn12) and np.array_equal(first.nn21, again.nn21)
@@ -148,16 +165,26 @@ def test_orb_matching_uses_hamming(pair):
 
     r = register_pair(o1, o2, ratio=0.8)
     c = np.array([[0, 0], [639, 0], [639, 479], [0, 479]], float)
-    err = np.linalg.norm(hg.map_points(r.H, c) - hg.map_points(full.true_homography(1, 2), c), axis=1).max()
-    assert r.accepted and err < 10.0  # measured about 6 px: ORB keypoints sit on pyramid-level grids
-    with pytest.raises(CamlabInputError, match="features2: expected orb features like features1, got sift"):
+    err = np.linalg.norm(
+        hg.map_points(r.H, c) - hg.map_points(full.true_homography(1, 2), c), axis=1
+    ).max()
+    assert (
+        r.accepted and err < 10.0
+    )  # measured about 6 px: ORB keypoints sit on pyramid-level grids
+    with pytest.raises(
+        CamlabInputError, match="features2: expected orb features like features1, got sift"
+    ):
         ft.knn_match(o1, pair[1][1])
 
 
 def test_filter_bad_input():
     with pytest.raises(CamlabInputError, match=r"ratio: expected a number in \(0, 1\]"):
-        ft.filter_matches(ft.KnnMatches(np.zeros((0, 2), int), np.zeros((0, 2)), None, np.zeros((0, 2)),
-                                        np.zeros((0, 2))), 1.5)
+        ft.filter_matches(
+            ft.KnnMatches(
+                np.zeros((0, 2), int), np.zeros((0, 2)), None, np.zeros((0, 2)), np.zeros((0, 2))
+            ),
+            1.5,
+        )
     with pytest.raises(CamlabInputError, match="knn: expected camlab.features.KnnMatches"):
         ft.filter_matches([(0, 1)], 0.8)
     with pytest.raises(CamlabInputError, match="features1: expected camlab.features.Features"):
@@ -172,7 +199,9 @@ def test_ratio_filter_is_monotone(seed, r1, r2):
     n1, n2 = 30, 25
     d = np.sort(rng.uniform(0, 10, (n1, 2)), axis=1)
     nn = np.column_stack([rng.integers(0, n2, n1), rng.integers(0, n2, n1)])
-    knn = ft.KnnMatches(nn, d, rng.integers(0, n1, n2), rng.uniform(0, 100, (n1, 2)), rng.uniform(0, 100, (n2, 2)))
+    knn = ft.KnnMatches(
+        nn, d, rng.integers(0, n1, n2), rng.uniform(0, 100, (n1, 2)), rng.uniform(0, 100, (n2, 2))
+    )
     lo, hi = sorted((r1, r2))
     a, b = ft.filter_matches(knn, lo), ft.filter_matches(knn, hi)
     assert set(a.idx1) <= set(b.idx1)
@@ -194,7 +223,10 @@ def test_drawing_helpers(pair):
     good = hg.transfer_error(s.true_homography(1, 2), m.src, m.dst) < 2
     fig, ax = plt.subplots()
     art = draw_matches(ax, s.images[1], s.images[2], m.src, m.dst, good)
-    assert len(art["good"].get_segments()) == good.sum() and len(art["bad"].get_segments()) == (~good).sum()
+    assert (
+        len(art["good"].get_segments()) == good.sum()
+        and len(art["bad"].get_segments()) == (~good).sum()
+    )
     assert art["offset"] == 328.0
     seg = match_segments(m.src[:1], m.dst[:1], 328.0)
     assert np.allclose(seg[0], [m.src[0], m.dst[0] + [328, 0]])

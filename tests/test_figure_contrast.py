@@ -12,6 +12,7 @@ A marker passes if its face or its edge reaches 3:1. Things that carry no inform
 left out, each for a reason in :data:`NOT_INFORMATION`; images are data, not checked here
 (value images are checked for a colour bar below).
 """
+
 from __future__ import annotations
 
 from unittest import mock
@@ -30,8 +31,10 @@ from camlab.widgets import all_demos
 DEMOS = all_demos()
 TEXT, LARGE_TEXT, GRAPHICS = 4.5, 3.0, 3.0
 GRID = "grid lines, and frames and guides marked gid='grid': reading aids that carry no data of their own"
-THUMBNAIL = ("the picture on a 3-D camera's image plane (gid='thumbnail'): a few pixels wide, a copy of "
-             "the 2-D image panel beside it, which is checked")
+THUMBNAIL = (
+    "the picture on a 3-D camera's image plane (gid='thumbnail'): a few pixels wide, a copy of "
+    "the 2-D image panel beside it, which is checked"
+)
 MARKED = {"grid": GRID, "thumbnail": THUMBNAIL}
 SHARE = 0.9  # of the background pixels under a text or along a line that must reach the ratio
 
@@ -122,10 +125,14 @@ def not_information(fig) -> dict[int, str]:
             for tick in axis.majorTicks + axis.minorTicks:
                 reasons[id(tick.gridline)] = GRID
                 for mark in (tick.tick1line, tick.tick2line):
-                    reasons[id(mark)] = "tick marks: black, on the black frame they cross (sampled as their background)"
+                    reasons[id(mark)] = (
+                        "tick marks: black, on the black frame they cross (sampled as their background)"
+                    )
             if getattr(axis, "gridlines", None) is not None:  # a 3-D axis
                 reasons[id(axis.gridlines)] = GRID
-                reasons[id(axis.line)] = "3-D axis lines: the edges of the box, a frame like a 2-D axes' spines"
+                reasons[id(axis.line)] = (
+                    "3-D axis lines: the edges of the box, a frame like a 2-D axes' spines"
+                )
     return reasons
 
 
@@ -137,15 +144,20 @@ def _text_check(text: Text, background: np.ndarray, renderer, dpi: float):
         return None
     bg = _halo(text, _box(background, bbox))  # a text's own box stays in the background
     px = text.get_fontsize() * dpi / 72
-    bold = str(text.get_fontweight()) in ("bold", "heavy", "black", "semibold", "demibold") or \
-        (isinstance(text.get_fontweight(), (int, float)) and text.get_fontweight() >= 600)
+    bold = str(text.get_fontweight()) in ("bold", "heavy", "black", "semibold", "demibold") or (
+        isinstance(text.get_fontweight(), (int, float)) and text.get_fontweight() >= 600
+    )
     need = LARGE_TEXT if px >= 24 or (bold and px >= 18.66) else TEXT
     fg = drawn_over(_alpha(text, to_rgba(text.get_color())), bg)
     return need, contrast(fg, bg)
 
 
 def _line_points(line: Line2D) -> np.ndarray:
-    xy = line.get_transform().transform(line.get_path().vertices) if len(line.get_xydata()) else np.empty((0, 2))
+    xy = (
+        line.get_transform().transform(line.get_path().vertices)
+        if len(line.get_xydata())
+        else np.empty((0, 2))
+    )
     return xy
 
 
@@ -161,8 +173,12 @@ def _line_check(line: Line2D, background: np.ndarray):
     if line.get_marker() not in (None, "None", "none", "", " "):
         bg = _halo(line, _sample(background, pts))
         face, edge = to_rgba(line.get_markerfacecolor()), to_rgba(line.get_markeredgecolor())
-        best = np.maximum(contrast(drawn_over(_alpha(line, face), bg), bg) if face[3] > 0 else 0,
-                          contrast(drawn_over(_alpha(line, edge), bg), bg) if edge[3] > 0 and line.get_markeredgewidth() > 0 else 0)
+        best = np.maximum(
+            contrast(drawn_over(_alpha(line, face), bg), bg) if face[3] > 0 else 0,
+            contrast(drawn_over(_alpha(line, edge), bg), bg)
+            if edge[3] > 0 and line.get_markeredgewidth() > 0
+            else 0,
+        )
         ratios.append(np.broadcast_to(best, (len(bg),)))
     if not ratios:
         return None
@@ -179,7 +195,9 @@ def _collection_check(coll, background: np.ndarray):
             if len(seg) < 2:
                 continue
             bg = _halo(coll, _sample(background, _along(coll.get_transform().transform(seg))))
-            ratios.append(contrast(drawn_over(colours[i % len(colours)], bg), bg))  # alpha is in the colours
+            ratios.append(
+                contrast(drawn_over(colours[i % len(colours)], bg), bg)
+            )  # alpha is in the colours
     else:  # markers of a scatter plot: at their offsets, face or edge
         offsets = coll.get_offset_transform().transform(coll.get_offsets())
         faces, edges = to_rgba_array(coll.get_facecolors()), to_rgba_array(coll.get_edgecolors())
@@ -206,13 +224,18 @@ def _drawn_artists(fig) -> list:
             if self.get_visible() and self.figure is fig:
                 drawn[id(self)] = self
             return method(self, renderer, *args, **kwargs)
+
         return draw
 
-    with mock.patch.object(Text, "draw", recording(Text.draw)), \
-            mock.patch.object(Line2D, "draw", recording(Line2D.draw)), \
-            mock.patch.object(Collection, "draw", recording(Collection.draw)):
+    with (
+        mock.patch.object(Text, "draw", recording(Text.draw)),
+        mock.patch.object(Line2D, "draw", recording(Line2D.draw)),
+        mock.patch.object(Collection, "draw", recording(Collection.draw)),
+    ):
         fig.canvas.draw()
-    return [a for a in drawn.values() if isinstance(a, (Text, Line2D, LineCollection, PathCollection))]
+    return [
+        a for a in drawn.values() if isinstance(a, (Text, Line2D, LineCollection, PathCollection))
+    ]
 
 
 def check_figure(fig, animated=()) -> tuple[list[str], int, dict[str, int]]:
@@ -276,7 +299,9 @@ def test_the_check_can_fail():
     ax.plot([0, 1], [0, 1], color="tab:orange", label="tab:orange")
     ax.plot([0, 1], [1, 0], color=palette.ORANGE, label="palette orange")
     ax.imshow(np.zeros((4, 4)), cmap="gray", vmin=0, vmax=1, extent=(0.6, 1.0, 0.6, 1.0))
-    ax.plot([0.6, 1.0], [0.7, 0.7], color=palette.BLUE, path_effects=palette.halo(1.5))  # on the black image
+    ax.plot(
+        [0.6, 1.0], [0.7, 0.7], color=palette.BLUE, path_effects=palette.halo(1.5)
+    )  # on the black image
     ax.text(0.1, 0.5, "faint", color="0.75")
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
@@ -287,8 +312,15 @@ def test_the_check_can_fail():
 
 
 PERCEPTUAL = {"viridis", "cividis", "magma", "inferno", "plasma"}
-SIGNED = {"coolwarm"}  # diverging, for signed values (an error): blue and red stay apart for every vision
-PHOTO = {"gray", "Greys", "Greys_r", "binary"}  # a greyscale photo or rendering: an image, not a value map
+SIGNED = {
+    "coolwarm"
+}  # diverging, for signed values (an error): blue and red stay apart for every vision
+PHOTO = {
+    "gray",
+    "Greys",
+    "Greys_r",
+    "binary",
+}  # a greyscale photo or rendering: an image, not a value map
 
 
 def value_image_problems(fig) -> list[str]:
@@ -302,7 +334,9 @@ def value_image_problems(fig) -> list[str]:
             if cmap in PHOTO:
                 continue
             if cmap not in PERCEPTUAL | SIGNED:
-                problems.append(f"'{ax.get_title()}' uses {cmap}: use viridis or cividis (coolwarm for signed values)")
+                problems.append(
+                    f"'{ax.get_title()}' uses {cmap}: use viridis or cividis (coolwarm for signed values)"
+                )
             if im.colorbar is None:
                 problems.append(f"'{ax.get_title()}' ({cmap}) has no colour bar")
     return problems
@@ -313,7 +347,9 @@ def test_demo_text_lines_and_value_images_are_readable(name):
     demo = DEMOS[name].builder()
     images = value_image_problems(demo.figure)
     failures, checked, left_out = check_figure(demo.figure, demo.view._animated)
-    print(f"{name}: {checked} texts and lines checked, {sum(left_out.values())} left out "
-          + "; ".join(f"{n} {reason.split(':')[0]}" for reason, n in left_out.items()))
+    print(
+        f"{name}: {checked} texts and lines checked, {sum(left_out.values())} left out "
+        + "; ".join(f"{n} {reason.split(':')[0]}" for reason, n in left_out.items())
+    )
     assert not failures, f"{name}: below WCAG contrast at its defaults:\n" + "\n".join(failures)
     assert not images, f"{name}: " + "; ".join(images)

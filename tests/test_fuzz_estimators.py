@@ -5,6 +5,7 @@ and tiny coordinates, NaN and inf mixed in. The property: the estimator either r
 finite numbers, or raises ``CamlabInputError`` / ``DegenerateError`` / ``ConvergenceError``
 (never a bare numpy or OpenCV exception, never a NaN result handed back as an answer).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -15,10 +16,18 @@ from hypothesis import strategies as st
 from camlab._validate import CamlabInputError, ConvergenceError
 from camlab.affine import estimate_affine_camera
 from camlab.camera import estimate_projection_matrix
-from camlab.epipolar import estimate_fundamental_matrix, ransac_fundamental_matrix, triangulate_points
+from camlab.epipolar import (
+    estimate_fundamental_matrix,
+    ransac_fundamental_matrix,
+    triangulate_points,
+)
 from camlab.homography import estimate_homography, ransac_homography, refine_homography
 
-FUZZ = settings(max_examples=int(__import__("os").environ.get("CAMLAB_FUZZ_EXAMPLES", 40)), deadline=None, suppress_health_check=[HealthCheck.too_slow])
+FUZZ = settings(
+    max_examples=int(__import__("os").environ.get("CAMLAB_FUZZ_EXAMPLES", 40)),
+    deadline=None,
+    suppress_health_check=[HealthCheck.too_slow],
+)
 coordinate = st.one_of(
     st.floats(-1e3, 1e3, allow_nan=False),
     st.sampled_from([0.0, 1.0, 1e-12, 1e12, -1e12, np.nan, np.inf]),
@@ -29,33 +38,61 @@ coordinate = st.one_of(
 def point_sets(draw, dims=(2, 2), min_n=0, max_n=30):
     """Pairs of point sets with the same count; sometimes a copy, a line, or a tiny cluster."""
     n = draw(st.integers(min_n, max_n))
-    a = np.array(draw(st.lists(coordinate, min_size=n * dims[0], max_size=n * dims[0])), float).reshape(n, dims[0])
+    a = np.array(
+        draw(st.lists(coordinate, min_size=n * dims[0], max_size=n * dims[0])), float
+    ).reshape(n, dims[0])
     kind = draw(st.sampled_from(["random", "related", "collinear", "duplicate"]))
     if kind == "related" and n:
-        b = a[:, :dims[1]] * 1.1 + 3.0 if dims[1] <= dims[0] else np.c_[a, np.ones(n)][:, :dims[1]]
+        b = (
+            a[:, : dims[1]] * 1.1 + 3.0
+            if dims[1] <= dims[0]
+            else np.c_[a, np.ones(n)][:, : dims[1]]
+        )
     elif kind == "collinear" and n:
         t = np.linspace(0, 1, n)
         a[:, :2] = np.c_[t, 2 * t]
-        b = np.array(draw(st.lists(coordinate, min_size=n * dims[1], max_size=n * dims[1])), float).reshape(n, dims[1])
+        b = np.array(
+            draw(st.lists(coordinate, min_size=n * dims[1], max_size=n * dims[1])), float
+        ).reshape(n, dims[1])
     elif kind == "duplicate" and n:
         a[:] = a[0]
-        b = np.array(draw(st.lists(coordinate, min_size=n * dims[1], max_size=n * dims[1])), float).reshape(n, dims[1])
+        b = np.array(
+            draw(st.lists(coordinate, min_size=n * dims[1], max_size=n * dims[1])), float
+        ).reshape(n, dims[1])
     else:
-        b = np.array(draw(st.lists(coordinate, min_size=n * dims[1], max_size=n * dims[1])), float).reshape(n, dims[1])
+        b = np.array(
+            draw(st.lists(coordinate, min_size=n * dims[1], max_size=n * dims[1])), float
+        ).reshape(n, dims[1])
     return a, b
 
 
 # Each estimator: the point sets it is fed, and how it is called on them (``seed`` seeds RANSAC).
 ESTIMATORS = {
     "estimate_homography": (point_sets(), lambda a, b, seed: estimate_homography(a, b)),
-    "ransac_homography": (point_sets(min_n=4, max_n=60),
-                          lambda a, b, seed: ransac_homography(a, b, 3.0, max_iters=200, rng=seed)),
-    "refine_homography": (point_sets(min_n=4), lambda a, b, seed: refine_homography(np.eye(3), a, b, max_iters=5)),
-    "estimate_fundamental_matrix": (point_sets(), lambda a, b, seed: estimate_fundamental_matrix(a, b)),
-    "ransac_fundamental_matrix": (point_sets(min_n=8, max_n=60),
-                                  lambda a, b, seed: ransac_fundamental_matrix(a, b, 1.0, max_iters=300, rng=seed)),
-    "estimate_projection_matrix": (point_sets(dims=(3, 2)), lambda a, b, seed: estimate_projection_matrix(a, b)),
-    "estimate_affine_camera": (point_sets(dims=(3, 2)), lambda a, b, seed: estimate_affine_camera(a, b)),
+    "ransac_homography": (
+        point_sets(min_n=4, max_n=60),
+        lambda a, b, seed: ransac_homography(a, b, 3.0, max_iters=200, rng=seed),
+    ),
+    "refine_homography": (
+        point_sets(min_n=4),
+        lambda a, b, seed: refine_homography(np.eye(3), a, b, max_iters=5),
+    ),
+    "estimate_fundamental_matrix": (
+        point_sets(),
+        lambda a, b, seed: estimate_fundamental_matrix(a, b),
+    ),
+    "ransac_fundamental_matrix": (
+        point_sets(min_n=8, max_n=60),
+        lambda a, b, seed: ransac_fundamental_matrix(a, b, 1.0, max_iters=300, rng=seed),
+    ),
+    "estimate_projection_matrix": (
+        point_sets(dims=(3, 2)),
+        lambda a, b, seed: estimate_projection_matrix(a, b),
+    ),
+    "estimate_affine_camera": (
+        point_sets(dims=(3, 2)),
+        lambda a, b, seed: estimate_affine_camera(a, b),
+    ),
 }
 
 
@@ -70,7 +107,11 @@ def test_estimators_give_finite_numbers_or_a_clear_error(name, data):
         out = call(a, b, seed)
     except (CamlabInputError, ConvergenceError):
         return
-    arrays = [v for v in (out if isinstance(out, tuple) else (out,)) if isinstance(v, np.ndarray) and v.dtype.kind == "f"]
+    arrays = [
+        v
+        for v in (out if isinstance(out, tuple) else (out,))
+        if isinstance(v, np.ndarray) and v.dtype.kind == "f"
+    ]
     assert arrays and np.isfinite(arrays[0]).all(), f"{name} returned non-finite numbers"
 
 

@@ -1,4 +1,5 @@
 """Tests for camlab.homography: DLT, RANSAC, LM refinement, algebra, hierarchy, geometry."""
+
 from __future__ import annotations
 
 import cv2
@@ -36,6 +37,7 @@ def _outliers(frac, seed=0, n=1000, noise=0.5):
 
 
 # ------------------------------------------------------------------ estimate_homography
+
 
 def test_exact_recovery_noise_free():
     src, dst = _pairs()
@@ -75,12 +77,17 @@ def test_normalisation_beats_unnormalised_on_badly_scaled_data():
         dst = map_points(Htrue, src) + rng.normal(0, 0.5, (30, 2))
         for norm in (True, False):
             H = hg.estimate_homography(src, dst, normalize=norm)
-            errs[norm].append(np.sqrt(np.mean(hg.transfer_error(H, src, map_points(Htrue, src)) ** 2)))
+            errs[norm].append(
+                np.sqrt(np.mean(hg.transfer_error(H, src, map_points(Htrue, src)) ** 2))
+            )
     assert np.median(errs[True]) * 3 < np.median(errs[False]), errs
 
 
 def test_single_pair_rank_errors():
-    with pytest.raises(CamlabInputError, match=r"src: expected \(N, 2\) with N >= 4 point pairs, got shape \(3, 2\)"):
+    with pytest.raises(
+        CamlabInputError,
+        match=r"src: expected \(N, 2\) with N >= 4 point pairs, got shape \(3, 2\)",
+    ):
         hg.estimate_homography(np.zeros((3, 2)), np.zeros((3, 2)))
     with pytest.raises(CamlabInputError, match="same number of points"):
         hg.estimate_homography(np.ones((5, 2)), np.ones((4, 2)))
@@ -99,7 +106,9 @@ def test_single_pair_rank_errors():
 
 def test_degenerate_sets():
     four = np.array([[0.0, 0], [1, 1], [2, 2], [0, 5]])
-    with pytest.raises(DegenerateError, match=r"3 of the 4 points in src are collinear \(points \[0, 1, 2\]\)"):
+    with pytest.raises(
+        DegenerateError, match=r"3 of the 4 points in src are collinear \(points \[0, 1, 2\]\)"
+    ):
         hg.estimate_homography(four, [[0, 0], [1, 0], [1, 1], [0, 1]])
     line = np.column_stack([np.arange(8.0), 2 * np.arange(8.0) + 1])
     with pytest.raises(DegenerateError, match="all 8 points in dst are collinear"):
@@ -117,9 +126,13 @@ finite = st.floats(-0.3, 0.3)
 
 @st.composite
 def homographies(draw):
-    H = np.eye(3) + np.array([[draw(finite), draw(finite), draw(st.floats(-50, 50))],
-                              [draw(finite), draw(finite), draw(st.floats(-50, 50))],
-                              [draw(st.floats(-5e-4, 5e-4)), draw(st.floats(-5e-4, 5e-4)), 0]])
+    H = np.eye(3) + np.array(
+        [
+            [draw(finite), draw(finite), draw(st.floats(-50, 50))],
+            [draw(finite), draw(finite), draw(st.floats(-50, 50))],
+            [draw(st.floats(-5e-4, 5e-4)), draw(st.floats(-5e-4, 5e-4)), 0],
+        ]
+    )
     return H
 
 
@@ -135,7 +148,9 @@ def test_property_inverse_is_identity(H, seed):
 @given(homographies(), homographies(), st.integers(0, 10_000))
 def test_property_composition(H1, H2, seed):
     pts = np.random.default_rng(seed).uniform(0, 640, (20, 2))
-    assert np.allclose(map_points(hg.compose(H2, H1), pts), map_points(H2, map_points(H1, pts)), atol=1e-6)
+    assert np.allclose(
+        map_points(hg.compose(H2, H1), pts), map_points(H2, map_points(H1, pts)), atol=1e-6
+    )
 
 
 @settings(max_examples=40, deadline=None)
@@ -152,7 +167,7 @@ def test_property_collinearity_cross_ratio_and_lines(H, seed):
     img = map_points(H, pts)
     line = join(pts[0], pts[3])
     line_img = map_lines(H, line)
-    assert np.all(is_on_line(img, line_img, tol=1e-8))          # lines map by H^-T
+    assert np.all(is_on_line(img, line_img, tol=1e-8))  # lines map by H^-T
     assert np.isclose(cross_ratio(img), cross_ratio(pts), rtol=1e-6)  # cross-ratio kept
 
 
@@ -164,6 +179,7 @@ def test_property_dlt_recovers_any_homography(H, seed):
 
 
 # ------------------------------------------------------------------ RANSAC
+
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_ransac_finds_all_inliers_at_50_percent_outliers(seed):
@@ -219,11 +235,17 @@ def test_ransac_bad_input():
         hg.ransac_homography(src, dst, score="l1")
     rng = np.random.default_rng(0)
     with pytest.raises(DegenerateError, match="no hypothesis"):
-        hg.ransac_homography(rng.random((50, 2)) * 600, rng.random((50, 2)) * 600, threshold=0.01,
-                             max_iters=50, rng=rng)
+        hg.ransac_homography(
+            rng.random((50, 2)) * 600,
+            rng.random((50, 2)) * 600,
+            threshold=0.01,
+            max_iters=50,
+            rng=rng,
+        )
 
 
 # ------------------------------------------------------------------ LM refinement and errors
+
 
 def test_refine_lowers_geometric_error_and_matches_cv2():
     rng = np.random.default_rng(11)
@@ -263,6 +285,7 @@ def test_error_measures_known_values():
 
 # ------------------------------------------------------------------ algebra and hierarchy
 
+
 def test_compose_invert_and_singular():
     A = hg.similarity(2.0, 0.3, 5, -4)
     assert np.allclose(hg.compose(A, hg.invert(A)), np.eye(3), atol=1e-12)
@@ -278,12 +301,18 @@ def test_hierarchy_matrix_builds_a_member_of_each_group():
         assert hg.classify(hg.hierarchy_matrix(group, **params)) == group
     # each group ignores the parameters it does not have
     assert np.allclose(hg.hierarchy_matrix("euclidean", **params), hg.euclidean(0.4, 5.0, -2.0))
-    assert np.allclose(hg.hierarchy_matrix("similarity", **params), hg.similarity(1.6, 0.4, 5.0, -2.0))
+    assert np.allclose(
+        hg.hierarchy_matrix("similarity", **params), hg.similarity(1.6, 0.4, 5.0, -2.0)
+    )
     A = hg.hierarchy_matrix("affine", **params)
     assert np.allclose(A, hg.affine(0.4, 0.3, 1.6 * 1.3, 1.6 / 1.3, 5.0, -2.0))
-    assert np.allclose(hg.hierarchy_matrix("projective", **params), A @ hg.projective(v=(1e-3, 2e-3)))
-    with pytest.raises(CamlabInputError, match="group: expected one of euclidean, similarity, affine, projective, "
-                                               "got 'rigid'"):
+    assert np.allclose(
+        hg.hierarchy_matrix("projective", **params), A @ hg.projective(v=(1e-3, 2e-3))
+    )
+    with pytest.raises(
+        CamlabInputError,
+        match="group: expected one of euclidean, similarity, affine, projective, got 'rigid'",
+    ):
         hg.hierarchy_matrix("rigid")
     with pytest.raises(CamlabInputError, match="aspect"):
         hg.hierarchy_matrix("affine", aspect=0.0)
@@ -295,18 +324,27 @@ def test_hierarchy_classify_and_invariants():
     S = hg.similarity(1.7, -0.2, 4, 1)
     A = hg.affine(0.3, 0.5, 1.5, 0.7, 2, 2)
     P = hg.projective(np.eye(2), (3, 4), (1e-3, -2e-3))
-    assert [hg.classify(M) for M in (E, S, A, P)] == ["euclidean", "similarity", "affine", "projective"]
-    assert [hg.HIERARCHY[k]["dof"] for k in ("euclidean", "similarity", "affine", "projective")] == [3, 4, 6, 8]
+    assert [hg.classify(M) for M in (E, S, A, P)] == [
+        "euclidean",
+        "similarity",
+        "affine",
+        "projective",
+    ]
+    assert [
+        hg.HIERARCHY[k]["dof"] for k in ("euclidean", "similarity", "affine", "projective")
+    ] == [3, 4, 6, 8]
     p, q, r_ = rng.uniform(0, 100, (3, 2))
 
     def length(M, a, b):
         return np.linalg.norm(map_points(M, a) - map_points(M, b))
 
-    assert np.isclose(length(E, p, q), np.linalg.norm(p - q))                     # Euclidean keeps length
-    assert np.isclose(length(S, p, q) / length(S, p, r_), np.linalg.norm(p - q) / np.linalg.norm(p - r_))
+    assert np.isclose(length(E, p, q), np.linalg.norm(p - q))  # Euclidean keeps length
+    assert np.isclose(
+        length(S, p, q) / length(S, p, r_), np.linalg.norm(p - q) / np.linalg.norm(p - r_)
+    )
     d1 = map_points(A, q) - map_points(A, p)
     d2 = map_points(A, q + 10) - map_points(A, p + 10)
-    assert np.allclose(d1, d2)                                                    # affine keeps parallels
+    assert np.allclose(d1, d2)  # affine keeps parallels
     e1 = map_points(P, q) - map_points(P, p)
     e2 = map_points(P, q + 200) - map_points(P, p + 200)
     sine = (e1[0] * e2[1] - e1[1] * e2[0]) / (np.linalg.norm(e1) * np.linalg.norm(e2))
@@ -327,6 +365,7 @@ def test_decompose_reassembles():
 
 # ------------------------------------------------------------------ geometry
 
+
 def test_plane_homography_matches_projection():
     rng = np.random.default_rng(4)
     R = _rot([0.2, 1.0, 0.1], 0.25)
@@ -339,7 +378,7 @@ def test_plane_homography_matches_projection():
     xy = rng.uniform(-1, 1, (30, 2))
     X = np.column_stack([xy, np.zeros(30)])
     X[:, 2] = -(d + X[:, :2] @ n[:2]) / n[2]
-    x1 = (X @ K.T)
+    x1 = X @ K.T
     x1 = x1[:, :2] / x1[:, 2:]
     X2 = X @ R.T + t
     x2 = X2 @ K.T
@@ -359,8 +398,12 @@ def test_rotation_homography_and_pose_homography_vs_cv2():
     Rp = _rot([1, 0.2, 0], 0.5)
     tp = np.array([-0.1, 0.05, 2.0])
     XY = np.random.default_rng(2).uniform(-0.5, 0.5, (15, 2))
-    proj, _ = cv2.projectPoints(np.column_stack([XY, np.zeros(15)]), cv2.Rodrigues(Rp)[0], tp, K, None)
-    assert np.allclose(map_points(hg.pose_homography(K, Rp, tp), XY), proj.reshape(-1, 2), atol=1e-8)
+    proj, _ = cv2.projectPoints(
+        np.column_stack([XY, np.zeros(15)]), cv2.Rodrigues(Rp)[0], tp, K, None
+    )
+    assert np.allclose(
+        map_points(hg.pose_homography(K, Rp, tp), XY), proj.reshape(-1, 2), atol=1e-8
+    )
 
 
 def test_geometry_bad_input():
@@ -384,14 +427,15 @@ def test_ransac_reports_the_winning_minimal_sample():
     dst[:30] = rng.uniform(0, 500, (30, 2))
     r = hg.ransac_homography(src, dst, 2.0, rng=rng)
     assert r.sample.shape == (4,) and len(set(r.sample.tolist())) == 4
-    assert r.inliers[r.sample].all()            # a clean sample won, and its pairs fit the answer
+    assert r.inliers[r.sample].all()  # a clean sample won, and its pairs fit the answer
 
 
 # ------------------------------------------------------------------ Gold Standard (H&Z algorithm 4.3)
 
+
 def _noisy_both(n, seed, sigma=1.0):
     rng = np.random.default_rng(seed)
-    H = np.array([[1.0, 0.05, 10.0], [-0.02, 1.0, 5.0], [1e-4, 4e-3, 1.0]])     # strong perspective
+    H = np.array([[1.0, 0.05, 10.0], [-0.02, 1.0, 5.0], [1e-4, 4e-3, 1.0]])  # strong perspective
     src = rng.uniform([0, 0], [640, 480], (n, 2))
     dst = map_points(H, src)
     return H, src + rng.normal(0, sigma, src.shape), dst + rng.normal(0, sigma, dst.shape)
@@ -399,16 +443,27 @@ def _noisy_both(n, seed, sigma=1.0):
 
 def test_gold_standard_is_the_minimum_of_the_reprojection_error():
     from scipy.optimize import least_squares
+
     _, src, dst = _noisy_both(25, 3)
     H0 = hg.estimate_homography(src, dst)
     g = hg.gold_standard_homography(H0, src, dst)
 
-    def residuals(x):        # H with h33 = 1 (nonzero here) and the corrected points: an independent solver
+    def residuals(
+        x,
+    ):  # H with h33 = 1 (nonzero here) and the corrected points: an independent solver
         p = x[8:].reshape(-1, 2)
-        return np.concatenate([(p - src).ravel(), (map_points(np.append(x[:8], 1.0).reshape(3, 3), p) - dst).ravel()])
+        return np.concatenate(
+            [(p - src).ravel(), (map_points(np.append(x[:8], 1.0).reshape(3, 3), p) - dst).ravel()]
+        )
 
-    ls = least_squares(residuals, np.concatenate([H0.ravel()[:8], src.ravel()]), method="lm", xtol=1e-15,
-                       ftol=1e-15, max_nfev=20000)
+    ls = least_squares(
+        residuals,
+        np.concatenate([H0.ravel()[:8], src.ravel()]),
+        method="lm",
+        xtol=1e-15,
+        ftol=1e-15,
+        max_nfev=20000,
+    )
     assert np.isclose(g.rms_final, np.sqrt(2 * ls.cost / 50), rtol=1e-9)
     assert hg.same_homography(g.H, np.append(ls.x[:8], 1.0).reshape(3, 3), tol=1e-6)
     # The corrected pairs are exactly consistent with H, and the reported cost is theirs.
@@ -424,9 +479,11 @@ def test_gold_standard_start_is_the_dlt_with_its_best_corrected_points():
     p = hg.correct_points(H0, src, dst)
     rms = np.sqrt((np.sum((p - src) ** 2) + np.sum((map_points(H0, p) - dst) ** 2)) / 60)
     assert np.isclose(hg.gold_standard_homography(H0, src, dst).rms_initial, rms, rtol=1e-12)
+
     # correct_points is a minimum for fixed H: moving any corrected point raises its pair's cost.
     def pair_cost(q, i):
         return np.sum((q - src[i]) ** 2) + np.sum((map_points(H0, q) - dst[i]) ** 2)
+
     for i in range(5):
         for step in ([0.01, 0], [0, -0.01]):
             assert pair_cost(p[i] + step, i) > pair_cost(p[i], i)
@@ -441,7 +498,7 @@ def test_gold_standard_on_exact_data_is_exact_and_beats_the_transfer_cost_under_
     errs = {"dlt": [], "gold": []}
     for seed in range(20):
         H, src, dst = _noisy_both(20, 100 + seed)
-        clean = map_points(H, src - 0)        # noisy src mapped by the truth: compare maps, not points
+        clean = map_points(H, src - 0)  # noisy src mapped by the truth: compare maps, not points
         H0 = hg.estimate_homography(src, dst)
         for name, E in (("dlt", H0), ("gold", hg.gold_standard_homography(H0, src, dst).H)):
             errs[name].append(np.sqrt(np.mean(np.sum((map_points(E, src) - clean) ** 2, axis=1))))

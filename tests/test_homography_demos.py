@@ -1,4 +1,5 @@
 """Demo-specific tests for lessons 07 and 10 (widgets) and their exercises."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -18,7 +19,11 @@ def _mouse(fig, ax, name, uv, button=1):
 
 def _drag(demo, ax, start, end):
     fig = demo.figure
-    for name, uv in (("button_press_event", start), ("motion_notify_event", end), ("button_release_event", end)):
+    for name, uv in (
+        ("button_press_event", start),
+        ("motion_notify_event", end),
+        ("button_release_event", end),
+    ):
         fig.canvas.callbacks.process(name, _mouse(fig, ax, name, uv))
 
 
@@ -27,10 +32,14 @@ def test_hierarchy_demo_classifies_each_group():
     for group in ("euclidean", "similarity", "affine", "projective"):
         d.set(group=group)
         assert d.state["classified"] == group
-        assert d.state["dof"] == {"euclidean": 3, "similarity": 4, "affine": 6, "projective": 8}[group]
+        assert (
+            d.state["dof"] == {"euclidean": 3, "similarity": 4, "affine": 6, "projective": 8}[group]
+        )
     d.set(group="euclidean", theta=30.0, tx=10.0)
     H = d.state["H"]
-    assert np.allclose(H[:2, :2], [[np.cos(np.pi / 6), -np.sin(np.pi / 6)], [np.sin(np.pi / 6), np.cos(np.pi / 6)]])
+    assert np.allclose(
+        H[:2, :2], [[np.cos(np.pi / 6), -np.sin(np.pi / 6)], [np.sin(np.pi / 6), np.cos(np.pi / 6)]]
+    )
 
 
 def test_drag_homography_keeps_cross_ratio_and_maps_corners():
@@ -84,7 +93,9 @@ def test_rectify_photo_estimates_true_aspect_and_drags():
         assert d.state["scene"] == scene
         # the corners pass through the text control (2 decimals), hence the tolerance
         assert np.isclose(d.state["ratio"], d.state["true_ratio"], rtol=1e-3)
-        assert d.state["focal_source"] == "estimated" and np.isclose(d.state["focal"], 800, rtol=1e-2)
+        assert d.state["focal_source"] == "estimated" and np.isclose(
+            d.state["focal"], 800, rtol=1e-2
+        )
     ax = d.figure.axes[0]
     c0 = d.state["corners"][0].copy()
     _drag(d, ax, c0, c0 + [15.0, -10.0])
@@ -108,7 +119,9 @@ def test_keystone_demo_corrects_converging_verticals():
     assert np.isclose(d.state["ratio"], d.state["true_ratio"], rtol=1e-6)
 
 
-@pytest.mark.parametrize("name", ["dlt_homography", "apply_homography", "rectangle_homography", "order_corners"])
+@pytest.mark.parametrize(
+    "name", ["dlt_homography", "apply_homography", "rectangle_homography", "order_corners"]
+)
 def test_exercises_accept_reference_and_catch_mistakes(name, capsys):
     ex = all_exercises()[name]
     assert check(name, ex.reference)
@@ -121,7 +134,9 @@ def _student_dlt(src, dst, normalise):
     def T(p):  # Hartley-style, but with the RMS distance (another common convention)
         c = p.mean(axis=0)
         s = np.sqrt(2) / np.sqrt(np.mean(np.sum((p - c) ** 2, axis=1))) if normalise else 1.0
-        return np.array([[s, 0, -s * c[0]], [0, s, -s * c[1]], [0, 0, 1]]) if normalise else np.eye(3)
+        return (
+            np.array([[s, 0, -s * c[0]], [0, s, -s * c[1]], [0, 0, 1]]) if normalise else np.eye(3)
+        )
 
     Ts, Td = T(src), T(dst)
     a = np.c_[src, np.ones(len(src))] @ Ts.T
@@ -151,17 +166,21 @@ def test_ransac_demo_colours_verdicts_against_the_truth_and_clears_on_failure():
     assert kept_in + lost_in == 160 and kept_out + rejected_out == 40
     arrows = d.figure.axes[0].collections[0]
     assert len(arrows.get_segments()) == 200
-    sample = d.state["sample"]                    # the winning minimal sample, ringed on the figure
+    sample = d.state["sample"]  # the winning minimal sample, ringed on the figure
     assert len(set(sample.tolist())) == 4 and d.state["verdicts"] is not None
-    d.set(outliers=0.8, threshold=0.5)          # nothing supports any hypothesis
-    assert d.state["iterations"] is None and d.state["H"] is None and "too few inliers" in d.state["error"]
-    assert len(arrows.get_segments()) == 0       # no stale picture of the last success
+    d.set(outliers=0.8, threshold=0.5)  # nothing supports any hypothesis
+    assert (
+        d.state["iterations"] is None
+        and d.state["H"] is None
+        and "too few inliers" in d.state["error"]
+    )
+    assert len(arrows.get_segments()) == 0  # no stale picture of the last success
 
 
 def test_drag_and_hierarchy_warn_when_the_picture_is_torn_through_infinity():
     d = h07.drag_homography()
     assert d.state["torn"] is False
-    d.set(corners="40, 30; 250, 60; 60, 230; 230, 200")   # a bow tie
+    d.set(corners="40, 30; 250, 60; 60, 230; 230, 200")  # a bow tie
     assert d.state["torn"] is True
     texts = [t for t in d.figure.axes[1].texts if t.get_visible() and "infinity" in t.get_text()]
     assert texts

@@ -1,4 +1,5 @@
 """Demo- and exercise-specific tests for lessons 01-03 (the generic sweeps live in test_widgets.py)."""
+
 import contextlib
 import io
 import os
@@ -31,24 +32,40 @@ def test_pinhole_projection_box_width_follows_f_over_z():
     demo = pinhole_camera.pinhole_projection()
     demo.set(focal_mm=50, distance=2.0)
     w1 = demo.state["box_width_px"]
-    box_alone = render.render(scenes.box_before_wall(2.0)[0], demo.state["K"], pinhole_camera.SIZE, background=0.0)
+    box_alone = render.render(
+        scenes.box_before_wall(2.0)[0], demo.state["K"], pinhole_camera.SIZE, background=0.0
+    )
     box_columns = np.flatnonzero(np.any(box_alone.irradiance > 0.02, axis=0))
-    assert w1 == pytest.approx(box_columns.max() - box_columns.min(), abs=2.0)  # the readout is what you see
+    assert w1 == pytest.approx(
+        box_columns.max() - box_columns.min(), abs=2.0
+    )  # the readout is what you see
     demo.set(focal_mm=100)
     assert demo.state["box_width_px"] == pytest.approx(2 * w1)
     demo.set(distance=4.0)
-    assert demo.state["box_width_px"] == pytest.approx(w1, rel=0.1)   # about f / Z (the box has depth)
+    assert demo.state["box_width_px"] == pytest.approx(
+        w1, rel=0.1
+    )  # about f / Z (the box has depth)
     for f_mm, Z in ((100, 0.8), (15, 0.8), (100, 4.0)):
         demo.set(focal_mm=f_mm, distance=Z)
-        nearest = np.unique(scenes.plane_outlines(scenes.box_before_wall(Z)[0]).reshape(-1, 3), axis=0)[:, 2].min()
-        assert 0 < demo.state["f_draw"] < nearest   # the drawn image planes stay between pinhole and box
+        nearest = np.unique(
+            scenes.plane_outlines(scenes.box_before_wall(Z)[0]).reshape(-1, 3), axis=0
+        )[:, 2].min()
+        assert (
+            0 < demo.state["f_draw"] < nearest
+        )  # the drawn image planes stay between pinhole and box
     demo.set(focal_mm=50, distance=4.0)
     drawn = demo.state["f_draw"]
-    demo.set(focal_mm=100)   # the 3-D planes move out with f (lesson 01's complaint: frozen above 50 mm)
-    assert demo.state["f_draw"] == pytest.approx(2 * drawn) and demo.state["draw_scale"] == pytest.approx(12)
+    demo.set(
+        focal_mm=100
+    )  # the 3-D planes move out with f (lesson 01's complaint: frozen above 50 mm)
+    assert demo.state["f_draw"] == pytest.approx(2 * drawn) and demo.state[
+        "draw_scale"
+    ] == pytest.approx(12)
     demo.set(focal_mm=50, distance=2.0)
     drawn = demo.state["f_draw"]
-    demo.set(focal_mm=100)   # nearer the box they stop half way to it, still further out than at 50 mm
+    demo.set(
+        focal_mm=100
+    )  # nearer the box they stop half way to it, still further out than at 50 mm
     assert drawn < demo.state["f_draw"] <= pinhole_camera.PLANE_ROOM * 1.76
     demo.set(focal_mm=100, distance=0.8)
     assert demo.state["bar_clipped"] and demo.state["box_width_px"] > pinhole_camera.SIZE[0]
@@ -64,32 +81,51 @@ def test_pinhole_size_regimes():
     assert demo.state["limited_by"] == "diffraction-limited"
     demo.set(diameter_mm=2.0)
     assert demo.state["limited_by"] == "geometry-limited"
-    assert demo.state["best_mm"] == pytest.approx(np.sqrt(2.44 * 550e-9 * 0.1 / 1.1) * 1e3)  # object at 1 m
+    assert demo.state["best_mm"] == pytest.approx(
+        np.sqrt(2.44 * 550e-9 * 0.1 / 1.1) * 1e3
+    )  # object at 1 m
     rows = {}
-    for d in (0.05, 0.35, 1.5):  # the lesson's claim: the best hole leaves four rows legible, the extremes one or two
+    for d in (
+        0.05,
+        0.35,
+        1.5,
+    ):  # the lesson's claim: the best hole leaves four rows legible, the extremes one or two
         demo.set(diameter_mm=d)
         rows[d] = demo.state["legible_rows"]
     assert rows == {0.05: 1, 0.35: 4, 1.5: 2}
     demo.set(diameter_mm=0.35)  # within 5 % of the best 0.349 mm: the two terms are equal to 0.5 %
     assert demo.state["limited_by"] == "balanced"
     demo.set(focal_mm=300)  # the hole left at 0.35 mm, now too small: diffraction-limited
-    assert demo.state["blur_mm"] == pytest.approx(1.61, abs=0.01) and demo.state["blur_px"] == pytest.approx(4.8, abs=0.1)
+    assert demo.state["blur_mm"] == pytest.approx(1.61, abs=0.01) and demo.state[
+        "blur_px"
+    ] == pytest.approx(4.8, abs=0.1)
     assert demo.state["limited_by"] == "diffraction-limited"
-    assert demo.state["legible_rows"] == 5   # the long camera is sharper: the fifth row comes back even at d = 0.35 mm
-    demo.set(diameter_mm=demo.state["best_mm"])  # at f = 300 mm's own best hole: 1.45 mm, 4.3 px (lesson 01)
-    assert demo.state["blur_mm"] == pytest.approx(1.45, abs=0.01) and demo.state["blur_px"] == pytest.approx(4.3, abs=0.1)
+    assert (
+        demo.state["legible_rows"] == 5
+    )  # the long camera is sharper: the fifth row comes back even at d = 0.35 mm
+    demo.set(
+        diameter_mm=demo.state["best_mm"]
+    )  # at f = 300 mm's own best hole: 1.45 mm, 4.3 px (lesson 01)
+    assert demo.state["blur_mm"] == pytest.approx(1.45, abs=0.01) and demo.state[
+        "blur_px"
+    ] == pytest.approx(4.3, abs=0.1)
     assert demo.state["legible_rows"] == 5
 
 
 def test_pinhole_size_shows_the_light_a_hole_costs():
     demo = pinhole_camera.pinhole_size()
     compensated = demo.state["image"].copy()
-    demo.set(fixed_exposure=True)   # the default's own exposure: the same picture
-    assert np.allclose(demo.state["image"], compensated) and demo.state["light"] == pytest.approx(1.0)
-    demo.set(diameter_mm=0.05)      # 1/49 of the light: nearly black
+    demo.set(fixed_exposure=True)  # the default's own exposure: the same picture
+    assert np.allclose(demo.state["image"], compensated) and demo.state["light"] == pytest.approx(
+        1.0
+    )
+    demo.set(diameter_mm=0.05)  # 1/49 of the light: nearly black
     assert demo.state["light"] == pytest.approx(1 / 49) and demo.state["image"].max() < 0.03
-    demo.set(diameter_mm=1.5)       # 18.4 times the light: the white page burns out
-    assert demo.state["light"] == pytest.approx(18.37, abs=0.01) and np.mean(demo.state["image"] >= 1.0) > 0.5
+    demo.set(diameter_mm=1.5)  # 18.4 times the light: the white page burns out
+    assert (
+        demo.state["light"] == pytest.approx(18.37, abs=0.01)
+        and np.mean(demo.state["image"] >= 1.0) > 0.5
+    )
     demo.set(fixed_exposure=False)
     assert 0.2 < demo.state["image"].mean() < 0.9
 
@@ -98,12 +134,15 @@ def test_pinhole_wall_is_sharp_at_the_longest_focal_length():
     """An ideal pinhole has no depth of field: the wall's square edges rise over about a pixel, not ten."""
     demo = pinhole_camera.pinhole_projection()
     demo.set(focal_mm=100, distance=4.0)
-    row = demo.state["image"][30]                       # above the box: only the wall
+    row = demo.state["image"][30]  # above the box: only the wall
     steps = np.abs(np.diff(row))
     edge = int(np.argmax(steps))
     lo, hi = sorted((row[edge - 6], row[edge + 7]))
-    rising = np.flatnonzero((row[edge - 6:edge + 7] > lo + 0.1 * (hi - lo)) & (row[edge - 6:edge + 7] < lo + 0.9 * (hi - lo)))
-    assert hi - lo > 0.15 and len(rising) <= 2          # contrast 0.08 vs 0.26, a 10-90 % rise within 2 px
+    rising = np.flatnonzero(
+        (row[edge - 6 : edge + 7] > lo + 0.1 * (hi - lo))
+        & (row[edge - 6 : edge + 7] < lo + 0.9 * (hi - lo))
+    )
+    assert hi - lo > 0.15 and len(rising) <= 2  # contrast 0.08 vs 0.26, a 10-90 % rise within 2 px
 
 
 def test_letter_chart_rows_shrink():
@@ -121,9 +160,13 @@ def test_letter_chart_rows_shrink():
 def test_thin_lens_and_dof_state():
     demo = lenses_and_distortion.thin_lens()
     demo.set(focal_mm=40, object_m=0.12)
-    assert demo.state["image_distance"] == pytest.approx(0.06) and demo.state["magnification"] == pytest.approx(-0.5)
+    assert demo.state["image_distance"] == pytest.approx(0.06) and demo.state[
+        "magnification"
+    ] == pytest.approx(-0.5)
     assert not demo.state["object_held"] and "held" not in demo.view.fig.axes[0].get_title()
-    demo.set(focal_mm=90, object_m=0.06)    # the slider inside f: the object is held at 1.05 f, and the readout says so
+    demo.set(
+        focal_mm=90, object_m=0.06
+    )  # the slider inside f: the object is held at 1.05 f, and the readout says so
     assert demo.state["object_held"] and demo.state["image_distance"] == pytest.approx(0.09 * 21)
     assert "z_o = 0.060 m is inside 1.05 f: held at 0.095 m" in demo.view.fig.axes[0].get_title()
     dof = lenses_and_distortion.depth_of_field()
@@ -167,9 +210,22 @@ def test_sensor_demos_state():
     assert ours >= d.state["psnr"] - 0.05
 
 
-@pytest.mark.parametrize("name", ["project_to_pixels", "focal_length_pixels", "best_pinhole_exposure",
-                                  "pinhole_projection", "best_pinhole_diameter", "field_of_view", "distort_pixels",
-                                  "f_number_for_depth", "newton_step", "quantize_image", "demosaic_bilinear"])
+@pytest.mark.parametrize(
+    "name",
+    [
+        "project_to_pixels",
+        "focal_length_pixels",
+        "best_pinhole_exposure",
+        "pinhole_projection",
+        "best_pinhole_diameter",
+        "field_of_view",
+        "distort_pixels",
+        "f_number_for_depth",
+        "newton_step",
+        "quantize_image",
+        "demosaic_bilinear",
+    ],
+)
 def test_exercises_accept_reference_and_catch_mistakes(name):
     ex = all_exercises()[name]
     with contextlib.redirect_stdout(io.StringIO()) as out:
@@ -186,26 +242,36 @@ def test_lesson_02_exercises_start_where_slips_show():
 
     f, _, z_o = _field_of_view_cases()[0]
     z_i = lens.image_distance(f, z_o)
-    assert not np.isclose(z_i, z_o) and z_i > 1.1 * f          # focused close: z_i differs from f and from z_o
+    assert (
+        not np.isclose(z_i, z_o) and z_i > 1.1 * f
+    )  # focused close: z_i differs from f and from z_o
     x, x_d, _, _ = _newton_cases()[0]
     across = np.abs(x[:, 0] * x_d[:, 1] - x[:, 1] * x_d[:, 0]) / np.hypot(*x_d.T)
-    assert across.min() > 0.01                                   # every start is off the ray through its x_d
-    assert all(len(case[0]) != 2 for case in _newton_cases())   # N = 2 would let solve(J, (N, 2)) pass silently
+    assert across.min() > 0.01  # every start is off the ray through its x_d
+    assert all(
+        len(case[0]) != 2 for case in _newton_cases()
+    )  # N = 2 would let solve(J, (N, 2)) pass silently
 
 
 def test_newton_step_check_rejects_wrong_jacobians_with_the_right_radial_part():
     """Round 3's defect: from x = x_d only J's radial eigenvalue acts, so these passed."""
+
     def step(J_of):
         def newton_step(x, x_d, k1, k2):
             r2 = (x**2).sum(1, keepdims=True)
             L = 1 + k1 * r2 + k2 * r2**2
             return x - np.linalg.solve(J_of(x, L, r2, k1, k2), (x * L - x_d)[:, :, None])[:, :, 0]
+
         return newton_step
 
     outer = lambda x: x[:, :, None] * x[:, None, :]  # noqa: E731
-    right = lambda x, L, r2, k1, k2: L[:, :, None] * np.eye(2) + (2 * k1 + 4 * k2 * r2)[:, :, None] * outer(x)  # noqa: E731
+    right = lambda x, L, r2, k1, k2: (
+        L[:, :, None] * np.eye(2) + (2 * k1 + 4 * k2 * r2)[:, :, None] * outer(x)
+    )  # noqa: E731
     scalar = lambda x, L, r2, k1, k2: (L + (2 * k1 + 4 * k2 * r2) * r2)[:, :, None] * np.eye(2)  # noqa: E731
-    tilted = lambda x, L, r2, k1, k2: right(x, L, r2, k1, k2) + 5 * (r2[:, :, None] * np.eye(2) - outer(x))  # noqa: E731
+    tilted = lambda x, L, r2, k1, k2: (
+        right(x, L, r2, k1, k2) + 5 * (r2[:, :, None] * np.eye(2) - outer(x))
+    )  # noqa: E731
     with contextlib.redirect_stdout(io.StringIO()):
         assert check("newton_step", step(right))
     with pytest.raises(AssertionError, match="you wrote x\\^T x"):
@@ -218,18 +284,32 @@ def test_sensor_demos_show_what_they_claim():
     d = digital_sensor.demosaicing()
     d.set(pattern="GBRG", method="camlab bilinear")
     right = d.state["psnr"]
-    d.set(assume="RGGB")                          # the classic mistake: demosaic with the wrong pattern
+    d.set(assume="RGGB")  # the classic mistake: demosaic with the wrong pattern
     assert d.state["assumed"] == "RGGB" and d.state["psnr"] < right - 5
     raw_panel = d.figure.axes[0].images[0]
     assert raw_panel.get_array().shape[:2] == (digital_sensor.CROP,) * 2
-    assert raw_panel.get_extent() == [-0.5, digital_sensor.CROP - 0.5, digital_sensor.CROP - 0.5, -0.5]  # no stretching
+    assert raw_panel.get_extent() == [
+        -0.5,
+        digital_sensor.CROP - 0.5,
+        digital_sensor.CROP - 0.5,
+        -0.5,
+    ]  # no stretching
     s = digital_sensor.sampling_aliasing()
     scene, samples = (ax.images[0] for ax in s.figure.axes[:2])
-    assert scene.get_interpolation() == "antialiased"          # 384 px drawn smaller: smoothed, no display moire
-    for factor in (2, 4, 8):   # the samples drawn larger than their size: crisp blocks, none smoothed into the next
+    assert (
+        scene.get_interpolation() == "antialiased"
+    )  # 384 px drawn smaller: smoothed, no display moire
+    for factor in (
+        2,
+        4,
+        8,
+    ):  # the samples drawn larger than their size: crisp blocks, none smoothed into the next
         s.set(factor=factor)
-        assert samples.get_interpolation() == "nearest" and samples.get_array().shape == (384 // factor,) * 2
-        assert samples.get_extent() == [-0.5, 383.5, 383.5, -0.5]     # at the scene's scale
+        assert (
+            samples.get_interpolation() == "nearest"
+            and samples.get_array().shape == (384 // factor,) * 2
+        )
+        assert samples.get_extent() == [-0.5, 383.5, 383.5, -0.5]  # at the scene's scale
     s.set(factor=1)
     assert samples.get_interpolation() == "antialiased"
     b = digital_sensor.bit_depth_and_noise()
@@ -237,7 +317,10 @@ def test_sensor_demos_show_what_they_claim():
     # the row is marked by ticks beside the image (round 5: a line over it hid the very row the profile shows)
     assert not ax_img.lines and list(ax_img.get_yticks()) == [150]
     # no legend over the profile: the title names the lines, and the truth is drawn wide beneath the recording
-    assert ax_p.get_legend() is None and ax_p.lines[0].get_linewidth() > 2 * ax_p.lines[1].get_linewidth()
+    assert (
+        ax_p.get_legend() is None
+        and ax_p.lines[0].get_linewidth() > 2 * ax_p.lines[1].get_linewidth()
+    )
     b.set(bits=1, exposure=1.0, read_noise=40.0)
     assert ax_p.lines[1].get_ydata().max() <= 1.0 < ax_p.get_ylim()[1]
     # lesson 03, cell "Interactive: bit depth and noise": the electrons the prose quotes, at the settings it names
@@ -245,10 +328,18 @@ def test_sensor_demos_show_what_they_claim():
     assert b.state["dn_electrons"] == pytest.approx(200)
     b.set(exposure=0.02)
     e = b.state["electrons"]
-    assert e["white"] == pytest.approx(200) and e["background"] == pytest.approx(40) and 0.5 < e["uniform"] < 2
+    assert (
+        e["white"] == pytest.approx(200)
+        and e["background"] == pytest.approx(40)
+        and 0.5 < e["uniform"] < 2
+    )
     assert f"dark uniform {e['uniform']:.1f}" in ax_p.get_title()
-    b.set(bits=12)                                 # a fraction of an electron per DN: the whole title stays
-    assert "row 150" in ax_p.get_title() and "dark uniform 1.0" in ax_p.get_title() and "1 DN = 0.0488" in ax_p.get_title()
+    b.set(bits=12)  # a fraction of an electron per DN: the whole title stays
+    assert (
+        "row 150" in ax_p.get_title()
+        and "dark uniform 1.0" in ax_p.get_title()
+        and "1 DN = 0.0488" in ax_p.get_title()
+    )
     b.set(bits=1, exposure=0.3)
     assert "1 DN = 3000" in ax_p.get_title()
 
@@ -272,8 +363,18 @@ def test_similar_triangles_ratios_agree():
         assert demo.state["y"] == pytest.approx(f * Y / Z)
 
 
-@pytest.mark.parametrize("f, Z, Y", [(0.8, 3.0, -0.8), (0.3, 1.2, -1.0), (1.0, 1.2, 1.0), (1.0, 5.0, 0.4), (0.3, 5.0, 1.0),
-                                     (0.8, 1.2, -0.8), (1.0, 1.2, -1.0)])
+@pytest.mark.parametrize(
+    "f, Z, Y",
+    [
+        (0.8, 3.0, -0.8),
+        (0.3, 1.2, -1.0),
+        (1.0, 1.2, 1.0),
+        (1.0, 5.0, 0.4),
+        (0.3, 5.0, 1.0),
+        (0.8, 1.2, -0.8),
+        (1.0, 1.2, -1.0),
+    ],
+)
 def test_similar_triangles_labels_keep_off_the_triangles(f, Z, Y):
     """The image labels sit beyond their bars' tips: no corner of their boxes inside a shaded triangle."""
     demo = pinhole_camera.similar_triangles()
@@ -299,9 +400,13 @@ def test_similar_triangles_at_y_zero_print_no_negative_zero_and_hide_collapsed_a
     ax = demo.figure.axes[0]
     texts = " ".join(t.get_text() for t in ax.texts)
     assert "-0.0" not in texts and "+0.0 cm" in texts
-    arrows = [a for a in ax.texts if getattr(a, "arrowprops", None) and a.arrowprops.get("arrowstyle") == "<->"]
+    arrows = [
+        a
+        for a in ax.texts
+        if getattr(a, "arrowprops", None) and a.arrowprops.get("arrowstyle") == "<->"
+    ]
     hidden = [a for a in arrows if not a.get_visible()]
-    assert len(hidden) == 3   # Y, y and the real image's arrows: zero long
+    assert len(hidden) == 3  # Y, y and the real image's arrows: zero long
 
 
 def test_cone_figure_is_drawn_to_scale_so_rays_run_straight():
@@ -310,13 +415,19 @@ def test_cone_figure_is_drawn_to_scale_so_rays_run_straight():
     from camlab.plotting import optics
 
     fig, ax = plt.subplots()
-    optics.draw_pinhole_cones(ax, 2e-3, focal_length=0.1, object_distance=1.0, heights=(-0.01, 0.01))
+    optics.draw_pinhole_cones(
+        ax, 2e-3, focal_length=0.1, object_distance=1.0, heights=(-0.01, 0.01)
+    )
     cones = [np.asarray(p.get_xy()) for p in ax.patches if p.get_alpha() == 0.35]
-    before, after = cones[0][:4], cones[1][:4]   # the first point's cone before and after the hole
+    before, after = cones[0][:4], cones[1][:4]  # the first point's cone before and after the hole
     (x_in, upper), (_, a) = before[0], before[1]
     (_, a2), (x_img, top) = after[0], after[1]
-    assert a == a2 and x_in == pytest.approx(300) and x_img == pytest.approx(-100)   # drawn as cell 6: z right
-    assert (a - upper) / (0 - x_in) == pytest.approx((top - a) / x_img)   # the ray through the hole's top edge
+    assert (
+        a == a2 and x_in == pytest.approx(300) and x_img == pytest.approx(-100)
+    )  # drawn as cell 6: z right
+    assert (a - upper) / (0 - x_in) == pytest.approx(
+        (top - a) / x_img
+    )  # the ray through the hole's top edge
     plt.close(fig)
 
 
@@ -326,16 +437,23 @@ def test_sensor_demos_read_as_the_lesson_says():
     ax = p.figure.axes[0]
     assert ax.get_xlabel() == "u (px)" and ax.get_ylabel() == "v (px)" and len(ax.get_xticks()) > 3
     centre, principal = (line.get_xydata()[0] for line in ax.lines)
-    assert np.allclose(centre, (159.5, 119.5)) and np.allclose(principal, (199.5, 119.5))  # the shift reads on u
+    assert np.allclose(centre, (159.5, 119.5)) and np.allclose(
+        principal, (199.5, 119.5)
+    )  # the shift reads on u
     # lesson 03, "Interactive: pixel pitch": f_x and the field of view in the figure itself, not only beside it
     p.set(cx_offset=0)
     for pitch, fx, fov in ((6.0, 500, 35.5), (2.0, 1500, 12.2), (15.0, 200, 77.3)):
         p.set(pitch_um=pitch)
-        assert f"f_x = f / s_x = {fx} px" in ax.get_title() and f"field of view {fov:.1f}°" in ax.get_title()
+        assert (
+            f"f_x = f / s_x = {fx} px" in ax.get_title()
+            and f"field of view {fov:.1f}°" in ax.get_title()
+        )
     # round 5: off centre, the frame's edges seen from the principal point, not 2 atan(W / 2 / f_x)
     p.set(pitch_um=6.0, cx_offset=60)
     left, right = p.state["fov_left_right"]
-    assert left == pytest.approx(np.degrees(np.arctan(220 / 500))) and right == pytest.approx(np.degrees(np.arctan(100 / 500)))
+    assert left == pytest.approx(np.degrees(np.arctan(220 / 500))) and right == pytest.approx(
+        np.degrees(np.arctan(100 / 500))
+    )
     assert "field of view 35.1°" in ax.get_title()
     # lesson 03, "Interactive: sampling and aliasing": the title's false-ring contrast is section 2's 0.35 and 0.06
     s = digital_sensor.sampling_aliasing()
@@ -343,16 +461,25 @@ def test_sensor_demos_read_as_the_lesson_says():
     assert "contrast 0.35" in s.figure.axes[1].get_title()
     s.set(prefilter=True)
     assert "contrast 0.06" in s.figure.axes[1].get_title()
-    s.set(factor=2)                   # the square is the frame's edge: drawn just inside it, so it shows
+    s.set(factor=2)  # the square is the frame's edge: drawn just inside it, so it shows
     square = s.figure.axes[1].patches[0]
-    assert -0.5 < square.get_x() < 6 and square.get_x() + square.get_width() < 383.5 and square.get_visible()
-    s.set(factor=1)                   # round 5: the limit lies beyond the frame, so no square is drawn
+    assert (
+        -0.5 < square.get_x() < 6
+        and square.get_x() + square.get_width() < 383.5
+        and square.get_visible()
+    )
+    s.set(factor=1)  # round 5: the limit lies beyond the frame, so no square is drawn
     assert not square.get_visible() and "beyond the frame" in s.figure.axes[1].get_title()
-    s.set(factor=7)                   # 54 samples of 7 fine px cover 378 of the 384: drawn there, not stretched
+    s.set(factor=7)  # 54 samples of 7 fine px cover 378 of the 384: drawn there, not stretched
     assert s.figure.axes[1].images[0].get_extent() == [-0.5, 377.5, 377.5, -0.5]
     assert s.figure.axes[1].get_xlim() == (-0.5, 383.5)
-    s.set(factor=6, prefilter=False, blur=0.5)   # a lens blur of half a pixel: the false rings all but gone
-    assert "contrast 0.01" in s.figure.axes[1].get_title() and "lens blur 0.5 px" in s.figure.axes[1].get_title()
+    s.set(
+        factor=6, prefilter=False, blur=0.5
+    )  # a lens blur of half a pixel: the false rings all but gone
+    assert (
+        "contrast 0.01" in s.figure.axes[1].get_title()
+        and "lens blur 0.5 px" in s.figure.axes[1].get_title()
+    )
     d = digital_sensor.demosaicing()
     psnr = {}
     for method in ("camlab bilinear", "OpenCV VNG", "OpenCV edge-aware"):
@@ -375,32 +502,49 @@ def test_lesson_02_demos_show_what_the_prose_says():
     # "drawn 1:1": the 480 x 360 image on exactly 480 x 360 whole canvas pixels, so neither the live frame nor a full
     # draw resamples it (they placed its pixels differently at 493 x 370)
     box = ax_img.get_window_extent()
-    assert np.allclose([box.width, box.height], lenses_and_distortion.SIZE) and np.allclose(box.p0, np.round(box.p0))
-    assert dof.figure.get_figwidth() * dof.figure.dpi + 8 + 300 <= 968   # beside the controls at 1400 px
+    assert np.allclose([box.width, box.height], lenses_and_distortion.SIZE) and np.allclose(
+        box.p0, np.round(box.p0)
+    )
+    assert (
+        dof.figure.get_figwidth() * dof.figure.dpi + 8 + 300 <= 968
+    )  # beside the controls at 1400 px
     blur = lenses_and_distortion.focus_and_blur()
-    assert blur.state["c"] * 1e6 == pytest.approx(313, abs=1) and blur.state["focus"] == pytest.approx(1.0, abs=0.005)
+    assert blur.state["c"] * 1e6 == pytest.approx(313, abs=1) and blur.state[
+        "focus"
+    ] == pytest.approx(1.0, abs=0.005)
     # the face-on view zooms: the largest disc fills 40-84 % of it at every setting, and the 4 µm Airy ring beside
     # a 1 µm disc at the focus ("shrinks to a dot, no larger than the Airy disc") is at least 9 screen pixels wide
     ax = blur.figure.axes[1]
-    for setting in ({}, {"object_m": 1.0}, {"f_number": 1.4, "object_m": 0.3, "sensor_mm": lenses_and_distortion.SENSOR_MIN_MM},
-                    {"f_number": 32.0, "object_m": 1.0}, {"f_number": 1.4, "object_m": 2.0, "sensor_mm": 60.0}):
+    for setting in (
+        {},
+        {"object_m": 1.0},
+        {"f_number": 1.4, "object_m": 0.3, "sensor_mm": lenses_and_distortion.SENSOR_MIN_MM},
+        {"f_number": 32.0, "object_m": 1.0},
+        {"f_number": 1.4, "object_m": 2.0, "sensor_mm": 60.0},
+    ):
         blur.set(**{"f_number": 2.8, "object_m": 1.5, "sensor_mm": 52.63, **setting})
         largest = max(blur.state["c"], blur.state["airy"], lenses_and_distortion.COC_OK) * 1e6
         assert 0.4 <= largest / (2 * blur.state["half_um"]) <= 5 / 6, setting
         blur.figure.canvas.draw()
         px_per_um = ax.get_window_extent().width / (2 * blur.state["half_um"])
         if setting == {"object_m": 1.0}:
-            assert blur.state["c"] < blur.state["airy"] and blur.state["airy"] * 1e6 * px_per_um >= 9
+            assert (
+                blur.state["c"] < blur.state["airy"] and blur.state["airy"] * 1e6 * px_per_um >= 9
+            )
     blur.set(f_number=2.8, object_m=1.5, sensor_mm=lenses_and_distortion.SENSOR_MIN_MM)
-    assert blur.state["far"] == np.inf    # the slider's low end focuses beyond every hyperfocal distance
+    assert (
+        blur.state["far"] == np.inf
+    )  # the slider's low end focuses beyond every hyperfocal distance
     blur.set(sensor_mm=52.63)
     blur.set(f_number=32.0)
-    assert blur.state["airy"] > lenses_and_distortion.COC_OK   # "at f/32 the Airy disc alone is larger than 30 µm"
+    assert (
+        blur.state["airy"] > lenses_and_distortion.COC_OK
+    )  # "at f/32 the Airy disc alone is larger than 30 µm"
     dist = lenses_and_distortion.lens_distortion()
     dist.set(k1=-0.35, undistort=True)
-    assert dist.state["grid_error"] < 1e-6                      # the grid panel straightens with the checkbox
+    assert dist.state["grid_error"] < 1e-6  # the grid panel straightens with the checkbox
     dist.set(k1=-0.1, k2=0.3, undistort=False)
-    assert dist.state["kind"] == "mustache"                     # the setting the lesson suggests for it
+    assert dist.state["kind"] == "mustache"  # the setting the lesson suggests for it
 
 
 def test_field_of_view_check_answers_the_prompts_question_and_names_a_one_tuple():

@@ -1,4 +1,5 @@
 """Demo-specific tests for lesson 09 (the generic sweep test lives in tests/test_widgets.py)."""
+
 import os
 
 import pytest
@@ -14,7 +15,9 @@ def test_feature_matches_ratio_lets_wrong_matches_in():
     d.set(ratio=0.6)
     strict = dict(d.state)
     d.set(ratio=1.0)
-    assert d.state["matches"] > strict["matches"] and d.state["wrong"] > 10 * max(strict["wrong"], 1)
+    assert d.state["matches"] > strict["matches"] and d.state["wrong"] > 10 * max(
+        strict["wrong"], 1
+    )
     assert strict["precision"] > 0.95
     d.set(mutual=True)
     mutual = dict(d.state)
@@ -32,7 +35,9 @@ def test_ransac_demo_threshold():
     d.set(threshold=0.3)
     assert d.state["inliers"] < at3  # a tight threshold rejects good matches too
     d.set(threshold=0.05)
-    assert not d.state["accepted"] and d.state["inliers"] < 0.3 * at3  # tighter than the features' noise: the fit starves
+    assert (
+        not d.state["accepted"] and d.state["inliers"] < 0.3 * at3
+    )  # tighter than the features' noise: the fit starves
 
 
 def image_fills_the_axes(d) -> bool:
@@ -43,17 +48,26 @@ def image_fills_the_axes(d) -> bool:
     left, right, bottom, top = im.get_extent()
     x0, x1 = im.axes.get_xlim()
     y0, y1 = im.axes.get_ylim()
-    return (abs(left - x0) < 1e-6 and abs(right - x1) < 1e-6) or (abs(bottom - y0) < 1e-6 and abs(top - y1) < 1e-6)
+    return (abs(left - x0) < 1e-6 and abs(right - x1) < 1e-6) or (
+        abs(bottom - y0) < 1e-6 and abs(top - y1) < 1e-6
+    )
 
 
-@pytest.mark.parametrize("name, control, values", [("panorama_canvas", "reference", [0, 1, 2, 3]),
-                                                    ("full_panorama", "projection", ["planar", "cylindrical"]),
-                                                    ("parallax_ghosting", "baseline", [0.0, 0.2, 0.4])])
+@pytest.mark.parametrize(
+    "name, control, values",
+    [
+        ("panorama_canvas", "reference", [0, 1, 2, 3]),
+        ("full_panorama", "projection", ["planar", "cylindrical"]),
+        ("parallax_ghosting", "baseline", [0.0, 0.2, 0.4]),
+    ],
+)
 def test_every_canvas_fills_the_axes(name, control, values):
     d = getattr(demos, name)()
     for v in values:
         d.set(**{control: v})
-        assert image_fills_the_axes(d), f"{name} {control}={v}: the picture sits in a corner of stale axis limits"
+        assert image_fills_the_axes(d), (
+            f"{name} {control}={v}: the picture sits in a corner of stale axis limits"
+        )
 
 
 def test_canvas_demo_reference_changes_canvas():
@@ -83,8 +97,12 @@ def test_parallax_demo_residuals_grow_with_baseline():
     d.set(baseline=0.1)
     small = d.state["misalignment"]
     d.set(baseline=0.4)
-    assert d.state["inlier_fraction"] < still["inlier_fraction"] - 0.1  # near objects stop fitting the homography
-    assert d.state["misalignment"] > small > 3 * still["misalignment"]  # ghosts grow with the baseline
+    assert (
+        d.state["inlier_fraction"] < still["inlier_fraction"] - 0.1
+    )  # near objects stop fitting the homography
+    assert (
+        d.state["misalignment"] > small > 3 * still["misalignment"]
+    )  # ghosts grow with the baseline
 
 
 def test_full_panorama_demo():
@@ -95,7 +113,9 @@ def test_full_panorama_demo():
     assert d.state["shape"][1] < planar[1]  # the cylinder does not stretch the ends
     assert d.state["legend"]
     d.set(outlines=False)
-    assert d.state["outlines_drawn"] == 0 and not d.state["legend"]  # no legend for outlines not drawn
+    assert (
+        d.state["outlines_drawn"] == 0 and not d.state["legend"]
+    )  # no legend for outlines not drawn
 
 
 @pytest.mark.parametrize("name", ["canvas_box", "feather_weights"])

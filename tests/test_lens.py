@@ -1,4 +1,5 @@
 """Tests for camlab.lens: textbook values, consistency between formulas, bad physical input."""
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -9,10 +10,10 @@ from camlab._validate import CamlabInputError
 
 
 def test_thin_lens_textbook_values():
-    assert lens.image_distance(0.05, 0.1) == pytest.approx(0.1)          # 2f -> 2f
+    assert lens.image_distance(0.05, 0.1) == pytest.approx(0.1)  # 2f -> 2f
     assert lens.magnification(0.05, 0.1) == pytest.approx(-1.0)
-    assert lens.image_distance(0.05, 1e9) == pytest.approx(0.05)          # infinity -> f
-    assert lens.image_distance(0.1, 0.3) == pytest.approx(0.15)           # 1/0.1 - 1/0.3 = 1/0.15
+    assert lens.image_distance(0.05, 1e9) == pytest.approx(0.05)  # infinity -> f
+    assert lens.image_distance(0.1, 0.3) == pytest.approx(0.15)  # 1/0.1 - 1/0.3 = 1/0.15
     assert lens.magnification(0.1, 0.3) == pytest.approx(-0.5)
     assert lens.aperture_diameter(0.05, 1.4) == pytest.approx(0.0357142857)
 
@@ -50,13 +51,21 @@ def test_coc_equals_cone_geometry():
 
 
 def test_bad_physical_inputs():
-    with pytest.raises(CamlabInputError, match=r"focal_length: expected a positive finite number metres, got -0.05"):
+    with pytest.raises(
+        CamlabInputError, match=r"focal_length: expected a positive finite number metres, got -0.05"
+    ):
         lens.image_distance(-0.05, 1.0)
-    with pytest.raises(CamlabInputError, match=r"object_distance: object at 0.03 m is inside the focal length"):
+    with pytest.raises(
+        CamlabInputError, match=r"object_distance: object at 0.03 m is inside the focal length"
+    ):
         lens.image_distance(0.05, 0.03)
-    with pytest.raises(CamlabInputError, match=r"image_distance: a sensor 0.03 m behind the lens is not beyond"):
+    with pytest.raises(
+        CamlabInputError, match=r"image_distance: a sensor 0.03 m behind the lens is not beyond"
+    ):
         lens.object_distance(0.05, 0.03)
-    with pytest.raises(CamlabInputError, match=r"object_distance: expected positive finite distances"):
+    with pytest.raises(
+        CamlabInputError, match=r"object_distance: expected positive finite distances"
+    ):
         lens.magnification(0.05, 0.0)
     with pytest.raises(CamlabInputError, match=r"depth: expected positive finite distances"):
         lens.circle_of_confusion(0.05, 2, 2.0, [-1.0])
@@ -69,7 +78,7 @@ def test_bad_physical_inputs():
 def test_angle_of_view_narrows_when_focused_close():
     w = 0.036
     assert lens.angle_of_view(0.05, w) == pytest.approx(2 * np.arctan(w / 0.1))
-    near = lens.angle_of_view(0.05, w, 0.5)        # the pinhole focal length is z_i = 55.6 mm
+    near = lens.angle_of_view(0.05, w, 0.5)  # the pinhole focal length is z_i = 55.6 mm
     assert near == pytest.approx(2 * np.arctan(w / (2 * lens.image_distance(0.05, 0.5))))
     assert near < lens.angle_of_view(0.05, w, 5.0) < lens.angle_of_view(0.05, w)
     with pytest.raises(CamlabInputError, match="focus_distance"):
@@ -77,7 +86,11 @@ def test_angle_of_view_narrows_when_focused_close():
 
 
 def test_aperture_for_depth_of_field_gives_exactly_that_depth_of_field():
-    for f, c, near, far in ((0.05, 3e-5, 2.0, 4.0), (0.028, 2e-5, 0.8, 1.6), (0.1, 1.5e-5, 9.0, 11.0)):
+    for f, c, near, far in (
+        (0.05, 3e-5, 2.0, 4.0),
+        (0.028, 2e-5, 0.8, 1.6),
+        (0.1, 1.5e-5, 9.0, 11.0),
+    ):
         s, N = lens.aperture_for_depth_of_field(f, c, near, far)
         dof = lens.depth_of_field(f, N, s, c)
         assert (dof.near, dof.far) == pytest.approx((near, far), rel=1e-9)

@@ -6,6 +6,7 @@ projection of fills, a changed axis limit, a stale legend) makes the live frame 
 what the same state looks like drawn from scratch. For every registered demo, at its
 default and at both ends of every control's sweep, the two must agree up to anti-aliasing.
 """
+
 import numpy as np
 import pytest
 
@@ -41,13 +42,21 @@ def frame_difference(live: np.ndarray, full: np.ndarray, levels: int = 64) -> tu
     different only if no pixel of the other frame within one pixel of it is within ``levels`` grey
     levels; a stale or missing artist differs over its whole area.
     """
-    a, b = live[..., :3].astype(int), np.pad(full[..., :3].astype(int), ((1, 1), (1, 1), (0, 0)), mode="edge")
+    a, b = (
+        live[..., :3].astype(int),
+        np.pad(full[..., :3].astype(int), ((1, 1), (1, 1), (0, 0)), mode="edge"),
+    )
     h, w = a.shape[:2]
-    diff = np.min([np.abs(a - b[dy:dy + h, dx:dx + w]).max(axis=2) for dy in range(3) for dx in range(3)], axis=0)
+    diff = np.min(
+        [np.abs(a - b[dy : dy + h, dx : dx + w]).max(axis=2) for dy in range(3) for dx in range(3)],
+        axis=0,
+    )
     return float(np.mean(diff > levels)), float(diff.max())
 
 
-def image_frames_lost(view, live: np.ndarray, full: np.ndarray, band: int = 2, levels: int = 48) -> list[str]:
+def image_frames_lost(
+    view, live: np.ndarray, full: np.ndarray, band: int = 2, levels: int = 48
+) -> list[str]:
     """The sides of animated images' frames that the live frame lost: ``["axes 1 top: 97 %", ...]``.
 
     A spine is a one-pixel line on the edge of the image's axes: :func:`frame_difference` forgives
@@ -64,15 +73,23 @@ def image_frames_lost(view, live: np.ndarray, full: np.ndarray, band: int = 2, l
     lost = []
     for k, ax in enumerate(view.fig.axes):
         if not (ax.get_visible() and ax.axison and ax.get_frame_on()) or not any(
-                isinstance(a, AxesImage) and a in view._animated for a in ax.get_images()):
+            isinstance(a, AxesImage) and a in view._animated for a in ax.get_images()
+        ):
             continue
         box = ax.get_window_extent()
         x0, x1, y0, y1 = (int(round(c)) for c in (box.x0, box.x1, height - box.y1, height - box.y0))
         along_x, along_y = slice(x0 + 3, x1 - 3), slice(y0 + 3, y1 - 3)  # corners left out
-        sides = {"top": (slice(y0 - band, y0 + band + 1), along_x, 0), "bottom": (slice(y1 - band, y1 + band + 1), along_x, 0),
-                 "left": (along_y, slice(x0 - band, x0 + band + 1), 1), "right": (along_y, slice(x1 - band, x1 + band + 1), 1)}
+        sides = {
+            "top": (slice(y0 - band, y0 + band + 1), along_x, 0),
+            "bottom": (slice(y1 - band, y1 + band + 1), along_x, 0),
+            "left": (along_y, slice(x0 - band, x0 + band + 1), 1),
+            "right": (along_y, slice(x1 - band, x1 + band + 1), 1),
+        }
         for side, (rows, cols, across) in sides.items():
-            darkest_live, darkest_full = grey_live[rows, cols].min(axis=across), grey_full[rows, cols].min(axis=across)
+            darkest_live, darkest_full = (
+                grey_live[rows, cols].min(axis=across),
+                grey_full[rows, cols].min(axis=across),
+            )
             share = float(np.mean(np.abs(darkest_live - darkest_full) > levels))
             if share > 0.02:
                 lost.append(f"axes {k} {side}: {share:.0%}")
@@ -81,7 +98,11 @@ def image_frames_lost(view, live: np.ndarray, full: np.ndarray, band: int = 2, l
 
 def sweep_points(spec) -> list[tuple[str, object]]:
     """Each control at both ends of its sweep (the other controls where the sweep left them)."""
-    return [(control, value) for control, values in spec.sweep.items() for value in (values[0], values[-1])]
+    return [
+        (control, value)
+        for control, values in spec.sweep.items()
+        for value in (values[0], values[-1])
+    ]
 
 
 # Live frames that differ from a full redraw today by 0.1-1.7 % of their pixels,
@@ -92,8 +113,15 @@ KNOWN_DIFFERENT = {"epipolar_lines"}
 # once its canvas filled fixed axes)
 
 
-@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.xfail(strict=True, reason="a known live/full difference"))
-                                  if n in KNOWN_DIFFERENT else n for n in sorted(DEMOS)])
+@pytest.mark.parametrize(
+    "name",
+    [
+        pytest.param(n, marks=pytest.mark.xfail(strict=True, reason="a known live/full difference"))
+        if n in KNOWN_DIFFERENT
+        else n
+        for n in sorted(DEMOS)
+    ],
+)
 def test_live_frame_equals_a_full_redraw_at_every_sweep_end(name):
     spec = DEMOS[name]
     demo = spec.builder()
@@ -104,10 +132,14 @@ def test_live_frame_equals_a_full_redraw_at_every_sweep_end(name):
         live, full = demo.view.pixels(), full_redraw(demo.view)
         share, worst = frame_difference(live, full)
         if share > 0.001:
-            wrong.append(f"{control}={value!r}: {share:.2%} of pixels differ (up to {worst:.0f} grey levels)")
+            wrong.append(
+                f"{control}={value!r}: {share:.2%} of pixels differ (up to {worst:.0f} grey levels)"
+            )
         if lost := image_frames_lost(demo.view, live, full):
             wrong.append(f"{control}={value!r}: image frame lost at {', '.join(lost)}")
-    assert not wrong, f"{name}: the live frame is not what a full redraw shows at\n  " + "\n  ".join(wrong)
+    assert not wrong, (
+        f"{name}: the live frame is not what a full redraw shows at\n  " + "\n  ".join(wrong)
+    )
 
 
 @pytest.mark.parametrize("name", sorted(KNOWN_DIFFERENT))
@@ -119,7 +151,9 @@ def test_known_different_demos_keep_their_image_frames(name):
         if control != "default":
             demo.set(**{control: value})
         live = demo.view.pixels()
-        assert not image_frames_lost(demo.view, live, full_redraw(demo.view)), f"{name} {control}={value!r}"
+        assert not image_frames_lost(demo.view, live, full_redraw(demo.view)), (
+            f"{name} {control}={value!r}"
+        )
 
 
 def test_the_frame_check_catches_an_image_painted_over_its_spines():
@@ -136,19 +170,34 @@ def test_the_frame_check_catches_an_image_painted_over_its_spines():
     demo.view.fig.canvas.draw()
     demo.set(bits=3)
     live, full = demo.view.pixels(), full_redraw(demo.view)
-    assert frame_difference(live, full)[0] <= 0.001  # the pixel comparison forgives a one-pixel line
+    assert (
+        frame_difference(live, full)[0] <= 0.001
+    )  # the pixel comparison forgives a one-pixel line
     lost = image_frames_lost(demo.view, live, full)
     assert any(" top: " in side for side in lost) and any(" left: " in side for side in lost), lost
 
 
 def largest_patch_lost(live: np.ndarray, full: np.ndarray, size: int = 5) -> float:
     """The largest share of a size x size patch that differs (a lost marker is small but solid)."""
-    a, b = live[..., :3].astype(int), np.pad(full[..., :3].astype(int), ((1, 1), (1, 1), (0, 0)), mode="edge")
+    a, b = (
+        live[..., :3].astype(int),
+        np.pad(full[..., :3].astype(int), ((1, 1), (1, 1), (0, 0)), mode="edge"),
+    )
     h, w = a.shape[:2]
-    diff = np.min([np.abs(a - b[dy:dy + h, dx:dx + w]).max(axis=2) for dy in range(3) for dx in range(3)], axis=0) > 64
+    diff = (
+        np.min(
+            [
+                np.abs(a - b[dy : dy + h, dx : dx + w]).max(axis=2)
+                for dy in range(3)
+                for dx in range(3)
+            ],
+            axis=0,
+        )
+        > 64
+    )
     sums = np.pad(diff.cumsum(0).cumsum(1), ((1, 0), (1, 0)))
     box = sums[size:, size:] - sums[:-size, size:] - sums[size:, :-size] + sums[:-size, :-size]
-    return float(box.max()) / size ** 2
+    return float(box.max()) / size**2
 
 
 # Demos checked for small lost details too (a static marker under a moving line: lesson 01's
@@ -164,7 +213,9 @@ def test_live_frame_loses_no_small_detail(name):
         if control != "default":
             demo.set(**{control: value})
         lost = largest_patch_lost(demo.view.pixels(), full_redraw(demo.view))
-        assert lost < 0.5, f"{name} {control}={value!r}: {lost:.0%} of a 5 x 5 patch differs from a full redraw"
+        assert lost < 0.5, (
+            f"{name} {control}={value!r}: {lost:.0%} of a 5 x 5 patch differs from a full redraw"
+        )
 
 
 def test_the_patch_check_catches_a_static_marker_under_a_moving_line():
@@ -184,7 +235,9 @@ def test_the_comparison_catches_a_frame_that_missed_a_move():
     from camlab.widgets.pinhole_camera import pinhole_projection
 
     demo = pinhole_projection()
-    demo.view._animated[0].set_data(np.zeros_like(demo.state["image"]))  # the image goes black, unsent
+    demo.view._animated[0].set_data(
+        np.zeros_like(demo.state["image"])
+    )  # the image goes black, unsent
     share, worst = frame_difference(demo.view.pixels(), full_redraw(demo.view))
     assert share > 0.01 and worst > 200
 
@@ -211,5 +264,7 @@ def test_first_draw_equals_a_live_frame(name):
     live = demo.view.pixels()
     assert first.shape == live[..., :3].shape
     first_rgba = np.dstack([first, np.full(first.shape[:2], 255)]).astype(np.uint8)
-    share, worst = frame_difference(live, first_rgba, levels=16)  # a resampled texture differs by 20-60 levels
+    share, worst = frame_difference(
+        live, first_rgba, levels=16
+    )  # a resampled texture differs by 20-60 levels
     assert share == 0, f"{share:.3%} of the pixels differ, up to {worst:.0f} grey levels"

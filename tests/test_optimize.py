@@ -1,4 +1,5 @@
 """Tests for camlab.optimize: Levenberg-Marquardt and one damped step."""
+
 import numpy as np
 import pytest
 from hypothesis import given
@@ -19,6 +20,7 @@ from camlab.optimize import (
 
 def rosenbrock():
     """Rosenbrock as least squares: r = (10 (y - x^2), 1 - x), minimum 0 at (1, 1)."""
+
     def res(p):
         return np.array([10 * (p[1] - p[0] ** 2), 1 - p[0]])
 
@@ -118,7 +120,9 @@ def test_lm_step_known_answers_and_limits():
 
 
 def test_lm_step_bad_input():
-    with pytest.raises(CamlabInputError, match="J: expected an \\(m, n\\) Jacobian with m = len\\(r\\) = 3"):
+    with pytest.raises(
+        CamlabInputError, match="J: expected an \\(m, n\\) Jacobian with m = len\\(r\\) = 3"
+    ):
         lm_step(np.ones((2, 2)), np.ones(3), 0.1)
     with pytest.raises(CamlabInputError, match="mu: expected a damping >= 0"):
         lm_step(np.ones((3, 2)), np.ones(3), -1.0)
@@ -138,18 +142,30 @@ def test_huber_residuals_give_the_huber_cost_and_a_robust_fit():
     rng = np.random.default_rng(3)
     e = rng.normal(0, 3, (200, 2))
     s = np.linalg.norm(e, axis=1)
-    rho = np.where(s <= 1.5, s ** 2 / 2, 1.5 * s - 1.5 ** 2 / 2)
+    rho = np.where(s <= 1.5, s**2 / 2, 1.5 * s - 1.5**2 / 2)
     assert np.allclose(0.5 * (huber_residuals(e, 1.5) ** 2).sum(axis=1), rho)
     # a line fit with 20% gross outliers: plain least squares is pulled away, Huber is not
     t = np.linspace(0, 1, 50)
     y = 2 * t + 1 + rng.normal(0, 0.01, 50)
     y[::5] += 5
-    plain = levenberg_marquardt(lambda p: p[0] * t + p[1] - y, [0.0, 0.0], lambda p: np.c_[t, np.ones_like(t)])
-    robust = levenberg_marquardt(lambda p: huber_residuals((p[0] * t + p[1] - y)[:, None], 0.05).ravel(), [0.0, 0.0],
-                                 lambda p: np.stack([(huber_residuals((p[0] * t + p[1] - y)[:, None], 0.05).ravel()
-                                                      - huber_residuals(((p[0] + d[0]) * t + p[1] + d[1] - y)[:, None],
-                                                                        0.05).ravel()) / -1e-7
-                                                     for d in ([1e-7, 0], [0, 1e-7])], axis=1))
+    plain = levenberg_marquardt(
+        lambda p: p[0] * t + p[1] - y, [0.0, 0.0], lambda p: np.c_[t, np.ones_like(t)]
+    )
+    robust = levenberg_marquardt(
+        lambda p: huber_residuals((p[0] * t + p[1] - y)[:, None], 0.05).ravel(),
+        [0.0, 0.0],
+        lambda p: np.stack(
+            [
+                (
+                    huber_residuals((p[0] * t + p[1] - y)[:, None], 0.05).ravel()
+                    - huber_residuals(((p[0] + d[0]) * t + p[1] + d[1] - y)[:, None], 0.05).ravel()
+                )
+                / -1e-7
+                for d in ([1e-7, 0], [0, 1e-7])
+            ],
+            axis=1,
+        ),
+    )
     assert abs(plain.x[1] - 1) > 0.5
     assert abs(robust.x[0] - 2) < 0.05 and abs(robust.x[1] - 1) < 0.05
     with pytest.raises(CamlabInputError, match="delta"):
@@ -193,8 +209,16 @@ def test_lm_on_the_sphere_finds_the_smallest_eigenvector():
     """min ||A x||^2 over unit x is the eigenvector of A^T A with the smallest eigenvalue."""
     rng = np.random.default_rng(2)
     A = rng.normal(size=(20, 5))
-    out = levenberg_marquardt(lambda x: A @ x, np.ones(5) / np.sqrt(5), lambda x: A @ unit_sphere_basis(x),
-                              update=unit_sphere_update, max_iter=200, ftol=1e-15, xtol=1e-15, gtol=1e-13)
+    out = levenberg_marquardt(
+        lambda x: A @ x,
+        np.ones(5) / np.sqrt(5),
+        lambda x: A @ unit_sphere_basis(x),
+        update=unit_sphere_update,
+        max_iter=200,
+        ftol=1e-15,
+        xtol=1e-15,
+        gtol=1e-13,
+    )
     w, V = np.linalg.eigh(A.T @ A)
     assert np.isclose(np.linalg.norm(out.x), 1.0)
     assert abs(abs(out.x @ V[:, 0]) - 1) < 1e-9

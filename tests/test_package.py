@@ -1,4 +1,5 @@
 """Packaging promises: a light import and lazy topic modules."""
+
 import re
 import subprocess
 import sys
@@ -12,8 +13,10 @@ REPO = Path(__file__).resolve().parent.parent
 
 
 def test_import_camlab_is_light():
-    code = ("import sys, camlab; heavy = [m for m in ('matplotlib', 'ipywidgets', 'cv2', 'scipy') "
-            "if m in sys.modules]; print(','.join(heavy))")
+    code = (
+        "import sys, camlab; heavy = [m for m in ('matplotlib', 'ipywidgets', 'cv2', 'scipy') "
+        "if m in sys.modules]; print(','.join(heavy))"
+    )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "", f"import camlab pulled in {out.stdout.strip()}"
 
@@ -62,8 +65,12 @@ def test_lock_pins_every_dependency_within_its_bounds(lock):
     pins = _pins(REPO / "requirements" / lock)
     for dep in _project()["dependencies"]:
         req = Requirement(dep)
-        assert req.name.lower() in pins, f"requirements/{lock} does not pin {req.name}: run `make lock`"
-        assert req.specifier.contains(pins[req.name.lower()]), f"{req.name}=={pins[req.name.lower()]} outside {dep}"
+        assert req.name.lower() in pins, (
+            f"requirements/{lock} does not pin {req.name}: run `make lock`"
+        )
+        assert req.specifier.contains(pins[req.name.lower()]), (
+            f"{req.name}=={pins[req.name.lower()]} outside {dep}"
+        )
 
 
 def _pinned_versions(path: Path) -> set[tuple[str, str]]:
@@ -79,9 +86,17 @@ def test_students_lock_is_the_full_locks_pins_for_the_course_alone():
     full = _pinned_versions(REPO / "requirements" / "lock.txt")
     assert students, "requirements/students.txt pins nothing"
     differ = sorted(students - full)
-    assert not differ, f"students.txt pins {differ} where lock.txt has another version: run `make lock`"
+    assert not differ, (
+        f"students.txt pins {differ} where lock.txt has another version: run `make lock`"
+    )
     from packaging.requirements import Requirement
 
     names = {name for name, _ in students}
-    tools = {Requirement(dep).name.lower() for deps in _project()["optional-dependencies"].values() for dep in deps}
-    assert not names & tools, f"students.txt installs the extras' tools {sorted(names & tools)} for every student"
+    tools = {
+        Requirement(dep).name.lower()
+        for deps in _project()["optional-dependencies"].values()
+        for dep in deps
+    }
+    assert not names & tools, (
+        f"students.txt installs the extras' tools {sorted(names & tools)} for every student"
+    )

@@ -1,4 +1,5 @@
 """The package map in camlab/__init__.py: topics and their main functions, lazy and in one place."""
+
 import ast
 import importlib
 import subprocess
@@ -22,7 +23,9 @@ def test_every_main_function_is_public_where_it_is_defined(name, topic):
     value = getattr(camlab, name)
     assert name in dir(camlab) and name in module.__all__
     assert value is getattr(module, name)
-    assert value.__module__.startswith(f"camlab.{topic}"), f"{name} is only re-exported by camlab.{topic}"
+    assert value.__module__.startswith(f"camlab.{topic}"), (
+        f"{name} is only re-exported by camlab.{topic}"
+    )
     assert (value.__doc__ or "").strip(), f"camlab.{name} has no docstring"
 
 
@@ -33,9 +36,13 @@ def test_the_docstring_table_lists_every_main_function():
 
 
 def test_import_camlab_loads_no_topic_and_no_heavy_library():
-    code = ("import sys, camlab; "
-            "print(sorted(m for m in sys.modules if m.startswith('camlab.') or m in ('cv2', 'matplotlib', 'ipywidgets', 'scipy')))")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    code = (
+        "import sys, camlab; "
+        "print(sorted(m for m in sys.modules if m.startswith('camlab.') or m in ('cv2', 'matplotlib', 'ipywidgets', 'scipy')))"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
+    ).stdout
     assert out.strip() == "['camlab._validate', 'camlab.projective']"
 
 
@@ -47,8 +54,18 @@ def test_an_unknown_name_is_an_attribute_error_that_names_it():
 # docs/architecture.md's table: a module imports only from floors below its own.
 FLOORS = {
     0: ["_validate", "_access", "_notebook"],
-    1: ["_files", "projective", "pinhole", "lens", "distortion", "sensor", "optimize", "robust", "features",
-        "disparity"],
+    1: [
+        "_files",
+        "projective",
+        "pinhole",
+        "lens",
+        "distortion",
+        "sensor",
+        "optimize",
+        "robust",
+        "features",
+        "disparity",
+    ],
     2: ["camera", "homography"],
     3: ["affine", "epipolar", "warp"],
     4: ["scenes", "stitching"],
@@ -78,13 +95,19 @@ def camlab_imports(root: Path) -> dict[str, set[str]]:
             if isinstance(node, ast.ImportFrom) and node.level:
                 base = list(parts[:-1])[: len(parts) - node.level]
                 target = [*base, *(node.module.split(".") if node.module else [])]
-                found.update([target[0]] if target else [a.name for a in node.names if _is_module(root, a.name)])
+                found.update(
+                    [target[0]]
+                    if target
+                    else [a.name for a in node.names if _is_module(root, a.name)]
+                )
             elif isinstance(node, ast.ImportFrom) and node.module == "camlab":
                 found.update(a.name for a in node.names if _is_module(root, a.name))
             elif isinstance(node, ast.ImportFrom) and (node.module or "").startswith("camlab."):
                 found.add(node.module.split(".")[1])
             elif isinstance(node, ast.Import):
-                found.update(a.name.split(".")[1] for a in node.names if a.name.startswith("camlab."))
+                found.update(
+                    a.name.split(".")[1] for a in node.names if a.name.startswith("camlab.")
+                )
         found.discard(parts[0])
     return graph
 
@@ -93,8 +116,13 @@ def upward_imports(root: Path, floors: dict[int, list[str]]) -> list[str]:
     floor = {module: level for level, modules in floors.items() for module in modules}
     graph = camlab_imports(root)
     unplaced = sorted(set(graph) - set(floor))
-    wrong = [f"{m} (floor {floor[m]}) imports {d} (floor {floor.get(d, '?')})"
-             for m, deps in sorted(graph.items()) if m in floor for d in sorted(deps) if floor.get(d, 99) >= floor[m]]
+    wrong = [
+        f"{m} (floor {floor[m]}) imports {d} (floor {floor.get(d, '?')})"
+        for m, deps in sorted(graph.items())
+        if m in floor
+        for d in sorted(deps)
+        if floor.get(d, 99) >= floor[m]
+    ]
     return [f"{m} has no floor in docs/architecture.md" for m in unplaced] + wrong
 
 
@@ -107,10 +135,14 @@ def test_the_floor_check_can_fail(tmp_path):
     (pkg / "data").mkdir(parents=True)
     (pkg / "__init__.py").write_text("")
     (pkg / "data" / "__init__.py").write_text("")
-    (pkg / "camera.py").write_text("def f():\n    from .data import load_photo\n")  # an algorithm reaching up
+    (pkg / "camera.py").write_text(
+        "def f():\n    from .data import load_photo\n"
+    )  # an algorithm reaching up
     (pkg / "data" / "photos.py").write_text("from ..camera import f\nfrom camlab import widgets\n")
     (pkg / "newtopic.py").write_text("")
     (pkg / "widgets.py").write_text("from . import __version__\n")
     assert upward_imports(pkg, {2: ["camera"], 8: ["data"], 9: ["widgets"]}) == [
-        "newtopic has no floor in docs/architecture.md", "camera (floor 2) imports data (floor 8)",
-        "data (floor 8) imports widgets (floor 9)"]
+        "newtopic has no floor in docs/architecture.md",
+        "camera (floor 2) imports data (floor 8)",
+        "data (floor 8) imports widgets (floor 9)",
+    ]

@@ -3,6 +3,7 @@
 Each result is checked against the ground truth of the rendered sets and against the
 public stages it is made of (recomputed live), and every cached array must refuse edits.
 """
+
 import dataclasses
 
 import numpy as np
@@ -14,8 +15,17 @@ from camlab.data import panorama_examples as pe
 from camlab.projective import map_points
 from camlab.warp import canvas_bounds
 
-CACHED = [pe.panorama_example, pe.panorama_graph, pe.reference_canvases, pe.exposure_pair, pe.pair_blends,
-          pe.stitched_panoramas, pe.wide_sweep, pe.canvas_previews, pe.parallax_pairs]
+CACHED = [
+    pe.panorama_example,
+    pe.panorama_graph,
+    pe.reference_canvases,
+    pe.exposure_pair,
+    pe.pair_blends,
+    pe.stitched_panoramas,
+    pe.wide_sweep,
+    pe.canvas_previews,
+    pe.parallax_pairs,
+]
 
 
 def arrays(obj) -> list:
@@ -27,7 +37,11 @@ def arrays(obj) -> list:
     if isinstance(obj, (list, tuple)):
         return [a for v in obj for a in arrays(v)]
     if isinstance(obj, st.WarpedImages):
-        parts = [getattr(obj, f.name) for f in dataclasses.fields(obj)] + [obj.images, obj.masks, obj.weights]
+        parts = [getattr(obj, f.name) for f in dataclasses.fields(obj)] + [
+            obj.images,
+            obj.masks,
+            obj.weights,
+        ]
         return arrays(parts)
     return []
 
@@ -67,15 +81,21 @@ def test_panorama_example_shapes():
 
 def test_graph_reference_and_relative_homographies_agree_with_the_truth():
     ex, graph = pe.panorama_example(), pe.panorama_graph()
-    assert graph.reference in (1, 2) and graph.unconnected == []  # a middle view: it overlaps two others
+    assert (
+        graph.reference in (1, 2) and graph.unconnected == []
+    )  # a middle view: it overlaps two others
     np.testing.assert_allclose(graph.homographies[graph.reference], np.eye(3), atol=1e-9)
     h, w = ex.images[0].shape[:2]
     corners = np.array([[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]], float)
     for ref in range(4):
         Hs = pe.homographies_relative_to(graph, ref)
         np.testing.assert_allclose(Hs[ref], np.eye(3), atol=1e-9)
-        for k in range(max(0, ref - 1), min(4, ref + 2)):  # the neighbours: corners within 1.5 px of the truth
-            err = np.abs(map_points(Hs[k], corners) - map_points(ex.data.true_homography(k, ref), corners)).max()
+        for k in range(
+            max(0, ref - 1), min(4, ref + 2)
+        ):  # the neighbours: corners within 1.5 px of the truth
+            err = np.abs(
+                map_points(Hs[k], corners) - map_points(ex.data.true_homography(k, ref), corners)
+            ).max()
             assert err < 1.5, (ref, k, err)
 
 
@@ -101,12 +121,19 @@ def test_reference_canvases_are_the_warps_of_the_relative_homographies():
         T, shape = canvas_bounds(chain, [im.shape for im in small], max_pixels=3_000_000)
         assert c.shape == tuple(shape) and c.panorama.shape == (*shape, 3)
         np.testing.assert_allclose(c.T, T)
-        np.testing.assert_allclose(c.homographies[ref], T, atol=1e-9)  # the reference is only translated
-    wi = st.warp_images(small, [np.linalg.inv(canvases[1].T) @ H for H in canvases[1].homographies],
-                        max_pixels=3_000_000)
+        np.testing.assert_allclose(
+            c.homographies[ref], T, atol=1e-9
+        )  # the reference is only translated
+    wi = st.warp_images(
+        small,
+        [np.linalg.inv(canvases[1].T) @ H for H in canvases[1].homographies],
+        max_pixels=3_000_000,
+    )
     np.testing.assert_array_equal(st.blend(wi, "overwrite"), canvases[1].panorama)
     middle, end = canvases[1].shape, canvases[3].shape
-    assert end[0] * end[1] > 1.3 * middle[0] * middle[1]  # an end reference stretches the far images
+    assert (
+        end[0] * end[1] > 1.3 * middle[0] * middle[1]
+    )  # an end reference stretches the far images
 
 
 def test_pair_blends_cover_every_setting_and_gains_hide_the_seam():
@@ -114,8 +141,10 @@ def test_pair_blends_cover_every_setting_and_gains_hide_the_seam():
     assert seam.dtype == bool and seam.shape == wi.shape and not (seam & ~wi.masks[0]).any()
     assert gains.shape == (2,) and gains[0] == 1.0 and abs(gains[1] - 1) > 0.1  # exposures differ
     blends = pe.pair_blends()
-    assert sorted(blends) == sorted([(m, g, 0) for m in ("overwrite", "feather") for g in (False, True)]
-                                    + [("multiband", g, lv) for g in (False, True) for lv in range(1, 7)])
+    assert sorted(blends) == sorted(
+        [(m, g, 0) for m in ("overwrite", "feather") for g in (False, True)]
+        + [("multiband", g, lv) for g in (False, True) for lv in range(1, 7)]
+    )
     over = blends[("overwrite", False, 0)].seam_step
     assert over > 15 / 255
     assert blends[("overwrite", True, 0)].seam_step < over / 4
@@ -130,7 +159,9 @@ def test_parallax_grows_with_the_baseline():
     pairs = pe.parallax_pairs()
     assert tuple(pairs) == pe.BASELINES
     mis = [p.misalignment for p in pairs.values()]
-    assert mis[0] < 4 / 255 and all(a < b for a, b in zip(mis, mis[1:]))  # only noise when the camera turns
+    assert mis[0] < 4 / 255 and all(
+        a < b for a, b in zip(mis, mis[1:])
+    )  # only noise when the camera turns
     for p in pairs.values():
         assert p.registration.accepted and sorted(p.blends) == ["feather", "multiband"]
         assert p.misalignment == st.overlap_difference(p.warped)
@@ -141,7 +172,9 @@ def test_parallax_grows_with_the_baseline():
 
 def test_canvas_previews_the_plane_cannot_hold_a_wide_turn():
     previews = pe.canvas_previews()
-    assert sorted(previews) == sorted((n, p) for n in range(2, 7) for p in ("planar", "cylindrical", "spherical"))
+    assert sorted(previews) == sorted(
+        (n, p) for n in range(2, 7) for p in ("planar", "cylindrical", "spherical")
+    )
     for (n, proj), p in previews.items():
         assert p.fov_deg == pytest.approx(40 * (n - 1) + np.degrees(2 * np.arctan(0.9)))
         if proj == "planar" and n >= 4:  # beyond 180 degrees
@@ -149,11 +182,15 @@ def test_canvas_previews_the_plane_cannot_hold_a_wide_turn():
             continue
         assert p.reason == "" and p.image.dtype == np.uint8 and p.image.max() > 50
         h, w = p.image.shape[:2]
-        assert h <= 220 and w <= 560 and (h >= 219 or w >= 559)  # scaled to fit the box, touching one side
+        assert (
+            h <= 220 and w <= 560 and (h >= 219 or w >= 559)
+        )  # scaled to fit the box, touching one side
         assert abs(w / h - p.shape[1] / p.shape[0]) < 0.02 * w / h  # the canvas' aspect ratio kept
     widths = [previews[(n, "cylindrical")].shape[1] for n in range(2, 7)]
     assert all(a < b for a, b in zip(widths, widths[1:]))  # every view adds width
-    assert previews[(3, "planar")].shape[1] > 4 * previews[(3, "cylindrical")].shape[1]  # the plane stretches
+    assert (
+        previews[(3, "planar")].shape[1] > 4 * previews[(3, "cylindrical")].shape[1]
+    )  # the plane stretches
 
 
 def test_canvas_previews_other_sizes_and_bad_sizes():

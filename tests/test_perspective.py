@@ -1,4 +1,5 @@
 """Tests for camlab.perspective: corners, aspect ratio, rectification, document finder."""
+
 from __future__ import annotations
 
 import cv2
@@ -24,7 +25,9 @@ def test_aspect_ratio_and_focal_recovered_exactly(photos, kind):
     assert np.isclose(est.focal_length, ph.K[0, 0], rtol=1e-8)
     assert np.isclose(est.ratio, ph.aspect, rtol=1e-8)
     # given the focal length, the same answer
-    assert np.isclose(pp.estimate_aspect_ratio(ph.corners, ph.image.shape, focal_length=800).ratio, ph.aspect)
+    assert np.isclose(
+        pp.estimate_aspect_ratio(ph.corners, ph.image.shape, focal_length=800).ratio, ph.aspect
+    )
 
 
 @pytest.mark.parametrize("yaw,pitch", [(0.7, 0.0), (0.0, -0.6), (0.3, 0.4), (-0.8, 0.2)])
@@ -45,8 +48,14 @@ def test_aspect_ratio_many_poses_and_textures(yaw, pitch):
 def test_aspect_ratio_with_noise_is_close():
     ph = pp.sample_photo("facade")
     rng = np.random.default_rng(0)
-    errs = [abs(pp.estimate_aspect_ratio(ph.corners + rng.normal(0, 0.5, (4, 2)), ph.image.shape).ratio / ph.aspect - 1)
-            for _ in range(20)]
+    errs = [
+        abs(
+            pp.estimate_aspect_ratio(ph.corners + rng.normal(0, 0.5, (4, 2)), ph.image.shape).ratio
+            / ph.aspect
+            - 1
+        )
+        for _ in range(20)
+    ]
     assert np.median(errs) < 0.03
 
 
@@ -61,13 +70,18 @@ def test_rectify_recovers_the_texture(photos):
     th, tw = tex.shape[:2]
     r = pp.rectify_quadrilateral(ph.image, ph.corners, size=(tw, th))
     # H maps the photo corners to the output corners
-    assert np.allclose(map_points(r.H, ph.corners), [[0, 0], [tw - 1, 0], [tw - 1, th - 1], [0, th - 1]], atol=1e-6)
+    assert np.allclose(
+        map_points(r.H, ph.corners), [[0, 0], [tw - 1, 0], [tw - 1, th - 1], [0, th - 1]], atol=1e-6
+    )
     # H undoes the photographing homography: rect_from_image @ image_from_texture = identity
     M = r.H @ ph.H
     assert np.allclose(M / M[2, 2], np.eye(3), atol=1e-6)
     # content agrees with the texture away from the border (the photo is a resampled, smaller copy)
     inner = (slice(40, th - 40), slice(40, tw - 40))
-    err = np.abs(cv2.GaussianBlur(r.image, (0, 0), 2).astype(float) - cv2.GaussianBlur(tex, (0, 0), 2).astype(float))
+    err = np.abs(
+        cv2.GaussianBlur(r.image, (0, 0), 2).astype(float)
+        - cv2.GaussianBlur(tex, (0, 0), 2).astype(float)
+    )
     assert np.median(err[inner]) < 12
     # size from the estimated aspect ratio
     auto = pp.rectify_quadrilateral(ph.image, ph.corners)
@@ -118,7 +132,9 @@ def test_find_document_reports_when_none():
         pp.find_document(flat)
     small = flat.copy()
     cv2.rectangle(small, (10, 10), (40, 40), (255, 255, 255), -1)
-    with pytest.raises(pp.DocumentNotFoundError, match="no convex quadrilateral covering at least 10%"):
+    with pytest.raises(
+        pp.DocumentNotFoundError, match="no convex quadrilateral covering at least 10%"
+    ):
         pp.find_document(small)
     disc = flat.copy()
     cv2.circle(disc, (160, 120), 100, (250, 250, 250), -1)

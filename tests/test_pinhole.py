@@ -1,4 +1,5 @@
 """Tests for camlab.pinhole: similar triangles, the real and virtual image, the best pinhole size."""
+
 import numpy as np
 import pytest
 
@@ -20,7 +21,9 @@ def test_similar_triangles_and_inversion():
 def test_blur_terms_and_optimum():
     f, lam = 0.1, 550e-9
     d_star = pinhole.optimal_pinhole_diameter(f, lam)
-    assert d_star == pytest.approx(np.sqrt(2.44 * lam * f)) and d_star == pytest.approx(0.366e-3, abs=1e-6)
+    assert d_star == pytest.approx(np.sqrt(2.44 * lam * f)) and d_star == pytest.approx(
+        0.366e-3, abs=1e-6
+    )
     ds = np.linspace(0.05e-3, 2e-3, 4001)
     total = pinhole.pinhole_blur(ds, f, wavelength=lam).total
     assert ds[np.argmin(total)] == pytest.approx(d_star, rel=2e-3)
@@ -33,11 +36,15 @@ def test_blur_terms_and_optimum():
 
 
 def test_bad_inputs():
-    with pytest.raises(CamlabInputError, match=r"focal_length: expected a positive finite number metres, got 0"):
+    with pytest.raises(
+        CamlabInputError, match=r"focal_length: expected a positive finite number metres, got 0"
+    ):
         pinhole.project_pinhole([0, 0, 1], 0)
     with pytest.raises(CamlabInputError, match=r"plane: expected 'virtual' or 'real'"):
         pinhole.project_pinhole([0, 0, 1], 0.05, plane="front")
-    with pytest.raises(CamlabInputError, match=r"diameter: expected positive finite pinhole diameters"):
+    with pytest.raises(
+        CamlabInputError, match=r"diameter: expected positive finite pinhole diameters"
+    ):
         pinhole.diffraction_blur(-1e-3, 0.1)
     with pytest.raises(CamlabInputError, match=r"points: expected \(N, 3\) points"):
         pinhole.project_pinhole([0, 1], 0.05)

@@ -20,6 +20,7 @@ def random_homography(rng: np.random.Generator) -> np.ndarray:
 
 # --- homogeneous coordinates -------------------------------------------------------
 
+
 def test_to_homogeneous_keeps_rank():
     assert pj.to_homogeneous([1, 2]).shape == (3,)
     np.testing.assert_array_equal(pj.to_homogeneous([[1, 2], [3, 4]]), [[1, 2, 1], [3, 4, 1]])
@@ -35,7 +36,9 @@ def test_from_homogeneous_ideal_points_are_nan_not_huge():
 @given(arrays(float, (5, 2), elements=coord), st.floats(-50, 50).filter(lambda s: abs(s) > 1e-3))
 def test_homogeneous_round_trip_and_scale_invariance(x, s):
     np.testing.assert_allclose(pj.from_homogeneous(pj.to_homogeneous(x)), x)
-    np.testing.assert_allclose(pj.from_homogeneous(s * pj.to_homogeneous(x)), x, rtol=1e-12, atol=1e-9)
+    np.testing.assert_allclose(
+        pj.from_homogeneous(s * pj.to_homogeneous(x)), x, rtol=1e-12, atol=1e-9
+    )
 
 
 def test_inputs_are_not_modified():
@@ -46,6 +49,7 @@ def test_inputs_are_not_modified():
 
 
 # --- join, meet, incidence ---------------------------------------------------------
+
 
 def test_join_and_meet_known_answers():
     np.testing.assert_allclose(pj.join([0, 0], [1, 1]), [-1, 1, 0])
@@ -94,12 +98,15 @@ def test_degenerate_join_and_meet_raise():
         pj.meet([1, 2, 3], [-2, -4, -6])
 
 
-@pytest.mark.parametrize("bad, message", [
-    ([1, 2, 3, 4], r"p: expected \(N, 2\) or \(N, 3\) points"),
-    ([np.nan, 1], r"p: expected finite values, found nan at index \(0, 0\)"),
-    ("ab", r"p: expected numbers convertible to a float array"),
-    ([0, 0, 0], r"p: \(0, 0, 0\) is not a point"),
-])
+@pytest.mark.parametrize(
+    "bad, message",
+    [
+        ([1, 2, 3, 4], r"p: expected \(N, 2\) or \(N, 3\) points"),
+        ([np.nan, 1], r"p: expected finite values, found nan at index \(0, 0\)"),
+        ("ab", r"p: expected numbers convertible to a float array"),
+        ([0, 0, 0], r"p: \(0, 0, 0\) is not a point"),
+    ],
+)
 def test_bad_points_name_the_argument(bad, message):
     with pytest.raises(CamlabInputError, match=message):
         pj.join(bad, [1, 1])
@@ -107,8 +114,11 @@ def test_bad_points_name_the_argument(bad, message):
 
 # --- normalisation, ideal points, distances ----------------------------------------
 
+
 def test_normalize_points_and_lines():
-    np.testing.assert_allclose(pj.normalize_points([[2, 4, 2], [3, 4, 0]]), [[1, 2, 1], [0.6, 0.8, 0]])
+    np.testing.assert_allclose(
+        pj.normalize_points([[2, 4, 2], [3, 4, 0]]), [[1, 2, 1], [0.6, 0.8, 0]]
+    )
     np.testing.assert_allclose(pj.normalize_lines([0, 0, -7]), [0, 0, 1])
     line = pj.normalize_lines([3, 4, 10])
     assert pj.point_line_distance([0, 0], line) == pytest.approx(2.0)
@@ -128,6 +138,7 @@ def test_point_line_distance_rejects_line_at_infinity():
 
 
 # --- homographies on points and lines ---------------------------------------------
+
 
 @pytest.mark.parametrize("seed", range(5))
 def test_lines_map_by_inverse_transpose_consistently_with_points(seed):
@@ -150,11 +161,14 @@ def test_map_points_homogeneous_keeps_ideal_points():
 def test_map_lines_rejects_singular_H():
     with pytest.raises(DegenerateError, match="singular"):
         pj.map_lines(np.diag([1.0, 1.0, 0.0]), [1, 2, 3])
-    with pytest.raises(CamlabInputError, match=r"H: expected a \(3, 3\) matrix, got shape \(2, 2\)"):
+    with pytest.raises(
+        CamlabInputError, match=r"H: expected a \(3, 3\) matrix, got shape \(2, 2\)"
+    ):
         pj.map_points(np.eye(2), [1, 2])
 
 
 # --- cross-ratio ---------------------------------------------------------------------
+
 
 def test_cross_ratio_known_value_and_ideal_point():
     assert pj.cross_ratio([[0, 0], [1, 0], [2, 0], [3, 0]]) == pytest.approx(4 / 3)
@@ -184,6 +198,7 @@ def test_cross_ratio_errors():
 
 
 # --- vanishing points and the horizon -----------------------------------------------
+
 
 def test_vanishing_point_of_two_segments_is_their_meet():
     segs = [[[100, 480], [280, 200]], [[540, 480], [360, 200]]]
@@ -228,7 +243,9 @@ def test_horizon_matches_camera_ground_truth():
 
 
 def test_clip_line():
-    np.testing.assert_allclose(pj.clip_line([1, -1, 0], (0, 10), (0, 5)), [[0, 0], [5, 5]], atol=1e-12)
+    np.testing.assert_allclose(
+        pj.clip_line([1, -1, 0], (0, 10), (0, 5)), [[0, 0], [5, 5]], atol=1e-12
+    )
     assert np.isnan(pj.clip_line([0, 1, -20], (0, 10), (0, 5))).all()
     assert np.isnan(pj.clip_line([0, 0, 1], (0, 10), (0, 5))).all()
 
@@ -262,7 +279,10 @@ def test_vanishing_point_ransac_ignores_segments_that_point_elsewhere():
     assert fit.inliers[:20].all() and fit.inliers[20:].sum() <= 1
     assert np.linalg.norm(pj.from_homogeneous(fit.point) - v) < 15
     # the least-squares point over all segments is dragged away by the stray ones
-    assert np.linalg.norm(pj.from_homogeneous(pj.vanishing_point(np.concatenate([good, bad]))) - v) > 50
+    assert (
+        np.linalg.norm(pj.from_homogeneous(pj.vanishing_point(np.concatenate([good, bad]))) - v)
+        > 50
+    )
 
 
 def test_vanishing_point_ransac_handles_an_ideal_point_and_bad_input():
@@ -275,6 +295,7 @@ def test_vanishing_point_ransac_handles_an_ideal_point_and_bad_input():
 
 def test_splits_at_infinity_sees_a_bow_tie():
     from camlab.homography import estimate_homography
+
     square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
     convex = estimate_homography(square, [[0, 0], [2, 0.2], [1.8, 1.5], [0.1, 1.2]])
     bow_tie = estimate_homography(square, [[0, 0], [2, 0.2], [0.1, 1.2], [1.8, 1.5]])
@@ -283,14 +304,16 @@ def test_splits_at_infinity_sees_a_bow_tie():
 
 def test_vanishing_points_demo_draws_offimage_points_on_the_horizon():
     import os
+
     os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
     from camlab.widgets import projective_plane as demos
+
     d = demos.vanishing_points()
-    d.set(pitch=5.0, yaw=-35.0, focal=400.0)                # vp_x far left of the image
+    d.set(pitch=5.0, yaw=-35.0, focal=400.0)  # vp_x far left of the image
     ax = d.figure.axes[0]
     horizon, vz, vx = [line for line in ax.get_lines() if line.get_animated()][:3]
     (x, y), hz = (vx.get_xdata()[0], vx.get_ydata()[0]), d.state["horizon"]
-    assert abs(hz @ [x, y, 1.0]) / np.linalg.norm(hz[:2]) < 1.0    # the arrow sits on the horizon
+    assert abs(hz @ [x, y, 1.0]) / np.linalg.norm(hz[:2]) < 1.0  # the arrow sits on the horizon
     d.set(pitch=40.0)
     assert d.state["horizon_visible"] is False
     assert any(t.get_visible() and "above the image" in t.get_text() for t in ax.texts)

@@ -1,4 +1,5 @@
 """Tests for camlab.rectification on synthetic rigs and the rendered rig (data/stereo), with OpenCV cross-checks."""
+
 import cv2
 import numpy as np
 import pytest
@@ -24,8 +25,16 @@ def rect(rig):
 
 def _opencv_rectify(c1, c2, alpha):
     R, t = ep.relative_pose(c1, c2)
-    return cv2.stereoRectify(c1.K, np.array(c1.dist), c2.K, np.array(c2.dist), c1.image_size, R,
-                             t.reshape(3, 1), alpha=alpha)  # OpenCV 5 wants T as (3, 1)
+    return cv2.stereoRectify(
+        c1.K,
+        np.array(c1.dist),
+        c2.K,
+        np.array(c2.dist),
+        c1.image_size,
+        R,
+        t.reshape(3, 1),
+        alpha=alpha,
+    )  # OpenCV 5 wants T as (3, 1)
 
 
 def _true_corners(rig):
@@ -35,12 +44,18 @@ def _true_corners(rig):
 def test_calibrated_vertical_disparity_of_true_correspondences(rig, rect):
     tl, tr = _true_corners(rig)
     before = rc.vertical_disparity(tl, tr)
-    after = rc.vertical_disparity(rc.rectify_points(rect, rig.camera1, tl, 1), rc.rectify_points(rect, rig.camera2, tr, 2))
+    after = rc.vertical_disparity(
+        rc.rectify_points(rect, rig.camera1, tl, 1), rc.rectify_points(rect, rig.camera2, tr, 2)
+    )
     assert before.median > 5  # the raw pair is far from rectified
     assert after.median < 0.1 and after.p95 < 0.1
     R1, R2, P1, P2, *_ = _opencv_rectify(rig.camera1, rig.camera2, 0.0)
-    z1 = cv2.undistortPoints(tl.reshape(-1, 1, 2), rig.camera1.K, np.array(rig.camera1.dist), R=R1, P=P1).reshape(-1, 2)
-    z2 = cv2.undistortPoints(tr.reshape(-1, 1, 2), rig.camera2.K, np.array(rig.camera2.dist), R=R2, P=P2).reshape(-1, 2)
+    z1 = cv2.undistortPoints(
+        tl.reshape(-1, 1, 2), rig.camera1.K, np.array(rig.camera1.dist), R=R1, P=P1
+    ).reshape(-1, 2)
+    z2 = cv2.undistortPoints(
+        tr.reshape(-1, 1, 2), rig.camera2.K, np.array(rig.camera2.dist), R=R2, P=P2
+    ).reshape(-1, 2)
     theirs = rc.vertical_disparity(z1, z2)
     assert after.median <= 1.1 * theirs.median + 1e-6
     assert after.p95 <= 1.1 * theirs.p95 + 1e-6
@@ -49,11 +64,18 @@ def test_calibrated_vertical_disparity_of_true_correspondences(rig, rect):
 def test_calibrated_vertical_disparity_on_rectified_images_vs_opencv(rig, rect):
     """Rectify the rendered chessboard views, detect corners in both rectified images, compare rows."""
     R1, R2, P1, P2, *_ = _opencv_rectify(rig.camera1, rig.camera2, 0.0)
-    cv_maps = [cv2.initUndistortRectifyMap(c.K, np.array(c.dist), Rr, P[:3, :3], c.image_size, cv2.CV_32FC1)
-               for c, Rr, P in ((rig.camera1, R1, P1), (rig.camera2, R2, P2))]
+    cv_maps = [
+        cv2.initUndistortRectifyMap(
+            c.K, np.array(c.dist), Rr, P[:3, :3], c.image_size, cv2.CV_32FC1
+        )
+        for c, Rr, P in ((rig.camera1, R1, P1), (rig.camera2, R2, P2))
+    ]
     ours, theirs = [], []
     for a, b in zip(rig.calib_left, rig.calib_right):
-        pairs = (rc.rectify_images(rect, a, b), [cv2.remap(img, *m, cv2.INTER_LINEAR) for img, m in zip((a, b), cv_maps)])
+        pairs = (
+            rc.rectify_images(rect, a, b),
+            [cv2.remap(img, *m, cv2.INTER_LINEAR) for img, m in zip((a, b), cv_maps)],
+        )
         for (A, B), store in zip(pairs, (ours, theirs)):
             f1, p = cv2.findChessboardCornersSB(A, rig.pattern_size)
             f2, q = cv2.findChessboardCornersSB(B, rig.pattern_size)
@@ -77,26 +99,39 @@ def test_rotations_close_to_opencv_and_rectified_cameras_are_parallel(rig, rect)
         assert angle < np.deg2rad(0.5)
         assert np.allclose(a @ a.T, np.eye(3), atol=1e-12) and np.isclose(np.linalg.det(a), 1)
     F = ep.fundamental_from_cameras(rect.camera1, rect.camera2)
-    assert np.allclose(np.abs(F), np.abs(ep.normalize_fundamental(ep.skew([1.0, 0.0, 0.0]))), atol=1e-12)
+    assert np.allclose(
+        np.abs(F), np.abs(ep.normalize_fundamental(ep.skew([1.0, 0.0, 0.0]))), atol=1e-12
+    )
     assert np.isclose(rect.baseline, np.linalg.norm(rig.camera2.centre - rig.camera1.centre))
     assert np.allclose(rect.P2[:, 3], rect.K @ [-rect.baseline, 0, 0])
 
 
 def test_numpy_maps_equal_opencv_maps(rig, rect):
     for cam, Rr, m in ((rig.camera1, rect.R1, rect.maps1), (rig.camera2, rect.R2, rect.maps2)):
-        mu, mv = cv2.initUndistortRectifyMap(cam.K, np.array(cam.dist), Rr, rect.K, rect.image_size, cv2.CV_32FC1)
+        mu, mv = cv2.initUndistortRectifyMap(
+            cam.K, np.array(cam.dist), Rr, rect.K, rect.image_size, cv2.CV_32FC1
+        )
         inside = (mu > 0) & (mu < 639) & (mv > 0) & (mv < 479)
         assert inside.mean() > 0.95
-        assert np.abs(mu - m.map_u)[inside].max() < 1e-3 and np.abs(mv - m.map_v)[inside].max() < 1e-3
+        assert (
+            np.abs(mu - m.map_u)[inside].max() < 1e-3 and np.abs(mv - m.map_v)[inside].max() < 1e-3
+        )
     fast = rc.rectify_calibrated(rig.camera1, rig.camera2, 0.0, method="cv2")
-    assert np.allclose(fast.K, rect.K) and np.abs(fast.maps1.map_u - rect.maps1.map_u)[inside].max() < 1e-3
+    assert (
+        np.allclose(fast.K, rect.K)
+        and np.abs(fast.maps1.map_u - rect.maps1.map_u)[inside].max() < 1e-3
+    )
 
 
 def test_alpha_trades_black_border_for_lost_pixels(rig):
-    cov = {a: rc.rectification_coverage(rc.rectify_calibrated(rig.camera1, rig.camera2, a), rig.camera1, rig.camera2)
-           for a in (0.0, 0.5, 1.0)}
-    assert cov[0.0]["valid1"] > 0.995 and cov[0.0]["valid2"] > 0.995   # no black border
-    assert cov[1.0]["kept1"] > 0.995 and cov[1.0]["kept2"] > 0.995     # no lost pixel
+    cov = {
+        a: rc.rectification_coverage(
+            rc.rectify_calibrated(rig.camera1, rig.camera2, a), rig.camera1, rig.camera2
+        )
+        for a in (0.0, 0.5, 1.0)
+    }
+    assert cov[0.0]["valid1"] > 0.995 and cov[0.0]["valid2"] > 0.995  # no black border
+    assert cov[1.0]["kept1"] > 0.995 and cov[1.0]["kept2"] > 0.995  # no lost pixel
     assert cov[0.0]["kept1"] < cov[0.5]["kept1"] < cov[1.0]["kept1"]
     assert cov[0.0]["valid1"] > cov[0.5]["valid1"] > cov[1.0]["valid1"]
 
@@ -107,7 +142,9 @@ def test_q_matrix_matches_reproject_image_to_3d(rect):
     from camlab.disparity import disparity_to_points
 
     pts = disparity_to_points(disp, rect.K, rect.baseline)
-    cvp = cv2.reprojectImageTo3D(np.nan_to_num(disp, nan=0).astype(np.float32), rect.Q)[100:110, 200:220].reshape(-1, 3)
+    cvp = cv2.reprojectImageTo3D(np.nan_to_num(disp, nan=0).astype(np.float32), rect.Q)[
+        100:110, 200:220
+    ].reshape(-1, 3)
     assert np.allclose(pts, cvp, rtol=1e-5)
     assert np.allclose(pts[:, 2], rect.K[0, 0] * rect.baseline / 40.0)
 
@@ -145,14 +182,21 @@ def test_uncalibrated_keeps_images_upright_and_inside(rig):
     for H in (res.H1, res.H2):
         q = map_points(H, corners)
         assert q[0, 0] < q[1, 0] and q[0, 1] < q[3, 1]  # not mirrored or upside down
-        assert q[:, 0].min() > -1 and q[:, 0].max() < 641 and q[:, 1].min() > -1 and q[:, 1].max() < 481
+        assert (
+            q[:, 0].min() > -1
+            and q[:, 0].max() < 641
+            and q[:, 1].min() > -1
+            and q[:, 1].max() < 481
+        )
         # the shear keeps the image's corners close to right angles
         e1, e2 = q[1] - q[0], q[3] - q[0]
         assert abs(e1 @ e2) / (np.linalg.norm(e1) * np.linalg.norm(e2)) < 0.1
     # rectified epipolar geometry: F' ~ [i]_x
     Hi1, Hi2 = np.linalg.inv(res.H1), np.linalg.inv(res.H2)
     Fr = ep.normalize_fundamental(Hi2.T @ F @ Hi1)
-    assert np.allclose(np.abs(Fr), np.abs(ep.normalize_fundamental(ep.skew([1.0, 0, 0]))), atol=1e-6)
+    assert np.allclose(
+        np.abs(Fr), np.abs(ep.normalize_fundamental(ep.skew([1.0, 0, 0]))), atol=1e-6
+    )
 
 
 def test_rectify_images_shapes_and_border(rig, rect):
@@ -187,7 +231,9 @@ def test_bad_input_messages():
         rc.rectify_calibrated(*_simple_rig(offset=(0.0, 0.0, 0.2)))
     with pytest.raises(DegenerateError, match="opposite directions|no region in common|behind"):
         rc.rectify_calibrated(*_simple_rig(offset=(0.3, 0.0, 0.0), yaw2=np.pi))
-    with pytest.raises(DegenerateError, match="no region in common"):  # toed out by 52 degrees: no overlap
+    with pytest.raises(
+        DegenerateError, match="no region in common"
+    ):  # toed out by 52 degrees: no overlap
         rc.rectify_calibrated(*_simple_rig(offset=(0.3, 0.0, 0.0), yaw2=0.9))
     with pytest.raises(DegenerateError, match="behind the rectified camera"):  # 80 degrees apart
         rc.rectify_calibrated(*_simple_rig(offset=(0.3, 0.0, 0.0), yaw2=1.4))
@@ -215,7 +261,11 @@ def test_rectify_unrectify_round_trip(rig, rect):
         assert np.abs(back - pts).max() < 1e-6
     # and the remap tables store exactly unrectify_points
     m = rect.maps1
-    assert np.allclose(rc.unrectify_points(rect, rig.camera1, [[100.0, 50.0]], 1), [[m.map_u[50, 100], m.map_v[50, 100]]], atol=1e-3)
+    assert np.allclose(
+        rc.unrectify_points(rect, rig.camera1, [[100.0, 50.0]], 1),
+        [[m.map_u[50, 100], m.map_v[50, 100]]],
+        atol=1e-3,
+    )
 
 
 def _angle_deg(A, B):
@@ -230,11 +280,21 @@ def test_stereo_calibrate_matches_opencv_and_truth(rig):
     sc = rc.stereo_calibrate(rig.object_points, p1, p2, (640, 480))
     assert sc.converged and sc.rms < 0.2
     R, t = ep.relative_pose(rig.camera1, rig.camera2)
-    assert _angle_deg(sc.R, R) < 0.5 and np.linalg.norm(sc.t - t) < 0.005  # 5 mm of a 12 cm baseline
+    assert (
+        _angle_deg(sc.R, R) < 0.5 and np.linalg.norm(sc.t - t) < 0.005
+    )  # 5 mm of a 12 cm baseline
     obj = [rig.object_points.astype(np.float32)] * len(p1)
-    rms, *_, Rc, tc, _, _ = cv2.stereoCalibrate(obj, [p.astype(np.float32) for p in p1],
-                                                [p.astype(np.float32) for p in p2], sc.K1, sc.dist1, sc.K2,
-                                                sc.dist2, (640, 480), flags=cv2.CALIB_FIX_INTRINSIC)
+    rms, *_, Rc, tc, _, _ = cv2.stereoCalibrate(
+        obj,
+        [p.astype(np.float32) for p in p1],
+        [p.astype(np.float32) for p in p2],
+        sc.K1,
+        sc.dist1,
+        sc.K2,
+        sc.dist2,
+        (640, 480),
+        flags=cv2.CALIB_FIX_INTRINSIC,
+    )
     # the same problem (fixed intrinsics): the same optimum
     assert abs(sc.rms - rms) < 1e-4
     assert _angle_deg(sc.R, Rc) < 1e-3 and np.linalg.norm(sc.t - tc.ravel()) < 1e-5
@@ -257,8 +317,14 @@ from hypothesis import strategies as st  # noqa: E402
 
 
 @settings(max_examples=25, deadline=None)
-@given(st.floats(0.05, 0.5), st.floats(-0.15, 0.15), st.floats(-0.05, 0.05), st.floats(-0.05, 0.05),
-       st.floats(-0.03, 0.03), st.integers(0, 10_000))
+@given(
+    st.floats(0.05, 0.5),
+    st.floats(-0.15, 0.15),
+    st.floats(-0.05, 0.05),
+    st.floats(-0.05, 0.05),
+    st.floats(-0.03, 0.03),
+    st.integers(0, 10_000),
+)
 def test_property_rows_match_after_rectification(base, yaw, pitch, roll, dz, seed):
     """Any horizontal rig with a small relative rotation: calibrated and uncalibrated (true F) rectification
     put every true match on one row."""
@@ -272,7 +338,12 @@ def test_property_rows_match_after_rectification(base, yaw, pitch, roll, dz, see
     ok = np.all(np.isfinite(x1), axis=1) & np.all(np.isfinite(x2), axis=1)
     x1, x2 = x1[ok], x2[ok]
     rect = rc.rectify_calibrated(c1, c2, alpha=0.5, maps=False)
-    assert rc.vertical_disparity(rc.rectify_points(rect, c1, x1, 1), rc.rectify_points(rect, c2, x2, 2)).max < 1e-6
+    assert (
+        rc.vertical_disparity(
+            rc.rectify_points(rect, c1, x1, 1), rc.rectify_points(rect, c2, x2, 2)
+        ).max
+        < 1e-6
+    )
     F = ep.fundamental_from_cameras(c1, c2)
     try:
         unc = rc.rectify_uncalibrated(x1, x2, F, (640, 480))

@@ -1,4 +1,5 @@
 """Tests for camlab.render, the virtual camera: ground truth checked by OpenCV's detector and projector."""
+
 import cv2
 import numpy as np
 import pytest
@@ -16,7 +17,10 @@ PINCUSHION = np.array([0.15, -0.05, 0.0, 0.0, 0.0])
 def _poses(n, seed=1):
     rng = np.random.default_rng(seed)
     for _ in range(n):
-        yield r.rotation_from_euler(*rng.uniform(-0.5, 0.5, 3)), np.array([-0.12, -0.07, rng.uniform(0.6, 0.9)])
+        yield (
+            r.rotation_from_euler(*rng.uniform(-0.5, 0.5, 3)),
+            np.array([-0.12, -0.07, rng.uniform(0.6, 0.9)]),
+        )
 
 
 def _rms(a, b):
@@ -47,7 +51,9 @@ def test_ground_truth_matches_cv2_project_points_with_a_moved_camera():
     assert np.allclose(pts.world, pts.object_points @ board.R.T + board.t)
     assert pts.pattern_size == (7, 5) and pts.visible.all()
     assert np.allclose(out.truth.camera_center, [0.3, -0.2, -0.8])
-    assert np.allclose(out.truth.P @ np.append(pts.world[0], 1), out.truth.P @ np.append(pts.world[0], 1))
+    assert np.allclose(
+        out.truth.P @ np.append(pts.world[0], 1), out.truth.P @ np.append(pts.world[0], 1)
+    )
 
 
 def test_project_single_point_and_behind_camera():
@@ -70,7 +76,9 @@ def test_deterministic_with_a_seed():
 def test_noise_has_the_shot_noise_level():
     flat = r.textured_plane(np.full((8, 8), 0.5), 4.0, t=(0, 0, 1.0))
     fw = 1000.0
-    out = r.render(flat, K, sensor=r.Sensor(bits=12, noise=NoiseModel(full_well=fw, read_noise=0)), rng=0)
+    out = r.render(
+        flat, K, sensor=r.Sensor(bits=12, noise=NoiseModel(full_well=fw, read_noise=0)), rng=0
+    )
     assert out.image.dtype == np.uint16
     vals = out.image[100:380, 100:540] / 4095.0
     assert vals.mean() == pytest.approx(0.5, abs=0.003)
@@ -92,11 +100,17 @@ def test_bayer_colour_and_photo():
 def test_defocus_blurs_planes_away_from_the_focus_distance():
     near = r.checkerboard((5, 4), 0.02, t=(-0.15, -0.03, 0.5), name="near")
     far = r.checkerboard((5, 4), 0.04, t=(0.02, -0.06, 1.5), name="far")
+
     def sharpness(img, x0, x1):
         g = np.abs(np.diff(img[:, x0:x1].astype(float), axis=1))
         return g.max()
-    focus_near = r.render([near, far], K, defocus=r.Defocus(f_number=1.4, focus_distance=0.5)).irradiance
-    focus_far = r.render([near, far], K, defocus=r.Defocus(f_number=1.4, focus_distance=1.5)).irradiance
+
+    focus_near = r.render(
+        [near, far], K, defocus=r.Defocus(f_number=1.4, focus_distance=0.5)
+    ).irradiance
+    focus_far = r.render(
+        [near, far], K, defocus=r.Defocus(f_number=1.4, focus_distance=1.5)
+    ).irradiance
     assert sharpness(focus_near, 90, 270) > 2 * sharpness(focus_far, 90, 270)
     assert sharpness(focus_far, 350, 560) > 2 * sharpness(focus_near, 350, 560)
 
@@ -132,16 +146,31 @@ def test_box_faces_and_scene_flattening():
     assert out.image.std() > 10
     signs = np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).reshape(3, -1).T
     vertices = (signs * [0.1, 0.15, 0.1]) @ r.rotation_from_euler(0.4, 0.6, 0).T + [0, 0, 1.0]
-    assert out.truth.depth.min() == pytest.approx(vertices[:, 2].min(), abs=0.01)  # the nearest vertex
+    assert out.truth.depth.min() == pytest.approx(
+        vertices[:, 2].min(), abs=0.01
+    )  # the nearest vertex
 
 
 def test_a_floor_reaching_behind_the_camera_is_clipped():
     # a 4 m floor 0.3 m below the camera, from 1 m behind it to 3 m ahead, with a board standing on it
-    floor = r.textured_plane(r.checkerboard((7, 7), 0.5).texture, 4.0, height=4.0,
-                             R=r.rotation_from_euler(np.pi / 2, 0, 0), t=(0, 0.3, 1.0), name="floor")
+    floor = r.textured_plane(
+        r.checkerboard((7, 7), 0.5).texture,
+        4.0,
+        height=4.0,
+        R=r.rotation_from_euler(np.pi / 2, 0, 0),
+        t=(0, 0.3, 1.0),
+        name="floor",
+    )
     out = r.render([floor, r.checkerboard((9, 6), 0.05, t=(-0.2, -0.25, 2.0))], K, depth=True)
     ok, corners = cv2.findChessboardCornersSB(out.image, (9, 6))
-    assert ok and _rms(r.align_detected_corners(corners, out.truth.corners("board")), out.truth.corners("board")) < 0.1
+    assert (
+        ok
+        and _rms(
+            r.align_detected_corners(corners, out.truth.corners("board")),
+            out.truth.corners("board"),
+        )
+        < 0.1
+    )
     # the floor fills the bottom rows up to its horizon; the depth there is 0.3 / y_normalised
     v = 470
     assert out.truth.depth[v, 320] == pytest.approx(0.3 / ((v - 239.5) / 800), rel=1e-6)
@@ -184,7 +213,9 @@ def test_bad_inputs():
         r.checkerboard((1, 5), 0.03)
     with pytest.raises(CamlabInputError, match=r"camera R: expected a rotation matrix"):
         r.render(board, K, R=np.diag([1, 1, -1.0]))
-    with pytest.raises(CamlabInputError, match=r"texture: expected an \(H, W\) or \(H, W, 3\) image"):
+    with pytest.raises(
+        CamlabInputError, match=r"texture: expected an \(H, W\) or \(H, W, 3\) image"
+    ):
         r.textured_plane(np.zeros((4, 4, 2)), 1.0)
     with pytest.raises(CamlabInputError, match=r"supersample: expected an integer from 1 to 8"):
         r.render(board, K, supersample=0)
@@ -194,6 +225,6 @@ def test_bad_inputs():
 
 def test_align_detected_corners_undoes_reversal_and_opencv4_shape():
     gt = r.checkerboard((4, 3), 0.03, t=(0, 0, 0.5)).points * 1000 + 100
-    det4 = gt[::-1].reshape(-1, 1, 2) + 0.01   # OpenCV 4 shape, reversed order
+    det4 = gt[::-1].reshape(-1, 1, 2) + 0.01  # OpenCV 4 shape, reversed order
     assert np.allclose(r.align_detected_corners(det4, gt), gt + 0.01)
     assert np.allclose(r.align_detected_corners(gt - 0.01, gt), gt - 0.01)

@@ -1,4 +1,5 @@
 """The robust driver (camlab.robust) with its two plug-ins, on synthetic data and on real photo pairs vs OpenCV."""
+
 from __future__ import annotations
 
 from functools import lru_cache
@@ -18,8 +19,11 @@ from camlab.projective import map_points
 
 @lru_cache(maxsize=None)
 def _matches(a: str, b: str, max_features: int, ratio: float) -> tuple[np.ndarray, np.ndarray]:
-    m = match_features(detect_features(load_photo(a), max_features=max_features),
-                       detect_features(load_photo(b), max_features=max_features), ratio)
+    m = match_features(
+        detect_features(load_photo(a), max_features=max_features),
+        detect_features(load_photo(b), max_features=max_features),
+        ratio,
+    )
     return m.src, m.dst
 
 
@@ -64,11 +68,18 @@ def test_local_optimization_beats_plain_msac_in_cost():
     assert lo.cost <= plain.cost
 
 
-@pytest.mark.parametrize("kwargs, match", [
-    ({"threshold": "3"}, "threshold"), ({"threshold": -1}, "threshold"), ({"confidence": 1.5}, "confidence"),
-    ({"confidence": None}, "confidence"), ({"max_iters": "many"}, "max_iters"), ({"max_iters": 2.5}, "max_iters"),
-    ({"max_iters": 0}, "max_iters"),
-])
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        ({"threshold": "3"}, "threshold"),
+        ({"threshold": -1}, "threshold"),
+        ({"confidence": 1.5}, "confidence"),
+        ({"confidence": None}, "confidence"),
+        ({"max_iters": "many"}, "max_iters"),
+        ({"max_iters": 2.5}, "max_iters"),
+        ({"max_iters": 0}, "max_iters"),
+    ],
+)
 def test_driver_settings_are_checked(kwargs, match):
     src, dst, _ = _synthetic(0.2)
     with pytest.raises(CamlabInputError, match=match):
@@ -77,11 +88,19 @@ def test_driver_settings_are_checked(kwargs, match):
 
 # --------------------------------------------------------------------------- real photographs
 
-@pytest.mark.parametrize("pair, max_features, ratio", [
-    (("building_1", "building_3"), 300, 0.9),     # few matches, few inliers, large viewpoint change
-    (("building_2", "building_3"), 300, 0.9),
-    (("building_1", "building_2"), 2500, 0.8),
-])
+
+@pytest.mark.parametrize(
+    "pair, max_features, ratio",
+    [
+        (
+            ("building_1", "building_3"),
+            300,
+            0.9,
+        ),  # few matches, few inliers, large viewpoint change
+        (("building_2", "building_3"), 300, 0.9),
+        (("building_1", "building_2"), 2500, 0.8),
+    ],
+)
 def test_homography_on_real_pairs_is_as_good_as_opencv_and_steady(pair, max_features, ratio):
     src, dst = _matches(*pair, max_features, ratio)
     ours = [ransac_homography(src, dst, 3.0, rng=seed).H for seed in range(10)]
@@ -98,14 +117,20 @@ def test_homography_on_real_pairs_is_as_good_as_opencv_and_steady(pair, max_feat
 
 def test_fundamental_on_a_real_stereo_pair_matches_magsac():
     x1, x2 = _matches("walls_left", "walls_right", 2500, 0.8)
-    counts = [int(ransac_fundamental_matrix(x1, x2, 1.0, rng=seed).inliers.sum()) for seed in range(5)]
+    counts = [
+        int(ransac_fundamental_matrix(x1, x2, 1.0, rng=seed).inliers.sum()) for seed in range(5)
+    ]
     magsac = int(cv2.findFundamentalMat(x1, x2, cv2.USAC_MAGSAC, 1.0, 0.999)[1].sum())
     assert min(counts) >= 0.98 * magsac and max(counts) - min(counts) <= 3, (counts, magsac)
 
 
-@pytest.mark.parametrize("estimator, args", [
-    (ransac_fundamental_matrix, (1.0,)), (ransac_homography, (3.0,)),
-])
+@pytest.mark.parametrize(
+    "estimator, args",
+    [
+        (ransac_fundamental_matrix, (1.0,)),
+        (ransac_homography, (3.0,)),
+    ],
+)
 def test_all_wrong_real_matches_give_too_few_inliers(estimator, args):
     x1, x2 = _matches("walls_left", "walls_right", 2500, 0.8)
     wrong = x2[np.random.default_rng(0).permutation(len(x2))]

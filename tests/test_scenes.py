@@ -1,4 +1,5 @@
 """camlab.scenes: the one home of synthetic scenes and textures."""
+
 import subprocess
 import sys
 
@@ -10,13 +11,28 @@ from camlab.data import panorama
 
 
 def test_scene_builders_have_one_definition_re_exported_for_the_lessons():
-    for module, names in [(render, ["Plane", "box", "checkerboard", "photo_plane", "text_page", "textured_plane"]),
-                          (perspective, ["PlanePhoto", "desk_background", "facade_texture", "page_texture",
-                                         "painting_texture", "photograph_plane", "sample_photo", "look_at_plane"]),
-                          (panorama, ["wall_texture"])]:
+    for module, names in [
+        (render, ["Plane", "box", "checkerboard", "photo_plane", "text_page", "textured_plane"]),
+        (
+            perspective,
+            [
+                "PlanePhoto",
+                "desk_background",
+                "facade_texture",
+                "page_texture",
+                "painting_texture",
+                "photograph_plane",
+                "sample_photo",
+                "look_at_plane",
+            ],
+        ),
+        (panorama, ["wall_texture"]),
+    ]:
         for name in names:
             assert getattr(module, name) is getattr(scenes, name), (module.__name__, name)
-    assert not hasattr(render, "sample_photo")  # one sample photo: scenes.sample_photo (plus scenes.portrait)
+    assert not hasattr(
+        render, "sample_photo"
+    )  # one sample photo: scenes.sample_photo (plus scenes.portrait)
     assert not hasattr(camera, "box_wireframe")  # scenes builds on camera, not the other way round
 
 
@@ -32,15 +48,18 @@ def test_scenes_do_not_depend_on_the_data_sets():
     assert out.stdout.strip() == "False"
 
 
-@pytest.mark.parametrize("make", [
-    lambda: scenes.wall_texture((300, 120), 1),
-    scenes.portrait,
-    scenes.page_texture,
-    scenes.facade_texture,
-    scenes.painting_texture,
-    scenes.desk_background,
-    lambda: scenes.checkerboard((3, 2)).texture,
-])
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda: scenes.wall_texture((300, 120), 1),
+        scenes.portrait,
+        scenes.page_texture,
+        scenes.facade_texture,
+        scenes.painting_texture,
+        scenes.desk_background,
+        lambda: scenes.checkerboard((3, 2)).texture,
+    ],
+)
 def test_cached_textures_are_read_only(make):
     tex = make()
     with pytest.raises(ValueError, match="read-only"):
@@ -61,7 +80,9 @@ def test_portrait_is_the_bundled_photo_and_painting_uses_its_pixels():
     p = scenes.portrait()
     assert p.shape[2] == 3 and p.dtype == np.float32
     art = np.round(p * 255).astype(np.uint8)
-    assert np.array_equal(art.astype(np.float32) / 255, p)  # the uint8 JPEG values survive the round trip
+    assert np.array_equal(
+        art.astype(np.float32) / 255, p
+    )  # the uint8 JPEG values survive the round trip
 
 
 def test_noise_texture_is_deterministic_and_in_range():
@@ -86,7 +107,9 @@ def test_plane_outlines_of_a_box_are_its_twelve_edges_each_shared_by_two_faces()
 def test_the_lessons_scenes_have_the_documented_geometry():
     faces, wall = scenes.box_before_wall(2.0)
     corners = scenes.plane_outlines(faces).reshape(-1, 3)
-    assert np.allclose(corners.mean(axis=0), [0, 0, 2.0]) and corners[:, 2].min() > 1.6  # a 0.3 m box at 2 m
+    assert (
+        np.allclose(corners.mean(axis=0), [0, 0, 2.0]) and corners[:, 2].min() > 1.6
+    )  # a 0.3 m box at 2 m
     assert wall.name == "wall" and np.allclose(wall.t, [0, 0, 6.0])
     with pytest.raises(ValueError, match="distance"):
         scenes.box_before_wall(-1.0)
@@ -94,20 +117,35 @@ def test_the_lessons_scenes_have_the_documented_geometry():
     np.testing.assert_allclose(depths, [0.6, 1.2, 2.4, 4.0], atol=0.05)
     assert [p.name for p in scenes.photo_and_page()] == ["photo", "page"]
     house = scenes.house_scene()
-    assert house.shape[1:] == (2, 3) and house[..., 2].min() == 0.0 and np.isclose(house[..., 2].max(), 1.55)
+    assert (
+        house.shape[1:] == (2, 3)
+        and house[..., 2].min() == 0.0
+        and np.isclose(house[..., 2].max(), 1.55)
+    )
     cube_rails = scenes.box_and_rails()
     assert cube_rails.shape == (16, 2, 3)
     rails = scenes.rail_track(0.0, 10.0)
     assert rails.shape == (4 + 10, 2, 3)
-    np.testing.assert_array_equal(rails[:4, 1] - rails[:4, 0], [[0, 10, 0]] * 4)  # the rails run along +y
+    np.testing.assert_array_equal(
+        rails[:4, 1] - rails[:4, 0], [[0, 10, 0]] * 4
+    )  # the rails run along +y
 
 
-@pytest.mark.parametrize("make, size", [(scenes.page_texture, (210, 297)), (scenes.facade_texture, (240, 180)),
-                                        (scenes.wall_texture, (300, 120)), (scenes.house_picture, (80, 60))])
+@pytest.mark.parametrize(
+    "make, size",
+    [
+        (scenes.page_texture, (210, 297)),
+        (scenes.facade_texture, (240, 180)),
+        (scenes.wall_texture, (300, 120)),
+        (scenes.house_picture, (80, 60)),
+    ],
+)
 def test_textures_take_one_size_width_then_height(make, size):
     """docs/conventions.md: a size is (width, height) and no function takes them as two arguments."""
     assert make(size).shape[:2] == size[::-1]
-    with pytest.raises(ValueError, match=r"size: expected \(width, height\) as whole numbers of pixels"):
+    with pytest.raises(
+        ValueError, match=r"size: expected \(width, height\) as whole numbers of pixels"
+    ):
         make((size[0] + 0.7, size[1]))
     assert scenes.desk_background((60, 80)).shape == (60, 80, 3)  # a shape is (height, width)
 
@@ -115,7 +153,9 @@ def test_textures_take_one_size_width_then_height(make, size):
 def test_resection_set_is_noisy_projections_of_non_coplanar_points():
     exact = scenes.resection_set(20, 0.0, seed=3)
     np.testing.assert_allclose(exact.points_image, exact.camera.project(exact.points_world))
-    assert np.linalg.matrix_rank(exact.points_world - exact.points_world.mean(axis=0)) == 3  # two cube faces
+    assert (
+        np.linalg.matrix_rank(exact.points_world - exact.points_world.mean(axis=0)) == 3
+    )  # two cube faces
     noisy = scenes.resection_set(20, 2.0, seed=3)
     assert 1.0 < np.std(noisy.points_image - exact.points_image) < 3.0
     with pytest.raises(ValueError, match="noise_px"):
@@ -126,10 +166,16 @@ def test_camera_pairs_for_lesson_11():
     from camlab import epipolar as ep
 
     pair = scenes.stereo_pair(0.2, 0.0)
-    assert isinstance(pair, scenes.CameraPair) and np.isclose(np.linalg.norm(pair.camera2.centre - pair.camera1.centre), 0.2)
-    assert abs(ep.epipoles(ep.fundamental_from_cameras(*pair)).e2[2]) < 1e-12  # parallel: epipole at infinity
+    assert isinstance(pair, scenes.CameraPair) and np.isclose(
+        np.linalg.norm(pair.camera2.centre - pair.camera1.centre), 0.2
+    )
+    assert (
+        abs(ep.epipoles(ep.fundamental_from_cameras(*pair)).e2[2]) < 1e-12
+    )  # parallel: epipole at infinity
     e2 = ep.epipoles(ep.fundamental_from_cameras(*scenes.forward_pair(0.5, 0.0))).e2
-    np.testing.assert_allclose(e2[:2] / e2[2], [319.5, 239.5], atol=1e-6)  # straight ahead: the image centre
+    np.testing.assert_allclose(
+        e2[:2] / e2[2], [319.5, 239.5], atol=1e-6
+    )  # straight ahead: the image centre
 
 
 def test_outlier_matches_hold_the_stated_fraction_of_wrong_pairs():
@@ -147,7 +193,9 @@ def test_sleeper_gaps_shrink_with_distance_only_in_perspective():
     from camlab import affine, camera
 
     eye = np.array([0.0, -4.0, 2.0])
-    cam = camera.Camera.look_at(eye, eye + [0.0, np.cos(0.26), -np.sin(0.26)], K=camera.intrinsic_matrix(500, 500, 320, 240))
+    cam = camera.Camera.look_at(
+        eye, eye + [0.0, np.cos(0.26), -np.sin(0.26)], K=camera.intrinsic_matrix(500, 500, 320, 240)
+    )
     near, far = scenes.sleeper_gaps(cam.P)
     assert near > 20 * far  # 1 m of track 2 m away against 24 m away
     assert np.isclose(*scenes.sleeper_gaps(affine.affine_approximation(cam, [0.0, 6.0, 0.0])))

@@ -1,4 +1,5 @@
 """Tests for camlab.sensor: pixel mapping, sampling, quantisation, noise, Bayer and demosaicing."""
+
 import numpy as np
 import pytest
 
@@ -24,7 +25,9 @@ def test_quantize_levels_and_errors():
         assert np.abs(S.dequantize(q, bits) - x).max() <= 0.5 / (2**bits - 1) + 1e-12
     assert S.quantize(x, 12).dtype == np.uint16
     for bad in (0, 17, 8.5):
-        with pytest.raises(CamlabInputError, match="bits: expected an integer bit depth from 1 to 16"):
+        with pytest.raises(
+            CamlabInputError, match="bits: expected an integer bit depth from 1 to 16"
+        ):
             S.quantize(x, bad)
     with pytest.raises(CamlabInputError, match="image: expected a float image"):
         S.quantize(np.zeros(3, np.uint8))
@@ -59,7 +62,7 @@ def test_mosaic_and_bilinear_demosaic(pattern):
     assert m.sum(axis=2).max() == 1 and m[..., 1].mean() == 0.5
     assert np.allclose(raw, (rgb * m).sum(axis=2))
     out = S.demosaic_bilinear(raw, pattern)
-    assert np.allclose(out[m], rgb[m])   # measured samples kept
+    assert np.allclose(out[m], rgb[m])  # measured samples kept
     # a smooth (linear) colour ramp is reconstructed exactly away from the border
     yy, xx = np.mgrid[0:12, 0:12].astype(float)
     ramp = np.stack([0.02 * xx + 0.01 * yy, 0.5 - 0.01 * xx, 0.03 * yy], axis=2)
@@ -75,22 +78,28 @@ def test_bilinear_matches_or_beats_opencv_on_a_rendered_scene(pattern):
     ours = S.demosaic_bilinear(raw, pattern) / 255
     cv_bilinear = S.demosaic_opencv(raw, pattern, "bilinear") / 255
     p_ours, p_cv = S.psnr(truth, ours, border=2), S.psnr(truth, cv_bilinear, border=2)
-    assert p_cv > 25          # the adapter picks OpenCV's matching pattern (a wrong one gives ~15 dB)
+    assert p_cv > 25  # the adapter picks OpenCV's matching pattern (a wrong one gives ~15 dB)
     assert p_ours >= p_cv - 0.05
     for method in ("vng", "ea"):
         assert S.psnr(truth, S.demosaic_opencv(raw, pattern, method) / 255, border=2) > 25
 
 
 def test_bad_inputs():
-    with pytest.raises(CamlabInputError, match="pattern: expected one of RGGB, BGGR, GRBG, GBRG, got 'RGBG'"):
+    with pytest.raises(
+        CamlabInputError, match="pattern: expected one of RGGB, BGGR, GRBG, GBRG, got 'RGBG'"
+    ):
         S.mosaic(np.zeros((4, 4, 3)), "RGBG")
-    with pytest.raises(CamlabInputError, match=r"rgb: expected an image of shape \(H, W, 3\), got shape \(4, 4\)"):
+    with pytest.raises(
+        CamlabInputError, match=r"rgb: expected an image of shape \(H, W, 3\), got shape \(4, 4\)"
+    ):
         S.mosaic(np.zeros((4, 4)))
     with pytest.raises(CamlabInputError, match=r"raw: expected an image of shape \(H, W\)"):
         S.demosaic_bilinear(np.zeros((4, 4, 3)))
     with pytest.raises(CamlabInputError, match="raw: OpenCV demosaicing needs uint8 or uint16"):
         S.demosaic_opencv(np.zeros((4, 4)))
-    with pytest.raises(CamlabInputError, match="image: expected an image of integer or float pixels"):
+    with pytest.raises(
+        CamlabInputError, match="image: expected an image of integer or float pixels"
+    ):
         S.add_noise(np.zeros((3, 3), dtype=bool))
     with pytest.raises(CamlabInputError, match="pitch: expected a pair of positive numbers"):
         S.metric_to_pixels([0, 0], (0, 1e-6), (0, 0))
@@ -100,13 +109,19 @@ def test_gamma_encode_is_srgb():
     L = np.linspace(0, 1, 1001)
     V = S.gamma_encode(L)
     assert V[0] == 0 and V[-1] == pytest.approx(1.0)
-    assert np.all(np.diff(V) > 0)                                     # monotonic: no code is lost
+    assert np.all(np.diff(V) > 0)  # monotonic: no code is lost
     knee = 0.0031308
-    assert 12.92 * knee == pytest.approx(1.055 * knee ** (1 / 2.4) - 0.055, abs=1e-6)  # the two pieces meet
-    assert S.gamma_encode(0.18) == pytest.approx(0.4614, abs=1e-4)  # mid-grey is stored near the middle
-    assert np.allclose(S.gamma_decode(V), L, atol=1e-9)               # the display's decoding undoes it
+    assert 12.92 * knee == pytest.approx(
+        1.055 * knee ** (1 / 2.4) - 0.055, abs=1e-6
+    )  # the two pieces meet
+    assert S.gamma_encode(0.18) == pytest.approx(
+        0.4614, abs=1e-4
+    )  # mid-grey is stored near the middle
+    assert np.allclose(S.gamma_decode(V), L, atol=1e-9)  # the display's decoding undoes it
     assert S.gamma_decode(0.04045) == pytest.approx(0.04045 / 12.92)  # the linear toe
-    assert S.gamma_decode(0.5) == pytest.approx(0.2140, abs=1e-4)     # half the code is a fifth of the light
+    assert S.gamma_decode(0.5) == pytest.approx(
+        0.2140, abs=1e-4
+    )  # half the code is a fifth of the light
 
 
 def test_white_balance_neutralises_the_white_and_grey_world():
@@ -115,8 +130,8 @@ def test_white_balance_neutralises_the_white_and_grey_world():
     light = np.array([1.0, 0.8, 0.55])
     seen = scene * light
     fixed = S.white_balance(seen, white=light * 0.9)
-    assert np.allclose(fixed, np.clip(scene * 0.8, 0, 1))            # normalised to the green channel
-    grey = S.white_balance(seen)                                  # grey world: mean colour -> grey
+    assert np.allclose(fixed, np.clip(scene * 0.8, 0, 1))  # normalised to the green channel
+    grey = S.white_balance(seen)  # grey world: mean colour -> grey
     m = grey.reshape(-1, 3).mean(axis=0)
     assert np.ptp(m) < 0.01
     with pytest.raises(CamlabInputError, match="white: expected three positive"):
@@ -127,7 +142,7 @@ def test_white_balance_neutralises_the_white_and_grey_world():
 
 def test_sample_blur_is_a_gaussian_in_coarse_pixels():
     """blur = sigma in coarse pixels: a cosine of f cycles per coarse pixel keeps exp(-2 pi^2 sigma^2 f^2)."""
-    factor, f = 4, 0.25                                  # 0.25 cycle per coarse pixel = 1/16 per fine pixel
+    factor, f = 4, 0.25  # 0.25 cycle per coarse pixel = 1/16 per fine pixel
     x = np.arange(512)
     image = np.tile(np.cos(2 * np.pi * f / factor * x), (8, 1))
     sharp = np.ptp(S.sample(image, factor)[1, 16:-16])

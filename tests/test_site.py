@@ -5,6 +5,7 @@ CAMLAB_SITE_DIR when CI has just built it with `make site` (its executed noteboo
 build/executed). Pages are served over HTTP on 127.0.0.1 and opened in headless Debian
 Chromium, like tests/test_browser.py.
 """
+
 import functools
 import http.server
 import json
@@ -41,20 +42,44 @@ def site(tmp_path_factory):
     given = os.environ.get("CAMLAB_SITE_DIR")
     if given:
         out, executed, seconds = Path(given).resolve(), REPO / "build" / "executed", None
-        assert (out / "pages.json").is_file(), f"CAMLAB_SITE_DIR={given} holds no built site: run `make site`"
+        assert (out / "pages.json").is_file(), (
+            f"CAMLAB_SITE_DIR={given} holds no built site: run `make site`"
+        )
     else:
         base = tmp_path_factory.mktemp("site")
         out, executed = base / "site", base / "executed"
         cpu_before = _children_cpu()
-        run = subprocess.run([sys.executable, str(REPO / "tools" / "site" / "build.py"), str(out),
-                              "--executed", str(executed)], capture_output=True, text=True)
-        seconds = _children_cpu() - cpu_before  # the build and its kernels; wall time varies with load
-        assert run.returncode == 0, f"the site build failed:\n{run.stdout[-2000:]}\n{run.stderr[-4000:]}"
-    return dict(out=out, executed=executed, seconds=seconds, pages=json.loads((out / "pages.json").read_text()))
+        run = subprocess.run(
+            [
+                sys.executable,
+                str(REPO / "tools" / "site" / "build.py"),
+                str(out),
+                "--executed",
+                str(executed),
+            ],
+            capture_output=True,
+            text=True,
+        )
+        seconds = (
+            _children_cpu() - cpu_before
+        )  # the build and its kernels; wall time varies with load
+        assert run.returncode == 0, (
+            f"the site build failed:\n{run.stdout[-2000:]}\n{run.stderr[-4000:]}"
+        )
+    return dict(
+        out=out,
+        executed=executed,
+        seconds=seconds,
+        pages=json.loads((out / "pages.json").read_text()),
+    )
 
 
 def _code_cells(nb: dict) -> list[tuple[str, list]]:
-    return [("".join(c["source"]), c.get("outputs", [])) for c in nb["cells"] if c["cell_type"] == "code"]
+    return [
+        ("".join(c["source"]), c.get("outputs", []))
+        for c in nb["cells"]
+        if c["cell_type"] == "code"
+    ]
 
 
 def expected_images(lesson: Path) -> int:
@@ -71,11 +96,15 @@ def test_site_has_every_page_and_stays_small(site):
     assert pages["pages"][0] == "index.html" and "conventions.html" in pages["pages"]
     assert pages["lessons"] == [p.stem + ".html" for p in LESSONS]
     size = sum(f.stat().st_size for f in site["out"].rglob("*") if f.is_file())
-    assert size < MAX_BYTES, f"the site is {size / 1e6:.1f} MB; the budget is {MAX_BYTES / 1e6:.0f} MB"
+    assert size < MAX_BYTES, (
+        f"the site is {size / 1e6:.1f} MB; the budget is {MAX_BYTES / 1e6:.0f} MB"
+    )
     if site["seconds"] is not None:
         # CPU seconds of the build and its kernels: under MAX_BUILD_S the build ends within
         # 3 minutes even on one free core, however loaded the shared machine is now.
-        assert site["seconds"] < MAX_BUILD_S, f"the site took {site['seconds']:.0f} CPU s to build (budget {MAX_BUILD_S} s)"
+        assert site["seconds"] < MAX_BUILD_S, (
+            f"the site took {site['seconds']:.0f} CPU s to build (budget {MAX_BUILD_S} s)"
+        )
 
 
 @pytest.mark.parametrize("lesson", LESSONS, ids=lambda p: p.name)
@@ -83,12 +112,18 @@ def test_executed_lesson_has_a_static_image_for_every_demo_and_figure(site, less
     nb = json.loads((site["executed"] / lesson.name).read_text(encoding="utf-8"))
     demo_cells = 0
     for source, outputs in _code_cells(nb):
-        displays = [o for o in outputs if o.get("output_type") in ("display_data", "execute_result")]
+        displays = [
+            o for o in outputs if o.get("output_type") in ("display_data", "execute_result")
+        ]
         widgets = [o for o in displays if "application/vnd.jupyter.widget-view+json" in o["data"]]
         for out in widgets:
-            assert "image/png" in out["data"], f"{lesson.name}: a live figure without a static PNG:\n{source[:200]}"
+            assert "image/png" in out["data"], (
+                f"{lesson.name}: a live figure without a static PNG:\n{source[:200]}"
+            )
             alt = out.get("metadata", {}).get("image/png", {}).get("alt", "")
-            assert len(alt) > 20 and not re.fullmatch(r"Figure( \d+)?\.?", alt), f"{lesson.name}: weak alt text {alt!r}"
+            assert len(alt) > 20 and not re.fullmatch(r"Figure( \d+)?\.?", alt), (
+                f"{lesson.name}: weak alt text {alt!r}"
+            )
         if any(name in DEMOS for name in DEMO_CALL.findall(source)):
             demo_cells += 1
             assert widgets, f"{lesson.name}: the demo cell shows no live widget:\n{source[:200]}"
@@ -98,7 +133,9 @@ def test_executed_lesson_has_a_static_image_for_every_demo_and_figure(site, less
 WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
 WIDGET_STATE = "application/vnd.jupyter.widget-state+json"
 STRAY_REPRS = ("Text(", "<matplotlib.", "[<matplotlib.", "<Figure ", "<IPython.core.display")
-LOCAL_PATH = re.compile(r"(/tmp/|/var/folders/|/home/|/root/|/Users/|[A-Za-z]:\\Users\\|ipykernel_\d+)")
+LOCAL_PATH = re.compile(
+    r"(/tmp/|/var/folders/|/home/|/root/|/Users/|[A-Za-z]:\\Users\\|ipykernel_\d+)"
+)
 
 
 def _text(value) -> str:
@@ -116,7 +153,14 @@ def _output_problem(out: dict) -> str | None:
     data = out.get("data", {})
     if kind not in ("execute_result", "display_data") or WIDGET_VIEW in data:
         return None  # a live figure's text/plain is its alt text
-    if set(data) & {"image/png", "text/html", "text/markdown", "text/latex", "image/svg+xml", "application/javascript"}:
+    if set(data) & {
+        "image/png",
+        "text/html",
+        "text/markdown",
+        "text/latex",
+        "image/svg+xml",
+        "application/javascript",
+    }:
         return None  # a rich output; its text/plain is the fallback nobody sees
     plain = _text(data.get("text/plain", "")).strip()
     if kind == "execute_result" and plain in ("True", "False"):
@@ -132,8 +176,11 @@ def _canvas_problems(nb: dict) -> list[str]:
     canvases = {k: m["state"] for k, m in state.items() if m.get("model_name") == "MPLCanvasModel"}
     if not canvases:
         return ["no ipympl canvas in the saved widget state (execute with store_widget_state=True)"]
-    return [f"canvas {k} shows ipympl's header {c.get('_figure_label', 'Figure')!r}"
-            for k, c in canvases.items() if c.get("header_visible", True)]
+    return [
+        f"canvas {k} shows ipympl's header {c.get('_figure_label', 'Figure')!r}"
+        for k, c in canvases.items()
+        if c.get("header_visible", True)
+    ]
 
 
 def output_problems(nb: dict) -> list[str]:
@@ -148,7 +195,9 @@ def output_problems(nb: dict) -> list[str]:
         for out in cell.get("outputs", []):
             problem = _output_problem(out)
             if problem:
-                problems.append(f"code cell {number} ({_text(cell['source']).strip()[:60]!r}...): {problem}")
+                problems.append(
+                    f"code cell {number} ({_text(cell['source']).strip()[:60]!r}...): {problem}"
+                )
     return problems + _canvas_problems(nb)
 
 
@@ -160,25 +209,48 @@ def test_executed_lesson_shows_no_stray_output(site, lesson):
 
 
 def _nb(outputs: list[dict], header_visible: bool = False) -> dict:
-    canvas = {"model_name": "MPLCanvasModel", "state": {"header_visible": header_visible, "_figure_label": "Figure 3"}}
-    return {"cells": [{"cell_type": "code", "source": "x", "outputs": outputs}],
-            "metadata": {"widgets": {WIDGET_STATE: {"state": {"m1": canvas}}}}}
+    canvas = {
+        "model_name": "MPLCanvasModel",
+        "state": {"header_visible": header_visible, "_figure_label": "Figure 3"},
+    }
+    return {
+        "cells": [{"cell_type": "code", "source": "x", "outputs": outputs}],
+        "metadata": {"widgets": {WIDGET_STATE: {"state": {"m1": canvas}}}},
+    }
 
 
 def test_output_problems_finds_each_kind_of_stray_output():
     def result(text, kind="execute_result"):
         return {"output_type": kind, "data": {"text/plain": text}}
 
-    clean = [result("array([1, 2])"), {"output_type": "stream", "name": "stdout", "text": "ok False\n"},
-             {"output_type": "stream", "name": "stderr", "text": "UserWarning: stitch: left out\n"},
-             {"output_type": "display_data", "data": {WIDGET_VIEW: {}, "text/plain": "False"}}]
+    clean = [
+        result("array([1, 2])"),
+        {"output_type": "stream", "name": "stdout", "text": "ok False\n"},
+        {"output_type": "stream", "name": "stderr", "text": "UserWarning: stitch: left out\n"},
+        {"output_type": "display_data", "data": {WIDGET_VIEW: {}, "text/plain": "False"}},
+    ]
     assert output_problems(_nb(clean)) == []
-    faults = [("a stray False", result("False")), ("a stray True", result("True")),
-              ("stray repr \"Text(0.5", result("Text(0.5, 1.0, 'warped')")),
-              ("stray repr '[<matplotlib.lines", result("[<matplotlib.lines.Line2D at 0x7f>]", "display_data")),
-              ("local path: '/tmp/ipykernel_6366", {"output_type": "stream", "name": "stderr",
-                                                    "text": "/tmp/ipykernel_6366/305.py:2: UserWarning: left out\n"}),
-              ("local path: '/home/ada", {"output_type": "stream", "name": "stderr", "text": "/home/ada/x.py:1: W\n"})]
+    faults = [
+        ("a stray False", result("False")),
+        ("a stray True", result("True")),
+        ('stray repr "Text(0.5', result("Text(0.5, 1.0, 'warped')")),
+        (
+            "stray repr '[<matplotlib.lines",
+            result("[<matplotlib.lines.Line2D at 0x7f>]", "display_data"),
+        ),
+        (
+            "local path: '/tmp/ipykernel_6366",
+            {
+                "output_type": "stream",
+                "name": "stderr",
+                "text": "/tmp/ipykernel_6366/305.py:2: UserWarning: left out\n",
+            },
+        ),
+        (
+            "local path: '/home/ada",
+            {"output_type": "stream", "name": "stderr", "text": "/home/ada/x.py:1: W\n"},
+        ),
+    ]
     for phrase, out in faults:
         found = output_problems(_nb([out]))
         assert len(found) == 1 and phrase in found[0], (phrase, found)
@@ -220,7 +292,11 @@ def test_internal_links_resolve(site):
             checked += 1
             if not target.is_file():
                 broken.append(f"{page}: {url} (no such file)")
-            elif parts.fragment and target.suffix == ".html" and parts.fragment not in _parse(target).ids:
+            elif (
+                parts.fragment
+                and target.suffix == ".html"
+                and parts.fragment not in _parse(target).ids
+            ):
                 broken.append(f"{page}: {url} (no such anchor)")
     assert checked > 100
     assert not broken, "broken links:\n" + "\n".join(broken[:20])
@@ -268,25 +344,38 @@ def visit(browser, url: str) -> dict:
     host = urlsplit(url).netloc
     page.on("console", lambda m: seen["errors"].append(m.text) if m.type == "error" else None)
     page.on("pageerror", lambda e: seen["errors"].append(str(e)))
-    page.on("request", lambda r: seen["outside"].append(r.url) if urlsplit(r.url).netloc != host else None)
+    page.on(
+        "request",
+        lambda r: seen["outside"].append(r.url) if urlsplit(r.url).netloc != host else None,
+    )
     page.on("requestfailed", lambda r: seen["failed"].append(r.url))
-    page.on("response", lambda r: seen["failed"].append(f"{r.status} {r.url}") if r.status >= 400 else None)
+    page.on(
+        "response",
+        lambda r: seen["failed"].append(f"{r.status} {r.url}") if r.status >= 400 else None,
+    )
     try:
         page.goto(url, wait_until="load")
         page.wait_for_function("() => window.MathJax && MathJax.startup && MathJax.startup.promise")
         page.evaluate("() => MathJax.startup.promise")
-        seen.update(page.evaluate("""() => ({
+        seen.update(
+            page.evaluate("""() => ({
             math: document.querySelectorAll('mjx-container').length,
             math_errors: document.querySelectorAll('mjx-merror').length,
             assistive: document.querySelectorAll('mjx-container mjx-assistive-mml math').length,
             dollars: [...document.querySelectorAll('.jp-MarkdownCell')].some(c => /\\$[^$]+\\$/.test(c.textContent)),
             images: [...document.querySelectorAll('main img')].map(i => ({alt: i.alt, ok: i.complete && i.naturalWidth > 0})),
-        })"""))
+        })""")
+        )
         page.add_script_tag(path=str(AXE))  # inline: no request
         # resultTypes: axe details only the violations, not every passing node: on lesson 04's 14,800-element
         # page 11 s instead of 28 (quiet machine); the full check at 2 cores under load passed the 900 s limit.
-        result = page.evaluate("(rules) => axe.run(document, {runOnly: rules, resultTypes: ['violations']})", AXE_RULES)
-        seen["axe"] = [(v["impact"], v["id"], len(v["nodes"]), v["nodes"][0]["target"]) for v in result["violations"]]
+        result = page.evaluate(
+            "(rules) => axe.run(document, {runOnly: rules, resultTypes: ['violations']})", AXE_RULES
+        )
+        seen["axe"] = [
+            (v["impact"], v["id"], len(v["nodes"]), v["nodes"][0]["target"])
+            for v in result["violations"]
+        ]
     finally:
         page.close()
     return seen
@@ -300,8 +389,11 @@ def visits(site, server, browser) -> dict:
 
 @pytest.mark.browser
 def test_every_page_loads_offline_without_errors(visits):
-    problems = [f"{name}: console {s['errors'][:2]} outside {s['outside'][:2]} failed {s['failed'][:2]}"
-                for name, s in visits.items() if s["errors"] or s["outside"] or s["failed"]]
+    problems = [
+        f"{name}: console {s['errors'][:2]} outside {s['outside'][:2]} failed {s['failed'][:2]}"
+        for name, s in visits.items()
+        if s["errors"] or s["outside"] or s["failed"]
+    ]
     assert not problems, "\n".join(problems)
 
 
@@ -310,12 +402,19 @@ def test_maths_is_typeset_from_the_local_mathjax_with_assistive_mathml(visits):
     problems = []
     for name, s in visits.items():
         if s["math_errors"] or s["dollars"]:
-            problems.append(f"{name}: {s['math_errors']} maths errors; untypeset $...$ left: {s['dollars']}")
+            problems.append(
+                f"{name}: {s['math_errors']} maths errors; untypeset $...$ left: {s['dollars']}"
+            )
         if s["assistive"] < s["math"]:
-            problems.append(f"{name}: {s['math'] - s['assistive']} of {s['math']} formulas without assistive MathML")
+            problems.append(
+                f"{name}: {s['math'] - s['assistive']} of {s['math']} formulas without assistive MathML"
+            )
     for lesson in LESSONS:
-        markdown = "".join("".join(c["source"]) for c in json.loads(lesson.read_text("utf-8"))["cells"]
-                           if c["cell_type"] == "markdown")
+        markdown = "".join(
+            "".join(c["source"])
+            for c in json.loads(lesson.read_text("utf-8"))["cells"]
+            if c["cell_type"] == "markdown"
+        )
         if "$" in markdown and visits[lesson.stem + ".html"]["math"] == 0:
             problems.append(f"{lesson.name}: the lesson writes maths but the page typeset none")
     assert not problems, "\n".join(problems)
@@ -327,18 +426,27 @@ def test_every_figure_and_demo_is_an_image_with_alt_text(visits):
     for name, s in visits.items():
         broken = [i for i in s["images"] if not i["ok"] or len(i["alt"]) < 20]
         if broken:
-            problems.append(f"{name}: {len(broken)} images broken or without alt text: {broken[:2]}")
+            problems.append(
+                f"{name}: {len(broken)} images broken or without alt text: {broken[:2]}"
+            )
     for lesson in LESSONS:
         shown, want = len(visits[lesson.stem + ".html"]["images"]), expected_images(lesson)
         print(f"{lesson.name}: {shown} images for {want} figures and demos")
         if shown < want:
-            problems.append(f"{lesson.name}: {shown} images on the page, but it makes {want} figures and demos")
+            problems.append(
+                f"{lesson.name}: {shown} images on the page, but it makes {want} figures and demos"
+            )
     assert not problems, "\n".join(problems)
 
 
 @pytest.mark.browser
 def test_axe_core_finds_no_critical_or_serious_violation(visits):
-    bad = {name: [v for v in s["axe"] if v[0] in ("critical", "serious")] for name, s in visits.items()}
+    bad = {
+        name: [v for v in s["axe"] if v[0] in ("critical", "serious")] for name, s in visits.items()
+    }
     for name, s in visits.items():
-        print(f"axe {name}: " + (", ".join(f"{v[1]} ({v[0]}, {v[2]} nodes)" for v in s["axe"]) or "no violations"))
+        print(
+            f"axe {name}: "
+            + (", ".join(f"{v[1]} ({v[0]}, {v[2]} nodes)" for v in s["axe"]) or "no violations")
+        )
     assert not any(bad.values()), "\n".join(f"{k}: {v}" for k, v in bad.items() if v)

@@ -1,4 +1,5 @@
 """Live figures leave a static PNG with alt text in their display bundle (camlab.plotting.static)."""
+
 import base64
 import io
 
@@ -15,7 +16,11 @@ WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
 
 
 def _png_pixels(b64: str) -> np.ndarray:
-    return (mpimg.imread(io.BytesIO(base64.b64decode(b64)), format="png") * 255).round().astype(np.uint8)
+    return (
+        (mpimg.imread(io.BytesIO(base64.b64decode(b64)), format="png") * 255)
+        .round()
+        .astype(np.uint8)
+    )
 
 
 @pytest.mark.parametrize("name", sorted(DEMOS))
@@ -28,16 +33,24 @@ def test_demo_bundle_has_widget_png_and_alt_text(name):
     png = _png_pixels(data["image/png"])
     shown = demo.view.pixels()
     # matplotlib < 3.10 may round the saved height one pixel differently from the canvas
-    assert np.abs(np.subtract(png.shape[:2], shown.shape[:2])).max() <= 1, f"{name}: the PNG is not the figure's size"
+    assert np.abs(np.subtract(png.shape[:2], shown.shape[:2])).max() <= 1, (
+        f"{name}: the PNG is not the figure's size"
+    )
     h, w = np.minimum(png.shape[:2], shown.shape[:2])
     diff = np.abs(png[:h, :w, :3].astype(int) - shown[:h, :w, :3].astype(int)).mean()
-    assert diff < 3, f"{name}: the PNG differs from the figure as shown (mean |diff| {diff:.1f} grey levels)"
+    assert diff < 3, (
+        f"{name}: the PNG differs from the figure as shown (mean |diff| {diff:.1f} grey levels)"
+    )
     alt = metadata["image/png"]["alt"]
     assert alt == data["text/plain"]
     first_words = " ".join(spec.builder.__doc__.split()[:3])
-    assert alt.startswith(first_words), f"{name}: alt text should start with the demo's description: {alt!r}"
+    assert alt.startswith(first_words), (
+        f"{name}: alt text should start with the demo's description: {alt!r}"
+    )
     for control in demo.controls.values():
-        assert f"{control.description.strip().rstrip('=:').strip()} = " in alt, f"{name}: alt text misses a setting"
+        assert f"{control.description.strip().rstrip('=:').strip()} = " in alt, (
+            f"{name}: alt text misses a setting"
+        )
     h, w = png.shape[:2]
     assert (metadata["image/png"]["width"], metadata["image/png"]["height"]) == (w, h)
 
@@ -47,17 +60,27 @@ def test_alt_text_follows_the_settings():
     assert "angle θ (°) = 40; scale s = 1." in demo.alt_text
     demo.set(angle=-35.0, scale=1.5)
     assert "angle θ (°) = -35; scale s = 1.5." in demo.alt_text
-    assert "Panels: 'y down, as in images: θ > 0 clockwise, θ < 0 anticlockwise', 'y up, as in maths textbooks" in demo.alt_text
+    assert (
+        "Panels: 'y down, as in images: θ > 0 clockwise, θ < 0 anticlockwise', 'y up, as in maths textbooks"
+        in demo.alt_text
+    )
     assert "Readout: 'roof tip (orange dot) at (-1.20, -1.72)'." in demo.alt_text
 
 
 def test_selection_controls_show_their_label():
     import ipywidgets as W
 
-    controls = {"b": W.SelectionSlider(options=[0.0, 0.25], value=0.0, description="baseline (m)"),
-                "m": W.Dropdown(options=[("multi-band", "mb"), ("feather", "f")], value="f", description="blend"),
-                "on": W.Checkbox(value=True, description="outlines")}
-    assert static.demo_alt_text("A demo", controls) == "A demo. Shown at baseline (m) = 0.0; blend = feather; outlines = on."
+    controls = {
+        "b": W.SelectionSlider(options=[0.0, 0.25], value=0.0, description="baseline (m)"),
+        "m": W.Dropdown(
+            options=[("multi-band", "mb"), ("feather", "f")], value="f", description="blend"
+        ),
+        "on": W.Checkbox(value=True, description="outlines"),
+    }
+    assert (
+        static.demo_alt_text("A demo", controls)
+        == "A demo. Shown at baseline (m) = 0.0; blend = feather; outlines = on."
+    )
 
 
 def test_plain_figure_description_names_panels_labels_and_legend():
@@ -71,7 +94,8 @@ def test_plain_figure_description_names_panels_labels_and_legend():
     ax2.set_title("photo")
     assert static.describe_figure(fig) == (
         "Figure with 2 panels: plot 'image height', axes 'distance Z (m)', 'height (mm)', "
-        "legend 'f = 25 mm', 'f = 50 mm'; image 'photo'.")
+        "legend 'f = 25 mm', 'f = 50 mm'; image 'photo'."
+    )
     static.alt_text(fig, "  Image height falls as 1/Z.  ")
     assert static.describe_figure(fig) == "Image height falls as 1/Z."
     with pytest.raises(ValueError, match="alt_text: expected a sentence"):
@@ -112,10 +136,15 @@ def test_a_plain_figure_wider_than_the_output_area_is_drawn_to_fit_it():
         for fig in (wide, narrow):
             Canvas(fig)
             fig.subplots().set_title("three cameras")
-        (wide_png, _), (narrow_png, _) = (shell.display_formatter.format(f.canvas) for f in (wide, narrow))
+        (wide_png, _), (narrow_png, _) = (
+            shell.display_formatter.format(f.canvas) for f in (wide, narrow)
+        )
     finally:
         InteractiveShell.clear_instance()
-    assert wide.get_figwidth() == 10 and wide.dpi * 10 + static.CANVAS_FRAME_PX == static.OUTPUT_WIDTH_PX
+    assert (
+        wide.get_figwidth() == 10
+        and wide.dpi * 10 + static.CANVAS_FRAME_PX == static.OUTPUT_WIDTH_PX
+    )
     assert _png_pixels(wide_png["image/png"]).shape[1] == 952
     assert narrow.dpi == 100 and _png_pixels(narrow_png["image/png"]).shape[:2] == (300, 600)
 
@@ -138,16 +167,23 @@ def test_camera_frame_puts_pixel_0_0_half_a_pixel_in_and_its_labels_off_the_axes
     pixel = plane.get_width() / 4
     assert np.isclose(plane.get_height(), 3 * pixel)
     (origin,) = [a for a in ax.texts if a.get_text().startswith("(0, 0)")]
-    assert np.allclose(origin.xy, np.add(plane.get_xy(), pixel / 2))  # half a pixel in, not on the corner
-    axes_arrows = [a.arrow_patch for a in ax.texts if not a.get_text() and getattr(a, "arrow_patch", None)]
+    assert np.allclose(
+        origin.xy, np.add(plane.get_xy(), pixel / 2)
+    )  # half a pixel in, not on the corner
+    axes_arrows = [
+        a.arrow_patch for a in ax.texts if not a.get_text() and getattr(a, "arrow_patch", None)
+    ]
     assert len(axes_arrows) == 4  # u, v, x and y
     for text in ax.texts:
         if not text.get_text():
             continue
-        box = Text.get_window_extent(text, renderer)  # the words alone (an annotation's box includes its arrow)
+        box = Text.get_window_extent(
+            text, renderer
+        )  # the words alone (an annotation's box includes its arrow)
         for arrow in axes_arrows:
-            assert not Bbox.intersection(box, arrow.get_window_extent(renderer).shrunk(0.9, 0.9)) or \
-                text.get_text() in ("u", "v"), f"{text.get_text()!r} lies on an arrow"
+            assert not Bbox.intersection(
+                box, arrow.get_window_extent(renderer).shrunk(0.9, 0.9)
+            ) or text.get_text() in ("u", "v"), f"{text.get_text()!r} lies on an arrow"
     plt.close(fig)
 
 

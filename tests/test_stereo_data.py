@@ -1,4 +1,5 @@
 """The bundled stereo rig: deterministic, consistent with its ground truth."""
+
 import numpy as np
 
 from camlab import epipolar as ep
@@ -22,7 +23,9 @@ def test_bundled_rig_loads_and_matches_its_generator_cameras():
 
 def test_true_disparity_agrees_with_calibrated_rectification():
     rig = load_stereo_rig()
-    rect = rc.rectify_calibrated(rig.camera1, rig.camera2, alpha=STEREO_PARAMS["rectify_alpha"], maps=False)
+    rect = rc.rectify_calibrated(
+        rig.camera1, rig.camera2, alpha=STEREO_PARAMS["rectify_alpha"], maps=False
+    )
     # a wall point: project through both rectified cameras, disparity = u1 - u2
     X = np.array([[0.3, 4.2, 1.6], [-1.2, 4.2, 2.0]])
     u1, u2 = rect.camera1.project(X), rect.camera2.project(X)
@@ -41,8 +44,13 @@ def test_true_matches_are_exact_correspondences():
     assert x1.shape == x2.shape and len(x1) > 100
     assert np.all((x1 > 0) & (x1 < [639, 479]) & (x2 > 0) & (x2 < [639, 479]))
     # carried to the rectified images they lie on one row, apart by the true disparity
-    rect = rc.rectify_calibrated(rig.camera1, rig.camera2, alpha=STEREO_PARAMS["rectify_alpha"], maps=False)
-    r1, r2 = rc.rectify_points(rect, rig.camera1, x1, 1), rc.rectify_points(rect, rig.camera2, x2, 2)
+    rect = rc.rectify_calibrated(
+        rig.camera1, rig.camera2, alpha=STEREO_PARAMS["rectify_alpha"], maps=False
+    )
+    r1, r2 = (
+        rc.rectify_points(rect, rig.camera1, x1, 1),
+        rc.rectify_points(rect, rig.camera2, x2, 2),
+    )
     assert np.abs(r1[:, 1] - r2[:, 1]).max() < 1e-6
     d = rig.disparity[np.round(r1[:, 1]).astype(int), np.round(r1[:, 0]).astype(int)]
     assert np.abs((r1[:, 0] - r2[:, 0]) - d).max() < 1e-6
@@ -73,10 +81,14 @@ def test_true_disparity_of_another_rectification():
     alpha = STEREO_PARAMS["rectify_alpha"]
     same = rc.rectify_calibrated(rig.camera1, rig.camera2, alpha=alpha, maps=False)
     np.testing.assert_allclose(true_disparity(rig, same), rig.disparity, rtol=1e-6, equal_nan=True)
-    half = rc.rectify_calibrated(rig.camera1.resized(0.5), rig.camera2.resized(0.5), alpha=alpha, maps=False)
+    half = rc.rectify_calibrated(
+        rig.camera1.resized(0.5), rig.camera2.resized(0.5), alpha=alpha, maps=False
+    )
     d = true_disparity(rig, half)
     assert d.shape == (240, 320)
-    assert np.isclose(np.nanmedian(d), 0.5 * np.nanmedian(rig.disparity), rtol=0.02)  # f halves, B and Z stay
+    assert np.isclose(
+        np.nanmedian(d), 0.5 * np.nanmedian(rig.disparity), rtol=0.02
+    )  # f halves, B and Z stay
 
 
 def test_bundled_rig_prepares_lesson_11_s_pair_once_and_read_only():
@@ -90,9 +102,13 @@ def test_bundled_rig_prepares_lesson_11_s_pair_once_and_read_only():
     again = true_matches(load_stereo_rig(), step=30, start=20)
     for a, b in zip(matches, again):
         np.testing.assert_array_equal(a, b)
-    assert [im.shape for im in half] == [HALF_SIZE[::-1]] * 2 and [im.shape for im in und] == [(480, 640)] * 2
+    assert [im.shape for im in half] == [HALF_SIZE[::-1]] * 2 and [im.shape for im in und] == [
+        (480, 640)
+    ] * 2
     # Hartley's rectification from the noisy matches leaves them on (almost) the same rows
-    vd = rc.vertical_disparity(map_points(unc.H1, matches.ideal1), map_points(unc.H2, matches.ideal2))
+    vd = rc.vertical_disparity(
+        map_points(unc.H1, matches.ideal1), map_points(unc.H2, matches.ideal2)
+    )
     assert vd.median < 0.5
     for a in (rig.left, rig.disparity, matches.raw1, half[0], und[1]):
         with pytest.raises(ValueError, match="read-only"):

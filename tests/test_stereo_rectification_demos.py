@@ -1,4 +1,5 @@
 """Lesson 11 demos and exercises: specific behaviour beyond the generic sweeps."""
+
 import os
 
 os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
@@ -28,7 +29,9 @@ def test_epipolar_lines_click_moves_point_and_line_passes_through_true_match():
     # every depth along the ray images onto the right epipolar line
     l2, uv = demo.state["line_right"], demo.state["depth_points"]
     assert np.nanmax(np.abs(uv @ l2[:2] + l2[2])) < 1e-6
-    demo.handlers["button_press_event"](_Click(demo.figure.axes[1], 10.0, 10.0))  # clicks in the right image are ignored
+    demo.handlers["button_press_event"](
+        _Click(demo.figure.axes[1], 10.0, 10.0)
+    )  # clicks in the right image are ignored
     assert demo.controls["u"].value == 150.0
 
 
@@ -59,14 +62,16 @@ def test_rectify_pair_vertical_disparity_drops():
 
 def test_epipolar_lines_forward_motion_puts_the_epipole_in_the_image():
     demo = demos.epipolar_lines()
-    assert not demo.state["epipole_inside"]          # the side-by-side rig: far outside
+    assert not demo.state["epipole_inside"]  # the side-by-side rig: far outside
     demo.set(motion="forward (driving)", toe_in=5.0)
     assert demo.state["epipole_inside"]
     e2 = demo.state["epipoles"].e2
     u, v = e2[:2] / e2[2]
     assert 0 < u < 639 and 0 < v < 479
     # every epipolar line passes through it
-    assert abs(demo.state["line_right"] @ e2) < 1e-9 * np.linalg.norm(demo.state["line_right"]) * np.linalg.norm(e2)
+    assert abs(demo.state["line_right"] @ e2) < 1e-9 * np.linalg.norm(
+        demo.state["line_right"]
+    ) * np.linalg.norm(e2)
 
 
 def test_disparity_demo_depth_accuracy_and_block_size():
@@ -100,6 +105,7 @@ def test_eight_point_exercise_accepts_a_student_style_solution():
             c = p.mean(0)
             s = np.sqrt(2) / np.mean(np.linalg.norm(p - c, axis=1))
             return np.array([[s, 0, -s * c[0]], [0, s, -s * c[1]], [0, 0, 1]])
+
         T1, T2 = T(x1), T(x2)
         a = np.c_[x1, np.ones(len(x1))] @ T1.T
         b = np.c_[x2, np.ones(len(x2))] @ T2.T
@@ -107,6 +113,7 @@ def test_eight_point_exercise_accepts_a_student_style_solution():
         F = np.linalg.svd(A)[2][-1].reshape(3, 3)
         U, S, Vt = np.linalg.svd(F)
         return T2.T @ U @ np.diag([S[0], S[1], 0]) @ Vt @ T1
+
     assert check("eight_point", eight_point)
 
 
@@ -114,6 +121,7 @@ def test_epipole_exercise_rejects_euclidean_answer():
     def euclid(F):
         e = ep.epipoles(F)
         return e.e1[:2] / e.e1[2], e.e2[:2] / e.e2[2]
+
     with pytest.raises(AssertionError, match="homogeneous 3-vectors"):
         check("epipoles", euclid)
 
@@ -126,6 +134,8 @@ def test_epipolar_lines_real_mouse_event_through_the_canvas():
     fig = demo.figure
     fig.canvas.draw()
     x, y = demo.figure.axes[0].transData.transform((200.0, 150.0))
-    fig.canvas.callbacks.process("button_press_event", MouseEvent("button_press_event", fig.canvas, x, y, button=1))
+    fig.canvas.callbacks.process(
+        "button_press_event", MouseEvent("button_press_event", fig.canvas, x, y, button=1)
+    )
     assert np.allclose([demo.controls["u"].value, demo.controls["v"].value], [200, 150], atol=1e-6)
     assert np.allclose(demo.state["point"], [200, 150], atol=1e-6)

@@ -1,4 +1,5 @@
 """Tests for camlab.stitching (and camlab.data.panorama): ground truth, OpenCV cross-checks, bad input."""
+
 import warnings
 
 import cv2
@@ -18,7 +19,9 @@ CORNERS = np.array([[0, 0], [639, 0], [639, 479], [0, 479]], float)
 
 
 def corner_error(H, H_true, corners=CORNERS) -> float:
-    return float(np.linalg.norm(hg.map_points(H, corners) - hg.map_points(H_true, corners), axis=1).max())
+    return float(
+        np.linalg.norm(hg.map_points(H, corners) - hg.map_points(H_true, corners), axis=1).max()
+    )
 
 
 @pytest.fixture(scope="module")
@@ -42,6 +45,7 @@ def half():
 
 # ----------------------------------------------------------------------------- ground truth
 
+
 def test_pairwise_homographies_match_ground_truth(full):
     """Every homography on the spanning tree is within 1 px of K R_j R_i^T K^-1 at the image corners."""
     s, _, g = full
@@ -58,7 +62,9 @@ def test_pairwise_homographies_match_ground_truth(full):
 def test_chained_homographies_and_reference(full):
     s, _, g = full
     assert g.reference in (1, 2) and g.unconnected == []  # the middle views see most others
-    assert g.pairs[(0, 3)].accepted is False and "too few" in g.pairs[(0, 3)].reason  # 54 degrees apart
+    assert (
+        g.pairs[(0, 3)].accepted is False and "too few" in g.pairs[(0, 3)].reason
+    )  # 54 degrees apart
     for k in range(4):
         H_true = s.true_homography(k, g.reference)
         # chains amplify errors towards the canvas edge (view 3 is 36 degrees from the reference)
@@ -79,7 +85,9 @@ def test_panorama_matches_a_direct_render(full, result):
     K_ref, R_ref = r.cameras[ref]
     K_canvas = r.homographies[ref] @ K_ref @ R_ref
     K_canvas /= K_canvas[2, 2]
-    assert np.allclose(K_canvas[[0, 1, 2, 2], [1, 0, 0, 1]], 0, atol=1e-9) and np.isclose(K_canvas[0, 0], K_canvas[1, 1])
+    assert np.allclose(K_canvas[[0, 1, 2, 2], [1, 0, 0, 1]], 0, atol=1e-9) and np.isclose(
+        K_canvas[0, 0], K_canvas[1, 1]
+    )
     K_canvas[[0, 1, 2, 2], [1, 0, 0, 1]] = 0
     R_canvas = R_ref.T @ s.R[ref]
     h, w = r.panorama.shape[:2]
@@ -87,8 +95,10 @@ def test_panorama_matches_a_direct_render(full, result):
     inside = cv2.erode(r.mask.astype(np.uint8), np.ones((5, 5), np.uint8)) > 0
     err = np.abs(r.panorama.astype(float) - direct.astype(float))
     overlap = (np.sum(r.masks, axis=0) >= 2) & inside
-    assert err[inside].mean() < 4.0      # measured 2.9 grey levels (noise alone about 1.5)
-    assert err[overlap].mean() < 5.5      # measured 5.2 with OpenCV 4.12 (fixed-point warps, other SIFT matches)
+    assert err[inside].mean() < 4.0  # measured 2.9 grey levels (noise alone about 1.5)
+    assert (
+        err[overlap].mean() < 5.5
+    )  # measured 5.2 with OpenCV 4.12 (fixed-point warps, other SIFT matches)
     assert np.median(err[inside]) <= 3
     # and the mask is the union of the footprints, matching where the direct render sees the canvas
     assert np.array_equal(r.mask, np.logical_or.reduce(r.masks))
@@ -103,6 +113,7 @@ def test_gain_compensation_recovers_the_exposures(result, full):
 
 # ----------------------------------------------------------------------------- OpenCV cross-checks
 
+
 @pytest.mark.parametrize("pair", [(0, 1), (1, 2), (2, 3)])
 def test_ransac_agrees_with_opencv_magsac(full, pair):
     """Same matches: inlier sets agree within 2%, inlier RMS no worse than 1.05x cv2 USAC_MAGSAC's."""
@@ -111,7 +122,9 @@ def test_ransac_agrees_with_opencv_magsac(full, pair):
     m = ft.match_features(feats[i], feats[j])
     reg = st.register_pair(feats[i], feats[j], matches=m, threshold=3.0)
     cv2.setRNGSeed(0)
-    Hc, mask = cv2.findHomography(m.src, m.dst, cv2.USAC_MAGSAC, 3.0, confidence=0.999, maxIters=2000)
+    Hc, mask = cv2.findHomography(
+        m.src, m.dst, cv2.USAC_MAGSAC, 3.0, confidence=0.999, maxIters=2000
+    )
     ours, theirs = reg.inliers, mask.ravel().astype(bool)
     assert (ours ^ theirs).sum() <= 0.02 * theirs.sum()
     rms_cv = np.sqrt(np.mean(hg.transfer_error(Hc, m.src[theirs], m.dst[theirs]) ** 2))
@@ -125,31 +138,47 @@ def test_warp_matches_opencv_warp_perspective(half):
     wi = st.warp_images(imgs, [np.eye(3), H])
     T, (h, w) = canvas_bounds([np.eye(3), H], [im.shape for im in imgs])
     # the image's border is replicated (no black rim for the blend): compare inside its footprint
-    ref = cv2.warpPerspective(imgs[1], T @ H, (w, h), flags=cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
+    ref = cv2.warpPerspective(
+        imgs[1], T @ H, (w, h), flags=cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE
+    )
     assert wi.shape == (h, w)
     # warped into its box by the translated H: the same samples up to float rounding (1e-4 = 0.03 grey levels)
     inside = wi.masks[1]
-    assert np.abs(wi.images[1][inside] - ref[inside]).max() < 1e-4 and not wi.images[1][~inside].any()
+    assert (
+        np.abs(wi.images[1][inside] - ref[inside]).max() < 1e-4 and not wi.images[1][~inside].any()
+    )
     assert np.allclose(wi.homographies[1], hg.normalize_homography(T @ H))
     h1, w1 = imgs[1].shape[:2]
-    quad = hg.map_points(T @ H, [[-0.5, -0.5], [w1 - 0.5, -0.5], [w1 - 0.5, h1 - 0.5], [-0.5, h1 - 0.5]])
+    quad = hg.map_points(
+        T @ H, [[-0.5, -0.5], [w1 - 0.5, -0.5], [w1 - 0.5, h1 - 0.5], [-0.5, h1 - 0.5]]
+    )
     assert wi.masks[1].sum() == pytest.approx(cv2.contourArea(quad.astype(np.float32)), rel=0.01)
 
 
 # ----------------------------------------------------------------------------- pieces
 
+
 def test_feather_weights_known_values_and_errors():
     w = st.feather_weights((4, 6))
     assert w.shape == (4, 6) and w[0, 0] == 0.5 and w[1, 2] == 1.5 and w.max() == 1.5
     assert np.allclose(w, w[::-1, ::-1])
-    with pytest.raises(CamlabInputError, match=r"shape: expected \(height, width\) as whole numbers of pixels >= 1, got \(0, 3\)"):
+    with pytest.raises(
+        CamlabInputError,
+        match=r"shape: expected \(height, width\) as whole numbers of pixels >= 1, got \(0, 3\)",
+    ):
         st.feather_weights((0, 3))
     with pytest.raises(CamlabInputError, match="shape: expected"):
         st.feather_weights("big")
 
 
 @settings(max_examples=40, deadline=None)
-@given(hs.lists(hs.tuples(hs.floats(-300, 300), hs.floats(-300, 300), hs.floats(-0.3, 0.3)), min_size=1, max_size=4))
+@given(
+    hs.lists(
+        hs.tuples(hs.floats(-300, 300), hs.floats(-300, 300), hs.floats(-0.3, 0.3)),
+        min_size=1,
+        max_size=4,
+    )
+)
 def test_canvas_box_agrees_with_canvas_bounds(moves):
     Hs = [hg.similarity(1.0, th, tx, ty) for tx, ty, th in moves]
     shapes = [(120, 160)] * len(Hs)
@@ -160,7 +189,9 @@ def test_canvas_box_agrees_with_canvas_bounds(moves):
 
 
 def test_canvas_box_bad_input():
-    with pytest.raises(CamlabInputError, match="shapes: expected one shape per homography, got 1 for 2"):
+    with pytest.raises(
+        CamlabInputError, match="shapes: expected one shape per homography, got 1 for 2"
+    ):
         st.canvas_box([np.eye(3), np.eye(3)], [(10, 10)])
     with pytest.raises(DegenerateError, match="maps to infinity"):
         st.canvas_box([[[1, 0, 0], [0, 1, 0], [1, 0, 0]]], [(10, 10)])
@@ -179,16 +210,24 @@ def test_blend_methods_on_two_constant_images():
     assert over[30, 50, 0] == pytest.approx(0.6) and over[30, 30, 0] == pytest.approx(0.2)
     fe = st.blend(wi, "feather")
     row = fe[30, 40:80, 0]
-    assert np.all(np.diff(row) >= -1e-6) and row[0] < 0.25 and row[-1] > 0.55  # a smooth ramp across the overlap
+    assert (
+        np.all(np.diff(row) >= -1e-6) and row[0] < 0.25 and row[-1] > 0.55
+    )  # a smooth ramp across the overlap
     assert fe[30, 60, 0] == pytest.approx(0.4, abs=0.01)  # mid-overlap: equal weights
     mb = st.blend(wi, "multiband", levels=4)
     assert np.all(np.diff(mb[30, :, 0]) >= -1e-3)  # monotone transition, no overshoot ring
-    assert mb[30, 2, 0] == pytest.approx(0.2, abs=0.01) and mb[30, -3, 0] == pytest.approx(0.6, abs=0.01)
+    assert mb[30, 2, 0] == pytest.approx(0.2, abs=0.01) and mb[30, -3, 0] == pytest.approx(
+        0.6, abs=0.01
+    )
     assert np.abs(np.diff(mb[30, :, 0])).max() < 0.1  # no hard step at the seam
     assert np.abs(np.diff(over[30, :, 0])).max() == pytest.approx(0.4)
-    with pytest.raises(CamlabInputError, match=r"method: expected one of \('overwrite', 'feather', 'multiband'\)"):
+    with pytest.raises(
+        CamlabInputError, match=r"method: expected one of \('overwrite', 'feather', 'multiband'\)"
+    ):
         st.blend(wi, "average")
-    with pytest.raises(CamlabInputError, match=r"gains: expected 2 gains \(one per image\), got shape \(3,\)"):
+    with pytest.raises(
+        CamlabInputError, match=r"gains: expected 2 gains \(one per image\), got shape \(3,\)"
+    ):
         st.blend(wi, "feather", gains=[1, 1, 1])
 
 
@@ -213,14 +252,18 @@ def test_blend_in_boxes_agrees_with_laplacian_blend_on_the_canvas(half):
     canvas = st.laplacian_blend(wi.images, seams, levels=4, footprints=wi.masks)
     union = wi.masks[0] | wi.masks[1]
     d = np.abs(boxed - canvas)[union]
-    assert d.mean() < 1e-4 and d.max() < 0.02  # measured 2e-5 and 0.01 (2.5 grey levels, at the rim)
+    assert (
+        d.mean() < 1e-4 and d.max() < 0.02
+    )  # measured 2e-5 and 0.01 (2.5 grey levels, at the rim)
     assert not boxed[~union].any()
 
 
 def test_overlap_difference():
     wi = _two_constant_images()
     assert st.overlap_difference(wi) == pytest.approx(0.4)
-    apart = st.warp_images([np.zeros((10, 10, 3), np.float32)] * 2, [np.eye(3), hg.euclidean(0, 50, 0)])
+    apart = st.warp_images(
+        [np.zeros((10, 10, 3), np.float32)] * 2, [np.eye(3), hg.euclidean(0, 50, 0)]
+    )
     assert st.overlap_difference(apart) == 0.0
 
 
@@ -235,7 +278,7 @@ def test_gain_compensation_on_scaled_copies():
 def test_cylindrical_warp_geometry():
     K = np.array([[400.0, 0, 159.5], [0, 400.0, 119.5], [0, 0, 1]])
     img = np.zeros((240, 320), np.float32)
-    img[:, 300] = 1.0   # a vertical line 140.5 px right of the centre
+    img[:, 300] = 1.0  # a vertical line 140.5 px right of the centre
     cyl, mask = st.cylindrical_warp(img, K)
     u_expected = 159.5 + 400 * np.arctan(140.5 / 400)
     col = np.argmax(cyl[119])
@@ -246,6 +289,7 @@ def test_cylindrical_warp_geometry():
 
 
 # ----------------------------------------------------------------------------- the pipeline and bad input
+
 
 def test_stitch_result_structure(result, full):
     s, _, _ = full
@@ -275,7 +319,9 @@ def test_seams_multiband_versus_overwrite(half):
     # views 1 and 2 differ in exposure by 1.12 / 0.86: a step of about 0.1 where they meet
     assert j_over > 0.05 and j_multi < j_over / 4 and j_feather < j_over / 4
     gains = st.gain_compensation(wi, reference=0)
-    assert st.seam_step(st.blend(wi, "overwrite", gains=gains), wi.masks[1], wi.masks[0]) < j_over / 4
+    assert (
+        st.seam_step(st.blend(wi, "overwrite", gains=gains), wi.masks[1], wi.masks[0]) < j_over / 4
+    )
 
 
 def test_seam_step_known_answer():
@@ -310,13 +356,21 @@ def test_planar_pair_registration():
 
 
 def test_single_image_and_bad_options(half):
-    with pytest.raises(CamlabInputError, match="images: expected at least 2 images to stitch, got 1"):
+    with pytest.raises(
+        CamlabInputError, match="images: expected at least 2 images to stitch, got 1"
+    ):
         st.stitch([half.images[0]])
     with pytest.raises(CamlabInputError, match="images: expected a list of images, got one array"):
         st.stitch(half.images[0])
-    with pytest.raises(CamlabInputError, match=r"images\[1\]: expected a \(H, W\) grey or \(H, W, 3\|4\) colour image"):
+    with pytest.raises(
+        CamlabInputError,
+        match=r"images\[1\]: expected a \(H, W\) grey or \(H, W, 3\|4\) colour image",
+    ):
         st.stitch([half.images[0], np.zeros((240, 320, 2))])
-    with pytest.raises(CamlabInputError, match=r"images\[1\]: expected uint8, uint16 or float pixels, got dtype int64"):
+    with pytest.raises(
+        CamlabInputError,
+        match=r"images\[1\]: expected uint8, uint16 or float pixels, got dtype int64",
+    ):
         st.stitch([half.images[0], np.zeros((240, 320), np.int64)])
     with pytest.raises(CamlabInputError, match="blend_method: expected one of"):
         st.stitch(half.images, blend_method="max")
@@ -326,11 +380,20 @@ def test_single_image_and_bad_options(half):
 
 def test_no_overlap_is_reported_not_dropped(half):
     """An image of something else, an all-black image: listed in `unconnected`, with a warning and reasons."""
-    other = np.ascontiguousarray(np.rot90(sd.wall_texture((2100, 800))[400:640, 1500:1820]) * 255).astype(np.uint8)
+    other = np.ascontiguousarray(
+        np.rot90(sd.wall_texture((2100, 800))[400:640, 1500:1820]) * 255
+    ).astype(np.uint8)
     other = np.ascontiguousarray(other[:240, :240])
     black = np.zeros((240, 320, 3), np.uint8)
-    with pytest.warns(UserWarning, match=r"left out of the panorama: 'image 2' overlaps none.*'image 3' overlaps none"):
-        r = st.stitch([half.images[1], half.images[2], other, black], max_features=1500, blend_method="feather")
+    with pytest.warns(
+        UserWarning,
+        match=r"left out of the panorama: 'image 2' overlaps none.*'image 3' overlaps none",
+    ):
+        r = st.stitch(
+            [half.images[1], half.images[2], other, black],
+            max_features=1500,
+            blend_method="feather",
+        )
     assert r.unconnected == [2, 3]
     assert r.homographies[2] is None and r.masks[3] is None and np.isnan(r.gains[3])
     reasons = {(p.i, p.j): p.reason for p in r.pairs}
@@ -341,10 +404,15 @@ def test_no_overlap_is_reported_not_dropped(half):
 
 def test_nothing_to_stitch_raises(half):
     black = np.zeros((240, 320, 3), np.uint8)
-    with pytest.raises(DegenerateError, match=r"stitch: no two images could be registered.*'image 0'-'image 1': 0 matches"):
+    with pytest.raises(
+        DegenerateError,
+        match=r"stitch: no two images could be registered.*'image 0'-'image 1': 0 matches",
+    ):
         st.stitch([half.images[0], black], max_features=500)
     with pytest.raises(DegenerateError, match="too few"):
-        st.stitch([half.images[0], half.images[3]], max_features=1500)  # 54 degrees apart: no overlap
+        st.stitch(
+            [half.images[0], half.images[3]], max_features=1500
+        )  # 54 degrees apart: no overlap
 
 
 def test_different_sizes_and_channel_counts(half):
@@ -373,18 +441,27 @@ def test_register_pair_too_few_matches(half):
 
 def test_loaders_and_truth():
     s = sd.load_panorama_set()
-    assert len(s.images) == 4 and s.images[0].shape == (480, 640, 3) and s.images[0].dtype == np.uint8
+    assert (
+        len(s.images) == 4 and s.images[0].shape == (480, 640, 3) and s.images[0].dtype == np.uint8
+    )
     H = s.true_homography(0, 1)
     assert np.allclose(H, hg.rotation_homography(s.K, s.R[1] @ s.R[0].T))
     half = sd.load_panorama_set(scale=0.5)
     S = sd.scale_intrinsics(np.eye(3), 0.5)
-    assert np.allclose(half.true_homography(0, 1), hg.normalize_homography(S @ H @ np.linalg.inv(S)))
+    assert np.allclose(
+        half.true_homography(0, 1), hg.normalize_homography(S @ H @ np.linalg.inv(S))
+    )
     with pytest.raises(CamlabInputError, match="directory: no truth.json"):
         sd.load_panorama_set("/nonexistent")
 
 
 def test_warp_images_bad_input():
-    with pytest.raises(CamlabInputError, match=r"images\[0\]: expected an \(h, w, 3\) float32 image from prepare_images"):
+    with pytest.raises(
+        CamlabInputError,
+        match=r"images\[0\]: expected an \(h, w, 3\) float32 image from prepare_images",
+    ):
         st.warp_images([np.zeros((10, 10))], [np.eye(3)])
-    with pytest.raises(CamlabInputError, match="homographies: expected one per image, got 2 for 1 images"):
+    with pytest.raises(
+        CamlabInputError, match="homographies: expected one per image, got 2 for 1 images"
+    ):
         st.warp_images([np.zeros((10, 10, 3))], [np.eye(3), np.eye(3)])

@@ -3,6 +3,7 @@
 Ground truth comes from camlab.data.panorama.turning_set: views of a real photograph used as a
 360-degree world, rendered with an exact focal (500 px) and exact rotations.
 """
+
 import warnings
 
 import numpy as np
@@ -51,7 +52,9 @@ def test_focal_from_a_rotation_homography_and_its_degenerate_cases():
     H = rotation_homography(K, rotation_from_axis_angle([0.05, 0.35, 0.0]), K2)
     assert np.allclose(cm.focal_from_homography(H, (480, 640), (480, 640)), (650, 900))
     # a pure translation (shift) constrains nothing: NaN, never a made-up number
-    assert np.isnan(cm.focal_from_homography([[1, 0, 30], [0, 1, 0], [0, 0, 1]], (480, 640), (480, 640))).all()
+    assert np.isnan(
+        cm.focal_from_homography([[1, 0, 30], [0, 1, 0], [0, 0, 1]], (480, 640), (480, 640))
+    ).all()
 
 
 def test_turning_set_focal_within_1_percent_and_rotations_within_0_1_degree(turn3):
@@ -71,7 +74,9 @@ def test_auto_projection_follows_the_field_of_view(turn3):
     r2 = st.stitch(room.images, max_features=1500)
     assert r2.projection == "planar" and r2.model == "rotation"
     wide = pd.turning_set("wide", size=(450, 330), f=250)
-    with pytest.raises(DegenerateError, match="turn too far for a plane.*'cylindrical' or 'spherical'"):
+    with pytest.raises(
+        DegenerateError, match="turn too far for a plane.*'cylindrical' or 'spherical'"
+    ):
         st.stitch(wide.images, projection="planar")
     r3 = st.stitch(wide.images, projection="cylindrical")
     assert r3.projection == "cylindrical" and r3.panorama.shape[1] > r3.panorama.shape[0] * 2.5
@@ -104,7 +109,9 @@ def test_pixel_rays_and_canvas_points_of_a_camera_looking_backwards():
     axis = -np.radians(179.0) * s
     assert np.all(np.abs(u - axis) < np.pi / 2 * s) and np.ptp(u) < np.pi / 2 * s
     assert u.min() < -np.pi * s < u.max()
-    wrapped, _ = pj.canvas_from_ray(rays, "cylindrical", s)  # without unrolling the points split across the seam
+    wrapped, _ = pj.canvas_from_ray(
+        rays, "cylindrical", s
+    )  # without unrolling the points split across the seam
     assert np.ptp(wrapped) > np.pi * s
     np.testing.assert_allclose(np.angle(np.exp(1j * u / s)), wrapped / s, atol=1e-12)
 
@@ -124,8 +131,16 @@ def test_loop_closes_after_bundle_adjustment():
     K0 = [cm.intrinsics(est.focal_init, sh) for sh in shapes]
 
     def gap(Ks, Rs):
-        return max(float(np.median(np.linalg.norm(cm.pair_transfer_errors(Ks[i], Rs[i], Ks[j], Rs[j], *m[(i, j)]),
-                                                  axis=1))) for i, j in closing)
+        return max(
+            float(
+                np.median(
+                    np.linalg.norm(
+                        cm.pair_transfer_errors(Ks[i], Rs[i], Ks[j], Rs[j], *m[(i, j)]), axis=1
+                    )
+                )
+            )
+            for i, j in closing
+        )
 
     before, after = gap(K0, est.Rs_init), gap(est.Ks, est.Rs)
     assert before > 2 * after and after < 1.0, (before, after)
@@ -155,7 +170,11 @@ def test_transfer_error_on_independent_matches_against_cv2_stitcher():
     orb = cv2.ORB_create(3000)
     gray = [cv2.cvtColor(im, cv2.COLOR_RGB2GRAY) for im in s.images]
     (k0, d0), (k1, d1) = (orb.detectAndCompute(g, None) for g in gray)
-    good = [m for m, n in cv2.BFMatcher(cv2.NORM_HAMMING).knnMatch(d0, d1, k=2) if m.distance < 0.75 * n.distance]
+    good = [
+        m
+        for m, n in cv2.BFMatcher(cv2.NORM_HAMMING).knnMatch(d0, d1, k=2)
+        if m.distance < 0.75 * n.distance
+    ]
     a = np.array([k0[m.queryIdx].pt for m in good])
     b = np.array([k1[m.trainIdx].pt for m in good])
     _, inl = cv2.findHomography(a, b, cv2.RANSAC, 3.0)
@@ -163,10 +182,18 @@ def test_transfer_error_on_independent_matches_against_cv2_stitcher():
     assert len(a) > 100
     (K0, R0), (K1, R1) = r.cameras
     e_cam = np.median(np.linalg.norm(cm.pair_transfer_errors(K0, R0, K1, R1, a, b), axis=1))
-    cams = stitcher.cameras()  # OpenCV: R is world_from_cam, at the registration scale (1.0 here: 0.59 MP)
+    cams = (
+        stitcher.cameras()
+    )  # OpenCV: R is world_from_cam, at the registration scale (1.0 here: 0.59 MP)
     Kc = [c.K().astype(float) for c in cams]
-    e_cv = np.median(np.linalg.norm(cm.pair_transfer_errors(Kc[0], np.asarray(cams[0].R, float).T, Kc[1],
-                                                            np.asarray(cams[1].R, float).T, a, b), axis=1))
+    e_cv = np.median(
+        np.linalg.norm(
+            cm.pair_transfer_errors(
+                Kc[0], np.asarray(cams[0].R, float).T, Kc[1], np.asarray(cams[1].R, float).T, a, b
+            ),
+            axis=1,
+        )
+    )
     assert e_cam <= 1.0 and e_cam <= 1.1 * e_cv, (e_cam, e_cv)
 
 
@@ -175,7 +202,9 @@ def test_planar_scene_keeps_homographies_refined_together():
     r = st.stitch(photos, names=[f"aerial_{k + 1}" for k in range(4)], blend_method="feather")
     assert r.model == "homography" and r.projection == "planar" and r.cameras == [None] * 4
     assert r.residual_rms < 0.5
-    adj = cm.adjust_homographies(r.graph.homographies, cm.inlier_matches(r.graph), reference=r.graph.reference)
+    adj = cm.adjust_homographies(
+        r.graph.homographies, cm.inlier_matches(r.graph), reference=r.graph.reference
+    )
     assert adj.rms_after <= adj.rms_before + 1e-9
 
 
@@ -185,17 +214,30 @@ def test_same_photo_twice_different_sizes_and_crop(turn3):
     s, _ = turn3
     a, b = s.images[0], s.images[2]
     small = cv2.resize(b, (720, 528), interpolation=cv2.INTER_AREA)  # a different size: its own K
-    with pytest.warns(UserWarning, match="'second' is the same photo as 'first'; the repeat is left out"):
+    with pytest.warns(
+        UserWarning, match="'second' is the same photo as 'first'; the repeat is left out"
+    ):
         r = st.stitch([a, a.copy(), small], names=["first", "second", "small"], crop=True)
     assert r.unconnected == [1] and r.cameras[1] is None
-    assert abs(r.cameras[2][0][0, 0] / (500 * 0.8) - 1) < 0.01 and abs(r.cameras[0][0][0, 0] / 500 - 1) < 0.01
+    assert (
+        abs(r.cameras[2][0][0, 0] / (500 * 0.8) - 1) < 0.01
+        and abs(r.cameras[0][0][0, 0] / 500 - 1) < 0.01
+    )
     assert r.mask.all()  # cropped to the largest rectangle without empty canvas
-    assert st.largest_rectangle(np.array([[0, 1, 1, 0], [1, 1, 1, 1], [0, 1, 1, 1]], bool)) == (0, 3, 1, 3)
+    assert st.largest_rectangle(np.array([[0, 1, 1, 0], [1, 1, 1, 1], [0, 1, 1, 1]], bool)) == (
+        0,
+        3,
+        1,
+        3,
+    )
 
 
 def test_single_usable_image_is_named():
     s = pd.turning_set("turn3", unrelated=True)
-    with pytest.raises(DegenerateError, match=r"no two images could be registered.*'turn3_0'-'church \(unrelated\)'"):
+    with pytest.raises(
+        DegenerateError,
+        match=r"no two images could be registered.*'turn3_0'-'church \(unrelated\)'",
+    ):
         st.stitch([s.images[0], s.images[1]], names=s.names[:2])
 
 
@@ -203,18 +245,27 @@ def test_translating_camera_warns_with_the_residual():
     """The camera moves 30 cm in the room: the wall's homography leaves the nearer objects' matches on a second plane."""
     room = pd.load_panorama_set()
     R = pd.cam_from_world(np.radians(8))
-    views = [pd.render_view(np.eye(3), K=room.K, rng=np.random.default_rng(0)),
-             pd.render_view(R, t=-R @ np.array([0.3, 0.0, 0.0]), K=room.K, rng=np.random.default_rng(1))]
-    with pytest.warns(UserWarning, match=r"'left'-'right': \d+ matches follow a second plane, \d+\.\d px .*parallax"):
+    views = [
+        pd.render_view(np.eye(3), K=room.K, rng=np.random.default_rng(0)),
+        pd.render_view(R, t=-R @ np.array([0.3, 0.0, 0.0]), K=room.K, rng=np.random.default_rng(1)),
+    ]
+    with pytest.warns(
+        UserWarning,
+        match=r"'left'-'right': \d+ matches follow a second plane, \d+\.\d px .*parallax",
+    ):
         st.stitch(views, names=["left", "right"], blend_method="feather")
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # the same room from one centre: no warning
-        st.stitch([views[0], pd.render_view(R, K=room.K, rng=np.random.default_rng(1))], blend_method="feather")
+        st.stitch(
+            [views[0], pd.render_view(R, K=room.K, rng=np.random.default_rng(1))],
+            blend_method="feather",
+        )
 
 
 def test_a_turn_past_360_degrees_is_reported():
     s = pd.turning_set("over360", size=(450, 330), f=250)
     with pytest.warns(UserWarning, match=r"turn through 405 degrees.*'over360_8', 'over360_9'"):
         r = st.stitch(s.images, names=s.names, blend_method="feather")
-    assert r.projection == "spherical" and r.panorama.shape[1] == int(round(2 * np.pi * np.median(
-        [c[0][0, 0] for c in r.cameras])))
+    assert r.projection == "spherical" and r.panorama.shape[1] == int(
+        round(2 * np.pi * np.median([c[0][0, 0] for c in r.cameras]))
+    )

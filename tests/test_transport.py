@@ -1,4 +1,5 @@
 """The fast browser-frame encoder sends exactly the pixels matplotlib's own encoder sends."""
+
 import io
 
 import numpy as np
@@ -13,7 +14,9 @@ def ipympl_canvas():
     ipympl = pytest.importorskip("ipympl.backend_nbagg")
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(4, 3), dpi=80)  # not through pyplot: other tests may have chosen Agg there
+    fig = Figure(
+        figsize=(4, 3), dpi=80
+    )  # not through pyplot: other tests may have chosen Agg there
     canvas = ipympl.Canvas(fig)
     ipympl.FigureManager(canvas, 0)
     image = fig.add_subplot().imshow(np.random.default_rng(0).random((30, 40)))
@@ -80,8 +83,15 @@ def test_animated_images_are_kept_at_the_resolution_shown():
     assert image.get_array().shape == (20, 30)  # smaller than shown: untouched
 
 
-@pytest.mark.parametrize("origin, inverted, clipped", [("upper", False, False), ("lower", False, False),
-                                                       ("upper", True, False), ("upper", False, True)])
+@pytest.mark.parametrize(
+    "origin, inverted, clipped",
+    [
+        ("upper", False, False),
+        ("lower", False, False),
+        ("upper", True, False),
+        ("upper", False, True),
+    ],
+)
 def test_screen_images_land_where_matplotlib_draws_them(origin, inverted, clipped):
     """The live canvas' image path (no general resampler) matches matplotlib's own drawing:
     same orientation and place, colours within resampling differences, clipped to the axes."""
@@ -103,7 +113,10 @@ def test_screen_images_land_where_matplotlib_draws_them(origin, inverted, clippe
     reference = np.asarray(Image.open(buf).convert("RGB")).astype(int)
     assert image.make_image.__name__ == "screen_image"
     diff = np.abs(live - reference).max(axis=2)
-    assert diff.mean() < 5 and (diff > 60).mean() < 0.02, (diff.mean(), (diff > 60).mean())  # a flip: mean > 40
+    assert diff.mean() < 5 and (diff > 60).mean() < 0.02, (
+        diff.mean(),
+        (diff > 60).mean(),
+    )  # a flip: mean > 40
 
 
 @pytest.mark.parametrize("shape", [(1, 1), (1, 7), (5, 1), (37, 53)])
@@ -124,10 +137,21 @@ def test_haloed_lines_draw_as_two_plain_passes_that_look_the_same():
         view = FigureView(figsize=(4, 3), mode="agg", dpi=60)
         ax = view.fig.add_subplot()
         ax.imshow(np.random.default_rng(0).random((30, 40)), cmap="gray")
-        dots = ax.plot(*np.random.default_rng(1).uniform(0, 30, (2, 50)), "o", ms=4, color=palette.GREEN,
-                       path_effects=palette.halo())[0]
-        lines = ax.add_collection(LineCollection([[(0, 0), (39, 29)], [(0, 29), (39, 0)]], colors=palette.RED,
-                                                 linewidths=1.0, path_effects=palette.halo(1.0)))
+        dots = ax.plot(
+            *np.random.default_rng(1).uniform(0, 30, (2, 50)),
+            "o",
+            ms=4,
+            color=palette.GREEN,
+            path_effects=palette.halo(),
+        )[0]
+        lines = ax.add_collection(
+            LineCollection(
+                [[(0, 0), (39, 29)], [(0, 29), (39, 0)]],
+                colors=palette.RED,
+                linewidths=1.0,
+                path_effects=palette.halo(1.0),
+            )
+        )
         if two_passes:
             view.animate(dots, lines)
             assert "draw" in vars(dots) and "draw" in vars(lines) and dots.get_path_effects()
@@ -171,5 +195,7 @@ def test_an_image_fitted_before_the_layout_is_refitted_when_drawn():
     before = image.get_array().shape
     view.fig.canvas.draw()  # the first full draw: the layout moves the axes
     left, right, bottom, top = _pixel_box(image)
-    assert before != image.get_array().shape  # the layout did change the box (else this test proves nothing)
+    assert (
+        before != image.get_array().shape
+    )  # the layout did change the box (else this test proves nothing)
     assert image.get_array().shape == (min(360, top - bottom), min(480, right - left))

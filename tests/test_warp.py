@@ -1,4 +1,5 @@
 """Tests for camlab.warp: inverse and forward mapping, automatic canvas, cv2 agreement."""
+
 from __future__ import annotations
 
 import cv2
@@ -25,7 +26,12 @@ def _interior(shape, H, margin=3):
     h, w = shape[:2]
     v, u = np.mgrid[0:h, 0:w]
     src = map_points(np.linalg.inv(H), np.column_stack([u.ravel(), v.ravel()]).astype(float))
-    ok = (src[:, 0] > margin) & (src[:, 0] < w - 1 - margin) & (src[:, 1] > margin) & (src[:, 1] < h - 1 - margin)
+    ok = (
+        (src[:, 0] > margin)
+        & (src[:, 0] < w - 1 - margin)
+        & (src[:, 1] > margin)
+        & (src[:, 1] < h - 1 - margin)
+    )
     return ok.reshape(h, w)
 
 
@@ -37,8 +43,12 @@ def test_bilinear_matches_cv2_within_one_grey_level(shape):
     diff = np.abs(ours.astype(int) - ref.astype(int))
     inside = _interior(shape, H)
     assert inside.mean() > 0.6
-    assert diff[inside].max() <= 1 and diff[inside].mean() < 0.05  # measured 0.0001 (OpenCV 5.0), 0.037 (4.12)
-    assert diff.max() <= 3  # even at the border (blend with fill; OpenCV 4.x's fixed-point weights: 3, 5.x: 1)
+    assert (
+        diff[inside].max() <= 1 and diff[inside].mean() < 0.05
+    )  # measured 0.0001 (OpenCV 5.0), 0.037 (4.12)
+    assert (
+        diff.max() <= 3
+    )  # even at the border (blend with fill; OpenCV 4.x's fixed-point weights: 3, 5.x: 1)
     assert ours.dtype == np.uint8 and ours.shape == ref.shape
 
 
@@ -70,7 +80,9 @@ def test_float_image_and_known_values():
     assert out.dtype == np.float64
     # identity is exact, nearest and bilinear
     for interp in ("nearest", "bilinear"):
-        assert np.array_equal(warp.warp_perspective(img, np.eye(3), (3, 4), interpolation=interp), img)
+        assert np.array_equal(
+            warp.warp_perspective(img, np.eye(3), (3, 4), interpolation=interp), img
+        )
 
 
 def test_fill_and_points_behind_horizon():
@@ -80,7 +92,9 @@ def test_fill_and_points_behind_horizon():
     # A homography with a horizon inside the output: pixels beyond it are not visible.
     # Hh sends the source row v = 10 to infinity and rows v > 10 (w < 0) "behind" the
     # viewer, where they would reappear upside down at the top of the output.
-    Hh = np.array([[1.0, 0, 0], [0, 1, 30], [0, 0, 1]]) @ np.array([[1.0, 0, 0], [0, 1, 0], [0, -0.1, 1]])
+    Hh = np.array([[1.0, 0, 0], [0, 1, 30], [0, 0, 1]]) @ np.array(
+        [[1.0, 0, 0], [0, 1, 0], [0, -0.1, 1]]
+    )
     src = np.full((40, 40), 200, np.uint8)
     out = warp.warp_perspective(src, Hh, (60, 40), fill=0)
     ref = cv2.warpPerspective(src, Hh, (40, 60))
@@ -97,7 +111,12 @@ def test_forward_warp_has_holes_inverse_does_not():
     Hs = similarity(2.5, 0.2, 10, 10)
     fwd = warp.forward_warp(img, Hs, (150, 150))
     inv = warp.warp_perspective(img, Hs, (150, 150))
-    region = warp.warp_perspective(np.ones((50, 50), np.float32), Hs, (150, 150), interpolation="nearest") > 0
+    region = (
+        warp.warp_perspective(
+            np.ones((50, 50), np.float32), Hs, (150, 150), interpolation="nearest"
+        )
+        > 0
+    )
     inner = cv2.erode(region.astype(np.uint8), np.ones((5, 5))) > 0
     holes_fwd = (fwd[inner] == 0).mean()
     holes_inv = (inv[inner] == 0).mean()
@@ -111,7 +130,9 @@ def test_canvas_contains_whole_image_and_translation_composes():
     corners = np.array([[0, 0], [159, 0], [159, 119], [0, 119]], float)
     mapped = map_points(r.H, corners)
     assert mapped.min() >= -1e-9
-    assert np.all(mapped[:, 0] <= r.image.shape[1] - 1 + 1e-9) and np.all(mapped[:, 1] <= r.image.shape[0] - 1 + 1e-9)
+    assert np.all(mapped[:, 0] <= r.image.shape[1] - 1 + 1e-9) and np.all(
+        mapped[:, 1] <= r.image.shape[0] - 1 + 1e-9
+    )
     assert np.allclose(r.H, r.T @ Hneg / (r.T @ Hneg)[2, 2])
     assert r.mask.shape == r.image.shape[:2]
     assert np.isclose(r.mask.sum(), 120 * 160, rtol=0.03)  # area preserved by a rigid motion

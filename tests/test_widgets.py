@@ -1,4 +1,5 @@
 """Every registered demo, driven headlessly through its sweep, plus lesson-06 specifics."""
+
 import pickle
 
 import numpy as np
@@ -10,8 +11,10 @@ DEMOS = all_demos()
 
 
 def _snapshot(state: dict) -> dict:
-    return {k: np.array(v, dtype=object if isinstance(v, (list, tuple)) else None, copy=True)
-            for k, v in state.items()}
+    return {
+        k: np.array(v, dtype=object if isinstance(v, (list, tuple)) else None, copy=True)
+        for k, v in state.items()
+    }
 
 
 def _changed(before: dict, after: dict) -> bool:
@@ -29,8 +32,14 @@ def _changed(before: dict, after: dict) -> bool:
 
 
 def test_every_lesson_demo_module_registers_something():
-    assert {"stack_check", "lift_to_plane", "parallel_lines", "point_line_duality",
-            "vanishing_points", "cross_ratio_invariance"} <= set(DEMOS)
+    assert {
+        "stack_check",
+        "lift_to_plane",
+        "parallel_lines",
+        "point_line_duality",
+        "vanishing_points",
+        "cross_ratio_invariance",
+    } <= set(DEMOS)
 
 
 @pytest.mark.parametrize("name", sorted(DEMOS))
@@ -58,7 +67,11 @@ def test_sweep_changes_state_and_figure(name):
 def _frames_the_image(artist, image) -> bool:
     """A line that only traces the border of the image's extent (plotting.calibration.image_frame)."""
     x0, x1, y0, y1 = image.get_extent()
-    xy = np.asarray(artist.get_xydata(), float) if hasattr(artist, "get_xydata") else np.empty((0, 2))
+    xy = (
+        np.asarray(artist.get_xydata(), float)
+        if hasattr(artist, "get_xydata")
+        else np.empty((0, 2))
+    )
     on_x = np.isclose(xy[:, 0], x0) | np.isclose(xy[:, 0], x1)
     on_y = np.isclose(xy[:, 1], y0) | np.isclose(xy[:, 1], y1)
     return len(xy) > 0 and bool(np.all(on_x | on_y))
@@ -80,14 +93,22 @@ def test_nothing_static_hides_under_an_animated_image(name):
     for ax in fig.axes:
         images = [im for im in ax.images if id(im) in animated and im.get_visible()]
         for artist in ax.get_children():
-            if (id(artist) in animated or not artist.get_visible() or isinstance(artist, AxesImage)
-                    or artist is ax.patch or type(artist).__name__ in ("Spine", "XAxis", "YAxis", "Axis3D")
-                    or (hasattr(artist, "get_text") and not artist.get_text())):
+            if (
+                id(artist) in animated
+                or not artist.get_visible()
+                or isinstance(artist, AxesImage)
+                or artist is ax.patch
+                or type(artist).__name__ in ("Spine", "XAxis", "YAxis", "Axis3D")
+                or (hasattr(artist, "get_text") and not artist.get_text())
+            ):
                 continue
             box = artist.get_window_extent(renderer)
             for image in images:
-                if box.overlaps(image.get_window_extent(renderer)) and artist.get_zorder() >= image.get_zorder() \
-                        and not _frames_the_image(artist, image):
+                if (
+                    box.overlaps(image.get_window_extent(renderer))
+                    and artist.get_zorder() >= image.get_zorder()
+                    and not _frames_the_image(artist, image)
+                ):
                     hidden.append(f"{type(artist).__name__} {artist.get_label()!r}")
     assert not hidden, f"{name}: static artists under an animated image: {hidden}"
 
@@ -110,7 +131,9 @@ def _fixed_width_px(widget) -> float:
     if width == "auto":
         return 0.0
     if width:
-        assert str(width).endswith("px"), f"{type(widget).__name__} width {width!r}: give demo controls pixel widths"
+        assert str(width).endswith("px"), (
+            f"{type(widget).__name__} width {width!r}: give demo controls pixel widths"
+        )
         return float(str(width).removesuffix("px"))
     return 0.0 if isinstance(widget, (W.HTML, W.Label)) else 300.0
 
@@ -131,16 +154,25 @@ def test_demo_fits_the_output_area_with_the_file_browser_open(name):
     assert "wrap" in demo.widget.layout.flex_flow and canvas is demo.view.widget
     figure_px = demo.figure.get_figwidth() * demo.figure.dpi + CANVAS_FRAME_PX
     controls_px = max(PANEL_WIDTH_PX, _fixed_width_px(panel))
-    assert max(figure_px, controls_px) <= MAX_DEMO_WIDTH_PX, \
+    assert max(figure_px, controls_px) <= MAX_DEMO_WIDTH_PX, (
         f"{name}: figure {figure_px:.0f} px, controls {controls_px:.0f} px; the output area is {MAX_DEMO_WIDTH_PX} px"
-    cut = [key for key, control in demo.controls.items()  # ipywidgets' defaults cut labels at 80 px
-           if (control.indent if isinstance(control, W.Checkbox)
-               else control.description and not control.style.description_width)]
+    )
+    cut = [
+        key
+        for key, control in demo.controls.items()  # ipywidgets' defaults cut labels at 80 px
+        if (
+            control.indent
+            if isinstance(control, W.Checkbox)
+            else control.description and not control.style.description_width
+        )
+    ]
     assert not cut, f"{name}: controls whose label is cut short: {cut}"
 
 
 def test_a_figure_too_wide_for_the_output_area_is_refused():
-    with pytest.raises(ValueError, match=r"at most 10.58 in wide at 90 dpi .* got figsize \(11, 4\)"):
+    with pytest.raises(
+        ValueError, match=r"at most 10.58 in wide at 90 dpi .* got figsize \(11, 4\)"
+    ):
         FigureView(figsize=(11, 4), mode="agg")
 
 
@@ -173,6 +205,7 @@ def test_blitting_matches_a_full_redraw():
 
 
 # --- lesson-06 specifics -------------------------------------------------------------
+
 
 def test_parallel_lines_meet_runs_to_infinity():
     from camlab.widgets.projective_plane import parallel_lines
@@ -240,10 +273,18 @@ def test_a_demo_takes_no_ad_hoc_attributes():
 def test_shared_control_helpers_give_one_look():
     from camlab.widgets import controls
 
-    made = [controls.slider(0.5, 0.0, 1.0, 0.1, "a"), controls.int_slider(3, 1, 9, "b", step=2),
-            controls.log_slider(0.3, 0.01, 1.0, 0.05, "c"), controls.choice_slider([1.4, 2.8], 2.8, "d")]
+    made = [
+        controls.slider(0.5, 0.0, 1.0, 0.1, "a"),
+        controls.int_slider(3, 1, 9, "b", step=2),
+        controls.log_slider(0.3, 0.01, 1.0, 0.05, "c"),
+        controls.choice_slider([1.4, 2.8], 2.8, "d"),
+    ]
     for w in made:
-        assert w.continuous_update and w.style.description_width == "initial" and w.layout.width == "300px"
+        assert (
+            w.continuous_update
+            and w.style.description_width == "initial"
+            and w.layout.width == "300px"
+        )
     assert len({id(w.layout) for w in made}) == len(made)  # each its own layout object
     log = made[2]
     assert (log.min, log.max, log.value) == (-2.0, 0.0, 0.3)
@@ -253,9 +294,17 @@ def test_shared_control_helpers_give_one_look():
 
 # Values a student can type or a slider can report that no demo can draw.
 BAD_FLOATS = [float("nan"), 1e308]
-UNDRAWABLE_CORNERS = ["", "garbage", "nan, 1; 2, 3; 4, 5; 6, 7", "5, 5; 5, 5; 5, 5; 5, 5",
-                      "1e308, 1e308; -1e308, 1e308; 1e308, -1e308; 0, 0"]
-ODD_CORNERS = ["0, 0; 100, 100; 200, 200; 300, 300", "1e12, 0; 0, 1e12; -1e12, 0; 0, -1e12"]  # collinear, far
+UNDRAWABLE_CORNERS = [
+    "",
+    "garbage",
+    "nan, 1; 2, 3; 4, 5; 6, 7",
+    "5, 5; 5, 5; 5, 5; 5, 5",
+    "1e308, 1e308; -1e308, 1e308; 1e308, -1e308; 0, 0",
+]
+ODD_CORNERS = [
+    "0, 0; 100, 100; 200, 200; 300, 300",
+    "1e12, 0; 0, 1e12; -1e12, 0; 0, -1e12",
+]  # collinear, far
 
 
 def _bad_values(control) -> list:
@@ -283,15 +332,27 @@ def test_a_demo_never_dies_on_nan_huge_or_degenerate_values(name):
             before_state, before_pixels = _snapshot(demo.state), demo.view.pixels()
             demo.set(**{key: value})  # nothing may escape
             if isinstance(value, float) and np.isnan(value):
-                assert demo.problem.startswith(f"{label} = nan: not a number"), f"{name}.{key}: {demo.problem!r}"
+                assert demo.problem.startswith(f"{label} = nan: not a number"), (
+                    f"{name}.{key}: {demo.problem!r}"
+                )
             if value in UNDRAWABLE_CORNERS:
-                assert "corner" in _shown_problem(demo), f"{name}.{key}={value!r}: the demo shows no problem"
+                assert "corner" in _shown_problem(demo), (
+                    f"{name}.{key}={value!r}: the demo shows no problem"
+                )
             if demo.problem:  # not drawn: the figure and the state stay as they were
-                assert demo.problem.startswith(f"{label} = "), f"{name}.{key}={value!r}: {demo.problem!r}"
-                assert not _changed(before_state, _snapshot(demo.state)), f"{name}.{key}={value!r}: state moved"
-                assert np.array_equal(before_pixels, demo.view.pixels()), f"{name}.{key}={value!r}: picture moved"
+                assert demo.problem.startswith(f"{label} = "), (
+                    f"{name}.{key}={value!r}: {demo.problem!r}"
+                )
+                assert not _changed(before_state, _snapshot(demo.state)), (
+                    f"{name}.{key}={value!r}: state moved"
+                )
+                assert np.array_equal(before_pixels, demo.view.pixels()), (
+                    f"{name}.{key}={value!r}: picture moved"
+                )
             demo.set(**{key: good})
-            assert not _shown_problem(demo), f"{name}.{key}: the problem stays after going back to {good!r}"
+            assert not _shown_problem(demo), (
+                f"{name}.{key}: the problem stays after going back to {good!r}"
+            )
 
 
 def test_a_failing_update_names_the_control_and_keeps_the_last_picture():
@@ -333,7 +394,9 @@ def test_a_demo_whose_defaults_fail_raises_when_built():
 
 
 def _stack_check_readout(demo):
-    (readout,) = [t for t in demo.figure.axes[0].texts if t.get_gid() == "readout" and t.get_animated()]
+    (readout,) = [
+        t for t in demo.figure.axes[0].texts if t.get_gid() == "readout" and t.get_animated()
+    ]
     return readout
 
 
@@ -354,7 +417,9 @@ def test_stack_check_static_picture_shows_the_readout_like_the_live_frame():
 
 
 @pytest.mark.parametrize("angle", [-180.0, -60.0, 20.0, 90.0, 180.0])
-def test_stack_check_legend_and_readout_stay_off_the_house_at_every_angle_and_the_largest_scale(angle):
+def test_stack_check_legend_and_readout_stay_off_the_house_at_every_angle_and_the_largest_scale(
+    angle,
+):
     from matplotlib.transforms import Bbox
 
     demo = DEMOS["stack_check"].builder()
@@ -362,11 +427,15 @@ def test_stack_check_legend_and_readout_stay_off_the_house_at_every_angle_and_th
     fig = demo.figure
     fig.canvas.draw()
     renderer = fig.canvas.get_renderer()
-    assert np.abs(demo.state["house"]).max() <= 3.0 and np.abs(demo.state["path"]).max() <= 3.0  # all inside the axes ...
+    assert (
+        np.abs(demo.state["house"]).max() <= 3.0 and np.abs(demo.state["path"]).max() <= 3.0
+    )  # all inside the axes ...
     for text in (fig.legends[0], _stack_check_readout(demo)):
         box = text.get_window_extent(renderer)
         for ax in fig.axes:  # ... the legend under them and the readout over them, on neither
-            assert not Bbox.intersection(box, ax.get_window_extent(renderer)), f"{text} overlaps {ax.get_title()!r}"
+            assert not Bbox.intersection(box, ax.get_window_extent(renderer)), (
+                f"{text} overlaps {ax.get_title()!r}"
+            )
 
 
 def test_stack_check_readout_marks_the_roof_tip_without_a_signed_zero():
@@ -388,9 +457,15 @@ def test_stack_check_state_tip_is_the_orange_dot_and_the_readout(angle, scale):
     assert np.allclose(demo.state["tip"], scale * np.array([1.4 * np.sin(t), -1.4 * np.cos(t)]))
 
 
-@pytest.mark.parametrize("angle, down, up", [(20.0, "clockwise", "anticlockwise"), (-45.0, "anticlockwise", "clockwise"),
-                                             (0.0, "no turn", "no turn"),
-                                             (180.0, "clockwise, half a turn", "anticlockwise, half a turn")])
+@pytest.mark.parametrize(
+    "angle, down, up",
+    [
+        (20.0, "clockwise", "anticlockwise"),
+        (-45.0, "anticlockwise", "clockwise"),
+        (0.0, "no turn", "no turn"),
+        (180.0, "clockwise, half a turn", "anticlockwise, half a turn"),
+    ],
+)
 def test_stack_check_names_the_turn_each_panel_shows(angle, down, up):
     """The titles say which way a positive angle turns the house on y-down and y-up axes, and the path of the
     roof tip turns the way state["turns"] names on screen (the sign of its cross product in display coordinates)."""
@@ -403,14 +478,30 @@ def test_stack_check_names_the_turn_each_panel_shows(angle, down, up):
     for ax, words in ((ax_down, down), (ax_up, up)):
         assert ax.yaxis_inverted() == (ax is ax_down)
         if angle:
-            screen = ax.transData.transform(demo.state["path"]) * [1, -1]  # display y runs up; screen y runs down
+            screen = ax.transData.transform(demo.state["path"]) * [
+                1,
+                -1,
+            ]  # display y runs up; screen y runs down
             steps = np.diff(screen, axis=0)
-            turn = np.sum(steps[:-1, 0] * steps[1:, 1] - steps[:-1, 1] * steps[1:, 0])  # > 0: clockwise on screen
+            turn = np.sum(
+                steps[:-1, 0] * steps[1:, 1] - steps[:-1, 1] * steps[1:, 0]
+            )  # > 0: clockwise on screen
             assert (turn > 0) == words.startswith("clockwise"), (ax.get_title(), turn)
 
 
-@pytest.mark.parametrize("angle, scale", [(40.0, 1.0), (45.0, 1.0), (-45.0, 1.0), (120.0, 1.0), (-90.0, 0.3),
-                                          (135.0, 2.0), (180.0, 1.0), (-180.0, 1.0)])
+@pytest.mark.parametrize(
+    "angle, scale",
+    [
+        (40.0, 1.0),
+        (45.0, 1.0),
+        (-45.0, 1.0),
+        (120.0, 1.0),
+        (-90.0, 0.3),
+        (135.0, 2.0),
+        (180.0, 1.0),
+        (-180.0, 1.0),
+    ],
+)
 def test_stack_check_arrowhead_points_along_the_turn_on_screen(angle, scale):
     """The arrowhead on the roof tip's path points the way the tip moves on screen, in both panels: its marker's
     tip, turned by the marker's own transform, lies along the arc's screen tangent (display coordinates), and the
@@ -420,7 +511,9 @@ def test_stack_check_arrowhead_points_along_the_turn_on_screen(angle, scale):
     fig = demo.figure
     fig.canvas.draw()
     arc = demo.state["path"][:-1]
-    assert np.allclose(np.hypot(*arc.T), 1.4) and np.allclose(demo.state["path"][-1], demo.state["tip"])
+    assert np.allclose(np.hypot(*arc.T), 1.4) and np.allclose(
+        demo.state["path"][-1], demo.state["tip"]
+    )
     at = demo.state["arrow"]["at"]
     k = int(np.argmin(np.hypot(*(arc - at).T)))
     assert 0 < k < len(arc) - 1

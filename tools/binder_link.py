@@ -4,6 +4,7 @@ mybinder.org builds a GitHub repository by its path (owner/name); the README can
 fork an instructor teaches from, so this derives it from ``git remote get-url origin`` (or the
 remote named on the command line): ``python tools/binder_link.py [REMOTE]``.
 """
+
 import re
 import subprocess
 import sys
@@ -12,17 +13,21 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parent.parent
 FIRST_LESSON = "lessons/00_start_here.ipynb"
 # https://github.com/o/r(.git), git@github.com:o/r(.git), ssh://git@github.com/o/r(.git)
-GITHUB_URL = re.compile(r"^(?:https://(?:[^@/]+@)?github\.com/|git@github\.com:|ssh://git@github\.com/)"
-                        r"([A-Za-z0-9_.-]+)/([A-Za-z0-9_.-]+?)(?:\.git)?/?$")
+GITHUB_URL = re.compile(
+    r"^(?:https://(?:[^@/]+@)?github\.com/|git@github\.com:|ssh://git@github\.com/)"
+    r"([A-Za-z0-9_.-]+)/([A-Za-z0-9_.-]+?)(?:\.git)?/?$"
+)
 
 
 def github_path(remote_url: str) -> str:
     """``owner/name`` of a GitHub remote URL; ValueError naming the URL for any other host."""
     match = GITHUB_URL.match(remote_url.strip())
     if not match:
-        raise ValueError(f"remote {remote_url.strip()!r} is not a GitHub repository: mybinder.org builds "
-                         "github.com/OWNER/REPO; push the course there or write the link by hand "
-                         "(docs/teaching.md, section 1)")
+        raise ValueError(
+            f"remote {remote_url.strip()!r} is not a GitHub repository: mybinder.org builds "
+            "github.com/OWNER/REPO; push the course there or write the link by hand "
+            "(docs/teaching.md, section 1)"
+        )
     return f"{match.group(1)}/{match.group(2)}"
 
 
@@ -33,11 +38,15 @@ def binder_link(path: str, lesson: str = FIRST_LESSON) -> str:
 
 def main(argv: list[str]) -> int:
     remote = argv[0] if argv else "origin"
-    found = subprocess.run(["git", "remote", "get-url", remote], cwd=REPO, capture_output=True, text=True)
+    found = subprocess.run(
+        ["git", "remote", "get-url", remote], cwd=REPO, capture_output=True, text=True
+    )
     if found.returncode != 0:
-        print(f"binder-link: this clone has no git remote {remote!r} ({found.stderr.strip()}); add the "
-              "GitHub repository you teach from: git remote add origin https://github.com/OWNER/REPO",
-              file=sys.stderr)
+        print(
+            f"binder-link: this clone has no git remote {remote!r} ({found.stderr.strip()}); add the "
+            "GitHub repository you teach from: git remote add origin https://github.com/OWNER/REPO",
+            file=sys.stderr,
+        )
         return 2
     try:
         link = binder_link(github_path(found.stdout))

@@ -4,6 +4,7 @@ Playwright drives the system Chromium (never `playwright install`, which downloa
 JupyterLab runs on loopback with a token, a free port and temporary config, runtime, settings
 and workspace folders, so nothing touches the user's setup (see ../shared ECOSYSTEM notes).
 """
+
 from __future__ import annotations
 
 import contextlib
@@ -20,9 +21,16 @@ from pathlib import Path
 from typing import Iterator
 
 CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
-CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-                 "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                 "--disable-dev-shm-usage"]
+CHROMIUM_ARGS = [
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--disable-dev-shm-usage",
+]
 
 KERNEL_IDLE = """() => {
   const w = window.jupyterapp && window.jupyterapp.shell.currentWidget;
@@ -49,7 +57,9 @@ def require_chromium() -> None:
     if os.environ.get("CAMLAB_SKIP_BROWSER") == "1":
         pytest.skip("CAMLAB_SKIP_BROWSER=1")
     if not Path(CHROMIUM).exists():
-        pytest.fail("Debian chromium is not installed: `apt-get install chromium` (make test does this as root)")
+        pytest.fail(
+            "Debian chromium is not installed: `apt-get install chromium` (make test does this as root)"
+        )
 
 
 def free_port() -> int:
@@ -69,7 +79,9 @@ def wait_for_http(url: str, process: subprocess.Popen, log: Path, timeout: float
         except OSError:
             pass
         if time.time() > deadline or process.poll() is not None:
-            raise RuntimeError(f"{url} did not come up:\n" + log.read_text(errors="replace")[-3000:])
+            raise RuntimeError(
+                f"{url} did not come up:\n" + log.read_text(errors="replace")[-3000:]
+            )
         time.sleep(0.5)
 
 
@@ -90,15 +102,32 @@ def jupyterlab(root: Path, base: Path) -> Iterator[dict]:
     settings = base / "settings" / "@jupyterlab" / "apputils-extension"
     settings.mkdir(parents=True)
     (settings / "notification.jupyterlab-settings").write_text(
-        json.dumps({"fetchNews": "false", "checkForUpdates": False}))
-    env = dict(os.environ, JUPYTER_CONFIG_DIR=str(base / "config"), JUPYTER_RUNTIME_DIR=str(base / "runtime"),
-               JUPYTERLAB_SETTINGS_DIR=str(base / "settings"), JUPYTERLAB_WORKSPACES_DIR=str(base / "workspaces"),
-               MPLBACKEND="module://ipympl.backend_nbagg")
+        json.dumps({"fetchNews": "false", "checkForUpdates": False})
+    )
+    env = dict(
+        os.environ,
+        JUPYTER_CONFIG_DIR=str(base / "config"),
+        JUPYTER_RUNTIME_DIR=str(base / "runtime"),
+        JUPYTERLAB_SETTINGS_DIR=str(base / "settings"),
+        JUPYTERLAB_WORKSPACES_DIR=str(base / "workspaces"),
+        MPLBACKEND="module://ipympl.backend_nbagg",
+    )
     env.pop("CAMLAB_FIGURE_MODE", None)
     token, port = secrets.token_hex(16), free_port()
-    cmd = [sys.executable, "-m", "jupyter", "lab", "--no-browser", f"--port={port}", "--ip=127.0.0.1",
-           f"--ServerApp.token={token}", f"--ServerApp.root_dir={root}", "--LabApp.expose_app_in_browser=True",
-           "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate", "--ServerApp.open_browser=False"]
+    cmd = [
+        sys.executable,
+        "-m",
+        "jupyter",
+        "lab",
+        "--no-browser",
+        f"--port={port}",
+        "--ip=127.0.0.1",
+        f"--ServerApp.token={token}",
+        f"--ServerApp.root_dir={root}",
+        "--LabApp.expose_app_in_browser=True",
+        "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate",
+        "--ServerApp.open_browser=False",
+    ]
     if hasattr(os, "geteuid") and os.geteuid() == 0:
         cmd.append("--allow-root")
     log_path = base / "lab.log"
@@ -115,8 +144,13 @@ def jupyterlab(root: Path, base: Path) -> Iterator[dict]:
 def launch(playwright, profile: Path, **kw):
     """A persistent headless Chromium context on the system browser."""
     return playwright.chromium.launch_persistent_context(
-        str(profile), executable_path=CHROMIUM, headless=True, args=CHROMIUM_ARGS,
-        viewport={"width": 1400, "height": 1000}, **kw)
+        str(profile),
+        executable_path=CHROMIUM,
+        headless=True,
+        args=CHROMIUM_ARGS,
+        viewport={"width": 1400, "height": 1000},
+        **kw,
+    )
 
 
 def run_notebook(page, lab: dict, path: str) -> None:
@@ -125,7 +159,9 @@ def run_notebook(page, lab: dict, path: str) -> None:
     Run-all is started, not awaited (awaiting its promise can hang): wait for
     :data:`ALL_CELLS_RUN` or for the element you need.
     """
-    page.goto(f"{lab['url']}/lab/workspaces/t{secrets.token_hex(4)}/tree/{path}?reset&token={lab['token']}")
+    page.goto(
+        f"{lab['url']}/lab/workspaces/t{secrets.token_hex(4)}/tree/{path}?reset&token={lab['token']}"
+    )
     page.wait_for_function(KERNEL_IDLE, polling=500)
     page.evaluate(RUN_ALL)
 
@@ -144,10 +180,15 @@ def click_slider(page, demo: str, fraction: float) -> tuple[bytes, bytes, str, s
     track = box_.locator(".noUi-base").first
     box = track.bounding_box()
     track.click(position={"x": fraction * box["width"], "y": box["height"] / 2})
-    page.wait_for_function(f"(old) => document.querySelector('.{demo} pre').textContent !== old",
-                           arg=before_text, polling=250)
+    page.wait_for_function(
+        f"(old) => document.querySelector('.{demo} pre').textContent !== old",
+        arg=before_text,
+        polling=250,
+    )
     after_png = figure.screenshot()
-    for _ in range(60):  # the kernel's new image reaches the canvas after the readout: up to 15 s on a busy machine
+    for _ in range(
+        60
+    ):  # the kernel's new image reaches the canvas after the readout: up to 15 s on a busy machine
         if after_png != before_png:
             break
         page.wait_for_timeout(250)

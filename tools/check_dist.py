@@ -4,6 +4,7 @@ The wheel must hold the package, every lesson, every data file, the conventions 
 licence files and ``py.typed``; the sdist must hold the top-level folders they come from.
 Prints a summary (file counts and sizes per part) and exits non-zero naming what is missing.
 """
+
 from __future__ import annotations
 
 import sys
@@ -16,13 +17,22 @@ REPO = Path(__file__).resolve().parent.parent
 
 
 def _expected_wheel_files() -> set[str]:
-    files = {f"camlab/data/files/{p.relative_to(REPO / 'data').as_posix()}"
-             for p in (REPO / "data").rglob("*") if p.is_file() and not any(s.startswith(".") for s in p.parts)}
+    files = {
+        f"camlab/data/files/{p.relative_to(REPO / 'data').as_posix()}"
+        for p in (REPO / "data").rglob("*")
+        if p.is_file() and not any(s.startswith(".") for s in p.parts)
+    }
     files |= {f"camlab/lessons/{p.name}" for p in (REPO / "lessons").glob("*.ipynb")}
-    files |= {"camlab/lessons/README.md", "camlab/docs/conventions.md", "camlab/py.typed", "camlab/__init__.py",
-              "camlab/data/_resources.py", "camlab/cli.py",
-              "camlab/classroom/jupyter_data/voila/templates/camlab/index.html.j2",  # the lecture view's template
-              "camlab/classroom/jupyter_data/voila/templates/camlab/conf.json"}
+    files |= {
+        "camlab/lessons/README.md",
+        "camlab/docs/conventions.md",
+        "camlab/py.typed",
+        "camlab/__init__.py",
+        "camlab/data/_resources.py",
+        "camlab/cli.py",
+        "camlab/classroom/jupyter_data/voila/templates/camlab/index.html.j2",  # the lecture view's template
+        "camlab/classroom/jupyter_data/voila/templates/camlab/conf.json",
+    }
     return files
 
 
@@ -41,8 +51,16 @@ def check_wheel(path: Path) -> list[str]:
 
 def check_sdist(path: Path) -> list[str]:
     names = {n.split("/", 1)[1] for n in tarfile.open(path).getnames() if "/" in n}
-    wanted = {"setup.py", "pyproject.toml", "LICENSE", "LICENSE-CONTENT", "README.md", "docs/conventions.md",
-              "data/ATTRIBUTION.md", "lessons/README.md"}
+    wanted = {
+        "setup.py",
+        "pyproject.toml",
+        "LICENSE",
+        "LICENSE-CONTENT",
+        "README.md",
+        "docs/conventions.md",
+        "data/ATTRIBUTION.md",
+        "lessons/README.md",
+    }
     wanted |= {f"lessons/{p.name}" for p in (REPO / "lessons").glob("*.ipynb")}
     return [f"sdist lacks {name}" for name in sorted(wanted - names)]
 
@@ -53,11 +71,23 @@ def summary(wheel: Path) -> str:
     sizes: Counter = Counter()
     for info in z.infolist():
         n = info.filename
-        part = ("data" if n.startswith("camlab/data/files/") else "lessons" if n.startswith("camlab/lessons/")
-                else "docs" if n.startswith("camlab/docs/") else "metadata" if ".dist-info/" in n else "code")
+        part = (
+            "data"
+            if n.startswith("camlab/data/files/")
+            else "lessons"
+            if n.startswith("camlab/lessons/")
+            else "docs"
+            if n.startswith("camlab/docs/")
+            else "metadata"
+            if ".dist-info/" in n
+            else "code"
+        )
         parts[part] += 1
         sizes[part] += info.file_size
-    rows = [f"  {part:9s} {parts[part]:4d} files {sizes[part] / 1e6:6.2f} MB uncompressed" for part in sorted(parts)]
+    rows = [
+        f"  {part:9s} {parts[part]:4d} files {sizes[part] / 1e6:6.2f} MB uncompressed"
+        for part in sorted(parts)
+    ]
     return f"{wheel.name}: {wheel.stat().st_size / 1e6:.2f} MB\n" + "\n".join(rows)
 
 

@@ -14,6 +14,7 @@ writes into the folder:
   redraw); ``--setting`` adds the settings the prose recommends (several controls at once,
   file ``NN_<demo>_<control>=<value>,....png``).
 """
+
 from __future__ import annotations
 
 import argparse
@@ -30,7 +31,11 @@ def save_static_figures(executed, prefix: str, out: Path) -> int:
     """Every image/png output of an executed notebook, as ``<prefix>_cellCC_K.png``; returns the count."""
     count = 0
     for index, cell in enumerate(executed.cells):
-        pngs = [o["data"]["image/png"] for o in cell.get("outputs", []) if "image/png" in o.get("data", {})]
+        pngs = [
+            o["data"]["image/png"]
+            for o in cell.get("outputs", [])
+            if "image/png" in o.get("data", {})
+        ]
         for k, png in enumerate(pngs):
             (out / f"{prefix}_cell{index:02d}_{k}.png").write_bytes(base64.b64decode(png))
             count += 1
@@ -64,16 +69,23 @@ def render_demos(lesson: str, out: Path, settings: list[tuple[str, dict]]) -> in
     for name, spec in sorted(all_demos().items()):
         if spec.lesson != lesson:
             continue
-        points = [{}] + [{control: value} for control, values in spec.sweep.items() for value in values]
+        points = [{}] + [
+            {control: value} for control, values in spec.sweep.items() for value in values
+        ]
         points += [values for demo, values in settings if demo == name]
         for point in points:
             demo = spec.builder()  # each point from the default, so one control moves at a time
             demo.set(**point)
-            label = ",".join(f"{k}={v}" for k, v in point.items()).replace("/", "-").replace(" ", "") or "default"
+            label = (
+                ",".join(f"{k}={v}" for k, v in point.items()).replace("/", "-").replace(" ", "")
+                or "default"
+            )
             plt.imsave(out / f"{lesson}_{name}_{label}.png", demo.view.pixels())
             plt.close(demo.figure)
             count += 1
-    unknown = {demo for demo, _ in settings} - {n for n, s in all_demos().items() if s.lesson == lesson}
+    unknown = {demo for demo, _ in settings} - {
+        n for n, s in all_demos().items() if s.lesson == lesson
+    }
     if unknown:
         raise SystemExit(f"--setting: no demo {sorted(unknown)} in lesson {lesson}")
     return count
@@ -82,8 +94,12 @@ def render_demos(lesson: str, out: Path, settings: list[tuple[str, dict]]) -> in
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("lesson", help="lesson number, e.g. 01")
-    parser.add_argument("out", type=Path, help="folder for the executed notebook and the PNGs (created)")
-    parser.add_argument("--setting", action="append", default=[], help='"demo:control=value,..." (repeatable)')
+    parser.add_argument(
+        "out", type=Path, help="folder for the executed notebook and the PNGs (created)"
+    )
+    parser.add_argument(
+        "--setting", action="append", default=[], help='"demo:control=value,..." (repeatable)'
+    )
     args = parser.parse_args(argv)
     import nbformat
     from build import execute

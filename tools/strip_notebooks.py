@@ -18,6 +18,7 @@ For each notebook (see :func:`normalised`):
 So opening a lesson in JupyterLab and saving it changes nothing but the kernel's
 ``language_info`` (and outputs, if cells ran), and ``make strip`` undoes even that.
 """
+
 from __future__ import annotations
 
 import hashlib
@@ -56,14 +57,22 @@ def normalised(text: str, name: str) -> str:
 
     Raises ``nbformat.ValidationError`` if the result is still not a valid notebook.
     """
-    nb = nbformat.from_dict(json.loads(text))  # not nbformat.reads: it complains about what we fix here
+    nb = nbformat.from_dict(
+        json.loads(text)
+    )  # not nbformat.reads: it complains about what we fix here
     if nb.nbformat != 4:
         raise ValueError(f"{name}: expected nbformat 4, got {nb.nbformat}")
     nb.nbformat_minor = max(nb.nbformat_minor, 5)
     taken: set[str] = set()
     for index, cell in enumerate(nb.cells):
-        cell["source"] = "".join(cell["source"])  # nbformat splits it into lines again, as the server's save does
-        if not (isinstance(cell.get("id"), str) and VALID_ID.match(cell["id"]) and cell["id"] not in taken):
+        cell["source"] = "".join(
+            cell["source"]
+        )  # nbformat splits it into lines again, as the server's save does
+        if not (
+            isinstance(cell.get("id"), str)
+            and VALID_ID.match(cell["id"])
+            and cell["id"] not in taken
+        ):
             cell["id"] = _stable_id(name, index, cell["source"], taken)
         taken.add(cell["id"])
         _strip_cell(cell)
@@ -72,7 +81,9 @@ def normalised(text: str, name: str) -> str:
     nb.metadata["language_info"] = {"name": "python"}
     nbformat.validate(nb)
     out = nbformat.writes(nb, version=nbformat.NO_CONVERT)
-    return out if out.endswith("\n") else out + "\n"  # as nbformat.write (the server's save) ends the file
+    return (
+        out if out.endswith("\n") else out + "\n"
+    )  # as nbformat.write (the server's save) ends the file
 
 
 def strip(path: str | Path) -> bool:
@@ -87,14 +98,24 @@ def strip(path: str | Path) -> bool:
 
 def main(argv: list[str]) -> int:
     if not argv or any(a in ("-h", "--help") for a in argv):
-        print(__doc__.split("\n\n")[1] if argv else "give the notebooks to normalise, e.g. lessons/*.ipynb")
+        print(
+            __doc__.split("\n\n")[1]
+            if argv
+            else "give the notebooks to normalise, e.g. lessons/*.ipynb"
+        )
         return 0 if argv else 2
     missing = [a for a in argv if not Path(a).is_file()]
     if missing:
-        print(f"not a notebook file: {', '.join(missing)} (give .ipynb paths, e.g. lessons/*.ipynb)", file=sys.stderr)
+        print(
+            f"not a notebook file: {', '.join(missing)} (give .ipynb paths, e.g. lessons/*.ipynb)",
+            file=sys.stderr,
+        )
         return 2
     changed = [p for p in argv if strip(p)]
-    print(f"normalised {len(changed)} of {len(argv)} notebooks" + (f": {', '.join(changed)}" if changed else ""))
+    print(
+        f"normalised {len(changed)} of {len(argv)} notebooks"
+        + (f": {', '.join(changed)}" if changed else "")
+    )
     return 0
 
 

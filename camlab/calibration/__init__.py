@@ -37,6 +37,7 @@ and its Jacobian), :mod:`~camlab.calibration.calibrate` (the pipeline end to end
 :mod:`~camlab.calibration.io` and :mod:`~camlab.calibration.synthetic` (test data).
 Every public name is re-exported here: ``from camlab.calibration import calibrate_camera``.
 """
+
 from __future__ import annotations
 
 from .detection import ChessboardDetection, board_points, find_chessboard, parse_pattern
@@ -51,20 +52,48 @@ from .zhang import (
     zhang_v,
 )
 from .refinement import PARAM_NAMES, reproject
-from .calibrate import (CalibrationResult, ClosedFormWithDistortion, ImageCalibration, calibrate_camera,
-                        calibrate_from_images, closed_form_with_distortion)
+from .calibrate import (
+    CalibrationResult,
+    ClosedFormWithDistortion,
+    ImageCalibration,
+    calibrate_camera,
+    calibrate_from_images,
+    closed_form_with_distortion,
+)
 from .coach import CoachReport, coach, projection_uncertainty
 from .undistortion import optimal_new_camera_matrix, undistort, undistortion_tradeoff
 from .io import load_calibration, save_calibration
 from .synthetic import SyntheticSet, make_synthetic_views
 
 __all__ = [
-    "PARAM_NAMES", "CalibrationResult", "ChessboardDetection", "ClosedFormWithDistortion", "CoachReport",
-    "ImageCalibration", "SyntheticSet", "board_points", "calibrate_camera", "calibrate_from_images",
-    "closed_form_with_distortion", "coach",
-    "extrinsics_from_homography", "find_chessboard", "initial_radial_distortion",
-    "intrinsics_from_b", "intrinsics_from_homographies", "load_calibration", "make_synthetic_views",
-    "nearest_rotation", "optimal_new_camera_matrix", "parse_pattern", "projection_uncertainty",
-    "reproject", "save_calibration", "undistort", "undistortion_tradeoff", "view_homographies",
-    "zhang_constraints", "zhang_v",
+    "PARAM_NAMES",
+    "CalibrationResult",
+    "ChessboardDetection",
+    "ClosedFormWithDistortion",
+    "CoachReport",
+    "ImageCalibration",
+    "SyntheticSet",
+    "board_points",
+    "calibrate_camera",
+    "calibrate_from_images",
+    "closed_form_with_distortion",
+    "coach",
+    "extrinsics_from_homography",
+    "find_chessboard",
+    "initial_radial_distortion",
+    "intrinsics_from_b",
+    "intrinsics_from_homographies",
+    "load_calibration",
+    "make_synthetic_views",
+    "nearest_rotation",
+    "optimal_new_camera_matrix",
+    "parse_pattern",
+    "projection_uncertainty",
+    "reproject",
+    "save_calibration",
+    "undistort",
+    "undistortion_tradeoff",
+    "view_homographies",
+    "zhang_constraints",
+    "zhang_v",
 ]

@@ -1,6 +1,7 @@
 r"""Calibration end to end: :func:`calibrate_camera` (Zhang's closed form, then LM) and
 :func:`calibrate_from_images` (detect, then calibrate), with their results.
 """
+
 from __future__ import annotations
 
 import glob as _glob
@@ -108,15 +109,21 @@ class CalibrationResult:
 
     def reprojected(self, view: int) -> np.ndarray:
         """(N_v, 2) pixels where the calibrated model puts view ``view``'s corners."""
-        return reproject(self.object_points[view], self.K, self.dist, self.rvecs[view], self.tvecs[view])
+        return reproject(
+            self.object_points[view], self.K, self.dist, self.rvecs[view], self.tvecs[view]
+        )
 
     def summary(self) -> str:
         """A few lines for people: parameters with their standard deviations, rms."""
         p, s = self.intrinsics, self.std
-        lines = [f"calibrated from {self.n_views} views, {self.n_points} corners; rms reprojection error "
-                 f"{self.rms:.3f} px ({'converged' if self.converged else 'NOT converged'} in {self.iterations} "
-                 f"LM iterations)"]
-        lines.append("  " + "  ".join(f"{k} = {p[k]:.2f} ± {s[k]:.2f}" for k in ("fx", "fy", "cx", "cy")))
+        lines = [
+            f"calibrated from {self.n_views} views, {self.n_points} corners; rms reprojection error "
+            f"{self.rms:.3f} px ({'converged' if self.converged else 'NOT converged'} in {self.iterations} "
+            f"LM iterations)"
+        ]
+        lines.append(
+            "  " + "  ".join(f"{k} = {p[k]:.2f} ± {s[k]:.2f}" for k in ("fx", "fy", "cx", "cy"))
+        )
         if "skew" in self.free_params:
             lines.append(f"  skew = {p['skew']:.3f} ± {s['skew']:.3f}")
         lines.append("  " + "  ".join(f"{k} = {p[k]:+.4g} ± {s[k]:.2g}" for k in PARAM_NAMES[5:]))
@@ -124,7 +131,7 @@ class CalibrationResult:
 
 
 def _rms(res: np.ndarray, mask: np.ndarray) -> tuple[float, np.ndarray]:
-    sq = (np.sum(res * res, axis=-1) * mask)
+    sq = np.sum(res * res, axis=-1) * mask
     return float(np.sqrt(sq.sum() / mask.sum())), np.sqrt(sq.sum(axis=1) / mask.sum(axis=1))
 
 
@@ -194,31 +201,67 @@ def calibrate_camera(
     for many iterations before it shrank.
     """
     objs, imgs, size = _check_calibration_inputs(object_points, image_points, image_size, fix)
-    start = initial_estimate(objs, imgs, size, skew=skew, fix=fix, K_guess=K_guess, dist_guess=dist_guess,
-                             pose_guess=pose_guess)
+    start = initial_estimate(
+        objs,
+        imgs,
+        size,
+        skew=skew,
+        fix=fix,
+        K_guess=K_guess,
+        dist_guess=dist_guess,
+        pose_guess=pose_guess,
+    )
     fixed = set(fix) | ({"skew"} if not skew else set())
     free = np.array([name not in fixed for name in PARAM_NAMES])
     X, obs, mask = pad_views(objs, imgs)
     prob = CalibrationProblem(X, obs, mask, start.g, free)
-    lm: LMResult = levenberg_marquardt(prob.residuals, prob.pack(start.g, start.poses), prob.jacobian,
-                                       normal_equations=prob.normal_equations,
-                                       damped_solve=lambda A, g, mu: A.solve(mu), max_iter=max_iter,
-                                       ftol=1e-10, xtol=1e-10, gtol=1e-12, tau=1e-5)
+    lm: LMResult = levenberg_marquardt(
+        prob.residuals,
+        prob.pack(start.g, start.poses),
+        prob.jacobian,
+        normal_equations=prob.normal_equations,
+        damped_solve=lambda A, g, mu: A.solve(mu),
+        max_iter=max_iter,
+        ftol=1e-10,
+        xtol=1e-10,
+        gtol=1e-12,
+        tau=1e-5,
+    )
     if not np.all(np.isfinite(lm.x)):
-        raise ConvergenceError("calibrate_camera: the refinement produced non-finite parameters; check the data")
+        raise ConvergenceError(
+            "calibrate_camera: the refinement produced non-finite parameters; check the data"
+        )
     g, poses = prob.unpack(lm.x)
     res = (obs - project_views(g, poses, X)) * mask[..., None]
     rms, per_view = _rms(res, mask)
     cov, std = _parameter_covariance(lm, prob, free)
     K = np.array([[g[0], g[4], g[2]], [0.0, g[1], g[3]], [0.0, 0.0, 1.0]])
-    initial = {"K": start.K, "dist": start.dist, "homographies": start.homographies,
-               "rvecs": start.poses[:, :3].copy(), "tvecs": start.poses[:, 3:].copy(), "closed_form": K_guess is None}
+    initial = {
+        "K": start.K,
+        "dist": start.dist,
+        "homographies": start.homographies,
+        "rvecs": start.poses[:, :3].copy(),
+        "tvecs": start.poses[:, 3:].copy(),
+        "closed_form": K_guess is None,
+    }
     return CalibrationResult(
-        K=K, dist=g[5:].copy(), rvecs=poses[:, :3].copy(), tvecs=poses[:, 3:].copy(), rms=rms,
-        per_view_rms=per_view, residuals=[res[v, :len(o)] for v, o in enumerate(objs)], std=std,
-        covariance=cov, free_params=tuple(str(n) for n in np.array(PARAM_NAMES)[free]), image_size=size,
-        object_points=objs, image_points=imgs, cost_history=lm.cost_history, iterations=lm.iterations,
-        converged=lm.converged, initial=initial,
+        K=K,
+        dist=g[5:].copy(),
+        rvecs=poses[:, :3].copy(),
+        tvecs=poses[:, 3:].copy(),
+        rms=rms,
+        per_view_rms=per_view,
+        residuals=[res[v, : len(o)] for v, o in enumerate(objs)],
+        std=std,
+        covariance=cov,
+        free_params=tuple(str(n) for n in np.array(PARAM_NAMES)[free]),
+        image_size=size,
+        object_points=objs,
+        image_points=imgs,
+        cost_history=lm.cost_history,
+        iterations=lm.iterations,
+        converged=lm.converged,
+        initial=initial,
     )
 
 
@@ -246,8 +289,12 @@ class ClosedFormWithDistortion(NamedTuple):
 _INTRINSICS_AND_TANGENTIAL = ("fx", "fy", "cx", "cy", "skew", "p1", "p2", "k3")
 
 
-def closed_form_with_distortion(object_points: Sequence[ArrayLike] | ArrayLike, image_points: Sequence[ArrayLike],
-                                image_size: Sequence[int], rounds: int = 3) -> ClosedFormWithDistortion:
+def closed_form_with_distortion(
+    object_points: Sequence[ArrayLike] | ArrayLike,
+    image_points: Sequence[ArrayLike],
+    image_size: Sequence[int],
+    rounds: int = 3,
+) -> ClosedFormWithDistortion:
     r"""Zhang's closed form with a radial-distortion step that gets the sign and size right.
 
     The plain linear step (:func:`initial_radial_distortion`) holds every view's pose at
@@ -284,16 +331,33 @@ def closed_form_with_distortion(object_points: Sequence[ArrayLike] | ArrayLike, 
     corners, history = imgs, []
     for _ in range(int(rounds)):
         K = intrinsics_from_homographies(view_homographies(objs, corners), image_size=size)
-        poses = np.array([np.concatenate([axis_angle_from_rotation(R), t])
-                          for R, t in (extrinsics_from_homography(K, H) for H in view_homographies(objs, corners))])
-        fit = calibrate_camera(objs, imgs, size, fix=_INTRINSICS_AND_TANGENTIAL, K_guess=K,
-                               dist_guess=np.zeros(5), pose_guess=poses)
+        poses = np.array(
+            [
+                np.concatenate([axis_angle_from_rotation(R), t])
+                for R, t in (
+                    extrinsics_from_homography(K, H) for H in view_homographies(objs, corners)
+                )
+            ]
+        )
+        fit = calibrate_camera(
+            objs,
+            imgs,
+            size,
+            fix=_INTRINSICS_AND_TANGENTIAL,
+            K_guess=K,
+            dist_guess=np.zeros(5),
+            pose_guess=poses,
+        )
         history.append((K, fit.dist[:2].copy(), fit.rms))
         corners = [undistort_pixels(p, K, fit.dist) for p in imgs]
-    return ClosedFormWithDistortion(K, fit.dist.copy(), np.column_stack([fit.rvecs, fit.tvecs]), history)
+    return ClosedFormWithDistortion(
+        K, fit.dist.copy(), np.column_stack([fit.rvecs, fit.tvecs]), history
+    )
 
 
-def _check_calibration_inputs(object_points, image_points, image_size, fix) -> tuple[list, list, tuple[int, int]]:
+def _check_calibration_inputs(
+    object_points, image_points, image_size, fix
+) -> tuple[list, list, tuple[int, int]]:
     """Validated views, (width, height) and parameter names, or a clear error."""
     objs, imgs = check_views(object_points, image_points, min_views=1)
     if len(imgs) < 3:
@@ -304,7 +368,9 @@ def _check_calibration_inputs(object_points, image_points, image_size, fix) -> t
     size = check_size(image_size, "image_size")
     unknown = [f for f in fix if f not in PARAM_NAMES]
     if unknown:
-        raise CamlabInputError(f"fix: unknown parameter(s) {unknown}; choose from {list(PARAM_NAMES)}")
+        raise CamlabInputError(
+            f"fix: unknown parameter(s) {unknown}; choose from {list(PARAM_NAMES)}"
+        )
     for v, o in enumerate(objs):
         planar_xy(o, v)
     return objs, imgs, size
@@ -334,16 +400,26 @@ class InitialEstimate(NamedTuple):
     g: np.ndarray
 
 
-def initial_estimate(objs: list, imgs: list, size: tuple[int, int], *, skew: bool = False, fix: Sequence[str] = (),
-                     K_guess: ArrayLike | None = None, dist_guess: ArrayLike | None = None,
-                     pose_guess: ArrayLike | None = None) -> InitialEstimate:
+def initial_estimate(
+    objs: list,
+    imgs: list,
+    size: tuple[int, int],
+    *,
+    skew: bool = False,
+    fix: Sequence[str] = (),
+    K_guess: ArrayLike | None = None,
+    dist_guess: ArrayLike | None = None,
+    pose_guess: ArrayLike | None = None,
+) -> InitialEstimate:
     """Zhang's closed form (homographies, K, poses, linear radial distortion), or the caller's guesses.
 
     ``objs`` and ``imgs`` as validated by :func:`~camlab.calibration.zhang.check_views`;
     other arguments as in :func:`calibrate_camera`.
     """
     if pose_guess is not None and K_guess is None:
-        raise CamlabInputError("pose_guess: pass K_guess too (the poses only make sense with a camera)")
+        raise CamlabInputError(
+            "pose_guess: pass K_guess too (the poses only make sense with a camera)"
+        )
     if K_guess is None:  # Zhang's closed form
         Hs = view_homographies(objs, imgs)
         K0 = intrinsics_from_homographies(Hs, skew=skew, image_size=size)
@@ -361,17 +437,21 @@ def initial_estimate(objs: list, imgs: list, size: tuple[int, int], *, skew: boo
     else:
         poses0 = np.array(pose_guess, dtype=float)
         if poses0.shape != (len(imgs), 6) or not np.isfinite(poses0).all():
-            raise CamlabInputError(f"pose_guess: expected ({len(imgs)}, 6) finite (rvec, tvec) rows, got {poses0.shape}")
+            raise CamlabInputError(
+                f"pose_guess: expected ({len(imgs)}, 6) finite (rvec, tvec) rows, got {poses0.shape}"
+            )
     fixed = set(fix) | ({"skew"} if not skew else set())
     d0 = np.zeros(5)
     if dist_guess is not None:
         d0 = as_dist(dist_guess, "dist_guess")
     elif not {"k1", "k2"} & fixed:
-        d0[:2] = initial_radial_distortion(K0, objs, imgs, [rotation_from_axis_angle(p[:3]) for p in poses0],
-                                           poses0[:, 3:])
+        d0[:2] = initial_radial_distortion(
+            K0, objs, imgs, [rotation_from_axis_angle(p[:3]) for p in poses0], poses0[:, 3:]
+        )
     elif "k1" not in fixed:
-        d0[0] = initial_radial_distortion(K0, objs, imgs, [rotation_from_axis_angle(p[:3]) for p in poses0],
-                                          poses0[:, 3:])[0]
+        d0[0] = initial_radial_distortion(
+            K0, objs, imgs, [rotation_from_axis_angle(p[:3]) for p in poses0], poses0[:, 3:]
+        )[0]
     g0 = np.array([K0[0, 0], K0[1, 1], K0[0, 2], K0[1, 2], K0[0, 1], *d0])
     return InitialEstimate(K0, d0, poses0, Hs, g0)
 
@@ -385,12 +465,14 @@ def pad_views(objs: list, imgs: list) -> tuple[np.ndarray, np.ndarray, np.ndarra
     V, M = len(objs), max(len(o) for o in objs)
     X, obs, mask = np.zeros((V, M, 3)), np.zeros((V, M, 2)), np.zeros((V, M))
     for v, (o, p) in enumerate(zip(objs, imgs)):
-        X[v, :len(o)], obs[v, :len(o)], mask[v, :len(o)] = o, p, 1.0
-        X[v, len(o):] = o[0]
+        X[v, : len(o)], obs[v, : len(o)], mask[v, : len(o)] = o, p, 1.0
+        X[v, len(o) :] = o[0]
     return X, obs, mask
 
 
-def _parameter_covariance(lm: LMResult, prob: CalibrationProblem, free: np.ndarray) -> tuple[np.ndarray, dict]:
+def _parameter_covariance(
+    lm: LMResult, prob: CalibrationProblem, free: np.ndarray
+) -> tuple[np.ndarray, dict]:
     r"""Covariance of the free intrinsics, :math:`\hat\sigma^2 S^{-1}` with S the undamped Schur
     complement, and the standard deviation of every parameter in ``PARAM_NAMES`` (0 if fixed)."""
     n_res, p = 2 * prob.mask.sum(), prob.ni + 6 * prob.V
@@ -435,7 +517,9 @@ def _inputs(images_or_paths) -> list:
         pattern = str(images_or_paths)
         paths = sorted(_glob.glob(pattern)) if any(ch in pattern for ch in "*?[") else [pattern]
         if not paths:
-            raise CamlabInputError(f"images_or_paths: no files match {pattern!r}; check the path and quote the pattern")
+            raise CamlabInputError(
+                f"images_or_paths: no files match {pattern!r}; check the path and quote the pattern"
+            )
         images_or_paths = paths
     items = list(images_or_paths)
     if not items:
@@ -453,9 +537,13 @@ def _grey(item, i: int) -> np.ndarray:
     return grey_uint8(item, f"images[{i}]")
 
 
-def calibrate_from_images(images_or_paths, pattern_size: Sequence[int] | str, square_size: float,
-                          progress: Callable[[int, int, str, str | None], None] | None = None,
-                          **kwargs: Any) -> ImageCalibration:
+def calibrate_from_images(
+    images_or_paths,
+    pattern_size: Sequence[int] | str,
+    square_size: float,
+    progress: Callable[[int, int, str, str | None], None] | None = None,
+    **kwargs: Any,
+) -> ImageCalibration:
     """Detect the chessboard in every image, report failures, calibrate from the rest.
 
     Parameters
@@ -483,7 +571,9 @@ def calibrate_from_images(images_or_paths, pattern_size: Sequence[int] | str, sq
     pattern = parse_pattern(pattern_size)
     obj = board_points(pattern, square_size)
     items = _inputs(images_or_paths)
-    names = [str(x) if isinstance(x, (str, os.PathLike)) else f"image[{i}]" for i, x in enumerate(items)]
+    names = [
+        str(x) if isinstance(x, (str, os.PathLike)) else f"image[{i}]" for i, x in enumerate(items)
+    ]
     failed, sizes = {}, {}
     # One image in memory at a time (a phone photo is 40 MB in grey): a first pass learns the sizes (so
     # an odd one is reported as such), a second reads again the images of the common size, one by one.
@@ -496,8 +586,10 @@ def calibrate_from_images(images_or_paths, pattern_size: Sequence[int] | str, sq
     for s, idx in sizes.items():
         if s != size:
             for i in idx:
-                failed[i] = (f"image size {s[0]} x {s[1]} differs from the other images' {size[0]} x {size[1]}; "
-                             f"calibrate each camera/resolution separately")
+                failed[i] = (
+                    f"image size {s[0]} x {s[1]} differs from the other images' {size[0]} x {size[1]}; "
+                    f"calibrate each camera/resolution separately"
+                )
     detections: list = [None] * len(items)
     for i, item in enumerate(items):
         if i not in failed:

@@ -1,4 +1,5 @@
 """Judge a calibration: coverage, outlier views, tilts, uncertainties, in plain-language advice."""
+
 from __future__ import annotations
 
 from typing import NamedTuple
@@ -11,7 +12,9 @@ from .calibrate import CalibrationResult
 from .refinement import PARAM_NAMES, project_views
 
 
-def projection_uncertainty(result: CalibrationResult, step: int = 20) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def projection_uncertainty(
+    result: CalibrationResult, step: int = 20
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     r"""How uncertain the calibrated projection is across the image (pixels, 1 sigma).
 
     For a grid of pixels, take the ray the calibrated camera assigns to each, and ask how
@@ -99,42 +102,70 @@ def coach(result: CalibrationResult, grid: tuple[int, int] = (4, 6)) -> CoachRep
     normals = result.R[:, :, 2]
     tilt = np.degrees(np.arccos(np.clip(np.abs(normals[:, 2]), 0, 1)))
     p = result.intrinsics
-    rel = {"fx": result.std["fx"] / abs(p["fx"]), "fy": result.std["fy"] / abs(p["fy"]),
-           "cx": result.std["cx"], "cy": result.std["cy"]}
+    rel = {
+        "fx": result.std["fx"] / abs(p["fx"]),
+        "fy": result.std["fy"] / abs(p["fy"]),
+        "cx": result.std["cx"],
+        "cy": result.std["cy"],
+    }
     _, _, sig = projection_uncertainty(result, step=max(8, min(w, h) // 12))
     advice = []
     if not result.converged:
-        advice.append("the optimiser did not converge: the result may be poor; add views or check the detections")
+        advice.append(
+            "the optimiser did not converge: the result may be poor; add views or check the detections"
+        )
     for v in worst:
         if ratio[v] >= 2.0 and result.per_view_rms[v] > 0.1:
-            advice.append(f"view {v} has {ratio[v]:.1f}x the median error ({result.per_view_rms[v]:.2f} px vs "
-                          f"{med:.2f} px): check its focus and detection, or drop it")
-    regions = {"left edge": covered[:, 0], "right edge": covered[:, -1], "top edge": covered[0, :],
-               "bottom edge": covered[-1, :]}
+            advice.append(
+                f"view {v} has {ratio[v]:.1f}x the median error ({result.per_view_rms[v]:.2f} px vs "
+                f"{med:.2f} px): check its focus and detection, or drop it"
+            )
+    regions = {
+        "left edge": covered[:, 0],
+        "right edge": covered[:, -1],
+        "top edge": covered[0, :],
+        "bottom edge": covered[-1, :],
+    }
     for name, cells in regions.items():
         if not cells.any():
             advice.append(f"no corners near the {name}: add views with the board there")
         elif cells.mean() < 0.5:
             advice.append(f"few corners near the {name}: add views with the board there")
-    for name, cell in {"top-left": covered[0, 0], "top-right": covered[0, -1], "bottom-left": covered[-1, 0],
-                       "bottom-right": covered[-1, -1]}.items():
+    for name, cell in {
+        "top-left": covered[0, 0],
+        "top-right": covered[0, -1],
+        "bottom-left": covered[-1, 0],
+        "bottom-right": covered[-1, -1],
+    }.items():
         if not cell:
-            advice.append(f"no corners in the {name} corner of the image, where distortion is strongest: "
-                          f"add a view with the board there")
+            advice.append(
+                f"no corners in the {name} corner of the image, where distortion is strongest: "
+                f"add a view with the board there"
+            )
     if np.ptp(tilt) < 10 or tilt.max() < 15:
-        advice.append(f"the board tilts are all similar ({tilt.min():.0f}-{tilt.max():.0f} degrees): tilt it "
-                      f"by 20-45 degrees towards different sides for a better focal length")
+        advice.append(
+            f"the board tilts are all similar ({tilt.min():.0f}-{tilt.max():.0f} degrees): tilt it "
+            f"by 20-45 degrees towards different sides for a better focal length"
+        )
     if result.n_views < 10:
         advice.append(f"only {result.n_views} views: 10-20 give a more stable result")
     if rel["fx"] > 0.01 or rel["fy"] > 0.01:
-        advice.append(f"the focal length is uncertain (±{100 * max(rel['fx'], rel['fy']):.1f}%): add tilted views")
+        advice.append(
+            f"the focal length is uncertain (±{100 * max(rel['fx'], rel['fy']):.1f}%): add tilted views"
+        )
     if max(rel["cx"], rel["cy"]) > 5:
-        advice.append(f"the principal point is uncertain (±{max(rel['cx'], rel['cy']):.1f} px): add views "
-                      f"tilted in different directions and near the image corners")
+        advice.append(
+            f"the principal point is uncertain (±{max(rel['cx'], rel['cy']):.1f} px): add views "
+            f"tilted in different directions and near the image corners"
+        )
     if result.rms > 1.0:
-        advice.append(f"the rms error is high ({result.rms:.2f} px): check for motion blur, a non-flat board, "
-                      f"or the wrong pattern size")
+        advice.append(
+            f"the rms error is high ({result.rms:.2f} px): check for motion blur, a non-flat board, "
+            f"or the wrong pattern size"
+        )
     if not advice:
-        advice.append(f"looks good: rms {result.rms:.2f} px, coverage {100 * coverage:.0f}% of the image, "
-                      f"projection uncertainty below {sig.max():.2f} px everywhere")
+        advice.append(
+            f"looks good: rms {result.rms:.2f} px, coverage {100 * coverage:.0f}% of the image, "
+            f"projection uncertainty below {sig.max():.2f} px everywhere"
+        )
     return CoachReport(coverage, counts, worst, ratio, rel, tilt, float(sig.max()), advice)

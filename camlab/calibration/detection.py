@@ -6,6 +6,7 @@ classic detector with its quick pre-check (``CALIB_CB_FAST_CHECK``, which reject
 real photos), then without it, then the sector-based ``cv2.findChessboardCornersSB``.
 Pixels (u, v) = (column, row), origin at the centre of the top-left pixel.
 """
+
 from __future__ import annotations
 
 from typing import NamedTuple, Sequence
@@ -44,7 +45,11 @@ def parse_pattern(pattern: str | Sequence[int], name: str = "pattern") -> tuple[
     """
     want = f"{name}: expected inner corners as whole numbers (cols, rows) or 'COLSxROWS' like '9x6', got {pattern!r}"
     try:
-        parts = pattern.lower().replace("*", "x").split("x") if isinstance(pattern, str) else list(pattern)
+        parts = (
+            pattern.lower().replace("*", "x").split("x")
+            if isinstance(pattern, str)
+            else list(pattern)
+        )
         if len(parts) != 2 or any(isinstance(p, bool) for p in parts):
             raise ValueError
         vals = [float(p) for p in parts]
@@ -95,15 +100,23 @@ def grey_uint8(image: ArrayLike, name: str = "image") -> np.ndarray:
         if not np.isfinite(f).all():
             raise CamlabInputError(f"{name}: the image holds NaN or inf pixels")
         lo, hi = f.min(), f.max()
-        img = np.zeros(f.shape, np.uint8) if hi <= lo else np.round(255 * (f - lo) / (hi - lo)).astype(np.uint8)
+        img = (
+            np.zeros(f.shape, np.uint8)
+            if hi <= lo
+            else np.round(255 * (f - lo) / (hi - lo)).astype(np.uint8)
+        )
     if img.ndim == 3 and img.shape[2] in (3, 4):
         img = cv2.cvtColor(img, cv2.COLOR_RGB2GRAY if img.shape[2] == 3 else cv2.COLOR_RGBA2GRAY)
     if img.ndim != 2 or img.size == 0:
-        raise CamlabInputError(f"{name}: expected an (H, W) grey or (H, W, 3) colour image, got shape {img.shape}")
+        raise CamlabInputError(
+            f"{name}: expected an (H, W) grey or (H, W, 3) colour image, got shape {img.shape}"
+        )
     return img
 
 
-def _detect(img: np.ndarray, pattern: tuple[int, int], thorough: bool = True) -> tuple[np.ndarray | None, str]:
+def _detect(
+    img: np.ndarray, pattern: tuple[int, int], thorough: bool = True
+) -> tuple[np.ndarray | None, str]:
     """OpenCV's detectors in turn, normalised to (N, 2) in a fixed order; returns (corners, detector).
 
     1. The classic detector with ``CALIB_CB_FAST_CHECK`` (quick on images without a board);
@@ -114,13 +127,19 @@ def _detect(img: np.ndarray, pattern: tuple[int, int], thorough: bool = True) ->
     import cv2
 
     base = cv2.CALIB_CB_ADAPTIVE_THRESH | cv2.CALIB_CB_NORMALIZE_IMAGE
-    for flags, label in [(base | cv2.CALIB_CB_FAST_CHECK, "classic (fast check)"), (base, "classic")][:2 if thorough else 1]:
+    for flags, label in [
+        (base | cv2.CALIB_CB_FAST_CHECK, "classic (fast check)"),
+        (base, "classic"),
+    ][: 2 if thorough else 1]:
         ok, corners = cv2.findChessboardCorners(img, pattern, flags=flags)
         if ok and corners is not None:
             return _fixed_order(_subpixel(img, corners, pattern)), label
     if thorough:
-        ok, corners = cv2.findChessboardCornersSB(img, pattern, flags=cv2.CALIB_CB_NORMALIZE_IMAGE | cv2.CALIB_CB_EXHAUSTIVE
-                                                  | cv2.CALIB_CB_ACCURACY)
+        ok, corners = cv2.findChessboardCornersSB(
+            img,
+            pattern,
+            flags=cv2.CALIB_CB_NORMALIZE_IMAGE | cv2.CALIB_CB_EXHAUSTIVE | cv2.CALIB_CB_ACCURACY,
+        )
         if ok and corners is not None:
             return _fixed_order(np.asarray(corners, dtype=float).reshape(-1, 2)), "SB"
     return None, ""
@@ -131,7 +150,9 @@ def _fixed_order(c: np.ndarray) -> np.ndarray:
     return c[::-1].copy() if c[0].sum() > c[-1].sum() else c
 
 
-def _subpixel(img: np.ndarray, corners: np.ndarray, pattern: tuple[int, int], max_half: int = 5) -> np.ndarray:
+def _subpixel(
+    img: np.ndarray, corners: np.ndarray, pattern: tuple[int, int], max_half: int = 5
+) -> np.ndarray:
     import cv2
 
     c = np.asarray(corners, dtype=np.float32).reshape(-1, 2)  # (N, 1, 2) in OpenCV 4, (N, 2) in 5
@@ -164,8 +185,9 @@ def _edge_width(img: np.ndarray) -> float:
     return float(contrast / max(steep, 1e-6))
 
 
-def find_chessboard(image: ArrayLike, pattern_size: Sequence[int] | str,
-                    max_side: int | None = 1600) -> ChessboardDetection:
+def find_chessboard(
+    image: ArrayLike, pattern_size: Sequence[int] | str, max_side: int | None = 1600
+) -> ChessboardDetection:
     """Find a chessboard's inner corners with sub-pixel accuracy, or say why not.
 
     Parameters
@@ -217,12 +239,16 @@ def _why_not_found(img: np.ndarray, pattern: tuple[int, int]) -> str:
     cols, rows = pattern
     lo, hi = np.percentile(img, [1, 99])
     if hi - lo < 25:
-        return (f"no chessboard found: the image has almost no contrast (grey levels {lo:.0f} to {hi:.0f}); "
-                f"check exposure and that the board is in view")
+        return (
+            f"no chessboard found: the image has almost no contrast (grey levels {lo:.0f} to {hi:.0f}); "
+            f"check exposure and that the board is in view"
+        )
     if cols > 2 and rows > 2 and _detect(img, (cols - 1, rows - 1), thorough=False)[0] is not None:
-        return (f"wrong pattern size: a board with {cols - 1} x {rows - 1} inner corners was found; "
-                f"pattern_size counts inner corners (where four squares meet), not squares: "
-                f"use --pattern {cols - 1}x{rows - 1}")
+        return (
+            f"wrong pattern size: a board with {cols - 1} x {rows - 1} inner corners was found; "
+            f"pattern_size counts inner corners (where four squares meet), not squares: "
+            f"use --pattern {cols - 1}x{rows - 1}"
+        )
     # OpenCV's "SB" detector with CALIB_CB_LARGER also reports partial boards
     import cv2
 
@@ -231,17 +257,29 @@ def _why_not_found(img: np.ndarray, pattern: tuple[int, int]) -> str:
     if ok and part is not None:
         part = np.asarray(part, dtype=float).reshape(-1, 2)
         spacing = np.median(np.linalg.norm(np.diff(part[:2], axis=0), axis=1))
-        margin = min(part[:, 0].min(), part[:, 1].min(), w - 1 - part[:, 0].max(), h - 1 - part[:, 1].max())
+        margin = min(
+            part[:, 0].min(), part[:, 1].min(), w - 1 - part[:, 0].max(), h - 1 - part[:, 1].max()
+        )
     # A few squares of a grid (windows, tiles) are not a board: only a good part of one counts.
     if ok and part is not None and len(part) >= 0.3 * cols * rows:
-        if len(part) < cols * rows and margin < 1.5 * spacing:  # fewer corners, and they reach the border
-            return (f"board cut off: the chessboard runs into the image border, so not all {cols} x {rows} inner "
-                    f"corners are visible; keep the whole board (with its white border) in view")
-        return (f"a chessboard is visible but its {cols} x {rows} inner corners could not all be matched: check "
-                f"--pattern (count inner corners, where four squares meet), glare and anything covering the board")
+        if (
+            len(part) < cols * rows and margin < 1.5 * spacing
+        ):  # fewer corners, and they reach the border
+            return (
+                f"board cut off: the chessboard runs into the image border, so not all {cols} x {rows} inner "
+                f"corners are visible; keep the whole board (with its white border) in view"
+            )
+        return (
+            f"a chessboard is visible but its {cols} x {rows} inner corners could not all be matched: check "
+            f"--pattern (count inner corners, where four squares meet), glare and anything covering the board"
+        )
     width = _edge_width(img)
     if width > 4.0:
-        return (f"no chessboard found: the image looks too blurry (edges about {width:.0f} px wide); "
-                f"focus on the board and hold the camera still")
-    return (f"no {cols} x {rows} chessboard found: check --pattern (inner corners, e.g. 9x6 for a board of "
-            f"10 x 7 squares), that the whole board is visible with a white border, and that it is in focus")
+        return (
+            f"no chessboard found: the image looks too blurry (edges about {width:.0f} px wide); "
+            f"focus on the board and hold the camera still"
+        )
+    return (
+        f"no {cols} x {rows} chessboard found: check --pattern (inner corners, e.g. 9x6 for a board of "
+        f"10 x 7 squares), that the whole board is visible with a white border, and that it is in focus"
+    )

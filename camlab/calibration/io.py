@@ -1,4 +1,5 @@
 """Save and load a calibration in OpenCV's ``cv2.FileStorage`` format (.json, .yaml, .xml)."""
+
 from __future__ import annotations
 
 import os
@@ -14,7 +15,9 @@ from .refinement import PARAM_NAMES
 SUFFIXES = (".json", ".yaml", ".yml", ".xml")
 
 
-def save_calibration(result: CalibrationResult, path: str | os.PathLike, *, name: str = "path") -> Path:
+def save_calibration(
+    result: CalibrationResult, path: str | os.PathLike, *, name: str = "path"
+) -> Path:
     """Write K, dist and the quality numbers with ``cv2.FileStorage`` (``.json``, ``.yaml``/``.yml`` or ``.xml``).
 
     OpenCV users load it with ``fs = cv2.FileStorage(path, cv2.FILE_STORAGE_READ);
@@ -25,9 +28,13 @@ def save_calibration(result: CalibrationResult, path: str | os.PathLike, *, name
     import cv2
 
     if not isinstance(result, CalibrationResult):
-        raise CamlabInputError(f"result: expected the CalibrationResult of calibrate_camera, got {type(result).__name__}")
+        raise CamlabInputError(
+            f"result: expected the CalibrationResult of calibrate_camera, got {type(result).__name__}"
+        )
     p = check_output_path(path, name, SUFFIXES)
-    with atomic_output(p, name, verify=_reads_back) as tmp:  # the old file stays intact until the new one is checked
+    with atomic_output(
+        p, name, verify=_reads_back
+    ) as tmp:  # the old file stays intact until the new one is checked
         _write(cv2.FileStorage(str(tmp), cv2.FILE_STORAGE_WRITE), result)
     return p
 
@@ -50,7 +57,10 @@ def _write(fs, result: CalibrationResult) -> None:
         fs.write("rms", float(result.rms))
         fs.write("n_views", int(result.n_views))
         fs.write("per_view_rms", np.asarray(result.per_view_rms, dtype=np.float64).reshape(1, -1))
-        fs.write("std_intrinsics", np.array([result.std[k] for k in PARAM_NAMES], dtype=np.float64).reshape(1, -1))
+        fs.write(
+            "std_intrinsics",
+            np.array([result.std[k] for k in PARAM_NAMES], dtype=np.float64).reshape(1, -1),
+        )
         fs.write("std_names", " ".join(PARAM_NAMES))
         fs.write("rvecs", np.asarray(result.rvecs, dtype=np.float64))
         fs.write("tvecs", np.asarray(result.tvecs, dtype=np.float64))
@@ -58,7 +68,9 @@ def _write(fs, result: CalibrationResult) -> None:
         fs.release()
 
 
-def load_calibration(path: str | os.PathLike, *, name: str = "path") -> tuple[np.ndarray, np.ndarray, tuple[int, int]]:
+def load_calibration(
+    path: str | os.PathLike, *, name: str = "path"
+) -> tuple[np.ndarray, np.ndarray, tuple[int, int]]:
     """Read ``(K, dist, image_size)`` from a file written by :func:`save_calibration`, by OpenCV
     with the same node names, or by ROS's camera calibrator (``camera_info`` YAML, whose
     matrices are ``rows``/``cols``/``data`` maps; ``distortion_model: plumb_bob``). ``name`` is the argument named in errors."""
@@ -67,27 +79,37 @@ def load_calibration(path: str | os.PathLike, *, name: str = "path") -> tuple[np
         raise CamlabInputError(f"{name}: expected a file path, got {type(path).__name__}")
     if not Path(path).is_file():
         raise CamlabInputError(f"{name}: no file {str(path)!r}")
-    expected = ("pass a .json/.yaml/.xml written by `camlab calibrate` (or save_calibration), OpenCV's "
-                "FileStorage, or ROS's camera calibrator")
+    expected = (
+        "pass a .json/.yaml/.xml written by `camlab calibrate` (or save_calibration), OpenCV's "
+        "FileStorage, or ROS's camera calibrator"
+    )
     fs = _open_storage(Path(path))
     if fs is None:
-        raise CamlabInputError(f"{name}: {str(path)!r} is not a file OpenCV's FileStorage can parse; {expected}")
+        raise CamlabInputError(
+            f"{name}: {str(path)!r} is not a file OpenCV's FileStorage can parse; {expected}"
+        )
     try:
         if not fs.isOpened():
-            raise CamlabInputError(f"{name}: {str(path)!r} is not a file OpenCV's FileStorage can parse; {expected}")
+            raise CamlabInputError(
+                f"{name}: {str(path)!r} is not a file OpenCV's FileStorage can parse; {expected}"
+            )
         model = fs.getNode("distortion_model")
         if not model.empty() and model.string() not in ("plumb_bob", "radtan"):
-            raise CamlabInputError(f"{name}: {str(path)!r} uses the {model.string()!r} distortion model; camlab "
-                                   f"undistorts with OpenCV's standard model (ROS 'plumb_bob': k1, k2, p1, p2, k3)")
+            raise CamlabInputError(
+                f"{name}: {str(path)!r} uses the {model.string()!r} distortion model; camlab "
+                f"undistorts with OpenCV's standard model (ROS 'plumb_bob': k1, k2, p1, p2, k3)"
+            )
         K = _matrix(fs.getNode("camera_matrix"), path, name, expected)
         dist = _matrix(fs.getNode("distortion_coefficients"), path, name, expected)
         size = (int(fs.getNode("image_width").real()), int(fs.getNode("image_height").real()))
     finally:
         fs.release()
     if K.shape != (3, 3) or dist.size not in (4, 5) or min(size) <= 0:
-        raise CamlabInputError(f"{name}: {str(path)!r} holds camera_matrix {K.shape[0]} x {K.shape[1]}, {dist.size} "
-                               f"distortion coefficients and image size {size[0]} x {size[1]}; expected 3 x 3, 4 or 5 "
-                               f"(k1, k2, p1, p2[, k3]) and a positive image_width and image_height")
+        raise CamlabInputError(
+            f"{name}: {str(path)!r} holds camera_matrix {K.shape[0]} x {K.shape[1]}, {dist.size} "
+            f"distortion coefficients and image size {size[0]} x {size[1]}; expected 3 x 3, 4 or 5 "
+            f"(k1, k2, p1, p2[, k3]) and a positive image_width and image_height"
+        )
     return K, dist.ravel(), size
 
 
@@ -118,13 +140,17 @@ def _matrix(node, path, name: str, expected: str) -> np.ndarray:
     """A matrix node as a float array: OpenCV's ``!!opencv-matrix`` (with ``dt``), or ROS's map of
     ``rows``, ``cols`` and ``data`` (no ``dt``: ``node.mat()`` fails on it with ``!dt.empty()``)."""
     if node.empty():
-        raise CamlabInputError(f"{name}: {str(path)!r} has no camera_matrix / distortion_coefficients nodes; {expected}")
+        raise CamlabInputError(
+            f"{name}: {str(path)!r} has no camera_matrix / distortion_coefficients nodes; {expected}"
+        )
     if node.isMap() and node.getNode("dt").empty():
         rows, cols, data = (node.getNode(k) for k in ("rows", "cols", "data"))
         values = [data.at(i).real() for i in range(data.size())] if data.isSeq() else []
         if rows.empty() or cols.empty() or len(values) != int(rows.real()) * int(cols.real()):
-            raise CamlabInputError(f"{name}: {str(path)!r}: the {node.name()} node is neither an OpenCV matrix nor a "
-                                   f"ROS rows/cols/data map; {expected}")
+            raise CamlabInputError(
+                f"{name}: {str(path)!r}: the {node.name()} node is neither an OpenCV matrix nor a "
+                f"ROS rows/cols/data map; {expected}"
+            )
         return np.array(values, dtype=float).reshape(int(rows.real()), int(cols.real()))
     import cv2
 
@@ -133,5 +159,7 @@ def _matrix(node, path, name: str, expected: str) -> np.ndarray:
     except cv2.error:  # a scalar, string or map that is not a matrix
         m = None
     if m is None:
-        raise CamlabInputError(f"{name}: {str(path)!r}: the {node.name()} node is not a matrix; {expected}")
+        raise CamlabInputError(
+            f"{name}: {str(path)!r}: the {node.name()} node is not a matrix; {expected}"
+        )
     return np.asarray(m, dtype=float)

@@ -5,6 +5,7 @@ r"""Stage 7: the projection model of calibration with its analytic Jacobian, and
 (rvec, t), and differentiates the projection; :class:`BlockNormal` solves Levenberg-Marquardt's
 damped normal equations by eliminating the poses (Schur complement).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -34,7 +35,7 @@ def _rotations_and_left_jacobians(rvecs: np.ndarray) -> tuple[np.ndarray, np.nda
     S2 = S @ S
     small = theta < 1e-6
     th = np.where(small, 1.0, theta)
-    a = np.where(small, 1.0 - theta**2 / 6, np.sin(th) / th)            # sin(t) / t
+    a = np.where(small, 1.0 - theta**2 / 6, np.sin(th) / th)  # sin(t) / t
     b = np.where(small, 0.5 - theta**2 / 24, (1 - np.cos(th)) / th**2)  # (1 - cos t) / t^2
     c = np.where(small, 1.0 / 6 - theta**2 / 120, (th - np.sin(th)) / th**3)
     eye = np.eye(3)
@@ -77,7 +78,9 @@ def project_views(g: np.ndarray, poses: np.ndarray, X: np.ndarray, jac: bool = F
     Jg[..., 0, 0], Jg[..., 0, 2], Jg[..., 0, 4] = xd, 1.0, yd
     Jg[..., 1, 1], Jg[..., 1, 3] = yd, 1.0
     r4 = r2 * r2
-    dxd = np.stack([x * r2, x * r4, 2 * x * y, r2 + 2 * x * x, x * r4 * r2], axis=-1)  # d xd / d(k1 k2 p1 p2 k3)
+    dxd = np.stack(
+        [x * r2, x * r4, 2 * x * y, r2 + 2 * x * x, x * r4 * r2], axis=-1
+    )  # d xd / d(k1 k2 p1 p2 k3)
     dyd = np.stack([y * r2, y * r4, r2 + 2 * y * y, 2 * x * y, y * r4 * r2], axis=-1)
     Jg[..., 0, 5:] = fx * dxd + s * dyd
     Jg[..., 1, 5:] = fy * dyd
@@ -149,7 +152,9 @@ class BlockNormal:
 class CalibrationProblem:
     """Packs the calibration unknowns into one vector and evaluates residuals and Jacobians."""
 
-    def __init__(self, X: np.ndarray, obs: np.ndarray, mask: np.ndarray, g0: np.ndarray, free: np.ndarray):
+    def __init__(
+        self, X: np.ndarray, obs: np.ndarray, mask: np.ndarray, g0: np.ndarray, free: np.ndarray
+    ):
         self.X, self.obs, self.mask = X, obs, mask
         self.g0, self.free = g0, free
         self.ni = int(free.sum())
@@ -161,8 +166,8 @@ class CalibrationProblem:
 
     def unpack(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         g = self.g0.copy()
-        g[self.free] = x[:self.ni]
-        return g, x[self.ni:].reshape(self.V, 6)
+        g[self.free] = x[: self.ni]
+        return g, x[self.ni :].reshape(self.V, 6)
 
     def _evaluate(self, x: np.ndarray):
         """Residuals and Jacobian blocks at x, computed together and kept for the next call.
@@ -177,7 +182,10 @@ class CalibrationProblem:
         m = self.mask[..., None]
         V, M = self.mask.shape
         r = ((uv - self.obs) * m).ravel()
-        J = ((Jg[..., self.free] * m[..., None]).reshape(V, 2 * M, self.ni), (Jp * m[..., None]).reshape(V, 2 * M, 6))
+        J = (
+            (Jg[..., self.free] * m[..., None]).reshape(V, 2 * M, self.ni),
+            (Jp * m[..., None]).reshape(V, 2 * M, 6),
+        )
         self._last = (x.copy(), (r, J))
         return r, J
 
@@ -192,8 +200,9 @@ class CalibrationProblem:
         return A, A.gradient()
 
 
-def reproject(object_points: ArrayLike, K: ArrayLike, dist: ArrayLike | None, rvec: ArrayLike,
-              tvec: ArrayLike) -> np.ndarray:
+def reproject(
+    object_points: ArrayLike, K: ArrayLike, dist: ArrayLike | None, rvec: ArrayLike, tvec: ArrayLike
+) -> np.ndarray:
     r"""Project (N, 3) board points with intrinsics, distortion and an axis-angle pose (like cv2.projectPoints).
 
     NaN for points behind the camera (:math:`z_c \le 0`) and beyond the distortion model's

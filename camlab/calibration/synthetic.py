@@ -1,4 +1,5 @@
 """Synthetic calibration data: random well-spread chessboard views through a known camera."""
+
 from __future__ import annotations
 
 from typing import NamedTuple, Sequence
@@ -34,10 +35,18 @@ DEFAULT_K = np.array([[820.0, 0.0, 322.4], [0.0, 818.0, 236.8], [0.0, 0.0, 1.0]]
 DEFAULT_DIST = np.array([-0.21, 0.09, 0.0006, -0.0004, -0.02])
 
 
-def make_synthetic_views(n_views: int = 15, noise: float = 0.0, *, K: ArrayLike = DEFAULT_K,
-                         dist: ArrayLike | None = DEFAULT_DIST, pattern_size: Sequence[int] = (9, 6),
-                         square: float = 0.025, image_size: Sequence[int] = (640, 480), margin: float = 20.0,
-                         rng: np.random.Generator | None = None) -> SyntheticSet:
+def make_synthetic_views(
+    n_views: int = 15,
+    noise: float = 0.0,
+    *,
+    K: ArrayLike = DEFAULT_K,
+    dist: ArrayLike | None = DEFAULT_DIST,
+    pattern_size: Sequence[int] = (9, 6),
+    square: float = 0.025,
+    image_size: Sequence[int] = (640, 480),
+    margin: float = 20.0,
+    rng: np.random.Generator | None = None,
+) -> SyntheticSet:
     """Random well-spread views of a chessboard through a known camera (corners only, no images).
 
     Each view tilts the board by 15-50 degrees about a random in-plane axis, spins it,
@@ -59,8 +68,10 @@ def make_synthetic_views(n_views: int = 15, noise: float = 0.0, *, K: ArrayLike 
     while len(Rs) < n_views:
         tries += 1
         if tries > 200 * max(n_views, 1):
-            raise CamlabInputError("make_synthetic_views: could not place the board inside the image; "
-                                   "use a smaller board or a wider camera")
+            raise CamlabInputError(
+                "make_synthetic_views: could not place the board inside the image; "
+                "use a smaller board or a wider camera"
+            )
         axis = rng.uniform(0, 2 * np.pi)
         tilt = np.radians(rng.uniform(15, 50))
         R_tilt = rotation_from_axis_angle(tilt * np.array([np.cos(axis), np.sin(axis), 0.0]))
@@ -69,8 +80,13 @@ def make_synthetic_views(n_views: int = 15, noise: float = 0.0, *, K: ArrayLike 
         target = np.array([rng.uniform(-0.35, 0.35), rng.uniform(-0.3, 0.3), 1.0]) * depth
         t = target - R @ centre
         uv = project(obj, Km, R, t, d)
-        if np.all(np.isfinite(uv)) and uv[:, 0].min() >= margin and uv[:, 1].min() >= margin \
-                and uv[:, 0].max() <= w - 1 - margin and uv[:, 1].max() <= h - 1 - margin:
+        if (
+            np.all(np.isfinite(uv))
+            and uv[:, 0].min() >= margin
+            and uv[:, 1].min() >= margin
+            and uv[:, 0].max() <= w - 1 - margin
+            and uv[:, 1].max() <= h - 1 - margin
+        ):
             Rs.append(R)
             ts.append(t)
             exact.append(uv)

@@ -1,4 +1,5 @@
 """Undistort images with a calibration, trading black borders against lost pixels (``alpha``)."""
+
 from __future__ import annotations
 
 from functools import lru_cache
@@ -7,7 +8,14 @@ from typing import NamedTuple, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import CamlabInputError, ConvergenceError, check_image, check_intrinsics, check_number, check_size
+from .._validate import (
+    CamlabInputError,
+    ConvergenceError,
+    check_image,
+    check_intrinsics,
+    check_number,
+    check_size,
+)
 from ..distortion import (
     as_dist,
     distort_points,
@@ -30,8 +38,9 @@ def _rectangles(K: np.ndarray, dist: np.ndarray, size: tuple[int, int], n: int =
     return inner, outer
 
 
-def optimal_new_camera_matrix(K: ArrayLike, dist: ArrayLike | None, image_size: Sequence[int],
-                              alpha: float) -> np.ndarray:
+def optimal_new_camera_matrix(
+    K: ArrayLike, dist: ArrayLike | None, image_size: Sequence[int], alpha: float
+) -> np.ndarray:
     r"""The intrinsics of the undistorted image, trading black borders for lost pixels.
 
     Undistortion bends the image border outwards (barrel) or inwards (pincushion). With
@@ -51,7 +60,9 @@ def optimal_new_camera_matrix(K: ArrayLike, dist: ArrayLike | None, image_size: 
     d = as_dist(dist)
     a = check_number(alpha, "alpha")
     if not 0.0 <= a <= 1.0:
-        raise CamlabInputError(f"alpha: expected a number in [0, 1] (0: no black borders, 1: keep all pixels), got {alpha!r}")
+        raise CamlabInputError(
+            f"alpha: expected a number in [0, 1] (0: no black borders, 1: keep all pixels), got {alpha!r}"
+        )
     w, h = check_size(image_size, "image_size")
     inner, outer = _rectangles(Km, d, (w, h))
 
@@ -63,8 +74,9 @@ def optimal_new_camera_matrix(K: ArrayLike, dist: ArrayLike | None, image_size: 
     return np.array([[p[0], 0.0, p[2]], [0.0, p[1], p[3]], [0.0, 0.0, 1.0]])
 
 
-def undistortion_tradeoff(K: ArrayLike, dist: ArrayLike | None, image_size: Sequence[int], new_K: ArrayLike,
-                          step: int = 4) -> tuple[float, float]:
+def undistortion_tradeoff(
+    K: ArrayLike, dist: ArrayLike | None, image_size: Sequence[int], new_K: ArrayLike, step: int = 4
+) -> tuple[float, float]:
     """(black_fraction, lost_fraction) of undistorting with ``new_K``.
 
     ``black_fraction``: share of output pixels that sample outside the photo (black
@@ -78,13 +90,20 @@ def undistortion_tradeoff(K: ArrayLike, dist: ArrayLike | None, image_size: Sequ
     pix = np.column_stack([U.ravel(), Vv.ravel()])
     # output pixel -> source pixel: K distort(Kn^-1 p); same as distort_pixels with a change of K
     src = normalised_to_pixels(distort_points(pixels_to_normalised(pix, Kn), d), Km)
-    inside = (src[:, 0] >= -0.5) & (src[:, 0] <= w - 0.5) & (src[:, 1] >= -0.5) & (src[:, 1] <= h - 0.5)
+    inside = (
+        (src[:, 0] >= -0.5) & (src[:, 0] <= w - 0.5) & (src[:, 1] >= -0.5) & (src[:, 1] <= h - 0.5)
+    )
     ideal = _ideal_grid(Km.tobytes(), d.tobytes(), w, h, step)
     if ideal is None:  # the model has no inverse over the photo: nothing can be kept
         kept = np.zeros(len(pix), bool)
     else:
         dst = normalised_to_pixels(ideal, Kn)
-        kept = (dst[:, 0] >= -0.5) & (dst[:, 0] <= w - 0.5) & (dst[:, 1] >= -0.5) & (dst[:, 1] <= h - 0.5)
+        kept = (
+            (dst[:, 0] >= -0.5)
+            & (dst[:, 0] <= w - 0.5)
+            & (dst[:, 1] >= -0.5)
+            & (dst[:, 1] <= h - 0.5)
+        )
     return float(1 - inside.mean()), float(1 - kept.mean())
 
 
@@ -98,7 +117,9 @@ def _ideal_grid(Kb: bytes, db: bytes, w: int, h: int, step: int) -> np.ndarray |
     U, Vv = np.meshgrid(np.arange(0, w, step, dtype=float), np.arange(0, h, step, dtype=float))
     pix = np.column_stack([U.ravel(), Vv.ravel()])
     try:
-        ideal = undistort_points(pixels_to_normalised(pix, np.frombuffer(Kb).reshape(3, 3)), np.frombuffer(db))
+        ideal = undistort_points(
+            pixels_to_normalised(pix, np.frombuffer(Kb).reshape(3, 3)), np.frombuffer(db)
+        )
     except ConvergenceError:
         return None
     ideal.setflags(write=False)
@@ -115,8 +136,14 @@ class Undistorted(NamedTuple):
     lost_fraction: float
 
 
-def undistort(image: ArrayLike, result: CalibrationResult | None = None, *, K: ArrayLike | None = None,
-              dist: ArrayLike | None = None, alpha: float = 0.0) -> Undistorted:
+def undistort(
+    image: ArrayLike,
+    result: CalibrationResult | None = None,
+    *,
+    K: ArrayLike | None = None,
+    dist: ArrayLike | None = None,
+    alpha: float = 0.0,
+) -> Undistorted:
     """Undistort an image with a calibration (or K and dist), choosing the new K with ``alpha``.
 
     ``alpha`` as in :func:`optimal_new_camera_matrix`: 0 crops to valid pixels, 1 keeps all.

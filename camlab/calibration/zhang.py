@@ -2,6 +2,7 @@ r"""Stages 2-6 of Zhang's method: homographies, constraints on B, K in closed fo
 
 See :mod:`camlab.calibration` for the whole pipeline and lesson 08 for the derivations.
 """
+
 from __future__ import annotations
 
 from typing import Sequence
@@ -9,7 +10,14 @@ from typing import Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import CamlabInputError, DegenerateError, as_float, as_points, check_intrinsics, check_matrix
+from .._validate import (
+    CamlabInputError,
+    DegenerateError,
+    as_float,
+    as_points,
+    check_intrinsics,
+    check_matrix,
+)
 from ..camera import Pose, nearest_rotation
 from ..homography import estimate_homography
 
@@ -20,8 +28,10 @@ def _rows(x, dim: int, name: str) -> np.ndarray:
     if a.ndim == 3 and a.shape[1] == 1:
         a = a[:, 0, :]
     if a.ndim == 2 and a.shape[0] == dim and a.shape[1] > dim:
-        raise CamlabInputError(f"{name}: got shape {a.shape}, which looks transposed; points are rows, "
-                               f"pass ({a.shape[1]}, {dim}) (use .T)")
+        raise CamlabInputError(
+            f"{name}: got shape {a.shape}, which looks transposed; points are rows, "
+            f"pass ({a.shape[1]}, {dim}) (use .T)"
+        )
     return a
 
 
@@ -43,9 +53,15 @@ def check_views(object_points, image_points, min_views: int = 1):
             f"in different orientations"
         )
     if object_points is None or isinstance(object_points, str):
-        raise CamlabInputError(f"object_points: expected (N, 3) board points, or one such array per view, got "
-                               f"{type(object_points).__name__}")
-    obj = as_float(object_points, "object_points") if not isinstance(object_points, (list, tuple)) else None
+        raise CamlabInputError(
+            f"object_points: expected (N, 3) board points, or one such array per view, got "
+            f"{type(object_points).__name__}"
+        )
+    obj = (
+        as_float(object_points, "object_points")
+        if not isinstance(object_points, (list, tuple))
+        else None
+    )
     if obj is not None and obj.ndim == 2:
         objs = [obj] * n  # one board for all views
     else:
@@ -57,8 +73,12 @@ def check_views(object_points, image_points, min_views: int = 1):
             )
     out_obj, out_img = [], []
     for v, (o, p) in enumerate(zip(objs, image_points)):
-        o = as_points(_rows(o, 3, f"object_points[{v}]"), 3, f"object_points[{v}]", min_count=4).array
-        p = as_points(_rows(p, 2, f"image_points[{v}]"), 2, f"image_points[{v}]", min_count=4, finite=False).array
+        o = as_points(
+            _rows(o, 3, f"object_points[{v}]"), 3, f"object_points[{v}]", min_count=4
+        ).array
+        p = as_points(
+            _rows(p, 2, f"image_points[{v}]"), 2, f"image_points[{v}]", min_count=4, finite=False
+        ).array
         if len(o) != len(p):
             raise CamlabInputError(
                 f"image_points[{v}]: expected {len(o)} points like object_points[{v}], got {len(p)}"
@@ -85,15 +105,18 @@ def planar_xy(obj: np.ndarray, v: int) -> np.ndarray:
     return obj[:, :2]
 
 
-def view_homographies(object_points: Sequence[ArrayLike] | ArrayLike,
-                      image_points: Sequence[ArrayLike]) -> np.ndarray:
+def view_homographies(
+    object_points: Sequence[ArrayLike] | ArrayLike, image_points: Sequence[ArrayLike]
+) -> np.ndarray:
     """(V, 3, 3) homographies board plane (X, Y) -> image (u, v), one per view (normalised DLT).
 
     Uses :func:`camlab.homography.estimate_homography` (Hartley normalisation); each H is
     scaled so H[2, 2] = 1.
     """
     objs, imgs = check_views(object_points, image_points)
-    return np.stack([estimate_homography(planar_xy(o, v), p) for v, (o, p) in enumerate(zip(objs, imgs))])
+    return np.stack(
+        [estimate_homography(planar_xy(o, v), p) for v, (o, p) in enumerate(zip(objs, imgs))]
+    )
 
 
 def zhang_v(H: ArrayLike, i: int, j: int) -> np.ndarray:
@@ -114,11 +137,23 @@ def zhang_v(H: ArrayLike, i: int, j: int) -> np.ndarray:
     if not Hm.any():
         raise DegenerateError("H: all zeros; pass the board -> image homography of a view")
     for value, name in ((i, "i"), (j, "j")):
-        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value not in (0, 1, 2):
+        if (
+            isinstance(value, bool)
+            or not isinstance(value, (int, np.integer))
+            or value not in (0, 1, 2)
+        ):
             raise CamlabInputError(f"{name}: expected a column index 0, 1 or 2, got {value!r}")
     a, c = Hm[:, i], Hm[:, j]
-    return np.array([a[0] * c[0], a[0] * c[1] + a[1] * c[0], a[1] * c[1],
-                     a[2] * c[0] + a[0] * c[2], a[2] * c[1] + a[1] * c[2], a[2] * c[2]])
+    return np.array(
+        [
+            a[0] * c[0],
+            a[0] * c[1] + a[1] * c[0],
+            a[1] * c[1],
+            a[2] * c[0] + a[0] * c[2],
+            a[2] * c[1] + a[1] * c[2],
+            a[2] * c[2],
+        ]
+    )
 
 
 def zhang_constraints(H: ArrayLike) -> np.ndarray:
@@ -158,7 +193,9 @@ def intrinsics_from_b(b: ArrayLike) -> np.ndarray:
     """
     bv = np.asarray(b, dtype=float).ravel()
     if bv.shape != (6,) or not np.isfinite(bv).all():
-        raise CamlabInputError(f"b: expected 6 finite numbers (B11, B12, B22, B13, B23, B33), got {np.shape(b)}")
+        raise CamlabInputError(
+            f"b: expected 6 finite numbers (B11, B12, B22, B13, B23, B33), got {np.shape(b)}"
+        )
     if bv[0] < 0:
         bv = -bv
     B11, B12, B22, B13, B23, B33 = bv
@@ -184,8 +221,9 @@ def intrinsics_from_b(b: ArrayLike) -> np.ndarray:
     return np.array([[fx, s, cx], [0.0, fy, cy], [0.0, 0.0, 1.0]])
 
 
-def intrinsics_from_homographies(homographies: ArrayLike, *, skew: bool = False,
-                                 image_size: Sequence[int] | None = None) -> np.ndarray:
+def intrinsics_from_homographies(
+    homographies: ArrayLike, *, skew: bool = False, image_size: Sequence[int] | None = None
+) -> np.ndarray:
     r"""K in closed form from V >= 2 view homographies (>= 3 with ``skew=True``).
 
     Stacks :func:`zhang_constraints` into V (2V x 6), takes b as the right singular vector
@@ -250,8 +288,10 @@ def extrinsics_from_homography(K: ArrayLike, H: ArrayLike) -> Pose:
     Km = check_intrinsics(K, "K")
     Hm = check_matrix(H, (3, 3), "H")
     if np.linalg.matrix_rank(Hm[:, :2]) < 2:
-        raise DegenerateError("H: its first two columns are dependent, so they cannot be the images of the "
-                              "board's x and y axes; pass the board -> image homography")
+        raise DegenerateError(
+            "H: its first two columns are dependent, so they cannot be the images of the "
+            "board's x and y axes; pass the board -> image homography"
+        )
     A = np.linalg.solve(Km, Hm)
     lam = 2.0 / (np.linalg.norm(A[:, 0]) + np.linalg.norm(A[:, 1]))
     if A[2, 2] * lam < 0:
@@ -261,7 +301,9 @@ def extrinsics_from_homography(K: ArrayLike, H: ArrayLike) -> Pose:
     return Pose(R, t)
 
 
-def initial_radial_distortion(K: ArrayLike, object_points, image_points, R: ArrayLike, t: ArrayLike) -> np.ndarray:
+def initial_radial_distortion(
+    K: ArrayLike, object_points, image_points, R: ArrayLike, t: ArrayLike
+) -> np.ndarray:
     r"""Linear least-squares (k1, k2) given K and every view's pose (Zhang 2000, section 3.3).
 
     With ideal normalised points :math:`x` (from K, R, t, no distortion), radius

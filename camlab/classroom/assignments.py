@@ -22,6 +22,7 @@ the same new folder one wins and the other says so.
 Then, from ``DEST``: ``nbgrader generate_assignment <lesson>``, collect submissions into
 ``submitted/<student>/<lesson>/``, ``nbgrader autograde <lesson>``. See docs/teaching.md.
 """
+
 from __future__ import annotations
 
 import ast
@@ -41,7 +42,7 @@ __all__ = ["NBGRADER_CONFIG", "POINTS", "STUB", "assignment_notebook", "write_co
 POINTS = 1
 STUB = "# your code here\nraise NotImplementedError"
 
-NBGRADER_CONFIG = f'''\
+NBGRADER_CONFIG = f"""\
 # nbgrader configuration written by `camlab assignments`; run nbgrader from this folder.
 c = get_config()
 c.CourseDirectory.course_id = "camlab"
@@ -49,12 +50,18 @@ c.CourseDirectory.course_id = "camlab"
 c.ClearSolutions.code_stub = {{"python": {STUB!r}}}
 # Lessons 08, 09 and 11 compute for tens of seconds; leave room on a busy grading machine.
 c.Execute.timeout = 600
-'''
+"""
 
 
 def _grade_metadata(grade_id: str, *, solution: bool) -> dict:
-    meta = {"grade": not solution, "grade_id": grade_id, "locked": not solution, "schema_version": 3,
-            "solution": solution, "task": False}
+    meta = {
+        "grade": not solution,
+        "grade_id": grade_id,
+        "locked": not solution,
+        "schema_version": 3,
+        "solution": solution,
+        "task": False,
+    }
     if not solution:
         meta["points"] = POINTS
     return meta
@@ -62,25 +69,33 @@ def _grade_metadata(grade_id: str, *, solution: bool) -> dict:
 
 def _solution_source(stmt: ast.FunctionDef, reference) -> str:
     args = [a.arg for a in stmt.args.args]
-    return "\n".join([
-        f"def {stmt.name}({', '.join(args)}):",
-        "    ### BEGIN SOLUTION",
-        "    # camlab's own implementation",
-        f"    import {reference.__module__}",
-        f"    return {reference.__module__}.{reference.__name__}({', '.join(args)})",
-        "    ### END SOLUTION",
-    ])
+    return "\n".join(
+        [
+            f"def {stmt.name}({', '.join(args)}):",
+            "    ### BEGIN SOLUTION",
+            "    # camlab's own implementation",
+            f"    import {reference.__module__}",
+            f"    return {reference.__module__}.{reference.__name__}({', '.join(args)})",
+            "    ### END SOLUTION",
+        ]
+    )
 
 
 def _test_source(name: str) -> str:
-    return (f"# Autograded, {POINTS} point: the check explains a wrong answer; an unanswered exercise fails here.\n"
-            f'assert check_{name}({name}), "{name}: not attempted yet"')
+    return (
+        f"# Autograded, {POINTS} point: the check explains a wrong answer; an unanswered exercise fails here.\n"
+        f'assert check_{name}({name}), "{name}: not attempted yet"'
+    )
 
 
 def _masked_magics(source: str) -> str:
     """``source`` with IPython magic and shell lines blanked (same lengths), so ``ast`` can parse the rest."""
-    return "".join(" " * len(line.rstrip("\r\n")) + line[len(line.rstrip("\r\n")):]
-                   if line.lstrip().startswith(("%", "!")) else line for line in source.splitlines(keepends=True))
+    return "".join(
+        " " * len(line.rstrip("\r\n")) + line[len(line.rstrip("\r\n")) :]
+        if line.lstrip().startswith(("%", "!"))
+        else line
+        for line in source.splitlines(keepends=True)
+    )
 
 
 def _without_solution_import(source: str) -> str:
@@ -92,14 +107,21 @@ def _without_solution_import(source: str) -> str:
     lines = source.splitlines(keepends=True)
 
     def offset(lineno: int, col: int) -> int:  # ast columns count UTF-8 bytes
-        return sum(map(len, lines[:lineno - 1])) + len(lines[lineno - 1].encode()[:col].decode())
+        return sum(map(len, lines[: lineno - 1])) + len(lines[lineno - 1].encode()[:col].decode())
 
-    imports = [node for node in ast.walk(tree)
-               if isinstance(node, ast.ImportFrom) and any(alias.name == "solution" for alias in node.names)]
+    imports = [
+        node
+        for node in ast.walk(tree)
+        if isinstance(node, ast.ImportFrom)
+        and any(alias.name == "solution" for alias in node.names)
+    ]
     for node in sorted(imports, key=lambda n: (n.lineno, n.col_offset), reverse=True):
         kept = ", ".join(ast.unparse(alias) for alias in node.names if alias.name != "solution")
         text = f"from {'.' * node.level}{node.module or ''} import {kept}" if kept else ""
-        start, end = offset(node.lineno, node.col_offset), offset(node.end_lineno, node.end_col_offset)
+        start, end = (
+            offset(node.lineno, node.col_offset),
+            offset(node.end_lineno, node.end_col_offset),
+        )
         source = source[:start] + (text or ("pass" if node.col_offset else "")) + source[end:]
     return source
 
@@ -118,7 +140,11 @@ def _without_solution_sentences(text: str) -> str:
 def _release_safe(cell: dict) -> dict | None:
     """``cell`` without any way to print a solution, or None when nothing is left of it."""
     source = "".join(cell["source"])
-    cleaned = _without_solution_import(source) if cell["cell_type"] == "code" else _without_solution_sentences(source)
+    cleaned = (
+        _without_solution_import(source)
+        if cell["cell_type"] == "code"
+        else _without_solution_sentences(source)
+    )
     if cleaned == source:
         return cell
     return dict(cell, source=cleaned) if cleaned.strip() else None
@@ -146,40 +172,54 @@ def assignment_notebook(notebook: dict, lesson: str) -> tuple[dict, list[str]]:
             cell.setdefault("metadata", {})["nbgrader"] = _grade_metadata(name, solution=True)
         elif call and call[0] == "solution":
             continue
-        elif call and call[0].startswith("check_") and call[0][len("check_"):] in stubs:
-            name = call[0][len("check_"):]
+        elif call and call[0].startswith("check_") and call[0][len("check_") :] in stubs:
+            name = call[0][len("check_") :]
             cell["source"] = _test_source(name)
-            cell.setdefault("metadata", {})["nbgrader"] = _grade_metadata(f"check_{name}", solution=False)
+            cell.setdefault("metadata", {})["nbgrader"] = _grade_metadata(
+                f"check_{name}", solution=False
+            )
             graded.append(name)
         else:
             cell = _release_safe(cell)
         if cell is not None:
             cells.append(cell)
     if not graded:
-        raise CamlabInputError(f"LESSON: {lesson} has no exercises (no stub with a check_<name> cell); "
-                               f"pick a lesson with exercises")
+        raise CamlabInputError(
+            f"LESSON: {lesson} has no exercises (no stub with a check_<name> cell); "
+            f"pick a lesson with exercises"
+        )
     unchecked = sorted(set(stubs) - set(graded))
     if unchecked:
-        raise CamlabInputError(f"{lesson}: exercise {unchecked[0]!r} has a stub but no check_{unchecked[0]} cell")
+        raise CamlabInputError(
+            f"{lesson}: exercise {unchecked[0]!r} has a stub but no check_{unchecked[0]} cell"
+        )
     nb["cells"] = cells
     return nb, graded
 
 
 def _check_new_folder(dest: Path) -> None:
     if dest.exists() and not dest.is_dir():
-        raise CamlabInputError(f"DEST: {dest} is a file; name a new or empty folder (nothing was written)")
+        raise CamlabInputError(
+            f"DEST: {dest} is a file; name a new or empty folder (nothing was written)"
+        )
     if dest.is_dir() and any(dest.iterdir()):
-        raise CamlabInputError(f"DEST: {dest} already exists and is not empty; name a new or empty folder "
-                               f"(nothing was written)")
+        raise CamlabInputError(
+            f"DEST: {dest} already exists and is not empty; name a new or empty folder "
+            f"(nothing was written)"
+        )
 
 
 def _write_error(exc: OSError, dest: Path) -> CamlabInputError:
     if exc.errno in (errno.EEXIST, errno.ENOTEMPTY):  # the rename found DEST filled after our check
-        return CamlabInputError(f"DEST: {dest} now exists and is not empty: another run (or program) made it while "
-                                f"this one was building the course; this run wrote nothing. Use that folder, or "
-                                f"name a new one")
-    return CamlabInputError(f"DEST: could not write the course beside {dest} ({exc.strerror or exc}); nothing was "
-                            f"written. Free some space or choose a folder you can write to")
+        return CamlabInputError(
+            f"DEST: {dest} now exists and is not empty: another run (or program) made it while "
+            f"this one was building the course; this run wrote nothing. Use that folder, or "
+            f"name a new one"
+        )
+    return CamlabInputError(
+        f"DEST: could not write the course beside {dest} ({exc.strerror or exc}); nothing was "
+        f"written. Free some space or choose a folder you can write to"
+    )
 
 
 def _write_files(folder: Path, built: dict[str, tuple[dict, list[str]]]) -> None:
@@ -204,7 +244,9 @@ def _move_into_place(building: Path, dest: Path) -> None:
     os.rename(building / "nbgrader_config.py", dest / "nbgrader_config.py")
 
 
-def write_course(dest: str | Path, lessons: list[str] | tuple[str, ...] = ()) -> dict[str, list[str]]:
+def write_course(
+    dest: str | Path, lessons: list[str] | tuple[str, ...] = ()
+) -> dict[str, list[str]]:
     """Write an nbgrader course directory for ``lessons`` (all when empty) into the new folder ``dest``.
 
     Returns ``{lesson stem: [exercise names]}``. Everything is checked before anything is
@@ -217,7 +259,10 @@ def write_course(dest: str | Path, lessons: list[str] | tuple[str, ...] = ()) ->
     dest = Path(dest).absolute()  # "." has no name to build beside
     _check_new_folder(dest)
     paths = list(dict.fromkeys(find_lesson(s) for s in lessons)) if lessons else lesson_files()
-    built = {p.stem: assignment_notebook(json.loads(p.read_text(encoding="utf-8")), p.stem) for p in paths}
+    built = {
+        p.stem: assignment_notebook(json.loads(p.read_text(encoding="utf-8")), p.stem)
+        for p in paths
+    }
     building = dest.with_name(f".{dest.name}.building-{os.getpid()}-{os.urandom(4).hex()}")
     try:
         dest.parent.mkdir(parents=True, exist_ok=True)
@@ -227,5 +272,7 @@ def write_course(dest: str | Path, lessons: list[str] | tuple[str, ...] = ()) ->
     except OSError as exc:
         raise _write_error(exc, dest) from None
     finally:
-        shutil.rmtree(building, ignore_errors=True)  # a failed run's partial course; nothing after the rename
+        shutil.rmtree(
+            building, ignore_errors=True
+        )  # a failed run's partial course; nothing after the rename
     return {stem: names for stem, (_, names) in built.items()}

@@ -1,4 +1,5 @@
 """Find lesson notebooks by number (``07``), stem (``07_homographies``) or file name, and read their cells."""
+
 from __future__ import annotations
 
 import ast
@@ -31,7 +32,9 @@ def find_lesson(spec: str) -> Path:
     matches = [f for f in files if f.stem == key or f.stem.split("_", 1)[0] == key]
     if len(matches) != 1:
         known = ", ".join(f.stem for f in files)
-        raise CamlabInputError(f"lesson: no lesson {spec!r}; expected a number or name, one of {known}")
+        raise CamlabInputError(
+            f"lesson: no lesson {spec!r}; expected a number or name, one of {known}"
+        )
     return matches[0]
 
 
@@ -59,6 +62,10 @@ def stub_name(stmt: ast.stmt | None) -> str | None:
 
 def called(stmt: ast.stmt | None) -> tuple[str, list[ast.expr]] | None:
     """``(function name, arguments)`` if ``stmt`` is a bare call ``f(...)``."""
-    if isinstance(stmt, ast.Expr) and isinstance(stmt.value, ast.Call) and isinstance(stmt.value.func, ast.Name):
+    if (
+        isinstance(stmt, ast.Expr)
+        and isinstance(stmt.value, ast.Call)
+        and isinstance(stmt.value.func, ast.Name)
+    ):
         return stmt.value.func.id, stmt.value.args
     return None

@@ -14,6 +14,7 @@ sends runs silently here, like the rest of the lesson's setup.
 Voila renders with the ``camlab`` template (:data:`VOILA_DATA`): its lab template without the
 Font Awesome links to a CDN, so the lecture view makes no request outside the machine.
 """
+
 from __future__ import annotations
 
 import ast
@@ -41,12 +42,18 @@ for _n in set(_camlab_plt.get_fignums()) - _camlab_figures:
 """
 
 ACCESSIBILITY_SCRIPT = "%%javascript\n" + access.SCRIPT  # the import's copy runs silently here
-VOILA_DATA = Path(__file__).with_name("jupyter_data")  # voila/templates/camlab, found through JUPYTER_PATH
+VOILA_DATA = Path(__file__).with_name(
+    "jupyter_data"
+)  # voila/templates/camlab, found through JUPYTER_PATH
 
 
 def _is_demo_call(node: ast.AST | None) -> bool:
     func = node.func if isinstance(node, ast.Call) else None
-    return isinstance(func, ast.Attribute) and isinstance(func.value, ast.Name) and func.value.id == "demos"
+    return (
+        isinstance(func, ast.Attribute)
+        and isinstance(func.value, ast.Name)
+        and func.value.id == "demos"
+    )
 
 
 def is_demo_cell(cell: dict) -> bool:
@@ -61,16 +68,24 @@ def is_demo_cell(cell: dict) -> bool:
         body = ast.parse("".join(cell["source"])).body
     except SyntaxError:
         return False
-    return (len(body) == 2 and isinstance(body[0], ast.Assign) and len(body[0].targets) == 1
-            and isinstance(body[0].targets[0], ast.Name) and _is_demo_call(body[0].value)
-            and isinstance(body[1], ast.Expr) and isinstance(body[1].value, ast.Name)
-            and body[1].value.id == body[0].targets[0].id)
+    return (
+        len(body) == 2
+        and isinstance(body[0], ast.Assign)
+        and len(body[0].targets) == 1
+        and isinstance(body[0].targets[0], ast.Name)
+        and _is_demo_call(body[0].value)
+        and isinstance(body[1], ast.Expr)
+        and isinstance(body[1].value, ast.Name)
+        and body[1].value.id == body[0].targets[0].id
+    )
 
 
 def _is_exercise(cell: dict) -> bool:
     stmt = only_statement(cell)
     call = called(stmt)
-    return stub_name(stmt) is not None or bool(call and (call[0] == "solution" or call[0].startswith("check_")))
+    return stub_name(stmt) is not None or bool(
+        call and (call[0] == "solution" or call[0].startswith("check_"))
+    )
 
 
 def _markdown(text: str) -> dict:
@@ -78,7 +93,13 @@ def _markdown(text: str) -> dict:
 
 
 def _code(text: str) -> dict:
-    return {"cell_type": "code", "metadata": {}, "source": text, "outputs": [], "execution_count": None}
+    return {
+        "cell_type": "code",
+        "metadata": {},
+        "source": text,
+        "outputs": [],
+        "execution_count": None,
+    }
 
 
 def presentation_notebook(notebook: dict) -> dict:
@@ -118,17 +139,31 @@ def serve(lesson: str, port: int = 8866, open_browser: bool = True) -> int:
     """
     path = find_lesson(lesson)
     if importlib.util.find_spec("voila") is None:  # before printing a URL nothing will serve
-        raise CamlabInputError('camlab present needs Voila, which is not installed; install the class extra: '
-                               'pip install "camlab-course[class]"')
+        raise CamlabInputError(
+            "camlab present needs Voila, which is not installed; install the class extra: "
+            'pip install "camlab-course[class]"'
+        )
     presentation = presentation_notebook(json.loads(path.read_text(encoding="utf-8")))
     with tempfile.TemporaryDirectory(prefix="camlab-present-") as folder:
         target = Path(folder) / path.name
         target.write_text(json.dumps(presentation), encoding="utf-8")
-        cmd = [sys.executable, "-m", "voila", str(target), f"--port={port}", "--Voila.ip=127.0.0.1",
-               "--theme=light", "--VoilaConfiguration.show_margins=False", "--template=camlab"]
+        cmd = [
+            sys.executable,
+            "-m",
+            "voila",
+            str(target),
+            f"--port={port}",
+            "--Voila.ip=127.0.0.1",
+            "--theme=light",
+            "--VoilaConfiguration.show_margins=False",
+            "--template=camlab",
+        ]
         if not open_browser:
             cmd.append("--no-browser")
-        print(f"camlab present: serving {path.stem} at http://127.0.0.1:{port}/ (Ctrl-C stops)", flush=True)
+        print(
+            f"camlab present: serving {path.stem} at http://127.0.0.1:{port}/ (Ctrl-C stops)",
+            flush=True,
+        )
         try:
             return subprocess.run(cmd, cwd=folder, env=voila_environment()).returncode
         except KeyboardInterrupt:

@@ -19,16 +19,39 @@ One module per set, each with its generator and loader:
 (:mod:`camlab.data.regenerate`); ``$CAMLAB_DATA`` points the loaders at regenerated sets.
 ``data/ATTRIBUTION.md`` lists every shipped file's source and licence.
 """
+
 from ._resources import cache_dir, data_dir, dataset_dir, docs_dir, lessons_dir, regeneration_dir
-from .calibration import CALIBRATION_PARAMS, CalibrationSet, load_calibration_set, make_calibration_set
+from .calibration import (
+    CALIBRATION_PARAMS,
+    CalibrationSet,
+    load_calibration_set,
+    make_calibration_set,
+)
 from .panorama import PanoramaSet, PlanarPair, load_panorama_set, load_planar_pair
 from .photos import load_photo, photo_names
 from .regenerate import main, regenerate, write_manifest
 from .stereo import StereoRig, load_stereo_rig
 
 __all__ = [
-    "CALIBRATION_PARAMS", "CalibrationSet", "PanoramaSet", "PlanarPair", "StereoRig",
-    "cache_dir", "data_dir", "dataset_dir", "docs_dir", "lessons_dir", "load_calibration_set", "load_panorama_set",
-    "load_photo", "load_planar_pair", "load_stereo_rig", "main", "make_calibration_set", "regenerate", "photo_names", "regeneration_dir",
+    "CALIBRATION_PARAMS",
+    "CalibrationSet",
+    "PanoramaSet",
+    "PlanarPair",
+    "StereoRig",
+    "cache_dir",
+    "data_dir",
+    "dataset_dir",
+    "docs_dir",
+    "lessons_dir",
+    "load_calibration_set",
+    "load_panorama_set",
+    "load_photo",
+    "load_planar_pair",
+    "load_stereo_rig",
+    "main",
+    "make_calibration_set",
+    "regenerate",
+    "photo_names",
+    "regeneration_dir",
     "write_manifest",
 ]

@@ -1,4 +1,5 @@
 """``python -m camlab.data [DIR]``: regenerate every rendered data set (see :mod:`camlab.data.regenerate`)."""
+
 from .regenerate import main
 
 raise SystemExit(main())

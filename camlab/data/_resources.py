@@ -12,6 +12,7 @@ and the top-level folders are used instead.
 camlab.data`` writes there. Without it, regeneration writes into a clone's ``data/`` or, for
 an installed package, into the user cache (:func:`cache_dir`), never into site-packages.
 """
+
 from __future__ import annotations
 
 import json
@@ -24,8 +25,16 @@ import numpy as np
 
 from .._validate import CamlabInputError
 
-__all__ = ["cache_dir", "data_dir", "dataset_dir", "docs_dir", "lessons_dir", "read_only", "read_truth",
-           "regeneration_dir"]
+__all__ = [
+    "cache_dir",
+    "data_dir",
+    "dataset_dir",
+    "docs_dir",
+    "lessons_dir",
+    "read_only",
+    "read_truth",
+    "regeneration_dir",
+]
 
 _REPO = Path(__file__).resolve().parents[2]
 
@@ -38,8 +47,10 @@ def _resource_dir(package: str, inside: str, repo_folder: str) -> Path:
     clone = _REPO / repo_folder
     if clone.is_dir() and (_REPO / "pyproject.toml").is_file():
         return clone
-    raise CamlabInputError(f"camlab: the bundled {repo_folder}/ folder is missing (looked in {packaged} and {clone}); "
-                           "reinstall the package (pip install --force-reinstall camlab-course) or work in a full clone")
+    raise CamlabInputError(
+        f"camlab: the bundled {repo_folder}/ folder is missing (looked in {packaged} and {clone}); "
+        "reinstall the package (pip install --force-reinstall camlab-course) or work in a full clone"
+    )
 
 
 def data_dir() -> Path:
@@ -73,7 +84,9 @@ def read_truth(directory: Path | str | None, name: str) -> tuple[Path, dict]:
     d = Path(directory) if directory is not None else dataset_dir(name)
     path = d / "truth.json"
     if not path.exists():
-        raise CamlabInputError(f"directory: no truth.json in {d}; run `python -m camlab.data` to generate it")
+        raise CamlabInputError(
+            f"directory: no truth.json in {d}; run `python -m camlab.data` to generate it"
+        )
     return d, json.loads(path.read_text())
 
 
@@ -112,8 +125,10 @@ def encode_image(image, ext: str, params: tuple[int, ...] = ()) -> bytes:
 
     ok, buf = cv2.imencode(ext, image, list(params))
     if not ok or buf is None:
-        raise OSError(f"cv2.imencode could not encode a {getattr(image, 'shape', '?')} "
-                      f"{getattr(image, 'dtype', '?')} image as {ext}")
+        raise OSError(
+            f"cv2.imencode could not encode a {getattr(image, 'shape', '?')} "
+            f"{getattr(image, 'dtype', '?')} image as {ext}"
+        )
     return buf.tobytes()
 
 

@@ -11,6 +11,7 @@ recorded beside the files:
 
 Load with :func:`load_calibration_set`; :func:`bundled_calibration` is its calibration, computed once.
 """
+
 from __future__ import annotations
 
 import json
@@ -22,7 +23,13 @@ import numpy as np
 
 from ._resources import encode_image, read_only, read_truth
 
-__all__ = ["CalibrationSet", "CALIBRATION_PARAMS", "bundled_calibration", "load_calibration_set", "make_calibration_set"]
+__all__ = [
+    "CalibrationSet",
+    "CALIBRATION_PARAMS",
+    "bundled_calibration",
+    "load_calibration_set",
+    "make_calibration_set",
+]
 
 CALIBRATION_PARAMS = {
     "seed": 2026,
@@ -58,7 +65,9 @@ def _views(params: dict):
         tilt = rng.uniform(0.1, 0.75)
         azimuth = rng.uniform(0, 2 * np.pi)
         dist = rng.uniform(0.32, 0.55)
-        eye = centre + dist * np.array([np.sin(tilt) * np.cos(azimuth), np.sin(tilt) * np.sin(azimuth), -np.cos(tilt)])
+        eye = centre + dist * np.array(
+            [np.sin(tilt) * np.cos(azimuth), np.sin(tilt) * np.sin(azimuth), -np.cos(tilt)]
+        )
         target = centre + np.append(rng.normal(0, 0.02, 2), 0.0)
         roll = rng.uniform(-0.4, 0.4)
         R, t = render.look_at(eye, target, up=(0.0, -1.0, 0.0))  # the board's frame: y down
@@ -105,27 +114,47 @@ def make_calibration_set(out_dir: Path | str, params: dict = CALIBRATION_PARAMS)
     cols, rows = params["pattern_size"]
     board = render.checkerboard((cols, rows), params["square"])
     K, d = np.array(params["K"]), np.array(params["dist"])
-    sensor = render.Sensor(bits=params["bits"], noise=NoiseModel(params["full_well"], params["read_noise"]))
+    sensor = render.Sensor(
+        bits=params["bits"], noise=NoiseModel(params["full_well"], params["read_noise"])
+    )
     rng = np.random.default_rng(params["seed"] + 1)
     views, files = [], []
     for i, (R, t) in enumerate(_views(params)):
-        res = render.render(board, K, tuple(params["image_size"]), R=R, t=t, dist=d, sensor=sensor,
-                            supersample=params["supersample"], rng=rng)
+        res = render.render(
+            board,
+            K,
+            tuple(params["image_size"]),
+            R=R,
+            t=t,
+            dist=d,
+            sensor=sensor,
+            supersample=params["supersample"],
+            rng=rng,
+        )
         name = f"view_{i:02d}.png"
         (out / name).write_bytes(encode_image(res.image, ".png", (cv2.IMWRITE_PNG_COMPRESSION, 9)))
         files.append(out / name)
         rvec = cv2.Rodrigues(R)[0].ravel()
-        views.append({"file": name, "R": np.round(R, 12).tolist(), "t": np.round(t, 12).tolist(),
-                      "rvec": np.round(rvec, 12).tolist(),
-                      "corners": np.round(res.truth.corners(), 9).tolist()})
+        views.append(
+            {
+                "file": name,
+                "R": np.round(R, 12).tolist(),
+                "t": np.round(t, 12).tolist(),
+                "rvec": np.round(rvec, 12).tolist(),
+                "corners": np.round(res.truth.corners(), 9).tolist(),
+            }
+        )
     truth = {
         "description": "Chessboard calibration set rendered by camlab.render; regenerate with `python -m camlab.data`.",
         "generator": "camlab.data.make_calibration_set",
         "params": params,
         "conventions": "pixels (u, v) = (column, row), origin at the centre of the top-left pixel; "
-                       "X_cam = R X_board + t; dist = (k1, k2, p1, p2, k3); corners in cv2.findChessboardCorners order",
-        "K": params["K"], "dist": params["dist"], "image_size": params["image_size"],
-        "pattern_size": params["pattern_size"], "square": params["square"],
+        "X_cam = R X_board + t; dist = (k1, k2, p1, p2, k3); corners in cv2.findChessboardCorners order",
+        "K": params["K"],
+        "dist": params["dist"],
+        "image_size": params["image_size"],
+        "pattern_size": params["pattern_size"],
+        "square": params["square"],
         "object_points": np.round(board.object_points, 12).tolist(),
         "views": views,
     }
@@ -141,11 +170,16 @@ def load_calibration_set(directory: Path | str | None = None) -> CalibrationSet:
     d, truth = read_truth(directory, "calib_chessboard")
     images = [cv2.imread(str(d / v["file"]), cv2.IMREAD_GRAYSCALE) for v in truth["views"]]
     return CalibrationSet(
-        images=images, K=np.array(truth["K"]), dist=np.array(truth["dist"]),
-        R=np.array([v["R"] for v in truth["views"]]), t=np.array([v["t"] for v in truth["views"]]),
+        images=images,
+        K=np.array(truth["K"]),
+        dist=np.array(truth["dist"]),
+        R=np.array([v["R"] for v in truth["views"]]),
+        t=np.array([v["t"] for v in truth["views"]]),
         corners=np.array([v["corners"] for v in truth["views"]]),
-        object_points=np.array(truth["object_points"]), pattern_size=tuple(truth["pattern_size"]),
-        square=float(truth["square"]), params=truth["params"],
+        object_points=np.array(truth["object_points"]),
+        pattern_size=tuple(truth["pattern_size"]),
+        square=float(truth["square"]),
+        params=truth["params"],
     )
 
 

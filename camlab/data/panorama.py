@@ -21,6 +21,7 @@ bytes on every run with the same library versions):
 front of the 3-D room) and the direct render of the panorama view used to measure the
 stitch. Load everything with :func:`load_panorama_set`.
 """
+
 from __future__ import annotations
 
 import json
@@ -37,9 +38,24 @@ from .._validate import CamlabInputError, check_positive, check_size
 from ..camera import scale_intrinsics
 from ..scenes import wall_texture
 
-__all__ = ["PANORAMA_PARAMS", "TURNING_SETS", "PanoramaSet", "PlanarPair", "TurningSet", "environment_map",
-           "environment_view", "load_aerial_mosaic", "load_panorama_set", "load_planar_pair", "make_panorama_set",
-           "render_view", "room_scene", "scale_intrinsics", "turning_set", "wall_texture"]
+__all__ = [
+    "PANORAMA_PARAMS",
+    "TURNING_SETS",
+    "PanoramaSet",
+    "PlanarPair",
+    "TurningSet",
+    "environment_map",
+    "environment_view",
+    "load_aerial_mosaic",
+    "load_panorama_set",
+    "load_planar_pair",
+    "make_panorama_set",
+    "render_view",
+    "room_scene",
+    "scale_intrinsics",
+    "turning_set",
+    "wall_texture",
+]
 
 PANORAMA_PARAMS = {
     "seed": 909,
@@ -65,7 +81,11 @@ def _rot(yaw: float, pitch: float, roll: float) -> np.ndarray:
     from ..render import rotation_from_euler
 
     # world_from_cam = Ry(yaw) Rx(pitch) Rz(roll); cam_from_world is its transpose
-    return rotation_from_euler(0, yaw, 0) @ rotation_from_euler(pitch, 0, 0) @ rotation_from_euler(0, 0, roll)
+    return (
+        rotation_from_euler(0, yaw, 0)
+        @ rotation_from_euler(pitch, 0, 0)
+        @ rotation_from_euler(0, 0, roll)
+    )
 
 
 def cam_from_world(yaw: float, pitch: float = 0.0, roll: float = 0.0) -> np.ndarray:
@@ -85,15 +105,33 @@ def room_scene(params: dict = PANORAMA_PARAMS) -> list:
 
     tex = wall_texture(params["wall_texture_px"], params["seed"])
     wall = render.textured_plane(tex, 16.0, t=(0.0, 0.0, 6.0), name="wall")
-    photo = render.photo_plane(0.9, R=render.rotation_from_euler(0, np.radians(-15), 0), t=(-0.55, 0.05, 2.6))
-    page = render.text_page(0.42, R=render.rotation_from_euler(0, np.radians(20), 0), t=(0.75, 0.1, 1.7),
-                            seed=params["seed"])
-    cube = render.box((-1.9, -0.2, 3.6), (0.6, 0.6, 0.6), R=render.rotation_from_euler(0, np.radians(30), 0))
+    photo = render.photo_plane(
+        0.9, R=render.rotation_from_euler(0, np.radians(-15), 0), t=(-0.55, 0.05, 2.6)
+    )
+    page = render.text_page(
+        0.42,
+        R=render.rotation_from_euler(0, np.radians(20), 0),
+        t=(0.75, 0.1, 1.7),
+        seed=params["seed"],
+    )
+    cube = render.box(
+        (-1.9, -0.2, 3.6), (0.6, 0.6, 0.6), R=render.rotation_from_euler(0, np.radians(30), 0)
+    )
     return [wall, photo, page, cube]
 
 
-def render_view(R: np.ndarray, *, t=(0.0, 0.0, 0.0), K=None, size=None, gain: float = 1.0,
-                noise: bool = True, rng=None, params: dict = PANORAMA_PARAMS, scene=None) -> np.ndarray:
+def render_view(
+    R: np.ndarray,
+    *,
+    t=(0.0, 0.0, 0.0),
+    K=None,
+    size=None,
+    gain: float = 1.0,
+    noise: bool = True,
+    rng=None,
+    params: dict = PANORAMA_PARAMS,
+    scene=None,
+) -> np.ndarray:
     """Render the room (:func:`room_scene`) from pose ``(R, t)`` (cam_from_world) as a uint8 RGB image.
 
     ``gain`` scales the irradiance (exposure); ``noise`` adds shot and read noise
@@ -166,19 +204,39 @@ def make_panorama_set(out_dir: Path | str, params: dict = PANORAMA_PARAMS) -> li
 
     # the planar pair: a poster (the wall texture) 1.5 m away, seen from two positions
     pp = params["plane_pair"]
-    poster = render.textured_plane(wall_texture(params["wall_texture_px"], params["seed"])[:, :800], 2.0,
-                                   t=(0.0, 0.0, 1.5), name="poster")
+    poster = render.textured_plane(
+        wall_texture(params["wall_texture_px"], params["seed"])[:, :800],
+        2.0,
+        t=(0.0, 0.0, 1.5),
+        name="poster",
+    )
     R1 = cam_from_world(*np.radians(pp["angles1_deg"]))
     t1 = np.asarray(pp["t1"], dtype=float)
     # camera 0 at the origin; camera 1 at centre c1 = t1 (world), so its translation is -R1 c1
     poses = [(np.eye(3), np.zeros(3)), (R1, -R1 @ t1)]
     for i, (R, t) in enumerate(poses):
-        res = render.render(poster, K, tuple(params["image_size"]), R=R, t=t, supersample=params["supersample"],
-                            color=True, background=0.3)
+        res = render.render(
+            poster,
+            K,
+            tuple(params["image_size"]),
+            R=R,
+            t=t,
+            supersample=params["supersample"],
+            color=True,
+            background=0.3,
+        )
         from ..sensor import NoiseModel, add_noise, quantize
 
-        img = quantize(np.clip(add_noise(res.irradiance, NoiseModel(params["full_well"], params["read_noise"]),
-                                         rng), 0, 1), 8)
+        img = quantize(
+            np.clip(
+                add_noise(
+                    res.irradiance, NoiseModel(params["full_well"], params["read_noise"]), rng
+                ),
+                0,
+                1,
+            ),
+            8,
+        )
         name = f"plane_{i}.jpg"
         (out / name).write_bytes(_encode_jpeg(img, params["jpeg_quality"]))
         files.append(out / name)
@@ -189,14 +247,22 @@ def make_panorama_set(out_dir: Path | str, params: dict = PANORAMA_PARAMS) -> li
         "generator": "camlab.data.panorama.make_panorama_set",
         "params": params,
         "conventions": "pixels (u, v) = (column, row), origin at the centre of the top-left pixel; R = cam_from_world, "
-                       "every rotation view has its centre at the world origin; H_ij maps view j's pixels to view i's",
-        "K": params["K"], "image_size": params["image_size"],
+        "every rotation view has its centre at the world origin; H_ij maps view j's pixels to view i's",
+        "K": params["K"],
+        "image_size": params["image_size"],
         "views": views,
-        "H_true": [[np.round(_true_h(K, views, i, j), 12).tolist() for j in range(len(views))]
-                   for i in range(len(views))],
-        "plane_pair": {"files": ["plane_0.jpg", "plane_1.jpg"], "R1": np.round(poses[1][0], 15).tolist(),
-                       "t1": np.round(poses[1][1], 15).tolist(), "plane_n": [0, 0, 1], "plane_d": -1.5,
-                       "H_10": np.round(Hp, 12).tolist()},
+        "H_true": [
+            [np.round(_true_h(K, views, i, j), 12).tolist() for j in range(len(views))]
+            for i in range(len(views))
+        ],
+        "plane_pair": {
+            "files": ["plane_0.jpg", "plane_1.jpg"],
+            "R1": np.round(poses[1][0], 15).tolist(),
+            "t1": np.round(poses[1][1], 15).tolist(),
+            "plane_n": [0, 0, 1],
+            "plane_d": -1.5,
+            "H_10": np.round(Hp, 12).tolist(),
+        },
     }
     (out / "truth.json").write_text(json.dumps(truth, indent=1) + "\n")
     files.append(out / "truth.json")
@@ -214,11 +280,15 @@ def _read(path: Path, scale: float) -> np.ndarray:
 
     img = cv2.imread(str(path), cv2.IMREAD_COLOR)
     if img is None:
-        raise CamlabInputError(f"directory: cannot read {path}; run `python -m camlab.data` to generate it")
+        raise CamlabInputError(
+            f"directory: cannot read {path}; run `python -m camlab.data` to generate it"
+        )
     img = np.ascontiguousarray(img[..., ::-1])
     if scale != 1.0:
         h, w = img.shape[:2]
-        img = cv2.resize(img, (int(round(w * scale)), int(round(h * scale))), interpolation=cv2.INTER_AREA)
+        img = cv2.resize(
+            img, (int(round(w * scale)), int(round(h * scale))), interpolation=cv2.INTER_AREA
+        )
     return img
 
 
@@ -232,8 +302,13 @@ def load_panorama_set(directory: Path | str | None = None, scale: float = 1.0) -
     d, truth = read_truth(directory, "panorama")
     images = [_read(d / v["file"], scale) for v in truth["views"]]
     K = scale_intrinsics(np.array(truth["K"]), scale)
-    return PanoramaSet(images, K, np.array([v["R"] for v in truth["views"]]),
-                       np.array([v["gain"] for v in truth["views"]]), truth["params"])
+    return PanoramaSet(
+        images,
+        K,
+        np.array([v["R"] for v in truth["views"]]),
+        np.array([v["gain"] for v in truth["views"]]),
+        truth["params"],
+    )
 
 
 def load_planar_pair(directory: Path | str | None = None, scale: float = 1.0) -> PlanarPair:
@@ -243,10 +318,13 @@ def load_planar_pair(directory: Path | str | None = None, scale: float = 1.0) ->
     images = [_read(d / f, scale) for f in pp["files"]]
     S = scale_intrinsics(np.eye(3), scale)
     H = S @ np.array(pp["H_10"]) @ np.linalg.inv(S)
-    return PlanarPair(images, scale_intrinsics(np.array(truth["K"]), scale), H / H[2, 2], truth["params"])
+    return PlanarPair(
+        images, scale_intrinsics(np.array(truth["K"]), scale), H / H[2, 2], truth["params"]
+    )
 
 
 # --------------------------------------------------------------------------- a real photo as the world
+
 
 @lru_cache(maxsize=1)
 def environment_map() -> np.ndarray:
@@ -263,13 +341,16 @@ def environment_map() -> np.ndarray:
 
     photo = load_photo("lab_scene")
     # the photo's centre straight ahead; its mirror image behind (the seams at +-90 degrees)
-    env = np.ascontiguousarray(np.roll(np.hstack([photo, photo[:, ::-1]]), photo.shape[1] // 2, axis=1))
+    env = np.ascontiguousarray(
+        np.roll(np.hstack([photo, photo[:, ::-1]]), photo.shape[1] // 2, axis=1)
+    )
     env.setflags(write=False)
     return env
 
 
-def environment_view(R: ArrayLike, K: ArrayLike, size: tuple[int, int], env: np.ndarray | None = None
-                     ) -> np.ndarray:
+def environment_view(
+    R: ArrayLike, K: ArrayLike, size: tuple[int, int], env: np.ndarray | None = None
+) -> np.ndarray:
     r"""What a pinhole camera (K, R cam_from_world) at the world's centre sees of :func:`environment_map`.
 
     Every pixel's ray :math:`d = R^\top K^{-1} (u, v, 1)^\top` is turned into longitude
@@ -326,7 +407,10 @@ TURNING_SETS = {
     # a pair at two exposures (the second over-exposed: bright parts clip)
     "exposures": {"angles": [(-18, 0, 0), (18, 1, 0.5)], "gains": [0.75, 1.6]},
     # a full turn in eight photos: the loop closes only if the errors do not accumulate
-    "loop": {"angles": [(45 * k, 3 * np.sin(k), 1.0 * np.cos(k)) for k in range(8)], "gains": [1.0] * 8},
+    "loop": {
+        "angles": [(45 * k, 3 * np.sin(k), 1.0 * np.cos(k)) for k in range(8)],
+        "gains": [1.0] * 8,
+    },
     # a turn of 405 degrees: the ninth photo shows what the first did
     "over360": {"angles": [(45 * k, 0, 0) for k in range(10)], "gains": [1.0] * 10},
     # a wide 200-degree sweep (a plane cannot hold it)
@@ -358,12 +442,23 @@ def _turning(name: str, f: float, size: tuple[int, int], unrelated: bool) -> Tur
         church = cv2.resize(load_photo("church"), (width, height), interpolation=cv2.INTER_AREA)
         images.insert(1, church)
         names.insert(1, "church (unrelated)")
-    return TurningSet(images, K, np.array(Rs), np.array(spec["angles"], float), np.array(spec["gains"], float),
-                      names)
+    return TurningSet(
+        images,
+        K,
+        np.array(Rs),
+        np.array(spec["angles"], float),
+        np.array(spec["gains"], float),
+        names,
+    )
 
 
-def turning_set(name: str = "turn3", *, f: float = 500.0, size: tuple[int, int] = (900, 660),
-                unrelated: bool = False) -> TurningSet:
+def turning_set(
+    name: str = "turn3",
+    *,
+    f: float = 500.0,
+    size: tuple[int, int] = (900, 660),
+    unrelated: bool = False,
+) -> TurningSet:
     """A rendered turning-camera set with exact ground truth (:data:`TURNING_SETS`, :func:`environment_view`).
 
     Parameters

@@ -29,6 +29,7 @@ cannot change what the next caller gets; copy an array (``a.copy()``) to change 
 Every random choice is seeded (FLANN's trees too, :func:`camlab.features.flann_index`): the
 same arrays on every run with the same library versions.
 """
+
 from __future__ import annotations
 
 from functools import lru_cache
@@ -42,12 +43,40 @@ from .._validate import CamlabInputError, DegenerateError, check_shape
 from ..camera import scale_intrinsics
 from ..homography import normalize_homography, transfer_error
 from ._resources import read_only
-from .panorama import PanoramaSet, TurningSet, cam_from_world, load_panorama_set, render_view, room_scene, turning_set
+from .panorama import (
+    PanoramaSet,
+    TurningSet,
+    cam_from_world,
+    load_panorama_set,
+    render_view,
+    room_scene,
+    turning_set,
+)
 
-__all__ = ["BASELINES", "SCALE", "BlendedPair", "CanvasPreview", "ExposurePair", "PanoramaExample", "ParallaxPair",
-           "ReferenceCanvas", "ReferenceCanvases", "WideSweep", "canvas_previews", "correct_matches", "edge_masks", "exposure_pair",
-           "homographies_relative_to", "pair_blends", "panorama_example", "panorama_graph", "parallax_pairs",
-           "reference_canvases", "stitched_panoramas", "wide_sweep"]
+__all__ = [
+    "BASELINES",
+    "SCALE",
+    "BlendedPair",
+    "CanvasPreview",
+    "ExposurePair",
+    "PanoramaExample",
+    "ParallaxPair",
+    "ReferenceCanvas",
+    "ReferenceCanvases",
+    "WideSweep",
+    "canvas_previews",
+    "correct_matches",
+    "edge_masks",
+    "exposure_pair",
+    "homographies_relative_to",
+    "pair_blends",
+    "panorama_example",
+    "panorama_graph",
+    "parallax_pairs",
+    "reference_canvases",
+    "stitched_panoramas",
+    "wide_sweep",
+]
 
 #: The scale of the rotation set the demonstrations use (half size: 320 x 240, f = 400 px).
 SCALE = 0.5
@@ -63,6 +92,7 @@ def _with_canvases(warped: st.WarpedImages) -> st.WarpedImages:
 
 
 # --------------------------------------------------------------------------- the rotation set at half size
+
 
 class PanoramaExample(NamedTuple):
     """The half-size rotation set with what lesson 09 computes from it first.
@@ -102,8 +132,9 @@ def panorama_graph() -> st.MatchGraph:
     return read_only(st.match_graph(panorama_example().features))
 
 
-def correct_matches(data: PanoramaSet, i: int, j: int, src: np.ndarray, dst: np.ndarray,
-                    tol: float = 2.0) -> np.ndarray:
+def correct_matches(
+    data: PanoramaSet, i: int, j: int, src: np.ndarray, dst: np.ndarray, tol: float = 2.0
+) -> np.ndarray:
     """Which matches from view ``i`` to view ``j`` the ground truth confirms: a bool mask.
 
     A match (``src[k]`` in view i, ``dst[k]`` in view j) is correct when the true homography
@@ -127,6 +158,7 @@ def homographies_relative_to(graph: st.MatchGraph, reference: int) -> list:
 
 
 # --------------------------------------------------------------------------- the canvas of each reference
+
 
 class ReferenceCanvas(NamedTuple):
     """The quarter-size images warped onto the canvas of one reference image.
@@ -175,17 +207,23 @@ def reference_canvases() -> ReferenceCanvases:
 
     imgs = panorama_example().images
     graph = panorama_graph()
-    small = [cv2.resize(im, (im.shape[1] // 2, im.shape[0] // 2), interpolation=cv2.INTER_AREA) for im in imgs]
+    small = [
+        cv2.resize(im, (im.shape[1] // 2, im.shape[0] // 2), interpolation=cv2.INTER_AREA)
+        for im in imgs
+    ]
     S = scale_intrinsics(np.eye(3), 0.5)  # quarter-size pixels from half-size pixels
     canvases = {}
     for ref in range(len(imgs)):
         chain = [S @ H @ np.linalg.inv(S) for H in homographies_relative_to(graph, ref)]
         wi = st.warp_images(small, chain, max_pixels=3_000_000)
-        canvases[ref] = ReferenceCanvas(tuple(wi.shape), wi.T, wi.homographies, st.blend(wi, "overwrite"))
+        canvases[ref] = ReferenceCanvas(
+            tuple(wi.shape), wi.T, wi.homographies, st.blend(wi, "overwrite")
+        )
     return read_only(ReferenceCanvases(small, canvases))
 
 
 # --------------------------------------------------------------------------- blending two exposures
+
 
 class ExposurePair(NamedTuple):
     """Views 1 and 2 of :func:`panorama_example` (exposures differ by 30%) on their common canvas.
@@ -211,7 +249,9 @@ def exposure_pair() -> ExposurePair:
     imgs = panorama_example().images
     Hs = homographies_relative_to(panorama_graph(), 1)
     wi = _with_canvases(st.warp_images([imgs[1], imgs[2]], [Hs[1], Hs[2]]))
-    return read_only(ExposurePair(wi, st.gain_compensation(wi, reference=0), st.seam_masks(wi.weights)[0]))
+    return read_only(
+        ExposurePair(wi, st.gain_compensation(wi, reference=0), st.seam_masks(wi.weights)[0])
+    )
 
 
 class BlendedPair(NamedTuple):
@@ -246,22 +286,30 @@ def pair_blends() -> dict:
     out = {}
     for m in st.BLENDS:
         for g in (False, True):
-            for lv in (range(1, 7) if m == "multiband" else (5,)):
+            for lv in range(1, 7) if m == "multiband" else (5,):
                 image = st.blend(wi, m, gains=gains if g else None, levels=lv)
-                step = (st.seam_step(image, wi.masks[1], wi.masks[0]) if m == "overwrite"
-                        else st.seam_step(image, seam, both))
+                step = (
+                    st.seam_step(image, wi.masks[1], wi.masks[0])
+                    if m == "overwrite"
+                    else st.seam_step(image, seam, both)
+                )
                 out[(m, g, lv if m == "multiband" else 0)] = BlendedPair(image, step)
     return read_only(out)
 
 
 # --------------------------------------------------------------------------- full panoramas
 
+
 @lru_cache(maxsize=1)
 def stitched_panoramas() -> dict:
     """{"planar" | "cylindrical": :class:`camlab.stitching.StitchResult`} of the half-size set, multi-band blended (cached, read-only)."""
     s = panorama_example().data
-    return read_only({proj: st.stitch(s.images, projection=proj, blend_method="multiband", max_features=1500)
-                       for proj in ("planar", "cylindrical")})
+    return read_only(
+        {
+            proj: st.stitch(s.images, projection=proj, blend_method="multiband", max_features=1500)
+            for proj in ("planar", "cylindrical")
+        }
+    )
 
 
 class WideSweep(NamedTuple):
@@ -283,7 +331,9 @@ class WideSweep(NamedTuple):
 def wide_sweep() -> WideSweep:
     """The 200-degree sweep (six views, 360 x 264, f = 200 px) with its bundle-adjusted cameras (cached, read-only)."""
     s = turning_set("wide", size=(360, 264), f=200.0)
-    return read_only(WideSweep(s, st.stitch(s.images, projection="spherical", blend_method="overwrite")))
+    return read_only(
+        WideSweep(s, st.stitch(s.images, projection="spherical", blend_method="overwrite"))
+    )
 
 
 class CanvasPreview(NamedTuple):
@@ -332,15 +382,24 @@ def _canvas_previews(max_shape: tuple[int, int]) -> dict:
     out = {}
     for n in range(2, 7):
         Ks = [r.cameras[k][0] for k in range(n)]
-        Rs = wave_correct([r.cameras[k][1] for k in range(n)])  # the canvas centred on these n views
+        Rs = wave_correct(
+            [r.cameras[k][1] for k in range(n)]
+        )  # the canvas centred on these n views
         scale = 0.75 * float(np.median([K[0, 0] for K in Ks]))
         # the yaws the views span, plus one view's own width: 2 atan((w / 2) / f)
-        fov = float(np.ptp(s.angles_deg[:n, 0]) + np.degrees(2 * np.arctan(imgs[0].shape[1] / 2 / s.K[0, 0])))
+        fov = float(
+            np.ptp(s.angles_deg[:n, 0])
+            + np.degrees(2 * np.arctan(imgs[0].shape[1] / 2 / s.K[0, 0]))
+        )
         for proj in pj.PROJECTIONS:
             try:
-                canvas = pj.make_canvas(Ks, Rs, [im.shape for im in imgs[:n]], proj, scale, max_pixels=3_000_000)
+                canvas = pj.make_canvas(
+                    Ks, Rs, [im.shape for im in imgs[:n]], proj, scale, max_pixels=3_000_000
+                )
             except (DegenerateError, CamlabInputError) as exc:
-                out[(n, proj)] = CanvasPreview(None, None, fov, str(exc).split(";")[0].replace("footprint: ", ""))
+                out[(n, proj)] = CanvasPreview(
+                    None, None, fov, str(exc).split(";")[0].replace("footprint: ", "")
+                )
                 continue
             pano = np.zeros((*canvas.shape, 3), np.float32)
             for im, K, R, box in zip(imgs[:n], Ks, Rs, canvas.boxes):
@@ -349,13 +408,17 @@ def _canvas_previews(max_shape: tuple[int, int]) -> dict:
                 pano[r0:r1, c0:c1][mask] = patch[mask]
             h, w = canvas.shape
             k = min(max_shape[0] / h, max_shape[1] / w)
-            small = cv2.resize(np.clip(np.rint(pano * 255), 0, 255).astype(np.uint8),
-                               (max(1, int(w * k)), max(1, int(h * k))), interpolation=cv2.INTER_AREA)
+            small = cv2.resize(
+                np.clip(np.rint(pano * 255), 0, 255).astype(np.uint8),
+                (max(1, int(w * k)), max(1, int(h * k))),
+                interpolation=cv2.INTER_AREA,
+            )
             out[(n, proj)] = CanvasPreview(small, (h, w), fov, "")
     return read_only(out)
 
 
 # --------------------------------------------------------------------------- parallax
+
 
 class ParallaxPair(NamedTuple):
     """Two views of the room, the second camera turned 12 degrees and moved sideways.
@@ -386,8 +449,10 @@ def edge_masks(warped: st.WarpedImages) -> tuple:
     """Canny edges (``cv2.Canny``, thresholds 60 and 140 on the grey levels) of the first two warped views, bool masks on the canvas."""
     import cv2
 
-    return tuple(cv2.Canny(np.clip(im.mean(axis=2) * 255, 0, 255).astype(np.uint8), 60, 140) > 0
-                 for im in warped.images[:2])
+    return tuple(
+        cv2.Canny(np.clip(im.mean(axis=2) * 255, 0, 255).astype(np.uint8), 60, 140) > 0
+        for im in warped.images[:2]
+    )
 
 
 @lru_cache(maxsize=1)
@@ -407,8 +472,10 @@ def parallax_pairs() -> dict:
     R1 = cam_from_world(np.radians(-4.0))
     # the second camera's centre moves b metres to the right: t = -R1 c1 with c1 = (b, 0, 0)
     views = [render_view(R0, K=K, size=size, noise=False, scene=scene)]
-    views += [render_view(R1, t=-R1 @ np.array([b, 0.0, 0.0]), K=K, size=size, noise=False, scene=scene)
-              for b in BASELINES]
+    views += [
+        render_view(R1, t=-R1 @ np.array([b, 0.0, 0.0]), K=K, size=size, noise=False, scene=scene)
+        for b in BASELINES
+    ]
     img0, *moved = st.prepare_images(views)
     f0 = ft.detect_features(img0, max_features=1500)
     out = {}

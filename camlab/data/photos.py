@@ -6,6 +6,7 @@ a sign on a wall, stereo pairs), downscaled and re-encoded, and 14 chessboard vi
 (Apache-2.0), ``calib_left10`` from mvtb-data only; shipped, not generated, and listed with
 their source and licence in ``data/photos/ATTRIBUTION.md``.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -43,6 +44,8 @@ def load_photo(name: str, gray: bool = False) -> np.ndarray:
     names = photo_names()
     if not isinstance(name, str) or name not in names:
         raise CamlabInputError(f"name: expected one of {names}, got {name!r}")
-    path = next(p for p in dataset_dir("photos").iterdir() if p.stem == name and p.suffix in PHOTO_SUFFIXES)
+    path = next(
+        p for p in dataset_dir("photos").iterdir() if p.stem == name and p.suffix in PHOTO_SUFFIXES
+    )
     image = cv2.imread(str(path), cv2.IMREAD_GRAYSCALE if gray else cv2.IMREAD_COLOR)
     return image if gray else cv2.cvtColor(image, cv2.COLOR_BGR2RGB)

@@ -7,6 +7,7 @@ output is deterministic; ``tests/test_data.py`` compares it with the bundled set
 pixels and ground truth (within stated tolerances), so a patch release of OpenCV's image
 codecs does not break it.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -27,10 +28,16 @@ def write_manifest(root: Path) -> Path:
     lines = []
     for p in sorted(root.rglob("*")):
         if p.is_file() and p.relative_to(root).parts[0] in GENERATED_SETS:
-            lines.append(f"{hashlib.sha256(p.read_bytes()).hexdigest()}  {p.stat().st_size:>8}  "
-                         f"{p.relative_to(root).as_posix()}")
+            lines.append(
+                f"{hashlib.sha256(p.read_bytes()).hexdigest()}  {p.stat().st_size:>8}  "
+                f"{p.relative_to(root).as_posix()}"
+            )
     path = root / "MANIFEST.txt"
-    path.write_text("# sha256  bytes  path   (regenerate everything with: python -m camlab.data)\n" + "\n".join(lines) + "\n")
+    path.write_text(
+        "# sha256  bytes  path   (regenerate everything with: python -m camlab.data)\n"
+        + "\n".join(lines)
+        + "\n"
+    )
     return path
 
 
@@ -41,17 +48,27 @@ def regenerate(root: Path | str) -> list[Path]:
     from .stereo import make_stereo_rig
 
     root = Path(root)
-    files = (make_calibration_set(root / "calib_chessboard") + make_panorama_set(root / "panorama")
-             + make_stereo_rig(root / "stereo"))
+    files = (
+        make_calibration_set(root / "calib_chessboard")
+        + make_panorama_set(root / "panorama")
+        + make_stereo_rig(root / "stereo")
+    )
     write_manifest(root)
     return files
 
 
 def main(argv: list[str] | None = None) -> int:
     """Command line: ``python -m camlab.data [DIR]``."""
-    parser = argparse.ArgumentParser(prog="python -m camlab.data", description="Regenerate camlab's rendered data sets.")
-    parser.add_argument("dir", nargs="?", type=Path, default=None,
-                        help="output folder (default: $CAMLAB_DATA, a clone's data/, else the user cache)")
+    parser = argparse.ArgumentParser(
+        prog="python -m camlab.data", description="Regenerate camlab's rendered data sets."
+    )
+    parser.add_argument(
+        "dir",
+        nargs="?",
+        type=Path,
+        default=None,
+        help="output folder (default: $CAMLAB_DATA, a clone's data/, else the user cache)",
+    )
     args = parser.parse_args(sys.argv[1:] if argv is None else argv)
     root = args.dir if args.dir is not None else regeneration_dir()
     files = regenerate(root)

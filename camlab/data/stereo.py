@@ -27,6 +27,7 @@ r"""A rendered stereo rig with full ground truth: ``data/stereo/`` (lesson 11).
 Conventions: pixels (u, v) = (column, row), origin at the centre of the top-left pixel;
 world z up, metres; the left camera looks along world +y.
 """
+
 from __future__ import annotations
 
 import json
@@ -40,9 +41,25 @@ from ._resources import encode_image, read_only, read_truth
 from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
 from ..scenes import CameraPair, noise_texture, portrait
 
-__all__ = ["HALF_SIZE", "STEREO_PARAMS", "HalfSizeRectification", "PreparedRig", "RigCalibration", "StereoMatches",
-           "StereoRig", "bundled_rig", "bundled_rig_calibration", "calibrate_rig", "half_size_rectification",
-           "load_stereo_rig", "make_stereo_rig", "rig_cameras", "stereo_scene", "true_disparity", "true_matches"]
+__all__ = [
+    "HALF_SIZE",
+    "STEREO_PARAMS",
+    "HalfSizeRectification",
+    "PreparedRig",
+    "RigCalibration",
+    "StereoMatches",
+    "StereoRig",
+    "bundled_rig",
+    "bundled_rig_calibration",
+    "calibrate_rig",
+    "half_size_rectification",
+    "load_stereo_rig",
+    "make_stereo_rig",
+    "rig_cameras",
+    "stereo_scene",
+    "true_disparity",
+    "true_matches",
+]
 
 STEREO_PARAMS = {
     "seed": 11,
@@ -53,9 +70,9 @@ STEREO_PARAMS = {
     "dist_right": [-0.07, 0.025, -0.0003, 0.0002, 0.0],
     "left_eye": [-0.06, 0.0, 1.0],
     "baseline": 0.12,
-    "right_offset": [0.0, 0.004, 0.006],     # extra displacement of the right camera, metres
-    "toe_in": 0.02,                          # radians each camera turns towards the middle
-    "right_roll": 0.01,                      # radians, about the right camera's optical axis
+    "right_offset": [0.0, 0.004, 0.006],  # extra displacement of the right camera, metres
+    "toe_in": 0.02,  # radians each camera turns towards the middle
+    "right_roll": 0.01,  # radians, about the right camera's optical axis
     "target": [0.0, 3.0, 1.0],
     "full_well": 20000.0,
     "read_noise": 1.5,
@@ -79,19 +96,44 @@ def stereo_scene(params: dict = STEREO_PARAMS) -> list:
 
     s = int(params["seed"])
     Rf = _facing()
-    turn = rotation_from_axis_angle([0.0, 0.0, 0.35])  # a plane turned 20 degrees about the vertical
+    turn = rotation_from_axis_angle(
+        [0.0, 0.0, 0.35]
+    )  # a plane turned 20 degrees about the vertical
     scene = [
-        render.textured_plane(noise_texture((512, 768), s), 6.0, R=Rf, t=(0.0, 4.2, 1.4), height=4.0, name="wall"),
-        render.textured_plane(noise_texture((384, 384), s + 1, 0.6), 0.9, R=turn @ Rf, t=(-0.75, 2.6, 1.15),
-                              name="panel_far"),
-        render.textured_plane(portrait().mean(axis=2), 0.55, R=Rf, t=(0.45, 1.9, 1.2),
-                              name="photo"),
-        render.textured_plane(noise_texture((256, 256), s + 2, 0.45), 0.35, R=Rf, t=(-0.2, 1.35, 0.9),
-                              name="panel_near"),
-        render.box((0.35, 2.2, 0.55), (0.3, 0.3, 0.3), R=rotation_from_axis_angle([0, 0, 0.5]), rng=s + 3,
-                   name="box_a"),
-        render.box((-0.45, 1.75, 0.62), (0.18, 0.18, 0.25), R=rotation_from_axis_angle([0, 0, -0.4]), rng=s + 4,
-                   name="box_b"),
+        render.textured_plane(
+            noise_texture((512, 768), s), 6.0, R=Rf, t=(0.0, 4.2, 1.4), height=4.0, name="wall"
+        ),
+        render.textured_plane(
+            noise_texture((384, 384), s + 1, 0.6),
+            0.9,
+            R=turn @ Rf,
+            t=(-0.75, 2.6, 1.15),
+            name="panel_far",
+        ),
+        render.textured_plane(
+            portrait().mean(axis=2), 0.55, R=Rf, t=(0.45, 1.9, 1.2), name="photo"
+        ),
+        render.textured_plane(
+            noise_texture((256, 256), s + 2, 0.45),
+            0.35,
+            R=Rf,
+            t=(-0.2, 1.35, 0.9),
+            name="panel_near",
+        ),
+        render.box(
+            (0.35, 2.2, 0.55),
+            (0.3, 0.3, 0.3),
+            R=rotation_from_axis_angle([0, 0, 0.5]),
+            rng=s + 3,
+            name="box_a",
+        ),
+        render.box(
+            (-0.45, 1.75, 0.62),
+            (0.18, 0.18, 0.25),
+            R=rotation_from_axis_angle([0, 0, -0.4]),
+            rng=s + 4,
+            name="box_b",
+        ),
     ]
     return scene
 
@@ -108,8 +150,11 @@ def rig_cameras(params: dict = STEREO_PARAMS, distortion: bool = True) -> Camera
     # Toe-in: a rotation about the camera's own y axis (pointing down); a negative angle turns
     # the camera to its right. The left camera turns right, the right one left: they converge.
     R1 = rotation_from_axis_angle([0.0, -params["toe_in"], 0.0]) @ R1
-    R2 = rotation_from_axis_angle([0.0, 0.0, params["right_roll"]]) @ \
-        rotation_from_axis_angle([0.0, params["toe_in"], 0.0]) @ R2
+    R2 = (
+        rotation_from_axis_angle([0.0, 0.0, params["right_roll"]])
+        @ rotation_from_axis_angle([0.0, params["toe_in"], 0.0])
+        @ R2
+    )
     d1 = tuple(params["dist_left"]) if distortion else (0.0,) * 5
     d2 = tuple(params["dist_right"]) if distortion else (0.0,) * 5
     c1 = Camera(np.array(params["K_left"]), R1, -R1 @ eye1, d1, size)
@@ -127,18 +172,36 @@ def _calib_poses(params: dict, c1: Camera, c2: Camera):
     out = []
     while len(out) < int(params["n_calib"]):
         dist = rng.uniform(0.55, 0.9)
-        aim = mid + dist * np.array([0.0, 1.0, 0.0]) + [rng.uniform(-0.1, 0.1), 0.0, rng.uniform(-0.07, 0.07)]
+        aim = (
+            mid
+            + dist * np.array([0.0, 1.0, 0.0])
+            + [rng.uniform(-0.1, 0.1), 0.0, rng.uniform(-0.07, 0.07)]
+        )
         tilt = rotation_from_axis_angle(rng.uniform(-0.45, 0.45, 3) * [1.0, 0.4, 1.0])
         R = tilt @ _facing()
         t = aim - R @ centre_board
-        corners = np.array([[0, 0, 0], [(cols - 1) * sq, 0, 0], [0, (rows - 1) * sq, 0],
-                            [(cols - 1) * sq, (rows - 1) * sq, 0]]) @ R.T + t
+        corners = (
+            np.array(
+                [
+                    [0, 0, 0],
+                    [(cols - 1) * sq, 0, 0],
+                    [0, (rows - 1) * sq, 0],
+                    [(cols - 1) * sq, (rows - 1) * sq, 0],
+                ]
+            )
+            @ R.T
+            + t
+        )
         ok = True
         for c in (c1, c2):
             uv = c.project(corners)
             w, h = c.image_size
-            ok &= bool(np.all(np.isfinite(uv)) and np.all(uv > 40) and np.all(uv[:, 0] < w - 40)
-                       and np.all(uv[:, 1] < h - 40))
+            ok &= bool(
+                np.all(np.isfinite(uv))
+                and np.all(uv > 40)
+                and np.all(uv[:, 0] < w - 40)
+                and np.all(uv[:, 1] < h - 40)
+            )
         if ok:
             out.append((R, t))
     return out
@@ -147,16 +210,18 @@ def _calib_poses(params: dict, c1: Camera, c2: Camera):
 class StereoRig(NamedTuple):
     """The bundled stereo rig: raw images, cameras, true rectified disparity, calibration views."""
 
-    left: np.ndarray              # (480, 640) uint8
+    left: np.ndarray  # (480, 640) uint8
     right: np.ndarray
-    camera1: Camera               # left camera (with distortion)
+    camera1: Camera  # left camera (with distortion)
     camera2: Camera
-    disparity: np.ndarray         # (480, 640) float, true disparity of the alpha=0 calibrated rectification; NaN = none
+    disparity: (
+        np.ndarray
+    )  # (480, 640) float, true disparity of the alpha=0 calibrated rectification; NaN = none
     calib_left: list[np.ndarray]
     calib_right: list[np.ndarray]
-    calib_corners_left: np.ndarray    # (n, 54, 2) exact pixels
+    calib_corners_left: np.ndarray  # (n, 54, 2) exact pixels
     calib_corners_right: np.ndarray
-    object_points: np.ndarray     # (54, 3) board frame
+    object_points: np.ndarray  # (54, 3) board frame
     pattern_size: tuple[int, int]
     params: dict
 
@@ -190,18 +255,24 @@ def true_matches(rig: StereoRig, step: int = 30, start: int = 20) -> StereoMatch
     from ..distortion import undistort_pixels
     from ..rectification import rectify_calibrated, unrectify_points
 
-    rect = rectify_calibrated(rig.camera1, rig.camera2, alpha=rig.params["rectify_alpha"], maps=False)
+    rect = rectify_calibrated(
+        rig.camera1, rig.camera2, alpha=rig.params["rectify_alpha"], maps=False
+    )
     h, w = rig.disparity.shape
-    v, u = np.mgrid[start:h - 10:step, start:w - 10:step]
+    v, u = np.mgrid[start : h - 10 : step, start : w - 10 : step]
     p1 = np.column_stack([u.ravel(), v.ravel()]).astype(float)
     d = rig.disparity[v.ravel(), u.ravel()]
     ok = np.isfinite(d)
     x1 = unrectify_points(rect, rig.camera1, p1[ok], 1)
-    x2 = unrectify_points(rect, rig.camera2, p1[ok] - np.column_stack([d[ok], np.zeros(ok.sum())]), 2)
+    x2 = unrectify_points(
+        rect, rig.camera2, p1[ok] - np.column_stack([d[ok], np.zeros(ok.sum())]), 2
+    )
     inside = np.all((x1 > 0) & (x1 < [w - 1, h - 1]) & (x2 > 0) & (x2 < [w - 1, h - 1]), axis=1)
     x1, x2 = x1[inside], x2[inside]
     c1, c2 = rig.camera1, rig.camera2
-    return StereoMatches(x1, x2, undistort_pixels(x1, c1.K, c1.dist), undistort_pixels(x2, c2.K, c2.dist))
+    return StereoMatches(
+        x1, x2, undistort_pixels(x1, c1.K, c1.dist), undistort_pixels(x2, c2.K, c2.dist)
+    )
 
 
 def true_disparity(rig: StereoRig, rect) -> np.ndarray:
@@ -218,13 +289,20 @@ def true_disparity(rig: StereoRig, rect) -> np.ndarray:
     from ..disparity import disparity_to_depth
     from ..rectification import rectify_calibrated
 
-    stored = rectify_calibrated(rig.camera1, rig.camera2, alpha=rig.params["rectify_alpha"], maps=False)
+    stored = rectify_calibrated(
+        rig.camera1, rig.camera2, alpha=rig.params["rectify_alpha"], maps=False
+    )
     Z = disparity_to_depth(rig.disparity, stored.K[0, 0], stored.baseline).astype(np.float32)
     M = stored.K @ np.linalg.inv(rect.K)
     w, h = rect.camera1.image_size
     v, u = np.mgrid[0:h, 0:w].astype(np.float32)
-    Zr = cv2.remap(Z, (M[0, 0] * u + M[0, 2]).astype(np.float32), (M[1, 1] * v + M[1, 2]).astype(np.float32),
-                   cv2.INTER_NEAREST, borderValue=np.nan)
+    Zr = cv2.remap(
+        Z,
+        (M[0, 0] * u + M[0, 2]).astype(np.float32),
+        (M[1, 1] * v + M[1, 2]).astype(np.float32),
+        cv2.INTER_NEAREST,
+        borderValue=np.nan,
+    )
     return disparity_to_depth(Zr, rect.K[0, 0], rect.baseline)
 
 
@@ -311,8 +389,10 @@ def bundled_rig() -> PreparedRig:
     rig = load_stereo_rig()
     matches = true_matches(rig, step=30, start=20)
     half = (_halved(rig.left), _halved(rig.right))
-    undistorted = (undistort_image(rig.left, rig.camera1.K, rig.camera1.dist),
-                   undistort_image(rig.right, rig.camera2.K, rig.camera2.dist))
+    undistorted = (
+        undistort_image(rig.left, rig.camera1.K, rig.camera1.dist),
+        undistort_image(rig.right, rig.camera2.K, rig.camera2.dist),
+    )
     rng = np.random.default_rng(0)
     n1 = matches.ideal1 + rng.normal(0, 0.3, matches.ideal1.shape)
     n2 = matches.ideal2 + rng.normal(0, 0.3, matches.ideal2.shape)
@@ -360,8 +440,12 @@ def half_size_rectification() -> HalfSizeRectification:
 
     prepared = bundled_rig()
     rig = prepared.rig
-    rect = rectify_calibrated(rig.camera1.resized(0.5), rig.camera2.resized(0.5),
-                              alpha=rig.params["rectify_alpha"], method="cv2")
+    rect = rectify_calibrated(
+        rig.camera1.resized(0.5),
+        rig.camera2.resized(0.5),
+        alpha=rig.params["rectify_alpha"],
+        method="cv2",
+    )
     left, right = rectify_images(rect, *prepared.half)
     disparity = true_disparity(rig, rect)
     g = np.nan_to_num(disparity, nan=-100.0)
@@ -384,8 +468,13 @@ def _jpg(path: Path, img: np.ndarray, quality: int) -> Path:
 
 
 def _camera_json(c: Camera) -> dict:
-    return {"K": np.round(c.K, 12).tolist(), "dist": list(c.dist), "R": np.round(c.R, 12).tolist(),
-            "t": np.round(c.t, 12).tolist(), "image_size": list(c.image_size)}
+    return {
+        "K": np.round(c.K, 12).tolist(),
+        "dist": list(c.dist),
+        "R": np.round(c.R, 12).tolist(),
+        "t": np.round(c.t, 12).tolist(),
+        "image_size": list(c.image_size),
+    }
 
 
 def make_stereo_rig(out_dir: Path | str, params: dict = STEREO_PARAMS) -> list[Path]:
@@ -403,15 +492,29 @@ def make_stereo_rig(out_dir: Path | str, params: dict = STEREO_PARAMS) -> list[P
     scene = stereo_scene(params)
     files = []
     for name, c in (("left", c1), ("right", c2)):
-        res = render.render(scene, c.K, size, R=c.R, t=c.t, dist=c.dist, sensor=sensor,
-                            supersample=params["supersample"], rng=rng, color=False)
+        res = render.render(
+            scene,
+            c.K,
+            size,
+            R=c.R,
+            t=c.t,
+            dist=c.dist,
+            sensor=sensor,
+            supersample=params["supersample"],
+            rng=rng,
+            color=False,
+        )
         files.append(_jpg(out / f"{name}.jpg", res.image, params["jpeg_quality"]))
     rect = rectify_calibrated(c1, c2, alpha=params["rectify_alpha"], maps=False)
     r1 = rect.camera1
-    gt = render.render(scene, r1.K, size, R=r1.R, t=r1.t, supersample=1, depth=True, color=False).truth
+    gt = render.render(
+        scene, r1.K, size, R=r1.R, t=r1.t, supersample=1, depth=True, color=False
+    ).truth
     with np.errstate(divide="ignore", invalid="ignore"):
         disp = rect.K[0, 0] * rect.baseline / gt.depth
-    enc = np.where(np.isfinite(disp) & (disp > 0), np.clip(np.round(disp * 256), 1, 65535), 0).astype(np.uint16)
+    enc = np.where(
+        np.isfinite(disp) & (disp > 0), np.clip(np.round(disp * 256), 1, 65535), 0
+    ).astype(np.uint16)
     files.append(_png(out / "disparity.png", enc))
     cols, rows = params["pattern_size"]
     # Calibration views without sensor noise (8-bit quantisation only): noisy PNGs are ~15x larger,
@@ -422,25 +525,49 @@ def make_stereo_rig(out_dir: Path | str, params: dict = STEREO_PARAMS) -> list[P
         board = render.checkerboard((cols, rows), params["square"], R=R, t=t)
         corners = {}
         for name, c in (("left", c1), ("right", c2)):
-            res = render.render(board, c.K, size, R=c.R, t=c.t, dist=c.dist, sensor=quiet,
-                                supersample=params["supersample"], color=False)
+            res = render.render(
+                board,
+                c.K,
+                size,
+                R=c.R,
+                t=c.t,
+                dist=c.dist,
+                sensor=quiet,
+                supersample=params["supersample"],
+                color=False,
+            )
             files.append(_png(out / f"calib_{name}_{i:02d}.png", res.image))
             corners[name] = np.round(res.truth.corners(), 9).tolist()
-        views.append({"left": f"calib_left_{i:02d}.png", "right": f"calib_right_{i:02d}.png",
-                      "R_world_from_board": np.round(R, 12).tolist(), "t_world_from_board": np.round(t, 12).tolist(),
-                      "corners_left": corners["left"], "corners_right": corners["right"]})
+        views.append(
+            {
+                "left": f"calib_left_{i:02d}.png",
+                "right": f"calib_right_{i:02d}.png",
+                "R_world_from_board": np.round(R, 12).tolist(),
+                "t_world_from_board": np.round(t, 12).tolist(),
+                "corners_left": corners["left"],
+                "corners_right": corners["right"],
+            }
+        )
     truth = {
         "description": "Stereo rig rendered by camlab.render; regenerate with `python -m camlab.data`.",
         "generator": "camlab.data.stereo.make_stereo_rig",
         "params": params,
         "conventions": "pixels (u, v) = (column, row), origin at the centre of the top-left pixel; X_cam = R X_world + t; "
-                       "dist = (k1, k2, p1, p2, k3); disparity.png = round(256 * d) of the alpha=0 calibrated "
-                       "rectification (camlab.rectification.rectify_calibrated), 0 = no surface",
-        "camera_left": _camera_json(c1), "camera_right": _camera_json(c2),
-        "rectified": {"K": np.round(rect.K, 12).tolist(), "R1": np.round(rect.R1, 12).tolist(),
-                      "R2": np.round(rect.R2, 12).tolist(), "baseline": rect.baseline},
-        "pattern_size": [cols, rows], "square": params["square"],
-        "object_points": np.round(render.checkerboard((cols, rows), params["square"]).object_points, 12).tolist(),
+        "dist = (k1, k2, p1, p2, k3); disparity.png = round(256 * d) of the alpha=0 calibrated "
+        "rectification (camlab.rectification.rectify_calibrated), 0 = no surface",
+        "camera_left": _camera_json(c1),
+        "camera_right": _camera_json(c2),
+        "rectified": {
+            "K": np.round(rect.K, 12).tolist(),
+            "R1": np.round(rect.R1, 12).tolist(),
+            "R2": np.round(rect.R2, 12).tolist(),
+            "baseline": rect.baseline,
+        },
+        "pattern_size": [cols, rows],
+        "square": params["square"],
+        "object_points": np.round(
+            render.checkerboard((cols, rows), params["square"]).object_points, 12
+        ).tolist(),
         "calibration_views": views,
     }
     (out / "truth.json").write_text(json.dumps(truth, separators=(",", ":")) + "\n")
@@ -455,7 +582,13 @@ def load_stereo_rig(directory: Path | str | None = None) -> StereoRig:
     d, truth = read_truth(directory, "stereo")
 
     def cam(j):
-        return Camera(np.array(j["K"]), np.array(j["R"]), np.array(j["t"]), tuple(j["dist"]), tuple(j["image_size"]))
+        return Camera(
+            np.array(j["K"]),
+            np.array(j["R"]),
+            np.array(j["t"]),
+            tuple(j["dist"]),
+            tuple(j["image_size"]),
+        )
 
     def grey(name):
         return cv2.imread(str(d / name), cv2.IMREAD_GRAYSCALE)
@@ -464,11 +597,16 @@ def load_stereo_rig(directory: Path | str | None = None) -> StereoRig:
     disp[disp == 0] = np.nan
     views = truth["calibration_views"]
     return StereoRig(
-        left=grey("left.jpg"), right=grey("right.jpg"), camera1=cam(truth["camera_left"]),
-        camera2=cam(truth["camera_right"]), disparity=disp,
-        calib_left=[grey(v["left"]) for v in views], calib_right=[grey(v["right"]) for v in views],
+        left=grey("left.jpg"),
+        right=grey("right.jpg"),
+        camera1=cam(truth["camera_left"]),
+        camera2=cam(truth["camera_right"]),
+        disparity=disp,
+        calib_left=[grey(v["left"]) for v in views],
+        calib_right=[grey(v["right"]) for v in views],
         calib_corners_left=np.array([v["corners_left"] for v in views]),
         calib_corners_right=np.array([v["corners_right"] for v in views]),
-        object_points=np.array(truth["object_points"]), pattern_size=tuple(truth["pattern_size"]),
+        object_points=np.array(truth["object_points"]),
+        pattern_size=tuple(truth["pattern_size"]),
         params=truth["params"],
     )

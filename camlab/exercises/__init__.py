@@ -11,20 +11,47 @@ like the exercise, written in plain numpy to be read (``Exercise(..., teaching=f
 never calls camlab, let alone a private helper; tests/test_exercises.py proves it passes
 the exercise's own check, i.e. agrees with camlab's optimised implementation.
 """
+
 from __future__ import annotations
 
 import functools
 import importlib
 import pkgutil
 
-from ._core import (EXERCISES, TIME_LIMIT_S, Exercise, check, register_exercise, same_array, same_up_to_scale,
-                    shape_problem, time_limit_applies, type_problem, unit_slip, worst_mismatch)
+from ._core import (
+    EXERCISES,
+    TIME_LIMIT_S,
+    Exercise,
+    check,
+    register_exercise,
+    same_array,
+    same_up_to_scale,
+    shape_problem,
+    time_limit_applies,
+    type_problem,
+    unit_slip,
+    worst_mismatch,
+)
 from ._core import solution as _solution
 from ._core import solution_source as _solution_source
 
-__all__ = ["EXERCISES", "TIME_LIMIT_S", "Exercise", "all_exercises", "check", "register_exercise", "same_array",
-           "same_up_to_scale", "shape_problem", "solution", "solution_source", "time_limit_applies", "type_problem",
-           "unit_slip", "worst_mismatch"]
+__all__ = [
+    "EXERCISES",
+    "TIME_LIMIT_S",
+    "Exercise",
+    "all_exercises",
+    "check",
+    "register_exercise",
+    "same_array",
+    "same_up_to_scale",
+    "shape_problem",
+    "solution",
+    "solution_source",
+    "time_limit_applies",
+    "type_problem",
+    "unit_slip",
+    "worst_mismatch",
+]
 
 
 def all_exercises() -> dict[str, Exercise]:
@@ -54,7 +81,7 @@ def solution_source(name: str) -> str:
 
 def __getattr__(attr: str):
     if attr.startswith("check_"):
-        name = attr[len("check_"):]
+        name = attr[len("check_") :]
         if name in all_exercises():
             fn = functools.partial(check, name)
             fn.__doc__ = f"Check your `{name}` function; prints 'not attempted yet' for a stub."

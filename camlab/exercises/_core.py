@@ -33,6 +33,7 @@ separate from camlab's optimised implementation (``Exercise.reference``); the te
 proves the two agree on every test input and that the teaching solution calls nothing but
 numpy and builtins.
 """
+
 from __future__ import annotations
 
 import inspect
@@ -102,12 +103,20 @@ def _fmt(value: Any) -> str:
             finite = value[np.isfinite(value)] if real else value[:0]
             span = f", values {finite.min():.4g} .. {finite.max():.4g}" if finite.size else ""
             return f"<array of shape {value.shape}, dtype {value.dtype}{span}>"
-        return np.array2string(value, precision=4, suppress_small=True, separator=", ", floatmode="maxprec_equal")
+        return np.array2string(
+            value, precision=4, suppress_small=True, separator=", ", floatmode="maxprec_equal"
+        )
     if isinstance(value, np.generic):
         return repr(value.item())  # 2.5, not np.float64(2.5)
     if isinstance(value, (tuple, list)):
         inner = ", ".join(_fmt(v) for v in value)
-        return f"[{inner}]" if isinstance(value, list) else f"({inner},)" if len(value) == 1 else f"({inner})"
+        return (
+            f"[{inner}]"
+            if isinstance(value, list)
+            else f"({inner},)"
+            if len(value) == 1
+            else f"({inner})"
+        )
     return repr(value)
 
 
@@ -199,7 +208,11 @@ def time_limit(seconds: float) -> Iterator[None]:
         signal.setitimer(signal.ITIMER_REAL, 0)
         signal.signal(signal.SIGALRM, outer_handler)
         if outer_delay and not outer_first:
-            signal.setitimer(signal.ITIMER_REAL, max(outer_delay - (time.monotonic() - start), 1e-3), outer_interval)
+            signal.setitimer(
+                signal.ITIMER_REAL,
+                max(outer_delay - (time.monotonic() - start), 1e-3),
+                outer_interval,
+            )
 
 
 def _inputs_changed(original: tuple, passed: tuple) -> list[int]:
@@ -208,7 +221,8 @@ def _inputs_changed(original: tuple, passed: tuple) -> list[int]:
     for k, (before, after) in enumerate(zip(original, passed)):
         if isinstance(before, np.ndarray):
             same = before.shape == np.shape(after) and np.array_equal(
-                before, after, equal_nan=before.dtype.kind in "fc")
+                before, after, equal_nan=before.dtype.kind in "fc"
+            )
             if not same:
                 changed.append(k)
     return changed
@@ -223,8 +237,9 @@ def _parameter_name(function: Callable[..., Any], position: int) -> str:
     return f"`{names[position]}`" if position < len(names) else f"argument {position + 1}"
 
 
-def _in_place_message(name: str, student_function: Callable[..., Any], changed: list[int], i: int, n: int,
-                      args: tuple) -> str:
+def _in_place_message(
+    name: str, student_function: Callable[..., Any], changed: list[int], i: int, n: int, args: tuple
+) -> str:
     """The diagnosis of an input changed in place, with examples written for the first changed argument.
 
     The examples use that argument's own name and shape: ``p[1] = -p[1]`` for one point (a 1-D array),
@@ -234,17 +249,23 @@ def _in_place_message(name: str, student_function: Callable[..., Any], changed: 
     first = _parameter_name(student_function, changed[0]).strip("`")
     a = first if first.isidentifier() else "x"
     if np.ndim(args[changed[0]]) == 1:
-        examples, new = f"`{a}[1] = -{a}[1]`, `{a} += d`, `{a}.sort()`", f"`{a} + d`, `np.append({a}, 1.0)`"
+        examples, new = (
+            f"`{a}[1] = -{a}[1]`, `{a} += d`, `{a}.sort()`",
+            f"`{a} + d`, `np.append({a}, 1.0)`",
+        )
     else:
         examples, new = f"`{a} *= L`, `{a}[:, 0] = ...`, `{a} += d`", f"`{a} * L`"
-    return (f"{name}: your function changed its input {what} in place (test input {i + 1} of {n}); the caller's "
-            f"array must come back as it went in\n"
-            f"  likely cause: an in-place operation on an argument ({examples}); "
-            f"build a new array instead ({new}), or work on a copy first (`{a} = np.array({a}, dtype=float)`)")
+    return (
+        f"{name}: your function changed its input {what} in place (test input {i + 1} of {n}); the caller's "
+        f"array must come back as it went in\n"
+        f"  likely cause: an in-place operation on an argument ({examples}); "
+        f"build a new array instead ({new}), or work on a copy first (`{a} = np.array({a}, dtype=float)`)"
+    )
 
 
-def _run_student(name: str, student_function: Callable[..., Any], args: tuple, i: int, n: int,
-                 seconds: float) -> Any:
+def _run_student(
+    name: str, student_function: Callable[..., Any], args: tuple, i: int, n: int, seconds: float
+) -> Any:
     """The student's answer on test input ``i`` of ``n``; AssertionError on a crash, a run longer than
     ``seconds`` or an input changed in place."""
     passed = _copy(args)
@@ -258,7 +279,8 @@ def _run_student(name: str, student_function: Callable[..., Any], args: tuple, i
             f"{name}: your function was still running after {seconds:g} s on test input {i + 1} of {n}, "
             f"so the check stopped it\n"
             f"  input    {_input_text(name, args)}\n"
-            f"  likely cause: a loop that never ends (a `while` whose condition stays true?)") from None
+            f"  likely cause: a loop that never ends (a `while` whose condition stays true?)"
+        ) from None
     except Exception as exc:
         raise AssertionError(
             f"{name}: your function raised {type(exc).__name__}: {exc}\n"
@@ -270,15 +292,19 @@ def _run_student(name: str, student_function: Callable[..., Any], args: tuple, i
     return got
 
 
-def check(name: str, student_function: Callable[..., Any], *, time_limit_s: float | None = None) -> CheckResult:
+def check(
+    name: str, student_function: Callable[..., Any], *, time_limit_s: float | None = None
+) -> CheckResult:
     """Check ``student_function`` against exercise ``name`` (see the module docstring).
 
     ``time_limit_s`` replaces :data:`TIME_LIMIT_S`, the seconds allowed per test input (lesson 00
     shows the limit at work with a short one); it applies only where :func:`time_limit_applies`.
     """
     if time_limit_s is not None and not time_limit_s > 0:
-        raise CamlabInputError(f"check: time_limit_s: expected a positive number of seconds, got {time_limit_s!r}; "
-                         f"leave it out for the usual {TIME_LIMIT_S:g} s")
+        raise CamlabInputError(
+            f"check: time_limit_s: expected a positive number of seconds, got {time_limit_s!r}; "
+            f"leave it out for the usual {TIME_LIMIT_S:g} s"
+        )
     seconds = TIME_LIMIT_S if time_limit_s is None else float(time_limit_s)
     exercise = EXERCISES[name]
     cases = list(exercise.cases())
@@ -288,11 +314,15 @@ def check(name: str, student_function: Callable[..., Any], *, time_limit_s: floa
         try:
             got = _run_student(name, student_function, args, i, len(cases), seconds)
         except NotImplementedError:
-            print(f"{name}: not attempted yet. Fill in the function above, run its cell, then this one.")
+            print(
+                f"{name}: not attempted yet. Fill in the function above, run its cell, then this one."
+            )
             return CheckResult(name, False)
         if got is None:
-            raise AssertionError(f"{name}: your function returned None on test input {i + 1}\n"
-                                 f"  likely cause: did you forget `return`? The last line should be `return <result>`.")
+            raise AssertionError(
+                f"{name}: your function returned None on test input {i + 1}\n"
+                f"  likely cause: did you forget `return`? The last line should be `return <result>`."
+            )
         wrong_type = type_problem(got, expected, exercise.ndarray_only)
         if wrong_type:
             raise AssertionError(
@@ -311,7 +341,9 @@ def check(name: str, student_function: Callable[..., Any], *, time_limit_s: floa
                 f"  likely cause: {too_coarse}"
             )
         if not exercise.compare(got, expected):
-            tolerance = exercise.compare.tolerance if isinstance(exercise.compare, SameArray) else None
+            tolerance = (
+                exercise.compare.tolerance if isinstance(exercise.compare, SameArray) else None
+            )
             raise AssertionError(
                 f"{name}: wrong answer on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_input_text(name, args)}\n"
@@ -321,13 +353,22 @@ def check(name: str, student_function: Callable[..., Any], *, time_limit_s: floa
                 + f"  likely cause: {exercise.diagnose(args, got, expected)}"
             )
     if exercise.follow_up is not None:
-        problem = exercise.follow_up(lambda *args: _run_student(name, student_function, args, len(cases), len(cases) + 1, seconds))
+        problem = exercise.follow_up(
+            lambda *args: _run_student(
+                name, student_function, args, len(cases), len(cases) + 1, seconds
+            )
+        )
         if problem:
             raise AssertionError(f"{name}: correct on all {len(cases)} test inputs, but {problem}")
     print(f"{name}: correct on all {len(cases)} test inputs. Well done!")
     if exercise.success_note is not None:
-        print(exercise.success_note(lambda *args: _run_student(name, student_function, args, len(cases), len(cases) + 1,
-                                                               seconds)))
+        print(
+            exercise.success_note(
+                lambda *args: _run_student(
+                    name, student_function, args, len(cases), len(cases) + 1, seconds
+                )
+            )
+        )
     return CheckResult(name, True)
 
 
@@ -339,38 +380,58 @@ def _leave_nan_in_freed_memory(expected: Any) -> None:
     answer (the array the check just computed) and pass by luck. After this it holds NaN, and the
     check fails, naming it.
     """
-    if isinstance(expected, np.ndarray) and expected.dtype.kind == "f" and 0 < expected.nbytes <= 1024:
+    if (
+        isinstance(expected, np.ndarray)
+        and expected.dtype.kind == "f"
+        and 0 < expected.nbytes <= 1024
+    ):
         np.full(expected.shape, np.nan, dtype=expected.dtype)  # made and freed at once
 
 
 def _exercise_exception_hint(name: str, exc: Exception, args: tuple) -> str:
     """The exercise's own hint for ``exc`` (its ``exception_hint``) as a 'likely cause' line, else the shared one."""
     exercise = EXERCISES.get(name)
-    own = exercise.exception_hint(exc, args) if exercise is not None and exercise.exception_hint else ""
+    own = (
+        exercise.exception_hint(exc, args)
+        if exercise is not None and exercise.exception_hint
+        else ""
+    )
     return f"\n  likely cause: {own}" if own else _exception_hint(exc)
 
 
 def _exception_hint(exc: Exception) -> str:
     """A likely cause for the errors students meet most ('' for the others)."""
-    one_based = ("\n  likely cause: counting columns from 1. Python counts from 0: an axis of size n has indices"
-                 " 0 .. n - 1, so the columns of an (N, 3) array of points are 0, 1 and 2 (z is X[:, 2] or X[:, 2:3])")
+    one_based = (
+        "\n  likely cause: counting columns from 1. Python counts from 0: an axis of size n has indices"
+        " 0 .. n - 1, so the columns of an (N, 3) array of points are 0, 1 and 2 (z is X[:, 2] or X[:, 2:3])"
+    )
     if isinstance(exc, ValueError) and "read-only" in str(exc):
-        return ("\n  likely cause: an in-place change (K /= d, K[0, 2] = ...) of an array you were given read-only,"
-                " such as a camlab Camera's K, R or t (cameras are immutable): build a new array (K / d) or change"
-                " a copy (K = camera.K.copy())")
+        return (
+            "\n  likely cause: an in-place change (K /= d, K[0, 2] = ...) of an array you were given read-only,"
+            " such as a camlab Camera's K, R or t (cameras are immutable): build a new array (K / d) or change"
+            " a copy (K = camera.K.copy())"
+        )
     if isinstance(exc, IndexError) and "out of bounds" in str(exc):
         return one_based
-    if isinstance(exc, ValueError) and "broadcast" in str(exc) and re.search(r"\(\d+,0\)|\(0,", str(exc)):
+    if (
+        isinstance(exc, ValueError)
+        and "broadcast" in str(exc)
+        and re.search(r"\(\d+,0\)|\(0,", str(exc))
+    ):
         return one_based + " (a slice past the last column, X[:, 3:4], is empty)"
     if isinstance(exc, ValueError) and "broadcast" in str(exc):
-        return ("\n  likely cause: a broadcasting slip. Dividing an (N, 2) array by an (N,) column such as X[:, 2]"
-                " lines the column up with the last axis; keep it 2-D: X[:, 2:3], X[:, 2, None] or keepdims=True")
+        return (
+            "\n  likely cause: a broadcasting slip. Dividing an (N, 2) array by an (N,) column such as X[:, 2]"
+            " lines the column up with the last axis; keep it 2-D: X[:, 2:3], X[:, 2, None] or keepdims=True"
+        )
     if isinstance(exc, ValueError) and "inhomogeneous" in str(exc):
         return f"\n  likely cause: an array beside numbers, as in np.array([p, 1]), makes no array of numbers: {_JOIN}"
     if isinstance(exc, ValueError) and "matmul" in str(exc):
-        return ("\n  likely cause: the sizes of a matrix product do not fit (A @ B needs A's columns = B's rows)."
-                " With points as rows, a matrix M acts as X @ M.T, not X @ M; and lift points to homogeneous"
-                " coordinates (append a column of ones) before a 3 x 4 or 3 x 3 projective matrix")
+        return (
+            "\n  likely cause: the sizes of a matrix product do not fit (A @ B needs A's columns = B's rows)."
+            " With points as rows, a matrix M acts as X @ M.T, not X @ M; and lift points to homogeneous"
+            " coordinates (append a column of ones) before a 3 x 4 or 3 x 3 projective matrix"
+        )
     return ""
 
 
@@ -393,13 +454,31 @@ def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | N
     else:
         return None
     kind = type(got).__name__
-    if (isinstance(got, (tuple, list)) and len(got) == 1 and isinstance(got[0], np.ndarray)
-            and isinstance(expected, np.ndarray) and got[0].shape == expected.shape):
-        made = "a trailing comma, `return x,`, makes a tuple" if isinstance(got, tuple) else "brackets, `[x]`, make a list"
+    if (
+        isinstance(got, (tuple, list))
+        and len(got) == 1
+        and isinstance(got[0], np.ndarray)
+        and isinstance(expected, np.ndarray)
+        and got[0].shape == expected.shape
+    ):
+        made = (
+            "a trailing comma, `return x,`, makes a tuple"
+            if isinstance(got, tuple)
+            else "brackets, `[x]`, make a list"
+        )
         return f"you returned a {kind} holding your array: {made}; return the array itself"
-    if (isinstance(got, (tuple, list)) and len(got) == 1 and isinstance(expected, (float, int, np.number))
-            and np.ndim(got[0]) == 0 and not isinstance(got[0], (str, bytes))):
-        made = "a trailing comma, `return x,`, makes a tuple" if isinstance(got, tuple) else "brackets, `[x]`, make a list"
+    if (
+        isinstance(got, (tuple, list))
+        and len(got) == 1
+        and isinstance(expected, (float, int, np.number))
+        and np.ndim(got[0]) == 0
+        and not isinstance(got[0], (str, bytes))
+    ):
+        made = (
+            "a trailing comma, `return x,`, makes a tuple"
+            if isinstance(got, tuple)
+            else "brackets, `[x]`, make a list"
+        )
         return f"you returned a {kind} of shape (1,); return one number: {made}; return the number itself"
     not_real = _not_real_numbers(got, kind, wanted)
     if not_real:
@@ -408,8 +487,10 @@ def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | N
         np.asarray(got, dtype=float)
     except (TypeError, ValueError):
         if isinstance(got, (list, tuple)):
-            return (f"you returned a {kind} that numpy cannot turn into one array of numbers (an array beside "
-                    f"numbers, such as [p, 1]?); {wanted}: {_JOIN}")
+            return (
+                f"you returned a {kind} that numpy cannot turn into one array of numbers (an array beside "
+                f"numbers, such as [p, 1]?); {wanted}: {_JOIN}"
+            )
         return f"you returned a {kind}, which is not numbers; {wanted}"
     if ndarray_only and not isinstance(got, np.ndarray):
         return f"you returned a {kind}; {wanted}: wrap the values in np.array(...)"
@@ -424,15 +505,17 @@ def precision_problem(got: Any, expected: Any) -> str | None:
     number. A tolerance wide enough for it would pass real mistakes, so such an answer is
     rejected (float32, 7 digits, is held to its own precision instead: :class:`Tolerance`).
     """
-    if not _holds_floats(expected):      # integer answers (digital numbers) have their own dtype checks
+    if not _holds_floats(expected):  # integer answers (digital numbers) have their own dtype checks
         return None
     if _coarsest_eps(got) <= np.finfo(np.float32).eps:
         return None
     coarse = _coarsest_dtype(got)
-    return (f"your answer is {coarse}, which keeps only about {np.finfo(coarse).precision} significant digits "
-            f"(between 1024 and 2048 it steps by whole numbers: 2015.5 and 2016 are the same {coarse} number), too "
-            f"coarse to tell a right answer from a slip; compute in float64, numpy's default (float32 also "
-            f"passes), and leave out .astype(np.{coarse})")
+    return (
+        f"your answer is {coarse}, which keeps only about {np.finfo(coarse).precision} significant digits "
+        f"(between 1024 and 2048 it steps by whole numbers: 2015.5 and 2016 are the same {coarse} number), too "
+        f"coarse to tell a right answer from a slip; compute in float64, numpy's default (float32 also "
+        f"passes), and leave out .astype(np.{coarse})"
+    )
 
 
 def _holds_floats(value: Any) -> bool:
@@ -448,9 +531,17 @@ def _holds_floats(value: Any) -> bool:
 def _coarsest_dtype(value: Any) -> np.dtype:
     """The float dtype with the largest epsilon in ``value`` (float64 if there is none)."""
     if isinstance(value, (tuple, list)):
-        return max((_coarsest_dtype(v) for v in value), key=lambda d: np.finfo(d).eps, default=np.dtype(np.float64))
+        return max(
+            (_coarsest_dtype(v) for v in value),
+            key=lambda d: np.finfo(d).eps,
+            default=np.dtype(np.float64),
+        )
     dtype = getattr(value, "dtype", None)
-    return np.dtype(dtype) if dtype is not None and np.issubdtype(dtype, np.floating) else np.dtype(np.float64)
+    return (
+        np.dtype(dtype)
+        if dtype is not None and np.issubdtype(dtype, np.floating)
+        else np.dtype(np.float64)
+    )
 
 
 def _a(value: Any) -> str:
@@ -474,18 +565,26 @@ def _not_real_numbers(got: Any, kind: str, wanted: str) -> str | None:
     except (TypeError, ValueError):
         return None  # a ragged list: the float cast in type_problem names it
     if dtype.kind in "US":
-        return (f"you returned {a_kind} of text (dtype {dtype}), not of numbers: the values were turned into "
-                f"strings (str(), an f-string, or np.array of numbers mixed with text); {wanted} built from the "
-                f"numbers themselves")
+        return (
+            f"you returned {a_kind} of text (dtype {dtype}), not of numbers: the values were turned into "
+            f"strings (str(), an f-string, or np.array of numbers mixed with text); {wanted} built from the "
+            f"numbers themselves"
+        )
     if dtype.kind == "c":
         what = f"{a_kind} of complex numbers" if np.ndim(got) else "a complex number"
-        return (f"you returned {what} (dtype {dtype}), but the answer is real, and "
-                f"comparing it as real would silently drop the imaginary part: a complex value crept in "
-                f"(a 1j, or a result of np.linalg.eig or np.roots); keep the computation real, or take .real once "
-                f"you have checked that the imaginary part is 0; {wanted}")
-    if dtype.kind == "O" and isinstance(got, np.ndarray):  # other objects (a dict) fail the float cast
-        return (f"you returned {a_kind} of Python objects (dtype object), not an array of numbers (dtype=object, "
-                f"or arrays mixed with numbers?); {wanted}: {_JOIN}")
+        return (
+            f"you returned {what} (dtype {dtype}), but the answer is real, and "
+            f"comparing it as real would silently drop the imaginary part: a complex value crept in "
+            f"(a 1j, or a result of np.linalg.eig or np.roots); keep the computation real, or take .real once "
+            f"you have checked that the imaginary part is 0; {wanted}"
+        )
+    if dtype.kind == "O" and isinstance(
+        got, np.ndarray
+    ):  # other objects (a dict) fail the float cast
+        return (
+            f"you returned {a_kind} of Python objects (dtype object), not an array of numbers (dtype=object, "
+            f"or arrays mixed with numbers?); {wanted}: {_JOIN}"
+        )
     return None
 
 
@@ -517,17 +616,19 @@ def worst_mismatch(got: Any, expected: Any, tolerance: Tolerance | None = None) 
     if not np.any(err > 0):
         return ""
     index = np.unravel_index(int(np.argmax(err)), e.shape)
-    if isinstance(expected, (tuple, list)) and e.ndim == 3:   # a pair of matrices, e.g. (K, R)
+    if isinstance(expected, (tuple, list)) and e.ndim == 3:  # a pair of matrices, e.g. (K, R)
         where = "(matrix, row, column)"
     else:
         where = {2: "(row, column)", 3: "(row, column, channel)"}.get(e.ndim, "index")
     tol = (tolerance or Tolerance()).for_answer(got, expected)
     wrong = int(np.sum(~tol.close(g, e)))
-    shown_got, shown_expected = f"{g[index] + 0.0:.6g}", f"{e[index] + 0.0:.6g}"   # + 0.0: no "-0"
+    shown_got, shown_expected = f"{g[index] + 0.0:.6g}", f"{e[index] + 0.0:.6g}"  # + 0.0: no "-0"
     if shown_got == shown_expected:
         shown_got, shown_expected = repr(float(g[index])), repr(float(e[index]))
-    return (f"  worst    {where} {tuple(int(i) for i in index)}: got {shown_got}, expected {shown_expected}"
-            f" ({wrong} of {e.size} entries differ by more than {tol})\n")
+    return (
+        f"  worst    {where} {tuple(int(i) for i in index)}: got {shown_got}, expected {shown_expected}"
+        f" ({wrong} of {e.size} entries differ by more than {tol})\n"
+    )
 
 
 def solution_source(name: str) -> str:
@@ -537,11 +638,18 @@ def solution_source(name: str) -> str:
     where = f"{reference.__module__}.{reference.__qualname__}"
     if exercise.teaching is None:
         return inspect.getsource(reference)
-    if reference.__name__.startswith("_"):   # a private helper is no place to send a student: say what it computes
+    if reference.__name__.startswith(
+        "_"
+    ):  # a private helper is no place to send a student: say what it computes
         summary = (inspect.getdoc(reference) or "").split("\n")[0]
-        return inspect.getsource(exercise.teaching) + f"\n# camlab's own, tested reference: {summary}\n"
-    return (inspect.getsource(exercise.teaching)
-            + f"\n# camlab's own, tested implementation: {where} (read it with {where}??)\n")
+        return (
+            inspect.getsource(exercise.teaching)
+            + f"\n# camlab's own, tested reference: {summary}\n"
+        )
+    return (
+        inspect.getsource(exercise.teaching)
+        + f"\n# camlab's own, tested implementation: {where} (read it with {where}??)\n"
+    )
 
 
 def solution(name: str) -> None:
@@ -604,8 +712,12 @@ class Tolerance:
 
     def close(self, got: Any, expected: Any) -> np.ndarray:
         """Per entry: within the tolerance (in float64)."""
-        return np.isclose(np.asarray(got, dtype=float), np.asarray(expected, dtype=float),
-                          rtol=self.rtol, atol=self.atol)
+        return np.isclose(
+            np.asarray(got, dtype=float),
+            np.asarray(expected, dtype=float),
+            rtol=self.rtol,
+            atol=self.atol,
+        )
 
     def __str__(self) -> str:
         return f"rtol {self.rtol:.1g}, atol {self.atol:.1g}"
@@ -642,8 +754,10 @@ def shape_problem(got: Any, expected: np.ndarray) -> str | None:
     if g.shape != np.shape(expected):
         return f"expected an array of shape {np.shape(expected)}, got shape {g.shape}"
     if not np.isfinite(g).all():
-        return ("the result holds NaN or inf: did you divide by a coordinate that can be 0, or leave entries of an "
-                "array made with np.empty unfilled (np.empty keeps whatever was in memory)?")
+        return (
+            "the result holds NaN or inf: did you divide by a coordinate that can be 0, or leave entries of an "
+            "array made with np.empty unfilled (np.empty keeps whatever was in memory)?"
+        )
     return None
 
 
@@ -658,6 +772,8 @@ def unit_slip(got: Any, expected: Any) -> str | None:
         return None
     for factor, unit in ((1e3, "millimetres"), (1e-3, "kilometres (or you divided by 1000)")):
         if np.allclose(g, factor * e, rtol=1e-6, atol=0):
-            return (f"your answer is {factor:g} times the expected one: you worked in {unit}; "
-                    f"the inputs and the answer are in metres")
+            return (
+                f"your answer is {factor:g} times the expected one: you worked in {unit}; "
+                f"the inputs and the answer are in metres"
+            )
     return None

@@ -1,4 +1,5 @@
 """Comparisons shared by exercises whose answer is one number."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -32,9 +33,14 @@ def not_one_number(got, what: str) -> str:
     """Why ``got`` is not one number, naming what came instead (a 1-tuple from a trailing comma, a list...)."""
     if isinstance(got, (tuple, list, np.ndarray)) and np.ndim(got) > 0:
         kind = "numpy array" if isinstance(got, np.ndarray) else type(got).__name__
-        how = {"tuple": " (a trailing comma, `return x,`, makes a tuple)", "list": " (brackets, `[x]`, make a list)"}
+        how = {
+            "tuple": " (a trailing comma, `return x,`, makes a tuple)",
+            "list": " (brackets, `[x]`, make a list)",
+        }
         if np.size(got) == 1:
-            return (f"you returned a {kind} holding one number{how.get(kind, '')}; return one number, {what}: "
-                    f"the value itself (float(x) or x[0])")
+            return (
+                f"you returned a {kind} holding one number{how.get(kind, '')}; return one number, {what}: "
+                f"the value itself (float(x) or x[0])"
+            )
         return f"you returned a {kind} of shape {np.shape(got)}; return one number, {what}"
     return f"return one number: {what}"

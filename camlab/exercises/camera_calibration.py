@@ -1,4 +1,5 @@
 """Exercises for lesson 08, camera calibration."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -8,8 +9,8 @@ from ..camera import rotation_from_axis_angle
 from ._core import Exercise, register_exercise, same_array, shape_problem
 
 
-
 # ------------------------------------------------------------------ V from one homography
+
 
 def _zhang_cases():
     K = np.array([[820.0, 0.0, 322.4], [0.0, 818.0, 236.8], [0.0, 0.0, 1.0]])
@@ -36,8 +37,10 @@ def _zhang_diagnosis(args, got, expected) -> str:
         return "the second row is v11 - v22 (equal lengths: h1^T B h1 = h2^T B h2), not the sum"
     if np.allclose(g[0], expected[0]) and not np.allclose(g[1], expected[1]):
         return "the first row (v12) is right; check the second, v11 - v22"
-    return ("v_ij = (hi1 hj1, hi1 hj2 + hi2 hj1, hi2 hj2, hi3 hj1 + hi1 hj3, hi3 hj2 + hi2 hj3, hi3 hj3) "
-            "with h_i = H[:, i]; check the order of the six entries")
+    return (
+        "v_ij = (hi1 hj1, hi1 hj2 + hi2 hj1, hi2 hj2, hi3 hj1 + hi1 hj3, hi3 hj2 + hi2 hj3, hi3 hj3) "
+        "with h_i = H[:, i]; check the order of the six entries"
+    )
 
 
 def zhang_constraints(H):
@@ -46,34 +49,53 @@ def zhang_constraints(H):
 
     def v(i, j):
         a, b = H[:, i], H[:, j]
-        return np.array([a[0] * b[0], a[0] * b[1] + a[1] * b[0], a[1] * b[1],
-                         a[2] * b[0] + a[0] * b[2], a[2] * b[1] + a[1] * b[2], a[2] * b[2]])
+        return np.array(
+            [
+                a[0] * b[0],
+                a[0] * b[1] + a[1] * b[0],
+                a[1] * b[1],
+                a[2] * b[0] + a[0] * b[2],
+                a[2] * b[1] + a[1] * b[2],
+                a[2] * b[2],
+            ]
+        )
 
     return np.stack([v(0, 1), v(0, 0) - v(1, 1)])
 
 
-register_exercise(Exercise(
-    name="zhang_constraints",
-    lesson="08",
-    reference=calibration.zhang_constraints,
-    cases=_zhang_cases,
-    compare=same_array(rtol=1e-7, atol=1e-12),
-    diagnose=_zhang_diagnosis,
-    wrong_variants=(
-        (lambda H: calibration.zhang_constraints(H.T), "rows of H"),
-        (lambda H: np.stack([calibration.zhang_v(H, 0, 1),
-                             calibration.zhang_v(H, 0, 0) + calibration.zhang_v(H, 1, 1)]), "not the sum"),
-    ),
-    teaching=zhang_constraints,
-))
+register_exercise(
+    Exercise(
+        name="zhang_constraints",
+        lesson="08",
+        reference=calibration.zhang_constraints,
+        cases=_zhang_cases,
+        compare=same_array(rtol=1e-7, atol=1e-12),
+        diagnose=_zhang_diagnosis,
+        wrong_variants=(
+            (lambda H: calibration.zhang_constraints(H.T), "rows of H"),
+            (
+                lambda H: np.stack(
+                    [
+                        calibration.zhang_v(H, 0, 1),
+                        calibration.zhang_v(H, 0, 0) + calibration.zhang_v(H, 1, 1),
+                    ]
+                ),
+                "not the sum",
+            ),
+        ),
+        teaching=zhang_constraints,
+    )
+)
 
 
 # ------------------------------------------------------------------ one LM step
 
+
 def _lm_cases():
     rng = np.random.default_rng(9)
-    return [(rng.normal(size=(8, 3)), rng.normal(size=8), mu) for mu in (0.0, 0.01, 1.0, 100.0)] + \
-        [(np.array([[1.0, 0.0], [0.0, 100.0], [1.0, 1.0]]), np.array([1.0, -2.0, 0.5]), 0.5)]
+    return [(rng.normal(size=(8, 3)), rng.normal(size=8), mu) for mu in (0.0, 0.01, 1.0, 100.0)] + [
+        (np.array([[1.0, 0.0], [0.0, 100.0], [1.0, 1.0]]), np.array([1.0, -2.0, 0.5]), 0.5)
+    ]
 
 
 def _lm_diagnosis(args, got, expected) -> str:
@@ -98,23 +120,32 @@ def lm_step(J, r, mu):
     return np.linalg.solve(A + mu * np.diag(np.diag(A)), -J.T @ r)
 
 
-register_exercise(Exercise(
-    name="lm_step",
-    lesson="08",
-    reference=optimize.lm_step,
-    cases=_lm_cases,
-    compare=same_array(rtol=1e-8, atol=1e-10),
-    diagnose=_lm_diagnosis,
-    wrong_variants=(
-        (lambda J, r, mu: np.linalg.solve(J.T @ J + mu * np.diag(np.diag(J.T @ J)), J.T @ r), "wrong sign"),
-        (lambda J, r, mu: np.linalg.solve(J.T @ J + mu * np.eye(J.shape[1]), -J.T @ r), "mu * I"),
-        (lambda J, r, mu: np.linalg.solve(J.T @ J, -J.T @ r), "Gauss-Newton"),
-    ),
-    teaching=lm_step,
-))
+register_exercise(
+    Exercise(
+        name="lm_step",
+        lesson="08",
+        reference=optimize.lm_step,
+        cases=_lm_cases,
+        compare=same_array(rtol=1e-8, atol=1e-10),
+        diagnose=_lm_diagnosis,
+        wrong_variants=(
+            (
+                lambda J, r, mu: np.linalg.solve(J.T @ J + mu * np.diag(np.diag(J.T @ J)), J.T @ r),
+                "wrong sign",
+            ),
+            (
+                lambda J, r, mu: np.linalg.solve(J.T @ J + mu * np.eye(J.shape[1]), -J.T @ r),
+                "mu * I",
+            ),
+            (lambda J, r, mu: np.linalg.solve(J.T @ J, -J.T @ r), "Gauss-Newton"),
+        ),
+        teaching=lm_step,
+    )
+)
 
 
 # ------------------------------------------------------------------ nearest rotation
+
 
 def _rotation_cases():
     rng = np.random.default_rng(10)
@@ -151,17 +182,19 @@ def nearest_rotation(M):
     return U @ Vt
 
 
-register_exercise(Exercise(
-    name="nearest_rotation",
-    lesson="08",
-    reference=calibration.nearest_rotation,
-    cases=_rotation_cases,
-    compare=same_array(rtol=1e-8, atol=1e-10),
-    diagnose=_rotation_diagnosis,
-    wrong_variants=(
-        (lambda M: (lambda U, S, Vt: U @ Vt)(*np.linalg.svd(M)), "det R = -1"),
-        (lambda M: M / np.linalg.norm(M, axis=0), "not orthonormal"),
-        (_gram_schmidt, "not the closest"),
-    ),
-    teaching=nearest_rotation,
-))
+register_exercise(
+    Exercise(
+        name="nearest_rotation",
+        lesson="08",
+        reference=calibration.nearest_rotation,
+        cases=_rotation_cases,
+        compare=same_array(rtol=1e-8, atol=1e-10),
+        diagnose=_rotation_diagnosis,
+        wrong_variants=(
+            (lambda M: (lambda U, S, Vt: U @ Vt)(*np.linalg.svd(M)), "det R = -1"),
+            (lambda M: M / np.linalg.norm(M, axis=0), "not orthonormal"),
+            (_gram_schmidt, "not the closest"),
+        ),
+        teaching=nearest_rotation,
+    )
+)

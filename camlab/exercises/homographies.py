@@ -1,4 +1,5 @@
 """Exercises for lesson 07, homographies."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -10,7 +11,9 @@ from ._core import Exercise, register_exercise, same_array, same_up_to_scale, sh
 
 # A patch far from the origin (like a crop of a large photo) with 1 px of noise: there the
 # unnormalised DLT is off by tens of pixels, while any Hartley-style normalisation agrees.
-_FAR_PATCH = np.stack(np.meshgrid(np.linspace(2000, 2600, 5), np.linspace(2000, 2400, 5)), -1).reshape(-1, 2)
+_FAR_PATCH = np.stack(
+    np.meshgrid(np.linspace(2000, 2600, 5), np.linspace(2000, 2400, 5)), -1
+).reshape(-1, 2)
 
 
 def _dlt_cases():
@@ -23,11 +26,11 @@ def _dlt_cases():
     pts = rng.uniform([0, 0], [640, 480], (8, 2))
     far = rng.uniform([2000, 2000], [2600, 2400], (30, 2))
     return [
-        (square, 2.0 * square + [3.0, 1.0]),   # a similarity
-        (square * 300, quad),                  # the unit-square trick, in pixels
+        (square, 2.0 * square + [3.0, 1.0]),  # a similarity
+        (square * 300, quad),  # the unit-square trick, in pixels
         (quad, map_points(H1, quad)),
-        (pts, map_points(H2, pts)),            # more than 4 pairs (noise free)
-        (far, map_points(H_far, far) + rng.normal(0, 1.0, far.shape)),   # noisy, far from the origin
+        (pts, map_points(H2, pts)),  # more than 4 pairs (noise free)
+        (far, map_points(H_far, far) + rng.normal(0, 1.0, far.shape)),  # noisy, far from the origin
     ]
 
 
@@ -39,7 +42,9 @@ def _same_homography(got, expected) -> bool:
     if g.shape != (3, 3) or not np.isfinite(g).all() or abs(np.linalg.det(g)) < 1e-300:
         return False
     with np.errstate(divide="ignore", invalid="ignore"):
-        return bool(np.nanmax(np.abs(map_points(g, _FAR_PATCH) - map_points(expected, _FAR_PATCH))) < 0.01)
+        return bool(
+            np.nanmax(np.abs(map_points(g, _FAR_PATCH) - map_points(expected, _FAR_PATCH))) < 0.01
+        )
 
 
 def _dlt_diagnosis(args, got, expected) -> str:
@@ -49,7 +54,9 @@ def _dlt_diagnosis(args, got, expected) -> str:
     src, dst = args
     g = np.asarray(got, dtype=float)
     if same_up_to_scale(g, np.linalg.inv(expected), rtol=1e-5):
-        return "your H maps dst to src: it is the inverse. Did you swap src and dst when building A?"
+        return (
+            "your H maps dst to src: it is the inverse. Did you swap src and dst when building A?"
+        )
     if same_up_to_scale(g.T, expected, rtol=1e-5):
         return "your H is transposed: h lists H row by row, so use h.reshape(3, 3), not column by column."
     cause = _normalisation_slip(g, src, dst, expected)
@@ -60,22 +67,32 @@ def _dlt_diagnosis(args, got, expected) -> str:
     except Exception:  # a singular H
         moved = np.array([np.nan, np.nan])
     if np.linalg.norm(src.mean(axis=0)) > 1000:
-        off = float(np.max(np.linalg.norm(map_points(g, _FAR_PATCH) - map_points(expected, _FAR_PATCH), axis=1)))
-        return (f"these are noisy points about 3000 px from the origin, and your H is off by up to {off:.3g} px "
-                f"there. Exact data hides it, noise does not: the columns of A range from 1 to u u' ~ 1e7, so "
-                f"A is badly conditioned. Normalise each point set first (Hartley: centroid to 0, mean "
-                f"distance sqrt(2)), solve, then undo it with H = inv(T_dst) @ H_n @ T_src.")
-    return (f"H maps src[0] = {np.round(src[0], 2)} to {np.round(moved, 2)}; expected {np.round(dst[0], 2)}. "
-            f"Build two rows of x' x Hx = 0 per pair, (0, -x^T, v' x^T) and (x^T, 0, -u' x^T), take the right "
-            f"singular vector with the smallest singular value (the last row of Vt) and reshape it row by row.")
+        off = float(
+            np.max(
+                np.linalg.norm(map_points(g, _FAR_PATCH) - map_points(expected, _FAR_PATCH), axis=1)
+            )
+        )
+        return (
+            f"these are noisy points about 3000 px from the origin, and your H is off by up to {off:.3g} px "
+            f"there. Exact data hides it, noise does not: the columns of A range from 1 to u u' ~ 1e7, so "
+            f"A is badly conditioned. Normalise each point set first (Hartley: centroid to 0, mean "
+            f"distance sqrt(2)), solve, then undo it with H = inv(T_dst) @ H_n @ T_src."
+        )
+    return (
+        f"H maps src[0] = {np.round(src[0], 2)} to {np.round(moved, 2)}; expected {np.round(dst[0], 2)}. "
+        f"Build two rows of x' x Hx = 0 per pair, (0, -x^T, v' x^T) and (x^T, 0, -u' x^T), take the right "
+        f"singular vector with the smallest singular value (the last row of Vt) and reshape it row by row."
+    )
 
 
 def _normalisers(src, dst):
     """Hartley's T_src, T_dst with mean distance sqrt(2) (camlab's) and with RMS distance sqrt(2) (H&Z's)."""
+
     def rms(p):
         c = p.mean(axis=0)
         k = np.sqrt(2 / np.mean(np.sum((p - c) ** 2, axis=1)))
         return np.array([[k, 0, -k * c[0]], [0, k, -k * c[1]], [0, 0, 1]])
+
     return [(hartley_normalization(src), hartley_normalization(dst)), (rms(src), rms(dst))]
 
 
@@ -84,27 +101,39 @@ def _normalisation_slip(g, src, dst, expected) -> str:
     side only, or whose null vector is a column of Vt; "" if none fits."""
     inv = np.linalg.inv
     for Ts, Td in _normalisers(src, dst):
-        Hn = Td @ expected @ inv(Ts)                    # the homography of the normalised points
+        Hn = Td @ expected @ inv(Ts)  # the homography of the normalised points
         if same_up_to_scale(g, Hn, rtol=1e-5):
-            return ("you returned H_n, the homography of the normalised points: the normalisation is not "
-                    "undone. H_n maps T_src x to T_dst x', so H = inv(T_dst) @ H_n @ T_src.")
-        for wrong, how in ((Td @ Hn @ inv(Ts), "T_dst @ H_n @ inv(T_src)"),
-                           (inv(Td) @ Hn @ inv(Ts), "inv(T_dst) @ H_n @ inv(T_src)"),
-                           (Td @ Hn @ Ts, "T_dst @ H_n @ T_src"),
-                           (inv(Ts) @ Hn @ Td, "inv(T_src) @ H_n @ T_dst")):
+            return (
+                "you returned H_n, the homography of the normalised points: the normalisation is not "
+                "undone. H_n maps T_src x to T_dst x', so H = inv(T_dst) @ H_n @ T_src."
+            )
+        for wrong, how in (
+            (Td @ Hn @ inv(Ts), "T_dst @ H_n @ inv(T_src)"),
+            (inv(Td) @ Hn @ inv(Ts), "inv(T_dst) @ H_n @ inv(T_src)"),
+            (Td @ Hn @ Ts, "T_dst @ H_n @ T_src"),
+            (inv(Ts) @ Hn @ Td, "inv(T_src) @ H_n @ T_dst"),
+        ):
             if same_up_to_scale(g, wrong, rtol=1e-5):
-                return (f"you undid the normalisation the wrong way round ({how}). H_n maps normalised points: "
-                        f"T_dst x' ~ H_n T_src x, so x' ~ inv(T_dst) H_n T_src x and H = inv(T_dst) @ H_n @ T_src.")
+                return (
+                    f"you undid the normalisation the wrong way round ({how}). H_n maps normalised points: "
+                    f"T_dst x' ~ H_n T_src x, so x' ~ inv(T_dst) H_n T_src x and H = inv(T_dst) @ H_n @ T_src."
+                )
         if same_up_to_scale(g, inv(Td) @ Hn, rtol=1e-5):
-            return ("you undid only the destination's normalisation (inv(T_dst) @ H_n): the result still "
-                    "expects normalised source points T_src x. Undo both: H = inv(T_dst) @ H_n @ T_src.")
+            return (
+                "you undid only the destination's normalisation (inv(T_dst) @ H_n): the result still "
+                "expects normalised source points T_src x. Undo both: H = inv(T_dst) @ H_n @ T_src."
+            )
         if same_up_to_scale(g, Hn @ Ts, rtol=1e-5):
-            return ("you undid only the source's normalisation (H_n @ T_src): the result still gives "
-                    "normalised destination points T_dst x'. Undo both: H = inv(T_dst) @ H_n @ T_src.")
+            return (
+                "you undid only the source's normalisation (H_n @ T_src): the result still gives "
+                "normalised destination points T_dst x'. Undo both: H = inv(T_dst) @ H_n @ T_src."
+            )
     for column in (_dlt_unnormalised(src, dst, column=True), _dlt_normalised_column(src, dst)):
         if same_up_to_scale(g, column, rtol=1e-5):
-            return ("you took a column of Vt. np.linalg.svd returns Vt, V transposed: the right singular "
-                    "vectors are its rows, so the null vector is the last row, Vt[-1], not Vt[:, -1].")
+            return (
+                "you took a column of Vt. np.linalg.svd returns Vt, V transposed: the right singular "
+                "vectors are its rows, so the null vector is the last row, Vt[-1], not Vt[:, -1]."
+            )
     return ""
 
 
@@ -112,7 +141,10 @@ def _dlt_rows(src, dst):
     rows = []
     for (u, v), (up, vp) in zip(np.asarray(src, float), np.asarray(dst, float)):
         x = np.array([u, v, 1.0])
-        rows += [np.concatenate([np.zeros(3), -x, vp * x]), np.concatenate([x, np.zeros(3), -up * x])]
+        rows += [
+            np.concatenate([np.zeros(3), -x, vp * x]),
+            np.concatenate([x, np.zeros(3), -up * x]),
+        ]
     return np.array(rows)
 
 
@@ -139,12 +171,12 @@ def _dlt_normalised_column(src, dst):
 
 
 def _dlt_not_undone(src, dst):
-    return _dlt_normalised_parts(src, dst)[2]                       # H_n itself
+    return _dlt_normalised_parts(src, dst)[2]  # H_n itself
 
 
 def _dlt_undone_wrong_order(src, dst):
     Ts, Td, Hn = _dlt_normalised_parts(src, dst)
-    return Td @ Hn @ np.linalg.inv(Ts)                                # T_dst H_n T_src^-1
+    return Td @ Hn @ np.linalg.inv(Ts)  # T_dst H_n T_src^-1
 
 
 def _dlt_undone_one_side(src, dst, side):
@@ -168,32 +200,34 @@ def dlt_homography(src, dst):
     for x, (u, v, _) in zip(a, b):
         rows.append(np.concatenate([np.zeros(3), -x, v * x]))
         rows.append(np.concatenate([x, np.zeros(3), -u * x]))
-    h = np.linalg.svd(np.array(rows))[2][-1]        # smallest singular value's right vector
+    h = np.linalg.svd(np.array(rows))[2][-1]  # smallest singular value's right vector
     H = np.linalg.inv(T_dst) @ h.reshape(3, 3) @ T_src
     return H / H[2, 2]
 
 
-register_exercise(Exercise(
-    name="dlt_homography",
-    lesson="07",
-    reference=hg.estimate_homography,
-    cases=_dlt_cases,
-    compare=_same_homography,
-    diagnose=_dlt_diagnosis,
-    wrong_variants=(
-        (lambda s, d: hg.estimate_homography(d, s), "inverse"),
-        (lambda s, d: hg.estimate_homography(s, d).T, "transposed"),
-        (lambda s, d: _dlt_unnormalised(s, d, pick=0), "smallest singular value"),
-        (_dlt_unnormalised, "Normalise each point set"),
-        (_dlt_not_undone, "not undone"),
-        (_dlt_undone_wrong_order, "wrong way round"),
-        (lambda s, d: _dlt_undone_one_side(s, d, "dst"), "undid only the destination's"),
-        (lambda s, d: _dlt_undone_one_side(s, d, "src"), "undid only the source's"),
-        (lambda s, d: _dlt_normalised_column(s, d), "a column of Vt"),
-        (lambda s, d: _dlt_unnormalised(s, d, column=True), "a column of Vt"),
-    ),
-    teaching=dlt_homography,
-))
+register_exercise(
+    Exercise(
+        name="dlt_homography",
+        lesson="07",
+        reference=hg.estimate_homography,
+        cases=_dlt_cases,
+        compare=_same_homography,
+        diagnose=_dlt_diagnosis,
+        wrong_variants=(
+            (lambda s, d: hg.estimate_homography(d, s), "inverse"),
+            (lambda s, d: hg.estimate_homography(s, d).T, "transposed"),
+            (lambda s, d: _dlt_unnormalised(s, d, pick=0), "smallest singular value"),
+            (_dlt_unnormalised, "Normalise each point set"),
+            (_dlt_not_undone, "not undone"),
+            (_dlt_undone_wrong_order, "wrong way round"),
+            (lambda s, d: _dlt_undone_one_side(s, d, "dst"), "undid only the destination's"),
+            (lambda s, d: _dlt_undone_one_side(s, d, "src"), "undid only the source's"),
+            (lambda s, d: _dlt_normalised_column(s, d), "a column of Vt"),
+            (lambda s, d: _dlt_unnormalised(s, d, column=True), "a column of Vt"),
+        ),
+        teaching=dlt_homography,
+    )
+)
 
 
 def _apply_cases():
@@ -209,7 +243,10 @@ def _apply_cases():
 def _apply_diagnosis(args, got, expected) -> str:
     problem = shape_problem(got, expected)
     if problem:
-        return problem + ". Lift to (u, v, 1), multiply, divide by the third coordinate, return (N, 2)."
+        return (
+            problem
+            + ". Lift to (u, v, 1), multiply, divide by the third coordinate, return (N, 2)."
+        )
     H, pts = args
     x = np.column_stack([pts, np.ones(len(pts))])
     y = x @ H.T
@@ -219,7 +256,9 @@ def _apply_diagnosis(args, got, expected) -> str:
     z = x @ H
     if np.allclose(g, z[:, :2] / z[:, 2:], rtol=1e-6):
         return "you multiplied by H transposed: with points as rows, x' = X @ H.T."
-    return "check the three steps: lift to (u, v, 1), multiply by H (X @ H.T for rows), divide by w."
+    return (
+        "check the three steps: lift to (u, v, 1), multiply by H (X @ H.T for rows), divide by w."
+    )
 
 
 def apply_homography(H, points):
@@ -229,16 +268,18 @@ def apply_homography(H, points):
     return Y[:, :2] / Y[:, 2:3]
 
 
-register_exercise(Exercise(
-    name="apply_homography",
-    lesson="07",
-    reference=map_points,
-    cases=_apply_cases,
-    compare=same_array(rtol=1e-9, atol=1e-9),
-    diagnose=_apply_diagnosis,
-    wrong_variants=(
-        (lambda H, p: (np.column_stack([p, np.ones(len(p))]) @ H.T)[:, :2], "divide by w"),
-        (lambda H, p: map_points(np.asarray(H).T, p), "transposed"),
-    ),
-    teaching=apply_homography,
-))
+register_exercise(
+    Exercise(
+        name="apply_homography",
+        lesson="07",
+        reference=map_points,
+        cases=_apply_cases,
+        compare=same_array(rtol=1e-9, atol=1e-9),
+        diagnose=_apply_diagnosis,
+        wrong_variants=(
+            (lambda H, p: (np.column_stack([p, np.ones(len(p))]) @ H.T)[:, :2], "divide by w"),
+            (lambda H, p: map_points(np.asarray(H).T, p), "transposed"),
+        ),
+        teaching=apply_homography,
+    )
+)

@@ -1,4 +1,5 @@
 """Exercises for lesson 10, perspective correction."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -28,41 +29,59 @@ def _rect_diagnosis(args, got, expected) -> str:
     moved = map_points(g, corners)
     want = np.array([[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]], dtype=float)
     if np.allclose(moved, want * [w / (w - 1), h / (h - 1)], atol=1e-6):
-        return ("off by one: the last pixel centre of a width-w image is at u = w - 1, so map to "
-                "(w - 1, 0), (w - 1, h - 1), (0, h - 1).")
+        return (
+            "off by one: the last pixel centre of a width-w image is at u = w - 1, so map to "
+            "(w - 1, 0), (w - 1, h - 1), (0, h - 1)."
+        )
     k = int(np.argmax(np.linalg.norm(moved - want, axis=1)))
-    return (f"corner {k} ({'TL TR BR BL'.split()[k]}) goes to {np.round(moved[k], 2)}, expected {want[k]}; "
-            f"pair TL, TR, BR, BL with (0, 0), (w - 1, 0), (w - 1, h - 1), (0, h - 1) in that order.")
+    return (
+        f"corner {k} ({'TL TR BR BL'.split()[k]}) goes to {np.round(moved[k], 2)}, expected {want[k]}; "
+        f"pair TL, TR, BR, BL with (0, 0), (w - 1, 0), (w - 1, h - 1), (0, h - 1) in that order."
+    )
 
 
 def rectangle_homography(corners, size):
     """Four pairs fix H: with h33 = 1 each pair gives two linear equations in the other 8 entries."""
     width, height = size
-    target = np.array([[0, 0], [width - 1, 0], [width - 1, height - 1], [0, height - 1]], dtype=float)
+    target = np.array(
+        [[0, 0], [width - 1, 0], [width - 1, height - 1], [0, height - 1]], dtype=float
+    )
     A, b = [], []
     for (u, v), (x, y) in zip(np.asarray(corners, dtype=float), target):
-        A.append([u, v, 1, 0, 0, 0, -x * u, -x * v])      # x (h31 u + h32 v + 1) = h11 u + h12 v + h13
-        A.append([0, 0, 0, u, v, 1, -y * u, -y * v])      # y (h31 u + h32 v + 1) = h21 u + h22 v + h23
+        A.append([u, v, 1, 0, 0, 0, -x * u, -x * v])  # x (h31 u + h32 v + 1) = h11 u + h12 v + h13
+        A.append([0, 0, 0, u, v, 1, -y * u, -y * v])  # y (h31 u + h32 v + 1) = h21 u + h22 v + h23
         b += [x, y]
     h = np.linalg.solve(np.array(A), np.array(b))
     return np.append(h, 1.0).reshape(3, 3)
 
 
-register_exercise(Exercise(
-    name="rectangle_homography",
-    lesson="10",
-    reference=pp.rectangle_homography,
-    cases=_rect_cases,
-    compare=lambda got, expected: same_up_to_scale(got, expected, rtol=1e-6),
-    diagnose=_rect_diagnosis,
-    wrong_variants=(
-        (lambda c, size: np.linalg.inv(pp.rectangle_homography(c, size)), "maps the rectangle into the photo"),
-        (lambda c, size: estimate_homography(c, [[0, 0], [size[0], 0], size, [0, size[1]]]), "off by one"),
-        (lambda c, size: estimate_homography(c, [[0, 0], [0, size[1] - 1], np.subtract(size, 1), [size[0] - 1, 0]]),
-         "pair TL, TR"),
-    ),
-    teaching=rectangle_homography,
-))
+register_exercise(
+    Exercise(
+        name="rectangle_homography",
+        lesson="10",
+        reference=pp.rectangle_homography,
+        cases=_rect_cases,
+        compare=lambda got, expected: same_up_to_scale(got, expected, rtol=1e-6),
+        diagnose=_rect_diagnosis,
+        wrong_variants=(
+            (
+                lambda c, size: np.linalg.inv(pp.rectangle_homography(c, size)),
+                "maps the rectangle into the photo",
+            ),
+            (
+                lambda c, size: estimate_homography(c, [[0, 0], [size[0], 0], size, [0, size[1]]]),
+                "off by one",
+            ),
+            (
+                lambda c, size: estimate_homography(
+                    c, [[0, 0], [0, size[1] - 1], np.subtract(size, 1), [size[0] - 1, 0]]
+                ),
+                "pair TL, TR",
+            ),
+        ),
+        teaching=rectangle_homography,
+    )
+)
 
 
 def _rotated_rectangle(angle_deg: float, centre=(320.0, 240.0), size=(260.0, 150.0)) -> np.ndarray:
@@ -79,7 +98,9 @@ def _order_cases():
         (np.array([[10.0, 0.0], [0.0, 0.0], [0.0, 10.0], [10.0, 10.0]]),),
         (page[[2, 0, 3, 1]],),
         (page[[3, 2, 1, 0]],),
-        (np.array([[300.0, 50.0], [520.0, 120.0], [90.0, 300.0], [480.0, 420.0]]),),  # bow-tie order
+        (
+            np.array([[300.0, 50.0], [520.0, 120.0], [90.0, 300.0], [480.0, 420.0]]),
+        ),  # bow-tie order
         # turned quadrilaterals: the corner with the smallest angle around the centroid is
         # then not the top-left one, so sorting by angle alone starts in the wrong place
         (_rotated_rectangle(25.0)[[1, 3, 0, 2]],),
@@ -96,10 +117,14 @@ def _order_diagnosis(args, got, expected) -> str:
     for shift in (1, 2, 3):
         if np.allclose(g, np.roll(expected, shift, axis=0)):
             return "the cyclic order is right but it does not start at the top-left corner (smallest u + v)."
-    if np.allclose(g, expected[::-1]) or any(np.allclose(g, np.roll(expected[::-1], s, axis=0)) for s in range(4)):
+    if np.allclose(g, expected[::-1]) or any(
+        np.allclose(g, np.roll(expected[::-1], s, axis=0)) for s in range(4)
+    ):
         return "your corners go counter-clockwise on screen; remember v points down, so sort by increasing angle."
-    return ("sorting by coordinates alone fails for tilted quadrilaterals; sort by the angle around the "
-            "centroid (np.arctan2(v - v_c, u - u_c)), then start at the top-left corner.")
+    return (
+        "sorting by coordinates alone fails for tilted quadrilaterals; sort by the angle around the "
+        "centroid (np.arctan2(v - v_c, u - u_c)), then start at the top-left corner."
+    )
 
 
 def order_corners(corners):
@@ -117,18 +142,25 @@ def _sorted_by_angle(corners):
     return q[np.argsort(np.arctan2(q[:, 1] - c[1], q[:, 0] - c[0]))]
 
 
-register_exercise(Exercise(
-    name="order_corners",
-    lesson="10",
-    reference=pp.order_corners,
-    cases=_order_cases,
-    compare=same_array(),
-    diagnose=_order_diagnosis,
-    wrong_variants=(
-        (lambda c: np.roll(pp.order_corners(c), 1, axis=0), "does not start at the top-left"),
-        (lambda c: pp.order_corners(c)[::-1], "counter-clockwise"),
-        (lambda c: np.asarray(c, float)[np.lexsort((np.asarray(c)[:, 0], np.asarray(c)[:, 1]))], "sort by the angle"),
-        (_sorted_by_angle, "does not start at the top-left"),
-    ),
-    teaching=order_corners,
-))
+register_exercise(
+    Exercise(
+        name="order_corners",
+        lesson="10",
+        reference=pp.order_corners,
+        cases=_order_cases,
+        compare=same_array(),
+        diagnose=_order_diagnosis,
+        wrong_variants=(
+            (lambda c: np.roll(pp.order_corners(c), 1, axis=0), "does not start at the top-left"),
+            (lambda c: pp.order_corners(c)[::-1], "counter-clockwise"),
+            (
+                lambda c: np.asarray(c, float)[
+                    np.lexsort((np.asarray(c)[:, 0], np.asarray(c)[:, 1]))
+                ],
+                "sort by the angle",
+            ),
+            (_sorted_by_angle, "does not start at the top-left"),
+        ),
+        teaching=order_corners,
+    )
+)

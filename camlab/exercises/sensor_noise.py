@@ -1,11 +1,12 @@
 """Exercise for lesson 03, section 3: measure a sensor's gain and read noise from dark and flat frames."""
+
 from __future__ import annotations
 
 import numpy as np
 
 from ._core import Exercise, SameArray, Tolerance, register_exercise
 
-TOP = 4095          # a 12-bit converter
+TOP = 4095  # a 12-bit converter
 
 
 LEVELS = (0.01, 0.05, 0.21, 0.37, 0.53, 0.69, 0.85)
@@ -37,7 +38,11 @@ def _frames(full_well: float, read_noise: float, black: int, seed: int):
 
 def _cases():
     """A machine-vision camera (10 000 e-, 5 e-), a large-pixel one with a high black level, a small pixel."""
-    return [_frames(10_000, 5.0, 64, 11), _frames(30_000, 12.0, 256, 12), _frames(4_000, 2.0, 100, 13)]
+    return [
+        _frames(10_000, 5.0, 64, 11),
+        _frames(30_000, 12.0, 256, 12),
+        _frames(4_000, 2.0, 100, 13),
+    ]
 
 
 def _pair_stats(flats, one_frame=False, halve=True, black=0.0, spread=np.var):
@@ -53,10 +58,26 @@ def _as_float(pairs):
     return [(np.asarray(a, dtype=float), np.asarray(b, dtype=float)) for a, b in pairs]
 
 
-def _estimate(darks, flats, *, one_frame=False, halve=True, through_origin=False, spread=np.var,
-              dark_one_frame=False, dark_halve=True, read_in_dn=False, slope_not_gain=False,
-              ratios=False, mean_of_difference=False, dark_subtracted_ratios=False, swapped_axes=False,
-              read_from_intercept=False, black_subtracted=False, read_over_gain=False):
+def _estimate(
+    darks,
+    flats,
+    *,
+    one_frame=False,
+    halve=True,
+    through_origin=False,
+    spread=np.var,
+    dark_one_frame=False,
+    dark_halve=True,
+    read_in_dn=False,
+    slope_not_gain=False,
+    ratios=False,
+    mean_of_difference=False,
+    dark_subtracted_ratios=False,
+    swapped_axes=False,
+    read_from_intercept=False,
+    black_subtracted=False,
+    read_over_gain=False,
+):
     """The reference and, with a flag, each typical mistake (for the diagnosis)."""
     d1, d2 = (np.asarray(d, dtype=float) for d in darks)
     means, variances = _pair_stats(flats, one_frame, halve, spread=spread)
@@ -64,11 +85,11 @@ def _estimate(darks, flats, *, one_frame=False, halve=True, through_origin=False
         means = means - (d1.mean() + d2.mean()) / 2
     if mean_of_difference:
         means = np.array([np.mean(a - b) for a, b in _as_float(flats)])
-    if ratios:                                     # g = mean / var per pair, averaged, black level kept in
+    if ratios:  # g = mean / var per pair, averaged, black level kept in
         slope = 1 / np.mean(means / variances)
-    elif dark_subtracted_ratios:                   # per pair, above the dark mean, the darks' variance left in
+    elif dark_subtracted_ratios:  # per pair, above the dark mean, the darks' variance left in
         slope = 1 / np.mean((means - (d1.mean() + d2.mean()) / 2) / variances)
-    elif swapped_axes:                             # np.polyfit(var, mean, 1): that slope is already about g
+    elif swapped_axes:  # np.polyfit(var, mean, 1): that slope is already about g
         slope = np.polyfit(variances, means, 1)[0]
     elif through_origin:
         slope = np.sum(means * variances) / np.sum(means * means)
@@ -76,9 +97,9 @@ def _estimate(darks, flats, *, one_frame=False, halve=True, through_origin=False
         slope = np.polyfit(means, variances, 1)[0]
     gain = 1 / slope
     dark_var = spread(d1) if dark_one_frame else spread(d1 - d2) / (2 if dark_halve else 1)
-    if read_from_intercept:                        # var = mean / g + sigma_r**2 / g**2 + 1/12 read at mean 0
+    if read_from_intercept:  # var = mean / g + sigma_r**2 / g**2 + 1/12 read at mean 0
         dark_var = np.polyfit(means, variances, 1)[1] - 1 / 12
-    with np.errstate(invalid="ignore"):            # a negative intercept: NaN, as the student's code gets
+    with np.errstate(invalid="ignore"):  # a negative intercept: NaN, as the student's code gets
         read = np.sqrt(dark_var) * (1 if read_in_dn else gain)
     if read_over_gain:
         read = np.sqrt(dark_var) / gain
@@ -91,48 +112,87 @@ def reference(darks, flats):
 
 
 _MISTAKES = (
-    (0, dict(one_frame=True),
-     "the gain is off: you took one flat frame's variance, which holds the fixed pattern too (each pixel's gain "
-     "differs by about 1 %, adding (0.01 mean)**2, which grows with the light); the difference of a pair, a - b, "
-     "cancels it: use var(a - b) / 2"),
-    (0, dict(halve=False),
-     "the gain is half the right one: a - b carries the temporal noise of two frames, so one frame's variance is "
-     "var(a - b) / 2"),
-    (0, dict(slope_not_gain=True),
-     "your gain is 1 / g (DN per electron): either you returned the slope of variance against mean, which is 1 / g, "
-     "instead of its inverse, or you fitted the axes the other way round, np.polyfit(var, mean, 1), whose slope is "
-     "already g, and then inverted it; fit var against mean, np.polyfit(mean, var, 1), and take g = 1 / slope"),
-    (0, dict(spread=np.std),
-     "you used the standard deviation; the photon-transfer line is in the variance: var = mean / g + constant"),
-    (0, dict(through_origin=True),
-     "the gain is a little off: a line through the origin ignores the black level (the frames' mean at no light, "
-     "about the darks' mean) and the read-noise floor; fit a line with an intercept (np.polyfit(mean, var, 1)), "
-     "or subtract the darks' mean from the flats' means"),
-    (0, dict(ratios=True),
-     "the gain is off: mean / var per pair counts the black level (the frames' mean at no light, the darks' mean) "
-     "as signal; subtract the darks' mean from each flat pair's mean first, or fit a line with an intercept"),
-    (0, dict(dark_subtracted_ratios=True),
-     "the gain is a few percent low: per pair, (mean - dark mean) / var leaves the read noise and quantisation in "
-     "the variance (sigma_r**2 / g**2 + 1/12 DN**2, the darks' var(d1 - d2) / 2), which matters at the dim pair; "
-     "subtract the darks' temporal variance too, g = (mean - dark mean) / (var - dark var), as EMVA 1288 does, or "
-     "fit a line with an intercept, which absorbs it"),
-    (0, dict(mean_of_difference=True),
-     "the means are the mean of a - b, about 0: the photon-transfer curve plots each pair's variance against the "
-     "frames' own mean level, (a.mean() + b.mean()) / 2"),
-    (1, dict(read_from_intercept=True, black_subtracted=True),
-     "the read noise from the fit's intercept, g * sqrt(c - 1/12), is imprecise: the line is fitted to bright pairs "
-     "whose variance is hundreds of DN**2, and sigma_r**2 / g**2 is a few DN**2 at its far end. Measure it where it "
-     "is the whole signal, in the dark pair: read noise = g * sqrt(var(d1 - d2) / 2)"),
-    (1, dict(read_over_gain=True),
-     "you divided the read noise in DN by the gain: g is in electrons per DN, so DN x (electrons per DN) = "
-     "electrons: multiply, g * sqrt(var(d1 - d2) / 2)"),
-    (1, dict(read_in_dn=True),
-     "the read noise is in DN: multiply by the gain g (electrons per DN) to get electrons"),
-    (1, dict(dark_halve=False),
-     "the read noise is sqrt(2) too large: d1 - d2 carries the read noise of two frames, so use var(d1 - d2) / 2"),
-    (1, dict(dark_one_frame=True),
-     "the read noise is too large: one dark frame's spread holds each pixel's own fixed offset (dark-signal "
-     "non-uniformity) too; the difference of the two darks cancels it: sqrt(var(d1 - d2) / 2)"),
+    (
+        0,
+        dict(one_frame=True),
+        "the gain is off: you took one flat frame's variance, which holds the fixed pattern too (each pixel's gain "
+        "differs by about 1 %, adding (0.01 mean)**2, which grows with the light); the difference of a pair, a - b, "
+        "cancels it: use var(a - b) / 2",
+    ),
+    (
+        0,
+        dict(halve=False),
+        "the gain is half the right one: a - b carries the temporal noise of two frames, so one frame's variance is "
+        "var(a - b) / 2",
+    ),
+    (
+        0,
+        dict(slope_not_gain=True),
+        "your gain is 1 / g (DN per electron): either you returned the slope of variance against mean, which is 1 / g, "
+        "instead of its inverse, or you fitted the axes the other way round, np.polyfit(var, mean, 1), whose slope is "
+        "already g, and then inverted it; fit var against mean, np.polyfit(mean, var, 1), and take g = 1 / slope",
+    ),
+    (
+        0,
+        dict(spread=np.std),
+        "you used the standard deviation; the photon-transfer line is in the variance: var = mean / g + constant",
+    ),
+    (
+        0,
+        dict(through_origin=True),
+        "the gain is a little off: a line through the origin ignores the black level (the frames' mean at no light, "
+        "about the darks' mean) and the read-noise floor; fit a line with an intercept (np.polyfit(mean, var, 1)), "
+        "or subtract the darks' mean from the flats' means",
+    ),
+    (
+        0,
+        dict(ratios=True),
+        "the gain is off: mean / var per pair counts the black level (the frames' mean at no light, the darks' mean) "
+        "as signal; subtract the darks' mean from each flat pair's mean first, or fit a line with an intercept",
+    ),
+    (
+        0,
+        dict(dark_subtracted_ratios=True),
+        "the gain is a few percent low: per pair, (mean - dark mean) / var leaves the read noise and quantisation in "
+        "the variance (sigma_r**2 / g**2 + 1/12 DN**2, the darks' var(d1 - d2) / 2), which matters at the dim pair; "
+        "subtract the darks' temporal variance too, g = (mean - dark mean) / (var - dark var), as EMVA 1288 does, or "
+        "fit a line with an intercept, which absorbs it",
+    ),
+    (
+        0,
+        dict(mean_of_difference=True),
+        "the means are the mean of a - b, about 0: the photon-transfer curve plots each pair's variance against the "
+        "frames' own mean level, (a.mean() + b.mean()) / 2",
+    ),
+    (
+        1,
+        dict(read_from_intercept=True, black_subtracted=True),
+        "the read noise from the fit's intercept, g * sqrt(c - 1/12), is imprecise: the line is fitted to bright pairs "
+        "whose variance is hundreds of DN**2, and sigma_r**2 / g**2 is a few DN**2 at its far end. Measure it where it "
+        "is the whole signal, in the dark pair: read noise = g * sqrt(var(d1 - d2) / 2)",
+    ),
+    (
+        1,
+        dict(read_over_gain=True),
+        "you divided the read noise in DN by the gain: g is in electrons per DN, so DN x (electrons per DN) = "
+        "electrons: multiply, g * sqrt(var(d1 - d2) / 2)",
+    ),
+    (
+        1,
+        dict(read_in_dn=True),
+        "the read noise is in DN: multiply by the gain g (electrons per DN) to get electrons",
+    ),
+    (
+        1,
+        dict(dark_halve=False),
+        "the read noise is sqrt(2) too large: d1 - d2 carries the read noise of two frames, so use var(d1 - d2) / 2",
+    ),
+    (
+        1,
+        dict(dark_one_frame=True),
+        "the read noise is too large: one dark frame's spread holds each pixel's own fixed offset (dark-signal "
+        "non-uniformity) too; the difference of the two darks cancels it: sqrt(var(d1 - d2) / 2)",
+    ),
 )
 
 
@@ -145,11 +205,13 @@ def _diagnose(args, got, expected) -> str:
         with np.errstate(all="ignore"):
             intercept = _estimate(*args, read_from_intercept=True)[1]
         if not np.isfinite(intercept):
-            return ("the read noise is NaN: taken from the fit's intercept, g * sqrt(c - 1/12)? These frames carry a "
-                    "black level, so the means count it too and the intercept is c = sigma_r**2 / g**2 + 1/12 - "
-                    "black / g, negative here (section 3's formula, var = mu / g + sigma_r**2 / g**2 + 1/12, holds "
-                    "for the mean mu above the black level). Take the "
-                    "read noise from the dark pair instead: g * sqrt(var(d1 - d2) / 2)")
+            return (
+                "the read noise is NaN: taken from the fit's intercept, g * sqrt(c - 1/12)? These frames carry a "
+                "black level, so the means count it too and the intercept is c = sigma_r**2 / g**2 + 1/12 - "
+                "black / g, negative here (section 3's formula, var = mu / g + sigma_r**2 / g**2 + 1/12, holds "
+                "for the mean mu above the black level). Take the "
+                "read noise from the dark pair instead: g * sqrt(var(d1 - d2) / 2)"
+            )
     if not np.isfinite(g).all():
         return "a NaN or inf: did a fit get fewer than two points, or a variance of 0 (a frame minus itself)?"
     if np.allclose(g[::-1], e, rtol=0.03):
@@ -157,37 +219,53 @@ def _diagnose(args, got, expected) -> str:
     with np.errstate(all="ignore"):
         wrapped = np.asarray(_wrapped_difference(*args))
     if np.isclose(g[0], wrapped[0], rtol=0.03):
-        return ("uint16 frames subtracted as they are wrap around: a - b below 0 becomes 65536 + (a - b), a huge "
-                "variance; convert to float first, np.asarray(a, dtype=float)")
+        return (
+            "uint16 frames subtracted as they are wrap around: a - b below 0 becomes 65536 + (a - b), a huge "
+            "variance; convert to float first, np.asarray(a, dtype=float)"
+        )
     for i, flags, hint in _MISTAKES:
         candidate = _estimate(*args, **flags)
-        if np.isclose(g[i], candidate[i], rtol=0.03) and not np.isclose(candidate[i], e[i], rtol=0.03):
+        if np.isclose(g[i], candidate[i], rtol=0.03) and not np.isclose(
+            candidate[i], e[i], rtol=0.03
+        ):
             return hint
     dark_var = np.var(np.asarray(args[0][0], dtype=float) - np.asarray(args[0][1], dtype=float)) / 2
     if np.isclose(g[0], e[0], rtol=0.03) and np.isclose(g[1], e[1] ** 2, rtol=0.06):
-        return ("the read noise is the square of the right one: you returned a variance (electrons squared); "
-                "the read noise is its standard deviation, g * sqrt(var(d1 - d2) / 2)")
+        return (
+            "the read noise is the square of the right one: you returned a variance (electrons squared); "
+            "the read noise is its standard deviation, g * sqrt(var(d1 - d2) / 2)"
+        )
     if np.isclose(g[0], e[0], rtol=0.03) and np.isclose(g[1], dark_var, rtol=0.03):
-        return ("you returned the darks' temporal variance in DN**2, var(d1 - d2) / 2: the read noise is its square "
-                "root, in DN, times the gain g (electrons per DN)")
+        return (
+            "you returned the darks' temporal variance in DN**2, var(d1 - d2) / 2: the read noise is its square "
+            "root, in DN, times the gain g (electrons per DN)"
+        )
     if np.isclose(g[0], e[0], rtol=0.03):
-        return ("the gain is right, the read noise is not: it is the spread of the darks' difference, "
-                "g * sqrt(var(d1 - d2) / 2), in electrons")
-    return ("per flat pair: mean = (a.mean() + b.mean()) / 2, var = np.var(a - b) / 2 (in float); g = 1 / slope "
-            "of the line var = mean / g + c; read noise = g * sqrt(var(d1 - d2) / 2)")
+        return (
+            "the gain is right, the read noise is not: it is the spread of the darks' difference, "
+            "g * sqrt(var(d1 - d2) / 2), in electrons"
+        )
+    return (
+        "per flat pair: mean = (a.mean() + b.mean()) / 2, var = np.var(a - b) / 2 (in float); g = 1 / slope "
+        "of the line var = mean / g + c; read noise = g * sqrt(var(d1 - d2) / 2)"
+    )
 
 
 def gain_and_read_noise(darks, flats):
     """(g in electrons per DN, read noise in electrons) from a dark pair and pairs of flat frames (DN)."""
-    d1, d2 = (np.asarray(d, dtype=float) for d in darks)           # float: uint16 differences would wrap
+    d1, d2 = (np.asarray(d, dtype=float) for d in darks)  # float: uint16 differences would wrap
     means, variances = [], []
     for a, b in flats:
         a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
         means.append((a.mean() + b.mean()) / 2)
-        variances.append(np.var(a - b) / 2)          # one frame's temporal variance; the fixed pattern cancels
-    slope, intercept = np.polyfit(means, variances, 1)   # var = mean / g + c (c: black level, read noise, 1/12)
+        variances.append(
+            np.var(a - b) / 2
+        )  # one frame's temporal variance; the fixed pattern cancels
+    slope, intercept = np.polyfit(
+        means, variances, 1
+    )  # var = mean / g + c (c: black level, read noise, 1/12)
     g = 1 / slope
-    read_noise = g * np.sqrt(np.var(d1 - d2) / 2)    # DN to electrons
+    read_noise = g * np.sqrt(np.var(d1 - d2) / 2)  # DN to electrons
     return g, read_noise
 
 
@@ -197,8 +275,10 @@ def _describe(args) -> str:
     d = np.asarray(darks[0])
     dark_mean = np.mean([np.mean(np.asarray(x, dtype=float)) for x in darks])
     means = [np.mean(np.asarray(a, dtype=float)) for a, _ in flats]
-    return (f"darks: {len(darks)} frames of {d.shape[0]} x {d.shape[1]} {d.dtype}, mean {dark_mean:.0f} DN (the black "
-            f"level); flats: {len(flats)} pairs, means {min(means):.0f} .. {max(means):.0f} DN")
+    return (
+        f"darks: {len(darks)} frames of {d.shape[0]} x {d.shape[1]} {d.dtype}, mean {dark_mean:.0f} DN (the black "
+        f"level); flats: {len(flats)} pairs, means {min(means):.0f} .. {max(means):.0f} DN"
+    )
 
 
 def _wrapped_difference(darks, flats):
@@ -210,35 +290,54 @@ def _wrapped_difference(darks, flats):
     return g, g * np.sqrt(np.var(d1 - d2) / 2)
 
 
-register_exercise(Exercise(
-    name="gain_and_read_noise",
-    lesson="03",
-    reference=reference,
-    cases=_cases,
-    compare=SameArray(Tolerance(rtol=0.03, atol=0.0)),      # the 3 % the prompt promises
-    diagnose=_diagnose,
-    describe_input=_describe,
-    wrong_variants=(
-        (lambda d, f: _estimate(d, f, one_frame=True), "one flat frame's variance"),
-        (lambda d, f: _estimate(d, f, halve=False), "two frames"),
-        (lambda d, f: _estimate(d, f, slope_not_gain=True), "instead of its inverse"),
-        (lambda d, f: _estimate(d, f, spread=np.std), "standard deviation"),
-        (lambda d, f: _estimate(d, f, through_origin=True), "black level"),
-        (lambda d, f: _estimate(d, f, read_in_dn=True), "multiply by the gain"),
-        (lambda d, f: _estimate(d, f, read_over_gain=True), "divided the read noise in DN by the gain"),
-        (lambda d, f: _estimate(d, f, dark_halve=False), "too large: d1 - d2"),
-        (lambda d, f: _estimate(d, f, dark_one_frame=True), "fixed offset"),
-        (lambda d, f: _estimate(d, f, ratios=True), "mean / var per pair"),
-        (lambda d, f: _estimate(d, f, mean_of_difference=True), "mean of a - b"),
-        (lambda d, f: _estimate(d, f, dark_subtracted_ratios=True), "subtract the darks' temporal variance too"),
-        (lambda d, f: _estimate(d, f, swapped_axes=True), "np.polyfit(var, mean, 1)"),
-        (lambda d, f: _estimate(d, f, read_from_intercept=True), "the intercept is c = sigma_r**2"),
-        (lambda d, f: _estimate(d, f, read_from_intercept=True, black_subtracted=True), "from the fit's intercept"),
-        (lambda d, f: reference(d, f)[::-1], "swapped"),
-        (lambda d, f: reference(d, f) ** [1, 2], "returned a variance"),
-        (lambda d, f: (reference(d, f)[0], np.var(np.asarray(d[0], dtype=float) - np.asarray(d[1], dtype=float)) / 2),
-         "temporal variance in DN"),
-        (_wrapped_difference, "wrap around"),
-    ),
-    teaching=gain_and_read_noise,
-))
+register_exercise(
+    Exercise(
+        name="gain_and_read_noise",
+        lesson="03",
+        reference=reference,
+        cases=_cases,
+        compare=SameArray(Tolerance(rtol=0.03, atol=0.0)),  # the 3 % the prompt promises
+        diagnose=_diagnose,
+        describe_input=_describe,
+        wrong_variants=(
+            (lambda d, f: _estimate(d, f, one_frame=True), "one flat frame's variance"),
+            (lambda d, f: _estimate(d, f, halve=False), "two frames"),
+            (lambda d, f: _estimate(d, f, slope_not_gain=True), "instead of its inverse"),
+            (lambda d, f: _estimate(d, f, spread=np.std), "standard deviation"),
+            (lambda d, f: _estimate(d, f, through_origin=True), "black level"),
+            (lambda d, f: _estimate(d, f, read_in_dn=True), "multiply by the gain"),
+            (
+                lambda d, f: _estimate(d, f, read_over_gain=True),
+                "divided the read noise in DN by the gain",
+            ),
+            (lambda d, f: _estimate(d, f, dark_halve=False), "too large: d1 - d2"),
+            (lambda d, f: _estimate(d, f, dark_one_frame=True), "fixed offset"),
+            (lambda d, f: _estimate(d, f, ratios=True), "mean / var per pair"),
+            (lambda d, f: _estimate(d, f, mean_of_difference=True), "mean of a - b"),
+            (
+                lambda d, f: _estimate(d, f, dark_subtracted_ratios=True),
+                "subtract the darks' temporal variance too",
+            ),
+            (lambda d, f: _estimate(d, f, swapped_axes=True), "np.polyfit(var, mean, 1)"),
+            (
+                lambda d, f: _estimate(d, f, read_from_intercept=True),
+                "the intercept is c = sigma_r**2",
+            ),
+            (
+                lambda d, f: _estimate(d, f, read_from_intercept=True, black_subtracted=True),
+                "from the fit's intercept",
+            ),
+            (lambda d, f: reference(d, f)[::-1], "swapped"),
+            (lambda d, f: reference(d, f) ** [1, 2], "returned a variance"),
+            (
+                lambda d, f: (
+                    reference(d, f)[0],
+                    np.var(np.asarray(d[0], dtype=float) - np.asarray(d[1], dtype=float)) / 2,
+                ),
+                "temporal variance in DN",
+            ),
+            (_wrapped_difference, "wrap around"),
+        ),
+        teaching=gain_and_read_noise,
+    )
+)

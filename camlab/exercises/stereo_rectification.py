@@ -1,4 +1,5 @@
 """Exercises for lesson 11, epipolar geometry and stereo rectification."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -20,8 +21,13 @@ def _rig_points(seed: int, noise: float, n: int = 24, baseline=(0.3, 0.02, 0.01)
 
 # --------------------------------------------------------------------------- the 8-point algorithm
 
+
 def _eight_point_cases():
-    return [_rig_points(0, 0.0), _rig_points(1, 0.5), _rig_points(2, 1.0, n=40, baseline=(0.5, -0.05, 0.1))]
+    return [
+        _rig_points(0, 0.0),
+        _rig_points(1, 0.5),
+        _rig_points(2, 1.0, n=40, baseline=(0.5, -0.05, 0.1)),
+    ]
 
 
 def _eight_point_diagnosis(args, got, expected) -> str:
@@ -34,18 +40,24 @@ def _eight_point_diagnosis(args, got, expected) -> str:
     T1, T2 = hartley_normalization(x1), hartley_normalization(x2)
     s = np.linalg.svd(np.linalg.inv(T2).T @ g @ np.linalg.inv(T1), compute_uv=False)
     if s[2] > 1e-8 * s[0]:
-        return ("your F has rank 3 (smallest singular value "
-                f"{s[2] / s[0]:.2g} of the largest): enforce rank 2 by zeroing the smallest singular value, "
-                "U diag(s1, s2, 0) V^T, so all epipolar lines meet in one epipole")
+        return (
+            "your F has rank 3 (smallest singular value "
+            f"{s[2] / s[0]:.2g} of the largest): enforce rank 2 by zeroing the smallest singular value, "
+            "U diag(s1, s2, 0) V^T, so all epipolar lines meet in one epipole"
+        )
     if same_up_to_scale(g.T, expected, rtol=1e-5):
         return "your F is transposed: with rows (u'u, u'v, u', v'u, v'v, v', u, v, 1) the constraint is x2^T F x1 = 0"
     raw = epipolar.estimate_fundamental_matrix(x1, x2, normalize=False, plane_tol=0)
     if same_up_to_scale(g, raw, rtol=1e-4):
-        return ("your F matches the 8-point algorithm without normalisation: normalise each image's points "
-                "(centroid to 0, mean distance sqrt(2)) first, then undo it with F = T2^T F_n T1")
+        return (
+            "your F matches the 8-point algorithm without normalisation: normalise each image's points "
+            "(centroid to 0, mean distance sqrt(2)) first, then undo it with F = T2^T F_n T1"
+        )
     err = np.median(epipolar.sampson_distance(g, x1, x2)) if np.any(g) else np.inf
-    return (f"median Sampson error of your F on the input pairs is {err:.3g} px; check the row of the linear "
-            "system (u'u, u'v, u', v'u, v'v, v', u, v, 1), the SVD (last row of V^T) and the un-normalisation")
+    return (
+        f"median Sampson error of your F on the input pairs is {err:.3g} px; check the row of the linear "
+        "system (u'u, u'v, u', v'u, v'v, v', u, v, 1), the SVD (last row of V^T) and the un-normalisation"
+    )
 
 
 def _no_rank2(x1, x2):
@@ -53,8 +65,19 @@ def _no_rank2(x1, x2):
     T1, T2 = hartley_normalization(a), hartley_normalization(b)
     an = a @ T1[:2, :2].T + T1[:2, 2]
     bn = b @ T2[:2, :2].T + T2[:2, 2]
-    A = np.column_stack([bn[:, 0] * an[:, 0], bn[:, 0] * an[:, 1], bn[:, 0], bn[:, 1] * an[:, 0],
-                         bn[:, 1] * an[:, 1], bn[:, 1], an[:, 0], an[:, 1], np.ones(len(a))])
+    A = np.column_stack(
+        [
+            bn[:, 0] * an[:, 0],
+            bn[:, 0] * an[:, 1],
+            bn[:, 0],
+            bn[:, 1] * an[:, 0],
+            bn[:, 1] * an[:, 1],
+            bn[:, 1],
+            an[:, 0],
+            an[:, 1],
+            np.ones(len(a)),
+        ]
+    )
     F = np.linalg.svd(A)[2][-1].reshape(3, 3)
     return T2.T @ F @ T1
 
@@ -71,30 +94,38 @@ def eight_point(x1, x2):
     T1, T2 = normaliser(x1), normaliser(x2)
     a = np.column_stack([x1, np.ones(len(x1))]) @ T1.T
     b = np.column_stack([x2, np.ones(len(x2))]) @ T2.T
-    A = np.column_stack([b[:, [0]] * a, b[:, [1]] * a, a])       # x2^T F x1 = 0, F row by row
+    A = np.column_stack([b[:, [0]] * a, b[:, [1]] * a, a])  # x2^T F x1 = 0, F row by row
     F = np.linalg.svd(A)[2][-1].reshape(3, 3)
     U, S, Vt = np.linalg.svd(F)
-    F = U @ np.diag([S[0], S[1], 0.0]) @ Vt                      # rank 2: one epipole
+    F = U @ np.diag([S[0], S[1], 0.0]) @ Vt  # rank 2: one epipole
     return T2.T @ F @ T1
 
 
-register_exercise(Exercise(
-    name="eight_point",
-    lesson="11",
-    reference=epipolar.estimate_fundamental_matrix,
-    cases=_eight_point_cases,
-    compare=lambda got, expected: same_up_to_scale(got, expected, rtol=1e-5),
-    diagnose=_eight_point_diagnosis,
-    wrong_variants=(
-        (_no_rank2, "rank 2"),
-        (lambda x1, x2: epipolar.estimate_fundamental_matrix(x1, x2).T, "transposed"),
-        (lambda x1, x2: epipolar.estimate_fundamental_matrix(x1, x2, normalize=False, plane_tol=0), "normalis"),
-    ),
-    teaching=eight_point,
-))
+register_exercise(
+    Exercise(
+        name="eight_point",
+        lesson="11",
+        reference=epipolar.estimate_fundamental_matrix,
+        cases=_eight_point_cases,
+        compare=lambda got, expected: same_up_to_scale(got, expected, rtol=1e-5),
+        diagnose=_eight_point_diagnosis,
+        wrong_variants=(
+            (_no_rank2, "rank 2"),
+            (lambda x1, x2: epipolar.estimate_fundamental_matrix(x1, x2).T, "transposed"),
+            (
+                lambda x1, x2: epipolar.estimate_fundamental_matrix(
+                    x1, x2, normalize=False, plane_tol=0
+                ),
+                "normalis",
+            ),
+        ),
+        teaching=eight_point,
+    )
+)
 
 
 # --------------------------------------------------------------------------- epipoles from F
+
 
 def _epipole_cases():
     F1 = epipolar.estimate_fundamental_matrix(*_rig_points(3, 0.0))
@@ -109,7 +140,9 @@ def _epipole_compare(got, expected) -> bool:
         e1, e2 = got
     except (TypeError, ValueError):
         return False
-    return same_up_to_scale(e1, expected.e1, rtol=1e-6) and same_up_to_scale(e2, expected.e2, rtol=1e-6)
+    return same_up_to_scale(e1, expected.e1, rtol=1e-6) and same_up_to_scale(
+        e2, expected.e2, rtol=1e-6
+    )
 
 
 def _epipole_diagnosis(args, got, expected) -> str:
@@ -120,19 +153,27 @@ def _epipole_diagnosis(args, got, expected) -> str:
         return "return two homogeneous 3-vectors (e1, e2): e1 in image 1 and e2 in image 2"
     for e, name in ((e1, "e1"), (e2, "e2")):
         if e.shape != (3,):
-            return (f"{name} has shape {e.shape}; return homogeneous 3-vectors: an epipole can be at infinity "
-                    f"(w = 0), which has no (u, v)")
+            return (
+                f"{name} has shape {e.shape}; return homogeneous 3-vectors: an epipole can be at infinity "
+                f"(w = 0), which has no (u, v)"
+            )
     ideal = abs(expected.e1[2]) < 1e-12 * np.linalg.norm(expected.e1)
     if ideal and not (np.isfinite(e1).all() and np.isfinite(e2).all()):
-        return ("your epipoles hold inf or NaN: these cameras are parallel, so the epipoles are ideal points "
-                "(w = 0, at infinity). Do not divide by w: return the null vectors of F as they are, "
-                "homogeneous 3-vectors")
+        return (
+            "your epipoles hold inf or NaN: these cameras are parallel, so the epipoles are ideal points "
+            "(w = 0, at infinity). Do not divide by w: return the null vectors of F as they are, "
+            "homogeneous 3-vectors"
+        )
     if same_up_to_scale(e1, expected.e2) and same_up_to_scale(e2, expected.e1):
-        return "you swapped them: e1 is the right null vector (F e1 = 0), e2 the left one (F^T e2 = 0)"
+        return (
+            "you swapped them: e1 is the right null vector (F e1 = 0), e2 the left one (F^T e2 = 0)"
+        )
     r1 = np.linalg.norm(F @ e1) / max(np.linalg.norm(e1), 1e-300)
     r2 = np.linalg.norm(F.T @ e2) / max(np.linalg.norm(e2), 1e-300)
-    return (f"|F e1| / |e1| = {r1:.2g} and |F^T e2| / |e2| = {r2:.2g} should both be 0: take the last row of V^T "
-            f"(for e1) and the last column of U (for e2) from the SVD F = U S V^T")
+    return (
+        f"|F e1| / |e1| = {r1:.2g} and |F^T e2| / |e2| = {r2:.2g} should both be 0: take the last row of V^T "
+        f"(for e1) and the last column of U (for e2) from the SVD F = U S V^T"
+    )
 
 
 def _divided_by_w(F):
@@ -143,29 +184,35 @@ def _divided_by_w(F):
 def epipoles(F):
     """F e1 = 0 and F^T e2 = 0: the right and left singular vectors of F's zero singular value."""
     U, _, Vt = np.linalg.svd(np.asarray(F, dtype=float))
-    return Vt[-1], U[:, -1]           # homogeneous; w may be 0 (an epipole at infinity)
+    return Vt[-1], U[:, -1]  # homogeneous; w may be 0 (an epipole at infinity)
 
 
-register_exercise(Exercise(
-    name="epipoles",
-    lesson="11",
-    reference=epipolar.epipoles,
-    cases=_epipole_cases,
-    compare=_epipole_compare,
-    diagnose=_epipole_diagnosis,
-    wrong_variants=(
-        (lambda F: tuple(reversed(epipolar.epipoles(F))), "swapped"),
-        (lambda F: (np.linalg.svd(F)[2][0], np.linalg.svd(F)[0][:, 0]), "should both be 0"),
-        (_divided_by_w, "Do not divide by w"),
-    ),
-    teaching=epipoles,
-))
+register_exercise(
+    Exercise(
+        name="epipoles",
+        lesson="11",
+        reference=epipolar.epipoles,
+        cases=_epipole_cases,
+        compare=_epipole_compare,
+        diagnose=_epipole_diagnosis,
+        wrong_variants=(
+            (lambda F: tuple(reversed(epipolar.epipoles(F))), "swapped"),
+            (lambda F: (np.linalg.svd(F)[2][0], np.linalg.svd(F)[0][:, 0]), "should both be 0"),
+            (_divided_by_w, "Do not divide by w"),
+        ),
+        teaching=epipoles,
+    )
+)
 
 
 # --------------------------------------------------------------------------- depth from disparity
 
+
 def _depth_cases():
-    return [(np.array([80.0, 40.0, 16.0]), 800.0, 0.12), (np.array([[10.5, 64.0], [33.0, 7.25]]), 1200.0, 0.3)]
+    return [
+        (np.array([80.0, 40.0, 16.0]), 800.0, 0.12),
+        (np.array([[10.5, 64.0], [33.0, 7.25]]), 1200.0, 0.3),
+    ]
 
 
 def _depth_diagnosis(args, got, expected) -> str:
@@ -175,7 +222,9 @@ def _depth_diagnosis(args, got, expected) -> str:
     d, f, B = args
     g = np.asarray(got, dtype=float)
     if np.allclose(g, d * B / f) or np.allclose(g, f * d / B):
-        return "depth falls as disparity grows: Z = f B / d (similar triangles), not proportional to d"
+        return (
+            "depth falls as disparity grows: Z = f B / d (similar triangles), not proportional to d"
+        )
     if np.allclose(g, B / d):
         return "you forgot the focal length: d is in pixels and B in metres, so Z = f B / d with f in pixels"
     if np.allclose(g, f / d):
@@ -185,13 +234,19 @@ def _depth_diagnosis(args, got, expected) -> str:
         k = float(ratio.flat[0])
         for factor, hint in ((1000.0, "millimetres"), (100.0, "centimetres")):
             if np.isclose(k, factor) or np.isclose(k, 1 / factor):
-                return (f"your depths are {k:.4g} times the true ones: a unit slip ({hint}?). With f in pixels "
-                        f"and B in metres, Z = f B / d comes out in metres")
-        return (f"your depths are {k:.4g} times the true ones at every pixel: the shape Z ~ 1/d is right, "
-                f"a constant is wrong. Check the formula Z = f B / d")
+                return (
+                    f"your depths are {k:.4g} times the true ones: a unit slip ({hint}?). With f in pixels "
+                    f"and B in metres, Z = f B / d comes out in metres"
+                )
+        return (
+            f"your depths are {k:.4g} times the true ones at every pixel: the shape Z ~ 1/d is right, "
+            f"a constant is wrong. Check the formula Z = f B / d"
+        )
     i = np.unravel_index(np.argmax(np.abs(g - expected)), g.shape)
-    return (f"at d = {d[i]:g} px (f = {f:g} px, B = {B:g} m) you give Z = {g[i]:.4g} m; f B / d = {expected[i]:.4g} m. "
-            f"Z must be inversely proportional to d")
+    return (
+        f"at d = {d[i]:g} px (f = {f:g} px, B = {B:g} m) you give Z = {g[i]:.4g} m; f B / d = {expected[i]:.4g} m. "
+        f"Z must be inversely proportional to d"
+    )
 
 
 def disparity_to_depth(d, f, B):
@@ -199,24 +254,27 @@ def disparity_to_depth(d, f, B):
     return f * B / np.asarray(d, dtype=float)
 
 
-register_exercise(Exercise(
-    name="disparity_to_depth",
-    lesson="11",
-    reference=disparity.disparity_to_depth,
-    cases=_depth_cases,
-    compare=same_array(rtol=1e-9),
-    diagnose=_depth_diagnosis,
-    wrong_variants=(
-        (lambda d, f, B: f * d / B, "Z = f B / d"),
-        (lambda d, f, B: B / d, "focal length"),
-        (lambda d, f, B: 1000 * f * B / d, "unit slip"),
-        (lambda d, f, B: f * B / (d + 1.0), "inversely proportional"),
-    ),
-    teaching=disparity_to_depth,
-))
+register_exercise(
+    Exercise(
+        name="disparity_to_depth",
+        lesson="11",
+        reference=disparity.disparity_to_depth,
+        cases=_depth_cases,
+        compare=same_array(rtol=1e-9),
+        diagnose=_depth_diagnosis,
+        wrong_variants=(
+            (lambda d, f, B: f * d / B, "Z = f B / d"),
+            (lambda d, f, B: B / d, "focal length"),
+            (lambda d, f, B: 1000 * f * B / d, "unit slip"),
+            (lambda d, f, B: f * B / (d + 1.0), "inversely proportional"),
+        ),
+        teaching=disparity_to_depth,
+    )
+)
 
 
 # --------------------------------------------------------------------------- E -> (R, t)
+
 
 def _essential_cases():
     rng = np.random.default_rng(11)
@@ -229,7 +287,9 @@ def _essential_cases():
 
 
 def _pose_set(Rs, ts) -> list[tuple[np.ndarray, np.ndarray]]:
-    return [(np.asarray(R, float), np.asarray(t, float) / np.linalg.norm(t)) for R, t in zip(Rs, ts)]
+    return [
+        (np.asarray(R, float), np.asarray(t, float) / np.linalg.norm(t)) for R, t in zip(Rs, ts)
+    ]
 
 
 def _essential_compare(got, expected) -> bool:
@@ -237,13 +297,19 @@ def _essential_compare(got, expected) -> bool:
         Rs, ts = (np.asarray(a, dtype=float) for a in got)
     except (TypeError, ValueError):
         return False
-    if Rs.shape != (4, 3, 3) or ts.shape != (4, 3) or not (np.isfinite(Rs).all() and np.isfinite(ts).all()):
+    if (
+        Rs.shape != (4, 3, 3)
+        or ts.shape != (4, 3)
+        or not (np.isfinite(Rs).all() and np.isfinite(ts).all())
+    ):
         return False
     if np.any(np.linalg.norm(ts, axis=1) == 0):
         return False
     mine = _pose_set(Rs, ts)
-    return all(any(np.allclose(R, Rg, atol=1e-8) and np.allclose(t, tg, atol=1e-8) for Rg, tg in mine)
-               for R, t in _pose_set(*expected))
+    return all(
+        any(np.allclose(R, Rg, atol=1e-8) and np.allclose(t, tg, atol=1e-8) for Rg, tg in mine)
+        for R, t in _pose_set(*expected)
+    )
 
 
 def _essential_diagnosis(args, got, expected) -> str:
@@ -256,35 +322,44 @@ def _essential_diagnosis(args, got, expected) -> str:
         return f"expected Rs (4, 3, 3) and ts (4, 3), got {Rs.shape} and {ts.shape}: four candidates, (R_a, ±t), (R_b, ±t)"
     dets = np.linalg.det(Rs)
     if np.any(dets < 0):
-        return ("some of your R have det = -1 (reflections, not rotations): the SVD's U and V can be "
-                "reflections; flip the sign of U (or V^T) when its determinant is -1, before forming U W V^T")
+        return (
+            "some of your R have det = -1 (reflections, not rotations): the SVD's U and V can be "
+            "reflections; flip the sign of U (or V^T) when its determinant is -1, before forming U W V^T"
+        )
     u3 = np.linalg.svd(E)[0][:, 2]
     v3 = np.linalg.svd(E)[2][2]
-    if any(abs(abs(t @ v3) / np.linalg.norm(t) - 1) < 1e-8 and abs(abs(t @ u3) / np.linalg.norm(t) - 1) > 1e-6
-           for t in ts):
-        return ("your t is the right null vector of E (last row of V^T); t is the LEFT null vector, the last "
-                "column of U: t^T E = t^T [t]x R = 0")
+    if any(
+        abs(abs(t @ v3) / np.linalg.norm(t) - 1) < 1e-8
+        and abs(abs(t @ u3) / np.linalg.norm(t) - 1) > 1e-6
+        for t in ts
+    ):
+        return (
+            "your t is the right null vector of E (last row of V^T); t is the LEFT null vector, the last "
+            "column of U: t^T E = t^T [t]x R = 0"
+        )
     if len({tuple(np.round(R, 6).ravel()) for R in Rs}) < 2:
         return "your four candidates hold only one rotation: R_a = U W V^T and R_b = U W^T V^T (note the transpose)"
-    return ("with E = U diag(1, 1, 0) V^T and W = [[0, -1, 0], [1, 0, 0], [0, 0, 1]]: R in {U W V^T, U W^T V^T} "
-            "and t = ±(last column of U)")
+    return (
+        "with E = U diag(1, 1, 0) V^T and W = [[0, -1, 0], [1, 0, 0], [0, 0, 1]]: R in {U W V^T, U W^T V^T} "
+        "and t = ±(last column of U)"
+    )
 
 
 def decompose_essential(E):
     """E = [t]x R = U diag(1, 1, 0) V^T gives two rotations U W V^T, U W^T V^T and t = ±u3."""
     U, _, Vt = np.linalg.svd(np.asarray(E, dtype=float))
-    if np.linalg.det(U) < 0:        # make U and V rotations, so that U W V^T is one too
+    if np.linalg.det(U) < 0:  # make U and V rotations, so that U W V^T is one too
         U = -U
     if np.linalg.det(Vt) < 0:
         Vt = -Vt
     W = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
     Ra, Rb = U @ W @ Vt, U @ W.T @ Vt
-    t = U[:, 2]                      # the left null vector of E: the baseline direction
+    t = U[:, 2]  # the left null vector of E: the baseline direction
     return np.stack([Ra, Ra, Rb, Rb]), np.stack([t, -t, t, -t])
 
 
 def _no_det_fix(E):
-    U, _, Vt = np.linalg.svd(E)   # numpy returns det(U) = -1 on the first test case
+    U, _, Vt = np.linalg.svd(E)  # numpy returns det(U) = -1 on the first test case
     W = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
     Ra, Rb = U @ W @ Vt, U @ W.T @ Vt
     return np.stack([Ra, Ra, Rb, Rb]), np.stack([U[:, 2], -U[:, 2], U[:, 2], -U[:, 2]])
@@ -296,17 +371,22 @@ def _right_null_vector(E):
     return Rs, np.stack([v3, -v3, v3, -v3])
 
 
-register_exercise(Exercise(
-    name="decompose_essential",
-    lesson="11",
-    reference=epipolar.decompose_essential_matrix,
-    cases=_essential_cases,
-    compare=_essential_compare,
-    diagnose=_essential_diagnosis,
-    wrong_variants=(
-        (_no_det_fix, "det = -1"),
-        (_right_null_vector, "LEFT null vector"),
-        (lambda E: (lambda Rs, ts: (np.stack([Rs[0]] * 4), ts))(*decompose_essential(E)), "only one rotation"),
-    ),
-    teaching=decompose_essential,
-))
+register_exercise(
+    Exercise(
+        name="decompose_essential",
+        lesson="11",
+        reference=epipolar.decompose_essential_matrix,
+        cases=_essential_cases,
+        compare=_essential_compare,
+        diagnose=_essential_diagnosis,
+        wrong_variants=(
+            (_no_det_fix, "det = -1"),
+            (_right_null_vector, "LEFT null vector"),
+            (
+                lambda E: (lambda Rs, ts: (np.stack([Rs[0]] * 4), ts))(*decompose_essential(E)),
+                "only one rotation",
+            ),
+        ),
+        teaching=decompose_essential,
+    )
+)

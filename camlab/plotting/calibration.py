@@ -3,6 +3,7 @@
 ``report_figure(result)`` puts them all on one page (what ``camlab calibrate --report`` saves).
 Pixels (u, v) = (column, row), origin at the centre of the top-left pixel, v down.
 """
+
 from __future__ import annotations
 
 from typing import Any
@@ -11,8 +12,15 @@ import numpy as np
 
 from ..calibration import CalibrationResult, CoachReport, coach, projection_uncertainty
 
-__all__ = ["image_frame", "plot_cost_history", "plot_coverage", "plot_per_view_errors", "plot_residual_field",
-           "plot_uncertainty_map", "report_figure"]
+__all__ = [
+    "image_frame",
+    "plot_cost_history",
+    "plot_coverage",
+    "plot_per_view_errors",
+    "plot_residual_field",
+    "plot_uncertainty_map",
+    "report_figure",
+]
 
 
 def image_frame(ax, image_size: tuple[int, int], title: str = "") -> None:
@@ -21,7 +29,13 @@ def image_frame(ax, image_size: tuple[int, int], title: str = "") -> None:
     ax.set_xlim(-0.5, w - 0.5)
     ax.set_ylim(h - 0.5, -0.5)
     ax.set_aspect("equal")
-    ax.plot([-0.5, w - 0.5, w - 0.5, -0.5, -0.5], [-0.5, -0.5, h - 0.5, h - 0.5, -0.5], color="0.5", lw=0.8, gid="grid")
+    ax.plot(
+        [-0.5, w - 0.5, w - 0.5, -0.5, -0.5],
+        [-0.5, -0.5, h - 0.5, h - 0.5, -0.5],
+        color="0.5",
+        lw=0.8,
+        gid="grid",
+    )
     ax.set_xlabel("u (px)")
     ax.set_ylabel("v (px)")
     if title:
@@ -54,8 +68,18 @@ def plot_residual_field(ax, result: CalibrationResult, scale: float | None = Non
         typical = np.percentile(np.linalg.norm(res, axis=1), 90)
         scale = 25.0 / max(typical, 1e-9)
     image_frame(ax, result.image_size, f"Residuals x{scale:.0f}")
-    q = ax.quiver(pts[:, 0], pts[:, 1], res[:, 0] * scale, res[:, 1] * scale, np.linalg.norm(res, axis=1),
-                  angles="xy", scale_units="xy", scale=1, cmap="viridis", width=0.004)
+    q = ax.quiver(
+        pts[:, 0],
+        pts[:, 1],
+        res[:, 0] * scale,
+        res[:, 1] * scale,
+        np.linalg.norm(res, axis=1),
+        angles="xy",
+        scale_units="xy",
+        scale=1,
+        cmap="viridis",
+        width=0.004,
+    )
     return q
 
 
@@ -66,8 +90,15 @@ def plot_coverage(ax, result: CalibrationResult, report: CoachReport | None = No
     rows, cols = report.coverage_grid.shape
     image_frame(ax, result.image_size, f"Coverage {100 * report.coverage:.0f}% of cells")
     empty = np.ma.masked_where(report.coverage_grid > 0, np.ones_like(report.coverage_grid, float))
-    ax.imshow(empty, extent=(-0.5, w - 0.5, h - 0.5, -0.5), cmap="Reds", vmin=0, vmax=2.5, alpha=0.6,
-              interpolation="nearest")
+    ax.imshow(
+        empty,
+        extent=(-0.5, w - 0.5, h - 0.5, -0.5),
+        cmap="Reds",
+        vmin=0,
+        vmax=2.5,
+        alpha=0.6,
+        interpolation="nearest",
+    )
     for c in np.linspace(-0.5, w - 0.5, cols + 1)[1:-1]:
         ax.axvline(c, color="0.8", lw=0.5, gid="grid")
     for r in np.linspace(-0.5, h - 0.5, rows + 1)[1:-1]:
@@ -81,20 +112,26 @@ def plot_uncertainty_map(ax, result: CalibrationResult, step: int = 16):
     us, vs, sig = projection_uncertainty(result, step)
     image_frame(ax, result.image_size, "Projection uncertainty (px, 1σ)")
     w, h = result.image_size
-    im = ax.imshow(sig, extent=(-0.5, w - 0.5, h - 0.5, -0.5), cmap="viridis", interpolation="bilinear")
+    im = ax.imshow(
+        sig, extent=(-0.5, w - 0.5, h - 0.5, -0.5), cmap="viridis", interpolation="bilinear"
+    )
     ax.figure.colorbar(im, ax=ax, shrink=0.8)
     return im
 
 
 def plot_cost_history(ax, result: CalibrationResult):
     """rms (px) after each Levenberg-Marquardt iteration, log scale."""
-    line, = ax.semilogy(np.arange(len(result.rms_history)), np.maximum(result.rms_history, 1e-16), "o-", ms=3)
+    (line,) = ax.semilogy(
+        np.arange(len(result.rms_history)), np.maximum(result.rms_history, 1e-16), "o-", ms=3
+    )
     ax.set(xlabel="LM iteration", ylabel="rms (px)", title="Levenberg-Marquardt cost")
     ax.grid(True, which="both", color="0.92")
     return line
 
 
-def report_figure(result: CalibrationResult, report: CoachReport | None = None, figsize=(13, 8.5)) -> Any:
+def report_figure(
+    result: CalibrationResult, report: CoachReport | None = None, figsize=(13, 8.5)
+) -> Any:
     """One page: per-view errors, residual field, coverage, uncertainty map, LM cost and the advice."""
     from matplotlib.figure import Figure
 
@@ -109,13 +146,29 @@ def report_figure(result: CalibrationResult, report: CoachReport | None = None, 
     ax = axes[1, 2]
     ax.axis("off")
     p, s = result.intrinsics, result.std
-    lines = [f"fx = {p['fx']:.2f} ± {s['fx']:.2f}", f"fy = {p['fy']:.2f} ± {s['fy']:.2f}",
-             f"cx = {p['cx']:.2f} ± {s['cx']:.2f}", f"cy = {p['cy']:.2f} ± {s['cy']:.2f}",
-             "dist = " + ", ".join(f"{v:+.3f}" for v in result.dist), f"rms = {result.rms:.3f} px", "", "Advice:"]
+    lines = [
+        f"fx = {p['fx']:.2f} ± {s['fx']:.2f}",
+        f"fy = {p['fy']:.2f} ± {s['fy']:.2f}",
+        f"cx = {p['cx']:.2f} ± {s['cx']:.2f}",
+        f"cy = {p['cy']:.2f} ± {s['cy']:.2f}",
+        "dist = " + ", ".join(f"{v:+.3f}" for v in result.dist),
+        f"rms = {result.rms:.3f} px",
+        "",
+        "Advice:",
+    ]
     import textwrap
 
     for a in report.advice[:6]:
         lines += textwrap.wrap("• " + a, 48)
-    ax.text(0, 1, "\n".join(lines), va="top", ha="left", fontsize=8.5, family="monospace", transform=ax.transAxes)
+    ax.text(
+        0,
+        1,
+        "\n".join(lines),
+        va="top",
+        ha="left",
+        fontsize=8.5,
+        family="monospace",
+        transform=ax.transAxes,
+    )
     fig.suptitle(f"Calibration report: {result.n_views} views, {result.n_points} corners")
     return fig

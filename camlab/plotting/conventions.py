@@ -1,4 +1,5 @@
 """Pictures of the course's conventions (lesson 00): points as rows, pixels, and the camera frame."""
+
 from __future__ import annotations
 
 from typing import Sequence
@@ -27,13 +28,18 @@ def draw_pixel_grid(ax: Axes, size: tuple[int, int], points: np.ndarray, marked:
     """
     width, height = size
     u, v = np.meshgrid(np.arange(width), np.arange(height))
-    image = ax.imshow((u + v) % 2, cmap="Greys", vmin=0, vmax=8)  # a light checkerboard: one square per pixel
+    image = ax.imshow(
+        (u + v) % 2, cmap="Greys", vmin=0, vmax=8
+    )  # a light checkerboard: one square per pixel
     image_axes(ax, size)
     ax.set_title(f"a {width} x {height} image:\npixel centres at whole numbers", fontsize=10)
     ax.set_anchor("N")  # the top of its slot, like the panels beside it, so their titles line up
     ax.set_xlabel("u (px): column, along the camera's x", color=X_COLOUR)
     ax.set_ylabel("v (px): row, along y", color=Y_COLOUR)
-    for axis, n in ((ax.xaxis, width), (ax.yaxis, height)):  # the centres, and the edges -0.5 and n - 0.5
+    for axis, n in (
+        (ax.xaxis, width),
+        (ax.yaxis, height),
+    ):  # the centres, and the edges -0.5 and n - 0.5
         axis.set_ticks(range(n))
         axis.set_ticks([-0.5, n - 0.5], [f"{t:g}" for t in (-0.5, n - 0.5)], minor=True)
     # The image's edges, half a pixel out, in small grey type, so they are not read as centres at a glance.
@@ -42,12 +48,29 @@ def draw_pixel_grid(ax: Axes, size: tuple[int, int], points: np.ndarray, marked:
     points = np.asarray(points, dtype=float)
     ax.plot(points[:, 0], points[:, 1], "o", color=POINT_COLOUR, ms=7)
     for k, (pu, pv) in enumerate(points):
-        ax.annotate(f"X[{k}]", (pu, pv), xytext=(0, 7), textcoords="offset points", ha="center", va="bottom",
-                    fontsize=9, fontweight="bold")
+        ax.annotate(
+            f"X[{k}]",
+            (pu, pv),
+            xytext=(0, 7),
+            textcoords="offset points",
+            ha="center",
+            va="bottom",
+            fontsize=9,
+            fontweight="bold",
+        )
     mu, mv = points[marked]
-    ax.add_patch(Rectangle((mu - 0.5, mv - 0.5), 1.0, 1.0, fill=False, edgecolor=POINT_COLOUR, lw=2.5))
-    ax.annotate(f"img[{mv:g}, {mu:g}]", (mu, mv), xytext=(0, -7), textcoords="offset points", ha="center", va="top",
-                fontsize=9)
+    ax.add_patch(
+        Rectangle((mu - 0.5, mv - 0.5), 1.0, 1.0, fill=False, edgecolor=POINT_COLOUR, lw=2.5)
+    )
+    ax.annotate(
+        f"img[{mv:g}, {mu:g}]",
+        (mu, mv),
+        xytext=(0, -7),
+        textcoords="offset points",
+        ha="center",
+        va="top",
+        fontsize=9,
+    )
     return image
 
 
@@ -65,15 +88,23 @@ def draw_point_rows(ax: Axes, points: np.ndarray, notes: Sequence[str]) -> None:
     ax.set_ylim(1, 0)
     ax.set_title(f"points are rows:\nX, shape {points.shape}", fontsize=10)
     mono = dict(family="monospace", fontsize=9.5, va="center")
-    rows = [f"X[{k}]  {pu:4.1f} {pv:4.1f}  {note}" for k, ((pu, pv), note) in enumerate(zip(points, notes))]
+    rows = [
+        f"X[{k}]  {pu:4.1f} {pv:4.1f}  {note}"
+        for k, ((pu, pv), note) in enumerate(zip(points, notes))
+    ]
     top, step = 0.12, 0.13
     # The column names over the last digit of each column (characters 9 and 14): spaces keep a monospace text aligned.
     ax.text(0, top, " " * 9 + "u", color=X_COLOUR, fontweight="bold", **mono)
     ax.text(0, top, " " * 14 + "v", color=Y_COLOUR, fontweight="bold", **mono)
     for k, row in enumerate(rows):
         ax.text(0, top + step * (k + 1), row, **mono)
-    ax.text(0, top + step * (len(rows) + 1.5), "X[k]     point k, a (2,) row\nX[:, 0]  every u\nX[:, 1]  every v",
-            linespacing=1.6, **(mono | dict(va="top")))
+    ax.text(
+        0,
+        top + step * (len(rows) + 1.5),
+        "X[k]     point k, a (2,) row\nX[:, 0]  every u\nX[:, 1]  every v",
+        linespacing=1.6,
+        **(mono | dict(va="top")),
+    )
 
 
 def draw_camera_frame(ax: Axes, size: tuple[int, int] = (4, 3)) -> None:
@@ -100,18 +131,50 @@ def draw_camera_frame(ax: Axes, size: tuple[int, int] = (4, 3)) -> None:
         ax.plot([-w + k * pixel] * 2, [-h, h], color="0.82", lw=0.6)
     for k in range(1, height):
         ax.plot([-w, w], [-h + k * pixel] * 2, color="0.82", lw=0.6)
-    ax.text(0.12, h + 0.06, "image plane", color="0.25", ha="left", va="top", fontsize=9)  # right of the y axis
+    ax.text(
+        0.12, h + 0.06, "image plane", color="0.25", ha="left", va="top", fontsize=9
+    )  # right of the y axis
     # (u, v) = (0, 0): the centre of the top-left pixel, half a pixel in from the corner.
     u0, v0 = -w + pixel / 2, -h + pixel / 2
     thin = dict(arrowstyle="-|>", lw=1.5, mutation_scale=12, shrinkA=0, shrinkB=0)
-    ax.annotate("", (u0 + pixel, v0), (u0, v0), arrowprops=dict(color=X_COLOUR, **thin))  # one pixel along u ...
-    ax.annotate("", (u0, v0 + pixel), (u0, v0), arrowprops=dict(color=Y_COLOUR, **thin))  # ... and along v
-    ax.text(u0 + pixel + 0.05, v0, "u", color=X_COLOUR, ha="left", va="center", fontsize=10, fontweight="bold")
-    ax.text(u0 - 0.06, v0 + pixel, "v", color=Y_COLOUR, ha="right", va="center", fontsize=10, fontweight="bold")
+    ax.annotate(
+        "", (u0 + pixel, v0), (u0, v0), arrowprops=dict(color=X_COLOUR, **thin)
+    )  # one pixel along u ...
+    ax.annotate(
+        "", (u0, v0 + pixel), (u0, v0), arrowprops=dict(color=Y_COLOUR, **thin)
+    )  # ... and along v
+    ax.text(
+        u0 + pixel + 0.05,
+        v0,
+        "u",
+        color=X_COLOUR,
+        ha="left",
+        va="center",
+        fontsize=10,
+        fontweight="bold",
+    )
+    ax.text(
+        u0 - 0.06,
+        v0 + pixel,
+        "v",
+        color=Y_COLOUR,
+        ha="right",
+        va="center",
+        fontsize=10,
+        fontweight="bold",
+    )
     ax.plot(u0, v0, "o", color="0.2", ms=5)
-    ax.annotate("(0, 0): the top-left pixel's centre,\nhalf a pixel in from the corner", (u0, v0),
-                xytext=(-w - 0.4, -h - 0.12), color="0.2", ha="left", va="bottom", fontsize=9, linespacing=1.1,
-                arrowprops=dict(arrowstyle="-", color="0.4", lw=0.8, shrinkA=1, shrinkB=3))
+    ax.annotate(
+        "(0, 0): the top-left pixel's centre,\nhalf a pixel in from the corner",
+        (u0, v0),
+        xytext=(-w - 0.4, -h - 0.12),
+        color="0.2",
+        ha="left",
+        va="bottom",
+        fontsize=9,
+        linespacing=1.1,
+        arrowprops=dict(arrowstyle="-", color="0.4", lw=0.8, shrinkA=1, shrinkB=3),
+    )
     thick = dict(arrowstyle="-|>", lw=2, mutation_scale=18)
     ax.annotate("", (1.5, 0), (0, 0), arrowprops=dict(color=X_COLOUR, **thick))
     ax.annotate("", (0, 1.3), (0, 0), arrowprops=dict(color=Y_COLOUR, **thick))

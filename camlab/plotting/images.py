@@ -1,4 +1,5 @@
 """Image panels: grey or RGB images shown pixel-exact, with zoomed crops (lessons 01-03)."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -6,8 +7,15 @@ import numpy as np
 __all__ = ["show_image", "zoom_box"]
 
 
-def show_image(ax, image: np.ndarray, title: str = "", *, vmin: float = 0.0, vmax: float | None = None,
-               interpolation: str = "nearest"):
+def show_image(
+    ax,
+    image: np.ndarray,
+    title: str = "",
+    *,
+    vmin: float = 0.0,
+    vmax: float | None = None,
+    interpolation: str = "nearest",
+):
     """Show ``image`` (H, W) or (H, W, 3) with pixel centres at integer (u, v), no ticks; returns the AxesImage.
 
     ``interpolation="nearest"`` shows pixels as crisp blocks, right when the image is drawn
@@ -16,7 +24,11 @@ def show_image(ax, image: np.ndarray, title: str = "", *, vmin: float = 0.0, vma
     """
     img = np.asarray(image)
     if vmax is None:
-        vmax = 255 if img.dtype == np.uint8 else (np.iinfo(img.dtype).max if np.issubdtype(img.dtype, np.integer) else 1.0)
+        vmax = (
+            255
+            if img.dtype == np.uint8
+            else (np.iinfo(img.dtype).max if np.issubdtype(img.dtype, np.integer) else 1.0)
+        )
     kw = {} if img.ndim == 3 else {"cmap": "gray", "vmin": vmin, "vmax": vmax}
     art = ax.imshow(img, interpolation=interpolation, **kw)
     ax.set_title(title, fontsize=10)

@@ -15,6 +15,7 @@ measures every demo. A line or text drawn over a photograph, whose colours can b
 anything, gets a white outline with :func:`halo`. Value images use perceptually uniform
 colormaps (``viridis``, ``cividis``) with a colour bar instead.
 """
+
 BLUE = "#4477AA"  # 4.7:1 on white
 ORANGE = "#CC7700"  # 3.4:1: lines and markers, not text
 GREEN = "#228833"  # 4.5:1
@@ -40,4 +41,3 @@ def halo(linewidth: float = 0.0, colour: str = "white") -> list:
     from matplotlib import patheffects
 
     return [patheffects.withStroke(linewidth=linewidth + 2.0, foreground=colour)]
-

@@ -1,4 +1,5 @@
 """Drawing points and lines of the projective plane (lesson 06)."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -43,7 +44,9 @@ def image_axes(ax: Axes, size: tuple[int, int], title: str = "") -> Axes:
     return ax
 
 
-def arrow_to_infinity(point_h: np.ndarray, ax: Axes, anchor: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+def arrow_to_infinity(
+    point_h: np.ndarray, ax: Axes, anchor: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """Where to draw a point that may be off-axes or ideal: (position, unit direction).
 
     A finite point inside the axes is drawn where it is; otherwise an arrow near the edge

@@ -27,6 +27,7 @@ Typical use::
     ...
     cam_art.update(new_camera, image_lines=new_pixels)    # in a slider callback
 """
+
 from __future__ import annotations
 
 from typing import Any, Sequence
@@ -37,11 +38,26 @@ from numpy.typing import ArrayLike
 from ..camera import Camera, project_segments
 from . import palette
 
-AXIS_COLOURS = palette.AXIS_COLOURS  # x red, y green, z blue: defined once, in palette (docs/conventions.md)
+AXIS_COLOURS = (
+    palette.AXIS_COLOURS
+)  # x red, y green, z blue: defined once, in palette (docs/conventions.md)
 
-__all__ = ["AXIS_COLOURS", "CameraArtist", "SceneView", "axes3d", "clip_segments", "draw_points", "draw_segments",
-           "draw_world_axes", "fit_view", "image_axes", "polyline_data", "refresh_projection", "set_equal_aspect",
-           "update_segments"]
+__all__ = [
+    "AXIS_COLOURS",
+    "CameraArtist",
+    "SceneView",
+    "axes3d",
+    "clip_segments",
+    "draw_points",
+    "draw_segments",
+    "draw_world_axes",
+    "fit_view",
+    "image_axes",
+    "polyline_data",
+    "refresh_projection",
+    "set_equal_aspect",
+    "update_segments",
+]
 
 
 def axes3d(fig, *args: Any, elev: float = 22.0, azim: float = -60.0, **kw: Any):
@@ -58,8 +74,13 @@ def axes3d(fig, *args: Any, elev: float = 22.0, azim: float = -60.0, **kw: Any):
     return ax
 
 
-def set_equal_aspect(ax, points: ArrayLike | Sequence[ArrayLike], margin: float = 0.02, zoom: float = 1.0,
-                     tight: bool = False) -> None:
+def set_equal_aspect(
+    ax,
+    points: ArrayLike | Sequence[ArrayLike],
+    margin: float = 0.02,
+    zoom: float = 1.0,
+    tight: bool = False,
+) -> None:
     """Give a 3-D axes equal scale on X, Y, Z: a cube of limits around ``points`` and a
     (1, 1, 1) box aspect, so angles and lengths look right.
 
@@ -74,7 +95,9 @@ def set_equal_aspect(ax, points: ArrayLike | Sequence[ArrayLike], margin: float 
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     centre = (lo + hi) / 2.0
     if tight:
-        half = np.maximum((hi - lo) / 2.0, 1e-3 * max(float((hi - lo).max()), 1e-6)) * (1.0 + margin)
+        half = np.maximum((hi - lo) / 2.0, 1e-3 * max(float((hi - lo).max()), 1e-6)) * (
+            1.0 + margin
+        )
         ax.set_xlim(centre[0] - half[0], centre[0] + half[0])
         ax.set_ylim(centre[1] - half[1], centre[1] + half[1])
         ax.set_zlim(centre[2] - half[2], centre[2] + half[2])
@@ -87,7 +110,9 @@ def set_equal_aspect(ax, points: ArrayLike | Sequence[ArrayLike], margin: float 
     ax.set_box_aspect((1, 1, 1), zoom=zoom)
 
 
-def fit_view(ax, points: ArrayLike | Sequence[ArrayLike], fill: float = 0.92, max_zoom: float = 3.0) -> None:
+def fit_view(
+    ax, points: ArrayLike | Sequence[ArrayLike], fill: float = 0.92, max_zoom: float = 3.0
+) -> None:
     """Equal-aspect limits around ``points``, centred and zoomed so that their picture fills the axes.
 
     :func:`set_equal_aspect` fits a cube around the points, but what shows is the cube's *projection*:
@@ -117,14 +142,20 @@ def fit_view(ax, points: ArrayLike | Sequence[ArrayLike], fill: float = 0.92, ma
         return np.array([xs.min(), ys.min()]), np.array([xs.max(), ys.max()])
 
     az, el = np.radians(ax.azim), np.radians(ax.elev)
-    across = np.array([[-np.sin(az), np.cos(az), 0.0],                                  # screen right, up
-                       [-np.cos(az) * np.sin(el), -np.sin(az) * np.sin(el), np.cos(el)]])
+    across = np.array(
+        [
+            [-np.sin(az), np.cos(az), 0.0],  # screen right, up
+            [-np.cos(az) * np.sin(el), -np.sin(az) * np.sin(el), np.cos(el)],
+        ]
+    )
     centre, zoom = lim.mean(axis=1), 1.0
     for _ in range(3):
         lo, hi = picture(centre, zoom)
         offset = (lo + hi) / 2.0 - target
         step = 1e-3 * half.max()
-        jac = np.column_stack([(sum(picture(centre + step * d, zoom)) / 2.0 - (lo + hi) / 2.0) / step for d in across])
+        jac = np.column_stack(
+            [(sum(picture(centre + step * d, zoom)) / 2.0 - (lo + hi) / 2.0) / step for d in across]
+        )
         centre = centre - across.T @ np.linalg.lstsq(jac, offset, rcond=None)[0]
         lo, hi = picture(centre, zoom)
         span = float(max(hi - lo))
@@ -197,7 +228,9 @@ def draw_points(ax, points: ArrayLike, **kw: Any):
     return line
 
 
-def draw_world_axes(ax, length: float = 1.0, origin: ArrayLike = (0.0, 0.0, 0.0), labels=("X", "Y", "Z")) -> list:
+def draw_world_axes(
+    ax, length: float = 1.0, origin: ArrayLike = (0.0, 0.0, 0.0), labels=("X", "Y", "Z")
+) -> list:
     """World axes as three coloured arrows-as-lines from ``origin``, labelled X, Y, Z."""
     o = np.asarray(origin, dtype=float)
     out = []
@@ -206,8 +239,18 @@ def draw_world_axes(ax, length: float = 1.0, origin: ArrayLike = (0.0, 0.0, 0.0)
         e[i] += length
         (ln,) = ax.plot(*np.c_[o, e], color=c, lw=2.0)
         out.append(ln)
-        out.append(ax.text(*(o + (e - o) * 1.12), name, color=c, fontsize=9, fontweight="bold",
-                           ha="center", va="center", path_effects=palette.halo()))   # readable over the scene
+        out.append(
+            ax.text(
+                *(o + (e - o) * 1.12),
+                name,
+                color=c,
+                fontsize=9,
+                fontweight="bold",
+                ha="center",
+                va="center",
+                path_effects=palette.halo(),
+            )
+        )  # readable over the scene
     return out
 
 
@@ -303,28 +346,55 @@ class CameraArtist:
         Length of those axes in metres (default: 0.6 ``size``).
     """
 
-    def __init__(self, ax, camera: Camera, size: float = 0.5, color: str = palette.PURPLE, label: str = "",
-                 image: np.ndarray | None = None, image_lines: ArrayLike | None = None,
-                 show_axes: bool = True, image_grid: tuple[int, int] = (24, 18), line_color: str = "0.15",
-                 label_offset: tuple[float, float] = (-0.15, -0.25), axis_length: float | None = None):
+    def __init__(
+        self,
+        ax,
+        camera: Camera,
+        size: float = 0.5,
+        color: str = palette.PURPLE,
+        label: str = "",
+        image: np.ndarray | None = None,
+        image_lines: ArrayLike | None = None,
+        show_axes: bool = True,
+        image_grid: tuple[int, int] = (24, 18),
+        line_color: str = "0.15",
+        label_offset: tuple[float, float] = (-0.15, -0.25),
+        axis_length: float | None = None,
+    ):
         from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
         self.ax, self.size, self.image_grid = ax, float(size), image_grid
         self.axis_length = axis_length
         self.camera, self.label_offset = camera, label_offset
         (self.frustum,) = ax.plot([], [], [], color=color, lw=1.2, path_effects=palette.halo(1.2))
-        self.plane = Poly3DCollection([np.zeros((4, 3))], facecolor=color, alpha=0.12, edgecolor=color, lw=1.0)
+        self.plane = Poly3DCollection(
+            [np.zeros((4, 3))], facecolor=color, alpha=0.12, edgecolor=color, lw=1.0
+        )
         ax.add_collection3d(self.plane)
         self.axes_lines, self.axes_text = [], []
         if show_axes:
             for c, name in zip(palette.AXIS_COLOURS, ("x", "y", "z")):
                 (ln,) = ax.plot([], [], [], color=c, lw=2.0)
                 self.axes_lines.append(ln)
-                self.axes_text.append(ax.text(0, 0, 0, name, color=c, fontsize=9, fontweight="bold",
-                                              ha="center", va="center", path_effects=palette.halo()))
+                self.axes_text.append(
+                    ax.text(
+                        0,
+                        0,
+                        0,
+                        name,
+                        color=c,
+                        fontsize=9,
+                        fontweight="bold",
+                        ha="center",
+                        va="center",
+                        path_effects=palette.halo(),
+                    )
+                )
         (self.centre_marker,) = ax.plot([], [], [], "o", color=color, ms=4)
         self.label = ax.text(0, 0, 0, label, color=color, fontsize=9) if label else None
-        (self.lines,) = ax.plot([], [], [], color=line_color, lw=1.3, gid="thumbnail")  # the image panel, in small
+        (self.lines,) = ax.plot(
+            [], [], [], color=line_color, lw=1.3, gid="thumbnail"
+        )  # the image panel, in small
         self.mesh, self._pixels = None, None
         if image is not None:
             self.mesh = Poly3DCollection([np.zeros((4, 3))], lw=0.0)
@@ -333,7 +403,14 @@ class CameraArtist:
 
     def artists(self) -> list:
         """Every artist this camera drew (register them with ``FigureView.animate``)."""
-        out = [self.frustum, self.plane, *self.axes_lines, *self.axes_text, self.centre_marker, self.lines]
+        out = [
+            self.frustum,
+            self.plane,
+            *self.axes_lines,
+            *self.axes_text,
+            self.centre_marker,
+            self.lines,
+        ]
         return out + [a for a in (self.label, self.mesh) if a is not None]
 
     def corners(self, camera: Camera | None = None) -> np.ndarray:
@@ -357,10 +434,14 @@ class CameraArtist:
         return np.vstack([cam.centre, self.corners(cam), *tips])
 
     def _label_position(self, camera: Camera) -> np.ndarray:
-        right, down = self.label_offset   # in image-plane depths, at least 0.5 m: a tiny frustum's label clears it
+        right, down = (
+            self.label_offset
+        )  # in image-plane depths, at least 0.5 m: a tiny frustum's label clears it
         return camera.centre + max(self.size, 0.5) * (right * camera.R[0] + down * camera.R[1])
 
-    def update(self, camera: Camera, image: np.ndarray | None = None, image_lines: ArrayLike | None = None) -> None:
+    def update(
+        self, camera: Camera, image: np.ndarray | None = None, image_lines: ArrayLike | None = None
+    ) -> None:
         """Move every artist to ``camera``; redraw the image content if given."""
         self.camera = camera
         C = camera.centre
@@ -371,7 +452,9 @@ class CameraArtist:
         f[12:17] = np.vstack([corners, corners[:1]])
         self.frustum.set_data_3d(f[:, 0], f[:, 1], f[:, 2])
         self.plane.set_verts([corners])
-        if getattr(self.ax, "M", None) is not None:  # blitting draws polygons from their last projection
+        if (
+            getattr(self.ax, "M", None) is not None
+        ):  # blitting draws polygons from their last projection
             self.plane.do_3d_projection()
         tips = self._axis_tips(camera)
         for i, (ln, tx) in enumerate(zip(self.axes_lines, self.axes_text)):
@@ -396,7 +479,9 @@ class CameraArtist:
         us = np.linspace(-0.5, w - 0.5, gw + 1)
         vs = np.linspace(-0.5, h - 0.5, gh + 1)
         U, V = np.meshgrid(us, vs)
-        G = _plane_points(camera, np.column_stack([U.ravel(), V.ravel()]), self.size).reshape(gh + 1, gw + 1, 3)
+        G = _plane_points(camera, np.column_stack([U.ravel(), V.ravel()]), self.size).reshape(
+            gh + 1, gw + 1, 3
+        )
         quads = np.stack([G[:-1, :-1], G[:-1, 1:], G[1:, 1:], G[1:, :-1]], axis=2).reshape(-1, 4, 3)
         if image is not None:
             img = np.asarray(image, dtype=float)
@@ -407,9 +492,13 @@ class CameraArtist:
             # Block means over the grid cells (area interpolation), one colour per quad.
             import cv2
 
-            colours = cv2.resize(img[..., :3].astype(np.float32), (gw, gh), interpolation=cv2.INTER_AREA)
+            colours = cv2.resize(
+                img[..., :3].astype(np.float32), (gw, gh), interpolation=cv2.INTER_AREA
+            )
             colours = colours.reshape(-1, 3).astype(float)
-            self.mesh_colours = np.clip(colours, 0.0, 1.0)  # row-major over the grid, top-left first
+            self.mesh_colours = np.clip(
+                colours, 0.0, 1.0
+            )  # row-major over the grid, top-left first
             self.mesh.set_facecolor(self.mesh_colours)
         self.mesh.set_verts(quads)
         if getattr(self.ax, "M", None) is not None:
@@ -429,11 +518,24 @@ class SceneView:
     object, as a whole scene is a tangle at that size.
     """
 
-    def __init__(self, fig, camera: Camera, segments: ArrayLike, extent: ArrayLike | None = None,
-                 axes: tuple | None = None, plane_size: float = 0.8, world_axes: float = 0.8,
-                 image_title: str = "camera image", elev: float = 24.0, azim: float = 15.0,
-                 axis_off: bool = True, thumbnail: ArrayLike | None = None, camera_axes: bool = True,
-                 camera_axis_length: float | None = None, width_ratios: tuple[float, float] = (1.15, 1.0)):
+    def __init__(
+        self,
+        fig,
+        camera: Camera,
+        segments: ArrayLike,
+        extent: ArrayLike | None = None,
+        axes: tuple | None = None,
+        plane_size: float = 0.8,
+        world_axes: float = 0.8,
+        image_title: str = "camera image",
+        elev: float = 24.0,
+        azim: float = 15.0,
+        axis_off: bool = True,
+        thumbnail: ArrayLike | None = None,
+        camera_axes: bool = True,
+        camera_axis_length: float | None = None,
+        width_ratios: tuple[float, float] = (1.15, 1.0),
+    ):
         self.segments = np.asarray(segments, dtype=float)
         # what the small picture on the image plane shows: a whole scene is a tangle at that size
         self.thumbnail = self.segments if thumbnail is None else np.asarray(thumbnail, dtype=float)
@@ -451,9 +553,18 @@ class SceneView:
         self.world = draw_segments(ax3, self.segments)
         self.world_axes = draw_world_axes(ax3, world_axes) if world_axes else []
         pix = project_segments(camera, self.segments)
-        self.camera_artist = CameraArtist(ax3, camera, size=plane_size, image_lines=self._thumbnail_pixels(camera, pix),
-                                          label="C", show_axes=camera_axes, axis_length=camera_axis_length)
-        self.extent = None if extent is None else np.reshape(np.asarray(extent, dtype=float), (-1, 3))
+        self.camera_artist = CameraArtist(
+            ax3,
+            camera,
+            size=plane_size,
+            image_lines=self._thumbnail_pixels(camera, pix),
+            label="C",
+            show_axes=camera_axes,
+            axis_length=camera_axis_length,
+        )
+        self.extent = (
+            None if extent is None else np.reshape(np.asarray(extent, dtype=float), (-1, 3))
+        )
         self.axis_off = axis_off
         self.fit()
         image_axes(ax2, camera.image_size, image_title, labels=not axis_off)
@@ -467,11 +578,19 @@ class SceneView:
     def fit(self, camera: Camera | None = None, extra: ArrayLike | None = None) -> None:
         """Refit the 3-D limits to the scene, the camera (default: the current one), ``extent`` and ``extra``."""
         pts = [self.segments.reshape(-1, 3), self.camera_artist.extent_points(camera)]
-        pts += [np.reshape(np.asarray(p, dtype=float), (-1, 3)) for p in (self.extent, extra) if p is not None]
+        pts += [
+            np.reshape(np.asarray(p, dtype=float), (-1, 3))
+            for p in (self.extent, extra)
+            if p is not None
+        ]
         if self.world_axes:
-            pts.append(1.15 * np.eye(3) * max(np.linalg.norm(self.world_axes[0].get_data_3d(), axis=0)))
+            pts.append(
+                1.15 * np.eye(3) * max(np.linalg.norm(self.world_axes[0].get_data_3d(), axis=0))
+            )
         if self.axis_off:
-            fit_view(self.ax3d, pts, fill=0.85)   # a margin for the labels, which extend beyond their anchors
+            fit_view(
+                self.ax3d, pts, fill=0.85
+            )  # a margin for the labels, which extend beyond their anchors
         else:  # with panes and ticks, the labels need the margin a fitted view would take
             set_equal_aspect(self.ax3d, pts)
             refresh_projection(self.ax3d)

@@ -19,6 +19,7 @@ controls (:func:`demo_alt_text`); for a plain figure, the text a lesson gave wit
 :func:`alt_text`, or else a description built from the titles, axis labels and legend
 entries (:func:`describe_figure`).
 """
+
 from __future__ import annotations
 
 import base64
@@ -56,14 +57,22 @@ def _quoted(texts: list[str]) -> str:
 
 
 def _describe_axes(ax: Any) -> str:
-    title = " ".join(" ".join(t.split()) for t in (ax.get_title("left"), ax.get_title(), ax.get_title("right")) if t)
-    title = title.replace("$", "")  # mathtext's dollars mean nothing read aloud: "$c_x$ = 200" reads "c_x = 200"
+    title = " ".join(
+        " ".join(t.split())
+        for t in (ax.get_title("left"), ax.get_title(), ax.get_title("right"))
+        if t
+    )
+    title = title.replace(
+        "$", ""
+    )  # mathtext's dollars mean nothing read aloud: "$c_x$ = 200" reads "c_x = 200"
     kind = "3-D view" if ax.name == "3d" else ("image" if ax.images and not ax.lines else "plot")
     words = [f"{kind} '{title}'" if title else kind]
     z_label = ax.get_zlabel() if ax.name == "3d" else ""  # a 3-D view has a third axis to name
     labels = [lab for lab in (ax.get_xlabel(), ax.get_ylabel(), z_label) if lab]
-    if not ax.axison:  # axes switched off (set_axis_off): their labels are not drawn, so not described (a figure
-        labels = []    # may draw axes of its own, as arrows: saying "no axes" would then be false)
+    if (
+        not ax.axison
+    ):  # axes switched off (set_axis_off): their labels are not drawn, so not described (a figure
+        labels = []  # may draw axes of its own, as arrows: saying "no axes" would then be false)
     if labels:
         words.append("axes " + _quoted(labels))
     legend = ax.get_legend()
@@ -117,16 +126,27 @@ def demo_alt_text(description: str, controls: Mapping[str, Any], fig: Figure | N
         heading = " ".join(fig.get_suptitle().split())  # the figure's own title
         if heading:
             text += f" Above the panels: '{heading}'."
-        titles = [" ".join(ax.get_title().split()) for ax in fig.axes if ax.get_visible() and ax.get_title()]
+        titles = [
+            " ".join(ax.get_title().split())
+            for ax in fig.axes
+            if ax.get_visible() and ax.get_title()
+        ]
         if titles:
             text += " Panels: " + _quoted(titles) + "."
         # Numbers a demo shows in its figure: texts with gid 'readout', read in order (a label, then its numbers).
-        readout = " ".join("".join(t.get_text() for t in [*fig.texts, *(t for ax in fig.axes for t in ax.texts)]
-                                   if t.get_gid() == "readout").split())
+        readout = " ".join(
+            "".join(
+                t.get_text()
+                for t in [*fig.texts, *(t for ax in fig.axes for t in ax.texts)]
+                if t.get_gid() == "readout"
+            ).split()
+        )
         if readout:
             text += f" Readout: '{readout}'."
-    settings = [f"{(c.description or name).strip().rstrip('=:').strip()} = {_format_value(c)}"
-                for name, c in controls.items()]
+    settings = [
+        f"{(c.description or name).strip().rstrip('=:').strip()} = {_format_value(c)}"
+        for name, c in controls.items()
+    ]
     if settings:
         text += " Shown at " + "; ".join(settings) + "."
     return text.strip()
@@ -139,7 +159,9 @@ def figure_png(fig: Figure) -> bytes:
     return buf.getvalue()
 
 
-def static_bundle(data: Mapping[str, Any], fig: Figure, alt: str, png: bytes | None = None) -> tuple[dict, dict]:
+def static_bundle(
+    data: Mapping[str, Any], fig: Figure, alt: str, png: bytes | None = None
+) -> tuple[dict, dict]:
     """A widget's display bundle plus a PNG of ``fig`` and its alt text (module docstring).
 
     ``png`` reuses an image already rendered (the png display mode keeps one); otherwise
@@ -150,7 +172,9 @@ def static_bundle(data: Mapping[str, Any], fig: Figure, alt: str, png: bytes | N
     out = {k: v for k, v in data.items() if k != "text/html"}
     out["image/png"] = base64.b64encode(png).decode("ascii")
     out["text/plain"] = alt
-    width, height = struct.unpack(">II", png[16:24])  # the PNG's own size (IHDR), which matplotlib < 3.10 may round
+    width, height = struct.unpack(
+        ">II", png[16:24]
+    )  # the PNG's own size (IHDR), which matplotlib < 3.10 may round
     metadata = {"image/png": {"alt": alt, "width": width, "height": height}}
     return out, metadata
 
@@ -163,7 +187,9 @@ def fit_output_width(fig: Figure) -> Figure:
     its layout and scales as a whole, as an inline PNG scales down to fit.
     """
     widest = OUTPUT_WIDTH_PX - CANVAS_FRAME_PX
-    dpi = getattr(fig, "_original_dpi", fig.dpi)  # the dpi asked for; a HiDPI screen draws at a multiple of it
+    dpi = getattr(
+        fig, "_original_dpi", fig.dpi
+    )  # the dpi asked for; a HiDPI screen draws at a multiple of it
     if fig.get_figwidth() * dpi > widest:
         ratio = fig.dpi / dpi
         # matplotlib keeps the asked dpi apart: savefig(dpi="figure") and a screen's pixel ratio start from it

@@ -3,6 +3,7 @@
 Images are shown pixel-exact: pixel (u, v) has its centre at data coordinates (u, v)
 (docs/conventions.md). Helpers return the artists they create so demos can move them.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -21,8 +22,8 @@ def side_by_side(image1: np.ndarray, image2: np.ndarray, gap: int = 8) -> tuple[
     h = max(a.shape[0], b.shape[0])
     fill = 255 if a.dtype == np.uint8 else 1.0
     out = np.full((h, a.shape[1] + gap + b.shape[1], 3), fill, dtype=a.dtype)
-    out[:a.shape[0], :a.shape[1]] = a
-    out[:b.shape[0], a.shape[1] + gap:] = b.astype(a.dtype)
+    out[: a.shape[0], : a.shape[1]] = a
+    out[: b.shape[0], a.shape[1] + gap :] = b.astype(a.dtype)
     return out, float(a.shape[1] + gap)
 
 
@@ -33,15 +34,26 @@ def match_segments(src: np.ndarray, dst: np.ndarray, offset: float) -> np.ndarra
     return np.stack([src, dst], axis=1)
 
 
-def draw_keypoints(ax, points: np.ndarray, sizes: np.ndarray | None = None, color: str = "yellow", **kw):
+def draw_keypoints(
+    ax, points: np.ndarray, sizes: np.ndarray | None = None, color: str = "yellow", **kw
+):
     """Keypoints as circles of their detection size (scatter); returns the PathCollection."""
     pts = np.asarray(points, dtype=float).reshape(-1, 2)
     s = 12.0 if sizes is None else np.clip(np.asarray(sizes, dtype=float), 2, 60) ** 2 / 4
-    return ax.scatter(pts[:, 0], pts[:, 1], s=s, facecolors="none", edgecolors=color, linewidths=0.7, **kw)
+    return ax.scatter(
+        pts[:, 0], pts[:, 1], s=s, facecolors="none", edgecolors=color, linewidths=0.7, **kw
+    )
 
 
-def draw_matches(ax, image1: np.ndarray, image2: np.ndarray, src: np.ndarray, dst: np.ndarray,
-                 good: np.ndarray | None = None, gap: int = 8) -> dict:
+def draw_matches(
+    ax,
+    image1: np.ndarray,
+    image2: np.ndarray,
+    src: np.ndarray,
+    dst: np.ndarray,
+    good: np.ndarray | None = None,
+    gap: int = 8,
+) -> dict:
     """Show two images side by side with a line per match (green where ``good``, red elsewhere).
 
     Returns a dict with the ``image`` artist, the ``good`` and ``bad`` LineCollections and
@@ -56,8 +68,12 @@ def draw_matches(ax, image1: np.ndarray, image2: np.ndarray, src: np.ndarray, ds
     ax.set_yticks([])
     seg = match_segments(src, dst, off)
     g = np.ones(len(seg), bool) if good is None else np.asarray(good, bool)
-    lc_good = LineCollection(seg[g], colors=palette.GREEN, linewidths=0.8, path_effects=palette.halo(0.8))
-    lc_bad = LineCollection(seg[~g], colors=palette.RED, linewidths=0.9, path_effects=palette.halo(0.9))
+    lc_good = LineCollection(
+        seg[g], colors=palette.GREEN, linewidths=0.8, path_effects=palette.halo(0.8)
+    )
+    lc_bad = LineCollection(
+        seg[~g], colors=palette.RED, linewidths=0.9, path_effects=palette.halo(0.9)
+    )
     ax.add_collection(lc_good)
     ax.add_collection(lc_bad)
     ax.set(xlim=(-0.5, both.shape[1] - 0.5), ylim=(both.shape[0] - 0.5, -0.5))

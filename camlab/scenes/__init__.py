@@ -25,6 +25,7 @@ y along texture rows, z = x cross y; poses say their direction (``world_from_pla
 This package depends on no data set, so the data generators can build on it. One module per
 kind: :mod:`.textures`, :mod:`.planes`, :mod:`.photos`, :mod:`.wireframes`, :mod:`.lessons`.
 """
+
 from __future__ import annotations
 
 from .textures import (
@@ -82,11 +83,47 @@ from .lessons import (
 )
 
 __all__ = [
-    "as_texture", "box", "box_and_rails", "box_before_wall", "box_wireframe", "CameraPair", "checkerboard",
-    "depth_of_field_scene", "desk_background", "facade_texture", "forward_pair", "ground_grid",
-    "ground_plane_view", "GroundView", "house_picture", "house_scene", "house_wireframe", "letter_chart", "look_at_plane",
-    "noise_texture", "outlier_matches", "OutlierMatches", "page_texture", "painting_texture", "photo_and_page",
-    "photo_plane", "photograph_plane", "Plane", "plane_outlines", "PlanePhoto", "portrait", "rail_track",
-    "resection_set", "ResectionSet", "resection_trial", "ResectionTrial", "sample_photo", "sleeper_gaps", "stereo_pair", "text_page", "textured_plane",
-    "wall_texture", "WALL_DISTANCE",
+    "as_texture",
+    "box",
+    "box_and_rails",
+    "box_before_wall",
+    "box_wireframe",
+    "CameraPair",
+    "checkerboard",
+    "depth_of_field_scene",
+    "desk_background",
+    "facade_texture",
+    "forward_pair",
+    "ground_grid",
+    "ground_plane_view",
+    "GroundView",
+    "house_picture",
+    "house_scene",
+    "house_wireframe",
+    "letter_chart",
+    "look_at_plane",
+    "noise_texture",
+    "outlier_matches",
+    "OutlierMatches",
+    "page_texture",
+    "painting_texture",
+    "photo_and_page",
+    "photo_plane",
+    "photograph_plane",
+    "Plane",
+    "plane_outlines",
+    "PlanePhoto",
+    "portrait",
+    "rail_track",
+    "resection_set",
+    "ResectionSet",
+    "resection_trial",
+    "ResectionTrial",
+    "sample_photo",
+    "sleeper_gaps",
+    "stereo_pair",
+    "text_page",
+    "textured_plane",
+    "wall_texture",
+    "WALL_DISTANCE",
 ]

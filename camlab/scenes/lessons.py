@@ -1,4 +1,5 @@
 """The lessons' scenes and synthetic data sets, built here once for each lesson and its demos."""
+
 from __future__ import annotations
 
 from dataclasses import replace
@@ -9,8 +10,16 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validate import CamlabInputError, check_integer, check_number, check_positive, check_size
-from ..camera import (Camera, estimate_projection_matrix, look_at_rotation, orbit_eye, project_points,
-                      reprojection_errors, rotation_from_axis_angle, rotation_from_euler)
+from ..camera import (
+    Camera,
+    estimate_projection_matrix,
+    look_at_rotation,
+    orbit_eye,
+    project_points,
+    reprojection_errors,
+    rotation_from_axis_angle,
+    rotation_from_euler,
+)
 from ..projective import map_points
 from .planes import Plane, box, checkerboard, letter_chart, photo_plane, text_page, textured_plane
 from .textures import portrait
@@ -18,9 +27,16 @@ from .wireframes import box_wireframe, ground_grid, house_wireframe
 
 
 WALL_DISTANCE = 6.0  # metres: lesson 01's checkered wall behind the box
-WALL_TEXELS = 128  # texels per 1 m square: at f = 100 mm a square is 148 px, so an edge ramps over ~1 px
-WALL_GREYS = (0.08, 0.26)  # the wall's two greys: darker than every box face, but the squares read clearly
-WALL_MARK = 0.45  # one lighter square, up and left of the optical axis: a checkerboard alone looks the same
+WALL_TEXELS = (
+    128  # texels per 1 m square: at f = 100 mm a square is 148 px, so an edge ramps over ~1 px
+)
+WALL_GREYS = (
+    0.08,
+    0.26,
+)  # the wall's two greys: darker than every box face, but the squares read clearly
+WALL_MARK = (
+    0.45  # one lighter square, up and left of the optical axis: a checkerboard alone looks the same
+)
 # turned by 180 degrees, so without it only the box would show that the real image is rotated
 
 
@@ -28,16 +44,32 @@ WALL_MARK = 0.45  # one lighter square, up and left of the optical axis: a check
 def _wall() -> Plane:
     """Lesson 01's wall (built once: the renderer caches each texture's mipmaps while the array lives)."""
     dark, light = WALL_GREYS
-    squares = (np.indices((12, 16)).sum(axis=0) % 2) * (light - dark) + dark  # 12 rows x 16 columns of 1 m squares
-    squares[5, 7] = WALL_MARK  # the square x in [-1, 0] m, y in [-1, 0] m: up and left of the axis (y points down)
-    return textured_plane(np.kron(squares, np.ones((WALL_TEXELS, WALL_TEXELS), np.float32)), 16.0,
-                          t=(0, 0, WALL_DISTANCE), name="wall")
+    squares = (np.indices((12, 16)).sum(axis=0) % 2) * (
+        light - dark
+    ) + dark  # 12 rows x 16 columns of 1 m squares
+    squares[5, 7] = (
+        WALL_MARK  # the square x in [-1, 0] m, y in [-1, 0] m: up and left of the axis (y points down)
+    )
+    return textured_plane(
+        np.kron(squares, np.ones((WALL_TEXELS, WALL_TEXELS), np.float32)),
+        16.0,
+        t=(0, 0, WALL_DISTANCE),
+        name="wall",
+    )
 
 
 @lru_cache(maxsize=1)
 def _box_at_origin() -> tuple:
     """Lesson 01's turned 0.3 m box centred on the origin, its textures built once (see :func:`_wall`)."""
-    return tuple(box([0.0, 0.0, 0.0], (0.3, 0.3, 0.3), R=rotation_from_euler(0.35, 0.6, 0.0), texels=160, rng=0))
+    return tuple(
+        box(
+            [0.0, 0.0, 0.0],
+            (0.3, 0.3, 0.3),
+            R=rotation_from_euler(0.35, 0.6, 0.0),
+            texels=160,
+            rng=0,
+        )
+    )
 
 
 def box_before_wall(distance: float) -> list:
@@ -65,10 +97,12 @@ def depth_of_field_scene() -> list[Plane]:
     rows of capitals shrink row by row (lesson 01's :func:`letter_chart`), so how many rows stay
     legible shows the blur; the wall, 3.6 m wide, fills the frame of lesson 02's 28 mm camera.
     """
-    return [checkerboard((5, 4), 0.04, t=(-0.33, -0.02, 0.6), name="near", px_per_square=32),
-            letter_chart(0.36, t=(0.02, -0.02, 1.2)),
-            checkerboard((7, 5), 0.12, t=(0.1, -0.55, 2.4), name="far", px_per_square=32),
-            textured_plane(portrait(), 3.6, t=(0, 0, 4.0), name="wall")]
+    return [
+        checkerboard((5, 4), 0.04, t=(-0.33, -0.02, 0.6), name="near", px_per_square=32),
+        letter_chart(0.36, t=(0.02, -0.02, 1.2)),
+        checkerboard((7, 5), 0.12, t=(0.1, -0.55, 2.4), name="far", px_per_square=32),
+        textured_plane(portrait(), 3.6, t=(0, 0, 4.0), name="wall"),
+    ]
 
 
 def photo_and_page(linear: bool = False) -> list[Plane]:
@@ -78,9 +112,11 @@ def photo_and_page(linear: bool = False) -> list[Plane]:
     framed by a camera at the origin looking along +z with f = 900 px on 320 x 240 pixels.
     ``linear``: the photograph in linear reflectance (see :func:`photo_plane`).
     """
-    return [photo_plane(0.3, t=(0.05, 0.02, 1.0), linear=linear),
-            # raised 6 cm so the page's heading lies above the frame instead of cut by its left edge
-            text_page(0.2, t=(-0.2, -0.06, 1.1), R=rotation_from_euler(0, 0.2, 0.05))]
+    return [
+        photo_plane(0.3, t=(0.05, 0.02, 1.0), linear=linear),
+        # raised 6 cm so the page's heading lies above the frame instead of cut by its left edge
+        text_page(0.2, t=(-0.2, -0.06, 1.1), R=rotation_from_euler(0, 0.2, 0.05)),
+    ]
 
 
 def house_scene() -> np.ndarray:
@@ -124,7 +160,12 @@ class CameraPair(NamedTuple):
 
 def _camera_800(R: np.ndarray, eye: np.ndarray) -> Camera:
     """A 640 x 480 camera with f = 800 px at ``eye`` (metres) turned by cam_from_world ``R``."""
-    return Camera(np.array([[800.0, 0, 319.5], [0, 800.0, 239.5], [0, 0, 1]]), R, -R @ eye, image_size=(640, 480))
+    return Camera(
+        np.array([[800.0, 0, 319.5], [0, 800.0, 239.5], [0, 0, 1]]),
+        R,
+        -R @ eye,
+        image_size=(640, 480),
+    )
 
 
 def stereo_pair(baseline: float, toe_in: float, height: float = 0.0) -> CameraPair:
@@ -155,6 +196,7 @@ def forward_pair(baseline: float, turn: float) -> CameraPair:
     R2 = rotation_from_axis_angle([0.0, turn, 0.0]) @ look_at_rotation(eye2, eye2 + [0.0, 1.0, 0.0])
     return CameraPair(_camera_800(R1, eye1), _camera_800(R2, eye2))
 
+
 class OutlierMatches(NamedTuple):
     """Point pairs related by a known homography, a known fraction of them replaced by random points (lesson 07).
 
@@ -174,10 +216,14 @@ class OutlierMatches(NamedTuple):
     is_outlier: np.ndarray
 
 
-def outlier_matches(outlier_fraction: float, seed: int | None = 0, n: int = 200, noise: float = 1.0) -> OutlierMatches:
+def outlier_matches(
+    outlier_fraction: float, seed: int | None = 0, n: int = 200, noise: float = 1.0
+) -> OutlierMatches:
     """``n`` matches of a fixed homography with ``noise`` pixels of noise, ``round(outlier_fraction n)`` of them wrong."""
     if not 0 <= check_number(outlier_fraction, "outlier_fraction") <= 1:
-        raise CamlabInputError(f"outlier_fraction: expected a fraction in [0, 1], got {outlier_fraction!r}")
+        raise CamlabInputError(
+            f"outlier_fraction: expected a fraction in [0, 1], got {outlier_fraction!r}"
+        )
     n = check_integer(n, "n", minimum=4)
     rng = np.random.default_rng(seed)
     H = np.array([[0.9, 0.15, 40.0], [-0.1, 0.85, 30.0], [4e-4, 2e-4, 1.0]])
@@ -187,6 +233,7 @@ def outlier_matches(outlier_fraction: float, seed: int | None = 0, n: int = 200,
     out[rng.choice(n, int(round(outlier_fraction * n)), replace=False)] = True
     dst[out] = rng.uniform([0, 0], [400, 300], (out.sum(), 2))
     return OutlierMatches(H, src, dst, out)
+
 
 class ResectionSet(NamedTuple):
     """A true camera and noisy world-to-pixel correspondences (lesson 04, resectioning).
@@ -211,7 +258,9 @@ def resection_set(n_points: int, noise_px: float, seed: int | None = 0) -> Resec
     n_points = check_integer(n_points, "n_points", minimum=1)
     sigma = check_number(noise_px, "noise_px", "pixels")
     if sigma < 0:
-        raise CamlabInputError(f"noise_px: expected a standard deviation >= 0 pixels, got {noise_px!r}")
+        raise CamlabInputError(
+            f"noise_px: expected a standard deviation >= 0 pixels, got {noise_px!r}"
+        )
     rng = np.random.default_rng(seed)
     target = np.array([0.0, 0.0, 0.7])
     cam = Camera.look_at(orbit_eye(np.radians(-55), np.radians(25), 5.0, target), target)
@@ -222,6 +271,7 @@ def resection_set(n_points: int, noise_px: float, seed: int | None = 0) -> Resec
     X[n1:] = np.column_stack([a[n1:, 0], np.full(n_points - n1, -1.0), 1.0 + a[n1:, 1]])
     uv = cam.project(X) + rng.normal(0.0, sigma, (n_points, 2))
     return ResectionSet(cam, X, uv)
+
 
 class ResectionTrial(NamedTuple):
     """One run of lesson 04's resectioning demo: the data, one pair possibly moved, and the fitted P.
@@ -245,8 +295,14 @@ class ResectionTrial(NamedTuple):
     errors: np.ndarray
 
 
-def resection_trial(n_points: int, noise_px: float, pair: int = 0, shift: ArrayLike = (0.0, 0.0),
-                    refine: bool = False, moved: dict | None = None) -> ResectionTrial:
+def resection_trial(
+    n_points: int,
+    noise_px: float,
+    pair: int = 0,
+    shift: ArrayLike = (0.0, 0.0),
+    refine: bool = False,
+    moved: dict | None = None,
+) -> ResectionTrial:
     """:func:`resection_set`, with pair ``pair``'s pixel shifted by ``shift`` (u, v pixels) and any pixels
     in ``moved`` (index -> (u, v)) put there, then P estimated by the normalised DLT (``refine``: then
     Levenberg-Marquardt on the reprojection error). What the resectioning demo shows at its settings."""
@@ -285,8 +341,9 @@ class GroundView(NamedTuple):
     horizon: np.ndarray
 
 
-def ground_plane_view(pitch: float, yaw: float, focal: float, size: tuple[int, int] = (640, 480),
-                      height: float = 1.5) -> GroundView:
+def ground_plane_view(
+    pitch: float, yaw: float, focal: float, size: tuple[int, int] = (640, 480), height: float = 1.5
+) -> GroundView:
     """A camera ``height`` metres over a ground grid, tilted down by ``pitch`` and turned by ``yaw`` (radians).
 
     ``focal`` in pixels, ``size`` (width, height) in pixels. This scene's world frame is the
@@ -305,17 +362,29 @@ def ground_plane_view(pitch: float, yaw: float, focal: float, size: tuple[int, i
     R = Rx @ Ry  # cam_from_world (the camera sits at the world origin)
     ticks = np.arange(-12.0, 12.1, 2.0)
     along_z = [np.array([[x, cam_height, 0.5], [x, cam_height, 2000.0]]) for x in ticks]
-    along_x = [np.array([[-60.0, cam_height, z], [60.0, cam_height, z]]) for z in 2.0 * 1.4 ** np.arange(12)]
+    along_x = [
+        np.array([[-60.0, cam_height, z], [60.0, cam_height, z]])
+        for z in 2.0 * 1.4 ** np.arange(12)
+    ]
     near = 0.05
     segments = []
     for seg in along_z + along_x:
         a, b = seg @ R.T
         if a[2] < near and b[2] < near:
             continue  # wholly behind the camera
-        if a[2] < near or b[2] < near:  # clip at the near plane so nothing flips through the pinhole
+        if (
+            a[2] < near or b[2] < near
+        ):  # clip at the near plane so nothing flips through the pinhole
             s = (near - a[2]) / (b[2] - a[2])
             a, b = (a + s * (b - a), b) if a[2] < near else (a, a + s * (b - a))
         uv = np.stack([a, b]) @ K.T
         segments.append(uv[:, :2] / uv[:, 2:])
-    return GroundView(K, R, np.array(segments).reshape(-1, 2, 2), len(along_z), K @ R @ np.array([0, 0, 1.0]),
-                      K @ R @ np.array([1.0, 0, 0]), np.linalg.inv(K).T @ R @ np.array([0, 1.0, 0]))
+    return GroundView(
+        K,
+        R,
+        np.array(segments).reshape(-1, 2, 2),
+        len(along_z),
+        K @ R @ np.array([0, 0, 1.0]),
+        K @ R @ np.array([1.0, 0, 0]),
+        np.linalg.inv(K).T @ R @ np.array([0, 1.0, 0]),
+    )

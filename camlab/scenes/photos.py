@@ -1,4 +1,5 @@
 """Photos of a flat rectangle made by one homography, with their ground truth (lesson 10)."""
+
 from __future__ import annotations
 
 from typing import NamedTuple
@@ -106,11 +107,22 @@ def photograph_plane(
         # Warp straight onto a copy of the background: BORDER_TRANSPARENT leaves the
         # pixels outside the texture untouched (one call, fast enough for live demos).
         image = np.array(bg, dtype=np.uint8, copy=True)
-        cv2.warpPerspective(np.ascontiguousarray(tex, dtype=np.uint8), H, (w, h), dst=image,
-                            flags=cv2.INTER_LINEAR, borderMode=cv2.BORDER_TRANSPARENT)
+        cv2.warpPerspective(
+            np.ascontiguousarray(tex, dtype=np.uint8),
+            H,
+            (w, h),
+            dst=image,
+            flags=cv2.INTER_LINEAR,
+            borderMode=cv2.BORDER_TRANSPARENT,
+        )
     else:
         photo = warp_perspective(tex, H, (h, w), method=method)
-        mask = warp_perspective(np.full((th, tw), 255, np.uint8), H, (h, w), method=method).astype(np.float32) / 255
+        mask = (
+            warp_perspective(np.full((th, tw), 255, np.uint8), H, (h, w), method=method).astype(
+                np.float32
+            )
+            / 255
+        )
         out = photo.astype(np.float32) + bg.astype(np.float32) * (1 - mask[..., None])
         image = np.clip(out, 0, 255).astype(np.uint8)
     # The corners are the centres of the texture's corner pixels: (tw - 1) x (th - 1) apart.

@@ -3,6 +3,7 @@
 A plane's frame has x along texture columns, y along texture rows, z = x cross y;
 its pose is world_from_plane, metres.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -15,18 +16,23 @@ from numpy.typing import ArrayLike
 from .._validate import CamlabInputError, check_matrix, check_pose, check_positive, check_rotation
 from .textures import as_texture, portrait
 
+
 @lru_cache(maxsize=4)
 def _text_texture(width_px: int, seed: int) -> np.ndarray:
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
     rng = np.random.default_rng(seed)
-    words = ("camera lens pixel sensor light ray focus image plane point line matrix projective "
-             "geometry calibration homography epipolar depth field aperture distortion").split()
+    words = (
+        "camera lens pixel sensor light ray focus image plane point line matrix projective "
+        "geometry calibration homography epipolar depth field aperture distortion"
+    ).split()
     h_px = int(width_px * 1.414)
     fig = Figure(figsize=(width_px / 100, h_px / 100), dpi=100)
     FigureCanvasAgg(fig)
-    fig.text(0.08, 0.94, "Chapter 1. Image formation", fontsize=width_px / 28, weight="bold", va="top")
+    fig.text(
+        0.08, 0.94, "Chapter 1. Image formation", fontsize=width_px / 28, weight="bold", va="top"
+    )
     for i in range(34):
         line = " ".join(rng.choice(words, size=7))
         fig.text(0.08, 0.88 - i * 0.024, line.capitalize() + ".", fontsize=width_px / 50, va="top")
@@ -54,15 +60,29 @@ def _chart_texture(seed: int) -> np.ndarray:
     for cap in CHART_ROW_HEIGHTS:
         letters = " ".join(rng.choice(list(_CHART_LETTERS), size=int(min(7, 380 // cap))))
         # DejaVu Sans capitals are about 0.73 em tall: a font size of cap / 0.73 pixels (at 100 dpi, 1 pt = 100/72 px)
-        fig.text(0.5, 1 - top / h_px, letters, fontsize=cap / 0.73 * 72 / 100, weight="bold", ha="center", va="top")
+        fig.text(
+            0.5,
+            1 - top / h_px,
+            letters,
+            fontsize=cap / 0.73 * 72 / 100,
+            weight="bold",
+            ha="center",
+            va="top",
+        )
         top += 1.6 * cap
     fig.canvas.draw()
     grey = np.asarray(fig.canvas.buffer_rgba())[..., :3].mean(axis=2) / 255.0
     return as_texture(grey)
 
 
-def letter_chart(width: float = 0.3, *, R: ArrayLike = np.eye(3), t: ArrayLike = (0, 0, 0), seed: int = 0,
-                 name: str = "chart") -> Plane:
+def letter_chart(
+    width: float = 0.3,
+    *,
+    R: ArrayLike = np.eye(3),
+    t: ArrayLike = (0, 0, 0),
+    seed: int = 0,
+    name: str = "chart",
+) -> Plane:
     """An optician's chart (6 : 5): rows of capitals, each row smaller, for judging blur by eye.
 
     The rows' cap heights are ``CHART_ROW_HEIGHTS`` / 600 of ``width`` (metres): the smallest row
@@ -70,7 +90,6 @@ def letter_chart(width: float = 0.3, *, R: ArrayLike = np.eye(3), t: ArrayLike =
     ``camlab.widgets.pinhole_camera.LEGIBLE``, set by eye on that demo's pictures).
     """
     return textured_plane(_chart_texture(int(seed)), width, R=R, t=t, name=name)
-
 
 
 @dataclass(frozen=True, eq=False)
@@ -128,23 +147,43 @@ class Plane:
         return self.texture.ndim == 3
 
 
-def textured_plane(texture: ArrayLike, width: float, *, R: ArrayLike = np.eye(3), t: ArrayLike = (0, 0, 0),
-                   height: float | None = None, centered: bool = True, name: str = "plane") -> Plane:
+def textured_plane(
+    texture: ArrayLike,
+    width: float,
+    *,
+    R: ArrayLike = np.eye(3),
+    t: ArrayLike = (0, 0, 0),
+    height: float | None = None,
+    centered: bool = True,
+    name: str = "plane",
+) -> Plane:
     """A rectangle ``width`` metres wide showing ``texture``; height from the texture's aspect by default.
 
     ``centered``: the plane frame's origin is the rectangle's centre (else its top-left corner).
     """
     tex = as_texture(texture)
     w = check_positive(width, "width", "metres")
-    h = check_positive(height, "height", "metres") if height is not None else w * tex.shape[0] / tex.shape[1]
+    h = (
+        check_positive(height, "height", "metres")
+        if height is not None
+        else w * tex.shape[0] / tex.shape[1]
+    )
     R, t = check_pose(R, t, name)
     extent = (-w / 2, -h / 2, w / 2, h / 2) if centered else (0.0, 0.0, w, h)
     return Plane(tex, extent, R, t, name=name)
 
 
-def checkerboard(pattern_size: tuple[int, int] = (9, 6), square: float = 0.025, *, R: ArrayLike = np.eye(3),
-                 t: ArrayLike = (0, 0, 0), margin: float = 1.0, px_per_square: int = 48,
-                 colors: tuple[float, float] = (0.05, 0.95), name: str = "board") -> Plane:
+def checkerboard(
+    pattern_size: tuple[int, int] = (9, 6),
+    square: float = 0.025,
+    *,
+    R: ArrayLike = np.eye(3),
+    t: ArrayLike = (0, 0, 0),
+    margin: float = 1.0,
+    px_per_square: int = 48,
+    colors: tuple[float, float] = (0.05, 0.95),
+    name: str = "board",
+) -> Plane:
     """A checkerboard with ``pattern_size = (cols, rows)`` inner corners and ``square`` metres per square.
 
     It has ``cols + 1`` by ``rows + 1`` squares (the top-left one dark) inside a light
@@ -160,9 +199,13 @@ def checkerboard(pattern_size: tuple[int, int] = (9, 6), square: float = 0.025, 
     try:
         cols, rows = (int(v) for v in pattern_size)
     except (TypeError, ValueError):
-        raise CamlabInputError(f"pattern_size: expected (cols, rows) inner corners, got {pattern_size!r}") from None
+        raise CamlabInputError(
+            f"pattern_size: expected (cols, rows) inner corners, got {pattern_size!r}"
+        ) from None
     if cols < 2 or rows < 2:
-        raise CamlabInputError(f"pattern_size: expected at least (2, 2) inner corners, got {pattern_size!r}")
+        raise CamlabInputError(
+            f"pattern_size: expected at least (2, 2) inner corners, got {pattern_size!r}"
+        )
     s = check_positive(square, "square", "metres")
     if not margin >= 0:
         raise CamlabInputError(f"margin: expected >= 0 squares, got {margin!r}")
@@ -170,10 +213,14 @@ def checkerboard(pattern_size: tuple[int, int] = (9, 6), square: float = 0.025, 
     n = int(px_per_square)
     m = int(round(margin * n))
     dark, light = colors
-    sq = (np.add.outer(np.arange(rows + 1), np.arange(cols + 1)) % 2).astype(np.float32)  # 0 = dark at (0, 0)
+    sq = (np.add.outer(np.arange(rows + 1), np.arange(cols + 1)) % 2).astype(
+        np.float32
+    )  # 0 = dark at (0, 0)
     board = np.where(sq == 0, dark, light).astype(np.float32)
     tex = np.full(((rows + 1) * n + 2 * m, (cols + 1) * n + 2 * m), light, dtype=np.float32)
-    tex[m:m + (rows + 1) * n, m:m + (cols + 1) * n] = np.kron(board, np.ones((n, n), dtype=np.float32))
+    tex[m : m + (rows + 1) * n, m : m + (cols + 1) * n] = np.kron(
+        board, np.ones((n, n), dtype=np.float32)
+    )
     tex.setflags(write=False)
     off = s + m * s / n  # first inner corner, measured from the texture's top-left edge
     extent = (-off, -off, tex.shape[1] * s / n - off, tex.shape[0] * s / n - off)
@@ -182,8 +229,14 @@ def checkerboard(pattern_size: tuple[int, int] = (9, 6), square: float = 0.025, 
     return Plane(tex, extent, R, t, pts, name, (cols, rows))
 
 
-def photo_plane(width: float = 0.4, *, R: ArrayLike = np.eye(3), t: ArrayLike = (0, 0, 0), name: str = "photo",
-                linear: bool = False) -> Plane:
+def photo_plane(
+    width: float = 0.4,
+    *,
+    R: ArrayLike = np.eye(3),
+    t: ArrayLike = (0, 0, 0),
+    name: str = "photo",
+    linear: bool = False,
+) -> Plane:
     """A centred rectangle showing matplotlib's bundled Grace Hopper photograph.
 
     The photograph is a JPEG, so its values are sRGB-encoded; ``linear=True`` decodes them
@@ -199,15 +252,29 @@ def _linear_portrait() -> np.ndarray:
     return as_texture(gamma_decode(portrait()))
 
 
-def text_page(width: float = 0.21, *, R: ArrayLike = np.eye(3), t: ArrayLike = (0, 0, 0), seed: int = 0,
-              name: str = "page") -> Plane:
+def text_page(
+    width: float = 0.21,
+    *,
+    R: ArrayLike = np.eye(3),
+    t: ArrayLike = (0, 0, 0),
+    seed: int = 0,
+    name: str = "page",
+) -> Plane:
     """A printed page (A4 proportions) of deterministic pseudo-text, rendered with matplotlib's Agg."""
     return textured_plane(_text_texture(600, int(seed)), width, R=R, t=t, name=name)
 
 
-def box(center: ArrayLike, size: ArrayLike, *, R: ArrayLike = np.eye(3), colors: Sequence[float] | None = None,
-        texture: str = "noise", texels: int = 64, rng: np.random.Generator | int | None = 0,
-        name: str = "box") -> list[Plane]:
+def box(
+    center: ArrayLike,
+    size: ArrayLike,
+    *,
+    R: ArrayLike = np.eye(3),
+    colors: Sequence[float] | None = None,
+    texture: str = "noise",
+    texels: int = 64,
+    rng: np.random.Generator | int | None = 0,
+    name: str = "box",
+) -> list[Plane]:
     """The six faces of a box, as planes with outward normals (z = x cross y points out).
 
     Parameters
@@ -224,7 +291,9 @@ def box(center: ArrayLike, size: ArrayLike, *, R: ArrayLike = np.eye(3), colors:
     c = check_matrix(center, (3,), "center")
     sz = check_matrix(size, (3,), "size")
     if np.any(sz <= 0):
-        raise CamlabInputError(f"size: expected three positive edge lengths in metres, got {sz.tolist()}")
+        raise CamlabInputError(
+            f"size: expected three positive edge lengths in metres, got {sz.tolist()}"
+        )
     Rb = check_rotation(R, f"{name} R")
     if texture not in ("noise", "flat"):
         raise CamlabInputError(f"texture: expected 'noise' or 'flat', got {texture!r}")
@@ -253,5 +322,15 @@ def box(center: ArrayLike, size: ArrayLike, *, R: ArrayLike = np.eye(3), colors:
             base = np.clip(base + rng.normal(0, 0.12, size=(th, tw)).astype(np.float32), 0, 1)
         label = f"{name}{'+' if sign > 0 else '-'}{'xyz'[ax]}"
         pts = np.array([[-w / 2, -h / 2], [w / 2, -h / 2], [w / 2, h / 2], [-w / 2, h / 2]])
-        faces.append(Plane(as_texture(base), (-w / 2, -h / 2, w / 2, h / 2), Rf, tf, pts, label, two_sided=False))
+        faces.append(
+            Plane(
+                as_texture(base),
+                (-w / 2, -h / 2, w / 2, h / 2),
+                Rf,
+                tf,
+                pts,
+                label,
+                two_sided=False,
+            )
+        )
     return faces

@@ -2,6 +2,7 @@
 
 Sizes are (width, height) and shapes (height, width) (docs/conventions.md).
 """
+
 from __future__ import annotations
 
 from functools import lru_cache
@@ -19,7 +20,9 @@ def as_texture(texture: ArrayLike) -> np.ndarray:
     if a.ndim == 3 and a.shape[2] == 4:
         a = a[..., :3]
     if not (a.ndim == 2 or (a.ndim == 3 and a.shape[2] == 3)) or min(a.shape[:2]) < 1:
-        raise CamlabInputError(f"texture: expected an (H, W) or (H, W, 3) image, got shape {a.shape}")
+        raise CamlabInputError(
+            f"texture: expected an (H, W) or (H, W, 3) image, got shape {a.shape}"
+        )
     if np.issubdtype(a.dtype, np.integer):
         a = a / np.iinfo(a.dtype).max
     elif not np.issubdtype(a.dtype, np.floating):
@@ -60,9 +63,28 @@ def _page_texture(width: int, height: int, seed: int) -> np.ndarray:
 
     rng = np.random.default_rng(seed)
     page = np.full((height, width, 3), 250, np.uint8)
-    cv2.putText(page, "Projective Geometry", (int(0.08 * width), int(0.09 * height)),
-                cv2.FONT_HERSHEY_DUPLEX, width / 560, (20, 20, 20), 2, cv2.LINE_AA)
-    words = ["camera", "plane", "homography", "line", "point", "image", "ray", "scale", "view", "map"]
+    cv2.putText(
+        page,
+        "Projective Geometry",
+        (int(0.08 * width), int(0.09 * height)),
+        cv2.FONT_HERSHEY_DUPLEX,
+        width / 560,
+        (20, 20, 20),
+        2,
+        cv2.LINE_AA,
+    )
+    words = [
+        "camera",
+        "plane",
+        "homography",
+        "line",
+        "point",
+        "image",
+        "ray",
+        "scale",
+        "view",
+        "map",
+    ]
     y = int(0.16 * height)
     line_h = max(12, height // 34)
     box_top = int(0.55 * height)
@@ -71,19 +93,31 @@ def _page_texture(width: int, height: int, seed: int) -> np.ndarray:
             y = box_top + int(0.2 * height) + line_h
             continue
         text = " ".join(rng.choice(words, size=5))
-        cv2.putText(page, text, (int(0.08 * width), y), cv2.FONT_HERSHEY_SIMPLEX, width / 1100,
-                    (40, 40, 40), 1, cv2.LINE_AA)
+        cv2.putText(
+            page,
+            text,
+            (int(0.08 * width), y),
+            cv2.FONT_HERSHEY_SIMPLEX,
+            width / 1100,
+            (40, 40, 40),
+            1,
+            cv2.LINE_AA,
+        )
         y += line_h
     x0, x1 = int(0.2 * width), int(0.8 * width)
     y0, y1 = box_top, box_top + int(0.18 * height)
     cv2.rectangle(page, (x0, y0), (x1, y1), (60, 90, 160), 2)
     cv2.line(page, (x0, y1), (x1, y0), (200, 60, 40), 2, cv2.LINE_AA)
-    cv2.circle(page, ((x0 + x1) // 2, (y0 + y1) // 2), (y1 - y0) // 4, (40, 140, 60), 2, cv2.LINE_AA)
+    cv2.circle(
+        page, ((x0 + x1) // 2, (y0 + y1) // 2), (y1 - y0) // 4, (40, 140, 60), 2, cv2.LINE_AA
+    )
     page.flags.writeable = False  # cached: copy before drawing on it
     return page
 
 
-def facade_texture(size: tuple[int, int] = (480, 360), floors: int = 4, bays: int = 6) -> np.ndarray:
+def facade_texture(
+    size: tuple[int, int] = (480, 360), floors: int = 4, bays: int = 6
+) -> np.ndarray:
     """A building facade: brick-coloured wall, a grid of ``floors`` x ``bays`` windows, a door.
 
     ``size`` is (width, height) in pixels; returns a (height, width, 3) uint8 RGB image,
@@ -124,7 +158,9 @@ def painting_texture(width: int = 400) -> np.ndarray:
 
     art = np.round(portrait() * 255).astype(np.uint8)  # the JPEG's own uint8 values
     scale = (width - 40) / art.shape[1]
-    art = cv2.resize(art, (width - 40, int(round(art.shape[0] * scale))), interpolation=cv2.INTER_AREA)
+    art = cv2.resize(
+        art, (width - 40, int(round(art.shape[0] * scale))), interpolation=cv2.INTER_AREA
+    )
     frame = np.empty((art.shape[0] + 40, width, 3), np.uint8)
     frame[:] = (170, 130, 50)
     cv2.rectangle(frame, (6, 6), (width - 7, frame.shape[0] - 7), (210, 170, 80), 4)
@@ -170,12 +206,16 @@ def _wall_texture(width: int, height: int, seed: int) -> np.ndarray:
     tex = np.zeros((height, width, 3), np.float32)
     for scale, amp, chroma in ((120, 0.16, 0.5), (30, 0.10, 0.3), (6, 0.05, 0.2)):
         small = rng.normal(0, 1, (height // scale + 2, width // scale + 2, 3)).astype(np.float32)
-        small = (1 - chroma) * small.mean(axis=2, keepdims=True) + chroma * small  # mostly luminance
+        small = (1 - chroma) * small.mean(
+            axis=2, keepdims=True
+        ) + chroma * small  # mostly luminance
         tex += amp * cv2.resize(small, (width, height), interpolation=cv2.INTER_CUBIC)
     tex = 0.55 + tex
     for _ in range(520):
         kind = rng.integers(0, 4)
-        colour = tuple(float(c) for c in 0.6 * rng.uniform(0.05, 0.95) + 0.4 * rng.uniform(0.05, 0.95, 3))
+        colour = tuple(
+            float(c) for c in 0.6 * rng.uniform(0.05, 0.95) + 0.4 * rng.uniform(0.05, 0.95, 3)
+        )
         cx, cy = rng.uniform(0, width), rng.uniform(0, height)
         size = float(np.exp(rng.uniform(np.log(4), np.log(45))))
         if kind == 0:
@@ -189,8 +229,15 @@ def _wall_texture(width: int, height: int, seed: int) -> np.ndarray:
             cv2.fillConvexPoly(tex, np.round(tri * 16).astype(np.int32), colour, cv2.LINE_AA, 4)
         else:
             p2 = np.array([cx, cy]) + rng.uniform(-2 * size, 2 * size, 2)
-            cv2.line(tex, (int(cx * 16), int(cy * 16)), (int(p2[0] * 16), int(p2[1] * 16)), colour,
-                     int(rng.integers(1, 4)), cv2.LINE_AA, 4)
+            cv2.line(
+                tex,
+                (int(cx * 16), int(cy * 16)),
+                (int(p2[0] * 16), int(p2[1] * 16)),
+                colour,
+                int(rng.integers(1, 4)),
+                cv2.LINE_AA,
+                4,
+            )
     tex = np.clip(tex, 0.0, 1.0)
     tex.setflags(write=False)  # cached: a caller's edit must not change later renders
     return tex

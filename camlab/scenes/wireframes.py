@@ -1,4 +1,5 @@
 """Wireframes: (M, 2, 3) world segments in metres (lessons 04, 05, 11)."""
+
 from __future__ import annotations
 
 from typing import Sequence
@@ -10,11 +11,15 @@ from .._validate import check_matrix, check_positive
 from .planes import Plane
 
 
-def box_wireframe(centre: ArrayLike = (0.0, 0.0, 0.5), size: ArrayLike = (1.0, 1.0, 1.0)) -> np.ndarray:
+def box_wireframe(
+    centre: ArrayLike = (0.0, 0.0, 0.5), size: ArrayLike = (1.0, 1.0, 1.0)
+) -> np.ndarray:
     """The 12 edges of an axis-aligned box as (12, 2, 3) segments (metres)."""
     c = check_matrix(centre, (3,), "centre")
     s = check_matrix(size, (3,), "size")
-    corners = np.array([[i, j, k] for i in (-0.5, 0.5) for j in (-0.5, 0.5) for k in (-0.5, 0.5)]) * s + c
+    corners = (
+        np.array([[i, j, k] for i in (-0.5, 0.5) for j in (-0.5, 0.5) for k in (-0.5, 0.5)]) * s + c
+    )
     edges = [(a, b) for a in range(8) for b in range(a + 1, 8) if bin(a ^ b).count("1") == 1]
     return corners[np.array(edges)]
 
@@ -30,8 +35,11 @@ def house_wireframe(centre: ArrayLike = (0.0, 0.0, 0.0), size: float = 1.0) -> n
     for y, r in ((-0.7, r0), (0.7, r1)):
         for x, z in top:
             roof.append([[x, y, z], r])
-    door = [[[-0.5, -0.15, 0.0], [-0.5, -0.15, 0.6]], [[-0.5, -0.15, 0.6], [-0.5, 0.15, 0.6]],
-            [[-0.5, 0.15, 0.6], [-0.5, 0.15, 0.0]]]
+    door = [
+        [[-0.5, -0.15, 0.0], [-0.5, -0.15, 0.6]],
+        [[-0.5, -0.15, 0.6], [-0.5, 0.15, 0.6]],
+        [[-0.5, 0.15, 0.6], [-0.5, 0.15, 0.0]],
+    ]
     segs = np.concatenate([body, np.array(roof, dtype=float), np.array(door, dtype=float)])
     return segs * s + c
 
@@ -53,7 +61,7 @@ def plane_outlines(planes: Sequence[Plane | Sequence[Plane]]) -> np.ndarray:
     """
     segments = []
     for item in planes:
-        for plane in (item if isinstance(item, (list, tuple)) else [item]):
+        for plane in item if isinstance(item, (list, tuple)) else [item]:
             c = plane.corners_world
             segments += [(c[i], c[(i + 1) % 4]) for i in range(4)]
     return np.array(segments, dtype=float).reshape(-1, 2, 3)

@@ -35,15 +35,52 @@ translates in front of a 3-D scene) has parallax, and no single homography align
 ghosts. Pixel convention: (u, v) = (column, row), origin at the centre of the top-left
 pixel (docs/conventions.md).
 """
+
 from __future__ import annotations
 
-from .blending import (BLENDS, blend, dp_seam_masks, gain_compensation, laplacian_blend, overlap_difference, seam_masks,
-                       seam_step)
+from .blending import (
+    BLENDS,
+    blend,
+    dp_seam_masks,
+    gain_compensation,
+    laplacian_blend,
+    overlap_difference,
+    seam_masks,
+    seam_step,
+)
 from .pipeline import PROJECTION_CHOICES, StitchResult, largest_rectangle, stitch
-from .registration import MatchGraph, PairRegistration, PairReport, match_graph, prepare_images, register_pair
+from .registration import (
+    MatchGraph,
+    PairRegistration,
+    PairReport,
+    match_graph,
+    prepare_images,
+    register_pair,
+)
 from .warping import WarpedImages, canvas_box, cylindrical_warp, feather_weights, warp_images
 
-__all__ = ["BLENDS", "PROJECTION_CHOICES", "MatchGraph", "PairRegistration", "PairReport", "StitchResult",
-           "WarpedImages", "blend", "canvas_box", "cylindrical_warp", "dp_seam_masks", "feather_weights", "largest_rectangle",
-           "gain_compensation", "laplacian_blend", "match_graph",
-           "overlap_difference", "prepare_images", "register_pair", "seam_masks", "seam_step", "stitch", "warp_images"]
+__all__ = [
+    "BLENDS",
+    "PROJECTION_CHOICES",
+    "MatchGraph",
+    "PairRegistration",
+    "PairReport",
+    "StitchResult",
+    "WarpedImages",
+    "blend",
+    "canvas_box",
+    "cylindrical_warp",
+    "dp_seam_masks",
+    "feather_weights",
+    "largest_rectangle",
+    "gain_compensation",
+    "laplacian_blend",
+    "match_graph",
+    "overlap_difference",
+    "prepare_images",
+    "register_pair",
+    "seam_masks",
+    "seam_step",
+    "stitch",
+    "warp_images",
+]

@@ -3,6 +3,7 @@
 
 See :mod:`camlab.stitching` for the whole pipeline; every name here is re-exported there.
 """
+
 from __future__ import annotations
 
 from typing import Sequence
@@ -25,9 +26,14 @@ def _over_channels(op, image: np.ndarray) -> np.ndarray:
     return out
 
 
-def gain_compensation(warped: WarpedImages, sigma_n: float = 10.0 / 255, sigma_g: float = 1.0,
-                      reference: int | None = None, megapixels: float | None = 0.1,
-                      clip: tuple[float, float] = (2 / 255, 253 / 255)) -> np.ndarray:
+def gain_compensation(
+    warped: WarpedImages,
+    sigma_n: float = 10.0 / 255,
+    sigma_g: float = 1.0,
+    reference: int | None = None,
+    megapixels: float | None = 0.1,
+    clip: tuple[float, float] = (2 / 255, 253 / 255),
+) -> np.ndarray:
     r"""One exposure gain per image so that overlapping regions agree (Brown & Lowe 2007, sec. 6).
 
     Minimises, over all overlapping pairs with :math:`N_{ij}` common pixels and mean
@@ -61,8 +67,10 @@ def gain_compensation(warped: WarpedImages, sigma_n: float = 10.0 / 255, sigma_g
     step = 1 if megapixels is None else max(1, int(round(np.sqrt(h * w / (megapixels * 1e6)))))
     imgs, masks = warped.subsampled(step)
     lum = [_over_channels(np.add, im) / im.shape[2] for im in imgs]
-    ok = [m & (_over_channels(np.minimum, im) > clip[0]) & (_over_channels(np.maximum, im) < clip[1])
-          for m, im in zip(masks, imgs)]
+    ok = [
+        m & (_over_channels(np.minimum, im) > clip[0]) & (_over_channels(np.maximum, im) < clip[1])
+        for m, im in zip(masks, imgs)
+    ]
     A = np.zeros((n, n))
     b = np.zeros(n)
     for i in range(n):
@@ -75,9 +83,9 @@ def gain_compensation(warped: WarpedImages, sigma_n: float = 10.0 / 255, sigma_g
                 continue
             Iij, Iji = float(lum[i][both].mean()), float(lum[j][both].mean())
             # d e / d g_i from the (i, j) and (j, i) terms
-            A[i, i] += N * (2 * Iij * Iij / sigma_n ** 2 + 1 / sigma_g ** 2)
-            A[i, j] -= N * 2 * Iij * Iji / sigma_n ** 2
-            b[i] += N / sigma_g ** 2
+            A[i, i] += N * (2 * Iij * Iij / sigma_n**2 + 1 / sigma_g**2)
+            A[i, j] -= N * 2 * Iij * Iji / sigma_n**2
+            b[i] += N / sigma_g**2
     for i in range(n):
         if A[i, i] == 0:  # no overlap: keep the gain at 1
             A[i, i], b[i] = 1.0, 1.0
@@ -88,6 +96,7 @@ def gain_compensation(warped: WarpedImages, sigma_n: float = 10.0 / 255, sigma_g
 
 
 # --------------------------------------------------------------------------- blending
+
 
 def seam_masks(weights: Sequence[np.ndarray]) -> list[np.ndarray]:
     """Split the canvas between the images: each pixel goes to the image with the largest weight.
@@ -158,7 +167,9 @@ def dp_seam_masks(warped: WarpedImages, megapixels: float = 0.1) -> list[np.ndar
             a, b = comp[box], im[box]
             diff = _over_channels(np.add, np.abs(a - b))
             for ax in (0, 1):
-                diff += _over_channels(np.add, np.abs(np.diff(a, axis=ax, prepend=0) - np.diff(b, axis=ax, prepend=0)))
+                diff += _over_channels(
+                    np.add, np.abs(np.diff(a, axis=ax, prepend=0) - np.diff(b, axis=ax, prepend=0))
+                )
             cost = np.where(ov[box], diff, 1e6)
             tall = cost.shape[0] >= cost.shape[1]
             path = _seam_path(cost if tall else cost.T)
@@ -169,7 +180,9 @@ def dp_seam_masks(warped: WarpedImages, megapixels: float = 0.1) -> list[np.ndar
             only_k, only_a = (m & ~placed)[box], (placed & ~m)[box]
             axis = 1 if tall else 0
             pos = np.indices(only_k.shape)[axis]
-            k_left = (pos[only_k].mean() if only_k.any() else np.inf) < (pos[only_a].mean() if only_a.any() else -np.inf)
+            k_left = (pos[only_k].mean() if only_k.any() else np.inf) < (
+                pos[only_a].mean() if only_a.any() else -np.inf
+            )
             take = ov[box] & (left if k_left else ~left)
             label[box][take] = k
             comp[box][take] = b[take]
@@ -184,12 +197,16 @@ def dp_seam_masks(warped: WarpedImages, megapixels: float = 0.1) -> list[np.ndar
         own = (label[np.ix_(near_r[r0:r1], near_c[c0:c1])] == k) & m
         covered[r0:r1, c0:c1] |= own
         out.append(own)
-    missed = np.zeros((h, w), bool)  # a thin rim: footprint pixels whose nearest coarse label is not theirs
+    missed = np.zeros(
+        (h, w), bool
+    )  # a thin rim: footprint pixels whose nearest coarse label is not theirs
     for m, (r0, r1, c0, c1) in zip(warped.patch_masks, warped.boxes):
         missed[r0:r1, c0:c1] |= m & ~covered[r0:r1, c0:c1]
     ys, xs = np.nonzero(missed)
     best_w, best_k = np.zeros(len(ys), np.float32), np.full(len(ys), -1)
-    for k, (wk, (r0, r1, c0, c1)) in enumerate(zip(warped.patch_weights, warped.boxes)):  # the largest feather weight
+    for k, (wk, (r0, r1, c0, c1)) in enumerate(
+        zip(warped.patch_weights, warped.boxes)
+    ):  # the largest feather weight
         inside = np.flatnonzero((ys >= r0) & (ys < r1) & (xs >= c0) & (xs < c1))
         wv = wk[ys[inside] - r0, xs[inside] - c0]
         better = wv > best_w[inside]
@@ -233,7 +250,7 @@ def seam_step(image: np.ndarray, seam: np.ndarray, overlap: np.ndarray, width: i
             if lo < 0 or hi > lum.shape[1] or not overlap[r, lo:hi].all():
                 continue
             sign = 1.0 if seam[r, c + 1] else -1.0  # orient: from the other image into this one
-            steps.append(sign * (lum[r, c + 1:hi].mean() - lum[r, lo:c + 1].mean()))
+            steps.append(sign * (lum[r, c + 1 : hi].mean() - lum[r, lo : c + 1].mean()))
     return float(abs(np.mean(steps))) if steps else 0.0
 
 
@@ -262,7 +279,9 @@ def _fill_outside(img: np.ndarray, mask: np.ndarray, levels: int) -> np.ndarray:
         filled = cv2.pyrUp(filled, dstsize=(w.shape[1], w.shape[0])).reshape(a.shape)
         own = a / np.maximum(w, 1e-6)[..., None]
         own -= filled
-        own *= np.minimum(w * 4, 1)[..., None]  # trust the pixel's own (normalised) value where it has support
+        own *= np.minimum(w * 4, 1)[
+            ..., None
+        ]  # trust the pixel's own (normalised) value where it has support
         filled += own  # up + t (own - up)
     # full resolution: the image itself inside the mask, the pulled-up fill outside
     up = cv2.pyrUp(filled, dstsize=(mask.shape[1], mask.shape[0])).reshape(img.shape)
@@ -274,23 +293,33 @@ def _blend_inputs(images, masks) -> tuple[list, list]:
     """Images as finite (h, w, C) arrays and masks as (h, w) bool of the same size, or a clear error."""
     for value, name in ((images, "images"), (masks, "masks")):
         if value is None or isinstance(value, (str, bytes)) or not hasattr(value, "__len__"):
-            raise CamlabInputError(f"{name}: expected a list with one array per image, got {type(value).__name__}")
+            raise CamlabInputError(
+                f"{name}: expected a list with one array per image, got {type(value).__name__}"
+            )
     if len(images) != len(masks) or not len(images):
-        raise CamlabInputError(f"masks: expected one mask per image, got {len(masks)} for {len(images)} images")
+        raise CamlabInputError(
+            f"masks: expected one mask per image, got {len(masks)} for {len(images)} images"
+        )
     imgs = [check_image(im, f"images[{k}]", channels=(1, 2, 3, 4)) for k, im in enumerate(images)]
     shape = imgs[0].shape[:2]
     out = []
     for k, (im, m) in enumerate(zip(imgs, masks)):
         mk = np.asarray(m)
         if mk.dtype != bool or mk.shape != shape or im.shape[:2] != shape or im.ndim != 3:
-            raise CamlabInputError(f"masks[{k}]: expected a bool (h, w) mask of the (h, w, C) images' size {shape}, "
-                                   f"got {mk.dtype} {mk.shape} for an image of shape {im.shape}")
+            raise CamlabInputError(
+                f"masks[{k}]: expected a bool (h, w) mask of the (h, w, C) images' size {shape}, "
+                f"got {mk.dtype} {mk.shape} for an image of shape {im.shape}"
+            )
         out.append(mk)
     return imgs, out
 
 
-def laplacian_blend(images: Sequence[np.ndarray], masks: Sequence[np.ndarray], levels: int = 5,
-                    footprints: Sequence[np.ndarray] | None = None) -> np.ndarray:
+def laplacian_blend(
+    images: Sequence[np.ndarray],
+    masks: Sequence[np.ndarray],
+    levels: int = 5,
+    footprints: Sequence[np.ndarray] | None = None,
+) -> np.ndarray:
     r"""Multi-band blending (Burt & Adelson 1983) of images with disjoint seam masks.
 
     Each image's Laplacian pyramid :math:`L_k^{(l)} = G_k^{(l)} - \mathrm{up}(G_k^{(l+1)})`
@@ -324,13 +353,26 @@ def laplacian_blend(images: Sequence[np.ndarray], masks: Sequence[np.ndarray], l
         both = m | f
         rows, cols = np.flatnonzero(both.any(axis=1)), np.flatnonzero(both.any(axis=0))
         boxes.append((rows[0], rows[-1] + 1, cols[0], cols[-1] + 1) if len(rows) else (0, 0, 0, 0))
-    return _multiband([im[r0:r1, c0:c1] for im, (r0, r1, c0, c1) in zip(images, boxes)],
-                      [m[r0:r1, c0:c1] for m, (r0, r1, c0, c1) in zip(masks, boxes)],
-                      [f[r0:r1, c0:c1] for f, (r0, r1, c0, c1) in zip(feet, boxes)], boxes, masks[0].shape, levels)
+    return _multiband(
+        [im[r0:r1, c0:c1] for im, (r0, r1, c0, c1) in zip(images, boxes)],
+        [m[r0:r1, c0:c1] for m, (r0, r1, c0, c1) in zip(masks, boxes)],
+        [f[r0:r1, c0:c1] for f, (r0, r1, c0, c1) in zip(feet, boxes)],
+        boxes,
+        masks[0].shape,
+        levels,
+    )
 
 
-def _multiband(images: list, masks: list, feet: list, boxes: list, shape: tuple, levels: int, *,
-               extended: bool = False) -> np.ndarray:
+def _multiband(
+    images: list,
+    masks: list,
+    feet: list,
+    boxes: list,
+    shape: tuple,
+    levels: int,
+    *,
+    extended: bool = False,
+) -> np.ndarray:
     """:func:`laplacian_blend` of images given in boxes of the canvas: ``images[k]``, ``masks[k]``
     (seam) and ``feet[k]`` (footprint) cover the canvas pixels ``boxes[k] = (r0, r1, c0, c1)``.
 
@@ -370,12 +412,24 @@ def _multiband(images: list, masks: list, feet: list, boxes: list, shape: tuple,
             x1 = min(w, x0 + -(-(x1 - x0) // step) * step)
         # the image's box placed in that aligned box (each may stick out of the other)
         mk0 = np.zeros((y1 - y0, x1 - x0), np.float32)
-        ys, xs = slice(max(r0, y0) - y0, min(r1, y1) - y0), slice(max(c0, x0) - x0, min(c1, x1) - x0)
-        ps, qs = slice(max(r0, y0) - r0, min(r1, y1) - r0), slice(max(c0, x0) - c0, min(c1, x1) - c0)
+        ys, xs = (
+            slice(max(r0, y0) - y0, min(r1, y1) - y0),
+            slice(max(c0, x0) - x0, min(c1, x1) - x0),
+        )
+        ps, qs = (
+            slice(max(r0, y0) - r0, min(r1, y1) - r0),
+            slice(max(c0, x0) - c0, min(c1, x1) - c0),
+        )
         mk0[ys, xs] = m[ps, qs]
         if extended:
-            sub = cv2.copyMakeBorder(np.ascontiguousarray(img[ps, qs], np.float32), ys.start, y1 - y0 - ys.stop,
-                                     xs.start, x1 - x0 - xs.stop, cv2.BORDER_REPLICATE).reshape(mk0.shape + (nch,))
+            sub = cv2.copyMakeBorder(
+                np.ascontiguousarray(img[ps, qs], np.float32),
+                ys.start,
+                y1 - y0 - ys.stop,
+                xs.start,
+                x1 - x0 - xs.stop,
+                cv2.BORDER_REPLICATE,
+            ).reshape(mk0.shape + (nch,))
             g = [sub]
         else:
             sub = np.zeros((y1 - y0, x1 - x0, nch), np.float32)
@@ -389,15 +443,17 @@ def _multiband(images: list, masks: list, feet: list, boxes: list, shape: tuple,
             mk.append(cv2.pyrDown(mk[-1]))
         for lv in range(levels + 1):
             if lv < levels:  # band = g[lv] - up(g[lv + 1]), computed in place
-                band = cv2.pyrUp(g[lv + 1], dstsize=(g[lv].shape[1], g[lv].shape[0])).reshape(g[lv].shape)
+                band = cv2.pyrUp(g[lv + 1], dstsize=(g[lv].shape[1], g[lv].shape[0])).reshape(
+                    g[lv].shape
+                )
                 np.subtract(g[lv], band, out=band)
             else:
                 band = g[levels]
             band *= mk[lv][..., None]
             oy, ox = y0 >> lv, x0 >> lv
             hh, ww = mk[lv].shape
-            acc[lv][oy:oy + hh, ox:ox + ww] += band
-            wsum[lv][oy:oy + hh, ox:ox + ww] += mk[lv]
+            acc[lv][oy : oy + hh, ox : ox + ww] += band
+            wsum[lv][oy : oy + hh, ox : ox + ww] += mk[lv]
     for a, s in zip(acc, wsum):  # each band's weighted mean, in place
         np.divide(a, np.maximum(s, 1e-6)[..., None], out=a)
     out = acc[-1]
@@ -409,9 +465,16 @@ def _multiband(images: list, masks: list, feet: list, boxes: list, shape: tuple,
     return out
 
 
-def blend(warped: WarpedImages, method: str = "multiband", *, gains: ArrayLike | None = None,
-          levels: int = 5, feather_power: float = 1.0, seam: str = "voronoi",
-          seams: Sequence[np.ndarray] | None = None) -> np.ndarray:
+def blend(
+    warped: WarpedImages,
+    method: str = "multiband",
+    *,
+    gains: ArrayLike | None = None,
+    levels: int = 5,
+    feather_power: float = 1.0,
+    seam: str = "voronoi",
+    seams: Sequence[np.ndarray] | None = None,
+) -> np.ndarray:
     r"""Blend images warped onto one canvas.
 
     * ``"overwrite"``: paint the images in order, each over the previous (hard seams:
@@ -450,8 +513,12 @@ def blend(warped: WarpedImages, method: str = "multiband", *, gains: ArrayLike |
     if gains is not None:
         g = np.asarray(gains, dtype=float).ravel()
         if g.shape != (len(imgs),):
-            raise CamlabInputError(f"gains: expected {len(imgs)} gains (one per image), got shape {g.shape}")
-        imgs = [np.minimum(im * np.float32(gk), np.float32(1)) for im, gk in zip(imgs, g)]  # im >= 0
+            raise CamlabInputError(
+                f"gains: expected {len(imgs)} gains (one per image), got shape {g.shape}"
+            )
+        imgs = [
+            np.minimum(im * np.float32(gk), np.float32(1)) for im, gk in zip(imgs, g)
+        ]  # im >= 0
     h, w = warped.shape
     boxes = warped.boxes
     if method == "overwrite":
@@ -466,10 +533,21 @@ def blend(warped: WarpedImages, method: str = "multiband", *, gains: ArrayLike |
             wp = wk ** np.float32(feather_power) if feather_power != 1 else wk
             num[r0:r1, c0:c1] += im * wp[..., None]
             den[r0:r1, c0:c1] += wp
-        return np.where(den[..., None] > 0, num / np.maximum(den, 1e-12)[..., None], 0).astype(np.float32)
+        return np.where(den[..., None] > 0, num / np.maximum(den, 1e-12)[..., None], 0).astype(
+            np.float32
+        )
     if seams is None and seam == "dp":
         seams = dp_seam_masks(warped)
     elif seams is None:  # the Voronoi masks lie inside each image's footprint, so inside its box
-        seams = [sk[r0:r1, c0:c1] for sk, (r0, r1, c0, c1) in zip(seam_masks(warped.weights), boxes)]
-    return _multiband(imgs, seams, warped.patch_masks, boxes, warped.shape, check_integer(levels, "levels", minimum=1),
-                      extended=True)
+        seams = [
+            sk[r0:r1, c0:c1] for sk, (r0, r1, c0, c1) in zip(seam_masks(warped.weights), boxes)
+        ]
+    return _multiband(
+        imgs,
+        seams,
+        warped.patch_masks,
+        boxes,
+        warped.shape,
+        check_integer(levels, "levels", minimum=1),
+        extended=True,
+    )

@@ -23,6 +23,7 @@ per overlapping pair; this module turns them into one camera per image (Brown & 
 
 :func:`estimate_cameras` runs the four steps.
 """
+
 from __future__ import annotations
 
 import time
@@ -35,9 +36,21 @@ from .._validate import DegenerateError, check_matrix
 from ..camera import nearest_rotation, rotation_from_axis_angle
 from ..optimize import huber_residuals, levenberg_marquardt
 
-__all__ = ["BundleResult", "CameraEstimate", "HomographyAdjustment", "adjust_homographies", "bundle_adjust", "estimate_cameras", "estimate_focal",
-           "focal_from_homography", "initial_rotations", "inlier_matches", "intrinsics", "pair_transfer_errors",
-           "wave_correct"]
+__all__ = [
+    "BundleResult",
+    "CameraEstimate",
+    "HomographyAdjustment",
+    "adjust_homographies",
+    "bundle_adjust",
+    "estimate_cameras",
+    "estimate_focal",
+    "focal_from_homography",
+    "initial_rotations",
+    "inlier_matches",
+    "intrinsics",
+    "pair_transfer_errors",
+    "wave_correct",
+]
 
 
 def intrinsics(f: float, shape: Sequence[int]) -> np.ndarray:
@@ -49,8 +62,9 @@ def intrinsics(f: float, shape: Sequence[int]) -> np.ndarray:
     return np.array([[f, 0.0, (w - 1) / 2], [0.0, f, (h - 1) / 2], [0.0, 0.0, 1.0]])
 
 
-def focal_from_homography(H: ArrayLike, shape_src: Sequence[int], shape_dst: Sequence[int]
-                          ) -> tuple[float, float]:
+def focal_from_homography(
+    H: ArrayLike, shape_src: Sequence[int], shape_dst: Sequence[int]
+) -> tuple[float, float]:
     r"""Focal lengths (f_src, f_dst) implied by a rotation-only homography; NaN where undetermined.
 
     Move both principal points to the origin, :math:`\hat H = C_d^{-1} H C_s`. Then
@@ -99,10 +113,18 @@ def focal_from_homography(H: ArrayLike, shape_src: Sequence[int], shape_dst: Seq
         v = n / d if abs(d) > 1e-12 else float("nan")
         return float(np.sqrt(v)) if np.isfinite(v) and v > 0 else float("nan")
 
-    f_dst = pick(-(h[0] * h[1] + h[3] * h[4]), h[6] * h[7],
-                 h[0] ** 2 + h[3] ** 2 - h[1] ** 2 - h[4] ** 2, h[7] ** 2 - h[6] ** 2)
-    f_src = pick(-h[2] * h[5], h[0] * h[3] + h[1] * h[4],
-                 h[5] ** 2 - h[2] ** 2, h[0] ** 2 + h[1] ** 2 - h[3] ** 2 - h[4] ** 2)
+    f_dst = pick(
+        -(h[0] * h[1] + h[3] * h[4]),
+        h[6] * h[7],
+        h[0] ** 2 + h[3] ** 2 - h[1] ** 2 - h[4] ** 2,
+        h[7] ** 2 - h[6] ** 2,
+    )
+    f_src = pick(
+        -h[2] * h[5],
+        h[0] * h[3] + h[1] * h[4],
+        h[5] ** 2 - h[2] ** 2,
+        h[0] ** 2 + h[1] ** 2 - h[3] ** 2 - h[4] ** 2,
+    )
     return f_src, f_dst
 
 
@@ -125,11 +147,15 @@ def _nearest_rotation(M: np.ndarray) -> np.ndarray:
     """The rotation closest to M / cbrt(det M) (a homography's scale and sign removed)."""
     d = np.linalg.det(M)
     if not np.isfinite(d) or abs(d) < 1e-300:
-        raise DegenerateError("initial_rotations: a homography is singular; it cannot come from a rotation")
+        raise DegenerateError(
+            "initial_rotations: a homography is singular; it cannot come from a rotation"
+        )
     return nearest_rotation(M / np.cbrt(d))
 
 
-def initial_rotations(ref_from_k: Sequence[np.ndarray | None], Ks: Sequence[np.ndarray | None]) -> list:
+def initial_rotations(
+    ref_from_k: Sequence[np.ndarray | None], Ks: Sequence[np.ndarray | None]
+) -> list:
     r"""cam_from_world rotations from the spanning tree's chained homographies (world = reference camera).
 
     :math:`H_{r \leftarrow k} \sim K_r R_r R_k^\top K_k^{-1}` with :math:`R_r = I`, so
@@ -138,8 +164,10 @@ def initial_rotations(ref_from_k: Sequence[np.ndarray | None], Ks: Sequence[np.n
     """
     ref = next(k for k, H in enumerate(ref_from_k) if H is not None and np.allclose(H, np.eye(3)))
     Kr_inv = np.linalg.inv(Ks[ref])
-    return [None if H is None else _nearest_rotation(Kr_inv @ np.asarray(H, float) @ Ks[k]).T
-            for k, H in enumerate(ref_from_k)]
+    return [
+        None if H is None else _nearest_rotation(Kr_inv @ np.asarray(H, float) @ Ks[k]).T
+        for k, H in enumerate(ref_from_k)
+    ]
 
 
 class BundleResult(NamedTuple):
@@ -220,26 +248,44 @@ def _adjust(blocks: dict, build, pair_errors, pairs: list, huber: float, max_ite
     def rms(x):
         m = models(x)
         e = np.vstack([pair_errors(m[i], m[j], a, b) for i, j, a, b in pairs])
-        return float(np.sqrt(np.mean(np.sum(e ** 2, axis=1))))
+        return float(np.sqrt(np.mean(np.sum(e**2, axis=1))))
 
     if n == 0:
         return models(x0), rms(x0), rms(x0), np.zeros(1), 0, "nothing to adjust", 0.0
     t0 = time.perf_counter()
     res = levenberg_marquardt(residuals, x0, jacobian, max_iter=max_iter, ftol=1e-8)
-    return (models(res.x), rms(x0), rms(res.x), res.cost_history, res.iterations, res.message,
-            time.perf_counter() - t0)
+    return (
+        models(res.x),
+        rms(x0),
+        rms(res.x),
+        res.cost_history,
+        res.iterations,
+        res.message,
+        time.perf_counter() - t0,
+    )
 
 
 def _pairs(matches: dict, present) -> list:
-    pairs = [(i, j, np.asarray(a, float), np.asarray(b, float)) for (i, j), (a, b) in sorted(matches.items())
-             if present(i) and present(j) and len(a)]
+    pairs = [
+        (i, j, np.asarray(a, float), np.asarray(b, float))
+        for (i, j), (a, b) in sorted(matches.items())
+        if present(i) and present(j) and len(a)
+    ]
     if not pairs:
         raise DegenerateError("bundle_adjust: no matches between the images to adjust")
     return pairs
 
 
-def bundle_adjust(Ks: Sequence, Rs: Sequence, matches: dict, *, fixed: int | None = None,
-                  huber: float = 2.0, max_iter: int = 30, focal: bool = True) -> BundleResult:
+def bundle_adjust(
+    Ks: Sequence,
+    Rs: Sequence,
+    matches: dict,
+    *,
+    fixed: int | None = None,
+    huber: float = 2.0,
+    max_iter: int = 30,
+    focal: bool = True,
+) -> BundleResult:
     r"""Refine every camera's focal and rotation over all matches (Brown & Lowe 2007, sec. 4).
 
     Minimises the symmetric reprojection error of every match of every pair, through a
@@ -288,8 +334,16 @@ def bundle_adjust(Ks: Sequence, Rs: Sequence, matches: dict, *, fixed: int | Non
         return pair_transfer_errors(ci[0], ci[1], cj[0], cj[1], a, b)
 
     m, before, after, costs, its, msg, secs = _adjust(blocks, build, errors, pairs, huber, max_iter)
-    return BundleResult([m[k][0] if k in m else None for k in range(len(Rs))],
-                        [m[k][1] if k in m else None for k in range(len(Rs))], before, after, costs, its, msg, secs)
+    return BundleResult(
+        [m[k][0] if k in m else None for k in range(len(Rs))],
+        [m[k][1] if k in m else None for k in range(len(Rs))],
+        before,
+        after,
+        costs,
+        its,
+        msg,
+        secs,
+    )
 
 
 class HomographyAdjustment(NamedTuple):
@@ -304,8 +358,9 @@ class HomographyAdjustment(NamedTuple):
     seconds: float
 
 
-def adjust_homographies(ref_from_k: Sequence, matches: dict, *, reference: int, huber: float = 2.0,
-                        max_iter: int = 30) -> HomographyAdjustment:
+def adjust_homographies(
+    ref_from_k: Sequence, matches: dict, *, reference: int, huber: float = 2.0, max_iter: int = 30
+) -> HomographyAdjustment:
     r"""Refine every image's homography onto the reference together, over all matches (planar scenes).
 
     A flat scene seen from several positions has no common centre, so no rotation model;
@@ -323,8 +378,10 @@ def adjust_homographies(ref_from_k: Sequence, matches: dict, *, reference: int, 
     pairs = _pairs(matches, lambda k: ref_from_k[k] is not None)
     H0 = {k: np.asarray(ref_from_k[k], float) / ref_from_k[k][2, 2] for k in imgs}
     scale = {k: np.abs(H0[k].ravel()[:8]) * 1e-7 + 1e-9 for k in imgs}
-    blocks = {k: (([] if k == reference else H0[k].ravel()[:8]),
-                  ([] if k == reference else scale[k])) for k in imgs}
+    blocks = {
+        k: (([] if k == reference else H0[k].ravel()[:8]), ([] if k == reference else scale[k]))
+        for k in imgs
+    }
 
     def build(k, xk):
         H = np.append(xk, 1.0).reshape(3, 3) if len(xk) else H0[k]
@@ -334,8 +391,9 @@ def adjust_homographies(ref_from_k: Sequence, matches: dict, *, reference: int, 
         return _project(hj[1] @ hi[0], a) - b
 
     m, before, after, _, its, msg, secs = _adjust(blocks, build, errors, pairs, huber, max_iter)
-    return HomographyAdjustment([m[k][0] if k in m else None for k in range(len(ref_from_k))],
-                                before, after, its, msg, secs)
+    return HomographyAdjustment(
+        [m[k][0] if k in m else None for k in range(len(ref_from_k))], before, after, its, msg, secs
+    )
 
 
 def wave_correct(Rs: Sequence[np.ndarray | None]) -> list:
@@ -364,7 +422,9 @@ def wave_correct(Rs: Sequence[np.ndarray | None]) -> list:
         u = -u
     z = Z.sum(axis=0)
     z = z - (z @ u) * u
-    if np.linalg.norm(z) < 1e-6 * len(cams):  # a full turn: the mean direction vanishes; take the first camera's
+    if np.linalg.norm(z) < 1e-6 * len(
+        cams
+    ):  # a full turn: the mean direction vanishes; take the first camera's
         z = Z[0] - (Z[0] @ u) * u
     z = z / np.linalg.norm(z)
     W = np.array([np.cross(u, z), u, z])
@@ -403,8 +463,15 @@ def inlier_matches(graph, max_matches: int = 200) -> dict:
     return out
 
 
-def estimate_cameras(graph, shapes: Sequence[Sequence[int]], *, K: ArrayLike | None = None, huber: float = 2.0,
-                     max_matches: int = 200, wave: bool = True) -> CameraEstimate:
+def estimate_cameras(
+    graph,
+    shapes: Sequence[Sequence[int]],
+    *,
+    K: ArrayLike | None = None,
+    huber: float = 2.0,
+    max_matches: int = 200,
+    wave: bool = True,
+) -> CameraEstimate:
     """Focal, spanning-tree rotations, bundle adjustment, wave correction (the module docstring's steps).
 
     Parameters
@@ -425,13 +492,18 @@ def estimate_cameras(graph, shapes: Sequence[Sequence[int]], *, K: ArrayLike | N
     accepted = {key: p.H for key, p in graph.pairs.items() if p.accepted}
     if K is None:
         f0 = estimate_focal(accepted, shapes)
-        Ks = [intrinsics(f0, s) if H is not None else None for H, s in zip(graph.homographies, shapes)]
+        Ks = [
+            intrinsics(f0, s) if H is not None else None for H, s in zip(graph.homographies, shapes)
+        ]
     else:
         f0 = float(np.asarray(K, float)[0, 0])
         Ks = [np.asarray(K, float) if H is not None else None for H in graph.homographies]
     R_init = initial_rotations(graph.homographies, Ks)
-    matches = {key: m for key, m in inlier_matches(graph, max_matches).items()
-               if R_init[key[0]] is not None and R_init[key[1]] is not None}
+    matches = {
+        key: m
+        for key, m in inlier_matches(graph, max_matches).items()
+        if R_init[key[0]] is not None and R_init[key[1]] is not None
+    }
     ba = bundle_adjust(Ks, R_init, matches, fixed=graph.reference, huber=huber, focal=K is None)
     Rs = wave_correct(ba.Rs) if wave else ba.Rs
     return CameraEstimate(ba.Ks, Rs, f0, R_init, ba)

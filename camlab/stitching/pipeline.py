@@ -15,6 +15,7 @@ r"""The whole panorama: :func:`stitch` runs every stage and says what it chose a
 5. Exposure gains, seams and multi-band blending (:func:`camlab.stitching.blend`), then
    optionally a crop to the largest rectangle without empty canvas.
 """
+
 from __future__ import annotations
 
 import time
@@ -104,7 +105,11 @@ def _duplicates(imgs: list) -> dict:
     out = {}
     for j in range(len(imgs)):
         for i in range(j):
-            if i not in out and small[i].shape == small[j].shape and float(np.abs(small[i] - small[j]).mean()) < 1 / 255:
+            if (
+                i not in out
+                and small[i].shape == small[j].shape
+                and float(np.abs(small[i] - small[j]).mean()) < 1 / 255
+            ):
                 out[j] = i
                 break
     return out
@@ -123,7 +128,11 @@ def _detect(im: np.ndarray, method: str, max_features: int, mask, megapixels) ->
         return _feat.detect_features(im, method, max_features, mask=mask)
     size = (max(16, int(round(w * s))), max(16, int(round(h * s))))
     small = cv2.resize(im, size, interpolation=cv2.INTER_AREA)
-    m = None if mask is None else cv2.resize(mask.astype(np.uint8), size, interpolation=cv2.INTER_NEAREST) > 0
+    m = (
+        None
+        if mask is None
+        else cv2.resize(mask.astype(np.uint8), size, interpolation=cv2.INTER_NEAREST) > 0
+    )
     f = _feat.detect_features(small, method, max_features, mask=m)
     sx, sy = size[0] / w, size[1] / h
     pts = np.c_[(f.points[:, 0] + 0.5) / sx - 0.5, (f.points[:, 1] + 0.5) / sy - 0.5]
@@ -144,8 +153,10 @@ def _field_of_view(Ks: list, Rs: list, shapes: list) -> tuple[float, float]:
     from .projections import footprint
 
     boxes = np.array([footprint(K, R, sh, "spherical", 1.0) for K, R, sh in zip(Ks, Rs, shapes)])
-    return (float(np.degrees(boxes[:, 1, 0].max() - boxes[:, 0, 0].min())),
-            float(np.degrees(boxes[:, 1, 1].max() - boxes[:, 0, 1].min())))
+    return (
+        float(np.degrees(boxes[:, 1, 0].max() - boxes[:, 0, 0].min())),
+        float(np.degrees(boxes[:, 1, 1].max() - boxes[:, 0, 1].min())),
+    )
 
 
 def _outline_curved(K, R, shape, canvas) -> np.ndarray:
@@ -159,7 +170,9 @@ def _warp_curved(imgs: list, Ks: list, Rs: list, canvas) -> WarpedImages:
     h, w = canvas.shape
     out_i, out_m, out_w, boxes = [], [], [], []
     for im, K, R, box in zip(imgs, Ks, Rs, canvas.boxes):
-        patch, mask, wgt = warp_to_canvas(im, K, R, canvas, box, feather_weights(im.shape).astype(np.float32))
+        patch, mask, wgt = warp_to_canvas(
+            im, K, R, canvas, box, feather_weights(im.shape).astype(np.float32)
+        )
         wgt = np.where(mask, np.maximum(wgt, 1e-3), 0).astype(np.float32)
         r0, r1, c0, c1 = box
         if c0 < 0 or c1 > w:
@@ -190,9 +203,13 @@ def _warn_left_out(graph, lost: list, label: list) -> None:
             best = max((r.inliers for r in graph.report() if k in (r.i, r.j)), default=0)
             reasons.append(f"{label[k]!r} overlaps none of the others (best pair: {best} inliers)")
         else:
-            reasons.append(f"{', '.join(repr(label[k]) for k in group)} overlap each other but none of the "
-                           f"panorama's photos: a separate panorama; stitch them on their own")
-    warnings.warn(f"stitch: left out of the panorama: {'; '.join(reasons)}", UserWarning, stacklevel=3)
+            reasons.append(
+                f"{', '.join(repr(label[k]) for k in group)} overlap each other but none of the "
+                f"panorama's photos: a separate panorama; stitch them on their own"
+            )
+    warnings.warn(
+        f"stitch: left out of the panorama: {'; '.join(reasons)}", UserWarning, stacklevel=3
+    )
 
 
 def _warn_second_plane(graph, names: list, rng) -> None:
@@ -216,11 +233,20 @@ def _warn_second_plane(graph, names: list, rng) -> None:
             continue
         k2 = int(r2.inliers.sum())
         if k2 >= max(10, 8 + 0.3 * n):
-            off = float(np.median(transfer_error(p.H, p.matches.src[out][r2.inliers], p.matches.dst[out][r2.inliers])))
-            warnings.warn(f"stitch: {names[i]!r}-{names[j]!r}: {k2} matches follow a second plane, {off:.1f} px "
-                          f"(median) off the first homography: the camera moved between the photos (parallax), "
-                          f"so no single homography or rotation aligns everything; expect ghosts of near objects",
-                          UserWarning, stacklevel=3)
+            off = float(
+                np.median(
+                    transfer_error(
+                        p.H, p.matches.src[out][r2.inliers], p.matches.dst[out][r2.inliers]
+                    )
+                )
+            )
+            warnings.warn(
+                f"stitch: {names[i]!r}-{names[j]!r}: {k2} matches follow a second plane, {off:.1f} px "
+                f"(median) off the first homography: the camera moved between the photos (parallax), "
+                f"so no single homography or rotation aligns everything; expect ghosts of near objects",
+                UserWarning,
+                stacklevel=3,
+            )
 
 
 def _warn_full_turn(Rs: list, names: list) -> None:
@@ -229,9 +255,13 @@ def _warn_full_turn(Rs: list, names: list) -> None:
     turn = np.degrees(yaw - yaw[0])
     if np.abs(turn).max() > 365:
         again = [nm for nm, t in zip(names, turn) if abs(t) > 350]
-        warnings.warn(f"stitch: the photos turn through {np.abs(turn).max():.0f} degrees, more than a full circle: "
-                      f"{', '.join(repr(x) for x in again)} show again what the first photos showed; the canvas is "
-                      f"one full turn and the repeated views are blended in", UserWarning, stacklevel=3)
+        warnings.warn(
+            f"stitch: the photos turn through {np.abs(turn).max():.0f} degrees, more than a full circle: "
+            f"{', '.join(repr(x) for x in again)} show again what the first photos showed; the canvas is "
+            f"one full turn and the repeated views are blended in",
+            UserWarning,
+            stacklevel=3,
+        )
 
 
 def largest_rectangle(mask: np.ndarray) -> tuple[int, int, int, int]:
@@ -259,13 +289,29 @@ def largest_rectangle(mask: np.ndarray) -> tuple[int, int, int, int]:
     return out
 
 
-def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", method: str = "sift",
-           max_features: int = 1500, ratio: float = 0.75, mutual: bool = False, threshold: float = 3.0,
-           min_inliers: int = 15, compensate_gains: bool = True, levels: int = 5,
-           projection: str = "auto", K: ArrayLike | None = None, reference: int | None = None,
-           rng: np.random.Generator | None = None, max_pixels: int = 40_000_000,
-           names: Sequence[str] | None = None, crop: bool = False, rotation_tol: float = 1.0,
-           plane_tol: float = 1.5, registration_megapixels: float | None = 0.15) -> StitchResult:
+def stitch(
+    images: Sequence[ArrayLike],
+    *,
+    blend_method: str = "multiband",
+    method: str = "sift",
+    max_features: int = 1500,
+    ratio: float = 0.75,
+    mutual: bool = False,
+    threshold: float = 3.0,
+    min_inliers: int = 15,
+    compensate_gains: bool = True,
+    levels: int = 5,
+    projection: str = "auto",
+    K: ArrayLike | None = None,
+    reference: int | None = None,
+    rng: np.random.Generator | None = None,
+    max_pixels: int = 40_000_000,
+    names: Sequence[str] | None = None,
+    crop: bool = False,
+    rotation_tol: float = 1.0,
+    plane_tol: float = 1.5,
+    registration_megapixels: float | None = 0.15,
+) -> StitchResult:
     """Stitch overlapping photos of a turning camera, or of a flat scene, into a panorama.
 
     See the module docstring for the stages.
@@ -321,7 +367,9 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
     if blend_method not in BLENDS:
         raise CamlabInputError(f"blend_method: expected one of {BLENDS}, got {blend_method!r}")
     if projection not in PROJECTION_CHOICES:
-        raise CamlabInputError(f"projection: expected one of {PROJECTION_CHOICES}, got {projection!r}")
+        raise CamlabInputError(
+            f"projection: expected one of {PROJECTION_CHOICES}, got {projection!r}"
+        )
     times: dict = {}
     t0 = time.perf_counter()
     imgs = prepare_images(images)
@@ -335,26 +383,50 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
     Kfix = None if K is None else check_intrinsics(K, "K")
     dup = _duplicates(imgs)
     if dup:
-        warnings.warn("stitch: " + "; ".join(f"{label[j]!r} is the same photo as {label[i]!r}" for j, i in dup.items())
-                      + "; the repeat is left out", UserWarning, stacklevel=2)
-    masks_feat = [None if k not in dup else np.zeros(im.shape[:2], bool) for k, im in enumerate(imgs)]
-    feats = [_detect(im, method, max_features, masks_feat[k], registration_megapixels) for k, im in enumerate(imgs)]
+        warnings.warn(
+            "stitch: "
+            + "; ".join(f"{label[j]!r} is the same photo as {label[i]!r}" for j, i in dup.items())
+            + "; the repeat is left out",
+            UserWarning,
+            stacklevel=2,
+        )
+    masks_feat = [
+        None if k not in dup else np.zeros(im.shape[:2], bool) for k, im in enumerate(imgs)
+    ]
+    feats = [
+        _detect(im, method, max_features, masks_feat[k], registration_megapixels)
+        for k, im in enumerate(imgs)
+    ]
     times["features"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     # refine=False: bundle adjustment refines every pair together afterwards. 500 samples, as Brown &
     # Lowe: a pair that passes the inlier test (over 30% inliers) is found with probability
     # 1 - (1 - 0.3^4)^500 > 98% even at that limit, and real overlaps have far more inliers; pairs
     # that do not overlap (which never stop early) cost half as much.
-    graph = match_graph(feats, ratio=ratio, mutual=mutual, threshold=threshold, min_inliers=min_inliers,
-                        rng=rng, reference=reference, approximate=True, refine=False, confidence=0.995,
-                        max_iters=500)
+    graph = match_graph(
+        feats,
+        ratio=ratio,
+        mutual=mutual,
+        threshold=threshold,
+        min_inliers=min_inliers,
+        rng=rng,
+        reference=reference,
+        approximate=True,
+        refine=False,
+        confidence=0.995,
+        max_iters=500,
+    )
     times["matching"] = time.perf_counter() - t0
     keep = [k for k in range(n) if graph.homographies[k] is not None]
     if len(keep) < 2:
-        rows = "; ".join(f"{label[r.i]!r}-{label[r.j]!r}: {r.matches} matches, {r.inliers} inliers ({r.reason})"
-                         for r in graph.report())
-        raise DegenerateError(f"stitch: no two images could be registered (at most one usable image), nothing to "
-                              f"stitch. Pairs: {rows}")
+        rows = "; ".join(
+            f"{label[r.i]!r}-{label[r.j]!r}: {r.matches} matches, {r.inliers} inliers ({r.reason})"
+            for r in graph.report()
+        )
+        raise DegenerateError(
+            f"stitch: no two images could be registered (at most one usable image), nothing to "
+            f"stitch. Pairs: {rows}"
+        )
     _warn_left_out(graph, [k for k in graph.unconnected if k not in dup], label)
 
     t0 = time.perf_counter()
@@ -366,23 +438,43 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
     est = None if telephoto else estimate_cameras(graph, shapes, K=Kfix)
     rot_rms = np.inf if est is None else est.bundle.rms_after
     # residuals are in full-resolution pixels; features found on smaller copies are that much less precise
-    coarse = float(np.median([np.sqrt(im.shape[0] * im.shape[1] / (registration_megapixels * 1e6))
-                              for im in imgs])) if registration_megapixels else 1.0
+    coarse = (
+        float(
+            np.median(
+                [
+                    np.sqrt(im.shape[0] * im.shape[1] / (registration_megapixels * 1e6))
+                    for im in imgs
+                ]
+            )
+        )
+        if registration_megapixels
+        else 1.0
+    )
     rot_tol, pl_tol = rotation_tol * max(1.0, coarse), plane_tol * max(1.0, coarse)
     model, resid, adj = "rotation", rot_rms, None
     if (telephoto or rot_rms > rot_tol) and projection in ("auto", "planar"):
-        adj = adjust_homographies(graph.homographies, inlier_matches(graph, 100), reference=graph.reference)
-        if telephoto or adj.rms_after < 0.7 * rot_rms:  # a plane explains the matches clearly better
+        adj = adjust_homographies(
+            graph.homographies, inlier_matches(graph, 100), reference=graph.reference
+        )
+        if (
+            telephoto or adj.rms_after < 0.7 * rot_rms
+        ):  # a plane explains the matches clearly better
             model, Hs_plane, resid = "homography", adj.homographies, adj.rms_after
         if adj.rms_after > pl_tol and rot_rms > rot_tol:
-            warnings.warn(f"stitch: neither a turning camera (rotation model residual {rot_rms:.2f} px) nor a flat "
-                          f"scene (homography residual {adj.rms_after:.2f} px) explains the matches: the camera "
-                          f"moved in front of a 3-D scene (parallax); expect ghosts and misaligned seams",
-                          UserWarning, stacklevel=2)
+            warnings.warn(
+                f"stitch: neither a turning camera (rotation model residual {rot_rms:.2f} px) nor a flat "
+                f"scene (homography residual {adj.rms_after:.2f} px) explains the matches: the camera "
+                f"moved in front of a 3-D scene (parallax); expect ghosts and misaligned seams",
+                UserWarning,
+                stacklevel=2,
+            )
     elif rot_rms > rot_tol:
-        warnings.warn(f"stitch: the rotation model leaves {rot_rms:.2f} px RMS (more than {rot_tol:.2f} px): the "
-                      f"camera moved (parallax) or the scene is flat; try projection='planar'", UserWarning,
-                      stacklevel=2)
+        warnings.warn(
+            f"stitch: the rotation model leaves {rot_rms:.2f} px RMS (more than {rot_tol:.2f} px): the "
+            f"camera moved (parallax) or the scene is flat; try projection='planar'",
+            UserWarning,
+            stacklevel=2,
+        )
     if model == "homography":
         Ks = Rs = [None] * len(keep)
     else:
@@ -394,8 +486,14 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
         _warn_full_turn(Rs, [label[k] for k in keep])
     chosen = projection
     if projection == "auto":
-        chosen = "planar" if model == "homography" or max(_field_of_view(Ks, Rs, sub_shapes)) <= 100 else "spherical"
-    ba_seconds = (0.0 if est is None else est.bundle.seconds) + (0.0 if adj is None else adj.seconds)
+        chosen = (
+            "planar"
+            if model == "homography" or max(_field_of_view(Ks, Rs, sub_shapes)) <= 100
+            else "spherical"
+        )
+    ba_seconds = (0.0 if est is None else est.bundle.seconds) + (
+        0.0 if adj is None else adj.seconds
+    )
     times["estimation"] = time.perf_counter() - t0 - ba_seconds
     times["bundle_adjustment"] = ba_seconds
 
@@ -411,8 +509,10 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
         try:
             warped = warp_images(sub, H_list, max_pixels=max_pixels)
         except DegenerateError as exc:
-            raise DegenerateError(f"stitch: the images turn too far for a plane ({exc}); "
-                                  "use projection='cylindrical' or 'spherical'") from None
+            raise DegenerateError(
+                f"stitch: the images turn too far for a plane ({exc}); "
+                "use projection='cylindrical' or 'spherical'"
+            ) from None
         outlines_sub = [_hg_border(H, sh) for H, sh in zip(warped.homographies, sub_shapes)]
     else:
         s = float(np.median([Kk[0, 0] for Kk in Ks]))
@@ -422,7 +522,9 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
     times["warping"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     ref_local = keep.index(graph.reference)
-    g_sub = gain_compensation(warped, reference=ref_local) if compensate_gains else np.ones(len(keep))
+    g_sub = (
+        gain_compensation(warped, reference=ref_local) if compensate_gains else np.ones(len(keep))
+    )
     times["exposure"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     seams = dp_seam_masks(warped) if blend_method == "multiband" else None
@@ -455,12 +557,30 @@ def stitch(images: Sequence[ArrayLike], *, blend_method: str = "multiband", meth
         Tc = np.array([[1.0, 0, -c0], [0, 1, -r0], [0, 0, 1]])
         H_out = [None if H is None else Tc @ H for H in H_out]
     if all_uint8:
-        pano = np.rint(np.multiply(pano, 255, out=pano), out=pano).astype(np.uint8)  # pano is in [0, 1]
+        pano = np.rint(np.multiply(pano, 255, out=pano), out=pano).astype(
+            np.uint8
+        )  # pano is in [0, 1]
     if grey:
         pano = np.repeat(pano, 3, axis=2)
     unconnected = sorted(set(graph.unconnected) | set(dup))
-    return StitchResult(pano, union, H_out, M_out, graph.report(), graph.reference, unconnected, gains, graph,
-                        C_out, chosen, model, float(resid), O_out, label, times)
+    return StitchResult(
+        pano,
+        union,
+        H_out,
+        M_out,
+        graph.report(),
+        graph.reference,
+        unconnected,
+        gains,
+        graph,
+        C_out,
+        chosen,
+        model,
+        float(resid),
+        O_out,
+        label,
+        times,
+    )
 
 
 def _hg_border(H: np.ndarray, shape) -> np.ndarray:

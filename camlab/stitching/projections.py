@@ -21,6 +21,7 @@ stretches vertically away from the horizon; the sphere holds every direction, be
 straight lines. Each image is warped backwards: canvas pixel -> ray -> :math:`\pi(K_k R_k d)`
 (:func:`warp_to_canvas`), over only its own footprint (:func:`footprint`).
 """
+
 from __future__ import annotations
 
 from typing import NamedTuple, Sequence
@@ -30,8 +31,17 @@ import numpy as np
 from .._validate import CamlabInputError, DegenerateError
 from ..distortion import pixels_to_normalised
 
-__all__ = ["PROJECTIONS", "Canvas", "canvas_from_ray", "canvas_points", "footprint", "make_canvas", "pixel_rays",
-           "ray_from_canvas", "warp_to_canvas"]
+__all__ = [
+    "PROJECTIONS",
+    "Canvas",
+    "canvas_from_ray",
+    "canvas_points",
+    "footprint",
+    "make_canvas",
+    "pixel_rays",
+    "ray_from_canvas",
+    "warp_to_canvas",
+]
 
 PROJECTIONS = ("planar", "cylindrical", "spherical")
 
@@ -68,8 +78,15 @@ def border_points(shape: Sequence[int], n: int = 16) -> np.ndarray:
     h, w = shape[:2]
     t = np.linspace(0, 1, n)
     u, v = (w - 1) * t, (h - 1) * t
-    return np.vstack([np.c_[u, 0 * t], np.c_[u, 0 * t + h - 1], np.c_[0 * t, v], np.c_[0 * t + w - 1, v],
-                      [[(w - 1) / 2, (h - 1) / 2]]])
+    return np.vstack(
+        [
+            np.c_[u, 0 * t],
+            np.c_[u, 0 * t + h - 1],
+            np.c_[0 * t, v],
+            np.c_[0 * t + w - 1, v],
+            [[(w - 1) / 2, (h - 1) / 2]],
+        ]
+    )
 
 
 def pixel_rays(pixels: np.ndarray, K: np.ndarray, R: np.ndarray) -> np.ndarray:
@@ -80,8 +97,9 @@ def pixel_rays(pixels: np.ndarray, K: np.ndarray, R: np.ndarray) -> np.ndarray:
     return np.c_[xy, np.ones(len(xy))] @ R
 
 
-def canvas_points(pixels: np.ndarray, K: np.ndarray, R: np.ndarray, projection: str,
-                  s: float) -> tuple[np.ndarray, np.ndarray]:
+def canvas_points(
+    pixels: np.ndarray, K: np.ndarray, R: np.ndarray, projection: str, s: float
+) -> tuple[np.ndarray, np.ndarray]:
     r"""Where pixels (N, 2) of image (K, R) land on a canvas: (u, v), each (N,).
 
     On the cylinder and the sphere the longitude is unrolled around the image's optical axis
@@ -95,7 +113,9 @@ def canvas_points(pixels: np.ndarray, K: np.ndarray, R: np.ndarray, projection: 
     return u, v
 
 
-def footprint(K: np.ndarray, R: np.ndarray, shape: Sequence[int], projection: str, s: float) -> np.ndarray:
+def footprint(
+    K: np.ndarray, R: np.ndarray, shape: Sequence[int], projection: str, s: float
+) -> np.ndarray:
     """The canvas box ``[[u_min, v_min], [u_max, v_max]]`` of an image (its border's rays, mapped).
 
     On the cylinder and the sphere the longitude is unrolled around the image's optical axis
@@ -105,8 +125,10 @@ def footprint(K: np.ndarray, R: np.ndarray, shape: Sequence[int], projection: st
     """
     u, v = canvas_points(border_points(shape), K, R, projection, s)
     if not (np.all(np.isfinite(u)) and np.all(np.isfinite(v))):
-        raise DegenerateError(f"footprint: part of the image looks 90 degrees or more away from the {projection} "
-                              "canvas's centre; a plane cannot hold it. Use projection='cylindrical' or 'spherical'")
+        raise DegenerateError(
+            f"footprint: part of the image looks 90 degrees or more away from the {projection} "
+            "canvas's centre; a plane cannot hold it. Use projection='cylindrical' or 'spherical'"
+        )
     return np.array([[u.min(), v.min()], [u.max(), v.max()]])
 
 
@@ -123,8 +145,15 @@ class Canvas(NamedTuple):
     boxes: list
 
 
-def make_canvas(Ks: Sequence, Rs: Sequence, shapes: Sequence, projection: str, s: float, *,
-                max_pixels: int = 40_000_000) -> Canvas:
+def make_canvas(
+    Ks: Sequence,
+    Rs: Sequence,
+    shapes: Sequence,
+    projection: str,
+    s: float,
+    *,
+    max_pixels: int = 40_000_000,
+) -> Canvas:
     """Bounds of all images' footprints; a canvas that would be wider than one full turn wraps.
 
     ``Ks``, ``Rs``, ``shapes`` for the images in the panorama (no None). Raises
@@ -140,8 +169,10 @@ def make_canvas(Ks: Sequence, Rs: Sequence, shapes: Sequence, projection: str, s
     w = full if wraps else int(hi[0] - lo[0]) + 1
     h = int(hi[1] - lo[1]) + 1
     if h * w > max_pixels:
-        raise CamlabInputError(f"max_pixels: the {projection} canvas would be {w} x {h} = {w * h} pixels "
-                               f"(limit {max_pixels}); the images may be badly registered, or raise max_pixels")
+        raise CamlabInputError(
+            f"max_pixels: the {projection} canvas would be {w} x {h} = {w * h} pixels "
+            f"(limit {max_pixels}); the images may be badly registered, or raise max_pixels"
+        )
     out = []
     for (bu0, bv0), (bu1, bv1) in boxes:
         c0, c1 = int(np.floor(bu0 - lo[0])), int(np.ceil(bu1 - lo[0])) + 1
@@ -152,8 +183,14 @@ def make_canvas(Ks: Sequence, Rs: Sequence, shapes: Sequence, projection: str, s
     return Canvas(projection, float(s), (float(lo[0]), float(lo[1])), (h, w), bool(wraps), out)
 
 
-def warp_to_canvas(image: np.ndarray, K: np.ndarray, R: np.ndarray, canvas: Canvas, box: tuple,
-                   extra: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+def warp_to_canvas(
+    image: np.ndarray,
+    K: np.ndarray,
+    R: np.ndarray,
+    canvas: Canvas,
+    box: tuple,
+    extra: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """Warp one image into its canvas box: canvas pixel -> world ray -> :math:`\\pi(K R d)` (bilinear).
 
     Returns the warped (r1-r0, c1-c0, C) patch, its bool mask (the pixel sees the image, in
@@ -178,9 +215,13 @@ def warp_to_canvas(image: np.ndarray, K: np.ndarray, R: np.ndarray, canvas: Canv
         mv = np.where(ahead, p[1] / p[2], -10).astype(np.float32)
     h, w = image.shape[:2]
     mask = ahead & (mu >= -0.5) & (mu <= w - 0.5) & (mv >= -0.5) & (mv <= h - 0.5)
-    out = cv2.remap(image, mu, mv, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE).reshape(mu.shape + image.shape[2:])
+    out = cv2.remap(image, mu, mv, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE).reshape(
+        mu.shape + image.shape[2:]
+    )
     if extra is None:
         return out, mask, None
-    more = cv2.remap(extra, mu, mv, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE).reshape(mu.shape + extra.shape[2:])
+    more = cv2.remap(extra, mu, mv, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE).reshape(
+        mu.shape + extra.shape[2:]
+    )
     more[~mask] = 0
     return out, mask, more

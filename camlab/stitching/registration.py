@@ -3,6 +3,7 @@ Lowe's acceptance test) and build the match graph that chains every image to the
 
 See :mod:`camlab.stitching` for the whole pipeline; every name here is re-exported there.
 """
+
 from __future__ import annotations
 
 from typing import NamedTuple, Sequence
@@ -16,6 +17,7 @@ from .._validate import CamlabInputError, DegenerateError
 
 # --------------------------------------------------------------------------- input
 
+
 def prepare_images(images: Sequence[ArrayLike]) -> list[np.ndarray]:
     """Validate ``images`` and return them as float32 RGB arrays in [0, 1].
 
@@ -24,17 +26,25 @@ def prepare_images(images: Sequence[ArrayLike]) -> list[np.ndarray]:
     taken as already in [0, 1]. Sizes may differ.
     """
     if isinstance(images, np.ndarray) and images.ndim in (2, 3) and images.dtype != object:
-        raise CamlabInputError(f"images: expected a list of images, got one array of shape {images.shape}; "
-                               f"pass [image1, image2, ...]")
+        raise CamlabInputError(
+            f"images: expected a list of images, got one array of shape {images.shape}; "
+            f"pass [image1, image2, ...]"
+        )
     imgs = list(images)
     if len(imgs) < 2:
         raise CamlabInputError(f"images: expected at least 2 images to stitch, got {len(imgs)}")
     out = []
     for i, im in enumerate(imgs):
         a = np.asarray(im)
-        if a.ndim not in (2, 3) or (a.ndim == 3 and a.shape[2] not in (1, 3, 4)) or min(a.shape[:2]) < 16:
-            raise CamlabInputError(f"images[{i}]: expected a (H, W) grey or (H, W, 3|4) colour image at least "
-                                   f"16 x 16 pixels, got shape {a.shape}")
+        if (
+            a.ndim not in (2, 3)
+            or (a.ndim == 3 and a.shape[2] not in (1, 3, 4))
+            or min(a.shape[:2]) < 16
+        ):
+            raise CamlabInputError(
+                f"images[{i}]: expected a (H, W) grey or (H, W, 3|4) colour image at least "
+                f"16 x 16 pixels, got shape {a.shape}"
+            )
         if a.dtype == np.uint8:
             f = a.astype(np.float32) / 255
         elif a.dtype == np.uint16:
@@ -42,7 +52,9 @@ def prepare_images(images: Sequence[ArrayLike]) -> list[np.ndarray]:
         elif np.issubdtype(a.dtype, np.floating):
             f = a.astype(np.float32)
         else:
-            raise CamlabInputError(f"images[{i}]: expected uint8, uint16 or float pixels, got dtype {a.dtype}")
+            raise CamlabInputError(
+                f"images[{i}]: expected uint8, uint16 or float pixels, got dtype {a.dtype}"
+            )
         if f.ndim == 2:
             f = f[..., None]
         if f.shape[2] == 4:
@@ -54,6 +66,7 @@ def prepare_images(images: Sequence[ArrayLike]) -> list[np.ndarray]:
 
 
 # --------------------------------------------------------------------------- registration
+
 
 class PairRegistration(NamedTuple):
     """The registration of image i onto image j.
@@ -82,11 +95,21 @@ class PairRegistration(NamedTuple):
     reason: str
 
 
-def register_pair(features1: _feat.Features, features2: _feat.Features, *, ratio: float = 0.75,
-                  mutual: bool = False, threshold: float = 3.0, min_inliers: int = 15,
-                  rng: np.random.Generator | None = None, matches: _feat.Matches | None = None,
-                  refine: bool = True, approximate: bool = False, confidence: float = 0.999,
-                  max_iters: int = 2000) -> PairRegistration:
+def register_pair(
+    features1: _feat.Features,
+    features2: _feat.Features,
+    *,
+    ratio: float = 0.75,
+    mutual: bool = False,
+    threshold: float = 3.0,
+    min_inliers: int = 15,
+    rng: np.random.Generator | None = None,
+    matches: _feat.Matches | None = None,
+    refine: bool = True,
+    approximate: bool = False,
+    confidence: float = 0.999,
+    max_iters: int = 2000,
+) -> PairRegistration:
     r"""Register image 1 onto image 2: match features, fit H by RANSAC, judge the result.
 
     The pair is accepted when RANSAC finds at least ``min_inliers`` inliers *and* more
@@ -117,12 +140,22 @@ def register_pair(features1: _feat.Features, features2: _feat.Features, *, ratio
         RANSAC's stopping rule (:func:`camlab.homography.ransac_homography`).
     """
     rng = np.random.default_rng(0) if rng is None else rng
-    m = _feat.match_features(features1, features2, ratio, mutual, approximate=approximate) if matches is None else matches
+    m = (
+        _feat.match_features(features1, features2, ratio, mutual, approximate=approximate)
+        if matches is None
+        else matches
+    )
     n = len(m.src)
     none = np.zeros(n, bool)
     if n < max(min_inliers, 5):
-        return PairRegistration(None, m, none, float("nan"), False,
-                                f"too few matches: {n} (need at least {max(min_inliers, 5)})")
+        return PairRegistration(
+            None,
+            m,
+            none,
+            float("nan"),
+            False,
+            f"too few matches: {n} (need at least {max(min_inliers, 5)})",
+        )
     try:
         r = _hg.ransac_homography(m.src, m.dst, threshold, confidence, max_iters, rng)
     except DegenerateError as exc:
@@ -135,14 +168,29 @@ def register_pair(features1: _feat.Features, features2: _feat.Features, *, ratio
         except (DegenerateError, _hg.ConvergenceError):
             H, inl = r.H, r.inliers
     k = int(inl.sum())
-    rms = float(np.sqrt(np.mean(_hg.transfer_error(H, m.src[inl], m.dst[inl]) ** 2))) if k else np.nan
+    rms = (
+        float(np.sqrt(np.mean(_hg.transfer_error(H, m.src[inl], m.dst[inl]) ** 2))) if k else np.nan
+    )
     need = max(min_inliers, int(np.floor(8 + 0.3 * n)) + 1)
     if k < need:
-        return PairRegistration(H, m, inl, rms, False,
-                                f"too few inliers: {k} of {n} matches (need {need}); the images probably do not overlap")
+        return PairRegistration(
+            H,
+            m,
+            inl,
+            rms,
+            False,
+            f"too few inliers: {k} of {n} matches (need {need}); the images probably do not overlap",
+        )
     if _mirrors(H, m.src[inl]):
-        return PairRegistration(H, m, inl, rms, False, f"the homography mirrors the image ({k} inliers): a "
-                                "reflection, which no camera motion produces; wrong matches on a symmetric scene")
+        return PairRegistration(
+            H,
+            m,
+            inl,
+            rms,
+            False,
+            f"the homography mirrors the image ({k} inliers): a "
+            "reflection, which no camera motion produces; wrong matches on a symmetric scene",
+        )
     return PairRegistration(H, m, inl, rms, True, "")
 
 
@@ -213,14 +261,28 @@ class MatchGraph(NamedTuple):
 
     def report(self) -> list[PairReport]:
         """One :class:`PairReport` per registered pair."""
-        return [PairReport(i, j, len(p.matches.src), int(p.inliers.sum()), p.residual_rms, p.accepted, p.reason)
-                for (i, j), p in sorted(self.pairs.items())]
+        return [
+            PairReport(
+                i, j, len(p.matches.src), int(p.inliers.sum()), p.residual_rms, p.accepted, p.reason
+            )
+            for (i, j), p in sorted(self.pairs.items())
+        ]
 
 
-def match_graph(features: Sequence[_feat.Features], *, ratio: float = 0.75, mutual: bool = False,
-                threshold: float = 3.0, min_inliers: int = 15, rng: np.random.Generator | None = None,
-                reference: int | None = None, approximate: bool = False, refine: bool = True,
-                confidence: float = 0.999, max_iters: int = 2000) -> MatchGraph:
+def match_graph(
+    features: Sequence[_feat.Features],
+    *,
+    ratio: float = 0.75,
+    mutual: bool = False,
+    threshold: float = 3.0,
+    min_inliers: int = 15,
+    rng: np.random.Generator | None = None,
+    reference: int | None = None,
+    approximate: bool = False,
+    refine: bool = True,
+    confidence: float = 0.999,
+    max_iters: int = 2000,
+) -> MatchGraph:
     r"""Register every pair, choose the reference image and chain homographies to it.
 
     1. Register each pair i < j (:func:`register_pair`).
@@ -237,15 +299,31 @@ def match_graph(features: Sequence[_feat.Features], *, ratio: float = 0.75, mutu
         raise CamlabInputError(f"features: expected the features of at least 2 images, got {n}")
     rng = np.random.default_rng(0) if rng is None else rng
     # FLANN: index each image's descriptors once (images 1..n-1 are searched), not once per pair
-    index = [_feat.flann_index(f) if k and approximate and f.method == "sift" and len(f.points) >= 2 else None
-             for k, f in enumerate(feats)]
+    index = [
+        _feat.flann_index(f)
+        if k and approximate and f.method == "sift" and len(f.points) >= 2
+        else None
+        for k, f in enumerate(feats)
+    ]
     pairs = {}
     for i in range(n):
         for j in range(i + 1, n):
-            knn = _feat.knn_match(feats[i], feats[j], backward=mutual, approximate=approximate, index2=index[j])
-            pairs[(i, j)] = register_pair(feats[i], feats[j], ratio=ratio, mutual=mutual, threshold=threshold,
-                                          min_inliers=min_inliers, rng=rng, refine=refine, confidence=confidence,
-                                          max_iters=max_iters, matches=_feat.filter_matches(knn, ratio, mutual))
+            knn = _feat.knn_match(
+                feats[i], feats[j], backward=mutual, approximate=approximate, index2=index[j]
+            )
+            pairs[(i, j)] = register_pair(
+                feats[i],
+                feats[j],
+                ratio=ratio,
+                mutual=mutual,
+                threshold=threshold,
+                min_inliers=min_inliers,
+                rng=rng,
+                refine=refine,
+                confidence=confidence,
+                max_iters=max_iters,
+                matches=_feat.filter_matches(knn, ratio, mutual),
+            )
     degree = np.zeros(n, int)
     strength = np.zeros(n, int)
     for (i, j), p in pairs.items():
@@ -256,7 +334,9 @@ def match_graph(features: Sequence[_feat.Features], *, ratio: float = 0.75, mutu
         ref = int(np.lexsort((np.arange(n), -strength, -degree))[0])
     else:
         if not 0 <= int(reference) < n:
-            raise CamlabInputError(f"reference: expected an image index in [0, {n - 1}], got {reference!r}")
+            raise CamlabInputError(
+                f"reference: expected an image index in [0, {n - 1}], got {reference!r}"
+            )
         ref = int(reference)
     Hs: list = [None] * n
     parent = [-1] * n

@@ -3,6 +3,7 @@
 
 See :mod:`camlab.stitching` for the whole pipeline; every name here is re-exported there.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -13,11 +14,18 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .. import homography as _hg
-from .._validate import CamlabInputError, DegenerateError, check_image, check_intrinsics, check_shape
+from .._validate import (
+    CamlabInputError,
+    DegenerateError,
+    check_image,
+    check_intrinsics,
+    check_shape,
+)
 from ..projective import map_points
 from ..warp import canvas_bounds, warp_perspective
 
 # --------------------------------------------------------------------------- projection
+
 
 def cylindrical_warp(image: ArrayLike, K: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     r"""Map an image onto a cylinder of radius f around the camera centre (unrolled).
@@ -55,12 +63,15 @@ def cylindrical_warp(image: ArrayLike, K: ArrayLike) -> tuple[np.ndarray, np.nda
     map_v = (Km[1, 1] * y + cy * z) / z
     map_u, map_v = map_u.astype(np.float32), map_v.astype(np.float32)
     src = img.astype(np.float32) if img.dtype not in (np.uint8, np.float32) else img
-    cyl = cv2.remap(src, map_u, map_v, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT, borderValue=0)
+    cyl = cv2.remap(
+        src, map_u, map_v, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT, borderValue=0
+    )
     mask = (map_u >= -0.5) & (map_u <= w - 0.5) & (map_v >= -0.5) & (map_v <= h - 0.5)
     return cyl.reshape(img.shape).astype(img.dtype), mask
 
 
 # --------------------------------------------------------------------------- warping
+
 
 def canvas_box(homographies: Sequence[ArrayLike], shapes: Sequence[Sequence[int]]) -> np.ndarray:
     r"""The panorama's bounds: the bounding box of every image's corners mapped by its homography.
@@ -82,14 +93,20 @@ def canvas_box(homographies: Sequence[ArrayLike], shapes: Sequence[Sequence[int]
            [369., 239.]])
     """
     if len(homographies) != len(shapes) or not len(shapes):
-        raise CamlabInputError(f"shapes: expected one shape per homography, got {len(shapes)} for {len(homographies)}")
+        raise CamlabInputError(
+            f"shapes: expected one shape per homography, got {len(shapes)} for {len(homographies)}"
+        )
     pts = []
     for H, shape in zip(homographies, shapes):
         h, w = shape[:2]
-        pts.append(map_points(np.asarray(H, dtype=float), [[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]]))
+        pts.append(
+            map_points(np.asarray(H, dtype=float), [[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]])
+        )
     allp = np.vstack(pts)
     if not np.all(np.isfinite(allp)):
-        raise DegenerateError("canvas_box: a corner maps to infinity; the image crosses the horizon of its homography")
+        raise DegenerateError(
+            "canvas_box: a corner maps to infinity; the image crosses the horizon of its homography"
+        )
     return np.array([np.floor(allp.min(axis=0) + 1e-9), np.ceil(allp.max(axis=0) - 1e-9)])
 
 
@@ -169,17 +186,22 @@ class WarpedImages:
         imgs, masks = [], []
         for p, m, (r0, r1, c0, c1) in zip(self.patches, self.patch_masks, self.boxes):
             a, b = -(-r0 // step), -(-c0 // step)  # the first grid row and column in the box
-            sp, sm = p[a * step - r0::step, b * step - c0::step], m[a * step - r0::step, b * step - c0::step]
+            sp, sm = (
+                p[a * step - r0 :: step, b * step - c0 :: step],
+                m[a * step - r0 :: step, b * step - c0 :: step],
+            )
             im = np.zeros(size + p.shape[2:], p.dtype)
             mk = np.zeros(size, bool)
-            im[a:a + sp.shape[0], b:b + sp.shape[1]] = sp
-            mk[a:a + sm.shape[0], b:b + sm.shape[1]] = sm
+            im[a : a + sp.shape[0], b : b + sp.shape[1]] = sp
+            mk[a : a + sm.shape[0], b : b + sm.shape[1]] = sm
             imgs.append(im)
             masks.append(mk)
         return imgs, masks
 
 
-def _image_box(H: np.ndarray, image_shape: Sequence[int], shape: tuple[int, int]) -> tuple[int, int, int, int]:
+def _image_box(
+    H: np.ndarray, image_shape: Sequence[int], shape: tuple[int, int]
+) -> tuple[int, int, int, int]:
     """The canvas box (r0, r1, c0, c1) that can see image pixels through H (bilinear reach: one pixel beyond the edges)."""
     h, w = image_shape[:2]
     c = map_points(H, [[-1, -1], [w, -1], [w, h], [-1, h]])
@@ -188,8 +210,12 @@ def _image_box(H: np.ndarray, image_shape: Sequence[int], shape: tuple[int, int]
     return r0, max(r0, int(min(hi[1], shape[0]))), c0, max(c0, int(min(hi[0], shape[1])))
 
 
-def warp_images(images: Sequence[np.ndarray], homographies: Sequence[np.ndarray], *,
-                max_pixels: int = 40_000_000) -> WarpedImages:
+def warp_images(
+    images: Sequence[np.ndarray],
+    homographies: Sequence[np.ndarray],
+    *,
+    max_pixels: int = 40_000_000,
+) -> WarpedImages:
     """Warp every image onto the panorama canvas (bounds from all warped corners, one translation).
 
     Each image is warped only into its own box of the canvas (the bounding box of its
@@ -207,11 +233,15 @@ def warp_images(images: Sequence[np.ndarray], homographies: Sequence[np.ndarray]
         With ``homographies[k] = T @ homographies[k]`` (canvas_from_image).
     """
     if len(images) != len(homographies) or not images:
-        raise CamlabInputError(f"homographies: expected one per image, got {len(homographies)} for {len(images)} images")
+        raise CamlabInputError(
+            f"homographies: expected one per image, got {len(homographies)} for {len(images)} images"
+        )
     for k, im in enumerate(images):
         if np.ndim(im) != 3 or np.shape(im)[2] not in (1, 3):
-            raise CamlabInputError(f"images[{k}]: expected an (h, w, 3) float32 image from prepare_images, "
-                                   f"got shape {np.shape(im)}; call prepare_images(images) first")
+            raise CamlabInputError(
+                f"images[{k}]: expected an (h, w, 3) float32 image from prepare_images, "
+                f"got shape {np.shape(im)}; call prepare_images(images) first"
+            )
     import cv2
 
     T, shape = canvas_bounds(list(homographies), [im.shape for im in images], max_pixels=max_pixels)
@@ -222,8 +252,13 @@ def warp_images(images: Sequence[np.ndarray], homographies: Sequence[np.ndarray]
         Hb = np.array([[1.0, 0, -c0], [0, 1, -r0], [0, 0, 1]]) @ Hc
         size = (r1 - r0, c1 - c0)
         # the image with a replicated border (no black edge for the blend's pyramids), its feather weight
-        wimg = cv2.warpPerspective(np.asarray(im, np.float32), Hb, size[::-1], flags=cv2.INTER_LINEAR,
-                                   borderMode=cv2.BORDER_REPLICATE).reshape(size + im.shape[2:])
+        wimg = cv2.warpPerspective(
+            np.asarray(im, np.float32),
+            Hb,
+            size[::-1],
+            flags=cv2.INTER_LINEAR,
+            borderMode=cv2.BORDER_REPLICATE,
+        ).reshape(size + im.shape[2:])
         wgt = warp_perspective(feather_weights(im.shape).astype(np.float32), Hb, size, method="cv2")
         ones = np.ones(im.shape[:2], np.float32)
         mask = warp_perspective(ones, Hb, size, interpolation="nearest", method="cv2") > 0.5

@@ -9,6 +9,7 @@ In a lesson::
 ``all_demos()`` imports every lesson module and returns the registry that the headless
 tests and ``benchmarks/latency.py`` sweep.
 """
+
 from __future__ import annotations
 
 import importlib
@@ -22,7 +23,16 @@ install_canvas_formatter()  # plain figures in a lesson keep a PNG with alt text
 _access.install()  # named slider handles, Tab out of figures, focus rings (docs/accessibility.md)
 _notebook.install_warning_format()  # a warning from a cell without the kernel's temporary path
 
-__all__ = ["Demo", "DemoSpec", "FigureView", "REGISTRY", "all_demos", "build_demo", "register", "slider"]
+__all__ = [
+    "Demo",
+    "DemoSpec",
+    "FigureView",
+    "REGISTRY",
+    "all_demos",
+    "build_demo",
+    "register",
+    "slider",
+]
 
 
 def all_demos() -> dict[str, DemoSpec]:

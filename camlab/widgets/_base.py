@@ -14,6 +14,7 @@ The figure is shown according to the matplotlib backend:
 * ``agg`` (no kernel: tests and benchmarks): the figure is drawn with Agg and nothing
   is sent anywhere.
 """
+
 from __future__ import annotations
 
 import html
@@ -73,12 +74,16 @@ class FigureView:
     update to a few milliseconds instead of a full redraw of every tick label.
     """
 
-    def __init__(self, figsize: tuple[float, float] = (8, 4), mode: str | None = None, dpi: float = 90):
+    def __init__(
+        self, figsize: tuple[float, float] = (8, 4), mode: str | None = None, dpi: float = 90
+    ):
         widest = (MAX_DEMO_WIDTH_PX - CANVAS_FRAME_PX) / dpi
         if figsize[0] > widest:
-            raise ValueError(f"FigureView: expected a figure at most {widest:.2f} in wide at {dpi:g} dpi "
-                             f"({MAX_DEMO_WIDTH_PX} px with the canvas frame, the output area of JupyterLab at 1400 px "
-                             f"with the file browser open), got figsize {tuple(figsize)}; make it narrower")
+            raise ValueError(
+                f"FigureView: expected a figure at most {widest:.2f} in wide at {dpi:g} dpi "
+                f"({MAX_DEMO_WIDTH_PX} px with the canvas frame, the output area of JupyterLab at 1400 px "
+                f"with the file browser open), got figsize {tuple(figsize)}; make it narrower"
+            )
         self.mode = mode or display_mode()
         self._animated: list[Any] = []
         self._background = None
@@ -132,7 +137,9 @@ class FigureView:
         that are not drawn live either (:meth:`_in_draw_order`).
         """
         animated = {id(a) for a in self._animated}
-        for ax in dict.fromkeys(a.axes for a in self._animated if isinstance(a, AxesImage) and a.axes is not None):
+        for ax in dict.fromkeys(
+            a.axes for a in self._animated if isinstance(a, AxesImage) and a.axes is not None
+        ):
             self.animate(*(s for s in ax.spines.values() if id(s) not in animated))
 
     def _on_full_draw(self, _event: Any = None) -> None:
@@ -155,8 +162,13 @@ class FigureView:
         """
         axes = self.fig.axes
         drawn = [a for a in self._animated if not isinstance(a, Spine) or _draws_frame(a.axes)]
-        return sorted(drawn, key=lambda a: (axes.index(a.axes) if getattr(a, "axes", None) in axes else len(axes),
-                                            a.get_zorder()))
+        return sorted(
+            drawn,
+            key=lambda a: (
+                axes.index(a.axes) if getattr(a, "axes", None) in axes else len(axes),
+                a.get_zorder(),
+            ),
+        )
 
     def _draw_animated(self) -> None:
         for artist in self._in_draw_order():
@@ -221,7 +233,9 @@ class Demo:
         """Set control values as a user would; observers fire and the figure updates."""
         for key, value in values.items():
             if key not in self.controls:
-                raise KeyError(f"{self.name}: no control {key!r}; controls are {sorted(self.controls)}")
+                raise KeyError(
+                    f"{self.name}: no control {key!r}; controls are {sorted(self.controls)}"
+                )
             self.controls[key].value = value
 
     @property
@@ -239,7 +253,9 @@ class Demo:
         HTML, nbviewer and the course website show the PNG.
         """
         png = self.view.widget.value if self.view.mode == "png" and self.view.widget.value else None
-        return static_bundle(self.widget._repr_mimebundle_(**kwargs), self.figure, self.alt_text, png)
+        return static_bundle(
+            self.widget._repr_mimebundle_(**kwargs), self.figure, self.alt_text, png
+        )
 
 
 def _label(control: W.ValueWidget, key: str) -> str:
@@ -257,7 +273,11 @@ def _not_a_number(controls: Mapping[str, W.ValueWidget]) -> str:
 
 def _show_problem(demo: Demo, line: W.HTML, problem: str) -> None:
     demo.problem = problem
-    line.value = f"<b>\u26a0 {html.escape(problem)}</b><br>The figure keeps the last settings that worked." if problem else ""
+    line.value = (
+        f"<b>\u26a0 {html.escape(problem)}</b><br>The figure keeps the last settings that worked."
+        if problem
+        else ""
+    )
 
 
 def build_demo(
@@ -294,10 +314,17 @@ def build_demo(
     panel: list[W.Widget] = []
     if title:
         panel.append(W.HTML(f"<b>{title}</b>"))
-    panel += [whole_label(c) for c in demo_controls.values()] + [problem_line] + list(extra)  # the problem under them
+    panel += (
+        [whole_label(c) for c in demo_controls.values()] + [problem_line] + list(extra)
+    )  # the problem under them
     box = W.HBox(
-        [W.VBox(panel, layout=W.Layout(flex=f"1 1 {PANEL_WIDTH_PX}px", min_width="min-content")), view.widget],
-        layout=W.Layout(align_items="flex-start", flex_flow="row wrap"),  # the figure goes under the controls if need be
+        [
+            W.VBox(panel, layout=W.Layout(flex=f"1 1 {PANEL_WIDTH_PX}px", min_width="min-content")),
+            view.widget,
+        ],
+        layout=W.Layout(
+            align_items="flex-start", flex_flow="row wrap"
+        ),  # the figure goes under the controls if need be
     )
     box.add_class(f"camlab-demo-{name.replace('_', '-')}")
     demo = Demo(name=name, widget=box, controls=demo_controls, view=view, state=state)
@@ -333,8 +360,14 @@ def build_demo(
             update(last_good, dict(state))  # a failing update may have moved some artists
         except Exception:  # noqa: BLE001 - it worked before; if not now, the problem is shown anyway
             pass
-        key = next((k for k, c in demo_controls.items() if change is not None and c is change["owner"]), "")
-        return f"{_label(demo_controls[key], key)} = {values[key]!r}: {reason}" if key else f"these settings: {reason}"
+        key = next(
+            (k for k, c in demo_controls.items() if change is not None and c is change["owner"]), ""
+        )
+        return (
+            f"{_label(demo_controls[key], key)} = {values[key]!r}: {reason}"
+            if key
+            else f"these settings: {reason}"
+        )
 
     def on_linked(change: Any) -> None:
         """A linked control drives the figure through another; only its own NaN is reported here."""
@@ -377,7 +410,9 @@ def register(lesson: str, sweep: Mapping[str, Sequence[Any]]):
     def deco(builder: Callable[[], Demo]) -> Callable[[], Demo]:
         name = builder.__name__
         if name in REGISTRY and REGISTRY[name].builder.__module__ != builder.__module__:
-            raise ValueError(f"register: a demo named {name!r} is already registered by {REGISTRY[name].builder.__module__}")
+            raise ValueError(
+                f"register: a demo named {name!r} is already registered by {REGISTRY[name].builder.__module__}"
+            )
         REGISTRY[name] = DemoSpec(name, lesson, builder, {k: list(v) for k, v in sweep.items()})
         return builder
 

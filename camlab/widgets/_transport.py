@@ -15,6 +15,7 @@ encodes that PNG with Pillow's default zlib level 6, which on the course machine
 a file about 15 % larger, encoded about ten times faster; on a local or campus network the
 extra bytes cost far less than the encode saves.
 """
+
 from __future__ import annotations
 
 import struct
@@ -33,7 +34,11 @@ def _fast_diff_image(canvas: Any) -> bytes | None:
         return None
     pixels = np.asarray(canvas.get_renderer().buffer_rgba())
     buff = pixels.view(np.uint32).squeeze(2)  # one uint32 per pixel: compare whole pixels at once
-    if canvas._force_full or buff.shape != canvas._last_buff.shape or (pixels[:, :, 3] != 255).any():
+    if (
+        canvas._force_full
+        or buff.shape != canvas._last_buff.shape
+        or (pixels[:, :, 3] != 255).any()
+    ):
         canvas.set_image_mode("full")
         output = buff
     else:
@@ -64,8 +69,12 @@ def encode_png(rgba: np.ndarray) -> bytes:
     filtered[0, 1:] = rows[0]  # the row above the first is zeros
     np.subtract(rows[1:], rows[:-1], out=filtered[1:, 1:])  # modulo 256, as PNG defines it
     header = struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0)  # 8-bit RGBA, no interlace
-    return (b"\x89PNG\r\n\x1a\n" + _png_chunk(b"IHDR", header)
-            + _png_chunk(b"IDAT", zlib.compress(filtered.tobytes(), PNG_COMPRESS_LEVEL)) + _png_chunk(b"IEND", b""))
+    return (
+        b"\x89PNG\r\n\x1a\n"
+        + _png_chunk(b"IHDR", header)
+        + _png_chunk(b"IDAT", zlib.compress(filtered.tobytes(), PNG_COMPRESS_LEVEL))
+        + _png_chunk(b"IEND", b"")
+    )
 
 
 def use_fast_png(canvas: Any) -> None:
@@ -100,7 +109,9 @@ def _display_size(image: Any, array: Any) -> tuple[int, int] | None:
     a = np.asarray(array)
     if a.ndim not in (2, 3) or a.dtype.kind not in "uif" or (a.ndim == 3 and a.shape[2] > 4):
         return None
-    left, right, bottom, top = _pixel_box(image)  # the box _screen_image draws into: no second resize there
+    left, right, bottom, top = _pixel_box(
+        image
+    )  # the box _screen_image draws into: no second resize there
     width, height = min(a.shape[1], right - left), min(a.shape[0], top - bottom)
     if width < 2 or height < 2:
         return None
@@ -131,29 +142,49 @@ def _screen_image(image: Any) -> tuple[np.ndarray, int, int] | None:
     alpha = image.get_alpha()
     canvas = image.figure.canvas  # (a subfigure's canvas is its root figure's)
     transform = image.get_transform()
-    if (np.ma.isMaskedArray(a) and np.ma.getmaskarray(a).any()) or (alpha is not None and np.ndim(alpha) > 0) \
-            or getattr(canvas, "is_saving", lambda: False)() or image.get_clip_path() is not None \
-            or not transform.is_affine or np.any(transform.get_affine().get_matrix()[[0, 1], [1, 0]] != 0):
+    if (
+        (np.ma.isMaskedArray(a) and np.ma.getmaskarray(a).any())
+        or (alpha is not None and np.ndim(alpha) > 0)
+        or getattr(canvas, "is_saving", lambda: False)()
+        or image.get_clip_path() is not None
+        or not transform.is_affine
+        or np.any(transform.get_affine().get_matrix()[[0, 1], [1, 0]] != 0)
+    ):
         return None  # masked, per-pixel alpha, a clip path, or a rotated or sheared image: matplotlib's way
     a = np.ma.getdata(a)
     x0, x1, y0, y1 = image.get_extent()
     row0_y = y1 if image.origin == "upper" else y0  # the data row 0 sits at this edge of the extent
     (u_left, v_row0), (u_right, v_rowN) = transform.transform(
-        [(x0, row0_y), (x1, y0 + y1 - row0_y)])
+        [(x0, row0_y), (x1, y0 + y1 - row0_y)]
+    )
     if u_right < u_left:
         a = a[:, ::-1]
     if v_row0 > v_rowN:  # row 0 at the top on screen: Agg's draw_image takes the bottom row first
         a = a[::-1]
     left, right, bottom, top = _pixel_box(image)
-    clip = (image.get_clip_box() or image.axes.bbox) if image.get_clip_on() else image.figure.canvas.figure.bbox
+    clip = (
+        (image.get_clip_box() or image.axes.bbox)
+        if image.get_clip_on()
+        else image.figure.canvas.figure.bbox
+    )
     cl, cr, cb, ct = round(clip.x0), round(clip.x1), round(clip.y0), round(clip.y1)
     if min(right, cr) - max(left, cl) < 1 or min(top, ct) - max(bottom, cb) < 1:
         return np.zeros((0, 0, 4), np.uint8), 0, 0
-    if a.shape[:2] != (top - bottom, right - left):  # smaller than shown (set_data already shrank larger ones)
-        a = _resize(image, np.asarray(a, np.float32) if a.dtype not in (np.uint8, np.float32) else a,
-                    right - left, top - bottom)
+    if a.shape[:2] != (
+        top - bottom,
+        right - left,
+    ):  # smaller than shown (set_data already shrank larger ones)
+        a = _resize(
+            image,
+            np.asarray(a, np.float32) if a.dtype not in (np.uint8, np.float32) else a,
+            right - left,
+            top - bottom,
+        )
     # crop to the clip box (rows count up from the bottom edge)
-    a = a[max(0, cb - bottom):(top - bottom) - max(0, top - ct), max(0, cl - left):(right - left) - max(0, right - cr)]
+    a = a[
+        max(0, cb - bottom) : (top - bottom) - max(0, top - ct),
+        max(0, cl - left) : (right - left) - max(0, right - cr),
+    ]
     rgba = image.to_rgba(a, bytes=True)
     return np.ascontiguousarray(rgba), max(left, cl), max(bottom, cb)
 
@@ -206,8 +237,12 @@ def halo_in_two_passes(artist: Any) -> None:
     from matplotlib.lines import Line2D
 
     effects = artist.get_path_effects() if hasattr(artist, "get_path_effects") else None
-    if not effects or len(effects) != 1 or not isinstance(effects[0], patheffects.withStroke) \
-            or not isinstance(artist, (Line2D, LineCollection)):
+    if (
+        not effects
+        or len(effects) != 1
+        or not isinstance(effects[0], patheffects.withStroke)
+        or not isinstance(artist, (Line2D, LineCollection))
+    ):
         return
     halo, width = effects[0]._gc.get("foreground", "white"), effects[0]._gc.get("linewidth", 2.0)
 
@@ -216,21 +251,42 @@ def halo_in_two_passes(artist: Any) -> None:
 
     # The stored style, not the getters' resolved one: a marker colour "auto" must stay "auto",
     # and a collection's colours must not take in its alpha (its RGBA arrays already do).
-    stored = ({"color": "_original_edgecolor", "linewidth": "_us_lw"} if isinstance(artist, LineCollection) else
-              {key: "_" + key for key in ("color", "linewidth", "markeredgewidth", "markeredgecolor", "markerfacecolor")})
+    stored = (
+        {"color": "_original_edgecolor", "linewidth": "_us_lw"}
+        if isinstance(artist, LineCollection)
+        else {
+            key: "_" + key
+            for key in (
+                "color",
+                "linewidth",
+                "markeredgewidth",
+                "markeredgecolor",
+                "markerfacecolor",
+            )
+        }
+    )
 
     def halo_pass(renderer: Any) -> None:
         plain = {key: getattr(artist, attr) for key, attr in stored.items()}
         style = {"color": halo, "linewidth": width}
         if isinstance(artist, Line2D):
-            hollow = isinstance(plain["markerfacecolor"], str) and plain["markerfacecolor"] == "none"
-            style.update(markeredgewidth=width, markeredgecolor=halo, markerfacecolor="none" if hollow else halo)
+            hollow = (
+                isinstance(plain["markerfacecolor"], str) and plain["markerfacecolor"] == "none"
+            )
+            style.update(
+                markeredgewidth=width,
+                markeredgecolor=halo,
+                markerfacecolor="none" if hollow else halo,
+            )
         artist.set(**style)
         draw(renderer)
         artist.set(**plain)
 
     def two_passes(renderer: Any) -> None:
-        callback, artist.stale_callback = artist.stale_callback, None  # restyling for a pass is no change
+        callback, artist.stale_callback = (
+            artist.stale_callback,
+            None,
+        )  # restyling for a pass is no change
         try:
             artist.set_path_effects([])
             halo_pass(renderer)
@@ -240,4 +296,3 @@ def halo_in_two_passes(artist: Any) -> None:
             artist.stale_callback = callback
 
     artist.draw = two_passes
-

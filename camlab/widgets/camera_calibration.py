@@ -8,6 +8,7 @@
 
 Each builds its figure once; updates call camlab.calibration and move artists.
 """
+
 from __future__ import annotations
 
 import ipywidgets as W
@@ -29,8 +30,12 @@ _SIGMA_LIM = 8.0  # the sigma-unit axis spans +-8
 @register(lesson="08", sweep={"n_views": [3, 6, 10, 15], "noise": [0.0, 0.3, 1.0]})
 def accuracy_vs_views() -> Demo:
     """Calibrate from the first n views with sigma px of noise: errors in units of the reported sigma."""
-    s = C.make_synthetic_views(15, 0.0, rng=np.random.default_rng(0))  # exact views of the lesson's camera
-    unit = np.random.default_rng(1).normal(size=(15, len(s.object_points), 2))  # one fixed draw, scaled by sigma
+    s = C.make_synthetic_views(
+        15, 0.0, rng=np.random.default_rng(0)
+    )  # exact views of the lesson's camera
+    unit = np.random.default_rng(1).normal(
+        size=(15, len(s.object_points), 2)
+    )  # one fixed draw, scaled by sigma
     truth = np.array([s.K[0, 0], s.K[1, 1], s.K[0, 2], s.K[1, 2]])
     view = FigureView(figsize=(9.4, 3.9))
     ax, axi = view.fig.subplots(1, 2, width_ratios=[1, 1.3])
@@ -38,24 +43,43 @@ def accuracy_vs_views() -> Demo:
     # In units of the reported standard deviation: the bars are always +-3, so every setting
     # fits one fixed axis, and a dot outside them is a reported sigma that is too optimistic.
     ax.axhspan(-3, 3, color="tab:blue", alpha=0.15, lw=0, label="±3σ (σ as reported)")
-    ax.set(xlim=(-0.6, 3.6), ylim=(-_SIGMA_LIM, _SIGMA_LIM), xticks=range(4), xticklabels=_NAMES,
-           ylabel="error / reported σ", title="Errors in units of the reported σ")
+    ax.set(
+        xlim=(-0.6, 3.6),
+        ylim=(-_SIGMA_LIM, _SIGMA_LIM),
+        xticks=range(4),
+        xticklabels=_NAMES,
+        ylabel="error / reported σ",
+        title="Errors in units of the reported σ",
+    )
     ax.grid(True, axis="y", color="0.93")
-    dots, = ax.plot([], [], "o", color="tab:red", ms=7, label="actual error")
-    above, = ax.plot([], [], "^", ls="none", color="tab:red", ms=11, label=f"beyond ±{_SIGMA_LIM:.0f}σ (clipped)")
-    below, = ax.plot([], [], "v", ls="none", color="tab:red", ms=11)
+    (dots,) = ax.plot([], [], "o", color="tab:red", ms=7, label="actual error")
+    (above,) = ax.plot(
+        [], [], "^", ls="none", color="tab:red", ms=11, label=f"beyond ±{_SIGMA_LIM:.0f}σ (clipped)"
+    )
+    (below,) = ax.plot([], [], "v", ls="none", color="tab:red", ms=11)
     view.animate(dots, above, below)
     ax.legend(loc="lower left", fontsize=7)
     image_frame(axi, s.image_size, "Corners used, coloured by view")
-    pts = axi.scatter(np.zeros(0), np.zeros(0), s=3, c=np.zeros(0), cmap="tab20", vmin=-0.5, vmax=14.5,
-                      edgecolors="k", linewidths=0.3)
+    pts = axi.scatter(
+        np.zeros(0),
+        np.zeros(0),
+        s=3,
+        c=np.zeros(0),
+        cmap="tab20",
+        vmin=-0.5,
+        vmax=14.5,
+        edgecolors="k",
+        linewidths=0.3,
+    )
     view.fig.colorbar(pts, ax=axi, label="view", ticks=range(0, 15, 2), shrink=0.9)
     view.animate(pts)
     readout = W.HTML()
     # Warm start: each update starts LM from the previous solution (K, dist and every view's
     # last pose) instead of Zhang's closed form. The minimum is the same (a full calibration
     # from scratch agrees to ~1e-6 relative, see the tests); LM just gets there in a few iterations.
-    first = C.calibrate_camera(s.object_points, [s.exact[i] + 0.3 * unit[i] for i in range(len(unit))], s.image_size)
+    first = C.calibrate_camera(
+        s.object_points, [s.exact[i] + 0.3 * unit[i] for i in range(len(unit))], s.image_size
+    )
     warm = {"K": first.K, "dist": first.dist, "poses": np.column_stack([first.rvecs, first.tvecs])}
 
     def update(v: dict, state: dict) -> None:
@@ -64,8 +88,14 @@ def accuracy_vs_views() -> Demo:
         pts.set_offsets(np.concatenate(obs))
         pts.set_array(np.repeat(np.arange(n), len(s.object_points)).astype(float))
         try:
-            res = C.calibrate_camera(s.object_points, obs, s.image_size, K_guess=warm["K"],
-                                     dist_guess=warm["dist"], pose_guess=warm["poses"][:n])
+            res = C.calibrate_camera(
+                s.object_points,
+                obs,
+                s.image_size,
+                K_guess=warm["K"],
+                dist_guess=warm["dist"],
+                pose_guess=warm["poses"][:n],
+            )
             warm.update(K=res.K, dist=res.dist)
             warm["poses"][:n] = np.column_stack([res.rvecs, res.tvecs])
         except (CamlabInputError, ConvergenceError) as exc:
@@ -78,32 +108,53 @@ def accuracy_vs_views() -> Demo:
         std = np.array([res.std[k] for k in _NAMES])
         err = est - truth
         with np.errstate(divide="ignore", invalid="ignore"):
-            z = np.where(std > 1e-9, err / std, np.nan)  # no noise: both ~1e-12, their ratio is meaningless
-        state.update(K=res.K, dist=res.dist, errors=err, std=std, z=z, rms=res.rms, n_views=n, noise=sigma)
+            z = np.where(
+                std > 1e-9, err / std, np.nan
+            )  # no noise: both ~1e-12, their ratio is meaningless
+        state.update(
+            K=res.K, dist=res.dist, errors=err, std=std, z=z, rms=res.rms, n_views=n, noise=sigma
+        )
         x = np.arange(4)
         dots.set_data(x, np.clip(z, -_SIGMA_LIM + 0.4, _SIGMA_LIM - 0.4))
         edge = _SIGMA_LIM - 0.4
         above.set_data(x[z > edge], np.full(np.sum(z > edge), edge))
         below.set_data(x[z < -edge], np.full(np.sum(z < -edge), -edge))
         lines = [f"{n} views, noise σ = {sigma:.2f} px, rms = {res.rms:.3f} px per corner"]
-        lines += [f"{k:>2} = {e:8.2f} ± {sd:5.2f}  (true {t:.1f}, error {d:+.2f} = {zz:+.1f}σ)"
-                  for k, e, sd, t, d, zz in zip(_NAMES, est, std, truth, err, z)]
+        lines += [
+            f"{k:>2} = {e:8.2f} ± {sd:5.2f}  (true {t:.1f}, error {d:+.2f} = {zz:+.1f}σ)"
+            for k, e, sd, t, d, zz in zip(_NAMES, est, std, truth, err, z)
+        ]
         lines.append(f"k1 = {res.dist[0]:+.3f} ± {res.std['k1']:.3f}  (true {s.dist[0]:+.3f})")
         if sigma == 0:
             lines.append("no noise: errors and σ are both rounding noise")
         readout.value = monospace("\n".join(lines))
 
     controls = {
-        "n_views": W.IntSlider(value=6, min=3, max=15, description="views", continuous_update=True,
-                               style={"description_width": "initial"}, layout=W.Layout(width="300px")),
+        "n_views": W.IntSlider(
+            value=6,
+            min=3,
+            max=15,
+            description="views",
+            continuous_update=True,
+            style={"description_width": "initial"},
+            layout=W.Layout(width="300px"),
+        ),
         "noise": slider(0.3, 0.0, 1.0, 0.05, "corner noise σ (px)"),
     }
-    return build_demo("accuracy_vs_views", controls, view, update,
-                      title="More views, less noise: a better camera", extra=[readout])
+    return build_demo(
+        "accuracy_vs_views",
+        controls,
+        view,
+        update,
+        title="More views, less noise: a better camera",
+        extra=[readout],
+    )
 
 
 @register(lesson="08", sweep={"view": [0, 5, 11], "magnify": [1.0, 300.0, 1000.0]})
-def view_inspector(calibration: C.ImageCalibration | None = None, images: list | None = None) -> Demo:
+def view_inspector(
+    calibration: C.ImageCalibration | None = None, images: list | None = None
+) -> Demo:
     """Each photo with detected corners (+), reprojected corners (o) and residual arrows x magnify.
 
     ``calibration`` from :func:`camlab.calibration.calibrate_from_images` and the ``images`` it
@@ -119,14 +170,46 @@ def view_inspector(calibration: C.ImageCalibration | None = None, images: list |
     ax = view.fig.subplots()
     image_frame(ax, res.image_size)
     w, h = res.image_size
-    im = view.animate(ax.imshow(np.zeros((h, w)), cmap="gray", vmin=0, vmax=255,
-                                extent=(-0.5, w - 0.5, h - 0.5, -0.5)))
-    det, = ax.plot([], [], "+", color=palette.GREEN, ms=8, mew=1.5, label="detected", path_effects=palette.halo(1.5))
-    rep, = ax.plot([], [], "o", mfc="none", color=palette.RED, ms=6, label="reprojected", path_effects=palette.halo())
+    im = view.animate(
+        ax.imshow(
+            np.zeros((h, w)), cmap="gray", vmin=0, vmax=255, extent=(-0.5, w - 0.5, h - 0.5, -0.5)
+        )
+    )
+    (det,) = ax.plot(
+        [],
+        [],
+        "+",
+        color=palette.GREEN,
+        ms=8,
+        mew=1.5,
+        label="detected",
+        path_effects=palette.halo(1.5),
+    )
+    (rep,) = ax.plot(
+        [],
+        [],
+        "o",
+        mfc="none",
+        color=palette.RED,
+        ms=6,
+        label="reprojected",
+        path_effects=palette.halo(),
+    )
     view.animate(det, rep)
     n = len(res.object_points[0])
-    arrows = view.animate(ax.quiver(np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n), color="magenta",
-                                    angles="xy", scale_units="xy", scale=1, width=0.004))
+    arrows = view.animate(
+        ax.quiver(
+            np.zeros(n),
+            np.zeros(n),
+            np.zeros(n),
+            np.zeros(n),
+            color="magenta",
+            angles="xy",
+            scale_units="xy",
+            scale=1,
+            width=0.004,
+        )
+    )
     ax.legend(loc="upper right", fontsize=8)
     view.animate(ax.get_legend())  # over the animated photo, or it would hide the legend
     readout = W.HTML()
@@ -144,24 +227,45 @@ def view_inspector(calibration: C.ImageCalibration | None = None, images: list |
         arrows.set_offsets(pred)
         arrows.set_UVC(r[:, 0] * v["magnify"], r[:, 1] * v["magnify"])
         worst = int(np.argmax(np.linalg.norm(r, axis=1)))
-        state.update(view=k, image_index=i, rms=float(res.per_view_rms[k]), worst_corner=worst,
-                     longest_arrow_px=float(np.linalg.norm(r[worst]) * v["magnify"]))
-        readout.value = monospace(f"view {k} ({out.names[i]})\nrms {res.per_view_rms[k]:.3f} px "
-                             f"(median {np.median(res.per_view_rms):.3f})\nworst corner {worst}: "
-                             f"{np.linalg.norm(r[worst]):.3f} px\narrows ×{v['magnify']:.0f}")
+        state.update(
+            view=k,
+            image_index=i,
+            rms=float(res.per_view_rms[k]),
+            worst_corner=worst,
+            longest_arrow_px=float(np.linalg.norm(r[worst]) * v["magnify"]),
+        )
+        readout.value = monospace(
+            f"view {k} ({out.names[i]})\nrms {res.per_view_rms[k]:.3f} px "
+            f"(median {np.median(res.per_view_rms):.3f})\nworst corner {worst}: "
+            f"{np.linalg.norm(r[worst]):.3f} px\narrows ×{v['magnify']:.0f}"
+        )
 
     controls = {
-        "view": W.IntSlider(value=0, min=0, max=res.n_views - 1, description="view", continuous_update=True,
-                            style={"description_width": "initial"}, layout=W.Layout(width="300px")),
+        "view": W.IntSlider(
+            value=0,
+            min=0,
+            max=res.n_views - 1,
+            description="view",
+            continuous_update=True,
+            style={"description_width": "initial"},
+            layout=W.Layout(width="300px"),
+        ),
         "magnify": slider(300.0, 1.0, 1000.0, 1.0, "arrow magnification"),
     }
-    return build_demo("view_inspector", controls, view, update,
-                      title="Detected versus reprojected corners", extra=[readout])
+    return build_demo(
+        "view_inspector",
+        controls,
+        view,
+        update,
+        title="Detected versus reprojected corners",
+        extra=[readout],
+    )
 
 
 @register(lesson="08", sweep={"alpha": [0.0, 0.5, 1.0]})
-def undistort_alpha(image: np.ndarray | None = None, K: np.ndarray | None = None,
-                    dist: np.ndarray | None = None) -> Demo:
+def undistort_alpha(
+    image: np.ndarray | None = None, K: np.ndarray | None = None, dist: np.ndarray | None = None
+) -> Demo:
     """Undistort a photo; alpha trades black borders (alpha = 1) for cropped pixels (alpha = 0)."""
     from ..data import load_calibration_set
 
@@ -174,15 +278,26 @@ def undistort_alpha(image: np.ndarray | None = None, K: np.ndarray | None = None
     image_frame(ax0, (w, h), "distorted photo")
     ax0.imshow(image, cmap="gray", vmin=0, vmax=255, extent=(-0.5, w - 0.5, h - 0.5, -0.5))
     image_frame(ax1, (w, h), "undistorted")
-    im = view.animate(ax1.imshow(np.zeros((h, w)), cmap="gray", vmin=0, vmax=255,
-                                 extent=(-0.5, w - 0.5, h - 0.5, -0.5)))
-    edge, = ax1.plot([], [], color=palette.ORANGE, lw=1.5, label="photo's border", path_effects=palette.halo(1.5))
+    im = view.animate(
+        ax1.imshow(
+            np.zeros((h, w)), cmap="gray", vmin=0, vmax=255, extent=(-0.5, w - 0.5, h - 0.5, -0.5)
+        )
+    )
+    (edge,) = ax1.plot(
+        [], [], color=palette.ORANGE, lw=1.5, label="photo's border", path_effects=palette.halo(1.5)
+    )
     view.animate(edge)
     ax1.legend(loc="lower right", fontsize=8)
     view.animate(ax1.get_legend())  # over the animated photo, or it would hide the legend
     t = np.linspace(0, 1, 40)
-    border = np.concatenate([np.column_stack([t * (w - 1), 0 * t]), np.column_stack([(w - 1) + 0 * t, t * (h - 1)]),
-                             np.column_stack([(1 - t) * (w - 1), (h - 1) + 0 * t]), np.column_stack([0 * t, (1 - t) * (h - 1)])])
+    border = np.concatenate(
+        [
+            np.column_stack([t * (w - 1), 0 * t]),
+            np.column_stack([(w - 1) + 0 * t, t * (h - 1)]),
+            np.column_stack([(1 - t) * (w - 1), (h - 1) + 0 * t]),
+            np.column_stack([0 * t, (1 - t) * (h - 1)]),
+        ]
+    )
     from ..distortion import undistort_pixels
 
     border_ideal = undistort_pixels(border, K, dist)  # ideal pixels with the old K
@@ -193,11 +308,21 @@ def undistort_alpha(image: np.ndarray | None = None, K: np.ndarray | None = None
         im.set_data(out.image)
         b = (border_ideal - K[:2, 2]) / np.diag(K)[:2] * np.diag(out.K)[:2] + out.K[:2, 2]
         edge.set_data(b[:, 0], b[:, 1])
-        state.update(new_K=out.K, black_fraction=out.black_fraction, lost_fraction=out.lost_fraction)
-        readout.value = monospace(f"alpha = {v['alpha']:.2f}\nnew fx = {out.K[0, 0]:.1f} (was {K[0, 0]:.1f})\n"
-                             f"black border: {100 * out.black_fraction:.1f}% of the output\n"
-                             f"photo pixels lost: {100 * out.lost_fraction:.1f}%")
+        state.update(
+            new_K=out.K, black_fraction=out.black_fraction, lost_fraction=out.lost_fraction
+        )
+        readout.value = monospace(
+            f"alpha = {v['alpha']:.2f}\nnew fx = {out.K[0, 0]:.1f} (was {K[0, 0]:.1f})\n"
+            f"black border: {100 * out.black_fraction:.1f}% of the output\n"
+            f"photo pixels lost: {100 * out.lost_fraction:.1f}%"
+        )
 
     controls = {"alpha": slider(0.0, 0.0, 1.0, 0.05, "alpha")}
-    return build_demo("undistort_alpha", controls, view, update,
-                      title="Undistortion: crop or keep everything?", extra=[readout])
+    return build_demo(
+        "undistort_alpha",
+        controls,
+        view,
+        update,
+        title="Undistortion: crop or keep everything?",
+        extra=[readout],
+    )

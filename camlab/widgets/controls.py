@@ -3,6 +3,7 @@
 One home for the small widgets every lesson's demos use, so they look and behave the
 same everywhere. Demo modules hold their controls, artists and ``update`` only.
 """
+
 from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any, Callable, Sequence
@@ -16,29 +17,52 @@ if TYPE_CHECKING:
 
 def _look(kw: dict[str, Any]) -> dict[str, Any]:
     """The shared look of every slider: reports while dragging, readable label, 300 px wide (``kw`` overrides)."""
-    return {"continuous_update": True, "style": {"description_width": "initial"}, "layout": W.Layout(width="300px"),
-            **kw}
+    return {
+        "continuous_update": True,
+        "style": {"description_width": "initial"},
+        "layout": W.Layout(width="300px"),
+        **kw,
+    }
 
 
-def slider(value: float, lo: float, hi: float, step: float, description: str, **kw: Any) -> W.FloatSlider:
+def slider(
+    value: float, lo: float, hi: float, step: float, description: str, **kw: Any
+) -> W.FloatSlider:
     """A float slider that reports while dragging, with a readable label width."""
-    return W.FloatSlider(value=value, min=lo, max=hi, step=step, description=description, **_look(kw))
+    return W.FloatSlider(
+        value=value, min=lo, max=hi, step=step, description=description, **_look(kw)
+    )
 
 
-def int_slider(value: int, lo: int, hi: int, description: str, step: int = 1, **kw: Any) -> W.IntSlider:
+def int_slider(
+    value: int, lo: int, hi: int, description: str, step: int = 1, **kw: Any
+) -> W.IntSlider:
     """An integer slider with the look of :func:`slider`."""
     return W.IntSlider(value=value, min=lo, max=hi, step=step, description=description, **_look(kw))
 
 
-def log_slider(value: float, lo: float, hi: float, step: float, description: str, **kw: Any) -> W.FloatLogSlider:
+def log_slider(
+    value: float, lo: float, hi: float, step: float, description: str, **kw: Any
+) -> W.FloatLogSlider:
     """A slider on a log10 scale from ``lo`` to ``hi`` (values, not exponents); ``step`` is in decades."""
-    return W.FloatLogSlider(value=value, base=10, min=np.log10(lo), max=np.log10(hi), step=step,
-                            description=description, **_look(kw))
+    return W.FloatLogSlider(
+        value=value,
+        base=10,
+        min=np.log10(lo),
+        max=np.log10(hi),
+        step=step,
+        description=description,
+        **_look(kw),
+    )
 
 
-def choice_slider(options: Sequence[Any], value: Any, description: str, **kw: Any) -> W.SelectionSlider:
+def choice_slider(
+    options: Sequence[Any], value: Any, description: str, **kw: Any
+) -> W.SelectionSlider:
     """A slider over a few fixed values (f-numbers ...) with the look of :func:`slider`."""
-    return W.SelectionSlider(options=list(options), value=value, description=description, **_look(kw))
+    return W.SelectionSlider(
+        options=list(options), value=value, description=description, **_look(kw)
+    )
 
 
 def whole_label(control: W.Widget) -> W.Widget:
@@ -52,7 +76,9 @@ def whole_label(control: W.Widget) -> W.Widget:
         control.indent = False
         if not control.layout.width:
             control.layout.width = "auto"
-    elif getattr(control, "description", "") and not getattr(control.style, "description_width", "initial"):
+    elif getattr(control, "description", "") and not getattr(
+        control.style, "description_width", "initial"
+    ):
         control.style.description_width = "initial"
     return control
 
@@ -64,8 +90,13 @@ def monospace(text: str) -> str:
 
 def corner_text(value: str, description: str) -> W.Text:
     """A text control holding four corners as ``"u0, v0; u1, v1; u2, v2; u3, v3"`` (see :func:`parse_corners`)."""
-    return W.Text(value=value, description=description, continuous_update=False,
-                  style={"description_width": "initial"}, layout=W.Layout(width="300px"))
+    return W.Text(
+        value=value,
+        description=description,
+        continuous_update=False,
+        style={"description_width": "initial"},
+        layout=W.Layout(width="300px"),
+    )
 
 
 CORNER_LIMIT_PX = 1e6
@@ -88,14 +119,18 @@ def parse_corners(text: str) -> np.ndarray:
     far = np.flatnonzero(~(np.abs(pts) <= CORNER_LIMIT_PX).all(axis=1))
     if far.size:
         u, v = pts[far[0]]
-        raise ValueError(f"corner {far[0] + 1} is ({u:.4g}, {v:.4g}): expected finite pixel coordinates "
-                         f"within ±{CORNER_LIMIT_PX:.0e}")
+        raise ValueError(
+            f"corner {far[0] + 1} is ({u:.4g}, {v:.4g}): expected finite pixel coordinates "
+            f"within ±{CORNER_LIMIT_PX:.0e}"
+        )
     gaps = np.linalg.norm(pts[:, None] - pts[None], axis=-1)
     np.fill_diagonal(gaps, np.inf)
     i, j = np.unravel_index(int(np.argmin(gaps)), gaps.shape)
     if gaps[i, j] < 1.0:
-        raise ValueError(f"corners {min(i, j) + 1} and {max(i, j) + 1} coincide (less than 1 px apart): "
-                         f"four corners need four distinct points")
+        raise ValueError(
+            f"corners {min(i, j) + 1} and {max(i, j) + 1} coincide (less than 1 px apart): "
+            f"four corners need four distinct points"
+        )
     return pts
 
 
@@ -104,7 +139,9 @@ def format_corners(pts: np.ndarray) -> str:
     return "; ".join(f"{u:.2f}, {v:.2f}" for u, v in np.asarray(pts, dtype=float))
 
 
-def corner_keys(control: W.Text, names: Sequence[str], u_max: float, v_max: float) -> dict[str, W.ValueWidget]:
+def corner_keys(
+    control: W.Text, names: Sequence[str], u_max: float, v_max: float
+) -> dict[str, W.ValueWidget]:
     """Keyboard twins of dragging a corner: a dropdown picks the corner, two sliders move it.
 
     Returns ``{"corner": Dropdown, "corner_u": slider, "corner_v": slider}``. Moving a slider
@@ -114,8 +151,12 @@ def corner_keys(control: W.Text, names: Sequence[str], u_max: float, v_max: floa
     sliders to :func:`~camlab.widgets.build_demo` as ``linked`` controls, so that only the
     text triggers an update; the demo's update can mark ``values["corner"]`` in the figure.
     """
-    pick = W.Dropdown(options=[(name, i) for i, name in enumerate(names)], value=0, description="move corner",
-                      style={"description_width": "initial"})
+    pick = W.Dropdown(
+        options=[(name, i) for i, name in enumerate(names)],
+        value=0,
+        description="move corner",
+        style={"description_width": "initial"},
+    )
     u = slider(0.0, 0.0, u_max, 1.0, "corner u (px, right)")
     v = slider(0.0, 0.0, v_max, 1.0, "corner v (px, down)")
     syncing = [False]
@@ -141,14 +182,24 @@ def corner_keys(control: W.Text, names: Sequence[str], u_max: float, v_max: floa
         pts[pick.value] = u.value, v.value
         control.value = format_corners(pts)
 
-    for widget, handler in ((control, show_corner), (pick, show_corner), (u, write_corner), (v, write_corner)):
+    for widget, handler in (
+        (control, show_corner),
+        (pick, show_corner),
+        (u, write_corner),
+        (v, write_corner),
+    ):
         widget.observe(handler, names="value")
     show_corner()
     return {"corner": pick, "corner_u": u, "corner_v": v}
 
 
-def connect_corner_drag(view: FigureView, ax: Any, control: W.Text, get_corners: Callable[[], np.ndarray],
-                        radius_px: float = 15.0) -> dict[str, Callable]:
+def connect_corner_drag(
+    view: FigureView,
+    ax: Any,
+    control: W.Text,
+    get_corners: Callable[[], np.ndarray],
+    radius_px: float = 15.0,
+) -> dict[str, Callable]:
     """Let the mouse drag the four corners drawn in ``ax``; a drag writes ``control.value``.
 
     Press within ``radius_px`` screen pixels of a corner to pick it, move to drag it,
@@ -177,9 +228,11 @@ def connect_corner_drag(view: FigureView, ax: Any, control: W.Text, get_corners:
     def on_release(_event) -> None:
         grabbed["index"] = None
 
-    handlers = {"button_press_event": on_press, "motion_notify_event": on_move,
-                "button_release_event": on_release}
+    handlers = {
+        "button_press_event": on_press,
+        "motion_notify_event": on_move,
+        "button_release_event": on_release,
+    }
     for name, fn in handlers.items():
         view.fig.canvas.mpl_connect(name, fn)
     return handlers
-

@@ -1,4 +1,5 @@
 """Demos for lesson 03: pixels, sampling and aliasing, bit depth and noise, Bayer demosaicing."""
+
 from __future__ import annotations
 
 import ipywidgets as W
@@ -14,7 +15,9 @@ from ..plotting import palette
 SIZE = (320, 240)
 
 
-@register(lesson="03", sweep={"pitch_um": [2.0, 3.0, 6.0, 12.0, 15.0], "cx_offset": [-60, -40, 0, 40, 60]})
+@register(
+    lesson="03", sweep={"pitch_um": [2.0, 3.0, 6.0, 12.0, 15.0], "cx_offset": [-60, -40, 0, 40, 60]}
+)
 def pixel_pitch():
     """The same 3 mm lens on sensors with different pixel pitch and principal point offset."""
     controls = {
@@ -23,11 +26,31 @@ def pixel_pitch():
     }
     view = FigureView(figsize=(7.2, 4.4))
     ax_img = view.fig.subplots()
-    scene = [render.checkerboard((9, 6), 0.05, t=(-0.2, -0.125, 1.2)), render.photo_plane(0.25, t=(0.32, 0.05, 1.3))]
+    scene = [
+        render.checkerboard((9, 6), 0.05, t=(-0.2, -0.125, 1.2)),
+        render.photo_plane(0.25, t=(0.32, 0.05, 1.3)),
+    ]
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
     centre = ((SIZE[0] - 1) / 2, (SIZE[1] - 1) / 2)
-    mark, = ax_img.plot(*centre, "x", color=palette.BLUE, ms=10, mew=2, path_effects=palette.halo(), label="image centre")
-    pp, = ax_img.plot([], [], "+", color=palette.ORANGE, ms=16, mew=2, path_effects=palette.halo(), label="principal point")
+    (mark,) = ax_img.plot(
+        *centre,
+        "x",
+        color=palette.BLUE,
+        ms=10,
+        mew=2,
+        path_effects=palette.halo(),
+        label="image centre",
+    )
+    (pp,) = ax_img.plot(
+        [],
+        [],
+        "+",
+        color=palette.ORANGE,
+        ms=16,
+        mew=2,
+        path_effects=palette.halo(),
+        label="principal point",
+    )
     ax_img.set_xticks(np.arange(0, SIZE[0], 40))
     ax_img.set_yticks(np.arange(0, SIZE[1], 40))
     ax_img.set(xlabel="u (px)", ylabel="v (px)")
@@ -43,41 +66,73 @@ def pixel_pitch():
         pp.set_data([K[0, 2]], [K[1, 2]])
         # the frame's left and right edges, u = -0.5 and W - 0.5, seen from the principal point: with c_x off
         # centre the two halves differ, and their sum is a little less than 2 atan(W / 2 / f_x)
-        left, right = (np.degrees(np.arctan(d / K[0, 0])) for d in (K[0, 2] + 0.5, SIZE[0] - 0.5 - K[0, 2]))
+        left, right = (
+            np.degrees(np.arctan(d / K[0, 0])) for d in (K[0, 2] + 0.5, SIZE[0] - 0.5 - K[0, 2])
+        )
         fov = left + right
         state.update(K=K, fov_deg=fov, fov_left_right=(left, right))
         # f_x and the field of view in the figure too, so a printed or rendered page shows what the prose asks for
-        ax_img.set_title(f"f = 3 mm, always 320 x 240 pixels of {values['pitch_um']:g} µm\n"
-                         f"f_x = f / s_x = {K[0, 0]:.0f} px, horizontal field of view {fov:.1f}°", fontsize=10)
-        readout.value = monospace(f"f_x = f / s_x = {K[0, 0]:.0f} px\nc_x = {K[0, 2]:.1f}, c_y = {K[1, 2]:.1f}\n"
-                                  f"sensor {SIZE[0] * pitch * 1e3:.2f} x {SIZE[1] * pitch * 1e3:.2f} mm\n"
-                                  f"horizontal FOV {fov:.1f} deg\n  = {left:.1f} left + {right:.1f} right of the axis")
+        ax_img.set_title(
+            f"f = 3 mm, always 320 x 240 pixels of {values['pitch_um']:g} µm\n"
+            f"f_x = f / s_x = {K[0, 0]:.0f} px, horizontal field of view {fov:.1f}°",
+            fontsize=10,
+        )
+        readout.value = monospace(
+            f"f_x = f / s_x = {K[0, 0]:.0f} px\nc_x = {K[0, 2]:.1f}, c_y = {K[1, 2]:.1f}\n"
+            f"sensor {SIZE[0] * pitch * 1e3:.2f} x {SIZE[1] * pitch * 1e3:.2f} mm\n"
+            f"horizontal FOV {fov:.1f} deg\n  = {left:.1f} left + {right:.1f} right of the axis"
+        )
 
-    return build_demo("pixel_pitch", controls, view, update, title="Pixel pitch and principal point", extra=[readout])
+    return build_demo(
+        "pixel_pitch",
+        controls,
+        view,
+        update,
+        title="Pixel pitch and principal point",
+        extra=[readout],
+    )
 
 
-@register(lesson="03", sweep={"factor": [1, 2, 3, 6, 7, 8], "prefilter": [True, False], "blur": [0.0, 0.5, 1.0]})
+@register(
+    lesson="03",
+    sweep={"factor": [1, 2, 3, 6, 7, 8], "prefilter": [True, False], "blur": [0.0, 0.5, 1.0]},
+)
 def sampling_aliasing():
     """A zone plate sampled by coarser pixels: ideal point samples alias, real (box) pixels and a lens blur much less."""
     controls = {
-        "factor": W.IntSlider(value=4, min=1, max=8, description="pixel size (fine px)", continuous_update=True,
-                              style={"description_width": "initial"}, layout=W.Layout(width="300px")),
-        "prefilter": W.Checkbox(value=False, description="average over the pixel area (box filter)"),
+        "factor": W.IntSlider(
+            value=4,
+            min=1,
+            max=8,
+            description="pixel size (fine px)",
+            continuous_update=True,
+            style={"description_width": "initial"},
+            layout=W.Layout(width="300px"),
+        ),
+        "prefilter": W.Checkbox(
+            value=False, description="average over the pixel area (box filter)"
+        ),
         "blur": slider(0.0, 0.0, 1.0, 0.1, "lens blur σ (pixels)"),
     }
     view = FigureView(figsize=(9, 4))
     ax_t, ax_s = view.fig.subplots(1, 2)
     zp = sensor.zone_plate(384, k=np.pi / 768)  # 0.25 cycle/px at the edge
     # Both panels are drawn smaller than 384 px: antialiased display, or the screen adds its own moire.
-    images.show_image(ax_t, zp, "scene: zone plate (frequency grows with radius)", interpolation="antialiased")
+    images.show_image(
+        ax_t, zp, "scene: zone plate (frequency grows with radius)", interpolation="antialiased"
+    )
     im = images.show_image(ax_s, zp, "sampled", interpolation="antialiased")
     # A square grid samples each axis separately: the alias-free region is a square (|fx|, |fy| < 1/2 cycle per
     # coarse px), not a circle; the zone plate's local frequency is (x, y) k / pi, so the square is |x|, |y| < r.
     # short dashes with long gaps: the fold's grey ring systems, centred on the square's sides, show between them
-    nyq = ax_s.add_patch(Rectangle((0, 0), 1, 1, fill=False, color=palette.RED, ls=(0, (4, 6)), lw=1.5))
+    nyq = ax_s.add_patch(
+        Rectangle((0, 0), 1, 1, fill=False, color=palette.RED, ls=(0, (4, 6)), lw=1.5)
+    )
     ax_s.set_xlim(-0.5, zp.shape[1] - 0.5)
     ax_s.set_ylim(zp.shape[0] - 0.5, -0.5)
-    ax_s.set_autoscale_on(False)      # the frame stays the scene's, whatever part of it a pixel size samples
+    ax_s.set_autoscale_on(
+        False
+    )  # the frame stays the scene's, whatever part of it a pixel size samples
     view.animate(im, nyq, ax_s.title)
 
     def update(values, state):
@@ -96,16 +151,30 @@ def sampling_aliasing():
         # at pixel size 2 the square is the frame's own edge: draw it 5 fine px inside, where it shows
         shown = min(r, cx - 5)
         nyq.set_bounds(cx - shown, cy - shown, 2 * shown, 2 * shown)
-        nyq.set_visible(r <= cx + 1)      # at pixel size 1 the limit lies beyond the frame: nothing to draw
-        x, y = np.meshgrid(np.arange(s.shape[1]) - (s.shape[1] - 1) / 2, np.arange(s.shape[0]) - (s.shape[0] - 1) / 2)
-        outer = np.maximum(abs(x), abs(y)) * k > r * 1.1     # beyond the Nyquist square, where aliases live
-        state.update(samples=s.shape, nyquist_half_side=r,
-                     alias_contrast=float(s[outer].std()) if outer.any() else 0.0)
-        if r > cx + 1:        # pixel size 1: the scene's finest detail, 0.25 cycle per px, is below the limit
+        nyq.set_visible(
+            r <= cx + 1
+        )  # at pixel size 1 the limit lies beyond the frame: nothing to draw
+        x, y = np.meshgrid(
+            np.arange(s.shape[1]) - (s.shape[1] - 1) / 2,
+            np.arange(s.shape[0]) - (s.shape[0] - 1) / 2,
+        )
+        outer = (
+            np.maximum(abs(x), abs(y)) * k > r * 1.1
+        )  # beyond the Nyquist square, where aliases live
+        state.update(
+            samples=s.shape,
+            nyquist_half_side=r,
+            alias_contrast=float(s[outer].std()) if outer.any() else 0.0,
+        )
+        if (
+            r > cx + 1
+        ):  # pixel size 1: the scene's finest detail, 0.25 cycle per px, is below the limit
             where = "Nyquist limit beyond the frame: no aliasing"
-        elif r >= cx:         # pixel size 2: the edges reach 0.5 cycle per px, the fold's half systems show there
+        elif (
+            r >= cx
+        ):  # pixel size 2: the edges reach 0.5 cycle per px, the fold's half systems show there
             where = "red square: Nyquist limit, at the frame's edge"
-        else:                 # the number section 2 prints for the static figure (0.35 point, 0.06 box at 6)
+        else:  # the number section 2 prints for the static figure (0.35 point, 0.06 box at 6)
             where = f"red square: Nyquist limit; false-ring contrast {state['alias_contrast']:.2f}"
         kind = "box samples (pixel areas)" if values["prefilter"] else "point samples"
         blurred = f", lens blur {values['blur']:.1f} px" if values["blur"] else ""
@@ -114,36 +183,67 @@ def sampling_aliasing():
     return build_demo("sampling_aliasing", controls, view, update, title="Sampling and aliasing")
 
 
-BACKGROUND = 0.2            # the grey around the photo, linear
-UNIFORM = slice(100, 140)   # where the profile row crosses the dark uniform
+BACKGROUND = 0.2  # the grey around the photo, linear
+UNIFORM = slice(100, 140)  # where the profile row crosses the dark uniform
 
 
-@register(lesson="03", sweep={"bits": [1, 3, 8, 12], "exposure": [0.01, 0.02, 0.3, 1.0], "read_noise": [0.0, 20.0, 40.0]})
+@register(
+    lesson="03",
+    sweep={
+        "bits": [1, 3, 8, 12],
+        "exposure": [0.01, 0.02, 0.3, 1.0],
+        "read_noise": [0.0, 20.0, 40.0],
+    },
+)
 def bit_depth_and_noise():
     """Quantisation and noise on a rendered photo, with a row profile."""
     controls = {
-        "bits": W.IntSlider(value=4, min=1, max=12, description="bit depth", continuous_update=True,
-                            style={"description_width": "initial"}, layout=W.Layout(width="300px")),
-        "exposure": W.FloatLogSlider(value=0.3, base=10, min=-2, max=0, step=0.05, description="exposure (x full well)",
-                                     continuous_update=True, style={"description_width": "initial"},
-                                     layout=W.Layout(width="300px")),
+        "bits": W.IntSlider(
+            value=4,
+            min=1,
+            max=12,
+            description="bit depth",
+            continuous_update=True,
+            style={"description_width": "initial"},
+            layout=W.Layout(width="300px"),
+        ),
+        "exposure": W.FloatLogSlider(
+            value=0.3,
+            base=10,
+            min=-2,
+            max=0,
+            step=0.05,
+            description="exposure (x full well)",
+            continuous_update=True,
+            style={"description_width": "initial"},
+            layout=W.Layout(width="300px"),
+        ),
         "read_noise": slider(5.0, 0.0, 40.0, 1.0, "read noise (electrons)"),
     }
     view = FigureView(figsize=(9, 4))
     ax_img, ax_p = view.fig.subplots(1, 2)
     K = np.array([[330.0, 0, 159.5], [0, 330.0, 119.5], [0, 0, 1]])
     # linear light, as a sensor counts it (the photo's JPEG values decoded), shown through sRGB
-    clean = render.render([render.photo_plane(0.5, t=(0.0, 0, 1.0), linear=True)], K, SIZE, color=False,
-                          background=BACKGROUND).irradiance
-    im = images.show_image(ax_img, sensor.gamma_encode(clean), "recorded, shown through sRGB", vmax=1.0)
+    clean = render.render(
+        [render.photo_plane(0.5, t=(0.0, 0, 1.0), linear=True)],
+        K,
+        SIZE,
+        color=False,
+        background=BACKGROUND,
+    ).irradiance
+    im = images.show_image(
+        ax_img, sensor.gamma_encode(clean), "recorded, shown through sRGB", vmax=1.0
+    )
     row = 150
     # the row marked by ticks on the image's left and right edges, not by a line over the very row the profile shows
-    ax_img.set_yticks([row], [""])            # the profile's title names the row
-    ax_img.tick_params(axis="y", colors=palette.BLUE, length=9, width=2.5, left=True, right=True, labelsize=9)
+    ax_img.set_yticks([row], [""])  # the profile's title names the row
+    ax_img.tick_params(
+        axis="y", colors=palette.BLUE, length=9, width=2.5, left=True, right=True, labelsize=9
+    )
     # the truth wide and pale beneath, the recording thin on top: both stay visible where they agree;
     # the title names them, so no legend covers the profile
     ax_p.plot(clean[row], color=palette.GREY, lw=3.5, solid_capstyle="butt")
-    prof, = ax_p.plot(clean[row], color=palette.BLUE, lw=1)
+    (prof,) = ax_p.plot(clean[row], color=palette.BLUE, lw=1)
     ax_p.set_ylim(-0.05, 1.08)
     ax_p.set_xlabel("u (px)")
     ax_p.set_ylabel("linear value (1: the photo's white)")
@@ -155,26 +255,45 @@ def bit_depth_and_noise():
 
     def update(values, state):
         bits, expo = int(values["bits"]), float(values["exposure"])
-        noisy = sensor.add_noise(clean * expo, sensor.NoiseModel(full_well, values["read_noise"]), rng)
+        noisy = sensor.add_noise(
+            clean * expo, sensor.NoiseModel(full_well, values["read_noise"]), rng
+        )
         dn = sensor.quantize(np.clip(noisy / expo, 0, 1), bits)  # shown with gain 1 / exposure
         shown = sensor.dequantize(dn, bits)
         im.set_data(sensor.gamma_encode(shown))
         prof.set_ydata(shown[row])
         signal = 0.5 * expo * full_well
-        step = full_well * expo / (2**bits - 1)  # one DN in electrons: the gain g of section 3 at this exposure
+        step = (
+            full_well * expo / (2**bits - 1)
+        )  # one DN in electrons: the gain g of section 3 at this exposure
         snr = signal / np.sqrt(signal + values["read_noise"] ** 2 + step**2 / 12)
-        electrons = {"white": expo * full_well, "uniform": float(clean[row, UNIFORM].mean()) * expo * full_well,
-                     "background": BACKGROUND * expo * full_well}
-        state.update(levels=2**bits, snr=float(snr), rms_error=float(np.sqrt(np.mean((shown - clean) ** 2))),
-                     electrons=electrons, dn_electrons=step)
-        dn = f"{step:.{max(0, 2 - int(np.floor(np.log10(step))))}f}"   # 3 significant figures: 11.8, 0.733, 3000
-        ax_p.set_title(f"row {row} (blue ticks): recorded (blue) against true (wide grey)\n"
-                       f"electrons: white {electrons['white']:.0f}, dark uniform {electrons['uniform']:.1f}, "
-                       f"1 DN = {dn}", fontsize=9)
-        readout.value = monospace(f"{2**bits} levels\nSNR {snr:.1f} at half of white\n"
-                                  f"rms error {state['rms_error']:.3f} of full scale")
+        electrons = {
+            "white": expo * full_well,
+            "uniform": float(clean[row, UNIFORM].mean()) * expo * full_well,
+            "background": BACKGROUND * expo * full_well,
+        }
+        state.update(
+            levels=2**bits,
+            snr=float(snr),
+            rms_error=float(np.sqrt(np.mean((shown - clean) ** 2))),
+            electrons=electrons,
+            dn_electrons=step,
+        )
+        dn = f"{step:.{max(0, 2 - int(np.floor(np.log10(step))))}f}"  # 3 significant figures: 11.8, 0.733, 3000
+        ax_p.set_title(
+            f"row {row} (blue ticks): recorded (blue) against true (wide grey)\n"
+            f"electrons: white {electrons['white']:.0f}, dark uniform {electrons['uniform']:.1f}, "
+            f"1 DN = {dn}",
+            fontsize=9,
+        )
+        readout.value = monospace(
+            f"{2**bits} levels\nSNR {snr:.1f} at half of white\n"
+            f"rms error {state['rms_error']:.3f} of full scale"
+        )
 
-    return build_demo("bit_depth_and_noise", controls, view, update, title="Bit depth and noise", extra=[readout])
+    return build_demo(
+        "bit_depth_and_noise", controls, view, update, title="Bit depth and noise", extra=[readout]
+    )
 
 
 _METHODS = ("truth", "camlab bilinear", "OpenCV bilinear", "OpenCV VNG", "OpenCV edge-aware")
@@ -185,29 +304,52 @@ K_DEMOSAIC = np.array([[900.0, 0, 159.5], [0, 900.0, 119.5], [0, 0, 1]])
 
 _SAME = "same as the sensor"
 CROP = 48
-ZOOM_MAX = 216   # the zoom's last position still holds the face's right side, not only the flat background
+ZOOM_MAX = (
+    216  # the zoom's last position still holds the face's right side, not only the flat background
+)
 
 
-@register(lesson="03", sweep={"pattern": ["RGGB", "GBRG"], "method": list(_METHODS), "zoom_u": [0, 40, 200, ZOOM_MAX],
-                              "assume": ["BGGR", _SAME]})
+@register(
+    lesson="03",
+    sweep={
+        "pattern": ["RGGB", "GBRG"],
+        "method": list(_METHODS),
+        "zoom_u": [0, 40, 200, ZOOM_MAX],
+        "assume": ["BGGR", _SAME],
+    },
+)
 def demosaicing():
     """Bayer mosaic and demosaicing methods side by side, with a zoomed crop and PSNR; try the wrong pattern."""
     patterns = ["RGGB", "BGGR", "GRBG", "GBRG"]
     controls = {
         "pattern": W.Dropdown(options=patterns, value="RGGB", description="sensor's pattern"),
-        "assume": W.Dropdown(options=[_SAME] + patterns, value=_SAME, description="demosaic as",
-                             style={"description_width": "initial"}),
+        "assume": W.Dropdown(
+            options=[_SAME] + patterns,
+            value=_SAME,
+            description="demosaic as",
+            style={"description_width": "initial"},
+        ),
         "method": W.Dropdown(options=list(_METHODS), value="camlab bilinear", description="method"),
-        "zoom_u": W.IntSlider(value=120, min=0, max=ZOOM_MAX, description="zoom at u", continuous_update=True),
+        "zoom_u": W.IntSlider(
+            value=120, min=0, max=ZOOM_MAX, description="zoom at u", continuous_update=True
+        ),
     }
     view = FigureView(figsize=(10, 3.9))
     ax_raw, ax_full, ax_zoom = view.fig.subplots(1, 3, width_ratios=[0.75, 1, 0.75])
     # linear light (the photo's JPEG values decoded), as a sensor records it; every panel is shown through sRGB
-    truth = render.render(scenes.photo_and_page(linear=True), K_DEMOSAIC, SIZE, color=True, background=0.2).irradiance
-    im_raw = images.show_image(ax_raw, np.zeros((CROP, CROP, 3)), "Bayer mosaic (zoom, through sRGB)")
+    truth = render.render(
+        scenes.photo_and_page(linear=True), K_DEMOSAIC, SIZE, color=True, background=0.2
+    ).irradiance
+    im_raw = images.show_image(
+        ax_raw, np.zeros((CROP, CROP, 3)), "Bayer mosaic (zoom, through sRGB)"
+    )
     im_full = images.show_image(ax_full, sensor.gamma_encode(truth), "method")
-    im_zoom = images.show_image(ax_zoom, sensor.gamma_encode(truth[:CROP, :CROP]), "zoom (shown through sRGB)")
-    box = images.zoom_box(ax_full, 120, 100, CROP, color="white")   # white on a black outline: seen on the red stripes too
+    im_zoom = images.show_image(
+        ax_zoom, sensor.gamma_encode(truth[:CROP, :CROP]), "zoom (shown through sRGB)"
+    )
+    box = images.zoom_box(
+        ax_full, 120, 100, CROP, color="white"
+    )  # white on a black outline: seen on the red stripes too
     box.set_path_effects(palette.halo(1.5, "black"))
     ax_full.set_title("camlab bilinear: PSNR 00.00 dB (linear)", fontsize=10)
     view.animate(im_raw, im_full, im_zoom, box, ax_full.title)
@@ -225,15 +367,27 @@ def demosaicing():
             elif method == "camlab bilinear":
                 out = sensor.demosaic_bilinear(raw, assumed) / 255
             else:
-                out = sensor.demosaic_opencv(raw, assumed, {"OpenCV bilinear": "bilinear", "OpenCV VNG": "vng",
-                                                            "OpenCV edge-aware": "ea"}[method]) / 255
+                out = (
+                    sensor.demosaic_opencv(
+                        raw,
+                        assumed,
+                        {
+                            "OpenCV bilinear": "bilinear",
+                            "OpenCV VNG": "vng",
+                            "OpenCV edge-aware": "ea",
+                        }[method],
+                    )
+                    / 255
+                )
             out = np.clip(out, 0, 1)
             demosaiced[key] = raw, out, sensor.psnr(truth, out, border=2)
         return demosaiced[key]
 
     def update(values, state):
         pattern, method, u0 = values["pattern"], values["method"], int(values["zoom_u"])
-        assumed = pattern if values["assume"] == _SAME else values["assume"]  # a wrong guess is the classic bug
+        assumed = (
+            pattern if values["assume"] == _SAME else values["assume"]
+        )  # a wrong guess is the classic bug
         raw, out, psnr = develop(pattern, assumed, method)
         masks = sensor.bayer_masks(raw.shape, pattern)
         crop = (slice(v0, v0 + CROP), slice(u0, u0 + CROP))
@@ -242,10 +396,15 @@ def demosaicing():
         im_full.set_data(shown)
         im_zoom.set_data(shown[crop])
         box.set_xy((u0 - 0.5, v0 - 0.5))
-        state.update(psnr=psnr, zoom=(u0, v0), assumed=assumed,
-                     zoom_psnr=sensor.psnr(truth[crop], out[crop]))
+        state.update(
+            psnr=psnr, zoom=(u0, v0), assumed=assumed, zoom_psnr=sensor.psnr(truth[crop], out[crop])
+        )
         wrong = "" if assumed == pattern or method == "truth" else f" as {assumed} (wrong!)"
-        score = "the reference the PSNRs compare with" if method == "truth" else f"PSNR {state['psnr']:.1f} dB (linear)"
+        score = (
+            "the reference the PSNRs compare with"
+            if method == "truth"
+            else f"PSNR {state['psnr']:.1f} dB (linear)"
+        )
         ax_full.set_title(f"{method}{wrong}: {score}", fontsize=10)
 
     return build_demo("demosaicing", controls, view, update, title="Bayer mosaic and demosaicing")

@@ -5,6 +5,7 @@ Every demo draws once and then moves artists; the geometry comes from
 Corners can be dragged with the mouse under ipympl; the same corners are a text
 control ``"u0, v0; u1, v1; u2, v2; u3, v3"`` so tests and static pages drive them too.
 """
+
 from __future__ import annotations
 
 import textwrap
@@ -21,16 +22,41 @@ from ..projective import cross_ratio, map_points, splits_at_infinity
 from ..warp import forward_warp, warp_perspective
 from ..robust import required_iterations
 from ._base import Demo, FigureView, build_demo, register, slider
-from .controls import connect_corner_drag, corner_keys, corner_text, format_corners, monospace, parse_corners
+from .controls import (
+    connect_corner_drag,
+    corner_keys,
+    corner_text,
+    format_corners,
+    monospace,
+    parse_corners,
+)
 
 
-def _warning(view: FigureView, ax: Any, x: float = 0.02, y: float = 0.02, ha: str = "left",
-             va: str = "bottom") -> Callable[[str], None]:
+def _warning(
+    view: FigureView,
+    ax: Any,
+    x: float = 0.02,
+    y: float = 0.02,
+    ha: str = "left",
+    va: str = "bottom",
+) -> Callable[[str], None]:
     """An animated red note in ``ax`` (axes coordinates; default the bottom-left corner);
     returns ``say(text)`` ("" hides it: a hidden text costs nothing to draw, an empty one
     with a box does)."""
-    note = view.animate(ax.text(x, y, "", transform=ax.transAxes, ha=ha, va=va, fontsize=8, color="tab:red",
-                                bbox=dict(fc="white", ec="tab:red", alpha=0.9), visible=False))
+    note = view.animate(
+        ax.text(
+            x,
+            y,
+            "",
+            transform=ax.transAxes,
+            ha=ha,
+            va=va,
+            fontsize=8,
+            color="tab:red",
+            bbox=dict(fc="white", ec="tab:red", alpha=0.9),
+            visible=False,
+        )
+    )
 
     def say(text: str) -> None:
         note.set_text(text)
@@ -41,8 +67,10 @@ def _warning(view: FigureView, ax: Any, x: float = 0.02, y: float = 0.02, ha: st
 
 CONFIDENCE = 0.995  # RANSAC's confidence p in the demo
 
-TORN = ("the line that H sends to infinity crosses the picture:\n"
-        "its two halves leave through infinity and come back\non the other side (the picture is torn)")
+TORN = (
+    "the line that H sends to infinity crosses the picture:\n"
+    "its two halves leave through infinity and come back\non the other side (the picture is torn)"
+)
 
 
 # ----------------------------------------------------------------------------- hierarchy
@@ -50,8 +78,16 @@ TORN = ("the line that H sends to infinity crosses the picture:\n"
 _GROUPS = tuple(hg.HIERARCHY)  # euclidean, similarity, affine, projective
 
 
-@register(lesson="07", sweep={"group": list(_GROUPS), "theta": [-30.0, 20.0], "shear": [0.0, 40.0],
-                              "v1": [0.0, 2.0, 14.0], "tx": [-20.0, 30.0]})
+@register(
+    lesson="07",
+    sweep={
+        "group": list(_GROUPS),
+        "theta": [-30.0, 20.0],
+        "shear": [0.0, 40.0],
+        "v1": [0.0, 2.0, 14.0],
+        "tx": [-20.0, 30.0],
+    },
+)
 def transformation_hierarchy() -> Demo:
     """Euclidean, similarity, affine, projective: sliders for each group acting on a picture."""
     pic = scenes.house_picture()
@@ -62,32 +98,72 @@ def transformation_hierarchy() -> Demo:
     P = np.array([[1.0, 0, -(pw - 1) / 2], [0, 1, -(ph - 1) / 2], [0, 0, 1]])
     view = FigureView(figsize=(8.5, 4.2))
     ax = view.fig.subplots()
-    ax.set(xlim=(-0.5, canvas_hw[1] - 0.5), ylim=(canvas_hw[0] - 0.5, -0.5), aspect="equal",
-           xlabel="u (pixels)", ylabel="v (pixels)")
-    im = view.animate(ax.imshow(np.zeros((*canvas_hw, 3), np.uint8), interpolation="nearest",
-                                extent=(-0.5, canvas_hw[1] - 0.5, canvas_hw[0] - 0.5, -0.5)))
+    ax.set(
+        xlim=(-0.5, canvas_hw[1] - 0.5),
+        ylim=(canvas_hw[0] - 0.5, -0.5),
+        aspect="equal",
+        xlabel="u (pixels)",
+        ylabel="v (pixels)",
+    )
+    im = view.animate(
+        ax.imshow(
+            np.zeros((*canvas_hw, 3), np.uint8),
+            interpolation="nearest",
+            extent=(-0.5, canvas_hw[1] - 0.5, canvas_hw[0] - 0.5, -0.5),
+        )
+    )
     outline0 = C @ P
-    box0 = map_points(outline0, np.array([[0, 0], [pw - 1, 0], [pw - 1, ph - 1], [0, ph - 1], [0, 0]], float))
-    view.animate(ax.plot(box0[:, 0], box0[:, 1], ":", color="0.2", lw=1.5, label="original outline")[0])
+    box0 = map_points(
+        outline0, np.array([[0, 0], [pw - 1, 0], [pw - 1, ph - 1], [0, ph - 1], [0, 0]], float)
+    )
+    view.animate(
+        ax.plot(box0[:, 0], box0[:, 1], ":", color="0.2", lw=1.5, label="original outline")[0]
+    )
     grid_u = np.linspace(0, pw - 1, 5)
     grid_lines = [np.column_stack([np.full(20, x), np.linspace(0, ph - 1, 20)]) for x in grid_u]
-    grid_lines += [np.column_stack([np.linspace(0, pw - 1, 20), np.full(20, y)]) for y in np.linspace(0, ph - 1, 4)]
-    grid_points = np.vstack(grid_lines)  # every line has 20 points; drawn as one artist, NaN-separated,
-    grid_art = view.animate(ax.plot([], [], color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0])  # one outline
-    ax.set_title("the picture mapped by H (its group, dof and invariants at the right)", fontsize=10)
+    grid_lines += [
+        np.column_stack([np.linspace(0, pw - 1, 20), np.full(20, y)])
+        for y in np.linspace(0, ph - 1, 4)
+    ]
+    grid_points = np.vstack(
+        grid_lines
+    )  # every line has 20 points; drawn as one artist, NaN-separated,
+    grid_art = view.animate(
+        ax.plot([], [], color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0]
+    )  # one outline
+    ax.set_title(
+        "the picture mapped by H (its group, dof and invariants at the right)", fontsize=10
+    )
     # beside the axes: over the warped picture the legend would need a redraw per update
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
     # The group, its dof and what it keeps, in the figure itself (a static page has no readout).
-    facts = view.animate(ax.text(1.03, 0.86, "", transform=ax.transAxes, ha="left", va="top", fontsize=8,
-                                 linespacing=1.35))
+    facts = view.animate(
+        ax.text(
+            1.03,
+            0.86,
+            "",
+            transform=ax.transAxes,
+            ha="left",
+            va="top",
+            fontsize=8,
+            linespacing=1.35,
+        )
+    )
     warning = _warning(view, ax)
     picture_corners = np.array([[0, 0], [pw - 1, 0], [pw - 1, ph - 1], [0, ph - 1]], float)
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
-        Hg = hg.hierarchy_matrix(v["group"], theta=np.radians(v["theta"]), scale=v["scale"],
-                                 shear=np.radians(v["shear"]), aspect=v["aspect"], tx=v["tx"], ty=v["ty"],
-                                 v=(v["v1"] * 1e-3, v["v2"] * 1e-3))
+        Hg = hg.hierarchy_matrix(
+            v["group"],
+            theta=np.radians(v["theta"]),
+            scale=v["scale"],
+            shear=np.radians(v["shear"]),
+            aspect=v["aspect"],
+            tx=v["tx"],
+            ty=v["ty"],
+            v=(v["v1"] * 1e-3, v["v2"] * 1e-3),
+        )
         H = hg.compose(C, Hg, P)
         im.set_data(warp_perspective(pic, H, canvas_hw, method="cv2", fill=255))
         m = map_points(H, grid_points).reshape(len(grid_lines), 20, 2)
@@ -98,10 +174,19 @@ def transformation_hierarchy() -> Demo:
         torn = splits_at_infinity(H, picture_corners)
         warning(TORN if torn else "")
         state.update(H=Hg, group=v["group"], classified=kind, dof=info["dof"], torn=torn)
-        facts.set_text(f"{v['group']}: {info['dof']} dof\n(H itself is {kind})\n\nkeeps:\n" + "\n".join(
-            "\n".join(textwrap.wrap(f"- {name}", 22, subsequent_indent="  ")) for name in info["invariants"]))
-        readout.value = monospace(f"{v['group']}: {info['dof']} dof\nH =\n" + np.array2string(Hg, precision=4, suppress_small=True)
-                             + f"\nsmallest group holding H: {kind}\nkeeps: " + ", ".join(info["invariants"][:4]))
+        facts.set_text(
+            f"{v['group']}: {info['dof']} dof\n(H itself is {kind})\n\nkeeps:\n"
+            + "\n".join(
+                "\n".join(textwrap.wrap(f"- {name}", 22, subsequent_indent="  "))
+                for name in info["invariants"]
+            )
+        )
+        readout.value = monospace(
+            f"{v['group']}: {info['dof']} dof\nH =\n"
+            + np.array2string(Hg, precision=4, suppress_small=True)
+            + f"\nsmallest group holding H: {kind}\nkeeps: "
+            + ", ".join(info["invariants"][:4])
+        )
 
     controls = {
         "group": W.Dropdown(options=list(_GROUPS), value="affine", description="group"),
@@ -114,22 +199,41 @@ def transformation_hierarchy() -> Demo:
         "v1": slider(1.5, -15.0, 15.0, 0.1, "projective: v1 (×1e-3)"),
         "v2": slider(0.0, -15.0, 15.0, 0.1, "projective: v2 (×1e-3)"),
     }
-    return build_demo("transformation_hierarchy", controls, view, update,
-                      title="The transformation hierarchy", extra=[readout])
+    return build_demo(
+        "transformation_hierarchy",
+        controls,
+        view,
+        update,
+        title="The transformation hierarchy",
+        extra=[readout],
+    )
 
 
 # ----------------------------------------------------------------------------- drag corners
 
 SQUARE = np.array([[0.0, 0.0], [159.0, 0.0], [159.0, 119.0], [0.0, 119.0]])
-CORNER_NAMES = ("top left", "top right", "bottom right", "bottom left")  # of the source picture, SQUARE's order
+CORNER_NAMES = (
+    "top left",
+    "top right",
+    "bottom right",
+    "bottom left",
+)  # of the source picture, SQUARE's order
 _DRAG_START = np.array([[40.0, 30.0], [250.0, 60.0], [230.0, 200.0], [60.0, 230.0]])
 
 
-@register(lesson="07", sweep={"corners": [
-    format_corners(_DRAG_START),
-    "20.0, 20.0; 280.0, 20.0; 280.0, 230.0; 20.0, 230.0",
-    "100.0, 40.0; 200.0, 40.0; 280.0, 230.0; 20.0, 230.0",
-], "corner": [0, 2], "corner_u": [10.0, 290.0], "corner_v": [10.0, 250.0]})
+@register(
+    lesson="07",
+    sweep={
+        "corners": [
+            format_corners(_DRAG_START),
+            "20.0, 20.0; 280.0, 20.0; 280.0, 230.0; 20.0, 230.0",
+            "100.0, 40.0; 200.0, 40.0; 280.0, 230.0; 20.0, 230.0",
+        ],
+        "corner": [0, 2],
+        "corner_u": [10.0, 290.0],
+        "corner_v": [10.0, 250.0],
+    },
+)
 def drag_homography() -> Demo:
     """Drag the four target corners: lines stay lines and the cross-ratio stays fixed,
     while lengths, angles and ratios of lengths change. Without a mouse, pick a corner and
@@ -145,14 +249,42 @@ def drag_homography() -> Demo:
     ax_t.set_title("drag a corner, or use the sliders", fontsize=10, pad=3)
     # Four collinear points on the picture's diagonal; a line; a right angle at corner 0.
     line_pts = np.array([[10.0, 10.0], [50.0, 40.0], [90.0, 70.0], [150.0, 115.0]])
-    ax_s.plot(line_pts[:, 0], line_pts[:, 1], "o-", color=palette.GREEN, ms=5, lw=1.5, path_effects=palette.halo(1.5))
+    ax_s.plot(
+        line_pts[:, 0],
+        line_pts[:, 1],
+        "o-",
+        color=palette.GREEN,
+        ms=5,
+        lw=1.5,
+        path_effects=palette.halo(1.5),
+    )
     for name, p in zip("ABCD", line_pts):
-        ax_s.annotate(name, p, xytext=(3, -8), textcoords="offset points", fontsize=9, color="darkgreen", path_effects=palette.halo())
-    im = view.animate(ax_t.imshow(np.zeros((*out_hw, 3), np.uint8), extent=(-0.5, out_hw[1] - 0.5, out_hw[0] - 0.5, -0.5)))
-    mapped_line = view.animate(ax_t.plot([], [], "o-", color=palette.GREEN, ms=5, lw=1.5, path_effects=palette.halo(1.5))[0])
-    quad = view.animate(ax_t.plot([], [], "-", color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0])
+        ax_s.annotate(
+            name,
+            p,
+            xytext=(3, -8),
+            textcoords="offset points",
+            fontsize=9,
+            color="darkgreen",
+            path_effects=palette.halo(),
+        )
+    im = view.animate(
+        ax_t.imshow(
+            np.zeros((*out_hw, 3), np.uint8), extent=(-0.5, out_hw[1] - 0.5, out_hw[0] - 0.5, -0.5)
+        )
+    )
+    mapped_line = view.animate(
+        ax_t.plot([], [], "o-", color=palette.GREEN, ms=5, lw=1.5, path_effects=palette.halo(1.5))[
+            0
+        ]
+    )
+    quad = view.animate(
+        ax_t.plot([], [], "-", color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0]
+    )
     handles = view.animate(ax_t.plot([], [], "o", color=palette.ORANGE, ms=10, mec="k")[0])
-    chosen = view.animate(ax_t.plot([], [], "o", ms=17, mfc="none", mec="k", mew=2)[0])  # the corner the keys move
+    chosen = view.animate(
+        ax_t.plot([], [], "o", ms=17, mfc="none", mec="k", mew=2)[0]
+    )  # the corner the keys move
     warning = _warning(view, ax_t)
     readout = W.HTML()
     control = corner_text(format_corners(_DRAG_START), "corners (u, v; ...)")
@@ -179,21 +311,43 @@ def drag_homography() -> Demo:
         handles.set_data(corners[:, 0], corners[:, 1])
         chosen.set_data(corners[v["corner"], :1], corners[v["corner"], 1:])
         cr0, cr1 = cross_ratio(line_pts), cross_ratio(m)
-        ratio0 = np.linalg.norm(line_pts[1] - line_pts[0]) / np.linalg.norm(line_pts[3] - line_pts[2])
+        ratio0 = np.linalg.norm(line_pts[1] - line_pts[0]) / np.linalg.norm(
+            line_pts[3] - line_pts[2]
+        )
         ratio1 = np.linalg.norm(m[1] - m[0]) / np.linalg.norm(m[3] - m[2])
         e1, e2 = corners[1] - corners[0], corners[3] - corners[0]
-        angle = np.degrees(np.arccos(np.clip(e1 @ e2 / np.linalg.norm(e1) / np.linalg.norm(e2), -1, 1)))
-        state.update(H=H, error=None, torn=torn, corner=v["corner"], cross_ratio_source=cr0, cross_ratio_image=cr1, length_ratio_source=ratio0,
-                     length_ratio_image=ratio1, corner_angle=angle, corners=corners)
+        angle = np.degrees(
+            np.arccos(np.clip(e1 @ e2 / np.linalg.norm(e1) / np.linalg.norm(e2), -1, 1))
+        )
+        state.update(
+            H=H,
+            error=None,
+            torn=torn,
+            corner=v["corner"],
+            cross_ratio_source=cr0,
+            cross_ratio_image=cr1,
+            length_ratio_source=ratio0,
+            length_ratio_image=ratio1,
+            corner_angle=angle,
+            corners=corners,
+        )
         readout.value = monospace(
             f"                 source   image\n"
             f"cross-ratio      {cr0:7.4f}  {cr1:7.4f}   (kept)\n"
             f"|AB| / |CD|      {ratio0:7.4f}  {ratio1:7.4f}   (changes)\n"
             f"corner angle     {90:7.1f}  {angle:7.1f}°  (changes)\n"
-            "H =\n" + np.array2string(H, precision=4, suppress_small=True))
+            "H =\n" + np.array2string(H, precision=4, suppress_small=True)
+        )
 
-    demo = build_demo("drag_homography", {"corners": control, "corner": keys.pop("corner")}, view, update,
-                      title="A homography from four corners", extra=[readout], linked=keys)
+    demo = build_demo(
+        "drag_homography",
+        {"corners": control, "corner": keys.pop("corner")},
+        view,
+        update,
+        title="A homography from four corners",
+        extra=[readout],
+        linked=keys,
+    )
     demo.handlers.update(connect_corner_drag(view, ax_t, control, lambda: current["corners"]))
     return demo
 
@@ -201,11 +355,17 @@ def drag_homography() -> Demo:
 # ----------------------------------------------------------------------------- RANSAC
 
 # What RANSAC did with each pair, against the truth the demo knows.
-_VERDICTS = (("inlier, kept", palette.GREEN), ("outlier, wrongly kept", palette.RED),
-             ("inlier, wrongly rejected", palette.ORANGE), ("outlier, rejected", palette.GREY))
+_VERDICTS = (
+    ("inlier, kept", palette.GREEN),
+    ("outlier, wrongly kept", palette.RED),
+    ("inlier, wrongly rejected", palette.ORANGE),
+    ("outlier, rejected", palette.GREY),
+)
 
 
-@register(lesson="07", sweep={"outliers": [0.1, 0.4, 0.7], "threshold": [1.0, 3.0, 8.0], "seed": [0, 3]})
+@register(
+    lesson="07", sweep={"outliers": [0.1, 0.4, 0.7], "threshold": [1.0, 3.0, 8.0], "seed": [0, 3]}
+)
 def ransac_outliers() -> Demo:
     """RANSAC against a growing outlier fraction ε: each pair's verdict against the truth,
     and the samples drawn against k = log(1 - p) / log(1 - (1 - ε)^4)."""
@@ -214,13 +374,19 @@ def ransac_outliers() -> Demo:
 
     view = FigureView(figsize=(9.6, 4.8))
     ax, ax_k = view.fig.subplots(1, 2, width_ratios=[1.35, 1])
-    ax.set(xlim=(-10, 480), ylim=(340, -10), aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)")
+    ax.set(
+        xlim=(-10, 480), ylim=(340, -10), aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)"
+    )
     ax.set_title("each pair as an arrow src → dst", fontsize=10, pad=3)
     arrows = view.animate(ax.add_collection(LineCollection([], lw=1.0)))
     heads = view.animate(ax.scatter(np.zeros(0), np.zeros(0), s=6))
-    box_true = view.animate(ax.plot([], [], "-", color="0.3", lw=2, label="true H (image frame)")[0])
+    box_true = view.animate(
+        ax.plot([], [], "-", color="0.3", lw=2, label="true H (image frame)")[0]
+    )
     box_est = view.animate(ax.plot([], [], "--", color="tab:blue", lw=2, label="RANSAC H")[0])
-    best = view.animate(ax.plot([], [], "o", mfc="none", mec="k", mew=2, ms=11, label="the winning sample of 4")[0])
+    best = view.animate(
+        ax.plot([], [], "o", mfc="none", mec="k", mew=2, ms=11, label="the winning sample of 4")[0]
+    )
     for name, colour in _VERDICTS:
         ax.plot([], [], "-", color=colour, lw=2, label=name)
     # Below the figure (the layout makes room), never over the arrows; under the left panel it describes.
@@ -229,24 +395,46 @@ def ransac_outliers() -> Demo:
     eps = np.linspace(0.0, 0.97, 300)
     k_curve = [required_iterations(1.0 - e, CONFIDENCE, 4) for e in eps]
     ax_k.semilogy(eps, k_curve, color="0.5", label="k = log(1-p) / log(1-(1-ε)⁴), p = 0.995")
-    needed = view.animate(ax_k.plot([], [], "o", mfc="none", mec="tab:blue", ms=9,
-                                    label="k for the ε RANSAC found")[0])
-    dot = view.animate(ax_k.plot([], [], "o", color="tab:blue", label="samples drawn (whole batches)")[0])
-    ax_k.set(xlabel="outlier fraction ε", ylabel="samples", ylim=(1, 5000), xlim=(0, 0.97),
-             title="adaptive number of samples")
+    needed = view.animate(
+        ax_k.plot([], [], "o", mfc="none", mec="tab:blue", ms=9, label="k for the ε RANSAC found")[
+            0
+        ]
+    )
+    dot = view.animate(
+        ax_k.plot([], [], "o", color="tab:blue", label="samples drawn (whole batches)")[0]
+    )
+    ax_k.set(
+        xlabel="outlier fraction ε",
+        ylabel="samples",
+        ylim=(1, 5000),
+        xlim=(0, 0.97),
+        title="adaptive number of samples",
+    )
     ax_k.legend(loc="upper left", fontsize=7)
     ax_k.grid(True, color="0.93")
-    ax_k.text(0.98, 0.03, "samples are drawn in batches\n(16, then up to 64): the count\nstops at the end of a batch",
-              transform=ax_k.transAxes, ha="right", va="bottom", fontsize=7, color="0.3")
+    ax_k.text(
+        0.98,
+        0.03,
+        "samples are drawn in batches\n(16, then up to 64): the count\nstops at the end of a batch",
+        transform=ax_k.transAxes,
+        ha="right",
+        va="bottom",
+        fontsize=7,
+        color="0.3",
+    )
     readout = W.HTML()
     frame = np.array([[0, 0], [399, 0], [399, 299], [0, 299], [0, 0]], float)
 
-    @lru_cache(maxsize=256)  # sliders revisit settings; the answer is a pure (seeded) function of them
+    @lru_cache(
+        maxsize=256
+    )  # sliders revisit settings; the answer is a pure (seeded) function of them
     def run(outlier_fraction: float, threshold: float, seed: int):
         """The demo's data and RANSAC's answer, or its error message."""
         data = scenes.outlier_matches(outlier_fraction, seed)
         try:
-            return data, hg.ransac_homography(data[1], data[2], threshold, CONFIDENCE, 1000, np.random.default_rng(seed))
+            return data, hg.ransac_homography(
+                data[1], data[2], threshold, CONFIDENCE, 1000, np.random.default_rng(seed)
+            )
         except hg.DegenerateError as exc:
             return data, str(exc)
 
@@ -254,19 +442,32 @@ def ransac_outliers() -> Demo:
         (H, src, dst, out), r = run(float(v["outliers"]), float(v["threshold"]), int(v["seed"]))
         if isinstance(r, str):  # RANSAC failed: clear the last result, a stale plot would be a lie
             exc = r
-            state.update(iterations=None, inliers=None, recall=None, corner_error=None, H=None, verdicts=None,
-                         outlier_fraction_found=None, samples_needed=None, error=exc)
+            state.update(
+                iterations=None,
+                inliers=None,
+                recall=None,
+                corner_error=None,
+                H=None,
+                verdicts=None,
+                outlier_fraction_found=None,
+                samples_needed=None,
+                error=exc,
+            )
             for artist in (box_est, dot, needed, best):
                 artist.set_data([], [])
             arrows.set_segments([])
             heads.set_offsets(np.zeros((0, 2)))
-            failure("RANSAC failed: no hypothesis had real support\n(the full message is beside the sliders)")
+            failure(
+                "RANSAC failed: no hypothesis had real support\n(the full message is beside the sliders)"
+            )
             readout.value = monospace(exc)
             return
         failure("")
         verdict = np.select([~out & r.inliers, out & r.inliers, ~out & ~r.inliers], [0, 1, 2], 3)
         colours = np.array([to_rgba(c) for _, c in _VERDICTS])[verdict]
-        order = np.argsort(-verdict)  # rejected outliers first, so the interesting arrows sit on top
+        order = np.argsort(
+            -verdict
+        )  # rejected outliers first, so the interesting arrows sit on top
         arrows.set_segments(np.stack([src, dst], axis=1)[order])
         arrows.set_color(colours[order])
         heads.set_offsets(dst[order])
@@ -282,15 +483,25 @@ def ransac_outliers() -> Demo:
         counts = np.bincount(verdict, minlength=4)
         found_true = float(np.mean(r.inliers[~out])) if (~out).any() else float("nan")
         err = float(np.max(np.linalg.norm(be - bt, axis=1)))
-        state.update(sample=r.sample, iterations=r.iterations, inliers=int(r.inliers.sum()), recall=found_true,
-                     corner_error=err,
-                     error=None, H=r.H, verdicts=counts, outlier_fraction_found=eps_found, samples_needed=k_needed)
+        state.update(
+            sample=r.sample,
+            iterations=r.iterations,
+            inliers=int(r.inliers.sum()),
+            recall=found_true,
+            corner_error=err,
+            error=None,
+            H=r.H,
+            verdicts=counts,
+            outlier_fraction_found=eps_found,
+            samples_needed=k_needed,
+        )
         readout.value = monospace(
             f"true ε = {v['outliers']:.2f}, found ε = {eps_found:.2f}\n"
             f"samples drawn: {r.iterations}{' (the cap)' if r.iterations >= 1000 else ''}; "
             f"needed for the found ε: {k_needed:.0f}\n"
             + "\n".join(f"{name:25s} {c:4d}" for (name, _), c in zip(_VERDICTS, counts))
-            + f"\nworst corner error: {err:.1f} px")
+            + f"\nworst corner error: {err:.1f} px"
+        )
 
     controls = {
         "outliers": slider(0.4, 0.0, 0.8, 0.05, "outlier fraction ε"),
@@ -301,6 +512,7 @@ def ransac_outliers() -> Demo:
 
 
 # ----------------------------------------------------------------------------- forward vs inverse
+
 
 @register(lesson="07", sweep={"scale": [0.6, 1.5, 2.8], "angle": [0.0, 25.0]})
 def forward_vs_inverse() -> Demo:
@@ -320,20 +532,37 @@ def forward_vs_inverse() -> Demo:
     def update(v: dict, state: dict) -> None:
         C = np.array([[1.0, 0, out_hw[1] / 2], [0, 1, out_hw[0] / 2], [0, 0, 1]])
         P = np.array([[1.0, 0, -39.5], [0, 1, -29.5], [0, 0, 1]])
-        H = hg.compose(C, hg.similarity(v["scale"], np.radians(v["angle"])), hg.projective(v=(1e-3, 0)), P)
+        H = hg.compose(
+            C, hg.similarity(v["scale"], np.radians(v["angle"])), hg.projective(v=(1e-3, 0)), P
+        )
         fwd = forward_warp(pic, H, out_hw)
-        inv = warp_perspective(pic, H, out_hw, interpolation="nearest", method="cv2")  # same picture, fast
+        inv = warp_perspective(
+            pic, H, out_hw, interpolation="nearest", method="cv2"
+        )  # same picture, fast
         im_f.set_data(fwd)
         im_i.set_data(inv)
         covered = warp_perspective(ones, H, out_hw, interpolation="nearest", method="cv2") > 0
         inner = covered.copy()
-        inner[1:-1, 1:-1] &= covered[:-2, 1:-1] & covered[2:, 1:-1] & covered[1:-1, :-2] & covered[1:-1, 2:]
+        inner[1:-1, 1:-1] &= (
+            covered[:-2, 1:-1] & covered[2:, 1:-1] & covered[1:-1, :-2] & covered[1:-1, 2:]
+        )
         reached = forward_warp(ones, H, out_hw) > 0
         holes = float(np.mean(~reached[inner])) if inner.any() else 0.0
         state.update(H=H, hole_fraction=holes)
-        readout.value = monospace(f"holes in the forward warp: {100 * holes:.0f}% of the covered area\n"
-                             f"holes in the inverse warp: 0%")
+        readout.value = monospace(
+            f"holes in the forward warp: {100 * holes:.0f}% of the covered area\n"
+            f"holes in the inverse warp: 0%"
+        )
 
-    controls = {"scale": slider(2.0, 0.4, 3.0, 0.05, "scale"), "angle": slider(15.0, -45.0, 45.0, 1.0, "rotation (°)")}
-    return build_demo("forward_vs_inverse", controls, view, update, title="Forward versus inverse warping",
-                      extra=[readout])
+    controls = {
+        "scale": slider(2.0, 0.4, 3.0, 0.05, "scale"),
+        "angle": slider(15.0, -45.0, 45.0, 1.0, "rotation (°)"),
+    }
+    return build_demo(
+        "forward_vs_inverse",
+        controls,
+        view,
+        update,
+        title="Forward versus inverse warping",
+        extra=[readout],
+    )

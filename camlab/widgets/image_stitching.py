@@ -5,6 +5,7 @@ nearest neighbours, warps and blends are computed once and cached by
 :mod:`camlab.data.panorama_examples`; sliders only re-filter, re-score or choose among
 precomputed images, so every update stays fast.
 """
+
 from __future__ import annotations
 
 import ipywidgets as W
@@ -20,6 +21,7 @@ from ..projective import map_points
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import log_slider, monospace
 
+
 def _rgba(image: np.ndarray) -> np.ndarray:
     """An image as opaque uint8 RGBA: what Agg draws fastest (no conversion at every redraw)."""
     a = np.asarray(image)
@@ -33,6 +35,7 @@ def _rgba(image: np.ndarray) -> np.ndarray:
 
 # ----------------------------------------------------------------------------- matches
 
+
 @register(lesson="09", sweep={"ratio": [0.6, 0.8, 0.95, 1.0], "mutual": [True, False]})
 def feature_matches() -> Demo:
     """SIFT matches between views 0 and 1: loosen the ratio test and watch wrong matches (red) appear."""
@@ -42,32 +45,50 @@ def feature_matches() -> Demo:
     ax = view.fig.subplots()
     art = draw_matches(ax, s.images[i], s.images[j], np.zeros((0, 2)), np.zeros((0, 2)))
     view.animate(art["good"], art["bad"])  # the images and keypoints stay: only the lines move
-    draw_keypoints(ax, feats[i].points, feats[i].sizes, color="yellow", path_effects=palette.halo(0.7, "black"))
-    draw_keypoints(ax, feats[j].points + [art["offset"], 0], feats[j].sizes, color="yellow", path_effects=palette.halo(0.7, "black"))
-    ax.set_title(f"views {i} and {j}: green = confirmed by the true homography, red = wrong match", fontsize=9)
+    draw_keypoints(
+        ax, feats[i].points, feats[i].sizes, color="yellow", path_effects=palette.halo(0.7, "black")
+    )
+    draw_keypoints(
+        ax,
+        feats[j].points + [art["offset"], 0],
+        feats[j].sizes,
+        color="yellow",
+        path_effects=palette.halo(0.7, "black"),
+    )
+    ax.set_title(
+        f"views {i} and {j}: green = confirmed by the true homography, red = wrong match",
+        fontsize=9,
+    )
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
         m = ft.filter_matches(knn[(i, j)], v["ratio"], v["mutual"])
         good = pe.correct_matches(s, i, j, m.src, m.dst)
         seg = match_segments(m.src, m.dst, art["offset"])
-        show = np.arange(len(seg)) % max(1, len(seg) // 200 + 1) == 0  # draw at most ~200 lines (speed)
+        show = (
+            np.arange(len(seg)) % max(1, len(seg) // 200 + 1) == 0
+        )  # draw at most ~200 lines (speed)
         art["good"].set_segments(seg[good & show])
         art["bad"].set_segments(seg[~good & show])
         n, nbad = len(good), int((~good).sum())
         state.update(matches=n, wrong=nbad, precision=(n - nbad) / n if n else float("nan"))
-        readout.value = monospace(f"keypoints: {len(feats[i].points)} / {len(feats[j].points)}\n"
-                             f"matches kept: {n}\nwrong (red): {nbad} ({100 * nbad / max(n, 1):.0f}%)"
-                             + ("\n(at most 200 lines drawn)" if n > 200 else ""))
+        readout.value = monospace(
+            f"keypoints: {len(feats[i].points)} / {len(feats[j].points)}\n"
+            f"matches kept: {n}\nwrong (red): {nbad} ({100 * nbad / max(n, 1):.0f}%)"
+            + ("\n(at most 200 lines drawn)" if n > 200 else "")
+        )
 
     controls = {
         "ratio": slider(0.75, 0.4, 1.0, 0.01, "ratio test r"),
         "mutual": W.Checkbox(value=False, description="mutual check"),
     }
-    return build_demo("feature_matches", controls, view, update, title="Feature matching", extra=[readout])
+    return build_demo(
+        "feature_matches", controls, view, update, title="Feature matching", extra=[readout]
+    )
 
 
 # ----------------------------------------------------------------------------- RANSAC
+
 
 @register(lesson="09", sweep={"threshold": [0.03, 0.05, 3.0, 15.0, 40.0], "ratio": [0.95, 0.7]})
 def ransac_registration() -> Demo:
@@ -80,21 +101,61 @@ def ransac_registration() -> Demo:
     ax.set_xticks([])
     ax.set_yticks([])
     ax.set_title(f"matches in image {j}; frame of image {i} mapped by H", fontsize=9)
-    inl = view.animate(ax.plot([], [], ".", color=palette.GREEN, ms=4, label="inliers", path_effects=palette.halo())[0])
-    outl = view.animate(ax.plot([], [], "x", color=palette.RED, ms=4, label="outliers", path_effects=palette.halo())[0])
-    outline(ax, s.true_homography(i, j), imgs[i].shape, color="white", lw=2, label="true", path_effects=palette.halo(2, "black"))
-    est_box = view.animate(outline(ax, np.eye(3), imgs[i].shape, color=palette.BLUE, lw=1.5, ls="--", label="RANSAC", path_effects=palette.halo(1.5)))
+    inl = view.animate(
+        ax.plot(
+            [], [], ".", color=palette.GREEN, ms=4, label="inliers", path_effects=palette.halo()
+        )[0]
+    )
+    outl = view.animate(
+        ax.plot(
+            [], [], "x", color=palette.RED, ms=4, label="outliers", path_effects=palette.halo()
+        )[0]
+    )
+    outline(
+        ax,
+        s.true_homography(i, j),
+        imgs[i].shape,
+        color="white",
+        lw=2,
+        label="true",
+        path_effects=palette.halo(2, "black"),
+    )
+    est_box = view.animate(
+        outline(
+            ax,
+            np.eye(3),
+            imgs[i].shape,
+            color=palette.BLUE,
+            lw=1.5,
+            ls="--",
+            label="RANSAC",
+            path_effects=palette.halo(1.5),
+        )
+    )
     h, w = imgs[j].shape[:2]
     ax.set(xlim=(-0.5, w - 0.5), ylim=(h - 0.5, -0.5))
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.02), ncols=4, fontsize=7, facecolor="0.75")
-    ax_e.set(xlabel="transfer error per match (px, log scale)",
-             ylabel="number of matches\n(relative to the tallest bar)", xscale="log", xlim=(0.02, 300), ylim=(0, 1.55),
-             yticks=[0, 0.5, 1])
+    ax.legend(
+        loc="upper center", bbox_to_anchor=(0.5, -0.02), ncols=4, fontsize=7, facecolor="0.75"
+    )
+    ax_e.set(
+        xlabel="transfer error per match (px, log scale)",
+        ylabel="number of matches\n(relative to the tallest bar)",
+        xscale="log",
+        xlim=(0.02, 300),
+        ylim=(0, 1.55),
+        yticks=[0, 0.5, 1],
+    )
     # the verdict in the figure (the static picture has no side panel), above the tallest bar
-    verdict = view.animate(ax_e.text(0.5, 0.97, "", transform=ax_e.transAxes, ha="center", va="top", fontsize=8))
+    verdict = view.animate(
+        ax_e.text(0.5, 0.97, "", transform=ax_e.transAxes, ha="center", va="top", fontsize=8)
+    )
     ax_e.set_title("residuals under H (red: threshold)", fontsize=9)
-    bins = np.logspace(np.log10(0.02), np.log10(300), 43)  # the first bar also counts errors below 0.02 px
-    bars = ax_e.bar(bins[:-1], np.zeros(len(bins) - 1), width=np.diff(bins), align="edge", color="0.6")
+    bins = np.logspace(
+        np.log10(0.02), np.log10(300), 43
+    )  # the first bar also counts errors below 0.02 px
+    bars = ax_e.bar(
+        bins[:-1], np.zeros(len(bins) - 1), width=np.diff(bins), align="edge", color="0.6"
+    )
     view.animate(*bars)
     thr_line = view.animate(ax_e.axvline(3, color="tab:red", lw=1.5))
     readout = W.HTML()
@@ -103,7 +164,9 @@ def ransac_registration() -> Demo:
 
     def update(v: dict, state: dict) -> None:
         m = ft.filter_matches(knn[(i, j)], v["ratio"])
-        r = st.register_pair(feats[i], feats[j], matches=m, threshold=v["threshold"], rng=np.random.default_rng(0))
+        r = st.register_pair(
+            feats[i], feats[j], matches=m, threshold=v["threshold"], rng=np.random.default_rng(0)
+        )
         thr_line.set_xdata([v["threshold"], v["threshold"]])
         if r.H is None:
             inl.set_data([], [])
@@ -122,33 +185,53 @@ def ransac_registration() -> Demo:
         top = max(counts.max(), 1)
         for b, c in zip(bars, counts):
             b.set_height(c / top)
-        err = float(np.max(np.linalg.norm(map_points(r.H, corners) - map_points(true_H, corners), axis=1)))
+        err = float(
+            np.max(np.linalg.norm(map_points(r.H, corners) - map_points(true_H, corners), axis=1))
+        )
         good = pe.correct_matches(s, i, j, m.src, m.dst)
-        state.update(inliers=int(r.inliers.sum()), corner_error=err, accepted=r.accepted,
-                     false_inliers=int((r.inliers & ~good).sum()))
+        state.update(
+            inliers=int(r.inliers.sum()),
+            corner_error=err,
+            accepted=r.accepted,
+            false_inliers=int((r.inliers & ~good).sum()),
+        )
         need = max(15, int(np.floor(8 + 0.3 * len(m.src))) + 1)  # register_pair's acceptance test
-        verdict.set_text(f"{int(r.inliers.sum())} of {len(m.src)} matches are inliers "
-                         f"({int((r.inliers & ~good).sum())} of them wrong)\n"
-                         f"worst corner vs the true H: {err:.2f} px\n"
-                         + ("accepted" if r.accepted else f"rejected: {r.reason.split(':')[0]} (need {need})"))
-        readout.value = monospace(f"matches: {len(m.src)}\ninliers: {int(r.inliers.sum())} "
-                             f"({int((r.inliers & ~good).sum())} of them wrong)\n"
-                             f"inlier RMS: {r.residual_rms:.2f} px\nworst corner vs truth: {err:.2f} px\n"
-                             f"accepted: {r.accepted} {r.reason}")
+        verdict.set_text(
+            f"{int(r.inliers.sum())} of {len(m.src)} matches are inliers "
+            f"({int((r.inliers & ~good).sum())} of them wrong)\n"
+            f"worst corner vs the true H: {err:.2f} px\n"
+            + ("accepted" if r.accepted else f"rejected: {r.reason.split(':')[0]} (need {need})")
+        )
+        readout.value = monospace(
+            f"matches: {len(m.src)}\ninliers: {int(r.inliers.sum())} "
+            f"({int((r.inliers & ~good).sum())} of them wrong)\n"
+            f"inlier RMS: {r.residual_rms:.2f} px\nworst corner vs truth: {err:.2f} px\n"
+            f"accepted: {r.accepted} {r.reason}"
+        )
 
     controls = {
         "threshold": log_slider(3.0, 0.03, 40.0, 0.01, "threshold (px)"),
         "ratio": slider(0.9, 0.5, 1.0, 0.01, "ratio test r"),
     }
-    return build_demo("ransac_registration", controls, view, update, title="RANSAC on SIFT matches", extra=[readout])
+    return build_demo(
+        "ransac_registration",
+        controls,
+        view,
+        update,
+        title="RANSAC on SIFT matches",
+        extra=[readout],
+    )
 
 
 # ----------------------------------------------------------------------------- canvas
 
+
 def _frame(shape) -> np.ndarray:
     """The closed border polygon of an image of ``shape`` (pixel edges at -0.5 and w - 0.5)."""
     h, w = shape[:2]
-    return np.array([[-0.5, -0.5], [w - 0.5, -0.5], [w - 0.5, h - 0.5], [-0.5, h - 0.5], [-0.5, -0.5]])
+    return np.array(
+        [[-0.5, -0.5], [w - 0.5, -0.5], [w - 0.5, h - 0.5], [-0.5, h - 0.5], [-0.5, -0.5]]
+    )
 
 
 def _fit(shape, box) -> tuple[float, float, float]:
@@ -209,10 +292,21 @@ def panorama_canvas() -> Demo:
     ax = view.fig.subplots()
     im = view.animate(ax.imshow(np.zeros((10, 10, 3))))
     colors = palette.SERIES[:4]
-    lines = [view.animate(ax.plot([], [], color=c, lw=1.5, path_effects=palette.halo(1.5), label=f"image {k}")[0])
-             for k, c in enumerate(colors)]
+    lines = [
+        view.animate(
+            ax.plot([], [], color=c, lw=1.5, path_effects=palette.halo(1.5), label=f"image {k}")[0]
+        )
+        for k, c in enumerate(colors)
+    ]
     # below the axes: over the (animated) panorama it would be hidden by every live frame
-    ax.legend(handles=lines, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncols=4, fontsize=8, title="outline of")
+    ax.legend(
+        handles=lines,
+        loc="upper center",
+        bbox_to_anchor=(0.5, 0.0),
+        ncols=4,
+        fontsize=8,
+        title="outline of",
+    )
     ax.set(xlim=(-0.5, box[1] - 0.5), ylim=(box[0] - 0.5, -0.5), aspect="equal")
     ax.set_xticks([])
     ax.set_yticks([])
@@ -230,17 +324,28 @@ def panorama_canvas() -> Demo:
             p = _fitted_points(map_points(c.homographies[k], _frame(small[k].shape)), c.shape, box)
             ln.set_data(p[:, 0], p[:, 1])
         scale = _fit(c.shape, box)[0]
-        title.set_text(f"reference image {ref}: canvas {ww} x {hh} px (160 x 120 images), shown x{scale:.2f} to fit")
+        title.set_text(
+            f"reference image {ref}: canvas {ww} x {hh} px (160 x 120 images), shown x{scale:.2f} to fit"
+        )
         state.update(reference=ref, canvas=(hh, ww), T=c.T, display_scale=scale)
-        readout.value = monospace(f"reference image: {ref}\ncanvas: {ww} x {hh} px\n"
-                             f"translation T: ({int(round(c.T[0, 2])):+d}, {int(round(c.T[1, 2])):+d}) px\n"
-                             f"best-connected image: {graph.reference}")
+        readout.value = monospace(
+            f"reference image: {ref}\ncanvas: {ww} x {hh} px\n"
+            f"translation T: ({int(round(c.T[0, 2])):+d}, {int(round(c.T[1, 2])):+d}) px\n"
+            f"best-connected image: {graph.reference}"
+        )
 
-    controls = {"reference": W.IntSlider(value=graph.reference, min=0, max=len(small) - 1, description="reference")}
-    return build_demo("panorama_canvas", controls, view, update, title="The panorama canvas", extra=[readout])
+    controls = {
+        "reference": W.IntSlider(
+            value=graph.reference, min=0, max=len(small) - 1, description="reference"
+        )
+    }
+    return build_demo(
+        "panorama_canvas", controls, view, update, title="The panorama canvas", extra=[readout]
+    )
 
 
 # ----------------------------------------------------------------------------- blending
+
 
 @register(lesson="09", sweep={"method": list(st.BLENDS), "gains": [False, True], "levels": [1, 5]})
 def blending_seams() -> Demo:
@@ -266,7 +371,9 @@ def blending_seams() -> Demo:
     im = view.animate(ax.imshow(np.zeros((hh, ww, 3), np.float32), interpolation="nearest"))
     from matplotlib.patches import Rectangle
 
-    view.animate(ax.add_patch(Rectangle((u0 - 0.5, v0 - 0.5), z, z, fill=False, color="yellow", lw=1.5)))  # over the image
+    view.animate(
+        ax.add_patch(Rectangle((u0 - 0.5, v0 - 0.5), z, z, fill=False, color="yellow", lw=1.5))
+    )  # over the image
     ax.set_xticks([])
     ax.set_yticks([])
     ax.set_title("two views, exposures differ by 30%", fontsize=9)
@@ -284,11 +391,15 @@ def blending_seams() -> Demo:
         key = (v["method"], bool(v["gains"]), int(v["levels"]) if v["method"] == "multiband" else 0)
         out, rgba = cache[key]
         im.set_data(rgba)
-        imz.set_data(rgba[v0:v0 + z, u0:u0 + z])
-        jump = jumps[key]  # the exposure step across the seam, grey levels (overwrite: the last image's border)
+        imz.set_data(rgba[v0 : v0 + z, u0 : u0 + z])
+        jump = jumps[
+            key
+        ]  # the exposure step across the seam, grey levels (overwrite: the last image's border)
         state.update(method=v["method"], seam_jump=jump, image=out)
-        readout.value = monospace(f"blend: {v['method']}\ngains: {np.round(gains, 3).tolist() if v['gains'] else 'off'}\n"
-                             f"mean step across the seam: {jump:.1f} grey levels")
+        readout.value = monospace(
+            f"blend: {v['method']}\ngains: {np.round(gains, 3).tolist() if v['gains'] else 'off'}\n"
+            f"mean step across the seam: {jump:.1f} grey levels"
+        )
 
     controls = {
         "method": W.Dropdown(options=list(st.BLENDS), value="overwrite", description="blend"),
@@ -299,6 +410,7 @@ def blending_seams() -> Demo:
 
 
 # ----------------------------------------------------------------------------- full panorama
+
 
 @register(lesson="09", sweep={"projection": ["planar", "cylindrical"], "outlines": [True, False]})
 def full_panorama() -> Demo:
@@ -312,10 +424,23 @@ def full_panorama() -> Demo:
     ax = view.fig.subplots()
     im = view.animate(ax.imshow(np.zeros((10, 10, 3))))
     colors = palette.SERIES[:4]
-    lines = [view.animate(ax.plot([], [], color=c, lw=1.2, path_effects=palette.halo(1.2), label=f"view {k}")[0]) for k, c in enumerate(colors)]
+    lines = [
+        view.animate(
+            ax.plot([], [], color=c, lw=1.2, path_effects=palette.halo(1.2), label=f"view {k}")[0]
+        )
+        for k, c in enumerate(colors)
+    ]
     # below the axes (over the animated panorama it would be hidden); animated, so it goes with the outlines
-    legend = view.animate(ax.legend(handles=lines, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncols=4, fontsize=8,
-                                    title="outline of"))
+    legend = view.animate(
+        ax.legend(
+            handles=lines,
+            loc="upper center",
+            bbox_to_anchor=(0.5, 0.0),
+            ncols=4,
+            fontsize=8,
+            title="outline of",
+        )
+    )
     ax.set(xlim=(-0.5, box[1] - 0.5), ylim=(box[0] - 0.5, -0.5), aspect="equal")
     ax.set_xticks([])
     ax.set_yticks([])
@@ -336,18 +461,35 @@ def full_panorama() -> Demo:
                 ln.set_data([], [])
         legend.set_visible(bool(v["outlines"]))
         scale = _fit((hh, ww), box)[0]
-        title.set_text(f"{v['projection']} canvas: {ww} x {hh} px, reference view {r.reference}, shown x{scale:.2f} to fit")
-        state.update(projection=v["projection"], shape=(hh, ww), reference=r.reference, display_scale=scale,
-                     outlines_drawn=sum(len(ln.get_xdata()) > 0 for ln in lines), legend=legend.get_visible())
-        rows = "\n".join(f"{p.i}-{p.j}: {p.matches:4d} matches {p.inliers:4d} inliers "
-                         f"rms {p.residual_rms:.2f} {'ok' if p.accepted else 'rejected'}" for p in r.pairs)
-        readout.value = monospace(f"{v['projection']}: {ww} x {hh} px, reference {r.reference}\n{rows}")
+        title.set_text(
+            f"{v['projection']} canvas: {ww} x {hh} px, reference view {r.reference}, shown x{scale:.2f} to fit"
+        )
+        state.update(
+            projection=v["projection"],
+            shape=(hh, ww),
+            reference=r.reference,
+            display_scale=scale,
+            outlines_drawn=sum(len(ln.get_xdata()) > 0 for ln in lines),
+            legend=legend.get_visible(),
+        )
+        rows = "\n".join(
+            f"{p.i}-{p.j}: {p.matches:4d} matches {p.inliers:4d} inliers "
+            f"rms {p.residual_rms:.2f} {'ok' if p.accepted else 'rejected'}"
+            for p in r.pairs
+        )
+        readout.value = monospace(
+            f"{v['projection']}: {ww} x {hh} px, reference {r.reference}\n{rows}"
+        )
 
     controls = {
-        "projection": W.Dropdown(options=["planar", "cylindrical"], value="planar", description="projection"),
+        "projection": W.Dropdown(
+            options=["planar", "cylindrical"], value="planar", description="projection"
+        ),
         "outlines": W.Checkbox(value=True, description="image outlines"),
     }
-    return build_demo("full_panorama", controls, view, update, title="The panorama", extra=[readout])
+    return build_demo(
+        "full_panorama", controls, view, update, title="The panorama", extra=[readout]
+    )
 
 
 # ----------------------------------------------------------------------------- plane, cylinder, sphere
@@ -363,8 +505,11 @@ def _gallery() -> dict:
         if p.image is None:
             gallery[(n, proj)] = (None, f"{n} views, {p.fov_deg:.0f} degrees: {p.reason}")
         else:
-            gallery[(n, proj)] = (_place(_rgba(p.image)), f"{n} views, {p.fov_deg:.0f} degrees of view: {proj} canvas "
-                                                          f"{p.shape[1]} x {p.shape[0]} px (shown scaled to fit)")
+            gallery[(n, proj)] = (
+                _place(_rgba(p.image)),
+                f"{n} views, {p.fov_deg:.0f} degrees of view: {proj} canvas "
+                f"{p.shape[1]} x {p.shape[0]} px (shown scaled to fit)",
+            )
     return gallery
 
 
@@ -372,11 +517,14 @@ def _place(rgba: np.ndarray) -> np.ndarray:
     """An RGBA image that fits in :data:`BOX`, placed in the middle of a white BOX."""
     out = np.full((*BOX, 4), 255, np.uint8)
     x0, y0 = (BOX[1] - rgba.shape[1]) // 2, (BOX[0] - rgba.shape[0]) // 2
-    out[y0:y0 + rgba.shape[0], x0:x0 + rgba.shape[1]] = rgba
+    out[y0 : y0 + rgba.shape[0], x0 : x0 + rgba.shape[1]] = rgba
     return out
 
 
-@register(lesson="09", sweep={"views": [2, 3, 4, 5, 6], "projection": ["planar", "cylindrical", "spherical"]})
+@register(
+    lesson="09",
+    sweep={"views": [2, 3, 4, 5, 6], "projection": ["planar", "cylindrical", "spherical"]},
+)
 def canvas_projections() -> Demo:
     """The same photos on a plane, a cylinder and a sphere as the turn grows (precomputed previews)."""
     gallery = _gallery()
@@ -384,8 +532,19 @@ def canvas_projections() -> Demo:
     ax = view.fig.subplots()
     blank = np.full((*BOX, 4), 255, np.uint8)
     im = view.animate(ax.imshow(blank, interpolation="nearest"))
-    msg = view.animate(ax.text(0.5, 0.5, "", transform=ax.transAxes, ha="center", va="center", fontsize=10,
-                               color="tab:red", wrap=True))
+    msg = view.animate(
+        ax.text(
+            0.5,
+            0.5,
+            "",
+            transform=ax.transAxes,
+            ha="center",
+            va="center",
+            fontsize=10,
+            color="tab:red",
+            wrap=True,
+        )
+    )
     ax.set(xlim=(-0.5, BOX[1] - 0.5), ylim=(BOX[0] - 0.5, -0.5), aspect="equal")
     ax.set_xticks([])
     ax.set_yticks([])
@@ -400,19 +559,31 @@ def canvas_projections() -> Demo:
             im.set_data(img)
             msg.set_text("")
         readout.value = monospace(text)
-        state.update(views=v["views"], projection=v["projection"], failed=img is None,
-                     shape=None if img is None else img.shape[:2])
+        state.update(
+            views=v["views"],
+            projection=v["projection"],
+            failed=img is None,
+            shape=None if img is None else img.shape[:2],
+        )
 
     controls = {
         "views": W.IntSlider(value=3, min=2, max=6, description="views"),
-        "projection": W.Dropdown(options=["planar", "cylindrical", "spherical"], value="planar",
-                                 description="canvas"),
+        "projection": W.Dropdown(
+            options=["planar", "cylindrical", "spherical"], value="planar", description="canvas"
+        ),
     }
-    return build_demo("canvas_projections", controls, view, update, title="Plane, cylinder, sphere",
-                      extra=[readout])
+    return build_demo(
+        "canvas_projections",
+        controls,
+        view,
+        update,
+        title="Plane, cylinder, sphere",
+        extra=[readout],
+    )
 
 
 # ----------------------------------------------------------------------------- parallax
+
 
 def _with_edges(rgba: np.ndarray, edges) -> np.ndarray:
     """Paint view 0's edges red and view 1's cyan (white where both) onto an RGBA image."""
@@ -426,29 +597,59 @@ def _with_edges(rgba: np.ndarray, edges) -> np.ndarray:
     return out
 
 
-@register(lesson="09", sweep={"baseline": list(pe.BASELINES[::2]), "method": ["feather", "multiband"], "edges": [True, False]})
+@register(
+    lesson="09",
+    sweep={
+        "baseline": list(pe.BASELINES[::2]),
+        "method": ["feather", "multiband"],
+        "edges": [True, False],
+    },
+)
 def parallax_ghosting() -> Demo:
     """Move the camera sideways between shots: near objects no longer fit the homography and ghost."""
     pairs = pe.parallax_pairs()
-    box = (280, 460)  # the axes' units: (height, width); every baseline's canvas is scaled to fill it
+    box = (
+        280,
+        460,
+    )  # the axes' units: (height, width); every baseline's canvas is scaled to fill it
     view = FigureView(figsize=(9, 3.6))
     ax = view.fig.subplots()
-    im = view.animate(ax.imshow(np.zeros((10, 10, 3)), interpolation="nearest"))  # one-pixel edges stay crisp
+    im = view.animate(
+        ax.imshow(np.zeros((10, 10, 3)), interpolation="nearest")
+    )  # one-pixel edges stay crisp
     ax.set(xlim=(-0.5, box[1] - 0.5), ylim=(box[0] - 0.5, -0.5), aspect="equal")
     ax.set_xticks([])
     ax.set_yticks([])
     title = view.animate(ax.set_title(" ", fontsize=9))
     from matplotlib.patches import Patch
 
-    key = [Patch(facecolor=np.array(c) / 255, edgecolor="0.3", label=t) for c, t in
-           (((255, 40, 40), "edge in view 0 only"), ((0, 230, 255), "edge in view 1 only"), ((255, 255, 255), "edge in both"))]
+    key = [
+        Patch(facecolor=np.array(c) / 255, edgecolor="0.3", label=t)
+        for c, t in (
+            ((255, 40, 40), "edge in view 0 only"),
+            ((0, 230, 255), "edge in view 1 only"),
+            ((255, 255, 255), "edge in both"),
+        )
+    ]
     # beside the picture, not over it; shown only while the edges are painted
-    legend = view.animate(ax.legend(handles=key, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8,
-                                    title="edges", facecolor="0.55"))
+    legend = view.animate(
+        ax.legend(
+            handles=key,
+            loc="upper left",
+            bbox_to_anchor=(1.01, 1.0),
+            fontsize=8,
+            title="edges",
+            facecolor="0.55",
+        )
+    )
     readout = W.HTML()
 
-    shown = {(b, m, e): _with_edges(_rgba(out), p.edges if e else None)
-             for b, p in pairs.items() for m, out in p.blends.items() for e in (False, True)}
+    shown = {
+        (b, m, e): _with_edges(_rgba(out), p.edges if e else None)
+        for b, p in pairs.items()
+        for m, out in p.blends.items()
+        for e in (False, True)
+    }
 
     def update(v: dict, state: dict) -> None:
         b = float(v["baseline"])
@@ -460,18 +661,35 @@ def parallax_ghosting() -> Demo:
         legend.set_visible(bool(v["edges"]))
         n, k = len(reg.matches.src), int(reg.inliers.sum())
         diff = 255 * p.misalignment
-        title.set_text(f"camera moved {100 * b:.0f} cm: {k} of {n} matches fit one homography, "
-                       f"mean |view 0 - view 1| on the overlap {diff:.1f} grey levels")
-        state.update(baseline=b, edges=bool(v["edges"]), inlier_fraction=k / max(n, 1), residual_rms=reg.residual_rms,
-                     misalignment=diff, method=v["method"], image=out)
-        readout.value = monospace(f"camera moved {100 * b:.0f} cm\nmatches: {n}\n"
-                             f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\ninlier RMS: {reg.residual_rms:.2f} px\n"
-                             f"mean |view 0 - view 1| on the overlap:\n  {diff:.1f} grey levels\n"
-                             f"edges: red = view 0, cyan = view 1 (white where they agree)")
+        title.set_text(
+            f"camera moved {100 * b:.0f} cm: {k} of {n} matches fit one homography, "
+            f"mean |view 0 - view 1| on the overlap {diff:.1f} grey levels"
+        )
+        state.update(
+            baseline=b,
+            edges=bool(v["edges"]),
+            inlier_fraction=k / max(n, 1),
+            residual_rms=reg.residual_rms,
+            misalignment=diff,
+            method=v["method"],
+            image=out,
+        )
+        readout.value = monospace(
+            f"camera moved {100 * b:.0f} cm\nmatches: {n}\n"
+            f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\ninlier RMS: {reg.residual_rms:.2f} px\n"
+            f"mean |view 0 - view 1| on the overlap:\n  {diff:.1f} grey levels\n"
+            f"edges: red = view 0, cyan = view 1 (white where they agree)"
+        )
 
     controls = {
-        "baseline": W.SelectionSlider(options=list(pe.BASELINES), value=0.2, description="baseline (m)"),
-        "method": W.Dropdown(options=["feather", "multiband"], value="feather", description="blend"),
+        "baseline": W.SelectionSlider(
+            options=list(pe.BASELINES), value=0.2, description="baseline (m)"
+        ),
+        "method": W.Dropdown(
+            options=["feather", "multiband"], value="feather", description="blend"
+        ),
         "edges": W.Checkbox(value=True, description="both views' edges"),
     }
-    return build_demo("parallax_ghosting", controls, view, update, title="Parallax makes ghosts", extra=[readout])
+    return build_demo(
+        "parallax_ghosting", controls, view, update, title="Parallax makes ghosts", extra=[readout]
+    )

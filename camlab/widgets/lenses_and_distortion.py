@@ -1,4 +1,5 @@
 """Demos for lesson 02: the thin lens, depth of field, and lens distortion."""
+
 from __future__ import annotations
 
 import ipywidgets as W
@@ -13,7 +14,9 @@ from .controls import monospace
 SIZE = (480, 360)
 K_DOF = np.array([[560.0, 0.0, 239.5], [0.0, 560.0, 179.5], [0.0, 0.0, 1.0]])
 PITCH = 5e-6
-F_DOF = K_DOF[0, 0] * PITCH * 10  # 28 mm lens on a 50 um-pitch sensor: K above, strong, visible blur
+F_DOF = (
+    K_DOF[0, 0] * PITCH * 10
+)  # 28 mm lens on a 50 um-pitch sensor: K above, strong, visible blur
 PITCH_DOF = F_DOF / K_DOF[0, 0]
 
 
@@ -27,21 +30,25 @@ def thin_lens():
     view = FigureView(figsize=(8.6, 4))
     ax = view.fig.subplots()
     art = optics.draw_thin_lens(ax, 0.05, 0.2)
-    view.animate(art["object"], art["image"], *art["rays"], art["foci"], art["text"])   # the foci over the arrows
+    view.animate(
+        art["object"], art["image"], *art["rays"], art["foci"], art["text"]
+    )  # the foci over the arrows
 
     def update(values, state):
         f, asked = values["focal_mm"] * 1e-3, values["object_m"]
-        zo = max(asked, f * 1.05)  # slider corner (f > 57 mm): keep the object outside the focal length, and say so
+        zo = max(
+            asked, f * 1.05
+        )  # slider corner (f > 57 mm): keep the object outside the focal length, and say so
         state.update(optics.update_thin_lens(art, f, zo, requested=asked), object_held=zo != asked)
 
     return build_demo("thin_lens", controls, view, update, title="Thin lens")
 
 
-F_CONE = 0.05      # the focus-and-blur demo's 50 mm lens
-COC_OK = 0.03e-3   # acceptable blur circle, 0.03 mm (a 35 mm camera viewed as a print)
-PIXEL = 5e-6       # a pixel pitch to count the blur in (a 36 x 24 mm sensor of 7200 x 4800 pixels)
+F_CONE = 0.05  # the focus-and-blur demo's 50 mm lens
+COC_OK = 0.03e-3  # acceptable blur circle, 0.03 mm (a 35 mm camera viewed as a print)
+PIXEL = 5e-6  # a pixel pitch to count the blur in (a 36 x 24 mm sensor of 7200 x 4800 pixels)
 F_NUMBERS = [1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0, 16.0, 22.0, 32.0]
-C_AXIS_UM = (0.1, 1e4)   # the c(z) panel's blur axis (µm, log): a 0.5 µm blur drawn at its value
+C_AXIS_UM = (0.1, 1e4)  # the c(z) panel's blur axis (µm, log): a 0.5 µm blur drawn at its value
 SENSOR_MIN_MM = 50.04  # focuses at 62.6 m: beyond the hyperfocal distance of every f-number (f/1.4: 59.6 m at 30 µm)
 
 
@@ -51,14 +58,26 @@ def blur_curve_depths(focus: float) -> np.ndarray:
     return np.unique(np.concatenate([np.linspace(0.2, 5.0, 300), near_focus, [focus]]))
 
 
-@register(lesson="02", sweep={"f_number": [1.4, 8.0, 16.0, 32.0], "object_m": [0.3, 1.0, 2.0],
-                              "sensor_mm": [SENSOR_MIN_MM, 52.63, 60.0]})
+@register(
+    lesson="02",
+    sweep={
+        "f_number": [1.4, 8.0, 16.0, 32.0],
+        "object_m": [0.3, 1.0, 2.0],
+        "sensor_mm": [SENSOR_MIN_MM, 52.63, 60.0],
+    },
+)
 def focus_and_blur():
     """The cone of light from a point through the aperture, a movable sensor, the blur disc it cuts there
     (face on, zoomed to fit, over the sensor's pixels) and the blur circle c(z) of every depth."""
     controls = {
-        "f_number": W.SelectionSlider(options=F_NUMBERS, value=2.8, description="f-number N", continuous_update=True,
-                                      style={"description_width": "initial"}, layout=W.Layout(width="300px")),
+        "f_number": W.SelectionSlider(
+            options=F_NUMBERS,
+            value=2.8,
+            description="f-number N",
+            continuous_update=True,
+            style={"description_width": "initial"},
+            layout=W.Layout(width="300px"),
+        ),
         "object_m": slider(1.5, 0.3, 2.0, 0.01, "object distance z (m)"),
         "sensor_mm": slider(52.63, SENSOR_MIN_MM, 60.0, 0.01, "sensor behind lens z_s (mm)"),
     }
@@ -66,25 +85,55 @@ def focus_and_blur():
     ax_cone, ax_disc, ax_c = view.fig.subplots(1, 3, width_ratios=[1.5, 0.85, 1.1])
     art = optics.draw_focus_cone(ax_cone)
     disc = optics.draw_blur_disc(ax_disc, coc_um=COC_OK * 1e6)
-    curve, = ax_c.plot([], [], "k", label="c(z), this sensor position")
-    band = ax_c.axvspan(1, 2, color=palette.PURPLE, alpha=0.3, lw=0, label="depth of field (c < 30 µm)")
+    (curve,) = ax_c.plot([], [], "k", label="c(z), this sensor position")
+    band = ax_c.axvspan(
+        1, 2, color=palette.PURPLE, alpha=0.3, lw=0, label="depth of field (c < 30 µm)"
+    )
     # animated below: over the band; zorder 2.6, over the spines in a full draw as in a live frame
     coc_line = ax_c.axhline(COC_OK * 1e6, color=palette.PURPLE, ls="--", lw=1.2, zorder=2.6)
     airy = ax_c.axhline(1, color=palette.BROWN, ls=":", lw=1.8, zorder=2.6)
-    marker, = ax_c.plot([], [], "o", color=palette.GREEN, mec="k", ms=7, zorder=3, clip_on=False)
+    (marker,) = ax_c.plot([], [], "o", color=palette.GREEN, mec="k", ms=7, zorder=3, clip_on=False)
     ax_c.set_title(" \n \n ", fontsize=9)  # room for the three lines update writes
-    ax_c.set(xlim=(0.2, 5.0), yscale="log", ylim=C_AXIS_UM, xlabel="object distance z (m)",
-             ylabel="blur circle c (µm, log scale)")
+    ax_c.set(
+        xlim=(0.2, 5.0),
+        yscale="log",
+        ylim=C_AXIS_UM,
+        xlabel="object distance z (m)",
+        ylabel="blur circle c (µm, log scale)",
+    )
     # one legend for the three panels, under them: never over the cone, the discs, the band or the curve
     handles = {}
     for ax in (ax_cone, ax_disc, ax_c):
         for h, label in zip(*ax.get_legend_handles_labels()):
             handles.setdefault(label, h)
-    view.fig.legend(handles.values(), handles.keys(), loc="outside lower center", ncol=4, fontsize=8)
-    view.animate(*[art[k] for k in ("stop", "lens", "cone_in", "cone_out", "rays", "beyond", "point", "sensor", "focus",
-                                     "blur", "text")],
-                 *[disc[k] for k in ("grid", "blur", "ok", "airy", "bar", "bar_text", "text")],
-                 curve, band, coc_line, airy, marker, ax_c.title)
+    view.fig.legend(
+        handles.values(), handles.keys(), loc="outside lower center", ncol=4, fontsize=8
+    )
+    view.animate(
+        *[
+            art[k]
+            for k in (
+                "stop",
+                "lens",
+                "cone_in",
+                "cone_out",
+                "rays",
+                "beyond",
+                "point",
+                "sensor",
+                "focus",
+                "blur",
+                "text",
+            )
+        ],
+        *[disc[k] for k in ("grid", "blur", "ok", "airy", "bar", "bar_text", "text")],
+        curve,
+        band,
+        coc_line,
+        airy,
+        marker,
+        ax_c.title,
+    )
 
     def update(values, state):
         N, z_o, z_s = float(values["f_number"]), values["object_m"], values["sensor_mm"] * 1e-3
@@ -93,31 +142,53 @@ def focus_and_blur():
         s = float(lens.object_distance(F_CONE, z_s))  # the distance this sensor position focuses
         z = blur_curve_depths(s)
         # c = 0 at s: a floor below the axis, so the V runs off its bottom there
-        curve.set_data(z, np.maximum(lens.circle_of_confusion(F_CONE, N, s, z) * 1e6, C_AXIS_UM[0] / 2))
+        curve.set_data(
+            z, np.maximum(lens.circle_of_confusion(F_CONE, N, s, z) * 1e6, C_AXIS_UM[0] / 2)
+        )
         airy.set_ydata([state["airy"] * 1e6] * 2)
         dof = lens.depth_of_field(F_CONE, N, s, COC_OK)
         band.set_x(dof.near)
-        band.set_width(max(min(dof.far, 10.0) - dof.near, 0.0))   # focused far, the band may start beyond the view
+        band.set_width(
+            max(min(dof.far, 10.0) - dof.near, 0.0)
+        )  # focused far, the band may start beyond the view
         # the marker at its value; below the axis's floor, a down-pointing triangle on the bottom edge (off scale)
         c_um = state["c"] * 1e6
         below = c_um < C_AXIS_UM[0]
         marker.set_data([z_o], [C_AXIS_UM[0] if below else c_um])
         marker.set_marker("v" if below else "o")
         far = f"{dof.far:.3f} m" if np.isfinite(dof.far) else "infinity"
-        soft = "but the Airy disc alone > 30 µm" if state["airy"] > COC_OK else " "   # 3 lines always: the layout
-        ax_c.set_title(f"focused at {s:.3f} m; geometrically sharp\nfrom {dof.near:.3f} m to {far}\n{soft}", fontsize=9)
-        state.update(focus=s, near=dof.near, far=dof.far, c_px=state["c"] / PIXEL, marker_off_scale=bool(below))
+        soft = (
+            "but the Airy disc alone > 30 µm" if state["airy"] > COC_OK else " "
+        )  # 3 lines always: the layout
+        ax_c.set_title(
+            f"focused at {s:.3f} m; geometrically sharp\nfrom {dof.near:.3f} m to {far}\n{soft}",
+            fontsize=9,
+        )
+        state.update(
+            focus=s,
+            near=dof.near,
+            far=dof.far,
+            c_px=state["c"] / PIXEL,
+            marker_off_scale=bool(below),
+        )
 
-    return build_demo("focus_and_blur", controls, view, update, title="Focus, aperture and the blur circle")
+    return build_demo(
+        "focus_and_blur", controls, view, update, title="Focus, aperture and the blur circle"
+    )
 
 
 @register(lesson="02", sweep={"f_number": [1.4, 4.0, 16.0], "focus_m": [0.5, 0.6, 1.2, 2.4, 4.0]})
 def depth_of_field():
     """A scene of planes at 0.6, 1.2, 2.4 and 4 m rendered with thin-lens blur, above its blur curve."""
     controls = {
-        "f_number": W.SelectionSlider(options=[1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0, 16.0], value=2.8,
-                                      description="f-number N", continuous_update=True,
-                                      style={"description_width": "initial"}, layout=W.Layout(width="300px")),
+        "f_number": W.SelectionSlider(
+            options=[1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0, 16.0],
+            value=2.8,
+            description="f-number N",
+            continuous_update=True,
+            style={"description_width": "initial"},
+            layout=W.Layout(width="300px"),
+        ),
         "focus_m": slider(1.2, 0.5, 4.0, 0.05, "focus distance (m)"),
     }
     # 6.5 in at 90 dpi, 585 px wide: it fits beside the 300 px controls in JupyterLab's 968 px output area. The
@@ -125,19 +196,24 @@ def depth_of_field():
     # frame and a full draw place the same pixels: no resampling either way), the blur curve under it
     view = FigureView(figsize=(6.5, 7.8))
     width, height = view.fig.bbox.width, view.fig.bbox.height
-    left, bottom = 64, 300   # canvas pixels: room for the curve's y label, and for the curve under the image
+    left, bottom = (
+        64,
+        300,
+    )  # canvas pixels: room for the curve's y label, and for the curve under the image
     ax_img = view.fig.add_axes((left / width, bottom / height, SIZE[0] / width, SIZE[1] / height))
     ax_c = view.fig.add_axes((left / width, 68 / height, SIZE[0] / width, 194 / height))
-    view.fig.set_layout_engine("none")   # fixed pixel boxes, not constrained layout
+    view.fig.set_layout_engine("none")  # fixed pixel boxes, not constrained layout
     scene = scenes.depth_of_field_scene()
     im = images.show_image(ax_img, np.zeros((SIZE[1], SIZE[0], 3)))
     z = np.linspace(0.3, 5, 400)
-    curve, = ax_c.plot(z, np.full_like(z, 100.0), "k", zorder=3)  # over the plane markers, live and redrawn
+    (curve,) = ax_c.plot(
+        z, np.full_like(z, 100.0), "k", zorder=3
+    )  # over the plane markers, live and redrawn
     band = ax_c.axvspan(1, 2, color=palette.PURPLE, alpha=0.15, lw=0)
     # zorder 2.6: over the spines in a full draw too, as a live frame paints them over the cached background
     lines = [ax_c.axhline(2 * PITCH_DOF * 1e6, color=palette.PURPLE, ls="--", lw=1.2, zorder=2.6)]
     planes = {"small board": 0.6, "chart": 1.2, "large board": 2.4, "wall": 4.0}
-    for zp in planes.values():   # dark enough on the purple band (WCAG 1.4.11)
+    for zp in planes.values():  # dark enough on the purple band (WCAG 1.4.11)
         lines.append(ax_c.axvline(zp, color="0.4", lw=1.2, ls=(0, (4, 2)), zorder=2.6))
     # the planes named on a top axis, each above its line: no legend over the band or the curve
     top = ax_c.secondary_xaxis("top")
@@ -145,23 +221,45 @@ def depth_of_field():
     ax_c.set_xlim(0.3, 5)
     ax_c.set_ylim(5, 5000)
     ax_c.set_yscale("log")  # from the 2-px line to the blur at f/16 and f/1.4 on one readable scale
-    ax_c.set_xlabel("depth z (m); purple band: sharp, c < 2 px (purple dashes: 2 px = "
-                    f"{2 * PITCH_DOF * 1e6:.0f} µm)", fontsize=9)
+    ax_c.set_xlabel(
+        "depth z (m); purple band: sharp, c < 2 px (purple dashes: 2 px = "
+        f"{2 * PITCH_DOF * 1e6:.0f} µm)",
+        fontsize=9,
+    )
     ax_c.set_ylabel("blur circle c (µm, log scale)")
-    ax_img.set_title(f"f = {F_DOF * 1e3:.0f} mm thin lens; planes at 0.6, 1.2, 2.4 and 4 m", fontsize=10)
-    ax_img.set_xlabel(f"sensor: {SIZE[0]} x {SIZE[1]} pixels of {PITCH_DOF * 1e6:.0f} µm "
-                      f"({SIZE[0] * PITCH_DOF * 1e3:.0f} x {SIZE[1] * PITCH_DOF * 1e3:.0f} mm)", fontsize=9)
-    readout = W.HTML()  # the blur of each plane beside the sliders: canvas text costs ~4 ms per line per redraw
+    ax_img.set_title(
+        f"f = {F_DOF * 1e3:.0f} mm thin lens; planes at 0.6, 1.2, 2.4 and 4 m", fontsize=10
+    )
+    ax_img.set_xlabel(
+        f"sensor: {SIZE[0]} x {SIZE[1]} pixels of {PITCH_DOF * 1e6:.0f} µm "
+        f"({SIZE[0] * PITCH_DOF * 1e3:.0f} x {SIZE[1] * PITCH_DOF * 1e3:.0f} mm)",
+        fontsize=9,
+    )
+    readout = (
+        W.HTML()
+    )  # the blur of each plane beside the sliders: canvas text costs ~4 ms per line per redraw
     # the limits in the figure too (a screenshot keeps them), under the curve's x label: never over the band (an
     # axes' text, 62 px under it: a saved figure draws an axes' animated artists, not the figure's)
-    limits = ax_c.text(0.5, 0, "", ha="center", va="bottom", fontsize=9, clip_on=False,
-                       transform=offset_copy(ax_c.transAxes, fig=view.fig, y=-62, units="dots"))
-    view.animate(im, curve, band, limits, *lines)   # the lines too: over the moving band, live as in a full draw
+    limits = ax_c.text(
+        0.5,
+        0,
+        "",
+        ha="center",
+        va="bottom",
+        fontsize=9,
+        clip_on=False,
+        transform=offset_copy(ax_c.transAxes, fig=view.fig, y=-62, units="dots"),
+    )
+    view.animate(
+        im, curve, band, limits, *lines
+    )  # the lines too: over the moving band, live as in a full draw
 
     def update(values, state):
         N, s = float(values["f_number"]), values["focus_m"]
         # supersample=1: the blur itself anti-aliases, and it halves the update time
-        out = render.render(scene, K_DOF, SIZE, defocus=render.Defocus(N, s, PITCH_DOF, F_DOF), supersample=1)
+        out = render.render(
+            scene, K_DOF, SIZE, defocus=render.Defocus(N, s, PITCH_DOF, F_DOF), supersample=1
+        )
         im.set_data(out.irradiance)
         c = lens.circle_of_confusion(F_DOF, N, s, z)
         curve.set_ydata(c * 1e6)
@@ -169,15 +267,29 @@ def depth_of_field():
         far = min(dof.far, 5.0)
         band.set_x(dof.near)
         band.set_width(max(far - dof.near, 0.0))
-        state.update(near=dof.near, far=dof.far, coc_px={zp: float(lens.circle_of_confusion(F_DOF, N, s, zp)) / PITCH_DOF
-                                                         for zp in (0.6, 1.2, 2.4, 4.0)})
+        state.update(
+            near=dof.near,
+            far=dof.far,
+            coc_px={
+                zp: float(lens.circle_of_confusion(F_DOF, N, s, zp)) / PITCH_DOF
+                for zp in (0.6, 1.2, 2.4, 4.0)
+            },
+        )
         far_text = f"{dof.far:.2f} m" if np.isfinite(dof.far) else "infinity"
-        limits.set_text(f"f/{N:g}, focused at {s:.2f} m: sharp (purple band) from {dof.near:.2f} m to {far_text}")
-        blurs = "\n".join(f"  {name:<12}{zp:g} m: {state['coc_px'][zp]:.1f}" for name, zp in planes.items())
-        readout.value = monospace(f"N = {N}, focused at {s:.2f} m\nsharp (c < 2 px) from {dof.near:.2f} m to {far_text}\n"
-                                  f"blur circle (px):\n{blurs}")
+        limits.set_text(
+            f"f/{N:g}, focused at {s:.2f} m: sharp (purple band) from {dof.near:.2f} m to {far_text}"
+        )
+        blurs = "\n".join(
+            f"  {name:<12}{zp:g} m: {state['coc_px'][zp]:.1f}" for name, zp in planes.items()
+        )
+        readout.value = monospace(
+            f"N = {N}, focused at {s:.2f} m\nsharp (c < 2 px) from {dof.near:.2f} m to {far_text}\n"
+            f"blur circle (px):\n{blurs}"
+        )
 
-    return build_demo("depth_of_field", controls, view, update, title="Depth of field", extra=[readout])
+    return build_demo(
+        "depth_of_field", controls, view, update, title="Depth of field", extra=[readout]
+    )
 
 
 K_D = np.array([[420.0, 0.0, 239.5], [0.0, 420.0, 179.5], [0.0, 0.0, 1.0]])
@@ -193,8 +305,16 @@ def _grid_lines(n: int = 9, samples: int = 60) -> np.ndarray:
     return np.array(lines)
 
 
-@register(lesson="02", sweep={"k1": [-0.4, -0.35, 0.0, 0.25, 0.3], "k2": [-0.1, 0.1, 0.3], "p1": [-0.04, 0.03],
-                              "p2": [-0.03, 0.04], "undistort": [True, False]})
+@register(
+    lesson="02",
+    sweep={
+        "k1": [-0.4, -0.35, 0.0, 0.25, 0.3],
+        "k2": [-0.1, 0.1, 0.3],
+        "p1": [-0.04, 0.03],
+        "p2": [-0.03, 0.04],
+        "undistort": [True, False],
+    },
+)
 def lens_distortion():
     """Distortion sliders warp a rendered checkerboard and a grid; tick 'undistort' to undo it in both."""
     controls = {
@@ -209,20 +329,31 @@ def lens_distortion():
     board = render.checkerboard((11, 8), 0.04, t=(-0.2, -0.14, 0.45), px_per_square=32)
     # drawn smaller than its 480 x 360 pixels: area-averaged, or the square edges alias
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=255, interpolation="antialiased")
-    dots, = ax_img.plot([], [], "o", color=palette.RED, ms=3.5, path_effects=palette.halo())
+    (dots,) = ax_img.plot([], [], "o", color=palette.RED, ms=3.5, path_effects=palette.halo())
     ideal = _grid_lines()
     for k, ln in enumerate(ideal):  # the undistorted grid, drawn once in grey behind the bent one
         ax_grid.plot(*ln.T, color=palette.GREY, lw=0.8, label="no lens" if k == 0 else None)
-    bent = [ax_grid.plot(*ln.T, color=palette.BLUE, lw=1.2, label="through the lens" if k == 0 else None)[0]
-            for k, ln in enumerate(ideal)]
+    bent = [
+        ax_grid.plot(
+            *ln.T, color=palette.BLUE, lw=1.2, label="through the lens" if k == 0 else None
+        )[0]
+        for k, ln in enumerate(ideal)
+    ]
     ax_grid.set_xlim(-60, SIZE[0] + 60)
     ax_grid.set_ylim(SIZE[1] + 60, -60)
     ax_grid.set_aspect("equal")
-    ax_grid.plot([-0.5, SIZE[0] - 0.5, SIZE[0] - 0.5, -0.5, -0.5], [-0.5, -0.5, SIZE[1] - 0.5, SIZE[1] - 0.5, -0.5], "k",
-                 lw=1, label="image frame")
+    ax_grid.plot(
+        [-0.5, SIZE[0] - 0.5, SIZE[0] - 0.5, -0.5, -0.5],
+        [-0.5, -0.5, SIZE[1] - 0.5, SIZE[1] - 0.5, -0.5],
+        "k",
+        lw=1,
+        label="image frame",
+    )
     ax_grid.set_xlabel("u (px)")
     ax_grid.set_ylabel("v (px)")
-    ax_grid.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.15), ncol=3)  # below: never over the grid
+    ax_grid.legend(
+        fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.15), ncol=3
+    )  # below: never over the grid
     img_title = ax_img.set_title(" \n ", fontsize=10)  # two lines, as update writes
     grid_title = ax_grid.set_title(" \n ", fontsize=10)  # two lines, as update writes
     readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
@@ -238,22 +369,48 @@ def lens_distortion():
         if values["undistort"]:
             img = distortion.undistort_image(img, K_D, d)
             corners = distortion.undistort_pixels(corners, K_D, d)
-            through = [distortion.undistort_pixels(ln, K_D, d) for ln in through]   # back onto the straight grid
+            through = [
+                distortion.undistort_pixels(ln, K_D, d) for ln in through
+            ]  # back onto the straight grid
         im.set_data(img)
         dots.set_data(corners[:, 0], corners[:, 1])
         for line, ln in zip(bent, through):
             line.set_data(*ln.T)
-        img_title.set_text("the rendered board, undistorted\n(red: the true corners, undistorted)" if values["undistort"]
-                           else "the rendered board, as the lens\nrecords it (red: the true corners)")
-        grid_title.set_text("the grid through the lens, then undistorted:\nstraight again" if values["undistort"]
-                            else "a straight grid through the lens\n(grey: the same grid without it)")
+        img_title.set_text(
+            "the rendered board, undistorted\n(red: the true corners, undistorted)"
+            if values["undistort"]
+            else "the rendered board, as the lens\nrecords it (red: the true corners)"
+        )
+        grid_title.set_text(
+            "the grid through the lens, then undistorted:\nstraight again"
+            if values["undistort"]
+            else "a straight grid through the lens\n(grey: the same grid without it)"
+        )
         kind = distortion.classify_distortion(d, r_max=float(np.hypot(*SIZE) / 2 / K_D[0, 0]))
-        state.update(kind=kind, corner0=corners[0], max_shift=float(np.abs(
-            distortion.distort_pixels(ideal.reshape(-1, 2), K_D, d) - ideal.reshape(-1, 2)).max()),
-            grid_error=float(max(np.abs(ln - i).max() for ln, i in zip(through, ideal))))
-        readout.value = monospace(f"distortion: {kind}\nlargest shift {state['max_shift']:.1f} px\n"
-                                  + ("left: undistorted, lines straight again" if values["undistort"]
-                                     else "left: as the lens records it"))
+        state.update(
+            kind=kind,
+            corner0=corners[0],
+            max_shift=float(
+                np.abs(
+                    distortion.distort_pixels(ideal.reshape(-1, 2), K_D, d) - ideal.reshape(-1, 2)
+                ).max()
+            ),
+            grid_error=float(max(np.abs(ln - i).max() for ln, i in zip(through, ideal))),
+        )
+        readout.value = monospace(
+            f"distortion: {kind}\nlargest shift {state['max_shift']:.1f} px\n"
+            + (
+                "left: undistorted, lines straight again"
+                if values["undistort"]
+                else "left: as the lens records it"
+            )
+        )
 
-    return build_demo("lens_distortion", controls, view, update, title="Lens distortion (k1, k2, p1, p2)",
-                      extra=[readout])
+    return build_demo(
+        "lens_distortion",
+        controls,
+        view,
+        update,
+        title="Lens distortion (k1, k2, p1, p2)",
+        extra=[readout],
+    )

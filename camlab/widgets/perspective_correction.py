@@ -6,6 +6,7 @@ ratio are known. Corners are dragged with the mouse under ipympl, moved one at a
 the keyboard (a corner dropdown and two sliders), or typed into the corners text control
 ``"u0, v0; u1, v1; u2, v2; u3, v3"`` (TL, TR, BR, BL).
 """
+
 from __future__ import annotations
 
 from typing import Any
@@ -15,7 +16,14 @@ import numpy as np
 
 from .. import perspective as pp
 from ._base import Demo, FigureView, build_demo, register, slider
-from .controls import connect_corner_drag, corner_keys, corner_text, format_corners, monospace, parse_corners
+from .controls import (
+    connect_corner_drag,
+    corner_keys,
+    corner_text,
+    format_corners,
+    monospace,
+    parse_corners,
+)
 from ..plotting import palette
 
 _SHOW = 260  # the rectified view is drawn into a _SHOW x _SHOW box
@@ -28,13 +36,15 @@ def _fit(size_wh: tuple[int, int]) -> tuple[int, int]:
     return max(2, int(round(w * s))), max(2, int(round(h * s)))
 
 
-def _show_rectified(im: Any, image: np.ndarray, quad: np.ndarray, size_wh: tuple[int, int]) -> np.ndarray:
+def _show_rectified(
+    im: Any, image: np.ndarray, quad: np.ndarray, size_wh: tuple[int, int]
+) -> np.ndarray:
     """Rectify ``quad`` into a rectangle of ratio size_wh, drawn centred in the display box."""
     w, h = _fit(size_wh)
     r = pp.rectify_quadrilateral(image, quad, size=(w, h), method="cv2")
     box = np.full((_SHOW, _SHOW, 3), 255, np.uint8)
     y0, x0 = (_SHOW - h) // 2, (_SHOW - w) // 2
-    box[y0:y0 + h, x0:x0 + w] = r.image
+    box[y0 : y0 + h, x0 : x0 + w] = r.image
     im.set_data(box)
     return r.H
 
@@ -47,17 +57,26 @@ def _set_photo(im: Any, image: np.ndarray) -> None:
     nearly 1:1, twice as fast); the extent keeps the axes in photo pixel coordinates."""
     import cv2
 
-    im.set_data(cv2.resize(np.ascontiguousarray(image), _PHOTO_DISPLAY, interpolation=cv2.INTER_AREA))
+    im.set_data(
+        cv2.resize(np.ascontiguousarray(image), _PHOTO_DISPLAY, interpolation=cv2.INTER_AREA)
+    )
 
 
 def _photo_demo(photo_title: str, result_title: str, outline: dict):
     """The figure every lesson-10 demo uses: the photo (with an outline artist) and the result."""
     view = FigureView(figsize=(9, 4.2))
     ax_p, ax_r = view.fig.subplots(1, 2, width_ratios=[1.35, 1])
-    im_p = view.animate(ax_p.imshow(np.zeros((_PHOTO_DISPLAY[1], _PHOTO_DISPLAY[0], 3), np.uint8),
-                                    extent=(-0.5, 639.5, 479.5, -0.5), interpolation="nearest"))
+    im_p = view.animate(
+        ax_p.imshow(
+            np.zeros((_PHOTO_DISPLAY[1], _PHOTO_DISPLAY[0], 3), np.uint8),
+            extent=(-0.5, 639.5, 479.5, -0.5),
+            interpolation="nearest",
+        )
+    )
     ax_p.set(xlim=(-0.5, 639.5), ylim=(479.5, -0.5))
-    im_r = view.animate(ax_r.imshow(np.full((_SHOW, _SHOW, 3), 255, np.uint8), interpolation="nearest"))
+    im_r = view.animate(
+        ax_r.imshow(np.full((_SHOW, _SHOW, 3), 255, np.uint8), interpolation="nearest")
+    )
     ax_r.set_axis_off()
     ax_p.set_title(photo_title, fontsize=10, pad=3)
     ax_r.set_title(result_title, fontsize=10, pad=3)
@@ -65,30 +84,69 @@ def _photo_demo(photo_title: str, result_title: str, outline: dict):
     return view, ax_p, ax_r, im_p, im_r, line
 
 
-@register(lesson="10", sweep={"scene": ["page", "painting", "facade"], "corners": [
-    "250.0, 120.0; 420.0, 140.0; 400.0, 380.0; 230.0, 350.0",
-    "200.0, 100.0; 450.0, 100.0; 450.0, 380.0; 200.0, 380.0",
-], "use_focal": [True, False], "corner": [3, 0], "corner_u": [100.0, 300.0], "corner_v": [50.0, 250.0]})
+@register(
+    lesson="10",
+    sweep={
+        "scene": ["page", "painting", "facade"],
+        "corners": [
+            "250.0, 120.0; 420.0, 140.0; 400.0, 380.0; 230.0, 350.0",
+            "200.0, 100.0; 450.0, 100.0; 450.0, 380.0; 200.0, 380.0",
+        ],
+        "use_focal": [True, False],
+        "corner": [3, 0],
+        "corner_u": [100.0, 300.0],
+        "corner_v": [50.0, 250.0],
+    },
+)
 def rectify_photo() -> Demo:
     """Drag the four corners of a page, painting or facade; the rectified view follows, sized
     by the aspect ratio estimated from the quadrilateral (compared with the truth). Without a
     mouse, pick a corner and move it with its two sliders (or type the corners)."""
-    view, ax_p, ax_r, im_p, im_r, quad = _photo_demo("photo: drag the orange corners", "rectified",
-                                                     dict(ls="-", color=palette.ORANGE, lw=1.5, path_effects=palette.halo(1.5)))
+    view, ax_p, ax_r, im_p, im_r, quad = _photo_demo(
+        "photo: drag the orange corners",
+        "rectified",
+        dict(ls="-", color=palette.ORANGE, lw=1.5, path_effects=palette.halo(1.5)),
+    )
     handles = view.animate(ax_p.plot([], [], "o", color=palette.ORANGE, ms=9, mec="k")[0])
-    chosen = view.animate(ax_p.plot([], [], "o", ms=16, mfc="none", mec="k", mew=2,  # the corner the keys move
-                                    path_effects=palette.halo(2))[0])
+    chosen = view.animate(
+        ax_p.plot(
+            [],
+            [],
+            "o",
+            ms=16,
+            mfc="none",
+            mec="k",
+            mew=2,  # the corner the keys move
+            path_effects=palette.halo(2),
+        )[0]
+    )
     # a static key (canvas text costs ~4 ms per line per redraw); the numbers are in the readout
-    ax_r.text(0.5, -0.02, "red dashed: the other focal length's shape; green dotted: the true shape",
-              transform=ax_r.transAxes, ha="center", va="top", fontsize=8)
-    other = view.animate(ax_r.plot([], [], "--", color=palette.RED, lw=1.5, path_effects=palette.halo(1.5))[0])
-    truth_box = view.animate(ax_r.plot([], [], ":", color=palette.GREEN, lw=1.5, path_effects=palette.halo(1.5))[0])
+    ax_r.text(
+        0.5,
+        -0.02,
+        "red dashed: the other focal length's shape; green dotted: the true shape",
+        transform=ax_r.transAxes,
+        ha="center",
+        va="top",
+        fontsize=8,
+    )
+    other = view.animate(
+        ax_r.plot([], [], "--", color=palette.RED, lw=1.5, path_effects=palette.halo(1.5))[0]
+    )
+    truth_box = view.animate(
+        ax_r.plot([], [], ":", color=palette.GREEN, lw=1.5, path_effects=palette.halo(1.5))[0]
+    )
     view.animate(ax_r.title)  # says which focal length the rectified view uses
     readout = W.HTML()
     first = pp.sample_photo("page")
     control = corner_text(format_corners(first.corners), "corners (TL; TR; BR; BL)")
     keys = corner_keys(control, ("top left", "top right", "bottom right", "bottom left"), 639, 479)
-    current: dict[str, Any] = {"scene": None, "photo": None, "corners": first.corners, "busy": False}
+    current: dict[str, Any] = {
+        "scene": None,
+        "photo": None,
+        "corners": first.corners,
+        "busy": False,
+    }
 
     def update(v: dict, state: dict) -> None:
         if current["busy"]:
@@ -118,44 +176,73 @@ def rectify_photo() -> Demo:
         quad.set_data(closed[:, 0], closed[:, 1])
         handles.set_data(corners[:, 0], corners[:, 1])
         chosen.set_data(corners[v["corner"], :1], corners[v["corner"], 1:])
-        width = max(np.linalg.norm(corners[1] - corners[0]), np.linalg.norm(corners[2] - corners[3]))
+        width = max(
+            np.linalg.norm(corners[1] - corners[0]), np.linalg.norm(corners[2] - corners[3])
+        )
         _show_rectified(im_r, photo.image, corners, (int(width), int(width / est.ratio)))
         # Outlines, in the display box, of the rectangle the other focal length and the truth would give.
         for artist, ratio in ((other, alt.ratio), (truth_box, photo.aspect)):
             w, h = _fit((int(width), int(width / ratio)))
             x0, y0 = (_SHOW - w) // 2 - 0.5, (_SHOW - h) // 2 - 0.5
             artist.set_data([x0, x0 + w, x0 + w, x0, x0], [y0, y0, y0 + h, y0 + h, y0])
-        state.update(error=None, ratio=est.ratio, true_ratio=photo.aspect, focal=est.focal_length,
-                     focal_source=est.focal_source, corners=corners, corner=v["corner"], scene=v["scene"],
-                     ratio_from_quad=from_quad.ratio, ratio_known_focal=known.ratio, focal_from_quad=from_quad.focal_length)
+        state.update(
+            error=None,
+            ratio=est.ratio,
+            true_ratio=photo.aspect,
+            focal=est.focal_length,
+            focal_source=est.focal_source,
+            corners=corners,
+            corner=v["corner"],
+            scene=v["scene"],
+            ratio_from_quad=from_quad.ratio,
+            ratio_known_focal=known.ratio,
+            focal_from_quad=from_quad.focal_length,
+        )
         f = "—" if from_quad.focal_length is None else f"{from_quad.focal_length:.0f} px"
         used = "known f" if v["use_focal"] else "f from the corners"
         ax_r.set_title(f"rectified with {used}", fontsize=10, pad=3)
-        readout.value = monospace(f"shown: w/h {est.ratio:.3f} ({used})\n"
-                                  f"w/h with f from the corners: {from_quad.ratio:.3f}  (f = {f}, {from_quad.focal_source})\n"
-                             f"w/h with f known ({photo.K[0, 0]:.0f} px): {known.ratio:.3f}\n"
-                             f"w/h true:                   {photo.aspect:.3f}\n"
-                             "the rectified view uses the ticked choice;\ndrag a corner a few px: the estimated f moves,\n"
-                             "the known-f ratio hardly does")
+        readout.value = monospace(
+            f"shown: w/h {est.ratio:.3f} ({used})\n"
+            f"w/h with f from the corners: {from_quad.ratio:.3f}  (f = {f}, {from_quad.focal_source})\n"
+            f"w/h with f known ({photo.K[0, 0]:.0f} px): {known.ratio:.3f}\n"
+            f"w/h true:                   {photo.aspect:.3f}\n"
+            "the rectified view uses the ticked choice;\ndrag a corner a few px: the estimated f moves,\n"
+            "the known-f ratio hardly does"
+        )
 
     controls = {
-        "scene": W.Dropdown(options=["page", "painting", "facade"], value="page", description="photo"),
+        "scene": W.Dropdown(
+            options=["page", "painting", "facade"], value="page", description="photo"
+        ),
         "corners": control,
         "use_focal": W.Checkbox(value=False, description="use the known focal length (800 px)"),
         "corner": keys.pop("corner"),
     }
-    demo = build_demo("rectify_photo", controls, view, update, title="Rectify a photographed rectangle",
-                      extra=[readout], linked=keys)
+    demo = build_demo(
+        "rectify_photo",
+        controls,
+        view,
+        update,
+        title="Rectify a photographed rectangle",
+        extra=[readout],
+        linked=keys,
+    )
     demo.handlers.update(connect_corner_drag(view, ax_p, control, lambda: current["corners"]))
     return demo
 
 
-@register(lesson="10", sweep={"yaw": [-0.6, 0.0, 0.5], "pitch": [0.5, -0.3], "page_present": [False, True]})
+@register(
+    lesson="10",
+    sweep={"yaw": [-0.6, 0.0, 0.5], "pitch": [0.5, -0.3], "page_present": [False, True]},
+)
 def document_scanner() -> Demo:
-    """"Scan this page": find the page automatically (edges, contours, largest convex
+    """ "Scan this page": find the page automatically (edges, contours, largest convex
     quadrilateral) and rectify it; it says so when there is no page."""
-    view, ax_p, ax_r, im_p, im_r, found = _photo_demo("photo with the detected outline", "scanned page",
-                                                      dict(ls="-", color=palette.GREEN, lw=2, path_effects=palette.halo(2)))
+    view, ax_p, ax_r, im_p, im_r, found = _photo_demo(
+        "photo with the detected outline",
+        "scanned page",
+        dict(ls="-", color=palette.GREEN, lw=2, path_effects=palette.halo(2)),
+    )
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
@@ -176,28 +263,44 @@ def document_scanner() -> Demo:
         _show_rectified(im_r, image, corners, (400, int(400 / est.ratio)))
         err = float(np.abs(corners - photo.corners).max())
         state.update(found=True, corner_error=err, ratio=est.ratio, message="")
-        readout.value = monospace(f"page found; worst corner error {err:.1f} px\n"
-                             f"aspect w/h {est.ratio:.3f} (true {photo.aspect:.3f}, A4 = 0.707)")
+        readout.value = monospace(
+            f"page found; worst corner error {err:.1f} px\n"
+            f"aspect w/h {est.ratio:.3f} (true {photo.aspect:.3f}, A4 = 0.707)"
+        )
 
     controls = {
         "yaw": slider(0.45, -0.8, 0.8, 0.05, "page yaw (rad)"),
         "pitch": slider(0.35, -0.7, 0.7, 0.05, "page pitch (rad)"),
         "page_present": W.Checkbox(value=True, description="page on the desk"),
     }
-    return build_demo("document_scanner", controls, view, update, title="Scan this page", extra=[readout])
+    return build_demo(
+        "document_scanner", controls, view, update, title="Scan this page", extra=[readout]
+    )
 
 
-@register(lesson="10", sweep={"tilt": [-0.7, 0.0, -0.3], "yaw": [0.3, 0.0], "use_focal": [False, True]})
+@register(
+    lesson="10", sweep={"tilt": [-0.7, 0.0, -0.3], "yaw": [0.3, 0.0], "use_focal": [False, True]}
+)
 def keystone_correction() -> Demo:
     """Keystone: a camera tilted up at a facade makes its verticals converge; the
     rectifying homography makes them parallel again. With yaw 0 the horizontals stay
     parallel, so the corners cannot tell the focal length: the aspect ratio then rests
     on an assumed f, and the figure says how far off that makes it."""
-    view, ax_p, ax_r, im_p, im_r, quad = _photo_demo("photo (camera tilted up)", "keystone-corrected",
-                                                     dict(ls="--", color="yellow", lw=1.5))
-    ax_r.text(0.5, -0.02, "green dotted: the true shape (numbers in the readout)", transform=ax_r.transAxes,
-              ha="center", va="top", fontsize=8)  # static: canvas text costs ~4 ms per line per redraw
-    truth_box = view.animate(ax_r.plot([], [], ":", color=palette.GREEN, lw=1.5, path_effects=palette.halo(1.5))[0])
+    view, ax_p, ax_r, im_p, im_r, quad = _photo_demo(
+        "photo (camera tilted up)", "keystone-corrected", dict(ls="--", color="yellow", lw=1.5)
+    )
+    ax_r.text(
+        0.5,
+        -0.02,
+        "green dotted: the true shape (numbers in the readout)",
+        transform=ax_r.transAxes,
+        ha="center",
+        va="top",
+        fontsize=8,
+    )  # static: canvas text costs ~4 ms per line per redraw
+    truth_box = view.animate(
+        ax_r.plot([], [], ":", color=palette.GREEN, lw=1.5, path_effects=palette.halo(1.5))[0]
+    )
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
@@ -206,7 +309,9 @@ def keystone_correction() -> Demo:
         c = photo.corners
         closed = np.vstack([c, c[:1]])
         quad.set_data(closed[:, 0], closed[:, 1])
-        est = pp.estimate_aspect_ratio(c, photo.image.shape, focal_length=photo.K[0, 0] if v["use_focal"] else None)
+        est = pp.estimate_aspect_ratio(
+            c, photo.image.shape, focal_length=photo.K[0, 0] if v["use_focal"] else None
+        )
         _show_rectified(im_r, photo.image, c, (400, int(round(400 / est.ratio))))
         w, h = _fit((400, int(round(400 / photo.aspect))))
         x0, y0 = (_SHOW - w) // 2 - 0.5, (_SHOW - h) // 2 - 0.5
@@ -214,19 +319,31 @@ def keystone_correction() -> Demo:
         left, right = c[3] - c[0], c[2] - c[1]
         converge = float(np.degrees(np.arctan2(left[0], left[1]) - np.arctan2(right[0], right[1])))
         off = 100 * (est.ratio / photo.aspect - 1)
-        state.update(ratio=est.ratio, true_ratio=photo.aspect, convergence=converge, focal_source=est.focal_source,
-                     focal=est.focal_length, ratio_error_percent=off)
+        state.update(
+            ratio=est.ratio,
+            true_ratio=photo.aspect,
+            convergence=converge,
+            focal_source=est.focal_source,
+            focal=est.focal_length,
+            ratio_error_percent=off,
+        )
         f_px = f"{est.focal_length:.0f} px" if est.focal_length is not None else ""
-        f_text = {"assumed": f"f assumed {f_px} (cannot be estimated; true {photo.K[0, 0]:.0f})",
-                  "estimated": f"f estimated {f_px} (true {photo.K[0, 0]:.0f})",
-                  "given": f"f given {f_px}",
-                  "not needed": "f not needed (an affine view)"}[est.focal_source]
-        readout.value = monospace(f"verticals converge by {abs(converge):.1f}°\n"
-                             f"aspect w/h estimated {est.ratio:.3f} (true {photo.aspect:.3f}, {off:+.1f}%)\n{f_text}")
+        f_text = {
+            "assumed": f"f assumed {f_px} (cannot be estimated; true {photo.K[0, 0]:.0f})",
+            "estimated": f"f estimated {f_px} (true {photo.K[0, 0]:.0f})",
+            "given": f"f given {f_px}",
+            "not needed": "f not needed (an affine view)",
+        }[est.focal_source]
+        readout.value = monospace(
+            f"verticals converge by {abs(converge):.1f}°\n"
+            f"aspect w/h estimated {est.ratio:.3f} (true {photo.aspect:.3f}, {off:+.1f}%)\n{f_text}"
+        )
 
     controls = {
         "tilt": slider(-0.5, -0.8, 0.0, 0.05, "camera tilt (rad)"),
         "yaw": slider(0.0, -0.5, 0.5, 0.05, "yaw (rad)"),
         "use_focal": W.Checkbox(value=False, description="use the known focal length (800 px)"),
     }
-    return build_demo("keystone_correction", controls, view, update, title="Keystone correction", extra=[readout])
+    return build_demo(
+        "keystone_correction", controls, view, update, title="Keystone correction", extra=[readout]
+    )

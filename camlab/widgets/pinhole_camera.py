@@ -1,4 +1,5 @@
 """Demos for lesson 01, the pinhole camera."""
+
 from __future__ import annotations
 
 import ipywidgets as W
@@ -23,7 +24,10 @@ SENSOR = (SIZE[0] * PITCH, SIZE[1] * PITCH)  # its width and height, metres (36 
 PLANE_SCALE = 12.0
 PLANE_ROOM = 0.5
 PLANE_MAX = 1.2
-DEPTH_RANGE = (-1.3, 4.5)  # the 3-D view's z limits (metres): the real plane at PLANE_MAX to the box at 4 m
+DEPTH_RANGE = (
+    -1.3,
+    4.5,
+)  # the 3-D view's z limits (metres): the real plane at PLANE_MAX to the box at 4 m
 SIDE_RANGE = 0.3  # ...and its x and y half-range
 
 
@@ -45,16 +49,23 @@ def _bar_ends(u_min: float, u_max: float, width: int) -> tuple[list, list]:
     return [max(u_min, lo), min(u_max, hi)], ends
 
 
-@register(lesson="01", sweep={"focal_mm": [15, 50, 100], "distance": [0.8, 2.0, 4.0], "real_plane": [True, False]})
+@register(
+    lesson="01",
+    sweep={"focal_mm": [15, 50, 100], "distance": [0.8, 2.0, 4.0], "real_plane": [True, False]},
+)
 def pinhole_projection():
     """A box, the pinhole and both image planes in 3-D beside the image the camera records."""
     controls = {
         "focal_mm": slider(50, 15, 100, 1, "focal length f (mm)", readout_format=".0f"),
         "distance": slider(2.0, 0.8, 4.0, 0.1, "box distance Z (m)"),
-        "real_plane": W.Checkbox(value=False, description="show the real image (rotated 180 degrees)"),
+        "real_plane": W.Checkbox(
+            value=False, description="show the real image (rotated 180 degrees)"
+        ),
     }
     view = FigureView(figsize=(8.8, 4.0))
-    view.fig.set_layout_engine("none")  # placed by hand: the layout engine does not see the 3-D axis labels
+    view.fig.set_layout_engine(
+        "none"
+    )  # placed by hand: the layout engine does not see the 3-D axis labels
     ax3 = view.fig.add_axes((0.05, 0.04, 0.63, 0.9), projection="3d")
     ax_img = view.fig.add_axes((0.69, 0.15, 0.3, 0.7))
     edges, faces = _box_outline(scenes.box_before_wall(2.0)[0])
@@ -65,22 +76,46 @@ def pinhole_projection():
     ax3.set_box_aspect((2.6, 1, 1), zoom=1.25)
     optics.label_camera_axes(ax3, labelpad=1)
     ax3.xaxis.labelpad = 8  # clear of the depth axis' tick labels
-    squeeze = optics.axis_scales(ax3)[1] / optics.axis_scales(ax3)[0]  # x, y per metre against z per metre
+    squeeze = (
+        optics.axis_scales(ax3)[1] / optics.axis_scales(ax3)[0]
+    )  # x, y per metre against z per metre
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
-    ax_img.set_xticks([0, 160, SIZE[0] - 1]); ax_img.set_yticks([0, 120, SIZE[1] - 1])   # pixels, as the title counts
+    ax_img.set_xticks([0, 160, SIZE[0] - 1])
+    ax_img.set_yticks([0, 120, SIZE[1] - 1])  # pixels, as the title counts
     ax_img.tick_params(labelsize=7, length=2, pad=1)
     ax_img.set_xlabel("u (px)", fontsize=7, labelpad=0)
     ax_img.set_ylabel("v (px)", fontsize=7, labelpad=0)
     width_bar = ax_img.plot([], [], color="k", lw=2, path_effects=palette.halo(2))[0]
-    bar_ends = ax_img.plot([], [], ls="none", color="k", marker="|", ms=10, mew=2, path_effects=palette.halo(2))[0]
-    view.fig.text(0.01, 0.985, f"not to scale: depth z drawn {squeeze:.1f} x shorter than x and y", fontsize=8.5,
-                  va="top")
+    bar_ends = ax_img.plot(
+        [], [], ls="none", color="k", marker="|", ms=10, mew=2, path_effects=palette.halo(2)
+    )[0]
+    view.fig.text(
+        0.01,
+        0.985,
+        f"not to scale: depth z drawn {squeeze:.1f} x shorter than x and y",
+        fontsize=8.5,
+        va="top",
+    )
     # for readers of the static picture too; an axes' child, since a saved figure leaves out animated figure texts
-    scale_note = ax_img.text(0.01, 0.935, "", transform=view.fig.transFigure, fontsize=8.5, va="top", clip_on=False)
+    scale_note = ax_img.text(
+        0.01, 0.935, "", transform=view.fig.transFigure, fontsize=8.5, va="top", clip_on=False
+    )
     readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
     # everything that moves is blitted over the cached static figure (the pinhole too: a ray passes over it)
-    view.animate(im, width_bar, bar_ends, ax_img.title, scale_note, art["box"], art["rays"], art["real"], art["virtual"],
-                 art["pinhole"], *art["planes"].values(), *art["fills"].values())
+    view.animate(
+        im,
+        width_bar,
+        bar_ends,
+        ax_img.title,
+        scale_note,
+        art["box"],
+        art["rays"],
+        art["real"],
+        art["virtual"],
+        art["pinhole"],
+        *art["planes"].values(),
+        *art["fills"].values(),
+    )
 
     def update(values, state):
         f = values["focal_mm"] * 1e-3
@@ -90,10 +125,14 @@ def pinhole_projection():
         corners = np.unique(e.reshape(-1, 3), axis=0)
         f_draw = plane_distance(f, corners[:, 2].min())
         scale = f_draw / f
-        optics.update_pinhole_3d(art, e, f_draw, faces, plane_half=scale * SENSOR[0] / 2)  # the sensor's frame
+        optics.update_pinhole_3d(
+            art, e, f_draw, faces, plane_half=scale * SENSOR[0] / 2
+        )  # the sensor's frame
         K = sensor.intrinsics_from_sensor(f, (PITCH, PITCH), SIZE)
         img = render.render(scene, K, SIZE).irradiance
-        u = K[0, 0] * corners[:, 0] / corners[:, 2] + K[0, 2]  # the corners' columns, x = f X / Z in pixels
+        u = (
+            K[0, 0] * corners[:, 0] / corners[:, 2] + K[0, 2]
+        )  # the corners' columns, x = f X / Z in pixels
         v_bar = 0.92 * SIZE[1]
         if values["real_plane"]:
             img = img[::-1, ::-1]  # the real image in the camera's axes: rotated 180 degrees
@@ -103,24 +142,49 @@ def pinhole_projection():
         width_bar.set_data(bar, [v_bar, v_bar])
         bar_ends.set_data(ends, [v_bar] * len(ends))
         centre = pinhole.project_pinhole([0.0, 0.0, Z], f)
-        fov = np.degrees(2 * np.arctan(SENSOR[0] / (2 * f)))  # the sensor's width w seen from the pinhole
+        fov = np.degrees(
+            2 * np.arctan(SENSOR[0] / (2 * f))
+        )  # the sensor's width w seen from the pinhole
         span = float(u.max() - u.min())
-        state.update(K=K, fx=K[0, 0], box_width_px=span, image=img, centre=centre, fov_deg=fov,
-                     plane="real" if values["real_plane"] else "virtual", f_draw=f_draw, draw_scale=scale,
-                     depth_squeeze=squeeze, bar_clipped=len(ends) < 2)
-        ax_img.set_title(("real image (rotated 180 deg)" if values["real_plane"] else "virtual image (upright)")
-                         + f"\nfield of view {fov:.1f} deg; box {span:.0f} px wide", fontsize=9)
-        scale_note.set_text(f"image planes at {scale:.1f} f from the pinhole (black dot),"
-                            f" their sensor frames {scale:.1f} x enlarged")
+        state.update(
+            K=K,
+            fx=K[0, 0],
+            box_width_px=span,
+            image=img,
+            centre=centre,
+            fov_deg=fov,
+            plane="real" if values["real_plane"] else "virtual",
+            f_draw=f_draw,
+            draw_scale=scale,
+            depth_squeeze=squeeze,
+            bar_clipped=len(ends) < 2,
+        )
+        ax_img.set_title(
+            ("real image (rotated 180 deg)" if values["real_plane"] else "virtual image (upright)")
+            + f"\nfield of view {fov:.1f} deg; box {span:.0f} px wide",
+            fontsize=9,
+        )
+        scale_note.set_text(
+            f"image planes at {scale:.1f} f from the pinhole (black dot),"
+            f" their sensor frames {scale:.1f} x enlarged"
+        )
         wider = f", wider than the image ({SIZE[0]} px)" if span > SIZE[0] else ""
-        readout.value = monospace(f"fx = f / pixel pitch = {K[0, 0]:.0f} px\n"
-                                  f"field of view 2 atan(w / 2f) = {fov:.1f} deg (w = 36 mm)\n"
-                                  f"box spans {span:.0f} px (the bar under the box){wider}\n"
-                                  f"3-D view: image planes at {scale:.1f} f, sensor frames {scale:.1f} x enlarged\n"
-                                  f"wall of 1 m squares at {scenes.WALL_DISTANCE:g} m (beyond the 3-D view)")
+        readout.value = monospace(
+            f"fx = f / pixel pitch = {K[0, 0]:.0f} px\n"
+            f"field of view 2 atan(w / 2f) = {fov:.1f} deg (w = 36 mm)\n"
+            f"box spans {span:.0f} px (the bar under the box){wider}\n"
+            f"3-D view: image planes at {scale:.1f} f, sensor frames {scale:.1f} x enlarged\n"
+            f"wall of 1 m squares at {scenes.WALL_DISTANCE:g} m (beyond the 3-D view)"
+        )
 
-    return build_demo("pinhole_projection", controls, view, update, title="Pinhole projection x = f X / Z",
-                      extra=[readout])
+    return build_demo(
+        "pinhole_projection",
+        controls,
+        view,
+        update,
+        title="Pinhole projection x = f X / Z",
+        extra=[readout],
+    )
 
 
 def _signed(x: float, digits: int) -> str:
@@ -139,10 +203,25 @@ def similar_triangles():
     view = FigureView(figsize=(8.8, 4))
     ax = view.fig.subplots()
     art = optics.draw_similar_triangles(ax, z_max=5.6, h_max=1.3)
-    ax.set_title(" \n ", fontsize=9)   # the two ratios, set by update: the lesson's equality in the picture itself
+    ax.set_title(
+        " \n ", fontsize=9
+    )  # the two ratios, set by update: the lesson's equality in the picture itself
     readout = W.HTML()  # beside the sliders, where it never covers the object point
-    movers = [ax.title] + [art[k] for k in ("big", "small", "object", "point", "ray", "planes", "virtual", "real",
-                                            "pinhole", "pinhole_dot")]
+    movers = [ax.title] + [
+        art[k]
+        for k in (
+            "big",
+            "small",
+            "object",
+            "point",
+            "ray",
+            "planes",
+            "virtual",
+            "real",
+            "pinhole",
+            "pinhole_dot",
+        )
+    ]
     for dim in art["dims"].values():
         movers += [dim["arrow"], dim["label"]]
     view.animate(*movers)
@@ -151,18 +230,31 @@ def similar_triangles():
         f, Z, Y = values["f"], values["Z"], values["Y"]
         y = optics.update_similar_triangles(art, f, Z, Y)
         state.update(y=y, ratio_image=y / f, ratio_object=Y / Z)
-        ax.set_title(f"y / f = {_signed(y * 100, 1)} cm / {f * 100:.0f} cm = {_signed(y / f, 3)}   and   Y / Z ="
-                     f" {_signed(Y, 2)} m / {Z:.2f} m = {_signed(Y / Z, 3)}\nclick or drag in the figure to move the object"
-                     " point", fontsize=9)
-        readout.value = monospace(f"y / f = {y / f:+.3f}\nY / Z = {Y / Z:+.3f}\n=> y = f Y / Z = {y * 100:+.1f} cm")
+        ax.set_title(
+            f"y / f = {_signed(y * 100, 1)} cm / {f * 100:.0f} cm = {_signed(y / f, 3)}   and   Y / Z ="
+            f" {_signed(Y, 2)} m / {Z:.2f} m = {_signed(Y / Z, 3)}\nclick or drag in the figure to move the object"
+            " point",
+            fontsize=9,
+        )
+        readout.value = monospace(
+            f"y / f = {y / f:+.3f}\nY / Z = {Y / Z:+.3f}\n=> y = f Y / Z = {y * 100:+.1f} cm"
+        )
 
-    demo = build_demo("similar_triangles", controls, view, update, title="Similar triangles: y / f = Y / Z",
-                      extra=[readout])
+    demo = build_demo(
+        "similar_triangles",
+        controls,
+        view,
+        update,
+        title="Similar triangles: y / f = Y / Z",
+        extra=[readout],
+    )
 
     def on_mouse(event):
         if event.inaxes is ax and event.button == 1 and event.xdata is not None:
             z = float(np.clip(event.xdata, controls["Z"].min, controls["Z"].max))
-            y = float(np.clip(-event.ydata, controls["Y"].min, controls["Y"].max))  # the plot shows -y (up)
+            y = float(
+                np.clip(-event.ydata, controls["Y"].min, controls["Y"].max)
+            )  # the plot shows -y (up)
             demo.set(Z=round(z / 0.05) * 0.05, Y=round(y / 0.05) * 0.05)
 
     view.fig.canvas.mpl_connect("button_press_event", on_mouse)
@@ -172,7 +264,10 @@ def similar_triangles():
 
 PAGE_Z = 1.0  # the chart's distance in pinhole_size (metres)
 BALANCED = 0.05  # the readout calls the blur "balanced" while its two terms differ by under 5 % of the total
-REFERENCE = (0.35e-3, 0.1)  # the (d, f) whose exposure time "fixed exposure" keeps: the demo's default
+REFERENCE = (
+    0.35e-3,
+    0.1,
+)  # the (d, f) whose exposure time "fixed exposure" keeps: the demo's default
 
 
 LEGIBLE = 1.25  # a chart row counts as legible while its letters are taller than 1.25 times the blur diameter
@@ -206,38 +301,67 @@ def relative_exposure(d: float, f: float) -> float:
 # The d slider steps in log10(d) from D_LOG_MIN; the grid runs through the default 0.35 mm, so a drag back lands on
 # it, and 0.003 per step puts a stop within 0.3 % of every d the lesson names (0.05, 0.56 and 1.5 mm).
 D_LOG_STEP = 0.003
-D_LOG_MIN = np.log10(0.35) - 356 * D_LOG_STEP   # 0.0299 mm
-D_LOG_MAX = np.log10(0.35) + 285 * D_LOG_STEP   # 2.51 mm
+D_LOG_MIN = np.log10(0.35) - 356 * D_LOG_STEP  # 0.0299 mm
+D_LOG_MAX = np.log10(0.35) + 285 * D_LOG_STEP  # 2.51 mm
 
 
-@register(lesson="01", sweep={"diameter_mm": [0.03, 0.05, 0.35, 1.5, 2.5], "focal_mm": [30, 100, 300],
-                              "fixed_exposure": [True, False]})
+@register(
+    lesson="01",
+    sweep={
+        "diameter_mm": [0.03, 0.05, 0.35, 1.5, 2.5],
+        "focal_mm": [30, 100, 300],
+        "fixed_exposure": [True, False],
+    },
+)
 def pinhole_size():
     """Blur against pinhole diameter (geometric versus diffraction) and the blurred chart it gives."""
     controls = {
-        "diameter_mm": W.FloatLogSlider(value=0.35, base=10, min=D_LOG_MIN, max=D_LOG_MAX, step=D_LOG_STEP,
-                                        description="pinhole d (mm)", continuous_update=True, readout_format=".2f",
-                                        style={"description_width": "initial"}, layout=W.Layout(width="300px")),
+        "diameter_mm": W.FloatLogSlider(
+            value=0.35,
+            base=10,
+            min=D_LOG_MIN,
+            max=D_LOG_MAX,
+            step=D_LOG_STEP,
+            description="pinhole d (mm)",
+            continuous_update=True,
+            readout_format=".2f",
+            style={"description_width": "initial"},
+            layout=W.Layout(width="300px"),
+        ),
         "focal_mm": slider(100, 30, 300, 5, "focal length f (mm)", readout_format=".0f"),
-        "fixed_exposure": W.Checkbox(value=False, description="fixed exposure time (true brightness)"),
+        "fixed_exposure": W.Checkbox(
+            value=False, description="fixed exposure time (true brightness)"
+        ),
     }
     view = FigureView(figsize=(8.8, 4))
     ax_plot, ax_img = view.fig.subplots(1, 2)
     art = optics.draw_pinhole_blur(ax_plot, 0.1, object_distance=PAGE_Z)
     ax_plot.set_ylim(0.01, 30)
     ax_plot.minorticks_off()
-    ax_plot.set_xticks([0.03, 0.1, 0.3, 1, 3], ["0.03", "0.1", "0.3", "1", "3"])   # plain numbers: read d = 0.35 off
+    ax_plot.set_xticks(
+        [0.03, 0.1, 0.3, 1, 3], ["0.03", "0.1", "0.3", "1", "3"]
+    )  # plain numbers: read d = 0.35 off
     ax_plot.set_yticks([0.01, 0.1, 1, 10], ["0.01", "0.1", "1", "10"])
     chart = scenes.letter_chart(0.3, t=(0, 0, PAGE_Z))
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
-    for spine in ax_img.spines.values():   # a frame that stays visible round a burnt-out (white) or black chart
+    for spine in (
+        ax_img.spines.values()
+    ):  # a frame that stays visible round a burnt-out (white) or black chart
         spine.set_linewidth(1.5)
         spine.set_color(palette.GREY)
     ax_img.set_title(" \n ", fontsize=9)
     ax_plot.set_title(" \n ", fontsize=9)
     readout = W.HTML()
-    view.animate(im, ax_img.title, ax_plot.title, art["geometric"], art["diffraction"], art["total"],
-                 art["marker"], art["best"])
+    view.animate(
+        im,
+        ax_img.title,
+        ax_plot.title,
+        art["geometric"],
+        art["diffraction"],
+        art["total"],
+        art["marker"],
+        art["best"],
+    )
 
     def update(values, state):
         f, d = values["focal_mm"] * 1e-3, values["diameter_mm"] * 1e-3
@@ -251,33 +375,70 @@ def pinhole_size():
         light = relative_exposure(d, f)
         ref = f"the default (d = {REFERENCE[0] * 1e3:g} mm, f = {REFERENCE[1] * 1e3:g} mm)"
         default = f"(d = {REFERENCE[0] * 1e3:g} mm, f = {REFERENCE[1] * 1e3:g} mm)"
-        if values["fixed_exposure"]:  # the reference's exposure time: the image darkens (or burns out) with (d/f)^2
+        if values[
+            "fixed_exposure"
+        ]:  # the reference's exposure time: the image darkens (or burns out) with (d/f)^2
             img = np.clip(img * light, 0.0, 1.0)
-            grey = int(np.sum(img < 1.0))   # a count, never a percentage rounded up to "100 %"
-            note = (f", burnt out: all but {grey} pixels white" if grey < 0.5 * img.size
-                    else ", nearly black" if img.max() < 0.1 else "")
-            ax_img.set_title(f"the default's exposure time {default}:\n{_times(light)} x the light{note}", fontsize=9)
+            grey = int(np.sum(img < 1.0))  # a count, never a percentage rounded up to "100 %"
+            note = (
+                f", burnt out: all but {grey} pixels white"
+                if grey < 0.5 * img.size
+                else ", nearly black"
+                if img.max() < 0.1
+                else ""
+            )
+            ax_img.set_title(
+                f"the default's exposure time {default}:\n{_times(light)} x the light{note}",
+                fontsize=9,
+            )
         else:
-            ax_img.set_title(f"exposure time {_times(1 / light)} x the default's\n{default}: brightness compensated",
-                             fontsize=9)
+            ax_img.set_title(
+                f"exposure time {_times(1 / light)} x the default's\n{default}: brightness compensated",
+                fontsize=9,
+            )
         im.set_data(img)
         best = pinhole.optimal_pinhole_diameter(f, object_distance=PAGE_Z)
         legible = legible_rows(blur_px)
-        limited_by = ("balanced" if abs(b.diffraction - b.geometric) < BALANCED * b.total
-                      else "diffraction-limited" if b.diffraction > b.geometric else "geometry-limited")
+        limited_by = (
+            "balanced"
+            if abs(b.diffraction - b.geometric) < BALANCED * b.total
+            else "diffraction-limited"
+            if b.diffraction > b.geometric
+            else "geometry-limited"
+        )
         f_number = f / d
-        ax_plot.set_title(f"blur against pinhole size, object at Z = {PAGE_Z:g} m\nd = {d * 1e3:.2f} mm: blur"
-                          f" {float(b.total) * 1e3:.2f} mm = {blur_px:.1f} px, {limited_by}", fontsize=9)
-        state.update(blur_mm=float(b.total) * 1e3, blur_px=blur_px, best_mm=best * 1e3, legible_rows=legible,
-                     limited_by=limited_by, blur_mrad=float(b.total) / f * 1e3, f_number=f_number,
-                     exposure_vs_f2_8=(f_number / 2.8) ** 2, light=light, image=img)
-        readout.value = monospace(f"best d = {best * 1e3:.2f} mm (star) for Z = {PAGE_Z:g} m\n"
-                                  f"your d = {d * 1e3:.2f} mm (grey line): {limited_by}\n"
-                                  f"blur {state['blur_mm']:.2f} mm = {blur_px:.1f} px;"
-                                  f" blur / f = {state['blur_mrad']:.1f} mrad\n"
-                                  f"rows legible: {legible} of {len(CHART_ROW_HEIGHTS)} (letters over {LEGIBLE:g} x blur)\n"
-                                  f"f/d = f/{f_number:.0f}: {state['exposure_vs_f2_8']:,.0f} x the exposure of f/2.8\n"
-                                  f"light per second: {_times(light)} x that of {ref}")
+        ax_plot.set_title(
+            f"blur against pinhole size, object at Z = {PAGE_Z:g} m\nd = {d * 1e3:.2f} mm: blur"
+            f" {float(b.total) * 1e3:.2f} mm = {blur_px:.1f} px, {limited_by}",
+            fontsize=9,
+        )
+        state.update(
+            blur_mm=float(b.total) * 1e3,
+            blur_px=blur_px,
+            best_mm=best * 1e3,
+            legible_rows=legible,
+            limited_by=limited_by,
+            blur_mrad=float(b.total) / f * 1e3,
+            f_number=f_number,
+            exposure_vs_f2_8=(f_number / 2.8) ** 2,
+            light=light,
+            image=img,
+        )
+        readout.value = monospace(
+            f"best d = {best * 1e3:.2f} mm (star) for Z = {PAGE_Z:g} m\n"
+            f"your d = {d * 1e3:.2f} mm (grey line): {limited_by}\n"
+            f"blur {state['blur_mm']:.2f} mm = {blur_px:.1f} px;"
+            f" blur / f = {state['blur_mrad']:.1f} mrad\n"
+            f"rows legible: {legible} of {len(CHART_ROW_HEIGHTS)} (letters over {LEGIBLE:g} x blur)\n"
+            f"f/d = f/{f_number:.0f}: {state['exposure_vs_f2_8']:,.0f} x the exposure of f/2.8\n"
+            f"light per second: {_times(light)} x that of {ref}"
+        )
 
-    return build_demo("pinhole_size", controls, view, update, title="How big should the pinhole be?",
-                      extra=[readout])
+    return build_demo(
+        "pinhole_size",
+        controls,
+        view,
+        update,
+        title="How big should the pinhole be?",
+        extra=[readout],
+    )

@@ -6,6 +6,7 @@ In a lesson::
     from camlab.widgets import projective_camera as demos
     demos.camera_explorer()
 """
+
 from __future__ import annotations
 
 import ipywidgets as W
@@ -24,7 +25,9 @@ TARGET = np.array([0.0, 0.0, 0.7])
 # everything up; from this side the picture on the image plane stays clear of the house behind it.
 VIEWER_OFFSET = -35.0
 FAR_M = 6.0  # an estimated camera farther than this from the true one is shown by an arrow, not fitted into view
-EYE_GL = np.array([2.6, -2.6, 1.0])  # opencv_vs_opengl's camera, far enough from the house that "z forward" clears it
+EYE_GL = np.array(
+    [2.6, -2.6, 1.0]
+)  # opencv_vs_opengl's camera, far enough from the house that "z forward" clears it
 
 
 # opencv_vs_opengl's viewer turns half as fast as the camera orbits. The camera's horizontal x axis points
@@ -39,7 +42,7 @@ def _view_gl_azim(orbit: float) -> float:
 
 
 def _fmt(v: np.ndarray) -> str:
-    return "(" + ", ".join(f"{x + 0.0:+.2f}" for x in np.round(v, 2)) + ")"   # + 0.0: no "-0.00"
+    return "(" + ", ".join(f"{x + 0.0:+.2f}" for x in np.round(v, 2)) + ")"  # + 0.0: no "-0.00"
 
 
 def _matrix(name: str, A: np.ndarray, digits: int) -> str:
@@ -49,8 +52,19 @@ def _matrix(name: str, A: np.ndarray, digits: int) -> str:
     return "\n".join((f"{name} = [" if i == 0 else pad + "[") + r + "]" for i, r in enumerate(rows))
 
 
-def explorer_camera(fx=800.0, fy=800.0, cx=319.5, cy=239.5, skew=0.0, azimuth=-60.0, elevation=25.0, distance=5.0,
-                    pan=0.0, roll=0.0, slide=0.0) -> cm.Camera:
+def explorer_camera(
+    fx=800.0,
+    fy=800.0,
+    cx=319.5,
+    cy=239.5,
+    skew=0.0,
+    azimuth=-60.0,
+    elevation=25.0,
+    distance=5.0,
+    pan=0.0,
+    roll=0.0,
+    slide=0.0,
+) -> cm.Camera:
     """The camera explorer's camera: K from the intrinsics, then a pose in three steps.
 
     1. ``look_at`` from the orbit position (``azimuth``, ``elevation`` in degrees, ``distance`` in
@@ -66,8 +80,12 @@ def explorer_camera(fx=800.0, fy=800.0, cx=319.5, cy=239.5, skew=0.0, azimuth=-6
     Finally t = -R C.
     """
     K = cm.intrinsic_matrix(fx, fy, cx, cy, skew)
-    base = cm.Camera.look_at(cm.orbit_eye(*np.radians([azimuth, elevation]), distance, TARGET), TARGET, K=K)
-    R = cm.rotation_z(-np.radians(roll)) @ base.R @ cm.rotation_z(-np.radians(pan))   # pan about world Z, roll about z
+    base = cm.Camera.look_at(
+        cm.orbit_eye(*np.radians([azimuth, elevation]), distance, TARGET), TARGET, K=K
+    )
+    R = (
+        cm.rotation_z(-np.radians(roll)) @ base.R @ cm.rotation_z(-np.radians(pan))
+    )  # pan about world Z, roll about z
     C = base.centre + slide * R[0]
     return cm.Camera(K, R, -R @ C)
 
@@ -77,7 +95,7 @@ ELEVATION_MIN = -4.0
 # Sliding left moves the camera towards the viewer's line to the house: past -0.5 m its image plane covers the house
 # on screen (the viewer does not follow the slide); at +2 m the house reaches the image's left edge.
 SLIDE_MIN = -0.5
-WORLD_AXES_M = 1.25   # the world axes reach out of the house (1.0 x 1.4 m, 1.55 m high), so their labels clear it
+WORLD_AXES_M = 1.25  # the world axes reach out of the house (1.0 x 1.4 m, 1.55 m high), so their labels clear it
 
 
 def explorer_plane_size(distance: float, K=None) -> float:
@@ -92,14 +110,29 @@ def explorer_plane_size(distance: float, K=None) -> float:
     depth = 0.4 * float(distance)
     if K is None:
         return depth
-    corners = np.array([[-0.5, -0.5, 1.0], [639.5, -0.5, 1.0], [-0.5, 479.5, 1.0], [639.5, 479.5, 1.0]])
+    corners = np.array(
+        [[-0.5, -0.5, 1.0], [639.5, -0.5, 1.0], [-0.5, 479.5, 1.0], [639.5, 479.5, 1.0]]
+    )
     reach = np.linalg.norm(np.linalg.solve(np.asarray(K, dtype=float), corners.T)[:2], axis=0).max()
     return depth * min(1.0, 0.5 / reach)
 
 
-@register(lesson="04", sweep={"fx": [200, 1600], "fy": [200, 1600], "cx": [-0.5, 639.5], "cy": [-0.5, 479.5],
-                              "skew": [-300, 300], "azimuth": [-180, 100, 180], "elevation": [ELEVATION_MIN, 80],
-                              "distance": [2.5, 9.0], "pan": [-30, 30], "roll": [-90, 90], "slide": [SLIDE_MIN, 2.0]})
+@register(
+    lesson="04",
+    sweep={
+        "fx": [200, 1600],
+        "fy": [200, 1600],
+        "cx": [-0.5, 639.5],
+        "cy": [-0.5, 479.5],
+        "skew": [-300, 300],
+        "azimuth": [-180, 100, 180],
+        "elevation": [ELEVATION_MIN, 80],
+        "distance": [2.5, 9.0],
+        "pan": [-30, 30],
+        "roll": [-90, 90],
+        "slide": [SLIDE_MIN, 2.0],
+    },
+)
 def camera_explorer():
     """Intrinsics and pose sliders beside a live 3-D frustum view and the camera's image.
 
@@ -112,9 +145,18 @@ def camera_explorer():
     cam0 = explorer_camera()
     # Seen from behind the camera's shoulder, with only the house on the image plane: the small picture
     # stays readable (the whole grid, seen edge-on, was a tangle).
-    sv = scene3d.SceneView(view.fig, cam0, scene, plane_size=explorer_plane_size(5.0), thumbnail=scenes.house_wireframe(),
-                           azim=-60 + VIEWER_OFFSET, elev=18, camera_axis_length=0.8, width_ratios=(1.3, 1.0),
-                           world_axes=WORLD_AXES_M)
+    sv = scene3d.SceneView(
+        view.fig,
+        cam0,
+        scene,
+        plane_size=explorer_plane_size(5.0),
+        thumbnail=scenes.house_wireframe(),
+        azim=-60 + VIEWER_OFFSET,
+        elev=18,
+        camera_axis_length=0.8,
+        width_ratios=(1.3, 1.0),
+        world_axes=WORLD_AXES_M,
+    )
     # "C" hangs just above-left of the centre dot, its corner at the dot, not half a metre away
     sv.camera_artist.label.set(ha="right", va="bottom")
     sv.camera_artist.label_offset = (-0.02, -0.04)
@@ -129,7 +171,9 @@ def camera_explorer():
         "cy": slider(239.5, -0.5, 479.5, 5, "cy (px)", readout_format=".1f"),
         "skew": slider(0, -300, 300, 10, "skew s (px)", readout_format=".0f"),
         "azimuth": slider(-60, -180, 180, 2, "orbit: azimuth (deg)", readout_format=".0f"),
-        "elevation": slider(25, ELEVATION_MIN, 80, 1, "orbit: elevation (deg)", readout_format=".0f"),
+        "elevation": slider(
+            25, ELEVATION_MIN, 80, 1, "orbit: elevation (deg)", readout_format=".0f"
+        ),
         "distance": slider(5.0, 2.5, 9.0, 0.1, "orbit: distance (m)", readout_format=".1f"),
         "pan": slider(0, -30, 30, 1, "turn in place: pan (deg, + left)", readout_format=".0f"),
         "roll": slider(0, -90, 90, 1, "turn in place: roll (deg)", readout_format=".0f"),
@@ -139,22 +183,41 @@ def camera_explorer():
     def update(v, state):
         cam = explorer_camera(**v)
         sv.camera_artist.size = explorer_plane_size(v["distance"], cam.K)
-        sv.ax3d.view_init(elev=18, azim=v["azimuth"] + VIEWER_OFFSET)   # sv.update refreshes the projection
+        sv.ax3d.view_init(
+            elev=18, azim=v["azimuth"] + VIEWER_OFFSET
+        )  # sv.update refreshes the projection
         sv.update(cam)
         pp.set_data([cam.principal_point[0]], [cam.principal_point[1]])
-        info.value = ("<pre>" + _matrix("K", cam.K, 1) + "\n" + _matrix("R", cam.R, 3) + "\n"
-                      f"t = {_fmt(cam.t)} m  (world origin in camera frame)\n"
-                      f"C = -R^T t = {_fmt(cam.centre)} m  (camera in world)\n"
-                      + _matrix("P", cam.P / np.linalg.norm(cam.P[2, :3]), 3)
-                      + "\n(P scaled so that |m3| = 1: row 3 is the principal\n axis and the world origin's depth)</pre>")
+        info.value = (
+            "<pre>" + _matrix("K", cam.K, 1) + "\n" + _matrix("R", cam.R, 3) + "\n"
+            f"t = {_fmt(cam.t)} m  (world origin in camera frame)\n"
+            f"C = -R^T t = {_fmt(cam.centre)} m  (camera in world)\n"
+            + _matrix("P", cam.P / np.linalg.norm(cam.P[2, :3]), 3)
+            + "\n(P scaled so that |m3| = 1: row 3 is the principal\n axis and the world origin's depth)</pre>"
+        )
         state.update(camera=cam, K=cam.K, R=cam.R, t=cam.t, centre=cam.centre, P=cam.P)
 
-    return build_demo("camera_explorer", controls, view, update,
-                      title="Drag the intrinsics and the pose: P = K [R | t]", extra=[info])
+    return build_demo(
+        "camera_explorer",
+        controls,
+        view,
+        update,
+        title="Drag the intrinsics and the pose: P = K [R | t]",
+        extra=[info],
+    )
 
 
-@register(lesson="04", sweep={"noise": [0.0, 5.0], "n_points": [6, 60], "outlier": [-100.0, 60.0, 100.0],
-                              "refine": [True, False], "pair": [0, 5], "outlier_v": [-100.0, 40.0, 100.0]})
+@register(
+    lesson="04",
+    sweep={
+        "noise": [0.0, 5.0],
+        "n_points": [6, 60],
+        "outlier": [-100.0, 60.0, 100.0],
+        "refine": [True, False],
+        "pair": [0, 5],
+        "outlier_v": [-100.0, 40.0, 100.0],
+    },
+)
 def resectioning():
     """Estimate P from noisy correspondences (DLT, optionally refined) and compare to the truth.
 
@@ -172,24 +235,43 @@ def resectioning():
     # The box's bottom edges lie on grid lines: drawn twice, two dash patterns interleave into a solid line.
     frame = np.concatenate([box[np.any(box[:, :, 2] > 0, axis=1)], scenes.ground_grid(2.0, 1.0)])
     # No world or camera axes here: red, green and blue would mean axes in one place and data in another.
-    sv = scene3d.SceneView(view.fig, cam, frame, plane_size=1.0, image_title="measured (o) vs reprojected (+)",
-                           world_axes=0.0, camera_axes=False, azim=15, elev=24)
+    sv = scene3d.SceneView(
+        view.fig,
+        cam,
+        frame,
+        plane_size=1.0,
+        image_title="measured (o) vs reprojected (+)",
+        world_axes=0.0,
+        camera_axes=False,
+        azim=15,
+        elev=24,
+    )
     # The labels hang off each centre on screen, "true" above-left and "est." below-left (the frustums
     # point right, towards the box), so they clear each other and their own lines at any zoom.
     sv.camera_artist.label.set(text="true ", ha="right", va="bottom")
     sv.camera_artist.label_offset = (0.0, 0.0)
     sv.camera_artist.lines.set_alpha(0.4)
-    est_art = scene3d.CameraArtist(sv.ax3d, cam, size=1.0, color=palette.ORANGE, show_axes=False, label="est. ",
-                                   label_offset=(0.0, 0.0))
+    est_art = scene3d.CameraArtist(
+        sv.ax3d,
+        cam,
+        size=1.0,
+        color=palette.ORANGE,
+        show_axes=False,
+        label="est. ",
+        label_offset=(0.0, 0.0),
+    )
     est_art.label.set(ha="right", va="top")
     pts3d = scene3d.draw_points(sv.ax3d, X, color="k", ms=3)
     # the moved correspondence(s), ringed in both panels: after the fit every residual grows, so
     # without a mark the mismatch is hard to find
     ring = dict(marker="o", ms=14, mfc="none", mec="k", mew=2.0, ls="none")
     (moved_3d,) = sv.ax3d.plot([], [], [], **ring)
-    (pointer,) = sv.ax3d.plot([], [], [], color=palette.ORANGE, lw=2.0, ls=(0, (4, 2)))   # towards a far estimate
-    pointer_text = sv.ax3d.text(0, 0, 0, "", color=palette.ORANGE, fontsize=9, fontweight="bold", ha="center",
-                                va="bottom")
+    (pointer,) = sv.ax3d.plot(
+        [], [], [], color=palette.ORANGE, lw=2.0, ls=(0, (4, 2))
+    )  # towards a far estimate
+    pointer_text = sv.ax3d.text(
+        0, 0, 0, "", color=palette.ORANGE, fontsize=9, fontweight="bold", ha="center", va="bottom"
+    )
     (moved_img,) = sv.ax_image.plot([], [], **ring)
     (meas,) = sv.ax_image.plot([], [], "o", mfc="none", color="k", ms=6)
     (reproj,) = sv.ax_image.plot([], [], "+", color=palette.ORANGE, ms=8, mew=1.5)
@@ -197,25 +279,55 @@ def resectioning():
     sv.image_lines.set_color("0.35")
     # What the line styles mean, on the figure: true camera solid (purple in 3-D, its view black-grey in
     # the image), the estimate dashed orange; drawn once, outside the axes, so it covers no data.
-    keys = [Line2D([], [], color=palette.PURPLE, lw=1.2), Line2D([], [], color=palette.ORANGE, lw=1.2),
-            Line2D([], [], color="0.35", lw=1.2), Line2D([], [], color=palette.ORANGE, lw=1.0, ls="--"),
-            Line2D([], [], marker="o", mfc="none", color="k", ls="none"),
-            Line2D([], [], marker="+", color=palette.ORANGE, mew=1.5, ls="none"),
-            Line2D([], [], marker="o", ms=10, mfc="none", mec="k", mew=2.0, ls="none")]
-    view.fig.legend(keys, ["true camera", "estimated camera", "scene seen by the true camera",
-                           "seen by the estimate", "measured pixel", "reprojected by the estimate",
-                           "pair k (the shift sliders move it)"], loc="outside lower center", ncols=4, fontsize=8,
-                   frameon=False)
+    keys = [
+        Line2D([], [], color=palette.PURPLE, lw=1.2),
+        Line2D([], [], color=palette.ORANGE, lw=1.2),
+        Line2D([], [], color="0.35", lw=1.2),
+        Line2D([], [], color=palette.ORANGE, lw=1.0, ls="--"),
+        Line2D([], [], marker="o", mfc="none", color="k", ls="none"),
+        Line2D([], [], marker="+", color=palette.ORANGE, mew=1.5, ls="none"),
+        Line2D([], [], marker="o", ms=10, mfc="none", mec="k", mew=2.0, ls="none"),
+    ]
+    view.fig.legend(
+        keys,
+        [
+            "true camera",
+            "estimated camera",
+            "scene seen by the true camera",
+            "seen by the estimate",
+            "measured pixel",
+            "reprojected by the estimate",
+            "pair k (the shift sliders move it)",
+        ],
+        loc="outside lower center",
+        ncols=4,
+        fontsize=8,
+        frameon=False,
+    )
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
     # Registered in the order they were created (the true camera's view first), so a live frame stacks
     # them as a full draw does; the 3-D limits follow the estimate, so everything in the 3-D axes moves.
-    view.animate(*sv.artists(), *est_art.artists(), pts3d, moved_3d, pointer, pointer_text, moved_img, meas, reproj,
-                 est_lines)
+    view.animate(
+        *sv.artists(),
+        *est_art.artists(),
+        pts3d,
+        moved_3d,
+        pointer,
+        pointer_text,
+        moved_img,
+        meas,
+        reproj,
+        est_lines,
+    )
     controls = {
         "noise": slider(0.5, 0.0, 5.0, 0.1, "pixel noise sigma (px)"),
         "n_points": int_slider(12, 6, 60, "correspondences N"),
-        "outlier": slider(0.0, -100.0, 100.0, 2.0, "shift pair k along u (px)", readout_format=".0f"),
-        "outlier_v": slider(0.0, -100.0, 100.0, 2.0, "shift pair k along v (px)", readout_format=".0f"),
+        "outlier": slider(
+            0.0, -100.0, 100.0, 2.0, "shift pair k along u (px)", readout_format=".0f"
+        ),
+        "outlier_v": slider(
+            0.0, -100.0, 100.0, 2.0, "shift pair k along v (px)", readout_format=".0f"
+        ),
         "pair": int_slider(0, 0, 5, "pair k (0-5) to shift"),
         "refine": W.Checkbox(value=False, description="refine (minimise reprojection error)"),
     }
@@ -227,11 +339,20 @@ def resectioning():
         if last_data.get("key") != key:
             clicked.clear()
             last_data["key"] = key
-        trial = scenes.resection_trial(*key, pair=int(v["pair"]), shift=(float(v["outlier"]), float(v["outlier_v"])),
-                                       refine=bool(v["refine"]), moved=clicked)
+        trial = scenes.resection_trial(
+            *key,
+            pair=int(v["pair"]),
+            shift=(float(v["outlier"]), float(v["outlier_v"])),
+            refine=bool(v["refine"]),
+            moved=clicked,
+        )
         cam_true, Xw, uvn, P = trial.camera, trial.points_world, trial.points_image, trial.P
-        moved = sorted(set(clicked) | ({int(v["pair"])} if v["outlier"] or v["outlier_v"] else set()))
-        ringed = sorted(set(moved) | {int(v["pair"])})   # pair k is ringed before it moves, so you see which it is
+        moved = sorted(
+            set(clicked) | ({int(v["pair"])} if v["outlier"] or v["outlier_v"] else set())
+        )
+        ringed = sorted(
+            set(moved) | {int(v["pair"])}
+        )  # pair k is ringed before it moves, so you see which it is
         moved_img.set_data(uvn[ringed, 0], uvn[ringed, 1])
         moved_3d.set_data_3d(Xw[ringed, 0], Xw[ringed, 1], Xw[ringed, 2])
         K, R, t, C = cm.decompose_projection_matrix(P)
@@ -245,14 +366,16 @@ def resectioning():
         centre_err = float(np.linalg.norm(C - cam_true.centre))
         far = centre_err > FAR_M
         d = (C - cam_true.centre) / max(centre_err, 1e-12)
-        tip = cam_true.centre + 1.5 * d     # far: a 1.5 m pointer from the true camera towards the estimate
+        tip = (
+            cam_true.centre + 1.5 * d
+        )  # far: a 1.5 m pointer from the true camera towards the estimate
         sv.fit(extra=np.vstack([tip, tip + 0.3 * d]) if far else est_art.extent_points(est))
         for artist in est_art.artists():
             artist.set_visible(not far)
         _place_camera_labels(sv.ax3d, sv.camera_artist, est_art)
         if far:
             pointer.set_data_3d(*np.c_[cam_true.centre, tip])
-            pointer_text.set_position_3d(tip)                   # centred over the pointer's tip, inside the view
+            pointer_text.set_position_3d(tip)  # centred over the pointer's tip, inside the view
             pointer_text.set_text(f"est. camera:\n{centre_err:.1f} m this way")
         else:
             pointer.set_data_3d([], [], [])
@@ -262,35 +385,70 @@ def resectioning():
         r = cm.project_points(P, Xw)
         reproj.set_data(r[:, 0], r[:, 1])
         scene3d.update_segments(est_lines, cm.project_segments(P, frame))
-        behind = int(np.count_nonzero(~np.isfinite(err)))  # points behind the estimated camera have no image
-        rms = float(np.sqrt(np.mean(err ** 2)))
+        behind = int(
+            np.count_nonzero(~np.isfinite(err))
+        )  # points behind the estimated camera have no image
+        rms = float(np.sqrt(np.mean(err**2)))
         focal_err = float(abs(K[0, 0] - cam_true.K[0, 0]))
         n = len(Xw)
         redundancy = 2 * n - 11  # equations minus unknowns: the noise the residuals can show
         # The expected RMS residual of the maximum-likelihood fit (H&Z 5.1.3); the true camera leaves sigma sqrt(2).
         expected = float(v["noise"]) * np.sqrt(2.0 * redundancy / (2 * n))
-        warning = ("\n<b>few spare equations: the fit absorbs the noise, so a small RMS\n"
-                   "says little about the camera</b>" if redundancy < 10 and v["noise"] > 0 else "")
-        rms_text = (f"RMS reprojection {rms:.2f} px" if not behind else
-                    f"<b>{behind} of {n} points lie behind the estimated camera:\n"
-                    f"no reprojection error; the fit has failed</b>")
-        worst = "" if behind or not moved else (
-            f"\nlargest residual: pair {int(np.argmax(err))} ({err.max():.1f} px)"
-            f"\nmoved pair {', '.join(map(str, moved))}: {', '.join(f'{err[i]:.1f}' for i in moved)} px")
-        info.value = (f"<pre>{rms_text}{worst}\n|fx - fx_true| = {focal_err:.1f} px\n"
-                      f"|C - C_true| = {100 * centre_err:.1f} cm\n"
-                      f"{k_readout(K, cam_true.image_size)}\n\n"
-                      f"redundancy 2N - 11 = {redundancy}\n"
-                      f"RMS expected of the fitted camera:\n  sigma sqrt(2) sqrt((2N - 11) / 2N) = {expected:.2f} px\n"
-                      f"(the true camera leaves sigma sqrt(2) = {float(v['noise']) * np.sqrt(2.0):.2f} px)"
-                      f"{warning}</pre>")
-        state.update(P=P, K=K, R=R, t=t, centre=C, rms=rms, focal_error=focal_err, centre_error=centre_err,
-                     points_image=uvn, redundancy=redundancy, expected_rms=expected, behind=behind, moved=moved,
-                     errors=err, far=far)
+        warning = (
+            "\n<b>few spare equations: the fit absorbs the noise, so a small RMS\n"
+            "says little about the camera</b>"
+            if redundancy < 10 and v["noise"] > 0
+            else ""
+        )
+        rms_text = (
+            f"RMS reprojection {rms:.2f} px"
+            if not behind
+            else f"<b>{behind} of {n} points lie behind the estimated camera:\n"
+            f"no reprojection error; the fit has failed</b>"
+        )
+        worst = (
+            ""
+            if behind or not moved
+            else (
+                f"\nlargest residual: pair {int(np.argmax(err))} ({err.max():.1f} px)"
+                f"\nmoved pair {', '.join(map(str, moved))}: {', '.join(f'{err[i]:.1f}' for i in moved)} px"
+            )
+        )
+        info.value = (
+            f"<pre>{rms_text}{worst}\n|fx - fx_true| = {focal_err:.1f} px\n"
+            f"|C - C_true| = {100 * centre_err:.1f} cm\n"
+            f"{k_readout(K, cam_true.image_size)}\n\n"
+            f"redundancy 2N - 11 = {redundancy}\n"
+            f"RMS expected of the fitted camera:\n  sigma sqrt(2) sqrt((2N - 11) / 2N) = {expected:.2f} px\n"
+            f"(the true camera leaves sigma sqrt(2) = {float(v['noise']) * np.sqrt(2.0):.2f} px)"
+            f"{warning}</pre>"
+        )
+        state.update(
+            P=P,
+            K=K,
+            R=R,
+            t=t,
+            centre=C,
+            rms=rms,
+            focal_error=focal_err,
+            centre_error=centre_err,
+            points_image=uvn,
+            redundancy=redundancy,
+            expected_rms=expected,
+            behind=behind,
+            moved=moved,
+            errors=err,
+            far=far,
+        )
 
-    demo = build_demo("resectioning", controls, view, update,
-                      title="Resection: estimate P from N point pairs (DLT); click the image (or use the shift sliders) to move a pixel",
-                      extra=[info])
+    demo = build_demo(
+        "resectioning",
+        controls,
+        view,
+        update,
+        title="Resection: estimate P from N point pairs (DLT); click the image (or use the shift sliders) to move a pixel",
+        extra=[info],
+    )
 
     def on_click(event):
         if event.inaxes is not sv.ax_image or event.xdata is None:
@@ -302,7 +460,9 @@ def resectioning():
         demo.view.refresh()
 
     view.fig.canvas.mpl_connect("button_press_event", on_click)
-    demo.handlers["button_press_event"] = on_click  # tests call it with an object carrying inaxes, xdata, ydata
+    demo.handlers["button_press_event"] = (
+        on_click  # tests call it with an object carrying inaxes, xdata, ydata
+    )
     return demo
 
 
@@ -316,10 +476,20 @@ def k_readout(K, image_size=(640, 480)) -> str:
     (fx, s, cx), (_, fy, cy) = K[0], K[1]
     w, h = image_size
     text = f"estimated K: fx {fx:.0f}, fy {fy:.0f}, skew {s:.0f} px,\n  principal point ({cx:.0f}, {cy:.0f})"
-    odd = [what for what, bad in (("fy != fx", abs(fy / fx - 1) > 0.05), ("skew", abs(s) > 0.02 * abs(fx)),
-                                  ("principal point off the image", not (0 <= cx <= w - 1 and 0 <= cy <= h - 1)))
-           if bad]
-    return text + (f"\n<b>no real camera has this K ({', '.join(odd)}):\ndistrust this resection</b>" if odd else "")
+    odd = [
+        what
+        for what, bad in (
+            ("fy != fx", abs(fy / fx - 1) > 0.05),
+            ("skew", abs(s) > 0.02 * abs(fx)),
+            ("principal point off the image", not (0 <= cx <= w - 1 and 0 <= cy <= h - 1)),
+        )
+        if bad
+    ]
+    return text + (
+        f"\n<b>no real camera has this K ({', '.join(odd)}):\ndistrust this resection</b>"
+        if odd
+        else ""
+    )
 
 
 def _place_camera_labels(ax, true_artist, est_artist) -> None:
@@ -334,9 +504,13 @@ def _place_camera_labels(ax, true_artist, est_artist) -> None:
     cams = (true_artist.camera, est_artist.camera)
     (_, _), (y_true, y_est), _ = proj3d.proj_transform(*np.c_[cams[0].centre, cams[1].centre], ax.M)
     up, down = (-0.05, -0.3), (-0.05, 0.3)
-    for artist, offset in zip((true_artist, est_artist), (up, down) if y_true >= y_est else (down, up)):
+    for artist, offset in zip(
+        (true_artist, est_artist), (up, down) if y_true >= y_est else (down, up)
+    ):
         artist.label_offset = offset
-        artist.label.set(ha="right", va="center", path_effects=palette.halo())   # readable over a grid line
+        artist.label.set(
+            ha="right", va="center", path_effects=palette.halo()
+        )  # readable over a grid line
         artist.label.set_position_3d(artist._label_position(artist.camera))
 
 
@@ -350,12 +524,16 @@ def opencv_vs_opengl():
     view = FigureView(figsize=(5.0, 3.4))
     ax = scene3d.axes3d(view.fig, 1, 1, 1, elev=VIEW_GL_ELEV, azim=_view_gl_azim(0.0))
     ax.set_axis_off()
-    ax.set_position((0.0, -0.12, 1.0, 1.2))  # 3-D axes keep a square box: let it fill the wide canvas
+    ax.set_position(
+        (0.0, -0.12, 1.0, 1.2)
+    )  # 3-D axes keep a square box: let it fill the wide canvas
     world = scene3d.draw_world_axes(ax, 0.6)
     house_segments = scenes.house_wireframe((0.0, 0.0, 0.0), 0.6)
     house = scene3d.draw_segments(ax, house_segments, color=palette.GREY)
     cam0 = cm.Camera.look_at(EYE_GL, [0.0, 0.0, 0.4])
-    art = scene3d.CameraArtist(ax, cam0, size=0.65, show_axes=False)  # shorter than the axes, so labels clear it
+    art = scene3d.CameraArtist(
+        ax, cam0, size=0.65, show_axes=False
+    )  # shorter than the axes, so labels clear it
     lines, texts = [], []
     for c in palette.AXIS_COLOURS:
         (ln,) = ax.plot([], [], [], color=c, lw=2.5)
@@ -367,13 +545,17 @@ def opencv_vs_opengl():
     view.animate(*world, house, *art.artists(), *lines, *texts)
     controls = {
         "orbit": slider(0, -90, 90, 2, "orbit (deg)"),
-        "frame": W.ToggleButtons(options=["OpenCV", "OpenGL / Blender"], value="OpenCV", description="frame"),
+        "frame": W.ToggleButtons(
+            options=["OpenCV", "OpenGL / Blender"], value="OpenCV", description="frame"
+        ),
     }
 
     def update(v, state):
         eye = cm.rotation_z(np.deg2rad(v["orbit"])) @ EYE_GL
         cam = cm.Camera.look_at(eye, [0.0, 0.0, 0.4])
-        ax.view_init(elev=VIEW_GL_ELEV, azim=_view_gl_azim(v["orbit"]))   # before fit_view, which refreshes
+        ax.view_init(
+            elev=VIEW_GL_ELEV, azim=_view_gl_azim(v["orbit"])
+        )  # before fit_view, which refreshes
         art.update(cam)
         gl = v["frame"] != "OpenCV"
         R_axes = cm.opengl_from_opencv(cam.R, cam.t)[0] if gl else cam.R
@@ -381,17 +563,28 @@ def opencv_vs_opengl():
         C = cam.centre
         # The limits fit both frames' label tips, so toggling the frame changes only the labels
         label_tips = C + 1.3 * np.vstack([cam.R, -cam.R[1:]])
-        scene3d.fit_view(ax, [house_segments, np.zeros(3), label_tips, art.extent_points(cam)], fill=0.78)
+        scene3d.fit_view(
+            ax, [house_segments, np.zeros(3), label_tips, art.extent_points(cam)], fill=0.78
+        )
         for i, (ln, tx) in enumerate(zip(lines, texts)):
             e = C + 0.9 * R_axes[i]  # row i of R = camera axis i in world coordinates
             ln.set_data_3d([C[0], e[0]], [C[1], e[1]], [C[2], e[2]])
             tx.set_position_3d(C + 1.05 * R_axes[i])
             tx.set_text(names[i])
             scene3d.align_away(ax, tx, C, e)
-        title.value = ("<pre>OpenGL/Blender: R_gl = diag(1,-1,-1) R, t_gl = diag(1,-1,-1) t\n"
-                       "camera looks along its -z axis</pre>" if gl else
-                       "<pre>OpenCV / H&amp;Z: X_cam = R X + t\ncamera looks along its +z axis</pre>")
+        title.value = (
+            "<pre>OpenGL/Blender: R_gl = diag(1,-1,-1) R, t_gl = diag(1,-1,-1) t\n"
+            "camera looks along its -z axis</pre>"
+            if gl
+            else "<pre>OpenCV / H&amp;Z: X_cam = R X + t\ncamera looks along its +z axis</pre>"
+        )
         state.update(R_axes=R_axes, frame=v["frame"], camera=cam)
 
-    return build_demo("opencv_vs_opengl", controls, view, update, title="Same camera, two axis conventions",
-                      extra=[title])
+    return build_demo(
+        "opencv_vs_opengl",
+        controls,
+        view,
+        update,
+        title="Same camera, two axis conventions",
+        extra=[title],
+    )

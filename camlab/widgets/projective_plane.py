@@ -3,6 +3,7 @@
 Each demo draws once and then only moves artists; the geometry comes from
 ``camlab.projective``.
 """
+
 from __future__ import annotations
 
 import ipywidgets as W
@@ -28,15 +29,17 @@ def lift_to_plane() -> Demo:
     ax3.set_title("homogeneous space (x, y, w)")
     ax3.set(xticks=[-2, 0, 2], yticks=[-2, 0, 2], zticks=[0, 1, 2])
     gx, gy = np.meshgrid(np.linspace(-2, 2, 5), np.linspace(-2, 2, 5))
-    ax3.plot_surface(gx, gy, np.ones_like(gx), color="tab:blue", alpha=0.12, edgecolor="tab:blue", lw=0.3)
+    ax3.plot_surface(
+        gx, gy, np.ones_like(gx), color="tab:blue", alpha=0.12, edgecolor="tab:blue", lw=0.3
+    )
     ax3.text(-2, 2, 1.1, "w = 1", color="tab:blue")
     ax3.scatter([0], [0], [0], color="k", s=15)
-    ray, = ax3.plot([], [], [], color="tab:blue", lw=1.5, label="ray = one projective point")
-    scaled, = ax3.plot([], [], [], "o", color=palette.ORANGE, label="λ(x, y, 1)")
-    hit, = ax3.plot([], [], [], "o", color="tab:blue", label="(x, y, 1)")
+    (ray,) = ax3.plot([], [], [], color="tab:blue", lw=1.5, label="ray = one projective point")
+    (scaled,) = ax3.plot([], [], [], "o", color=palette.ORANGE, label="λ(x, y, 1)")
+    (hit,) = ax3.plot([], [], [], "o", color="tab:blue", label="(x, y, 1)")
     ax3.legend(loc="upper left", fontsize=8)
     view.animate(ray, scaled, hit)
-    dot, = ax2.plot([], [], "o", color="tab:blue", ms=9)
+    (dot,) = ax2.plot([], [], "o", color="tab:blue", ms=9)
     view.animate(dot)
     readout = W.HTML()
 
@@ -49,16 +52,24 @@ def lift_to_plane() -> Demo:
         scaled.set_data_3d([xh[0]], [xh[1]], [xh[2]])
         hit.set_data_3d([xy[0]], [xy[1]], [1.0])
         dot.set_data([xy[0]], [xy[1]])
-        readout.value = monospace(f"λ(x, y, 1) = ({xh[0]:.2f}, {xh[1]:.2f}, {xh[2]:.2f})\n"
-                             f"divide by w → ({xy[0]:.2f}, {xy[1]:.2f})")
+        readout.value = monospace(
+            f"λ(x, y, 1) = ({xh[0]:.2f}, {xh[1]:.2f}, {xh[2]:.2f})\n"
+            f"divide by w → ({xy[0]:.2f}, {xy[1]:.2f})"
+        )
 
     controls = {
         "x": slider(1.0, -1.8, 1.8, 0.05, "x"),
         "y": slider(0.5, -1.8, 1.8, 0.05, "y"),
         "scale": slider(1.6, 0.2, 2.4, 0.05, "scale λ"),
     }
-    return build_demo("lift_to_plane", controls, view, update,
-                      title="Homogeneous coordinates are defined up to scale", extra=[readout])
+    return build_demo(
+        "lift_to_plane",
+        controls,
+        view,
+        update,
+        title="Homogeneous coordinates are defined up to scale",
+        extra=[readout],
+    )
 
 
 def _line_at_angle(angle_deg: float | np.ndarray, offset: float) -> np.ndarray:
@@ -73,19 +84,26 @@ def parallel_lines() -> Demo:
     view = FigureView(figsize=(9, 4))
     ax, axw = view.fig.subplots(1, 2, width_ratios=[1.3, 1])
     plane_axes(ax, 4, "l1 = 30° fixed; turn l2")
-    l1_artist, = ax.plot([], [], color="tab:blue", lw=2, label="l1")
-    l2_artist, = ax.plot([], [], color=palette.ORANGE, lw=2, label="l2")
-    meet_dot, = ax.plot([], [], "o", color="tab:red", ms=8, label="l1 × l2")
-    arrow = ax.annotate("", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="->", color="tab:red", lw=2))
+    (l1_artist,) = ax.plot([], [], color="tab:blue", lw=2, label="l1")
+    (l2_artist,) = ax.plot([], [], color=palette.ORANGE, lw=2, label="l2")
+    (meet_dot,) = ax.plot([], [], "o", color="tab:red", ms=8, label="l1 × l2")
+    arrow = ax.annotate(
+        "", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="->", color="tab:red", lw=2)
+    )
     ax.legend(loc="lower right", fontsize=8)
     readout = W.HTML()
     angle1 = 30.0
     angles = np.linspace(0, 60, 241)
-    w_curve, = axw.plot([], [], color=palette.GREY)
-    w_dot, = axw.plot([], [], "o", color="tab:red")
+    (w_curve,) = axw.plot([], [], color=palette.GREY)
+    (w_dot,) = axw.plot([], [], "o", color="tab:red")
     axw.axvline(angle1, color="tab:blue", ls=":", lw=1)
-    axw.set(xlim=(0, 60), xlabel="angle of l2 (degrees)", ylabel="|w| of the unit meet point",
-            title="w → 0: the meet point leaves the plane", ylim=(0, 1.02))
+    axw.set(
+        xlim=(0, 60),
+        xlabel="angle of l2 (degrees)",
+        ylabel="|w| of the unit meet point",
+        title="w → 0: the meet point leaves the plane",
+        ylim=(0, 1.02),
+    )
     axw.grid(True, color="0.93")
     view.animate(l1_artist, l2_artist, meet_dot, arrow, w_curve, w_dot)
 
@@ -105,7 +123,9 @@ def parallel_lines() -> Demo:
             meet_dot.set_data([], [])
             arrow.set_visible(False)
             w_dot.set_data([], [])
-            readout.value = monospace("l2 = l1: one line, every point shared,\nno single meet point")
+            readout.value = monospace(
+                "l2 = l1: one line, every point shared,\nno single meet point"
+            )
             return
         xu = x / np.linalg.norm(x)
         state.update(l2=l2, meet=x, w=float(abs(xu[2])), point=pj.from_homogeneous(x))
@@ -117,29 +137,49 @@ def parallel_lines() -> Demo:
         else:
             meet_dot.set_data([pos[0]], [pos[1]])
             arrow.set_visible(False)
-        where = "ideal point: at infinity" if x[2] == 0 else f"(x, y) = ({x[0] / x[2]:.2f}, {x[1] / x[2]:.2f})"
-        readout.value = monospace(f"l1 × l2 = ({xu[0]:+.3f}, {xu[1]:+.3f}, {xu[2]:+.3f})  (unit length)\n{where}")
+        where = (
+            "ideal point: at infinity"
+            if x[2] == 0
+            else f"(x, y) = ({x[0] / x[2]:.2f}, {x[1] / x[2]:.2f})"
+        )
+        readout.value = monospace(
+            f"l1 × l2 = ({xu[0]:+.3f}, {xu[1]:+.3f}, {xu[2]:+.3f})  (unit length)\n{where}"
+        )
         w_dot.set_data([v["angle2"]], [state["w"]])
 
     controls = {
         "angle2": slider(55.0, 0.0, 60.0, 0.5, "angle of l2 (°)"),
         "offset2": slider(-1.0, -3.0, 3.0, 0.1, "l2 crosses x = 0 at y ="),
     }
-    return build_demo("parallel_lines", controls, view, update,
-                      title="Parallel lines meet at infinity", extra=[readout])
+    return build_demo(
+        "parallel_lines",
+        controls,
+        view,
+        update,
+        title="Parallel lines meet at infinity",
+        extra=[readout],
+    )
 
 
-@register(lesson="06", sweep={"px": [-1.0, 0.5], "py": [0.8, -1.2], "line_angle": [20.0, 120.0], "line_dist": [0.5, 1.2]})
+@register(
+    lesson="06",
+    sweep={
+        "px": [-1.0, 0.5],
+        "py": [0.8, -1.2],
+        "line_angle": [20.0, 120.0],
+        "line_dist": [0.5, 1.2],
+    },
+)
 def point_line_duality() -> Demo:
     """A point (a, b, c) and the line (a, b, c) swap roles; incidence survives the swap."""
     view = FigureView(figsize=(9, 4.2))
     ax_p, ax_d = view.fig.subplots(1, 2)
     plane_axes(ax_p, 3, "primal: point p, line l")
     plane_axes(ax_d, 3, "dual: line p*, point l*")
-    p_dot, = ax_p.plot([], [], "o", color="tab:blue", ms=9, label="p")
-    l_line, = ax_p.plot([], [], color=palette.ORANGE, lw=2, label="l")
-    pd_line, = ax_d.plot([], [], color="tab:blue", lw=2, label="p* (same 3 numbers as p)")
-    ld_dot, = ax_d.plot([], [], "o", color=palette.ORANGE, ms=9, label="l* (same 3 numbers as l)")
+    (p_dot,) = ax_p.plot([], [], "o", color="tab:blue", ms=9, label="p")
+    (l_line,) = ax_p.plot([], [], color=palette.ORANGE, lw=2, label="l")
+    (pd_line,) = ax_d.plot([], [], color="tab:blue", lw=2, label="p* (same 3 numbers as p)")
+    (ld_dot,) = ax_d.plot([], [], "o", color=palette.ORANGE, ms=9, label="l* (same 3 numbers as l)")
     for a in (ax_p, ax_d):
         a.legend(loc="lower right", fontsize=8)
     view.animate(p_dot, l_line, pd_line, ld_dot)
@@ -151,14 +191,18 @@ def point_line_duality() -> Demo:
         # Line with unit normal (cos t, sin t) at distance line_dist from the origin.
         l = np.array([np.cos(t), np.sin(t), -v["line_dist"]])
         incidence = float(p @ l)
-        state.update(point=p, line=l, incidence=incidence, on_line=bool(pj.is_on_line(p, l, tol=1e-3)))
+        state.update(
+            point=p, line=l, incidence=incidence, on_line=bool(pj.is_on_line(p, l, tol=1e-3))
+        )
         p_dot.set_data([p[0]], [p[1]])
         set_line(l_line, l, ax_p)
         set_line(pd_line, p, ax_d)
         ld = pj.from_homogeneous(l)
         ld_dot.set_data([ld[0]], [ld[1]])
         p_text, l_text = (", ".join(f"{c:+.2f}" for c in x) for x in (p, l))
-        readout.value = monospace(f"p = ({p_text})\nl = ({l_text})\np · l = {incidence:+.3f}\n(0 ⇔ p on l ⇔ l* on p*)")
+        readout.value = monospace(
+            f"p = ({p_text})\nl = ({l_text})\np · l = {incidence:+.3f}\n(0 ⇔ p on l ⇔ l* on p*)"
+        )
 
     controls = {
         "px": slider(1.0, -2.5, 2.5, 0.05, "p: x"),
@@ -166,11 +210,20 @@ def point_line_duality() -> Demo:
         "line_angle": slider(45.0, 0.0, 180.0, 1.0, "l: normal angle (°)"),
         "line_dist": slider(1.0, 0.2, 2.5, 0.05, "l: distance from origin"),
     }
-    return build_demo("point_line_duality", controls, view, update,
-                      title="Duality: points and lines are the same 3-vectors", extra=[readout])
+    return build_demo(
+        "point_line_duality",
+        controls,
+        view,
+        update,
+        title="Duality: points and lines are the same 3-vectors",
+        extra=[readout],
+    )
 
 
-@register(lesson="06", sweep={"pitch": [5.0, 15.0, 30.0, 40.0], "yaw": [0.0, 20.0, -35.0], "focal": [400.0, 800.0]})
+@register(
+    lesson="06",
+    sweep={"pitch": [5.0, 15.0, 30.0, 40.0], "yaw": [0.0, 20.0, -35.0], "focal": [400.0, 800.0]},
+)
 def vanishing_points() -> Demo:
     """A tilted camera looks at a ground grid; parallel rails meet at vanishing points on the horizon."""
     size = (640, 480)
@@ -183,12 +236,23 @@ def vanishing_points() -> Demo:
     grid_x = LineCollection([], colors="tab:green", lw=1, label="lines along x (across)")
     ax.add_collection(grid_z)
     ax.add_collection(grid_x)
-    horizon_artist, = ax.plot([], [], "--", color="tab:red", lw=1.5, label="horizon = vp_z × vp_x")
-    vz_dot, = ax.plot([], [], "o", color="tab:blue", mec="k", ms=11)
-    vx_dot, = ax.plot([], [], "o", color="tab:green", mec="k", ms=11)
+    (horizon_artist,) = ax.plot(
+        [], [], "--", color="tab:red", lw=1.5, label="horizon = vp_z × vp_x"
+    )
+    (vz_dot,) = ax.plot([], [], "o", color="tab:blue", mec="k", ms=11)
+    (vx_dot,) = ax.plot([], [], "o", color="tab:green", mec="k", ms=11)
     ax.legend(loc="lower left", fontsize=8, framealpha=0.9)
-    note = ax.text(0.98, 0.03, "", transform=ax.transAxes, ha="right", va="bottom", fontsize=8, color="tab:red",
-                   bbox=dict(fc="white", ec="tab:red", alpha=0.9))
+    note = ax.text(
+        0.98,
+        0.03,
+        "",
+        transform=ax.transAxes,
+        ha="right",
+        va="bottom",
+        fontsize=8,
+        color="tab:red",
+        bbox=dict(fc="white", ec="tab:red", alpha=0.9),
+    )
     readout = W.HTML()
     box = ((-0.5, size[0] - 0.5), (-0.5, size[1] - 0.5))
     view.animate(grid_z, grid_x, horizon_artist, vz_dot, vx_dot, note)
@@ -200,10 +264,20 @@ def vanishing_points() -> Demo:
         grid_z.set_segments(segs[:n])
         grid_x.set_segments(segs[n:])
         vp_z = pj.vanishing_point(np.array(segs[:n]))  # estimated from the drawn lines
-        vp_x = pj.vanishing_point(np.array(segs[n:])) if len(segs) - n >= 2 else pj.normalize_points(g.vp_x)
+        vp_x = (
+            pj.vanishing_point(np.array(segs[n:]))
+            if len(segs) - n >= 2
+            else pj.normalize_points(g.vp_x)
+        )
         hz = pj.horizon(vp_z, vp_x)
-        state.update(vp_z=vp_z, vp_x=vp_x, horizon=hz, horizon_true=pj.normalize_lines(g.horizon),
-                     vp_z_true=pj.normalize_points(g.vp_z), vp_x_true=pj.normalize_points(g.vp_x))
+        state.update(
+            vp_z=vp_z,
+            vp_x=vp_x,
+            horizon=hz,
+            horizon_true=pj.normalize_lines(g.horizon),
+            vp_z_true=pj.normalize_points(g.vp_z),
+            vp_x_true=pj.normalize_points(g.vp_x),
+        )
         ends = pj.clip_line(hz, *box)
         horizon_artist.set_data(ends[:, 0], ends[:, 1])
         visible = bool(np.isfinite(ends).all())
@@ -215,13 +289,25 @@ def vanishing_points() -> Demo:
             pos, direction = arrow_to_infinity(vp, ax, anchor)
             dot.set_data([pos[0]], [pos[1]])
             dot.set_marker("o" if not direction.any() else arrow_marker(direction, ax))
-            lines.append(f"{name} = " + ("at infinity, direction ({:+.2f}, {:+.2f})".format(*vp[:2]) if abs(vp[2]) < 1e-9
-                                          else f"({vp[0]:.0f}, {vp[1]:.0f}) px" + ("" if not direction.any() else " (off image)")))
+            lines.append(
+                f"{name} = "
+                + (
+                    "at infinity, direction ({:+.2f}, {:+.2f})".format(*vp[:2])
+                    if abs(vp[2]) < 1e-9
+                    else f"({vp[0]:.0f}, {vp[1]:.0f}) px"
+                    + ("" if not direction.any() else " (off image)")
+                )
+            )
         v_horizon = float(-hz[2] / hz[1]) if abs(hz[1]) > 1e-12 else float("nan")
-        note.set_text("" if visible else
-                      f"the horizon is above the image (v = {v_horizon:.0f} px at u = 0):\n"
-                      f"pitched down {v['pitch']:.0f}°, it sees only ground;\nthe lines still meet there (arrows)")
-        note.set_visible(not visible)  # an invisible text costs nothing to draw; an empty one with a box does
+        note.set_text(
+            ""
+            if visible
+            else f"the horizon is above the image (v = {v_horizon:.0f} px at u = 0):\n"
+            f"pitched down {v['pitch']:.0f}°, it sees only ground;\nthe lines still meet there (arrows)"
+        )
+        note.set_visible(
+            not visible
+        )  # an invisible text costs nothing to draw; an empty one with a box does
         state.update(horizon_visible=visible)
         readout.value = monospace("\n".join(lines))
 
@@ -230,8 +316,14 @@ def vanishing_points() -> Demo:
         "yaw": slider(15.0, -45.0, 45.0, 0.5, "yaw (°)"),
         "focal": slider(600.0, 300.0, 1200.0, 10.0, "focal length (px)"),
     }
-    return build_demo("vanishing_points", controls, view, update,
-                      title="Vanishing points and the horizon", extra=[readout])
+    return build_demo(
+        "vanishing_points",
+        controls,
+        view,
+        update,
+        title="Vanishing points and the horizon",
+        extra=[readout],
+    )
 
 
 @register(lesson="06", sweep={"h31": [0.0, 0.25, -0.3], "h32": [0.0, 0.2], "angle": [0.0, 30.0]})
@@ -241,8 +333,10 @@ def cross_ratio_invariance() -> Demo:
     ax_s, ax_t = view.fig.subplots(1, 2)
     plane_axes(ax_s, 2.2, "before: four collinear points")
     plane_axes(ax_t, 2.2, "after the homography H")
-    grid = np.array([[[x, -1.5], [x, 1.5]] for x in np.linspace(-1.5, 1.5, 7)]
-                    + [[[-1.5, y], [1.5, y]] for y in np.linspace(-1.5, 1.5, 7)])
+    grid = np.array(
+        [[[x, -1.5], [x, 1.5]] for x in np.linspace(-1.5, 1.5, 7)]
+        + [[[-1.5, y], [1.5, y]] for y in np.linspace(-1.5, 1.5, 7)]
+    )
     points = np.array([[-1.2, -0.6], [-0.3, -0.15], [0.4, 0.2], [1.3, 0.65]])
     colors = ["tab:blue", palette.ORANGE, "tab:green", "tab:red"]
     from matplotlib.collections import LineCollection
@@ -254,9 +348,11 @@ def cross_ratio_invariance() -> Demo:
         ax_s.annotate(name, p, xytext=(4, 6), textcoords="offset points")
     mapped_grid = LineCollection([], colors=palette.GREY, lw=0.8)
     ax_t.add_collection(mapped_grid)
-    mapped_line, = ax_t.plot([], [], "-", color="0.3")
+    (mapped_line,) = ax_t.plot([], [], "-", color="0.3")
     mapped_pts = ax_t.scatter(points[:, 0], points[:, 1], c=colors, s=50, zorder=3)
-    labels = [ax_t.annotate(name, (0, 0), xytext=(4, 6), textcoords="offset points") for name in "ABCD"]
+    labels = [
+        ax_t.annotate(name, (0, 0), xytext=(4, 6), textcoords="offset points") for name in "ABCD"
+    ]
     view.animate(mapped_grid, mapped_line, mapped_pts, *labels)
     readout = W.HTML()
 
@@ -265,7 +361,9 @@ def cross_ratio_invariance() -> Demo:
 
     def update(v: dict, state: dict) -> None:
         t = np.radians(v["angle"])
-        H = np.array([[np.cos(t), -np.sin(t), 0.0], [np.sin(t), np.cos(t), 0.0], [v["h31"], v["h32"], 1.0]])
+        H = np.array(
+            [[np.cos(t), -np.sin(t), 0.0], [np.sin(t), np.cos(t), 0.0], [v["h31"], v["h32"], 1.0]]
+        )
         # Sample grid lines densely: a homography keeps lines straight, but we draw points.
         dense = np.linspace(0, 1, 2)[:, None]
         mapped = [pj.map_points(H, s[0] + dense * (s[1] - s[0])) for s in grid]
@@ -276,16 +374,30 @@ def cross_ratio_invariance() -> Demo:
         for lab, p in zip(labels, q):
             lab.xy = tuple(p)
         cr_before, cr_after = pj.cross_ratio(points), pj.cross_ratio(q)
-        state.update(H=H, mapped=q, cross_ratio_before=cr_before, cross_ratio_after=cr_after,
-                     ratio_before=ratio(points), ratio_after=ratio(q))
-        readout.value = monospace(f"             before   after\n"
-                             f"(A,B;C,D)  {cr_before:8.4f} {cr_after:8.4f}\n"
-                             f"AB / BC    {ratio(points):8.4f} {ratio(q):8.4f}")
+        state.update(
+            H=H,
+            mapped=q,
+            cross_ratio_before=cr_before,
+            cross_ratio_after=cr_after,
+            ratio_before=ratio(points),
+            ratio_after=ratio(q),
+        )
+        readout.value = monospace(
+            f"             before   after\n"
+            f"(A,B;C,D)  {cr_before:8.4f} {cr_after:8.4f}\n"
+            f"AB / BC    {ratio(points):8.4f} {ratio(q):8.4f}"
+        )
 
     controls = {
         "h31": slider(0.2, -0.35, 0.35, 0.01, "h31 (perspective x)"),
         "h32": slider(0.1, -0.35, 0.35, 0.01, "h32 (perspective y)"),
         "angle": slider(10.0, -45.0, 45.0, 1.0, "rotation (°)"),
     }
-    return build_demo("cross_ratio_invariance", controls, view, update,
-                      title="The cross-ratio is projectively invariant", extra=[readout])
+    return build_demo(
+        "cross_ratio_invariance",
+        controls,
+        view,
+        update,
+        title="The cross-ratio is projectively invariant",
+        extra=[readout],
+    )

@@ -1,4 +1,5 @@
 """The demo of lesson 00: proof that sliders, figures and readouts work in your browser."""
+
 from __future__ import annotations
 
 import ipywidgets as W
@@ -18,11 +19,15 @@ HOUSE = np.array([[-1, 1], [1, 1], [1, -0.6], [0, -1.4], [-1, -0.6], [-1, 1]], d
 ROOF_TIP = 3  # HOUSE[3] is the roof tip, (0, -1.4)
 DEFAULT_ANGLE = 40.0  # degrees: a turn whose arc (0.98 plot units) shows the path on both sides of its arrowhead
 ARC_SAMPLES = 61  # points on the arc of the roof tip's turn
-MOVED = "0.15"  # the moved house: near-black, so colour stays for the points the lesson reads (orange)
+MOVED = (
+    "0.15"  # the moved house: near-black, so colour stays for the points the lesson reads (orange)
+)
 # The arrowhead on the roof tip's path: a slim dart pointing along +x (apex 39°, notched back), so it reads
 # one way at every rotation; matplotlib's ">" is nearly equilateral and, turned by 60°, seems to point elsewhere.
-ARROWHEAD = Path([(1.0, 0.0), (-0.7, 0.6), (-0.3, 0.0), (-0.7, -0.6), (1.0, 0.0)],
-                 [Path.MOVETO, Path.LINETO, Path.LINETO, Path.LINETO, Path.CLOSEPOLY])
+ARROWHEAD = Path(
+    [(1.0, 0.0), (-0.7, 0.6), (-0.3, 0.0), (-0.7, -0.6), (1.0, 0.0)],
+    [Path.MOVETO, Path.LINETO, Path.LINETO, Path.LINETO, Path.CLOSEPOLY],
+)
 
 
 def turn_path(angle_deg: float, scale: float, start: np.ndarray, samples: int = 61) -> np.ndarray:
@@ -55,23 +60,57 @@ def turn_words(angle_deg: float, y_down: bool) -> str:
 
 def _house_panel(ax, y_down: bool, view: FigureView) -> dict:
     """One panel: the original house, the moved one, the roof tip and its path; returns the animated artists."""
-    plane_axes(ax, 3, xlabel="x, right (plot units)",
-               ylabel=f"y, {'down' if y_down else 'up'} (plot units)")
+    plane_axes(
+        ax,
+        3,
+        xlabel="x, right (plot units)",
+        ylabel=f"y, {'down' if y_down else 'up'} (plot units)",
+    )
     if y_down:
         ax.invert_yaxis()  # y down, as in images and in the camera frame
     # A light fill keeps the original visible where the moved outline covers its edge (angle 0, scale 1).
-    ax.fill(HOUSE[:, 0], HOUSE[:, 1], facecolor=to_rgba(palette.GREY, 0.2), edgecolor=palette.GREY, lw=1, ls="--",
-            label="original")
+    ax.fill(
+        HOUSE[:, 0],
+        HOUSE[:, 1],
+        facecolor=to_rgba(palette.GREY, 0.2),
+        edgecolor=palette.GREY,
+        lw=1,
+        ls="--",
+        label="original",
+    )
     # A white outline keeps the dotted path apart from the original's dashed edge it starts on.
-    path = view.animate(ax.plot([], [], ":", color=palette.ORANGE, lw=1.6, label="roof tip's path: turn, then scale",
-                                path_effects=palette.halo(1.6))[0])
-    arrow = view.animate(ax.plot([], [], ls="none", marker=ARROWHEAD, ms=15, color=palette.ORANGE, mec="white",
-                                 mew=0.6, label="_the way")[0])
+    path = view.animate(
+        ax.plot(
+            [],
+            [],
+            ":",
+            color=palette.ORANGE,
+            lw=1.6,
+            label="roof tip's path: turn, then scale",
+            path_effects=palette.halo(1.6),
+        )[0]
+    )
+    arrow = view.animate(
+        ax.plot(
+            [],
+            [],
+            ls="none",
+            marker=ARROWHEAD,
+            ms=15,
+            color=palette.ORANGE,
+            mec="white",
+            mew=0.6,
+            label="_the way",
+        )[0]
+    )
     house = view.animate(ax.plot([], [], color=MOVED, lw=2, label="rotated and scaled")[0])
     tip = view.animate(ax.plot([], [], "o", color=palette.ORANGE, ms=7, label="roof tip")[0])
     # Static titles (a text redrawn in every frame costs more than all the lines): the rule, both signs.
-    ax.set_title(f"y {'down, as in images' if y_down else 'up, as in maths textbooks'}:\n"
-                 f"θ > 0 {turn_words(1.0, y_down)}, θ < 0 {turn_words(-1.0, y_down)}", fontsize=10)
+    ax.set_title(
+        f"y {'down, as in images' if y_down else 'up, as in maths textbooks'}:\n"
+        f"θ > 0 {turn_words(1.0, y_down)}, θ < 0 {turn_words(-1.0, y_down)}",
+        fontsize=10,
+    )
     return dict(path=path, arrow=arrow, house=house, tip=tip, y_down=y_down)
 
 
@@ -91,7 +130,10 @@ def _point_arrow(arrow, at: np.ndarray, way: np.ndarray, y_down: bool) -> float 
     return angle
 
 
-@register(lesson="00", sweep={"angle": [-180.0, -90.0, -30.0, 0.0, 90.0, 135.0, 180.0], "scale": [0.3, 0.5, 1.5, 2.0]})
+@register(
+    lesson="00",
+    sweep={"angle": [-180.0, -90.0, -30.0, 0.0, 90.0, 135.0, 180.0], "scale": [0.3, 0.5, 1.5, 2.0]},
+)
 def stack_check() -> Demo:
     """Rotate and scale a house with two sliders, drawn on y-down axes (images) and y-up axes (textbooks).
 
@@ -108,10 +150,14 @@ def stack_check() -> Demo:
     # frame). An axes' animated text is drawn when the figure is saved (the static picture a notebook keeps),
     # a figure's is not; the blank title keeps the room for the readout in the layout.
     view.fig.suptitle(" ", fontsize=18)  # a little taller than the readout: a gap above the titles
-    where = dict(transform=view.fig.transFigure, va="top", fontsize=11, in_layout=False, gid="readout")
+    where = dict(
+        transform=view.fig.transFigure, va="top", fontsize=11, in_layout=False, gid="readout"
+    )
     ax_down.text(0.5, 0.98, "roof tip (orange dot) at ", ha="right", **where)
     readout = view.animate(ax_down.text(0.5, 0.98, "", ha="left", **where))
-    view.fig.legend(*ax_down.get_legend_handles_labels(), loc="outside lower center", ncols=2, fontsize=9)
+    view.fig.legend(
+        *ax_down.get_legend_handles_labels(), loc="outside lower center", ncols=2, fontsize=9
+    )
 
     def update(v: dict, state: dict) -> None:
         angle, s = v["angle"], v["scale"]
@@ -124,17 +170,26 @@ def stack_check() -> Demo:
         arrows = {}
         for panel in panels:
             panel["house"].set_data(moved[:, 0], moved[:, 1])
-            panel["tip"].set_data(moved[ROOF_TIP:ROOF_TIP + 1, 0], moved[ROOF_TIP:ROOF_TIP + 1, 1])
+            panel["tip"].set_data(
+                moved[ROOF_TIP : ROOF_TIP + 1, 0], moved[ROOF_TIP : ROOF_TIP + 1, 1]
+            )
             panel["path"].set_data(path[:, 0], path[:, 1])
-            arrows["y down" if panel["y_down"] else "y up"] = _point_arrow(panel["arrow"], path[middle], way,
-                                                                          panel["y_down"])
+            arrows["y down" if panel["y_down"] else "y up"] = _point_arrow(
+                panel["arrow"], path[middle], way, panel["y_down"]
+            )
         x, y = (round(c, 2) + 0.0 for c in moved[ROOF_TIP])  # + 0.0 turns a rounded -0.0 into 0.0
         readout.set_text(f"({x:+.2f}, {y:+.2f})")
         # tip: where the orange dot is drawn (lesson 00 recomputes it by hand); readout: the numbers shown
         # arrow: where the arrowhead sits, and its angle on screen in each panel (None: no turn to show)
-        state.update(A=A, house=moved, tip=moved[ROOF_TIP].copy(), path=path, readout=f"({x:+.2f}, {y:+.2f})",
-                     arrow=dict(at=path[middle].copy(), **arrows),
-                     turns={"y down": turn_words(angle, True), "y up": turn_words(angle, False)})
+        state.update(
+            A=A,
+            house=moved,
+            tip=moved[ROOF_TIP].copy(),
+            path=path,
+            readout=f"({x:+.2f}, {y:+.2f})",
+            arrow=dict(at=path[middle].copy(), **arrows),
+            turns={"y down": turn_words(angle, True), "y up": turn_words(angle, False)},
+        )
 
     controls = {
         "angle": slider(DEFAULT_ANGLE, -180.0, 180.0, 1.0, "angle θ (°)", readout_format=".0f"),
@@ -159,9 +214,17 @@ def stack_report() -> str:
         ipympl = version("ipympl")
     except PackageNotFoundError:
         ipympl = "missing"
-    versions = (f"camlab {__version__}, numpy {np.__version__}, matplotlib {matplotlib.__version__}, "
-                f"ipywidgets {W.__version__}, ipympl {ipympl}")
+    versions = (
+        f"camlab {__version__}, numpy {np.__version__}, matplotlib {matplotlib.__version__}, "
+        f"ipywidgets {W.__version__}, ipympl {ipympl}"
+    )
     if display_mode() == "ipympl":
-        return versions + "\nfigures: live (%matplotlib widget is on); the demo below tests the browser's side"
-    return (versions + f"\nfigures: still pictures, not live: the matplotlib backend is {matplotlib.get_backend()!r}; "
-            "run `%matplotlib widget` first (the setup cell's first line)")
+        return (
+            versions
+            + "\nfigures: live (%matplotlib widget is on); the demo below tests the browser's side"
+        )
+    return (
+        versions
+        + f"\nfigures: still pictures, not live: the matplotlib backend is {matplotlib.get_backend()!r}; "
+        "run `%matplotlib widget` first (the setup cell's first line)"
+    )

@@ -5,6 +5,7 @@ Every demo computes with tested camlab functions (:mod:`camlab.epipolar`,
 come from the bundled rendered rig (:mod:`camlab.data.stereo`), shown at half
 resolution so that re-warping stays within the latency budget.
 """
+
 from __future__ import annotations
 
 from functools import lru_cache
@@ -17,7 +18,12 @@ from .. import epipolar as ep
 from .. import rectification as rc
 from .. import scenes
 from ..camera import Camera, scale_intrinsics
-from ..data.stereo import bundled_rig, bundled_rig_calibration, half_size_rectification, stereo_scene
+from ..data.stereo import (
+    bundled_rig,
+    bundled_rig_calibration,
+    half_size_rectification,
+    stereo_scene,
+)
 from ..projective import map_points
 from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes
 from ._base import Demo, FigureView, build_demo, register, slider
@@ -40,10 +46,13 @@ def _projected_segments(cam: Camera, segs: np.ndarray) -> np.ndarray:
     return out.reshape(-1, 2)
 
 
-HALF = scale_intrinsics(np.eye(3), 0.5)  # full-size pixels -> half-size pixels: u' = (u + 0.5) / 2 - 0.5
+HALF = scale_intrinsics(
+    np.eye(3), 0.5
+)  # full-size pixels -> half-size pixels: u' = (u + 0.5) / 2 - 0.5
 
 
 # --------------------------------------------------------------------------- demo 1: epipolar lines
+
 
 def _line_polyline(lines: np.ndarray, size: tuple[int, int] = SIZE) -> np.ndarray:
     """Lines (K, 3) as one NaN-separated polyline spanning the image (matplotlib clips the rest).
@@ -63,8 +72,16 @@ def _line_polyline(lines: np.ndarray, size: tuple[int, int] = SIZE) -> np.ndarra
     return out.reshape(-1, 2)
 
 
-@register(lesson="11", sweep={"u": [120.0, 500.0], "v": [100.0, 380.0], "baseline": [0.05, 0.4],
-                              "toe_in": [0.0, 15.0, -10.0], "motion": list(_MOTIONS)})
+@register(
+    lesson="11",
+    sweep={
+        "u": [120.0, 500.0],
+        "v": [100.0, 380.0],
+        "baseline": [0.05, 0.4],
+        "toe_in": [0.0, 15.0, -10.0],
+        "motion": list(_MOTIONS),
+    },
+)
 def epipolar_lines() -> Demo:
     """Click (or slide) a point in the left image: its epipolar line appears in the right image.
 
@@ -77,21 +94,34 @@ def epipolar_lines() -> Demo:
     image_axes(axl, SIZE, "left image: click a point")
     image_axes(axr, SIZE, "right image: its epipolar line")
     segs = scenes.plane_outlines(stereo_scene())
-    wl, = axl.plot([], [], color="0.55", lw=0.8)
-    wr, = axr.plot([], [], color="0.55", lw=0.8)
-    pencil_l, = axl.plot([], [], color=palette.BLUE, lw=0.6, path_effects=palette.halo(0.6))
-    pencil_r, = axr.plot([], [], color=palette.BLUE, lw=0.6, path_effects=palette.halo(0.6))
-    point, = axl.plot([], [], "o", color="tab:red", ms=8)
-    line_l, = axl.plot([], [], color="tab:red", lw=1.2, ls="--")
-    line_r, = axr.plot([], [], color="tab:red", lw=1.8)
-    depth_dots, = axr.plot([], [], "o", color=palette.ORANGE, ms=5, label="depth 1, 2, ..., 6 m")
-    epi_l, = axl.plot([], [], "*", color="k", ms=13)
-    epi_r, = axr.plot([], [], "*", color="k", ms=13, label="epipole")
+    (wl,) = axl.plot([], [], color="0.55", lw=0.8)
+    (wr,) = axr.plot([], [], color="0.55", lw=0.8)
+    (pencil_l,) = axl.plot([], [], color=palette.BLUE, lw=0.6, path_effects=palette.halo(0.6))
+    (pencil_r,) = axr.plot([], [], color=palette.BLUE, lw=0.6, path_effects=palette.halo(0.6))
+    (point,) = axl.plot([], [], "o", color="tab:red", ms=8)
+    (line_l,) = axl.plot([], [], color="tab:red", lw=1.2, ls="--")
+    (line_r,) = axr.plot([], [], color="tab:red", lw=1.8)
+    (depth_dots,) = axr.plot([], [], "o", color=palette.ORANGE, ms=5, label="depth 1, 2, ..., 6 m")
+    (epi_l,) = axl.plot([], [], "*", color="k", ms=13)
+    (epi_r,) = axr.plot([], [], "*", color="k", ms=13, label="epipole")
     # an epipole off the image: an arrow (shaft + head) at the border pointing to it
     shafts = [ax.plot([], [], color="k", lw=1.8)[0] for ax in (axl, axr)]
     heads = [ax.plot([], [], color="k", ms=9, ls="none")[0] for ax in (axl, axr)]
     axr.legend(loc="lower right", fontsize=8)
-    moving = (wl, wr, pencil_l, pencil_r, point, line_l, line_r, depth_dots, epi_l, epi_r, *shafts, *heads)
+    moving = (
+        wl,
+        wr,
+        pencil_l,
+        pencil_r,
+        point,
+        line_l,
+        line_r,
+        depth_dots,
+        epi_l,
+        epi_r,
+        *shafts,
+        *heads,
+    )
     for a in moving:
         a.set_in_layout(False)  # they move: the layout must not follow them
     view.animate(*moving)
@@ -118,7 +148,9 @@ def epipolar_lines() -> Demo:
         e = ep.epipoles(F)
         x = np.array([v["u"], v["v"]])
         l2 = ep.epipolar_lines(F, x, image=1)
-        ray = c1.backproject(np.tile(x, (6, 1)), np.arange(1.0, 7.0))  # world points that all image to x
+        ray = c1.backproject(
+            np.tile(x, (6, 1)), np.arange(1.0, 7.0)
+        )  # world points that all image to x
         uv = c2.project(ray)
         l1 = np.cross(np.append(x, 1.0), e.e1)  # the left epipolar line: through x and the epipole
         wl.set_data(*_projected_segments(c1, segs).T)
@@ -127,19 +159,31 @@ def epipolar_lines() -> Demo:
         line_r.set_data(*_line_polyline(l2[None]).T)
         line_l.set_data(*_line_polyline(l1[None]).T)
         pencil_r.set_data(*_line_polyline(ep.epipolar_lines(F, ref, image=1)).T)
-        pencil_l.set_data(*_line_polyline(np.cross(np.column_stack([ref, np.ones(len(ref))]), e.e1)).T)
+        pencil_l.set_data(
+            *_line_polyline(np.cross(np.column_stack([ref, np.ones(len(ref))]), e.e1)).T
+        )
         depth_dots.set_data(uv[:, 0], uv[:, 1])
         show_epipole(e.e1, epi_l, shafts[0], heads[0], axl)
         show_epipole(e.e2, epi_r, shafts[1], heads[1], axr)
         at_inf = abs(e.e2[2]) < 1e-9
-        ep2 = "at infinity (lines parallel)" if at_inf else f"({e.e2[0] / e.e2[2]:.0f}, {e.e2[1] / e.e2[2]:.0f}) px"
+        ep2 = (
+            "at infinity (lines parallel)"
+            if at_inf
+            else f"({e.e2[0] / e.e2[2]:.0f}, {e.e2[1] / e.e2[2]:.0f}) px"
+        )
         inside = not arrow_to_infinity(e.e2, axr)[1].any()
         state.update(epipole_inside=inside)
-        readout.value = monospace(f"{v['motion']}: baseline {v['baseline']:.2f} m, turn {v['toe_in']:.0f} deg\n"
-                             + ("the right epipole is inside the image: the lines fan out from it\n" if inside else "")
-                             + f"right epipole e' = {ep2}\n"
-                             f"max distance of the depth marks from l' = "
-                             f"{np.nanmax(np.abs(np.append(uv, np.ones((len(uv), 1)), 1) @ l2)):.1e} px")
+        readout.value = monospace(
+            f"{v['motion']}: baseline {v['baseline']:.2f} m, turn {v['toe_in']:.0f} deg\n"
+            + (
+                "the right epipole is inside the image: the lines fan out from it\n"
+                if inside
+                else ""
+            )
+            + f"right epipole e' = {ep2}\n"
+            f"max distance of the depth marks from l' = "
+            f"{np.nanmax(np.abs(np.append(uv, np.ones((len(uv), 1)), 1) @ l2)):.1e} px"
+        )
         state.update(F=F, epipoles=e, line_right=l2, depth_points=uv, point=x)
 
     controls = {
@@ -147,11 +191,21 @@ def epipolar_lines() -> Demo:
         "v": slider(300.0, 0.0, 479.0, 1.0, "v (px)"),
         "baseline": slider(0.2, 0.02, 0.5, 0.01, "baseline (m)"),
         "toe_in": slider(10.0, -20.0, 20.0, 0.5, "toe-in / turn (deg)"),
-        "motion": W.ToggleButtons(options=list(_MOTIONS), value="sideways (stereo rig)", description="motion",
-                                  style={"button_width": "150px"}),
+        "motion": W.ToggleButtons(
+            options=list(_MOTIONS),
+            value="sideways (stereo rig)",
+            description="motion",
+            style={"button_width": "150px"},
+        ),
     }
-    demo = build_demo("epipolar_lines", controls, view, update,
-                      title="Epipolar lines: a point in one image is a line in the other", extra=[readout])
+    demo = build_demo(
+        "epipolar_lines",
+        controls,
+        view,
+        update,
+        title="Epipolar lines: a point in one image is a line in the other",
+        extra=[readout],
+    )
 
     def on_click(event):
         if event.inaxes is not axl or event.xdata is None:
@@ -160,13 +214,18 @@ def epipolar_lines() -> Demo:
         demo.controls["v"].value = float(np.clip(event.ydata, 0, 479))
 
     view.fig.canvas.mpl_connect("button_press_event", on_click)
-    demo.handlers["button_press_event"] = on_click  # tests call it with an object carrying inaxes, xdata, ydata
+    demo.handlers["button_press_event"] = (
+        on_click  # tests call it with an object carrying inaxes, xdata, ydata
+    )
     return demo
 
 
 # --------------------------------------------------------------------------- demo 2: rectification
 
-@register(lesson="11", sweep={"alpha": [0.5, 1.0], "method": ["original", "calibrated", "uncalibrated"]})
+
+@register(
+    lesson="11", sweep={"alpha": [0.5, 1.0], "method": ["original", "calibrated", "uncalibrated"]}
+)
 def rectify_pair() -> Demo:
     """The rendered pair before and after rectification, with a row grid and the true matches.
 
@@ -180,8 +239,12 @@ def rectify_pair() -> Demo:
     import cv2
 
     _, matches, half, und, unc = bundled_rig()
-    und_half = [cv2.resize(im_, (320, 240), interpolation=cv2.INTER_AREA) for im_ in und]  # once, not per update
-    unc_half = [HALF @ H @ np.linalg.inv(HALF) for H in (unc.H1, unc.H2)]  # the same rectification in half-size pixels
+    und_half = [
+        cv2.resize(im_, (320, 240), interpolation=cv2.INTER_AREA) for im_ in und
+    ]  # once, not per update
+    unc_half = [
+        HALF @ H @ np.linalg.inv(HALF) for H in (unc.H1, unc.H2)
+    ]  # the same rectification in half-size pixels
     x1, x2, u1, u2 = matches
     cal1, cal2, cal_rms = bundled_rig_calibration()
     h1, h2 = cal1.resized(0.5), cal2.resized(0.5)
@@ -191,17 +254,30 @@ def rectify_pair() -> Demo:
     axh = view.fig.add_subplot(gs[2])
     ax.set(xlim=(-0.5, 639.5), ylim=(239.5, -0.5), xticks=[], yticks=[])
     ax.set_title("left | right (half size)", fontsize=9)
-    im = ax.imshow(np.hstack(half), cmap="gray", vmin=0, vmax=255, extent=(-0.5, 639.5, 239.5, -0.5),
-                   interpolation="nearest")
+    im = ax.imshow(
+        np.hstack(half),
+        cmap="gray",
+        vmin=0,
+        vmax=255,
+        extent=(-0.5, 639.5, 239.5, -0.5),
+        interpolation="nearest",
+    )
     # guides over the animated pair (drawn under it they would be hidden): rows to judge rectification by
-    guides = [ax.axhline(r, color="tab:cyan", lw=0.5, alpha=0.7, gid="grid") for r in range(20, 240, 20)]
+    guides = [
+        ax.axhline(r, color="tab:cyan", lw=0.5, alpha=0.7, gid="grid") for r in range(20, 240, 20)
+    ]
     guides.append(ax.axvline(319.5, color="w", lw=1, gid="grid"))
     sel = np.linspace(0, len(x1) - 1, 14).astype(int)
-    match_lines, = ax.plot([], [], color=palette.ORANGE, lw=0.9, path_effects=palette.halo(0.9))
+    (match_lines,) = ax.plot([], [], color=palette.ORANGE, lw=0.9, path_effects=palette.halo(0.9))
     # Cumulative, on a log axis: raw (pixels), calibrated and uncalibrated (hundredths) all readable.
-    step, = axh.plot([], [], drawstyle="steps-post", color="tab:purple", lw=2.5)
-    axh.set(xscale="log", xlim=(1e-3, 30), ylim=(0, 1.05), xlabel="|v1 - v2| (px, full size, log)",
-            ylabel="fraction of matches ≤ x")
+    (step,) = axh.plot([], [], drawstyle="steps-post", color="tab:purple", lw=2.5)
+    axh.set(
+        xscale="log",
+        xlim=(1e-3, 30),
+        ylim=(0, 1.05),
+        xlabel="|v1 - v2| (px, full size, log)",
+        ylabel="fraction of matches ≤ x",
+    )
     axh.axvline(0.5, color=palette.GREY, ls=":", lw=1)
     axh.set_title("vertical disparity", fontsize=9)
     axh.grid(True, which="major", color="0.93")
@@ -232,25 +308,51 @@ def rectify_pair() -> Demo:
         match_lines.set_data(*seg.reshape(-1, 2).T)
         vd = rc.vertical_disparity(y1, y2)
         values = np.sort(np.clip(vd.values, 1e-3, None))
-        step.set_data(np.r_[1e-3, values], np.r_[0.0, np.arange(1, len(values) + 1) / max(1, len(values))])
-        source = {"calibrated": f"cameras from a stereo calibration (rms {cal_rms:.3f} px)",
-                  "uncalibrated": "F from noisy matches (0.3 px)", "original": "the raw pair"}[v["method"]]
-        readout.value = monospace(f"{v['method']}: {source}\nvertical disparity of {len(vd.values)} true matches\n"
-                             f"median {vd.median:.3g} px, 95th percentile {vd.p95:.3g} px")
-        state.update(vertical_median=vd.median, vertical_p95=vd.p95, vertical_values=vd.values, method=v["method"])
+        step.set_data(
+            np.r_[1e-3, values], np.r_[0.0, np.arange(1, len(values) + 1) / max(1, len(values))]
+        )
+        source = {
+            "calibrated": f"cameras from a stereo calibration (rms {cal_rms:.3f} px)",
+            "uncalibrated": "F from noisy matches (0.3 px)",
+            "original": "the raw pair",
+        }[v["method"]]
+        readout.value = monospace(
+            f"{v['method']}: {source}\nvertical disparity of {len(vd.values)} true matches\n"
+            f"median {vd.median:.3g} px, 95th percentile {vd.p95:.3g} px"
+        )
+        state.update(
+            vertical_median=vd.median,
+            vertical_p95=vd.p95,
+            vertical_values=vd.values,
+            method=v["method"],
+        )
 
     controls = {
-        "method": W.ToggleButtons(options=["original", "calibrated", "uncalibrated"], value="calibrated",
-                                  description="pair", style={"button_width": "90px"}),
+        "method": W.ToggleButtons(
+            options=["original", "calibrated", "uncalibrated"],
+            value="calibrated",
+            description="pair",
+            style={"button_width": "90px"},
+        ),
         "alpha": slider(0.0, 0.0, 1.0, 0.05, "alpha (0: crop, 1: keep all)"),
     }
-    return build_demo("rectify_pair", controls, view, update,
-                      title="Rectification makes epipolar lines the same rows", extra=[readout])
+    return build_demo(
+        "rectify_pair",
+        controls,
+        view,
+        update,
+        title="Rectification makes epipolar lines the same rows",
+        extra=[readout],
+    )
 
 
 # --------------------------------------------------------------------------- demo 3: disparity and depth
 
-@register(lesson="11", sweep={"block_size": [3, 7, 15], "method": ["block matching (numpy)", "SGBM (OpenCV)"]})
+
+@register(
+    lesson="11",
+    sweep={"block_size": [3, 7, 15], "method": ["block matching (numpy)", "SGBM (OpenCV)"]},
+)
 def disparity_depth() -> Demo:
     """Disparity by block matching (numpy) or SGBM, its depth error, and the 3-D points.
 
@@ -265,7 +367,9 @@ def disparity_depth() -> Demo:
     @lru_cache(maxsize=16)  # sliders revisit settings; matching is the slow part
     def match(method: str, block: int) -> np.ndarray:
         if method == "block matching (numpy)":
-            return dp.block_matching_disparity(L, R, max_disparity=44, block_size=block, min_disparity=8)
+            return dp.block_matching_disparity(
+                L, R, max_disparity=44, block_size=block, min_disparity=8
+            )
         return dp.sgbm_disparity(L, R, max_disparity=44, block_size=block, min_disparity=8)
 
     view = FigureView(figsize=(9.4, 3.4))
@@ -286,7 +390,7 @@ def disparity_depth() -> Demo:
     ax3.set_zlabel("")
     ax3.set(xticks=[-1, 0, 1], yticks=[1, 2, 3, 4], zticks=[-0.5, 0.5])
     ax3.tick_params(labelsize=7, pad=0)
-    pts, = ax3.plot([], [], [], ".", ms=1.0, color="tab:blue")
+    (pts,) = ax3.plot([], [], [], ".", ms=1.0, color="tab:blue")
     view.animate(im1, im2, pts)
     zt = dp.disparity_to_depth(gt, f, B)
     readout = W.HTML()
@@ -298,21 +402,38 @@ def disparity_depth() -> Demo:
         im1.set_data(d)
         im2.set_data(err)
         P = dp.disparity_to_points(d, rect.K, B, step=3)
-        pts.set_data_3d(P[:, 0], P[:, 2], -P[:, 1])  # camera frame (y down) drawn with depth back, up up
+        pts.set_data_3d(
+            P[:, 0], P[:, 2], -P[:, 1]
+        )  # camera frame (y down) drawn with depth back, up up
         ok = smooth & np.isfinite(err)
         rel = np.abs(err[ok])
-        state.update(disparity=d, median_error_percent=float(np.median(rel)), within_5=float(np.mean(rel < 5)),
-                     coverage=float(ok.sum() / smooth.sum()))
-        readout.value = monospace(f"{v['method']}, {int(v['block_size'])} x {int(v['block_size'])} window\n"
-                             f"on textured planes: {100 * state['coverage']:.0f}% matched, median depth error "
-                             f"{state['median_error_percent']:.2f}%\n"
-                             f"{100 * state['within_5']:.1f}% of matched pixels within 5% of the true depth")
+        state.update(
+            disparity=d,
+            median_error_percent=float(np.median(rel)),
+            within_5=float(np.mean(rel < 5)),
+            coverage=float(ok.sum() / smooth.sum()),
+        )
+        readout.value = monospace(
+            f"{v['method']}, {int(v['block_size'])} x {int(v['block_size'])} window\n"
+            f"on textured planes: {100 * state['coverage']:.0f}% matched, median depth error "
+            f"{state['median_error_percent']:.2f}%\n"
+            f"{100 * state['within_5']:.1f}% of matched pixels within 5% of the true depth"
+        )
 
     controls = {
         "block_size": int_slider(7, 3, 21, "block size (px)", step=2, continuous_update=False),
-        "method": W.ToggleButtons(options=["block matching (numpy)", "SGBM (OpenCV)"],
-                                  value="block matching (numpy)", description="matcher",
-                                  style={"button_width": "150px"}),
+        "method": W.ToggleButtons(
+            options=["block matching (numpy)", "SGBM (OpenCV)"],
+            value="block matching (numpy)",
+            description="matcher",
+            style={"button_width": "150px"},
+        ),
     }
-    return build_demo("disparity_depth", controls, view, update,
-                      title="Disparity, depth Z = f B / d, and the 3-D points", extra=[readout])
+    return build_demo(
+        "disparity_depth",
+        controls,
+        view,
+        update,
+        title="Disparity, depth Z = f B / d, and the 3-D points",
+        extra=[readout],
+    )

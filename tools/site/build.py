@@ -26,6 +26,7 @@ The executed notebooks are kept in ``--executed`` (default ``build/executed``) f
 tests (tests/test_site.py also checks their outputs for stray reprs and warnings). Nothing is fetched from the network; MathJax must be installed first
 (``make site-deps`` puts it in ``build/npm``).
 """
+
 from __future__ import annotations
 
 import argparse
@@ -64,8 +65,13 @@ def execute(path: Path, executed_dir: Path) -> Path:
     from nbclient import NotebookClient
 
     nb = nbformat.read(path, as_version=4)
-    client = NotebookClient(nb, timeout=600, kernel_name="python3", store_widget_state=True,
-                            resources={"metadata": {"path": str(path.parent)}})
+    client = NotebookClient(
+        nb,
+        timeout=600,
+        kernel_name="python3",
+        store_widget_state=True,
+        resources={"metadata": {"path": str(path.parent)}},
+    )
     client.execute()
     out = executed_dir / path.name
     nbformat.write(nb, out)
@@ -108,15 +114,26 @@ def collect_pages(executed: list[Path], lessons: list[Path]) -> list[Page]:
 
     pages = []
     readme = Path("lessons/README.md")
-    pages.append(Page(readme, "index.html", "camlab lessons", _markdown_notebook((REPO / readme).read_text("utf-8"))))
+    pages.append(
+        Page(
+            readme,
+            "index.html",
+            "camlab lessons",
+            _markdown_notebook((REPO / readme).read_text("utf-8")),
+        )
+    )
     for run, lesson in zip(executed, lessons):
         nb = nbformat.read(run, as_version=4)
         nb.metadata.pop("widgets", None)  # static pages: no widget manager, no script from a CDN
         first = "".join(nb.cells[0].source) if nb.cells else ""
-        pages.append(Page(lesson.relative_to(REPO), lesson.stem + ".html", _title(first, lesson.stem), nb))
+        pages.append(
+            Page(lesson.relative_to(REPO), lesson.stem + ".html", _title(first, lesson.stem), nb)
+        )
     todo = [Path("docs/conventions.md")]
     for page in pages:
-        text = "\n".join("".join(c.source) for c in page.notebook.cells if c.cell_type == "markdown")
+        text = "\n".join(
+            "".join(c.source) for c in page.notebook.cells if c.cell_type == "markdown"
+        )
         todo += sorted(_linked_markdown(text, page.source))
     known = {p.source for p in pages}
     while todo:
@@ -125,7 +142,11 @@ def collect_pages(executed: list[Path], lessons: list[Path]) -> list[Page]:
             continue
         known.add(source)
         text = (REPO / source).read_text("utf-8")
-        href = "conventions.html" if source == Path("docs/conventions.md") else str(source.with_suffix(".html")).replace("/", "-")
+        href = (
+            "conventions.html"
+            if source == Path("docs/conventions.md")
+            else str(source.with_suffix(".html")).replace("/", "-")
+        )
         pages.append(Page(source, href, _title(text, source.stem), _markdown_notebook(text)))
         todo += sorted(_linked_markdown(text, source))
     return pages
@@ -157,13 +178,25 @@ def exporter():
     from nbconvert import HTMLExporter
     from nbconvert.preprocessors import ExtractOutputPreprocessor
 
-    exp = HTMLExporter(template_name="camlab", extra_template_basedirs=[str(HERE / "templates")],
-                       exclude_input_prompt=True, exclude_output_prompt=True)
+    exp = HTMLExporter(
+        template_name="camlab",
+        extra_template_basedirs=[str(HERE / "templates")],
+        exclude_input_prompt=True,
+        exclude_output_prompt=True,
+    )
     # Static pages show a bundle's PNG, never its widget view (no kernel, no widget manager).
-    exp.display_data_priority = ["image/png", "text/html", "text/markdown", "image/svg+xml", "image/jpeg",
-                                 "text/latex", "text/plain"]
-    exp.register_preprocessor(ExtractOutputPreprocessor(extract_output_types={"image/png", "image/jpeg"}),
-                              enabled=True)
+    exp.display_data_priority = [
+        "image/png",
+        "text/html",
+        "text/markdown",
+        "image/svg+xml",
+        "image/jpeg",
+        "text/latex",
+        "text/plain",
+    ]
+    exp.register_preprocessor(
+        ExtractOutputPreprocessor(extract_output_types={"image/png", "image/jpeg"}), enabled=True
+    )
     return exp
 
 
@@ -176,21 +209,35 @@ def render(pages: list[Page], out: Path) -> list[str]:
     dangling = []
     for page in pages:
         i = lessons.index(page) if page in lessons else None
-        nav = {"page": page.href, "prev": None, "next": None,
-               "notebook": str(page.source) if i is not None else ""}
+        nav = {
+            "page": page.href,
+            "prev": None,
+            "next": None,
+            "notebook": str(page.source) if i is not None else "",
+        }
         if i is not None:
-            nav["prev"] = {"href": lessons[i - 1].href, "title": lessons[i - 1].title} if i > 0 else \
-                {"href": "index.html", "title": "All lessons"}
+            nav["prev"] = (
+                {"href": lessons[i - 1].href, "title": lessons[i - 1].title}
+                if i > 0
+                else {"href": "index.html", "title": "All lessons"}
+            )
             if i + 1 < len(lessons):
                 nav["next"] = {"href": lessons[i + 1].href, "title": lessons[i + 1].title}
-        resources = {"camlab": nav, "unique_key": Path(page.href).stem, "output_files_dir": "figures",
-                     "metadata": {"name": page.title}}
+        resources = {
+            "camlab": nav,
+            "unique_key": Path(page.href).stem,
+            "output_files_dir": "figures",
+            "metadata": {"name": page.title},
+        }
         html, res = exp.from_notebook_node(page.notebook, resources=resources)
         for name, data in res.get("outputs", {}).items():
             (out / name).write_bytes(data)
         html, bad = rewrite_links(html, page, hrefs)
         for other in lessons:  # a link written as a file name reads as the lesson's title
-            html = html.replace(f'href="{other.href}">{other.source.name}</a>', f'href="{other.href}">{other.title}</a>')
+            html = html.replace(
+                f'href="{other.href}">{other.source.name}</a>',
+                f'href="{other.href}">{other.title}</a>',
+            )
         dangling += [f"{page.href}: {url}" for url in bad]
         (out / page.href).write_text(html, encoding="utf-8")
     return dangling
@@ -198,12 +245,16 @@ def render(pages: list[Page], out: Path) -> list[str]:
 
 def copy_static(out: Path) -> None:
     if not (MATHJAX / "tex-chtml.js").is_file():
-        sys.exit(f"MathJax is missing at {MATHJAX}: run `make site-deps` (npm install of mathjax@3)")
+        sys.exit(
+            f"MathJax is missing at {MATHJAX}: run `make site-deps` (npm install of mathjax@3)"
+        )
     static = out / "static"
     static.mkdir(parents=True, exist_ok=True)
     lab = Path(sys.prefix) / "share" / "jupyter" / "nbconvert" / "templates" / "lab" / "static"
-    (static / "lab.css").write_text((lab / "index.css").read_text("utf-8") + (lab / "theme-light.css").read_text("utf-8"),
-                                    encoding="utf-8")
+    (static / "lab.css").write_text(
+        (lab / "index.css").read_text("utf-8") + (lab / "theme-light.css").read_text("utf-8"),
+        encoding="utf-8",
+    )
     shutil.copy(HERE / "site.css", static / "site.css")
     for part in MATHJAX_PARTS:
         src, dst = MATHJAX / part, static / "mathjax" / part
@@ -216,15 +267,24 @@ def copy_static(out: Path) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("out", type=Path, nargs="?", default=REPO / "site", help="output folder (replaced)")
-    parser.add_argument("--executed", type=Path, default=REPO / "build" / "executed",
-                        help="where the executed notebooks go (kept for the tests)")
+    parser.add_argument(
+        "out", type=Path, nargs="?", default=REPO / "site", help="output folder (replaced)"
+    )
+    parser.add_argument(
+        "--executed",
+        type=Path,
+        default=REPO / "build" / "executed",
+        help="where the executed notebooks go (kept for the tests)",
+    )
     parser.add_argument("--jobs", type=int, default=2, help="lessons executed at once")
     parser.add_argument("--lessons", nargs="*", help="only these lesson files (default: all)")
     args = parser.parse_args(argv)
     start = time.perf_counter()
-    lessons = sorted(Path(p).resolve() for p in args.lessons) if args.lessons else \
-        sorted((REPO / "lessons").glob("[0-9][0-9]_*.ipynb"))
+    lessons = (
+        sorted(Path(p).resolve() for p in args.lessons)
+        if args.lessons
+        else sorted((REPO / "lessons").glob("[0-9][0-9]_*.ipynb"))
+    )
     out = args.out.resolve()
     if out.exists():
         shutil.rmtree(out)
@@ -237,10 +297,15 @@ def main(argv: list[str] | None = None) -> int:
     for link in dangling:
         print(f"warning: link to a file that is not on the site: {link}", file=sys.stderr)
     size = sum(f.stat().st_size for f in out.rglob("*") if f.is_file())
-    manifest = {"pages": [p.href for p in pages], "lessons": [p.href for p in pages if p.source.suffix == ".ipynb"]}
+    manifest = {
+        "pages": [p.href for p in pages],
+        "lessons": [p.href for p in pages if p.source.suffix == ".ipynb"],
+    }
     (out / "pages.json").write_text(json.dumps(manifest, indent=1), encoding="utf-8")
-    print(f"site: {len(pages)} pages in {out} ({size / 1e6:.1f} MB); executed {len(lessons)} lessons in "
-          f"{ran:.0f} s, total {time.perf_counter() - start:.0f} s")
+    print(
+        f"site: {len(pages)} pages in {out} ({size / 1e6:.1f} MB); executed {len(lessons)} lessons in "
+        f"{ran:.0f} s, total {time.perf_counter() - start:.0f} s"
+    )
     return 0
 
 

@@ -5,6 +5,7 @@ camera (:mod:`.estimation`).
 Every diagnosis either names a cause it has tested (the answer equals exactly what that mistake
 gives) or says what differs (which entries, by how much), never a guess.
 """
+
 from __future__ import annotations
 
 from . import approximations, estimation
