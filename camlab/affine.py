@@ -30,7 +30,8 @@ y down, z forward; pixels (u, v) = (column, row); points are rows. See lesson 05
 
 from __future__ import annotations
 
-from typing import Callable, NamedTuple
+from collections.abc import Callable
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike

@@ -30,25 +30,25 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .distortion import beyond_valid_radius, distort_points
-from .optimize import levenberg_marquardt, unit_sphere_basis, unit_sphere_update
-from .projective import hartley_normalization
 from ._validate import (
+    ROTATION_TOL,
     CamlabInputError,
     ConvergenceError,
     DegenerateError,
+    as_float,
     as_point_pairs,
     as_points,
-    ROTATION_TOL,
-    as_float,
     check_finite,
-    check_number,
     check_intrinsics,
     check_matrix,
+    check_number,
     check_positive,
     check_rotation,
     check_size,
 )
+from .distortion import beyond_valid_radius, distort_points
+from .optimize import levenberg_marquardt, unit_sphere_basis, unit_sphere_update
+from .projective import hartley_normalization
 
 __all__ = [
     "Camera",
@@ -459,7 +459,7 @@ class Camera:
         R: ArrayLike | None = None,
         t: ArrayLike | None = None,
         dist: tuple[float, ...] = (0.0,) * 5,
-    ) -> "Camera":
+    ) -> Camera:
         r"""A camera with square pixels and the principal point at the image centre, from
         its horizontal field of view ``fov_x`` (radians, in (0, pi)):
         :math:`f = (W / 2) / \tan(\mathrm{fov}_x / 2)`, :math:`c = ((W - 1)/2, (H - 1)/2)`.
@@ -484,7 +484,7 @@ class Camera:
         K: ArrayLike | None = None,
         image_size: tuple[int, int] = (640, 480),
         dist: tuple[float, ...] = (0.0,) * 5,
-    ) -> "Camera":
+    ) -> Camera:
         r"""A camera at ``eye`` (world metres) looking at ``target``, with ``up`` (default world
         +z) appearing up in the image. ``K`` defaults to fx = fy = 800 px with the principal
         point at the image centre ((W - 1) / 2, (H - 1) / 2), as in :meth:`from_fov` (pixel
@@ -496,11 +496,11 @@ class Camera:
             K = intrinsic_matrix(800.0, 800.0, (w - 1) / 2.0, (h - 1) / 2.0)
         return cls(K, R, -R @ e, dist, image_size)
 
-    def replace(self, **changes) -> "Camera":
+    def replace(self, **changes) -> Camera:
         """A copy with some fields changed, e.g. ``cam.replace(K=new_K)``."""
         return dataclasses.replace(self, **changes)
 
-    def resized(self, scale: float) -> "Camera":
+    def resized(self, scale: float) -> Camera:
         """The same camera taking images resized by ``scale`` (K by :func:`scale_intrinsics`).
 
         ``image_size * scale`` must be whole pixels (e.g. 0.5 for 640 x 480).
@@ -1019,7 +1019,7 @@ def _refine_projection_matrix(P0: np.ndarray, X: np.ndarray, uv: np.ndarray) -> 
 # ---------------------------------------------------------------------------------------
 
 
-def project_segments(camera: "Camera | ArrayLike", segments: ArrayLike) -> np.ndarray:
+def project_segments(camera: Camera | ArrayLike, segments: ArrayLike) -> np.ndarray:
     """Project (M, 2, 3) world segments to (M, 2, 2) pixel segments with a Camera or a 3x4 P.
 
     A segment with one end behind the camera is clipped at a near plane first (at 1/1000 of
@@ -1040,7 +1040,7 @@ def project_segments(camera: "Camera | ArrayLike", segments: ArrayLike) -> np.nd
     return uv.reshape(-1, 2, 2)
 
 
-def _signed_depth(camera: "Camera | np.ndarray", points: np.ndarray) -> np.ndarray:
+def _signed_depth(camera: Camera | np.ndarray, points: np.ndarray) -> np.ndarray:
     """Positive in front of the camera (any scale); +1 everywhere for an affine camera."""
     if isinstance(camera, Camera):
         return camera.depth(points)

@@ -21,10 +21,9 @@ model folds over (beyond :func:`max_valid_radius`). See lesson 02, section 3.
 
 from __future__ import annotations
 
+import functools
 from functools import lru_cache
 from typing import NamedTuple
-
-import functools
 
 import numpy as np
 from numpy.typing import ArrayLike

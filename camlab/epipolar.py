@@ -118,7 +118,7 @@ def normalize_fundamental(F: ArrayLike) -> np.ndarray:
     return a * np.sign(a.flat[k])
 
 
-def _as_P(cam: "Camera | ArrayLike", name: str) -> np.ndarray:
+def _as_P(cam: Camera | ArrayLike, name: str) -> np.ndarray:
     if isinstance(cam, Camera):
         return cam.P
     P = check_matrix(cam, (3, 4), name)
@@ -167,7 +167,7 @@ def essential_matrix(R: ArrayLike, t: ArrayLike) -> np.ndarray:
 
 
 def fundamental_from_cameras(
-    camera1: "Camera | ArrayLike", camera2: "Camera | ArrayLike"
+    camera1: Camera | ArrayLike, camera2: Camera | ArrayLike
 ) -> np.ndarray:
     r"""The fundamental matrix of two known cameras, unit Frobenius norm.
 
@@ -709,7 +709,7 @@ def recover_pose(
 
 
 def reprojection_error(
-    P: "Camera | ArrayLike", points_world: ArrayLike, pixels: ArrayLike
+    P: Camera | ArrayLike, points_world: ArrayLike, pixels: ArrayLike
 ) -> np.ndarray:
     """Distance in pixels between ``pixels`` and the projections of ``points_world`` by P (one per point)."""
     Pm = _as_P(P, "P")
@@ -762,8 +762,8 @@ def _refine_points(
 
 
 def triangulate_points(
-    P1: "Camera | ArrayLike",
-    P2: "Camera | ArrayLike",
+    P1: Camera | ArrayLike,
+    P2: Camera | ArrayLike,
     x1: ArrayLike,
     x2: ArrayLike,
     refine: bool = False,

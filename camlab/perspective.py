@@ -20,7 +20,8 @@ in the order top-left, top-right, bottom-right, bottom-left (clockwise on screen
 
 from __future__ import annotations
 
-from typing import NamedTuple, Sequence
+from collections.abc import Sequence
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike

@@ -388,7 +388,7 @@ def unrectify_points(
 
 
 def rectify_images(
-    rect: "CalibratedRectification | UncalibratedRectification",
+    rect: CalibratedRectification | UncalibratedRectification,
     image1: np.ndarray,
     image2: np.ndarray,
     interpolation: str = "bilinear",

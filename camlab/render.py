@@ -35,8 +35,9 @@ See lesson 02, section 4, and docs/conventions.md.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import Iterable, NamedTuple
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -434,7 +435,7 @@ class _IdealCanvas(NamedTuple):
     supersample: int
 
     @classmethod
-    def around(cls, K: np.ndarray, d: np.ndarray, size: tuple[int, int], ss: int) -> "_IdealCanvas":
+    def around(cls, K: np.ndarray, d: np.ndarray, size: tuple[int, int], ss: int) -> _IdealCanvas:
         w, h = size
         Ks = scale_intrinsics(K, ss)  # output px -> supersampled px
         if not d.any():

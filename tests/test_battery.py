@@ -28,8 +28,9 @@ import importlib
 import os
 import sys
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 import pytest
@@ -55,7 +56,7 @@ GRAY = RNG.integers(0, 256, (60, 80), dtype=np.uint8)
 def _lazy() -> dict[str, Any]:
     """Values that need camlab itself (built once, on first use)."""
     from camlab.camera import Camera
-    from camlab.epipolar import fundamental_from_cameras, essential_matrix
+    from camlab.epipolar import essential_matrix, fundamental_from_cameras
     from camlab.features import detect_features
     from camlab.projective import map_points
 

@@ -11,8 +11,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from camlab import calibration as C
-from camlab.calibration.refinement import BlockNormal, project_views
 from camlab._validate import CamlabInputError, DegenerateError
+from camlab.calibration.refinement import BlockNormal, project_views
 from camlab.camera import rotation_from_axis_angle, rotation_from_euler
 from camlab.data import load_calibration_set
 from camlab.data.calibration import bundled_calibration

@@ -257,8 +257,8 @@ def test_property_estimate_recovers_truth(yaw, pitch, base, seed):
 
 def test_rendered_rig_sift_matches_estimate_equals_truth_and_matches_opencv():
     """On the rendered rig (data/stereo): F from SIFT matches vs F from the true cameras, and vs OpenCV."""
-    from camlab.distortion import undistort_image, undistort_pixels
     from camlab.data.stereo import load_stereo_rig
+    from camlab.distortion import undistort_image, undistort_pixels
 
     rig = load_stereo_rig()
     c1, c2 = rig.camera1, rig.camera2

@@ -8,8 +8,8 @@ from hypothesis import strategies as hs
 
 from camlab import features as ft
 from camlab import homography as hg
-from camlab.data import panorama as sd
 from camlab._validate import CamlabInputError
+from camlab.data import panorama as sd
 
 
 @pytest.fixture(scope="module")

@@ -11,8 +11,12 @@ os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
 
 from camlab import distortion, lens, render, scenes  # noqa: E402
 from camlab.exercises import all_exercises, check  # noqa: E402
-from camlab.widgets import digital_sensor, lenses_and_distortion, pinhole_camera  # noqa: E402
-from camlab.widgets import REGISTRY  # noqa: E402
+from camlab.widgets import (  # noqa: E402
+    REGISTRY,  # noqa: E402
+    digital_sensor,
+    lenses_and_distortion,
+    pinhole_camera,
+)
 
 MODULES = {"01": pinhole_camera, "02": lenses_and_distortion, "03": digital_sensor}
 

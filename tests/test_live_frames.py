@@ -158,9 +158,9 @@ def test_known_different_demos_keep_their_image_frames(name):
 
 def test_the_frame_check_catches_an_image_painted_over_its_spines():
     """As every demo once was: static spines in the cached background, under the image."""
-    from camlab.widgets.digital_sensor import bit_depth_and_noise
-
     from matplotlib.image import AxesImage
+
+    from camlab.widgets.digital_sensor import bit_depth_and_noise
 
     demo = bit_depth_and_noise()
     ax = next(a for a in demo.view._animated if isinstance(a, AxesImage)).axes

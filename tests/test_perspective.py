@@ -5,11 +5,11 @@ from __future__ import annotations
 import cv2
 import numpy as np
 import pytest
+from conftest import assert_close_to_cv2_warp
 
 from camlab import perspective as pp
 from camlab._validate import CamlabInputError, DegenerateError
 from camlab.projective import map_points
-from conftest import assert_close_to_cv2_warp
 
 
 @pytest.fixture(scope="module")

@@ -51,8 +51,8 @@ def test_presentation_keeps_every_demo_in_order_and_silences_the_rest():
 
 
 def test_presentation_of_lesson_07_runs_and_shows_only_demos():
-    from nbclient import NotebookClient
     import nbformat
+    from nbclient import NotebookClient
 
     nb = nbformat.from_dict(presentation_notebook(_lesson("07")))
     NotebookClient(

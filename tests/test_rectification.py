@@ -8,9 +8,9 @@ from camlab import epipolar as ep
 from camlab import rectification as rc
 from camlab._validate import CamlabInputError, DegenerateError
 from camlab.camera import Camera, rotation_from_axis_angle
+from camlab.data.stereo import load_stereo_rig
 from camlab.distortion import undistort_pixels
 from camlab.projective import map_points
-from camlab.data.stereo import load_stereo_rig
 
 
 @pytest.fixture(scope="module")

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 
 import cv2
 import numpy as np
@@ -17,7 +17,7 @@ from camlab.homography import HomographyModel, ransac_homography, symmetric_tran
 from camlab.projective import map_points
 
 
-@lru_cache(maxsize=None)
+@cache
 def _matches(a: str, b: str, max_features: int, ratio: float) -> tuple[np.ndarray, np.ndarray]:
     m = match_features(
         detect_features(load_photo(a), max_features=max_features),

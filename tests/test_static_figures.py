@@ -104,8 +104,8 @@ def test_plain_figure_description_names_panels_labels_and_legend():
 
 def test_ipympl_canvas_display_carries_png_and_alt_text_in_a_shell():
     """The formatter camlab.widgets installs in a kernel: real IPython display path, real ipympl canvas."""
-    from IPython.core.interactiveshell import InteractiveShell
     from ipympl.backend_nbagg import Canvas
+    from IPython.core.interactiveshell import InteractiveShell
 
     shell = InteractiveShell.instance()
     try:
@@ -126,8 +126,8 @@ def test_ipympl_canvas_display_carries_png_and_alt_text_in_a_shell():
 def test_a_plain_figure_wider_than_the_output_area_is_drawn_to_fit_it():
     """A 10 x 3 in figure at 100 dpi (lesson 04) is 1008 px with ipympl's frame; the output area
     is 968 px at 1400 px with the file browser open. Its canvas is drawn at a lower dpi instead."""
-    from IPython.core.interactiveshell import InteractiveShell
     from ipympl.backend_nbagg import Canvas
+    from IPython.core.interactiveshell import InteractiveShell
 
     shell = InteractiveShell.instance()
     try:

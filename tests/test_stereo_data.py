@@ -4,9 +4,9 @@ import numpy as np
 
 from camlab import epipolar as ep
 from camlab import rectification as rc
+from camlab.data.stereo import STEREO_PARAMS, load_stereo_rig, rig_cameras
 from camlab.distortion import undistort_pixels
 from camlab.projective import map_points
-from camlab.data.stereo import STEREO_PARAMS, load_stereo_rig, rig_cameras
 
 
 def test_bundled_rig_loads_and_matches_its_generator_cameras():

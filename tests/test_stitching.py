@@ -11,8 +11,8 @@ from hypothesis import strategies as hs
 from camlab import features as ft
 from camlab import homography as hg
 from camlab import stitching as st
-from camlab.data import panorama as sd
 from camlab._validate import CamlabInputError, DegenerateError
+from camlab.data import panorama as sd
 from camlab.warp import canvas_bounds
 
 CORNERS = np.array([[0, 0], [639, 0], [639, 479], [0, 479]], float)

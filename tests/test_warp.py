@@ -5,12 +5,12 @@ from __future__ import annotations
 import cv2
 import numpy as np
 import pytest
+from conftest import assert_close_to_cv2_warp
 
 from camlab import warp
 from camlab._validate import CamlabInputError, DegenerateError
 from camlab.homography import similarity
 from camlab.projective import map_points
-from conftest import assert_close_to_cv2_warp
 
 H = np.array([[0.9, 0.1, 30.0], [-0.05, 0.95, 20.0], [2e-4, 1e-4, 1.0]])
 

@@ -406,6 +406,7 @@ def test_stack_check_static_picture_shows_the_readout_like_the_live_frame():
     import io
 
     import matplotlib.pyplot as plt
+
     from camlab.plotting.static import figure_png
 
     demo = DEMOS["stack_check"].builder()

@@ -34,9 +34,9 @@ import tempfile
 import time
 import urllib.request
 import uuid
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Iterator
 
 REPO = Path(__file__).resolve().parent.parent
 BIN = Path(sys.executable).parent
@@ -85,7 +85,7 @@ async def within(seconds: float, awaitable, what: str):
     """Await ``awaitable`` for at most ``seconds``; past that, fail naming ``what``."""
     try:
         return await asyncio.wait_for(awaitable, seconds)
-    except asyncio.TimeoutError:
+    except TimeoutError:
         raise TimeoutError(f"{what}: no answer within {seconds:.0f} s") from None
 
 

@@ -102,8 +102,8 @@ def main(argv: list[str] | None = None) -> int:
     )
     args = parser.parse_args(argv)
     import nbformat
-    from build import execute
 
+    from build import execute
     from camlab.classroom.lessons import find_lesson
 
     args.out.mkdir(parents=True, exist_ok=True)

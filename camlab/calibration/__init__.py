@@ -40,7 +40,20 @@ Every public name is re-exported here: ``from camlab.calibration import calibrat
 
 from __future__ import annotations
 
+from .calibrate import (
+    CalibrationResult,
+    ClosedFormWithDistortion,
+    ImageCalibration,
+    calibrate_camera,
+    calibrate_from_images,
+    closed_form_with_distortion,
+)
+from .coach import CoachReport, coach, projection_uncertainty
 from .detection import ChessboardDetection, board_points, find_chessboard, parse_pattern
+from .io import load_calibration, save_calibration
+from .refinement import PARAM_NAMES, reproject
+from .synthetic import SyntheticSet, make_synthetic_views
+from .undistortion import optimal_new_camera_matrix, undistort, undistortion_tradeoff
 from .zhang import (
     extrinsics_from_homography,
     initial_radial_distortion,
@@ -51,19 +64,6 @@ from .zhang import (
     zhang_constraints,
     zhang_v,
 )
-from .refinement import PARAM_NAMES, reproject
-from .calibrate import (
-    CalibrationResult,
-    ClosedFormWithDistortion,
-    ImageCalibration,
-    calibrate_camera,
-    calibrate_from_images,
-    closed_form_with_distortion,
-)
-from .coach import CoachReport, coach, projection_uncertainty
-from .undistortion import optimal_new_camera_matrix, undistort, undistortion_tradeoff
-from .io import load_calibration, save_calibration
-from .synthetic import SyntheticSet, make_synthetic_views
 
 __all__ = [
     "PARAM_NAMES",

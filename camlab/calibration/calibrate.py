@@ -6,8 +6,9 @@ from __future__ import annotations
 
 import glob as _glob
 import os
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Callable, NamedTuple, Sequence
+from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -18,7 +19,7 @@ from ..camera import axis_angle_from_rotation, rotation_from_axis_angle
 from ..distortion import as_dist
 from ..optimize import LMResult, levenberg_marquardt
 from .detection import board_points, find_chessboard, grey_uint8, parse_pattern
-from .refinement import CalibrationProblem, PARAM_NAMES, project_views, reproject
+from .refinement import PARAM_NAMES, CalibrationProblem, project_views, reproject
 from .zhang import (
     check_views,
     extrinsics_from_homography,

@@ -9,7 +9,8 @@ Pixels (u, v) = (column, row), origin at the centre of the top-left pixel.
 
 from __future__ import annotations
 
-from typing import NamedTuple, Sequence
+from collections.abc import Sequence
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike

@@ -5,7 +5,7 @@ See :mod:`camlab.calibration` for the whole pipeline and lesson 08 for the deriv
 
 from __future__ import annotations
 
-from typing import Sequence
+from collections.abc import Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike

@@ -29,14 +29,13 @@ from functools import lru_cache
 from pathlib import Path
 from typing import NamedTuple
 
+import numpy as np
 from numpy.typing import ArrayLike
 
-import numpy as np
-
-from ._resources import encode_image, read_truth
 from .._validate import CamlabInputError, check_positive, check_size
 from ..camera import scale_intrinsics
 from ..scenes import wall_texture
+from ._resources import encode_image, read_truth
 
 __all__ = [
     "PANORAMA_PARAMS",

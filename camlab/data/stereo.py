@@ -37,9 +37,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._resources import encode_image, read_only, read_truth
 from ..camera import Camera, look_at_rotation, rotation_from_axis_angle
 from ..scenes import CameraPair, noise_texture, portrait
+from ._resources import encode_image, read_only, read_truth
 
 __all__ = [
     "HALF_SIZE",

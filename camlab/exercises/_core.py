@@ -41,9 +41,10 @@ import re
 import signal
 import threading
 import time
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import Any, Callable, Iterator, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -701,7 +702,7 @@ class Tolerance:
     rtol: float = 1e-5
     atol: float = 1e-8
 
-    def for_answer(self, got: Any, expected: Any) -> "Tolerance":
+    def for_answer(self, got: Any, expected: Any) -> Tolerance:
         eps = _coarsest_eps(got)
         if eps <= np.finfo(np.float64).eps:
             return self

@@ -8,7 +8,6 @@ from .. import calibration, optimize
 from ..camera import rotation_from_axis_angle
 from ._core import Exercise, register_exercise, same_array, shape_problem
 
-
 # ------------------------------------------------------------------ V from one homography
 
 

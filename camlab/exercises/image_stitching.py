@@ -8,7 +8,6 @@ from .. import stitching as st
 from ..homography import rotation_homography
 from ._core import Exercise, register_exercise, same_array
 
-
 # ----------------------------------------------------------------------------- canvas bounds
 
 

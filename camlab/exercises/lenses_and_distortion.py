@@ -12,9 +12,9 @@ from __future__ import annotations
 import numpy as np
 
 from .. import distortion, lens
-from ._numbers import is_number as _is_number, not_one_number, same_number
 from ._core import Exercise, register_exercise, same_array, shape_problem
-
+from ._numbers import is_number as _is_number
+from ._numbers import not_one_number, same_number
 
 # -- field_of_view ----------------------------------------------------------------------------
 

@@ -12,8 +12,8 @@ from __future__ import annotations
 import numpy as np
 
 from .. import pinhole
-from ._numbers import SameNumber, is_number
 from ._core import Exercise, Tolerance, register_exercise, same_array, shape_problem, unit_slip
+from ._numbers import SameNumber, is_number
 
 
 def _projection_cases():

@@ -26,7 +26,8 @@ import base64
 import io
 import struct
 import weakref
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from matplotlib.figure import Figure
 
@@ -36,7 +37,7 @@ OUTPUT_WIDTH_PX = 960
 1400 px window with the file browser open (measured in headless Chromium)."""
 CANVAS_FRAME_PX = 8
 """What ipympl's canvas widget adds to its figure's width (measured: 1008 px for a 1000 px figure)."""
-_ALT: "weakref.WeakKeyDictionary[Figure, str]" = weakref.WeakKeyDictionary()
+_ALT: weakref.WeakKeyDictionary[Figure, str] = weakref.WeakKeyDictionary()
 
 
 def alt_text(fig: Figure, text: str) -> Figure:

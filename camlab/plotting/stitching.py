@@ -7,6 +7,7 @@ Images are shown pixel-exact: pixel (u, v) has its centre at data coordinates (u
 from __future__ import annotations
 
 import numpy as np
+
 from . import palette
 
 __all__ = ["draw_keypoints", "draw_matches", "match_segments", "outline", "side_by_side"]

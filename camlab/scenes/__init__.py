@@ -28,6 +28,42 @@ kind: :mod:`.textures`, :mod:`.planes`, :mod:`.photos`, :mod:`.wireframes`, :mod
 
 from __future__ import annotations
 
+from .lessons import (
+    WALL_DISTANCE,
+    CameraPair,
+    GroundView,
+    OutlierMatches,
+    ResectionSet,
+    ResectionTrial,
+    box_and_rails,
+    box_before_wall,
+    depth_of_field_scene,
+    forward_pair,
+    ground_plane_view,
+    house_scene,
+    outlier_matches,
+    photo_and_page,
+    rail_track,
+    resection_set,
+    resection_trial,
+    sleeper_gaps,
+    stereo_pair,
+)
+from .photos import (
+    PlanePhoto,
+    look_at_plane,
+    photograph_plane,
+    sample_photo,
+)
+from .planes import (
+    Plane,
+    box,
+    checkerboard,
+    letter_chart,
+    photo_plane,
+    text_page,
+    textured_plane,
+)
 from .textures import (
     as_texture,
     desk_background,
@@ -39,47 +75,11 @@ from .textures import (
     portrait,
     wall_texture,
 )
-from .planes import (
-    box,
-    checkerboard,
-    letter_chart,
-    photo_plane,
-    Plane,
-    text_page,
-    textured_plane,
-)
-from .photos import (
-    look_at_plane,
-    photograph_plane,
-    PlanePhoto,
-    sample_photo,
-)
 from .wireframes import (
     box_wireframe,
     ground_grid,
     house_wireframe,
     plane_outlines,
-)
-from .lessons import (
-    box_and_rails,
-    box_before_wall,
-    CameraPair,
-    depth_of_field_scene,
-    forward_pair,
-    ground_plane_view,
-    GroundView,
-    house_scene,
-    outlier_matches,
-    OutlierMatches,
-    photo_and_page,
-    rail_track,
-    resection_set,
-    resection_trial,
-    ResectionSet,
-    ResectionTrial,
-    sleeper_gaps,
-    stereo_pair,
-    WALL_DISTANCE,
 )
 
 __all__ = [

@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import replace
 from functools import lru_cache
-from typing import NamedTuple, Sequence
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -24,7 +25,6 @@ from ..projective import map_points
 from .planes import Plane, box, checkerboard, letter_chart, photo_plane, text_page, textured_plane
 from .textures import portrait
 from .wireframes import box_wireframe, ground_grid, house_wireframe
-
 
 WALL_DISTANCE = 6.0  # metres: lesson 01's checkered wall behind the box
 WALL_TEXELS = (

@@ -6,9 +6,9 @@ its pose is world_from_plane, metres.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import lru_cache
-from typing import Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike

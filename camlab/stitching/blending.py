@@ -6,7 +6,7 @@ See :mod:`camlab.stitching` for the whole pipeline; every name here is re-export
 
 from __future__ import annotations
 
-from typing import Sequence
+from collections.abc import Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike

@@ -27,7 +27,8 @@ per overlapping pair; this module turns them into one camera per image (Brown & 
 from __future__ import annotations
 
 import time
-from typing import NamedTuple, Sequence
+from collections.abc import Sequence
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike

@@ -24,7 +24,8 @@ straight lines. Each image is warped backwards: canvas pixel -> ray -> :math:`\p
 
 from __future__ import annotations
 
-from typing import NamedTuple, Sequence
+from collections.abc import Sequence
+from typing import NamedTuple
 
 import numpy as np
 

@@ -6,7 +6,8 @@ See :mod:`camlab.stitching` for the whole pipeline; every name here is re-export
 
 from __future__ import annotations
 
-from typing import NamedTuple, Sequence
+from collections.abc import Sequence
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike

@@ -6,9 +6,9 @@ See :mod:`camlab.stitching` for the whole pipeline; every name here is re-export
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike

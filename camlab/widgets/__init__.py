@@ -15,8 +15,8 @@ from __future__ import annotations
 import importlib
 import pkgutil
 
-from ..plotting.static import install_canvas_formatter
 from .. import _access, _notebook
+from ..plotting.static import install_canvas_formatter
 from ._base import REGISTRY, Demo, DemoSpec, FigureView, build_demo, register, slider
 
 install_canvas_formatter()  # plain figures in a lesson keep a PNG with alt text too

@@ -20,8 +20,9 @@ from __future__ import annotations
 import html
 import io
 import os
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Callable, Mapping, Sequence
+from typing import Any
 
 import ipywidgets as W
 import matplotlib
@@ -34,7 +35,6 @@ from ..plotting.static import CANVAS_FRAME_PX, OUTPUT_WIDTH_PX, demo_alt_text, s
 from ._transport import halo_in_two_passes, show_at_display_resolution, use_fast_png
 from .controls import slider as slider  # re-exported: every demo module imports it from here
 from .controls import whole_label
-
 
 MAX_DEMO_WIDTH_PX = OUTPUT_WIDTH_PX
 """The widest a demo may be, its controls or its figure (:data:`camlab.plotting.static.OUTPUT_WIDTH_PX`)."""

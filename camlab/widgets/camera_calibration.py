@@ -17,11 +17,10 @@ import numpy as np
 from .. import calibration as C
 from .._validate import CamlabInputError, ConvergenceError
 from ..data.calibration import bundled_calibration
+from ..plotting import palette
 from ..plotting.calibration import image_frame
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import monospace
-from ..plotting import palette
-
 
 _NAMES = ("fx", "fy", "cx", "cy")
 _SIGMA_LIM = 8.0  # the sigma-unit axis spans +-8

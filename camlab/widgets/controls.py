@@ -6,7 +6,8 @@ same everywhere. Demo modules hold their controls, artists and ``update`` only.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Callable, Sequence
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any
 
 import ipywidgets as W
 import numpy as np

@@ -3,14 +3,13 @@
 from __future__ import annotations
 
 import ipywidgets as W
-from matplotlib.patches import Rectangle
 import numpy as np
+from matplotlib.patches import Rectangle
 
 from .. import render, scenes, sensor
-from ..plotting import images
+from ..plotting import images, palette
 from ._base import FigureView, build_demo, register, slider
 from .controls import monospace
-from ..plotting import palette
 
 SIZE = (320, 240)
 

@@ -9,8 +9,9 @@ control ``"u0, v0; u1, v1; u2, v2; u3, v3"`` so tests and static pages drive the
 from __future__ import annotations
 
 import textwrap
+from collections.abc import Callable
 from functools import lru_cache
-from typing import Any, Callable
+from typing import Any
 
 import ipywidgets as W
 import numpy as np
@@ -19,8 +20,8 @@ from .. import homography as hg
 from .. import scenes
 from ..plotting import palette
 from ..projective import cross_ratio, map_points, splits_at_infinity
-from ..warp import forward_warp, warp_perspective
 from ..robust import required_iterations
+from ..warp import forward_warp, warp_perspective
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import (
     connect_corner_drag,

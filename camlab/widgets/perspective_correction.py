@@ -15,6 +15,7 @@ import ipywidgets as W
 import numpy as np
 
 from .. import perspective as pp
+from ..plotting import palette
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import (
     connect_corner_drag,
@@ -24,7 +25,6 @@ from .controls import (
     monospace,
     parse_corners,
 )
-from ..plotting import palette
 
 _SHOW = 260  # the rectified view is drawn into a _SHOW x _SHOW box
 

@@ -6,12 +6,10 @@ import ipywidgets as W
 import numpy as np
 
 from .. import pinhole, render, scenes, sensor
-from ..plotting import images, optics
-
+from ..plotting import images, optics, palette
+from ..scenes.planes import CHART_ROW_HEIGHTS
 from ._base import FigureView, build_demo, register, slider
 from .controls import monospace
-from ..plotting import palette
-from ..scenes.planes import CHART_ROW_HEIGHTS
 
 SIZE = (320, 240)
 PITCH = 36e-3 / SIZE[0]  # a 36 mm wide sensor with 320 pixels: 112.5 um pixels

@@ -14,10 +14,9 @@ import numpy as np
 
 from .. import camera as cm
 from .. import scenes
-from ..plotting import scene3d
+from ..plotting import palette, scene3d
 from ._base import FigureView, build_demo, register, slider
 from .controls import int_slider
-from ..plotting import palette
 
 TARGET = np.array([0.0, 0.0, 0.7])
 # The explorer's 3-D viewer orbits with the camera, this many degrees behind it (clockwise seen from

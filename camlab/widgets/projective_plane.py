@@ -11,10 +11,10 @@ import numpy as np
 
 from .. import projective as pj
 from .. import scenes
+from ..plotting import palette
 from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes, plane_axes, set_line
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import monospace
-from ..plotting import palette
 
 
 @register(lesson="06", sweep={"x": [-1.5, 0.0, 1.2], "y": [1.0, -0.5], "scale": [0.4, 1.0, 2.5]})

@@ -9,9 +9,9 @@ from matplotlib.markers import MarkerStyle
 from matplotlib.path import Path
 from matplotlib.transforms import Affine2D
 
-from ..plotting.plane import plane_axes
-from ._base import Demo, FigureView, display_mode, build_demo, register, slider
 from ..plotting import palette
+from ..plotting.plane import plane_axes
+from ._base import Demo, FigureView, build_demo, display_mode, register, slider
 
 # A little house outline, in plot units: the course's running example of a shape. y points down, as in
 # every image of the course, so the roof (drawn on top) has the most negative y.

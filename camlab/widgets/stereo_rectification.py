@@ -24,11 +24,11 @@ from ..data.stereo import (
     half_size_rectification,
     stereo_scene,
 )
-from ..projective import map_points
+from ..plotting import palette
 from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes
+from ..projective import map_points
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import int_slider, monospace
-from ..plotting import palette
 
 SIZE = (640, 480)
 

@@ -9,7 +9,6 @@ from ... import affine as af
 from ... import camera as cm
 from .._core import Exercise, register_exercise, same_array, shape_problem
 
-
 # -- estimate_affine_camera -------------------------------------------------------------------
 
 _LSQ = (
