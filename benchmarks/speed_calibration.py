@@ -55,8 +55,10 @@ def accuracy_rows(n_views: int = 15, noise: float = 0.2, seed: int = 7) -> list[
     s = make_synthetic_views(n_views, noise, rng=np.random.default_rng(seed))
     res = calibrate_camera(s.object_points, s.image_points, s.image_size)
     rms, K, dist, *_ = _opencv(s)()
-    true = dict(zip(("fx", "fy", "cx", "cy"), (s.K[0, 0], s.K[1, 1], s.K[0, 2], s.K[1, 2])))
-    cv = dict(zip(("fx", "fy", "cx", "cy"), (K[0, 0], K[1, 1], K[0, 2], K[1, 2])))
+    true = dict(
+        zip(("fx", "fy", "cx", "cy"), (s.K[0, 0], s.K[1, 1], s.K[0, 2], s.K[1, 2]), strict=True)
+    )
+    cv = dict(zip(("fx", "fy", "cx", "cy"), (K[0, 0], K[1, 1], K[0, 2], K[1, 2]), strict=True))
     out = []
     for name in ("fx", "fy", "cx", "cy"):
         ours = res.intrinsics[name]

@@ -94,7 +94,7 @@ def cv_mappings(stitcher, images) -> dict:
     h, w = images[comp[0]].shape[:2]
     ws = min(1.0, np.sqrt(stitcher.registrationResol() * 1e6 / (h * w)))
     out = {}
-    for k, cam in zip(comp, stitcher.cameras()):
+    for k, cam in zip(comp, stitcher.cameras(), strict=True):
         K = cam.K().astype(float)
         K[:2] /= ws  # the Stitcher's cameras are at its registration scale
         R = np.asarray(cam.R, float)  # world_from_cam
@@ -202,7 +202,7 @@ def rows(repeat: int = 3) -> list[dict]:
                 "ratio": cam / ocv,
                 "target": f"<= {TARGET:g}x",
                 "ok": cam / ocv <= TARGET and status == cv2.Stitcher_OK,
-                "runs": ", ".join(f"{a / b:.2f}" for a, b in zip(tc, to)),
+                "runs": ", ".join(f"{a / b:.2f}" for a, b in zip(tc, to, strict=True)),
                 "cpu_ratio": float(np.median(cc) / np.median(co)),
                 "camlab_px": e_cam,
                 "opencv_px": e_cv,

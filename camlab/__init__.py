@@ -19,34 +19,35 @@ order the lessons teach them, and the main function of each topic by its bare na
 (``camlab.estimate_homography`` is ``camlab.homography.estimate_homography``). Topics load on
 first use, so ``import camlab`` stays fast and never imports matplotlib, ipywidgets or cv2.
 
-======================  ==================================================================
-topic                   main functions
-======================  ==================================================================
-``pinhole`` (01)        project_pinhole, pinhole_blur, optimal_pinhole_diameter
-``lens`` (02)           depth_of_field, circle_of_confusion, angle_of_view
-``distortion`` (02)     distort_points, undistort_points, undistort_image
-``sensor`` (03)         mosaic, demosaic_bilinear, intrinsics_from_sensor, add_noise
-``camera`` (04)         Camera, intrinsic_matrix, project_points, estimate_projection_matrix,
-                        decompose_projection_matrix, rq_decomposition
-``affine`` (05)         affine_approximation, estimate_affine_camera
-``projective`` (06)     join, meet, vanishing_point, horizon, cross_ratio (imported eagerly)
-``homography`` (07)     estimate_homography, ransac_homography, refine_homography
-``warp`` (07)           warp_perspective, forward_warp
-``calibration`` (08)    calibrate_camera, calibrate_from_images, find_chessboard
-``stitching`` (09)      stitch, register_pair, match_graph, blend
-``features`` (09)       detect_features, match_features
-``perspective`` (10)    rectify_quadrilateral, estimate_aspect_ratio, find_document
-``epipolar`` (11)       estimate_fundamental_matrix, ransac_fundamental_matrix,
-                        essential_matrix, recover_pose, triangulate_points
-``rectification`` (11)  rectify_calibrated, rectify_uncalibrated
-``disparity`` (11)      block_matching_disparity, sgbm_disparity, disparity_to_depth
-``robust``, ``optimize`` the shared engines: ransac, levenberg_marquardt
-``render``, ``scenes``  the virtual camera with ground truth, and the lessons' scenes
-``data``                the shipped photographs and data sets (load_photo ...)
-``plotting``,           figures, the demos behind the lessons, the checked exercises
+========================  ==================================================================
+topic                     main functions
+========================  ==================================================================
+``pinhole`` (01)          project_pinhole, pinhole_blur, optimal_pinhole_diameter
+``lens`` (02)             depth_of_field, circle_of_confusion, angle_of_view
+``distortion`` (02)       distort_points, undistort_points, undistort_image
+``sensor`` (03)           mosaic, demosaic_bilinear, intrinsics_from_sensor, add_noise
+``camera`` (04)           Camera, intrinsic_matrix, project_points, estimate_projection_matrix,
+                          decompose_projection_matrix, rq_decomposition
+``affine`` (05)           affine_approximation, estimate_affine_camera
+``affine_epipolar`` (05)  estimate_affine_fundamental, affine_epipolar_test
+``projective`` (06)       join, meet, vanishing_point, horizon, cross_ratio (imported eagerly)
+``homography`` (07)       estimate_homography, ransac_homography, refine_homography
+``warp`` (07)             warp_perspective, forward_warp
+``calibration`` (08)      calibrate_camera, calibrate_from_images, find_chessboard
+``stitching`` (09)        stitch, register_pair, match_graph, blend
+``features`` (09)         detect_features, match_features
+``perspective`` (10)      rectify_quadrilateral, estimate_aspect_ratio, find_document
+``epipolar`` (11)         estimate_fundamental_matrix, ransac_fundamental_matrix,
+                          essential_matrix, recover_pose, triangulate_points
+``rectification`` (11)    rectify_calibrated, rectify_uncalibrated
+``disparity`` (11)        block_matching_disparity, sgbm_disparity, disparity_to_depth
+``robust``, ``optimize``   the shared engines: ransac, levenberg_marquardt
+``render``, ``scenes``    the virtual camera with ground truth, and the lessons' scenes
+``data``                  the shipped photographs and data sets (load_photo ...)
+``plotting``,             figures, the demos behind the lessons, the checked exercises
 ``widgets``,
 ``exercises``
-======================  ==================================================================
+========================  ==================================================================
 
 docs/architecture.md says which module may import which, and where new code goes.
 """
@@ -104,6 +105,7 @@ _MAIN: dict[str, tuple[str, ...]] = {
         "rq_decomposition",
     ),
     "affine": ("affine_approximation", "estimate_affine_camera"),
+    "affine_epipolar": ("estimate_affine_fundamental", "affine_epipolar_test"),
     "homography": ("estimate_homography", "ransac_homography", "refine_homography"),
     "warp": ("warp_perspective", "forward_warp"),
     "calibration": ("calibrate_camera", "calibrate_from_images", "find_chessboard"),

@@ -435,7 +435,7 @@ def _run_rectify(args: argparse.Namespace) -> int:
     full_width = pair[0].shape[1]
     pair = [
         _within_work_size(im, args.max_megapixels, path)
-        for im, path in zip(pair, (args.left, args.right))
+        for im, path in zip(pair, (args.left, args.right), strict=True)
     ]
     m = features.match_features(*(features.detect_features(im) for im in pair))
     fit = epipolar.ransac_fundamental_matrix(

@@ -695,7 +695,7 @@ def recover_pose(
     P1 = K1 @ np.eye(3, 4)
     best = None
     counts = np.zeros(4, dtype=int)
-    for i, (R, t) in enumerate(zip(cands.R, cands.t)):
+    for i, (R, t) in enumerate(zip(cands.R, cands.t, strict=True)):
         X = triangulate_points(P1, K2 @ np.column_stack([R, t]), a, b)
         front = (X[:, 2] > 0) & ((X @ R.T + t)[:, 2] > 0)
         counts[i] = int(front.sum())
@@ -729,7 +729,7 @@ def _refine_points(
         JtJ = np.zeros((len(X), 3, 3))
         Jtr = np.zeros((len(X), 3))
         cost = np.zeros(len(X))
-        for P, uv in zip(Ps, uvs):
+        for P, uv in zip(Ps, uvs, strict=True):
             h = X @ P[:, :3].T + P[:, 3]
             w = h[:, 2:3]
             r = h[:, :2] / w - uv

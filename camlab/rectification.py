@@ -707,7 +707,7 @@ def stereo_calibrate(
             f"image_points1, image_points2: expected the same number (>= 3) of views seen by "
             f"both cameras, got {len(views1)} and {len(views2)}"
         )
-    for i, (a, b) in enumerate(zip(views1, views2)):
+    for i, (a, b) in enumerate(zip(views1, views2, strict=True)):
         if len(a) != len(X) or len(b) != len(X):
             raise CamlabInputError(
                 f"image_points[{i}]: expected {len(X)} corners per view (one per object point), "
@@ -715,8 +715,8 @@ def stereo_calibrate(
             )
     c1 = cal.calibrate_camera(X, views1, image_size)
     c2 = cal.calibrate_camera(X, views2, image_size)
-    Rs = [R2 @ R1.T for R1, R2 in zip(c1.R, c2.R)]
-    ts = np.array([t2 - Rv @ t1 for Rv, t1, t2 in zip(Rs, c1.tvecs, c2.tvecs)])
+    Rs = [R2 @ R1.T for R1, R2 in zip(c1.R, c2.R, strict=True)]
+    ts = np.array([t2 - Rv @ t1 for Rv, t1, t2 in zip(Rs, c1.tvecs, c2.tvecs, strict=True)])
     R0 = cal.nearest_rotation(np.mean(Rs, axis=0))
     t0 = np.median(ts, axis=0)
     V = len(views1)

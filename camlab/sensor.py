@@ -260,7 +260,7 @@ def bayer_masks(shape: tuple[int, int], pattern: str = "RGGB") -> np.ndarray:
     p = check_bayer_pattern(pattern)
     h, w = check_shape(shape)
     masks = np.zeros((h, w, 3), dtype=bool)
-    for (dy, dx), ch in zip([(0, 0), (0, 1), (1, 0), (1, 1)], p):
+    for (dy, dx), ch in zip([(0, 0), (0, 1), (1, 0), (1, 1)], p, strict=True):
         masks[dy::2, dx::2, "RGB".index(ch)] = True
     return masks
 

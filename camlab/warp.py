@@ -358,7 +358,7 @@ def canvas_bounds(
             f"Hs, shapes: expected one homography per image shape (at least one), got {len(Hs)} and {len(shapes)}"
         )
     corners = []
-    for i, (H, shape) in enumerate(zip(Hs, shapes)):
+    for i, (H, shape) in enumerate(zip(Hs, shapes, strict=True)):
         Hm = check_homography(H, f"Hs[{i}]")
         h, w = int(shape[0]), int(shape[1])
         c = (

@@ -369,7 +369,7 @@ def test_dolly_zoom_camera_keeps_the_target_size_and_the_error_falls_like_one_ov
         af.dolly_zoom_camera(d, np.radians(-40), np.radians(20), target, image_offset=100.0)
         for d in (2.0, 16.0, 64.0)
     ]
-    for d, cam in zip((2.0, 16.0, 64.0), off):
+    for d, cam in zip((2.0, 16.0, 64.0), off, strict=True):
         np.testing.assert_allclose(cam.project(target), [419.5, 239.5], atol=1e-9)
         assert cam.depth(target) == pytest.approx(d) and np.allclose(cam.R, near.R)
         np.testing.assert_allclose(
@@ -453,7 +453,7 @@ def test_three_cameras_marks_X0_in_every_panel_where_it_images(settings):
 
     d = demos.three_cameras()
     d.set(**settings)
-    for ax, xy in zip(d.figure.axes, d.state["reference_images"]):
+    for ax, xy in zip(d.figure.axes, d.state["reference_images"], strict=True):
         (marker,) = _reference_markers(ax)
         assert np.allclose(np.column_stack(marker.get_data())[0], xy)
     assert np.allclose(

@@ -43,7 +43,7 @@ def test_every_lesson_becomes_a_course_whose_solutions_pass_their_checks(tmp_pat
         assert not any(
             ln.startswith("solution(") for ln in code_lines
         )  # the lesson's solution cells are gone
-        for solution_cell, test_cell in zip(graded[::2], graded[1::2]):
+        for solution_cell, test_cell in zip(graded[::2], graded[1::2], strict=True):
             name = solution_cell["metadata"]["nbgrader"]["grade_id"]
             assert solution_cell["metadata"]["nbgrader"]["solution"] is True
             meta = test_cell["metadata"]["nbgrader"]

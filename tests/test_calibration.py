@@ -120,7 +120,7 @@ def test_zhang_constraints_vanish_at_the_true_b():
     Kinv = np.linalg.inv(K_TRUE)
     B = Kinv.T @ Kinv
     b = B[[0, 0, 1, 0, 1, 2], [0, 1, 1, 2, 2, 2]]
-    for R, t in zip(s.R, s.t):
+    for R, t in zip(s.R, s.t, strict=True):
         H = pose_homography(K_TRUE, R, t)
         V = C.zhang_constraints(H)
         assert V.shape == (2, 6)
@@ -277,7 +277,7 @@ def test_errors_are_consistent_with_the_reported_std():
         s = C.make_synthetic_views(15, 0.2, rng=np.random.default_rng(100 + seed))
         res = C.calibrate_camera(s.object_points, s.image_points, s.image_size)
         p = res.intrinsics
-        for name, true in zip(("fx", "fy", "cx", "cy"), (820.0, 818.0, 322.4, 236.8)):
+        for name, true in zip(("fx", "fy", "cx", "cy"), (820.0, 818.0, 322.4, 236.8), strict=True):
             z.append((p[name] - true) / res.std[name])
     z = np.array(z)
     assert np.all(np.abs(z) < 3), z
@@ -368,7 +368,7 @@ def test_unequal_point_counts_per_view():
     keep = [np.arange(54) if v % 2 else np.arange(0, 54, 2) for v in range(6)]
     res = C.calibrate_camera(
         [s.object_points[k] for k in keep],
-        [p[k] for p, k in zip(s.image_points, keep)],
+        [p[k] for p, k in zip(s.image_points, keep, strict=True)],
         s.image_size,
     )
     assert np.abs(res.K - K_TRUE).max() < 1e-5 and [len(r) for r in res.residuals][:2] == [27, 54]

@@ -112,7 +112,7 @@ def colour_only_pairs(fig) -> list[tuple[str, str, object, object]]:
             continue
         entries = [
             (t.get_text(), h)
-            for t, h in zip(legend.get_texts(), legend.legend_handles)
+            for t, h in zip(legend.get_texts(), legend.legend_handles, strict=True)
             if h is not None
         ]
         for (name1, h1), (name2, h2) in itertools.combinations(entries, 2):
@@ -189,7 +189,7 @@ def test_every_camera_frame_has_one_colour_code():
             if t.get_text().split(",")[0].strip().lower() in ("x", "y", "z")
         }
 
-    want = {name: to_rgba(c) for name, c in zip("xyz", palette.AXIS_COLOURS)}
+    want = {name: to_rgba(c) for name, c in zip("xyz", palette.AXIS_COLOURS, strict=True)}
     fig = plt.figure()
     ax2 = fig.add_subplot(1, 2, 1)
     conventions.draw_camera_frame(ax2)

@@ -32,7 +32,7 @@ def _same_truth(a, b, where="truth.json"):
             _same_truth(a[k], b[k], f"{where}.{k}")
     elif isinstance(a, list):
         assert len(a) == len(b), f"{where}: length {len(a)} != {len(b)}"
-        for i, (x, y) in enumerate(zip(a, b)):
+        for i, (x, y) in enumerate(zip(a, b, strict=True)):
             _same_truth(x, y, f"{where}[{i}]")
     elif isinstance(a, (int, float)) and not isinstance(a, bool):
         assert abs(a - b) <= TRUTH_TOL * max(1.0, abs(a)), f"{where}: {a} != {b}"
@@ -121,7 +121,7 @@ def test_calibration_set_ground_truth():
     assert 15 <= len(cs.images) <= 20 and cs.images[0].shape == (480, 640)
     assert cs.corners.shape == (len(cs.images), 54, 2) and cs.pattern_size == (9, 6)
     # the stored corners are the projections of the object points with the stored truth
-    for R, t, c in zip(cs.R, cs.t, cs.corners):
+    for R, t, c in zip(cs.R, cs.t, cs.corners, strict=True):
         assert np.abs(render.project(cs.object_points, cs.K, R, t, cs.dist) - c).max() < 1e-6
     # and OpenCV's detector finds them in the images
     ok, found = cv2.findChessboardCornersSB(cs.images[0], cs.pattern_size)

@@ -187,7 +187,7 @@ def test_essential_decomposition_and_recover_pose_match_opencv():
     tn = t / np.linalg.norm(t)
     assert any(
         np.allclose(Rc, R, atol=1e-9) and np.allclose(tc, tn, atol=1e-9)
-        for Rc, tc in zip(cands.R, cands.t)
+        for Rc, tc in zip(cands.R, cands.t, strict=True)
     )
     pose = ep.recover_pose(
         ep.essential_from_fundamental(ep.fundamental_from_cameras(c1, c2), c1.K), x1, x2, c1.K

@@ -770,7 +770,7 @@ def _dlt_variant(X, uv, rows=2, normaliser="isotropic"):
     Xn = np.c_[X, np.ones(len(X))] @ U.T
     un = np.c_[uv, np.ones(len(uv))] @ T.T
     blocks = []
-    for Xh, (u, v, w) in zip(Xn, un):
+    for Xh, (u, v, w) in zip(Xn, un, strict=True):
         z = np.zeros(4)
         rows_i = [np.r_[w * Xh, z, -u * Xh], np.r_[z, w * Xh, -v * Xh], np.r_[-v * Xh, u * Xh, z]]
         blocks += rows_i[:rows]

@@ -92,7 +92,7 @@ def test_ratio_test_against_opencv_knn(pair):
     knn = cv2.BFMatcher(cv2.NORM_L2).knnMatch(f1.descriptors, f2.descriptors, k=2)
     expected = {(a.queryIdx, a.trainIdx) for a, b in knn if a.distance < 0.8 * b.distance}
     m = ft.match_features(f1, f2, ratio=0.8)
-    assert set(zip(m.idx1.tolist(), m.idx2.tolist())) == expected
+    assert set(zip(m.idx1.tolist(), m.idx2.tolist(), strict=True)) == expected
     assert np.all(np.diff(m.ratio) >= 0) and np.all(m.ratio < 0.8)
     assert np.allclose(m.src, f1.points[m.idx1]) and np.allclose(m.dst, f2.points[m.idx2])
 
@@ -102,7 +102,7 @@ def test_mutual_check_equals_opencv_cross_check(pair):
     cross = cv2.BFMatcher(cv2.NORM_L2, crossCheck=True).match(f1.descriptors, f2.descriptors)
     expected = {(c.queryIdx, c.trainIdx) for c in cross}
     m = ft.match_features(f1, f2, ratio=1.0, mutual=True)
-    assert set(zip(m.idx1.tolist(), m.idx2.tolist())) == expected
+    assert set(zip(m.idx1.tolist(), m.idx2.tolist(), strict=True)) == expected
     knn = ft.knn_match(f1, f2, backward=False)
     with pytest.raises(CamlabInputError, match="mutual: the mutual check needs knn_match"):
         ft.filter_matches(knn, 0.8, mutual=True)
@@ -119,8 +119,8 @@ def test_flann_index_agrees_with_brute_force(pair):
     same = knn.nn12[:, 0] == exact.nn12[:, 0]
     assert np.allclose(knn.d12[same, 0], exact.d12[same, 0], rtol=1e-5)
     fl = ft.filter_matches(knn, 0.75)
-    both = set(zip(fl.idx1.tolist(), fl.idx2.tolist())) & set(
-        zip(bf.idx1.tolist(), bf.idx2.tolist())
+    both = set(zip(fl.idx1.tolist(), fl.idx2.tolist(), strict=True)) & set(
+        zip(bf.idx1.tolist(), bf.idx2.tolist(), strict=True)
     )
     assert len(both) >= 0.9 * len(bf.idx1) and len(fl.idx1) <= 1.05 * len(bf.idx1)
     H = s.true_homography(1, 2)

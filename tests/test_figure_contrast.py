@@ -74,7 +74,7 @@ def _halo(artist, background: np.ndarray) -> np.ndarray:
 def _along(points_px: np.ndarray, step: float = 2.0) -> np.ndarray:
     """Points every ``step`` pixels along a polyline given in display pixels (NaN breaks it)."""
     out = []
-    for p, q in zip(points_px[:-1], points_px[1:]):
+    for p, q in zip(points_px[:-1], points_px[1:], strict=True):
         if not (np.isfinite(p).all() and np.isfinite(q).all()):
             continue
         n = max(1, int(np.hypot(*(q - p)) / step))

@@ -142,7 +142,7 @@ def _student_dlt(src, dst, normalise):
     a = np.c_[src, np.ones(len(src))] @ Ts.T
     b = np.c_[dst, np.ones(len(dst))] @ Td.T
     rows = []
-    for (u, v, _), (up, vp, _) in zip(a, b):
+    for (u, v, _), (up, vp, _) in zip(a, b, strict=True):
         rows.append([0, 0, 0, -u, -v, -1, vp * u, vp * v, vp])
         rows.append([u, v, 1, 0, 0, 0, -up * u, -up * v, -up])
     h = np.linalg.svd(np.array(rows))[2][-1].reshape(3, 3)

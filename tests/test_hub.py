@@ -26,7 +26,7 @@ STUDENTS = ["ada", "blaise", "carl", "dora"]
 async def _cross_reads(hub, tokens, path):
     """What each student gets when reaching for the next student's files through the hub."""
     statuses = []
-    for me, other in zip(STUDENTS, STUDENTS[1:] + STUDENTS[:1]):
+    for me, other in zip(STUDENTS, STUDENTS[1:] + STUDENTS[:1], strict=True):
         mine = tokens[me]
         for method, url, body in [
             ("GET", f"{hub.url}/user/{other}/api/contents/{path}", None),

@@ -75,7 +75,7 @@ def self_check_questions(markdown: str) -> list[str]:
         return []
     section = match.group(1)
     starts = [m.start() for m in _QUESTION.finditer(section)]
-    return [section[a:b] for a, b in zip(starts, starts[1:] + [len(section)])]
+    return [section[a:b] for a, b in zip(starts, starts[1:] + [len(section)], strict=True)]
 
 
 @pytest.mark.parametrize(

@@ -68,7 +68,7 @@ FLOORS = {
     ],
     2: ["camera", "homography"],
     3: ["affine", "epipolar", "warp"],
-    4: ["scenes", "stitching"],
+    4: ["affine_epipolar", "scenes", "stitching"],
     5: ["render", "perspective"],
     6: ["calibration"],
     7: ["rectification", "plotting", "exercises"],

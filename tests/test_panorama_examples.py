@@ -160,13 +160,13 @@ def test_parallax_grows_with_the_baseline():
     assert tuple(pairs) == pe.BASELINES
     mis = [p.misalignment for p in pairs.values()]
     assert mis[0] < 4 / 255 and all(
-        a < b for a, b in zip(mis, mis[1:])
+        a < b for a, b in zip(mis, mis[1:], strict=True)
     )  # only noise when the camera turns
     for p in pairs.values():
         assert p.registration.accepted and sorted(p.blends) == ["feather", "multiband"]
         assert p.misalignment == st.overlap_difference(p.warped)
         assert all(e.dtype == bool and e.shape == p.warped.shape and e.any() for e in p.edges)
-        for e, again in zip(p.edges, pe.edge_masks(p.warped)):
+        for e, again in zip(p.edges, pe.edge_masks(p.warped), strict=True):
             np.testing.assert_array_equal(e, again)
 
 
@@ -187,7 +187,7 @@ def test_canvas_previews_the_plane_cannot_hold_a_wide_turn():
         )  # scaled to fit the box, touching one side
         assert abs(w / h - p.shape[1] / p.shape[0]) < 0.02 * w / h  # the canvas' aspect ratio kept
     widths = [previews[(n, "cylindrical")].shape[1] for n in range(2, 7)]
-    assert all(a < b for a, b in zip(widths, widths[1:]))  # every view adds width
+    assert all(a < b for a, b in zip(widths, widths[1:], strict=True))  # every view adds width
     assert (
         previews[(3, "planar")].shape[1] > 4 * previews[(3, "cylindrical")].shape[1]
     )  # the plane stretches

@@ -71,12 +71,12 @@ def test_calibrated_vertical_disparity_on_rectified_images_vs_opencv(rig, rect):
         for c, Rr, P in ((rig.camera1, R1, P1), (rig.camera2, R2, P2))
     ]
     ours, theirs = [], []
-    for a, b in zip(rig.calib_left, rig.calib_right):
+    for a, b in zip(rig.calib_left, rig.calib_right, strict=True):
         pairs = (
             rc.rectify_images(rect, a, b),
-            [cv2.remap(img, *m, cv2.INTER_LINEAR) for img, m in zip((a, b), cv_maps)],
+            [cv2.remap(img, *m, cv2.INTER_LINEAR) for img, m in zip((a, b), cv_maps, strict=True)],
         )
-        for (A, B), store in zip(pairs, (ours, theirs)):
+        for (A, B), store in zip(pairs, (ours, theirs), strict=True):
             f1, p = cv2.findChessboardCornersSB(A, rig.pattern_size)
             f2, q = cv2.findChessboardCornersSB(B, rig.pattern_size)
             assert f1 and f2

@@ -100,7 +100,7 @@ def test_bundled_rig_prepares_lesson_11_s_pair_once_and_read_only():
     assert bundled_rig() is prepared  # cached
     rig, matches, half, und, unc = prepared
     again = true_matches(load_stereo_rig(), step=30, start=20)
-    for a, b in zip(matches, again):
+    for a, b in zip(matches, again, strict=True):
         np.testing.assert_array_equal(a, b)
     assert [im.shape for im in half] == [HALF_SIZE[::-1]] * 2 and [im.shape for im in und] == [
         (480, 640)

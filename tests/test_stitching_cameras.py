@@ -145,14 +145,17 @@ def test_loop_closes_after_bundle_adjustment():
     before, after = gap(K0, est.Rs_init), gap(est.Ks, est.Rs)
     assert before > 2 * after and after < 1.0, (before, after)
     assert all(abs(K[0, 0] / 250 - 1) < 0.01 for K in est.Ks)
-    assert relative_errors([(K, R) for K, R in zip(est.Ks, est.Rs)], s.R, list(range(8))) < 0.1
+    assert (
+        relative_errors([(K, R) for K, R in zip(est.Ks, est.Rs, strict=True)], s.R, list(range(8)))
+        < 0.1
+    )
 
 
 def test_wave_correction_levels_a_tilted_sweep():
     tilt = rotation_from_axis_angle([0.2, 0.0, 0.1])  # the whole sweep about a tilted axis
     Rs = [rotation_from_axis_angle([0, np.radians(a), 0]) @ tilt for a in (-40, -10, 20, 50)]
     out = cm.wave_correct(Rs)
-    for R0, R1 in zip(Rs, out):
+    for R0, R1 in zip(Rs, out, strict=True):
         assert abs(R1[0] @ [0, 1, 0]) < 1e-9  # every camera's x axis is horizontal
         assert np.allclose(R1 @ R1.T, np.eye(3))
     # relative rotations are unchanged

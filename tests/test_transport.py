@@ -42,7 +42,7 @@ def test_fast_diff_matches_matplotlib(ipympl_canvas):
         image.set_data(np.random.default_rng(0).random((30, 40)))
         frames[name], sent[:] = list(sent), []
     assert len(frames["fast"]) == len(frames["matplotlib"]) == 2
-    for slow, fast in zip(frames["matplotlib"], frames["fast"]):
+    for slow, fast in zip(frames["matplotlib"], frames["fast"], strict=True):
         assert np.array_equal(_decode(slow), _decode(fast))
     changed = _decode(frames["fast"][1])[..., 3] > 0
     assert 0 < changed.mean() < 0.9  # a diff frame, not a full one

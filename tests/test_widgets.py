@@ -215,7 +215,7 @@ def test_parallel_lines_meet_runs_to_infinity():
     for angle in (10.0, 20.0, 27.0, 29.5, 30.0):
         demo.set(angle2=angle)
         ws.append(demo.state["w"])
-    assert all(a > b for a, b in zip(ws, ws[1:])), ws
+    assert all(a > b for a, b in zip(ws, ws[1:], strict=True)), ws
     assert ws[-1] == 0.0 and np.isnan(demo.state["point"]).all()
     demo.set(offset2=0.5)  # now l2 == l1
     assert demo.state["meet"] is None
@@ -518,7 +518,7 @@ def test_stack_check_arrowhead_points_along_the_turn_on_screen(angle, scale):
     at = demo.state["arrow"]["at"]
     k = int(np.argmin(np.hypot(*(arc - at).T)))
     assert 0 < k < len(arc) - 1
-    for ax, key in zip(fig.axes, ("y down", "y up")):
+    for ax, key in zip(fig.axes, ("y down", "y up"), strict=True):
         (arrow,) = [ln for ln in ax.lines if ln.get_label() == "_the way"]
         assert np.allclose(np.column_stack(arrow.get_data())[0], at)
         screen = ax.transData.transform(arc[[k - 1, k + 1]])  # display coordinates: x right, y up

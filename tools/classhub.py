@@ -423,7 +423,13 @@ async def run_lesson(hub: Hub, name: str, token: str, lesson: Path) -> dict:
         "wall_s": wall,
         "errors": errors,
         "cells": count,
-        **dict(zip(("kernel_user", "kernel_cwd", "kernel_transport"), [*marker, None, None, None])),
+        **dict(
+            zip(
+                ("kernel_user", "kernel_cwd", "kernel_transport"),
+                [*marker, None, None, None],
+                strict=True,
+            )
+        ),
         **json.loads(printed(metrics, "camlab-hub-metrics") or "{}"),
     }
 

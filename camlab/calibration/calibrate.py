@@ -106,7 +106,7 @@ class CalibrationResult:
     def intrinsics(self) -> dict:
         """{name: value} for every global parameter in ``PARAM_NAMES``."""
         vals = [self.K[0, 0], self.K[1, 1], self.K[0, 2], self.K[1, 2], self.K[0, 1], *self.dist]
-        return dict(zip(PARAM_NAMES, (float(v) for v in vals)))
+        return dict(zip(PARAM_NAMES, (float(v) for v in vals), strict=True))
 
     def reprojected(self, view: int) -> np.ndarray:
         """(N_v, 2) pixels where the calibrated model puts view ``view``'s corners."""
@@ -465,7 +465,7 @@ def pad_views(objs: list, imgs: list) -> tuple[np.ndarray, np.ndarray, np.ndarra
     """
     V, M = len(objs), max(len(o) for o in objs)
     X, obs, mask = np.zeros((V, M, 3)), np.zeros((V, M, 2)), np.zeros((V, M))
-    for v, (o, p) in enumerate(zip(objs, imgs)):
+    for v, (o, p) in enumerate(zip(objs, imgs, strict=True)):
         X[v, : len(o)], obs[v, : len(o)], mask[v, : len(o)] = o, p, 1.0
         X[v, len(o) :] = o[0]
     return X, obs, mask
@@ -484,7 +484,7 @@ def _parameter_covariance(
     except np.linalg.LinAlgError:
         cov = np.full((prob.ni, prob.ni), np.inf)
     std = dict.fromkeys(PARAM_NAMES, 0.0)
-    for name, var in zip(np.array(PARAM_NAMES)[free], np.diag(cov)):
+    for name, var in zip(np.array(PARAM_NAMES)[free], np.diag(cov), strict=True):
         std[str(name)] = float(np.sqrt(max(var, 0.0)))
     return cov, std
 

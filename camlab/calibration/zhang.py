@@ -72,7 +72,7 @@ def check_views(object_points, image_points, min_views: int = 1):
                 f"for {n} views"
             )
     out_obj, out_img = [], []
-    for v, (o, p) in enumerate(zip(objs, image_points)):
+    for v, (o, p) in enumerate(zip(objs, image_points, strict=True)):
         o = as_points(
             _rows(o, 3, f"object_points[{v}]"), 3, f"object_points[{v}]", min_count=4
         ).array
@@ -115,7 +115,10 @@ def view_homographies(
     """
     objs, imgs = check_views(object_points, image_points)
     return np.stack(
-        [estimate_homography(planar_xy(o, v), p) for v, (o, p) in enumerate(zip(objs, imgs))]
+        [
+            estimate_homography(planar_xy(o, v), p)
+            for v, (o, p) in enumerate(zip(objs, imgs, strict=True))
+        ]
     )
 
 
@@ -324,7 +327,7 @@ def initial_radial_distortion(
     objs, imgs = check_views(object_points, image_points)
     Rs, ts = np.asarray(R, dtype=float).reshape(-1, 3, 3), np.asarray(t, dtype=float).reshape(-1, 3)
     rows, rhs = [], []
-    for o, p, Rv, tv in zip(objs, imgs, Rs, ts):
+    for o, p, Rv, tv in zip(objs, imgs, Rs, ts, strict=True):
         Xc = o @ Rv.T + tv
         x = Xc[:, :2] / Xc[:, 2:3]  # ideal normalised points
         r2 = np.sum(x * x, axis=1)

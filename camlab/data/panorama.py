@@ -193,7 +193,9 @@ def make_panorama_set(out_dir: Path | str, params: dict = PANORAMA_PARAMS) -> li
     scene = room_scene(params)
     rng = np.random.default_rng(params["seed"])
     files, views = [], []
-    for i, ((yaw, pitch, roll), gain) in enumerate(zip(params["angles_deg"], params["gains"])):
+    for i, ((yaw, pitch, roll), gain) in enumerate(
+        zip(params["angles_deg"], params["gains"], strict=True)
+    ):
         R = cam_from_world(*np.radians([yaw, pitch, roll]))
         img = render_view(R, gain=gain, rng=rng, params=params, scene=scene)
         name = f"rot_{i:02d}.jpg"
@@ -427,7 +429,7 @@ def _turning(name: str, f: float, size: tuple[int, int], unrelated: bool) -> Tur
     K = np.array([[f, 0, (width - 1) / 2], [0, f, (height - 1) / 2], [0, 0, 1.0]])
     rng = np.random.default_rng(2007)
     images, Rs = [], []
-    for (yaw, pitch, roll), gain in zip(spec["angles"], spec["gains"]):
+    for (yaw, pitch, roll), gain in zip(spec["angles"], spec["gains"], strict=True):
         R = cam_from_world(*np.radians([yaw, pitch, roll]))
         img = environment_view(R, K, (width, height)).astype(float) * gain
         img = np.clip(np.rint(img + rng.normal(0, 1.5, img.shape)), 0, 255).astype(np.uint8)

@@ -402,7 +402,7 @@ def _canvas_previews(max_shape: tuple[int, int]) -> dict:
                 )
                 continue
             pano = np.zeros((*canvas.shape, 3), np.float32)
-            for im, K, R, box in zip(imgs[:n], Ks, Rs, canvas.boxes):
+            for im, K, R, box in zip(imgs[:n], Ks, Rs, canvas.boxes, strict=True):
                 patch, mask, _ = pj.warp_to_canvas(im, K, R, canvas, box)
                 r0, r1, c0, c1 = box
                 pano[r0:r1, c0:c1][mask] = patch[mask]
@@ -479,7 +479,7 @@ def parallax_pairs() -> dict:
     img0, *moved = st.prepare_images(views)
     f0 = ft.detect_features(img0, max_features=1500)
     out = {}
-    for b, img1 in zip(BASELINES, moved):
+    for b, img1 in zip(BASELINES, moved, strict=True):
         f1 = ft.detect_features(img1, max_features=1500)
         reg = st.register_pair(f1, f0, threshold=2.0)
         wi = _with_canvases(st.warp_images([img0, img1], [np.eye(3), reg.H]))

@@ -219,7 +219,7 @@ def time_limit(seconds: float) -> Iterator[None]:
 def _inputs_changed(original: tuple, passed: tuple) -> list[int]:
     """Positions of the array arguments that differ, after the student's call, from the originals."""
     changed = []
-    for k, (before, after) in enumerate(zip(original, passed)):
+    for k, (before, after) in enumerate(zip(original, passed, strict=True)):
         if isinstance(before, np.ndarray):
             same = before.shape == np.shape(after) and np.array_equal(
                 before, after, equal_nan=before.dtype.kind in "fc"

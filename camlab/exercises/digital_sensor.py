@@ -557,7 +557,7 @@ def _zero_padded_demosaic(raw, pattern):
     kr = np.array([[1, 2, 1], [2, 4, 2], [1, 2, 1]]) / 4.0
     kg = np.array([[0, 1, 0], [1, 4, 1], [0, 1, 0]]) / 4.0
     out = np.empty(raw.shape + (3,))
-    for c, k in zip(range(3), (kr, kg, kr)):
+    for c, k in zip(range(3), (kr, kg, kr), strict=True):
         out[..., c] = convolve(raw * m[..., c], k, mode="constant")
     return out
 
@@ -645,7 +645,7 @@ def demosaic_bilinear(raw, pattern):
     raw = np.asarray(raw, dtype=float)  # float: uint8 sums would wrap around
     H, W = raw.shape
     m = np.zeros((H, W, 3))  # m[..., c] = 1 where the pixel measured colour c
-    for (dy, dx), colour in zip([(0, 0), (0, 1), (1, 0), (1, 1)], pattern):
+    for (dy, dx), colour in zip([(0, 0), (0, 1), (1, 0), (1, 1)], pattern, strict=True):
         m[dy::2, dx::2, "RGB".index(colour)] = 1
     k = np.outer([1, 2, 1], [1, 2, 1]) / 4  # the tent kernel
 

@@ -138,7 +138,7 @@ def _normalisation_slip(g, src, dst, expected) -> str:
 
 def _dlt_rows(src, dst):
     rows = []
-    for (u, v), (up, vp) in zip(np.asarray(src, float), np.asarray(dst, float)):
+    for (u, v), (up, vp) in zip(np.asarray(src, float), np.asarray(dst, float), strict=True):
         x = np.array([u, v, 1.0])
         rows += [
             np.concatenate([np.zeros(3), -x, vp * x]),
@@ -196,7 +196,7 @@ def dlt_homography(src, dst):
     a = np.column_stack([src, np.ones(len(src))]) @ T_src.T
     b = np.column_stack([dst, np.ones(len(dst))]) @ T_dst.T
     rows = []
-    for x, (u, v, _) in zip(a, b):
+    for x, (u, v, _) in zip(a, b, strict=True):
         rows.append(np.concatenate([np.zeros(3), -x, v * x]))
         rows.append(np.concatenate([x, np.zeros(3), -u * x]))
     h = np.linalg.svd(np.array(rows))[2][-1]  # smallest singular value's right vector

@@ -38,7 +38,7 @@ def _corners(
     """Every image's mapped corners, right or with one typical slip: ``transposed`` maps rows by ``c @ H`` (H^T),
     ``swap`` reads the shape as (w, h)."""
     pts = []
-    for H, s in zip(Hs, shapes):
+    for H, s in zip(Hs, shapes, strict=True):
         h, w = s[:2][::-1] if swap else s[:2]
         H = np.asarray(H)
         c = np.array(

@@ -47,7 +47,7 @@ def rectangle_homography(corners, size):
         [[0, 0], [width - 1, 0], [width - 1, height - 1], [0, height - 1]], dtype=float
     )
     A, b = [], []
-    for (u, v), (x, y) in zip(np.asarray(corners, dtype=float), target):
+    for (u, v), (x, y) in zip(np.asarray(corners, dtype=float), target, strict=True):
         A.append([u, v, 1, 0, 0, 0, -x * u, -x * v])  # x (h31 u + h32 v + 1) = h11 u + h12 v + h13
         A.append([0, 0, 0, u, v, 1, -y * u, -y * v])  # y (h31 u + h32 v + 1) = h21 u + h22 v + h23
         b += [x, y]

@@ -270,7 +270,9 @@ register_exercise(
 
 def _centre_cases():
     # P at other scales (|m3| != 1 in all but the first): a centre scaled by the wrong number fails early
-    return [(s * c.P,) for s, c in zip((1.0, 2.5, 0.02), _cameras())] + [(-0.01 * _cameras()[1].P,)]
+    return [(s * c.P,) for s, c in zip((1.0, 2.5, 0.02), _cameras(), strict=True)] + [
+        (-0.01 * _cameras()[1].P,)
+    ]
 
 
 def _flat_centre(got):
@@ -732,7 +734,7 @@ _INVARIANCE_PX = 1e-3  # a normalised DLT gives 1e-11 px, a refined one 1e-6; ha
 def _dlt_cases():
     rng = np.random.default_rng(11)
     cases = []
-    for cam, n in zip(_cameras(), (6, 10, 14)):  # exact pixels, six or more points
+    for cam, n in zip(_cameras(), (6, 10, 14), strict=True):  # exact pixels, six or more points
         X = rng.uniform(-1.0, 1.0, (n, 3)) + [0.0, 0.0, 0.5]
         cases.append((X, cm.project_points(cam.P, X)))
     X = _survey_points(12, rng)  # exact pixels far from the world origin
@@ -1159,7 +1161,7 @@ def estimate_projection_matrix(X, uv):
     Xn = np.column_stack([X, np.ones(len(X))]) @ U.T  # normalised homogeneous points, as rows
     un = np.column_stack([uv, np.ones(len(uv))]) @ T.T
     rows = []
-    for Xh, (u, v, w) in zip(Xn, un):  # u x P X = 0: two independent rows per point
+    for Xh, (u, v, w) in zip(Xn, un, strict=True):  # u x P X = 0: two independent rows per point
         rows.append(np.concatenate([w * Xh, np.zeros(4), -u * Xh]))
         rows.append(np.concatenate([np.zeros(4), w * Xh, -v * Xh]))
     P_hat = np.linalg.svd(np.array(rows))[2][-1].reshape(

@@ -288,7 +288,8 @@ def _essential_cases():
 
 def _pose_set(Rs, ts) -> list[tuple[np.ndarray, np.ndarray]]:
     return [
-        (np.asarray(R, float), np.asarray(t, float) / np.linalg.norm(t)) for R, t in zip(Rs, ts)
+        (np.asarray(R, float), np.asarray(t, float) / np.linalg.norm(t))
+        for R, t in zip(Rs, ts, strict=True)
     ]
 
 

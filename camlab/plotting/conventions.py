@@ -90,7 +90,7 @@ def draw_point_rows(ax: Axes, points: np.ndarray, notes: Sequence[str]) -> None:
     mono = dict(family="monospace", fontsize=9.5, va="center")
     rows = [
         f"X[{k}]  {pu:4.1f} {pv:4.1f}  {note}"
-        for k, ((pu, pv), note) in enumerate(zip(points, notes))
+        for k, ((pu, pv), note) in enumerate(zip(points, notes, strict=True))
     ]
     top, step = 0.12, 0.13
     # The column names over the last digit of each column (characters 9 and 14): spaces keep a monospace text aligned.

@@ -297,7 +297,7 @@ def update_pinhole_3d(
                     ),
                     colour,
                 )
-                for k, colour in zip(seen_faces, colours)
+                for k, colour in zip(seen_faces, colours, strict=True)
             ]
             cut = [(p, colour) for p, colour in cut if len(p) >= 3]
             art["fills"][name].set_verts(
@@ -535,7 +535,7 @@ def draw_thin_lens(ax, focal_length: float, object_distance: float) -> dict:
         ),
         "rays": [
             ax.plot([], [], color=palette.ORANGE, ls=ls, lw=1.3, label=n)[0]
-            for ls, n in zip(styles, names)
+            for ls, n in zip(styles, names, strict=True)
         ],
         "text": ax.set_title(" \n ", fontsize=9, family="monospace"),
     }
@@ -951,7 +951,7 @@ def draw_pinhole_cones(
     )  # plot x = depth z, mm: the right edge and the image plane
     entry = []
     for Y, colour in zip(
-        heights, (palette.BLUE, palette.PURPLE)
+        heights, (palette.BLUE, palette.PURPLE), strict=False
     ):  # objects: blue and purple (green is the virtual plane)
         y_obj = -Y * 1e3  # mm, drawn up
         y_img = Y * f / Z * 1e3  # the real image is inverted: -f Y / Z, drawn up as +

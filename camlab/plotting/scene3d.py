@@ -235,7 +235,7 @@ def draw_world_axes(
     """World axes as three coloured arrows-as-lines from ``origin``, labelled X, Y, Z."""
     o = np.asarray(origin, dtype=float)
     out = []
-    for i, (c, name) in enumerate(zip(palette.AXIS_COLOURS, labels)):
+    for i, (c, name) in enumerate(zip(palette.AXIS_COLOURS, labels, strict=True)):
         e = o.copy()
         e[i] += length
         (ln,) = ax.plot(*np.c_[o, e], color=c, lw=2.0)
@@ -374,7 +374,7 @@ class CameraArtist:
         ax.add_collection3d(self.plane)
         self.axes_lines, self.axes_text = [], []
         if show_axes:
-            for c, name in zip(palette.AXIS_COLOURS, ("x", "y", "z")):
+            for c, name in zip(palette.AXIS_COLOURS, ("x", "y", "z"), strict=True):
                 (ln,) = ax.plot([], [], [], color=c, lw=2.0)
                 self.axes_lines.append(ln)
                 self.axes_text.append(
@@ -458,7 +458,7 @@ class CameraArtist:
         ):  # blitting draws polygons from their last projection
             self.plane.do_3d_projection()
         tips = self._axis_tips(camera)
-        for i, (ln, tx) in enumerate(zip(self.axes_lines, self.axes_text)):
+        for i, (ln, tx) in enumerate(zip(self.axes_lines, self.axes_text, strict=True)):
             e = C + (tips[i] - C) / 1.2  # camera axis i in world coordinates is row i of R
             ln.set_data_3d([C[0], e[0]], [C[1], e[1]], [C[2], e[2]])
             tx.set_position_3d(tips[i])

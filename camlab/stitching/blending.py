@@ -69,7 +69,7 @@ def gain_compensation(
     lum = [_over_channels(np.add, im) / im.shape[2] for im in imgs]
     ok = [
         m & (_over_channels(np.minimum, im) > clip[0]) & (_over_channels(np.maximum, im) < clip[1])
-        for m, im in zip(masks, imgs)
+        for m, im in zip(masks, imgs, strict=True)
     ]
     A = np.zeros((n, n))
     b = np.zeros(n)
@@ -158,7 +158,7 @@ def dp_seam_masks(warped: WarpedImages, megapixels: float = 0.1) -> list[np.ndar
     imgs, masks = warped.subsampled(step)
     label = np.full(masks[0].shape, -1, np.int16)
     comp = np.zeros_like(imgs[0])
-    for k, (im, m) in enumerate(zip(imgs, masks)):
+    for k, (im, m) in enumerate(zip(imgs, masks, strict=True)):
         placed = label >= 0
         ov = placed & m
         if ov.sum() > 2:
@@ -193,19 +193,19 @@ def dp_seam_masks(warped: WarpedImages, megapixels: float = 0.1) -> list[np.ndar
     near_r = np.minimum((np.arange(h) + step // 2) // step, label.shape[0] - 1)
     near_c = np.minimum((np.arange(w) + step // 2) // step, label.shape[1] - 1)
     out, covered = [], np.zeros((h, w), bool)
-    for k, (m, (r0, r1, c0, c1)) in enumerate(zip(warped.patch_masks, warped.boxes)):
+    for k, (m, (r0, r1, c0, c1)) in enumerate(zip(warped.patch_masks, warped.boxes, strict=True)):
         own = (label[np.ix_(near_r[r0:r1], near_c[c0:c1])] == k) & m
         covered[r0:r1, c0:c1] |= own
         out.append(own)
     missed = np.zeros(
         (h, w), bool
     )  # a thin rim: footprint pixels whose nearest coarse label is not theirs
-    for m, (r0, r1, c0, c1) in zip(warped.patch_masks, warped.boxes):
+    for m, (r0, r1, c0, c1) in zip(warped.patch_masks, warped.boxes, strict=True):
         missed[r0:r1, c0:c1] |= m & ~covered[r0:r1, c0:c1]
     ys, xs = np.nonzero(missed)
     best_w, best_k = np.zeros(len(ys), np.float32), np.full(len(ys), -1)
     for k, (wk, (r0, r1, c0, c1)) in enumerate(
-        zip(warped.patch_weights, warped.boxes)
+        zip(warped.patch_weights, warped.boxes, strict=True)
     ):  # the largest feather weight
         inside = np.flatnonzero((ys >= r0) & (ys < r1) & (xs >= c0) & (xs < c1))
         wv = wk[ys[inside] - r0, xs[inside] - c0]
@@ -303,7 +303,7 @@ def _blend_inputs(images, masks) -> tuple[list, list]:
     imgs = [check_image(im, f"images[{k}]", channels=(1, 2, 3, 4)) for k, im in enumerate(images)]
     shape = imgs[0].shape[:2]
     out = []
-    for k, (im, m) in enumerate(zip(imgs, masks)):
+    for k, (im, m) in enumerate(zip(imgs, masks, strict=True)):
         mk = np.asarray(m)
         if mk.dtype != bool or mk.shape != shape or im.shape[:2] != shape or im.ndim != 3:
             raise CamlabInputError(
@@ -349,14 +349,14 @@ def laplacian_blend(
     levels = check_integer(levels, "levels", minimum=1)
     feet = masks if footprints is None else footprints
     boxes = []
-    for m, f in zip(masks, feet):  # each image's box: where it has data
+    for m, f in zip(masks, feet, strict=True):  # each image's box: where it has data
         both = m | f
         rows, cols = np.flatnonzero(both.any(axis=1)), np.flatnonzero(both.any(axis=0))
         boxes.append((rows[0], rows[-1] + 1, cols[0], cols[-1] + 1) if len(rows) else (0, 0, 0, 0))
     return _multiband(
-        [im[r0:r1, c0:c1] for im, (r0, r1, c0, c1) in zip(images, boxes)],
-        [m[r0:r1, c0:c1] for m, (r0, r1, c0, c1) in zip(masks, boxes)],
-        [f[r0:r1, c0:c1] for f, (r0, r1, c0, c1) in zip(feet, boxes)],
+        [im[r0:r1, c0:c1] for im, (r0, r1, c0, c1) in zip(images, boxes, strict=True)],
+        [m[r0:r1, c0:c1] for m, (r0, r1, c0, c1) in zip(masks, boxes, strict=True)],
+        [f[r0:r1, c0:c1] for f, (r0, r1, c0, c1) in zip(feet, boxes, strict=True)],
         boxes,
         masks[0].shape,
         levels,
@@ -397,7 +397,7 @@ def _multiband(
     # each pyrDown's 5-tap filter reaches 2 pixels of its input, 2^l full-resolution pixels at level l,
     # so after `levels` of them a seam mask reaches 2 (2^levels - 1) < 2 step pixels beyond itself
     pad = 2 * step
-    for img, m, foot, (r0, r1, c0, c1) in zip(images, masks, feet, boxes):
+    for img, m, foot, (r0, r1, c0, c1) in zip(images, masks, feet, boxes, strict=True):
         if not m.any():
             continue
         union[r0:r1, c0:c1] |= m
@@ -454,7 +454,7 @@ def _multiband(
             hh, ww = mk[lv].shape
             acc[lv][oy : oy + hh, ox : ox + ww] += band
             wsum[lv][oy : oy + hh, ox : ox + ww] += mk[lv]
-    for a, s in zip(acc, wsum):  # each band's weighted mean, in place
+    for a, s in zip(acc, wsum, strict=True):  # each band's weighted mean, in place
         np.divide(a, np.maximum(s, 1e-6)[..., None], out=a)
     out = acc[-1]
     for lv in range(levels - 1, -1, -1):
@@ -517,19 +517,19 @@ def blend(
                 f"gains: expected {len(imgs)} gains (one per image), got shape {g.shape}"
             )
         imgs = [
-            np.minimum(im * np.float32(gk), np.float32(1)) for im, gk in zip(imgs, g)
+            np.minimum(im * np.float32(gk), np.float32(1)) for im, gk in zip(imgs, g, strict=True)
         ]  # im >= 0
     h, w = warped.shape
     boxes = warped.boxes
     if method == "overwrite":
         out = np.zeros((h, w, imgs[0].shape[2]), np.float32)
-        for im, m, (r0, r1, c0, c1) in zip(imgs, warped.patch_masks, boxes):
+        for im, m, (r0, r1, c0, c1) in zip(imgs, warped.patch_masks, boxes, strict=True):
             out[r0:r1, c0:c1][m] = im[m]
         return out
     if method == "feather":
         num = np.zeros((h, w, imgs[0].shape[2]), np.float32)
         den = np.zeros((h, w), np.float32)
-        for im, wk, (r0, r1, c0, c1) in zip(imgs, warped.patch_weights, boxes):
+        for im, wk, (r0, r1, c0, c1) in zip(imgs, warped.patch_weights, boxes, strict=True):
             wp = wk ** np.float32(feather_power) if feather_power != 1 else wk
             num[r0:r1, c0:c1] += im * wp[..., None]
             den[r0:r1, c0:c1] += wp
@@ -540,7 +540,8 @@ def blend(
         seams = dp_seam_masks(warped)
     elif seams is None:  # the Voronoi masks lie inside each image's footprint, so inside its box
         seams = [
-            sk[r0:r1, c0:c1] for sk, (r0, r1, c0, c1) in zip(seam_masks(warped.weights), boxes)
+            sk[r0:r1, c0:c1]
+            for sk, (r0, r1, c0, c1) in zip(seam_masks(warped.weights), boxes, strict=True)
         ]
     return _multiband(
         imgs,

@@ -494,7 +494,8 @@ def estimate_cameras(
     if K is None:
         f0 = estimate_focal(accepted, shapes)
         Ks = [
-            intrinsics(f0, s) if H is not None else None for H, s in zip(graph.homographies, shapes)
+            intrinsics(f0, s) if H is not None else None
+            for H, s in zip(graph.homographies, shapes, strict=True)
         ]
     else:
         f0 = float(np.asarray(K, float)[0, 0])

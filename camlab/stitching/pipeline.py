@@ -153,7 +153,9 @@ def _field_of_view(Ks: list, Rs: list, shapes: list) -> tuple[float, float]:
     """Horizontal and vertical extent (degrees) of all images on the sphere."""
     from .projections import footprint
 
-    boxes = np.array([footprint(K, R, sh, "spherical", 1.0) for K, R, sh in zip(Ks, Rs, shapes)])
+    boxes = np.array(
+        [footprint(K, R, sh, "spherical", 1.0) for K, R, sh in zip(Ks, Rs, shapes, strict=True)]
+    )
     return (
         float(np.degrees(boxes[:, 1, 0].max() - boxes[:, 0, 0].min())),
         float(np.degrees(boxes[:, 1, 1].max() - boxes[:, 0, 1].min())),
@@ -170,7 +172,7 @@ def _warp_curved(imgs: list, Ks: list, Rs: list, canvas) -> WarpedImages:
     full-turn canvas (columns modulo w) becomes a full-width one."""
     h, w = canvas.shape
     out_i, out_m, out_w, boxes = [], [], [], []
-    for im, K, R, box in zip(imgs, Ks, Rs, canvas.boxes):
+    for im, K, R, box in zip(imgs, Ks, Rs, canvas.boxes, strict=True):
         patch, mask, wgt = warp_to_canvas(
             im, K, R, canvas, box, feather_weights(im.shape).astype(np.float32)
         )
@@ -255,7 +257,7 @@ def _warn_full_turn(Rs: list, names: list) -> None:
     yaw = np.unwrap([np.arctan2(R[2, 0], R[2, 2]) for R in Rs])
     turn = np.degrees(yaw - yaw[0])
     if np.abs(turn).max() > 365:
-        again = [nm for nm, t in zip(names, turn) if abs(t) > 350]
+        again = [nm for nm, t in zip(names, turn, strict=True) if abs(t) > 350]
         warnings.warn(
             f"stitch: the photos turn through {np.abs(turn).max():.0f} degrees, more than a full circle: "
             f"{', '.join(repr(x) for x in again)} show again what the first photos showed; the canvas is "
@@ -506,7 +508,7 @@ def stitch(
         else:
             s = float(np.median([Kk[0, 0] for Kk in Ks]))
             Kc = np.diag([s, s, 1.0])
-            H_list = [Kc @ R.T @ np.linalg.inv(Kk) for Kk, R in zip(Ks, Rs)]
+            H_list = [Kc @ R.T @ np.linalg.inv(Kk) for Kk, R in zip(Ks, Rs, strict=True)]
         try:
             warped = warp_images(sub, H_list, max_pixels=max_pixels)
         except DegenerateError as exc:
@@ -514,12 +516,16 @@ def stitch(
                 f"stitch: the images turn too far for a plane ({exc}); "
                 "use projection='cylindrical' or 'spherical'"
             ) from None
-        outlines_sub = [_hg_border(H, sh) for H, sh in zip(warped.homographies, sub_shapes)]
+        outlines_sub = [
+            _hg_border(H, sh) for H, sh in zip(warped.homographies, sub_shapes, strict=True)
+        ]
     else:
         s = float(np.median([Kk[0, 0] for Kk in Ks]))
         canvas = make_canvas(Ks, Rs, sub_shapes, chosen, s, max_pixels=max_pixels)
         warped = _warp_curved(sub, Ks, Rs, canvas)
-        outlines_sub = [_outline_curved(Kk, R, sh, canvas) for Kk, R, sh in zip(Ks, Rs, sub_shapes)]
+        outlines_sub = [
+            _outline_curved(Kk, R, sh, canvas) for Kk, R, sh in zip(Ks, Rs, sub_shapes, strict=True)
+        ]
     times["warping"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     ref_local = keep.index(graph.reference)
@@ -534,7 +540,7 @@ def stitch(
     pano = blend(warped, blend_method, gains=g_sub, levels=levels, seams=seams)
     times["compositing"] = time.perf_counter() - t0
     union = np.zeros(warped.shape, bool)
-    for m, (r0, r1, c0, c1) in zip(warped.patch_masks, warped.boxes):
+    for m, (r0, r1, c0, c1) in zip(warped.patch_masks, warped.boxes, strict=True):
         union[r0:r1, c0:c1] |= m
     masks_out = list(warped.masks)
     if crop:

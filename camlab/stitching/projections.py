@@ -162,7 +162,9 @@ def make_canvas(
     """
     if projection not in PROJECTIONS:
         raise CamlabInputError(f"projection: expected one of {PROJECTIONS}, got {projection!r}")
-    boxes = np.array([footprint(K, R, sh, projection, s) for K, R, sh in zip(Ks, Rs, shapes)])
+    boxes = np.array(
+        [footprint(K, R, sh, projection, s) for K, R, sh in zip(Ks, Rs, shapes, strict=True)]
+    )
     lo = np.floor(boxes[:, 0].min(axis=0))
     hi = np.ceil(boxes[:, 1].max(axis=0))
     full = int(round(2 * np.pi * s))

@@ -97,7 +97,7 @@ def canvas_box(homographies: Sequence[ArrayLike], shapes: Sequence[Sequence[int]
             f"shapes: expected one shape per homography, got {len(shapes)} for {len(homographies)}"
         )
     pts = []
-    for H, shape in zip(homographies, shapes):
+    for H, shape in zip(homographies, shapes, strict=True):
         h, w = shape[:2]
         pts.append(
             map_points(np.asarray(H, dtype=float), [[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]])
@@ -159,7 +159,7 @@ class WarpedImages:
 
     def _on_canvas(self, parts: list) -> list:
         out = []
-        for p, m, (r0, r1, c0, c1) in zip(parts, self.patch_masks, self.boxes):
+        for p, m, (r0, r1, c0, c1) in zip(parts, self.patch_masks, self.boxes, strict=True):
             full = np.zeros(tuple(self.shape) + p.shape[2:], p.dtype)
             full[r0:r1, c0:c1][m] = p[m]
             out.append(full)
@@ -184,7 +184,7 @@ class WarpedImages:
         h, w = self.shape
         size = (-(-h // step), -(-w // step))
         imgs, masks = [], []
-        for p, m, (r0, r1, c0, c1) in zip(self.patches, self.patch_masks, self.boxes):
+        for p, m, (r0, r1, c0, c1) in zip(self.patches, self.patch_masks, self.boxes, strict=True):
             a, b = -(-r0 // step), -(-c0 // step)  # the first grid row and column in the box
             sp, sm = (
                 p[a * step - r0 :: step, b * step - c0 :: step],
@@ -246,7 +246,7 @@ def warp_images(
 
     T, shape = canvas_bounds(list(homographies), [im.shape for im in images], max_pixels=max_pixels)
     out_i, out_m, out_w, out_h, boxes = [], [], [], [], []
-    for im, H in zip(images, homographies):
+    for im, H in zip(images, homographies, strict=True):
         Hc = _hg.normalize_homography(T @ np.asarray(H, dtype=float))
         r0, r1, c0, c1 = _image_box(Hc, im.shape, shape)
         Hb = np.array([[1.0, 0, -c0], [0, 1, -r0], [0, 0, 1]]) @ Hc

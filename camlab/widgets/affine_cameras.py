@@ -153,7 +153,7 @@ def three_cameras():
             cm.project_points(P_weak, X0),
             cm.project_points(P_orth, X0),
         ]
-        for artists, xy in zip(references, images_of_X0):
+        for artists, xy in zip(references, images_of_X0, strict=True):
             place_reference(artists, xy)
         state.update(
             camera=cam,
@@ -464,11 +464,11 @@ def parallel_rails():
             us, -(l_h[0] * us + l_h[2]) / l_h[1] if abs(l_h[1]) > 1e-12 else [np.nan, np.nan]
         )
         x0 = cm.project_points(P_aff, RAIL_REFERENCE)
-        for artists, xy in zip(references, (cam.project(RAIL_REFERENCE), x0)):
+        for artists, xy in zip(references, (cam.project(RAIL_REFERENCE), x0), strict=True):
             place_reference(artists, xy)
         ys = np.repeat(RAIL_SAMPLES, 2) + [0.0, 1.0, 0.0, 1.0]
         ground = np.column_stack([np.zeros(4), ys, np.zeros(4)])
-        for line, P_ in zip(measured, (cam.P, P_aff)):
+        for line, P_ in zip(measured, (cam.P, P_aff), strict=True):
             ends = cm.project_points(P_, ground)
             line.set_data(*np.insert(ends, 2, np.nan, axis=0).T)
         far_metre = cm.project_points(cam.P, ground[2:]).mean(axis=0)
@@ -477,7 +477,7 @@ def parallel_rails():
             "perspective": scenes.sleeper_gaps(cam.P, RAIL_SAMPLES),
             "affine": scenes.sleeper_gaps(P_aff, RAIL_SAMPLES),
         }
-        for text, (near, far) in zip(texts, gaps.values()):
+        for text, (near, far) in zip(texts, gaps.values(), strict=True):
             text.set_text(
                 f"1 m of track: {near:5.1f} px at {RAIL_SAMPLES[0]:.0f} m, {far:5.1f} px at {RAIL_SAMPLES[1]:.0f} m"
             )
@@ -530,7 +530,7 @@ def projection_rays():
     view = FigureView(figsize=(10, 4.75))
     axes = view.fig.subplots(1, 4, sharey=True)
     artists = {}
-    for ax, model in zip(axes, af.PROJECTION_MODELS):
+    for ax, model in zip(axes, af.PROJECTION_MODELS, strict=True):
         ax.set_xlim(-1.3, 4.0)  # the turned block reaches x = -0.99 m at offset 0
         ax.set_ylim(-0.4, 7.4)
         ax.set_aspect("equal")

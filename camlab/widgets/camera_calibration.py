@@ -121,7 +121,7 @@ def accuracy_vs_views() -> Demo:
         lines = [f"{n} views, noise σ = {sigma:.2f} px, rms = {res.rms:.3f} px per corner"]
         lines += [
             f"{k:>2} = {e:8.2f} ± {sd:5.2f}  (true {t:.1f}, error {d:+.2f} = {zz:+.1f}σ)"
-            for k, e, sd, t, d, zz in zip(_NAMES, est, std, truth, err, z)
+            for k, e, sd, t, d, zz in zip(_NAMES, est, std, truth, err, z, strict=True)
         ]
         lines.append(f"k1 = {res.dist[0]:+.3f} ± {res.std['k1']:.3f}  (true {s.dist[0]:+.3f})")
         if sigma == 0:

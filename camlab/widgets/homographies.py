@@ -259,7 +259,7 @@ def drag_homography() -> Demo:
         lw=1.5,
         path_effects=palette.halo(1.5),
     )
-    for name, p in zip("ABCD", line_pts):
+    for name, p in zip("ABCD", line_pts, strict=True):
         ax_s.annotate(
             name,
             p,
@@ -500,7 +500,9 @@ def ransac_outliers() -> Demo:
             f"true ε = {v['outliers']:.2f}, found ε = {eps_found:.2f}\n"
             f"samples drawn: {r.iterations}{' (the cap)' if r.iterations >= 1000 else ''}; "
             f"needed for the found ε: {k_needed:.0f}\n"
-            + "\n".join(f"{name:25s} {c:4d}" for (name, _), c in zip(_VERDICTS, counts))
+            + "\n".join(
+                f"{name:25s} {c:4d}" for (name, _), c in zip(_VERDICTS, counts, strict=True)
+            )
             + f"\nworst corner error: {err:.1f} px"
         )
 

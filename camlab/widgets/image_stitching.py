@@ -183,7 +183,7 @@ def ransac_registration() -> Demo:
         res = hg.symmetric_transfer_error(r.H, m.src, m.dst)
         counts, _ = np.histogram(np.clip(res, 0.0201, 299), bins)
         top = max(counts.max(), 1)
-        for b, c in zip(bars, counts):
+        for b, c in zip(bars, counts, strict=True):
             b.set_height(c / top)
         err = float(
             np.max(np.linalg.norm(map_points(r.H, corners) - map_points(true_H, corners), axis=1))

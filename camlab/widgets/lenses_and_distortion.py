@@ -104,7 +104,7 @@ def focus_and_blur():
     # one legend for the three panels, under them: never over the cone, the discs, the band or the curve
     handles = {}
     for ax in (ax_cone, ax_disc, ax_c):
-        for h, label in zip(*ax.get_legend_handles_labels()):
+        for h, label in zip(*ax.get_legend_handles_labels(), strict=True):
             handles.setdefault(label, h)
     view.fig.legend(
         handles.values(), handles.keys(), loc="outside lower center", ncol=4, fontsize=8
@@ -374,7 +374,7 @@ def lens_distortion():
             ]  # back onto the straight grid
         im.set_data(img)
         dots.set_data(corners[:, 0], corners[:, 1])
-        for line, ln in zip(bent, through):
+        for line, ln in zip(bent, through, strict=True):
             line.set_data(*ln.T)
         img_title.set_text(
             "the rendered board, undistorted\n(red: the true corners, undistorted)"
@@ -395,7 +395,9 @@ def lens_distortion():
                     distortion.distort_pixels(ideal.reshape(-1, 2), K_D, d) - ideal.reshape(-1, 2)
                 ).max()
             ),
-            grid_error=float(max(np.abs(ln - i).max() for ln, i in zip(through, ideal))),
+            grid_error=float(
+                max(np.abs(ln - i).max() for ln, i in zip(through, ideal, strict=True))
+            ),
         )
         readout.value = monospace(
             f"distortion: {kind}\nlargest shift {state['max_shift']:.1f} px\n"

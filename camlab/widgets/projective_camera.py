@@ -504,7 +504,7 @@ def _place_camera_labels(ax, true_artist, est_artist) -> None:
     (_, _), (y_true, y_est), _ = proj3d.proj_transform(*np.c_[cams[0].centre, cams[1].centre], ax.M)
     up, down = (-0.05, -0.3), (-0.05, 0.3)
     for artist, offset in zip(
-        (true_artist, est_artist), (up, down) if y_true >= y_est else (down, up)
+        (true_artist, est_artist), (up, down) if y_true >= y_est else (down, up), strict=False
     ):
         artist.label_offset = offset
         artist.label.set(
@@ -565,7 +565,7 @@ def opencv_vs_opengl():
         scene3d.fit_view(
             ax, [house_segments, np.zeros(3), label_tips, art.extent_points(cam)], fill=0.78
         )
-        for i, (ln, tx) in enumerate(zip(lines, texts)):
+        for i, (ln, tx) in enumerate(zip(lines, texts, strict=True)):
             e = C + 0.9 * R_axes[i]  # row i of R = camera axis i in world coordinates
             ln.set_data_3d([C[0], e[0]], [C[1], e[1]], [C[2], e[2]])
             tx.set_position_3d(C + 1.05 * R_axes[i])

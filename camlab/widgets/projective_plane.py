@@ -344,7 +344,7 @@ def cross_ratio_invariance() -> Demo:
     ax_s.add_collection(LineCollection(grid, colors=palette.GREY, lw=0.8))
     ax_s.plot(points[:, 0], points[:, 1], "-", color="0.3")
     ax_s.scatter(points[:, 0], points[:, 1], c=colors, s=50, zorder=3)
-    for name, p in zip("ABCD", points):
+    for name, p in zip("ABCD", points, strict=True):
         ax_s.annotate(name, p, xytext=(4, 6), textcoords="offset points")
     mapped_grid = LineCollection([], colors=palette.GREY, lw=0.8)
     ax_t.add_collection(mapped_grid)
@@ -371,7 +371,7 @@ def cross_ratio_invariance() -> Demo:
         q = pj.map_points(H, points)
         mapped_line.set_data(q[:, 0], q[:, 1])
         mapped_pts.set_offsets(q)
-        for lab, p in zip(labels, q):
+        for lab, p in zip(labels, q, strict=True):
             lab.xy = tuple(p)
         cr_before, cr_after = pj.cross_ratio(points), pj.cross_ratio(q)
         state.update(

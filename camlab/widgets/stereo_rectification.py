@@ -295,7 +295,10 @@ def rectify_pair() -> Demo:
             s2 = rc.rectify_points(rect, h2, map_points(HALF, x2), 2)
             state.update(rectified_K=full.K)  # alpha sets the zoom of the rectified images
         elif v["method"] == "uncalibrated":
-            L, R = (cv2.warpPerspective(im_, H, (320, 240)) for im_, H in zip(und_half, unc_half))
+            L, R = (
+                cv2.warpPerspective(im_, H, (320, 240))
+                for im_, H in zip(und_half, unc_half, strict=True)
+            )
             y1, y2 = map_points(unc.H1, u1), map_points(unc.H2, u2)
             s1, s2 = map_points(HALF, y1), map_points(HALF, y2)
         else:

@@ -122,7 +122,7 @@ def collect_pages(executed: list[Path], lessons: list[Path]) -> list[Page]:
             _markdown_notebook((REPO / readme).read_text("utf-8")),
         )
     )
-    for run, lesson in zip(executed, lessons):
+    for run, lesson in zip(executed, lessons, strict=True):
         nb = nbformat.read(run, as_version=4)
         nb.metadata.pop("widgets", None)  # static pages: no widget manager, no script from a CDN
         first = "".join(nb.cells[0].source) if nb.cells else ""
