@@ -30,6 +30,7 @@ topic                     main functions
                           decompose_projection_matrix, rq_decomposition
 ``affine`` (05)           affine_approximation, estimate_affine_camera
 ``affine_epipolar`` (05)  estimate_affine_fundamental, affine_epipolar_test
+``factorization`` (05)    affine_factorization
 ``projective`` (06)       join, meet, vanishing_point, horizon, cross_ratio (imported eagerly)
 ``homography`` (07)       estimate_homography, ransac_homography, refine_homography
 ``warp`` (07)             warp_perspective, forward_warp
@@ -106,6 +107,7 @@ _MAIN: dict[str, tuple[str, ...]] = {
     ),
     "affine": ("affine_approximation", "estimate_affine_camera"),
     "affine_epipolar": ("estimate_affine_fundamental", "affine_epipolar_test"),
+    "factorization": ("affine_factorization",),
     "homography": ("estimate_homography", "ransac_homography", "refine_homography"),
     "warp": ("warp_perspective", "forward_warp"),
     "calibration": ("calibrate_camera", "calibrate_from_images", "find_chessboard"),

@@ -65,6 +65,7 @@ FLOORS = {
         "robust",
         "features",
         "disparity",
+        "factorization",
     ],
     2: ["camera", "homography"],
     3: ["affine", "epipolar", "warp"],

@@ -1,0 +1,120 @@
+r"""Tomasi-Kanade factorisation: shape and motion from many affine views with one SVD.
+
+F affine cameras :math:`u_{fj} = M_f X_j + t_f` (:math:`M_f` 2 x 3, lesson 05) see N points.
+Stack every view's image coordinates into the 2F x N *measurement matrix*
+:math:`W` (rows :math:`u` then :math:`v` of view 1, of view 2, ...; one column per point).
+Subtract each row's mean: the mean of the images is the image of the points' centroid
+(an affine camera maps means to means), so with the world origin at the centroid
+:math:`t_f` drops out and
+
+.. math::
+
+    \hat W = \begin{pmatrix} M_1 \\ \vdots \\ M_F \end{pmatrix}
+             \begin{pmatrix} X_1 & \cdots & X_N \end{pmatrix} = \hat M \hat S ,
+
+a product of a 2F x 3 and a 3 x N matrix: **rank 3**, however many views and points. With
+noise, the SVD :math:`\hat W = U \Sigma V^\top` gives the closest rank-3 matrix (Eckart-Young),
+:math:`\hat M = U_3 \Sigma_3^{1/2}`, :math:`\hat S = \Sigma_3^{1/2} V_3^\top`, the
+maximum-likelihood affine reconstruction under isotropic Gaussian pixel noise. It is
+unique up to an affine map of space, :math:`\hat M A^{-1} \cdot A \hat S`; metric
+constraints on the cameras (orthonormal rows) fix A up to a similarity, beyond this
+module. The fourth singular value onwards measure what no affine camera explains:
+noise, and perspective.
+
+Conventions (docs/conventions.md): pixels (u, v) = (column, row); points are rows.
+
+References
+----------
+C. Tomasi and T. Kanade, "Shape and motion from image streams under orthography: a
+factorization method", *IJCV* 9(2), 1992. R. Hartley and A. Zisserman, *Multiple View
+Geometry*, 2nd ed., section 18.2 (algorithm 18.1).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ._validate import CamlabInputError, check_finite
+
+__all__ = ["AffineReconstruction", "affine_factorization"]
+
+
+class AffineReconstruction(NamedTuple):
+    """Affine cameras and points from :func:`affine_factorization`."""
+
+    cameras: np.ndarray
+    """(F, 3, 4) affine cameras :math:`[M_f \\mid t_f]` over the last row (0, 0, 0, 1)."""
+    points: np.ndarray
+    """(N, 3) points, centroid at the origin, up to one affine map of space."""
+    singular_values: np.ndarray
+    """All singular values of the centred measurement matrix, largest first, pixels."""
+    rms: float
+    """RMS reprojection error of the rank-3 fit, pixels per coordinate."""
+
+
+def affine_factorization(tracks: ArrayLike) -> AffineReconstruction:
+    r"""Recover affine cameras and 3-D points from N points tracked through F >= 2 views.
+
+    Derivation: the module docstring (H&Z algorithm 18.1). The steps:
+
+    1. :math:`t_f` = the mean of view f's points (the image of the centroid);
+    2. :math:`\hat W` = the 2F x N matrix of the centred coordinates;
+    3. SVD; keep three singular values: :math:`\hat M = U_3 \Sigma_3^{1/2}`,
+       :math:`\hat S = \Sigma_3^{1/2} V_3^\top` (the split of :math:`\Sigma_3` is one choice
+       of the affine ambiguity).
+
+    Parameters
+    ----------
+    tracks : (F, N, 2) array_like
+        Pixel (u, v) of point j in view f; every point seen in every view, N >= 4.
+
+    Returns
+    -------
+    AffineReconstruction
+        The cameras, the points, every singular value and the RMS reprojection error.
+
+    Raises
+    ------
+    CamlabInputError
+        If ``tracks`` is not a finite (F, N, 2) array with F >= 2 and N >= 4.
+
+    References
+    ----------
+    Tomasi & Kanade, *IJCV* 9(2), 1992; Hartley & Zisserman, *Multiple View Geometry*, 2nd
+    ed., section 18.2, algorithm 18.1.
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(0)
+    >>> X = rng.normal(size=(20, 3))
+    >>> M = rng.normal(size=(4, 2, 3))
+    >>> fit = affine_factorization(np.einsum("fij,nj->fni", M, X) + 100.0)
+    >>> fit.rms < 1e-9, bool(fit.singular_values[3] < 1e-9 * fit.singular_values[0])
+    (True, True)
+    """
+    W = np.asarray(tracks, dtype=float)
+    if W.ndim != 3 or W.shape[2] != 2 or W.shape[0] < 2 or W.shape[1] < 4:
+        raise CamlabInputError(
+            f"tracks: expected (F, N, 2) pixels of N >= 4 points in F >= 2 views, got shape {W.shape}; "
+            "stack each view's (N, 2) points: np.stack([uv_view1, uv_view2, ...])"
+        )
+    check_finite(W, "tracks")
+    views, count = W.shape[:2]
+    t = W.mean(axis=1)  # (F, 2): each view's image of the centroid
+    centred = (
+        (W - t[:, None, :]).transpose(0, 2, 1).reshape(2 * views, count)
+    )  # rows u1, v1, u2, ...
+    U, s, Vt = np.linalg.svd(centred, full_matrices=False)
+    root = np.sqrt(s[:3])
+    motion, shape = U[:, :3] * root, root[:, None] * Vt[:3]
+    cameras = np.zeros((views, 3, 4))
+    cameras[:, :2, :3] = motion.reshape(views, 2, 3)
+    cameras[:, :2, 3] = t
+    cameras[:, 2, 3] = 1.0
+    rms = float(
+        np.sqrt(np.sum(s[3:] ** 2) / centred.size)
+    )  # Eckart-Young: the dropped singular values
+    return AffineReconstruction(cameras, shape.T, s, rms)
