@@ -119,7 +119,8 @@ def test_teaching_solution_check_catches_a_call_into_camlab():
 
 
 def test_large_array_mismatch_is_summarised_not_printed():
-    from camlab.exercises._core import _fmt, worst_mismatch
+    from camlab.exercises._answers import worst_mismatch
+    from camlab.exercises._core import _fmt
 
     expected = np.zeros((40, 50, 3))
     got = expected.copy()
@@ -316,7 +317,7 @@ def _in_float16(value):
 @pytest.mark.parametrize("name", sorted(EXERCISES))
 def test_float16_answer_is_rejected_naming_its_precision(name, capsys):
     """float16 cannot tell 2015.5 from 2016: no tolerance fits it, so its type is named instead."""
-    from camlab.exercises._core import _holds_floats
+    from camlab.exercises._answers import _holds_floats
 
     exercise = EXERCISES[name]
     if not _holds_floats(exercise.reference(*exercise.cases()[0])):
@@ -343,7 +344,7 @@ def test_float16_slips_of_lesson_03_are_rejected():
 
 
 def test_float32_answer_is_held_to_float32_precision_not_beyond():
-    from camlab.exercises._core import Tolerance
+    from camlab.exercises._answers import Tolerance
 
     tol = Tolerance(rtol=1e-9, atol=0.0)
     expected = np.array([1.2, 2.4, 6.0])
@@ -361,7 +362,7 @@ def test_float32_answer_is_held_to_float32_precision_not_beyond():
 
 
 def test_mismatch_line_counts_with_the_exercises_tolerance_and_shows_the_digits():
-    from camlab.exercises._core import Tolerance
+    from camlab.exercises._answers import Tolerance
 
     got, expected = np.array([1.2, 2.4 + 1e-12, 6.0]), np.array([1.2, 2.4, 6.0])
     line = worst_mismatch(got, expected, Tolerance(rtol=1e-14, atol=0.0))
@@ -386,9 +387,9 @@ def test_check_result_is_falsy_for_a_stub_and_prints_nothing_in_ipython(capsys):
 
 @pytest.fixture
 def short_time_limit(monkeypatch):
-    from camlab.exercises import _core
+    from camlab.exercises import _core, _timer
 
-    if not _core.time_limit_applies():
+    if not _timer.time_limit_applies():
         pytest.skip("the time limit needs SIGALRM in the main thread")
     monkeypatch.setattr(_core, "TIME_LIMIT_S", 0.3)
 
@@ -476,7 +477,7 @@ def test_time_limit_applies_only_where_sigalrm_can_interrupt_the_main_thread():
 def test_time_limit_restores_an_outer_timer():
     import signal
 
-    from camlab.exercises._core import time_limit
+    from camlab.exercises._timer import time_limit
 
     fired = []
     previous = signal.signal(signal.SIGALRM, lambda *a: fired.append(1))
@@ -494,7 +495,7 @@ def test_time_limit_restores_an_outer_timer():
 def test_time_limit_runs_without_a_timer_off_the_main_thread():
     import threading
 
-    from camlab.exercises._core import time_limit
+    from camlab.exercises._timer import time_limit
 
     seen = []
 

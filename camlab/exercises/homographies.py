@@ -6,7 +6,8 @@ import numpy as np
 
 from .. import homography as hg
 from ..projective import hartley_normalization, map_points
-from ._core import Exercise, register_exercise, same_array, same_up_to_scale, shape_problem
+from ._answers import same_array, same_up_to_scale, shape_problem
+from ._core import Exercise, register_exercise
 
 # A patch far from the origin (like a crop of a large photo) with 1 px of noise: there the
 # unnormalised DLT is off by tens of pixels, while any Hartley-style normalisation agrees.

@@ -12,7 +12,8 @@ from __future__ import annotations
 import numpy as np
 
 from .. import distortion, lens
-from ._core import Exercise, register_exercise, same_array, shape_problem
+from ._answers import same_array, shape_problem
+from ._core import Exercise, register_exercise
 from ._numbers import is_number as _is_number
 from ._numbers import not_one_number, same_number
 

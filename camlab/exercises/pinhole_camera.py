@@ -12,7 +12,8 @@ from __future__ import annotations
 import numpy as np
 
 from .. import pinhole
-from ._core import Exercise, Tolerance, register_exercise, same_array, shape_problem, unit_slip
+from ._answers import Tolerance, same_array, shape_problem, unit_slip
+from ._core import Exercise, register_exercise
 from ._numbers import SameNumber, is_number
 
 

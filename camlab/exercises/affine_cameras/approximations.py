@@ -7,7 +7,8 @@ import numpy as np
 
 from ... import affine as af
 from ... import camera as cm
-from .._core import Exercise, register_exercise, same_array, shape_problem
+from .._answers import same_array, shape_problem
+from .._core import Exercise, register_exercise
 
 _P_INF = "P_inf = K [[r1, t1], [r2, t2], [0, d0]] / d0"
 _P_PARA = "P_para = K [[r1 - a r3, t1 - a (t3 - d0)], [r2 - b r3, t2 - b (t3 - d0)], [0, d0]] / d0"

@@ -7,7 +7,8 @@ import numpy as np
 
 from ... import affine as af
 from ... import camera as cm
-from .._core import Exercise, register_exercise, same_array, shape_problem
+from .._answers import same_array, shape_problem
+from .._core import Exercise, register_exercise
 
 # -- estimate_affine_camera -------------------------------------------------------------------
 
