@@ -328,7 +328,8 @@ def test_float16_answer_is_rejected_naming_its_precision(name, capsys):
 
 def test_float16_slips_of_lesson_03_are_rejected():
     """Round 5 (D2): these passed as float16 through a tolerance widened to 100 float16 epsilons."""
-    from camlab.exercises.digital_sensor import _datasheet_variant, _reflect_border_demosaic
+    from camlab.exercises.digital_sensor.datasheet import _datasheet_variant
+    from camlab.exercises.digital_sensor.demosaic import _reflect_border_demosaic
 
     slips = {
         "intrinsics_from_datasheet": (
