@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 
 from ... import sensor
 from .._answers import SameArray, Tolerance, shape_problem
-from .._core import Exercise, register_exercise
+from .._core import Exercise, Mistake, first_mistake, register_exercise
 from .quantize import _not_an_array
 
 
@@ -112,6 +114,69 @@ def _nan_hint(raw, pattern, got) -> str | None:
     )
 
 
+_IMAGE_MISTAKES = (
+    Mistake(
+        "pattern read column by column",
+        lambda s: (
+            s.column_major != s.pattern
+            and np.allclose(s.g, sensor.demosaic_bilinear(s.raw, s.column_major))
+        ),
+        lambda s: (
+            f"you read the pattern column by column, as {s.column_major}: its letters go row by row, top-left, "
+            f"top-right, bottom-left, bottom-right, so {s.pattern} has {s.pattern[0]} {s.pattern[1]} on row 0 and "
+            f"{s.pattern[2]} {s.pattern[3]} on row 1 (for {s.pattern} that swaps red and blue)"
+        ),
+    ),
+    Mistake(
+        "BGR",
+        lambda s: np.allclose(s.g[..., ::-1], s.e),
+        (
+            "red and blue are swapped: return the channels as R, G, B (not OpenCV's BGR order), and check "
+            "which colour sits where in the pattern (RGGB: R at row 0, column 0)"
+        ),
+    ),
+    Mistake(
+        "transposed",
+        lambda s: (
+            s.g.shape[0] == s.g.shape[1]
+            and np.allclose(s.g, s.e.transpose(1, 0, 2))
+            and (not np.allclose(s.e, s.e.transpose(1, 0, 2)))
+        ),
+        (
+            "your image is transposed: rows and columns swapped (a .T, or an index [u, v] where the image is "
+            "img[v, u]: row v first, then column u)"
+        ),
+    ),
+    *(
+        Mistake(
+            f"masks {how} off",
+            lambda s, shift=shift: (
+                shift(s.pattern) != s.pattern
+                and np.allclose(s.g, sensor.demosaic_bilinear(s.raw, shift(s.pattern)))
+            ),
+            lambda s, how=how, shift=shift: (
+                f"your masks sit {how} off, as if the pattern were {shift(s.pattern)}: started at 1 (m[1::2, ...]), "
+                f"as in 1-based MATLAB? Python counts from 0: {s.pattern}'s {s.pattern[0]} is at row 0, column 0, "
+                f"m[0::2, 0::2]"
+            ),
+        )
+        for how, shift in (
+            ("one column", lambda p: p[1] + p[0] + p[3] + p[2]),
+            ("one row", lambda p: p[2] + p[3] + p[0] + p[1]),
+        )
+    ),
+    Mistake(
+        "scaled by 255",
+        lambda s: np.allclose(s.g * 255, s.e) or np.allclose(s.g, s.e * 255),
+        (
+            "the values are scaled by 255: keep the units of the mosaic (do not divide or multiply by 255)"
+        ),
+    ),
+)
+"""Slips that change the whole image (the pattern misread, the channels or axes swapped, a scale), in the
+order they are tested; each row's test reads the answer ``s.g`` against the right image ``s.e``."""
+
+
 def _demosaic_diagnosis(args, got, expected) -> str:
     raw, pattern = args
     nan = isinstance(got, np.ndarray) and _nan_hint(raw, pattern, got)
@@ -125,40 +190,16 @@ def _demosaic_diagnosis(args, got, expected) -> str:
         return problem + ". Return an (H, W, 3) RGB image."
     g = np.asarray(got, dtype=float)
     e = np.asarray(expected)
-    column_major = pattern[0] + pattern[2] + pattern[1] + pattern[3]
-    if column_major != pattern and np.allclose(g, sensor.demosaic_bilinear(raw, column_major)):
-        return (
-            f"you read the pattern column by column, as {column_major}: its letters go row by row, top-left, "
-            f"top-right, bottom-left, bottom-right, so {pattern} has {pattern[0]} {pattern[1]} on row 0 and "
-            f"{pattern[2]} {pattern[3]} on row 1 (for {pattern} that swaps red and blue)"
-        )
-    if np.allclose(g[..., ::-1], e):
-        return (
-            "red and blue are swapped: return the channels as R, G, B (not OpenCV's BGR order), and check "
-            "which colour sits where in the pattern (RGGB: R at row 0, column 0)"
-        )
-    if (
-        g.shape[0] == g.shape[1]
-        and np.allclose(g, e.transpose(1, 0, 2))
-        and not np.allclose(e, e.transpose(1, 0, 2))
-    ):
-        return (
-            "your image is transposed: rows and columns swapped (a .T, or an index [u, v] where the image is "
-            "img[v, u]: row v first, then column u)"
-        )
-    shifted = {
-        "one column": pattern[1] + pattern[0] + pattern[3] + pattern[2],
-        "one row": pattern[2] + pattern[3] + pattern[0] + pattern[1],
-    }
-    for how, wrong in shifted.items():
-        if wrong != pattern and np.allclose(g, sensor.demosaic_bilinear(raw, wrong)):
-            return (
-                f"your masks sit {how} off, as if the pattern were {wrong}: started at 1 (m[1::2, ...]), as in "
-                f"1-based MATLAB? Python counts from 0: {pattern}'s {pattern[0]} is at row 0, column 0, "
-                f"m[0::2, 0::2]"
-            )
-    if np.allclose(g * 255, e) or np.allclose(g, e * 255):
-        return "the values are scaled by 255: keep the units of the mosaic (do not divide or multiply by 255)"
+    context = SimpleNamespace(
+        raw=raw,
+        pattern=pattern,
+        g=g,
+        e=e,
+        column_major=pattern[0] + pattern[2] + pattern[1] + pattern[3],
+    )
+    cause = first_mistake(_IMAGE_MISTAKES, context)
+    if cause:
+        return cause
     whole = "the mean of two samples falls between codes (100 and 101 give 100.5)"
     if np.issubdtype(np.asarray(got).dtype, np.integer):
         return (
@@ -169,6 +210,12 @@ def _demosaic_diagnosis(args, got, expected) -> str:
         np.rint(e), e
     ):
         return f"you rounded the interpolated values to whole numbers: {whole}; return them unrounded, as floats"
+    return _interpolation_cause(raw, pattern, g, e)
+
+
+def _interpolation_cause(raw, pattern, g, e) -> str:
+    """Why the image is wrong when the whole-image slips are ruled out: the samples, the dtype, the
+    neighbours averaged at each kind of site, or the border."""
     m = sensor.bayer_masks(raw.shape, pattern)
     if not np.allclose(g[m], e[m]):
         return (
