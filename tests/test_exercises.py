@@ -588,7 +588,7 @@ def test_a_right_answer_that_changes_its_input_in_place_fails_naming_the_argumen
 
 def _dlt_rms_normalised(X, uv):
     """The normalised DLT with H&Z's RMS distances (camlab uses mean distances), at another scale."""
-    from camlab.exercises.projective_camera import _dlt_unnormalised
+    from camlab.exercises.projective_camera._dlt_forms import _dlt_unnormalised
 
     X, uv = np.asarray(X, dtype=float), np.asarray(uv, dtype=float)
 
@@ -795,7 +795,7 @@ def test_estimate_projection_matrix_passes_other_valid_normalised_answers(right,
 
 
 def test_estimate_projection_matrix_names_which_half_was_not_normalised():
-    from camlab.exercises.projective_camera import _dlt_half
+    from camlab.exercises.projective_camera._dlt_forms import _dlt_half
 
     with pytest.raises(
         AssertionError,
@@ -825,7 +825,7 @@ def test_estimate_projection_matrix_names_which_half_was_not_normalised():
 )
 def test_estimate_projection_matrix_names_the_missing_part_of_a_normalisation(world, pixels, cause):
     """Final review of lesson 04: half normalisations were blamed on the wrong side or called 'no normalisation'."""
-    from camlab.exercises.projective_camera import _dlt_partial
+    from camlab.exercises.projective_camera._dlt_forms import _dlt_partial
 
     with pytest.raises(AssertionError, match=r"(?s)likely cause: .*" + cause) as info:
         check(
@@ -839,14 +839,14 @@ def test_estimate_projection_matrix_names_the_missing_part_of_a_normalisation(wo
 
 def test_estimate_projection_matrix_names_the_classic_p34_dlt():
     """p34 = 1 by least squares without normalising is pixel-invariant: it was reported as 'pixels normalised'."""
-    from camlab.exercises.projective_camera import _dlt_p34
+    from camlab.exercises.projective_camera._dlt_forms import _dlt_p34
 
     with pytest.raises(AssertionError, match=r"(?s)likely cause: you fixed p34 = 1"):
         check("estimate_projection_matrix", _dlt_p34)
 
 
 def test_rq_decomposition_has_a_negative_determinant_case_with_a_reflection():
-    from camlab.exercises.projective_camera import _rq_cases
+    from camlab.exercises.projective_camera.rq import _rq_cases
 
     M = [m for (m,) in _rq_cases() if np.linalg.det(m) < 0]
     assert M, "no det M < 0 input: flipping M inside rq_decomposition would pass"
@@ -1107,7 +1107,7 @@ def test_an_unfilled_np_empty_answer_fails_instead_of_passing_on_freed_memory():
 
 def test_rq_mismatch_names_matrix_row_column_and_no_negative_zero():
     """Final review of lesson 04: an index into the (K, R) pair was labelled (row, column, channel)."""
-    from camlab.exercises.projective_camera import _rq_forced_rotation
+    from camlab.exercises.projective_camera.rq import _rq_forced_rotation
 
     with pytest.raises(AssertionError, match=r"\(matrix, row, column\)") as info:
         check("rq_decomposition", _rq_forced_rotation)
