@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 
 from ... import camera as cm
 from .._answers import same_up_to_scale, shape_problem
-from .._core import Exercise, register_exercise
+from .._core import Exercise, Mistake, first_mistake, register_exercise
 from ._dlt_forms import (
     _dlt_half,
     _dlt_not_undone,
@@ -20,6 +22,47 @@ from ._dlt_forms import (
     _rms_normalisers,
 )
 from ._dlt_survey import _dlt_cases, _dlt_follow_up, _pixel_gap, _pixels_of
+
+
+def _wrong_way_round(how, undo):
+    return Mistake(
+        how,
+        undo,
+        f"you undid the normalisation the wrong way round ({how}). P_hat maps U X to T u: "
+        f"T u ~ P_hat U X, so u ~ inv(T) P_hat U X and P = inv(T) @ P_hat @ U.",
+    )
+
+
+_UNDO_MISTAKES = (
+    Mistake(
+        "not undone",
+        lambda s: s.P_hat,
+        "you returned P_hat, the camera of the normalised points: the normalisation is not undone. "
+        "P_hat maps U X to T u, so P = inv(T) @ P_hat @ U.",
+    ),
+    _wrong_way_round("T @ P_hat @ inv(U)", lambda s: s.T @ s.P_hat @ np.linalg.inv(s.U)),
+    _wrong_way_round(
+        "inv(T) @ P_hat @ inv(U)", lambda s: np.linalg.inv(s.T) @ s.P_hat @ np.linalg.inv(s.U)
+    ),
+    _wrong_way_round("T @ P_hat @ U", lambda s: s.T @ s.P_hat @ s.U),
+    Mistake(
+        "pixels' normalisation only undone",
+        lambda s: np.linalg.inv(s.T) @ s.P_hat,
+        "you undid only the pixels' normalisation (inv(T) @ P_hat): P_hat still expects normalised "
+        "world points U X. Undo both: P = inv(T) @ P_hat @ U.",
+    ),
+    Mistake(
+        "world points' normalisation only undone",
+        lambda s: s.P_hat @ s.U,
+        "you undid only the world points' normalisation (P_hat @ U): the result still gives "
+        "normalised pixels T u. Undo both: P = inv(T) @ P_hat @ U.",
+    ),
+)
+"""A normalised DLT's fit P_hat = T P inv(U) mapped back wrongly, in the order the diagnosis tests them."""
+
+
+def _same_camera(got, wrong) -> bool:
+    return same_up_to_scale(got, wrong, rtol=1e-5)
 
 
 def _dlt_diagnosis(args, got, expected) -> str:
@@ -54,32 +97,10 @@ def _dlt_diagnosis(args, got, expected) -> str:
                 "back with p.reshape(3, 4), before undoing the normalisation."
             )
     for U, T in frames[:2]:  # mean or RMS distances: either is right
-        P_hat = T @ expected @ np.linalg.inv(U)
-        if same_up_to_scale(g, P_hat, rtol=1e-5):
-            return (
-                "you returned P_hat, the camera of the normalised points: the normalisation is not undone. "
-                "P_hat maps U X to T u, so P = inv(T) @ P_hat @ U."
-            )
-        for wrong, how in (
-            (T @ P_hat @ np.linalg.inv(U), "T @ P_hat @ inv(U)"),
-            (np.linalg.inv(T) @ P_hat @ np.linalg.inv(U), "inv(T) @ P_hat @ inv(U)"),
-            (T @ P_hat @ U, "T @ P_hat @ U"),
-        ):
-            if same_up_to_scale(g, wrong, rtol=1e-5):
-                return (
-                    f"you undid the normalisation the wrong way round ({how}). P_hat maps U X to T u: "
-                    f"T u ~ P_hat U X, so u ~ inv(T) P_hat U X and P = inv(T) @ P_hat @ U."
-                )
-        if same_up_to_scale(g, np.linalg.inv(T) @ P_hat, rtol=1e-5):
-            return (
-                "you undid only the pixels' normalisation (inv(T) @ P_hat): P_hat still expects normalised "
-                "world points U X. Undo both: P = inv(T) @ P_hat @ U."
-            )
-        if same_up_to_scale(g, P_hat @ U, rtol=1e-5):
-            return (
-                "you undid only the world points' normalisation (P_hat @ U): the result still gives "
-                "normalised pixels T u. Undo both: P = inv(T) @ P_hat @ U."
-            )
+        context = SimpleNamespace(U=U, T=T, P_hat=T @ expected @ np.linalg.inv(U))
+        cause = first_mistake(_UNDO_MISTAKES, context, g, _same_camera)
+        if cause:
+            return cause
     pixels = _pixels_of(g, X)
     for reflected in (
         -uv,
