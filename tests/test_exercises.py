@@ -250,9 +250,9 @@ def test_estimate_affine_camera_accepts_a_column_of_ones_instead_of_centring(cap
 def test_estimate_affine_camera_accepts_hz_normalisation_undone_in_the_right_order(capsys):
     """H&Z algorithm 7.2: normalise both point sets, fit, then P = inv(T_uv) @ P_n @ T_X (the check's
     diagnosis names the wrong order, T_uv @ P_n @ inv(T_X), as such)."""
-    from camlab.exercises.affine_cameras._estimation_variants import _estimate_normalised
+    from camlab.exercises.affine_cameras._estimation_variants import estimate_normalised
 
-    assert check("estimate_affine_camera", _estimate_normalised("right")).passed is True
+    assert check("estimate_affine_camera", estimate_normalised("right")).passed is True
 
 
 @pytest.mark.parametrize(
@@ -588,7 +588,7 @@ def test_a_right_answer_that_changes_its_input_in_place_fails_naming_the_argumen
 
 def _dlt_rms_normalised(X, uv):
     """The normalised DLT with H&Z's RMS distances (camlab uses mean distances), at another scale."""
-    from camlab.exercises.projective_camera._dlt_forms import _dlt_unnormalised
+    from camlab.exercises.projective_camera._dlt_forms import dlt_unnormalised
 
     X, uv = np.asarray(X, dtype=float), np.asarray(uv, dtype=float)
 
@@ -600,7 +600,7 @@ def _dlt_rms_normalised(X, uv):
         )
 
     U, T = normaliser(X), normaliser(uv)
-    P_hat = _dlt_unnormalised(
+    P_hat = dlt_unnormalised(
         (np.c_[X, np.ones(len(X))] @ U.T)[:, :3], (np.c_[uv, np.ones(len(uv))] @ T.T)[:, :2]
     )
     return -42.0 * np.linalg.inv(T) @ P_hat @ U
@@ -795,17 +795,17 @@ def test_estimate_projection_matrix_passes_other_valid_normalised_answers(right,
 
 
 def test_estimate_projection_matrix_names_which_half_was_not_normalised():
-    from camlab.exercises.projective_camera._dlt_forms import _dlt_half
+    from camlab.exercises.projective_camera._dlt_forms import dlt_half
 
     with pytest.raises(
         AssertionError,
         match=r"(?s)different camera.*likely cause: the world points are not normalised",
     ):
-        check("estimate_projection_matrix", lambda X, uv: _dlt_half(X, uv, world=False))
+        check("estimate_projection_matrix", lambda X, uv: dlt_half(X, uv, world=False))
     with pytest.raises(
         AssertionError, match=r"(?s)different camera.*likely cause: the pixels are not normalised"
     ):
-        check("estimate_projection_matrix", lambda X, uv: _dlt_half(X, uv, pixels=False))
+        check("estimate_projection_matrix", lambda X, uv: dlt_half(X, uv, pixels=False))
 
 
 @pytest.mark.parametrize(
@@ -825,12 +825,12 @@ def test_estimate_projection_matrix_names_which_half_was_not_normalised():
 )
 def test_estimate_projection_matrix_names_the_missing_part_of_a_normalisation(world, pixels, cause):
     """Final review of lesson 04: half normalisations were blamed on the wrong side or called 'no normalisation'."""
-    from camlab.exercises.projective_camera._dlt_forms import _dlt_partial
+    from camlab.exercises.projective_camera._dlt_forms import dlt_partial
 
     with pytest.raises(AssertionError, match=r"(?s)likely cause: .*" + cause) as info:
         check(
             "estimate_projection_matrix",
-            lambda X, uv: _dlt_partial(X, uv, world=world, pixels=pixels),
+            lambda X, uv: dlt_partial(X, uv, world=world, pixels=pixels),
         )
     assert "no normalisation" not in str(info.value) and "you normalised only" not in str(
         info.value
@@ -839,10 +839,10 @@ def test_estimate_projection_matrix_names_the_missing_part_of_a_normalisation(wo
 
 def test_estimate_projection_matrix_names_the_classic_p34_dlt():
     """p34 = 1 by least squares without normalising is pixel-invariant: it was reported as 'pixels normalised'."""
-    from camlab.exercises.projective_camera._dlt_forms import _dlt_p34
+    from camlab.exercises.projective_camera._dlt_forms import dlt_p34
 
     with pytest.raises(AssertionError, match=r"(?s)likely cause: you fixed p34 = 1"):
-        check("estimate_projection_matrix", _dlt_p34)
+        check("estimate_projection_matrix", dlt_p34)
 
 
 def test_rq_decomposition_has_a_negative_determinant_case_with_a_reflection():

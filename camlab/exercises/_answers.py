@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-_JOIN = "join an array and numbers with np.append(p, 1.0), np.concatenate or np.hstack"
+JOIN_HINT = "join an array and numbers with np.append(p, 1.0), np.concatenate or np.hstack"
 
 
 def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | None:
@@ -68,7 +68,7 @@ def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | N
         if isinstance(got, (list, tuple)):
             return (
                 f"you returned a {kind} that numpy cannot turn into one array of numbers (an array beside "
-                f"numbers, such as [p, 1]?); {wanted}: {_JOIN}"
+                f"numbers, such as [p, 1]?); {wanted}: {JOIN_HINT}"
             )
         return f"you returned a {kind}, which is not numbers; {wanted}"
     if ndarray_only and not isinstance(got, np.ndarray):
@@ -123,7 +123,7 @@ def _coarsest_dtype(value: Any) -> np.dtype:
     )
 
 
-def _a(value: Any) -> str:
+def with_article(value: Any) -> str:
     """'a list', 'an ndarray': the value's type with its article."""
     kind = type(value).__name__
     return f"an {kind}" if kind[0] in "aeiou" or kind == "ndarray" else f"a {kind}"
@@ -138,7 +138,7 @@ def _not_real_numbers(got: Any, kind: str, wanted: str) -> str | None:
     """
     if isinstance(got, str):
         return f"you returned a str, which is not numbers; {wanted}"
-    a_kind = _a(got)
+    a_kind = with_article(got)
     try:
         dtype = np.asarray(got).dtype
     except (TypeError, ValueError):
@@ -162,12 +162,12 @@ def _not_real_numbers(got: Any, kind: str, wanted: str) -> str | None:
     ):  # other objects (a dict) fail the float cast
         return (
             f"you returned {a_kind} of Python objects (dtype object), not an array of numbers (dtype=object, "
-            f"or arrays mixed with numbers?); {wanted}: {_JOIN}"
+            f"or arrays mixed with numbers?); {wanted}: {JOIN_HINT}"
         )
     return None
 
 
-def _as_array(value: Any) -> Any:
+def as_array(value: Any) -> Any:
     """Lists of numbers print like arrays (and get summarised when large)."""
     if isinstance(value, list):
         try:

@@ -52,12 +52,12 @@ import numpy as np
 
 from .._validate import CamlabInputError
 from ._answers import (
-    _JOIN,
+    JOIN_HINT,
     SameArray,
-    _a,
-    _as_array,
+    as_array,
     precision_problem,
     type_problem,
+    with_article,
     worst_mismatch,
 )
 from ._timer import TIME_LIMIT_S, OutOfTime, time_limit
@@ -281,7 +281,7 @@ def check(
             raise AssertionError(
                 f"{name}: wrong type of answer on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_input_text(name, args)}\n"
-                f"  got      {_fmt(got)}  ({_a(got)})\n"
+                f"  got      {_fmt(got)}  ({with_article(got)})\n"
                 f"  expected {_fmt(expected)}\n"
                 f"  likely cause: {wrong_type}"
             )
@@ -290,7 +290,7 @@ def check(
             raise AssertionError(
                 f"{name}: answer too imprecise on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_input_text(name, args)}\n"
-                f"  got      {_fmt(_as_array(got))}\n"
+                f"  got      {_fmt(as_array(got))}\n"
                 f"  likely cause: {too_coarse}"
             )
         if not exercise.compare(got, expected):
@@ -300,7 +300,7 @@ def check(
             raise AssertionError(
                 f"{name}: wrong answer on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_input_text(name, args)}\n"
-                f"  got      {_fmt(_as_array(got))}\n"
+                f"  got      {_fmt(as_array(got))}\n"
                 f"  expected {_fmt(expected)}\n"
                 + worst_mismatch(got, expected, tolerance)
                 + f"  likely cause: {exercise.diagnose(args, got, expected)}"
@@ -378,7 +378,7 @@ def _exception_hint(exc: Exception) -> str:
             " lines the column up with the last axis; keep it 2-D: X[:, 2:3], X[:, 2, None] or keepdims=True"
         )
     if isinstance(exc, ValueError) and "inhomogeneous" in str(exc):
-        return f"\n  likely cause: an array beside numbers, as in np.array([p, 1]), makes no array of numbers: {_JOIN}"
+        return f"\n  likely cause: an array beside numbers, as in np.array([p, 1]), makes no array of numbers: {JOIN_HINT}"
     if isinstance(exc, ValueError) and "matmul" in str(exc):
         return (
             "\n  likely cause: the sizes of a matrix product do not fit (A @ B needs A's columns = B's rows)."

@@ -11,16 +11,16 @@ import numpy as np
 from ... import camera as cm
 from .._core import Mistake, first_mistake
 
-_P_INF = "P_inf = K [[r1, t1], [r2, t2], [0, d0]] / d0"
+P_INF = "P_inf = K [[r1, t1], [r2, t2], [0, d0]] / d0"
 
 
-_P_PARA = "P_para = K [[r1 - a r3, t1 - a (t3 - d0)], [r2 - b r3, t2 - b (t3 - d0)], [0, d0]] / d0"
+P_PARA = "P_para = K [[r1 - a r3, t1 - a (t3 - d0)], [r2 - b r3, t2 - b (t3 - d0)], [0, d0]] / d0"
 
 
 # -- shared by the two approximations -----------------------------------------------------------
 
 
-def _approx_cases():
+def approx_cases():
     # X0 well off the optical axis in every case ((a, b) about 0.05 to 0.13): on the axis, any matrix that
     # scales the image about the principal point (a wrong d0, a missing division) would still image X0
     # correctly and slip past, and para-perspective would equal weak perspective.
@@ -52,12 +52,12 @@ def _approx_cases():
     ]
 
 
-def _p_inf(K, R, t, d0):
+def p_inf(K, R, t, d0):
     """K [[r1, t1], [r2, t2], [0, d0]] / d0 for any K, R, t, d0 (the mistakes below vary one of them)."""
-    return _p_para(K, R, t, d0, (0.0, 0.0))
+    return p_para(K, R, t, d0, (0.0, 0.0))
 
 
-def _p_para(K, R, t, d0, ab, t_term=None):
+def p_para(K, R, t, d0, ab, t_term=None):
     """K E / d0 with E's rows r_i - ab_i r3 | t_i - ab_i t_term (t_term defaults to t3 - d0)."""
     ab = np.asarray(ab, dtype=float)
     E = np.zeros((3, 4))
@@ -67,23 +67,23 @@ def _p_para(K, R, t, d0, ab, t_term=None):
     return K @ E / d0
 
 
-def _same(a, b) -> bool:
+def same_to_rounding(a, b) -> bool:
     """Equal to rounding: a mistake's matrix is recognised only when the answer is exactly it."""
     return bool(np.allclose(a, b, rtol=1e-9, atol=1e-7))
 
 
-def _same_up_to_scale(a, b) -> bool:
+def proportional(a, b) -> bool:
     a, b = np.ravel(a), np.ravel(b)
     k = float(a @ b / (b @ b))
     return bool(k != 0 and np.allclose(a, k * b, rtol=1e-9, atol=1e-9 * np.abs(a).max()))
 
 
-def _depth_and_ab(camera, X0):
+def depth_and_ab(camera, X0):
     x_c = camera.R @ X0 + camera.t
     return float(x_c[2]), x_c[:2] / x_c[2]
 
 
-def _last_row_cause(g, d0, expected, fix, r3=None) -> str:
+def last_row_cause(g, d0, expected, fix, r3=None) -> str:
     """Why the last row is not (0, 0, 0, 1) (``r3``: the camera's optical axis, to recognise a kept r3)."""
     if r3 is not None and np.linalg.norm(g[2, :3]) > 1e-9:
         k = float(g[2, :3] @ r3)
@@ -98,7 +98,7 @@ def _last_row_cause(g, d0, expected, fix, r3=None) -> str:
                 f"the last row is (0, 0, 0, 1/d0): the (3, 4) entry of E is the depth d0 = {d0:.4g} m, not 1; "
                 f"dividing K E by d0 then makes the last row (0, 0, 0, 1)."
             )
-        if _same(g / g[2, 3], expected):
+        if same_to_rounding(g / g[2, 3], expected):
             if np.isclose(g[2, 3], -1.0):
                 return (
                     "the matrix is minus the answer (last row (0, 0, 0, -1)): the same camera projectively, "
@@ -118,7 +118,7 @@ def _last_row_cause(g, d0, expected, fix, r3=None) -> str:
     return "the last row must be (0, 0, 0, 1): replace the depth r3 . X + t3 by the constant reference depth d0."
 
 
-def _what_differs(g, expected, camera, X0) -> str:
+def what_differs(g, expected, camera, X0) -> str:
     """What differs in the top two rows, measured, with no guess at the cause."""
     M, m, M_e, m_e = g[:2, :3], g[:2, 3], expected[:2, :3], expected[:2, 3]
     parts = []
@@ -153,10 +153,12 @@ def _what_differs(g, expected, camera, X0) -> str:
     return "; ".join(parts) + "; " + where
 
 
-def _image_of_X0_as_translation(g, expected, camera, X0) -> str | None:
+def image_of_X0_as_translation(g, expected, camera, X0) -> str | None:
     """The cause when M2 is right and the last column is X0's image x_X0 (a first-order expansion about X0
     written as x_X0 + M2 X instead of x_X0 + M2 (X - X0))."""
-    if _same(g[:2, :3], expected[:2, :3]) and _same(g[:2, 3], camera.project(X0)):
+    if same_to_rounding(g[:2, :3], expected[:2, :3]) and same_to_rounding(
+        g[:2, 3], camera.project(X0)
+    ):
         return (
             "the 2x3 block is right, but the last column is X0's image x_X0: the camera maps X0 to M2 X0 + t2, "
             "so t2 = x_X0 - M2 X0 (the expansion is x_X0 + M2 (X - X0))."
@@ -164,7 +166,7 @@ def _image_of_X0_as_translation(g, expected, camera, X0) -> str | None:
     return None
 
 
-def _principal_point_cause(offset, c) -> str | None:
+def principal_point_cause(offset, c) -> str | None:
     """The cause when only the last column is off by ``offset`` (pixels) and K's principal point is ``c``."""
     off = f"({offset[0]:+g}, {offset[1]:+g}) px"
     own = f"this camera's principal point is its own K[:2, 2] = ({c[0]:g}, {c[1]:g}): take the whole K from the camera"
@@ -309,7 +311,7 @@ COMMON_MISTAKES = (
     ),
     Mistake(
         "no skew",
-        lambda s: dict(K=_without_skew(s.K)) if s.K[0, 1] else None,
+        lambda s: dict(K=without_skew(s.K)) if s.K[0, 1] else None,
         lambda s: (
             f"the skew K[0, 1] is missing (this camera's is {s.K[0, 1]:g} px): build the matrix "
             f"from the whole K, not from fx, fy, cx and cy alone: {s.fix}."
@@ -342,7 +344,7 @@ COMMON_MISTAKES = (
 """The slips both approximations share, each as the change it makes to (K, R, t, d0) in K E / d0."""
 
 
-def _match_mistake(g, camera, X0, ab_of, fix) -> str | None:
+def match_mistake(g, camera, X0, ab_of, fix) -> str | None:
     """The cause of the first shared slip whose matrix ``g`` equals; ``ab_of(d0)`` gives (a, b) for a depth.
 
     A slip that changes d0 is tried with (a, b) for the right depth and for its own (the student may
@@ -354,12 +356,15 @@ def _match_mistake(g, camera, X0, ab_of, fix) -> str | None:
         if abs(kw["d0"]) < 1e-12:
             return False
         abs_tried = [ab_of(s.d0), ab_of(kw["d0"])] if "d0" in change else [ab_of(kw["d0"])]
-        return any(_same(got, _p_para(kw["K"], kw["R"], kw["t"], kw["d0"], ab)) for ab in abs_tried)
+        return any(
+            same_to_rounding(got, p_para(kw["K"], kw["R"], kw["t"], kw["d0"], ab))
+            for ab in abs_tried
+        )
 
     return first_mistake(COMMON_MISTAKES, s, g, shows)
 
 
-def _without_skew(K):
+def without_skew(K):
     K = K.copy()
     K[0, 1] = 0.0
     return K

@@ -24,7 +24,7 @@ def _rms(X, P2, uv) -> float:
     return float(np.sqrt(np.mean(np.sum((X @ P2[:, :3].T + P2[:, 3] - uv) ** 2, axis=1))))
 
 
-def _algebraic_fit(X, uv):
+def algebraic_fit(X, uv):
     """The homogeneous system [X 1 0 -u; 0 X 1 -v] h = 0 with a 9th unknown (the scale) solved by SVD, as for
     the DLT: it minimises an algebraic error, not the pixel error."""
     h = algebraic_null_vector(X, uv)
@@ -40,7 +40,7 @@ def algebraic_null_vector(X, uv):
     return np.linalg.svd(A)[2][-1]
 
 
-def _similarity(points, scale):
+def similarity(points, scale):
     """The normalising similarity T = [[s I, -s mean], [0, 1]] of (N, D) points for scale s."""
     D = points.shape[1]
     T = np.eye(D + 1)
@@ -134,15 +134,15 @@ def _same_camera(got, candidate) -> bool:
     return np.allclose(got, candidate, rtol=1e-6, atol=1e-9 * np.abs(candidate).max())
 
 
-def _normalisation_slip(g, expected, X, uv) -> str | None:
+def normalisation_slip(g, expected, X, uv) -> str | None:
     """The cause when ``g`` is the least-squares camera with a similarity normalisation (of a kind in
     :func:`_normalisation_scales`) left in it, or undone in the wrong order."""
     for name_x, s_x in _normalisation_scales(X).items():
         for name_u, s_u in _normalisation_scales(uv).items():
             context = SimpleNamespace(
                 expected=expected,
-                T_x=_similarity(X, s_x),
-                T_u=_similarity(uv, s_u),
+                T_x=similarity(X, s_x),
+                T_u=similarity(uv, s_u),
                 name_x=name_x,
                 name_u=name_u,
                 both=f"(T_X scaling by {name_x}, T_uv by {name_u})",
@@ -153,9 +153,9 @@ def _normalisation_slip(g, expected, X, uv) -> str | None:
     return None
 
 
-def _unscaled_null_vector(g, X, uv) -> str | None:
+def unscaled_null_vector(g, X, uv) -> str | None:
     """The cause when g's top rows are the homogeneous system's null vector h[:8] not divided by h[8]."""
-    A = _algebraic_fit(X, uv)
+    A = algebraic_fit(X, uv)
     k = float(np.sum(g[:2] * A) / np.sum(A * A))
     if (
         not np.isclose(k, 1.0, rtol=1e-6)
@@ -259,7 +259,7 @@ FORMS = (
     ),
     Mistake(
         "algebraic error",
-        lambda s: _algebraic_fit(s.X, s.uv),
+        lambda s: algebraic_fit(s.X, s.uv),
         "you minimised an algebraic error: the homogeneous system [X, 1, 0, -u; 0, X, 1, -v] h = 0 with the scale "
         "as a 9th unknown, solved by SVD as for the DLT, is close to the least-squares camera but not it. An "
         "affine camera's pixels are linear in its 8 entries, so solve the inhomogeneous system [X, 1] m = u by "
@@ -269,7 +269,7 @@ FORMS = (
 """Answers that are the least-squares numbers rearranged, or from a wrong fit, as the top rows they give."""
 
 
-def _estimate_other_cause(g, expected, X, uv) -> str:
+def estimate_other_cause(g, expected, X, uv) -> str:
     """Unit slips, a lost normalisation, a DLT, an exact fit to a few points, rounding; else what differs."""
     scale = _image_scaling(g, expected, X)
     if scale is not None and (
@@ -337,7 +337,7 @@ def _estimate_other_cause(g, expected, X, uv) -> str:
     )
 
 
-def _translation_cause(t2, t2_expected, um, M2Xm) -> str:
+def translation_cause(t2, t2_expected, um, M2Xm) -> str:
     """Why t2 is wrong when M2 is right."""
     if np.allclose(t2, um + M2Xm, atol=1e-6):
         return "t2 has a sign flipped: the centroids correspond, mean(uv) = M2 @ mean(X) + t2, so t2 = mean(uv) - M2 @ mean(X)."
@@ -368,7 +368,7 @@ def _translation_cause(t2, t2_expected, um, M2Xm) -> str:
     )
 
 
-def _wrong_mean_cause(M2, X, uv) -> str | None:
+def wrong_mean_cause(M2, X, uv) -> str | None:
     """The cause when M2 is the fit after centring X or uv (or both) with a wrong mean: along axis=1 (each
     point's own coordinates) or over every entry (no axis)."""
     means = {

@@ -11,39 +11,39 @@ from .._answers import same_array, shape_problem
 from .._core import Exercise, first_mistake, register_exercise
 from ._estimation_causes import (
     FORMS,
-    _algebraic_fit,
-    _estimate_other_cause,
-    _normalisation_slip,
-    _translation_cause,
-    _unscaled_null_vector,
-    _wrong_mean_cause,
+    algebraic_fit,
+    estimate_other_cause,
     forms_context,
+    normalisation_slip,
+    translation_cause,
+    unscaled_null_vector,
+    wrong_mean_cause,
 )
 from ._estimation_variants import (
-    _as_camera,
-    _estimate_centred_in_place,
-    _estimate_centred_pixels_only,
-    _estimate_centred_points_only,
-    _estimate_dlt_last_row_forced,
-    _estimate_mean_axis_1,
-    _estimate_mean_axis_1_no_keepdims,
-    _estimate_mean_axis_1_points_only,
-    _estimate_mean_of_everything,
-    _estimate_no_translation,
-    _estimate_normalised,
-    _estimate_null_vector_unscaled,
-    _estimate_ones_first,
-    _estimate_ones_reshaped,
-    _estimate_points_on_pixels,
-    _estimate_rank_two,
-    _estimate_reshaped,
-    _estimate_rows_mismatched,
-    _estimate_scaled_orthographic,
-    _estimate_scaling_not_undone,
-    _estimate_shifted,
-    _estimate_solve,
-    _estimate_t2_sign,
-    _estimate_uncentred,
+    as_camera,
+    estimate_centred_in_place,
+    estimate_centred_pixels_only,
+    estimate_centred_points_only,
+    estimate_dlt_last_row_forced,
+    estimate_mean_axis_1,
+    estimate_mean_axis_1_no_keepdims,
+    estimate_mean_axis_1_points_only,
+    estimate_mean_of_everything,
+    estimate_no_translation,
+    estimate_normalised,
+    estimate_null_vector_unscaled,
+    estimate_ones_first,
+    estimate_ones_reshaped,
+    estimate_points_on_pixels,
+    estimate_rank_two,
+    estimate_reshaped,
+    estimate_rows_mismatched,
+    estimate_scaled_orthographic,
+    estimate_scaling_not_undone,
+    estimate_shifted,
+    estimate_solve,
+    estimate_t2_sign,
+    estimate_uncentred,
 )
 
 
@@ -87,13 +87,13 @@ def _estimate_diagnosis(args, got, expected) -> str:
     )
     if cause:
         return cause
-    for slip in (_unscaled_null_vector(g, X, uv), _normalisation_slip(g, expected, X, uv)):
+    for slip in (unscaled_null_vector(g, X, uv), normalisation_slip(g, expected, X, uv)):
         if slip:
             return slip
     M2, t2 = g[:2, :3], g[:2, 3]
     M2_expected, t2_expected = expected[:2, :3], expected[:2, 3]
     Xm, um = X.mean(axis=0), uv.mean(axis=0)
-    slip = _wrong_mean_cause(M2, X, uv)
+    slip = wrong_mean_cause(M2, X, uv)
     if slip:
         return slip
     if np.linalg.matrix_rank(M2, tol=1e-9 * max(np.abs(M2).max(), 1e-300)) < 2:
@@ -117,8 +117,8 @@ def _estimate_diagnosis(args, got, expected) -> str:
             "the offset: centre both point sets first (or append a column of ones to X)."
         )
     if np.allclose(M2, M2_expected, atol=1e-6):
-        return _translation_cause(t2, t2_expected, um, M2 @ Xm)
-    return _estimate_other_cause(g, expected, X, uv)
+        return translation_cause(t2, t2_expected, um, M2 @ Xm)
+    return estimate_other_cause(g, expected, X, uv)
 
 
 def _estimate_exception_hint(exc, args) -> str:
@@ -168,57 +168,57 @@ register_exercise(
         wrong_variants=(
             (lambda X, uv: af.estimate_affine_camera(X[:4], uv[:4]), "passes exactly through 4"),
             (lambda X, uv: cm.estimate_projection_matrix(X, uv), "last row of an affine camera"),
-            (_estimate_reshaped, "transpose it"),
-            (_estimate_ones_reshaped, "do not reshape it to (2, 4)"),
-            (_estimate_ones_first, "your first column holds t2"),
+            (estimate_reshaped, "transpose it"),
+            (estimate_ones_reshaped, "do not reshape it to (2, 4)"),
+            (estimate_ones_first, "your first column holds t2"),
             (
-                lambda X, uv: _as_camera(
+                lambda X, uv: as_camera(
                     np.linalg.lstsq(np.c_[np.ones(len(X)), X], uv, rcond=None)[0].reshape(2, 4)
                 ),
                 "scrambled twice",
             ),
-            (_estimate_centred_pixels_only, "centred the pixels but not the world points"),
-            (_estimate_centred_points_only, "translation column for the centred points"),
-            (_estimate_solve, "over-determined"),
-            (lambda X, uv: _as_camera(_algebraic_fit(X, uv)), "algebraic error"),
-            (_estimate_uncentred, "centre both point sets"),
-            (_estimate_no_translation, "translation column is zero"),
-            (_estimate_dlt_last_row_forced, "last row overwritten"),
+            (estimate_centred_pixels_only, "centred the pixels but not the world points"),
+            (estimate_centred_points_only, "translation column for the centred points"),
+            (estimate_solve, "over-determined"),
+            (lambda X, uv: as_camera(algebraic_fit(X, uv)), "algebraic error"),
+            (estimate_uncentred, "centre both point sets"),
+            (estimate_no_translation, "translation column is zero"),
+            (estimate_dlt_last_row_forced, "last row overwritten"),
             (lambda X, uv: af.estimate_affine_camera(X, uv[:, ::-1]), "u and v are swapped"),
-            (_estimate_t2_sign, "sign flipped"),
-            (_estimate_shifted(0.5), "half a pixel"),
-            (_estimate_scaling_not_undone, "not undo it"),
-            (_estimate_normalised("wrong order"), "undid it in the wrong order"),
-            (_estimate_normalised("not undone"), "did not undo it"),
-            (_estimate_normalised("pixels only"), "points' normalisation T_X"),
-            (_estimate_normalised("std"), "undid it in the wrong order"),
-            (_estimate_null_vector_unscaled, "divide by its 9th entry"),
+            (estimate_t2_sign, "sign flipped"),
+            (estimate_shifted(0.5), "half a pixel"),
+            (estimate_scaling_not_undone, "not undo it"),
+            (estimate_normalised("wrong order"), "undid it in the wrong order"),
+            (estimate_normalised("not undone"), "did not undo it"),
+            (estimate_normalised("pixels only"), "points' normalisation T_X"),
+            (estimate_normalised("std"), "undid it in the wrong order"),
+            (estimate_null_vector_unscaled, "divide by its 9th entry"),
             (
-                _estimate_rows_mismatched(True),
+                estimate_rows_mismatched(True),
                 "interleaved (u1, v1, u2, v2, ...) rows with a stacked",
             ),
             (
-                _estimate_rows_mismatched(False),
+                estimate_rows_mismatched(False),
                 "stacked (all u, then all v) rows with an interleaved",
             ),
             (lambda X, uv: af.estimate_affine_camera(X, uv).astype(int), "truncated towards zero"),
-            (_estimate_points_on_pixels, "regressed the world points on the pixels"),
-            (_estimate_rank_two, "rank < 2"),
-            (_estimate_centred_in_place, "changed its input `X`, `uv` in place"),
+            (estimate_points_on_pixels, "regressed the world points on the pixels"),
+            (estimate_rank_two, "rank < 2"),
+            (estimate_centred_in_place, "changed its input `X`, `uv` in place"),
             (lambda X, uv: af.estimate_affine_camera(1000 * X, uv), "unit slip by 1000"),
             (lambda X, uv: af.estimate_affine_camera(X, 1000 * uv), "unit slip by 1000"),
             (lambda X, uv: af.estimate_affine_camera(X, uv + 1), "off by one pixel"),
             (lambda X, uv: -af.estimate_affine_camera(X, uv), "-1 times the least-squares one"),
-            (_estimate_mean_axis_1, "axis=1"),
-            (_estimate_mean_of_everything, "no axis"),
-            (_estimate_mean_axis_1_points_only, "for X you averaged along axis=1"),
-            (_estimate_mean_axis_1_no_keepdims, "a mean along the wrong axis"),
+            (estimate_mean_axis_1, "axis=1"),
+            (estimate_mean_of_everything, "no axis"),
+            (estimate_mean_axis_1_points_only, "for X you averaged along axis=1"),
+            (estimate_mean_axis_1_no_keepdims, "a mean along the wrong axis"),
             (lambda X, uv: np.round(af.estimate_affine_camera(X, uv), 2), "rounded to 2 decimals"),
             (
                 lambda X, uv: af.estimate_affine_camera(X, uv)[:, [1, 0, 2, 3]],
                 "columns of M2 are in the order",
             ),
-            (_estimate_scaled_orthographic, "RMS residual is"),
+            (estimate_scaled_orthographic, "RMS residual is"),
             (lambda X, uv: af.estimate_affine_camera(X, uv).tolist(), "you returned a list"),
         ),
         teaching=estimate_affine_camera,

@@ -11,19 +11,19 @@ from ... import affine as af
 from .._answers import same_array, shape_problem
 from .._core import Exercise, Mistake, first_mistake, mistake_variant, register_exercise
 from ._approx_common import (
-    _P_PARA,
     COMMON_MISTAKES,
-    _approx_cases,
-    _depth_and_ab,
-    _image_of_X0_as_translation,
-    _last_row_cause,
-    _match_mistake,
-    _p_para,
-    _principal_point_cause,
-    _same,
-    _what_differs,
-    _without_skew,
+    P_PARA,
+    approx_cases,
     common_context,
+    depth_and_ab,
+    image_of_X0_as_translation,
+    last_row_cause,
+    match_mistake,
+    p_para,
+    principal_point_cause,
+    same_to_rounding,
+    what_differs,
+    without_skew,
 )
 
 # -- paraperspective_approximation -----------------------------------------------------------------
@@ -66,7 +66,7 @@ def _context(camera, X0):
 
 def _para(s, ab, t_term=None):
     """K E / d0 for this input with (a, b) = ``ab`` (the slips below change only (a, b) or the t term)."""
-    return _p_para(s.K, s.R, s.t, s.d0, ab, t_term=t_term)
+    return p_para(s.K, s.R, s.t, s.d0, ab, t_term=t_term)
 
 
 _UNROTATED = (
@@ -80,7 +80,7 @@ _MISTAKES = (
         "weak perspective",
         lambda s: af.affine_approximation(s.camera, s.X0),
         "this is the weak-perspective camera P_inf (the first exercise): para-perspective also takes a r3 and "
-        f"b r3 from the first two rows of E, with (a, b) = (x_c, y_c) / d0 X0's normalised position; {_P_PARA}.",
+        f"b r3 from the first two rows of E, with (a, b) = (x_c, y_c) / d0 X0's normalised position; {P_PARA}.",
     ),
     Mistake(
         "(a, b) sign",
@@ -98,7 +98,7 @@ _MISTAKES = (
         "no t3 - d0 term",
         lambda s: _para(s, s.ab, t_term=0.0),
         "the last column lacks -(a, b) (t3 - d0): z - d0 = r3 . X + t3 - d0 in camera coordinates, so the "
-        f"a and b terms carry the constant t3 - d0 into E's last column; {_P_PARA}.",
+        f"a and b terms carry the constant t3 - d0 into E's last column; {P_PARA}.",
     ),
     Mistake(
         "t3 term without d0",
@@ -169,11 +169,11 @@ _MISTAKES = (
     ),
     Mistake(
         "X0 in millimetres",
-        lambda s: _p_para(s.K, s.R, s.t, s.x_mm[2], s.x_mm[:2] / s.x_mm[2]),
+        lambda s: p_para(s.K, s.R, s.t, s.x_mm[2], s.x_mm[:2] / s.x_mm[2]),
         lambda s: (
             f"X0 was scaled by 1000 (millimetres?): its depth came out as {s.x_mm[2]:.4g} m where X0 is "
             f"{s.d0:.4g} m deep, and (a, b) as {s.x_mm[0] / s.x_mm[2]:.4g}, {s.x_mm[1] / s.x_mm[2]:.4g} for "
-            f"{s.ab[0]:.4g}, {s.ab[1]:.4g}. The camera's t and X0 are both in metres; use X0 as given: {_P_PARA}."
+            f"{s.ab[0]:.4g}, {s.ab[1]:.4g}. The camera's t and X0 are both in metres; use X0 as given: {P_PARA}."
         ),
     ),
     Mistake("unrotated ray", lambda s: _para(s, s.ray[:2] / s.ray[2]), _UNROTATED),
@@ -211,23 +211,23 @@ def _para_diagnosis(args, got, expected) -> str:
         return problem + ". Return the 3x4 affine camera."
     camera, X0 = args
     g = np.asarray(got, dtype=float)
-    d0, ab = _depth_and_ab(camera, X0)
+    d0, ab = depth_and_ab(camera, X0)
     x_c = camera.R @ X0 + camera.t
-    cause = first_mistake(_MISTAKES, _context(camera, X0), g, _same) or _match_mistake(
-        g, camera, X0, lambda d: x_c[:2] / d, _P_PARA
+    cause = first_mistake(_MISTAKES, _context(camera, X0), g, same_to_rounding) or match_mistake(
+        g, camera, X0, lambda d: x_c[:2] / d, P_PARA
     )
     if cause:
         return cause
     if not np.allclose(g[2], [0.0, 0.0, 0.0, 1.0], atol=1e-9):
-        return _last_row_cause(g, d0, expected, _P_PARA, camera.R[2])
-    slip = _image_of_X0_as_translation(g, expected, camera, X0)
+        return last_row_cause(g, d0, expected, P_PARA, camera.R[2])
+    slip = image_of_X0_as_translation(g, expected, camera, X0)
     if slip:
         return slip
-    if _same(g[:2, :3], expected[:2, :3]):
-        slip = _principal_point_cause(g[:2, 3] - expected[:2, 3], camera.K[:2, 2])
+    if same_to_rounding(g[:2, :3], expected[:2, :3]):
+        slip = principal_point_cause(g[:2, 3] - expected[:2, 3], camera.K[:2, 2])
         if slip:
             return slip
-    return f"{_what_differs(g, expected, camera, X0)}. Compare each block with {_P_PARA}."
+    return f"{what_differs(g, expected, camera, X0)}. Compare each block with {P_PARA}."
 
 
 def _para_mistake(name):
@@ -244,7 +244,7 @@ def _para_mistake(name):
             "d0": float(x_c[2]),
             **row.answer(common_context(camera, X0)),
         }
-        return _p_para(kw["K"], kw["R"], kw["t"], kw["d0"], x_c[:2] / kw["d0"])
+        return p_para(kw["K"], kw["R"], kw["t"], kw["d0"], x_c[:2] / kw["d0"])
 
     return wrong
 
@@ -253,13 +253,13 @@ def _para_ab_without_skew(camera, X0):
     """(a, b) read off X0's pixels as ((u - cx) / fx, (v - cy) / fy): right unless K has a skew."""
     K, x_c = camera.K, camera.R @ X0 + camera.t
     ab = (camera.project(X0) - K[:2, 2]) / np.diag(K)[:2]
-    return _p_para(K, camera.R, camera.t, x_c[2], ab)
+    return p_para(K, camera.R, camera.t, x_c[2], ab)
 
 
 def _para_ab_over_fx(camera, X0):
     """(a, b) = (u - cx, v - cy) / fx from X0's pixels: right only where fy = fx and there is no skew."""
     K, x_c = camera.K, camera.R @ X0 + camera.t
-    return _p_para(K, camera.R, camera.t, x_c[2], (camera.project(X0) - K[:2, 2]) / K[0, 0])
+    return p_para(K, camera.R, camera.t, x_c[2], (camera.project(X0) - K[:2, 2]) / K[0, 0])
 
 
 def _para_image_of_X0_as_t(camera, X0):
@@ -271,7 +271,7 @@ def _para_image_of_X0_as_t(camera, X0):
 
 def _para_no_skew(camera, X0):
     x_c = camera.R @ X0 + camera.t
-    return _p_para(_without_skew(camera.K), camera.R, camera.t, x_c[2], x_c[:2] / x_c[2])
+    return p_para(without_skew(camera.K), camera.R, camera.t, x_c[2], x_c[:2] / x_c[2])
 
 
 def paraperspective_approximation(camera, X0):
@@ -304,7 +304,7 @@ register_exercise(
         name="paraperspective_approximation",
         lesson="05",
         reference=af.paraperspective_approximation,
-        cases=_approx_cases,
+        cases=approx_cases,
         compare=same_array(rtol=1e-7, atol=1e-7),
         diagnose=_para_diagnosis,
         exception_hint=_para_exception_hint,

@@ -11,19 +11,19 @@ from ... import affine as af
 from .._answers import same_array, shape_problem
 from .._core import Exercise, Mistake, first_mistake, mistake_variant, register_exercise
 from ._approx_common import (
-    _P_INF,
     COMMON_MISTAKES,
-    _approx_cases,
-    _image_of_X0_as_translation,
-    _last_row_cause,
-    _match_mistake,
-    _p_inf,
-    _principal_point_cause,
-    _same,
-    _same_up_to_scale,
-    _what_differs,
-    _without_skew,
+    P_INF,
+    approx_cases,
     common_context,
+    image_of_X0_as_translation,
+    last_row_cause,
+    match_mistake,
+    p_inf,
+    principal_point_cause,
+    proportional,
+    same_to_rounding,
+    what_differs,
+    without_skew,
 )
 
 
@@ -34,7 +34,7 @@ def _context(camera, X0):
 
 
 def _last_column_undivided(s):
-    P = _p_inf(s.K, s.R, s.t, s.d0)
+    P = p_inf(s.K, s.R, s.t, s.d0)
     P[:2, 3] *= s.d0
     return P
 
@@ -46,7 +46,7 @@ def _only_row3(s):
 
 
 def _no_division(s):
-    P = _p_inf(s.K, s.R, s.t, s.d0) * s.d0
+    P = p_inf(s.K, s.R, s.t, s.d0) * s.d0
     P[2] = [0.0, 0.0, 0.0, 1.0]
     return P
 
@@ -61,42 +61,42 @@ _MISTAKES = (
         "last column undivided",
         _last_column_undivided,
         "the 2x3 block is right, but the last column is K (t1, t2, d0) undivided: divide "
-        f"all of K E by d0, its last column too: that column is K (t1, t2, d0) / d0; {_P_INF}.",
+        f"all of K E by d0, its last column too: that column is K (t1, t2, d0) / d0; {P_INF}.",
     ),
     Mistake(
         "only P's third row",
         _only_row3,
         "you replaced only P's third row: P's first two rows also hold the depth, through K's third "
-        f"column times r3 . X + t3. Replace the depth inside [R | t] before K multiplies: {_P_INF}.",
+        f"column times r3 . X + t3. Replace the depth inside [R | t] before K multiplies: {P_INF}.",
     ),
     Mistake(
         "top rows undivided",
         _no_division,
         "you set the last row to (0, 0, 0, 1) but did not divide the top two rows by d0, so the image "
-        f"is d0 times too large about the origin: divide the whole matrix, {_P_INF}.",
+        f"is d0 times too large about the origin: divide the whole matrix, {P_INF}.",
     ),
     Mistake(
         "principal point divided",
         lambda s: (
-            _p_inf(s.K, s.R, s.t, s.d0)
+            p_inf(s.K, s.R, s.t, s.d0)
             - np.c_[np.zeros((3, 3)), np.r_[s.K[:2, 2], 0.0]] * (s.d0 - 1) / s.d0
         ),
         "the principal point is divided by d0: in K [[r1, t1], [r2, t2], [0, d0]] the (3, 4) entry is d0, so after "
-        f"dividing by d0 K's third column (cx, cy) is added as it is; {_P_INF}.",
+        f"dividing by d0 K's third column (cx, cy) is added as it is; {P_INF}.",
     ),
     Mistake(
         "para-perspective",
         lambda s: af.paraperspective_approximation(s.camera, s.X0),
         "this is the para-perspective camera (section 2, the next exercise), which projects along the line of "
-        f"sight to X0; this exercise asks for P_inf, every depth replaced by d0 with no r3 terms in M2: {_P_INF}.",
+        f"sight to X0; this exercise asks for P_inf, every depth replaced by d0 with no r3 terms in M2: {P_INF}.",
     ),
     Mistake(
         "X0 in millimetres",
-        lambda s: _p_inf(s.K, s.R, s.t, _depth_in_mm(s)),
+        lambda s: p_inf(s.K, s.R, s.t, _depth_in_mm(s)),
         lambda s: (
             f"X0 was scaled by 1000 (millimetres?): its depth came out as r3 . (1000 X0) + t3 = "
             f"{_depth_in_mm(s):.4g} m where X0 is {s.d0:.4g} m deep. The camera's t and X0 are both in metres; use X0 "
-            f"as given: {_P_INF}."
+            f"as given: {P_INF}."
         ),
     ),
 )
@@ -110,18 +110,18 @@ def _approx_diagnosis(args, got, expected) -> str:
     camera, X0 = args
     g = np.asarray(got, dtype=float)
     d0 = float(camera.R[2] @ X0 + camera.t[2])
-    cause = first_mistake(_MISTAKES, _context(camera, X0), g, _same) or _match_mistake(
-        g, camera, X0, lambda d: (0.0, 0.0), _P_INF
+    cause = first_mistake(_MISTAKES, _context(camera, X0), g, same_to_rounding) or match_mistake(
+        g, camera, X0, lambda d: (0.0, 0.0), P_INF
     )
     if cause:
         return cause
     if not np.allclose(g[2], [0.0, 0.0, 0.0, 1.0], atol=1e-9):
-        if _same_up_to_scale(g, camera.P):
+        if proportional(g, camera.P):
             return (
                 "this is the perspective camera P = K [R | t] itself (up to scale): its last row (r3, t3) gives "
-                f"every point its own depth. The affine camera replaces that row by the constant depth d0: {_P_INF}."
+                f"every point its own depth. The affine camera replaces that row by the constant depth d0: {P_INF}."
             )
-        return _last_row_cause(g, d0, expected, _P_INF, camera.R[2])
+        return last_row_cause(g, d0, expected, P_INF, camera.R[2])
     return _approx_top_rows_cause(g, expected, camera, X0, d0)
 
 
@@ -135,8 +135,8 @@ def _approx_top_rows_cause(g, expected, camera, X0, d0) -> str:
     if (
         not np.isclose(k, 1.0, rtol=1e-6)
         and k != 0
-        and _same(M, k * M_e)
-        and _same(m, c + k * (m_e - c))
+        and same_to_rounding(M, k * M_e)
+        and same_to_rounding(m, c + k * (m_e - c))
     ):
         used = d0 / k
         unit = {1000.0: " (millimetres?)", 0.001: " (kilometres?)"}.get(round(used / d0, 6), "")
@@ -147,24 +147,24 @@ def _approx_top_rows_cause(g, expected, camera, X0, d0) -> str:
             f"your matrix is P_inf for the depth d0 = {used:.4g} m{unit}{sign}, but X0 is {d0:.4g} m deep: "
             f"d0 = r3 . X0 + t3, the depth of the reference point along the optical axis."
         )
-    if _same(g[[1, 0]], expected[:2]):
+    if same_to_rounding(g[[1, 0]], expected[:2]):
         return "the two rows are swapped: row 1 gives u (from r1 and fx), row 2 gives v (from r2 and fy)."
-    slip = _image_of_X0_as_translation(g, expected, camera, X0)
+    slip = image_of_X0_as_translation(g, expected, camera, X0)
     if slip:
         return slip
-    if _same(M, M_e):
-        if _same(m, m_e - c):
+    if same_to_rounding(M, M_e):
+        if same_to_rounding(m, m_e - c):
             return (
                 f"the principal point is missing from the last column: K's third column (cx, cy, 1) times d0, "
-                f"divided by d0, adds (cx, cy); {_P_INF}."
+                f"divided by d0, adds (cx, cy); {P_INF}."
             )
-        if _same(m, c):
-            return f"the last column holds only (cx, cy): t1 and t2 are missing from it; {_P_INF}."
+        if same_to_rounding(m, c):
+            return f"the last column holds only (cx, cy): t1 and t2 are missing from it; {P_INF}."
         offset = m - m_e
-        slip = _principal_point_cause(offset, c)
+        slip = principal_point_cause(offset, c)
         if slip:
             return slip
-    return f"{_what_differs(g, expected, camera, X0)}. Compare each block with {_P_INF}."
+    return f"{what_differs(g, expected, camera, X0)}. Compare each block with {P_INF}."
 
 
 def _mistake(name):
@@ -180,14 +180,14 @@ def _mistake(name):
             "d0": float(R[2] @ X0 + t[2]),
             **row.answer(common_context(camera, X0)),
         }
-        return _p_inf(kw["K"], kw["R"], kw["t"], kw["d0"])
+        return p_inf(kw["K"], kw["R"], kw["t"], kw["d0"])
 
     return wrong
 
 
 def _approx_unnormalised(camera, X0):
     d0 = camera.R[2] @ X0 + camera.t[2]
-    return _p_inf(camera.K, camera.R, camera.t, d0) * d0
+    return p_inf(camera.K, camera.R, camera.t, d0) * d0
 
 
 def _approx_only_block_divided(camera, X0):
@@ -228,7 +228,7 @@ def _approx_fx_fy_only(camera, X0):
 
 
 def _approx_no_skew(camera, X0):
-    return _p_inf(_without_skew(camera.K), camera.R, camera.t, camera.R[2] @ X0 + camera.t[2])
+    return p_inf(without_skew(camera.K), camera.R, camera.t, camera.R[2] @ X0 + camera.t[2])
 
 
 def _approx_image_centre(centre):
@@ -237,7 +237,7 @@ def _approx_image_centre(centre):
     def wrong(camera, X0):
         K = camera.K.copy()
         K[:2, 2] = centre
-        return _p_inf(K, camera.R, camera.t, camera.R[2] @ X0 + camera.t[2])
+        return p_inf(K, camera.R, camera.t, camera.R[2] @ X0 + camera.t[2])
 
     return wrong
 
@@ -251,20 +251,20 @@ def _approx_shifted(shift):
 def _approx_no_t(camera, X0):
     """t1, t2 left out of the last column."""
     t = np.array([0.0, 0.0, camera.t[2]])
-    return _p_inf(camera.K, camera.R, t, camera.R[2] @ X0 + camera.t[2])
+    return p_inf(camera.K, camera.R, t, camera.R[2] @ X0 + camera.t[2])
 
 
 def _approx_centred_in_place(camera, X0):
     """Works relative to the camera centre by changing the caller's X0 in place."""
     X0 -= camera.centre
-    return _p_inf(camera.K, camera.R, camera.t, camera.R[2] @ X0)
+    return p_inf(camera.K, camera.R, camera.t, camera.R[2] @ X0)
 
 
 def _approx_K_in_place(camera, X0):
     """Divides camera.K in place (camlab's cameras keep their arrays read-only)."""
     K = camera.K
     K /= camera.R[2] @ X0 + camera.t[2]
-    return _p_inf(K, camera.R, camera.t, 1.0)
+    return p_inf(K, camera.R, camera.t, 1.0)
 
 
 def affine_approximation(camera, X0):
@@ -282,7 +282,7 @@ register_exercise(
         name="affine_approximation",
         lesson="05",
         reference=af.affine_approximation,
-        cases=_approx_cases,
+        cases=approx_cases,
         compare=same_array(rtol=1e-7, atol=1e-7),
         diagnose=_approx_diagnosis,
         ndarray_only=True,
@@ -315,7 +315,7 @@ register_exercise(
             ),
             (_approx_only_block_divided, "last column is K (t1, t2, d0) undivided"),
             (
-                lambda camera, X0: _p_inf(
+                lambda camera, X0: p_inf(
                     camera.K, camera.R, camera.t, -0.5 * (camera.R[2] @ X0 + camera.t[2])
                 ),
                 "negative: a point in front",
@@ -330,13 +330,13 @@ register_exercise(
                 "principal point is divided by d0",
             ),
             (
-                lambda camera, X0: _p_inf(
+                lambda camera, X0: p_inf(
                     camera.K, camera.R, camera.t, 1000 * (camera.R[2] @ X0 + camera.t[2])
                 ),
                 "millimetres?",
             ),
             (
-                lambda camera, X0: _p_inf(
+                lambda camera, X0: p_inf(
                     camera.K, camera.R, camera.t, camera.R[2] @ X0 + camera.t[2] + 0.5
                 ),
                 "is P_inf for the depth",

@@ -9,7 +9,7 @@ import numpy as np
 from ... import sensor
 from .._answers import SameArray, Tolerance, shape_problem
 from .._core import Exercise, Mistake, first_mistake, register_exercise
-from .quantize import _not_an_array
+from .quantize import not_an_array
 
 
 def _demosaic_cases():
@@ -182,7 +182,7 @@ def _demosaic_diagnosis(args, got, expected) -> str:
     nan = isinstance(got, np.ndarray) and _nan_hint(raw, pattern, got)
     if nan:
         return nan
-    problem = _not_an_array(got) or shape_problem(got, expected)
+    problem = not_an_array(got) or shape_problem(got, expected)
     if problem:
         H, W = np.shape(raw)
         if (H % 2 or W % 2) and np.shape(got)[:2] == (H // 2 * 2, W // 2 * 2):

@@ -21,7 +21,7 @@ def _quantize_cases():
     ]
 
 
-def _not_an_array(got) -> str | None:
+def not_an_array(got) -> str | None:
     """The hint for an answer that is no numpy array (a list from .tolist() or a comprehension), else None."""
     if isinstance(got, np.ndarray):
         return None
@@ -231,7 +231,7 @@ cast to its dtype, so a wrapped-around uint8 still shows its cause)."""
 
 
 def _quantize_diagnosis(args, got, expected) -> str:
-    problem = _not_an_array(got) or shape_problem(got, expected)
+    problem = not_an_array(got) or shape_problem(got, expected)
     if problem:
         return problem
     img, bits = args

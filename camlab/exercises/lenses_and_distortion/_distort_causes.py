@@ -14,7 +14,7 @@ _K_TEST = np.array(
 )  # f_x != f_y, c off the centre
 
 
-def _distort_cases():
+def distort_cases():
     rng = np.random.default_rng(2)
     uv = rng.uniform((0, 0), (639, 479), (8, 2))
     return [
@@ -25,7 +25,7 @@ def _distort_cases():
     ]
 
 
-def _brown_variant(
+def brown_variant(
     x,
     d,
     cross: float = 2.0,
@@ -59,7 +59,7 @@ _TANGENTIAL_TERMS = (
 )
 
 
-def _tangential_terms(x, d) -> np.ndarray:
+def tangential_terms(x, d) -> np.ndarray:
     """(4, N, 2): the model's four tangential terms one by one, each in its own coordinate (the other column 0)."""
     _, _, p1, p2, _ = d
     u, v = x[:, 0], x[:, 1]
@@ -107,7 +107,7 @@ def _sign_slip(x, d, g) -> str:
     return ""
 
 
-def _model_diagnosis(x, d, g, expected) -> str:
+def model_diagnosis(x, d, g, expected) -> str:
     """The likely slip in the Brown-Conrady model itself, on normalised points ('' if none is recognised)."""
     k1, k2, p1, p2, k3 = d
     if (p1 or p2 or k3) and np.allclose(g, distortion.distort_points(x, [k1, k2, p2, k3, p1])):
@@ -117,23 +117,23 @@ def _model_diagnosis(x, d, g, expected) -> str:
         )
     if (p1 or p2) and np.allclose(g, distortion.distort_points(x, [k1, k2, p2, p1, k3])):
         return "p1 and p2 are swapped: OpenCV's order is (k1, k2, p1, p2, k3), and x gets 2 p1 x y + p2 (r^2 + 2 x^2)"
-    if (p1 or p2) and np.allclose(g, _brown_variant(x, d, cross=1.0)):
+    if (p1 or p2) and np.allclose(g, brown_variant(x, d, cross=1.0)):
         return "the cross terms need their factor 2: x gets 2 p1 x y, y gets 2 p2 x y"
-    if (p1 or p2) and np.allclose(g, _brown_variant(x, d, squares_swapped=True)):
+    if (p1 or p2) and np.allclose(g, brown_variant(x, d, squares_swapped=True)):
         return "x^2 and y^2 are swapped in the tangential terms: x gets p2 (r^2 + 2 x^2), y gets p1 (r^2 + 2 y^2)"
-    if p1 and np.allclose(g, _brown_variant(x, d, y_copied=True)):
+    if p1 and np.allclose(g, brown_variant(x, d, y_copied=True)):
         return (
             "y_d's p1 term is p1 (r^2 + 2 y^2), with y; yours has 2 x^2, copied from x_d's p2 term"
         )
     for k, term in enumerate(_TANGENTIAL_TERMS):
         if (
-            np.allclose(g, expected - 2 * _tangential_terms(x, d)[k])
-            and _tangential_terms(x, d)[k].any()
+            np.allclose(g, expected - 2 * tangential_terms(x, d)[k])
+            and tangential_terms(x, d)[k].any()
         ):
             return f"the sign of one tangential term: {term} enters with a plus sign (OpenCV's model, section 4)"
-    if np.allclose(g, _brown_variant(x, d, divide=True)):
+    if np.allclose(g, brown_variant(x, d, divide=True)):
         return "you divided by the radial factor L; distortion multiplies: x_d = x L + ... (dividing is a rough inverse)"
-    if np.allclose(g, _brown_variant(x, d, no_one=True)):
+    if np.allclose(g, brown_variant(x, d, no_one=True)):
         return (
             "your radial factor lacks its 1: L = 1 + k1 r^2 + k2 r^4 + k3 r^6, so x L is the point itself plus "
             "the radial shift; without the 1 you return only the shift"

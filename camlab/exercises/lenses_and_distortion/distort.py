@@ -10,10 +10,10 @@ from ... import distortion
 from .._answers import same_array, shape_problem
 from .._core import Exercise, Mistake, first_mistake, register_exercise
 from ._distort_causes import (
-    _brown_variant,
-    _distort_cases,
-    _model_diagnosis,
-    _tangential_terms,
+    brown_variant,
+    distort_cases,
+    model_diagnosis,
+    tangential_terms,
 )
 
 
@@ -201,7 +201,7 @@ def _distort_pixels_diagnosis(args, got, expected) -> str:
     x = (uv - c) / f  # the ideal points, normalised
     x_d = distortion.distort_points(x, d)
     with np.errstate(all="ignore"):
-        tangential = _tangential_terms(x, d).sum(axis=0)
+        tangential = tangential_terms(x, d).sum(axis=0)
         context = SimpleNamespace(
             uv=uv, K=K, d=d, g=g, f=f, c=c, x=x, x_d=x_d, expected=expected, tangential=tangential
         )
@@ -209,7 +209,7 @@ def _distort_pixels_diagnosis(args, got, expected) -> str:
         if cause:
             return cause
         g_normalised = (g - c) / f
-    model = _model_diagnosis(x, np.asarray(d, dtype=float), g_normalised, x_d)
+    model = model_diagnosis(x, np.asarray(d, dtype=float), g_normalised, x_d)
     if model:
         return model
     return (
@@ -278,7 +278,7 @@ register_exercise(
         name="distort_pixels",
         lesson="02",
         reference=distortion.distort_pixels,
-        cases=_distort_cases,
+        cases=distort_cases,
         compare=same_array(rtol=0, atol=1e-9),
         diagnose=_distort_pixels_diagnosis,
         ndarray_only=True,
@@ -403,20 +403,20 @@ register_exercise(
                 ),
                 "even powers",
             ),
-            (_pixel_variant(lambda x, d: _brown_variant(x, d, cross=1.0)), "factor 2"),
+            (_pixel_variant(lambda x, d: brown_variant(x, d, cross=1.0)), "factor 2"),
             (
-                _pixel_variant(lambda x, d: _brown_variant(x, d, squares_swapped=True)),
+                _pixel_variant(lambda x, d: brown_variant(x, d, squares_swapped=True)),
                 "swapped in the tangential terms",
             ),
             (
-                _pixel_variant(lambda x, d: _brown_variant(x, d, y_copied=True)),
+                _pixel_variant(lambda x, d: brown_variant(x, d, y_copied=True)),
                 "copied from x_d's p2 term",
             ),
             (
-                _pixel_variant(lambda x, d: _brown_variant(x, d, divide=True)),
+                _pixel_variant(lambda x, d: brown_variant(x, d, divide=True)),
                 "divided by the radial factor",
             ),
-            (_pixel_variant(lambda x, d: _brown_variant(x, d, no_one=True)), "lacks its 1"),
+            (_pixel_variant(lambda x, d: brown_variant(x, d, no_one=True)), "lacks its 1"),
             (
                 _pixel_variant(
                     lambda x, d: distortion.distort_points(x, [-d[0], -d[1], d[2], d[3], -d[4]])
@@ -448,20 +448,20 @@ register_exercise(
             ),
             (
                 _pixel_variant(
-                    lambda x, d: distortion.distort_points(x, d) - 2 * _tangential_terms(x, d)[3]
+                    lambda x, d: distortion.distort_points(x, d) - 2 * tangential_terms(x, d)[3]
                 ),
                 "y_d's 2 p2 x y enters with a plus sign",
             ),
             (
                 _pixel_variant(
-                    lambda x, d: distortion.distort_points(x, d) - 2 * _tangential_terms(x, d)[0]
+                    lambda x, d: distortion.distort_points(x, d) - 2 * tangential_terms(x, d)[0]
                 ),
                 "x_d's 2 p1 x y enters with a plus sign",
             ),
             (
                 lambda uv, K, d: (
                     distortion.distort_pixels(uv, K, [d[0], d[1], 0, 0, d[4]])
-                    + _tangential_terms((uv - K[:2, 2]) / K[[0, 1], [0, 1]], d).sum(axis=0)
+                    + tangential_terms((uv - K[:2, 2]) / K[[0, 1], [0, 1]], d).sum(axis=0)
                 ),
                 "in normalised units but were added to pixels",
             ),

@@ -9,7 +9,7 @@ import numpy as np
 from ... import pinhole
 from .._core import Exercise, Mistake, first_mistake, register_exercise
 from .._numbers import is_number
-from .focal_length import _one_number
+from .focal_length import one_number
 
 # ---------------------------------------------------------------- best_pinhole_exposure
 
@@ -187,7 +187,7 @@ length ``s.f``, the wavelength ``s.lam``, the best hole ``s.d``, its f-number ``
 
 def _exposure_diagnosis(args, got, expected) -> str:
     f, lam, t, N = args
-    problem = _one_number(got, "the exposure time in seconds")
+    problem = one_number(got, "the exposure time in seconds")
     if problem:
         return problem
     g = float(got)

@@ -28,7 +28,7 @@ FX_TOLERANCE = Tolerance(2e-4, 0.0)
 """f_x to 0.1 px passes (a rounded 444.4 is 9e-5 off); (W - 1) / 2 for W / 2 (5e-4 off at W = 1920) does not."""
 
 
-def _one_number(got, what: str) -> str | None:
+def one_number(got, what: str) -> str | None:
     """Why ``got`` is not one number (a list or an array of numbers, say), or None."""
     if np.ndim(got) != 0:
         kind = "numpy array" if isinstance(got, np.ndarray) else type(got).__name__
@@ -196,7 +196,7 @@ radians), the size ``s.W``, ``s.H`` and the right answer ``s.expected``."""
 
 def _fx_diagnosis(args, got, expected) -> str:
     fov, (W, H) = args
-    problem = _one_number(got, "f_x in pixels")
+    problem = one_number(got, "f_x in pixels")
     if problem:
         return problem
     g = float(got)

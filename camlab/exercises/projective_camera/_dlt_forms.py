@@ -9,14 +9,14 @@ from ... import camera as cm
 from ...projective import hartley_normalization
 
 
-def _dlt_p34(X, uv):
+def dlt_p34(X, uv):
     """The classic DLT (Abdel-Aziz and Karara): p34 = 1, the other 11 entries by least squares, no normalisation."""
-    A = _dlt_rows(np.asarray(X, dtype=float), np.asarray(uv, dtype=float))
+    A = dlt_rows(np.asarray(X, dtype=float), np.asarray(uv, dtype=float))
     p = np.linalg.lstsq(A[:, :11], -A[:, 11], rcond=None)[0]
     return np.append(p, 1.0).reshape(3, 4)
 
 
-def _dlt_partial(X, uv, world=(True, True), pixels=(True, True)):
+def dlt_partial(X, uv, world=(True, True), pixels=(True, True)):
     """A DLT whose normalisers only centre, only scale, or both, per side: (centre, scale)."""
     X, uv = np.asarray(X, dtype=float), np.asarray(uv, dtype=float)
 
@@ -28,16 +28,16 @@ def _dlt_partial(X, uv, world=(True, True), pixels=(True, True)):
         return N
 
     U, T = normaliser(X, *world), normaliser(uv, *pixels)
-    P_hat = np.linalg.svd(_dlt_rows(_in_frame(U, X), _in_frame(T, uv)))[2][-1].reshape(3, 4)
+    P_hat = np.linalg.svd(dlt_rows(in_frame(U, X), in_frame(T, uv)))[2][-1].reshape(3, 4)
     return np.linalg.inv(T) @ P_hat @ U
 
 
-def _normalisers(X, uv):
+def normalisers(X, uv):
     """Hartley's U (world, 4 x 4) and T (pixels, 3 x 3)."""
     return hartley_normalization(X), hartley_normalization(uv)
 
 
-def _rms_normalisers(X, uv):
+def rms_normalisers(X, uv):
     """U and T with H&Z's RMS distances (sqrt(3), sqrt(2)) instead of mean distances."""
 
     def normaliser(p):
@@ -53,11 +53,11 @@ def _rms_normalisers(X, uv):
     return normaliser(X), normaliser(uv)
 
 
-def _in_frame(T, points):
+def in_frame(T, points):
     return (np.column_stack([points, np.ones(len(points))]) @ T.T)[:, :-1]
 
 
-def _dlt_rows(X, uv, sign=-1.0):
+def dlt_rows(X, uv, sign=-1.0):
     """The 2N x 12 DLT matrix (two rows of u x P X = 0 per point); sign=+1 is the sign slip in -u, -v."""
     Xh = np.column_stack([X, np.ones(len(X))])
     zero = np.zeros_like(Xh)
@@ -66,12 +66,12 @@ def _dlt_rows(X, uv, sign=-1.0):
     )
 
 
-def _dlt_unnormalised(X, uv):
+def dlt_unnormalised(X, uv):
     """The plain DLT in metres and pixels (a plausible student answer)."""
-    return np.linalg.svd(_dlt_rows(X, uv))[2][-1].reshape(3, 4)
+    return np.linalg.svd(dlt_rows(X, uv))[2][-1].reshape(3, 4)
 
 
-def _dlt_half(
+def dlt_half(
     X,
     uv,
     world=True,
@@ -85,9 +85,9 @@ def _dlt_half(
     """Normalised DLT variants, right and wrong: which sides are normalised and undone, the sign in A, Vt's row or
     column, A's rows stacked (u rows, then v rows) or interleaved per point, the null vector read row by row or not."""
     X, uv = np.asarray(X, dtype=float), np.asarray(uv, dtype=float)
-    U, T = _normalisers(X, uv)
+    U, T = normalisers(X, uv)
     U, T = (U if world else np.eye(4)), (T if pixels else np.eye(3))
-    A = _dlt_rows(_in_frame(U, X), _in_frame(T, uv), sign)
+    A = dlt_rows(in_frame(U, X), in_frame(T, uv), sign)
     if interleave:
         A = (
             A.reshape(2, -1, 12).transpose(1, 0, 2).reshape(-1, 12)
@@ -99,11 +99,11 @@ def _dlt_half(
     ]
 
 
-def _dlt_not_undone(X, uv):
-    U, T = _normalisers(X, uv)
+def dlt_not_undone(X, uv):
+    U, T = normalisers(X, uv)
     return T @ cm.estimate_projection_matrix(X, uv) @ np.linalg.inv(U)  # P_hat itself
 
 
-def _dlt_undone_wrong_order(X, uv):
-    U, T = _normalisers(X, uv)
-    return T @ _dlt_not_undone(X, uv) @ np.linalg.inv(U)  # T P_hat U^-1
+def dlt_undone_wrong_order(X, uv):
+    U, T = normalisers(X, uv)
+    return T @ dlt_not_undone(X, uv) @ np.linalg.inv(U)  # T P_hat U^-1

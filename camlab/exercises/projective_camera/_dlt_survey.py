@@ -7,14 +7,14 @@ import numpy as np
 
 from ... import camera as cm
 from .._answers import same_up_to_scale
-from ._dlt_forms import _dlt_p34
-from ._scenes import _cameras
+from ._dlt_forms import dlt_p34
+from ._scenes import cameras
 
 # -- estimate_projection_matrix (the normalised DLT) -------------------------------------------
 # The test inputs are exact pixels, where any correct DLT (normalised or not, two or three rows of
 # the cross product, refined or not) gives the true camera up to scale. What normalisation buys
 # shows only with noise, and there no single answer is "the" right one. So once those pass, the
-# follow-up (_dlt_follow_up) runs the student's function on a noisy survey:
+# follow-up (dlt_follow_up) runs the student's function on a noisy survey:
 #   1. accuracy against the TRUE camera, within a tolerance derived from the noise (first-order
 #      covariance propagation, H&Z 5.2): catches answers that exact data cannot tell apart;
 #   2. the same survey in other units and origins, one change at a time (world origin at the site's
@@ -74,10 +74,10 @@ _INVARIANCE_PX = 1e-3  # a normalised DLT gives 1e-11 px, a refined one 1e-6; ha
 # (LM on P's raw entries moves by up to 0.06 px between frames: it passes as a refinement, see _refinement)
 
 
-def _dlt_cases():
+def dlt_cases():
     rng = np.random.default_rng(11)
     cases = []
-    for cam, n in zip(_cameras(), (6, 10, 14), strict=True):  # exact pixels, six or more points
+    for cam, n in zip(cameras(), (6, 10, 14), strict=True):  # exact pixels, six or more points
         X = rng.uniform(-1.0, 1.0, (n, 3)) + [0.0, 0.0, 0.5]
         cases.append((X, cm.project_points(cam.P, X)))
     X = _survey_points(12, rng)  # exact pixels far from the world origin
@@ -92,21 +92,21 @@ def _noisy_survey():
     return X, cm.project_points(_survey_camera().P, X) + rng.normal(0.0, SURVEY_NOISE_PX, (20, 2))
 
 
-def _pixels_of(P, X):
+def pixels_of(P, X):
     x = np.column_stack([X, np.ones(len(X))]) @ np.asarray(P, dtype=float).T
     with np.errstate(divide="ignore", invalid="ignore"):
         return x[:, :2] / x[:, 2:3]
 
 
-def _pixel_gap(got, expected, X) -> float:
+def pixel_gap(got, expected, X) -> float:
     """The largest distance (px) between the pixels of X under the two matrices."""
-    return float(np.nanmax(np.linalg.norm(_pixels_of(got, X) - _pixels_of(expected, X), axis=1)))
+    return float(np.nanmax(np.linalg.norm(pixels_of(got, X) - pixels_of(expected, X), axis=1)))
 
 
 def _rms_gap(got, expected, X) -> float:
     """The RMS distance (px) between the pixels of X under the two matrices."""
     return float(
-        np.sqrt(np.mean(np.sum((_pixels_of(got, X) - _pixels_of(expected, X)) ** 2, axis=1)))
+        np.sqrt(np.mean(np.sum((pixels_of(got, X) - pixels_of(expected, X)) ** 2, axis=1)))
     )
 
 
@@ -126,8 +126,8 @@ def predicted_rms_error(P, X, sigma, X_test) -> float:
             d = np.zeros(12)
             d[k] = h
             J[:, k] = (
-                _pixels_of((p0 + d).reshape(3, 4), points)
-                - _pixels_of((p0 - d).reshape(3, 4), points)
+                pixels_of((p0 + d).reshape(3, 4), points)
+                - pixels_of((p0 - d).reshape(3, 4), points)
             ).ravel() / (2 * h)
         return J
 
@@ -145,7 +145,7 @@ def _as_camera_matrix(got):
     return g if g.shape == (3, 4) and np.isfinite(g).all() and np.any(g) else None
 
 
-def _dlt_follow_up(run) -> str | None:
+def dlt_follow_up(run) -> str | None:
     """Accuracy against the true camera on a noisy survey, then invariance to units and origins."""
     X, uv = _noisy_survey()
     truth = _survey_camera().P
@@ -167,15 +167,14 @@ def _dlt_follow_up(run) -> str | None:
             return f"{where}, given the same points in other units, your function did not return a finite (3, 4) array."
         answers.append(P_other @ S)  # back in metres
         moved[key] = (
-            moved.get(key, False)
-            or _pixel_gap(answers[-1], P, _SURVEY_TEST_POINTS) > _INVARIANCE_PX
+            moved.get(key, False) or pixel_gap(answers[-1], P, _SURVEY_TEST_POINTS) > _INVARIANCE_PX
         )
     for key, S in (("pixel shift", _PIXEL_SHIFT), ("pixel units", _PIXELS_HALF)):
         P_other = _as_camera_matrix(run(X, uv @ S[:2, :2].T + S[:2, 2]))
         if P_other is None:
             return f"{where}, given the same pixels in other units, your function did not return a finite (3, 4) array."
         answers.append(np.linalg.inv(S) @ P_other)  # back in pixels
-        moved[key] = _pixel_gap(answers[-1], P, _SURVEY_TEST_POINTS) > _INVARIANCE_PX
+        moved[key] = pixel_gap(answers[-1], P, _SURVEY_TEST_POINTS) > _INVARIANCE_PX
     refinement = _refinement(answers, X, uv)
     if (
         refinement == "converged"
@@ -225,7 +224,7 @@ _REFINED_BUT_MOVED = (
 
 
 def _residual_rms(P, X, uv) -> float:
-    return float(np.sqrt(np.mean(np.sum((_pixels_of(P, X) - uv) ** 2, axis=1))))
+    return float(np.sqrt(np.mean(np.sum((pixels_of(P, X) - uv) ** 2, axis=1))))
 
 
 def _refinement(answers, X, uv) -> str | None:
@@ -249,7 +248,7 @@ def _refinement(answers, X, uv) -> str | None:
 
 def _dlt_cause(moved, X, uv, P) -> str:
     """Name what is missing from the normalisation, side by side: the centroid shift, the scale, or both."""
-    if same_up_to_scale(P, _dlt_p34(X, uv), rtol=1e-4):
+    if same_up_to_scale(P, dlt_p34(X, uv), rtol=1e-4):
         return (
             "you fixed p34 = 1 and solved the rest by least squares on raw metres and pixels (the classic DLT). "
             "That is unmoved by the pixels' units and origin and by the world's units, but p34 = 1 ties the "

@@ -7,7 +7,7 @@ import numpy as np
 from ... import camera as cm
 
 
-def _cameras():
+def cameras():
     """Realistic cameras (fx about 800, 640x480) in varied poses, one with skew."""
     return [
         cm.Camera.look_at([4.0, -3.0, 2.0], [0.0, 0.0, 0.5]),
@@ -22,6 +22,6 @@ def _cameras():
     ]
 
 
-def _world_points():
+def world_points():
     rng = np.random.default_rng(4)
     return rng.uniform(-1.0, 1.0, (6, 3)) + [0.0, 0.0, 0.5]

@@ -9,8 +9,8 @@ import numpy as np
 from ... import camera as cm
 from .._answers import same_array, shape_problem
 from .._core import Exercise, Mistake, first_mistake, register_exercise
-from ._scenes import _cameras
-from .rq import _sign_flips
+from ._scenes import cameras
+from .rq import sign_flips
 
 # -- blender_matrix_world (OpenCV pose -> Blender camera) -----------------------------------------
 
@@ -20,12 +20,12 @@ _F = np.diag([1.0, -1.0, -1.0])
 def _blender_cases():
     # the camera with t_x != 0 first: a look-at camera aimed above the origin has t_x = 0, where
     # -R^T F t (t not flipped) equals R^T t (a sign slip), so its diagnosis could not tell them apart
-    return [(c.R, c.t) for c in _cameras()[::-1]]
+    return [(c.R, c.t) for c in cameras()[::-1]]
 
 
 def _flipped_axes(s):
     """The sign flip G (other than F) with the rotation block R^T G and the centre right, else None."""
-    for G in _sign_flips():
+    for G in sign_flips():
         if (
             not np.allclose(G, _F)
             and np.allclose(s.A, s.R.T @ G, atol=1e-9)

@@ -7,15 +7,15 @@ import numpy as np
 from ... import camera as cm
 from .._answers import same_array, same_up_to_scale, shape_problem
 from .._core import Exercise, register_exercise
-from ._scenes import _cameras
+from ._scenes import cameras
 
 # -- camera_centre ----------------------------------------------------------------------
 
 
 def _centre_cases():
     # P at other scales (|m3| != 1 in all but the first): a centre scaled by the wrong number fails early
-    return [(s * c.P,) for s, c in zip((1.0, 2.5, 0.02), _cameras(), strict=True)] + [
-        (-0.01 * _cameras()[1].P,)
+    return [(s * c.P,) for s, c in zip((1.0, 2.5, 0.02), cameras(), strict=True)] + [
+        (-0.01 * cameras()[1].P,)
     ]
 
 

@@ -10,18 +10,18 @@ from ... import camera as cm
 from .._answers import same_up_to_scale, shape_problem
 from .._core import Exercise, Mistake, first_mistake, register_exercise
 from ._dlt_forms import (
-    _dlt_half,
-    _dlt_not_undone,
-    _dlt_p34,
-    _dlt_partial,
-    _dlt_rows,
-    _dlt_undone_wrong_order,
-    _dlt_unnormalised,
-    _in_frame,
-    _normalisers,
-    _rms_normalisers,
+    dlt_half,
+    dlt_not_undone,
+    dlt_p34,
+    dlt_partial,
+    dlt_rows,
+    dlt_undone_wrong_order,
+    dlt_unnormalised,
+    in_frame,
+    normalisers,
+    rms_normalisers,
 )
-from ._dlt_survey import _dlt_cases, _dlt_follow_up, _pixel_gap, _pixels_of
+from ._dlt_survey import dlt_cases, dlt_follow_up, pixel_gap, pixels_of
 
 
 def _wrong_way_round(how, undo):
@@ -77,8 +77,8 @@ def _dlt_diagnosis(args, got, expected) -> str:
     if problem:
         return problem + ". Return P as a (3, 4) array: p.reshape(3, 4)."
     frames = (
-        _normalisers(X, uv),
-        _rms_normalisers(X, uv),
+        normalisers(X, uv),
+        rms_normalisers(X, uv),
         (np.eye(4), np.eye(3)),
     )  # mean, RMS or none
     for (
@@ -101,7 +101,7 @@ def _dlt_diagnosis(args, got, expected) -> str:
         cause = first_mistake(_UNDO_MISTAKES, context, g, _same_camera)
         if cause:
             return cause
-    pixels = _pixels_of(g, X)
+    pixels = pixels_of(g, X)
     for reflected in (
         -uv,
         2 * uv.mean(axis=0) - uv,
@@ -117,7 +117,7 @@ def _dlt_diagnosis(args, got, expected) -> str:
             "you took a column of Vt. np.linalg.svd returns Vt, V transposed: the right singular vectors "
             "are its rows, so the null vector is the last row, Vt[-1], not Vt[:, -1]."
         )
-    gap = _pixel_gap(g, expected, X)
+    gap = pixel_gap(g, expected, X)
     return (
         f"P does not image X at uv (exact pixels here, and your P is up to {gap:.3g} px off). Build two rows "
         f"of u x P X = 0 per point, (X^T, 0, -u X^T) and (0, X^T, -v X^T), take the right singular vector of A "
@@ -131,8 +131,8 @@ def _is_vt_column(got, X, uv) -> bool:
     Each singular vector's sign is LAPACK's choice, and it changes with A's row order (all u rows, then
     all v rows, or interleaved per point), so compare magnitudes entry by entry, in each normalised frame.
     """
-    for U, T in (_normalisers(X, uv), _rms_normalisers(X, uv), (np.eye(4), np.eye(3))):
-        column = np.abs(np.linalg.svd(_dlt_rows(_in_frame(U, X), _in_frame(T, uv)))[2][:, -1])
+    for U, T in (normalisers(X, uv), rms_normalisers(X, uv), (np.eye(4), np.eye(3))):
+        column = np.abs(np.linalg.svd(dlt_rows(in_frame(U, X), in_frame(T, uv)))[2][:, -1])
         P_hat = np.abs(T @ got @ np.linalg.inv(U)).ravel()
         if np.abs(P_hat).max() > 0 and np.allclose(
             P_hat / np.abs(P_hat).max(), column / column.max(), atol=1e-6
@@ -170,42 +170,42 @@ register_exercise(
         name="estimate_projection_matrix",
         lesson="04",
         reference=cm.estimate_projection_matrix,
-        cases=_dlt_cases,
+        cases=dlt_cases,
         compare=lambda got, expected: same_up_to_scale(
             got, expected, rtol=1e-6
         ),  # exact pixels: P up to scale
         diagnose=_dlt_diagnosis,
-        follow_up=_dlt_follow_up,
+        follow_up=dlt_follow_up,
         wrong_variants=(
-            (_dlt_not_undone, "not undone"),
-            (_dlt_undone_wrong_order, "wrong way round"),
-            (lambda X, uv: _dlt_unnormalised(np.asarray(X), np.asarray(uv)), "no normalisation"),
-            (lambda X, uv: _dlt_half(X, uv, world=False), "world points are not normalised at all"),
-            (lambda X, uv: _dlt_half(X, uv, pixels=False), "pixels are not normalised at all"),
+            (dlt_not_undone, "not undone"),
+            (dlt_undone_wrong_order, "wrong way round"),
+            (lambda X, uv: dlt_unnormalised(np.asarray(X), np.asarray(uv)), "no normalisation"),
+            (lambda X, uv: dlt_half(X, uv, world=False), "world points are not normalised at all"),
+            (lambda X, uv: dlt_half(X, uv, pixels=False), "pixels are not normalised at all"),
             (
-                lambda X, uv: _dlt_partial(X, uv, world=(True, False), pixels=(True, False)),
+                lambda X, uv: dlt_partial(X, uv, world=(True, False), pixels=(True, False)),
                 "centred but not scaled",
             ),
             (
-                lambda X, uv: _dlt_partial(X, uv, world=(True, False)),
+                lambda X, uv: dlt_partial(X, uv, world=(True, False)),
                 "world points are centred but not scaled",
             ),
             (
-                lambda X, uv: _dlt_partial(X, uv, world=(False, True), pixels=(False, True)),
+                lambda X, uv: dlt_partial(X, uv, world=(False, True), pixels=(False, True)),
                 "scaled but not centred",
             ),
             (
-                lambda X, uv: _dlt_partial(X, uv, pixels=(False, True)),
+                lambda X, uv: dlt_partial(X, uv, pixels=(False, True)),
                 "pixels are scaled but not centred",
             ),
-            (_dlt_p34, "p34 = 1"),
-            (lambda X, uv: _dlt_half(X, uv, undo="T"), "undid only the pixels'"),
-            (lambda X, uv: _dlt_half(X, uv, undo="U"), "undid only the world points'"),
-            (lambda X, uv: _dlt_half(X, uv, sign=1.0), "sign slip in A"),
-            (lambda X, uv: _dlt_half(X, uv, column=True), "Vt[-1], not Vt[:, -1]"),
-            (lambda X, uv: _dlt_half(X, uv, column=True, interleave=True), "Vt[-1], not Vt[:, -1]"),
-            (lambda X, uv: _dlt_half(X, uv, order="F"), "column by column"),
-            (lambda X, uv: _dlt_half(X, uv, order="F", interleave=True), "column by column"),
+            (dlt_p34, "p34 = 1"),
+            (lambda X, uv: dlt_half(X, uv, undo="T"), "undid only the pixels'"),
+            (lambda X, uv: dlt_half(X, uv, undo="U"), "undid only the world points'"),
+            (lambda X, uv: dlt_half(X, uv, sign=1.0), "sign slip in A"),
+            (lambda X, uv: dlt_half(X, uv, column=True), "Vt[-1], not Vt[:, -1]"),
+            (lambda X, uv: dlt_half(X, uv, column=True, interleave=True), "Vt[-1], not Vt[:, -1]"),
+            (lambda X, uv: dlt_half(X, uv, order="F"), "column by column"),
+            (lambda X, uv: dlt_half(X, uv, order="F", interleave=True), "column by column"),
             (lambda X, uv: cm.estimate_projection_matrix(X, uv).T, "transposed"),
             (
                 lambda X, uv: (

@@ -7,14 +7,14 @@ import numpy as np
 from ... import camera as cm
 from .._answers import same_array, same_up_to_scale, shape_problem
 from .._core import Exercise, register_exercise
-from ._scenes import _cameras, _world_points
+from ._scenes import cameras, world_points
 
 # -- project_points -------------------------------------------------------------------
 
 
 def _project_cases():
-    X = _world_points()
-    return [(c.P, X) for c in _cameras()] + [(-3.0 * _cameras()[0].P, X)]
+    X = world_points()
+    return [(c.P, X) for c in cameras()] + [(-3.0 * cameras()[0].P, X)]
 
 
 def _project_diagnosis(args, got, expected) -> str:

@@ -6,7 +6,7 @@ import numpy as np
 
 from ... import camera as cm
 from .._core import Exercise, register_exercise
-from ._scenes import _cameras
+from ._scenes import cameras
 
 # -- rq_decomposition ----------------------------------------------------------------------
 # (The whole decomposition returns four arrays of different shapes, which the checker cannot
@@ -14,7 +14,7 @@ from ._scenes import _cameras
 
 
 def _rq_cases():
-    cams = _cameras()
+    cams = cameras()
     return [
         (cams[0].P[:, :3],),
         (2.5 * cams[1].P[:, :3],),
@@ -111,7 +111,7 @@ def _rq_diagnosis(args, got, expected) -> str:
     return "K R = M with K positive upper triangular, but the factors differ; is R orthogonal?"
 
 
-def _sign_flips():
+def sign_flips():
     """The seven D = diag(+-1) other than I."""
     return [
         np.diag(signs) for signs in np.array(np.meshgrid(*[[1.0, -1.0]] * 3)).reshape(3, -1).T[1:]
@@ -121,7 +121,7 @@ def _sign_flips():
 def _sign_fix_misplaced(K, R, M) -> str | None:
     """The cause when D was applied on the wrong side: R @ D (R's columns) or D @ K (K's rows)."""
     scale = 1e-6 * np.abs(M).max()
-    for D in _sign_flips():
+    for D in sign_flips():
         if np.allclose(K @ D @ R @ D, M, rtol=1e-6, atol=scale):
             return (
                 "you applied D to R's columns (R @ D). K R = (K D)(D R): D flips K's columns (K @ D) "
@@ -138,7 +138,7 @@ def _sign_fix_misplaced(K, R, M) -> str | None:
 def _signs_fixed_in_k_only(K, R, M) -> bool:
     """True if K D R = M for some D = diag(+-1) other than I (K's columns flipped, R's rows not)."""
     scale = 1e-6 * np.abs(M).max()
-    for D in _sign_flips():
+    for D in sign_flips():
         if np.allclose(K @ D @ R, M, rtol=1e-6, atol=scale):
             return True
     return False
