@@ -119,7 +119,8 @@ def test_teaching_solution_check_catches_a_call_into_camlab():
 
 
 def test_large_array_mismatch_is_summarised_not_printed():
-    from camlab.exercises._core import _fmt, worst_mismatch
+    from camlab.exercises._answers import worst_mismatch
+    from camlab.exercises._core import _fmt
 
     expected = np.zeros((40, 50, 3))
     got = expected.copy()
@@ -241,7 +242,7 @@ def test_solution_ending_a_cell_shows_no_second_copy():
 
 
 def test_estimate_affine_camera_accepts_a_column_of_ones_instead_of_centring(capsys):
-    from camlab.exercises.affine_cameras.estimation import _estimate_with_ones
+    from camlab.exercises.affine_cameras._estimation_variants import _estimate_with_ones
 
     assert check("estimate_affine_camera", _estimate_with_ones).passed is True
 
@@ -249,9 +250,9 @@ def test_estimate_affine_camera_accepts_a_column_of_ones_instead_of_centring(cap
 def test_estimate_affine_camera_accepts_hz_normalisation_undone_in_the_right_order(capsys):
     """H&Z algorithm 7.2: normalise both point sets, fit, then P = inv(T_uv) @ P_n @ T_X (the check's
     diagnosis names the wrong order, T_uv @ P_n @ inv(T_X), as such)."""
-    from camlab.exercises.affine_cameras.estimation import _estimate_normalised
+    from camlab.exercises.affine_cameras._estimation_variants import estimate_normalised
 
-    assert check("estimate_affine_camera", _estimate_normalised("right")).passed is True
+    assert check("estimate_affine_camera", estimate_normalised("right")).passed is True
 
 
 @pytest.mark.parametrize(
@@ -316,7 +317,7 @@ def _in_float16(value):
 @pytest.mark.parametrize("name", sorted(EXERCISES))
 def test_float16_answer_is_rejected_naming_its_precision(name, capsys):
     """float16 cannot tell 2015.5 from 2016: no tolerance fits it, so its type is named instead."""
-    from camlab.exercises._core import _holds_floats
+    from camlab.exercises._answers import _holds_floats
 
     exercise = EXERCISES[name]
     if not _holds_floats(exercise.reference(*exercise.cases()[0])):
@@ -327,7 +328,8 @@ def test_float16_answer_is_rejected_naming_its_precision(name, capsys):
 
 def test_float16_slips_of_lesson_03_are_rejected():
     """Round 5 (D2): these passed as float16 through a tolerance widened to 100 float16 epsilons."""
-    from camlab.exercises.digital_sensor import _datasheet_variant, _reflect_border_demosaic
+    from camlab.exercises.digital_sensor.datasheet import _datasheet_variant
+    from camlab.exercises.digital_sensor.demosaic import _reflect_border_demosaic
 
     slips = {
         "intrinsics_from_datasheet": (
@@ -343,7 +345,7 @@ def test_float16_slips_of_lesson_03_are_rejected():
 
 
 def test_float32_answer_is_held_to_float32_precision_not_beyond():
-    from camlab.exercises._core import Tolerance
+    from camlab.exercises._answers import Tolerance
 
     tol = Tolerance(rtol=1e-9, atol=0.0)
     expected = np.array([1.2, 2.4, 6.0])
@@ -361,7 +363,7 @@ def test_float32_answer_is_held_to_float32_precision_not_beyond():
 
 
 def test_mismatch_line_counts_with_the_exercises_tolerance_and_shows_the_digits():
-    from camlab.exercises._core import Tolerance
+    from camlab.exercises._answers import Tolerance
 
     got, expected = np.array([1.2, 2.4 + 1e-12, 6.0]), np.array([1.2, 2.4, 6.0])
     line = worst_mismatch(got, expected, Tolerance(rtol=1e-14, atol=0.0))
@@ -386,9 +388,9 @@ def test_check_result_is_falsy_for_a_stub_and_prints_nothing_in_ipython(capsys):
 
 @pytest.fixture
 def short_time_limit(monkeypatch):
-    from camlab.exercises import _core
+    from camlab.exercises import _core, _timer
 
-    if not _core.time_limit_applies():
+    if not _timer.time_limit_applies():
         pytest.skip("the time limit needs SIGALRM in the main thread")
     monkeypatch.setattr(_core, "TIME_LIMIT_S", 0.3)
 
@@ -476,7 +478,7 @@ def test_time_limit_applies_only_where_sigalrm_can_interrupt_the_main_thread():
 def test_time_limit_restores_an_outer_timer():
     import signal
 
-    from camlab.exercises._core import time_limit
+    from camlab.exercises._timer import time_limit
 
     fired = []
     previous = signal.signal(signal.SIGALRM, lambda *a: fired.append(1))
@@ -494,7 +496,7 @@ def test_time_limit_restores_an_outer_timer():
 def test_time_limit_runs_without_a_timer_off_the_main_thread():
     import threading
 
-    from camlab.exercises._core import time_limit
+    from camlab.exercises._timer import time_limit
 
     seen = []
 
@@ -586,7 +588,7 @@ def test_a_right_answer_that_changes_its_input_in_place_fails_naming_the_argumen
 
 def _dlt_rms_normalised(X, uv):
     """The normalised DLT with H&Z's RMS distances (camlab uses mean distances), at another scale."""
-    from camlab.exercises.projective_camera import _dlt_unnormalised
+    from camlab.exercises.projective_camera._dlt_forms import dlt_unnormalised
 
     X, uv = np.asarray(X, dtype=float), np.asarray(uv, dtype=float)
 
@@ -598,7 +600,7 @@ def _dlt_rms_normalised(X, uv):
         )
 
     U, T = normaliser(X), normaliser(uv)
-    P_hat = _dlt_unnormalised(
+    P_hat = dlt_unnormalised(
         (np.c_[X, np.ones(len(X))] @ U.T)[:, :3], (np.c_[uv, np.ones(len(uv))] @ T.T)[:, :2]
     )
     return -42.0 * np.linalg.inv(T) @ P_hat @ U
@@ -793,17 +795,17 @@ def test_estimate_projection_matrix_passes_other_valid_normalised_answers(right,
 
 
 def test_estimate_projection_matrix_names_which_half_was_not_normalised():
-    from camlab.exercises.projective_camera import _dlt_half
+    from camlab.exercises.projective_camera._dlt_forms import dlt_half
 
     with pytest.raises(
         AssertionError,
         match=r"(?s)different camera.*likely cause: the world points are not normalised",
     ):
-        check("estimate_projection_matrix", lambda X, uv: _dlt_half(X, uv, world=False))
+        check("estimate_projection_matrix", lambda X, uv: dlt_half(X, uv, world=False))
     with pytest.raises(
         AssertionError, match=r"(?s)different camera.*likely cause: the pixels are not normalised"
     ):
-        check("estimate_projection_matrix", lambda X, uv: _dlt_half(X, uv, pixels=False))
+        check("estimate_projection_matrix", lambda X, uv: dlt_half(X, uv, pixels=False))
 
 
 @pytest.mark.parametrize(
@@ -823,12 +825,12 @@ def test_estimate_projection_matrix_names_which_half_was_not_normalised():
 )
 def test_estimate_projection_matrix_names_the_missing_part_of_a_normalisation(world, pixels, cause):
     """Final review of lesson 04: half normalisations were blamed on the wrong side or called 'no normalisation'."""
-    from camlab.exercises.projective_camera import _dlt_partial
+    from camlab.exercises.projective_camera._dlt_forms import dlt_partial
 
     with pytest.raises(AssertionError, match=r"(?s)likely cause: .*" + cause) as info:
         check(
             "estimate_projection_matrix",
-            lambda X, uv: _dlt_partial(X, uv, world=world, pixels=pixels),
+            lambda X, uv: dlt_partial(X, uv, world=world, pixels=pixels),
         )
     assert "no normalisation" not in str(info.value) and "you normalised only" not in str(
         info.value
@@ -837,14 +839,14 @@ def test_estimate_projection_matrix_names_the_missing_part_of_a_normalisation(wo
 
 def test_estimate_projection_matrix_names_the_classic_p34_dlt():
     """p34 = 1 by least squares without normalising is pixel-invariant: it was reported as 'pixels normalised'."""
-    from camlab.exercises.projective_camera import _dlt_p34
+    from camlab.exercises.projective_camera._dlt_forms import dlt_p34
 
     with pytest.raises(AssertionError, match=r"(?s)likely cause: you fixed p34 = 1"):
-        check("estimate_projection_matrix", _dlt_p34)
+        check("estimate_projection_matrix", dlt_p34)
 
 
 def test_rq_decomposition_has_a_negative_determinant_case_with_a_reflection():
-    from camlab.exercises.projective_camera import _rq_cases
+    from camlab.exercises.projective_camera.rq import _rq_cases
 
     M = [m for (m,) in _rq_cases() if np.linalg.det(m) < 0]
     assert M, "no det M < 0 input: flipping M inside rq_decomposition would pass"
@@ -1105,7 +1107,7 @@ def test_an_unfilled_np_empty_answer_fails_instead_of_passing_on_freed_memory():
 
 def test_rq_mismatch_names_matrix_row_column_and_no_negative_zero():
     """Final review of lesson 04: an index into the (K, R) pair was labelled (row, column, channel)."""
-    from camlab.exercises.projective_camera import _rq_forced_rotation
+    from camlab.exercises.projective_camera.rq import _rq_forced_rotation
 
     with pytest.raises(AssertionError, match=r"\(matrix, row, column\)") as info:
         check("rq_decomposition", _rq_forced_rotation)

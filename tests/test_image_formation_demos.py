@@ -242,7 +242,8 @@ def test_exercises_accept_reference_and_catch_mistakes(name):
 
 def test_lesson_02_exercises_start_where_slips_show():
     """No degenerate first case: 1:1 focusing (z_i = z_o) or a start on the ray through x_d hides slips."""
-    from camlab.exercises.lenses_and_distortion import _field_of_view_cases, _newton_cases
+    from camlab.exercises.lenses_and_distortion.fov import _field_of_view_cases
+    from camlab.exercises.lenses_and_distortion.newton import _newton_cases
 
     f, _, z_o = _field_of_view_cases()[0]
     z_i = lens.image_distance(f, z_o)
@@ -555,7 +556,7 @@ def test_field_of_view_check_answers_the_prompts_question_and_names_a_one_tuple(
     """Exercise 1 asks how much narrower 0.3 m focus makes a 50 mm view; a passing check answers with the
     student's own function. A 1-tuple answer prints as a tuple, not as a number."""
     from camlab.exercises._core import _fmt
-    from camlab.exercises.lenses_and_distortion import field_of_view
+    from camlab.exercises.lenses_and_distortion.fov import field_of_view
 
     with contextlib.redirect_stdout(io.StringIO()) as out:
         assert check("field_of_view", field_of_view)

@@ -18,22 +18,18 @@ import functools
 import importlib
 import pkgutil
 
-from ._core import (
-    EXERCISES,
-    TIME_LIMIT_S,
-    Exercise,
-    check,
-    register_exercise,
+from ._answers import (
     same_array,
     same_up_to_scale,
     shape_problem,
-    time_limit_applies,
     type_problem,
     unit_slip,
     worst_mismatch,
 )
+from ._core import EXERCISES, Exercise, check, register_exercise
 from ._core import solution as _solution
 from ._core import solution_source as _solution_source
+from ._timer import TIME_LIMIT_S, time_limit_applies
 
 __all__ = [
     "EXERCISES",

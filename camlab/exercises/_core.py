@@ -32,23 +32,35 @@ solution*: a short, self-contained numpy function written to be read (``Exercise
 separate from camlab's optimised implementation (``Exercise.reference``); the test suite
 proves the two agree on every test input and that the teaching solution calls nothing but
 numpy and builtins.
+
+This module holds the machinery (:class:`Exercise`, the registry, :func:`check`, :func:`solution`)
+and the table every diagnosis uses for its typical mistakes: rows of :class:`Mistake` (a name, the
+answer that mistake gives, its hint), checked in order by :func:`first_mistake`. What an answer must
+be before any exercise looks at it (its type, precision and shape; the comparisons within a
+tolerance) lives in :mod:`._answers`, the time limit in :mod:`._timer`.
 """
 
 from __future__ import annotations
 
 import inspect
 import re
-import signal
-import threading
-import time
-from collections.abc import Callable, Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from .._validate import CamlabInputError
+from ._answers import (
+    JOIN_HINT,
+    SameArray,
+    as_array,
+    precision_problem,
+    type_problem,
+    with_article,
+    worst_mismatch,
+)
+from ._timer import TIME_LIMIT_S, OutOfTime, time_limit
 
 
 @dataclass(frozen=True)
@@ -154,66 +166,6 @@ class CheckResult:
 
     def _ipython_display_(self) -> None:
         """IPython's display hook: the check's printed verdict says it all."""
-
-
-TIME_LIMIT_S = 30.0
-"""Seconds a student's function may run on one test input (a slow loop, not an endless one, fits)."""
-
-
-def time_limit_applies() -> bool:
-    """Whether :func:`time_limit` can stop a running function here: SIGALRM in the main thread.
-
-    True on Linux and macOS in a Jupyter kernel (cells run in its main thread); False on
-    Windows, which has no SIGALRM, and in a worker thread.
-    """
-    return hasattr(signal, "setitimer") and threading.current_thread() is threading.main_thread()
-
-
-class OutOfTime(TimeoutError):
-    """Raised by :func:`time_limit` when its body ran too long."""
-
-
-class _Alarm(BaseException):
-    """Raised into the running code by the timer; a BaseException, so a student's ``except Exception`` cannot eat it."""
-
-
-@contextmanager
-def time_limit(seconds: float) -> Iterator[None]:
-    """Raise :class:`OutOfTime` if the body is still running after ``seconds``.
-
-    Uses a SIGALRM timer, which exists on Unix in the main thread (where a Jupyter kernel
-    runs cells). Elsewhere (Windows, a worker thread) the body runs without a limit. A timer
-    already running (pytest-timeout's) is put back with its remaining time afterwards, and
-    wins if it is due first.
-    """
-    if not time_limit_applies():
-        yield
-        return
-    outer_delay, outer_interval = signal.getitimer(signal.ITIMER_REAL)
-    outer_first = 0 < outer_delay <= seconds
-    outer_handler = signal.getsignal(signal.SIGALRM)
-
-    def on_alarm(signum: int, frame: Any) -> None:
-        if outer_first and callable(outer_handler):
-            outer_handler(signum, frame)  # the outer deadline came first: its handler decides
-        raise _Alarm
-
-    start = time.monotonic()
-    signal.signal(signal.SIGALRM, on_alarm)
-    signal.setitimer(signal.ITIMER_REAL, outer_delay if outer_first else seconds)
-    try:
-        yield
-    except _Alarm:
-        raise OutOfTime(f"still running after {seconds:g} s") from None
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, outer_handler)
-        if outer_delay and not outer_first:
-            signal.setitimer(
-                signal.ITIMER_REAL,
-                max(outer_delay - (time.monotonic() - start), 1e-3),
-                outer_interval,
-            )
 
 
 def _inputs_changed(original: tuple, passed: tuple) -> list[int]:
@@ -329,7 +281,7 @@ def check(
             raise AssertionError(
                 f"{name}: wrong type of answer on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_input_text(name, args)}\n"
-                f"  got      {_fmt(got)}  ({_a(got)})\n"
+                f"  got      {_fmt(got)}  ({with_article(got)})\n"
                 f"  expected {_fmt(expected)}\n"
                 f"  likely cause: {wrong_type}"
             )
@@ -338,7 +290,7 @@ def check(
             raise AssertionError(
                 f"{name}: answer too imprecise on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_input_text(name, args)}\n"
-                f"  got      {_fmt(_as_array(got))}\n"
+                f"  got      {_fmt(as_array(got))}\n"
                 f"  likely cause: {too_coarse}"
             )
         if not exercise.compare(got, expected):
@@ -348,7 +300,7 @@ def check(
             raise AssertionError(
                 f"{name}: wrong answer on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_input_text(name, args)}\n"
-                f"  got      {_fmt(_as_array(got))}\n"
+                f"  got      {_fmt(as_array(got))}\n"
                 f"  expected {_fmt(expected)}\n"
                 + worst_mismatch(got, expected, tolerance)
                 + f"  likely cause: {exercise.diagnose(args, got, expected)}"
@@ -426,7 +378,7 @@ def _exception_hint(exc: Exception) -> str:
             " lines the column up with the last axis; keep it 2-D: X[:, 2:3], X[:, 2, None] or keepdims=True"
         )
     if isinstance(exc, ValueError) and "inhomogeneous" in str(exc):
-        return f"\n  likely cause: an array beside numbers, as in np.array([p, 1]), makes no array of numbers: {_JOIN}"
+        return f"\n  likely cause: an array beside numbers, as in np.array([p, 1]), makes no array of numbers: {JOIN_HINT}"
     if isinstance(exc, ValueError) and "matmul" in str(exc):
         return (
             "\n  likely cause: the sizes of a matrix product do not fit (A @ B needs A's columns = B's rows)."
@@ -434,202 +386,6 @@ def _exception_hint(exc: Exception) -> str:
             " coordinates (append a column of ones) before a 3 x 4 or 3 x 3 projective matrix"
         )
     return ""
-
-
-_JOIN = "join an array and numbers with np.append(p, 1.0), np.concatenate or np.hstack"
-
-
-def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | None:
-    """Why ``got`` is the wrong type of answer for an array or a number ``expected``, or None.
-
-    Catches what numpy cannot turn into numbers (a string, a list holding an array and a
-    number), what it would turn into numbers only by reading text or dropping an imaginary
-    part (arrays of strings, complex arrays: :func:`_not_real_numbers`) and, with
-    ``ndarray_only``, a list or tuple where the prompt asks for an array.
-    Answers of other kinds (pairs of arrays...) are left to the exercise's compare and diagnose.
-    """
-    if isinstance(expected, np.ndarray):
-        wanted = f"return a numpy array of shape {expected.shape}"
-    elif isinstance(expected, (float, int, np.number)):
-        wanted = "return one number"
-    else:
-        return None
-    kind = type(got).__name__
-    if (
-        isinstance(got, (tuple, list))
-        and len(got) == 1
-        and isinstance(got[0], np.ndarray)
-        and isinstance(expected, np.ndarray)
-        and got[0].shape == expected.shape
-    ):
-        made = (
-            "a trailing comma, `return x,`, makes a tuple"
-            if isinstance(got, tuple)
-            else "brackets, `[x]`, make a list"
-        )
-        return f"you returned a {kind} holding your array: {made}; return the array itself"
-    if (
-        isinstance(got, (tuple, list))
-        and len(got) == 1
-        and isinstance(expected, (float, int, np.number))
-        and np.ndim(got[0]) == 0
-        and not isinstance(got[0], (str, bytes))
-    ):
-        made = (
-            "a trailing comma, `return x,`, makes a tuple"
-            if isinstance(got, tuple)
-            else "brackets, `[x]`, make a list"
-        )
-        return f"you returned a {kind} of shape (1,); return one number: {made}; return the number itself"
-    not_real = _not_real_numbers(got, kind, wanted)
-    if not_real:
-        return not_real
-    try:
-        np.asarray(got, dtype=float)
-    except (TypeError, ValueError):
-        if isinstance(got, (list, tuple)):
-            return (
-                f"you returned a {kind} that numpy cannot turn into one array of numbers (an array beside "
-                f"numbers, such as [p, 1]?); {wanted}: {_JOIN}"
-            )
-        return f"you returned a {kind}, which is not numbers; {wanted}"
-    if ndarray_only and not isinstance(got, np.ndarray):
-        return f"you returned a {kind}; {wanted}: wrap the values in np.array(...)"
-    return None
-
-
-def precision_problem(got: Any, expected: Any) -> str | None:
-    """Why a float answer is too coarse to judge (float16 and shorter), or None.
-
-    float16 keeps 11 significant bits, about 3 decimal digits: between 1024 and 2048 it steps by
-    whole numbers, so c_x = 2015.5 and the half-pixel slip W / 2 = 2016 are the same float16
-    number. A tolerance wide enough for it would pass real mistakes, so such an answer is
-    rejected (float32, 7 digits, is held to its own precision instead: :class:`Tolerance`).
-    """
-    if not _holds_floats(expected):  # integer answers (digital numbers) have their own dtype checks
-        return None
-    if _coarsest_eps(got) <= np.finfo(np.float32).eps:
-        return None
-    coarse = _coarsest_dtype(got)
-    return (
-        f"your answer is {coarse}, which keeps only about {np.finfo(coarse).precision} significant digits "
-        f"(between 1024 and 2048 it steps by whole numbers: 2015.5 and 2016 are the same {coarse} number), too "
-        f"coarse to tell a right answer from a slip; compute in float64, numpy's default (float32 also "
-        f"passes), and leave out .astype(np.{coarse})"
-    )
-
-
-def _holds_floats(value: Any) -> bool:
-    """Whether ``value`` (an array, a number, or a tuple or list of them) holds floats."""
-    if isinstance(value, (tuple, list)):
-        return any(_holds_floats(v) for v in value)
-    try:
-        return np.asarray(value).dtype.kind == "f"
-    except (TypeError, ValueError):
-        return False
-
-
-def _coarsest_dtype(value: Any) -> np.dtype:
-    """The float dtype with the largest epsilon in ``value`` (float64 if there is none)."""
-    if isinstance(value, (tuple, list)):
-        return max(
-            (_coarsest_dtype(v) for v in value),
-            key=lambda d: np.finfo(d).eps,
-            default=np.dtype(np.float64),
-        )
-    dtype = getattr(value, "dtype", None)
-    return (
-        np.dtype(dtype)
-        if dtype is not None and np.issubdtype(dtype, np.floating)
-        else np.dtype(np.float64)
-    )
-
-
-def _a(value: Any) -> str:
-    """'a list', 'an ndarray': the value's type with its article."""
-    kind = type(value).__name__
-    return f"an {kind}" if kind[0] in "aeiou" or kind == "ndarray" else f"a {kind}"
-
-
-def _not_real_numbers(got: Any, kind: str, wanted: str) -> str | None:
-    """Why an answer is not real numbers although numpy could cast it to float, or None.
-
-    ``np.asarray(x, dtype=float)`` reads text such as '2.5' and drops an imaginary part (with
-    only a warning), so without this check an array of strings or of complex numbers would
-    pass as the right answer.
-    """
-    if isinstance(got, str):
-        return f"you returned a str, which is not numbers; {wanted}"
-    a_kind = _a(got)
-    try:
-        dtype = np.asarray(got).dtype
-    except (TypeError, ValueError):
-        return None  # a ragged list: the float cast in type_problem names it
-    if dtype.kind in "US":
-        return (
-            f"you returned {a_kind} of text (dtype {dtype}), not of numbers: the values were turned into "
-            f"strings (str(), an f-string, or np.array of numbers mixed with text); {wanted} built from the "
-            f"numbers themselves"
-        )
-    if dtype.kind == "c":
-        what = f"{a_kind} of complex numbers" if np.ndim(got) else "a complex number"
-        return (
-            f"you returned {what} (dtype {dtype}), but the answer is real, and "
-            f"comparing it as real would silently drop the imaginary part: a complex value crept in "
-            f"(a 1j, or a result of np.linalg.eig or np.roots); keep the computation real, or take .real once "
-            f"you have checked that the imaginary part is 0; {wanted}"
-        )
-    if dtype.kind == "O" and isinstance(
-        got, np.ndarray
-    ):  # other objects (a dict) fail the float cast
-        return (
-            f"you returned {a_kind} of Python objects (dtype object), not an array of numbers (dtype=object, "
-            f"or arrays mixed with numbers?); {wanted}: {_JOIN}"
-        )
-    return None
-
-
-def _as_array(value: Any) -> Any:
-    """Lists of numbers print like arrays (and get summarised when large)."""
-    if isinstance(value, list):
-        try:
-            return np.asarray(value)
-        except ValueError:
-            return value
-    return value
-
-
-def worst_mismatch(got: Any, expected: Any, tolerance: Tolerance | None = None) -> str:
-    """One line naming the worst entry of two same-shape arrays ('' if that makes no sense).
-
-    Entries count as differing by ``tolerance`` (the exercise's; numpy's default otherwise),
-    so the count agrees with the verdict. Values that print alike at 6 digits are shown in full.
-    """
-    try:
-        g = np.asarray(got, dtype=float)
-        e = np.asarray(expected, dtype=float)
-    except (TypeError, ValueError):
-        return ""
-    if g.shape != e.shape or e.size <= 1:
-        return ""
-    err = np.abs(g - e)
-    err[~np.isfinite(err)] = np.inf
-    if not np.any(err > 0):
-        return ""
-    index = np.unravel_index(int(np.argmax(err)), e.shape)
-    if isinstance(expected, (tuple, list)) and e.ndim == 3:  # a pair of matrices, e.g. (K, R)
-        where = "(matrix, row, column)"
-    else:
-        where = {2: "(row, column)", 3: "(row, column, channel)"}.get(e.ndim, "index")
-    tol = (tolerance or Tolerance()).for_answer(got, expected)
-    wrong = int(np.sum(~tol.close(g, e)))
-    shown_got, shown_expected = f"{g[index] + 0.0:.6g}", f"{e[index] + 0.0:.6g}"  # + 0.0: no "-0"
-    if shown_got == shown_expected:
-        shown_got, shown_expected = repr(float(g[index])), repr(float(e[index]))
-    return (
-        f"  worst    {where} {tuple(int(i) for i in index)}: got {shown_got}, expected {shown_expected}"
-        f" ({wrong} of {e.size} entries differ by more than {tol})\n"
-    )
 
 
 def solution_source(name: str) -> str:
@@ -663,118 +419,56 @@ def solution(name: str) -> None:
     print(solution_source(name))
 
 
-def same_up_to_scale(got: Any, expected: np.ndarray, rtol: float = 1e-6) -> bool:
-    """True if ``got`` equals ``expected`` times some non-zero scalar (homogeneous equality)."""
-    g = np.asarray(got, dtype=float)
-    e = np.asarray(expected, dtype=float)
-    if g.shape != e.shape or not np.isfinite(g).all() or not np.any(g):
-        return False
-    g = g / np.linalg.norm(g)
-    e = e / np.linalg.norm(e)
-    return bool(min(np.linalg.norm(g - e), np.linalg.norm(g + e)) <= rtol)
+class Mistake(NamedTuple):
+    """One row of a diagnosis table: a typical mistake, the answer it gives, and the hint that names it.
 
+    A diagnosis that asks "is the answer exactly what this mistake gives?" for many mistakes lists
+    them as rows, checked in order by :func:`first_mistake`, instead of a chain of ``if``.
 
-REDUCED_PRECISION_SLACK = 100
-"""An answer in a shorter float type is held to this many of its epsilons (float32: 1.2e-5)."""
-
-
-def _coarsest_eps(value: Any) -> float:
-    """The largest machine epsilon among the floats in ``value`` (arrays, numpy scalars, tuples, lists)."""
-    if isinstance(value, (tuple, list)):
-        return max((_coarsest_eps(v) for v in value), default=float(np.finfo(np.float64).eps))
-    dtype = getattr(value, "dtype", None)
-    if dtype is not None and np.issubdtype(dtype, np.floating):
-        return float(np.finfo(dtype).eps)
-    return float(np.finfo(np.float64).eps)
-
-
-@dataclass(frozen=True)
-class Tolerance:
-    """How close a float answer must be, entry by entry: ``|got - expected| <= atol + rtol |expected|``.
-
-    Compared in float64. An answer computed in float32 cannot come closer than its own
-    rounding, so :meth:`for_answer` widens both tolerances to :data:`REDUCED_PRECISION_SLACK`
-    of its epsilons (``atol`` relative to the largest expected entry). Coarser floats (float16)
-    never get here: :func:`check` rejects them (:func:`precision_problem`), since 100 of their
-    epsilons, about 0.1 relative, would pass a half-pixel slip.
+    ``answer(context)`` is what a student who made this mistake returns on the test input that
+    ``context`` describes (the exercise's own record of the input and the numbers derived from it),
+    or None where the mistake cannot show on that input (it would give the right answer). In a table
+    checked with ``same=None`` it is instead the test itself: whether the answer shows the mistake.
+    ``hint`` is the likely cause, or ``hint(context)`` when it quotes this input's numbers.
+    ``name`` identifies the row, for :func:`mistake_variant` and for readers.
     """
 
-    rtol: float = 1e-5
-    atol: float = 1e-8
-
-    def for_answer(self, got: Any, expected: Any) -> Tolerance:
-        eps = _coarsest_eps(got)
-        if eps <= np.finfo(np.float64).eps:
-            return self
-        slack = REDUCED_PRECISION_SLACK * eps
-        e = np.abs(np.asarray(expected, dtype=float))
-        scale = float(e[np.isfinite(e)].max(initial=0.0))
-        return Tolerance(max(self.rtol, slack), max(self.atol, slack * scale))
-
-    def close(self, got: Any, expected: Any) -> np.ndarray:
-        """Per entry: within the tolerance (in float64)."""
-        return np.isclose(
-            np.asarray(got, dtype=float),
-            np.asarray(expected, dtype=float),
-            rtol=self.rtol,
-            atol=self.atol,
-        )
-
-    def __str__(self) -> str:
-        return f"rtol {self.rtol:.1g}, atol {self.atol:.1g}"
+    name: str
+    answer: Callable[[Any], Any]
+    hint: str | Callable[[Any], str]
 
 
-@dataclass(frozen=True)
-class SameArray:
-    """``Exercise.compare`` for float answers: same shape, every entry within ``tolerance``."""
+def first_mistake(
+    mistakes: Sequence[Mistake],
+    context: Any,
+    got: Any = None,
+    same: Callable[[Any, Any], bool] | None = None,
+) -> str | None:
+    """The hint of the first of ``mistakes`` (in table order) that the answer ``got`` shows, else None.
 
-    tolerance: Tolerance
-
-    def __call__(self, got: Any, expected: Any) -> bool:
-        try:
-            g = np.asarray(got, dtype=float)
-        except (TypeError, ValueError):
-            return False
-        tol = self.tolerance.for_answer(got, expected)
-        return g.shape == np.shape(expected) and bool(np.all(tol.close(g, expected)))
-
-
-def same_array(rtol: float = 1e-5, atol: float = 1e-8) -> SameArray:
-    """A comparison for ``Exercise.compare``: same shape and ``np.allclose`` with these tolerances (float64)."""
-    return SameArray(Tolerance(rtol, atol))
-
-
-def shape_problem(got: Any, expected: np.ndarray) -> str | None:
-    """A diagnosis for the commonest mistakes (wrong shape, NaN), or None."""
-    if got is None:
-        return "the function returned None: did you forget `return`?"
-    wrong_type = type_problem(got, expected)
-    if wrong_type:
-        return wrong_type
-    g = np.asarray(got, dtype=float)
-    if g.shape != np.shape(expected):
-        return f"expected an array of shape {np.shape(expected)}, got shape {g.shape}"
-    if not np.isfinite(g).all():
-        return (
-            "the result holds NaN or inf: did you divide by a coordinate that can be 0, or leave entries of an "
-            "array made with np.empty unfilled (np.empty keeps whatever was in memory)?"
-        )
+    A row matches when ``same(got, row.answer(context))`` is true, or, with ``same=None``, when
+    ``row.answer(context)`` itself is. Rows are built only until one matches, and a row whose answer
+    is None is passed over.
+    """
+    for mistake in mistakes:
+        answer = mistake.answer(context)
+        if answer is None:
+            continue
+        if same(got, answer) if same is not None else bool(answer):
+            return mistake.hint(context) if callable(mistake.hint) else mistake.hint
     return None
 
 
-def unit_slip(got: Any, expected: Any) -> str | None:
-    """A diagnosis when ``got`` is ``expected`` times 1000 or / 1000 (millimetres vs metres), else None."""
-    try:
-        g = np.asarray(got, dtype=float)
-        e = np.asarray(expected, dtype=float)
-    except (TypeError, ValueError):
-        return None
-    if g.shape != e.shape or not np.any(e):
-        return None
-    for factor, unit in ((1e3, "millimetres"), (1e-3, "kilometres (or you divided by 1000)")):
-        if np.allclose(g, factor * e, rtol=1e-6, atol=0):
-            return (
-                f"your answer is {factor:g} times the expected one: you worked in {unit}; "
-                f"the inputs and the answer are in metres"
-            )
-    return None
+def mistake_variant(
+    mistakes: Sequence[Mistake], name: str, context: Callable[..., Any]
+) -> Callable[..., Any]:
+    """The row ``name`` of ``mistakes`` as a student's wrong function, for ``Exercise.wrong_variants``.
+
+    ``context(*args)`` builds the table's context from the function's arguments, as the diagnosis does;
+    the test suite then proves that the diagnosis names the mistake the row describes.
+    """
+    rows = [m for m in mistakes if m.name == name]
+    if len(rows) != 1:
+        raise KeyError(f"mistake_variant: {len(rows)} rows named {name!r}; expected exactly one")
+    answer = rows[0].answer
+    return lambda *args: answer(context(*args))

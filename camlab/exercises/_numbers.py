@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._core import SameArray, Tolerance
+from ._answers import SameArray, Tolerance
 
 
 def is_number(x) -> bool:

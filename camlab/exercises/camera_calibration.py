@@ -6,7 +6,8 @@ import numpy as np
 
 from .. import calibration, optimize
 from ..camera import rotation_from_axis_angle
-from ._core import Exercise, register_exercise, same_array, shape_problem
+from ._answers import same_array, shape_problem
+from ._core import Exercise, register_exercise
 
 # ------------------------------------------------------------------ V from one homography
 

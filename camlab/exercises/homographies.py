@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 
 from .. import homography as hg
 from ..projective import hartley_normalization, map_points
-from ._core import Exercise, register_exercise, same_array, same_up_to_scale, shape_problem
+from ._answers import same_array, same_up_to_scale, shape_problem
+from ._core import Exercise, Mistake, first_mistake, register_exercise
 
 # A patch far from the origin (like a crop of a large photo) with 1 px of noise: there the
 # unnormalised DLT is off by tens of pixels, while any Hartley-style normalisation agrees.
@@ -95,38 +98,57 @@ def _normalisers(src, dst):
     return [(hartley_normalization(src), hartley_normalization(dst)), (rms(src), rms(dst))]
 
 
+def _wrong_way_round(how, undo):
+    return Mistake(
+        how,
+        undo,
+        f"you undid the normalisation the wrong way round ({how}). H_n maps normalised points: "
+        f"T_dst x' ~ H_n T_src x, so x' ~ inv(T_dst) H_n T_src x and H = inv(T_dst) @ H_n @ T_src.",
+    )
+
+
+_UNDO_MISTAKES = (
+    Mistake(
+        "not undone",
+        lambda s: s.Hn,
+        "you returned H_n, the homography of the normalised points: the normalisation is not "
+        "undone. H_n maps T_src x to T_dst x', so H = inv(T_dst) @ H_n @ T_src.",
+    ),
+    _wrong_way_round("T_dst @ H_n @ inv(T_src)", lambda s: s.Td @ s.Hn @ np.linalg.inv(s.Ts)),
+    _wrong_way_round(
+        "inv(T_dst) @ H_n @ inv(T_src)", lambda s: np.linalg.inv(s.Td) @ s.Hn @ np.linalg.inv(s.Ts)
+    ),
+    _wrong_way_round("T_dst @ H_n @ T_src", lambda s: s.Td @ s.Hn @ s.Ts),
+    _wrong_way_round("inv(T_src) @ H_n @ T_dst", lambda s: np.linalg.inv(s.Ts) @ s.Hn @ s.Td),
+    Mistake(
+        "destination's normalisation only undone",
+        lambda s: np.linalg.inv(s.Td) @ s.Hn,
+        "you undid only the destination's normalisation (inv(T_dst) @ H_n): the result still "
+        "expects normalised source points T_src x. Undo both: H = inv(T_dst) @ H_n @ T_src.",
+    ),
+    Mistake(
+        "source's normalisation only undone",
+        lambda s: s.Hn @ s.Ts,
+        "you undid only the source's normalisation (H_n @ T_src): the result still gives "
+        "normalised destination points T_dst x'. Undo both: H = inv(T_dst) @ H_n @ T_src.",
+    ),
+)
+"""A normalised DLT's fit H_n = T_dst H inv(T_src) mapped back wrongly, in the order the diagnosis tests them."""
+
+
 def _normalisation_slip(g, src, dst, expected) -> str:
     """Name a normalised DLT whose normalisation is not undone, undone the wrong way round or on one
     side only, or whose null vector is a column of Vt; "" if none fits."""
     inv = np.linalg.inv
     for Ts, Td in _normalisers(src, dst):
-        Hn = Td @ expected @ inv(Ts)  # the homography of the normalised points
-        if same_up_to_scale(g, Hn, rtol=1e-5):
-            return (
-                "you returned H_n, the homography of the normalised points: the normalisation is not "
-                "undone. H_n maps T_src x to T_dst x', so H = inv(T_dst) @ H_n @ T_src."
-            )
-        for wrong, how in (
-            (Td @ Hn @ inv(Ts), "T_dst @ H_n @ inv(T_src)"),
-            (inv(Td) @ Hn @ inv(Ts), "inv(T_dst) @ H_n @ inv(T_src)"),
-            (Td @ Hn @ Ts, "T_dst @ H_n @ T_src"),
-            (inv(Ts) @ Hn @ Td, "inv(T_src) @ H_n @ T_dst"),
-        ):
-            if same_up_to_scale(g, wrong, rtol=1e-5):
-                return (
-                    f"you undid the normalisation the wrong way round ({how}). H_n maps normalised points: "
-                    f"T_dst x' ~ H_n T_src x, so x' ~ inv(T_dst) H_n T_src x and H = inv(T_dst) @ H_n @ T_src."
-                )
-        if same_up_to_scale(g, inv(Td) @ Hn, rtol=1e-5):
-            return (
-                "you undid only the destination's normalisation (inv(T_dst) @ H_n): the result still "
-                "expects normalised source points T_src x. Undo both: H = inv(T_dst) @ H_n @ T_src."
-            )
-        if same_up_to_scale(g, Hn @ Ts, rtol=1e-5):
-            return (
-                "you undid only the source's normalisation (H_n @ T_src): the result still gives "
-                "normalised destination points T_dst x'. Undo both: H = inv(T_dst) @ H_n @ T_src."
-            )
+        context = SimpleNamespace(
+            Ts=Ts, Td=Td, Hn=Td @ expected @ inv(Ts)
+        )  # H_n: of the normalised points
+        cause = first_mistake(
+            _UNDO_MISTAKES, context, g, lambda got, wrong: same_up_to_scale(got, wrong, rtol=1e-5)
+        )
+        if cause:
+            return cause
     for column in (_dlt_unnormalised(src, dst, column=True), _dlt_normalised_column(src, dst)):
         if same_up_to_scale(g, column, rtol=1e-5):
             return (

@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 
 from .. import stitching as st
 from ..homography import rotation_homography
-from ._core import Exercise, register_exercise, same_array
+from ._answers import same_array
+from ._core import Exercise, Mistake, first_mistake, register_exercise
 
 # ----------------------------------------------------------------------------- canvas bounds
 
@@ -291,6 +294,50 @@ def _focal_centred_at(H, shape, cx: float, cy: float) -> float:
     )
 
 
+def _slipped_focal(focal):
+    """The row answer ``focal(s)`` computed quietly (a slip may divide by 0), None where it is no number or
+    equals the right focal length (so that slip cannot show on this input)."""
+
+    def answer(s):
+        with np.errstate(all="ignore"):
+            f_wrong = focal(s)
+        return f_wrong if np.isfinite(f_wrong) and abs(f_wrong / s.expected - 1) > 1e-6 else None
+
+    return answer
+
+
+def _same_focal(got, f_wrong) -> bool:
+    return bool(np.isclose(got, f_wrong, rtol=1e-6))
+
+
+_FOCAL_SLIPS = (
+    Mistake(
+        "H transposed",
+        _slipped_focal(lambda s: focal_from_rotation_homography(np.asarray(s.H, float).T, s.shape)),
+        "you used H transposed: with H[i, j] row-major, h0 h1 h2 is the first row, so take h = H.ravel() "
+        "(not H.T.ravel(), nor H.ravel(order='F')).",
+    ),
+    Mistake(
+        "width and height swapped",
+        _slipped_focal(lambda s: focal_from_rotation_homography(s.H, (s.w, s.h))),
+        "width and height swapped: shape is (h, w) = (rows, columns), so the centre is ((w-1)/2, (h-1)/2) "
+        "with w = shape[1] and h = shape[0].",
+    ),
+    Mistake(
+        "centre (w/2, h/2)",
+        _slipped_focal(lambda s: _focal_centred_at(s.H, s.shape, s.w / 2, s.h / 2)),
+        "a half-pixel slip: pixel centres are at integers 0 ... w-1, so the image centre is ((w-1)/2, (h-1)/2), "
+        "not (w/2, h/2).",
+    ),
+    Mistake(
+        "centre's coordinates swapped",
+        _slipped_focal(lambda s: _focal_centred_at(s.H, s.shape, (s.h - 1) / 2, (s.w - 1) / 2)),
+        "the centre's coordinates are swapped: it is (u, v) = ((w-1)/2, (h-1)/2), column first.",
+    ),
+)
+"""The focal length's slips, as the focal lengths they give (from H, the image ``shape``, ``w`` and ``h``)."""
+
+
 def _focal_diagnosis(args, got, expected) -> str:
     H, shape = args
     g = _focal_number(got)
@@ -301,37 +348,15 @@ def _focal_diagnosis(args, got, expected) -> str:
             + "."
         )
     h, w = shape[:2]
-    slips = (
-        (
-            lambda: focal_from_rotation_homography(np.asarray(H, float).T, shape),
-            "you used H transposed: with H[i, j] row-major, h0 h1 h2 is the first row, so take h = H.ravel() "
-            "(not H.T.ravel(), nor H.ravel(order='F')).",
-        ),
-        (
-            lambda: focal_from_rotation_homography(H, (w, h)),
-            "width and height swapped: shape is (h, w) = (rows, columns), so the centre is ((w-1)/2, (h-1)/2) "
-            "with w = shape[1] and h = shape[0].",
-        ),
-        (
-            lambda: _focal_centred_at(H, shape, w / 2, h / 2),
-            "a half-pixel slip: pixel centres are at integers 0 ... w-1, so the image centre is ((w-1)/2, (h-1)/2), "
-            "not (w/2, h/2).",
-        ),
-        (
-            lambda: _focal_centred_at(H, shape, (h - 1) / 2, (w - 1) / 2),
-            "the centre's coordinates are swapped: it is (u, v) = ((w-1)/2, (h-1)/2), column first.",
-        ),
-    )
     if np.isfinite(g):
-        for wrong, hint in slips:
-            with np.errstate(all="ignore"):
-                f_wrong = wrong()
-            if (
-                np.isfinite(f_wrong)
-                and abs(f_wrong / expected - 1) > 1e-6
-                and np.isclose(g, f_wrong, rtol=1e-6)
-            ):
-                return hint
+        cause = first_mistake(
+            _FOCAL_SLIPS,
+            SimpleNamespace(H=H, shape=shape, w=w, h=h, expected=expected),
+            g,
+            _same_focal,
+        )
+        if cause:
+            return cause
     if not np.isfinite(g):
         C = np.array([[1.0, 0, (w - 1) / 2], [0, 1, (h - 1) / 2], [0, 0, 1]])
         Hc = np.linalg.inv(C) @ np.asarray(H, float) @ C

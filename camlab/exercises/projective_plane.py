@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from .. import projective
-from ._core import Exercise, register_exercise, same_up_to_scale, shape_problem
+from ._answers import same_up_to_scale, shape_problem
+from ._core import Exercise, register_exercise
 
 
 def _incidence(point: np.ndarray, line: np.ndarray) -> float:

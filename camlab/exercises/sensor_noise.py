@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._core import Exercise, SameArray, Tolerance, register_exercise
+from ._answers import SameArray, Tolerance
+from ._core import Exercise, Mistake, first_mistake, register_exercise
 
 TOP = 4095  # a 12-bit converter
 
@@ -111,89 +112,94 @@ def reference(darks, flats):
     return _estimate(darks, flats)
 
 
-_MISTAKES = (
-    (
-        0,
-        dict(one_frame=True),
+_GAIN_MISTAKES = (
+    Mistake(
+        "one flat frame's variance",
+        lambda args: _estimate(*args, one_frame=True),
         "the gain is off: you took one flat frame's variance, which holds the fixed pattern too (each pixel's gain "
         "differs by about 1 %, adding (0.01 mean)**2, which grows with the light); the difference of a pair, a - b, "
         "cancels it: use var(a - b) / 2",
     ),
-    (
-        0,
-        dict(halve=False),
+    Mistake(
+        "var(a - b) not halved",
+        lambda args: _estimate(*args, halve=False),
         "the gain is half the right one: a - b carries the temporal noise of two frames, so one frame's variance is "
         "var(a - b) / 2",
     ),
-    (
-        0,
-        dict(slope_not_gain=True),
+    Mistake(
+        "the slope, not the gain",
+        lambda args: _estimate(*args, slope_not_gain=True),
         "your gain is 1 / g (DN per electron): either you returned the slope of variance against mean, which is 1 / g, "
         "instead of its inverse, or you fitted the axes the other way round, np.polyfit(var, mean, 1), whose slope is "
         "already g, and then inverted it; fit var against mean, np.polyfit(mean, var, 1), and take g = 1 / slope",
     ),
-    (
-        0,
-        dict(spread=np.std),
+    Mistake(
+        "standard deviation",
+        lambda args: _estimate(*args, spread=np.std),
         "you used the standard deviation; the photon-transfer line is in the variance: var = mean / g + constant",
     ),
-    (
-        0,
-        dict(through_origin=True),
+    Mistake(
+        "line through the origin",
+        lambda args: _estimate(*args, through_origin=True),
         "the gain is a little off: a line through the origin ignores the black level (the frames' mean at no light, "
         "about the darks' mean) and the read-noise floor; fit a line with an intercept (np.polyfit(mean, var, 1)), "
         "or subtract the darks' mean from the flats' means",
     ),
-    (
-        0,
-        dict(ratios=True),
+    Mistake(
+        "mean / var per pair",
+        lambda args: _estimate(*args, ratios=True),
         "the gain is off: mean / var per pair counts the black level (the frames' mean at no light, the darks' mean) "
         "as signal; subtract the darks' mean from each flat pair's mean first, or fit a line with an intercept",
     ),
-    (
-        0,
-        dict(dark_subtracted_ratios=True),
+    Mistake(
+        "per pair above the dark mean",
+        lambda args: _estimate(*args, dark_subtracted_ratios=True),
         "the gain is a few percent low: per pair, (mean - dark mean) / var leaves the read noise and quantisation in "
         "the variance (sigma_r**2 / g**2 + 1/12 DN**2, the darks' var(d1 - d2) / 2), which matters at the dim pair; "
         "subtract the darks' temporal variance too, g = (mean - dark mean) / (var - dark var), as EMVA 1288 does, or "
         "fit a line with an intercept, which absorbs it",
     ),
-    (
-        0,
-        dict(mean_of_difference=True),
+    Mistake(
+        "mean of a - b",
+        lambda args: _estimate(*args, mean_of_difference=True),
         "the means are the mean of a - b, about 0: the photon-transfer curve plots each pair's variance against the "
         "frames' own mean level, (a.mean() + b.mean()) / 2",
     ),
-    (
-        1,
-        dict(read_from_intercept=True, black_subtracted=True),
+)
+"""Slips in the gain: each row's answer is what ``_estimate`` gives with that slip's flag."""
+
+_READ_NOISE_MISTAKES = (
+    Mistake(
+        "read noise from the intercept",
+        lambda args: _estimate(*args, read_from_intercept=True, black_subtracted=True),
         "the read noise from the fit's intercept, g * sqrt(c - 1/12), is imprecise: the line is fitted to bright pairs "
         "whose variance is hundreds of DN**2, and sigma_r**2 / g**2 is a few DN**2 at its far end. Measure it where it "
         "is the whole signal, in the dark pair: read noise = g * sqrt(var(d1 - d2) / 2)",
     ),
-    (
-        1,
-        dict(read_over_gain=True),
+    Mistake(
+        "read noise over the gain",
+        lambda args: _estimate(*args, read_over_gain=True),
         "you divided the read noise in DN by the gain: g is in electrons per DN, so DN x (electrons per DN) = "
         "electrons: multiply, g * sqrt(var(d1 - d2) / 2)",
     ),
-    (
-        1,
-        dict(read_in_dn=True),
+    Mistake(
+        "read noise in DN",
+        lambda args: _estimate(*args, read_in_dn=True),
         "the read noise is in DN: multiply by the gain g (electrons per DN) to get electrons",
     ),
-    (
-        1,
-        dict(dark_halve=False),
+    Mistake(
+        "var(d1 - d2) not halved",
+        lambda args: _estimate(*args, dark_halve=False),
         "the read noise is sqrt(2) too large: d1 - d2 carries the read noise of two frames, so use var(d1 - d2) / 2",
     ),
-    (
-        1,
-        dict(dark_one_frame=True),
+    Mistake(
+        "one dark frame's spread",
+        lambda args: _estimate(*args, dark_one_frame=True),
         "the read noise is too large: one dark frame's spread holds each pixel's own fixed offset (dark-signal "
         "non-uniformity) too; the difference of the two darks cancels it: sqrt(var(d1 - d2) / 2)",
     ),
 )
+"""Slips in the read noise, with the gain right."""
 
 
 def _diagnose(args, got, expected) -> str:
@@ -223,11 +229,17 @@ def _diagnose(args, got, expected) -> str:
             "uint16 frames subtracted as they are wrap around: a - b below 0 becomes 65536 + (a - b), a huge "
             "variance; convert to float first, np.asarray(a, dtype=float)"
         )
-    for i, flags, hint in _MISTAKES:
-        candidate = _estimate(*args, **flags)
-        if np.isclose(g[i], candidate[i], rtol=0.03) and not np.isclose(
-            candidate[i], e[i], rtol=0.03
-        ):
+    for i, mistakes in ((0, _GAIN_MISTAKES), (1, _READ_NOISE_MISTAKES)):
+        hint = first_mistake(
+            mistakes,
+            args,
+            g,
+            lambda got, candidate, i=i: bool(
+                np.isclose(got[i], candidate[i], rtol=0.03)
+                and not np.isclose(candidate[i], e[i], rtol=0.03)
+            ),
+        )
+        if hint:
             return hint
     dark_var = np.var(np.asarray(args[0][0], dtype=float) - np.asarray(args[0][1], dtype=float)) / 2
     if np.isclose(g[0], e[0], rtol=0.03) and np.isclose(g[1], e[1] ** 2, rtol=0.06):

@@ -10,7 +10,8 @@ from types import TracebackType
 import numpy as np
 
 from .. import projective
-from ._core import Exercise, register_exercise, same_array, shape_problem
+from ._answers import same_array, shape_problem
+from ._core import Exercise, register_exercise
 
 _KEEP = "append 1 to the point, keeping x and y as they are"
 _APPEND = "np.append(p, 1.0)"

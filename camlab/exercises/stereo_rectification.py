@@ -7,7 +7,8 @@ import numpy as np
 from .. import disparity, epipolar
 from ..camera import Camera, rotation_from_axis_angle
 from ..homography import hartley_normalization
-from ._core import Exercise, register_exercise, same_array, same_up_to_scale, shape_problem
+from ._answers import same_array, same_up_to_scale, shape_problem
+from ._core import Exercise, register_exercise
 
 
 def _rig_points(seed: int, noise: float, n: int = 24, baseline=(0.3, 0.02, 0.01)):

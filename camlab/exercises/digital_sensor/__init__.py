@@ -1,0 +1,15 @@
+"""Exercises for lesson 03, the digital sensor: quantisation (:mod:`.quantize`), demosaicking
+(:mod:`.demosaic`) and the intrinsic matrix from a datasheet (:mod:`.datasheet`). The lesson's
+fourth, the sensor's gain and read noise, is :mod:`camlab.exercises.sensor_noise`."""
+
+from __future__ import annotations
+
+# each module registers its exercise when imported: keep the lesson's order
+# isort: off
+from . import quantize
+from . import demosaic
+from . import datasheet
+
+# isort: on
+
+__all__ = ["datasheet", "demosaic", "quantize"]

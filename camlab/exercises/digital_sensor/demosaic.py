@@ -1,0 +1,477 @@
+"""Lesson 03's second exercise: bilinear demosaicking of a Bayer mosaic by normalised convolution."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+
+from ... import sensor
+from .._answers import SameArray, Tolerance, shape_problem
+from .._core import Exercise, Mistake, first_mistake, register_exercise
+from .quantize import not_an_array
+
+
+def _demosaic_cases():
+    """Random colours first (every interpolation direction matters), then odd sizes, all four patterns, a smooth
+    ramp, and a uint8 mosaic as the lesson's own raw is."""
+    rng = np.random.default_rng(4)
+    yy, xx = np.mgrid[0:7, 0:10].astype(float)
+    smooth = np.stack([0.05 * xx, 0.04 * yy + 0.1, 0.5 - 0.02 * xx], axis=2)
+    return [
+        (sensor.mosaic(rng.uniform(size=(6, 6, 3)), "RGGB"), "RGGB"),
+        (sensor.mosaic(rng.uniform(size=(6, 8, 3)), "GBRG"), "GBRG"),
+        (sensor.mosaic(rng.uniform(size=(5, 7, 3)), "BGGR"), "BGGR"),
+        (sensor.mosaic(rng.uniform(size=(7, 6, 3)), "GRBG"), "GRBG"),
+        (sensor.mosaic(smooth, "RGGB"), "RGGB"),
+        (
+            sensor.quantize(sensor.mosaic(rng.uniform(size=(7, 9, 3)), "RGGB")),
+            "RGGB",
+        ),  # uint8, 0..255
+    ]
+
+
+def _tile_hint(shape) -> str:
+    """Why np.tile masks fail on a mosaic of ``shape`` with an odd side."""
+    H, W = shape
+    odd = " and ".join(what for n, what in ((H, "rows"), (W, "columns")) if n % 2)
+    return (
+        f"this mosaic is {H} x {W} pixels, an odd number of {odd}: a mask built with np.tile(block, (H // 2, "
+        f"W // 2)) comes out {H // 2 * 2} x {W // 2 * 2}, short of the image (a sensor crop may end mid-block). "
+        f"Tile ((H + 1) // 2, (W + 1) // 2) times and crop [:H, :W], or build each mask by slicing: "
+        f"m = np.zeros((H, W)); m[0::2, 0::2] = 1"
+    )
+
+
+def _demosaic_exception_hint(exc, args) -> str:
+    raw = np.asarray(args[0])
+    if (
+        raw.ndim == 2
+        and (raw.shape[0] % 2 or raw.shape[1] % 2)
+        and isinstance(exc, (ValueError, IndexError))
+        and ("broadcast" in str(exc) or "boolean index" in str(exc) or "shape" in str(exc))
+    ):
+        return _tile_hint(raw.shape)
+    return ""
+
+
+def _line_mean(values, mask, axis: int) -> np.ndarray:
+    """Mean of the available same-colour neighbours on one line (axis 1: left and right; 0: above and below)."""
+    total, count = np.zeros(values.shape), np.zeros(values.shape)
+    for shift in (-1, 1):
+        v, m = np.zeros(values.shape), np.zeros(values.shape)
+        src = [slice(None)] * 2
+        dst = [slice(None)] * 2
+        src[axis], dst[axis] = (
+            (slice(1, None), slice(None, -1)) if shift > 0 else (slice(None, -1), slice(1, None))
+        )
+        v[tuple(dst)], m[tuple(dst)] = (values * mask)[tuple(src)], mask[tuple(src)]
+        total, count = total + v, count + m
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return total / count
+
+
+def _site_problems(raw, pattern, g, e) -> list[str]:
+    """What is wrong where, inside the 1-pixel border: green at red/blue sites, red/blue at each other's and at green."""
+    m = sensor.bayer_masks(raw.shape, pattern)
+    inner = np.zeros(raw.shape, bool)
+    inner[1:-1, 1:-1] = True
+    bad = ~np.isclose(g, e, rtol=1e-5, atol=1e-9)
+    problems = []
+    if np.any(bad[..., 1] & ~m[..., 1] & inner):
+        problems.append(
+            "green at a red or blue site is the mean of its 4 green neighbours (left, right, above, below)"
+        )
+    if np.any((bad[..., 0] & m[..., 2] | bad[..., 2] & m[..., 0]) & inner):
+        problems.append(
+            "red at a blue site (and blue at a red one) is the mean of its 4 diagonal neighbours"
+        )
+    if np.any((bad[..., 0] | bad[..., 2]) & m[..., 1] & inner):
+        problems.append(
+            "red or blue at a green site is the mean of its 2 nearest samples of that colour: left and "
+            "right, or above and below, whichever line holds that colour"
+        )
+    return problems
+
+
+def _nan_hint(raw, pattern, got) -> str | None:
+    """Where 0 / 0 struck: red at blue sites (or blue at red ones) means a kernel that misses the diagonals."""
+    g = np.asarray(got, dtype=float)
+    if g.shape != np.shape(raw) + (3,) or np.isfinite(g).all():
+        return None
+    m = sensor.bayer_masks(np.shape(raw), pattern)
+    bad = ~np.isfinite(g)
+    if np.any(bad[..., 0] & m[..., 2]) or np.any(bad[..., 2] & m[..., 0]):
+        return (
+            "NaN at red's value at blue sites (or blue's at red ones): their 4 cross neighbours (left, right, "
+            "above, below) are all green, so a cross kernel such as green's [[0, 1, 0], [1, 4, 1], [0, 1, 0]] "
+            "finds no red there, k * m is 0 and 0 / 0 is NaN. Red and blue need the 3 x 3 tent kernel "
+            "[[1, 2, 1], [2, 4, 2], [1, 2, 1]] / 4, whose corners reach the 4 diagonal neighbours"
+        )
+    return (
+        "NaN where your kernel reaches no sample of that colour (0 / 0): a missing value needs at least one "
+        "same-colour neighbour within the kernel; the 3 x 3 tent kernel reaches one for every colour and site"
+    )
+
+
+_IMAGE_MISTAKES = (
+    Mistake(
+        "pattern read column by column",
+        lambda s: (
+            s.column_major != s.pattern
+            and np.allclose(s.g, sensor.demosaic_bilinear(s.raw, s.column_major))
+        ),
+        lambda s: (
+            f"you read the pattern column by column, as {s.column_major}: its letters go row by row, top-left, "
+            f"top-right, bottom-left, bottom-right, so {s.pattern} has {s.pattern[0]} {s.pattern[1]} on row 0 and "
+            f"{s.pattern[2]} {s.pattern[3]} on row 1 (for {s.pattern} that swaps red and blue)"
+        ),
+    ),
+    Mistake(
+        "BGR",
+        lambda s: np.allclose(s.g[..., ::-1], s.e),
+        (
+            "red and blue are swapped: return the channels as R, G, B (not OpenCV's BGR order), and check "
+            "which colour sits where in the pattern (RGGB: R at row 0, column 0)"
+        ),
+    ),
+    Mistake(
+        "transposed",
+        lambda s: (
+            s.g.shape[0] == s.g.shape[1]
+            and np.allclose(s.g, s.e.transpose(1, 0, 2))
+            and (not np.allclose(s.e, s.e.transpose(1, 0, 2)))
+        ),
+        (
+            "your image is transposed: rows and columns swapped (a .T, or an index [u, v] where the image is "
+            "img[v, u]: row v first, then column u)"
+        ),
+    ),
+    *(
+        Mistake(
+            f"masks {how} off",
+            lambda s, shift=shift: (
+                shift(s.pattern) != s.pattern
+                and np.allclose(s.g, sensor.demosaic_bilinear(s.raw, shift(s.pattern)))
+            ),
+            lambda s, how=how, shift=shift: (
+                f"your masks sit {how} off, as if the pattern were {shift(s.pattern)}: started at 1 (m[1::2, ...]), "
+                f"as in 1-based MATLAB? Python counts from 0: {s.pattern}'s {s.pattern[0]} is at row 0, column 0, "
+                f"m[0::2, 0::2]"
+            ),
+        )
+        for how, shift in (
+            ("one column", lambda p: p[1] + p[0] + p[3] + p[2]),
+            ("one row", lambda p: p[2] + p[3] + p[0] + p[1]),
+        )
+    ),
+    Mistake(
+        "scaled by 255",
+        lambda s: np.allclose(s.g * 255, s.e) or np.allclose(s.g, s.e * 255),
+        (
+            "the values are scaled by 255: keep the units of the mosaic (do not divide or multiply by 255)"
+        ),
+    ),
+)
+"""Slips that change the whole image (the pattern misread, the channels or axes swapped, a scale), in the
+order they are tested; each row's test reads the answer ``s.g`` against the right image ``s.e``."""
+
+
+def _demosaic_diagnosis(args, got, expected) -> str:
+    raw, pattern = args
+    nan = isinstance(got, np.ndarray) and _nan_hint(raw, pattern, got)
+    if nan:
+        return nan
+    problem = not_an_array(got) or shape_problem(got, expected)
+    if problem:
+        H, W = np.shape(raw)
+        if (H % 2 or W % 2) and np.shape(got)[:2] == (H // 2 * 2, W // 2 * 2):
+            return _tile_hint((H, W))
+        return problem + ". Return an (H, W, 3) RGB image."
+    g = np.asarray(got, dtype=float)
+    e = np.asarray(expected)
+    context = SimpleNamespace(
+        raw=raw,
+        pattern=pattern,
+        g=g,
+        e=e,
+        column_major=pattern[0] + pattern[2] + pattern[1] + pattern[3],
+    )
+    cause = first_mistake(_IMAGE_MISTAKES, context)
+    if cause:
+        return cause
+    whole = "the mean of two samples falls between codes (100 and 101 give 100.5)"
+    if np.issubdtype(np.asarray(got).dtype, np.integer):
+        return (
+            f"you returned integers (dtype {np.asarray(got).dtype}): {whole}, so casting back to the mosaic's "
+            f"dtype loses it; return the float image (leave out .astype(np.uint8))"
+        )
+    if any(np.allclose(g, rounding(e)) for rounding in (np.rint, np.floor)) and not np.allclose(
+        np.rint(e), e
+    ):
+        return f"you rounded the interpolated values to whole numbers: {whole}; return them unrounded, as floats"
+    return _interpolation_cause(raw, pattern, g, e)
+
+
+def _interpolation_cause(raw, pattern, g, e) -> str:
+    """Why the image is wrong when the whole-image slips are ruled out: the samples, the dtype, the
+    neighbours averaged at each kind of site, or the border."""
+    m = sensor.bayer_masks(raw.shape, pattern)
+    if not np.allclose(g[m], e[m]):
+        return (
+            "the measured samples changed: keep each pixel's own colour as measured, and check which "
+            "colour sits where in the pattern (RGGB: R at row 0, column 0)"
+        )
+    if np.issubdtype(raw.dtype, np.integer):
+        return (
+            f"this mosaic is {raw.dtype}, as a raw file's is: sums of its values wrap around (uint8 stops at 255) "
+            f"and scipy's convolve keeps the input's dtype, truncating the means; convert first: raw.astype(float)"
+        )
+    r = np.asarray(raw, dtype=float)
+    inner = (slice(1, -1), slice(1, -1))
+    others = ~m[..., 1]
+    for axis, line, missing in (
+        (1, "on its left and right", "above and below"),
+        (0, "above and below", "on the left and right"),
+    ):
+        one_line = np.where(m[..., 1], r, _line_mean(r, m[..., 1], axis))
+        if np.allclose(g[..., 1][inner][others[inner]], one_line[inner][others[inner]]):
+            return (
+                f"green at a red or blue site averages only the green neighbours {line}; it has 4: add the ones "
+                f"{missing} (green is sampled on a checkerboard, so every red or blue site has green on all 4 sides)"
+            )
+    inner_sites = others[inner]
+    if np.allclose(g[..., 1][inner][inner_sites], 2 * e[..., 1][inner][inner_sites]):
+        return (
+            "green at red and blue sites is twice the mean: there the tent kernel's 4 cross weights are 1/2 each and "
+            "sum to 2; divide by the weights actually used (k * m), or use green's cross kernel "
+            "[[0, 1, 0], [1, 4, 1], [0, 1, 0]] / 4, whose 4 weights sum to 1"
+        )
+    problems = _site_problems(raw, pattern, g, e)
+    if problems:
+        return "; ".join(problems)
+    # a 3 x 3 kernel reaches one pixel out, where 'reflect' and 'nearest' both repeat the edge pixel
+    for mode, what in (
+        (
+            "reflect",
+            "mode='reflect', scipy.ndimage.convolve's default (or mode='nearest', the same "
+            "one pixel out)",
+        ),
+        ("mirror", "mode='mirror' (cv2.filter2D's default border, BORDER_REFLECT_101)"),
+        ("wrap", "mode='wrap'"),
+    ):
+        if np.allclose(g, _padded_demosaic(raw, pattern, mode)):
+            return (
+                f"right inside, wrong at the border: with {what} the convolution invents samples beyond the "
+                f"frame, mirrored or copied from inside it, and both k * (m r) and k * m count them (and a "
+                f"mirrored copy of a Bayer mosaic does not even keep the pattern); use mode='constant' (zeros "
+                f"outside; cv2.BORDER_CONSTANT) for both, so the ratio averages only the samples that exist"
+            )
+    return (
+        "right inside, wrong at the border: average only the neighbours that exist "
+        "(divide by the sum of the weights of available samples)"
+    )
+
+
+def _padded_demosaic(raw, pattern, mode):
+    """Normalised convolution with scipy's border ``mode``: 'constant' is right, the others count invented samples."""
+    from scipy.ndimage import convolve
+
+    raw = np.asarray(raw, dtype=float)
+    m = sensor.bayer_masks(raw.shape, pattern).astype(float)
+    k = np.array([[1, 2, 1], [2, 4, 2], [1, 2, 1]]) / 4.0
+    est = np.stack(
+        [
+            convolve(raw * m[..., c], k, mode=mode) / convolve(m[..., c], k, mode=mode)
+            for c in range(3)
+        ],
+        axis=2,
+    )
+    return np.where(m == 1, raw[..., None], est)
+
+
+def _reflect_border_demosaic(raw, pattern):
+    """scipy.ndimage.convolve with its default border, mode='reflect': mirrored samples beyond the frame count."""
+    return _padded_demosaic(raw, pattern, "reflect")
+
+
+def _zero_padded_demosaic(raw, pattern):
+    from scipy.ndimage import convolve
+
+    raw = np.asarray(raw, dtype=float)
+    m = sensor.bayer_masks(raw.shape, pattern)
+    kr = np.array([[1, 2, 1], [2, 4, 2], [1, 2, 1]]) / 4.0
+    kg = np.array([[0, 1, 0], [1, 4, 1], [0, 1, 0]]) / 4.0
+    out = np.empty(raw.shape + (3,))
+    for c, k in zip(range(3), (kr, kg, kr), strict=True):
+        out[..., c] = convolve(raw * m[..., c], k, mode="constant")
+    return out
+
+
+def _unnormalised_tent_demosaic(raw, pattern):
+    """The tent kernel for every colour as a plain convolution: green at red and blue sites comes out doubled."""
+    from scipy.ndimage import convolve
+
+    raw = np.asarray(raw, dtype=float)
+    m = sensor.bayer_masks(raw.shape, pattern)
+    k = np.array([[1, 2, 1], [2, 4, 2], [1, 2, 1]]) / 4.0
+    est = np.stack([convolve(raw * m[..., c], k, mode="constant") for c in range(3)], axis=2)
+    return np.where(m, raw[..., None], est)
+
+
+def _uncast_demosaic(raw, pattern):
+    """Normalised convolution without converting the mosaic to float: uint8 stays uint8."""
+    from scipy.ndimage import convolve
+
+    m = sensor.bayer_masks(raw.shape, pattern)
+    k = np.array([[1, 2, 1], [2, 4, 2], [1, 2, 1]]) / 4.0
+    est = np.stack(
+        [
+            convolve(raw * m[..., c], k, mode="constant")
+            / convolve(m[..., c] * 1.0, k, mode="constant")
+            for c in range(3)
+        ],
+        axis=2,
+    )
+    return np.where(m, raw[..., None], est)
+
+
+def _tiled_masks_demosaic(raw, pattern):
+    """Masks from np.tile(block, (H // 2, W // 2)): one row or column short on an odd-sized mosaic."""
+    raw = np.asarray(raw, dtype=float)
+    H, W = raw.shape
+    blocks = [np.array([[pattern[0], pattern[1]], [pattern[2], pattern[3]]]) == c for c in "RGB"]
+    masks = np.stack([np.tile(b, (H // 2, W // 2)) for b in blocks], axis=2)
+    return np.where(
+        masks, raw[..., None], sensor.demosaic_bilinear(raw, pattern)
+    )  # crashes: (H, W, 1) vs masks
+
+
+def _one_line_green_demosaic(raw, pattern, axis=1):
+    """Green at red and blue sites from its left and right neighbours only (axis 0: above and below)."""
+    out = sensor.demosaic_bilinear(raw, pattern)
+    r = np.asarray(raw, dtype=float)
+    green = sensor.bayer_masks(r.shape, pattern)[..., 1]
+    out[..., 1] = np.where(green, r, _line_mean(r, green, axis))
+    return out
+
+
+def _diagonal_only_demosaic(raw, pattern):
+    """Red and blue at green sites from the 4 diagonals (there are none: NaN-free, but the wrong neighbours)."""
+    out = sensor.demosaic_bilinear(raw, pattern)
+    m = sensor.bayer_masks(np.shape(raw), pattern)
+    for c in (0, 2):
+        out[..., c] = np.where(
+            m[..., 1], out[..., 1], out[..., c]
+        )  # a common shortcut: copy green there
+    return out
+
+
+def _cross_kernel_demosaic(raw, pattern):
+    """Green's cross kernel used for red and blue too: 0 / 0 (NaN) at red's blue sites and blue's red ones."""
+    from scipy.ndimage import convolve
+
+    raw = np.asarray(raw, dtype=float)
+    m = sensor.bayer_masks(raw.shape, pattern).astype(float)
+    k = np.array([[0, 1, 0], [1, 4, 1], [0, 1, 0]]) / 4.0
+    with np.errstate(invalid="ignore", divide="ignore"):
+        est = np.stack(
+            [
+                convolve(raw * m[..., c], k, mode="constant")
+                / convolve(m[..., c], k, mode="constant")
+                for c in range(3)
+            ],
+            axis=2,
+        )
+    return np.where(m == 1, raw[..., None], est)
+
+
+def demosaic_bilinear(raw, pattern):
+    """Section 4's formula, c = k * (m r) / (k * m) at the missing sites; measured samples kept."""
+    raw = np.asarray(raw, dtype=float)  # float: uint8 sums would wrap around
+    H, W = raw.shape
+    m = np.zeros((H, W, 3))  # m[..., c] = 1 where the pixel measured colour c
+    for (dy, dx), colour in zip([(0, 0), (0, 1), (1, 0), (1, 1)], pattern, strict=True):
+        m[dy::2, dx::2, "RGB".index(colour)] = 1
+    k = np.outer([1, 2, 1], [1, 2, 1]) / 4  # the tent kernel
+
+    def conv(a):  # k * a, with zeros beyond the border (k is symmetric)
+        p = np.pad(a, ((1, 1), (1, 1), (0, 0)))
+        return sum(k[i, j] * p[i : i + H, j : j + W] for i in range(3) for j in range(3))
+
+    return np.where(m == 1, raw[..., None], conv(m * raw[..., None]) / conv(m))
+
+
+register_exercise(
+    Exercise(
+        name="demosaic_bilinear",
+        lesson="03",
+        reference=sensor.demosaic_bilinear,
+        cases=_demosaic_cases,
+        compare=SameArray(Tolerance(1e-5, 1e-9)),
+        diagnose=_demosaic_diagnosis,
+        exception_hint=_demosaic_exception_hint,
+        ndarray_only=True,
+        wrong_variants=(
+            (_zero_padded_demosaic, "border"),
+            (
+                lambda raw, pattern: sensor.demosaic_bilinear(
+                    raw, "GRBG" if pattern == "RGGB" else "RGGB"
+                ),
+                "off, as if the pattern were",
+            ),
+            (
+                lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern)[..., ::-1],
+                "not OpenCV's BGR order",
+            ),
+            (
+                lambda raw, pattern: sensor.demosaic_bilinear(
+                    raw, pattern[0] + pattern[2] + pattern[1] + pattern[3]
+                ),
+                "column by column",
+            ),
+            (lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern) / 255, "scaled by 255"),
+            (
+                lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern).tolist(),
+                "you returned a list",
+            ),
+            (_uncast_demosaic, "convert first: raw.astype"),
+            (_tiled_masks_demosaic, "a mask built with np.tile"),
+            (_one_line_green_demosaic, "only the green neighbours on its left and right"),
+            (
+                lambda raw, pattern: _one_line_green_demosaic(raw, pattern, axis=0),
+                "only the green neighbours above",
+            ),
+            (lambda raw, pattern: np.rint(sensor.demosaic_bilinear(raw, pattern)), "you rounded"),
+            (
+                lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern).astype(
+                    np.asarray(raw).dtype
+                ),
+                "you returned integers",
+            ),
+            (_diagonal_only_demosaic, "red or blue at a green site"),
+            (_cross_kernel_demosaic, "are all green"),
+            (_unnormalised_tent_demosaic, "twice the mean"),
+            (_reflect_border_demosaic, "mode='reflect', scipy.ndimage.convolve's default"),
+            (
+                lambda raw, pattern: sensor.demosaic_bilinear(
+                    raw, pattern[1] + pattern[0] + pattern[3] + pattern[2]
+                ),
+                "one column off",
+            ),
+            (
+                lambda raw, pattern: (
+                    sensor.demosaic_bilinear(
+                        np.asarray(raw).T, pattern[0] + pattern[2] + pattern[1] + pattern[3]
+                    )
+                    if np.shape(raw)[0] == np.shape(raw)[1]
+                    else sensor.demosaic_bilinear(raw, pattern)[::-1]
+                ),
+                "transposed",
+            ),
+            (lambda raw, pattern: _padded_demosaic(raw, pattern, "mirror"), "BORDER_REFLECT_101"),
+            (lambda raw, pattern: _padded_demosaic(raw, pattern, "nearest"), "or mode='nearest'"),
+        ),
+        teaching=demosaic_bilinear,
+    )
+)

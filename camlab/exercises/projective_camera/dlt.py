@@ -1,0 +1,219 @@
+"""Lesson 04's exercise estimate_projection_matrix: the normalised DLT (H&Z algorithm 7.1)."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+
+from ... import camera as cm
+from .._answers import same_up_to_scale, shape_problem
+from .._core import Exercise, Mistake, first_mistake, register_exercise
+from ._dlt_forms import (
+    dlt_half,
+    dlt_not_undone,
+    dlt_p34,
+    dlt_partial,
+    dlt_rows,
+    dlt_undone_wrong_order,
+    dlt_unnormalised,
+    in_frame,
+    normalisers,
+    rms_normalisers,
+)
+from ._dlt_survey import dlt_cases, dlt_follow_up, pixel_gap, pixels_of
+
+
+def _wrong_way_round(how, undo):
+    return Mistake(
+        how,
+        undo,
+        f"you undid the normalisation the wrong way round ({how}). P_hat maps U X to T u: "
+        f"T u ~ P_hat U X, so u ~ inv(T) P_hat U X and P = inv(T) @ P_hat @ U.",
+    )
+
+
+_UNDO_MISTAKES = (
+    Mistake(
+        "not undone",
+        lambda s: s.P_hat,
+        "you returned P_hat, the camera of the normalised points: the normalisation is not undone. "
+        "P_hat maps U X to T u, so P = inv(T) @ P_hat @ U.",
+    ),
+    _wrong_way_round("T @ P_hat @ inv(U)", lambda s: s.T @ s.P_hat @ np.linalg.inv(s.U)),
+    _wrong_way_round(
+        "inv(T) @ P_hat @ inv(U)", lambda s: np.linalg.inv(s.T) @ s.P_hat @ np.linalg.inv(s.U)
+    ),
+    _wrong_way_round("T @ P_hat @ U", lambda s: s.T @ s.P_hat @ s.U),
+    Mistake(
+        "pixels' normalisation only undone",
+        lambda s: np.linalg.inv(s.T) @ s.P_hat,
+        "you undid only the pixels' normalisation (inv(T) @ P_hat): P_hat still expects normalised "
+        "world points U X. Undo both: P = inv(T) @ P_hat @ U.",
+    ),
+    Mistake(
+        "world points' normalisation only undone",
+        lambda s: s.P_hat @ s.U,
+        "you undid only the world points' normalisation (P_hat @ U): the result still gives "
+        "normalised pixels T u. Undo both: P = inv(T) @ P_hat @ U.",
+    ),
+)
+"""A normalised DLT's fit P_hat = T P inv(U) mapped back wrongly, in the order the diagnosis tests them."""
+
+
+def _same_camera(got, wrong) -> bool:
+    return same_up_to_scale(got, wrong, rtol=1e-5)
+
+
+def _dlt_diagnosis(args, got, expected) -> str:
+    X, uv = args
+    g = np.asarray(got, dtype=float) if got is not None else None
+    if g is not None and g.shape == (4, 3):
+        return (
+            "your P is (4, 3): transposed. P maps (X, Y, Z, 1) to (u, v, w), so it is (3, 4); "
+            "A's columns list P row by row, so read the null vector back with p.reshape(3, 4)."
+        )
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + ". Return P as a (3, 4) array: p.reshape(3, 4)."
+    frames = (
+        normalisers(X, uv),
+        rms_normalisers(X, uv),
+        (np.eye(4), np.eye(3)),
+    )  # mean, RMS or none
+    for (
+        U,
+        T,
+    ) in (
+        frames
+    ):  # the null vector read column by column, before or without undoing the normalisation
+        P_hat_got = T @ g @ np.linalg.inv(U)
+        if same_up_to_scale(
+            P_hat_got.ravel(order="F").reshape(3, 4), T @ expected @ np.linalg.inv(U), rtol=1e-5
+        ):
+            return (
+                "your 12 numbers are P's entries in the wrong order (column by column, reshape(..., order='F') "
+                "or reshape(4, 3).T): A's columns list P row by row (p^1, p^2, p^3), so read the null vector "
+                "back with p.reshape(3, 4), before undoing the normalisation."
+            )
+    for U, T in frames[:2]:  # mean or RMS distances: either is right
+        context = SimpleNamespace(U=U, T=T, P_hat=T @ expected @ np.linalg.inv(U))
+        cause = first_mistake(_UNDO_MISTAKES, context, g, _same_camera)
+        if cause:
+            return cause
+    pixels = pixels_of(g, X)
+    for reflected in (
+        -uv,
+        2 * uv.mean(axis=0) - uv,
+    ):  # +u, +v in A: the camera of the mirrored pixels
+        if np.allclose(pixels, reflected, atol=1e-4 * max(1.0, np.abs(uv).max())):
+            return (
+                "your P images every point at the pixels mirrored through the origin of the (normalised) pixel "
+                "coordinates: a sign slip in A. u x P X = 0 gives the rows (X^T, 0, -u X^T) and (0, X^T, -v X^T), "
+                "with minus signs."
+            )
+    if _is_vt_column(g, X, uv):
+        return (
+            "you took a column of Vt. np.linalg.svd returns Vt, V transposed: the right singular vectors "
+            "are its rows, so the null vector is the last row, Vt[-1], not Vt[:, -1]."
+        )
+    gap = pixel_gap(g, expected, X)
+    return (
+        f"P does not image X at uv (exact pixels here, and your P is up to {gap:.3g} px off). Build two rows "
+        f"of u x P X = 0 per point, (X^T, 0, -u X^T) and (0, X^T, -v X^T), take the right singular vector of A "
+        f"with the smallest singular value (the last row of Vt, Vt[-1]) and reshape it row by row to (3, 4)."
+    )
+
+
+def _is_vt_column(got, X, uv) -> bool:
+    """True if ``got`` is Vt[:, -1] (the last entry of every right singular vector) in place of Vt[-1].
+
+    Each singular vector's sign is LAPACK's choice, and it changes with A's row order (all u rows, then
+    all v rows, or interleaved per point), so compare magnitudes entry by entry, in each normalised frame.
+    """
+    for U, T in (normalisers(X, uv), rms_normalisers(X, uv), (np.eye(4), np.eye(3))):
+        column = np.abs(np.linalg.svd(dlt_rows(in_frame(U, X), in_frame(T, uv)))[2][:, -1])
+        P_hat = np.abs(T @ got @ np.linalg.inv(U)).ravel()
+        if np.abs(P_hat).max() > 0 and np.allclose(
+            P_hat / np.abs(P_hat).max(), column / column.max(), atol=1e-6
+        ):
+            return True
+    return False
+
+
+def estimate_projection_matrix(X, uv):
+    """The normalised DLT: normalise, two rows of u x P X = 0 per point, SVD, undo."""
+    X, uv = np.asarray(X, dtype=float), np.asarray(uv, dtype=float)
+
+    def normaliser(p):  # centroid to 0, mean distance to the centroid sqrt(D), D = 2 or 3
+        c = p.mean(axis=0)
+        s = np.sqrt(p.shape[1]) / np.mean(np.linalg.norm(p - c, axis=1))
+        T = s * np.eye(p.shape[1] + 1)
+        T[:-1, -1], T[-1, -1] = -s * c, 1.0
+        return T
+
+    U, T = normaliser(X), normaliser(uv)
+    Xn = np.column_stack([X, np.ones(len(X))]) @ U.T  # normalised homogeneous points, as rows
+    un = np.column_stack([uv, np.ones(len(uv))]) @ T.T
+    rows = []
+    for Xh, (u, v, w) in zip(Xn, un, strict=True):  # u x P X = 0: two independent rows per point
+        rows.append(np.concatenate([w * Xh, np.zeros(4), -u * Xh]))
+        rows.append(np.concatenate([np.zeros(4), w * Xh, -v * Xh]))
+    P_hat = np.linalg.svd(np.array(rows))[2][-1].reshape(
+        3, 4
+    )  # smallest singular value's right vector
+    return np.linalg.inv(T) @ P_hat @ U  # T u ~ P_hat U X, so u ~ T^-1 P_hat U X
+
+
+register_exercise(
+    Exercise(
+        name="estimate_projection_matrix",
+        lesson="04",
+        reference=cm.estimate_projection_matrix,
+        cases=dlt_cases,
+        compare=lambda got, expected: same_up_to_scale(
+            got, expected, rtol=1e-6
+        ),  # exact pixels: P up to scale
+        diagnose=_dlt_diagnosis,
+        follow_up=dlt_follow_up,
+        wrong_variants=(
+            (dlt_not_undone, "not undone"),
+            (dlt_undone_wrong_order, "wrong way round"),
+            (lambda X, uv: dlt_unnormalised(np.asarray(X), np.asarray(uv)), "no normalisation"),
+            (lambda X, uv: dlt_half(X, uv, world=False), "world points are not normalised at all"),
+            (lambda X, uv: dlt_half(X, uv, pixels=False), "pixels are not normalised at all"),
+            (
+                lambda X, uv: dlt_partial(X, uv, world=(True, False), pixels=(True, False)),
+                "centred but not scaled",
+            ),
+            (
+                lambda X, uv: dlt_partial(X, uv, world=(True, False)),
+                "world points are centred but not scaled",
+            ),
+            (
+                lambda X, uv: dlt_partial(X, uv, world=(False, True), pixels=(False, True)),
+                "scaled but not centred",
+            ),
+            (
+                lambda X, uv: dlt_partial(X, uv, pixels=(False, True)),
+                "pixels are scaled but not centred",
+            ),
+            (dlt_p34, "p34 = 1"),
+            (lambda X, uv: dlt_half(X, uv, undo="T"), "undid only the pixels'"),
+            (lambda X, uv: dlt_half(X, uv, undo="U"), "undid only the world points'"),
+            (lambda X, uv: dlt_half(X, uv, sign=1.0), "sign slip in A"),
+            (lambda X, uv: dlt_half(X, uv, column=True), "Vt[-1], not Vt[:, -1]"),
+            (lambda X, uv: dlt_half(X, uv, column=True, interleave=True), "Vt[-1], not Vt[:, -1]"),
+            (lambda X, uv: dlt_half(X, uv, order="F"), "column by column"),
+            (lambda X, uv: dlt_half(X, uv, order="F", interleave=True), "column by column"),
+            (lambda X, uv: cm.estimate_projection_matrix(X, uv).T, "transposed"),
+            (
+                lambda X, uv: (
+                    cm.estimate_projection_matrix(X, uv).ravel().reshape((3, 4), order="F")
+                ),
+                "wrong order",
+            ),
+        ),
+        teaching=estimate_projection_matrix,
+    )
+)

@@ -1,0 +1,239 @@
+"""Lesson 04's exercise rq_decomposition: M = K R with K upper triangular (positive diagonal) and R a rotation."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ... import camera as cm
+from .._core import Exercise, register_exercise
+from ._scenes import cameras
+
+# -- rq_decomposition ----------------------------------------------------------------------
+# (The whole decomposition returns four arrays of different shapes, which the checker cannot
+# print; the exercise is its heart, M = K R, and the lesson derives t and C from it.)
+
+
+def _rq_cases():
+    cams = cameras()
+    return [
+        (cams[0].P[:, :3],),
+        (2.5 * cams[1].P[:, :3],),
+        (0.003 * cams[2].P[:, :3],),
+        (
+            cm.intrinsic_matrix(700, 650, 300, 200, 5.0)
+            @ cm.rotation_from_axis_angle([0.3, -2.0, 0.5]),
+        ),
+        (-2.5 * cams[0].P[:, :3],),
+    ]  # det M < 0 (lesson 04, section 4): K R = M still, so det R = -1
+
+
+def _rq_compare(got, expected) -> bool:
+    try:
+        K, R = (np.asarray(g, dtype=float) for g in got)
+    except (TypeError, ValueError):
+        return False
+    return K.shape == R.shape == (3, 3) and bool(
+        np.allclose(K, expected[0], rtol=1e-7, atol=1e-7)
+        and np.allclose(R, expected[1], rtol=1e-7, atol=1e-7)
+    )
+
+
+def _rq_diagnosis(args, got, expected) -> str:
+    (M,) = args
+    try:
+        K, R = (np.asarray(g, dtype=float) for g in got)
+        assert K.shape == R.shape == (3, 3)
+    except (TypeError, ValueError, AssertionError):
+        return "return a pair (K, R) of (3, 3) arrays"
+    scale = 1e-6 * np.abs(M).max()
+    if np.linalg.det(M) < 0 and np.allclose(K @ R, -M, rtol=1e-6, atol=scale):
+        return (
+            "K R = -M: you made det R = +1 by a sign change, either negating R after the sign fix or factoring "
+            "-M instead of M (step 1 of section 4); both give this same pair. Flipping the sign belongs to "
+            "decomposing a camera, where -P is the same camera; here M must come back as K R exactly. For "
+            "det M < 0 a K with a positive diagonal forces det R = -1, a reflection: the sign that tells the "
+            "camera decomposition to flip P first."
+        )
+    reproduces = np.allclose(K @ R, M, rtol=1e-6, atol=1e-6 * np.abs(M).max())
+    orthogonal = np.allclose(R @ R.T, np.eye(3), atol=1e-6)
+    if reproduces and not orthogonal:
+        gram = np.diag(R @ R.T)
+        if np.allclose(gram, gram[0], rtol=1e-6):
+            return (
+                f"K R = M, but R is not orthogonal: R R^T = {gram[0]:.4g} I, so R carries a scale (did you divide "
+                f"K by K[2, 2] and multiply R by it?). R must be a rotation or reflection, R R^T = I; the scale of M "
+                f"stays in K (K[2, 2] carries it)."
+            )
+        return (
+            "K R = M, but R is not orthogonal (R R^T != I): R must be a rotation or a reflection."
+        )
+    if np.isclose(K[2, 2], 1.0) and not reproduces and not np.isclose(abs(M[2] @ M[2]), 1.0):
+        return (
+            "you divided K by K[2, 2], so K R = M / K[2, 2] and no longer M; and a negative K[2, 2] "
+            "does not fix the signs. Keep K unnormalised (K[2, 2] carries M's scale) and fix the signs "
+            "with D = diag(sign(diag(K))): K D and D R."
+        )
+    if not reproduces:
+        if np.allclose(R @ K, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
+            if np.abs(np.tril(K, -1)).max() > 1e-6 * np.abs(K).max() and np.allclose(
+                K @ K.T, np.eye(3), atol=1e-6
+            ):
+                return "you returned (R, K): the order is swapped. Return K first, then R: `return K, R`."
+            return "you computed M = Q K (a QR decomposition); the camera needs M = K R with K on the left (RQ)."
+        misplaced = _sign_fix_misplaced(K, R, M)
+        if misplaced:
+            return misplaced
+        if np.allclose(K @ R.T, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
+            return "R is transposed: M = K R."
+        if np.allclose(K.T @ R, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
+            return "K is transposed (lower triangular): M = K R with K upper triangular; return K itself, not K.T."
+        if _signs_fixed_in_k_only(K, R, M):
+            return (
+                "you fixed the signs of K (K D) but not of R: K R = (K D)(D R), so apply the same "
+                "D = diag(sign(diag(K))) to R's rows too (D R), or K R no longer equals M."
+            )
+        return "K R does not reproduce M; an RQ decomposition must satisfy M = K R exactly."
+    if np.abs(np.tril(K, -1)).max() > 1e-9 * np.abs(K).max():
+        return "K must be upper triangular."
+    if np.any(np.diag(K) < 0) and np.linalg.det(M) < 0 and np.linalg.det(R) > 0:
+        return (
+            "det M < 0 here, and your R is a rotation (det R = +1), so K must carry the minus sign: K R = M with "
+            "a positive-diagonal K forces det K > 0 and so det R = det M / det K < 0, a reflection. Do not "
+            "negate K and R (or K's last column and R's last row) to make det R = +1; fix only the signs of "
+            "diag(K) with D = diag(sign(diag(K))), K D and D R, and let det R = -1. Making det R = +1 by "
+            "flipping P belongs to decomposing a camera (section 4, step 1), not to the RQ decomposition."
+        )
+    if np.any(np.diag(K) < 0):
+        return (
+            "K has a negative diagonal entry: fix the signs. RQ is unique only up to D = diag(+-1); "
+            "use K D and D R with D = diag(sign(diag(K)))."
+        )
+    return "K R = M with K positive upper triangular, but the factors differ; is R orthogonal?"
+
+
+def sign_flips():
+    """The seven D = diag(+-1) other than I."""
+    return [
+        np.diag(signs) for signs in np.array(np.meshgrid(*[[1.0, -1.0]] * 3)).reshape(3, -1).T[1:]
+    ]
+
+
+def _sign_fix_misplaced(K, R, M) -> str | None:
+    """The cause when D was applied on the wrong side: R @ D (R's columns) or D @ K (K's rows)."""
+    scale = 1e-6 * np.abs(M).max()
+    for D in sign_flips():
+        if np.allclose(K @ D @ R @ D, M, rtol=1e-6, atol=scale):
+            return (
+                "you applied D to R's columns (R @ D). K R = (K D)(D R): D flips K's columns (K @ D) "
+                "and R's rows (D @ R), so that D D = I cancels between them."
+            )
+        if np.allclose(D @ K @ D @ R, M, rtol=1e-6, atol=scale):
+            return (
+                "you applied D to K's rows (D @ K). K R = (K D)(D R): D flips K's columns (K @ D) "
+                "and R's rows (D @ R), so that D D = I cancels between them."
+            )
+    return None
+
+
+def _signs_fixed_in_k_only(K, R, M) -> bool:
+    """True if K D R = M for some D = diag(+-1) other than I (K's columns flipped, R's rows not)."""
+    scale = 1e-6 * np.abs(M).max()
+    for D in sign_flips():
+        if np.allclose(K @ D @ R, M, rtol=1e-6, atol=scale):
+            return True
+    return False
+
+
+def _rq_signs_of_k_only(M):
+    from scipy.linalg import rq
+
+    K, R = rq(M)
+    return K @ np.diag(np.sign(np.diag(K))), R
+
+
+def _rq_no_sign_fix(M):
+    from scipy.linalg import rq
+
+    return rq(M)
+
+
+def _rq_normalised_no_sign_fix(M):
+    from scipy.linalg import rq
+
+    K, R = rq(M)
+    return K / K[2, 2], R
+
+
+def _rq_sign_fix_on_columns_of_r(M):
+    from scipy.linalg import rq
+
+    K, R = rq(M)
+    D = np.diag(np.sign(np.diag(K)))
+    return K @ D, R @ D
+
+
+def _rq_sign_fix_on_rows_of_k(M):
+    from scipy.linalg import rq
+
+    K, R = rq(M)
+    D = np.diag(np.sign(np.diag(K)))
+    return D @ K, D @ R
+
+
+def _rq_forced_rotation(M):
+    """Signs fixed, then K and R negated to make det R = +1 (K R = M still, but diag K < 0 when det M < 0)."""
+    K, R = cm.rq_decomposition(M)
+    return (-K, -R) if np.linalg.det(R) < 0 else (K, R)
+
+
+def _rq_qr(M):
+    Q, U = np.linalg.qr(M)
+    return U, Q
+
+
+def rq_decomposition(M):
+    """M = K R with K upper triangular (positive diagonal) and R orthogonal, from numpy's QR."""
+    E = np.eye(3)[::-1]  # the exchange matrix reverses row order; E = E^T = E^-1
+    Q, U = np.linalg.qr((E @ M).T)  # (E M)^T = Q U, so M = (E U^T E)(E Q^T)
+    K, R = E @ U.T @ E, E @ Q.T  # E U^T E is upper triangular
+    D = np.diag(np.sign(np.diag(K)))  # K R = (K D)(D R): flip signs so diag(K) > 0
+    return K @ D, D @ R
+
+
+register_exercise(
+    Exercise(
+        name="rq_decomposition",
+        lesson="04",
+        reference=cm.rq_decomposition,
+        cases=_rq_cases,
+        compare=_rq_compare,
+        diagnose=_rq_diagnosis,
+        wrong_variants=(
+            (_rq_no_sign_fix, "fix the signs"),
+            (_rq_normalised_no_sign_fix, "divided K by K[2, 2]"),
+            (_rq_qr, "QR decomposition"),
+            (_rq_signs_of_k_only, "apply the same"),
+            (lambda M: (lambda K, R: (K, R.T))(*cm.rq_decomposition(M)), "transposed"),
+            (lambda M: (lambda K, R: (K.T, R))(*cm.rq_decomposition(M)), "K is transposed"),
+            (lambda M: cm.rq_decomposition(M)[::-1], "order is swapped"),
+            (_rq_sign_fix_on_columns_of_r, "R's columns"),
+            (_rq_sign_fix_on_rows_of_k, "K's rows"),
+            (
+                lambda M: cm.rq_decomposition(np.sign(np.linalg.det(M)) * np.asarray(M)),
+                "factoring -M instead of M",
+            ),
+            (
+                lambda M: (lambda K, R: (K, np.sign(np.linalg.det(R)) * R))(
+                    *cm.rq_decomposition(M)
+                ),
+                "negating R",
+            ),
+            (_rq_forced_rotation, "R is a rotation (det R = +1)"),
+            (
+                lambda M: (lambda K, R: (K / K[2, 2], R * K[2, 2]))(*cm.rq_decomposition(M)),
+                "R is not orthogonal",
+            ),
+        ),
+        teaching=rq_decomposition,
+    )
+)
