@@ -191,7 +191,7 @@ class RenderResult(NamedTuple):
 def project(
     points_world: ArrayLike,
     K: ArrayLike,
-    R: ArrayLike = np.eye(3),
+    R: ArrayLike | None = None,
     t: ArrayLike = (0, 0, 0),
     dist: ArrayLike | None = None,
 ) -> np.ndarray:
@@ -199,7 +199,7 @@ def project(
 
     :math:`X_c = R X + t`, :math:`x = (X_c/Z_c, Y_c/Z_c)`, :math:`x_d = \mathrm{distort}(x)`,
     :math:`u = K [x_d, 1]`, by :meth:`camlab.camera.Camera.project`. Agrees with
-    ``cv2.projectPoints`` (to 1e-9 px).
+    ``cv2.projectPoints`` (to 1e-9 px). ``R=None`` (the default) is the identity.
 
     Returns
     -------
@@ -276,7 +276,7 @@ def render(
     K: ArrayLike,
     size: tuple[int, int] = (640, 480),
     *,
-    R: ArrayLike = np.eye(3),
+    R: ArrayLike | None = None,
     t: ArrayLike = (0, 0, 0),
     dist: ArrayLike | None = None,
     defocus: Defocus | None = None,
@@ -298,7 +298,7 @@ def render(
     size : (width, height)
         Image size in pixels.
     R, t : (3, 3), (3,) array_like
-        cam_from_world pose: ``X_cam = R X_world + t``.
+        cam_from_world pose: ``X_cam = R X_world + t``; ``R=None`` (the default) is the identity.
     dist : (5,) array_like or None
         ``(k1, k2, p1, p2, k3)``; the whole image must lie inside the model's valid radius.
     defocus : Defocus or None

@@ -186,7 +186,10 @@ def test_three_cameras_demo_difference_shrinks_with_distance():
     assert d.state["max_difference"] < near / 3  # the largest gap inside the frame (px)
     assert af.is_affine(d.state["P_weak"])
     # a half turn about the vertical leaves the scene as it is: azimuth -90 .. 90 shows every view once
-    segments = lambda S: {frozenset(map(tuple, np.round(seg, 9) + 0.0)) for seg in S}
+
+    def segments(S):
+        return {frozenset(map(tuple, np.round(seg, 9) + 0.0)) for seg in S}
+
     scene = box_and_rails()
     assert segments(scene * [-1, -1, 1]) == segments(
         scene

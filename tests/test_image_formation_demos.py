@@ -268,14 +268,18 @@ def test_newton_step_check_rejects_wrong_jacobians_with_the_right_radial_part():
 
         return newton_step
 
-    outer = lambda x: x[:, :, None] * x[:, None, :]  # noqa: E731
-    right = lambda x, L, r2, k1, k2: (
-        L[:, :, None] * np.eye(2) + (2 * k1 + 4 * k2 * r2)[:, :, None] * outer(x)
-    )  # noqa: E731
-    scalar = lambda x, L, r2, k1, k2: (L + (2 * k1 + 4 * k2 * r2) * r2)[:, :, None] * np.eye(2)  # noqa: E731
-    tilted = lambda x, L, r2, k1, k2: (
-        right(x, L, r2, k1, k2) + 5 * (r2[:, :, None] * np.eye(2) - outer(x))
-    )  # noqa: E731
+    def outer(x):
+        return x[:, :, None] * x[:, None, :]
+
+    def right(x, L, r2, k1, k2):
+        return L[:, :, None] * np.eye(2) + (2 * k1 + 4 * k2 * r2)[:, :, None] * outer(x)
+
+    def scalar(x, L, r2, k1, k2):
+        return (L + (2 * k1 + 4 * k2 * r2) * r2)[:, :, None] * np.eye(2)
+
+    def tilted(x, L, r2, k1, k2):
+        return right(x, L, r2, k1, k2) + 5 * (r2[:, :, None] * np.eye(2) - outer(x))
+
     with contextlib.redirect_stdout(io.StringIO()):
         assert check("newton_step", step(right))
     with pytest.raises(AssertionError, match="you wrote x\\^T x"):

@@ -155,7 +155,7 @@ def test_wave_correction_levels_a_tilted_sweep():
     tilt = rotation_from_axis_angle([0.2, 0.0, 0.1])  # the whole sweep about a tilted axis
     Rs = [rotation_from_axis_angle([0, np.radians(a), 0]) @ tilt for a in (-40, -10, 20, 50)]
     out = cm.wave_correct(Rs)
-    for R0, R1 in zip(Rs, out, strict=True):
+    for R1 in out:
         assert abs(R1[0] @ [0, 1, 0]) < 1e-9  # every camera's x axis is horizontal
         assert np.allclose(R1 @ R1.T, np.eye(3))
     # relative rotations are unchanged

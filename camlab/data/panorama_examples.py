@@ -87,7 +87,8 @@ BASELINES = (0.0, 0.05, 0.1, 0.2, 0.4)
 def _with_canvases(warped: st.WarpedImages) -> st.WarpedImages:
     """Build ``warped``'s full-canvas images, masks and weights (made on first use) now, so that
     :func:`read_only` freezes them with the rest."""
-    warped.images, warped.masks, warped.weights
+    for name in ("images", "masks", "weights"):  # cached properties: the first read builds them
+        getattr(warped, name)
     return warped
 
 

@@ -184,7 +184,9 @@ class WarpedImages:
         h, w = self.shape
         size = (-(-h // step), -(-w // step))
         imgs, masks = [], []
-        for p, m, (r0, r1, c0, c1) in zip(self.patches, self.patch_masks, self.boxes, strict=True):
+        for p, m, (r0, _r1, c0, _c1) in zip(
+            self.patches, self.patch_masks, self.boxes, strict=True
+        ):
             a, b = -(-r0 // step), -(-c0 // step)  # the first grid row and column in the box
             sp, sm = (
                 p[a * step - r0 :: step, b * step - c0 :: step],

@@ -189,17 +189,17 @@ def point_line_duality() -> Demo:
         p = pj.to_homogeneous([v["px"], v["py"]])
         t = np.radians(v["line_angle"])
         # Line with unit normal (cos t, sin t) at distance line_dist from the origin.
-        l = np.array([np.cos(t), np.sin(t), -v["line_dist"]])
-        incidence = float(p @ l)
+        line = np.array([np.cos(t), np.sin(t), -v["line_dist"]])
+        incidence = float(p @ line)
         state.update(
-            point=p, line=l, incidence=incidence, on_line=bool(pj.is_on_line(p, l, tol=1e-3))
+            point=p, line=line, incidence=incidence, on_line=bool(pj.is_on_line(p, line, tol=1e-3))
         )
         p_dot.set_data([p[0]], [p[1]])
-        set_line(l_line, l, ax_p)
+        set_line(l_line, line, ax_p)
         set_line(pd_line, p, ax_d)
-        ld = pj.from_homogeneous(l)
+        ld = pj.from_homogeneous(line)
         ld_dot.set_data([ld[0]], [ld[1]])
-        p_text, l_text = (", ".join(f"{c:+.2f}" for c in x) for x in (p, l))
+        p_text, l_text = (", ".join(f"{c:+.2f}" for c in x) for x in (p, line))
         readout.value = monospace(
             f"p = ({p_text})\nl = ({l_text})\np · l = {incidence:+.3f}\n(0 ⇔ p on l ⇔ l* on p*)"
         )

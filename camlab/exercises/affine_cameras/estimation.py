@@ -84,9 +84,12 @@ _UNDO = (
 def _normalisation_slip(g, expected, X, uv) -> str | None:
     """The cause when ``g`` is the least-squares camera with a similarity normalisation (of a kind in
     :func:`_normalisation_scales`) left in it, or undone in the wrong order."""
-    power = lambda T, k: (
-        np.linalg.matrix_power(T, k) if k >= 0 else np.linalg.matrix_power(np.linalg.inv(T), -k)
-    )
+
+    def power(T, k):
+        return (
+            np.linalg.matrix_power(T, k) if k >= 0 else np.linalg.matrix_power(np.linalg.inv(T), -k)
+        )
+
     undo = "P = inv(T_uv) @ P_n @ T_X"
     for name_x, s_x in _normalisation_scales(X).items():
         T_x = _similarity(X, s_x)
