@@ -189,3 +189,97 @@ def test_no_unused_function_parameters():
         cwd=ROOT.parent,
     )
     assert out.returncode == 0, out.stdout
+
+
+# Public functions that return several values return a NamedTuple with documented fields
+# (docs/conventions.md, "Results"): ``K, R = rq_decomposition(M)`` still unpacks, and
+# ``rq_decomposition(M).K`` says what it is. These may stay bare, each for its reason:
+BARE_TUPLES_ALLOWED = {
+    # the teaching solutions of lesson exercises: the code a student writes for the prompt
+    # ("return K, R"), shown as the answer; the exercise's reference is the named camlab result
+    "camlab.exercises.projective_camera.rq_decomposition": "an exercise's teaching solution",
+    "camlab.exercises.sensor_noise.gain_and_read_noise": "an exercise's teaching solution",
+    "camlab.exercises.stereo_rectification.epipoles": "an exercise's teaching solution",
+    "camlab.exercises.stereo_rectification.decompose_essential": "an exercise's teaching solution",
+    # a sequence of artists splatted into view.animate(*...), not a record of named values
+    "camlab.widgets.affine_cameras.reference_marker": "a sequence of artists, not a record",
+}
+
+
+def _returns_a_bare_tuple(fn: ast.FunctionDef) -> bool:
+    annotation = ast.unparse(fn.returns) if fn.returns else ""
+    if annotation.split("[")[0].strip() in ("tuple", "Tuple", "typing.Tuple"):
+        return True
+    stack = list(fn.body)
+    while stack:
+        node = stack.pop()
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda, ast.ClassDef)):
+            continue  # a nested function's returns are its own
+        if isinstance(node, ast.Return) and (
+            isinstance(node.value, ast.Tuple)
+            or (
+                isinstance(node.value, ast.Call)
+                and isinstance(node.value.func, ast.Name)
+                and node.value.func.id == "tuple"
+            )
+        ):
+            return True
+        stack.extend(ast.iter_child_nodes(node))
+    return False
+
+
+def bare_tuple_returns(root: Path) -> list[str]:
+    """Public functions and methods of public classes, in public modules, that return a bare tuple
+    (``return a, b``, ``return tuple(...)``, or a ``-> tuple[...]`` annotation)."""
+    found = []
+    for path in sorted(root.rglob("*.py")):
+        parts = path.relative_to(root.parent).with_suffix("").parts
+        if any(_private(p) for p in parts):
+            continue
+        module = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+        for node in ast.parse(path.read_text(), str(path)).body:
+            functions = [("", node)]
+            if isinstance(node, ast.ClassDef) and not _private(node.name):
+                functions = [(f"{node.name}.", item) for item in node.body]
+            for prefix, fn in functions:
+                if (
+                    isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef))
+                    and not _private(fn.name)
+                    and _returns_a_bare_tuple(fn)
+                ):
+                    found.append(f"{module}.{prefix}{fn.name}")
+    return found
+
+
+def test_public_functions_return_named_results():
+    found = bare_tuple_returns(ROOT)
+    new = [name for name in found if name not in BARE_TUPLES_ALLOWED]
+    assert new == [], (
+        f"return a NamedTuple with documented fields (docs/conventions.md, 'Results'): {new}"
+    )
+    stale = sorted(set(BARE_TUPLES_ALLOWED) - set(found))
+    assert stale == [], f"no longer bare: take them off BARE_TUPLES_ALLOWED: {stale}"
+
+
+def test_the_scan_finds_a_bare_tuple(tmp_path):
+    """The rule can fail: every way of returning a bare tuple is caught; named results, private
+    functions, private modules and nested helpers are not."""
+    pkg = tmp_path / "camlab"
+    pkg.mkdir()
+    (pkg / "_private.py").write_text("def f():\n    return 1, 2\n")
+    (pkg / "a.py").write_text(
+        "from typing import NamedTuple\n\n"
+        "class Pair(NamedTuple):\n    a: int\n    b: int\n\n"
+        "    def swapped(self):\n        return self.b, self.a\n\n"
+        "def literal(x):\n    if x:\n        return x, x\n    return Pair(1, 2)\n\n"
+        "def made():\n    return tuple(range(2))\n\n"
+        "def annotated() -> tuple[int, int]:\n    return divmod(7, 2)\n\n"
+        "def named() -> Pair:\n    def helper():\n        return 1, 2\n    return Pair(*helper())\n\n"
+        "def _private():\n    return 1, 2\n"
+    )
+    assert bare_tuple_returns(pkg) == [
+        "camlab.a.Pair.swapped",
+        "camlab.a.literal",
+        "camlab.a.made",
+        "camlab.a.annotated",
+    ]

@@ -66,6 +66,7 @@ __all__ = [
     "WideSweep",
     "canvas_previews",
     "correct_matches",
+    "EdgeMasks",
     "edge_masks",
     "exposure_pair",
     "homographies_relative_to",
@@ -446,13 +447,22 @@ class ParallaxPair(NamedTuple):
     misalignment: float
 
 
-def edge_masks(warped: st.WarpedImages) -> tuple:
+class EdgeMasks(NamedTuple):
+    """:func:`edge_masks`: bool (h, w) canvas masks of the edges of warped views ``first`` and ``second``."""
+
+    first: np.ndarray
+    second: np.ndarray
+
+
+def edge_masks(warped: st.WarpedImages) -> EdgeMasks:
     """Canny edges (``cv2.Canny``, thresholds 60 and 140 on the grey levels) of the first two warped views, bool masks on the canvas."""
     import cv2
 
-    return tuple(
-        cv2.Canny(np.clip(im.mean(axis=2) * 255, 0, 255).astype(np.uint8), 60, 140) > 0
-        for im in warped.images[:2]
+    return EdgeMasks(
+        *(
+            cv2.Canny(np.clip(im.mean(axis=2) * 255, 0, 255).astype(np.uint8), 60, 140) > 0
+            for im in warped.images[:2]
+        )
     )
 
 

@@ -13,6 +13,7 @@ from numpy.typing import ArrayLike
 from .._validate import CamlabInputError, check_integer, check_number, check_positive, check_size
 from ..camera import (
     Camera,
+    CameraPair,
     estimate_projection_matrix,
     look_at_rotation,
     orbit_eye,
@@ -149,13 +150,6 @@ def sleeper_gaps(P: ArrayLike, at: Sequence[float] = (-2.0, 20.0)) -> np.ndarray
     near_end = project_points(P, np.column_stack([zero, ys, zero]))
     far_end = project_points(P, np.column_stack([zero, ys + 1.0, zero]))
     return np.linalg.norm(far_end - near_end, axis=1)
-
-
-class CameraPair(NamedTuple):
-    """Two views of one scene (cam_from_world poses)."""
-
-    camera1: Camera
-    camera2: Camera
 
 
 def _camera_800(R: np.ndarray, eye: np.ndarray) -> Camera:

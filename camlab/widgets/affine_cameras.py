@@ -9,6 +9,8 @@ In a lesson::
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 from matplotlib.legend_handler import HandlerTuple
 from matplotlib.lines import Line2D
@@ -343,7 +345,22 @@ RAIL_SAMPLES = (
 )  # the metres of track the readouts measure, from y to y + 1 (in view at every setting)
 
 
-def rail_cameras(yaw: float, pitch: float):
+class RailCameras(NamedTuple):
+    """The rail demo's cameras (:func:`rail_cameras`).
+
+    Attributes
+    ----------
+    camera : Camera
+        The perspective camera looking along the track.
+    affine : (3, 4) ndarray
+        Its weak-perspective approximation about :data:`RAIL_REFERENCE`.
+    """
+
+    camera: cm.Camera
+    affine: np.ndarray
+
+
+def rail_cameras(yaw: float, pitch: float) -> RailCameras:
     """The rail demo's perspective camera looking along the track (+y), turned by ``yaw`` about the
     vertical and tilted down by ``pitch`` (radians; f = 500 px, 640 x 480), and its weak-perspective
     approximation about :data:`RAIL_REFERENCE`."""
@@ -351,7 +368,7 @@ def rail_cameras(yaw: float, pitch: float):
     cam = cm.Camera.look_at(
         RAIL_EYE, RAIL_EYE + direction, K=cm.intrinsic_matrix(500, 500, 319.5, 239.5)
     )
-    return cam, af.affine_approximation(cam, RAIL_REFERENCE)
+    return RailCameras(cam, af.affine_approximation(cam, RAIL_REFERENCE))
 
 
 # Measured over the whole range (f = 500 px): yaw within +-15 and pitch 10 to 18 degrees keep the vanishing
