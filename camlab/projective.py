@@ -24,7 +24,6 @@ from ._validate import CamlabInputError, DegenerateError, as_points, check_matri
 
 __all__ = [
     "LINE_AT_INFINITY",
-    "DegenerateError",
     "clip_line",
     "cross_ratio",
     "from_homogeneous",

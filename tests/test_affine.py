@@ -12,7 +12,8 @@ from hypothesis import strategies as st
 from camlab import affine as af
 from camlab import camera as cm
 from camlab._validate import CamlabInputError, DegenerateError
-from camlab.scenes import box_and_rails, box_wireframe
+from camlab.fixtures import box_and_rails
+from camlab.scenes import box_wireframe
 
 os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
 
@@ -334,7 +335,7 @@ def test_lesson05_exercises(capsys):
 
 
 def test_three_images_of_a_scene(cam):
-    from camlab.scenes import box_and_rails
+    from camlab.fixtures import box_and_rails
 
     segs = box_and_rails()
     imgs = af.three_images(cam, segs)

@@ -283,3 +283,163 @@ def test_the_scan_finds_a_bare_tuple(tmp_path):
         "camlab.a.made",
         "camlab.a.annotated",
     ]
+
+
+# camlab.data is the bottom of the course's data: loaders that read the shipped files and build
+# the camera model from their ground truth (Camera, scale_intrinsics, the homography of a
+# rotation). Whatever runs an algorithm to make or prepare data (the generators, the pipelines
+# cached for the demos) is a fixture: camlab.fixtures, above the algorithms (docs/architecture.md).
+DATA_MAY_IMPORT = {"_validate", "_files", "camera", "homography"}
+
+
+def data_imports(root: Path) -> list[str]:
+    """The camlab modules that camlab.data imports beyond :data:`DATA_MAY_IMPORT`, as 'file: module'.
+
+    Every import counts, at module level or inside a function; ``data/__main__.py`` (the
+    ``python -m camlab.data`` entry point, run and never imported) is left out."""
+    found = []
+    for path in sorted((root / "data").rglob("*.py")):
+        if path.name == "__main__.py":
+            continue
+        rel = path.relative_to(root)
+        for node in ast.walk(ast.parse(path.read_text(), str(path))):
+            if isinstance(node, ast.ImportFrom) and node.level:
+                base = list(rel.with_suffix("").parts[:-1])[: len(rel.parts) - node.level]
+                target = [*base, *(node.module.split(".") if node.module else [])]
+                modules = [target[0]] if target else [a.name for a in node.names]
+            elif isinstance(node, ast.ImportFrom) and (node.module or "").startswith("camlab."):
+                modules = [node.module.split(".")[1]]
+            elif isinstance(node, ast.ImportFrom) and node.module == "camlab":
+                modules = [a.name for a in node.names]
+            elif isinstance(node, ast.Import):
+                modules = [a.name.split(".")[1] for a in node.names if a.name.startswith("camlab.")]
+            else:
+                continue
+            found += [
+                f"{rel.as_posix()}: {m}" for m in modules if m not in DATA_MAY_IMPORT | {"data"}
+            ]
+    return found
+
+
+def test_data_imports_no_algorithm_module():
+    """Loaders only: what renders, calibrates, stitches or rectifies belongs in camlab.fixtures."""
+    assert data_imports(ROOT) == []
+
+
+def test_the_data_rule_can_fail(tmp_path):
+    pkg = tmp_path / "camlab"
+    (pkg / "data").mkdir(parents=True)
+    (pkg / "data" / "__init__.py").write_text("from .sets import load\n")
+    (pkg / "data" / "__main__.py").write_text("from ..fixtures import main\n")  # an entry point
+    (pkg / "data" / "sets.py").write_text(
+        "from .._validate import check_size\nfrom ..camera import Camera\n"
+        "def load():\n    from .. import render\n    from camlab.stitching import stitch\n"
+        "    from camlab import rectification\n"
+    )
+    assert data_imports(pkg) == [
+        "data/sets.py: render",
+        "data/sets.py: stitching",
+        "data/sets.py: rectification",
+    ]
+
+
+def _module_of(path: Path, root: Path) -> str:
+    parts = path.relative_to(root.parent).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def stray_reexports(root: Path) -> list[str]:
+    """Public names importable from three places or more: where they are defined, the curated
+    map, and more than one other module.
+
+    The curated map is ``camlab`` itself together with the package that presents the name's
+    module (a package's ``__init__`` is the face of its modules, and ``camlab``'s lazy map reads
+    through it: ``camlab.calibrate_camera`` is ``camlab.calibration.calibrate_camera``). A module
+    re-exports a name when its ``__all__`` lists an imported name (or, without ``__all__``, when
+    it is a package ``__init__`` importing it). One more home beside those two is allowed
+    (``camlab.calibration.nearest_rotation``, defined in ``camlab.camera``); a third is not."""
+    defined: dict[str, set[str]] = {}
+    imported: dict[str, dict[str, str]] = {}  # module -> {local name: module it comes from}
+    exported: dict[str, set[str]] = {}
+    for path in sorted(root.rglob("*.py")):
+        module = _module_of(path, root)
+        is_package = path.name == "__init__.py"
+        tree = ast.parse(path.read_text(), str(path))
+        names, sources, public = set(), {}, None
+        for node in tree.body:
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+                names.add(node.name)
+            elif isinstance(node, ast.Assign):
+                targets = [t.id for t in node.targets if isinstance(t, ast.Name)]
+                if targets == ["__all__"]:
+                    public = set(ast.literal_eval(node.value))
+                names.update(targets)
+            elif isinstance(node, ast.ImportFrom):
+                source = (
+                    _resolve(module, is_package, node.level, node.module)
+                    if node.level
+                    else (node.module or "")
+                )
+                if source.startswith(root.name):
+                    for a in node.names:
+                        sources[a.asname or a.name] = f"{source}.{a.name}"
+        defined[module], imported[module] = names, sources
+        if public is None:
+            public = set(sources) if is_package else set()
+        exported[module] = {n for n in public if n in sources and not _private(n)}
+
+    def home(dotted: str) -> str | None:
+        """The module that defines ``dotted`` (``module.name``), following re-exports."""
+        for _ in range(10):
+            module, _, name = dotted.rpartition(".")
+            if name in defined.get(module, ()):
+                return module
+            if name not in imported.get(module, {}):
+                return None  # a module, or a name from outside the scan
+            dotted = imported[module][name]
+        return None
+
+    mapped: dict[tuple[str, str], bool] = {}  # (name, home) -> in the curated map
+    strays: dict[tuple[str, str], list[str]] = {}
+    for module in sorted(exported):
+        for name in sorted(exported[module]):
+            where = home(imported[module][name])
+            if where is None:
+                continue
+            if module == root.name or where.startswith(module + "."):
+                mapped[name, where] = True
+            else:
+                strays.setdefault((name, where), []).append(module)
+    return [
+        f"{name} (defined in {where}) is re-exported by {', '.join(modules)}"
+        for (name, where), modules in sorted(strays.items())
+        if 1 + mapped.get((name, where), False) + len(modules) >= 3
+    ]
+
+
+def test_no_name_is_importable_from_a_third_place():
+    """One home per name (its module, and the package that presents it) plus camlab's map."""
+    assert stray_reexports(ROOT) == []
+
+
+def test_the_reexport_scan_can_fail(tmp_path):
+    pkg = tmp_path / "camlab"
+    (pkg / "scenes").mkdir(parents=True)
+    (pkg / "__init__.py").write_text("from .scenes.planes import box\n")  # the map: fine
+    (pkg / "scenes" / "__init__.py").write_text("from .planes import box\n")  # its package: fine
+    (pkg / "scenes" / "planes.py").write_text("def box():\n    pass\n\ndef _helper():\n    pass\n")
+    (pkg / "render.py").write_text(  # a sibling: a third place
+        "from .scenes import box\nfrom .scenes.planes import _helper\n"
+        "__all__ = ['box', '_helper', 'render']\n\ndef render():\n    box()\n"
+    )
+    (pkg / "perspective.py").write_text("from .scenes import box\n")  # used, not re-exported
+    (pkg / "camera.py").write_text("def turn():\n    pass\n")
+    (pkg / "calibration.py").write_text("from .camera import turn\n__all__ = ['turn']\n")
+    assert stray_reexports(pkg) == [
+        "box (defined in camlab.scenes.planes) is re-exported by camlab.render"
+    ]  # camera.turn has one more home, calibration: two places, allowed
+    (pkg / "stitching.py").write_text("from .camera import turn\n__all__ = ['turn']\n")
+    assert stray_reexports(pkg) == [
+        "box (defined in camlab.scenes.planes) is re-exported by camlab.render",
+        "turn (defined in camlab.camera) is re-exported by camlab.calibration, camlab.stitching",
+    ]

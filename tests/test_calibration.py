@@ -15,7 +15,7 @@ from camlab._validate import CamlabInputError, DegenerateError
 from camlab.calibration.refinement import BlockNormal, project_views
 from camlab.camera import rotation_from_axis_angle, rotation_from_euler
 from camlab.data import load_calibration_set
-from camlab.data.calibration import bundled_calibration
+from camlab.fixtures.calibration import bundled_calibration
 from camlab.homography import pose_homography
 from camlab.optimize import dense_damped_solve, lm_step
 from camlab.render import align_detected_corners, project

@@ -17,7 +17,7 @@ from matplotlib.lines import Line2D
 
 from .. import affine as af
 from .. import camera as cm
-from .. import scenes
+from .. import fixtures, scenes
 from ..plotting import palette, scene3d
 from ._base import FigureView, build_demo, register, slider
 from .controls import int_slider, log_slider
@@ -111,7 +111,7 @@ def three_cameras():
     """Perspective, weak-perspective and orthographic images of the same scene side by side."""
     view = FigureView(figsize=(9.5, 3.35))
     axes = view.fig.subplots(1, 3)
-    scene = scenes.box_and_rails()
+    scene = fixtures.box_and_rails()
     persp = _image_panel(axes[0], "perspective (px)", "perspective")
     weak = _image_panel(axes[1], "weak perspective over perspective (px)", "weak perspective")
     axes[1].set_ylabel("")
@@ -381,7 +381,7 @@ def parallel_rails():
     and keeps equal sleepers equal at every depth (no shrinking with distance)."""
     view = FigureView(figsize=(10, 4.6))
     ax_p, ax_a = view.fig.subplots(1, 2)
-    scene = scenes.rail_track(*RAIL_TRACK)
+    scene = fixtures.rail_track(*RAIL_TRACK)
     ax_p.set_title("perspective: rails meet, far sleepers crowd", fontsize=9)
     ax_a.set_title("weak perspective: rails stay parallel, sleepers evenly spaced", fontsize=9)
     lines, texts = [], []
@@ -491,8 +491,8 @@ def parallel_rails():
         far_metre = cm.project_points(cam.P, ground[2:]).mean(axis=0)
         ring.set_data([far_metre[0]], [far_metre[1]])
         gaps = {
-            "perspective": scenes.sleeper_gaps(cam.P, RAIL_SAMPLES),
-            "affine": scenes.sleeper_gaps(P_aff, RAIL_SAMPLES),
+            "perspective": fixtures.sleeper_gaps(cam.P, RAIL_SAMPLES),
+            "affine": fixtures.sleeper_gaps(P_aff, RAIL_SAMPLES),
         }
         for text, (near, far) in zip(texts, gaps.values(), strict=True):
             text.set_text(

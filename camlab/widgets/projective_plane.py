@@ -9,8 +9,9 @@ from __future__ import annotations
 import ipywidgets as W
 import numpy as np
 
+from .. import fixtures
 from .. import projective as pj
-from .. import scenes
+from .._validate import DegenerateError
 from ..plotting import palette
 from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes, plane_axes, set_line
 from ._base import Demo, FigureView, build_demo, register, slider
@@ -118,7 +119,7 @@ def parallel_lines() -> Demo:
         set_line(l2_artist, l2, ax)
         try:
             x = pj.meet(l1, l2)
-        except pj.DegenerateError:
+        except DegenerateError:
             state.update(l2=l2, meet=None, w=float("nan"), point=None)
             meet_dot.set_data([], [])
             arrow.set_visible(False)
@@ -258,7 +259,9 @@ def vanishing_points() -> Demo:
     view.animate(grid_z, grid_x, horizon_artist, vz_dot, vx_dot, note)
 
     def update(v: dict, state: dict) -> None:
-        g = scenes.ground_plane_view(np.radians(v["pitch"]), np.radians(v["yaw"]), v["focal"], size)
+        g = fixtures.ground_plane_view(
+            np.radians(v["pitch"]), np.radians(v["yaw"]), v["focal"], size
+        )
         segs = g.segments
         n = g.n_along_z
         grid_z.set_segments(segs[:n])
