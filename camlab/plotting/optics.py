@@ -976,7 +976,7 @@ def draw_pinhole_cones(
     )  # plot x = depth z, mm: the right edge and the image plane
     entry = []
     for Y, colour in zip(
-        heights, (palette.BLUE, palette.PURPLE), strict=False
+        heights, (palette.BLUE, palette.PURPLE), strict=True
     ):  # objects: blue and purple (green is the virtual plane)
         y_obj = -Y * 1e3  # mm, drawn up
         y_img = Y * f / Z * 1e3  # the real image is inverted: -f Y / Z, drawn up as +

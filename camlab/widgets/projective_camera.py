@@ -504,7 +504,7 @@ def _place_camera_labels(ax, true_artist, est_artist) -> None:
     (_, _), (y_true, y_est), _ = proj3d.proj_transform(*np.c_[cams[0].centre, cams[1].centre], ax.M)
     up, down = (-0.05, -0.3), (-0.05, 0.3)
     for artist, offset in zip(
-        (true_artist, est_artist), (up, down) if y_true >= y_est else (down, up), strict=False
+        (true_artist, est_artist), (up, down) if y_true >= y_est else (down, up), strict=True
     ):
         artist.label_offset = offset
         artist.label.set(
