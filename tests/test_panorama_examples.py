@@ -5,6 +5,7 @@ public stages it is made of (recomputed live), and every cached array must refus
 """
 
 import dataclasses
+from itertools import pairwise
 
 import numpy as np
 import pytest
@@ -160,7 +161,7 @@ def test_parallax_grows_with_the_baseline():
     assert tuple(pairs) == pe.BASELINES
     mis = [p.misalignment for p in pairs.values()]
     assert mis[0] < 4 / 255 and all(
-        a < b for a, b in zip(mis, mis[1:], strict=True)
+        a < b for a, b in pairwise(mis)
     )  # only noise when the camera turns
     for p in pairs.values():
         assert p.registration.accepted and sorted(p.blends) == ["feather", "multiband"]
@@ -187,7 +188,7 @@ def test_canvas_previews_the_plane_cannot_hold_a_wide_turn():
         )  # scaled to fit the box, touching one side
         assert abs(w / h - p.shape[1] / p.shape[0]) < 0.02 * w / h  # the canvas' aspect ratio kept
     widths = [previews[(n, "cylindrical")].shape[1] for n in range(2, 7)]
-    assert all(a < b for a, b in zip(widths, widths[1:], strict=True))  # every view adds width
+    assert all(a < b for a, b in pairwise(widths))  # every view adds width
     assert (
         previews[(3, "planar")].shape[1] > 4 * previews[(3, "cylindrical")].shape[1]
     )  # the plane stretches

@@ -1,6 +1,7 @@
 """Every registered demo, driven headlessly through its sweep, plus lesson-06 specifics."""
 
 import pickle
+from itertools import pairwise
 
 import numpy as np
 import pytest
@@ -215,7 +216,7 @@ def test_parallel_lines_meet_runs_to_infinity():
     for angle in (10.0, 20.0, 27.0, 29.5, 30.0):
         demo.set(angle2=angle)
         ws.append(demo.state["w"])
-    assert all(a > b for a, b in zip(ws, ws[1:], strict=True)), ws
+    assert all(a > b for a, b in pairwise(ws)), ws
     assert ws[-1] == 0.0 and np.isnan(demo.state["point"]).all()
     demo.set(offset2=0.5)  # now l2 == l1
     assert demo.state["meet"] is None
