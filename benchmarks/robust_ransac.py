@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from functools import partial
 from pathlib import Path
 
 import cv2
@@ -69,12 +70,12 @@ def homography_row(case: str, src: np.ndarray, dst: np.ndarray, seeds: int) -> d
     runs = {"camlab": [], "RANSAC": [], "MAGSAC": []}
     times = {"camlab": [], "RANSAC": []}
     for seed in range(seeds):
-        fit, seconds = timed(lambda: ransac_homography(src, dst, THRESHOLD, rng=seed))
+        fit, seconds = timed(partial(ransac_homography, src, dst, THRESHOLD, rng=seed))
         times["camlab"].append(seconds)
         runs["camlab"].append(_quality(fit.H, src, dst))
         for name, method in (("RANSAC", cv2.RANSAC), ("MAGSAC", cv2.USAC_MAGSAC)):
             cv2.setRNGSeed(seed)
-            (H, _), seconds = timed(lambda: cv2.findHomography(src, dst, method, THRESHOLD))
+            (H, _), seconds = timed(partial(cv2.findHomography, src, dst, method, THRESHOLD))
             if name == "RANSAC":
                 times[name].append(seconds)
             runs[name].append(_quality(H, src, dst))
@@ -99,11 +100,11 @@ def fundamental_rows(seeds: int) -> list[dict]:
         x1, x2 = matches(a, b, 2500, 0.8)
         counts, times, cv_times = [], [], []
         for seed in range(seeds):
-            fit, seconds = timed(lambda: ransac_fundamental_matrix(x1, x2, 1.0, rng=seed))
+            fit, seconds = timed(partial(ransac_fundamental_matrix, x1, x2, 1.0, rng=seed))
             counts.append(int(fit.inliers.sum()))
             times.append(seconds)
             (_, mask), seconds = timed(
-                lambda: cv2.findFundamentalMat(x1, x2, cv2.FM_RANSAC, 1.0, 0.999)
+                partial(cv2.findFundamentalMat, x1, x2, cv2.FM_RANSAC, 1.0, 0.999)
             )
             cv_times.append(seconds)
         magsac = cv2.findFundamentalMat(x1, x2, cv2.USAC_MAGSAC, 1.0, 0.999)[1]

@@ -11,6 +11,7 @@ Also printed: camlab versus OpenCV on the same corners and both versus the truth
 from __future__ import annotations
 
 import sys
+from functools import partial
 from pathlib import Path
 
 import cv2
@@ -34,7 +35,7 @@ def rows(repeat: int = 7) -> list[dict]:
     for n_views, target in ((25, 5.0), (10, 5.0)):
         s = make_synthetic_views(n_views, 0.2, rng=np.random.default_rng(2026))
         ours = median_ms(
-            lambda: calibrate_camera(s.object_points, s.image_points, s.image_size), repeat, 1
+            partial(calibrate_camera, s.object_points, s.image_points, s.image_size), repeat, 1
         )
         ref = median_ms(_opencv(s), repeat, 1)
         out.append(

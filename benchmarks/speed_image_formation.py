@@ -7,11 +7,13 @@ from __future__ import annotations
 
 import os
 import sys
+from functools import partial
 
 import cv2
 import numpy as np
 
-from camlab import distortion, render, sensor
+from camlab import distortion, render, scenes, sensor
+from camlab.camera import rotation_from_euler
 
 sys.path.insert(0, os.path.dirname(__file__))
 from _timing import median_ms  # noqa: E402
@@ -37,13 +39,13 @@ def _row(case, ours, ref, target, ok):
 
 def rows() -> list[dict]:
     out = []
-    board = render.checkerboard(
-        (9, 6), 0.03, R=render.rotation_from_euler(0.3, -0.2, 0.1), t=(-0.12, -0.07, 0.7)
+    board = scenes.checkerboard(
+        (9, 6), 0.03, R=rotation_from_euler(0.3, -0.2, 0.1), t=(-0.12, -0.07, 0.7)
     )
     scene = [
         board,
-        render.box([0.2, 0.05, 0.9], [0.15, 0.15, 0.15], R=render.rotation_from_euler(0.4, 0.6, 0)),
-        render.text_page(0.2, t=(-0.25, 0.05, 1.0)),
+        scenes.box([0.2, 0.05, 0.9], [0.15, 0.15, 0.15], R=rotation_from_euler(0.4, 0.6, 0)),
+        scenes.text_page(0.2, t=(-0.25, 0.05, 1.0)),
     ]
     # the renderer has no OpenCV equivalent; its reference is one cv2.warpPerspective of the board texture
     H = K @ np.column_stack([board.R[:, 0], board.R[:, 1], board.t])
@@ -62,7 +64,7 @@ def rows() -> list[dict]:
         ),
     ]:
         sc = board if "board" == case.split()[-1] or "grey board" in case else scene
-        ms = _median_ms(lambda: render.render(sc, K, (640, 480), rng=0, **kw))
+        ms = _median_ms(partial(render.render, sc, K, (640, 480), rng=0, **kw))
         target = "<= 100 ms median" if "grey" in case or "noise" in case else "report only (RGB)"
         out.append(
             _row(
@@ -144,7 +146,7 @@ def rows() -> list[dict]:
     )
 
     truth = render.render(
-        [render.photo_plane(0.3, t=(0.05, 0.02, 1.0))],
+        [scenes.photo_plane(0.3, t=(0.05, 0.02, 1.0))],
         K * [[0.5], [0.5], [1]] + [[0, 0, -160], [0, 0, -120], [0, 0, 0]],
         (320, 240),
     ).irradiance
@@ -167,8 +169,8 @@ def psnr_table() -> list[dict]:
     """PSNR (dB) of every demosaicing method on a rendered colour scene, for each Bayer pattern."""
     K2 = np.array([[900.0, 0, 159.5], [0, 900.0, 119.5], [0, 0, 1]])
     scene = [
-        render.photo_plane(0.3, t=(0.05, 0.02, 1.0)),
-        render.text_page(0.2, t=(-0.2, 0.0, 1.1), R=render.rotation_from_euler(0, 0.2, 0.05)),
+        scenes.photo_plane(0.3, t=(0.05, 0.02, 1.0)),
+        scenes.text_page(0.2, t=(-0.2, 0.0, 1.1), R=rotation_from_euler(0, 0.2, 0.05)),
     ]
     truth = render.render(scene, K2, (320, 240), color=True).irradiance
     table = []

@@ -48,13 +48,14 @@ from _timing import print_table  # noqa: E402
 
 from camlab import stitching as st  # noqa: E402
 from camlab.data import panorama as pd  # noqa: E402
+from camlab.fixtures import panorama as fp  # noqa: E402
 
 TARGET = 2.0
 
 
 def sets() -> dict:
-    t3 = pd.turning_set("turn3", unrelated=True)
-    ex = pd.turning_set("exposures")
+    t3 = fp.turning_set("turn3", unrelated=True)
+    ex = fp.turning_set("exposures")
     aerial = pd.load_aerial_mosaic(6)
     f_true = float(t3.K[0, 0])
     return {

@@ -43,8 +43,9 @@ topic                     main functions
 ``rectification`` (11)    rectify_calibrated, rectify_uncalibrated
 ``disparity`` (11)        block_matching_disparity, sgbm_disparity, disparity_to_depth
 ``robust``, ``optimize``   the shared engines: ransac, levenberg_marquardt
-``render``, ``scenes``    the virtual camera with ground truth, and the lessons' scenes
-``data``                  the shipped photographs and data sets (load_photo ...)
+``render``, ``scenes``    the virtual camera with ground truth, and what it photographs
+``data``                  the shipped photographs and data sets, loaded (load_photo ...)
+``fixtures``              the lessons' scenes, the data sets' generators, the demos' cached pipelines
 ``plotting``,             figures, the demos behind the lessons, the checked exercises
 ``widgets``,
 ``exercises``
@@ -128,7 +129,7 @@ _MAIN: dict[str, tuple[str, ...]] = {
     "data": ("load_photo",),
 }
 _HOME = {name: topic for topic, names in _MAIN.items() for name in names}
-_TOPICS = (*_MAIN, "projective", "render", "scenes", "plotting", "widgets", "exercises")
+_TOPICS = (*_MAIN, "projective", "render", "scenes", "fixtures", "plotting", "widgets", "exercises")
 
 
 def __dir__() -> list[str]:

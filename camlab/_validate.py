@@ -304,9 +304,10 @@ def check_rotation(R: ArrayLike, name: str = "R", tol: float = ROTATION_TOL) -> 
     return a
 
 
-def check_pose(R: ArrayLike, t: ArrayLike, name: str = "") -> tuple[np.ndarray, np.ndarray]:
+def check_pose(R: ArrayLike | None, t: ArrayLike, name: str = "") -> tuple[np.ndarray, np.ndarray]:
     """Return a pose ``(R, t)`` as a (3, 3) rotation and a (3,) translation, or raise.
 
+    ``R=None`` is the identity (no turn): the default of every ``R`` keyword that takes a pose.
     ``name`` prefixes the argument names in messages (``"camera"`` gives ``"camera R"``).
 
     >>> R, t = check_pose(np.eye(3), [0, 0, 2])
@@ -314,7 +315,7 @@ def check_pose(R: ArrayLike, t: ArrayLike, name: str = "") -> tuple[np.ndarray, 
     array([0., 0., 2.])
     """
     prefix = f"{name} " if name else ""
-    Rm = check_rotation(R, f"{prefix}R")
+    Rm = np.eye(3) if R is None else check_rotation(R, f"{prefix}R")
     tv = check_matrix(np.ravel(as_float(t, f"{prefix}t")), (3,), f"{prefix}t")
     return Rm, tv
 

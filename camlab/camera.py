@@ -52,6 +52,7 @@ from .projective import hartley_normalization
 
 __all__ = [
     "Camera",
+    "CameraPair",
     "Decomposition",
     "CV_FROM_GL",
     "Pose",
@@ -341,6 +342,13 @@ class Pose(NamedTuple):
 
     R: np.ndarray
     t: np.ndarray
+
+
+class CameraPair(NamedTuple):
+    """Two views of one scene (cam_from_world poses): ``camera1`` and ``camera2``."""
+
+    camera1: Camera
+    camera2: Camera
 
 
 def opengl_from_opencv(R: ArrayLike, t: ArrayLike) -> Pose:

@@ -41,7 +41,7 @@ from ._validate import (
 from .camera import Camera, Pose, camera_centre
 from .homography import estimate_homography, symmetric_transfer_error
 from .projective import from_homogeneous, hartley_normalize, normalize_lines, to_homogeneous
-from .robust import PairModel, ransac
+from .robust import MinimalModels, PairModel, ransac
 
 __all__ = [
     "EssentialDecomposition",
@@ -539,10 +539,10 @@ class FundamentalModel(PairModel):
         self.an, self.T1 = hartley_normalize(x1)
         self.bn, self.T2 = hartley_normalize(x2)
 
-    def minimal(self, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def minimal(self, idx: np.ndarray) -> MinimalModels:
         _, s, Vt = np.linalg.svd(_eight_point_rows(self.an[idx], self.bn[idx]))
         ok = s[:, 7] > 1e-8 * s[:, 0]  # rank-deficient samples give no unique F
-        return self.T2.T @ _rank2(Vt[:, -1].reshape(-1, 3, 3)) @ self.T1, ok
+        return MinimalModels(self.T2.T @ _rank2(Vt[:, -1].reshape(-1, 3, 3)) @ self.T1, ok)
 
     def fit(self, idx: np.ndarray) -> np.ndarray:
         A = _eight_point_rows(self.an[idx], self.bn[idx])

@@ -46,12 +46,13 @@ from ._validate import (
     check_rotation,
 )
 from .optimize import levenberg_marquardt, unit_sphere_basis, unit_sphere_update
-from .projective import hartley_normalization, hartley_normalize, map_lines, map_points
-from .robust import PairModel, ransac
+from .projective import hartley_normalization, hartley_normalize, map_points
+from .robust import MinimalModels, PairModel, ransac
 
 __all__ = [
     "GoldStandardResult",
     "HIERARCHY",
+    "HomographyFactors",
     "HomographyModel",
     "RansacResult",
     "RefineResult",
@@ -66,8 +67,6 @@ __all__ = [
     "hartley_normalization",
     "hierarchy_matrix",
     "invert",
-    "map_lines",
-    "map_points",
     "normalize_homography",
     "plane_homography",
     "pose_homography",
@@ -446,9 +445,9 @@ class HomographyModel(PairModel):
     def normalised_to_pixels(self, Hn: np.ndarray) -> np.ndarray:
         return self.Td_inv @ Hn @ self.Ts  # H = Td^-1 Hn Ts
 
-    def minimal(self, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def minimal(self, idx: np.ndarray) -> MinimalModels:
         Hn, ok = _minimal_solve(self.sn[idx], self.dn[idx])
-        return self.normalised_to_pixels(Hn), ok
+        return MinimalModels(self.normalised_to_pixels(Hn), ok)
 
     def fit(self, idx: np.ndarray) -> np.ndarray:
         A = self.A[idx].reshape(-1, 9)
@@ -1076,7 +1075,25 @@ def classify(H: ArrayLike, tol: float = 1e-9) -> str:
     return "euclidean"
 
 
-def decompose(H: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+class HomographyFactors(NamedTuple):
+    """:func:`decompose`'s factors, :math:`H = H_S H_A H_P` (each (3, 3)).
+
+    Attributes
+    ----------
+    H_S : (3, 3) ndarray
+        The similarity part (rotation, uniform scale, translation).
+    H_A : (3, 3) ndarray
+        The affine part (upper-triangular K, det K = 1).
+    H_P : (3, 3) ndarray
+        The projective part (the bottom row that moves the line at infinity).
+    """
+
+    H_S: np.ndarray
+    H_A: np.ndarray
+    H_P: np.ndarray
+
+
+def decompose(H: ArrayLike) -> HomographyFactors:
     r"""Split :math:`H = H_S H_A H_P` into similarity, affine and projective parts (H&Z 2.4.6).
 
     .. math::
@@ -1089,7 +1106,8 @@ def decompose(H: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
     Returns
     -------
-    (H_S, H_A, H_P) : three (3, 3) ndarrays whose product equals ``normalize_homography(H)``.
+    HomographyFactors
+        ``(H_S, H_A, H_P)``: three (3, 3) ndarrays whose product equals ``normalize_homography(H)``.
     """
     Hm = normalize_homography(check_homography(H))
     if abs(Hm[2, 2]) < 1e-12:
@@ -1114,7 +1132,7 @@ def decompose(H: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     HP = np.eye(3)
     HP[2, :2] = vvec / vs * 1.0
     HP[2, 2] = 1.0
-    return HS, HA, HP
+    return HomographyFactors(HS, HA, HP)
 
 
 # --------------------------------------------------------------------------- geometry

@@ -71,6 +71,7 @@ from ._validate import CamlabInputError, ConvergenceError, check_finite
 
 __all__ = [
     "LMResult",
+    "NormalEquations",
     "dense_damped_solve",
     "dense_normal_equations",
     "huber_residuals",
@@ -89,7 +90,7 @@ class LMResult(NamedTuple):
     ``cost_history`` the cost after every iteration (entry 0 is the start; rejected steps
     repeat the previous cost); ``mu_history`` the damping used at each iteration;
     ``iterations``; ``converged`` and ``message`` say why it stopped; ``jacobian`` and
-    ``normal`` hold J and the (A, g) of the normal equations at ``x`` (for covariances).
+    ``normal`` hold J and the :class:`NormalEquations` ``(A, g)`` at ``x`` (for covariances).
     """
 
     x: np.ndarray
@@ -104,9 +105,24 @@ class LMResult(NamedTuple):
     normal: tuple
 
 
-def dense_normal_equations(J: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+class NormalEquations(NamedTuple):
+    r"""The Gauss-Newton normal equations :math:`A\,\delta = -g` that ``normal_equations`` returns.
+
+    Attributes
+    ----------
+    A : (n, n) ndarray, or any object the ``damped_solve`` in use understands
+        :math:`J^\top J` (a block structure for the calibration's sparse problem).
+    g : (n,) ndarray
+        The gradient :math:`J^\top r`.
+    """
+
+    A: Any
+    g: np.ndarray
+
+
+def dense_normal_equations(J: np.ndarray, r: np.ndarray) -> NormalEquations:
     r"""The Gauss-Newton normal equations of a dense Jacobian: :math:`(J^\top J,\ J^\top r)`."""
-    return J.T @ J, J.T @ r
+    return NormalEquations(J.T @ J, J.T @ r)
 
 
 def dense_damped_solve(A: np.ndarray, g: np.ndarray, mu: float) -> np.ndarray:

@@ -9,10 +9,10 @@ lengths is the aspect ratio (Zhang and He, "Whiteboard scanning and image
 enhancement", 2007).
 
 Also here: corner ordering and validation (:func:`order_corners`,
-:func:`check_quadrilateral`), an automatic document finder (:func:`find_document`),
-and synthetic photographs of textured planes with known ground truth
-(:func:`photograph_plane` with :func:`page_texture`, :func:`facade_texture`,
-:func:`painting_texture`) for lesson 10.
+:func:`check_quadrilateral`) and an automatic document finder (:func:`find_document`).
+Lesson 10's synthetic photographs of textured planes with known ground truth live with the
+other scenes: :func:`camlab.scenes.photograph_plane` with :func:`camlab.scenes.page_texture`,
+:func:`camlab.scenes.facade_texture`, :func:`camlab.scenes.painting_texture`.
 
 Corners are (u, v) pixels, (column, row), origin at the centre of the top-left pixel,
 in the order top-left, top-right, bottom-right, bottom-left (clockwise on screen).
@@ -36,38 +36,18 @@ from ._validate import (
     check_size,
 )
 from .homography import estimate_homography
-
-# The synthetic plane photos live in camlab.scenes; they are re-exported here for lesson 10.
-from .scenes import (
-    PlanePhoto,
-    desk_background,
-    facade_texture,
-    look_at_plane,
-    page_texture,
-    painting_texture,
-    photograph_plane,
-    sample_photo,
-)
 from .warp import warp_perspective
 
 __all__ = [
     "AspectRatio",
     "DocumentNotFoundError",
-    "PlanePhoto",
     "Rectified",
     "check_quadrilateral",
-    "desk_background",
     "estimate_aspect_ratio",
-    "facade_texture",
     "find_document",
-    "look_at_plane",
     "order_corners",
     "rectangle_homography",
-    "page_texture",
-    "painting_texture",
-    "photograph_plane",
     "rectify_quadrilateral",
-    "sample_photo",
 ]
 
 

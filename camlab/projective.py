@@ -24,7 +24,6 @@ from ._validate import CamlabInputError, DegenerateError, as_points, check_matri
 
 __all__ = [
     "LINE_AT_INFINITY",
-    "DegenerateError",
     "clip_line",
     "cross_ratio",
     "from_homogeneous",
@@ -206,7 +205,7 @@ def join(p: ArrayLike, q: ArrayLike) -> np.ndarray:
     )
 
 
-def meet(l: ArrayLike, m: ArrayLike) -> np.ndarray:
+def meet(l: ArrayLike, m: ArrayLike) -> np.ndarray:  # noqa: E741 (l, m: the book's names for two lines, public keywords)
     r"""The point where two lines cross: :math:`x = l \times m` (the dual of :func:`join`).
 
     Parallel lines give an ideal point (x, y, 0): their common direction.

@@ -34,13 +34,14 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._validate import CamlabInputError, DegenerateError, as_point_pairs, as_points, check_size
-from .camera import Camera, intrinsic_matrix
+from .camera import Camera, CameraPair, intrinsic_matrix
 from .distortion import DistortionMaps, distort_points, undistort_pixels
 from .epipolar import EIGHT_POINT_REASON, check_fundamental, epipoles, sampson_distance, skew
 from .homography import compose
 from .projective import map_points
 
 __all__ = [
+    "RectifiedImages",
     "CalibratedRectification",
     "UncalibratedRectification",
     "VerticalDisparity",
@@ -387,12 +388,25 @@ def unrectify_points(
     return p.restore(xn @ camera.K[:2, :2].T + camera.K[:2, 2])
 
 
+class RectifiedImages(NamedTuple):
+    """The rectified pair :func:`rectify_images` warps (pixels without a source are 0).
+
+    Attributes
+    ----------
+    image1, image2 : ndarray
+        The left and right images on the rectified grid, dtype and channels as given.
+    """
+
+    image1: np.ndarray
+    image2: np.ndarray
+
+
 def rectify_images(
     rect: CalibratedRectification | UncalibratedRectification,
     image1: np.ndarray,
     image2: np.ndarray,
     interpolation: str = "bilinear",
-) -> tuple[np.ndarray, np.ndarray]:
+) -> RectifiedImages:
     """Warp both original images into the rectified pair with ``cv2.remap`` / ``cv2.warpPerspective``.
 
     Images are (H, W) or (H, W, C) arrays indexed ``img[v, u]``; pixels without a source
@@ -420,14 +434,20 @@ def rectify_images(
             raise CamlabInputError(
                 "rect: has no remap tables; call rectify_calibrated(..., maps=True)"
             )
-        return tuple(
-            cv2.remap(a, m.map_u, m.map_v, flags, borderMode=cv2.BORDER_CONSTANT)
-            for a, m in ((out[0], rect.maps1), (out[1], rect.maps2))
+        return RectifiedImages(
+            *(
+                cv2.remap(a, m.map_u, m.map_v, flags, borderMode=cv2.BORDER_CONSTANT)
+                for a, m in ((out[0], rect.maps1), (out[1], rect.maps2))
+            )
         )
     if isinstance(rect, UncalibratedRectification):
-        return tuple(
-            cv2.warpPerspective(a, H, rect.image_size, flags=flags, borderMode=cv2.BORDER_CONSTANT)
-            for a, H in ((out[0], rect.H1), (out[1], rect.H2))
+        return RectifiedImages(
+            *(
+                cv2.warpPerspective(
+                    a, H, rect.image_size, flags=flags, borderMode=cv2.BORDER_CONSTANT
+                )
+                for a, H in ((out[0], rect.H1), (out[1], rect.H2))
+            )
         )
     raise CamlabInputError(
         f"rect: expected a rectify_calibrated or rectify_uncalibrated result, got {type(rect).__name__}"
@@ -642,9 +662,9 @@ class StereoCalibration(NamedTuple):
     iterations: int
     converged: bool
 
-    def cameras(self, image_size: tuple[int, int] = (640, 480)) -> tuple[Camera, Camera]:
+    def cameras(self, image_size: tuple[int, int] = (640, 480)) -> CameraPair:
         """The rig as two :class:`Camera` objects, camera 1 at the world origin."""
-        return (
+        return CameraPair(
             Camera(self.K1, np.eye(3), np.zeros(3), tuple(self.dist1), image_size),
             Camera(self.K2, self.R, self.t, tuple(self.dist2), image_size),
         )

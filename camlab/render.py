@@ -1,8 +1,8 @@
 r"""The virtual camera: render scenes of textured planes with exact ground truth.
 
 Every later lesson needs images whose true camera is known. :func:`render` draws a
-scene made of flat textured rectangles (:class:`Plane`: checkerboards, photographs, a text
-page, the faces of boxes) through
+scene made of flat textured rectangles (:class:`camlab.scenes.Plane`: checkerboards, photographs,
+a text page, the faces of boxes; :mod:`camlab.scenes` builds them) through
 
 1. pinhole projection with intrinsics ``K`` and pose ``(R, t)`` (``X_cam = R X_world + t``),
 2. Brown-Conrady lens distortion ``dist = (k1, k2, p1, p2, k3)`` (:mod:`camlab.distortion`),
@@ -53,28 +53,19 @@ from ._validate import (
     check_positive,
     check_size,
 )
-from .camera import Camera, Pose, look_at_rotation, rotation_from_euler, scale_intrinsics
-
-# The scene builders live in camlab.scenes; they are re-exported here for the lessons.
-from .scenes import Plane, box, checkerboard, photo_plane, text_page, textured_plane
+from .camera import Camera, Pose, look_at_rotation, scale_intrinsics
+from .scenes import Plane
 
 __all__ = [
     "Defocus",
     "GroundTruth",
     "align_detected_corners",
-    "Plane",
     "PlanePoints",
     "RenderResult",
     "Sensor",
-    "box",
-    "checkerboard",
     "look_at",
-    "photo_plane",
     "project",
     "render",
-    "rotation_from_euler",
-    "text_page",
-    "textured_plane",
 ]
 
 
@@ -191,7 +182,7 @@ class RenderResult(NamedTuple):
 def project(
     points_world: ArrayLike,
     K: ArrayLike,
-    R: ArrayLike = np.eye(3),
+    R: ArrayLike | None = None,
     t: ArrayLike = (0, 0, 0),
     dist: ArrayLike | None = None,
 ) -> np.ndarray:
@@ -199,7 +190,7 @@ def project(
 
     :math:`X_c = R X + t`, :math:`x = (X_c/Z_c, Y_c/Z_c)`, :math:`x_d = \mathrm{distort}(x)`,
     :math:`u = K [x_d, 1]`, by :meth:`camlab.camera.Camera.project`. Agrees with
-    ``cv2.projectPoints`` (to 1e-9 px).
+    ``cv2.projectPoints`` (to 1e-9 px). ``R=None`` (the default) is the identity.
 
     Returns
     -------
@@ -276,7 +267,7 @@ def render(
     K: ArrayLike,
     size: tuple[int, int] = (640, 480),
     *,
-    R: ArrayLike = np.eye(3),
+    R: ArrayLike | None = None,
     t: ArrayLike = (0, 0, 0),
     dist: ArrayLike | None = None,
     defocus: Defocus | None = None,
@@ -292,13 +283,13 @@ def render(
 
     Parameters
     ----------
-    scene : Plane or iterable of Planes (nested lists, e.g. from :func:`box`, are flattened)
+    scene : Plane or iterable of Planes (nested lists, e.g. from :func:`camlab.scenes.box`, are flattened)
     K : (3, 3) array_like
         Intrinsics, pixels.
     size : (width, height)
         Image size in pixels.
     R, t : (3, 3), (3,) array_like
-        cam_from_world pose: ``X_cam = R X_world + t``.
+        cam_from_world pose: ``X_cam = R X_world + t``; ``R=None`` (the default) is the identity.
     dist : (5,) array_like or None
         ``(k1, k2, p1, p2, k3)``; the whole image must lie inside the model's valid radius.
     defocus : Defocus or None
@@ -338,6 +329,7 @@ def render(
     Examples
     --------
     >>> K = [[800, 0, 319.5], [0, 800, 239.5], [0, 0, 1]]
+    >>> from camlab.scenes import checkerboard
     >>> board = checkerboard((9, 6), 0.025, t=(-0.1, -0.0625, 0.6))
     >>> out = render(board, K)
     >>> out.image.shape, out.image.dtype, out.truth.corners().shape

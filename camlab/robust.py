@@ -57,6 +57,8 @@ import numpy as np
 from ._validate import CamlabInputError, DegenerateError, check_positive
 
 __all__ = [
+    "LocalOptimum",
+    "MinimalModels",
     "PairModel",
     "RobustFit",
     "local_optimization",
@@ -72,6 +74,36 @@ _LO_FACTOR = 3.0
 _LO_FINAL_INNER = 5  # a more thorough local optimisation of the final model
 _LO_FINAL_STEPS = 3
 _ALPHA = 0.01  # significance level of the chance test (step 5)
+
+
+class MinimalModels(NamedTuple):
+    """The hypotheses :meth:`PairModel.minimal` solves from a batch of B minimal samples.
+
+    Attributes
+    ----------
+    models : (B, ...) ndarray
+        One model per sample (e.g. (B, 3, 3) homographies).
+    usable : (B,) bool ndarray
+        False where a sample is degenerate and its model means nothing.
+    """
+
+    models: np.ndarray
+    usable: np.ndarray
+
+
+class LocalOptimum(NamedTuple):
+    """What :func:`local_optimization` kept.
+
+    Attributes
+    ----------
+    model : ndarray
+        The best model found (``start`` if nothing beat it).
+    cost : float
+        Its MSAC cost :func:`msac_cost`.
+    """
+
+    model: np.ndarray
+    cost: float
 
 
 class PairModel:
@@ -95,7 +127,7 @@ class PairModel:
     def __len__(self) -> int:
         return len(self.x1)
 
-    def minimal(self, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def minimal(self, idx: np.ndarray) -> MinimalModels:
         """Solve (B, sample_size) index samples: (B, ...) models and a (B,) mask of usable ones."""
         raise NotImplementedError
 
@@ -186,7 +218,7 @@ def local_optimization(
     rng: np.random.Generator,
     inner: int = _LO_INNER,
     steps: int = _LO_STEPS,
-) -> tuple[np.ndarray, float]:
+) -> LocalOptimum:
     r"""Improve a model by re-fitting it on its inliers (LO+, Lebeda et al. 2012); returns (model, MSAC cost).
 
     1. Take the inliers :math:`I` of ``start`` at ``threshold`` t.
@@ -203,7 +235,7 @@ def local_optimization(
     best, best_cost = start, float(msac_cost(res, threshold))
     inl = np.flatnonzero(res < threshold)
     if len(inl) <= s:
-        return best, best_cost
+        return LocalOptimum(best, best_cost)
     size = min(len(inl) // 2, 7 * s)
     subsets = [inl] + (
         [rng.choice(inl, size, replace=False) for _ in range(inner)] if size > s else []
@@ -222,7 +254,7 @@ def local_optimization(
         cost = float(msac_cost(model.residuals(m[None])[0], threshold))
         if cost < best_cost:
             best, best_cost = m, cost
-    return best, best_cost
+    return LocalOptimum(best, best_cost)
 
 
 def _chance_significant(

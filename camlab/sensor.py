@@ -158,7 +158,7 @@ class NoiseModel(NamedTuple):
 
 
 def add_noise(
-    image: ArrayLike, noise: NoiseModel = NoiseModel(), rng: np.random.Generator | int | None = None
+    image: ArrayLike, noise: NoiseModel | None = None, rng: np.random.Generator | int | None = None
 ) -> np.ndarray:
     r"""Add photon shot noise and read noise to a float image in [0, 1].
 
@@ -167,8 +167,10 @@ def add_noise(
     Shot noise grows as :math:`\sqrt{I}`, so SNR :math:`\approx \sqrt{I \cdot FW}` in bright areas.
     Pixels expecting more than 100 electrons draw :math:`\mathcal{N}(\lambda, \lambda)`
     instead of the Poisson law (indistinguishable there, and 10x faster for slider demos).
+    ``noise=None`` is ``NoiseModel()``: 10000 electrons full well, 5 electrons read noise.
     """
     a = check_image(image)
+    noise = NoiseModel() if noise is None else noise
     fw = check_positive(noise.full_well, "full_well", "electrons")
     if not noise.read_noise >= 0:
         raise CamlabInputError(f"read_noise: expected >= 0 electrons RMS, got {noise.read_noise!r}")

@@ -12,7 +12,8 @@ from hypothesis import strategies as st
 from camlab import affine as af
 from camlab import camera as cm
 from camlab._validate import CamlabInputError, DegenerateError
-from camlab.scenes import box_and_rails, box_wireframe
+from camlab.fixtures import box_and_rails
+from camlab.scenes import box_wireframe
 
 os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
 
@@ -186,7 +187,10 @@ def test_three_cameras_demo_difference_shrinks_with_distance():
     assert d.state["max_difference"] < near / 3  # the largest gap inside the frame (px)
     assert af.is_affine(d.state["P_weak"])
     # a half turn about the vertical leaves the scene as it is: azimuth -90 .. 90 shows every view once
-    segments = lambda S: {frozenset(map(tuple, np.round(seg, 9) + 0.0)) for seg in S}
+
+    def segments(S):
+        return {frozenset(map(tuple, np.round(seg, 9) + 0.0)) for seg in S}
+
     scene = box_and_rails()
     assert segments(scene * [-1, -1, 1]) == segments(
         scene
@@ -331,7 +335,7 @@ def test_lesson05_exercises(capsys):
 
 
 def test_three_images_of_a_scene(cam):
-    from camlab.scenes import box_and_rails
+    from camlab.fixtures import box_and_rails
 
     segs = box_and_rails()
     imgs = af.three_images(cam, segs)

@@ -15,7 +15,7 @@ from camlab._validate import CamlabInputError, DegenerateError
 from camlab.calibration.refinement import BlockNormal, project_views
 from camlab.camera import rotation_from_axis_angle, rotation_from_euler
 from camlab.data import load_calibration_set
-from camlab.data.calibration import bundled_calibration
+from camlab.fixtures.calibration import bundled_calibration
 from camlab.homography import pose_homography
 from camlab.optimize import dense_damped_solve, lm_step
 from camlab.render import align_detected_corners, project
@@ -355,7 +355,7 @@ def test_boards_parallel_to_the_image_are_degenerate():
     obj = C.board_points((9, 6), 0.025)
     rng = np.random.default_rng(10)
     views = []
-    for k in range(5):
+    for _ in range(5):
         R = rotation_from_euler(0, 0, rng.uniform(-0.5, 0.5))
         t = np.array([rng.uniform(-0.12, 0.0), rng.uniform(-0.08, 0.0), rng.uniform(0.4, 0.6)])
         views.append(project(obj, K_TRUE, R, t, None) + rng.normal(0, 0.1, (54, 2)))

@@ -679,9 +679,6 @@ def test_scale_intrinsics_and_camera_resized_agree_with_resizing_pixels():
         CamlabInputError, match=r"image_size \* scale: expected \(width, height\) as whole numbers"
     ):
         cam.resized(0.33)
-    from camlab.data import panorama
-
-    assert panorama.scale_intrinsics is cm.scale_intrinsics  # one home
 
 
 def test_orbit_eye_is_a_point_on_a_sphere_in_radians():
@@ -708,8 +705,8 @@ def test_functions_returning_a_pose_or_factors_name_them():
     from camlab import epipolar as ep
     from camlab import render
     from camlab.calibration import extrinsics_from_homography
-    from camlab.data.stereo import rig_cameras
-    from camlab.scenes import CameraPair
+    from camlab.camera import CameraPair
+    from camlab.fixtures.stereo import rig_cameras
 
     pair = rig_cameras()
     assert isinstance(pair, CameraPair)

@@ -15,7 +15,7 @@ import pytest
 
 from camlab import data, render
 from camlab._validate import CamlabInputError
-from camlab.data.regenerate import GENERATED_SETS
+from camlab.fixtures.regenerate import GENERATED_SETS, regenerate
 
 # Regeneration must give the bundled files back. Compared as decoded pixels and parsed ground
 # truth, not bytes, so a patch release of OpenCV (its resize, libpng or libjpeg) does not break it:
@@ -74,7 +74,7 @@ def regenerated(tmp_path_factory):
                 f"this is {version}: regeneration is compared only on the locked series"
             )
     root = tmp_path_factory.mktemp("data")
-    data.regenerate(root)
+    regenerate(root)
     return root
 
 
@@ -219,7 +219,7 @@ def test_encode_image_raises_when_opencv_reports_failure(monkeypatch):
 
 
 def test_panorama_rotation_helpers_say_their_direction():
-    from camlab.data import panorama
+    from camlab.fixtures import panorama
 
     Rc = panorama.cam_from_world(0.3, -0.1, 0.05)
     # a camera turned right by yaw sees a point that lies ahead-right of the world straight ahead

@@ -1221,7 +1221,7 @@ def test_read_noise_with_the_quantisation_variance_removed_passes_too(capsys):
     """Lesson 03, exercise 4's prompt: subtracting 1/12 DN^2 (as EMVA 1288 does) moves the read noise by under 2 %."""
     from camlab.exercises import sensor_noise
 
-    for darks, flats in sensor_noise._cases():
+    for darks, _flats in sensor_noise._cases():
         d = np.asarray(darks[0], dtype=float) - np.asarray(darks[1], dtype=float)
         var = np.var(d) / 2
         assert 0 < np.sqrt(var) / np.sqrt(var - 1 / 12) - 1 < 0.02

@@ -9,7 +9,7 @@ import pytest
 
 os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
 
-from camlab import distortion, lens, render, scenes  # noqa: E402
+from camlab import distortion, fixtures, lens, render, scenes  # noqa: E402
 from camlab.exercises import all_exercises, check  # noqa: E402
 from camlab.widgets import (  # noqa: E402
     REGISTRY,  # noqa: E402
@@ -37,7 +37,7 @@ def test_pinhole_projection_box_width_follows_f_over_z():
     demo.set(focal_mm=50, distance=2.0)
     w1 = demo.state["box_width_px"]
     box_alone = render.render(
-        scenes.box_before_wall(2.0)[0], demo.state["K"], pinhole_camera.SIZE, background=0.0
+        fixtures.box_before_wall(2.0)[0], demo.state["K"], pinhole_camera.SIZE, background=0.0
     )
     box_columns = np.flatnonzero(np.any(box_alone.irradiance > 0.02, axis=0))
     assert w1 == pytest.approx(
@@ -52,7 +52,7 @@ def test_pinhole_projection_box_width_follows_f_over_z():
     for f_mm, Z in ((100, 0.8), (15, 0.8), (100, 4.0)):
         demo.set(focal_mm=f_mm, distance=Z)
         nearest = np.unique(
-            scenes.plane_outlines(scenes.box_before_wall(Z)[0]).reshape(-1, 3), axis=0
+            scenes.plane_outlines(fixtures.box_before_wall(Z)[0]).reshape(-1, 3), axis=0
         )[:, 2].min()
         assert (
             0 < demo.state["f_draw"] < nearest
@@ -269,14 +269,18 @@ def test_newton_step_check_rejects_wrong_jacobians_with_the_right_radial_part():
 
         return newton_step
 
-    outer = lambda x: x[:, :, None] * x[:, None, :]  # noqa: E731
-    right = lambda x, L, r2, k1, k2: (
-        L[:, :, None] * np.eye(2) + (2 * k1 + 4 * k2 * r2)[:, :, None] * outer(x)
-    )  # noqa: E731
-    scalar = lambda x, L, r2, k1, k2: (L + (2 * k1 + 4 * k2 * r2) * r2)[:, :, None] * np.eye(2)  # noqa: E731
-    tilted = lambda x, L, r2, k1, k2: (
-        right(x, L, r2, k1, k2) + 5 * (r2[:, :, None] * np.eye(2) - outer(x))
-    )  # noqa: E731
+    def outer(x):
+        return x[:, :, None] * x[:, None, :]
+
+    def right(x, L, r2, k1, k2):
+        return L[:, :, None] * np.eye(2) + (2 * k1 + 4 * k2 * r2)[:, :, None] * outer(x)
+
+    def scalar(x, L, r2, k1, k2):
+        return (L + (2 * k1 + 4 * k2 * r2) * r2)[:, :, None] * np.eye(2)
+
+    def tilted(x, L, r2, k1, k2):
+        return right(x, L, r2, k1, k2) + 5 * (r2[:, :, None] * np.eye(2) - outer(x))
+
     with contextlib.redirect_stdout(io.StringIO()):
         assert check("newton_step", step(right))
     with pytest.raises(AssertionError, match="you wrote x\\^T x"):

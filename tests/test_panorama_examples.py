@@ -1,4 +1,4 @@
-"""camlab.data.panorama_examples: lesson 09's data, computed once, cached and read-only.
+"""camlab.fixtures.panorama_examples: lesson 09's data, computed once, cached and read-only.
 
 Each result is checked against the ground truth of the rendered sets and against the
 public stages it is made of (recomputed live), and every cached array must refuse edits.
@@ -12,7 +12,7 @@ import pytest
 
 from camlab import stitching as st
 from camlab._validate import CamlabInputError
-from camlab.data import panorama_examples as pe
+from camlab.fixtures import panorama_examples as pe
 from camlab.projective import map_points
 from camlab.warp import canvas_bounds
 

@@ -8,13 +8,14 @@ import pytest
 from conftest import assert_close_to_cv2_warp
 
 from camlab import perspective as pp
+from camlab import scenes
 from camlab._validate import CamlabInputError, DegenerateError
 from camlab.projective import map_points
 
 
 @pytest.fixture(scope="module")
 def photos():
-    return {k: pp.sample_photo(k) for k in ("page", "painting", "facade")}
+    return {k: scenes.sample_photo(k) for k in ("page", "painting", "facade")}
 
 
 @pytest.mark.parametrize("kind", ["page", "painting", "facade"])
@@ -33,7 +34,7 @@ def test_aspect_ratio_and_focal_recovered_exactly(photos, kind):
 @pytest.mark.parametrize("yaw,pitch", [(0.7, 0.0), (0.0, -0.6), (0.3, 0.4), (-0.8, 0.2)])
 def test_aspect_ratio_many_poses_and_textures(yaw, pitch):
     tex = np.zeros((150, 300, 3), np.uint8)  # true ratio 299 / 149
-    ph = pp.photograph_plane(tex, yaw=yaw, pitch=pitch, width_m=0.8, distance=2.5)
+    ph = scenes.photograph_plane(tex, yaw=yaw, pitch=pitch, width_m=0.8, distance=2.5)
     est = pp.estimate_aspect_ratio(ph.corners, ph.image.shape)
     given = pp.estimate_aspect_ratio(ph.corners, ph.image.shape, focal_length=800)
     assert np.isclose(given.ratio, 299 / 149, rtol=1e-6)
@@ -46,7 +47,7 @@ def test_aspect_ratio_many_poses_and_textures(yaw, pitch):
 
 
 def test_aspect_ratio_with_noise_is_close():
-    ph = pp.sample_photo("facade")
+    ph = scenes.sample_photo("facade")
     rng = np.random.default_rng(0)
     errs = [
         abs(
@@ -66,7 +67,7 @@ def test_fronto_parallel_needs_no_focal():
 
 def test_rectify_recovers_the_texture(photos):
     ph = photos["painting"]
-    tex = pp.painting_texture()
+    tex = scenes.painting_texture()
     th, tw = tex.shape[:2]
     r = pp.rectify_quadrilateral(ph.image, ph.corners, size=(tw, th))
     # H maps the photo corners to the output corners

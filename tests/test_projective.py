@@ -232,7 +232,7 @@ def test_vanishing_point_errors():
 
 
 def test_horizon_matches_camera_ground_truth():
-    from camlab.scenes import ground_plane_view
+    from camlab.fixtures import ground_plane_view
 
     g = ground_plane_view(np.radians(12), np.radians(20), 700.0)
     segs, n = g.segments, g.n_along_z

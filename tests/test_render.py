@@ -6,7 +6,9 @@ import pytest
 
 from camlab import camera as cm
 from camlab import render as r
+from camlab import scenes
 from camlab._validate import CamlabInputError
+from camlab.camera import rotation_from_euler
 from camlab.sensor import NoiseModel
 
 K = np.array([[800.0, 0.0, 319.5], [0.0, 800.0, 239.5], [0.0, 0.0, 1.0]])
@@ -18,7 +20,7 @@ def _poses(n, seed=1):
     rng = np.random.default_rng(seed)
     for _ in range(n):
         yield (
-            r.rotation_from_euler(*rng.uniform(-0.5, 0.5, 3)),
+            rotation_from_euler(*rng.uniform(-0.5, 0.5, 3)),
             np.array([-0.12, -0.07, rng.uniform(0.6, 0.9)]),
         )
 
@@ -30,7 +32,7 @@ def _rms(a, b):
 @pytest.mark.parametrize("dist", [None, BARREL, PINCUSHION], ids=["none", "barrel", "pincushion"])
 def test_find_chessboard_corners_sb_agrees_with_ground_truth(dist):
     for Rb, tb in _poses(3):
-        board = r.checkerboard((9, 6), 0.03, R=Rb, t=tb)
+        board = scenes.checkerboard((9, 6), 0.03, R=Rb, t=tb)
         out = r.render(board, K, dist=dist)
         ok, corners = cv2.findChessboardCornersSB(out.image, (9, 6))
         assert ok
@@ -39,7 +41,7 @@ def test_find_chessboard_corners_sb_agrees_with_ground_truth(dist):
 
 
 def test_ground_truth_matches_cv2_project_points_with_a_moved_camera():
-    board = r.checkerboard((7, 5), 0.04, R=r.rotation_from_euler(0.2, 0.1, 0), t=(0, 0, 0))
+    board = scenes.checkerboard((7, 5), 0.04, R=rotation_from_euler(0.2, 0.1, 0), t=(0, 0, 0))
     R, t = r.look_at([0.3, -0.2, -0.8], [0.12, 0.08, 0.0], up=(0, -1, 0))
     out = r.render(board, K, R=R, t=t, dist=BARREL)
     pts = out.truth.points["board"]
@@ -63,7 +65,7 @@ def test_project_single_point_and_behind_camera():
 
 
 def test_deterministic_with_a_seed():
-    board = r.checkerboard((9, 6), 0.03, t=(-0.12, -0.07, 0.7))
+    board = scenes.checkerboard((9, 6), 0.03, t=(-0.12, -0.07, 0.7))
     sensor = r.Sensor(noise=NoiseModel(full_well=2000, read_noise=3))
     a = r.render(board, K, sensor=sensor, rng=7).image
     b = r.render(board, K, sensor=sensor, rng=np.random.default_rng(7)).image
@@ -74,7 +76,7 @@ def test_deterministic_with_a_seed():
 
 
 def test_noise_has_the_shot_noise_level():
-    flat = r.textured_plane(np.full((8, 8), 0.5), 4.0, t=(0, 0, 1.0))
+    flat = scenes.textured_plane(np.full((8, 8), 0.5), 4.0, t=(0, 0, 1.0))
     fw = 1000.0
     out = r.render(
         flat, K, sensor=r.Sensor(bits=12, noise=NoiseModel(full_well=fw, read_noise=0)), rng=0
@@ -86,7 +88,7 @@ def test_noise_has_the_shot_noise_level():
 
 
 def test_bayer_colour_and_photo():
-    photo = r.photo_plane(0.5, t=(0, 0, 0.8))
+    photo = scenes.photo_plane(0.5, t=(0, 0, 0.8))
     rgb = r.render(photo, K)
     assert rgb.image.shape == (480, 640, 3)
     raw = r.render(photo, K, sensor=r.Sensor(bayer="RGGB"))
@@ -98,8 +100,8 @@ def test_bayer_colour_and_photo():
 
 
 def test_defocus_blurs_planes_away_from_the_focus_distance():
-    near = r.checkerboard((5, 4), 0.02, t=(-0.15, -0.03, 0.5), name="near")
-    far = r.checkerboard((5, 4), 0.04, t=(0.02, -0.06, 1.5), name="far")
+    near = scenes.checkerboard((5, 4), 0.02, t=(-0.15, -0.03, 0.5), name="near")
+    far = scenes.checkerboard((5, 4), 0.04, t=(0.02, -0.06, 1.5), name="far")
 
     def sharpness(img, x0, x1):
         g = np.abs(np.diff(img[:, x0:x1].astype(float), axis=1))
@@ -116,8 +118,8 @@ def test_defocus_blurs_planes_away_from_the_focus_distance():
 
 
 def test_occlusion_visibility_and_depth():
-    board = r.checkerboard((9, 6), 0.03, t=(-0.12, -0.075, 0.8))
-    card = r.textured_plane(np.full((4, 4), 0.3), 0.1, t=(-0.1, -0.05, 0.5), name="card")
+    board = scenes.checkerboard((9, 6), 0.03, t=(-0.12, -0.075, 0.8))
+    card = scenes.textured_plane(np.full((4, 4), 0.3), 0.1, t=(-0.1, -0.05, 0.5), name="card")
     out = r.render([board, card], K, depth=True)
     pts = out.truth.points["board"]
     hidden = ~pts.visible
@@ -134,18 +136,18 @@ def test_occlusion_visibility_and_depth():
 
 
 def test_box_faces_and_scene_flattening():
-    faces = r.box([0, 0, 1.0], [0.2, 0.3, 0.2], R=r.rotation_from_euler(0.4, 0.6, 0))
+    faces = scenes.box([0, 0, 1.0], [0.2, 0.3, 0.2], R=rotation_from_euler(0.4, 0.6, 0))
     assert len(faces) == 6
     for f in faces:  # outward normals
         assert np.dot(f.R[:, 2], f.t - [0, 0, 1.0]) > 0
-    out = r.render([faces, r.text_page(0.3, t=(0, 0, 2.0))], K, depth=True)
+    out = r.render([faces, scenes.text_page(0.3, t=(0, 0, 2.0))], K, depth=True)
     # the face turned away from the camera is culled: its corners project but are not visible
     back, front = out.truth.points["box+z"], out.truth.points["box-z"]
     assert np.isfinite(back.pixels).all() and not back.visible.any()
     assert front.visible.all()
     assert out.image.std() > 10
     signs = np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).reshape(3, -1).T
-    vertices = (signs * [0.1, 0.15, 0.1]) @ r.rotation_from_euler(0.4, 0.6, 0).T + [0, 0, 1.0]
+    vertices = (signs * [0.1, 0.15, 0.1]) @ rotation_from_euler(0.4, 0.6, 0).T + [0, 0, 1.0]
     assert out.truth.depth.min() == pytest.approx(
         vertices[:, 2].min(), abs=0.01
     )  # the nearest vertex
@@ -153,15 +155,15 @@ def test_box_faces_and_scene_flattening():
 
 def test_a_floor_reaching_behind_the_camera_is_clipped():
     # a 4 m floor 0.3 m below the camera, from 1 m behind it to 3 m ahead, with a board standing on it
-    floor = r.textured_plane(
-        r.checkerboard((7, 7), 0.5).texture,
+    floor = scenes.textured_plane(
+        scenes.checkerboard((7, 7), 0.5).texture,
         4.0,
         height=4.0,
-        R=r.rotation_from_euler(np.pi / 2, 0, 0),
+        R=rotation_from_euler(np.pi / 2, 0, 0),
         t=(0, 0.3, 1.0),
         name="floor",
     )
-    out = r.render([floor, r.checkerboard((9, 6), 0.05, t=(-0.2, -0.25, 2.0))], K, depth=True)
+    out = r.render([floor, scenes.checkerboard((9, 6), 0.05, t=(-0.2, -0.25, 2.0))], K, depth=True)
     ok, corners = cv2.findChessboardCornersSB(out.image, (9, 6))
     assert (
         ok
@@ -202,7 +204,7 @@ def test_look_at_has_one_default_up_everywhere():
 
 
 def test_bad_inputs():
-    board = r.checkerboard((4, 3), 0.03, t=(0, 0, 0.5))
+    board = scenes.checkerboard((4, 3), 0.03, t=(0, 0, 0.5))
     with pytest.raises(CamlabInputError, match=r"scene: expected at least one Plane"):
         r.render([], K)
     with pytest.raises(CamlabInputError, match=r"bits: expected an integer bit depth from 1 to 16"):
@@ -210,13 +212,13 @@ def test_bad_inputs():
     with pytest.raises(CamlabInputError, match=r"pattern: expected one of RGGB"):
         r.render(board, K, sensor=r.Sensor(bayer="RGBG"))
     with pytest.raises(CamlabInputError, match=r"pattern_size: expected at least \(2, 2\)"):
-        r.checkerboard((1, 5), 0.03)
+        scenes.checkerboard((1, 5), 0.03)
     with pytest.raises(CamlabInputError, match=r"camera R: expected a rotation matrix"):
         r.render(board, K, R=np.diag([1, 1, -1.0]))
     with pytest.raises(
         CamlabInputError, match=r"texture: expected an \(H, W\) or \(H, W, 3\) image"
     ):
-        r.textured_plane(np.zeros((4, 4, 2)), 1.0)
+        scenes.textured_plane(np.zeros((4, 4, 2)), 1.0)
     with pytest.raises(CamlabInputError, match=r"supersample: expected an integer from 1 to 8"):
         r.render(board, K, supersample=0)
     with pytest.raises(CamlabInputError, match=r"detected: expected 12 corners"):
@@ -224,7 +226,7 @@ def test_bad_inputs():
 
 
 def test_align_detected_corners_undoes_reversal_and_opencv4_shape():
-    gt = r.checkerboard((4, 3), 0.03, t=(0, 0, 0.5)).points * 1000 + 100
+    gt = scenes.checkerboard((4, 3), 0.03, t=(0, 0, 0.5)).points * 1000 + 100
     det4 = gt[::-1].reshape(-1, 1, 2) + 0.01  # OpenCV 4 shape, reversed order
     assert np.allclose(r.align_detected_corners(det4, gt), gt + 0.01)
     assert np.allclose(r.align_detected_corners(gt - 0.01, gt), gt - 0.01)

@@ -1,4 +1,5 @@
-"""camlab.scenes: the one home of synthetic scenes and textures."""
+"""camlab.scenes, the one home of synthetic scenes and textures, and the lessons' scenes built from
+them (camlab.fixtures)."""
 
 import subprocess
 import sys
@@ -6,11 +7,13 @@ import sys
 import numpy as np
 import pytest
 
-from camlab import camera, perspective, render, scenes
+from camlab import camera, fixtures, perspective, render, scenes
 from camlab.data import panorama
 
 
-def test_scene_builders_have_one_definition_re_exported_for_the_lessons():
+def test_scene_builders_have_one_home():
+    """Scene builders are camlab.scenes.* only: render, perspective and the data loaders do not
+    re-export them (tests/test_architecture.py checks every name)."""
     for module, names in [
         (render, ["Plane", "box", "checkerboard", "photo_plane", "text_page", "textured_plane"]),
         (
@@ -29,10 +32,8 @@ def test_scene_builders_have_one_definition_re_exported_for_the_lessons():
         (panorama, ["wall_texture"]),
     ]:
         for name in names:
-            assert getattr(module, name) is getattr(scenes, name), (module.__name__, name)
-    assert not hasattr(
-        render, "sample_photo"
-    )  # one sample photo: scenes.sample_photo (plus scenes.portrait)
+            assert name in scenes.__all__ and name not in module.__all__, (module.__name__, name)
+    assert not hasattr(render, "box") and not hasattr(perspective, "sample_photo")
     assert not hasattr(camera, "box_wireframe")  # scenes builds on camera, not the other way round
 
 
@@ -105,26 +106,26 @@ def test_plane_outlines_of_a_box_are_its_twelve_edges_each_shared_by_two_faces()
 
 
 def test_the_lessons_scenes_have_the_documented_geometry():
-    faces, wall = scenes.box_before_wall(2.0)
+    faces, wall = fixtures.box_before_wall(2.0)
     corners = scenes.plane_outlines(faces).reshape(-1, 3)
     assert (
         np.allclose(corners.mean(axis=0), [0, 0, 2.0]) and corners[:, 2].min() > 1.6
     )  # a 0.3 m box at 2 m
     assert wall.name == "wall" and np.allclose(wall.t, [0, 0, 6.0])
     with pytest.raises(ValueError, match="distance"):
-        scenes.box_before_wall(-1.0)
-    depths = [np.mean(p.corners_world[:, 2]) for p in scenes.depth_of_field_scene()]
+        fixtures.box_before_wall(-1.0)
+    depths = [np.mean(p.corners_world[:, 2]) for p in fixtures.depth_of_field_scene()]
     np.testing.assert_allclose(depths, [0.6, 1.2, 2.4, 4.0], atol=0.05)
-    assert [p.name for p in scenes.photo_and_page()] == ["photo", "page"]
-    house = scenes.house_scene()
+    assert [p.name for p in fixtures.photo_and_page()] == ["photo", "page"]
+    house = fixtures.house_scene()
     assert (
         house.shape[1:] == (2, 3)
         and house[..., 2].min() == 0.0
         and np.isclose(house[..., 2].max(), 1.55)
     )
-    cube_rails = scenes.box_and_rails()
+    cube_rails = fixtures.box_and_rails()
     assert cube_rails.shape == (16, 2, 3)
-    rails = scenes.rail_track(0.0, 10.0)
+    rails = fixtures.rail_track(0.0, 10.0)
     assert rails.shape == (4 + 10, 2, 3)
     np.testing.assert_array_equal(
         rails[:4, 1] - rails[:4, 0], [[0, 10, 0]] * 4
@@ -151,28 +152,28 @@ def test_textures_take_one_size_width_then_height(make, size):
 
 
 def test_resection_set_is_noisy_projections_of_non_coplanar_points():
-    exact = scenes.resection_set(20, 0.0, seed=3)
+    exact = fixtures.resection_set(20, 0.0, seed=3)
     np.testing.assert_allclose(exact.points_image, exact.camera.project(exact.points_world))
     assert (
         np.linalg.matrix_rank(exact.points_world - exact.points_world.mean(axis=0)) == 3
     )  # two cube faces
-    noisy = scenes.resection_set(20, 2.0, seed=3)
+    noisy = fixtures.resection_set(20, 2.0, seed=3)
     assert 1.0 < np.std(noisy.points_image - exact.points_image) < 3.0
     with pytest.raises(ValueError, match="noise_px"):
-        scenes.resection_set(10, -1.0)
+        fixtures.resection_set(10, -1.0)
 
 
 def test_camera_pairs_for_lesson_11():
     from camlab import epipolar as ep
 
-    pair = scenes.stereo_pair(0.2, 0.0)
-    assert isinstance(pair, scenes.CameraPair) and np.isclose(
+    pair = fixtures.stereo_pair(0.2, 0.0)
+    assert isinstance(pair, camera.CameraPair) and np.isclose(
         np.linalg.norm(pair.camera2.centre - pair.camera1.centre), 0.2
     )
     assert (
         abs(ep.epipoles(ep.fundamental_from_cameras(*pair)).e2[2]) < 1e-12
     )  # parallel: epipole at infinity
-    e2 = ep.epipoles(ep.fundamental_from_cameras(*scenes.forward_pair(0.5, 0.0))).e2
+    e2 = ep.epipoles(ep.fundamental_from_cameras(*fixtures.forward_pair(0.5, 0.0))).e2
     np.testing.assert_allclose(
         e2[:2] / e2[2], [319.5, 239.5], atol=1e-6
     )  # straight ahead: the image centre
@@ -181,12 +182,12 @@ def test_camera_pairs_for_lesson_11():
 def test_outlier_matches_hold_the_stated_fraction_of_wrong_pairs():
     from camlab.projective import map_points
 
-    m = scenes.outlier_matches(0.3, seed=2)
+    m = fixtures.outlier_matches(0.3, seed=2)
     assert m.is_outlier.sum() == 60 and m.src.shape == m.dst.shape == (200, 2)
     err = np.linalg.norm(map_points(m.H, m.src) - m.dst, axis=1)
     assert err[~m.is_outlier].max() < 6 and np.median(err[m.is_outlier]) > 30
     with pytest.raises(ValueError, match="outlier_fraction"):
-        scenes.outlier_matches(1.5)
+        fixtures.outlier_matches(1.5)
 
 
 def test_sleeper_gaps_shrink_with_distance_only_in_perspective():
@@ -196,7 +197,7 @@ def test_sleeper_gaps_shrink_with_distance_only_in_perspective():
     cam = camera.Camera.look_at(
         eye, eye + [0.0, np.cos(0.26), -np.sin(0.26)], K=camera.intrinsic_matrix(500, 500, 320, 240)
     )
-    near, far = scenes.sleeper_gaps(cam.P)
+    near, far = fixtures.sleeper_gaps(cam.P)
     assert near > 20 * far  # 1 m of track 2 m away against 24 m away
-    assert np.isclose(*scenes.sleeper_gaps(affine.affine_approximation(cam, [0.0, 6.0, 0.0])))
-    assert scenes.sleeper_gaps(cam.P, at=[0.0, 5.0, 10.0]).shape == (3,)
+    assert np.isclose(*fixtures.sleeper_gaps(affine.affine_approximation(cam, [0.0, 6.0, 0.0])))
+    assert fixtures.sleeper_gaps(cam.P, at=[0.0, 5.0, 10.0]).shape == (3,)

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from camlab import render as r
+from camlab import scenes
 from camlab import sensor as S
 from camlab._validate import CamlabInputError
 
@@ -73,7 +74,7 @@ def test_mosaic_and_bilinear_demosaic(pattern):
 @pytest.mark.parametrize("pattern", S.BAYER_PATTERNS)
 def test_bilinear_matches_or_beats_opencv_on_a_rendered_scene(pattern):
     K = np.array([[700.0, 0, 159.5], [0, 700, 119.5], [0, 0, 1]])
-    truth = r.render(r.photo_plane(0.3, t=(0, 0, 0.9)), K, size=(320, 240)).irradiance
+    truth = r.render(scenes.photo_plane(0.3, t=(0, 0, 0.9)), K, size=(320, 240)).irradiance
     raw = S.quantize(S.mosaic(truth, pattern))
     ours = S.demosaic_bilinear(raw, pattern) / 255
     cv_bilinear = S.demosaic_opencv(raw, pattern, "bilinear") / 255

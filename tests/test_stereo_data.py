@@ -4,8 +4,9 @@ import numpy as np
 
 from camlab import epipolar as ep
 from camlab import rectification as rc
-from camlab.data.stereo import STEREO_PARAMS, load_stereo_rig, rig_cameras
+from camlab.data import load_stereo_rig
 from camlab.distortion import undistort_pixels
+from camlab.fixtures.stereo import STEREO_PARAMS, rig_cameras
 from camlab.projective import map_points
 
 
@@ -37,7 +38,7 @@ def test_true_disparity_agrees_with_calibrated_rectification():
 
 
 def test_true_matches_are_exact_correspondences():
-    from camlab.data.stereo import true_matches
+    from camlab.fixtures.stereo import true_matches
 
     rig = load_stereo_rig()
     x1, x2, u1, u2 = true_matches(rig, step=40, start=30)
@@ -62,7 +63,7 @@ def test_true_matches_are_exact_correspondences():
 
 
 def test_calibrate_rig_recovers_the_true_relative_pose():
-    from camlab.data.stereo import calibrate_rig
+    from camlab.fixtures.stereo import calibrate_rig
 
     rig = load_stereo_rig()
     cal = calibrate_rig(rig)
@@ -75,7 +76,7 @@ def test_calibrate_rig_recovers_the_true_relative_pose():
 
 
 def test_true_disparity_of_another_rectification():
-    from camlab.data.stereo import true_disparity
+    from camlab.fixtures.stereo import true_disparity
 
     rig = load_stereo_rig()
     alpha = STEREO_PARAMS["rectify_alpha"]
@@ -94,7 +95,7 @@ def test_true_disparity_of_another_rectification():
 def test_bundled_rig_prepares_lesson_11_s_pair_once_and_read_only():
     import pytest
 
-    from camlab.data.stereo import HALF_SIZE, bundled_rig, true_matches
+    from camlab.fixtures.stereo import HALF_SIZE, bundled_rig, true_matches
 
     prepared = bundled_rig()
     assert bundled_rig() is prepared  # cached
@@ -116,7 +117,7 @@ def test_bundled_rig_prepares_lesson_11_s_pair_once_and_read_only():
 
 
 def test_half_size_rectification_scores_only_smooth_surfaces():
-    from camlab.data.stereo import half_size_rectification
+    from camlab.fixtures.stereo import half_size_rectification
 
     rect, left, right, disparity, smooth = half_size_rectification()
     assert left.shape == right.shape == disparity.shape == smooth.shape == (240, 320)

@@ -8,7 +8,9 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
 from camlab import epipolar as ep  # noqa: E402
-from camlab import scenes  # noqa: E402
+from camlab import (
+    fixtures,  # noqa: E402
+)
 from camlab.exercises import EXERCISES, all_exercises, check, solution  # noqa: E402
 from camlab.widgets import stereo_rectification as demos  # noqa: E402
 
@@ -85,10 +87,10 @@ def test_disparity_demo_depth_accuracy_and_block_size():
 
 
 def test_rig_pair_geometry():
-    c1, c2 = scenes.stereo_pair(0.3, 0.0)
+    c1, c2 = fixtures.stereo_pair(0.3, 0.0)
     assert np.isclose(np.linalg.norm(c2.centre - c1.centre), 0.3)
     assert np.allclose(c1.R, c2.R)
-    c1, c2 = scenes.stereo_pair(0.3, np.deg2rad(10))
+    c1, c2 = fixtures.stereo_pair(0.3, np.deg2rad(10))
     assert np.isclose(np.degrees(np.arccos(c1.R[2] @ c2.R[2])), 10)
 
 

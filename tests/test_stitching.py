@@ -10,9 +10,12 @@ from hypothesis import strategies as hs
 
 from camlab import features as ft
 from camlab import homography as hg
+from camlab import scenes
 from camlab import stitching as st
 from camlab._validate import CamlabInputError, DegenerateError
+from camlab.camera import scale_intrinsics
 from camlab.data import panorama as sd
+from camlab.fixtures import panorama as fp
 from camlab.warp import canvas_bounds
 
 CORNERS = np.array([[0, 0], [639, 0], [639, 479], [0, 479]], float)
@@ -91,7 +94,7 @@ def test_panorama_matches_a_direct_render(full, result):
     K_canvas[[0, 1, 2, 2], [1, 0, 0, 1]] = 0
     R_canvas = R_ref.T @ s.R[ref]
     h, w = r.panorama.shape[:2]
-    direct = sd.render_view(R_canvas, K=K_canvas, size=(w, h), gain=s.gains[ref], noise=False)
+    direct = fp.render_view(R_canvas, K=K_canvas, size=(w, h), gain=s.gains[ref], noise=False)
     inside = cv2.erode(r.mask.astype(np.uint8), np.ones((5, 5), np.uint8)) > 0
     err = np.abs(r.panorama.astype(float) - direct.astype(float))
     overlap = (np.sum(r.masks, axis=0) >= 2) & inside
@@ -381,7 +384,7 @@ def test_single_image_and_bad_options(half):
 def test_no_overlap_is_reported_not_dropped(half):
     """An image of something else, an all-black image: listed in `unconnected`, with a warning and reasons."""
     other = np.ascontiguousarray(
-        np.rot90(sd.wall_texture((2100, 800))[400:640, 1500:1820]) * 255
+        np.rot90(scenes.wall_texture((2100, 800))[400:640, 1500:1820]) * 255
     ).astype(np.uint8)
     other = np.ascontiguousarray(other[:240, :240])
     black = np.zeros((240, 320, 3), np.uint8)
@@ -447,7 +450,7 @@ def test_loaders_and_truth():
     H = s.true_homography(0, 1)
     assert np.allclose(H, hg.rotation_homography(s.K, s.R[1] @ s.R[0].T))
     half = sd.load_panorama_set(scale=0.5)
-    S = sd.scale_intrinsics(np.eye(3), 0.5)
+    S = scale_intrinsics(np.eye(3), 0.5)
     assert np.allclose(
         half.true_homography(0, 1), hg.normalize_homography(S @ H @ np.linalg.inv(S))
     )

@@ -1,6 +1,6 @@
 """The rotation model of a panorama: focal, bundle adjustment, wave correction, canvases, bad input.
 
-Ground truth comes from camlab.data.panorama.turning_set: views of a real photograph used as a
+Ground truth comes from camlab.fixtures.panorama.turning_set: views of a real photograph used as a
 360-degree world, rendered with an exact focal (500 px) and exact rotations.
 """
 
@@ -13,6 +13,7 @@ from camlab import stitching as st
 from camlab._validate import DegenerateError
 from camlab.camera import rotation_from_axis_angle
 from camlab.data import panorama as pd
+from camlab.fixtures import panorama as fp
 from camlab.homography import rotation_homography
 from camlab.stitching import cameras as cm
 from camlab.stitching import projections as pj
@@ -35,7 +36,7 @@ def relative_errors(cams, R_true, idx):
 
 @pytest.fixture(scope="module")
 def turn3():
-    s = pd.turning_set("turn3", unrelated=True)
+    s = fp.turning_set("turn3", unrelated=True)
     with pytest.warns(UserWarning, match=r"'church \(unrelated\)' overlaps none"):
         r = st.stitch(s.images, names=s.names)
     return s, r
@@ -73,7 +74,7 @@ def test_auto_projection_follows_the_field_of_view(turn3):
     room = pd.load_panorama_set(scale=0.5)  # four 44-degree views over 54 degrees: 98 degrees
     r2 = st.stitch(room.images, max_features=1500)
     assert r2.projection == "planar" and r2.model == "rotation"
-    wide = pd.turning_set("wide", size=(450, 330), f=250)
+    wide = fp.turning_set("wide", size=(450, 330), f=250)
     with pytest.raises(
         DegenerateError, match="turn too far for a plane.*'cylindrical' or 'spherical'"
     ):
@@ -118,7 +119,7 @@ def test_pixel_rays_and_canvas_points_of_a_camera_looking_backwards():
 
 def test_loop_closes_after_bundle_adjustment():
     """A full turn in 8 photos: the spanning tree leaves the loop open, bundle adjustment closes it."""
-    s = pd.turning_set("loop", size=(450, 330), f=250)
+    s = fp.turning_set("loop", size=(450, 330), f=250)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         r = st.stitch(s.images, blend_method="feather")
@@ -155,7 +156,7 @@ def test_wave_correction_levels_a_tilted_sweep():
     tilt = rotation_from_axis_angle([0.2, 0.0, 0.1])  # the whole sweep about a tilted axis
     Rs = [rotation_from_axis_angle([0, np.radians(a), 0]) @ tilt for a in (-40, -10, 20, 50)]
     out = cm.wave_correct(Rs)
-    for R0, R1 in zip(Rs, out, strict=True):
+    for R1 in out:
         assert abs(R1[0] @ [0, 1, 0]) < 1e-9  # every camera's x axis is horizontal
         assert np.allclose(R1 @ R1.T, np.eye(3))
     # relative rotations are unchanged
@@ -165,7 +166,7 @@ def test_wave_correction_levels_a_tilted_sweep():
 def test_transfer_error_on_independent_matches_against_cv2_stitcher():
     """Held-out ORB matches (neither method used them): camlab's cameras within 1 px median and within 10% of OpenCV's."""
     cv2 = pytest.importorskip("cv2")
-    s = pd.turning_set("exposures")
+    s = fp.turning_set("exposures")
     r = st.stitch(s.images)
     stitcher = cv2.Stitcher_create()
     status, _ = stitcher.stitch([np.ascontiguousarray(im[..., ::-1]) for im in s.images])
@@ -236,7 +237,7 @@ def test_same_photo_twice_different_sizes_and_crop(turn3):
 
 
 def test_single_usable_image_is_named():
-    s = pd.turning_set("turn3", unrelated=True)
+    s = fp.turning_set("turn3", unrelated=True)
     with pytest.raises(
         DegenerateError,
         match=r"no two images could be registered.*'turn3_0'-'church \(unrelated\)'",
@@ -247,10 +248,10 @@ def test_single_usable_image_is_named():
 def test_translating_camera_warns_with_the_residual():
     """The camera moves 30 cm in the room: the wall's homography leaves the nearer objects' matches on a second plane."""
     room = pd.load_panorama_set()
-    R = pd.cam_from_world(np.radians(8))
+    R = fp.cam_from_world(np.radians(8))
     views = [
-        pd.render_view(np.eye(3), K=room.K, rng=np.random.default_rng(0)),
-        pd.render_view(R, t=-R @ np.array([0.3, 0.0, 0.0]), K=room.K, rng=np.random.default_rng(1)),
+        fp.render_view(np.eye(3), K=room.K, rng=np.random.default_rng(0)),
+        fp.render_view(R, t=-R @ np.array([0.3, 0.0, 0.0]), K=room.K, rng=np.random.default_rng(1)),
     ]
     with pytest.warns(
         UserWarning,
@@ -260,13 +261,13 @@ def test_translating_camera_warns_with_the_residual():
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # the same room from one centre: no warning
         st.stitch(
-            [views[0], pd.render_view(R, K=room.K, rng=np.random.default_rng(1))],
+            [views[0], fp.render_view(R, K=room.K, rng=np.random.default_rng(1))],
             blend_method="feather",
         )
 
 
 def test_a_turn_past_360_degrees_is_reported():
-    s = pd.turning_set("over360", size=(450, 330), f=250)
+    s = fp.turning_set("over360", size=(450, 330), f=250)
     with pytest.warns(UserWarning, match=r"turn through 405 degrees.*'over360_8', 'over360_9'"):
         r = st.stitch(s.images, names=s.names, blend_method="feather")
     assert r.projection == "spherical" and r.panorama.shape[1] == int(

@@ -48,12 +48,23 @@ from .calibrate import (
     calibrate_from_images,
     closed_form_with_distortion,
 )
-from .coach import CoachReport, coach, projection_uncertainty
-from .detection import ChessboardDetection, board_points, find_chessboard, parse_pattern
-from .io import load_calibration, save_calibration
+from .coach import CoachReport, UncertaintyMap, coach, projection_uncertainty
+from .detection import (
+    ChessboardDetection,
+    PatternSize,
+    board_points,
+    find_chessboard,
+    parse_pattern,
+)
+from .io import SavedCalibration, load_calibration, save_calibration
 from .refinement import PARAM_NAMES, reproject
 from .synthetic import SyntheticSet, make_synthetic_views
-from .undistortion import optimal_new_camera_matrix, undistort, undistortion_tradeoff
+from .undistortion import (
+    UndistortionTradeoff,
+    optimal_new_camera_matrix,
+    undistort,
+    undistortion_tradeoff,
+)
 from .zhang import (
     extrinsics_from_homography,
     initial_radial_distortion,
@@ -72,7 +83,11 @@ __all__ = [
     "ClosedFormWithDistortion",
     "CoachReport",
     "ImageCalibration",
+    "PatternSize",
+    "SavedCalibration",
     "SyntheticSet",
+    "UncertaintyMap",
+    "UndistortionTradeoff",
     "board_points",
     "calibrate_camera",
     "calibrate_from_images",

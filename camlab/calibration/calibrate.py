@@ -457,7 +457,25 @@ def initial_estimate(
     return InitialEstimate(K0, d0, poses0, Hs, g0)
 
 
-def pad_views(objs: list, imgs: list) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+class PaddedViews(NamedTuple):
+    """V views of different lengths padded to M points each (:func:`pad_views`).
+
+    Attributes
+    ----------
+    X : (V, M, 3) ndarray
+        Board points; padded rows repeat the view's first point.
+    observed : (V, M, 2) ndarray
+        Detected corners, pixels; zero on padded rows.
+    mask : (V, M) ndarray
+        1 on real points, 0 on padded rows (they carry no weight).
+    """
+
+    X: np.ndarray
+    observed: np.ndarray
+    mask: np.ndarray
+
+
+def pad_views(objs: list, imgs: list) -> PaddedViews:
     """Pad V views of different lengths to (V, M) arrays so the refinement is vectorised.
 
     Returns board points X (V, M, 3), observed corners (V, M, 2) and a (V, M) mask that is 0
@@ -468,7 +486,7 @@ def pad_views(objs: list, imgs: list) -> tuple[np.ndarray, np.ndarray, np.ndarra
     for v, (o, p) in enumerate(zip(objs, imgs, strict=True)):
         X[v, : len(o)], obs[v, : len(o)], mask[v, : len(o)] = o, p, 1.0
         X[v, len(o) :] = o[0]
-    return X, obs, mask
+    return PaddedViews(X, obs, mask)
 
 
 def _parameter_covariance(

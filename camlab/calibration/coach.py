@@ -12,9 +12,25 @@ from .calibrate import CalibrationResult
 from .refinement import PARAM_NAMES, project_views
 
 
-def projection_uncertainty(
-    result: CalibrationResult, step: int = 20
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+class UncertaintyMap(NamedTuple):
+    """:func:`projection_uncertainty` on a grid of pixels.
+
+    Attributes
+    ----------
+    us : (W',) ndarray
+        The grid's columns, pixels.
+    vs : (H',) ndarray
+        The grid's rows, pixels.
+    sigma : (H', W') ndarray
+        The projection's 1-sigma uncertainty at each grid pixel, pixels.
+    """
+
+    us: np.ndarray
+    vs: np.ndarray
+    sigma: np.ndarray
+
+
+def projection_uncertainty(result: CalibrationResult, step: int = 20) -> UncertaintyMap:
     r"""How uncertain the calibrated projection is across the image (pixels, 1 sigma).
 
     For a grid of pixels, take the ray the calibrated camera assigns to each, and ask how
@@ -25,7 +41,8 @@ def projection_uncertainty(
 
     Returns
     -------
-    (us, vs, sigma) with ``us`` (W',), ``vs`` (H',) grid coordinates and ``sigma`` (H', W').
+    UncertaintyMap
+        ``(us, vs, sigma)``: ``us`` (W',), ``vs`` (H',) grid coordinates and ``sigma`` (H', W').
     """
     w, h = result.image_size
     us = np.arange(step / 2, w, step, dtype=float)
@@ -45,7 +62,7 @@ def projection_uncertainty(
     J = Jg[0][..., free]  # (N, 2, n_free)
     C = J @ result.covariance @ J.transpose(0, 2, 1)
     sigma = np.sqrt(np.maximum(np.linalg.eigvalsh(C)[:, -1], 0.0))
-    return us, vs, sigma.reshape(U.shape)
+    return UncertaintyMap(us, vs, sigma.reshape(U.shape))
 
 
 class CoachReport(NamedTuple):

@@ -34,11 +34,18 @@ class ChessboardDetection(NamedTuple):
     detector: str = ""
 
 
-def parse_pattern(pattern: str | Sequence[int], name: str = "pattern") -> tuple[int, int]:
+class PatternSize(NamedTuple):
+    """A chessboard's inner corners (OpenCV's ``patternSize``): ``cols`` across, ``rows`` down."""
+
+    cols: int
+    rows: int
+
+
+def parse_pattern(pattern: str | Sequence[int], name: str = "pattern") -> PatternSize:
     """``"9x6"`` or ``(9, 6)`` -> ``(9, 6)`` inner corners (columns, rows); fractions are refused.
 
     >>> parse_pattern("9x6")
-    (9, 6)
+    PatternSize(cols=9, rows=6)
     >>> parse_pattern((9.5, 6))
     Traceback (most recent call last):
     ...
@@ -61,7 +68,7 @@ def parse_pattern(pattern: str | Sequence[int], name: str = "pattern") -> tuple[
     cols, rows = int(vals[0]), int(vals[1])
     if cols < 2 or rows < 2:
         raise CamlabInputError(f"{name}: expected at least 2 x 2 inner corners, got {pattern!r}")
-    return cols, rows
+    return PatternSize(cols, rows)
 
 
 def board_points(pattern_size: Sequence[int] | str, square_size: float) -> np.ndarray:

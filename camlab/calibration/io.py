@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -68,9 +69,25 @@ def _write(fs, result: CalibrationResult) -> None:
         fs.release()
 
 
-def load_calibration(
-    path: str | os.PathLike, *, name: str = "path"
-) -> tuple[np.ndarray, np.ndarray, tuple[int, int]]:
+class SavedCalibration(NamedTuple):
+    """A camera read back by :func:`load_calibration`.
+
+    Attributes
+    ----------
+    K : (3, 3) ndarray
+        Intrinsics, pixels.
+    dist : (4,) or (5,) ndarray
+        Distortion coefficients in OpenCV's order ``(k1, k2, p1, p2[, k3])``.
+    image_size : (width, height)
+        The calibrated image size, pixels.
+    """
+
+    K: np.ndarray
+    dist: np.ndarray
+    image_size: tuple[int, int]
+
+
+def load_calibration(path: str | os.PathLike, *, name: str = "path") -> SavedCalibration:
     """Read ``(K, dist, image_size)`` from a file written by :func:`save_calibration`, by OpenCV
     with the same node names, or by ROS's camera calibrator (``camera_info`` YAML, whose
     matrices are ``rows``/``cols``/``data`` maps; ``distortion_model: plumb_bob``). ``name`` is the argument named in errors."""
@@ -110,7 +127,7 @@ def load_calibration(
             f"distortion coefficients and image size {size[0]} x {size[1]}; expected 3 x 3, 4 or 5 "
             f"(k1, k2, p1, p2[, k3]) and a positive image_width and image_height"
         )
-    return K, dist.ravel(), size
+    return SavedCalibration(K, dist.ravel(), size)
 
 
 def _open_storage(path: Path):

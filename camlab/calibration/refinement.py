@@ -8,12 +8,15 @@ damped normal equations by eliminating the poses (Schur complement).
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validate import as_float, as_points, check_intrinsics, check_matrix
 from ..camera import rotation_from_axis_angle
 from ..distortion import as_dist, beyond_valid_radius, distortion_jacobian
+from ..optimize import NormalEquations
 
 PARAM_NAMES = ("fx", "fy", "cx", "cy", "skew", "k1", "k2", "p1", "p2", "k3")
 """The global (per-camera) parameters in the order camlab refines them."""
@@ -52,11 +55,79 @@ def _skew(w: np.ndarray) -> np.ndarray:
     return out
 
 
-def project_views(g: np.ndarray, poses: np.ndarray, X: np.ndarray, jac: bool = False):
+class ViewProjection(NamedTuple):
+    """:func:`project_views` with its Jacobians.
+
+    Attributes
+    ----------
+    uv : (V, M, 2) ndarray
+        Projected board points, pixels.
+    d_global : (V, M, 2, 10) ndarray
+        d uv / d g (fx, fy, cx, cy, s, k1, k2, p1, p2, k3).
+    d_pose : (V, M, 2, 6) ndarray
+        d uv / d pose (rvec, t).
+    """
+
+    uv: np.ndarray
+    d_global: np.ndarray
+    d_pose: np.ndarray
+
+
+class SchurComplement(NamedTuple):
+    """:meth:`BlockNormal.schur`: the reduced system of the intrinsics and its pieces.
+
+    Attributes
+    ----------
+    S : (n, n) ndarray
+        ``U' - sum_v W_v V'_v^-1 W_v^T``: the intrinsics' normal matrix with the poses eliminated.
+    V_inv : (V, 6, 6) ndarray
+        ``V'^-1``: each view's damped pose block, inverted.
+    Y : (V, n, 6) ndarray
+        ``W V'^-1``.
+    """
+
+    S: np.ndarray
+    V_inv: np.ndarray
+    Y: np.ndarray
+
+
+class CalibrationUnknowns(NamedTuple):
+    """The unknowns of :class:`CalibrationProblem` unpacked from one vector.
+
+    Attributes
+    ----------
+    g : (10,) ndarray
+        Global parameters (fx, fy, cx, cy, s, k1, k2, p1, p2, k3); fixed ones keep their start value.
+    poses : (V, 6) ndarray
+        Each view's pose (rvec, t).
+    """
+
+    g: np.ndarray
+    poses: np.ndarray
+
+
+class JacobianBlocks(NamedTuple):
+    """The residuals' Jacobian of :class:`CalibrationProblem`, by block.
+
+    Attributes
+    ----------
+    intrinsic : (V, 2M, n) ndarray
+        d r / d (free global parameters), view by view.
+    pose : (V, 2M, 6) ndarray
+        d r / d (each view's own pose).
+    """
+
+    intrinsic: np.ndarray
+    pose: np.ndarray
+
+
+def project_views(
+    g: np.ndarray, poses: np.ndarray, X: np.ndarray, jac: bool = False
+) -> np.ndarray | ViewProjection:
     r"""Project padded board points X (V, M, 3) with global parameters g (10,) and poses (V, 6).
 
-    Returns uv (V, M, 2) and, with ``jac``, d uv / d g (V, M, 2, 10) and d uv / d pose
-    (V, M, 2, 6) (pose = rvec, t). The chain rule, point by point:
+    Returns uv (V, M, 2), or with ``jac`` a :class:`ViewProjection`: uv, d uv / d g
+    (V, M, 2, 10) and d uv / d pose (V, M, 2, 6) (pose = rvec, t). The chain rule, point by point:
     :math:`u = K_p\,\mathrm{distort}(\pi(R X + t))` with :math:`K_p = [[f_x, s], [0, f_y]]`.
     """
     fx, fy, cx, cy, s, k1, k2, p1, p2, k3 = g
@@ -94,7 +165,7 @@ def project_views(g: np.ndarray, poses: np.ndarray, X: np.ndarray, jac: bool = F
     dXc = A @ P  # (V, M, 2, 3): d uv / d Xc = d uv / d t
     dR = -_skew(RX) @ Jl[:, None]  # d (R X) / d rvec, (V, M, 3, 3)
     Jp = np.concatenate([dXc @ dR, dXc], axis=-1)
-    return uv, Jg, Jp
+    return ViewProjection(uv, Jg, Jp)
 
 
 class BlockNormal:
@@ -130,7 +201,7 @@ class BlockNormal:
     def diagonal(self) -> np.ndarray:
         return np.concatenate([np.diag(self.U), np.diagonal(self.Vb, axis1=1, axis2=2).ravel()])
 
-    def schur(self, mu: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def schur(self, mu: float = 0.0) -> SchurComplement:
         """(S, V'^-1, W V'^-1) for damping mu."""
         dU = np.diag(self.U)
         Ud = self.U + mu * np.diag(np.maximum(dU, 1e-12 * max(dU.max(initial=0.0), 1e-300)))
@@ -139,7 +210,7 @@ class BlockNormal:
         Vinv = np.linalg.inv(Vd)
         Y = self.W @ Vinv
         S = Ud - (Y @ self.W.transpose(0, 2, 1)).sum(axis=0)
-        return S, Vinv, Y
+        return SchurComplement(S, Vinv, Y)
 
     def solve(self, mu: float) -> np.ndarray:
         S, Vinv, Y = self.schur(mu)
@@ -163,10 +234,10 @@ class CalibrationProblem:
     def pack(self, g: np.ndarray, poses: np.ndarray) -> np.ndarray:
         return np.concatenate([g[self.free], poses.ravel()])
 
-    def unpack(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def unpack(self, x: np.ndarray) -> CalibrationUnknowns:
         g = self.g0.copy()
         g[self.free] = x[: self.ni]
-        return g, x[self.ni :].reshape(self.V, 6)
+        return CalibrationUnknowns(g, x[self.ni :].reshape(self.V, 6))
 
     def _evaluate(self, x: np.ndarray):
         """Residuals and Jacobian blocks at x, computed together and kept for the next call.
@@ -181,7 +252,7 @@ class CalibrationProblem:
         m = self.mask[..., None]
         V, M = self.mask.shape
         r = ((uv - self.obs) * m).ravel()
-        J = (
+        J = JacobianBlocks(
             (Jg[..., self.free] * m[..., None]).reshape(V, 2 * M, self.ni),
             (Jp * m[..., None]).reshape(V, 2 * M, 6),
         )
@@ -191,12 +262,12 @@ class CalibrationProblem:
     def residuals(self, x: np.ndarray) -> np.ndarray:
         return self._evaluate(x)[0]
 
-    def jacobian(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def jacobian(self, x: np.ndarray) -> JacobianBlocks:
         return self._evaluate(x)[1]
 
-    def normal_equations(self, J, r: np.ndarray):
-        A = BlockNormal(J[0], J[1], r.reshape(self.V, -1))
-        return A, A.gradient()
+    def normal_equations(self, J: JacobianBlocks, r: np.ndarray) -> NormalEquations:
+        A = BlockNormal(J.intrinsic, J.pose, r.reshape(self.V, -1))
+        return NormalEquations(A, A.gradient())
 
 
 def reproject(

@@ -75,9 +75,24 @@ def optimal_new_camera_matrix(
     return np.array([[p[0], 0.0, p[2]], [0.0, p[1], p[3]], [0.0, 0.0, 1.0]])
 
 
+class UndistortionTradeoff(NamedTuple):
+    """What undistorting with a new K costs (:func:`undistortion_tradeoff`).
+
+    Attributes
+    ----------
+    black_fraction : float
+        Share of output pixels that sample outside the photo (the black border).
+    lost_fraction : float
+        Share of photo pixels that land outside the output.
+    """
+
+    black_fraction: float
+    lost_fraction: float
+
+
 def undistortion_tradeoff(
     K: ArrayLike, dist: ArrayLike | None, image_size: Sequence[int], new_K: ArrayLike, step: int = 4
-) -> tuple[float, float]:
+) -> UndistortionTradeoff:
     """(black_fraction, lost_fraction) of undistorting with ``new_K``.
 
     ``black_fraction``: share of output pixels that sample outside the photo (black
@@ -105,7 +120,7 @@ def undistortion_tradeoff(
             & (dst[:, 1] >= -0.5)
             & (dst[:, 1] <= h - 0.5)
         )
-    return float(1 - inside.mean()), float(1 - kept.mean())
+    return UndistortionTradeoff(float(1 - inside.mean()), float(1 - kept.mean()))
 
 
 @lru_cache(maxsize=8)

@@ -6,6 +6,7 @@ See :mod:`camlab.calibration` for the whole pipeline and lesson 08 for the deriv
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -35,7 +36,22 @@ def _rows(x, dim: int, name: str) -> np.ndarray:
     return a
 
 
-def check_views(object_points, image_points, min_views: int = 1):
+class Views(NamedTuple):
+    """Calibration views validated by :func:`check_views`.
+
+    Attributes
+    ----------
+    object_points : list of (N_v, 3) ndarray
+        Each view's board points.
+    image_points : list of (N_v, 2) ndarray
+        Each view's detected corners, pixels (finite, as many as its board points).
+    """
+
+    object_points: list
+    image_points: list
+
+
+def check_views(object_points, image_points, min_views: int = 1) -> Views:
     """Lists of (N_v, 3) and (N_v, 2) float arrays, validated view by view."""
     if isinstance(image_points, np.ndarray) and image_points.ndim == 2:
         image_points = [image_points]
@@ -91,7 +107,7 @@ def check_views(object_points, image_points, min_views: int = 1):
             )
         out_obj.append(o)
         out_img.append(p)
-    return out_obj, out_img
+    return Views(out_obj, out_img)
 
 
 def planar_xy(obj: np.ndarray, v: int) -> np.ndarray:

@@ -33,11 +33,19 @@ import os
 import re
 import shutil
 from pathlib import Path
+from typing import NamedTuple
 
 from .._validate import CamlabInputError
 from .lessons import called, find_lesson, lesson_files, only_statement, stub_name
 
-__all__ = ["NBGRADER_CONFIG", "POINTS", "STUB", "assignment_notebook", "write_course"]
+__all__ = [
+    "NBGRADER_CONFIG",
+    "POINTS",
+    "STUB",
+    "AssignmentNotebook",
+    "assignment_notebook",
+    "write_course",
+]
 
 POINTS = 1
 STUB = "# your code here\nraise NotImplementedError"
@@ -150,7 +158,22 @@ def _release_safe(cell: dict) -> dict | None:
     return dict(cell, source=cleaned) if cleaned.strip() else None
 
 
-def assignment_notebook(notebook: dict, lesson: str) -> tuple[dict, list[str]]:
+class AssignmentNotebook(NamedTuple):
+    """:func:`assignment_notebook`'s result.
+
+    Attributes
+    ----------
+    notebook : dict
+        The nbgrader source version of the lesson (nbformat JSON).
+    exercises : list of str
+        The graded exercises' names, in the lesson's order.
+    """
+
+    notebook: dict
+    exercises: list[str]
+
+
+def assignment_notebook(notebook: dict, lesson: str) -> AssignmentNotebook:
     """The nbgrader source version of a lesson notebook and its exercise names, in order.
 
     Raises
@@ -194,7 +217,7 @@ def assignment_notebook(notebook: dict, lesson: str) -> tuple[dict, list[str]]:
             f"{lesson}: exercise {unchecked[0]!r} has a stub but no check_{unchecked[0]} cell"
         )
     nb["cells"] = cells
-    return nb, graded
+    return AssignmentNotebook(nb, graded)
 
 
 def _check_new_folder(dest: Path) -> None:

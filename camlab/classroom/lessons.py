@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import ast
 from pathlib import Path
+from typing import NamedTuple
 
 from .._validate import CamlabInputError
 
-__all__ = ["called", "find_lesson", "lesson_files", "only_statement", "stub_name"]
+__all__ = ["Call", "called", "find_lesson", "lesson_files", "only_statement", "stub_name"]
 
 
 def lesson_files() -> list[Path]:
@@ -60,12 +61,19 @@ def stub_name(stmt: ast.stmt | None) -> str | None:
     return None
 
 
-def called(stmt: ast.stmt | None) -> tuple[str, list[ast.expr]] | None:
+class Call(NamedTuple):
+    """A bare call ``f(...)`` found by :func:`called`: the function's ``name`` and its positional ``args``."""
+
+    name: str
+    args: list[ast.expr]
+
+
+def called(stmt: ast.stmt | None) -> Call | None:
     """``(function name, arguments)`` if ``stmt`` is a bare call ``f(...)``."""
     if (
         isinstance(stmt, ast.Expr)
         and isinstance(stmt.value, ast.Call)
         and isinstance(stmt.value.func, ast.Name)
     ):
-        return stmt.value.func.id, stmt.value.args
+        return Call(stmt.value.func.id, stmt.value.args)
     return None

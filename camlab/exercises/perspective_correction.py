@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import perspective as pp
+from .. import scenes
 from ..homography import estimate_homography
 from ..projective import map_points
 from ._answers import same_array, same_up_to_scale, shape_problem
@@ -14,8 +15,8 @@ from ._core import Exercise, register_exercise
 def _rect_cases():
     return [
         (np.array([[10.0, 10.0], [110.0, 10.0], [110.0, 60.0], [10.0, 60.0]]), (101, 51)),
-        (pp.sample_photo("page").corners, (210, 297)),
-        (pp.sample_photo("facade").corners, (400, 300)),
+        (scenes.sample_photo("page").corners, (210, 297)),
+        (scenes.sample_photo("facade").corners, (400, 300)),
     ]
 
 
@@ -94,7 +95,7 @@ def _rotated_rectangle(angle_deg: float, centre=(320.0, 240.0), size=(260.0, 150
 
 
 def _order_cases():
-    page = pp.sample_photo("page").corners
+    page = scenes.sample_photo("page").corners
     return [
         (np.array([[10.0, 0.0], [0.0, 0.0], [0.0, 10.0], [10.0, 10.0]]),),
         (page[[2, 0, 3, 1]],),

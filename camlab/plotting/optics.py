@@ -6,6 +6,8 @@ partner moves those artists, so widgets can redraw in place.
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from .. import lens as _lens
@@ -17,6 +19,7 @@ __all__ = [
     "box_edges",
     "label_camera_axes",
     "PINHOLE_VIEW",
+    "PlaneFaces",
     "plane_faces",
     "draw_pinhole_3d",
     "update_pinhole_3d",
@@ -84,9 +87,24 @@ def label_camera_axes(ax, labelpad: float = 8) -> None:
     ax.set_zlabel("y, down (m)", labelpad=labelpad)
 
 
-def plane_faces(planes) -> tuple[np.ndarray, np.ndarray]:
+class PlaneFaces(NamedTuple):
+    """Scene planes as :func:`draw_pinhole_3d` draws them (its ``faces``).
+
+    Attributes
+    ----------
+    corners : (F, 4, 3) ndarray
+        Each plane's corners in the camera frame, metres.
+    greys : (F,) ndarray
+        Each plane's mean grey in [0, 1].
+    """
+
+    corners: np.ndarray
+    greys: np.ndarray
+
+
+def plane_faces(planes) -> PlaneFaces:
     """(F, 4, 3) camera-frame corners and F mean greys of scene planes: the ``faces`` of :func:`draw_pinhole_3d`."""
-    return (
+    return PlaneFaces(
         np.array([p.corners_world for p in planes]),
         np.array([float(np.mean(p.texture)) for p in planes]),
     )
@@ -755,12 +773,19 @@ BLUR_VIEWS = (
 )
 
 
-def blur_view(diameter_um: float) -> tuple[float, float]:
+class BlurView(NamedTuple):
+    """The face-on view :func:`blur_view` picks: its ``half_width`` and ``scale_bar`` length, µm."""
+
+    half_width: float
+    scale_bar: float
+
+
+def blur_view(diameter_um: float) -> BlurView:
     """(half-width, scale-bar length) in µm of the face-on view for the largest disc ``diameter_um``."""
     for half, bar in BLUR_VIEWS:
         if diameter_um <= 2 * half * 5 / 6:
-            return half, bar
-    return BLUR_VIEWS[-1]
+            return BlurView(half, bar)
+    return BlurView(*BLUR_VIEWS[-1])
 
 
 def draw_blur_disc(ax, coc_um: float = 30.0) -> dict:
@@ -951,7 +976,7 @@ def draw_pinhole_cones(
     )  # plot x = depth z, mm: the right edge and the image plane
     entry = []
     for Y, colour in zip(
-        heights, (palette.BLUE, palette.PURPLE), strict=False
+        heights, (palette.BLUE, palette.PURPLE), strict=True
     ):  # objects: blue and purple (green is the virtual plane)
         y_obj = -Y * 1e3  # mm, drawn up
         y_img = Y * f / Z * 1e3  # the real image is inverted: -f Y / Z, drawn up as +

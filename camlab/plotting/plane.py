@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.lines import Line2D
@@ -44,9 +46,24 @@ def image_axes(ax: Axes, size: tuple[int, int], title: str = "") -> Axes:
     return ax
 
 
+class ArrowPlacement(NamedTuple):
+    """Where :func:`arrow_to_infinity` draws a point.
+
+    Attributes
+    ----------
+    position : (2,) ndarray
+        The point itself if it is finite and inside the axes, else the arrow's tip near the edge.
+    direction : (2,) ndarray
+        The arrow's unit direction; (0, 0) when the point is drawn where it is.
+    """
+
+    position: np.ndarray
+    direction: np.ndarray
+
+
 def arrow_to_infinity(
     point_h: np.ndarray, ax: Axes, anchor: np.ndarray | None = None
-) -> tuple[np.ndarray, np.ndarray]:
+) -> ArrowPlacement:
     """Where to draw a point that may be off-axes or ideal: (position, unit direction).
 
     A finite point inside the axes is drawn where it is; otherwise an arrow near the edge
@@ -61,7 +78,7 @@ def arrow_to_infinity(
     if w != 0:
         p = np.array([x / w, y / w])
         if x0 <= p[0] <= x1 and y0 <= p[1] <= y1:
-            return p, np.zeros(2)
+            return ArrowPlacement(p, np.zeros(2))
         direction = p - start
     else:
         direction = np.array([x, y])
@@ -73,7 +90,7 @@ def arrow_to_infinity(
     with np.errstate(divide="ignore", invalid="ignore"):
         steps = np.where(direction > 0, (hi - start) / direction, (lo - start) / direction)
     s = max(0.0, float(np.min(steps[np.abs(direction) > 1e-12])))
-    return start + s * direction, direction
+    return ArrowPlacement(start + s * direction, direction)
 
 
 _ARROW = np.array([[0.0, 1.0], [-0.55, -0.7], [0.0, -0.3], [0.55, -0.7], [0.0, 1.0]])

@@ -27,7 +27,7 @@ import io
 import struct
 import weakref
 from collections.abc import Mapping
-from typing import Any
+from typing import Any, NamedTuple
 
 from matplotlib.figure import Figure
 
@@ -160,9 +160,24 @@ def figure_png(fig: Figure) -> bytes:
     return buf.getvalue()
 
 
+class DisplayBundle(NamedTuple):
+    """The ``(data, metadata)`` pair IPython's ``_repr_mimebundle_`` returns.
+
+    Attributes
+    ----------
+    data : dict
+        Mime type -> content (the widget's entries, ``image/png`` in base64, ``text/plain`` the alt text).
+    metadata : dict
+        ``{"image/png": {"alt", "width", "height"}}``.
+    """
+
+    data: dict
+    metadata: dict
+
+
 def static_bundle(
     data: Mapping[str, Any], fig: Figure, alt: str, png: bytes | None = None
-) -> tuple[dict, dict]:
+) -> DisplayBundle:
     """A widget's display bundle plus a PNG of ``fig`` and its alt text (module docstring).
 
     ``png`` reuses an image already rendered (the png display mode keeps one); otherwise
@@ -177,7 +192,7 @@ def static_bundle(
         ">II", png[16:24]
     )  # the PNG's own size (IHDR), which matplotlib < 3.10 may round
     metadata = {"image/png": {"alt": alt, "width": width, "height": height}}
-    return out, metadata
+    return DisplayBundle(out, metadata)
 
 
 def fit_output_width(fig: Figure) -> Figure:

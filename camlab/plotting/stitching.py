@@ -6,14 +6,38 @@ Images are shown pixel-exact: pixel (u, v) has its centre at data coordinates (u
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from . import palette
 
-__all__ = ["draw_keypoints", "draw_matches", "match_segments", "outline", "side_by_side"]
+__all__ = [
+    "SideBySide",
+    "draw_keypoints",
+    "draw_matches",
+    "match_segments",
+    "outline",
+    "side_by_side",
+]
 
 
-def side_by_side(image1: np.ndarray, image2: np.ndarray, gap: int = 8) -> tuple[np.ndarray, float]:
+class SideBySide(NamedTuple):
+    """Two images on one canvas (:func:`side_by_side`).
+
+    Attributes
+    ----------
+    canvas : (H, W, 3) ndarray
+        Image 1, a white gap, image 2.
+    offset : float
+        Image 2's u offset on the canvas, pixels (add it to image 2's u coordinates).
+    """
+
+    canvas: np.ndarray
+    offset: float
+
+
+def side_by_side(image1: np.ndarray, image2: np.ndarray, gap: int = 8) -> SideBySide:
     """Two images next to each other on one canvas (white gap); returns it and image 2's u offset."""
     a, b = np.asarray(image1), np.asarray(image2)
     if a.ndim == 2:
@@ -25,7 +49,7 @@ def side_by_side(image1: np.ndarray, image2: np.ndarray, gap: int = 8) -> tuple[
     out = np.full((h, a.shape[1] + gap + b.shape[1], 3), fill, dtype=a.dtype)
     out[: a.shape[0], : a.shape[1]] = a
     out[: b.shape[0], a.shape[1] + gap :] = b.astype(a.dtype)
-    return out, float(a.shape[1] + gap)
+    return SideBySide(out, float(a.shape[1] + gap))
 
 
 def match_segments(src: np.ndarray, dst: np.ndarray, offset: float) -> np.ndarray:

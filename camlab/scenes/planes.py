@@ -78,7 +78,7 @@ def _chart_texture(seed: int) -> np.ndarray:
 def letter_chart(
     width: float = 0.3,
     *,
-    R: ArrayLike = np.eye(3),
+    R: ArrayLike | None = None,
     t: ArrayLike = (0, 0, 0),
     seed: int = 0,
     name: str = "chart",
@@ -151,7 +151,7 @@ def textured_plane(
     texture: ArrayLike,
     width: float,
     *,
-    R: ArrayLike = np.eye(3),
+    R: ArrayLike | None = None,
     t: ArrayLike = (0, 0, 0),
     height: float | None = None,
     centered: bool = True,
@@ -177,7 +177,7 @@ def checkerboard(
     pattern_size: tuple[int, int] = (9, 6),
     square: float = 0.025,
     *,
-    R: ArrayLike = np.eye(3),
+    R: ArrayLike | None = None,
     t: ArrayLike = (0, 0, 0),
     margin: float = 1.0,
     px_per_square: int = 48,
@@ -232,7 +232,7 @@ def checkerboard(
 def photo_plane(
     width: float = 0.4,
     *,
-    R: ArrayLike = np.eye(3),
+    R: ArrayLike | None = None,
     t: ArrayLike = (0, 0, 0),
     name: str = "photo",
     linear: bool = False,
@@ -255,7 +255,7 @@ def _linear_portrait() -> np.ndarray:
 def text_page(
     width: float = 0.21,
     *,
-    R: ArrayLike = np.eye(3),
+    R: ArrayLike | None = None,
     t: ArrayLike = (0, 0, 0),
     seed: int = 0,
     name: str = "page",
@@ -268,7 +268,7 @@ def box(
     center: ArrayLike,
     size: ArrayLike,
     *,
-    R: ArrayLike = np.eye(3),
+    R: ArrayLike | None = None,
     colors: Sequence[float] | None = None,
     texture: str = "noise",
     texels: int = 64,
@@ -281,7 +281,7 @@ def box(
     ----------
     center : (3,) world position, metres.
     size : (3,) edge lengths along the box's own x, y, z axes, metres.
-    R : (3, 3) world_from_box rotation.
+    R : (3, 3) world_from_box rotation; None (the default) is the identity.
     colors : six greys in [0, 1] (faces +x, -x, +y, -y, +z, -z); distinct shades by default.
     texture : "noise" (random texture on each face: good for stereo matching) or "flat".
     rng : seed or Generator for the noise texture (deterministic by default).
@@ -294,7 +294,7 @@ def box(
         raise CamlabInputError(
             f"size: expected three positive edge lengths in metres, got {sz.tolist()}"
         )
-    Rb = check_rotation(R, f"{name} R")
+    Rb = np.eye(3) if R is None else check_rotation(R, f"{name} R")
     if texture not in ("noise", "flat"):
         raise CamlabInputError(f"texture: expected 'noise' or 'flat', got {texture!r}")
     shades = list(colors) if colors is not None else [0.75, 0.45, 0.6, 0.3, 0.85, 0.55]

@@ -211,7 +211,7 @@ def dp_seam_masks(warped: WarpedImages, megapixels: float = 0.1) -> list[np.ndar
         wv = wk[ys[inside] - r0, xs[inside] - c0]
         better = wv > best_w[inside]
         best_w[inside[better]], best_k[inside[better]] = wv[better], k
-    for k, (r0, r1, c0, c1) in enumerate(warped.boxes):
+    for k, (r0, _r1, c0, _c1) in enumerate(warped.boxes):
         mine = best_k == k
         out[k][ys[mine] - r0, xs[mine] - c0] = True
     return out

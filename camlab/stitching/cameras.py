@@ -40,6 +40,7 @@ from ..optimize import huber_residuals, levenberg_marquardt
 __all__ = [
     "BundleResult",
     "CameraEstimate",
+    "Focals",
     "HomographyAdjustment",
     "adjust_homographies",
     "bundle_adjust",
@@ -63,9 +64,24 @@ def intrinsics(f: float, shape: Sequence[int]) -> np.ndarray:
     return np.array([[f, 0.0, (w - 1) / 2], [0.0, f, (h - 1) / 2], [0.0, 0.0, 1.0]])
 
 
+class Focals(NamedTuple):
+    """The focal lengths :func:`focal_from_homography` finds, pixels (NaN where undetermined).
+
+    Attributes
+    ----------
+    f_src : float
+        The source image's focal length.
+    f_dst : float
+        The destination image's focal length.
+    """
+
+    f_src: float
+    f_dst: float
+
+
 def focal_from_homography(
     H: ArrayLike, shape_src: Sequence[int], shape_dst: Sequence[int]
-) -> tuple[float, float]:
+) -> Focals:
     r"""Focal lengths (f_src, f_dst) implied by a rotation-only homography; NaN where undetermined.
 
     Move both principal points to the origin, :math:`\hat H = C_d^{-1} H C_s`. Then
@@ -126,7 +142,7 @@ def focal_from_homography(
         h[5] ** 2 - h[2] ** 2,
         h[0] ** 2 + h[1] ** 2 - h[3] ** 2 - h[4] ** 2,
     )
-    return f_src, f_dst
+    return Focals(f_src, f_dst)
 
 
 def estimate_focal(homographies: dict, shapes: Sequence[Sequence[int]]) -> float:

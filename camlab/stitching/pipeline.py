@@ -34,7 +34,7 @@ from .projections import PROJECTIONS, canvas_points, make_canvas, warp_to_canvas
 from .registration import match_graph, prepare_images
 from .warping import WarpedImages, feather_weights, warp_images
 
-__all__ = ["PROJECTION_CHOICES", "StitchResult", "largest_rectangle", "stitch"]
+__all__ = ["PROJECTION_CHOICES", "Rectangle", "StitchResult", "largest_rectangle", "stitch"]
 
 PROJECTION_CHOICES = ("auto",) + PROJECTIONS
 
@@ -267,7 +267,16 @@ def _warn_full_turn(Rs: list, names: list) -> None:
         )
 
 
-def largest_rectangle(mask: np.ndarray) -> tuple[int, int, int, int]:
+class Rectangle(NamedTuple):
+    """An axis-aligned block of pixels ``mask[row0:row1, col0:col1]`` (ends exclusive)."""
+
+    row0: int
+    row1: int
+    col0: int
+    col1: int
+
+
+def largest_rectangle(mask: np.ndarray) -> Rectangle:
     """The largest axis-aligned rectangle of True pixels: (row0, row1, col0, col1), end exclusive.
 
     Row by row, ``heights[c]`` counts the True pixels ending at this row in column c; the
@@ -289,7 +298,7 @@ def largest_rectangle(mask: np.ndarray) -> tuple[int, int, int, int]:
                 if hs * (c - start) > best:
                     best, out = hs * (c - start), (r + 1 - hs, r + 1, start, c)
             stack.append((start, hc))
-    return out
+    return Rectangle(*out)
 
 
 def stitch(

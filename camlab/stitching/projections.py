@@ -35,6 +35,9 @@ from ..distortion import pixels_to_normalised
 __all__ = [
     "PROJECTIONS",
     "Canvas",
+    "CanvasPatch",
+    "CanvasPoints",
+    "Rays",
     "canvas_from_ray",
     "canvas_points",
     "footprint",
@@ -47,31 +50,46 @@ __all__ = [
 PROJECTIONS = ("planar", "cylindrical", "spherical")
 
 
-def canvas_from_ray(d: np.ndarray, projection: str, s: float) -> tuple[np.ndarray, np.ndarray]:
+class CanvasPoints(NamedTuple):
+    """Canvas coordinates ``u`` (across) and ``v`` (down), arrays of one shape; NaN where undefined."""
+
+    u: np.ndarray
+    v: np.ndarray
+
+
+class Rays(NamedTuple):
+    """World ray directions by component, ``x``, ``y``, ``z``, arrays broadcast to one shape (not unit length)."""
+
+    x: np.ndarray
+    y: np.ndarray
+    z: np.ndarray
+
+
+def canvas_from_ray(d: np.ndarray, projection: str, s: float) -> CanvasPoints:
     """Canvas coordinates (u, v) of world rays ``d`` (..., 3) (see the module table); NaN where undefined."""
     x, y, z = d[..., 0], d[..., 1], d[..., 2]
     if projection == "planar":
         with np.errstate(divide="ignore", invalid="ignore"):
             zz = np.where(z > 1e-9, z, np.nan)
-            return s * x / zz, s * y / zz
+            return CanvasPoints(s * x / zz, s * y / zz)
     rho = np.hypot(x, z)
     theta = np.arctan2(x, z)
     if projection == "cylindrical":
         with np.errstate(divide="ignore", invalid="ignore"):
-            return s * theta, s * y / rho
-    return s * theta, s * np.arctan2(y, rho)
+            return CanvasPoints(s * theta, s * y / rho)
+    return CanvasPoints(s * theta, s * np.arctan2(y, rho))
 
 
-def ray_from_canvas(u: np.ndarray, v: np.ndarray, projection: str, s: float) -> tuple:
+def ray_from_canvas(u: np.ndarray, v: np.ndarray, projection: str, s: float) -> Rays:
     """World rays (x, y, z) of canvas pixels (u, v), each broadcast like ``u`` and ``v``: the inverse of
     :func:`canvas_from_ray`."""
     if projection == "planar":
-        return u / s, v / s, np.ones_like(u)
+        return Rays(u / s, v / s, np.ones_like(u))
     theta = u / s
     if projection == "cylindrical":
-        return np.sin(theta), v / s, np.cos(theta)
+        return Rays(np.sin(theta), v / s, np.cos(theta))
     phi = v / s
-    return np.sin(theta) * np.cos(phi), np.sin(phi), np.cos(theta) * np.cos(phi)
+    return Rays(np.sin(theta) * np.cos(phi), np.sin(phi), np.cos(theta) * np.cos(phi))
 
 
 def border_points(shape: Sequence[int], n: int = 16) -> np.ndarray:
@@ -100,7 +118,7 @@ def pixel_rays(pixels: np.ndarray, K: np.ndarray, R: np.ndarray) -> np.ndarray:
 
 def canvas_points(
     pixels: np.ndarray, K: np.ndarray, R: np.ndarray, projection: str, s: float
-) -> tuple[np.ndarray, np.ndarray]:
+) -> CanvasPoints:
     r"""Where pixels (N, 2) of image (K, R) land on a canvas: (u, v), each (N,).
 
     On the cylinder and the sphere the longitude is unrolled around the image's optical axis
@@ -111,7 +129,7 @@ def canvas_points(
     if projection != "planar":
         axis = canvas_from_ray(R[2:3], projection, s)[0][0]  # the optical axis R^T (0, 0, 1)
         u = axis + np.angle(np.exp(1j * (u - axis) / s)) * s
-    return u, v
+    return CanvasPoints(u, v)
 
 
 def footprint(
@@ -186,6 +204,24 @@ def make_canvas(
     return Canvas(projection, float(s), (float(lo[0]), float(lo[1])), (h, w), bool(wraps), out)
 
 
+class CanvasPatch(NamedTuple):
+    """One image warped into its canvas box by :func:`warp_to_canvas`.
+
+    Attributes
+    ----------
+    patch : (r1-r0, c1-c0[, C]) ndarray
+        The warped image; outside ``mask`` it repeats the image's nearest edge pixels.
+    mask : (r1-r0, c1-c0) bool ndarray
+        Where the canvas pixel sees the image (in front of the camera).
+    extra : (r1-r0, c1-c0) float32 ndarray or None
+        The ``extra`` channel warped the same way (zero outside ``mask``); None if none was given.
+    """
+
+    patch: np.ndarray
+    mask: np.ndarray
+    extra: np.ndarray | None
+
+
 def warp_to_canvas(
     image: np.ndarray,
     K: np.ndarray,
@@ -193,7 +229,7 @@ def warp_to_canvas(
     canvas: Canvas,
     box: tuple,
     extra: np.ndarray | None = None,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+) -> CanvasPatch:
     """Warp one image into its canvas box: canvas pixel -> world ray -> :math:`\\pi(K R d)` (bilinear).
 
     Returns the warped (r1-r0, c1-c0, C) patch, its bool mask (the pixel sees the image, in
@@ -222,9 +258,9 @@ def warp_to_canvas(
         mu.shape + image.shape[2:]
     )
     if extra is None:
-        return out, mask, None
+        return CanvasPatch(out, mask, None)
     more = cv2.remap(extra, mu, mv, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE).reshape(
         mu.shape + extra.shape[2:]
     )
     more[~mask] = 0
-    return out, mask, more
+    return CanvasPatch(out, mask, more)

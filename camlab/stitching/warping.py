@@ -9,6 +9,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -27,7 +28,37 @@ from ..warp import canvas_bounds, warp_perspective
 # --------------------------------------------------------------------------- projection
 
 
-def cylindrical_warp(image: ArrayLike, K: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+class CylinderImage(NamedTuple):
+    """:func:`cylindrical_warp`'s unrolled cylinder.
+
+    Attributes
+    ----------
+    image : ndarray like the input
+        The unrolled cylinder, same size, centred on the principal point.
+    mask : (H, W) bool ndarray
+        Where the cylinder sees the image.
+    """
+
+    image: np.ndarray
+    mask: np.ndarray
+
+
+class SubsampledCanvas(NamedTuple):
+    """:meth:`WarpedImages.subsampled`: every image and mask on the coarse canvas grid.
+
+    Attributes
+    ----------
+    images : list of ndarray
+        Each image on the grid (zero outside its mask).
+    masks : list of bool ndarray
+        Where each image has data on the grid.
+    """
+
+    images: list
+    masks: list
+
+
+def cylindrical_warp(image: ArrayLike, K: ArrayLike) -> CylinderImage:
     r"""Map an image onto a cylinder of radius f around the camera centre (unrolled).
 
     Output pixel (u', v') is the cylinder point at angle :math:`\theta = (u' - c_x)/f` and
@@ -44,10 +75,9 @@ def cylindrical_warp(image: ArrayLike, K: ArrayLike) -> tuple[np.ndarray, np.nda
 
     Returns
     -------
-    cyl : ndarray like ``image``
-        The unrolled cylinder, same size, centred on the principal point.
-    mask : (H, W) bool ndarray
-        Where the cylinder sees the image.
+    CylinderImage
+        ``(image, mask)``: the unrolled cylinder (like ``image``, same size, centred on the
+        principal point) and the (H, W) bool mask of where it sees the image.
     """
     import cv2
 
@@ -67,7 +97,7 @@ def cylindrical_warp(image: ArrayLike, K: ArrayLike) -> tuple[np.ndarray, np.nda
         src, map_u, map_v, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT, borderValue=0
     )
     mask = (map_u >= -0.5) & (map_u <= w - 0.5) & (map_v >= -0.5) & (map_v <= h - 0.5)
-    return cyl.reshape(img.shape).astype(img.dtype), mask
+    return CylinderImage(cyl.reshape(img.shape).astype(img.dtype), mask)
 
 
 # --------------------------------------------------------------------------- warping
@@ -177,14 +207,16 @@ class WarpedImages:
     def weights(self) -> list:
         return self._on_canvas(self.patch_weights)
 
-    def subsampled(self, step: int) -> tuple[list, list]:
+    def subsampled(self, step: int) -> SubsampledCanvas:
         """Every image and mask on the canvas grid ``[::step, ::step]`` (as ``images[k][::step, ::step]``,
         but with the patches' replicated border kept outside the masks), built from the boxes without
         the full canvas."""
         h, w = self.shape
         size = (-(-h // step), -(-w // step))
         imgs, masks = [], []
-        for p, m, (r0, r1, c0, c1) in zip(self.patches, self.patch_masks, self.boxes, strict=True):
+        for p, m, (r0, _r1, c0, _c1) in zip(
+            self.patches, self.patch_masks, self.boxes, strict=True
+        ):
             a, b = -(-r0 // step), -(-c0 // step)  # the first grid row and column in the box
             sp, sm = (
                 p[a * step - r0 :: step, b * step - c0 :: step],
@@ -196,7 +228,7 @@ class WarpedImages:
             mk[a : a + sm.shape[0], b : b + sm.shape[1]] = sm
             imgs.append(im)
             masks.append(mk)
-        return imgs, masks
+        return SubsampledCanvas(imgs, masks)
 
 
 def _image_box(

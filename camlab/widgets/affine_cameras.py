@@ -9,13 +9,15 @@ In a lesson::
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 from matplotlib.legend_handler import HandlerTuple
 from matplotlib.lines import Line2D
 
 from .. import affine as af
 from .. import camera as cm
-from .. import scenes
+from .. import fixtures, scenes
 from ..plotting import palette, scene3d
 from ._base import FigureView, build_demo, register, slider
 from .controls import int_slider, log_slider
@@ -109,7 +111,7 @@ def three_cameras():
     """Perspective, weak-perspective and orthographic images of the same scene side by side."""
     view = FigureView(figsize=(9.5, 3.35))
     axes = view.fig.subplots(1, 3)
-    scene = scenes.box_and_rails()
+    scene = fixtures.box_and_rails()
     persp = _image_panel(axes[0], "perspective (px)", "perspective")
     weak = _image_panel(axes[1], "weak perspective over perspective (px)", "weak perspective")
     axes[1].set_ylabel("")
@@ -343,7 +345,22 @@ RAIL_SAMPLES = (
 )  # the metres of track the readouts measure, from y to y + 1 (in view at every setting)
 
 
-def rail_cameras(yaw: float, pitch: float):
+class RailCameras(NamedTuple):
+    """The rail demo's cameras (:func:`rail_cameras`).
+
+    Attributes
+    ----------
+    camera : Camera
+        The perspective camera looking along the track.
+    affine : (3, 4) ndarray
+        Its weak-perspective approximation about :data:`RAIL_REFERENCE`.
+    """
+
+    camera: cm.Camera
+    affine: np.ndarray
+
+
+def rail_cameras(yaw: float, pitch: float) -> RailCameras:
     """The rail demo's perspective camera looking along the track (+y), turned by ``yaw`` about the
     vertical and tilted down by ``pitch`` (radians; f = 500 px, 640 x 480), and its weak-perspective
     approximation about :data:`RAIL_REFERENCE`."""
@@ -351,7 +368,7 @@ def rail_cameras(yaw: float, pitch: float):
     cam = cm.Camera.look_at(
         RAIL_EYE, RAIL_EYE + direction, K=cm.intrinsic_matrix(500, 500, 319.5, 239.5)
     )
-    return cam, af.affine_approximation(cam, RAIL_REFERENCE)
+    return RailCameras(cam, af.affine_approximation(cam, RAIL_REFERENCE))
 
 
 # Measured over the whole range (f = 500 px): yaw within +-15 and pitch 10 to 18 degrees keep the vanishing
@@ -364,7 +381,7 @@ def parallel_rails():
     and keeps equal sleepers equal at every depth (no shrinking with distance)."""
     view = FigureView(figsize=(10, 4.6))
     ax_p, ax_a = view.fig.subplots(1, 2)
-    scene = scenes.rail_track(*RAIL_TRACK)
+    scene = fixtures.rail_track(*RAIL_TRACK)
     ax_p.set_title("perspective: rails meet, far sleepers crowd", fontsize=9)
     ax_a.set_title("weak perspective: rails stay parallel, sleepers evenly spaced", fontsize=9)
     lines, texts = [], []
@@ -474,8 +491,8 @@ def parallel_rails():
         far_metre = cm.project_points(cam.P, ground[2:]).mean(axis=0)
         ring.set_data([far_metre[0]], [far_metre[1]])
         gaps = {
-            "perspective": scenes.sleeper_gaps(cam.P, RAIL_SAMPLES),
-            "affine": scenes.sleeper_gaps(P_aff, RAIL_SAMPLES),
+            "perspective": fixtures.sleeper_gaps(cam.P, RAIL_SAMPLES),
+            "affine": fixtures.sleeper_gaps(P_aff, RAIL_SAMPLES),
         }
         for text, (near, far) in zip(texts, gaps.values(), strict=True):
             text.set_text(

@@ -16,7 +16,7 @@ import numpy as np
 
 from .. import calibration as C
 from .._validate import CamlabInputError, ConvergenceError
-from ..data.calibration import bundled_calibration
+from ..fixtures.calibration import bundled_calibration
 from ..plotting import palette
 from ..plotting.calibration import image_frame
 from ._base import Demo, FigureView, build_demo, register, slider

@@ -6,7 +6,7 @@ import ipywidgets as W
 import numpy as np
 from matplotlib.patches import Rectangle
 
-from .. import render, scenes, sensor
+from .. import fixtures, render, scenes, sensor
 from ..plotting import images, palette
 from ._base import FigureView, build_demo, register, slider
 from .controls import monospace
@@ -26,8 +26,8 @@ def pixel_pitch():
     view = FigureView(figsize=(7.2, 4.4))
     ax_img = view.fig.subplots()
     scene = [
-        render.checkerboard((9, 6), 0.05, t=(-0.2, -0.125, 1.2)),
-        render.photo_plane(0.25, t=(0.32, 0.05, 1.3)),
+        scenes.checkerboard((9, 6), 0.05, t=(-0.2, -0.125, 1.2)),
+        scenes.photo_plane(0.25, t=(0.32, 0.05, 1.3)),
     ]
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
     centre = ((SIZE[0] - 1) / 2, (SIZE[1] - 1) / 2)
@@ -224,7 +224,7 @@ def bit_depth_and_noise():
     K = np.array([[330.0, 0, 159.5], [0, 330.0, 119.5], [0, 0, 1]])
     # linear light, as a sensor counts it (the photo's JPEG values decoded), shown through sRGB
     clean = render.render(
-        [render.photo_plane(0.5, t=(0.0, 0, 1.0), linear=True)],
+        [scenes.photo_plane(0.5, t=(0.0, 0, 1.0), linear=True)],
         K,
         SIZE,
         color=False,
@@ -337,7 +337,7 @@ def demosaicing():
     ax_raw, ax_full, ax_zoom = view.fig.subplots(1, 3, width_ratios=[0.75, 1, 0.75])
     # linear light (the photo's JPEG values decoded), as a sensor records it; every panel is shown through sRGB
     truth = render.render(
-        scenes.photo_and_page(linear=True), K_DEMOSAIC, SIZE, color=True, background=0.2
+        fixtures.photo_and_page(linear=True), K_DEMOSAIC, SIZE, color=True, background=0.2
     ).irradiance
     im_raw = images.show_image(
         ax_raw, np.zeros((CROP, CROP, 3)), "Bayer mosaic (zoom, through sRGB)"

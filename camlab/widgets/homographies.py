@@ -16,8 +16,8 @@ from typing import Any
 import ipywidgets as W
 import numpy as np
 
+from .. import fixtures, scenes
 from .. import homography as hg
-from .. import scenes
 from ..plotting import palette
 from ..projective import cross_ratio, map_points, splits_at_infinity
 from ..robust import required_iterations
@@ -431,7 +431,7 @@ def ransac_outliers() -> Demo:
     )  # sliders revisit settings; the answer is a pure (seeded) function of them
     def run(outlier_fraction: float, threshold: float, seed: int):
         """The demo's data and RANSAC's answer, or its error message."""
-        data = scenes.outlier_matches(outlier_fraction, seed)
+        data = fixtures.outlier_matches(outlier_fraction, seed)
         try:
             return data, hg.ransac_homography(
                 data[1], data[2], threshold, CONFIDENCE, 1000, np.random.default_rng(seed)

@@ -2,7 +2,7 @@
 
 All demos use the rendered panorama set at half size (320 x 240, f = 400 px). Features,
 nearest neighbours, warps and blends are computed once and cached by
-:mod:`camlab.data.panorama_examples`; sliders only re-filter, re-score or choose among
+:mod:`camlab.fixtures.panorama_examples`; sliders only re-filter, re-score or choose among
 precomputed images, so every update stays fast.
 """
 
@@ -14,7 +14,7 @@ import numpy as np
 from .. import features as ft
 from .. import homography as hg
 from .. import stitching as st
-from ..data import panorama_examples as pe
+from ..fixtures import panorama_examples as pe
 from ..plotting import palette
 from ..plotting.stitching import draw_keypoints, draw_matches, match_segments, outline
 from ..projective import map_points
@@ -498,7 +498,7 @@ BOX = (220, 560)  # (height, width) of canvas_projections' picture
 
 
 def _gallery() -> dict:
-    """{(views, projection): (RGBA image or None, message)}: :func:`camlab.data.panorama_examples.canvas_previews`
+    """{(views, projection): (RGBA image or None, message)}: :func:`camlab.fixtures.panorama_examples.canvas_previews`
     placed in the demo's picture, with the text the demo shows."""
     gallery = {}
     for (n, proj), p in pe.canvas_previews(BOX).items():

@@ -6,7 +6,7 @@ import ipywidgets as W
 import numpy as np
 from matplotlib.transforms import offset_copy
 
-from .. import distortion, lens, render, scenes
+from .. import distortion, fixtures, lens, render, scenes
 from ..plotting import images, optics, palette
 from ._base import FigureView, build_demo, register, slider
 from .controls import monospace
@@ -203,7 +203,7 @@ def depth_of_field():
     ax_img = view.fig.add_axes((left / width, bottom / height, SIZE[0] / width, SIZE[1] / height))
     ax_c = view.fig.add_axes((left / width, 68 / height, SIZE[0] / width, 194 / height))
     view.fig.set_layout_engine("none")  # fixed pixel boxes, not constrained layout
-    scene = scenes.depth_of_field_scene()
+    scene = fixtures.depth_of_field_scene()
     im = images.show_image(ax_img, np.zeros((SIZE[1], SIZE[0], 3)))
     z = np.linspace(0.3, 5, 400)
     (curve,) = ax_c.plot(
@@ -326,7 +326,7 @@ def lens_distortion():
     }
     view = FigureView(figsize=(8.6, 4.5))
     ax_img, ax_grid = view.fig.subplots(1, 2)
-    board = render.checkerboard((11, 8), 0.04, t=(-0.2, -0.14, 0.45), px_per_square=32)
+    board = scenes.checkerboard((11, 8), 0.04, t=(-0.2, -0.14, 0.45), px_per_square=32)
     # drawn smaller than its 480 x 360 pixels: area-averaged, or the square edges alias
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=255, interpolation="antialiased")
     (dots,) = ax_img.plot([], [], "o", color=palette.RED, ms=3.5, path_effects=palette.halo())

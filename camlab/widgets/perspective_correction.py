@@ -1,6 +1,6 @@
 """Demos for lesson 10, perspective correction.
 
-The photos are synthetic (``camlab.perspective.sample_photo``): a textured rectangle
+The photos are synthetic (``camlab.scenes.sample_photo``): a textured rectangle
 seen at an angle through a plane-induced homography, so the true corners and aspect
 ratio are known. Corners are dragged with the mouse under ipympl, moved one at a time with
 the keyboard (a corner dropdown and two sliders), or typed into the corners text control
@@ -15,6 +15,7 @@ import ipywidgets as W
 import numpy as np
 
 from .. import perspective as pp
+from .. import scenes
 from ..plotting import palette
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import (
@@ -138,7 +139,7 @@ def rectify_photo() -> Demo:
     )
     view.animate(ax_r.title)  # says which focal length the rectified view uses
     readout = W.HTML()
-    first = pp.sample_photo("page")
+    first = scenes.sample_photo("page")
     control = corner_text(format_corners(first.corners), "corners (TL; TR; BR; BL)")
     keys = corner_keys(control, ("top left", "top right", "bottom right", "bottom left"), 639, 479)
     current: dict[str, Any] = {
@@ -152,7 +153,7 @@ def rectify_photo() -> Demo:
         if current["busy"]:
             return
         if v["scene"] != current["scene"]:  # a new photo: start from its true corners
-            current["scene"], current["photo"] = v["scene"], pp.sample_photo(v["scene"])
+            current["scene"], current["photo"] = v["scene"], scenes.sample_photo(v["scene"])
             _set_photo(im_p, current["photo"].image)
             text = format_corners(current["photo"].corners)
             if text != control.value:
@@ -246,8 +247,8 @@ def document_scanner() -> Demo:
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
-        photo = pp.sample_photo("page", yaw=v["yaw"], pitch=v["pitch"])
-        image = photo.image if v["page_present"] else np.asarray(pp.desk_background())
+        photo = scenes.sample_photo("page", yaw=v["yaw"], pitch=v["pitch"])
+        image = photo.image if v["page_present"] else np.asarray(scenes.desk_background())
         _set_photo(im_p, image)
         try:
             corners = pp.find_document(image)
@@ -304,7 +305,7 @@ def keystone_correction() -> Demo:
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
-        photo = pp.sample_photo("facade", pitch=v["tilt"], yaw=v["yaw"])
+        photo = scenes.sample_photo("facade", pitch=v["tilt"], yaw=v["yaw"])
         _set_photo(im_p, photo.image)
         c = photo.corners
         closed = np.vstack([c, c[:1]])

@@ -5,7 +5,7 @@ from __future__ import annotations
 import ipywidgets as W
 import numpy as np
 
-from .. import pinhole, render, scenes, sensor
+from .. import fixtures, pinhole, render, scenes, sensor
 from ..plotting import images, optics, palette
 from ..scenes.planes import CHART_ROW_HEIGHTS
 from ._base import FigureView, build_demo, register, slider
@@ -66,7 +66,7 @@ def pinhole_projection():
     )  # placed by hand: the layout engine does not see the 3-D axis labels
     ax3 = view.fig.add_axes((0.05, 0.04, 0.63, 0.9), projection="3d")
     ax_img = view.fig.add_axes((0.69, 0.15, 0.3, 0.7))
-    edges, faces = _box_outline(scenes.box_before_wall(2.0)[0])
+    edges, faces = _box_outline(fixtures.box_before_wall(2.0)[0])
     art = optics.draw_pinhole_3d(ax3, edges, 0.6, faces=faces)
     ax3.set_xlim(*DEPTH_RANGE)
     ax3.set_ylim(-SIDE_RANGE, SIDE_RANGE)
@@ -118,7 +118,7 @@ def pinhole_projection():
     def update(values, state):
         f = values["focal_mm"] * 1e-3
         Z = values["distance"]
-        scene = scenes.box_before_wall(Z)
+        scene = fixtures.box_before_wall(Z)
         e, faces = _box_outline(scene[0])
         corners = np.unique(e.reshape(-1, 3), axis=0)
         f_draw = plane_distance(f, corners[:, 2].min())
@@ -172,7 +172,7 @@ def pinhole_projection():
             f"field of view 2 atan(w / 2f) = {fov:.1f} deg (w = 36 mm)\n"
             f"box spans {span:.0f} px (the bar under the box){wider}\n"
             f"3-D view: image planes at {scale:.1f} f, sensor frames {scale:.1f} x enlarged\n"
-            f"wall of 1 m squares at {scenes.WALL_DISTANCE:g} m (beyond the 3-D view)"
+            f"wall of 1 m squares at {fixtures.WALL_DISTANCE:g} m (beyond the 3-D view)"
         )
 
     return build_demo(

@@ -13,7 +13,7 @@ import ipywidgets as W
 import numpy as np
 
 from .. import camera as cm
-from .. import scenes
+from .. import fixtures, scenes
 from ..plotting import palette, scene3d
 from ._base import FigureView, build_demo, register, slider
 from .controls import int_slider
@@ -140,7 +140,7 @@ def camera_explorer():
     R stays). The text beside the figure shows K, R, t, the centre C = -R^T t and P = K [R | t].
     """
     view = FigureView(figsize=(9, 4.2))
-    scene = scenes.house_scene()
+    scene = fixtures.house_scene()
     cam0 = explorer_camera()
     # Seen from behind the camera's shoulder, with only the house on the image plane: the small picture
     # stays readable (the whole grid, seen edge-on, was a tangle).
@@ -229,7 +229,7 @@ def resectioning():
     from matplotlib.lines import Line2D
 
     view = FigureView(figsize=(9, 4.6))
-    cam, X, uv = scenes.resection_set(12, 0.5)
+    cam, X, uv = fixtures.resection_set(12, 0.5)
     box = scenes.box_wireframe((0.0, 0.0, 1.0), (2.0, 2.0, 2.0))
     # The box's bottom edges lie on grid lines: drawn twice, two dash patterns interleave into a solid line.
     frame = np.concatenate([box[np.any(box[:, :, 2] > 0, axis=1)], scenes.ground_grid(2.0, 1.0)])
@@ -338,7 +338,7 @@ def resectioning():
         if last_data.get("key") != key:
             clicked.clear()
             last_data["key"] = key
-        trial = scenes.resection_trial(
+        trial = fixtures.resection_trial(
             *key,
             pair=int(v["pair"]),
             shift=(float(v["outlier"]), float(v["outlier_v"])),
@@ -504,7 +504,7 @@ def _place_camera_labels(ax, true_artist, est_artist) -> None:
     (_, _), (y_true, y_est), _ = proj3d.proj_transform(*np.c_[cams[0].centre, cams[1].centre], ax.M)
     up, down = (-0.05, -0.3), (-0.05, 0.3)
     for artist, offset in zip(
-        (true_artist, est_artist), (up, down) if y_true >= y_est else (down, up), strict=False
+        (true_artist, est_artist), (up, down) if y_true >= y_est else (down, up), strict=True
     ):
         artist.label_offset = offset
         artist.label.set(

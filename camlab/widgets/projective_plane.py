@@ -9,8 +9,9 @@ from __future__ import annotations
 import ipywidgets as W
 import numpy as np
 
+from .. import fixtures
 from .. import projective as pj
-from .. import scenes
+from .._validate import DegenerateError
 from ..plotting import palette
 from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes, plane_axes, set_line
 from ._base import Demo, FigureView, build_demo, register, slider
@@ -118,7 +119,7 @@ def parallel_lines() -> Demo:
         set_line(l2_artist, l2, ax)
         try:
             x = pj.meet(l1, l2)
-        except pj.DegenerateError:
+        except DegenerateError:
             state.update(l2=l2, meet=None, w=float("nan"), point=None)
             meet_dot.set_data([], [])
             arrow.set_visible(False)
@@ -189,17 +190,17 @@ def point_line_duality() -> Demo:
         p = pj.to_homogeneous([v["px"], v["py"]])
         t = np.radians(v["line_angle"])
         # Line with unit normal (cos t, sin t) at distance line_dist from the origin.
-        l = np.array([np.cos(t), np.sin(t), -v["line_dist"]])
-        incidence = float(p @ l)
+        line = np.array([np.cos(t), np.sin(t), -v["line_dist"]])
+        incidence = float(p @ line)
         state.update(
-            point=p, line=l, incidence=incidence, on_line=bool(pj.is_on_line(p, l, tol=1e-3))
+            point=p, line=line, incidence=incidence, on_line=bool(pj.is_on_line(p, line, tol=1e-3))
         )
         p_dot.set_data([p[0]], [p[1]])
-        set_line(l_line, l, ax_p)
+        set_line(l_line, line, ax_p)
         set_line(pd_line, p, ax_d)
-        ld = pj.from_homogeneous(l)
+        ld = pj.from_homogeneous(line)
         ld_dot.set_data([ld[0]], [ld[1]])
-        p_text, l_text = (", ".join(f"{c:+.2f}" for c in x) for x in (p, l))
+        p_text, l_text = (", ".join(f"{c:+.2f}" for c in x) for x in (p, line))
         readout.value = monospace(
             f"p = ({p_text})\nl = ({l_text})\np · l = {incidence:+.3f}\n(0 ⇔ p on l ⇔ l* on p*)"
         )
@@ -258,7 +259,9 @@ def vanishing_points() -> Demo:
     view.animate(grid_z, grid_x, horizon_artist, vz_dot, vx_dot, note)
 
     def update(v: dict, state: dict) -> None:
-        g = scenes.ground_plane_view(np.radians(v["pitch"]), np.radians(v["yaw"]), v["focal"], size)
+        g = fixtures.ground_plane_view(
+            np.radians(v["pitch"]), np.radians(v["yaw"]), v["focal"], size
+        )
         segs = g.segments
         n = g.n_along_z
         grid_z.set_segments(segs[:n])

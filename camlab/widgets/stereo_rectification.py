@@ -2,7 +2,7 @@
 
 Every demo computes with tested camlab functions (:mod:`camlab.epipolar`,
 :mod:`camlab.rectification`, :mod:`camlab.disparity`) and only moves artists. Images
-come from the bundled rendered rig (:mod:`camlab.data.stereo`), shown at half
+come from the bundled rendered rig (:mod:`camlab.data.stereo`, prepared by :mod:`camlab.fixtures.stereo`), shown at half
 resolution so that re-warping stays within the latency budget.
 """
 
@@ -15,10 +15,10 @@ import numpy as np
 
 from .. import disparity as dp
 from .. import epipolar as ep
+from .. import fixtures, scenes
 from .. import rectification as rc
-from .. import scenes
 from ..camera import Camera, scale_intrinsics
-from ..data.stereo import (
+from ..fixtures.stereo import (
     bundled_rig,
     bundled_rig_calibration,
     half_size_rectification,
@@ -35,7 +35,10 @@ SIZE = (640, 480)
 
 # --------------------------------------------------------------------------- shared data
 
-_MOTIONS = {"sideways (stereo rig)": scenes.stereo_pair, "forward (driving)": scenes.forward_pair}
+_MOTIONS = {
+    "sideways (stereo rig)": fixtures.stereo_pair,
+    "forward (driving)": fixtures.forward_pair,
+}
 
 
 def _projected_segments(cam: Camera, segs: np.ndarray) -> np.ndarray:
@@ -230,7 +233,7 @@ def rectify_pair() -> Demo:
     """The rendered pair before and after rectification, with a row grid and the true matches.
 
     The calibrated route uses the cameras a stereo calibration found
-    (:func:`camlab.data.stereo.bundled_rig_calibration`),
+    (:func:`camlab.fixtures.stereo.bundled_rig_calibration`),
     as a real rig would, so its vertical disparity is the calibration's error, not zero.
 
     After rectification every match line is horizontal and the vertical disparity

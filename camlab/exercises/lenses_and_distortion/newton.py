@@ -328,7 +328,7 @@ register_exercise(
                     "has an extra r",
                     "the k2 term of the Jacobian has r",
                 ),
-                strict=False,
+                strict=True,
             )
         )
         + (
