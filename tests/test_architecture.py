@@ -197,7 +197,7 @@ def test_no_unused_function_parameters():
 BARE_TUPLES_ALLOWED = {
     # the teaching solutions of lesson exercises: the code a student writes for the prompt
     # ("return K, R"), shown as the answer; the exercise's reference is the named camlab result
-    "camlab.exercises.projective_camera.rq_decomposition": "an exercise's teaching solution",
+    "camlab.exercises.projective_camera.rq.rq_decomposition": "an exercise's teaching solution",
     "camlab.exercises.sensor_noise.gain_and_read_noise": "an exercise's teaching solution",
     "camlab.exercises.stereo_rectification.epipoles": "an exercise's teaching solution",
     "camlab.exercises.stereo_rectification.decompose_essential": "an exercise's teaching solution",
