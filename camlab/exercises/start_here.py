@@ -775,6 +775,7 @@ def _turned_cause(t: np.ndarray, X: np.ndarray, A: np.ndarray, c: np.ndarray, W:
         (X @ A, "you turned about the origin, and X @ A applies A's transpose: subtract the centre, turn with X @ A.T, add it back: (X - c) @ A.T + c"),
         ((X - c) @ A.T, "you forgot to add the centre back after the turn: c + A (x - c), so (X - c) @ A.T + c"),
         ((X - c) @ A.T - c, "add the centre back after the turn (you subtracted it twice): (X - c) @ A.T + c"),
+        (c - (X - c) @ A.T, "a sign flip: c - A (x - c) turns and mirrors through the centre; the move is c + A (x - c), (X - c) @ A.T + c"),
         ((X + c) @ A.T - c, "the signs are swapped: move the centre to the origin first, X - c, then turn, then add c back: (X - c) @ A.T + c"),
     ]
     if abs(np.linalg.det(A)) > 1e-12:
@@ -855,6 +856,17 @@ def _rt_exception_hint(exc: Exception, args: tuple) -> str:
             "A @ X treats X as one column per point, but points are rows, shape (N, 2): the textbook's A x is "
             "X @ A.T for every row at once (or (A @ X.T).T)"
         )
+    n = len(X)
+    if isinstance(exc, ValueError) and "broadcast" in text and f"(2,{n})" in text.replace(" ", ""):
+        return (
+            f"A @ (X - c).T gives the points as columns, shape (2, {n}), and c is one (u, v) row: transpose back "
+            "before adding c, (A @ (X - c).T).T + c, or keep points as rows throughout: (X - c) @ A.T + c"
+        )
+    if isinstance(exc, ValueError) and "broadcast" in text and "(2,1)" in text.replace(" ", ""):
+        return (
+            "the centre is a (2, 1) column, and points are rows: make c a (2,) array, "
+            "np.array([(W - 1) / 2, (H - 1) / 2]), so that X - c subtracts it from every row"
+        )
     if isinstance(exc, ValueError) and "unpack" in text:
         return "img.shape is (H, W): two numbers, rows first: H, W = img.shape"
     return ""
@@ -916,6 +928,13 @@ register_exercise(
             (_rt_wrong(turn=lambda X, A, c: (A @ X.T).T * 0 + A @ X), "A @ X treats X as one column per point"),
             (_rt_wrong(turn=lambda X, A, c: A @ (X - c).T + c[:, None]), "(A @ X.T).T"),
             (_rt_wrong(turn=lambda X, A, c: X @ A.T), "you turned about the origin"),
+            (_rt_wrong(turn=lambda X, A, c: A @ (X - c).T + c), "transpose back before adding c"),
+            (_rt_wrong(turn=lambda X, A, c: c - (X - c) @ A.T), "a sign flip"),
+            (
+                lambda img, X, A: read_and_turn(img, X - np.array([[2.0], [2.0]]).T * 0, A)[:2]
+                + ((X - np.array([[2.0], [2.0]])) @ A.T,),
+                "the centre is a (2, 1) column",
+            ),
             (_rt_wrong(turn=lambda X, A, c: (X - c) @ np.linalg.inv(A).T + c), "you applied A's inverse"),
             (_rt_wrong(turn=lambda X, A, c: (X - c) @ A.T), "forgot to add the centre back"),
             (

@@ -223,7 +223,8 @@ def draw_transposed_read(ax: Axes, photo: np.ndarray, pixel: tuple[int, int], cr
             label=f"square[u, v] = square[{u_sq}, {v}] reads pixel ({crop_left + v}, {u_sq}) of the photo: "
             f"row {u_sq}, not {v}")
     ax.set_title(
-        f"left01 ({W} x {H}); the square crop photo[:, {crop_left}:] lies right of the dashed line", fontsize=10
+        f"left01 ({W} x {H}): the square crop photo[:, {crop_left}:] lies right of the dashed line (left of it: veiled)",
+        fontsize=10,
     )
     ax.set_xlabel("u (px)")
     ax.set_ylabel("v (px)")
