@@ -172,12 +172,22 @@ def _shape_slip(got_shape: tuple, g: np.ndarray, p: np.ndarray) -> str:
             "you returned the 2 coordinates you were given (the point itself, or (x, y, 1) divided back by w); "
             f"lifting adds the third, w = 1: {_APPEND}"
         )
-    if got_shape == (2,) and np.isclose(g[-1], 1.0) and np.isclose(g[0], p[0]) and not np.isclose(p[1], 1.0):
+    if (
+        got_shape == (2,)
+        and np.isclose(g[-1], 1.0)
+        and np.isclose(g[0], p[0])
+        and not np.isclose(p[1], 1.0)
+    ):
         return (
             "y went missing: you appended w = 1 to x alone. A slice stops before its end index, so p[:1] "
             f"keeps only p[0]; p[:2], or p itself, keeps x and y: {_APPEND}"
         )
-    if got_shape == (2,) and np.isclose(g[-1], 1.0) and np.isclose(g[0], p[1]) and not np.isclose(p[0], 1.0):
+    if (
+        got_shape == (2,)
+        and np.isclose(g[-1], 1.0)
+        and np.isclose(g[0], p[1])
+        and not np.isclose(p[0], 1.0)
+    ):
         return (
             "x went missing: you appended w = 1 to y alone (p[1:] starts at index 1, which is y); keep both "
             f"coordinates: {_APPEND}"
@@ -657,7 +667,11 @@ def _rt_cases() -> list[tuple]:
             np.array([[4.0, 0.0], [1.0, 3.0], [2.0, 2.0], [0.0, 4.0]]),
             np.array([[1.0, 0.5], [0.0, 1.0]]),
         ),
-        (_pixel_image((6, 4)), np.array([[5.0, 1.0], [0.0, 3.0], [2.0, 2.0]]), _turn(90.0).round(12)),
+        (
+            _pixel_image((6, 4)),
+            np.array([[5.0, 1.0], [0.0, 3.0], [2.0, 2.0]]),
+            _turn(90.0).round(12),
+        ),
         (_pixel_image((7, 3)), np.array([[6.0, 2.0], [0.0, 0.0], [3.0, 1.0]]), _turn(30.0, 2.0)),
     ]
 
@@ -716,13 +730,34 @@ def _centre_slips(W: int, H: int) -> list[tuple[tuple[float, float], str]]:
         "(Pillow, COLMAP)"
     )
     return [
-        ((W / 2, H / 2), f"you used (W / 2, H / 2) (or W // 2): {half}. W // 2 agrees with (W - 1)/2 only for odd W"),
-        ((W // 2, H // 2), f"you used (W // 2, H // 2): {half}. W // 2 agrees with (W - 1)/2 only for odd W"),
-        (((W + 1) / 2, (H + 1) / 2), "you used (W + 1)/2: the centre counted from 1 (MATLAB's); here pixels count from 0, so ((W - 1)/2, (H - 1)/2)"),
-        (((W - 1) // 2, (H - 1) // 2), "you rounded the centre down to a whole pixel ((W - 1) // 2): an even side's centre lies between two pixels; keep (W - 1) / 2"),
-        (((H - 1) / 2, (W - 1) / 2), "width and height swapped: numpy's img.shape is (H, W), rows first, so write H, W = img.shape; the centre is ((W - 1)/2, (H - 1)/2), u first"),
-        ((H / 2, W / 2), "width and height swapped (img.shape is (H, W): H, W = img.shape), and half a pixel off: the centre is ((W - 1)/2, (H - 1)/2)"),
-        ((W - 1, H - 1), "that is the last pixel, (W - 1, H - 1); the centre is halfway to it: ((W - 1)/2, (H - 1)/2)"),
+        (
+            (W / 2, H / 2),
+            f"you used (W / 2, H / 2) (or W // 2): {half}. W // 2 agrees with (W - 1)/2 only for odd W",
+        ),
+        (
+            (W // 2, H // 2),
+            f"you used (W // 2, H // 2): {half}. W // 2 agrees with (W - 1)/2 only for odd W",
+        ),
+        (
+            ((W + 1) / 2, (H + 1) / 2),
+            "you used (W + 1)/2: the centre counted from 1 (MATLAB's); here pixels count from 0, so ((W - 1)/2, (H - 1)/2)",
+        ),
+        (
+            ((W - 1) // 2, (H - 1) // 2),
+            "you rounded the centre down to a whole pixel ((W - 1) // 2): an even side's centre lies between two pixels; keep (W - 1) / 2",
+        ),
+        (
+            ((H - 1) / 2, (W - 1) / 2),
+            "width and height swapped: numpy's img.shape is (H, W), rows first, so write H, W = img.shape; the centre is ((W - 1)/2, (H - 1)/2), u first",
+        ),
+        (
+            (H / 2, W / 2),
+            "width and height swapped (img.shape is (H, W): H, W = img.shape), and half a pixel off: the centre is ((W - 1)/2, (H - 1)/2)",
+        ),
+        (
+            (W - 1, H - 1),
+            "that is the last pixel, (W - 1, H - 1); the centre is halfway to it: ((W - 1)/2, (H - 1)/2)",
+        ),
         ((W, H), "that is the size (W, H); the centre is ((W - 1)/2, (H - 1)/2)"),
         ((H, W), "that is img.shape, (H, W); the centre is ((W - 1)/2, (H - 1)/2)"),
     ]
@@ -747,8 +782,18 @@ def _values_cause(values: np.ndarray, img: np.ndarray, X: np.ndarray) -> str:
         return f"one value per point: shape ({n},), got {values.shape}; img[v, u] with u, v = X[:, 0], X[:, 1] gives it"
     if H == W and np.allclose(values, img[u, v]):
         return "img[u, v] reads row u, column v: the transposed pixel. numpy indexes the row first, and the row is v: img[v, u]"
-    for du, dv, cause in ((-1, -1, "counting from 1 (u - 1, v - 1)? numpy counts from 0, and so do pixel coordinates"),
-                          (1, 1, "an index one too far (u + 1, v + 1): pixel coordinates and numpy both count from 0")):
+    for du, dv, cause in (
+        (
+            -1,
+            -1,
+            "counting from 1 (u - 1, v - 1)? numpy counts from 0, and so do pixel coordinates",
+        ),
+        (
+            1,
+            1,
+            "an index one too far (u + 1, v + 1): pixel coordinates and numpy both count from 0",
+        ),
+    ):
         uu, vv = u + du, v + dv
         if np.all((0 <= uu) & (uu < W) & (0 <= vv) & (vv < H)) and np.allclose(values, img[vv, uu]):
             return cause
@@ -763,24 +808,50 @@ def _values_cause(values: np.ndarray, img: np.ndarray, X: np.ndarray) -> str:
     )
 
 
-def _turned_cause(t: np.ndarray, X: np.ndarray, A: np.ndarray, c: np.ndarray, W: int, H: int) -> str:
+def _turned_cause(
+    t: np.ndarray, X: np.ndarray, A: np.ndarray, c: np.ndarray, W: int, H: int
+) -> str:
     n = len(X)
     if t.shape == (2, n) and n != 2:
         return "one row per point: A @ X.T gives the points as columns; transpose back, (A @ X.T).T, or write X @ A.T"
     if t.shape != (n, 2):
         return f"the turned points are rows, shape ({n}, 2), like X; got {t.shape}"
     candidates = [
-        ((X - c) @ A + c, "X @ A applies A's transpose (for a rotation, the opposite turn): with points as rows, the textbook's A x is X @ A.T"),
-        (X @ A.T, "you turned about the origin (0, 0), the top-left pixel's centre: turn about the image's centre, c + A (x - c): (X - c) @ A.T + c"),
-        (X @ A, "you turned about the origin, and X @ A applies A's transpose: subtract the centre, turn with X @ A.T, add it back: (X - c) @ A.T + c"),
-        ((X - c) @ A.T, "you forgot to add the centre back after the turn: c + A (x - c), so (X - c) @ A.T + c"),
-        ((X - c) @ A.T - c, "add the centre back after the turn (you subtracted it twice): (X - c) @ A.T + c"),
-        (c - (X - c) @ A.T, "a sign flip: c - A (x - c) turns and mirrors through the centre; the move is c + A (x - c), (X - c) @ A.T + c"),
-        ((X + c) @ A.T - c, "the signs are swapped: move the centre to the origin first, X - c, then turn, then add c back: (X - c) @ A.T + c"),
+        (
+            (X - c) @ A + c,
+            "X @ A applies A's transpose (for a rotation, the opposite turn): with points as rows, the textbook's A x is X @ A.T",
+        ),
+        (
+            X @ A.T,
+            "you turned about the origin (0, 0), the top-left pixel's centre: turn about the image's centre, c + A (x - c): (X - c) @ A.T + c",
+        ),
+        (
+            X @ A,
+            "you turned about the origin, and X @ A applies A's transpose: subtract the centre, turn with X @ A.T, add it back: (X - c) @ A.T + c",
+        ),
+        (
+            (X - c) @ A.T,
+            "you forgot to add the centre back after the turn: c + A (x - c), so (X - c) @ A.T + c",
+        ),
+        (
+            (X - c) @ A.T - c,
+            "add the centre back after the turn (you subtracted it twice): (X - c) @ A.T + c",
+        ),
+        (
+            c - (X - c) @ A.T,
+            "a sign flip: c - A (x - c) turns and mirrors through the centre; the move is c + A (x - c), (X - c) @ A.T + c",
+        ),
+        (
+            (X + c) @ A.T - c,
+            "the signs are swapped: move the centre to the origin first, X - c, then turn, then add c back: (X - c) @ A.T + c",
+        ),
     ]
     if abs(np.linalg.det(A)) > 1e-12:
         candidates.append(
-            ((X - c) @ np.linalg.inv(A).T + c, "you applied A's inverse, the move undone: x' = c + A (x - c) uses A itself, (X - c) @ A.T + c")
+            (
+                (X - c) @ np.linalg.inv(A).T + c,
+                "you applied A's inverse, the move undone: x' = c + A (x - c) uses A itself, (X - c) @ A.T + c",
+            )
         )
     for variant, cause in candidates:
         if np.allclose(t, variant):
@@ -887,7 +958,11 @@ def _rt_wrong(centre=None, read=None, turn=None):
 
     def wrong(img, X, A):
         H, W = img.shape
-        c = np.array([(W - 1) / 2, (H - 1) / 2]) if centre is None else np.asarray(centre(W, H), dtype=float)
+        c = (
+            np.array([(W - 1) / 2, (H - 1) / 2])
+            if centre is None
+            else np.asarray(centre(W, H), dtype=float)
+        )
         u, v = X[:, 0].astype(int), X[:, 1].astype(int)
         values = img[v, u] if read is None else read(img, u, v)
         turned = (X - c) @ A.T + c if turn is None else turn(X, A, c)
@@ -915,33 +990,59 @@ register_exercise(
             (_rt_wrong(centre=lambda W, H: (W / 2, H / 2)), "you used (W / 2, H / 2)"),
             (_rt_wrong(centre=lambda W, H: (W // 2, H // 2)), "W // 2"),
             (_rt_wrong(centre=lambda W, H: ((W + 1) / 2, (H + 1) / 2)), "counted from 1"),
-            (_rt_wrong(centre=lambda W, H: ((W - 1) // 2, (H - 1) // 2)), "rounded the centre down"),
+            (
+                _rt_wrong(centre=lambda W, H: ((W - 1) // 2, (H - 1) // 2)),
+                "rounded the centre down",
+            ),
             (_rt_wrong(centre=lambda W, H: ((H - 1) / 2, (W - 1) / 2)), "width and height swapped"),
             (_rt_wrong(centre=lambda W, H: (W, H)), "that is the size"),
             (_rt_wrong(read=lambda img, u, v: img[u, v]), "img[u, v] reads row u, column v"),
-            (_rt_wrong(read=lambda img, u, v: img[v - 1, u - 1]), "X[0] = (4, 0) is pixel img[0, 4] = 4"),
+            (
+                _rt_wrong(read=lambda img, u, v: img[v - 1, u - 1]),
+                "X[0] = (4, 0) is pixel img[0, 4] = 4",
+            ),
             (_rt_wrong(read=lambda img, u, v: img[v + 1, u + 1]), "counting from 1?"),
             (_rt_wrong(read=lambda img, u, v: img[v][:, u]), "every combination"),
-            (lambda img, X, A: (read_and_turn(img, X, A)[0], img[X.astype(int)], read_and_turn(img, X, A)[2]), "img[X] indexes rows"),
+            (
+                lambda img, X, A: (
+                    read_and_turn(img, X, A)[0],
+                    img[X.astype(int)],
+                    read_and_turn(img, X, A)[2],
+                ),
+                "img[X] indexes rows",
+            ),
             (_float_index, "numpy indexes with integers"),
             (_rt_wrong(turn=lambda X, A, c: (X - c) @ A + c), "X @ A applies A's transpose"),
-            (_rt_wrong(turn=lambda X, A, c: (A @ X.T).T * 0 + A @ X), "A @ X treats X as one column per point"),
+            (
+                _rt_wrong(turn=lambda X, A, c: (A @ X.T).T * 0 + A @ X),
+                "A @ X treats X as one column per point",
+            ),
             (_rt_wrong(turn=lambda X, A, c: A @ (X - c).T + c[:, None]), "(A @ X.T).T"),
             (_rt_wrong(turn=lambda X, A, c: X @ A.T), "you turned about the origin"),
             (_rt_wrong(turn=lambda X, A, c: A @ (X - c).T + c), "transpose back before adding c"),
             (_rt_wrong(turn=lambda X, A, c: c - (X - c) @ A.T), "a sign flip"),
             (
-                lambda img, X, A: read_and_turn(img, X - np.array([[2.0], [2.0]]).T * 0, A)[:2]
-                + ((X - np.array([[2.0], [2.0]])) @ A.T,),
+                lambda img, X, A: (
+                    read_and_turn(img, X - np.array([[2.0], [2.0]]).T * 0, A)[:2]
+                    + ((X - np.array([[2.0], [2.0]])) @ A.T,)
+                ),
                 "the centre is a (2, 1) column",
             ),
-            (_rt_wrong(turn=lambda X, A, c: (X - c) @ np.linalg.inv(A).T + c), "you applied A's inverse"),
+            (
+                _rt_wrong(turn=lambda X, A, c: (X - c) @ np.linalg.inv(A).T + c),
+                "you applied A's inverse",
+            ),
             (_rt_wrong(turn=lambda X, A, c: (X - c) @ A.T), "forgot to add the centre back"),
             (
                 _rt_wrong(turn=lambda X, A, c: (X - [2.5, 2.5]) @ A.T + [2.5, 2.5]),
                 "you turned about the wrong centre, [2.5, 2.5]",
             ),
-            (_rt_wrong(centre=lambda W, H: (W / 2, H / 2), turn=lambda X, A, c: (X - c) @ A.T + c), "right for your centre c"),
+            (
+                _rt_wrong(
+                    centre=lambda W, H: (W / 2, H / 2), turn=lambda X, A, c: (X - c) @ A.T + c
+                ),
+                "right for your centre c",
+            ),
             (lambda img, X, A: read_and_turn(img, X, A)[:2], "you returned 2 things"),
             (lambda img, X, A: read_and_turn(img, X, A)[0], "you returned only the centre"),
         ),

@@ -193,10 +193,14 @@ def draw_camera_frame(ax: Axes, size: tuple[int, int] = (4, 3)) -> None:
     ax.text(w + 0.08, 0.12, "z, forward:\ninto the page", color=Z_COLOUR, va="top", fontsize=9)
 
 
-WRONG_COLOUR = palette.PURPLE  # the pixel a transposed read returns: no axis's colour, and not the orange of the right one
+WRONG_COLOUR = (
+    palette.PURPLE
+)  # the pixel a transposed read returns: no axis's colour, and not the orange of the right one
 
 
-def draw_transposed_read(ax: Axes, photo: np.ndarray, pixel: tuple[int, int], crop_left: int) -> None:
+def draw_transposed_read(
+    ax: Axes, photo: np.ndarray, pixel: tuple[int, int], crop_left: int
+) -> None:
     """A photo with one pixel read the right way, ``photo[v, u]``, and the wrong way in a square crop.
 
     The crop is ``photo[:, crop_left:]``, square when ``crop_left = W - H``: the part left of it is
@@ -209,19 +213,37 @@ def draw_transposed_read(ax: Axes, photo: np.ndarray, pixel: tuple[int, int], cr
     u, v = pixel
     u_sq = u - crop_left
     ax.imshow(photo, cmap="gray", vmin=0, vmax=255)
-    ax.add_patch(Rectangle((-0.5, -0.5), crop_left, H, facecolor="white", alpha=0.45, edgecolor="none"))
+    ax.add_patch(
+        Rectangle((-0.5, -0.5), crop_left, H, facecolor="white", alpha=0.45, edgecolor="none")
+    )
     ax.plot(
-        [crop_left - 0.5] * 2, [-0.5, H - 0.5], color="0.1", ls=(0, (6, 4)), lw=1.6,
+        [crop_left - 0.5] * 2,
+        [-0.5, H - 0.5],
+        color="0.1",
+        ls=(0, (6, 4)),
+        lw=1.6,
         path_effects=palette.halo(1.6),
     )
     ax.set_xlim(-0.5, W - 0.5)
     ax.set_ylim(H - 0.5, -0.5)
     ring = dict(ms=14, mfc="none", mew=2.8, ls="none", path_effects=palette.halo(0))
-    ax.plot(u, v, "o", mec=POINT_COLOUR, **ring,
-            label=f"photo[v, u] = photo[{v}, {u}]: pixel (u, v) = ({u}, {v}), the one we want")
-    ax.plot(crop_left + v, u_sq, "s", mec=WRONG_COLOUR, **ring,
-            label=f"square[u, v] = square[{u_sq}, {v}] reads pixel ({crop_left + v}, {u_sq}) of the photo: "
-            f"row {u_sq}, not {v}")
+    ax.plot(
+        u,
+        v,
+        "o",
+        mec=POINT_COLOUR,
+        **ring,
+        label=f"photo[v, u] = photo[{v}, {u}]: pixel (u, v) = ({u}, {v}), the one we want",
+    )
+    ax.plot(
+        crop_left + v,
+        u_sq,
+        "s",
+        mec=WRONG_COLOUR,
+        **ring,
+        label=f"square[u, v] = square[{u_sq}, {v}] reads pixel ({crop_left + v}, {u_sq}) of the photo: "
+        f"row {u_sq}, not {v}",
+    )
     ax.set_title(
         f"left01 ({W} x {H}): the square crop photo[:, {crop_left}:] lies right of the dashed line (left of it: veiled)",
         fontsize=10,

@@ -213,7 +213,9 @@ def stack_check() -> Demo:
                 else way_on_screen
             )
         x, y = (round(c, 2) + 0.0 for c in moved[ROOF_TIP])  # + 0.0 turns a rounded -0.0 into 0.0
-        unmoved = angle == 0 and s == 1  # no turn and no scaling: the moved house hides the original
+        unmoved = (
+            angle == 0 and s == 1
+        )  # no turn and no scaling: the moved house hides the original
         readout.set_text(f"({x:+.2f}, {y:+.2f})" + ("  (unmoved: no path)" if unmoved else ""))
         # tip: where the orange dot is drawn (lesson 00 recomputes it by hand); readout: the numbers shown
         # arrow: where the arrowhead sits, and its angle on screen in each panel (None: no turn to show)
