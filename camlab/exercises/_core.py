@@ -133,6 +133,11 @@ def _fmt(value: Any) -> str:
     return repr(value)
 
 
+def _shown(value: Any) -> str:
+    """``_fmt`` for a message's got/expected line: a multi-line array continues under its first line."""
+    return _fmt(value).replace("\n", "\n" + " " * 11)
+
+
 def _input_text(name: str, args: tuple) -> str:
     """The test input as a message shows it: the exercise's own summary, else each argument printed."""
     exercise = EXERCISES.get(name)
@@ -281,8 +286,8 @@ def check(
             raise AssertionError(
                 f"{name}: wrong type of answer on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_input_text(name, args)}\n"
-                f"  got      {_fmt(got)}  ({with_article(got)})\n"
-                f"  expected {_fmt(expected)}\n"
+                f"  got      {_shown(got)}  ({with_article(got)})\n"
+                f"  expected {_shown(expected)}\n"
                 f"  likely cause: {wrong_type}"
             )
         too_coarse = precision_problem(got, expected)
@@ -290,7 +295,7 @@ def check(
             raise AssertionError(
                 f"{name}: answer too imprecise on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_input_text(name, args)}\n"
-                f"  got      {_fmt(as_array(got))}\n"
+                f"  got      {_shown(as_array(got))}\n"
                 f"  likely cause: {too_coarse}"
             )
         if not exercise.compare(got, expected):
@@ -300,8 +305,8 @@ def check(
             raise AssertionError(
                 f"{name}: wrong answer on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_input_text(name, args)}\n"
-                f"  got      {_fmt(as_array(got))}\n"
-                f"  expected {_fmt(expected)}\n"
+                f"  got      {_shown(as_array(got))}\n"
+                f"  expected {_shown(expected)}\n"
                 + worst_mismatch(got, expected, tolerance)
                 + f"  likely cause: {exercise.diagnose(args, got, expected)}"
             )

@@ -44,6 +44,14 @@ def draw_pixel_grid(ax: Axes, size: tuple[int, int], points: np.ndarray, marked:
         axis.set_ticks([-0.5, n - 0.5], [f"{t:g}" for t in (-0.5, n - 0.5)], minor=True)
     # The image's edges, half a pixel out, in small grey type, so they are not read as centres at a glance.
     ax.tick_params(which="minor", length=2.5, labelsize=8.5, labelcolor="0.35", color="0.45")
+    # Each edge label leans inwards from its tick (u's -0.5 to the right, v's 2.5 upwards ...), so the two that
+    # meet at a corner, u's -0.5 and v's H - 0.5, do not touch.
+    first, last = ax.xaxis.get_minor_ticks()[:2]
+    first.label1.set_horizontalalignment("left")
+    last.label1.set_horizontalalignment("right")
+    top, bottom = ax.yaxis.get_minor_ticks()[:2]
+    top.label1.set_verticalalignment("top")
+    bottom.label1.set_verticalalignment("bottom")
     ax.plot(u.ravel(), v.ravel(), ".", color="0.45", ms=3)
     points = np.asarray(points, dtype=float)
     ax.plot(points[:, 0], points[:, 1], "o", color=POINT_COLOUR, ms=7)
@@ -183,3 +191,63 @@ def draw_camera_frame(ax: Axes, size: tuple[int, int] = (4, 3)) -> None:
     ax.plot(0, 0, "o", ms=16, mfc="white", mec=Z_COLOUR, mew=2)
     ax.plot(0, 0, "x", ms=9, color=Z_COLOUR, mew=2)
     ax.text(w + 0.08, 0.12, "z, forward:\ninto the page", color=Z_COLOUR, va="top", fontsize=9)
+
+
+WRONG_COLOUR = (
+    palette.PURPLE
+)  # the pixel a transposed read returns: no axis's colour, and not the orange of the right one
+
+
+def draw_transposed_read(
+    ax: Axes, photo: np.ndarray, pixel: tuple[int, int], crop_left: int
+) -> None:
+    """A photo with one pixel read the right way, ``photo[v, u]``, and the wrong way in a square crop.
+
+    The crop is ``photo[:, crop_left:]``, square when ``crop_left = W - H``: the part left of it is
+    veiled and its edge drawn as a dark dashed line with a white halo, so it shows on light and dark
+    parts of the photo alike. The orange circle is pixel ``(u, v)``; the purple square is what
+    ``square[u', v]`` reads with ``u' = u - crop_left``: row ``u'``, column ``v`` of the crop, which is
+    pixel ``(crop_left + v, u')`` of the photo. ``imshow`` puts pixel (u, v) at x = u, y = v.
+    """
+    H, W = photo.shape[:2]
+    u, v = pixel
+    u_sq = u - crop_left
+    ax.imshow(photo, cmap="gray", vmin=0, vmax=255)
+    ax.add_patch(
+        Rectangle((-0.5, -0.5), crop_left, H, facecolor="white", alpha=0.45, edgecolor="none")
+    )
+    ax.plot(
+        [crop_left - 0.5] * 2,
+        [-0.5, H - 0.5],
+        color="0.1",
+        ls=(0, (6, 4)),
+        lw=1.6,
+        path_effects=palette.halo(1.6),
+    )
+    ax.set_xlim(-0.5, W - 0.5)
+    ax.set_ylim(H - 0.5, -0.5)
+    ring = dict(ms=14, mfc="none", mew=2.8, ls="none", path_effects=palette.halo(0))
+    ax.plot(
+        u,
+        v,
+        "o",
+        mec=POINT_COLOUR,
+        **ring,
+        label=f"photo[v, u] = photo[{v}, {u}]: pixel (u, v) = ({u}, {v}), the one we want",
+    )
+    ax.plot(
+        crop_left + v,
+        u_sq,
+        "s",
+        mec=WRONG_COLOUR,
+        **ring,
+        label=f"square[u, v] = square[{u_sq}, {v}] reads pixel ({crop_left + v}, {u_sq}) of the photo: "
+        f"row {u_sq}, not {v}",
+    )
+    ax.set_title(
+        f"left01 ({W} x {H}): the square crop photo[:, {crop_left}:] lies right of the dashed line (left of it: veiled)",
+        fontsize=10,
+    )
+    ax.set_xlabel("u (px)")
+    ax.set_ylabel("v (px)")
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.1), fontsize=9, frameon=False)

@@ -111,7 +111,35 @@ def _house_panel(ax, y_down: bool, view: FigureView) -> dict:
         f"θ > 0 {turn_words(1.0, y_down)}, θ < 0 {turn_words(-1.0, y_down)}",
         fontsize=10,
     )
-    return dict(path=path, arrow=arrow, house=house, tip=tip, y_down=y_down)
+    return dict(ax=ax, path=path, arrow=arrow, house=house, tip=tip, y_down=y_down)
+
+
+def screen_turn(ax, path: np.ndarray) -> str:
+    """Which way ``path`` turns as ``ax`` draws it on screen: 'clockwise', 'anticlockwise' or 'no turn'.
+
+    Measured on the drawing, not taken from the sign of the angle: the path is mapped to display
+    coordinates by the axes' own transform (which includes a flipped y axis), and the sign of the sum
+    of the cross products of successive steps says which way it bends (display y runs up, so a
+    positive sum is anticlockwise on screen).
+    """
+    screen = ax.transData.transform(np.asarray(path, dtype=float))
+    steps = np.diff(screen, axis=0)
+    bend = float(np.sum(steps[:-1, 0] * steps[1:, 1] - steps[:-1, 1] * steps[1:, 0]))
+    scale = float(np.sum(np.hypot(*steps.T)) ** 2) or 1.0
+    if abs(bend) < 1e-9 * scale:
+        return "no turn"
+    return "anticlockwise" if bend > 0 else "clockwise"
+
+
+def arrowhead_size(angle_deg: float, radius: float = 1.4) -> float:
+    """The arrowhead's marker size (points) for a turn of ``angle_deg`` on a circle of ``radius`` plot units.
+
+    15 points (about 0.5 plot units at the demo's size) for turns of 40° and more, where the arc is
+    about twice as long as the dart; shorter arcs get a smaller dart, down to 7 points, so that the
+    arc still shows on both sides of it (at 30° the arc is 0.73 plot units long).
+    """
+    arc = abs(np.radians(angle_deg)) * radius  # plot units
+    return float(np.clip(15.0 * arc / 0.98, 7.0, 15.0))
 
 
 def _point_arrow(arrow, at: np.ndarray, way: np.ndarray, y_down: bool) -> float | None:
@@ -167,20 +195,31 @@ def stack_check() -> Demo:
         path = turn_path(angle, s, HOUSE[ROOF_TIP], samples=ARC_SAMPLES)
         middle = ARC_SAMPLES // 2  # the arrowhead sits half-way along the turn
         way = path[middle + 1] - path[middle - 1]  # the turn's direction there, in plot units
-        arrows = {}
+        arrows, turns = {}, {}
         for panel in panels:
             panel["house"].set_data(moved[:, 0], moved[:, 1])
             panel["tip"].set_data(
                 moved[ROOF_TIP : ROOF_TIP + 1, 0], moved[ROOF_TIP : ROOF_TIP + 1, 1]
             )
             panel["path"].set_data(path[:, 0], path[:, 1])
-            arrows["y down" if panel["y_down"] else "y up"] = _point_arrow(
-                panel["arrow"], path[middle], way, panel["y_down"]
+            key = "y down" if panel["y_down"] else "y up"
+            arrows[key] = _point_arrow(panel["arrow"], path[middle], way, panel["y_down"])
+            panel["arrow"].set_markersize(arrowhead_size(angle))
+            # the way the drawn arc turns on screen, measured through the panel's own axes
+            way_on_screen = screen_turn(panel["ax"], path[:-1]) if angle else "no turn"
+            turns[key] = (
+                f"{way_on_screen}, half a turn"
+                if abs(angle) == 180 and way_on_screen != "no turn"
+                else way_on_screen
             )
         x, y = (round(c, 2) + 0.0 for c in moved[ROOF_TIP])  # + 0.0 turns a rounded -0.0 into 0.0
-        readout.set_text(f"({x:+.2f}, {y:+.2f})")
+        unmoved = (
+            angle == 0 and s == 1
+        )  # no turn and no scaling: the moved house hides the original
+        readout.set_text(f"({x:+.2f}, {y:+.2f})" + ("  (unmoved: no path)" if unmoved else ""))
         # tip: where the orange dot is drawn (lesson 00 recomputes it by hand); readout: the numbers shown
         # arrow: where the arrowhead sits, and its angle on screen in each panel (None: no turn to show)
+        # turns: the way each panel's drawn arc turns on screen (screen_turn), measured, not read off the angle
         state.update(
             A=A,
             house=moved,
@@ -188,7 +227,7 @@ def stack_check() -> Demo:
             path=path,
             readout=f"({x:+.2f}, {y:+.2f})",
             arrow=dict(at=path[middle].copy(), **arrows),
-            turns={"y down": turn_words(angle, True), "y up": turn_words(angle, False)},
+            turns=turns,
         )
 
     controls = {
