@@ -216,6 +216,13 @@ def common_context(camera, X0, fix=""):
     return SimpleNamespace(camera=camera, X0=X0, K=K, R=R, t=t, d0=float(R[2] @ X0 + t[2]), fix=fix)
 
 
+def square_pixels(K):
+    """K with fy replaced by fx: the square-pixel slip."""
+    K = np.array(K, dtype=float)
+    K[1, 1] = K[0, 0]
+    return K
+
+
 COMMON_MISTAKES = (
     Mistake(
         "d0 = t3",
@@ -315,6 +322,14 @@ COMMON_MISTAKES = (
         lambda s: (
             f"the skew K[0, 1] is missing (this camera's is {s.K[0, 1]:g} px): build the matrix "
             f"from the whole K, not from fx, fy, cx and cy alone: {s.fix}."
+        ),
+    ),
+    Mistake(
+        "fx for both focal lengths",
+        lambda s: dict(K=square_pixels(s.K)),  # the right answer where fy = fx
+        lambda s: (
+            f"the second row is scaled by fx = {s.K[0, 0]:g} px where this camera's fy = {s.K[1, 1]:g} px: "
+            f"pixels need not be square, so use all of K (K[1, 1] for v): {s.fix}."
         ),
     ),
     Mistake(

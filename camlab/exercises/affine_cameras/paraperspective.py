@@ -124,6 +124,37 @@ _MISTAKES = (
         "K^-1 (u, v, 1).",
     ),
     Mistake(
+        "(a, b) as pixel offsets",
+        lambda s: _para(s, s.uv_X0 - s.K[:2, 2]),
+        "your (a, b) are X0's pixel offsets from the principal point, (u - cx, v - cy): (a, b) are normalised "
+        "coordinates, those offsets divided by the focal lengths (K^-1 (u, v, 1)), or simply (x_c, y_c) / d0 "
+        "with x_c = R X0 + t.",
+    ),
+    Mistake(
+        "(a, b) not divided by d0",
+        lambda s: _para(s, s.x_c[:2]),
+        "your (a, b) are (x_c, y_c), X0's camera coordinates in metres: divide them by its depth, "
+        "(a, b) = (x_c, y_c) / d0 with d0 = x_c[2].",
+    ),
+    Mistake(
+        "(a, b) from world coordinates over d0",
+        lambda s: _para(s, s.X0[:2] / s.d0),
+        "you took (a, b) from X0's world coordinates: they come from its camera-frame coordinates, "
+        "x_c = R X0 + t, (a, b) = x_c[:2] / x_c[2].",
+    ),
+    Mistake(
+        "(a, b) from R X0 without t",
+        lambda s: _para(s, (s.R @ s.X0)[:2] / (s.R @ s.X0)[2]),
+        "your (a, b) come from R X0 without the translation: X0's camera coordinates are x_c = R X0 + t, "
+        "then (a, b) = x_c[:2] / x_c[2].",
+    ),
+    Mistake(
+        "(a, b) from R X0 without t, over d0",
+        lambda s: _para(s, (s.R @ s.X0)[:2] / s.d0),
+        "your (a, b) come from R X0 without the translation: X0's camera coordinates are x_c = R X0 + t, "
+        "then (a, b) = x_c[:2] / x_c[2].",
+    ),
+    Mistake(
         "(a, b) without skew",
         lambda s: _para(s, (s.uv_X0 - s.K[:2, 2]) / np.diag(s.K)[:2]) if s.K[0, 1] else None,
         lambda s: (
@@ -227,7 +258,24 @@ def _para_diagnosis(args, got, expected) -> str:
         slip = principal_point_cause(g[:2, 3] - expected[:2, 3], camera.K[:2, 2])
         if slip:
             return slip
+    used = _ab_used(g, camera, d0)
+    if used is not None:
+        return (
+            f"your matrix has the para-perspective form with (a, b) = ({used[0]:.4g}, {used[1]:.4g}), but X0's "
+            f"normalised image position is (x_c, y_c) / d0 = ({ab[0]:.4g}, {ab[1]:.4g}) with x_c = R X0 + t: "
+            "check how you computed (a, b)."
+        )
     return f"{what_differs(g, expected, camera, X0)}. Compare each block with {P_PARA}."
+
+
+def _ab_used(g, camera, d0):
+    """The (a, b) that ``g``'s left 2x3 block was built with, if it has the para-perspective form
+    d0 K2^-1 M2 = R2 - (a, b)^T r3 (K2 the upper-left 2x2 of K); None otherwise."""
+    block = np.linalg.solve(camera.K[:2, :2], d0 * g[:2, :3])
+    used = (camera.R[:2] - block) @ camera.R[2]  # r3 is a unit vector orthogonal to r1 and r2
+    if np.allclose(block, camera.R[:2] - np.outer(used, camera.R[2]), atol=1e-6):
+        return used
+    return None
 
 
 def _para_mistake(name):
@@ -337,6 +385,33 @@ register_exercise(
             (
                 mistake_variant(_MISTAKES, "(a, b) from world coordinates", _context),
                 "world coordinates",
+            ),
+            (mistake_variant(_MISTAKES, "(a, b) as pixel offsets", _context), "pixel offsets"),
+            (
+                mistake_variant(_MISTAKES, "(a, b) not divided by d0", _context),
+                "divide them by its depth",
+            ),
+            (
+                mistake_variant(_MISTAKES, "(a, b) from world coordinates over d0", _context),
+                "world coordinates",
+            ),
+            (
+                mistake_variant(_MISTAKES, "(a, b) from R X0 without t", _context),
+                "without the translation",
+            ),
+            (
+                mistake_variant(_MISTAKES, "(a, b) from R X0 without t, over d0", _context),
+                "without the translation",
+            ),
+            (
+                lambda camera, X0: p_para(
+                    camera.K,
+                    camera.R,
+                    camera.t,
+                    (camera.R @ X0 + camera.t)[2],
+                    0.9 * (camera.R @ X0 + camera.t)[:2] / (camera.R @ X0 + camera.t)[2],
+                ),
+                "check how you computed (a, b)",
             ),
             (mistake_variant(_MISTAKES, "(a, b) over the distance", _context), "distance |x_c|"),
             (_para_image_of_X0_as_t, "t2 = x_X0 - M2 X0"),

@@ -51,6 +51,13 @@ def _no_division(s):
     return P
 
 
+def _translation_not_through_K(s):
+    """The last column written as (t1, t2) / d0 + (cx, cy): the principal point added, the focal lengths not."""
+    P = p_inf(s.K, s.R, s.t, s.d0)
+    P[:2, 3] = s.t[:2] / s.d0 + s.K[:2, 2]
+    return P
+
+
 def _depth_in_mm(s):
     """The depth of X0 scaled by 1000, as r3 . (1000 X0) + t3 gives it."""
     return s.R[2] @ (1000 * np.asarray(s.X0, dtype=float)) + s.t[2]
@@ -83,6 +90,12 @@ _MISTAKES = (
         ),
         "the principal point is divided by d0: in K [[r1, t1], [r2, t2], [0, d0]] the (3, 4) entry is d0, so after "
         f"dividing by d0 K's third column (cx, cy) is added as it is; {P_INF}.",
+    ),
+    Mistake(
+        "translation not through K",
+        _translation_not_through_K,
+        "the last column is (t1, t2) / d0 + (cx, cy): K's focal lengths (and skew) must scale (t1, t2) too, "
+        f"since the column is K (t1, t2, d0) / d0; {P_INF}.",
     ),
     Mistake(
         "para-perspective",
@@ -288,6 +301,11 @@ register_exercise(
         ndarray_only=True,
         wrong_variants=(
             (_approx_unnormalised, "did not divide by d0"),
+            (
+                mistake_variant(_MISTAKES, "translation not through K", _context),
+                "must scale (t1, t2) too",
+            ),
+            (_mistake("fx for both focal lengths"), "pixels need not be square"),
             (lambda camera, X0: camera.P, "perspective camera P = K [R | t] itself"),
             (lambda camera, X0: -af.affine_approximation(camera, X0), "minus the answer"),
             (_mistake("d0 = t3"), "depth of the world origin"),
