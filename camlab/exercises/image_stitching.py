@@ -228,9 +228,8 @@ def _focal_reference(H, shape):
 def focal_from_rotation_homography(H, shape):
     """Teaching solution: the focal length (pixels) of a camera that turned, from H = K R K^-1."""
     h, w = shape[:2]
-    C = np.array(
-        [[1.0, 0, (w - 1) / 2], [0, 1, (h - 1) / 2], [0, 0, 1]]
-    )  # principal point at the centre
+    # the principal point at the centre
+    C = np.array([[1.0, 0, (w - 1) / 2], [0, 1, (h - 1) / 2], [0, 0, 1]])
     Hc = np.linalg.inv(C) @ np.asarray(H, float) @ C  # now H ~ diag(f, f, 1) R diag(1/f, 1/f, 1)
     h0, h1, h2, h3, h4, h5, h6, h7, _ = Hc.ravel() / np.linalg.norm(Hc)
     # R's columns 1 and 2 are orthogonal and equally long: two formulas for f^2, keep the better-conditioned one

@@ -270,12 +270,10 @@ def gain_and_read_noise(darks, flats):
     for a, b in flats:
         a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
         means.append((a.mean() + b.mean()) / 2)
-        variances.append(
-            np.var(a - b) / 2
-        )  # one frame's temporal variance; the fixed pattern cancels
-    slope, intercept = np.polyfit(
-        means, variances, 1
-    )  # var = mean / g + c (c: black level, read noise, 1/12)
+        # one frame's temporal variance; the fixed pattern cancels
+        variances.append(np.var(a - b) / 2)
+    # var = mean / g + c (c: black level, read noise, 1/12)
+    slope, intercept = np.polyfit(means, variances, 1)
     g = 1 / slope
     read_noise = g * np.sqrt(np.var(d1 - d2) / 2)  # DN to electrons
     return g, read_noise

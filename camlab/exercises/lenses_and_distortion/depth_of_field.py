@@ -208,9 +208,8 @@ _MARKED_STOPS = (1.0, 1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0, 16.0, 22.0, 32.0, 45.0
 def f_number_for_depth(f, c, near, far):
     """The f-number that keeps blur <= c from near to far (metres), focused where both ends blur equally."""
     s = 2 * near * far / (near + far)  # (s - near) / near = (far - s) / far: the harmonic mean
-    return (
-        f**2 * (s - near) / (c * near * (s - f))
-    )  # c(near) = (f/N) (f/(s - f)) (s - near) / near = c
+    # c(near) = (f/N) (f/(s - f)) (s - near) / near = c, solved for N
+    return f**2 * (s - near) / (c * near * (s - f))
 
 
 register_exercise(

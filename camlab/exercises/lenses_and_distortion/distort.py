@@ -246,10 +246,8 @@ def distort_pixels(uv, K, dist):
     """Where a lens with Brown-Conrady coefficients dist (OpenCV's order) moves (N, 2) ideal pixel positions."""
     k1, k2, p1, p2, k3 = dist  # note: k3 comes last
     fx, fy, cx, cy = K[0, 0], K[1, 1], K[0, 2], K[1, 2]
-    x, y = (
-        (uv[:, 0] - cx) / fx,
-        (uv[:, 1] - cy) / fy,
-    )  # normalised: the model works at f = 1, from the axis
+    # normalised: the model works at f = 1, from the axis
+    x, y = (uv[:, 0] - cx) / fx, (uv[:, 1] - cy) / fy
     r2 = x**2 + y**2
     radial = 1 + k1 * r2 + k2 * r2**2 + k3 * r2**3  # even powers of r
     xd = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x**2)

@@ -272,9 +272,8 @@ def newton_step(x, x_d, k1, k2):
         L[:, :, None] * np.eye(2)
         + (2 * k1 + 4 * k2 * r2)[:, :, None] * x[:, :, None] * x[:, None, :]
     )
-    delta = np.linalg.solve(J, -residual[:, :, None])[
-        :, :, 0
-    ]  # J delta = -residual, one 2 x 2 system per point
+    # J delta = -residual, one 2 x 2 system per point
+    delta = np.linalg.solve(J, -residual[:, :, None])[:, :, 0]
     return x + delta  # a new array: x and x_d stay as they are
 
 

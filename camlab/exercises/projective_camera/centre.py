@@ -142,9 +142,8 @@ def _centre_exception_hint(exc, args) -> str:
 def camera_centre(P):
     """The homogeneous centre C with P C = 0: P's right null vector, scaled to w = 1."""
     _, _, Vt = np.linalg.svd(P)
-    C = Vt[
-        -1
-    ]  # the null vector: the full SVD's 4th right singular vector (its singular value, 0, is not in S)
+    # the null vector: the full SVD's 4th right singular vector (its singular value, 0, is not in S)
+    C = Vt[-1]
     return C / C[3]
 
 

@@ -159,9 +159,8 @@ def estimate_projection_matrix(X, uv):
     for Xh, (u, v, w) in zip(Xn, un, strict=True):  # u x P X = 0: two independent rows per point
         rows.append(np.concatenate([w * Xh, np.zeros(4), -u * Xh]))
         rows.append(np.concatenate([np.zeros(4), w * Xh, -v * Xh]))
-    P_hat = np.linalg.svd(np.array(rows))[2][-1].reshape(
-        3, 4
-    )  # smallest singular value's right vector
+    # the right singular vector of the smallest singular value
+    P_hat = np.linalg.svd(np.array(rows))[2][-1].reshape(3, 4)
     return np.linalg.inv(T) @ P_hat @ U  # T u ~ P_hat U X, so u ~ T^-1 P_hat U X
 
 
