@@ -172,7 +172,7 @@ def test_thin_lens_and_dof_state():
         focal_mm=90, object_m=0.06
     )  # the slider inside f: the object is held at 1.05 f, and the readout says so
     assert demo.state["object_held"] and demo.state["image_distance"] == pytest.approx(0.09 * 21)
-    assert "z_o = 0.060 m is inside 1.05 f: held at 0.095 m" in demo.view.fig.axes[0].get_title()
+    assert "z_o = 0.060 m is inside f (no real image): held at 0.095 m" in demo.view.fig.axes[0].get_title()
     dof = lenses_and_distortion.depth_of_field()
     dof.set(f_number=16.0, focus_m=1.2)
     wide = dof.state["far"] - dof.state["near"]
