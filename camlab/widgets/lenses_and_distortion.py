@@ -69,10 +69,8 @@ def blur_curve_depths(focus: float) -> np.ndarray:
 # where the cone crosses at z_i and the sensor cuts it in the blur c. Its axes run in units of the window's
 # half-width W (fixed limits: the demo stays blittable); W steps so that z_i and z_s both fit, and a scale bar
 # gives it in mm.
-ZOOM_HALF_MM = (0.25, 0.5, 1.0, 2.5, 5.0, 10.0, 25.0)
-ZOOM_Y = (
-    0.36  # the zoom's half-height, in units of W (the panel is about 2.8 times as wide as tall)
-)
+ZOOM_HALF_MM = (0.2, 0.4, 1.0, 2.0, 4.0, 10.0, 20.0)  # the scale bar is W / 4: 0.05 mm to 5 mm
+ZOOM_Y = 0.3  # the zoom's half-height, in units of W: as wide as the side view above it
 ZOOM_ARTISTS = ("cone", "cone_out", "rays", "beyond", "sensor", "blur", "focus", "bar", "bar_text")
 ZOOM_LABELS = ("z_i", "z_s", "c")
 
@@ -140,6 +138,9 @@ def _update_sensor_zoom(zoom: dict, A: float, z_i: float, z_s: float, c: float) 
     zoom["focus"].set_data([x_i], [0])
     zoom["bar_text"].set_text(f"{W / 4:g} mm")  # the bar spans a quarter of W (0.25 axis units)
     zoom["z_i"].set_position((x_i, 0.05 * ZOOM_Y))
+    zoom["z_i"].set_ha(
+        "right" if abs(x_i - x_s) < 0.15 else "center"
+    )  # clear of the c beside the sensor
     zoom["z_s"].set_position((x_s + 0.03, 0.95 * ZOOM_Y))
     zoom["c"].set_position((x_s + 0.04, min(half_c, 0.7 * ZOOM_Y) * 0.5 + 0.02))
     return {"zoom_half_mm": W}
