@@ -198,9 +198,12 @@ def undistort_points(
     if bad.any():
         i = int(np.argmax(bad))
         r_fold = max_valid_radius(d)
+        how_far = (  # inf: Newton diverged, or its root lies beyond the fold, so no inverse was found at all
+            "no ideal point found" if not np.isfinite(res[i]) else f"residual {res[i]:.3g} left"
+        )
         raise ConvergenceError(
             f"undistort_points: {int(bad.sum())} of {len(bad)} points did not converge "
-            f"(first: point {i} = {target[i]}, at distorted radius {np.hypot(*target[i]):.3g}, residual {res[i]:.3g}); "
+            f"(first: point {i} = {target[i]}, at distorted radius {np.hypot(*target[i]):.3g}: {how_far}); "
             f"they lie outside the valid field of view of dist = {d.tolist()}: the model folds over at ideal radius "
             f"{r_fold:.3g}, which it sends to distorted radius {r_fold * float(radial_scale(r_fold, d)):.3g}, "
             f"so a distorted point farther out has no inverse inside the fold"

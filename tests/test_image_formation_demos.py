@@ -172,7 +172,10 @@ def test_thin_lens_and_dof_state():
         focal_mm=90, object_m=0.06
     )  # the slider inside f: the object is held at 1.05 f, and the readout says so
     assert demo.state["object_held"] and demo.state["image_distance"] == pytest.approx(0.09 * 21)
-    assert "z_o = 0.060 m is inside 1.05 f: held at 0.095 m" in demo.view.fig.axes[0].get_title()
+    assert (
+        "z_o = 0.060 m is inside f (no real image): held at 0.095 m"
+        in demo.view.fig.axes[0].get_title()
+    )
     dof = lenses_and_distortion.depth_of_field()
     dof.set(f_number=16.0, focus_m=1.2)
     wide = dof.state["far"] - dof.state["near"]
@@ -554,6 +557,16 @@ def test_lesson_02_demos_show_what_the_prose_says():
     assert dist.state["grid_error"] < 1e-6  # the grid panel straightens with the checkbox
     dist.set(k1=-0.1, k2=0.3, undistort=False)
     assert dist.state["kind"] == "mustache"  # the setting the lesson suggests for it
+    # mustache: the top edge's middle moves in, the corner out (the radial profile's sign change)
+    assert dist.state["edge_middle_shift"] < -1 and dist.state["corner_shift"] > 7
+    assert (
+        "mustache" in dist.figure.axes[1].get_title()
+    )  # the kind is in the grid's title, not only the readout
+    dist.set(k3=0.3)  # the k3 slider reaches the model: r^6 pushes the corner out further
+    assert dist.state["corner_shift"] > 8
+    # the zoom under the side view shows z_i and z_s apart at the default (0.9 mm on a 2 mm window)
+    blur.set(f_number=2.8, object_m=1.5, sensor_mm=52.63)
+    assert blur.state["zoom_half_mm"] == 1.0
 
 
 def test_field_of_view_check_answers_the_prompts_question_and_names_a_one_tuple():

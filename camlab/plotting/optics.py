@@ -548,9 +548,12 @@ def draw_thin_lens(ax, focal_length: float, object_distance: float) -> dict:
         "object": ax.annotate(
             "", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrow, color=palette.GREEN)
         ),
+        # over the foci: far away the image is a short tick just beyond F', which the cross must not hide
         "image": ax.annotate(
-            "", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrow, color=palette.RED)
+            "", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrow, color=palette.RED), zorder=5
         ),
+        # a headless (short) image also gets a dot where the rays meet, so a tick a few pixels tall still shows
+        "image_dot": ax.plot([], [], "o", color=palette.RED, ms=4, zorder=5)[0],
         "rays": [
             ax.plot([], [], color=palette.ORANGE, ls=ls, lw=1.3, label=n)[0]
             for ls, n in zip(styles, names, strict=True)
@@ -590,10 +593,8 @@ def _thin_lens_note(xo: float, xi: float, m: float) -> str:
     """Where the object or image is when it lies beyond the axes ('' when both are on them)."""
     lo, hi = THIN_LENS_X
     notes = [f"object at {-xo:.1f} f, beyond the left edge" if xo < lo else ""]
-    if xi > hi or not THIN_LENS_Y[0] <= m <= THIN_LENS_Y[1]:
-        notes.append(
-            f"image at {xi:.1f} f, m = {m:.1f}: beyond the {'right edge' if xi > hi else 'axes'}"
-        )
+    if xi > hi or not THIN_LENS_Y[0] <= m <= THIN_LENS_Y[1]:  # its numbers are on the line above
+        notes.append(f"the image is beyond the {'right edge' if xi > hi else 'axes'}")
     return "; ".join(n for n in notes if n)
 
 
@@ -618,18 +619,21 @@ def update_thin_lens(art: dict, f: float, zo: float, requested: float | None = N
     art["image"].arrow_patch.set_mutation_scale(10 * min(1.0, abs(m) / 0.3) + 1)
     art["object"].set_visible(xo >= lo)  # an arrow at the edge would not meet its rays
     art["image"].set_visible(xi <= hi)
+    art["image_dot"].set_data(*(([xi], [m]) if headless and xi <= hi else ([], [])))
     # parallel ray -> through F'; central ray undeviated; ray through F -> parallel (exact lines, clipped by the axes)
     art["rays"][0].set_data([xo, 0, xi], [1, 1, m])
     art["rays"][1].set_data([xo, xi], [1, m])
     art["rays"][2].set_data([xo, 0, xi], [1, m, m])
     note = _thin_lens_note(xo, xi, m)
     if requested is not None and not np.isclose(requested, zo):
-        held = f"z_o = {requested:.3f} m is inside 1.05 f: held at {zo:.3f} m"
+        inside = "inside f (no real image)" if requested <= f else "inside 1.05 f"
+        held = f"z_o = {requested:.3f} m is {inside}: held at {zo:.3f} m"
         note = f"{held}; {note}" if note else held
     hint = "the object (green) and its image (red), where the rays meet"
+    # distances with their unit, then in f; the magnification named in full (m is also metres)
     art["text"].set_text(
-        f"f = {f * 1e3:.0f} mm   z_o = {zo:.3f} m = {-xo:.2f} f   z_i = {zi:.3f} m = {xi:.2f} f"
-        f"   m = {m:.3f}\n{note or hint}"
+        f"f = {f * 1e3:.0f} mm   z_o = {zo:.3f} m ({-xo:.2f} f)   z_i = {zi:.3f} m ({xi:.2f} f)"
+        f"   magnification {m:.3f}\n{note or hint}"
     )
     return {"image_distance": zi, "magnification": m, "image_head": not headless}
 
@@ -687,7 +691,9 @@ def draw_focus_cone(ax, half_height_mm: float = 20.0, sensor_height_mm: float = 
             path_effects=palette.halo(1),
             label="rays beyond the sensor (blocked)",
         )[0],
-        "point": ax.plot([], [], "o", color=palette.GREEN, ms=7, label="object point")[0],
+        "point": ax.plot(
+            [], [], "o", color=palette.GREEN, ms=7, label="object point", clip_on=False
+        )[0],  # whole at 2 m, on the left spine
         "sensor": ax.plot(
             [], [], color="0.3", lw=2, label=f"sensor ({sensor_height_mm:g} mm tall)"
         )[0],
@@ -753,7 +759,7 @@ def update_focus_cone(art: dict, f: float, N: float, z_o: float, z_s: float) -> 
     art["blur"].set_data([xs, xs], [-max(half_c, 0.15), max(half_c, 0.15)])
     airy = 2.44 * GREEN_LIGHT * N  # the diffraction blur, which stopping down makes worse
     art["text"].set_text(
-        f"A = f/N = {A * 1e3:.1f} mm   z_i = {z_i * 1e3:.2f} mm\n"
+        f"A = f/N = {A * 1e3:.3g} mm   z_i = {z_i * 1e3:.2f} mm\n"
         f"z_s = {z_s * 1e3:.2f} mm   c = A |z_s - z_i| / z_i"
     )
     return {"z_i": z_i, "A": A, "c": c, "airy": airy}
@@ -884,7 +890,7 @@ def update_blur_disc(art: dict, c: float, airy: float, pixel: float) -> dict:
 
     # µm: one decimal below 10 (a 0.5 µm disc is not "1 µm")
     art["text"].set_text(
-        f"c = {short(c_um, 10)} µm = {short(c / pixel)} px\nAiry disc {short(airy_um, 10)} µm\n"
+        f"c = {short(c_um, 10)} µm = {short(c / pixel, 10)} px\nAiry disc {short(airy_um, 10)} µm\n"
         f"view {width} wide, grid {grid_px} px"
     )
     return {"half_um": half, "grid_px": grid_px}

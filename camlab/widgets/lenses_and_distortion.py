@@ -20,19 +20,26 @@ F_DOF = (
 PITCH_DOF = F_DOF / K_DOF[0, 0]
 
 
+THIN_LENS_DEFAULT_M = 0.075  # the thin-lens demo's object distance: 1.5 f for its 50 mm lens
+
+
 @register(lesson="02", sweep={"focal_mm": [30, 50, 90], "object_m": [0.06, 0.3, 0.8]})
 def thin_lens():
     """Principal rays through a thin lens: where the image forms and how large it is."""
     controls = {
         "focal_mm": slider(50, 20, 100, 1, "focal length f (mm)"),
-        "object_m": slider(0.2, 0.06, 1.0, 0.005, "object distance z_o (m)", readout_format=".3f"),
+        # default 1.5 f: an image twice the object's size, using the axes that m = -5 needs
+        "object_m": slider(
+            THIN_LENS_DEFAULT_M, 0.06, 1.0, 0.005, "object distance z_o (m)", readout_format=".3f"
+        ),
     }
     view = FigureView(figsize=(8.6, 4))
     ax = view.fig.subplots()
-    art = optics.draw_thin_lens(ax, 0.05, 0.2)
+    art = optics.draw_thin_lens(ax, 0.05, THIN_LENS_DEFAULT_M)
+    # the foci over the object arrow, the image (and its dot) over the foci
     view.animate(
-        art["object"], art["image"], *art["rays"], art["foci"], art["text"]
-    )  # the foci over the arrows
+        art["object"], art["image"], art["image_dot"], *art["rays"], art["foci"], art["text"]
+    )
 
     def update(values, state):
         f, asked = values["focal_mm"] * 1e-3, values["object_m"]
@@ -58,6 +65,87 @@ def blur_curve_depths(focus: float) -> np.ndarray:
     return np.unique(np.concatenate([np.linspace(0.2, 5.0, 300), near_focus, [focus]]))
 
 
+# The zoom under the side view: the last few millimetres before the sensor at true scale (one scale both ways),
+# where the cone crosses at z_i and the sensor cuts it in the blur c. Its axes run in units of the window's
+# half-width W (fixed limits: the demo stays blittable); W steps so that z_i and z_s both fit, and a scale bar
+# gives it in mm.
+ZOOM_HALF_MM = (0.2, 0.4, 1.0, 2.0, 4.0, 10.0, 20.0)  # the scale bar is W / 4: 0.05 mm to 5 mm
+ZOOM_Y = 0.3  # the zoom's half-height, in units of W: as wide as the side view above it
+ZOOM_ARTISTS = ("cone", "cone_out", "rays", "beyond", "sensor", "blur", "focus", "bar", "bar_text")
+ZOOM_LABELS = ("z_i", "z_s", "c")
+
+
+def _draw_sensor_zoom(ax) -> dict:
+    """Artists of the true-scale zoom around the sensor (see :func:`_update_sensor_zoom`)."""
+    light = dict(color=palette.ORANGE, alpha=0.22, lw=0)
+    zoom = {
+        "cone": ax.fill([0, 0, 0], [0, 0, 0], **light)[0],
+        "cone_out": ax.fill([0, 0, 0], [0, 0, 0], **light)[0],
+        "rays": ax.plot([], [], color=palette.ORANGE, lw=1.2)[0],
+        "beyond": ax.plot([], [], color=palette.ORANGE, lw=1.2, ls=":")[0],
+        "sensor": ax.plot([], [], color="0.3", lw=2)[0],
+        "blur": ax.plot([], [], color=palette.RED, lw=5, solid_capstyle="butt")[0],
+        "focus": ax.plot([], [], "x", color=palette.RED, ms=7, mew=2)[0],
+        "bar": ax.plot(
+            [-0.95, -0.7], [-0.9 * ZOOM_Y] * 2, color="k", lw=2.5, solid_capstyle="butt"
+        )[0],
+        "bar_text": ax.text(-0.68, -0.9 * ZOOM_Y, "", fontsize=8, va="center"),
+    }
+    for key, (ha, va) in zip(
+        ZOOM_LABELS, (("center", "bottom"), ("left", "top"), ("left", "center")), strict=True
+    ):
+        zoom[key] = ax.text(0, 0, key, fontsize=9, ha=ha, va=va, path_effects=palette.halo(2))
+    ax.axhline(0, color="0.4", lw=0.8, zorder=0.5)
+    ax.set(xlim=(-1, 1), ylim=(-ZOOM_Y, ZOOM_Y), xticks=[], yticks=[])
+    ax.set_aspect("equal")
+    ax.set_title("near the sensor, true scale (zoom)", fontsize=9)
+    return zoom
+
+
+def _update_sensor_zoom(zoom: dict, A: float, z_i: float, z_s: float, c: float) -> dict:
+    """Redraw the zoom for aperture ``A``, image point ``z_i`` and sensor ``z_s`` (metres); blur ``c`` there.
+
+    The window is centred between z_i and z_s, its half-width W the smallest step with both
+    inside 70 % of it; heights use the same scale, so the cone's angle is true. Returns
+    ``{"zoom_half_mm"}``.
+    """
+    zi, zs, a = z_i * 1e3, z_s * 1e3, A / 2 * 1e3  # mm
+    centre = (zi + zs) / 2
+    W = next((w for w in ZOOM_HALF_MM if abs(zs - zi) / 2 <= 0.7 * w), ZOOM_HALF_MM[-1])
+
+    def ray(z):  # the upper marginal ray's height (mm): a at the lens, 0 at z_i
+        return a * (1 - z / zi)
+
+    x_left, x_s, x_i = -1.0, (zs - centre) / W, (zi - centre) / W
+    z_left = centre - W
+    y_left, y_s = ray(z_left) / W, ray(zs) / W
+    x_meet = min(x_i, x_s)  # the light stops at the sensor
+    y_meet = 0.0 if zi < zs else y_s
+    zoom["cone"].set_xy([[x_left, y_left], [x_meet, y_meet], [x_meet, -y_meet], [x_left, -y_left]])
+    zoom["cone_out"].set_xy(
+        [[x_i, 0], [x_s, y_s], [x_s, -y_s]] if zi < zs else [[x_s, 0], [x_s, 0], [x_s, 0]]
+    )
+    zoom["rays"].set_data(
+        [x_left, x_meet, x_s, np.nan, x_left, x_meet, x_s],
+        [y_left, y_meet, y_s, np.nan, -y_left, -y_meet, -y_s],
+    )
+    zoom["beyond"].set_data(
+        *(([x_s, x_i, np.nan, x_s, x_i], [y_s, 0, np.nan, -y_s, 0]) if zi > zs else ([], []))
+    )
+    zoom["sensor"].set_data([x_s, x_s], [-ZOOM_Y, ZOOM_Y])
+    half_c = max(c / 2 * 1e3 / W, 0.006)  # a bar at least ~2 screen pixels tall
+    zoom["blur"].set_data([x_s, x_s], [-half_c, half_c])
+    zoom["focus"].set_data([x_i], [0])
+    zoom["bar_text"].set_text(f"{W / 4:g} mm")  # the bar spans a quarter of W (0.25 axis units)
+    zoom["z_i"].set_position((x_i, 0.05 * ZOOM_Y))
+    zoom["z_i"].set_ha(
+        "right" if abs(x_i - x_s) < 0.15 else "center"
+    )  # clear of the c beside the sensor
+    zoom["z_s"].set_position((x_s + 0.03, 0.95 * ZOOM_Y))
+    zoom["c"].set_position((x_s + 0.04, min(half_c, 0.7 * ZOOM_Y) * 0.5 + 0.02))
+    return {"zoom_half_mm": W}
+
+
 @register(
     lesson="02",
     sweep={
@@ -81,9 +169,14 @@ def focus_and_blur():
         "object_m": slider(1.5, 0.3, 2.0, 0.01, "object distance z (m)"),
         "sensor_mm": slider(52.63, SENSOR_MIN_MM, 60.0, 0.01, "sensor behind lens z_s (mm)"),
     }
-    view = FigureView(figsize=(9.8, 5.2))
-    ax_cone, ax_disc, ax_c = view.fig.subplots(1, 3, width_ratios=[1.5, 0.85, 1.1])
+    view = FigureView(figsize=(9.8, 6.2))
+    grid = view.fig.add_gridspec(2, 3, width_ratios=[1.5, 0.85, 1.1], height_ratios=[2.1, 1])
+    ax_cone = view.fig.add_subplot(grid[0, 0])
+    ax_disc = view.fig.add_subplot(grid[:, 1])
+    ax_c = view.fig.add_subplot(grid[:, 2])
+    ax_zoom = view.fig.add_subplot(grid[1, 0])  # last: fig.axes[1] stays the face-on view
     art = optics.draw_focus_cone(ax_cone)
+    zoom = _draw_sensor_zoom(ax_zoom)
     disc = optics.draw_blur_disc(ax_disc, coc_um=COC_OK * 1e6)
     (curve,) = ax_c.plot([], [], "k", label="c(z), this sensor position")
     band = ax_c.axvspan(
@@ -127,6 +220,7 @@ def focus_and_blur():
             )
         ],
         *[disc[k] for k in ("grid", "blur", "ok", "airy", "bar", "bar_text", "text")],
+        *[zoom[k] for k in ZOOM_ARTISTS + ZOOM_LABELS],
         curve,
         band,
         coc_line,
@@ -139,6 +233,7 @@ def focus_and_blur():
         N, z_o, z_s = float(values["f_number"]), values["object_m"], values["sensor_mm"] * 1e-3
         state.update(optics.update_focus_cone(art, F_CONE, N, z_o, z_s))
         state.update(optics.update_blur_disc(disc, state["c"], state["airy"], PIXEL))
+        state.update(_update_sensor_zoom(zoom, state["A"], state["z_i"], z_s, state["c"]))
         s = float(lens.object_distance(F_CONE, z_s))  # the distance this sensor position focuses
         z = blur_curve_depths(s)
         # c = 0 at s: a floor below the axis, so the V runs off its bottom there
@@ -310,6 +405,7 @@ def _grid_lines(n: int = 9, samples: int = 60) -> np.ndarray:
     sweep={
         "k1": [-0.4, -0.35, 0.0, 0.25, 0.3],
         "k2": [-0.1, 0.1, 0.3],
+        "k3": [-0.2, 0.3],
         "p1": [-0.04, 0.03],
         "p2": [-0.03, 0.04],
         "undistort": [True, False],
@@ -320,6 +416,7 @@ def lens_distortion():
     controls = {
         "k1": slider(-0.25, -0.4, 0.3, 0.01, "k1 (radial)"),
         "k2": slider(0.05, -0.1, 0.3, 0.005, "k2 (radial)"),
+        "k3": slider(0.0, -0.2, 0.3, 0.01, "k3 (radial, r^6)"),
         "p1": slider(0.0, -0.04, 0.04, 0.002, "p1 (tangential)", readout_format=".3f"),
         "p2": slider(0.0, -0.04, 0.04, 0.002, "p2 (tangential)", readout_format=".3f"),
         "undistort": W.Checkbox(value=False, description="undistort (cv2.remap with our map)"),
@@ -360,7 +457,7 @@ def lens_distortion():
     view.animate(im, dots, *bent, img_title, grid_title)
 
     def update(values, state):
-        d = np.array([values["k1"], values["k2"], values["p1"], values["p2"], 0.0])
+        d = np.array([values["k1"], values["k2"], values["p1"], values["p2"], values["k3"]])
         # supersample=1: every k change rebuilds the inverse-distortion map, 4x cheaper at 1x
         out = render.render(board, K_D, SIZE, dist=d, supersample=1)
         img = out.image
@@ -381,14 +478,21 @@ def lens_distortion():
             if values["undistort"]
             else "the rendered board, as the lens\nrecords it (red: the true corners)"
         )
-        grid_title.set_text(
-            "the grid through the lens, then undistorted:\nstraight again"
-            if values["undistort"]
-            else "a straight grid through the lens\n(grey: the same grid without it)"
-        )
         kind = distortion.classify_distortion(d, r_max=float(np.hypot(*SIZE) / 2 / K_D[0, 0]))
+        grid_title.set_text(
+            f"the grid through the lens ({kind}),\nthen undistorted: straight again"
+            if values["undistort"]
+            else f"a straight grid through the lens: {kind}\n(grey: the same grid without it)"
+        )
+        # the radial shift (px, + outwards) of the frame's corner pixel and of its top edge's middle
+        probe = np.array([[0.0, 0.0], [K_D[0, 2], 0.0]])
+        shift = np.linalg.norm(
+            distortion.distort_pixels(probe, K_D, d) - K_D[:2, 2], axis=1
+        ) - np.linalg.norm(probe - K_D[:2, 2], axis=1)
         state.update(
             kind=kind,
+            corner_shift=float(shift[0]),
+            edge_middle_shift=float(shift[1]),
             corner0=corners[0],
             max_shift=float(
                 np.abs(
@@ -413,6 +517,6 @@ def lens_distortion():
         controls,
         view,
         update,
-        title="Lens distortion (k1, k2, p1, p2)",
+        title="Lens distortion (k1, k2, p1, p2, k3)",
         extra=[readout],
     )

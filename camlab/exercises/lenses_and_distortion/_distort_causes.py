@@ -115,6 +115,10 @@ def model_diagnosis(x, d, g, expected) -> str:
             "you read dist as (k1, k2, k3, p1, p2); OpenCV's order is (k1, k2, p1, p2, k3): "
             "k3 comes last, after the tangential p1, p2"
         )
+    if k1 != k2 and np.allclose(g, distortion.distort_points(x, [k2, k1, p1, p2, k3])):
+        return "k1 and k2 are swapped: OpenCV's order is (k1, k2, p1, p2, k3), and L = 1 + k1 r^2 + k2 r^4 + k3 r^6"
+    if (k1 or k2 or k3) and np.allclose(g, distortion.distort_points(x, [0, 0, p1, p2, 0])):
+        return "you left out the radial factor: x_d = x L + (tangential terms), with L = 1 + k1 r^2 + k2 r^4 + k3 r^6"
     if (p1 or p2) and np.allclose(g, distortion.distort_points(x, [k1, k2, p2, p1, k3])):
         return "p1 and p2 are swapped: OpenCV's order is (k1, k2, p1, p2, k3), and x gets 2 p1 x y + p2 (r^2 + 2 x^2)"
     if (p1 or p2) and np.allclose(g, brown_variant(x, d, cross=1.0)):
@@ -150,6 +154,36 @@ def model_diagnosis(x, d, g, expected) -> str:
             "you used k1 alone; dist holds five coefficients (k1, k2, p1, p2, k3), and every one of them counts: "
             "L = 1 + k1 r^2 + k2 r^4 + k3 r^6, then the tangential terms with p1 and p2"
         )
+    r2 = x[:, 0] ** 2 + x[:, 1] ** 2
+    tangential = expected - distortion.distort_points(x, [k1, k2, 0, 0, k3])
+    for L_wrong, hint, present in (  # one radial power wrong
+        (
+            1 + k1 * r2 + k2 * r2**2 + k3 * r2**2,
+            "k3 goes with r^6: L = 1 + k1 r^2 + k2 r^4 + k3 r^6 (r2**3); yours gives k3 r^4",
+            k3,
+        ),
+        (
+            1 + k1 * r2 + k2 * r2**1.5 + k3 * r2**3,
+            "k2 goes with r^4 (r2**2, even powers only): L = 1 + k1 r^2 + k2 r^4 + k3 r^6; yours gives k2 r^3",
+            k2,
+        ),
+        (
+            1 + k1 * r2 + k2 * r2**2 + k3 * r2**2.5,
+            "k3 goes with r^6 (r2**3, even powers only): L = 1 + k1 r^2 + k2 r^4 + k3 r^6; yours gives k3 r^5",
+            k3,
+        ),
+    ):
+        if present and np.allclose(g, x * L_wrong[:, None] + tangential):
+            return hint
+    if p1 != p2:  # x_d right, y_d with p1 and p2 exchanged
+        u, v = x[:, 0], x[:, 1]
+        L = 1 + k1 * r2 + k2 * r2**2 + k3 * r2**3
+        y_swapped = np.column_stack([expected[:, 0], v * L + p2 * (r2 + 2 * v**2) + 2 * p1 * u * v])
+        if np.allclose(g, y_swapped):
+            return (
+                "x_d is right, but y_d has p1 and p2 swapped: y_d = y L + p1 (r^2 + 2 y^2) + 2 p2 x y (the "
+                "pattern of x_d with x and y, p1 and p2 exchanged)"
+            )
     r = np.hypot(x[:, 0], x[:, 1])
     wrong_r = x * (1 + k1 * r + k2 * r**2 + k3 * r**3)[:, None]
     radial_only = distortion.distort_points(x, [k1, k2, 0, 0, k3])

@@ -29,6 +29,30 @@ def _f_number_reference(f, c, near, far):
     return lens.aperture_for_depth_of_field(f, c, near, far).f_number
 
 
+_H_OFF = (
+    "H is off by f: with section 2's exact limits the hyperfocal distance is H = f^2 / (N c) + f, so "
+    "N = f^2 / (c (H - f)); the + f belongs to the thin lens's exact H"
+)
+_APEX = (
+    "the cone's apex is the image point z_i, so similar triangles give c / A = |z_s - z_i| / z_i: "
+    "divide by z_i (the end point's image distance), not by the sensor distance z_s"
+)
+
+
+def _by_sensor(s, end):
+    """N from the blur at ``end`` with similar triangles' apex at the sensor z_s instead of the image point."""
+    z_s, z_i = s.f * s.focus / (s.focus - s.f), s.f * end / (end - s.f)
+    return s.f / s.c * abs(z_s - z_i) / z_s
+
+
+def _one_end(s):
+    """'near' or 'far' when the answer is N focused at that end (sharp there, c at the other), else None."""
+    for focus, other, where in ((s.n, s.r, "near"), (s.r, s.n, "far")):
+        if np.isclose(s.g, s.f**2 * abs(other - focus) / (s.c * other * (focus - s.f))):
+            return where
+    return None
+
+
 _F_NUMBER_MISTAKES = (
     Mistake(
         "geometric mean focus",
@@ -76,21 +100,72 @@ _F_NUMBER_MISTAKES = (
     Mistake(
         "H off by f",
         lambda s: np.isclose(s.g, s.f**2 / (s.c * s.H_plain)),
-        (
-            "H is off by f: with section 2's exact limits the hyperfocal distance is H = f^2 / (N c) + f, so "
-            "N = f^2 / (c (H - f)); the + f belongs to the thin lens's exact H"
+        lambda s: (
+            # for the harmonic-mean focus, the z_s slip at the far end gives exactly this N too: name both
+            "two routes give exactly this N, each with one slip. Through H: "
+            + _H_OFF
+            + ". Or through the "
+            "blur at the far end: " + _APEX
+            if np.isclose(s.g, _by_sensor(s, s.r))
+            else _H_OFF
         ),
     ),
     Mistake(
         "divided by the sensor distance",
-        lambda s: any(  # similar triangles with the apex at the sensor instead of the image point
-            np.isclose(s.g, s.f / s.c * abs(z_s - z_i) / z_s)
-            for end in (s.n, s.r)
-            for z_s, z_i in [(s.f * s.focus / (s.focus - s.f), s.f * end / (end - s.f))]
+        lambda s: any(np.isclose(s.g, _by_sensor(s, end)) for end in (s.n, s.r)),
+        _APEX,
+    ),
+    Mistake(
+        "focused at one end",
+        lambda s: _one_end(s) is not None,
+        lambda s: (
+            f"you focused at the {_one_end(s)} end"
+            + (
+                " (with far = 2 near that is also focusing at the hyperfocal distance H = 2 near)"
+                if _one_end(s) == "far" and np.isclose(s.r, 2 * s.n)
+                else ""
+            )
+            + ": that end is then perfectly sharp and the whole blur budget goes to the other end, which needs a "
+            "larger N than necessary. Focus where both ends blur equally, (s - near) / near = (far - s) / far, "
+            "s = 2 near far / (near + far), then N from c(near) = c"
+        ),
+    ),
+    Mistake(
+        "c / 2 and f dropped",
+        lambda s: np.isclose(s.g, s.f**2 * (s.r - s.n) / (s.c * s.n * s.r)),
+        lambda s: (
+            "two slips: c / 2 (c is the blur circle's diameter, not its radius) and f dropped from s - f "
+            "(c(z) = (f/N) (f/(s - f)) |z - s| / z, exactly)"
+            + (
+                " (with far = 2 near this is also f^2 / (c H) with H = 2 near: focusing at an approximate "
+                "hyperfocal distance, which makes everything beyond near sharp, more than asked)"
+                if np.isclose(s.r, 2 * s.n)
+                else ""
+            )
+        ),
+    ),
+    Mistake(
+        "focused at the hyperfocal distance",
+        lambda s: any(
+            np.isclose(s.g, s.f**2 / (s.c * H)) or np.isclose(s.g, s.f**2 / (s.c * (H - s.f)))
+            for H in (2 * s.n, 2 * s.n - s.f)  # "focus at H, so near = H / 2"
         ),
         (
-            "the cone's apex is the image point z_i, so similar triangles give c / A = |z_s - z_i| / z_i: "
-            "divide by z_i (the end point's image distance), not by the sensor distance z_s"
+            "you focused at the hyperfocal distance (near = H / 2, so H = 2 near): that makes everything from "
+            "near to infinity sharp, far more than asked, at a needlessly large N. Focus where both ends blur "
+            "equally, s = 2 near far / (near + far), and find N from c(near) = c"
+        ),
+    ),
+    Mistake(
+        "2 N c s^2 / f^2",
+        lambda s: any(
+            np.isclose(s.g, s.f**2 * (s.r - s.n) / (2 * s.c * focus**2))
+            for focus in (s.focus, (s.n + s.r) / 2)
+        ),
+        lambda s: (
+            "that is the textbook approximation depth of field = far - near = 2 N c s^2 / f^2, which holds "
+            f"only for s far below the hyperfocal distance and s >> f ({abs(s.g / s.expected - 1):.0%} off here); "
+            "the check wants the exact N: focus at s = 2 near far / (near + far), then solve c(near) = c"
         ),
     ),
     Mistake(
@@ -207,7 +282,8 @@ _MARKED_STOPS = (1.0, 1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0, 16.0, 22.0, 32.0, 45.0
 
 def f_number_for_depth(f, c, near, far):
     """The f-number that keeps blur <= c from near to far (metres), focused where both ends blur equally."""
-    s = 2 * near * far / (near + far)  # (s - near) / near = (far - s) / far: the harmonic mean
+    # equal blur at both ends, (s - near) / near = (far - s) / far: the harmonic mean
+    s = 2 * near * far / (near + far)
     # c(near) = (f/N) (f/(s - f)) (s - near) / near = c, solved for N
     return f**2 * (s - near) / (c * near * (s - f))
 
@@ -292,6 +368,16 @@ register_exercise(
                 lambda f, c, n, r: (2 * n * r / (n + r), _f_number_reference(f, c, n, r)),
                 "return N alone",
             ),
+            (
+                lambda f, c, n, r: f**2 * (r - n) / (c * r * (n - f)),
+                "you focused at the near end",
+            ),
+            (lambda f, c, n, r: f**2 / (c * (2 * n - f)), "hyperfocal distance"),
+            (
+                lambda f, c, n, r: f**2 * (r - n) / (2 * c * (2 * n * r / (n + r)) ** 2),
+                "textbook approximation",
+            ),
+            (lambda f, c, n, r: f**2 * (r - n) / (c * n * r), "two slips: c / 2"),
             (
                 lambda f, c, n, r: (
                     (1e3 * f) ** 2

@@ -31,6 +31,17 @@ def _normalised_with(f_wrong, c_wrong):
 
 _PIXEL_MISTAKES = (
     Mistake(
+        "rounded to whole pixels",
+        lambda s: (
+            np.allclose(s.g, np.round(s.expected), rtol=0, atol=1e-9)
+            or np.allclose(s.g, np.floor(s.expected), rtol=0, atol=1e-9)
+        ),
+        (
+            "you rounded to whole pixels; return the sub-pixel positions as floats (a distorted corner lands "
+            "between pixel centres, and calibration needs those fractions)"
+        ),
+    ),
+    Mistake(
         "model on pixels",
         lambda s: np.allclose(s.g, distortion.distort_points(s.uv, s.d)),
         (
@@ -246,8 +257,9 @@ def distort_pixels(uv, K, dist):
     """Where a lens with Brown-Conrady coefficients dist (OpenCV's order) moves (N, 2) ideal pixel positions."""
     k1, k2, p1, p2, k3 = dist  # note: k3 comes last
     fx, fy, cx, cy = K[0, 0], K[1, 1], K[0, 2], K[1, 2]
-    # normalised: the model works at f = 1, from the axis
-    x, y = (uv[:, 0] - cx) / fx, (uv[:, 1] - cy) / fy
+    # normalised: the model works at f = 1, from the optical axis
+    x = (uv[:, 0] - cx) / fx
+    y = (uv[:, 1] - cy) / fy
     r2 = x**2 + y**2
     radial = 1 + k1 * r2 + k2 * r2**2 + k3 * r2**3  # even powers of r
     xd = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x**2)
@@ -443,6 +455,44 @@ register_exercise(
             (
                 _pixel_variant(lambda x, d: distortion.distort_points(x, [d[0], 0, 0, 0, 0])),
                 "you used k1 alone",
+            ),
+            (
+                _pixel_variant(
+                    lambda x, d: (
+                        distortion.distort_points(x, d)
+                        + x * (d[4] * ((x**2).sum(1) ** 2 - (x**2).sum(1) ** 3))[:, None]
+                    )
+                ),
+                "yours gives k3 r",
+            ),
+            (
+                _pixel_variant(
+                    lambda x, d: (
+                        distortion.distort_points(x, d)
+                        + x * (d[1] * ((x**2).sum(1) ** 1.5 - (x**2).sum(1) ** 2))[:, None]
+                    )
+                ),
+                "yours gives k2 r",
+            ),
+            (
+                _pixel_variant(
+                    lambda x, d: np.column_stack(
+                        [
+                            distortion.distort_points(x, d)[:, 0],
+                            distortion.distort_points(x, [d[0], d[1], d[3], d[2], d[4]])[:, 1],
+                        ]
+                    )
+                ),
+                "y_d has p1 and p2 swapped",
+            ),
+            (lambda uv, K, d: np.round(distortion.distort_pixels(uv, K, d)), "rounded to whole"),
+            (
+                lambda uv, K, d: distortion.distort_pixels(uv, K, [d[1], d[0], d[2], d[3], d[4]]),
+                "k1 and k2 are swapped",
+            ),
+            (
+                lambda uv, K, d: distortion.distort_pixels(uv, K, [0, 0, d[2], d[3], 0]),
+                "left out the radial factor",
             ),
             (
                 _pixel_variant(

@@ -48,6 +48,38 @@ _FOV_MISTAKES = (
         ),
     ),
     Mistake(
+        "focused at infinity, in degrees",
+        lambda s: np.isclose(s.g, np.degrees(s.fov(s.f))),
+        (
+            "two slips: that is the field of view focused at infinity, 2 arctan(w / 2f), and in degrees. Focused at "
+            "z_o the sensor sits at z_i = f z_o / (z_o - f), so use 2 arctan(w / (2 z_i)), in radians"
+        ),
+    ),
+    Mistake(
+        "half-angle in degrees",
+        lambda s: np.isclose(s.g, np.degrees(s.expected / 2)),
+        (
+            "two slips: that is the half-angle, and in degrees; the field of view spans both sides of the axis, "
+            "2 arctan(w / (2 z_i)), in radians (np.degrees only for printing)"
+        ),
+    ),
+    Mistake(
+        "arctan2's arguments swapped",
+        lambda s: np.isclose(s.g, np.pi - s.expected),
+        (
+            "that is pi minus the field of view: np.arctan2's arguments are swapped. It takes (y, x), the side "
+            "opposite the angle first: 2 np.arctan2(w / 2, z_i)"
+        ),
+    ),
+    Mistake(
+        "arcsine",
+        lambda s: s.w < 2 * s.zi and np.isclose(s.g, 2 * np.arcsin(s.w / (2 * s.zi))),
+        (
+            "you took the arcsine: half the sensor width over z_i is the angle's tangent (the two legs of a right "
+            "triangle), not its sine (that would need the hypotenuse): 2 np.arctan(w / (2 z_i))"
+        ),
+    ),
+    Mistake(
         "negative",
         lambda s: np.isclose(-s.g, s.expected),
         (
@@ -140,6 +172,14 @@ _FOV_MISTAKES = (
         "1/z_i as the distance",
         lambda s: np.isclose(s.g, s.fov(1 / s.f - 1 / s.zo)),
         ("you used 1/z_i as the distance; invert it: z_i = 1 / (1/f - 1/z_o)"),
+    ),
+    Mistake(
+        "z_i = f + z_o",
+        lambda s: np.isclose(s.g, s.fov(s.f + s.zo)),
+        (
+            "z_i = f + z_o adds the distances; the thin lens adds their reciprocals, 1/f = 1/z_o + 1/z_i, "
+            "so z_i = f z_o / (z_o - f) (60 mm for a 50 mm lens at 0.3 m)"
+        ),
     ),
     Mistake(
         "z_o - f",
@@ -258,6 +298,20 @@ register_exercise(
             (lambda f, w, zo: 2 * np.arctan(f / (2 * w * zo / (zo - w))), "w and f are swapped"),
             (lambda f, w, zo: -2 * np.arctan(w / (2 * f * zo / (zo - f))), "a sign slip"),
             (lambda f, w, zo: 2 * np.tan(w / (2 * f * zo / (zo - f))), "its arctangent"),
+            (
+                lambda f, w, zo: 2 * np.arctan2(f * zo / (zo - f), w / 2),
+                "arctan2's arguments are swapped",
+            ),
+            (lambda f, w, zo: 2 * np.arcsin(w / (2 * f * zo / (zo - f))), "you took the arcsine"),
+            (lambda f, w, zo: 2 * np.arctan(w / (2 * (f + zo))), "adds the distances"),
+            (
+                lambda f, w, zo: np.degrees(np.arctan(w / (2 * f * zo / (zo - f)))),
+                "half-angle, and in degrees",
+            ),
+            (
+                lambda f, w, zo: np.degrees(2 * np.arctan(w / (2 * f))),
+                "two slips: that is the field",
+            ),
         ),
         teaching=field_of_view,
     )

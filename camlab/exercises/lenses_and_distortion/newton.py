@@ -195,6 +195,12 @@ _WRONG_STEPS = (  # each row's answer: the step with that slip, from the test in
         "the k2 term of the Jacobian has r^4 where r^2 belongs: d(k2 r^4)/dx = 4 k2 r^2 x, so "
         "dL/dx = (2 k1 + 4 k2 r^2) x",
     ),
+    Mistake(
+        "k2 r",
+        lambda args: _wrong_step(*args, k2_power=0.5),
+        "the k2 term of the Jacobian has r where r^2 belongs: d(k2 r^4)/dx = 4 k2 r^2 x (r^2 = x^2 + y^2, "
+        "no square root), so dL/dx = (2 k1 + 4 k2 r^2) x",
+    ),
 )
 
 
@@ -229,6 +235,22 @@ def _newton_diagnosis(args, got, expected) -> str:
     )
     if cause:
         return cause
+    stepped = np.isclose(g, expected, rtol=0, atol=1e-10).all(axis=1)
+    untouched = np.isclose(g, x, rtol=0, atol=1e-12).all(axis=1) & ~np.isclose(expected, x).all(
+        axis=1
+    )
+    if untouched.any() and (stepped | untouched).all():
+        rows = np.flatnonzero(untouched).tolist()
+        return (
+            f"row{'s' if len(rows) > 1 else ''} {rows} came back unchanged, the others are right: a loop over the "
+            "points that skipped "
+            + (
+                "the first, point 0 (range(1, N)? Python counts from 0)"
+                if rows == [0]
+                else "some of them"
+            )
+            + "; step every row, or drop the loop: the stacked np.linalg.solve handles all N at once"
+        )
     r2 = (x**2).sum(axis=1, keepdims=True)
     if np.allclose(g, x * (1 + k1 * r2 + k2 * r2**2)):
         return "you returned F(x), the current estimate distorted; return x + delta, with J(x) delta = -(F(x) - x_d)"
@@ -259,6 +281,12 @@ def _newton_exception_hint(exc, args) -> str:
             "np.linalg.solve on a stack of N systems: J is (N, 2, 2), so give the right-hand side as (N, 2, 1), "
             "residual[:, :, None], and take [:, :, 0] of the result (an (N, 2) b is read as one N x 2 matrix)"
         )
+    if isinstance(exc, ValueError) and "broadcast" in str(exc):
+        return (
+            "a broadcasting slip: r2 = (x**2).sum(axis=1) is (N,), so L is (N,) too, and x * L lines it up with "
+            "x's last axis (of size 2), not with its rows. Keep one value per row as a column: "
+            "(x**2).sum(axis=1, keepdims=True), or L[:, None]"
+        )
     return ""
 
 
@@ -268,11 +296,10 @@ def newton_step(x, x_d, k1, k2):
     L = 1 + k1 * r2 + k2 * r2**2
     residual = x * L - x_d  # F(x) - x_d: zero at the answer
     # J = dF/dx = L I + x (dL/dx)^T, with dL/dx = (2 k1 + 4 k2 r^2) x (chain rule: d(r^2)/dx = 2x)
-    J = (
-        L[:, :, None] * np.eye(2)
-        + (2 * k1 + 4 * k2 * r2)[:, :, None] * x[:, :, None] * x[:, None, :]
-    )
-    # J delta = -residual, one 2 x 2 system per point
+    slope = 2 * k1 + 4 * k2 * r2  # (N, 1)
+    outer = x[:, :, None] * x[:, None, :]  # x x^T, (N, 2, 2)
+    J = L[:, :, None] * np.eye(2) + slope[:, :, None] * outer
+    # J delta = -residual, one 2 x 2 system per point: the right-hand side as (N, 2, 1)
     delta = np.linalg.solve(J, -residual[:, :, None])[:, :, 0]
     return x + delta  # a new array: x and x_d stay as they are
 
@@ -292,6 +319,20 @@ def _flat_rhs_newton(x, x_d, k1, k2):
         + (2 * k1 + 4 * k2 * r2)[:, :, None] * x[:, :, None] * x[:, None, :]
     )
     return x - np.linalg.solve(J, x * L - x_d)
+
+
+def _flat_r2_newton(x, x_d, k1, k2):
+    """r^2 without keepdims: x * L broadcasts (N, 2) against (N,), a ValueError for N != 2."""
+    r2 = (x**2).sum(axis=1)
+    L = 1 + k1 * r2 + k2 * r2**2
+    return x - (x * L - x_d)
+
+
+def _loop_from_one_newton(x, x_d, k1, k2):
+    """A per-point loop that starts at 1: row 0 comes back unchanged."""
+    out = np.array(x, dtype=float)
+    out[1:] = _newton_step_reference(x[1:], x_d[1:], k1, k2)
+    return out
 
 
 register_exercise(
@@ -326,6 +367,7 @@ register_exercise(
                     "measures how far",
                     "has an extra r",
                     "the k2 term of the Jacobian has r",
+                    "Jacobian has r where",
                 ),
                 strict=True,
             )
@@ -357,6 +399,8 @@ register_exercise(
                 "that is 2 Newton steps",
             ),
             (_flat_rhs_newton, "np.linalg.solve on a stack"),
+            (_flat_r2_newton, "x * L lines it up"),
+            (_loop_from_one_newton, "skipped the first, point 0"),
             (
                 lambda x, x_d, k1, k2: _newton_step_reference(x, x_d, k1, k2).tolist(),
                 "wrap the values in np.array",
