@@ -1,0 +1,184 @@
+"""The size rule: a module a reader finishes in one sitting, a function that does one job.
+
+No camlab module over 600 lines; no function (or method, or nested function) over 80 lines of
+code. A function's lines of code are its physical lines from its first decorator to its last
+line, less its docstring, its blank lines and its comment-only lines. Anything over either
+limit is listed in ``EXCEPTIONS`` with the reason it stays long; an exception that no longer
+applies fails too, so the list only shrinks.
+"""
+
+import ast
+from pathlib import Path
+
+import camlab
+
+ROOT = Path(camlab.__file__).parent
+MAX_MODULE_LINES = 600
+MAX_FUNCTION_LINES = 80
+
+# {qualified name: why it is still over the limit}. A module is keyed by its dotted name
+# (camlab.projective), a function by module, classes and enclosing functions
+# (camlab.optimize.levenberg_marquardt, camlab.widgets.projective_camera.resectioning.update).
+EXCEPTIONS = {
+    # i27-twins splits these (issue 27, items 1-2)
+    "camlab.camera": "i27-twins splits rotations, Camera and resection apart (issue 27)",
+    "camlab.homography": "i27-twins splits estimation, properties and the hierarchy (issue 27)",
+    "camlab.epipolar": "i27-twins splits it (issue 27)",
+    "camlab.stitching.pipeline.stitch": "i27-twins makes `stitch` read as its stages (issue 27)",
+    "camlab.stitching.blending._multiband": "i27-twins splits stitching/* (issue 27)",
+    # i27-exercises splits these (issue 27, item 2)
+    "camlab.exercises._core": "i27-exercises splits it (issue 27)",
+    "camlab.exercises.affine_cameras.approximations": "i27-exercises splits it (issue 27)",
+    "camlab.exercises.affine_cameras.approximations._common_mistakes": "i27-exercises (issue 27)",
+    "camlab.exercises.affine_cameras.approximations._para_specific": "i27-exercises (issue 27)",
+    "camlab.exercises.affine_cameras.estimation": "i27-exercises splits it (issue 27)",
+    "camlab.exercises.digital_sensor": "i27-exercises splits it (issue 27)",
+    "camlab.exercises.digital_sensor._quantize_diagnosis": "i27-exercises (issue 27)",
+    "camlab.exercises.digital_sensor._demosaic_diagnosis": "i27-exercises (issue 27)",
+    "camlab.exercises.digital_sensor._datasheet_diagnosis": "i27-exercises (issue 27)",
+    "camlab.exercises.lenses_and_distortion": "i27-exercises splits it (issue 27)",
+    "camlab.exercises.lenses_and_distortion._field_of_view_diagnosis": "i27-exercises (issue 27)",
+    "camlab.exercises.lenses_and_distortion._distort_pixels_diagnosis": "i27-exercises (issue 27)",
+    "camlab.exercises.lenses_and_distortion._f_number_diagnosis": "i27-exercises (issue 27)",
+    "camlab.exercises.pinhole_camera": "i27-exercises splits it (issue 27)",
+    "camlab.exercises.pinhole_camera._pixel_slips": "i27-exercises (issue 27)",
+    "camlab.exercises.pinhole_camera._fx_diagnosis": "i27-exercises (issue 27)",
+    "camlab.exercises.pinhole_camera._exposure_diagnosis": "i27-exercises (issue 27)",
+    "camlab.exercises.projective_camera": "i27-exercises splits it (issue 27)",
+    "camlab.exercises.projective_camera._blender_diagnosis": "i27-exercises (issue 27)",
+    # i27-plots splits these (issue 27, item 2)
+    "camlab.plotting.optics": "i27-plots splits it (issue 27)",
+    "camlab.plotting.optics.draw_pinhole_cones": "i27-plots (issue 27)",
+    "camlab.plotting.scene3d": "i27-plots splits it (issue 27)",
+    "camlab.widgets.affine_cameras": "i27-plots splits it (issue 27)",
+    "camlab.widgets.affine_cameras.parallel_rails": "i27-plots (issue 27)",
+    "camlab.widgets.affine_cameras.projection_rays": "i27-plots (issue 27)",
+    "camlab.widgets.camera_calibration.accuracy_vs_views": "i27-plots (issue 27)",
+    "camlab.widgets.camera_calibration.view_inspector": "i27-plots (issue 27)",
+    "camlab.widgets.digital_sensor.bit_depth_and_noise": "i27-plots (issue 27)",
+    "camlab.widgets.digital_sensor.demosaicing": "i27-plots (issue 27)",
+    "camlab.widgets.homographies.transformation_hierarchy": "i27-plots (issue 27)",
+    "camlab.widgets.homographies.drag_homography": "i27-plots (issue 27)",
+    "camlab.widgets.homographies.ransac_outliers": "i27-plots (issue 27)",
+    "camlab.widgets.image_stitching": "i27-plots splits it (issue 27)",
+    "camlab.widgets.image_stitching.ransac_registration": "i27-plots (issue 27)",
+    "camlab.widgets.image_stitching.parallax_ghosting": "i27-plots (issue 27)",
+    "camlab.widgets.lenses_and_distortion.focus_and_blur": "i27-plots (issue 27)",
+    "camlab.widgets.lenses_and_distortion.depth_of_field": "i27-plots (issue 27)",
+    "camlab.widgets.lenses_and_distortion.lens_distortion": "i27-plots (issue 27)",
+    "camlab.widgets.perspective_correction.rectify_photo": "i27-plots (issue 27)",
+    "camlab.widgets.pinhole_camera.pinhole_projection": "i27-plots (issue 27)",
+    "camlab.widgets.pinhole_camera.pinhole_size": "i27-plots (issue 27)",
+    "camlab.widgets.projective_camera.resectioning": "i27-plots (issue 27)",
+    "camlab.widgets.projective_camera.resectioning.update": "i27-plots (issue 27)",
+    "camlab.widgets.projective_plane.vanishing_points": "i27-plots (issue 27)",
+    "camlab.widgets.stereo_rectification.epipolar_lines": "i27-plots (issue 27)",
+    "camlab.widgets.stereo_rectification.rectify_pair": "i27-plots (issue 27)",
+    # i27-core splits these (issue 27, item 2)
+    "camlab.affine": "i27-core splits it (issue 27)",
+    "camlab.calibration.calibrate": "i27-core splits it (issue 27)",
+    "camlab.calibration.coach.coach": "i27-core (issue 27)",
+    "camlab.cli": "i27-core splits it (issue 27)",
+    "camlab.data.stereo": "i27-core / i27-results (issue 27)",
+    "camlab.data.stereo.make_stereo_rig": "i27-core (issue 27)",
+    "camlab.optimize.levenberg_marquardt": "i27-core (issue 27)",
+    "camlab.projective": "i27-core splits it (issue 27)",
+    "camlab.rectification": "i27-core splits it (issue 27)",
+    "camlab.rectification.rectify_calibrated": "i27-core (issue 27)",
+    "camlab.rectification.stereo_calibrate": "i27-core (issue 27)",
+    "camlab.render": "i27-core splits it (issue 27)",
+}
+
+
+def _module_name(path: Path, root: Path) -> str:
+    parts = path.relative_to(root.parent).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def function_code_lines(lines: list[str], node: ast.FunctionDef | ast.AsyncFunctionDef) -> int:
+    """Lines of code of one function: from its first decorator to its end, less the docstring,
+    blank lines and comment-only lines (a nested function's lines count in its parent too)."""
+    start = min([node.lineno] + [d.lineno for d in node.decorator_list])
+    first = node.body[0]
+    docstring = (
+        range(first.lineno, first.end_lineno + 1)
+        if isinstance(first, ast.Expr)
+        and isinstance(first.value, ast.Constant)
+        and isinstance(first.value.value, str)
+        else range(0)
+    )
+    return sum(
+        1
+        for number in range(start, node.end_lineno + 1)
+        if number not in docstring
+        and lines[number - 1].strip()
+        and not lines[number - 1].strip().startswith("#")
+    )
+
+
+def _oversized_functions(node: ast.AST, prefix: str, lines: list[str], found: dict) -> None:
+    for child in ast.iter_child_nodes(node):
+        if isinstance(child, ast.FunctionDef | ast.AsyncFunctionDef):
+            name = f"{prefix}.{child.name}"
+            size = function_code_lines(lines, child)
+            if size > MAX_FUNCTION_LINES:
+                found[name] = size
+            _oversized_functions(child, name, lines, found)
+        elif isinstance(child, ast.ClassDef):
+            _oversized_functions(child, f"{prefix}.{child.name}", lines, found)
+        else:
+            _oversized_functions(child, prefix, lines, found)
+
+
+def oversized(root: Path = ROOT) -> dict[str, int]:
+    """{qualified name: size} of every module over MAX_MODULE_LINES lines and every function
+    over MAX_FUNCTION_LINES lines of code below ``root``."""
+    found = {}
+    for path in sorted(root.rglob("*.py")):
+        source = path.read_text()
+        lines = source.splitlines()
+        module = _module_name(path, root)
+        if len(lines) > MAX_MODULE_LINES:
+            found[module] = len(lines)
+        _oversized_functions(ast.parse(source, str(path)), module, lines, found)
+    return found
+
+
+def test_no_module_or_function_is_over_the_size_limits():
+    over = {name: size for name, size in oversized().items() if name not in EXCEPTIONS}
+    assert not over, (
+        f"over {MAX_MODULE_LINES} lines (module) or {MAX_FUNCTION_LINES} lines of code "
+        f"(function): {over}. Split by topic (a module) or by step (a function); if it must "
+        "stay long, add it to EXCEPTIONS in tests/test_sizes.py with the reason."
+    )
+
+
+def test_every_exception_is_still_needed_and_says_why():
+    over = oversized()
+    stale = sorted(name for name in EXCEPTIONS if name not in over)
+    assert not stale, f"now within the limits: delete these from EXCEPTIONS: {stale}"
+    assert all(reason.strip() for reason in EXCEPTIONS.values())
+
+
+def test_the_scan_finds_a_long_module_and_a_long_function(tmp_path):
+    """The rule can fail: a long module and a long nested function are caught, a docstring,
+    blank lines and comments do not count."""
+    pkg = tmp_path / "camlab"
+    pkg.mkdir()
+    (pkg / "__init__.py").write_text("")
+    (pkg / "big.py").write_text("x = 1\n" * (MAX_MODULE_LINES + 1))
+    body = "    y = 1\n" * MAX_FUNCTION_LINES
+    doc = '    """' + "\n" * 50 + '    """\n'
+    (pkg / "fits.py").write_text(
+        "def f():\n" + doc + "\n    # note\n" * 30 + body[: -len("    y = 1\n")]
+    )
+    (pkg / "sub.py").write_text(
+        "class A:\n    def outer(self):\n        def inner():\n"
+        + "            y = 1\n" * MAX_FUNCTION_LINES
+        + "        return inner\n"
+    )
+    assert oversized(pkg) == {
+        "camlab.big": MAX_MODULE_LINES + 1,
+        "camlab.sub.A.outer": MAX_FUNCTION_LINES + 3,
+        "camlab.sub.A.outer.inner": MAX_FUNCTION_LINES + 1,
+    }
