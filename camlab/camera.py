@@ -64,6 +64,7 @@ __all__ = [
     "estimate_projection_matrix",
     "euler_from_rotation",
     "intrinsic_matrix",
+    "centred_intrinsics",
     "is_rotation",
     "look_at_rotation",
     "nearest_rotation",
@@ -124,6 +125,36 @@ def intrinsic_matrix(fx: float, fy: float, cx: float, cy: float, skew: float = 0
     cx, cy = check_number(cx, "cx", "pixels"), check_number(cy, "cy", "pixels")
     skew = check_number(skew, "skew", "pixels")
     return np.array([[fx, skew, cx], [0.0, fy, cy], [0.0, 0.0, 1.0]])
+
+
+def centred_intrinsics(f: float, size: tuple[int, int]) -> np.ndarray:
+    r"""K with focal ``f`` pixels, square pixels, no skew and the principal point at the image centre.
+
+    With pixel centres at integers (docs/conventions.md) the centre of a W x H image is
+    :math:`c = ((W - 1)/2, (H - 1)/2)`, so
+    :math:`K = \begin{pmatrix} f & 0 & (W - 1)/2 \\ 0 & f & (H - 1)/2 \\ 0 & 0 & 1 \end{pmatrix}`:
+    the camera of every rendered scene and synthetic view.
+
+    Parameters
+    ----------
+    f : float
+        Focal length in pixels, > 0.
+    size : (int, int)
+        Image (width, height) in pixels.
+
+    Returns
+    -------
+    (3, 3) ndarray
+
+    Examples
+    --------
+    >>> centred_intrinsics(800, (640, 480))
+    array([[800. ,   0. , 319.5],
+           [  0. , 800. , 239.5],
+           [  0. ,   0. ,   1. ]])
+    """
+    w, h = check_size(size)
+    return intrinsic_matrix(f, f, (w - 1) / 2, (h - 1) / 2)
 
 
 def is_rotation(R: ArrayLike, tol: float = ROTATION_TOL) -> bool:
@@ -480,7 +511,7 @@ class Camera:
             )
         w, h = (int(v) for v in image_size)
         f = (w / 2.0) / np.tan(fov / 2.0)
-        K = intrinsic_matrix(f, f, (w - 1) / 2.0, (h - 1) / 2.0)
+        K = centred_intrinsics(f, (w, h))
         return cls(K, np.eye(3) if R is None else R, np.zeros(3) if t is None else t, dist, (w, h))
 
     @classmethod
@@ -501,7 +532,7 @@ class Camera:
         e = np.asarray(eye, dtype=float)
         if K is None:
             w, h = (int(v) for v in image_size)
-            K = intrinsic_matrix(800.0, 800.0, (w - 1) / 2.0, (h - 1) / 2.0)
+            K = centred_intrinsics(800.0, (w, h))
         return cls(K, R, -R @ e, dist, image_size)
 
     def replace(self, **changes) -> Camera:

@@ -58,6 +58,7 @@ __all__ = [
     "undistort_pixels",
     "undistort_points",
     "distort_map",
+    "distort_xy",
 ]
 
 
@@ -92,11 +93,21 @@ def as_dist(dist: ArrayLike | None, name: str = "dist") -> np.ndarray:
 
 
 def _distort(xy: np.ndarray, d: np.ndarray) -> np.ndarray:
-    return np.stack(_distort_xy(xy[..., 0], xy[..., 1], d), axis=-1)
+    return np.stack(distort_xy(xy[..., 0], xy[..., 1], d), axis=-1)
 
 
-def _distort_xy(x: np.ndarray, y: np.ndarray, d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The Brown-Conrady model on coordinate arrays that broadcast (a column of y against a row of x)."""
+def distort_xy(x: np.ndarray, y: np.ndarray, d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    r"""The Brown-Conrady polynomial on coordinate arrays that broadcast (a column of y against a row of x).
+
+    .. math:: x_d = x L + 2 p_1 x y + p_2 (r^2 + 2 x^2), \quad
+              y_d = y L + p_1 (r^2 + 2 y^2) + 2 p_2 x y, \quad
+              L = 1 + k_1 r^2 + k_2 r^4 + k_3 r^6, \ r^2 = x^2 + y^2
+
+    The one place camlab evaluates the model (:func:`distort_points`, :func:`distort_map`
+    and calibration's projection call it). No checks: ``x``, ``y`` are float arrays of
+    normalised coordinates and ``d`` the 5 coefficients ``(k1, k2, p1, p2, k3)`` from
+    :func:`as_dist`.
+    """
     k1, k2, p1, p2, k3 = d
     r2 = x * x + y * y
     radial = 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3))
@@ -435,7 +446,7 @@ def undistort_map(
     # column of y broadcast against a row of u gives the whole grid without a pixel list
     y = ((np.arange(h, dtype=float) - new_K[1, 2]) / new_K[1, 1])[:, None]
     x = (np.arange(w, dtype=float)[None, :] - new_K[0, 2] - new_K[0, 1] * y) / new_K[0, 0]
-    xd, yd = _distort_xy(x, y, as_dist(dist))
+    xd, yd = distort_xy(x, y, as_dist(dist))
     map_u = K[0, 0] * xd + K[0, 1] * yd + K[0, 2]  # K (xd, yd, 1)
     map_v = K[1, 1] * yd + K[1, 2]
     return DistortionMaps(

@@ -34,7 +34,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._validate import CamlabInputError, DegenerateError, as_point_pairs, as_points, check_size
-from .camera import Camera, CameraPair, intrinsic_matrix
+from .camera import Camera, CameraPair, intrinsic_matrix, rotation_z
 from .distortion import DistortionMaps, distort_points, undistort_pixels
 from .epipolar import EIGHT_POINT_REASON, check_fundamental, epipoles, sampson_distance, skew
 from .homography import compose
@@ -594,8 +594,7 @@ def rectify_uncalibrated(
     e = T @ e2
     theta = np.arctan2(e[1], e[0])
     theta = (theta + np.pi / 2) % np.pi - np.pi / 2  # the smaller rotation: keep images upright
-    c, s = np.cos(theta), np.sin(theta)
-    Rm = np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
+    Rm = rotation_z(-theta)  # turns the epipole onto the x axis
     e = Rm @ e
     G = np.eye(3)
     if abs(e[2]) > 1e-12 * abs(e[0]):

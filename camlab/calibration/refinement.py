@@ -15,7 +15,7 @@ from numpy.typing import ArrayLike
 
 from .._validate import as_float, as_points, check_intrinsics, check_matrix
 from ..camera import rotation_from_axis_angle
-from ..distortion import as_dist, beyond_valid_radius, distortion_jacobian
+from ..distortion import as_dist, beyond_valid_radius, distort_xy, distortion_jacobian
 from ..optimize import NormalEquations
 
 PARAM_NAMES = ("fx", "fy", "cx", "cy", "skew", "k1", "k2", "p1", "p2", "k3")
@@ -136,10 +136,8 @@ def project_views(
     Xc = RX + poses[:, None, 3:]
     z = Xc[..., 2]
     x, y = Xc[..., 0] / z, Xc[..., 1] / z
+    xd, yd = distort_xy(x, y, g[5:])
     r2 = x * x + y * y
-    radial = 1 + r2 * (k1 + r2 * (k2 + r2 * k3))
-    xd = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x)
-    yd = y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y
     uv = np.stack([fx * xd + s * yd + cx, fy * yd + cy], axis=-1)
     if not jac:
         return uv

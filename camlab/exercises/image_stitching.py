@@ -7,6 +7,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from .. import stitching as st
+from ..camera import rotation_y
 from ..homography import rotation_homography
 from ._answers import same_array
 from ._core import Exercise, Mistake, first_mistake, register_exercise
@@ -18,8 +19,7 @@ def _canvas_cases():
     K = np.array([[400.0, 0, 159.5], [0, 400.0, 119.5], [0, 0, 1]])
 
     def yaw(deg):
-        a = np.radians(deg)
-        return np.array([[np.cos(a), 0, np.sin(a)], [0, 1, 0], [-np.sin(a), 0, np.cos(a)]])
+        return rotation_y(np.radians(deg))
 
     shift = np.array([[1.0, 0, 50], [0, 1, -30], [0, 0, 1]])
     return [

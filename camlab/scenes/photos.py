@@ -8,6 +8,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validate import CamlabInputError, check_positive
+from ..camera import centred_intrinsics, rotation_x, rotation_y, rotation_z
 from ..homography import pose_homography
 from ..projective import map_points
 from ..warp import warp_perspective
@@ -42,13 +43,7 @@ def look_at_plane(yaw: float, pitch: float, roll: float = 0.0) -> np.ndarray:
     """Rotation cam_from_plane turning a plane about its own centre: yaw about the
     vertical (v) axis, pitch about the horizontal (u) axis, roll about the view axis,
     in radians. With all angles 0 the plane faces the camera squarely."""
-    cy, sy = np.cos(yaw), np.sin(yaw)
-    cp, sp = np.cos(pitch), np.sin(pitch)
-    cr, sr = np.cos(roll), np.sin(roll)
-    Ry = np.array([[cy, 0, sy], [0, 1, 0], [-sy, 0, cy]])
-    Rx = np.array([[1, 0, 0], [0, cp, -sp], [0, sp, cp]])
-    Rz = np.array([[cr, -sr, 0], [sr, cr, 0], [0, 0, 1]])
-    return Rz @ Rx @ Ry
+    return rotation_z(roll) @ rotation_x(pitch) @ rotation_y(yaw)
 
 
 def photograph_plane(
@@ -87,7 +82,7 @@ def photograph_plane(
         raise CamlabInputError(f"texture: expected an (H, W, 3) RGB image, got shape {tex.shape}")
     th, tw = tex.shape[:2]
     h, w = image_shape
-    K = np.array([[focal, 0, (w - 1) / 2], [0, focal, (h - 1) / 2], [0, 0, 1.0]])
+    K = centred_intrinsics(focal, (w, h))
     R = look_at_plane(yaw, pitch, roll)
     off = np.asarray(offset, dtype=float)
     t = np.array([off[0], off[1], check_positive(distance, "distance", "metres")])

@@ -34,7 +34,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validate import DegenerateError, check_matrix
-from ..camera import nearest_rotation, rotation_from_axis_angle
+from ..camera import centred_intrinsics, nearest_rotation, rotation_from_axis_angle
 from ..optimize import huber_residuals, levenberg_marquardt
 
 __all__ = [
@@ -61,7 +61,7 @@ def intrinsics(f: float, shape: Sequence[int]) -> np.ndarray:
     The centre of an (h, w) image is ((w - 1)/2, (h - 1)/2) with the pixel-centre convention.
     """
     h, w = shape[:2]
-    return np.array([[f, 0.0, (w - 1) / 2], [0.0, f, (h - 1) / 2], [0.0, 0.0, 1.0]])
+    return centred_intrinsics(f, (w, h))
 
 
 class Focals(NamedTuple):
