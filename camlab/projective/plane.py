@@ -1,26 +1,15 @@
-r"""The projective plane P^2: homogeneous points, lines, duality, and invariants.
+r"""Points and lines of the projective plane: homogeneous coordinates, join and meet, incidence,
+ideal points, maps by homographies, the cross ratio, and a line clipped to a window.
 
-A point (x, y) of the image plane is the homogeneous 3-vector (x, y, 1), and every
-non-zero multiple (wx, wy, w) names the same point. A line ax + by + c = 0 is the
-3-vector l = (a, b, c), also up to scale, and a point x lies on l exactly when
-l . x = 0. Because incidence is a dot product, the line through two points and the
-point on two lines are both cross products, and parallel lines meet at an *ideal
-point* (x, y, 0) on the *line at infinity* (0, 0, 1).
-
-Conventions (docs/conventions.md): points are rows, ``(N, 2)`` Euclidean or
-``(N, 3)`` homogeneous, a single ``(2,)``/``(3,)`` point keeps its rank; lines are
-rows ``(N, 3)``; homographies map points by ``x' = H x`` (``X @ H.T`` for rows) and
-lines by ``l' = H^{-T} l``. See lesson 06.
+The conventions are in the package docstring (:mod:`camlab.projective`); see lesson 06.
 """
 
 from __future__ import annotations
 
-from typing import NamedTuple
-
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import CamlabInputError, DegenerateError, as_points, check_matrix
+from .._validate import CamlabInputError, DegenerateError, as_points, check_matrix
 
 __all__ = [
     "LINE_AT_INFINITY",
@@ -37,17 +26,11 @@ __all__ = [
     "meet",
     "normalize_lines",
     "splits_at_infinity",
-    "VanishingPointFit",
-    "segments_pointing_at",
-    "vanishing_point_ransac",
     "normalize_points",
     "point_line_distance",
     "to_homogeneous",
-    "vanishing_point",
-    "HartleyNormalized",
-    "hartley_normalization",
-    "hartley_normalize",
 ]
+
 
 LINE_AT_INFINITY = np.array([0.0, 0.0, 1.0])
 """The line (0, 0, 1) on which every ideal point (x, y, 0) lies."""
@@ -480,136 +463,6 @@ def cross_ratio(points: ArrayLike) -> float:
     return det(a, c) * det(b, d) / den
 
 
-def vanishing_point(segments: ArrayLike) -> np.ndarray:
-    r"""The common point of the lines through image segments that are parallel in 3-D.
-
-    With two segments it is :func:`meet` of their lines. With more, noisy lines rarely
-    share a point exactly, so take the v that minimises :math:`\sum_i (l_i \cdot v)^2`
-    over unit vectors, with each line scaled so that :math:`a^2 + b^2 = 1`. That is the
-    right singular vector of the stacked lines with the smallest singular value; working
-    in homogeneous form keeps the answer valid when the vanishing point is at infinity.
-
-    Coordinates are centred and scaled first (Hartley's conditioning), because pixel
-    values in the hundreds make the stacked system badly conditioned.
-
-    Parameters
-    ----------
-    segments : (N, 2, 2) array_like
-        N >= 2 segments, each ``[[u1, v1], [u2, v2]]`` in pixels.
-
-    Returns
-    -------
-    (3,) ndarray
-        Homogeneous vanishing point, normalised (w = 1, or unit (x, y) if ideal).
-
-    Raises
-    ------
-    DegenerateError
-        For a zero-length segment or segments that all lie on one line.
-    """
-    s = np.asarray(segments, dtype=float) if np.ndim(segments) else None
-    if s is None or s.ndim != 3 or s.shape[1:] != (2, 2) or len(s) < 2:
-        raise CamlabInputError(
-            f"segments: expected (N, 2, 2) endpoints [[u1, v1], [u2, v2]] with N >= 2, "
-            f"got shape {np.shape(segments)}"
-        )
-    if not np.isfinite(s).all():
-        raise CamlabInputError("segments: expected finite coordinates, found NaN or inf")
-    lengths = np.linalg.norm(s[:, 1] - s[:, 0], axis=1)
-    if np.any(lengths == 0):
-        raise DegenerateError(
-            f"segments: segment {int(np.argmin(lengths))} has zero length; it defines no line"
-        )
-    T = hartley_normalization(s.reshape(-1, 2), "segments")
-    ends = [to_homogeneous(s[:, k]) @ T.T for k in (0, 1)]
-    lines = normalize_lines(np.cross(ends[0], ends[1]))
-    _, sv, vt = np.linalg.svd(lines)
-    if sv[1] < 1e-9 * sv[0]:
-        raise DegenerateError(
-            "segments: all segments lie on one line, so they do not fix a vanishing point"
-        )
-    v = np.linalg.solve(T, vt[-1])  # undo the conditioning: v = T^-1 v_n
-    if abs(v[2]) <= 1e-12 * np.linalg.norm(v[:2]):
-        v[2] = 0.0  # parallel to round-off: the vanishing point is ideal, not at 1e16 px
-    return normalize_points(v)
-
-
-def segments_pointing_at(
-    segments: ArrayLike, point_h: ArrayLike, tol_deg: float = 1.5
-) -> np.ndarray:
-    """Which segments point at the (possibly ideal) point, within ``tol_deg`` degrees.
-
-    The angle is measured at each segment's midpoint m, between the segment's direction
-    and the direction from m to the point, :math:`(x - m w, y - m w)`, which stays valid
-    for an ideal point (w = 0). Returns an (N,) bool array.
-    """
-    segs = np.asarray(segments, dtype=float)
-    v = np.asarray(point_h, dtype=float)
-    mid, d = segs.mean(axis=1), segs[:, 1] - segs[:, 0]
-    to_v = v[:2] - mid * v[2]
-    with np.errstate(invalid="ignore", divide="ignore"):
-        cos = np.abs(np.sum(d * to_v, axis=1)) / (
-            np.linalg.norm(d, axis=1) * np.linalg.norm(to_v, axis=1)
-        )
-    return np.nan_to_num(np.degrees(np.arccos(np.clip(cos, 0, 1))), nan=180.0) < tol_deg
-
-
-class VanishingPointFit(NamedTuple):
-    """What :func:`vanishing_point_ransac` found: ``point`` (3,) homogeneous, ``inliers`` (N,) bool."""
-
-    point: np.ndarray
-    inliers: np.ndarray
-
-
-def vanishing_point_ransac(
-    segments: ArrayLike,
-    tol_deg: float = 1.5,
-    samples: int = 300,
-    rng: np.random.Generator | int | None = None,
-) -> VanishingPointFit:
-    """The vanishing point most segments point at, robust to segments that belong to none.
-
-    RANSAC (Fischler & Bolles): two random segments propose the meet of their lines; every
-    segment pointing at it within ``tol_deg`` (:func:`segments_pointing_at`) votes; the
-    proposal with the most votes wins and is re-estimated from its voters by
-    :func:`vanishing_point` (least squares over unit vectors, so it may be ideal).
-
-    Parameters
-    ----------
-    segments : (N, 2, 2) array_like
-        Image segments (pixels), N >= 2.
-    tol_deg : float
-    samples : int
-    rng : numpy Generator, int or None
-
-    Returns
-    -------
-    VanishingPointFit
-    """
-    segs = np.asarray(segments, dtype=float)
-    if segs.ndim != 3 or segs.shape[1:] != (2, 2) or len(segs) < 2:
-        raise CamlabInputError(
-            f"segments: expected (N, 2, 2) with N >= 2 segments, got shape {segs.shape}"
-        )
-    rng = np.random.default_rng(rng)
-    ones = np.ones((len(segs), 1))
-    lines = np.cross(np.hstack([segs[:, 0], ones]), np.hstack([segs[:, 1], ones]))
-    best = np.zeros(len(segs), bool)
-    for _ in range(int(samples)):
-        i, j = rng.choice(len(segs), 2, replace=False)
-        proposal = np.cross(lines[i], lines[j])
-        if not np.any(proposal):
-            continue
-        votes = segments_pointing_at(segs, proposal, tol_deg)
-        if votes.sum() > best.sum():
-            best = votes
-    if best.sum() < 2:
-        raise DegenerateError(
-            "segments: no two segments point at a common point; there is no vanishing point here"
-        )
-    return VanishingPointFit(vanishing_point(segs[best]), best)
-
-
 def horizon(vp1: ArrayLike, vp2: ArrayLike) -> np.ndarray:
     """The vanishing line through two vanishing points of one plane (its horizon).
 
@@ -685,86 +538,3 @@ def clip_line(line: ArrayLike, xlim: tuple[float, float], ylim: tuple[float, flo
     if d[i, j] <= eps:
         return np.full((2, 2), np.nan)
     return np.array([pts[i], pts[j]]) + 0.0  # + 0.0 turns -0.0 into 0.0
-
-
-# --------------------------------------------------------------------------- conditioning
-
-
-def hartley_normalization(points: ArrayLike, name: str = "points") -> np.ndarray:
-    r"""Hartley's similarity T that centres (N, D) points and scales their mean distance to :math:`\sqrt D`.
-
-    .. math:: T = \begin{pmatrix} s I_D & -s \bar x \\ 0^\top & 1 \end{pmatrix},
-              \quad s = \frac{\sqrt D}{\operatorname{mean}_i \| x_i - \bar x \|}
-
-    After the mapping, coordinates are of order 1, so the entries of a DLT matrix
-    (products of coordinates such as :math:`u u'`) are of similar size and its SVD is well
-    conditioned (Hartley 1997; H&Z algorithms 4.2 and 7.1). Image points (D = 2) end at
-    mean distance :math:`\sqrt 2`, world points (D = 3) at :math:`\sqrt 3`.
-
-    Parameters
-    ----------
-    points : (N, D) array_like
-        D = 2 (image) or 3 (world), Euclidean.
-    name : str
-        The argument's name in error messages.
-
-    Returns
-    -------
-    (D + 1, D + 1) ndarray
-        T, acting on homogeneous points: :math:`\tilde x_n = T \tilde x`.
-
-    Raises
-    ------
-    DegenerateError
-        All points coincide (nothing to scale).
-
-    Examples
-    --------
-    >>> T = hartley_normalization([[0, 0], [2, 0], [2, 2], [0, 2]])
-    >>> map_points(T, [[0, 0], [2, 2]]).round(6)
-    array([[-1., -1.],
-           [ 1.,  1.]])
-    """
-    p = as_points(points, (2, 3), name).array
-    d = p.shape[1]
-    c = p.mean(axis=0)
-    spread = np.mean(np.linalg.norm(p - c, axis=1))
-    if spread == 0:
-        raise DegenerateError(
-            f"{name}: all points coincide, so they cannot be normalised; use distinct points"
-        )
-    s = np.sqrt(d) / spread
-    T = np.eye(d + 1)
-    T[:d, :d] *= s
-    T[:d, d] = -s * c
-    return T
-
-
-class HartleyNormalized(NamedTuple):
-    r"""(N, D) points after Hartley's conditioning, and the (D + 1, D + 1) similarity T that did it.
-
-    Attributes
-    ----------
-    points : (N, D) ndarray
-        Centred, mean distance :math:`\sqrt D`.
-    T : (D + 1, D + 1) ndarray
-        :math:`\tilde x_n = T \tilde x`; undo a DLT estimate with :math:`T^{-1}`.
-    """
-
-    points: np.ndarray
-    T: np.ndarray
-
-
-def hartley_normalize(points: ArrayLike, name: str = "points") -> HartleyNormalized:
-    """Apply :func:`hartley_normalization`: ``(T x, T)`` for (N, D) points.
-
-    >>> hartley_normalize([[0, 0], [2, 0], [2, 2], [0, 2]]).points
-    array([[-1., -1.],
-           [ 1., -1.],
-           [ 1.,  1.],
-           [-1.,  1.]])
-    """
-    p = as_points(points, (2, 3), name).array
-    T = hartley_normalization(p, name)
-    d = p.shape[1]
-    return HartleyNormalized(p * T[0, 0] + T[:d, d], T)

@@ -1,0 +1,102 @@
+r"""Hartley's conditioning: the similarity that centres points and scales them to unit size
+before a direct linear transform (DLT), so that the DLT's matrix is well conditioned.
+
+Used by camlab's DLT estimators (homographies, fundamental matrices, projection matrices)
+and by :func:`camlab.projective.vanishing_point`.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .._validate import DegenerateError, as_points
+
+__all__ = [
+    "HartleyNormalized",
+    "hartley_normalization",
+    "hartley_normalize",
+]
+
+
+def hartley_normalization(points: ArrayLike, name: str = "points") -> np.ndarray:
+    r"""Hartley's similarity T that centres (N, D) points and scales their mean distance to :math:`\sqrt D`.
+
+    .. math:: T = \begin{pmatrix} s I_D & -s \bar x \\ 0^\top & 1 \end{pmatrix},
+              \quad s = \frac{\sqrt D}{\operatorname{mean}_i \| x_i - \bar x \|}
+
+    After the mapping, coordinates are of order 1, so the entries of a DLT matrix
+    (products of coordinates such as :math:`u u'`) are of similar size and its SVD is well
+    conditioned (Hartley 1997; H&Z algorithms 4.2 and 7.1). Image points (D = 2) end at
+    mean distance :math:`\sqrt 2`, world points (D = 3) at :math:`\sqrt 3`.
+
+    Parameters
+    ----------
+    points : (N, D) array_like
+        D = 2 (image) or 3 (world), Euclidean.
+    name : str
+        The argument's name in error messages.
+
+    Returns
+    -------
+    (D + 1, D + 1) ndarray
+        T, acting on homogeneous points: :math:`\tilde x_n = T \tilde x`.
+
+    Raises
+    ------
+    DegenerateError
+        All points coincide (nothing to scale).
+
+    Examples
+    --------
+    >>> T = hartley_normalization([[0, 0], [2, 0], [2, 2], [0, 2]])
+    >>> from camlab.projective import map_points
+    >>> map_points(T, [[0, 0], [2, 2]]).round(6)
+    array([[-1., -1.],
+           [ 1.,  1.]])
+    """
+    p = as_points(points, (2, 3), name).array
+    d = p.shape[1]
+    c = p.mean(axis=0)
+    spread = np.mean(np.linalg.norm(p - c, axis=1))
+    if spread == 0:
+        raise DegenerateError(
+            f"{name}: all points coincide, so they cannot be normalised; use distinct points"
+        )
+    s = np.sqrt(d) / spread
+    T = np.eye(d + 1)
+    T[:d, :d] *= s
+    T[:d, d] = -s * c
+    return T
+
+
+class HartleyNormalized(NamedTuple):
+    r"""(N, D) points after Hartley's conditioning, and the (D + 1, D + 1) similarity T that did it.
+
+    Attributes
+    ----------
+    points : (N, D) ndarray
+        Centred, mean distance :math:`\sqrt D`.
+    T : (D + 1, D + 1) ndarray
+        :math:`\tilde x_n = T \tilde x`; undo a DLT estimate with :math:`T^{-1}`.
+    """
+
+    points: np.ndarray
+    T: np.ndarray
+
+
+def hartley_normalize(points: ArrayLike, name: str = "points") -> HartleyNormalized:
+    """Apply :func:`hartley_normalization`: ``(T x, T)`` for (N, D) points.
+
+    >>> hartley_normalize([[0, 0], [2, 0], [2, 2], [0, 2]]).points
+    array([[-1., -1.],
+           [ 1., -1.],
+           [ 1.,  1.],
+           [-1.,  1.]])
+    """
+    p = as_points(points, (2, 3), name).array
+    T = hartley_normalization(p, name)
+    d = p.shape[1]
+    return HartleyNormalized(p * T[0, 0] + T[:d, d], T)
