@@ -291,6 +291,41 @@ def test_vanishing_point_ransac_handles_an_ideal_point_and_bad_input():
     assert fit.inliers.all() and abs(fit.point[2]) < 1e-6 * np.linalg.norm(fit.point)
     with pytest.raises(pj.CamlabInputError, match="segments"):
         pj.vanishing_point_ransac(np.zeros((1, 2, 2)))
+    with pytest.raises(pj.CamlabInputError, match="two segments always meet"):
+        pj.vanishing_point_ransac(segs[:2])
+
+
+def test_vanishing_point_ransac_is_the_shared_ransac_and_refuses_chance(monkeypatch):
+    """One RANSAC loop in camlab: the segments are a robust.PairModel; segments that point
+    nowhere in common give no vanishing point, however many pairs are drawn."""
+    from camlab import robust
+    from camlab.projective import vanishing
+
+    calls = []
+    monkeypatch.setattr(
+        vanishing, "ransac", lambda *a, **k: calls.append(a) or robust.ransac(*a, **k)
+    )
+    rng = np.random.default_rng(5)
+    v = np.array([300.0, -2000.0])
+    starts = rng.uniform([0, 0], [640, 480], (15, 2))
+    good = np.stack([starts, starts + 0.2 * (v - starts)], axis=1)
+    fit = pj.vanishing_point_ransac(good, rng=0)
+    assert isinstance(calls[0][0], robust.PairModel) and fit.inliers.all()
+    np.testing.assert_allclose(pj.from_homogeneous(fit.point), v, rtol=1e-9)
+    with pytest.raises(pj.DegenerateError, match="vanishing_point_ransac: too few inliers"):
+        pj.vanishing_point_ransac(rng.uniform(0, 640, (12, 2, 2)), tol_deg=0.5, rng=0)
+
+
+def test_pointing_angles_are_what_segments_pointing_at_thresholds():
+    from camlab.projective.vanishing import pointing_angles
+
+    segs = np.array([[[0.0, 0.0], [1.0, 0.0]], [[0.0, 0.0], [1.0, 1.0]], [[2.0, 2.0], [2.0, 2.0]]])
+    angles = pointing_angles([[10.0, 0.0, 1.0], [1.0, 0.0, 0.0]], segs[:, 0], segs[:, 1])
+    # the diagonal segment's midpoint (0.5, 0.5) sees (10, 0) along (9.5, -0.5)
+    slant = np.degrees(np.arccos(9.0 / np.sqrt(2 * 90.5)))
+    np.testing.assert_allclose(angles[:, :2], [[0.0, slant], [0.0, 45.0]], atol=1e-6)
+    assert (angles[:, 2] == 180.0).all()  # a segment of zero length points nowhere
+    assert pj.segments_pointing_at(segs, [10.0, 0.0, 1.0], 1.0).tolist() == [True, False, False]
 
 
 def test_splits_at_infinity_sees_a_bow_tie():

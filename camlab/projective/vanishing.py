@@ -11,11 +11,14 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import CamlabInputError, DegenerateError
+from .._validate import CamlabInputError, DegenerateError, check_finite
+from ..robust import PairModel, ransac
 from .conditioning import hartley_normalization
 from .plane import normalize_lines, normalize_points, to_homogeneous
 
 __all__ = [
+    "SegmentsModel",
+    "pointing_angles",
     "VanishingPointFit",
     "segments_pointing_at",
     "vanishing_point_ransac",
@@ -77,6 +80,39 @@ def vanishing_point(segments: ArrayLike) -> np.ndarray:
     return normalize_points(v)
 
 
+def pointing_angles(points_h: ArrayLike, starts: ArrayLike, ends: ArrayLike) -> np.ndarray:
+    r"""Angles in degrees, in [0, 90], between segments and the directions from their midpoints to points.
+
+    For a segment from a to b with midpoint :math:`m = (a + b) / 2` and a homogeneous point
+    :math:`v = (x, y, w)`, the direction towards v is :math:`(x - m w, y - m w)`, which stays
+    valid for an ideal point (w = 0); the angle is
+    :math:`\arccos \frac{|d \cdot (v_{xy} - m w)|}{\|d\| \|v_{xy} - m w\|}` with
+    :math:`d = b - a` (a segment has no arrow, so the angle is at most 90 degrees). Where it is
+    undefined (a segment of zero length, or v at the midpoint) it is 180, so no threshold
+    accepts it.
+
+    Parameters
+    ----------
+    points_h : (B, 3) array_like
+        Homogeneous points (proposed vanishing points).
+    starts, ends : (M, 2) array_like
+        The segments' end points, pixels.
+
+    Returns
+    -------
+    (B, M) ndarray
+    """
+    v = np.asarray(points_h, dtype=float)
+    a, b = np.asarray(starts, dtype=float), np.asarray(ends, dtype=float)
+    mid, d = (a + b) / 2, b - a
+    to_v = v[:, None, :2] - mid[None] * v[:, None, 2:]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cos = np.abs(np.sum(d * to_v, axis=-1)) / (
+            np.linalg.norm(d, axis=-1) * np.linalg.norm(to_v, axis=-1)
+        )
+    return np.nan_to_num(np.degrees(np.arccos(np.clip(cos, 0, 1))), nan=180.0)
+
+
 def segments_pointing_at(
     segments: ArrayLike, point_h: ArrayLike, tol_deg: float = 1.5
 ) -> np.ndarray:
@@ -84,17 +120,11 @@ def segments_pointing_at(
 
     The angle is measured at each segment's midpoint m, between the segment's direction
     and the direction from m to the point, :math:`(x - m w, y - m w)`, which stays valid
-    for an ideal point (w = 0). Returns an (N,) bool array.
+    for an ideal point (w = 0): :func:`pointing_angles`. Returns an (N,) bool array.
     """
     segs = np.asarray(segments, dtype=float)
     v = np.asarray(point_h, dtype=float)
-    mid, d = segs.mean(axis=1), segs[:, 1] - segs[:, 0]
-    to_v = v[:2] - mid * v[2]
-    with np.errstate(invalid="ignore", divide="ignore"):
-        cos = np.abs(np.sum(d * to_v, axis=1)) / (
-            np.linalg.norm(d, axis=1) * np.linalg.norm(to_v, axis=1)
-        )
-    return np.nan_to_num(np.degrees(np.arccos(np.clip(cos, 0, 1))), nan=180.0) < tol_deg
+    return pointing_angles(v[None], segs[:, 0], segs[:, 1])[0] < tol_deg
 
 
 class VanishingPointFit(NamedTuple):
@@ -102,6 +132,36 @@ class VanishingPointFit(NamedTuple):
 
     point: np.ndarray
     inliers: np.ndarray
+
+
+class SegmentsModel(PairModel):
+    """A vanishing point as a model for :func:`camlab.robust.ransac`: the pairs are the segments' ends.
+
+    A minimal sample is two segments, whose lines meet in the proposal; the least-squares fit
+    is :func:`vanishing_point`; a segment's residual is its :func:`pointing_angles`, degrees.
+    """
+
+    sample_size = 2
+    name = "vanishing_point_ransac"
+
+    def __init__(self, segments: np.ndarray):
+        super().__init__(segments[:, 0], segments[:, 1])
+        ones = np.ones((len(segments), 1))
+        self.lines = np.cross(np.hstack([self.x1, ones]), np.hstack([self.x2, ones]))
+
+    def minimal(self, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        proposals = np.cross(self.lines[idx[:, 0]], self.lines[idx[:, 1]])
+        return proposals, np.any(proposals != 0, axis=1)
+
+    def fit(self, idx: np.ndarray) -> np.ndarray:
+        return vanishing_point(np.stack([self.x1[idx], self.x2[idx]], axis=1))
+
+    def residuals(
+        self, models: np.ndarray, i1: np.ndarray | None = None, i2: np.ndarray | None = None
+    ) -> np.ndarray:
+        a = self.x1 if i1 is None else self.x1[i1]
+        b = self.x2 if i2 is None else self.x2[i2]
+        return pointing_angles(models, a, b)
 
 
 def vanishing_point_ransac(
@@ -112,42 +172,41 @@ def vanishing_point_ransac(
 ) -> VanishingPointFit:
     """The vanishing point most segments point at, robust to segments that belong to none.
 
-    RANSAC (Fischler & Bolles): two random segments propose the meet of their lines; every
-    segment pointing at it within ``tol_deg`` (:func:`segments_pointing_at`) votes; the
-    proposal with the most votes wins and is re-estimated from its voters by
-    :func:`vanishing_point` (least squares over unit vectors, so it may be ideal).
+    RANSAC (Fischler & Bolles) by :func:`camlab.robust.ransac`, the driver the homography
+    and the fundamental matrix use (lesson 07): two random segments propose the meet of their
+    lines; every segment is scored by the angle at which it misses the proposal
+    (:func:`pointing_angles`), capped at ``tol_deg`` (MSAC), so the proposal most segments
+    point at wins; it is polished on its inliers and must beat what segments joining
+    unrelated end points reach by chance. The winner is re-estimated from the segments that
+    point at it within ``tol_deg`` (:func:`segments_pointing_at`) by :func:`vanishing_point`
+    (least squares over unit vectors, so it may be ideal).
 
     Parameters
     ----------
     segments : (N, 2, 2) array_like
-        Image segments (pixels), N >= 2.
+        Image segments (pixels), N >= 3: two segments always meet, so a consensus needs a
+        third.
     tol_deg : float
+        Inlier threshold on the angle, degrees.
     samples : int
+        Most pairs of segments drawn (fewer once the consensus is certain).
     rng : numpy Generator, int or None
 
     Returns
     -------
     VanishingPointFit
+
+    Raises
+    ------
+    DegenerateError
+        If no proposal is supported beyond chance: no vanishing point here.
     """
     segs = np.asarray(segments, dtype=float)
-    if segs.ndim != 3 or segs.shape[1:] != (2, 2) or len(segs) < 2:
+    if segs.ndim != 3 or segs.shape[1:] != (2, 2) or len(segs) < 3:
         raise CamlabInputError(
-            f"segments: expected (N, 2, 2) with N >= 2 segments, got shape {segs.shape}"
+            f"segments: expected (N, 2, 2) with N >= 3 segments, got shape {segs.shape}; two "
+            f"segments always meet, so it takes a third to agree on a vanishing point"
         )
-    rng = np.random.default_rng(rng)
-    ones = np.ones((len(segs), 1))
-    lines = np.cross(np.hstack([segs[:, 0], ones]), np.hstack([segs[:, 1], ones]))
-    best = np.zeros(len(segs), bool)
-    for _ in range(int(samples)):
-        i, j = rng.choice(len(segs), 2, replace=False)
-        proposal = np.cross(lines[i], lines[j])
-        if not np.any(proposal):
-            continue
-        votes = segments_pointing_at(segs, proposal, tol_deg)
-        if votes.sum() > best.sum():
-            best = votes
-    if best.sum() < 2:
-        raise DegenerateError(
-            "segments: no two segments point at a common point; there is no vanishing point here"
-        )
-    return VanishingPointFit(vanishing_point(segs[best]), best)
+    check_finite(segs, "segments")
+    fit = ransac(SegmentsModel(segs), tol_deg, max_iters=samples, rng=rng)
+    return VanishingPointFit(vanishing_point(segs[fit.inliers]), fit.inliers)
