@@ -40,6 +40,7 @@ from ._validate import (
 )
 from .camera import Camera, Pose, camera_centre
 from .homography import estimate_homography, symmetric_transfer_error
+from .optimize import block_damped_solve, block_normal_equations, levenberg_marquardt
 from .projective import from_homogeneous, hartley_normalize, normalize_lines, to_homogeneous
 from .robust import MinimalModels, PairModel, ransac
 
@@ -718,46 +719,45 @@ def reprojection_error(
     return np.linalg.norm(from_homogeneous(to_homogeneous(X) @ Pm.T) - uv, axis=1)
 
 
-def _refine_points(
-    Ps: list[np.ndarray], uvs: list[np.ndarray], X: np.ndarray, iters: int = 10
-) -> np.ndarray:
-    """Minimise the summed squared reprojection error over each point independently (Gauss-Newton, damped)."""
+def _refine_points(Ps: list[np.ndarray], uvs: list[np.ndarray], X: np.ndarray) -> np.ndarray:
+    """Minimise the summed squared reprojection error over each point independently:
+    Levenberg-Marquardt (:func:`camlab.optimize.levenberg_marquardt`) on the block-diagonal
+    problem, 3 unknowns and 2 residuals per camera for each point. A point on a camera's
+    principal plane (depth 0) has no reprojection error and stays where it is."""
     X = X.copy()
-    lam = np.full(len(X), 1e-3)
+    ok = np.all([(X @ P[2, :3] + P[2, 3]) != 0 for P in Ps], axis=0)
+    obs = [uv[ok] for uv in uvs]
 
-    def cost_and_terms(X):
-        JtJ = np.zeros((len(X), 3, 3))
-        Jtr = np.zeros((len(X), 3))
-        cost = np.zeros(len(X))
-        for P, uv in zip(Ps, uvs, strict=True):
-            h = X @ P[:, :3].T + P[:, 3]
+    def residuals(x):
+        Xs = x.reshape(-1, 3)
+        r = []
+        for P, uv in zip(Ps, obs, strict=True):
+            h = Xs @ P[:, :3].T + P[:, 3]
+            r.append(h[:, :2] / h[:, 2:3] - uv)
+        return np.concatenate(r, axis=1).ravel()  # point by point: 2 per camera
+
+    def jacobian(x):
+        Xs = x.reshape(-1, 3)
+        J = []
+        for P in Ps:
+            h = Xs @ P[:, :3].T + P[:, 3]
             w = h[:, 2:3]
-            r = h[:, :2] / w - uv
             # d(h_xy / w)/dX = (P_xy - (h_xy / w) P_w) / w
-            J = (P[None, :2, :3] - (h[:, :2] / w)[:, :, None] * P[None, 2:3, :3]) / w[:, :, None]
-            JtJ += np.einsum("nki,nkj->nij", J, J)
-            Jtr += np.einsum("nki,nk->ni", J, r)
-            cost += np.sum(r * r, axis=1)
-        return cost, JtJ, Jtr
+            J.append(
+                (P[None, :2, :3] - (h[:, :2] / w)[:, :, None] * P[None, 2:3, :3]) / w[:, :, None]
+            )
+        return np.concatenate(J, axis=1)  # (N, 2 per camera, 3) blocks
 
-    cost, JtJ, Jtr = cost_and_terms(X)
-    for _ in range(iters):
-        A = JtJ + lam[:, None, None] * np.eye(3) * (
-            np.trace(JtJ, axis1=1, axis2=2)[:, None, None] / 3 + 1e-12
+    if ok.any():
+        fit = levenberg_marquardt(
+            residuals,
+            X[ok].ravel(),
+            jacobian,
+            normal_equations=block_normal_equations,
+            damped_solve=block_damped_solve,
+            max_iter=50,
         )
-        step = np.linalg.solve(A, -Jtr[:, :, None])[:, :, 0]
-        Xn = X + step
-        cn, JtJn, Jtrn = cost_and_terms(Xn)
-        better = np.isfinite(cn) & (cn < cost)
-        X[better], cost[better], JtJ[better], Jtr[better] = (
-            Xn[better],
-            cn[better],
-            JtJn[better],
-            Jtrn[better],
-        )
-        lam = np.where(better, lam * 0.1, lam * 10.0)
-        if np.all(np.abs(step[better]) < 1e-12 * (1 + np.abs(X[better]))):
-            break
+        X[ok] = fit.x.reshape(-1, 3)
     return X
 
 

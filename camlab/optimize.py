@@ -70,8 +70,11 @@ from numpy.typing import ArrayLike
 from ._validate import CamlabInputError, ConvergenceError, check_finite
 
 __all__ = [
+    "IndependentBlocks",
     "LMResult",
     "NormalEquations",
+    "block_damped_solve",
+    "block_normal_equations",
     "dense_damped_solve",
     "dense_normal_equations",
     "huber_residuals",
@@ -134,6 +137,48 @@ def dense_damped_solve(A: np.ndarray, g: np.ndarray, mu: float) -> np.ndarray:
     d = np.diag(A).copy()
     d = np.maximum(d, 1e-12 * max(d.max(initial=0.0), 1e-300))
     return np.linalg.solve(A + mu * np.diag(d), -g)
+
+
+class IndependentBlocks:
+    r"""The normal matrix of N independent problems of n parameters each: N blocks (n, n).
+
+    When the residuals split into N groups and group i depends only on parameters
+    :math:`x_i` (each triangulated point on its own 3 coordinates), J is block diagonal and
+    so is :math:`A = J^\top J`; its N small blocks are solved one by one
+    (:func:`block_damped_solve`) instead of one dense (Nn, Nn) matrix.
+    """
+
+    def __init__(self, blocks: np.ndarray):
+        self.blocks = blocks
+
+    def diagonal(self) -> np.ndarray:
+        """diag(A), (N n,), as :func:`levenberg_marquardt` needs for its gain ratio."""
+        return np.diagonal(self.blocks, axis1=1, axis2=2).ravel()
+
+
+def block_normal_equations(J: np.ndarray, r: np.ndarray) -> NormalEquations:
+    r"""The normal equations of a block-diagonal Jacobian given as (N, m, n) blocks.
+
+    Residuals are ordered group by group (``r.reshape(N, m)``); :math:`A_i = J_i^\top J_i`
+    and :math:`g_i = J_i^\top r_i`. Pass it as ``normal_equations`` to
+    :func:`levenberg_marquardt`, with :func:`block_damped_solve`.
+    """
+    rb = r.reshape(len(J), -1)
+    A = IndependentBlocks(np.einsum("nki,nkj->nij", J, J))
+    return NormalEquations(A, np.einsum("nki,nk->ni", J, rb).ravel())
+
+
+def block_damped_solve(A: IndependentBlocks, g: np.ndarray, mu: float) -> np.ndarray:
+    r"""Solve :math:`(A_i + \mu\,\operatorname{diag}(A_i))\,\delta_i = -g_i` block by block.
+
+    The block form of :func:`dense_damped_solve` (a diagonal entry of 0 is floored, so a
+    parameter the residuals ignore does not move).
+    """
+    n = A.blocks.shape[-1]
+    d = np.diagonal(A.blocks, axis1=1, axis2=2)
+    d = np.maximum(d, 1e-12 * max(d.max(initial=0.0), 1e-300))
+    damped = A.blocks + mu * d[:, :, None] * np.eye(n)
+    return np.linalg.solve(damped, -g.reshape(-1, n, 1))[:, :, 0].ravel()
 
 
 def lm_step(J: ArrayLike, r: ArrayLike, mu: float) -> np.ndarray:

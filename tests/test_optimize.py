@@ -224,3 +224,27 @@ def test_lm_on_the_sphere_finds_the_smallest_eigenvector():
     assert abs(abs(out.x @ V[:, 0]) - 1) < 1e-9
     with pytest.raises(CamlabInputError, match="jacobian: with a custom update, pass the Jacobian"):
         levenberg_marquardt(lambda x: A @ x, np.ones(5), update=unit_sphere_update)
+
+
+def test_independent_blocks_solve_as_the_dense_block_diagonal_matrix():
+    """N independent problems (each point's triangulation) as (N, m, n) Jacobian blocks: the
+    block normal equations and damped step equal the dense ones of the block-diagonal J."""
+    from scipy.linalg import block_diag
+
+    from camlab.optimize import (
+        block_damped_solve,
+        block_normal_equations,
+        dense_damped_solve,
+        dense_normal_equations,
+    )
+
+    rng = np.random.default_rng(3)
+    J = rng.normal(size=(5, 4, 3))
+    r = rng.normal(size=20)
+    A, g = block_normal_equations(J, r)
+    Ad, gd = dense_normal_equations(block_diag(*J), r)
+    np.testing.assert_allclose(g, gd, atol=1e-12)
+    np.testing.assert_allclose(A.diagonal(), np.diag(Ad), atol=1e-12)
+    np.testing.assert_allclose(
+        block_damped_solve(A, g, 0.3), dense_damped_solve(Ad, gd, 0.3), atol=1e-12
+    )
