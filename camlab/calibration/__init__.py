@@ -32,7 +32,8 @@ the top-left pixel; ``X_cam = R X_board + t`` (cam_from_world); rotations as axi
 
 The package keeps one module per stage: :mod:`~camlab.calibration.detection` (1),
 :mod:`~camlab.calibration.zhang` (2-6), :mod:`~camlab.calibration.refinement` (7: the model
-and its Jacobian), :mod:`~camlab.calibration.calibrate` (the pipeline end to end),
+and its Jacobian), :mod:`~camlab.calibration.calibrate` (the pipeline end to end, from corners),
+:mod:`~camlab.calibration.images` (from photographs: detect, report, calibrate),
 :mod:`~camlab.calibration.coach`, :mod:`~camlab.calibration.undistortion`,
 :mod:`~camlab.calibration.io` and :mod:`~camlab.calibration.synthetic` (test data).
 Every public name is re-exported here: ``from camlab.calibration import calibrate_camera``.
@@ -43,9 +44,7 @@ from __future__ import annotations
 from .calibrate import (
     CalibrationResult,
     ClosedFormWithDistortion,
-    ImageCalibration,
     calibrate_camera,
-    calibrate_from_images,
     closed_form_with_distortion,
 )
 from .coach import CoachReport, UncertaintyMap, coach, projection_uncertainty
@@ -56,6 +55,7 @@ from .detection import (
     find_chessboard,
     parse_pattern,
 )
+from .images import ImageCalibration, calibrate_from_images
 from .io import SavedCalibration, load_calibration, save_calibration
 from .refinement import PARAM_NAMES, reproject
 from .synthetic import SyntheticSet, make_synthetic_views

@@ -1,32 +1,29 @@
-r"""Calibration end to end: :func:`calibrate_camera` (Zhang's closed form, then LM) and
-:func:`calibrate_from_images` (detect, then calibrate), with their results.
+r"""Calibration from detected corners: :func:`calibrate_camera` (Zhang's closed form, then LM)
+and :func:`closed_form_with_distortion`, with their results. From photographs:
+:mod:`camlab.calibration.images`.
 """
 
 from __future__ import annotations
 
-import glob as _glob
-import os
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any, NamedTuple
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._files import PhotoReadError, read_photo
 from .._validate import CamlabInputError, ConvergenceError, check_intrinsics, check_size
 from ..camera import axis_angle_from_rotation, rotation_from_axis_angle
 from ..distortion import as_dist
 from ..optimize import LMResult, levenberg_marquardt
-from .detection import board_points, find_chessboard, grey_uint8, parse_pattern
 from .refinement import PARAM_NAMES, CalibrationProblem, project_views, reproject
 from .zhang import (
+    Views,
     check_views,
     extrinsics_from_homography,
-    initial_radial_distortion,
+    homographies_of,
     intrinsics_from_homographies,
-    planar_xy,
-    view_homographies,
+    radial_distortion_of,
 )
 
 
@@ -201,10 +198,34 @@ def calibrate_camera(
     coefficients are strongly correlated, and a larger damping would crawl along that valley
     for many iterations before it shrank.
     """
-    objs, imgs, size = _check_calibration_inputs(object_points, image_points, image_size, fix)
+    views, size = _check_calibration_inputs(object_points, image_points, image_size, fix)
+    return _calibrate(
+        views,
+        size,
+        skew=skew,
+        fix=fix,
+        K_guess=K_guess,
+        dist_guess=dist_guess,
+        pose_guess=pose_guess,
+        max_iter=max_iter,
+    )
+
+
+def _calibrate(
+    views: Views,
+    size: tuple[int, int],
+    *,
+    skew: bool = False,
+    fix: Sequence[str] = (),
+    K_guess: ArrayLike | None = None,
+    dist_guess: ArrayLike | None = None,
+    pose_guess: ArrayLike | None = None,
+    max_iter: int = 100,
+) -> CalibrationResult:
+    """:func:`calibrate_camera` of views validated once by :func:`_check_calibration_inputs`."""
+    objs, imgs = views
     start = initial_estimate(
-        objs,
-        imgs,
+        views,
         size,
         skew=skew,
         fix=fix,
@@ -326,23 +347,21 @@ def closed_form_with_distortion(
     """
     from ..distortion import undistort_pixels
 
-    objs, imgs, size = _check_calibration_inputs(object_points, image_points, image_size, ())
+    views, size = _check_calibration_inputs(object_points, image_points, image_size, ())
     if int(rounds) < 1:
         raise CamlabInputError(f"rounds: expected a positive integer, got {rounds!r}")
-    corners, history = imgs, []
+    corners, history = views.image_points, []
     for _ in range(int(rounds)):
-        K = intrinsics_from_homographies(view_homographies(objs, corners), image_size=size)
+        Hs = homographies_of(Views(views.object_points, corners))
+        K = intrinsics_from_homographies(Hs, image_size=size)
         poses = np.array(
             [
                 np.concatenate([axis_angle_from_rotation(R), t])
-                for R, t in (
-                    extrinsics_from_homography(K, H) for H in view_homographies(objs, corners)
-                )
+                for R, t in (extrinsics_from_homography(K, H) for H in Hs)
             ]
         )
-        fit = calibrate_camera(
-            objs,
-            imgs,
+        fit = _calibrate(
+            views,
             size,
             fix=_INTRINSICS_AND_TANGENTIAL,
             K_guess=K,
@@ -350,7 +369,7 @@ def closed_form_with_distortion(
             pose_guess=poses,
         )
         history.append((K, fit.dist[:2].copy(), fit.rms))
-        corners = [undistort_pixels(p, K, fit.dist) for p in imgs]
+        corners = [undistort_pixels(p, K, fit.dist) for p in views.image_points]
     return ClosedFormWithDistortion(
         K, fit.dist.copy(), np.column_stack([fit.rvecs, fit.tvecs]), history
     )
@@ -358,12 +377,13 @@ def closed_form_with_distortion(
 
 def _check_calibration_inputs(
     object_points, image_points, image_size, fix
-) -> tuple[list, list, tuple[int, int]]:
-    """Validated views, (width, height) and parameter names, or a clear error."""
-    objs, imgs = check_views(object_points, image_points, min_views=1)
-    if len(imgs) < 3:
+) -> tuple[Views, tuple[int, int]]:
+    """The views validated once (:func:`~camlab.calibration.zhang.check_views`), (width, height)
+    and the parameter names, or a clear error."""
+    views = check_views(object_points, image_points, min_views=1)
+    if len(views.image_points) < 3:
         raise CamlabInputError(
-            f"image_points: expected at least 3 views of the board, got {len(imgs)}; "
+            f"image_points: expected at least 3 views of the board, got {len(views.image_points)}; "
             f"photograph it in more orientations"
         )
     size = check_size(image_size, "image_size")
@@ -372,9 +392,7 @@ def _check_calibration_inputs(
         raise CamlabInputError(
             f"fix: unknown parameter(s) {unknown}; choose from {list(PARAM_NAMES)}"
         )
-    for v, o in enumerate(objs):
-        planar_xy(o, v)
-    return objs, imgs, size
+    return views, size
 
 
 class InitialEstimate(NamedTuple):
@@ -402,8 +420,7 @@ class InitialEstimate(NamedTuple):
 
 
 def initial_estimate(
-    objs: list,
-    imgs: list,
+    views: Views,
     size: tuple[int, int],
     *,
     skew: bool = False,
@@ -414,19 +431,19 @@ def initial_estimate(
 ) -> InitialEstimate:
     """Zhang's closed form (homographies, K, poses, linear radial distortion), or the caller's guesses.
 
-    ``objs`` and ``imgs`` as validated by :func:`~camlab.calibration.zhang.check_views`;
-    other arguments as in :func:`calibrate_camera`.
+    ``views`` as validated by :func:`~camlab.calibration.zhang.check_views`; other
+    arguments as in :func:`calibrate_camera`.
     """
     if pose_guess is not None and K_guess is None:
         raise CamlabInputError(
             "pose_guess: pass K_guess too (the poses only make sense with a camera)"
         )
     if K_guess is None:  # Zhang's closed form
-        Hs = view_homographies(objs, imgs)
+        Hs = homographies_of(views)
         K0 = intrinsics_from_homographies(Hs, skew=skew, image_size=size)
     else:
         K0 = check_intrinsics(K_guess, "K_guess")
-        Hs = view_homographies(objs, imgs) if pose_guess is None else None
+        Hs = homographies_of(views) if pose_guess is None else None
     if not skew:
         K0[0, 1] = 0.0
     if pose_guess is None:
@@ -437,21 +454,21 @@ def initial_estimate(
         poses0 = np.array(poses0)
     else:
         poses0 = np.array(pose_guess, dtype=float)
-        if poses0.shape != (len(imgs), 6) or not np.isfinite(poses0).all():
+        if poses0.shape != (len(views.image_points), 6) or not np.isfinite(poses0).all():
             raise CamlabInputError(
-                f"pose_guess: expected ({len(imgs)}, 6) finite (rvec, tvec) rows, got {poses0.shape}"
+                f"pose_guess: expected ({len(views.image_points)}, 6) finite (rvec, tvec) rows, got {poses0.shape}"
             )
     fixed = set(fix) | ({"skew"} if not skew else set())
     d0 = np.zeros(5)
     if dist_guess is not None:
         d0 = as_dist(dist_guess, "dist_guess")
     elif not {"k1", "k2"} & fixed:
-        d0[:2] = initial_radial_distortion(
-            K0, objs, imgs, [rotation_from_axis_angle(p[:3]) for p in poses0], poses0[:, 3:]
+        d0[:2] = radial_distortion_of(
+            K0, views, [rotation_from_axis_angle(p[:3]) for p in poses0], poses0[:, 3:]
         )
     elif "k1" not in fixed:
-        d0[0] = initial_radial_distortion(
-            K0, objs, imgs, [rotation_from_axis_angle(p[:3]) for p in poses0], poses0[:, 3:]
+        d0[0] = radial_distortion_of(
+            K0, views, [rotation_from_axis_angle(p[:3]) for p in poses0], poses0[:, 3:]
         )[0]
     g0 = np.array([K0[0, 0], K0[1, 1], K0[0, 2], K0[1, 2], K0[0, 1], *d0])
     return InitialEstimate(K0, d0, poses0, Hs, g0)
@@ -505,126 +522,3 @@ def _parameter_covariance(
     for name, var in zip(np.array(PARAM_NAMES)[free], np.diag(cov), strict=True):
         std[str(name)] = float(np.sqrt(max(var, 0.0)))
     return cov, std
-
-
-class ImageCalibration(NamedTuple):
-    """The outcome of :func:`calibrate_from_images`.
-
-    ``result`` the :class:`CalibrationResult` over the good views; ``names`` every input's
-    name (file path or ``image[i]``); ``used`` the indices that went into ``result`` (view v
-    of ``result`` is input ``used[v]``); ``failed`` {index: reason} for the rest;
-    ``detections`` (N, 2) corners or None per input.
-    """
-
-    result: CalibrationResult
-    names: list
-    used: list
-    failed: dict
-    detections: list
-
-    def report(self) -> str:
-        """Which images were used, which failed and why."""
-        lines = [f"{len(self.used)} of {len(self.names)} images used"]
-        for i, why in sorted(self.failed.items()):
-            lines.append(f"  skipped {self.names[i]}: {why}")
-        return "\n".join(lines)
-
-
-def _inputs(images_or_paths) -> list:
-    """The images or file paths to calibrate from (a glob pattern expanded), not yet read."""
-    if isinstance(images_or_paths, (str, os.PathLike)):
-        pattern = str(images_or_paths)
-        paths = sorted(_glob.glob(pattern)) if any(ch in pattern for ch in "*?[") else [pattern]
-        if not paths:
-            raise CamlabInputError(
-                f"images_or_paths: no files match {pattern!r}; check the path and quote the pattern"
-            )
-        images_or_paths = paths
-    items = list(images_or_paths)
-    if not items:
-        raise CamlabInputError("images_or_paths: expected images or file paths, got an empty list")
-    return items
-
-
-def _grey(item, i: int) -> np.ndarray:
-    """Input i as a grey uint8 image: a file read upright (:func:`camlab._files.read_photo`) or an array."""
-    if isinstance(item, (str, os.PathLike)):
-        try:
-            return read_photo(item, "grey")
-        except PhotoReadError as exc:
-            raise CamlabInputError(exc.reason) from None
-    return grey_uint8(item, f"images[{i}]")
-
-
-def calibrate_from_images(
-    images_or_paths,
-    pattern_size: Sequence[int] | str,
-    square_size: float,
-    progress: Callable[[int, int, str, str | None], None] | None = None,
-    **kwargs: Any,
-) -> ImageCalibration:
-    """Detect the chessboard in every image, report failures, calibrate from the rest.
-
-    Parameters
-    ----------
-    images_or_paths : sequence of images or paths, or a glob pattern like ``"photos/*.png"``
-    pattern_size : (cols, rows) or "COLSxROWS"
-        Inner corners.
-    square_size : float
-        Side of one square, metres (sets the units of the translations).
-    progress : callable, optional
-        Called after each image as ``progress(i, n, name, failure)`` (i from 1; failure is
-        the reason the image is skipped, None when its board was found).
-    **kwargs
-        Passed to :func:`calibrate_camera` (``skew``, ``fix``, ...).
-
-    Returns
-    -------
-    ImageCalibration
-
-    Raises
-    ------
-    CamlabInputError
-        Fewer than 3 images with a detected board (the message lists each failure).
-    """
-    pattern = parse_pattern(pattern_size)
-    obj = board_points(pattern, square_size)
-    items = _inputs(images_or_paths)
-    names = [
-        str(x) if isinstance(x, (str, os.PathLike)) else f"image[{i}]" for i, x in enumerate(items)
-    ]
-    failed, sizes = {}, {}
-    # One image in memory at a time (a phone photo is 40 MB in grey): a first pass learns the sizes (so
-    # an odd one is reported as such), a second reads again the images of the common size, one by one.
-    for i, item in enumerate(items):
-        try:
-            sizes.setdefault(_grey(item, i).shape[::-1], []).append(i)
-        except CamlabInputError as exc:
-            failed[i] = str(exc)
-    size = max(sizes, key=lambda s: len(sizes[s])) if sizes else None
-    for s, idx in sizes.items():
-        if s != size:
-            for i in idx:
-                failed[i] = (
-                    f"image size {s[0]} x {s[1]} differs from the other images' {size[0]} x {size[1]}; "
-                    f"calibrate each camera/resolution separately"
-                )
-    detections: list = [None] * len(items)
-    for i, item in enumerate(items):
-        if i not in failed:
-            det = find_chessboard(_grey(item, i), pattern)
-            if det.found:
-                detections[i] = det.corners
-            else:
-                failed[i] = det.reason
-        if progress is not None:
-            progress(i + 1, len(items), names[i], failed.get(i))
-    used = [i for i in range(len(items)) if detections[i] is not None]
-    if len(used) < 3:
-        why = "\n".join(f"  {names[i]}: {r}" for i, r in sorted(failed.items()))
-        raise CamlabInputError(
-            f"calibrate_from_images: need at least 3 images with the board detected, got {len(used)} of "
-            f"{len(items)}:\n{why}"
-        )
-    result = calibrate_camera(obj, [detections[i] for i in used], size, **kwargs)
-    return ImageCalibration(result, names, used, dict(sorted(failed.items())), detections)

@@ -89,6 +89,35 @@ class CoachReport(NamedTuple):
         return "\n".join(f"- {a}" for a in self.advice)
 
 
+def _coverage_advice(covered: np.ndarray) -> list[str]:
+    """Advice on the image's edges and corners that no (or few) detected corners reached:
+    where distortion is strongest, so where the calibration needs data."""
+    advice = []
+    regions = {
+        "left edge": covered[:, 0],
+        "right edge": covered[:, -1],
+        "top edge": covered[0, :],
+        "bottom edge": covered[-1, :],
+    }
+    for name, cells in regions.items():
+        if not cells.any():
+            advice.append(f"no corners near the {name}: add views with the board there")
+        elif cells.mean() < 0.5:
+            advice.append(f"few corners near the {name}: add views with the board there")
+    for name, cell in {
+        "top-left": covered[0, 0],
+        "top-right": covered[0, -1],
+        "bottom-left": covered[-1, 0],
+        "bottom-right": covered[-1, -1],
+    }.items():
+        if not cell:
+            advice.append(
+                f"no corners in the {name} corner of the image, where distortion is strongest: "
+                f"add a view with the board there"
+            )
+    return advice
+
+
 def coach(result: CalibrationResult, grid: tuple[int, int] = (4, 6)) -> CoachReport:
     """Judge a calibration and give plain-language advice.
 
@@ -137,28 +166,7 @@ def coach(result: CalibrationResult, grid: tuple[int, int] = (4, 6)) -> CoachRep
                 f"view {v} has {ratio[v]:.1f}x the median error ({result.per_view_rms[v]:.2f} px vs "
                 f"{med:.2f} px): check its focus and detection, or drop it"
             )
-    regions = {
-        "left edge": covered[:, 0],
-        "right edge": covered[:, -1],
-        "top edge": covered[0, :],
-        "bottom edge": covered[-1, :],
-    }
-    for name, cells in regions.items():
-        if not cells.any():
-            advice.append(f"no corners near the {name}: add views with the board there")
-        elif cells.mean() < 0.5:
-            advice.append(f"few corners near the {name}: add views with the board there")
-    for name, cell in {
-        "top-left": covered[0, 0],
-        "top-right": covered[0, -1],
-        "bottom-left": covered[-1, 0],
-        "bottom-right": covered[-1, -1],
-    }.items():
-        if not cell:
-            advice.append(
-                f"no corners in the {name} corner of the image, where distortion is strongest: "
-                f"add a view with the board there"
-            )
+    advice += _coverage_advice(covered)
     if np.ptp(tilt) < 10 or tilt.max() < 15:
         advice.append(
             f"the board tilts are all similar ({tilt.min():.0f}-{tilt.max():.0f} degrees): tilt it "

@@ -37,12 +37,12 @@ def _rows(x, dim: int, name: str) -> np.ndarray:
 
 
 class Views(NamedTuple):
-    """Calibration views validated by :func:`check_views`.
+    """Views of a flat board, validated once by :func:`check_views`.
 
     Attributes
     ----------
     object_points : list of (N_v, 3) ndarray
-        Each view's board points.
+        Each view's board points, metres, Z = 0.
     image_points : list of (N_v, 2) ndarray
         Each view's detected corners, pixels (finite, as many as its board points).
     """
@@ -52,7 +52,13 @@ class Views(NamedTuple):
 
 
 def check_views(object_points, image_points, min_views: int = 1) -> Views:
-    """Lists of (N_v, 3) and (N_v, 2) float arrays, validated view by view."""
+    """Lists of (N_v, 3) and (N_v, 2) float arrays, validated view by view: as many corners as
+    board points, finite corners, a flat board (Z = 0, :func:`planar_xy`).
+
+    The public estimators (:func:`view_homographies`, :func:`initial_radial_distortion`)
+    check their arguments with it; a pipeline that has checked its views once passes the
+    :class:`Views` to :func:`homographies_of` and :func:`radial_distortion_of`.
+    """
     if isinstance(image_points, np.ndarray) and image_points.ndim == 2:
         image_points = [image_points]
     try:
@@ -105,6 +111,7 @@ def check_views(object_points, image_points, min_views: int = 1) -> Views:
                 f"image_points[{v}]: corner {bad} is NaN or inf ({int((~np.isfinite(p)).any(axis=1).sum())} "
                 f"non-finite corners in this view); drop the view or the bad corners"
             )
+        planar_xy(o, v)
         out_obj.append(o)
         out_img.append(p)
     return Views(out_obj, out_img)
@@ -129,13 +136,12 @@ def view_homographies(
     Uses :func:`camlab.homography.estimate_homography` (Hartley normalisation); each H is
     scaled so H[2, 2] = 1.
     """
-    objs, imgs = check_views(object_points, image_points)
-    return np.stack(
-        [
-            estimate_homography(planar_xy(o, v), p)
-            for v, (o, p) in enumerate(zip(objs, imgs, strict=True))
-        ]
-    )
+    return homographies_of(check_views(object_points, image_points))
+
+
+def homographies_of(views: Views) -> np.ndarray:
+    """:func:`view_homographies` of views :func:`check_views` has validated."""
+    return np.stack([estimate_homography(o[:, :2], p) for o, p in zip(*views, strict=True)])
 
 
 def zhang_v(H: ArrayLike, i: int, j: int) -> np.ndarray:
@@ -339,11 +345,15 @@ def initial_radial_distortion(
     (2,) ndarray
         (k1, k2).
     """
+    return radial_distortion_of(K, check_views(object_points, image_points), R, t)
+
+
+def radial_distortion_of(K: ArrayLike, views: Views, R: ArrayLike, t: ArrayLike) -> np.ndarray:
+    """:func:`initial_radial_distortion` for views :func:`check_views` has validated."""
     Km = np.asarray(K, dtype=float)
-    objs, imgs = check_views(object_points, image_points)
     Rs, ts = np.asarray(R, dtype=float).reshape(-1, 3, 3), np.asarray(t, dtype=float).reshape(-1, 3)
     rows, rhs = [], []
-    for o, p, Rv, tv in zip(objs, imgs, Rs, ts, strict=True):
+    for o, p, Rv, tv in zip(*views, Rs, ts, strict=True):
         Xc = o @ Rv.T + tv
         x = Xc[:, :2] / Xc[:, 2:3]  # ideal normalised points
         r2 = np.sum(x * x, axis=1)
