@@ -80,9 +80,6 @@ EXCEPTIONS = {
     "camlab.data.stereo": "i27-core / i27-results (issue 27)",
     "camlab.data.stereo.make_stereo_rig": "i27-core (issue 27)",
     "camlab.optimize.levenberg_marquardt": "i27-core (issue 27)",
-    "camlab.rectification": "i27-core splits it (issue 27)",
-    "camlab.rectification.rectify_calibrated": "i27-core (issue 27)",
-    "camlab.rectification.stereo_calibrate": "i27-core (issue 27)",
     "camlab.render": "i27-core splits it (issue 27)",
 }
 
