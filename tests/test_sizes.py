@@ -80,7 +80,6 @@ EXCEPTIONS = {
     "camlab.data.stereo": "i27-core / i27-results (issue 27)",
     "camlab.data.stereo.make_stereo_rig": "i27-core (issue 27)",
     "camlab.optimize.levenberg_marquardt": "i27-core (issue 27)",
-    "camlab.render": "i27-core splits it (issue 27)",
 }
 
 

@@ -1,0 +1,219 @@
+r"""The virtual camera's model: its settings (:class:`Defocus`, :class:`Sensor`) and results
+(:class:`RenderResult`, :class:`GroundTruth`), the exact projection of plane points, and the near
+plane (``NEAR``) every stage clips at.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .. import distortion as _dist
+from .. import sensor as _sensor
+from .._validate import (
+    CamlabInputError,
+    as_points,
+    check_intrinsics,
+    check_pose,
+)
+from ..camera import Camera, Pose, look_at_rotation
+from ..scenes import Plane
+
+__all__ = [
+    "Defocus",
+    "GroundTruth",
+    "align_detected_corners",
+    "PlanePoints",
+    "RenderResult",
+    "Sensor",
+    "look_at",
+    "project",
+]
+
+
+def look_at(eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0.0, 0.0, 1.0)) -> Pose:
+    r"""The camera pose ``(R, t)`` (cam_from_world) of a camera at ``eye`` looking at ``target``.
+
+    The rotation is :func:`camlab.camera.look_at_rotation`, with the same default ``up`` =
+    +z (the world's up, docs/conventions.md). Scenes built in a camera's own frame (y down,
+    the renderer's checkerboards in front of the origin) pass ``up=(0, -1, 0)``. Returns the
+    :class:`camlab.camera.Pose` ``R`` (3, 3), ``t = -R eye`` (3,).
+
+    >>> R, t = look_at([0, 0, -2], [0, 0, 0], up=(0, -1, 0))
+    >>> np.allclose(R, np.eye(3)), np.allclose(t, [0, 0, 2])
+    (True, True)
+    """
+    R = look_at_rotation(eye, target, up)
+    return Pose(R, -R @ np.asarray(eye, dtype=float))
+
+
+@dataclass(frozen=True)
+class Defocus:
+    """Thin-lens defocus: blur each plane by its circle of confusion.
+
+    ``focal_length`` (metres) defaults to ``fx * pixel_pitch``; ``pixel_pitch`` converts the
+    blur diameter from metres on the sensor to pixels.
+    """
+
+    f_number: float = 2.8
+    focus_distance: float = 1.0
+    pixel_pitch: float = 5e-6
+    focal_length: float | None = None
+
+
+@dataclass(frozen=True)
+class Sensor:
+    """The sensor stage: bit depth, noise (None = noise-free) and an optional Bayer pattern."""
+
+    bits: int = 8
+    noise: _sensor.NoiseModel | None = None
+    bayer: str | None = None
+
+
+class PlanePoints(NamedTuple):
+    """Ground truth for one plane's named points (M of them)."""
+
+    object_points: np.ndarray  # (M, 3) in the plane frame, z = 0 (metres)
+    world: np.ndarray  # (M, 3) world frame (metres)
+    pixels: np.ndarray  # (M, 2) exact distorted pixel positions (u, v)
+    visible: np.ndarray  # (M,) bool: in front of the camera, inside the image and not occluded
+    pattern_size: tuple[int, int] | None
+
+
+@dataclass(frozen=True)
+class GroundTruth:
+    """Everything true about a render.
+
+    ``K`` (3, 3), ``dist`` (5,) (k1, k2, p1, p2, k3), ``R`` (3, 3) and ``t`` (3,) with
+    ``X_cam = R X_world + t``, ``size = (width, height)``, ``points`` maps each plane name to
+    its :class:`PlanePoints`, ``depth`` is the (H, W) z_cam of the surface seen by each
+    pixel centre (inf where only background is seen).
+    """
+
+    K: np.ndarray
+    dist: np.ndarray
+    R: np.ndarray
+    t: np.ndarray
+    size: tuple[int, int]
+    points: dict[str, PlanePoints]
+    depth: np.ndarray | None
+
+    @property
+    def camera_center(self) -> np.ndarray:
+        """The camera's position in the world, ``-R^T t``."""
+        return -self.R.T @ self.t
+
+    @property
+    def P(self) -> np.ndarray:
+        """The (3, 4) projection matrix ``K [R | t]`` (ignores distortion)."""
+        return self.K @ np.column_stack([self.R, self.t])
+
+    def corners(self, name: str | None = None) -> np.ndarray:
+        """The (M, 2) pixel positions of a plane's points; default: the only checkerboard in the scene."""
+        if name is None:
+            boards = [k for k, v in self.points.items() if v.pattern_size is not None]
+            if len(boards) != 1:
+                raise CamlabInputError(
+                    f"corners: name the plane, the scene has checkerboards {boards}"
+                )
+            name = boards[0]
+        return self.points[name].pixels
+
+
+class RenderResult(NamedTuple):
+    """``image``: uint8 (bits <= 8) or uint16, (H, W) grey, (H, W, 3) RGB or (H, W) Bayer mosaic;
+    ``irradiance``: the float32 image in [0, 1] before noise and quantisation (RGB before any
+    mosaic); ``truth``: :class:`GroundTruth`."""
+
+    image: np.ndarray
+    irradiance: np.ndarray
+    truth: GroundTruth
+
+
+def project(
+    points_world: ArrayLike,
+    K: ArrayLike,
+    R: ArrayLike | None = None,
+    t: ArrayLike = (0, 0, 0),
+    dist: ArrayLike | None = None,
+) -> np.ndarray:
+    r"""Project world points to distorted pixels: the renderer's ground-truth projection.
+
+    :math:`X_c = R X + t`, :math:`x = (X_c/Z_c, Y_c/Z_c)`, :math:`x_d = \mathrm{distort}(x)`,
+    :math:`u = K [x_d, 1]`, by :meth:`camlab.camera.Camera.project`. Agrees with
+    ``cv2.projectPoints`` (to 1e-9 px). ``R=None`` (the default) is the identity.
+
+    Returns
+    -------
+    (N, 2) or (2,) ndarray
+        Pixels (u, v); NaN for points with Z_c <= 0.
+    """
+    R, t = check_pose(R, t, "camera")
+    return Camera(check_intrinsics(K), R, t, dist=tuple(_dist.as_dist(dist))).project(points_world)
+
+
+def align_detected_corners(detected: ArrayLike, truth_pixels: ArrayLike) -> np.ndarray:
+    """Reorder detector output to match the ground truth's corner order.
+
+    ``cv2.findChessboardCorners[SB]`` may return a board's corners in reverse order (it
+    cannot always tell a board from its 180-degree rotation). Accepts OpenCV 4's
+    (N, 1, 2) or OpenCV 5's (N, 2) corners; returns (N, 2), reversed if that matches
+    ``truth_pixels`` better.
+    """
+    det = np.asarray(detected, dtype=float).reshape(-1, 2)
+    gt = as_points(truth_pixels, 2, "truth_pixels").array
+    if det.shape != gt.shape:
+        raise CamlabInputError(
+            f"detected: expected {gt.shape[0]} corners like truth_pixels, got {det.shape[0]}"
+        )
+    if np.sum((det[::-1] - gt) ** 2) < np.sum((det - gt) ** 2):
+        det = det[::-1]
+    return det.copy()
+
+
+class CameraPlane(NamedTuple):
+    """A plane as the camera sees it: cam_from_plane (Rc, tc), depth of its visible centre, visible polygon."""
+
+    plane: Plane
+    Rc: np.ndarray
+    tc: np.ndarray
+    depth: float
+    poly: np.ndarray
+
+
+NEAR = 0.02  # metres: the renderer's near clipping distance
+
+
+def clip_to_near(extent, Rc: np.ndarray, tc: np.ndarray) -> np.ndarray:
+    """The plane rectangle's part with z_cam >= NEAR, as an (M, 2) convex polygon in plane coordinates.
+
+    z_cam is linear on the plane, so one Sutherland-Hodgman step against a half-plane clips it.
+    """
+    x0, y0, x1, y1 = extent
+    rect = np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]], dtype=float)
+    z = rect @ Rc[2, :2] + tc[2] - NEAR
+    out = []
+    for i in range(4):
+        a, b, za, zb = rect[i], rect[(i + 1) % 4], z[i], z[(i + 1) % 4]
+        if za >= 0:
+            out.append(a)
+        if (za >= 0) != (zb >= 0):
+            out.append(a + (b - a) * za / (za - zb))
+    return np.array(out)
+
+
+def metres_per_canvas_px(Hplane: np.ndarray, poly: np.ndarray) -> float:
+    """Smallest plane-metres-per-canvas-pixel over the visible polygon's vertices (its closest part)."""
+    best = np.inf
+    for x, y in np.vstack([poly, poly.mean(axis=0)]):
+        q = Hplane @ [x, y, 1.0]
+        J = (Hplane[:2, :2] * q[2] - np.outer(q[:2], Hplane[2, :2])) / q[
+            2
+        ] ** 2  # d canvas / d plane
+        s = np.sqrt(abs(np.linalg.det(J)))
+        if s > 0:
+            best = min(best, 1.0 / s)
+    return best
