@@ -29,7 +29,8 @@ def _expected_wheel_files() -> set[str]:
         "camlab/py.typed",
         "camlab/__init__.py",
         "camlab/data/_resources.py",
-        "camlab/cli.py",
+        "camlab/cli/__init__.py",
+        "camlab/cli/main.py",
         "camlab/classroom/jupyter_data/voila/templates/camlab/index.html.j2",  # the lecture view's template
         "camlab/classroom/jupyter_data/voila/templates/camlab/conf.json",
     }
