@@ -75,7 +75,6 @@ EXCEPTIONS = {
     "camlab.widgets.stereo_rectification.epipolar_lines": "i27-plots (issue 27)",
     "camlab.widgets.stereo_rectification.rectify_pair": "i27-plots (issue 27)",
     # i27-core splits these (issue 27, item 2)
-    "camlab.affine": "i27-core splits it (issue 27)",
     "camlab.data.stereo": "i27-core / i27-results (issue 27)",
     "camlab.data.stereo.make_stereo_rig": "i27-core (issue 27)",
     "camlab.optimize.levenberg_marquardt": "i27-core (issue 27)",
