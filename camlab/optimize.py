@@ -275,6 +275,30 @@ def _add(x: np.ndarray, delta: np.ndarray) -> np.ndarray:
     return x + delta
 
 
+def _jacobian_or_differences(
+    residuals: Callable[[np.ndarray], np.ndarray],
+    jacobian: Callable[[np.ndarray], Any] | None,
+    update: Callable[[np.ndarray, np.ndarray], np.ndarray] | None,
+) -> Callable[[np.ndarray], Any]:
+    """The caller's Jacobian, or central differences of the residuals (only for ``x + delta``)."""
+    if jacobian is not None:
+        return jacobian
+    if update is not None:
+        raise CamlabInputError(
+            "jacobian: with a custom update, pass the Jacobian with respect to the step, e.g. "
+            "lambda x: numeric_jacobian(lambda d: residuals(update(x, d)), np.zeros(k))"
+        )
+    return lambda x: numeric_jacobian(residuals, x)
+
+
+def _gain_ratio(decrease: float, delta: np.ndarray, A: Any, g: np.ndarray, mu: float) -> float:
+    r"""Nielsen's gain ratio :math:`\rho`: the actual decrease of the cost over the decrease the
+    linear model predicted, :math:`L(0) - L(\delta) = \tfrac12 \delta^\top (\mu D \delta - g)`;
+    -1 when the model predicts no decrease."""
+    predicted = 0.5 * float(delta @ (mu * _diag(A) * delta - g))
+    return decrease / predicted if predicted > 0 else -1.0
+
+
 def levenberg_marquardt(
     residuals: Callable[[np.ndarray], np.ndarray],
     x0: ArrayLike,
@@ -341,13 +365,7 @@ def levenberg_marquardt(
     x = np.array(x0, dtype=float).ravel()
     check_finite(x, "x0")
     step = _add if update is None else update
-    if jacobian is None:
-        if update is not None:
-            raise CamlabInputError(
-                "jacobian: with a custom update, pass the Jacobian with respect to the step, e.g. "
-                "lambda x: numeric_jacobian(lambda d: residuals(update(x, d)), np.zeros(k))"
-            )
-        jacobian = lambda x: numeric_jacobian(residuals, x)  # noqa: E731
+    jacobian = _jacobian_or_differences(residuals, jacobian, update)
     r = np.asarray(residuals(x), dtype=float)
     if not np.all(np.isfinite(r)):
         raise ConvergenceError(
@@ -379,9 +397,7 @@ def levenberg_marquardt(
         x_new = step(x, delta)
         r_new = np.asarray(residuals(x_new), dtype=float)
         cost_new = 0.5 * float(r_new @ r_new) if np.all(np.isfinite(r_new)) else np.inf
-        # predicted decrease of the linear model: L(0) - L(delta) = 0.5 delta^T (mu D delta - g)
-        predicted = 0.5 * float(delta @ (mu * _diag(A) * delta - g))
-        rho = (cost - cost_new) / predicted if predicted > 0 else -1.0
+        rho = _gain_ratio(cost - cost_new, delta, A, g, mu)
         if rho > 0:  # accept: the cost went down
             small_decrease = (cost - cost_new) <= ftol * cost
             x, r, cost = x_new, r_new, cost_new

@@ -77,7 +77,6 @@ EXCEPTIONS = {
     # i27-core splits these (issue 27, item 2)
     "camlab.data.stereo": "its cached pipelines (bundled_rig, half_size_rectification, ...) move "
     "to the fixtures home with i27-results (issue 27); the loader and generator left fit",
-    "camlab.optimize.levenberg_marquardt": "i27-core (issue 27)",
 }
 
 
