@@ -74,7 +74,7 @@ EXCEPTIONS = {
     "camlab.widgets.projective_plane.vanishing_points": "i27-plots (issue 27)",
     "camlab.widgets.stereo_rectification.epipolar_lines": "i27-plots (issue 27)",
     "camlab.widgets.stereo_rectification.rectify_pair": "i27-plots (issue 27)",
-    # i27-core splits these (issue 27, item 2)
+    # i27-results moves these (issue 27, item 4)
     "camlab.data.stereo": "its cached pipelines (bundled_rig, half_size_rectification, ...) move "
     "to the fixtures home with i27-results (issue 27); the loader and generator left fit",
 }
