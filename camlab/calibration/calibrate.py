@@ -199,31 +199,6 @@ def calibrate_camera(
     for many iterations before it shrank.
     """
     views, size = _check_calibration_inputs(object_points, image_points, image_size, fix)
-    return _calibrate(
-        views,
-        size,
-        skew=skew,
-        fix=fix,
-        K_guess=K_guess,
-        dist_guess=dist_guess,
-        pose_guess=pose_guess,
-        max_iter=max_iter,
-    )
-
-
-def _calibrate(
-    views: Views,
-    size: tuple[int, int],
-    *,
-    skew: bool = False,
-    fix: Sequence[str] = (),
-    K_guess: ArrayLike | None = None,
-    dist_guess: ArrayLike | None = None,
-    pose_guess: ArrayLike | None = None,
-    max_iter: int = 100,
-) -> CalibrationResult:
-    """:func:`calibrate_camera` of views validated once by :func:`_check_calibration_inputs`."""
-    objs, imgs = views
     start = initial_estimate(
         views,
         size,
@@ -233,6 +208,21 @@ def _calibrate(
         dist_guess=dist_guess,
         pose_guess=pose_guess,
     )
+    return _refine(views, size, start, skew=skew, fix=fix, max_iter=max_iter)
+
+
+def _refine(
+    views: Views,
+    size: tuple[int, int],
+    start: InitialEstimate,
+    *,
+    skew: bool,
+    fix: Sequence[str],
+    max_iter: int,
+) -> CalibrationResult:
+    """Stage 7 of :func:`calibrate_camera`: Levenberg-Marquardt from ``start`` over views
+    validated once by :func:`_check_calibration_inputs`."""
+    objs, imgs = views
     fixed = set(fix) | ({"skew"} if not skew else set())
     free = np.array([name not in fixed for name in PARAM_NAMES])
     X, obs, mask = pad_views(objs, imgs)
@@ -264,7 +254,7 @@ def _calibrate(
         "homographies": start.homographies,
         "rvecs": start.poses[:, :3].copy(),
         "tvecs": start.poses[:, 3:].copy(),
-        "closed_form": K_guess is None,
+        "closed_form": start.closed_form,
     }
     return CalibrationResult(
         K=K,
@@ -360,7 +350,7 @@ def closed_form_with_distortion(
                 for R, t in (extrinsics_from_homography(K, H) for H in Hs)
             ]
         )
-        fit = _calibrate(
+        start = initial_estimate(
             views,
             size,
             fix=_INTRINSICS_AND_TANGENTIAL,
@@ -368,6 +358,7 @@ def closed_form_with_distortion(
             dist_guess=np.zeros(5),
             pose_guess=poses,
         )
+        fit = _refine(views, size, start, skew=False, fix=_INTRINSICS_AND_TANGENTIAL, max_iter=100)
         history.append((K, fit.dist[:2].copy(), fit.rms))
         corners = [undistort_pixels(p, K, fit.dist) for p in views.image_points]
     return ClosedFormWithDistortion(
@@ -410,6 +401,8 @@ class InitialEstimate(NamedTuple):
         Board -> image per view; None when ``pose_guess`` made them unnecessary.
     g : (10,) ndarray
         The global parameters in ``PARAM_NAMES`` order.
+    closed_form : bool
+        True when K came from Zhang's closed form (no ``K_guess``).
     """
 
     K: np.ndarray
@@ -417,6 +410,7 @@ class InitialEstimate(NamedTuple):
     poses: np.ndarray
     homographies: np.ndarray | None
     g: np.ndarray
+    closed_form: bool = True
 
 
 def initial_estimate(
@@ -471,7 +465,7 @@ def initial_estimate(
             K0, views, [rotation_from_axis_angle(p[:3]) for p in poses0], poses0[:, 3:]
         )[0]
     g0 = np.array([K0[0, 0], K0[1, 1], K0[0, 2], K0[1, 2], K0[0, 1], *d0])
-    return InitialEstimate(K0, d0, poses0, Hs, g0)
+    return InitialEstimate(K0, d0, poses0, Hs, g0, K_guess is None)
 
 
 class PaddedViews(NamedTuple):
