@@ -59,6 +59,7 @@ __all__ = [
     "undistort_points",
     "distort_map",
     "distort_xy",
+    "DistortedXY",
 ]
 
 
@@ -96,7 +97,14 @@ def _distort(xy: np.ndarray, d: np.ndarray) -> np.ndarray:
     return np.stack(distort_xy(xy[..., 0], xy[..., 1], d), axis=-1)
 
 
-def distort_xy(x: np.ndarray, y: np.ndarray, d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+class DistortedXY(NamedTuple):
+    """What :func:`distort_xy` returns: the distorted normalised coordinates ``x``, ``y``."""
+
+    x: np.ndarray
+    y: np.ndarray
+
+
+def distort_xy(x: np.ndarray, y: np.ndarray, d: np.ndarray) -> DistortedXY:
     r"""The Brown-Conrady polynomial on coordinate arrays that broadcast (a column of y against a row of x).
 
     .. math:: x_d = x L + 2 p_1 x y + p_2 (r^2 + 2 x^2), \quad
@@ -113,7 +121,7 @@ def distort_xy(x: np.ndarray, y: np.ndarray, d: np.ndarray) -> tuple[np.ndarray,
     radial = 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3))
     xd = x * radial + 2.0 * p1 * x * y + p2 * (r2 + 2.0 * x * x)
     yd = y * radial + p1 * (r2 + 2.0 * y * y) + 2.0 * p2 * x * y
-    return xd, yd
+    return DistortedXY(xd, yd)
 
 
 def _jacobian(xy: np.ndarray, d: np.ndarray) -> np.ndarray:

@@ -64,7 +64,6 @@ __all__ = [
     "estimate_homography",
     "euclidean",
     "gold_standard_homography",
-    "hartley_normalization",
     "hierarchy_matrix",
     "invert",
     "normalize_homography",

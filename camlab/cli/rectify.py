@@ -83,11 +83,11 @@ def run_rectify(args: argparse.Namespace) -> int:
     x1, x2 = m.src[fit.inliers], m.dst[fit.inliers]
     size = (pair[0].shape[1], pair[0].shape[0])
     if calibration is None:
-        refuse_a_plane(x1, x2, args.threshold)
+        _refuse_a_plane(x1, x2, args.threshold)
         rect = rc.rectify_uncalibrated(x1, x2, fit.F, size)
         moved = (map_points(rect.H1, x1), map_points(rect.H2, x2))
     else:
-        rect, x1, x2, moved = rectify_calibrated_pair(
+        rect, x1, x2, moved = _rectify_calibrated_pair(
             calibration, size[0] / full_width, m.src, m.dst, size
         )
     before = rc.vertical_disparity(x1, x2)
@@ -95,7 +95,7 @@ def run_rectify(args: argparse.Namespace) -> int:
     left, right = rc.rectify_images(rect, *pair)
     write_image(outputs["left_rectified"], left, "--out-dir")
     write_image(outputs["right_rectified"], right, "--out-dir")
-    vertical_disparity_figure(before, after, outputs["vertical_disparity"])
+    _vertical_disparity_figure(before, after, outputs["vertical_disparity"])
     model = "F" if calibration is None else "the pose"
     print(
         f"camlab rectify: {len(m.src)} matches, {len(x1)} consistent with {model}; vertical disparity median "
@@ -110,7 +110,7 @@ PLANE_SHARE = (
 )
 
 
-def refuse_a_plane(x1, x2, threshold: float) -> None:
+def _refuse_a_plane(x1, x2, threshold: float) -> None:
     """Refuse matches that one homography explains: F is not determined by points on one plane.
 
     For points on a plane every F = [e']x H with any e' fits, so RANSAC returns one of a
@@ -136,7 +136,7 @@ def refuse_a_plane(x1, x2, threshold: float) -> None:
         )
 
 
-def rectify_calibrated_pair(calibration, scale: float, src, dst, size):
+def _rectify_calibrated_pair(calibration, scale: float, src, dst, size):
     """Rectification from the camera's K and dist and the relative pose found from the matches;
     also the matches the pose explains, and where they land in the rectified pair.
 
@@ -181,7 +181,7 @@ def rectify_calibrated_pair(calibration, scale: float, src, dst, size):
     )
 
 
-def vertical_disparity_figure(before, after, path) -> None:
+def _vertical_disparity_figure(before, after, path) -> None:
     """Histograms of |v1 - v2| of the inlier matches before and after rectification."""
     import numpy as np
     from matplotlib.backends.backend_agg import FigureCanvasAgg

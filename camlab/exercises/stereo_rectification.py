@@ -6,7 +6,7 @@ import numpy as np
 
 from .. import disparity, epipolar
 from ..camera import Camera, rotation_from_axis_angle
-from ..homography import hartley_normalization
+from ..projective import hartley_normalization
 from ._answers import same_array, same_up_to_scale, shape_problem
 from ._core import Exercise, register_exercise
 

@@ -12,7 +12,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validate import CamlabInputError, DegenerateError, check_finite
-from ..robust import PairModel, ransac
+from ..robust import MinimalModels, PairModel, ransac
 from .conditioning import hartley_normalization
 from .plane import normalize_lines, normalize_points, to_homogeneous
 
@@ -149,9 +149,9 @@ class SegmentsModel(PairModel):
         ones = np.ones((len(segments), 1))
         self.lines = np.cross(np.hstack([self.x1, ones]), np.hstack([self.x2, ones]))
 
-    def minimal(self, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def minimal(self, idx: np.ndarray) -> MinimalModels:
         proposals = np.cross(self.lines[idx[:, 0]], self.lines[idx[:, 1]])
-        return proposals, np.any(proposals != 0, axis=1)
+        return MinimalModels(proposals, np.any(proposals != 0, axis=1))
 
     def fit(self, idx: np.ndarray) -> np.ndarray:
         return vanishing_point(np.stack([self.x1[idx], self.x2[idx]], axis=1))

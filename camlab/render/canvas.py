@@ -21,7 +21,7 @@ __all__ = []
 _MIP_CACHE: dict = {}
 
 
-def texture_level(tex: np.ndarray, level: int) -> np.ndarray:
+def _texture_level(tex: np.ndarray, level: int) -> np.ndarray:
     """``tex`` halved ``level`` times with area averaging, cached while ``tex`` is alive."""
     import weakref
 
@@ -43,7 +43,7 @@ def texture_level(tex: np.ndarray, level: int) -> np.ndarray:
     return levels[level]
 
 
-def disk_kernel(diameter: float) -> np.ndarray:
+def _disk_kernel(diameter: float) -> np.ndarray:
     r = diameter / 2
     n = int(np.ceil(r)) + 1
     y, x = np.mgrid[-n : n + 1, -n : n + 1]
@@ -139,7 +139,7 @@ def draw_plane(
         and (p.texture.shape[0] >> (level + 1)) >= 2
     ):
         level += 1
-    tex = texture_level(p.texture, level)
+    tex = _texture_level(p.texture, level)
     th, tw = tex.shape[:2]
     S = np.array(
         [
@@ -185,7 +185,7 @@ def draw_plane(
         shift=4,
     )
     if c_px > 1.0:
-        kern = disk_kernel(c_px)
+        kern = _disk_kernel(c_px)
         layer = cv2.filter2D(layer * alpha[..., None], -1, kern, borderType=cv2.BORDER_CONSTANT)
         alpha = cv2.filter2D(alpha, -1, kern, borderType=cv2.BORDER_CONSTANT)
         if layer.ndim == 2:
@@ -208,7 +208,7 @@ def optics(
     ss = ideal.supersample
     w, h = ideal.size
     if blur > 1.0 / ss:
-        canvas = cv2.filter2D(canvas, -1, disk_kernel(blur * ss), borderType=cv2.BORDER_REFLECT)
+        canvas = cv2.filter2D(canvas, -1, _disk_kernel(blur * ss), borderType=cv2.BORDER_REFLECT)
         if canvas.ndim == 2:
             canvas = canvas[..., None]
     if d.any():

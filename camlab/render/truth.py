@@ -37,7 +37,7 @@ def ground_truth(
         t=t,
         size=(w, h),
         points={},
-        depth=depth_map(geo, K, d, w, h) if depth else None,
+        depth=_depth_map(geo, K, d, w, h) if depth else None,
     )
     for g in geo:
         p = g.plane
@@ -55,7 +55,7 @@ def ground_truth(
             vis = inside.copy()
             if inside.any():  # occluded if another plane meets the point's ray in front of it
                 Xc = wp[inside] @ R.T + t
-                vis[inside] = nearest_hit(Xc / Xc[:, 2:3], geo) >= Xc[:, 2] * (1 - 1e-6)
+                vis[inside] = _nearest_hit(Xc / Xc[:, 2:3], geo) >= Xc[:, 2] * (1 - 1e-6)
             truth.points[p.name] = PlanePoints(p.object_points, wp, px, vis, p.pattern_size)
     for (
         p
@@ -97,7 +97,7 @@ def coc_pixels(defocus: Defocus, K: np.ndarray, depth: float) -> float:
     )
 
 
-def nearest_hit(rays: np.ndarray, geo) -> np.ndarray:
+def _nearest_hit(rays: np.ndarray, geo) -> np.ndarray:
     """Depth z_cam where each ray ``(x, y, 1)`` first meets a plane of the scene (inf: none)."""
     depth = np.full(len(rays), np.inf)
     for p, Rc, tc, *_ in geo:  # CameraPlane rows
@@ -113,7 +113,7 @@ def nearest_hit(rays: np.ndarray, geo) -> np.ndarray:
     return depth
 
 
-def depth_map(geo, K, d, w, h) -> np.ndarray:
+def _depth_map(geo, K, d, w, h) -> np.ndarray:
     """z_cam of the nearest plane through each pixel centre (inf for background)."""
     if d.any():
         maps = _dist.distort_map(K, d, (w, h), step=4)
@@ -122,4 +122,4 @@ def depth_map(geo, K, d, w, h) -> np.ndarray:
         u, v = np.meshgrid(np.arange(w, dtype=float), np.arange(h, dtype=float))
         ideal = np.stack([u.ravel(), v.ravel()], axis=1)
     xy = _dist.pixels_to_normalised(ideal, K)
-    return nearest_hit(np.column_stack([xy, np.ones(len(xy))]), geo).reshape(h, w)
+    return _nearest_hit(np.column_stack([xy, np.ones(len(xy))]), geo).reshape(h, w)

@@ -119,7 +119,7 @@ def render(
         raise CamlabInputError(f"blur: expected a diameter >= 0 pixels, got {blur!r}")
     if color is None:
         color = sensor.bayer is not None or any(p.is_color for p in planes)
-    bg = background_fill(background, color)
+    bg = _background(background, color)
 
     geo = visible_planes(planes, R, t)  # 1. geometry in the camera frame
     canvas = IdealCanvas.around(K, d, (w, h), ss)  # 2. the undistorted canvas
@@ -139,7 +139,7 @@ def render(
     return RenderResult(image, irradiance, truth)
 
 
-def background_fill(background: float | tuple[float, float, float], color: bool) -> np.ndarray:
+def _background(background: float | tuple[float, float, float], color: bool) -> np.ndarray:
     """The background irradiance as 3 (RGB) or 1 (grey) float32 values."""
     bg = (
         np.broadcast_to(np.asarray(background, dtype=np.float32).ravel(), (3,))
