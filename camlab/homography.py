@@ -46,7 +46,7 @@ from ._validate import (
     check_rotation,
 )
 from .optimize import levenberg_marquardt, unit_sphere_basis, unit_sphere_update
-from .projective import hartley_normalization, hartley_normalize, map_points
+from .projective import hartley_normalize, map_points
 from .robust import MinimalModels, PairModel, ransac
 
 __all__ = [

@@ -173,7 +173,7 @@ BASELINES: dict[str, Callable[[dict], dict]] = {
     "homography.transfer_error": lambda v: {"H": H, "src": v["src"], "dst": v["dst"]},
     "homography.symmetric_transfer_error": lambda v: {"H": H, "src": v["src"], "dst": v["dst"]},
     "homography.sampson_error": lambda v: {"H": H, "src": v["src"], "dst": v["dst"]},
-    "homography.hartley_normalization": lambda v: {"points": UV},
+    "projective.hartley_normalization": lambda v: {"points": UV},
     "homography.invert": lambda v: {"H": H},
     "homography.normalize_homography": lambda v: {"H": H},
     "homography.decompose": lambda v: {"H": H},
