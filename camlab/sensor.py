@@ -212,7 +212,7 @@ def dark_and_flat_frames(
     level ``L`` (a fraction of full well), clipped to the converter's range. Like a real sensor's, each pixel has
     its own gain :math:`p` (PRNU, 1 %) and dark offset :math:`o` (DSNU, 1.5 DN), the same in every frame; the
     black level ``black_level`` (DN) is the offset every pixel shares. Lesson 03's photon-transfer curve and
-    exercise 4 measure ``g`` and ``read_noise`` back from such frames.
+    exercise 3 measure ``g`` and ``read_noise`` back from such frames.
     """
     fw = check_positive(full_well, "full_well", "electrons")
     top = 2 ** check_bits(bits) - 1

@@ -1,4 +1,4 @@
-"""Exercise for lesson 03, section 3: measure a sensor's gain and read noise from dark and flat frames."""
+"""Exercise 3 of lesson 03, section 3: measure a sensor's gain and read noise from dark and flat frames."""
 
 from __future__ import annotations
 

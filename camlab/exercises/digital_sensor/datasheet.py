@@ -1,4 +1,4 @@
-"""Lesson 03's third exercise: the intrinsic matrix K from a datasheet (focal length, sensor size, pixel count)."""
+"""Lesson 03's first exercise: the intrinsic matrix K from a datasheet (focal length, sensor size, pixel count)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Lesson 03's second exercise: bilinear demosaicking of a Bayer mosaic by normalised convolution."""
+"""Lesson 03's fourth exercise: bilinear demosaicking of a Bayer mosaic by normalised convolution."""
 
 from __future__ import annotations
 

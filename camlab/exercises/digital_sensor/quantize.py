@@ -1,4 +1,4 @@
-"""Lesson 03's first exercise: quantise an image to digital numbers, DN = round(I (2**bits - 1)), clipped."""
+"""Lesson 03's second exercise: quantise an image to digital numbers, DN = round(I (2**bits - 1)), clipped."""
 
 from __future__ import annotations
 
