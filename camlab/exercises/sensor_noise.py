@@ -117,9 +117,12 @@ def _std_gains(darks, flats) -> np.ndarray:
 
 
 def _one_pair_gains(darks, flats) -> np.ndarray:
-    """mean / var of each single flat pair with the black level left in the mean (var(a - b) / 2)."""
+    """mean / var of the brightest flat pair alone, the black level left in the mean (var(a - b) / 2).
+
+    Only the brightest: the dim pairs' ratios spread over a range wide enough to catch other slips' answers."""
     means, variances = _pair_stats(flats)
-    return means / variances
+    brightest = np.argmax(means)
+    return np.array([means[brightest] / variances[brightest]])
 
 
 def _pair_mean_variance_gain(darks, flats) -> float:
@@ -142,6 +145,13 @@ _GAIN_MISTAKES = (
         lambda args: _estimate(*args, halve=False),
         "the gain is half the right one: a - b carries the temporal noise of two frames, so one frame's variance is "
         "var(a - b) / 2",
+    ),
+    Mistake(
+        "variance halved twice",
+        lambda args: 2 * reference(*args),
+        "the gain is twice the right one: the variance was halved twice. np.var of the stack of two frames "
+        "per pixel (axis 0) divides by 2, not by 1 (use ddof=1 for two samples), and so does var(a - b) / 4: one "
+        "frame's temporal variance is var(a - b) / 2",
     ),
     Mistake(
         "the slope, not the gain",
@@ -199,7 +209,7 @@ _GAIN_FORMS = (
         "one pair's mean / var, the black level kept",
         lambda c: np.isclose(c.got[0], _one_pair_gains(*c.args), rtol=0.03).any(),
         lambda c: (
-            f"your gain, {c.got[0]:.3g}, is one flat pair's mean / var with the black level still in the mean: the "
+            f"your gain, {c.got[0]:.3g}, is the brightest flat pair's mean / var with the black level still in the mean: the "
             f"frames' mean at no light (the darks' mean, {_dark_mean(c.args[0]):.0f} DN here) is no signal. Subtract "
             "it from the pair's mean, or fit var against mean over all pairs with an intercept, np.polyfit(mean, var, 1)"
         ),
@@ -392,10 +402,11 @@ register_exercise(
         describe_input=_describe,
         wrong_variants=(
             (lambda d, f: _std_fit_variant(d, f), "what a standard deviation gives"),
-            (lambda d, f: _one_pair_variant(d, f), "one flat pair's mean / var"),
+            (lambda d, f: _one_pair_variant(d, f), "flat pair's mean / var"),
             (lambda d, f: _pair_mean_variant(d, f), "the variance of the pair's mean image"),
             (lambda d, f: _estimate(d, f, one_frame=True), "one flat frame's variance"),
             (lambda d, f: _estimate(d, f, halve=False), "two frames"),
+            (lambda d, f: 2 * reference(d, f), "halved twice"),
             (lambda d, f: _estimate(d, f, slope_not_gain=True), "instead of its inverse"),
             (lambda d, f: _estimate(d, f, spread=np.std), "standard deviation"),
             (lambda d, f: _estimate(d, f, through_origin=True), "black level"),
