@@ -94,7 +94,7 @@ def pixel_pitch():
 
 @register(
     lesson="03",
-    sweep={"factor": [1, 2, 3, 6, 7, 8], "prefilter": [True, False], "blur": [0.0, 0.5, 1.0]},
+    sweep={"factor": [1, 2, 3, 4, 6, 7, 8], "prefilter": [True, False], "blur": [0.0, 0.5, 1.0]},
 )
 def sampling_aliasing():
     """A zone plate sampled by coarser pixels: ideal point samples alias, real (box) pixels and a lens blur much less."""
