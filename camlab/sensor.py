@@ -33,11 +33,13 @@ from ._validate import (
 
 __all__ = [
     "BAYER_PATTERNS",
+    "DarkAndFlatFrames",
     "NoiseModel",
     "add_noise",
     "bayer_masks",
     "check_bayer_pattern",
     "check_bits",
+    "dark_and_flat_frames",
     "demosaic_bilinear",
     "demosaic_opencv",
     "dequantize",
@@ -183,6 +185,57 @@ def add_noise(
     if noise.read_noise > 0:
         electrons += rng.normal(0.0, noise.read_noise, size=a.shape)
     return electrons / fw
+
+
+class DarkAndFlatFrames(NamedTuple):
+    """What :func:`dark_and_flat_frames` returns: ``darks``, a pair of frames taken with the lens capped, and
+    ``flats``, a list of pairs ``(a, b)`` of frames of an evenly lit white card, one pair per light level."""
+
+    darks: tuple[np.ndarray, np.ndarray]
+    flats: list[tuple[np.ndarray, np.ndarray]]
+
+
+def dark_and_flat_frames(
+    full_well: float,
+    read_noise: float,
+    black_level: int,
+    levels: ArrayLike = (0.01, 0.05, 0.21, 0.37, 0.53, 0.69, 0.85),
+    shape: tuple[int, int] = (96, 96),
+    rng: np.random.Generator | int | None = None,
+    bits: int = 12,
+) -> DarkAndFlatFrames:
+    r"""A dark pair and pairs of flat frames (uint16 DN) of a simulated sensor, as a camera gives them.
+
+    .. math:: DN = \operatorname{round}(\text{black} + o + e / g), \qquad g = \frac{FW}{2^b - 1 - \text{black}}
+
+    with electrons :math:`e \sim \mathrm{Poisson}(L \cdot FW \cdot p) + \mathcal N(0, \sigma_r^2)` at the light
+    level ``L`` (a fraction of full well), clipped to the converter's range. Like a real sensor's, each pixel has
+    its own gain :math:`p` (PRNU, 1 %) and dark offset :math:`o` (DSNU, 1.5 DN), the same in every frame; the
+    black level ``black_level`` (DN) is the offset every pixel shares. Lesson 03's photon-transfer curve and
+    exercise 3 measure ``g`` and ``read_noise`` back from such frames.
+    """
+    fw = check_positive(full_well, "full_well", "electrons")
+    top = 2 ** check_bits(bits) - 1
+    if not 0 <= black_level < top:
+        raise CamlabInputError(
+            f"black_level: expected a whole number of DN in [0, {top}), got {black_level!r}"
+        )
+    if not read_noise >= 0:
+        raise CamlabInputError(f"read_noise: expected >= 0 electrons RMS, got {read_noise!r}")
+    rng = np.random.default_rng(rng)
+    # electrons per DN: the full well fills the converter's range above the black level
+    g = fw / (top - black_level)
+    prnu = 1 + 0.01 * rng.standard_normal(shape)
+    dsnu = 1.5 * rng.standard_normal(shape)
+
+    def frame(level: float) -> np.ndarray:
+        electrons = rng.poisson(level * fw * prnu) + rng.normal(0, read_noise, shape)
+        return np.clip(np.rint(black_level + dsnu + electrons / g), 0, top).astype(np.uint16)
+
+    darks = (frame(0.0), frame(0.0))
+    return DarkAndFlatFrames(
+        darks, [(frame(level), frame(level)) for level in np.asarray(levels, float)]
+    )
 
 
 def sample(image: ArrayLike, factor: int, prefilter: bool = False, blur: float = 0.0) -> np.ndarray:

@@ -1218,7 +1218,7 @@ def test_no_hint_cites_a_cell_number():
 
 
 def test_read_noise_with_the_quantisation_variance_removed_passes_too(capsys):
-    """Lesson 03, exercise 4's prompt: subtracting 1/12 DN^2 (as EMVA 1288 does) moves the read noise by under 2 %."""
+    """Lesson 03, exercise 3's prompt: subtracting 1/12 DN^2 (as EMVA 1288 does) moves the read noise by under 2 %."""
     from camlab.exercises import sensor_noise
 
     for darks, _flats in sensor_noise._cases():

@@ -146,9 +146,33 @@ def _input_text(name: str, args: tuple) -> str:
     return _fmt(args)
 
 
+def _copy_one(a: Any) -> Any:
+    """``a`` with every array in it copied, also inside tuples and lists (a pair of frames, a list of pairs)."""
+    if isinstance(a, np.ndarray):
+        return np.array(a)
+    if isinstance(a, (tuple, list)):
+        return type(a)(_copy_one(x) for x in a)
+    return a
+
+
 def _copy(args: tuple) -> tuple:
     # Students must not be able to corrupt the reference's inputs by editing in place.
-    return tuple(np.array(a) if isinstance(a, np.ndarray) else a for a in args)
+    return tuple(_copy_one(a) for a in args)
+
+
+def _same_input(before: Any, after: Any) -> bool:
+    """Whether ``after`` still holds ``before``'s arrays unchanged, also inside tuples and lists."""
+    if isinstance(before, np.ndarray):
+        return before.shape == np.shape(after) and np.array_equal(
+            before, after, equal_nan=before.dtype.kind in "fc"
+        )
+    if isinstance(before, (tuple, list)):
+        return (
+            isinstance(after, (tuple, list))
+            and len(before) == len(after)
+            and all(_same_input(b, a) for b, a in zip(before, after, strict=True))
+        )
+    return True
 
 
 class CheckResult:
@@ -175,15 +199,11 @@ class CheckResult:
 
 def _inputs_changed(original: tuple, passed: tuple) -> list[int]:
     """Positions of the array arguments that differ, after the student's call, from the originals."""
-    changed = []
-    for k, (before, after) in enumerate(zip(original, passed, strict=True)):
-        if isinstance(before, np.ndarray):
-            same = before.shape == np.shape(after) and np.array_equal(
-                before, after, equal_nan=before.dtype.kind in "fc"
-            )
-            if not same:
-                changed.append(k)
-    return changed
+    return [
+        k
+        for k, (before, after) in enumerate(zip(original, passed, strict=True))
+        if not _same_input(before, after)
+    ]
 
 
 def _parameter_name(function: Callable[..., Any], position: int) -> str:
@@ -206,18 +226,27 @@ def _in_place_message(
     what = ", ".join(_parameter_name(student_function, k) for k in changed)
     first = _parameter_name(student_function, changed[0]).strip("`")
     a = first if first.isidentifier() else "x"
-    if np.ndim(args[changed[0]]) == 1:
+    # arrays inside a tuple or a list (a pair of frames, a list of pairs) get examples of their own
+    if not isinstance(args[changed[0]], np.ndarray):
+        examples, new = (
+            f"`a -= black` or `a[0, 0] = 0` on one of the arrays in `{a}`",
+            "`a - black`",
+        )
+        copy = "convert each array to a new one first (`a = np.asarray(a, dtype=float)`: uint16 becomes a float copy)"
+    elif np.ndim(args[changed[0]]) == 1:
         examples, new = (
             f"`{a}[1] = -{a}[1]`, `{a} += d`, `{a}.sort()`",
             f"`{a} + d`, `np.append({a}, 1.0)`",
         )
     else:
         examples, new = f"`{a} *= L`, `{a}[:, 0] = ...`, `{a} += d`", f"`{a} * L`"
+    if isinstance(args[changed[0]], np.ndarray):
+        copy = f"work on a copy first (`{a} = np.array({a}, dtype=float)`)"
     return (
         f"{name}: your function changed its input {what} in place (test input {i + 1} of {n}); the caller's "
         f"array must come back as it went in\n"
         f"  likely cause: an in-place operation on an argument ({examples}); "
-        f"build a new array instead ({new}), or work on a copy first (`{a} = np.array({a}, dtype=float)`)"
+        f"build a new array instead ({new}), or {copy}"
     )
 
 

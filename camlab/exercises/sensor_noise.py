@@ -1,14 +1,14 @@
-"""Exercise for lesson 03, section 3: measure a sensor's gain and read noise from dark and flat frames."""
+"""Exercise 3 of lesson 03, section 3: measure a sensor's gain and read noise from dark and flat frames."""
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
+from .. import sensor
 from ._answers import SameArray, Tolerance
 from ._core import Exercise, Mistake, first_mistake, register_exercise
-
-TOP = 4095  # a 12-bit converter
-
 
 LEVELS = (0.01, 0.05, 0.21, 0.37, 0.53, 0.69, 0.85)
 """The flat pairs' light, as a fraction of full well: one dim pair (where read noise is a sizeable part of the
@@ -16,25 +16,9 @@ variance, so a per-pair gain that leaves the darks' variance in comes out severa
 
 
 def _frames(full_well: float, read_noise: float, black: int, seed: int):
-    """Two dark frames and seven pairs of flat frames (uint16 DN) of a simulated 12-bit sensor.
-
-    DN = round(black + electrons / g) with g = full_well / (TOP - black) e-/DN; electrons are
-    Poisson(light x pixel gain) plus Gaussian read noise. Each pixel's gain (PRNU, 1 %) and its
-    dark offset (DSNU, 1.5 DN) are fixed across frames: a fixed pattern, as on a real sensor.
-    """
-    rng = np.random.default_rng(seed)
-    shape = (96, 96)
-    g = full_well / (TOP - black)
-    prnu = 1 + 0.01 * rng.standard_normal(shape)
-    dsnu = 1.5 * rng.standard_normal(shape)
-
-    def frame(level):
-        electrons = rng.poisson(level * full_well * prnu) + rng.normal(0, read_noise, shape)
-        return np.clip(np.rint(black + dsnu + electrons / g), 0, TOP).astype(np.uint16)
-
-    darks = (frame(0.0), frame(0.0))
-    flats = [(frame(level), frame(level)) for level in LEVELS]
-    return darks, flats
+    """Two dark frames and seven pairs of flat frames (uint16 DN) of a simulated 12-bit sensor, with a black
+    level and a fixed pattern (:func:`camlab.sensor.dark_and_flat_frames`)."""
+    return sensor.dark_and_flat_frames(full_well, read_noise, black, LEVELS, rng=seed)
 
 
 def _cases():
@@ -112,6 +96,42 @@ def reference(darks, flats):
     return _estimate(darks, flats)
 
 
+def _dark_mean(darks) -> float:
+    return float(np.mean([np.mean(np.asarray(d, dtype=float)) for d in darks]))
+
+
+def _std_gains(darks, flats) -> np.ndarray:
+    """Gains a student gets from a standard deviation where the variance belongs, in its usual forms.
+
+    With std = sqrt(mean / g) the 'gain' mean / std is about sqrt(mean g), far from g: per pair, their
+    mean, or 1 / slope of a line fitted to std against mean; the means with or without the black level,
+    std(a - b) divided by sqrt(2), by 2 or not at all.
+    """
+    means = np.array([(a.mean() + b.mean()) / 2 for a, b in _as_float(flats)])
+    gains = []
+    for level in (means, means - _dark_mean(darks)):
+        for scale in (np.sqrt(2), 2.0, 1.0):
+            stds = np.array([np.std(a - b) / scale for a, b in _as_float(flats)])
+            gains += [*(level / stds), np.mean(level / stds), 1 / np.polyfit(level, stds, 1)[0]]
+    return np.array(gains)
+
+
+def _one_pair_gains(darks, flats) -> np.ndarray:
+    """mean / var of the brightest flat pair alone, the black level left in the mean (var(a - b) / 2).
+
+    Only the brightest: the dim pairs' ratios spread over a range wide enough to catch other slips' answers."""
+    means, variances = _pair_stats(flats)
+    brightest = np.argmax(means)
+    return np.array([means[brightest] / variances[brightest]])
+
+
+def _pair_mean_variance_gain(darks, flats) -> float:
+    """The photon-transfer fit with the variance of the pair's mean image, var((a + b) / 2), for each pair."""
+    means, _ = _pair_stats(flats)
+    variances = np.array([np.var((a + b) / 2) for a, b in _as_float(flats)])
+    return 1 / np.polyfit(means, variances, 1)[0]
+
+
 _GAIN_MISTAKES = (
     Mistake(
         "one flat frame's variance",
@@ -125,6 +145,13 @@ _GAIN_MISTAKES = (
         lambda args: _estimate(*args, halve=False),
         "the gain is half the right one: a - b carries the temporal noise of two frames, so one frame's variance is "
         "var(a - b) / 2",
+    ),
+    Mistake(
+        "variance halved twice",
+        lambda args: 2 * reference(*args),
+        "the gain is twice the right one: the variance was halved twice. np.var of the stack of two frames "
+        "per pixel (axis 0) divides by 2, not by 1 (use ddof=1 for two samples), and so does var(a - b) / 4: one "
+        "frame's temporal variance is var(a - b) / 2",
     ),
     Mistake(
         "the slope, not the gain",
@@ -167,6 +194,43 @@ _GAIN_MISTAKES = (
     ),
 )
 """Slips in the gain: each row's answer is what ``_estimate`` gives with that slip's flag."""
+
+_GAIN_FORMS = (
+    Mistake(
+        "standard deviation, in any of its forms",
+        lambda c: np.isclose(c.got[0], _std_gains(*c.args), rtol=0.03).any(),
+        lambda c: (
+            f"your gain, {c.got[0]:.3g}, is about sqrt(mean x g), what a standard deviation gives: the photon-transfer "
+            "line is in the variance, var = mean / g + c, so std = sqrt(mean / g) grows as a square root and "
+            "mean / std is no gain. Use var(a - b) / 2, the square of std(a - b) / sqrt(2)"
+        ),
+    ),
+    Mistake(
+        "one pair's mean / var, the black level kept",
+        lambda c: np.isclose(c.got[0], _one_pair_gains(*c.args), rtol=0.03).any(),
+        lambda c: (
+            f"your gain, {c.got[0]:.3g}, is the brightest flat pair's mean / var with the black level still in the mean: the "
+            f"frames' mean at no light (the darks' mean, {_dark_mean(c.args[0]):.0f} DN here) is no signal. Subtract "
+            "it from the pair's mean, or fit var against mean over all pairs with an intercept, np.polyfit(mean, var, 1)"
+        ),
+    ),
+    Mistake(
+        "variance of the pair's mean image",
+        lambda c: np.isclose(c.got[0], _pair_mean_variance_gain(*c.args), rtol=0.03),
+        "the gain is off: var((a + b) / 2), the variance of the pair's mean image, holds each pixel's fixed pattern "
+        "(1 % gain differences, growing with the light) and only half of one frame's temporal noise; the "
+        "difference cancels the pattern: var(a - b) / 2 is one frame's temporal variance",
+    ),
+)
+"""Gains a slip gives in more than one form: each row tests the answer (``first_mistake`` with ``same=None``),
+given ``_Context(args, got, expected)``."""
+
+
+class _Context(NamedTuple):
+    args: tuple
+    got: np.ndarray
+    expected: np.ndarray
+
 
 _READ_NOISE_MISTAKES = (
     Mistake(
@@ -241,6 +305,10 @@ def _diagnose(args, got, expected) -> str:
         )
         if hint:
             return hint
+    if not np.isclose(g[0], e[0], rtol=0.03):
+        hint = first_mistake(_GAIN_FORMS, _Context(args, g, e))
+        if hint:
+            return hint
     dark_var = np.var(np.asarray(args[0][0], dtype=float) - np.asarray(args[0][1], dtype=float)) / 2
     if np.isclose(g[0], e[0], rtol=0.03) and np.isclose(g[1], e[1] ** 2, rtol=0.06):
         return (
@@ -265,17 +333,19 @@ def _diagnose(args, got, expected) -> str:
 
 def gain_and_read_noise(darks, flats):
     """(g in electrons per DN, read noise in electrons) from a dark pair and pairs of flat frames (DN)."""
-    d1, d2 = (np.asarray(d, dtype=float) for d in darks)  # float: uint16 differences would wrap
+    # float first: uint16 differences would wrap around below 0
+    d1, d2 = (np.asarray(d, dtype=float) for d in darks)
     means, variances = [], []
     for a, b in flats:
         a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
         means.append((a.mean() + b.mean()) / 2)
-        # one frame's temporal variance; the fixed pattern cancels
+        # one frame's temporal variance: the fixed pattern cancels in a - b
         variances.append(np.var(a - b) / 2)
-    # var = mean / g + c (c: black level, read noise, 1/12)
+    # the photon-transfer line var = mean / g + c (c: black level, read noise, 1/12)
     slope, intercept = np.polyfit(means, variances, 1)
     g = 1 / slope
-    read_noise = g * np.sqrt(np.var(d1 - d2) / 2)  # DN to electrons
+    # the read noise where it is the whole signal, in the dark pair; DN times g is electrons
+    read_noise = g * np.sqrt(np.var(d1 - d2) / 2)
     return g, read_noise
 
 
@@ -300,6 +370,27 @@ def _wrapped_difference(darks, flats):
     return g, g * np.sqrt(np.var(d1 - d2) / 2)
 
 
+def _with_read_noise(darks, gain):
+    return gain, gain * np.sqrt(
+        np.var(np.asarray(darks[0], float) - np.asarray(darks[1], float)) / 2
+    )
+
+
+def _std_fit_variant(darks, flats):
+    """A line fitted to std(a - b) / sqrt(2) against the mean, and 1 / its slope taken as the gain."""
+    means, variances = _pair_stats(flats)
+    return _with_read_noise(darks, 1 / np.polyfit(means, np.sqrt(variances), 1)[0])
+
+
+def _one_pair_variant(darks, flats):
+    """mean / var of the brightest pair alone, the black level left in the mean."""
+    return _with_read_noise(darks, _one_pair_gains(darks, flats)[-1])
+
+
+def _pair_mean_variant(darks, flats):
+    return _with_read_noise(darks, _pair_mean_variance_gain(darks, flats))
+
+
 register_exercise(
     Exercise(
         name="gain_and_read_noise",
@@ -310,8 +401,12 @@ register_exercise(
         diagnose=_diagnose,
         describe_input=_describe,
         wrong_variants=(
+            (lambda d, f: _std_fit_variant(d, f), "what a standard deviation gives"),
+            (lambda d, f: _one_pair_variant(d, f), "flat pair's mean / var"),
+            (lambda d, f: _pair_mean_variant(d, f), "the variance of the pair's mean image"),
             (lambda d, f: _estimate(d, f, one_frame=True), "one flat frame's variance"),
             (lambda d, f: _estimate(d, f, halve=False), "two frames"),
+            (lambda d, f: 2 * reference(d, f), "halved twice"),
             (lambda d, f: _estimate(d, f, slope_not_gain=True), "instead of its inverse"),
             (lambda d, f: _estimate(d, f, spread=np.std), "standard deviation"),
             (lambda d, f: _estimate(d, f, through_origin=True), "black level"),

@@ -94,13 +94,13 @@ def pixel_pitch():
 
 @register(
     lesson="03",
-    sweep={"factor": [1, 2, 3, 6, 7, 8], "prefilter": [True, False], "blur": [0.0, 0.5, 1.0]},
+    sweep={"factor": [1, 2, 3, 4, 6, 7, 8], "prefilter": [True, False], "blur": [0.0, 0.5, 1.0]},
 )
 def sampling_aliasing():
     """A zone plate sampled by coarser pixels: ideal point samples alias, real (box) pixels and a lens blur much less."""
     controls = {
         "factor": W.IntSlider(
-            value=4,
+            value=3,  # odd: each point sample is its block's centre, so the fold shows on all four sides
             min=1,
             max=8,
             description="pixel size (fine px)",
@@ -111,7 +111,7 @@ def sampling_aliasing():
         "prefilter": W.Checkbox(
             value=False, description="average over the pixel area (box filter)"
         ),
-        "blur": slider(0.0, 0.0, 1.0, 0.1, "lens blur σ (pixels)"),
+        "blur": slider(0.0, 0.0, 1.0, 0.1, "lens blur σ (coarse px)"),
     }
     view = FigureView(figsize=(9, 4))
     ax_t, ax_s = view.fig.subplots(1, 2)
@@ -123,10 +123,22 @@ def sampling_aliasing():
     im = images.show_image(ax_s, zp, "sampled", interpolation="antialiased")
     # A square grid samples each axis separately: the alias-free region is a square (|fx|, |fy| < 1/2 cycle per
     # coarse px), not a circle; the zone plate's local frequency is (x, y) k / pi, so the square is |x|, |y| < r.
-    # short dashes with long gaps: the fold's grey ring systems, centred on the square's sides, show between them
+    # short dashes with long gaps: the fold's grey ring systems, centred on the square's sides, show between them;
+    # a white halo keeps the red dashes visible on the black rings of the aliased pattern
     nyq = ax_s.add_patch(
-        Rectangle((0, 0), 1, 1, fill=False, color=palette.RED, ls=(0, (4, 6)), lw=1.5)
+        Rectangle(
+            (0, 0),
+            1,
+            1,
+            fill=False,
+            color=palette.RED,
+            ls=(0, (4, 5)),
+            lw=2.0,
+            path_effects=palette.halo(2.0),
+        )
     )
+    # pixel sizes that do not divide 384 leave a strip unsampled: grey, no sample's black or white
+    ax_s.set_facecolor(palette.GREY)
     ax_s.set_xlim(-0.5, zp.shape[1] - 0.5)
     ax_s.set_ylim(zp.shape[0] - 0.5, -0.5)
     ax_s.set_autoscale_on(
@@ -137,11 +149,11 @@ def sampling_aliasing():
     def update(values, state):
         k = int(values["factor"])
         s = sensor.sample(zp, k, prefilter=values["prefilter"], blur=float(values["blur"]))
-        # the coarse samples as crisp blocks at the scene's scale: drawn larger than their size (k > 1), so
-        # "nearest" (no smoothing across a block's edge); at k = 1 the 384 samples are drawn smaller: antialiased.
-        # The mode first: set_data fits the array to the screen with it (camlab.widgets._transport)
-        im.set_interpolation("nearest" if k > 1 else "antialiased")
-        im.set_data(s)
+        # Each coarse sample as a block of k x k fine pixels, the whole drawn like the scene: area-averaged to
+        # the screen. A block is then k * 0.82 screen px wide at the default size; "nearest" would draw it 1 or
+        # 2 px wide at pixel size 2 (1.65 px), alternating, which beats into a moire of the screen's own where
+        # the samples have none. Averaged, each screen pixel shows the mean of the blocks it covers.
+        im.set_data(np.kron(s, np.ones((k, k))))
         # the samples cover the whole blocks only: (384 // k) k fine px (378 at k = 7), not stretched to 384
         im.set_extent((-0.5, s.shape[1] * k - 0.5, s.shape[0] * k - 0.5, -0.5))
         # the local frequency (pi / 768) x / pi cycles per fine px reaches 0.5 cycle per coarse px at x = 384 / k
@@ -175,9 +187,9 @@ def sampling_aliasing():
             where = "red square: Nyquist limit, at the frame's edge"
         else:  # the number section 2 prints for the static figure (0.35 point, 0.06 box at 6)
             where = f"red square: Nyquist limit; false-ring contrast {state['alias_contrast']:.2f}"
-        kind = "box samples (pixel areas)" if values["prefilter"] else "point samples"
+        kind = "box samples" if values["prefilter"] else "point samples"
         blurred = f", lens blur {values['blur']:.1f} px" if values["blur"] else ""
-        ax_s.set_title(f"{kind}, 1 px = {k} fine px{blurred}\n({where})", fontsize=10)
+        ax_s.set_title(f"{kind}, pixel size {k} fine px{blurred}\n({where})", fontsize=10)
 
     return build_demo("sampling_aliasing", controls, view, update, title="Sampling and aliasing")
 
@@ -306,6 +318,8 @@ CROP = 48
 ZOOM_MAX = (
     216  # the zoom's last position still holds the face's right side, not only the flat background
 )
+ZOOM_V_MAX = SIZE[1] - CROP  # the zoom's bottom row at the frame's last row
+ZOOM_V = 100  # the default zoom: the flag's stripes, the spectacles' lower rim above it, the cheek
 
 
 @register(
@@ -314,11 +328,14 @@ ZOOM_MAX = (
         "pattern": ["RGGB", "GBRG"],
         "method": list(_METHODS),
         "zoom_u": [0, 40, 200, ZOOM_MAX],
+        "zoom_v": [0, 50, ZOOM_V_MAX],
+        "zoom_error": [True],
         "assume": ["BGGR", _SAME],
     },
 )
 def demosaicing():
-    """Bayer mosaic and demosaicing methods side by side, with a zoomed crop and PSNR; try the wrong pattern."""
+    """A Bayer mosaic demosaiced by one method at a time, with PSNR, a zoom anywhere in the frame (as the image or
+    as its error) and the mosaic under it; try the wrong pattern."""
     patterns = ["RGGB", "BGGR", "GRBG", "GBRG"]
     controls = {
         "pattern": W.Dropdown(options=patterns, value="RGGB", description="sensor's pattern"),
@@ -332,6 +349,10 @@ def demosaicing():
         "zoom_u": W.IntSlider(
             value=120, min=0, max=ZOOM_MAX, description="zoom at u", continuous_update=True
         ),
+        "zoom_v": W.IntSlider(
+            value=ZOOM_V, min=0, max=ZOOM_V_MAX, description="zoom at v", continuous_update=True
+        ),
+        "zoom_error": W.Checkbox(value=False, description="zoom: |error| x 8 (linear)"),
     }
     view = FigureView(figsize=(10, 3.9))
     ax_raw, ax_full, ax_zoom = view.fig.subplots(1, 3, width_ratios=[0.75, 1, 0.75])
@@ -347,12 +368,11 @@ def demosaicing():
         ax_zoom, sensor.gamma_encode(truth[:CROP, :CROP]), "zoom (shown through sRGB)"
     )
     box = images.zoom_box(
-        ax_full, 120, 100, CROP, color="white"
+        ax_full, 120, ZOOM_V, CROP, color="white"
     )  # white on a black outline: seen on the red stripes too
     box.set_path_effects(palette.halo(1.5, "black"))
     ax_full.set_title("camlab bilinear: PSNR 00.00 dB (linear)", fontsize=10)
-    view.animate(im_raw, im_full, im_zoom, box, ax_full.title)
-    v0 = 100
+    view.animate(im_raw, im_full, im_zoom, box, ax_full.title, ax_zoom.title)
 
     demosaiced: dict[tuple[str, str, str], tuple[np.ndarray, np.ndarray, float]] = {}
 
@@ -383,7 +403,8 @@ def demosaicing():
         return demosaiced[key]
 
     def update(values, state):
-        pattern, method, u0 = values["pattern"], values["method"], int(values["zoom_u"])
+        pattern, method = values["pattern"], values["method"]
+        u0, v0 = int(values["zoom_u"]), int(values["zoom_v"])
         assumed = (
             pattern if values["assume"] == _SAME else values["assume"]
         )  # a wrong guess is the classic bug
@@ -393,7 +414,14 @@ def demosaicing():
         im_raw.set_data(sensor.gamma_encode(masks[crop] * (raw[crop] / 255.0)[..., None]))
         shown = sensor.gamma_encode(out)
         im_full.set_data(shown)
-        im_zoom.set_data(shown[crop])
+        if values[
+            "zoom_error"
+        ]:  # each channel's error in its own colour, as in the worked example's maps
+            im_zoom.set_data(np.clip(8 * np.abs(out[crop] - truth[crop]), 0, 1))
+            ax_zoom.set_title("zoom: |error| x 8 (linear; black = right)", fontsize=10)
+        else:
+            im_zoom.set_data(shown[crop])
+            ax_zoom.set_title("zoom (shown through sRGB)", fontsize=10)
         box.set_xy((u0 - 0.5, v0 - 0.5))
         state.update(
             psnr=psnr, zoom=(u0, v0), assumed=assumed, zoom_psnr=sensor.psnr(truth[crop], out[crop])

@@ -1,4 +1,4 @@
-"""Lesson 03's third exercise: the intrinsic matrix K from a datasheet (focal length, sensor size, pixel count)."""
+"""Lesson 03's first exercise: the intrinsic matrix K from a datasheet (focal length, sensor size, pixel count)."""
 
 from __future__ import annotations
 
@@ -111,6 +111,23 @@ _MISTAKES = (
         ),
     ),
     Mistake(
+        "field of view in degrees",
+        lambda s: near(s.g[0, 0], s.fx_degrees) or near(s.g[1, 1], s.fy_degrees),
+        (
+            "f_x went through the field of view with the angle in degrees: np.tan takes radians, so "
+            "(W / 2) / np.tan(np.degrees(fov) / 2) is far off (even negative). Leave the angle in radians, or skip "
+            "it: f_x = f / s_x with s_x = width / W needs no angle"
+        ),
+    ),
+    Mistake(
+        "negative focal length",
+        lambda s: s.g[0, 0] < 0 or s.g[1, 1] < 0,
+        (
+            "a negative focal length in pixels: f_x = f / s_x is a ratio of two positive lengths. A sign slip, or "
+            "np.tan of an angle in degrees (np.tan takes radians)?"
+        ),
+    ),
+    Mistake(
         "centre numbered from 1",
         lambda s: near(s.g[0, 2], (s.W + 1) / 2) or near(s.g[1, 2], (s.H + 1) / 2),
         (
@@ -176,6 +193,15 @@ _MISTAKES = (
         lambda s: (
             f"c_y comes from the height: (H - 1) / 2 with H = size[1] = {s.H}; you used the width W = {s.W} "
             f"(size is (width, height), as in OpenCV)"
+        ),
+    ),
+    Mistake(
+        "principal point in millimetres",
+        lambda s: near(s.g[0, 2], s.w_mm / 2) or near(s.g[1, 2], s.h_mm / 2),
+        lambda s: (
+            f"c_x and c_y are in pixels, not millimetres: sensor_mm / 2 = ({s.w_mm / 2:g}, {s.h_mm / 2:g}) mm is "
+            f"the centre's distance from the sensor's corner; in pixels it is ((W - 1) / 2, (H - 1) / 2) = "
+            f"({s.cx:g}, {s.cy:g})"
         ),
     ),
     Mistake(
@@ -310,7 +336,7 @@ _MISTAKES = (
         lambda s: np.allclose(s.g, s.e, rtol=0.01, atol=0),
         lambda s: (
             "within 1 % but not exact: a rounded intermediate value, such as the pitch rounded to a few digits "
-            f"({s.w_mm / s.W * 1e3:.2f} µm for {s.w_mm / s.W * 1e3:.6g} µm)? Keep full precision; the check allows 1e-9"
+            f"({s.w_mm / s.W * 1e3:.2f} µm for {s.w_mm / s.W * 1e3:.6g} µm)? Keep full precision; the check allows a relative 1e-9 (float32's own precision for a float32 K)"
         ),
     ),
 )
@@ -359,6 +385,9 @@ def _datasheet_diagnosis(args, got, expected) -> str:
         fy=fy,
         cx=cx,
         cy=cy,
+        # f_x from the field of view, 2 atan(width / 2 / f), turned into degrees and passed to np.tan
+        fx_degrees=W / 2 / np.tan(np.degrees(2 * np.arctan(w_mm / 2 / f_mm)) / 2),
+        fy_degrees=H / 2 / np.tan(np.degrees(2 * np.arctan(h_mm / 2 / f_mm)) / 2),
         diagonal=f_mm
         * np.hypot(W, H)
         / np.hypot(w_mm, h_mm),  # f over the pitch along the diagonal
@@ -399,6 +428,16 @@ register_exercise(
         diagnose=_datasheet_diagnosis,
         ndarray_only=True,  # the prompt asks for a numpy array, as every other matrix exercise does
         wrong_variants=(
+            (
+                lambda f, s, n: _datasheet_variant(f, s, n, cx=s[0] / 2, cy=s[1] / 2),
+                "in pixels, not millimetres",
+            ),
+            (
+                lambda f, s, n: _datasheet_variant(
+                    f, s, n, fx=n[0] / 2 / np.tan(np.degrees(2 * np.arctan(s[0] / 2 / f)) / 2)
+                ),
+                "with the angle in degrees",
+            ),
             (lambda f, s, n: _datasheet_reference(f, s, n).T, "transposed"),
             (
                 lambda f, s, n: _datasheet_variant(f, s, n, cx=(n[1] - 1) / 2, cy=(n[0] - 1) / 2),

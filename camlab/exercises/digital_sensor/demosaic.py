@@ -1,4 +1,4 @@
-"""Lesson 03's second exercise: bilinear demosaicking of a Bayer mosaic by normalised convolution."""
+"""Lesson 03's fourth exercise: bilinear demosaicking of a Bayer mosaic by normalised convolution."""
 
 from __future__ import annotations
 
@@ -128,11 +128,13 @@ _IMAGE_MISTAKES = (
         ),
     ),
     Mistake(
-        "BGR",
+        "BGR, or masks one row and one column off",
         lambda s: np.allclose(s.g[..., ::-1], s.e),
-        (
-            "red and blue are swapped: return the channels as R, G, B (not OpenCV's BGR order), and check "
-            "which colour sits where in the pattern (RGGB: R at row 0, column 0)"
+        lambda s: (
+            f"red and blue are swapped, which either of two slips gives: masks started at 1 on both axes "
+            f"(m[1::2, 1::2] for {s.pattern}'s first letter, as in 1-based MATLAB), which reads the pattern as "
+            f"{s.pattern[::-1]}; Python counts from 0: {s.pattern}'s {s.pattern[0]} is at row 0, column 0, "
+            f"m[0::2, 0::2]. Or the channels returned as B, G, R (OpenCV's order): return R, G, B"
         ),
     ),
     Mistake(
@@ -422,7 +424,11 @@ register_exercise(
             ),
             (
                 lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern)[..., ::-1],
-                "not OpenCV's BGR order",
+                "B, G, R (OpenCV's order)",
+            ),
+            (
+                lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern[::-1]),
+                "masks started at 1 on both axes",
             ),
             (
                 lambda raw, pattern: sensor.demosaic_bilinear(

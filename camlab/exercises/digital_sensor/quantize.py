@@ -1,4 +1,4 @@
-"""Lesson 03's first exercise: quantise an image to digital numbers, DN = round(I (2**bits - 1)), clipped."""
+"""Lesson 03's second exercise: quantise an image to digital numbers, DN = round(I (2**bits - 1)), clipped."""
 
 from __future__ import annotations
 
@@ -158,6 +158,34 @@ _MISTAKES = (
             f"[0, 2**bits - 1] after"
         ),
     ),
+    Mistake(
+        "bits levels",
+        lambda s: (
+            s.bits - 1 != s.levels
+            and any(
+                _same_after_cast(s.g, np.clip(np.rint(x * top), 0, top))
+                for x in (s.img, s.clipped)
+                for top in (s.bits - 1,)
+            )
+        ),
+        lambda s: (
+            f"your top code is {s.bits - 1}: you took bits = {s.bits} as the number of levels, 0 to bits - 1"
+            f"{' (or scaled by 2**(bits - 1) - 1, half of the levels, the same number at 2 bits)' if s.bits == 2 else ''}; "
+            f"{s.bits} bits give 2**bits = {2**s.bits} levels, 0 to 2**bits - 1 = {s.levels}: scale by 2**bits - 1"
+        ),
+    ),
+    Mistake(
+        "one bit too many",
+        lambda s: any(
+            _same_after_cast(s.g, np.clip(np.rint(x * (2 ** (s.bits + 1) - 1)), 0, top))
+            for x in (s.img, s.clipped)
+            for top in (s.levels, 2 ** (s.bits + 1) - 1)
+        ),
+        lambda s: (
+            f"you scaled by 2**(bits + 1) - 1 = {2 ** (s.bits + 1) - 1}, one bit too many: {s.bits} bits give "
+            f"codes 0 to 2**bits - 1 = {s.levels}; scale by 2**bits - 1"
+        ),
+    ),
     Mistake("top code too low", _wrong_top, _top_code_hint),
     Mistake(
         "codes from 1",
@@ -281,6 +309,16 @@ register_exercise(
         ),
         diagnose=_quantize_diagnosis,
         wrong_variants=(
+            (
+                lambda img, bits: np.clip(np.rint(img * (bits - 1)), 0, bits - 1).astype(np.uint8),
+                "as the number of levels",
+            ),
+            (
+                lambda img, bits: np.clip(
+                    np.rint(img * (2 ** (bits + 1) - 1)), 0, 2**bits - 1
+                ).astype(np.uint8 if bits <= 8 else np.uint16),
+                "one bit too many",
+            ),
             (
                 lambda img, bits: np.floor(np.clip(img, 0, 1) * (2**bits - 1)).astype(np.uint16),
                 "round to the nearest",
