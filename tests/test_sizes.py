@@ -44,6 +44,7 @@ EXCEPTIONS = {
     "camlab.widgets.camera_calibration.view_inspector": "i27-plots (issue 27)",
     "camlab.widgets.digital_sensor.bit_depth_and_noise": "i27-plots (issue 27)",
     "camlab.widgets.digital_sensor.demosaicing": "i27-plots (issue 27)",
+    "camlab.widgets.digital_sensor.sampling_aliasing": "i27-plots (issue 27); grew to 84 with the fine-pixel redraw",
     "camlab.widgets.homographies.transformation_hierarchy": "i27-plots (issue 27)",
     "camlab.widgets.homographies.drag_homography": "i27-plots (issue 27)",
     "camlab.widgets.homographies.ransac_outliers": "i27-plots (issue 27)",
