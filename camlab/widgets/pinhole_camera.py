@@ -65,7 +65,7 @@ def pinhole_projection():
         "none"
     )  # placed by hand: the layout engine does not see the 3-D axis labels
     ax3 = view.fig.add_axes((0.05, 0.04, 0.63, 0.9), projection="3d")
-    ax_img = view.fig.add_axes((0.69, 0.15, 0.3, 0.7))
+    ax_img = view.fig.add_axes((0.68, 0.15, 0.3, 0.7))  # room right of it for the "319" tick label
     edges, faces = _box_outline(fixtures.box_before_wall(2.0)[0])
     art = optics.draw_pinhole_3d(ax3, edges, 0.6, faces=faces)
     ax3.set_xlim(*DEPTH_RANGE)
@@ -86,8 +86,8 @@ def pinhole_projection():
         [0, (SIZE[1] - 1) / 2, SIZE[1] - 1], ["0", f"{(SIZE[1] - 1) / 2:g}", f"{SIZE[1] - 1}"]
     )
     ax_img.tick_params(labelsize=8, length=2, pad=1)
-    ax_img.set_xlabel("u (px)", fontsize=8.5, labelpad=0)
-    ax_img.set_ylabel("v (px)", fontsize=8.5, labelpad=0)
+    ax_img.set_xlabel("u (px)", fontsize=8.5, labelpad=1)
+    ax_img.set_ylabel("v (px)", fontsize=8.5, labelpad=3)  # clear of the "119.5" tick label
     width_bar = ax_img.plot([], [], color="k", lw=2, path_effects=palette.halo(2))[0]
     bar_ends = ax_img.plot(
         [], [], ls="none", color="k", marker="|", ms=10, mew=2, path_effects=palette.halo(2)

@@ -288,7 +288,7 @@ register_exercise(
             ),
             (
                 lambda fov, size: -(size[0] - 1) / 2 / np.tan(np.radians(fov) / 2),
-                "a sign flip (f_x is a positive length), and besides: the sensor spans all W pixels",
+                "and besides: the sensor spans all W pixels",
             ),
             (lambda fov, size: (size[0] / 2 / np.tan(np.radians(fov) / 2),), "trailing comma"),
             (

@@ -350,7 +350,7 @@ register_exercise(
                 lambda X, f, s, size: (f / s * X[:, :2] / X[:, 2:3] + (np.array(size) - 1) / 2)[
                     :, ::-1
                 ],
-                "your columns are (v, u)",
+                "your columns are",
             ),
             (
                 lambda X, f, s, size: f * X[:, :2] / X[:, 2:3] + (np.array(size) - 1) / 2,
