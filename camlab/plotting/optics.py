@@ -211,7 +211,7 @@ def draw_pinhole_3d(
                 Poly3DCollection([], edgecolor="none", shade=False, zorder=z)
             )
     art["rays"] = ax.plot(
-        [], [], [], color=palette.GREY, lw=0.6, path_effects=palette.halo(0.6), zorder=_Z_RAYS
+        [], [], [], color=palette.ORANGE, lw=0.6, path_effects=palette.halo(0.6), zorder=_Z_RAYS
     )[0]
     # a 3-D axes' clip box is its 2-D box, which a box aspect narrows: an image plane near the view's end
     # would lose the edge that projects outside it
