@@ -1188,19 +1188,28 @@ def test_a_printed_solution_never_ends_in_an_empty_reference_line(name):
 
 
 @pytest.mark.parametrize(
-    "wrong",
+    "wrong, cause",
     [
-        lambda f, lam, t, N: -t * f / (2.44 * lam * N**2),
-        lambda f, lam, t, N: float("nan"),
-        lambda f, lam, t, N: 0.0,
+        (
+            lambda f, lam, t, N: -t * f / (2.44 * lam * N**2),
+            "a sign flip: an exposure time is a positive number",
+        ),
+        (
+            lambda f, lam, t, N: -t * f / (2 * lam * N**2),
+            "an exposure time is a positive number of seconds",
+        ),
+        (lambda f, lam, t, N: float("nan"), "you returned NaN"),
+        (lambda f, lam, t, N: 0.0, "you returned 0 s"),
+        (lambda f, lam, t, N: float("inf"), "you returned infinity"),
     ],
-    ids=["negative", "nan", "zero"],
+    ids=["negative", "negative-and-wrong", "nan", "zero", "inf"],
 )
-def test_best_pinhole_exposure_explains_a_negative_nan_or_zero_time_instead_of_crashing(wrong):
-    """A sign slip once crashed the diagnosis (log10 of a negative ratio, then round(nan))."""
-    with pytest.raises(
-        AssertionError, match=r"likely cause: an exposure time is a positive number of seconds"
-    ):
+def test_best_pinhole_exposure_explains_a_negative_nan_or_zero_time_instead_of_crashing(
+    wrong, cause
+):
+    """A sign slip once crashed the diagnosis (log10 of a negative ratio, then round(nan)); each such answer now
+    gets a hint of its own (a sign flip is no square root of a negative number)."""
+    with pytest.raises(AssertionError, match=rf"likely cause: {cause}"):
         check("best_pinhole_exposure", wrong)
 
 

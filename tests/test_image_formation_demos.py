@@ -410,7 +410,9 @@ def test_similar_triangles_at_y_zero_print_no_negative_zero_and_hide_collapsed_a
     demo.set(Y=0.0)
     ax = demo.figure.axes[0]
     texts = " ".join(t.get_text() for t in ax.texts)
-    assert "-0.0" not in texts and "+0.0 cm" in texts
+    assert (
+        "-0.0" not in texts and "+0.0" not in texts and "y = 0.0 cm" in texts
+    )  # as the title prints it
     arrows = [
         a
         for a in ax.texts

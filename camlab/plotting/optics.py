@@ -110,6 +110,18 @@ def plane_faces(planes) -> PlaneFaces:
     )
 
 
+def _unique_segments(segments: np.ndarray) -> np.ndarray:
+    """(K, 2, 3) segments with each one kept once, whichever way round it runs (first occurrences, in order)."""
+    seg = np.asarray(segments, float)
+    seen, kept = set(), []
+    for k, (a, b) in enumerate(np.round(seg, 9)):
+        key = tuple(sorted((tuple(a), tuple(b))))  # the same key for a -> b and b -> a
+        if key not in seen:
+            seen.add(key)
+            kept.append(k)
+    return seg[kept]
+
+
 def _polyline(segments: np.ndarray) -> tuple:
     """(K, 2, 3) segments -> plot-axes coordinates of one polyline with NaN breaks (one artist, fast)."""
     seg = np.asarray(segments, float)
@@ -199,7 +211,7 @@ def draw_pinhole_3d(
                 Poly3DCollection([], edgecolor="none", shade=False, zorder=z)
             )
     art["rays"] = ax.plot(
-        [], [], [], color=palette.GREY, lw=0.6, path_effects=palette.halo(0.6), zorder=_Z_RAYS
+        [], [], [], color=palette.ORANGE, lw=0.6, path_effects=palette.halo(0.6), zorder=_Z_RAYS
     )[0]
     # a 3-D axes' clip box is its 2-D box, which a box aspect narrows: an image plane near the view's end
     # would lose the edge that projects outside it
@@ -289,6 +301,9 @@ def update_pinhole_3d(
             [np.stack([polygons[k], np.roll(polygons[k], -1, axis=0)], axis=1) for k in seen_faces]
         )
         corners = np.unique(np.round(polygons[seen_faces].reshape(-1, 3), 12), axis=0)
+        edges = _unique_segments(
+            edges
+        )  # an edge two seen faces share, drawn once: halos drawn twice split it
     art["box"].set_data_3d(*_polyline(edges))
     for name, sign in (("real", -1), ("virtual", 1)):
         z = sign * f_draw
@@ -379,8 +394,10 @@ def _set_dimension(
 
 
 def _signed(value: float, digits: int = 1) -> str:
-    """``value`` with a sign and ``digits`` decimals, never "-0.0" (a value that rounds to zero prints +0.0)."""
-    return f"{round(value, digits) + 0.0:+.{digits}f}"
+    """``value`` with a sign and ``digits`` decimals; a value that rounds to zero prints a plain "0.0" (never
+    "-0.0" or "+0.0", as the demo's title prints it)."""
+    rounded = round(value, digits) + 0.0
+    return f"{rounded:+.{digits}f}" if rounded != 0 else f"{0:.{digits}f}"
 
 
 def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
@@ -439,6 +456,7 @@ def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
 
 
 SHORTEST_ARROW = 0.15  # metres: a shorter dimension arrow is hidden (its heads would overlap)
+F_LABEL_ROOM = 0.9  # metres: a shorter f arrow cannot hold "f = 0.80 m" clear of the pinhole's tick and the plane
 Z_LABEL_ROOM = (
     2.2  # metres: a Z arrow shorter than this cannot hold its label "Z = 1.20 m" between its heads
 )
@@ -472,7 +490,17 @@ def update_similar_triangles(art: dict, f: float, Z: float, Y: float) -> float:
         ha="center" if inside else "left",
         label_at=None if inside else (Z + 0.08, 3 * away),
     )
-    _set_dimension(d["f"], (0, away), (f, away), f"f = {f:.2f} m", offset=(0, away))
+    # the f label inside its arrow when there is room, else just beyond its end (clear of the dashed virtual plane)
+    f_inside = f >= F_LABEL_ROOM
+    _set_dimension(
+        d["f"],
+        (0, away),
+        (f, away),
+        f"f = {f:.2f} m",
+        offset=(0, away),
+        ha="center" if f_inside else "left",
+        label_at=None if f_inside else (f + 0.06, away),
+    )
     # at Y near 0 the label would sit on the axis line: lift it clear (above, or below for an object below)
     lift = 0.0 if abs(up) >= 0.3 else (0.15 if away < 0 else -0.15) - up / 2
     _set_dimension(
@@ -951,6 +979,10 @@ def update_pinhole_blur(
     art["best"].set_data([best * 1e3], [float(best_blur) * 1e3])
 
 
+CONE_COLOURS = (
+    palette.BLUE,
+    palette.BROWN,
+)  # the two object points (purple read as the real plane's red)
 CONE_BEFORE = 3.0  # the cone figure shows the last 3 f of the rays before the pinhole (units of f)
 
 
@@ -982,8 +1014,8 @@ def draw_pinhole_cones(
     )  # plot x = depth z, mm: the right edge and the image plane
     entry = []
     for Y, colour in zip(
-        heights, (palette.BLUE, palette.PURPLE), strict=True
-    ):  # objects: blue and purple (green is the virtual plane)
+        heights, CONE_COLOURS, strict=True
+    ):  # objects: blue and brown (green is the virtual plane, red the real one)
         y_obj = -Y * 1e3  # mm, drawn up
         y_img = Y * f / Z * 1e3  # the real image is inverted: -f Y / Z, drawn up as +
         top, bottom = y_img + b.geometric / 2 * 1e3, y_img - b.geometric / 2 * 1e3

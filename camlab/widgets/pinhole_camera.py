@@ -65,7 +65,7 @@ def pinhole_projection():
         "none"
     )  # placed by hand: the layout engine does not see the 3-D axis labels
     ax3 = view.fig.add_axes((0.05, 0.04, 0.63, 0.9), projection="3d")
-    ax_img = view.fig.add_axes((0.69, 0.15, 0.3, 0.7))
+    ax_img = view.fig.add_axes((0.68, 0.15, 0.3, 0.7))  # room right of it for the "319" tick label
     edges, faces = _box_outline(fixtures.box_before_wall(2.0)[0])
     art = optics.draw_pinhole_3d(ax3, edges, 0.6, faces=faces)
     ax3.set_xlim(*DEPTH_RANGE)
@@ -78,11 +78,16 @@ def pinhole_projection():
         optics.axis_scales(ax3)[1] / optics.axis_scales(ax3)[0]
     )  # x, y per metre against z per metre
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
-    ax_img.set_xticks([0, 160, SIZE[0] - 1])
-    ax_img.set_yticks([0, 120, SIZE[1] - 1])  # pixels, as the title counts
-    ax_img.tick_params(labelsize=7, length=2, pad=1)
-    ax_img.set_xlabel("u (px)", fontsize=7, labelpad=0)
-    ax_img.set_ylabel("v (px)", fontsize=7, labelpad=0)
+    # pixels, as the title counts; the middle ticks on the principal point ((W - 1) / 2, (H - 1) / 2)
+    ax_img.set_xticks(
+        [0, (SIZE[0] - 1) / 2, SIZE[0] - 1], ["0", f"{(SIZE[0] - 1) / 2:g}", f"{SIZE[0] - 1}"]
+    )
+    ax_img.set_yticks(
+        [0, (SIZE[1] - 1) / 2, SIZE[1] - 1], ["0", f"{(SIZE[1] - 1) / 2:g}", f"{SIZE[1] - 1}"]
+    )
+    ax_img.tick_params(labelsize=8, length=2, pad=1)
+    ax_img.set_xlabel("u (px)", fontsize=8.5, labelpad=1)
+    ax_img.set_ylabel("v (px)", fontsize=8.5, labelpad=3)  # clear of the "119.5" tick label
     width_bar = ax_img.plot([], [], color="k", lw=2, path_effects=palette.halo(2))[0]
     bar_ends = ax_img.plot(
         [], [], ls="none", color="k", marker="|", ms=10, mew=2, path_effects=palette.halo(2)
@@ -235,7 +240,7 @@ def similar_triangles():
             fontsize=9,
         )
         readout.value = monospace(
-            f"y / f = {y / f:+.3f}\nY / Z = {Y / Z:+.3f}\n=> y = f Y / Z = {y * 100:+.1f} cm"
+            f"y / f = {_signed(y / f, 3)}\nY / Z = {_signed(Y / Z, 3)}\n=> y = f Y / Z = {_signed(y * 100, 1)} cm"
         )
 
     demo = build_demo(

@@ -97,6 +97,37 @@ _EXPOSURE_SLIPS = (
         ("you used the hole's radius; the f-number is f over the diameter d*"),
     ),
     Mistake(
+        "sign flip",
+        lambda s: -s.expected,
+        (
+            "a sign flip: an exposure time is a positive number of seconds, t_lens (N / N_lens)^2; look for a"
+            " stray minus sign"
+        ),
+    ),
+    Mistake(
+        "f left out of the root",
+        lambda s: s.t * (s.f / np.sqrt(2.44 * s.lam) / s.N) ** 2,
+        (
+            "f is missing under the square root: the best hole is d* = sqrt(2.44 lambda f), not sqrt(2.44 lambda)"
+        ),
+    ),
+    Mistake(
+        "2.44 outside the root",
+        lambda s: s.t * (s.f / (2.44 * np.sqrt(s.lam * s.f)) / s.N) ** 2,
+        (
+            "the 2.44 belongs under the square root: d* = sqrt(2.44 lambda f), about 1.56 sqrt(lambda f), not"
+            " 2.44 sqrt(lambda f)"
+        ),
+    ),
+    Mistake(
+        "divided by the lens's time",
+        lambda s: (s.Np / s.N) ** 2 / s.t,
+        (
+            "you divided by t_lens: the pinhole needs (N / N_lens)^2 times the lens's time, so multiply,"
+            " t_lens (N / N_lens)^2"
+        ),
+    ),
+    Mistake(
         "the pinhole's f-number",
         lambda s: s.Np,
         ("you returned the pinhole's f-number f / d*; return the exposure time in seconds"),
@@ -199,10 +230,22 @@ def _exposure_diagnosis(args, got, expected) -> str:
     )
     if cause:
         return cause
-    if not np.isfinite(g) or g <= 0:
+    if g < 0:
         return (
-            f"an exposure time is a positive number of seconds, but you returned {g:g}: check the signs, and that "
-            "the square root's argument 2.44 lambda f is positive (every length in metres)"
+            f"an exposure time is a positive number of seconds, but you returned {g:g}: look for a stray minus"
+            " sign, t_lens (N / N_lens)^2 with N = f / d* is positive"
+        )
+    if np.isnan(g):
+        return (
+            "you returned NaN (not a number): a square root of a negative number (2.44 lambda f must be"
+            " positive, every length in metres) or a 0 / 0 somewhere"
+        )
+    if np.isinf(g):
+        return "you returned infinity: a division by zero somewhere (a d* that came out 0?)"
+    if g == 0:
+        return (
+            "you returned 0 s: a product with a factor of 0, or an integer result rounded down (int(), //)?"
+            " The time is t_lens (N / N_lens)^2, seconds to minutes"
         )
     ratio = g / expected
     k = np.log10(ratio) / 3
@@ -253,6 +296,18 @@ register_exercise(
                 "distant object",
             ),
             (lambda f, lam, t, N: t * (f / np.sqrt(2.44 * lam * f) / N) ** 2 / 60, "minutes"),
+            (lambda f, lam, t, N: -t * (f / np.sqrt(2.44 * lam * f) / N) ** 2, "a sign flip"),
+            (lambda f, lam, t, N: t * (f / np.sqrt(2.44 * lam) / N) ** 2, "f is missing under"),
+            (
+                lambda f, lam, t, N: t * (f / (2.44 * np.sqrt(lam * f)) / N) ** 2,
+                "belongs under the square root",
+            ),
+            (
+                lambda f, lam, t, N: (f / np.sqrt(2.44 * lam * f) / N) ** 2 / t,
+                "you divided by t_lens",
+            ),
+            (lambda f, lam, t, N: float("nan"), "NaN"),
+            (lambda f, lam, t, N: 0.0, "you returned 0 s"),
             (lambda f, lam, t, N: t * (f / np.sqrt(2.44 * lam * f)) ** 2 / N, "square N_lens too"),
             (
                 lambda f, lam, t, N: t * np.sqrt(f / np.sqrt(2.44 * lam * f) / N),

@@ -122,6 +122,22 @@ _FX_SLIPS = (
         ),
     ),
     Mistake(
+        "degrees of degrees",
+        lambda s: s.W / 2 / np.tan(np.degrees(s.fov) / 2),
+        (
+            "np.degrees converts radians to degrees, the wrong way here: fov_deg is already in degrees, and"
+            " np.tan wants radians, np.radians(fov_deg)"
+        ),
+    ),
+    Mistake(
+        "degrees of the tangent",
+        lambda s: s.W / 2 / np.degrees(np.tan(s.half)),
+        (
+            "np.degrees(np.tan(...)) converts the tangent, a plain number, as if it were an angle: the"
+            " tangent needs no conversion, f_x = (W / 2) / np.tan(np.radians(fov_deg) / 2)"
+        ),
+    ),
+    Mistake(
         "halved twice",
         lambda s: s.W / 2 / np.tan(s.half / 2),
         (
@@ -201,14 +217,18 @@ def _fx_diagnosis(args, got, expected) -> str:
         return problem
     g = float(got)
     half, full = np.radians(fov) / 2, np.radians(fov)
+    context = SimpleNamespace(W=W, H=H, fov=fov, half=half, full=full, expected=expected)
     cause = first_mistake(
-        _FX_SLIPS,
-        SimpleNamespace(W=W, H=H, fov=fov, half=half, full=full, expected=expected),
-        g,
-        lambda got, wrong: np.isclose(got, wrong, rtol=1e-6),
+        _FX_SLIPS, context, g, lambda got, wrong: np.isclose(got, wrong, rtol=1e-6)
     )
     if cause:
         return cause
+    # two slips at once: a sign flip on top of one of the table's (the degrees slip alone can come out negative)
+    cause = first_mistake(
+        _FX_SLIPS, context, -g, lambda got, wrong: np.isclose(got, wrong, rtol=1e-6)
+    )
+    if cause:
+        return f"a sign flip (f_x is a positive length), and besides: {cause}"
     if abs(g - expected) <= 1.0 and g == round(g):
         return (
             "you rounded f_x to a whole pixel (round() or int()); return it unrounded, or to 0.1 px at least: a"
@@ -261,6 +281,15 @@ register_exercise(
                 "arctan is the inverse",
             ),
             (lambda fov, size: size[0] / 2 / np.tan(np.radians(fov / 2) / 2), "halved twice"),
+            (lambda fov, size: size[0] / 2 / np.tan(np.degrees(fov) / 2), "the wrong way here"),
+            (
+                lambda fov, size: size[0] / 2 / np.degrees(np.tan(np.radians(fov) / 2)),
+                "needs no conversion",
+            ),
+            (
+                lambda fov, size: -(size[0] - 1) / 2 / np.tan(np.radians(fov) / 2),
+                "and besides: the sensor spans all W pixels",
+            ),
             (lambda fov, size: (size[0] / 2 / np.tan(np.radians(fov) / 2),), "trailing comma"),
             (
                 lambda fov, size: f"{size[0] / 2 / np.tan(np.radians(fov) / 2):.1f}",

@@ -166,6 +166,14 @@ _PIXEL_SLIPS = (
         ("u and v are swapped: column 0 is u (from X), column 1 is v (from Y)"),
     ),
     Mistake(
+        "(v, u) order",
+        lambda s: s.e[:, ::-1],
+        (
+            "your columns are (v, u), the row-then-column order of img[v, u]; a pixel coordinate is (u, v):"
+            " column 0 is u (from X, across), column 1 is v (from Y, down)"
+        ),
+    ),
+    Mistake(
         "off by one",
         lambda s: s.e + 1,
         (
@@ -338,6 +346,12 @@ register_exercise(
                 "width and height",
             ),
             (lambda X, f, s, size: f / s * X[:, :2] / X[:, 2:3], "principal point"),
+            (
+                lambda X, f, s, size: (f / s * X[:, :2] / X[:, 2:3] + (np.array(size) - 1) / 2)[
+                    :, ::-1
+                ],
+                "your columns are",
+            ),
             (
                 lambda X, f, s, size: f * X[:, :2] / X[:, 2:3] + (np.array(size) - 1) / 2,
                 "divide by the pixel pitch",
