@@ -101,9 +101,9 @@ def test_the_test_accepts_affine_cameras_that_see_parallax():
         x1, x2 = matches(P1, P2, two_facades(rng), rng, sigma=1.0)
         statistics.append(affine_epipolar_test(x1, x2))
     rejected = sum(t.statistic > t.level for t in statistics)
-    assert rejected == 0  # a conservative 1 % test: 0.2 false alarms expected in 20 at most
+    assert rejected <= 2  # a 1 % test: 0.2 false alarms expected in 20
     assert all(t.statistic >= 0 and t.rms_general <= t.rms_affine for t in statistics)
-    assert np.median([t.statistic for t in statistics]) < 2  # at most about 1 under the hypothesis
+    assert 0.4 < np.median([t.statistic for t in statistics]) < 1.5  # F(3, N - 7): about 1
 
 
 def test_the_test_rejects_a_close_perspective_pair():
