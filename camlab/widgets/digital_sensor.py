@@ -329,7 +329,7 @@ ZOOM_V = 100  # the default zoom: the flag's stripes, the spectacles' lower rim 
         "method": list(_METHODS),
         "zoom_u": [0, 40, 200, ZOOM_MAX],
         "zoom_v": [0, 50, ZOOM_V_MAX],
-        "zoom_error": [True],
+        "zoom_error": [True, False],
         "assume": ["BGGR", _SAME],
     },
 )
@@ -424,7 +424,11 @@ def demosaicing():
             ax_zoom.set_title("zoom (shown through sRGB)", fontsize=10)
         box.set_xy((u0 - 0.5, v0 - 0.5))
         state.update(
-            psnr=psnr, zoom=(u0, v0), assumed=assumed, zoom_psnr=sensor.psnr(truth[crop], out[crop])
+            psnr=psnr,
+            zoom=(u0, v0),
+            assumed=assumed,
+            zoom_psnr=sensor.psnr(truth[crop], out[crop]),
+            zoom_shows="error" if values["zoom_error"] else "image",
         )
         wrong = "" if assumed == pattern or method == "truth" else f" as {assumed} (wrong!)"
         score = (
