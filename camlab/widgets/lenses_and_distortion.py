@@ -81,8 +81,11 @@ def _draw_sensor_zoom(ax) -> dict:
     zoom = {
         "cone": ax.fill([0, 0, 0], [0, 0, 0], **light)[0],
         "cone_out": ax.fill([0, 0, 0], [0, 0, 0], **light)[0],
-        "rays": ax.plot([], [], color=palette.ORANGE, lw=1.2)[0],
-        "beyond": ax.plot([], [], color=palette.ORANGE, lw=1.2, ls=":")[0],
+        # white halos, as in the side view: the rays run over their own light cone
+        "rays": ax.plot([], [], color=palette.ORANGE, lw=1.2, path_effects=palette.halo(1.2))[0],
+        "beyond": ax.plot(
+            [], [], color=palette.ORANGE, lw=1.2, ls=":", path_effects=palette.halo(1.2)
+        )[0],
         "sensor": ax.plot([], [], color="0.3", lw=2)[0],
         "blur": ax.plot([], [], color=palette.RED, lw=5, solid_capstyle="butt")[0],
         "focus": ax.plot([], [], "x", color=palette.RED, ms=7, mew=2)[0],
