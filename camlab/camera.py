@@ -48,7 +48,7 @@ from ._validate import (
 )
 from .distortion import beyond_valid_radius, distort_points
 from .optimize import levenberg_marquardt, unit_sphere_basis, unit_sphere_update
-from .projective import hartley_normalization
+from .projective import hartley_normalise
 
 __all__ = [
     "Camera",
@@ -59,6 +59,7 @@ __all__ = [
     "RQ",
     "axis_angle_from_rotation",
     "camera_centre",
+    "check_camera_matrix",
     "check_rotation",
     "decompose_projection_matrix",
     "estimate_projection_matrix",
@@ -707,18 +708,31 @@ class Camera:
 # ---------------------------------------------------------------------------------------
 
 
-def _check_P(P: ArrayLike, name: str = "P") -> np.ndarray:
+def check_camera_matrix(P: Camera | ArrayLike, name: str = "P") -> np.ndarray:
+    """The (3, 4) matrix of a camera: ``P.P`` for a :class:`Camera` (its distortion left out), else P
+    checked to have rank 3.
+
+    Raises
+    ------
+    CamlabInputError
+        P is not a finite (3, 4) array.
+    DegenerateError
+        P has rank below 3 (it maps all of space to a line or a point).
+    """
+    if isinstance(P, Camera):
+        return P.P
     a = check_matrix(P, (3, 4), name)
     s = np.linalg.svd(a, compute_uv=False)
     if s[0] == 0 or s[2] <= 1e-12 * s[0]:
         raise DegenerateError(
             f"{name}: a camera matrix has rank 3, this one has rank {int(np.sum(s > 1e-12 * s[0]))} "
-            f"(singular values {np.array2string(s, precision=3)}); it maps all of space to a line or point"
+            f"(singular values {np.array2string(s, precision=3)}); it maps all of space to a line or "
+            f"point; pass a Camera or K @ [R | t]"
         )
     return a
 
 
-def project_points(P: ArrayLike, points_world: ArrayLike) -> np.ndarray:
+def project_points(P: Camera | ArrayLike, points_world: ArrayLike) -> np.ndarray:
     r"""Project world points with any 3x4 camera matrix: :math:`\lambda \tilde u = P \tilde X`.
 
     Works for projective and affine cameras alike. For a finite camera the sign of the
@@ -728,7 +742,8 @@ def project_points(P: ArrayLike, points_world: ArrayLike) -> np.ndarray:
 
     Parameters
     ----------
-    P : (3, 4) array_like
+    P : Camera or (3, 4) array_like
+        A :class:`Camera` projects with :meth:`Camera.project` (its lens distortion too).
     points_world : (N, 3) or (3,) array_like
 
     Returns
@@ -736,7 +751,9 @@ def project_points(P: ArrayLike, points_world: ArrayLike) -> np.ndarray:
     (N, 2) or (2,) ndarray
         Pixels; NaN where the point is behind a finite camera or maps to infinity.
     """
-    Pm = _check_P(P)
+    if isinstance(P, Camera):
+        return P.project(points_world)
+    Pm = check_camera_matrix(P)
     p = as_points(points_world, 3, "points_world", finite=False)
     x = p.array @ Pm[:, :3].T + Pm[:, 3]
     w = x[:, 2]
@@ -765,7 +782,7 @@ def camera_centre(P: ArrayLike) -> np.ndarray:
     The last right singular vector of P spans its null space. For a finite camera
     :math:`P = [M \mid p_4]` this equals :math:`(-M^{-1} p_4, 1)`.
     """
-    Pm = _check_P(P)
+    Pm = check_camera_matrix(P)
     _, _, Vt = np.linalg.svd(Pm)
     C = Vt[-1]
     if abs(C[3]) > 1e-12 * np.abs(C).max():
@@ -870,7 +887,7 @@ def decompose_projection_matrix(P: ArrayLike) -> Decomposition:
     >>> bool(np.allclose(K, cam.K) and np.allclose(R, cam.R) and np.allclose(C, [4, -3, 2]))
     True
     """
-    Pm = _check_P(P)
+    Pm = check_camera_matrix(P)
     M = Pm[:, :3]
     s = np.linalg.svd(M, compute_uv=False)
     if s[2] <= 1e-10 * s[0]:
@@ -894,9 +911,13 @@ def decompose_projection_matrix(P: ArrayLike) -> Decomposition:
 
 
 def reprojection_errors(
-    P: ArrayLike, points_world: ArrayLike, points_image: ArrayLike
+    P: Camera | ArrayLike, points_world: ArrayLike, points_image: ArrayLike
 ) -> np.ndarray:
-    """(N,) distances in pixels between ``points_image`` and the projections of ``points_world`` by P."""
+    """(N,) distances in pixels between ``points_image`` and the projections of ``points_world``.
+
+    ``P`` is a :class:`Camera` or a (3, 4) camera matrix (:func:`project_points`); a point
+    behind the camera has no projection, and its distance is NaN.
+    """
     X, uv, _ = as_point_pairs(
         points_world, points_image, ("points_world", "points_image"), (3, 2), finite=False
     )
@@ -983,8 +1004,8 @@ def estimate_projection_matrix(
             f"so P is not determined; "
             f"use points on at least two planes (e.g. two faces of a box), or a homography for one plane"
         )
-    T = hartley_normalization(uv, "points_image")
-    U = hartley_normalization(X, "points_world")
+    T = hartley_normalise(uv, "points_image").T
+    U = hartley_normalise(X, "points_world").T
     Xn = np.hstack([X, np.ones((len(X), 1))]) @ U.T
     un = (np.hstack([uv, np.ones((len(uv), 1))]) @ T.T)[:, :2]
     n = len(X)
@@ -1001,13 +1022,13 @@ def estimate_projection_matrix(
         )
     Pn = Vt[-1].reshape(3, 4)
     P = np.linalg.solve(T, Pn @ U)
-    P = _normalize_P(P)
+    P = _normalise_P(P)
     if refine:
         P = _refine_projection_matrix(P, X, uv)
     return P
 
 
-def _normalize_P(P: np.ndarray) -> np.ndarray:
+def _normalise_P(P: np.ndarray) -> np.ndarray:
     P = P / np.linalg.norm(P[2, :3])
     if np.linalg.det(P[:, :3]) < 0:
         P = -P
@@ -1050,7 +1071,7 @@ def _refine_projection_matrix(P0: np.ndarray, X: np.ndarray, uv: np.ndarray) -> 
         raise ConvergenceError(
             f"estimate_projection_matrix: refinement did not converge ({res.message})"
         )
-    return _normalize_P(res.x.reshape(3, 4))
+    return _normalise_P(res.x.reshape(3, 4))
 
 
 # ---------------------------------------------------------------------------------------
@@ -1067,7 +1088,7 @@ def project_segments(camera: Camera | ArrayLike, segments: ArrayLike) -> np.ndar
     (matplotlib skips it). Affine cameras see every point and clip nothing.
     """
     if not isinstance(camera, Camera):
-        camera = _check_P(camera, "camera")
+        camera = check_camera_matrix(camera, "camera")
     s = as_float(segments, "segments")
     if s.ndim != 3 or s.shape[1:] != (2, 3):
         raise CamlabInputError(

@@ -38,10 +38,10 @@ from ._validate import (
     check_matrix,
     check_rotation,
 )
-from .camera import Camera, Pose, camera_centre
+from .camera import Camera, Pose, camera_centre, check_camera_matrix
 from .homography import estimate_homography, symmetric_transfer_error
 from .optimize import block_damped_solve, block_normal_equations, levenberg_marquardt
-from .projective import from_homogeneous, hartley_normalize, normalize_lines, to_homogeneous
+from .projective import from_homogeneous, hartley_normalise, normalise_lines, to_homogeneous
 from .robust import MinimalModels, PairModel, ransac
 
 __all__ = [
@@ -58,11 +58,10 @@ __all__ = [
     "estimate_fundamental_matrix",
     "fundamental_from_cameras",
     "fundamental_from_essential",
-    "normalize_fundamental",
+    "normalise_fundamental",
     "ransac_fundamental_matrix",
     "recover_pose",
     "relative_pose",
-    "reprojection_error",
     "sampson_distance",
     "skew",
     "triangulate_points",
@@ -103,10 +102,10 @@ def check_fundamental(F: ArrayLike, name: str = "F") -> np.ndarray:
     return a
 
 
-def normalize_fundamental(F: ArrayLike) -> np.ndarray:
+def normalise_fundamental(F: ArrayLike) -> np.ndarray:
     """Scale F to unit Frobenius norm with its largest-magnitude entry positive (compare F's up to scale).
 
-    >>> normalize_fundamental(-2 * np.eye(3)).round(4)
+    >>> normalise_fundamental(-2 * np.eye(3)).round(4)
     array([[0.5774, 0.    , 0.    ],
            [0.    , 0.5774, 0.    ],
            [0.    , 0.    , 0.5774]])
@@ -117,19 +116,6 @@ def normalize_fundamental(F: ArrayLike) -> np.ndarray:
         np.round(np.abs(a), 9)
     )  # ties (e.g. a skew-symmetric F): the first in row-major order
     return a * np.sign(a.flat[k])
-
-
-def _as_P(cam: Camera | ArrayLike, name: str) -> np.ndarray:
-    if isinstance(cam, Camera):
-        return cam.P
-    P = check_matrix(cam, (3, 4), name)
-    sv = np.linalg.svd(P, compute_uv=False)
-    if sv[0] == 0 or sv[2] <= 1e-12 * sv[0]:
-        raise DegenerateError(
-            f"{name}: a camera matrix has rank 3, this one has singular values "
-            f"{np.array2string(sv, precision=3)}; pass a Camera or K @ [R | t]"
-        )
-    return P
 
 
 # --------------------------------------------------------------------------- from known cameras
@@ -211,8 +197,8 @@ def fundamental_from_cameras(
                 "Move one camera"
             )
         F = np.linalg.inv(camera2.K).T @ essential_matrix(R, t) @ np.linalg.inv(camera1.K)
-        return normalize_fundamental(F)
-    P1, P2 = _as_P(camera1, "camera1"), _as_P(camera2, "camera2")
+        return normalise_fundamental(F)
+    P1, P2 = check_camera_matrix(camera1, "camera1"), check_camera_matrix(camera2, "camera2")
     C1h = camera_centre(P1)  # (4,) homogeneous
     e2 = P2 @ C1h
     if np.linalg.norm(e2) <= 1e-12 * np.linalg.norm(P2) * np.linalg.norm(C1h):
@@ -220,7 +206,7 @@ def fundamental_from_cameras(
             "fundamental_from_cameras: camera 1's centre projects to 0 in camera 2, so both cameras have "
             "the same centre (no baseline); move one camera"
         )
-    return normalize_fundamental(skew(e2) @ P2 @ np.linalg.pinv(P1))
+    return normalise_fundamental(skew(e2) @ P2 @ np.linalg.pinv(P1))
 
 
 def essential_from_fundamental(
@@ -246,7 +232,7 @@ def fundamental_from_essential(
     E = check_fundamental(E, "E")
     K1 = check_intrinsics(K1, "K1")
     K2 = K1 if K2 is None else check_intrinsics(K2, "K2")
-    return normalize_fundamental(np.linalg.inv(K2).T @ E @ np.linalg.inv(K1))
+    return normalise_fundamental(np.linalg.inv(K2).T @ E @ np.linalg.inv(K1))
 
 
 # --------------------------------------------------------------------------- epipoles and lines
@@ -318,7 +304,7 @@ def epipolar_lines(F: ArrayLike, points: ArrayLike, image: int = 1) -> np.ndarra
         raise DegenerateError(
             "epipolar_lines: a point is the epipole itself, whose epipolar line is undefined"
         )
-    return p.restore(normalize_lines(lines))
+    return p.restore(normalise_lines(lines))
 
 
 def epipolar_distance(F: ArrayLike, x1: ArrayLike, x2: ArrayLike) -> np.ndarray:
@@ -387,7 +373,7 @@ def _rank2(F: np.ndarray) -> np.ndarray:
 def estimate_fundamental_matrix(
     x1: ArrayLike,
     x2: ArrayLike,
-    normalize: bool = True,
+    normalise: bool = True,
     plane_tol: float = _PLANE_TOL,
     sampson_iterations: int = 0,
 ) -> np.ndarray:
@@ -412,7 +398,7 @@ def estimate_fundamental_matrix(
     ----------
     x1, x2 : (N, 2) array_like
         Corresponding pixels in image 1 and image 2, N >= 8.
-    normalize : bool
+    normalise : bool
         Hartley normalisation (step 1). ``False`` shows why it matters.
     plane_tol : float
         Pixels. If a single homography maps every ``x1`` to its ``x2`` within this RMS
@@ -452,9 +438,9 @@ def estimate_fundamental_matrix(
     True
     """
     a, b, _ = as_point_pairs(x1, x2, min_count=8, why=EIGHT_POINT_REASON)
-    if normalize:
-        an, T1 = hartley_normalize(a)
-        bn, T2 = hartley_normalize(b)
+    if normalise:
+        an, T1 = hartley_normalise(a)
+        bn, T2 = hartley_normalise(b)
     else:
         an, bn, T1, T2 = a, b, np.eye(3), np.eye(3)
     A = _eight_point_rows(an, bn)
@@ -488,7 +474,7 @@ def estimate_fundamental_matrix(
         if not np.all(den > 0):
             break
         Fn = _rank2(np.linalg.svd(A / den[:, None], full_matrices=len(A) < 9)[2][-1].reshape(3, 3))
-    F = normalize_fundamental(T2.T @ Fn @ T1)
+    F = normalise_fundamental(T2.T @ Fn @ T1)
     if len(a) >= 12:
         # Least squares fits any pairs, right or wrong: refuse a fit that explains them badly.
         med = float(np.median(_sampson_batch(F[None], a, b)[0]))
@@ -537,8 +523,8 @@ class FundamentalModel(PairModel):
 
     def __init__(self, x1: np.ndarray, x2: np.ndarray):
         super().__init__(x1, x2)
-        self.an, self.T1 = hartley_normalize(x1)
-        self.bn, self.T2 = hartley_normalize(x2)
+        self.an, self.T1 = hartley_normalise(x1)
+        self.bn, self.T2 = hartley_normalise(x2)
 
     def minimal(self, idx: np.ndarray) -> MinimalModels:
         _, s, Vt = np.linalg.svd(_eight_point_rows(self.an[idx], self.bn[idx]))
@@ -561,7 +547,7 @@ class FundamentalModel(PairModel):
             w = np.sqrt(Fx[:, 0] ** 2 + Fx[:, 1] ** 2 + Ftx[:, 0] ** 2 + Ftx[:, 1] ** 2)
             if not np.all(w > 0):
                 break
-        return normalize_fundamental(self.T2.T @ Fn @ self.T1)
+        return normalise_fundamental(self.T2.T @ Fn @ self.T1)
 
     def residuals(
         self, models: np.ndarray, i1: np.ndarray | None = None, i2: np.ndarray | None = None
@@ -620,7 +606,7 @@ def ransac_fundamental_matrix(
     a, b, _ = as_point_pairs(x1, x2, min_count=8, why=EIGHT_POINT_REASON)
     fit = ransac(FundamentalModel(a, b), threshold, confidence, max_iters, rng, batch=batch)
     return FundamentalRansacResult(
-        normalize_fundamental(fit.model), fit.inliers, fit.iterations, fit.residuals
+        normalise_fundamental(fit.model), fit.inliers, fit.iterations, fit.residuals
     )
 
 
@@ -709,16 +695,6 @@ def recover_pose(
 # --------------------------------------------------------------------------- triangulation
 
 
-def reprojection_error(
-    P: Camera | ArrayLike, points_world: ArrayLike, pixels: ArrayLike
-) -> np.ndarray:
-    """Distance in pixels between ``pixels`` and the projections of ``points_world`` by P (one per point)."""
-    Pm = _as_P(P, "P")
-    X = as_points(points_world, 3, "points_world").array
-    uv = as_points(pixels, 2, "pixels").array
-    return np.linalg.norm(from_homogeneous(to_homogeneous(X) @ Pm.T) - uv, axis=1)
-
-
 def _refine_points(Ps: list[np.ndarray], uvs: list[np.ndarray], X: np.ndarray) -> np.ndarray:
     """Minimise the summed squared reprojection error over each point independently:
     Levenberg-Marquardt (:func:`camlab.optimize.levenberg_marquardt`) on the block-diagonal
@@ -802,7 +778,7 @@ def triangulate_points(
     >>> triangulate_points(cam1, cam2, cam1.project(X), cam2.project(X)).round(9) + 0.0
     array([ 0.1,  0.2, -0.1])
     """
-    A1, A2 = _as_P(P1, "P1"), _as_P(P2, "P2")
+    A1, A2 = check_camera_matrix(P1, "P1"), check_camera_matrix(P2, "P2")
     a, b, single = as_point_pairs(x1, x2)
     C1, C2 = camera_centre(A1), camera_centre(A2)
     if np.linalg.norm(C1 - C2) <= 1e-9 * max(

@@ -12,12 +12,12 @@ This module holds
   (vectorised adaptive RANSAC), :func:`refine_homography` (LM on the symmetric
   transfer error), :func:`gold_standard_homography` (H&Z's maximum-likelihood estimate:
   LM on the reprojection error over H and corrected points), and the error measures :func:`transfer_error`,
-  :func:`symmetric_transfer_error`, :func:`sampson_error`;
-* algebra: :func:`compose`, :func:`invert`, :func:`normalize_homography`,
+  :func:`symmetric_transfer_error`, :func:`sampson_distance`;
+* algebra: :func:`compose`, :func:`invert`, :func:`normalise_homography`,
   :func:`same_homography`;
-* the transformation hierarchy: :func:`euclidean`, :func:`similarity`,
-  :func:`affine`, :func:`projective`, :data:`HIERARCHY`, :func:`classify`,
-  :func:`decompose`;
+* the transformation hierarchy: :func:`euclidean_homography`, :func:`similarity_homography`,
+  :func:`affine_homography`, :func:`projective_homography`, :data:`HIERARCHY`, :func:`classify`,
+  :func:`decompose_homography`;
 * homographies from geometry: :func:`plane_homography` (:math:`K'(R - t n^T/d)K^{-1}`),
   :func:`rotation_homography` (:math:`K' R K^{-1}`) and :func:`pose_homography`
   (the world plane Z = 0 to the image, :math:`K [r_1\ r_2\ t]`).
@@ -46,7 +46,7 @@ from ._validate import (
     check_rotation,
 )
 from .optimize import levenberg_marquardt, unit_sphere_basis, unit_sphere_update
-from .projective import hartley_normalize, map_points
+from .projective import hartley_normalise, map_points
 from .robust import MinimalModels, PairModel, ransac
 
 __all__ = [
@@ -56,26 +56,26 @@ __all__ = [
     "HomographyModel",
     "RansacResult",
     "RefineResult",
-    "affine",
+    "affine_homography",
     "classify",
     "compose",
     "correct_points",
-    "decompose",
+    "decompose_homography",
     "estimate_homography",
-    "euclidean",
+    "euclidean_homography",
     "gold_standard_homography",
     "hierarchy_matrix",
     "invert",
-    "normalize_homography",
+    "normalise_homography",
     "plane_homography",
     "pose_homography",
-    "projective",
+    "projective_homography",
     "ransac_homography",
     "refine_homography",
     "rotation_homography",
     "same_homography",
-    "sampson_error",
-    "similarity",
+    "sampson_distance",
+    "similarity_homography",
     "symmetric_transfer_error",
     "transfer_error",
 ]
@@ -114,13 +114,13 @@ def check_homography(H: ArrayLike, name: str = "H") -> np.ndarray:
 # --------------------------------------------------------------------------- normalisation
 
 
-def normalize_homography(H: ArrayLike) -> np.ndarray:
+def normalise_homography(H: ArrayLike) -> np.ndarray:
     """Scale H so that H[2, 2] = 1, or to unit Frobenius norm when H[2, 2] is (nearly) 0.
 
     Homographies are defined up to scale; this picks H[2, 2] = 1 when H[2, 2] is not
     tiny (the usual textbook form) and unit norm with a non-negative H[2, 2] otherwise.
 
-    >>> normalize_homography(2 * np.eye(3))
+    >>> normalise_homography(2 * np.eye(3))
     array([[1., 0., 0.],
            [0., 1., 0.],
            [0., 0., 1.]])
@@ -196,7 +196,7 @@ def _check_general_position(sn: np.ndarray, name: str) -> None:
             )
 
 
-def estimate_homography(src: ArrayLike, dst: ArrayLike, normalize: bool = True) -> np.ndarray:
+def estimate_homography(src: ArrayLike, dst: ArrayLike, normalise: bool = True) -> np.ndarray:
     r"""Estimate H with dst ~ H src from N >= 4 point pairs by the direct linear transform.
 
     Derivation. :math:`x' \sim H x` means :math:`x' \times H x = 0`. Writing
@@ -211,21 +211,21 @@ def estimate_homography(src: ArrayLike, dst: ArrayLike, normalize: bool = True) 
     singular value (equivalently the eigenvector of :math:`A^T A` with the smallest
     eigenvalue, which is what the normalised path computes). With pixel coordinates the columns of A differ in size by factors up
     to :math:`u u' \approx 10^5`, so noise is amplified; Hartley's normalisation first
-    maps each point set with a similarity T (:func:`hartley_normalization`), solves for
+    maps each point set with a similarity T (:func:`hartley_normalise`), solves for
     :math:`\hat H` there, and returns :math:`H = T'^{-1} \hat H T`.
 
     Parameters
     ----------
     src, dst : (N, 2) array_like
         Corresponding pixel coordinates (u, v), N >= 4.
-    normalize : bool
+    normalise : bool
         Apply Hartley normalisation (default). ``False`` solves in raw pixel coordinates,
         to show why normalising matters (lesson 07, section 6).
 
     Returns
     -------
     (3, 3) ndarray
-        H scaled so that H[2, 2] = 1 where possible (see :func:`normalize_homography`).
+        H scaled so that H[2, 2] = 1 where possible (see :func:`normalise_homography`).
 
     Raises
     ------
@@ -244,11 +244,11 @@ def estimate_homography(src: ArrayLike, dst: ArrayLike, normalize: bool = True) 
            [0., 0., 1.]])
     """
     s, d = _pairs(src, dst)
-    sn, Ts = hartley_normalize(s)
-    dn, Td = hartley_normalize(d)
+    sn, Ts = hartley_normalise(s)
+    dn, Td = hartley_normalise(d)
     _check_general_position(sn, "src")
     _check_general_position(dn, "dst")
-    if normalize and len(s) > 4:
+    if normalise and len(s) > 4:
         # In normalised coordinates A is well conditioned, so the eigenvector of the 9x9
         # A^T A with the smallest eigenvalue (= sigma^2) is as accurate as the SVD of A
         # (1e-12 in the tests) and avoids a LAPACK factorisation of the tall A, which is
@@ -258,7 +258,7 @@ def estimate_homography(src: ArrayLike, dst: ArrayLike, normalize: bool = True) 
         sv = np.sqrt(np.clip(ev[::-1], 0, None))
         h, rank_tol = V[:, 0], 1e-7
     else:
-        A = _dlt_rows(sn, dn) if normalize else _dlt_rows(s, d)
+        A = _dlt_rows(sn, dn) if normalise else _dlt_rows(s, d)
         _, sv, vt = np.linalg.svd(A)
         if len(sv) < 9:  # exactly 4 pairs: 8 equations, the null space is the 9th vector
             sv = np.append(sv, 0.0)
@@ -269,9 +269,9 @@ def estimate_homography(src: ArrayLike, dst: ArrayLike, normalize: bool = True) 
             "more than one null vector); pick at least 4 points in general position, no 3 on a line"
         )
     H = h.reshape(3, 3)
-    if normalize:
+    if normalise:
         H = np.linalg.solve(Td, H @ Ts)  # H = Td^-1 Hn Ts
-    return normalize_homography(H)
+    return normalise_homography(H)
 
 
 # --------------------------------------------------------------------------- errors
@@ -358,7 +358,7 @@ def _sampson_batch(H: np.ndarray, s: np.ndarray, d: np.ndarray) -> np.ndarray:
     return np.sqrt(q)
 
 
-def sampson_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np.ndarray:
+def sampson_distance(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np.ndarray:
     r"""Sampson distance per pair: the first-order approximation of the geometric error.
 
     With :math:`e = A_i h` the two algebraic residuals of pair i and J their 2x4
@@ -367,7 +367,7 @@ def sampson_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np.ndarray:
     :math:`e^T (J J^T)^{-1} e` (H&Z section 4.2.6). It is close to the reprojection error
     of the gold-standard estimate, in pixels, without any iteration.
 
-    >>> float(sampson_error(np.eye(3), [0, 0], [0, 2])[0]).__round__(6)  # 2 px, split over both images
+    >>> float(sampson_distance(np.eye(3), [0, 0], [0, 2])[0]).__round__(6)  # 2 px, split over both images
     1.414214
     """
     Hm = check_homography(H)
@@ -435,8 +435,8 @@ class HomographyModel(PairModel):
     def __init__(self, src: np.ndarray, dst: np.ndarray, score: str = "transfer"):
         super().__init__(src, dst)
         self.score = score
-        self.sn, self.Ts = hartley_normalize(src)
-        self.dn, self.Td = hartley_normalize(dst)
+        self.sn, self.Ts = hartley_normalise(src)
+        self.dn, self.Td = hartley_normalise(dst)
         self.Td_inv = np.linalg.inv(self.Td)
         self.A = _dlt_rows(self.sn, self.dn).reshape(-1, 2, 9)  # each pair's two DLT rows, once
         self.c1, self.c2 = _columns(self.x1), _columns(self.x2)  # homogeneous columns, once
@@ -513,7 +513,7 @@ def ransac_homography(
         Source of randomness (seed it for reproducible results).
     score : {"transfer", "sampson"}
         ``"transfer"``: :func:`symmetric_transfer_error`; ``"sampson"``:
-        :func:`sampson_error`.
+        :func:`sampson_distance`.
     batch : int
         Samples solved and scored per vectorised step.
 
@@ -533,7 +533,7 @@ def ransac_homography(
         raise CamlabInputError(f"score: expected 'transfer' or 'sampson', got {score!r}")
     fit = ransac(HomographyModel(s, d, score), threshold, confidence, max_iters, rng, batch=batch)
     return RansacResult(
-        normalize_homography(fit.model), fit.inliers, fit.iterations, fit.residuals, fit.sample
+        normalise_homography(fit.model), fit.inliers, fit.iterations, fit.residuals, fit.sample
     )
 
 
@@ -658,7 +658,7 @@ def refine_homography(
         gtol=0.0,
     )
     return RefineResult(
-        normalize_homography(lm.x.reshape(3, 3)),
+        normalise_homography(lm.x.reshape(3, 3)),
         float(np.sqrt(r0 @ r0 / (2 * len(s)))),
         float(np.sqrt(2 * lm.cost / (2 * len(s)))),
         lm.iterations,
@@ -859,7 +859,7 @@ def gold_standard_homography(
     H_final = lm.x[:9].reshape(3, 3)
     p = lm.x[9:].reshape(n, 2)
     return GoldStandardResult(
-        normalize_homography(H_final),
+        normalise_homography(H_final),
         p,
         map_points(H_final, p),
         float(np.sqrt(r0 @ r0 / (2 * n))),
@@ -887,7 +887,7 @@ def compose(*Hs: ArrayLike) -> np.ndarray:
     out = np.eye(3)
     for i, H in enumerate(Hs):
         out = out @ check_homography(H, f"Hs[{i}]")
-    return normalize_homography(out)
+    return normalise_homography(out)
 
 
 def invert(H: ArrayLike) -> np.ndarray:
@@ -898,7 +898,7 @@ def invert(H: ArrayLike) -> np.ndarray:
            [0. , 0.5, 0. ],
            [0. , 0. , 1. ]])
     """
-    return normalize_homography(np.linalg.inv(check_homography(H)))
+    return normalise_homography(np.linalg.inv(check_homography(H)))
 
 
 # --------------------------------------------------------------------------- hierarchy
@@ -949,11 +949,11 @@ def _rot(theta: float, name: str = "theta") -> np.ndarray:
     return np.array([[c, -s], [s, c]])
 
 
-def euclidean(theta: float = 0.0, tx: float = 0.0, ty: float = 0.0) -> np.ndarray:
+def euclidean_homography(theta: float = 0.0, tx: float = 0.0, ty: float = 0.0) -> np.ndarray:
     """A rotation by ``theta`` radians (counter-clockwise in x-right, y-up axes; clockwise
     on screen, where v points down) followed by a translation (tx, ty). 3 dof.
 
-    >>> euclidean(0.0, 2.0, 3.0)[:2, 2]
+    >>> euclidean_homography(0.0, 2.0, 3.0)[:2, 2]
     array([2., 3.])
     """
     H = np.eye(3)
@@ -962,17 +962,17 @@ def euclidean(theta: float = 0.0, tx: float = 0.0, ty: float = 0.0) -> np.ndarra
     return H
 
 
-def similarity(
+def similarity_homography(
     scale: float = 1.0, theta: float = 0.0, tx: float = 0.0, ty: float = 0.0
 ) -> np.ndarray:
     """Isotropic scaling, rotation and translation: ``[[s R, t], [0, 1]]``. 4 dof."""
     check_positive(scale, "scale")
-    H = euclidean(theta, tx, ty)
+    H = euclidean_homography(theta, tx, ty)
     H[:2, :2] *= scale
     return H
 
 
-def affine(
+def affine_homography(
     theta: float = 0.0,
     phi: float = 0.0,
     sx: float = 1.0,
@@ -999,12 +999,12 @@ def affine(
     return H
 
 
-def projective(
+def projective_homography(
     A: ArrayLike | None = None, t: ArrayLike = (0.0, 0.0), v: ArrayLike = (0.0, 0.0), w: float = 1.0
 ) -> np.ndarray:
     r"""A general homography ``[[A, t], [v^T, w]]``; v != 0 moves the line at infinity. 8 dof.
 
-    >>> projective(v=[0.001, 0.0])[2]
+    >>> projective_homography(v=[0.001, 0.0])[2]
     array([0.001, 0.   , 1.   ])
     """
     H = np.eye(3)
@@ -1034,9 +1034,9 @@ def hierarchy_matrix(
     * euclidean: rotation ``theta`` (radians) and translation (tx, ty);
     * similarity: adds the isotropic ``scale``;
     * affine: scales ``scale * aspect`` and ``scale / aspect`` along axes turned by ``shear``
-      (:func:`affine` with :math:`\phi` = ``shear``);
+      (:func:`affine_homography` with :math:`\phi` = ``shear``);
     * projective: that affinity followed by ``v``, the bottom row that moves the line at
-      infinity: :math:`H = H_A H_P` (:func:`compose`, :func:`projective`).
+      infinity: :math:`H = H_A H_P` (:func:`compose`, :func:`projective_homography`).
 
     >>> classify(hierarchy_matrix("similarity", theta=0.3, scale=2.0, shear=0.5))
     'similarity'
@@ -1044,24 +1044,24 @@ def hierarchy_matrix(
     if group not in HIERARCHY:
         raise CamlabInputError(f"group: expected one of {', '.join(HIERARCHY)}, got {group!r}")
     if group == "euclidean":
-        return euclidean(theta, tx, ty)
+        return euclidean_homography(theta, tx, ty)
     if group == "similarity":
-        return similarity(scale, theta, tx, ty)
+        return similarity_homography(scale, theta, tx, ty)
     aspect = check_positive(aspect, "aspect")
-    A = affine(theta, shear, scale * aspect, scale / aspect, tx, ty)
+    A = affine_homography(theta, shear, scale * aspect, scale / aspect, tx, ty)
     if group == "affine":
         return A
-    return compose(A, projective(v=v))
+    return compose(A, projective_homography(v=v))
 
 
 def classify(H: ArrayLike, tol: float = 1e-9) -> str:
     """The smallest group of the hierarchy that contains H: 'euclidean', 'similarity',
     'affine' or 'projective'.
 
-    >>> classify(similarity(2.0, 0.3, 1, 1)), classify(affine(sx=2.0)), classify(projective(v=[1e-3, 0]))
+    >>> classify(similarity_homography(2.0, 0.3, 1, 1)), classify(affine_homography(sx=2.0)), classify(projective_homography(v=[1e-3, 0]))
     ('similarity', 'affine', 'projective')
     """
-    Hm = normalize_homography(check_homography(H))
+    Hm = normalise_homography(check_homography(H))
     if abs(Hm[2, 2]) < tol or np.abs(Hm[2, :2]).max() > tol * abs(Hm[2, 2]):
         return "projective"
     A = Hm[:2, :2] / Hm[2, 2]
@@ -1075,7 +1075,7 @@ def classify(H: ArrayLike, tol: float = 1e-9) -> str:
 
 
 class HomographyFactors(NamedTuple):
-    """:func:`decompose`'s factors, :math:`H = H_S H_A H_P` (each (3, 3)).
+    """:func:`decompose_homography`'s factors, :math:`H = H_S H_A H_P` (each (3, 3)).
 
     Attributes
     ----------
@@ -1092,7 +1092,7 @@ class HomographyFactors(NamedTuple):
     H_P: np.ndarray
 
 
-def decompose(H: ArrayLike) -> HomographyFactors:
+def decompose_homography(H: ArrayLike) -> HomographyFactors:
     r"""Split :math:`H = H_S H_A H_P` into similarity, affine and projective parts (H&Z 2.4.6).
 
     .. math::
@@ -1106,12 +1106,12 @@ def decompose(H: ArrayLike) -> HomographyFactors:
     Returns
     -------
     HomographyFactors
-        ``(H_S, H_A, H_P)``: three (3, 3) ndarrays whose product equals ``normalize_homography(H)``.
+        ``(H_S, H_A, H_P)``: three (3, 3) ndarrays whose product equals ``normalise_homography(H)``.
     """
-    Hm = normalize_homography(check_homography(H))
+    Hm = normalise_homography(check_homography(H))
     if abs(Hm[2, 2]) < 1e-12:
         raise DegenerateError(
-            "decompose: H[2, 2] = 0 (the origin maps to infinity); translate first"
+            "decompose_homography: H[2, 2] = 0 (the origin maps to infinity); translate first"
         )
     vvec, vs = Hm[2, :2], Hm[2, 2]
     t = Hm[:2, 2]
@@ -1155,7 +1155,7 @@ def rotation_homography(K: ArrayLike, R: ArrayLike, K2: ArrayLike | None = None)
     """
     Km = check_intrinsics(K, "K")
     K2m = Km if K2 is None else check_intrinsics(K2, "K2")
-    return normalize_homography(K2m @ check_rotation(R) @ np.linalg.inv(Km))
+    return normalise_homography(K2m @ check_rotation(R) @ np.linalg.inv(Km))
 
 
 def plane_homography(
@@ -1195,7 +1195,7 @@ def plane_homography(
     if not np.any(nv):
         raise CamlabInputError("n: the plane normal must be non-zero")
     H = K2m @ (check_rotation(R) - np.outer(tv, nv) / d) @ np.linalg.inv(Km)
-    return normalize_homography(check_homography(H, "plane_homography"))
+    return normalise_homography(check_homography(H, "plane_homography"))
 
 
 def pose_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike) -> np.ndarray:
@@ -1214,4 +1214,4 @@ def pose_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike) -> np.ndarray:
     Rm = check_rotation(R)
     tv = check_matrix(np.ravel(as_float(t, "t")), (3,), "t")
     H = Km @ np.column_stack([Rm[:, 0], Rm[:, 1], tv])
-    return normalize_homography(check_homography(H, "pose_homography"))
+    return normalise_homography(check_homography(H, "pose_homography"))

@@ -536,7 +536,10 @@ def forward_vs_inverse() -> Demo:
         C = np.array([[1.0, 0, out_hw[1] / 2], [0, 1, out_hw[0] / 2], [0, 0, 1]])
         P = np.array([[1.0, 0, -39.5], [0, 1, -29.5], [0, 0, 1]])
         H = hg.compose(
-            C, hg.similarity(v["scale"], np.radians(v["angle"])), hg.projective(v=(1e-3, 0)), P
+            C,
+            hg.similarity_homography(v["scale"], np.radians(v["angle"])),
+            hg.projective_homography(v=(1e-3, 0)),
+            P,
         )
         fwd = forward_warp(pic, H, out_hw)
         inv = warp_perspective(
