@@ -276,7 +276,7 @@ BASELINES: dict[str, Callable[[dict], dict]] = {
     # calibration
     "calibration.parse_pattern": lambda v: {"pattern": "9x6"},
     "calibration.board_points": lambda v: {"pattern_size": (9, 6), "square_size": 0.025},
-    "calibration.nearest_rotation": lambda v: {"M": R * 1.01},
+    "camera.nearest_rotation": lambda v: {"M": R * 1.01},
     "calibration.find_chessboard": lambda v: {"image": GRAY, "pattern_size": (9, 6)},
     "calibration.extrinsics_from_homography": lambda v: {"K": K, "H": K @ np.c_[R[:, :2], T]},
     "calibration.zhang_v": lambda v: {"H": H, "i": 0, "j": 1},

@@ -263,13 +263,13 @@ def test_refine_lowers_geometric_error_and_matches_cv2():
     assert np.isclose(r2.rms_final, r.rms_final, rtol=1e-4)
     # The Jacobian is right: compare with finite differences.
     h = H0.ravel() / np.linalg.norm(H0)
-    res, J = hg._transfer_residuals_and_jacobian(h, src[:5], dst[:5])
+    res, J = hg.refinement._transfer_residuals_and_jacobian(h, src[:5], dst[:5])
     num = np.empty_like(J)
     for k in range(9):
         dh = np.zeros(9)
         dh[k] = 1e-5 * abs(h[k]) + 1e-14  # central differences, step relative to the entry
-        plus = hg._transfer_residuals_and_jacobian(h + dh, src[:5], dst[:5])[0]
-        minus = hg._transfer_residuals_and_jacobian(h - dh, src[:5], dst[:5])[0]
+        plus = hg.refinement._transfer_residuals_and_jacobian(h + dh, src[:5], dst[:5])[0]
+        minus = hg.refinement._transfer_residuals_and_jacobian(h - dh, src[:5], dst[:5])[0]
         num[:, k] = (plus - minus) / (2 * dh[k])
     assert np.allclose(J, num, rtol=1e-5, atol=1e-6 * np.abs(J).max())
 
@@ -417,15 +417,15 @@ def test_geometry_bad_input():
 
 def test_map_points_single_and_batch():
     src, _ = _pairs(5)
-    assert hg.map_points(H_TRUE, src[0]).shape == (2,)
-    assert np.allclose(hg.map_points(H_TRUE, src[0]), hg.map_points(H_TRUE, src)[0])
+    assert map_points(H_TRUE, src[0]).shape == (2,)
+    assert np.allclose(map_points(H_TRUE, src[0]), map_points(H_TRUE, src)[0])
 
 
 def test_ransac_reports_the_winning_minimal_sample():
     rng = np.random.default_rng(5)
     H = np.array([[1.1, 0.05, 20.0], [-0.03, 0.95, -10.0], [2e-4, -1e-4, 1.0]])
     src = rng.uniform(0, 500, (120, 2))
-    dst = hg.map_points(H, src) + rng.normal(0, 0.3, src.shape)
+    dst = map_points(H, src) + rng.normal(0, 0.3, src.shape)
     dst[:30] = rng.uniform(0, 500, (30, 2))
     r = hg.ransac_homography(src, dst, 2.0, rng=rng)
     assert r.sample.shape == (4,) and len(set(r.sample.tolist())) == 4

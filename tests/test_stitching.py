@@ -16,6 +16,7 @@ from camlab._validate import CamlabInputError, DegenerateError
 from camlab.camera import scale_intrinsics
 from camlab.data import panorama as sd
 from camlab.fixtures import panorama as fp
+from camlab.projective import map_points
 from camlab.stitching import projections
 from camlab.warp import canvas_bounds, canvas_box
 
@@ -24,7 +25,7 @@ CORNERS = np.array([[0, 0], [639, 0], [639, 479], [0, 479]], float)
 
 def corner_error(H, H_true, corners=CORNERS) -> float:
     return float(
-        np.linalg.norm(hg.map_points(H, corners) - hg.map_points(H_true, corners), axis=1).max()
+        np.linalg.norm(map_points(H, corners) - map_points(H_true, corners), axis=1).max()
     )
 
 
@@ -153,7 +154,7 @@ def test_warp_matches_opencv_warp_perspective(half):
     )
     assert np.allclose(wi.homographies[1], hg.normalise_homography(T @ H))
     h1, w1 = imgs[1].shape[:2]
-    quad = hg.map_points(
+    quad = map_points(
         T @ H, [[-0.5, -0.5], [w1 - 0.5, -0.5], [w1 - 0.5, h1 - 0.5], [-0.5, h1 - 0.5]]
     )
     assert wi.masks[1].sum() == pytest.approx(cv2.contourArea(quad.astype(np.float32)), rel=0.01)
@@ -310,7 +311,7 @@ def test_stitch_result_structure(result, full):
     accepted = {(p.i, p.j) for p in r.pairs if p.accepted}
     assert {(0, 1), (1, 2), (2, 3)} <= accepted
     for k in range(4):  # each image's corners land inside the canvas
-        c = hg.map_points(r.homographies[k], CORNERS)
+        c = map_points(r.homographies[k], CORNERS)
         assert np.all(c >= -0.5) and np.all(c <= np.array(r.panorama.shape[1::-1]) - 0.5)
 
 
