@@ -155,6 +155,7 @@ def estimate_fundamental_matrix(
     Examples
     --------
     >>> from camlab.camera import Camera
+    >>> from camlab.epipolar import fundamental_from_cameras
     >>> cam1 = Camera.look_at([0, -3, 0.5], [0, 0, 0.5])
     >>> cam2 = Camera.look_at([0.4, -3, 0.5], [0, 0, 0.5])
     >>> X = np.random.default_rng(0).uniform(-0.5, 0.5, (20, 3)) + [0, 0, 0.5]
