@@ -115,7 +115,7 @@ def test_bad_points_name_the_argument(bad, message):
 # --- normalisation, ideal points, distances ----------------------------------------
 
 
-def test_normalize_points_and_lines():
+def test_normalise_points_and_lines():
     np.testing.assert_allclose(
         pj.normalise_points([[2, 4, 2], [3, 4, 0]]), [[1, 2, 1], [0.6, 0.8, 0]]
     )

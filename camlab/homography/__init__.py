@@ -13,7 +13,7 @@ The package holds five topics, every public name importable from ``camlab.homogr
   :func:`same_homography`, :func:`compose`, :func:`invert`);
 * :mod:`camlab.homography.estimation`: :func:`estimate_homography` (normalised DLT),
   :func:`ransac_homography` (vectorised adaptive RANSAC) and the error measures
-  :func:`transfer_error`, :func:`symmetric_transfer_error`, :func:`sampson_error`;
+  :func:`transfer_error`, :func:`symmetric_transfer_error`, :func:`sampson_distance`;
 * :mod:`camlab.homography.refinement`: :func:`refine_homography` (LM on the symmetric
   transfer error) and :func:`gold_standard_homography` (H&Z's maximum-likelihood estimate:
   LM on the reprojection error over H and corrected points);

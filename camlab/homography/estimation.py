@@ -2,7 +2,7 @@ r"""Estimating a homography from point pairs: the normalised DLT, the error meas
 
 :func:`estimate_homography` solves :math:`x' \times H x = 0` by SVD after Hartley
 normalisation (H&Z algorithm 4.2); :func:`transfer_error`, :func:`symmetric_transfer_error`
-and :func:`sampson_error` measure a fit; :func:`ransac_homography` finds H among outliers
+and :func:`sampson_distance` measure a fit; :func:`ransac_homography` finds H among outliers
 (:func:`camlab.robust.ransac` with :class:`HomographyModel`).
 Part of :mod:`camlab.homography` (every name here is importable from there).
 """
