@@ -24,9 +24,7 @@ CORNERS = np.array([[0, 0], [639, 0], [639, 479], [0, 479]], float)
 
 
 def corner_error(H, H_true, corners=CORNERS) -> float:
-    return float(
-        np.linalg.norm(map_points(H, corners) - map_points(H_true, corners), axis=1).max()
-    )
+    return float(np.linalg.norm(map_points(H, corners) - map_points(H_true, corners), axis=1).max())
 
 
 @pytest.fixture(scope="module")

@@ -18,6 +18,7 @@ import numpy as np
 
 from .. import fixtures, scenes
 from .. import homography as hg
+from .._validate import DegenerateError
 from ..plotting import palette
 from ..projective import cross_ratio, map_points, splits_at_infinity
 from ..robust import required_iterations
@@ -296,7 +297,7 @@ def drag_homography() -> Demo:
         try:
             corners = parse_corners(v["corners"])
             H = hg.estimate_homography(SQUARE, corners)
-        except (ValueError, hg.DegenerateError) as exc:
+        except (ValueError, DegenerateError) as exc:
             state.update(error=str(exc))
             warning("cannot use these corners:\n" + str(exc)[:80])
             readout.value = monospace(f"cannot use these corners:\n{exc}")
@@ -436,7 +437,7 @@ def ransac_outliers() -> Demo:
             return data, hg.ransac_homography(
                 data[1], data[2], threshold, CONFIDENCE, 1000, np.random.default_rng(seed)
             )
-        except hg.DegenerateError as exc:
+        except DegenerateError as exc:
             return data, str(exc)
 
     def update(v: dict, state: dict) -> None:
