@@ -356,7 +356,7 @@ def canvas_box(homographies: Sequence[ArrayLike], shapes: Sequence[Sequence[int]
             f"{len(homographies)}"
         )
     corners = []
-    for i, (H, shape) in enumerate(zip(homographies, shapes)):
+    for i, (H, shape) in enumerate(zip(homographies, shapes, strict=True)):
         Hm = check_homography(H, f"homographies[{i}]")
         h, w = int(shape[0]), int(shape[1])
         c = (

@@ -170,7 +170,7 @@ def _warn_full_turn(Rs: list, names: list) -> None:
     yaw = np.unwrap([np.arctan2(R[2, 0], R[2, 2]) for R in Rs])
     turn = np.degrees(yaw - yaw[0])
     if np.abs(turn).max() > 365:
-        again = [nm for nm, t in zip(names, turn) if abs(t) > 350]
+        again = [nm for nm, t in zip(names, turn, strict=True) if abs(t) > 350]
         warnings.warn(
             f"stitch: the photos turn through {np.abs(turn).max():.0f} degrees, more than a full circle: "
             f"{', '.join(repr(x) for x in again)} show again what the first photos showed; the canvas is "
@@ -441,14 +441,17 @@ def _warp(
     if chosen != "planar":
         s = float(np.median([Kk[0, 0] for Kk in fit.Ks]))
         canvas = make_canvas(fit.Ks, fit.Rs, shapes, chosen, s, max_pixels=max_pixels)
-        outlines = [outline_on_canvas(K, R, sh, canvas) for K, R, sh in zip(fit.Ks, fit.Rs, shapes)]
+        outlines = [
+            outline_on_canvas(K, R, sh, canvas)
+            for K, R, sh in zip(fit.Ks, fit.Rs, shapes, strict=True)
+        ]
         return warp_images_by_rotation(sub, fit.Ks, fit.Rs, canvas), outlines
     if fit.model == "homography":
         H_list = [fit.plane[k] for k in fit.keep]
     else:
         s = float(np.median([Kk[0, 0] for Kk in fit.Ks]))
         Kc = np.diag([s, s, 1.0])
-        H_list = [Kc @ R.T @ np.linalg.inv(Kk) for Kk, R in zip(fit.Ks, fit.Rs)]
+        H_list = [Kc @ R.T @ np.linalg.inv(Kk) for Kk, R in zip(fit.Ks, fit.Rs, strict=True)]
     try:
         warped = warp_images(sub, H_list, max_pixels=max_pixels)
     except DegenerateError as exc:
@@ -456,7 +459,9 @@ def _warp(
             f"stitch: the images turn too far for a plane ({exc}); "
             "use projection='cylindrical' or 'spherical'"
         ) from None
-    outlines = [map_points(H, border_ring(sh)) for H, sh in zip(warped.homographies, shapes)]
+    outlines = [
+        map_points(H, border_ring(sh)) for H, sh in zip(warped.homographies, shapes, strict=True)
+    ]
     return warped, outlines
 
 
@@ -497,7 +502,7 @@ def _result(
     """Stage 8: the optional crop, per-image lists over all inputs (None for those left out), and
     the panorama in the inputs' type."""
     union = np.zeros(warped.shape, bool)
-    for m, (r0, r1, c0, c1) in zip(warped.patch_masks, warped.boxes):
+    for m, (r0, r1, c0, c1) in zip(warped.patch_masks, warped.boxes, strict=True):
         union[r0:r1, c0:c1] |= m
     masks = list(warped.masks)
     homographies = list(warped.homographies)

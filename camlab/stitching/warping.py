@@ -87,7 +87,7 @@ class WarpedImages:
 
     def _on_canvas(self, parts: list) -> list:
         out = []
-        for p, m, (r0, r1, c0, c1) in zip(parts, self.patch_masks, self.boxes):
+        for p, m, (r0, r1, c0, c1) in zip(parts, self.patch_masks, self.boxes, strict=True):
             full = np.zeros(tuple(self.shape) + p.shape[2:], p.dtype)
             full[r0:r1, c0:c1][m] = p[m]
             out.append(full)
@@ -176,7 +176,7 @@ def warp_images(
 
     T, shape = canvas_bounds(list(homographies), [im.shape for im in images], max_pixels=max_pixels)
     out_i, out_m, out_w, out_h, boxes = [], [], [], [], []
-    for im, H in zip(images, homographies):
+    for im, H in zip(images, homographies, strict=True):
         Hc = _hg.normalise_homography(T @ np.asarray(H, dtype=float))
         r0, r1, c0, c1 = _image_box(Hc, im.shape, shape)
         Hb = np.array([[1.0, 0, -c0], [0, 1, -r0], [0, 0, 1]]) @ Hc
@@ -211,7 +211,7 @@ def warp_images_by_rotation(
     """
     h, w = canvas.shape
     out_i, out_m, out_w, boxes = [], [], [], []
-    for im, K, R, box in zip(images, Ks, Rs, canvas.boxes):
+    for im, K, R, box in zip(images, Ks, Rs, canvas.boxes, strict=True):
         patch, mask, wgt = warp_by_rotation(
             im, K, R, canvas, box, feather_weights(im.shape).astype(np.float32)
         )
