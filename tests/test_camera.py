@@ -696,7 +696,10 @@ def test_nearest_rotation_has_one_home():
     from camlab import calibration
     from camlab.calibration import zhang
 
-    assert zhang.nearest_rotation is cm.nearest_rotation and "nearest_rotation" not in calibration.__all__
+    assert (
+        zhang.nearest_rotation is cm.nearest_rotation
+        and "nearest_rotation" not in calibration.__all__
+    )
     H = 3.0 * cm.rotation_from_axis_angle([0.1, -0.2, 0.3])  # a rotation homography's scale
     np.testing.assert_allclose(cm.nearest_rotation(H), H / 3.0, atol=1e-12)
 
