@@ -6,7 +6,7 @@ Each stage is one function below, called in this order by :func:`stitch`:
 2. ``_features``: SIFT on every image, on a copy of ``registration_megapixels``.
 3. ``_register``: :func:`camlab.stitching.match_graph`, pairwise RANSAC, reference image,
    spanning tree; images no accepted pair reaches are named in a warning.
-4. :func:`camlab.stitching.cameras.choose_model`: a **rotation** (:func:`camlab.stitching.cameras.estimate_cameras`: focal
+4. :func:`camlab.stitching.model.choose_model`: a **rotation** (:func:`camlab.stitching.cameras.estimate_cameras`: focal
    from the homographies, spanning-tree rotations, bundle adjustment, wave correction)
    explains a camera turning about its centre. If its residual is large, or the focal comes
    out longer than 2 image diagonals (views under about 30 degrees wide, where a flat scene
@@ -37,7 +37,7 @@ from numpy.typing import ArrayLike
 from .._validate import CamlabInputError, DegenerateError, check_intrinsics
 from ..projective import map_points
 from .blending import BLENDS, blend, dp_seam_masks, gain_compensation
-from .cameras import ModelChoice, choose_model
+from .model import ModelChoice, choose_model
 from .projections import (
     PROJECTIONS,
     border_ring,
