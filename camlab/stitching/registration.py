@@ -413,12 +413,22 @@ def detect_at_resolution(
 
 
 class SecondPlane(NamedTuple):
-    """An accepted pair whose outliers follow a second homography (:func:`second_planes`)."""
+    """An accepted pair whose outliers follow a second homography (:func:`second_planes`).
+
+    Attributes
+    ----------
+    i, j : int
+        The pair's images.
+    matches : int
+        How many of its matches follow the second plane.
+    offset : float
+        Their median transfer error under the pair's homography, pixels.
+    """
 
     i: int
     j: int
-    matches: int  # matches on the second plane
-    offset: float  # their median transfer error under the pair's homography, pixels
+    matches: int
+    offset: float
 
 
 def second_planes(graph: MatchGraph, rng: np.random.Generator | None) -> list[SecondPlane]:
