@@ -43,6 +43,15 @@ class ModelChoice(NamedTuple):
         Time spent in bundle adjustment (of the cameras and of the homographies).
     """
 
+    keep: list
+    model: str
+    residual: float
+    cameras: object
+    Ks: list
+    Rs: list
+    plane: list | None
+    bundle_seconds: float
+
 
 def choose_model(
     graph,
