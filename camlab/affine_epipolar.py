@@ -43,7 +43,7 @@ from ._validate import DegenerateError, as_point_pairs
 from .camera import rotation_from_axis_angle
 from .epipolar import estimate_fundamental_matrix, sampson_distance
 from .optimize import levenberg_marquardt
-from .projective import hartley_normalization
+from .projective import hartley_normalise
 
 __all__ = [
     "AffineEpipolarTest",
@@ -159,7 +159,7 @@ def _least_sampson_fundamental(F0: np.ndarray, a: np.ndarray, b: np.ndarray) -> 
     from the start: 7 parameters :math:`(\omega, \eta, s)`, F's 7 degrees of freedom, refined by
     Levenberg-Marquardt (central-difference Jacobian).
     """
-    T1, T2 = hartley_normalization(a, "x1"), hartley_normalization(b, "x2")
+    T1, T2 = hartley_normalise(a, "x1").T, hartley_normalise(b, "x2").T
     U, sv, Vt = np.linalg.svd(np.linalg.inv(T2).T @ F0 @ np.linalg.inv(T1))
 
     def compose(x):

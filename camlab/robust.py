@@ -22,7 +22,7 @@ The algorithm, step by step (each step is a few lines of :func:`ransac`):
    special case.)
 3. **Optimise locally (LO-RANSAC).** A model from a minimal sample is fitted to the noise
    of only ``s`` points, so it is worse than the consensus it found. Each time a
-   hypothesis beats the best so far, :func:`local_optimization` re-fits it on its inliers
+   hypothesis beats the best so far, :func:`local_optimisation` re-fits it on its inliers
    inside the loop (Chum, Matas & Kittler 2003; the "LO+" variant of Lebeda, Matas &
    Chum 2012): a few least-squares fits on random subsets of the inliers, each followed
    by iterated least squares with a threshold shrinking from :math:`3t` to :math:`t`.
@@ -61,7 +61,7 @@ __all__ = [
     "MinimalModels",
     "PairModel",
     "RobustFit",
-    "local_optimization",
+    "local_optimisation",
     "msac_cost",
     "ransac",
     "required_iterations",
@@ -92,7 +92,7 @@ class MinimalModels(NamedTuple):
 
 
 class LocalOptimum(NamedTuple):
-    """What :func:`local_optimization` kept.
+    """What :func:`local_optimisation` kept.
 
     Attributes
     ----------
@@ -211,7 +211,7 @@ def _check_settings(threshold, confidence, max_iters) -> tuple[float, float, int
     return threshold, confidence, int(max_iters)
 
 
-def local_optimization(
+def local_optimisation(
     model: PairModel,
     start: np.ndarray,
     threshold: float,
@@ -290,7 +290,7 @@ def ransac(
     rng: np.random.Generator | int | None = None,
     *,
     batch: int = 64,
-    local_optimize: bool = True,
+    local_optimise: bool = True,
 ) -> RobustFit:
     """Fit ``model`` robustly: sample, score (MSAC), optimise locally, stop adaptively, refuse chance.
 
@@ -310,7 +310,7 @@ def ransac(
         Randomness (seed it for reproducible results).
     batch : int
         Samples solved and scored per vectorised step.
-    local_optimize : bool
+    local_optimise : bool
         Step 3 (default on); off gives plain MSAC, to compare.
 
     Returns
@@ -355,15 +355,15 @@ def ransac(
             continue
         best_raw = float(costs[k])
         candidate, cost = models[k], best_raw
-        if local_optimize:
-            candidate, cost = local_optimization(model, candidate, threshold, rng)
+        if local_optimise:
+            candidate, cost = local_optimisation(model, candidate, threshold, rng)
         if cost >= best_cost:
             continue
         best, best_cost, best_sample = candidate, cost, idx[k].copy()
         best_count = int(np.sum(model.residuals(best[None])[0] < threshold))
         needed = required_iterations(best_count / n, confidence, s)
-    if best is not None and local_optimize:
-        best, best_cost = local_optimization(
+    if best is not None and local_optimise:
+        best, best_cost = local_optimisation(
             model, best, threshold, rng, inner=_LO_FINAL_INNER, steps=_LO_FINAL_STEPS
         )
         best_count = int(np.sum(model.residuals(best[None])[0] < threshold))

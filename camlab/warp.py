@@ -32,6 +32,7 @@ __all__ = [
     "CanvasBounds",
     "CanvasWarp",
     "canvas_bounds",
+    "canvas_box",
     "forward_warp",
     "warp_perspective",
     "warp_to_canvas",
@@ -317,19 +318,77 @@ class CanvasBounds(NamedTuple):
     shape: tuple[int, int]
 
 
-def canvas_bounds(
-    Hs: Sequence[ArrayLike], shapes: Sequence[Sequence[int]], max_pixels: int = 40_000_000
-) -> CanvasBounds:
-    r"""The translation T and size of a canvas holding every image i warped by ``Hs[i]``.
+def canvas_box(homographies: Sequence[ArrayLike], shapes: Sequence[Sequence[int]]) -> np.ndarray:
+    r"""The bounding box of every image's corners mapped by its homography, rounded outwards.
 
-    Each image's four corner pixels (0, 0), (w-1, 0), (w-1, h-1), (0, h-1) are mapped by
-    its H; the canvas spans their bounding box, rounded outwards to whole pixels, and T
-    shifts its top-left corner to (0, 0). Warp image i with ``T @ Hs[i]`` so nothing is
-    cropped at negative coordinates (panorama stitching uses the same canvas).
+    The corner pixels (0, 0), (w-1, 0), (w-1, h-1), (0, h-1) of image k (shape (h, w[, C]))
+    are mapped by :math:`H_k` (dividing by the third coordinate), and the box is rounded
+    outwards to whole pixels, so no warped pixel is cut off. :func:`canvas_bounds` turns
+    the box into a canvas. Lesson 09 writes this function as an exercise.
 
     Parameters
     ----------
-    Hs : sequence of (3, 3) array_like
+    homographies : sequence of (3, 3) array_like
+        canvas_from_image homographies, one per image.
+    shapes : sequence of (h, w[, C])
+        The images' shapes.
+
+    Returns
+    -------
+    (2, 2) ndarray
+        ``[[u_min, v_min], [u_max, v_max]]`` in pixels.
+
+    Raises
+    ------
+    DegenerateError
+        If a corner maps to or beyond infinity (the image crosses the line that its H
+        sends to infinity): no finite canvas holds it.
+
+    Examples
+    --------
+    >>> canvas_box([np.eye(3), [[1, 0, 50], [0, 1, -30], [0, 0, 1]]], [(240, 320), (240, 320)])
+    array([[  0., -30.],
+           [369., 239.]])
+    """
+    if len(homographies) != len(shapes) or len(shapes) == 0:
+        raise CamlabInputError(
+            f"shapes: expected one shape per homography (at least one), got {len(shapes)} for "
+            f"{len(homographies)}"
+        )
+    corners = []
+    for i, (H, shape) in enumerate(zip(homographies, shapes, strict=True)):
+        Hm = check_homography(H, f"homographies[{i}]")
+        h, w = int(shape[0]), int(shape[1])
+        c = (
+            np.array([[0, 0, 1], [w - 1, 0, 1], [w - 1, h - 1, 1], [0, h - 1, 1]], dtype=float)
+            @ Hm.T
+        )
+        if np.any(c[:, 2] <= 1e-12 * np.abs(c).max()):
+            raise DegenerateError(
+                f"homographies[{i}]: a corner of image {i} maps to or beyond infinity (the image "
+                f"crosses the line that H sends to infinity), so no finite canvas holds it; crop "
+                f"the image or give output_shape explicitly"
+            )
+        corners.append(c[:, :2] / c[:, 2:])
+    pts = np.vstack(corners)
+    return np.array([np.floor(pts.min(axis=0) + 1e-9), np.ceil(pts.max(axis=0) - 1e-9)])
+
+
+def canvas_bounds(
+    homographies: Sequence[ArrayLike],
+    shapes: Sequence[Sequence[int]],
+    max_pixels: int = 40_000_000,
+) -> CanvasBounds:
+    r"""The translation T and size of a canvas holding every image i warped by ``homographies[i]``.
+
+    The canvas spans :func:`canvas_box` (each image's four corner pixels mapped by its H,
+    rounded outwards to whole pixels), and T shifts its top-left corner to (0, 0). Warp
+    image i with ``T @ homographies[i]`` so nothing is cropped at negative coordinates
+    (panorama stitching uses the same canvas).
+
+    Parameters
+    ----------
+    homographies : sequence of (3, 3) array_like
         canvas_from_image homographies (before the translation).
     shapes : sequence of (h, w[, C])
         The images' shapes.
@@ -353,28 +412,7 @@ def canvas_bounds(
     >>> T[:2, 2], shape
     (array([ 5., -3.]), (10, 20))
     """
-    if len(Hs) != len(shapes) or len(Hs) == 0:
-        raise CamlabInputError(
-            f"Hs, shapes: expected one homography per image shape (at least one), got {len(Hs)} and {len(shapes)}"
-        )
-    corners = []
-    for i, (H, shape) in enumerate(zip(Hs, shapes, strict=True)):
-        Hm = check_homography(H, f"Hs[{i}]")
-        h, w = int(shape[0]), int(shape[1])
-        c = (
-            np.array([[0, 0, 1], [w - 1, 0, 1], [w - 1, h - 1, 1], [0, h - 1, 1]], dtype=float)
-            @ Hm.T
-        )
-        if np.any(c[:, 2] <= 1e-12 * np.abs(c).max()):
-            raise DegenerateError(
-                f"canvas_bounds: a corner of image {i} maps to or beyond infinity under Hs[{i}] (the image "
-                f"crosses the line that H sends to infinity), so no finite canvas holds it; crop the image "
-                f"or give output_shape explicitly"
-            )
-        corners.append(c[:, :2] / c[:, 2:])
-    pts = np.vstack(corners)
-    lo = np.floor(pts.min(axis=0) + 1e-9)
-    hi = np.ceil(pts.max(axis=0) - 1e-9)
+    lo, hi = canvas_box(homographies, shapes)
     w_out, h_out = (hi - lo + 1).astype(int)
     if w_out * h_out > max_pixels:
         raise DegenerateError(

@@ -357,8 +357,8 @@ def stray_reexports(root: Path) -> list[str]:
     module (a package's ``__init__`` is the face of its modules, and ``camlab``'s lazy map reads
     through it: ``camlab.calibrate_camera`` is ``camlab.calibration.calibrate_camera``). A module
     re-exports a name when its ``__all__`` lists an imported name (or, without ``__all__``, when
-    it is a package ``__init__`` importing it). One more home beside those two is allowed
-    (``camlab.calibration.nearest_rotation``, defined in ``camlab.camera``); a third is not."""
+    it is a package ``__init__`` importing it). One more home beside those two is allowed; a
+    third is not."""
     defined: dict[str, set[str]] = {}
     imported: dict[str, dict[str, str]] = {}  # module -> {local name: module it comes from}
     exported: dict[str, set[str]] = {}

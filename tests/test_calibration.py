@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 from camlab import calibration as C
 from camlab._validate import CamlabInputError, DegenerateError
 from camlab.calibration.refinement import BlockNormal, project_views
-from camlab.camera import rotation_from_axis_angle, rotation_from_euler
+from camlab.camera import nearest_rotation, rotation_from_axis_angle, rotation_from_euler
 from camlab.data import load_calibration_set
 from camlab.fixtures.calibration import bundled_calibration
 from camlab.homography import pose_homography
@@ -177,11 +177,11 @@ def test_closed_form_with_distortion_rejects_zero_rounds():
 def test_nearest_rotation_is_a_rotation_and_fixes_rotations(seed):
     rng = np.random.default_rng(seed)
     M = rng.normal(size=(3, 3))
-    R = C.nearest_rotation(M)
+    R = nearest_rotation(M)
     np.testing.assert_allclose(R.T @ R, np.eye(3), atol=1e-12)
     assert np.linalg.det(R) == pytest.approx(1.0)
     Q = rotation_from_axis_angle(rng.normal(size=3))
-    np.testing.assert_allclose(C.nearest_rotation(Q), Q, atol=1e-12)
+    np.testing.assert_allclose(nearest_rotation(Q), Q, atol=1e-12)
     # it is the closest: no nearby rotation does better
     for _ in range(5):
         Q2 = rotation_from_axis_angle(rng.normal(0, 0.05, 3)) @ R

@@ -10,6 +10,7 @@ from camlab import features as ft
 from camlab import homography as hg
 from camlab._validate import CamlabInputError
 from camlab.data import panorama as sd
+from camlab.projective import map_points
 
 
 @pytest.fixture(scope="module")
@@ -166,7 +167,7 @@ def test_orb_matching_uses_hamming(pair):
     r = register_pair(o1, o2, ratio=0.8)
     c = np.array([[0, 0], [639, 0], [639, 479], [0, 479]], float)
     err = np.linalg.norm(
-        hg.map_points(r.H, c) - hg.map_points(full.true_homography(1, 2), c), axis=1
+        map_points(r.H, c) - map_points(full.true_homography(1, 2), c), axis=1
     ).max()
     assert (
         r.accepted and err < 10.0

@@ -100,7 +100,7 @@ def test_rotations_close_to_opencv_and_rectified_cameras_are_parallel(rig, rect)
         assert np.allclose(a @ a.T, np.eye(3), atol=1e-12) and np.isclose(np.linalg.det(a), 1)
     F = ep.fundamental_from_cameras(rect.camera1, rect.camera2)
     assert np.allclose(
-        np.abs(F), np.abs(ep.normalize_fundamental(ep.skew([1.0, 0.0, 0.0]))), atol=1e-12
+        np.abs(F), np.abs(ep.normalise_fundamental(ep.skew([1.0, 0.0, 0.0]))), atol=1e-12
     )
     assert np.isclose(rect.baseline, np.linalg.norm(rig.camera2.centre - rig.camera1.centre))
     assert np.allclose(rect.P2[:, 3], rect.K @ [-rect.baseline, 0, 0])
@@ -193,9 +193,9 @@ def test_uncalibrated_keeps_images_upright_and_inside(rig):
         assert abs(e1 @ e2) / (np.linalg.norm(e1) * np.linalg.norm(e2)) < 0.1
     # rectified epipolar geometry: F' ~ [i]_x
     Hi1, Hi2 = np.linalg.inv(res.H1), np.linalg.inv(res.H2)
-    Fr = ep.normalize_fundamental(Hi2.T @ F @ Hi1)
+    Fr = ep.normalise_fundamental(Hi2.T @ F @ Hi1)
     assert np.allclose(
-        np.abs(Fr), np.abs(ep.normalize_fundamental(ep.skew([1.0, 0, 0]))), atol=1e-6
+        np.abs(Fr), np.abs(ep.normalise_fundamental(ep.skew([1.0, 0, 0]))), atol=1e-6
     )
 
 

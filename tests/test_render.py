@@ -52,7 +52,7 @@ def test_ground_truth_matches_cv2_project_points_with_a_moved_camera():
     assert np.allclose(pts.object_points[:7, 0], np.arange(7) * 0.04)
     assert np.allclose(pts.world, pts.object_points @ board.R.T + board.t)
     assert pts.pattern_size == (7, 5) and pts.visible.all()
-    assert np.allclose(out.truth.camera_center, [0.3, -0.2, -0.8])
+    assert np.allclose(out.truth.centre, [0.3, -0.2, -0.8])
     assert np.allclose(
         out.truth.P @ np.append(pts.world[0], 1), out.truth.P @ np.append(pts.world[0], 1)
     )

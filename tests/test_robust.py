@@ -48,7 +48,7 @@ def test_same_inliers_for_every_seed_at_70_percent_outliers():
     assert (masks[0] & good).sum() >= 0.97 * good.sum() and (masks[0] & ~good).sum() <= 3
 
 
-def test_local_optimization_never_raises_the_cost():
+def test_local_optimisation_never_raises_the_cost():
     src, dst, _ = _synthetic(0.5, seed=3)
     model = HomographyModel(src, dst)
     rng = np.random.default_rng(0)
@@ -56,15 +56,15 @@ def test_local_optimization_never_raises_the_cost():
     H4, ok = model.minimal(idx)
     assert ok[0]
     raw = float(robust.msac_cost(model.residuals(H4)[0], 3.0))
-    H, cost = robust.local_optimization(model, H4[0], 3.0, rng)
+    H, cost = robust.local_optimisation(model, H4[0], 3.0, rng)
     assert cost < raw
     assert cost == pytest.approx(float(robust.msac_cost(model.residuals(H[None])[0], 3.0)))
 
 
-def test_local_optimization_beats_plain_msac_in_cost():
+def test_local_optimisation_beats_plain_msac_in_cost():
     src, dst, _ = _synthetic(0.6, seed=4)
     lo = robust.ransac(HomographyModel(src, dst), 3.0, rng=1)
-    plain = robust.ransac(HomographyModel(src, dst), 3.0, rng=1, local_optimize=False)
+    plain = robust.ransac(HomographyModel(src, dst), 3.0, rng=1, local_optimise=False)
     assert lo.cost <= plain.cost
 
 

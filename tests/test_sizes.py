@@ -20,13 +20,6 @@ MAX_FUNCTION_LINES = 80
 # (camlab.projective), a function by module, classes and enclosing functions
 # (camlab.optimize.levenberg_marquardt, camlab.widgets.projective_camera.resectioning.update).
 EXCEPTIONS = {
-    # i27-twins splits these (issue 27, items 1-2)
-    "camlab.camera": "i27-twins splits rotations, Camera and resection apart (issue 27)",
-    "camlab.homography": "i27-twins splits estimation, properties and the hierarchy (issue 27)",
-    "camlab.epipolar": "i27-twins splits it (issue 27)",
-    "camlab.stitching.pipeline": "i27-twins splits stitching/* (issue 27)",
-    "camlab.stitching.pipeline.stitch": "i27-twins makes `stitch` read as its stages (issue 27)",
-    "camlab.stitching.blending._multiband": "i27-twins splits stitching/* (issue 27)",
     # lesson 00's exercises, grown on main after i27-exercises split the others
     "camlab.exercises.start_here": "lesson 00's exercises (i28-00e) wait for the split the other "
     "lessons' exercises had (one module per exercise, issue 27)",

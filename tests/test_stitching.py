@@ -16,15 +16,15 @@ from camlab._validate import CamlabInputError, DegenerateError
 from camlab.camera import scale_intrinsics
 from camlab.data import panorama as sd
 from camlab.fixtures import panorama as fp
-from camlab.warp import canvas_bounds
+from camlab.projective import map_points
+from camlab.stitching import projections
+from camlab.warp import canvas_bounds, canvas_box
 
 CORNERS = np.array([[0, 0], [639, 0], [639, 479], [0, 479]], float)
 
 
 def corner_error(H, H_true, corners=CORNERS) -> float:
-    return float(
-        np.linalg.norm(hg.map_points(H, corners) - hg.map_points(H_true, corners), axis=1).max()
-    )
+    return float(np.linalg.norm(map_points(H, corners) - map_points(H_true, corners), axis=1).max())
 
 
 @pytest.fixture(scope="module")
@@ -150,9 +150,9 @@ def test_warp_matches_opencv_warp_perspective(half):
     assert (
         np.abs(wi.images[1][inside] - ref[inside]).max() < 1e-4 and not wi.images[1][~inside].any()
     )
-    assert np.allclose(wi.homographies[1], hg.normalize_homography(T @ H))
+    assert np.allclose(wi.homographies[1], hg.normalise_homography(T @ H))
     h1, w1 = imgs[1].shape[:2]
-    quad = hg.map_points(
+    quad = map_points(
         T @ H, [[-0.5, -0.5], [w1 - 0.5, -0.5], [w1 - 0.5, h1 - 0.5], [-0.5, h1 - 0.5]]
     )
     assert wi.masks[1].sum() == pytest.approx(cv2.contourArea(quad.astype(np.float32)), rel=0.01)
@@ -183,9 +183,9 @@ def test_feather_weights_known_values_and_errors():
     )
 )
 def test_canvas_box_agrees_with_canvas_bounds(moves):
-    Hs = [hg.similarity(1.0, th, tx, ty) for tx, ty, th in moves]
+    Hs = [hg.similarity_homography(1.0, th, tx, ty) for tx, ty, th in moves]
     shapes = [(120, 160)] * len(Hs)
-    box = st.canvas_box(Hs, shapes)
+    box = canvas_box(Hs, shapes)
     T, (h, w) = canvas_bounds(Hs, shapes)
     assert np.allclose(T[:2, 2], -box[0])
     assert (w, h) == tuple((box[1] - box[0] + 1).astype(int))
@@ -193,17 +193,18 @@ def test_canvas_box_agrees_with_canvas_bounds(moves):
 
 def test_canvas_box_bad_input():
     with pytest.raises(
-        CamlabInputError, match="shapes: expected one shape per homography, got 1 for 2"
+        CamlabInputError,
+        match=r"shapes: expected one shape per homography \(at least one\), got 1 for 2",
     ):
-        st.canvas_box([np.eye(3), np.eye(3)], [(10, 10)])
-    with pytest.raises(DegenerateError, match="maps to infinity"):
-        st.canvas_box([[[1, 0, 0], [0, 1, 0], [1, 0, 0]]], [(10, 10)])
+        canvas_box([np.eye(3), np.eye(3)], [(10, 10)])
+    with pytest.raises(DegenerateError, match=r"homographies\[0\]: .* maps to or beyond infinity"):
+        canvas_box([[[1, 0, 0], [0, 1, 0], [-0.2, 0, 1]]], [(10, 10)])
 
 
 def _two_constant_images():
     a = np.full((60, 80, 3), 0.2, np.float32)
     b = np.full((60, 80, 3), 0.6, np.float32)
-    return st.warp_images([a, b], [np.eye(3), hg.euclidean(0, 40, 0)])
+    return st.warp_images([a, b], [np.eye(3), hg.euclidean_homography(0, 40, 0)])
 
 
 def test_blend_methods_on_two_constant_images():
@@ -265,7 +266,7 @@ def test_overlap_difference():
     wi = _two_constant_images()
     assert st.overlap_difference(wi) == pytest.approx(0.4)
     apart = st.warp_images(
-        [np.zeros((10, 10, 3), np.float32)] * 2, [np.eye(3), hg.euclidean(0, 50, 0)]
+        [np.zeros((10, 10, 3), np.float32)] * 2, [np.eye(3), hg.euclidean_homography(0, 50, 0)]
     )
     assert st.overlap_difference(apart) == 0.0
 
@@ -278,17 +279,22 @@ def test_gain_compensation_on_scaled_copies():
     assert np.allclose(g, [1, 1.25, 1 / 1.2], rtol=1e-3)
 
 
-def test_cylindrical_warp_geometry():
+def test_cylindrical_canvas_geometry():
+    """A vertical line 140.5 px right of the principal point lands at s * atan(140.5 / f) on the cylinder."""
     K = np.array([[400.0, 0, 159.5], [0, 400.0, 119.5], [0, 0, 1]])
     img = np.zeros((240, 320), np.float32)
-    img[:, 300] = 1.0  # a vertical line 140.5 px right of the centre
-    cyl, mask = st.cylindrical_warp(img, K)
-    u_expected = 159.5 + 400 * np.arctan(140.5 / 400)
-    col = np.argmax(cyl[119])
-    assert abs(col - u_expected) < 1.0
-    assert mask[119, 160] and not mask[0, 0]  # corners of the cylinder see past the image
-    same, _ = st.cylindrical_warp(np.ones((240, 320)), K)
-    assert same[120, 160] == 1.0
+    img[:, 300] = 1.0
+    canvas = projections.make_canvas([K], [np.eye(3)], [img.shape], "cylindrical", 400.0)
+    box = canvas.boxes[0]
+    patch, mask, _ = projections.warp_by_rotation(img, K, np.eye(3), canvas, box)
+    row = int(round(-canvas.origin[1])) - box[0]  # canvas v = 0: the principal point's row
+    u = box[2] + np.argmax(patch[row]) + canvas.origin[0]
+    assert abs(u - 400 * np.arctan(140.5 / 400)) < 1.0
+    assert mask[row].any() and not mask.all()  # the cylinder's box reaches past the image's corners
+    ones, _, _ = projections.warp_by_rotation(
+        np.ones((240, 320), np.float32), K, np.eye(3), canvas, box
+    )
+    assert ones[row, patch.shape[1] // 2] == 1.0
 
 
 # ----------------------------------------------------------------------------- the pipeline and bad input
@@ -303,7 +309,7 @@ def test_stitch_result_structure(result, full):
     accepted = {(p.i, p.j) for p in r.pairs if p.accepted}
     assert {(0, 1), (1, 2), (2, 3)} <= accepted
     for k in range(4):  # each image's corners land inside the canvas
-        c = hg.map_points(r.homographies[k], CORNERS)
+        c = map_points(r.homographies[k], CORNERS)
         assert np.all(c >= -0.5) and np.all(c <= np.array(r.panorama.shape[1::-1]) - 0.5)
 
 
@@ -426,7 +432,7 @@ def test_different_sizes_and_channel_counts(half):
         r = st.stitch([half.images[1], grey], max_features=1500)
     assert r.panorama.ndim == 3 and r.unconnected == []
     # the crop shifts the true homography by the crop offset
-    H_true = half.true_homography(2, 1) @ hg.euclidean(0, 10, 20)
+    H_true = half.true_homography(2, 1) @ hg.euclidean_homography(0, 10, 20)
     H_est = np.linalg.inv(r.homographies[0]) @ r.homographies[1]
     c = np.array([[0, 0], [289, 0], [289, 199], [0, 199]], float)
     assert corner_error(H_est, H_true, c) < 1.0
@@ -452,7 +458,7 @@ def test_loaders_and_truth():
     half = sd.load_panorama_set(scale=0.5)
     S = scale_intrinsics(np.eye(3), 0.5)
     assert np.allclose(
-        half.true_homography(0, 1), hg.normalize_homography(S @ H @ np.linalg.inv(S))
+        half.true_homography(0, 1), hg.normalise_homography(S @ H @ np.linalg.inv(S))
     )
     with pytest.raises(CamlabInputError, match="directory: no truth.json"):
         sd.load_panorama_set("/nonexistent")

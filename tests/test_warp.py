@@ -9,7 +9,7 @@ from conftest import assert_close_to_cv2_warp
 
 from camlab import warp
 from camlab._validate import CamlabInputError, DegenerateError
-from camlab.homography import similarity
+from camlab.homography import similarity_homography
 from camlab.projective import map_points
 
 H = np.array([[0.9, 0.1, 30.0], [-0.05, 0.95, 20.0], [2e-4, 1e-4, 1.0]])
@@ -108,7 +108,7 @@ def test_fill_and_points_behind_horizon():
 
 def test_forward_warp_has_holes_inverse_does_not():
     img = np.full((50, 50), 255, np.uint8)
-    Hs = similarity(2.5, 0.2, 10, 10)
+    Hs = similarity_homography(2.5, 0.2, 10, 10)
     fwd = warp.forward_warp(img, Hs, (150, 150))
     inv = warp.warp_perspective(img, Hs, (150, 150))
     region = (
@@ -125,7 +125,7 @@ def test_forward_warp_has_holes_inverse_does_not():
 
 def test_canvas_contains_whole_image_and_translation_composes():
     img = _image((120, 160, 3))
-    Hneg = similarity(1.0, 0.5, -60, -30)  # rotates parts to negative coordinates
+    Hneg = similarity_homography(1.0, 0.5, -60, -30)  # rotates parts to negative coordinates
     r = warp.warp_to_canvas(img, Hneg)
     corners = np.array([[0, 0], [159, 0], [159, 119], [0, 119]], float)
     mapped = map_points(r.H, corners)

@@ -15,7 +15,7 @@ the camera:
 4. **K in closed form** from the null vector b (:func:`intrinsics_from_b`,
    :func:`intrinsics_from_homographies`);
 5. **poses** :math:`r_1 = \lambda K^{-1} h_1` ... made a true rotation by the nearest
-   rotation (:func:`extrinsics_from_homography`, :func:`nearest_rotation`);
+   rotation (:func:`extrinsics_from_homography`, :func:`camlab.camera.nearest_rotation`);
 6. **radial distortion**, linear least squares for k1, k2 (:func:`initial_radial_distortion`), or,
    with the sign and size right, estimated together with the poses and alternated with the
    closed form (:func:`closed_form_with_distortion`);
@@ -70,7 +70,6 @@ from .zhang import (
     initial_radial_distortion,
     intrinsics_from_b,
     intrinsics_from_homographies,
-    nearest_rotation,
     view_homographies,
     zhang_constraints,
     zhang_v,
@@ -100,7 +99,6 @@ __all__ = [
     "intrinsics_from_homographies",
     "load_calibration",
     "make_synthetic_views",
-    "nearest_rotation",
     "optimal_new_camera_matrix",
     "parse_pattern",
     "projection_uncertainty",

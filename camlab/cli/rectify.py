@@ -46,7 +46,7 @@ def run_rectify(args: argparse.Namespace) -> int:
     from .. import rectification as rc
     from .._files import check_not_an_input, check_output_path, output_folder
     from ..calibration import load_calibration
-    from ..homography import map_points
+    from ..projective import map_points
 
     out_dir = output_folder(args.out_dir, "--out-dir")
     outputs = {

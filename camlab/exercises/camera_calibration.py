@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import calibration, optimize
+from .. import calibration, camera, optimize
 from ..camera import rotation_from_axis_angle
 from ._answers import same_array, shape_problem
 from ._core import Exercise, register_exercise
@@ -186,7 +186,7 @@ register_exercise(
     Exercise(
         name="nearest_rotation",
         lesson="08",
-        reference=calibration.nearest_rotation,
+        reference=camera.nearest_rotation,
         cases=_rotation_cases,
         compare=same_array(rtol=1e-8, atol=1e-10),
         diagnose=_rotation_diagnosis,

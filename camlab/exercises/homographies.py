@@ -7,7 +7,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from .. import homography as hg
-from ..projective import hartley_normalization, map_points
+from ..projective import hartley_normalise, map_points
 from ._answers import same_array, same_up_to_scale, shape_problem
 from ._core import Exercise, Mistake, first_mistake, register_exercise
 
@@ -95,7 +95,7 @@ def _normalisers(src, dst):
         k = np.sqrt(2 / np.mean(np.sum((p - c) ** 2, axis=1)))
         return np.array([[k, 0, -k * c[0]], [0, k, -k * c[1]], [0, 0, 1]])
 
-    return [(hartley_normalization(src), hartley_normalization(dst)), (rms(src), rms(dst))]
+    return [(hartley_normalise(src).T, hartley_normalise(dst).T), (rms(src), rms(dst))]
 
 
 def _wrong_way_round(how, undo):
@@ -179,7 +179,7 @@ def _dlt_unnormalised(src, dst, pick=-1, column=False):
 def _dlt_normalised_parts(src, dst, column=False):
     """T_src, T_dst and the normalised DLT's H_n (from Vt's last row, or its last column: a slip)."""
     src, dst = np.asarray(src, dtype=float), np.asarray(dst, dtype=float)
-    Ts, Td = hartley_normalization(src), hartley_normalization(dst)
+    Ts, Td = hartley_normalise(src).T, hartley_normalise(dst).T
     sn = (np.column_stack([src, np.ones(len(src))]) @ Ts.T)[:, :2]
     dn = (np.column_stack([dst, np.ones(len(dst))]) @ Td.T)[:, :2]
     Vt = np.linalg.svd(_dlt_rows(sn, dn))[2]

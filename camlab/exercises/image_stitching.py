@@ -9,6 +9,7 @@ import numpy as np
 from .. import stitching as st
 from ..camera import rotation_y
 from ..homography import rotation_homography
+from ..warp import canvas_box
 from ._answers import same_array
 from ._core import Exercise, Mistake, first_mistake, register_exercise
 
@@ -102,13 +103,13 @@ register_exercise(
     Exercise(
         name="canvas_box",
         lesson="09",
-        reference=st.canvas_box,
+        reference=canvas_box,
         ndarray_only=True,
         cases=_canvas_cases,
         compare=same_array(atol=1e-9),
         diagnose=_canvas_diagnosis,
         wrong_variants=(
-            (lambda Hs, shapes: st.canvas_box(Hs, shapes)[:, ::-1], "(u, v)"),
+            (lambda Hs, shapes: canvas_box(Hs, shapes)[:, ::-1], "(u, v)"),
             (lambda Hs, shapes: _box(_corners(Hs, shapes, divide=False)), "divide"),
             (lambda Hs, shapes: _box(_corners(Hs, shapes, last=0)), "w - 1"),
             (lambda Hs, shapes: _box(_corners(Hs, shapes, transposed=True)), "H transposed"),

@@ -6,7 +6,7 @@ import numpy as np
 
 from .. import disparity, epipolar
 from ..camera import Camera, rotation_from_axis_angle
-from ..projective import hartley_normalization
+from ..projective import hartley_normalise
 from ._answers import same_array, same_up_to_scale, shape_problem
 from ._core import Exercise, register_exercise
 
@@ -38,7 +38,7 @@ def _eight_point_diagnosis(args, got, expected) -> str:
     x1, x2 = args
     g = np.asarray(got, dtype=float)
     # judge the rank in normalised coordinates, where F's entries are all of order 1
-    T1, T2 = hartley_normalization(x1), hartley_normalization(x2)
+    T1, T2 = hartley_normalise(x1).T, hartley_normalise(x2).T
     s = np.linalg.svd(np.linalg.inv(T2).T @ g @ np.linalg.inv(T1), compute_uv=False)
     if s[2] > 1e-8 * s[0]:
         return (
@@ -48,7 +48,7 @@ def _eight_point_diagnosis(args, got, expected) -> str:
         )
     if same_up_to_scale(g.T, expected, rtol=1e-5):
         return "your F is transposed: with rows (u'u, u'v, u', v'u, v'v, v', u, v, 1) the constraint is x2^T F x1 = 0"
-    raw = epipolar.estimate_fundamental_matrix(x1, x2, normalize=False, plane_tol=0)
+    raw = epipolar.estimate_fundamental_matrix(x1, x2, normalise=False, plane_tol=0)
     if same_up_to_scale(g, raw, rtol=1e-4):
         return (
             "your F matches the 8-point algorithm without normalisation: normalise each image's points "
@@ -63,7 +63,7 @@ def _eight_point_diagnosis(args, got, expected) -> str:
 
 def _no_rank2(x1, x2):
     a, b = np.asarray(x1, float), np.asarray(x2, float)
-    T1, T2 = hartley_normalization(a), hartley_normalization(b)
+    T1, T2 = hartley_normalise(a).T, hartley_normalise(b).T
     an = a @ T1[:2, :2].T + T1[:2, 2]
     bn = b @ T2[:2, :2].T + T2[:2, 2]
     A = np.column_stack(
@@ -115,7 +115,7 @@ register_exercise(
             (lambda x1, x2: epipolar.estimate_fundamental_matrix(x1, x2).T, "transposed"),
             (
                 lambda x1, x2: epipolar.estimate_fundamental_matrix(
-                    x1, x2, normalize=False, plane_tol=0
+                    x1, x2, normalise=False, plane_tol=0
                 ),
                 "normalis",
             ),

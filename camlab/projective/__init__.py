@@ -16,7 +16,7 @@ lines by ``l' = H^{-T} l``. See lesson 06.
 # the errors the functions raise, as pj.CamlabInputError and pj.DegenerateError
 from .._validate import CamlabInputError as CamlabInputError
 from .._validate import DegenerateError as DegenerateError
-from .conditioning import HartleyNormalized, hartley_normalization, hartley_normalize
+from .conditioning import HartleyNormalised, hartley_normalise
 from .plane import (
     LINE_AT_INFINITY,
     clip_line,
@@ -30,8 +30,8 @@ from .plane import (
     map_lines,
     map_points,
     meet,
-    normalize_lines,
-    normalize_points,
+    normalise_lines,
+    normalise_points,
     point_line_distance,
     splits_at_infinity,
     to_homogeneous,
@@ -56,16 +56,15 @@ __all__ = [
     "map_lines",
     "map_points",
     "meet",
-    "normalize_lines",
+    "normalise_lines",
     "splits_at_infinity",
     "VanishingPointFit",
     "segments_pointing_at",
     "vanishing_point_ransac",
-    "normalize_points",
+    "normalise_points",
     "point_line_distance",
     "to_homogeneous",
     "vanishing_point",
-    "HartleyNormalized",
-    "hartley_normalization",
-    "hartley_normalize",
+    "HartleyNormalised",
+    "hartley_normalise",
 ]

@@ -15,14 +15,28 @@ from numpy.typing import ArrayLike
 from .._validate import DegenerateError, as_points
 
 __all__ = [
-    "HartleyNormalized",
-    "hartley_normalization",
-    "hartley_normalize",
+    "HartleyNormalised",
+    "hartley_normalise",
 ]
 
 
-def hartley_normalization(points: ArrayLike, name: str = "points") -> np.ndarray:
-    r"""Hartley's similarity T that centres (N, D) points and scales their mean distance to :math:`\sqrt D`.
+class HartleyNormalised(NamedTuple):
+    r"""(N, D) points after Hartley's conditioning, and the (D + 1, D + 1) similarity T that did it.
+
+    Attributes
+    ----------
+    points : (N, D) ndarray
+        Centred, mean distance :math:`\sqrt D`.
+    T : (D + 1, D + 1) ndarray
+        :math:`\tilde x_n = T \tilde x`; undo a DLT estimate with :math:`T^{-1}`.
+    """
+
+    points: np.ndarray
+    T: np.ndarray
+
+
+def hartley_normalise(points: ArrayLike, name: str = "points") -> HartleyNormalised:
+    r"""Hartley's similarity T that centres (N, D) points and scales their mean distance to :math:`\sqrt D`, and the points it makes.
 
     .. math:: T = \begin{pmatrix} s I_D & -s \bar x \\ 0^\top & 1 \end{pmatrix},
               \quad s = \frac{\sqrt D}{\operatorname{mean}_i \| x_i - \bar x \|}
@@ -41,8 +55,10 @@ def hartley_normalization(points: ArrayLike, name: str = "points") -> np.ndarray
 
     Returns
     -------
-    (D + 1, D + 1) ndarray
-        T, acting on homogeneous points: :math:`\tilde x_n = T \tilde x`.
+    HartleyNormalised
+        ``(points, T)``: the normalised (N, D) points :math:`T \tilde x`, and T, the
+        (D + 1, D + 1) similarity acting on homogeneous points. Take ``.T`` when only the
+        similarity is wanted.
 
     Raises
     ------
@@ -51,7 +67,12 @@ def hartley_normalization(points: ArrayLike, name: str = "points") -> np.ndarray
 
     Examples
     --------
-    >>> T = hartley_normalization([[0, 0], [2, 0], [2, 2], [0, 2]])
+    >>> pn, T = hartley_normalise([[0, 0], [2, 0], [2, 2], [0, 2]])
+    >>> pn
+    array([[-1., -1.],
+           [ 1., -1.],
+           [ 1.,  1.],
+           [-1.,  1.]])
     >>> from camlab.projective import map_points
     >>> map_points(T, [[0, 0], [2, 2]]).round(6)
     array([[-1., -1.],
@@ -69,34 +90,4 @@ def hartley_normalization(points: ArrayLike, name: str = "points") -> np.ndarray
     T = np.eye(d + 1)
     T[:d, :d] *= s
     T[:d, d] = -s * c
-    return T
-
-
-class HartleyNormalized(NamedTuple):
-    r"""(N, D) points after Hartley's conditioning, and the (D + 1, D + 1) similarity T that did it.
-
-    Attributes
-    ----------
-    points : (N, D) ndarray
-        Centred, mean distance :math:`\sqrt D`.
-    T : (D + 1, D + 1) ndarray
-        :math:`\tilde x_n = T \tilde x`; undo a DLT estimate with :math:`T^{-1}`.
-    """
-
-    points: np.ndarray
-    T: np.ndarray
-
-
-def hartley_normalize(points: ArrayLike, name: str = "points") -> HartleyNormalized:
-    """Apply :func:`hartley_normalization`: ``(T x, T)`` for (N, D) points.
-
-    >>> hartley_normalize([[0, 0], [2, 0], [2, 2], [0, 2]]).points
-    array([[-1., -1.],
-           [ 1., -1.],
-           [ 1.,  1.],
-           [-1.,  1.]])
-    """
-    p = as_points(points, (2, 3), name).array
-    T = hartley_normalization(p, name)
-    d = p.shape[1]
-    return HartleyNormalized(p * T[0, 0] + T[:d, d], T)
+    return HartleyNormalised(p * T[0, 0] + T[:d, d], T)

@@ -24,9 +24,9 @@ __all__ = [
     "map_lines",
     "map_points",
     "meet",
-    "normalize_lines",
+    "normalise_lines",
     "splits_at_infinity",
-    "normalize_points",
+    "normalise_points",
     "point_line_distance",
     "to_homogeneous",
 ]
@@ -277,10 +277,10 @@ def is_ideal(points_h: ArrayLike, tol: float = 1e-12) -> np.ndarray:
     return bool(ok[0]) if single else ok
 
 
-def normalize_points(points_h: ArrayLike) -> np.ndarray:
+def normalise_points(points_h: ArrayLike) -> np.ndarray:
     """Scale homogeneous points to w = 1, and ideal points to a unit (x, y) with w = 0.
 
-    >>> normalize_points([[2, 4, 2], [3, 4, 0]])
+    >>> normalise_points([[2, 4, 2], [3, 4, 0]])
     array([[1. , 2. , 1. ],
            [0.6, 0.8, 0. ]])
     """
@@ -292,12 +292,12 @@ def normalize_points(points_h: ArrayLike) -> np.ndarray:
     return out[0] if single else out
 
 
-def normalize_lines(lines: ArrayLike) -> np.ndarray:
+def normalise_lines(lines: ArrayLike) -> np.ndarray:
     r"""Scale lines so :math:`a^2 + b^2 = 1`; then :math:`l \cdot (x, y, 1)` is the signed distance.
 
     The line at infinity (0, 0, c) becomes (0, 0, 1).
 
-    >>> normalize_lines([3, 4, 10])
+    >>> normalise_lines([3, 4, 10])
     array([0.6, 0.8, 2. ])
     """
     ln, single = _as_lines(lines, "lines")
@@ -471,7 +471,7 @@ def horizon(vp1: ArrayLike, vp2: ArrayLike) -> np.ndarray:
     """
     a, sa = _as_homogeneous_2d(vp1, "vp1")
     b, sb = _as_homogeneous_2d(vp2, "vp2")
-    return normalize_lines(
+    return normalise_lines(
         _cross(
             a,
             b,

@@ -13,8 +13,8 @@ from numpy.typing import ArrayLike
 
 from .._validate import CamlabInputError, DegenerateError, check_finite
 from ..robust import MinimalModels, PairModel, ransac
-from .conditioning import hartley_normalization
-from .plane import normalize_lines, normalize_points, to_homogeneous
+from .conditioning import hartley_normalise
+from .plane import normalise_lines, normalise_points, to_homogeneous
 
 __all__ = [
     "SegmentsModel",
@@ -66,9 +66,9 @@ def vanishing_point(segments: ArrayLike) -> np.ndarray:
         raise DegenerateError(
             f"segments: segment {int(np.argmin(lengths))} has zero length; it defines no line"
         )
-    T = hartley_normalization(s.reshape(-1, 2), "segments")
+    T = hartley_normalise(s.reshape(-1, 2), "segments").T
     ends = [to_homogeneous(s[:, k]) @ T.T for k in (0, 1)]
-    lines = normalize_lines(np.cross(ends[0], ends[1]))
+    lines = normalise_lines(np.cross(ends[0], ends[1]))
     _, sv, vt = np.linalg.svd(lines)
     if sv[1] < 1e-9 * sv[0]:
         raise DegenerateError(
@@ -77,7 +77,7 @@ def vanishing_point(segments: ArrayLike) -> np.ndarray:
     v = np.linalg.solve(T, vt[-1])  # undo the conditioning: v = T^-1 v_n
     if abs(v[2]) <= 1e-12 * np.linalg.norm(v[:2]):
         v[2] = 0.0  # parallel to round-off: the vanishing point is ideal, not at 1e16 px
-    return normalize_points(v)
+    return normalise_points(v)
 
 
 def pointing_angles(points_h: ArrayLike, starts: ArrayLike, ends: ArrayLike) -> np.ndarray:

@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validate import CamlabInputError, as_points
-from ..camera import Camera, CameraPair
+from ..camera import Camera, CameraPair, nearest_rotation
 
 __all__ = [
     "StereoCalibration",
@@ -124,7 +124,7 @@ def stereo_calibrate(
     c2 = cal.calibrate_camera(X, views2, image_size)
     Rs = [R2 @ R1.T for R1, R2 in zip(c1.R, c2.R, strict=True)]
     ts = np.array([t2 - Rv @ t1 for Rv, t1, t2 in zip(Rs, c1.tvecs, c2.tvecs, strict=True)])
-    R0 = cal.nearest_rotation(np.mean(Rs, axis=0))
+    R0 = nearest_rotation(np.mean(Rs, axis=0))
     t0 = np.median(ts, axis=0)
     V = len(views1)
     Xv = np.broadcast_to(X, (V,) + X.shape)

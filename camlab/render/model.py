@@ -102,7 +102,7 @@ class GroundTruth:
     depth: np.ndarray | None
 
     @property
-    def camera_center(self) -> np.ndarray:
+    def centre(self) -> np.ndarray:
         """The camera's position in the world, ``-R^T t``."""
         return -self.R.T @ self.t
 

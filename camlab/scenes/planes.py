@@ -154,12 +154,12 @@ def textured_plane(
     R: ArrayLike | None = None,
     t: ArrayLike = (0, 0, 0),
     height: float | None = None,
-    centered: bool = True,
+    centred: bool = True,
     name: str = "plane",
 ) -> Plane:
     """A rectangle ``width`` metres wide showing ``texture``; height from the texture's aspect by default.
 
-    ``centered``: the plane frame's origin is the rectangle's centre (else its top-left corner).
+    ``centred``: the plane frame's origin is the rectangle's centre (else its top-left corner).
     """
     tex = as_texture(texture)
     w = check_positive(width, "width", "metres")
@@ -169,7 +169,7 @@ def textured_plane(
         else w * tex.shape[0] / tex.shape[1]
     )
     R, t = check_pose(R, t, name)
-    extent = (-w / 2, -h / 2, w / 2, h / 2) if centered else (0.0, 0.0, w, h)
+    extent = (-w / 2, -h / 2, w / 2, h / 2) if centred else (0.0, 0.0, w, h)
     return Plane(tex, extent, R, t, name=name)
 
 
@@ -181,7 +181,7 @@ def checkerboard(
     t: ArrayLike = (0, 0, 0),
     margin: float = 1.0,
     px_per_square: int = 48,
-    colors: tuple[float, float] = (0.05, 0.95),
+    colours: tuple[float, float] = (0.05, 0.95),
     name: str = "board",
 ) -> Plane:
     """A checkerboard with ``pattern_size = (cols, rows)`` inner corners and ``square`` metres per square.
@@ -212,7 +212,7 @@ def checkerboard(
     R, t = check_pose(R, t, name)
     n = int(px_per_square)
     m = int(round(margin * n))
-    dark, light = colors
+    dark, light = colours
     sq = (np.add.outer(np.arange(rows + 1), np.arange(cols + 1)) % 2).astype(
         np.float32
     )  # 0 = dark at (0, 0)
@@ -265,11 +265,11 @@ def text_page(
 
 
 def box(
-    center: ArrayLike,
+    centre: ArrayLike,
     size: ArrayLike,
     *,
     R: ArrayLike | None = None,
-    colors: Sequence[float] | None = None,
+    colours: Sequence[float] | None = None,
     texture: str = "noise",
     texels: int = 64,
     rng: np.random.Generator | int | None = 0,
@@ -279,16 +279,16 @@ def box(
 
     Parameters
     ----------
-    center : (3,) world position, metres.
+    centre : (3,) world position, metres.
     size : (3,) edge lengths along the box's own x, y, z axes, metres.
     R : (3, 3) world_from_box rotation; None (the default) is the identity.
-    colors : six greys in [0, 1] (faces +x, -x, +y, -y, +z, -z); distinct shades by default.
+    colours : six greys in [0, 1] (faces +x, -x, +y, -y, +z, -z); distinct shades by default.
     texture : "noise" (random texture on each face: good for stereo matching) or "flat".
     rng : seed or Generator for the noise texture (deterministic by default).
 
     Faces get names ``f"{name}+x"`` ... and their 4 corners as named points.
     """
-    c = check_matrix(center, (3,), "center")
+    c = check_matrix(centre, (3,), "centre")
     sz = check_matrix(size, (3,), "size")
     if np.any(sz <= 0):
         raise CamlabInputError(
@@ -297,7 +297,7 @@ def box(
     Rb = np.eye(3) if R is None else check_rotation(R, f"{name} R")
     if texture not in ("noise", "flat"):
         raise CamlabInputError(f"texture: expected 'noise' or 'flat', got {texture!r}")
-    shades = list(colors) if colors is not None else [0.75, 0.45, 0.6, 0.3, 0.85, 0.55]
+    shades = list(colours) if colours is not None else [0.75, 0.45, 0.6, 0.3, 0.85, 0.55]
     rng = np.random.default_rng(rng)
     half = sz / 2
     faces = []

@@ -24,9 +24,10 @@ The stages, each a function you can call, inspect and replace (lesson 09):
    (Burt & Adelson's Laplacian-pyramid blending: low frequencies blended over wide
    regions, fine detail over narrow ones, so neither seams nor ghosts).
 
-:func:`stitch` runs them all. For wide rotations with a known focal length,
-``projection="cylindrical"`` first maps every image onto a cylinder
-(:func:`cylindrical_warp`), where a turning camera becomes a sliding one.
+:func:`stitch` runs them all (:mod:`camlab.stitching.pipeline`). For a camera that turns
+through a wide angle, ``projection="cylindrical"`` or ``"spherical"`` lays the images on a
+cylinder or a sphere instead of a plane (:mod:`camlab.stitching.projections`), where a
+turning camera becomes a sliding one.
 
 Why a homography? A camera that only rotates about its centre sees every point along
 the same ray whatever its depth, :math:`x_j \sim K R_j R_i^T K^{-1} x_i`; a planar
@@ -57,7 +58,7 @@ from .registration import (
     prepare_images,
     register_pair,
 )
-from .warping import WarpedImages, canvas_box, cylindrical_warp, feather_weights, warp_images
+from .warping import WarpedImages, feather_weights, warp_images
 
 __all__ = [
     "BLENDS",
@@ -68,8 +69,6 @@ __all__ = [
     "StitchResult",
     "WarpedImages",
     "blend",
-    "canvas_box",
-    "cylindrical_warp",
     "dp_seam_masks",
     "feather_weights",
     "largest_rectangle",

@@ -363,6 +363,23 @@ def laplacian_blend(
     )
 
 
+def _seam_work_box(
+    m: np.ndarray, r0: int, c0: int, shape: tuple, step: int, pad: int
+) -> tuple[int, int, int, int]:
+    """(y0, y1, x0, x1): the bounding box on the canvas of a seam mask ``m`` placed at (r0, c0),
+    padded by the filters' reach and aligned to the coarsest grid; outside it the blurred seam
+    mask is zero, so blending there changes nothing."""
+    h, w = shape
+    rows, cols = np.flatnonzero(m.any(axis=1)) + r0, np.flatnonzero(m.any(axis=0)) + c0
+    y0, x0 = max(0, (rows[0] - pad) // step * step), max(0, (cols[0] - pad) // step * step)
+    y1, x1 = min(h, rows[-1] + 1 + pad), min(w, cols[-1] + 1 + pad)
+    if y1 < h:
+        y1 = min(h, y0 + -(-(y1 - y0) // step) * step)
+    if x1 < w:
+        x1 = min(w, x0 + -(-(x1 - x0) // step) * step)
+    return y0, y1, x0, x1
+
+
 def _multiband(
     images: list,
     masks: list,
@@ -401,15 +418,7 @@ def _multiband(
         if not m.any():
             continue
         union[r0:r1, c0:c1] |= m
-        # Work in the seam mask's bounding box (aligned to the coarsest grid, padded by the
-        # filters' reach): outside it the blurred seam mask is zero, so nothing changes.
-        rows, cols = np.flatnonzero(m.any(axis=1)) + r0, np.flatnonzero(m.any(axis=0)) + c0
-        y0, x0 = max(0, (rows[0] - pad) // step * step), max(0, (cols[0] - pad) // step * step)
-        y1, x1 = min(h, rows[-1] + 1 + pad), min(w, cols[-1] + 1 + pad)
-        if y1 < h:
-            y1 = min(h, y0 + -(-(y1 - y0) // step) * step)
-        if x1 < w:
-            x1 = min(w, x0 + -(-(x1 - x0) // step) * step)
+        y0, y1, x0, x1 = _seam_work_box(m, r0, c0, (h, w), step, pad)
         # the image's box placed in that aligned box (each may stick out of the other)
         mk0 = np.zeros((y1 - y0, x1 - x0), np.float32)
         ys, xs = (

@@ -21,7 +21,8 @@ per overlapping pair; this module turns them into one camera per image (Brown & 
 4. :func:`wave_correct`: turn the world so the cameras' x axes lie in one horizontal plane
    (the horizon is straight instead of a wave).
 
-:func:`estimate_cameras` runs the four steps.
+:func:`estimate_cameras` runs the four steps; :func:`adjust_homographies` refines the
+homographies of a flat scene instead (:mod:`camlab.stitching.model` chooses between them).
 """
 
 from __future__ import annotations

@@ -1,19 +1,27 @@
 r"""The whole panorama: :func:`stitch` runs every stage and says what it chose and why.
 
-1. Features (SIFT) on every image; the same photo given twice is reported and left out.
-2. :func:`camlab.stitching.match_graph`: pairwise RANSAC, reference image, spanning tree.
-3. The model. A **rotation** (:func:`camlab.stitching.cameras.estimate_cameras`: focal from
-   the homographies, spanning-tree rotations, bundle adjustment, wave correction) explains
-   a camera turning about its centre. If its residual is large, or the focal comes out
-   longer than 2 image diagonals (views under about 30 degrees wide, where a flat scene
-   passes for a rotation), the **plane** model is tried: the images are taken as views of a plane (a map, a document, a facade from several positions) and every
-   homography is refined together (:func:`camlab.stitching.cameras.adjust_homographies`), and
-   wins if its residual is below 0.7 times the rotation's. If neither fits, the camera moved in front of a 3-D scene: a warning gives both residuals.
-4. The canvas (:mod:`camlab.stitching.projections`): planar, cylindrical or spherical;
-   ``"auto"`` takes the plane for planar scenes and fields of view up to 100 degrees, the
-   sphere beyond.
-5. Exposure gains, seams and multi-band blending (:func:`camlab.stitching.blend`), then
-   optionally a crop to the largest rectangle without empty canvas.
+Each stage is one function below, called in this order by :func:`stitch`:
+
+1. ``_prepare``: the images as float32; the same photo given twice is reported and left out.
+2. ``_features``: SIFT on every image, on a copy of ``registration_megapixels``.
+3. ``_register``: :func:`camlab.stitching.match_graph`, pairwise RANSAC, reference image,
+   spanning tree; images no accepted pair reaches are named in a warning.
+4. :func:`camlab.stitching.model.choose_model`: a **rotation** (:func:`camlab.stitching.cameras.estimate_cameras`: focal
+   from the homographies, spanning-tree rotations, bundle adjustment, wave correction)
+   explains a camera turning about its centre. If its residual is large, or the focal comes
+   out longer than 2 image diagonals (views under about 30 degrees wide, where a flat scene
+   passes for a rotation), the **plane** model is tried: the images are views of a plane (a
+   map, a document, a facade from several positions) and every homography is refined
+   together (:func:`camlab.stitching.cameras.adjust_homographies`); it wins if its residual
+   is below 0.7 times the rotation's. If neither fits, the camera moved in front of a 3-D
+   scene: a warning gives both residuals.
+5. ``_choose_projection``: the canvas (:mod:`camlab.stitching.projections`), planar,
+   cylindrical or spherical; ``"auto"`` takes the plane for planar scenes and fields of view
+   up to 100 degrees, the sphere beyond.
+6. ``_warp``: every image onto the canvas (:mod:`camlab.stitching.warping`), with its outline.
+7. ``_composite``: exposure gains, seams and multi-band blending (:func:`camlab.stitching.blend`).
+8. ``_result``: optionally a crop to the largest rectangle without empty canvas
+   (:func:`largest_rectangle`), and the per-image lists of :class:`StitchResult`.
 """
 
 from __future__ import annotations
@@ -26,13 +34,26 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .. import features as _feat
 from .._validate import CamlabInputError, DegenerateError, check_intrinsics
+from ..projective import map_points
 from .blending import BLENDS, blend, dp_seam_masks, gain_compensation
-from .cameras import adjust_homographies, estimate_cameras, estimate_focal, inlier_matches
-from .projections import PROJECTIONS, canvas_points, make_canvas, warp_to_canvas
-from .registration import match_graph, prepare_images
-from .warping import WarpedImages, feather_weights, warp_images
+from .model import ModelChoice, choose_model
+from .projections import (
+    PROJECTIONS,
+    border_ring,
+    field_of_view,
+    make_canvas,
+    outline_on_canvas,
+)
+from .registration import (
+    MatchGraph,
+    detect_at_resolution,
+    match_graph,
+    prepare_images,
+    repeated_photos,
+    second_planes,
+)
+from .warping import WarpedImages, warp_images, warp_images_by_rotation
 
 __all__ = ["PROJECTION_CHOICES", "Rectangle", "StitchResult", "largest_rectangle", "stitch"]
 
@@ -100,46 +121,6 @@ class StitchResult(NamedTuple):
     timings: dict
 
 
-def _duplicates(imgs: list) -> dict:
-    """{later: earlier} for images that are the same photo (same size, mean difference < 1 grey level)."""
-    small = [im[::8, ::8] for im in imgs]
-    out = {}
-    for j in range(len(imgs)):
-        for i in range(j):
-            if (
-                i not in out
-                and small[i].shape == small[j].shape
-                and float(np.abs(small[i] - small[j]).mean()) < 1 / 255
-            ):
-                out[j] = i
-                break
-    return out
-
-
-def _detect(im: np.ndarray, method: str, max_features: int, mask, megapixels) -> _feat.Features:
-    """Features of ``im`` found on a copy of at most ``megapixels``, positions in ``im``'s pixels.
-
-    Resizing by s maps pixel centres u to s (u + 1/2) - 1/2, so back is (u' + 1/2)/s - 1/2.
-    """
-    import cv2
-
-    h, w = im.shape[:2]
-    s = 1.0 if megapixels is None else min(1.0, float(np.sqrt(megapixels * 1e6 / (h * w))))
-    if s > 0.95:
-        return _feat.detect_features(im, method, max_features, mask=mask)
-    size = (max(16, int(round(w * s))), max(16, int(round(h * s))))
-    small = cv2.resize(im, size, interpolation=cv2.INTER_AREA)
-    m = (
-        None
-        if mask is None
-        else cv2.resize(mask.astype(np.uint8), size, interpolation=cv2.INTER_NEAREST) > 0
-    )
-    f = _feat.detect_features(small, method, max_features, mask=m)
-    sx, sy = size[0] / w, size[1] / h
-    pts = np.c_[(f.points[:, 0] + 0.5) / sx - 0.5, (f.points[:, 1] + 0.5) / sy - 0.5]
-    return f._replace(points=pts, sizes=f.sizes / s)
-
-
 def _names(names, n: int) -> list:
     if names is None:
         return [f"image {k}" for k in range(n)]
@@ -147,50 +128,6 @@ def _names(names, n: int) -> list:
     if len(out) != n:
         raise CamlabInputError(f"names: expected one name per image ({n}), got {len(out)}")
     return out
-
-
-def _field_of_view(Ks: list, Rs: list, shapes: list) -> tuple[float, float]:
-    """Horizontal and vertical extent (degrees) of all images on the sphere."""
-    from .projections import footprint
-
-    boxes = np.array(
-        [footprint(K, R, sh, "spherical", 1.0) for K, R, sh in zip(Ks, Rs, shapes, strict=True)]
-    )
-    return (
-        float(np.degrees(boxes[:, 1, 0].max() - boxes[:, 0, 0].min())),
-        float(np.degrees(boxes[:, 1, 1].max() - boxes[:, 0, 1].min())),
-    )
-
-
-def _outline_curved(K, R, shape, canvas) -> np.ndarray:
-    u, v = canvas_points(_ring(shape), K, R, canvas.projection, canvas.s)
-    return np.c_[u - canvas.origin[0], v - canvas.origin[1]]
-
-
-def _warp_curved(imgs: list, Ks: list, Rs: list, canvas) -> WarpedImages:
-    """Every image warped into its own box of a curved canvas; a box that wraps around a
-    full-turn canvas (columns modulo w) becomes a full-width one."""
-    h, w = canvas.shape
-    out_i, out_m, out_w, boxes = [], [], [], []
-    for im, K, R, box in zip(imgs, Ks, Rs, canvas.boxes, strict=True):
-        patch, mask, wgt = warp_to_canvas(
-            im, K, R, canvas, box, feather_weights(im.shape).astype(np.float32)
-        )
-        wgt = np.where(mask, np.maximum(wgt, 1e-3), 0).astype(np.float32)
-        r0, r1, c0, c1 = box
-        if c0 < 0 or c1 > w:
-            cols = np.arange(c0, c1) % w
-            parts = []
-            for a in (patch, mask, wgt):
-                full = np.zeros((r1 - r0, w) + a.shape[2:], a.dtype)
-                full[:, cols] = a
-                parts.append(full)
-            (patch, mask, wgt), (c0, c1) = parts, (0, w)
-        out_i.append(patch)
-        out_m.append(mask)
-        out_w.append(wgt)
-        boxes.append((r0, r1, c0, c1))
-    return WarpedImages(out_i, out_m, out_w, boxes, (h, w), [None] * len(imgs), np.eye(3))
 
 
 def _warn_left_out(graph, lost: list, label: list) -> None:
@@ -211,45 +148,21 @@ def _warn_left_out(graph, lost: list, label: list) -> None:
                 f"panorama's photos: a separate panorama; stitch them on their own"
             )
     warnings.warn(
-        f"stitch: left out of the panorama: {'; '.join(reasons)}", UserWarning, stacklevel=3
+        f"stitch: left out of the panorama: {'; '.join(reasons)}", UserWarning, stacklevel=4
     )
 
 
-def _warn_second_plane(graph, names: list, rng) -> None:
-    """Warn if an accepted pair's outliers follow a second homography: two planes, so the camera moved (parallax).
-
-    A camera that only turns maps every scene point by one homography; if the matches that
-    the first homography rejects agree on another one (at least 10 of them, and more than
-    8 + 0.3 of the outliers, the Brown & Lowe test), the scene has depth and the centre moved.
-    """
-    from ..homography import ransac_homography, transfer_error
-
-    rng = np.random.default_rng(1) if rng is None else rng
-    for (i, j), p in sorted(graph.pairs.items()):
-        out = ~p.inliers
-        n = int(out.sum())
-        if not p.accepted or n < 10:
-            continue
-        try:
-            r2 = ransac_homography(p.matches.src[out], p.matches.dst[out], 3.0, 0.99, 300, rng)
-        except (DegenerateError, CamlabInputError):
-            continue
-        k2 = int(r2.inliers.sum())
-        if k2 >= max(10, 8 + 0.3 * n):
-            off = float(
-                np.median(
-                    transfer_error(
-                        p.H, p.matches.src[out][r2.inliers], p.matches.dst[out][r2.inliers]
-                    )
-                )
-            )
-            warnings.warn(
-                f"stitch: {names[i]!r}-{names[j]!r}: {k2} matches follow a second plane, {off:.1f} px "
-                f"(median) off the first homography: the camera moved between the photos (parallax), "
-                f"so no single homography or rotation aligns everything; expect ghosts of near objects",
-                UserWarning,
-                stacklevel=3,
-            )
+def _warn_second_plane(graph: MatchGraph, names: list, rng) -> None:
+    """Warn about each accepted pair whose outliers follow a second plane (:func:`second_planes`)."""
+    for p in second_planes(graph, rng):
+        warnings.warn(
+            f"stitch: {names[p.i]!r}-{names[p.j]!r}: {p.matches} matches follow a second plane, "
+            f"{p.offset:.1f} px (median) off the first homography: the camera moved between the "
+            f"photos (parallax), so no single homography or rotation aligns everything; expect "
+            f"ghosts of near objects",
+            UserWarning,
+            stacklevel=3,
+        )
 
 
 def _warn_full_turn(Rs: list, names: list) -> None:
@@ -382,39 +295,97 @@ def stitch(
         raise CamlabInputError(
             f"projection: expected one of {PROJECTION_CHOICES}, got {projection!r}"
         )
+    Kfix = None if K is None else check_intrinsics(K, "K")
     times: dict = {}
     t0 = time.perf_counter()
+    photos = _prepare(images, names)
+    feats = _features(photos, method, max_features, registration_megapixels)
+    times["features"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    graph = _register(feats, photos, ratio, mutual, threshold, min_inliers, rng, reference)
+    times["matching"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    fit = choose_model(
+        graph,
+        [im.shape for im in photos.images],
+        Kfix,
+        projection,
+        (rotation_tol, plane_tol),
+        _coarseness(photos.images, registration_megapixels),
+    )
+    _warn_second_plane(graph, photos.names, rng)
+    if fit.model == "rotation":
+        _warn_full_turn(fit.Rs, [photos.names[k] for k in fit.keep])
+    chosen = _choose_projection(projection, fit, [photos.images[k].shape for k in fit.keep])
+    times["estimation"] = time.perf_counter() - t0 - fit.bundle_seconds
+    times["bundle_adjustment"] = fit.bundle_seconds
+    t0 = time.perf_counter()
+    warped, outlines = _warp(photos, fit, chosen, max_pixels)
+    times["warping"] = time.perf_counter() - t0
+    pano, gains = _composite(
+        warped, fit.keep.index(graph.reference), blend_method, compensate_gains, levels, times
+    )
+    return _result(photos, graph, fit, chosen, warped, outlines, pano, gains, crop, times)
+
+
+# --------------------------------------------------------------------------- the stages of stitch
+
+
+class _Photos(NamedTuple):
+    """The inputs as :func:`prepare_images` makes them, and what stitch must remember about them."""
+
+    images: list  # float32 (h, w, 3), or (h, w, 1) if every input is grey
+    names: list  # for messages
+    all_uint8: bool  # the panorama comes back as uint8
+    grey: bool  # stitched on one channel, repeated at the end
+    repeats: dict  # {later: earlier} for the same photo given twice (left out)
+
+
+def _prepare(images: Sequence[ArrayLike], names: Sequence[str] | None) -> _Photos:
+    """Stage 1: the images as float32 (one channel if all are grey); a repeat is named, left out."""
     imgs = prepare_images(images)
     all_uint8 = all(np.asarray(im).dtype == np.uint8 for im in images)
     # all grey: stitch one channel (a third of the warping and blending) and repeat it at the end
     grey = all(np.ndim(im) == 2 or np.shape(im)[2] == 1 for im in images)
     if grey:
         imgs = [np.ascontiguousarray(im[..., :1]) for im in imgs]
-    n = len(imgs)
-    label = _names(names, n)
-    Kfix = None if K is None else check_intrinsics(K, "K")
-    dup = _duplicates(imgs)
+    label = _names(names, len(imgs))
+    dup = repeated_photos(imgs)
     if dup:
         warnings.warn(
             "stitch: "
             + "; ".join(f"{label[j]!r} is the same photo as {label[i]!r}" for j, i in dup.items())
             + "; the repeat is left out",
             UserWarning,
-            stacklevel=2,
+            stacklevel=3,
         )
-    masks_feat = [
-        None if k not in dup else np.zeros(im.shape[:2], bool) for k, im in enumerate(imgs)
+    return _Photos(imgs, label, all_uint8, grey, dup)
+
+
+def _features(photos: _Photos, method: str, max_features: int, megapixels: float | None) -> list:
+    """Stage 2: features of every image (none for a repeat), found on copies of ``megapixels``."""
+    return [
+        detect_at_resolution(
+            im,
+            method,
+            max_features,
+            None if k not in photos.repeats else np.zeros(im.shape[:2], bool),
+            megapixels,
+        )
+        for k, im in enumerate(photos.images)
     ]
-    feats = [
-        _detect(im, method, max_features, masks_feat[k], registration_megapixels)
-        for k, im in enumerate(imgs)
-    ]
-    times["features"] = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    # refine=False: bundle adjustment refines every pair together afterwards. 500 samples, as Brown &
-    # Lowe: a pair that passes the inlier test (over 30% inliers) is found with probability
-    # 1 - (1 - 0.3^4)^500 > 98% even at that limit, and real overlaps have far more inliers; pairs
-    # that do not overlap (which never stop early) cost half as much.
+
+
+def _register(
+    feats: list, photos: _Photos, ratio, mutual, threshold, min_inliers, rng, reference
+) -> MatchGraph:
+    """Stage 3: the match graph; raises if under two images connect, warns about those left out.
+
+    refine=False: bundle adjustment refines every pair together afterwards. 500 samples, as
+    Brown & Lowe: a pair that passes the inlier test (over 30% inliers) is found with
+    probability 1 - (1 - 0.3^4)^500 > 98% even at that limit, and real overlaps have far more
+    inliers; pairs that do not overlap (which never stop early) cost half as much.
+    """
     graph = match_graph(
         feats,
         ratio=ratio,
@@ -428,9 +399,8 @@ def stitch(
         confidence=0.995,
         max_iters=500,
     )
-    times["matching"] = time.perf_counter() - t0
-    keep = [k for k in range(n) if graph.homographies[k] is not None]
-    if len(keep) < 2:
+    label = photos.names
+    if sum(H is not None for H in graph.homographies) < 2:
         rows = "; ".join(
             f"{label[r.i]!r}-{label[r.j]!r}: {r.matches} matches, {r.inliers} inliers ({r.reason})"
             for r in graph.report()
@@ -439,146 +409,130 @@ def stitch(
             f"stitch: no two images could be registered (at most one usable image), nothing to "
             f"stitch. Pairs: {rows}"
         )
-    _warn_left_out(graph, [k for k in graph.unconnected if k not in dup], label)
+    _warn_left_out(graph, [k for k in graph.unconnected if k not in photos.repeats], label)
+    return graph
 
-    t0 = time.perf_counter()
-    shapes = [im.shape for im in imgs]
-    diag = float(np.median([np.hypot(*sh[:2]) for sh in shapes]))
-    f0 = estimate_focal({key: p.H for key, p in graph.pairs.items() if p.accepted}, shapes)
-    # views under about 30 degrees wide: a flat scene passes for a rotation (and its adjustment crawls)
-    telephoto = Kfix is None and f0 > 2 * diag and projection in ("auto", "planar")
-    est = None if telephoto else estimate_cameras(graph, shapes, K=Kfix)
-    rot_rms = np.inf if est is None else est.bundle.rms_after
-    # residuals are in full-resolution pixels; features found on smaller copies are that much less precise
-    coarse = (
-        float(
-            np.median(
-                [
-                    np.sqrt(im.shape[0] * im.shape[1] / (registration_megapixels * 1e6))
-                    for im in imgs
-                ]
-            )
-        )
-        if registration_megapixels
-        else 1.0
-    )
-    rot_tol, pl_tol = rotation_tol * max(1.0, coarse), plane_tol * max(1.0, coarse)
-    model, resid, adj = "rotation", rot_rms, None
-    if (telephoto or rot_rms > rot_tol) and projection in ("auto", "planar"):
-        adj = adjust_homographies(
-            graph.homographies, inlier_matches(graph, 100), reference=graph.reference
-        )
-        if (
-            telephoto or adj.rms_after < 0.7 * rot_rms
-        ):  # a plane explains the matches clearly better
-            model, Hs_plane, resid = "homography", adj.homographies, adj.rms_after
-        if adj.rms_after > pl_tol and rot_rms > rot_tol:
-            warnings.warn(
-                f"stitch: neither a turning camera (rotation model residual {rot_rms:.2f} px) nor a flat "
-                f"scene (homography residual {adj.rms_after:.2f} px) explains the matches: the camera "
-                f"moved in front of a 3-D scene (parallax); expect ghosts and misaligned seams",
-                UserWarning,
-                stacklevel=2,
-            )
-    elif rot_rms > rot_tol:
-        warnings.warn(
-            f"stitch: the rotation model leaves {rot_rms:.2f} px RMS (more than {rot_tol:.2f} px): the "
-            f"camera moved (parallax) or the scene is flat; try projection='planar'",
-            UserWarning,
-            stacklevel=2,
-        )
-    if model == "homography":
-        Ks = Rs = [None] * len(keep)
-    else:
-        Ks = [est.Ks[k] for k in keep]
-        Rs = [est.Rs[k] for k in keep]
-    sub_shapes = [shapes[k] for k in keep]
-    _warn_second_plane(graph, label, rng)
-    if model == "rotation":
-        _warn_full_turn(Rs, [label[k] for k in keep])
-    chosen = projection
-    if projection == "auto":
-        chosen = (
-            "planar"
-            if model == "homography" or max(_field_of_view(Ks, Rs, sub_shapes)) <= 100
-            else "spherical"
-        )
-    ba_seconds = (0.0 if est is None else est.bundle.seconds) + (
-        0.0 if adj is None else adj.seconds
-    )
-    times["estimation"] = time.perf_counter() - t0 - ba_seconds
-    times["bundle_adjustment"] = ba_seconds
 
-    t0 = time.perf_counter()
-    sub = [imgs[k] for k in keep]
-    if chosen == "planar":
-        if model == "homography":
-            H_list = [Hs_plane[k] for k in keep]
-        else:
-            s = float(np.median([Kk[0, 0] for Kk in Ks]))
-            Kc = np.diag([s, s, 1.0])
-            H_list = [Kc @ R.T @ np.linalg.inv(Kk) for Kk, R in zip(Ks, Rs, strict=True)]
-        try:
-            warped = warp_images(sub, H_list, max_pixels=max_pixels)
-        except DegenerateError as exc:
-            raise DegenerateError(
-                f"stitch: the images turn too far for a plane ({exc}); "
-                "use projection='cylindrical' or 'spherical'"
-            ) from None
-        outlines_sub = [
-            _hg_border(H, sh) for H, sh in zip(warped.homographies, sub_shapes, strict=True)
-        ]
-    else:
-        s = float(np.median([Kk[0, 0] for Kk in Ks]))
-        canvas = make_canvas(Ks, Rs, sub_shapes, chosen, s, max_pixels=max_pixels)
-        warped = _warp_curved(sub, Ks, Rs, canvas)
-        outlines_sub = [
-            _outline_curved(Kk, R, sh, canvas) for Kk, R, sh in zip(Ks, Rs, sub_shapes, strict=True)
-        ]
-    times["warping"] = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    ref_local = keep.index(graph.reference)
-    g_sub = (
-        gain_compensation(warped, reference=ref_local) if compensate_gains else np.ones(len(keep))
+def _coarseness(imgs: list, megapixels: float | None) -> float:
+    """How much coarser than full resolution the features were found (1.0 at full resolution)."""
+    if not megapixels:
+        return 1.0
+    return float(
+        np.median([np.sqrt(im.shape[0] * im.shape[1] / (megapixels * 1e6)) for im in imgs])
     )
+
+
+def _choose_projection(projection: str, fit: ModelChoice, shapes: list) -> str:
+    """Stage 5: the canvas; ``"auto"`` takes the plane for a flat scene and for fields of view up
+    to 100 degrees, the sphere beyond."""
+    if projection != "auto":
+        return projection
+    if fit.model == "homography" or max(field_of_view(fit.Ks, fit.Rs, shapes)) <= 100:
+        return "planar"
+    return "spherical"
+
+
+def _warp(
+    photos: _Photos, fit: ModelChoice, chosen: str, max_pixels: int
+) -> tuple[WarpedImages, list]:
+    """Stage 6: the kept images on the canvas, and each one's outline there (canvas pixels)."""
+    sub = [photos.images[k] for k in fit.keep]
+    shapes = [im.shape for im in sub]
+    if chosen != "planar":
+        s = float(np.median([Kk[0, 0] for Kk in fit.Ks]))
+        canvas = make_canvas(fit.Ks, fit.Rs, shapes, chosen, s, max_pixels=max_pixels)
+        outlines = [
+            outline_on_canvas(K, R, sh, canvas)
+            for K, R, sh in zip(fit.Ks, fit.Rs, shapes, strict=True)
+        ]
+        return warp_images_by_rotation(sub, fit.Ks, fit.Rs, canvas), outlines
+    if fit.model == "homography":
+        H_list = [fit.plane[k] for k in fit.keep]
+    else:
+        s = float(np.median([Kk[0, 0] for Kk in fit.Ks]))
+        Kc = np.diag([s, s, 1.0])
+        H_list = [Kc @ R.T @ np.linalg.inv(Kk) for Kk, R in zip(fit.Ks, fit.Rs, strict=True)]
+    try:
+        warped = warp_images(sub, H_list, max_pixels=max_pixels)
+    except DegenerateError as exc:
+        raise DegenerateError(
+            f"stitch: the images turn too far for a plane ({exc}); "
+            "use projection='cylindrical' or 'spherical'"
+        ) from None
+    outlines = [
+        map_points(H, border_ring(sh)) for H, sh in zip(warped.homographies, shapes, strict=True)
+    ]
+    return warped, outlines
+
+
+def _composite(
+    warped: WarpedImages,
+    reference: int,
+    blend_method: str,
+    compensate_gains: bool,
+    levels: int,
+    times: dict,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Stage 7: exposure gains, seams and blending (timed into ``times``); a panorama in [0, 1]."""
+    t0 = time.perf_counter()
+    n = len(warped.patches)
+    gains = gain_compensation(warped, reference=reference) if compensate_gains else np.ones(n)
     times["exposure"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     seams = dp_seam_masks(warped) if blend_method == "multiband" else None
     times["seams"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    pano = blend(warped, blend_method, gains=g_sub, levels=levels, seams=seams)
+    pano = blend(warped, blend_method, gains=gains, levels=levels, seams=seams)
     times["compositing"] = time.perf_counter() - t0
+    return pano, gains
+
+
+def _result(
+    photos: _Photos,
+    graph: MatchGraph,
+    fit: ModelChoice,
+    chosen: str,
+    warped: WarpedImages,
+    outlines: list,
+    pano: np.ndarray,
+    gains: np.ndarray,
+    crop: bool,
+    times: dict,
+) -> StitchResult:
+    """Stage 8: the optional crop, per-image lists over all inputs (None for those left out), and
+    the panorama in the inputs' type."""
     union = np.zeros(warped.shape, bool)
     for m, (r0, r1, c0, c1) in zip(warped.patch_masks, warped.boxes, strict=True):
         union[r0:r1, c0:c1] |= m
-    masks_out = list(warped.masks)
+    masks = list(warped.masks)
+    homographies = list(warped.homographies)
     if crop:
         r0, r1, c0, c1 = largest_rectangle(union)
         pano, union = pano[r0:r1, c0:c1], union[r0:r1, c0:c1]
-        masks_out = [m[r0:r1, c0:c1] for m in masks_out]
-        outlines_sub = [o - [c0, r0] for o in outlines_sub]
-    gains = np.full(n, np.nan)
-    gains[keep] = g_sub
-    H_out: list = [None] * n
-    M_out: list = [None] * n
-    O_out: list = [None] * n
-    C_out: list = [None] * n
-    for idx, k in enumerate(keep):
-        H_out[k] = warped.homographies[idx]
-        M_out[k] = masks_out[idx]
-        O_out[k] = outlines_sub[idx]
-        if model == "rotation":
-            C_out[k] = (est.Ks[k], est.Rs[k])
-    if crop and chosen == "planar":
-        Tc = np.array([[1.0, 0, -c0], [0, 1, -r0], [0, 0, 1]])
-        H_out = [None if H is None else Tc @ H for H in H_out]
-    if all_uint8:
+        masks = [m[r0:r1, c0:c1] for m in masks]
+        outlines = [o - [c0, r0] for o in outlines]
+        if chosen == "planar":
+            Tc = np.array([[1.0, 0, -c0], [0, 1, -r0], [0, 0, 1]])
+            homographies = [None if H is None else Tc @ H for H in homographies]
+    n = len(photos.images)
+    all_gains = np.full(n, np.nan)
+    all_gains[fit.keep] = gains
+    cameras = (
+        [(fit.cameras.Ks[k], fit.cameras.Rs[k]) for k in fit.keep]
+        if fit.model == "rotation"
+        else None
+    )
+    per_image = [
+        _spread(values, fit.keep, n) for values in (homographies, masks, outlines, cameras)
+    ]
+    if photos.all_uint8:
         pano = np.rint(np.multiply(pano, 255, out=pano), out=pano).astype(
             np.uint8
         )  # pano is in [0, 1]
-    if grey:
+    if photos.grey:
         pano = np.repeat(pano, 3, axis=2)
-    unconnected = sorted(set(graph.unconnected) | set(dup))
+    unconnected = sorted(set(graph.unconnected) | set(photos.repeats))
+    H_out, M_out, O_out, C_out = per_image
     return StitchResult(
         pano,
         union,
@@ -587,27 +541,21 @@ def stitch(
         graph.report(),
         graph.reference,
         unconnected,
-        gains,
+        all_gains,
         graph,
         C_out,
         chosen,
-        model,
-        float(resid),
+        fit.model,
+        fit.residual,
         O_out,
-        label,
+        photos.names,
         times,
     )
 
 
-def _hg_border(H: np.ndarray, shape) -> np.ndarray:
-    from ..projective import map_points
-
-    return map_points(H, _ring(shape))
-
-
-def _ring(shape) -> np.ndarray:
-    """40 points per side around an image's border, in order (top, right, bottom, left)."""
-    from .projections import border_points
-
-    p = border_points(shape, 40)[:-1]
-    return np.vstack([p[:40], p[120:160], p[40:80][::-1], p[80:120][::-1]])
+def _spread(values: list | None, keep: list, n: int) -> list:
+    """A list over all n inputs: ``values[i]`` at ``keep[i]``, None elsewhere (or everywhere)."""
+    out: list = [None] * n
+    for idx, k in enumerate(keep if values is not None else []):
+        out[k] = values[idx]
+    return out

@@ -19,7 +19,7 @@ straight but stretches without bound towards 90 degrees from its centre (it cann
 turn of 180 degrees at all); the cylinder holds any horizontal turn, up to 360 degrees, but
 stretches vertically away from the horizon; the sphere holds every direction, bending
 straight lines. Each image is warped backwards: canvas pixel -> ray -> :math:`\pi(K_k R_k d)`
-(:func:`warp_to_canvas`), over only its own footprint (:func:`footprint`).
+(:func:`warp_by_rotation`), over only its own footprint (:func:`footprint`).
 """
 
 from __future__ import annotations
@@ -37,14 +37,18 @@ __all__ = [
     "Canvas",
     "CanvasPatch",
     "CanvasPoints",
+    "FieldOfView",
     "Rays",
+    "border_ring",
     "canvas_from_ray",
     "canvas_points",
+    "field_of_view",
     "footprint",
     "make_canvas",
+    "outline_on_canvas",
     "pixel_rays",
     "ray_from_canvas",
-    "warp_to_canvas",
+    "warp_by_rotation",
 ]
 
 PROJECTIONS = ("planar", "cylindrical", "spherical")
@@ -106,6 +110,13 @@ def border_points(shape: Sequence[int], n: int = 16) -> np.ndarray:
             [[(w - 1) / 2, (h - 1) / 2]],
         ]
     )
+
+
+def border_ring(shape: Sequence[int], n: int = 40) -> np.ndarray:
+    """(4n, 2) pixels (u, v) around the border of an image of ``shape``, in order (top, right,
+    bottom, left): a closed outline to draw where the image went."""
+    p = border_points(shape, n)[:-1]
+    return np.vstack([p[:n], p[3 * n : 4 * n], p[n : 2 * n][::-1], p[2 * n : 3 * n][::-1]])
 
 
 def pixel_rays(pixels: np.ndarray, K: np.ndarray, R: np.ndarray) -> np.ndarray:
@@ -205,7 +216,7 @@ def make_canvas(
 
 
 class CanvasPatch(NamedTuple):
-    """One image warped into its canvas box by :func:`warp_to_canvas`.
+    """One image warped into its canvas box by :func:`warp_by_rotation`.
 
     Attributes
     ----------
@@ -222,7 +233,7 @@ class CanvasPatch(NamedTuple):
     extra: np.ndarray | None
 
 
-def warp_to_canvas(
+def warp_by_rotation(
     image: np.ndarray,
     K: np.ndarray,
     R: np.ndarray,
@@ -264,3 +275,29 @@ def warp_to_canvas(
     )
     more[~mask] = 0
     return CanvasPatch(out, mask, more)
+
+
+def outline_on_canvas(
+    K: np.ndarray, R: np.ndarray, shape: Sequence[int], canvas: Canvas
+) -> np.ndarray:
+    """The border of image (K, R) of ``shape`` on the canvas, (160, 2) canvas pixels (u, v) in order."""
+    u, v = canvas_points(border_ring(shape), K, R, canvas.projection, canvas.s)
+    return np.c_[u - canvas.origin[0], v - canvas.origin[1]]
+
+
+class FieldOfView(NamedTuple):
+    """How far a set of images reaches on the sphere, degrees."""
+
+    horizontal: float
+    vertical: float
+
+
+def field_of_view(Ks: list, Rs: list, shapes: list) -> FieldOfView:
+    """Horizontal and vertical extent (degrees) of all images on the sphere."""
+    boxes = np.array(
+        [footprint(K, R, sh, "spherical", 1.0) for K, R, sh in zip(Ks, Rs, shapes, strict=True)]
+    )
+    return FieldOfView(
+        float(np.degrees(boxes[:, 1, 0].max() - boxes[:, 0, 0].min())),
+        float(np.degrees(boxes[:, 1, 1].max() - boxes[:, 0, 1].min())),
+    )

@@ -1,7 +1,11 @@
 """Stitching stages 1-3: prepare the images, register each pair (matches + RANSAC, Brown and
 Lowe's acceptance test) and build the match graph that chains every image to the reference.
 
-See :mod:`camlab.stitching` for the whole pipeline; every name here is re-exported there.
+Also what :func:`camlab.stitching.stitch` checks on the way: a photo given twice
+(:func:`repeated_photos`), features on a reduced copy (:func:`detect_at_resolution`), pairs
+whose outliers follow a second plane (:func:`second_planes`).
+
+See :mod:`camlab.stitching` for the whole pipeline.
 """
 
 from __future__ import annotations
@@ -354,10 +358,99 @@ def match_graph(
             break
         _, i, j, p = best
         if Hs[i] is not None:  # j joins: ref <- i <- j, H maps i to j so i <- j is H^-1
-            Hs[j] = _hg.normalize_homography(Hs[i] @ np.linalg.inv(p.H))
+            Hs[j] = _hg.normalise_homography(Hs[i] @ np.linalg.inv(p.H))
             parent[j] = i
         else:
-            Hs[i] = _hg.normalize_homography(Hs[j] @ p.H)
+            Hs[i] = _hg.normalise_homography(Hs[j] @ p.H)
             parent[i] = j
     unconnected = [k for k in range(n) if Hs[k] is None]
     return MatchGraph(pairs, ref, Hs, parent, unconnected)
+
+
+# --------------------------------------------------------------------------- checks for stitch
+
+
+def repeated_photos(imgs: list) -> dict:
+    """{later: earlier} for images that are the same photo (same size, mean difference < 1 grey level)."""
+    small = [im[::8, ::8] for im in imgs]
+    out = {}
+    for j in range(len(imgs)):
+        for i in range(j):
+            if (
+                i not in out
+                and small[i].shape == small[j].shape
+                and float(np.abs(small[i] - small[j]).mean()) < 1 / 255
+            ):
+                out[j] = i
+                break
+    return out
+
+
+def detect_at_resolution(
+    im: np.ndarray, method: str, max_features: int, mask, megapixels: float | None
+) -> _feat.Features:
+    """Features of ``im`` found on a copy of at most ``megapixels``, positions in ``im``'s pixels.
+
+    Resizing by s maps pixel centres u to s (u + 1/2) - 1/2, so back is (u' + 1/2)/s - 1/2.
+    """
+    import cv2
+
+    h, w = im.shape[:2]
+    s = 1.0 if megapixels is None else min(1.0, float(np.sqrt(megapixels * 1e6 / (h * w))))
+    if s > 0.95:
+        return _feat.detect_features(im, method, max_features, mask=mask)
+    size = (max(16, int(round(w * s))), max(16, int(round(h * s))))
+    small = cv2.resize(im, size, interpolation=cv2.INTER_AREA)
+    m = (
+        None
+        if mask is None
+        else cv2.resize(mask.astype(np.uint8), size, interpolation=cv2.INTER_NEAREST) > 0
+    )
+    f = _feat.detect_features(small, method, max_features, mask=m)
+    sx, sy = size[0] / w, size[1] / h
+    pts = np.c_[(f.points[:, 0] + 0.5) / sx - 0.5, (f.points[:, 1] + 0.5) / sy - 0.5]
+    return f._replace(points=pts, sizes=f.sizes / s)
+
+
+class SecondPlane(NamedTuple):
+    """An accepted pair whose outliers follow a second homography (:func:`second_planes`).
+
+    Attributes
+    ----------
+    i, j : int
+        The pair's images.
+    matches : int
+        How many of its matches follow the second plane.
+    offset : float
+        Their median transfer error under the pair's homography, pixels.
+    """
+
+    i: int
+    j: int
+    matches: int
+    offset: float
+
+
+def second_planes(graph: MatchGraph, rng: np.random.Generator | None) -> list[SecondPlane]:
+    """Accepted pairs whose outliers follow a second homography: two planes, so the camera moved (parallax).
+
+    A camera that only turns maps every scene point by one homography; if the matches that
+    the first homography rejects agree on another one (at least 10 of them, and more than
+    8 + 0.3 of the outliers, the Brown & Lowe test), the scene has depth and the centre moved.
+    """
+    rng = np.random.default_rng(1) if rng is None else rng
+    found = []
+    for (i, j), p in sorted(graph.pairs.items()):
+        out = ~p.inliers
+        n = int(out.sum())
+        if not p.accepted or n < 10:
+            continue
+        try:
+            r2 = _hg.ransac_homography(p.matches.src[out], p.matches.dst[out], 3.0, 0.99, 300, rng)
+        except (DegenerateError, CamlabInputError):
+            continue
+        k2 = int(r2.inliers.sum())
+        if k2 >= max(10, 8 + 0.3 * n):
+            src, dst = p.matches.src[out][r2.inliers], p.matches.dst[out][r2.inliers]
+            found.append(SecondPlane(i, j, k2, float(np.median(_hg.transfer_error(p.H, src, dst)))))
+    return found

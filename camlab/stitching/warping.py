@@ -1,7 +1,10 @@
-"""Stitching stages 4-5: the canvas, feather weights, and every image warped onto it
-(:class:`WarpedImages`, with masks and weights); also the cylindrical pre-warp.
+"""Stitching stage 5: every image warped onto the panorama canvas, with its mask and feather weight.
 
-See :mod:`camlab.stitching` for the whole pipeline; every name here is re-exported there.
+:func:`warp_images` warps by homographies onto a planar canvas (:func:`camlab.warp.canvas_bounds`);
+:func:`warp_images_by_rotation` warps by each camera's rotation onto a planar, cylindrical or
+spherical canvas (:mod:`camlab.stitching.projections`). Both return :class:`WarpedImages`.
+
+See :mod:`camlab.stitching` for the whole pipeline.
 """
 
 from __future__ import annotations
@@ -12,35 +15,12 @@ from functools import cached_property
 from typing import NamedTuple
 
 import numpy as np
-from numpy.typing import ArrayLike
 
 from .. import homography as _hg
-from .._validate import (
-    CamlabInputError,
-    DegenerateError,
-    check_image,
-    check_intrinsics,
-    check_shape,
-)
+from .._validate import CamlabInputError, check_shape
 from ..projective import map_points
 from ..warp import canvas_bounds, warp_perspective
-
-# --------------------------------------------------------------------------- projection
-
-
-class CylinderImage(NamedTuple):
-    """:func:`cylindrical_warp`'s unrolled cylinder.
-
-    Attributes
-    ----------
-    image : ndarray like the input
-        The unrolled cylinder, same size, centred on the principal point.
-    mask : (H, W) bool ndarray
-        Where the cylinder sees the image.
-    """
-
-    image: np.ndarray
-    mask: np.ndarray
+from .projections import Canvas, warp_by_rotation
 
 
 class SubsampledCanvas(NamedTuple):
@@ -56,88 +36,6 @@ class SubsampledCanvas(NamedTuple):
 
     images: list
     masks: list
-
-
-def cylindrical_warp(image: ArrayLike, K: ArrayLike) -> CylinderImage:
-    r"""Map an image onto a cylinder of radius f around the camera centre (unrolled).
-
-    Output pixel (u', v') is the cylinder point at angle :math:`\theta = (u' - c_x)/f` and
-    height :math:`h = (v' - c_y)/f`; its ray :math:`(\sin\theta, h, \cos\theta)` meets
-    the image at :math:`\pi(K (\sin\theta, h, \cos\theta)^T)`. On the cylinder a camera
-    turning about its vertical axis just slides sideways, so wide panoramas stay
-    undistorted (a planar canvas stretches without bound towards 90 degrees).
-
-    Parameters
-    ----------
-    image : (H, W[, C]) array_like
-    K : (3, 3) array_like
-        The camera's intrinsics (fx is used as the cylinder radius f).
-
-    Returns
-    -------
-    CylinderImage
-        ``(image, mask)``: the unrolled cylinder (like ``image``, same size, centred on the
-        principal point) and the (H, W) bool mask of where it sees the image.
-    """
-    import cv2
-
-    img = check_image(image)
-    Km = check_intrinsics(K, "K")
-    h, w = img.shape[:2]
-    f, cx, cy = Km[0, 0], Km[0, 2], Km[1, 2]
-    vv, uu = np.mgrid[0:h, 0:w].astype(np.float32)
-    theta = (uu - cx) / f
-    hh = (vv - cy) / f
-    x, y, z = np.sin(theta), hh, np.cos(theta)
-    map_u = (Km[0, 0] * x + Km[0, 1] * y + cx * z) / z
-    map_v = (Km[1, 1] * y + cy * z) / z
-    map_u, map_v = map_u.astype(np.float32), map_v.astype(np.float32)
-    src = img.astype(np.float32) if img.dtype not in (np.uint8, np.float32) else img
-    cyl = cv2.remap(
-        src, map_u, map_v, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT, borderValue=0
-    )
-    mask = (map_u >= -0.5) & (map_u <= w - 0.5) & (map_v >= -0.5) & (map_v <= h - 0.5)
-    return CylinderImage(cyl.reshape(img.shape).astype(img.dtype), mask)
-
-
-# --------------------------------------------------------------------------- warping
-
-
-def canvas_box(homographies: Sequence[ArrayLike], shapes: Sequence[Sequence[int]]) -> np.ndarray:
-    r"""The panorama's bounds: the bounding box of every image's corners mapped by its homography.
-
-    The corner pixels (0, 0), (w-1, 0), (w-1, h-1), (0, h-1) of image k are mapped by
-    :math:`H_k` (dividing by the third coordinate), and the box is rounded outwards to
-    whole pixels. The canvas is then :math:`u_{max} - u_{min} + 1` pixels wide and
-    :math:`T = \begin{pmatrix} 1 & 0 & -u_{min} \\ 0 & 1 & -v_{min} \\ 0 & 0 & 1 \end{pmatrix}`
-    moves its top-left corner to (0, 0): that is :func:`camlab.warp.canvas_bounds`, which
-    the pipeline uses (and which also refuses corners at infinity).
-
-    Returns
-    -------
-    (2, 2) ndarray
-        ``[[u_min, v_min], [u_max, v_max]]`` in pixels.
-
-    >>> canvas_box([np.eye(3), [[1, 0, 50], [0, 1, -30], [0, 0, 1]]], [(240, 320), (240, 320)])
-    array([[  0., -30.],
-           [369., 239.]])
-    """
-    if len(homographies) != len(shapes) or not len(shapes):
-        raise CamlabInputError(
-            f"shapes: expected one shape per homography, got {len(shapes)} for {len(homographies)}"
-        )
-    pts = []
-    for H, shape in zip(homographies, shapes, strict=True):
-        h, w = shape[:2]
-        pts.append(
-            map_points(np.asarray(H, dtype=float), [[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]])
-        )
-    allp = np.vstack(pts)
-    if not np.all(np.isfinite(allp)):
-        raise DegenerateError(
-            "canvas_box: a corner maps to infinity; the image crosses the horizon of its homography"
-        )
-    return np.array([np.floor(allp.min(axis=0) + 1e-9), np.ceil(allp.max(axis=0) - 1e-9)])
 
 
 def feather_weights(shape: Sequence[int]) -> np.ndarray:
@@ -279,7 +177,7 @@ def warp_images(
     T, shape = canvas_bounds(list(homographies), [im.shape for im in images], max_pixels=max_pixels)
     out_i, out_m, out_w, out_h, boxes = [], [], [], [], []
     for im, H in zip(images, homographies, strict=True):
-        Hc = _hg.normalize_homography(T @ np.asarray(H, dtype=float))
+        Hc = _hg.normalise_homography(T @ np.asarray(H, dtype=float))
         r0, r1, c0, c1 = _image_box(Hc, im.shape, shape)
         Hb = np.array([[1.0, 0, -c0], [0, 1, -r0], [0, 0, 1]]) @ Hc
         size = (r1 - r0, c1 - c0)
@@ -301,3 +199,34 @@ def warp_images(
         out_h.append(Hc)
         boxes.append((r0, r1, c0, c1))
     return WarpedImages(out_i, out_m, out_w, boxes, tuple(shape), out_h, T)
+
+
+def warp_images_by_rotation(
+    images: Sequence[np.ndarray], Ks: Sequence[np.ndarray], Rs: Sequence[np.ndarray], canvas: Canvas
+) -> WarpedImages:
+    """Every image warped into its own box of a canvas by its camera (K, R) (:func:`warp_by_rotation`).
+
+    A box that wraps around a full-turn canvas (columns modulo w) becomes a full-width one.
+    The result has no homographies (``None`` for each image) and ``T`` is the identity.
+    """
+    h, w = canvas.shape
+    out_i, out_m, out_w, boxes = [], [], [], []
+    for im, K, R, box in zip(images, Ks, Rs, canvas.boxes, strict=True):
+        patch, mask, wgt = warp_by_rotation(
+            im, K, R, canvas, box, feather_weights(im.shape).astype(np.float32)
+        )
+        wgt = np.where(mask, np.maximum(wgt, 1e-3), 0).astype(np.float32)
+        r0, r1, c0, c1 = box
+        if c0 < 0 or c1 > w:
+            cols = np.arange(c0, c1) % w
+            parts = []
+            for a in (patch, mask, wgt):
+                full = np.zeros((r1 - r0, w) + a.shape[2:], a.dtype)
+                full[:, cols] = a
+                parts.append(full)
+            (patch, mask, wgt), (c0, c1) = parts, (0, w)
+        out_i.append(patch)
+        out_m.append(mask)
+        out_w.append(wgt)
+        boxes.append((r0, r1, c0, c1))
+    return WarpedImages(out_i, out_m, out_w, boxes, (h, w), [None] * len(images), np.eye(3))

@@ -18,6 +18,7 @@ import numpy as np
 
 from .. import fixtures, scenes
 from .. import homography as hg
+from .._validate import DegenerateError
 from ..plotting import palette
 from ..projective import cross_ratio, map_points, splits_at_infinity
 from ..robust import required_iterations
@@ -296,7 +297,7 @@ def drag_homography() -> Demo:
         try:
             corners = parse_corners(v["corners"])
             H = hg.estimate_homography(SQUARE, corners)
-        except (ValueError, hg.DegenerateError) as exc:
+        except (ValueError, DegenerateError) as exc:
             state.update(error=str(exc))
             warning("cannot use these corners:\n" + str(exc)[:80])
             readout.value = monospace(f"cannot use these corners:\n{exc}")
@@ -436,7 +437,7 @@ def ransac_outliers() -> Demo:
             return data, hg.ransac_homography(
                 data[1], data[2], threshold, CONFIDENCE, 1000, np.random.default_rng(seed)
             )
-        except hg.DegenerateError as exc:
+        except DegenerateError as exc:
             return data, str(exc)
 
     def update(v: dict, state: dict) -> None:
@@ -536,7 +537,10 @@ def forward_vs_inverse() -> Demo:
         C = np.array([[1.0, 0, out_hw[1] / 2], [0, 1, out_hw[0] / 2], [0, 0, 1]])
         P = np.array([[1.0, 0, -39.5], [0, 1, -29.5], [0, 0, 1]])
         H = hg.compose(
-            C, hg.similarity(v["scale"], np.radians(v["angle"])), hg.projective(v=(1e-3, 0)), P
+            C,
+            hg.similarity_homography(v["scale"], np.radians(v["angle"])),
+            hg.projective_homography(v=(1e-3, 0)),
+            P,
         )
         fwd = forward_warp(pic, H, out_hw)
         inv = warp_perspective(

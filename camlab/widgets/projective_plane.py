@@ -270,16 +270,16 @@ def vanishing_points() -> Demo:
         vp_x = (
             pj.vanishing_point(np.array(segs[n:]))
             if len(segs) - n >= 2
-            else pj.normalize_points(g.vp_x)
+            else pj.normalise_points(g.vp_x)
         )
         hz = pj.horizon(vp_z, vp_x)
         state.update(
             vp_z=vp_z,
             vp_x=vp_x,
             horizon=hz,
-            horizon_true=pj.normalize_lines(g.horizon),
-            vp_z_true=pj.normalize_points(g.vp_z),
-            vp_x_true=pj.normalize_points(g.vp_x),
+            horizon_true=pj.normalise_lines(g.horizon),
+            vp_z_true=pj.normalise_points(g.vp_z),
+            vp_x_true=pj.normalise_points(g.vp_x),
         )
         ends = pj.clip_line(hz, *box)
         horizon_artist.set_data(ends[:, 0], ends[:, 1])

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from ... import camera as cm
-from ...projective import hartley_normalization
+from ...projective import hartley_normalise
 
 
 def dlt_p34(X, uv):
@@ -34,7 +34,7 @@ def dlt_partial(X, uv, world=(True, True), pixels=(True, True)):
 
 def normalisers(X, uv):
     """Hartley's U (world, 4 x 4) and T (pixels, 3 x 3)."""
-    return hartley_normalization(X), hartley_normalization(uv)
+    return hartley_normalise(X).T, hartley_normalise(uv).T
 
 
 def rms_normalisers(X, uv):

@@ -1,0 +1,296 @@
+r"""Rotations and rigid poses: axis-angle (Rodrigues), Euler angles, the nearest rotation, look-at,
+and the conversion between the OpenCV camera frame and OpenGL's and Blender's.
+
+A rotation R is a (3, 3) orthonormal matrix with det R = +1; as cam_from_world its rows are
+the camera's x, y, z axes written in world coordinates (docs/conventions.md). Angles in
+radians. Part of :mod:`camlab.camera` (every name here is importable from there).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .._validate import (
+    ROTATION_TOL,
+    DegenerateError,
+    check_finite,
+    check_matrix,
+    check_number,
+    check_positive,
+    check_rotation,
+)
+
+__all__ = [
+    "CV_FROM_GL",
+    "Pose",
+    "axis_angle_from_rotation",
+    "euler_from_rotation",
+    "is_rotation",
+    "look_at_rotation",
+    "nearest_rotation",
+    "orbit_eye",
+    "blender_matrix_world",
+    "opencv_from_opengl",
+    "opengl_from_opencv",
+    "rotation_from_axis_angle",
+    "rotation_from_euler",
+    "rotation_x",
+    "rotation_y",
+    "rotation_z",
+]
+
+
+CV_FROM_GL = np.diag([1.0, -1.0, -1.0])
+r"""Maps OpenGL/Blender camera axes (x right, y up, z backward) to OpenCV's (x right, y down,
+z forward). It is its own inverse: :math:`F^{-1} = F`."""
+
+
+def is_rotation(R: ArrayLike, tol: float = ROTATION_TOL) -> bool:
+    r"""True if ``R`` is a (3, 3) rotation: :math:`R^\top R = I` and :math:`\det R = +1`."""
+    a = np.asarray(R, dtype=float)
+    if a.shape != (3, 3) or not np.isfinite(a).all():
+        return False
+    return bool(np.abs(a.T @ a - np.eye(3)).max() <= tol and abs(np.linalg.det(a) - 1.0) <= tol)
+
+
+def rotation_from_axis_angle(rvec: ArrayLike) -> np.ndarray:
+    r"""Rodrigues' formula: the rotation by angle :math:`\theta = \|r\|` (radians) about :math:`r / \|r\|`.
+
+    .. math:: R = I + \sin\theta\,[k]_\times + (1 - \cos\theta)\,[k]_\times^2
+
+    This is the ``rvec`` convention of ``cv2.Rodrigues``.
+
+    Parameters
+    ----------
+    rvec : (3,) array_like
+        Rotation vector: unit axis times angle in radians.
+
+    Returns
+    -------
+    (3, 3) ndarray
+
+    Examples
+    --------
+    >>> np.round(rotation_from_axis_angle([0, 0, np.pi / 2]), 12) + 0.0
+    array([[ 0., -1.,  0.],
+           [ 1.,  0.,  0.],
+           [ 0.,  0.,  1.]])
+    """
+    r = check_matrix(rvec, (3,), "rvec")
+    theta = float(np.linalg.norm(r))
+    if theta < 1e-15:
+        return np.eye(3)
+    k = r / theta
+    kx = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    return np.eye(3) + np.sin(theta) * kx + (1.0 - np.cos(theta)) * (kx @ kx)
+
+
+def axis_angle_from_rotation(R: ArrayLike) -> np.ndarray:
+    r"""The rotation vector (axis times angle, radians) of a rotation; inverse of
+    :func:`rotation_from_axis_angle`, angle in :math:`[0, \pi]`.
+
+    Uses :math:`\cos\theta = (\operatorname{tr} R - 1)/2` and the skew part
+    :math:`(R - R^\top)/2 = \sin\theta [k]_\times`; near :math:`\theta = \pi` the axis is
+    read from :math:`R + I` instead.
+    """
+    a = check_rotation(R)
+    cos = np.clip((np.trace(a) - 1.0) / 2.0, -1.0, 1.0)
+    theta = float(np.arccos(cos))
+    w = np.array([a[2, 1] - a[1, 2], a[0, 2] - a[2, 0], a[1, 0] - a[0, 1]]) / 2.0
+    if theta < 1e-12:
+        return w  # sin(theta) ~ theta: the skew part is already the rotation vector
+    if np.pi - theta > 1e-6:
+        return w / np.sin(theta) * theta
+    # theta ~ pi: R + I = 2 k k^T; take the largest column for the axis, sign from w.
+    B = (a + np.eye(3)) / 2.0
+    k = B[:, int(np.argmax(np.diag(B)))]
+    k = k / np.linalg.norm(k)
+    if np.dot(k, w) < 0:
+        k = -k
+    return k * theta
+
+
+def rotation_x(angle: float) -> np.ndarray:
+    """Rotation by ``angle`` radians about the x axis (right-handed)."""
+    angle = check_number(angle, "angle", "radians")
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+
+
+def rotation_y(angle: float) -> np.ndarray:
+    """Rotation by ``angle`` radians about the y axis (right-handed)."""
+    angle = check_number(angle, "angle", "radians")
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+def rotation_z(angle: float) -> np.ndarray:
+    """Rotation by ``angle`` radians about the z axis (right-handed)."""
+    angle = check_number(angle, "angle", "radians")
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def rotation_from_euler(rx: float, ry: float, rz: float) -> np.ndarray:
+    r"""Rotation from Euler angles in radians: :math:`R = R_z(r_z) R_y(r_y) R_x(r_x)`.
+
+    Read right to left: rotate about the fixed x axis first, then y, then z (extrinsic
+    x-y-z, the same matrix as intrinsic z-y'-x''; roll-pitch-yaw for a z-up body).
+    Inverse: :func:`euler_from_rotation`.
+    """
+    angles = np.array([rx, ry, rz], dtype=float)
+    check_finite(angles, "rx, ry, rz")
+    return rotation_z(angles[2]) @ rotation_y(angles[1]) @ rotation_x(angles[0])
+
+
+def nearest_rotation(M: ArrayLike) -> np.ndarray:
+    r"""The rotation closest to M in the Frobenius norm: :math:`U \operatorname{diag}(1, 1, \det UV^\top) V^\top`.
+
+    With the SVD :math:`M = U \Sigma V^\top`, :math:`\min_R \|R - M\|_F` over rotations is
+    solved by replacing the singular values with ones (Zhang 2000, appendix C); the last
+    sign keeps :math:`\det R = +1`.
+
+    >>> np.round(nearest_rotation(2 * np.eye(3)), 12) + 0.0
+    array([[1., 0., 0.],
+           [0., 1., 0.],
+           [0., 0., 1.]])
+    """
+    Mm = check_matrix(M, (3, 3), "M")
+    U, sv, Vt = np.linalg.svd(Mm)
+    if sv[1] <= 1e-12 * max(sv[0], 1e-300):
+        raise DegenerateError(
+            f"M: rank {int(np.sum(sv > 1e-12 * sv[0]))} (singular values "
+            f"{np.array2string(sv, precision=3)}), so no rotation is nearest to it; "
+            f"at least two of its columns must be independent"
+        )
+    D = np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Vt))])
+    return U @ D @ Vt
+
+
+def euler_from_rotation(R: ArrayLike) -> np.ndarray:
+    r"""The angles ``(rx, ry, rz)`` with :math:`R = R_z R_y R_x`, ``ry`` in
+    :math:`[-\pi/2, \pi/2]`. At gimbal lock (:math:`|r_y| = \pi/2`) ``rx`` is set to 0."""
+    a = check_rotation(R)
+    ry = float(np.arcsin(np.clip(-a[2, 0], -1.0, 1.0)))
+    if abs(a[2, 0]) < 1.0 - 1e-12:
+        rx = float(np.arctan2(a[2, 1], a[2, 2]))
+        rz = float(np.arctan2(a[1, 0], a[0, 0]))
+    else:  # gimbal lock: only rz - rx (or rz + rx) is defined
+        rx = 0.0
+        rz = float(np.arctan2(-a[0, 1], a[1, 1]))
+    return np.array([rx, ry, rz])
+
+
+def orbit_eye(
+    azimuth: float, elevation: float, distance: float, target: ArrayLike = (0.0, 0.0, 0.0)
+) -> np.ndarray:
+    r"""A camera position on the sphere of radius ``distance`` (metres) about ``target``, for a look-at.
+
+    ``azimuth`` turns from world +x towards +y and ``elevation`` rises towards +z (up), in
+    radians: :math:`C = T + d\,(\cos e \cos a, \cos e \sin a, \sin e)`.
+
+    >>> orbit_eye(np.pi / 2, 0.0, 2.0, (0, 0, 1)).round(12) + 0.0
+    array([0., 2., 1.])
+    """
+    d = check_positive(distance, "distance", "metres")
+    a, e = (
+        check_number(azimuth, "azimuth", "radians"),
+        check_number(elevation, "elevation", "radians"),
+    )
+    return check_matrix(target, (3,), "target") + d * np.array(
+        [np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)]
+    )
+
+
+def look_at_rotation(
+    eye: ArrayLike, target: ArrayLike, up: ArrayLike = (0.0, 0.0, 1.0)
+) -> np.ndarray:
+    r"""The cam_from_world rotation of a camera at ``eye`` looking at ``target``.
+
+    The rows of R are the camera axes written in world coordinates: z (forward) points
+    from eye to target, x (right) is :math:`z \times \text{up}` normalised, y (down)
+    is :math:`z \times x`, so "up" appears up in the image.
+
+    Raises
+    ------
+    DegenerateError
+        If eye == target or the viewing direction is parallel to ``up``.
+    """
+    e = check_matrix(eye, (3,), "eye")
+    g = check_matrix(target, (3,), "target")
+    u = check_matrix(up, (3,), "up")
+    z = g - e
+    if np.linalg.norm(z) < 1e-12:
+        raise DegenerateError(
+            "look_at: eye and target coincide, so there is no viewing direction; move the eye"
+        )
+    z = z / np.linalg.norm(z)
+    x = np.cross(z, u)
+    if np.linalg.norm(x) < 1e-9 * max(np.linalg.norm(u), 1e-300):
+        raise DegenerateError(
+            f"look_at: the viewing direction {np.round(z, 6)} is parallel to up={u}, so 'right' is "
+            f"undefined; choose another up vector"
+        )
+    x = x / np.linalg.norm(x)
+    y = np.cross(z, x)
+    return np.vstack([x, y, z])
+
+
+class Pose(NamedTuple):
+    """A rigid pose ``(R, t)``: :math:`X_{to} = R X_{from} + t`, R (3, 3) a rotation, t (3,).
+
+    cam_from_world unless the function that returns it says otherwise; unpack it as ``R, t = ...``.
+    """
+
+    R: np.ndarray
+    t: np.ndarray
+
+
+def opengl_from_opencv(R: ArrayLike, t: ArrayLike) -> Pose:
+    r"""Convert a cam_from_world pose from the OpenCV camera frame to the OpenGL/Blender one.
+
+    Both describe the same physical camera; only the camera's axes are renamed:
+    OpenGL's camera looks down its -z axis with y up. With :math:`F =
+    \operatorname{diag}(1, -1, -1)`, :math:`R_{gl} = F R`, :math:`t_{gl} = F t`. A
+    Blender camera's ``matrix_world`` is the inverse: ``[[R_gl^T, -R_gl^T t_gl], [0, 1]]``.
+
+    Returns
+    -------
+    Pose
+        ``R`` = :math:`R_{gl}` (3, 3) and ``t`` = :math:`t_{gl}` (3,).
+    """
+    Rm = check_rotation(R)
+    tv = check_matrix(t, (3,), "t")
+    return Pose(CV_FROM_GL @ Rm, CV_FROM_GL @ tv)
+
+
+def opencv_from_opengl(R_gl: ArrayLike, t_gl: ArrayLike) -> Pose:
+    """Inverse of :func:`opengl_from_opencv` (the same flip, since F is its own inverse)."""
+    Rm = check_rotation(R_gl, "R_gl")
+    tv = check_matrix(t_gl, (3,), "t_gl")
+    return Pose(CV_FROM_GL @ Rm, CV_FROM_GL @ tv)
+
+
+def blender_matrix_world(R: ArrayLike, t: ArrayLike) -> np.ndarray:
+    r"""A Blender camera's ``matrix_world`` for the OpenCV pose cam_from_world ``(R, t)``.
+
+    ``matrix_world`` is world_from_cam in the OpenGL/Blender camera frame, so two steps: flip the
+    camera's y and z axes, :math:`R_{gl} = F R`, :math:`t_{gl} = F t` (:func:`opengl_from_opencv`),
+    then invert the rigid motion:
+
+    .. math:: \begin{pmatrix} R_{gl}^\top & -R_{gl}^\top t_{gl} \\ 0 & 1 \end{pmatrix}
+              = \begin{pmatrix} R^\top F & C \\ 0 & 1 \end{pmatrix}, \qquad C = -R^\top t .
+
+    Its columns are the camera's axes in the world (x right, y up, z backward) and its centre.
+
+    Returns
+    -------
+    (4, 4) ndarray
+    """
+    R_gl, t_gl = opengl_from_opencv(R, t)
+    out = np.eye(4)
+    out[:3, :3], out[:3, 3] = R_gl.T, -R_gl.T @ t_gl
+    return out

@@ -1,0 +1,265 @@
+r"""The hierarchy of plane transformations (H&Z table 2.1): Euclidean, similarity, affine and
+projective homographies, which group a matrix belongs to, and the decomposition
+:math:`H = H_S H_A H_P` (H&Z section 2.4.6).
+
+Part of :mod:`camlab.homography` (every name here is importable from there).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .._validate import (
+    CamlabInputError,
+    DegenerateError,
+    check_matrix,
+    check_number,
+    check_positive,
+)
+from .core import check_homography, compose, normalise_homography
+
+__all__ = [
+    "HIERARCHY",
+    "HomographyFactors",
+    "affine_homography",
+    "classify",
+    "decompose_homography",
+    "euclidean_homography",
+    "hierarchy_matrix",
+    "projective_homography",
+    "similarity_homography",
+]
+
+
+HIERARCHY: dict[str, dict] = {
+    "euclidean": {
+        "dof": 3,
+        "matrix": "[[R, t], [0, 1]]",
+        "invariants": [
+            "length",
+            "angle",
+            "area",
+            "parallelism",
+            "ratio of lengths",
+            "collinearity",
+            "cross-ratio",
+        ],
+    },
+    "similarity": {
+        "dof": 4,
+        "matrix": "[[sR, t], [0, 1]]",
+        "invariants": ["angle", "ratio of lengths", "parallelism", "collinearity", "cross-ratio"],
+    },
+    "affine": {
+        "dof": 6,
+        "matrix": "[[A, t], [0, 1]]",
+        "invariants": [
+            "parallelism",
+            "ratio of lengths on parallel lines",
+            "ratio of areas",
+            "collinearity",
+            "cross-ratio",
+            "line at infinity",
+        ],
+    },
+    "projective": {
+        "dof": 8,
+        "matrix": "[[A, t], [v^T, w]]",
+        "invariants": ["collinearity", "incidence", "tangency", "cross-ratio"],
+    },
+}
+"""The four groups of plane transformations, their degrees of freedom and invariants (H&Z table 2.1)."""
+
+
+def _rot(theta: float, name: str = "theta") -> np.ndarray:
+    theta = check_number(theta, name, "radians")
+    c, s = np.cos(theta), np.sin(theta)
+    return np.array([[c, -s], [s, c]])
+
+
+def euclidean_homography(theta: float = 0.0, tx: float = 0.0, ty: float = 0.0) -> np.ndarray:
+    """A rotation by ``theta`` radians (counter-clockwise in x-right, y-up axes; clockwise
+    on screen, where v points down) followed by a translation (tx, ty). 3 dof.
+
+    >>> euclidean_homography(0.0, 2.0, 3.0)[:2, 2]
+    array([2., 3.])
+    """
+    H = np.eye(3)
+    H[:2, :2] = _rot(theta)
+    H[:2, 2] = check_number(tx, "tx", "pixels"), check_number(ty, "ty", "pixels")
+    return H
+
+
+def similarity_homography(
+    scale: float = 1.0, theta: float = 0.0, tx: float = 0.0, ty: float = 0.0
+) -> np.ndarray:
+    """Isotropic scaling, rotation and translation: ``[[s R, t], [0, 1]]``. 4 dof."""
+    check_positive(scale, "scale")
+    H = euclidean_homography(theta, tx, ty)
+    H[:2, :2] *= scale
+    return H
+
+
+def affine_homography(
+    theta: float = 0.0,
+    phi: float = 0.0,
+    sx: float = 1.0,
+    sy: float = 1.0,
+    tx: float = 0.0,
+    ty: float = 0.0,
+) -> np.ndarray:
+    r"""An affinity from H&Z's decomposition :math:`A = R(\theta) R(-\phi) D R(\phi)`. 6 dof.
+
+    :math:`D = \mathrm{diag}(s_x, s_y)` scales along axes rotated by :math:`\phi`, then
+    :math:`R(\theta)` rotates; (tx, ty) translates. Parallel lines stay parallel.
+    """
+    sx, sy = check_number(sx, "sx"), check_number(sy, "sy")
+    if sx == 0 or sy == 0:
+        raise DegenerateError(f"sx, sy: a zero scale collapses the plane; got sx={sx}, sy={sy}")
+    H = np.eye(3)
+    H[:2, :2] = (
+        _rot(theta)
+        @ _rot(-check_number(phi, "phi", "radians"), "phi")
+        @ np.diag([sx, sy])
+        @ _rot(phi, "phi")
+    )
+    H[:2, 2] = check_number(tx, "tx", "pixels"), check_number(ty, "ty", "pixels")
+    return H
+
+
+def projective_homography(
+    A: ArrayLike | None = None, t: ArrayLike = (0.0, 0.0), v: ArrayLike = (0.0, 0.0), w: float = 1.0
+) -> np.ndarray:
+    r"""A general homography ``[[A, t], [v^T, w]]``; v != 0 moves the line at infinity. 8 dof.
+
+    >>> projective_homography(v=[0.001, 0.0])[2]
+    array([0.001, 0.   , 1.   ])
+    """
+    H = np.eye(3)
+    H[:2, :2] = np.eye(2) if A is None else check_matrix(A, (2, 2), "A")
+    H[:2, 2] = check_matrix(t, (2,), "t")
+    H[2, :2] = check_matrix(v, (2,), "v")
+    H[2, 2] = check_number(w, "w")
+    return check_homography(H)
+
+
+def hierarchy_matrix(
+    group: str,
+    *,
+    theta: float = 0.0,
+    scale: float = 1.0,
+    shear: float = 0.0,
+    aspect: float = 1.0,
+    tx: float = 0.0,
+    ty: float = 0.0,
+    v: ArrayLike = (0.0, 0.0),
+) -> np.ndarray:
+    r"""One matrix of ``group`` (a key of :data:`HIERARCHY`) from one set of parameters.
+
+    Each group uses only the parameters it has and ignores the rest, which is what lesson
+    07's demo shows when the group changes under fixed sliders:
+
+    * euclidean: rotation ``theta`` (radians) and translation (tx, ty);
+    * similarity: adds the isotropic ``scale``;
+    * affine: scales ``scale * aspect`` and ``scale / aspect`` along axes turned by ``shear``
+      (:func:`affine_homography` with :math:`\phi` = ``shear``);
+    * projective: that affinity followed by ``v``, the bottom row that moves the line at
+      infinity: :math:`H = H_A H_P` (:func:`compose`, :func:`projective_homography`).
+
+    >>> classify(hierarchy_matrix("similarity", theta=0.3, scale=2.0, shear=0.5))
+    'similarity'
+    """
+    if group not in HIERARCHY:
+        raise CamlabInputError(f"group: expected one of {', '.join(HIERARCHY)}, got {group!r}")
+    if group == "euclidean":
+        return euclidean_homography(theta, tx, ty)
+    if group == "similarity":
+        return similarity_homography(scale, theta, tx, ty)
+    aspect = check_positive(aspect, "aspect")
+    A = affine_homography(theta, shear, scale * aspect, scale / aspect, tx, ty)
+    if group == "affine":
+        return A
+    return compose(A, projective_homography(v=v))
+
+
+def classify(H: ArrayLike, tol: float = 1e-9) -> str:
+    """The smallest group of the hierarchy that contains H: 'euclidean', 'similarity',
+    'affine' or 'projective'.
+
+    >>> classify(similarity_homography(2.0, 0.3, 1, 1)), classify(affine_homography(sx=2.0)), classify(projective_homography(v=[1e-3, 0]))
+    ('similarity', 'affine', 'projective')
+    """
+    Hm = normalise_homography(check_homography(H))
+    if abs(Hm[2, 2]) < tol or np.abs(Hm[2, :2]).max() > tol * abs(Hm[2, 2]):
+        return "projective"
+    A = Hm[:2, :2] / Hm[2, 2]
+    AtA = A.T @ A
+    s2 = AtA[0, 0]
+    if np.abs(AtA - s2 * np.eye(2)).max() > tol * max(s2, 1.0) or np.linalg.det(A) <= 0:
+        return "affine"  # not a scaled rotation (reflections count as affine here)
+    if abs(s2 - 1.0) > tol:
+        return "similarity"
+    return "euclidean"
+
+
+class HomographyFactors(NamedTuple):
+    """:func:`decompose_homography`'s factors, :math:`H = H_S H_A H_P` (each (3, 3)).
+
+    Attributes
+    ----------
+    H_S : (3, 3) ndarray
+        The similarity part (rotation, uniform scale, translation).
+    H_A : (3, 3) ndarray
+        The affine part (upper-triangular K, det K = 1).
+    H_P : (3, 3) ndarray
+        The projective part (the bottom row that moves the line at infinity).
+    """
+
+    H_S: np.ndarray
+    H_A: np.ndarray
+    H_P: np.ndarray
+
+
+def decompose_homography(H: ArrayLike) -> HomographyFactors:
+    r"""Split :math:`H = H_S H_A H_P` into similarity, affine and projective parts (H&Z 2.4.6).
+
+    .. math::
+        H_S = \begin{pmatrix} sR & t/v \\ 0^T & 1 \end{pmatrix},\quad
+        H_A = \begin{pmatrix} K & 0 \\ 0^T & 1 \end{pmatrix},\quad
+        H_P = \begin{pmatrix} I & 0 \\ v^T & v \end{pmatrix}
+
+    with K upper triangular, det K = 1. Requires H[2, 2] != 0 (the origin does not map
+    to infinity).
+
+    Returns
+    -------
+    HomographyFactors
+        ``(H_S, H_A, H_P)``: three (3, 3) ndarrays whose product equals ``normalise_homography(H)``.
+    """
+    Hm = normalise_homography(check_homography(H))
+    if abs(Hm[2, 2]) < 1e-12:
+        raise DegenerateError(
+            "decompose_homography: H[2, 2] = 0 (the origin maps to infinity); translate first"
+        )
+    vvec, vs = Hm[2, :2], Hm[2, 2]
+    t = Hm[:2, 2]
+    Aeff = Hm[:2, :2] - np.outer(t, vvec) / vs  # sRK = A - t v^T / v
+    # QR-like split sR K with K upper triangular, det K = 1, s > 0.
+    Q, Rq = np.linalg.qr(Aeff)
+    signs = np.sign(np.diag(Rq))
+    signs[signs == 0] = 1
+    Q, Rq = Q * signs, signs[:, None] * Rq
+    s = np.sqrt(abs(np.linalg.det(Rq)))
+    K = Rq / s
+    HS = np.eye(3)
+    HS[:2, :2] = s * Q
+    HS[:2, 2] = t / vs
+    HA = np.eye(3)
+    HA[:2, :2] = K
+    HP = np.eye(3)
+    HP[2, :2] = vvec / vs * 1.0
+    HP[2, 2] = 1.0
+    return HomographyFactors(HS, HA, HP)
