@@ -46,13 +46,17 @@ def feature_matches() -> Demo:
     art = draw_matches(ax, s.images[i], s.images[j], np.zeros((0, 2)), np.zeros((0, 2)))
     view.animate(art["good"], art["bad"])  # the images and keypoints stay: only the lines move
     draw_keypoints(
-        ax, feats[i].points, feats[i].sizes, color="yellow", path_effects=palette.halo(0.7, "black")
+        ax,
+        feats[i].points,
+        feats[i].sizes,
+        color=palette.YELLOW,
+        path_effects=palette.halo(0.7, "black"),
     )
     draw_keypoints(
         ax,
         feats[j].points + [art["offset"], 0],
         feats[j].sizes,
-        color="yellow",
+        color=palette.YELLOW,
         path_effects=palette.halo(0.7, "black"),
     )
     ax.set_title(
@@ -157,7 +161,7 @@ def ransac_registration() -> Demo:
         bins[:-1], np.zeros(len(bins) - 1), width=np.diff(bins), align="edge", color="0.6"
     )
     view.animate(*bars)
-    thr_line = view.animate(ax_e.axvline(3, color="tab:red", lw=1.5))
+    thr_line = view.animate(ax_e.axvline(3, color=palette.TAB_RED, lw=1.5))
     readout = W.HTML()
     true_H = s.true_homography(i, j)
     corners = np.array([[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]], float)
@@ -372,7 +376,9 @@ def blending_seams() -> Demo:
     from matplotlib.patches import Rectangle
 
     view.animate(
-        ax.add_patch(Rectangle((u0 - 0.5, v0 - 0.5), z, z, fill=False, color="yellow", lw=1.5))
+        ax.add_patch(
+            Rectangle((u0 - 0.5, v0 - 0.5), z, z, fill=False, color=palette.YELLOW, lw=1.5)
+        )
     )  # over the image
     ax.set_xticks([])
     ax.set_yticks([])
@@ -541,7 +547,7 @@ def canvas_projections() -> Demo:
             ha="center",
             va="center",
             fontsize=10,
-            color="tab:red",
+            color=palette.TAB_RED,
             wrap=True,
         )
     )
