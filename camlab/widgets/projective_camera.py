@@ -18,6 +18,7 @@ from .. import camera as cm
 from .. import fixtures, scenes
 from ..plotting import palette, scene3d
 from ._base import FigureView, build_demo, register, slider
+from ._resection import place_camera_labels, resection_readout
 from .controls import int_slider
 
 TARGET = np.array([0.0, 0.0, 0.7])
@@ -208,51 +209,6 @@ def camera_explorer():
     )
 
 
-def _resection_readout(err, K, cam_true, Xw, v, moved, info, centre_err):
-    """The readout beside the figure: the residuals, the errors of f and C, the redundancy
-    and the RMS it leads one to expect; returns the numbers it states.
-    """
-    behind = int(
-        np.count_nonzero(~np.isfinite(err))
-    )  # points behind the estimated camera have no image
-    rms = float(np.sqrt(np.mean(err**2)))
-    focal_err = float(abs(K[0, 0] - cam_true.K[0, 0]))
-    n = len(Xw)
-    redundancy = 2 * n - 11  # equations minus unknowns: the noise the residuals can show
-    # The expected RMS residual of the maximum-likelihood fit (H&Z 5.1.3); the true camera leaves sigma sqrt(2).
-    expected = float(v["noise"]) * np.sqrt(2.0 * redundancy / (2 * n))
-    warning = (
-        "\n<b>few spare equations: the fit absorbs the noise, so a small RMS\n"
-        "says little about the camera</b>"
-        if redundancy < 10 and v["noise"] > 0
-        else ""
-    )
-    rms_text = (
-        f"RMS reprojection {rms:.2f} px"
-        if not behind
-        else f"<b>{behind} of {n} points lie behind the estimated camera:\n"
-        f"no reprojection error; the fit has failed</b>"
-    )
-    worst = (
-        ""
-        if behind or not moved
-        else (
-            f"\nlargest residual: pair {int(np.argmax(err))} ({err.max():.1f} px)"
-            f"\nmoved pair {', '.join(map(str, moved))}: {', '.join(f'{err[i]:.1f}' for i in moved)} px"
-        )
-    )
-    info.value = (
-        f"<pre>{rms_text}{worst}\n|fx - fx_true| = {focal_err:.1f} px\n"
-        f"|C - C_true| = {100 * centre_err:.1f} cm\n"
-        f"{k_readout(K, cam_true.image_size)}\n\n"
-        f"redundancy 2N - 11 = {redundancy}\n"
-        f"RMS expected of the fitted camera:\n  sigma sqrt(2) sqrt((2N - 11) / 2N) = {expected:.2f} px\n"
-        f"(the true camera leaves sigma sqrt(2) = {float(v['noise']) * np.sqrt(2.0):.2f} px)"
-        f"{warning}</pre>"
-    )
-    return behind, rms, focal_err, redundancy, expected
-
-
 def _show_estimate(art, trial, K, R, t, C, ringed):
     """Draw the points, their pixels and reprojections (pairs ``ringed`` ringed), and the
     estimated camera K [R | t] (centre C) or, when it is more than FAR_M from the truth, a
@@ -277,7 +233,7 @@ def _show_estimate(art, trial, K, R, t, C, ringed):
     sv.fit(extra=np.vstack([tip, tip + 0.3 * d]) if far else est_art.extent_points(est))
     for artist in est_art.artists():
         artist.set_visible(not far)
-    _place_camera_labels(sv.ax3d, sv.camera_artist, est_art)
+    place_camera_labels(sv.ax3d, sv.camera_artist, est_art)
     if far:
         pointer.set_data_3d(*np.c_[cam_true.centre, tip])
         pointer_text.set_position_3d(tip)  # centred over the pointer's tip, inside the view
@@ -477,7 +433,7 @@ def resectioning():
         K, R, t, C = cm.decompose_projection_matrix(P)
         err = trial.errors
         centre_err, far = _show_estimate(art, trial, K, R, t, C, ringed)
-        behind, rms, focal_err, redundancy, expected = _resection_readout(
+        behind, rms, focal_err, redundancy, expected = resection_readout(
             err, K, cam_true, Xw, v, moved, art.info, centre_err
         )
         state.update(
@@ -521,54 +477,6 @@ def resectioning():
         on_click  # tests call it with an object carrying inaxes, xdata, ydata
     )
     return demo
-
-
-def k_readout(K, image_size=(640, 480)) -> str:
-    """The estimated K as a camera maker would read it, and a warning when no real camera has it.
-
-    A real camera has square pixels (f_y = f_x within a few per cent), no skew and its principal point on
-    the image; an estimate that breaks any of these is a failed resection, whatever its residual.
-    """
-    K = np.asarray(K, dtype=float) / K[2, 2]
-    (fx, s, cx), (_, fy, cy) = K[0], K[1]
-    w, h = image_size
-    text = f"estimated K: fx {fx:.0f}, fy {fy:.0f}, skew {s:.0f} px,\n  principal point ({cx:.0f}, {cy:.0f})"
-    odd = [
-        what
-        for what, bad in (
-            ("fy != fx", abs(fy / fx - 1) > 0.05),
-            ("skew", abs(s) > 0.02 * abs(fx)),
-            ("principal point off the image", not (0 <= cx <= w - 1 and 0 <= cy <= h - 1)),
-        )
-        if bad
-    ]
-    return text + (
-        f"\n<b>no real camera has this K ({', '.join(odd)}):\ndistrust this resection</b>"
-        if odd
-        else ""
-    )
-
-
-def _place_camera_labels(ax, true_artist, est_artist) -> None:
-    """Hang "true" and "est." off their centres on the sides facing away from each other on screen.
-
-    Both frustums point right, towards the box, so the labels go left of their centres; the camera that is
-    higher on screen takes its label above (along its -y, the image's up), the other below, so neither lands
-    on the other camera. (Text3D's vertical alignment barely moves a label; an offset in the world does.)
-    """
-    from mpl_toolkits.mplot3d import proj3d
-
-    cams = (true_artist.camera, est_artist.camera)
-    (_, _), (y_true, y_est), _ = proj3d.proj_transform(*np.c_[cams[0].centre, cams[1].centre], ax.M)
-    up, down = (-0.05, -0.3), (-0.05, 0.3)
-    for artist, offset in zip(
-        (true_artist, est_artist), (up, down) if y_true >= y_est else (down, up), strict=True
-    ):
-        artist.label_offset = offset
-        artist.label.set(
-            ha="right", va="center", path_effects=palette.halo()
-        )  # readable over a grid line
-        artist.label.set_position_3d(artist._label_position(artist.camera))
 
 
 @register(lesson="04", sweep={"orbit": [-90, -60, 60, 90], "frame": ["OpenGL / Blender", "OpenCV"]})
