@@ -81,32 +81,11 @@ CONE_COLOURS = (
 CONE_BEFORE = 3.0  # the cone figure shows the last 3 f of the rays before the pinhole (units of f)
 
 
-def draw_pinhole_cones(
-    ax,
-    diameter: float,
-    focal_length: float,
-    object_distance: float,
-    heights=(-0.02, 0.02),
-    wavelength: float = 550e-9,
-) -> dict:
-    """Side view of pinhole blur, to scale: each object point's cone of rays through a hole of ``diameter``.
-
-    Drawn as lesson 01's other side view (:func:`draw_similar_triangles`): depth z to the right, the
-    objects on the +z side, the real image plane at z = -f on the left, height -y upwards. Two points
-    at ``heights`` (metres, camera y) and distance ``object_distance`` send cones through the hole in
-    the screen; each cone cuts the image plane ``focal_length`` behind it in a disc of diameter
-    d (1 + f/Z) (drawn in the point's colour), widened by diffraction to the Airy disc
-    2.44 lambda f / d (the pale band). Both axes are millimetres, each with one scale, so every ray is
-    straight: the figure shows the last :data:`CONE_BEFORE` f of the rays before the hole, and the
-    points themselves, further right, are named where their rays come in. Returns the blur terms in metres.
+def _draw_cones(ax, heights, Z, f, b, a, x_in, x_img):
+    """Each object point's cone of rays through the hole and on to the image plane, with its
+    disc and the diffraction band around it; returns, per point, its height, where its rays
+    enter at the right edge, and its colour.
     """
-    Z, f, d = object_distance, focal_length, diameter
-    b = _pinhole.pinhole_blur(d, f, Z, wavelength)
-    a = d / 2 * 1e3
-    x_in, x_img = (
-        CONE_BEFORE * f * 1e3,
-        -f * 1e3,
-    )  # plot x = depth z, mm: the right edge and the image plane
     entry = []
     for Y, colour in zip(
         heights, CONE_COLOURS, strict=True
@@ -138,9 +117,13 @@ def draw_pinhole_cones(
         )
         ax.plot([x_img, x_img], [bottom, top], color=colour, lw=4, solid_capstyle="butt")
         entry.append((y_obj, (upper + lower) / 2, colour))
-    wall = 1.6 * max(
-        abs(e[1]) for e in entry
-    )  # the same for every d: panels can share the height axis
+    return entry
+
+
+def _label_cones(ax, entry, Z, f, a, x_in, x_img, wall):
+    """Name where each point's rays come in, and draw and name the screen and the image
+    plane.
+    """
     for (
         y_obj,
         y_in,
@@ -180,6 +163,39 @@ def draw_pinhole_cones(
         fontsize=8,
         arrowprops=dict(arrowstyle="->", color="k", lw=0.8, shrinkA=1, shrinkB=1),
     )
+
+
+def draw_pinhole_cones(
+    ax,
+    diameter: float,
+    focal_length: float,
+    object_distance: float,
+    heights=(-0.02, 0.02),
+    wavelength: float = 550e-9,
+) -> dict:
+    """Side view of pinhole blur, to scale: each object point's cone of rays through a hole of ``diameter``.
+
+    Drawn as lesson 01's other side view (:func:`draw_similar_triangles`): depth z to the right, the
+    objects on the +z side, the real image plane at z = -f on the left, height -y upwards. Two points
+    at ``heights`` (metres, camera y) and distance ``object_distance`` send cones through the hole in
+    the screen; each cone cuts the image plane ``focal_length`` behind it in a disc of diameter
+    d (1 + f/Z) (drawn in the point's colour), widened by diffraction to the Airy disc
+    2.44 lambda f / d (the pale band). Both axes are millimetres, each with one scale, so every ray is
+    straight: the figure shows the last :data:`CONE_BEFORE` f of the rays before the hole, and the
+    points themselves, further right, are named where their rays come in. Returns the blur terms in metres.
+    """
+    Z, f, d = object_distance, focal_length, diameter
+    b = _pinhole.pinhole_blur(d, f, Z, wavelength)
+    a = d / 2 * 1e3
+    x_in, x_img = (
+        CONE_BEFORE * f * 1e3,
+        -f * 1e3,
+    )  # plot x = depth z, mm: the right edge and the image plane
+    entry = _draw_cones(ax, heights, Z, f, b, a, x_in, x_img)
+    wall = 1.6 * max(
+        abs(e[1]) for e in entry
+    )  # the same for every d: panels can share the height axis
+    _label_cones(ax, entry, Z, f, a, x_in, x_img, wall)
     ax.axhline(0, color=palette.GREY, lw=0.6, zorder=0)
     ax.axvline(x_img, color="0.3", lw=1, ls="--")
     ax.set_xlim(x_img * 1.12, x_in)
