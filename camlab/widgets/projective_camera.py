@@ -18,6 +18,7 @@ from .. import camera as cm
 from .. import fixtures, scenes
 from ..plotting import palette, scene3d
 from ._base import FigureView, build_demo, register, slider
+from ._resection import k_readout as k_readout  # re-exported: it lived here
 from ._resection import place_camera_labels, resection_readout
 from .controls import int_slider
 

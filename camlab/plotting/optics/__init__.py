@@ -10,9 +10,18 @@ importable from here.
 
 from __future__ import annotations
 
-from .pinhole_blur import draw_pinhole_blur, draw_pinhole_cones, update_pinhole_blur
+from .pinhole_blur import (
+    CONE_BEFORE,
+    CONE_COLOURS,
+    draw_pinhole_blur,
+    draw_pinhole_cones,
+    update_pinhole_blur,
+)
 from .pinhole_camera import (
+    F_LABEL_ROOM,
     PINHOLE_VIEW,
+    SHORTEST_ARROW,
+    Z_LABEL_ROOM,
     PlaneFaces,
     axis_scales,
     box_edges,
@@ -24,6 +33,13 @@ from .pinhole_camera import (
     update_similar_triangles,
 )
 from .thin_lens import (
+    BLUR_VIEWS,
+    CONE_IMAGE_MAX,
+    CONE_OBJECT_MAX,
+    GREEN_LIGHT,
+    IMAGE_HEAD_MIN,
+    THIN_LENS_X,
+    THIN_LENS_Y,
     BlurView,
     blur_view,
     draw_blur_disc,
@@ -35,6 +51,18 @@ from .thin_lens import (
 )
 
 __all__ = [
+    "SHORTEST_ARROW",
+    "F_LABEL_ROOM",
+    "Z_LABEL_ROOM",
+    "THIN_LENS_X",
+    "IMAGE_HEAD_MIN",
+    "THIN_LENS_Y",
+    "CONE_OBJECT_MAX",
+    "CONE_IMAGE_MAX",
+    "GREEN_LIGHT",
+    "BLUR_VIEWS",
+    "CONE_COLOURS",
+    "CONE_BEFORE",
     "axis_scales",
     "box_edges",
     "label_camera_axes",

@@ -9,6 +9,7 @@ precomputed images, so every update stays fast.
 from __future__ import annotations
 
 from .canvas import (
+    BOX,
     blending_seams,
     canvas_projections,
     full_panorama,
@@ -18,6 +19,7 @@ from .canvas import (
 from .matching import feature_matches, ransac_registration
 
 __all__ = [
+    "BOX",
     "blending_seams",
     "canvas_projections",
     "feature_matches",
