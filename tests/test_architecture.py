@@ -203,7 +203,7 @@ BARE_TUPLES_ALLOWED = {
     "camlab.exercises.stereo_rectification.epipoles": "an exercise's teaching solution",
     "camlab.exercises.stereo_rectification.decompose_essential": "an exercise's teaching solution",
     # a sequence of artists splatted into view.animate(*...), not a record of named values
-    "camlab.widgets.affine_cameras.reference_marker": "a sequence of artists, not a record",
+    "camlab.widgets.affine_cameras.common.reference_marker": "a sequence of artists, not a record",
 }
 
 

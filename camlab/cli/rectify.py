@@ -188,6 +188,7 @@ def _vertical_disparity_figure(before, after, path) -> None:
     from matplotlib.figure import Figure
 
     from .._files import atomic_output
+    from ..plotting import palette
 
     fig = Figure(figsize=(6, 3), dpi=100, layout="constrained")
     FigureCanvasAgg(fig)
@@ -197,14 +198,14 @@ def _vertical_disparity_figure(before, after, path) -> None:
     ax.hist(
         np.clip(before.values, 0, top),
         bins=bins,
-        color="#BB5566",
+        color=palette.BEFORE,
         alpha=0.6,
         label=f"before (median {before.median:.1f} px)",
     )
     ax.hist(
         np.clip(after.values, 0, top),
         bins=bins,
-        color="#004488",
+        color=palette.AFTER,
         alpha=0.8,
         hatch="//",
         label=f"after (median {after.median:.2f} px)",

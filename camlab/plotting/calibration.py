@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from ..calibration import CalibrationResult, CoachReport, coach, projection_uncertainty
+from . import palette
 
 __all__ = [
     "image_frame",
@@ -46,7 +47,9 @@ def plot_per_view_errors(ax, result: CalibrationResult, highlight_ratio: float =
     """Bar chart of each view's rms (px) with the overall rms; views >= ``highlight_ratio`` x median in red."""
     err = result.per_view_rms
     med = np.median(err)
-    colors = ["tab:red" if e >= highlight_ratio * med and e > 0.1 else "tab:blue" for e in err]
+    colors = [
+        palette.TAB_RED if e >= highlight_ratio * med and e > 0.1 else palette.TAB_BLUE for e in err
+    ]
     bars = ax.bar(np.arange(len(err)), err, color=colors)
     ax.axhline(result.rms, color="k", ls="--", lw=1, label=f"overall rms {result.rms:.2f} px")
     ax.set(xlabel="view", ylabel="rms error (px)", title="Error per view")

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import palette
+
 __all__ = ["show_image", "zoom_box"]
 
 
@@ -37,7 +39,7 @@ def show_image(
     return art
 
 
-def zoom_box(ax, u0: int, v0: int, size: int, color: str = "tab:red"):
+def zoom_box(ax, u0: int, v0: int, size: int, color: str = palette.TAB_RED):
     """Outline the crop ``[v0:v0+size, u0:u0+size]`` on an image axes; returns the Rectangle."""
     from matplotlib.patches import Rectangle
 

@@ -8,7 +8,7 @@ lighter than matplotlib's ``tab:`` colours where those collapse (``tab:green`` a
 ``tab:red`` for deuteranopes, ``tab:orange`` against ``tab:green`` for protanopes).
 Based on Paul Tol's colour schemes (https://personal.sron.nl/~pault/).
 
-Every colour here reaches 3:1 against white, the contrast WCAG 2.1 asks of lines and
+Every colour of the series reaches 3:1 against white, the contrast WCAG 2.1 asks of lines and
 markers (1.4.11); all but ORANGE also reach 4.5:1, enough for text (1.4.3). ORANGE is
 darker than Tol's ``#EE9944`` (2.3:1) for that reason. ``tests/test_figure_contrast.py``
 measures every demo. A line or text drawn over a photograph, whose colours can be
@@ -25,6 +25,27 @@ BROWN = "#8C564B"  # 5.9:1
 GREY = "#808080"  # 4.0:1: reference lines ("before", "original", construction)
 
 SERIES = (BLUE, ORANGE, GREEN, RED, PURPLE, BROWN)  # for numbered things: image 0, 1, 2...
+
+# The colours demos drew before this palette, kept under a name here so that every colour a
+# figure uses is spelt in this module (``tests/test_palette.py`` fails on a raw colour
+# anywhere else). Each is the very string the demos passed, so their renders stay
+# byte-identical; each demo that uses one passes tests/test_colour_vision.py and
+# tests/test_figure_contrast.py as it is (YELLOW, MAGENTA and TAB_CYAN fall short of 3:1 on
+# white: they are drawn over images, never on a white background). A demo redesigned later
+# moves to the series above.
+TAB_BLUE = "tab:blue"  # #1F77B4, 4.8:1 on white
+TAB_RED = "tab:red"  # #D62728, 5.0:1
+TAB_GREEN = "tab:green"  # #2CA02C, 3.4:1: lines and markers, not text
+TAB_CYAN = "tab:cyan"  # #17BECF, 2.3:1: row guides over the grey stereo pair (lesson 11)
+TAB_PURPLE = "tab:purple"  # #9467BD, 4.3:1: the |v1 - v2| step plot of lesson 11
+DARK_GREEN = "darkgreen"  # #006400, 7.4:1: labels A-D of the green points (lesson 07)
+YELLOW = "yellow"  # #FFFF00, 1.1:1: marks over photographs (keypoints, crops, a traced quad)
+MAGENTA = "magenta"  # #FF00FF, 3.1:1: residual arrows over a grey calibration photo
+BEFORE = "#BB5566"  # 4.6:1, Tol's high-contrast red: "before" in `camlab rectify`'s histogram
+AFTER = "#004488"  # 9.6:1, Tol's high-contrast blue: "after" (hatched too, so not colour alone)
+
+# Neutrals (black, white and the grey levels "0.0"-"1.0") have no hue, so they cannot clash
+# with a meaning or collapse for a colour-blind reader: figures may spell them directly.
 
 AXIS_COLOURS = (RED, GREEN, BLUE)
 """The x, y and z axes of every frame, camera or world, in every lesson: red, green, blue (RGB = xyz,

@@ -60,7 +60,7 @@ def match_segments(src: np.ndarray, dst: np.ndarray, offset: float) -> np.ndarra
 
 
 def draw_keypoints(
-    ax, points: np.ndarray, sizes: np.ndarray | None = None, color: str = "yellow", **kw
+    ax, points: np.ndarray, sizes: np.ndarray | None = None, color: str = palette.YELLOW, **kw
 ):
     """Keypoints as circles of their detection size (scatter); returns the PathCollection."""
     pts = np.asarray(points, dtype=float).reshape(-1, 2)

@@ -41,7 +41,7 @@ def accuracy_vs_views() -> Demo:
     ax.axhline(0, color="0.4", lw=1)
     # In units of the reported standard deviation: the bars are always +-3, so every setting
     # fits one fixed axis, and a dot outside them is a reported sigma that is too optimistic.
-    ax.axhspan(-3, 3, color="tab:blue", alpha=0.15, lw=0, label="±3σ (σ as reported)")
+    ax.axhspan(-3, 3, color=palette.TAB_BLUE, alpha=0.15, lw=0, label="±3σ (σ as reported)")
     ax.set(
         xlim=(-0.6, 3.6),
         ylim=(-_SIGMA_LIM, _SIGMA_LIM),
@@ -51,11 +51,17 @@ def accuracy_vs_views() -> Demo:
         title="Errors in units of the reported σ",
     )
     ax.grid(True, axis="y", color="0.93")
-    (dots,) = ax.plot([], [], "o", color="tab:red", ms=7, label="actual error")
+    (dots,) = ax.plot([], [], "o", color=palette.TAB_RED, ms=7, label="actual error")
     (above,) = ax.plot(
-        [], [], "^", ls="none", color="tab:red", ms=11, label=f"beyond ±{_SIGMA_LIM:.0f}σ (clipped)"
+        [],
+        [],
+        "^",
+        ls="none",
+        color=palette.TAB_RED,
+        ms=11,
+        label=f"beyond ±{_SIGMA_LIM:.0f}σ (clipped)",
     )
-    (below,) = ax.plot([], [], "v", ls="none", color="tab:red", ms=11)
+    (below,) = ax.plot([], [], "v", ls="none", color=palette.TAB_RED, ms=11)
     view.animate(dots, above, below)
     ax.legend(loc="lower left", fontsize=7)
     image_frame(axi, s.image_size, "Corners used, coloured by view")
@@ -202,7 +208,7 @@ def view_inspector(
             np.zeros(n),
             np.zeros(n),
             np.zeros(n),
-            color="magenta",
+            color=palette.MAGENTA,
             angles="xy",
             scale_units="xy",
             scale=1,

@@ -54,8 +54,8 @@ def _warning(
             ha=ha,
             va=va,
             fontsize=8,
-            color="tab:red",
-            bbox=dict(fc="white", ec="tab:red", alpha=0.9),
+            color=palette.TAB_RED,
+            bbox=dict(fc="white", ec=palette.TAB_RED, alpha=0.9),
             visible=False,
         )
     )
@@ -267,7 +267,7 @@ def drag_homography() -> Demo:
             xytext=(3, -8),
             textcoords="offset points",
             fontsize=9,
-            color="darkgreen",
+            color=palette.DARK_GREEN,
             path_effects=palette.halo(),
         )
     im = view.animate(
@@ -385,7 +385,7 @@ def ransac_outliers() -> Demo:
     box_true = view.animate(
         ax.plot([], [], "-", color="0.3", lw=2, label="true H (image frame)")[0]
     )
-    box_est = view.animate(ax.plot([], [], "--", color="tab:blue", lw=2, label="RANSAC H")[0])
+    box_est = view.animate(ax.plot([], [], "--", color=palette.TAB_BLUE, lw=2, label="RANSAC H")[0])
     best = view.animate(
         ax.plot([], [], "o", mfc="none", mec="k", mew=2, ms=11, label="the winning sample of 4")[0]
     )
@@ -398,12 +398,12 @@ def ransac_outliers() -> Demo:
     k_curve = [required_iterations(1.0 - e, CONFIDENCE, 4) for e in eps]
     ax_k.semilogy(eps, k_curve, color="0.5", label="k = log(1-p) / log(1-(1-ε)⁴), p = 0.995")
     needed = view.animate(
-        ax_k.plot([], [], "o", mfc="none", mec="tab:blue", ms=9, label="k for the ε RANSAC found")[
-            0
-        ]
+        ax_k.plot(
+            [], [], "o", mfc="none", mec=palette.TAB_BLUE, ms=9, label="k for the ε RANSAC found"
+        )[0]
     )
     dot = view.animate(
-        ax_k.plot([], [], "o", color="tab:blue", label="samples drawn (whole batches)")[0]
+        ax_k.plot([], [], "o", color=palette.TAB_BLUE, label="samples drawn (whole batches)")[0]
     )
     ax_k.set(
         xlabel="outlier fraction ε",

@@ -288,7 +288,9 @@ def keystone_correction() -> Demo:
     parallel, so the corners cannot tell the focal length: the aspect ratio then rests
     on an assumed f, and the figure says how far off that makes it."""
     view, ax_p, ax_r, im_p, im_r, quad = _photo_demo(
-        "photo (camera tilted up)", "keystone-corrected", dict(ls="--", color="yellow", lw=1.5)
+        "photo (camera tilted up)",
+        "keystone-corrected",
+        dict(ls="--", color=palette.YELLOW, lw=1.5),
     )
     ax_r.text(
         0.5,

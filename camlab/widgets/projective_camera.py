@@ -9,6 +9,8 @@ In a lesson::
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import ipywidgets as W
 import numpy as np
 
@@ -16,6 +18,8 @@ from .. import camera as cm
 from .. import fixtures, scenes
 from ..plotting import palette, scene3d
 from ._base import FigureView, build_demo, register, slider
+from ._resection import k_readout as k_readout  # re-exported: it lived here
+from ._resection import place_camera_labels, resection_readout
 from .controls import int_slider
 
 TARGET = np.array([0.0, 0.0, 0.7])
@@ -206,29 +210,86 @@ def camera_explorer():
     )
 
 
-@register(
-    lesson="04",
-    sweep={
-        "noise": [0.0, 5.0],
-        "n_points": [6, 60],
-        "outlier": [-100.0, 60.0, 100.0],
-        "refine": [True, False],
-        "pair": [0, 5],
-        "outlier_v": [-100.0, 40.0, 100.0],
-    },
-)
-def resectioning():
-    """Estimate P from noisy correspondences (DLT, optionally refined) and compare to the truth.
+def _show_estimate(art, trial, K, R, t, C, ringed):
+    """Draw the points, their pixels and reprojections (pairs ``ringed`` ringed), and the
+    estimated camera K [R | t] (centre C) or, when it is more than FAR_M from the truth, a
+    pointer towards it; returns the centre's error (m) and whether it is that far.
+    """
+    cam_true, Xw, uvn, P = trial.camera, trial.points_world, trial.points_image, trial.P
+    est = cm.Camera(K, R, t)
+    est_art, sv, pointer, pointer_text = art.est_art, art.sv, art.pointer, art.pointer_text
+    art.moved_img.set_data(uvn[ringed, 0], uvn[ringed, 1])
+    art.moved_3d.set_data_3d(Xw[ringed, 0], Xw[ringed, 1], Xw[ringed, 2])
+    # A wild fit (N = 6 with an outlier) can have a focal length of a few tens of pixels; its frustum at
+    # the usual depth would be metres wide and cover the view, so shorten it to at most 1.2 m across.
+    w, h = est.image_size
+    est_art.size = min(1.0, 0.6 / max(w / 2 / abs(K[0, 0]), h / 2 / abs(K[1, 1])))
+    est_art.update(est)
+    centre_err = float(np.linalg.norm(C - cam_true.centre))
+    far = centre_err > FAR_M
+    d = (C - cam_true.centre) / max(centre_err, 1e-12)
+    tip = (
+        cam_true.centre + 1.5 * d
+    )  # far: a 1.5 m pointer from the true camera towards the estimate
+    sv.fit(extra=np.vstack([tip, tip + 0.3 * d]) if far else est_art.extent_points(est))
+    for artist in est_art.artists():
+        artist.set_visible(not far)
+    place_camera_labels(sv.ax3d, sv.camera_artist, est_art)
+    if far:
+        pointer.set_data_3d(*np.c_[cam_true.centre, tip])
+        pointer_text.set_position_3d(tip)  # centred over the pointer's tip, inside the view
+        pointer_text.set_text(f"est. camera:\n{centre_err:.1f} m this way")
+    else:
+        pointer.set_data_3d([], [], [])
+        pointer_text.set_text("")
+    art.pts3d.set_data_3d(Xw[:, 0], Xw[:, 1], Xw[:, 2])
+    art.meas.set_data(uvn[:, 0], uvn[:, 1])
+    r = cm.project_points(P, Xw)
+    art.reproj.set_data(r[:, 0], r[:, 1])
+    scene3d.update_segments(art.est_lines, cm.project_segments(P, art.frame))
+    return centre_err, far
 
-    Click in the image to move the nearest measured pixel there (a mismatched
-    correspondence); without a mouse, the ``outlier`` and ``outlier_v`` sliders shift the
-    pixel of correspondence ``pair`` along u and v. Changing N or the noise starts from
-    fresh measurements. The 3-D view fits both cameras; an estimate more than FAR_M metres
-    from the truth is shown by an arrow towards it, labelled with its distance.
+
+def _resectioning_key(view):
+    """What the line styles of :func:`resectioning` mean, drawn once below the axes, where
+    it covers no data.
     """
     from matplotlib.lines import Line2D
 
-    view = FigureView(figsize=(9, 4.6))
+    # What the line styles mean, on the figure: true camera solid (purple in 3-D, its view black-grey in
+    # the image), the estimate dashed orange; drawn once, outside the axes, so it covers no data.
+    keys = [
+        Line2D([], [], color=palette.PURPLE, lw=1.2),
+        Line2D([], [], color=palette.ORANGE, lw=1.2),
+        Line2D([], [], color="0.35", lw=1.2),
+        Line2D([], [], color=palette.ORANGE, lw=1.0, ls="--"),
+        Line2D([], [], marker="o", mfc="none", color="k", ls="none"),
+        Line2D([], [], marker="+", color=palette.ORANGE, mew=1.5, ls="none"),
+        Line2D([], [], marker="o", ms=10, mfc="none", mec="k", mew=2.0, ls="none"),
+    ]
+    view.fig.legend(
+        keys,
+        [
+            "true camera",
+            "estimated camera",
+            "scene seen by the true camera",
+            "seen by the estimate",
+            "measured pixel",
+            "reprojected by the estimate",
+            "pair k (the shift sliders move it)",
+        ],
+        loc="outside lower center",
+        ncols=4,
+        fontsize=8,
+        frameon=False,
+    )
+
+
+def _resectioning_figure(view):
+    """The figure of :func:`resectioning`: the 3-D scene with the true and the estimated
+    camera, the image panel with the measured and reprojected pixels, the key below; returns
+    its artists by name.
+    """
     cam, X, uv = fixtures.resection_set(12, 0.5)
     box = scenes.box_wireframe((0.0, 0.0, 1.0), (2.0, 2.0, 2.0))
     # The box's bottom edges lie on grid lines: drawn twice, two dash patterns interleave into a solid line.
@@ -276,33 +337,7 @@ def resectioning():
     (reproj,) = sv.ax_image.plot([], [], "+", color=palette.ORANGE, ms=8, mew=1.5)
     (est_lines,) = sv.ax_image.plot([], [], color=palette.ORANGE, lw=1.0, ls="--")
     sv.image_lines.set_color("0.35")
-    # What the line styles mean, on the figure: true camera solid (purple in 3-D, its view black-grey in
-    # the image), the estimate dashed orange; drawn once, outside the axes, so it covers no data.
-    keys = [
-        Line2D([], [], color=palette.PURPLE, lw=1.2),
-        Line2D([], [], color=palette.ORANGE, lw=1.2),
-        Line2D([], [], color="0.35", lw=1.2),
-        Line2D([], [], color=palette.ORANGE, lw=1.0, ls="--"),
-        Line2D([], [], marker="o", mfc="none", color="k", ls="none"),
-        Line2D([], [], marker="+", color=palette.ORANGE, mew=1.5, ls="none"),
-        Line2D([], [], marker="o", ms=10, mfc="none", mec="k", mew=2.0, ls="none"),
-    ]
-    view.fig.legend(
-        keys,
-        [
-            "true camera",
-            "estimated camera",
-            "scene seen by the true camera",
-            "seen by the estimate",
-            "measured pixel",
-            "reprojected by the estimate",
-            "pair k (the shift sliders move it)",
-        ],
-        loc="outside lower center",
-        ncols=4,
-        fontsize=8,
-        frameon=False,
-    )
+    _resectioning_key(view)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
     # Registered in the order they were created (the true camera's view first), so a live frame stacks
     # them as a full draw does; the 3-D limits follow the estimate, so everything in the 3-D axes moves.
@@ -318,6 +353,24 @@ def resectioning():
         reproj,
         est_lines,
     )
+    return SimpleNamespace(
+        frame=frame,
+        sv=sv,
+        est_art=est_art,
+        pts3d=pts3d,
+        moved_3d=moved_3d,
+        pointer=pointer,
+        pointer_text=pointer_text,
+        moved_img=moved_img,
+        meas=meas,
+        reproj=reproj,
+        est_lines=est_lines,
+        info=info,
+    )
+
+
+def _resectioning_controls():
+    """The controls of :func:`resectioning`: the noise, N, and which pair to shift how far."""
     controls = {
         "noise": slider(0.5, 0.0, 5.0, 0.1, "pixel noise sigma (px)"),
         "n_points": int_slider(12, 6, 60, "correspondences N"),
@@ -330,6 +383,32 @@ def resectioning():
         "pair": int_slider(0, 0, 5, "pair k (0-5) to shift"),
         "refine": W.Checkbox(value=False, description="refine (minimise reprojection error)"),
     }
+    return controls
+
+
+@register(
+    lesson="04",
+    sweep={
+        "noise": [0.0, 5.0],
+        "n_points": [6, 60],
+        "outlier": [-100.0, 60.0, 100.0],
+        "refine": [True, False],
+        "pair": [0, 5],
+        "outlier_v": [-100.0, 40.0, 100.0],
+    },
+)
+def resectioning():
+    """Estimate P from noisy correspondences (DLT, optionally refined) and compare to the truth.
+
+    Click in the image to move the nearest measured pixel there (a mismatched
+    correspondence); without a mouse, the ``outlier`` and ``outlier_v`` sliders shift the
+    pixel of correspondence ``pair`` along u and v. Changing N or the noise starts from
+    fresh measurements. The 3-D view fits both cameras; an estimate more than FAR_M metres
+    from the truth is shown by an arrow towards it, labelled with its distance.
+    """
+    view = FigureView(figsize=(9, 4.6))
+    art = _resectioning_figure(view)
+    controls = _resectioning_controls()
     clicked: dict[int, np.ndarray] = {}  # correspondence index -> clicked pixel
     last_data: dict[str, tuple] = {}
 
@@ -352,75 +431,11 @@ def resectioning():
         ringed = sorted(
             set(moved) | {int(v["pair"])}
         )  # pair k is ringed before it moves, so you see which it is
-        moved_img.set_data(uvn[ringed, 0], uvn[ringed, 1])
-        moved_3d.set_data_3d(Xw[ringed, 0], Xw[ringed, 1], Xw[ringed, 2])
         K, R, t, C = cm.decompose_projection_matrix(P)
-        est = cm.Camera(K, R, t)
         err = trial.errors
-        # A wild fit (N = 6 with an outlier) can have a focal length of a few tens of pixels; its frustum at
-        # the usual depth would be metres wide and cover the view, so shorten it to at most 1.2 m across.
-        w, h = est.image_size
-        est_art.size = min(1.0, 0.6 / max(w / 2 / abs(K[0, 0]), h / 2 / abs(K[1, 1])))
-        est_art.update(est)
-        centre_err = float(np.linalg.norm(C - cam_true.centre))
-        far = centre_err > FAR_M
-        d = (C - cam_true.centre) / max(centre_err, 1e-12)
-        tip = (
-            cam_true.centre + 1.5 * d
-        )  # far: a 1.5 m pointer from the true camera towards the estimate
-        sv.fit(extra=np.vstack([tip, tip + 0.3 * d]) if far else est_art.extent_points(est))
-        for artist in est_art.artists():
-            artist.set_visible(not far)
-        _place_camera_labels(sv.ax3d, sv.camera_artist, est_art)
-        if far:
-            pointer.set_data_3d(*np.c_[cam_true.centre, tip])
-            pointer_text.set_position_3d(tip)  # centred over the pointer's tip, inside the view
-            pointer_text.set_text(f"est. camera:\n{centre_err:.1f} m this way")
-        else:
-            pointer.set_data_3d([], [], [])
-            pointer_text.set_text("")
-        pts3d.set_data_3d(Xw[:, 0], Xw[:, 1], Xw[:, 2])
-        meas.set_data(uvn[:, 0], uvn[:, 1])
-        r = cm.project_points(P, Xw)
-        reproj.set_data(r[:, 0], r[:, 1])
-        scene3d.update_segments(est_lines, cm.project_segments(P, frame))
-        behind = int(
-            np.count_nonzero(~np.isfinite(err))
-        )  # points behind the estimated camera have no image
-        rms = float(np.sqrt(np.mean(err**2)))
-        focal_err = float(abs(K[0, 0] - cam_true.K[0, 0]))
-        n = len(Xw)
-        redundancy = 2 * n - 11  # equations minus unknowns: the noise the residuals can show
-        # The expected RMS residual of the maximum-likelihood fit (H&Z 5.1.3); the true camera leaves sigma sqrt(2).
-        expected = float(v["noise"]) * np.sqrt(2.0 * redundancy / (2 * n))
-        warning = (
-            "\n<b>few spare equations: the fit absorbs the noise, so a small RMS\n"
-            "says little about the camera</b>"
-            if redundancy < 10 and v["noise"] > 0
-            else ""
-        )
-        rms_text = (
-            f"RMS reprojection {rms:.2f} px"
-            if not behind
-            else f"<b>{behind} of {n} points lie behind the estimated camera:\n"
-            f"no reprojection error; the fit has failed</b>"
-        )
-        worst = (
-            ""
-            if behind or not moved
-            else (
-                f"\nlargest residual: pair {int(np.argmax(err))} ({err.max():.1f} px)"
-                f"\nmoved pair {', '.join(map(str, moved))}: {', '.join(f'{err[i]:.1f}' for i in moved)} px"
-            )
-        )
-        info.value = (
-            f"<pre>{rms_text}{worst}\n|fx - fx_true| = {focal_err:.1f} px\n"
-            f"|C - C_true| = {100 * centre_err:.1f} cm\n"
-            f"{k_readout(K, cam_true.image_size)}\n\n"
-            f"redundancy 2N - 11 = {redundancy}\n"
-            f"RMS expected of the fitted camera:\n  sigma sqrt(2) sqrt((2N - 11) / 2N) = {expected:.2f} px\n"
-            f"(the true camera leaves sigma sqrt(2) = {float(v['noise']) * np.sqrt(2.0):.2f} px)"
-            f"{warning}</pre>"
+        centre_err, far = _show_estimate(art, trial, K, R, t, C, ringed)
+        behind, rms, focal_err, redundancy, expected = resection_readout(
+            err, K, cam_true, Xw, v, moved, art.info, centre_err
         )
         state.update(
             P=P,
@@ -446,11 +461,11 @@ def resectioning():
         view,
         update,
         title="Resection: estimate P from N point pairs (DLT); click the image (or use the shift sliders) to move a pixel",
-        extra=[info],
+        extra=[art.info],
     )
 
     def on_click(event):
-        if event.inaxes is not sv.ax_image or event.xdata is None:
+        if event.inaxes is not art.sv.ax_image or event.xdata is None:
             return
         uvn = demo.state["points_image"]
         i = int(np.argmin(np.linalg.norm(uvn - [event.xdata, event.ydata], axis=1)))
@@ -463,54 +478,6 @@ def resectioning():
         on_click  # tests call it with an object carrying inaxes, xdata, ydata
     )
     return demo
-
-
-def k_readout(K, image_size=(640, 480)) -> str:
-    """The estimated K as a camera maker would read it, and a warning when no real camera has it.
-
-    A real camera has square pixels (f_y = f_x within a few per cent), no skew and its principal point on
-    the image; an estimate that breaks any of these is a failed resection, whatever its residual.
-    """
-    K = np.asarray(K, dtype=float) / K[2, 2]
-    (fx, s, cx), (_, fy, cy) = K[0], K[1]
-    w, h = image_size
-    text = f"estimated K: fx {fx:.0f}, fy {fy:.0f}, skew {s:.0f} px,\n  principal point ({cx:.0f}, {cy:.0f})"
-    odd = [
-        what
-        for what, bad in (
-            ("fy != fx", abs(fy / fx - 1) > 0.05),
-            ("skew", abs(s) > 0.02 * abs(fx)),
-            ("principal point off the image", not (0 <= cx <= w - 1 and 0 <= cy <= h - 1)),
-        )
-        if bad
-    ]
-    return text + (
-        f"\n<b>no real camera has this K ({', '.join(odd)}):\ndistrust this resection</b>"
-        if odd
-        else ""
-    )
-
-
-def _place_camera_labels(ax, true_artist, est_artist) -> None:
-    """Hang "true" and "est." off their centres on the sides facing away from each other on screen.
-
-    Both frustums point right, towards the box, so the labels go left of their centres; the camera that is
-    higher on screen takes its label above (along its -y, the image's up), the other below, so neither lands
-    on the other camera. (Text3D's vertical alignment barely moves a label; an offset in the world does.)
-    """
-    from mpl_toolkits.mplot3d import proj3d
-
-    cams = (true_artist.camera, est_artist.camera)
-    (_, _), (y_true, y_est), _ = proj3d.proj_transform(*np.c_[cams[0].centre, cams[1].centre], ax.M)
-    up, down = (-0.05, -0.3), (-0.05, 0.3)
-    for artist, offset in zip(
-        (true_artist, est_artist), (up, down) if y_true >= y_est else (down, up), strict=True
-    ):
-        artist.label_offset = offset
-        artist.label.set(
-            ha="right", va="center", path_effects=palette.halo()
-        )  # readable over a grid line
-        artist.label.set_position_3d(artist._label_position(artist.camera))
 
 
 @register(lesson="04", sweep={"orbit": [-90, -60, 60, 90], "frame": ["OpenGL / Blender", "OpenCV"]})

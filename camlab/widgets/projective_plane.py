@@ -31,16 +31,24 @@ def lift_to_plane() -> Demo:
     ax3.set(xticks=[-2, 0, 2], yticks=[-2, 0, 2], zticks=[0, 1, 2])
     gx, gy = np.meshgrid(np.linspace(-2, 2, 5), np.linspace(-2, 2, 5))
     ax3.plot_surface(
-        gx, gy, np.ones_like(gx), color="tab:blue", alpha=0.12, edgecolor="tab:blue", lw=0.3
+        gx,
+        gy,
+        np.ones_like(gx),
+        color=palette.TAB_BLUE,
+        alpha=0.12,
+        edgecolor=palette.TAB_BLUE,
+        lw=0.3,
     )
-    ax3.text(-2, 2, 1.1, "w = 1", color="tab:blue")
+    ax3.text(-2, 2, 1.1, "w = 1", color=palette.TAB_BLUE)
     ax3.scatter([0], [0], [0], color="k", s=15)
-    (ray,) = ax3.plot([], [], [], color="tab:blue", lw=1.5, label="ray = one projective point")
+    (ray,) = ax3.plot(
+        [], [], [], color=palette.TAB_BLUE, lw=1.5, label="ray = one projective point"
+    )
     (scaled,) = ax3.plot([], [], [], "o", color=palette.ORANGE, label="λ(x, y, 1)")
-    (hit,) = ax3.plot([], [], [], "o", color="tab:blue", label="(x, y, 1)")
+    (hit,) = ax3.plot([], [], [], "o", color=palette.TAB_BLUE, label="(x, y, 1)")
     ax3.legend(loc="upper left", fontsize=8)
     view.animate(ray, scaled, hit)
-    (dot,) = ax2.plot([], [], "o", color="tab:blue", ms=9)
+    (dot,) = ax2.plot([], [], "o", color=palette.TAB_BLUE, ms=9)
     view.animate(dot)
     readout = W.HTML()
 
@@ -85,19 +93,19 @@ def parallel_lines() -> Demo:
     view = FigureView(figsize=(9, 4))
     ax, axw = view.fig.subplots(1, 2, width_ratios=[1.3, 1])
     plane_axes(ax, 4, "l1 = 30° fixed; turn l2")
-    (l1_artist,) = ax.plot([], [], color="tab:blue", lw=2, label="l1")
+    (l1_artist,) = ax.plot([], [], color=palette.TAB_BLUE, lw=2, label="l1")
     (l2_artist,) = ax.plot([], [], color=palette.ORANGE, lw=2, label="l2")
-    (meet_dot,) = ax.plot([], [], "o", color="tab:red", ms=8, label="l1 × l2")
+    (meet_dot,) = ax.plot([], [], "o", color=palette.TAB_RED, ms=8, label="l1 × l2")
     arrow = ax.annotate(
-        "", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="->", color="tab:red", lw=2)
+        "", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="->", color=palette.TAB_RED, lw=2)
     )
     ax.legend(loc="lower right", fontsize=8)
     readout = W.HTML()
     angle1 = 30.0
     angles = np.linspace(0, 60, 241)
     (w_curve,) = axw.plot([], [], color=palette.GREY)
-    (w_dot,) = axw.plot([], [], "o", color="tab:red")
-    axw.axvline(angle1, color="tab:blue", ls=":", lw=1)
+    (w_dot,) = axw.plot([], [], "o", color=palette.TAB_RED)
+    axw.axvline(angle1, color=palette.TAB_BLUE, ls=":", lw=1)
     axw.set(
         xlim=(0, 60),
         xlabel="angle of l2 (degrees)",
@@ -177,9 +185,9 @@ def point_line_duality() -> Demo:
     ax_p, ax_d = view.fig.subplots(1, 2)
     plane_axes(ax_p, 3, "primal: point p, line l")
     plane_axes(ax_d, 3, "dual: line p*, point l*")
-    (p_dot,) = ax_p.plot([], [], "o", color="tab:blue", ms=9, label="p")
+    (p_dot,) = ax_p.plot([], [], "o", color=palette.TAB_BLUE, ms=9, label="p")
     (l_line,) = ax_p.plot([], [], color=palette.ORANGE, lw=2, label="l")
-    (pd_line,) = ax_d.plot([], [], color="tab:blue", lw=2, label="p* (same 3 numbers as p)")
+    (pd_line,) = ax_d.plot([], [], color=palette.TAB_BLUE, lw=2, label="p* (same 3 numbers as p)")
     (ld_dot,) = ax_d.plot([], [], "o", color=palette.ORANGE, ms=9, label="l* (same 3 numbers as l)")
     for a in (ax_p, ax_d):
         a.legend(loc="lower right", fontsize=8)
@@ -233,15 +241,15 @@ def vanishing_points() -> Demo:
     image_axes(ax, size, "ground grid seen by a tilted camera")
     from matplotlib.collections import LineCollection
 
-    grid_z = LineCollection([], colors="tab:blue", lw=1, label="lines along z (ahead)")
-    grid_x = LineCollection([], colors="tab:green", lw=1, label="lines along x (across)")
+    grid_z = LineCollection([], colors=palette.TAB_BLUE, lw=1, label="lines along z (ahead)")
+    grid_x = LineCollection([], colors=palette.TAB_GREEN, lw=1, label="lines along x (across)")
     ax.add_collection(grid_z)
     ax.add_collection(grid_x)
     (horizon_artist,) = ax.plot(
-        [], [], "--", color="tab:red", lw=1.5, label="horizon = vp_z × vp_x"
+        [], [], "--", color=palette.TAB_RED, lw=1.5, label="horizon = vp_z × vp_x"
     )
-    (vz_dot,) = ax.plot([], [], "o", color="tab:blue", mec="k", ms=11)
-    (vx_dot,) = ax.plot([], [], "o", color="tab:green", mec="k", ms=11)
+    (vz_dot,) = ax.plot([], [], "o", color=palette.TAB_BLUE, mec="k", ms=11)
+    (vx_dot,) = ax.plot([], [], "o", color=palette.TAB_GREEN, mec="k", ms=11)
     ax.legend(loc="lower left", fontsize=8, framealpha=0.9)
     note = ax.text(
         0.98,
@@ -251,8 +259,8 @@ def vanishing_points() -> Demo:
         ha="right",
         va="bottom",
         fontsize=8,
-        color="tab:red",
-        bbox=dict(fc="white", ec="tab:red", alpha=0.9),
+        color=palette.TAB_RED,
+        bbox=dict(fc="white", ec=palette.TAB_RED, alpha=0.9),
     )
     readout = W.HTML()
     box = ((-0.5, size[0] - 0.5), (-0.5, size[1] - 0.5))
@@ -341,7 +349,7 @@ def cross_ratio_invariance() -> Demo:
         + [[[-1.5, y], [1.5, y]] for y in np.linspace(-1.5, 1.5, 7)]
     )
     points = np.array([[-1.2, -0.6], [-0.3, -0.15], [0.4, 0.2], [1.3, 0.65]])
-    colors = ["tab:blue", palette.ORANGE, "tab:green", "tab:red"]
+    colors = [palette.TAB_BLUE, palette.ORANGE, palette.TAB_GREEN, palette.TAB_RED]
     from matplotlib.collections import LineCollection
 
     ax_s.add_collection(LineCollection(grid, colors=palette.GREY, lw=0.8))

@@ -101,9 +101,9 @@ def epipolar_lines() -> Demo:
     (wr,) = axr.plot([], [], color="0.55", lw=0.8)
     (pencil_l,) = axl.plot([], [], color=palette.BLUE, lw=0.6, path_effects=palette.halo(0.6))
     (pencil_r,) = axr.plot([], [], color=palette.BLUE, lw=0.6, path_effects=palette.halo(0.6))
-    (point,) = axl.plot([], [], "o", color="tab:red", ms=8)
-    (line_l,) = axl.plot([], [], color="tab:red", lw=1.2, ls="--")
-    (line_r,) = axr.plot([], [], color="tab:red", lw=1.8)
+    (point,) = axl.plot([], [], "o", color=palette.TAB_RED, ms=8)
+    (line_l,) = axl.plot([], [], color=palette.TAB_RED, lw=1.2, ls="--")
+    (line_r,) = axr.plot([], [], color=palette.TAB_RED, lw=1.8)
     (depth_dots,) = axr.plot([], [], "o", color=palette.ORANGE, ms=5, label="depth 1, 2, ..., 6 m")
     (epi_l,) = axl.plot([], [], "*", color="k", ms=13)
     (epi_r,) = axr.plot([], [], "*", color="k", ms=13, label="epipole")
@@ -267,13 +267,14 @@ def rectify_pair() -> Demo:
     )
     # guides over the animated pair (drawn under it they would be hidden): rows to judge rectification by
     guides = [
-        ax.axhline(r, color="tab:cyan", lw=0.5, alpha=0.7, gid="grid") for r in range(20, 240, 20)
+        ax.axhline(r, color=palette.TAB_CYAN, lw=0.5, alpha=0.7, gid="grid")
+        for r in range(20, 240, 20)
     ]
     guides.append(ax.axvline(319.5, color="w", lw=1, gid="grid"))
     sel = np.linspace(0, len(x1) - 1, 14).astype(int)
     (match_lines,) = ax.plot([], [], color=palette.ORANGE, lw=0.9, path_effects=palette.halo(0.9))
     # Cumulative, on a log axis: raw (pixels), calibrated and uncalibrated (hundredths) all readable.
-    (step,) = axh.plot([], [], drawstyle="steps-post", color="tab:purple", lw=2.5)
+    (step,) = axh.plot([], [], drawstyle="steps-post", color=palette.TAB_PURPLE, lw=2.5)
     axh.set(
         xscale="log",
         xlim=(1e-3, 30),
@@ -396,7 +397,7 @@ def disparity_depth() -> Demo:
     ax3.set_zlabel("")
     ax3.set(xticks=[-1, 0, 1], yticks=[1, 2, 3, 4], zticks=[-0.5, 0.5])
     ax3.tick_params(labelsize=7, pad=0)
-    (pts,) = ax3.plot([], [], [], ".", ms=1.0, color="tab:blue")
+    (pts,) = ax3.plot([], [], [], ".", ms=1.0, color=palette.TAB_BLUE)
     view.animate(im1, im2, pts)
     zt = dp.disparity_to_depth(gt, f, B)
     readout = W.HTML()

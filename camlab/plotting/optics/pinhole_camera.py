@@ -1,0 +1,528 @@
+"""The pinhole camera drawn (lesson 01): the camera in 3-D with its box, rays and image planes,
+and the similar triangles of x = f X / Z in 2-D.
+
+Each ``draw_*`` function draws once and returns a dict of artists; its ``update_*`` partner
+moves those artists, so widgets can redraw in place.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+from ... import pinhole as _pinhole
+from .. import palette
+
+__all__ = [
+    "axis_scales",
+    "box_edges",
+    "label_camera_axes",
+    "PINHOLE_VIEW",
+    "PlaneFaces",
+    "plane_faces",
+    "draw_pinhole_3d",
+    "update_pinhole_3d",
+    "draw_similar_triangles",
+    "update_similar_triangles",
+]
+
+
+_EDGES = [
+    (0, 1),
+    (1, 3),
+    (3, 2),
+    (2, 0),
+    (4, 5),
+    (5, 7),
+    (7, 6),
+    (6, 4),
+    (0, 4),
+    (1, 5),
+    (2, 6),
+    (3, 7),
+]
+
+
+def box_edges(center, size) -> np.ndarray:
+    """(12, 2, 3) end points of an axis-aligned box's edges (camera frame, metres)."""
+    c, s = np.asarray(center, float), np.asarray(size, float) / 2
+    v = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]) * s + c
+    return np.array([[v[i], v[j]] for i, j in _EDGES])
+
+
+def _to_plot(p):
+    """Camera frame (x right, y down, z forward) -> plot axes (z, -x, -y): depth to the right, up is up.
+
+    The map is a rotation (determinant +1), so the plot is the camera frame seen from outside,
+    not its mirror image: with depth running right and y down, x comes out of the screen.
+    :func:`label_camera_axes` labels the ticks in camera coordinates.
+    """
+    p = np.asarray(p, float)
+    return p[..., 2], -p[..., 0], -p[..., 1]
+
+
+def label_camera_axes(ax, labelpad: float = 8) -> None:
+    """Label a 3-D axes drawn through :func:`_to_plot` in camera coordinates: z forward, x right, y down.
+
+    The plot's second and third axes hold -x and -y; their tick labels show x and y themselves.
+    """
+    from matplotlib.ticker import FuncFormatter, MaxNLocator
+
+    negated = FuncFormatter(lambda v, _pos: f"{-v + 0.0:g}")  # + 0.0: no "-0"
+    ax.yaxis.set_major_formatter(negated)
+    ax.zaxis.set_major_formatter(negated)
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+        axis.set_major_locator(MaxNLocator(3))
+    ax.set_xlabel("z, forward (m)", labelpad=labelpad)
+    ax.set_ylabel("x, right (m)", labelpad=labelpad)
+    ax.set_zlabel("y, down (m)", labelpad=labelpad)
+
+
+class PlaneFaces(NamedTuple):
+    """Scene planes as :func:`draw_pinhole_3d` draws them (its ``faces``).
+
+    Attributes
+    ----------
+    corners : (F, 4, 3) ndarray
+        Each plane's corners in the camera frame, metres.
+    greys : (F,) ndarray
+        Each plane's mean grey in [0, 1].
+    """
+
+    corners: np.ndarray
+    greys: np.ndarray
+
+
+def plane_faces(planes) -> PlaneFaces:
+    """(F, 4, 3) camera-frame corners and F mean greys of scene planes: the ``faces`` of :func:`draw_pinhole_3d`."""
+    return PlaneFaces(
+        np.array([p.corners_world for p in planes]),
+        np.array([float(np.mean(p.texture)) for p in planes]),
+    )
+
+
+def _unique_segments(segments: np.ndarray) -> np.ndarray:
+    """(K, 2, 3) segments with each one kept once, whichever way round it runs (first occurrences, in order)."""
+    seg = np.asarray(segments, float)
+    seen, kept = set(), []
+    for k, (a, b) in enumerate(np.round(seg, 9)):
+        key = tuple(sorted((tuple(a), tuple(b))))  # the same key for a -> b and b -> a
+        if key not in seen:
+            seen.add(key)
+            kept.append(k)
+    return seg[kept]
+
+
+def _polyline(segments: np.ndarray) -> tuple:
+    """(K, 2, 3) segments -> plot-axes coordinates of one polyline with NaN breaks (one artist, fast)."""
+    seg = np.asarray(segments, float)
+    pts = np.concatenate([seg, np.full((len(seg), 1, 3), np.nan)], axis=1).reshape(-1, 3)
+    return _to_plot(pts)
+
+
+# The 3-D pinhole view looks over the camera's right shoulder, from behind and above: the image planes
+# are seen from behind, as the camera records them (the virtual plane's picture upright, the real
+# plane's rotated 180 degrees, as on a ground-glass screen seen from behind), and the box from the side
+# the pinhole sees. Drawing order is fixed (not by depth), nearest the viewer last: box, rays, virtual
+# plane, pinhole, real plane. A live frame that redraws the moving artists in zorder then shows what a
+# full draw shows.
+PINHOLE_VIEW = {"elev": 20, "azim": -125}
+_Z_BOX_FILL, _Z_BOX, _Z_RAYS, _Z_PINHOLE = 1.0, 1.1, 1.5, 3.0
+_Z_PLANE = {"virtual": 2.0, "real": 4.0}  # + 0.1 for the picture, + 0.2 for its outline
+
+
+def axis_scales(ax) -> np.ndarray:
+    """Drawn length per metre along a 3-D axes' plot x, y and z (box aspect over data range), for captions."""
+    ranges = np.array([np.ptp(ax.get_xlim()), np.ptp(ax.get_ylim()), np.ptp(ax.get_zlim())])
+    return np.asarray(ax.get_box_aspect(), float) / ranges
+
+
+def draw_pinhole_3d(
+    ax,
+    edges: np.ndarray,
+    f_draw: float,
+    plane_half: float | None = None,
+    faces: tuple[np.ndarray, np.ndarray] | None = None,
+    to_scale: bool = False,
+) -> dict:
+    """Box edges, the pinhole, the real (behind) and virtual (in front) image planes and the rays.
+
+    ``edges`` is (K, 2, 3) camera-frame segments (metres); the image planes are drawn at
+    distance ``f_draw`` behind and in front of the pinhole at the origin, ``plane_half``
+    metres half-wide (None: 1.25 times the image, so the picture fills its frame). ``faces``,
+    if given, is ``(polygons, shades)`` (see :func:`plane_faces`): (F, 4, 3) camera-frame face
+    corners and F greys in [0, 1]; the faces the camera sees are then filled on the box and,
+    projected, on both image planes, so each plane shows a picture of the box rather than its
+    wire frame. The axes are labelled in camera coordinates (:func:`label_camera_axes`) and
+    seen from :data:`PINHOLE_VIEW`. ``to_scale``: one length per metre on all three axes
+    (otherwise depth is drawn shorter; :func:`axis_scales` says by how much).
+    """
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    ax.computed_zorder = False  # the fixed order above, in full draws and live frames alike
+    art = {
+        "box": ax.plot(
+            *_polyline(edges),
+            color=palette.BLUE,
+            lw=1.5,
+            path_effects=palette.halo(1.5),
+            zorder=_Z_BOX,
+        )[0],
+        "pinhole": ax.plot(
+            [0],
+            [0],
+            [0],
+            "o",
+            color="k",
+            ms=6,
+            mec="white",
+            mew=1,
+            zorder=_Z_PINHOLE,
+            gid="pinhole",
+        )[0],
+    }
+    art["planes"] = {}
+    art["fills"] = {}
+    for name, color in (("real", palette.RED), ("virtual", palette.GREEN)):
+        z = _Z_PLANE[name]
+        art["planes"][name] = ax.plot([], [], [], color=color, lw=1.2, zorder=z + 0.15)[
+            0
+        ]  # the frame over the picture
+        # the image's edges: the picture when no faces are given; the filled faces are the picture otherwise
+        art[name] = ax.plot([], [], [], color=color, lw=2.0, zorder=z + 0.2, visible=faces is None)[
+            0
+        ]
+    if faces is not None:
+        for name, z in (
+            ("box", _Z_BOX_FILL),
+            ("real", _Z_PLANE["real"] + 0.1),
+            ("virtual", _Z_PLANE["virtual"] + 0.1),
+        ):
+            art["fills"][name] = ax.add_collection3d(
+                Poly3DCollection([], edgecolor="none", shade=False, zorder=z)
+            )
+    art["rays"] = ax.plot(
+        [], [], [], color=palette.ORANGE, lw=0.6, path_effects=palette.halo(0.6), zorder=_Z_RAYS
+    )[0]
+    # a 3-D axes' clip box is its 2-D box, which a box aspect narrows: an image plane near the view's end
+    # would lose the edge that projects outside it
+    for artist in (
+        art["box"],
+        art["pinhole"],
+        art["rays"],
+        *art["planes"].values(),
+        *art["fills"].values(),
+        art["real"],
+        art["virtual"],
+    ):
+        artist.set_clip_on(False)
+    label_camera_axes(ax)
+    ax.view_init(**PINHOLE_VIEW)
+    art["plane_half"] = plane_half
+    update_pinhole_3d(art, edges, f_draw, faces)
+    pts = edges.reshape(-1, 3)
+    half = max(art["plane_half_drawn"], np.abs(pts[:, :2]).max()) * 1.15
+    ax.set_xlim(-1.3 * f_draw, pts[:, 2].max() * 1.05)
+    ax.set_ylim(-half, half)
+    ax.set_zlim(-half, half)
+    ax.set_box_aspect((np.ptp(ax.get_xlim()), 2 * half, 2 * half) if to_scale else (3, 1.2, 1.2))
+    return art
+
+
+def _clip_to_frame(polygon: np.ndarray, half_width: float, half_height: float) -> np.ndarray:
+    """The part of a convex (K, 2) ``polygon`` inside the frame |x| <= half_width, |y| <= half_height.
+
+    Sutherland-Hodgman: cut by each of the frame's four edges in turn, keeping the inside part
+    (an edge that crosses the line contributes the crossing). Returns (M, 2), M = 0 if nothing is inside.
+    """
+    points = [tuple(p) for p in np.asarray(polygon, float)]
+    for axis, limit in ((0, half_width), (0, -half_width), (1, half_height), (1, -half_height)):
+        inside = (
+            (lambda p, a=axis, b=limit: p[a] <= b)
+            if limit > 0
+            else (lambda p, a=axis, b=limit: p[a] >= b)
+        )
+        kept = []
+        for k, current in enumerate(points):
+            previous = points[k - 1]
+            if inside(current) != inside(previous):  # the edge crosses the line: keep the crossing
+                t = (limit - previous[axis]) / (current[axis] - previous[axis])
+                kept.append(
+                    tuple(np.asarray(previous) + t * (np.asarray(current) - np.asarray(previous)))
+                )
+            if inside(current):
+                kept.append(current)
+        points = kept
+        if not points:
+            break
+    return np.array(points, float).reshape(-1, 2)
+
+
+def update_pinhole_3d(
+    art: dict,
+    edges: np.ndarray,
+    f_draw: float,
+    faces: tuple[np.ndarray, np.ndarray] | None = None,
+    plane_half: float | None = None,
+) -> None:
+    """Move the box to ``edges`` (and its ``faces``, see :func:`draw_pinhole_3d`) and the image planes to ``f_draw``.
+
+    ``plane_half``: the planes' half-width this time (metres; e.g. the sensor's, scaled like ``f_draw``).
+    """
+    corners = np.unique(edges.reshape(-1, 3), axis=0)
+    h = (
+        plane_half
+        or art["plane_half"]
+        or 1.25 * float(np.abs(_pinhole.project_pinhole(corners, f_draw)).max())
+    )
+    art["plane_half_drawn"] = h
+    if faces is not None and art["fills"]:
+        polygons, shades = (np.asarray(a, float) for a in faces)
+        centres = polygons.mean(axis=1)
+        normals = np.cross(polygons[:, 1] - polygons[:, 0], polygons[:, 2] - polygons[:, 1])
+        seen = np.einsum("ij,ij->i", normals, -centres) > 0  # the face turns towards the pinhole
+        order = np.argsort(-centres[:, 2])  # far faces first: nearer ones paint over them
+        seen_faces = [k for k in order if seen[k]]
+        colours = [(shades[k],) * 3 for k in seen_faces]
+        art["fills"]["box"].set_verts([np.column_stack(_to_plot(polygons[k])) for k in seen_faces])
+        art["fills"]["box"].set_facecolor(colours)
+        # the view looks from the pinhole's side: draw the seen faces' edges (not the hidden ones through the
+        # fills) and the rays from their corners
+        edges = np.concatenate(
+            [np.stack([polygons[k], np.roll(polygons[k], -1, axis=0)], axis=1) for k in seen_faces]
+        )
+        corners = np.unique(np.round(polygons[seen_faces].reshape(-1, 3), 12), axis=0)
+        edges = _unique_segments(
+            edges
+        )  # an edge two seen faces share, drawn once: halos drawn twice split it
+    art["box"].set_data_3d(*_polyline(edges))
+    for name, sign in (("real", -1), ("virtual", 1)):
+        z = sign * f_draw
+        sq = np.array(
+            [
+                [-h, -h * 0.75, z],
+                [h, -h * 0.75, z],
+                [h, h * 0.75, z],
+                [-h, h * 0.75, z],
+                [-h, -h * 0.75, z],
+            ]
+        )
+        art["planes"][name].set_data_3d(*_to_plot(sq))
+        img = _pinhole.project_pinhole(edges.reshape(-1, 3), f_draw, plane=name).reshape(-1, 2, 2)
+        art[name].set_data_3d(
+            *_polyline(np.concatenate([img, np.full(img.shape[:2] + (1,), z)], axis=2))
+        )
+        if faces is not None and art["fills"]:
+            # each face's picture, cut at the frame as the sensor cuts the image: what falls outside is not recorded
+            cut = [
+                (
+                    _clip_to_frame(
+                        _pinhole.project_pinhole(polygons[k], f_draw, plane=name), h, 0.75 * h
+                    ),
+                    colour,
+                )
+                for k, colour in zip(seen_faces, colours, strict=True)
+            ]
+            cut = [(p, colour) for p, colour in cut if len(p) >= 3]
+            art["fills"][name].set_verts(
+                [
+                    np.column_stack(_to_plot(np.column_stack([p, np.full(len(p), z)])))
+                    for p, _ in cut
+                ]
+            )
+            art["fills"][name].set_facecolor([colour for _, colour in cut])
+    ends = -corners * f_draw / corners[:, 2:3]  # through the pinhole to the real plane
+    art["rays"].set_data_3d(*_polyline(np.stack([corners, ends], axis=1)))
+
+
+def _dimension(ax, color: str) -> dict:
+    """A dimension line (double arrow) with a label, drawn empty; :func:`_set_dimension` places it."""
+    arrow = ax.annotate(
+        "",
+        xy=(0, 0),
+        xytext=(0, 0),
+        arrowprops=dict(arrowstyle="<->", color=color, lw=1.2, shrinkA=0, shrinkB=0),
+    )
+    label = ax.text(
+        0,
+        0,
+        "",
+        color=color,
+        fontsize=10,
+        ha="center",
+        va="center",
+        bbox=dict(fc="white", ec="none", pad=1),
+    )
+    return {"arrow": arrow, "label": label}
+
+
+def _set_dimension(
+    dim: dict,
+    a,
+    b,
+    text: str,
+    offset=(0.0, 0.0),
+    ha: str = "center",
+    va: str = "center",
+    label_at=None,
+    min_arrow: float = 0.0,
+) -> None:
+    """Place a dimension line from ``a`` to ``b`` and its label (at the middle plus ``offset``, or at ``label_at``).
+
+    An arrow shorter than ``min_arrow`` (data units) is hidden: its two heads would overlap into a star.
+    """
+    dim["arrow"].xy, dim["arrow"].xyann = tuple(b), tuple(a)
+    dim["arrow"].set_visible(bool(np.hypot(b[0] - a[0], b[1] - a[1]) >= min_arrow))
+    at = (
+        label_at
+        if label_at is not None
+        else ((a[0] + b[0]) / 2 + offset[0], (a[1] + b[1]) / 2 + offset[1])
+    )
+    dim["label"].set_position(at)
+    dim["label"].set_text(text)
+    dim["label"].set_horizontalalignment(ha)
+    dim["label"].set_verticalalignment(va)
+
+
+def _signed(value: float, digits: int = 1) -> str:
+    """``value`` with a sign and ``digits`` decimals; a value that rounds to zero prints a plain "0.0" (never
+    "-0.0" or "+0.0", as the demo's title prints it)."""
+    rounded = round(value, digits) + 0.0
+    return f"{rounded:+.{digits}f}" if rounded != 0 else f"{0:.{digits}f}"
+
+
+def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
+    """A 2-D side view of pinhole projection: depth z to the right, height (-y, up) upwards.
+
+    The pinhole sits at the origin, the real image plane at z = -f and the virtual one at
+    z = +f. Two shaded similar triangles share the ray through the hole: (0, 0)-(Z, 0)-(Z, Y)
+    and (0, 0)-(f, 0)-(f, y); dimension lines label f, Z, Y and y. Y and y are signed in the
+    camera frame (y down), so a point drawn above the axis has a negative Y.
+    """
+    ax.axhline(0, color="0.4", lw=0.8, zorder=0)
+    art = {
+        # returned with the moving artists: a ray passes over the hole, and the dot must stay on top
+        "pinhole_dot": ax.plot(
+            [0], [0], "o", color="k", ms=6, mec="white", mew=1, zorder=5, gid="pinhole"
+        )[0],
+        "big": ax.fill([0, 1, 1], [0, 0, 1], color=palette.BLUE, alpha=0.15, lw=0)[0],
+        "small": ax.fill([0, 1, 1], [0, 0, 1], color=palette.GREEN, alpha=0.3, lw=0)[0],
+        "object": ax.plot([], [], color=palette.BLUE, lw=3, solid_capstyle="butt")[0],
+        "point": ax.plot([], [], "o", color=palette.BLUE, ms=8)[0],
+        "ray": ax.plot([], [], color=palette.ORANGE, lw=1.5, path_effects=palette.halo(1.5))[0],
+        "planes": ax.plot([], [], color="0.3", lw=1, ls="--")[0],
+        "virtual": ax.plot([], [], color=palette.GREEN, lw=3, solid_capstyle="butt")[0],
+        "real": ax.plot([], [], color=palette.RED, lw=3, solid_capstyle="butt")[0],
+        # below (or above) the pinhole, under the f and Z dimension lines, where no other label goes
+        "pinhole": ax.annotate(
+            "pinhole",
+            (0, 0),
+            xytext=(0, 0),
+            ha="center",
+            va="center",
+            fontsize=9,
+            arrowprops=dict(arrowstyle="-", color="0.3", lw=0.8, shrinkA=2, shrinkB=3),
+        ),
+        "dims": {
+            k: _dimension(ax, c)
+            for k, c in (
+                ("f", "k"),
+                ("Z", "k"),
+                ("Y", palette.BLUE),
+                ("y", palette.GREEN),
+                ("y_real", palette.RED),
+            )
+        },
+    }
+    for key in ("y", "y_real"):
+        art["dims"][key]["label"].set_fontsize(9)
+    ax.set_xlim(
+        -0.28 * z_max, 1.14 * z_max
+    )  # room for the real plane's label at f = 1 m and for Y's at Z = 5 m
+    ax.set_ylim(-h_max, h_max)
+    ax.set_aspect("equal")  # similar triangles look similar only at equal scales
+    ax.set_xlabel("depth z (m)")
+    ax.set_ylabel("height -y, up (m)")
+    return art
+
+
+SHORTEST_ARROW = 0.15  # metres: a shorter dimension arrow is hidden (its heads would overlap)
+F_LABEL_ROOM = 0.9  # metres: a shorter f arrow cannot hold "f = 0.80 m" clear of the pinhole's tick and the plane
+Z_LABEL_ROOM = (
+    2.2  # metres: a Z arrow shorter than this cannot hold its label "Z = 1.20 m" between its heads
+)
+
+
+def update_similar_triangles(art: dict, f: float, Z: float, Y: float) -> float:
+    """Redraw for focal length ``f``, object depth ``Z`` and ``Y`` (metres, camera frame: y down); returns y.
+
+    The figure's vertical axis is -y (up), so the object point is drawn at height -Y.
+    """
+    y = f * Y / Z
+    up, up_img = -Y, -y  # heights on the page
+    art["big"].set_xy([[0, 0], [Z, 0], [Z, up]])
+    art["small"].set_xy([[0, 0], [f, 0], [f, up_img]])
+    art["object"].set_data([Z, Z], [0, up])
+    art["point"].set_data([Z], [up])
+    art["ray"].set_data([-f, Z], [y, up])
+    h = art["planes"].axes.get_ylim()[1] * 0.85
+    art["planes"].set_data([-f, -f, np.nan, f, f], [-h, h, np.nan, -h, h])
+    art["virtual"].set_data([f, f], [0, up_img])
+    art["real"].set_data([-f, -f], [0, y])
+    away = -0.12 * h if up >= 0 else 0.12 * h  # dimension lines go on the side away from the object
+    d = art["dims"]
+    # the Z label inside its arrow when the arrow is long enough to hold it, else just beyond its end
+    inside = Z >= Z_LABEL_ROOM
+    _set_dimension(
+        d["Z"],
+        (0, 3 * away),
+        (Z, 3 * away),
+        f"Z = {Z:.2f} m",
+        ha="center" if inside else "left",
+        label_at=None if inside else (Z + 0.08, 3 * away),
+    )
+    # the f label inside its arrow when there is room, else just beyond its end (clear of the dashed virtual plane)
+    f_inside = f >= F_LABEL_ROOM
+    _set_dimension(
+        d["f"],
+        (0, away),
+        (f, away),
+        f"f = {f:.2f} m",
+        offset=(0, away),
+        ha="center" if f_inside else "left",
+        label_at=None if f_inside else (f + 0.06, away),
+    )
+    # at Y near 0 the label would sit on the axis line: lift it clear (above, or below for an object below)
+    lift = 0.0 if abs(up) >= 0.3 else (0.15 if away < 0 else -0.15) - up / 2
+    _set_dimension(
+        d["Y"],
+        (Z + 0.1, 0),
+        (Z + 0.1, up),
+        f" Y = {_signed(Y, 2)} m",
+        offset=(0.05, lift),
+        ha="left",
+        min_arrow=SHORTEST_ARROW,
+    )
+    # each image's label at the far end of its plane's dashed line (virtual at the top, real at the bottom):
+    # outside both triangles and off the ray at every setting, and never between two planes a short f puts close
+    _set_dimension(
+        d["y"],
+        (f + 0.06, 0),
+        (f + 0.06, up_img),
+        f"virtual: y = {_signed(y * 100)} cm",
+        va="bottom",
+        label_at=(f, h + 0.02),
+        min_arrow=SHORTEST_ARROW,
+    )
+    _set_dimension(
+        d["y_real"],
+        (-f - 0.06, 0),
+        (-f - 0.06, -up_img),
+        f"real: {_signed(-y * 100)} cm",
+        va="top",
+        label_at=(-f, -h - 0.02),
+        min_arrow=SHORTEST_ARROW,
+    )
+    art["pinhole"].xyann = (0, 4.6 * away)
+    return y

@@ -1,0 +1,103 @@
+"""The resection demo's words and labels (lesson 04): its readout and where the two cameras'
+labels hang. Helpers of :func:`camlab.widgets.projective_camera.resectioning`."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..plotting import palette
+
+__all__ = ["k_readout", "place_camera_labels", "resection_readout"]
+
+
+def resection_readout(err, K, cam_true, Xw, v, moved, info, centre_err):
+    """The readout beside the figure: the residuals, the errors of f and C, the redundancy
+    and the RMS it leads one to expect; returns the numbers it states.
+    """
+    behind = int(
+        np.count_nonzero(~np.isfinite(err))
+    )  # points behind the estimated camera have no image
+    rms = float(np.sqrt(np.mean(err**2)))
+    focal_err = float(abs(K[0, 0] - cam_true.K[0, 0]))
+    n = len(Xw)
+    redundancy = 2 * n - 11  # equations minus unknowns: the noise the residuals can show
+    # The expected RMS residual of the maximum-likelihood fit (H&Z 5.1.3); the true camera leaves sigma sqrt(2).
+    expected = float(v["noise"]) * np.sqrt(2.0 * redundancy / (2 * n))
+    warning = (
+        "\n<b>few spare equations: the fit absorbs the noise, so a small RMS\n"
+        "says little about the camera</b>"
+        if redundancy < 10 and v["noise"] > 0
+        else ""
+    )
+    rms_text = (
+        f"RMS reprojection {rms:.2f} px"
+        if not behind
+        else f"<b>{behind} of {n} points lie behind the estimated camera:\n"
+        f"no reprojection error; the fit has failed</b>"
+    )
+    worst = (
+        ""
+        if behind or not moved
+        else (
+            f"\nlargest residual: pair {int(np.argmax(err))} ({err.max():.1f} px)"
+            f"\nmoved pair {', '.join(map(str, moved))}: {', '.join(f'{err[i]:.1f}' for i in moved)} px"
+        )
+    )
+    info.value = (
+        f"<pre>{rms_text}{worst}\n|fx - fx_true| = {focal_err:.1f} px\n"
+        f"|C - C_true| = {100 * centre_err:.1f} cm\n"
+        f"{k_readout(K, cam_true.image_size)}\n\n"
+        f"redundancy 2N - 11 = {redundancy}\n"
+        f"RMS expected of the fitted camera:\n  sigma sqrt(2) sqrt((2N - 11) / 2N) = {expected:.2f} px\n"
+        f"(the true camera leaves sigma sqrt(2) = {float(v['noise']) * np.sqrt(2.0):.2f} px)"
+        f"{warning}</pre>"
+    )
+    return behind, rms, focal_err, redundancy, expected
+
+
+def k_readout(K, image_size=(640, 480)) -> str:
+    """The estimated K as a camera maker would read it, and a warning when no real camera has it.
+
+    A real camera has square pixels (f_y = f_x within a few per cent), no skew and its principal point on
+    the image; an estimate that breaks any of these is a failed resection, whatever its residual.
+    """
+    K = np.asarray(K, dtype=float) / K[2, 2]
+    (fx, s, cx), (_, fy, cy) = K[0], K[1]
+    w, h = image_size
+    text = f"estimated K: fx {fx:.0f}, fy {fy:.0f}, skew {s:.0f} px,\n  principal point ({cx:.0f}, {cy:.0f})"
+    odd = [
+        what
+        for what, bad in (
+            ("fy != fx", abs(fy / fx - 1) > 0.05),
+            ("skew", abs(s) > 0.02 * abs(fx)),
+            ("principal point off the image", not (0 <= cx <= w - 1 and 0 <= cy <= h - 1)),
+        )
+        if bad
+    ]
+    return text + (
+        f"\n<b>no real camera has this K ({', '.join(odd)}):\ndistrust this resection</b>"
+        if odd
+        else ""
+    )
+
+
+def place_camera_labels(ax, true_artist, est_artist) -> None:
+    """Hang "true" and "est." off their centres on the sides facing away from each other on screen.
+
+    Both frustums point right, towards the box, so the labels go left of their centres; the camera that is
+    higher on screen takes its label above (along its -y, the image's up), the other below, so neither lands
+    on the other camera. (Text3D's vertical alignment barely moves a label; an offset in the world does.)
+    """
+    from mpl_toolkits.mplot3d import proj3d
+
+    cams = (true_artist.camera, est_artist.camera)
+    (_, _), (y_true, y_est), _ = proj3d.proj_transform(*np.c_[cams[0].centre, cams[1].centre], ax.M)
+    up, down = (-0.05, -0.3), (-0.05, 0.3)
+    for artist, offset in zip(
+        (true_artist, est_artist), (up, down) if y_true >= y_est else (down, up), strict=True
+    ):
+        artist.label_offset = offset
+        artist.label.set(
+            ha="right", va="center", path_effects=palette.halo()
+        )  # readable over a grid line
+        artist.label.set_position_3d(artist._label_position(artist.camera))

@@ -1,0 +1,270 @@
+"""Lesson 05's three cameras and dolly zoom: one scene seen by the perspective camera and its
+affine approximations, and when an affine camera is good enough."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ... import affine as af
+from ... import camera as cm
+from ... import fixtures, scenes
+from ...plotting import palette, scene3d
+from .._base import FigureView, build_demo, register, slider
+from ..controls import int_slider, log_slider
+from .common import (
+    COLOURS,
+    D0,
+    DOLLY_DISTANCES,
+    DOLLY_OFFSET,
+    DOLLY_VIEW,
+    F0,
+    PRINCIPAL_POINT_MARKER,
+    STYLES,
+    TARGET,
+    model_legend,
+    model_line,
+    place_reference,
+    reference_marker,
+)
+
+
+def _image_panel(ax, title, model, size=(640, 480), tick_labels=True):
+    # Short titles and few tick labels. Axis labels are static (drawn once into the background), so they
+    # cost nothing per frame.
+    scene3d.image_axes(ax, size)
+    ax.set_title(title, fontsize=9)
+    ax.tick_params(labelleft=tick_labels, labelbottom=tick_labels)
+    return model_line(ax, model)
+
+
+# The scene (a cube on the target, four rails through it) looks the same after a half turn about the vertical,
+# so azimuth -90 .. 90 shows every view once.
+@register(
+    lesson="05",
+    sweep={"azimuth": [-90, 10, 90], "elevation": [0, 50, 80], "distance": [2.0, 12.0, 20.0]},
+)
+def three_cameras():
+    """Perspective, weak-perspective and orthographic images of the same scene side by side."""
+    view = FigureView(figsize=(9.5, 3.35))
+    axes = view.fig.subplots(1, 3)
+    scene = fixtures.box_and_rails()
+    persp = _image_panel(axes[0], "perspective (px)", "perspective")
+    weak = _image_panel(axes[1], "weak perspective over perspective (px)", "weak perspective")
+    axes[1].set_ylabel("")
+    axes[2].set_aspect("equal")
+    axes[2].set_title("orthographic (m; camera x right, y down)", fontsize=9)
+    axes[2].set_xlabel("x (m)", fontsize=8)
+    axes[2].set_ylabel("y (m)", fontsize=8)
+    axes[2].set_xlim(-2.2, 2.2)
+    axes[2].set_ylim(1.65, -1.65)
+    axes[2].set_xticks([-2, 0, 2])
+    axes[2].set_yticks([-1, 0, 1])
+    axes[2].tick_params(labelsize=7)
+    orth = model_line(axes[2], "orthographic")
+    ghost = model_line(
+        axes[1], "perspective", lw=0.8, zorder=1.5
+    )  # under the blue dashes, live and redrawn alike
+    model_legend(view.fig, ("perspective", "weak perspective", "orthographic"), reference=True)
+    view.animate(persp, ghost, weak, orth)
+    X0 = scene.reshape(-1, 3).mean(
+        axis=0
+    )  # the weak-perspective camera's reference point (three_images)
+    references = [(view.animate(*reference_marker(ax)),) for ax in axes]  # the legend names it
+    controls = {
+        "azimuth": int_slider(-40, -90, 90, "azimuth (deg)", step=2),
+        "elevation": int_slider(20, 0, 80, "elevation (deg)"),
+        "distance": slider(4.0, 2.0, 20.0, 0.25, "distance (m), dolly zoom"),
+    }
+
+    def update(v, state):
+        cam = af.dolly_zoom_camera(
+            v["distance"], *np.radians([v["azimuth"], v["elevation"]]), TARGET, F0, D0
+        )
+        f = float(cam.K[0, 0])
+        p, w, o, P_weak, P_orth = af.three_images(cam, scene)
+        scene3d.update_segments(persp, p)
+        scene3d.update_segments(weak, w)
+        scene3d.update_segments(ghost, p)
+        scene3d.update_segments(orth, o)
+        images_of_X0 = [
+            cam.project(X0),
+            cm.project_points(P_weak, X0),
+            cm.project_points(P_orth, X0),
+        ]
+        for artists, xy in zip(references, images_of_X0, strict=True):
+            place_reference(artists, xy)
+        state.update(
+            camera=cam,
+            P_weak=P_weak,
+            focal=f,
+            max_difference=af.largest_gap_in_frame(cam, P_weak, scene),
+            reference_point=X0,
+            reference_images=images_of_X0,
+        )
+
+    return build_demo(
+        "three_cameras",
+        controls,
+        view,
+        update,
+        title="One scene, three cameras (the middle panel repeats the perspective image in red)",
+    )
+
+
+def dolly_curves(offset: float, distances: np.ndarray) -> dict:
+    """RMS error (px) of weak and para-perspective along the dolly zoom with the cube ``offset`` px off centre."""
+    pts = scenes.box_wireframe((0.0, 0.0, 0.5), (1.0, 1.0, 1.0)).reshape(-1, 3)
+    return {
+        m: af.dolly_zoom_errors(
+            pts, distances, *DOLLY_VIEW, TARGET, F0, D0, approximation=f, image_offset=offset
+        )
+        for m, f in APPROXIMATIONS.items()
+    }
+
+
+APPROXIMATIONS = {
+    "weak perspective": af.affine_approximation,
+    "para-perspective": af.paraperspective_approximation,
+}
+
+
+DOLLY_ERROR_LIMITS = (
+    0.2,
+    60.0,
+)  # px: every curve at every offset lies in 0.30 .. 40 px (tests/test_affine.py)
+
+
+def _dolly_error_axes(ax, distances):
+    """The dolly zoom's log-log error panel: one (empty) curve and one marker per affine model, a slope -1
+    guide and the 1 px line."""
+    from matplotlib.ticker import NullLocator
+
+    curves = {
+        m: ax.loglog(distances, np.ones_like(distances), color=COLOURS[m], ls=STYLES[m], lw=1.5)[0]
+        for m in APPROXIMATIONS
+    }
+    ax.set_xlim(
+        distances[0] / 1.15, distances[-1] * 1.15
+    )  # room for the whole marker at the slider's ends
+    ax.set_ylim(*DOLLY_ERROR_LIMITS)
+    ax.set_title("RMS distance to the perspective image", fontsize=9)  # as the axis label says
+    ax.set_xlabel(f"distance d (m); focal length f = {F0:.0f} d / {D0:.0f} px", fontsize=8)
+    ax.set_ylabel("RMS distance (px)", fontsize=8)
+    ax.tick_params(labelsize=7)
+    ax.axhline(1.0, color="0.5", lw=0.8, ls=":")
+    ax.text(distances[-1], 1.15, "1 px", ha="right", va="bottom", fontsize=7, color="0.4")
+    ax.loglog(
+        distances, 5.0 * distances[0] / distances, color=palette.GREY, lw=0.8, zorder=1
+    )  # below the curves
+    ax.text(
+        distances[0] * 1.05,
+        DOLLY_ERROR_LIMITS[0] * 1.15,
+        "grey: slope -1 (error ~ 1/d)",
+        fontsize=7,
+        color="0.35",
+        va="bottom",
+    )  # under the guide, which passes 0.3 px only beyond 30 m
+    ax.grid(True, which="major", alpha=0.3)
+    # Plain tick labels and no minor ticks: log axes' default mathtext labels cost ~20 ms a redraw.
+    for axis, ticks in ((ax.xaxis, [2, 5, 10, 20, 50, 100]), (ax.yaxis, [0.3, 1, 3, 10, 30])):
+        axis.set_minor_locator(NullLocator())
+        axis.set_ticks(ticks, labels=[f"{t:g}" for t in ticks])
+    # Weak perspective's marker larger than para-perspective's: on the axis (offset 0) the two coincide,
+    # and the blue ring around the green dot shows both.
+    sizes = {"weak perspective": 10, "para-perspective": 5}
+    markers = {
+        m: ax.plot([], [], "o", color=COLOURS[m], ms=sizes[m], clip_on=False, zorder=3)[0]
+        for m in APPROXIMATIONS
+    }
+    return curves, markers
+
+
+@register(lesson="05", sweep={"distance": [2.0, 6.0, 40.0, 150.0], "offset": [0, 50, 100]})
+def dolly_zoom():
+    """Move the camera away while zooming in (f = f0 d / D0): the object keeps its size, the
+    perspective image approaches its affine approximations and their error falls like 1/d. Off
+    the image centre, para-perspective stays closer than weak perspective; on the axis (offset 0)
+    the two coincide. Each affine image has its own panel over the perspective one, so neither
+    hides the other."""
+    view = FigureView(figsize=(10, 3.9))
+    ax_weak, ax_para, ax_err = view.fig.subplots(1, 3, width_ratios=(1.0, 1.0, 0.95))
+    cube = scenes.box_wireframe((0.0, 0.0, 0.5), (1.0, 1.0, 1.0))
+    pts = cube.reshape(-1, 3)
+    models = ("perspective", "weak perspective", "para-perspective")
+    lines, under, readouts, references = {}, {}, {}, {}
+    for ax, m in ((ax_weak, "weak perspective"), (ax_para, "para-perspective")):
+        scene3d.image_axes(ax, (640, 480))
+        ax.set_title(f"{m} over perspective", fontsize=9)
+        ax.tick_params(labelleft=ax is ax_weak)
+        if ax is ax_para:
+            ax.set_ylabel("")
+        under[m] = model_line(
+            ax, "perspective", lw=0.9, zorder=1.5
+        )  # red under the affine cube, as in three_cameras
+        lines[m] = model_line(
+            ax, m, lw=1.6 if m == "weak perspective" else 1.9
+        )  # the dots thicker, to read
+        ax.plot([319.5], [239.5], **PRINCIPAL_POINT_MARKER)
+        references[m] = reference_marker(ax)
+        # The readout sits in the top-left corner, where no part of the cube comes at any setting (its images
+        # stay right of u = 170 px and below v = 95 px).
+        readouts[m] = ax.text(
+            0.02, 0.975, "", transform=ax.transAxes, fontsize=8, ha="left", va="top"
+        )
+    distances = np.geomspace(*DOLLY_DISTANCES, 60)
+    curves, markers = _dolly_error_axes(ax_err, distances)
+    model_legend(view.fig, models, reference=True, principal_point=True)
+    view.animate(
+        *under.values(), *lines.values(), *readouts.values(), *curves.values(), *markers.values()
+    )
+    for artists in references.values():
+        view.animate(*artists)
+    # A log slider, as the error axis: the curves change fastest at a few metres.
+    controls = {
+        "distance": log_slider(
+            D0, DOLLY_DISTANCES[0], DOLLY_DISTANCES[1], 0.01, "distance d (m)", readout_format=".3g"
+        ),
+        "offset": int_slider(int(DOLLY_OFFSET), 0, 100, "cube right of centre (px)", step=10),
+    }
+    cache: dict = {}
+
+    def update(v, state):
+        d, offset = float(v["distance"]), float(v["offset"])
+        if offset not in cache:  # the curves depend on the offset only
+            cache[offset] = dolly_curves(offset, distances)
+        cam = af.dolly_zoom_camera(d, *DOLLY_VIEW, TARGET, F0, D0, image_offset=offset)
+        perspective = cm.project_segments(cam, cube)
+        x_X0 = cam.project(
+            TARGET
+        )  # every affine approximation images X0 where the perspective camera does
+        rms = {}
+        for m, approximate in APPROXIMATIONS.items():
+            scene3d.update_segments(under[m], perspective)
+            scene3d.update_segments(lines[m], cm.project_segments(approximate(cam, TARGET), cube))
+            place_reference(references[m], x_X0)
+            e = af.weak_perspective_error(cam, pts, TARGET, approximate)
+            rms[m] = float(np.sqrt(np.mean(e**2)))
+            readouts[m].set_text(
+                f"RMS {rms[m]:.1f} px"
+            )  # short: each glyph costs time in every frame
+            markers[m].set_data([d], [rms[m]])
+            curves[m].set_ydata(cache[offset][m])
+        state.update(
+            distance=d,
+            offset=offset,
+            focal=float(cam.K[0, 0]),
+            rms_error=rms["weak perspective"],
+            rms_paraperspective=rms["para-perspective"],
+            curve=(distances, cache[offset]["weak perspective"]),
+            curves=cache[offset],
+            camera=cam,
+            reference_image=x_X0,
+        )
+
+    return build_demo(
+        "dolly_zoom",
+        controls,
+        view,
+        update,
+        title="Dolly zoom: when is an affine camera good enough?",
+    )

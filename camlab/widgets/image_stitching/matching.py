@@ -1,0 +1,210 @@
+"""Lesson 09's first demos: features matched between two photos, and the homography RANSAC
+registers them with (sections 1-2). Re-exported by :mod:`camlab.widgets.image_stitching`."""
+
+from __future__ import annotations
+
+import ipywidgets as W
+import numpy as np
+
+from ... import features as ft
+from ... import homography as hg
+from ... import stitching as st
+from ...fixtures import panorama_examples as pe
+from ...plotting import palette
+from ...plotting.stitching import draw_keypoints, draw_matches, match_segments, outline
+from ...projective import map_points
+from .._base import Demo, FigureView, build_demo, register, slider
+from ..controls import log_slider, monospace
+
+# ----------------------------------------------------------------------------- matches
+
+
+@register(lesson="09", sweep={"ratio": [0.6, 0.8, 0.95, 1.0], "mutual": [True, False]})
+def feature_matches() -> Demo:
+    """SIFT matches between views 0 and 1: loosen the ratio test and watch wrong matches (red) appear."""
+    s, _, feats, knn = pe.panorama_example()
+    i, j = 0, 1
+    view = FigureView(figsize=(9, 3.4))
+    ax = view.fig.subplots()
+    art = draw_matches(ax, s.images[i], s.images[j], np.zeros((0, 2)), np.zeros((0, 2)))
+    view.animate(art["good"], art["bad"])  # the images and keypoints stay: only the lines move
+    draw_keypoints(
+        ax,
+        feats[i].points,
+        feats[i].sizes,
+        color=palette.YELLOW,
+        path_effects=palette.halo(0.7, "black"),
+    )
+    draw_keypoints(
+        ax,
+        feats[j].points + [art["offset"], 0],
+        feats[j].sizes,
+        color=palette.YELLOW,
+        path_effects=palette.halo(0.7, "black"),
+    )
+    ax.set_title(
+        f"views {i} and {j}: green = confirmed by the true homography, red = wrong match",
+        fontsize=9,
+    )
+    readout = W.HTML()
+
+    def update(v: dict, state: dict) -> None:
+        m = ft.filter_matches(knn[(i, j)], v["ratio"], v["mutual"])
+        good = pe.correct_matches(s, i, j, m.src, m.dst)
+        seg = match_segments(m.src, m.dst, art["offset"])
+        show = (
+            np.arange(len(seg)) % max(1, len(seg) // 200 + 1) == 0
+        )  # draw at most ~200 lines (speed)
+        art["good"].set_segments(seg[good & show])
+        art["bad"].set_segments(seg[~good & show])
+        n, nbad = len(good), int((~good).sum())
+        state.update(matches=n, wrong=nbad, precision=(n - nbad) / n if n else float("nan"))
+        readout.value = monospace(
+            f"keypoints: {len(feats[i].points)} / {len(feats[j].points)}\n"
+            f"matches kept: {n}\nwrong (red): {nbad} ({100 * nbad / max(n, 1):.0f}%)"
+            + ("\n(at most 200 lines drawn)" if n > 200 else "")
+        )
+
+    controls = {
+        "ratio": slider(0.75, 0.4, 1.0, 0.01, "ratio test r"),
+        "mutual": W.Checkbox(value=False, description="mutual check"),
+    }
+    return build_demo(
+        "feature_matches", controls, view, update, title="Feature matching", extra=[readout]
+    )
+
+
+# ----------------------------------------------------------------------------- RANSAC
+
+
+@register(lesson="09", sweep={"threshold": [0.03, 0.05, 3.0, 15.0, 40.0], "ratio": [0.95, 0.7]})
+def ransac_registration() -> Demo:
+    """RANSAC on real matches: the threshold decides which matches count as inliers, and the H you get."""
+    s, imgs, feats, knn = pe.panorama_example()
+    i, j = 1, 2
+    view = FigureView(figsize=(9, 3.6))
+    ax, ax_e = view.fig.subplots(1, 2, width_ratios=[1.5, 1])
+    ax.imshow(s.images[j], interpolation="nearest")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    ax.set_title(f"matches in image {j}; frame of image {i} mapped by H", fontsize=9)
+    inl = view.animate(
+        ax.plot(
+            [], [], ".", color=palette.GREEN, ms=4, label="inliers", path_effects=palette.halo()
+        )[0]
+    )
+    outl = view.animate(
+        ax.plot(
+            [], [], "x", color=palette.RED, ms=4, label="outliers", path_effects=palette.halo()
+        )[0]
+    )
+    outline(
+        ax,
+        s.true_homography(i, j),
+        imgs[i].shape,
+        color="white",
+        lw=2,
+        label="true",
+        path_effects=palette.halo(2, "black"),
+    )
+    est_box = view.animate(
+        outline(
+            ax,
+            np.eye(3),
+            imgs[i].shape,
+            color=palette.BLUE,
+            lw=1.5,
+            ls="--",
+            label="RANSAC",
+            path_effects=palette.halo(1.5),
+        )
+    )
+    h, w = imgs[j].shape[:2]
+    ax.set(xlim=(-0.5, w - 0.5), ylim=(h - 0.5, -0.5))
+    ax.legend(
+        loc="upper center", bbox_to_anchor=(0.5, -0.02), ncols=4, fontsize=7, facecolor="0.75"
+    )
+    ax_e.set(
+        xlabel="transfer error per match (px, log scale)",
+        ylabel="number of matches\n(relative to the tallest bar)",
+        xscale="log",
+        xlim=(0.02, 300),
+        ylim=(0, 1.55),
+        yticks=[0, 0.5, 1],
+    )
+    # the verdict in the figure (the static picture has no side panel), above the tallest bar
+    verdict = view.animate(
+        ax_e.text(0.5, 0.97, "", transform=ax_e.transAxes, ha="center", va="top", fontsize=8)
+    )
+    ax_e.set_title("residuals under H (red: threshold)", fontsize=9)
+    bins = np.logspace(
+        np.log10(0.02), np.log10(300), 43
+    )  # the first bar also counts errors below 0.02 px
+    bars = ax_e.bar(
+        bins[:-1], np.zeros(len(bins) - 1), width=np.diff(bins), align="edge", color="0.6"
+    )
+    view.animate(*bars)
+    thr_line = view.animate(ax_e.axvline(3, color=palette.TAB_RED, lw=1.5))
+    readout = W.HTML()
+    true_H = s.true_homography(i, j)
+    corners = np.array([[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]], float)
+
+    def update(v: dict, state: dict) -> None:
+        m = ft.filter_matches(knn[(i, j)], v["ratio"])
+        r = st.register_pair(
+            feats[i], feats[j], matches=m, threshold=v["threshold"], rng=np.random.default_rng(0)
+        )
+        thr_line.set_xdata([v["threshold"], v["threshold"]])
+        if r.H is None:
+            inl.set_data([], [])
+            outl.set_data(m.dst[:, 0], m.dst[:, 1])
+            est_box.set_data([], [])
+            state.update(inliers=0, corner_error=float("nan"), accepted=False)
+            readout.value = monospace(r.reason)
+            verdict.set_text(f"{len(m.src)} matches: no homography\n{r.reason.split(';')[0]}")
+            return
+        inl.set_data(m.dst[r.inliers, 0], m.dst[r.inliers, 1])
+        outl.set_data(m.dst[~r.inliers, 0], m.dst[~r.inliers, 1])
+        box = map_points(r.H, np.vstack([corners, corners[:1]]))
+        est_box.set_data(box[:, 0], box[:, 1])
+        res = hg.symmetric_transfer_error(r.H, m.src, m.dst)
+        counts, _ = np.histogram(np.clip(res, 0.0201, 299), bins)
+        top = max(counts.max(), 1)
+        for b, c in zip(bars, counts, strict=True):
+            b.set_height(c / top)
+        err = float(
+            np.max(np.linalg.norm(map_points(r.H, corners) - map_points(true_H, corners), axis=1))
+        )
+        good = pe.correct_matches(s, i, j, m.src, m.dst)
+        state.update(
+            inliers=int(r.inliers.sum()),
+            corner_error=err,
+            accepted=r.accepted,
+            false_inliers=int((r.inliers & ~good).sum()),
+        )
+        need = max(15, int(np.floor(8 + 0.3 * len(m.src))) + 1)  # register_pair's acceptance test
+        verdict.set_text(
+            f"{int(r.inliers.sum())} of {len(m.src)} matches are inliers "
+            f"({int((r.inliers & ~good).sum())} of them wrong)\n"
+            f"worst corner vs the true H: {err:.2f} px\n"
+            + ("accepted" if r.accepted else f"rejected: {r.reason.split(':')[0]} (need {need})")
+        )
+        readout.value = monospace(
+            f"matches: {len(m.src)}\ninliers: {int(r.inliers.sum())} "
+            f"({int((r.inliers & ~good).sum())} of them wrong)\n"
+            f"inlier RMS: {r.residual_rms:.2f} px\nworst corner vs truth: {err:.2f} px\n"
+            f"accepted: {r.accepted} {r.reason}"
+        )
+
+    controls = {
+        "threshold": log_slider(3.0, 0.03, 40.0, 0.01, "threshold (px)"),
+        "ratio": slider(0.9, 0.5, 1.0, 0.01, "ratio test r"),
+    }
+    return build_demo(
+        "ransac_registration",
+        controls,
+        view,
+        update,
+        title="RANSAC on SIFT matches",
+        extra=[readout],
+    )
