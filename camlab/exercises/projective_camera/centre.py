@@ -93,6 +93,13 @@ def _centre_slip(P, got, expected) -> str | None:
         )
     if np.allclose(got[:3], -expected[:3], rtol=1e-6) and np.isclose(got[3], 1.0):
         return "the sign is flipped: P C = M C + p4 = 0 gives C = -M^-1 p4 (with the minus)."
+    for digits in range(7):
+        if np.allclose(got, np.round(expected, digits), rtol=0, atol=1e-12):
+            return (
+                f"you rounded the centre to {digits} decimal{'s' if digits != 1 else ''}. A rounded centre is "
+                f"no longer P's null vector (P C != 0): return v / v[3] as it is, no np.round; round only "
+                f"when you print it."
+            )
     M, p4 = P[:, :3], P[:, 3]
     if np.allclose(got[:3], -M.T @ p4, rtol=1e-6):
         return (
@@ -186,6 +193,7 @@ register_exercise(
                 "full_matrices=False",
             ),
             (lambda P: (lambda v: v / v[4])(np.linalg.svd(P)[2][-1]), "indices 0 .. 3"),
+            (lambda P: np.round(cm.camera_centre(P), 2), "you rounded the centre"),
             (
                 lambda P: np.linalg.svd(P)[2][-1][:, None],
                 "last coordinate is 1",

@@ -68,6 +68,12 @@ def _rq_diagnosis(args, got, expected) -> str:
             "K R = M, but R is not orthogonal (R R^T != I): R must be a rotation or a reflection."
         )
     if np.isclose(K[2, 2], 1.0) and not reproduces and not np.isclose(abs(M[2] @ M[2]), 1.0):
+        if np.all(np.diag(K) > 0):  # the signs were fixed first: only the scale is wrong
+            return (
+                f"you divided K by K[2, 2], so K R = M / {np.sqrt(abs(M[2] @ M[2])):.4g} and no longer M. Your "
+                f"signs are right; keep K unnormalised: here K[2, 2] carries M's scale (a camera's K is divided "
+                f"by K[2, 2] only after t = K^-1 p4, section 4 step 3, not in the RQ decomposition)."
+            )
         return (
             "you divided K by K[2, 2], so K R = M / K[2, 2] and no longer M; and a negative K[2, 2] "
             "does not fix the signs. Keep K unnormalised (K[2, 2] carries M's scale) and fix the signs "
@@ -211,6 +217,10 @@ register_exercise(
         wrong_variants=(
             (_rq_no_sign_fix, "fix the signs"),
             (_rq_normalised_no_sign_fix, "divided K by K[2, 2]"),
+            (
+                lambda M: (lambda K, R: (K / K[2, 2], R))(*cm.rq_decomposition(M)),
+                "Your signs are right",
+            ),
             (_rq_qr, "QR decomposition"),
             (_rq_signs_of_k_only, "apply the same"),
             (lambda M: (lambda K, R: (K, R.T))(*cm.rq_decomposition(M)), "transposed"),
