@@ -205,7 +205,9 @@ def _in_place_message(
     """
     names = [_parameter_name(student_function, k) for k in changed]
     what = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
-    inputs, arrays, it = ("input", "array", "it") if len(names) == 1 else ("inputs", "arrays", "they")
+    inputs, arrays, it = (
+        ("input", "array", "it") if len(names) == 1 else ("inputs", "arrays", "they")
+    )
     first = _parameter_name(student_function, changed[0]).strip("`")
     a = first if first.isidentifier() else "x"
     if np.ndim(args[changed[0]]) == 1:

@@ -122,7 +122,9 @@ def dlt_mismatched(X, uv, pixels="full", world="full"):
             return np.block([[np.eye(d), N[:d, d:] / N[0, 0]], [np.zeros((1, d)), np.ones((1, 1))]])
         return np.eye(d + 1) if kind == "none" else N
 
-    P_hat = np.linalg.svd(dlt_rows(in_frame(part(U, world), X), in_frame(part(T, pixels), uv)))[2][-1]
+    P_hat = np.linalg.svd(dlt_rows(in_frame(part(U, world), X), in_frame(part(T, pixels), uv)))[2][
+        -1
+    ]
     return np.linalg.inv(T) @ P_hat.reshape(3, 4) @ U
 
 

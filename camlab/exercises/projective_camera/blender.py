@@ -238,7 +238,9 @@ register_exercise(
             ),
             (lambda R, t: cm.blender_matrix_world(R, t).T, "transposed"),
             (
-                lambda R, t: np.block([[R.T @ _F, -t[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]),
+                lambda R, t: np.block(
+                    [[R.T @ _F, -t[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]
+                ),
                 "the last column is -t",
             ),
             (

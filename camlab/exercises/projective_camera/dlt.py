@@ -93,11 +93,27 @@ def _mismatch(side, did, build):
 
 
 _MISMATCH_MISTAKES = (
-    _mismatch("pixels", "scaled the pixels but did not centre them", lambda s: np.linalg.inv(s.T) @ _pixels_only_scaled(s.T) @ s.P),
-    _mismatch("pixels", "centred the pixels but did not scale them", lambda s: np.linalg.inv(s.T) @ _pixels_only_centred(s.T) @ s.P),
+    _mismatch(
+        "pixels",
+        "scaled the pixels but did not centre them",
+        lambda s: np.linalg.inv(s.T) @ _pixels_only_scaled(s.T) @ s.P,
+    ),
+    _mismatch(
+        "pixels",
+        "centred the pixels but did not scale them",
+        lambda s: np.linalg.inv(s.T) @ _pixels_only_centred(s.T) @ s.P,
+    ),
     _mismatch("pixels", "left the pixels unnormalised", lambda s: np.linalg.inv(s.T) @ s.P),
-    _mismatch("world points", "scaled the world points but did not centre them", lambda s: s.P @ np.linalg.inv(_world_only_scaled(s.U)) @ s.U),
-    _mismatch("world points", "centred the world points but did not scale them", lambda s: s.P @ np.linalg.inv(_world_only_centred(s.U)) @ s.U),
+    _mismatch(
+        "world points",
+        "scaled the world points but did not centre them",
+        lambda s: s.P @ np.linalg.inv(_world_only_scaled(s.U)) @ s.U,
+    ),
+    _mismatch(
+        "world points",
+        "centred the world points but did not scale them",
+        lambda s: s.P @ np.linalg.inv(_world_only_centred(s.U)) @ s.U,
+    ),
     _mismatch("world points", "left the world points unnormalised", lambda s: s.P @ s.U),
 )
 """One side normalised with one matrix and undone with another: on exact pixels the answer is T-side
@@ -256,12 +272,27 @@ register_exercise(
                 "pixels are scaled but not centred",
             ),
             (dlt_p34, "p34 = 1"),
-            (lambda X, uv: dlt_mismatched(X, uv, pixels="scale"), "scaled the pixels but did not centre"),
-            (lambda X, uv: dlt_mismatched(X, uv, pixels="centre"), "centred the pixels but did not scale"),
+            (
+                lambda X, uv: dlt_mismatched(X, uv, pixels="scale"),
+                "scaled the pixels but did not centre",
+            ),
+            (
+                lambda X, uv: dlt_mismatched(X, uv, pixels="centre"),
+                "centred the pixels but did not scale",
+            ),
             (lambda X, uv: dlt_mismatched(X, uv, pixels="none"), "left the pixels unnormalised"),
-            (lambda X, uv: dlt_mismatched(X, uv, world="scale"), "scaled the world points but did not"),
-            (lambda X, uv: dlt_mismatched(X, uv, world="centre"), "centred the world points but did not"),
-            (lambda X, uv: dlt_mismatched(X, uv, world="none"), "left the world points unnormalised"),
+            (
+                lambda X, uv: dlt_mismatched(X, uv, world="scale"),
+                "scaled the world points but did not",
+            ),
+            (
+                lambda X, uv: dlt_mismatched(X, uv, world="centre"),
+                "centred the world points but did not",
+            ),
+            (
+                lambda X, uv: dlt_mismatched(X, uv, world="none"),
+                "left the world points unnormalised",
+            ),
             (lambda X, uv: dlt_u_not_a_column(X, uv), "Keep u a column"),
             (lambda X, uv: dlt_half(X, uv, undo="T"), "undid only the pixels'"),
             (lambda X, uv: dlt_half(X, uv, undo="U"), "undid only the world points'"),
