@@ -426,7 +426,6 @@ def resectioning():
             f"{k_readout(K, cam_true.image_size)}\n\n"
             f"redundancy 2N - 11 = {redundancy}\n"
             f"RMS expected of the ML (refined) fit:\n  sigma sqrt(2) sqrt((2N - 11) / 2N) = {expected:.2f} px\n"
-            f"  (the linear DLT's is a little larger)\n"
             f"(the true camera leaves sigma sqrt(2) = {float(v['noise']) * np.sqrt(2.0):.2f} px)"
             f"{warning}</pre>"
         )

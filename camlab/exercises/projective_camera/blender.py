@@ -141,6 +141,22 @@ _MISTAKES = (
         ),
     ),
     Mistake(
+        "last column -t_gl",
+        lambda s: s.rotation_right and np.allclose(s.c, -_F @ s.t, atol=1e-9),
+        (
+            "the last column is -t_gl = -F t: t_gl negated is not the camera's position. Turn it onto the world's "
+            "axes with R_gl^T: C = -R_gl^T t_gl (= -R^T t)."
+        ),
+    ),
+    Mistake(
+        "last column -R_gl t_gl",
+        lambda s: s.rotation_right and np.allclose(s.c, -_F @ s.R @ _F @ s.t, atol=1e-9),
+        (
+            "the last column is -R_gl t_gl: R_gl maps world to the camera, so the way back is its inverse, "
+            "R_gl^T: C = -R_gl^T t_gl (= -R^T t)."
+        ),
+    ),
+    Mistake(
         "last column -C",
         lambda s: s.rotation_right and np.allclose(s.c, -s.C, atol=1e-9),
         (
@@ -237,6 +253,18 @@ register_exercise(
                 "wrong sign",
             ),
             (lambda R, t: cm.blender_matrix_world(R, t).T, "transposed"),
+            (
+                lambda R, t: np.block(
+                    [[R.T @ _F, (-_F @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]
+                ),
+                "the last column is -t_gl",
+            ),
+            (
+                lambda R, t: np.block(
+                    [[R.T @ _F, (-_F @ R @ _F @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]
+                ),
+                "the last column is -R_gl t_gl",
+            ),
             (
                 lambda R, t: np.block(
                     [[R.T @ _F, -t[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]

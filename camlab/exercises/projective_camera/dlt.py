@@ -171,6 +171,11 @@ def _dlt_diagnosis(args, got, expected) -> str:
                 "coordinates: a sign slip in A. u x P X = 0 gives the rows (X^T, 0, -u X^T) and (0, X^T, -v X^T), "
                 "with minus signs."
             )
+    if np.allclose(pixels, uv[:, ::-1], atol=1e-4 * max(1.0, np.abs(uv).max())):
+        return (
+            "your P images every point at (v, u): u and v are swapped in A. The first row of each point holds u "
+            "= uv[:, 0] (the column), (X^T, 0, -u X^T), the second v = uv[:, 1] (the row), (0, X^T, -v X^T)."
+        )
     if _is_vt_column(g, X, uv):
         return (
             "you took a column of Vt. np.linalg.svd returns Vt, V transposed: the right singular vectors "
@@ -294,6 +299,10 @@ register_exercise(
                 "left the world points unnormalised",
             ),
             (lambda X, uv: dlt_u_not_a_column(X, uv), "Keep u a column"),
+            (
+                lambda X, uv: estimate_projection_matrix(X, np.asarray(uv)[:, ::-1]),
+                "u and v are swapped",
+            ),
             (lambda X, uv: dlt_half(X, uv, undo="T"), "undid only the pixels'"),
             (lambda X, uv: dlt_half(X, uv, undo="U"), "undid only the world points'"),
             (lambda X, uv: dlt_half(X, uv, sign=1.0), "sign slip in A"),

@@ -100,6 +100,12 @@ def _rq_diagnosis(args, got, expected) -> str:
             )
         return "K R does not reproduce M; an RQ decomposition must satisfy M = K R exactly."
     if np.abs(np.tril(K, -1)).max() > 1e-9 * np.abs(K).max():
+        if np.abs(np.triu(K, 1)).max() <= 1e-9 * np.abs(K).max():
+            return (
+                "K R = M, but your K is lower triangular: that is an LQ factorisation (the QR of M^T, transposed: "
+                "M^T = Q U gives M = U^T Q^T). A camera's K is upper triangular: use scipy.linalg.rq, or the "
+                "exchange-matrix trick of the prompt, E U^T E and E Q^T from the QR of (E M)^T."
+            )
         return "K must be upper triangular."
     if np.any(np.diag(K) < 0) and np.linalg.det(M) < 0 and np.linalg.det(R) > 0:
         return (
@@ -222,6 +228,10 @@ register_exercise(
                 "Your signs are right",
             ),
             (_rq_qr, "QR decomposition"),
+            (
+                lambda M: (lambda Q, U: (U.T, Q.T))(*np.linalg.qr(np.asarray(M).T)),
+                "lower triangular",
+            ),
             (_rq_signs_of_k_only, "apply the same"),
             (lambda M: (lambda K, R: (K, R.T))(*cm.rq_decomposition(M)), "transposed"),
             (lambda M: (lambda K, R: (K.T, R))(*cm.rq_decomposition(M)), "K is transposed"),
