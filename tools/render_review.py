@@ -12,7 +12,9 @@ writes into the folder:
   at its default and at every value of each control's sweep, each control moved from the
   default alone, drawn through the live path (the frame a moved control sends, not a full
   redraw); ``--setting`` adds the settings the prose recommends (several controls at once,
-  file ``NN_<demo>_<control>=<value>,....png``).
+  file ``NN_<demo>_<control>=<value>,....png``);
+* ``NN_<demo>_<setting>.txt`` beside each demo frame: the text the demo shows beside its figure at that
+  setting (its readouts: numbers, warnings), which a PNG of the canvas does not capture.
 """
 
 from __future__ import annotations
@@ -59,6 +61,20 @@ def parse_setting(text: str) -> tuple[str, dict]:
     return demo.strip(), values
 
 
+def readout_text(widget) -> str:
+    """The text of every HTML widget inside ``widget`` (a demo's readouts), tags removed, in display order."""
+    import html
+    import re
+
+    texts, stack = [], [widget]
+    while stack:
+        w = stack.pop(0)
+        stack[:0] = list(getattr(w, "children", ()))
+        if type(w).__name__ == "HTML" and w.value:
+            texts.append(html.unescape(re.sub(r"<[^>]+>", "", w.value)).strip())
+    return "\n\n".join(t for t in texts if t)
+
+
 def render_demos(lesson: str, out: Path, settings: list[tuple[str, dict]]) -> int:
     """Every demo of ``lesson`` at its default, its sweep and ``settings``, through the live path."""
     import matplotlib.pyplot as plt
@@ -81,6 +97,9 @@ def render_demos(lesson: str, out: Path, settings: list[tuple[str, dict]]) -> in
                 or "default"
             )
             plt.imsave(out / f"{lesson}_{name}_{label}.png", demo.view.pixels())
+            text = readout_text(demo.widget)
+            if text:
+                (out / f"{lesson}_{name}_{label}.txt").write_text(text + "\n")
             plt.close(demo.figure)
             count += 1
     unknown = {demo for demo, _ in settings} - {

@@ -223,7 +223,11 @@ def _in_place_message(
     The examples use that argument's own name and shape: ``p[1] = -p[1]`` for one point (a 1-D array),
     ``X[:, 0] = ...`` for a batch, so a warm-up on one point does not read batch code in its hint.
     """
-    what = ", ".join(_parameter_name(student_function, k) for k in changed)
+    names = [_parameter_name(student_function, k) for k in changed]
+    what = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+    inputs, arrays, it = (
+        ("input", "array", "it") if len(names) == 1 else ("inputs", "arrays", "they")
+    )
     first = _parameter_name(student_function, changed[0]).strip("`")
     a = first if first.isidentifier() else "x"
     # arrays inside a tuple or a list (a pair of frames, a list of pairs) get examples of their own
@@ -243,8 +247,8 @@ def _in_place_message(
     if isinstance(args[changed[0]], np.ndarray):
         copy = f"work on a copy first (`{a} = np.array({a}, dtype=float)`)"
     return (
-        f"{name}: your function changed its input {what} in place (test input {i + 1} of {n}); the caller's "
-        f"array must come back as it went in\n"
+        f"{name}: your function changed its {inputs} {what} in place (test input {i + 1} of {n}); the caller's "
+        f"{arrays} must come back as {it} went in\n"
         f"  likely cause: an in-place operation on an argument ({examples}); "
         f"build a new array instead ({new}), or {copy}"
     )

@@ -48,7 +48,7 @@ def resection_readout(err, K, cam_true, Xw, v, moved, info, centre_err):
         f"|C - C_true| = {100 * centre_err:.1f} cm\n"
         f"{k_readout(K, cam_true.image_size)}\n\n"
         f"redundancy 2N - 11 = {redundancy}\n"
-        f"RMS expected of the fitted camera:\n  sigma sqrt(2) sqrt((2N - 11) / 2N) = {expected:.2f} px\n"
+        f"RMS expected of the ML (refined) fit:\n  sigma sqrt(2) sqrt((2N - 11) / 2N) = {expected:.2f} px\n"
         f"(the true camera leaves sigma sqrt(2) = {float(v['noise']) * np.sqrt(2.0):.2f} px)"
         f"{warning}</pre>"
     )

@@ -27,6 +27,9 @@ TARGET = np.array([0.0, 0.0, 0.7])
 # above): at a fixed viewer angle, one orbit position looked straight down the camera's axis and piled
 # everything up; from this side the picture on the image plane stays clear of the house behind it.
 VIEWER_OFFSET = -35.0
+# The resectioning viewer looks at the box's corner between its two faces of points (x = +1 and y = -1), so both
+# faces open up; the true camera (azimuth -55 deg) stands to the viewer's right, its frustum pointing at the box.
+RESECTION_AZIM, RESECTION_ELEV = -20.0, 24.0
 FAR_M = 6.0  # an estimated camera farther than this from the true one is shown by an arrow, not fitted into view
 EYE_GL = np.array(
     [2.6, -2.6, 1.0]
@@ -195,8 +198,8 @@ def camera_explorer():
             "<pre>" + _matrix("K", cam.K, 1) + "\n" + _matrix("R", cam.R, 3) + "\n"
             f"t = {_fmt(cam.t)} m  (world origin in camera frame)\n"
             f"C = -R^T t = {_fmt(cam.centre)} m  (camera in world)\n"
-            + _matrix("P", cam.P / np.linalg.norm(cam.P[2, :3]), 3)
-            + "\n(P scaled so that |m3| = 1: row 3 is the principal\n axis and the world origin's depth)</pre>"
+            + _matrix("P", cam.P, 3)
+            + "\n(K33 = 1, so row 3 of P = K [R | t] is (r3, t_z):\n the principal axis and the world origin's depth)</pre>"
         )
         state.update(camera=cam, K=cam.K, R=cam.R, t=cam.t, centre=cam.centre, P=cam.P)
 
@@ -260,7 +263,7 @@ def _resectioning_key(view):
     # the image), the estimate dashed orange; drawn once, outside the axes, so it covers no data.
     keys = [
         Line2D([], [], color=palette.PURPLE, lw=1.2),
-        Line2D([], [], color=palette.ORANGE, lw=1.2),
+        Line2D([], [], color=palette.ORANGE, lw=1.2, ls=(0, (4, 2))),
         Line2D([], [], color="0.35", lw=1.2),
         Line2D([], [], color=palette.ORANGE, lw=1.0, ls="--"),
         Line2D([], [], marker="o", mfc="none", color="k", ls="none"),
@@ -276,7 +279,7 @@ def _resectioning_key(view):
             "seen by the estimate",
             "measured pixel",
             "reprojected by the estimate",
-            "pair k (the shift sliders move it)",
+            "pair k, or a clicked pixel, where it is now",
         ],
         loc="outside lower center",
         ncols=4,
@@ -303,8 +306,8 @@ def _resectioning_figure(view):
         image_title="measured (o) vs reprojected (+)",
         world_axes=0.0,
         camera_axes=False,
-        azim=15,
-        elev=24,
+        azim=RESECTION_AZIM,
+        elev=RESECTION_ELEV,
     )
     # The labels hang off each centre on screen, "true" above-left and "est." below-left (the frustums
     # point right, towards the box), so they clear each other and their own lines at any zoom.
@@ -321,6 +324,10 @@ def _resectioning_figure(view):
         label_offset=(0.0, 0.0),
     )
     est_art.label.set(ha="right", va="top")
+    # The estimate is drawn dashed and unfilled, as its view is in the image: near the truth it lies over the
+    # true camera, which must still show through it.
+    est_art.frustum.set_linestyle((0, (4, 2)))
+    est_art.plane.set_facecolor("none")
     pts3d = scene3d.draw_points(sv.ax3d, X, color="k", ms=3)
     # the moved correspondence(s), ringed in both panels: after the fit every residual grows, so
     # without a mark the mismatch is hard to find
@@ -498,8 +505,8 @@ def opencv_vs_opengl():
     house = scene3d.draw_segments(ax, house_segments, color=palette.GREY)
     cam0 = cm.Camera.look_at(EYE_GL, [0.0, 0.0, 0.4])
     art = scene3d.CameraArtist(
-        ax, cam0, size=0.65, show_axes=False
-    )  # shorter than the axes, so labels clear it
+        ax, cam0, size=0.5, show_axes=False
+    )  # about half the axes' length, so "z forward" clears the frustum's far edge
     lines, texts = [], []
     for c in palette.AXIS_COLOURS:
         (ln,) = ax.plot([], [], [], color=c, lw=2.5)

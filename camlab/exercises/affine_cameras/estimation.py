@@ -204,7 +204,7 @@ register_exercise(
             (lambda X, uv: af.estimate_affine_camera(X, uv).astype(int), "truncated towards zero"),
             (estimate_points_on_pixels, "regressed the world points on the pixels"),
             (estimate_rank_two, "rank < 2"),
-            (estimate_centred_in_place, "changed its input `X`, `uv` in place"),
+            (estimate_centred_in_place, "changed its inputs `X` and `uv` in place"),
             (lambda X, uv: af.estimate_affine_camera(1000 * X, uv), "unit slip by 1000"),
             (lambda X, uv: af.estimate_affine_camera(X, 1000 * uv), "unit slip by 1000"),
             (lambda X, uv: af.estimate_affine_camera(X, uv + 1), "off by one pixel"),

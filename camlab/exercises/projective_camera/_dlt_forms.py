@@ -107,3 +107,29 @@ def dlt_not_undone(X, uv):
 def dlt_undone_wrong_order(X, uv):
     U, T = normalisers(X, uv)
     return T @ dlt_not_undone(X, uv) @ np.linalg.inv(U)  # T P_hat U^-1
+
+
+def dlt_mismatched(X, uv, pixels="full", world="full"):
+    """A DLT that applies part of a normaliser ("scale", "centre" or "none") to one side, then undoes the full one."""
+    X, uv = np.asarray(X, dtype=float), np.asarray(uv, dtype=float)
+    U, T = normalisers(X, uv)
+
+    def part(N, kind):
+        d = len(N) - 1
+        if kind == "scale":
+            return np.diag([*np.diag(N)[:d], 1.0])
+        if kind == "centre":
+            return np.block([[np.eye(d), N[:d, d:] / N[0, 0]], [np.zeros((1, d)), np.ones((1, 1))]])
+        return np.eye(d + 1) if kind == "none" else N
+
+    P_hat = np.linalg.svd(dlt_rows(in_frame(part(U, world), X), in_frame(part(T, pixels), uv)))[2][
+        -1
+    ]
+    return np.linalg.inv(T) @ P_hat.reshape(3, 4) @ U
+
+
+def dlt_u_not_a_column(X, uv):
+    """The broadcasting slip -uv[:, 0] * X_h (u as an (N,) vector against (N, 4) rows): raises ValueError."""
+    X, uv = np.asarray(X, dtype=float), np.asarray(uv, dtype=float)
+    Xh, zero = np.column_stack([X, np.ones(len(X))]), np.zeros((len(X), 4))
+    return np.vstack([np.hstack([Xh, zero, -uv[:, 0] * Xh]), np.hstack([zero, Xh, -uv[:, 1] * Xh])])

@@ -124,6 +124,39 @@ _MISTAKES = (
         ),
     ),
     Mistake(
+        "last column -t",
+        lambda s: s.rotation_right and np.allclose(s.c, -s.t, atol=1e-9),
+        (
+            "the last column is -t, but t negated is not the camera's position (Pitfall 1). t is the world origin "
+            "in camera coordinates, so -t runs from the origin to the camera written along the camera's axes; "
+            "turn it onto the world's axes with R^T: C = -R^T t."
+        ),
+    ),
+    Mistake(
+        "last column -R t",
+        lambda s: s.rotation_right and np.allclose(s.c, -s.R @ s.t, atol=1e-9),
+        (
+            "the last column is -R t: R maps world to camera, so the way back is its inverse, R^T: "
+            "R C + t = 0 gives C = -R^T t."
+        ),
+    ),
+    Mistake(
+        "last column -t_gl",
+        lambda s: s.rotation_right and np.allclose(s.c, -_F @ s.t, atol=1e-9),
+        (
+            "the last column is -t_gl = -F t: t_gl negated is not the camera's position. Turn it onto the world's "
+            "axes with R_gl^T: C = -R_gl^T t_gl (= -R^T t)."
+        ),
+    ),
+    Mistake(
+        "last column -R_gl t_gl",
+        lambda s: s.rotation_right and np.allclose(s.c, -_F @ s.R @ _F @ s.t, atol=1e-9),
+        (
+            "the last column is -R_gl t_gl: R_gl maps world to the camera, so the way back is its inverse, "
+            "R_gl^T: C = -R_gl^T t_gl (= -R^T t)."
+        ),
+    ),
+    Mistake(
         "last column -C",
         lambda s: s.rotation_right and np.allclose(s.c, -s.C, atol=1e-9),
         (
@@ -220,6 +253,30 @@ register_exercise(
                 "wrong sign",
             ),
             (lambda R, t: cm.blender_matrix_world(R, t).T, "transposed"),
+            (
+                lambda R, t: np.block(
+                    [[R.T @ _F, (-_F @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]
+                ),
+                "the last column is -t_gl",
+            ),
+            (
+                lambda R, t: np.block(
+                    [[R.T @ _F, (-_F @ R @ _F @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]
+                ),
+                "the last column is -R_gl t_gl",
+            ),
+            (
+                lambda R, t: np.block(
+                    [[R.T @ _F, -t[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]
+                ),
+                "the last column is -t",
+            ),
+            (
+                lambda R, t: np.block(
+                    [[R.T @ _F, (-R @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]
+                ),
+                "the last column is -R t",
+            ),
             (
                 lambda R, t: np.block(
                     [[_F @ R, (-R.T @ t)[:, None]], [np.zeros((1, 3)), np.ones((1, 1))]]

@@ -63,6 +63,12 @@ def _centre_diagnosis(args, got, expected) -> str:
             f"P C is not 0 (relative |P C| = {residual:.3g}). The centre is the null space of P: "
             f"the last right singular vector of np.linalg.svd(P), or (-M^-1 p4, 1)."
         )
+    if np.isclose(g[3], -1.0):
+        return (
+            "P C = 0, but your last coordinate is -1: you divided the null vector by -v[3] (or negated the "
+            "result). Divide by v[3] itself, so that C = (X, Y, Z, 1); C and -C are the same point, but the "
+            "check, like every camlab function, fixes the last entry to +1."
+        )
     return (
         f"P C = 0, but your last coordinate is {g[3]:.4g}: the null vector is defined only up to scale; "
         f"divide it by its last entry so that its last coordinate is 1 (C = (X, Y, Z, 1))."
@@ -93,6 +99,13 @@ def _centre_slip(P, got, expected) -> str | None:
         )
     if np.allclose(got[:3], -expected[:3], rtol=1e-6) and np.isclose(got[3], 1.0):
         return "the sign is flipped: P C = M C + p4 = 0 gives C = -M^-1 p4 (with the minus)."
+    for digits in range(7):
+        if np.allclose(got, np.round(expected, digits), rtol=0, atol=1e-12):
+            return (
+                f"you rounded the centre to {digits} decimal{'s' if digits != 1 else ''}. A rounded centre is "
+                f"no longer P's null vector (P C != 0): return v / v[3] as it is, no np.round; round only "
+                f"when you print it."
+            )
     M, p4 = P[:, :3], P[:, 3]
     if np.allclose(got[:3], -M.T @ p4, rtol=1e-6):
         return (
@@ -113,6 +126,11 @@ def _centre_slip(P, got, expected) -> str | None:
             f"multiplied) by a number other than the null vector's last entry, such as P's scale or |m3|. "
             f"The centre solves M C + p4 = 0 whatever P's scale: C = -M^-1 p4 exactly, or v / v[3] for the "
             f"null vector v."
+        )
+    if np.allclose(got[:3], -p4 @ np.linalg.inv(M), rtol=1e-6):
+        return (
+            "you multiplied p4 by M^-1 from the wrong side: p4 @ inv(M) is inv(M)^T p4. The centre solves "
+            "M C = -p4, so C = -inv(M) @ p4, or np.linalg.solve(M, -p4)."
         )
     if same_up_to_scale(got[:3], P[:, 3], rtol=1e-6):
         return (
@@ -186,6 +204,12 @@ register_exercise(
                 "full_matrices=False",
             ),
             (lambda P: (lambda v: v / v[4])(np.linalg.svd(P)[2][-1]), "indices 0 .. 3"),
+            (lambda P: np.round(cm.camera_centre(P), 2), "you rounded the centre"),
+            (
+                lambda P: (lambda v: v / -v[3])(np.linalg.svd(P)[2][-1]),
+                "divided the null vector by -v[3]",
+            ),
+            (lambda P: np.append(-P[:, 3] @ np.linalg.inv(P[:, :3]), 1.0), "from the wrong side"),
             (
                 lambda P: np.linalg.svd(P)[2][-1][:, None],
                 "last coordinate is 1",

@@ -11,10 +11,12 @@ from .._answers import same_up_to_scale, shape_problem
 from .._core import Exercise, Mistake, first_mistake, register_exercise
 from ._dlt_forms import (
     dlt_half,
+    dlt_mismatched,
     dlt_not_undone,
     dlt_p34,
     dlt_partial,
     dlt_rows,
+    dlt_u_not_a_column,
     dlt_undone_wrong_order,
     dlt_unnormalised,
     in_frame,
@@ -61,6 +63,63 @@ _UNDO_MISTAKES = (
 """A normalised DLT's fit P_hat = T P inv(U) mapped back wrongly, in the order the diagnosis tests them."""
 
 
+def _pixels_only_scaled(T):
+    return np.diag([T[0, 0], T[1, 1], 1.0])
+
+
+def _pixels_only_centred(T):
+    return np.block([[np.eye(2), T[:2, 2:] / T[0, 0]], [np.zeros((1, 2)), np.ones((1, 1))]])
+
+
+def _world_only_scaled(U):
+    return np.diag([U[0, 0], U[1, 1], U[2, 2], 1.0])
+
+
+def _world_only_centred(U):
+    return np.block([[np.eye(3), U[:3, 3:] / U[0, 0]], [np.zeros((1, 3)), np.ones((1, 1))]])
+
+
+def _mismatch(side, did, build):
+    """A side normalised by part of its normaliser but undone with the full one: inv(T) T' P or P inv(U') U."""
+    undone = "inv(T)" if side == "pixels" else "U"
+    return Mistake(
+        f"{side}: {did}, undone with the full {undone}",
+        build,
+        f"you {did}, then undid the full normaliser ({undone}): the normalisation you applied and the one you "
+        f"undid differ. P = inv(T) @ P_hat @ U holds only for the very T and U applied to the points: build "
+        f"each normaliser once, as a matrix, apply it ({'T u' if side == 'pixels' else 'U X'}) and undo that "
+        f"same matrix.",
+    )
+
+
+_MISMATCH_MISTAKES = (
+    _mismatch(
+        "pixels",
+        "scaled the pixels but did not centre them",
+        lambda s: np.linalg.inv(s.T) @ _pixels_only_scaled(s.T) @ s.P,
+    ),
+    _mismatch(
+        "pixels",
+        "centred the pixels but did not scale them",
+        lambda s: np.linalg.inv(s.T) @ _pixels_only_centred(s.T) @ s.P,
+    ),
+    _mismatch("pixels", "left the pixels unnormalised", lambda s: np.linalg.inv(s.T) @ s.P),
+    _mismatch(
+        "world points",
+        "scaled the world points but did not centre them",
+        lambda s: s.P @ np.linalg.inv(_world_only_scaled(s.U)) @ s.U,
+    ),
+    _mismatch(
+        "world points",
+        "centred the world points but did not scale them",
+        lambda s: s.P @ np.linalg.inv(_world_only_centred(s.U)) @ s.U,
+    ),
+    _mismatch("world points", "left the world points unnormalised", lambda s: s.P @ s.U),
+)
+"""One side normalised with one matrix and undone with another: on exact pixels the answer is T-side
+inv(T) T' P or world-side P inv(U') U, with P the true camera."""
+
+
 def _same_camera(got, wrong) -> bool:
     return same_up_to_scale(got, wrong, rtol=1e-5)
 
@@ -97,8 +156,8 @@ def _dlt_diagnosis(args, got, expected) -> str:
                 "back with p.reshape(3, 4), before undoing the normalisation."
             )
     for U, T in frames[:2]:  # mean or RMS distances: either is right
-        context = SimpleNamespace(U=U, T=T, P_hat=T @ expected @ np.linalg.inv(U))
-        cause = first_mistake(_UNDO_MISTAKES, context, g, _same_camera)
+        context = SimpleNamespace(U=U, T=T, P_hat=T @ expected @ np.linalg.inv(U), P=expected)
+        cause = first_mistake(_UNDO_MISTAKES + _MISMATCH_MISTAKES, context, g, _same_camera)
         if cause:
             return cause
     pixels = pixels_of(g, X)
@@ -112,6 +171,11 @@ def _dlt_diagnosis(args, got, expected) -> str:
                 "coordinates: a sign slip in A. u x P X = 0 gives the rows (X^T, 0, -u X^T) and (0, X^T, -v X^T), "
                 "with minus signs."
             )
+    if np.allclose(pixels, uv[:, ::-1], atol=1e-4 * max(1.0, np.abs(uv).max())):
+        return (
+            "your P images every point at (v, u): u and v are swapped in A. The first row of each point holds u "
+            "= uv[:, 0] (the column), (X^T, 0, -u X^T), the second v = uv[:, 1] (the row), (0, X^T, -v X^T)."
+        )
     if _is_vt_column(g, X, uv):
         return (
             "you took a column of Vt. np.linalg.svd returns Vt, V transposed: the right singular vectors "
@@ -139,6 +203,21 @@ def _is_vt_column(got, X, uv) -> bool:
         ):
             return True
     return False
+
+
+def _dlt_exception_hint(exc, args) -> str:
+    """The cause of a broadcasting error while stacking A: u (N,) times the (N, 4) rows X_h, u not a column."""
+    message = str(exc)
+    n = len(np.asarray(args[0]))
+    if isinstance(exc, ValueError) and "broadcast" in message:
+        for k in (3, 4):
+            if f"({n},) ({n},{k})" in message or f"({n},{k}) ({n},)" in message:
+                return (
+                    f"a broadcasting slip while building A: u = uv[:, 0] has shape ({n},) and X_h ({n}, {k}); "
+                    f"broadcasting lines the {n} u's up with X_h's {k} columns, not with its {n} rows. Keep u a "
+                    f"column, one u per point (row): uv[:, :1] * X_h or uv[:, 0, None] * X_h (and the same for v)."
+                )
+    return ""
 
 
 def estimate_projection_matrix(X, uv):
@@ -198,6 +277,32 @@ register_exercise(
                 "pixels are scaled but not centred",
             ),
             (dlt_p34, "p34 = 1"),
+            (
+                lambda X, uv: dlt_mismatched(X, uv, pixels="scale"),
+                "scaled the pixels but did not centre",
+            ),
+            (
+                lambda X, uv: dlt_mismatched(X, uv, pixels="centre"),
+                "centred the pixels but did not scale",
+            ),
+            (lambda X, uv: dlt_mismatched(X, uv, pixels="none"), "left the pixels unnormalised"),
+            (
+                lambda X, uv: dlt_mismatched(X, uv, world="scale"),
+                "scaled the world points but did not",
+            ),
+            (
+                lambda X, uv: dlt_mismatched(X, uv, world="centre"),
+                "centred the world points but did not",
+            ),
+            (
+                lambda X, uv: dlt_mismatched(X, uv, world="none"),
+                "left the world points unnormalised",
+            ),
+            (lambda X, uv: dlt_u_not_a_column(X, uv), "Keep u a column"),
+            (
+                lambda X, uv: estimate_projection_matrix(X, np.asarray(uv)[:, ::-1]),
+                "u and v are swapped",
+            ),
             (lambda X, uv: dlt_half(X, uv, undo="T"), "undid only the pixels'"),
             (lambda X, uv: dlt_half(X, uv, undo="U"), "undid only the world points'"),
             (lambda X, uv: dlt_half(X, uv, sign=1.0), "sign slip in A"),
@@ -213,6 +318,7 @@ register_exercise(
                 "wrong order",
             ),
         ),
+        exception_hint=_dlt_exception_hint,
         teaching=estimate_projection_matrix,
     )
 )

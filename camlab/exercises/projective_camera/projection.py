@@ -22,6 +22,12 @@ def _project_diagnosis(args, got, expected) -> str:
     behind = _masked_by_w(P, X, got, expected)
     if behind:
         return behind
+    if isinstance(got, (tuple, list)) and len(got) == 2 and np.shape(got[0]) == (len(X),):
+        return (
+            f"you returned u and v as two separate arrays of {len(X)} numbers (`return u, v`). Return one "
+            f"(N, 2) array with a row (u, v) per point: np.column_stack([u, v]), or slice x[:, :2] / x[:, 2:3] "
+            f"from x = X_h @ P.T directly."
+        )
     problem = shape_problem(got, expected)
     if problem:
         if np.shape(got) == (len(X), 3):
@@ -228,6 +234,7 @@ register_exercise(
                 "subtracted the principal point",
             ),
             (lambda P, X: cm.project_points(P, X) - [320.0, 240.0], "shifted by the same"),
+            (lambda P, X: tuple(cm.project_points(P, X).T), "two separate arrays"),  # return u, v
             (
                 lambda P, X: (lambda x: x[:, 1:3] / x[:, 2:3])(
                     np.hstack([X, np.ones((len(X), 1))]) @ P.T

@@ -68,6 +68,12 @@ def _rq_diagnosis(args, got, expected) -> str:
             "K R = M, but R is not orthogonal (R R^T != I): R must be a rotation or a reflection."
         )
     if np.isclose(K[2, 2], 1.0) and not reproduces and not np.isclose(abs(M[2] @ M[2]), 1.0):
+        if np.all(np.diag(K) > 0):  # the signs were fixed first: only the scale is wrong
+            return (
+                f"you divided K by K[2, 2], so K R = M / {np.sqrt(abs(M[2] @ M[2])):.4g} and no longer M. Your "
+                f"signs are right; keep K unnormalised: here K[2, 2] carries M's scale (a camera's K is divided "
+                f"by K[2, 2] only after t = K^-1 p4, section 4 step 3, not in the RQ decomposition)."
+            )
         return (
             "you divided K by K[2, 2], so K R = M / K[2, 2] and no longer M; and a negative K[2, 2] "
             "does not fix the signs. Keep K unnormalised (K[2, 2] carries M's scale) and fix the signs "
@@ -94,6 +100,12 @@ def _rq_diagnosis(args, got, expected) -> str:
             )
         return "K R does not reproduce M; an RQ decomposition must satisfy M = K R exactly."
     if np.abs(np.tril(K, -1)).max() > 1e-9 * np.abs(K).max():
+        if np.abs(np.triu(K, 1)).max() <= 1e-9 * np.abs(K).max():
+            return (
+                "K R = M, but your K is lower triangular: that is an LQ factorisation (the QR of M^T, transposed: "
+                "M^T = Q U gives M = U^T Q^T). A camera's K is upper triangular: use scipy.linalg.rq, or the "
+                "exchange-matrix trick of the prompt, E U^T E and E Q^T from the QR of (E M)^T."
+            )
         return "K must be upper triangular."
     if np.any(np.diag(K) < 0) and np.linalg.det(M) < 0 and np.linalg.det(R) > 0:
         return (
@@ -211,7 +223,15 @@ register_exercise(
         wrong_variants=(
             (_rq_no_sign_fix, "fix the signs"),
             (_rq_normalised_no_sign_fix, "divided K by K[2, 2]"),
+            (
+                lambda M: (lambda K, R: (K / K[2, 2], R))(*cm.rq_decomposition(M)),
+                "Your signs are right",
+            ),
             (_rq_qr, "QR decomposition"),
+            (
+                lambda M: (lambda Q, U: (U.T, Q.T))(*np.linalg.qr(np.asarray(M).T)),
+                "lower triangular",
+            ),
             (_rq_signs_of_k_only, "apply the same"),
             (lambda M: (lambda K, R: (K, R.T))(*cm.rq_decomposition(M)), "transposed"),
             (lambda M: (lambda K, R: (K.T, R))(*cm.rq_decomposition(M)), "K is transposed"),
