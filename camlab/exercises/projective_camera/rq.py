@@ -80,25 +80,7 @@ def _rq_diagnosis(args, got, expected) -> str:
             "with D = diag(sign(diag(K))): K D and D R."
         )
     if not reproduces:
-        if np.allclose(R @ K, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
-            if np.abs(np.tril(K, -1)).max() > 1e-6 * np.abs(K).max() and np.allclose(
-                K @ K.T, np.eye(3), atol=1e-6
-            ):
-                return "you returned (R, K): the order is swapped. Return K first, then R: `return K, R`."
-            return "you computed M = Q K (a QR decomposition); the camera needs M = K R with K on the left (RQ)."
-        misplaced = _sign_fix_misplaced(K, R, M)
-        if misplaced:
-            return misplaced
-        if np.allclose(K @ R.T, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
-            return "R is transposed: M = K R."
-        if np.allclose(K.T @ R, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
-            return "K is transposed (lower triangular): M = K R with K upper triangular; return K itself, not K.T."
-        if _signs_fixed_in_k_only(K, R, M):
-            return (
-                "you fixed the signs of K (K D) but not of R: K R = (K D)(D R), so apply the same "
-                "D = diag(sign(diag(K))) to R's rows too (D R), or K R no longer equals M."
-            )
-        return "K R does not reproduce M; an RQ decomposition must satisfy M = K R exactly."
+        return _unreproduced_cause(K, R, M)
     if np.abs(np.tril(K, -1)).max() > 1e-9 * np.abs(K).max():
         if np.abs(np.triu(K, 1)).max() <= 1e-9 * np.abs(K).max():
             return (
@@ -121,6 +103,32 @@ def _rq_diagnosis(args, got, expected) -> str:
             "use K D and D R with D = diag(sign(diag(K)))."
         )
     return "K R = M with K positive upper triangular, but the factors differ; is R orthogonal?"
+
+
+def _unreproduced_cause(K, R, M) -> str:
+    """The cause when K R does not give M back: swapped, QR instead of RQ, a misplaced or partial
+    sign fix, a transposed factor."""
+    if np.allclose(R @ K, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
+        if np.abs(np.tril(K, -1)).max() > 1e-6 * np.abs(K).max() and np.allclose(
+            K @ K.T, np.eye(3), atol=1e-6
+        ):
+            return (
+                "you returned (R, K): the order is swapped. Return K first, then R: `return K, R`."
+            )
+        return "you computed M = Q K (a QR decomposition); the camera needs M = K R with K on the left (RQ)."
+    misplaced = _sign_fix_misplaced(K, R, M)
+    if misplaced:
+        return misplaced
+    if np.allclose(K @ R.T, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
+        return "R is transposed: M = K R."
+    if np.allclose(K.T @ R, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
+        return "K is transposed (lower triangular): M = K R with K upper triangular; return K itself, not K.T."
+    if _signs_fixed_in_k_only(K, R, M):
+        return (
+            "you fixed the signs of K (K D) but not of R: K R = (K D)(D R), so apply the same "
+            "D = diag(sign(diag(K))) to R's rows too (D R), or K R no longer equals M."
+        )
+    return "K R does not reproduce M; an RQ decomposition must satisfy M = K R exactly."
 
 
 def sign_flips():
