@@ -10,7 +10,7 @@ for pixel pitch :math:`(s_x, s_y)` and principal point :math:`(c_x, c_y)` in pix
 lens of focal length :math:`f` gives :math:`f_x = f / s_x,\ f_y = f / s_y`.
 
 Images handled here are float arrays in [0, 1] (irradiance relative to saturation) or
-integer digital numbers after :func:`quantize`. See lesson 03.
+integer digital numbers after :func:`quantise`. See lesson 03.
 """
 
 from __future__ import annotations
@@ -42,7 +42,7 @@ __all__ = [
     "dark_and_flat_frames",
     "demosaic_bilinear",
     "demosaic_opencv",
-    "dequantize",
+    "dequantise",
     "gamma_decode",
     "gamma_encode",
     "intrinsics_from_sensor",
@@ -50,7 +50,7 @@ __all__ = [
     "mosaic",
     "pixels_to_metric",
     "psnr",
-    "quantize",
+    "quantise",
     "sample",
     "white_balance",
     "zone_plate",
@@ -116,12 +116,12 @@ def check_bits(bits: int) -> int:
     return int(bits)
 
 
-def quantize(image: ArrayLike, bits: int = 8) -> np.ndarray:
+def quantise(image: ArrayLike, bits: int = 8) -> np.ndarray:
     r"""Quantise a float image in [0, 1] to ``bits``-bit digital numbers (round to nearest, clip).
 
     :math:`DN = \mathrm{round}(I (2^b - 1))`; uint8 for ``bits <= 8``, else uint16.
 
-    >>> quantize(np.array([0.0, 0.5, 1.0, 1.2]), 2)
+    >>> quantise(np.array([0.0, 0.5, 1.0, 1.2]), 2)
     array([0, 2, 3, 3], dtype=uint8)
     """
     b = check_bits(bits)
@@ -137,7 +137,7 @@ def quantize(image: ArrayLike, bits: int = 8) -> np.ndarray:
     return dn.astype(np.uint8 if b <= 8 else np.uint16)
 
 
-def dequantize(dn: ArrayLike, bits: int = 8) -> np.ndarray:
+def dequantise(dn: ArrayLike, bits: int = 8) -> np.ndarray:
     """Digital numbers back to float [0, 1]: ``dn / (2**bits - 1)``."""
     b = check_bits(bits)
     a = np.asarray(dn)

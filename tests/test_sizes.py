@@ -18,7 +18,7 @@ MAX_FUNCTION_LINES = 80
 
 # {qualified name: why it is still over the limit}. A module is keyed by its dotted name
 # (camlab.projective), a function by module, classes and enclosing functions
-# (camlab.optimize.levenberg_marquardt, camlab.widgets.projective_camera.resectioning.update).
+# (camlab.optimise.levenberg_marquardt, camlab.widgets.projective_camera.resectioning.update).
 EXCEPTIONS = {
     # lesson 00's exercises, grown on main after i27-exercises split the others
     "camlab.exercises.start_here": "lesson 00's exercises (i28-00e) wait for the split the other "

@@ -21,7 +21,7 @@ from .._validate import (
     check_finite,
     check_matrix,
 )
-from ..optimize import levenberg_marquardt, unit_sphere_basis, unit_sphere_update
+from ..optimise import levenberg_marquardt, unit_sphere_basis, unit_sphere_update
 from ..projective import hartley_normalise
 from .model import Camera, check_camera_matrix, project_points
 
@@ -200,7 +200,7 @@ def estimate_projection_matrix(
     :math:`\hat P` for the normalised points, and :math:`P = T^{-1} \hat P U`.
 
     With ``refine=True`` the linear estimate seeds Levenberg-Marquardt
-    (:func:`camlab.optimize.levenberg_marquardt`, on the unit sphere of P's 12 entries) on the
+    (:func:`camlab.optimise.levenberg_marquardt`, on the unit sphere of P's 12 entries) on the
     reprojection error
     :math:`\sum_i \|u_i - \pi(P, X_i)\|^2`, the maximum-likelihood (gold standard)
     estimate under Gaussian pixel noise.

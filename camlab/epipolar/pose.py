@@ -18,7 +18,7 @@ from .._validate import (
     check_matrix,
 )
 from ..camera import Camera, camera_centre, check_camera_matrix
-from ..optimize import block_damped_solve, block_normal_equations, levenberg_marquardt
+from ..optimise import block_damped_solve, block_normal_equations, levenberg_marquardt
 from ..projective import from_homogeneous
 
 __all__ = [
@@ -111,7 +111,7 @@ def recover_pose(
 
 def _refine_points(Ps: list[np.ndarray], uvs: list[np.ndarray], X: np.ndarray) -> np.ndarray:
     """Minimise the summed squared reprojection error over each point independently:
-    Levenberg-Marquardt (:func:`camlab.optimize.levenberg_marquardt`) on the block-diagonal
+    Levenberg-Marquardt (:func:`camlab.optimise.levenberg_marquardt`) on the block-diagonal
     problem, 3 unknowns and 2 residuals per camera for each point. A point on a camera's
     principal plane (depth 0) has no reprojection error and stays where it is."""
     X = X.copy()
