@@ -68,7 +68,7 @@ def documented_names(body: list[str]) -> set[str]:
     names = set()
     for line in body:
         if line.strip() and not line[:1].isspace():
-            for name in line.split(" : ")[0].split(","):
+            for name in line.split(":")[0].split(","):
                 names.add(name.strip().lstrip("*"))
     return names
 
