@@ -203,6 +203,15 @@ def correct_points(
     (N, 2) ndarray
         The corrected source points; their images :math:`\pi(H \hat x_i)` are the corrected
         destination points.
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography, dst ~ H src.
+    src, dst : (N, 2) array_like
+        Measured pairs, pixels.
+    iterations : int, optional
+        Gauss-Newton steps (default 10).
     """
     Hm = check_homography(H)
     s, d = check_correspondences(src, dst, min_count=1)
