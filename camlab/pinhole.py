@@ -140,7 +140,8 @@ def diffraction_blur(
 
     References
     ----------
-    .. [1] E. Hecht, *Optics*, 5th ed., 2017, chapter 10 (Fraunhofer diffraction by a circular aperture: the Airy disc).
+    .. [1] E. Hecht, *Optics*, 5th ed., 2017, chapter 10 (Fraunhofer diffraction by a circular
+       aperture: the Airy disc).
 
     Examples
     --------

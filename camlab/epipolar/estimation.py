@@ -83,7 +83,8 @@ def sampson_distance(F: ArrayLike, x1: ArrayLike, x2: ArrayLike) -> np.ndarray:
 
     References
     ----------
-    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 11.4.3 (the Sampson distance).
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 11.4.3 (the Sampson
+       distance).
 
     Examples
     --------
@@ -172,7 +173,8 @@ def estimate_fundamental_matrix(
 
     References
     ----------
-    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 11.2 and algorithm 11.1 (the normalised 8-point algorithm).
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 11.2 and algorithm
+       11.1 (the normalised 8-point algorithm).
     .. [2] R. I. Hartley, 1997, "In defense of the eight-point algorithm", *IEEE Transactions
        on Pattern Analysis and Machine Intelligence* 19(6), 580-593.
 
@@ -399,7 +401,8 @@ def ransac_fundamental_matrix(
 
     References
     ----------
-    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 11.6 and algorithm 11.4 (robust estimation of F).
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 11.6 and algorithm
+       11.4 (robust estimation of F).
     .. [2] R. I. Hartley, 1997, "In defense of the eight-point algorithm", *IEEE Transactions
        on Pattern Analysis and Machine Intelligence* 19(6), 580-593.
     """

@@ -162,7 +162,8 @@ def essential_matrix(R: ArrayLike, t: ArrayLike) -> np.ndarray:
 
     References
     ----------
-    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 9.6 (the essential matrix).
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 9.6 (the essential
+       matrix).
     .. [2] H. C. Longuet-Higgins, 1981, "A computer algorithm for reconstructing a scene from
        two projections", *Nature* 293, 133-135.
     """
@@ -211,7 +212,8 @@ def fundamental_from_cameras(
 
     References
     ----------
-    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 9.2 (the fundamental matrix F, result 9.1).
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 9.2 (the
+       fundamental matrix F, result 9.1).
     """
     if isinstance(camera1, Camera) and isinstance(camera2, Camera):
         R, t = relative_pose(camera1, camera2)
@@ -261,7 +263,8 @@ def essential_from_fundamental(
 
     References
     ----------
-    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 9.6.1 (properties of the essential matrix, result 9.17).
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 9.6.1 (properties
+       of the essential matrix, result 9.17).
     """
     F = check_fundamental(F)
     K1 = check_intrinsics(K1, "K1")

@@ -62,7 +62,8 @@ def decompose_essential_matrix(E: ArrayLike) -> EssentialDecomposition:
 
     References
     ----------
-    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 9.6.2 (extraction of cameras from the essential matrix,
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 9.6.2 (extraction
+       of cameras from the essential matrix,
        result 9.19).
     """
     E = check_matrix(E, (3, 3), "E")
@@ -128,7 +129,8 @@ def recover_pose(
 
     References
     ----------
-    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 9.6.3 (geometrical interpretation of the four solutions).
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 9.6.3 (geometrical
+       interpretation of the four solutions).
     """
     K1 = check_intrinsics(K1, "K1")
     K2 = K1 if K2 is None else check_intrinsics(K2, "K2")
@@ -227,7 +229,8 @@ def triangulate_points(
 
     References
     ----------
-    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 12.2 (linear triangulation methods).
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 12.2 (linear
+       triangulation methods).
 
     Examples
     --------

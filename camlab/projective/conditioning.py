@@ -69,7 +69,8 @@ def hartley_normalise(points: ArrayLike, name: str = "points") -> HartleyNormali
     ----------
     .. [1] R. I. Hartley, 1997, "In defense of the eight-point algorithm", *IEEE Transactions
        on Pattern Analysis and Machine Intelligence* 19(6), 580-593.
-    .. [2] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.4.4 and algorithm 4.2 (normalised DLT), algorithm 7.1.
+    .. [2] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.4.4 and algorithm
+       4.2 (normalised DLT), algorithm 7.1.
 
     Examples
     --------

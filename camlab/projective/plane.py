@@ -563,7 +563,8 @@ def horizon(vp1: ArrayLike, vp2: ArrayLike) -> np.ndarray:
 
     References
     ----------
-    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 8.6.2 (vanishing lines).
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 8.6.2 (vanishing
+       lines).
     """
     a, sa = _as_homogeneous_2d(vp1, "vp1")
     b, sb = _as_homogeneous_2d(vp2, "vp2")

@@ -57,7 +57,8 @@ def vanishing_point(segments: ArrayLike) -> np.ndarray:
     ----------
     .. [1] R. I. Hartley, 1997, "In defense of the eight-point algorithm", *IEEE Transactions
        on Pattern Analysis and Machine Intelligence* 19(6), 580-593.
-    .. [2] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 8.6.1 (vanishing points).
+    .. [2] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 8.6.1 (vanishing
+       points).
     """
     s = np.asarray(segments, dtype=float) if np.ndim(segments) else None
     if s is None or s.ndim != 3 or s.shape[1:] != (2, 2) or len(s) < 2:
