@@ -150,7 +150,7 @@ def rows() -> list[dict]:
         K * [[0.5], [0.5], [1]] + [[0, 0, -160], [0, 0, -120], [0, 0, 0]],
         (320, 240),
     ).irradiance
-    raw = sensor.quantize(sensor.mosaic(truth, "RGGB"))
+    raw = sensor.quantise(sensor.mosaic(truth, "RGGB"))
     ours = _median_ms(lambda: sensor.demosaic_bilinear(raw, "RGGB"))
     ref = _median_ms(lambda: sensor.demosaic_opencv(raw, "RGGB", "bilinear"))
     out.append(
@@ -175,7 +175,7 @@ def psnr_table() -> list[dict]:
     truth = render.render(scene, K2, (320, 240), color=True).irradiance
     table = []
     for pattern in sensor.BAYER_PATTERNS:
-        raw = sensor.quantize(sensor.mosaic(truth, pattern))
+        raw = sensor.quantise(sensor.mosaic(truth, pattern))
         row = {
             "pattern": pattern,
             "camlab bilinear": sensor.psnr(

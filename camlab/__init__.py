@@ -42,7 +42,7 @@ topic                     main functions
                           essential_matrix, recover_pose, triangulate_points
 ``rectification`` (11)    rectify_calibrated, rectify_uncalibrated
 ``disparity`` (11)        block_matching_disparity, sgbm_disparity, disparity_to_depth
-``robust``, ``optimize``   the shared engines: ransac, levenberg_marquardt
+``robust``, ``optimise``  the shared engines: ransac, levenberg_marquardt
 ``render``, ``scenes``    the virtual camera with ground truth, and what it photographs
 ``data``                  the shipped photographs and data sets, loaded (load_photo ...)
 ``fixtures``              the lessons' scenes, the data sets' generators, the demos' cached pipelines
@@ -125,7 +125,7 @@ _MAIN: dict[str, tuple[str, ...]] = {
     "rectification": ("rectify_calibrated", "rectify_uncalibrated"),
     "disparity": ("block_matching_disparity", "sgbm_disparity", "disparity_to_depth"),
     "robust": ("ransac",),
-    "optimize": ("levenberg_marquardt",),
+    "optimise": ("levenberg_marquardt",),
     "data": ("load_photo",),
 }
 _HOME = {name: topic for topic, names in _MAIN.items() for name in names}

@@ -42,7 +42,7 @@ from numpy.typing import ArrayLike
 from ._validate import DegenerateError, as_point_pairs
 from .camera import rotation_from_axis_angle
 from .epipolar import estimate_fundamental_matrix, sampson_distance
-from .optimize import levenberg_marquardt
+from .optimise import levenberg_marquardt
 from .projective import hartley_normalise
 
 __all__ = [

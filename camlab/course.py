@@ -66,6 +66,14 @@ class CopyReport(NamedTuple):
     notes: list[str]
 
     def text(self) -> str:
+        """The report as the student reads it after ``camlab lessons``.
+
+        Returns
+        -------
+        str
+            Lines: a summary (counts and ``dest``), one per replaced file and per kept edit,
+            one per note, and the command that opens lesson 00.
+        """
         if self.copied or self.updated:
             lines = [
                 f"camlab lessons: {len(self.copied)} copied, {len(self.updated)} updated, "
@@ -99,11 +107,23 @@ def _sha(data: bytes) -> str:
 
 
 def student_fingerprint(data: bytes, name: str) -> str | None:
-    """SHA-256 of what a student can change in file ``name``; None for a notebook that is not readable.
+    """SHA-256 of what a student can change in file ``name``; None for an unreadable notebook.
 
     For a notebook: the cells' types and sources, in order. Ids, metadata, outputs and
     execution counts are left out, because opening and saving in JupyterLab (or its autosave
     after Run All) changes them without the student changing the lesson. Other files: the bytes.
+
+    Parameters
+    ----------
+    data : bytes
+        The file's content.
+    name : str
+        Its name; a name ending in ``.ipynb`` is read as a notebook.
+
+    Returns
+    -------
+    str or None
+        The hex digest; None for a notebook that is not valid JSON shaped like a notebook.
     """
     if not name.endswith(".ipynb"):
         return _sha(data)
@@ -116,7 +136,14 @@ def student_fingerprint(data: bytes, name: str) -> str | None:
 
 
 def course_files() -> dict[str, Path]:
-    """``{path in the working folder: source file}`` for every lesson and doc page camlab ships."""
+    """``{path in the working folder: source file}`` for every lesson and doc page camlab ships.
+
+    Returns
+    -------
+    dict of str to pathlib.Path
+        ``lessons/<name>`` and ``docs/<name>`` paths in the working folder, each mapped to the
+        shipped file.
+    """
     from .data import docs_dir, lessons_dir
 
     files = {
@@ -146,6 +173,21 @@ def check_dest(dest: Path | str) -> Path:
     Refused: a file; a bare lesson number or name (``camlab lessons 07``, by analogy with
     ``camlab present 07``); a new folder inside an existing course folder (``camlab lessons``
     run inside ``camlab-course`` would make ``camlab-course/camlab-course``).
+
+    Parameters
+    ----------
+    dest : str or pathlib.Path
+        The folder ``camlab lessons`` copies the course into.
+
+    Returns
+    -------
+    pathlib.Path
+        ``dest``, user-expanded.
+
+    Raises
+    ------
+    CamlabInputError
+        For each of those, saying what to run instead.
     """
     text = str(dest)
     path = Path(text).expanduser()
@@ -260,6 +302,19 @@ def _write_error(exc: OSError, rel: str, done: CopyReport) -> CamlabInputError:
 
 def copy_course(dest: Path | str, force: bool = False) -> CopyReport:
     """Copy the course into ``dest``; never lose a file the student edited (see the module docstring).
+
+    Parameters
+    ----------
+    dest : str or pathlib.Path
+        The course folder, new or one an earlier ``copy_course`` made.
+    force : bool, optional
+        Replace files the student edited too, keeping their versions beside them.
+
+    Returns
+    -------
+    CopyReport
+        What was copied, updated, left unchanged, kept, and backed up (paths relative to
+        ``dest``), and notes.
 
     Raises
     ------

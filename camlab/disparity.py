@@ -75,6 +75,20 @@ def box_sum(a: np.ndarray, size: int) -> np.ndarray:
     whatever the window size; then the same along the rows. ``a`` may be a stack
     (..., H, W) of images.
 
+    Parameters
+    ----------
+    a : (..., H, W) ndarray
+        An image or a stack of images.
+    size : int
+        Odd window side, pixels.
+
+    Returns
+    -------
+    (..., H, W) float ndarray
+        The window sums, zero padding outside the image.
+
+    Examples
+    --------
     >>> box_sum(np.ones((4, 4)), 3)
     array([[4., 6., 6., 4.],
            [6., 9., 9., 6.],
@@ -131,12 +145,23 @@ def block_matching_disparity(
     block_size : int
         Odd window size, pixels. Small windows keep edges sharp but are noisy; large
         windows are smooth but blur depth edges.
+    uniqueness : float
+        Step 4's margin, a fraction of the best cost (0 keeps every winner).
+    lr_check : float
+        Step 5's tolerance, pixels (<= 0 skips the check).
 
     Returns
     -------
     (H, W) float ndarray
         Disparity in pixels, NaN where rejected or where the window reaches past the
         left edge of the right image.
+
+    References
+    ----------
+    .. [1] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022,
+       sections 12.3-12.4 (dense correspondence, local methods).
+    .. [2] D. Scharstein and R. Szeliski, 2002, "A taxonomy and evaluation of dense two-frame
+       stereo correspondence algorithms", *International Journal of Computer Vision* 47, 7-42.
     """
     L, R = _grey_pair(left, right)
     h, w = L.shape
@@ -202,6 +227,30 @@ def sgbm_disparity(
     ``max_disparity`` is rounded up to OpenCV's multiple of 16 (the search covers
     ``min_disparity`` ... ``min_disparity + numDisparities``); smoothness penalties
     ``P1 = 8 b^2``, ``P2 = 32 b^2`` as OpenCV's samples use.
+
+    Parameters
+    ----------
+    left, right : (H, W) or (H, W, 3) array_like
+        A rectified pair, ``img[v, u]``.
+    max_disparity : int, optional
+        Largest disparity searched, pixels (rounded up as above).
+    block_size : int, optional
+        Odd matching window, pixels.
+    min_disparity : int, optional
+        Smallest disparity searched, pixels.
+    uniqueness : int, optional
+        OpenCV's ``uniquenessRatio``, a percentage margin of the best cost over the second.
+
+    Returns
+    -------
+    (H, W) float ndarray
+        Disparity in pixels (OpenCV's fixed point divided by 16), NaN where there is no match.
+
+    References
+    ----------
+    .. [1] H. Hirschmuller, 2008, "Stereo processing by semiglobal matching and mutual
+       information", *IEEE Transactions on Pattern Analysis and Machine Intelligence* 30(2),
+       328-341.
     """
     import cv2
 
@@ -236,6 +285,22 @@ def disparity_to_depth(disparity: ArrayLike, focal_length: float, baseline: floa
     give NaN. A disparity error :math:`\delta d` gives a depth error
     :math:`\delta Z \approx Z^2 \delta d / (f B)`: it grows with the square of the depth.
 
+    Parameters
+    ----------
+    disparity : array_like
+        Disparities d, pixels, any shape.
+    focal_length : float
+        Focal length f of the rectified cameras, pixels (> 0).
+    baseline : float
+        Distance B between the camera centres, metres (> 0).
+
+    Returns
+    -------
+    float ndarray
+        Depth Z, metres, the shape of ``disparity``; NaN where d <= 0 or is not finite.
+
+    Examples
+    --------
     >>> disparity_to_depth([40.0, 0.0], focal_length=800, baseline=0.1)
     array([ 2., nan])
     """
@@ -254,6 +319,23 @@ def disparity_to_points(
     :math:`Z = f B / d`, :math:`X = (u - c_x) Z / f`, :math:`Y = (v - c_y) Z / f`; the same
     as ``cv2.reprojectImageTo3D`` with the Q of :func:`camlab.rectification.rectify_calibrated`.
     ``step`` subsamples the map (every step-th row and column).
+
+    Parameters
+    ----------
+    disparity : (H, W) array_like
+        Disparity map, pixels (NaN: no match).
+    K : (3, 3) array_like
+        Intrinsics of the rectified camera 1, pixels.
+    baseline : float
+        Distance B between the camera centres, metres (> 0).
+    step : int, optional
+        Keep every step-th row and column (default 1).
+
+    Returns
+    -------
+    (N, 3) ndarray
+        Points (X, Y, Z) in rectified camera 1's frame, metres, one per finite depth, in row
+        order.
     """
     from ._validate import check_matrix
 

@@ -68,6 +68,20 @@ def as_dist(dist: ArrayLike | None, name: str = "dist") -> np.ndarray:
 
     ``None`` means no distortion; 4 coefficients ``(k1, k2, p1, p2)`` get ``k3 = 0``.
 
+    Parameters
+    ----------
+    dist : (5,) or (4,) array_like or None
+        ``(k1, k2, p1, p2[, k3])`` in OpenCV's order; None for no distortion.
+    name : str, optional
+        The argument's name in error messages (default "dist").
+
+    Returns
+    -------
+    (5,) float ndarray
+        ``(k1, k2, p1, p2, k3)``.
+
+    Examples
+    --------
     >>> as_dist([0.1, 0, 0, 0])
     array([0.1, 0. , 0. , 0. , 0. ])
     >>> as_dist([1, 2, 3])
@@ -105,7 +119,7 @@ class DistortedXY(NamedTuple):
 
 
 def distort_xy(x: np.ndarray, y: np.ndarray, d: np.ndarray) -> DistortedXY:
-    r"""The Brown-Conrady polynomial on coordinate arrays that broadcast (a column of y against a row of x).
+    r"""The Brown-Conrady polynomial on coordinate arrays that broadcast (a column of y, a row of x).
 
     .. math:: x_d = x L + 2 p_1 x y + p_2 (r^2 + 2 x^2), \quad
               y_d = y L + p_1 (r^2 + 2 y^2) + 2 p_2 x y, \quad
@@ -115,6 +129,25 @@ def distort_xy(x: np.ndarray, y: np.ndarray, d: np.ndarray) -> DistortedXY:
     and calibration's projection call it). No checks: ``x``, ``y`` are float arrays of
     normalised coordinates and ``d`` the 5 coefficients ``(k1, k2, p1, p2, k3)`` from
     :func:`as_dist`.
+
+    Parameters
+    ----------
+    x, y : ndarray
+        Ideal normalised coordinates (dimensionless), float arrays that broadcast together.
+    d : (5,) ndarray
+        ``(k1, k2, p1, p2, k3)`` from :func:`as_dist`.
+
+    Returns
+    -------
+    DistortedXY
+        ``x`` and ``y``, the distorted normalised coordinates, of the broadcast shape.
+
+    References
+    ----------
+    .. [1] D. C. Brown, 1966, "Decentering distortion of lenses", *Photogrammetric
+       Engineering* 32(3), 444-462.
+    .. [2] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022, section
+       2.1.5 (lens distortions).
     """
     k1, k2, p1, p2, k3 = d
     r2 = x * x + y * y
@@ -154,6 +187,13 @@ def distort_points(points: ArrayLike, dist: ArrayLike | None) -> np.ndarray:
     (N, 2) or (2,) ndarray
         Distorted normalised coordinates (see the module docstring for the formula).
 
+    References
+    ----------
+    .. [1] D. C. Brown, 1966, "Decentering distortion of lenses", *Photogrammetric
+       Engineering* 32(3), 444-462.
+    .. [2] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022, section
+       2.1.5 (lens distortions).
+
     Examples
     --------
     >>> distort_points([0.5, 0.0], [-0.2, 0, 0, 0, 0])   # barrel pulls points inwards
@@ -164,7 +204,21 @@ def distort_points(points: ArrayLike, dist: ArrayLike | None) -> np.ndarray:
 
 
 def distortion_jacobian(points: ArrayLike, dist: ArrayLike | None) -> np.ndarray:
-    """The (N, 2, 2) Jacobian d(distorted) / d(ideal) at normalised ``points`` ((2, 2) for one point)."""
+    """The Jacobian d(distorted) / d(ideal) of the distortion at normalised ``points``.
+
+    Parameters
+    ----------
+    points : (N, 2) or (2,) array_like
+        Ideal normalised coordinates (dimensionless).
+    dist : (5,) or (4,) array_like or None
+        ``(k1, k2, p1, p2[, k3])`` in OpenCV's order; None for no distortion.
+
+    Returns
+    -------
+    (N, 2, 2) or (2, 2) ndarray
+        One 2x2 Jacobian per point, the input's rank: row i is the derivative of distorted
+        coordinate i with respect to (x, y).
+    """
     pts = as_points(points, 2, "points")
     return pts.restore(_jacobian(pts.array, as_dist(dist)))
 
@@ -250,8 +304,24 @@ def newton_undistort(
 ) -> NewtonUndistort:
     """The Newton iterations of :func:`undistort_points`, without raising: check ``residual`` yourself.
 
-    ``target`` (N, 2) distorted normalised points, ``d`` (5,) coefficients (:func:`as_dist`).
     The renderer uses it to find which border pixels have an ideal ray at all.
+
+    Parameters
+    ----------
+    target : (N, 2) ndarray
+        Distorted normalised points.
+    d : (5,) ndarray
+        ``(k1, k2, p1, p2, k3)`` from :func:`as_dist`.
+    tol : float, optional
+        Convergence threshold on the max-abs residual, normalised units.
+    max_iter : int, optional
+        Newton steps before stopping.
+
+    Returns
+    -------
+    NewtonUndistort
+        ``points`` (N, 2), the ideal normalised coordinates, and ``residual`` (N,), max-abs
+        residual per point (inf where Newton failed or landed beyond the fold).
     """
     x = target.copy()
     if not d.any():
@@ -283,6 +353,20 @@ def newton_undistort(
 def radial_scale(r: ArrayLike, dist: ArrayLike | None) -> np.ndarray:
     r"""The radial factor :math:`L(r) = 1 + k_1 r^2 + k_2 r^4 + k_3 r^6` at normalised radius ``r``.
 
+    Parameters
+    ----------
+    r : float or array_like
+        Normalised radius (dimensionless).
+    dist : (5,) or (4,) array_like or None
+        ``(k1, k2, p1, p2[, k3])`` in OpenCV's order; None for no distortion.
+
+    Returns
+    -------
+    float ndarray
+        L(r), the shape of ``r``.
+
+    Examples
+    --------
     >>> float(radial_scale(0.5, [-0.2, 0, 0, 0, 0]))
     0.95
     """
@@ -297,6 +381,21 @@ def max_valid_radius(dist: ArrayLike | None, r_max: float = 3.0) -> float:
     Beyond it two ideal radii land on the same distorted radius, so undistortion is not
     unique. Returns ``r_max`` when the map is monotonic on ``[0, r_max]``.
 
+    Parameters
+    ----------
+    dist : (5,) or (4,) array_like or None
+        ``(k1, k2, p1, p2[, k3])`` in OpenCV's order; None for no distortion.
+    r_max : float, optional
+        The largest normalised radius searched (default 3).
+
+    Returns
+    -------
+    float
+        The fold radius (normalised, linearly interpolated between samples 1e-4 apart), or
+        ``r_max`` when the map is monotonic up to it.
+
+    Examples
+    --------
     >>> round(max_valid_radius([-0.5, 0, 0, 0, 0]), 4)    # d/dr (r - 0.5 r^3) = 0 at r = sqrt(2/3)
     0.8165
     """
@@ -323,6 +422,20 @@ def beyond_valid_radius(points: ArrayLike, dist: ArrayLike | None) -> np.ndarray
     The polynomial model folds back beyond that radius (a point farther out lands on the
     same pixel as one farther in, a mirrored image), so projections mark them NaN.
 
+    Parameters
+    ----------
+    points : (N, 2) or (2,) array_like
+        Normalised points (NaN allowed).
+    dist : (5,) or (4,) array_like or None
+        ``(k1, k2, p1, p2[, k3])`` in OpenCV's order; None for no distortion.
+
+    Returns
+    -------
+    (N,) bool ndarray
+        True where a point lies beyond the fold radius (all False without distortion).
+
+    Examples
+    --------
     >>> beyond_valid_radius([[0.5, 0.0], [1.0, 0.0]], [-0.5, 0, 0, 0, 0]).tolist()
     [False, True]
     """
@@ -344,6 +457,23 @@ def classify_distortion(dist: ArrayLike | None, r_max: float = 0.8, tol: float =
     answer is ``"tangential"`` alone when the radial part is none. ``tol`` is the smallest
     displacement (normalised units) that counts.
 
+    Parameters
+    ----------
+    dist : (5,) or (4,) array_like or None
+        ``(k1, k2, p1, p2[, k3])`` in OpenCV's order; None for no distortion.
+    r_max : float, optional
+        The largest normalised radius considered, the field of view's edge (default 0.8).
+    tol : float, optional
+        The smallest displacement that counts, normalised units (default 1e-4).
+
+    Returns
+    -------
+    str
+        "barrel", "pincushion", "mustache", "none" or "tangential", or one of the first three
+        followed by " + tangential".
+
+    Examples
+    --------
     >>> classify_distortion([-0.3, 0, 0, 0, 0]), classify_distortion([0.2, 0, 0, 0, 0])
     ('barrel', 'pincushion')
     >>> classify_distortion([-0.3, 0.6, 0, 0, 0])
@@ -380,6 +510,20 @@ def pixels_to_normalised(pixels: np.ndarray, K: np.ndarray) -> np.ndarray:
     :math:`x = (u - c_x - s\,y) / f_x`. ``K`` must already be checked
     (:func:`camlab._validate.check_intrinsics`). The inverse is :func:`normalised_to_pixels`.
 
+    Parameters
+    ----------
+    pixels : (N, 2) ndarray
+        Pixel coordinates (u, v).
+    K : (3, 3) ndarray
+        Checked intrinsics, pixels.
+
+    Returns
+    -------
+    (N, 2) ndarray
+        Normalised coordinates (x, y), dimensionless.
+
+    Examples
+    --------
     >>> K = np.array([[800.0, 0, 320], [0, 800, 240], [0, 0, 1]])
     >>> pixels_to_normalised(np.array([[400.0, 200.0]]), K)
     array([[ 0.1 , -0.05]])
@@ -392,6 +536,20 @@ def pixels_to_normalised(pixels: np.ndarray, K: np.ndarray) -> np.ndarray:
 def normalised_to_pixels(xy: np.ndarray, K: np.ndarray) -> np.ndarray:
     r"""Normalised image coordinates (N, 2) to pixels: :math:`(u, v, 1)^\top = K (x, y, 1)^\top`.
 
+    Parameters
+    ----------
+    xy : (N, 2) ndarray
+        Normalised coordinates (x, y), dimensionless.
+    K : (3, 3) ndarray
+        Checked intrinsics, pixels.
+
+    Returns
+    -------
+    (N, 2) ndarray
+        Pixel coordinates (u, v).
+
+    Examples
+    --------
     >>> K = np.array([[800.0, 0, 320], [0, 800, 240], [0, 0, 1]])
     >>> normalised_to_pixels(np.array([[0.1, -0.05]]), K)
     array([[400., 200.]])
@@ -402,7 +560,22 @@ def normalised_to_pixels(xy: np.ndarray, K: np.ndarray) -> np.ndarray:
 
 
 def distort_pixels(pixels: ArrayLike, K: ArrayLike, dist: ArrayLike | None) -> np.ndarray:
-    """Move ideal pixel positions (u, v) to where the distorting lens images them (same K)."""
+    """Move ideal pixel positions (u, v) to where the distorting lens images them (same K).
+
+    Parameters
+    ----------
+    pixels : (N, 2) or (2,) array_like
+        Ideal pixel positions (u, v).
+    K : (3, 3) array_like
+        Intrinsics (upper triangular), pixels.
+    dist : (5,) or (4,) array_like or None
+        ``(k1, k2, p1, p2[, k3])`` in OpenCV's order; None for no distortion.
+
+    Returns
+    -------
+    (N, 2) or (2,) ndarray
+        Distorted pixel positions, the input's rank.
+    """
     pts = as_points(pixels, 2, "pixels")
     K = check_intrinsics(K)
     return pts.restore(
@@ -411,7 +584,27 @@ def distort_pixels(pixels: ArrayLike, K: ArrayLike, dist: ArrayLike | None) -> n
 
 
 def undistort_pixels(pixels: ArrayLike, K: ArrayLike, dist: ArrayLike | None) -> np.ndarray:
-    """Inverse of :func:`distort_pixels`: distorted pixels (u, v) to ideal pixels (same K)."""
+    """Inverse of :func:`distort_pixels`: distorted pixels (u, v) to ideal pixels (same K).
+
+    Parameters
+    ----------
+    pixels : (N, 2) or (2,) array_like
+        Distorted pixel positions (u, v).
+    K : (3, 3) array_like
+        Intrinsics (upper triangular), pixels.
+    dist : (5,) or (4,) array_like or None
+        ``(k1, k2, p1, p2[, k3])`` in OpenCV's order; None for no distortion.
+
+    Returns
+    -------
+    (N, 2) or (2,) ndarray
+        Ideal pixel positions, the input's rank.
+
+    Raises
+    ------
+    ConvergenceError
+        Where a pixel lies beyond the model's fold (:func:`undistort_points`).
+    """
     pts = as_points(pixels, 2, "pixels")
     K = check_intrinsics(K)
     return pts.restore(
@@ -446,6 +639,11 @@ def undistort_map(
         Output size in pixels.
     new_K : (3, 3) array_like, optional
         Intrinsics of the undistorted output.
+
+    Returns
+    -------
+    DistortionMaps
+        ``map_u``, ``map_v``: (height, width) float32 source coordinates for ``cv2.remap``.
     """
     K = check_intrinsics(K)
     new_K = K if new_K is None else check_intrinsics(new_K, "new_K")
@@ -510,6 +708,25 @@ def distort_map(
 
     Pixels beyond the fold of the model (no physical inverse, see :func:`max_valid_radius`)
     map far outside the ideal image, so ``cv2.remap`` fills them with its border value.
+
+    Parameters
+    ----------
+    K : (3, 3) array_like
+        Intrinsics of the distorted output (upper triangular), pixels.
+    dist : (5,) or (4,) array_like or None
+        ``(k1, k2, p1, p2[, k3])`` in OpenCV's order; None for no distortion.
+    size : (2,) tuple of int
+        Output size (width, height), pixels.
+    new_K : (3, 3) array_like, optional
+        Intrinsics of the ideal image sampled (default ``K``).
+    step : int, optional
+        Spacing of the exactly inverted grid, pixels (>= 1; default 4).
+
+    Returns
+    -------
+    DistortionMaps
+        ``map_u``, ``map_v``: (height, width) read-only float32 source coordinates for
+        ``cv2.remap``.
     """
     K = check_intrinsics(K)
     new_K = K if new_K is None else check_intrinsics(new_K, "new_K")
@@ -524,7 +741,24 @@ def distort_map(
 def undistort_image(
     image: np.ndarray, K: ArrayLike, dist: ArrayLike | None, new_K: ArrayLike | None = None
 ) -> np.ndarray:
-    """Undistort an image (H, W) or (H, W, C) with :func:`undistort_map` and ``cv2.remap`` (bilinear)."""
+    """Undistort an image (H, W) or (H, W, C) with :func:`undistort_map` and ``cv2.remap`` (bilinear).
+
+    Parameters
+    ----------
+    image : (H, W) or (H, W, C) ndarray
+        The distorted image.
+    K : (3, 3) array_like
+        Intrinsics (upper triangular), pixels.
+    dist : (5,) or (4,) array_like or None
+        ``(k1, k2, p1, p2[, k3])`` in OpenCV's order; None for no distortion.
+    new_K : (3, 3) array_like, optional
+        Intrinsics of the undistorted output (default ``K``).
+
+    Returns
+    -------
+    ndarray
+        The undistorted image, the input's shape and dtype; pixels with no source are 0.
+    """
     import cv2
 
     img = check_image(image)

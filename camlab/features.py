@@ -116,11 +116,25 @@ class Matches(NamedTuple):
 
 
 def to_gray_uint8(image: ArrayLike, name: str = "image") -> np.ndarray:
-    """An 8-bit grey copy of ``image`` ((H, W) or (H, W, 3|4), uint8 or float in [0, 1]) for detectors.
+    """An 8-bit grey copy of ``image`` for the detectors.
 
-    Colour is converted with the Rec. 601 weights (0.299 R + 0.587 G + 0.114 B), images in
+    ``image`` is (H, W) or (H, W, 3|4), uint8, uint16 or float in [0, 1]. Colour is converted with the Rec. 601 weights (0.299 R + 0.587 G + 0.114 B), images in
     RGB channel order as everywhere in camlab.
 
+    Parameters
+    ----------
+    image : (H, W), (H, W, 3) or (H, W, 4) array_like
+        uint8, uint16, or float in [0, 1]; RGB(A) channel order; at least 8 x 8 pixels.
+    name : str, optional
+        The argument's name in error messages.
+
+    Returns
+    -------
+    (H, W) uint8 ndarray
+        The grey image (floats scaled by 255, uint16 divided by 257, rounded).
+
+    Examples
+    --------
     >>> to_gray_uint8(np.full((8, 8, 3), 0.5))[0, :3].tolist()
     [128, 128, 128]
     """
@@ -235,13 +249,30 @@ class FlannIndex(NamedTuple):
 
 
 def flann_index(features: Features) -> FlannIndex:
-    """Index ``features``' SIFT descriptors once (FLANN, 4 randomised k-d trees), to search them
-    from many images: :func:`knn_match` with ``index2=`` then skips building it per pair.
+    """Index ``features``' SIFT descriptors once (FLANN, 4 randomised k-d trees), to search them from many images.
+
+    :func:`knn_match` with ``index2=`` then skips building it per pair.
 
     FLANN draws the trees' random splits from OpenCV's global random generator, so the same
     descriptors would give a different index (and now and then different matches) depending
     on what ran before. The generator is seeded (``cv2.setRNGSeed(0)``, the state a fresh
     process starts in) before every build: the same features always give the same index.
+
+    Parameters
+    ----------
+    features : Features
+        SIFT features of one image (ORB is always matched by brute force).
+
+    Returns
+    -------
+    FlannIndex
+        ``index``, the OpenCV ``flann_Index``, and ``descriptors``, the float32 (N, 128) array it
+        indexes (kept alive with it).
+
+    References
+    ----------
+    .. [1] M. Muja and D. G. Lowe, 2009, "Fast approximate nearest neighbors with automatic
+       algorithm configuration", *VISAPP*, 331-340.
     """
     import cv2
 
@@ -287,6 +318,26 @@ def knn_match(
     neighbour now and then; ORB always uses brute force); ``index2`` (:func:`flann_index`
     of ``features2``, made once and reused for every image matched against image 2)
     implies it.
+
+    Parameters
+    ----------
+    features1, features2 : Features
+        The two images' features, of one method (both SIFT or both ORB).
+    backward : bool, optional
+        Also find each descriptor of image 2's nearest neighbour in image 1 (for the mutual
+        check; default True).
+    approximate : bool, optional
+        Search SIFT descriptors with FLANN instead of brute force (default False).
+    index2 : FlannIndex, optional
+        :func:`flann_index` of ``features2``, reused across calls; implies ``approximate``.
+
+    Returns
+    -------
+    KnnMatches
+        ``nn12`` (N1, 2) int, the indices of the two nearest descriptors in image 2; ``d12``
+        (N1, 2), their distances (L2 for SIFT, Hamming bits for ORB); ``nn21`` (N2,) int, the
+        nearest in image 1 of each descriptor of image 2 (None when the backward pass is skipped);
+        ``points1`` (N1, 2) and ``points2`` (N2, 2), the keypoint positions in pixels.
     """
     import cv2
 
@@ -337,6 +388,20 @@ def filter_matches(knn: KnnMatches, ratio: float = 0.75, mutual: bool = False) -
     -------
     Matches
         Sorted by ratio (most distinctive first).
+
+    Parameters
+    ----------
+    knn : KnnMatches
+        The nearest neighbours from :func:`knn_match`.
+    ratio : float, optional
+        Ratio-test threshold r in (0, 1] (default 0.75; Lowe used 0.8).
+    mutual : bool, optional
+        Also keep only the matches that are each other's nearest neighbour (default False).
+
+    References
+    ----------
+    .. [1] D. G. Lowe, 2004, "Distinctive image features from scale-invariant keypoints",
+       *International Journal of Computer Vision* 60(2), 91-110, section 7.1 (the ratio test).
 
     Examples
     --------
@@ -391,6 +456,29 @@ def match_features(
     """Match two images' features: nearest neighbours, ratio test, optional mutual check.
 
     ``filter_matches(knn_match(features1, features2, approximate=...), ratio, mutual)``; see both.
+
+    Parameters
+    ----------
+    features1, features2 : Features
+        The two images' features, of one method.
+    ratio : float, optional
+        Ratio-test threshold in (0, 1] (default 0.75).
+    mutual : bool, optional
+        Keep only mutual nearest neighbours (default False).
+    approximate : bool, optional
+        Search SIFT descriptors with FLANN (default False: brute force).
+
+    Returns
+    -------
+    Matches
+        ``src``, ``dst`` (M, 2) pixel positions in images 1 and 2, ``idx1``, ``idx2`` (M,) indices
+        into the features, ``distance`` and ``ratio`` (M,), sorted by ratio (most distinctive
+        first).
+
+    References
+    ----------
+    .. [1] D. G. Lowe, 2004, "Distinctive image features from scale-invariant keypoints",
+       *International Journal of Computer Vision* 60(2), 91-110, section 7.1 (the ratio test).
     """
     return filter_matches(
         knn_match(features1, features2, backward=mutual, approximate=approximate), ratio, mutual

@@ -72,6 +72,25 @@ def _conjugate(focal_length: float, z: ArrayLike, name: str) -> np.ndarray | flo
 def image_distance(focal_length: float, object_distance: ArrayLike) -> np.ndarray | float:
     r"""Where a thin lens focuses an object: :math:`z_i = f z_o / (z_o - f)`.
 
+    Parameters
+    ----------
+    focal_length : float
+        Focal length f of the thin lens, metres (> 0).
+    object_distance : float or array_like
+        Distance z_o of the object in front of the lens, metres (> f).
+
+    Returns
+    -------
+    float or ndarray
+        Image distance z_i behind the lens, metres: a float for a scalar distance, else an array
+        of its shape.
+
+    References
+    ----------
+    .. [1] E. Hecht, *Optics*, 5th ed., 2017, chapter 5 (the thin-lens equation).
+
+    Examples
+    --------
     >>> round(float(image_distance(0.05, 2.0)), 6)      # 50 mm lens, object 2 m away
     0.051282
     >>> image_distance(0.05, 0.03)
@@ -85,6 +104,22 @@ def image_distance(focal_length: float, object_distance: ArrayLike) -> np.ndarra
 def object_distance(focal_length: float, image_distance_: ArrayLike) -> np.ndarray | float:
     r"""The object distance that a sensor at ``image_distance_`` behind the lens has in focus.
 
+    Parameters
+    ----------
+    focal_length : float
+        Focal length f of the thin lens, metres (> 0).
+    image_distance_ : float or array_like
+        Distance z_i of the sensor behind the lens, metres (> f); the trailing underscore keeps
+        the function :func:`image_distance` visible in this module.
+
+    Returns
+    -------
+    float or ndarray
+        Object distance z_o in focus, metres: a float for a scalar distance, else an array of
+        its shape.
+
+    Examples
+    --------
     >>> round(float(object_distance(0.05, 0.0512820513)), 6)
     2.0
     """
@@ -94,6 +129,21 @@ def object_distance(focal_length: float, image_distance_: ArrayLike) -> np.ndarr
 def magnification(focal_length: float, object_distance_: ArrayLike) -> np.ndarray | float:
     r"""Lateral magnification :math:`m = -z_i / z_o = f / (f - z_o)`; negative means inverted.
 
+    Parameters
+    ----------
+    focal_length : float
+        Focal length f of the thin lens, metres (> 0).
+    object_distance_ : float or array_like
+        Distance z_o of the object in front of the lens, metres (> f).
+
+    Returns
+    -------
+    float or ndarray
+        Lateral magnification m (image size over object size; negative: inverted), a float for
+        a scalar distance, else an array of its shape.
+
+    Examples
+    --------
     >>> float(magnification(0.05, 0.1))     # object at 2f: life size, inverted
     -1.0
     """
@@ -115,6 +165,22 @@ def angle_of_view(focal_length: float, sensor_size: float, focus_distance: float
     which is :math:`2 \arctan(w / 2f)` focused at infinity (the default) and narrower
     focused closer (*focus breathing*). All lengths in metres.
 
+    Parameters
+    ----------
+    focal_length : float
+        Focal length f of the thin lens, metres (> 0).
+    sensor_size : float
+        The sensor dimension w the angle spans (width, height or diagonal), metres (> 0).
+    focus_distance : float, optional
+        Distance s the lens is focused at, metres (> f); ``np.inf`` (the default) for infinity.
+
+    Returns
+    -------
+    float
+        Angle of view theta, radians.
+
+    Examples
+    --------
     >>> round(float(np.degrees(angle_of_view(0.05, 0.036))), 2)          # 50 mm, full-frame width
     39.6
     >>> round(float(np.degrees(angle_of_view(0.05, 0.036, 0.5))), 2)     # focused at 0.5 m
@@ -155,6 +221,23 @@ def aperture_for_depth_of_field(
 
     A lens offers a discrete set of f-numbers: take the next larger one. All lengths in metres.
 
+    Parameters
+    ----------
+    focal_length : float
+        Focal length f of the thin lens, metres (> 0).
+    coc : float
+        Acceptable circle of confusion c on the sensor, metres (> 0).
+    near, far : float
+        The nearest and farthest depths that must be sharp, metres (f < near < far).
+
+    Returns
+    -------
+    FocusSetting
+        ``focus_distance`` s (metres, the harmonic mean of near and far) and ``f_number`` N
+        (the exact value; round it up to the lens's next stop).
+
+    Examples
+    --------
     >>> setting = aperture_for_depth_of_field(0.05, 0.03e-3, 2.0, 4.0)   # 50 mm, sharp from 2 m to 4 m
     >>> round(setting.focus_distance, 3), round(setting.f_number, 2)
     (2.667, 10.62)
@@ -175,6 +258,20 @@ def aperture_for_depth_of_field(
 def aperture_diameter(focal_length: float, f_number: float) -> float:
     """Entrance pupil diameter :math:`A = f / N` (metres).
 
+    Parameters
+    ----------
+    focal_length : float
+        Focal length f of the thin lens, metres (> 0).
+    f_number : float
+        f-number N (> 0).
+
+    Returns
+    -------
+    float
+        Entrance pupil diameter A, metres.
+
+    Examples
+    --------
     >>> aperture_diameter(0.05, 2.0)
     0.025
     """
@@ -196,6 +293,25 @@ def circle_of_confusion(
     formula above. Points beyond the focus (:math:`z \to \infty`) tend to
     :math:`A f / (s - f)`.
 
+    Parameters
+    ----------
+    focal_length : float
+        Focal length f of the thin lens, metres (> 0).
+    f_number : float
+        f-number N (> 0).
+    focus_distance : float
+        Distance s the lens is focused at, metres (> f).
+    depth : float or array_like
+        Depths z of the points, metres (> 0).
+
+    Returns
+    -------
+    float or ndarray
+        Blur-disc diameter c on the sensor, metres: a float for a scalar ``depth``, else an
+        array of its shape.
+
+    Examples
+    --------
     >>> round(float(circle_of_confusion(0.05, 2.0, 2.0, 4.0)) * 1e3, 4)   # mm
     0.3205
     """
@@ -213,6 +329,22 @@ def hyperfocal_distance(focal_length: float, f_number: float, coc: float) -> flo
 
     Textbook value: 50 mm at f/8 with c = 0.03 mm gives H = 10.47 m.
 
+    Parameters
+    ----------
+    focal_length : float
+        Focal length f of the thin lens, metres (> 0).
+    f_number : float
+        f-number N (> 0).
+    coc : float
+        Acceptable circle of confusion c, metres (> 0).
+
+    Returns
+    -------
+    float
+        Hyperfocal distance H, metres.
+
+    Examples
+    --------
     >>> round(hyperfocal_distance(0.05, 8, 0.03e-3), 2)
     10.47
     """
@@ -246,6 +378,30 @@ def depth_of_field(
 
     These are the depths where :func:`circle_of_confusion` equals ``coc``.
 
+    Parameters
+    ----------
+    focal_length : float
+        Focal length f of the thin lens, metres (> 0).
+    f_number : float
+        f-number N (> 0).
+    focus_distance : float
+        Distance s the lens is focused at, metres (> f).
+    coc : float
+        Acceptable circle of confusion c, metres (> 0).
+
+    Returns
+    -------
+    DepthOfField
+        ``near`` and ``far``, the limits of acceptable sharpness (metres; ``far`` is inf when
+        s >= H), and ``hyperfocal``, H (metres); ``total`` is far - near.
+
+    References
+    ----------
+    .. [1] S. F. Ray, *Applied Photographic Optics*, 3rd ed., 2002, chapter 15 (depth of field
+       and the hyperfocal distance).
+
+    Examples
+    --------
     >>> dof = depth_of_field(0.05, 8, 5.0, 0.03e-3)   # 50 mm f/8 focused at 5 m
     >>> round(dof.near, 3), round(dof.far, 3)
     (3.389, 9.527)

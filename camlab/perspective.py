@@ -89,6 +89,18 @@ def order_corners(corners: ArrayLike) -> np.ndarray:
     starts at the corner with the smallest u + v. This also untangles a bow-tie
     (self-intersecting) order.
 
+    Parameters
+    ----------
+    corners : (4, 2) array_like
+        Four corner pixels (u, v), in any order.
+
+    Returns
+    -------
+    (4, 2) ndarray
+        The corners TL, TR, BR, BL.
+
+    Examples
+    --------
     >>> order_corners([[10, 0], [0, 0], [0, 10], [10, 10]])
     array([[ 0.,  0.],
            [10.,  0.],
@@ -104,6 +116,16 @@ def order_corners(corners: ArrayLike) -> np.ndarray:
 
 def check_quadrilateral(corners: ArrayLike) -> np.ndarray:
     """Validate four corners as a convex quadrilateral in TL, TR, BR, BL order; return them.
+
+    Parameters
+    ----------
+    corners : (4, 2) array_like
+        Four corner pixels (u, v), meant as TL, TR, BR, BL.
+
+    Returns
+    -------
+    (4, 2) ndarray
+        The corners, as floats.
 
     Raises
     ------
@@ -300,11 +322,26 @@ class Rectified(NamedTuple):
 
 
 def rectangle_homography(corners: ArrayLike, size: tuple[int, int]) -> np.ndarray:
-    """The homography taking corners TL, TR, BR, BL to the upright rectangle of ``size`` (width, height) pixels.
+    """The homography taking corners TL, TR, BR, BL to the upright rectangle of ``size`` pixels.
 
     The target corners are the centres of the rectangle's corner pixels:
     (0, 0), (width - 1, 0), (width - 1, height - 1), (0, height - 1).
 
+    Parameters
+    ----------
+    corners : (4, 2) array_like
+        Corner pixels (u, v), TL, TR, BR, BL.
+    size : (2,) tuple of int
+        The rectangle's (width, height), pixels (each >= 2).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        H, rectified_from_image, estimated from the four correspondences
+        (:func:`camlab.homography.estimate_homography`).
+
+    Examples
+    --------
     >>> H = rectangle_homography([[10, 10], [110, 10], [110, 60], [10, 60]], (101, 51))
     >>> from camlab.projective import map_points
     >>> map_points(H, [110.0, 60.0]).round(9) + 0.0
@@ -349,7 +386,7 @@ def rectify_quadrilateral(
     reorder : bool
         Put the corners in order first (:func:`order_corners`) instead of raising when
         they are out of order.
-    interpolation, method :
+    interpolation, method : str
         As in :func:`camlab.warp.warp_perspective` (``method="cv2"`` for live demos).
 
     Returns

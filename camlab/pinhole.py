@@ -86,6 +86,24 @@ def geometric_blur(
     Rays from a point at distance Z through a hole of diameter d diverge into a cone that
     meets the plane f behind the hole in a disc slightly larger than the hole.
 
+    Parameters
+    ----------
+    diameter : float or array_like
+        Pinhole diameter d, metres (> 0); an array gives one blur per diameter.
+    focal_length : float
+        Pinhole-to-image-plane distance f, metres (> 0).
+    object_distance : float, optional
+        Distance Z of the point in front of the hole, metres (> 0); ``np.inf`` (the default)
+        for a point at infinity, whose blur is the hole itself.
+
+    Returns
+    -------
+    float or ndarray
+        Blur-disc diameter on the image plane, metres: a float for a scalar ``diameter``, else an
+        array of its shape.
+
+    Examples
+    --------
     >>> round(float(geometric_blur(0.5e-3, 0.1, 1.0)) * 1e3, 3)
     0.55
     """
@@ -105,6 +123,28 @@ def diffraction_blur(
 ) -> np.ndarray | float:
     r"""Airy-disc diameter (to the first dark ring) for a hole of ``diameter``: :math:`2.44 \lambda f / d`.
 
+    Parameters
+    ----------
+    diameter : float or array_like
+        Pinhole diameter d, metres (> 0).
+    focal_length : float
+        Pinhole-to-image-plane distance f, metres (> 0).
+    wavelength : float, optional
+        Wavelength of the light, metres (default 550 nm, green).
+
+    Returns
+    -------
+    float or ndarray
+        Airy-disc diameter on the image plane, metres: a float for a scalar ``diameter``, else an
+        array of its shape.
+
+    References
+    ----------
+    .. [1] E. Hecht, *Optics*, 5th ed., 2017, chapter 10 (Fraunhofer diffraction by a circular
+       aperture: the Airy disc).
+
+    Examples
+    --------
     >>> round(float(diffraction_blur(0.5e-3, 0.1)) * 1e3, 4)     # green light, f = 100 mm
     0.2684
     """
@@ -129,7 +169,26 @@ def pinhole_blur(
     object_distance: float = np.inf,
     wavelength: float = 550e-9,
 ) -> PinholeBlur:
-    """Both blur terms for a pinhole of ``diameter`` and their sum (a simple, conservative total)."""
+    """Both blur terms for a pinhole of ``diameter`` and their sum (a simple, conservative total).
+
+    Parameters
+    ----------
+    diameter : float or array_like
+        Pinhole diameter d, metres (> 0).
+    focal_length : float
+        Pinhole-to-image-plane distance f, metres (> 0).
+    object_distance : float, optional
+        Distance of the point in front of the hole, metres (default ``np.inf``).
+    wavelength : float, optional
+        Wavelength of the light, metres (default 550 nm).
+
+    Returns
+    -------
+    PinholeBlur
+        ``geometric`` (:func:`geometric_blur`), ``diffraction`` (:func:`diffraction_blur`) and
+        ``total``, their sum: diameters in metres on the image plane, floats or arrays of
+        ``diameter``'s shape.
+    """
     g = geometric_blur(diameter, focal_length, object_distance)
     k = diffraction_blur(diameter, focal_length, wavelength)
     return PinholeBlur(g, k, g + k)
@@ -143,6 +202,22 @@ def optimal_pinhole_diameter(
     Setting :math:`\frac{d}{dd}\,[d m + 2.44 \lambda f / d] = 0` with :math:`m = 1 + f/Z`.
     Textbook value: f = 100 mm in green light gives about 0.37 mm.
 
+    Parameters
+    ----------
+    focal_length : float
+        Pinhole-to-image-plane distance f, metres (> 0).
+    wavelength : float, optional
+        Wavelength of the light, metres (default 550 nm).
+    object_distance : float, optional
+        Distance Z of the subject, metres (default ``np.inf``: m = 1).
+
+    Returns
+    -------
+    float
+        The best hole diameter d*, metres.
+
+    Examples
+    --------
     >>> round(optimal_pinhole_diameter(0.1) * 1e3, 3)
     0.366
     """

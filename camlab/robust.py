@@ -128,17 +128,57 @@ class PairModel:
         return len(self.x1)
 
     def minimal(self, idx: np.ndarray) -> MinimalModels:
-        """Solve (B, sample_size) index samples: (B, ...) models and a (B,) mask of usable ones."""
+        """Solve (B, sample_size) index samples: (B, ...) models and a (B,) mask of usable ones.
+
+        Parameters
+        ----------
+        idx : (B, sample_size) int ndarray
+            B minimal samples, each a row of pair indices.
+
+        Returns
+        -------
+        MinimalModels
+            ``models`` (B, ...), one per sample, and ``usable`` (B,), False for degenerate samples.
+        """
         raise NotImplementedError
 
     def fit(self, idx: np.ndarray) -> np.ndarray:
-        """Least-squares model from the pairs ``idx`` (more than a minimal sample); raises DegenerateError."""
+        """Least-squares model from the pairs ``idx`` (more than a minimal sample); raises DegenerateError.
+
+        Parameters
+        ----------
+        idx : (K,) int ndarray
+            Indices of the pairs to fit, K > ``sample_size``.
+
+        Returns
+        -------
+        ndarray
+            The least-squares model (e.g. a (3, 3) homography).
+
+        Raises
+        ------
+        DegenerateError
+            When the pairs do not determine a model.
+        """
         raise NotImplementedError
 
     def residuals(
         self, models: np.ndarray, i1: np.ndarray | None = None, i2: np.ndarray | None = None
     ) -> np.ndarray:
-        """(B, M) errors in pixels of the pairs ``(x1[i1], x2[i2])`` (all pairs by default; inf if undefined)."""
+        """(B, M) errors in pixels of the pairs ``(x1[i1], x2[i2])`` (all pairs by default).
+
+        Parameters
+        ----------
+        models : (B, ...) ndarray
+            B models, as :meth:`minimal` returns them.
+        i1, i2 : (M,) int ndarray, optional
+            Indices into the first and second point sets; None for the model's own pairs.
+
+        Returns
+        -------
+        (B, M) ndarray
+            Error of each pair under each model, pixels; inf where undefined.
+        """
         raise NotImplementedError
 
 
@@ -173,6 +213,26 @@ class RobustFit(NamedTuple):
 def msac_cost(residuals: np.ndarray, threshold: float) -> np.ndarray:
     r"""Truncated quadratic cost :math:`\sum_i \min(e_i^2, t^2)` along the last axis (lower is better).
 
+    Parameters
+    ----------
+    residuals : (..., M) ndarray
+        Errors e_i, pixels.
+    threshold : float
+        Inlier threshold t, pixels.
+
+    Returns
+    -------
+    ndarray
+        The cost, ``residuals``' shape without its last axis.
+
+    References
+    ----------
+    .. [1] P. H. S. Torr and A. Zisserman, 2000, "MLESAC: a new robust estimator with
+       application to estimating image geometry", *Computer Vision and Image Understanding*
+       78(1), 138-156.
+
+    Examples
+    --------
     >>> float(msac_cost(np.array([0.0, 1.0, 10.0]), 2.0))  # 0 + 1 + 4 (the outlier is capped)
     5.0
     """
@@ -180,8 +240,34 @@ def msac_cost(residuals: np.ndarray, threshold: float) -> np.ndarray:
 
 
 def required_iterations(inlier_ratio: float, confidence: float, sample_size: int) -> float:
-    r"""Samples :math:`k = \log(1 - p) / \log(1 - w^s)` needed to draw one all-inlier sample with probability p.
+    r"""Samples k needed to draw one all-inlier sample with probability p: log(1 - p) / log(1 - w^s).
 
+    :math:`k = \log(1 - p) / \log(1 - w^s)`.
+
+    Parameters
+    ----------
+    inlier_ratio : float
+        Inlier ratio w of the data, in [0, 1].
+    confidence : float
+        Probability p of drawing at least one all-inlier sample, in (0, 1).
+    sample_size : int
+        Pairs s per minimal sample.
+
+    Returns
+    -------
+    float
+        k (not rounded); inf when w = 0, 1 when w = 1.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.7.1
+       (how many samples?).
+    .. [2] M. A. Fischler and R. C. Bolles, 1981, "Random sample consensus: a paradigm for model
+       fitting with applications to image analysis and automated cartography",
+       *Communications of the ACM* 24(6), 381-395.
+
+    Examples
+    --------
     >>> round(required_iterations(0.5, 0.99, 4))  # 50 % inliers, 4-point samples
     71
     """
@@ -219,7 +305,7 @@ def local_optimisation(
     inner: int = _LO_INNER,
     steps: int = _LO_STEPS,
 ) -> LocalOptimum:
-    r"""Improve a model by re-fitting it on its inliers (LO+, Lebeda et al. 2012); returns (model, MSAC cost).
+    r"""Improve a model by re-fitting it on its inliers (LO+); returns the best model and its MSAC cost.
 
     1. Take the inliers :math:`I` of ``start`` at ``threshold`` t.
     2. Fit by least squares on all of :math:`I` and on ``_LO_INNER`` random subsets of
@@ -229,6 +315,34 @@ def local_optimisation(
        that shrinks geometrically from :math:`3t` to :math:`t` and re-fit on them (a wider
        threshold first lets the model move towards inliers it did not yet explain).
     4. Return the candidate with the lowest MSAC cost (``start`` if nothing beats it).
+
+    Parameters
+    ----------
+    model : PairModel
+        The model kind and its pairs.
+    start : ndarray
+        The model to improve (e.g. a (3, 3) homography).
+    threshold : float
+        Inlier threshold t, pixels.
+    rng : numpy.random.Generator
+        Draws the inlier subsets.
+    inner : int, optional
+        Least-squares fits on random inlier subsets.
+    steps : int, optional
+        Thresholds of the iterated least squares, from 3t down to t.
+
+    Returns
+    -------
+    LocalOptimum
+        ``model``, the best model found (``start`` if nothing beats it), and ``cost``, its MSAC
+        cost.
+
+    References
+    ----------
+    .. [1] O. Chum, J. Matas and J. Kittler, 2003, "Locally optimized RANSAC", *DAGM
+       Symposium on Pattern Recognition*, 236-243.
+    .. [2] K. Lebeda, J. Matas and O. Chum, 2012, "Fixing the locally optimized RANSAC",
+       *British Machine Vision Conference*.
     """
     s = model.sample_size
     res = model.residuals(start[None])[0]

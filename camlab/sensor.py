@@ -10,7 +10,7 @@ for pixel pitch :math:`(s_x, s_y)` and principal point :math:`(c_x, c_y)` in pix
 lens of focal length :math:`f` gives :math:`f_x = f / s_x,\ f_y = f / s_y`.
 
 Images handled here are float arrays in [0, 1] (irradiance relative to saturation) or
-integer digital numbers after :func:`quantize`. See lesson 03.
+integer digital numbers after :func:`quantise`. See lesson 03.
 """
 
 from __future__ import annotations
@@ -42,7 +42,7 @@ __all__ = [
     "dark_and_flat_frames",
     "demosaic_bilinear",
     "demosaic_opencv",
-    "dequantize",
+    "dequantise",
     "gamma_decode",
     "gamma_encode",
     "intrinsics_from_sensor",
@@ -50,7 +50,7 @@ __all__ = [
     "mosaic",
     "pixels_to_metric",
     "psnr",
-    "quantize",
+    "quantise",
     "sample",
     "white_balance",
     "zone_plate",
@@ -64,6 +64,22 @@ def metric_to_pixels(
 ) -> np.ndarray:
     """Image-plane points (x, y) in metres to pixel coordinates (u, v) (see the module docstring).
 
+    Parameters
+    ----------
+    points : (N, 2) or (2,) array_like
+        Image-plane points (x, y), metres (origin on the optical axis, y down).
+    pitch : (2,) tuple of float
+        Pixel pitch (s_x, s_y), metres per pixel (> 0).
+    principal_point : (2,) tuple of float
+        Principal point (c_x, c_y), pixels.
+
+    Returns
+    -------
+    (N, 2) or (2,) ndarray
+        Pixel coordinates (u, v), the input's rank.
+
+    Examples
+    --------
     >>> metric_to_pixels([1e-3, -0.5e-3], (5e-6, 5e-6), (319.5, 239.5))
     array([519.5, 139.5])
     """
@@ -76,7 +92,22 @@ def metric_to_pixels(
 def pixels_to_metric(
     pixels: ArrayLike, pitch: tuple[float, float], principal_point: tuple[float, float]
 ) -> np.ndarray:
-    """Inverse of :func:`metric_to_pixels`: pixels (u, v) to image-plane metres (x, y)."""
+    """Inverse of :func:`metric_to_pixels`: pixels (u, v) to image-plane metres (x, y).
+
+    Parameters
+    ----------
+    pixels : (N, 2) or (2,) array_like
+        Pixel coordinates (u, v).
+    pitch : (2,) tuple of float
+        Pixel pitch (s_x, s_y), metres per pixel (> 0).
+    principal_point : (2,) tuple of float
+        Principal point (c_x, c_y), pixels.
+
+    Returns
+    -------
+    (N, 2) or (2,) ndarray
+        Image-plane points (x, y), metres, the input's rank.
+    """
     pts = as_points(pixels, 2, "pixels")
     sx, sy = check_pair(pitch, "pitch", "metres", positive=True)
     return pts.restore(
@@ -95,6 +126,24 @@ def intrinsics_from_sensor(
     :math:`f_x = f / s_x`, :math:`f_y = f / s_y`; the principal point is the image centre
     :math:`((W - 1)/2, (H - 1)/2)` (pixel-centre origin) plus ``principal_offset`` pixels.
 
+    Parameters
+    ----------
+    focal_length : float
+        Focal length f of the lens, metres (> 0).
+    pitch : (2,) tuple of float
+        Pixel pitch (s_x, s_y), metres per pixel (> 0).
+    size : (2,) tuple of int
+        Image size (width, height), pixels.
+    principal_offset : (2,) tuple of float, optional
+        Offset of the principal point from the image centre, pixels (default none).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        K, with f_x = f / s_x and f_y = f / s_y in pixels, zero skew.
+
+    Examples
+    --------
     >>> intrinsics_from_sensor(4e-3, (5e-6, 5e-6), (640, 480))
     array([[800. ,   0. , 319.5],
            [  0. , 800. , 239.5],
@@ -110,18 +159,49 @@ def intrinsics_from_sensor(
 
 
 def check_bits(bits: int) -> int:
-    """Return ``bits`` as an int if it is a bit depth from 1 to 16, else raise."""
+    """Return ``bits`` as an int if it is a bit depth from 1 to 16, else raise.
+
+    Parameters
+    ----------
+    bits : int
+        A bit depth.
+
+    Returns
+    -------
+    int
+        ``bits`` as a Python int.
+
+    Raises
+    ------
+    CamlabInputError
+        When ``bits`` is not an integer from 1 to 16.
+    """
     if not isinstance(bits, (int, np.integer)) or not 1 <= bits <= 16:
         raise CamlabInputError(f"bits: expected an integer bit depth from 1 to 16, got {bits!r}")
     return int(bits)
 
 
-def quantize(image: ArrayLike, bits: int = 8) -> np.ndarray:
+def quantise(image: ArrayLike, bits: int = 8) -> np.ndarray:
     r"""Quantise a float image in [0, 1] to ``bits``-bit digital numbers (round to nearest, clip).
 
     :math:`DN = \mathrm{round}(I (2^b - 1))`; uint8 for ``bits <= 8``, else uint16.
 
-    >>> quantize(np.array([0.0, 0.5, 1.0, 1.2]), 2)
+    Parameters
+    ----------
+    image : array_like
+        Float image, values in [0, 1] (outside is clipped); any shape.
+    bits : int, optional
+        Bit depth b, 1 to 16 (default 8).
+
+    Returns
+    -------
+    ndarray
+        Digital numbers DN in [0, 2^b - 1], the image's shape; uint8 for ``bits <= 8``, else
+        uint16.
+
+    Examples
+    --------
+    >>> quantise(np.array([0.0, 0.5, 1.0, 1.2]), 2)
     array([0, 2, 3, 3], dtype=uint8)
     """
     b = check_bits(bits)
@@ -137,8 +217,21 @@ def quantize(image: ArrayLike, bits: int = 8) -> np.ndarray:
     return dn.astype(np.uint8 if b <= 8 else np.uint16)
 
 
-def dequantize(dn: ArrayLike, bits: int = 8) -> np.ndarray:
-    """Digital numbers back to float [0, 1]: ``dn / (2**bits - 1)``."""
+def dequantise(dn: ArrayLike, bits: int = 8) -> np.ndarray:
+    """Digital numbers back to float [0, 1]: ``dn / (2**bits - 1)``.
+
+    Parameters
+    ----------
+    dn : array_like of int
+        Digital numbers in [0, 2^bits - 1].
+    bits : int, optional
+        The bit depth they were quantised with (default 8).
+
+    Returns
+    -------
+    ndarray
+        Float values in [0, 1], the input's shape.
+    """
     b = check_bits(bits)
     a = np.asarray(dn)
     if not np.issubdtype(a.dtype, np.integer):
@@ -170,6 +263,21 @@ def add_noise(
     Pixels expecting more than 100 electrons draw :math:`\mathcal{N}(\lambda, \lambda)`
     instead of the Poisson law (indistinguishable there, and 10x faster for slider demos).
     ``noise=None`` is ``NoiseModel()``: 10000 electrons full well, 5 electrons read noise.
+
+    Parameters
+    ----------
+    image : array_like
+        Float image in [0, 1] (irradiance relative to saturation); grey or RGB.
+    noise : NoiseModel, optional
+        ``full_well`` (electrons at saturation) and ``read_noise`` (electrons RMS); None is
+        ``NoiseModel()``.
+    rng : numpy.random.Generator, int or None, optional
+        Random generator or seed (None: a fresh unseeded generator).
+
+    Returns
+    -------
+    ndarray
+        The noisy image, float, the input's shape; values may leave [0, 1] slightly.
     """
     a = check_image(image)
     noise = NoiseModel() if noise is None else noise
@@ -213,6 +321,29 @@ def dark_and_flat_frames(
     its own gain :math:`p` (PRNU, 1 %) and dark offset :math:`o` (DSNU, 1.5 DN), the same in every frame; the
     black level ``black_level`` (DN) is the offset every pixel shares. Lesson 03's photon-transfer curve and
     exercise 3 measure ``g`` and ``read_noise`` back from such frames.
+
+    Parameters
+    ----------
+    full_well : float
+        Electrons FW that fill the converter's range above the black level (> 0).
+    read_noise : float
+        Read noise sigma_r, electrons RMS (>= 0).
+    black_level : int
+        The offset every pixel shares, DN, in [0, 2^bits - 1).
+    levels : array_like of float, optional
+        Light levels L of the flat pairs, fractions of full well.
+    shape : (2,) tuple of int, optional
+        Frame shape (height, width), pixels.
+    rng : numpy.random.Generator, int or None, optional
+        Random generator or seed (None: a fresh unseeded generator).
+    bits : int, optional
+        Bit depth b of the converter (default 12).
+
+    Returns
+    -------
+    DarkAndFlatFrames
+        ``darks``, a pair of (H, W) uint16 frames with the lens capped, and ``flats``, a list of
+        pairs of (H, W) uint16 frames, one pair per level in ``levels``.
     """
     fw = check_positive(full_well, "full_well", "electrons")
     top = 2 ** check_bits(bits) - 1
@@ -253,6 +384,22 @@ def sample(image: ArrayLike, factor: int, prefilter: bool = False, blur: float =
     frequency response is :math:`e^{-2\pi^2 \sigma^2 f^2}` (f in cycles per coarse pixel): at
     ``blur=0.5`` it keeps 29 % of the contrast at the Nyquist limit, 0.7 % at 1 cycle per pixel.
     Only the first ``(H // factor) * factor`` rows and columns are sampled.
+
+    Parameters
+    ----------
+    image : (H, W) or (H, W, C) array_like
+        The fine image.
+    factor : int
+        Coarse pixel size in fine pixels (>= 1).
+    prefilter : bool, optional
+        False (the default): point sampling; True: the box average of each coarse pixel.
+    blur : float, optional
+        Standard deviation of a Gaussian blur applied first, coarse pixels (default 0: none).
+
+    Returns
+    -------
+    (H // factor, W // factor) or (H // factor, W // factor, C) float ndarray
+        The coarse image.
     """
     a = check_image(image).astype(float)
     if not isinstance(factor, (int, np.integer)) or factor < 1:
@@ -283,6 +430,18 @@ def zone_plate(size: int = 512, k: float | None = None) -> np.ndarray:
 
     With the default ``k = pi / size`` the frequency reaches the Nyquist limit (0.5
     cycle/pixel) at the image edge, so any coarser sampling aliases into visible rings.
+
+    Parameters
+    ----------
+    size : int, optional
+        Side of the square image, pixels (>= 2; default 512).
+    k : float, optional
+        Chirp rate k, radians per pixel squared (> 0); None: pi / size.
+
+    Returns
+    -------
+    (size, size) float ndarray
+        The zone plate, values in [0, 1], centred on the image centre.
     """
     if not isinstance(size, (int, np.integer)) or size < 2:
         raise CamlabInputError(f"size: expected an integer >= 2, got {size!r}")
@@ -293,7 +452,23 @@ def zone_plate(size: int = 512, k: float | None = None) -> np.ndarray:
 
 
 def check_bayer_pattern(pattern: str) -> str:
-    """Return a Bayer pattern name in upper case (one of ``BAYER_PATTERNS``), else raise."""
+    """Return a Bayer pattern name in upper case (one of ``BAYER_PATTERNS``), else raise.
+
+    Parameters
+    ----------
+    pattern : str
+        A Bayer pattern name, any case.
+
+    Returns
+    -------
+    str
+        The name in upper case, one of ``BAYER_PATTERNS``.
+
+    Raises
+    ------
+    CamlabInputError
+        When ``pattern`` is not one of ``BAYER_PATTERNS``.
+    """
     p = str(pattern).upper()
     if p not in BAYER_PATTERNS:
         raise CamlabInputError(
@@ -308,6 +483,20 @@ def bayer_masks(shape: tuple[int, int], pattern: str = "RGGB") -> np.ndarray:
     The pattern names the top-left 2x2 block in reading order: RGGB has R at (0, 0),
     G at (0, 1) and (1, 0), B at (1, 1).
 
+    Parameters
+    ----------
+    shape : (2,) tuple of int
+        Image shape (height, width), pixels.
+    pattern : {"RGGB", "BGGR", "GRBG", "GBRG"}, optional
+        The Bayer pattern, named by its top-left 2x2 block in reading order (any case).
+
+    Returns
+    -------
+    (H, W, 3) bool ndarray
+        True where the pixel's filter passes red, green, blue (channels 0, 1, 2).
+
+    Examples
+    --------
     >>> bayer_masks((2, 2), "GRBG")[..., 0].astype(int)   # red at row 0, column 1
     array([[0, 1],
            [0, 0]])
@@ -321,7 +510,20 @@ def bayer_masks(shape: tuple[int, int], pattern: str = "RGGB") -> np.ndarray:
 
 
 def mosaic(rgb: ArrayLike, pattern: str = "RGGB") -> np.ndarray:
-    """Keep one colour per pixel as a Bayer colour-filter array does: (H, W, 3) -> (H, W), same dtype."""
+    """Keep one colour per pixel as a Bayer colour-filter array does: (H, W, 3) -> (H, W), same dtype.
+
+    Parameters
+    ----------
+    rgb : (H, W, 3) array_like
+        The full-colour image.
+    pattern : {"RGGB", "BGGR", "GRBG", "GBRG"}, optional
+        The Bayer pattern, named by its top-left 2x2 block in reading order (any case).
+
+    Returns
+    -------
+    (H, W) ndarray
+        The raw mosaic: each pixel keeps the channel its filter passes; ``rgb``'s dtype.
+    """
     a = check_image(rgb, "rgb", channels=(3,))
     m = bayer_masks(a.shape[:2], pattern)
     return (a * m).sum(axis=2).astype(a.dtype)
@@ -353,12 +555,18 @@ def demosaic_bilinear(raw: ArrayLike, pattern: str = "RGGB") -> np.ndarray:
     ----------
     raw : (H, W) array_like
         Mosaic (float or integer).
-    pattern : {"RGGB", "BGGR", "GRBG", "GBRG"}
+    pattern : {"RGGB", "BGGR", "GRBG", "GBRG"}, optional
+        The Bayer pattern of ``raw`` (default "RGGB").
 
     Returns
     -------
     (H, W, 3) float ndarray
         RGB, in the units of ``raw``.
+
+    References
+    ----------
+    .. [1] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022, section
+       2.3.2 (colour filter arrays and demosaicing).
     """
     r = check_image(raw, "raw", channels=(1,)).astype(float)
     masks = bayer_masks(r.shape, pattern)
@@ -381,6 +589,20 @@ def demosaic_opencv(raw: ArrayLike, pattern: str = "RGGB", method: str = "biline
 
     VNG accepts 8-bit input only. A thin adapter for comparisons; the method taught is
     :func:`demosaic_bilinear`.
+
+    Parameters
+    ----------
+    raw : (H, W) array_like of uint8 or uint16
+        The raw mosaic.
+    pattern : {"RGGB", "BGGR", "GRBG", "GBRG"}, optional
+        The Bayer pattern, named by its top-left 2x2 block in reading order (any case).
+    method : {"bilinear", "vng", "ea"}, optional
+        OpenCV's bilinear, variable number of gradients (8-bit only) or edge-aware method.
+
+    Returns
+    -------
+    (H, W, 3) ndarray
+        RGB, ``raw``'s dtype.
     """
     import cv2
 
@@ -408,6 +630,23 @@ def psnr(
     ``peak`` defaults to the largest value of the reference's integer type (255 for uint8)
     and to 1.0 for float images in [0, 1].
 
+    Parameters
+    ----------
+    reference, test : array_like
+        Two images of the same shape.
+    peak : float, optional
+        The largest possible value; None: the reference integer type's maximum, or 1.0 for
+        floats.
+    border : int, optional
+        Pixels left out at each edge (default 0).
+
+    Returns
+    -------
+    float
+        PSNR in dB; inf for identical images.
+
+    Examples
+    --------
     >>> ref = np.full((4, 4), 100, np.uint8)
     >>> round(psnr(ref, ref + 1), 2)  # an error of 1 grey level of 255
     48.13
@@ -433,6 +672,23 @@ def gamma_encode(linear: ArrayLike) -> np.ndarray:
     stores :math:`V = 1.055\,L^{1/2.4} - 0.055` (a straight segment :math:`12.92\,L` below
     :math:`L = 0.0031308`); a display undoes it. Mid-grey, 18 % of white, is stored near 0.46.
 
+    Parameters
+    ----------
+    linear : array_like
+        Linear values in [0, 1] (outside is clipped).
+
+    Returns
+    -------
+    float ndarray
+        sRGB-encoded values in [0, 1], the input's shape.
+
+    References
+    ----------
+    .. [1] IEC 61966-2-1:1999, Multimedia systems and equipment - Colour measurement and
+       management - Part 2-1: Default RGB colour space - sRGB.
+
+    Examples
+    --------
     >>> np.round(gamma_encode(np.array([0.0, 0.18, 1.0])), 3)
     array([0.   , 0.461, 1.   ])
     """
@@ -446,6 +702,23 @@ def gamma_decode(encoded: ArrayLike) -> np.ndarray:
     :math:`L = ((V + 0.055) / 1.055)^{2.4}`, and :math:`V / 12.92` below :math:`V = 0.04045`:
     what a display does, and what a photometric computation must do first to a JPEG's values.
 
+    Parameters
+    ----------
+    encoded : array_like
+        sRGB-encoded values in [0, 1] (outside is clipped).
+
+    Returns
+    -------
+    float ndarray
+        Linear values in [0, 1], the input's shape.
+
+    References
+    ----------
+    .. [1] IEC 61966-2-1:1999, Multimedia systems and equipment - Colour measurement and
+       management - Part 2-1: Default RGB colour space - sRGB.
+
+    Examples
+    --------
     >>> np.round(gamma_decode(np.array([0.0, 0.5, 1.0])), 3)  # half the code is a fifth of the light
     array([0.   , 0.214, 1.   ])
     """
@@ -461,6 +734,21 @@ def white_balance(rgb: ArrayLike, white: ArrayLike | None = None) -> np.ndarray:
     neutral again. With ``white=None`` the *grey-world* assumption estimates it as the mean
     colour of the whole image. Works on linear (not gamma-encoded) values; clipped to [0, 1].
 
+    Parameters
+    ----------
+    rgb : (H, W, 3) array_like
+        Linear RGB image.
+    white : (3,) array_like, optional
+        The RGB a white or grey surface records (all > 0); None: the image's mean colour
+        (grey world).
+
+    Returns
+    -------
+    (H, W, 3) float ndarray
+        The balanced image, green channel unchanged, clipped to [0, 1].
+
+    Examples
+    --------
     >>> white_balance(np.array([[[0.5, 0.4, 0.275]]]), white=[1.0, 0.8, 0.55])
     array([[[0.4, 0.4, 0.4]]])
     """

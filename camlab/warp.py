@@ -460,6 +460,17 @@ def warp_to_canvas(
     translation T is composed with H, so parts of the image that H sends to negative
     coordinates appear too.
 
+    Parameters
+    ----------
+    image : (h, w) or (h, w, C) array_like
+        The image to warp.
+    H : (3, 3) array_like
+        The homography, output_from_image.
+    interpolation, fill, method
+        As in :func:`warp_perspective`.
+    max_pixels : int
+        Refuse canvases larger than this (:func:`canvas_bounds`).
+
     Returns
     -------
     CanvasWarp

@@ -17,7 +17,7 @@ from camlab.camera import nearest_rotation, rotation_from_axis_angle, rotation_f
 from camlab.data import load_calibration_set
 from camlab.fixtures.calibration import bundled_calibration
 from camlab.homography import pose_homography
-from camlab.optimize import dense_damped_solve, lm_step
+from camlab.optimise import dense_damped_solve, lm_step
 from camlab.render import align_detected_corners, project
 
 K_TRUE = np.array([[820.0, 0.0, 322.4], [0.0, 818.0, 236.8], [0.0, 0.0, 1.0]])

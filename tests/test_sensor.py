@@ -18,20 +18,20 @@ def test_metric_pixel_round_trip_and_intrinsics():
     assert np.allclose(K, [[1000, 0, 321.5], [0, 800, 238.5], [0, 0, 1]])
 
 
-def test_quantize_levels_and_errors():
+def test_quantise_levels_and_errors():
     x = np.linspace(0, 1, 1001)
     for bits in (1, 3, 8, 12, 16):
-        q = S.quantize(x, bits)
+        q = S.quantise(x, bits)
         assert len(np.unique(q)) == min(2**bits, 1001)
-        assert np.abs(S.dequantize(q, bits) - x).max() <= 0.5 / (2**bits - 1) + 1e-12
-    assert S.quantize(x, 12).dtype == np.uint16
+        assert np.abs(S.dequantise(q, bits) - x).max() <= 0.5 / (2**bits - 1) + 1e-12
+    assert S.quantise(x, 12).dtype == np.uint16
     for bad in (0, 17, 8.5):
         with pytest.raises(
             CamlabInputError, match="bits: expected an integer bit depth from 1 to 16"
         ):
-            S.quantize(x, bad)
+            S.quantise(x, bad)
     with pytest.raises(CamlabInputError, match="image: expected a float image"):
-        S.quantize(np.zeros(3, np.uint8))
+        S.quantise(np.zeros(3, np.uint8))
 
 
 def test_aliasing_point_sampling_versus_box_filter():
@@ -75,7 +75,7 @@ def test_mosaic_and_bilinear_demosaic(pattern):
 def test_bilinear_matches_or_beats_opencv_on_a_rendered_scene(pattern):
     K = np.array([[700.0, 0, 159.5], [0, 700, 119.5], [0, 0, 1]])
     truth = r.render(scenes.photo_plane(0.3, t=(0, 0, 0.9)), K, size=(320, 240)).irradiance
-    raw = S.quantize(S.mosaic(truth, pattern))
+    raw = S.quantise(S.mosaic(truth, pattern))
     ours = S.demosaic_bilinear(raw, pattern) / 255
     cv_bilinear = S.demosaic_opencv(raw, pattern, "bilinear") / 255
     p_ours, p_cv = S.psnr(truth, ours, border=2), S.psnr(truth, cv_bilinear, border=2)

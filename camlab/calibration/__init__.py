@@ -19,7 +19,7 @@ the camera:
 6. **radial distortion**, linear least squares for k1, k2 (:func:`initial_radial_distortion`), or,
    with the sign and size right, estimated together with the poses and alternated with the
    closed form (:func:`closed_form_with_distortion`);
-7. **refinement** of everything by :func:`camlab.optimize.levenberg_marquardt` on the
+7. **refinement** of everything by :func:`camlab.optimise.levenberg_marquardt` on the
    reprojection error with an analytic, per-view block Jacobian (:func:`calibrate_camera`).
 
 Then judge the result (:func:`coach`), undistort images (:func:`undistort`,

@@ -15,7 +15,7 @@ from numpy.typing import ArrayLike
 from .._validate import CamlabInputError, ConvergenceError, check_intrinsics, check_size
 from ..camera import axis_angle_from_rotation, rotation_from_axis_angle
 from ..distortion import as_dist
-from ..optimize import LMResult, levenberg_marquardt
+from ..optimise import LMResult, levenberg_marquardt
 from .refinement import PARAM_NAMES, CalibrationProblem, project_views, reproject
 from .zhang import (
     Views,
@@ -190,7 +190,7 @@ def calibrate_camera(
     Notes
     -----
     The refinement minimises :math:`\sum_{v,i} \|x_{vi} - \pi(K, d, R_v, t_v, X_i)\|^2` over
-    :math:`p = n_{free} + 6V` unknowns with :func:`camlab.optimize.levenberg_marquardt`;
+    :math:`p = n_{free} + 6V` unknowns with :func:`camlab.optimise.levenberg_marquardt`;
     its analytic Jacobian has one dense block for the intrinsics and a 6-column block per
     view, and the damped normal equations are solved by eliminating the poses (Schur
     complement, see ``BlockNormal``). Zhang's closed form starts close to the minimum, so

@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike
 from .._validate import as_float, as_points, check_intrinsics, check_matrix
 from ..camera import rotation_from_axis_angle
 from ..distortion import as_dist, beyond_valid_radius, distort_xy, distortion_jacobian
-from ..optimize import NormalEquations
+from ..optimise import NormalEquations
 
 PARAM_NAMES = ("fx", "fy", "cx", "cy", "skew", "k1", "k2", "p1", "p2", "k3")
 """The global (per-camera) parameters in the order camlab refines them."""

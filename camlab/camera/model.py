@@ -114,6 +114,20 @@ def scale_intrinsics(K: ArrayLike, scale: float) -> np.ndarray:
     :math:`S = \begin{pmatrix} s & 0 & (s-1)/2 \\ 0 & s & (s-1)/2 \\ 0 & 0 & 1\end{pmatrix}`.
     Also maps homographies between resized images: :math:`S H S^{-1}`.
 
+    Parameters
+    ----------
+    K : (3, 3) array_like
+        Intrinsics of the original images, pixels.
+    scale : float
+        Resize factor s (> 0; 2 doubles the width and height).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        K' = S K, pixels of the resized images.
+
+    Examples
+    --------
     >>> scale_intrinsics(intrinsic_matrix(800, 800, 319.5, 239.5), 2.0)[:2]
     array([[1600. ,    0. ,  639.5],
            [   0. , 1600. ,  479.5]])
@@ -195,9 +209,28 @@ class Camera:
         t: ArrayLike | None = None,
         dist: tuple[float, ...] = (0.0,) * 5,
     ) -> Camera:
-        r"""A camera with square pixels and the principal point at the image centre, from
-        its horizontal field of view ``fov_x`` (radians, in (0, pi)):
-        :math:`f = (W / 2) / \tan(\mathrm{fov}_x / 2)`, :math:`c = ((W - 1)/2, (H - 1)/2)`.
+        r"""A camera with square pixels and the principal point at the image centre, from its horizontal field of view.
+
+        ``fov_x`` in radians, in (0, pi): :math:`f = (W / 2) / \tan(\mathrm{fov}_x / 2)`,
+        :math:`c = ((W - 1)/2, (H - 1)/2)`.
+
+        Parameters
+        ----------
+        fov_x : float
+            Horizontal field of view, radians, in (0, pi).
+        image_size : (2,) tuple of int, optional
+            (width, height), pixels (default (640, 480)).
+        R : (3, 3) array_like, optional
+            cam_from_world rotation (default identity).
+        t : (3,) array_like, optional
+            cam_from_world translation, metres (default zero).
+        dist : tuple of float, optional
+            ``(k1, k2, p1, p2, k3)`` in OpenCV's order (default none).
+
+        Returns
+        -------
+        Camera
+            The camera.
         """
         fov = float(fov_x)
         if not 0.0 < fov < np.pi:
@@ -220,10 +253,32 @@ class Camera:
         image_size: tuple[int, int] = (640, 480),
         dist: tuple[float, ...] = (0.0,) * 5,
     ) -> Camera:
-        r"""A camera at ``eye`` (world metres) looking at ``target``, with ``up`` (default world
-        +z) appearing up in the image. ``K`` defaults to fx = fy = 800 px with the principal
+        r"""A camera at ``eye`` (world metres) looking at ``target``, with ``up`` appearing up in the image.
+
+        ``up`` defaults to world +z. ``K`` defaults to fx = fy = 800 px with the principal
         point at the image centre ((W - 1) / 2, (H - 1) / 2), as in :meth:`from_fov` (pixel
-        centres are at integers). :math:`t = -R\,\text{eye}`."""
+        centres are at integers). :math:`t = -R\,\text{eye}`.
+
+        Parameters
+        ----------
+        eye : (3,) array_like
+            The camera centre, world metres.
+        target : (3,) array_like
+            The point the principal axis passes through, world metres.
+        up : (3,) array_like, optional
+            The world direction that appears up in the image (default (0, 0, 1)).
+        K : (3, 3) array_like, optional
+            Intrinsics, pixels (default: f = 800 px, centred principal point).
+        image_size : (2,) tuple of int, optional
+            (width, height), pixels (default (640, 480)).
+        dist : tuple of float, optional
+            ``(k1, k2, p1, p2, k3)`` in OpenCV's order (default none).
+
+        Returns
+        -------
+        Camera
+            The camera, R from :func:`look_at_rotation`.
+        """
         R = look_at_rotation(eye, target, up)
         e = np.asarray(eye, dtype=float)
         if K is None:
@@ -232,7 +287,18 @@ class Camera:
         return cls(K, R, -R @ e, dist, image_size)
 
     def replace(self, **changes) -> Camera:
-        """A copy with some fields changed, e.g. ``cam.replace(K=new_K)``."""
+        """A copy with some fields changed, e.g. ``cam.replace(K=new_K)``.
+
+        Parameters
+        ----------
+        **changes
+            Field names and their new values (``K``, ``R``, ``t``, ``dist``, ``image_size``).
+
+        Returns
+        -------
+        Camera
+            A new camera; this one is unchanged.
+        """
         return dataclasses.replace(self, **changes)
 
     def resized(self, scale: float) -> Camera:
@@ -240,6 +306,18 @@ class Camera:
 
         ``image_size * scale`` must be whole pixels (e.g. 0.5 for 640 x 480).
 
+        Parameters
+        ----------
+        scale : float
+            Resize factor (> 0).
+
+        Returns
+        -------
+        Camera
+            The camera with K scaled and ``image_size`` multiplied by ``scale``.
+
+        Examples
+        --------
         >>> Camera(intrinsic_matrix(800, 800, 319.5, 239.5)).resized(0.5).K[0]
         array([400. ,   0. , 159.5])
         """
@@ -287,7 +365,18 @@ class Camera:
 
     # -- mapping points --------------------------------------------------------------------
     def to_camera(self, points_world: ArrayLike) -> np.ndarray:
-        """World points (N, 3) to camera coordinates :math:`X_c = R X + t` (metres)."""
+        """World points (N, 3) to camera coordinates :math:`X_c = R X + t` (metres).
+
+        Parameters
+        ----------
+        points_world : (N, 3) or (3,) array_like
+            World points, metres.
+
+        Returns
+        -------
+        (N, 3) or (3,) ndarray
+            Camera-frame coordinates, metres, the input's rank.
+        """
         p = as_points(points_world, 3, "points_world", finite=False)
         return p.restore(p.array @ self.R.T + self.t)
 
@@ -331,7 +420,18 @@ class Camera:
         return p.restore(uv)
 
     def depth(self, points_world: ArrayLike) -> np.ndarray:
-        """The depth :math:`z_c` of each world point along the principal axis (metres)."""
+        """The depth :math:`z_c` of each world point along the principal axis (metres).
+
+        Parameters
+        ----------
+        points_world : (N, 3) or (3,) array_like
+            World points, metres.
+
+        Returns
+        -------
+        (N,) ndarray or float
+            z_c, metres (negative behind the camera), one per point.
+        """
         p = as_points(points_world, 3, "points_world", finite=False)
         return p.restore(p.array @ self.R[2] + self.t[2])
 
@@ -382,7 +482,18 @@ class Camera:
         return p.restore((Xc - self.t) @ self.R)
 
     def in_image(self, uv: ArrayLike) -> np.ndarray:
-        """(N,) bool: pixel lies inside the image (centre-of-pixel convention)."""
+        """(N,) bool: pixel lies inside the image (centre-of-pixel convention).
+
+        Parameters
+        ----------
+        uv : (N, 2) or (2,) array_like
+            Pixel coordinates (u, v) (NaN allowed).
+
+        Returns
+        -------
+        (N,) bool ndarray or bool
+            True where -0.5 <= u <= W - 0.5 and -0.5 <= v <= H - 0.5.
+        """
         p = as_points(uv, 2, "uv", finite=False)
         w, h = self.image_size
         u, v = p.array.T
@@ -399,8 +510,21 @@ class Camera:
 
 
 def check_camera_matrix(P: Camera | ArrayLike, name: str = "P") -> np.ndarray:
-    """The (3, 4) matrix of a camera: ``P.P`` for a :class:`Camera` (its distortion left out), else P
-    checked to have rank 3.
+    """The (3, 4) matrix of a camera: ``P.P`` for a :class:`Camera`, else P checked to have rank 3.
+
+    A :class:`Camera`'s distortion is left out.
+
+    Parameters
+    ----------
+    P : Camera or (3, 4) array_like
+        The camera.
+    name : str, optional
+        The argument's name in error messages.
+
+    Returns
+    -------
+    (3, 4) ndarray
+        The camera matrix.
 
     Raises
     ------
@@ -467,6 +591,11 @@ def camera_centre(P: ArrayLike) -> np.ndarray:
         The homogeneous centre, scaled to w = 1 for a finite camera. An affine camera has
         its centre at infinity: w = 0 and (x, y, z) is the (unit) viewing direction.
 
+    Parameters
+    ----------
+    P : Camera or (3, 4) array_like
+        The camera (rank 3).
+
     Notes
     -----
     The last right singular vector of P spans its null space. For a finite camera
@@ -487,6 +616,18 @@ def project_segments(camera: Camera | ArrayLike, segments: ArrayLike) -> np.ndar
     its front end's depth), so the part in front of the camera is drawn, running off the
     picture, instead of vanishing. A segment wholly behind the camera comes back as NaN
     (matplotlib skips it). Affine cameras see every point and clip nothing.
+
+    Parameters
+    ----------
+    camera : Camera or (3, 4) array_like
+        The camera.
+    segments : (M, 2, 3) array_like
+        World segments, each two end points in metres.
+
+    Returns
+    -------
+    (M, 2, 2) ndarray
+        Pixel end points (u, v); NaN for segments wholly behind the camera.
     """
     if not isinstance(camera, Camera):
         camera = check_camera_matrix(camera, "camera")

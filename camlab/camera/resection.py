@@ -21,7 +21,7 @@ from .._validate import (
     check_finite,
     check_matrix,
 )
-from ..optimize import levenberg_marquardt, unit_sphere_basis, unit_sphere_update
+from ..optimise import levenberg_marquardt, unit_sphere_basis, unit_sphere_update
 from ..projective import hartley_normalise
 from .model import Camera, check_camera_matrix, project_points
 
@@ -96,7 +96,7 @@ def rq_decomposition(M: ArrayLike) -> RQ:
 def decompose_projection_matrix(P: ArrayLike) -> Decomposition:
     r"""Factor a finite camera :math:`P = \lambda K [R \mid t]` by RQ decomposition.
 
-    Derivation (H&Z section 6.2.4): the left 3x3 block is :math:`M = \lambda K R`, an
+    Derivation [1]_: the left 3x3 block is :math:`M = \lambda K R`, an
     upper-triangular matrix times a rotation, which is exactly an RQ decomposition.
     RQ is unique only up to signs: :math:`K R = (K D)(D R)` for any
     :math:`D = \operatorname{diag}(\pm 1, \pm 1, \pm 1)`. We
@@ -124,6 +124,11 @@ def decompose_projection_matrix(P: ArrayLike) -> Decomposition:
     ------
     DegenerateError
         If P has rank < 3, or M is singular (an affine camera: use camlab.affine).
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 6.2.4
+       (decomposition of the camera matrix).
 
     Examples
     --------
@@ -157,6 +162,20 @@ def reprojection_errors(
 
     ``P`` is a :class:`Camera` or a (3, 4) camera matrix (:func:`project_points`); a point
     behind the camera has no projection, and its distance is NaN.
+
+    Parameters
+    ----------
+    P : Camera or (3, 4) array_like
+        The camera.
+    points_world : (N, 3) array_like
+        World points, metres.
+    points_image : (N, 2) array_like
+        Their measured pixels (u, v).
+
+    Returns
+    -------
+    (N,) ndarray
+        Distances, pixels; NaN for points behind the camera.
     """
     X, uv, _ = as_point_pairs(
         points_world, points_image, ("points_world", "points_image"), (3, 2), finite=False
@@ -194,13 +213,13 @@ def estimate_projection_matrix(
     5.5 correspondences are needed and we ask for 6. The least-squares solution with
     :math:`\|p\| = 1` is the right singular vector of A with the smallest singular value.
 
-    Hartley normalisation (H&Z algorithm 7.1) makes this well conditioned: the image
+    Hartley normalisation (H&Z algorithm 7.1 [1]_) makes this well conditioned: the image
     points are moved to centroid 0 and mean distance :math:`\sqrt 2` by T, the world
     points to centroid 0 and mean distance :math:`\sqrt 3` by U, the DLT estimates
     :math:`\hat P` for the normalised points, and :math:`P = T^{-1} \hat P U`.
 
     With ``refine=True`` the linear estimate seeds Levenberg-Marquardt
-    (:func:`camlab.optimize.levenberg_marquardt`, on the unit sphere of P's 12 entries) on the
+    (:func:`camlab.optimise.levenberg_marquardt`, on the unit sphere of P's 12 entries) on the
     reprojection error
     :math:`\sum_i \|u_i - \pi(P, X_i)\|^2`, the maximum-likelihood (gold standard)
     estimate under Gaussian pixel noise.
@@ -228,6 +247,11 @@ def estimate_projection_matrix(
         The world points are coplanar (or collinear): P is then not determined, since a
         plane only fixes a homography (8 of P's 11 degrees of freedom). Also raised when
         the solution is not unique for another reason.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 7.1 and
+       algorithm 7.1 (the DLT for the camera, normalisation, the Gold Standard algorithm).
     """
     X, uv, _ = as_point_pairs(
         points_world,

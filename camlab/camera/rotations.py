@@ -49,7 +49,20 @@ z forward). It is its own inverse: :math:`F^{-1} = F`."""
 
 
 def is_rotation(R: ArrayLike, tol: float = ROTATION_TOL) -> bool:
-    r"""True if ``R`` is a (3, 3) rotation: :math:`R^\top R = I` and :math:`\det R = +1`."""
+    r"""True if ``R`` is a (3, 3) rotation: :math:`R^\top R = I` and :math:`\det R = +1`.
+
+    Parameters
+    ----------
+    R : array_like
+        The candidate.
+    tol : float, optional
+        Tolerance on the entries of R^T R - I and on det R - 1.
+
+    Returns
+    -------
+    bool
+        True for a finite (3, 3) rotation.
+    """
     a = np.asarray(R, dtype=float)
     if a.shape != (3, 3) or not np.isfinite(a).all():
         return False
@@ -89,12 +102,28 @@ def rotation_from_axis_angle(rvec: ArrayLike) -> np.ndarray:
 
 
 def axis_angle_from_rotation(R: ArrayLike) -> np.ndarray:
-    r"""The rotation vector (axis times angle, radians) of a rotation; inverse of
-    :func:`rotation_from_axis_angle`, angle in :math:`[0, \pi]`.
+    r"""The rotation vector (axis times angle, radians) of a rotation; inverse of :func:`rotation_from_axis_angle`.
+
+    The angle is in :math:`[0, \pi]`.
 
     Uses :math:`\cos\theta = (\operatorname{tr} R - 1)/2` and the skew part
     :math:`(R - R^\top)/2 = \sin\theta [k]_\times`; near :math:`\theta = \pi` the axis is
     read from :math:`R + I` instead.
+
+    Parameters
+    ----------
+    R : (3, 3) array_like
+        A rotation matrix.
+
+    Returns
+    -------
+    (3,) ndarray
+        The unit axis times the angle, radians.
+
+    References
+    ----------
+    .. [1] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022, section
+       2.1.3 (axis/angle, Rodrigues' formula).
     """
     a = check_rotation(R)
     cos = np.clip((np.trace(a) - 1.0) / 2.0, -1.0, 1.0)
@@ -114,21 +143,54 @@ def axis_angle_from_rotation(R: ArrayLike) -> np.ndarray:
 
 
 def rotation_x(angle: float) -> np.ndarray:
-    """Rotation by ``angle`` radians about the x axis (right-handed)."""
+    """Rotation by ``angle`` radians about the x axis (right-handed).
+
+    Parameters
+    ----------
+    angle : float
+        Rotation angle, radians.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The rotation matrix.
+    """
     angle = check_number(angle, "angle", "radians")
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
 
 
 def rotation_y(angle: float) -> np.ndarray:
-    """Rotation by ``angle`` radians about the y axis (right-handed)."""
+    """Rotation by ``angle`` radians about the y axis (right-handed).
+
+    Parameters
+    ----------
+    angle : float
+        Rotation angle, radians.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The rotation matrix.
+    """
     angle = check_number(angle, "angle", "radians")
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
 
 
 def rotation_z(angle: float) -> np.ndarray:
-    """Rotation by ``angle`` radians about the z axis (right-handed)."""
+    """Rotation by ``angle`` radians about the z axis (right-handed).
+
+    Parameters
+    ----------
+    angle : float
+        Rotation angle, radians.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The rotation matrix.
+    """
     angle = check_number(angle, "angle", "radians")
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
@@ -140,6 +202,16 @@ def rotation_from_euler(rx: float, ry: float, rz: float) -> np.ndarray:
     Read right to left: rotate about the fixed x axis first, then y, then z (extrinsic
     x-y-z, the same matrix as intrinsic z-y'-x''; roll-pitch-yaw for a z-up body).
     Inverse: :func:`euler_from_rotation`.
+
+    Parameters
+    ----------
+    rx, ry, rz : float
+        Angles about x, y and z, radians.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        R = R_z R_y R_x.
     """
     angles = np.array([rx, ry, rz], dtype=float)
     check_finite(angles, "rx, ry, rz")
@@ -150,9 +222,27 @@ def nearest_rotation(M: ArrayLike) -> np.ndarray:
     r"""The rotation closest to M in the Frobenius norm: :math:`U \operatorname{diag}(1, 1, \det UV^\top) V^\top`.
 
     With the SVD :math:`M = U \Sigma V^\top`, :math:`\min_R \|R - M\|_F` over rotations is
-    solved by replacing the singular values with ones (Zhang 2000, appendix C); the last
+    solved by replacing the singular values with ones (Zhang [1]_, appendix C); the last
     sign keeps :math:`\det R = +1`.
 
+    Parameters
+    ----------
+    M : (3, 3) array_like
+        A matrix of rank 2 or 3.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The nearest rotation.
+
+    References
+    ----------
+    .. [1] Z. Zhang, 2000, "A flexible new technique for camera calibration", *IEEE
+       Transactions on Pattern Analysis and Machine Intelligence* 22(11), 1330-1334 (technical
+       report MSR-TR-98-71, appendix C).
+
+    Examples
+    --------
     >>> np.round(nearest_rotation(2 * np.eye(3)), 12) + 0.0
     array([[1., 0., 0.],
            [0., 1., 0.],
@@ -171,8 +261,21 @@ def nearest_rotation(M: ArrayLike) -> np.ndarray:
 
 
 def euler_from_rotation(R: ArrayLike) -> np.ndarray:
-    r"""The angles ``(rx, ry, rz)`` with :math:`R = R_z R_y R_x`, ``ry`` in
-    :math:`[-\pi/2, \pi/2]`. At gimbal lock (:math:`|r_y| = \pi/2`) ``rx`` is set to 0."""
+    r"""The angles ``(rx, ry, rz)`` with :math:`R = R_z R_y R_x`; inverse of :func:`rotation_from_euler`.
+
+    ``ry`` is in :math:`[-\pi/2, \pi/2]`. At gimbal lock (:math:`|r_y| = \pi/2`) ``rx`` is
+    set to 0.
+
+    Parameters
+    ----------
+    R : (3, 3) array_like
+        A rotation matrix.
+
+    Returns
+    -------
+    (3,) ndarray
+        ``(rx, ry, rz)``, radians.
+    """
     a = check_rotation(R)
     ry = float(np.arcsin(np.clip(-a[2, 0], -1.0, 1.0)))
     if abs(a[2, 0]) < 1.0 - 1e-12:
@@ -192,6 +295,24 @@ def orbit_eye(
     ``azimuth`` turns from world +x towards +y and ``elevation`` rises towards +z (up), in
     radians: :math:`C = T + d\,(\cos e \cos a, \cos e \sin a, \sin e)`.
 
+    Parameters
+    ----------
+    azimuth : float
+        Angle from world +x towards +y, radians.
+    elevation : float
+        Angle above the xy plane, radians.
+    distance : float
+        Radius d, metres (> 0).
+    target : (3,) array_like, optional
+        The centre T, world metres.
+
+    Returns
+    -------
+    (3,) ndarray
+        The camera position C, world metres.
+
+    Examples
+    --------
     >>> orbit_eye(np.pi / 2, 0.0, 2.0, (0, 0, 1)).round(12) + 0.0
     array([0., 2., 1.])
     """
@@ -213,6 +334,20 @@ def look_at_rotation(
     The rows of R are the camera axes written in world coordinates: z (forward) points
     from eye to target, x (right) is :math:`z \times \text{up}` normalised, y (down)
     is :math:`z \times x`, so "up" appears up in the image.
+
+    Parameters
+    ----------
+    eye : (3,) array_like
+        The camera centre, world metres.
+    target : (3,) array_like
+        The point looked at, world metres.
+    up : (3,) array_like, optional
+        The world direction that appears up (default (0, 0, 1)).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        R, cam_from_world: its rows are the camera's x, y, z axes in world coordinates.
 
     Raises
     ------
@@ -261,6 +396,13 @@ def opengl_from_opencv(R: ArrayLike, t: ArrayLike) -> Pose:
     -------
     Pose
         ``R`` = :math:`R_{gl}` (3, 3) and ``t`` = :math:`t_{gl}` (3,).
+
+    Parameters
+    ----------
+    R : (3, 3) array_like
+        cam_from_world rotation, OpenCV camera frame.
+    t : (3,) array_like
+        cam_from_world translation, metres.
     """
     Rm = check_rotation(R)
     tv = check_matrix(t, (3,), "t")
@@ -268,7 +410,20 @@ def opengl_from_opencv(R: ArrayLike, t: ArrayLike) -> Pose:
 
 
 def opencv_from_opengl(R_gl: ArrayLike, t_gl: ArrayLike) -> Pose:
-    """Inverse of :func:`opengl_from_opencv` (the same flip, since F is its own inverse)."""
+    """Inverse of :func:`opengl_from_opencv` (the same flip, since F is its own inverse).
+
+    Parameters
+    ----------
+    R_gl : (3, 3) array_like
+        cam_from_world rotation, OpenGL/Blender camera frame.
+    t_gl : (3,) array_like
+        cam_from_world translation, metres.
+
+    Returns
+    -------
+    Pose
+        ``R`` (3, 3) and ``t`` (3,) in the OpenCV camera frame.
+    """
     Rm = check_rotation(R_gl, "R_gl")
     tv = check_matrix(t_gl, (3,), "t_gl")
     return Pose(CV_FROM_GL @ Rm, CV_FROM_GL @ tv)
@@ -289,6 +444,14 @@ def blender_matrix_world(R: ArrayLike, t: ArrayLike) -> np.ndarray:
     Returns
     -------
     (4, 4) ndarray
+        world_from_cam in the Blender camera frame.
+
+    Parameters
+    ----------
+    R : (3, 3) array_like
+        cam_from_world rotation, OpenCV camera frame.
+    t : (3,) array_like
+        cam_from_world translation, metres.
     """
     R_gl, t_gl = opengl_from_opencv(R, t)
     out = np.eye(4)

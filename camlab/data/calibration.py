@@ -44,7 +44,18 @@ class CalibrationSet(NamedTuple):
 
 
 def load_calibration_set(directory: Path | str | None = None) -> CalibrationSet:
-    """Load ``data/calib_chessboard`` (or ``directory``) as a :class:`CalibrationSet`."""
+    """Load ``data/calib_chessboard`` (or ``directory``) as a :class:`CalibrationSet`.
+
+    Parameters
+    ----------
+    directory : str or pathlib.Path, optional
+        Where the set is (default: the shipped copy).
+
+    Returns
+    -------
+    CalibrationSet
+        The images and their ground truth (see :class:`CalibrationSet`).
+    """
     import cv2
 
     d, truth = read_truth(directory, "calib_chessboard")

@@ -50,7 +50,18 @@ class PanoramaSet(NamedTuple):
     params: dict
 
     def true_homography(self, i: int, j: int) -> np.ndarray:
-        """The ground-truth homography mapping view ``i``'s pixels to view ``j``'s: K R_j R_i^T K^-1."""
+        """The ground-truth homography mapping view ``i``'s pixels to view ``j``'s: K R_j R_i^T K^-1.
+
+        Parameters
+        ----------
+        i, j : int
+            View indices.
+
+        Returns
+        -------
+        (3, 3) ndarray
+            H, view j's pixels ~ H view i's pixels.
+        """
         from ..homography import rotation_homography
 
         return rotation_homography(self.K, self.R[j] @ self.R[i].T)
@@ -85,6 +96,20 @@ def _read(path: Path, scale: float) -> np.ndarray:
 def load_panorama_set(directory: Path | str | None = None, scale: float = 1.0) -> PanoramaSet:
     """Load ``data/panorama`` (or ``directory``); ``scale`` < 1 resizes the images (K follows).
 
+    Parameters
+    ----------
+    directory : str or pathlib.Path, optional
+        Where the set is (default: the shipped copy).
+    scale : float, optional
+        Resize factor of the images (default 1; K follows, :func:`camlab.camera.scale_intrinsics`).
+
+    Returns
+    -------
+    PanoramaSet
+        The images, ``K``, the rotations, gains, true homographies and generator parameters.
+
+    Examples
+    --------
     >>> s = load_panorama_set(scale=0.5)
     >>> len(s.images), s.images[0].shape, float(s.K[0, 0])
     (4, (240, 320, 3), 400.0)
@@ -102,7 +127,20 @@ def load_panorama_set(directory: Path | str | None = None, scale: float = 1.0) -
 
 
 def load_planar_pair(directory: Path | str | None = None, scale: float = 1.0) -> PlanarPair:
-    """Load the two views of the flat poster; ``H`` maps view 0's pixels to view 1's (at ``scale``)."""
+    """Load the two views of the flat poster; ``H`` maps view 0's pixels to view 1's (at ``scale``).
+
+    Parameters
+    ----------
+    directory : str or pathlib.Path, optional
+        Where the set is (default: the shipped copy).
+    scale : float, optional
+        Resize factor of the images (default 1; K follows, :func:`camlab.camera.scale_intrinsics`).
+
+    Returns
+    -------
+    PlanarPair
+        The two images, ``K`` and ``H``, view 1 ~ H view 0, at ``scale``.
+    """
     d, truth = read_truth(directory, "panorama")
     pp = truth["plane_pair"]
     images = [_read(d / f, scale) for f in pp["files"]]
@@ -121,6 +159,16 @@ def load_aerial_mosaic(count: int = 6) -> list:
 
     A flat scene seen from six positions (mvtb-data ``mosaic/aerial2-00*``, MIT; see
     data/photos/ATTRIBUTION.md), so consecutive photos are related by homographies.
+
+    Parameters
+    ----------
+    count : int, optional
+        How many photographs, 2 to 6 (default 6).
+
+    Returns
+    -------
+    list of (H, W) uint8 ndarray
+        The photographs, in order along the flight.
     """
     from .photos import load_photo
 

@@ -20,7 +20,13 @@ PHOTO_SUFFIXES = (".jpg", ".png")
 
 
 def photo_names() -> list[str]:
-    """Names of the shipped real photographs (``data/photos/``), without extension, sorted."""
+    """Names of the shipped real photographs (``data/photos/``), without extension, sorted.
+
+    Returns
+    -------
+    list of str
+        The names :func:`load_photo` accepts.
+    """
     return sorted(p.stem for p in dataset_dir("photos").iterdir() if p.suffix in PHOTO_SUFFIXES)
 
 

@@ -65,7 +65,18 @@ class StereoRig(NamedTuple):
 
 
 def load_stereo_rig(directory: Path | str | None = None) -> StereoRig:
-    """Load ``data/stereo`` (or ``directory``) as a :class:`StereoRig`."""
+    """Load ``data/stereo`` (or ``directory``) as a :class:`StereoRig`.
+
+    Parameters
+    ----------
+    directory : str or pathlib.Path, optional
+        Where the set is (default: the shipped copy).
+
+    Returns
+    -------
+    StereoRig
+        The raw pair, the cameras, the true rectified disparity and the calibration views.
+    """
     import cv2
 
     d, truth = read_truth(directory, "stereo")

@@ -66,9 +66,28 @@ def sampson_distance(F: ArrayLike, x1: ArrayLike, x2: ArrayLike) -> np.ndarray:
               {\sqrt{(F\tilde x_i)_1^2 + (F\tilde x_i)_2^2 + (F^\top\tilde x_i')_1^2 + (F^\top\tilde x_i')_2^2}}
 
     It is the length of the smallest joint correction of (u, v, u', v') that zeroes the
-    linearised constraint (H&Z section 11.4.3), close to the gold-standard reprojection
+    linearised constraint [1]_, close to the gold-standard reprojection
     error without triangulating. Compare with OpenCV's inlier thresholds in pixels.
 
+    Parameters
+    ----------
+    F : (3, 3) array_like
+        The fundamental matrix, x2^T F x1 = 0.
+    x1, x2 : (N, 2) or (2,) array_like
+        Corresponding pixels in images 1 and 2.
+
+    Returns
+    -------
+    (N,) ndarray
+        d_i, pixels.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 11.4.3 (the Sampson
+       distance).
+
+    Examples
+    --------
     >>> F = np.array([[0, 0, 0], [0, 0, -1], [0, 1, 0]])
     >>> sampson_distance(F, [[0, 0]], [[5, 2]])  # 2 px vertical offset, shared by both images
     array([1.41421356])
@@ -103,7 +122,7 @@ def estimate_fundamental_matrix(
 ) -> np.ndarray:
     r"""Estimate F from N >= 8 point pairs by the normalised 8-point algorithm.
 
-    Derivation (H&Z algorithm 11.1). Each pair gives one linear equation in the nine
+    Derivation (H&Z algorithm 11.1 [1]_). Each pair gives one linear equation in the nine
     entries :math:`f` of F (row-major):
 
     .. math:: \tilde x'^\top F \tilde x = 0 \iff
@@ -111,7 +130,7 @@ def estimate_fundamental_matrix(
 
     1. Normalise each image's points with a similarity T (centroid to 0, mean distance
        :math:`\sqrt 2`): pixel coordinates in the hundreds make the columns of A differ by
-       :math:`10^5` in size and the unnormalised solution is poor (Hartley 1997).
+       :math:`10^5` in size and the unnormalised solution is poor (Hartley [2]_).
     2. Stack the N rows into A and take :math:`f` = the right singular vector of the
        smallest singular value (least squares with :math:`\|f\| = 1`).
     3. Enforce rank 2: replace F by the closest singular matrix, zeroing its smallest
@@ -151,6 +170,13 @@ def estimate_fundamental_matrix(
         explains all pairs (all world points on one plane, or the camera only rotated): F
         is then not determined (a 3-parameter family fits exactly). Noisy near-planar
         scenes pass this test but give an unreliable F; check the residuals.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 11.2 and algorithm
+       11.1 (the normalised 8-point algorithm).
+    .. [2] R. I. Hartley, 1997, "In defense of the eight-point algorithm", *IEEE Transactions
+       on Pattern Analysis and Machine Intelligence* 19(6), 580-593.
 
     Examples
     --------
@@ -253,11 +279,35 @@ class FundamentalModel(PairModel):
         self.bn, self.T2 = hartley_normalise(x2)
 
     def minimal(self, idx: np.ndarray) -> MinimalModels:
+        """The 8-point solutions of B samples, rank 2 enforced (see :meth:`PairModel.minimal`).
+
+        Parameters
+        ----------
+        idx : (B, 8) int ndarray
+            B samples of eight pair indices.
+
+        Returns
+        -------
+        MinimalModels
+            ``models`` (B, 3, 3), F in pixels, and ``usable`` (B,).
+        """
         _, s, Vt = np.linalg.svd(_eight_point_rows(self.an[idx], self.bn[idx]))
         ok = s[:, 7] > 1e-8 * s[:, 0]  # rank-deficient samples give no unique F
         return MinimalModels(self.T2.T @ _rank2(Vt[:, -1].reshape(-1, 3, 3)) @ self.T1, ok)
 
     def fit(self, idx: np.ndarray) -> np.ndarray:
+        """The Sampson-weighted normalised 8-point fit of the pairs ``idx`` (see :meth:`PairModel.fit`).
+
+        Parameters
+        ----------
+        idx : (K,) int ndarray
+            Indices of the pairs to fit, K >= 8.
+
+        Returns
+        -------
+        (3, 3) ndarray
+            F in pixels, rank 2.
+        """
         A = _eight_point_rows(self.an[idx], self.bn[idx])
         ah, bh = to_homogeneous(self.an[idx]), to_homogeneous(self.bn[idx])
         w = np.ones(len(A))
@@ -278,6 +328,20 @@ class FundamentalModel(PairModel):
     def residuals(
         self, models: np.ndarray, i1: np.ndarray | None = None, i2: np.ndarray | None = None
     ) -> np.ndarray:
+        """The Sampson distance of each pair under each F, pixels (see :meth:`PairModel.residuals`).
+
+        Parameters
+        ----------
+        models : (B, 3, 3) ndarray
+            Fundamental matrices in pixels.
+        i1, i2 : (M,) int ndarray, optional
+            Indices into the points of images 1 and 2; None for the model's own pairs.
+
+        Returns
+        -------
+        (B, M) ndarray
+            Sampson distances, pixels.
+        """
         a = self.x1 if i1 is None else self.x1[i1]
         b = self.x2 if i1 is None else self.x2[i1 if i2 is None else i2]
         return _sampson_batch(models, a, b)
@@ -298,7 +362,7 @@ def ransac_fundamental_matrix(
     :class:`FundamentalModel` plugged into the driver :func:`camlab.robust.ransac` (its
     docstring derives each step):
 
-    1. Normalise both point sets once (Hartley).
+    1. Normalise both point sets once (Hartley [2]_).
     2. Draw samples of 8 distinct pairs in batches; solve all their 8-point systems with
        one batched SVD and enforce rank 2 on each.
     3. Score every hypothesis by the truncated quadratic (MSAC) cost
@@ -323,11 +387,24 @@ def ransac_fundamental_matrix(
     batch : int
         Samples solved and scored per vectorised step.
 
+    Returns
+    -------
+    FundamentalRansacResult
+        ``F`` (3, 3) unit norm, ``inliers`` (N,) bool, ``iterations`` (samples drawn) and
+        ``residuals`` (N,), Sampson distances in pixels.
+
     Raises
     ------
     DegenerateError
         Too few inliers: no hypothesis is supported by more pairs than wrong matches would
         support by chance (all matches wrong, or the threshold too small).
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 11.6 and algorithm
+       11.4 (robust estimation of F).
+    .. [2] R. I. Hartley, 1997, "In defense of the eight-point algorithm", *IEEE Transactions
+       on Pattern Analysis and Machine Intelligence* 19(6), 580-593.
     """
     a, b, _ = as_point_pairs(x1, x2, min_count=8, why=EIGHT_POINT_REASON)
     fit = ransac(FundamentalModel(a, b), threshold, confidence, max_iters, rng, batch=batch)

@@ -46,6 +46,18 @@ __all__ = [
 def skew(v: ArrayLike) -> np.ndarray:
     r"""The cross-product matrix :math:`[v]_\times` with :math:`[v]_\times w = v \times w`.
 
+    Parameters
+    ----------
+    v : (3,) array_like
+        The vector.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        [v]_x, antisymmetric.
+
+    Examples
+    --------
     >>> skew([1, 2, 3]) @ np.array([4, 5, 6]), np.cross([1, 2, 3], [4, 5, 6])
     (array([-3.,  6., -3.]), array([-3,  6, -3]))
     """
@@ -54,7 +66,20 @@ def skew(v: ArrayLike) -> np.ndarray:
 
 
 def check_fundamental(F: ArrayLike, name: str = "F") -> np.ndarray:
-    """Return F as a float (3, 3) array, or raise if it is malformed or all zeros."""
+    """Return F as a float (3, 3) array, or raise if it is malformed or all zeros.
+
+    Parameters
+    ----------
+    F : (3, 3) array_like
+        The candidate.
+    name : str, optional
+        The argument's name in error messages.
+
+    Returns
+    -------
+    (3, 3) float ndarray
+        F, unscaled.
+    """
     a = check_matrix(F, (3, 3), name)
     if not np.any(a):
         raise CamlabInputError(
@@ -66,6 +91,18 @@ def check_fundamental(F: ArrayLike, name: str = "F") -> np.ndarray:
 def normalise_fundamental(F: ArrayLike) -> np.ndarray:
     """Scale F to unit Frobenius norm with its largest-magnitude entry positive (compare F's up to scale).
 
+    Parameters
+    ----------
+    F : (3, 3) array_like
+        A fundamental (or essential) matrix, not zero.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        F / ||F||_F, sign chosen so the largest-magnitude entry is positive.
+
+    Examples
+    --------
     >>> normalise_fundamental(-2 * np.eye(3)).round(4)
     array([[0.5774, 0.    , 0.    ],
            [0.    , 0.5774, 0.    ],
@@ -85,6 +122,16 @@ def relative_pose(camera1: Camera, camera2: Camera) -> Pose:
     With cam_from_world poses :math:`X_i = R_i X + t_i`:
     :math:`R = R_2 R_1^\top`, :math:`t = t_2 - R t_1`. The baseline length is
     :math:`\|t\| = \|C_2 - C_1\|` (metres).
+
+    Parameters
+    ----------
+    camera1, camera2 : Camera
+        The two cameras (cam_from_world poses).
+
+    Returns
+    -------
+    Pose
+        ``R`` (3, 3) and ``t`` (3,), cam2_from_cam1, metres.
     """
     for c, n in ((camera1, "camera1"), (camera2, "camera2")):
         if not isinstance(c, Camera):
@@ -100,6 +147,25 @@ def essential_matrix(R: ArrayLike, t: ArrayLike) -> np.ndarray:
     coplanar (the epipolar plane), so :math:`X_2 \cdot (t \times R X_1) = 0`, i.e.
     :math:`X_2^\top [t]_\times R X_1 = 0`; dividing by the depths gives
     :math:`\hat x_2^\top E \hat x_1 = 0` for normalised image points.
+
+    Parameters
+    ----------
+    R : (3, 3) array_like
+        Rotation cam2_from_cam1.
+    t : (3,) array_like
+        Translation cam2_from_cam1, metres.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        E = [t]_x R (unscaled).
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 9.6 (the essential
+       matrix).
+    .. [2] H. C. Longuet-Higgins, 1981, "A computer algorithm for reconstructing a scene from
+       two projections", *Nature* 293, 133-135.
     """
     Rm = check_rotation(R, "R")
     tv = check_matrix(np.ravel(as_float(t, "t")), (3,), "t")
@@ -131,7 +197,7 @@ def fundamental_from_cameras(
     -----
     For two :class:`~camlab.camera.Camera` objects,
     :math:`F = K_2^{-\top} [t]_\times R\, K_1^{-1}` with the relative pose from
-    :func:`relative_pose`. For general projection matrices (H&Z result 9.1),
+    :func:`relative_pose`. For general projection matrices (H&Z result 9.1 [1]_),
 
     .. math:: F = [e']_\times P_2 P_1^+, \qquad e' = P_2 C_1,
 
@@ -143,6 +209,11 @@ def fundamental_from_cameras(
     ------
     DegenerateError
         If both cameras have the same centre (no baseline: no epipolar geometry).
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 9.2 (the
+       fundamental matrix F, result 9.1).
     """
     if isinstance(camera1, Camera) and isinstance(camera2, Camera):
         R, t = relative_pose(camera1, camera2)
@@ -172,9 +243,28 @@ def essential_from_fundamental(
 ) -> np.ndarray:
     r""":math:`E = K_2^\top F K_1`, projected onto the essential matrices (singular values (1, 1, 0)).
 
-    A true essential matrix has two equal singular values and one zero (H&Z result 9.17);
+    A true essential matrix has two equal singular values and one zero (H&Z result 9.17 [1]_);
     an F estimated from noisy points gives an E that is close, and the closest one in the
     Frobenius norm replaces the singular values by their mean.
+
+    Parameters
+    ----------
+    F : (3, 3) array_like
+        The fundamental matrix, pixels.
+    K1 : (3, 3) array_like
+        Intrinsics of camera 1, pixels.
+    K2 : (3, 3) array_like, optional
+        Intrinsics of camera 2 (default K1).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        E with singular values (1, 1, 0).
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 9.6.1 (properties
+       of the essential matrix, result 9.17).
     """
     F = check_fundamental(F)
     K1 = check_intrinsics(K1, "K1")
@@ -186,7 +276,22 @@ def essential_from_fundamental(
 def fundamental_from_essential(
     E: ArrayLike, K1: ArrayLike, K2: ArrayLike | None = None
 ) -> np.ndarray:
-    r""":math:`F = K_2^{-\top} E K_1^{-1}`, unit Frobenius norm."""
+    r""":math:`F = K_2^{-\top} E K_1^{-1}`, unit Frobenius norm.
+
+    Parameters
+    ----------
+    E : (3, 3) array_like
+        The essential matrix.
+    K1 : (3, 3) array_like
+        Intrinsics of camera 1, pixels.
+    K2 : (3, 3) array_like, optional
+        Intrinsics of camera 2 (default K1).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        F, unit Frobenius norm.
+    """
     E = check_fundamental(E, "E")
     K1 = check_intrinsics(K1, "K1")
     K2 = K1 if K2 is None else check_intrinsics(K2, "K2")
@@ -211,6 +316,18 @@ def epipoles(F: ArrayLike) -> Epipoles:
     ``e1`` is the image of camera 2's centre in image 1 and ``e2`` the image of camera 1's
     centre in image 2. Signs are chosen so the last non-zero coordinate is positive.
 
+    Parameters
+    ----------
+    F : (3, 3) array_like
+        The fundamental matrix.
+
+    Returns
+    -------
+    Epipoles
+        ``e1`` (3,) and ``e2`` (3,), homogeneous, unit norm.
+
+    Examples
+    --------
     >>> F = np.array([[0, 0, 0], [0, 0, -1], [0, 1, 0]])  # a pure x-translation: rows match
     >>> epipoles(F).e1
     array([1., 0., 0.])
@@ -266,6 +383,18 @@ def epipolar_distance(F: ArrayLike, x1: ArrayLike, x2: ArrayLike) -> np.ndarray:
     r"""Symmetric epipolar distance per pair, RMS in pixels.
 
     .. math:: d_i = \sqrt{\tfrac12\left(d(x'_i, F x_i)^2 + d(x_i, F^\top x'_i)^2\right)}
+
+    Parameters
+    ----------
+    F : (3, 3) array_like
+        The fundamental matrix, x2^T F x1 = 0.
+    x1, x2 : (N, 2) or (2,) array_like
+        Corresponding pixels in images 1 and 2.
+
+    Returns
+    -------
+    (N,) ndarray
+        d_i, pixels.
     """
     F = check_fundamental(F)
     a, b, single = as_point_pairs(x1, x2)

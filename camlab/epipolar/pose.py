@@ -18,7 +18,7 @@ from .._validate import (
     check_matrix,
 )
 from ..camera import Camera, camera_centre, check_camera_matrix
-from ..optimize import block_damped_solve, block_normal_equations, levenberg_marquardt
+from ..optimise import block_damped_solve, block_normal_equations, levenberg_marquardt
 from ..projective import from_homogeneous
 
 __all__ = [
@@ -42,12 +42,29 @@ class EssentialDecomposition(NamedTuple):
 
 
 def decompose_essential_matrix(E: ArrayLike) -> EssentialDecomposition:
-    r"""The four (R, t) with :math:`E \sim [t]_\times R` (H&Z result 9.19).
+    r"""The four (R, t) with :math:`E \sim [t]_\times R` (H&Z result 9.19 [1]_).
 
     With :math:`E = U\,\mathrm{diag}(1, 1, 0)\,V^\top` (U, V rotations) and
     :math:`W = \begin{pmatrix}0&-1&0\\1&0&0\\0&0&1\end{pmatrix}`:
     :math:`R \in \{U W V^\top,\ U W^\top V^\top\}` and :math:`t = \pm u_3` (the last column
     of U, the left null vector of E: the baseline direction, its length unknown).
+
+    Parameters
+    ----------
+    E : (3, 3) array_like
+        An essential matrix (any scale).
+
+    Returns
+    -------
+    EssentialDecomposition
+        ``R`` (4, 3, 3) and ``t`` (4, 3) unit vectors: the candidates ``(R_a, t), (R_a, -t),
+        (R_b, t), (R_b, -t)``.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 9.6.2 (extraction
+       of cameras from the essential matrix,
+       result 9.19).
     """
     E = check_matrix(E, (3, 3), "E")
     U, s, Vt = np.linalg.svd(E)
@@ -91,6 +108,29 @@ def recover_pose(
     The cheirality test: triangulate every pair with :math:`P_1 = K_1 [I \mid 0]` and
     each candidate :math:`P_2 = K_2 [R \mid t]`; a point is valid if its depth is positive
     in both cameras. Three of the candidates put (almost) every point behind a camera.
+
+    Parameters
+    ----------
+    E : (3, 3) array_like
+        The essential matrix.
+    x1, x2 : (N, 2) array_like
+        Corresponding pixels in images 1 and 2.
+    K1 : (3, 3) array_like
+        Intrinsics of camera 1, pixels.
+    K2 : (3, 3) array_like, optional
+        Intrinsics of camera 2 (default K1).
+
+    Returns
+    -------
+    RelativePose
+        ``R`` (3, 3) and ``t`` (3,) unit, cam2_from_cam1; ``points`` (N, 3), triangulated in
+        camera 1's frame (baseline units); ``in_front`` (N,) bool; ``counts`` (4,), points in
+        front for each candidate.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 9.6.3 (geometrical
+       interpretation of the four solutions).
     """
     K1 = check_intrinsics(K1, "K1")
     K2 = K1 if K2 is None else check_intrinsics(K2, "K2")
@@ -111,7 +151,7 @@ def recover_pose(
 
 def _refine_points(Ps: list[np.ndarray], uvs: list[np.ndarray], X: np.ndarray) -> np.ndarray:
     """Minimise the summed squared reprojection error over each point independently:
-    Levenberg-Marquardt (:func:`camlab.optimize.levenberg_marquardt`) on the block-diagonal
+    Levenberg-Marquardt (:func:`camlab.optimise.levenberg_marquardt`) on the block-diagonal
     problem, 3 unknowns and 2 residuals per camera for each point. A point on a camera's
     principal plane (depth 0) has no reprojection error and stays where it is."""
     X = X.copy()
@@ -160,7 +200,7 @@ def triangulate_points(
 ) -> np.ndarray:
     r"""World points from their pixels in two cameras: linear (DLT), optionally refined.
 
-    Linear triangulation (H&Z section 12.2). :math:`\tilde x \sim P X` means
+    Linear triangulation [1]_. :math:`\tilde x \sim P X` means
     :math:`\tilde x \times P X = 0`, two independent equations per image:
 
     .. math::
@@ -187,6 +227,13 @@ def triangulate_points(
     (N, 3) or (3,) ndarray
         World points (NaN for points at infinity, e.g. parallel rays).
 
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 12.2 (linear
+       triangulation methods).
+
+    Examples
+    --------
     >>> cam1 = Camera.look_at([0, -3, 0], [0, 0, 0]); cam2 = Camera.look_at([0.5, -3, 0], [0, 0, 0])
     >>> X = np.array([0.1, 0.2, -0.1])
     >>> triangulate_points(cam1, cam2, cam1.project(X), cam2.project(X)).round(9) + 0.0

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import calibration, camera, optimize
+from .. import calibration, camera, optimise
 from ..camera import rotation_from_axis_angle
 from ._answers import same_array, shape_problem
 from ._core import Exercise, register_exercise
@@ -124,7 +124,7 @@ register_exercise(
     Exercise(
         name="lm_step",
         lesson="08",
-        reference=optimize.lm_step,
+        reference=optimise.lm_step,
         cases=_lm_cases,
         compare=same_array(rtol=1e-8, atol=1e-10),
         diagnose=_lm_diagnosis,

@@ -42,6 +42,18 @@ def check_correspondences(src: ArrayLike, dst: ArrayLike, min_count: int = 4) ->
 
     :func:`camlab._validate.as_point_pairs`, naming the arguments ``src`` and ``dst`` and why
     four pairs are the minimum.
+
+    Parameters
+    ----------
+    src, dst : (N, 2) array_like
+        Corresponding points (u, v), pixels.
+    min_count : int, optional
+        The fewest pairs accepted (default 4, a homography's minimum).
+
+    Returns
+    -------
+    Correspondences
+        ``src`` and ``dst``, (N, 2) float arrays.
     """
     pairs = as_point_pairs(
         src,
@@ -54,7 +66,20 @@ def check_correspondences(src: ArrayLike, dst: ArrayLike, min_count: int = 4) ->
 
 
 def check_homography(H: ArrayLike, name: str = "H") -> np.ndarray:
-    """Return H as a float (3, 3) array, or raise if it is malformed, non-finite or singular."""
+    """Return H as a float (3, 3) array, or raise if it is malformed, non-finite or singular.
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        A homography.
+    name : str, optional
+        The argument's name in error messages.
+
+    Returns
+    -------
+    (3, 3) float ndarray
+        H, unscaled.
+    """
     Hm = check_matrix(H, (3, 3), name)
     s = np.linalg.svd(Hm, compute_uv=False)
     if s[0] == 0 or s[-1] < 1e-12 * s[0]:
@@ -71,6 +96,18 @@ def normalise_homography(H: ArrayLike) -> np.ndarray:
     Homographies are defined up to scale; this picks H[2, 2] = 1 when H[2, 2] is not
     tiny (the usual textbook form) and unit norm with a non-negative H[2, 2] otherwise.
 
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        A homography. (not zero).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        H / H[2, 2], or H / ||H||_F with H[2, 2] >= 0.
+
+    Examples
+    --------
     >>> normalise_homography(2 * np.eye(3))
     array([[1., 0., 0.],
            [0., 1., 0.],
@@ -88,6 +125,20 @@ def normalise_homography(H: ArrayLike) -> np.ndarray:
 def same_homography(H1: ArrayLike, H2: ArrayLike, tol: float = 1e-9) -> bool:
     """True if H1 and H2 are equal up to a non-zero scale (relative Frobenius tolerance).
 
+    Parameters
+    ----------
+    H1, H2 : (3, 3) array_like
+        The two homographies.
+    tol : float, optional
+        Tolerance on the Frobenius distance of the unit-norm matrices (either sign).
+
+    Returns
+    -------
+    bool
+        True when they are equal up to scale.
+
+    Examples
+    --------
     >>> same_homography(np.eye(3), -5 * np.eye(3))
     True
     """
@@ -104,6 +155,18 @@ def compose(*Hs: ArrayLike) -> np.ndarray:
     ``compose(H2, H1)`` maps a point by H1 and then by H2, like the matrix product
     (a composition of homographies is a homography: the group property).
 
+    Parameters
+    ----------
+    *Hs : (3, 3) array_like
+        One or more non-singular homographies, applied last to first.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The product, normalised (:func:`normalise_homography`).
+
+    Examples
+    --------
     >>> compose(np.diag([2.0, 2.0, 1.0]), [[1, 0, 5], [0, 1, 0], [0, 0, 1]])  # shift, then scale
     array([[ 2.,  0., 10.],
            [ 0.,  2.,  0.],
@@ -120,6 +183,18 @@ def compose(*Hs: ArrayLike) -> np.ndarray:
 def invert(H: ArrayLike) -> np.ndarray:
     """The inverse homography (maps dst back to src), normalised; raises if H is singular.
 
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        A homography. (non-singular).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        H^-1, normalised (:func:`normalise_homography`).
+
+    Examples
+    --------
     >>> invert([[2, 0, 0], [0, 2, 0], [0, 0, 1]])
     array([[0.5, 0. , 0. ],
            [0. , 0.5, 0. ],

@@ -99,7 +99,7 @@ def estimate_homography(src: ArrayLike, dst: ArrayLike, normalise: bool = True) 
     vector minimising :math:`\|A h\|` is the right singular vector of A with the smallest
     singular value (equivalently the eigenvector of :math:`A^T A` with the smallest
     eigenvalue, which is what the normalised path computes). With pixel coordinates the columns of A differ in size by factors up
-    to :math:`u u' \approx 10^5`, so noise is amplified; Hartley's normalisation first
+    to :math:`u u' \approx 10^5`, so noise is amplified; Hartley's normalisation [2]_ first
     maps each point set with a similarity T (:func:`hartley_normalise`), solves for
     :math:`\hat H` there, and returns :math:`H = T'^{-1} \hat H T`.
 
@@ -123,6 +123,13 @@ def estimate_homography(src: ArrayLike, dst: ArrayLike, normalise: bool = True) 
     DegenerateError
         All points collinear, 3 of a minimal set of 4 collinear, or any set that leaves
         the solution non-unique (the DLT system has a null space of dimension > 1).
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.1 and
+       algorithm 4.2 (the DLT, normalised).
+    .. [2] R. I. Hartley, 1997, "In defense of the eight-point algorithm", *IEEE Transactions
+       on Pattern Analysis and Machine Intelligence* 19(6), 580-593.
 
     Examples
     --------
@@ -166,6 +173,20 @@ def estimate_homography(src: ArrayLike, dst: ArrayLike, normalise: bool = True) 
 def transfer_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np.ndarray:
     r"""One-way transfer error :math:`\| x'_i - \pi(H x_i) \|` in pixels, one per pair.
 
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography, dst ~ H src.
+    src, dst : (N, 2) or (2,) array_like
+        Corresponding pixels (u, v).
+
+    Returns
+    -------
+    (N,) ndarray
+        Distances in the destination image, pixels.
+
+    Examples
+    --------
     >>> transfer_error(np.eye(3), [[0, 0], [1, 1]], [[3, 4], [1, 1]])
     array([5., 0.])
     """
@@ -182,6 +203,25 @@ def symmetric_transfer_error(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np
     The :math:`\tfrac12` makes :math:`e_i` a distance comparable with a pixel threshold:
     a pair off by 1 px in each image has :math:`e_i \approx 1`.
 
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography, dst ~ H src.
+    src, dst : (N, 2) or (2,) array_like
+        Corresponding pixels (u, v).
+
+    Returns
+    -------
+    (N,) ndarray
+        e_i, pixels.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.2.2
+       (symmetric transfer error).
+
+    Examples
+    --------
     >>> float(symmetric_transfer_error(np.eye(3), [0, 0], [3, 4])[0])
     5.0
     """
@@ -250,9 +290,31 @@ def sampson_distance(H: ArrayLike, src: ArrayLike, dst: ArrayLike) -> np.ndarray
     With :math:`e = A_i h` the two algebraic residuals of pair i and J their 2x4
     Jacobian with respect to :math:`(u, v, u', v')`, the smallest correction of the four
     coordinates that zeroes the linearised residual has squared length
-    :math:`e^T (J J^T)^{-1} e` (H&Z section 4.2.6). It is close to the reprojection error
+    :math:`e^T (J J^T)^{-1} e` [1]_. It is close to the reprojection error
     of the gold-standard estimate, in pixels, without any iteration.
 
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography, dst ~ H src.
+    src, dst : (N, 2) or (2,) array_like
+        Corresponding pixels (u, v).
+
+    Returns
+    -------
+    (N,) ndarray
+        The Sampson distance of each pair, pixels.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.2.6 (the
+       Sampson error).
+    .. [2] P. D. Sampson, 1982, "Fitting conic sections to 'very scattered' data: an iterative
+       refinement of the Bookstein algorithm", *Computer Graphics and Image Processing* 18(1),
+       97-108.
+
+    Examples
+    --------
     >>> float(sampson_distance(np.eye(3), [0, 0], [0, 2])[0]).__round__(6)  # 2 px, split over both images
     1.414214
     """
@@ -325,13 +387,54 @@ class HomographyModel(PairModel):
         self.c1, self.c2 = _columns(self.x1), _columns(self.x2)  # homogeneous columns, once
 
     def normalised_to_pixels(self, Hn: np.ndarray) -> np.ndarray:
+        """A homography of the normalised points (:func:`hartley_normalise`) back in pixels: H = Td^-1 Hn Ts.
+
+        Parameters
+        ----------
+        Hn : (..., 3, 3) ndarray
+            Homographies between the normalised point sets.
+
+        Returns
+        -------
+        (..., 3, 3) ndarray
+            The same homographies between the pixel point sets (unscaled).
+        """
         return self.Td_inv @ Hn @ self.Ts  # H = Td^-1 Hn Ts
 
     def minimal(self, idx: np.ndarray) -> MinimalModels:
+        """The 4-point DLT of each minimal sample, in one batched solve (see :meth:`PairModel.minimal`).
+
+        Parameters
+        ----------
+        idx : (B, 4) int ndarray
+            B samples of four pair indices.
+
+        Returns
+        -------
+        MinimalModels
+            ``models`` (B, 3, 3) in pixels and ``usable`` (B,), False for degenerate samples.
+        """
         Hn, ok = _minimal_solve(self.sn[idx], self.dn[idx])
         return MinimalModels(self.normalised_to_pixels(Hn), ok)
 
     def fit(self, idx: np.ndarray) -> np.ndarray:
+        """The normalised DLT on the pairs ``idx`` (see :meth:`PairModel.fit`).
+
+        Parameters
+        ----------
+        idx : (K,) int ndarray
+            Indices of the pairs to fit.
+
+        Returns
+        -------
+        (3, 3) ndarray
+            H in pixels, unit Frobenius norm.
+
+        Raises
+        ------
+        DegenerateError
+            When the pairs do not fix a unique homography.
+        """
         A = self.A[idx].reshape(-1, 9)
         ev, V = np.linalg.eigh(A.T @ A)
         if ev[1] <= 1e-12 * ev[-1]:
@@ -342,6 +445,20 @@ class HomographyModel(PairModel):
     def residuals(
         self, models: np.ndarray, i1: np.ndarray | None = None, i2: np.ndarray | None = None
     ) -> np.ndarray:
+        """Each pair's error under each model, pixels: symmetric transfer or Sampson (see :meth:`PairModel.residuals`).
+
+        Parameters
+        ----------
+        models : (B, 3, 3) ndarray
+            Homographies in pixels.
+        i1, i2 : (M,) int ndarray, optional
+            Indices into the source and destination points; None for the model's own pairs.
+
+        Returns
+        -------
+        (B, M) ndarray
+            Errors, pixels (inf or NaN where a model is singular).
+        """
         if self.score == "sampson":
             s = self.x1 if i1 is None else self.x1[i1]
             d = self.x2 if i1 is None else self.x2[i1 if i2 is None else i2]
@@ -367,7 +484,7 @@ def ransac_homography(
     r"""Robustly estimate H from pairs with outliers: LO-RANSAC with MSAC scoring.
 
     :class:`HomographyModel` plugged into the driver :func:`camlab.robust.ransac`
-    (its docstring derives each step; H&Z algorithm 4.6, Fischler & Bolles 1981):
+    (its docstring derives each step; H&Z algorithm 4.6 [1]_, Fischler & Bolles [2]_):
 
     1. Normalise both point sets once (Hartley), so minimal solves are well conditioned.
     2. Draw random 4-pair samples in batches; reject degenerate ones (3 collinear points
@@ -410,6 +527,14 @@ def ransac_homography(
     DegenerateError
         If no sample gives a homography, or the best has no more inliers than random
         pairs would reach by chance (the matches are wrong, or the threshold too small).
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.7 and
+       algorithm 4.6 (robust estimation of a homography).
+    .. [2] M. A. Fischler and R. C. Bolles, 1981, "Random sample consensus: a paradigm for model
+       fitting with applications to image analysis and automated cartography",
+       *Communications of the ACM* 24(6), 381-395.
     """
     s, d = check_correspondences(src, dst)
     if score not in ("transfer", "sampson"):

@@ -43,6 +43,11 @@ def rotation_homography(K: ArrayLike, R: ArrayLike, K2: ArrayLike | None = None)
         Rotation cam2_from_cam1.
     K2 : (3, 3) array_like, optional
         Intrinsics of the second camera (default: K).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        H = K' R K^-1, normalised (H[2, 2] = 1).
     """
     Km = check_intrinsics(K, "K")
     K2m = Km if K2 is None else check_intrinsics(K2, "K2")
@@ -55,7 +60,7 @@ def plane_homography(
     r"""The homography induced by a plane between two views: :math:`H = K'(R - t n^T / d) K^{-1}`.
 
     Camera 1 is :math:`K[I \mid 0]`, camera 2 is :math:`K'[R \mid t]` (cam2_from_cam1).
-    The plane is :math:`n^T X + d = 0` in camera-1 coordinates (H&Z result 13.1). For X
+    The plane is :math:`n^T X + d = 0` in camera-1 coordinates (H&Z result 13.1 [1]_). For X
     on the plane, :math:`-n^T X / d = 1`, so
     :math:`R X + t = R X - t\, n^T X / d = (R - t n^T / d) X`; with
     :math:`X \sim K^{-1} x_1` this gives :math:`x_2 \sim K'(R - t n^T/d) K^{-1} x_1`.
@@ -63,6 +68,7 @@ def plane_homography(
     Parameters
     ----------
     K : (3, 3) array_like
+        Intrinsics of camera 1, pixels.
     R : (3, 3) array_like
         Rotation cam2_from_cam1.
     t : (3,) array_like
@@ -74,6 +80,16 @@ def plane_homography(
         through camera 1's centre).
     K2 : (3, 3) array_like, optional
         Intrinsics of camera 2 (default: K).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        H, x_2 ~ H x_1, normalised (H[2, 2] = 1).
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 13.1
+       (homographies given the plane, result 13.1).
     """
     Km = check_intrinsics(K, "K")
     K2m = Km if K2 is None else check_intrinsics(K2, "K2")
@@ -97,6 +113,28 @@ def pose_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike) -> np.ndarray:
     by a camera ``K [R | t]`` (cam_from_world) appears: Zhang's calibration and lesson 10
     start from it.
 
+    Parameters
+    ----------
+    K : (3, 3) array_like
+        Intrinsics, pixels.
+    R : (3, 3) array_like
+        Rotation cam_from_world.
+    t : (3,) array_like
+        Translation cam_from_world, metres (world units).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        H from plane coordinates (X, Y) to pixels, normalised (H[2, 2] = 1).
+
+    References
+    ----------
+    .. [1] Z. Zhang, 2000, "A flexible new technique for camera calibration", *IEEE
+       Transactions on Pattern Analysis and Machine Intelligence* 22(11), 1330-1334, section
+       2.2 (homography between the model plane and its image).
+
+    Examples
+    --------
     >>> from camlab.projective import map_points
     >>> K = np.array([[800.0, 0, 320], [0, 800, 240], [0, 0, 1]])
     >>> map_points(pose_homography(K, np.eye(3), [0, 0, 2.0]), [0.0, 0.0])

@@ -81,9 +81,25 @@ def _rot(theta: float, name: str = "theta") -> np.ndarray:
 
 
 def euclidean_homography(theta: float = 0.0, tx: float = 0.0, ty: float = 0.0) -> np.ndarray:
-    """A rotation by ``theta`` radians (counter-clockwise in x-right, y-up axes; clockwise
-    on screen, where v points down) followed by a translation (tx, ty). 3 dof.
+    """A rotation by ``theta`` radians followed by a translation (tx, ty). 3 dof.
 
+    The rotation is counter-clockwise in x-right, y-up axes (clockwise on screen, where v
+    points down).
+
+    Parameters
+    ----------
+    theta : float, optional
+        Rotation angle, radians.
+    tx, ty : float, optional
+        Translation, pixels.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        ``[[R, t], [0, 1]]``.
+
+    Examples
+    --------
     >>> euclidean_homography(0.0, 2.0, 3.0)[:2, 2]
     array([2., 3.])
     """
@@ -96,7 +112,22 @@ def euclidean_homography(theta: float = 0.0, tx: float = 0.0, ty: float = 0.0) -
 def similarity_homography(
     scale: float = 1.0, theta: float = 0.0, tx: float = 0.0, ty: float = 0.0
 ) -> np.ndarray:
-    """Isotropic scaling, rotation and translation: ``[[s R, t], [0, 1]]``. 4 dof."""
+    """Isotropic scaling, rotation and translation: ``[[s R, t], [0, 1]]``. 4 dof.
+
+    Parameters
+    ----------
+    scale : float, optional
+        Isotropic scale s (> 0).
+    theta : float, optional
+        Rotation angle, radians.
+    tx, ty : float, optional
+        Translation, pixels.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        ``[[s R, t], [0, 1]]``.
+    """
     check_positive(scale, "scale")
     H = euclidean_homography(theta, tx, ty)
     H[:2, :2] *= scale
@@ -111,10 +142,31 @@ def affine_homography(
     tx: float = 0.0,
     ty: float = 0.0,
 ) -> np.ndarray:
-    r"""An affinity from H&Z's decomposition :math:`A = R(\theta) R(-\phi) D R(\phi)`. 6 dof.
+    r"""An affinity from the decomposition :math:`A = R(\theta) R(-\phi) D R(\phi)` [1]_. 6 dof.
 
     :math:`D = \mathrm{diag}(s_x, s_y)` scales along axes rotated by :math:`\phi`, then
     :math:`R(\theta)` rotates; (tx, ty) translates. Parallel lines stay parallel.
+
+    Parameters
+    ----------
+    theta : float, optional
+        Rotation angle, radians.
+    phi : float, optional
+        Angle of the scaling axes, radians.
+    sx, sy : float, optional
+        Scales along those axes (not zero; negative reflects).
+    tx, ty : float, optional
+        Translation, pixels.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        ``[[A, t], [0, 1]]``.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 2.4.3
+       (affinities, eq. 2.12).
     """
     sx, sy = check_number(sx, "sx"), check_number(sy, "sy")
     if sx == 0 or sy == 0:
@@ -135,6 +187,24 @@ def projective_homography(
 ) -> np.ndarray:
     r"""A general homography ``[[A, t], [v^T, w]]``; v != 0 moves the line at infinity. 8 dof.
 
+    Parameters
+    ----------
+    A : (2, 2) array_like, optional
+        The upper-left block (default identity).
+    t : (2,) array_like, optional
+        Translation, pixels.
+    v : (2,) array_like, optional
+        The bottom row's first two entries.
+    w : float, optional
+        H[2, 2].
+
+    Returns
+    -------
+    (3, 3) ndarray
+        ``[[A, t], [v^T, w]]``, checked non-singular.
+
+    Examples
+    --------
     >>> projective_homography(v=[0.001, 0.0])[2]
     array([0.001, 0.   , 1.   ])
     """
@@ -169,6 +239,30 @@ def hierarchy_matrix(
     * projective: that affinity followed by ``v``, the bottom row that moves the line at
       infinity: :math:`H = H_A H_P` (:func:`compose`, :func:`projective_homography`).
 
+    Parameters
+    ----------
+    group : {"euclidean", "similarity", "affine", "projective"}
+        The group.
+    theta : float, optional
+        Rotation, radians.
+    scale : float, optional
+        Isotropic scale.
+    shear : float, optional
+        Angle of the affine scaling axes, radians.
+    aspect : float, optional
+        The affine scales are ``scale * aspect`` and ``scale / aspect`` (> 0).
+    tx, ty : float, optional
+        Translation, pixels.
+    v : (2,) array_like, optional
+        The projective bottom row's first two entries.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The group's matrix.
+
+    Examples
+    --------
     >>> classify(hierarchy_matrix("similarity", theta=0.3, scale=2.0, shear=0.5))
     'similarity'
     """
@@ -186,9 +280,22 @@ def hierarchy_matrix(
 
 
 def classify(H: ArrayLike, tol: float = 1e-9) -> str:
-    """The smallest group of the hierarchy that contains H: 'euclidean', 'similarity',
-    'affine' or 'projective'.
+    """The smallest group of the hierarchy that contains H.
 
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        A homography.
+    tol : float, optional
+        Tolerance of the tests, relative to H's entries.
+
+    Returns
+    -------
+    str
+        "euclidean", "similarity", "affine" or "projective" (reflections count as affine).
+
+    Examples
+    --------
     >>> classify(similarity_homography(2.0, 0.3, 1, 1)), classify(affine_homography(sx=2.0)), classify(projective_homography(v=[1e-3, 0]))
     ('similarity', 'affine', 'projective')
     """
@@ -224,7 +331,7 @@ class HomographyFactors(NamedTuple):
 
 
 def decompose_homography(H: ArrayLike) -> HomographyFactors:
-    r"""Split :math:`H = H_S H_A H_P` into similarity, affine and projective parts (H&Z 2.4.6).
+    r"""Split :math:`H = H_S H_A H_P` into similarity, affine and projective parts [1]_.
 
     .. math::
         H_S = \begin{pmatrix} sR & t/v \\ 0^T & 1 \end{pmatrix},\quad
@@ -238,6 +345,16 @@ def decompose_homography(H: ArrayLike) -> HomographyFactors:
     -------
     HomographyFactors
         ``(H_S, H_A, H_P)``: three (3, 3) ndarrays whose product equals ``normalise_homography(H)``.
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        A homography with H[2, 2] != 0.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 2.4.6
+       (decomposition of a projective transformation).
     """
     Hm = normalise_homography(check_homography(H))
     if abs(Hm[2, 2]) < 1e-12:

@@ -14,7 +14,7 @@ from numpy.typing import ArrayLike
 from .._validate import (
     ConvergenceError,
 )
-from ..optimize import levenberg_marquardt, unit_sphere_basis, unit_sphere_update
+from ..optimise import levenberg_marquardt, unit_sphere_basis, unit_sphere_update
 from ..projective import map_points
 from .core import check_correspondences, check_homography, normalise_homography
 
@@ -88,8 +88,8 @@ def refine_homography(
     so steps are taken in the 8-dimensional space orthogonal to the current :math:`h`
     (a basis B from the SVD of :math:`h^T`), and h is re-normalised after each step.
 
-    The steps are :func:`camlab.optimize.levenberg_marquardt`'s, on the unit sphere
-    (:func:`camlab.optimize.unit_sphere_update`), with the analytic Jacobian J: for the
+    The steps are :func:`camlab.optimise.levenberg_marquardt`'s, on the unit sphere
+    (:func:`camlab.optimise.unit_sphere_update`), with the analytic Jacobian J: for the
     forward term :math:`\partial (Hx)/\partial h = I_3 \otimes x^T`, and for the backward
     term :math:`d(H^{-1}) = -H^{-1}\, dH\, H^{-1}`.
 
@@ -203,6 +203,15 @@ def correct_points(
     (N, 2) ndarray
         The corrected source points; their images :math:`\pi(H \hat x_i)` are the corrected
         destination points.
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography, dst ~ H src.
+    src, dst : (N, 2) array_like
+        Measured pairs, pixels.
+    iterations : int, optional
+        Gauss-Newton steps (default 10).
     """
     Hm = check_homography(H)
     s, d = check_correspondences(src, dst, min_count=1)
@@ -268,7 +277,7 @@ def gold_standard_homography(
 
     so 8 + 2N parameters (H&Z §4.2.3, eq. 4.8). This is not the symmetric transfer error of
     :func:`refine_homography`, which compares each measured point with the image of the
-    other measured point. Levenberg-Marquardt (:func:`camlab.optimize.levenberg_marquardt`)
+    other measured point. Levenberg-Marquardt (:func:`camlab.optimise.levenberg_marquardt`)
     steps h on the unit sphere and each :math:`\hat x_i` in the plane, starting from ``H``
     (typically the normalised DLT) and :func:`correct_points`. Each residual pair touches h
     and one :math:`\hat x_i` only, so the normal equations are solved by eliminating the

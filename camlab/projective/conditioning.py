@@ -43,7 +43,7 @@ def hartley_normalise(points: ArrayLike, name: str = "points") -> HartleyNormali
 
     After the mapping, coordinates are of order 1, so the entries of a DLT matrix
     (products of coordinates such as :math:`u u'`) are of similar size and its SVD is well
-    conditioned (Hartley 1997; H&Z algorithms 4.2 and 7.1). Image points (D = 2) end at
+    conditioned [1]_ [2]_. Image points (D = 2) end at
     mean distance :math:`\sqrt 2`, world points (D = 3) at :math:`\sqrt 3`.
 
     Parameters
@@ -64,6 +64,13 @@ def hartley_normalise(points: ArrayLike, name: str = "points") -> HartleyNormali
     ------
     DegenerateError
         All points coincide (nothing to scale).
+
+    References
+    ----------
+    .. [1] R. I. Hartley, 1997, "In defense of the eight-point algorithm", *IEEE Transactions
+       on Pattern Analysis and Machine Intelligence* 19(6), 580-593.
+    .. [2] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.4.4 and algorithm
+       4.2 (normalised DLT), algorithm 7.1.
 
     Examples
     --------

@@ -261,6 +261,18 @@ def ideal_point(direction: ArrayLike) -> np.ndarray:
 
     Every line with this direction passes through it.
 
+    Parameters
+    ----------
+    direction : (N, 2) or (2,) array_like
+        Non-zero directions (dx, dy).
+
+    Returns
+    -------
+    (N, 3) or (3,) ndarray
+        The ideal points (dx, dy, 0), the input's rank.
+
+    Examples
+    --------
     >>> ideal_point([1, 2])
     array([1., 2., 0.])
     """
@@ -271,7 +283,20 @@ def ideal_point(direction: ArrayLike) -> np.ndarray:
 
 
 def is_ideal(points_h: ArrayLike, tol: float = 1e-12) -> np.ndarray:
-    """True where a homogeneous point lies on the line at infinity (|w| <= tol * |x|)."""
+    """True where a homogeneous point lies on the line at infinity (|w| <= tol * |x|).
+
+    Parameters
+    ----------
+    points_h : (N, 3) or (3,) array_like
+        Homogeneous points.
+    tol : float, optional
+        Relative tolerance on w.
+
+    Returns
+    -------
+    (N,) bool ndarray or bool
+        True for ideal points (a bool for one point).
+    """
     x, single = _as_homogeneous_2d(points_h, "points_h")
     ok = np.abs(x[:, 2]) <= tol * np.linalg.norm(x, axis=1)
     return bool(ok[0]) if single else ok
@@ -280,6 +305,18 @@ def is_ideal(points_h: ArrayLike, tol: float = 1e-12) -> np.ndarray:
 def normalise_points(points_h: ArrayLike) -> np.ndarray:
     """Scale homogeneous points to w = 1, and ideal points to a unit (x, y) with w = 0.
 
+    Parameters
+    ----------
+    points_h : (N, 3) or (3,) array_like
+        Homogeneous points, not (0, 0, 0).
+
+    Returns
+    -------
+    (N, 3) or (3,) ndarray
+        The scaled points, the input's rank.
+
+    Examples
+    --------
     >>> normalise_points([[2, 4, 2], [3, 4, 0]])
     array([[1. , 2. , 1. ],
            [0.6, 0.8, 0. ]])
@@ -297,6 +334,18 @@ def normalise_lines(lines: ArrayLike) -> np.ndarray:
 
     The line at infinity (0, 0, c) becomes (0, 0, 1).
 
+    Parameters
+    ----------
+    lines : (N, 3) or (3,) array_like
+        Lines (a, b, c), not (0, 0, 0).
+
+    Returns
+    -------
+    (N, 3) or (3,) ndarray
+        The scaled lines, the input's rank.
+
+    Examples
+    --------
     >>> normalise_lines([3, 4, 10])
     array([0.6, 0.8, 2. ])
     """
@@ -309,6 +358,21 @@ def normalise_lines(lines: ArrayLike) -> np.ndarray:
 def point_line_distance(points: ArrayLike, line: ArrayLike) -> np.ndarray:
     """Signed Euclidean distance from finite points to a finite line, in pixels.
 
+    Parameters
+    ----------
+    points : (N, 2), (N, 3), (2,) or (3,) array_like
+        Points, Euclidean or homogeneous (ideal points give NaN).
+    line : (3,) or (N, 3) array_like
+        A finite line (a, b, c), or one per point.
+
+    Returns
+    -------
+    (N,) ndarray or float
+        Signed distances, pixels (positive on the side a x + b y + c > 0); a float for one
+        point and one line.
+
+    Examples
+    --------
     >>> float(point_line_distance([0, 5], [0, 1, -2]))  # y = 2
     3.0
     """
@@ -356,6 +420,18 @@ def map_lines(H: ArrayLike, lines: ArrayLike) -> np.ndarray:
     :math:`x' = H x`, and :math:`(H^{-T} l)^T (H x) = l^T H^{-1} H x = 0`, so
     :math:`H^{-T} l` is the line through every image point.
 
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography mapping points.
+    lines : (N, 3) or (3,) array_like
+        Lines (a, b, c).
+
+    Returns
+    -------
+    (N, 3) or (3,) ndarray
+        The mapped lines, the input's rank (unscaled).
+
     Raises
     ------
     DegenerateError
@@ -383,8 +459,14 @@ def splits_at_infinity(H: ArrayLike, points: ArrayLike) -> bool:
     Parameters
     ----------
     H : (3, 3) array_like
+        The homography.
     points : (N, 2) array_like
         Corners of a convex polygon (e.g. an image's four corners).
+
+    Returns
+    -------
+    bool
+        True when w changes sign across the corners.
 
     Examples
     --------
@@ -468,6 +550,21 @@ def horizon(vp1: ArrayLike, vp2: ArrayLike) -> np.ndarray:
 
     Returns the line normalised so that a^2 + b^2 = 1 (or (0, 0, 1) when both points are
     ideal, i.e. the plane is parallel to the image). See :func:`join`.
+
+    Parameters
+    ----------
+    vp1, vp2 : (3,) array_like
+        Two homogeneous vanishing points of the plane.
+
+    Returns
+    -------
+    (3,) ndarray
+        The vanishing line (a, b, c), a^2 + b^2 = 1, or (0, 0, 1).
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 8.6.2 (vanishing
+       lines).
     """
     a, sa = _as_homogeneous_2d(vp1, "vp1")
     b, sb = _as_homogeneous_2d(vp2, "vp2")

@@ -35,7 +35,7 @@ def vanishing_point(segments: ArrayLike) -> np.ndarray:
     right singular vector of the stacked lines with the smallest singular value; working
     in homogeneous form keeps the answer valid when the vanishing point is at infinity.
 
-    Coordinates are centred and scaled first (Hartley's conditioning), because pixel
+    Coordinates are centred and scaled first (the conditioning of [1]_), because pixel
     values in the hundreds make the stacked system badly conditioned.
 
     Parameters
@@ -52,6 +52,13 @@ def vanishing_point(segments: ArrayLike) -> np.ndarray:
     ------
     DegenerateError
         For a zero-length segment or segments that all lie on one line.
+
+    References
+    ----------
+    .. [1] R. I. Hartley, 1997, "In defense of the eight-point algorithm", *IEEE Transactions
+       on Pattern Analysis and Machine Intelligence* 19(6), 580-593.
+    .. [2] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 8.6.1 (vanishing
+       points).
     """
     s = np.asarray(segments, dtype=float) if np.ndim(segments) else None
     if s is None or s.ndim != 3 or s.shape[1:] != (2, 2) or len(s) < 2:
@@ -120,7 +127,21 @@ def segments_pointing_at(
 
     The angle is measured at each segment's midpoint m, between the segment's direction
     and the direction from m to the point, :math:`(x - m w, y - m w)`, which stays valid
-    for an ideal point (w = 0): :func:`pointing_angles`. Returns an (N,) bool array.
+    for an ideal point (w = 0): :func:`pointing_angles`.
+
+    Parameters
+    ----------
+    segments : (N, 2, 2) array_like
+        Segments ``[[u1, v1], [u2, v2]]``, pixels.
+    point_h : (3,) array_like
+        A homogeneous point (w = 0 for an ideal point).
+    tol_deg : float, optional
+        Angle tolerance, degrees.
+
+    Returns
+    -------
+    (N,) bool ndarray
+        True for the segments within ``tol_deg``.
     """
     segs = np.asarray(segments, dtype=float)
     v = np.asarray(point_h, dtype=float)
@@ -150,15 +171,54 @@ class SegmentsModel(PairModel):
         self.lines = np.cross(np.hstack([self.x1, ones]), np.hstack([self.x2, ones]))
 
     def minimal(self, idx: np.ndarray) -> MinimalModels:
+        """The meet of the two segments' lines in each sample (see :meth:`PairModel.minimal`).
+
+        Parameters
+        ----------
+        idx : (B, 2) int ndarray
+            B samples of two segment indices.
+
+        Returns
+        -------
+        MinimalModels
+            ``models`` (B, 3), homogeneous proposals, and ``usable`` (B,), False where the two
+            lines coincide.
+        """
         proposals = np.cross(self.lines[idx[:, 0]], self.lines[idx[:, 1]])
         return MinimalModels(proposals, np.any(proposals != 0, axis=1))
 
     def fit(self, idx: np.ndarray) -> np.ndarray:
+        """The least-squares vanishing point of the segments ``idx`` (:func:`vanishing_point`).
+
+        Parameters
+        ----------
+        idx : (K,) int ndarray
+            Indices of the segments.
+
+        Returns
+        -------
+        (3,) ndarray
+            The homogeneous vanishing point.
+        """
         return vanishing_point(np.stack([self.x1[idx], self.x2[idx]], axis=1))
 
     def residuals(
         self, models: np.ndarray, i1: np.ndarray | None = None, i2: np.ndarray | None = None
     ) -> np.ndarray:
+        """Each segment's :func:`pointing_angles` to each proposal, degrees (see :meth:`PairModel.residuals`).
+
+        Parameters
+        ----------
+        models : (B, 3) ndarray
+            Homogeneous points.
+        i1, i2 : (M,) int ndarray, optional
+            Indices of the segments' start and end points; None for all.
+
+        Returns
+        -------
+        (B, M) ndarray
+            Angles, degrees, in [0, 90].
+        """
         a = self.x1 if i1 is None else self.x1[i1]
         b = self.x2 if i2 is None else self.x2[i2]
         return pointing_angles(models, a, b)
@@ -172,7 +232,7 @@ def vanishing_point_ransac(
 ) -> VanishingPointFit:
     """The vanishing point most segments point at, robust to segments that belong to none.
 
-    RANSAC (Fischler & Bolles) by :func:`camlab.robust.ransac`, the driver the homography
+    RANSAC [1]_ by :func:`camlab.robust.ransac`, the driver the homography
     and the fundamental matrix use (lesson 07): two random segments propose the meet of their
     lines; every segment is scored by the angle at which it misses the proposal
     (:func:`pointing_angles`), capped at ``tol_deg`` (MSAC), so the proposal most segments
@@ -190,16 +250,25 @@ def vanishing_point_ransac(
         Inlier threshold on the angle, degrees.
     samples : int
         Most pairs of segments drawn (fewer once the consensus is certain).
-    rng : numpy Generator, int or None
+    rng : numpy.random.Generator, int or None
+        Random generator or seed.
 
     Returns
     -------
     VanishingPointFit
+        ``point`` (3,), homogeneous (ideal if the segments are parallel in the image), and
+        ``inliers`` (N,) bool, the segments pointing at it.
 
     Raises
     ------
     DegenerateError
         If no proposal is supported beyond chance: no vanishing point here.
+
+    References
+    ----------
+    .. [1] M. A. Fischler and R. C. Bolles, 1981, "Random sample consensus: a paradigm for model
+       fitting with applications to image analysis and automated cartography",
+       *Communications of the ACM* 24(6), 381-395.
     """
     segs = np.asarray(segments, dtype=float)
     if segs.ndim != 3 or segs.shape[1:] != (2, 2) or len(segs) < 3:

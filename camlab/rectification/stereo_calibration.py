@@ -91,7 +91,7 @@ def stereo_calibrate(
     2. Each view then gives an estimate of the rig, :math:`R_v = R_{2v} R_{1v}^\top`,
        :math:`t_v = t_{2v} - R_v t_{1v}`; start from the rotation nearest to their mean and
        the median translation.
-    3. Refine jointly with :func:`camlab.optimize.levenberg_marquardt`: unknowns are the
+    3. Refine jointly with :func:`camlab.optimise.levenberg_marquardt`: unknowns are the
        rig (R, t) and every board pose in camera 1 (and, with ``refine_intrinsics``, both
        cameras' intrinsics and distortion); residuals are the reprojection errors of every
        corner in *both* images, camera 2 seeing the board at
@@ -117,7 +117,7 @@ def stereo_calibrate(
     from .. import calibration as cal
     from ..calibration.refinement import project_views
     from ..camera import axis_angle_from_rotation, rotation_from_axis_angle
-    from ..optimize import levenberg_marquardt
+    from ..optimise import levenberg_marquardt
 
     X, views1, views2 = _check_stereo_views(object_points, image_points1, image_points2)
     c1 = cal.calibrate_camera(X, views1, image_size)

@@ -236,4 +236,4 @@ def sensor_response(irradiance: np.ndarray, sensor: Sensor, rng) -> np.ndarray:
         signal = _sensor.mosaic(irradiance, sensor.bayer)
     if sensor.noise is not None:
         signal = _sensor.add_noise(signal, sensor.noise, rng)
-    return _sensor.quantize(signal, sensor.bits)
+    return _sensor.quantise(signal, sensor.bits)

@@ -16,7 +16,7 @@ per overlapping pair; this module turns them into one camera per image (Brown & 
 2. :func:`initial_rotations`: rotations along the maximum spanning tree of the match graph,
    :math:`R_{r \leftarrow k} = \mathrm{nearest\ rotation}(K^{-1} H_{r \leftarrow k} K)`.
 3. :func:`bundle_adjust`: every focal and rotation refined together over all inlier
-   matches of all pairs (Huber loss, :func:`camlab.optimize.levenberg_marquardt`): errors no
+   matches of all pairs (Huber loss, :func:`camlab.optimise.levenberg_marquardt`): errors no
    longer accumulate along a chain, and a loop of photos closes.
 4. :func:`wave_correct`: turn the world so the cameras' x axes lie in one horizontal plane
    (the horizon is straight instead of a wave).
@@ -36,7 +36,7 @@ from numpy.typing import ArrayLike
 
 from .._validate import DegenerateError, check_matrix
 from ..camera import centred_intrinsics, nearest_rotation, rotation_from_axis_angle
-from ..optimize import huber_residuals, levenberg_marquardt
+from ..optimise import huber_residuals, levenberg_marquardt
 
 __all__ = [
     "BundleResult",
@@ -307,7 +307,7 @@ def bundle_adjust(
     r"""Refine every camera's focal and rotation over all matches (Brown & Lowe 2007, sec. 4).
 
     Minimises the symmetric reprojection error of every match of every pair, through a
-    Huber loss (:func:`camlab.optimize.huber_residuals`, quadratic up to ``huber`` pixels)
+    Huber loss (:func:`camlab.optimise.huber_residuals`, quadratic up to ``huber`` pixels)
     so a surviving wrong match cannot drag the cameras:
 
     .. math:: \min_{f_k, R_k} \sum_{(i,j)} \sum_m \rho\big(\|\pi(K_j R_j R_i^\top K_i^{-1} x_i^m) - x_j^m\|\big)
@@ -317,7 +317,7 @@ def bundle_adjust(
     :math:`R_k = \exp([\omega_k]_\times) R_k^{(0)}` (no singularity near the start). Camera
     ``fixed`` keeps its rotation (the world frame is otherwise free: turning every camera
     together changes no error). The Jacobian is by forward differences, one camera at a time
-    over only the pairs that see it; :func:`camlab.optimize.levenberg_marquardt` does the rest.
+    over only the pairs that see it; :func:`camlab.optimise.levenberg_marquardt` does the rest.
 
     Parameters
     ----------
@@ -389,7 +389,7 @@ def adjust_homographies(
               + \rho\big(\|\pi(H_i^{-1} H_j x_j^m) - x_i^m\|\big),
 
     the planar counterpart of :func:`bundle_adjust` (same Huber loss, same
-    :func:`camlab.optimize.levenberg_marquardt`). The chain along the spanning tree only
+    :func:`camlab.optimise.levenberg_marquardt`). The chain along the spanning tree only
     used the tree's pairs; this uses the pairs that close loops too.
     """
     imgs = [k for k, H in enumerate(ref_from_k) if H is not None]

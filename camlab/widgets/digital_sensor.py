@@ -269,8 +269,8 @@ def bit_depth_and_noise():
         noisy = sensor.add_noise(
             clean * expo, sensor.NoiseModel(full_well, values["read_noise"]), rng
         )
-        dn = sensor.quantize(np.clip(noisy / expo, 0, 1), bits)  # shown with gain 1 / exposure
-        shown = sensor.dequantize(dn, bits)
+        dn = sensor.quantise(np.clip(noisy / expo, 0, 1), bits)  # shown with gain 1 / exposure
+        shown = sensor.dequantise(dn, bits)
         im.set_data(sensor.gamma_encode(shown))
         prof.set_ydata(shown[row])
         signal = 0.5 * expo * full_well
@@ -380,7 +380,7 @@ def demosaicing():
         """The raw mosaic, its demosaiced image and PSNR; pure, so kept while the zoom slider moves."""
         key = (pattern, assumed, method)
         if key not in demosaiced:
-            raw = sensor.quantize(sensor.mosaic(truth, pattern))
+            raw = sensor.quantise(sensor.mosaic(truth, pattern))
             if method == "truth":
                 out = truth
             elif method == "camlab bilinear":

@@ -25,7 +25,7 @@ def _demosaic_cases():
         (sensor.mosaic(rng.uniform(size=(7, 6, 3)), "GRBG"), "GRBG"),
         (sensor.mosaic(smooth, "RGGB"), "RGGB"),
         (
-            sensor.quantize(sensor.mosaic(rng.uniform(size=(7, 9, 3)), "RGGB")),
+            sensor.quantise(sensor.mosaic(rng.uniform(size=(7, 9, 3)), "RGGB")),
             "RGGB",
         ),  # uint8, 0..255
     ]

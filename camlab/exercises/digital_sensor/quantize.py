@@ -301,7 +301,7 @@ register_exercise(
     Exercise(
         name="quantize_image",
         lesson="03",
-        reference=sensor.quantize,
+        reference=sensor.quantise,
         cases=_quantize_cases,
         # the prompt fixes the type: a numpy array of uint8 up to 8 bits, uint16 above
         compare=lambda got, exp: (

@@ -124,7 +124,20 @@ class NormalEquations(NamedTuple):
 
 
 def dense_normal_equations(J: np.ndarray, r: np.ndarray) -> NormalEquations:
-    r"""The Gauss-Newton normal equations of a dense Jacobian: :math:`(J^\top J,\ J^\top r)`."""
+    r"""The Gauss-Newton normal equations of a dense Jacobian: :math:`(J^\top J,\ J^\top r)`.
+
+    Parameters
+    ----------
+    J : (m, n) ndarray
+        Jacobian of the residuals with respect to the parameters.
+    r : (m,) ndarray
+        Residual vector.
+
+    Returns
+    -------
+    NormalEquations
+        ``A`` = J^T J, (n, n), and ``g`` = J^T r, (n,).
+    """
     return NormalEquations(J.T @ J, J.T @ r)
 
 
@@ -133,6 +146,20 @@ def dense_damped_solve(A: np.ndarray, g: np.ndarray, mu: float) -> np.ndarray:
 
     A diagonal entry of 0 (a parameter the residuals ignore) is floored at a tiny value so
     the damped matrix stays invertible and that parameter simply does not move.
+
+    Parameters
+    ----------
+    A : (n, n) ndarray
+        J^T J from :func:`dense_normal_equations`.
+    g : (n,) ndarray
+        The gradient J^T r.
+    mu : float
+        Damping factor (>= 0).
+
+    Returns
+    -------
+    (n,) ndarray
+        The step delta.
     """
     d = np.diag(A).copy()
     d = np.maximum(d, 1e-12 * max(d.max(initial=0.0), 1e-300))
@@ -152,7 +179,13 @@ class IndependentBlocks:
         self.blocks = blocks
 
     def diagonal(self) -> np.ndarray:
-        """diag(A), (N n,), as :func:`levenberg_marquardt` needs for its gain ratio."""
+        """diag(A), (N n,), as :func:`levenberg_marquardt` needs for its gain ratio.
+
+        Returns
+        -------
+        (N n,) ndarray
+            The diagonal of A, block after block.
+        """
         return np.diagonal(self.blocks, axis1=1, axis2=2).ravel()
 
 
@@ -162,6 +195,19 @@ def block_normal_equations(J: np.ndarray, r: np.ndarray) -> NormalEquations:
     Residuals are ordered group by group (``r.reshape(N, m)``); :math:`A_i = J_i^\top J_i`
     and :math:`g_i = J_i^\top r_i`. Pass it as ``normal_equations`` to
     :func:`levenberg_marquardt`, with :func:`block_damped_solve`.
+
+    Parameters
+    ----------
+    J : (N, m, n) ndarray
+        One (m, n) Jacobian block per independent group of n parameters.
+    r : (N m,) ndarray
+        Residuals, group after group.
+
+    Returns
+    -------
+    NormalEquations
+        ``A``, an :class:`IndependentBlocks` of the (N, n, n) blocks J_i^T J_i, and ``g``,
+        (N n,), the blocks J_i^T r_i one after another.
     """
     rb = r.reshape(len(J), -1)
     A = IndependentBlocks(np.einsum("nki,nkj->nij", J, J))
@@ -173,6 +219,20 @@ def block_damped_solve(A: IndependentBlocks, g: np.ndarray, mu: float) -> np.nda
 
     The block form of :func:`dense_damped_solve` (a diagonal entry of 0 is floored, so a
     parameter the residuals ignore does not move).
+
+    Parameters
+    ----------
+    A : IndependentBlocks
+        The (N, n, n) blocks from :func:`block_normal_equations`.
+    g : (N n,) ndarray
+        The gradient, block after block.
+    mu : float
+        Damping factor (>= 0).
+
+    Returns
+    -------
+    (N n,) ndarray
+        The step, block after block.
     """
     n = A.blocks.shape[-1]
     d = np.diagonal(A.blocks, axis1=1, axis2=2)
@@ -230,6 +290,22 @@ def numeric_jacobian(
     :math:`h_k = \text{step} \cdot \max(1, |x_k|)`: error :math:`O(h^2)`, 2n evaluations.
     For a local parametrisation differentiate ``lambda d: residuals(update(x, d))`` at 0.
 
+    Parameters
+    ----------
+    residuals : callable
+        ``residuals(x) -> (m,) array``.
+    x : (n,) array_like
+        Where to differentiate (flattened).
+    step : float, optional
+        Relative step h (default 1e-6).
+
+    Returns
+    -------
+    (m, n) ndarray
+        The Jacobian: column k is the derivative with respect to x_k.
+
+    Examples
+    --------
     >>> numeric_jacobian(lambda x: np.array([x[0] ** 2, x[0] * x[1]]), [3.0, 2.0]).round(6)
     array([[6., 0.],
            [2., 3.]])
@@ -248,10 +324,21 @@ def numeric_jacobian(
 
 
 def unit_sphere_basis(x: ArrayLike) -> np.ndarray:
-    r"""An orthonormal basis (n, n - 1) of the tangent space :math:`x^\perp` of the unit sphere at x.
+    r"""An orthonormal basis (n, n - 1) of the tangent space of the unit sphere at x.
 
-    The right singular vectors of the row :math:`x^\top` other than :math:`x / \|x\|`
-    (the same basis for the same x, so a Jacobian and a step computed at x agree).
+    The tangent space is :math:`x^\perp`, spanned by the right singular vectors of the row
+    :math:`x^\top` other than :math:`x / \|x\|` (the same basis for the same x, so a Jacobian
+    and a step computed at x agree).
+
+    Parameters
+    ----------
+    x : (n,) array_like
+        A point on (or off) the unit sphere, not zero.
+
+    Returns
+    -------
+    (n, n - 1) ndarray
+        Orthonormal columns, each orthogonal to x.
     """
     v = np.asarray(x, dtype=float).ravel()
     return np.linalg.svd(v[None, :])[2][1:].T
@@ -263,6 +350,20 @@ def unit_sphere_update(x: ArrayLike, delta: ArrayLike) -> np.ndarray:
     For parameters defined up to scale (homographies, projection matrices): the step has
     n - 1 components and never changes the scale.
 
+    Parameters
+    ----------
+    x : (n,) array_like
+        The current point (not zero).
+    delta : (n - 1,) array_like
+        The step in the tangent basis of :func:`unit_sphere_basis`.
+
+    Returns
+    -------
+    (n,) ndarray
+        The new point, unit norm.
+
+    Examples
+    --------
     >>> unit_sphere_update([0.0, 0.0, 1.0], [0.0, 0.0]).tolist()
     [0.0, 0.0, 1.0]
     """

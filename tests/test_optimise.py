@@ -1,4 +1,4 @@
-"""Tests for camlab.optimize: Levenberg-Marquardt and one damped step."""
+"""Tests for camlab.optimise: Levenberg-Marquardt and one damped step."""
 
 import numpy as np
 import pytest
@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 
 from camlab import ConvergenceError
 from camlab._validate import CamlabInputError
-from camlab.optimize import (
+from camlab.optimise import (
     dense_damped_solve,
     huber_residuals,
     levenberg_marquardt,
@@ -231,7 +231,7 @@ def test_independent_blocks_solve_as_the_dense_block_diagonal_matrix():
     block normal equations and damped step equal the dense ones of the block-diagonal J."""
     from scipy.linalg import block_diag
 
-    from camlab.optimize import (
+    from camlab.optimise import (
         block_damped_solve,
         block_normal_equations,
         dense_damped_solve,
