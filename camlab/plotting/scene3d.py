@@ -66,6 +66,16 @@ def polyline_data(segments: ArrayLike) -> np.ndarray:
     """(M, 2, d) segments as one (3M, d) polyline with NaN rows between segments.
 
     One Line2D/Line3D with NaN breaks draws far faster than M separate lines.
+
+    Parameters
+    ----------
+    segments : (M, 2, d) array_like
+        Segments, each its two ends in ``d`` = 2 (pixels) or 3 (world, m) coordinates.
+
+    Returns
+    -------
+    (3M, d) ndarray
+        Start, end and a NaN row for each segment.
     """
     s = np.asarray(segments, dtype=float)
     out = np.full((len(s), 3, s.shape[-1]), np.nan)
@@ -74,7 +84,22 @@ def polyline_data(segments: ArrayLike) -> np.ndarray:
 
 
 def draw_segments(ax, segments: ArrayLike, **kw: Any):
-    """Draw (M, 2, 3) world segments as one Line3D; move them later with :func:`update_segments`."""
+    """Draw (M, 2, 3) world segments as one Line3D; move them later with :func:`update_segments`.
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D
+        The 3-D axes to draw in.
+    segments : (M, 2, 3) array_like
+        World segments, metres.
+    **kw
+        Line properties for ``ax.plot`` (default colour ``"0.25"``, width 1.2).
+
+    Returns
+    -------
+    mpl_toolkits.mplot3d.art3d.Line3D
+        One polyline with NaN breaks (:func:`polyline_data`).
+    """
     d = polyline_data(segments)
     kw.setdefault("color", "0.25")
     kw.setdefault("lw", 1.2)
@@ -83,7 +108,15 @@ def draw_segments(ax, segments: ArrayLike, **kw: Any):
 
 
 def update_segments(line, segments: ArrayLike) -> None:
-    """Move a line made by :func:`draw_segments` (3-D) or a 2-D ``ax.plot`` polyline to new segments."""
+    """Move a line made by :func:`draw_segments` (3-D) or a 2-D ``ax.plot`` polyline to new segments.
+
+    Parameters
+    ----------
+    line : matplotlib.lines.Line2D or mpl_toolkits.mplot3d.art3d.Line3D
+        The line to move; a 3-D one when ``segments`` are 3-D.
+    segments : (M, 2, 3) or (M, 2, 2) array_like
+        The new segments, world (m) or pixels.
+    """
     d = polyline_data(segments)
     if d.shape[1] == 3:
         line.set_data_3d(d[:, 0], d[:, 1], d[:, 2])
@@ -92,7 +125,22 @@ def update_segments(line, segments: ArrayLike) -> None:
 
 
 def draw_points(ax, points: ArrayLike, **kw: Any):
-    """World points (N, 3) as markers on one Line3D (move with ``set_data_3d``)."""
+    """World points (N, 3) as markers on one Line3D (move with ``set_data_3d``).
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D
+        The 3-D axes to draw in.
+    points : (N, 3) array_like
+        World points, metres (any shape that reshapes to rows of 3).
+    **kw
+        Line properties for ``ax.plot`` (default: marker ``"o"``, size 3, no line).
+
+    Returns
+    -------
+    mpl_toolkits.mplot3d.art3d.Line3D
+        The markers.
+    """
     p = np.reshape(np.asarray(points, dtype=float), (-1, 3))
     kw.setdefault("marker", "o")
     kw.setdefault("ms", 3)
@@ -104,7 +152,27 @@ def draw_points(ax, points: ArrayLike, **kw: Any):
 def draw_world_axes(
     ax, length: float = 1.0, origin: ArrayLike = (0.0, 0.0, 0.0), labels=("X", "Y", "Z")
 ) -> list:
-    """World axes as three coloured arrows-as-lines from ``origin``, labelled X, Y, Z."""
+    """World axes as three coloured arrows-as-lines from ``origin``, labelled X, Y, Z.
+
+    The colours are :data:`~camlab.plotting.palette.AXIS_COLOURS` (x red, y green, z blue); the
+    labels sit 1.12 axis lengths out, with a white halo.
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D
+        The 3-D axes to draw in.
+    length : float
+        Length of each axis, metres.
+    origin : (3,) array_like
+        Where the axes start, world coordinates (m).
+    labels : sequence of 3 str
+        The axes' names.
+
+    Returns
+    -------
+    list
+        The line and the label of each axis in turn: ``[x_line, x_text, y_line, y_text, z_line, z_text]``.
+    """
     o = np.asarray(origin, dtype=float)
     out = []
     for i, (c, name) in enumerate(zip(palette.AXIS_COLOURS, labels, strict=True)):
@@ -132,6 +200,17 @@ def image_axes(ax, image_size: tuple[int, int], title: str = "", labels: bool = 
 
     ``labels=False`` leaves out the axis labels (each text costs about 1 ms per redraw in
     a slider demo); the title then says "u right, v down".
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to set up (changed in place).
+    image_size : (width, height)
+        Image size in pixels; ticks at the first, middle and last pixel centres.
+    title : str
+        The axes' title (none if empty).
+    labels : bool
+        Label the axes "u (px)" and "v (px)".
     """
     w, h = image_size
     ax.set_xlim(-0.5, w - 0.5)
@@ -161,6 +240,25 @@ def clip_segments(segments: ArrayLike, image_size: tuple[int, int]) -> np.ndarra
     A segment is the set p0 + s (p1 - p0), 0 <= s <= 1; each border cuts the allowed s to an
     interval, and what survives all four is the visible part. Segments with a NaN end stay NaN.
 
+    Parameters
+    ----------
+    segments : (M, 2, 2) array_like
+        Pixel segments (u, v), any shape that reshapes to (M, 2, 2).
+    image_size : (width, height)
+        Image size in pixels.
+
+    Returns
+    -------
+    (M, 2, 2) ndarray
+        The visible part of each segment; NaN where none is visible.
+
+    References
+    ----------
+    .. [1] Y.-D. Liang and B. A. Barsky, 1984, "A new concept and method for line clipping",
+       ACM Transactions on Graphics 3(1).
+
+    Examples
+    --------
     >>> clip_segments([[[-10.0, 5.0], [20.0, 5.0]]], (10, 10)).tolist()
     [[[-0.5, 5.0], [9.5, 5.0]]]
     """
@@ -197,7 +295,9 @@ class CameraArtist:
     Parameters
     ----------
     ax : Axes3D
+        The 3-D axes to draw in.
     camera : Camera
+        The camera to draw (its pose, intrinsics and image size).
     size : float
         Depth of the drawn image plane in metres (the frustum's length).
     color : str
@@ -217,6 +317,10 @@ class CameraArtist:
         Draw the camera's x (right), y (down), z (forward) axes, labelled.
     axis_length : float, optional
         Length of those axes in metres (default: 0.6 ``size``).
+    image_grid : (int, int)
+        Quads of the image mesh across and down.
+    line_color : str
+        Colour of ``image_lines``.
     """
 
     def __init__(
@@ -275,7 +379,14 @@ class CameraArtist:
         self.update(camera, image=image, image_lines=image_lines)
 
     def artists(self) -> list:
-        """Every artist this camera drew (register them with ``FigureView.animate``)."""
+        """Every artist this camera drew (register them with ``FigureView.animate``).
+
+        Returns
+        -------
+        list of matplotlib.artist.Artist
+            Frustum, image plane, camera axes and their labels, centre marker, image lines, and the
+            label and image mesh when drawn.
+        """
         out = [
             self.frustum,
             self.plane,
@@ -287,7 +398,18 @@ class CameraArtist:
         return out + [a for a in (self.label, self.mesh) if a is not None]
 
     def corners(self, camera: Camera | None = None) -> np.ndarray:
-        """The image plane's four corners (top-left, top-right, bottom-right, bottom-left), world (4, 3)."""
+        """The image plane's four corners (top-left, top-right, bottom-right, bottom-left), world (4, 3).
+
+        Parameters
+        ----------
+        camera : Camera or None
+            The camera; None for the one last drawn.
+
+        Returns
+        -------
+        (4, 3) ndarray
+            The corners' outer pixel edges lifted to depth ``size`` in front of the camera, metres.
+        """
         cam = camera or self.camera
         w, h = cam.image_size
         uv = np.array([[-0.5, -0.5], [w - 0.5, -0.5], [w - 0.5, h - 0.5], [-0.5, h - 0.5]])
@@ -299,7 +421,19 @@ class CameraArtist:
         return camera.centre + 1.2 * L * camera.R
 
     def extent_points(self, camera: Camera | None = None) -> np.ndarray:
-        """Points to include when setting equal-aspect limits: centre, plane corners and axis labels."""
+        """Points to include when setting equal-aspect limits: centre, plane corners and axis labels.
+
+        Parameters
+        ----------
+        camera : Camera or None
+            The camera; None for the one last drawn.
+
+        Returns
+        -------
+        (N, 3) ndarray
+            World points, metres: the centre, the four corners, the axis labels' positions (when the
+            axes are drawn) and the label's (when there is one).
+        """
         cam = camera or self.camera
         tips = [self._axis_tips(cam)] if self.axes_text else []
         if self.label is not None:
@@ -315,7 +449,18 @@ class CameraArtist:
     def update(
         self, camera: Camera, image: np.ndarray | None = None, image_lines: ArrayLike | None = None
     ) -> None:
-        """Move every artist to ``camera``; redraw the image content if given."""
+        """Move every artist to ``camera``; redraw the image content if given.
+
+        Parameters
+        ----------
+        camera : Camera
+            The camera's new intrinsics, pose and image size.
+        image : (H, W) or (H, W, 3) ndarray or None
+            A new image for the mesh (uint8 or float in [0, 1]); None keeps the old colours.
+        image_lines : (M, 2, 2) array_like or None
+            New pixel segments for the image plane (clipped to the image); None moves the old ones
+            with the camera.
+        """
         self.camera = camera
         C = camera.centre
         corners = self.corners(camera)
@@ -389,6 +534,37 @@ class SceneView:
     :meth:`fit` refits them to include more points (a second camera).
     ``thumbnail``: the segments drawn small on the image plane (default: all); pick the main
     object, as a whole scene is a tangle at that size.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure the two axes are added to (unless ``axes`` gives them).
+    camera : Camera
+        The camera photographing the scene.
+    segments : (M, 2, 3) array_like
+        The world wireframe, metres.
+    extent : (N, 3) array_like or None
+        More world points to keep in view (m).
+    axes : (Axes3D, Axes) or None
+        Existing 3-D and image axes to draw in; None adds them side by side.
+    plane_size : float
+        Depth of the camera's drawn image plane, metres (:class:`CameraArtist`'s ``size``).
+    world_axes : float
+        Length of the world axes, metres; 0 draws none.
+    image_title : str
+        The image panel's title.
+    elev, azim : float
+        The 3-D viewpoint, degrees.
+    axis_off : bool
+        Hide the 3-D panes, ticks and labels (the world axes carry the frame; 5x faster).
+    thumbnail : (K, 2, 3) array_like or None
+        The segments drawn small on the image plane; None: all of ``segments``.
+    camera_axes : bool
+        Draw the camera's x, y, z axes.
+    camera_axis_length : float or None
+        Their length, metres (None: 0.6 ``plane_size``).
+    width_ratios : (float, float)
+        Widths of the 3-D and image panels, when this adds them.
     """
 
     def __init__(
@@ -449,7 +625,15 @@ class SceneView:
         return pix if self.thumbnail is self.segments else project_segments(camera, self.thumbnail)
 
     def fit(self, camera: Camera | None = None, extra: ArrayLike | None = None) -> None:
-        """Refit the 3-D limits to the scene, the camera (default: the current one), ``extent`` and ``extra``."""
+        """Refit the 3-D limits to the scene, the camera (default: the current one), ``extent`` and ``extra``.
+
+        Parameters
+        ----------
+        camera : Camera or None
+            The camera to keep in view; None for the one last drawn.
+        extra : (N, 3) array_like or None
+            More world points to keep in view (m), e.g. a second camera's.
+        """
         pts = [self.segments.reshape(-1, 3), self.camera_artist.extent_points(camera)]
         pts += [
             np.reshape(np.asarray(p, dtype=float), (-1, 3))
@@ -469,14 +653,33 @@ class SceneView:
             refresh_projection(self.ax3d)
 
     def artists(self) -> list:
-        """The artists that move: everything in the 3-D axes (its projection follows the
-        camera) and the image's lines. Register them with ``FigureView.animate``."""
+        """The artists that move: everything in the 3-D axes and the image's lines.
+
+        The 3-D axes' projection follows the camera, so all of it moves. Register them with
+        ``FigureView.animate``.
+
+        Returns
+        -------
+        list of matplotlib.artist.Artist
+            The wireframe, world axes, the camera's artists and the image's polyline.
+        """
         return [self.world, *self.world_axes, *self.camera_artist.artists(), self.image_lines]
 
     def update(self, camera: Camera) -> np.ndarray:
         """Re-photograph the scene with ``camera``; returns the (M, 2, 2) pixel segments.
 
-        The 3-D limits follow the camera so it never leaves the view."""
+        The 3-D limits follow the camera so it never leaves the view.
+
+        Parameters
+        ----------
+        camera : Camera
+            The new camera.
+
+        Returns
+        -------
+        (M, 2, 2) ndarray
+            The scene's segments projected by ``camera``, pixels (:func:`camlab.camera.project_segments`).
+        """
         pix = project_segments(camera, self.segments)
         self.fit(camera)
         self.camera_artist.update(camera, image_lines=self._thumbnail_pixels(camera, pix))

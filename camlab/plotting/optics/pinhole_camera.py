@@ -45,7 +45,20 @@ _EDGES = [
 
 
 def box_edges(center, size) -> np.ndarray:
-    """(12, 2, 3) end points of an axis-aligned box's edges (camera frame, metres)."""
+    """(12, 2, 3) end points of an axis-aligned box's edges (camera frame, metres).
+
+    Parameters
+    ----------
+    center : (3,) array_like
+        The box's centre, camera frame, metres.
+    size : (3,) array_like
+        Its extent along x, y and z, metres.
+
+    Returns
+    -------
+    (12, 2, 3) ndarray
+        The twelve edges, each its two ends.
+    """
     c, s = np.asarray(center, float), np.asarray(size, float) / 2
     v = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]) * s + c
     return np.array([[v[i], v[j]] for i, j in _EDGES])
@@ -63,9 +76,16 @@ def _to_plot(p):
 
 
 def label_camera_axes(ax, labelpad: float = 8) -> None:
-    """Label a 3-D axes drawn through :func:`_to_plot` in camera coordinates: z forward, x right, y down.
+    """Label a 3-D axes drawn through ``_to_plot`` in camera coordinates: z forward, x right, y down.
 
     The plot's second and third axes hold -x and -y; their tick labels show x and y themselves.
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D
+        The 3-D axes (formatters, locators and labels set in place).
+    labelpad : float
+        Space between the axes' labels and their tick labels, points.
     """
     from matplotlib.ticker import FuncFormatter, MaxNLocator
 
@@ -95,7 +115,18 @@ class PlaneFaces(NamedTuple):
 
 
 def plane_faces(planes) -> PlaneFaces:
-    """(F, 4, 3) camera-frame corners and F mean greys of scene planes: the ``faces`` of :func:`draw_pinhole_3d`."""
+    """(F, 4, 3) camera-frame corners and F mean greys of scene planes: the ``faces`` of :func:`draw_pinhole_3d`.
+
+    Parameters
+    ----------
+    planes : sequence of camlab.scenes.Plane
+        The scene's planes (e.g. :func:`camlab.scenes.box`), in the camera frame.
+
+    Returns
+    -------
+    PlaneFaces
+        ``corners`` (F, 4, 3), metres, and ``greys`` (F,), each texture's mean in [0, 1].
+    """
     return PlaneFaces(
         np.array([p.corners_world for p in planes]),
         np.array([float(np.mean(p.texture)) for p in planes]),
@@ -133,7 +164,18 @@ _Z_PLANE = {"virtual": 2.0, "real": 4.0}  # + 0.1 for the picture, + 0.2 for its
 
 
 def axis_scales(ax) -> np.ndarray:
-    """Drawn length per metre along a 3-D axes' plot x, y and z (box aspect over data range), for captions."""
+    """Drawn length per metre along a 3-D axes' plot x, y and z (box aspect over data range), for captions.
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D
+        The 3-D axes, its limits and box aspect set.
+
+    Returns
+    -------
+    (3,) ndarray
+        Box-aspect units per metre along the plot's x (depth), y and z; equal when drawn to scale.
+    """
     ranges = np.array([np.ptp(ax.get_xlim()), np.ptp(ax.get_ylim()), np.ptp(ax.get_zlim())])
     return np.asarray(ax.get_box_aspect(), float) / ranges
 
@@ -157,6 +199,29 @@ def draw_pinhole_3d(
     wire frame. The axes are labelled in camera coordinates (:func:`label_camera_axes`) and
     seen from :data:`PINHOLE_VIEW`. ``to_scale``: one length per metre on all three axes
     (otherwise depth is drawn shorter; :func:`axis_scales` says by how much).
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D
+        The 3-D axes to draw in.
+    edges : (K, 2, 3) ndarray
+        The box's edges, camera frame, metres.
+    f_draw : float
+        Pinhole-to-image-plane distance as drawn, metres (both planes).
+    plane_half : float or None
+        The image planes' half-width, metres (their height is 0.75 of it); None: fitted to the image.
+    faces : (polygons, shades) or None
+        Faces to fill, as :func:`plane_faces` returns them; None draws wire frames only.
+    to_scale : bool
+        Draw all three axes at one length per metre.
+
+    Returns
+    -------
+    dict
+        The artists for :func:`update_pinhole_3d`: ``"box"``, ``"pinhole"``, ``"rays"``, ``"real"``
+        and ``"virtual"`` (the images' edges), ``"planes"`` (``{"real", "virtual"}``: the frames),
+        ``"fills"`` (``{"box", "real", "virtual"}`` when ``faces`` is given, else empty), and
+        ``"plane_half"``, ``"plane_half_drawn"`` (metres).
     """
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
@@ -266,9 +331,24 @@ def update_pinhole_3d(
     faces: tuple[np.ndarray, np.ndarray] | None = None,
     plane_half: float | None = None,
 ) -> None:
-    """Move the box to ``edges`` (and its ``faces``, see :func:`draw_pinhole_3d`) and the image planes to ``f_draw``.
+    """Move the box to ``edges`` (and its ``faces``) and the image planes to ``f_draw``.
 
-    ``plane_half``: the planes' half-width this time (metres; e.g. the sensor's, scaled like ``f_draw``).
+    See :func:`draw_pinhole_3d` for ``faces``. Each face's picture is cut at the plane's frame
+    (Sutherland-Hodgman), as the sensor cuts the image.
+
+    Parameters
+    ----------
+    art : dict
+        What :func:`draw_pinhole_3d` returned (moved in place; ``"plane_half_drawn"`` is updated).
+    edges : (K, 2, 3) ndarray
+        The box's edges, camera frame, metres.
+    f_draw : float
+        Pinhole-to-image-plane distance as drawn, metres (both planes).
+    faces : (polygons, shades) or None
+        Faces to fill (:func:`plane_faces`); ignored unless the drawing was made with faces.
+    plane_half : float or None
+        The planes' half-width this time, metres (e.g. the sensor's, scaled like ``f_draw``);
+        None keeps the one given to :func:`draw_pinhole_3d`, or fits the image.
     """
     corners = np.unique(edges.reshape(-1, 3), axis=0)
     h = (
@@ -398,7 +478,25 @@ def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
     The pinhole sits at the origin, the real image plane at z = -f and the virtual one at
     z = +f. Two shaded similar triangles share the ray through the hole: (0, 0)-(Z, 0)-(Z, Y)
     and (0, 0)-(f, 0)-(f, y); dimension lines label f, Z, Y and y. Y and y are signed in the
-    camera frame (y down), so a point drawn above the axis has a negative Y.
+    camera frame (y down), so a point drawn above the axis has a negative Y. Nothing is placed
+    until :func:`update_similar_triangles`.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw in (equal aspect).
+    z_max : float
+        The largest depth to show, metres.
+    h_max : float
+        The largest height to show either side of the axis, metres.
+
+    Returns
+    -------
+    dict
+        The artists for :func:`update_similar_triangles`: ``"big"`` and ``"small"`` (the
+        triangles), ``"object"``, ``"point"``, ``"ray"``, ``"planes"``, ``"virtual"``, ``"real"``,
+        ``"pinhole"`` and ``"pinhole_dot"``, and ``"dims"`` (the dimension lines ``"f"``, ``"Z"``,
+        ``"Y"``, ``"y"``, ``"y_real"``, each an arrow and a label).
     """
     ax.axhline(0, color="0.4", lw=0.8, zorder=0)
     art = {
@@ -458,6 +556,22 @@ def update_similar_triangles(art: dict, f: float, Z: float, Y: float) -> float:
     """Redraw for focal length ``f``, object depth ``Z`` and ``Y`` (metres, camera frame: y down); returns y.
 
     The figure's vertical axis is -y (up), so the object point is drawn at height -Y.
+
+    Parameters
+    ----------
+    art : dict
+        What :func:`draw_similar_triangles` returned (moved in place).
+    f : float
+        Focal length (pinhole to image plane), metres.
+    Z : float
+        The object point's depth, metres (> 0).
+    Y : float
+        The object point's camera y, metres.
+
+    Returns
+    -------
+    float
+        The image height ``y = f Y / Z`` on the virtual plane, metres.
     """
     y = f * Y / Z
     up, up_img = -Y, -y  # heights on the page
