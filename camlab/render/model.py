@@ -89,12 +89,26 @@ class Sensor:
 
 
 class PlanePoints(NamedTuple):
-    """Ground truth for one plane's named points (M of them)."""
+    """Ground truth for one plane's named points (M of them).
 
-    object_points: np.ndarray  # (M, 3) in the plane frame, z = 0 (metres)
-    world: np.ndarray  # (M, 3) world frame (metres)
-    pixels: np.ndarray  # (M, 2) exact distorted pixel positions (u, v)
-    visible: np.ndarray  # (M,) bool: in front of the camera, inside the image and not occluded
+    Attributes
+    ----------
+    object_points : (M, 3) ndarray
+        The points in the plane frame, z = 0, metres.
+    world : (M, 3) ndarray
+        The points in the world frame, metres.
+    pixels : (M, 2) ndarray
+        Their exact distorted pixel positions (u, v).
+    visible : (M,) bool ndarray
+        In front of the camera, inside the image and not occluded.
+    pattern_size : (cols, rows) or None
+        The checkerboard's inner corners, None for other planes.
+    """
+
+    object_points: np.ndarray
+    world: np.ndarray
+    pixels: np.ndarray
+    visible: np.ndarray
     pattern_size: tuple[int, int] | None
 
 
@@ -156,9 +170,17 @@ class GroundTruth:
 
 
 class RenderResult(NamedTuple):
-    """``image``: uint8 (bits <= 8) or uint16, (H, W) grey, (H, W, 3) RGB or (H, W) Bayer mosaic;
-    ``irradiance``: the float32 image in [0, 1] before noise and quantisation (RGB before any
-    mosaic); ``truth``: :class:`GroundTruth`."""
+    """What :func:`camlab.render.render` returns.
+
+    Attributes
+    ----------
+    image : (H, W) or (H, W, 3) ndarray
+        uint8 (bits <= 8) or uint16: grey, RGB or a Bayer mosaic (H, W).
+    irradiance : (H, W) or (H, W, 3) float32 ndarray
+        The image in [0, 1] before noise and quantisation (RGB before any mosaic).
+    truth : GroundTruth
+        Everything true about the render.
+    """
 
     image: np.ndarray
     irradiance: np.ndarray
@@ -235,7 +257,19 @@ def align_detected_corners(detected: ArrayLike, truth_pixels: ArrayLike) -> np.n
 
 
 class CameraPlane(NamedTuple):
-    """A plane as the camera sees it: cam_from_plane (Rc, tc), depth of its visible centre, visible polygon."""
+    """A plane as the camera sees it (:func:`~camlab.render.canvas.visible_planes`).
+
+    Attributes
+    ----------
+    plane : Plane
+        The scene's plane.
+    Rc, tc : (3, 3), (3,) ndarray
+        cam_from_plane: ``X_cam = Rc @ [x, y, 0] + tc``, metres.
+    depth : float
+        Mean z_cam of its visible polygon's vertices, metres (compositing order).
+    poly : (M, 2) ndarray
+        The visible polygon, plane metres (:func:`clip_to_near`).
+    """
 
     plane: Plane
     Rc: np.ndarray
