@@ -176,10 +176,27 @@ class AssignmentNotebook(NamedTuple):
 def assignment_notebook(notebook: dict, lesson: str) -> AssignmentNotebook:
     """The nbgrader source version of a lesson notebook and its exercise names, in order.
 
+    Each exercise stub becomes a graded solution cell (a call of camlab's own implementation
+    between nbgrader's markers), each ``check_<name>(<name>)`` cell a graded test cell,
+    ``solution(...)`` cells are dropped, and other cells lose what would give the solution away.
+
+    Parameters
+    ----------
+    notebook : dict
+        The lesson notebook's JSON (not modified).
+    lesson : str
+        The lesson's name, for error messages.
+
+    Returns
+    -------
+    AssignmentNotebook
+        The ``notebook`` for nbgrader and its graded ``exercises``.
+
     Raises
     ------
     CamlabInputError
-        If the lesson has no exercise (no stub with a ``check_<name>(<name>)`` cell).
+        If the lesson has no exercise (no stub with a ``check_<name>(<name>)`` cell), or a stub
+        has no check cell.
     """
     from ..exercises import all_exercises
 
@@ -272,12 +289,30 @@ def write_course(
 ) -> dict[str, list[str]]:
     """Write an nbgrader course directory for ``lessons`` (all when empty) into the new folder ``dest``.
 
-    Returns ``{lesson stem: [exercise names]}``. Everything is checked before anything is
-    written: an unknown lesson, a lesson without exercises or a non-empty ``dest`` raises
-    :class:`CamlabInputError` and leaves the disk untouched. The course is written into a
-    hidden folder beside ``dest`` and renamed to ``dest`` at the end (which replaces only an
-    empty folder), so ``dest`` is complete or absent even if the run is killed or the disk
-    fills; a full disk or a folder another run made meanwhile raises CamlabInputError.
+    Everything is checked before anything is written: an unknown lesson, a lesson without
+    exercises or a non-empty ``dest`` raises :class:`CamlabInputError` and leaves the disk
+    untouched. The course is written into a hidden folder beside ``dest`` and renamed to ``dest``
+    at the end (which replaces only an empty folder), so ``dest`` is complete or absent even if
+    the run is killed or the disk fills; a full disk or a folder another run made meanwhile
+    raises CamlabInputError.
+
+    Parameters
+    ----------
+    dest : str or pathlib.Path
+        A new or empty folder; it receives ``source/<lesson>/<lesson>.ipynb`` for each lesson
+        and ``nbgrader_config.py``.
+    lessons : sequence of str
+        Lesson numbers or names (:func:`camlab.classroom.lessons.find_lesson`); empty for all.
+
+    Returns
+    -------
+    dict of str to list of str
+        ``{lesson stem: [exercise names]}``, in course order.
+
+    Raises
+    ------
+    CamlabInputError
+        As above: nothing is written.
     """
     dest = Path(dest).absolute()  # "." has no name to build beside
     _check_new_folder(dest)

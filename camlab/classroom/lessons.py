@@ -12,7 +12,14 @@ __all__ = ["Call", "called", "find_lesson", "lesson_files", "only_statement", "s
 
 
 def lesson_files() -> list[Path]:
-    """Every lesson notebook ``NN_slug.ipynb``, in course order."""
+    """Every lesson notebook ``NN_slug.ipynb``, in course order.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The notebooks of :func:`camlab.data.lessons_dir` (a clone's ``lessons/`` or the wheel's
+        copy), sorted by name.
+    """
     from ..data import lessons_dir  # the clone's lessons/ or the wheel's camlab/lessons
 
     return sorted(lessons_dir().glob("[0-9][0-9]_*.ipynb"))
@@ -20,6 +27,16 @@ def lesson_files() -> list[Path]:
 
 def find_lesson(spec: str) -> Path:
     """The lesson named by ``spec``: ``"7"``, ``"07"``, ``"07_homographies"`` or ``"07_homographies.ipynb"``.
+
+    Parameters
+    ----------
+    spec : str
+        The lesson's number, stem or file name (a leading folder is ignored).
+
+    Returns
+    -------
+    pathlib.Path
+        The lesson's notebook.
 
     Raises
     ------
@@ -40,7 +57,19 @@ def find_lesson(spec: str) -> Path:
 
 
 def only_statement(cell: dict) -> ast.stmt | None:
-    """The single Python statement of a code cell, or None (markdown, magics, several statements)."""
+    """The single Python statement of a code cell, or None (markdown, magics, several statements).
+
+    Parameters
+    ----------
+    cell : dict
+        A notebook cell as nbformat's JSON holds it (``cell_type``, ``source``...).
+
+    Returns
+    -------
+    ast.stmt or None
+        The statement; None for a markdown cell, a cell that does not parse, or one of more
+        (or no) statements.
+    """
     if cell["cell_type"] != "code":
         return None
     try:
@@ -51,7 +80,18 @@ def only_statement(cell: dict) -> ast.stmt | None:
 
 
 def stub_name(stmt: ast.stmt | None) -> str | None:
-    """``name`` if ``stmt`` is ``def name(...): ... raise NotImplementedError``."""
+    """``name`` if ``stmt`` is ``def name(...): ... raise NotImplementedError``.
+
+    Parameters
+    ----------
+    stmt : ast.stmt or None
+        A statement (:func:`only_statement` of a cell), or None.
+
+    Returns
+    -------
+    str or None
+        The stub's function name (an exercise the student fills in), else None.
+    """
     if isinstance(stmt, ast.FunctionDef) and isinstance(stmt.body[-1], ast.Raise):
         raised = stmt.body[-1].exc
         if isinstance(raised, ast.Call):
@@ -69,7 +109,19 @@ class Call(NamedTuple):
 
 
 def called(stmt: ast.stmt | None) -> Call | None:
-    """``(function name, arguments)`` if ``stmt`` is a bare call ``f(...)``."""
+    """``(function name, arguments)`` if ``stmt`` is a bare call ``f(...)``.
+
+    Parameters
+    ----------
+    stmt : ast.stmt or None
+        A statement (:func:`only_statement` of a cell), or None.
+
+    Returns
+    -------
+    Call or None
+        The call's ``name`` and positional ``args``; None for anything else (including
+        ``obj.f(...)`` and assignments).
+    """
     if (
         isinstance(stmt, ast.Expr)
         and isinstance(stmt.value, ast.Call)

@@ -57,8 +57,21 @@ def _is_demo_call(node: ast.AST | None) -> bool:
 
 
 def is_demo_cell(cell: dict) -> bool:
-    """True for a lesson's interactive demo: one call ``demos.<name>(...)``, or ``d = demos.<name>(...)``
-    followed by ``d`` (the form a lesson uses when a later cell reads the demo's state)."""
+    """True for a lesson's interactive demo cell.
+
+    The cell is one call ``demos.<name>(...)``, or ``d = demos.<name>(...)`` followed by ``d``
+    (the form a lesson uses when a later cell reads the demo's state).
+
+    Parameters
+    ----------
+    cell : dict
+        A notebook cell as nbformat's JSON holds it.
+
+    Returns
+    -------
+    bool
+        Whether the cell shows a demo.
+    """
     stmt = only_statement(cell)
     if stmt is not None:
         return isinstance(stmt, ast.Expr) and _is_demo_call(stmt.value)
@@ -103,7 +116,22 @@ def _code(text: str) -> dict:
 
 
 def presentation_notebook(notebook: dict) -> dict:
-    """The lecture version of a lesson notebook: title, then each demo under its section heading."""
+    """The lecture version of a lesson notebook: title, then each demo under its section heading.
+
+    After the title, a cell runs the accessibility script; every other code cell but the
+    exercises runs silently (``%%capture``, its new figures closed); markdown other than the
+    demos' headings is dropped.
+
+    Parameters
+    ----------
+    notebook : dict
+        The lesson notebook's JSON (not modified).
+
+    Returns
+    -------
+    dict
+        A new notebook, for Voila.
+    """
     nb = copy.deepcopy(notebook)
     title = "".join(nb["cells"][0]["source"]).strip().splitlines()[0]
     cells, heading, shown = [_markdown(title), _code(ACCESSIBILITY_SCRIPT)], None, None
@@ -124,13 +152,33 @@ def presentation_notebook(notebook: dict) -> dict:
 
 
 def voila_environment() -> dict[str, str]:
-    """This process's environment with :data:`VOILA_DATA` first on JUPYTER_PATH (where Voila finds templates)."""
+    """This process's environment with :data:`VOILA_DATA` first on JUPYTER_PATH (where Voila finds templates).
+
+    Returns
+    -------
+    dict of str to str
+        A copy of ``os.environ`` with JUPYTER_PATH set.
+    """
     paths = [str(VOILA_DATA), *filter(None, os.environ.get("JUPYTER_PATH", "").split(os.pathsep))]
     return dict(os.environ, JUPYTER_PATH=os.pathsep.join(paths))
 
 
 def serve(lesson: str, port: int = 8866, open_browser: bool = True) -> int:
     """Write the presentation of ``lesson`` to a temporary folder and serve it with Voila until Ctrl-C.
+
+    Parameters
+    ----------
+    lesson : str
+        The lesson's number or name (:func:`camlab.classroom.lessons.find_lesson`).
+    port : int
+        The port on 127.0.0.1.
+    open_browser : bool
+        Let Voila open a browser.
+
+    Returns
+    -------
+    int
+        Voila's exit status; 0 after Ctrl-C.
 
     Raises
     ------

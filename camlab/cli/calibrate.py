@@ -14,6 +14,13 @@ __all__ = []
 
 
 def add_calibrate(p: argparse.ArgumentParser) -> None:
+    """The arguments of ``camlab calibrate``: the photos, ``--pattern``, ``--square``, ``--out``, ``--report``, ``--no-report``, ``--fix-k3`` and ``--skew``.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The subcommand's parser; its arguments are added in place.
+    """
     p.add_argument(
         "images", nargs="+", help='image files or a quoted glob pattern, e.g. "photos/*.jpg"'
     )
@@ -45,7 +52,21 @@ def add_calibrate(p: argparse.ArgumentParser) -> None:
 
 
 def progress(i: int, n: int, name: str, failure: str | None) -> None:
-    """One line per image, or a bar redrawn in place on a terminal."""
+    """One line per image, or a bar redrawn in place on a terminal.
+
+    The ``progress`` callback of :func:`camlab.calibration.calibrate_from_images`.
+
+    Parameters
+    ----------
+    i : int
+        How many images are done (1 to ``n``).
+    n : int
+        How many images there are.
+    name : str
+        The image just done.
+    failure : str or None
+        Why its board was not found, or None if it was.
+    """
     verdict = "board found" if failure is None else f"skipped: {failure.split(':')[0]}"
     if sys.stdout.isatty():
         bar = "#" * round(24 * i / n)
@@ -55,6 +76,26 @@ def progress(i: int, n: int, name: str, failure: str | None) -> None:
 
 
 def run_calibrate(args: argparse.Namespace) -> int:
+    """Calibrate a camera from chessboard photos: print the result and the coach's advice, write the file and the report.
+
+    The outputs are checked before any work, the report figure is written before the result file
+    (so a failed figure leaves no result), and both are written atomically.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed arguments of ``camlab calibrate`` (:func:`add_calibrate`).
+
+    Returns
+    -------
+    int
+        The exit status: 0 (photos without a detected board are skipped, and the report says so).
+
+    Raises
+    ------
+    CamlabInputError
+        On an error the user can fix; :func:`camlab.cli.main` prints it and exits with status 2.
+    """
     from .._files import check_not_an_input, check_output_path
     from ..calibration import calibrate_from_images, coach, parse_pattern, save_calibration
     from ..calibration.io import SUFFIXES
@@ -109,6 +150,13 @@ def run_calibrate(args: argparse.Namespace) -> int:
 
 
 def add_undistort(p: argparse.ArgumentParser) -> None:
+    """The arguments of ``camlab undistort``: the photos, ``--calibration``, ``--out-dir`` and ``--alpha``.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The subcommand's parser; its arguments are added in place.
+    """
     p.add_argument("images", nargs="+", help='photos or a quoted glob pattern, e.g. "photos/*.jpg"')
     p.add_argument(
         "--calibration",
@@ -129,7 +177,23 @@ def add_undistort(p: argparse.ArgumentParser) -> None:
 
 
 def run_undistort(args: argparse.Namespace) -> int:
-    """Undistort each photo with the calibration; exit 1 if some could not be read or written."""
+    """Undistort each photo with the calibration; exit 1 if some could not be read or written.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed arguments of ``camlab undistort`` (:func:`add_undistort`).
+
+    Returns
+    -------
+    int
+        The exit status: 0 when every photo was written, 1 when some were skipped (unreadable, or of another size than the calibration's).
+
+    Raises
+    ------
+    CamlabInputError
+        On an error the user can fix; :func:`camlab.cli.main` prints it and exits with status 2.
+    """
     from pathlib import Path
 
     import cv2

@@ -56,6 +56,16 @@ COMMANDS: dict[
 
 
 def build_parser() -> argparse.ArgumentParser:
+    """The ``camlab`` argument parser: ``--version`` and one subcommand per entry of :data:`COMMANDS`.
+
+    Each subcommand's parser gets its arguments from the entry's ``add_*`` function and its
+    ``run_*`` function as the ``run`` default.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        The parser (``prog="camlab"``).
+    """
     from .. import __version__
 
     parser = argparse.ArgumentParser(prog="camlab", description="camlab: camera geometry tools")
@@ -69,7 +79,21 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Entry point of the ``camlab`` console script; returns the exit status."""
+    """Entry point of the ``camlab`` console script; returns the exit status.
+
+    Errors a user can fix (:class:`~camlab.CamlabInputError`, :class:`~camlab.ConvergenceError`)
+    print one line on stderr and give status 2; no command prints the help and gives 2.
+
+    Parameters
+    ----------
+    argv : list of str or None
+        The arguments after ``camlab``; None reads ``sys.argv``.
+
+    Returns
+    -------
+    int
+        0 on success, 1 when a command left some input out, 2 on an error the user can fix.
+    """
     parser = build_parser()
     args = parser.parse_args(argv)
     if getattr(args, "run", None) is None:

@@ -10,6 +10,23 @@ __all__ = []
 
 
 def expand(patterns: list[str]) -> list[str]:
+    """The files a command line names: glob patterns expanded (sorted), other names kept as given.
+
+    Parameters
+    ----------
+    patterns : list of str
+        File names and quoted glob patterns (``*``, ``?``, ``[``).
+
+    Returns
+    -------
+    list of str
+        The paths, in the order given, each pattern's matches sorted.
+
+    Raises
+    ------
+    CamlabInputError
+        If a pattern matches no file.
+    """
     import glob
 
     files: list[str] = []
@@ -25,7 +42,22 @@ def expand(patterns: list[str]) -> list[str]:
 
 
 def read_or_skip(path: str, mode: str, prefix: str = ""):
-    """The photo (upright, see :func:`camlab._files.read_photo`), or None after a line saying why it is skipped."""
+    """The photo (upright, see :func:`camlab._files.read_photo`), or None after a line saying why it is skipped.
+
+    Parameters
+    ----------
+    path : str
+        The photo's file.
+    mode : str
+        ``"rgb"``, ``"grey"`` or ``"stored"`` (:func:`camlab._files.read_photo`).
+    prefix : str
+        Text printed before the path on the skip line (an indent, a pair's side).
+
+    Returns
+    -------
+    ndarray or None
+        The image, or None when the file is missing, damaged or not an image.
+    """
     from .._files import PhotoReadError, read_photo
 
     try:
@@ -40,6 +72,21 @@ def within_work_size(image, max_megapixels: float, name: str):
 
     Phone photos of 40 megapixels would take minutes and gigabytes to register and blend;
     the geometry needs far fewer pixels.
+
+    Parameters
+    ----------
+    image : (H, W) or (H, W, 3) ndarray
+        The photo.
+    max_megapixels : float
+        The largest size worked on, megapixels.
+    name : str
+        The photo's name in the printed line.
+
+    Returns
+    -------
+    ndarray
+        ``image`` itself if small enough, else a copy resized with ``cv2.INTER_AREA`` (at least
+        16 px a side).
     """
     import cv2
 
@@ -60,7 +107,23 @@ IMAGE_SUFFIXES = (".jpg", ".jpeg", ".png", ".tif", ".tiff", ".bmp")
 
 
 def photo_paths(args_images: list[str]) -> list[str]:
-    """Image files from folders (their images, sorted), files and quoted glob patterns."""
+    """Image files from folders (their images, sorted), files and quoted glob patterns.
+
+    Parameters
+    ----------
+    args_images : list of str
+        The command's image arguments: folders, files or glob patterns.
+
+    Returns
+    -------
+    list of str
+        The image paths; a folder contributes its :data:`IMAGE_SUFFIXES` files, sorted.
+
+    Raises
+    ------
+    CamlabInputError
+        If a folder holds no image or a pattern matches no file.
+    """
     from pathlib import Path
 
     files: list[str] = []
@@ -80,6 +143,22 @@ def photo_paths(args_images: list[str]) -> list[str]:
 
 
 def write_image(path, image_rgb_or_gray, name: str) -> None:
+    """Write an RGB or grey image to ``path`` atomically (:func:`camlab._files.atomic_output`).
+
+    Parameters
+    ----------
+    path : str or path-like
+        The output file; its suffix picks the format.
+    image_rgb_or_gray : (H, W) or (H, W, 3) ndarray
+        The image, RGB (converted to OpenCV's BGR to write) or grey.
+    name : str
+        The argument's name in error messages (e.g. ``"--out"``).
+
+    Raises
+    ------
+    CamlabInputError
+        If OpenCV cannot write the file, or the file fails its check.
+    """
     import cv2
 
     from .._files import atomic_output
@@ -95,6 +174,18 @@ def write_image(path, image_rgb_or_gray, name: str) -> None:
 
 
 def check_positive_megapixels(value: float) -> None:
+    """Refuse a ``--max-megapixels`` of 0.05 or less (or NaN).
+
+    Parameters
+    ----------
+    value : float
+        The option's value, megapixels.
+
+    Raises
+    ------
+    CamlabInputError
+        If ``value`` is not above 0.05.
+    """
     if not value > 0.05:
         raise CamlabInputError(
             f"--max-megapixels: expected a size above 0.05 (megapixels), got {value}"
@@ -102,6 +193,25 @@ def check_positive_megapixels(value: float) -> None:
 
 
 def read_photo_or_fail(path: str, name: str):
+    """The photo at ``path`` as RGB, upright; a file that cannot be read is a user's error.
+
+    Parameters
+    ----------
+    path : str
+        The photo's file.
+    name : str
+        The argument's name in the error message (e.g. ``"left"``).
+
+    Returns
+    -------
+    (H, W, 3) uint8 ndarray
+        The photo (:func:`camlab._files.read_photo`).
+
+    Raises
+    ------
+    CamlabInputError
+        If the file is missing, damaged or not an image.
+    """
     from .._files import PhotoReadError, read_photo
 
     try:

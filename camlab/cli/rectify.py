@@ -13,6 +13,13 @@ __all__ = []
 
 
 def add_rectify(p: argparse.ArgumentParser) -> None:
+    """The arguments of ``camlab rectify``: the two photos, ``--out-dir``, ``--threshold``, ``--calibration`` and ``--max-megapixels``.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The subcommand's parser; its arguments are added in place.
+    """
     p.add_argument("left", help="left photo")
     p.add_argument("right", help="right photo (same size)")
     p.add_argument(
@@ -38,7 +45,33 @@ def add_rectify(p: argparse.ArgumentParser) -> None:
 
 
 def run_rectify(args: argparse.Namespace) -> int:
-    """Rectify a stereo pair from its matches (SIFT, F by RANSAC, Hartley), or with the camera's calibration."""
+    """Rectify a stereo pair from its matches (SIFT, F by RANSAC, Hartley), or with the camera's calibration.
+
+    Writes ``left_rectified.png``, ``right_rectified.png`` and ``vertical_disparity.png`` (the
+    histograms of |v1 - v2| of the inliers before and after) into ``--out-dir``. Without a
+    calibration, matches that one homography explains (a flat scene) are refused: F is not
+    determined by them.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed arguments of ``camlab rectify`` (:func:`add_rectify`).
+
+    Returns
+    -------
+    int
+        The exit status: 0.
+
+    Raises
+    ------
+    CamlabInputError
+        On an error the user can fix; :func:`camlab.cli.main` prints it and exits with status 2.
+
+    References
+    ----------
+    .. [1] R. Hartley, 1999, "Theory and practice of projective rectification", International
+       Journal of Computer Vision 35(2).
+    """
 
     import numpy as np
 

@@ -17,6 +17,13 @@ __all__ = []
 
 
 def add_stitch(p: argparse.ArgumentParser) -> None:
+    """The arguments of ``camlab stitch``: the photos, ``--out``, ``--projection``, ``--crop`` and ``--max-megapixels``.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The subcommand's parser; its arguments are added in place.
+    """
     p.add_argument(
         "images", nargs="+", help="a folder of photos, photo files, or a quoted glob pattern"
     )
@@ -39,7 +46,23 @@ def add_stitch(p: argparse.ArgumentParser) -> None:
 
 
 def run_stitch(args: argparse.Namespace) -> int:
-    """Stitch the photos; exit 1 if some could not be read or overlap nothing (named)."""
+    """Stitch the photos; exit 1 if some could not be read or overlap nothing (named).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed arguments of ``camlab stitch`` (:func:`add_stitch`).
+
+    Returns
+    -------
+    int
+        The exit status: 0 when every photo is in the panorama, 1 when some were unreadable or overlap no other (named on the last line).
+
+    Raises
+    ------
+    CamlabInputError
+        On an error the user can fix; :func:`camlab.cli.main` prints it and exits with status 2.
+    """
     import warnings
     from pathlib import Path
 

@@ -25,7 +25,17 @@ __all__ = [
 
 
 def image_frame(ax, image_size: tuple[int, int], title: str = "") -> None:
-    """Axes showing the image area: equal aspect, v down, a thin frame."""
+    """Axes showing the image area: equal aspect, v down, a thin frame.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to set up (changed in place).
+    image_size : (width, height)
+        Image size in pixels; the limits are the image's outer pixel edges.
+    title : str
+        The axes' title (none if empty).
+    """
     w, h = image_size
     ax.set_xlim(-0.5, w - 0.5)
     ax.set_ylim(h - 0.5, -0.5)
@@ -44,7 +54,24 @@ def image_frame(ax, image_size: tuple[int, int], title: str = "") -> None:
 
 
 def plot_per_view_errors(ax, result: CalibrationResult, highlight_ratio: float = 2.0):
-    """Bar chart of each view's rms (px) with the overall rms; views >= ``highlight_ratio`` x median in red."""
+    """Bar chart of each view's rms (px) with the overall rms; outlying views in red.
+
+    A view is red when its rms is at least ``highlight_ratio`` times the median and over 0.1 px.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw in.
+    result : CalibrationResult
+        A calibration (:func:`camlab.calibration.calibrate_camera`).
+    highlight_ratio : float
+        How many times the median rms makes a view stand out.
+
+    Returns
+    -------
+    matplotlib.container.BarContainer
+        One bar per view, height its rms reprojection error (px).
+    """
     err = result.per_view_rms
     med = np.median(err)
     colors = [
@@ -64,6 +91,20 @@ def plot_residual_field(ax, result: CalibrationResult, scale: float | None = Non
 
     Random arrows mean noise; a pattern (swirls, arrows pointing out at the edges) means
     the model is missing something (more distortion terms, a bad view).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw in.
+    result : CalibrationResult
+        A calibration (:func:`camlab.calibration.calibrate_camera`).
+    scale : float or None
+        Magnification of the arrows; None makes the 90th percentile residual 25 px long.
+
+    Returns
+    -------
+    matplotlib.quiver.Quiver
+        The arrows, coloured by residual length (px).
     """
     pts = np.concatenate(result.image_points)
     res = np.concatenate(result.residuals)
@@ -87,7 +128,22 @@ def plot_residual_field(ax, result: CalibrationResult, scale: float | None = Non
 
 
 def plot_coverage(ax, result: CalibrationResult, report: CoachReport | None = None):
-    """Where the detected corners fall in the image, over the coach's coverage grid (empty cells red)."""
+    """Where the detected corners fall in the image, over the coach's coverage grid (empty cells red).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw in.
+    result : CalibrationResult
+        A calibration (:func:`camlab.calibration.calibrate_camera`).
+    report : CoachReport or None
+        The coach's report on ``result``; None computes it (:func:`camlab.calibration.coach`).
+
+    Returns
+    -------
+    matplotlib.collections.PathCollection
+        The corners, coloured by view.
+    """
     report = coach(result) if report is None else report
     w, h = result.image_size
     rows, cols = report.coverage_grid.shape
@@ -111,7 +167,22 @@ def plot_coverage(ax, result: CalibrationResult, report: CoachReport | None = No
 
 
 def plot_uncertainty_map(ax, result: CalibrationResult, step: int = 16):
-    """1-sigma projection uncertainty (px) from the intrinsics' covariance, across the image."""
+    """1-sigma projection uncertainty (px) from the intrinsics' covariance, across the image.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw in.
+    result : CalibrationResult
+        A calibration (:func:`camlab.calibration.calibrate_camera`).
+    step : int
+        Spacing of the sample grid, pixels (:func:`camlab.calibration.projection_uncertainty`).
+
+    Returns
+    -------
+    matplotlib.image.AxesImage
+        The uncertainty map (px), with a colour bar added to the figure.
+    """
     us, vs, sig = projection_uncertainty(result, step)
     image_frame(ax, result.image_size, "Projection uncertainty (px, 1σ)")
     w, h = result.image_size
@@ -123,7 +194,20 @@ def plot_uncertainty_map(ax, result: CalibrationResult, step: int = 16):
 
 
 def plot_cost_history(ax, result: CalibrationResult):
-    """rms (px) after each Levenberg-Marquardt iteration, log scale."""
+    """rms (px) after each Levenberg-Marquardt iteration, log scale.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw in.
+    result : CalibrationResult
+        A calibration (:func:`camlab.calibration.calibrate_camera`).
+
+    Returns
+    -------
+    matplotlib.lines.Line2D
+        The rms per iteration (floored at 1e-16 for the log scale).
+    """
     (line,) = ax.semilogy(
         np.arange(len(result.rms_history)), np.maximum(result.rms_history, 1e-16), "o-", ms=3
     )
@@ -135,7 +219,22 @@ def plot_cost_history(ax, result: CalibrationResult):
 def report_figure(
     result: CalibrationResult, report: CoachReport | None = None, figsize=(13, 8.5)
 ) -> Any:
-    """One page: per-view errors, residual field, coverage, uncertainty map, LM cost and the advice."""
+    """One page: per-view errors, residual field, coverage, uncertainty map, LM cost and the advice.
+
+    Parameters
+    ----------
+    result : CalibrationResult
+        A calibration (:func:`camlab.calibration.calibrate_camera`).
+    report : CoachReport or None
+        The coach's report on ``result``; None computes it (:func:`camlab.calibration.coach`).
+    figsize : (width, height)
+        Figure size in inches.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A 2 x 3 grid of panels (not attached to pyplot; save it with ``savefig``).
+    """
     from matplotlib.figure import Figure
 
     report = coach(result) if report is None else report

@@ -25,6 +25,22 @@ def draw_pixel_grid(ax: Axes, size: tuple[int, int], points: np.ndarray, marked:
     labelled ``X[k]``; the pixel under ``points[marked]`` is outlined and labelled with how numpy
     reads it, ``img[v, u]``. The u and v labels take the colours of the camera's x and y, which
     they run along.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw in.
+    size : (width, height)
+        The image's size in pixels (a few pixels: every centre is ticked).
+    points : (N, 2) ndarray
+        Points (u, v), pixels, one per row.
+    marked : int
+        Index of the point whose pixel is outlined and labelled ``img[v, u]``.
+
+    Returns
+    -------
+    matplotlib.image.AxesImage
+        The light checkerboard of pixels.
     """
     width, height = size
     u, v = np.meshgrid(np.arange(width), np.arange(height))
@@ -83,10 +99,19 @@ def draw_pixel_grid(ax: Axes, size: tuple[int, int], points: np.ndarray, marked:
 
 
 def draw_point_rows(ax: Axes, points: np.ndarray, notes: Sequence[str]) -> None:
-    """The array ``points`` as numpy holds it: one row per point, the columns u and v, each row with a note.
+    """The array ``points`` as numpy holds it: one row per point, the columns u and v, each with a note.
 
     The axes box has the 4:3 shape of :func:`draw_pixel_grid`'s image and :func:`draw_camera_frame`,
     and all three sit at the top of their slots, so the panels' titles line up in one row.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to write in (its axis is turned off).
+    points : (N, 2) ndarray
+        Points (u, v), pixels, one per row.
+    notes : sequence of str
+        One note per point, printed at the end of its row (as many as ``points`` has rows).
     """
     points = np.asarray(points, dtype=float)
     ax.set_axis_off()
@@ -116,13 +141,20 @@ def draw_point_rows(ax: Axes, points: np.ndarray, notes: Sequence[str]) -> None:
 
 
 def draw_camera_frame(ax: Axes, size: tuple[int, int] = (4, 3)) -> None:
-    """The camera frame seen from behind the camera, looking where it looks: x right, y down, z into the page.
+    """The camera frame seen from behind the camera: x right, y down, z into the page.
 
     The image plane (in front of the camera, where the virtual image of lesson 01 forms) is the
     rectangle around the principal axis, divided into the ``size = (W, H)`` pixels of
     :func:`draw_pixel_grid`'s image (faint lines). Its u runs along x and v along y
     from (u, v) = (0, 0), the centre of the top-left pixel, half a pixel in from the plane's corner;
     the image's centre ((W - 1)/2, (H - 1)/2) is on the principal axis.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw in (its axis is turned off).
+    size : (width, height)
+        The pixels dividing the image plane.
     """
     width, height = size
     ax.set_xlim(-1.45, 2.55)
@@ -208,6 +240,17 @@ def draw_transposed_read(
     parts of the photo alike. The orange circle is pixel ``(u, v)``; the purple square is what
     ``square[u', v]`` reads with ``u' = u - crop_left``: row ``u'``, column ``v`` of the crop, which is
     pixel ``(crop_left + v, u')`` of the photo. ``imshow`` puts pixel (u, v) at x = u, y = v.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw in.
+    photo : (H, W) ndarray
+        A grey uint8 photo, wider than tall (lesson 00 uses ``left01``).
+    pixel : (u, v)
+        The pixel to read, column and row; it must lie in the crop.
+    crop_left : int
+        First column of the crop, pixels.
     """
     H, W = photo.shape[:2]
     u, v = pixel

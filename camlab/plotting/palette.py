@@ -58,6 +58,18 @@ def halo(linewidth: float = 0.0, colour: str = "white") -> list:
 
     Pass as ``path_effects=halo(lw)`` to a line, marker or text drawn over an image: the
     outline, 1 point each side, is the background it is seen against.
+
+    Parameters
+    ----------
+    linewidth : float
+        Width of the line to outline, in points; 0 for a text or a marker.
+    colour : str
+        The outline's colour (a neutral such as ``"white"``, or a palette colour).
+
+    Returns
+    -------
+    list of matplotlib.patheffects.AbstractPathEffect
+        One ``withStroke`` effect, ``linewidth + 2`` points wide, to pass as ``path_effects``.
     """
     from matplotlib import patheffects
 

@@ -12,13 +12,38 @@ from ..projective import clip_line
 
 
 def set_line(artist: Line2D, line: np.ndarray, ax: Axes) -> None:
-    """Move ``artist`` to show the infinite ``line`` (a, b, c) clipped to ``ax``'s limits."""
+    """Move ``artist`` to show the infinite ``line`` (a, b, c) clipped to ``ax``'s limits.
+
+    Parameters
+    ----------
+    artist : matplotlib.lines.Line2D
+        The line artist to move (its data are replaced).
+    line : (3,) ndarray
+        The line ``a x + b y + c = 0``, homogeneous.
+    ax : matplotlib.axes.Axes
+        The axes whose current limits clip the line.
+    """
     ends = clip_line(line, ax.get_xlim(), sorted(ax.get_ylim()))
     artist.set_data(ends[:, 0], ends[:, 1])
 
 
 def plane_axes(ax: Axes, lim: float, title: str = "", xlabel: str = "x", ylabel: str = "y") -> Axes:
-    """A square, equal-aspect axes centred on the origin with light axis lines."""
+    """A square, equal-aspect axes centred on the origin with light axis lines.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to set up (changed in place).
+    lim : float
+        Half-width of the view: both axes span ``[-lim, lim]`` (data units).
+    title, xlabel, ylabel : str
+        The axes' title (none if empty) and axis labels.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax`` itself, for chaining.
+    """
     ax.set_xlim(-lim, lim)
     ax.set_ylim(-lim, lim)
     ax.set_aspect("equal")
@@ -33,8 +58,24 @@ def plane_axes(ax: Axes, lim: float, title: str = "", xlabel: str = "x", ylabel:
 
 
 def image_axes(ax: Axes, size: tuple[int, int], title: str = "") -> Axes:
-    """Axes in pixel coordinates for an image of ``size`` (width, height): u right, v down,
-    origin at the top-left pixel centre."""
+    """Axes in pixel coordinates for an image of ``size``: u right, v down, origin at pixel (0, 0).
+
+    The origin is the centre of the top-left pixel.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to set up (changed in place).
+    size : (width, height)
+        Image size in pixels; the limits are ``[-0.5, width - 0.5]`` and ``[height - 0.5, -0.5]``.
+    title : str
+        The axes' title (none if empty).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax`` itself, for chaining.
+    """
     width, height = size
     ax.set_xlim(-0.5, width - 0.5)
     ax.set_ylim(height - 0.5, -0.5)
@@ -70,6 +111,22 @@ def arrow_to_infinity(
     of the axes points from ``anchor`` (default: the axes' centre) towards the point (for
     an ideal point, along its direction (x, y)). Give an anchor on a line through the point
     (e.g. a vanishing point's horizon) and the arrow sits on that line.
+
+    Parameters
+    ----------
+    point_h : (3,) ndarray
+        The point, homogeneous ``(x, y, w)``; ``w = 0`` for an ideal point.
+    ax : matplotlib.axes.Axes
+        The axes whose current limits decide "inside"; the arrow's tip stays within 90 % of
+        its half-extent from the centre.
+    anchor : (2,) ndarray or None
+        Where the arrow starts from; None for the axes' centre.
+
+    Returns
+    -------
+    ArrowPlacement
+        ``position`` (where to draw) and ``direction`` (unit vector; zero when the point is
+        drawn where it is).
     """
     x, y, w = np.asarray(point_h, dtype=float)
     (x0, x1), (y0, y1) = ax.get_xlim(), sorted(ax.get_ylim())
@@ -101,6 +158,18 @@ def arrow_marker(direction: np.ndarray, ax: Axes):
 
     Screen and data directions differ when the y axis is inverted (image axes, v down);
     an equilateral triangle would not do: it seems to point at whichever vertex is nearest.
+
+    Parameters
+    ----------
+    direction : (2,) ndarray
+        The direction to point along, in data units (need not be unit length).
+    ax : matplotlib.axes.Axes
+        The axes the marker is drawn in (only whether its y axis is inverted matters).
+
+    Returns
+    -------
+    matplotlib.markers.MarkerStyle
+        An arrowhead path rotated to point along ``direction`` on screen.
     """
     from matplotlib.markers import MarkerStyle
     from matplotlib.path import Path

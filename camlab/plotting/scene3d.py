@@ -1,6 +1,8 @@
 """3-D views of cameras and scenes: frustums, camera and world axes, image planes.
 
-Used by lessons 04-05 and later by calibration and stereo. Everything here draws once
+Used by lessons 04-05 and later by calibration and stereo. The cameras and scene views are
+here; the 3-D axes (:mod:`.view3d`) and the wireframe primitives (:mod:`.wireframes`) are
+re-exported, so ``scene3d.<name>`` reaches them all. Everything here draws once
 and returns handles whose ``update`` methods MOVE the existing artists
 (``Line3D.set_data_3d``, ``Poly3DCollection.set_verts``, ``Text3D.set_position_3d``),
 so a slider callback stays within the latency budget.
@@ -30,14 +32,21 @@ Typical use::
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 from numpy.typing import ArrayLike
 
 from ..camera import Camera, project_segments
 from . import palette
 from .view3d import align_away, axes3d, fit_view, refresh_projection, set_equal_aspect
+from .wireframes import (
+    clip_segments,
+    draw_points,
+    draw_segments,
+    draw_world_axes,
+    image_axes,
+    polyline_data,
+    update_segments,
+)
 
 AXIS_COLOURS = (
     palette.AXIS_COLOURS
@@ -62,126 +71,6 @@ __all__ = [
 ]
 
 
-def polyline_data(segments: ArrayLike) -> np.ndarray:
-    """(M, 2, d) segments as one (3M, d) polyline with NaN rows between segments.
-
-    One Line2D/Line3D with NaN breaks draws far faster than M separate lines.
-    """
-    s = np.asarray(segments, dtype=float)
-    out = np.full((len(s), 3, s.shape[-1]), np.nan)
-    out[:, :2] = s
-    return out.reshape(-1, s.shape[-1])
-
-
-def draw_segments(ax, segments: ArrayLike, **kw: Any):
-    """Draw (M, 2, 3) world segments as one Line3D; move them later with :func:`update_segments`."""
-    d = polyline_data(segments)
-    kw.setdefault("color", "0.25")
-    kw.setdefault("lw", 1.2)
-    (line,) = ax.plot(d[:, 0], d[:, 1], d[:, 2], **kw)
-    return line
-
-
-def update_segments(line, segments: ArrayLike) -> None:
-    """Move a line made by :func:`draw_segments` (3-D) or a 2-D ``ax.plot`` polyline to new segments."""
-    d = polyline_data(segments)
-    if d.shape[1] == 3:
-        line.set_data_3d(d[:, 0], d[:, 1], d[:, 2])
-    else:
-        line.set_data(d[:, 0], d[:, 1])
-
-
-def draw_points(ax, points: ArrayLike, **kw: Any):
-    """World points (N, 3) as markers on one Line3D (move with ``set_data_3d``)."""
-    p = np.reshape(np.asarray(points, dtype=float), (-1, 3))
-    kw.setdefault("marker", "o")
-    kw.setdefault("ms", 3)
-    kw.setdefault("ls", "none")
-    (line,) = ax.plot(p[:, 0], p[:, 1], p[:, 2], **kw)
-    return line
-
-
-def draw_world_axes(
-    ax, length: float = 1.0, origin: ArrayLike = (0.0, 0.0, 0.0), labels=("X", "Y", "Z")
-) -> list:
-    """World axes as three coloured arrows-as-lines from ``origin``, labelled X, Y, Z."""
-    o = np.asarray(origin, dtype=float)
-    out = []
-    for i, (c, name) in enumerate(zip(palette.AXIS_COLOURS, labels, strict=True)):
-        e = o.copy()
-        e[i] += length
-        (ln,) = ax.plot(*np.c_[o, e], color=c, lw=2.0)
-        out.append(ln)
-        out.append(
-            ax.text(
-                *(o + (e - o) * 1.12),
-                name,
-                color=c,
-                fontsize=9,
-                fontweight="bold",
-                ha="center",
-                va="center",
-                path_effects=palette.halo(),
-            )
-        )  # readable over the scene
-    return out
-
-
-def image_axes(ax, image_size: tuple[int, int], title: str = "", labels: bool = True) -> None:
-    """Set up a 2-D axes as an image: u right, v down, pixel centres at integers, equal aspect.
-
-    ``labels=False`` leaves out the axis labels (each text costs about 1 ms per redraw in
-    a slider demo); the title then says "u right, v down".
-    """
-    w, h = image_size
-    ax.set_xlim(-0.5, w - 0.5)
-    ax.set_ylim(h - 0.5, -0.5)
-    ax.set_aspect("equal")
-    if labels:
-        ax.set_xlabel("u (px)", fontsize=8)
-        ax.set_ylabel("v (px)", fontsize=8)
-    elif title:
-        title = f"{title} (u right, v down, px)"
-    # Ticks on the first and last pixel centres and the image's centre ((W - 1)/2, (H - 1)/2): 319.5, not
-    # 320, for 640 (docs/conventions.md); a tick at W would widen the limits past the last pixel's edge.
-    for axis, n in ((ax.xaxis, w), (ax.yaxis, h)):
-        ticks = [0, (n - 1) / 2, n - 1]
-        axis.set_ticks(ticks, [f"{t:g}" for t in ticks])
-    ax.set_xlim(-0.5, w - 0.5)
-    ax.set_ylim(h - 0.5, -0.5)
-    ax.tick_params(labelsize=7)
-    if title:
-        ax.set_title(title, fontsize=9)
-
-
-def clip_segments(segments: ArrayLike, image_size: tuple[int, int]) -> np.ndarray:
-    """Clip (M, 2, 2) pixel segments to the image rectangle (Liang-Barsky); outside ones become NaN.
-
-    The image covers u in [-0.5, W - 0.5] and v in [-0.5, H - 0.5] (pixel centres at integers).
-    A segment is the set p0 + s (p1 - p0), 0 <= s <= 1; each border cuts the allowed s to an
-    interval, and what survives all four is the visible part. Segments with a NaN end stay NaN.
-
-    >>> clip_segments([[[-10.0, 5.0], [20.0, 5.0]]], (10, 10)).tolist()
-    [[[-0.5, 5.0], [9.5, 5.0]]]
-    """
-    seg = np.asarray(segments, dtype=float).reshape(-1, 2, 2)
-    w, h = image_size
-    p0, d = seg[:, 0], seg[:, 1] - seg[:, 0]
-    lo, hi = np.zeros(len(seg)), np.ones(len(seg))
-    visible = np.isfinite(seg).all(axis=(1, 2))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        for axis, (low, high) in enumerate(((-0.5, w - 0.5), (-0.5, h - 0.5))):
-            for p, q in ((-d[:, axis], p0[:, axis] - low), (d[:, axis], high - p0[:, axis])):
-                r = q / p
-                lo = np.where(p < 0, np.maximum(lo, r), lo)
-                hi = np.where(p > 0, np.minimum(hi, r), hi)
-                visible &= ~((p == 0) & (q < 0))
-    visible &= lo <= hi
-    out = np.stack([p0 + lo[:, None] * d, p0 + hi[:, None] * d], axis=1)
-    out[~visible] = np.nan
-    return out
-
-
 def _plane_points(camera: Camera, uv: np.ndarray, size: float) -> np.ndarray:
     """Pixels (N, 2) lifted to the plane z_c = size in front of the camera, world coordinates.
 
@@ -197,7 +86,9 @@ class CameraArtist:
     Parameters
     ----------
     ax : Axes3D
+        The 3-D axes to draw in.
     camera : Camera
+        The camera to draw (its pose, intrinsics and image size).
     size : float
         Depth of the drawn image plane in metres (the frustum's length).
     color : str
@@ -217,6 +108,10 @@ class CameraArtist:
         Draw the camera's x (right), y (down), z (forward) axes, labelled.
     axis_length : float, optional
         Length of those axes in metres (default: 0.6 ``size``).
+    image_grid : (int, int)
+        Quads of the image mesh across and down.
+    line_color : str
+        Colour of ``image_lines``.
     """
 
     def __init__(
@@ -275,7 +170,14 @@ class CameraArtist:
         self.update(camera, image=image, image_lines=image_lines)
 
     def artists(self) -> list:
-        """Every artist this camera drew (register them with ``FigureView.animate``)."""
+        """Every artist this camera drew (register them with ``FigureView.animate``).
+
+        Returns
+        -------
+        list of matplotlib.artist.Artist
+            Frustum, image plane, camera axes and their labels, centre marker, image lines, and the
+            label and image mesh when drawn.
+        """
         out = [
             self.frustum,
             self.plane,
@@ -287,7 +189,18 @@ class CameraArtist:
         return out + [a for a in (self.label, self.mesh) if a is not None]
 
     def corners(self, camera: Camera | None = None) -> np.ndarray:
-        """The image plane's four corners (top-left, top-right, bottom-right, bottom-left), world (4, 3)."""
+        """The image plane's four corners (top-left, top-right, bottom-right, bottom-left), world (4, 3).
+
+        Parameters
+        ----------
+        camera : Camera or None
+            The camera; None for the one last drawn.
+
+        Returns
+        -------
+        (4, 3) ndarray
+            The corners' outer pixel edges lifted to depth ``size`` in front of the camera, metres.
+        """
         cam = camera or self.camera
         w, h = cam.image_size
         uv = np.array([[-0.5, -0.5], [w - 0.5, -0.5], [w - 0.5, h - 0.5], [-0.5, h - 0.5]])
@@ -299,7 +212,19 @@ class CameraArtist:
         return camera.centre + 1.2 * L * camera.R
 
     def extent_points(self, camera: Camera | None = None) -> np.ndarray:
-        """Points to include when setting equal-aspect limits: centre, plane corners and axis labels."""
+        """Points to include when setting equal-aspect limits: centre, plane corners and axis labels.
+
+        Parameters
+        ----------
+        camera : Camera or None
+            The camera; None for the one last drawn.
+
+        Returns
+        -------
+        (N, 3) ndarray
+            World points, metres: the centre, the four corners, the axis labels' positions (when the
+            axes are drawn) and the label's (when there is one).
+        """
         cam = camera or self.camera
         tips = [self._axis_tips(cam)] if self.axes_text else []
         if self.label is not None:
@@ -315,7 +240,18 @@ class CameraArtist:
     def update(
         self, camera: Camera, image: np.ndarray | None = None, image_lines: ArrayLike | None = None
     ) -> None:
-        """Move every artist to ``camera``; redraw the image content if given."""
+        """Move every artist to ``camera``; redraw the image content if given.
+
+        Parameters
+        ----------
+        camera : Camera
+            The camera's new intrinsics, pose and image size.
+        image : (H, W) or (H, W, 3) ndarray or None
+            A new image for the mesh (uint8 or float in [0, 1]); None keeps the old colours.
+        image_lines : (M, 2, 2) array_like or None
+            New pixel segments for the image plane (clipped to the image); None moves the old ones
+            with the camera.
+        """
         self.camera = camera
         C = camera.centre
         corners = self.corners(camera)
@@ -389,6 +325,37 @@ class SceneView:
     :meth:`fit` refits them to include more points (a second camera).
     ``thumbnail``: the segments drawn small on the image plane (default: all); pick the main
     object, as a whole scene is a tangle at that size.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure the two axes are added to (unless ``axes`` gives them).
+    camera : Camera
+        The camera photographing the scene.
+    segments : (M, 2, 3) array_like
+        The world wireframe, metres.
+    extent : (N, 3) array_like or None
+        More world points to keep in view (m).
+    axes : (Axes3D, Axes) or None
+        Existing 3-D and image axes to draw in; None adds them side by side.
+    plane_size : float
+        Depth of the camera's drawn image plane, metres (:class:`CameraArtist`'s ``size``).
+    world_axes : float
+        Length of the world axes, metres; 0 draws none.
+    image_title : str
+        The image panel's title.
+    elev, azim : float
+        The 3-D viewpoint, degrees.
+    axis_off : bool
+        Hide the 3-D panes, ticks and labels (the world axes carry the frame; 5x faster).
+    thumbnail : (K, 2, 3) array_like or None
+        The segments drawn small on the image plane; None: all of ``segments``.
+    camera_axes : bool
+        Draw the camera's x, y, z axes.
+    camera_axis_length : float or None
+        Their length, metres (None: 0.6 ``plane_size``).
+    width_ratios : (float, float)
+        Widths of the 3-D and image panels, when this adds them.
     """
 
     def __init__(
@@ -449,7 +416,15 @@ class SceneView:
         return pix if self.thumbnail is self.segments else project_segments(camera, self.thumbnail)
 
     def fit(self, camera: Camera | None = None, extra: ArrayLike | None = None) -> None:
-        """Refit the 3-D limits to the scene, the camera (default: the current one), ``extent`` and ``extra``."""
+        """Refit the 3-D limits to the scene, the camera (default: the current one), ``extent`` and ``extra``.
+
+        Parameters
+        ----------
+        camera : Camera or None
+            The camera to keep in view; None for the one last drawn.
+        extra : (N, 3) array_like or None
+            More world points to keep in view (m), e.g. a second camera's.
+        """
         pts = [self.segments.reshape(-1, 3), self.camera_artist.extent_points(camera)]
         pts += [
             np.reshape(np.asarray(p, dtype=float), (-1, 3))
@@ -469,14 +444,33 @@ class SceneView:
             refresh_projection(self.ax3d)
 
     def artists(self) -> list:
-        """The artists that move: everything in the 3-D axes (its projection follows the
-        camera) and the image's lines. Register them with ``FigureView.animate``."""
+        """The artists that move: everything in the 3-D axes and the image's lines.
+
+        The 3-D axes' projection follows the camera, so all of it moves. Register them with
+        ``FigureView.animate``.
+
+        Returns
+        -------
+        list of matplotlib.artist.Artist
+            The wireframe, world axes, the camera's artists and the image's polyline.
+        """
         return [self.world, *self.world_axes, *self.camera_artist.artists(), self.image_lines]
 
     def update(self, camera: Camera) -> np.ndarray:
         """Re-photograph the scene with ``camera``; returns the (M, 2, 2) pixel segments.
 
-        The 3-D limits follow the camera so it never leaves the view."""
+        The 3-D limits follow the camera so it never leaves the view.
+
+        Parameters
+        ----------
+        camera : Camera
+            The new camera.
+
+        Returns
+        -------
+        (M, 2, 2) ndarray
+            The scene's segments projected by ``camera``, pixels (:func:`camlab.camera.project_segments`).
+        """
         pix = project_segments(camera, self.segments)
         self.fit(camera)
         self.camera_artist.update(camera, image_lines=self._thumbnail_pixels(camera, pix))

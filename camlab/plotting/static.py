@@ -45,6 +45,23 @@ def alt_text(fig: Figure, text: str) -> Figure:
 
     Write what a reader should see, e.g. ``"Image height falls as 1/Z; a longer focal
     length scales every curve up"``, not "Figure 1".
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure (held weakly: the text goes when the figure does).
+    text : str
+        A sentence describing the figure; runs of whitespace become one space.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        ``fig`` itself, so ``alt_text(fig, "...")`` can end a cell.
+
+    Raises
+    ------
+    ValueError
+        If ``text`` is empty or only whitespace.
     """
     text = " ".join(str(text).split())
     if not text:
@@ -89,6 +106,16 @@ def describe_figure(fig: Figure) -> str:
 
     The built description lists each panel's title, axis labels and legend entries,
     which in camlab's figures name what is drawn.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure to describe (hidden axes and colour bars are left out).
+
+    Returns
+    -------
+    str
+        One sentence, e.g. ``"Figure with 2 panels: plot 'a', axes 'u (px)', 'v (px)'; image 'b'."``.
     """
     if fig in _ALT:
         return _ALT[fig]
@@ -118,8 +145,25 @@ def _format_value(control: Any) -> str:
 
 
 def demo_alt_text(description: str, controls: Mapping[str, Any], fig: Figure | None = None) -> str:
-    """Alt text for a demo: what it shows, its panels, the readout in its figure (its texts with gid
-    'readout', joined in order), and the settings it was drawn at."""
+    """Alt text for a demo: what it shows, its panels, its readout and the settings it was drawn at.
+
+    The readout is the demo figure's texts with gid ``'readout'``, joined in order.
+
+    Parameters
+    ----------
+    description : str
+        What the demo shows, a sentence (a final full stop is added if missing).
+    controls : mapping of str to ipywidgets.Widget
+        The demo's controls by name; each is described by its ``description`` (else its name)
+        and its value (a selection's label, "on"/"off" for a checkbox).
+    fig : matplotlib.figure.Figure or None
+        The demo's figure, for its suptitle, panel titles and readout; None leaves them out.
+
+    Returns
+    -------
+    str
+        The alt text.
+    """
     text = " ".join(description.split())
     if text and text[-1] not in ".!?":
         text += "."
@@ -154,7 +198,18 @@ def demo_alt_text(description: str, controls: Mapping[str, Any], fig: Figure | N
 
 
 def figure_png(fig: Figure) -> bytes:
-    """The figure rendered once to PNG at its own size and dpi."""
+    """The figure rendered once to PNG at its own size and dpi.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure to render.
+
+    Returns
+    -------
+    bytes
+        The PNG file's bytes.
+    """
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=fig.dpi)
     return buf.getvalue()
@@ -183,6 +238,23 @@ def static_bundle(
     ``png`` reuses an image already rendered (the png display mode keeps one); otherwise
     the figure is rendered once here. ipympl's own ``text/html`` copy of the picture
     (an ``<img>`` without alt text) is dropped, so static renderers use the PNG entry.
+
+    Parameters
+    ----------
+    data : mapping
+        The widget's own bundle (mime type -> content).
+    fig : matplotlib.figure.Figure
+        The figure the PNG shows.
+    alt : str
+        The alt text (:func:`describe_figure`, :func:`demo_alt_text`).
+    png : bytes or None
+        A PNG of ``fig`` already rendered; None renders one (:func:`figure_png`).
+
+    Returns
+    -------
+    DisplayBundle
+        ``data`` with ``image/png`` (base64) and ``text/plain`` (the alt text), and ``metadata``
+        with the PNG's alt text and its size in pixels (read from its header).
     """
     png = png if png is not None else figure_png(fig)
     out = {k: v for k, v in data.items() if k != "text/html"}
@@ -201,6 +273,16 @@ def fit_output_width(fig: Figure) -> Figure:
     An ipympl canvas keeps its figure's size in pixels, so a figure 10 inches wide at 100 dpi
     ran 40 px past the output area with the file browser open. Drawn at a lower dpi it keeps
     its layout and scales as a whole, as an inline PNG scales down to fit.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure; its dpi is changed in place when it is too wide, else left alone.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        ``fig`` itself.
     """
     widest = OUTPUT_WIDTH_PX - CANVAS_FRAME_PX
     dpi = getattr(
@@ -231,7 +313,12 @@ def _canvas_bundle(canvas: Any) -> tuple[dict, dict]:
 def install_canvas_formatter() -> bool:
     """In an IPython kernel, give every displayed ipympl canvas alt text (module docstring).
 
-    Returns whether a kernel was found. Safe to call more than once.
+    Safe to call more than once.
+
+    Returns
+    -------
+    bool
+        Whether a kernel was found (outside IPython nothing is installed).
     """
     try:
         from IPython import get_ipython

@@ -38,7 +38,23 @@ class SideBySide(NamedTuple):
 
 
 def side_by_side(image1: np.ndarray, image2: np.ndarray, gap: int = 8) -> SideBySide:
-    """Two images next to each other on one canvas (white gap); returns it and image 2's u offset."""
+    """Two images next to each other on one canvas (white gap); returns it and image 2's u offset.
+
+    Grey images are repeated to RGB; the canvas is as tall as the taller image, white below the
+    shorter one.
+
+    Parameters
+    ----------
+    image1, image2 : (H, W) or (H, W, 3) ndarray
+        The images, uint8 or float in [0, 1] (image 2 is cast to image 1's dtype).
+    gap : int
+        Width of the white gap, pixels.
+
+    Returns
+    -------
+    SideBySide
+        ``canvas`` (H, W1 + gap + W2, 3) and ``offset`` = W1 + gap, image 2's u offset (px).
+    """
     a, b = np.asarray(image1), np.asarray(image2)
     if a.ndim == 2:
         a = np.repeat(a[..., None], 3, axis=2)
@@ -53,7 +69,20 @@ def side_by_side(image1: np.ndarray, image2: np.ndarray, gap: int = 8) -> SideBy
 
 
 def match_segments(src: np.ndarray, dst: np.ndarray, offset: float) -> np.ndarray:
-    """(M, 2, 2) line segments from ``src`` (image 1) to ``dst`` shifted right by ``offset`` (image 2)."""
+    """(M, 2, 2) line segments from ``src`` (image 1) to ``dst`` shifted right by ``offset`` (image 2).
+
+    Parameters
+    ----------
+    src, dst : (M, 2) ndarray
+        Matched points (u, v) in image 1 and image 2, pixels.
+    offset : float
+        Image 2's u offset on the canvas (:func:`side_by_side`).
+
+    Returns
+    -------
+    (M, 2, 2) ndarray
+        Segment k runs from ``src[k]`` to ``dst[k] + (offset, 0)``, as ``LineCollection`` takes them.
+    """
     src = np.asarray(src, dtype=float).reshape(-1, 2)
     dst = np.asarray(dst, dtype=float).reshape(-1, 2) + [offset, 0.0]
     return np.stack([src, dst], axis=1)
@@ -62,7 +91,26 @@ def match_segments(src: np.ndarray, dst: np.ndarray, offset: float) -> np.ndarra
 def draw_keypoints(
     ax, points: np.ndarray, sizes: np.ndarray | None = None, color: str = palette.YELLOW, **kw
 ):
-    """Keypoints as circles of their detection size (scatter); returns the PathCollection."""
+    """Keypoints as circles of their detection size (scatter); returns the PathCollection.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The image axes to draw in.
+    points : (N, 2) ndarray
+        Keypoints (u, v), pixels.
+    sizes : (N,) ndarray or None
+        Detection diameters, pixels, clipped to [2, 60]; None draws every circle the same size.
+    color : str
+        The circles' colour (a palette colour).
+    **kw
+        Passed on to ``ax.scatter``.
+
+    Returns
+    -------
+    matplotlib.collections.PathCollection
+        The circles.
+    """
     pts = np.asarray(points, dtype=float).reshape(-1, 2)
     s = 12.0 if sizes is None else np.clip(np.asarray(sizes, dtype=float), 2, 60) ** 2 / 4
     return ax.scatter(
@@ -81,9 +129,25 @@ def draw_matches(
 ) -> dict:
     """Show two images side by side with a line per match (green where ``good``, red elsewhere).
 
-    Returns a dict with the ``image`` artist, the ``good`` and ``bad`` LineCollections and
-    the ``offset`` of image 2, so a demo can update the segments
-    (``art["good"].set_segments(match_segments(...))``).
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw in (ticks removed, limits set to the canvas).
+    image1, image2 : (H, W) or (H, W, 3) ndarray
+        The two images (:func:`side_by_side`).
+    src, dst : (M, 2) ndarray
+        Matched points (u, v) in image 1 and image 2, pixels.
+    good : (M,) bool ndarray or None
+        Which matches are good (inliers); None: all.
+    gap : int
+        Width of the white gap between the images, pixels.
+
+    Returns
+    -------
+    dict
+        ``"image"`` (the AxesImage), ``"good"`` and ``"bad"`` (LineCollections) and ``"offset"``
+        (image 2's u offset, px), so a demo can update the segments
+        (``art["good"].set_segments(match_segments(...))``).
     """
     from matplotlib.collections import LineCollection
 
@@ -106,7 +170,24 @@ def draw_matches(
 
 
 def outline(ax, H: np.ndarray, shape: tuple[int, ...], **kw):
-    """Draw the border of an image of ``shape`` mapped by H (e.g. onto a panorama canvas); returns the Line2D."""
+    """Draw the border of an image of ``shape`` mapped by H (e.g. onto a panorama canvas); returns the Line2D.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw in.
+    H : (3, 3) ndarray
+        Homography from the image's pixels to the axes' coordinates.
+    shape : tuple
+        The image's shape ``(height, width, ...)``; its outer pixel edges are outlined.
+    **kw
+        Line properties, passed on to ``ax.plot``.
+
+    Returns
+    -------
+    matplotlib.lines.Line2D
+        The closed outline.
+    """
     from ..projective import map_points
 
     h, w = shape[:2]

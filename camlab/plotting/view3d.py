@@ -16,8 +16,26 @@ __all__ = ["align_away", "axes3d", "fit_view", "refresh_projection", "set_equal_
 
 
 def axes3d(fig, *args: Any, elev: float = 22.0, azim: float = -60.0, **kw: Any):
-    """Add a 3-D axes to ``fig`` (``fig.add_subplot(*args, projection='3d')``), labelled X, Y, Z
-    in metres, with a light pane style that keeps drawing fast."""
+    """Add a 3-D axes to ``fig``, labelled X, Y, Z in metres, with a light pane style.
+
+    ``fig.add_subplot(*args, projection='3d')``, with a pane style that keeps drawing fast.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure to add the axes to.
+    *args
+        Subplot position, as ``fig.add_subplot`` takes it (e.g. ``1, 2, 1``).
+    elev, azim : float
+        The viewpoint's elevation and azimuth, degrees (``view_init``).
+    **kw
+        Passed on to ``fig.add_subplot``.
+
+    Returns
+    -------
+    mpl_toolkits.mplot3d.axes3d.Axes3D
+        The new axes.
+    """
     ax = fig.add_subplot(*args, projection="3d", **kw)
     ax.view_init(elev=elev, azim=azim)
     ax.set_xlabel("X (m)", labelpad=-8)
@@ -36,12 +54,25 @@ def set_equal_aspect(
     zoom: float = 1.0,
     tight: bool = False,
 ) -> None:
-    """Give a 3-D axes equal scale on X, Y, Z: a cube of limits around ``points`` and a
-    (1, 1, 1) box aspect, so angles and lengths look right.
+    """Give a 3-D axes equal scale on X, Y, Z: a cube of limits around ``points``, a (1, 1, 1) box aspect.
 
-    ``tight=True`` fits a box instead of a cube (limits per axis, box aspect in proportion,
-    so the scale stays equal): a flat or long scene then fills the canvas, but the box
-    changes shape when the points move."""
+    Angles and lengths then look right. ``tight=True`` fits a box instead of a cube (limits per
+    axis, box aspect in proportion, so the scale stays equal): a flat or long scene then fills
+    the canvas, but the box changes shape when the points move.
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D
+        The 3-D axes.
+    points : (N, 3) array_like or sequence of them
+        World points (m) to fit, any shape that reshapes to rows of 3; non-finite rows are ignored.
+    margin : float
+        Extra room around the points, as a fraction of the half-extent.
+    zoom : float
+        matplotlib's box-aspect zoom.
+    tight : bool
+        Fit a box per axis instead of a cube.
+    """
     if isinstance(points, (list, tuple)):
         pts = np.vstack([np.reshape(np.asarray(p, dtype=float), (-1, 3)) for p in points])
     else:
@@ -74,6 +105,17 @@ def fit_view(
     a flat scene seen from the side fills a third of it. Here the cube is then shifted across the
     line of sight until the points' projection is centred, and zoomed until its larger side spans
     ``fill`` of the (square) 3-D axes. Call after ``view_init``; the points must all stay in view.
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D
+        The 3-D axes.
+    points : (N, 3) array_like or sequence of them
+        World points (m) to fit, any shape that reshapes to rows of 3; non-finite rows are ignored.
+    fill : float
+        Fraction of the axes the points' picture spans along its larger side.
+    max_zoom : float
+        Upper bound of the zoom (the lower is 0.2).
     """
     from mpl_toolkits.mplot3d import proj3d
 
@@ -124,6 +166,11 @@ def refresh_projection(ax) -> None:
 
     A full draw does this itself; a blitted redraw (only animated artists) does not, so
     call it after :func:`set_equal_aspect` in an update.
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D
+        The 3-D axes; its ``M`` and ``invM`` are set.
     """
     ax.M = ax.get_proj()
     ax.invM = np.linalg.inv(ax.M)
@@ -135,6 +182,15 @@ def align_away(ax, text, start: ArrayLike, tip: ArrayLike) -> None:
     A label anchored at its left baseline is struck through by its own axis whenever that
     axis points right and up on screen; aligned by the screen direction, it clears the line.
     Call after the limits and view are final (:func:`refresh_projection`).
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D
+        The 3-D axes the label is in.
+    text : matplotlib.text.Text
+        The label; its horizontal and vertical alignment are set.
+    start, tip : (3,) array_like
+        The segment's ends, world coordinates (m); the label sits at ``tip``.
     """
     from mpl_toolkits.mplot3d import proj3d
 

@@ -59,7 +59,23 @@ def _disk_kernel(diameter: float) -> np.ndarray:
 
 
 def visible_planes(planes: list[Plane], R: np.ndarray, t: np.ndarray) -> list[CameraPlane]:
-    """Stage 1: each plane in the camera frame, clipped at NEAR; planes behind the camera and back faces dropped."""
+    """Stage 1: each plane in the camera frame, clipped at NEAR; planes behind the camera and back faces dropped.
+
+    Parameters
+    ----------
+    planes : list of Plane
+        The scene, flattened.
+    R : (3, 3) ndarray
+        cam_from_world rotation.
+    t : (3,) ndarray
+        cam_from_world translation, metres.
+
+    Returns
+    -------
+    list of CameraPlane
+        The planes that can be seen, in scene order: each with its cam_from_plane pose, the mean
+        depth of its visible polygon (metres) and that polygon (:func:`clip_to_near`).
+    """
     geo = []
     for p in planes:
         Rc = R @ p.R
@@ -88,6 +104,29 @@ class IdealCanvas(NamedTuple):
 
     @classmethod
     def around(cls, K: np.ndarray, d: np.ndarray, size: tuple[int, int], ss: int) -> IdealCanvas:
+        """The canvas that holds every ray the distorted output image sees.
+
+        Without distortion it is the output grid supersampled; with it, the output's border is
+        undistorted (pixels beyond the model's fold are left out) and the canvas grows to hold it,
+        capped at 4 times the image in each direction.
+
+        Parameters
+        ----------
+        K : (3, 3) ndarray
+            The output image's intrinsics, pixels.
+        d : (5,) ndarray
+            Distortion ``(k1, k2, p1, p2, k3)``.
+        size : (width, height)
+            The output image's size, pixels.
+        ss : int
+            Supersampling factor.
+
+        Returns
+        -------
+        IdealCanvas
+            The canvas's intrinsics ``K``, the supersampled output's ``Ks``, its width and height
+            (supersampled pixels), the output ``size`` and ``supersample``.
+        """
         w, h = size
         Ks = scale_intrinsics(K, ss)  # output px -> supersampled px
         if not d.any():
@@ -122,7 +161,30 @@ class IdealCanvas(NamedTuple):
 def draw_plane(
     canvas: np.ndarray, g: CameraPlane, Kc: np.ndarray, c_px: float, color: bool
 ) -> None:
-    """Stage 3: warp one plane's texture into the canvas (in place), anti-aliased and defocused by ``c_px``."""
+    """Stage 3: warp one plane's texture into the canvas (in place), anti-aliased and defocused by ``c_px``.
+
+    The texture level is the coarsest mipmap level whose texel still covers a canvas pixel where
+    the plane is seen largest (:func:`metres_per_canvas_px`); the plane's coverage is drawn with
+    anti-aliased edges, and both texture and coverage are blurred by a disc of ``c_px`` before
+    compositing over what is already in the canvas.
+
+    Parameters
+    ----------
+    canvas : (ch, cw, C) float32 ndarray
+        The ideal canvas (:class:`IdealCanvas`), composited in place.
+    g : CameraPlane
+        The plane as the camera sees it (:func:`visible_planes`).
+    Kc : (3, 3) ndarray
+        The canvas's intrinsics (:attr:`IdealCanvas.K`).
+    c_px : float
+        Diameter of the plane's circle of confusion, canvas pixels (0: sharp).
+    color : bool
+        The render is RGB (else an RGB texture is turned grey).
+
+    References
+    ----------
+    .. [1] L. Williams, 1983, "Pyramidal parametrics", SIGGRAPH '83 (mipmaps).
+    """
     import cv2
 
     p = g.plane
@@ -202,7 +264,26 @@ def draw_plane(
 def optics(
     canvas: np.ndarray, ideal: IdealCanvas, d: np.ndarray, blur: float, bg: np.ndarray
 ) -> np.ndarray:
-    """Stage 4: extra blur, lens distortion (remap) and the pixels' area (box filter): irradiance in [0, 1]."""
+    """Stage 4: extra blur, lens distortion (remap) and the pixels' area (box filter): irradiance in [0, 1].
+
+    Parameters
+    ----------
+    canvas : (ch, cw, C) float32 ndarray
+        The composited ideal canvas.
+    ideal : IdealCanvas
+        Its geometry (intrinsics, size, supersampling).
+    d : (5,) ndarray
+        Distortion ``(k1, k2, p1, p2, k3)``.
+    blur : float
+        Extra disc blur over the whole image, diameter in output pixels.
+    bg : (C,) ndarray
+        The background irradiance, for pixels the distortion pulls from beyond the canvas.
+
+    Returns
+    -------
+    (H, W) or (H, W, 3) float32 ndarray
+        The irradiance at the output size, in [0, 1].
+    """
     import cv2
 
     ss = ideal.supersample
@@ -230,7 +311,22 @@ def optics(
 
 
 def sensor_response(irradiance: np.ndarray, sensor: Sensor, rng) -> np.ndarray:
-    """Stage 5: Bayer mosaic, shot and read noise, quantisation to digital numbers."""
+    """Stage 5: Bayer mosaic, shot and read noise, quantisation to digital numbers.
+
+    Parameters
+    ----------
+    irradiance : (H, W) or (H, W, 3) float32 ndarray
+        The image reaching the sensor, in [0, 1].
+    sensor : Sensor
+        Bit depth, noise model and Bayer pattern.
+    rng : numpy.random.Generator, int seed or None
+        Randomness of the noise.
+
+    Returns
+    -------
+    ndarray
+        The digital image: uint8 for 8 bits or fewer, else uint16; (H, W) when mosaicked.
+    """
     signal = irradiance
     if sensor.bayer is not None:
         signal = _sensor.mosaic(irradiance, sensor.bayer)

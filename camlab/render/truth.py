@@ -28,7 +28,36 @@ def ground_truth(
     size: tuple[int, int],
     depth: bool,
 ) -> GroundTruth:
-    """Stage 6: exact pixels of every named point (projected, never measured), visibility, depth map."""
+    """Stage 6: exact pixels of every named point (projected, never measured), visibility, depth map.
+
+    A point is visible when it is in front of the camera, inside the image and no plane of the
+    scene meets its ray nearer. Planes that were culled (behind the camera, back faces) still get
+    an entry, all invisible.
+
+    Parameters
+    ----------
+    planes : list of Plane
+        The whole scene, flattened.
+    geo : list of CameraPlane
+        Its visible planes (:func:`~camlab.render.canvas.visible_planes`).
+    K : (3, 3) ndarray
+        Intrinsics, pixels.
+    d : (5,) ndarray
+        Distortion ``(k1, k2, p1, p2, k3)``.
+    R : (3, 3) ndarray
+        cam_from_world rotation.
+    t : (3,) ndarray
+        cam_from_world translation, metres.
+    size : (width, height)
+        Image size, pixels.
+    depth : bool
+        Compute the depth map (z_cam of the nearest plane through each pixel centre).
+
+    Returns
+    -------
+    GroundTruth
+        The camera, and each named plane's :class:`PlanePoints`; ``depth`` None unless asked.
+    """
     w, h = size
     truth = GroundTruth(
         K=K,
@@ -73,6 +102,23 @@ def ground_truth(
 
 
 def flatten(scene) -> list[Plane]:
+    """The planes of a scene: a Plane, or nested lists of them, as one flat list.
+
+    Parameters
+    ----------
+    scene : Plane or iterable
+        A plane, or an iterable of planes and of such iterables (e.g. a :func:`camlab.scenes.box`).
+
+    Returns
+    -------
+    list of Plane
+        The planes in order.
+
+    Raises
+    ------
+    CamlabInputError
+        If something in ``scene`` is neither a Plane nor iterable, or there is no plane at all.
+    """
     if isinstance(scene, Plane):
         return [scene]
     out: list[Plane] = []
@@ -90,6 +136,31 @@ def flatten(scene) -> list[Plane]:
 
 
 def coc_pixels(defocus: Defocus, K: np.ndarray, depth: float) -> float:
+    """Diameter of the circle of confusion of a plane at ``depth``, in pixels.
+
+    The thin-lens circle of confusion (:func:`camlab.lens.circle_of_confusion`) for the lens of
+    ``defocus`` focused at its ``focus_distance``, divided by the pixel pitch.
+
+    Parameters
+    ----------
+    defocus : Defocus
+        f-number, focus distance and pixel pitch (m); its focal length, or ``K[0, 0]`` times the
+        pitch when None.
+    K : (3, 3) ndarray
+        Intrinsics, pixels.
+    depth : float
+        Depth of the plane, metres.
+
+    Returns
+    -------
+    float
+        The blur's diameter, pixels.
+
+    Raises
+    ------
+    CamlabInputError
+        If the pixel pitch is not positive.
+    """
     pitch = check_positive(defocus.pixel_pitch, "pixel_pitch", "metres")
     f = defocus.focal_length if defocus.focal_length is not None else K[0, 0] * pitch
     return (

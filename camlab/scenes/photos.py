@@ -40,9 +40,21 @@ class PlanePhoto(NamedTuple):
 
 
 def look_at_plane(yaw: float, pitch: float, roll: float = 0.0) -> np.ndarray:
-    """Rotation cam_from_plane turning a plane about its own centre: yaw about the
-    vertical (v) axis, pitch about the horizontal (u) axis, roll about the view axis,
-    in radians. With all angles 0 the plane faces the camera squarely."""
+    """Rotation cam_from_plane turning a plane about its own centre by yaw, pitch and roll (radians).
+
+    Yaw is about the vertical (v) axis, pitch about the horizontal (u) axis, roll about the view
+    axis: ``R = Rz(roll) Rx(pitch) Ry(yaw)``. With all angles 0 the plane faces the camera squarely.
+
+    Parameters
+    ----------
+    yaw, pitch, roll : float
+        The turns, radians.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The rotation cam_from_plane.
+    """
     return rotation_z(roll) @ rotation_x(pitch) @ rotation_y(yaw)
 
 
@@ -72,10 +84,43 @@ def photograph_plane(
     pixel. The photo is the texture warped by the product onto a background;
     ``image_shape`` is the photo's (height, width), numpy's order.
 
+    Parameters
+    ----------
+    texture : (H, W, 3) array_like
+        The rectangle's RGB texture (uint8).
+    yaw, pitch, roll : float
+        The plane's turn, radians (:func:`look_at_plane`).
+    distance : float
+        Distance of the plane's centre along the optical axis, metres (> 0).
+    width_m : float
+        The rectangle's width, metres (> 0).
+    offset : (2,) array_like
+        Shift of the plane's centre in camera x and y, metres.
+    focal : float
+        Focal length, pixels; the principal point is the image's centre.
+    image_shape : (height, width)
+        The photo's shape, pixels.
+    background : (height, width, 3) array_like or None
+        What lies behind the rectangle (uint8); None draws :func:`desk_background` with ``seed``.
+    seed : int
+        Seed of the default background.
+    method : str
+        ``"cv2"`` (OpenCV's warp, fast) or a method of :func:`camlab.warp.warp_perspective`.
+
     Returns
     -------
     PlanePhoto
         ``image``, true ``corners``, true ``aspect``, ``H`` (image_from_texture), ``K``.
+
+    Raises
+    ------
+    CamlabInputError
+        If ``texture`` is not an (H, W, 3) image, or ``distance`` or ``width_m`` is not positive.
+
+    References
+    ----------
+    .. [1] R. Hartley and A. Zisserman, *Multiple View Geometry in Computer Vision*, 2nd ed.,
+       2004, section 8.1.1 (the homography between a world plane and its image).
     """
     tex = np.asarray(texture)
     if tex.ndim != 3 or tex.shape[2] != 3:
@@ -134,8 +179,25 @@ _SCENES = {
 def sample_photo(kind: str = "page", **pose) -> PlanePhoto:
     """A ready-made synthetic photo for lesson 10: ``"page"``, ``"painting"`` or ``"facade"``.
 
-    Keyword arguments override the scene's pose (see :func:`photograph_plane`).
+    Parameters
+    ----------
+    kind : str
+        Which texture and pose: ``"page"``, ``"painting"`` or ``"facade"``.
+    **pose
+        Keyword arguments of :func:`photograph_plane` that override the scene's pose.
 
+    Returns
+    -------
+    PlanePhoto
+        The photo and its ground truth.
+
+    Raises
+    ------
+    CamlabInputError
+        If ``kind`` is not one of the three.
+
+    Examples
+    --------
     >>> p = sample_photo("page")
     >>> p.image.shape, round(p.aspect, 3)
     ((480, 640, 3), 0.707)

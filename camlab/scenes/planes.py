@@ -88,6 +88,24 @@ def letter_chart(
     The rows' cap heights are ``CHART_ROW_HEIGHTS`` / 600 of ``width`` (metres): the smallest row
     is still legible while the blur is smaller than about 4/5 of its height (lesson 01's
     ``camlab.widgets.pinhole_camera.LEGIBLE``, set by eye on that demo's pictures).
+
+    Parameters
+    ----------
+    width : float
+        The chart's width, metres.
+    R : (3, 3) array_like or None
+        world_from_plane rotation; None is the identity.
+    t : (3,) array_like
+        world_from_plane translation: where the plane's origin is, metres.
+    seed : int
+        Seed of the letters' choice.
+    name : str
+        The plane's name.
+
+    Returns
+    -------
+    Plane
+        A centred grey plane, 5/6 as tall as wide.
     """
     return textured_plane(_chart_texture(int(seed)), width, R=R, t=t, name=name)
 
@@ -144,6 +162,7 @@ class Plane:
 
     @property
     def is_color(self) -> bool:
+        """Whether the texture is RGB (H, W, 3) rather than grey."""
         return self.texture.ndim == 3
 
 
@@ -159,7 +178,27 @@ def textured_plane(
 ) -> Plane:
     """A rectangle ``width`` metres wide showing ``texture``; height from the texture's aspect by default.
 
-    ``centred``: the plane frame's origin is the rectangle's centre (else its top-left corner).
+    Parameters
+    ----------
+    texture : (H, W) or (H, W, 3) array_like
+        Reflectance, grey or RGB (uint8, or float in [0, 1]; :func:`as_texture`).
+    width : float
+        The rectangle's width, metres (> 0).
+    R : (3, 3) array_like or None
+        world_from_plane rotation; None is the identity.
+    t : (3,) array_like
+        world_from_plane translation: where the plane's origin is, metres.
+    height : float or None
+        Its height, metres; None keeps the texture's aspect.
+    centred : bool
+        The plane frame's origin is the rectangle's centre (else its top-left corner).
+    name : str
+        The plane's name.
+
+    Returns
+    -------
+    Plane
+        The rectangle, no named points.
     """
     tex = as_texture(texture)
     w = check_positive(width, "width", "metres")
@@ -192,6 +231,37 @@ def checkerboard(
     j * square)`` for ``j`` in rows, ``i`` in cols: the order and the object points of
     ``cv2.findChessboardCorners(img, pattern_size)`` for an upright board.
 
+    Parameters
+    ----------
+    pattern_size : (cols, rows)
+        Inner corners across and down, at least (2, 2).
+    square : float
+        Side of a square, metres (> 0).
+    R : (3, 3) array_like or None
+        world_from_plane rotation; None is the identity.
+    t : (3,) array_like
+        world_from_plane translation: where the plane's origin is, metres.
+    margin : float
+        Width of the light border, in squares (>= 0).
+    px_per_square : int
+        Texels per square side.
+    colours : (float, float)
+        The dark and light greys in [0, 1].
+    name : str
+        The plane's name.
+
+    Returns
+    -------
+    Plane
+        The board, with its inner corners as ``points`` and ``pattern_size`` set.
+
+    Raises
+    ------
+    CamlabInputError
+        If ``pattern_size``, ``square`` or ``margin`` is out of range.
+
+    Examples
+    --------
     >>> b = checkerboard((4, 3), 0.03)
     >>> b.points.shape, b.points[1], b.texture.shape
     ((12, 2), array([0.03, 0.  ]), (288, 336))
@@ -241,6 +311,24 @@ def photo_plane(
 
     The photograph is a JPEG, so its values are sRGB-encoded; ``linear=True`` decodes them
     to linear reflectance (:func:`camlab.sensor.gamma_decode`) for photometric work (lesson 03).
+
+    Parameters
+    ----------
+    width : float
+        The rectangle's width, metres.
+    R : (3, 3) array_like or None
+        world_from_plane rotation; None is the identity.
+    t : (3,) array_like
+        world_from_plane translation: where the plane's origin is, metres.
+    name : str
+        The plane's name.
+    linear : bool
+        Decode the photograph to linear reflectance.
+
+    Returns
+    -------
+    Plane
+        An RGB plane with the photograph's aspect.
     """
     return textured_plane(_linear_portrait() if linear else portrait(), width, R=R, t=t, name=name)
 
@@ -260,7 +348,26 @@ def text_page(
     seed: int = 0,
     name: str = "page",
 ) -> Plane:
-    """A printed page (A4 proportions) of deterministic pseudo-text, rendered with matplotlib's Agg."""
+    """A printed page (A4 proportions) of deterministic pseudo-text, rendered with matplotlib's Agg.
+
+    Parameters
+    ----------
+    width : float
+        The page's width, metres (its height is 1.414 times it).
+    R : (3, 3) array_like or None
+        world_from_plane rotation; None is the identity.
+    t : (3,) array_like
+        world_from_plane translation: where the plane's origin is, metres.
+    seed : int
+        Seed of the words' choice.
+    name : str
+        The plane's name.
+
+    Returns
+    -------
+    Plane
+        A centred grey plane.
+    """
     return textured_plane(_text_texture(600, int(seed)), width, R=R, t=t, name=name)
 
 
@@ -277,16 +384,36 @@ def box(
 ) -> list[Plane]:
     """The six faces of a box, as planes with outward normals (z = x cross y points out).
 
+    Faces get names ``f"{name}+x"`` ... and their 4 corners as named points.
+
     Parameters
     ----------
-    centre : (3,) world position, metres.
-    size : (3,) edge lengths along the box's own x, y, z axes, metres.
-    R : (3, 3) world_from_box rotation; None (the default) is the identity.
-    colours : six greys in [0, 1] (faces +x, -x, +y, -y, +z, -z); distinct shades by default.
-    texture : "noise" (random texture on each face: good for stereo matching) or "flat".
-    rng : seed or Generator for the noise texture (deterministic by default).
+    centre : (3,) array_like
+        World position, metres.
+    size : (3,) array_like
+        Edge lengths along the box's own x, y, z axes, metres (> 0).
+    R : (3, 3) array_like or None
+        world_from_box rotation; None (the default) is the identity.
+    colours : sequence of float or None
+        Six greys in [0, 1] (faces +x, -x, +y, -y, +z, -z); distinct shades by default.
+    texture : str
+        ``"noise"`` (random texture on each face: good for stereo matching) or ``"flat"``.
+    texels : int
+        Texels along each face's longer side.
+    rng : numpy.random.Generator, int seed or None
+        Randomness of the noise texture (deterministic by default).
+    name : str
+        Prefix of the faces' names.
 
-    Faces get names ``f"{name}+x"`` ... and their 4 corners as named points.
+    Returns
+    -------
+    list of Plane
+        The faces +x, -x, +y, -y, +z, -z, one-sided (culled from behind).
+
+    Raises
+    ------
+    CamlabInputError
+        If ``size`` has a non-positive length, ``R`` is not a rotation or ``texture`` is unknown.
     """
     c = check_matrix(centre, (3,), "centre")
     sz = check_matrix(size, (3,), "size")

@@ -14,8 +14,25 @@ from .._validate import CamlabInputError, check_shape, check_size
 
 
 def as_texture(texture: ArrayLike) -> np.ndarray:
-    """``texture`` as a read-only float32 (H, W) or (H, W, 3) array in [0, 1]: integers are divided by their
-    maximum, an alpha channel is dropped."""
+    """``texture`` as a read-only float32 (H, W) or (H, W, 3) array in [0, 1].
+
+    Integers are divided by their dtype's maximum; an alpha channel is dropped.
+
+    Parameters
+    ----------
+    texture : (H, W), (H, W, 3) or (H, W, 4) array_like
+        A grey, RGB or RGBA image, integer or float (floats are taken as they are).
+
+    Returns
+    -------
+    (H, W) or (H, W, 3) float32 ndarray
+        The texture, C-contiguous and read-only.
+
+    Raises
+    ------
+    CamlabInputError
+        If the shape or dtype is not an image's.
+    """
     a = np.asarray(texture)
     if a.ndim == 3 and a.shape[2] == 4:
         a = a[..., :3]
@@ -39,6 +56,11 @@ def portrait() -> np.ndarray:
     The one sample photograph of the synthetic scenes (:func:`photo_plane`,
     :func:`painting_texture`, the stereo scene). Real photographs are in
     :func:`camlab.data.load_photo`.
+
+    Returns
+    -------
+    (600, 512, 3) float32 ndarray
+        The photograph (sRGB-encoded values, as the JPEG holds them), computed once.
     """
     import matplotlib.image as mpimg
     from matplotlib import cbook
@@ -51,8 +73,19 @@ def portrait() -> np.ndarray:
 def page_texture(size: tuple[int, int] = (420, 594), seed: int = 0) -> np.ndarray:
     """A printed page (A4 proportions, 1 : sqrt 2): title, paragraphs of text, a figure box.
 
-    ``size`` is (width, height) in pixels. Returns a (height, width, 3) uint8 RGB image
-    drawn with ``cv2.putText`` (cached and read-only, like the other textures).
+    Drawn with ``cv2.putText``.
+
+    Parameters
+    ----------
+    size : (width, height)
+        The page's size, pixels.
+    seed : int
+        Seed of the words' choice.
+
+    Returns
+    -------
+    (height, width, 3) uint8 ndarray
+        RGB, cached and read-only (copy before drawing on it).
     """
     return _page_texture(*check_size(size), int(seed))
 
@@ -120,8 +153,17 @@ def facade_texture(
 ) -> np.ndarray:
     """A building facade: brick-coloured wall, a grid of ``floors`` x ``bays`` windows, a door.
 
-    ``size`` is (width, height) in pixels; returns a (height, width, 3) uint8 RGB image,
-    cached and read-only.
+    Parameters
+    ----------
+    size : (width, height)
+        The facade's size, pixels.
+    floors, bays : int
+        Rows and columns of windows (the door replaces the middle window of the bottom row).
+
+    Returns
+    -------
+    (height, width, 3) uint8 ndarray
+        RGB, cached and read-only.
     """
     return _facade_texture(*check_size(size), int(floors), int(bays))
 
@@ -153,7 +195,18 @@ def _facade_texture(width: int, height: int, floors: int, bays: int) -> np.ndarr
 
 @lru_cache(maxsize=8)
 def painting_texture(width: int = 400) -> np.ndarray:
-    """A framed painting: :func:`portrait` inside a gold frame. (h, w, 3) uint8, read-only."""
+    """A framed painting: :func:`portrait` inside a gold frame. (h, w, 3) uint8, read-only.
+
+    Parameters
+    ----------
+    width : int
+        The frame's outer width, pixels (the frame is 20 px wide on every side).
+
+    Returns
+    -------
+    (h, width, 3) uint8 ndarray
+        RGB, the portrait's aspect plus the frame; cached and read-only.
+    """
     import cv2
 
     art = np.round(portrait() * 255).astype(np.uint8)  # the JPEG's own uint8 values
@@ -173,6 +226,18 @@ def desk_background(shape: tuple[int, int] = (480, 640), seed: int = 0) -> np.nd
     """A dark wooden-desk background, (height, width, 3) uint8 for ``shape`` = (height, width).
 
     Cached and read-only: demos re-photograph on every slider move.
+
+    Parameters
+    ----------
+    shape : (height, width)
+        The background's shape, pixels.
+    seed : int
+        Seed of its grain.
+
+    Returns
+    -------
+    (height, width, 3) uint8 ndarray
+        RGB, cached and read-only.
     """
     return _desk_background(*check_shape(shape), int(seed))
 
@@ -190,10 +255,21 @@ def _desk_background(h: int, w: int, seed: int) -> np.ndarray:
 def wall_texture(size: tuple[int, int] = (2100, 800), seed: int = 909) -> np.ndarray:
     """A feature-rich, non-repeating RGB texture (float32 in [0, 1], read-only): soft colour fields and posters.
 
-    ``size`` is (width, height) in pixels; the result is (height, width, 3). Made with a
-    seeded generator, so it is the same every time: smooth multi-scale colour noise, then a
-    few hundred random rectangles, discs, triangles and strokes in random colours (corners
+    Made with a seeded generator, so it is the same every time: smooth multi-scale colour noise,
+    then a few hundred random rectangles, discs, triangles and strokes in random colours (corners
     and blobs for the feature detector at every scale).
+
+    Parameters
+    ----------
+    size : (width, height)
+        The texture's size, pixels.
+    seed : int
+        Seed of the generator.
+
+    Returns
+    -------
+    (height, width, 3) float32 ndarray
+        RGB in [0, 1], cached and read-only.
     """
     return _wall_texture(*check_size(size), int(seed))
 
@@ -246,8 +322,17 @@ def _wall_texture(width: int, height: int, seed: int) -> np.ndarray:
 def house_picture(size: tuple[int, int] = (160, 120)) -> np.ndarray:
     """A small test picture (lesson 07): a checkerboard with a house, a sun and a frame.
 
-    ``size`` is (width, height) in pixels; returns a (height, width, 3) uint8 RGB image,
-    a new writable array each call. Drawn for 160 x 120 and scaled with the width.
+    Drawn for 160 x 120 and scaled with the width.
+
+    Parameters
+    ----------
+    size : (width, height)
+        The picture's size, pixels.
+
+    Returns
+    -------
+    (height, width, 3) uint8 ndarray
+        RGB, a new writable array each call.
     """
     import cv2
 
@@ -268,7 +353,24 @@ def house_picture(size: tuple[int, int] = (160, 120)) -> np.ndarray:
 
 
 def noise_texture(shape: tuple[int, int], seed: int, base: float = 0.5) -> np.ndarray:
-    """Smooth multi-scale random texture in [0, 1] (good for matching at several depths)."""
+    """Smooth multi-scale random texture in [0, 1] (good for matching at several depths).
+
+    Gaussian noise at five scales, resized (bicubic) and summed around ``base``.
+
+    Parameters
+    ----------
+    shape : (height, width)
+        The texture's shape, pixels.
+    seed : int
+        Seed of the noise.
+    base : float
+        The mean grey.
+
+    Returns
+    -------
+    (height, width) float32 ndarray
+        Greys clipped to [0, 1], a new array each call.
+    """
     import cv2
 
     rng = np.random.default_rng(seed)

@@ -2,9 +2,9 @@
 
 Each ``draw_*`` function draws once and returns a dict of artists; its ``update_*``
 partner moves those artists, so widgets can redraw in place. The diagrams live in one
-module per topic: :mod:`.pinhole_camera` (the camera in 3-D, similar triangles),
-:mod:`.pinhole_blur` (blur against the pinhole's size, its cones of light) and
-:mod:`.thin_lens` (the ray diagram, the focus cone, the blur disc); every name is
+module per topic: :mod:`.pinhole_camera` (the camera in 3-D), :mod:`.similar_triangles`
+(x = f X / Z in 2-D), :mod:`.pinhole_blur` (blur against the pinhole's size, its cones of
+light) and :mod:`.thin_lens` (the ray diagram, the focus cone, the blur disc); every name is
 importable from here.
 """
 
@@ -18,18 +18,20 @@ from .pinhole_blur import (
     update_pinhole_blur,
 )
 from .pinhole_camera import (
-    F_LABEL_ROOM,
     PINHOLE_VIEW,
-    SHORTEST_ARROW,
-    Z_LABEL_ROOM,
     PlaneFaces,
     axis_scales,
     box_edges,
     draw_pinhole_3d,
-    draw_similar_triangles,
     label_camera_axes,
     plane_faces,
     update_pinhole_3d,
+)
+from .similar_triangles import (
+    F_LABEL_ROOM,
+    SHORTEST_ARROW,
+    Z_LABEL_ROOM,
+    draw_similar_triangles,
     update_similar_triangles,
 )
 from .thin_lens import (

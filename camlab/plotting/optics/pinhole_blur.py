@@ -25,6 +25,26 @@ def draw_pinhole_blur(
     """Geometric, diffraction and total blur (mm) against pinhole diameter (mm), log axes, with a marker.
 
     ``object_distance`` (metres) is the Z of the geometric term d (1 + f/Z); infinite by default.
+    The curves span diameters from 0.02 to 3 mm (:func:`camlab.pinhole.pinhole_blur`); the
+    marker starts at d = 1 mm.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw in (set to log-log, legend below it).
+    focal_length : float
+        Pinhole-to-image distance f, metres.
+    wavelength : float
+        Wavelength of the light, metres (550 nm: green).
+    object_distance : float
+        Distance Z of the object, metres; ``np.inf`` for a distant one.
+
+    Returns
+    -------
+    dict
+        The artists ``"geometric"``, ``"diffraction"``, ``"total"`` (Line2D curves), ``"marker"``
+        (the vertical line at the chosen diameter), ``"best"`` (the star at the optimum) and
+        ``"d"``, the (300,) diameters sampled (metres), for :func:`update_pinhole_blur`.
     """
     d = np.geomspace(0.02e-3, 3e-3, 300)
     art = {
@@ -62,7 +82,23 @@ def update_pinhole_blur(
     wavelength: float = 550e-9,
     object_distance: float = np.inf,
 ) -> None:
-    """Redraw the curves for ``focal_length`` and ``object_distance``, the marker at ``diameter`` (metres)."""
+    """Redraw the curves for ``focal_length`` and ``object_distance``, the marker at ``diameter`` (metres).
+
+    The star moves to :func:`camlab.pinhole.optimal_pinhole_diameter` and its total blur.
+
+    Parameters
+    ----------
+    art : dict
+        What :func:`draw_pinhole_blur` returned (its artists are moved in place).
+    focal_length : float
+        Pinhole-to-image distance f, metres.
+    diameter : float
+        The pinhole's diameter d, metres, where the marker goes.
+    wavelength : float
+        Wavelength of the light, metres.
+    object_distance : float
+        Distance Z of the object, metres; ``np.inf`` for a distant one.
+    """
     d = art["d"]
     b = _pinhole.pinhole_blur(d, focal_length, object_distance, wavelength)
     art["geometric"].set_ydata(b.geometric * 1e3)
@@ -182,7 +218,28 @@ def draw_pinhole_cones(
     d (1 + f/Z) (drawn in the point's colour), widened by diffraction to the Airy disc
     2.44 lambda f / d (the pale band). Both axes are millimetres, each with one scale, so every ray is
     straight: the figure shows the last :data:`CONE_BEFORE` f of the rays before the hole, and the
-    points themselves, further right, are named where their rays come in. Returns the blur terms in metres.
+    points themselves, further right, are named where their rays come in.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw in.
+    diameter : float
+        The pinhole's diameter d, metres.
+    focal_length : float
+        Pinhole-to-image distance f, metres.
+    object_distance : float
+        Distance Z of the two points, metres.
+    heights : (float, float)
+        The points' camera y, metres (y down: negative is above the axis).
+    wavelength : float
+        Wavelength of the light, metres.
+
+    Returns
+    -------
+    dict
+        The blur terms in metres: ``"geometric"`` d (1 + f/Z), ``"diffraction"`` 2.44 lambda f / d
+        and ``"total"`` (:func:`camlab.pinhole.pinhole_blur`).
     """
     Z, f, d = object_distance, focal_length, diameter
     b = _pinhole.pinhole_blur(d, f, Z, wavelength)

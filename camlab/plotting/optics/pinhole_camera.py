@@ -1,5 +1,6 @@
-"""The pinhole camera drawn (lesson 01): the camera in 3-D with its box, rays and image planes,
-and the similar triangles of x = f X / Z in 2-D.
+"""The pinhole camera drawn in 3-D (lesson 01): its box, rays and image planes.
+
+The similar triangles of x = f X / Z, in 2-D, are :mod:`.similar_triangles`.
 
 Each ``draw_*`` function draws once and returns a dict of artists; its ``update_*`` partner
 moves those artists, so widgets can redraw in place.
@@ -23,8 +24,6 @@ __all__ = [
     "plane_faces",
     "draw_pinhole_3d",
     "update_pinhole_3d",
-    "draw_similar_triangles",
-    "update_similar_triangles",
 ]
 
 
@@ -45,7 +44,20 @@ _EDGES = [
 
 
 def box_edges(center, size) -> np.ndarray:
-    """(12, 2, 3) end points of an axis-aligned box's edges (camera frame, metres)."""
+    """(12, 2, 3) end points of an axis-aligned box's edges (camera frame, metres).
+
+    Parameters
+    ----------
+    center : (3,) array_like
+        The box's centre, camera frame, metres.
+    size : (3,) array_like
+        Its extent along x, y and z, metres.
+
+    Returns
+    -------
+    (12, 2, 3) ndarray
+        The twelve edges, each its two ends.
+    """
     c, s = np.asarray(center, float), np.asarray(size, float) / 2
     v = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]) * s + c
     return np.array([[v[i], v[j]] for i, j in _EDGES])
@@ -63,9 +75,16 @@ def _to_plot(p):
 
 
 def label_camera_axes(ax, labelpad: float = 8) -> None:
-    """Label a 3-D axes drawn through :func:`_to_plot` in camera coordinates: z forward, x right, y down.
+    """Label a 3-D axes drawn through ``_to_plot`` in camera coordinates: z forward, x right, y down.
 
     The plot's second and third axes hold -x and -y; their tick labels show x and y themselves.
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D
+        The 3-D axes (formatters, locators and labels set in place).
+    labelpad : float
+        Space between the axes' labels and their tick labels, points.
     """
     from matplotlib.ticker import FuncFormatter, MaxNLocator
 
@@ -95,7 +114,18 @@ class PlaneFaces(NamedTuple):
 
 
 def plane_faces(planes) -> PlaneFaces:
-    """(F, 4, 3) camera-frame corners and F mean greys of scene planes: the ``faces`` of :func:`draw_pinhole_3d`."""
+    """(F, 4, 3) camera-frame corners and F mean greys of scene planes: the ``faces`` of :func:`draw_pinhole_3d`.
+
+    Parameters
+    ----------
+    planes : sequence of camlab.scenes.Plane
+        The scene's planes (e.g. :func:`camlab.scenes.box`), in the camera frame.
+
+    Returns
+    -------
+    PlaneFaces
+        ``corners`` (F, 4, 3), metres, and ``greys`` (F,), each texture's mean in [0, 1].
+    """
     return PlaneFaces(
         np.array([p.corners_world for p in planes]),
         np.array([float(np.mean(p.texture)) for p in planes]),
@@ -133,7 +163,18 @@ _Z_PLANE = {"virtual": 2.0, "real": 4.0}  # + 0.1 for the picture, + 0.2 for its
 
 
 def axis_scales(ax) -> np.ndarray:
-    """Drawn length per metre along a 3-D axes' plot x, y and z (box aspect over data range), for captions."""
+    """Drawn length per metre along a 3-D axes' plot x, y and z (box aspect over data range), for captions.
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D
+        The 3-D axes, its limits and box aspect set.
+
+    Returns
+    -------
+    (3,) ndarray
+        Box-aspect units per metre along the plot's x (depth), y and z; equal when drawn to scale.
+    """
     ranges = np.array([np.ptp(ax.get_xlim()), np.ptp(ax.get_ylim()), np.ptp(ax.get_zlim())])
     return np.asarray(ax.get_box_aspect(), float) / ranges
 
@@ -157,6 +198,29 @@ def draw_pinhole_3d(
     wire frame. The axes are labelled in camera coordinates (:func:`label_camera_axes`) and
     seen from :data:`PINHOLE_VIEW`. ``to_scale``: one length per metre on all three axes
     (otherwise depth is drawn shorter; :func:`axis_scales` says by how much).
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D
+        The 3-D axes to draw in.
+    edges : (K, 2, 3) ndarray
+        The box's edges, camera frame, metres.
+    f_draw : float
+        Pinhole-to-image-plane distance as drawn, metres (both planes).
+    plane_half : float or None
+        The image planes' half-width, metres (their height is 0.75 of it); None: fitted to the image.
+    faces : (polygons, shades) or None
+        Faces to fill, as :func:`plane_faces` returns them; None draws wire frames only.
+    to_scale : bool
+        Draw all three axes at one length per metre.
+
+    Returns
+    -------
+    dict
+        The artists for :func:`update_pinhole_3d`: ``"box"``, ``"pinhole"``, ``"rays"``, ``"real"``
+        and ``"virtual"`` (the images' edges), ``"planes"`` (``{"real", "virtual"}``: the frames),
+        ``"fills"`` (``{"box", "real", "virtual"}`` when ``faces`` is given, else empty), and
+        ``"plane_half"``, ``"plane_half_drawn"`` (metres).
     """
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
@@ -266,9 +330,24 @@ def update_pinhole_3d(
     faces: tuple[np.ndarray, np.ndarray] | None = None,
     plane_half: float | None = None,
 ) -> None:
-    """Move the box to ``edges`` (and its ``faces``, see :func:`draw_pinhole_3d`) and the image planes to ``f_draw``.
+    """Move the box to ``edges`` (and its ``faces``) and the image planes to ``f_draw``.
 
-    ``plane_half``: the planes' half-width this time (metres; e.g. the sensor's, scaled like ``f_draw``).
+    See :func:`draw_pinhole_3d` for ``faces``. Each face's picture is cut at the plane's frame
+    (Sutherland-Hodgman), as the sensor cuts the image.
+
+    Parameters
+    ----------
+    art : dict
+        What :func:`draw_pinhole_3d` returned (moved in place; ``"plane_half_drawn"`` is updated).
+    edges : (K, 2, 3) ndarray
+        The box's edges, camera frame, metres.
+    f_draw : float
+        Pinhole-to-image-plane distance as drawn, metres (both planes).
+    faces : (polygons, shades) or None
+        Faces to fill (:func:`plane_faces`); ignored unless the drawing was made with faces.
+    plane_half : float or None
+        The planes' half-width this time, metres (e.g. the sensor's, scaled like ``f_draw``);
+        None keeps the one given to :func:`draw_pinhole_3d`, or fits the image.
     """
     corners = np.unique(edges.reshape(-1, 3), axis=0)
     h = (
@@ -334,195 +413,3 @@ def update_pinhole_3d(
             art["fills"][name].set_facecolor([colour for _, colour in cut])
     ends = -corners * f_draw / corners[:, 2:3]  # through the pinhole to the real plane
     art["rays"].set_data_3d(*_polyline(np.stack([corners, ends], axis=1)))
-
-
-def _dimension(ax, color: str) -> dict:
-    """A dimension line (double arrow) with a label, drawn empty; :func:`_set_dimension` places it."""
-    arrow = ax.annotate(
-        "",
-        xy=(0, 0),
-        xytext=(0, 0),
-        arrowprops=dict(arrowstyle="<->", color=color, lw=1.2, shrinkA=0, shrinkB=0),
-    )
-    label = ax.text(
-        0,
-        0,
-        "",
-        color=color,
-        fontsize=10,
-        ha="center",
-        va="center",
-        bbox=dict(fc="white", ec="none", pad=1),
-    )
-    return {"arrow": arrow, "label": label}
-
-
-def _set_dimension(
-    dim: dict,
-    a,
-    b,
-    text: str,
-    offset=(0.0, 0.0),
-    ha: str = "center",
-    va: str = "center",
-    label_at=None,
-    min_arrow: float = 0.0,
-) -> None:
-    """Place a dimension line from ``a`` to ``b`` and its label (at the middle plus ``offset``, or at ``label_at``).
-
-    An arrow shorter than ``min_arrow`` (data units) is hidden: its two heads would overlap into a star.
-    """
-    dim["arrow"].xy, dim["arrow"].xyann = tuple(b), tuple(a)
-    dim["arrow"].set_visible(bool(np.hypot(b[0] - a[0], b[1] - a[1]) >= min_arrow))
-    at = (
-        label_at
-        if label_at is not None
-        else ((a[0] + b[0]) / 2 + offset[0], (a[1] + b[1]) / 2 + offset[1])
-    )
-    dim["label"].set_position(at)
-    dim["label"].set_text(text)
-    dim["label"].set_horizontalalignment(ha)
-    dim["label"].set_verticalalignment(va)
-
-
-def _signed(value: float, digits: int = 1) -> str:
-    """``value`` with a sign and ``digits`` decimals; a value that rounds to zero prints a plain "0.0" (never
-    "-0.0" or "+0.0", as the demo's title prints it)."""
-    rounded = round(value, digits) + 0.0
-    return f"{rounded:+.{digits}f}" if rounded != 0 else f"{0:.{digits}f}"
-
-
-def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
-    """A 2-D side view of pinhole projection: depth z to the right, height (-y, up) upwards.
-
-    The pinhole sits at the origin, the real image plane at z = -f and the virtual one at
-    z = +f. Two shaded similar triangles share the ray through the hole: (0, 0)-(Z, 0)-(Z, Y)
-    and (0, 0)-(f, 0)-(f, y); dimension lines label f, Z, Y and y. Y and y are signed in the
-    camera frame (y down), so a point drawn above the axis has a negative Y.
-    """
-    ax.axhline(0, color="0.4", lw=0.8, zorder=0)
-    art = {
-        # returned with the moving artists: a ray passes over the hole, and the dot must stay on top
-        "pinhole_dot": ax.plot(
-            [0], [0], "o", color="k", ms=6, mec="white", mew=1, zorder=5, gid="pinhole"
-        )[0],
-        "big": ax.fill([0, 1, 1], [0, 0, 1], color=palette.BLUE, alpha=0.15, lw=0)[0],
-        "small": ax.fill([0, 1, 1], [0, 0, 1], color=palette.GREEN, alpha=0.3, lw=0)[0],
-        "object": ax.plot([], [], color=palette.BLUE, lw=3, solid_capstyle="butt")[0],
-        "point": ax.plot([], [], "o", color=palette.BLUE, ms=8)[0],
-        "ray": ax.plot([], [], color=palette.ORANGE, lw=1.5, path_effects=palette.halo(1.5))[0],
-        "planes": ax.plot([], [], color="0.3", lw=1, ls="--")[0],
-        "virtual": ax.plot([], [], color=palette.GREEN, lw=3, solid_capstyle="butt")[0],
-        "real": ax.plot([], [], color=palette.RED, lw=3, solid_capstyle="butt")[0],
-        # below (or above) the pinhole, under the f and Z dimension lines, where no other label goes
-        "pinhole": ax.annotate(
-            "pinhole",
-            (0, 0),
-            xytext=(0, 0),
-            ha="center",
-            va="center",
-            fontsize=9,
-            arrowprops=dict(arrowstyle="-", color="0.3", lw=0.8, shrinkA=2, shrinkB=3),
-        ),
-        "dims": {
-            k: _dimension(ax, c)
-            for k, c in (
-                ("f", "k"),
-                ("Z", "k"),
-                ("Y", palette.BLUE),
-                ("y", palette.GREEN),
-                ("y_real", palette.RED),
-            )
-        },
-    }
-    for key in ("y", "y_real"):
-        art["dims"][key]["label"].set_fontsize(9)
-    ax.set_xlim(
-        -0.28 * z_max, 1.14 * z_max
-    )  # room for the real plane's label at f = 1 m and for Y's at Z = 5 m
-    ax.set_ylim(-h_max, h_max)
-    ax.set_aspect("equal")  # similar triangles look similar only at equal scales
-    ax.set_xlabel("depth z (m)")
-    ax.set_ylabel("height -y, up (m)")
-    return art
-
-
-SHORTEST_ARROW = 0.15  # metres: a shorter dimension arrow is hidden (its heads would overlap)
-F_LABEL_ROOM = 0.9  # metres: a shorter f arrow cannot hold "f = 0.80 m" clear of the pinhole's tick and the plane
-Z_LABEL_ROOM = (
-    2.2  # metres: a Z arrow shorter than this cannot hold its label "Z = 1.20 m" between its heads
-)
-
-
-def update_similar_triangles(art: dict, f: float, Z: float, Y: float) -> float:
-    """Redraw for focal length ``f``, object depth ``Z`` and ``Y`` (metres, camera frame: y down); returns y.
-
-    The figure's vertical axis is -y (up), so the object point is drawn at height -Y.
-    """
-    y = f * Y / Z
-    up, up_img = -Y, -y  # heights on the page
-    art["big"].set_xy([[0, 0], [Z, 0], [Z, up]])
-    art["small"].set_xy([[0, 0], [f, 0], [f, up_img]])
-    art["object"].set_data([Z, Z], [0, up])
-    art["point"].set_data([Z], [up])
-    art["ray"].set_data([-f, Z], [y, up])
-    h = art["planes"].axes.get_ylim()[1] * 0.85
-    art["planes"].set_data([-f, -f, np.nan, f, f], [-h, h, np.nan, -h, h])
-    art["virtual"].set_data([f, f], [0, up_img])
-    art["real"].set_data([-f, -f], [0, y])
-    away = -0.12 * h if up >= 0 else 0.12 * h  # dimension lines go on the side away from the object
-    d = art["dims"]
-    # the Z label inside its arrow when the arrow is long enough to hold it, else just beyond its end
-    inside = Z >= Z_LABEL_ROOM
-    _set_dimension(
-        d["Z"],
-        (0, 3 * away),
-        (Z, 3 * away),
-        f"Z = {Z:.2f} m",
-        ha="center" if inside else "left",
-        label_at=None if inside else (Z + 0.08, 3 * away),
-    )
-    # the f label inside its arrow when there is room, else just beyond its end (clear of the dashed virtual plane)
-    f_inside = f >= F_LABEL_ROOM
-    _set_dimension(
-        d["f"],
-        (0, away),
-        (f, away),
-        f"f = {f:.2f} m",
-        offset=(0, away),
-        ha="center" if f_inside else "left",
-        label_at=None if f_inside else (f + 0.06, away),
-    )
-    # at Y near 0 the label would sit on the axis line: lift it clear (above, or below for an object below)
-    lift = 0.0 if abs(up) >= 0.3 else (0.15 if away < 0 else -0.15) - up / 2
-    _set_dimension(
-        d["Y"],
-        (Z + 0.1, 0),
-        (Z + 0.1, up),
-        f" Y = {_signed(Y, 2)} m",
-        offset=(0.05, lift),
-        ha="left",
-        min_arrow=SHORTEST_ARROW,
-    )
-    # each image's label at the far end of its plane's dashed line (virtual at the top, real at the bottom):
-    # outside both triangles and off the ray at every setting, and never between two planes a short f puts close
-    _set_dimension(
-        d["y"],
-        (f + 0.06, 0),
-        (f + 0.06, up_img),
-        f"virtual: y = {_signed(y * 100)} cm",
-        va="bottom",
-        label_at=(f, h + 0.02),
-        min_arrow=SHORTEST_ARROW,
-    )
-    _set_dimension(
-        d["y_real"],
-        (-f - 0.06, 0),
-        (-f - 0.06, -up_img),
-        f"real: {_signed(-y * 100)} cm",
-        va="top",
-        label_at=(-f, -h - 0.02),
-        min_arrow=SHORTEST_ARROW,
-    )
-    art["pinhole"].xyann = (0, 4.6 * away)
-    return y

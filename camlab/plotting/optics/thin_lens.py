@@ -42,6 +42,22 @@ def draw_thin_lens(ax, focal_length: float, object_distance: float) -> dict:
     image is inverted. An object or image beyond the axes is not drawn (its rays still are);
     the title, above the axes and off the rays, gives the numbers and says where it is. The
     legend sits under the axes, never over a ray. Fixed axes also keep the diagram blittable.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw in.
+    focal_length : float
+        The lens's focal length f, metres.
+    object_distance : float
+        Distance z_o of the object from the lens, metres (> f for a real image).
+
+    Returns
+    -------
+    dict
+        The artists for :func:`update_thin_lens`: ``"lens"``, ``"axis"``, ``"foci"``, ``"object"``
+        and ``"image"`` (annotation arrows), ``"image_dot"``, ``"rays"`` (three Line2D) and
+        ``"text"`` (the title with the numbers).
     """
     styles = (
         "-",
@@ -120,6 +136,24 @@ def update_thin_lens(art: dict, f: float, zo: float, requested: float | None = N
     ``requested``: the object distance the control asked for, when the caller held the object
     at ``zo`` instead (a control inside the focal length, where no real image forms); the
     readout then says so, so the numbers never disagree silently with the control.
+
+    Parameters
+    ----------
+    art : dict
+        What :func:`draw_thin_lens` returned (moved in place).
+    f : float
+        Focal length, metres.
+    zo : float
+        Object distance drawn, metres.
+    requested : float or None
+        The object distance asked for, metres, when it differs from ``zo``.
+
+    Returns
+    -------
+    dict
+        ``"image_distance"`` z_i (m, the thin-lens equation, :func:`camlab.lens.image_distance`),
+        ``"magnification"`` m (:func:`camlab.lens.magnification`) and ``"image_head"`` (whether the
+        image arrow is long enough to carry its head).
     """
     zi = float(_lens.image_distance(f, zo))
     m = float(_lens.magnification(f, zo))
@@ -178,6 +212,22 @@ def draw_focus_cone(ax, half_height_mm: float = 20.0, sensor_height_mm: float = 
     ``sensor_height_mm`` tall (24 mm: full frame). Colours: the object green, the lens blue,
     light orange, the image (where the rays meet, and the blur on the sensor) red.
     :func:`update_focus_cone` moves everything and returns the blur circle on the sensor.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw in.
+    half_height_mm : float
+        Half the axes' height, millimetres (the aperture stop reaches it).
+    sensor_height_mm : float
+        The sensor's height, millimetres.
+
+    Returns
+    -------
+    dict
+        The artists for :func:`update_focus_cone` (``"stop"``, ``"lens"``, ``"cone_in"``,
+        ``"cone_out"``, ``"rays"``, ``"beyond"``, ``"point"``, ``"sensor"``, ``"focus"``,
+        ``"blur"``, ``"text"``) and the half-heights ``"half"`` and ``"sensor_half"`` (mm).
     """
     # the optical axis (dark enough to read through the cone), under the cone: live frames paint the cone over
     # the cached background, so a full draw must too
@@ -249,8 +299,25 @@ def update_focus_cone(art: dict, f: float, N: float, z_o: float, z_s: float) -> 
     The cone from the aperture (diameter A = f / N) converges to the image point at
     :math:`z_i` and cuts the sensor in a disc of diameter :math:`c = A\,|z_s - z_i| / z_i`
     (similar triangles). The cone is drawn up to the sensor, where the light stops.
-    Returns ``{"z_i", "A", "c", "airy"}`` in metres (``airy``: the Airy disc
-    :math:`2.44 \lambda N` in green light).
+
+    Parameters
+    ----------
+    art : dict
+        What :func:`draw_focus_cone` returned (moved in place).
+    f : float
+        Focal length, metres.
+    N : float
+        f-number (dimensionless).
+    z_o : float
+        Object distance, metres (> f).
+    z_s : float
+        Lens-to-sensor distance, metres.
+
+    Returns
+    -------
+    dict
+        ``"z_i"`` (image distance), ``"A"`` (aperture diameter), ``"c"`` (blur-circle diameter)
+        and ``"airy"`` (the Airy disc :math:`2.44 \lambda N` in green light), all metres.
     """
     A = _lens.aperture_diameter(f, N)
     z_i = float(_lens.image_distance(f, z_o))
@@ -303,7 +370,21 @@ class BlurView(NamedTuple):
 
 
 def blur_view(diameter_um: float) -> BlurView:
-    """(half-width, scale-bar length) in µm of the face-on view for the largest disc ``diameter_um``."""
+    """(half-width, scale-bar length) in µm of the face-on view for the largest disc ``diameter_um``.
+
+    The first of :data:`BLUR_VIEWS` in which the disc fills at most 5/6 of the view's width; the
+    widest view if none does.
+
+    Parameters
+    ----------
+    diameter_um : float
+        Diameter of the largest disc to show, µm.
+
+    Returns
+    -------
+    BlurView
+        ``half_width`` and ``scale_bar``, µm.
+    """
     for half, bar in BLUR_VIEWS:
         if diameter_um <= 2 * half * 5 / 6:
             return BlurView(half, bar)
@@ -311,14 +392,27 @@ def blur_view(diameter_um: float) -> BlurView:
 
 
 def draw_blur_disc(ax, coc_um: float = 30.0) -> dict:
-    """The sensor seen face on around the image point: the blur disc (red), the acceptable blur
-    ``coc_um`` (purple dashes) and the Airy disc (brown dots), to scale with each other and
-    with a grid of the sensor's pixels.
+    """The sensor seen face on around the image point: the blur disc, the acceptable blur and the Airy disc.
 
+    The blur disc is red, the acceptable blur ``coc_um`` purple dashes and the Airy disc brown
+    dots, to scale with each other and with a grid of the sensor's pixels.
     The view zooms (:data:`BLUR_VIEWS`) so that the largest disc fills at most 5/6 of it: a
     1 µm disc beside a 4 µm Airy ring is as visible as a 6 mm disc. The axes run from -1 to
     1 in units of the view's half-width, so the zoom needs no new axis limits (the demo stays
     blittable); a scale bar and the title give the scale. :func:`update_blur_disc` sets it all.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw in (equal aspect, no ticks).
+    coc_um : float
+        The acceptable circle of confusion's diameter, µm.
+
+    Returns
+    -------
+    dict
+        The artists for :func:`update_blur_disc` (``"grid"``, ``"blur"``, ``"ok"``, ``"airy"``,
+        ``"bar"``, ``"bar_text"``, ``"text"``) and ``"coc"``, the acceptable diameter (µm).
     """
     from matplotlib.collections import LineCollection
     from matplotlib.colors import to_rgba
@@ -371,8 +465,23 @@ def draw_blur_disc(ax, coc_um: float = 30.0) -> dict:
 def update_blur_disc(art: dict, c: float, airy: float, pixel: float) -> dict:
     """Blur circle ``c`` and Airy disc ``airy`` (diameters, metres) on pixels of ``pixel`` m, zoomed to fit.
 
-    The title gives c in µm and in pixels, the Airy disc, and the view's width; returns
-    ``{"half_um", "grid_px"}``: the view's half-width (µm) and the grid's spacing (pixels).
+    The title gives c in µm and in pixels, the Airy disc, and the view's width.
+
+    Parameters
+    ----------
+    art : dict
+        What :func:`draw_blur_disc` returned (moved in place).
+    c : float
+        Blur-circle diameter, metres.
+    airy : float
+        Airy-disc diameter, metres.
+    pixel : float
+        Pixel pitch, metres.
+
+    Returns
+    -------
+    dict
+        ``"half_um"``: the view's half-width (µm); ``"grid_px"``: the grid's spacing (pixels).
     """
     c_um, airy_um, pixel_um = c * 1e6, airy * 1e6, pixel * 1e6
     half, bar = blur_view(max(c_um, airy_um, art["coc"]))
