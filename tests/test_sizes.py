@@ -29,8 +29,6 @@ EXCEPTIONS = {
     # i27-plots splits these (issue 27, item 2)
     "camlab.widgets.affine_cameras.rails.parallel_rails": "i27-plots (issue 27): in its topic module, not yet split by step",
     "camlab.widgets.affine_cameras.rays.projection_rays": "i27-plots (issue 27): in its topic module, not yet split by step",
-    "camlab.widgets.camera_calibration.accuracy_vs_views": "i27-plots (issue 27)",
-    "camlab.widgets.camera_calibration.view_inspector": "i27-plots (issue 27)",
     "camlab.widgets.digital_sensor.bit_depth_and_noise": "i27-plots (issue 27)",
     "camlab.widgets.digital_sensor.demosaicing": "i27-plots (issue 27)",
     "camlab.widgets.digital_sensor.sampling_aliasing": "i27-plots (issue 27); grew to 84 with the fine-pixel redraw",
