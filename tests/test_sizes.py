@@ -29,9 +29,6 @@ EXCEPTIONS = {
     # i27-plots splits these (issue 27, item 2)
     "camlab.widgets.affine_cameras.rails.parallel_rails": "i27-plots (issue 27): in its topic module, not yet split by step",
     "camlab.widgets.affine_cameras.rays.projection_rays": "i27-plots (issue 27): in its topic module, not yet split by step",
-    "camlab.widgets.digital_sensor.bit_depth_and_noise": "i27-plots (issue 27)",
-    "camlab.widgets.digital_sensor.demosaicing": "i27-plots (issue 27)",
-    "camlab.widgets.digital_sensor.sampling_aliasing": "i27-plots (issue 27); grew to 84 with the fine-pixel redraw",
     "camlab.widgets.homographies.transformation_hierarchy": "i27-plots (issue 27)",
     "camlab.widgets.homographies.drag_homography": "i27-plots (issue 27)",
     "camlab.widgets.homographies.ransac_outliers": "i27-plots (issue 27)",
