@@ -34,7 +34,6 @@ EXCEPTIONS = {
     "camlab.widgets.homographies.ransac_outliers": "i27-plots (issue 27)",
     "camlab.widgets.image_stitching.matching.ransac_registration": "i27-plots (issue 27): in its topic module, not yet split by step",
     "camlab.widgets.image_stitching.canvas.parallax_ghosting": "i27-plots (issue 27): in its topic module, not yet split by step",
-    "camlab.widgets.perspective_correction.rectify_photo": "i27-plots (issue 27)",
     "camlab.widgets.pinhole_camera.pinhole_projection": "i27-plots (issue 27)",
     "camlab.widgets.pinhole_camera.pinhole_size": "i27-plots (issue 27)",
     "camlab.widgets.projective_plane.vanishing_points": "i27-plots (issue 27)",
