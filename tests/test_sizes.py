@@ -34,8 +34,6 @@ EXCEPTIONS = {
     "camlab.widgets.homographies.ransac_outliers": "i27-plots (issue 27)",
     "camlab.widgets.image_stitching.matching.ransac_registration": "i27-plots (issue 27): in its topic module, not yet split by step",
     "camlab.widgets.image_stitching.canvas.parallax_ghosting": "i27-plots (issue 27): in its topic module, not yet split by step",
-    "camlab.widgets.stereo_rectification.epipolar_lines": "i27-plots (issue 27)",
-    "camlab.widgets.stereo_rectification.rectify_pair": "i27-plots (issue 27)",
 }
 
 
