@@ -32,25 +32,11 @@ EXCEPTIONS = {
     # i27-plots splits these (issue 27, item 2)
     "camlab.widgets.affine_cameras.rails.parallel_rails": "i27-plots (issue 27): in its topic module, not yet split by step",
     "camlab.widgets.affine_cameras.rays.projection_rays": "i27-plots (issue 27): in its topic module, not yet split by step",
-    "camlab.widgets.camera_calibration.accuracy_vs_views": "i27-plots (issue 27)",
-    "camlab.widgets.camera_calibration.view_inspector": "i27-plots (issue 27)",
-    "camlab.widgets.digital_sensor.bit_depth_and_noise": "i27-plots (issue 27)",
-    "camlab.widgets.digital_sensor.demosaicing": "i27-plots (issue 27)",
-    "camlab.widgets.digital_sensor.sampling_aliasing": "i27-plots (issue 27); grew to 84 with the fine-pixel redraw",
     "camlab.widgets.homographies.transformation_hierarchy": "i27-plots (issue 27)",
     "camlab.widgets.homographies.drag_homography": "i27-plots (issue 27)",
     "camlab.widgets.homographies.ransac_outliers": "i27-plots (issue 27)",
     "camlab.widgets.image_stitching.matching.ransac_registration": "i27-plots (issue 27): in its topic module, not yet split by step",
     "camlab.widgets.image_stitching.canvas.parallax_ghosting": "i27-plots (issue 27): in its topic module, not yet split by step",
-    "camlab.widgets.lenses_and_distortion.focus_and_blur": "i27-plots (issue 27)",
-    "camlab.widgets.lenses_and_distortion.depth_of_field": "i27-plots (issue 27)",
-    "camlab.widgets.lenses_and_distortion.lens_distortion": "i27-plots (issue 27)",
-    "camlab.widgets.perspective_correction.rectify_photo": "i27-plots (issue 27)",
-    "camlab.widgets.pinhole_camera.pinhole_projection": "i27-plots (issue 27)",
-    "camlab.widgets.pinhole_camera.pinhole_size": "i27-plots (issue 27)",
-    "camlab.widgets.projective_plane.vanishing_points": "i27-plots (issue 27)",
-    "camlab.widgets.stereo_rectification.epipolar_lines": "i27-plots (issue 27)",
-    "camlab.widgets.stereo_rectification.rectify_pair": "i27-plots (issue 27)",
 }
 
 

@@ -36,7 +36,14 @@ __all__ = [
 
 
 def all_demos() -> dict[str, DemoSpec]:
-    """Import every lesson's demo module and return the registry, by demo name."""
+    """Import every lesson's demo module and return the registry, by demo name.
+
+    Returns
+    -------
+    dict of str to DemoSpec
+        Every registered demo by name: its builder, lesson and the sweep of control values
+        the headless tests and ``benchmarks/latency.py`` drive it through.
+    """
     for module in pkgutil.iter_modules(__path__):
         if not module.name.startswith("_"):
             importlib.import_module(f"{__name__}.{module.name}")

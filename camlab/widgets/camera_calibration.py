@@ -11,6 +11,8 @@ Each builds its figure once; updates call camlab.calibration and move artists.
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import ipywidgets as W
 import numpy as np
 
@@ -26,17 +28,9 @@ _NAMES = ("fx", "fy", "cx", "cy")
 _SIGMA_LIM = 8.0  # the sigma-unit axis spans +-8
 
 
-@register(lesson="08", sweep={"n_views": [3, 6, 10, 15], "noise": [0.0, 0.3, 1.0]})
-def accuracy_vs_views() -> Demo:
-    """Calibrate from the first n views with sigma px of noise: errors in units of the reported sigma."""
-    s = C.make_synthetic_views(
-        15, 0.0, rng=np.random.default_rng(0)
-    )  # exact views of the lesson's camera
-    unit = np.random.default_rng(1).normal(
-        size=(15, len(s.object_points), 2)
-    )  # one fixed draw, scaled by sigma
-    truth = np.array([s.K[0, 0], s.K[1, 1], s.K[0, 2], s.K[1, 2]])
-    view = FigureView(figsize=(9.4, 3.9))
+def _accuracy_figure(view: FigureView, s) -> SimpleNamespace:
+    """The figure of :func:`accuracy_vs_views`: the errors in units of the reported sigma (left)
+    and the corners used, coloured by view (right); returns its animated artists by name."""
     ax, axi = view.fig.subplots(1, 2, width_ratios=[1, 1.3])
     ax.axhline(0, color="0.4", lw=1)
     # In units of the reported standard deviation: the bars are always +-3, so every setting
@@ -78,6 +72,61 @@ def accuracy_vs_views() -> Demo:
     )
     view.fig.colorbar(pts, ax=axi, label="view", ticks=range(0, 15, 2), shrink=0.9)
     view.animate(pts)
+    return SimpleNamespace(dots=dots, above=above, below=below, pts=pts)
+
+
+def _accuracy_readout(n, sigma, res, s, est, std, truth, err, z) -> str:
+    """The text beside :func:`accuracy_vs_views`: each estimate with its reported sigma, the truth
+    and the error in sigmas."""
+    lines = [f"{n} views, noise σ = {sigma:.2f} px, rms = {res.rms:.3f} px per corner"]
+    lines += [
+        f"{k:>2} = {e:8.2f} ± {sd:5.2f}  (true {t:.1f}, error {d:+.2f} = {zz:+.1f}σ)"
+        for k, e, sd, t, d, zz in zip(_NAMES, est, std, truth, err, z, strict=True)
+    ]
+    lines.append(f"k1 = {res.dist[0]:+.3f} ± {res.std['k1']:.3f}  (true {s.dist[0]:+.3f})")
+    if sigma == 0:
+        lines.append("no noise: errors and σ are both rounding noise")
+    return monospace("\n".join(lines))
+
+
+def _accuracy_controls() -> dict:
+    """The controls of :func:`accuracy_vs_views`: the number of views and the corner noise."""
+    return {
+        "n_views": W.IntSlider(
+            value=6,
+            min=3,
+            max=15,
+            description="views",
+            continuous_update=True,
+            style={"description_width": "initial"},
+            layout=W.Layout(width="300px"),
+        ),
+        "noise": slider(0.3, 0.0, 1.0, 0.05, "corner noise σ (px)"),
+    }
+
+
+@register(lesson="08", sweep={"n_views": [3, 6, 10, 15], "noise": [0.0, 0.3, 1.0]})
+def accuracy_vs_views() -> Demo:
+    """Calibrate from the first n views with sigma px of noise: errors in units of the reported sigma.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``n_views`` (3-15 views of the lesson's synthetic camera) and
+        ``noise`` (the corner noise sigma, px), the figure (each intrinsic's error divided by
+        its reported sigma beside the corners used) and ``state`` (``K``, ``dist``, ``errors``,
+        ``std``, ``z``, ``rms``, ``n_views``, ``noise``).
+    """
+    s = C.make_synthetic_views(
+        15, 0.0, rng=np.random.default_rng(0)
+    )  # exact views of the lesson's camera
+    unit = np.random.default_rng(1).normal(
+        size=(15, len(s.object_points), 2)
+    )  # one fixed draw, scaled by sigma
+    truth = np.array([s.K[0, 0], s.K[1, 1], s.K[0, 2], s.K[1, 2]])
+    view = FigureView(figsize=(9.4, 3.9))
+    art = _accuracy_figure(view, s)
+    dots, above, below, pts = art.dots, art.above, art.below, art.pts
     readout = W.HTML()
     # Warm start: each update starts LM from the previous solution (K, dist and every view's
     # last pose) instead of Zhang's closed form. The minimum is the same (a full calibration
@@ -124,31 +173,11 @@ def accuracy_vs_views() -> Demo:
         edge = _SIGMA_LIM - 0.4
         above.set_data(x[z > edge], np.full(np.sum(z > edge), edge))
         below.set_data(x[z < -edge], np.full(np.sum(z < -edge), -edge))
-        lines = [f"{n} views, noise σ = {sigma:.2f} px, rms = {res.rms:.3f} px per corner"]
-        lines += [
-            f"{k:>2} = {e:8.2f} ± {sd:5.2f}  (true {t:.1f}, error {d:+.2f} = {zz:+.1f}σ)"
-            for k, e, sd, t, d, zz in zip(_NAMES, est, std, truth, err, z, strict=True)
-        ]
-        lines.append(f"k1 = {res.dist[0]:+.3f} ± {res.std['k1']:.3f}  (true {s.dist[0]:+.3f})")
-        if sigma == 0:
-            lines.append("no noise: errors and σ are both rounding noise")
-        readout.value = monospace("\n".join(lines))
+        readout.value = _accuracy_readout(n, sigma, res, s, est, std, truth, err, z)
 
-    controls = {
-        "n_views": W.IntSlider(
-            value=6,
-            min=3,
-            max=15,
-            description="views",
-            continuous_update=True,
-            style={"description_width": "initial"},
-            layout=W.Layout(width="300px"),
-        ),
-        "noise": slider(0.3, 0.0, 1.0, 0.05, "corner noise σ (px)"),
-    }
     return build_demo(
         "accuracy_vs_views",
-        controls,
+        _accuracy_controls(),
         view,
         update,
         title="More views, less noise: a better camera",
@@ -156,22 +185,9 @@ def accuracy_vs_views() -> Demo:
     )
 
 
-@register(lesson="08", sweep={"view": [0, 5, 11], "magnify": [1.0, 300.0, 1000.0]})
-def view_inspector(
-    calibration: C.ImageCalibration | None = None, images: list | None = None
-) -> Demo:
-    """Each photo with detected corners (+), reprojected corners (o) and residual arrows x magnify.
-
-    ``calibration`` from :func:`camlab.calibration.calibrate_from_images` and the ``images`` it
-    was given; default: the rendered set in data/.
-    """
-    out = bundled_calibration() if calibration is None else calibration
-    res = out.result
-    if images is None and calibration is None:
-        from ..data import load_calibration_set
-
-        images = load_calibration_set().images
-    view = FigureView(figsize=(7.5, 5))
+def _inspector_figure(view: FigureView, res) -> SimpleNamespace:
+    """The figure of :func:`view_inspector`: the photo, the detected and the reprojected corners
+    and the residual arrows; returns its animated artists by name."""
     ax = view.fig.subplots()
     image_frame(ax, res.image_size)
     w, h = res.image_size
@@ -217,20 +233,73 @@ def view_inspector(
     )
     ax.legend(loc="upper right", fontsize=8)
     view.animate(ax.get_legend())  # over the animated photo, or it would hide the legend
+    return SimpleNamespace(im=im, det=det, rep=rep, arrows=arrows)
+
+
+def _inspector_controls(n_views: int) -> dict:
+    """The controls of :func:`view_inspector`: the view (0 to ``n_views`` - 1) and the arrows'
+    magnification."""
+    return {
+        "view": W.IntSlider(
+            value=0,
+            min=0,
+            max=n_views - 1,
+            description="view",
+            continuous_update=True,
+            style={"description_width": "initial"},
+            layout=W.Layout(width="300px"),
+        ),
+        "magnify": slider(300.0, 1.0, 1000.0, 1.0, "arrow magnification"),
+    }
+
+
+@register(lesson="08", sweep={"view": [0, 5, 11], "magnify": [1.0, 300.0, 1000.0]})
+def view_inspector(
+    calibration: C.ImageCalibration | None = None, images: list | None = None
+) -> Demo:
+    """Each photo with detected corners (+), reprojected corners (o) and residual arrows x magnify.
+
+    Parameters
+    ----------
+    calibration : camlab.calibration.ImageCalibration, optional
+        The outcome of :func:`camlab.calibration.calibrate_from_images`. Default: the rendered
+        calibration set in data/, calibrated once (:func:`camlab.fixtures.calibration.bundled_calibration`).
+    images : list of (H, W) arrays, optional
+        The images ``calibration`` was computed from, in its input order (grey levels 0-255).
+        Default: the rendered set's photos when ``calibration`` is the default too; with a
+        ``calibration`` of your own and no ``images``, each view shows a grey background.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``view`` (which used view) and ``magnify`` (the residual arrows'
+        scale), the figure (the photo, detected and reprojected corners, residual arrows) and
+        ``state`` (``view``, ``image_index``, ``rms`` in px, ``worst_corner``,
+        ``longest_arrow_px``).
+    """
+    out = bundled_calibration() if calibration is None else calibration
+    res = out.result
+    if images is None and calibration is None:
+        from ..data import load_calibration_set
+
+        images = load_calibration_set().images
+    view = FigureView(figsize=(7.5, 5))
+    art = _inspector_figure(view, res)
+    w, h = res.image_size
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
         k = int(v["view"])
         i = out.used[k]
         img = images[i] if images is not None else None
-        im.set_data(img if img is not None else np.full((h, w), 128.0))
+        art.im.set_data(img if img is not None else np.full((h, w), 128.0))
         obs = res.image_points[k]
         pred = res.reprojected(k)
         r = res.residuals[k]
-        det.set_data(obs[:, 0], obs[:, 1])
-        rep.set_data(pred[:, 0], pred[:, 1])
-        arrows.set_offsets(pred)
-        arrows.set_UVC(r[:, 0] * v["magnify"], r[:, 1] * v["magnify"])
+        art.det.set_data(obs[:, 0], obs[:, 1])
+        art.rep.set_data(pred[:, 0], pred[:, 1])
+        art.arrows.set_offsets(pred)
+        art.arrows.set_UVC(r[:, 0] * v["magnify"], r[:, 1] * v["magnify"])
         worst = int(np.argmax(np.linalg.norm(r, axis=1)))
         state.update(
             view=k,
@@ -245,21 +314,9 @@ def view_inspector(
             f"{np.linalg.norm(r[worst]):.3f} px\narrows ×{v['magnify']:.0f}"
         )
 
-    controls = {
-        "view": W.IntSlider(
-            value=0,
-            min=0,
-            max=res.n_views - 1,
-            description="view",
-            continuous_update=True,
-            style={"description_width": "initial"},
-            layout=W.Layout(width="300px"),
-        ),
-        "magnify": slider(300.0, 1.0, 1000.0, 1.0, "arrow magnification"),
-    }
     return build_demo(
         "view_inspector",
-        controls,
+        _inspector_controls(res.n_views),
         view,
         update,
         title="Detected versus reprojected corners",
@@ -271,7 +328,26 @@ def view_inspector(
 def undistort_alpha(
     image: np.ndarray | None = None, K: np.ndarray | None = None, dist: np.ndarray | None = None
 ) -> Demo:
-    """Undistort a photo; alpha trades black borders (alpha = 1) for cropped pixels (alpha = 0)."""
+    """Undistort a photo; alpha trades black borders (alpha = 1) for cropped pixels (alpha = 0).
+
+    Parameters
+    ----------
+    image : (H, W) or (H, W, 3) array, optional
+        The distorted photo (0-255). Default, or when ``K`` is not given: photo 3 of the
+        rendered calibration set, with that set's ``K`` and ``dist`` (the three replace
+        whatever was passed).
+    K : (3, 3) array, optional
+        The camera matrix the photo was taken with (px).
+    dist : array of 5, optional
+        Its distortion coefficients, in OpenCV's order (k1, k2, p1, p2, k3).
+
+    Returns
+    -------
+    Demo
+        The demo: control ``alpha`` (0 crops to valid pixels, 1 keeps every photo pixel), the
+        figure (the photo beside its undistorted version with the photo's border traced) and
+        ``state`` (``new_K``, ``black_fraction``, ``lost_fraction``).
+    """
     from ..data import load_calibration_set
 
     if image is None or K is None:

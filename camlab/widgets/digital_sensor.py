@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import ipywidgets as W
 import numpy as np
 from matplotlib.patches import Rectangle
@@ -18,7 +20,16 @@ SIZE = (320, 240)
     lesson="03", sweep={"pitch_um": [2.0, 3.0, 6.0, 12.0, 15.0], "cx_offset": [-60, -40, 0, 40, 60]}
 )
 def pixel_pitch():
-    """The same 3 mm lens on sensors with different pixel pitch and principal point offset."""
+    """The same 3 mm lens on sensors with different pixel pitch and principal point offset.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``pitch_um`` (pixel pitch, µm) and ``cx_offset`` (principal point's
+        offset from the image centre, px), the figure (the rendered 320 x 240 image with the
+        image centre and the principal point) and ``state`` (``K``, ``fov_deg`` the horizontal
+        field of view in degrees, ``fov_left_right`` its two halves either side of the axis).
+    """
     controls = {
         "pitch_um": slider(6.0, 2.0, 15.0, 0.5, "pixel pitch (µm)"),
         "cx_offset": slider(0, -60, 60, 2, "principal point offset (px)"),
@@ -92,13 +103,9 @@ def pixel_pitch():
     )
 
 
-@register(
-    lesson="03",
-    sweep={"factor": [1, 2, 3, 4, 6, 7, 8], "prefilter": [True, False], "blur": [0.0, 0.5, 1.0]},
-)
-def sampling_aliasing():
-    """A zone plate sampled by coarser pixels: ideal point samples alias, real (box) pixels and a lens blur much less."""
-    controls = {
+def _sampling_controls() -> dict:
+    """The controls of :func:`sampling_aliasing`: the pixel size, the box filter and the lens blur."""
+    return {
         "factor": W.IntSlider(
             value=3,  # odd: each point sample is its block's centre, so the fold shows on all four sides
             min=1,
@@ -113,6 +120,25 @@ def sampling_aliasing():
         ),
         "blur": slider(0.0, 0.0, 1.0, 0.1, "lens blur σ (coarse px)"),
     }
+
+
+@register(
+    lesson="03",
+    sweep={"factor": [1, 2, 3, 4, 6, 7, 8], "prefilter": [True, False], "blur": [0.0, 0.5, 1.0]},
+)
+def sampling_aliasing():
+    """A zone plate sampled by coarser pixels: ideal point samples alias, real (box) pixels and a lens blur much less.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``factor`` (the coarse pixel's size in fine px), ``prefilter``
+        (average over the pixel's area instead of a point sample) and ``blur`` (a lens blur's
+        sigma, coarse px), the figure (the zone plate beside its samples with the Nyquist
+        square) and ``state`` (``samples`` the sampled shape, ``nyquist_half_side`` in fine px,
+        ``alias_contrast`` the samples' standard deviation beyond the Nyquist square).
+    """
+    controls = _sampling_controls()
     view = FigureView(figsize=(9, 4))
     ax_t, ax_s = view.fig.subplots(1, 2)
     zp = sensor.zone_plate(384, k=np.pi / 768)  # 0.25 cycle/px at the edge
@@ -198,17 +224,9 @@ BACKGROUND = 0.2  # the grey around the photo, linear
 UNIFORM = slice(100, 140)  # where the profile row crosses the dark uniform
 
 
-@register(
-    lesson="03",
-    sweep={
-        "bits": [1, 3, 8, 12],
-        "exposure": [0.01, 0.02, 0.3, 1.0],
-        "read_noise": [0.0, 20.0, 40.0],
-    },
-)
-def bit_depth_and_noise():
-    """Quantisation and noise on a rendered photo, with a row profile."""
-    controls = {
+def _noise_controls() -> dict:
+    """The controls of :func:`bit_depth_and_noise`: bit depth, exposure and read noise."""
+    return {
         "bits": W.IntSlider(
             value=4,
             min=1,
@@ -231,7 +249,11 @@ def bit_depth_and_noise():
         ),
         "read_noise": slider(5.0, 0.0, 40.0, 1.0, "read noise (electrons)"),
     }
-    view = FigureView(figsize=(9, 4))
+
+
+def _noise_figure(view: FigureView) -> SimpleNamespace:
+    """The figure of :func:`bit_depth_and_noise`: the rendered photo (linear light, shown through
+    sRGB) and the profile of one row against the truth; returns the clean photo and the artists."""
     ax_img, ax_p = view.fig.subplots(1, 2)
     K = np.array([[330.0, 0, 159.5], [0, 330.0, 119.5], [0, 0, 1]])
     # linear light, as a sensor counts it (the photo's JPEG values decoded), shown through sRGB
@@ -259,8 +281,35 @@ def bit_depth_and_noise():
     ax_p.set_xlabel("u (px)")
     ax_p.set_ylabel("linear value (1: the photo's white)")
     ax_p.set_title("", fontsize=9)
-    readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
     view.animate(im, prof, ax_p.title)
+    return SimpleNamespace(clean=clean, im=im, prof=prof, ax_p=ax_p, row=row)
+
+
+@register(
+    lesson="03",
+    sweep={
+        "bits": [1, 3, 8, 12],
+        "exposure": [0.01, 0.02, 0.3, 1.0],
+        "read_noise": [0.0, 20.0, 40.0],
+    },
+)
+def bit_depth_and_noise():
+    """Quantisation and noise on a rendered photo, with a row profile.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``bits`` (bit depth), ``exposure`` (a fraction of the full well) and
+        ``read_noise`` (electrons), the figure (the recorded photo and one row's profile against
+        the truth) and ``state`` (``levels``, ``snr`` at half of white, ``rms_error`` as a
+        fraction of full scale, ``electrons`` of the white, the dark uniform and the background,
+        ``dn_electrons`` the electrons per digital number).
+    """
+    controls = _noise_controls()
+    view = FigureView(figsize=(9, 4))
+    art = _noise_figure(view)
+    clean, im, prof, ax_p, row = art.clean, art.im, art.prof, art.ax_p, art.row
+    readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
     full_well = 10000.0
     rng = np.random.default_rng(0)
 
@@ -322,22 +371,11 @@ ZOOM_V_MAX = SIZE[1] - CROP  # the zoom's bottom row at the frame's last row
 ZOOM_V = 100  # the default zoom: the flag's stripes, the spectacles' lower rim above it, the cheek
 
 
-@register(
-    lesson="03",
-    sweep={
-        "pattern": ["RGGB", "GBRG"],
-        "method": list(_METHODS),
-        "zoom_u": [0, 40, 200, ZOOM_MAX],
-        "zoom_v": [0, 50, ZOOM_V_MAX],
-        "zoom_error": [True, False],
-        "assume": ["BGGR", _SAME],
-    },
-)
-def demosaicing():
-    """A Bayer mosaic demosaiced by one method at a time, with PSNR, a zoom anywhere in the frame (as the image or
-    as its error) and the mosaic under it; try the wrong pattern."""
+def _demosaic_controls() -> dict:
+    """The controls of :func:`demosaicing`: the sensor's pattern, the pattern assumed, the method
+    and the zoom (where, and whether it shows the image or its error)."""
     patterns = ["RGGB", "BGGR", "GRBG", "GBRG"]
-    controls = {
+    return {
         "pattern": W.Dropdown(options=patterns, value="RGGB", description="sensor's pattern"),
         "assume": W.Dropdown(
             options=[_SAME] + patterns,
@@ -354,7 +392,11 @@ def demosaicing():
         ),
         "zoom_error": W.Checkbox(value=False, description="zoom: |error| x 8 (linear)"),
     }
-    view = FigureView(figsize=(10, 3.9))
+
+
+def _demosaic_figure(view: FigureView) -> SimpleNamespace:
+    """The figure of :func:`demosaicing`: the mosaic's zoom, the demosaiced frame with the zoom's
+    box, and the zoom; returns the true (linear) image and the artists by name."""
     ax_raw, ax_full, ax_zoom = view.fig.subplots(1, 3, width_ratios=[0.75, 1, 0.75])
     # linear light (the photo's JPEG values decoded), as a sensor records it; every panel is shown through sRGB
     truth = render.render(
@@ -373,6 +415,46 @@ def demosaicing():
     box.set_path_effects(palette.halo(1.5, "black"))
     ax_full.set_title("camlab bilinear: PSNR 00.00 dB (linear)", fontsize=10)
     view.animate(im_raw, im_full, im_zoom, box, ax_full.title, ax_zoom.title)
+    return SimpleNamespace(
+        truth=truth,
+        im_raw=im_raw,
+        im_full=im_full,
+        im_zoom=im_zoom,
+        box=box,
+        ax_full=ax_full,
+        ax_zoom=ax_zoom,
+    )
+
+
+@register(
+    lesson="03",
+    sweep={
+        "pattern": ["RGGB", "GBRG"],
+        "method": list(_METHODS),
+        "zoom_u": [0, 40, 200, ZOOM_MAX],
+        "zoom_v": [0, 50, ZOOM_V_MAX],
+        "zoom_error": [True, False],
+        "assume": ["BGGR", _SAME],
+    },
+)
+def demosaicing():
+    """A Bayer mosaic demosaiced by one method at a time, with PSNR, a zoom anywhere in the frame (as the image or
+    as its error) and the mosaic under it; try the wrong pattern.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``pattern`` (the sensor's Bayer pattern), ``assume`` (the pattern the
+        demosaicing assumes), ``method``, ``zoom_u`` and ``zoom_v`` (the zoom's top-left pixel)
+        and ``zoom_error`` (show the zoom's error x 8 instead of the image), the figure (the
+        mosaic, the demosaiced frame, the zoom) and ``state`` (``psnr`` in dB over the frame,
+        ``zoom``, ``assumed``, ``zoom_psnr``, ``zoom_shows``).
+    """
+    controls = _demosaic_controls()
+    view = FigureView(figsize=(10, 3.9))
+    art = _demosaic_figure(view)
+    truth, im_raw, im_full, im_zoom = art.truth, art.im_raw, art.im_full, art.im_zoom
+    box, ax_full, ax_zoom = art.box, art.ax_full, art.ax_zoom
 
     demosaiced: dict[tuple[str, str, str], tuple[np.ndarray, np.ndarray, float]] = {}
 

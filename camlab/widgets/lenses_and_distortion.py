@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import ipywidgets as W
 import numpy as np
 from matplotlib.transforms import offset_copy
@@ -9,6 +11,9 @@ from matplotlib.transforms import offset_copy
 from .. import distortion, fixtures, lens, render, scenes
 from ..plotting import images, optics, palette
 from ._base import FigureView, build_demo, register, slider
+from ._sensor_zoom import ZOOM_ARTISTS, ZOOM_LABELS, draw_sensor_zoom, update_sensor_zoom
+from ._sensor_zoom import ZOOM_HALF_MM as ZOOM_HALF_MM  # re-exported: it lived here
+from ._sensor_zoom import ZOOM_Y as ZOOM_Y  # re-exported: it lived here
 from .controls import monospace
 
 SIZE = (480, 360)
@@ -25,7 +30,15 @@ THIN_LENS_DEFAULT_M = 0.075  # the thin-lens demo's object distance: 1.5 f for i
 
 @register(lesson="02", sweep={"focal_mm": [30, 50, 90], "object_m": [0.06, 0.3, 0.8]})
 def thin_lens():
-    """Principal rays through a thin lens: where the image forms and how large it is."""
+    """Principal rays through a thin lens: where the image forms and how large it is.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``focal_mm`` (f, mm) and ``object_m`` (the object's distance z_o, m;
+        held at 1.05 f when asked closer than that), the ray diagram and ``state``
+        (``image_distance`` in m, ``magnification``, ``image_head``, ``object_held``).
+    """
     controls = {
         "focal_mm": slider(50, 20, 100, 1, "focal length f (mm)"),
         # default 1.5 f: an image twice the object's size, using the axes that m = -5 needs
@@ -60,107 +73,26 @@ SENSOR_MIN_MM = 50.04  # focuses at 62.6 m: beyond the hyperfocal distance of ev
 
 
 def blur_curve_depths(focus: float) -> np.ndarray:
-    """Depths (m) for the c(z) curve: 0.2-5 m, dense near ``focus`` where its V is narrower than 1 cm."""
+    """Depths (m) for the c(z) curve: 0.2-5 m, dense near ``focus`` where its V is narrower than 1 cm.
+
+    Parameters
+    ----------
+    focus : float
+        The distance the lens focuses (m).
+
+    Returns
+    -------
+    (N,) array
+        Sorted, unique depths (m): 300 from 0.2 to 5 m, 61 within ±3 % of ``focus``, and
+        ``focus`` itself (where the curve's V touches zero).
+    """
     near_focus = focus * (1 + np.linspace(-0.03, 0.03, 61))
     return np.unique(np.concatenate([np.linspace(0.2, 5.0, 300), near_focus, [focus]]))
 
 
-# The zoom under the side view: the last few millimetres before the sensor at true scale (one scale both ways),
-# where the cone crosses at z_i and the sensor cuts it in the blur c. Its axes run in units of the window's
-# half-width W (fixed limits: the demo stays blittable); W steps so that z_i and z_s both fit, and a scale bar
-# gives it in mm.
-ZOOM_HALF_MM = (0.2, 0.4, 1.0, 2.0, 4.0, 10.0, 20.0)  # the scale bar is W / 4: 0.05 mm to 5 mm
-ZOOM_Y = 0.3  # the zoom's half-height, in units of W: as wide as the side view above it
-ZOOM_ARTISTS = ("cone", "cone_out", "rays", "beyond", "sensor", "blur", "focus", "bar", "bar_text")
-ZOOM_LABELS = ("z_i", "z_s", "c")
-
-
-def _draw_sensor_zoom(ax) -> dict:
-    """Artists of the true-scale zoom around the sensor (see :func:`_update_sensor_zoom`)."""
-    light = dict(color=palette.ORANGE, alpha=0.22, lw=0)
-    zoom = {
-        "cone": ax.fill([0, 0, 0], [0, 0, 0], **light)[0],
-        "cone_out": ax.fill([0, 0, 0], [0, 0, 0], **light)[0],
-        # white halos, as in the side view: the rays run over their own light cone
-        "rays": ax.plot([], [], color=palette.ORANGE, lw=1.2, path_effects=palette.halo(1.2))[0],
-        "beyond": ax.plot(
-            [], [], color=palette.ORANGE, lw=1.2, ls=":", path_effects=palette.halo(1.2)
-        )[0],
-        "sensor": ax.plot([], [], color="0.3", lw=2)[0],
-        "blur": ax.plot([], [], color=palette.RED, lw=5, solid_capstyle="butt")[0],
-        "focus": ax.plot([], [], "x", color=palette.RED, ms=7, mew=2)[0],
-        "bar": ax.plot(
-            [-0.95, -0.7], [-0.9 * ZOOM_Y] * 2, color="k", lw=2.5, solid_capstyle="butt"
-        )[0],
-        "bar_text": ax.text(-0.68, -0.9 * ZOOM_Y, "", fontsize=8, va="center"),
-    }
-    for key, (ha, va) in zip(
-        ZOOM_LABELS, (("center", "bottom"), ("left", "top"), ("left", "center")), strict=True
-    ):
-        zoom[key] = ax.text(0, 0, key, fontsize=9, ha=ha, va=va, path_effects=palette.halo(2))
-    ax.axhline(0, color="0.4", lw=0.8, zorder=0.5)
-    ax.set(xlim=(-1, 1), ylim=(-ZOOM_Y, ZOOM_Y), xticks=[], yticks=[])
-    ax.set_aspect("equal")
-    ax.set_title("near the sensor, true scale (zoom)", fontsize=9)
-    return zoom
-
-
-def _update_sensor_zoom(zoom: dict, A: float, z_i: float, z_s: float, c: float) -> dict:
-    """Redraw the zoom for aperture ``A``, image point ``z_i`` and sensor ``z_s`` (metres); blur ``c`` there.
-
-    The window is centred between z_i and z_s, its half-width W the smallest step with both
-    inside 70 % of it; heights use the same scale, so the cone's angle is true. Returns
-    ``{"zoom_half_mm"}``.
-    """
-    zi, zs, a = z_i * 1e3, z_s * 1e3, A / 2 * 1e3  # mm
-    centre = (zi + zs) / 2
-    W = next((w for w in ZOOM_HALF_MM if abs(zs - zi) / 2 <= 0.7 * w), ZOOM_HALF_MM[-1])
-
-    def ray(z):  # the upper marginal ray's height (mm): a at the lens, 0 at z_i
-        return a * (1 - z / zi)
-
-    x_left, x_s, x_i = -1.0, (zs - centre) / W, (zi - centre) / W
-    z_left = centre - W
-    y_left, y_s = ray(z_left) / W, ray(zs) / W
-    x_meet = min(x_i, x_s)  # the light stops at the sensor
-    y_meet = 0.0 if zi < zs else y_s
-    zoom["cone"].set_xy([[x_left, y_left], [x_meet, y_meet], [x_meet, -y_meet], [x_left, -y_left]])
-    zoom["cone_out"].set_xy(
-        [[x_i, 0], [x_s, y_s], [x_s, -y_s]] if zi < zs else [[x_s, 0], [x_s, 0], [x_s, 0]]
-    )
-    zoom["rays"].set_data(
-        [x_left, x_meet, x_s, np.nan, x_left, x_meet, x_s],
-        [y_left, y_meet, y_s, np.nan, -y_left, -y_meet, -y_s],
-    )
-    zoom["beyond"].set_data(
-        *(([x_s, x_i, np.nan, x_s, x_i], [y_s, 0, np.nan, -y_s, 0]) if zi > zs else ([], []))
-    )
-    zoom["sensor"].set_data([x_s, x_s], [-ZOOM_Y, ZOOM_Y])
-    half_c = max(c / 2 * 1e3 / W, 0.006)  # a bar at least ~2 screen pixels tall
-    zoom["blur"].set_data([x_s, x_s], [-half_c, half_c])
-    zoom["focus"].set_data([x_i], [0])
-    zoom["bar_text"].set_text(f"{W / 4:g} mm")  # the bar spans a quarter of W (0.25 axis units)
-    zoom["z_i"].set_position((x_i, 0.05 * ZOOM_Y))
-    zoom["z_i"].set_ha(
-        "right" if abs(x_i - x_s) < 0.15 else "center"
-    )  # clear of the c beside the sensor
-    zoom["z_s"].set_position((x_s + 0.03, 0.95 * ZOOM_Y))
-    zoom["c"].set_position((x_s + 0.04, min(half_c, 0.7 * ZOOM_Y) * 0.5 + 0.02))
-    return {"zoom_half_mm": W}
-
-
-@register(
-    lesson="02",
-    sweep={
-        "f_number": [1.4, 8.0, 16.0, 32.0],
-        "object_m": [0.3, 1.0, 2.0],
-        "sensor_mm": [SENSOR_MIN_MM, 52.63, 60.0],
-    },
-)
-def focus_and_blur():
-    """The cone of light from a point through the aperture, a movable sensor, the blur disc it cuts there
-    (face on, zoomed to fit, over the sensor's pixels) and the blur circle c(z) of every depth."""
-    controls = {
+def _focus_controls() -> dict:
+    """The controls of :func:`focus_and_blur`: the f-number, the object's distance and the sensor's."""
+    return {
         "f_number": W.SelectionSlider(
             options=F_NUMBERS,
             value=2.8,
@@ -172,14 +104,18 @@ def focus_and_blur():
         "object_m": slider(1.5, 0.3, 2.0, 0.01, "object distance z (m)"),
         "sensor_mm": slider(52.63, SENSOR_MIN_MM, 60.0, 0.01, "sensor behind lens z_s (mm)"),
     }
-    view = FigureView(figsize=(9.8, 6.2))
+
+
+def _focus_figure(view: FigureView) -> SimpleNamespace:
+    """The figure of :func:`focus_and_blur`: the cone through the lens with its zoom near the sensor,
+    the blur disc face on and the blur circle c(z); returns its animated artists by name."""
     grid = view.fig.add_gridspec(2, 3, width_ratios=[1.5, 0.85, 1.1], height_ratios=[2.1, 1])
     ax_cone = view.fig.add_subplot(grid[0, 0])
     ax_disc = view.fig.add_subplot(grid[:, 1])
     ax_c = view.fig.add_subplot(grid[:, 2])
     ax_zoom = view.fig.add_subplot(grid[1, 0])  # last: fig.axes[1] stays the face-on view
     art = optics.draw_focus_cone(ax_cone)
-    zoom = _draw_sensor_zoom(ax_zoom)
+    zoom = draw_sensor_zoom(ax_zoom)
     disc = optics.draw_blur_disc(ax_disc, coc_um=COC_OK * 1e6)
     (curve,) = ax_c.plot([], [], "k", label="c(z), this sensor position")
     band = ax_c.axvspan(
@@ -231,12 +167,43 @@ def focus_and_blur():
         marker,
         ax_c.title,
     )
+    return SimpleNamespace(
+        art=art, zoom=zoom, disc=disc, curve=curve, band=band, airy=airy, marker=marker, ax_c=ax_c
+    )
+
+
+@register(
+    lesson="02",
+    sweep={
+        "f_number": [1.4, 8.0, 16.0, 32.0],
+        "object_m": [0.3, 1.0, 2.0],
+        "sensor_mm": [SENSOR_MIN_MM, 52.63, 60.0],
+    },
+)
+def focus_and_blur():
+    """The cone of light from a point through the aperture, a movable sensor, the blur disc it cuts there
+    (face on, zoomed to fit, over the sensor's pixels) and the blur circle c(z) of every depth.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``f_number`` (N), ``object_m`` (the point's distance, m) and
+        ``sensor_mm`` (the sensor's distance behind the 50 mm lens, mm), the figure (side
+        view with its true-scale zoom, blur disc, c(z) curve with the depth of field) and
+        ``state`` (``z_i``, ``A``, ``c``, ``airy`` in m; ``half_um``, ``grid_px``,
+        ``zoom_half_mm``; ``focus``, ``near``, ``far`` in m; ``c_px``; ``marker_off_scale``).
+    """
+    controls = _focus_controls()
+    view = FigureView(figsize=(9.8, 6.2))
+    parts = _focus_figure(view)
+    art, zoom, disc, curve, band = parts.art, parts.zoom, parts.disc, parts.curve, parts.band
+    airy, marker, ax_c = parts.airy, parts.marker, parts.ax_c
 
     def update(values, state):
         N, z_o, z_s = float(values["f_number"]), values["object_m"], values["sensor_mm"] * 1e-3
         state.update(optics.update_focus_cone(art, F_CONE, N, z_o, z_s))
         state.update(optics.update_blur_disc(disc, state["c"], state["airy"], PIXEL))
-        state.update(_update_sensor_zoom(zoom, state["A"], state["z_i"], z_s, state["c"]))
+        state.update(update_sensor_zoom(zoom, state["A"], state["z_i"], z_s, state["c"]))
         s = float(lens.object_distance(F_CONE, z_s))  # the distance this sensor position focuses
         z = blur_curve_depths(s)
         # c = 0 at s: a floor below the axis, so the V runs off its bottom there
@@ -275,10 +242,9 @@ def focus_and_blur():
     )
 
 
-@register(lesson="02", sweep={"f_number": [1.4, 4.0, 16.0], "focus_m": [0.5, 0.6, 1.2, 2.4, 4.0]})
-def depth_of_field():
-    """A scene of planes at 0.6, 1.2, 2.4 and 4 m rendered with thin-lens blur, above its blur curve."""
-    controls = {
+def _dof_controls() -> dict:
+    """The controls of :func:`depth_of_field`: the f-number and the focus distance."""
+    return {
         "f_number": W.SelectionSlider(
             options=[1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0, 16.0],
             value=2.8,
@@ -289,10 +255,12 @@ def depth_of_field():
         ),
         "focus_m": slider(1.2, 0.5, 4.0, 0.05, "focus distance (m)"),
     }
-    # 6.5 in at 90 dpi, 585 px wide: it fits beside the 300 px controls in JupyterLab's 968 px output area. The
-    # 480 x 360 image is drawn exactly 1:1 on whole canvas pixels (so 2 px of blur is what you see, and the live
-    # frame and a full draw place the same pixels: no resampling either way), the blur curve under it
-    view = FigureView(figsize=(6.5, 7.8))
+
+
+def _dof_figure(view: FigureView) -> SimpleNamespace:
+    """The figure of :func:`depth_of_field`: the rendered scene 1:1 on canvas pixels above its blur
+    curve with the sharp band and the planes; returns the scene, the curve's depths, the planes
+    and the animated artists by name."""
     width, height = view.fig.bbox.width, view.fig.bbox.height
     left, bottom = (
         64,
@@ -333,9 +301,6 @@ def depth_of_field():
         f"({SIZE[0] * PITCH_DOF * 1e3:.0f} x {SIZE[1] * PITCH_DOF * 1e3:.0f} mm)",
         fontsize=9,
     )
-    readout = (
-        W.HTML()
-    )  # the blur of each plane beside the sliders: canvas text costs ~4 ms per line per redraw
     # the limits in the figure too (a screenshot keeps them), under the curve's x label: never over the band (an
     # axes' text, 62 px under it: a saved figure draws an axes' animated artists, not the figure's)
     limits = ax_c.text(
@@ -351,6 +316,34 @@ def depth_of_field():
     view.animate(
         im, curve, band, limits, *lines
     )  # the lines too: over the moving band, live as in a full draw
+    return SimpleNamespace(
+        scene=scene, im=im, z=z, curve=curve, band=band, planes=planes, limits=limits
+    )
+
+
+@register(lesson="02", sweep={"f_number": [1.4, 4.0, 16.0], "focus_m": [0.5, 0.6, 1.2, 2.4, 4.0]})
+def depth_of_field():
+    """A scene of planes at 0.6, 1.2, 2.4 and 4 m rendered with thin-lens blur, above its blur curve.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``f_number`` (N) and ``focus_m`` (the focus distance, m), the
+        figure (the rendered scene 1:1 above c(z) with the sharp band, c < 2 px) and ``state``
+        (``near`` and ``far`` limits in m, ``coc_px`` the blur circle in px of each plane by
+        its depth).
+    """
+    controls = _dof_controls()
+    # 6.5 in at 90 dpi, 585 px wide: it fits beside the 300 px controls in JupyterLab's 968 px output area. The
+    # 480 x 360 image is drawn exactly 1:1 on whole canvas pixels (so 2 px of blur is what you see, and the live
+    # frame and a full draw place the same pixels: no resampling either way), the blur curve under it
+    view = FigureView(figsize=(6.5, 7.8))
+    parts = _dof_figure(view)
+    scene, im, z, curve, band = parts.scene, parts.im, parts.z, parts.curve, parts.band
+    planes, limits = parts.planes, parts.limits
+    readout = (
+        W.HTML()
+    )  # the blur of each plane beside the sliders: canvas text costs ~4 ms per line per redraw
 
     def update(values, state):
         N, s = float(values["f_number"]), values["focus_m"]
@@ -403,20 +396,9 @@ def _grid_lines(n: int = 9, samples: int = 60) -> np.ndarray:
     return np.array(lines)
 
 
-@register(
-    lesson="02",
-    sweep={
-        "k1": [-0.4, -0.35, 0.0, 0.25, 0.3],
-        "k2": [-0.1, 0.1, 0.3],
-        "k3": [-0.2, 0.3],
-        "p1": [-0.04, 0.03],
-        "p2": [-0.03, 0.04],
-        "undistort": [True, False],
-    },
-)
-def lens_distortion():
-    """Distortion sliders warp a rendered checkerboard and a grid; tick 'undistort' to undo it in both."""
-    controls = {
+def _distortion_controls() -> dict:
+    """The controls of :func:`lens_distortion`: the five coefficients and the undistort box."""
+    return {
         "k1": slider(-0.25, -0.4, 0.3, 0.01, "k1 (radial)"),
         "k2": slider(0.05, -0.1, 0.3, 0.005, "k2 (radial)"),
         "k3": slider(0.0, -0.2, 0.3, 0.01, "k3 (radial, r^6)"),
@@ -424,7 +406,12 @@ def lens_distortion():
         "p2": slider(0.0, -0.04, 0.04, 0.002, "p2 (tangential)", readout_format=".3f"),
         "undistort": W.Checkbox(value=False, description="undistort (cv2.remap with our map)"),
     }
-    view = FigureView(figsize=(8.6, 4.5))
+
+
+def _distortion_figure(view: FigureView) -> SimpleNamespace:
+    """The figure of :func:`lens_distortion`: the rendered board with its true corners and a grid
+    through the lens over the straight one; returns the board, the ideal grid and the animated
+    artists by name."""
     ax_img, ax_grid = view.fig.subplots(1, 2)
     board = scenes.checkerboard((11, 8), 0.04, t=(-0.2, -0.14, 0.45), px_per_square=32)
     # drawn smaller than its 480 x 360 pixels: area-averaged, or the square edges alias
@@ -456,8 +443,47 @@ def lens_distortion():
     )  # below: never over the grid
     img_title = ax_img.set_title(" \n ", fontsize=10)  # two lines, as update writes
     grid_title = ax_grid.set_title(" \n ", fontsize=10)  # two lines, as update writes
-    readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
     view.animate(im, dots, *bent, img_title, grid_title)
+    return SimpleNamespace(
+        board=board,
+        im=im,
+        dots=dots,
+        ideal=ideal,
+        bent=bent,
+        img_title=img_title,
+        grid_title=grid_title,
+    )
+
+
+@register(
+    lesson="02",
+    sweep={
+        "k1": [-0.4, -0.35, 0.0, 0.25, 0.3],
+        "k2": [-0.1, 0.1, 0.3],
+        "k3": [-0.2, 0.3],
+        "p1": [-0.04, 0.03],
+        "p2": [-0.03, 0.04],
+        "undistort": [True, False],
+    },
+)
+def lens_distortion():
+    """Distortion sliders warp a rendered checkerboard and a grid; tick 'undistort' to undo it in both.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``k1``, ``k2``, ``k3`` (radial), ``p1``, ``p2`` (tangential) and
+        ``undistort``, the figure (the rendered board with its true corners, a grid through
+        the lens over the straight one) and ``state`` (``kind`` of distortion,
+        ``corner_shift`` and ``edge_middle_shift`` radial shifts in px, ``corner0``,
+        ``max_shift`` in px, ``grid_error`` in px after undistorting).
+    """
+    controls = _distortion_controls()
+    view = FigureView(figsize=(8.6, 4.5))
+    parts = _distortion_figure(view)
+    board, im, dots, ideal, bent = parts.board, parts.im, parts.dots, parts.ideal, parts.bent
+    img_title, grid_title = parts.img_title, parts.grid_title
+    readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
 
     def update(values, state):
         d = np.array([values["k1"], values["k2"], values["p1"], values["p2"], values["k3"]])

@@ -9,6 +9,7 @@ the keyboard (a corner dropdown and two sliders), or typed into the corners text
 
 from __future__ import annotations
 
+from types import SimpleNamespace
 from typing import Any
 
 import ipywidgets as W
@@ -85,29 +86,9 @@ def _photo_demo(photo_title: str, result_title: str, outline: dict):
     return view, ax_p, ax_r, im_p, im_r, line
 
 
-@register(
-    lesson="10",
-    sweep={
-        "scene": ["page", "painting", "facade"],
-        "corners": [
-            "250.0, 120.0; 420.0, 140.0; 400.0, 380.0; 230.0, 350.0",
-            "200.0, 100.0; 450.0, 100.0; 450.0, 380.0; 200.0, 380.0",
-        ],
-        "use_focal": [True, False],
-        "corner": [3, 0],
-        "corner_u": [100.0, 300.0],
-        "corner_v": [50.0, 250.0],
-    },
-)
-def rectify_photo() -> Demo:
-    """Drag the four corners of a page, painting or facade; the rectified view follows, sized
-    by the aspect ratio estimated from the quadrilateral (compared with the truth). Without a
-    mouse, pick a corner and move it with its two sliders (or type the corners)."""
-    view, ax_p, ax_r, im_p, im_r, quad = _photo_demo(
-        "photo: drag the orange corners",
-        "rectified",
-        dict(ls="-", color=palette.ORANGE, lw=1.5, path_effects=palette.halo(1.5)),
-    )
+def _rectify_artists(view: FigureView, ax_p: Any, ax_r: Any) -> SimpleNamespace:
+    """The artists :func:`rectify_photo` adds to the photo demo's figure: the corner handles, the
+    chosen corner's ring, the key, the other focal length's and the true shape's outlines."""
     handles = view.animate(ax_p.plot([], [], "o", color=palette.ORANGE, ms=9, mec="k")[0])
     chosen = view.animate(
         ax_p.plot(
@@ -138,6 +119,110 @@ def rectify_photo() -> Demo:
         ax_r.plot([], [], ":", color=palette.GREEN, lw=1.5, path_effects=palette.halo(1.5))[0]
     )
     view.animate(ax_r.title)  # says which focal length the rectified view uses
+    return SimpleNamespace(handles=handles, chosen=chosen, other=other, truth_box=truth_box)
+
+
+def _show_shapes(im: Any, photo: Any, corners: np.ndarray, ratio: float, outlines) -> None:
+    """The rectified view of ``corners`` at width/height ``ratio``, as wide as the quadrilateral's
+    wider horizontal side, and ``outlines`` ((artist, ratio) pairs): the rectangles other ratios
+    would give, in the display box."""
+    width = max(np.linalg.norm(corners[1] - corners[0]), np.linalg.norm(corners[2] - corners[3]))
+    _show_rectified(im, photo.image, corners, (int(width), int(width / ratio)))
+    # Outlines, in the display box, of the rectangle the other focal length and the truth would give.
+    for artist, ratio in outlines:
+        w, h = _fit((int(width), int(width / ratio)))
+        x0, y0 = (_SHOW - w) // 2 - 0.5, (_SHOW - h) // 2 - 0.5
+        artist.set_data([x0, x0 + w, x0 + w, x0, x0], [y0, y0, y0 + h, y0 + h, y0])
+
+
+def _rectify_readout(est: Any, used: str, from_quad: Any, known: Any, photo: Any) -> str:
+    """The text beside :func:`rectify_photo`: the ratio shown, the ratios with f from the corners,
+    with f known and the true one."""
+    f = "—" if from_quad.focal_length is None else f"{from_quad.focal_length:.0f} px"
+    return monospace(
+        f"shown: w/h {est.ratio:.3f} ({used})\n"
+        f"w/h with f from the corners: {from_quad.ratio:.3f}  (f = {f}, {from_quad.focal_source})\n"
+        f"w/h with f known ({photo.K[0, 0]:.0f} px): {known.ratio:.3f}\n"
+        f"w/h true:                   {photo.aspect:.3f}\n"
+        "the rectified view uses the ticked choice;\ndrag a corner a few px: the estimated f moves,\n"
+        "the known-f ratio hardly does"
+    )
+
+
+def _new_photo(current: dict, scene: str, im: Any, control: W.Text) -> str:
+    """Switch :func:`rectify_photo` to ``scene``'s photo: show it, put its true corners in the
+    corners control (``current["busy"]`` keeps that from starting a second update) and return them
+    as text."""
+    current["scene"], current["photo"] = scene, scenes.sample_photo(scene)
+    _set_photo(im, current["photo"].image)
+    text = format_corners(current["photo"].corners)
+    if text != control.value:
+        current["busy"] = True
+        control.value = text
+        current["busy"] = False
+    return text
+
+
+def _show_corners(quad: Any, handles: Any, chosen: Any, corners: np.ndarray, k: int) -> None:
+    """The quadrilateral's outline, its corner handles and the ring on corner ``k``."""
+    closed = np.vstack([corners, corners[:1]])
+    quad.set_data(closed[:, 0], closed[:, 1])
+    handles.set_data(corners[:, 0], corners[:, 1])
+    chosen.set_data(corners[k, :1], corners[k, 1:])
+
+
+def _rectify_controls(control: W.Text, keys: dict) -> dict:
+    """The controls of :func:`rectify_photo`: the photo, the corners' text, the known-focal
+    checkbox and the corner the keys move (taken out of ``keys``)."""
+    return {
+        "scene": W.Dropdown(
+            options=["page", "painting", "facade"], value="page", description="photo"
+        ),
+        "corners": control,
+        "use_focal": W.Checkbox(value=False, description="use the known focal length (800 px)"),
+        "corner": keys.pop("corner"),
+    }
+
+
+@register(
+    lesson="10",
+    sweep={
+        "scene": ["page", "painting", "facade"],
+        "corners": [
+            "250.0, 120.0; 420.0, 140.0; 400.0, 380.0; 230.0, 350.0",
+            "200.0, 100.0; 450.0, 100.0; 450.0, 380.0; 200.0, 380.0",
+        ],
+        "use_focal": [True, False],
+        "corner": [3, 0],
+        "corner_u": [100.0, 300.0],
+        "corner_v": [50.0, 250.0],
+    },
+)
+def rectify_photo() -> Demo:
+    """Drag the four corners of a page, painting or facade; the rectified view follows, sized
+    by the aspect ratio estimated from the quadrilateral (compared with the truth). Without a
+    mouse, pick a corner and move it with its two sliders (or type the corners).
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``scene`` (page, painting or facade), ``corners`` (the text
+        ``"u0, v0; u1, v1; u2, v2; u3, v3"``, TL, TR, BR, BL, px), ``use_focal`` (rectify with
+        the known f instead of f from the corners) and ``corner`` (the corner its linked
+        ``corner_u`` and ``corner_v`` sliders move), the figure (the photo with the dragged
+        quadrilateral, the rectified view with the other f's and the true shape) and
+        ``state`` (``ratio`` w/h shown, ``true_ratio``, ``focal`` in px and ``focal_source``,
+        ``ratio_from_quad``, ``ratio_known_focal``, ``focal_from_quad``, ``corners``,
+        ``corner``, ``scene``, ``error``: the message when the corners cannot be rectified).
+        ``handlers`` holds the mouse handlers of the corner drag.
+    """
+    view, ax_p, ax_r, im_p, im_r, quad = _photo_demo(
+        "photo: drag the orange corners",
+        "rectified",
+        dict(ls="-", color=palette.ORANGE, lw=1.5, path_effects=palette.halo(1.5)),
+    )
+    art = _rectify_artists(view, ax_p, ax_r)
+    handles, chosen, other, truth_box = art.handles, art.chosen, art.other, art.truth_box
     readout = W.HTML()
     first = scenes.sample_photo("page")
     control = corner_text(format_corners(first.corners), "corners (TL; TR; BR; BL)")
@@ -153,14 +238,7 @@ def rectify_photo() -> Demo:
         if current["busy"]:
             return
         if v["scene"] != current["scene"]:  # a new photo: start from its true corners
-            current["scene"], current["photo"] = v["scene"], scenes.sample_photo(v["scene"])
-            _set_photo(im_p, current["photo"].image)
-            text = format_corners(current["photo"].corners)
-            if text != control.value:
-                current["busy"] = True
-                control.value = text
-                current["busy"] = False
-            v = {**v, "corners": text}
+            v = {**v, "corners": _new_photo(current, v["scene"], im_p, control)}
         photo = current["photo"]
         try:
             corners = parse_corners(v["corners"])
@@ -173,19 +251,10 @@ def rectify_photo() -> Demo:
             return
         est, alt = (known, from_quad) if v["use_focal"] else (from_quad, known)
         current["corners"] = corners
-        closed = np.vstack([corners, corners[:1]])
-        quad.set_data(closed[:, 0], closed[:, 1])
-        handles.set_data(corners[:, 0], corners[:, 1])
-        chosen.set_data(corners[v["corner"], :1], corners[v["corner"], 1:])
-        width = max(
-            np.linalg.norm(corners[1] - corners[0]), np.linalg.norm(corners[2] - corners[3])
+        _show_corners(quad, handles, chosen, corners, v["corner"])
+        _show_shapes(
+            im_r, photo, corners, est.ratio, ((other, alt.ratio), (truth_box, photo.aspect))
         )
-        _show_rectified(im_r, photo.image, corners, (int(width), int(width / est.ratio)))
-        # Outlines, in the display box, of the rectangle the other focal length and the truth would give.
-        for artist, ratio in ((other, alt.ratio), (truth_box, photo.aspect)):
-            w, h = _fit((int(width), int(width / ratio)))
-            x0, y0 = (_SHOW - w) // 2 - 0.5, (_SHOW - h) // 2 - 0.5
-            artist.set_data([x0, x0 + w, x0 + w, x0, x0], [y0, y0, y0 + h, y0 + h, y0])
         state.update(
             error=None,
             ratio=est.ratio,
@@ -199,29 +268,13 @@ def rectify_photo() -> Demo:
             ratio_known_focal=known.ratio,
             focal_from_quad=from_quad.focal_length,
         )
-        f = "—" if from_quad.focal_length is None else f"{from_quad.focal_length:.0f} px"
         used = "known f" if v["use_focal"] else "f from the corners"
         ax_r.set_title(f"rectified with {used}", fontsize=10, pad=3)
-        readout.value = monospace(
-            f"shown: w/h {est.ratio:.3f} ({used})\n"
-            f"w/h with f from the corners: {from_quad.ratio:.3f}  (f = {f}, {from_quad.focal_source})\n"
-            f"w/h with f known ({photo.K[0, 0]:.0f} px): {known.ratio:.3f}\n"
-            f"w/h true:                   {photo.aspect:.3f}\n"
-            "the rectified view uses the ticked choice;\ndrag a corner a few px: the estimated f moves,\n"
-            "the known-f ratio hardly does"
-        )
+        readout.value = _rectify_readout(est, used, from_quad, known, photo)
 
-    controls = {
-        "scene": W.Dropdown(
-            options=["page", "painting", "facade"], value="page", description="photo"
-        ),
-        "corners": control,
-        "use_focal": W.Checkbox(value=False, description="use the known focal length (800 px)"),
-        "corner": keys.pop("corner"),
-    }
     demo = build_demo(
         "rectify_photo",
-        controls,
+        _rectify_controls(control, keys),
         view,
         update,
         title="Rectify a photographed rectangle",
@@ -238,7 +291,16 @@ def rectify_photo() -> Demo:
 )
 def document_scanner() -> Demo:
     """ "Scan this page": find the page automatically (edges, contours, largest convex
-    quadrilateral) and rectify it; it says so when there is no page."""
+    quadrilateral) and rectify it; it says so when there is no page.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``yaw`` and ``pitch`` (the page's turn, rad) and ``page_present``,
+        the figure (the photo with the quadrilateral found, the page rectified) and ``state``
+        (``found``, ``corner_error`` the worst corner's distance from the truth in px,
+        ``ratio`` the estimated w/h, ``message`` why no page was found).
+    """
     view, ax_p, ax_r, im_p, im_r, found = _photo_demo(
         "photo with the detected outline",
         "scanned page",
@@ -286,7 +348,17 @@ def keystone_correction() -> Demo:
     """Keystone: a camera tilted up at a facade makes its verticals converge; the
     rectifying homography makes them parallel again. With yaw 0 the horizontals stay
     parallel, so the corners cannot tell the focal length: the aspect ratio then rests
-    on an assumed f, and the figure says how far off that makes it."""
+    on an assumed f, and the figure says how far off that makes it.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``tilt`` and ``yaw`` (the camera's, rad) and ``use_focal`` (give
+        the known f), the figure (the facade with its outline, rectified beside the true
+        shape) and ``state`` (``ratio`` estimated and ``true_ratio`` w/h,
+        ``ratio_error_percent``, ``convergence`` of the verticals in degrees, ``focal`` in
+        px and ``focal_source``).
+    """
     view, ax_p, ax_r, im_p, im_r, quad = _photo_demo(
         "photo (camera tilted up)",
         "keystone-corrected",

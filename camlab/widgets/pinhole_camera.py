@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import ipywidgets as W
 import numpy as np
 
@@ -31,7 +33,21 @@ SIDE_RANGE = 0.3  # ...and its x and y half-range
 
 def plane_distance(f: float, box_nearest_z: float) -> float:
     """Where the 3-D view draws the image planes (metres from the pinhole) for focal length ``f`` and a box
-    whose nearest corner is ``box_nearest_z`` metres away (see PLANE_SCALE)."""
+    whose nearest corner is ``box_nearest_z`` metres away (see PLANE_SCALE).
+
+    Parameters
+    ----------
+    f : float
+        The focal length (m).
+    box_nearest_z : float
+        The depth of the box's nearest corner (m).
+
+    Returns
+    -------
+    float
+        The planes' distance from the pinhole (m): ``PLANE_SCALE`` f, but at most ``PLANE_ROOM``
+        of the way to the box and at most ``PLANE_MAX``.
+    """
     return min(PLANE_SCALE * f, PLANE_ROOM * box_nearest_z, PLANE_MAX)
 
 
@@ -47,20 +63,22 @@ def _bar_ends(u_min: float, u_max: float, width: int) -> tuple[list, list]:
     return [max(u_min, lo), min(u_max, hi)], ends
 
 
-@register(
-    lesson="01",
-    sweep={"focal_mm": [15, 50, 100], "distance": [0.8, 2.0, 4.0], "real_plane": [True, False]},
-)
-def pinhole_projection():
-    """A box, the pinhole and both image planes in 3-D beside the image the camera records."""
-    controls = {
+def _projection_controls() -> dict:
+    """The controls of :func:`pinhole_projection`: the focal length, the box's distance and which
+    image plane the image shows."""
+    return {
         "focal_mm": slider(50, 15, 100, 1, "focal length f (mm)", readout_format=".0f"),
         "distance": slider(2.0, 0.8, 4.0, 0.1, "box distance Z (m)"),
         "real_plane": W.Checkbox(
             value=False, description="show the real image (rotated 180 degrees)"
         ),
     }
-    view = FigureView(figsize=(8.8, 4.0))
+
+
+def _projection_figure(view: FigureView) -> SimpleNamespace:
+    """The figure of :func:`pinhole_projection`: the box, the pinhole and both image planes in 3-D
+    (depth squeezed by ``squeeze``) beside the recorded image with the box's width bar; returns
+    its artists by name."""
     view.fig.set_layout_engine(
         "none"
     )  # placed by hand: the layout engine does not see the 3-D axis labels
@@ -103,7 +121,6 @@ def pinhole_projection():
     scale_note = ax_img.text(
         0.01, 0.935, "", transform=view.fig.transFigure, fontsize=8.5, va="top", clip_on=False
     )
-    readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
     # everything that moves is blitted over the cached static figure (the pinhole too: a ray passes over it)
     view.animate(
         im,
@@ -119,6 +136,39 @@ def pinhole_projection():
         *art["planes"].values(),
         *art["fills"].values(),
     )
+    return SimpleNamespace(
+        art=art,
+        ax_img=ax_img,
+        im=im,
+        width_bar=width_bar,
+        bar_ends=bar_ends,
+        scale_note=scale_note,
+        squeeze=squeeze,
+    )
+
+
+@register(
+    lesson="01",
+    sweep={"focal_mm": [15, 50, 100], "distance": [0.8, 2.0, 4.0], "real_plane": [True, False]},
+)
+def pinhole_projection():
+    """A box, the pinhole and both image planes in 3-D beside the image the camera records.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``focal_mm`` (f, mm), ``distance`` (the box's depth Z, m) and
+        ``real_plane`` (show the real, rotated image instead of the virtual one), the figure
+        and ``state`` (``K``, ``fx`` in px, ``box_width_px``, ``image``, ``centre`` the image
+        of the point (0, 0, Z), ``fov_deg``, ``plane``, ``f_draw`` in m, ``draw_scale``,
+        ``depth_squeeze``, ``bar_clipped``).
+    """
+    controls = _projection_controls()
+    view = FigureView(figsize=(8.8, 4.0))
+    parts = _projection_figure(view)
+    art, ax_img, im, squeeze = parts.art, parts.ax_img, parts.im, parts.squeeze
+    width_bar, bar_ends, scale_note = parts.width_bar, parts.bar_ends, parts.scale_note
+    readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
 
     def update(values, state):
         f = values["focal_mm"] * 1e-3
@@ -197,7 +247,15 @@ def _signed(x: float, digits: int) -> str:
 
 @register(lesson="01", sweep={"f": [0.3, 1.0], "Z": [1.2, 5.0], "Y": [-1.0, 0.0, 0.4, 1.0]})
 def similar_triangles():
-    """A side view of a room-sized camera obscura: drag the object point and read y / f = Y / Z off the triangles."""
+    """A side view of a room-sized camera obscura: drag the object point and read y / f = Y / Z off the triangles.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``f`` (the focal length, m), ``Z`` (the object's depth, m) and ``Y``
+        (its height, m, y down), the side view (a click or drag moves the object point) and
+        ``state`` (``y`` the image height in m, ``ratio_image`` y / f, ``ratio_object`` Y / Z).
+    """
     controls = {
         "f": slider(0.8, 0.3, 1.0, 0.05, "focal length f (m)"),
         "Z": slider(3.0, 1.2, 5.0, 0.05, "object depth Z (m)"),
@@ -284,6 +342,16 @@ def legible_rows(blur_px: float) -> int:
     spans the same field of view at every f (0.36 f wide, 320 pixels) with the chart at :data:`PAGE_Z`, so
     each row's height in pixels, H 0.3 / 600 x (320 / 0.36 / PAGE_Z), is the same at every f (40 px down
     to 7 px). By eye a letter survives a blur up to 4/5 of its height (:data:`LEGIBLE`).
+
+    Parameters
+    ----------
+    blur_px : float
+        The blur's diameter in the demo's pixels.
+
+    Returns
+    -------
+    int
+        The number of rows whose height is over ``LEGIBLE`` times ``blur_px``.
     """
     rows_px = np.array(CHART_ROW_HEIGHTS) * 0.3 / 600 * SIZE[0] / (0.36 * PAGE_Z)
     return int(np.sum(rows_px > LEGIBLE * blur_px))
@@ -296,7 +364,20 @@ def _times(x: float) -> str:
 
 def relative_exposure(d: float, f: float) -> float:
     r"""Light on the sensor per unit time through a hole ``d`` at ``f``, relative to :data:`REFERENCE`: (d/f)^2 over
-    (d_ref/f_ref)^2 (irradiance goes as the hole's solid angle seen from the image, :math:`\propto (d/f)^2`)."""
+    (d_ref/f_ref)^2 (irradiance goes as the hole's solid angle seen from the image, :math:`\propto (d/f)^2`).
+
+    Parameters
+    ----------
+    d : float
+        The pinhole's diameter (m).
+    f : float
+        The focal length (m).
+
+    Returns
+    -------
+    float
+        The exposure relative to the default pinhole's (1 at :data:`REFERENCE`).
+    """
     d_ref, f_ref = REFERENCE
     return (d / f) ** 2 / (d_ref / f_ref) ** 2
 
@@ -308,17 +389,10 @@ D_LOG_MIN = np.log10(0.35) - 356 * D_LOG_STEP  # 0.0299 mm
 D_LOG_MAX = np.log10(0.35) + 285 * D_LOG_STEP  # 2.51 mm
 
 
-@register(
-    lesson="01",
-    sweep={
-        "diameter_mm": [0.03, 0.05, 0.35, 1.5, 2.5],
-        "focal_mm": [30, 100, 300],
-        "fixed_exposure": [True, False],
-    },
-)
-def pinhole_size():
-    """Blur against pinhole diameter (geometric versus diffraction) and the blurred chart it gives."""
-    controls = {
+def _size_controls() -> dict:
+    """The controls of :func:`pinhole_size`: the pinhole's diameter (a log slider), the focal length
+    and whether the exposure time stays the default's."""
+    return {
         "diameter_mm": W.FloatLogSlider(
             value=0.35,
             base=10,
@@ -336,7 +410,11 @@ def pinhole_size():
             value=False, description="fixed exposure time (true brightness)"
         ),
     }
-    view = FigureView(figsize=(8.8, 4))
+
+
+def _size_figure(view: FigureView) -> SimpleNamespace:
+    """The figure of :func:`pinhole_size`: blur against the pinhole's diameter beside the letter
+    chart it records; returns the chart and the artists by name."""
     ax_plot, ax_img = view.fig.subplots(1, 2)
     art = optics.draw_pinhole_blur(ax_plot, 0.1, object_distance=PAGE_Z)
     ax_plot.set_ylim(0.01, 30)
@@ -354,7 +432,6 @@ def pinhole_size():
         spine.set_color(palette.GREY)
     ax_img.set_title(" \n ", fontsize=9)
     ax_plot.set_title(" \n ", fontsize=9)
-    readout = W.HTML()
     view.animate(
         im,
         ax_img.title,
@@ -365,6 +442,86 @@ def pinhole_size():
         art["marker"],
         art["best"],
     )
+    return SimpleNamespace(art=art, ax_plot=ax_plot, ax_img=ax_img, chart=chart, im=im)
+
+
+def _expose(ax_img, img: np.ndarray, light: float, fixed: bool) -> np.ndarray:
+    """The chart as :func:`pinhole_size` shows it, titled: with the default's exposure time
+    (``fixed``), ``light`` times as bright, clipped; else brightness compensated, as rendered."""
+    default = f"(d = {REFERENCE[0] * 1e3:g} mm, f = {REFERENCE[1] * 1e3:g} mm)"
+    if fixed:  # the reference's exposure time: the image darkens (or burns out) with (d/f)^2
+        img = np.clip(img * light, 0.0, 1.0)
+        grey = int(np.sum(img < 1.0))  # a count, never a percentage rounded up to "100 %"
+        note = (
+            f", burnt out: all but {grey} pixels white"
+            if grey < 0.5 * img.size
+            else ", nearly black"
+            if img.max() < 0.1
+            else ""
+        )
+        ax_img.set_title(
+            f"the default's exposure time {default}:\n{_times(light)} x the light{note}",
+            fontsize=9,
+        )
+    else:
+        ax_img.set_title(
+            f"exposure time {_times(1 / light)} x the default's\n{default}: brightness compensated",
+            fontsize=9,
+        )
+    return img
+
+
+def _limited_by(b) -> str:
+    """What limits a pinhole's blur ``b`` (:func:`camlab.pinhole.pinhole_blur`): "balanced" while its
+    geometric and diffraction terms differ by under :data:`BALANCED` of the total, else the larger."""
+    return (
+        "balanced"
+        if abs(b.diffraction - b.geometric) < BALANCED * b.total
+        else "diffraction-limited"
+        if b.diffraction > b.geometric
+        else "geometry-limited"
+    )
+
+
+def _size_readout(state: dict, best: float, d: float) -> str:
+    """The text beside :func:`pinhole_size`, from its ``state``, the best diameter and this one (m)."""
+    ref = f"the default (d = {REFERENCE[0] * 1e3:g} mm, f = {REFERENCE[1] * 1e3:g} mm)"
+    return monospace(
+        f"best d = {best * 1e3:.2f} mm (star) for Z = {PAGE_Z:g} m\n"
+        f"your d = {d * 1e3:.2f} mm (grey line): {state['limited_by']}\n"
+        f"blur {state['blur_mm']:.2f} mm = {state['blur_px']:.1f} px;"
+        f" blur / f = {state['blur_mrad']:.1f} mrad\n"
+        f"rows legible: {state['legible_rows']} of {len(CHART_ROW_HEIGHTS)} (letters over {LEGIBLE:g} x blur)\n"
+        f"f/d = f/{state['f_number']:.0f}: {state['exposure_vs_f2_8']:,.0f} x the exposure of f/2.8\n"
+        f"light per second: {_times(state['light'])} x that of {ref}"
+    )
+
+
+@register(
+    lesson="01",
+    sweep={
+        "diameter_mm": [0.03, 0.05, 0.35, 1.5, 2.5],
+        "focal_mm": [30, 100, 300],
+        "fixed_exposure": [True, False],
+    },
+)
+def pinhole_size():
+    """Blur against pinhole diameter (geometric versus diffraction) and the blurred chart it gives.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``diameter_mm`` (d, mm, logarithmic), ``focal_mm`` (f, mm) and
+        ``fixed_exposure`` (keep the default's exposure time), the figure (blur against d,
+        the recorded letter chart) and ``state`` (``blur_mm``, ``blur_px``, ``best_mm`` the
+        optimal diameter, ``legible_rows``, ``limited_by``, ``blur_mrad``, ``f_number``,
+        ``exposure_vs_f2_8``, ``light`` relative to the default, ``image``).
+    """
+    controls = _size_controls()
+    view = FigureView(figsize=(8.8, 4))
+    parts = _size_figure(view)
+    art, ax_plot, ax_img, chart, im = parts.art, parts.ax_plot, parts.ax_img, parts.chart, parts.im
+    readout = W.HTML()
 
     def update(values, state):
         f, d = values["focal_mm"] * 1e-3, values["diameter_mm"] * 1e-3
@@ -376,39 +533,11 @@ def pinhole_size():
         blur_px = float(b.total) / pitch
         img = render.render(chart, K, SIZE, blur=blur_px).irradiance
         light = relative_exposure(d, f)
-        ref = f"the default (d = {REFERENCE[0] * 1e3:g} mm, f = {REFERENCE[1] * 1e3:g} mm)"
-        default = f"(d = {REFERENCE[0] * 1e3:g} mm, f = {REFERENCE[1] * 1e3:g} mm)"
-        if values[
-            "fixed_exposure"
-        ]:  # the reference's exposure time: the image darkens (or burns out) with (d/f)^2
-            img = np.clip(img * light, 0.0, 1.0)
-            grey = int(np.sum(img < 1.0))  # a count, never a percentage rounded up to "100 %"
-            note = (
-                f", burnt out: all but {grey} pixels white"
-                if grey < 0.5 * img.size
-                else ", nearly black"
-                if img.max() < 0.1
-                else ""
-            )
-            ax_img.set_title(
-                f"the default's exposure time {default}:\n{_times(light)} x the light{note}",
-                fontsize=9,
-            )
-        else:
-            ax_img.set_title(
-                f"exposure time {_times(1 / light)} x the default's\n{default}: brightness compensated",
-                fontsize=9,
-            )
+        img = _expose(ax_img, img, light, values["fixed_exposure"])
         im.set_data(img)
         best = pinhole.optimal_pinhole_diameter(f, object_distance=PAGE_Z)
         legible = legible_rows(blur_px)
-        limited_by = (
-            "balanced"
-            if abs(b.diffraction - b.geometric) < BALANCED * b.total
-            else "diffraction-limited"
-            if b.diffraction > b.geometric
-            else "geometry-limited"
-        )
+        limited_by = _limited_by(b)
         f_number = f / d
         ax_plot.set_title(
             f"blur against pinhole size, object at Z = {PAGE_Z:g} m\nd = {d * 1e3:.2f} mm: blur"
@@ -427,15 +556,7 @@ def pinhole_size():
             light=light,
             image=img,
         )
-        readout.value = monospace(
-            f"best d = {best * 1e3:.2f} mm (star) for Z = {PAGE_Z:g} m\n"
-            f"your d = {d * 1e3:.2f} mm (grey line): {limited_by}\n"
-            f"blur {state['blur_mm']:.2f} mm = {blur_px:.1f} px;"
-            f" blur / f = {state['blur_mrad']:.1f} mrad\n"
-            f"rows legible: {legible} of {len(CHART_ROW_HEIGHTS)} (letters over {LEGIBLE:g} x blur)\n"
-            f"f/d = f/{f_number:.0f}: {state['exposure_vs_f2_8']:,.0f} x the exposure of f/2.8\n"
-            f"light per second: {_times(light)} x that of {ref}"
-        )
+        readout.value = _size_readout(state, best, d)
 
     return build_demo(
         "pinhole_size",

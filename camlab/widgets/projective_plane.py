@@ -6,6 +6,8 @@ Each demo draws once and then only moves artists; the geometry comes from
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import ipywidgets as W
 import numpy as np
 
@@ -20,7 +22,15 @@ from .controls import monospace
 
 @register(lesson="06", sweep={"x": [-1.5, 0.0, 1.2], "y": [1.0, -0.5], "scale": [0.4, 1.0, 2.5]})
 def lift_to_plane() -> Demo:
-    """A point (x, y) is the ray through (x, y, 1): every scaled copy names the same point."""
+    """A point (x, y) is the ray through (x, y, 1): every scaled copy names the same point.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``x``, ``y`` (the point) and ``scale`` (λ), the figure (the plane
+        w = 1 in 3-D with the ray through the point) and ``state`` (``point_h`` the scaled
+        homogeneous 3-vector λ (x, y, 1), ``point`` its Euclidean (x, y)).
+    """
     view = FigureView(figsize=(9, 4.2))
     ax3 = view.fig.add_subplot(1, 2, 1, projection="3d")
     ax2 = plane_axes(view.fig.add_subplot(1, 2, 2), 2, "the image plane w = 1")
@@ -89,7 +99,17 @@ def _line_at_angle(angle_deg: float | np.ndarray, offset: float) -> np.ndarray:
 
 @register(lesson="06", sweep={"angle2": [10.0, 25.0, 29.5, 30.0, 45.0], "offset2": [-1.0, 1.5]})
 def parallel_lines() -> Demo:
-    """Two lines meet at l1 x l2; as they turn parallel the point runs to infinity (w -> 0)."""
+    """Two lines meet at l1 x l2; as they turn parallel the point runs to infinity (w -> 0).
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``angle2`` (l2's angle, degrees) and ``offset2`` (where l2 crosses
+        x = 0), the figure (the two lines and their meet, |w| against the angle) and ``state``
+        (``l2``, ``meet`` the homogeneous meet point, ``w`` its |w| once normalised to unit
+        length, ``point`` its Euclidean position; ``meet`` and ``point`` None, ``w`` NaN, when
+        the lines coincide).
+    """
     view = FigureView(figsize=(9, 4))
     ax, axw = view.fig.subplots(1, 2, width_ratios=[1.3, 1])
     plane_axes(ax, 4, "l1 = 30° fixed; turn l2")
@@ -180,7 +200,16 @@ def parallel_lines() -> Demo:
     },
 )
 def point_line_duality() -> Demo:
-    """A point (a, b, c) and the line (a, b, c) swap roles; incidence survives the swap."""
+    """A point (a, b, c) and the line (a, b, c) swap roles; incidence survives the swap.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``px``, ``py`` (the point p), ``line_angle`` (the line's normal,
+        degrees) and ``line_dist`` (its distance from the origin), the figure (the point and
+        line, and their duals) and ``state`` (``point`` and ``line`` homogeneous,
+        ``incidence`` p · l, ``on_line``).
+    """
     view = FigureView(figsize=(9, 4.2))
     ax_p, ax_d = view.fig.subplots(1, 2)
     plane_axes(ax_p, 3, "primal: point p, line l")
@@ -229,14 +258,10 @@ def point_line_duality() -> Demo:
     )
 
 
-@register(
-    lesson="06",
-    sweep={"pitch": [5.0, 15.0, 30.0, 40.0], "yaw": [0.0, 20.0, -35.0], "focal": [400.0, 800.0]},
-)
-def vanishing_points() -> Demo:
-    """A tilted camera looks at a ground grid; parallel rails meet at vanishing points on the horizon."""
-    size = (640, 480)
-    view = FigureView(figsize=(7, 5))
+def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespace:
+    """The figure of :func:`vanishing_points`: the image of ``size`` (width, height) with the two
+    families of ground lines, the horizon, the two vanishing points and the note for a horizon
+    above the image; returns its axes and artists by name."""
     ax = view.fig.subplots()
     image_axes(ax, size, "ground grid seen by a tilted camera")
     from matplotlib.collections import LineCollection
@@ -262,6 +287,38 @@ def vanishing_points() -> Demo:
         color=palette.TAB_RED,
         bbox=dict(fc="white", ec=palette.TAB_RED, alpha=0.9),
     )
+    return SimpleNamespace(
+        ax=ax,
+        grid_z=grid_z,
+        grid_x=grid_x,
+        horizon=horizon_artist,
+        vz_dot=vz_dot,
+        vx_dot=vx_dot,
+        note=note,
+    )
+
+
+@register(
+    lesson="06",
+    sweep={"pitch": [5.0, 15.0, 30.0, 40.0], "yaw": [0.0, 20.0, -35.0], "focal": [400.0, 800.0]},
+)
+def vanishing_points() -> Demo:
+    """A tilted camera looks at a ground grid; parallel rails meet at vanishing points on the horizon.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``pitch`` and ``yaw`` (the camera's, degrees) and ``focal`` (px),
+        the figure (the image of the ground grid with the horizon and the two vanishing points,
+        arrows when off the image) and ``state`` (``vp_z``, ``vp_x`` estimated from the drawn
+        lines, ``horizon``, their camera truths ``vp_z_true``, ``vp_x_true``,
+        ``horizon_true``, and ``horizon_visible``).
+    """
+    size = (640, 480)
+    view = FigureView(figsize=(7, 5))
+    parts = _vanishing_figure(view, size)
+    ax, grid_z, grid_x, note = parts.ax, parts.grid_z, parts.grid_x, parts.note
+    horizon_artist, vz_dot, vx_dot = parts.horizon, parts.vz_dot, parts.vx_dot
     readout = W.HTML()
     box = ((-0.5, size[0] - 0.5), (-0.5, size[1] - 0.5))
     view.animate(grid_z, grid_x, horizon_artist, vz_dot, vx_dot, note)
@@ -339,7 +396,16 @@ def vanishing_points() -> Demo:
 
 @register(lesson="06", sweep={"h31": [0.0, 0.25, -0.3], "h32": [0.0, 0.2], "angle": [0.0, 30.0]})
 def cross_ratio_invariance() -> Demo:
-    """A homography changes lengths and ratios of lengths, but never the cross-ratio."""
+    """A homography changes lengths and ratios of lengths, but never the cross-ratio.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``h31``, ``h32`` (the homography's perspective row) and ``angle``
+        (its rotation, degrees), the figure (a grid and four collinear points A, B, C, D, before
+        and after) and ``state`` (``H``, ``mapped`` the points after, ``cross_ratio_before``,
+        ``cross_ratio_after``, ``ratio_before``, ``ratio_after`` AB / BC).
+    """
     view = FigureView(figsize=(9, 4.2))
     ax_s, ax_t = view.fig.subplots(1, 2)
     plane_axes(ax_s, 2.2, "before: four collinear points")

@@ -9,6 +9,7 @@ resolution so that re-warping stays within the latency budget.
 from __future__ import annotations
 
 from functools import lru_cache
+from types import SimpleNamespace
 
 import ipywidgets as W
 import numpy as np
@@ -75,28 +76,13 @@ def _line_polyline(lines: np.ndarray, size: tuple[int, int] = SIZE) -> np.ndarra
     return out.reshape(-1, 2)
 
 
-@register(
-    lesson="11",
-    sweep={
-        "u": [120.0, 500.0],
-        "v": [100.0, 380.0],
-        "baseline": [0.05, 0.4],
-        "toe_in": [0.0, 15.0, -10.0],
-        "motion": list(_MOTIONS),
-    },
-)
-def epipolar_lines() -> Demo:
-    """Click (or slide) a point in the left image: its epipolar line appears in the right image.
-
-    The world point could be anywhere on the ray through the pixel; its images for depths
-    1-6 m are marked on the line. Baseline and toe-in move the cameras: with toe-in 0
-    the cameras are parallel and the epipoles go to infinity (all lines horizontal).
-    """
-    view = FigureView(figsize=(9.4, 3.9))
+def _epipolar_figure(view: FigureView) -> SimpleNamespace:
+    """The figure of :func:`epipolar_lines`: the left and right images with the scene's outlines, the
+    pencils of epipolar lines, the point and its lines, the depth marks and the epipoles (an arrow
+    at the border for one off the image); returns its axes and moving artists by name."""
     axl, axr = view.fig.subplots(1, 2)
     image_axes(axl, SIZE, "left image: click a point")
     image_axes(axr, SIZE, "right image: its epipolar line")
-    segs = scenes.plane_outlines(stereo_scene())
     (wl,) = axl.plot([], [], color="0.55", lw=0.8)
     (wr,) = axr.plot([], [], color="0.55", lw=0.8)
     (pencil_l,) = axl.plot([], [], color=palette.BLUE, lw=0.6, path_effects=palette.halo(0.6))
@@ -128,22 +114,107 @@ def epipolar_lines() -> Demo:
     for a in moving:
         a.set_in_layout(False)  # they move: the layout must not follow them
     view.animate(*moving)
+    return SimpleNamespace(
+        axl=axl,
+        axr=axr,
+        wl=wl,
+        wr=wr,
+        pencil_l=pencil_l,
+        pencil_r=pencil_r,
+        point=point,
+        line_l=line_l,
+        line_r=line_r,
+        depth_dots=depth_dots,
+        epi_l=epi_l,
+        epi_r=epi_r,
+        shafts=shafts,
+        heads=heads,
+    )
+
+
+def _show_epipole(e, marker, shaft, head, ax) -> None:
+    """Epipole ``e`` (homogeneous) as ``marker`` inside the image, else as an arrow (``shaft`` and
+    ``head``) at the border of ``ax`` pointing to it."""
+    xy, direction = arrow_to_infinity(e, ax)
+    if not direction.any():  # inside the image
+        marker.set_data([xy[0]], [xy[1]])
+        shaft.set_data([], [])
+        head.set_data([], [])
+        return
+    marker.set_data([], [])
+    tail = xy - 60 * direction
+    shaft.set_data([tail[0], xy[0]], [tail[1], xy[1]])
+    head.set_data([xy[0]], [xy[1]])
+    # a triangle marker rotated to point along the direction (v grows downwards on screen)
+    head.set_marker(arrow_marker(direction, ax))
+
+
+def _epipolar_readout(v: dict, e2: np.ndarray, inside: bool, uv: np.ndarray, l2: np.ndarray) -> str:
+    """The text beside :func:`epipolar_lines`: the motion, the right epipole ``e2`` and how far the
+    depth marks ``uv`` (px) lie from the epipolar line ``l2``."""
+    at_inf = abs(e2[2]) < 1e-9
+    ep2 = (
+        "at infinity (lines parallel)"
+        if at_inf
+        else f"({e2[0] / e2[2]:.0f}, {e2[1] / e2[2]:.0f}) px"
+    )
+    return monospace(
+        f"{v['motion']}: baseline {v['baseline']:.2f} m, turn {v['toe_in']:.0f} deg\n"
+        + ("the right epipole is inside the image: the lines fan out from it\n" if inside else "")
+        + f"right epipole e' = {ep2}\n"
+        f"max distance of the depth marks from l' = "
+        f"{np.nanmax(np.abs(np.append(uv, np.ones((len(uv), 1)), 1) @ l2)):.1e} px"
+    )
+
+
+def _epipolar_controls() -> dict:
+    """The controls of :func:`epipolar_lines`: the point (u, v), the baseline, the toe-in and the motion."""
+    return {
+        "u": slider(420.0, 0.0, 639.0, 1.0, "u (px)"),
+        "v": slider(300.0, 0.0, 479.0, 1.0, "v (px)"),
+        "baseline": slider(0.2, 0.02, 0.5, 0.01, "baseline (m)"),
+        "toe_in": slider(10.0, -20.0, 20.0, 0.5, "toe-in / turn (deg)"),
+        "motion": W.ToggleButtons(
+            options=list(_MOTIONS),
+            value="sideways (stereo rig)",
+            description="motion",
+            style={"button_width": "150px"},
+        ),
+    }
+
+
+@register(
+    lesson="11",
+    sweep={
+        "u": [120.0, 500.0],
+        "v": [100.0, 380.0],
+        "baseline": [0.05, 0.4],
+        "toe_in": [0.0, 15.0, -10.0],
+        "motion": list(_MOTIONS),
+    },
+)
+def epipolar_lines() -> Demo:
+    """Click (or slide) a point in the left image: its epipolar line appears in the right image.
+
+    The world point could be anywhere on the ray through the pixel; its images for depths
+    1-6 m are marked on the line. Baseline and toe-in move the cameras: with toe-in 0
+    the cameras are parallel and the epipoles go to infinity (all lines horizontal).
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``u``, ``v`` (the left pixel, px; a click in the left image sets
+        them), ``baseline`` (m), ``toe_in`` (degrees) and ``motion`` (sideways or forward),
+        the figure (both images with the scene's outlines, the epipolar lines, the depth
+        marks 1-6 m and the epipoles) and ``state`` (``F``, ``epipoles``, ``line_right`` l',
+        ``depth_points`` in px, ``point``, ``epipole_inside``). ``handlers`` holds the click.
+    """
+    view = FigureView(figsize=(9.4, 3.9))
+    segs = scenes.plane_outlines(stereo_scene())
+    art = _epipolar_figure(view)
+    axl, axr, shafts, heads = art.axl, art.axr, art.shafts, art.heads
     readout = W.HTML()
     ref = np.array([[80.0, 60.0], [560.0, 60.0], [320.0, 240.0], [80.0, 420.0], [560.0, 420.0]])
-
-    def show_epipole(e, marker, shaft, head, ax):
-        xy, direction = arrow_to_infinity(e, ax)
-        if not direction.any():  # inside the image
-            marker.set_data([xy[0]], [xy[1]])
-            shaft.set_data([], [])
-            head.set_data([], [])
-            return
-        marker.set_data([], [])
-        tail = xy - 60 * direction
-        shaft.set_data([tail[0], xy[0]], [tail[1], xy[1]])
-        head.set_data([xy[0]], [xy[1]])
-        # a triangle marker rotated to point along the direction (v grows downwards on screen)
-        head.set_marker(arrow_marker(direction, ax))
 
     def update(v, state):
         c1, c2 = _MOTIONS[v["motion"]](v["baseline"], np.deg2rad(v["toe_in"]))
@@ -156,54 +227,26 @@ def epipolar_lines() -> Demo:
         )  # world points that all image to x
         uv = c2.project(ray)
         l1 = np.cross(np.append(x, 1.0), e.e1)  # the left epipolar line: through x and the epipole
-        wl.set_data(*_projected_segments(c1, segs).T)
-        wr.set_data(*_projected_segments(c2, segs).T)
-        point.set_data([x[0]], [x[1]])
-        line_r.set_data(*_line_polyline(l2[None]).T)
-        line_l.set_data(*_line_polyline(l1[None]).T)
-        pencil_r.set_data(*_line_polyline(ep.epipolar_lines(F, ref, image=1)).T)
-        pencil_l.set_data(
+        art.wl.set_data(*_projected_segments(c1, segs).T)
+        art.wr.set_data(*_projected_segments(c2, segs).T)
+        art.point.set_data([x[0]], [x[1]])
+        art.line_r.set_data(*_line_polyline(l2[None]).T)
+        art.line_l.set_data(*_line_polyline(l1[None]).T)
+        art.pencil_r.set_data(*_line_polyline(ep.epipolar_lines(F, ref, image=1)).T)
+        art.pencil_l.set_data(
             *_line_polyline(np.cross(np.column_stack([ref, np.ones(len(ref))]), e.e1)).T
         )
-        depth_dots.set_data(uv[:, 0], uv[:, 1])
-        show_epipole(e.e1, epi_l, shafts[0], heads[0], axl)
-        show_epipole(e.e2, epi_r, shafts[1], heads[1], axr)
-        at_inf = abs(e.e2[2]) < 1e-9
-        ep2 = (
-            "at infinity (lines parallel)"
-            if at_inf
-            else f"({e.e2[0] / e.e2[2]:.0f}, {e.e2[1] / e.e2[2]:.0f}) px"
-        )
+        art.depth_dots.set_data(uv[:, 0], uv[:, 1])
+        _show_epipole(e.e1, art.epi_l, shafts[0], heads[0], axl)
+        _show_epipole(e.e2, art.epi_r, shafts[1], heads[1], axr)
         inside = not arrow_to_infinity(e.e2, axr)[1].any()
         state.update(epipole_inside=inside)
-        readout.value = monospace(
-            f"{v['motion']}: baseline {v['baseline']:.2f} m, turn {v['toe_in']:.0f} deg\n"
-            + (
-                "the right epipole is inside the image: the lines fan out from it\n"
-                if inside
-                else ""
-            )
-            + f"right epipole e' = {ep2}\n"
-            f"max distance of the depth marks from l' = "
-            f"{np.nanmax(np.abs(np.append(uv, np.ones((len(uv), 1)), 1) @ l2)):.1e} px"
-        )
+        readout.value = _epipolar_readout(v, e.e2, inside, uv, l2)
         state.update(F=F, epipoles=e, line_right=l2, depth_points=uv, point=x)
 
-    controls = {
-        "u": slider(420.0, 0.0, 639.0, 1.0, "u (px)"),
-        "v": slider(300.0, 0.0, 479.0, 1.0, "v (px)"),
-        "baseline": slider(0.2, 0.02, 0.5, 0.01, "baseline (m)"),
-        "toe_in": slider(10.0, -20.0, 20.0, 0.5, "toe-in / turn (deg)"),
-        "motion": W.ToggleButtons(
-            options=list(_MOTIONS),
-            value="sideways (stereo rig)",
-            description="motion",
-            style={"button_width": "150px"},
-        ),
-    }
     demo = build_demo(
         "epipolar_lines",
-        controls,
+        _epipolar_controls(),
         view,
         update,
         title="Epipolar lines: a point in one image is a line in the other",
@@ -226,32 +269,9 @@ def epipolar_lines() -> Demo:
 # --------------------------------------------------------------------------- demo 2: rectification
 
 
-@register(
-    lesson="11", sweep={"alpha": [0.5, 1.0], "method": ["original", "calibrated", "uncalibrated"]}
-)
-def rectify_pair() -> Demo:
-    """The rendered pair before and after rectification, with a row grid and the true matches.
-
-    The calibrated route uses the cameras a stereo calibration found
-    (:func:`camlab.fixtures.stereo.bundled_rig_calibration`),
-    as a real rig would, so its vertical disparity is the calibration's error, not zero.
-
-    After rectification every match line is horizontal and the vertical disparity
-    histogram collapses to 0; ``alpha`` trades black borders (1) against lost pixels (0).
-    """
-    import cv2
-
-    _, matches, half, und, unc = bundled_rig()
-    und_half = [
-        cv2.resize(im_, (320, 240), interpolation=cv2.INTER_AREA) for im_ in und
-    ]  # once, not per update
-    unc_half = [
-        HALF @ H @ np.linalg.inv(HALF) for H in (unc.H1, unc.H2)
-    ]  # the same rectification in half-size pixels
-    x1, x2, u1, u2 = matches
-    cal1, cal2, cal_rms = bundled_rig_calibration()
-    h1, h2 = cal1.resized(0.5), cal2.resized(0.5)
-    view = FigureView(figsize=(9.4, 3.6))
+def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
+    """The figure of :func:`rectify_pair`: the ``half``-size pair side by side under a row grid, the
+    match lines, and the cumulative histogram of vertical disparity; returns the moving artists."""
     gs = view.fig.add_gridspec(1, 3, width_ratios=[2.6, 0.05, 1])
     ax = view.fig.add_subplot(gs[0])
     axh = view.fig.add_subplot(gs[2])
@@ -271,7 +291,6 @@ def rectify_pair() -> Demo:
         for r in range(20, 240, 20)
     ]
     guides.append(ax.axvline(319.5, color="w", lw=1, gid="grid"))
-    sel = np.linspace(0, len(x1) - 1, 14).astype(int)
     (match_lines,) = ax.plot([], [], color=palette.ORANGE, lw=0.9, path_effects=palette.halo(0.9))
     # Cumulative, on a log axis: raw (pixels), calibrated and uncalibrated (hundredths) all readable.
     (step,) = axh.plot([], [], drawstyle="steps-post", color=palette.TAB_PURPLE, lw=2.5)
@@ -286,6 +305,59 @@ def rectify_pair() -> Demo:
     axh.set_title("vertical disparity", fontsize=9)
     axh.grid(True, which="major", color="0.93")
     view.animate(im, *guides, match_lines, step)
+    return SimpleNamespace(im=im, match_lines=match_lines, step=step)
+
+
+def _pair_controls() -> dict:
+    """The controls of :func:`rectify_pair`: the pair shown (original, calibrated, uncalibrated) and alpha."""
+    return {
+        "method": W.ToggleButtons(
+            options=["original", "calibrated", "uncalibrated"],
+            value="calibrated",
+            description="pair",
+            style={"button_width": "90px"},
+        ),
+        "alpha": slider(0.0, 0.0, 1.0, 0.05, "alpha (0: crop, 1: keep all)"),
+    }
+
+
+@register(
+    lesson="11", sweep={"alpha": [0.5, 1.0], "method": ["original", "calibrated", "uncalibrated"]}
+)
+def rectify_pair() -> Demo:
+    """The rendered pair before and after rectification, with a row grid and the true matches.
+
+    The calibrated route uses the cameras a stereo calibration found
+    (:func:`camlab.fixtures.stereo.bundled_rig_calibration`),
+    as a real rig would, so its vertical disparity is the calibration's error, not zero.
+
+    After rectification every match line is horizontal and the vertical disparity
+    histogram collapses to 0; ``alpha`` trades black borders (1) against lost pixels (0).
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``method`` (the original, calibrated or uncalibrated pair) and
+        ``alpha``, the figure (the pair with a row grid and match lines, the cumulative
+        vertical disparity) and ``state`` (``vertical_median``, ``vertical_p95`` in full-size
+        px, ``vertical_values``, ``method``; ``rectified_K`` once the calibrated route ran).
+    """
+    import cv2
+
+    _, matches, half, und, unc = bundled_rig()
+    und_half = [
+        cv2.resize(im_, (320, 240), interpolation=cv2.INTER_AREA) for im_ in und
+    ]  # once, not per update
+    unc_half = [
+        HALF @ H @ np.linalg.inv(HALF) for H in (unc.H1, unc.H2)
+    ]  # the same rectification in half-size pixels
+    x1, x2, u1, u2 = matches
+    cal1, cal2, cal_rms = bundled_rig_calibration()
+    h1, h2 = cal1.resized(0.5), cal2.resized(0.5)
+    view = FigureView(figsize=(9.4, 3.6))
+    art = _pair_figure(view, half)
+    im, match_lines, step = art.im, art.match_lines, art.step
+    sel = np.linspace(0, len(x1) - 1, 14).astype(int)
     readout = W.HTML()
 
     def update(v, state):
@@ -334,18 +406,9 @@ def rectify_pair() -> Demo:
             method=v["method"],
         )
 
-    controls = {
-        "method": W.ToggleButtons(
-            options=["original", "calibrated", "uncalibrated"],
-            value="calibrated",
-            description="pair",
-            style={"button_width": "90px"},
-        ),
-        "alpha": slider(0.0, 0.0, 1.0, 0.05, "alpha (0: crop, 1: keep all)"),
-    }
     return build_demo(
         "rectify_pair",
-        controls,
+        _pair_controls(),
         view,
         update,
         title="Rectification makes epipolar lines the same rows",
@@ -365,6 +428,15 @@ def disparity_depth() -> Demo:
 
     Small windows are noisy, large ones blur depth edges; SGBM adds smoothness along
     8 directions. Each result is computed once per setting and cached.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``block_size`` (the matching window, px) and ``method`` (block
+        matching in numpy or OpenCV's SGBM), the figure (disparity, depth error, 3-D points)
+        and ``state`` (``disparity`` map in half-size px, ``median_error_percent`` of depth,
+        ``within_5`` the fraction of matched pixels within 5 % of the true depth,
+        ``coverage`` the fraction of textured pixels matched).
     """
     from ..plotting import scene3d
 
