@@ -365,7 +365,9 @@ def _point_left_out(g, X, uv) -> str | None:
     for i in (n - 1, 0, *range(1, n - 1)):  # X[:-1] and X[1:] first, the likely slices
         keep = np.arange(n) != i
         if np.allclose(g, af.estimate_affine_camera(X[keep], uv[keep]), rtol=1e-9, atol=1e-7):
-            which = {0: "the first (X[1:]?)", n - 1: "the last (X[:-1] or range(N - 1)?)"}.get(i, f"point {i}")
+            which = {0: "the first (X[1:]?)", n - 1: "the last (X[:-1] or range(N - 1)?)"}.get(
+                i, f"point {i}"
+            )
             return (
                 f"your camera is the least-squares fit to {n - 1} of the {n} points: {which} was left out, an "
                 f"off-by-one in a slice or a loop. Use all N points: {_LSQ}."

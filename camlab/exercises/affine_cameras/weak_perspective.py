@@ -368,10 +368,15 @@ register_exercise(
                 "para-perspective camera",
             ),
             (lambda camera, X0: af.affine_approximation(camera, X0)[[1, 0, 2]], "rows are swapped"),
-            (lambda camera, X0: af.affine_approximation(camera, X0) * [[1], [-1], [1]], "gives -v instead"),
             (
-                lambda camera, X0: np.diag([1.0, -1.0, 1.0]) @ af.affine_approximation(camera, X0)
-                + [[0, 0, 0, 0], [0, 0, 0, 479], [0, 0, 0, 0]],
+                lambda camera, X0: af.affine_approximation(camera, X0) * [[1], [-1], [1]],
+                "gives -v instead",
+            ),
+            (
+                lambda camera, X0: (
+                    np.diag([1.0, -1.0, 1.0]) @ af.affine_approximation(camera, X0)
+                    + [[0, 0, 0, 0], [0, 0, 0, 479], [0, 0, 0, 0]]
+                ),
                 "gives 479 - v instead",
             ),
             (_approx_no_t, "t1 and t2 are missing"),
