@@ -128,8 +128,8 @@ def _gap_text(gap: float) -> str:
 
 
 def _rms_text(rms: float) -> str:
-    """The dolly zoom's readout: the RMS over the cube's 8 corners, to two significant digits or 0.1 px."""
-    return f"RMS {rms:.1f} px" if rms >= 9.95 else f"RMS {rms:.2g} px"
+    """The dolly zoom's readout: the RMS over the cube's 8 corners, to 0.1 px, below 1 px to 0.01 px."""
+    return f"RMS {rms:.1f} px" if rms >= 0.995 else f"RMS {rms:.2f} px"
 
 
 def dolly_curves(offset: float, distances: np.ndarray) -> dict:
