@@ -1,18 +1,18 @@
 r"""Tomasi-Kanade factorisation: shape and motion from many affine views with one SVD.
 
-F affine cameras :math:`u_{fj} = M_f X_j + t_f` (:math:`M_f` 2 x 3, lesson 05) see N points.
-Stack every view's image coordinates into the 2F x N *measurement matrix*
+m affine cameras :math:`u_{ij} = M_i X_j + t_i` (:math:`M_f` 2 x 3, lesson 05) see N points.
+Stack every view's image coordinates into the 2m x N *measurement matrix*
 :math:`W` (rows :math:`u` then :math:`v` of view 1, of view 2, ...; one column per point).
 Subtract each row's mean: the mean of the images is the image of the points' centroid
 (an affine camera maps means to means), so with the world origin at the centroid
-:math:`t_f` drops out and
+:math:`t_i` drops out and
 
 .. math::
 
-    \hat W = \begin{pmatrix} M_1 \\ \vdots \\ M_F \end{pmatrix}
+    \hat W = \begin{pmatrix} M_1 \\ \vdots \\ M_m \end{pmatrix}
              \begin{pmatrix} X_1 & \cdots & X_N \end{pmatrix} = \hat M \hat S ,
 
-a product of a 2F x 3 and a 3 x N matrix: **rank 3**, however many views and points. With
+a product of a 2m x 3 and a 3 x N matrix: **rank 3**, however many views and points. With
 noise, the SVD :math:`\hat W = U \Sigma V^\top` gives the closest rank-3 matrix (Eckart-Young),
 :math:`\hat M = U_3 \Sigma_3^{1/2}`, :math:`\hat S = \Sigma_3^{1/2} V_3^\top`, the
 maximum-likelihood affine reconstruction under isotropic Gaussian pixel noise. It is
@@ -46,30 +46,30 @@ class AffineReconstruction(NamedTuple):
     """Affine cameras and points from :func:`affine_factorization`."""
 
     cameras: np.ndarray
-    """(F, 3, 4) affine cameras :math:`[M_f \\mid t_f]` over the last row (0, 0, 0, 1)."""
+    """(m, 3, 4) affine cameras :math:`[M_i \\mid t_i]` over the last row (0, 0, 0, 1)."""
     points: np.ndarray
     """(N, 3) points, centroid at the origin, up to one affine map of space."""
     singular_values: np.ndarray
     """All singular values of the centred measurement matrix, largest first, pixels."""
     rms: float
-    """RMS reprojection error of the rank-3 fit, pixels per coordinate."""
+    """RMS reprojection error of the rank-3 fit, pixels per coordinate (times sqrt(2): per point, the 2-D distance)."""
 
 
 def affine_factorization(tracks: ArrayLike) -> AffineReconstruction:
-    r"""Recover affine cameras and 3-D points from N points tracked through F >= 2 views.
+    r"""Recover affine cameras and 3-D points from N points tracked through m >= 2 views.
 
     Derivation: the module docstring (H&Z algorithm 18.1). The steps:
 
-    1. :math:`t_f` = the mean of view f's points (the image of the centroid);
-    2. :math:`\hat W` = the 2F x N matrix of the centred coordinates;
+    1. :math:`t_i` = the mean of view i's points (the image of the centroid);
+    2. :math:`\hat W` = the 2m x N matrix of the centred coordinates;
     3. SVD; keep three singular values: :math:`\hat M = U_3 \Sigma_3^{1/2}`,
        :math:`\hat S = \Sigma_3^{1/2} V_3^\top` (the split of :math:`\Sigma_3` is one choice
        of the affine ambiguity).
 
     Parameters
     ----------
-    tracks : (F, N, 2) array_like
-        Pixel (u, v) of point j in view f; every point seen in every view, N >= 4.
+    tracks : (m, N, 2) array_like
+        Pixel (u, v) of point j in view i; every point seen in every view, N >= 4.
 
     Returns
     -------
@@ -79,7 +79,7 @@ def affine_factorization(tracks: ArrayLike) -> AffineReconstruction:
     Raises
     ------
     CamlabInputError
-        If ``tracks`` is not a finite (F, N, 2) array with F >= 2 and N >= 4.
+        If ``tracks`` is not a finite (m, N, 2) array with m >= 2 and N >= 4.
 
     References
     ----------
@@ -98,12 +98,12 @@ def affine_factorization(tracks: ArrayLike) -> AffineReconstruction:
     W = np.asarray(tracks, dtype=float)
     if W.ndim != 3 or W.shape[2] != 2 or W.shape[0] < 2 or W.shape[1] < 4:
         raise CamlabInputError(
-            f"tracks: expected (F, N, 2) pixels of N >= 4 points in F >= 2 views, got shape {W.shape}; "
+            f"tracks: expected (m, N, 2) pixels of N >= 4 points in m >= 2 views, got shape {W.shape}; "
             "stack each view's (N, 2) points: np.stack([uv_view1, uv_view2, ...])"
         )
     check_finite(W, "tracks")
     views, count = W.shape[:2]
-    t = W.mean(axis=1)  # (F, 2): each view's image of the centroid
+    t = W.mean(axis=1)  # (m, 2): each view's image of the centroid
     centred = (
         (W - t[:, None, :]).transpose(0, 2, 1).reshape(2 * views, count)
     )  # rows u1, v1, u2, ...

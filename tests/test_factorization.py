@@ -62,7 +62,7 @@ def test_close_perspective_views_are_not_rank_3():
 
 @pytest.mark.parametrize("shape", [(1, 10, 2), (3, 3, 2), (3, 10, 3), (10, 2)])
 def test_bad_shapes_name_the_argument(shape):
-    with pytest.raises(CamlabInputError, match=r"tracks: expected \(F, N, 2\)"):
+    with pytest.raises(CamlabInputError, match=r"tracks: expected \(m, N, 2\)"):
         affine_factorization(np.zeros(shape))
 
 

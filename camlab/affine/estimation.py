@@ -105,7 +105,7 @@ def affine_departure(
     ``points`` ((N, 2) pixels, e.g. the matches ``H`` was fitted to, where it is not extrapolated).
 
     The affine fit minimises the squared distance over the grid. See :func:`affine_fit_departure`
-    (the largest of these distances) and lesson 05, section 3.
+    (the largest of these distances) and lesson 05, section 5.
     """
     Hm = check_matrix(H, (3, 3), "H")
     width, height = (int(check_positive(n, "size", "pixels")) for n in size)
@@ -138,6 +138,6 @@ def affine_fit_departure(H: ArrayLike, size: tuple[int, int], samples: int = 30)
     line. That holds when both views see the plane face-on (its depth nearly constant across each
     picture), but also, exactly, for one perspective camera slid within its principal plane without
     turning. So a large departure proves perspective matters for the plane in at least one view; a
-    small one does not prove affine cameras. See lesson 05, section 3.
+    small one does not prove affine cameras. See lesson 05, section 5.
     """
     return float(affine_departure(H, size, samples).distance.max())

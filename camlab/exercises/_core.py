@@ -116,6 +116,8 @@ def _fmt(value: Any) -> str:
             finite = value[np.isfinite(value)] if real else value[:0]
             span = f", values {finite.min():.4g} .. {finite.max():.4g}" if finite.size else ""
             return f"<array of shape {value.shape}, dtype {value.dtype}{span}>"
+        if value.dtype.kind == "f":  # what prints as zero prints as 0, never -0.0000
+            value = np.where(np.round(value.astype(float), 4) == 0, 0.0, value)
         return np.array2string(
             value, precision=4, suppress_small=True, separator=", ", floatmode="maxprec_equal"
         )

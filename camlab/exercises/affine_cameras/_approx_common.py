@@ -107,8 +107,10 @@ def last_row_cause(g, d0, expected, fix, r3=None) -> str:
                 )
             if np.isclose(g[2, 3], d0, rtol=1e-6):
                 return (
-                    f"you set up K E but did not divide by d0 = {d0:.4g} m: the last row is (0, 0, 0, d0) "
-                    f"and the image d0 times too large about the origin; divide the whole matrix: {fix}."
+                    f"you set up K E but did not divide by d0 = {d0:.4g} m: the last row is (0, 0, 0, d0). "
+                    f"Projectively it is the same camera (dividing by its third coordinate images every point "
+                    f"where P_inf does), but the prompt fixes the last row to (0, 0, 0, 1), so that u = M2 X + t2 "
+                    f"holds with no division; divide the whole matrix by d0 once: {fix}."
                 )
             return (
                 f"your matrix is {g[2, 3]:.4g} times the answer: the same camera projectively, but the prompt "
@@ -151,6 +153,21 @@ def what_differs(g, expected, camera, X0) -> str:
         f"approximation about X0, at ({x_X0[0]:.2f}, {x_X0[1]:.2f}) px"
     )
     return "; ".join(parts) + "; " + where
+
+
+def v_flip_cause(g, expected) -> str | None:
+    """The cause when row 1 (u) is right and row 2 gives c - v for the right v: the v axis flipped
+    (y up, -v) or the rows counted from the bottom (479 - v)."""
+    if not (same_to_rounding(g[0], expected[0]) and same_to_rounding(g[1, :3], -expected[1, :3])):
+        return None
+    c = float(g[1, 3] + expected[1, 3])  # g's v = c - the right v
+    how = "-v" if abs(c) < 1e-6 else f"{c:.4g} - v"
+    return (
+        f"the first row (u) is right, but the second gives {how} instead of v: the v axis is flipped. Pixel v "
+        f"is the row index and grows downwards, as the camera frame's y does (x right, y down, z forward: "
+        f"docs/conventions.md), so K's second row gives v directly; do not negate it or count rows from the "
+        f"bottom of the image."
+    )
 
 
 def image_of_X0_as_translation(g, expected, camera, X0) -> str | None:

@@ -9,6 +9,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
+from ... import affine as af
 from ... import camera as cm
 from .._core import Mistake, first_mistake
 
@@ -270,7 +271,11 @@ FORMS = (
 
 
 def estimate_other_cause(g, expected, X, uv) -> str:
-    """Unit slips, a lost normalisation, a DLT, an exact fit to a few points, rounding; else what differs."""
+    """A flipped v, a point left out, unit slips, a lost normalisation, a DLT, an exact fit to a few points,
+    rounding; else what differs."""
+    slip = _v_flip_cause(g, expected) or _point_left_out(g, X, uv)
+    if slip:
+        return slip
     scale = _image_scaling(g, expected, X)
     if scale is not None and (
         np.isclose(scale, 1e-3, rtol=1e-4) or np.isclose(scale, 1e3, rtol=1e-4)
@@ -335,6 +340,39 @@ def estimate_other_cause(g, expected, X, uv) -> str:
         f"more): the least-squares camera is the one with the smallest residual, and yours is not it. "
         f"Compare your steps with: {_LSQ}."
     )
+
+
+def _v_flip_cause(g, expected) -> str | None:
+    """The cause when row 1 (u) is the least-squares one and row 2 predicts c - v: the fit to -v (y up) or to
+    c - v (rows counted from the bottom of the image)."""
+    if not (
+        np.allclose(g[0], expected[0], rtol=1e-9, atol=1e-7)
+        and np.allclose(g[1, :3], -expected[1, :3], rtol=1e-9, atol=1e-7)
+    ):
+        return None
+    c = float(g[1, 3] + expected[1, 3])
+    how = "-v" if abs(c) < 1e-6 else f"{c:.4g} - v"
+    return (
+        f"the first row (u) is the least-squares one, but the second predicts {how} instead of v: the v axis "
+        f"is flipped. uv[:, 1] is v as given, the row index, growing downwards (docs/conventions.md); fit it as "
+        f"it is, without negating it or counting rows from the bottom of the image."
+    )
+
+
+def _point_left_out(g, X, uv) -> str | None:
+    """The cause when ``g`` is the least-squares camera of all the points but one (an off-by-one slice)."""
+    n = len(X)
+    for i in (n - 1, 0, *range(1, n - 1)):  # X[:-1] and X[1:] first, the likely slices
+        keep = np.arange(n) != i
+        if np.allclose(g, af.estimate_affine_camera(X[keep], uv[keep]), rtol=1e-9, atol=1e-7):
+            which = {0: "the first (X[1:]?)", n - 1: "the last (X[:-1] or range(N - 1)?)"}.get(
+                i, f"point {i}"
+            )
+            return (
+                f"your camera is the least-squares fit to {n - 1} of the {n} points: {which} was left out, an "
+                f"off-by-one in a slice or a loop. Use all N points: {_LSQ}."
+            )
+    return None
 
 
 def translation_cause(t2, t2_expected, um, M2Xm) -> str:

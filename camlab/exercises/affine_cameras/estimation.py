@@ -185,6 +185,13 @@ register_exercise(
             (estimate_no_translation, "translation column is zero"),
             (estimate_dlt_last_row_forced, "last row overwritten"),
             (lambda X, uv: af.estimate_affine_camera(X, uv[:, ::-1]), "u and v are swapped"),
+            (lambda X, uv: af.estimate_affine_camera(X, uv * [1, -1]), "predicts -v instead"),
+            (
+                lambda X, uv: af.estimate_affine_camera(X, [0, 479] + uv * [1, -1]),
+                "predicts 479 - v",
+            ),
+            (lambda X, uv: af.estimate_affine_camera(X[:-1], uv[:-1]), "the last (X[:-1]"),
+            (lambda X, uv: af.estimate_affine_camera(X[1:], uv[1:]), "the first (X[1:]?)"),
             (estimate_t2_sign, "sign flipped"),
             (estimate_shifted(0.5), "half a pixel"),
             (estimate_scaling_not_undone, "not undo it"),

@@ -22,6 +22,7 @@ from ._approx_common import (
     p_para,
     principal_point_cause,
     same_to_rounding,
+    v_flip_cause,
     what_differs,
     without_skew,
 )
@@ -251,7 +252,7 @@ def _para_diagnosis(args, got, expected) -> str:
         return cause
     if not np.allclose(g[2], [0.0, 0.0, 0.0, 1.0], atol=1e-9):
         return last_row_cause(g, d0, expected, P_PARA, camera.R[2])
-    slip = image_of_X0_as_translation(g, expected, camera, X0)
+    slip = v_flip_cause(g, expected) or image_of_X0_as_translation(g, expected, camera, X0)
     if slip:
         return slip
     if same_to_rounding(g[:2, :3], expected[:2, :3]):
@@ -361,6 +362,10 @@ register_exercise(
             (
                 lambda camera, X0: af.affine_approximation(camera, X0),
                 "weak-perspective camera P_inf",
+            ),
+            (
+                lambda camera, X0: af.paraperspective_approximation(camera, X0) * [[1], [-1], [1]],
+                "gives -v instead",
             ),
             (
                 mistake_variant(_MISTAKES, "(a, b) sign", _context),

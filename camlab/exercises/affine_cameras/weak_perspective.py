@@ -22,6 +22,7 @@ from ._approx_common import (
     principal_point_cause,
     proportional,
     same_to_rounding,
+    v_flip_cause,
     what_differs,
     without_skew,
 )
@@ -162,7 +163,7 @@ def _approx_top_rows_cause(g, expected, camera, X0, d0) -> str:
         )
     if same_to_rounding(g[[1, 0]], expected[:2]):
         return "the two rows are swapped: row 1 gives u (from r1 and fx), row 2 gives v (from r2 and fy)."
-    slip = image_of_X0_as_translation(g, expected, camera, X0)
+    slip = v_flip_cause(g, expected) or image_of_X0_as_translation(g, expected, camera, X0)
     if slip:
         return slip
     if same_to_rounding(M, M_e):
@@ -367,6 +368,17 @@ register_exercise(
                 "para-perspective camera",
             ),
             (lambda camera, X0: af.affine_approximation(camera, X0)[[1, 0, 2]], "rows are swapped"),
+            (
+                lambda camera, X0: af.affine_approximation(camera, X0) * [[1], [-1], [1]],
+                "gives -v instead",
+            ),
+            (
+                lambda camera, X0: (
+                    np.diag([1.0, -1.0, 1.0]) @ af.affine_approximation(camera, X0)
+                    + [[0, 0, 0, 0], [0, 0, 0, 479], [0, 0, 0, 0]]
+                ),
+                "gives 479 - v instead",
+            ),
             (_approx_no_t, "t1 and t2 are missing"),
             (_approx_image_centre((320.0, 240.0)), "or you used (320, 240), half the image size"),
             (

@@ -3,6 +3,7 @@ affine approximations, and when an affine camera is good enough."""
 
 from __future__ import annotations
 
+import ipywidgets as W
 import numpy as np
 
 from ... import affine as af
@@ -10,7 +11,7 @@ from ... import camera as cm
 from ... import fixtures, scenes
 from ...plotting import palette, scene3d
 from .._base import FigureView, build_demo, register, slider
-from ..controls import int_slider, log_slider
+from ..controls import int_slider, log_slider, monospace
 from .common import (
     COLOURS,
     D0,
@@ -70,6 +71,8 @@ def three_cameras():
         axis=0
     )  # the weak-perspective camera's reference point (three_images)
     references = [(view.animate(*reference_marker(ax)),) for ax in axes]  # the legend names it
+    parts = {"cube": scene[:12], "rails": scene[12:]}  # box_and_rails: 12 cube edges, then 4 rails
+    readout = W.HTML()
     controls = {
         "azimuth": int_slider(-40, -90, 90, "azimuth (deg)", step=2),
         "elevation": int_slider(20, 0, 80, "elevation (deg)"),
@@ -93,10 +96,17 @@ def three_cameras():
         ]
         for artists, xy in zip(references, images_of_X0, strict=True):
             place_reference(artists, xy)
+        gaps = {part: af.largest_gap_in_frame(cam, P_weak, segs) for part, segs in parts.items()}
+        readout.value = monospace(
+            "weak perspective against perspective,\nlargest gap inside the frame:\n"
+            + "\n".join(f"  {part:5s} {_gap_text(g)}" for part, g in gaps.items())
+            + f"\nfocal length f = {f:.0f} px"
+        )
         state.update(
             camera=cam,
             P_weak=P_weak,
             focal=f,
+            gaps=gaps,
             max_difference=af.largest_gap_in_frame(cam, P_weak, scene),
             reference_point=X0,
             reference_images=images_of_X0,
@@ -108,7 +118,18 @@ def three_cameras():
         view,
         update,
         title="One scene, three cameras (the middle panel repeats the perspective image in red)",
+        extra=[readout],
     )
+
+
+def _gap_text(gap: float) -> str:
+    """A readout's gap in pixels, or why there is none (no part of it inside the frame)."""
+    return "not in the frame" if np.isnan(gap) else f"{gap:5.1f} px"
+
+
+def _rms_text(rms: float) -> str:
+    """The dolly zoom's readout: the RMS over the cube's 8 corners, to 0.1 px, below 1 px to 0.01 px."""
+    return f"RMS {rms:.1f} px" if rms >= 0.995 else f"RMS {rms:.2f} px"
 
 
 def dolly_curves(offset: float, distances: np.ndarray) -> dict:
@@ -144,10 +165,10 @@ def _dolly_error_axes(ax, distances):
         for m in APPROXIMATIONS
     }
     ax.set_xlim(
-        distances[0] / 1.15, distances[-1] * 1.15
-    )  # room for the whole marker at the slider's ends
+        distances[0] / 1.3, distances[-1] * 1.3
+    )  # room for the whole marker at the slider's ends, clear of the spines
     ax.set_ylim(*DOLLY_ERROR_LIMITS)
-    ax.set_title("RMS distance to the perspective image", fontsize=9)  # as the axis label says
+    ax.set_title("RMS distance to the perspective image\n(over the cube's 8 corners)", fontsize=9)
     ax.set_xlabel(f"distance d (m); focal length f = {F0:.0f} d / {D0:.0f} px", fontsize=8)
     ax.set_ylabel("RMS distance (px)", fontsize=8)
     ax.tick_params(labelsize=7)
@@ -204,7 +225,9 @@ def dolly_zoom():
         lines[m] = model_line(
             ax, m, lw=1.6 if m == "weak perspective" else 1.9
         )  # the dots thicker, to read
-        ax.plot([319.5], [239.5], **PRINCIPAL_POINT_MARKER)
+        # Animated like the X0 diamond it must stay above (a static + would sit in the cached background,
+        # under every live frame's diamond, and vanish at offset 0 where the two coincide).
+        view.animate(ax.plot([319.5], [239.5], **PRINCIPAL_POINT_MARKER)[0])
         references[m] = reference_marker(ax)
         # The readout sits in the top-left corner, where no part of the cube comes at any setting (its images
         # stay right of u = 170 px and below v = 95 px).
@@ -244,9 +267,7 @@ def dolly_zoom():
             place_reference(references[m], x_X0)
             e = af.weak_perspective_error(cam, pts, TARGET, approximate)
             rms[m] = float(np.sqrt(np.mean(e**2)))
-            readouts[m].set_text(
-                f"RMS {rms[m]:.1f} px"
-            )  # short: each glyph costs time in every frame
+            readouts[m].set_text(_rms_text(rms[m]))  # short: each glyph costs time in every frame
             markers[m].set_data([d], [rms[m]])
             curves[m].set_ydata(cache[offset][m])
         state.update(
