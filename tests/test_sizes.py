@@ -20,8 +20,6 @@ MAX_FUNCTION_LINES = 80
 # (camlab.projective), a function by module, classes and enclosing functions
 # (camlab.optimize.levenberg_marquardt, camlab.widgets.projective_camera.resectioning.update).
 EXCEPTIONS = {
-    "camlab.exercises.lenses_and_distortion._distort_causes.model_diagnosis": "grew past 80 lines "
-    "in lesson 02's review round (i28-02e); its causes want a Mistake table like its siblings'",
     # i27-plots splits these (issue 27, item 2)
     "camlab.widgets.affine_cameras.rails.parallel_rails": "i27-plots (issue 27): in its topic module, not yet split by step",
     "camlab.widgets.affine_cameras.rays.projection_rays": "i27-plots (issue 27): in its topic module, not yet split by step",

@@ -198,7 +198,7 @@ _PIXEL_MISTAKES = (
         ),
     ),
 )
-"""Slips in the way to pixels and back (the model's own slips are :func:`._distort_causes._model_diagnosis`),
+"""Slips in the way to pixels and back (the model's own slips are :func:`._distort_causes.model_diagnosis`),
 in the order they are tested, each a test of the answer ``s.g``."""
 
 
