@@ -32,7 +32,18 @@ def _datasheet_reference(f_mm, sensor_mm, size):
 
 
 def near(a, b):
-    """Equal to rounding (the check's own tolerance is 1e-9)."""
+    """Equal to rounding (the check's own tolerance is 1e-9).
+
+    Parameters
+    ----------
+    a, b : float or ndarray
+        The numbers to compare.
+
+    Returns
+    -------
+    bool or ndarray of bool
+        Whether ``a`` and ``b`` agree within a relative 1e-6 (absolute 1e-9), element by element.
+    """
     return np.isclose(a, b, rtol=1e-6, atol=1e-9)
 
 
@@ -398,7 +409,27 @@ def _datasheet_diagnosis(args, got, expected) -> str:
 
 
 def intrinsics_from_datasheet(f_mm, sensor_mm, size):
-    """K in pixels from a datasheet: focal length (mm), sensor (width, height) in mm, resolution (W, H) in pixels."""
+    """K in pixels from a datasheet: focal length (mm), sensor (width, height) in mm, resolution (W, H) in pixels.
+
+    Parameters
+    ----------
+    f_mm : float
+        The lens's focal length, mm.
+    sensor_mm : (2,) array_like
+        The sensor's active area (width, height), mm.
+    size : (2,) array_like of int
+        The resolution (W, H), pixels.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        K = [[f / s_x, 0, (W - 1)/2], [0, f / s_y, (H - 1)/2], [0, 0, 1]], with the pixel pitch
+        (s_x, s_y) = sensor_mm / size in mm per pixel and pixel centres at whole numbers.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 6.1 (alpha_x = f m_x).
+    """
     W, H = size
     sx, sy = sensor_mm[0] / W, sensor_mm[1] / H  # pixel pitch, mm per pixel (need not be square)
     return np.array(

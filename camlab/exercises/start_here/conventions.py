@@ -125,7 +125,26 @@ def _rt_diagnose(args, got, expected) -> str:
 
 
 def read_and_turn(img, X, A):
-    """Section 3's conventions: the image's centre, the pixels under the points X, and X turned about the centre."""
+    """Section 3's conventions: the image's centre, the pixels under the points X, and X turned about the centre.
+
+    Parameters
+    ----------
+    img : (H, W) ndarray
+        A grey image.
+    X : (N, 2) ndarray
+        Points (u, v) at whole-number pixels, inside the image.
+    A : (2, 2) ndarray
+        The turn (any 2 x 2 matrix).
+
+    Returns
+    -------
+    c : (2,) ndarray
+        The centre ((W - 1)/2, (H - 1)/2).
+    values : (N,) ndarray
+        img[v, u] at each point.
+    turned : (N, 2) ndarray
+        c + A (x - c) for each point x.
+    """
     H, W = img.shape[:2]  # numpy's shape: rows (H) first, then columns (W)
     c = np.array([(W - 1) / 2, (H - 1) / 2])  # halfway between the first and the last pixel centres
     u, v = X[:, 0].astype(int), X[:, 1].astype(int)

@@ -275,7 +275,22 @@ def _resize_in_place(p):
 
 
 def lift(p):
-    """Homogeneous coordinates of one image point: append w = 1."""
+    """Homogeneous coordinates of one image point: append w = 1.
+
+    Parameters
+    ----------
+    p : (2,) array_like
+        One point (x, y), pixels.
+
+    Returns
+    -------
+    (3,) ndarray
+        (x, y, 1).
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 2.2.1.
+    """
     return np.append(np.asarray(p, dtype=float), 1.0)
 
 
