@@ -118,8 +118,10 @@ def _rt_diagnose(args, got, expected) -> str:
         causes.append(f"the values: {values_cause(values, img, X)}")
     if not same(turned, expected[2]):
         cause = turned_cause(turned, X, np.asarray(A, dtype=float), expected[0], W, H)
-        if c.shape == (2,) and not same(c, expected[0]) and np.allclose(turned, (X - c) @ A.T + c):
-            cause = "right for your centre c: fix c, and they follow"
+        yours = (X - c) @ A.T + c if c.shape == (2,) else None
+        if yours is not None and not same(c, expected[0]) and turned.shape == yours.shape:
+            if np.allclose(turned, yours):
+                cause = "right for your centre c: fix c, and they follow"
         causes.append(f"the turned points: {cause}")
     return ("\n" + " " * 16).join(causes) if causes else "compare each part with the expected one"
 
@@ -196,6 +198,13 @@ register_exercise(
             ),
             (_rt_wrong(centre=lambda W, H: ((H - 1) / 2, (W - 1) / 2)), "width and height swapped"),
             (_rt_wrong(centre=lambda W, H: (W, H)), "that is the size"),
+            (  # two slips at once, points as columns: the hint names the centre, no numpy error
+                _rt_wrong(
+                    centre=lambda W, H: (W / 2, H / 2),
+                    turn=lambda X, A, c: ((X - c) @ A.T + c).T,
+                ),
+                "you used (W / 2, H / 2)",
+            ),
             (_rt_wrong(read=lambda img, u, v: img[u, v]), "img[u, v] reads row u, column v"),
             (
                 _rt_wrong(read=lambda img, u, v: img[v - 1, u - 1]),
