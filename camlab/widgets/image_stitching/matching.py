@@ -59,7 +59,7 @@ def feature_matches() -> Demo:
         title.set_text(
             f"views {i} and {j}, r = {v['ratio']:.2f}: {n} matches, green = confirmed by the true homography, "
             f"red = wrong ({nbad})\nyellow circles: SIFT keypoints, radius ~ the scale they were found at"
-            + (f"; every {every}th match drawn" if every > 1 else "")
+            + (f"; one match in {every} drawn" if every > 1 else "")
         )
         state.update(matches=n, wrong=nbad, precision=(n - nbad) / n if n else float("nan"))
         readout.value = monospace(
@@ -134,8 +134,7 @@ def ransac_registration() -> Demo:
         loc="upper center", bbox_to_anchor=(0.5, -0.02), ncols=4, fontsize=7, facecolor="0.75"
     )
     ax_e.set(
-        xlabel="transfer error per match (px, log scale; hatched end bars:\n"
-        "everything below 0.02 px, everything above 300 px)",
+        xlabel="transfer error per match (px, log scale)\nhatched end bars: all below 0.02 / above 300 px",
         ylabel="number of matches\n(relative to the tallest bar)",
         xscale="log",
         xlim=(0.02, 300),
