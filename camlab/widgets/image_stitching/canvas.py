@@ -196,7 +196,8 @@ def blending_seams() -> Demo:
 
     def update(v: dict, state: dict) -> None:
         multiband = v["method"] == "multiband"
-        controls["levels"].disabled = not multiband  # the pyramid belongs to multi-band blending only
+        # the pyramid belongs to multi-band blending only
+        controls["levels"].disabled = not multiband
         key = (v["method"], bool(v["gains"]), int(v["levels"]) if multiband else 0)
         out, rgba = cache[key]
         im.set_data(rgba)
@@ -207,7 +208,11 @@ def blending_seams() -> Demo:
         state.update(method=v["method"], seam_jump=jump, image=out)
         readout.value = monospace(
             f"blend: {v['method']}"
-            + (f", {int(v['levels'])} pyramid levels" if multiband else " (pyramid levels: multiband only)")
+            + (
+                f", {int(v['levels'])} pyramid levels"
+                if multiband
+                else " (pyramid levels: multiband only)"
+            )
             + f"\ngains: {np.round(gains, 3).tolist() if v['gains'] else 'off'}\n"
             f"mean step across the seam: {jump:.1f} grey levels"
         )
@@ -403,7 +408,8 @@ def canvas_projections() -> Demo:
 
 
 EDGE_RGB = tuple(
-    tuple(int(round(255 * c)) for c in to_rgb(colour)) for colour in (palette.TAB_BLUE, palette.ORANGE)
+    tuple(int(round(255 * c)) for c in to_rgb(colour))
+    for colour in (palette.TAB_BLUE, palette.ORANGE)
 )
 """The edges of view 0 and view 1 in the parallax demo: the lesson's colours of views 0 and 1."""
 

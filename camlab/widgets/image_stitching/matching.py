@@ -125,7 +125,9 @@ def ransac_registration() -> Demo:
     h, w = imgs[j].shape[:2]
     # wide enough for image i's mapped frame too (it lies left of image j), with room for a frame that is
     # 20 px off, so the worst corner stays in view
-    true_frame = map_points(s.true_homography(i, j), np.array([[0, 0], [w - 1, h - 1], [0, h - 1], [w - 1, 0]], float))
+    true_frame = map_points(
+        s.true_homography(i, j), np.array([[0, 0], [w - 1, h - 1], [0, h - 1], [w - 1, 0]], float)
+    )
     ax.set(
         xlim=(min(-0.5, true_frame[:, 0].min() - 20), w - 0.5),
         ylim=(max(h - 0.5, true_frame[:, 1].max() + 20), min(-0.5, true_frame[:, 1].min() - 20)),
