@@ -356,7 +356,7 @@ def canvas_projections() -> Demo:
             transform=ax.transAxes,
             ha="center",
             va="center",
-            fontsize=10,
+            fontsize=9,
             color="0.15",
             wrap=True,
         )

@@ -136,7 +136,7 @@ def ransac_registration() -> Demo:
         loc="upper center", bbox_to_anchor=(0.5, -0.02), ncols=4, fontsize=7, facecolor="0.75"
     )
     ax_e.set(
-        xlabel="transfer error per match (px, log scale)\nhatched end bars: all below 0.02 / above 300 px",
+        xlabel="transfer error per match (px, log scale)\nhatched end bars: < 0.02 px, > 300 px",
         ylabel="number of matches\n(relative to the tallest bar)",
         xscale="log",
         xlim=(0.02, 300),
