@@ -6,10 +6,12 @@ from __future__ import annotations
 
 import ipywidgets as W
 import numpy as np
+from matplotlib.colors import to_rgb
 
 from ... import stitching as st
 from ...fixtures import panorama_examples as pe
 from ...plotting import palette
+from ...plotting.stitching import VIEW_COLOURS
 from ...projective import map_points
 from .._base import Demo, FigureView, build_demo, register
 from ..controls import monospace
@@ -94,7 +96,7 @@ def panorama_canvas() -> Demo:
     view = FigureView(figsize=(9, 3.6))
     ax = view.fig.subplots()
     im = view.animate(ax.imshow(np.zeros((10, 10, 3))))
-    colors = palette.SERIES[:4]
+    colors = VIEW_COLOURS[:4]
     lines = [
         view.animate(
             ax.plot([], [], color=c, lw=1.5, path_effects=palette.halo(1.5), label=f"image {k}")[0]
@@ -193,7 +195,10 @@ def blending_seams() -> Demo:
     jumps = {key: 255 * b.seam_step for key, b in blends.items()}
 
     def update(v: dict, state: dict) -> None:
-        key = (v["method"], bool(v["gains"]), int(v["levels"]) if v["method"] == "multiband" else 0)
+        multiband = v["method"] == "multiband"
+        # the pyramid belongs to multi-band blending only
+        controls["levels"].disabled = not multiband
+        key = (v["method"], bool(v["gains"]), int(v["levels"]) if multiband else 0)
         out, rgba = cache[key]
         im.set_data(rgba)
         imz.set_data(rgba[v0 : v0 + z, u0 : u0 + z])
@@ -202,7 +207,13 @@ def blending_seams() -> Demo:
         ]  # the exposure step across the seam, grey levels (overwrite: the last image's border)
         state.update(method=v["method"], seam_jump=jump, image=out)
         readout.value = monospace(
-            f"blend: {v['method']}\ngains: {np.round(gains, 3).tolist() if v['gains'] else 'off'}\n"
+            f"blend: {v['method']}"
+            + (
+                f", {int(v['levels'])} pyramid levels"
+                if multiband
+                else " (pyramid levels: multiband only)"
+            )
+            + f"\ngains: {np.round(gains, 3).tolist() if v['gains'] else 'off'}\n"
             f"mean step across the seam: {jump:.1f} grey levels"
         )
 
@@ -228,7 +239,7 @@ def full_panorama() -> Demo:
     view = FigureView(figsize=(9, 3.6))
     ax = view.fig.subplots()
     im = view.animate(ax.imshow(np.zeros((10, 10, 3))))
-    colors = palette.SERIES[:4]
+    colors = VIEW_COLOURS[:4]
     lines = [
         view.animate(
             ax.plot([], [], color=c, lw=1.2, path_effects=palette.halo(1.2), label=f"view {k}")[0]
@@ -279,7 +290,7 @@ def full_panorama() -> Demo:
         )
         rows = "\n".join(
             f"{p.i}-{p.j}: {p.matches:4d} matches {p.inliers:4d} inliers "
-            f"rms {p.residual_rms:.2f} {'ok' if p.accepted else 'rejected'}"
+            + (f"rms {p.residual_rms:.2f} ok" if p.accepted else "rejected")
             for p in r.pairs
         )
         readout.value = monospace(
@@ -308,7 +319,7 @@ def _gallery() -> dict:
     gallery = {}
     for (n, proj), p in pe.canvas_previews(BOX).items():
         if p.image is None:
-            gallery[(n, proj)] = (None, f"{n} views, {p.fov_deg:.0f} degrees: {p.reason}")
+            gallery[(n, proj)] = (None, f"{n} views, {p.fov_deg:.0f} degrees of view: {p.reason}")
         else:
             gallery[(n, proj)] = (
                 _place(_rgba(p.image)),
@@ -345,18 +356,24 @@ def canvas_projections() -> Demo:
             transform=ax.transAxes,
             ha="center",
             va="center",
-            fontsize=10,
-            color=palette.TAB_RED,
+            fontsize=9,
+            color="0.15",
             wrap=True,
         )
     )
     ax.set(xlim=(-0.5, BOX[1] - 0.5), ylim=(BOX[0] - 0.5, -0.5), aspect="equal")
     ax.set_xticks([])
     ax.set_yticks([])
+    # the static picture has no side panel: which canvas, how many views and how wide, in the figure itself
+    title = view.animate(ax.set_title(" ", fontsize=9))
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
         img, text = gallery[(v["views"], v["projection"])]
+        title.set_text(
+            text.split(": ", 1)[0]
+            + (f": no {v['projection']} canvas" if img is None else ": " + text.split(": ", 1)[1])
+        )
         if img is None:
             im.set_data(blank)
             msg.set_text("the plane cannot hold this turn:\n" + text.split(": ", 1)[1])
@@ -390,14 +407,21 @@ def canvas_projections() -> Demo:
 # ----------------------------------------------------------------------------- parallax
 
 
+EDGE_RGB = tuple(
+    tuple(int(round(255 * c)) for c in to_rgb(colour))
+    for colour in (palette.TAB_BLUE, palette.ORANGE)
+)
+"""The edges of view 0 and view 1 in the parallax demo: the lesson's colours of views 0 and 1."""
+
+
 def _with_edges(rgba: np.ndarray, edges) -> np.ndarray:
-    """Paint view 0's edges red and view 1's cyan (white where both) onto an RGBA image."""
+    """Paint view 0's edges blue and view 1's orange (white where both) onto an RGBA image."""
     if edges is None:
         return rgba
     out = rgba.copy()
     e0, e1 = edges
-    out[e0 & ~e1, :3] = (255, 40, 40)
-    out[e1 & ~e0, :3] = (0, 230, 255)
+    out[e0 & ~e1, :3] = EDGE_RGB[0]
+    out[e1 & ~e0, :3] = EDGE_RGB[1]
     out[e0 & e1, :3] = 255
     return out
 
@@ -431,8 +455,8 @@ def parallax_ghosting() -> Demo:
     key = [
         Patch(facecolor=np.array(c) / 255, edgecolor="0.3", label=t)
         for c, t in (
-            ((255, 40, 40), "edge in view 0 only"),
-            ((0, 230, 255), "edge in view 1 only"),
+            (EDGE_RGB[0], "edge in view 0 only"),
+            (EDGE_RGB[1], "edge in view 1 only"),
             ((255, 255, 255), "edge in both"),
         )
     ]
@@ -483,7 +507,8 @@ def parallax_ghosting() -> Demo:
             f"camera moved {100 * b:.0f} cm\nmatches: {n}\n"
             f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\ninlier RMS: {reg.residual_rms:.2f} px\n"
             f"mean |view 0 - view 1| on the overlap:\n  {diff:.1f} grey levels\n"
-            f"edges: red = view 0, cyan = view 1 (white where they agree)"
+            f"edges of the two warped views (not of the blend):\n"
+            f"  blue = view 0, orange = view 1, white where they agree"
         )
 
     controls = {
