@@ -20,7 +20,15 @@ from .. import fixtures, scenes
 from .. import homography as hg
 from .._validate import DegenerateError
 from ..plotting import palette
-from ..projective import cross_ratio, map_points, splits_at_infinity
+from ..projective import (
+    LINE_AT_INFINITY,
+    clip_line,
+    cross_ratio,
+    map_lines,
+    map_points,
+    map_polyline,
+    splits_at_infinity,
+)
 from ..robust import required_iterations
 from ..warp import forward_warp, warp_perspective
 from ._base import Demo, FigureView, build_demo, register, slider
@@ -68,10 +76,14 @@ def _warning(
 
 
 CONFIDENCE = 0.995  # RANSAC's confidence p in the demo
+MAX_SAMPLES = 1000  # RANSAC's cap on the samples drawn in the demo
 
-TORN = (
-    "the line that H sends to infinity crosses the picture:\n"
-    "its two halves leave through infinity and come back\non the other side (the picture is torn)"
+TORN_SHORT = (  # beside a canvas, in a narrow column
+    "torn: the line that H sends\nto infinity crosses the\npicture; its halves leave\nthrough infinity and come\nback on the other side"
+)
+TORN_DRAG = (
+    "a bow tie or a dent: the line that H sends to\ninfinity (purple, dashed, above) crosses the\n"
+    "picture. Its two halves leave through infinity\nand come back on the other side: torn."
 )
 
 
@@ -85,33 +97,29 @@ _GROUPS = tuple(hg.HIERARCHY)  # euclidean, similarity, affine, projective
     sweep={
         "group": list(_GROUPS),
         "theta": [-30.0, 20.0],
-        "shear": [0.0, 40.0],
+        "phi": [0.0, 40.0],
         "v1": [0.0, 2.0, 14.0],
         "tx": [-20.0, 30.0],
     },
 )
 def transformation_hierarchy() -> Demo:
-    """Euclidean, similarity, affine, projective: sliders for each group acting on a picture."""
+    """Euclidean, similarity, affine, projective: sliders for each group acting on a picture,
+    with the image of the line at infinity (the vanishing line) drawn when H moves it into view."""
     pic = scenes.house_picture()
     ph, pw = pic.shape[:2]
-    canvas_hw = (300, 400)
+    canvas_hw = (360, 480)
+    xlim, ylim = (-0.5, canvas_hw[1] - 0.5), (-0.5, canvas_hw[0] - 0.5)
     # Picture coordinates centred on the origin; C places the origin at the canvas centre.
     C = np.array([[1.0, 0, canvas_hw[1] / 2], [0, 1, canvas_hw[0] / 2], [0, 0, 1]])
     P = np.array([[1.0, 0, -(pw - 1) / 2], [0, 1, -(ph - 1) / 2], [0, 0, 1]])
     view = FigureView(figsize=(8.5, 4.2))
     ax = view.fig.subplots()
-    ax.set(
-        xlim=(-0.5, canvas_hw[1] - 0.5),
-        ylim=(canvas_hw[0] - 0.5, -0.5),
-        aspect="equal",
-        xlabel="u (pixels)",
-        ylabel="v (pixels)",
-    )
+    ax.set(xlim=xlim, ylim=ylim[::-1], aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)")
     im = view.animate(
         ax.imshow(
             np.zeros((*canvas_hw, 3), np.uint8),
             interpolation="nearest",
-            extent=(-0.5, canvas_hw[1] - 0.5, canvas_hw[0] - 0.5, -0.5),
+            extent=(xlim[0], xlim[1], ylim[1], ylim[0]),
         )
     )
     outline0 = C @ P
@@ -121,37 +129,23 @@ def transformation_hierarchy() -> Demo:
     view.animate(
         ax.plot(box0[:, 0], box0[:, 1], ":", color="0.2", lw=1.5, label="original outline")[0]
     )
-    grid_u = np.linspace(0, pw - 1, 5)
-    grid_lines = [np.column_stack([np.full(20, x), np.linspace(0, ph - 1, 20)]) for x in grid_u]
-    grid_lines += [
-        np.column_stack([np.linspace(0, pw - 1, 20), np.full(20, y)])
-        for y in np.linspace(0, ph - 1, 4)
-    ]
-    grid_points = np.vstack(
-        grid_lines
-    )  # every line has 20 points; drawn as one artist, NaN-separated,
+    samples = np.linspace(0, 1, 60)  # dense, so the polylines follow the picture up to its tear
+    grid_lines = [np.column_stack([np.full(60, x), samples * (ph - 1)]) for x in np.linspace(0, pw - 1, 5)]
+    grid_lines += [np.column_stack([samples * (pw - 1), np.full(60, y)]) for y in np.linspace(0, ph - 1, 4)]
     grid_art = view.animate(
-        ax.plot([], [], color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0]
-    )  # one outline
-    ax.set_title(
-        "the picture mapped by H (its group, dof and invariants at the right)", fontsize=10
+        ax.plot([], [], color=palette.ORANGE, lw=1, path_effects=palette.halo(1), label="grid mapped by H")[0]
     )
+    horizon_art = view.animate(
+        ax.plot([], [], "--", color=palette.PURPLE, lw=2, label="vanishing line\n(image of l∞)")[0]
+    )
+    ax.set_title("the picture mapped by H (its group, dof and invariants at the right)", fontsize=10)
     # beside the axes: over the warped picture the legend would need a redraw per update
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
     # The group, its dof and what it keeps, in the figure itself (a static page has no readout).
     facts = view.animate(
-        ax.text(
-            1.03,
-            0.86,
-            "",
-            transform=ax.transAxes,
-            ha="left",
-            va="top",
-            fontsize=8,
-            linespacing=1.35,
-        )
+        ax.text(1.03, 0.72, "", transform=ax.transAxes, ha="left", va="top", fontsize=8, linespacing=1.3)
     )
-    warning = _warning(view, ax)
+    warning = _warning(view, ax, 1.03, 0.0, "left", "bottom")  # beside the canvas, never over it
     picture_corners = np.array([[0, 0], [pw - 1, 0], [pw - 1, ph - 1], [0, ph - 1]], float)
     readout = W.HTML()
 
@@ -160,7 +154,7 @@ def transformation_hierarchy() -> Demo:
             v["group"],
             theta=np.radians(v["theta"]),
             scale=v["scale"],
-            shear=np.radians(v["shear"]),
+            shear=np.radians(v["phi"]),
             aspect=v["aspect"],
             tx=v["tx"],
             ty=v["ty"],
@@ -168,33 +162,39 @@ def transformation_hierarchy() -> Demo:
         )
         H = hg.compose(C, Hg, P)
         im.set_data(warp_perspective(pic, H, canvas_hw, method="cv2", fill=255))
-        m = map_points(H, grid_points).reshape(len(grid_lines), 20, 2)
-        m = np.concatenate([m, np.full((len(grid_lines), 1, 2), np.nan)], axis=1).reshape(-1, 2)
+        pieces = [np.vstack([map_polyline(H, line), [[np.nan, np.nan]]]) for line in grid_lines]
+        m = np.vstack(pieces)
         grid_art.set_data(m[:, 0], m[:, 1])
+        # l' = H^-T l_inf: where parallel lines of the picture meet (outside the view for affine H)
+        vanishing = clip_line(map_lines(H, LINE_AT_INFINITY), xlim, ylim)
+        horizon_art.set_data(vanishing[:, 0], vanishing[:, 1])
         info = hg.HIERARCHY[v["group"]]
         kind = hg.classify(Hg)
         torn = splits_at_infinity(H, picture_corners)
-        warning(TORN if torn else "")
-        state.update(H=Hg, group=v["group"], classified=kind, dof=info["dof"], torn=torn)
+        warning(TORN_SHORT if torn else "")
+        state.update(
+            H=Hg, group=v["group"], classified=kind, dof=info["dof"], torn=torn,
+            vanishing_line_in_view=bool(np.isfinite(vanishing).all()),
+        )
+        keeps = [f"- {name}" for name in info["own"]]
+        if info["larger"]:
+            keeps.append(f"+ all that {'an' if info['larger'] == 'affine' else 'a'} {info['larger']} map keeps")
         facts.set_text(
             f"{v['group']}: {info['dof']} dof\n(H itself is {kind})\n\nkeeps:\n"
-            + "\n".join(
-                "\n".join(textwrap.wrap(f"- {name}", 22, subsequent_indent="  "))
-                for name in info["invariants"]
-            )
+            + "\n".join("\n".join(textwrap.wrap(k, 24, subsequent_indent="  ")) for k in keeps)
         )
         readout.value = monospace(
             f"{v['group']}: {info['dof']} dof\nH =\n"
             + np.array2string(Hg, precision=4, suppress_small=True)
             + f"\nsmallest group holding H: {kind}\nkeeps: "
-            + ", ".join(info["invariants"][:4])
+            + ", ".join(info["invariants"])
         )
 
     controls = {
         "group": W.Dropdown(options=list(_GROUPS), value="affine", description="group"),
         "theta": slider(15.0, -180.0, 180.0, 1.0, "rotation θ (°)"),
         "scale": slider(1.2, 0.3, 2.5, 0.05, "scale s"),
-        "shear": slider(30.0, -90.0, 90.0, 1.0, "affine: skew axis φ (°)"),
+        "phi": slider(30.0, -90.0, 90.0, 1.0, "affine: stretch axes φ (°)"),
         "aspect": slider(1.4, 0.4, 2.5, 0.05, "affine: stretch √(sx/sy)"),
         "tx": slider(0.0, -100.0, 100.0, 1.0, "tx (px)"),
         "ty": slider(0.0, -80.0, 80.0, 1.0, "ty (px)"),
@@ -238,56 +238,60 @@ _DRAG_START = np.array([[40.0, 30.0], [250.0, 60.0], [230.0, 200.0], [60.0, 230.
 )
 def drag_homography() -> Demo:
     """Drag the four target corners: lines stay lines and the cross-ratio stays fixed,
-    while lengths, angles and ratios of lengths change. Without a mouse, pick a corner and
-    move it with its two sliders (or type the corners)."""
+    while lengths, angles and ratios of lengths change (the numbers are printed under the
+    source picture). Without a mouse, pick a corner and move it with its two sliders (or type
+    the corners)."""
     pic = scenes.house_picture()
     ph, pw = pic.shape[:2]
     out_hw = (260, 300)
-    view = FigureView(figsize=(9, 4))
+    view = FigureView(figsize=(9, 4.6))
     ax_s, ax_t = view.fig.subplots(1, 2, width_ratios=[1, 1.6])
     ax_s.imshow(pic)
+    ax_s.set_anchor("N")  # the room under the source picture holds the numbers and the warning
+    ax_s.set(xlabel="u (pixels)", ylabel="v (pixels)")
     ax_s.set_title("source picture", fontsize=10, pad=3)
+    ax_s.set(xlim=(-0.5, pw - 0.5), ylim=(ph - 0.5, -0.5))
     ax_t.set(xlim=(-0.5, out_hw[1] - 0.5), ylim=(out_hw[0] - 0.5, -0.5), aspect="equal")
+    ax_t.set(xlabel="u (pixels)", ylabel="v (pixels)")
     ax_t.set_title("drag a corner, or use the sliders", fontsize=10, pad=3)
-    # Four collinear points on the picture's diagonal; a line; a right angle at corner 0.
+    # Four collinear points on the picture's diagonal (their cross-ratio is the invariant).
     line_pts = np.array([[10.0, 10.0], [50.0, 40.0], [90.0, 70.0], [150.0, 115.0]])
-    ax_s.plot(
-        line_pts[:, 0],
-        line_pts[:, 1],
-        "o-",
-        color=palette.GREEN,
-        ms=5,
-        lw=1.5,
-        path_effects=palette.halo(1.5),
+    line_dense = line_pts[0] + np.linspace(0, 1, 80)[:, None] * (line_pts[3] - line_pts[0])
+    square_dense = np.vstack(
+        [SQUARE[i] + np.linspace(0, 1, 40)[:, None] * (SQUARE[(i + 1) % 4] - SQUARE[i]) for i in range(4)]
     )
-    for name, p in zip("ABCD", line_pts, strict=True):
-        ax_s.annotate(
-            name,
-            p,
-            xytext=(3, -8),
-            textcoords="offset points",
-            fontsize=9,
-            color=palette.DARK_GREEN,
-            path_effects=palette.halo(),
-        )
+    ax_s.plot(*line_pts.T, "o-", color=palette.BROWN, ms=5, lw=1.5, path_effects=palette.halo(1.5))
+    offsets = ((4, 6), (4, 6), (4, 6), (-14, 2))  # across the line; D sits near the frame: on its left
+    for name, p, off in zip("ABCD", line_pts, offsets, strict=True):
+        ax_s.annotate(name, p, xytext=off, textcoords="offset points", fontsize=9,
+                      color=palette.BROWN, path_effects=palette.halo())
+    sent_away = view.animate(ax_s.plot([], [], "--", color=palette.PURPLE, lw=2)[0])
     im = view.animate(
         ax_t.imshow(
             np.zeros((*out_hw, 3), np.uint8), extent=(-0.5, out_hw[1] - 0.5, out_hw[0] - 0.5, -0.5)
         )
     )
-    mapped_line = view.animate(
-        ax_t.plot([], [], "o-", color=palette.GREEN, ms=5, lw=1.5, path_effects=palette.halo(1.5))[
-            0
-        ]
-    )
     quad = view.animate(
         ax_t.plot([], [], "-", color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0]
     )
+    mapped_line = view.animate(
+        ax_t.plot([], [], "-", color=palette.BROWN, lw=1.5, path_effects=palette.halo(1.5))[0]
+    )
+    mapped_dots = view.animate(ax_t.plot([], [], "o", color=palette.BROWN, ms=5, mec="white")[0])
+    mapped_names = [
+        view.animate(ax_t.annotate(f"{name}'", (np.nan, np.nan), xytext=(4, 6), textcoords="offset points",
+                                   fontsize=9, color=palette.BROWN, path_effects=palette.halo()))
+        for name in "ABCD"
+    ]
     handles = view.animate(ax_t.plot([], [], "o", color=palette.ORANGE, ms=10, mec="k")[0])
     chosen = view.animate(
         ax_t.plot([], [], "o", ms=17, mfc="none", mec="k", mew=2)[0]
     )  # the corner the keys move
-    warning = _warning(view, ax_t)
+    numbers = view.animate(
+        ax_s.text(0.0, -0.27, "", transform=ax_s.transAxes, ha="left", va="top", fontsize=8,
+                  family="monospace")
+    )
+    warning = _warning(view, ax_s, 0.0, -0.62, "left", "top")  # under the numbers, off the target
     readout = W.HTML()
     control = corner_text(format_corners(_DRAG_START), "corners (u, v; ...)")
     keys = corner_keys(control, CORNER_NAMES, out_hw[1] - 1, out_hw[0] - 1)
@@ -299,17 +303,24 @@ def drag_homography() -> Demo:
             H = hg.estimate_homography(SQUARE, corners)
         except (ValueError, DegenerateError) as exc:
             state.update(error=str(exc))
-            warning("cannot use these corners:\n" + str(exc)[:80])
+            warning("cannot use these corners:\n" + "\n".join(textwrap.wrap(str(exc), 55)[:3]))
             readout.value = monospace(f"cannot use these corners:\n{exc}")
             return
         current["corners"] = corners
         torn = splits_at_infinity(H, SQUARE)
-        warning("a bow tie or a dent: " + TORN if torn else "")
+        warning(TORN_DRAG if torn else "")
+        # H^T l_inf = (h31, h32, h33): the source line that H sends to infinity (drawn if in view)
+        away = clip_line(H[2], (-0.5, pw - 0.5), (-0.5, ph - 0.5))
+        sent_away.set_data(away[:, 0], away[:, 1])
         im.set_data(warp_perspective(pic, H, out_hw, method="cv2", fill=255))
         m = map_points(H, line_pts)
-        mapped_line.set_data(m[:, 0], m[:, 1])
-        closed = np.vstack([corners, corners[:1]])
-        quad.set_data(closed[:, 0], closed[:, 1])
+        dense = map_polyline(H, line_dense)  # broken where it passes through infinity
+        mapped_line.set_data(dense[:, 0], dense[:, 1])
+        mapped_dots.set_data(m[:, 0], m[:, 1])
+        for label, p in zip(mapped_names, m, strict=True):
+            label.xy = tuple(p)
+        outline = map_polyline(H, square_dense)
+        quad.set_data(outline[:, 0], outline[:, 1])
         handles.set_data(corners[:, 0], corners[:, 1])
         chosen.set_data(corners[v["corner"], :1], corners[v["corner"], 1:])
         cr0, cr1 = cross_ratio(line_pts), cross_ratio(m)
@@ -333,12 +344,15 @@ def drag_homography() -> Demo:
             corner_angle=angle,
             corners=corners,
         )
-        readout.value = monospace(
+        table = (
             f"                 source   image\n"
-            f"cross-ratio      {cr0:7.4f}  {cr1:7.4f}   (kept)\n"
-            f"|AB| / |CD|      {ratio0:7.4f}  {ratio1:7.4f}   (changes)\n"
-            f"corner angle     {90:7.1f}  {angle:7.1f}°  (changes)\n"
-            "H =\n" + np.array2string(H, precision=4, suppress_small=True)
+            f"cross-ratio      {cr0:6.4f}  {cr1:6.4f}  kept\n"
+            f"|AB| / |CD|      {ratio0:6.4f}  {ratio1:6.4f}  changes\n"
+            f"top-left angle   {90:5.1f}°   {angle:5.1f}°  changes"
+        )
+        numbers.set_text(table)
+        readout.value = monospace(
+            table + "\nH =\n" + np.array2string(H, precision=4, suppress_small=True)
         )
 
     demo = build_demo(
@@ -360,7 +374,7 @@ def drag_homography() -> Demo:
 _VERDICTS = (
     ("inlier, kept", palette.GREEN),
     ("outlier, wrongly kept", palette.RED),
-    ("inlier, wrongly rejected", palette.ORANGE),
+    ("inlier, wrongly rejected", palette.BLUE),
     ("outlier, rejected", palette.GREY),
 )
 
@@ -377,51 +391,50 @@ def ransac_outliers() -> Demo:
     view = FigureView(figsize=(9.6, 4.8))
     ax, ax_k = view.fig.subplots(1, 2, width_ratios=[1.35, 1])
     ax.set(
-        xlim=(-10, 480), ylim=(340, -10), aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)"
+        xlim=(-10, 440), ylim=(330, -10), aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)"
     )
-    ax.set_title("each pair as an arrow src → dst", fontsize=10, pad=3)
+    ax.set_title("each pair: a line from src to a dot at dst", fontsize=10, pad=3)
     arrows = view.animate(ax.add_collection(LineCollection([], lw=1.0)))
     heads = view.animate(ax.scatter(np.zeros(0), np.zeros(0), s=6))
     box_true = view.animate(
         ax.plot([], [], "-", color="0.3", lw=2, label="true H (image frame)")[0]
     )
-    box_est = view.animate(ax.plot([], [], "--", color=palette.TAB_BLUE, lw=2, label="RANSAC H")[0])
+    box_est = view.animate(ax.plot([], [], "--", color="k", lw=1.5, label="RANSAC H")[0])
     best = view.animate(
         ax.plot([], [], "o", mfc="none", mec="k", mew=2, ms=11, label="the winning sample of 4")[0]
     )
     for name, colour in _VERDICTS:
         ax.plot([], [], "-", color=colour, lw=2, label=name)
     # Below the figure (the layout makes room), never over the arrows; under the left panel it describes.
-    view.fig.legend(*ax.get_legend_handles_labels(), loc="outside lower left", fontsize=7, ncol=3)
+    view.fig.legend(*ax.get_legend_handles_labels(), loc="outside lower left", fontsize=8, ncol=3)
     failure = _warning(view, ax, 0.5, 0.55, "center", "center")
     eps = np.linspace(0.0, 0.97, 300)
     k_curve = [required_iterations(1.0 - e, CONFIDENCE, 4) for e in eps]
     ax_k.semilogy(eps, k_curve, color="0.5", label="k = log(1-p) / log(1-(1-ε)⁴), p = 0.995")
+    ax_k.axhline(MAX_SAMPLES, color="0.3", ls=":", lw=1, label=f"the cap: {MAX_SAMPLES} samples")
     needed = view.animate(
-        ax_k.plot(
-            [], [], "o", mfc="none", mec=palette.TAB_BLUE, ms=9, label="k for the ε RANSAC found"
-        )[0]
+        ax_k.plot([], [], "o", mfc="none", mec="k", mew=1.5, ms=10, label="k for the ε RANSAC found")[0]
     )
     dot = view.animate(
-        ax_k.plot([], [], "o", color=palette.TAB_BLUE, label="samples drawn (whole batches)")[0]
+        ax_k.plot([], [], "o", color="k", ms=5, label="samples drawn (whole batches)")[0]
     )
     ax_k.set(
         xlabel="outlier fraction ε",
         ylabel="samples",
-        ylim=(1, 5000),
+        ylim=(1, 1e7),  # the whole curve: the ring for any ε found is on the axes, never pinned
         xlim=(0, 0.97),
         title="adaptive number of samples",
     )
-    ax_k.legend(loc="upper left", fontsize=7)
+    ax_k.legend(loc="upper left", fontsize=8)
     ax_k.grid(True, color="0.93")
     ax_k.text(
-        0.98,
         0.03,
-        "samples are drawn in batches\n(16, then up to 64): the count\nstops at the end of a batch",
+        0.66,
+        "samples come in batches (16, then\nup to 64), so the dot sits at or\nabove the ring, unless RANSAC\nstops at the cap",
         transform=ax_k.transAxes,
-        ha="right",
-        va="bottom",
-        fontsize=7,
+        ha="left",
+        va="top",
+        fontsize=8,
         color="0.3",
     )
     readout = W.HTML()
@@ -435,7 +448,7 @@ def ransac_outliers() -> Demo:
         data = fixtures.outlier_matches(outlier_fraction, seed)
         try:
             return data, hg.ransac_homography(
-                data[1], data[2], threshold, CONFIDENCE, 1000, np.random.default_rng(seed)
+                data[1], data[2], threshold, CONFIDENCE, MAX_SAMPLES, np.random.default_rng(seed)
             )
         except DegenerateError as exc:
             return data, str(exc)
@@ -481,7 +494,7 @@ def ransac_outliers() -> Demo:
         eps_found = 1.0 - r.inliers.mean()
         k_needed = required_iterations(1.0 - eps_found, CONFIDENCE, 4)
         dot.set_data([v["outliers"]], [r.iterations])
-        needed.set_data([eps_found], [min(k_needed, 4500)])  # beyond the axes: pinned to the top
+        needed.set_data([eps_found], [k_needed])
         counts = np.bincount(verdict, minlength=4)
         found_true = float(np.mean(r.inliers[~out])) if (~out).any() else float("nan")
         err = float(np.max(np.linalg.norm(be - bt, axis=1)))
@@ -499,7 +512,7 @@ def ransac_outliers() -> Demo:
         )
         readout.value = monospace(
             f"true ε = {v['outliers']:.2f}, found ε = {eps_found:.2f}\n"
-            f"samples drawn: {r.iterations}{' (the cap)' if r.iterations >= 1000 else ''}; "
+            f"samples drawn: {r.iterations}{' (the cap)' if r.iterations >= MAX_SAMPLES else ''}; "
             f"needed for the found ε: {k_needed:.0f}\n"
             + "\n".join(
                 f"{name:25s} {c:4d}" for (name, _), c in zip(_VERDICTS, counts, strict=True)
@@ -529,6 +542,8 @@ def forward_vs_inverse() -> Demo:
     im_f = view.animate(ax_f.imshow(blank, interpolation="nearest"))
     im_i = view.animate(ax_i.imshow(blank, interpolation="nearest"))
     ax_f.set_title("forward: push each source pixel", fontsize=10, pad=3)
+    for ax_ in (ax_f, ax_i):
+        ax_.set(xlabel="u (pixels)", ylabel="v (pixels)")
     ax_i.set_title("inverse: pull each output pixel", fontsize=10, pad=3)
     readout = W.HTML()
     ones = np.ones(pic.shape[:2], np.uint8)
