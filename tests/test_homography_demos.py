@@ -215,5 +215,6 @@ def _dlt_variant(src, dst, per_axis=False, three_rows=False):
 
 def test_dlt_exercise_judges_the_noisy_input_against_the_truth_not_camlabs_estimate():
     # both differ from camlab's noisy estimate by 0.2-0.5 px, and are as close to the truth as it is
+    all_exercises()  # registers them
     assert check("dlt_homography", lambda s, d: _dlt_variant(s, d, per_axis=True))
     assert check("dlt_homography", lambda s, d: _dlt_variant(s, d, three_rows=True))
