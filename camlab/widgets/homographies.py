@@ -136,7 +136,7 @@ def transformation_hierarchy() -> Demo:
         ax.plot([], [], color=palette.ORANGE, lw=1, path_effects=palette.halo(1), label="grid mapped by H")[0]
     )
     horizon_art = view.animate(
-        ax.plot([], [], "--", color=palette.PURPLE, lw=2, label="vanishing line\n(image of l∞)")[0]
+        ax.plot([], [], "--", color=palette.PURPLE, lw=2, label="vanishing line (image of\nl∞; at infinity unless\nthe group is projective)")[0]
     )
     ax.set_title("the picture mapped by H (its group, dof and invariants at the right)", fontsize=10)
     # beside the axes: over the warped picture the legend would need a redraw per update
@@ -261,10 +261,10 @@ def drag_homography() -> Demo:
         [SQUARE[i] + np.linspace(0, 1, 40)[:, None] * (SQUARE[(i + 1) % 4] - SQUARE[i]) for i in range(4)]
     )
     ax_s.plot(*line_pts.T, "o-", color=palette.BROWN, ms=5, lw=1.5, path_effects=palette.halo(1.5))
-    offsets = ((4, 6), (4, 6), (4, 6), (-14, 2))  # across the line; D sits near the frame: on its left
+    offsets = ((7, -3), (4, 6), (4, 6), (-14, 2))  # across the line; A and D sit near the frame
     for name, p, off in zip("ABCD", line_pts, offsets, strict=True):
         ax_s.annotate(name, p, xytext=off, textcoords="offset points", fontsize=9,
-                      color=palette.BROWN, path_effects=palette.halo())
+                      color="k", path_effects=palette.halo())  # black on a white halo: readable on any colour
     sent_away = view.animate(ax_s.plot([], [], "--", color=palette.PURPLE, lw=2)[0])
     im = view.animate(
         ax_t.imshow(
@@ -280,7 +280,7 @@ def drag_homography() -> Demo:
     mapped_dots = view.animate(ax_t.plot([], [], "o", color=palette.BROWN, ms=5, mec="white")[0])
     mapped_names = [
         view.animate(ax_t.annotate(f"{name}'", (np.nan, np.nan), xytext=(4, 6), textcoords="offset points",
-                                   fontsize=9, color=palette.BROWN, path_effects=palette.halo()))
+                                   fontsize=9, color="k", path_effects=palette.halo()))
         for name in "ABCD"
     ]
     handles = view.animate(ax_t.plot([], [], "o", color=palette.ORANGE, ms=10, mec="k")[0])
