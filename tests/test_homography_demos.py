@@ -198,7 +198,11 @@ def _dlt_variant(src, dst, per_axis=False, three_rows=False):
 
     def T(p):
         c = p.mean(axis=0)
-        k = 1 / p.std(axis=0) if per_axis else np.full(2, np.sqrt(2) / np.mean(np.linalg.norm(p - c, axis=1)))
+        k = (
+            1 / p.std(axis=0)
+            if per_axis
+            else np.full(2, np.sqrt(2) / np.mean(np.linalg.norm(p - c, axis=1)))
+        )
         return np.array([[k[0], 0, -k[0] * c[0]], [0, k[1], -k[1] * c[1]], [0, 0, 1]])
 
     src, dst = np.asarray(src, float), np.asarray(dst, float)

@@ -344,7 +344,10 @@ register_exercise(
             (lambda H, p: map_points(H, p)[:, ::-1], "columns are swapped"),
             (lambda H, p: map_points(H, np.asarray(p)[:, ::-1]), "you lifted"),
             (lambda H, p: map_points(np.linalg.inv(H), p), "the inverse"),
-            (lambda H, p: (np.column_stack([p, np.ones(len(p))]) @ H.T)[:, :2] / H[2, 2], "divided by h33"),
+            (
+                lambda H, p: (np.column_stack([p, np.ones(len(p))]) @ H.T)[:, :2] / H[2, 2],
+                "divided by h33",
+            ),
         ),
         teaching=apply_homography,
     )
