@@ -26,9 +26,9 @@ EXCEPTIONS = {
     # i27-plots splits these (issue 27, item 2)
     "camlab.widgets.affine_cameras.rails.parallel_rails": "i27-plots (issue 27): in its topic module, not yet split by step",
     "camlab.widgets.affine_cameras.rays.projection_rays": "i27-plots (issue 27): in its topic module, not yet split by step",
-    "camlab.widgets.homographies.transformation_hierarchy": "i27-plots (issue 27)",
-    "camlab.widgets.homographies.drag_homography": "i27-plots (issue 27)",
-    "camlab.widgets.homographies.ransac_outliers": "i27-plots (issue 27)",
+    "camlab.widgets.homographies.geometry.transformation_hierarchy": "i27-plots (issue 27)",
+    "camlab.widgets.homographies.geometry.drag_homography": "i27-plots (issue 27)",
+    "camlab.widgets.homographies.estimation.ransac_outliers": "i27-plots (issue 27)",
     "camlab.widgets.image_stitching.matching.ransac_registration": "i27-plots (issue 27): in its topic module, not yet split by step",
     "camlab.widgets.image_stitching.canvas.parallax_ghosting": "i27-plots (issue 27): in its topic module, not yet split by step",
 }
