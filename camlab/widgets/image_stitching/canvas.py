@@ -83,6 +83,37 @@ def _fitted_points(points: np.ndarray, shape, box) -> np.ndarray:
     return np.asarray(points, float) * s + [ox, oy]
 
 
+def _outline_figure(box, lw: float, name: str, animate_legend: bool):
+    """The figure of a panorama with each image's outline: the image, four outline lines keyed
+    below the axes (over the animated panorama a key would be hidden by every live frame), no
+    ticks, a title to animate. Returns (view, ax, im, lines, legend, title).
+    """
+    view = FigureView(figsize=(9, 3.6))
+    ax = view.fig.subplots()
+    im = view.animate(ax.imshow(np.zeros((10, 10, 3))))
+    lines = [
+        view.animate(
+            ax.plot([], [], color=c, lw=lw, path_effects=palette.halo(lw), label=f"{name} {k}")[0]
+        )
+        for k, c in enumerate(VIEW_COLOURS[:4])
+    ]
+    legend = ax.legend(
+        handles=lines,
+        loc="upper center",
+        bbox_to_anchor=(0.5, 0.0),
+        ncols=4,
+        fontsize=8,
+        title="outline of",
+    )
+    if animate_legend:  # it goes with the outlines when they are switched off
+        view.animate(legend)
+    ax.set(xlim=(-0.5, box[1] - 0.5), ylim=(box[0] - 0.5, -0.5), aspect="equal")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    title = view.animate(ax.set_title(" ", fontsize=9))
+    return view, ax, im, lines, legend, title
+
+
 @register(lesson="09", sweep={"reference": [0, 1, 3]})
 def panorama_canvas() -> Demo:
     """Every image warped onto one canvas; the reference image decides the shape (and the stretch).
@@ -93,29 +124,7 @@ def panorama_canvas() -> Demo:
     graph = pe.panorama_graph()
     small, canvases = pe.reference_canvases()
     box = (300, 800)  # the axes' units: (height, width), about the shape the axes get
-    view = FigureView(figsize=(9, 3.6))
-    ax = view.fig.subplots()
-    im = view.animate(ax.imshow(np.zeros((10, 10, 3))))
-    colors = VIEW_COLOURS[:4]
-    lines = [
-        view.animate(
-            ax.plot([], [], color=c, lw=1.5, path_effects=palette.halo(1.5), label=f"image {k}")[0]
-        )
-        for k, c in enumerate(colors)
-    ]
-    # below the axes: over the (animated) panorama it would be hidden by every live frame
-    ax.legend(
-        handles=lines,
-        loc="upper center",
-        bbox_to_anchor=(0.5, 0.0),
-        ncols=4,
-        fontsize=8,
-        title="outline of",
-    )
-    ax.set(xlim=(-0.5, box[1] - 0.5), ylim=(box[0] - 0.5, -0.5), aspect="equal")
-    ax.set_xticks([])
-    ax.set_yticks([])
-    title = view.animate(ax.set_title(" ", fontsize=9))
+    view, ax, im, lines, _, title = _outline_figure(box, lw=1.5, name="image", animate_legend=False)
     readout = W.HTML()
     shown = {ref: _rgba(c.panorama) for ref, c in canvases.items()}
 
@@ -236,31 +245,9 @@ def full_panorama() -> Demo:
     """
     pans = pe.stitched_panoramas()
     box = (300, 780)  # the axes' units: (height, width), about the shape the axes get
-    view = FigureView(figsize=(9, 3.6))
-    ax = view.fig.subplots()
-    im = view.animate(ax.imshow(np.zeros((10, 10, 3))))
-    colors = VIEW_COLOURS[:4]
-    lines = [
-        view.animate(
-            ax.plot([], [], color=c, lw=1.2, path_effects=palette.halo(1.2), label=f"view {k}")[0]
-        )
-        for k, c in enumerate(colors)
-    ]
-    # below the axes (over the animated panorama it would be hidden); animated, so it goes with the outlines
-    legend = view.animate(
-        ax.legend(
-            handles=lines,
-            loc="upper center",
-            bbox_to_anchor=(0.5, 0.0),
-            ncols=4,
-            fontsize=8,
-            title="outline of",
-        )
+    view, ax, im, lines, legend, title = _outline_figure(
+        box, lw=1.2, name="view", animate_legend=True
     )
-    ax.set(xlim=(-0.5, box[1] - 0.5), ylim=(box[0] - 0.5, -0.5), aspect="equal")
-    ax.set_xticks([])
-    ax.set_yticks([])
-    title = view.animate(ax.set_title(" ", fontsize=9))
     readout = W.HTML()
     shown = {k: _rgba(p.panorama) for k, p in pans.items()}
 
