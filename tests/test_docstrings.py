@@ -26,8 +26,6 @@ ROOT = Path(camlab.__file__).parent
 PENDING = {
     "camlab.widgets",
     "camlab.exercises",
-    # i27-docs-core documented the other algorithm modules; these four are still to do
-    "camlab.stitching",
 }
 
 SECTION_UNDERLINE = re.compile(r"^-{3,}$")
