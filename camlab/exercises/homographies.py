@@ -206,7 +206,22 @@ def _dlt_undone_one_side(src, dst, side):
 
 
 def dlt_homography(src, dst):
-    """The normalised DLT: normalise, stack two rows of x' x Hx = 0 per pair, SVD, undo."""
+    """The normalised DLT: normalise, stack two rows of x' x Hx = 0 per pair, SVD, undo.
+
+    Parameters
+    ----------
+    src, dst : (N, 2) array_like
+        Matching points, N >= 4, no three collinear: dst ~ H src.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        H, scaled so that H[2, 2] = 1.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 4.4 (algorithm 4.2).
+    """
     src, dst = np.asarray(src, dtype=float), np.asarray(dst, dtype=float)
 
     def normaliser(p):  # centroid to 0, mean distance to the centroid sqrt(2)
@@ -283,7 +298,20 @@ def _apply_diagnosis(args, got, expected) -> str:
 
 
 def apply_homography(H, points):
-    """Lift to (u, v, 1), multiply (rows: X @ H.T), divide by w."""
+    """Lift to (u, v, 1), multiply (rows: X @ H.T), divide by w.
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography.
+    points : (N, 2) array_like
+        Points (u, v), pixels.
+
+    Returns
+    -------
+    (N, 2) ndarray
+        The mapped points, H (u, v, 1) divided by its third coordinate.
+    """
     X = np.column_stack([points, np.ones(len(points))])
     Y = X @ np.asarray(H, dtype=float).T
     return Y[:, :2] / Y[:, 2:3]

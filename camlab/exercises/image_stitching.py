@@ -227,7 +227,27 @@ def _focal_reference(H, shape):
 
 
 def focal_from_rotation_homography(H, shape):
-    """Teaching solution: the focal length (pixels) of a camera that turned, from H = K R K^-1."""
+    """Teaching solution: the focal length (pixels) of a camera that turned, from H = K R K^-1.
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography between two photos taken by one camera turning about its centre, with the
+        principal point at the image centre and square pixels.
+    shape : tuple of int
+        The photos' shape (height, width[, channels]).
+
+    Returns
+    -------
+    float
+        f in pixels: the median of the estimates from R's columns and R's rows being orthonormal
+        (NaN when neither gives a positive f^2).
+
+    References
+    ----------
+    R. Szeliski and H.-Y. Shum (1997), "Creating full view panoramic image mosaics and environment
+    maps", SIGGRAPH.
+    """
     h, w = shape[:2]
     # the principal point at the centre
     C = np.array([[1.0, 0, (w - 1) / 2], [0, 1, (h - 1) / 2], [0, 0, 1]])

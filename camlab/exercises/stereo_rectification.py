@@ -84,7 +84,23 @@ def _no_rank2(x1, x2):
 
 
 def eight_point(x1, x2):
-    """Normalise, one row (u'u, u'v, u', v'u, v'v, v', u, v, 1) per match, SVD, rank 2, un-normalise."""
+    """Normalise, one row (u'u, u'v, u', v'u, v'v, v', u, v, 1) per match, SVD, rank 2, un-normalise.
+
+    Parameters
+    ----------
+    x1, x2 : (N, 2) array_like
+        Matching pixels in image 1 and image 2, N >= 8.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The fundamental matrix F, rank 2, up to scale, with x2^T F x1 = 0.
+
+    References
+    ----------
+    R. I. Hartley (1997), "In defense of the eight-point algorithm", IEEE TPAMI 19(6);
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 11.2 and algorithm 11.1.
+    """
     x1, x2 = np.asarray(x1, dtype=float), np.asarray(x2, dtype=float)
 
     def normaliser(p):  # centroid to 0, mean distance sqrt(2)
@@ -183,7 +199,24 @@ def _divided_by_w(F):
 
 
 def epipoles(F):
-    """F e1 = 0 and F^T e2 = 0: the right and left singular vectors of F's zero singular value."""
+    """F e1 = 0 and F^T e2 = 0: the right and left singular vectors of F's zero singular value.
+
+    Parameters
+    ----------
+    F : (3, 3) array_like
+        A fundamental matrix (rank 2), x2^T F x1 = 0.
+
+    Returns
+    -------
+    e1 : (3,) ndarray
+        The epipole in image 1, homogeneous, unit length (w may be 0: an epipole at infinity).
+    e2 : (3,) ndarray
+        The epipole in image 2, likewise.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 9.2.4 (table 9.1).
+    """
     U, _, Vt = np.linalg.svd(np.asarray(F, dtype=float))
     return Vt[-1], U[:, -1]  # homogeneous; w may be 0 (an epipole at infinity)
 
@@ -251,7 +284,22 @@ def _depth_diagnosis(args, got, expected) -> str:
 
 
 def disparity_to_depth(d, f, B):
-    """Similar triangles: d = f B / Z, so Z = f B / d (metres when B is in metres, f and d in pixels)."""
+    """Similar triangles: d = f B / Z, so Z = f B / d (metres when B is in metres, f and d in pixels).
+
+    Parameters
+    ----------
+    d : float or array_like
+        Disparities, pixels (> 0).
+    f : float
+        The rectified cameras' focal length, pixels.
+    B : float
+        The baseline, m.
+
+    Returns
+    -------
+    ndarray
+        The depths Z = f B / d, m, of ``d``'s shape.
+    """
     return f * B / np.asarray(d, dtype=float)
 
 
@@ -348,7 +396,24 @@ def _essential_diagnosis(args, got, expected) -> str:
 
 
 def decompose_essential(E):
-    """E = [t]x R = U diag(1, 1, 0) V^T gives two rotations U W V^T, U W^T V^T and t = ±u3."""
+    """E = [t]x R = U diag(1, 1, 0) V^T gives two rotations U W V^T, U W^T V^T and t = ±u3.
+
+    Parameters
+    ----------
+    E : (3, 3) array_like
+        An essential matrix.
+
+    Returns
+    -------
+    Rs : (4, 3, 3) ndarray
+        The rotations of the four candidate poses: U W V^T twice, then U W^T V^T twice.
+    ts : (4, 3) ndarray
+        Their translations, unit length: u3, -u3, u3, -u3.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 9.6.2 (result 9.19).
+    """
     U, _, Vt = np.linalg.svd(np.asarray(E, dtype=float))
     if np.linalg.det(U) < 0:  # make U and V rotations, so that U W V^T is one too
         U = -U

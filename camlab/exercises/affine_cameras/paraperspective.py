@@ -324,7 +324,21 @@ def _para_no_skew(camera, X0):
 
 
 def paraperspective_approximation(camera, X0):
-    """Perspective linearised at X0 (section 2): x -> (x - a (z - d0)) / d0, last row (0, 0, 0, 1)."""
+    """Perspective linearised at X0 (section 2): x -> (x - a (z - d0)) / d0, last row (0, 0, 0, 1).
+
+    Parameters
+    ----------
+    camera : camlab.camera.Camera
+        The perspective camera (K, R, t).
+    X0 : (3,) ndarray
+        The reference point, world coordinates, in front of the camera.
+
+    Returns
+    -------
+    (3, 4) ndarray
+        The paraperspective camera K E / d0, with d0 the depth of X0 and (a, b) its normalised image
+        position; it agrees with the camera at X0 to first order.
+    """
     K, R, t = camera.K, camera.R, camera.t
     x_c = R @ X0 + t  # X0 in the camera frame
     d0 = x_c[2]  # its depth

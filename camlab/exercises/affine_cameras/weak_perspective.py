@@ -282,7 +282,24 @@ def _approx_K_in_place(camera, X0):
 
 
 def affine_approximation(camera, X0):
-    """Give every point the depth d0 of the reference point X0 (H&Z §6.3.1), last row (0, 0, 0, 1)."""
+    """Give every point the depth d0 of the reference point X0 (H&Z §6.3.1), last row (0, 0, 0, 1).
+
+    Parameters
+    ----------
+    camera : camlab.camera.Camera
+        The perspective camera (K, R, t).
+    X0 : (3,) ndarray
+        The reference point, world coordinates, in front of the camera.
+
+    Returns
+    -------
+    (3, 4) ndarray
+        The affine (weak-perspective) camera K [[R's first two rows, t's first two], [0, 0, 0, d0]] / d0.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 6.3.1.
+    """
     K, R, t = camera.K, camera.R, camera.t
     d0 = R[2] @ X0 + t[2]  # depth of X0 in the camera frame
     E = np.zeros((3, 4))
