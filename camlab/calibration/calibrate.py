@@ -60,7 +60,8 @@ class CalibrationResult:
     iterations : int
     converged : bool
     initial : dict
-        Zhang's closed-form stages: ``K``, ``dist``, ``homographies``, ``rvecs``, ``tvecs``.
+        Where the refinement started: ``K``, ``dist``, ``homographies``, ``rvecs``, ``tvecs``
+        (Zhang's closed-form stages, or the caller's guesses) and ``closed_form``.
     """
 
     K: np.ndarray
