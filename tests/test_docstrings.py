@@ -25,11 +25,6 @@ ROOT = Path(camlab.__file__).parent
 # camlab subpackages whose docstrings other branches are writing (issue 27, item 5)
 PENDING = {
     "camlab.widgets",
-    # i27-docs-core documented the other algorithm modules; these four are still to do
-    "camlab.affine",
-    "camlab.rectification",
-    "camlab.calibration",
-    "camlab.stitching",
 }
 
 SECTION_UNDERLINE = re.compile(r"^-{3,}$")
