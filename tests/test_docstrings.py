@@ -22,10 +22,8 @@ import camlab
 
 ROOT = Path(camlab.__file__).parent
 
-# camlab subpackages whose docstrings other branches are writing (issue 27, item 5)
-PENDING = {
-    "camlab.widgets",
-}
+# camlab subpackages whose docstrings other branches are writing (issue 27, item 5); none left
+PENDING: set[str] = set()
 
 SECTION_UNDERLINE = re.compile(r"^-{3,}$")
 # who is cited: a docstring naming one of these outside its References section needs one

@@ -7,9 +7,8 @@ A camera that turns about its centre maps image i to image j by
 
 with :math:`R_k` cam_from_world (docs/conventions.md) and the principal point at the image
 centre. Pairwise registration (:func:`camlab.stitching.match_graph`) gives one homography
-per overlapping pair; this module turns them into one camera per image (Brown & Lowe
-2007, "Automatic panoramic image stitching using invariant features", sec. 4; Szeliski
-2006, "Image alignment and stitching", sec. 5-6):
+per overlapping pair; this module turns them into one camera per image, as Brown & Lowe
+[1]_ and Szeliski [2]_ do:
 
 1. :func:`focal_from_homography`: a rotation-only homography constrains f (derivation
    there); :func:`estimate_focal` takes the median over all accepted pairs.
@@ -23,6 +22,14 @@ per overlapping pair; this module turns them into one camera per image (Brown & 
 
 :func:`estimate_cameras` runs the four steps; :func:`adjust_homographies` refines the
 homographies of a flat scene instead (:mod:`camlab.stitching.model` chooses between them).
+
+References
+----------
+.. [1] M. Brown and D. G. Lowe, 2007, "Automatic panoramic image stitching using invariant
+   features", *International Journal of Computer Vision* 74(1), 59-73, sections 4 (bundle
+   adjustment) and 5 (automatic panorama straightening).
+.. [2] R. Szeliski, 2006, "Image alignment and stitching: a tutorial", *Foundations and
+   Trends in Computer Graphics and Vision* 2(1), 1-104, sections 5-6.
 """
 
 from __future__ import annotations

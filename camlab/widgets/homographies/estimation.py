@@ -40,8 +40,40 @@ _VERDICTS = (
     lesson="07", sweep={"outliers": [0.1, 0.4, 0.7], "threshold": [1.0, 3.0, 8.0], "seed": [0, 3]}
 )
 def ransac_outliers() -> Demo:
-    """RANSAC against a growing outlier fraction ε: each pair's verdict against the truth,
-    and the samples drawn against k = log(1 - p) / log(1 - (1 - ε)^4)."""
+    """RANSAC against a growing outlier fraction ε: each pair's verdict and the samples drawn.
+
+    The 200 pairs of :func:`camlab.fixtures.outlier_matches` (a 400 x 300 image, 1 px of
+    noise, a fraction ε of them random) go to :func:`camlab.homography.ransac_homography`
+    with confidence p = :data:`CONFIDENCE` and at most :data:`MAX_SAMPLES` samples. Each
+    pair's verdict is judged against the truth the demo knows, and the samples drawn are
+    set against k = log(1 - p) / log(1 - (1 - ε)^4), the number needed for the ε found.
+    Results are cached per setting, so revisiting one redraws without re-running RANSAC.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``outliers`` (the true outlier fraction ε), ``threshold``
+        (RANSAC's inlier threshold, px) and ``seed`` (of both the data and RANSAC), the
+        figure (left: each pair as a line from src to a dot at dst, coloured by its verdict,
+        the image frame mapped by the true H and by RANSAC's H, and the winning sample of 4;
+        right: k against ε on a log scale, the cap, the k needed for the ε found and the
+        samples drawn) and ``state`` (``H`` RANSAC's estimate, ``sample`` the indices of
+        its winning 4 pairs, ``iterations`` the samples drawn, ``inliers`` their count,
+        ``recall`` the share of the true inliers kept, ``corner_error`` the worst corner of
+        the mapped frame against the truth in px, ``verdicts`` the counts of inlier kept,
+        outlier wrongly kept, inlier wrongly rejected and outlier rejected,
+        ``outlier_fraction_found`` 1 - the inlier share, ``samples_needed`` k for it, and
+        ``error``, None or RANSAC's message when it fails; then every key above but
+        ``sample`` is None).
+
+    References
+    ----------
+    .. [1] M. A. Fischler and R. C. Bolles, 1981, "Random sample consensus: a paradigm for model
+       fitting with applications to image analysis and automated cartography",
+       *Communications of the ACM* 24(6), 381-395.
+    .. [2] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.7.1
+       (how many samples?).
+    """
     from matplotlib.collections import LineCollection
     from matplotlib.colors import to_rgba
 
@@ -192,7 +224,27 @@ def ransac_outliers() -> Demo:
 
 @register(lesson="07", sweep={"scale": [0.6, 1.5, 2.8], "angle": [0.0, 25.0]})
 def forward_vs_inverse() -> Demo:
-    """Forward mapping leaves holes where H magnifies; inverse mapping never does."""
+    """Forward mapping leaves holes where H magnifies; inverse mapping never does.
+
+    An 80 x 60 picture is given a small projective part (v = (1e-3, 0)), scaled and rotated
+    about its centre, then warped into a 240 x 180 output twice, nearest neighbour both
+    times: forward (:func:`camlab.warp.forward_warp`, each source pixel pushed to where H
+    sends it) and inverse (:func:`camlab.warp.warp_perspective`, each output pixel pulled
+    from where H^-1 sends it).
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``scale`` and ``angle`` (the rotation, degrees), the figure (the
+        forward warp beside the inverse warp) and ``state`` (``H``, source to output pixels,
+        and ``hole_fraction``, the share of the inverse warp's interior pixels, those whose
+        four neighbours are covered too, that the forward warp never reaches).
+
+    References
+    ----------
+    .. [1] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022, section
+       3.6.1 (parametric transformations: forward and inverse warping).
+    """
     pic = scenes.house_picture((80, 60))
     out_hw = (180, 240)
     view = FigureView(figsize=(9, 3.6))

@@ -48,8 +48,33 @@ _GROUPS = tuple(hg.HIERARCHY)  # euclidean, similarity, affine, projective
     },
 )
 def transformation_hierarchy() -> Demo:
-    """Euclidean, similarity, affine, projective: sliders for each group acting on a picture,
-    with the image of the line at infinity (the vanishing line) drawn when H moves it into view."""
+    """Euclidean, similarity, affine, projective: sliders for each group acting on a picture.
+
+    The group's matrix :math:`H_g` (:func:`camlab.homography.hierarchy_matrix`, which uses
+    only the parameters its group has) acts about the picture's centre: the picture
+    shown is mapped by :math:`H = C H_g P`, where P moves the 160 x 120 picture's centre to
+    the origin and C the origin to the centre of the 480 x 360 canvas. The image of the
+    line at infinity (the vanishing line, H^-T l∞) is drawn when H moves it into view; the
+    group's dof and what it keeps are printed beside the picture, and a red note says when
+    the picture is torn (the line H sends to infinity crosses it).
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``group`` (``"euclidean"``, ``"similarity"``, ``"affine"`` or
+        ``"projective"``), ``theta`` (the rotation, degrees), ``scale``, ``phi`` (the angle
+        of the affine stretch's axes, degrees), ``aspect`` (the affine stretch, √(sx/sy)),
+        ``tx`` and ``ty`` (the translation, px) and ``v1``, ``v2`` (the projective bottom
+        row, in units of 1e-3), the figure (the mapped picture with the original outline,
+        the mapped grid and the vanishing line) and ``state``
+        (``H`` the group's matrix :math:`H_g`, ``group``, ``classified`` the smallest group
+        holding it, ``dof``, ``torn``, ``vanishing_line_in_view``).
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 2.4 (a
+       hierarchy of transformations), table 2.1.
+    """
     pic = scenes.house_picture()
     ph, pw = pic.shape[:2]
     canvas_hw = (360, 480)
@@ -212,10 +237,39 @@ _DRAG_START = np.array([[40.0, 30.0], [250.0, 60.0], [230.0, 200.0], [60.0, 230.
     },
 )
 def drag_homography() -> Demo:
-    """Drag the four target corners: lines stay lines and the cross-ratio stays fixed,
-    while lengths, angles and ratios of lengths change (the numbers are printed under the
-    source picture). Without a mouse, pick a corner and move it with its two sliders (or type
-    the corners)."""
+    """Drag the four target corners: lines and the cross-ratio stay, lengths and angles change.
+
+    H maps the 160 x 120 source picture's corners (:data:`SQUARE`, in the order of
+    :data:`CORNER_NAMES`) to the four target corners
+    (:func:`camlab.homography.estimate_homography`). Four collinear points A, B, C, D of the
+    picture and their images A', B', C', D' are marked; under the source picture, the
+    cross-ratio, the ratio of lengths |AB| / |CD| and the top-left corner's angle are
+    printed for the source and the image. When the source line that H sends to infinity
+    crosses the picture it is drawn (purple, dashed) and a red note says the picture is
+    torn. Without a mouse, pick a corner and move it with its two sliders (or type the
+    corners).
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``corners`` (the text ``"u0, v0; u1, v1; u2, v2; u3, v3"``, the
+        target corners in :data:`CORNER_NAMES`' order, px) and ``corner`` (the corner its
+        linked ``corner_u`` and ``corner_v`` sliders move), the figure (the source picture
+        with A-D and the numbers; the warped picture with its outline, A'-D' and the
+        corners to drag) and ``state`` (``H`` source to target pixels, ``corners``,
+        ``corner``, ``torn``, ``cross_ratio_source`` and ``cross_ratio_image``,
+        ``length_ratio_source`` and ``length_ratio_image`` (|AB| / |CD|), ``corner_angle``
+        the target's top-left angle in degrees, ``error``: the message when the corners
+        cannot be used, else None). ``handlers`` holds the mouse handlers of the corner
+        drag.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 2.5 (the
+       projective geometry of 1D: the cross ratio).
+    .. [2] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.1 (the
+       direct linear transformation).
+    """
     pic = scenes.house_picture()
     ph, pw = pic.shape[:2]
     out_hw = (260, 300)

@@ -17,9 +17,25 @@ def warning_note(
     ha: str = "left",
     va: str = "bottom",
 ) -> Callable[[str], None]:
-    """An animated red note in ``ax`` (axes coordinates; default the bottom-left corner);
-    returns ``say(text)`` ("" hides it: a hidden text costs nothing to draw, an empty one
-    with a box does)."""
+    """An animated red note in a white box in ``ax``, hidden until there is something to say.
+
+    Parameters
+    ----------
+    view : FigureView
+        The demo's view; the note is one of its animated artists.
+    ax : matplotlib.axes.Axes
+        The axes the note belongs to.
+    x, y : float
+        The note's anchor, axes coordinates (default the bottom-left corner).
+    ha, va : str
+        Its alignment to the anchor, as matplotlib's ``ha`` and ``va``.
+
+    Returns
+    -------
+    callable
+        ``say(text)``: show ``text`` in the note, or hide it for ``""`` (a hidden text
+        costs nothing to draw, an empty one with a box does).
+    """
     note = view.animate(
         ax.text(
             x,

@@ -119,7 +119,19 @@ def panorama_canvas() -> Demo:
     """Every image warped onto one canvas; the reference image decides the shape (and the stretch).
 
     Shown at quarter size (160 x 120 images) so that even the widest canvas warps quickly;
-    each canvas is scaled to fill the picture (the title gives its size in pixels).
+    each canvas is scaled to fill the picture (the title gives its size in pixels). The
+    images are painted one after the other (overwrite) onto the canvas of the chosen
+    reference (:func:`camlab.fixtures.panorama_examples.reference_canvases`).
+
+    Returns
+    -------
+    Demo
+        The demo: control ``reference`` (the image the others are mapped into; it starts at
+        the match graph's best-connected image), the figure (the canvas scaled to fit, each
+        image's outline, and a title with the canvas size and the display scale) and
+        ``state`` (``reference``, ``canvas`` the canvas's (height, width) in quarter-size
+        px, ``T`` the translation into the canvas, ``display_scale`` the factor it is shown
+        at).
     """
     graph = pe.panorama_graph()
     small, canvases = pe.reference_canvases()
@@ -163,7 +175,35 @@ def panorama_canvas() -> Demo:
 
 @register(lesson="09", sweep={"method": list(st.BLENDS), "gains": [False, True], "levels": [1, 5]})
 def blending_seams() -> Demo:
-    """Overwrite, feather and multi-band blending of two differently exposed views, with a zoom on the seam."""
+    """Overwrite, feather and multi-band blending of two differently exposed views, with a zoom on the seam.
+
+    Images 1 and 2 of the half-size set on their common canvas
+    (:func:`camlab.fixtures.panorama_examples.exposure_pair`), every blend the controls
+    reach computed once (:func:`camlab.fixtures.panorama_examples.pair_blends`). The zoom
+    window is fixed and wide enough to hold both the overwrite seam (the border of the
+    image painted last) and the middle seam the other blends use, so switching methods
+    compares the same canvas pixels.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``method`` (a blend of :data:`camlab.stitching.BLENDS`),
+        ``gains`` (apply the exposure gains of gain compensation) and ``levels`` (the
+        pyramid levels, 1-6; multi-band only, disabled otherwise), the figure (the blended
+        canvas with the zoom window outlined, and the zoom) and ``state`` (``method``,
+        ``seam_jump`` the mean brightness step across the seam in grey levels 0-255,
+        ``image`` the blended canvas, (h, w, 3) floats in [0, 1]).
+
+    References
+    ----------
+    .. [1] P. J. Burt and E. H. Adelson, 1983, "A multiresolution spline with application to
+       image mosaics", *ACM Transactions on Graphics* 2(4), 217-236.
+    .. [2] M. Brown and D. G. Lowe, 2007, "Automatic panoramic image stitching using invariant
+       features", *International Journal of Computer Vision* 74(1), 59-73, sections 6 (gain
+       compensation) and 7 (multi-band blending).
+    .. [3] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022,
+       section 8.4 (compositing).
+    """
     wi, gains, seam = pe.exposure_pair()
     hh, ww = wi.shape
     row, z = hh // 2, 60
@@ -241,7 +281,28 @@ def blending_seams() -> Demo:
 def full_panorama() -> Demo:
     """The four-image panorama, planar or cylindrical, multi-band blended, with each image's footprint.
 
-    Each panorama is scaled to fill the picture (the title gives its size in pixels).
+    Each panorama is scaled to fill the picture (the title gives its size in pixels). Both
+    are stitched once by :func:`camlab.stitching.stitch`
+    (:func:`camlab.fixtures.panorama_examples.stitched_panoramas`); the side panel lists
+    every registered pair with its matches, inliers and verdict.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``projection`` (``"planar"`` or ``"cylindrical"``) and
+        ``outlines`` (draw each view's footprint and its key), the figure (the panorama
+        scaled to fit, the footprints, and a title with the size, the reference view and
+        the display scale) and ``state`` (``projection``, ``shape`` the panorama's
+        (height, width) in px, ``reference`` the reference view, ``display_scale``,
+        ``outlines_drawn`` the number of footprints drawn, ``legend`` whether their key
+        shows).
+
+    References
+    ----------
+    .. [1] M. Brown and D. G. Lowe, 2007, "Automatic panoramic image stitching using invariant
+       features", *International Journal of Computer Vision* 74(1), 59-73.
+    .. [2] P. J. Burt and E. H. Adelson, 1983, "A multiresolution spline with application to
+       image mosaics", *ACM Transactions on Graphics* 2(4), 217-236.
     """
     pans = pe.stitched_panoramas()
     box = (300, 780)  # the axes' units: (height, width), about the shape the axes get
@@ -329,7 +390,28 @@ def _place(rgba: np.ndarray) -> np.ndarray:
     sweep={"views": [2, 3, 4, 5, 6], "projection": ["planar", "cylindrical", "spherical"]},
 )
 def canvas_projections() -> Demo:
-    """The same photos on a plane, a cylinder and a sphere as the turn grows (precomputed previews)."""
+    """The same photos on a plane, a cylinder and a sphere as the turn grows (precomputed previews).
+
+    The first 2-6 views of the 200-degree sweep
+    (:func:`camlab.fixtures.panorama_examples.canvas_previews`), warped with their
+    bundle-adjusted cameras onto each canvas and scaled to fit :data:`BOX`. When the views
+    span too wide a turn for a plane, the figure says so instead of showing a canvas.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``views`` (how many views, 2-6) and ``projection``
+        (``"planar"``, ``"cylindrical"`` or ``"spherical"``), the figure (the canvas, or
+        why there is none, under a title with the views' field of view and the canvas
+        size) and ``state`` (``views``, ``projection``, ``failed`` True when the canvas
+        cannot hold the views, ``shape`` the shown picture's (height, width) in px,
+        :data:`BOX` with a canvas and None without).
+
+    References
+    ----------
+    .. [1] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022,
+       section 8.2 (image stitching: cylindrical and spherical coordinates).
+    """
     gallery = _gallery()
     view = FigureView(figsize=(6.4, 2.6))
     ax = view.fig.subplots()
@@ -422,7 +504,27 @@ def _with_edges(rgba: np.ndarray, edges) -> np.ndarray:
     },
 )
 def parallax_ghosting() -> Demo:
-    """Move the camera sideways between shots: near objects no longer fit the homography and ghost."""
+    """Move the camera sideways between shots: near objects no longer fit the homography and ghost.
+
+    A room seen by a camera turned -16 degrees and by one turned -4 degrees whose centre
+    moved ``baseline`` metres to the right
+    (:func:`camlab.fixtures.panorama_examples.parallax_pairs`): view 1 is registered onto
+    view 0 by RANSAC, which locks onto the dominant plane (the back wall), and the two are
+    blended. The edges of each warped view can be painted over the blend: blue for view 0,
+    orange for view 1, white where they agree.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``baseline`` (the sideways move, m, one of
+        :data:`camlab.fixtures.panorama_examples.BASELINES`), ``method`` (``"feather"`` or
+        ``"multiband"``) and ``edges`` (paint both views' edges and show their key), the
+        figure (the blend scaled to fit, under a title with the inliers and the
+        misalignment) and ``state`` (``baseline`` in m, ``edges``, ``inlier_fraction`` the
+        share of the matches that fit the homography, ``residual_rms`` the inliers' RMS
+        transfer error in px, ``misalignment`` the mean |view 0 - view 1| on the overlap in
+        grey levels 0-255, ``method``, ``image`` the blend).
+    """
     pairs = pe.parallax_pairs()
     box = (
         280,

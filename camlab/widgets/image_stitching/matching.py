@@ -21,7 +21,27 @@ from ..controls import log_slider, monospace
 
 @register(lesson="09", sweep={"ratio": [0.6, 0.8, 0.95, 1.0], "mutual": [True, False]})
 def feature_matches() -> Demo:
-    """SIFT matches between views 0 and 1: loosen the ratio test and watch wrong matches (red) appear."""
+    """SIFT matches between views 0 and 1: loosen the ratio test and watch wrong matches (red) appear.
+
+    Views 0 and 1 of the half-size set with their SIFT keypoints; each match is judged by
+    the true homography (green within 2 px, red otherwise:
+    :func:`camlab.fixtures.panorama_examples.correct_matches`). Every match is counted,
+    but at most about 200 are drawn (every k-th one when there are more).
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``ratio`` (the ratio-test threshold r of
+        :func:`camlab.features.filter_matches`) and ``mutual`` (keep only mutual nearest
+        neighbours), the figure (both views side by side with their keypoints and the
+        matches) and ``state`` (``matches`` the matches kept, ``wrong`` those the truth
+        rejects, ``precision`` the share that is right, NaN without matches).
+
+    References
+    ----------
+    .. [1] D. G. Lowe, 2004, "Distinctive image features from scale-invariant keypoints",
+       *International Journal of Computer Vision* 60(2), 91-110, section 7.1 (the ratio test).
+    """
     s, _, feats, knn = pe.panorama_example()
     i, j = 0, 1
     view = FigureView(figsize=(9, 3.4))
@@ -82,7 +102,33 @@ def feature_matches() -> Demo:
 
 @register(lesson="09", sweep={"threshold": [0.02, 0.05, 3.0, 15.0, 40.0], "ratio": [0.95, 0.7]})
 def ransac_registration() -> Demo:
-    """RANSAC on real matches: the threshold decides which matches count as inliers, and the H you get."""
+    """RANSAC on real matches: the threshold decides which matches count as inliers, and the H you get.
+
+    The ratio-tested matches from image 1 to image 2 of the half-size set are registered by
+    :func:`camlab.stitching.register_pair` (RANSAC seeded with 0) at the chosen threshold,
+    and the pair is accepted or rejected by its test. Image 1's frame mapped by the
+    estimated H is drawn over image 2 beside the frame the true H gives.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``threshold`` (RANSAC's inlier threshold on the symmetric
+        transfer error, px, on a log slider) and ``ratio`` (the ratio-test threshold r),
+        the figure (image 2 with the inliers and outliers and the two frames; a histogram
+        of the matches' symmetric transfer errors under H on a log axis, with the
+        threshold and the verdict) and ``state`` (``inliers`` their count, ``corner_error``
+        the worst corner of the estimated frame against the true one in px, NaN without an
+        H, ``accepted`` whether the pair passes, and, when RANSAC finds an H,
+        ``false_inliers`` the inliers the truth rejects).
+
+    References
+    ----------
+    .. [1] M. A. Fischler and R. C. Bolles, 1981, "Random sample consensus: a paradigm for model
+       fitting with applications to image analysis and automated cartography",
+       *Communications of the ACM* 24(6), 381-395.
+    .. [2] M. Brown and D. G. Lowe, 2007, "Automatic panoramic image stitching using invariant
+       features", *International Journal of Computer Vision* 74(1), 59-73, section 3.2.
+    """
     s, imgs, feats, knn = pe.panorama_example()
     i, j = 1, 2
     view = FigureView(figsize=(9, 3.6))
