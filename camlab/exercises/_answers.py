@@ -204,7 +204,9 @@ def worst_mismatch(got: Any, expected: Any, tolerance: Tolerance | None = None) 
     tol = (tolerance or Tolerance()).for_answer(got, expected)
     failing = ~tol.close(g, e)
     wrong = int(np.sum(failing))
-    with np.errstate(divide="ignore", invalid="ignore"):  # how many allowances past: 0 allowance -> inf
+    with np.errstate(
+        divide="ignore", invalid="ignore"
+    ):  # how many allowances past: 0 allowance -> inf
         excess = np.where(failing, err / (tol.atol + tol.rtol * np.abs(e)), -1.0)
     excess[failing & ~np.isfinite(excess)] = np.inf
     index = np.unravel_index(int(np.argmax(excess if wrong else err)), e.shape)
