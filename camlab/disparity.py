@@ -12,7 +12,9 @@ similar triangles, :math:`Z = f B / d`.
   costs around the minimum, and reject pixels whose match is ambiguous or fails the
   left-right consistency check.
 * :func:`sgbm_disparity` is the workhorse: OpenCV's semi-global matching, which adds
-  smoothness costs along 8 paths and is far more robust on weak texture.
+  smoothness costs aggregated along 5 directions (OpenCV's single-pass ``MODE_SGBM``; the
+  8 paths of Hirschmuller's paper need the two-pass ``MODE_HH`` and far more memory) and is
+  far more robust on weak texture.
 
 Conventions: images are (H, W) arrays indexed ``img[v, u]``; disparities are float
 pixels with NaN where there is no reliable match; depth is in metres (the baseline's
@@ -226,7 +228,10 @@ def sgbm_disparity(
 
     ``max_disparity`` is rounded up to OpenCV's multiple of 16 (the search covers
     ``min_disparity`` ... ``min_disparity + numDisparities``); smoothness penalties
-    ``P1 = 8 b^2``, ``P2 = 32 b^2`` as OpenCV's samples use.
+    ``P1 = 8 b^2``, ``P2 = 32 b^2`` as OpenCV's samples use. The mode is OpenCV's default
+    ``STEREO_SGBM_MODE_SGBM``: one pass that aggregates the costs along 5 directions instead of
+    8 (OpenCV's documentation of ``StereoSGBM``); Hirschmuller's full 8 (or 16) paths need the
+    two-pass ``STEREO_SGBM_MODE_HH``, which stores the whole cost volume.
 
     Parameters
     ----------

@@ -426,8 +426,9 @@ def rectify_pair() -> Demo:
 def disparity_depth() -> Demo:
     """Disparity by block matching (numpy) or SGBM, its depth error, and the 3-D points.
 
-    Small windows are noisy, large ones blur depth edges; SGBM adds smoothness along
-    8 directions. Each result is computed once per setting and cached.
+    Small windows are noisy, large ones blur depth edges; SGBM adds smoothness costs
+    along 5 directions (OpenCV's single-pass ``MODE_SGBM``). Each result is computed once
+    per setting and cached.
 
     Returns
     -------
