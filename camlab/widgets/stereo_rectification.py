@@ -310,11 +310,17 @@ def _zoom_axes(axz, view: FigureView):
     axz.set(xticks=[], yticks=[], xlim=(-0.5, 4 * r + 2.5), ylim=(2 * r + 0.5, -0.5))
     axz.set_title("the match in red squares, zoomed", fontsize=9)
     zim = axz.imshow(
-        np.zeros((2 * r + 1, 4 * r + 3)), cmap="gray", vmin=0, vmax=255, interpolation="nearest",
+        np.zeros((2 * r + 1, 4 * r + 3)),
+        cmap="gray",
+        vmin=0,
+        vmax=255,
+        interpolation="nearest",
         extent=(-0.5, 4 * r + 2.5, 2 * r + 0.5, -0.5),
     )
     (row,) = axz.plot([], [], color=palette.TAB_RED, lw=1.0, ls="--")
-    (dots,) = axz.plot([], [], "o", ms=7, mfc="none", mec=palette.ORANGE, mew=2, path_effects=palette.halo(2))
+    (dots,) = axz.plot(
+        [], [], "o", ms=7, mfc="none", mec=palette.ORANGE, mew=2, path_effects=palette.halo(2)
+    )
     view.animate(zim, row, dots)
     return zim, row, dots
 
