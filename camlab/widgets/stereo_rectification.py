@@ -96,7 +96,8 @@ def _epipolar_figure(view: FigureView) -> SimpleNamespace:
     # an epipole off the image: an arrow (shaft + head) at the border pointing to it
     shafts = [ax.plot([], [], color="k", lw=1.8)[0] for ax in (axl, axr)]
     heads = [ax.plot([], [], color="k", ms=9, ls="none")[0] for ax in (axl, axr)]
-    axr.legend(loc="lower right", fontsize=8)
+    # below the image, not over it: every corner of the right image carries lines
+    axr.legend(loc="upper right", bbox_to_anchor=(1.0, -0.13), ncol=2, fontsize=8, frameon=False)
     moving = (
         wl,
         wr,
@@ -522,10 +523,11 @@ def disparity_depth() -> Demo:
             )
         return dp.sgbm_disparity(L, R, max_disparity=44, block_size=block, min_disparity=8)
 
-    view = FigureView(figsize=(9.4, 3.4))
-    ax1 = view.fig.add_subplot(1, 3, 1)
-    ax2 = view.fig.add_subplot(1, 3, 2)
-    ax3 = scene3d.axes3d(view.fig, 1, 3, 3, elev=18, azim=-62)
+    view = FigureView(figsize=(9.4, 3.6))
+    gs = view.fig.add_gridspec(1, 3, width_ratios=[1, 1, 1.25])
+    ax1 = view.fig.add_subplot(gs[0])
+    ax2 = view.fig.add_subplot(gs[1])
+    ax3 = scene3d.axes3d(view.fig, gs[2], elev=18, azim=-62)
     for a, t in ((ax1, "disparity (px)"), (ax2, "depth error (%)")):
         a.set(xticks=[], yticks=[])
         a.set_title(t, fontsize=9)
@@ -535,8 +537,9 @@ def disparity_depth() -> Demo:
     view.fig.colorbar(im2, ax=ax2, shrink=0.7)
     ax3.set_title("3-D points, left camera (vertical: up, m)", fontsize=9)
     ax3.set(xlim=(-1.6, 1.6), ylim=(1.0, 4.5), zlim=(-0.8, 1.4))
-    ax3.set_xlabel("X (m)", fontsize=8, labelpad=-6)
-    ax3.set_ylabel("depth Z (m)", fontsize=8, labelpad=-6)
+    ax3.set_box_aspect(None, zoom=1.2)  # fill the panel: the default leaves a wide empty margin
+    ax3.set_xlabel("X (m)", fontsize=8, labelpad=-4)
+    ax3.set_ylabel("depth Z (m)", fontsize=8, labelpad=0)
     ax3.set_zlabel("")
     ax3.set(xticks=[-1, 0, 1], yticks=[1, 2, 3, 4], zticks=[-0.5, 0.5])
     ax3.tick_params(labelsize=7, pad=0)
