@@ -29,6 +29,7 @@ from numpy.typing import ArrayLike
 from ._validate import CamlabInputError, as_float, check_image, check_integer, check_positive
 
 __all__ = [
+    "bad_pixel_rate",
     "block_matching_disparity",
     "box_sum",
     "disparity_to_depth",
@@ -279,6 +280,44 @@ def sgbm_disparity(
     raw = sgbm.compute(to8[0], to8[1]).astype(np.float64) / 16.0
     raw[raw < int(min_disparity)] = np.nan
     return raw
+
+
+def bad_pixel_rate(disparity: ArrayLike, truth: ArrayLike, threshold: float = 1.0) -> float:
+    r"""Fraction of the scored pixels whose disparity error exceeds ``threshold``: a stereo benchmark's score.
+
+    A pixel is scored when it has both a match (``disparity`` finite) and a true disparity
+    (``truth`` finite); it is *bad* when :math:`|d - d_{true}| > \tau`. Pixels without a match
+    are left out (report the fraction matched beside it); Middlebury's "bad 1.0" and "bad 2.0"
+    are this rate at :math:`\tau` = 1 and 2 px.
+
+    Parameters
+    ----------
+    disparity : (H, W) array_like
+        The matcher's disparity, pixels; NaN where it found no match.
+    truth : (H, W) array_like
+        The true disparity, pixels; NaN where unknown.
+    threshold : float, optional
+        The error, pixels, above which a pixel is bad (default 1).
+
+    Returns
+    -------
+    float
+        The bad fraction, in [0, 1]; NaN if no pixel is scored.
+
+    Examples
+    --------
+    >>> bad_pixel_rate([[10.0, 12.5, np.nan]], [[10.2, 11.0, 9.0]], threshold=1.0)
+    0.5
+    """
+    d, t = as_float(disparity, "disparity"), as_float(truth, "truth")
+    if d.shape != t.shape:
+        raise CamlabInputError(
+            f"disparity, truth: expected maps of the same shape, got {d.shape} and {t.shape}"
+        )
+    scored = np.isfinite(d) & np.isfinite(t)
+    if not scored.any():
+        return float("nan")
+    return float(np.mean(np.abs(d[scored] - t[scored]) > threshold))
 
 
 def disparity_to_depth(disparity: ArrayLike, focal_length: float, baseline: float) -> np.ndarray:
