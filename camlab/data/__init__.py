@@ -34,6 +34,7 @@ from ._resources import (
     regeneration_dir,
 )
 from .calibration import CalibrationSet, load_calibration_set
+from .middlebury import MiddleburyPair, load_middlebury
 from .panorama import (
     PanoramaSet,
     PlanarPair,
@@ -41,7 +42,6 @@ from .panorama import (
     load_panorama_set,
     load_planar_pair,
 )
-from .middlebury import MiddleburyPair, load_middlebury
 from .photos import load_photo, photo_names
 from .stereo import StereoRig, load_stereo_rig
 
