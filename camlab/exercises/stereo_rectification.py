@@ -623,7 +623,20 @@ def _bad_pixel_diagnosis(args, got, expected) -> str:
 
 
 def bad_pixel_rate(d, d_true, threshold):
-    """Score the pixels with both a match and a truth; bad when the absolute error exceeds the threshold."""
+    """Score the pixels with both a match and a truth; bad when the absolute error exceeds the threshold.
+
+    Parameters
+    ----------
+    d, d_true : (H, W) array_like
+        The matcher's and the true disparity, pixels; NaN where there is none.
+    threshold : float
+        The error, pixels, above which a pixel is bad.
+
+    Returns
+    -------
+    float
+        The fraction of scored pixels with ``|d - d_true| > threshold``.
+    """
     d, d_true = np.asarray(d, dtype=float), np.asarray(d_true, dtype=float)
     scored = np.isfinite(d) & np.isfinite(d_true)
     return np.mean(np.abs(d[scored] - d_true[scored]) > threshold)
