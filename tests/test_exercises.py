@@ -1241,3 +1241,21 @@ def test_read_noise_with_the_quantisation_variance_removed_passes_too(capsys):
         return g, g * np.sqrt(np.var(d1 - d2) / 2 - 1 / 12)
 
     assert check("gain_and_read_noise", emva).passed is True
+
+
+# lesson 11: right answers in other valid forms pass
+
+
+def test_eight_point_accepts_rms_normalisation(capsys):
+    """Scaling to an RMS distance sqrt(2) (not the mean) is Hartley's algorithm too: F moves by ~4e-5."""
+    from camlab.exercises.stereo_rectification import _rms_normalised
+
+    assert check("eight_point", _rms_normalised).passed
+
+
+def test_decompose_essential_accepts_any_order_and_disparity_to_depth_any_float(capsys):
+    from camlab.exercises.stereo_rectification import decompose_essential
+
+    reordered = lambda E: tuple(a[[2, 0, 3, 1]] for a in decompose_essential(E))  # noqa: E731
+    assert check("decompose_essential", reordered).passed
+    assert check("disparity_to_depth", lambda d, f, B: f * B / np.asarray(d, np.float32)).passed
