@@ -27,7 +27,6 @@ EXCEPTIONS = {
     "camlab.widgets.homographies.geometry.transformation_hierarchy": "i27-plots (issue 27)",
     "camlab.widgets.homographies.geometry.drag_homography": "i27-plots (issue 27)",
     "camlab.widgets.homographies.estimation.ransac_outliers": "i27-plots (issue 27)",
-    "camlab.widgets.image_stitching.canvas.parallax_ghosting": "i27-plots (issue 27): in its topic module, not yet split by step",
 }
 
 
