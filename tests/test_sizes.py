@@ -24,13 +24,9 @@ MAX_FUNCTION_LINES = 80
 # (camlab.optimise.levenberg_marquardt, camlab.widgets.projective_camera.resectioning.update).
 EXCEPTIONS = {
     # i27-plots splits these (issue 27, item 2)
-    "camlab.widgets.affine_cameras.rails.parallel_rails": "i27-plots (issue 27): in its topic module, not yet split by step",
-    "camlab.widgets.affine_cameras.rays.projection_rays": "i27-plots (issue 27): in its topic module, not yet split by step",
     "camlab.widgets.homographies.geometry.transformation_hierarchy": "i27-plots (issue 27)",
     "camlab.widgets.homographies.geometry.drag_homography": "i27-plots (issue 27)",
     "camlab.widgets.homographies.estimation.ransac_outliers": "i27-plots (issue 27)",
-    "camlab.widgets.image_stitching.matching.ransac_registration": "i27-plots (issue 27): in its topic module, not yet split by step",
-    "camlab.widgets.image_stitching.canvas.parallax_ghosting": "i27-plots (issue 27): in its topic module, not yet split by step",
 }
 
 

@@ -4,9 +4,12 @@ the canvas projections and parallax ghosting (sections 3-6). Re-exported by
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import ipywidgets as W
 import numpy as np
 from matplotlib.colors import to_rgb
+from matplotlib.patches import Patch
 
 from ... import stitching as st
 from ...fixtures import panorama_examples as pe
@@ -495,6 +498,75 @@ def _with_edges(rgba: np.ndarray, edges) -> np.ndarray:
     return out
 
 
+# the parallax demo's axes in its units, (height, width): every baseline's canvas is scaled to fill it
+PARALLAX_BOX = (280, 460)
+
+
+def _parallax_figure(view: FigureView) -> SimpleNamespace:
+    """The figure of :func:`parallax_ghosting`: the blend in axes of :data:`PARALLAX_BOX`, its title
+    and the key to the edges' colours beside it; returns ``im``, ``title`` and ``legend``
+    (registered with ``view`` in that order)."""
+    box = PARALLAX_BOX
+    ax = view.fig.subplots()
+    im = view.animate(
+        ax.imshow(np.zeros((10, 10, 3)), interpolation="nearest")
+    )  # one-pixel edges stay crisp
+    ax.set(xlim=(-0.5, box[1] - 0.5), ylim=(box[0] - 0.5, -0.5), aspect="equal")
+    ax.set_xticks([])
+    ax.set_yticks([])
+    title = view.animate(ax.set_title(" ", fontsize=9))
+    key = [
+        Patch(facecolor=np.array(c) / 255, edgecolor="0.3", label=t)
+        for c, t in (
+            (EDGE_RGB[0], "edge in view 0 only"),
+            (EDGE_RGB[1], "edge in view 1 only"),
+            ((255, 255, 255), "edge in both"),
+        )
+    ]
+    # beside the picture, not over it; shown only while the edges are painted
+    legend = view.animate(
+        ax.legend(
+            handles=key,
+            loc="upper left",
+            bbox_to_anchor=(1.01, 1.0),
+            fontsize=8,
+            title="edges",
+            facecolor="0.55",
+        )
+    )
+    return SimpleNamespace(im=im, title=title, legend=legend)
+
+
+def _parallax_texts(b: float, n: int, k: int, rms: float, diff: float) -> tuple[str, str]:
+    """The title and the readout of :func:`parallax_ghosting` for a move of ``b`` m: ``k`` of ``n``
+    matches inliers, their RMS ``rms`` px, the mean misalignment ``diff`` grey levels."""
+    title = (
+        f"camera moved {100 * b:.0f} cm: {k} of {n} matches fit one homography, "
+        f"mean |view 0 - view 1| on the overlap {diff:.1f} grey levels"
+    )
+    readout = monospace(
+        f"camera moved {100 * b:.0f} cm\nmatches: {n}\n"
+        f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\ninlier RMS: {rms:.2f} px\n"
+        f"mean |view 0 - view 1| on the overlap:\n  {diff:.1f} grey levels\n"
+        f"edges of the two warped views (not of the blend):\n"
+        f"  blue = view 0, orange = view 1, white where they agree"
+    )
+    return title, readout
+
+
+def _parallax_controls() -> dict:
+    """The controls of :func:`parallax_ghosting`: the baseline (m), the blend and the edges' toggle."""
+    return {
+        "baseline": W.SelectionSlider(
+            options=list(pe.BASELINES), value=0.2, description="baseline (m)"
+        ),
+        "method": W.Dropdown(
+            options=["feather", "multiband"], value="feather", description="blend"
+        ),
+        "edges": W.Checkbox(value=True, description="both views' edges"),
+    }
+
+
 @register(
     lesson="09",
     sweep={
@@ -526,40 +598,8 @@ def parallax_ghosting() -> Demo:
         grey levels 0-255, ``method``, ``image`` the blend).
     """
     pairs = pe.parallax_pairs()
-    box = (
-        280,
-        460,
-    )  # the axes' units: (height, width); every baseline's canvas is scaled to fill it
     view = FigureView(figsize=(9, 3.6))
-    ax = view.fig.subplots()
-    im = view.animate(
-        ax.imshow(np.zeros((10, 10, 3)), interpolation="nearest")
-    )  # one-pixel edges stay crisp
-    ax.set(xlim=(-0.5, box[1] - 0.5), ylim=(box[0] - 0.5, -0.5), aspect="equal")
-    ax.set_xticks([])
-    ax.set_yticks([])
-    title = view.animate(ax.set_title(" ", fontsize=9))
-    from matplotlib.patches import Patch
-
-    key = [
-        Patch(facecolor=np.array(c) / 255, edgecolor="0.3", label=t)
-        for c, t in (
-            (EDGE_RGB[0], "edge in view 0 only"),
-            (EDGE_RGB[1], "edge in view 1 only"),
-            ((255, 255, 255), "edge in both"),
-        )
-    ]
-    # beside the picture, not over it; shown only while the edges are painted
-    legend = view.animate(
-        ax.legend(
-            handles=key,
-            loc="upper left",
-            bbox_to_anchor=(1.01, 1.0),
-            fontsize=8,
-            title="edges",
-            facecolor="0.55",
-        )
-    )
+    art = _parallax_figure(view)
     readout = W.HTML()
 
     shown = {
@@ -574,15 +614,13 @@ def parallax_ghosting() -> Demo:
         p = pairs[b]
         wi, reg, out = p.warped, p.registration, p.blends[v["method"]]
         hh, ww = wi.shape
-        im.set_extent(_fitted_extent((hh, ww), box))
-        im.set_data(shown[(b, v["method"], bool(v["edges"]))])
-        legend.set_visible(bool(v["edges"]))
+        art.im.set_extent(_fitted_extent((hh, ww), PARALLAX_BOX))
+        art.im.set_data(shown[(b, v["method"], bool(v["edges"]))])
+        art.legend.set_visible(bool(v["edges"]))
         n, k = len(reg.matches.src), int(reg.inliers.sum())
         diff = 255 * p.misalignment
-        title.set_text(
-            f"camera moved {100 * b:.0f} cm: {k} of {n} matches fit one homography, "
-            f"mean |view 0 - view 1| on the overlap {diff:.1f} grey levels"
-        )
+        title, readout.value = _parallax_texts(b, n, k, reg.residual_rms, diff)
+        art.title.set_text(title)
         state.update(
             baseline=b,
             edges=bool(v["edges"]),
@@ -592,23 +630,12 @@ def parallax_ghosting() -> Demo:
             method=v["method"],
             image=out,
         )
-        readout.value = monospace(
-            f"camera moved {100 * b:.0f} cm\nmatches: {n}\n"
-            f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\ninlier RMS: {reg.residual_rms:.2f} px\n"
-            f"mean |view 0 - view 1| on the overlap:\n  {diff:.1f} grey levels\n"
-            f"edges of the two warped views (not of the blend):\n"
-            f"  blue = view 0, orange = view 1, white where they agree"
-        )
 
-    controls = {
-        "baseline": W.SelectionSlider(
-            options=list(pe.BASELINES), value=0.2, description="baseline (m)"
-        ),
-        "method": W.Dropdown(
-            options=["feather", "multiband"], value="feather", description="blend"
-        ),
-        "edges": W.Checkbox(value=True, description="both views' edges"),
-    }
     return build_demo(
-        "parallax_ghosting", controls, view, update, title="Parallax makes ghosts", extra=[readout]
+        "parallax_ghosting",
+        _parallax_controls(),
+        view,
+        update,
+        title="Parallax makes ghosts",
+        extra=[readout],
     )

@@ -3,6 +3,8 @@ registers them with (sections 1-2). Re-exported by :mod:`camlab.widgets.image_st
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import ipywidgets as W
 import numpy as np
 
@@ -100,39 +102,15 @@ def feature_matches() -> Demo:
 # ----------------------------------------------------------------------------- RANSAC
 
 
-@register(lesson="09", sweep={"threshold": [0.02, 0.05, 3.0, 15.0, 40.0], "ratio": [0.95, 0.7]})
-def ransac_registration() -> Demo:
-    """RANSAC on real matches: the threshold decides which matches count as inliers, and the H you get.
+# the residual histogram's bins, log-spaced over the axis; the first bar also counts errors below
+# 0.02 px, the last those above 300 px
+_RESIDUAL_BINS = np.logspace(np.log10(0.02), np.log10(300), 43)
 
-    The ratio-tested matches from image 1 to image 2 of the half-size set are registered by
-    :func:`camlab.stitching.register_pair` (RANSAC seeded with 0) at the chosen threshold,
-    and the pair is accepted or rejected by its test. Image 1's frame mapped by the
-    estimated H is drawn over image 2 beside the frame the true H gives.
 
-    Returns
-    -------
-    Demo
-        The demo: controls ``threshold`` (RANSAC's inlier threshold on the symmetric
-        transfer error, px, on a log slider) and ``ratio`` (the ratio-test threshold r),
-        the figure (image 2 with the inliers and outliers and the two frames; a histogram
-        of the matches' symmetric transfer errors under H on a log axis, with the
-        threshold and the verdict) and ``state`` (``inliers`` their count, ``corner_error``
-        the worst corner of the estimated frame against the true one in px, NaN without an
-        H, ``accepted`` whether the pair passes, and, when RANSAC finds an H,
-        ``false_inliers`` the inliers the truth rejects).
-
-    References
-    ----------
-    .. [1] M. A. Fischler and R. C. Bolles, 1981, "Random sample consensus: a paradigm for model
-       fitting with applications to image analysis and automated cartography",
-       *Communications of the ACM* 24(6), 381-395.
-    .. [2] M. Brown and D. G. Lowe, 2007, "Automatic panoramic image stitching using invariant
-       features", *International Journal of Computer Vision* 74(1), 59-73, section 3.2.
-    """
-    s, imgs, feats, knn = pe.panorama_example()
-    i, j = 1, 2
-    view = FigureView(figsize=(9, 3.6))
-    ax, ax_e = view.fig.subplots(1, 2, width_ratios=[1.5, 1])
+def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
+    """The image panel of :func:`ransac_registration`: image ``j`` of the set ``s``, the frame of
+    image ``i`` under the true H, the legend below; returns the moving inliers, outliers and
+    estimated frame (registered with ``view`` in that order)."""
     ax.imshow(s.images[j], interpolation="nearest")
     ax.set_xticks([])
     ax.set_yticks([])
@@ -181,6 +159,13 @@ def ransac_registration() -> Demo:
     ax.legend(
         loc="upper center", bbox_to_anchor=(0.5, -0.02), ncols=4, fontsize=7, facecolor="0.75"
     )
+    return inl, outl, est_box
+
+
+def _residual_axes(view: FigureView, ax_e) -> tuple:
+    """The histogram panel of :func:`ransac_registration`: the verdict text, one bar per bin of
+    :data:`_RESIDUAL_BINS` (the end bars hatched) and the threshold line, registered with ``view``
+    in that order and returned."""
     ax_e.set(
         xlabel="transfer error per match (px, log scale)\nhatched end bars: < 0.02 px, > 300 px",
         ylabel="number of matches\n(relative to the tallest bar)",
@@ -194,9 +179,7 @@ def ransac_registration() -> Demo:
         ax_e.text(0.5, 0.97, "", transform=ax_e.transAxes, ha="center", va="top", fontsize=8)
     )
     ax_e.set_title("residuals under H (dashed: threshold)", fontsize=9)
-    bins = np.logspace(
-        np.log10(0.02), np.log10(300), 43
-    )  # the first bar also counts errors below 0.02 px
+    bins = _RESIDUAL_BINS
     bars = ax_e.bar(
         bins[:-1], np.zeros(len(bins) - 1), width=np.diff(bins), align="edge", color="0.6"
     )
@@ -205,8 +188,84 @@ def ransac_registration() -> Demo:
     view.animate(*bars)
     # below the verdict (which sits in the top third, over no bar): the line never crosses its text
     thr_line = view.animate(ax_e.axvline(3, ymax=1.08 / 1.55, color="black", ls="--", lw=1.5))
+    return verdict, bars, thr_line
+
+
+def _registration_figure(view: FigureView, s, imgs, i: int, j: int) -> SimpleNamespace:
+    """The figure of :func:`ransac_registration`: image ``j`` with the matches and the two frames,
+    and the histogram of residuals under H; returns its moving artists by name."""
+    ax, ax_e = view.fig.subplots(1, 2, width_ratios=[1.5, 1])
+    inl, outl, est_box = _registration_image(view, ax, s, imgs, i, j)
+    verdict, bars, thr_line = _residual_axes(view, ax_e)
+    return SimpleNamespace(
+        inl=inl, outl=outl, est_box=est_box, verdict=verdict, bars=bars, thr_line=thr_line
+    )
+
+
+def _registration_texts(r, n: int, wrong: int, err: float) -> tuple[str, str]:
+    """The verdict in the figure and the readout beside :func:`ransac_registration`, for the
+    registration ``r`` of ``n`` matches with ``wrong`` false inliers and the worst corner ``err`` px
+    from the truth."""
+    need = max(15, int(np.floor(8 + 0.3 * n)) + 1)  # register_pair's acceptance test
+    verdict = (
+        f"{int(r.inliers.sum())} of {n} matches are inliers "
+        f"({wrong} of them wrong)\n"
+        f"worst corner vs the true H: {err:.2f} px\n"
+        + ("accepted" if r.accepted else f"rejected: {r.reason.split(':')[0]} (need {need})")
+    )
+    readout = monospace(
+        f"matches: {n}\ninliers: {int(r.inliers.sum())} "
+        f"({wrong} of them wrong)\n"
+        f"inlier RMS: {r.residual_rms:.2f} px\nworst corner vs truth: {err:.2f} px\n"
+        f"accepted: {r.accepted} {r.reason}"
+    )
+    return verdict, readout
+
+
+def _registration_controls() -> dict:
+    """The controls of :func:`ransac_registration`: the inlier threshold (px, log) and the ratio test r."""
+    return {
+        "threshold": log_slider(3.0, 0.02, 40.0, 0.01, "threshold (px)"),
+        "ratio": slider(0.75, 0.5, 1.0, 0.01, "ratio test r"),
+    }
+
+
+@register(lesson="09", sweep={"threshold": [0.02, 0.05, 3.0, 15.0, 40.0], "ratio": [0.95, 0.7]})
+def ransac_registration() -> Demo:
+    """RANSAC on real matches: the threshold decides which matches count as inliers, and the H you get.
+
+    The ratio-tested matches from image 1 to image 2 of the half-size set are registered by
+    :func:`camlab.stitching.register_pair` (RANSAC seeded with 0) at the chosen threshold,
+    and the pair is accepted or rejected by its test. Image 1's frame mapped by the
+    estimated H is drawn over image 2 beside the frame the true H gives.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``threshold`` (RANSAC's inlier threshold on the symmetric
+        transfer error, px, on a log slider) and ``ratio`` (the ratio-test threshold r),
+        the figure (image 2 with the inliers and outliers and the two frames; a histogram
+        of the matches' symmetric transfer errors under H on a log axis, with the
+        threshold and the verdict) and ``state`` (``inliers`` their count, ``corner_error``
+        the worst corner of the estimated frame against the true one in px, NaN without an
+        H, ``accepted`` whether the pair passes, and, when RANSAC finds an H,
+        ``false_inliers`` the inliers the truth rejects).
+
+    References
+    ----------
+    .. [1] M. A. Fischler and R. C. Bolles, 1981, "Random sample consensus: a paradigm for model
+       fitting with applications to image analysis and automated cartography",
+       *Communications of the ACM* 24(6), 381-395.
+    .. [2] M. Brown and D. G. Lowe, 2007, "Automatic panoramic image stitching using invariant
+       features", *International Journal of Computer Vision* 74(1), 59-73, section 3.2.
+    """
+    s, imgs, feats, knn = pe.panorama_example()
+    i, j = 1, 2
+    view = FigureView(figsize=(9, 3.6))
+    art = _registration_figure(view, s, imgs, i, j)
     readout = W.HTML()
     true_H = s.true_homography(i, j)
+    h, w = imgs[j].shape[:2]
     corners = np.array([[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]], float)
 
     def update(v: dict, state: dict) -> None:
@@ -214,55 +273,38 @@ def ransac_registration() -> Demo:
         r = st.register_pair(
             feats[i], feats[j], matches=m, threshold=v["threshold"], rng=np.random.default_rng(0)
         )
-        thr_line.set_xdata([v["threshold"], v["threshold"]])
+        art.thr_line.set_xdata([v["threshold"], v["threshold"]])
         if r.H is None:
-            inl.set_data([], [])
-            outl.set_data(m.dst[:, 0], m.dst[:, 1])
-            est_box.set_data([], [])
+            art.inl.set_data([], [])
+            art.outl.set_data(m.dst[:, 0], m.dst[:, 1])
+            art.est_box.set_data([], [])
             state.update(inliers=0, corner_error=float("nan"), accepted=False)
             readout.value = monospace(r.reason)
-            verdict.set_text(f"{len(m.src)} matches: no homography\n{r.reason.split(';')[0]}")
+            art.verdict.set_text(f"{len(m.src)} matches: no homography\n{r.reason.split(';')[0]}")
             return
-        inl.set_data(m.dst[r.inliers, 0], m.dst[r.inliers, 1])
-        outl.set_data(m.dst[~r.inliers, 0], m.dst[~r.inliers, 1])
+        art.inl.set_data(m.dst[r.inliers, 0], m.dst[r.inliers, 1])
+        art.outl.set_data(m.dst[~r.inliers, 0], m.dst[~r.inliers, 1])
         box = map_points(r.H, np.vstack([corners, corners[:1]]))
-        est_box.set_data(box[:, 0], box[:, 1])
+        art.est_box.set_data(box[:, 0], box[:, 1])
         res = hg.symmetric_transfer_error(r.H, m.src, m.dst)
-        counts, _ = np.histogram(np.clip(res, 0.0201, 299), bins)
+        counts, _ = np.histogram(np.clip(res, 0.0201, 299), _RESIDUAL_BINS)
         top = max(counts.max(), 1)
-        for b, c in zip(bars, counts, strict=True):
+        for b, c in zip(art.bars, counts, strict=True):
             b.set_height(c / top)
         err = float(
             np.max(np.linalg.norm(map_points(r.H, corners) - map_points(true_H, corners), axis=1))
         )
         good = pe.correct_matches(s, i, j, m.src, m.dst)
+        wrong = int((r.inliers & ~good).sum())
         state.update(
-            inliers=int(r.inliers.sum()),
-            corner_error=err,
-            accepted=r.accepted,
-            false_inliers=int((r.inliers & ~good).sum()),
+            inliers=int(r.inliers.sum()), corner_error=err, accepted=r.accepted, false_inliers=wrong
         )
-        need = max(15, int(np.floor(8 + 0.3 * len(m.src))) + 1)  # register_pair's acceptance test
-        verdict.set_text(
-            f"{int(r.inliers.sum())} of {len(m.src)} matches are inliers "
-            f"({int((r.inliers & ~good).sum())} of them wrong)\n"
-            f"worst corner vs the true H: {err:.2f} px\n"
-            + ("accepted" if r.accepted else f"rejected: {r.reason.split(':')[0]} (need {need})")
-        )
-        readout.value = monospace(
-            f"matches: {len(m.src)}\ninliers: {int(r.inliers.sum())} "
-            f"({int((r.inliers & ~good).sum())} of them wrong)\n"
-            f"inlier RMS: {r.residual_rms:.2f} px\nworst corner vs truth: {err:.2f} px\n"
-            f"accepted: {r.accepted} {r.reason}"
-        )
+        verdict, readout.value = _registration_texts(r, len(m.src), wrong, err)
+        art.verdict.set_text(verdict)
 
-    controls = {
-        "threshold": log_slider(3.0, 0.02, 40.0, 0.01, "threshold (px)"),
-        "ratio": slider(0.75, 0.5, 1.0, 0.01, "ratio test r"),
-    }
     return build_demo(
         "ransac_registration",
-        controls,
+        _registration_controls(),
         view,
         update,
         title="RANSAC on SIFT matches",
