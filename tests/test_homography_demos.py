@@ -51,6 +51,21 @@ def test_drag_homography_keeps_cross_ratio_and_maps_corners():
     assert np.isclose(d.state["cross_ratio_image"], d.state["cross_ratio_source"], rtol=1e-9)
     assert not np.isclose(d.state["length_ratio_image"], d.state["length_ratio_source"], rtol=1e-3)
     assert not np.array_equal(before, d.view.pixels())
+    assert d.state["verdicts"] == {
+        "cross-ratio": "kept",
+        "|AD| (px)": "changes",
+        "|AB| / |CD|": "changes",
+        "top-left angle": "changes",
+    }
+    # a rectangle target makes H affine: the ratio along the line and the right angle are kept,
+    # and the table says so from the numbers
+    d.set(corners="20, 20; 280, 20; 280, 230; 20, 230")
+    assert d.state["verdicts"] == {
+        "cross-ratio": "kept",
+        "|AD| (px)": "changes",
+        "|AB| / |CD|": "kept",
+        "top-left angle": "kept",
+    }
     # a bad corner set is reported, not raised
     d.set(corners="0, 0; 10, 10; 20, 20; 0, 30")
     assert "collinear" in d.state["error"]

@@ -198,6 +198,25 @@ CORNER_NAMES = (
 _DRAG_START = np.array([[40.0, 30.0], [250.0, 60.0], [230.0, 200.0], [60.0, 230.0]])
 
 
+def drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, angle0, angle1) -> list:
+    """The drag demo's table: (quantity, source, image, verdict) with the verdict computed.
+
+    "kept" when the two numbers agree within 0.1 % (0.1° for the angle), else "changes":
+    the cross-ratio is always kept; an affine H (a parallelogram target) also keeps the
+    ratio of lengths along the line, and a similarity (a square target) the angle too.
+    """
+
+    def verdict(same: bool) -> str:
+        return "kept" if same else "changes"
+
+    return [
+        ("cross-ratio", f"{cr0:.4f}", f"{cr1:.4f}", verdict(np.isclose(cr0, cr1, rtol=1e-3))),
+        ("|AD| (px)", f"{length0:.1f}", f"{length1:.1f}", verdict(np.isclose(length0, length1, rtol=1e-3))),
+        ("|AB| / |CD|", f"{ratio0:.4f}", f"{ratio1:.4f}", verdict(np.isclose(ratio0, ratio1, rtol=1e-3))),
+        ("top-left angle", f"{angle0:.1f}°", f"{angle1:.1f}°", verdict(abs(angle0 - angle1) < 0.1)),
+    ]
+
+
 @register(
     lesson="07",
     sweep={
@@ -328,6 +347,7 @@ def drag_homography() -> Demo:
         handles.set_data(corners[:, 0], corners[:, 1])
         chosen.set_data(corners[v["corner"], :1], corners[v["corner"], 1:])
         cr0, cr1 = cross_ratio(line_pts), cross_ratio(m)
+        length0, length1 = (float(np.linalg.norm(p[3] - p[0])) for p in (line_pts, m))  # |AD|
         ratio0 = np.linalg.norm(line_pts[1] - line_pts[0]) / np.linalg.norm(
             line_pts[3] - line_pts[2]
         )
@@ -336,6 +356,7 @@ def drag_homography() -> Demo:
         angle = np.degrees(
             np.arccos(np.clip(e1 @ e2 / np.linalg.norm(e1) / np.linalg.norm(e2), -1, 1))
         )
+        rows = drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, 90.0, angle)
         state.update(
             H=H,
             error=None,
@@ -343,16 +364,16 @@ def drag_homography() -> Demo:
             corner=v["corner"],
             cross_ratio_source=cr0,
             cross_ratio_image=cr1,
+            length_source=length0,
+            length_image=length1,
             length_ratio_source=ratio0,
             length_ratio_image=ratio1,
             corner_angle=angle,
             corners=corners,
+            verdicts={name: verdict for name, _, _, verdict in rows},
         )
-        table = (
-            f"                 source   image\n"
-            f"cross-ratio      {cr0:6.4f}  {cr1:6.4f}  kept\n"
-            f"|AB| / |CD|      {ratio0:6.4f}  {ratio1:6.4f}  changes\n"
-            f"top-left angle   {90:5.1f}°   {angle:5.1f}°  changes"
+        table = "                 source    image\n" + "\n".join(
+            f"{name:15s} {a:>7s}  {b:>7s}  {verdict}" for name, a, b, verdict in rows
         )
         numbers.set_text(table)
         readout.value = monospace(
