@@ -71,11 +71,11 @@ def ransac_outliers() -> Demo:
     ax_k.axhline(MAX_SAMPLES, color="0.3", ls=":", lw=1, label=f"the cap: {MAX_SAMPLES} samples")
     needed = view.animate(
         ax_k.plot(
-            [], [], "o", mfc="none", mec="k", mew=1.5, ms=10, label="k for the ε RANSAC found"
+            [], [], "o", mfc="none", mec="k", mew=1.5, ms=10, label="k for the ε RANSAC found (ring)"
         )[0]
     )
     dot = view.animate(
-        ax_k.plot([], [], "o", color="k", ms=5, label="samples drawn (whole batches)")[0]
+        ax_k.plot([], [], "o", color="k", ms=5, label="samples drawn, at the same ε (dot)")[0]
     )
     ax_k.set(
         xlabel="outlier fraction ε",
@@ -129,10 +129,14 @@ def ransac_outliers() -> Demo:
             )
             for artist in (box_est, dot, needed, best):
                 artist.set_data([], [])
-            arrows.set_segments([])
-            heads.set_offsets(np.zeros((0, 2)))
+            # the pairs are still the data: drawn in one neutral grey, since there is no verdict
+            arrows.set_segments(np.stack([src, dst], axis=1))
+            arrows.set_color("0.8")
+            heads.set_offsets(dst)
+            heads.set_color("0.8")
             failure(
-                "RANSAC failed: no hypothesis had real support\n(the full message is beside the sliders)"
+                "RANSAC failed: no hypothesis had real support, so the pairs\n"
+                "are drawn without a verdict (the full message is beside the sliders)"
             )
             readout.value = monospace(exc)
             return
@@ -152,7 +156,7 @@ def ransac_outliers() -> Demo:
         best.set_data(dst[r.sample, 0], dst[r.sample, 1])
         eps_found = 1.0 - r.inliers.mean()
         k_needed = required_iterations(1.0 - eps_found, CONFIDENCE, 4)
-        dot.set_data([v["outliers"]], [r.iterations])
+        dot.set_data([eps_found], [r.iterations])  # RANSAC knows only the ε it found, not the true one
         needed.set_data([eps_found], [k_needed])
         counts = np.bincount(verdict, minlength=4)
         found_true = float(np.mean(r.inliers[~out])) if (~out).any() else float("nan")

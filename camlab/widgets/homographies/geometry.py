@@ -35,6 +35,13 @@ from .notes import TORN_DRAG, TORN_SHORT, warning_note
 # ----------------------------------------------------------------------------- hierarchy
 
 _GROUPS = tuple(hg.HIERARCHY)  # euclidean, similarity, affine, projective
+_GROUP_NAMES = {"euclidean": "Euclidean", "similarity": "similarity", "affine": "affine", "projective": "projective"}
+_A_MAP = {
+    "euclidean": "a Euclidean map",
+    "similarity": "a similarity",
+    "affine": "an affinity",
+    "projective": "a projective map",
+}
 
 
 @register(
@@ -75,11 +82,13 @@ def transformation_hierarchy() -> Demo:
         ax.plot(box0[:, 0], box0[:, 1], ":", color="0.2", lw=1.5, label="original outline")[0]
     )
     samples = np.linspace(0, 1, 60)  # dense, so the polylines follow the picture up to its tear
+    # on the picture's 40-pixel tile edges (pixel centres at integers: edges at -0.5 + 40 k)
+    xs_edge, ys_edge = np.linspace(-0.5, pw - 0.5, 5), np.linspace(-0.5, ph - 0.5, 4)
     grid_lines = [
-        np.column_stack([np.full(60, x), samples * (ph - 1)]) for x in np.linspace(0, pw - 1, 5)
+        np.column_stack([np.full(60, x), -0.5 + samples * ph]) for x in xs_edge
     ]
     grid_lines += [
-        np.column_stack([samples * (pw - 1), np.full(60, y)]) for y in np.linspace(0, ph - 1, 4)
+        np.column_stack([-0.5 + samples * pw, np.full(60, y)]) for y in ys_edge
     ]
     grid_art = view.animate(
         ax.plot(
@@ -102,7 +111,8 @@ def transformation_hierarchy() -> Demo:
         )[0]
     )
     ax.set_title(
-        "the picture mapped by H (its group, dof and invariants at the right)", fontsize=10
+        "the picture mapped by H about its centre (group, dof, invariants at the right)",
+        fontsize=10,
     )
     # beside the axes: over the warped picture the legend would need a redraw per update
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
@@ -143,6 +153,7 @@ def transformation_hierarchy() -> Demo:
         warning(TORN_SHORT if torn else "")
         state.update(
             H=Hg,
+            H_canvas=H,
             group=v["group"],
             classified=kind,
             dof=info["dof"],
@@ -155,12 +166,18 @@ def transformation_hierarchy() -> Demo:
                 f"+ all that {'an' if info['larger'] == 'affine' else 'a'} {info['larger']} map keeps"
             )
         facts.set_text(
-            f"{v['group']}: {info['dof']} dof\n(H itself is {kind})\n\nkeeps:\n"
+            f"{_GROUP_NAMES[v['group']]}: {info['dof']} dof\n(H itself is {_A_MAP[kind]})\n\nkeeps:\n"
             + "\n".join("\n".join(textwrap.wrap(k, 24, subsequent_indent="  ")) for k in keeps)
         )
         readout.value = monospace(
-            f"{v['group']}: {info['dof']} dof\nH =\n"
+            f"{_GROUP_NAMES[v['group']]}: {info['dof']} dof\n"
+            "H, in coordinates centred on the picture and the canvas (what the sliders set;\n"
+            "θ turns about the picture's centre) =\n"
             + np.array2string(Hg, precision=4, suppress_small=True)
+            + "\nthe map drawn, from source pixels to canvas pixels, C H P =\n"
+            + np.array2string(H, precision=4, suppress_small=True)
+            + f"\n(P moves the picture's centre ({(pw - 1) / 2:g}, {(ph - 1) / 2:g}) to 0,"
+            f" C moves 0 to the canvas centre ({canvas_hw[1] / 2:g}, {canvas_hw[0] / 2:g}))"
             + f"\nsmallest group holding H: {kind}\nkeeps: "
             + ", ".join(info["invariants"])
         )
