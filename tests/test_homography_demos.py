@@ -99,6 +99,7 @@ def test_forward_warp_demo_holes_grow_with_magnification():
     small = d.state["hole_fraction"]
     d.set(scale=2.8)
     assert d.state["hole_fraction"] > 0.5 > small
+    assert d.state["hole_fraction_inverse"] < 1e-3  # measured, not assumed
 
 
 def test_rectify_photo_estimates_true_aspect_and_drags():
@@ -189,7 +190,9 @@ def test_ransac_demo_colours_verdicts_against_the_truth_and_clears_on_failure():
         and d.state["H"] is None
         and "too few inliers" in d.state["error"]
     )
-    assert len(arrows.get_segments()) == 0  # no stale picture of the last success
+    # no stale verdict of the last success: the new pairs are drawn, all in one neutral grey
+    assert len(arrows.get_segments()) == 200
+    assert len({tuple(c) for c in arrows.get_colors()}) == 1
 
 
 def test_drag_and_hierarchy_warn_when_the_picture_is_torn_through_infinity():

@@ -359,6 +359,10 @@ def drag_homography() -> Demo:
         mapped_dots.set_data(m[:, 0], m[:, 1])
         for label, p in zip(mapped_names, m, strict=True):
             label.xy = tuple(p)
+            # a name whose text would run off the canvas is hidden rather than clipped
+            label.set_visible(
+                bool(np.isfinite(p).all() and 0 <= p[0] <= out_hw[1] - 22 and 14 <= p[1] <= out_hw[0])
+            )
         outline = map_polyline(H, square_dense)
         quad.set_data(outline[:, 0], outline[:, 1])
         handles.set_data(corners[:, 0], corners[:, 1])
