@@ -102,7 +102,7 @@ _FAR_SLIPS = (
     ),
     (
         lambda p: np.eye(3),
-        "you did not normalise: the columns of A range from 1 to u u' ~ 5e6 here, so A is badly "
+        "you did not normalise: the columns of A range from 1 to u u', several million here, so A is badly "
         "conditioned. Exact data hides it, noise does not. Normalise each point set first (Hartley, "
         "section 6: centroid to 0, mean distance sqrt(2)), solve, then undo it with "
         "H = inv(T_dst) @ H_n @ T_src.",
