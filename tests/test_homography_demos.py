@@ -51,6 +51,21 @@ def test_drag_homography_keeps_cross_ratio_and_maps_corners():
     assert np.isclose(d.state["cross_ratio_image"], d.state["cross_ratio_source"], rtol=1e-9)
     assert not np.isclose(d.state["length_ratio_image"], d.state["length_ratio_source"], rtol=1e-3)
     assert not np.array_equal(before, d.view.pixels())
+    assert d.state["verdicts"] == {
+        "cross-ratio": "kept",
+        "|AD| (px)": "changes",
+        "|AB| / |CD|": "changes",
+        "top-left angle": "changes",
+    }
+    # a rectangle target makes H affine: the ratio along the line and the right angle are kept,
+    # and the table says so from the numbers
+    d.set(corners="20, 20; 280, 20; 280, 230; 20, 230")
+    assert d.state["verdicts"] == {
+        "cross-ratio": "kept",
+        "|AD| (px)": "changes",
+        "|AB| / |CD|": "kept",
+        "top-left angle": "kept",
+    }
     # a bad corner set is reported, not raised
     d.set(corners="0, 0; 10, 10; 20, 20; 0, 30")
     assert "collinear" in d.state["error"]
@@ -84,6 +99,7 @@ def test_forward_warp_demo_holes_grow_with_magnification():
     small = d.state["hole_fraction"]
     d.set(scale=2.8)
     assert d.state["hole_fraction"] > 0.5 > small
+    assert d.state["hole_fraction_inverse"] < 1e-3  # measured, not assumed
 
 
 def test_rectify_photo_estimates_true_aspect_and_drags():
@@ -174,7 +190,9 @@ def test_ransac_demo_colours_verdicts_against_the_truth_and_clears_on_failure():
         and d.state["H"] is None
         and "too few inliers" in d.state["error"]
     )
-    assert len(arrows.get_segments()) == 0  # no stale picture of the last success
+    # no stale verdict of the last success: the new pairs are drawn, all in one neutral grey
+    assert len(arrows.get_segments()) == 200
+    assert len({tuple(c) for c in arrows.get_colors()}) == 1
 
 
 def test_drag_and_hierarchy_warn_when_the_picture_is_torn_through_infinity():

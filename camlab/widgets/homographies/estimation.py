@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from functools import lru_cache
 
+import cv2
 import ipywidgets as W
 import numpy as np
 
@@ -103,11 +104,11 @@ def ransac_outliers() -> Demo:
     ax_k.axhline(MAX_SAMPLES, color="0.3", ls=":", lw=1, label=f"the cap: {MAX_SAMPLES} samples")
     needed = view.animate(
         ax_k.plot(
-            [], [], "o", mfc="none", mec="k", mew=1.5, ms=10, label="k for the ε RANSAC found"
+            [], [], "o", mfc="none", mec="k", mew=1.5, ms=10, label="k for the ε RANSAC found (ring)"
         )[0]
     )
     dot = view.animate(
-        ax_k.plot([], [], "o", color="k", ms=5, label="samples drawn (whole batches)")[0]
+        ax_k.plot([], [], "o", color="k", ms=5, label="samples drawn, at the same ε (dot)")[0]
     )
     ax_k.set(
         xlabel="outlier fraction ε",
@@ -161,10 +162,14 @@ def ransac_outliers() -> Demo:
             )
             for artist in (box_est, dot, needed, best):
                 artist.set_data([], [])
-            arrows.set_segments([])
-            heads.set_offsets(np.zeros((0, 2)))
+            # the pairs are still the data: drawn in one neutral grey, since there is no verdict
+            arrows.set_segments(np.stack([src, dst], axis=1))
+            arrows.set_color("0.8")
+            heads.set_offsets(dst)
+            heads.set_color("0.8")
             failure(
-                "RANSAC failed: no hypothesis had real support\n(the full message is beside the sliders)"
+                "RANSAC failed: no hypothesis had real support, so the pairs\n"
+                "are drawn without a verdict (the full message is beside the sliders)"
             )
             readout.value = monospace(exc)
             return
@@ -184,7 +189,7 @@ def ransac_outliers() -> Demo:
         best.set_data(dst[r.sample, 0], dst[r.sample, 1])
         eps_found = 1.0 - r.inliers.mean()
         k_needed = required_iterations(1.0 - eps_found, CONFIDENCE, 4)
-        dot.set_data([v["outliers"]], [r.iterations])
+        dot.set_data([eps_found], [r.iterations])  # RANSAC knows only the ε it found, not the true one
         needed.set_data([eps_found], [k_needed])
         counts = np.bincount(verdict, minlength=4)
         found_true = float(np.mean(r.inliers[~out])) if (~out).any() else float("nan")
@@ -274,17 +279,19 @@ def forward_vs_inverse() -> Demo:
         )  # same picture, fast
         im_f.set_data(fwd)
         im_i.set_data(inv)
-        covered = warp_perspective(ones, H, out_hw, interpolation="nearest", method="cv2") > 0
-        inner = covered.copy()
-        inner[1:-1, 1:-1] &= (
-            covered[:-2, 1:-1] & covered[2:, 1:-1] & covered[1:-1, :-2] & covered[1:-1, 2:]
-        )
+        # the area the picture covers, from its mapped outline (one pixel in from the edge)
+        outline = map_points(H, np.array([[-0.5, -0.5], [79.5, -0.5], [79.5, 59.5], [-0.5, 59.5]]))
+        inside = np.zeros(out_hw, np.uint8)
+        cv2.fillPoly(inside, [np.round(outline).astype(np.int32)], 1)
+        inner = cv2.erode(inside, np.ones((3, 3), np.uint8)) > 0
         reached = forward_warp(ones, H, out_hw) > 0
+        pulled = warp_perspective(ones, H, out_hw, interpolation="nearest", method="cv2") > 0
         holes = float(np.mean(~reached[inner])) if inner.any() else 0.0
-        state.update(H=H, hole_fraction=holes)
+        holes_inverse = float(np.mean(~pulled[inner])) if inner.any() else 0.0
+        state.update(H=H, hole_fraction=holes, hole_fraction_inverse=holes_inverse)
         readout.value = monospace(
             f"holes in the forward warp: {100 * holes:.0f}% of the covered area\n"
-            f"holes in the inverse warp: 0%"
+            f"holes in the inverse warp: {100 * holes_inverse:.0f}%"
         )
 
     controls = {

@@ -35,6 +35,13 @@ from .notes import TORN_DRAG, TORN_SHORT, warning_note
 # ----------------------------------------------------------------------------- hierarchy
 
 _GROUPS = tuple(hg.HIERARCHY)  # euclidean, similarity, affine, projective
+_GROUP_NAMES = {"euclidean": "Euclidean", "similarity": "similarity", "affine": "affine", "projective": "projective"}
+_A_MAP = {
+    "euclidean": "a Euclidean map",
+    "similarity": "a similarity",
+    "affine": "an affinity",
+    "projective": "a projective map",
+}
 
 
 @register(
@@ -100,11 +107,13 @@ def transformation_hierarchy() -> Demo:
         ax.plot(box0[:, 0], box0[:, 1], ":", color="0.2", lw=1.5, label="original outline")[0]
     )
     samples = np.linspace(0, 1, 60)  # dense, so the polylines follow the picture up to its tear
+    # on the picture's 40-pixel tile edges (pixel centres at integers: edges at -0.5 + 40 k)
+    xs_edge, ys_edge = np.linspace(-0.5, pw - 0.5, 5), np.linspace(-0.5, ph - 0.5, 4)
     grid_lines = [
-        np.column_stack([np.full(60, x), samples * (ph - 1)]) for x in np.linspace(0, pw - 1, 5)
+        np.column_stack([np.full(60, x), -0.5 + samples * ph]) for x in xs_edge
     ]
     grid_lines += [
-        np.column_stack([samples * (pw - 1), np.full(60, y)]) for y in np.linspace(0, ph - 1, 4)
+        np.column_stack([-0.5 + samples * pw, np.full(60, y)]) for y in ys_edge
     ]
     grid_art = view.animate(
         ax.plot(
@@ -127,7 +136,8 @@ def transformation_hierarchy() -> Demo:
         )[0]
     )
     ax.set_title(
-        "the picture mapped by H (its group, dof and invariants at the right)", fontsize=10
+        "the picture mapped by H about its centre (group, dof, invariants at the right)",
+        fontsize=10,
     )
     # beside the axes: over the warped picture the legend would need a redraw per update
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
@@ -168,6 +178,7 @@ def transformation_hierarchy() -> Demo:
         warning(TORN_SHORT if torn else "")
         state.update(
             H=Hg,
+            H_canvas=H,
             group=v["group"],
             classified=kind,
             dof=info["dof"],
@@ -180,12 +191,18 @@ def transformation_hierarchy() -> Demo:
                 f"+ all that {'an' if info['larger'] == 'affine' else 'a'} {info['larger']} map keeps"
             )
         facts.set_text(
-            f"{v['group']}: {info['dof']} dof\n(H itself is {kind})\n\nkeeps:\n"
+            f"{_GROUP_NAMES[v['group']]}: {info['dof']} dof\n(H itself is {_A_MAP[kind]})\n\nkeeps:\n"
             + "\n".join("\n".join(textwrap.wrap(k, 24, subsequent_indent="  ")) for k in keeps)
         )
         readout.value = monospace(
-            f"{v['group']}: {info['dof']} dof\nH =\n"
+            f"{_GROUP_NAMES[v['group']]}: {info['dof']} dof\n"
+            "H, in coordinates centred on the picture and the canvas (what the sliders set;\n"
+            "θ turns about the picture's centre) =\n"
             + np.array2string(Hg, precision=4, suppress_small=True)
+            + "\nthe map drawn, from source pixels to canvas pixels, C H P =\n"
+            + np.array2string(H, precision=4, suppress_small=True)
+            + f"\n(P moves the picture's centre ({(pw - 1) / 2:g}, {(ph - 1) / 2:g}) to 0,"
+            f" C moves 0 to the canvas centre ({canvas_hw[1] / 2:g}, {canvas_hw[0] / 2:g}))"
             + f"\nsmallest group holding H: {kind}\nkeeps: "
             + ", ".join(info["invariants"])
         )
@@ -221,6 +238,25 @@ CORNER_NAMES = (
     "bottom left",
 )  # of the source picture, SQUARE's order
 _DRAG_START = np.array([[40.0, 30.0], [250.0, 60.0], [230.0, 200.0], [60.0, 230.0]])
+
+
+def drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, angle0, angle1) -> list:
+    """The drag demo's table: (quantity, source, image, verdict) with the verdict computed.
+
+    "kept" when the two numbers agree within 0.1 % (0.1° for the angle), else "changes":
+    the cross-ratio is always kept; an affine H (a parallelogram target) also keeps the
+    ratio of lengths along the line, and a similarity (a square target) the angle too.
+    """
+
+    def verdict(same: bool) -> str:
+        return "kept" if same else "changes"
+
+    return [
+        ("cross-ratio", f"{cr0:.4f}", f"{cr1:.4f}", verdict(np.isclose(cr0, cr1, rtol=1e-3))),
+        ("|AD| (px)", f"{length0:.1f}", f"{length1:.1f}", verdict(np.isclose(length0, length1, rtol=1e-3))),
+        ("|AB| / |CD|", f"{ratio0:.4f}", f"{ratio1:.4f}", verdict(np.isclose(ratio0, ratio1, rtol=1e-3))),
+        ("top-left angle", f"{angle0:.1f}°", f"{angle1:.1f}°", verdict(abs(angle0 - angle1) < 0.1)),
+    ]
 
 
 @register(
@@ -377,11 +413,16 @@ def drag_homography() -> Demo:
         mapped_dots.set_data(m[:, 0], m[:, 1])
         for label, p in zip(mapped_names, m, strict=True):
             label.xy = tuple(p)
+            # a name whose text would run off the canvas is hidden rather than clipped
+            label.set_visible(
+                bool(np.isfinite(p).all() and 0 <= p[0] <= out_hw[1] - 22 and 14 <= p[1] <= out_hw[0])
+            )
         outline = map_polyline(H, square_dense)
         quad.set_data(outline[:, 0], outline[:, 1])
         handles.set_data(corners[:, 0], corners[:, 1])
         chosen.set_data(corners[v["corner"], :1], corners[v["corner"], 1:])
         cr0, cr1 = cross_ratio(line_pts), cross_ratio(m)
+        length0, length1 = (float(np.linalg.norm(p[3] - p[0])) for p in (line_pts, m))  # |AD|
         ratio0 = np.linalg.norm(line_pts[1] - line_pts[0]) / np.linalg.norm(
             line_pts[3] - line_pts[2]
         )
@@ -390,6 +431,7 @@ def drag_homography() -> Demo:
         angle = np.degrees(
             np.arccos(np.clip(e1 @ e2 / np.linalg.norm(e1) / np.linalg.norm(e2), -1, 1))
         )
+        rows = drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, 90.0, angle)
         state.update(
             H=H,
             error=None,
@@ -397,16 +439,16 @@ def drag_homography() -> Demo:
             corner=v["corner"],
             cross_ratio_source=cr0,
             cross_ratio_image=cr1,
+            length_source=length0,
+            length_image=length1,
             length_ratio_source=ratio0,
             length_ratio_image=ratio1,
             corner_angle=angle,
             corners=corners,
+            verdicts={name: verdict for name, _, _, verdict in rows},
         )
-        table = (
-            f"                 source   image\n"
-            f"cross-ratio      {cr0:6.4f}  {cr1:6.4f}  kept\n"
-            f"|AB| / |CD|      {ratio0:6.4f}  {ratio1:6.4f}  changes\n"
-            f"top-left angle   {90:5.1f}°   {angle:5.1f}°  changes"
+        table = "                 source    image\n" + "\n".join(
+            f"{name:15s} {a:>7s}  {b:>7s}  {verdict}" for name, a, b, verdict in rows
         )
         numbers.set_text(table)
         readout.value = monospace(
