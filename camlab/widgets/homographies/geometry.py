@@ -35,7 +35,12 @@ from .notes import TORN_DRAG, TORN_SHORT, warning_note
 # ----------------------------------------------------------------------------- hierarchy
 
 _GROUPS = tuple(hg.HIERARCHY)  # euclidean, similarity, affine, projective
-_GROUP_NAMES = {"euclidean": "Euclidean", "similarity": "similarity", "affine": "affine", "projective": "projective"}
+_GROUP_NAMES = {
+    "euclidean": "Euclidean",
+    "similarity": "similarity",
+    "affine": "affine",
+    "projective": "projective",
+}
 _A_MAP = {
     "euclidean": "a Euclidean map",
     "similarity": "a similarity",
@@ -109,12 +114,8 @@ def transformation_hierarchy() -> Demo:
     samples = np.linspace(0, 1, 60)  # dense, so the polylines follow the picture up to its tear
     # on the picture's 40-pixel tile edges (pixel centres at integers: edges at -0.5 + 40 k)
     xs_edge, ys_edge = np.linspace(-0.5, pw - 0.5, 5), np.linspace(-0.5, ph - 0.5, 4)
-    grid_lines = [
-        np.column_stack([np.full(60, x), -0.5 + samples * ph]) for x in xs_edge
-    ]
-    grid_lines += [
-        np.column_stack([-0.5 + samples * pw, np.full(60, y)]) for y in ys_edge
-    ]
+    grid_lines = [np.column_stack([np.full(60, x), -0.5 + samples * ph]) for x in xs_edge]
+    grid_lines += [np.column_stack([-0.5 + samples * pw, np.full(60, y)]) for y in ys_edge]
     grid_art = view.animate(
         ax.plot(
             [],
@@ -246,6 +247,22 @@ def drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, angle0, angle1) 
     "kept" when the two numbers agree within 0.1 % (0.1° for the angle), else "changes":
     the cross-ratio is always kept; an affine H (a parallelogram target) also keeps the
     ratio of lengths along the line, and a similarity (a square target) the angle too.
+
+    Parameters
+    ----------
+    cr0, cr1 : float
+        The cross-ratio of the four points on the line, in the source and in the image.
+    length0, length1 : float
+        |AD| in pixels, in the source and in the image.
+    ratio0, ratio1 : float
+        |AB| / |CD|, in the source and in the image.
+    angle0, angle1 : float
+        The top-left corner's angle in degrees, in the source and in the image.
+
+    Returns
+    -------
+    list of tuple of str
+        One row per quantity: (name, source value, image value, "kept" or "changes").
     """
 
     def verdict(same: bool) -> str:
@@ -253,8 +270,18 @@ def drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, angle0, angle1) 
 
     return [
         ("cross-ratio", f"{cr0:.4f}", f"{cr1:.4f}", verdict(np.isclose(cr0, cr1, rtol=1e-3))),
-        ("|AD| (px)", f"{length0:.1f}", f"{length1:.1f}", verdict(np.isclose(length0, length1, rtol=1e-3))),
-        ("|AB| / |CD|", f"{ratio0:.4f}", f"{ratio1:.4f}", verdict(np.isclose(ratio0, ratio1, rtol=1e-3))),
+        (
+            "|AD| (px)",
+            f"{length0:.1f}",
+            f"{length1:.1f}",
+            verdict(np.isclose(length0, length1, rtol=1e-3)),
+        ),
+        (
+            "|AB| / |CD|",
+            f"{ratio0:.4f}",
+            f"{ratio1:.4f}",
+            verdict(np.isclose(ratio0, ratio1, rtol=1e-3)),
+        ),
         ("top-left angle", f"{angle0:.1f}°", f"{angle1:.1f}°", verdict(abs(angle0 - angle1) < 0.1)),
     ]
 
@@ -415,7 +442,9 @@ def drag_homography() -> Demo:
             label.xy = tuple(p)
             # a name whose text would run off the canvas is hidden rather than clipped
             label.set_visible(
-                bool(np.isfinite(p).all() and 0 <= p[0] <= out_hw[1] - 22 and 14 <= p[1] <= out_hw[0])
+                bool(
+                    np.isfinite(p).all() and 0 <= p[0] <= out_hw[1] - 22 and 14 <= p[1] <= out_hw[0]
+                )
             )
         outline = map_polyline(H, square_dense)
         quad.set_data(outline[:, 0], outline[:, 1])
