@@ -23,10 +23,14 @@ from ._resection import place_camera_labels, resection_readout
 from .controls import int_slider
 
 TARGET = np.array([0.0, 0.0, 0.7])
-# The explorer's 3-D viewer orbits with the camera, this many degrees behind it (clockwise seen from
-# above): at a fixed viewer angle, one orbit position looked straight down the camera's axis and piled
-# everything up; from this side the picture on the image plane stays clear of the house behind it.
-VIEWER_OFFSET = -35.0
+# The explorer's 3-D viewer orbits with the camera, this many degrees round from it (anticlockwise seen from
+# above), so the frustum keeps its place on screen. From this side all three world axes show (from -35 deg, the
+# old side, world Y pointed into the screen) and the camera's x, y and z each stand clear of the frustum; straight
+# behind the camera the viewer would look down its axis and pile everything up.
+VIEWER_OFFSET = 30.0
+# The viewer turns with the pan by this fraction: a fixed viewer saw the frustum end-on at one end of the pan,
+# one that followed fully would hide the turn; at 0.3 both ends show the frustum turned from the default.
+PAN_FOLLOW = 0.3
 # The resectioning viewer looks at the box's corner between its two faces of points (x = +1 and y = -1), so both
 # faces open up; the true camera (azimuth -55 deg) stands to the viewer's right, its frustum pointing at the box.
 RESECTION_AZIM, RESECTION_ELEV = -20.0, 24.0
@@ -116,9 +120,9 @@ def explorer_camera(
 
 # The lowest elevation keeps the eye above the ground at every distance: 0.7 m - 9 m sin 4 deg = 0.07 m.
 ELEVATION_MIN = -4.0
-# Sliding left moves the camera towards the viewer's line to the house: past -0.5 m its image plane covers the house
-# on screen (the viewer does not follow the slide); at +2 m the house reaches the image's left edge.
-SLIDE_MIN = -0.5
+# The slide is symmetric: at +-1 m the house stays whole in the image (near its right or left edge), so the
+# parallax shows at both ends.
+SLIDE_MIN, SLIDE_MAX = -1.0, 1.0
 WORLD_AXES_M = 1.25  # the world axes reach out of the house (1.0 x 1.4 m, 1.55 m high), so their labels clear it
 
 
@@ -168,7 +172,7 @@ def explorer_plane_size(distance: float, K=None) -> float:
         "distance": [2.5, 9.0],
         "pan": [-30, 30],
         "roll": [-90, 90],
-        "slide": [SLIDE_MIN, 2.0],
+        "slide": [SLIDE_MIN, SLIDE_MAX],
     },
 )
 def camera_explorer():
@@ -198,7 +202,8 @@ def camera_explorer():
         scene,
         plane_size=explorer_plane_size(5.0),
         thumbnail=scenes.house_wireframe(),
-        azim=-60 + VIEWER_OFFSET,
+        azim=-60
+        + VIEWER_OFFSET,  # the default azimuth; update() follows the azimuth and part of the pan
         elev=18,
         camera_axis_length=0.8,
         width_ratios=(1.3, 1.0),
@@ -224,14 +229,16 @@ def camera_explorer():
         "distance": slider(5.0, 2.5, 9.0, 0.1, "orbit: distance (m)", readout_format=".1f"),
         "pan": slider(0, -30, 30, 1, "turn in place: pan (deg, + left)", readout_format=".0f"),
         "roll": slider(0, -90, 90, 1, "turn in place: roll (deg)", readout_format=".0f"),
-        "slide": slider(0.0, SLIDE_MIN, 2.0, 0.1, "slide along camera x (m)", readout_format=".1f"),
+        "slide": slider(
+            0.0, SLIDE_MIN, SLIDE_MAX, 0.1, "slide along camera x (m)", readout_format=".1f"
+        ),
     }
 
     def update(v, state):
         cam = explorer_camera(**v)
         sv.camera_artist.size = explorer_plane_size(v["distance"], cam.K)
         sv.ax3d.view_init(
-            elev=18, azim=v["azimuth"] + VIEWER_OFFSET
+            elev=18, azim=v["azimuth"] + VIEWER_OFFSET + PAN_FOLLOW * v["pan"]
         )  # sv.update refreshes the projection
         sv.update(cam)
         pp.set_data([cam.principal_point[0]], [cam.principal_point[1]])
