@@ -34,6 +34,10 @@ PAN_FOLLOW = 0.3
 # The resectioning viewer looks at the box's corner between its two faces of points (x = +1 and y = -1), so both
 # faces open up; the true camera (azimuth -55 deg) stands to the viewer's right, its frustum pointing at the box.
 RESECTION_AZIM, RESECTION_ELEV = -20.0, 24.0
+# The true camera's view of the scene is drawn light and wide under the estimate's dashed orange one: a dark grey
+# line under orange dashes read as one brown line when the two coincide.
+TRUE_VIEW_GREY = "0.78"
+MOVED_FROM_GREY = "0.55"  # the moved pixel's first spot and its dotted move
 FAR_M = 6.0  # an estimated camera farther than this from the true one is shown by an arrow, not fitted into view
 EYE_GL = np.array(
     [2.6, -2.6, 1.0]
@@ -261,15 +265,19 @@ def camera_explorer():
     )
 
 
-def _show_estimate(art, trial, K, R, t, C, ringed):
+def _show_estimate(art, trial, K, R, t, C, ringed, first_pixels):
     """Draw the points, their pixels and reprojections (pairs ``ringed`` ringed), and the
     estimated camera K [R | t] (centre C) or, when it is more than FAR_M from the truth, a
-    pointer towards it; returns the centre's error (m) and whether it is that far.
+    pointer towards it; a ringed pixel that moved also shows where it was first (``first_pixels``); returns the centre's error (m) and whether it is that far.
     """
     cam_true, Xw, uvn, P = trial.camera, trial.points_world, trial.points_image, trial.P
     est = cm.Camera(K, R, t)
     est_art, sv, pointer, pointer_text = art.est_art, art.sv, art.pointer, art.pointer_text
     art.moved_img.set_data(uvn[ringed, 0], uvn[ringed, 1])
+    moved = [i for i in ringed if np.linalg.norm(uvn[i] - first_pixels[i]) > 1e-9]
+    first = np.asarray(first_pixels)[moved]
+    art.first_spot.set_data(first[:, 0], first[:, 1])
+    art.move_lines.set_data(*_segments_xy(first, uvn[moved]))
     art.moved_3d.set_data_3d(Xw[ringed, 0], Xw[ringed, 1], Xw[ringed, 2])
     # A wild fit (N = 6 with an outlier) can have a focal length of a few tens of pixels; its frustum at
     # the usual depth would be metres wide and cover the view, so shorten it to at most 1.2 m across.
@@ -297,8 +305,37 @@ def _show_estimate(art, trial, K, R, t, C, ringed):
     art.meas.set_data(uvn[:, 0], uvn[:, 1])
     r = cm.project_points(P, Xw)
     art.reproj.set_data(r[:, 0], r[:, 1])
+    art.residuals.set_data(*_segments_xy(uvn, r))
     scene3d.update_segments(art.est_lines, cm.project_segments(P, art.frame))
     return centre_err, far
+
+
+def held_out_rms(P) -> float:
+    """The RMS error (px) of the camera matrix ``P`` on 30 fresh points of the resectioning box, not fitted.
+
+    The test a practitioner can run on a resection: points it did not fit (here on the same two faces of the
+    box, seed 1), measured without noise, against the pixels ``P`` gives them. NaN if one lies behind ``P``.
+
+    Parameters
+    ----------
+    P : (3, 4) array_like
+        An estimated camera matrix.
+
+    Returns
+    -------
+    float
+        The RMS distance, pixels.
+    """
+    fresh = fixtures.resection_set(30, 0.0, seed=1)
+    errors = cm.reprojection_errors(P, fresh.points_world, fresh.points_image)
+    return float(np.sqrt(np.mean(errors**2)))
+
+
+def _segments_xy(start, end):
+    """x and y of the segments start[i] -> end[i] as one polyline broken by NaNs (one artist, cheap to redraw)."""
+    start, end = np.asarray(start, dtype=float).reshape(-1, 2), np.asarray(end, dtype=float).reshape(-1, 2)
+    xy = np.stack([start, end, np.full_like(start, np.nan)], axis=1).reshape(-1, 2)
+    return xy[:, 0], xy[:, 1]
 
 
 def _resectioning_key(view):
@@ -312,11 +349,13 @@ def _resectioning_key(view):
     keys = [
         Line2D([], [], color=palette.PURPLE, lw=1.2),
         Line2D([], [], color=palette.ORANGE, lw=1.2, ls=(0, (4, 2))),
-        Line2D([], [], color="0.35", lw=1.2),
+        Line2D([], [], color=TRUE_VIEW_GREY, lw=2.0),
         Line2D([], [], color=palette.ORANGE, lw=1.0, ls="--"),
         Line2D([], [], marker="o", mfc="none", color="k", ls="none"),
         Line2D([], [], marker="+", color=palette.ORANGE, mew=1.5, ls="none"),
+        Line2D([], [], color=palette.ORANGE, lw=1.2, marker="|", ms=4),
         Line2D([], [], marker="o", ms=10, mfc="none", mec="k", mew=2.0, ls="none"),
+        Line2D([], [], marker="o", ms=5, color=MOVED_FROM_GREY, ls=":", lw=1.2),
     ]
     view.fig.legend(
         keys,
@@ -327,7 +366,9 @@ def _resectioning_key(view):
             "seen by the estimate",
             "measured pixel",
             "reprojected by the estimate",
+            "residual (measured o to its +)",
             "pair k, or a clicked pixel, where it is now",
+            "where it was before the move",
         ],
         loc="outside lower center",
         ncols=4,
@@ -390,8 +431,13 @@ def _resectioning_figure(view):
     (moved_img,) = sv.ax_image.plot([], [], **ring)
     (meas,) = sv.ax_image.plot([], [], "o", mfc="none", color="k", ms=6)
     (reproj,) = sv.ax_image.plot([], [], "+", color=palette.ORANGE, ms=8, mew=1.5)
+    (residuals,) = sv.ax_image.plot([], [], color=palette.ORANGE, lw=1.2)  # each o to its +
+    # where a moved pixel was measured first, and its move (dotted) to where it is now
+    (first_spot,) = sv.ax_image.plot([], [], "o", ms=5, color=MOVED_FROM_GREY, ls="none")
+    (move_lines,) = sv.ax_image.plot([], [], color=MOVED_FROM_GREY, lw=1.2, ls=":")
     (est_lines,) = sv.ax_image.plot([], [], color=palette.ORANGE, lw=1.0, ls="--")
-    sv.image_lines.set_color("0.35")
+    sv.image_lines.set_color(TRUE_VIEW_GREY)
+    sv.image_lines.set_linewidth(2.0)
     _resectioning_key(view)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
     # Registered in the order they were created (the true camera's view first), so a live frame stacks
@@ -403,8 +449,11 @@ def _resectioning_figure(view):
         moved_3d,
         pointer,
         pointer_text,
+        first_spot,
+        move_lines,
         moved_img,
         meas,
+        residuals,
         reproj,
         est_lines,
     )
@@ -417,6 +466,9 @@ def _resectioning_figure(view):
         pointer=pointer,
         pointer_text=pointer_text,
         moved_img=moved_img,
+        first_spot=first_spot,
+        move_lines=move_lines,
+        residuals=residuals,
         meas=meas,
         reproj=reproj,
         est_lines=est_lines,
@@ -470,7 +522,8 @@ def resectioning():
         image); the readout; ``handlers["button_press_event"]`` (the click); and ``state``
         (``P``, ``K``, ``R``, ``t``, ``centre``, ``rms``, ``focal_error``, ``centre_error``,
         ``points_image``, ``redundancy``, ``expected_rms``, ``behind``, ``moved``,
-        ``errors``, ``far``).
+        ``errors``, ``far``, ``held_out_rms``: the RMS error on 30 fresh points of the box, not fitted,
+        against their true pixels; NaN if one is behind the estimate).
     """
     view = FigureView(figsize=(9, 4.6))
     art = _resectioning_figure(view)
@@ -499,9 +552,11 @@ def resectioning():
         )  # pair k is ringed before it moves, so you see which it is
         K, R, t, C = cm.decompose_projection_matrix(P)
         err = trial.errors
-        centre_err, far = _show_estimate(art, trial, K, R, t, C, ringed)
+        first_pixels = fixtures.resection_set(*key).points_image  # before any move
+        centre_err, far = _show_estimate(art, trial, K, R, t, C, ringed, first_pixels)
+        held_out = held_out_rms(P)
         behind, rms, focal_err, redundancy, expected = resection_readout(
-            err, K, cam_true, Xw, v, moved, art.info, centre_err
+            err, K, cam_true, Xw, v, moved, art.info, centre_err, held_out
         )
         state.update(
             P=P,
@@ -519,6 +574,7 @@ def resectioning():
             moved=moved,
             errors=err,
             far=far,
+            held_out_rms=held_out,
         )
 
     demo = build_demo(
