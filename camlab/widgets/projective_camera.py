@@ -333,7 +333,10 @@ def held_out_rms(P) -> float:
 
 def _segments_xy(start, end):
     """x and y of the segments start[i] -> end[i] as one polyline broken by NaNs (one artist, cheap to redraw)."""
-    start, end = np.asarray(start, dtype=float).reshape(-1, 2), np.asarray(end, dtype=float).reshape(-1, 2)
+    start, end = (
+        np.asarray(start, dtype=float).reshape(-1, 2),
+        np.asarray(end, dtype=float).reshape(-1, 2),
+    )
     xy = np.stack([start, end, np.full_like(start, np.nan)], axis=1).reshape(-1, 2)
     return xy[:, 0], xy[:, 1]
 
@@ -614,8 +617,9 @@ def opencv_vs_opengl():
     Demo
         The demo: controls ``orbit`` (degrees about the world's vertical) and ``frame``
         (``"OpenCV"`` or ``"OpenGL / Blender"``), the figure (the camera and its three labelled
-        axes in 3-D), the formula beside it and ``state`` (``R_axes``, the axes drawn as rows;
-        ``frame``; ``camera``).
+        axes in 3-D), the formula and the matrices beside it (R, t and C in OpenCV; R_gl, t_gl and
+        Blender's ``matrix_world`` in OpenGL) and ``state`` (``R_axes``, the axes drawn as rows;
+        ``frame``; ``camera``; ``matrix_world``).
     """
     from mpl_toolkits.mplot3d import Axes3D  # noqa: F401  (registers the 3-D projection)
 
@@ -670,13 +674,27 @@ def opencv_vs_opengl():
             tx.set_position_3d(C + 1.05 * R_axes[i])
             tx.set_text(names[i])
             scene3d.align_away(ax, tx, C, e)
-        title.value = (
-            "<pre>OpenGL/Blender: R_gl = diag(1,-1,-1) R, t_gl = diag(1,-1,-1) t\n"
-            "camera looks along its -z axis</pre>"
+        R_gl, t_gl = cm.opengl_from_opencv(cam.R, cam.t)
+        matrix_world = np.eye(4)  # Blender's world_from_cam: the inverse of [R_gl | t_gl]
+        matrix_world[:3, :3], matrix_world[:3, 3] = R_gl.T, C
+        numbers = (
+            _matrix("R_gl", R_gl, 3) + "\n" + f"t_gl = {_fmt(t_gl)}\n"
+            "matrix_world = [[R_gl^T, C], [0, 1]] (exercise 5):\n" + _matrix("M", matrix_world, 3)
             if gl
-            else "<pre>OpenCV / H&amp;Z: X_cam = R X + t\ncamera looks along its +z axis</pre>"
+            else _matrix("R", cam.R, 3) + "\n" + f"t = {_fmt(cam.t)}\nC = -R^T t = {_fmt(C)}"
         )
-        state.update(R_axes=R_axes, frame=v["frame"], camera=cam)
+        title.value = (
+            (
+                "<pre>OpenGL/Blender: R_gl = diag(1,-1,-1) R, t_gl = diag(1,-1,-1) t\n"
+                "camera looks along its -z axis (rows 2 and 3 of R flipped)\n"
+                if gl
+                else "<pre>OpenCV / H&amp;Z: X_cam = R X + t\ncamera looks along its +z axis\n"
+            )
+            + "rows of R = the drawn axes, in world coordinates\n"
+            + numbers
+            + "</pre>"
+        )
+        state.update(R_axes=R_axes, frame=v["frame"], camera=cam, matrix_world=matrix_world)
 
     return build_demo(
         "opencv_vs_opengl",
