@@ -24,7 +24,7 @@ from .controls import int_slider
 
 TARGET = np.array([0.0, 0.0, 0.7])
 # The explorer's 3-D viewer orbits with the camera, this many degrees round from it (anticlockwise seen from
-# above), so the frustum keeps its place on screen. From this side all three world axes show (from -35 deg, the
+# above: behind the camera and to its right), so the frustum keeps its place on screen. From this side all three world axes show (from -35 deg, the
 # old side, world Y pointed into the screen) and the camera's x, y and z each stand clear of the frustum; straight
 # behind the camera the viewer would look down its axis and pile everything up.
 VIEWER_OFFSET = 30.0
@@ -623,7 +623,9 @@ def opencv_vs_opengl():
     """
     from mpl_toolkits.mplot3d import Axes3D  # noqa: F401  (registers the 3-D projection)
 
-    view = FigureView(figsize=(5.0, 3.4))
+    view = FigureView(
+        figsize=(6.0, 4.0)
+    )  # 600 px: the axes and their labels readable beside the matrices
     ax = scene3d.axes3d(view.fig, 1, 1, 1, elev=VIEW_GL_ELEV, azim=_view_gl_azim(0.0))
     ax.set_axis_off()
     ax.set_position(
