@@ -401,10 +401,12 @@ def opengl_from_opencv(R: ArrayLike, t: ArrayLike) -> Pose:
     ----------
     R : (3, 3) array_like
         cam_from_world rotation, OpenCV camera frame.
-    t : (3,) array_like
-        cam_from_world translation, metres.
+    t : (3,) or (3, 1) array_like
+        cam_from_world translation, metres (OpenCV's ``tvec`` is a (3, 1) column).
     """
     Rm = check_rotation(R)
+    if np.shape(t) == (3, 1):  # OpenCV's tvec is a column
+        t = np.reshape(t, 3)
     tv = check_matrix(t, (3,), "t")
     return Pose(CV_FROM_GL @ Rm, CV_FROM_GL @ tv)
 
@@ -450,8 +452,8 @@ def blender_matrix_world(R: ArrayLike, t: ArrayLike) -> np.ndarray:
     ----------
     R : (3, 3) array_like
         cam_from_world rotation, OpenCV camera frame.
-    t : (3,) array_like
-        cam_from_world translation, metres.
+    t : (3,) or (3, 1) array_like
+        cam_from_world translation, metres (OpenCV's ``tvec`` is a (3, 1) column).
     """
     R_gl, t_gl = opengl_from_opencv(R, t)
     out = np.eye(4)

@@ -10,9 +10,9 @@ from ..plotting import palette
 __all__ = ["k_readout", "place_camera_labels", "resection_readout"]
 
 
-def resection_readout(err, K, cam_true, Xw, v, moved, info, centre_err):
-    """The readout beside the figure: the residuals, the errors of f and C, the redundancy
-    and the RMS it leads one to expect; returns the numbers it states.
+def resection_readout(err, K, cam_true, Xw, v, moved, info, centre_err, held_out=None):
+    """The readout beside the figure: the residuals, the error on fresh points (``held_out``, px RMS), the
+    errors of f and C, the redundancy and the RMS it leads one to expect; returns the numbers it states.
     """
     behind = int(
         np.count_nonzero(~np.isfinite(err))
@@ -43,8 +43,14 @@ def resection_readout(err, K, cam_true, Xw, v, moved, info, centre_err):
             f"\nmoved pair {', '.join(map(str, moved))}: {', '.join(f'{err[i]:.1f}' for i in moved)} px"
         )
     )
+    fresh = (
+        ""
+        if held_out is None
+        else "\non 30 fresh points of the box (not fitted,\n  true pixels): "
+        + (f"RMS {held_out:.2f} px" if np.isfinite(held_out) else "some lie behind the estimate")
+    )
     info.value = (
-        f"<pre>{rms_text}{worst}\n|fx - fx_true| = {focal_err:.1f} px\n"
+        f"<pre>{rms_text}{worst}{fresh}\n|fx - fx_true| = {focal_err:.1f} px\n"
         f"|C - C_true| = {100 * centre_err:.1f} cm\n"
         f"{k_readout(K, cam_true.image_size)}\n\n"
         f"redundancy 2N - 11 = {redundancy}\n"
@@ -64,7 +70,9 @@ def k_readout(K, image_size=(640, 480)) -> str:
     K = np.asarray(K, dtype=float) / K[2, 2]
     (fx, s, cx), (_, fy, cy) = K[0], K[1]
     w, h = image_size
-    text = f"estimated K: fx {fx:.0f}, fy {fy:.0f}, skew {s:.0f} px,\n  principal point ({cx:.0f}, {cy:.0f})"
+    # one decimal, so the half-pixel principal point (319.5, 239.5) shows; + 0.0 turns -0.0 into 0.0
+    fx, fy, s, cx, cy = (float(np.round(x, 1)) + 0.0 for x in (fx, fy, s, cx, cy))
+    text = f"estimated K: fx {fx:.1f}, fy {fy:.1f}, skew {s:.1f} px,\n  principal point ({cx:.1f}, {cy:.1f})"
     odd = [
         what
         for what, bad in (

@@ -23,13 +23,21 @@ from ._resection import place_camera_labels, resection_readout
 from .controls import int_slider
 
 TARGET = np.array([0.0, 0.0, 0.7])
-# The explorer's 3-D viewer orbits with the camera, this many degrees behind it (clockwise seen from
-# above): at a fixed viewer angle, one orbit position looked straight down the camera's axis and piled
-# everything up; from this side the picture on the image plane stays clear of the house behind it.
-VIEWER_OFFSET = -35.0
+# The explorer's 3-D viewer orbits with the camera, this many degrees round from it (anticlockwise seen from
+# above: behind the camera and to its right), so the frustum keeps its place on screen. From this side all three world axes show (from -35 deg, the
+# old side, world Y pointed into the screen) and the camera's x, y and z each stand clear of the frustum; straight
+# behind the camera the viewer would look down its axis and pile everything up.
+VIEWER_OFFSET = 30.0
+# The viewer turns with the pan by this fraction: a fixed viewer saw the frustum end-on at one end of the pan,
+# one that followed fully would hide the turn; at 0.3 both ends show the frustum turned from the default.
+PAN_FOLLOW = 0.3
 # The resectioning viewer looks at the box's corner between its two faces of points (x = +1 and y = -1), so both
 # faces open up; the true camera (azimuth -55 deg) stands to the viewer's right, its frustum pointing at the box.
 RESECTION_AZIM, RESECTION_ELEV = -20.0, 24.0
+# The true camera's view of the scene is drawn light and wide under the estimate's dashed orange one: a dark grey
+# line under orange dashes read as one brown line when the two coincide.
+TRUE_VIEW_GREY = "0.78"
+MOVED_FROM_GREY = "0.55"  # the moved pixel's first spot and its dotted move
 FAR_M = 6.0  # an estimated camera farther than this from the true one is shown by an arrow, not fitted into view
 EYE_GL = np.array(
     [2.6, -2.6, 1.0]
@@ -116,9 +124,9 @@ def explorer_camera(
 
 # The lowest elevation keeps the eye above the ground at every distance: 0.7 m - 9 m sin 4 deg = 0.07 m.
 ELEVATION_MIN = -4.0
-# Sliding left moves the camera towards the viewer's line to the house: past -0.5 m its image plane covers the house
-# on screen (the viewer does not follow the slide); at +2 m the house reaches the image's left edge.
-SLIDE_MIN = -0.5
+# The slide is symmetric: at +-1 m the house stays whole in the image (near its right or left edge), so the
+# parallax shows at both ends.
+SLIDE_MIN, SLIDE_MAX = -1.0, 1.0
 WORLD_AXES_M = 1.25  # the world axes reach out of the house (1.0 x 1.4 m, 1.55 m high), so their labels clear it
 
 
@@ -168,7 +176,7 @@ def explorer_plane_size(distance: float, K=None) -> float:
         "distance": [2.5, 9.0],
         "pan": [-30, 30],
         "roll": [-90, 90],
-        "slide": [SLIDE_MIN, 2.0],
+        "slide": [SLIDE_MIN, SLIDE_MAX],
     },
 )
 def camera_explorer():
@@ -198,7 +206,8 @@ def camera_explorer():
         scene,
         plane_size=explorer_plane_size(5.0),
         thumbnail=scenes.house_wireframe(),
-        azim=-60 + VIEWER_OFFSET,
+        azim=-60
+        + VIEWER_OFFSET,  # the default azimuth; update() follows the azimuth and part of the pan
         elev=18,
         camera_axis_length=0.8,
         width_ratios=(1.3, 1.0),
@@ -224,14 +233,16 @@ def camera_explorer():
         "distance": slider(5.0, 2.5, 9.0, 0.1, "orbit: distance (m)", readout_format=".1f"),
         "pan": slider(0, -30, 30, 1, "turn in place: pan (deg, + left)", readout_format=".0f"),
         "roll": slider(0, -90, 90, 1, "turn in place: roll (deg)", readout_format=".0f"),
-        "slide": slider(0.0, SLIDE_MIN, 2.0, 0.1, "slide along camera x (m)", readout_format=".1f"),
+        "slide": slider(
+            0.0, SLIDE_MIN, SLIDE_MAX, 0.1, "slide along camera x (m)", readout_format=".1f"
+        ),
     }
 
     def update(v, state):
         cam = explorer_camera(**v)
         sv.camera_artist.size = explorer_plane_size(v["distance"], cam.K)
         sv.ax3d.view_init(
-            elev=18, azim=v["azimuth"] + VIEWER_OFFSET
+            elev=18, azim=v["azimuth"] + VIEWER_OFFSET + PAN_FOLLOW * v["pan"]
         )  # sv.update refreshes the projection
         sv.update(cam)
         pp.set_data([cam.principal_point[0]], [cam.principal_point[1]])
@@ -254,15 +265,19 @@ def camera_explorer():
     )
 
 
-def _show_estimate(art, trial, K, R, t, C, ringed):
+def _show_estimate(art, trial, K, R, t, C, ringed, first_pixels):
     """Draw the points, their pixels and reprojections (pairs ``ringed`` ringed), and the
     estimated camera K [R | t] (centre C) or, when it is more than FAR_M from the truth, a
-    pointer towards it; returns the centre's error (m) and whether it is that far.
+    pointer towards it; a ringed pixel that moved also shows where it was first (``first_pixels``); returns the centre's error (m) and whether it is that far.
     """
     cam_true, Xw, uvn, P = trial.camera, trial.points_world, trial.points_image, trial.P
     est = cm.Camera(K, R, t)
     est_art, sv, pointer, pointer_text = art.est_art, art.sv, art.pointer, art.pointer_text
     art.moved_img.set_data(uvn[ringed, 0], uvn[ringed, 1])
+    moved = [i for i in ringed if np.linalg.norm(uvn[i] - first_pixels[i]) > 1e-9]
+    first = np.asarray(first_pixels)[moved]
+    art.first_spot.set_data(first[:, 0], first[:, 1])
+    art.move_lines.set_data(*_segments_xy(first, uvn[moved]))
     art.moved_3d.set_data_3d(Xw[ringed, 0], Xw[ringed, 1], Xw[ringed, 2])
     # A wild fit (N = 6 with an outlier) can have a focal length of a few tens of pixels; its frustum at
     # the usual depth would be metres wide and cover the view, so shorten it to at most 1.2 m across.
@@ -290,8 +305,40 @@ def _show_estimate(art, trial, K, R, t, C, ringed):
     art.meas.set_data(uvn[:, 0], uvn[:, 1])
     r = cm.project_points(P, Xw)
     art.reproj.set_data(r[:, 0], r[:, 1])
+    art.residuals.set_data(*_segments_xy(uvn, r))
     scene3d.update_segments(art.est_lines, cm.project_segments(P, art.frame))
     return centre_err, far
+
+
+def held_out_rms(P) -> float:
+    """The RMS error (px) of the camera matrix ``P`` on 30 fresh points of the resectioning box, not fitted.
+
+    The test a practitioner can run on a resection: points it did not fit (here on the same two faces of the
+    box, seed 1), measured without noise, against the pixels ``P`` gives them. NaN if one lies behind ``P``.
+
+    Parameters
+    ----------
+    P : (3, 4) array_like
+        An estimated camera matrix.
+
+    Returns
+    -------
+    float
+        The RMS distance, pixels.
+    """
+    fresh = fixtures.resection_set(30, 0.0, seed=1)
+    errors = cm.reprojection_errors(P, fresh.points_world, fresh.points_image)
+    return float(np.sqrt(np.mean(errors**2)))
+
+
+def _segments_xy(start, end):
+    """x and y of the segments start[i] -> end[i] as one polyline broken by NaNs (one artist, cheap to redraw)."""
+    start, end = (
+        np.asarray(start, dtype=float).reshape(-1, 2),
+        np.asarray(end, dtype=float).reshape(-1, 2),
+    )
+    xy = np.stack([start, end, np.full_like(start, np.nan)], axis=1).reshape(-1, 2)
+    return xy[:, 0], xy[:, 1]
 
 
 def _resectioning_key(view):
@@ -305,11 +352,13 @@ def _resectioning_key(view):
     keys = [
         Line2D([], [], color=palette.PURPLE, lw=1.2),
         Line2D([], [], color=palette.ORANGE, lw=1.2, ls=(0, (4, 2))),
-        Line2D([], [], color="0.35", lw=1.2),
+        Line2D([], [], color=TRUE_VIEW_GREY, lw=2.0),
         Line2D([], [], color=palette.ORANGE, lw=1.0, ls="--"),
         Line2D([], [], marker="o", mfc="none", color="k", ls="none"),
         Line2D([], [], marker="+", color=palette.ORANGE, mew=1.5, ls="none"),
+        Line2D([], [], color=palette.ORANGE, lw=1.2, marker="|", ms=4),
         Line2D([], [], marker="o", ms=10, mfc="none", mec="k", mew=2.0, ls="none"),
+        Line2D([], [], marker="o", ms=5, color=MOVED_FROM_GREY, ls=":", lw=1.2),
     ]
     view.fig.legend(
         keys,
@@ -320,7 +369,9 @@ def _resectioning_key(view):
             "seen by the estimate",
             "measured pixel",
             "reprojected by the estimate",
+            "residual (measured o to its +)",
             "pair k, or a clicked pixel, where it is now",
+            "where it was before the move",
         ],
         loc="outside lower center",
         ncols=4,
@@ -383,8 +434,13 @@ def _resectioning_figure(view):
     (moved_img,) = sv.ax_image.plot([], [], **ring)
     (meas,) = sv.ax_image.plot([], [], "o", mfc="none", color="k", ms=6)
     (reproj,) = sv.ax_image.plot([], [], "+", color=palette.ORANGE, ms=8, mew=1.5)
+    (residuals,) = sv.ax_image.plot([], [], color=palette.ORANGE, lw=1.2)  # each o to its +
+    # where a moved pixel was measured first, and its move (dotted) to where it is now
+    (first_spot,) = sv.ax_image.plot([], [], "o", ms=5, color=MOVED_FROM_GREY, ls="none")
+    (move_lines,) = sv.ax_image.plot([], [], color=MOVED_FROM_GREY, lw=1.2, ls=":")
     (est_lines,) = sv.ax_image.plot([], [], color=palette.ORANGE, lw=1.0, ls="--")
-    sv.image_lines.set_color("0.35")
+    sv.image_lines.set_color(TRUE_VIEW_GREY)
+    sv.image_lines.set_linewidth(2.0)
     _resectioning_key(view)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
     # Registered in the order they were created (the true camera's view first), so a live frame stacks
@@ -396,8 +452,11 @@ def _resectioning_figure(view):
         moved_3d,
         pointer,
         pointer_text,
+        first_spot,
+        move_lines,
         moved_img,
         meas,
+        residuals,
         reproj,
         est_lines,
     )
@@ -410,6 +469,9 @@ def _resectioning_figure(view):
         pointer=pointer,
         pointer_text=pointer_text,
         moved_img=moved_img,
+        first_spot=first_spot,
+        move_lines=move_lines,
+        residuals=residuals,
         meas=meas,
         reproj=reproj,
         est_lines=est_lines,
@@ -463,7 +525,8 @@ def resectioning():
         image); the readout; ``handlers["button_press_event"]`` (the click); and ``state``
         (``P``, ``K``, ``R``, ``t``, ``centre``, ``rms``, ``focal_error``, ``centre_error``,
         ``points_image``, ``redundancy``, ``expected_rms``, ``behind``, ``moved``,
-        ``errors``, ``far``).
+        ``errors``, ``far``, ``held_out_rms``: the RMS error on 30 fresh points of the box, not fitted,
+        against their true pixels; NaN if one is behind the estimate).
     """
     view = FigureView(figsize=(9, 4.6))
     art = _resectioning_figure(view)
@@ -492,9 +555,11 @@ def resectioning():
         )  # pair k is ringed before it moves, so you see which it is
         K, R, t, C = cm.decompose_projection_matrix(P)
         err = trial.errors
-        centre_err, far = _show_estimate(art, trial, K, R, t, C, ringed)
+        first_pixels = fixtures.resection_set(*key).points_image  # before any move
+        centre_err, far = _show_estimate(art, trial, K, R, t, C, ringed, first_pixels)
+        held_out = held_out_rms(P)
         behind, rms, focal_err, redundancy, expected = resection_readout(
-            err, K, cam_true, Xw, v, moved, art.info, centre_err
+            err, K, cam_true, Xw, v, moved, art.info, centre_err, held_out
         )
         state.update(
             P=P,
@@ -512,6 +577,7 @@ def resectioning():
             moved=moved,
             errors=err,
             far=far,
+            held_out_rms=held_out,
         )
 
     demo = build_demo(
@@ -551,12 +617,15 @@ def opencv_vs_opengl():
     Demo
         The demo: controls ``orbit`` (degrees about the world's vertical) and ``frame``
         (``"OpenCV"`` or ``"OpenGL / Blender"``), the figure (the camera and its three labelled
-        axes in 3-D), the formula beside it and ``state`` (``R_axes``, the axes drawn as rows;
-        ``frame``; ``camera``).
+        axes in 3-D), the formula and the matrices beside it (R, t and C in OpenCV; R_gl, t_gl and
+        Blender's ``matrix_world`` in OpenGL) and ``state`` (``R_axes``, the axes drawn as rows;
+        ``frame``; ``camera``; ``matrix_world``).
     """
     from mpl_toolkits.mplot3d import Axes3D  # noqa: F401  (registers the 3-D projection)
 
-    view = FigureView(figsize=(5.0, 3.4))
+    view = FigureView(
+        figsize=(6.0, 4.0)
+    )  # 600 px: the axes and their labels readable beside the matrices
     ax = scene3d.axes3d(view.fig, 1, 1, 1, elev=VIEW_GL_ELEV, azim=_view_gl_azim(0.0))
     ax.set_axis_off()
     ax.set_position(
@@ -607,13 +676,27 @@ def opencv_vs_opengl():
             tx.set_position_3d(C + 1.05 * R_axes[i])
             tx.set_text(names[i])
             scene3d.align_away(ax, tx, C, e)
-        title.value = (
-            "<pre>OpenGL/Blender: R_gl = diag(1,-1,-1) R, t_gl = diag(1,-1,-1) t\n"
-            "camera looks along its -z axis</pre>"
+        R_gl, t_gl = cm.opengl_from_opencv(cam.R, cam.t)
+        matrix_world = np.eye(4)  # Blender's world_from_cam: the inverse of [R_gl | t_gl]
+        matrix_world[:3, :3], matrix_world[:3, 3] = R_gl.T, C
+        numbers = (
+            _matrix("R_gl", R_gl, 3) + "\n" + f"t_gl = {_fmt(t_gl)}\n"
+            "matrix_world = [[R_gl^T, C], [0, 1]] (exercise 5):\n" + _matrix("M", matrix_world, 3)
             if gl
-            else "<pre>OpenCV / H&amp;Z: X_cam = R X + t\ncamera looks along its +z axis</pre>"
+            else _matrix("R", cam.R, 3) + "\n" + f"t = {_fmt(cam.t)}\nC = -R^T t = {_fmt(C)}"
         )
-        state.update(R_axes=R_axes, frame=v["frame"], camera=cam)
+        title.value = (
+            (
+                "<pre>OpenGL/Blender: R_gl = diag(1,-1,-1) R, t_gl = diag(1,-1,-1) t\n"
+                "camera looks along its -z axis (rows 2 and 3 of R flipped)\n"
+                if gl
+                else "<pre>OpenCV / H&amp;Z: X_cam = R X + t\ncamera looks along its +z axis\n"
+            )
+            + "rows of R = the drawn axes, in world coordinates\n"
+            + numbers
+            + "</pre>"
+        )
+        state.update(R_axes=R_axes, frame=v["frame"], camera=cam, matrix_world=matrix_world)
 
     return build_demo(
         "opencv_vs_opengl",

@@ -32,6 +32,29 @@ def dlt_partial(X, uv, world=(True, True), pixels=(True, True)):
     return np.linalg.inv(T) @ P_hat @ U
 
 
+NORMALISER_SLIPS = ("unscaled shift", "origin scale")
+"""Two normalisers students build: the translation -c where it must be -s c (p goes to s p - c, not centred),
+and the scale from the mean distance to the origin, |p|, where it must be |p - c| (centred, scaled wrongly)."""
+
+
+def slipped_normaliser(p, slip):
+    """Hartley's normaliser of the points ``p`` (N, D), built right (``slip=None``) or with one of NORMALISER_SLIPS."""
+    c = p.mean(axis=0)
+    spread = np.linalg.norm(p if slip == "origin scale" else p - c, axis=1).mean()
+    s = np.sqrt(p.shape[1]) / spread
+    N = s * np.eye(p.shape[1] + 1)
+    N[:-1, -1], N[-1, -1] = (-c if slip == "unscaled shift" else -s * c), 1.0
+    return N
+
+
+def dlt_slipped(X, uv, world=None, pixels=None):
+    """A normalised DLT whose world and pixel normalisers carry the slips ``world`` and ``pixels`` (None: right)."""
+    X, uv = np.asarray(X, dtype=float), np.asarray(uv, dtype=float)
+    U, T = slipped_normaliser(X, world), slipped_normaliser(uv, pixels)
+    P_hat = np.linalg.svd(dlt_rows(in_frame(U, X), in_frame(T, uv)))[2][-1].reshape(3, 4)
+    return np.linalg.inv(T) @ P_hat @ U
+
+
 def normalisers(X, uv):
     """Hartley's U (world, 4 x 4) and T (pixels, 3 x 3)."""
     return hartley_normalise(X).T, hartley_normalise(uv).T

@@ -4,10 +4,11 @@ as the predicted RMS error allows, and units and origins the answer must not dep
 from __future__ import annotations
 
 import numpy as np
+import scipy.linalg
 
 from ... import camera as cm
 from .._answers import same_up_to_scale
-from ._dlt_forms import dlt_p34
+from ._dlt_forms import NORMALISER_SLIPS, dlt_p34, dlt_slipped
 from ._scenes import cameras
 
 # -- estimate_projection_matrix (the normalised DLT) -------------------------------------------
@@ -114,9 +115,12 @@ def predicted_rms_error(P, X, sigma, X_test) -> float:
     r"""The RMS pixel error at ``X_test`` expected of a least-squares camera fitted to ``X`` with noise ``sigma``.
 
     First-order covariance propagation (H&Z 5.2): with J the Jacobian of the fitted pixels with
-    respect to P's 12 entries (P normalised to unit norm), the estimate's covariance is
-    :math:`\Sigma_p = \sigma^2 (J^\top J)^+` (the pseudo-inverse drops the scale direction), and a test
-    point's pixels have covariance :math:`J_t \Sigma_p J_t^\top`. Returns the square root of the mean trace.
+    respect to P's 12 entries (P normalised to unit norm), restricted to the 11 directions B orthogonal
+    to P (the scale direction moves no pixel), the estimate's covariance is
+    :math:`\Sigma_p = \sigma^2 B (B^\top J^\top J B)^{-1} B^\top`, and a test point's pixels have
+    covariance :math:`J_t \Sigma_p J_t^\top`. Returns the square root of the mean trace. (A pseudo-inverse
+    of :math:`J^\top J` with a relative cut-off would drop real directions: in metres and pixels its
+    eigenvalues span 20 orders of magnitude, and the prediction came out half the true 1.2 px.)
     """
     p0 = np.asarray(P, dtype=float).ravel() / np.linalg.norm(P)
 
@@ -132,7 +136,9 @@ def predicted_rms_error(P, X, sigma, X_test) -> float:
         return J
 
     J, J_test = jacobian(np.asarray(X, dtype=float)), jacobian(np.asarray(X_test, dtype=float))
-    cov = sigma**2 * np.linalg.pinv(J.T @ J, rcond=1e-10)
+    B = scipy.linalg.null_space(p0[None, :])  # (12, 11): the directions that change the camera
+    JB = J @ B
+    cov = sigma**2 * B @ np.linalg.inv(JB.T @ JB) @ B.T
     return float(np.sqrt(np.trace(J_test @ cov @ J_test.T) / len(X_test)))
 
 
@@ -246,6 +252,57 @@ def _refinement(answers, X, uv) -> str | None:
     return "partial" if refined[0] else None
 
 
+_SLIP_CAUSES = {
+    "unscaled shift": (
+        "the normaliser of the {side} has the translation -c where it must be -s c: T[:-1, -1] = -c maps p to "
+        "s p - c, which is scaled but not centred (its centroid lands at (s - 1) c). The matrix must map p to "
+        "s (p - c), so scale the centroid too: T[:-1, -1] = -s * c"
+    ),
+    "origin scale": (
+        "the {side} are centred, but their scale is measured from the origin: s = sqrt(D) / mean |p| "
+        "(np.linalg.norm(p)) where it must be sqrt(D) / mean |p - c|, the mean distance to the centroid "
+        "(D = 3 for world points, 2 for pixels). "
+        "Far from the origin (this site is 70 m from the world origin) the normalised points then huddle near "
+        "0 and A is ill-conditioned again"
+    ),
+}
+
+
+def _unit_sign(P):
+    """P scaled to unit norm, its largest entry positive: one representative of the camera up to scale."""
+    P = np.asarray(P, dtype=float) / np.linalg.norm(P)
+    return P * np.sign(P.ravel()[np.argmax(np.abs(P.ravel()))])
+
+
+def _normaliser_slip(X, uv, P) -> str | None:
+    """The cause when P is the DLT with a slipped normaliser (NORMALISER_SLIPS) on one side or both.
+
+    On the survey the two pixel slips give cameras only 1e-5 apart (a similarity of the pixels barely
+    reweights A's rows), so the nearest slipped DLT is named, and only if P is that camera to 1e-7.
+    """
+    kinds = (None, *NORMALISER_SLIPS)
+    gaps = {
+        (w, p): np.abs(_unit_sign(P) - _unit_sign(dlt_slipped(X, uv, world=w, pixels=p))).max()
+        for w in kinds
+        for p in kinds
+        if (w, p) != (None, None)
+    }
+    (world, pixels), gap = min(gaps.items(), key=lambda item: item[1])
+    if gap > 1e-7:
+        return None
+    if world == pixels:
+        return (
+            _SLIP_CAUSES[world].format(side="world points and pixels")
+            + "; then P = inv(T) @ P_hat @ U"
+        )
+    causes = [
+        _SLIP_CAUSES[slip].format(side=side)
+        for side, slip in (("world points", world), ("pixels", pixels))
+        if slip
+    ]
+    return "; and ".join(causes) + "; then P = inv(T) @ P_hat @ U"
+
+
 def _dlt_cause(moved, X, uv, P) -> str:
     """Name what is missing from the normalisation, side by side: the centroid shift, the scale, or both."""
     if same_up_to_scale(P, dlt_p34(X, uv), rtol=1e-4):
@@ -256,6 +313,9 @@ def _dlt_cause(moved, X, uv, P) -> str:
             "near the camera's principal plane). Normalise both sides (centroid 0, mean distance sqrt(3) and "
             "sqrt(2)), take the last row of Vt as P_hat, then P = inv(T) @ P_hat @ U"
         )
+    slipped = _normaliser_slip(X, uv, P)
+    if slipped:
+        return slipped
     if all(moved.values()):
         return (
             "no normalisation: A's columns range from 1 to u X ~ 1e5, and which equations dominate depends "

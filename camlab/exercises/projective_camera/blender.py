@@ -198,8 +198,8 @@ def blender_matrix_world(R, t):
     ----------
     R : (3, 3) array_like
         The rotation of cam_from_world, OpenCV's camera axes (x right, y down, z forward).
-    t : (3,) array_like
-        The translation of cam_from_world, world units.
+    t : (3,) or (3, 1) array_like
+        The translation of cam_from_world, world units (OpenCV's tvec is a (3, 1) column).
 
     Returns
     -------
@@ -208,7 +208,7 @@ def blender_matrix_world(R, t):
         axes in the world (y up, z backward), its last column the camera centre C = -R^T t.
     """
     F = np.diag([1.0, -1.0, -1.0])  # flip the camera's y and z: y up, z backward
-    R_gl, t_gl = F @ np.asarray(R), F @ np.asarray(t)
+    R_gl, t_gl = F @ np.asarray(R), F @ np.ravel(t)  # ravel: OpenCV's tvec is (3, 1)
     M = np.eye(4)
     M[:3, :3] = R_gl.T  # invert the rigid motion: world_from_cam
     M[:3, 3] = -R_gl.T @ t_gl  # = -R^T t, the camera centre C

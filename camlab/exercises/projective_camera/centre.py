@@ -132,10 +132,39 @@ def _centre_slip(P, got, expected) -> str | None:
             "you multiplied p4 by M^-1 from the wrong side: p4 @ inv(M) is inv(M)^T p4. The centre solves "
             "M C = -p4, so C = -inv(M) @ p4, or np.linalg.solve(M, -p4)."
         )
+    pose = _pose_slip(P, got)
+    if pose:
+        return pose
     if same_up_to_scale(got[:3], P[:, 3], rtol=1e-6):
         return (
             "p4 (P's last column) is the image of the world origin, not the centre. The centre solves "
             "M C + p4 = 0: C = -M^-1 p4, or the last row of Vt."
+        )
+    return None
+
+
+def _pose_slip(P, got) -> str | None:
+    """The cause when (X, Y, Z) is t or -R t of P = K [R | t] (up to the sign slips): the pose read as the centre."""
+    try:
+        _, R, t, _ = cm.decompose_projection_matrix(P)
+    except Exception:  # noqa: BLE001 - a degenerate P has no pose to compare with
+        return None
+    if not np.isclose(got[3], 1.0):
+        return None
+    if np.allclose(got[:3], t, rtol=1e-6, atol=1e-9) or np.allclose(
+        got[:3], -t, rtol=1e-6, atol=1e-9
+    ):
+        return (
+            "your (X, Y, Z) is t (the last column of [R | t], from K^-1 p4), not the centre: t is the world "
+            "origin in camera coordinates, where the world origin sits as seen from the camera. The centre is "
+            "the point the camera maps to 0, R C + t = 0, so C = -R^T t, or -M^-1 p4, or the last row of Vt."
+        )
+    if np.allclose(got[:3], -R @ t, rtol=1e-6, atol=1e-9) or np.allclose(
+        got[:3], R @ t, rtol=1e-6, atol=1e-9
+    ):
+        return (
+            "your (X, Y, Z) is -R t: R maps world to camera coordinates, so undoing it needs its inverse, R^T. "
+            "R C + t = 0 gives C = -R^T t (transpose R), or -M^-1 p4, or the last row of Vt."
         )
     return None
 
@@ -225,6 +254,11 @@ register_exercise(
                 "divided the null vector by -v[3]",
             ),
             (lambda P: np.append(-P[:, 3] @ np.linalg.inv(P[:, :3]), 1.0), "from the wrong side"),
+            (lambda P: np.append(cm.decompose_projection_matrix(P).t, 1.0), "your (X, Y, Z) is t"),
+            (
+                lambda P: (lambda d: np.append(-d.R @ d.t, 1.0))(cm.decompose_projection_matrix(P)),
+                "is -R t",
+            ),
             (
                 lambda P: np.linalg.svd(P)[2][-1][:, None],
                 "last coordinate is 1",

@@ -16,6 +16,7 @@ from ._dlt_forms import (
     dlt_p34,
     dlt_partial,
     dlt_rows,
+    dlt_slipped,
     dlt_u_not_a_column,
     dlt_undone_wrong_order,
     dlt_unnormalised,
@@ -295,6 +296,30 @@ register_exercise(
                 "pixels are scaled but not centred",
             ),
             (dlt_p34, "p34 = 1"),
+            (
+                lambda X, uv: dlt_slipped(X, uv, world="unscaled shift", pixels="unscaled shift"),
+                "world points and pixels has the translation -c",
+            ),
+            (
+                lambda X, uv: dlt_slipped(X, uv, pixels="unscaled shift"),
+                "pixels has the translation -c",
+            ),
+            (
+                lambda X, uv: dlt_slipped(X, uv, world="unscaled shift"),
+                "world points has the translation -c",
+            ),
+            (
+                lambda X, uv: dlt_slipped(X, uv, world="origin scale", pixels="origin scale"),
+                "world points and pixels are centred, but their scale is measured from the origin",
+            ),
+            (
+                lambda X, uv: dlt_slipped(X, uv, world="origin scale"),
+                "world points are centred, but their scale is measured from the origin",
+            ),
+            (
+                lambda X, uv: dlt_slipped(X, uv, pixels="origin scale"),
+                "pixels are centred, but their scale is measured from the origin",
+            ),
             (
                 lambda X, uv: dlt_mismatched(X, uv, pixels="scale"),
                 "scaled the pixels but did not centre",

@@ -56,6 +56,15 @@ def _rq_diagnosis(args, got, expected) -> str:
         )
     reproduces = np.allclose(K @ R, M, rtol=1e-6, atol=1e-6 * np.abs(M).max())
     orthogonal = np.allclose(R @ R.T, np.eye(3), atol=1e-6)
+    k_orthogonal = np.allclose(K @ K.T, np.eye(3), atol=1e-6)
+    r_triangular = np.abs(np.tril(R, -1)).max() <= 1e-9 * np.abs(R).max()
+    if reproduces and not orthogonal and k_orthogonal and r_triangular:
+        return (
+            "your pair is a QR factorisation, M = Q U: the orthogonal factor comes first, the triangular one "
+            "second (np.linalg.qr(M) returned as it is). RQ is the other order, M = K R with the triangular K "
+            "first; M = Q U cannot be rearranged into it. Use scipy.linalg.rq, or the exchange-matrix trick of "
+            "the prompt: the QR of (E M)^T, then K = E U^T E and R = E Q^T."
+        )
     if reproduces and not orthogonal:
         gram = np.diag(R @ R.T)
         if np.allclose(gram, gram[0], rtol=1e-6):
@@ -217,6 +226,10 @@ def _rq_qr(M):
     return U, Q
 
 
+def _rq_qr_as_is(M):
+    return tuple(np.linalg.qr(M))  # (Q, U): QR's order, orthogonal first
+
+
 def rq_decomposition(M):
     """M = K R with K upper triangular (positive diagonal) and R orthogonal, from numpy's QR.
 
@@ -259,6 +272,7 @@ register_exercise(
                 "Your signs are right",
             ),
             (_rq_qr, "QR decomposition"),
+            (_rq_qr_as_is, "your pair is a QR factorisation"),
             (
                 lambda M: (lambda Q, U: (U.T, Q.T))(*np.linalg.qr(np.asarray(M).T)),
                 "lower triangular",
