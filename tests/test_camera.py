@@ -802,8 +802,13 @@ def test_resectioning_readout_flags_a_k_no_camera_has():
     readout = lambda: d.widget.children[0].children[-1].value  # noqa: E731
     assert "estimated K" in readout() and "no real camera" not in readout()
     d.set(refine=True, outlier=60.0, pair=5)
-    assert "fx 1563.9, fy 1443.5, skew -95.9" in readout() and "principal point (137.7, -340.3)" in readout()
+    assert (
+        "fx 1563.9, fy 1443.5, skew -95.9" in readout()
+        and "principal point (137.7, -340.3)" in readout()
+    )
     assert "no real camera has this K (fy != fx, skew, principal point off the image)" in readout()
-    d.set(outlier=0.0, noise=0.0)  # the exact camera: the half-pixel principal point, no "-0.0" skew
+    d.set(
+        outlier=0.0, noise=0.0
+    )  # the exact camera: the half-pixel principal point, no "-0.0" skew
     assert "skew 0.0 px" in readout() and "principal point (319.5, 239.5)" in readout()
     assert "on 30 fresh points of the box" in readout() and "RMS 0.00 px" in readout()

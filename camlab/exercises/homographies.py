@@ -70,9 +70,7 @@ def _far_draws():
 
 
 def _similarity(centre, scale):
-    return np.array(
-        [[scale, 0, -scale * centre[0]], [0, scale, -scale * centre[1]], [0, 0, 1.0]]
-    )
+    return np.array([[scale, 0, -scale * centre[0]], [0, scale, -scale * centre[1]], [0, 0, 1.0]])
 
 
 def _dlt_with(src, dst, normaliser):
@@ -121,7 +119,10 @@ def _far_cause(src, dst, g) -> str:
     """Name the slip behind an H that is too far off on a noisy far input: the slip whose own answer
     lies much closer to g than g lies to the truth; else the usual suspects, all named."""
     off = _far_error(g)
-    slips = [(_patch_distance(g, _dlt_with(src, dst, normaliser)), hint) for normaliser, hint in _FAR_SLIPS]
+    slips = [
+        (_patch_distance(g, _dlt_with(src, dst, normaliser)), hint)
+        for normaliser, hint in _FAR_SLIPS
+    ]
     closest, hint = min(slips, key=lambda pair: pair[0])
     if closest < 0.25 * off:
         return hint
@@ -134,7 +135,7 @@ def _far_cause(src, dst, g) -> str:
 
 
 def _dlt_follow_up(run) -> str:
-    """"" when the student's DLT is as accurate as a normalised one over FAR_DRAWS noise draws."""
+    """ "" when the student's DLT is as accurate as a normalised one over FAR_DRAWS noise draws."""
     offs, worst = [], None
     for src, dst in _far_draws():
         try:
@@ -149,8 +150,10 @@ def _dlt_follow_up(run) -> str:
     if median <= FAR_MEDIAN_PX and largest <= FAR_WORST_PX:
         return ""
     off, src, dst, g = worst
-    cause = _far_cause(src, dst, g) if g is not None and np.isfinite(off) else (
-        "on one draw your H was singular or not finite."
+    cause = (
+        _far_cause(src, dst, g)
+        if g is not None and np.isfinite(off)
+        else ("on one draw your H was singular or not finite.")
     )
     return (
         f"on {FAR_DRAWS} fresh noise draws of the far patch (1 px of noise, as in test input 5) your H is "
@@ -216,8 +219,13 @@ def _row_slip(g, src, dst, expected) -> str:
     in normalised coordinates); "" if none fits."""
     swap = np.array([[0.0, 1, 0], [1, 0, 0], [0, 0, 1]])
     flips = {"first": np.diag([1.0, -1, 1]), "second": np.diag([-1.0, 1, 1])}
-    frames = [(np.eye(3), np.eye(3))] + [(np.linalg.inv(Td), Td) for _, Td in _normalisers(src, dst)]
-    for back, forth in frames:  # M applied to the (normalised) destination: H = T_dst^-1 M T_dst H_true
+    frames = [(np.eye(3), np.eye(3))] + [
+        (np.linalg.inv(Td), Td) for _, Td in _normalisers(src, dst)
+    ]
+    for (
+        back,
+        forth,
+    ) in frames:  # M applied to the (normalised) destination: H = T_dst^-1 M T_dst H_true
         if same_up_to_scale(g, back @ swap @ forth @ expected, rtol=1e-5):
             return (
                 "you swapped u' and v' when building the rows: your H sends each point to (v', u'). "

@@ -104,7 +104,14 @@ def ransac_outliers() -> Demo:
     ax_k.axhline(MAX_SAMPLES, color="0.3", ls=":", lw=1, label=f"the cap: {MAX_SAMPLES} samples")
     needed = view.animate(
         ax_k.plot(
-            [], [], "o", mfc="none", mec="k", mew=1.5, ms=10, label="k for the ε RANSAC found (ring)"
+            [],
+            [],
+            "o",
+            mfc="none",
+            mec="k",
+            mew=1.5,
+            ms=10,
+            label="k for the ε RANSAC found (ring)",
         )[0]
     )
     dot = view.animate(
@@ -189,7 +196,9 @@ def ransac_outliers() -> Demo:
         best.set_data(dst[r.sample, 0], dst[r.sample, 1])
         eps_found = 1.0 - r.inliers.mean()
         k_needed = required_iterations(1.0 - eps_found, CONFIDENCE, 4)
-        dot.set_data([eps_found], [r.iterations])  # RANSAC knows only the ε it found, not the true one
+        dot.set_data(
+            [eps_found], [r.iterations]
+        )  # RANSAC knows only the ε it found, not the true one
         needed.set_data([eps_found], [k_needed])
         counts = np.bincount(verdict, minlength=4)
         found_true = float(np.mean(r.inliers[~out])) if (~out).any() else float("nan")
