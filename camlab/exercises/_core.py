@@ -44,6 +44,7 @@ from __future__ import annotations
 
 import inspect
 import re
+import sys
 import traceback
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -458,20 +459,30 @@ def _exception_hint(exc: Exception) -> str:
     return ""
 
 
+def _public_name(function: Callable[..., Any]) -> str:
+    """The shortest dotted name a student can type for ``function``: camlab.to_homogeneous, not
+    camlab.projective.plane.to_homogeneous, when the package re-exports it (the same object)."""
+    parts = function.__module__.split(".")
+    for k in range(1, len(parts) + 1):
+        module = sys.modules.get(".".join(parts[:k]))
+        if module is not None and getattr(module, function.__qualname__, None) is function:
+            return f"{'.'.join(parts[:k])}.{function.__qualname__}"
+    return f"{function.__module__}.{function.__qualname__}"
+
+
 def solution_source(name: str) -> str:
     """The text :func:`solution` prints: the teaching solution of ``name`` (the library's source if it has none)."""
     exercise = EXERCISES[name]
     reference = exercise.reference
-    where = f"{reference.__module__}.{reference.__qualname__}"
+    where = _public_name(reference)
     if exercise.teaching is None:
         return inspect.getsource(reference)
-    if reference.__name__.startswith(
-        "_"
-    ):  # a private helper is no place to send a student: say what it computes
+    if reference.__name__.startswith("_"):  # a private helper: name it, and say what it computes
         summary = (inspect.getdoc(reference) or "").split("\n")[0]
         return (
             inspect.getsource(exercise.teaching)
-            + f"\n# camlab's own, tested reference: {summary}\n"
+            + f"\n# camlab's own, tested reference is {where}; the check compares your answer with it"
+            + f"\n# (read it with {where}??). {summary}\n"
         )
     return (
         inspect.getsource(exercise.teaching)
