@@ -149,9 +149,15 @@ def _fmt(value: Any) -> str:
             return f"<array of shape {value.shape}, dtype {value.dtype}{span}>"
         if value.dtype.kind == "f":  # what prints as zero prints as 0, never -0.0000
             value = np.where(np.round(value.astype(float), 4) == 0, 0.0, value)
-        return np.array2string(
+        text = np.array2string(
             value, precision=4, suppress_small=True, separator=", ", floatmode="maxprec_equal"
         )
+        text = re.sub(r"(\d)\.(?=[,\]\s]|$)", r"\1.0", text)  # [2.0, 2.0], not numpy's [2., 2.]
+        if (
+            value.ndim == 1
+        ):  # one line: no padding to align columns, [4, 31, 22, 40], not [ 4, 31, 22, 40]
+            text = "[" + ", ".join(item.strip() for item in text[1:-1].split(",")) + "]"
+        return text
     if isinstance(value, np.generic):
         return repr(value.item())  # 2.5, not np.float64(2.5)
     if isinstance(value, (tuple, list)):

@@ -294,3 +294,67 @@ def draw_transposed_read(
     ax.set_xlabel("u (px)")
     ax.set_ylabel("v (px)")
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.1), fontsize=9, frameon=False)
+
+
+def draw_turn_about(
+    ax: Axes, size: tuple[int, int], A: np.ndarray, centre: np.ndarray, title: str
+) -> np.ndarray:
+    """A ``size = (W, H)`` image's pixel centres moved by ``A`` about ``centre``: x' = c + A (x - c).
+
+    The image's outline and pixel centres stay in grey; the moved outline is drawn in black and the
+    moved centres as orange dots. The top-right pixel (W - 1, 0) is followed by an arrow to where it
+    goes, and ``centre``, the one point that does not move, is ringed in black. The axes
+    are v down, like every image in the course.
+
+    Derivation: a 2 x 2 matrix only moves points about the origin (A 0 = 0). To move them about c,
+    shift c to the origin (x - c), apply A there, and shift back (+ c). With points as rows that
+    is ``(X - c) @ A.T + c``: the (2,) row c is subtracted from, and added to, every row of X.
+
+    Returns
+    -------
+    (W * H, 2) ndarray
+        The moved pixel centres, row by row of the image (pixel (u, v) is row v * W + u).
+    """
+    width, height = size
+    c = np.asarray(centre, dtype=float)
+    v, u = np.mgrid[0:height, 0:width]
+    X = np.column_stack([u.ravel(), v.ravel()]).astype(float)  # (W * H, 2), row by row
+    corners = np.array(
+        [
+            [-0.5, -0.5],
+            [width - 0.5, -0.5],
+            [width - 0.5, height - 0.5],
+            [-0.5, height - 0.5],
+            [-0.5, -0.5],
+        ]
+    )
+    moved, moved_corners = (X - c) @ A.T + c, (corners - c) @ A.T + c
+    ax.plot(*corners.T, color="0.6", lw=1.2, ls="--", zorder=1)
+    ax.plot(*X.T, "o", color="0.6", ms=4, zorder=2)
+    ax.plot(*moved_corners.T, color="black", lw=1.5, zorder=3)
+    ax.plot(*moved.T, "o", color=POINT_COLOUR, ms=5, zorder=4)
+    k = width - 1  # the top-right pixel, (W - 1, 0)
+    ax.annotate(
+        "",
+        xy=moved[k],
+        xytext=X[k],
+        zorder=5,
+        arrowprops={
+            "arrowstyle": "-|>",
+            "color": POINT_COLOUR,
+            "lw": 1.5,
+            "shrinkA": 4,
+            "shrinkB": 4,
+            "connectionstyle": "arc3,rad=-0.3",
+        },
+    )
+    ax.plot(
+        *c, "o", mfc="none", mec="black", ms=13, mew=1.6, zorder=6
+    )  # a ring: the dot inside stays visible
+    ax.set_aspect("equal")
+    ax.invert_yaxis()  # v points down
+    ax.set_title(title, fontsize=10)
+    ax.set_xlabel("u (px)", color=X_COLOUR)
+    ax.set_ylabel("v (px)", color=Y_COLOUR)
+    ax.grid(True, color="0.9", lw=0.6, zorder=0)
+    return moved
