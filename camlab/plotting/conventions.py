@@ -58,8 +58,8 @@ def draw_pixel_grid(ax: Axes, size: tuple[int, int], points: np.ndarray, marked:
     ):  # the centres, and the edges -0.5 and n - 0.5
         axis.set_ticks(range(n))
         axis.set_ticks([-0.5, n - 0.5], [f"{t:g}" for t in (-0.5, n - 0.5)], minor=True)
-    # The image's edges, half a pixel out, in small grey type, so they are not read as centres at a glance.
-    ax.tick_params(which="minor", length=2.5, labelsize=8.5, labelcolor="0.35", color="0.45")
+    # The image's edges, half a pixel out, in small grey type on long ticks, so they are not read as centres at a glance.
+    ax.tick_params(which="minor", length=6, width=1, labelsize=8.5, labelcolor="0.35", color="0.35")
     # Each edge label leans inwards from its tick (u's -0.5 to the right, v's 2.5 upwards ...), so the two that
     # meet at a corner, u's -0.5 and v's H - 0.5, do not touch.
     first, last = ax.xaxis.get_minor_ticks()[:2]
@@ -222,7 +222,15 @@ def draw_camera_frame(ax: Axes, size: tuple[int, int] = (4, 3)) -> None:
     ax.text(0, 1.37, "y, down", color=Y_COLOUR, ha="center", va="top", fontsize=10)
     ax.plot(0, 0, "o", ms=16, mfc="white", mec=Z_COLOUR, mew=2)
     ax.plot(0, 0, "x", ms=9, color=Z_COLOUR, mew=2)
-    ax.text(w + 0.08, 0.12, "z, forward:\ninto the page", color=Z_COLOUR, va="top", fontsize=9)
+    ax.annotate(  # tied to the circled cross by a leader, so it is not read as a caption of the plane's edge
+        "z, forward:\ninto the page",
+        (0, 0),
+        xytext=(w + 0.1, -0.3),
+        color=Z_COLOUR,
+        va="bottom",
+        fontsize=9,
+        arrowprops=dict(arrowstyle="-", color=Z_COLOUR, lw=0.8, shrinkA=2, shrinkB=9),
+    )
 
 
 WRONG_COLOUR = (
