@@ -317,6 +317,12 @@ TURN_MISTAKES = (
         "you forgot to add the centre back after the turn: c + A (x - c), so (X - c) @ A.T + c",
     ),
     Mistake(
+        "the centre not subtracted",
+        lambda s: s.X @ s.A.T + s.c,
+        "you added the centre after the turn but never subtracted it before: move c to the origin first, "
+        "c + A (x - c), so (X - c) @ A.T + c",
+    ),
+    Mistake(
         "the centre subtracted twice",
         lambda s: (s.X - s.c) @ s.A.T - s.c,
         "add the centre back after the turn (you subtracted it twice): (X - c) @ A.T + c",
@@ -372,6 +378,15 @@ def turned_cause(t: np.ndarray, X: np.ndarray, A: np.ndarray, c: np.ndarray, W: 
     if t.shape != (n, 2):
         return f"the turned points are rows, shape ({n}, 2), like X; got {t.shape}"
     s = SimpleNamespace(X=X, A=A, c=c, W=W, H=H, turned=(X - c) @ A.T + c)
+    shift = t - s.turned
+    if np.allclose(shift, shift[0]) and not np.allclose(
+        shift[0], 0
+    ):  # every point off by the same (du, dv)
+        rest = first_mistake(TURN_MISTAKES, s, t, np.allclose)
+        return rest or (
+            f"every point is off by the same shift, {numbers(shift[0].round(4))}: the turn is right, but the centre "
+            "subtracted and the one added back differ (or a constant was added): (X - c) @ A.T + c, the same c twice"
+        )
     return (
         first_mistake(TURN_MISTAKES, s, t, np.allclose)
         or "turn each row about the centre: x' = c + A (x - c), for rows (X - c) @ A.T + c"

@@ -247,6 +247,11 @@ register_exercise(
                 "right, then cast to int",
             ),
             (_rt_wrong(turn=lambda X, A, c: X), "you returned X unchanged"),
+            (_rt_wrong(turn=lambda X, A, c: X @ A.T + c), "never subtracted it before"),
+            (
+                _rt_wrong(turn=lambda X, A, c: (X - c) @ A.T + c + 0.5),
+                "every point is off by the same shift, [0.5, 0.5]",
+            ),
             (
                 _rt_wrong(turn=lambda X, A, c: X - c),
                 "you moved the centre to the origin, X - c, and stopped",
