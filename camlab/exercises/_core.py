@@ -44,6 +44,7 @@ from __future__ import annotations
 
 import inspect
 import re
+import sys
 import traceback
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -148,9 +149,15 @@ def _fmt(value: Any) -> str:
             return f"<array of shape {value.shape}, dtype {value.dtype}{span}>"
         if value.dtype.kind == "f":  # what prints as zero prints as 0, never -0.0000
             value = np.where(np.round(value.astype(float), 4) == 0, 0.0, value)
-        return np.array2string(
+        text = np.array2string(
             value, precision=4, suppress_small=True, separator=", ", floatmode="maxprec_equal"
         )
+        text = re.sub(r"(\d)\.(?=[,\]\s]|$)", r"\1.0", text)  # [2.0, 2.0], not numpy's [2., 2.]
+        if (
+            value.ndim == 1
+        ):  # one line: no padding to align columns, [4, 31, 22, 40], not [ 4, 31, 22, 40]
+            text = "[" + ", ".join(item.strip() for item in text[1:-1].split(",")) + "]"
+        return text
     if isinstance(value, np.generic):
         return repr(value.item())  # 2.5, not np.float64(2.5)
     if isinstance(value, (tuple, list)):
@@ -458,20 +465,30 @@ def _exception_hint(exc: Exception) -> str:
     return ""
 
 
+def _public_name(function: Callable[..., Any]) -> str:
+    """The shortest dotted name a student can type for ``function``: camlab.to_homogeneous, not
+    camlab.projective.plane.to_homogeneous, when the package re-exports it (the same object)."""
+    parts = function.__module__.split(".")
+    for k in range(1, len(parts) + 1):
+        module = sys.modules.get(".".join(parts[:k]))
+        if module is not None and getattr(module, function.__qualname__, None) is function:
+            return f"{'.'.join(parts[:k])}.{function.__qualname__}"
+    return f"{function.__module__}.{function.__qualname__}"
+
+
 def solution_source(name: str) -> str:
     """The text :func:`solution` prints: the teaching solution of ``name`` (the library's source if it has none)."""
     exercise = EXERCISES[name]
     reference = exercise.reference
-    where = f"{reference.__module__}.{reference.__qualname__}"
+    where = _public_name(reference)
     if exercise.teaching is None:
         return inspect.getsource(reference)
-    if reference.__name__.startswith(
-        "_"
-    ):  # a private helper is no place to send a student: say what it computes
+    if reference.__name__.startswith("_"):  # a private helper: name it, and say what it computes
         summary = (inspect.getdoc(reference) or "").split("\n")[0]
         return (
             inspect.getsource(exercise.teaching)
-            + f"\n# camlab's own, tested reference: {summary}\n"
+            + f"\n# camlab's own, tested reference is {where}; the check compares your answer with it"
+            + f"\n# (read it with {where}??). {summary}\n"
         )
     return (
         inspect.getsource(exercise.teaching)

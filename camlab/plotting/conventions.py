@@ -58,8 +58,8 @@ def draw_pixel_grid(ax: Axes, size: tuple[int, int], points: np.ndarray, marked:
     ):  # the centres, and the edges -0.5 and n - 0.5
         axis.set_ticks(range(n))
         axis.set_ticks([-0.5, n - 0.5], [f"{t:g}" for t in (-0.5, n - 0.5)], minor=True)
-    # The image's edges, half a pixel out, in small grey type, so they are not read as centres at a glance.
-    ax.tick_params(which="minor", length=2.5, labelsize=8.5, labelcolor="0.35", color="0.45")
+    # The image's edges, half a pixel out, in small grey type on long ticks, so they are not read as centres at a glance.
+    ax.tick_params(which="minor", length=6, width=1, labelsize=8.5, labelcolor="0.35", color="0.35")
     # Each edge label leans inwards from its tick (u's -0.5 to the right, v's 2.5 upwards ...), so the two that
     # meet at a corner, u's -0.5 and v's H - 0.5, do not touch.
     first, last = ax.xaxis.get_minor_ticks()[:2]
@@ -222,7 +222,15 @@ def draw_camera_frame(ax: Axes, size: tuple[int, int] = (4, 3)) -> None:
     ax.text(0, 1.37, "y, down", color=Y_COLOUR, ha="center", va="top", fontsize=10)
     ax.plot(0, 0, "o", ms=16, mfc="white", mec=Z_COLOUR, mew=2)
     ax.plot(0, 0, "x", ms=9, color=Z_COLOUR, mew=2)
-    ax.text(w + 0.08, 0.12, "z, forward:\ninto the page", color=Z_COLOUR, va="top", fontsize=9)
+    ax.annotate(  # tied to the circled cross by a leader, so it is not read as a caption of the plane's edge
+        "z, forward:\ninto the page",
+        (0, 0),
+        xytext=(w + 0.1, -0.3),
+        color=Z_COLOUR,
+        va="bottom",
+        fontsize=9,
+        arrowprops=dict(arrowstyle="-", color=Z_COLOUR, lw=0.8, shrinkA=2, shrinkB=9),
+    )
 
 
 WRONG_COLOUR = (
@@ -294,3 +302,67 @@ def draw_transposed_read(
     ax.set_xlabel("u (px)")
     ax.set_ylabel("v (px)")
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.1), fontsize=9, frameon=False)
+
+
+def draw_turn_about(
+    ax: Axes, size: tuple[int, int], A: np.ndarray, centre: np.ndarray, title: str
+) -> np.ndarray:
+    """A ``size = (W, H)`` image's pixel centres moved by ``A`` about ``centre``: x' = c + A (x - c).
+
+    The image's outline and pixel centres stay in grey; the moved outline is drawn in black and the
+    moved centres as orange dots. The top-right pixel (W - 1, 0) is followed by an arrow to where it
+    goes, and ``centre``, the one point that does not move, is ringed in black. The axes
+    are v down, like every image in the course.
+
+    Derivation: a 2 x 2 matrix only moves points about the origin (A 0 = 0). To move them about c,
+    shift c to the origin (x - c), apply A there, and shift back (+ c). With points as rows that
+    is ``(X - c) @ A.T + c``: the (2,) row c is subtracted from, and added to, every row of X.
+
+    Returns
+    -------
+    (W * H, 2) ndarray
+        The moved pixel centres, row by row of the image (pixel (u, v) is row v * W + u).
+    """
+    width, height = size
+    c = np.asarray(centre, dtype=float)
+    v, u = np.mgrid[0:height, 0:width]
+    X = np.column_stack([u.ravel(), v.ravel()]).astype(float)  # (W * H, 2), row by row
+    corners = np.array(
+        [
+            [-0.5, -0.5],
+            [width - 0.5, -0.5],
+            [width - 0.5, height - 0.5],
+            [-0.5, height - 0.5],
+            [-0.5, -0.5],
+        ]
+    )
+    moved, moved_corners = (X - c) @ A.T + c, (corners - c) @ A.T + c
+    ax.plot(*corners.T, color="0.6", lw=1.2, ls="--", zorder=1)
+    ax.plot(*X.T, "o", color="0.6", ms=4, zorder=2)
+    ax.plot(*moved_corners.T, color="black", lw=1.5, zorder=3)
+    ax.plot(*moved.T, "o", color=POINT_COLOUR, ms=5, zorder=4)
+    k = width - 1  # the top-right pixel, (W - 1, 0)
+    ax.annotate(
+        "",
+        xy=moved[k],
+        xytext=X[k],
+        zorder=5,
+        arrowprops={
+            "arrowstyle": "-|>",
+            "color": POINT_COLOUR,
+            "lw": 1.5,
+            "shrinkA": 4,
+            "shrinkB": 4,
+            "connectionstyle": "arc3,rad=-0.3",
+        },
+    )
+    ax.plot(
+        *c, "o", mfc="none", mec="black", ms=13, mew=1.6, zorder=6
+    )  # a ring: the dot inside stays visible
+    ax.set_aspect("equal")
+    ax.invert_yaxis()  # v points down
+    ax.set_title(title, fontsize=10)
+    ax.set_xlabel("u (px)", color=X_COLOUR)
+    ax.set_ylabel("v (px)", color=Y_COLOUR)
+    ax.grid(True, color="0.9", lw=0.6, zorder=0)
+    return moved

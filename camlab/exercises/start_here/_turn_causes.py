@@ -101,15 +101,74 @@ def centre_cause(c: np.ndarray, W: int, H: int) -> str:
 # -- the values read ----------------------------------------------------------------------------------
 
 
-def _read_shifted(s, d: int) -> bool:
-    """Whether the values are those of the pixels ``d`` rows and columns further on (all inside the image)."""
-    uu, vv = s.u + d, s.v + d
-    inside = np.all((0 <= uu) & (uu < s.W) & (0 <= vv) & (vv < s.H))
-    return bool(inside) and np.allclose(s.values, s.img[vv, uu])
+def _read_at(s, vv: np.ndarray, uu: np.ndarray) -> np.ndarray | None:
+    """img[vv, uu] as numpy reads it (an index -1 wraps round to the last row or column), or None where
+    numpy would raise (the slip shows as an IndexError instead, named by :data:`RAISED`)."""
+    vv, uu = np.asarray(vv), np.asarray(uu)
+    if np.all((-s.H <= vv) & (vv < s.H) & (-s.W <= uu) & (uu < s.W)):
+        return s.img[vv, uu]
+    return None
 
 
-# Checked in order on the values read, ``s.values``, for the image ``s.img`` (``s.H`` x ``s.W``) and the
-# points' columns and rows ``s.u``, ``s.v`` (``s.n`` points).
+def _reads(s, vv: np.ndarray, uu: np.ndarray) -> bool:
+    """Whether the values are those numpy reads at img[vv, uu] (and differ from the right ones there)."""
+    read = _read_at(s, vv, uu)
+    return read is not None and np.allclose(s.values, read)
+
+
+def _wraps(s, vv: np.ndarray, uu: np.ndarray) -> str:
+    """The note that an index of -1 read the last row or column without an error, if one did."""
+    rows, cols = bool(np.any(np.asarray(vv) < 0)), bool(np.any(np.asarray(uu) < 0))
+    if not (rows or cols):
+        return ""
+    where = "row" if rows and not cols else "column" if cols and not rows else "row or column"
+    return f"; at 0 the index -1 silently reads the last {where} (numpy counts -1 from the end), so nothing raised"
+
+
+def _shift_mistake(dv: int, du: int) -> Mistake:
+    """img[v + dv, u + du]: a read off by one row and/or column, named with the index the student wrote."""
+
+    def index(d: int, name: str) -> str:
+        return name if d == 0 else f"{name} {'+' if d > 0 else '-'} {abs(d)}"
+
+    read = f"img[{index(dv, 'v')}, {index(du, 'u')}]"
+    moved = (
+        " and ".join(
+            f"one {what} {where}"
+            for d, what, where in (
+                (dv, "row", "above" if dv < 0 else "below"),
+                (du, "column", "left of" if du < 0 else "right of"),
+            )
+            if d != 0
+        )
+        .replace("above and", "up and")
+        .replace("below and", "down and")
+    )
+    why = (
+        "Counting from 1, as MATLAB does? numpy and pixel coordinates count from 0"
+        if dv <= 0 and du <= 0
+        else "Pixel coordinates and numpy both count from 0, and pixel (u, v) is img[v, u] itself"
+    )
+    return Mistake(
+        f"read {read}",
+        lambda s: _reads(s, s.v + dv, s.u + du),
+        lambda s: (
+            f"you read {read}, the pixel {moved} each point: an off-by-one. {why}: read img[v, u]"
+            + _wraps(s, s.v + dv, s.u + du)
+        ),
+    )
+
+
+def _read_turned(s, to_int) -> bool:
+    """Whether the values were read at the turned points (rounded by ``to_int``) instead of at X."""
+    if s.turned is None:
+        return False
+    uu, vv = to_int(s.turned).T
+    return not np.allclose(s.turned, s.X) and _reads(s, vv, uu)
+
+
+# Checked in order on the values read, ``s.values``, for the image ``s.img`` (``s.H`` x ``s.W``), the
+# points' columns and rows ``s.u``, ``s.v`` (``s.n`` points) and the right turned points ``s.turned``.
 VALUE_MISTAKES = (
     Mistake(
         "img[X]",
@@ -134,14 +193,25 @@ VALUE_MISTAKES = (
         "img[u, v] reads row u, column v: the transposed pixel. numpy indexes the row first, and the row is v: img[v, u]",
     ),
     Mistake(
-        "counted from 1",
-        lambda s: _read_shifted(s, -1),
-        "counting from 1 (u - 1, v - 1)? numpy counts from 0, and so do pixel coordinates",
+        "v counted from the bottom",
+        lambda s: _reads(s, s.H - 1 - s.v, s.u),
+        "you read row H - 1 - v, counting v from the bottom (OpenGL's rows, y up): the course's rows count from "
+        "the top, v = 0 is the top row, so pixel (u, v) is img[v, u]",
     ),
     Mistake(
-        "one too far",
-        lambda s: _read_shifted(s, 1),
-        "an index one too far (u + 1, v + 1): pixel coordinates and numpy both count from 0",
+        "u counted from the right",
+        lambda s: _reads(s, s.v, s.W - 1 - s.u),
+        "you read column W - 1 - u, counting u from the right: columns count from the left, so pixel (u, v) is img[v, u]",
+    ),
+    *(_shift_mistake(dv, du) for dv, du in ((-1, -1), (0, -1), (-1, 0), (1, 1), (0, 1), (1, 0))),
+    Mistake(
+        "read at the turned points",
+        lambda s: (
+            _read_turned(s, lambda t: np.rint(t).astype(int))
+            or _read_turned(s, lambda t: t.astype(int))
+        ),
+        "you read the values at the turned points: read them at the points X themselves, before the turn, "
+        "img[v, u] with u, v = X[:, 0], X[:, 1]",
     ),
 )
 
@@ -160,12 +230,15 @@ def _first_wrong_value(s) -> str:
     )
 
 
-def values_cause(values: np.ndarray, img: np.ndarray, X: np.ndarray) -> str:
+def values_cause(
+    values: np.ndarray, img: np.ndarray, X: np.ndarray, turned: np.ndarray | None = None
+) -> str:
     """Why ``values`` are not img[v, u] at the rows of ``X``: a row of :data:`VALUE_MISTAKES`, else the first
-    wrong value and the pixel it came from (every test image names its pixels, img[v, u] = 10 v + u)."""
+    wrong value and the pixel it came from (every test image names its pixels, img[v, u] = 10 v + u).
+    ``turned``, the right turned points, lets the diagnosis tell values read there."""
     H, W = img.shape
     u, v = np.rint(X).astype(int).T
-    s = SimpleNamespace(values=values, img=img, u=u, v=v, H=H, W=W, n=len(X))
+    s = SimpleNamespace(values=values, img=img, u=u, v=v, H=H, W=W, n=len(X), X=X, turned=turned)
     return first_mistake(VALUE_MISTAKES, s) or _first_wrong_value(s)
 
 
@@ -177,6 +250,14 @@ def _inverse_turn(s):
     if abs(np.linalg.det(s.A)) > 1e-12:
         return (s.X - s.c) @ np.linalg.inv(s.A).T + s.c
     return None
+
+
+_FLIP = np.diag([1.0, -1.0])
+
+
+def _y_flip_is_inverse(s) -> bool:
+    """Whether A with y flipped, diag(1, -1) A diag(1, -1), is A's inverse (true of rotations and unit shears)."""
+    return abs(np.linalg.det(s.A)) > 1e-12 and np.allclose(_FLIP @ s.A @ _FLIP, np.linalg.inv(s.A))
 
 
 def _about(centre: Mistake, transposed: bool):
@@ -192,6 +273,29 @@ def _about(centre: Mistake, transposed: bool):
 # Checked in order (answer against answer, np.allclose) on the turned points, for the points ``s.X``,
 # the matrix ``s.A``, the right centre ``s.c`` and the image size ``s.W`` x ``s.H``.
 TURN_MISTAKES = (
+    Mistake(
+        "X unturned",
+        lambda s: s.X,
+        "you returned X unchanged: A was never applied. Move the points about the centre, x' = c + A (x - c): "
+        "(X - c) @ A.T + c",
+    ),
+    Mistake(
+        "only X - c",
+        lambda s: s.X - s.c,
+        "you moved the centre to the origin, X - c, and stopped: then turn by A and move back, (X - c) @ A.T + c",
+    ),
+    Mistake(
+        "rounded",
+        lambda s: np.rint(s.turned),
+        "right, then rounded to whole pixels (np.round or np.rint): the turned points are points, not pixel "
+        "indices, so keep their fractions; round only to index an image",
+    ),
+    Mistake(
+        "cast to int",
+        lambda s: np.trunc(s.turned),
+        "right, then cast to int (.astype(int) or int()), which drops the fractions: the turned points are points, "
+        "not pixel indices, so keep them as floats; round only to index an image",
+    ),
     Mistake(
         "X @ A",
         lambda s: (s.X - s.c) @ s.A + s.c,
@@ -213,6 +317,12 @@ TURN_MISTAKES = (
         "you forgot to add the centre back after the turn: c + A (x - c), so (X - c) @ A.T + c",
     ),
     Mistake(
+        "the centre not subtracted",
+        lambda s: s.X @ s.A.T + s.c,
+        "you added the centre after the turn but never subtracted it before: move c to the origin first, "
+        "c + A (x - c), so (X - c) @ A.T + c",
+    ),
+    Mistake(
         "the centre subtracted twice",
         lambda s: (s.X - s.c) @ s.A.T - s.c,
         "add the centre back after the turn (you subtracted it twice): (X - c) @ A.T + c",
@@ -228,9 +338,22 @@ TURN_MISTAKES = (
         "the signs are swapped: move the centre to the origin first, X - c, then turn, then add c back: (X - c) @ A.T + c",
     ),
     Mistake(
+        "y flipped",
+        lambda s: None if _y_flip_is_inverse(s) else (s.X - s.c) @ (_FLIP @ s.A @ _FLIP).T + s.c,
+        "you applied A with y flipped, diag(1, -1) A diag(1, -1), as a y-up habit does: v already points down, "
+        "so use A as given, (X - c) @ A.T + c",
+    ),
+    Mistake(
         "A's inverse",
         _inverse_turn,
-        "you applied A's inverse, the move undone: x' = c + A (x - c) uses A itself, (X - c) @ A.T + c",
+        lambda s: (
+            "you applied A's inverse, the move undone: x' = c + A (x - c) uses A itself, (X - c) @ A.T + c"
+            + (
+                " (for this A the inverse is also A with y flipped, diag(1, -1) A diag(1, -1): a y-up habit gives it too)"
+                if _y_flip_is_inverse(s)
+                else ""
+            )
+        ),
     ),
     *(
         Mistake(
@@ -254,7 +377,16 @@ def turned_cause(t: np.ndarray, X: np.ndarray, A: np.ndarray, c: np.ndarray, W: 
         return "one row per point: A @ X.T gives the points as columns; transpose back, (A @ X.T).T, or write X @ A.T"
     if t.shape != (n, 2):
         return f"the turned points are rows, shape ({n}, 2), like X; got {t.shape}"
-    s = SimpleNamespace(X=X, A=A, c=c, W=W, H=H)
+    s = SimpleNamespace(X=X, A=A, c=c, W=W, H=H, turned=(X - c) @ A.T + c)
+    shift = t - s.turned
+    if np.allclose(shift, shift[0]) and not np.allclose(
+        shift[0], 0
+    ):  # every point off by the same (du, dv)
+        rest = first_mistake(TURN_MISTAKES, s, t, np.allclose)
+        return rest or (
+            f"every point is off by the same shift, {numbers(shift[0].round(4))}: the turn is right, but the centre "
+            "subtracted and the one added back differ (or a constant was added): (X - c) @ A.T + c, the same c twice"
+        )
     return (
         first_mistake(TURN_MISTAKES, s, t, np.allclose)
         or "turn each row about the centre: x' = c + A (x - c), for rows (X - c) @ A.T + c"
@@ -305,7 +437,8 @@ RAISED = (
         ),
         (
             "X holds floats (points are float arrays in this course) and numpy indexes with integers: "
-            "convert the whole-number coordinates first, u, v = X[:, 0].astype(int), X[:, 1].astype(int)"
+            "round, then convert: u, v = np.rint(X).astype(int).T (.astype(int) alone truncates, and a computed "
+            "479 can be 478.99999999999994, which it makes 478)"
         ),
     ),
     Mistake(

@@ -7,6 +7,8 @@ tables of :mod:`._turn_causes`.
 
 from __future__ import annotations
 
+from itertools import permutations
+
 import numpy as np
 
 from ... import projective
@@ -57,7 +59,7 @@ def _rt_describe(args: tuple) -> str:
 
 
 def _read_and_turn_reference(img, X, A):
-    """The centre ((W - 1)/2, (H - 1)/2), img[v, u] at the rows of X, and X turned about the centre by A.
+    """Returns the centre ((W - 1)/2, (H - 1)/2), the values img[v, u] at the rows of X, and X turned about it by A.
 
     The turn is one homography, translate(c) A translate(-c), applied with camlab's homogeneous
     coordinates: a route other than the teaching solution's ``(X - c) @ A.T + c``.
@@ -108,6 +110,12 @@ def _rt_diagnose(args, got, expected) -> str:
             return f"{name} holds NaN or inf"
     c, values, turned = parts
     same = same_array(rtol=1e-9, atol=1e-9)
+    for order in permutations(range(3)):
+        if order != (0, 1, 2) and all(
+            same(parts[k], e) for k, e in zip(order, expected, strict=True)
+        ):
+            yours = ", ".join(("c", "values", "turned")[order.index(k)] for k in range(3))
+            return f"the three parts are right but came back in the wrong order, ({yours}): `return c, values, turned`"
     causes = []
     if not same(c, expected[0]):
         if c.shape != (2,):
@@ -115,7 +123,7 @@ def _rt_diagnose(args, got, expected) -> str:
         else:
             causes.append(f"the centre: {centre_cause(c, W, H)}")
     if not same(values, expected[1]):
-        causes.append(f"the values: {values_cause(values, img, X)}")
+        causes.append(f"the values: {values_cause(values, img, X, expected[2])}")
     if not same(turned, expected[2]):
         cause = turned_cause(turned, X, np.asarray(A, dtype=float), expected[0], W, H)
         yours = (X - c) @ A.T + c if c.shape == (2,) else None
@@ -149,9 +157,13 @@ def read_and_turn(img, X, A):
     """
     H, W = img.shape[:2]  # numpy's shape: rows (H) first, then columns (W)
     c = np.array([(W - 1) / 2, (H - 1) / 2])  # halfway between the first and the last pixel centres
-    u, v = X[:, 0].astype(int), X[:, 1].astype(int)
+    u, v = (
+        np.rint(X).astype(int).T
+    )  # round, then convert: .astype(int) alone truncates 478.99999999999994 to 478
     values = img[v, u]  # row v, column u
-    turned = (X - c) @ A.T + c  # x' = c + A (x - c), for every row at once
+    turned = (
+        X - c
+    ) @ A.T + c  # x' = c + A (x - c): move c to the origin, turn, move back; every row at once
     return c, values, turned
 
 
@@ -165,7 +177,7 @@ def _rt_wrong(centre=None, read=None, turn=None):
             if centre is None
             else np.asarray(centre(W, H), dtype=float)
         )
-        u, v = X[:, 0].astype(int), X[:, 1].astype(int)
+        u, v = np.rint(X).astype(int).T
         values = img[v, u] if read is None else read(img, u, v)
         turned = (X - c) @ A.T + c if turn is None else turn(X, A, c)
         return c, values, turned
@@ -208,7 +220,61 @@ register_exercise(
             (_rt_wrong(read=lambda img, u, v: img[u, v]), "img[u, v] reads row u, column v"),
             (
                 _rt_wrong(read=lambda img, u, v: img[v - 1, u - 1]),
-                "X[0] = (4, 0) is pixel img[0, 4] = 4",
+                "you read img[v - 1, u - 1], the pixel one row up and one column left",
+            ),
+            (_rt_wrong(read=lambda img, u, v: img[v, u - 1]), "you read img[v, u - 1]"),
+            (_rt_wrong(read=lambda img, u, v: img[v - 1, u]), "silently reads the last row"),
+            (
+                _rt_wrong(read=lambda img, u, v: img[img.shape[0] - 1 - v, u]),
+                "counting v from the bottom",
+            ),
+            (
+                lambda img, X, A: (
+                    lambda c, values, turned: (
+                        c,
+                        img[tuple(np.rint(turned).astype(int).T[::-1])],
+                        turned,
+                    )
+                )(*read_and_turn(img, X, A)),
+                "you read the values at the turned points",
+            ),
+            (
+                _rt_wrong(turn=lambda X, A, c: np.round((X - c) @ A.T + c)),
+                "right, then rounded to whole pixels",
+            ),
+            (
+                _rt_wrong(turn=lambda X, A, c: ((X - c) @ A.T + c).astype(int)),
+                "right, then cast to int",
+            ),
+            (_rt_wrong(turn=lambda X, A, c: X), "you returned X unchanged"),
+            (_rt_wrong(turn=lambda X, A, c: X @ A.T + c), "never subtracted it before"),
+            (
+                _rt_wrong(turn=lambda X, A, c: (X - c) @ A.T + c + 0.5),
+                "every point is off by the same shift, [0.5, 0.5]",
+            ),
+            (
+                _rt_wrong(turn=lambda X, A, c: X - c),
+                "you moved the centre to the origin, X - c, and stopped",
+            ),
+            (
+                lambda img, X, A: (lambda c, values, turned: (values, c, turned))(
+                    *read_and_turn(img, X, A)
+                ),
+                "came back in the wrong order, (values, c, turned)",
+            ),
+            (
+                lambda img, X, A: (lambda c, values, turned: (c, turned, values))(
+                    *read_and_turn(img, X, A)
+                ),
+                "came back in the wrong order, (c, turned, values)",
+            ),
+            (  # a y-up habit: A with y flipped; for the first test's shear that is A's inverse, and the hint says so
+                _rt_wrong(
+                    turn=lambda X, A, c: (
+                        (X - c) @ (np.diag([1.0, -1.0]) @ A @ np.diag([1.0, -1.0])).T + c
+                    )
+                ),
+                "a y-up habit gives it too",
             ),
             (_rt_wrong(read=lambda img, u, v: img[v + 1, u + 1]), "counting from 1?"),
             (_rt_wrong(read=lambda img, u, v: img[v][:, u]), "every combination"),
