@@ -110,7 +110,7 @@ def parallel_lines() -> Demo:
         length, ``point`` its Euclidean position; ``meet`` and ``point`` None, ``w`` NaN, when
         the lines coincide).
     """
-    view = FigureView(figsize=(9, 4))
+    view = FigureView(figsize=(9, 4.4))
     ax, axw = view.fig.subplots(1, 2, width_ratios=[1.3, 1])
     plane_axes(ax, 4, "l1 = 30° fixed; turn l2")
     (l1_artist,) = ax.plot([], [], color=palette.TAB_BLUE, lw=2, label="l1")
@@ -119,7 +119,7 @@ def parallel_lines() -> Demo:
     arrow = ax.annotate(
         "", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="->", color=palette.TAB_RED, lw=2)
     )
-    ax.legend(loc="lower right", fontsize=8)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=3, fontsize=8)  # not over the lines
     readout = W.HTML()
     angle1 = 30.0
     angles = np.linspace(0, 60, 241)
@@ -134,7 +134,12 @@ def parallel_lines() -> Demo:
         ylim=(0, 1.02),
     )
     axw.grid(True, color="0.93")
-    view.animate(l1_artist, l2_artist, meet_dot, arrow, w_curve, w_dot)
+    same_note = axw.text(
+        0.5, 0.45, "", transform=axw.transAxes, ha="center", va="center", fontsize=9,
+        color=palette.TAB_RED, bbox=dict(fc="white", ec=palette.TAB_RED),
+    )
+    same_note.set_visible(False)
+    view.animate(l1_artist, l2_artist, meet_dot, arrow, w_curve, w_dot, same_note)
 
     l1 = _line_at_angle(angle1, 0.5)
 
@@ -142,7 +147,13 @@ def parallel_lines() -> Demo:
         l2 = _line_at_angle(v["angle2"], v["offset2"])
         family = np.cross(l1, _line_at_angle(angles, v["offset2"]))
         with np.errstate(invalid="ignore"):  # the family may contain l1 itself (0/0 -> NaN)
-            w_curve.set_data(angles, np.abs(family[:, 2]) / np.linalg.norm(family, axis=1))
+            w_family = np.abs(family[:, 2]) / np.linalg.norm(family, axis=1)
+        # Through l1's own point (0, 0.5) every l2 meets l1 there, except at l1's angle, where
+        # l2 = l1 and there is no meet point: leave a visible gap, not one missing sample.
+        coincide_at = np.all(np.abs(np.cross(l1, _line_at_angle(angle1, v["offset2"]))) < 1e-12)
+        if coincide_at:
+            w_family = np.where(np.abs(angles - angle1) < 1.0, np.nan, w_family)
+        w_curve.set_data(angles, w_family)
         set_line(l1_artist, l1, ax)
         set_line(l2_artist, l2, ax)
         try:
@@ -152,10 +163,13 @@ def parallel_lines() -> Demo:
             meet_dot.set_data([], [])
             arrow.set_visible(False)
             w_dot.set_data([], [])
+            same_note.set_text("l2 = l1 at 30°: one line,\nno single meet point, no w")
+            same_note.set_visible(True)
             readout.value = monospace(
                 "l2 = l1: one line, every point shared,\nno single meet point"
             )
             return
+        same_note.set_visible(False)
         xu = x / np.linalg.norm(x)
         state.update(l2=l2, meet=x, w=float(abs(xu[2])), point=pj.from_homogeneous(x))
         pos, direction = arrow_to_infinity(x, ax)
@@ -195,8 +209,8 @@ def parallel_lines() -> Demo:
     sweep={
         "px": [-1.0, 0.5],
         "py": [0.8, -1.2],
-        "line_angle": [20.0, 120.0],
-        "line_dist": [0.5, 1.2],
+        "line_angle": [20.0, 120.0, 180.0],
+        "line_dist": [0.2, 1.2, 2.5],
     },
 )
 def point_line_duality() -> Demo:
@@ -210,17 +224,21 @@ def point_line_duality() -> Demo:
         line, and their duals) and ``state`` (``point`` and ``line`` homogeneous,
         ``incidence`` p · l, ``on_line``).
     """
-    view = FigureView(figsize=(9, 4.2))
-    ax_p, ax_d = view.fig.subplots(1, 2)
+    view = FigureView(figsize=(9, 4.9))
+    axes = view.fig.subplot_mosaic([["primal", "dual"], ["text", "text"]], height_ratios=[1, 0.06])
+    ax_p, ax_d, ax_t = axes["primal"], axes["dual"], axes["text"]
+    ax_t.set_axis_off()
+    # the incidence in the figure itself, so a static copy shows whether p is on l
+    text = ax_t.text(0.5, 0.5, "", transform=ax_t.transAxes, ha="center", va="center", fontsize=10)
     plane_axes(ax_p, 3, "primal: point p, line l")
     plane_axes(ax_d, 3, "dual: line p*, point l*")
     (p_dot,) = ax_p.plot([], [], "o", color=palette.TAB_BLUE, ms=9, label="p")
     (l_line,) = ax_p.plot([], [], color=palette.ORANGE, lw=2, label="l")
     (pd_line,) = ax_d.plot([], [], color=palette.TAB_BLUE, lw=2, label="p* (same 3 numbers as p)")
     (ld_dot,) = ax_d.plot([], [], "o", color=palette.ORANGE, ms=9, label="l* (same 3 numbers as l)")
-    for a in (ax_p, ax_d):
-        a.legend(loc="lower right", fontsize=8)
-    view.animate(p_dot, l_line, pd_line, ld_dot)
+    for a in (ax_p, ax_d):  # under the plots: inside, the lines would run through them
+        a.legend(loc="upper center", bbox_to_anchor=(0.5, -0.15), ncol=2, fontsize=8)
+    view.animate(p_dot, l_line, pd_line, ld_dot, text)
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
@@ -238,6 +256,14 @@ def point_line_duality() -> Demo:
         ld = pj.from_homogeneous(line)
         ld_dot.set_data([ld[0]], [ld[1]])
         p_text, l_text = (", ".join(f"{c:+.2f}" for c in x) for x in (p, line))
+        text.set_text(
+            f"p · l = {incidence:+.3f}: "
+            + (
+                "p is on l, and l* is on p*"
+                if state["on_line"]
+                else "p is not on l, and l* is not on p*"
+            )
+        )
         readout.value = monospace(
             f"p = ({p_text})\nl = ({l_text})\np · l = {incidence:+.3f}\n(0 ⇔ p on l ⇔ l* on p*)"
         )
@@ -245,7 +271,7 @@ def point_line_duality() -> Demo:
     controls = {
         "px": slider(1.0, -2.5, 2.5, 0.05, "p: x"),
         "py": slider(0.5, -2.5, 2.5, 0.05, "p: y"),
-        "line_angle": slider(45.0, 0.0, 180.0, 1.0, "l: normal angle (°)"),
+        "line_angle": slider(0.0, 0.0, 180.0, 1.0, "l: normal angle (°)"),
         "line_dist": slider(1.0, 0.2, 2.5, 0.05, "l: distance from origin"),
     }
     return build_demo(
