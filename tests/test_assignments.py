@@ -120,6 +120,7 @@ RIGHT = {
         "def vanishing_point(segments):\n    (a, b), (c, d) = np.asarray(segments, float)\n"
         "    return np.cross(np.cross([*a, 1], [*b, 1]), np.cross([*c, 1], [*d, 1]))"
     ),
+    "map_conic": "def map_conic(H, C):\n    G = np.linalg.inv(H)\n    return G.T @ C @ G",
 }
 ONE_WRONG = dict(
     RIGHT,
