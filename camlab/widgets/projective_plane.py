@@ -124,7 +124,7 @@ def parallel_lines() -> Demo:
     angle1 = 30.0
     angles = np.linspace(0, 60, 241)
     (w_curve,) = axw.plot([], [], color=palette.GREY)
-    (w_dot,) = axw.plot([], [], "o", color=palette.TAB_RED)
+    (w_dot,) = axw.plot([], [], "o", color=palette.TAB_RED, clip_on=False, zorder=4)  # whole at w = 0
     axw.axvline(angle1, color=palette.TAB_BLUE, ls=":", lw=1)
     axw.set(
         xlim=(0, 60),
@@ -134,6 +134,8 @@ def parallel_lines() -> Demo:
         ylim=(0, 1.02),
     )
     axw.grid(True, color="0.93")
+    # constrained layout leaves the last tick label ("60") half outside the figure: pad the right edge
+    view.fig.get_layout_engine().set(w_pad=0.12)
     same_note = axw.text(
         0.5, 0.45, "", transform=axw.transAxes, ha="center", va="center", fontsize=9,
         color=palette.TAB_RED, bbox=dict(fc="white", ec=palette.TAB_RED),
@@ -433,8 +435,14 @@ def cross_ratio_invariance() -> Demo:
         and after) and ``state`` (``H``, ``mapped`` the points after, ``cross_ratio_before``,
         ``cross_ratio_after``, ``ratio_before``, ``ratio_after`` AB / BC).
     """
-    view = FigureView(figsize=(9, 4.2))
-    ax_s, ax_t = view.fig.subplots(1, 2)
+    view = FigureView(figsize=(9, 4.6))
+    axes = view.fig.subplot_mosaic([["before", "after"], ["text", "text"]], height_ratios=[1, 0.08])
+    ax_s, ax_t = axes["before"], axes["after"]
+    axes["text"].set_axis_off()
+    # the two numbers the demo is about, in the figure, so a static copy shows them too
+    numbers = axes["text"].text(
+        0.5, 0.5, "", transform=axes["text"].transAxes, ha="center", va="center", family="monospace", fontsize=9
+    )
     plane_axes(ax_s, 2.2, "before: four collinear points")
     plane_axes(ax_t, 2.2, "after the homography H")
     grid = np.array(
@@ -457,7 +465,7 @@ def cross_ratio_invariance() -> Demo:
     labels = [
         ax_t.annotate(name, (0, 0), xytext=(4, 6), textcoords="offset points") for name in "ABCD"
     ]
-    view.animate(mapped_grid, mapped_line, mapped_pts, *labels)
+    view.animate(mapped_grid, mapped_line, mapped_pts, *labels, numbers)
     readout = W.HTML()
 
     def ratio(p: np.ndarray) -> float:  # an affine invariant only: AB / BC
@@ -485,6 +493,10 @@ def cross_ratio_invariance() -> Demo:
             cross_ratio_after=cr_after,
             ratio_before=ratio(points),
             ratio_after=ratio(q),
+        )
+        numbers.set_text(
+            f"(A, B; C, D): before {cr_before:.4f}, after {cr_after:.4f}      "
+            f"AB / BC: before {ratio(points):.4f}, after {ratio(q):.4f}"
         )
         readout.value = monospace(
             f"             before   after\n"
