@@ -55,7 +55,9 @@ def test_map_conic_holds_the_mapped_sampled_points(seed):
     assert np.array_equal(Cp, Cp.T)
     # the wrong rules do not hold them
     for wrong in (H.T @ C @ H, H @ C @ H.T):
-        r = np.abs(np.einsum("ni,ij,nj->n", mapped, wrong, mapped)) / (np.linalg.norm(wrong) * np.linalg.norm(mapped, axis=1) ** 2)
+        r = np.abs(np.einsum("ni,ij,nj->n", mapped, wrong, mapped)) / (
+            np.linalg.norm(wrong) * np.linalg.norm(mapped, axis=1) ** 2
+        )
         assert r.max() > 1e-3
 
 
@@ -69,7 +71,9 @@ def test_map_dual_conic_holds_the_mapped_tangent_lines(seed):
     mapped_lines = pj.map_lines(H, tangents)
     Cs = pj.map_dual_conic(H, pj.dual_conic(C))
     residual = np.abs(np.einsum("ni,ij,nj->n", mapped_lines, Cs, mapped_lines))
-    assert (residual / (np.linalg.norm(Cs) * np.linalg.norm(mapped_lines, axis=1) ** 2)).max() < 1e-10
+    assert (
+        residual / (np.linalg.norm(Cs) * np.linalg.norm(mapped_lines, axis=1) ** 2)
+    ).max() < 1e-10
     # and it is the dual of the mapped point conic
     assert _up_to_scale(Cs, pj.dual_conic(pj.map_conic(H, C)))
 
@@ -78,7 +82,7 @@ def test_dual_conic_is_the_inverse_up_to_scale_and_exists_for_a_line_pair():
     C = pj.conic_matrix(2.0, 0.5, 1.0, -1.0, 0.3, -4.0)
     assert np.allclose(pj.dual_conic(C), np.linalg.det(C) * np.linalg.inv(C))
     # a line pair l m^T + m l^T is rank 2: no inverse, but an adjugate (of rank 1: the meet point)
-    l, m = np.array([1.0, 0.0, -1.0]), np.array([0.0, 1.0, -2.0])
+    l, m = np.array([1.0, 0.0, -1.0]), np.array([0.0, 1.0, -2.0])  # noqa: E741 (the book's names)
     pair = np.outer(l, m) + np.outer(m, l)
     adj = pj.dual_conic(pair)
     assert np.linalg.matrix_rank(adj) == 1
@@ -86,7 +90,7 @@ def test_dual_conic_is_the_inverse_up_to_scale_and_exists_for_a_line_pair():
 
 
 def test_circular_points_are_fixed_by_similarities_only():
-    I, J = pj.CIRCULAR_POINTS
+    I, J = pj.CIRCULAR_POINTS  # noqa: E741 (the book's names)
     assert np.allclose(np.outer(I, J) + np.outer(J, I), 2 * pj.DUAL_CONIC_AT_INFINITY)
     S = _similarity(0.7, 2.5, 10.0, -3.0)
     for p in (I, J):
@@ -96,14 +100,19 @@ def test_circular_points_are_fixed_by_similarities_only():
     A = np.array([[1.5, 0.2, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])  # an affinity moves them
     q = A @ I
     assert not np.allclose(q / q[0], I)
-    assert not _up_to_scale(pj.map_dual_conic(A, pj.DUAL_CONIC_AT_INFINITY), pj.DUAL_CONIC_AT_INFINITY)
+    assert not _up_to_scale(
+        pj.map_dual_conic(A, pj.DUAL_CONIC_AT_INFINITY), pj.DUAL_CONIC_AT_INFINITY
+    )
     # every circle passes through I and J
     C = pj.circle_conic([4.0, -2.0], 3.0)
     assert abs(I @ C @ I) < 1e-12 and abs(J @ C @ J) < 1e-12
 
 
 def test_conic_points_agree_with_opencv_ellipse_fit():
-    C = pj.map_conic(np.array([[1.2, 0.3, 5.0], [-0.1, 0.9, 2.0], [0.002, 0.001, 1.0]]), pj.circle_conic([40, 30], 20))
+    C = pj.map_conic(
+        np.array([[1.2, 0.3, 5.0], [-0.1, 0.9, 2.0], [0.002, 0.001, 1.0]]),
+        pj.circle_conic([40, 30], 20),
+    )
     pts = pj.conic_points(C, 64)
     (cx, cy), (w, h), _ = cv2.fitEllipse(pts[:-1].astype(np.float32))
     ours_centre = pts[:-1].mean(0)  # uniform in the parameter: the mean is the centre

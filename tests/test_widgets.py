@@ -267,7 +267,9 @@ def test_conic_demo_keeps_points_on_the_mapped_conic_and_sees_similarities():
     demo.set(h31=0.0, h32=0.0, aspect=1.0)  # a rotation: a similarity
     assert demo.state["fixes_circular_points"] and demo.state["axis_ratio"] == pytest.approx(1.0)
     demo.set(aspect=0.6)  # an affinity moves I and J, and the circle becomes an ellipse
-    assert not demo.state["fixes_circular_points"] and demo.state["axis_ratio"] == pytest.approx(0.6)
+    assert not demo.state["fixes_circular_points"] and demo.state["axis_ratio"] == pytest.approx(
+        0.6
+    )
     texts = [t.get_text() for ax in demo.figure.axes for t in ax.texts]
     assert any("H is no similarity" in t for t in texts)
 

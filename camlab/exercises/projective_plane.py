@@ -249,7 +249,8 @@ def _conic_diagnosis(args, got, expected) -> str:
     if np.abs(g - g.T).max() > 1e-9 * np.abs(g).max():
         return (
             f"your C' is not symmetric (C'[0, 1] = {g[0, 1]:.4g}, C'[1, 0] = {g[1, 0]:.4g}), and a conic's "
-            "matrix always is: the left factor must be the transpose of the right one. " + _CONIC_RULE
+            "matrix always is: the left factor must be the transpose of the right one. "
+            + _CONIC_RULE
         )
     H, C = (np.asarray(a, dtype=float) for a in args)
     x = projective.to_homogeneous(projective.map_points(H, projective.conic_points(C, 12)[:-1]))
@@ -292,7 +293,10 @@ register_exercise(
                 )
             ),
             (lambda H, C: np.linalg.inv(H).T @ C @ H, "not symmetric"),
-            (lambda H, C: np.linalg.inv(H).T @ np.linalg.inv(C) @ np.linalg.inv(H), "do not lie on your C'"),
+            (
+                lambda H, C: np.linalg.inv(H).T @ np.linalg.inv(C) @ np.linalg.inv(H),
+                "do not lie on your C'",
+            ),
         ),
         teaching=map_conic,
     )

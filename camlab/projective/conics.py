@@ -59,7 +59,9 @@ def _symmetric(C: ArrayLike, name: str) -> np.ndarray:
     """``C`` as a (3, 3) float array, refusing one that is not symmetric (scale-free test)."""
     Cm = check_matrix(C, (3, 3), name)
     if not Cm.any():
-        raise CamlabInputError(f"{name}: all zeros, which is no conic; pass a (3, 3) symmetric matrix")
+        raise CamlabInputError(
+            f"{name}: all zeros, which is no conic; pass a (3, 3) symmetric matrix"
+        )
     if np.abs(Cm - Cm.T).max() > 1e-9 * np.abs(Cm).max():
         raise CamlabInputError(
             f"{name}: expected a symmetric (3, 3) matrix (a conic's x^T C x = 0 uses only its symmetric "
