@@ -83,6 +83,11 @@ def _line_diagnosis(args, got, expected) -> str:
     if not np.any(got):
         return "you returned (0, 0, 0), which is no line. Lift p and q to (x, y, 1) before the cross product."
     p, q = (np.append(a, 1.0) for a in args)
+    if same_up_to_scale(got, np.cross(np.append(p[1::-1], 1.0), np.append(q[1::-1], 1.0))):
+        return (
+            "you swapped the coordinates: your line passes through (y, x) of each point. A pixel "
+            "(u, v) = (column, row) lifts to (u, v, 1): p[0] first, then p[1], then 1."
+        )
     off = [_incidence(x, np.asarray(got, dtype=float)) for x in (p, q)]
     return (
         f"your line does not pass through both points (normalised |l . p| = {off[0]:.3g}, "
@@ -108,6 +113,10 @@ register_exercise(
         wrong_variants=(
             (lambda p, q: np.cross(np.append(p, 0.0), np.append(q, 0.0)), "Lift p and q"),
             (lambda p, q: np.append(q - p, 0.0), "does not pass through both points"),
+            (
+                lambda p, q: np.cross([p[1], p[0], 1.0], [q[1], q[0], 1.0]),
+                "swapped the coordinates",
+            ),
         ),
         teaching=line_through_points,
     )
@@ -125,6 +134,12 @@ def _vanishing_cases():
 
 def _vanishing_diagnosis(args, got, expected) -> str:
     (segments,) = args
+    swapped = np.asarray(segments, dtype=float)[..., ::-1]
+    if np.shape(got) == (3,) and same_up_to_scale(got, vanishing_point(swapped)):
+        return (
+            "you swapped the coordinates: your point is the vanishing point of the segments with (u, v) read "
+            "as (v, u). A pixel (u, v) = (column, row) lifts to (u, v, 1)."
+        )
     lines = [projective.join(s[0], s[1]) for s in segments]
     return _homogeneous_point_diagnosis(
         got,
@@ -162,6 +177,10 @@ register_exercise(
                 lambda s: projective.from_homogeneous(projective.vanishing_point(s)),
                 "homogeneous 3-vector",
             ),
+            (
+                lambda s: projective.vanishing_point(np.asarray(s)[..., ::-1]),
+                "swapped the coordinates",
+            ),
         ),
         teaching=vanishing_point,
     )
@@ -192,6 +211,8 @@ _CONIC_RULE = (
     "= x'^T (H^-T C H^-1) x', so C' = inv(H).T @ C @ inv(H)"
 )
 
+_CONIC_RULE_SENTENCE = _CONIC_RULE[0].upper() + _CONIC_RULE[1:]  # the rule after a full stop
+
 _CONIC_MISTAKES = (
     Mistake(
         "H for H^-1",
@@ -215,7 +236,7 @@ _CONIC_MISTAKES = (
         lambda a: _inv(a.H) @ a.C @ _inv(a.H),
         "inv(H) @ C @ inv(H) drops a transpose, so your C' is not symmetric, and a conic's matrix always "
         "is (x^T C x only sees its symmetric part): the left factor is the transpose of the right one. "
-        + _CONIC_RULE,
+        + _CONIC_RULE_SENTENCE,
     ),
     Mistake(
         "one factor, like a line",
@@ -250,14 +271,14 @@ def _conic_diagnosis(args, got, expected) -> str:
         return (
             f"your C' is not symmetric (C'[0, 1] = {g[0, 1]:.4g}, C'[1, 0] = {g[1, 0]:.4g}), and a conic's "
             "matrix always is: the left factor must be the transpose of the right one. "
-            + _CONIC_RULE
+            + _CONIC_RULE_SENTENCE
         )
     H, C = (np.asarray(a, dtype=float) for a in args)
     x = projective.to_homogeneous(projective.map_points(H, projective.conic_points(C, 12)[:-1]))
     off = np.abs(np.einsum("ni,ij,nj->n", x, g, x)) / (np.linalg.norm(g) * np.sum(x**2, axis=1))
     return (
         f"the images H x of points x on C do not lie on your C' (normalised |x'^T C' x'| up to {off.max():.3g}). "
-        + _CONIC_RULE
+        + _CONIC_RULE_SENTENCE
     )
 
 
