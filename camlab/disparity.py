@@ -12,7 +12,9 @@ similar triangles, :math:`Z = f B / d`.
   costs around the minimum, and reject pixels whose match is ambiguous or fails the
   left-right consistency check.
 * :func:`sgbm_disparity` is the workhorse: OpenCV's semi-global matching, which adds
-  smoothness costs along 8 paths and is far more robust on weak texture.
+  smoothness costs aggregated along 5 directions (OpenCV's single-pass ``MODE_SGBM``; the
+  8 paths of Hirschmuller's paper need the two-pass ``MODE_HH`` and far more memory) and is
+  far more robust on weak texture.
 
 Conventions: images are (H, W) arrays indexed ``img[v, u]``; disparities are float
 pixels with NaN where there is no reliable match; depth is in metres (the baseline's
@@ -27,6 +29,7 @@ from numpy.typing import ArrayLike
 from ._validate import CamlabInputError, as_float, check_image, check_integer, check_positive
 
 __all__ = [
+    "bad_pixel_rate",
     "block_matching_disparity",
     "box_sum",
     "disparity_to_depth",
@@ -226,7 +229,10 @@ def sgbm_disparity(
 
     ``max_disparity`` is rounded up to OpenCV's multiple of 16 (the search covers
     ``min_disparity`` ... ``min_disparity + numDisparities``); smoothness penalties
-    ``P1 = 8 b^2``, ``P2 = 32 b^2`` as OpenCV's samples use.
+    ``P1 = 8 b^2``, ``P2 = 32 b^2`` as OpenCV's samples use. The mode is OpenCV's default
+    ``STEREO_SGBM_MODE_SGBM``: one pass that aggregates the costs along 5 directions instead of
+    8 (OpenCV's documentation of ``StereoSGBM``); Hirschmuller's full 8 (or 16) paths need the
+    two-pass ``STEREO_SGBM_MODE_HH``, which stores the whole cost volume.
 
     Parameters
     ----------
@@ -274,6 +280,44 @@ def sgbm_disparity(
     raw = sgbm.compute(to8[0], to8[1]).astype(np.float64) / 16.0
     raw[raw < int(min_disparity)] = np.nan
     return raw
+
+
+def bad_pixel_rate(disparity: ArrayLike, truth: ArrayLike, threshold: float = 1.0) -> float:
+    r"""Fraction of the scored pixels whose disparity error exceeds ``threshold``: a stereo benchmark's score.
+
+    A pixel is scored when it has both a match (``disparity`` finite) and a true disparity
+    (``truth`` finite); it is *bad* when :math:`|d - d_{true}| > \tau`. Pixels without a match
+    are left out (report the fraction matched beside it); Middlebury's "bad 1.0" and "bad 2.0"
+    are this rate at :math:`\tau` = 1 and 2 px.
+
+    Parameters
+    ----------
+    disparity : (H, W) array_like
+        The matcher's disparity, pixels; NaN where it found no match.
+    truth : (H, W) array_like
+        The true disparity, pixels; NaN where unknown.
+    threshold : float, optional
+        The error, pixels, above which a pixel is bad (default 1).
+
+    Returns
+    -------
+    float
+        The bad fraction, in [0, 1]; NaN if no pixel is scored.
+
+    Examples
+    --------
+    >>> bad_pixel_rate([[10.0, 12.5, np.nan]], [[10.2, 11.0, 9.0]], threshold=1.0)
+    0.5
+    """
+    d, t = as_float(disparity, "disparity"), as_float(truth, "truth")
+    if d.shape != t.shape:
+        raise CamlabInputError(
+            f"disparity, truth: expected maps of the same shape, got {d.shape} and {t.shape}"
+        )
+    scored = np.isfinite(d) & np.isfinite(t)
+    if not scored.any():
+        return float("nan")
+    return float(np.mean(np.abs(d[scored] - t[scored]) > threshold))
 
 
 def disparity_to_depth(disparity: ArrayLike, focal_length: float, baseline: float) -> np.ndarray:

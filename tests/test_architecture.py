@@ -199,7 +199,7 @@ BARE_TUPLES_ALLOWED = {
     # ("return K, R"), shown as the answer; the exercise's reference is the named camlab result
     "camlab.exercises.projective_camera.rq.rq_decomposition": "an exercise's teaching solution",
     "camlab.exercises.sensor_noise.gain_and_read_noise": "an exercise's teaching solution",
-    "camlab.exercises.start_here.read_and_turn": "an exercise's teaching solution",
+    "camlab.exercises.start_here.conventions.read_and_turn": "an exercise's teaching solution",
     "camlab.exercises.stereo_rectification.epipoles": "an exercise's teaching solution",
     "camlab.exercises.stereo_rectification.decompose_essential": "an exercise's teaching solution",
     # a sequence of artists splatted into view.animate(*...), not a record of named values

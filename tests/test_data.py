@@ -267,3 +267,21 @@ def test_lesson_01_church_window_heights_are_where_the_photo_says():
         assert abs(edges[0] - top) <= 1 and abs(edges[1] - bottom) <= 1, u
         heights.append(edges[1] - edges[0])
     assert np.allclose(heights, [88.8, 79.7, 72.0, 65.7, 59.9], atol=0.3)
+
+
+def test_middlebury_pair_loads_with_its_truth():
+    """The real pair of lesson 11: left pixel (u, v) matches right (u - d, v), and the truth is where it says."""
+    m = data.load_middlebury()
+    assert m.left.shape == m.right.shape == m.disparity.shape == (500, 741)
+    assert m.left.dtype == np.uint8
+    known = np.isfinite(m.disparity)
+    assert 0.9 < known.mean() < 0.95 and 7 < np.nanmin(m.disparity) and np.nanmax(m.disparity) < 61
+    v, u = np.nonzero(known & (np.arange(741)[None, :] > 70))
+    d = m.disparity[v, u]
+    match = np.abs(m.left[v, u].astype(float) - m.right[v, np.round(u - d).astype(int)]).mean()
+    wrong_sign = np.abs(
+        m.left[v, u].astype(float) - m.right[v, np.clip(np.round(u + d), 0, 740).astype(int)]
+    ).mean()
+    assert match < 10 < 30 < wrong_sign
+    assert m.focal == pytest.approx(994.978) and m.baseline == pytest.approx(0.193001)
+    assert m.doffs == pytest.approx(31.086)

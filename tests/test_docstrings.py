@@ -22,16 +22,8 @@ import camlab
 
 ROOT = Path(camlab.__file__).parent
 
-# camlab subpackages whose docstrings other branches are writing (issue 27, item 5)
-PENDING = {
-    "camlab.widgets",
-    "camlab.exercises",
-    # i27-docs-core documented the other algorithm modules; these four are still to do
-    "camlab.affine",
-    "camlab.rectification",
-    "camlab.calibration",
-    "camlab.stitching",
-}
+# camlab subpackages whose docstrings other branches are writing (issue 27, item 5); none left
+PENDING: set[str] = set()
 
 SECTION_UNDERLINE = re.compile(r"^-{3,}$")
 # who is cited: a docstring naming one of these outside its References section needs one

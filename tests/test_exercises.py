@@ -1243,6 +1243,49 @@ def test_read_noise_with_the_quantisation_variance_removed_passes_too(capsys):
     assert check("gain_and_read_noise", emva).passed is True
 
 
+# lesson 11: right answers in other valid forms pass
+
+
+def test_eight_point_accepts_rms_normalisation(capsys):
+    """Scaling to an RMS distance sqrt(2) (not the mean) is Hartley's algorithm too: F moves by ~4e-5."""
+    from camlab.exercises.stereo_rectification import _rms_normalised
+
+    assert check("eight_point", _rms_normalised).passed
+
+
+def test_decompose_essential_accepts_any_order_and_disparity_to_depth_any_float(capsys):
+    from camlab.exercises.stereo_rectification import decompose_essential
+
+    reordered = lambda E: tuple(a[[2, 0, 3, 1]] for a in decompose_essential(E))  # noqa: E731
+    assert check("decompose_essential", reordered).passed
+    assert check("disparity_to_depth", lambda d, f, B: f * B / np.asarray(d, np.float32)).passed
+
+
+def test_jupyter_shows_a_wrong_answer_as_its_message_not_camlab_source():
+    """IPython renders CheckFailed through _render_traceback_: the message, no frames of camlab's
+    check machinery; when the student's function crashed, the student's own frames stay."""
+    from camlab.exercises import check_lift
+    from camlab.exercises._core import CheckFailed
+
+    def lift(p):
+        return np.c_[p, np.zeros(len(p))]
+
+    with pytest.raises(CheckFailed) as wrong:
+        check_lift(lift)
+    shown = "\n".join(wrong.value._render_traceback_())
+    assert shown.startswith("CheckFailed: lift: wrong answer") and "likely cause" in shown
+    assert "_core.py" not in shown and "camlab" + "/exercises" not in shown
+
+    def crashing_lift(p):
+        return p[:, 5]
+
+    with pytest.raises(CheckFailed) as crashed:
+        check_lift(crashing_lift)
+    shown = "\n".join(crashed.value._render_traceback_())
+    assert "in crashing_lift" in shown and "return p[:, 5]" in shown and "IndexError" in shown
+    assert "_core.py" not in shown and "_timer.py" not in shown
+
+
 @pytest.mark.parametrize(
     "answer",
     [

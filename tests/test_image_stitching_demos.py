@@ -30,9 +30,11 @@ def test_ransac_demo_threshold():
     d.set(threshold=3.0)
     at3 = d.state["inliers"]
     assert d.state["accepted"] and d.state["corner_error"] < 1.0 and d.state["false_inliers"] <= 5
-    d.set(threshold=40.0)
-    assert d.state["false_inliers"] > 5  # a loose threshold lets wrong matches in
-    d.set(threshold=0.3)
+    d.set(threshold=40.0, ratio=1.0)
+    # a loose threshold without the ratio test lets wrong matches in, and they drag H away (the lesson's claim)
+    assert d.state["false_inliers"] > 5
+    assert d.state["accepted"] and d.state["corner_error"] > 10
+    d.set(threshold=0.3, ratio=0.75)
     assert d.state["inliers"] < at3  # a tight threshold rejects good matches too
     d.set(threshold=0.05)
     assert (

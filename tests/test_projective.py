@@ -352,3 +352,15 @@ def test_vanishing_points_demo_draws_offimage_points_on_the_horizon():
     d.set(pitch=40.0)
     assert d.state["horizon_visible"] is False
     assert any(t.get_visible() and "above the image" in t.get_text() for t in ax.texts)
+
+
+def test_map_polyline_lifts_the_pen_where_w_changes_sign():
+    # x -> x / (1 - x): the segment from 0 to 3 leaves through infinity at x = 1.
+    H = [[1, 0, 0], [0, 1, 0], [-1, 0, 1]]
+    samples = np.column_stack([np.linspace(0, 3, 6), np.zeros(6)])  # 0, 0.6, 1.2, ...
+    out = pj.map_polyline(H, samples)
+    assert out.shape == (7, 2) and np.isnan(out[2]).all()
+    assert np.allclose(out[:2], pj.map_points(H, samples[:2]))
+    assert np.allclose(out[3:], pj.map_points(H, samples[2:]))
+    # no sign change: the plain mapped samples
+    assert np.allclose(pj.map_polyline(np.eye(3), samples), samples)

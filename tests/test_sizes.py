@@ -23,18 +23,12 @@ MAX_FUNCTION_LINES = 80
 # (camlab.projective), a function by module, classes and enclosing functions
 # (camlab.optimise.levenberg_marquardt, camlab.widgets.projective_camera.resectioning.update).
 EXCEPTIONS = {
-    # lesson 00's exercises, grown on main after i27-exercises split the others
-    "camlab.exercises.start_here": "lesson 00's exercises (i28-00e) wait for the split the other "
-    "lessons' exercises had (one module per exercise, issue 27)",
-    "camlab.exercises.start_here._xy_slip": "its diagnosis table waits for the same split",
-    "camlab.exercises.lenses_and_distortion._distort_causes.model_diagnosis": "grew past 80 lines "
-    "in lesson 02's review round (i28-02e); its causes want a Mistake table like its siblings'",
     # i27-plots splits these (issue 27, item 2)
     "camlab.widgets.affine_cameras.rails.parallel_rails": "i27-plots (issue 27): in its topic module, not yet split by step",
     "camlab.widgets.affine_cameras.rays.projection_rays": "i27-plots (issue 27): in its topic module, not yet split by step",
-    "camlab.widgets.homographies.transformation_hierarchy": "i27-plots (issue 27)",
-    "camlab.widgets.homographies.drag_homography": "i27-plots (issue 27)",
-    "camlab.widgets.homographies.ransac_outliers": "i27-plots (issue 27)",
+    "camlab.widgets.homographies.geometry.transformation_hierarchy": "i27-plots (issue 27)",
+    "camlab.widgets.homographies.geometry.drag_homography": "i27-plots (issue 27)",
+    "camlab.widgets.homographies.estimation.ransac_outliers": "i27-plots (issue 27)",
     "camlab.widgets.image_stitching.matching.ransac_registration": "i27-plots (issue 27): in its topic module, not yet split by step",
     "camlab.widgets.image_stitching.canvas.parallax_ghosting": "i27-plots (issue 27): in its topic module, not yet split by step",
 }

@@ -62,6 +62,17 @@ def test_rectify_pair_vertical_disparity_drops():
     assert cal > 1e-3
 
 
+def test_rectify_pair_zoom_shows_the_raw_vertical_disparity():
+    """The raw pair's few pixels of vertical disparity are invisible at half size: the zoom panel
+    enlarges one match whose offset is large, and it vanishes after rectification."""
+    demo = demos.rectify_pair()
+    demo.set(method="original")
+    assert demo.state["zoom_offset"] > 3  # half-size px, drawn about 8 screen px each
+    for method in ("calibrated", "uncalibrated"):
+        demo.set(method=method)
+        assert abs(demo.state["zoom_offset"]) < 0.1
+
+
 def test_epipolar_lines_forward_motion_puts_the_epipole_in_the_image():
     demo = demos.epipolar_lines()
     assert not demo.state["epipole_inside"]  # the side-by-side rig: far outside

@@ -42,8 +42,10 @@ def _affine_from(A2: np.ndarray, R: np.ndarray, t: np.ndarray) -> np.ndarray:
 
 
 def orthographic_matrix(R: ArrayLike, t: ArrayLike) -> np.ndarray:
-    r"""The orthographic camera: :math:`P = \begin{pmatrix} 1&0&0&0 \\ 0&1&0&0 \\ 0&0&0&1\end{pmatrix}
-    \begin{pmatrix} R & t \\ 0^\top & 1\end{pmatrix}`.
+    r"""The orthographic camera matrix: keep the camera x, y coordinates and forget depth.
+
+    .. math:: P = \begin{pmatrix} 1&0&0&0 \\ 0&1&0&0 \\ 0&0&0&1\end{pmatrix}
+              \begin{pmatrix} R & t \\ 0^\top & 1\end{pmatrix}
 
     It keeps the camera x, y coordinates (metres) and forgets depth.
 
@@ -57,7 +59,12 @@ def orthographic_matrix(R: ArrayLike, t: ArrayLike) -> np.ndarray:
     Returns
     -------
     (3, 4) ndarray
-        Image coordinates in metres.
+        The camera; it gives image coordinates in metres.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 6.3.4
+       (a hierarchy of affine cameras: orthographic projection).
 
     Examples
     --------
@@ -70,8 +77,37 @@ def orthographic_matrix(R: ArrayLike, t: ArrayLike) -> np.ndarray:
 def scaled_orthographic_matrix(
     R: ArrayLike, t: ArrayLike, k: float, principal_point: ArrayLike = (0.0, 0.0)
 ) -> np.ndarray:
-    r"""Scaled orthographic: orthographic projection times ``k`` pixels per metre, plus the
-    principal point (cx, cy): :math:`u = k (r_1 \cdot X + t_1) + c_x`, likewise v."""
+    r"""The scaled orthographic camera: orthographic projection, ``k`` pixels per metre.
+
+    :math:`u = k (r_1 \cdot X + t_1) + c_x`, likewise v: :func:`weak_perspective_matrix` with
+    equal scales and no skew.
+
+    Parameters
+    ----------
+    R : (3, 3) array_like
+        cam_from_world rotation.
+    t : (3,) array_like
+        cam_from_world translation (metres); only t[0], t[1] matter.
+    k : float
+        The scale, pixels per metre (> 0).
+    principal_point : (2,) array_like
+        The pixel offset (cx, cy) added to every image point.
+
+    Returns
+    -------
+    (3, 4) ndarray
+        An affine camera (last row (0, 0, 0, 1)) giving pixels.
+
+    Raises
+    ------
+    CamlabInputError
+        ``R`` not a rotation, ``t`` or ``principal_point`` of the wrong shape, ``k <= 0``.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 6.3.4
+       (a hierarchy of affine cameras: scaled orthographic projection).
+    """
     return weak_perspective_matrix(R, t, k, k, 0.0, principal_point)
 
 
@@ -83,7 +119,7 @@ def weak_perspective_matrix(
     skew: float = 0.0,
     principal_point: ArrayLike = (0.0, 0.0),
 ) -> np.ndarray:
-    r"""A weak-perspective camera, or with ``skew`` a general affine camera (H&Z §6.3.4):
+    r"""A weak-perspective camera, or with ``skew`` a general affine camera.
 
     .. math:: P = \begin{pmatrix} \alpha_x & s & c_x \\ 0 & \alpha_y & c_y \\ 0 & 0 & 1 \end{pmatrix}
               \begin{pmatrix} r_1^\top & t_1 \\ r_2^\top & t_2 \\ 0^\top & 1 \end{pmatrix}
@@ -99,13 +135,32 @@ def weak_perspective_matrix(
 
     Parameters
     ----------
-    R, t : cam_from_world pose.
+    R : (3, 3) array_like
+        cam_from_world rotation.
+    t : (3,) array_like
+        cam_from_world translation (metres); only t[0], t[1] matter.
     ax, ay : float
         Scales in pixels per metre (> 0): a perspective camera's :math:`f / d_0`.
     skew : float
         Pixels per metre of the second camera axis added to u (0 for weak perspective).
     principal_point : (2,) array_like
         A constant pixel offset (redundant with ``t``; see above).
+
+    Returns
+    -------
+    (3, 4) ndarray
+        An affine camera (last row (0, 0, 0, 1)) giving pixels.
+
+    Raises
+    ------
+    CamlabInputError
+        ``R`` not a rotation, ``t`` or ``principal_point`` of the wrong shape, ``ax`` or
+        ``ay`` not positive.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 6.3.4
+       (a hierarchy of affine cameras: weak perspective, the general affine camera).
 
     Examples
     --------
@@ -125,7 +180,26 @@ def weak_perspective_matrix(
 
 
 def is_affine(P: ArrayLike, tol: float = 1e-12) -> bool:
-    """True if P's last row is proportional to (0, 0, 0, 1) (its centre is at infinity)."""
+    """Whether a camera matrix is affine: its centre is at infinity.
+
+    Parameters
+    ----------
+    P : (3, 4) array_like
+        A camera matrix.
+    tol : float
+        Relative tolerance: the first three entries of the last row may be up to ``tol``
+        times the largest of ``|P[2, 3]|`` and ``P``'s largest entry.
+
+    Returns
+    -------
+    bool
+        True if P's last row is proportional to (0, 0, 0, 1) with ``P[2, 3] != 0``.
+
+    Raises
+    ------
+    CamlabInputError
+        ``P`` not a finite (3, 4) matrix.
+    """
     a = check_matrix(P, (3, 4), "P")
     last = a[2]
     return bool(
@@ -134,11 +208,11 @@ def is_affine(P: ArrayLike, tol: float = 1e-12) -> bool:
 
 
 def affine_approximation(camera: Camera, reference_point: ArrayLike) -> np.ndarray:
-    r"""The weak-perspective approximation of a perspective camera about a point (H&Z §6.3.1).
+    r"""The weak-perspective approximation of a perspective camera about a point.
 
     Every point's depth is replaced by the reference point's depth (zeroth order in depth;
     :func:`paraperspective_approximation` is the first-order one). With :math:`d_0 = r_3 \cdot X_0 + t_3` the depth of the reference point
-    :math:`X_0`, replacing every point's depth by :math:`d_0` gives (H&Z §6.3.1)
+    :math:`X_0`, replacing every point's depth by :math:`d_0` gives
 
     .. math:: P_\infty = K \begin{pmatrix} r_1^\top & t_1 \\ r_2^\top & t_2 \\ 0^\top & d_0 \end{pmatrix},
 
@@ -158,6 +232,17 @@ def affine_approximation(camera: Camera, reference_point: ArrayLike) -> np.ndarr
     -------
     (3, 4) ndarray
         An affine camera (last row (0, 0, 0, 1)).
+
+    Raises
+    ------
+    CamlabInputError
+        ``camera`` not a :class:`~camlab.camera.Camera`, or ``reference_point`` not a 3-vector
+        in front of it.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, sections 6.3.1
+       (the affine camera :math:`P_\infty` about a reference point) and 6.3.2 (its error).
     """
     d0 = _reference_depth(camera, reference_point)[1]
     E = np.zeros((3, 4))
@@ -188,8 +273,8 @@ def paraperspective_approximation(camera: Camera, reference_point: ArrayLike) ->
 
     Weak perspective (:func:`affine_approximation`) projects every point onto the plane
     :math:`z = d_0` through the reference point :math:`X_0` **along the optical axis**, then
-    divides by :math:`d_0`. Para-perspective (Ohta, Maenobu and Sakai 1981; Aloimonos 1990; Szeliski §2.1.4)
-    projects along
+    divides by :math:`d_0`. Para-perspective (Ohta, Maenobu and Sakai [2]_; Aloimonos [3]_;
+    Szeliski [4]_) projects along
     the **ray through** :math:`X_0` instead, so its rays, and its centre at infinity
     :math:`(d, 0)`, point along the line of sight to :math:`X_0`, not along :math:`r_3`. In camera coordinates, with
     :math:`(a, b) = (x_0 / d_0, y_0 / d_0)` the reference point's normalised image position,
@@ -207,7 +292,7 @@ def paraperspective_approximation(camera: Camera, reference_point: ArrayLike) ->
     nearer :math:`x_{X_0}` than the principal point (most points of a compact object seen off-centre); at the
     principal point weak perspective is exact. It is still an affine camera (last row (0, 0, 0, 1)), but not a weak-perspective
     one: in general (:math:`a b \neq 0`) the rows of its :math:`M_2` are neither orthogonal nor of equal
-    length, so it is a general affine camera (8 degrees of freedom, H&Z §6.3.4).
+    length, so it is a general affine camera (8 degrees of freedom [1]_).
 
     Parameters
     ----------
@@ -221,6 +306,23 @@ def paraperspective_approximation(camera: Camera, reference_point: ArrayLike) ->
     (3, 4) ndarray
         An affine camera (last row (0, 0, 0, 1)) that images ``reference_point`` exactly where
         ``camera`` does, with the same first derivatives there.
+
+    Raises
+    ------
+    CamlabInputError
+        ``camera`` not a :class:`~camlab.camera.Camera`, or ``reference_point`` not a 3-vector
+        in front of it.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 6.3.4
+       (the general affine camera).
+    .. [2] Y. Ohta, K. Maenobu and T. Sakai, 1981, "Obtaining surface orientation from texels
+       under perspective projection", *Proc. IJCAI*, 746-751.
+    .. [3] J. Aloimonos, 1990, "Perspective approximations", *Image and Vision Computing* 8(3),
+       179-192.
+    .. [4] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022, section
+       2.1.4 (3D to 2D projections: para-perspective).
     """
     X0, d0 = _reference_depth(camera, reference_point)
     ab = (camera.R[:2] @ X0 + camera.t[:2]) / d0  # normalised image coordinates of X0
@@ -244,6 +346,18 @@ def weak_perspective_error(
     the point's depth offset relative to the reference depth. Pass
     ``approximation=paraperspective_approximation`` to measure that camera instead.
 
+    Parameters
+    ----------
+    camera : Camera
+        The perspective camera (its distortion is ignored).
+    points_world : (N, 3) array_like
+        World points, metres.
+    reference_point : (3,) array_like, optional
+        The point the approximation is taken about; default the points' centroid.
+    approximation : callable, optional
+        ``approximation(camera, reference_point) -> (3, 4)`` affine camera; default
+        :func:`affine_approximation`.
+
     Returns
     -------
     (N,) ndarray
@@ -258,12 +372,34 @@ def weak_perspective_error(
 
 
 def image_of_direction(P: ArrayLike, direction: ArrayLike) -> np.ndarray:
-    r"""Where a family of parallel world lines with ``direction`` d meets in the image:
-    :math:`v = P (d, 0)^\top`, homogeneous (3,).
+    r"""Where a family of parallel world lines with direction d meets in the image.
 
-    For a finite camera this is the vanishing point :math:`K R d`. For an affine camera
-    its last coordinate is 0: an ideal point, so the image lines are parallel too (with
-    direction v[:2]).
+    :math:`v = P (d, 0)^\top`. For a finite camera this is the vanishing point :math:`K R d`.
+    For an affine camera its last coordinate is 0: an ideal point, so the image lines are
+    parallel too (with direction v[:2]).
+
+    Parameters
+    ----------
+    P : (3, 4) array_like
+        A camera matrix.
+    direction : (3,) array_like
+        The lines' direction in world coordinates (non-zero; its length does not matter).
+
+    Returns
+    -------
+    (3,) ndarray
+        The homogeneous image point :math:`P_{:, :3}\, d` (last coordinate 0 for an affine
+        camera).
+
+    Raises
+    ------
+    CamlabInputError
+        ``P`` not (3, 4), ``direction`` not a non-zero 3-vector.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 8.6.1
+       (vanishing points, :math:`v = K R d`), and section 6.3 (affine cameras).
     """
     Pm = check_matrix(P, (3, 4), "P")
     d = check_matrix(direction, (3,), "direction")
@@ -280,8 +416,8 @@ def projection_rays(
 ) -> np.ndarray:
     r"""The rays of one camera model in a top view (camera x across, z forward; centre at the origin).
 
-    Each point travels to its image on the line :math:`z =` ``image_depth`` (H&Z §6.3; Szeliski
-    fig. 2.7): **perspective** straight towards the centre; **orthographic** parallel to the optical
+    Each point travels to its image on the line :math:`z =` ``image_depth`` ([1]_, [2]_):
+    **perspective** straight towards the centre; **orthographic** parallel to the optical
     axis (image x in metres); **weak perspective** parallel to the axis onto the plane :math:`z = d_0`
     through the reference point, then towards the centre; **para-perspective** parallel to the ray
     through the reference point onto that plane, then towards the centre.
@@ -292,7 +428,8 @@ def projection_rays(
         Points (x, z) in metres, in front of the camera (z > 0).
     reference_xz : (2,) array_like
         The reference point :math:`X_0 = (x_0, d_0)`, :math:`d_0 > 0`.
-    model : one of :data:`PROJECTION_MODELS`
+    model : str
+        One of :data:`PROJECTION_MODELS`.
     image_depth : float
         Where the image line is drawn (z, metres).
 
@@ -301,6 +438,18 @@ def projection_rays(
     (N, 3, 2) ndarray
         Per point: the point, where its ray bends (on :math:`z = d_0`; the point itself for the
         perspective and orthographic models) and its image on :math:`z =` ``image_depth``.
+
+    Raises
+    ------
+    CamlabInputError
+        Points not (N, 2), a non-positive reference depth or ``image_depth``, an unknown model.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 6.3
+       (cameras at infinity, affine cameras).
+    .. [2] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022, section
+       2.1.4 (3D to 2D projections, the figure of the projection models).
     """
     p = as_points(points_xz, 2, "points_xz").array
     x0, d0 = check_matrix(reference_xz, (2,), "reference_xz")

@@ -39,13 +39,15 @@ def dolly_zoom_camera(
     principal_point: tuple[float, float] = (319.5, 239.5),
     image_offset: float = 0.0,
 ) -> Camera:
-    r"""A camera on a dolly zoom towards ``target``, its depth ``distance`` metres, zoomed to
-    :func:`dolly_zoom_focal` ``(f0, d0, distance)`` so the target keeps the size it has at depth ``d0`` with
-    focal length ``f0`` (pixels). See lesson 05, section 2.
+    r"""A camera on a dolly zoom towards ``target``: at depth ``distance``, zoomed to keep its size.
+
+    The camera is ``distance`` metres from the target (its depth), zoomed to
+    :func:`dolly_zoom_focal` ``(f0, d0, distance)`` so the target keeps the size it has at depth
+    ``d0`` with focal length ``f0`` (pixels). See lesson 05, section 2.
 
     The camera keeps one orientation R at every distance: that of a camera on the orbit (``azimuth``,
     ``elevation``, radians: :func:`camlab.camera.orbit_eye`) looking at the target. It moves along its own
-    principal axis, as in H&Z §6.3.1: :math:`C = X_T - s\,r_1 - d\,r_3`, so the target has camera
+    principal axis, as in H&Z [1]_: :math:`C = X_T - s\,r_1 - d\,r_3`, so the target has camera
     coordinates :math:`(s, 0, d)`, depth ``distance`` = d. ``image_offset`` (pixels) sets the sideways
     shift :math:`s = \text{image\_offset}\; d_0 / f_0` metres, which images the target exactly
     ``image_offset`` px right of the principal point at every distance (:math:`f s / d = f_0 s / d_0`, as
@@ -56,6 +58,38 @@ def dolly_zoom_camera(
     and its depth grows by the same amount, while f / d stays f0 / d0: the affine approximation
     :math:`P_\infty` about the target is the same matrix at every distance, the fixed image the
     perspective one converges to.
+
+    Parameters
+    ----------
+    distance : float
+        The target's depth in the camera, metres (> 0).
+    azimuth, elevation : float
+        The orbit direction the camera looks from, radians (:func:`camlab.camera.orbit_eye`).
+    target : (3,) array_like
+        The world point the camera looks at, metres.
+    f0 : float
+        The focal length at depth ``d0``, pixels.
+    d0 : float
+        The reference depth, metres.
+    principal_point : (2,) tuple of float
+        (cx, cy), pixels.
+    image_offset : float
+        Where the target is imaged, pixels right of the principal point.
+
+    Returns
+    -------
+    Camera
+        The camera, focal :math:`f_0\, d / d_0`, no distortion.
+
+    Raises
+    ------
+    CamlabInputError
+        A non-positive ``distance``, ``f0`` or ``d0``, or ``target`` not a 3-D point.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 6.3.1
+       (moving the camera centre back along the principal axis while zooming).
     """
     distance = check_positive(distance, "distance", "metres")
     f = dolly_zoom_focal(f0, d0, distance)
@@ -78,12 +112,36 @@ def dolly_zoom_errors(
     approximation: Callable[[Camera, ArrayLike], np.ndarray] | None = None,
     image_offset: float = 0.0,
 ) -> np.ndarray:
-    """RMS pixel distance between the perspective and weak-perspective images of ``points_world`` along a
-    dolly zoom: one value per distance of :func:`dolly_zoom_camera`, weak perspective about ``target``
-    (or ``approximation(camera, target)``, e.g. :func:`paraperspective_approximation`).
+    """RMS pixel distance between perspective and weak-perspective images along a dolly zoom.
+
+    One value per distance of :func:`dolly_zoom_camera`: the perspective and weak-perspective
+    images of ``points_world``, weak perspective about ``target`` (or
+    ``approximation(camera, target)``, e.g. :func:`paraperspective_approximation`).
 
     The object keeps its image size while the depth range shrinks relative to the distance, so
-    the error falls like 1 / d (lesson 05, section 2). ``image_offset`` is :func:`dolly_zoom_camera`'s.
+    the error falls like 1 / d (lesson 05, section 2).
+
+    Parameters
+    ----------
+    points_world : (N, 3) array_like
+        The object's points, metres.
+    distances : (D,) array_like
+        The target depths along the dolly zoom, metres (positive).
+    azimuth, elevation, target, f0, d0, image_offset
+        As for :func:`dolly_zoom_camera`.
+    approximation : callable, optional
+        ``approximation(camera, target) -> (3, 4)`` affine camera; default
+        :func:`affine_approximation`.
+
+    Returns
+    -------
+    (D,) ndarray
+        The RMS image distance at each distance, pixels.
+
+    Raises
+    ------
+    CamlabInputError
+        ``distances`` empty, not 1-D, or not all positive and finite.
     """
     ds = as_float(distances, "distances")
     if ds.ndim != 1 or len(ds) == 0 or not np.all(np.isfinite(ds) & (ds > 0)):
@@ -119,9 +177,29 @@ class ThreeImages(NamedTuple):
 
 
 def three_images(camera: Camera, segments: ArrayLike) -> ThreeImages:
-    """Segments (M, 2, 3), metres, seen by ``camera``, by its weak-perspective approximation about
-    the segments' centroid (:func:`affine_approximation`), and by the orthographic camera with
-    the same pose (:func:`orthographic_matrix`). See lesson 05, section 1.
+    """Segments seen by a camera, by its weak-perspective approximation and by orthography.
+
+    The weak-perspective camera is :func:`affine_approximation` about the segments' centroid;
+    the orthographic one (:func:`orthographic_matrix`) has ``camera``'s pose. See lesson 05,
+    section 1.
+
+    Parameters
+    ----------
+    camera : Camera
+        The perspective camera.
+    segments : (M, 2, 3) array_like
+        World segments (two end points each), metres.
+
+    Returns
+    -------
+    ThreeImages
+        ``perspective``, ``weak`` (pixels) and ``orthographic`` (metres) images, (M, 2, 2)
+        each, and the matrices ``P_weak`` and ``P_orth`` used.
+
+    Raises
+    ------
+    CamlabInputError
+        Segments not (M, 2, 3) or not finite.
     """
     perspective = project_segments(camera, segments)  # validates the segments
     segs = check_finite(
@@ -141,9 +219,34 @@ def largest_gap_in_frame(
     size: tuple[int, int] = (640, 480),
     samples: int = 41,
 ) -> float:
-    """The largest distance (pixels) between the perspective and the affine image of the same world point,
-    over ``samples`` points along each (M, 2, 3) segment whose two images both fall inside the
-    ``size`` = (width, height) frame (NaN if none does): what a reader can see in the picture."""
+    """The largest pixel gap between the perspective and affine images of one point in the frame.
+
+    Over ``samples`` points along each segment whose two images both fall inside the frame:
+    what a reader can see in the picture.
+
+    Parameters
+    ----------
+    camera : Camera
+        The perspective camera (its distortion is ignored).
+    P_affine : (3, 4) array_like
+        The affine camera compared with it.
+    segments : (M, 2, 3) array_like
+        World segments, metres.
+    size : (2,) tuple of int
+        The frame (width, height), pixels.
+    samples : int
+        Points sampled along each segment, end points included.
+
+    Returns
+    -------
+    float
+        The largest distance, pixels; NaN if no sample has both images in the frame.
+
+    Raises
+    ------
+    CamlabInputError
+        Segments not (M, 2, 3) or not finite.
+    """
     segs = check_finite(np.asarray(segments, dtype=float), "segments")
     if segs.ndim != 3 or segs.shape[1:] != (2, 3):
         raise CamlabInputError(
@@ -166,9 +269,30 @@ def largest_gap_in_frame(
 
 
 def dolly_zoom_focal(f0: float, d0: float, d: float) -> float:
-    r"""The focal length that keeps an object's image size fixed when the camera moves
-    from distance ``d0`` to ``d``: the image size is :math:`\propto f / d`, so
-    :math:`f = f_0 \, d / d_0` (the "Vertigo" dolly zoom)."""
+    r"""The focal length that keeps an object's image size fixed as the camera moves.
+
+    Moving from distance ``d0`` to ``d``: the image size is :math:`\propto f / d`, so
+    :math:`f = f_0 \, d / d_0` (the "Vertigo" dolly zoom).
+
+    Parameters
+    ----------
+    f0 : float
+        The focal length at distance ``d0``, pixels (> 0).
+    d0 : float
+        The starting distance, metres (> 0).
+    d : float
+        The new distance, metres (> 0).
+
+    Returns
+    -------
+    float
+        The focal length at ``d``, pixels.
+
+    Raises
+    ------
+    CamlabInputError
+        A non-positive argument.
+    """
     return (
         check_positive(f0, "f0", "pixels")
         * check_positive(d, "d", "metres")

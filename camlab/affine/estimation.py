@@ -26,7 +26,7 @@ __all__ = [
 
 
 def estimate_affine_camera(points_world: ArrayLike, points_image: ArrayLike) -> np.ndarray:
-    r"""The gold-standard affine camera from N >= 4 correspondences (H&Z algorithm 7.2).
+    r"""The Gold Standard affine camera from N >= 4 world/image correspondences.
 
     An affine camera is linear, :math:`u_i = M_2 X_i + t_2`, so the image error is linear
     in its 8 entries and the least-squares solution *is* the maximum-likelihood estimate
@@ -40,6 +40,7 @@ def estimate_affine_camera(points_world: ArrayLike, points_image: ArrayLike) -> 
     points_world : (N, 3) array_like
         World points (metres), N >= 4, not coplanar.
     points_image : (N, 2) array_like
+        Their images, pixels.
 
     Returns
     -------
@@ -52,6 +53,11 @@ def estimate_affine_camera(points_world: ArrayLike, points_image: ArrayLike) -> 
         Fewer than 4 points or mismatched counts.
     DegenerateError
         Coplanar world points (M_2 is then not determined).
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, chapter 7,
+       algorithm 7.2 (the Gold Standard algorithm for an affine camera).
     """
     X, uv, _ = as_point_pairs(
         points_world,
@@ -100,12 +106,34 @@ class AffineDeparture(NamedTuple):
 def affine_departure(
     H: ArrayLike, size: tuple[int, int], samples: int = 30, points: ArrayLike | None = None
 ) -> AffineDeparture:
-    r"""The distance between the homography ``H`` and its least-squares affine fit, everywhere on a
-    ``samples`` x ``samples`` grid of pixel centres spanning a ``size`` = (width, height) image, and at
-    ``points`` ((N, 2) pixels, e.g. the matches ``H`` was fitted to, where it is not extrapolated).
+    r"""The distance between a homography and its least-squares affine fit, over an image.
 
-    The affine fit minimises the squared distance over the grid. See :func:`affine_fit_departure`
-    (the largest of these distances) and lesson 05, section 5.
+    Everywhere on a ``samples`` x ``samples`` grid of pixel centres spanning the image, and at
+    ``points`` (e.g. the matches ``H`` was fitted to, where it is not extrapolated). The affine
+    fit minimises the squared distance over the grid. See :func:`affine_fit_departure` (the
+    largest of these distances) and lesson 05, section 5.
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography, pixels to pixels.
+    size : (2,) tuple of int
+        The image (width, height), pixels.
+    samples : int
+        Grid points along each side.
+    points : (N, 2) array_like, optional
+        Pixels where the distance is also wanted.
+
+    Returns
+    -------
+    AffineDeparture
+        ``u``, ``v`` (the grid, pixels), ``distance`` (at each grid point, pixels) and
+        ``at_points`` ((N,) pixels; empty without ``points``).
+
+    Raises
+    ------
+    CamlabInputError
+        ``H`` not (3, 3), a non-positive size, or ``points`` not (N, 2).
     """
     Hm = check_matrix(H, (3, 3), "H")
     width, height = (int(check_positive(n, "size", "pixels")) for n in size)
@@ -128,16 +156,42 @@ def affine_departure(
 
 
 def affine_fit_departure(H: ArrayLike, size: tuple[int, int], samples: int = 30) -> float:
-    r"""How far the homography ``H`` is from an affine map over a ``size`` = (width, height) image: the
-    largest distance (pixels) between ``H`` and its least-squares affine fit on a ``samples`` x ``samples``
-    grid of pixel centres spanning the image (:func:`affine_departure`).
+    r"""How far a homography is from an affine map over an image, pixels.
+
+    The largest distance between ``H`` and its least-squares affine fit on a ``samples`` x
+    ``samples`` grid of pixel centres spanning the image (:func:`affine_departure`).
 
     Two affine cameras see a plane through affine maps, so two views of a plane are related by an
     affinity; for perspective cameras the map is a homography. It is affine exactly when it keeps the
-    line at infinity (H&Z §2.7.1): when the plane meets both cameras' principal planes in the same
+    line at infinity [1]_: when the plane meets both cameras' principal planes in the same
     line. That holds when both views see the plane face-on (its depth nearly constant across each
     picture), but also, exactly, for one perspective camera slid within its principal plane without
     turning. So a large departure proves perspective matters for the plane in at least one view; a
     small one does not prove affine cameras. See lesson 05, section 5.
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography, pixels to pixels.
+    size : (2,) tuple of int
+        The image (width, height), pixels.
+    samples : int
+        Grid points along each side.
+
+    Returns
+    -------
+    float
+        The largest distance, pixels.
+
+    Raises
+    ------
+    CamlabInputError
+        ``H`` not (3, 3) or a non-positive size.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 2.7.1
+       (the line at infinity is fixed by a projective transformation exactly when it is an
+       affinity).
     """
     return float(affine_departure(H, size, samples).distance.max())

@@ -60,7 +60,8 @@ class CalibrationResult:
     iterations : int
     converged : bool
     initial : dict
-        Zhang's closed-form stages: ``K``, ``dist``, ``homographies``, ``rvecs``, ``tvecs``.
+        Where the refinement started: ``K``, ``dist``, ``homographies``, ``rvecs``, ``tvecs``
+        (Zhang's closed-form stages, or the caller's guesses) and ``closed_form``.
     """
 
     K: np.ndarray
@@ -106,13 +107,32 @@ class CalibrationResult:
         return dict(zip(PARAM_NAMES, (float(v) for v in vals), strict=True))
 
     def reprojected(self, view: int) -> np.ndarray:
-        """(N_v, 2) pixels where the calibrated model puts view ``view``'s corners."""
+        """Where the calibrated model puts one view's corners.
+
+        Parameters
+        ----------
+        view : int
+            The view's index, 0 to V - 1.
+
+        Returns
+        -------
+        (N_v, 2) ndarray
+            The reprojected corners, pixels (distortion applied).
+        """
         return reproject(
             self.object_points[view], self.K, self.dist, self.rvecs[view], self.tvecs[view]
         )
 
     def summary(self) -> str:
-        """A few lines for people: parameters with their standard deviations, rms."""
+        """A few lines for people: parameters with their standard deviations, rms.
+
+        Returns
+        -------
+        str
+            The view and corner counts, the rms (pixels) and whether LM converged; fx, fy,
+            cx, cy (and skew when free) and the distortion coefficients, each with its
+            standard deviation.
+        """
         p, s = self.intrinsics, self.std
         lines = [
             f"calibrated from {self.n_views} views, {self.n_points} corners; rms reprojection error "
@@ -169,14 +189,17 @@ def calibrate_camera(
         a warm start from an earlier calibration converges in a few iterations).
     pose_guess : (V, 6) array_like, optional
         Start each view's pose from (rvec, tvec) instead of its homography; needs ``K_guess``.
-        With all three guesses Zhang's closed form is skipped entirely (``initial`` is then
-        empty).
+        With all three guesses Zhang's closed form is skipped entirely (``initial`` then
+        holds the guesses, its ``homographies`` None and ``closed_form`` False).
     max_iter : int
         Most LM iterations.
 
     Returns
     -------
     CalibrationResult
+        ``K``, ``dist``, the poses ``rvecs``, ``tvecs``, ``rms`` and ``per_view_rms``
+        (pixels), ``residuals``, ``std`` and ``covariance`` of the global parameters, and the
+        refinement's history (see :class:`CalibrationResult`).
 
     Raises
     ------
@@ -197,6 +220,13 @@ def calibrate_camera(
     the initial damping is small (``tau = 1e-5`` relative to diag(J^T J)): the distortion
     coefficients are strongly correlated, and a larger damping would crawl along that valley
     for many iterations before it shrank.
+
+    References
+    ----------
+    .. [1] Z. Zhang, 2000, "A flexible new technique for camera calibration", *IEEE
+       Transactions on Pattern Analysis and Machine Intelligence* 22(11), 1330-1334.
+    .. [2] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section A6.3 (sparse
+       Levenberg-Marquardt, the Schur complement).
     """
     views, size = _check_calibration_inputs(object_points, image_points, image_size, fix)
     start = initial_estimate(
@@ -320,7 +350,7 @@ def closed_form_with_distortion(
        Levenberg-Marquardt run on the reprojection error, started at k = 0);
     3. undistort the observed corners with that K and (k1, k2), and go back to 1.
 
-    This is Zhang's alternation (2000, section 3.3) with the pose refinement inside the
+    This is Zhang's alternation [1]_ with the pose refinement inside the
     distortion step; three rounds give k1 within 1%, k2 within 10% and fx within 0.1% on the
     lesson's rendered set, where the plain linear step gives k1 of the wrong sign.
 
@@ -334,6 +364,21 @@ def closed_form_with_distortion(
     Returns
     -------
     ClosedFormWithDistortion
+        ``K`` (last round), ``dist`` (k1, k2, 0, 0, 0), ``poses`` (V, 6) and ``rounds`` (per
+        round: K, (k1, k2), rms in pixels).
+
+    Raises
+    ------
+    CamlabInputError
+        Fewer than 3 views, bad points or image size, or ``rounds`` < 1.
+    DegenerateError
+        The views do not determine K.
+
+    References
+    ----------
+    .. [1] Z. Zhang, 2000, "A flexible new technique for camera calibration", *IEEE
+       Transactions on Pattern Analysis and Machine Intelligence* 22(11), 1330-1334,
+       section 3.3 (dealing with radial distortion: alternation).
     """
     from ..distortion import undistort_pixels
 
@@ -425,8 +470,34 @@ def initial_estimate(
 ) -> InitialEstimate:
     """Zhang's closed form (homographies, K, poses, linear radial distortion), or the caller's guesses.
 
-    ``views`` as validated by :func:`~camlab.calibration.zhang.check_views`; other
-    arguments as in :func:`calibrate_camera`.
+    Parameters
+    ----------
+    views : Views
+        As validated by :func:`~camlab.calibration.zhang.check_views`.
+    size : (width, height)
+        Image size, pixels (conditions the closed-form K).
+    skew, fix, K_guess, dist_guess, pose_guess
+        As in :func:`calibrate_camera`. Without ``dist_guess``, (k1, k2) come from the
+        linear radial step unless both are fixed (then 0; k1 alone if only k2 is fixed).
+
+    Returns
+    -------
+    InitialEstimate
+        ``K``, ``dist``, ``poses`` (V, 6), ``homographies`` (None with ``pose_guess``), ``g``
+        (the 10 global parameters) and ``closed_form`` (True without ``K_guess``).
+
+    Raises
+    ------
+    CamlabInputError
+        ``pose_guess`` without ``K_guess``, or a ``pose_guess`` that is not (V, 6) finite.
+    DegenerateError
+        The views do not determine K.
+
+    References
+    ----------
+    .. [1] Z. Zhang, 2000, "A flexible new technique for camera calibration", *IEEE
+       Transactions on Pattern Analysis and Machine Intelligence* 22(11), 1330-1334,
+       sections 3.1 (closed form) and 3.3 (radial distortion).
     """
     if pose_guess is not None and K_guess is None:
         raise CamlabInputError(
@@ -489,8 +560,19 @@ class PaddedViews(NamedTuple):
 def pad_views(objs: list, imgs: list) -> PaddedViews:
     """Pad V views of different lengths to (V, M) arrays so the refinement is vectorised.
 
-    Returns board points X (V, M, 3), observed corners (V, M, 2) and a (V, M) mask that is 0
-    on padded rows (they repeat the view's first point and carry no weight).
+    Parameters
+    ----------
+    objs : list of V (N_v, 3) ndarray
+        Each view's board points.
+    imgs : list of V (N_v, 2) ndarray
+        Each view's corners, pixels.
+
+    Returns
+    -------
+    PaddedViews
+        ``X`` (V, M, 3) board points, ``observed`` (V, M, 2) corners and ``mask`` (V, M), 0
+        on padded rows (they repeat the view's first point and carry no weight); M is the
+        longest view's length.
     """
     V, M = len(objs), max(len(o) for o in objs)
     X, obs, mask = np.zeros((V, M, 3)), np.zeros((V, M, 2)), np.zeros((V, M))

@@ -39,6 +39,13 @@ def projection_uncertainty(result: CalibrationResult, step: int = 20) -> Uncerta
     ray (the same analytic Jacobian as the refinement), the pixel covariance is
     :math:`J_g \Sigma J_g^\top`; we report the square root of its largest eigenvalue.
 
+    Parameters
+    ----------
+    result : CalibrationResult
+        The calibration (its K, distortion, free parameters and covariance are used).
+    step : int
+        Grid spacing, pixels; the grid starts half a step in from the image's top-left.
+
     Returns
     -------
     UncertaintyMap
@@ -86,6 +93,13 @@ class CoachReport(NamedTuple):
     advice: list
 
     def text(self) -> str:
+        """The advice as a bulleted list, one ``- `` line per sentence.
+
+        Returns
+        -------
+        str
+            The lines of ``advice``, most important first.
+        """
         return "\n".join(f"- {a}" for a in self.advice)
 
 
@@ -130,8 +144,17 @@ def coach(result: CalibrationResult, grid: tuple[int, int] = (4, 6)) -> CoachRep
     Parameters
     ----------
     result : CalibrationResult
+        The calibration to judge.
     grid : (rows, cols)
         Cells for the coverage check.
+
+    Returns
+    -------
+    CoachReport
+        ``coverage`` (fraction of grid cells with a corner) and ``coverage_grid`` (the
+        counts), ``worst_views`` and ``error_ratio``, ``relative_std``, ``tilt_degrees``,
+        ``uncertainty`` (the largest projection sigma, pixels) and ``advice`` (sentences,
+        most important first).
     """
     w, h = result.image_size
     rows, cols = grid

@@ -44,6 +44,25 @@ class PatternSize(NamedTuple):
 def parse_pattern(pattern: str | Sequence[int], name: str = "pattern") -> PatternSize:
     """``"9x6"`` or ``(9, 6)`` -> ``(9, 6)`` inner corners (columns, rows); fractions are refused.
 
+    Parameters
+    ----------
+    pattern : str or (2,) sequence of int
+        ``"COLSxROWS"`` (``*`` also separates; case ignored) or (cols, rows).
+    name : str
+        The argument's name in error messages.
+
+    Returns
+    -------
+    PatternSize
+        ``cols``, ``rows``: whole numbers, each >= 2.
+
+    Raises
+    ------
+    CamlabInputError
+        Not two whole numbers, or fewer than 2 corners either way.
+
+    Examples
+    --------
     >>> parse_pattern("9x6")
     PatternSize(cols=9, rows=6)
     >>> parse_pattern((9.5, 6))
@@ -77,6 +96,25 @@ def board_points(pattern_size: Sequence[int] | str, square_size: float) -> np.nd
     Row-major like OpenCV's corner order: ``(i * square, j * square, 0)`` for row j, column i,
     N = cols * rows.
 
+    Parameters
+    ----------
+    pattern_size : str or (2,) sequence of int
+        Inner corners (cols, rows) or ``"COLSxROWS"`` (:func:`parse_pattern`).
+    square_size : float
+        The side of one square, metres (> 0).
+
+    Returns
+    -------
+    (N, 3) ndarray
+        The corners, metres, Z = 0.
+
+    Raises
+    ------
+    CamlabInputError
+        A bad pattern or a non-positive ``square_size``.
+
+    Examples
+    --------
     >>> board_points((3, 2), 0.5)
     array([[0. , 0. , 0. ],
            [0.5, 0. , 0. ],
@@ -97,6 +135,23 @@ def grey_uint8(image: ArrayLike, name: str = "image") -> np.ndarray:
     Non-uint8 images are first stretched to 0..255 (all channels together), then colour is
     converted to grey: ``cv2.cvtColor`` accepts only 8-bit, 16-bit and float32 input, so
     converting a float64 RGB image first would fail.
+
+    Parameters
+    ----------
+    image : (H, W), (H, W, 1), (H, W, 3) or (H, W, 4) array_like
+        Grey, RGB or RGBA, any dtype.
+    name : str
+        The argument's name in error messages.
+
+    Returns
+    -------
+    (H, W) ndarray of uint8
+        The grey image (a constant non-uint8 image gives zeros).
+
+    Raises
+    ------
+    CamlabInputError
+        Not an image of 1, 3 or 4 channels, non-finite pixels, or an empty image.
     """
     import cv2
 

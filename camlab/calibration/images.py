@@ -33,7 +33,13 @@ class ImageCalibration(NamedTuple):
     detections: list
 
     def report(self) -> str:
-        """Which images were used, which failed and why."""
+        """Which images were used, which failed and why.
+
+        Returns
+        -------
+        str
+            "U of N images used", then one line per skipped image naming it and the reason.
+        """
         lines = [f"{len(self.used)} of {len(self.names)} images used"]
         for i, why in sorted(self.failed.items()):
             lines.append(f"  skipped {self.names[i]}: {why}")

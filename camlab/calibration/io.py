@@ -24,7 +24,28 @@ def save_calibration(
     OpenCV users load it with ``fs = cv2.FileStorage(path, cv2.FILE_STORAGE_READ);
     K = fs.getNode("camera_matrix").mat(); dist = fs.getNode("distortion_coefficients").mat()``.
     The file is read back before it replaces an old one (OpenCV writes a short or empty
-    file on a full disk without an error); ``name`` is the argument named in errors.
+    file on a full disk without an error).
+
+    Parameters
+    ----------
+    result : CalibrationResult
+        From :func:`calibrate_camera`: its image size, K, dist, rms, per-view rms, standard
+        deviations and poses are written.
+    path : str or os.PathLike
+        The file; its suffix (.json, .yaml, .yml, .xml) picks the format.
+    name : str
+        The argument named in errors.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Raises
+    ------
+    CamlabInputError
+        ``result`` not a :class:`CalibrationResult`, a path that cannot be written or has
+        another suffix, or a file that does not read back.
     """
     import cv2
 
@@ -88,9 +109,32 @@ class SavedCalibration(NamedTuple):
 
 
 def load_calibration(path: str | os.PathLike, *, name: str = "path") -> SavedCalibration:
-    """Read ``(K, dist, image_size)`` from a file written by :func:`save_calibration`, by OpenCV
-    with the same node names, or by ROS's camera calibrator (``camera_info`` YAML, whose
-    matrices are ``rows``/``cols``/``data`` maps; ``distortion_model: plumb_bob``). ``name`` is the argument named in errors."""
+    """Read ``(K, dist, image_size)`` from a calibration file: camlab's, OpenCV's or ROS's.
+
+    The file was written by :func:`save_calibration`, by OpenCV with the same node names, or
+    by ROS's camera calibrator (``camera_info`` YAML, whose matrices are
+    ``rows``/``cols``/``data`` maps; ``distortion_model: plumb_bob``).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+    name : str
+        The argument named in errors.
+
+    Returns
+    -------
+    SavedCalibration
+        ``K`` (3, 3), ``dist`` (4,) or (5,) in OpenCV's order, and ``image_size`` (width,
+        height), pixels.
+
+    Raises
+    ------
+    CamlabInputError
+        No such file, a file OpenCV cannot parse, another distortion model, missing or
+        malformed nodes, or sizes that are not a 3 x 3 K, 4 or 5 coefficients and a positive
+        image size.
+    """
 
     if not isinstance(path, (str, os.PathLike)):
         raise CamlabInputError(f"{name}: expected a file path, got {type(path).__name__}")

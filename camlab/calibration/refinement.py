@@ -124,11 +124,28 @@ class JacobianBlocks(NamedTuple):
 def project_views(
     g: np.ndarray, poses: np.ndarray, X: np.ndarray, jac: bool = False
 ) -> np.ndarray | ViewProjection:
-    r"""Project padded board points X (V, M, 3) with global parameters g (10,) and poses (V, 6).
+    r"""Project every view's board points with the global parameters and per-view poses.
 
-    Returns uv (V, M, 2), or with ``jac`` a :class:`ViewProjection`: uv, d uv / d g
-    (V, M, 2, 10) and d uv / d pose (V, M, 2, 6) (pose = rvec, t). The chain rule, point by point:
-    :math:`u = K_p\,\mathrm{distort}(\pi(R X + t))` with :math:`K_p = [[f_x, s], [0, f_y]]`.
+    The chain rule, point by point: :math:`u = K_p\,\mathrm{distort}(\pi(R X + t)) + c` with
+    :math:`K_p = [[f_x, s], [0, f_y]]`.
+
+    Parameters
+    ----------
+    g : (10,) ndarray
+        Global parameters in ``PARAM_NAMES`` order (fx, fy, cx, cy, skew in pixels; k1, k2,
+        p1, p2, k3).
+    poses : (V, 6) ndarray
+        Each view's (rvec, t), cam_from_board: axis-angle (radians) and translation.
+    X : (V, M, 3) ndarray
+        Each view's (padded) board points.
+    jac : bool
+        Also return the Jacobians.
+
+    Returns
+    -------
+    (V, M, 2) ndarray or ViewProjection
+        The pixels ``uv``; with ``jac`` a :class:`ViewProjection`: ``uv``, ``d_global``
+        (d uv / d g, (V, M, 2, 10)) and ``d_pose`` (d uv / d (rvec, t), (V, M, 2, 6)).
     """
     fx, fy, cx, cy, s, k1, k2, p1, p2, k3 = g
     R, Jl = _rotations_and_left_jacobians(poses[:, :3])
@@ -194,13 +211,41 @@ class BlockNormal:
         self.gp = np.einsum("vki,vk->vi", Jp, r)
 
     def gradient(self) -> np.ndarray:
+        r"""The gradient :math:`J^\top r` of the cost, in the order of the unknowns.
+
+        Returns
+        -------
+        (n_i + 6V,) ndarray
+            The intrinsics' block, then each view's pose block.
+        """
         return np.concatenate([self.gi, self.gp.ravel()])
 
     def diagonal(self) -> np.ndarray:
+        r"""The diagonal of :math:`J^\top J` (of U and of every :math:`V_v`).
+
+        Returns
+        -------
+        (n_i + 6V,) ndarray
+            In the order of the unknowns.
+        """
         return np.concatenate([np.diag(self.U), np.diagonal(self.Vb, axis1=1, axis2=2).ravel()])
 
     def schur(self, mu: float = 0.0) -> SchurComplement:
-        """(S, V'^-1, W V'^-1) for damping mu."""
+        """The Schur complement of the damped system, with the pieces :meth:`solve` reuses.
+
+        The diagonal of U is clamped to at least 1e-12 times its largest entry before it is
+        damped, so a parameter the data hardly touch still gets a positive damping.
+
+        Parameters
+        ----------
+        mu : float
+            The damping; 0 gives the undamped S (for the covariance).
+
+        Returns
+        -------
+        SchurComplement
+            ``S`` (n_i, n_i), ``V_inv`` (V, 6, 6) and ``Y`` = W V'^-1 (V, n_i, 6).
+        """
         dU = np.diag(self.U)
         Ud = self.U + mu * np.diag(np.maximum(dU, 1e-12 * max(dU.max(initial=0.0), 1e-300)))
         dV = np.diagonal(self.Vb, axis1=1, axis2=2)
@@ -211,6 +256,18 @@ class BlockNormal:
         return SchurComplement(S, Vinv, Y)
 
     def solve(self, mu: float) -> np.ndarray:
+        r"""The damped Levenberg-Marquardt step, by eliminating the poses (see the class).
+
+        Parameters
+        ----------
+        mu : float
+            The damping, relative to the diagonal.
+
+        Returns
+        -------
+        (n_i + 6V,) ndarray
+            The step :math:`(\delta_i, \delta_1, \ldots, \delta_V)`.
+        """
         S, Vinv, Y = self.schur(mu)
         di = np.linalg.solve(S, -self.gi + np.einsum("vij,vj->i", Y, self.gp))
         dp = np.einsum("vij,vj->vi", Vinv, -self.gp - np.einsum("vij,i->vj", self.W, di))
@@ -230,9 +287,35 @@ class CalibrationProblem:
         self._last = None
 
     def pack(self, g: np.ndarray, poses: np.ndarray) -> np.ndarray:
+        """The unknowns as one vector: the free global parameters, then every pose.
+
+        Parameters
+        ----------
+        g : (10,) ndarray
+            Global parameters in ``PARAM_NAMES`` order (only the free ones are kept).
+        poses : (V, 6) ndarray
+            Each view's (rvec, t).
+
+        Returns
+        -------
+        (n_i + 6V,) ndarray
+            The packed vector.
+        """
         return np.concatenate([g[self.free], poses.ravel()])
 
     def unpack(self, x: np.ndarray) -> CalibrationUnknowns:
+        """The inverse of :meth:`pack`; fixed global parameters keep their start value.
+
+        Parameters
+        ----------
+        x : (n_i + 6V,) ndarray
+            The packed unknowns.
+
+        Returns
+        -------
+        CalibrationUnknowns
+            ``g`` (10,) and ``poses`` (V, 6).
+        """
         g = self.g0.copy()
         g[self.free] = x[: self.ni]
         return CalibrationUnknowns(g, x[self.ni :].reshape(self.V, 6))
@@ -258,12 +341,50 @@ class CalibrationProblem:
         return r, J
 
     def residuals(self, x: np.ndarray) -> np.ndarray:
+        """Reprojected minus observed corners, zero on padded rows.
+
+        Parameters
+        ----------
+        x : (n_i + 6V,) ndarray
+            The packed unknowns.
+
+        Returns
+        -------
+        (2VM,) ndarray
+            The residuals, pixels, view by view, (u, v) per point.
+        """
         return self._evaluate(x)[0]
 
     def jacobian(self, x: np.ndarray) -> JacobianBlocks:
+        """The residuals' Jacobian at ``x``, by block (shared with :meth:`residuals`' pass).
+
+        Parameters
+        ----------
+        x : (n_i + 6V,) ndarray
+            The packed unknowns.
+
+        Returns
+        -------
+        JacobianBlocks
+            ``intrinsic`` (V, 2M, n_i) and ``pose`` (V, 2M, 6).
+        """
         return self._evaluate(x)[1]
 
     def normal_equations(self, J: JacobianBlocks, r: np.ndarray) -> NormalEquations:
+        """The normal equations in block form, for :func:`camlab.optimise.levenberg_marquardt`.
+
+        Parameters
+        ----------
+        J : JacobianBlocks
+            From :meth:`jacobian`.
+        r : (2VM,) ndarray
+            From :meth:`residuals`.
+
+        Returns
+        -------
+        NormalEquations
+            A :class:`BlockNormal` and its gradient.
+        """
         A = BlockNormal(J.intrinsic, J.pose, r.reshape(self.V, -1))
         return NormalEquations(A, A.gradient())
 
@@ -275,6 +396,30 @@ def reproject(
 
     NaN for points behind the camera (:math:`z_c \le 0`) and beyond the distortion model's
     valid radius, where cv2.projectPoints returns a mirrored pixel.
+
+    Parameters
+    ----------
+    object_points : (N, 3) array_like
+        Board points, metres.
+    K : (3, 3) array_like
+        Intrinsics, pixels.
+    dist : array_like or None
+        Distortion coefficients, OpenCV's order (None: none).
+    rvec : (3,) array_like
+        Axis-angle rotation, cam_from_board, radians.
+    tvec : (3,) array_like
+        Translation, cam_from_board, metres.
+
+    Returns
+    -------
+    (N, 2) ndarray
+        Pixels; NaN where described above.
+
+    Raises
+    ------
+    CamlabInputError
+        Points not (N, 3), ``K`` not intrinsics, bad coefficients, or a pose that is not two
+        3-vectors.
     """
     X = as_points(object_points, 3, "object_points").array
     Km = check_intrinsics(K, "K")

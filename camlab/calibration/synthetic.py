@@ -54,6 +54,40 @@ def make_synthetic_views(
     places it 0.3-0.6 m away at a random spot so that every corner lands at least
     ``margin`` pixels inside the image, and adds Gaussian noise of ``noise`` pixels to the
     exact corners (projected with :func:`camlab.render.project`).
+
+    Parameters
+    ----------
+    n_views : int
+        How many views.
+    noise : float
+        Standard deviation of the Gaussian corner noise, pixels (0: exact corners).
+    K : (3, 3) array_like
+        The camera's intrinsics, pixels.
+    dist : array_like or None
+        Its distortion coefficients, OpenCV's order (None: none).
+    pattern_size : (cols, rows) or str
+        Inner corners of the board.
+    square : float
+        Square size, metres.
+    image_size : (width, height)
+        Pixels.
+    margin : float
+        Least distance of every corner from the image border, pixels.
+    rng : numpy.random.Generator, optional
+        The random source (default a fresh, unseeded one).
+
+    Returns
+    -------
+    SyntheticSet
+        ``object_points`` (N, 3), noisy ``image_points`` and noise-free ``exact`` (V lists of
+        (N, 2)), the truth ``K``, ``dist``, ``R`` (V, 3, 3), ``t`` (V, 3), ``image_size`` and
+        ``noise``.
+
+    Raises
+    ------
+    CamlabInputError
+        Bad intrinsics, coefficients or pattern, or no placement found inside the image in
+        200 tries per view.
     """
     from ..camera import rotation_from_euler
     from ..render import project

@@ -52,10 +52,26 @@ def optimal_new_camera_matrix(
     of border-to-border pixels undistorted to normalised coordinates, the inner rectangle
     (inside all of them) and outer rectangle (around all of them) are mapped onto the image.
 
+    Parameters
+    ----------
+    K : (3, 3) array_like
+        The photo's intrinsics, pixels.
+    dist : array_like or None
+        Its distortion coefficients, OpenCV's order (None: none).
+    image_size : (width, height)
+        The photo's size (and the output's), pixels.
+    alpha : float
+        In [0, 1]: 0 no black borders, 1 no lost pixels.
+
     Returns
     -------
     (3, 3) ndarray
         New K (zero skew), pixels.
+
+    Raises
+    ------
+    CamlabInputError
+        Bad intrinsics, coefficients or size, or ``alpha`` outside [0, 1].
     """
     Km = check_intrinsics(K)
     d = as_dist(dist)
@@ -93,11 +109,32 @@ class UndistortionTradeoff(NamedTuple):
 def undistortion_tradeoff(
     K: ArrayLike, dist: ArrayLike | None, image_size: Sequence[int], new_K: ArrayLike, step: int = 4
 ) -> UndistortionTradeoff:
-    """(black_fraction, lost_fraction) of undistorting with ``new_K``.
+    """What undistorting with ``new_K`` costs: the black border and the lost pixels.
 
-    ``black_fraction``: share of output pixels that sample outside the photo (black
-    border); ``lost_fraction``: share of photo pixels that land outside the output. Both on
-    a grid every ``step`` pixels.
+    Parameters
+    ----------
+    K : (3, 3) array_like
+        The photo's intrinsics, pixels.
+    dist : array_like or None
+        Its distortion coefficients, OpenCV's order (None: none).
+    image_size : (width, height)
+        The photo's size (and the output's), pixels.
+    new_K : (3, 3) array_like
+        The undistorted image's intrinsics (e.g. :func:`optimal_new_camera_matrix`).
+    step : int
+        Both shares are measured on a grid every ``step`` pixels.
+
+    Returns
+    -------
+    UndistortionTradeoff
+        ``black_fraction``: share of output pixels that sample outside the photo (black
+        border); ``lost_fraction``: share of photo pixels that land outside the output (all
+        of them when the distortion cannot be inverted over the photo).
+
+    Raises
+    ------
+    CamlabInputError
+        Bad intrinsics, coefficients or size.
     """
     Km, Kn = check_intrinsics(K), check_intrinsics(new_K, "new_K")
     d = as_dist(dist)
@@ -164,6 +201,30 @@ def undistort(
 
     ``alpha`` as in :func:`optimal_new_camera_matrix`: 0 crops to valid pixels, 1 keeps all.
     The remap uses :func:`camlab.distortion.undistort_image` (bilinear, black outside).
+
+    Parameters
+    ----------
+    image : (H, W) or (H, W, C) array_like
+        The photo.
+    result : CalibrationResult, optional
+        The calibration; its K and dist override ``K`` and ``dist``.
+    K : (3, 3) array_like, optional
+        Intrinsics, pixels (needed without ``result``).
+    dist : array_like, optional
+        Distortion coefficients, OpenCV's order.
+    alpha : float
+        In [0, 1]: 0 no black borders, 1 no lost pixels.
+
+    Returns
+    -------
+    Undistorted
+        ``image`` (same size as the photo), ``K`` (its intrinsics, no distortion),
+        ``black_fraction`` and ``lost_fraction`` (:func:`undistortion_tradeoff`).
+
+    Raises
+    ------
+    CamlabInputError
+        Not an image, neither ``result`` nor ``K``, or a bad ``alpha``.
     """
     img = check_image(image)
     if result is not None:

@@ -52,12 +52,34 @@ class Views(NamedTuple):
 
 
 def check_views(object_points, image_points, min_views: int = 1) -> Views:
-    """Lists of (N_v, 3) and (N_v, 2) float arrays, validated view by view: as many corners as
-    board points, finite corners, a flat board (Z = 0, :func:`planar_xy`).
+    """Validate views of a flat board, view by view, into lists of float arrays.
 
-    The public estimators (:func:`view_homographies`, :func:`initial_radial_distortion`)
-    check their arguments with it; a pipeline that has checked its views once passes the
-    :class:`Views` to :func:`homographies_of` and :func:`radial_distortion_of`.
+    Each view needs as many corners as board points, finite corners and a flat board (Z = 0,
+    :func:`planar_xy`). The public estimators (:func:`view_homographies`,
+    :func:`initial_radial_distortion`) check their arguments with it; a pipeline that has
+    checked its views once passes the :class:`Views` to :func:`homographies_of` and
+    :func:`radial_distortion_of`.
+
+    Parameters
+    ----------
+    object_points : (N, 3) array_like or sequence of V (N_v, 3) array_like
+        The board points, metres, Z = 0: one array for every view, or one per view.
+    image_points : sequence of V (N_v, 2) array_like
+        Each view's detected corners, pixels (a single (N, 2) array is one view). OpenCV's
+        (N, 1, 2) shape is accepted.
+    min_views : int
+        The fewest views accepted.
+
+    Returns
+    -------
+    Views
+        ``object_points`` (V arrays (N_v, 3)) and ``image_points`` (V arrays (N_v, 2)).
+
+    Raises
+    ------
+    CamlabInputError
+        Fewer than ``min_views`` views, a view with fewer than 4 points, a corner count that
+        differs from the board's, a non-finite corner, or a board with Z != 0.
     """
     if isinstance(image_points, np.ndarray) and image_points.ndim == 2:
         image_points = [image_points]
@@ -118,6 +140,25 @@ def check_views(object_points, image_points, min_views: int = 1) -> Views:
 
 
 def planar_xy(obj: np.ndarray, v: int) -> np.ndarray:
+    """The (X, Y) of a flat board's points, after checking that every Z is 0.
+
+    Parameters
+    ----------
+    obj : (N, 3) ndarray
+        One view's board points, metres.
+    v : int
+        The view's index, for the error message.
+
+    Returns
+    -------
+    (N, 2) ndarray
+        The points' X, Y (a view of ``obj``).
+
+    Raises
+    ------
+    CamlabInputError
+        A Z larger than 1e-9 times the board's extent: the target is not flat.
+    """
     scale = max(np.abs(obj[:, :2]).max(), 1e-300)
     if np.abs(obj[:, 2]).max() > 1e-9 * scale:
         raise CamlabInputError(
@@ -131,16 +172,51 @@ def planar_xy(obj: np.ndarray, v: int) -> np.ndarray:
 def view_homographies(
     object_points: Sequence[ArrayLike] | ArrayLike, image_points: Sequence[ArrayLike]
 ) -> np.ndarray:
-    """(V, 3, 3) homographies board plane (X, Y) -> image (u, v), one per view (normalised DLT).
+    """One homography per view, board plane (X, Y) to image (u, v), by the normalised DLT.
 
-    Uses :func:`camlab.homography.estimate_homography` (Hartley normalisation); each H is
-    scaled so H[2, 2] = 1.
+    Uses :func:`camlab.homography.estimate_homography` (Hartley normalisation) on the views
+    :func:`check_views` validates; each H is scaled so H[2, 2] = 1.
+
+    Parameters
+    ----------
+    object_points : (N, 3) array_like or sequence of V (N_v, 3) array_like
+        The board points, metres, Z = 0 (one array for all views, or one per view).
+    image_points : sequence of V (N_v, 2) array_like
+        Each view's detected corners, pixels.
+
+    Returns
+    -------
+    (V, 3, 3) ndarray
+        The homographies, H[2, 2] = 1 where possible.
+
+    Raises
+    ------
+    CamlabInputError
+        No views, a view with fewer than 4 points, a corner count that
+        differs from the board's, a non-finite corner, or a board with Z != 0.
+
+    References
+    ----------
+    .. [1] Z. Zhang, 2000, "A flexible new technique for camera calibration", *IEEE
+       Transactions on Pattern Analysis and Machine Intelligence* 22(11), 1330-1334,
+       section 2.2 and appendix A.
     """
     return homographies_of(check_views(object_points, image_points))
 
 
 def homographies_of(views: Views) -> np.ndarray:
-    """:func:`view_homographies` of views :func:`check_views` has validated."""
+    """:func:`view_homographies` of views :func:`check_views` has validated.
+
+    Parameters
+    ----------
+    views : Views
+        From :func:`check_views`.
+
+    Returns
+    -------
+    (V, 3, 3) ndarray
+        One board -> image homography per view.
+    """
     return np.stack([estimate_homography(o[:, :2], p) for o, p in zip(*views, strict=True)])
 
 
@@ -155,6 +231,33 @@ def zhang_v(H: ArrayLike, i: int, j: int) -> np.ndarray:
         v_{ij} = (h_{i1} h_{j1},\ h_{i1} h_{j2} + h_{i2} h_{j1},\ h_{i2} h_{j2},\
                   h_{i3} h_{j1} + h_{i1} h_{j3},\ h_{i3} h_{j2} + h_{i2} h_{j3},\ h_{i3} h_{j3})
 
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        A view's board -> image homography.
+    i, j : int
+        Column indices, 0, 1 or 2.
+
+    Returns
+    -------
+    (6,) ndarray
+        :math:`v_{ij}`.
+
+    Raises
+    ------
+    CamlabInputError
+        ``H`` not (3, 3), or ``i``, ``j`` not 0, 1 or 2.
+    DegenerateError
+        ``H`` all zeros.
+
+    References
+    ----------
+    .. [1] Z. Zhang, 2000, "A flexible new technique for camera calibration", *IEEE
+       Transactions on Pattern Analysis and Machine Intelligence* 22(11), 1330-1334,
+       section 3.1 (eq. 7).
+
+    Examples
+    --------
     >>> zhang_v(np.eye(3), 0, 0)
     array([1., 0., 0., 0., 0., 0.])
     """
@@ -192,6 +295,29 @@ def zhang_constraints(H: ArrayLike) -> np.ndarray:
         h_1^\top B h_1 = h_2^\top B h_2 \;\Rightarrow\; (v_{11} - v_{22})^\top b = 0 .
 
     (In 0-based column indices: ``zhang_v(H, 0, 1)`` and ``zhang_v(H, 0, 0) - zhang_v(H, 1, 1)``.)
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        A view's board -> image homography.
+
+    Returns
+    -------
+    (2, 6) ndarray
+        The rows :math:`v_{12}^\top` and :math:`(v_{11} - v_{22})^\top`.
+
+    Raises
+    ------
+    CamlabInputError
+        ``H`` not (3, 3).
+    DegenerateError
+        ``H`` all zeros.
+
+    References
+    ----------
+    .. [1] Z. Zhang, 2000, "A flexible new technique for camera calibration", *IEEE
+       Transactions on Pattern Analysis and Machine Intelligence* 22(11), 1330-1334,
+       sections 2.3 and 3.1 (eq. 8).
     """
     return np.stack([zhang_v(H, 0, 1), zhang_v(H, 0, 0) - zhang_v(H, 1, 1)])
 
@@ -199,7 +325,7 @@ def zhang_constraints(H: ArrayLike) -> np.ndarray:
 def intrinsics_from_b(b: ArrayLike) -> np.ndarray:
     r"""K from :math:`b \propto (B_{11}, B_{12}, B_{22}, B_{13}, B_{23}, B_{33})` in closed form.
 
-    Zhang (2000), appendix B, with :math:`B = \lambda K^{-\top} K^{-1}`:
+    Zhang [1]_, appendix B, with :math:`B = \lambda K^{-\top} K^{-1}`:
 
     .. math::
         c_y &= (B_{12} B_{13} - B_{11} B_{23}) / (B_{11} B_{22} - B_{12}^2) \\
@@ -211,10 +337,29 @@ def intrinsics_from_b(b: ArrayLike) -> np.ndarray:
 
     b is known only up to scale and sign; the sign is chosen to make B positive definite.
 
+    Parameters
+    ----------
+    b : (6,) array_like
+        :math:`(B_{11}, B_{12}, B_{22}, B_{13}, B_{23}, B_{33})`, up to scale and sign.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        K, upper triangular with K[2, 2] = 1 (pixels), skew ``s`` included.
+
     Raises
     ------
+    CamlabInputError
+        ``b`` not 6 finite numbers.
     DegenerateError
-        If no sign of b gives a positive definite B (the views do not determine K).
+        If no sign of b gives a positive definite B, or the focal length comes out
+        imaginary (the views do not determine K).
+
+    References
+    ----------
+    .. [1] Z. Zhang, 2000, "A flexible new technique for camera calibration", *IEEE
+       Transactions on Pattern Analysis and Machine Intelligence* 22(11), 1330-1334,
+       appendix B.
     """
     bv = np.asarray(b, dtype=float).ravel()
     if bv.shape != (6,) or not np.isfinite(bv).all():
@@ -261,10 +406,33 @@ def intrinsics_from_homographies(
     :math:`T H = (T K) [r_1\ r_2\ t]`, so the method yields :math:`T K` and
     :math:`K = T^{-1} (T K)`.
 
+    Parameters
+    ----------
+    homographies : (V, 3, 3) array_like
+        The views' board -> image homographies.
+    skew : bool
+        Estimate the skew too (otherwise it is 0).
+    image_size : (width, height), optional
+        The image size, pixels, for the conditioning :math:`T`; default from the homographies'
+        translations.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        K, pixels, with K[2, 2] = 1.
+
     Raises
     ------
+    CamlabInputError
+        ``homographies`` not (V, 3, 3).
     DegenerateError
         Too few views, or a set that leaves b undetermined (all boards parallel).
+
+    References
+    ----------
+    .. [1] Z. Zhang, 2000, "A flexible new technique for camera calibration", *IEEE
+       Transactions on Pattern Analysis and Machine Intelligence* 22(11), 1330-1334,
+       section 3.1 (closed-form solution).
     """
     Hs = np.asarray(homographies, dtype=float)
     if Hs.ndim != 3 or Hs.shape[1:] != (3, 3):
@@ -309,6 +477,33 @@ def extrinsics_from_homography(K: ArrayLike, H: ArrayLike) -> Pose:
     :math:`K^{-1} H = \lambda [r_1\ r_2\ t]` with :math:`\lambda = 1 / \|K^{-1} h_1\|`
     (sign chosen so the board is in front, :math:`t_z > 0`), :math:`r_3 = r_1 \times r_2`.
     With noise :math:`[r_1\ r_2\ r_3]` is not orthonormal; :func:`nearest_rotation` fixes that.
+    (The code takes :math:`\lambda` from the mean of :math:`\|K^{-1} h_1\|` and
+    :math:`\|K^{-1} h_2\|`.)
+
+    Parameters
+    ----------
+    K : (3, 3) array_like
+        Intrinsics, pixels.
+    H : (3, 3) array_like
+        The view's board -> image homography.
+
+    Returns
+    -------
+    Pose
+        ``R`` (3, 3) and ``t`` (3,), metres in the board's units: cam_from_board.
+
+    Raises
+    ------
+    CamlabInputError
+        ``K`` not intrinsics or ``H`` not (3, 3).
+    DegenerateError
+        ``H``'s first two columns are dependent.
+
+    References
+    ----------
+    .. [1] Z. Zhang, 2000, "A flexible new technique for camera calibration", *IEEE
+       Transactions on Pattern Analysis and Machine Intelligence* 22(11), 1330-1334,
+       section 3.1 and appendix C (the nearest rotation).
     """
     Km = check_intrinsics(K, "K")
     Hm = check_matrix(H, (3, 3), "H")
@@ -329,7 +524,7 @@ def extrinsics_from_homography(K: ArrayLike, H: ArrayLike) -> Pose:
 def initial_radial_distortion(
     K: ArrayLike, object_points, image_points, R: ArrayLike, t: ArrayLike
 ) -> np.ndarray:
-    r"""Linear least-squares (k1, k2) given K and every view's pose (Zhang 2000, section 3.3).
+    r"""Linear least-squares radial distortion (k1, k2) given K and every view's pose.
 
     With ideal normalised points :math:`x` (from K, R, t, no distortion), radius
     :math:`r^2 = x^2 + y^2` and ideal pixels :math:`(u, v)`, the radial model says the
@@ -340,16 +535,58 @@ def initial_radial_distortion(
         \begin{pmatrix} (u - c_x) r^2 & (u - c_x) r^4 \\ (v - c_y) r^2 & (v - c_y) r^4 \end{pmatrix}
         \begin{pmatrix} k_1 \\ k_2 \end{pmatrix} = \begin{pmatrix} \breve u - u \\ \breve v - v \end{pmatrix}.
 
+    Parameters
+    ----------
+    K : (3, 3) array_like
+        Intrinsics, pixels.
+    object_points : (N, 3) array_like or sequence of V (N_v, 3) array_like
+        The board points, metres, Z = 0.
+    image_points : sequence of V (N_v, 2) array_like
+        The observed (distorted) corners, pixels.
+    R : (V, 3, 3) array_like
+        Each view's rotation, cam_from_board.
+    t : (V, 3) array_like
+        Each view's translation, cam_from_board (board units).
+
     Returns
     -------
     (2,) ndarray
         (k1, k2).
+
+    Raises
+    ------
+    CamlabInputError
+        No views, a view with fewer than 4 points, a corner count that
+        differs from the board's, a non-finite corner, or a board with Z != 0.
+
+    References
+    ----------
+    .. [1] Z. Zhang, 2000, "A flexible new technique for camera calibration", *IEEE
+       Transactions on Pattern Analysis and Machine Intelligence* 22(11), 1330-1334,
+       section 3.3 (dealing with radial distortion).
     """
     return radial_distortion_of(K, check_views(object_points, image_points), R, t)
 
 
 def radial_distortion_of(K: ArrayLike, views: Views, R: ArrayLike, t: ArrayLike) -> np.ndarray:
-    """:func:`initial_radial_distortion` for views :func:`check_views` has validated."""
+    """:func:`initial_radial_distortion` for views :func:`check_views` has validated.
+
+    Parameters
+    ----------
+    K : (3, 3) array_like
+        Intrinsics, pixels.
+    views : Views
+        From :func:`check_views`.
+    R : (V, 3, 3) array_like
+        Each view's rotation, cam_from_board.
+    t : (V, 3) array_like
+        Each view's translation, cam_from_board.
+
+    Returns
+    -------
+    (2,) ndarray
+        (k1, k2).
+    """
     Km = np.asarray(K, dtype=float)
     Rs, ts = np.asarray(R, dtype=float).reshape(-1, 3, 3), np.asarray(t, dtype=float).reshape(-1, 3)
     rows, rhs = [], []

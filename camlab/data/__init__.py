@@ -12,6 +12,8 @@ One module per set, each with its loader:
     ``stereo/``: a rendered stereo rig with true disparity and calibration views (lesson 11).
 :mod:`camlab.data.photos`
     ``photos/``: real photographs (mvtb-data, MIT; the chessboard views are OpenCV's samples, Apache-2.0).
+:mod:`camlab.data.middlebury`
+    ``middlebury/``: a real rectified stereo pair with true disparity (Middlebury 2014 via scikit-image, BSD).
 
 The loaders sit at the bottom of the import graph: they read files and build the camera
 model, and run no algorithm (``tests/test_architecture.py``). What runs camlab to make or
@@ -32,6 +34,7 @@ from ._resources import (
     regeneration_dir,
 )
 from .calibration import CalibrationSet, load_calibration_set
+from .middlebury import MiddleburyPair, load_middlebury
 from .panorama import (
     PanoramaSet,
     PlanarPair,
@@ -44,6 +47,7 @@ from .stereo import StereoRig, load_stereo_rig
 
 __all__ = [
     "CalibrationSet",
+    "MiddleburyPair",
     "PanoramaSet",
     "PlanarPair",
     "StereoRig",
@@ -55,6 +59,7 @@ __all__ = [
     "lessons_dir",
     "load_aerial_mosaic",
     "load_calibration_set",
+    "load_middlebury",
     "load_panorama_set",
     "load_photo",
     "load_planar_pair",

@@ -51,7 +51,14 @@ __all__ = [
 
 
 def all_exercises() -> dict[str, Exercise]:
-    """Import every lesson's exercise module and return the registry, by name."""
+    """Import every lesson's exercise module and return the registry, by name.
+
+    Returns
+    -------
+    dict[str, Exercise]
+        Every registered exercise, keyed by its name (``"lift"``, ``"project_points"`` ...): a copy
+        of the registry, so changing it changes no check.
+    """
     for module in pkgutil.iter_modules(__path__):
         if not module.name.startswith("_"):
             importlib.import_module(f"{__name__}.{module.name}")
@@ -64,18 +71,73 @@ def _known(name: str, caller: str) -> None:
 
 
 def solution(name: str) -> None:
-    """Print the teaching solution of exercise ``name`` (numpy only); returns None, so it shows once."""
+    """Print the teaching solution of exercise ``name`` (numpy only); returns None, so it shows once.
+
+    Parameters
+    ----------
+    name : str
+        The exercise's name, as in ``check_<name>`` (``"lift"``).
+
+    Returns
+    -------
+    None
+        The solution is printed, not returned: a returned string ending a cell would show a second,
+        escaped copy.
+
+    Raises
+    ------
+    KeyError
+        No exercise is called ``name``; the message lists the exercises.
+    """
     _known(name, "solution")
     _solution(name)
 
 
 def solution_source(name: str) -> str:
-    """The text :func:`solution` prints, for tools and tests."""
+    """The text :func:`solution` prints, for tools and tests.
+
+    Parameters
+    ----------
+    name : str
+        The exercise's name, as in ``check_<name>``.
+
+    Returns
+    -------
+    str
+        The teaching solution's source and a comment naming camlab's own implementation.
+
+    Raises
+    ------
+    KeyError
+        No exercise is called ``name``; the message lists the exercises.
+    """
     _known(name, "solution_source")
     return _solution_source(name)
 
 
 def __getattr__(attr: str):
+    """``check_<name>``: the check of exercise ``name``, looked up in the registry on first use.
+
+    A check takes the student's function and runs it on every test input (:func:`check`): it prints
+    "not attempted yet" for a stub that raises NotImplementedError, raises AssertionError naming the
+    input and the likely cause for a wrong answer, and prints a congratulation for a right one.
+
+    Parameters
+    ----------
+    attr : str
+        The attribute asked for: ``check_<name>``.
+
+    Returns
+    -------
+    callable
+        ``check_<name>(student_function, *, time_limit_s=None) -> CheckResult``, true when the function
+        passed every test input.
+
+    Raises
+    ------
+    AttributeError
+        ``attr`` is not ``check_`` followed by the name of an exercise.
+    """
     if attr.startswith("check_"):
         name = attr[len("check_") :]
         if name in all_exercises():

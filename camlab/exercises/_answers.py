@@ -181,7 +181,10 @@ def worst_mismatch(got: Any, expected: Any, tolerance: Tolerance | None = None) 
     """One line naming the worst entry of two same-shape arrays ('' if that makes no sense).
 
     Entries count as differing by ``tolerance`` (the exercise's; numpy's default otherwise),
-    so the count agrees with the verdict. Values that print alike at 6 digits are shown in full.
+    so the count agrees with the verdict. The worst entry is the one that exceeds its own allowance
+    ``atol + rtol |expected|`` the most, chosen among the entries that fail: an entry inside the
+    tolerance is never named, however large its absolute difference. Values that print alike at
+    6 digits are shown in full.
     """
     try:
         g = np.asarray(got, dtype=float)
@@ -194,13 +197,19 @@ def worst_mismatch(got: Any, expected: Any, tolerance: Tolerance | None = None) 
     err[~np.isfinite(err)] = np.inf
     if not np.any(err > 0):
         return ""
-    index = np.unravel_index(int(np.argmax(err)), e.shape)
     if isinstance(expected, (tuple, list)) and e.ndim == 3:  # a pair of matrices, e.g. (K, R)
         where = "(matrix, row, column)"
     else:
         where = {2: "(row, column)", 3: "(row, column, channel)"}.get(e.ndim, "index")
     tol = (tolerance or Tolerance()).for_answer(got, expected)
-    wrong = int(np.sum(~tol.close(g, e)))
+    failing = ~tol.close(g, e)
+    wrong = int(np.sum(failing))
+    with np.errstate(
+        divide="ignore", invalid="ignore"
+    ):  # how many allowances past: 0 allowance -> inf
+        excess = np.where(failing, err / (tol.atol + tol.rtol * np.abs(e)), -1.0)
+    excess[failing & ~np.isfinite(excess)] = np.inf
+    index = np.unravel_index(int(np.argmax(excess if wrong else err)), e.shape)
     shown_got, shown_expected = f"{g[index] + 0.0:.6g}", f"{e[index] + 0.0:.6g}"  # + 0.0: no "-0"
     if shown_got == shown_expected:
         shown_got, shown_expected = repr(float(g[index])), repr(float(e[index]))

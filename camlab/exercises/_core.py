@@ -5,7 +5,7 @@ comparison and a diagnosis. ``check`` runs the student's function on every input
 
 * a stub that raises NotImplementedError prints "not attempted yet" and returns a false
   :class:`CheckResult`, so a lesson with untouched exercises still runs top to bottom in CI;
-* a wrong answer raises AssertionError naming the input, what came out, what was
+* a wrong answer raises :class:`CheckFailed` (an AssertionError) naming the input, what came out, what was
   expected and the likely cause; so does an answer of the wrong type (a string, an array of
   strings or of complex numbers, a list of an array and a number, or, where the prompt asks
   for a numpy array, any list), named by :func:`type_problem`;
@@ -44,8 +44,10 @@ from __future__ import annotations
 
 import inspect
 import re
+import traceback
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -61,6 +63,34 @@ from ._answers import (
     worst_mismatch,
 )
 from ._timer import TIME_LIMIT_S, OutOfTime, time_limit
+
+_CAMLAB = str(Path(__file__).resolve().parents[1])
+
+
+class CheckFailed(AssertionError):
+    """A wrong answer: an AssertionError (so ``assert``-based grading and pytest see it) that
+    Jupyter shows as its message alone.
+
+    IPython displays an exception through its ``_render_traceback_`` method when it has one.
+    Here that leaves out the check's own frames in camlab, which tell a student nothing and
+    bury the message under the library's source; when the student's function crashed, the
+    frames of the student's code are kept, so they see where.
+    """
+
+    def _render_traceback_(self) -> list[str]:
+        lines = []
+        cause = self.__cause__
+        if cause is not None and cause.__traceback__ is not None:
+            theirs = [
+                frame
+                for frame in traceback.extract_tb(cause.__traceback__)
+                if not str(Path(frame.filename).resolve()).startswith(_CAMLAB)
+            ]
+            if theirs:
+                lines += ["Your function raised this, here:"]
+                lines += "".join(traceback.format_list(theirs)).rstrip("\n").splitlines()
+                lines += [f"{type(cause).__name__}: {cause}", ""]
+        return lines + f"{type(self).__name__}: {self}".splitlines()
 
 
 @dataclass(frozen=True)
@@ -268,20 +298,20 @@ def _run_student(
     except NotImplementedError:
         raise
     except OutOfTime:
-        raise AssertionError(
+        raise CheckFailed(
             f"{name}: your function was still running after {seconds:g} s on test input {i + 1} of {n}, "
             f"so the check stopped it\n"
             f"  input    {_input_text(name, args)}\n"
             f"  likely cause: a loop that never ends (a `while` whose condition stays true?)"
         ) from None
     except Exception as exc:
-        raise AssertionError(
+        raise CheckFailed(
             f"{name}: your function raised {type(exc).__name__}: {exc}\n"
             f"  on input {_input_text(name, args)}" + _exercise_exception_hint(name, exc, args)
         ) from exc
     changed = _inputs_changed(args, passed)
     if changed:
-        raise AssertionError(_in_place_message(name, student_function, changed, i, n, args))
+        raise CheckFailed(_in_place_message(name, student_function, changed, i, n, args))
     return got
 
 
@@ -312,13 +342,13 @@ def check(
             )
             return CheckResult(name, False)
         if got is None:
-            raise AssertionError(
+            raise CheckFailed(
                 f"{name}: your function returned None on test input {i + 1}\n"
                 f"  likely cause: did you forget `return`? The last line should be `return <result>`."
             )
         wrong_type = type_problem(got, expected, exercise.ndarray_only)
         if wrong_type:
-            raise AssertionError(
+            raise CheckFailed(
                 f"{name}: wrong type of answer on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_input_text(name, args)}\n"
                 f"  got      {_shown(got)}  ({with_article(got)})\n"
@@ -327,7 +357,7 @@ def check(
             )
         too_coarse = precision_problem(got, expected)
         if too_coarse:
-            raise AssertionError(
+            raise CheckFailed(
                 f"{name}: answer too imprecise on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_input_text(name, args)}\n"
                 f"  got      {_shown(as_array(got))}\n"
@@ -337,7 +367,7 @@ def check(
             tolerance = (
                 exercise.compare.tolerance if isinstance(exercise.compare, SameArray) else None
             )
-            raise AssertionError(
+            raise CheckFailed(
                 f"{name}: wrong answer on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_input_text(name, args)}\n"
                 f"  got      {_shown(as_array(got))}\n"
@@ -352,7 +382,7 @@ def check(
             )
         )
         if problem:
-            raise AssertionError(f"{name}: correct on all {len(cases)} test inputs, but {problem}")
+            raise CheckFailed(f"{name}: correct on all {len(cases)} test inputs, but {problem}")
     print(f"{name}: correct on all {len(cases)} test inputs. Well done!")
     if exercise.success_note is not None:
         print(

@@ -44,7 +44,24 @@ def _zhang_diagnosis(args, got, expected) -> str:
 
 
 def zhang_constraints(H):
-    """Rows v12 and v11 - v22, with h_i = H[:, i]: h_i^T B h_j = v_ij . b, b = (B11, B12, B22, B13, B23, B33)."""
+    """Zhang's two constraints on the image of the absolute conic from one homography H.
+
+    Rows v12 and v11 - v22, with h_i = H[:, i]: h_i^T B h_j = v_ij . b, b = (B11, B12, B22, B13, B23, B33).
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography from the calibration plane (Z = 0, in its own units) to the image (pixels).
+
+    Returns
+    -------
+    (2, 6) ndarray
+        The rows v12 and v11 - v22: each times b is 0 for the image of the absolute conic B.
+
+    References
+    ----------
+    Z. Zhang (2000), "A flexible new technique for camera calibration", IEEE TPAMI 22(11), section 3.1.
+    """
     H = np.asarray(H, dtype=float)
 
     def v(i, j):
@@ -115,7 +132,29 @@ def _lm_diagnosis(args, got, expected) -> str:
 
 
 def lm_step(J, r, mu):
-    """Solve (J^T J + mu diag(J^T J)) delta = -J^T r: Gauss-Newton for mu = 0, damped otherwise."""
+    """One Levenberg-Marquardt step: solve (J^T J + mu diag(J^T J)) delta = -J^T r.
+
+    Gauss-Newton for mu = 0, damped (towards a scaled gradient step) otherwise.
+
+    Parameters
+    ----------
+    J : (M, N) ndarray
+        The Jacobian of the residuals with respect to the N parameters.
+    r : (M,) ndarray
+        The residuals at the current parameters.
+    mu : float
+        The damping, >= 0.
+
+    Returns
+    -------
+    (N,) ndarray
+        The step delta to add to the parameters.
+
+    References
+    ----------
+    D. W. Marquardt (1963), "An algorithm for least-squares estimation of nonlinear parameters",
+    SIAM J. Appl. Math. 11(2); Hartley & Zisserman, Multiple View Geometry, 2nd ed., appendix A6.2.
+    """
     A = J.T @ J
     return np.linalg.solve(A + mu * np.diag(np.diag(A)), -J.T @ r)
 
@@ -175,7 +214,24 @@ def _gram_schmidt(M):
 
 
 def nearest_rotation(M):
-    """U V^T from the SVD M = U S V^T, with the last column of U flipped if det(U V^T) = -1."""
+    """The rotation nearest to M in the Frobenius norm.
+
+    U V^T from the SVD M = U S V^T, with the last column of U flipped if det(U V^T) = -1.
+
+    Parameters
+    ----------
+    M : (3, 3) ndarray
+        A matrix close to a rotation (r1, r2, r1 x r2 from one homography, say).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The rotation R (R^T R = I, det R = 1) that minimises ||R - M||_F.
+
+    References
+    ----------
+    Z. Zhang (2000), "A flexible new technique for camera calibration", IEEE TPAMI 22(11), appendix C.
+    """
     U, _, Vt = np.linalg.svd(M)
     if np.linalg.det(U @ Vt) < 0:
         U[:, -1] *= -1

@@ -12,17 +12,32 @@ from ._answers import same_array, same_up_to_scale, shape_problem
 from ._core import Exercise, Mistake, first_mistake, register_exercise
 
 # A patch far from the origin (like a crop of a large photo) with 1 px of noise: there the
-# unnormalised DLT is off by tens of pixels, while any Hartley-style normalisation agrees.
+# unnormalised DLT is off by tens of pixels, while any Hartley-style normalisation is off by
+# what the noise alone explains.
 _FAR_PATCH = np.stack(
     np.meshgrid(np.linspace(2000, 2600, 5), np.linspace(2000, 2400, 5)), -1
 ).reshape(-1, 2)
+H_FAR = np.array([[1.0, 0.02, 15.0], [0.01, 0.98, -10.0], [1e-5, 2e-5, 1.0]])
+"""The true homography of the noisy test input (the same as section 6's plot)."""
+FAR_TOLERANCE_PX = 4.0
+"""How far from the *truth* an answer to the noisy input may map the far patch. The noise alone
+puts any good normalised DLT 1-2 px off there (camlab's 1.5, per-axis scaling 1.1, three rows
+per pair 1.6, OpenCV's refined fit 1.2; 2.7 px at the 99th percentile over noise draws), while
+the plain DLT is 27 px off. Comparing with camlab's own noisy estimate instead would reject
+valid normalisations for differing from one particular one."""
+
+
+def _far_error(H) -> float:
+    """The largest distance between where H and the truth send the far patch (pixels)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        d = np.linalg.norm(map_points(H, _FAR_PATCH) - map_points(H_FAR, _FAR_PATCH), axis=1)
+    return float(np.nanmax(d)) if np.isfinite(d).any() else float("inf")
 
 
 def _dlt_cases():
     rng = np.random.default_rng(7)
     H1 = np.array([[1.2, 0.1, 15.0], [-0.05, 0.9, 30.0], [5e-4, -2e-4, 1.0]])
     H2 = np.array([[0.8, -0.3, 200.0], [0.25, 1.1, -40.0], [-1e-3, 4e-4, 1.0]])
-    H_far = np.array([[1.0, 0.02, 15.0], [0.01, 0.98, -10.0], [1e-5, 2e-5, 1.0]])
     square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
     quad = np.array([[100.0, 80.0], [520.0, 60.0], [560.0, 400.0], [90.0, 430.0]])
     pts = rng.uniform([0, 0], [640, 480], (8, 2))
@@ -32,21 +47,23 @@ def _dlt_cases():
         (square * 300, quad),  # the unit-square trick, in pixels
         (quad, map_points(H1, quad)),
         (pts, map_points(H2, pts)),  # more than 4 pairs (noise free)
-        (far, map_points(H_far, far) + rng.normal(0, 1.0, far.shape)),  # noisy, far from the origin
+        (far, map_points(H_FAR, far) + rng.normal(0, 1.0, far.shape)),  # noisy, far from the origin
     ]
 
 
+def _noisy_case(expected) -> bool:
+    """True for the noisy far input: camlab's estimate there is within the noise of H_FAR."""
+    return _far_error(expected) < FAR_TOLERANCE_PX
+
+
 def _same_homography(got, expected) -> bool:
-    """Equal up to scale, or (noisy data) mapping the far patch to within 0.01 px of camlab."""
+    """Equal up to scale (exact inputs), or, on the noisy input, within FAR_TOLERANCE_PX of the truth."""
     if same_up_to_scale(got, expected, rtol=1e-6):
         return True
     g = np.asarray(got, dtype=float)
     if g.shape != (3, 3) or not np.isfinite(g).all() or abs(np.linalg.det(g)) < 1e-300:
         return False
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return bool(
-            np.nanmax(np.abs(map_points(g, _FAR_PATCH) - map_points(expected, _FAR_PATCH))) < 0.01
-        )
+    return _noisy_case(expected) and _far_error(g) < FAR_TOLERANCE_PX
 
 
 def _dlt_diagnosis(args, got, expected) -> str:
@@ -68,17 +85,21 @@ def _dlt_diagnosis(args, got, expected) -> str:
         moved = map_points(g, src[0])
     except Exception:  # a singular H
         moved = np.array([np.nan, np.nan])
-    if np.linalg.norm(src.mean(axis=0)) > 1000:
-        off = float(
-            np.max(
-                np.linalg.norm(map_points(g, _FAR_PATCH) - map_points(expected, _FAR_PATCH), axis=1)
+    if _noisy_case(expected):
+        off = _far_error(g)
+        if off < 10:
+            return (
+                f"on these noisy points about 3000 px from the origin your H is off the true homography "
+                f"by up to {off:.3g} px: more than the noise explains (a normalised DLT is 1-2 px off, "
+                f"within {FAR_TOLERANCE_PX:g} px passes), far less than the plain DLT's 27 px. Give each "
+                f"point set its own T (centroid to 0, mean distance sqrt(2)), built from that set alone."
             )
-        )
         return (
-            f"these are noisy points about 3000 px from the origin, and your H is off by up to {off:.3g} px "
-            f"there. Exact data hides it, noise does not: the columns of A range from 1 to u u' ~ 1e7, so "
-            f"A is badly conditioned. Normalise each point set first (Hartley: centroid to 0, mean "
-            f"distance sqrt(2)), solve, then undo it with H = inv(T_dst) @ H_n @ T_src."
+            f"these are noisy points about 3000 px from the origin, and your H is off the true homography "
+            f"by up to {off:.3g} px there (the noise alone explains 1-2 px). Exact data hides it, noise "
+            f"does not: the columns of A range from 1 to u u' ~ 1e7, so A is badly conditioned. Normalise "
+            f"each point set first (Hartley, section 6: centroid to 0, mean distance sqrt(2)), solve, then "
+            f"undo it with H = inv(T_dst) @ H_n @ T_src."
         )
     return (
         f"H maps src[0] = {np.round(src[0], 2)} to {np.round(moved, 2)}; expected {np.round(dst[0], 2)}. "
@@ -206,7 +227,22 @@ def _dlt_undone_one_side(src, dst, side):
 
 
 def dlt_homography(src, dst):
-    """The normalised DLT: normalise, stack two rows of x' x Hx = 0 per pair, SVD, undo."""
+    """The normalised DLT: normalise, stack two rows of x' x Hx = 0 per pair, SVD, undo.
+
+    Parameters
+    ----------
+    src, dst : (N, 2) array_like
+        Matching points, N >= 4, no three collinear: dst ~ H src.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        H, scaled so that H[2, 2] = 1.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 4.4 (algorithm 4.2).
+    """
     src, dst = np.asarray(src, dtype=float), np.asarray(dst, dtype=float)
 
     def normaliser(p):  # centroid to 0, mean distance to the centroid sqrt(2)
@@ -255,9 +291,10 @@ def _apply_cases():
     H = np.array([[1.1, 0.2, 5.0], [-0.1, 0.9, 12.0], [1e-3, 2e-3, 1.0]])
     rng = np.random.default_rng(3)
     return [
-        (np.diag([2.0, 3.0, 1.0]), np.array([[1.0, 1.0], [2.0, -1.0]])),
-        (H, rng.uniform(0, 400, (5, 2))),
-        (H, np.array([[0.0, 0.0]])),
+        # h33 = 2: the scale of H is arbitrary, so w is never 1 here (a missing division shows)
+        (np.diag([4.0, 6.0, 2.0]), np.array([[1.0, 1.0], [2.0, -1.0]])),
+        (0.5 * H, rng.uniform(0, 400, (5, 2))),  # h33 = 0.5 and w varies from point to point
+        (3.0 * H, np.array([[0.0, 0.0]])),
     ]
 
 
@@ -272,18 +309,49 @@ def _apply_diagnosis(args, got, expected) -> str:
     x = np.column_stack([pts, np.ones(len(pts))])
     y = x @ H.T
     g = np.asarray(got, dtype=float)
+    if np.allclose(g, y[:, :2] / H[2, 2], rtol=1e-6) and not np.allclose(y[:, 2], H[2, 2]):
+        return (
+            "you divided by h33, but w is the third coordinate of each mapped point, "
+            "w = h31 u + h32 v + h33, which changes from point to point: divide by Y[:, 2:3]."
+        )
     if np.allclose(g, y[:, :2], rtol=1e-6):
         return "you forgot to divide by w, the third homogeneous coordinate: (x/w, y/w)."
     z = x @ H
     if np.allclose(g, z[:, :2] / z[:, 2:], rtol=1e-6):
         return "you multiplied by H transposed: with points as rows, x' = X @ H.T."
+    if np.allclose(g.T, expected, rtol=1e-6):
+        return (
+            "your result is transposed: its columns are the points, as in the column form H @ X.T. "
+            "With points as rows return (N, 2): (H @ X.T).T, or X @ H.T directly."
+        )
+    if np.allclose(g, np.asarray(expected)[:, ::-1], rtol=1e-6):
+        return "you returned (v', u'): the columns are swapped. Return u' first, then v'."
+    swapped = x[:, [1, 0, 2]] @ H.T
+    if np.allclose(g, swapped[:, :2] / swapped[:, 2:], rtol=1e-6):
+        return "you lifted (v, u, 1): points[:, 0] is u (the column) and points[:, 1] is v, so lift (u, v, 1)."
+    inverse = x @ np.linalg.inv(H).T
+    if np.allclose(g, inverse[:, :2] / inverse[:, 2:], rtol=1e-6):
+        return "you applied the inverse, H^-1: the prompt maps points by H itself, x' ~ H x."
     return (
         "check the three steps: lift to (u, v, 1), multiply by H (X @ H.T for rows), divide by w."
     )
 
 
 def apply_homography(H, points):
-    """Lift to (u, v, 1), multiply (rows: X @ H.T), divide by w."""
+    """Lift to (u, v, 1), multiply (rows: X @ H.T), divide by w.
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography.
+    points : (N, 2) array_like
+        Points (u, v), pixels.
+
+    Returns
+    -------
+    (N, 2) ndarray
+        The mapped points, H (u, v, 1) divided by its third coordinate.
+    """
     X = np.column_stack([points, np.ones(len(points))])
     Y = X @ np.asarray(H, dtype=float).T
     return Y[:, :2] / Y[:, 2:3]
@@ -300,6 +368,14 @@ register_exercise(
         wrong_variants=(
             (lambda H, p: (np.column_stack([p, np.ones(len(p))]) @ H.T)[:, :2], "divide by w"),
             (lambda H, p: map_points(np.asarray(H).T, p), "transposed"),
+            (lambda H, p: map_points(H, p).T, "result is transposed"),
+            (lambda H, p: map_points(H, p)[:, ::-1], "columns are swapped"),
+            (lambda H, p: map_points(H, np.asarray(p)[:, ::-1]), "you lifted"),
+            (lambda H, p: map_points(np.linalg.inv(H), p), "the inverse"),
+            (
+                lambda H, p: (np.column_stack([p, np.ones(len(p))]) @ H.T)[:, :2] / H[2, 2],
+                "divided by h33",
+            ),
         ),
         teaching=apply_homography,
     )

@@ -43,7 +43,26 @@ def _rect_diagnosis(args, got, expected) -> str:
 
 
 def rectangle_homography(corners, size):
-    """Four pairs fix H: with h33 = 1 each pair gives two linear equations in the other 8 entries."""
+    """Four pairs fix H: with h33 = 1 each pair gives two linear equations in the other 8 entries.
+
+    Parameters
+    ----------
+    corners : (4, 2) array_like
+        The quadrilateral's corners in the photo (u, v), pixels, in the order top-left, top-right,
+        bottom-right, bottom-left.
+    size : (2,) array_like of int
+        The rectified image's (width, height), pixels.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        H with h33 = 1 mapping the corners to (0, 0), (width - 1, 0), (width - 1, height - 1),
+        (0, height - 1).
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 4.1.2 (inhomogeneous solution).
+    """
     width, height = size
     target = np.array(
         [[0, 0], [width - 1, 0], [width - 1, height - 1], [0, height - 1]], dtype=float
@@ -130,7 +149,18 @@ def _order_diagnosis(args, got, expected) -> str:
 
 
 def order_corners(corners):
-    """Sort by angle around the centroid (clockwise on screen, v down), then start at min u + v."""
+    """Sort by angle around the centroid (clockwise on screen, v down), then start at min u + v.
+
+    Parameters
+    ----------
+    corners : (4, 2) array_like
+        A convex quadrilateral's corners (u, v), pixels, in any order.
+
+    Returns
+    -------
+    (4, 2) ndarray
+        The corners clockwise on screen, starting at the top-left one (smallest u + v).
+    """
     q = np.asarray(corners, dtype=float)
     c = q.mean(axis=0)
     q = q[np.argsort(np.arctan2(q[:, 1] - c[1], q[:, 0] - c[0]))]

@@ -44,7 +44,22 @@ def _intersect_cases():
 
 
 def intersect_lines(l1, l2):
-    """The point on both lines is orthogonal to both: their cross product (kept homogeneous)."""
+    """The point on both lines is orthogonal to both: their cross product (kept homogeneous).
+
+    Parameters
+    ----------
+    l1, l2 : (3,) array_like
+        Lines (a, b, c): a x + b y + c = 0.
+
+    Returns
+    -------
+    (3,) ndarray
+        l1 x l2, their intersection, homogeneous (w = 0 for parallel lines).
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 2.2.1 (result 2.2).
+    """
     return np.cross(np.asarray(l1, dtype=float), np.asarray(l2, dtype=float))
 
 
@@ -96,7 +111,22 @@ def _line_diagnosis(args, got, expected) -> str:
 
 
 def line_through_points(p, q):
-    """Lift both pixels to (x, y, 1); the line through them is orthogonal to both: p x q."""
+    """Lift both pixels to (x, y, 1); the line through them is orthogonal to both: p x q.
+
+    Parameters
+    ----------
+    p, q : (2,) array_like
+        Two distinct points (x, y), pixels.
+
+    Returns
+    -------
+    (3,) ndarray
+        The line (a, b, c) through both, up to scale.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 2.2.1 (result 2.4).
+    """
     p_h = np.array([p[0], p[1], 1.0])
     q_h = np.array([q[0], q[1], 1.0])
     return np.cross(p_h, q_h)
@@ -150,7 +180,22 @@ def _vanishing_diagnosis(args, got, expected) -> str:
 
 
 def vanishing_point(segments):
-    """One line per segment (join its endpoints), then meet the two lines; stay homogeneous."""
+    """One line per segment (join its endpoints), then meet the two lines; stay homogeneous.
+
+    Parameters
+    ----------
+    segments : (2, 2, 2) array_like
+        Two image segments, each as its endpoints ((x, y), (x, y)), pixels.
+
+    Returns
+    -------
+    (3,) ndarray
+        Where the two segments' lines meet, homogeneous (w = 0 when they are parallel in the image).
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., sections 2.2.1 and 8.6.
+    """
     (a1, b1), (a2, b2) = np.asarray(segments, dtype=float)
     line1 = np.cross([a1[0], a1[1], 1.0], [b1[0], b1[1], 1.0])
     line2 = np.cross([a2[0], a2[1], 1.0], [b2[0], b2[1], 1.0])
@@ -283,7 +328,24 @@ def _conic_diagnosis(args, got, expected) -> str:
 
 
 def map_conic(H, C):
-    """A point x' of the image comes from x = H^-1 x'; put that into x^T C x = 0."""
+    """A point x' of the image comes from x = H^-1 x'; put that into x^T C x = 0.
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography; points move by x' = H x.
+    C : (3, 3) array_like
+        A symmetric conic matrix, x^T C x = 0.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        C' = H^-T C H^-1, up to scale: the conic through the moved points.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 2.3.1 (result 2.13).
+    """
     H_inv = np.linalg.inv(H)
     return H_inv.T @ C @ H_inv
 

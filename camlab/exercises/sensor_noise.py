@@ -92,7 +92,20 @@ def _estimate(
 
 
 def reference(darks, flats):
-    """(gain in e-/DN, read noise in e-) from the photon-transfer fit and the dark pair."""
+    """(gain in e-/DN, read noise in e-) from the photon-transfer fit and the dark pair.
+
+    Parameters
+    ----------
+    darks : pair of (H, W) ndarray
+        Two dark frames, DN.
+    flats : sequence of pairs of (H, W) ndarray
+        Pairs of flat frames at rising exposures, DN.
+
+    Returns
+    -------
+    tuple of float
+        (g, read noise): camlab's estimate, the exercise's reference.
+    """
     return _estimate(darks, flats)
 
 
@@ -332,7 +345,26 @@ def _diagnose(args, got, expected) -> str:
 
 
 def gain_and_read_noise(darks, flats):
-    """(g in electrons per DN, read noise in electrons) from a dark pair and pairs of flat frames (DN)."""
+    """(g in electrons per DN, read noise in electrons) from a dark pair and pairs of flat frames (DN).
+
+    Parameters
+    ----------
+    darks : pair of (H, W) array_like
+        Two dark frames, DN.
+    flats : sequence of pairs of (H, W) array_like
+        Pairs of flat frames at rising exposures, DN.
+
+    Returns
+    -------
+    g : float
+        The gain, electrons per DN: 1 / slope of the photon-transfer line var = mean / g + c.
+    read_noise : float
+        The read noise, electrons: g sqrt(var(d1 - d2) / 2) over the dark pair.
+
+    References
+    ----------
+    J. R. Janesick (2007), Photon Transfer: DN -> lambda, SPIE Press; EMVA Standard 1288.
+    """
     # float first: uint16 differences would wrap around below 0
     d1, d2 = (np.asarray(d, dtype=float) for d in darks)
     means, variances = [], []

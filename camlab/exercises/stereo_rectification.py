@@ -48,6 +48,9 @@ def _eight_point_diagnosis(args, got, expected) -> str:
         )
     if same_up_to_scale(g.T, expected, rtol=1e-5):
         return "your F is transposed: with rows (u'u, u'v, u', v'u, v'v, v', u, v, 1) the constraint is x2^T F x1 = 0"
+    hint = _unnormalisation_slip(g, x1, x2, expected, T1, T2)
+    if hint:
+        return hint
     raw = epipolar.estimate_fundamental_matrix(x1, x2, normalise=False, plane_tol=0)
     if same_up_to_scale(g, raw, rtol=1e-4):
         return (
@@ -59,6 +62,82 @@ def _eight_point_diagnosis(args, got, expected) -> str:
         f"median Sampson error of your F on the input pairs is {err:.3g} px; check the row of the linear "
         "system (u'u, u'v, u', v'u, v'v, v', u, v, 1), the SVD (last row of V^T) and the un-normalisation"
     )
+
+
+def _unnormalisation_slip(g, x1, x2, expected, T1, T2) -> str:
+    """The hint for an F whose normalisation was not undone, undone the wrong way, or whose rank 2
+    was enforced after undoing it; '' if ``g`` is none of these (up to scale)."""
+    iT1, iT2 = np.linalg.inv(T1), np.linalg.inv(T2)
+    Fn = iT2.T @ expected @ iT1  # the reference in normalised coordinates
+    right = "F = T2^T F_n T1, from x2^T F x1 = (T2 x2)^T F_n (T1 x1)"
+    U, S, Vt = np.linalg.svd(_no_rank2(x1, x2))
+    forms = [
+        (Fn, "you returned F_n, the F of the normalised points: undo the normalisation, " + right),
+        (
+            iT2 @ Fn @ T1,
+            "you undid the normalisation as for a homography (T2^-1 F_n T1): a homography maps points, "
+            "but F sits between two points, so each side takes its own T transposed: " + right,
+        ),
+        (T2 @ Fn @ T1, "you undid the normalisation with T2 where T2^T belongs: " + right),
+        (
+            T1.T @ Fn @ T2,
+            "you swapped T1 and T2 when undoing the normalisation: T1 (image 1) goes on the right, "
+            + right,
+        ),
+        (
+            iT2.T @ Fn @ iT1,
+            "you undid the normalisation with the inverse matrices: F_n was fitted to T x, so "
+            + right,
+        ),
+        (
+            U @ np.diag([S[0], S[1], 0.0]) @ Vt,
+            "you enforced rank 2 after undoing the normalisation: zero the smallest singular value of "
+            "F_n first, in normalised coordinates (in pixels the entries span many orders of magnitude, "
+            "and the nearest rank-2 matrix there is a worse F), then F = T2^T F_n T1",
+        ),
+    ]
+    for F_wrong, hint in forms:
+        if same_up_to_scale(g, F_wrong, rtol=1e-3):
+            return hint
+    return ""
+
+
+def _forgot_unnormalising(x1, x2):
+    T1, T2 = hartley_normalise(x1).T, hartley_normalise(x2).T
+    F = epipolar.estimate_fundamental_matrix(x1, x2)
+    return np.linalg.inv(T2).T @ F @ np.linalg.inv(T1)
+
+
+def _homography_style(x1, x2):
+    T1, T2 = hartley_normalise(x1).T, hartley_normalise(x2).T
+    return np.linalg.inv(T2) @ _forgot_unnormalising(x1, x2) @ T1
+
+
+def _swapped_t(x1, x2):
+    T1, T2 = hartley_normalise(x1).T, hartley_normalise(x2).T
+    return T1.T @ _forgot_unnormalising(x1, x2) @ T2
+
+
+def _rank_after(x1, x2):
+    U, S, Vt = np.linalg.svd(_no_rank2(x1, x2))
+    return U @ np.diag([S[0], S[1], 0.0]) @ Vt
+
+
+def _rms_normalised(x1, x2):
+    """A right answer in another valid form: scale to RMS distance sqrt(2), not the mean (tests)."""
+    x1, x2 = np.asarray(x1, dtype=float), np.asarray(x2, dtype=float)
+
+    def normaliser(p):
+        c = p.mean(axis=0)
+        s = np.sqrt(2) / np.sqrt(np.mean(np.sum((p - c) ** 2, axis=1)))
+        return np.array([[s, 0, -s * c[0]], [0, s, -s * c[1]], [0, 0, 1]])
+
+    T1, T2 = normaliser(x1), normaliser(x2)
+    a = np.column_stack([x1, np.ones(len(x1))]) @ T1.T
+    b = np.column_stack([x2, np.ones(len(x2))]) @ T2.T
+    A = np.column_stack([b[:, [0]] * a, b[:, [1]] * a, a])
+    U, S, Vt = np.linalg.svd(np.linalg.svd(A)[2][-1].reshape(3, 3))
+    return T2.T @ U @ np.diag([S[0], S[1], 0.0]) @ Vt @ T1
 
 
 def _no_rank2(x1, x2):
@@ -84,7 +163,23 @@ def _no_rank2(x1, x2):
 
 
 def eight_point(x1, x2):
-    """Normalise, one row (u'u, u'v, u', v'u, v'v, v', u, v, 1) per match, SVD, rank 2, un-normalise."""
+    """Normalise, one row (u'u, u'v, u', v'u, v'v, v', u, v, 1) per match, SVD, rank 2, un-normalise.
+
+    Parameters
+    ----------
+    x1, x2 : (N, 2) array_like
+        Matching pixels in image 1 and image 2, N >= 8.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The fundamental matrix F, rank 2, up to scale, with x2^T F x1 = 0.
+
+    References
+    ----------
+    R. I. Hartley (1997), "In defense of the eight-point algorithm", IEEE TPAMI 19(6);
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 11.2 and algorithm 11.1.
+    """
     x1, x2 = np.asarray(x1, dtype=float), np.asarray(x2, dtype=float)
 
     def normaliser(p):  # centroid to 0, mean distance sqrt(2)
@@ -108,7 +203,9 @@ register_exercise(
         lesson="11",
         reference=epipolar.estimate_fundamental_matrix,
         cases=_eight_point_cases,
-        compare=lambda got, expected: same_up_to_scale(got, expected, rtol=1e-5),
+        # 1e-3: another normalisation (RMS distance sqrt(2)) moves F by ~4e-5; rank 2 enforced in
+        # pixels instead of normalised coordinates moves it by ~1e-2 on the noisy case
+        compare=lambda got, expected: same_up_to_scale(got, expected, rtol=1e-3),
         diagnose=_eight_point_diagnosis,
         wrong_variants=(
             (_no_rank2, "rank 2"),
@@ -119,6 +216,10 @@ register_exercise(
                 ),
                 "normalis",
             ),
+            (_forgot_unnormalising, "you returned F_n"),
+            (_homography_style, "as for a homography"),
+            (_swapped_t, "swapped T1 and T2"),
+            (_rank_after, "rank 2 after undoing"),
         ),
         teaching=eight_point,
     )
@@ -183,7 +284,24 @@ def _divided_by_w(F):
 
 
 def epipoles(F):
-    """F e1 = 0 and F^T e2 = 0: the right and left singular vectors of F's zero singular value."""
+    """F e1 = 0 and F^T e2 = 0: the right and left singular vectors of F's zero singular value.
+
+    Parameters
+    ----------
+    F : (3, 3) array_like
+        A fundamental matrix (rank 2), x2^T F x1 = 0.
+
+    Returns
+    -------
+    e1 : (3,) ndarray
+        The epipole in image 1, homogeneous, unit length (w may be 0: an epipole at infinity).
+    e2 : (3,) ndarray
+        The epipole in image 2, likewise.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 9.2.4 (table 9.1).
+    """
     U, _, Vt = np.linalg.svd(np.asarray(F, dtype=float))
     return Vt[-1], U[:, -1]  # homogeneous; w may be 0 (an epipole at infinity)
 
@@ -233,6 +351,12 @@ def _depth_diagnosis(args, got, expected) -> str:
     ratio = g / expected
     if np.allclose(ratio, ratio.flat[0], rtol=1e-6):
         k = float(ratio.flat[0])
+        if np.isclose(k, -1.0):
+            return (
+                "your depths are negative: the disparity d = u1 - u2 (left column minus right column) is "
+                "positive for a point in front of the rig, and so is Z = f B / d; a sign flip (u2 - u1, "
+                "or a minus in the formula) gives -Z"
+            )
         for factor, hint in ((1000.0, "millimetres"), (100.0, "centimetres")):
             if np.isclose(k, factor) or np.isclose(k, 1 / factor):
                 return (
@@ -251,7 +375,22 @@ def _depth_diagnosis(args, got, expected) -> str:
 
 
 def disparity_to_depth(d, f, B):
-    """Similar triangles: d = f B / Z, so Z = f B / d (metres when B is in metres, f and d in pixels)."""
+    """Similar triangles: d = f B / Z, so Z = f B / d (metres when B is in metres, f and d in pixels).
+
+    Parameters
+    ----------
+    d : float or array_like
+        Disparities, pixels (> 0).
+    f : float
+        The rectified cameras' focal length, pixels.
+    B : float
+        The baseline, m.
+
+    Returns
+    -------
+    ndarray
+        The depths Z = f B / d, m, of ``d``'s shape.
+    """
     return f * B / np.asarray(d, dtype=float)
 
 
@@ -268,6 +407,7 @@ register_exercise(
             (lambda d, f, B: B / d, "focal length"),
             (lambda d, f, B: 1000 * f * B / d, "unit slip"),
             (lambda d, f, B: f * B / (d + 1.0), "inversely proportional"),
+            (lambda d, f, B: -f * B / d, "depths are negative"),
         ),
         teaching=disparity_to_depth,
     )
@@ -339,6 +479,15 @@ def _essential_diagnosis(args, got, expected) -> str:
             "your t is the right null vector of E (last row of V^T); t is the LEFT null vector, the last "
             "column of U: t^T E = t^T [t]x R = 0"
         )
+    expected_Rs = np.asarray(expected[0], dtype=float)
+    if all(any(np.allclose(R.T, Re, atol=1e-8) for Re in expected_Rs) for R in Rs) and not all(
+        any(np.allclose(R, Re, atol=1e-8) for Re in expected_Rs) for R in Rs
+    ):
+        return (
+            "your rotations are transposed: V W^T U^T is (U W V^T)^T. E = [t]x R with R = U W V^T or "
+            "U W^T V^T takes camera 1's coordinates to camera 2's (X2 = R X1 + t); did you write Vt.T @ W @ U.T, "
+            "or decompose E^T?"
+        )
     if len({tuple(np.round(R, 6).ravel()) for R in Rs}) < 2:
         return "your four candidates hold only one rotation: R_a = U W V^T and R_b = U W^T V^T (note the transpose)"
     return (
@@ -348,7 +497,24 @@ def _essential_diagnosis(args, got, expected) -> str:
 
 
 def decompose_essential(E):
-    """E = [t]x R = U diag(1, 1, 0) V^T gives two rotations U W V^T, U W^T V^T and t = ±u3."""
+    """E = [t]x R = U diag(1, 1, 0) V^T gives two rotations U W V^T, U W^T V^T and t = ±u3.
+
+    Parameters
+    ----------
+    E : (3, 3) array_like
+        An essential matrix.
+
+    Returns
+    -------
+    Rs : (4, 3, 3) ndarray
+        The rotations of the four candidate poses: U W V^T twice, then U W^T V^T twice.
+    ts : (4, 3) ndarray
+        Their translations, unit length: u3, -u3, u3, -u3.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 9.6.2 (result 9.19).
+    """
     U, _, Vt = np.linalg.svd(np.asarray(E, dtype=float))
     if np.linalg.det(U) < 0:  # make U and V rotations, so that U W V^T is one too
         U = -U
@@ -388,7 +554,123 @@ register_exercise(
                 lambda E: (lambda Rs, ts: (np.stack([Rs[0]] * 4), ts))(*decompose_essential(E)),
                 "only one rotation",
             ),
+            (
+                lambda E: (lambda Rs, ts: (np.transpose(Rs, (0, 2, 1)), ts))(
+                    *decompose_essential(E)
+                ),
+                "rotations are transposed",
+            ),
         ),
         teaching=decompose_essential,
+    )
+)
+
+
+# --------------------------------------------------------------------------- the bad-pixel rate
+
+
+def _bad_pixel_cases():
+    rng = np.random.default_rng(29)
+    truth = rng.uniform(8, 60, (40, 50))
+    d = truth + rng.normal(0, 0.6, truth.shape)
+    gross = rng.random(truth.shape) < 0.1  # mismatches, too near and too far
+    d[gross] += rng.choice([-9.0, 7.0], gross.sum())
+    d[:, :6] = np.nan  # no match: the search range's blind band
+    truth[rng.random(truth.shape) < 0.07] = np.nan  # no ground truth
+    d[5, 10], truth[5, 10] = 21.0, 20.0  # an error of exactly the threshold is not bad
+    small = (
+        np.array([[10.0, 12.5, np.nan, 30.0], [5.0, 7.5, 9.0, 40.0]]),
+        np.array([[10.2, 11.0, 9.0, np.nan], [6.5, 7.0, 11.5, 38.0]]),
+    )
+    return [(d, truth, 1.0), (d, truth, 2.0), (*small, 1.0)]
+
+
+def _bad_pixel_diagnosis(args, got, expected) -> str:
+    d, truth, tau = (np.asarray(a, dtype=float) for a in args)
+    try:
+        g = float(got)
+    except (TypeError, ValueError):
+        return f"return one number, the fraction of bad pixels (a float in [0, 1]); got {type(got).__name__}"
+    scored = np.isfinite(d) & np.isfinite(truth)
+    with np.errstate(invalid="ignore"):
+        err = d - truth
+        over_all = np.mean(np.abs(err) > tau)
+        known = np.isfinite(truth)
+        unmatched_bad = np.sum(known & ((np.abs(err) > tau) | ~np.isfinite(d))) / known.sum()
+    if np.isclose(g, 100 * expected):
+        return "your rate is in percent: return the fraction in [0, 1] (0.07, not 7)"
+    if np.isclose(g, np.mean(err[scored] > tau)):
+        return (
+            "you counted only the errors d - d_true > threshold: a match too near is as bad as one too "
+            "far; use the absolute error |d - d_true|"
+        )
+    if np.isclose(g, np.mean(np.abs(err[scored]) >= tau)):
+        return "an error of exactly the threshold is not bad: the rule is |d - d_true| > threshold, strictly"
+    if np.isclose(g, over_all):
+        return (
+            "you averaged over every pixel: NaN > threshold is False, so the pixels without a match or "
+            "without a true disparity counted as good. Score only the pixels where both are finite"
+        )
+    if np.isclose(g, unmatched_bad):
+        return (
+            "you counted the pixels without a match as bad: this rate is over the matched pixels that "
+            "have a true disparity (the fraction matched is reported beside it)"
+        )
+    return (
+        f"expected {expected:.4g}, got {g:.4g}: the fraction, among the pixels where both d and d_true "
+        "are finite, whose |d - d_true| exceeds the threshold"
+    )
+
+
+def bad_pixel_rate(d, d_true, threshold):
+    """Score the pixels with both a match and a truth; bad when the absolute error exceeds the threshold.
+
+    Parameters
+    ----------
+    d, d_true : (H, W) array_like
+        The matcher's and the true disparity, pixels; NaN where there is none.
+    threshold : float
+        The error, pixels, above which a pixel is bad.
+
+    Returns
+    -------
+    float
+        The fraction of scored pixels with ``|d - d_true| > threshold``.
+    """
+    d, d_true = np.asarray(d, dtype=float), np.asarray(d_true, dtype=float)
+    scored = np.isfinite(d) & np.isfinite(d_true)
+    return np.mean(np.abs(d[scored] - d_true[scored]) > threshold)
+
+
+register_exercise(
+    Exercise(
+        name="bad_pixel_rate",
+        lesson="11",
+        reference=disparity.bad_pixel_rate,
+        cases=_bad_pixel_cases,
+        compare=lambda got, expected: np.ndim(got) == 0 and np.isclose(float(got), expected),
+        diagnose=_bad_pixel_diagnosis,
+        wrong_variants=(
+            (lambda d, t, tau: 100 * disparity.bad_pixel_rate(d, t, tau), "percent"),
+            (
+                lambda d, t, tau: np.nanmean(np.where(np.isfinite(d - t), d - t > tau, np.nan)),
+                "absolute error",
+            ),
+            (
+                lambda d, t, tau: np.mean(np.abs(np.asarray(d) - t) > tau),
+                "NaN > threshold is False",
+            ),
+            (
+                lambda d, t, tau: np.mean(np.abs(d - t)[np.isfinite(d - t)] >= tau),
+                "exactly the threshold",
+            ),
+            (
+                lambda d, t, tau: (
+                    np.sum(np.isfinite(t) & ~(np.abs(d - t) <= tau)) / np.isfinite(t).sum()
+                ),
+                "without a match as bad",
+            ),
+        ),
+        teaching=bad_pixel_rate,
     )
 )

@@ -34,44 +34,44 @@ __all__ = [
 ]
 
 
-HIERARCHY: dict[str, dict] = {
-    "euclidean": {
-        "dof": 3,
-        "matrix": "[[R, t], [0, 1]]",
-        "invariants": [
-            "length",
-            "angle",
-            "area",
-            "parallelism",
-            "ratio of lengths",
-            "collinearity",
-            "cross-ratio",
-        ],
-    },
-    "similarity": {
-        "dof": 4,
-        "matrix": "[[sR, t], [0, 1]]",
-        "invariants": ["angle", "ratio of lengths", "parallelism", "collinearity", "cross-ratio"],
-    },
-    "affine": {
-        "dof": 6,
-        "matrix": "[[A, t], [0, 1]]",
-        "invariants": [
-            "parallelism",
-            "ratio of lengths on parallel lines",
-            "ratio of areas",
-            "collinearity",
-            "cross-ratio",
-            "line at infinity",
-        ],
-    },
-    "projective": {
-        "dof": 8,
-        "matrix": "[[A, t], [v^T, w]]",
-        "invariants": ["collinearity", "incidence", "tangency", "cross-ratio"],
-    },
+_OWN_INVARIANTS = {  # what each group keeps beyond the larger group above it (H&Z table 2.1)
+    "projective": ["collinearity", "incidence", "tangency", "cross-ratio"],
+    "affine": [
+        "parallelism",
+        "ratio of areas",
+        "ratio of lengths on parallel lines",
+        "the line at infinity",
+    ],
+    "similarity": ["angle", "ratio of lengths", "the circular points (H&Z 2.7.3)"],
+    "euclidean": ["length", "area"],
 }
-"""The four groups of plane transformations, their degrees of freedom and invariants (H&Z table 2.1)."""
+_LARGER = {"euclidean": "similarity", "similarity": "affine", "affine": "projective"}
+
+
+def _all_invariants(group: str) -> list[str]:
+    """The group's own invariants, then everything the larger groups keep (a subgroup keeps all of it)."""
+    own = list(_OWN_INVARIANTS[group])
+    return own + _all_invariants(_LARGER[group]) if group in _LARGER else own
+
+
+HIERARCHY: dict[str, dict] = {
+    group: {
+        "dof": dof,
+        "matrix": matrix,
+        "own": list(_OWN_INVARIANTS[group]),
+        "larger": _LARGER.get(group),
+        "invariants": _all_invariants(group),
+    }
+    for group, dof, matrix in (
+        ("euclidean", 3, "[[R, t], [0, 1]]"),
+        ("similarity", 4, "[[sR, t], [0, 1]]"),
+        ("affine", 6, "[[A, t], [0, 1]]"),
+        ("projective", 8, "[[A, t], [v^T, w]]"),
+    )
+}
+"""The four groups of plane transformations (H&Z table 2.1): ``dof``, ``matrix``, ``own`` (the
+invariants a group adds to those of ``larger``, the next larger group) and ``invariants`` (all
+it keeps: its own and, since it is a subgroup, everything ``larger`` keeps)."""
 
 
 def _rot(theta: float, name: str = "theta") -> np.ndarray:

@@ -13,6 +13,7 @@ import numpy as np
 from . import palette
 
 __all__ = [
+    "VIEW_COLOURS",
     "SideBySide",
     "draw_keypoints",
     "draw_matches",
@@ -20,6 +21,18 @@ __all__ = [
     "outline",
     "side_by_side",
 ]
+
+
+VIEW_COLOURS = (
+    palette.BLUE,
+    palette.ORANGE,
+    palette.PURPLE,
+    palette.BROWN,
+    palette.MAGENTA,
+    palette.TAB_CYAN,
+)
+"""Lesson 09's one colour per image or view (0, 1, 2, ...). Green and red are kept out: in this lesson they
+mean a right and a wrong match (inlier, outlier); yellow marks keypoints and zoom windows."""
 
 
 class SideBySide(NamedTuple):

@@ -480,6 +480,44 @@ def splits_at_infinity(H: ArrayLike, points: ArrayLike) -> bool:
     return bool(w.min() <= 0 <= w.max())
 
 
+def map_polyline(H: ArrayLike, points: ArrayLike) -> np.ndarray:
+    r"""Map a sampled polyline by H, broken (a NaN row) wherever it passes through infinity.
+
+    Joining mapped samples by straight segments is right only while the samples stay on one
+    side of the line :math:`H^T l_\infty`, which H sends to infinity. Where two consecutive
+    samples have third coordinates :math:`w = h_3^T x` of opposite signs, the image of the
+    segment between them leaves through infinity and comes back from the other side: the
+    chord between the two mapped samples is the image of *no* point of the segment. A NaN row
+    there makes matplotlib lift the pen.
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+    points : (N, 2) array_like
+        Consecutive samples of a polyline (sample densely: only the samples are mapped).
+
+    Returns
+    -------
+    (N + K, 2) ndarray
+        The mapped samples, with a NaN row inserted at each of the K sign changes of w.
+
+    Examples
+    --------
+    >>> map_polyline([[1, 0, 0], [0, 1, 0], [-1, 0, 1]], [[0, 0], [0.5, 0], [2, 0], [3, 0]])
+    array([[ 0. ,  0. ],
+           [ 1. ,  0. ],
+           [ nan,  nan],
+           [-2. ,  0. ],
+           [-1.5,  0. ]])
+    """
+    Hm = _check_nonzero_H(H)
+    p = as_points(points, (2,), "points").array
+    mapped = map_points(Hm, p)
+    w = p @ Hm[2, :2] + Hm[2, 2]
+    breaks = np.flatnonzero(np.sign(w[1:]) != np.sign(w[:-1])) + 1
+    return np.insert(mapped, breaks, np.nan, axis=0) + 0.0  # + 0.0 turns -0.0 into 0.0
+
+
 def cross_ratio(points: ArrayLike) -> float:
     r"""Cross-ratio (A, B; C, D) of four collinear points, invariant under homographies.
 

@@ -7,15 +7,15 @@ After rectification a world point appears in both images on the same row, at col
 
 Two routes, both warping each image by a homography (plus undistortion):
 
-* **calibrated** (:func:`rectify_calibrated`, Fusiello, Trucco & Verri 2000; Bouguet's
-  method in OpenCV): with both cameras known, rotate both about their centres to a common
-  orientation whose x axis is the baseline, and give both the same intrinsics. A rotation
-  about the centre is the homography :math:`K_{new} R_{rect} K^{-1}`.
-* **uncalibrated** (:func:`rectify_uncalibrated`, Hartley 1999, H&Z section 11.12): only
+* **calibrated** (:func:`rectify_calibrated`: Fusiello, Trucco & Verri's algorithm [1]_,
+  Bouguet's method in OpenCV [2]_): with both cameras known, rotate both about their
+  centres to a common orientation whose x axis is the baseline, and give both the same
+  intrinsics. A rotation about the centre is the homography :math:`K_{new} R_{rect} K^{-1}`.
+* **uncalibrated** (:func:`rectify_uncalibrated`: Hartley's method [3]_ [4]_): only
   F and matches are known. Send image 2's epipole to infinity along x with a homography
   :math:`H_2` close to a rigid motion near the image centre, then choose :math:`H_1`
   compatible with F that minimises the horizontal disparity of the matches; finally shear
-  (Loop & Zhang 1999) and scale both to reduce distortion.
+  (Loop & Zhang [5]_) and scale both to reduce distortion.
 
 :func:`vertical_disparity` measures how well a pair is rectified.
 
@@ -24,6 +24,19 @@ the top-left pixel, ``img[v, u]``; cameras are :class:`camlab.camera.Camera` wit
 cam_from_world poses; ``dist = (k1, k2, p1, p2, k3)``; metres; remap tables follow
 ``cv2.remap``: output pixel (u, v) samples the source at ``(map_u[v, u], map_v[v, u])``.
 See lesson 11.
+
+References
+----------
+.. [1] A. Fusiello, E. Trucco and A. Verri, 2000, "A compact algorithm for rectification
+   of stereo pairs", *Machine Vision and Applications* 12(1), 16-22.
+.. [2] G. Bradski and A. Kaehler, 2008, *Learning OpenCV*, chapter 12 (Bouguet's stereo
+   rectification, ``cv2.stereoRectify``).
+.. [3] R. I. Hartley, 1999, "Theory and practice of projective rectification",
+   *International Journal of Computer Vision* 35(2), 115-127.
+.. [4] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 11.12
+   (image rectification), algorithm 11.9.
+.. [5] C. Loop and Z. Zhang, 1999, "Computing rectifying homographies for stereo vision",
+   *Proc. IEEE CVPR*, 125-131.
 """
 
 from __future__ import annotations

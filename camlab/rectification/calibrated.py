@@ -219,7 +219,7 @@ def rectify_calibrated(
 ) -> CalibratedRectification:
     r"""Rectify a calibrated stereo pair: rotate both cameras so the baseline is their x axis.
 
-    Algorithm (Fusiello, Trucco & Verri 2000, with Bouguet's choice of orientation):
+    Algorithm (Fusiello, Trucco & Verri [1]_, with Bouguet's choice of orientation [2]_):
 
     1. The new x axis is the baseline :math:`C_2 - C_1` (flipped if needed so it points
        along the cameras' own x axes, so images are not turned upside down).
@@ -257,13 +257,30 @@ def rectify_calibrated(
     Returns
     -------
     CalibratedRectification
+        ``R1``, ``R2`` (the rectifying rotations), ``P1``, ``P2`` (the new projection
+        matrices), ``Q`` (disparity to depth), ``K`` (the shared intrinsics), ``camera1``,
+        ``camera2`` (the rectified cameras), ``baseline`` (metres), ``maps1``, ``maps2``
+        (the remap tables, None with ``maps=False``), ``image_size`` and ``alpha``.
 
     Raises
     ------
+    CamlabInputError
+        A camera that is not a :class:`~camlab.camera.Camera`, ``alpha`` outside [0, 1], an
+        unknown ``method`` or a bad ``image_size``.
     DegenerateError
         The cameras share a centre (no baseline), or the baseline is closer to the
         cameras' y axes than to their x axes (a vertical rig: rotate both images by 90
-        degrees first), or they look in opposite directions.
+        degrees first), or they look in opposite directions, or part of an image rotates
+        behind the rectified camera, or the rectified images have no region in common.
+
+    References
+    ----------
+    .. [1] A. Fusiello, E. Trucco and A. Verri, 2000, "A compact algorithm for rectification
+       of stereo pairs", *Machine Vision and Applications* 12(1), 16-22.
+    .. [2] G. Bradski and A. Kaehler, 2008, *Learning OpenCV*, chapter 12 (Bouguet's stereo
+       rectification, ``cv2.stereoRectify``).
+    .. [3] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022, section
+       12.1.1 (rectification).
     """
     for c, n in ((camera1, "camera1"), (camera2, "camera2")):
         if not isinstance(c, Camera):
@@ -298,6 +315,27 @@ def rectify_points(
 
     Undistorts (iteratively), rotates by R1 or R2 and projects with the new K. NaN for
     points that rotate behind the rectified camera.
+
+    Parameters
+    ----------
+    rect : CalibratedRectification
+        The rectification (:func:`rectify_calibrated`).
+    camera : Camera
+        The original camera the pixels belong to (its K and distortion are used).
+    pixels : (N, 2) or (2,) array_like
+        Original pixels (u, v).
+    which : int
+        1 for the left camera (R1), 2 for the right (R2).
+
+    Returns
+    -------
+    (N, 2) or (2,) ndarray
+        The rectified pixels, the shape of ``pixels``; NaN behind the rectified camera.
+
+    Raises
+    ------
+    CamlabInputError
+        ``which`` not 1 or 2, or ``pixels`` not 2-D points.
     """
     if which not in (1, 2):
         raise CamlabInputError(
@@ -311,11 +349,32 @@ def rectify_points(
 def unrectify_points(
     rect: CalibratedRectification, camera: Camera, pixels: ArrayLike, which: int
 ) -> np.ndarray:
-    r"""The inverse of :func:`rectify_points`: rectified pixels to original (distorted) pixels of ``camera``.
+    r"""Rectified pixels to the original (distorted) pixels of ``camera``: :func:`rectify_points` inverted.
 
     :math:`p \mapsto K\,\mathrm{distort}(\pi(R_i^\top K_{new}^{-1} \tilde p))`, exactly what the
     remap tables store. Use it to carry true matches from the rectified pair (e.g. from
     the true disparity) back to the raw images.
+
+    Parameters
+    ----------
+    rect : CalibratedRectification
+        The rectification (:func:`rectify_calibrated`).
+    camera : Camera
+        The original camera (its K and distortion are applied).
+    pixels : (N, 2) or (2,) array_like
+        Rectified pixels (u, v).
+    which : int
+        1 for the left camera (R1), 2 for the right (R2).
+
+    Returns
+    -------
+    (N, 2) or (2,) ndarray
+        The original pixels, the shape of ``pixels``; NaN for rays behind the camera.
+
+    Raises
+    ------
+    CamlabInputError
+        ``which`` not 1 or 2, or ``pixels`` not 2-D points.
     """
     if which not in (1, 2):
         raise CamlabInputError(
@@ -360,6 +419,27 @@ def rectify_images(
     are 0 (the black border). A calibrated ``rect`` takes the raw (distorted) images: its
     remap tables undistort too. An uncalibrated ``rect`` applies H1, H2 as they are, so pass
     images that are already undistorted (F, and so H1, H2, relate ideal pixels).
+
+    Parameters
+    ----------
+    rect : CalibratedRectification or UncalibratedRectification
+        From :func:`rectify_calibrated` (with ``maps=True``) or :func:`rectify_uncalibrated`.
+    image1, image2 : (H, W) or (H, W, C) ndarray
+        The left and right images.
+    interpolation : {"bilinear", "nearest"}
+        How to sample the source images.
+
+    Returns
+    -------
+    RectifiedImages
+        ``image1``, ``image2`` on the rectified grid (``rect.image_size``), dtype and
+        channels as given.
+
+    Raises
+    ------
+    CamlabInputError
+        An unknown ``interpolation``, an empty or wrongly shaped image, a calibrated ``rect``
+        without remap tables, or a ``rect`` of another type.
     """
     import cv2
 
@@ -406,9 +486,26 @@ def rectification_coverage(
 ) -> dict[str, float]:
     """The border / lost-pixel trade-off of a calibrated rectification, as fractions in [0, 1].
 
-    ``valid1``, ``valid2``: share of rectified pixels that have a source pixel (1 - black
-    border); ``kept1``, ``kept2``: share of source pixels that land inside the rectified
-    image (1 - lost pixels). Measured on a grid every ``step`` pixels.
+    Parameters
+    ----------
+    rect : CalibratedRectification
+        From :func:`rectify_calibrated` with ``maps=True``.
+    camera1, camera2 : Camera
+        The original cameras (their image sizes bound the source images).
+    step : int
+        Grid spacing, pixels: both measures sample every ``step``-th pixel.
+
+    Returns
+    -------
+    dict of str to float
+        ``valid1``, ``valid2``: share of rectified pixels that have a source pixel (1 - black
+        border); ``kept1``, ``kept2``: share of source pixels that land inside the rectified
+        image (1 - lost pixels).
+
+    Raises
+    ------
+    CamlabInputError
+        ``rect`` has no remap tables.
     """
     if rect.maps1 is None:
         raise CamlabInputError("rect: has no remap tables; call rectify_calibrated(..., maps=True)")

@@ -34,6 +34,25 @@ def vertical_disparity(x1: ArrayLike, x2: ArrayLike) -> VerticalDisparity:
     Pass the *rectified* pixels of true correspondences (e.g. from :func:`rectify_points`).
     Pairs with a non-finite coordinate are ignored.
 
+    Parameters
+    ----------
+    x1, x2 : (N, 2) array_like
+        Corresponding rectified pixels (u, v) in the left and right images.
+
+    Returns
+    -------
+    VerticalDisparity
+        ``median``, ``p95`` (95th percentile) and ``max`` of :math:`|v_1 - v_2|`, pixels,
+        and ``values``, one per finite pair.
+
+    Raises
+    ------
+    CamlabInputError
+        Mismatched point sets, or no pair with finite coordinates.
+
+    Examples
+    --------
+
     >>> vertical_disparity([[10, 5], [20, 7]], [[3, 5.5], [1, 7]]).median
     0.25
     """

@@ -44,7 +44,19 @@ class StereoCalibration(NamedTuple):
     converged: bool
 
     def cameras(self, image_size: tuple[int, int] = (640, 480)) -> CameraPair:
-        """The rig as two :class:`Camera` objects, camera 1 at the world origin."""
+        """The rig as two :class:`Camera` objects, camera 1 at the world origin.
+
+        Parameters
+        ----------
+        image_size : (width, height)
+            Both cameras' image size, pixels.
+
+        Returns
+        -------
+        CameraPair
+            Camera 1 (``K1``, ``dist1``, identity pose) and camera 2 (``K2``, ``dist2``,
+            pose ``R``, ``t``).
+        """
         return CameraPair(
             Camera(self.K1, np.eye(3), np.zeros(3), tuple(self.dist1), image_size),
             Camera(self.K2, self.R, self.t, tuple(self.dist2), image_size),
@@ -109,10 +121,21 @@ def stereo_calibrate(
     refine_intrinsics : bool
         Also refine K and distortion of both cameras in the joint step (OpenCV's default
         ``CALIB_FIX_INTRINSIC`` keeps them, like the default False here).
+    max_iter : int
+        Iteration cap of the joint Levenberg-Marquardt refinement.
 
     Returns
     -------
     StereoCalibration
+        ``K1``, ``dist1``, ``K2``, ``dist2``, the rig ``R``, ``t`` (camera 2 from camera 1),
+        ``rms`` (joint, pixels), ``rms1``, ``rms2`` (each camera alone), the board poses
+        ``rvecs``, ``tvecs`` in camera 1, ``iterations`` and ``converged``.
+
+    Raises
+    ------
+    CamlabInputError
+        Fewer than 4 object points, fewer than 3 views, different view counts for the two
+        cameras, or a view whose corner count differs from the object points'.
     """
     from .. import calibration as cal
     from ..calibration.refinement import project_views

@@ -62,7 +62,7 @@ def rectify_uncalibrated(
 ) -> UncalibratedRectification:
     r"""Rectifying homographies (H1, H2) from F and matches alone (Hartley's method).
 
-    Algorithm (H&Z algorithm 11.9):
+    Algorithm ([1]_, algorithm 11.9; [2]_):
 
     1. **Epipole to infinity.** Translate image 2's centre to the origin (T), rotate the
        epipole :math:`e'` onto the u axis at :math:`(f, 0, 1)` (R, the smaller of the two
@@ -78,7 +78,7 @@ def rectify_uncalibrated(
        Choose a, b, c by linear least squares to minimise
        :math:`\sum_i (a \hat u_i + b \hat v_i + c - \hat u'_i)^2` over the matches
        (:math:`\hat x = H_2 M x`, :math:`\hat x' = H_2 x'`): the horizontal disparities.
-    3. **Less distortion.** ``shear``: apply Loop & Zhang's shear to each image (it only
+    3. **Less distortion.** ``shear``: apply Loop & Zhang's shear [3]_ to each image (it only
        changes u, so rows stay aligned) to restore right angles and aspect ratio. Then one
        common scale and vertical shift (and a horizontal shift per image) fit both
        rectified images into ``image_size``.
@@ -97,12 +97,26 @@ def rectify_uncalibrated(
     Returns
     -------
     UncalibratedRectification
+        ``H1``, ``H2`` ((3, 3), original to rectified pixels) and ``image_size``.
 
     Raises
     ------
+    CamlabInputError
+        ``F`` not a fundamental matrix, fewer than 8 matches, or a bad ``image_size``.
     DegenerateError
-        The epipole lies inside image 2 (forward motion): no homography sends it to
-        infinity without tearing the image; use a polar rectification instead.
+        Fewer than half the matches lie within 3 px (Sampson distance) of their epipolar lines;
+        the epipole lies inside image 2 (forward motion): no homography sends it to
+        infinity without tearing the image; use a polar rectification instead; or an image
+        corner maps to infinity.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 11.12
+       (image rectification), algorithm 11.9.
+    .. [2] R. I. Hartley, 1999, "Theory and practice of projective rectification",
+       *International Journal of Computer Vision* 35(2), 115-127.
+    .. [3] C. Loop and Z. Zhang, 1999, "Computing rectifying homographies for stereo vision",
+       *Proc. IEEE CVPR*, 125-131.
     """
     F = check_fundamental(F)
     a, b, _ = as_point_pairs(x1, x2, min_count=8, why=EIGHT_POINT_REASON)

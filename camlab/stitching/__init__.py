@@ -5,8 +5,8 @@ The stages, each a function you can call, inspect and replace (lesson 09):
 1. **Features and matches** (:mod:`camlab.features`): SIFT keypoints, ratio test.
 2. **Pairwise registration** :func:`register_pair`: match, then
    :func:`camlab.homography.ransac_homography`; the pair is accepted only if enough
-   matches agree (Brown & Lowe's test: :math:`n_\text{inliers} > 8 + 0.3\, n_\text{matches}`
-   and at least ``min_inliers``).
+   matches agree (Brown & Lowe's test [1]_:
+   :math:`n_\text{inliers} > 8 + 0.3\, n_\text{matches}` and at least ``min_inliers``).
 3. **Match graph** :func:`match_graph`: every pair is registered; the **reference** image
    is the one connected to most others (ties: most inliers); a maximum spanning tree
    (edges weighted by inliers) chains every other image to it,
@@ -21,7 +21,7 @@ The stages, each a function you can call, inspect and replace (lesson 09):
 6. **Exposure** :func:`gain_compensation` (optional): one gain per image so overlaps agree.
 7. **Blend** :func:`blend`: ``"overwrite"`` (hard seams), ``"feather"`` (weights falling
    to zero at each image border, :func:`feather_weights`) or ``"multiband"``
-   (Burt & Adelson's Laplacian-pyramid blending: low frequencies blended over wide
+   (Burt & Adelson's Laplacian-pyramid blending [2]_: low frequencies blended over wide
    regions, fine detail over narrow ones, so neither seams nor ghosts).
 
 :func:`stitch` runs them all (:mod:`camlab.stitching.pipeline`). For a camera that turns
@@ -35,6 +35,14 @@ scene is related by :math:`K (R - t n^T/d) K^{-1}`. Anything else (a camera that
 translates in front of a 3-D scene) has parallax, and no single homography aligns it:
 ghosts. Pixel convention: (u, v) = (column, row), origin at the centre of the top-left
 pixel (docs/conventions.md).
+
+References
+----------
+.. [1] M. Brown and D. G. Lowe, 2007, "Automatic panoramic image stitching using invariant
+   features", *International Journal of Computer Vision* 74(1), 59-73, section 3.2
+   (probabilistic model for image match verification), eq. 13.
+.. [2] P. J. Burt and E. H. Adelson, 1983, "A multiresolution spline with application to
+   image mosaics", *ACM Transactions on Graphics* 2(4), 217-236.
 """
 
 from __future__ import annotations

@@ -34,7 +34,7 @@ def gain_compensation(
     megapixels: float | None = 0.1,
     clip: tuple[float, float] = (2 / 255, 253 / 255),
 ) -> np.ndarray:
-    r"""One exposure gain per image so that overlapping regions agree (Brown & Lowe 2007, sec. 6).
+    r"""One exposure gain per image so that overlapping regions agree.
 
     Minimises, over all overlapping pairs with :math:`N_{ij}` common pixels and mean
     intensities :math:`\bar I_{ij}` (image i on the overlap) and :math:`\bar I_{ji}`,
@@ -48,7 +48,7 @@ def gain_compensation(
               - \sum_j g_j N_{ij} \frac{2 \bar I_{ij} \bar I_{ji}}{\sigma_N^2} = \sum_j \frac{N_{ij}}{\sigma_g^2},
 
     solved directly (the prior keeps the gains near 1 and the system regular). The default
-    :math:`\sigma_g = 1` is weaker than Brown & Lowe's 0.1: exposures in a hand-held set
+    :math:`\sigma_g = 1` is weaker than Brown & Lowe's 0.1 [1]_: exposures in a hand-held set
     can differ by 30% or more, and a strong prior would leave part of that step. With
     ``reference`` given, all gains are divided by that image's gain (it keeps its look).
 
@@ -57,10 +57,33 @@ def gain_compensation(
     (black or saturated) has lost its true brightness, and an over-exposed white sky would
     otherwise pull the gain (and, scaled, turn grey or cyan).
 
+    Parameters
+    ----------
+    warped : WarpedImages
+        The n images on one canvas (:func:`warp_images`), values in [0, 1].
+    sigma_n : float
+        :math:`\sigma_N`, the intensity noise, in the images' units.
+    sigma_g : float
+        :math:`\sigma_g`, the prior's spread of the gains about 1.
+    reference : int, optional
+        The image whose gain becomes 1 (the others are divided by its gain).
+    megapixels : float or None
+        Size of the subsampled canvas the means are taken on; None: every pixel.
+    clip : (2,) tuple of float
+        (dark, bright): pixels with a channel at or below ``dark`` or at or above ``bright``
+        in either image are left out.
+
     Returns
     -------
     (n,) ndarray
         Multiply image k by ``gains[k]``.
+
+    References
+    ----------
+    .. [1] M. Brown and D. G. Lowe, 2007, "Automatic panoramic image stitching using invariant
+       features", *International Journal of Computer Vision* 74(1), 59-73, section 6 (gain compensation).
+    .. [2] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022,
+       section 8.4 (compositing).
     """
     n = len(warped.patches)
     h, w = warped.shape
@@ -103,6 +126,16 @@ def seam_masks(weights: Sequence[np.ndarray]) -> list[np.ndarray]:
 
     With feather weights that is the image whose border is farthest (a Voronoi-like seam
     along the middle of each overlap).
+
+    Parameters
+    ----------
+    weights : sequence of n (h, w) ndarray
+        Each image's weight on the canvas (e.g. ``warped.weights``), 0 outside its footprint.
+
+    Returns
+    -------
+    list of n (h, w) bool ndarray
+        Disjoint masks covering every pixel some image has a positive weight at.
     """
     W = np.stack(weights)
     best = np.argmax(W, axis=0)
@@ -146,6 +179,13 @@ def dp_seam_masks(warped: WarpedImages, megapixels: float = 0.1) -> list[np.ndar
     small misregistration) hides them: the blend then only has to hide exposure. The
     search runs on a canvas subsampled to about ``megapixels``; the labels are scaled back
     up (nearest), and pixels the coarse labels miss go to the largest feather weight.
+
+    Parameters
+    ----------
+    warped : WarpedImages
+        The images on one canvas (:func:`warp_images`), added in their order.
+    megapixels : float
+        Size of the subsampled canvas the seams are searched on.
 
     Returns
     -------
@@ -222,7 +262,20 @@ def overlap_difference(warped: WarpedImages, i: int = 0, j: int = 1) -> float:
 
     After registration a rotation panorama differs only by noise and exposure here; parallax
     (a camera that moved in front of a 3-D scene) leaves misaligned objects: the ghosts
-    blending will show. Same units as the images.
+    blending will show.
+
+    Parameters
+    ----------
+    warped : WarpedImages
+        The images on one canvas.
+    i, j : int
+        The two images' indices.
+
+    Returns
+    -------
+    float
+        The mean absolute difference over the overlap's pixels and channels, in the
+        images' units; 0.0 without an overlap.
     """
     both = warped.masks[i] & warped.masks[j]
     if not both.any():
@@ -236,9 +289,25 @@ def seam_step(image: np.ndarray, seam: np.ndarray, overlap: np.ndarray, width: i
     For every row, the seam is where ``seam`` (one image's seam mask) switches on or off
     inside ``overlap``; the step is the mean luminance of the ``width`` pixels after it
     minus the ``width`` pixels before it. Texture averages out over the rows (its
-    differences have both signs); an exposure jump does not. Returns the absolute mean
-    step (0 for a perfect blend; the exposure difference times the brightness for
-    overwrite), or 0.0 if there is no seam.
+    differences have both signs); an exposure jump does not. Steps whose 2 ``width`` pixels
+    are not all inside ``overlap`` or the image are skipped.
+
+    Parameters
+    ----------
+    image : (h, w) or (h, w, C) ndarray
+        The blended panorama (channels are averaged into a luminance).
+    seam : (h, w) bool ndarray
+        One image's seam mask on the canvas.
+    overlap : (h, w) bool ndarray
+        Where both images cover the canvas.
+    width : int
+        Pixels averaged on each side of the seam.
+
+    Returns
+    -------
+    float
+        The absolute mean step (0 for a perfect blend; the exposure difference times the
+        brightness for overwrite), or 0.0 if there is no seam.
     """
     lum = np.asarray(image, dtype=float)
     lum = lum.mean(axis=2) if lum.ndim == 3 else lum
@@ -320,7 +389,7 @@ def laplacian_blend(
     levels: int = 5,
     footprints: Sequence[np.ndarray] | None = None,
 ) -> np.ndarray:
-    r"""Multi-band blending (Burt & Adelson 1983) of images with disjoint seam masks.
+    r"""Multi-band blending of images with disjoint seam masks.
 
     Each image's Laplacian pyramid :math:`L_k^{(l)} = G_k^{(l)} - \mathrm{up}(G_k^{(l+1)})`
     holds its detail at band l; each seam mask's Gaussian pyramid :math:`M_k^{(l)}` gets
@@ -332,11 +401,13 @@ def laplacian_blend(
     Coarse bands (exposure, shading) cross the seam over about :math:`2^l` pixels, fine
     detail over one or two: no visible seam, no ghost of misregistered detail. Pixels
     outside an image are first filled by push-pull so its pyramid does not see a black
-    border. Pyramids use ``cv2.pyrDown``/``cv2.pyrUp`` (the 5-tap binomial filter).
+    border. Pyramids use ``cv2.pyrDown``/``cv2.pyrUp`` (the 5-tap binomial filter). The
+    method is Burt & Adelson's [1]_, as Brown & Lowe [2]_ use it for panoramas.
 
     Parameters
     ----------
     images : sequence of (h, w, C) float32
+        The images on one canvas, values in [0, 1].
     masks : sequence of (h, w) bool
         Disjoint seam masks (:func:`seam_masks`); the union is the panorama.
     levels : int
@@ -344,6 +415,25 @@ def laplacian_blend(
     footprints : sequence of (h, w) bool, optional
         Where each image has data (default: its seam mask); outside, it is extended by
         push-pull before its pyramid is built.
+
+    Returns
+    -------
+    (h, w, C) float32 ndarray
+        The blend, clipped to [0, 1]; 0 outside the union of the masks. The number of levels
+        is capped at :math:`\log_2 \min(h, w) - 2`.
+
+    Raises
+    ------
+    CamlabInputError
+        Not one mask per image, images that are not (h, w, C) of one size, masks that are
+        not bool of that size, or ``levels`` < 1.
+
+    References
+    ----------
+    .. [1] P. J. Burt and E. H. Adelson, 1983, "A multiresolution spline with application to
+       image mosaics", *ACM Transactions on Graphics* 2(4), 217-236.
+    .. [2] M. Brown and D. G. Lowe, 2007, "Automatic panoramic image stitching using invariant
+       features", *International Journal of Computer Vision* 74(1), 59-73, section 7 (multi-band blending).
     """
     images, masks = _blend_inputs(images, masks)
     levels = check_integer(levels, "levels", minimum=1)
@@ -497,13 +587,17 @@ def blend(
     Parameters
     ----------
     warped : WarpedImages
+        The images on one canvas (:func:`warp_images`).
     method : {"overwrite", "feather", "multiband"}
+        How to combine them (above).
     gains : (n,) array_like, optional
         Exposure gains (:func:`gain_compensation`) applied first.
     levels : int
         Pyramid levels for ``"multiband"``.
     feather_power : float
         p above: larger values sharpen the transition towards a seam.
+    seam : {"voronoi", "dp"}
+        How ``"multiband"`` finds its seam masks when ``seams`` is not given.
     seams : list of bool ndarray, optional
         Seam masks already found, in the images' boxes (:func:`dp_seam_masks`); ``seam`` is
         then not used.
@@ -512,7 +606,18 @@ def blend(
 
     Returns
     -------
-    (h, w, 3) float32 ndarray in [0, 1]
+    (h, w, C) float32 ndarray
+        The panorama, values in [0, 1] (gains are clipped at 1); 0 where no image lands.
+
+    Raises
+    ------
+    CamlabInputError
+        An unknown ``method`` or ``seam``, ``gains`` not one per image, or ``levels`` < 1.
+
+    References
+    ----------
+    .. [1] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022,
+       section 8.4 (compositing: feathering, seams, blending).
     """
     if method not in BLENDS:
         raise CamlabInputError(f"method: expected one of {BLENDS}, got {method!r}")

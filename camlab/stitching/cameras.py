@@ -7,9 +7,8 @@ A camera that turns about its centre maps image i to image j by
 
 with :math:`R_k` cam_from_world (docs/conventions.md) and the principal point at the image
 centre. Pairwise registration (:func:`camlab.stitching.match_graph`) gives one homography
-per overlapping pair; this module turns them into one camera per image (Brown & Lowe
-2007, "Automatic panoramic image stitching using invariant features", sec. 4; Szeliski
-2006, "Image alignment and stitching", sec. 5-6):
+per overlapping pair; this module turns them into one camera per image, as Brown & Lowe
+[1]_ and Szeliski [2]_ do:
 
 1. :func:`focal_from_homography`: a rotation-only homography constrains f (derivation
    there); :func:`estimate_focal` takes the median over all accepted pairs.
@@ -23,6 +22,14 @@ per overlapping pair; this module turns them into one camera per image (Brown & 
 
 :func:`estimate_cameras` runs the four steps; :func:`adjust_homographies` refines the
 homographies of a flat scene instead (:mod:`camlab.stitching.model` chooses between them).
+
+References
+----------
+.. [1] M. Brown and D. G. Lowe, 2007, "Automatic panoramic image stitching using invariant
+   features", *International Journal of Computer Vision* 74(1), 59-73, sections 4 (bundle
+   adjustment) and 5 (automatic panorama straightening).
+.. [2] R. Szeliski, 2006, "Image alignment and stitching: a tutorial", *Foundations and
+   Trends in Computer Graphics and Vision* 2(1), 1-104, sections 5-6.
 """
 
 from __future__ import annotations
@@ -60,6 +67,18 @@ def intrinsics(f: float, shape: Sequence[int]) -> np.ndarray:
     """K with focal ``f`` (pixels), square pixels and the principal point at the centre of an image of ``shape``.
 
     The centre of an (h, w) image is ((w - 1)/2, (h - 1)/2) with the pixel-centre convention.
+
+    Parameters
+    ----------
+    f : float
+        Focal length, pixels.
+    shape : (h, w) or (h, w, C)
+        The image's shape (only h and w are used).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        :math:`[[f, 0, (w-1)/2], [0, f, (h-1)/2], [0, 0, 1]]`.
     """
     h, w = shape[:2]
     return centred_intrinsics(f, (w, h))
@@ -104,8 +123,8 @@ def focal_from_homography(
 
     Of each pair of formulas the one with the larger denominator is used (the other can be
     0/0: a pure pan has :math:`h_7 = 0`); a negative or undefined value means this pair
-    does not constrain that focal (NaN). Szeliski & Shum 1997; OpenCV's
-    ``detail::focalsFromHomography``.
+    does not constrain that focal (NaN). The method of Szeliski & Shum [1]_, as OpenCV's
+    ``detail::focalsFromHomography`` has it.
 
     Parameters
     ----------
@@ -114,6 +133,25 @@ def focal_from_homography(
     shape_src, shape_dst : (h, w)
         Image shapes (their centres are taken as principal points).
 
+    Returns
+    -------
+    Focals
+        ``f_src``, ``f_dst``, pixels; NaN where this homography does not determine one.
+
+    Raises
+    ------
+    CamlabInputError
+        ``H`` not a finite (3, 3) matrix.
+
+    References
+    ----------
+    .. [1] R. Szeliski and H.-Y. Shum, 1997, "Creating full view panoramic image mosaics and
+       environment maps", *Proc. SIGGRAPH 97*, 251-258.
+    .. [2] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022,
+       section 8.2 (image stitching: rotational panoramas).
+
+    Examples
+    --------
     >>> from camlab.homography import rotation_homography
     >>> from camlab.camera import rotation_from_axis_angle
     >>> K = intrinsics(700.0, (480, 640))
@@ -149,9 +187,22 @@ def focal_from_homography(
 def estimate_focal(homographies: dict, shapes: Sequence[Sequence[int]]) -> float:
     """The median of every focal that the pairwise homographies determine (one f for all images).
 
-    ``homographies`` maps (i, j) to the H from image i to image j of accepted pairs. Falls
-    back to the image diagonal (a 53-degree diagonal field of view, a typical phone) when no
-    pair constrains f (every pair a pure translation or a near-identity), as OpenCV does.
+    Falls back to the image diagonal (a 53-degree diagonal field of view, a typical phone)
+    when no pair constrains f (every pair a pure translation or a near-identity), as OpenCV
+    does.
+
+    Parameters
+    ----------
+    homographies : dict
+        (i, j) -> the (3, 3) H from image i to image j, for the accepted pairs.
+    shapes : sequence of (h, w)
+        Every image's shape, pixels (their centres are the principal points).
+
+    Returns
+    -------
+    float
+        The focal length, pixels: the median of the finite per-pair focals, or the mean
+        image diagonal.
     """
     fs = []
     for (i, j), H in homographies.items():
@@ -177,8 +228,26 @@ def initial_rotations(
     r"""cam_from_world rotations from the spanning tree's chained homographies (world = reference camera).
 
     :math:`H_{r \leftarrow k} \sim K_r R_r R_k^\top K_k^{-1}` with :math:`R_r = I`, so
-    :math:`R_k = (K_r^{-1} H_{r \leftarrow k} K_k)^\top`, made an exact rotation by the SVD.
-    None stays None (an image not in the panorama).
+    :math:`R_k = (K_r^{-1} H_{r \leftarrow k} K_k)^\top`, made an exact rotation by the SVD
+    (after dividing by the cube root of the determinant). None stays None (an image not in
+    the panorama).
+
+    Parameters
+    ----------
+    ref_from_k : sequence of (3, 3) ndarray or None
+        Each image's homography onto the reference image (the reference's is the identity).
+    Ks : sequence of (3, 3) ndarray or None
+        Each image's intrinsics.
+
+    Returns
+    -------
+    list of (3, 3) ndarray or None
+        One rotation per image, the reference's the identity.
+
+    Raises
+    ------
+    DegenerateError
+        A singular homography.
     """
     ref = next(k for k, H in enumerate(ref_from_k) if H is not None and np.allclose(H, np.eye(3)))
     Kr_inv = np.linalg.inv(Ks[ref])
@@ -213,7 +282,24 @@ def _project(H: np.ndarray, x: np.ndarray) -> np.ndarray:
 
 
 def pair_transfer_errors(K_i, R_i, K_j, R_j, x_i: np.ndarray, x_j: np.ndarray) -> np.ndarray:
-    r"""(N, 2) errors :math:`\pi(K_j R_j R_i^\top K_i^{-1} x_i) - x_j` of matches x_i <-> x_j, pixels."""
+    r"""The transfer errors of matches x_i <-> x_j under the rotation model, pixels.
+
+    :math:`\pi(K_j R_j R_i^\top K_i^{-1} x_i) - x_j`.
+
+    Parameters
+    ----------
+    K_i, K_j : (3, 3) ndarray
+        The two images' intrinsics.
+    R_i, R_j : (3, 3) ndarray
+        Their cam_from_world rotations.
+    x_i, x_j : (N, 2) ndarray
+        The matches, pixels in images i and j.
+
+    Returns
+    -------
+    (N, 2) ndarray
+        The errors in image j, pixels.
+    """
     return _project(K_j @ R_j @ R_i.T @ np.linalg.inv(K_i), x_i) - x_j
 
 
@@ -304,7 +390,7 @@ def bundle_adjust(
     max_iter: int = 30,
     focal: bool = True,
 ) -> BundleResult:
-    r"""Refine every camera's focal and rotation over all matches (Brown & Lowe 2007, sec. 4).
+    r"""Refine every camera's focal and rotation over all matches (bundle adjustment).
 
     Minimises the symmetric reprojection error of every match of every pair, through a
     Huber loss (:func:`camlab.optimise.huber_residuals`, quadratic up to ``huber`` pixels)
@@ -329,8 +415,28 @@ def bundle_adjust(
         The camera whose rotation is held (default: the first one present).
     huber : float
         Huber threshold, pixels.
+    max_iter : int
+        Most Levenberg-Marquardt iterations.
     focal : bool
         Refine the focal lengths (False: keep the given K, e.g. a calibrated camera).
+
+    Returns
+    -------
+    BundleResult
+        ``Ks``, ``Rs`` (refined; None for images left out), ``rms_before`` and ``rms_after``
+        (all matches, pixels), ``cost_history``, ``iterations``, ``message`` and ``seconds``.
+
+    Raises
+    ------
+    DegenerateError
+        No matches between the cameras present.
+
+    References
+    ----------
+    .. [1] M. Brown and D. G. Lowe, 2007, "Automatic panoramic image stitching using invariant
+       features", *International Journal of Computer Vision* 74(1), 59-73, section 4 (bundle adjustment).
+    .. [2] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022,
+       section 8.3 (global alignment: bundle adjustment).
     """
     cams = [k for k, R in enumerate(Rs) if R is not None]
     fixed = cams[0] if fixed is None else fixed
@@ -391,6 +497,30 @@ def adjust_homographies(
     the planar counterpart of :func:`bundle_adjust` (same Huber loss, same
     :func:`camlab.optimise.levenberg_marquardt`). The chain along the spanning tree only
     used the tree's pairs; this uses the pairs that close loops too.
+
+    Parameters
+    ----------
+    ref_from_k : sequence of (3, 3) ndarray or None
+        Each image's starting homography onto the reference (None for images left out).
+    matches : dict
+        (i, j) -> (x_i, x_j), two (M, 2) arrays of inlier matches, pixels.
+    reference : int
+        The image whose homography stays fixed.
+    huber : float
+        Huber threshold, pixels.
+    max_iter : int
+        Most Levenberg-Marquardt iterations.
+
+    Returns
+    -------
+    HomographyAdjustment
+        ``homographies`` (ref_from_k, :math:`h_{33} = 1`; None for images left out),
+        ``rms_before``, ``rms_after`` (pixels), ``iterations``, ``message`` and ``seconds``.
+
+    Raises
+    ------
+    DegenerateError
+        No matches between the images present.
     """
     imgs = [k for k, H in enumerate(ref_from_k) if H is not None]
     pairs = _pairs(matches, lambda k: ref_from_k[k] is not None)
@@ -415,7 +545,7 @@ def adjust_homographies(
 
 
 def wave_correct(Rs: Sequence[np.ndarray | None]) -> list:
-    r"""Turn the world so the panorama's horizon is straight (Brown & Lowe 2007, sec. 5.1).
+    r"""Turn the world so the panorama's horizon is straight (wave correction).
 
     People turn the camera about a vertical axis, so every camera's x axis (its row
     :math:`r_{k,0}` of the cam_from_world R) is nearly horizontal: the world's vertical
@@ -426,6 +556,21 @@ def wave_correct(Rs: Sequence[np.ndarray | None]) -> list:
     :math:`R_k \leftarrow R_k W^\top` with :math:`W` = (x; u; z) stacked as rows. If the x
     axes hardly spread (second eigenvalue below 1% of the largest: a turn of less than
     about 10 degrees) the smallest eigenvector is noise, and the mean y axis is u.
+
+    Parameters
+    ----------
+    Rs : sequence of (3, 3) ndarray or None
+        cam_from_world rotations (None for images left out).
+
+    Returns
+    -------
+    list of (3, 3) ndarray or None
+        The turned rotations, None where given None; unchanged with fewer than two cameras.
+
+    References
+    ----------
+    .. [1] M. Brown and D. G. Lowe, 2007, "Automatic panoramic image stitching using invariant
+       features", *International Journal of Computer Vision* 74(1), 59-73, section 5 (automatic panorama straightening).
     """
     cams = [np.asarray(R, float) for R in Rs if R is not None]
     if len(cams) < 2:
@@ -472,7 +617,21 @@ class CameraEstimate(NamedTuple):
 
 
 def inlier_matches(graph, max_matches: int = 200) -> dict:
-    """(i, j) -> (x_i, x_j): the inlier matches of every accepted pair (at most ``max_matches``, the most distinctive)."""
+    """The inlier matches of every accepted pair, at most ``max_matches`` each.
+
+    Parameters
+    ----------
+    graph : MatchGraph
+        The pairwise registrations (:func:`match_graph`).
+    max_matches : int
+        Keep the first this many inliers of each pair (in the matches' order: the most
+        distinctive first).
+
+    Returns
+    -------
+    dict
+        (i, j) -> (x_i, x_j), two (M, 2) arrays of pixels.
+    """
     out = {}
     for (i, j), p in graph.pairs.items():
         if p.accepted:
@@ -506,6 +665,17 @@ def estimate_cameras(
         Use at most this many inliers per pair (the most distinctive) in the adjustment.
     wave : bool
         Apply :func:`wave_correct`.
+
+    Returns
+    -------
+    CameraEstimate
+        ``Ks``, ``Rs`` (after bundle adjustment and wave correction; None for images left
+        out), ``focal_init``, ``Rs_init`` and the :class:`BundleResult` ``bundle``.
+
+    Raises
+    ------
+    DegenerateError
+        A singular homography in the tree, or no matches to adjust.
     """
     accepted = {key: p.H for key, p in graph.pairs.items() if p.accepted}
     if K is None:

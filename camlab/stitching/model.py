@@ -69,8 +69,34 @@ def choose_model(
     crawls. ``tolerances`` are the RMS residuals (pixels) above which the rotation, then the
     plane, is judged not to fit; residuals are in full-resolution pixels and features found on
     copies ``coarse`` times smaller are that much less precise, so the tolerances grow with it.
-    ``K``: known intrinsics shared by all images (the focal is then not estimated). Warns
-    (for :func:`camlab.stitching.stitch`) when neither model fits.
+    Warns (for :func:`camlab.stitching.stitch`) when neither model fits.
+
+    Parameters
+    ----------
+    graph : MatchGraph
+        The pairwise registrations and the spanning tree (:func:`match_graph`).
+    shapes : sequence of (h, w)
+        Every image's shape, full-resolution pixels.
+    K : (3, 3) ndarray or None
+        Known intrinsics shared by all images (the focal is then not estimated).
+    projection : {"auto", "planar", "cylindrical", "spherical"}
+        The canvas asked for: only ``"auto"`` and ``"planar"`` let the plane model be tried.
+    tolerances : (2,) tuple of float
+        (rotation, plane): RMS residuals, pixels, above which each model is judged not to fit.
+    coarse : float
+        How many times smaller the copies the features were found on are (>= 1 scales the
+        tolerances).
+
+    Returns
+    -------
+    ModelChoice
+        ``keep``, ``model`` (``"rotation"`` or ``"homography"``), ``residual`` (pixels),
+        ``cameras``, ``Ks``, ``Rs``, ``plane`` and ``bundle_seconds``.
+
+    Warns
+    -----
+    UserWarning
+        Neither model fits, or the rotation model does not fit and the plane was not tried.
     """
     keep = [k for k in range(len(shapes)) if graph.homographies[k] is not None]
     diag = float(np.median([np.hypot(*sh[:2]) for sh in shapes]))

@@ -195,6 +195,16 @@ def largest_rectangle(mask: np.ndarray) -> Rectangle:
     Row by row, ``heights[c]`` counts the True pixels ending at this row in column c; the
     largest rectangle under that histogram (a stack of increasing heights) is the best one
     whose bottom edge is this row. O(h w).
+
+    Parameters
+    ----------
+    mask : (h, w) array_like of bool
+        The pixels that may be kept (e.g. the panorama's covered canvas).
+
+    Returns
+    -------
+    Rectangle
+        (row0, row1, col0, col1), end exclusive; (0, 0, 0, 0) if no pixel is True.
     """
     m = np.asarray(mask, bool)
     h, w = m.shape
@@ -246,7 +256,9 @@ def stitch(
     images : sequence of (H, W[, C]) array_like
         At least two images; sizes and channel counts may differ (:func:`prepare_images`).
     blend_method : {"overwrite", "feather", "multiband"}
+        How the warped images are combined (:func:`camlab.stitching.blend`).
     method : {"sift", "orb"}
+        The feature detector.
     max_features, ratio, mutual, threshold, min_inliers
         See :func:`camlab.features.detect_features` and :func:`camlab.stitching.register_pair`.
     compensate_gains : bool
@@ -259,6 +271,11 @@ def stitch(
         Known intrinsics shared by all images: the focal is then not estimated.
     reference : int, optional
         Force the reference image.
+    rng : numpy.random.Generator, optional
+        Random source of the RANSAC runs (registration, and the search for a second plane);
+        default fixed seeds, so a run is repeatable.
+    max_pixels : int
+        The largest canvas (pixels) the warping may allocate; a larger one raises.
     names : sequence of str, optional
         Image names for messages (default "image 0", ...).
     crop : bool
@@ -275,6 +292,10 @@ def stitch(
     Returns
     -------
     StitchResult
+        The ``panorama`` and its ``mask``, each image's ``homographies``, ``masks`` and
+        ``outlines`` on the canvas, the registration (``pairs``, ``graph``, ``reference``,
+        ``unconnected``), ``gains``, ``cameras``, the ``projection`` and ``model`` used, its
+        ``residual_rms`` and the stage ``timings`` (see :class:`StitchResult`).
 
     Raises
     ------

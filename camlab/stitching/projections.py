@@ -70,7 +70,28 @@ class Rays(NamedTuple):
 
 
 def canvas_from_ray(d: np.ndarray, projection: str, s: float) -> CanvasPoints:
-    """Canvas coordinates (u, v) of world rays ``d`` (..., 3) (see the module table); NaN where undefined."""
+    r"""Canvas coordinates (u, v) of world rays (see the module table); NaN where undefined.
+
+    Parameters
+    ----------
+    d : (..., 3) ndarray
+        World ray directions (any length).
+    projection : {"planar", "cylindrical", "spherical"}
+        The canvas (anything else is taken as spherical).
+    s : float
+        The canvas scale, pixels per radian at the centre.
+
+    Returns
+    -------
+    CanvasPoints
+        ``u``, ``v``, each of shape ``d.shape[:-1]``; on the plane NaN for rays with
+        :math:`d_z \le 10^{-9}`.
+
+    References
+    ----------
+    .. [1] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022,
+       section 8.2 (image stitching: cylindrical and spherical coordinates).
+    """
     x, y, z = d[..., 0], d[..., 1], d[..., 2]
     if projection == "planar":
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -85,8 +106,27 @@ def canvas_from_ray(d: np.ndarray, projection: str, s: float) -> CanvasPoints:
 
 
 def ray_from_canvas(u: np.ndarray, v: np.ndarray, projection: str, s: float) -> Rays:
-    """World rays (x, y, z) of canvas pixels (u, v), each broadcast like ``u`` and ``v``: the inverse of
-    :func:`canvas_from_ray`."""
+    """World rays (x, y, z) of canvas pixels (u, v): the inverse of :func:`canvas_from_ray`.
+
+    Parameters
+    ----------
+    u, v : ndarray
+        Canvas coordinates (broadcastable against each other).
+    projection : {"planar", "cylindrical", "spherical"}
+        The canvas (anything else is taken as spherical).
+    s : float
+        The canvas scale, pixels per radian at the centre.
+
+    Returns
+    -------
+    Rays
+        ``x``, ``y``, ``z``, broadcast like ``u`` and ``v`` (not unit length).
+
+    References
+    ----------
+    .. [1] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022,
+       section 8.2 (image stitching: cylindrical and spherical coordinates).
+    """
     if projection == "planar":
         return Rays(u / s, v / s, np.ones_like(u))
     theta = u / s
@@ -97,7 +137,20 @@ def ray_from_canvas(u: np.ndarray, v: np.ndarray, projection: str, s: float) -> 
 
 
 def border_points(shape: Sequence[int], n: int = 16) -> np.ndarray:
-    """(4n + 1, 2) pixels (u, v) along the border of an image of ``shape`` (height, width), and its centre."""
+    """Pixels along the four edges of an image, and its centre.
+
+    Parameters
+    ----------
+    shape : (h, w) or (h, w, C)
+        The image's shape.
+    n : int
+        Points per edge (corners included).
+
+    Returns
+    -------
+    (4n + 1, 2) ndarray
+        Pixels (u, v): the top, bottom, left and right edges, n each, then the centre.
+    """
     h, w = shape[:2]
     t = np.linspace(0, 1, n)
     u, v = (w - 1) * t, (h - 1) * t
@@ -113,16 +166,44 @@ def border_points(shape: Sequence[int], n: int = 16) -> np.ndarray:
 
 
 def border_ring(shape: Sequence[int], n: int = 40) -> np.ndarray:
-    """(4n, 2) pixels (u, v) around the border of an image of ``shape``, in order (top, right,
-    bottom, left): a closed outline to draw where the image went."""
+    """Pixels around the border of an image, in order: a closed outline to draw where it went.
+
+    Parameters
+    ----------
+    shape : (h, w) or (h, w, C)
+        The image's shape.
+    n : int
+        Points per edge.
+
+    Returns
+    -------
+    (4n, 2) ndarray
+        Pixels (u, v) going round: top (left to right), right (down), bottom (right to
+        left), left (up).
+    """
     p = border_points(shape, n)[:-1]
     return np.vstack([p[:n], p[3 * n : 4 * n], p[n : 2 * n][::-1], p[2 * n : 3 * n][::-1]])
 
 
 def pixel_rays(pixels: np.ndarray, K: np.ndarray, R: np.ndarray) -> np.ndarray:
-    r"""World directions (N, 3) of pixels (N, 2) of a camera with intrinsics K and rotation R
-    (cam_from_world): :math:`d = R^\top K^{-1} (u, v, 1)^\top`, by
-    :func:`camlab.distortion.pixels_to_normalised` (rows of the result: :math:`(x, y, 1) R`)."""
+    r"""World directions of a camera's pixels: :math:`d = R^\top K^{-1} (u, v, 1)^\top`.
+
+    By :func:`camlab.distortion.pixels_to_normalised` (rows of the result: :math:`(x, y, 1) R`).
+
+    Parameters
+    ----------
+    pixels : (N, 2) ndarray
+        Pixels (u, v).
+    K : (3, 3) ndarray
+        The camera's intrinsics.
+    R : (3, 3) ndarray
+        Its cam_from_world rotation.
+
+    Returns
+    -------
+    (N, 3) ndarray
+        World directions, z = 1 in the camera's frame (not unit length).
+    """
     xy = pixels_to_normalised(pixels, K)
     return np.c_[xy, np.ones(len(xy))] @ R
 
@@ -135,6 +216,24 @@ def canvas_points(
     On the cylinder and the sphere the longitude is unrolled around the image's optical axis
     (within :math:`\pm\pi s` of it), so one image never splits across the canvas's seam; an
     image looking backwards may reach past :math:`\pm\pi s`.
+
+    Parameters
+    ----------
+    pixels : (N, 2) ndarray
+        Pixels (u, v) of the image.
+    K : (3, 3) ndarray
+        Its intrinsics.
+    R : (3, 3) ndarray
+        Its cam_from_world rotation.
+    projection : {"planar", "cylindrical", "spherical"}
+        The canvas.
+    s : float
+        The canvas scale, pixels per radian.
+
+    Returns
+    -------
+    CanvasPoints
+        ``u``, ``v``, each (N,), canvas coordinates (not yet shifted by a canvas origin).
     """
     u, v = canvas_from_ray(pixel_rays(pixels, K, R), projection, s)
     if projection != "planar":
@@ -150,8 +249,31 @@ def footprint(
 
     On the cylinder and the sphere the longitude is unrolled around the image's optical axis
     (:func:`canvas_points`), so an image looking backwards (longitude near 180 degrees) gets one
-    box, which may reach past +-pi*s. Raises DegenerateError on the plane if the image sees 90 degrees or more
-    away from the canvas centre (its border has no image on the plane).
+    box, which may reach past +-pi*s.
+
+    Parameters
+    ----------
+    K : (3, 3) ndarray
+        The image's intrinsics.
+    R : (3, 3) ndarray
+        Its cam_from_world rotation.
+    shape : (h, w) or (h, w, C)
+        Its shape.
+    projection : {"planar", "cylindrical", "spherical"}
+        The canvas.
+    s : float
+        The canvas scale, pixels per radian.
+
+    Returns
+    -------
+    (2, 2) ndarray
+        ``[[u_min, v_min], [u_max, v_max]]``, canvas coordinates.
+
+    Raises
+    ------
+    DegenerateError
+        On the plane, if the image sees 90 degrees or more away from the canvas centre (its
+        border has no image on the plane).
     """
     u, v = canvas_points(border_points(shape), K, R, projection, s)
     if not (np.all(np.isfinite(u)) and np.all(np.isfinite(v))):
@@ -186,8 +308,31 @@ def make_canvas(
 ) -> Canvas:
     """Bounds of all images' footprints; a canvas that would be wider than one full turn wraps.
 
-    ``Ks``, ``Rs``, ``shapes`` for the images in the panorama (no None). Raises
-    CamlabInputError if the canvas would exceed ``max_pixels``.
+    Parameters
+    ----------
+    Ks, Rs : sequence of (3, 3) ndarray
+        Intrinsics and cam_from_world rotations of the images in the panorama (no None).
+    shapes : sequence of (h, w)
+        Their shapes.
+    projection : {"planar", "cylindrical", "spherical"}
+        The canvas.
+    s : float
+        The canvas scale, pixels per radian.
+    max_pixels : int
+        The largest canvas allowed, pixels.
+
+    Returns
+    -------
+    Canvas
+        ``projection``, ``s``, ``origin`` (u, v of pixel (0, 0)), ``shape`` (h, w), ``wraps``
+        and each image's box (row0, row1, col0, col1) in ``boxes``.
+
+    Raises
+    ------
+    CamlabInputError
+        An unknown projection, or a canvas larger than ``max_pixels``.
+    DegenerateError
+        An image that a planar canvas cannot hold (:func:`footprint`).
     """
     if projection not in PROJECTIONS:
         raise CamlabInputError(f"projection: expected one of {PROJECTIONS}, got {projection!r}")
@@ -248,6 +393,26 @@ def warp_by_rotation(
     weights) warped the same way (zero outside the mask). Outside the mask the patch repeats
     the image's nearest edge pixels (``cv2.BORDER_REPLICATE``): a pyramid built on it sees no
     black border. Use the mask to tell the two apart.
+
+    Parameters
+    ----------
+    image : (h, w) or (h, w, C) ndarray
+        The image (a dtype ``cv2.remap`` takes).
+    K : (3, 3) ndarray
+        Its intrinsics.
+    R : (3, 3) ndarray
+        Its cam_from_world rotation.
+    canvas : Canvas
+        From :func:`make_canvas`.
+    box : (4,) tuple of int
+        (row0, row1, col0, col1): the image's box on the canvas (``canvas.boxes[k]``).
+    extra : (h, w) float32 ndarray, optional
+        A channel to warp the same way (e.g. feather weights).
+
+    Returns
+    -------
+    CanvasPatch
+        ``patch`` (r1-r0, c1-c0[, C]), ``mask`` and ``extra`` (None if not given).
     """
     import cv2
 
@@ -280,7 +445,24 @@ def warp_by_rotation(
 def outline_on_canvas(
     K: np.ndarray, R: np.ndarray, shape: Sequence[int], canvas: Canvas
 ) -> np.ndarray:
-    """The border of image (K, R) of ``shape`` on the canvas, (160, 2) canvas pixels (u, v) in order."""
+    """The border of an image on the canvas, in order (:func:`border_ring`).
+
+    Parameters
+    ----------
+    K : (3, 3) ndarray
+        The image's intrinsics.
+    R : (3, 3) ndarray
+        Its cam_from_world rotation.
+    shape : (h, w) or (h, w, C)
+        Its shape.
+    canvas : Canvas
+        The canvas (its projection, scale and origin are used).
+
+    Returns
+    -------
+    (160, 2) ndarray
+        Canvas pixels (u, v) relative to the canvas's pixel (0, 0).
+    """
     u, v = canvas_points(border_ring(shape), K, R, canvas.projection, canvas.s)
     return np.c_[u - canvas.origin[0], v - canvas.origin[1]]
 
@@ -293,7 +475,21 @@ class FieldOfView(NamedTuple):
 
 
 def field_of_view(Ks: list, Rs: list, shapes: list) -> FieldOfView:
-    """Horizontal and vertical extent (degrees) of all images on the sphere."""
+    """Horizontal and vertical extent of all images on the sphere, degrees.
+
+    Parameters
+    ----------
+    Ks, Rs : list of (3, 3) ndarray
+        Intrinsics and cam_from_world rotations.
+    shapes : list of (h, w)
+        The images' shapes.
+
+    Returns
+    -------
+    FieldOfView
+        ``horizontal`` (longitude) and ``vertical`` (latitude) spans of the union of the
+        images' boxes, degrees.
+    """
     boxes = np.array(
         [footprint(K, R, sh, "spherical", 1.0) for K, R, sh in zip(Ks, Rs, shapes, strict=True)]
     )

@@ -29,6 +29,22 @@ def prepare_images(images: Sequence[ArrayLike]) -> list[np.ndarray]:
     Grey (H, W) or (H, W, 1) images become RGB (the panorama is colour if any input is);
     an alpha channel is dropped. uint8 is divided by 255, uint16 by 65535, floats are
     taken as already in [0, 1]. Sizes may differ.
+
+    Parameters
+    ----------
+    images : sequence of (H, W), (H, W, 1), (H, W, 3) or (H, W, 4) array_like
+        At least two images, each at least 16 x 16 pixels; uint8, uint16 or float.
+
+    Returns
+    -------
+    list of (H, W, 3) float32 ndarray
+        The images, RGB in [0, 1] (floats are not clipped), contiguous.
+
+    Raises
+    ------
+    CamlabInputError
+        One array instead of a list, fewer than two images, a wrong shape, a side under 16
+        pixels or another dtype.
     """
     if isinstance(images, np.ndarray) and images.ndim in (2, 3) and images.dtype != object:
         raise CamlabInputError(
@@ -118,7 +134,7 @@ def register_pair(
     r"""Register image 1 onto image 2: match features, fit H by RANSAC, judge the result.
 
     The pair is accepted when RANSAC finds at least ``min_inliers`` inliers *and* more
-    than :math:`8 + 0.3 n_m` of the :math:`n_m` matches (Brown & Lowe 2007, eq. 13: the
+    than :math:`8 + 0.3 n_m` of the :math:`n_m` matches (Brown & Lowe's test [1]_: the
     inliers of a wrong model are few and random, those of a right one a fixed share), and
     H does not mirror the image (a reflection fits the matches of a symmetric scene but
     no camera produces it).
@@ -131,18 +147,38 @@ def register_pair(
     Parameters
     ----------
     features1, features2 : camlab.features.Features
-    ratio, mutual : see :func:`camlab.features.filter_matches`
+        The two images' features.
+    ratio, mutual
+        See :func:`camlab.features.filter_matches`.
     threshold : float
         RANSAC inlier threshold (symmetric transfer error, pixels).
     min_inliers : int
+        The fewest inliers (and matches) a pair needs.
     rng : np.random.Generator, optional
         RANSAC's randomness (default: seeded with 0, so results are reproducible).
     matches : camlab.features.Matches, optional
         Use these matches instead of matching (e.g. re-filtered ones from a slider).
+    refine : bool
+        Polish H on the inliers (needs at least 8) and recompute them; if that fails, the
+        RANSAC result is kept.
     approximate : bool
         Match with FLANN instead of brute force (:func:`camlab.features.knn_match`).
     confidence, max_iters : float, int
         RANSAC's stopping rule (:func:`camlab.homography.ransac_homography`).
+
+    Returns
+    -------
+    PairRegistration
+        ``H`` (image 1 to image 2; None if RANSAC found nothing), ``matches``, ``inliers``,
+        ``residual_rms`` (one-way transfer error of the inliers, pixels), ``accepted`` and
+        the ``reason`` for a rejection.
+
+    References
+    ----------
+    .. [1] M. Brown and D. G. Lowe, 2007, "Automatic panoramic image stitching using invariant
+       features", *International Journal of Computer Vision* 74(1), 59-73, section 3.2 (probabilistic model for image match verification), eq. 13.
+    .. [2] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022,
+       section 8.3 (global alignment: recognising panoramas).
     """
     rng = np.random.default_rng(0) if rng is None else rng
     m = (
@@ -247,6 +283,12 @@ class MatchGraph(NamedTuple):
 
         Two separate panoramas in one folder are two groups of two or more; a photo that
         overlaps nothing is a group of one.
+
+        Returns
+        -------
+        list of list of int
+            The image indices of each group, ascending; groups by size, largest first (ties:
+            the lowest first index).
         """
         n = len(self.homographies)
         label = list(range(n))
@@ -265,7 +307,13 @@ class MatchGraph(NamedTuple):
         return sorted(groups.values(), key=lambda g: (-len(g), g[0]))
 
     def report(self) -> list[PairReport]:
-        """One :class:`PairReport` per registered pair."""
+        """One :class:`PairReport` per registered pair.
+
+        Returns
+        -------
+        list of PairReport
+            (i, j, matches, inliers, residual_rms, accepted, reason), pairs in (i, j) order.
+        """
         return [
             PairReport(
                 i, j, len(p.matches.src), int(p.inliers.sum()), p.residual_rms, p.accepted, p.reason
@@ -297,6 +345,28 @@ def match_graph(
        by their inlier count: the strongest registrations first) and chain
        :math:`H_{r \leftarrow k} = H_{r \leftarrow p} H_{p \leftarrow k}` along it
        (:math:`H_{p \leftarrow k}` is the pair's H or its inverse).
+
+    Parameters
+    ----------
+    features : sequence of camlab.features.Features
+        Every image's features (at least two).
+    ratio, mutual, threshold, min_inliers, rng, refine, confidence, max_iters
+        As for :func:`register_pair` (``rng`` default: seeded with 0).
+    reference : int, optional
+        Force the reference image.
+    approximate : bool
+        Match with FLANN (each image's index built once) instead of brute force.
+
+    Returns
+    -------
+    MatchGraph
+        ``pairs`` (every i < j), ``reference``, ``homographies`` (ref_from_k; None if not
+        connected), ``parent`` and ``unconnected``.
+
+    Raises
+    ------
+    CamlabInputError
+        Fewer than two images' features, or a ``reference`` out of range.
     """
     feats = list(features)
     n = len(feats)
@@ -371,7 +441,20 @@ def match_graph(
 
 
 def repeated_photos(imgs: list) -> dict:
-    """{later: earlier} for images that are the same photo (same size, mean difference < 1 grey level)."""
+    """The images that repeat an earlier one: the same photo given twice.
+
+    Compared on every 8th pixel: the same size and a mean absolute difference under 1/255.
+
+    Parameters
+    ----------
+    imgs : list of ndarray
+        The images, values in [0, 1] (:func:`prepare_images`).
+
+    Returns
+    -------
+    dict of int to int
+        {later: earlier}, each later image mapped to the first earlier one it repeats.
+    """
     small = [im[::8, ::8] for im in imgs]
     out = {}
     for j in range(len(imgs)):
@@ -392,6 +475,25 @@ def detect_at_resolution(
     """Features of ``im`` found on a copy of at most ``megapixels``, positions in ``im``'s pixels.
 
     Resizing by s maps pixel centres u to s (u + 1/2) - 1/2, so back is (u' + 1/2)/s - 1/2.
+    An image already within 5% of the size (s > 0.95) is used as it is.
+
+    Parameters
+    ----------
+    im : (H, W[, C]) ndarray
+        The image.
+    method : {"sift", "orb"}
+        The detector (:func:`camlab.features.detect_features`).
+    max_features : int
+        The most features kept.
+    mask : (H, W) bool ndarray or None
+        Where features may be found.
+    megapixels : float or None
+        The copy's largest size; None: full resolution.
+
+    Returns
+    -------
+    camlab.features.Features
+        The features, ``points`` in ``im``'s pixels and ``sizes`` scaled back likewise.
     """
     import cv2
 
@@ -436,7 +538,26 @@ def second_planes(graph: MatchGraph, rng: np.random.Generator | None) -> list[Se
 
     A camera that only turns maps every scene point by one homography; if the matches that
     the first homography rejects agree on another one (at least 10 of them, and more than
-    8 + 0.3 of the outliers, the Brown & Lowe test), the scene has depth and the centre moved.
+    8 + 0.3 of the outliers, the Brown & Lowe test [1]_), the scene has depth and the centre
+    moved.
+
+    Parameters
+    ----------
+    graph : MatchGraph
+        The registrations (:func:`match_graph`).
+    rng : numpy.random.Generator or None
+        RANSAC's randomness (None: seeded with 1).
+
+    Returns
+    -------
+    list of SecondPlane
+        One per accepted pair whose outliers follow a second homography: ``i``, ``j``,
+        ``matches`` and ``offset`` (pixels).
+
+    References
+    ----------
+    .. [1] M. Brown and D. G. Lowe, 2007, "Automatic panoramic image stitching using invariant
+       features", *International Journal of Computer Vision* 74(1), 59-73, section 3.2.
     """
     rng = np.random.default_rng(1) if rng is None else rng
     found = []

@@ -48,6 +48,28 @@ def feather_weights(shape: Sequence[int]) -> np.ndarray:
     Warped with the image, it falls to zero at the image's edge, so where two images
     overlap each fades out towards its own border and no seam jumps.
 
+    Parameters
+    ----------
+    shape : (H, W) or (H, W, C)
+        The image's shape (only H and W are used).
+
+    Returns
+    -------
+    (H, W) ndarray
+        The weights, pixels (0.5 on the outermost pixels).
+
+    Raises
+    ------
+    CamlabInputError
+        Not a valid image shape.
+
+    References
+    ----------
+    .. [1] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022,
+       section 8.4 (compositing: feathering).
+
+    Examples
+    --------
     >>> feather_weights((3, 4))
     array([[0.5, 0.5, 0.5, 0.5],
            [0.5, 1.5, 1.5, 0.5],
@@ -106,9 +128,21 @@ class WarpedImages:
         return self._on_canvas(self.patch_weights)
 
     def subsampled(self, step: int) -> SubsampledCanvas:
-        """Every image and mask on the canvas grid ``[::step, ::step]`` (as ``images[k][::step, ::step]``,
-        but with the patches' replicated border kept outside the masks), built from the boxes without
-        the full canvas."""
+        """Every image and mask on the coarse canvas grid ``[::step, ::step]``, from the boxes.
+
+        As ``images[k][::step, ::step]``, but with the patches' replicated border kept outside
+        the masks, and built without the full canvas.
+
+        Parameters
+        ----------
+        step : int
+            The grid spacing, canvas pixels (>= 1).
+
+        Returns
+        -------
+        SubsampledCanvas
+            ``images`` and ``masks``, each of the grid's shape (ceil(h / step), ceil(w / step)).
+        """
         h, w = self.shape
         size = (-(-h // step), -(-w // step))
         imgs, masks = [], []
@@ -153,14 +187,24 @@ def warp_images(
 
     Parameters
     ----------
-    images : sequence of (h, w, 3) float32 arrays (see :func:`prepare_images`), or (h, w, 1) for grey
+    images : sequence of (h, w, 3) or (h, w, 1) float32 ndarray
+        The images (see :func:`prepare_images`); (h, w, 1) for grey.
     homographies : sequence of (3, 3)
         reference_from_image for each image (from :func:`match_graph`).
+    max_pixels : int
+        The largest canvas allowed (:func:`camlab.warp.canvas_bounds`).
 
     Returns
     -------
     WarpedImages
         With ``homographies[k] = T @ homographies[k]`` (canvas_from_image).
+
+    Raises
+    ------
+    CamlabInputError
+        Not one homography per image, or an image that is not (h, w, 3) or (h, w, 1).
+    DegenerateError
+        The canvas would exceed ``max_pixels`` (:func:`camlab.warp.canvas_bounds`).
     """
     if len(images) != len(homographies) or not images:
         raise CamlabInputError(
@@ -207,7 +251,21 @@ def warp_images_by_rotation(
     """Every image warped into its own box of a canvas by its camera (K, R) (:func:`warp_by_rotation`).
 
     A box that wraps around a full-turn canvas (columns modulo w) becomes a full-width one.
-    The result has no homographies (``None`` for each image) and ``T`` is the identity.
+
+    Parameters
+    ----------
+    images : sequence of (h, w, C) ndarray
+        The images (:func:`prepare_images`).
+    Ks, Rs : sequence of (3, 3) ndarray
+        Each image's intrinsics and cam_from_world rotation.
+    canvas : Canvas
+        From :func:`make_canvas` for these cameras (its ``boxes`` are used).
+
+    Returns
+    -------
+    WarpedImages
+        Patches, masks and feather weights box by box; no homographies (``None`` for each
+        image) and ``T`` the identity.
     """
     h, w = canvas.shape
     out_i, out_m, out_w, boxes = [], [], [], []

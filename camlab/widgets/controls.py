@@ -29,7 +29,26 @@ def _look(kw: dict[str, Any]) -> dict[str, Any]:
 def slider(
     value: float, lo: float, hi: float, step: float, description: str, **kw: Any
 ) -> W.FloatSlider:
-    """A float slider that reports while dragging, with a readable label width."""
+    """A float slider that reports while dragging, with a readable label width.
+
+    Parameters
+    ----------
+    value : float
+        The starting value.
+    lo, hi : float
+        The range.
+    step : float
+        The slider's step.
+    description : str
+        The label.
+    **kw
+        Other :class:`ipywidgets.FloatSlider` options; they override the shared look.
+
+    Returns
+    -------
+    ipywidgets.FloatSlider
+        Continuous updates, the whole label shown, 300 px wide.
+    """
     return W.FloatSlider(
         value=value, min=lo, max=hi, step=step, description=description, **_look(kw)
     )
@@ -38,14 +57,52 @@ def slider(
 def int_slider(
     value: int, lo: int, hi: int, description: str, step: int = 1, **kw: Any
 ) -> W.IntSlider:
-    """An integer slider with the look of :func:`slider`."""
+    """An integer slider with the look of :func:`slider`.
+
+    Parameters
+    ----------
+    value : int
+        The starting value.
+    lo, hi : int
+        The range.
+    description : str
+        The label.
+    step : int
+        The slider's step.
+    **kw
+        Other :class:`ipywidgets.IntSlider` options; they override the shared look.
+
+    Returns
+    -------
+    ipywidgets.IntSlider
+        The slider.
+    """
     return W.IntSlider(value=value, min=lo, max=hi, step=step, description=description, **_look(kw))
 
 
 def log_slider(
     value: float, lo: float, hi: float, step: float, description: str, **kw: Any
 ) -> W.FloatLogSlider:
-    """A slider on a log10 scale from ``lo`` to ``hi`` (values, not exponents); ``step`` is in decades."""
+    """A slider on a log10 scale from ``lo`` to ``hi`` (values, not exponents).
+
+    Parameters
+    ----------
+    value : float
+        The starting value.
+    lo, hi : float
+        The range (positive values, not exponents).
+    step : float
+        The step, in decades.
+    description : str
+        The label.
+    **kw
+        Other :class:`ipywidgets.FloatLogSlider` options; they override the shared look.
+
+    Returns
+    -------
+    ipywidgets.FloatLogSlider
+        The slider (base 10), with the look of :func:`slider`.
+    """
     return W.FloatLogSlider(
         value=value,
         base=10,
@@ -60,18 +117,47 @@ def log_slider(
 def choice_slider(
     options: Sequence[Any], value: Any, description: str, **kw: Any
 ) -> W.SelectionSlider:
-    """A slider over a few fixed values (f-numbers ...) with the look of :func:`slider`."""
+    """A slider over a few fixed values (f-numbers ...) with the look of :func:`slider`.
+
+    Parameters
+    ----------
+    options : sequence
+        The values, in order.
+    value : object
+        The starting value (one of ``options``).
+    description : str
+        The label.
+    **kw
+        Other :class:`ipywidgets.SelectionSlider` options; they override the shared look.
+
+    Returns
+    -------
+    ipywidgets.SelectionSlider
+        The slider.
+    """
     return W.SelectionSlider(
         options=list(options), value=value, description=description, **_look(kw)
     )
 
 
 def whole_label(control: W.Widget) -> W.Widget:
-    """Let ``control`` show its whole description (``build_demo`` applies it to every control); returns it.
+    """Let ``control`` show its whole description (``build_demo`` applies it to every control).
 
     ipywidgets' defaults cut labels short: a dropdown's description gets 80 px ("sensor's p...")
     and a checkbox's sits after an empty 80 px indent in a 300 px box ("show the real image
     (rotat..."). Labels get the width they need, and a checkbox its label right after the box.
+
+    Parameters
+    ----------
+    control : ipywidgets.Widget
+        Any control; a checkbox loses its indent (and gets ``width: auto`` unless it has a
+        width), another control with a description and no description width gets
+        ``"initial"``.
+
+    Returns
+    -------
+    ipywidgets.Widget
+        ``control`` itself, changed in place.
     """
     if isinstance(control, W.Checkbox):
         control.indent = False
@@ -85,12 +171,36 @@ def whole_label(control: W.Widget) -> W.Widget:
 
 
 def monospace(text: str) -> str:
-    """HTML for a monospace readout beside the sliders (text in the figure is slow to draw)."""
+    """HTML for a monospace readout beside the sliders (text in the figure is slow to draw).
+
+    Parameters
+    ----------
+    text : str
+        The readout (inserted as it is: escape any ``<`` yourself).
+
+    Returns
+    -------
+    str
+        A ``<pre>`` element, 12 px.
+    """
     return f"<pre style='font-size: 12px; line-height: 1.3; margin: 4px 0'>{text}</pre>"
 
 
 def corner_text(value: str, description: str) -> W.Text:
-    """A text control holding four corners as ``"u0, v0; u1, v1; u2, v2; u3, v3"`` (see :func:`parse_corners`)."""
+    """A text control holding four corners as ``"u0, v0; u1, v1; u2, v2; u3, v3"``.
+
+    Parameters
+    ----------
+    value : str
+        The starting corners (:func:`format_corners`).
+    description : str
+        The label.
+
+    Returns
+    -------
+    ipywidgets.Text
+        Updates on Enter or leaving the box (not on every keystroke), 300 px wide.
+    """
     return W.Text(
         value=value,
         description=description,
@@ -105,10 +215,23 @@ CORNER_LIMIT_PX = 1e6
 
 
 def parse_corners(text: str) -> np.ndarray:
-    """'u0, v0; u1, v1; ...' -> (4, 2) floats.
+    """Four corners from their text form, ``'u0, v0; u1, v1; ...'``.
 
-    Raises ValueError on malformed text, on non-finite or far-off (beyond
-    :data:`CORNER_LIMIT_PX`) coordinates, and on two corners less than a pixel apart.
+    Parameters
+    ----------
+    text : str
+        Four ``u, v`` pairs (pixels) separated by ``;``.
+
+    Returns
+    -------
+    (4, 2) ndarray
+        The corners, pixels.
+
+    Raises
+    ------
+    ValueError
+        Malformed text, non-finite or far-off (beyond :data:`CORNER_LIMIT_PX`) coordinates,
+        or two corners less than a pixel apart.
     """
     rows = [r for r in str(text).split(";") if r.strip()]
     try:
@@ -136,7 +259,18 @@ def parse_corners(text: str) -> np.ndarray:
 
 
 def format_corners(pts: np.ndarray) -> str:
-    """(4, 2) corners -> the text form used by the corner controls."""
+    """Corners in the text form the corner controls use (:func:`parse_corners` reads it).
+
+    Parameters
+    ----------
+    pts : (N, 2) array_like
+        Corners, pixels.
+
+    Returns
+    -------
+    str
+        ``"u0, v0; u1, v1; ..."`` with two decimals.
+    """
     return "; ".join(f"{u:.2f}, {v:.2f}" for u, v in np.asarray(pts, dtype=float))
 
 
@@ -145,12 +279,26 @@ def corner_keys(
 ) -> dict[str, W.ValueWidget]:
     """Keyboard twins of dragging a corner: a dropdown picks the corner, two sliders move it.
 
-    Returns ``{"corner": Dropdown, "corner_u": slider, "corner_v": slider}``. Moving a slider
+    Moving a slider
     writes that corner into ``control`` (the corners text), so the demo updates through the
     same path as a drag. When the text changes (typed, dragged, a new photo) or another
     corner is picked, the sliders jump to that corner without writing back. Give the two
     sliders to :func:`~camlab.widgets.build_demo` as ``linked`` controls, so that only the
     text triggers an update; the demo's update can mark ``values["corner"]`` in the figure.
+
+    Parameters
+    ----------
+    control : ipywidgets.Text
+        The corners text (:func:`corner_text`).
+    names : sequence of str
+        The corners' names, in the order of the text's corners.
+    u_max, v_max : float
+        The sliders' upper ends, pixels (usually the image's width and height).
+
+    Returns
+    -------
+    dict of str to ipywidgets.ValueWidget
+        ``{"corner": Dropdown, "corner_u": slider, "corner_v": slider}``.
     """
     pick = W.Dropdown(
         options=[(name, i) for i, name in enumerate(names)],
@@ -204,9 +352,28 @@ def connect_corner_drag(
     """Let the mouse drag the four corners drawn in ``ax``; a drag writes ``control.value``.
 
     Press within ``radius_px`` screen pixels of a corner to pick it, move to drag it,
-    release to drop it. Returns the handlers (tests call them with synthetic
-    ``matplotlib.backend_bases.MouseEvent`` objects, or go through
-    ``fig.canvas.callbacks.process``).
+    release to drop it.
+
+    Parameters
+    ----------
+    view : FigureView
+        The demo's figure (its canvas gets the handlers).
+    ax : matplotlib.axes.Axes
+        The axes the corners are drawn in (data coordinates are pixels).
+    control : ipywidgets.Text
+        The corners text a drag writes.
+    get_corners : callable
+        ``get_corners() -> (4, 2)`` the corners as drawn now.
+    radius_px : float
+        How near (screen pixels) a press must be to pick a corner.
+
+    Returns
+    -------
+    dict of str to callable
+        The handlers by event name (``button_press_event``, ``motion_notify_event``,
+        ``button_release_event``); tests call them with synthetic
+        ``matplotlib.backend_bases.MouseEvent`` objects, or go through
+        ``fig.canvas.callbacks.process``.
     """
     grabbed: dict[str, Any] = {"index": None}
 

@@ -438,8 +438,10 @@ def _demosaic_figure(view: FigureView) -> SimpleNamespace:
     },
 )
 def demosaicing():
-    """A Bayer mosaic demosaiced by one method at a time, with PSNR, a zoom anywhere in the frame (as the image or
-    as its error) and the mosaic under it; try the wrong pattern.
+    """A Bayer mosaic demosaiced by one method at a time, with PSNR and a zoom; try the wrong pattern.
+
+    The zoom goes anywhere in the frame (as the image or as its error), with the mosaic
+    under it.
 
     Returns
     -------

@@ -181,8 +181,10 @@ def _focus_figure(view: FigureView) -> SimpleNamespace:
     },
 )
 def focus_and_blur():
-    """The cone of light from a point through the aperture, a movable sensor, the blur disc it cuts there
-    (face on, zoomed to fit, over the sensor's pixels) and the blur circle c(z) of every depth.
+    """The cone of light from a point through the aperture, a movable sensor and the blur it cuts.
+
+    The blur disc the sensor cuts (face on, zoomed to fit, over the sensor's pixels) and the
+    blur circle c(z) of every depth.
 
     Returns
     -------

@@ -199,9 +199,11 @@ def _rectify_controls(control: W.Text, keys: dict) -> dict:
     },
 )
 def rectify_photo() -> Demo:
-    """Drag the four corners of a page, painting or facade; the rectified view follows, sized
-    by the aspect ratio estimated from the quadrilateral (compared with the truth). Without a
-    mouse, pick a corner and move it with its two sliders (or type the corners).
+    """Drag the four corners of a page, painting or facade; the rectified view follows.
+
+    The view is sized by the aspect ratio estimated from the quadrilateral (compared with the
+    truth). Without a mouse, pick a corner and move it with its two sliders (or type the
+    corners).
 
     Returns
     -------
@@ -290,8 +292,9 @@ def rectify_photo() -> Demo:
     sweep={"yaw": [-0.6, 0.0, 0.5], "pitch": [0.5, -0.3], "page_present": [False, True]},
 )
 def document_scanner() -> Demo:
-    """ "Scan this page": find the page automatically (edges, contours, largest convex
-    quadrilateral) and rectify it; it says so when there is no page.
+    """ "Scan this page": find the page automatically and rectify it; say so when there is none.
+
+    The page is found by edges, contours and the largest convex quadrilateral.
 
     Returns
     -------
@@ -345,8 +348,9 @@ def document_scanner() -> Demo:
     lesson="10", sweep={"tilt": [-0.7, 0.0, -0.3], "yaw": [0.3, 0.0], "use_focal": [False, True]}
 )
 def keystone_correction() -> Demo:
-    """Keystone: a camera tilted up at a facade makes its verticals converge; the
-    rectifying homography makes them parallel again. With yaw 0 the horizontals stay
+    """Keystone: a camera tilted up at a facade makes its verticals converge; a homography undoes it.
+
+    The rectifying homography makes them parallel again. With yaw 0 the horizontals stay
     parallel, so the corners cannot tell the focal length: the aspect ratio then rests
     on an assumed f, and the figure says how far off that makes it.
 

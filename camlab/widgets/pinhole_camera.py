@@ -32,8 +32,10 @@ SIDE_RANGE = 0.3  # ...and its x and y half-range
 
 
 def plane_distance(f: float, box_nearest_z: float) -> float:
-    """Where the 3-D view draws the image planes (metres from the pinhole) for focal length ``f`` and a box
-    whose nearest corner is ``box_nearest_z`` metres away (see PLANE_SCALE).
+    """Where the 3-D view draws the image planes, metres from the pinhole.
+
+    For focal length ``f`` and a box whose nearest corner is ``box_nearest_z`` metres away
+    (see PLANE_SCALE).
 
     Parameters
     ----------
@@ -363,8 +365,10 @@ def _times(x: float) -> str:
 
 
 def relative_exposure(d: float, f: float) -> float:
-    r"""Light on the sensor per unit time through a hole ``d`` at ``f``, relative to :data:`REFERENCE`: (d/f)^2 over
-    (d_ref/f_ref)^2 (irradiance goes as the hole's solid angle seen from the image, :math:`\propto (d/f)^2`).
+    r"""Light on the sensor per unit time through a hole ``d`` at ``f``, relative to :data:`REFERENCE`.
+
+    (d/f)^2 over (d_ref/f_ref)^2 (irradiance goes as the hole's solid angle seen from the
+    image, :math:`\propto (d/f)^2`).
 
     Parameters
     ----------

@@ -84,6 +84,24 @@ def explorer_camera(
        so R <- R_z(-roll) R R_Z(-pan);
     3. ``slide`` metres along the camera's own x axis with R fixed: C <- C + slide r1 (r1 = R's first row).
     Finally t = -R C.
+
+    Parameters
+    ----------
+    fx, fy, cx, cy, skew : float
+        The intrinsics, pixels.
+    azimuth, elevation : float
+        The orbit position about the house's centre, degrees.
+    distance : float
+        The orbit's radius, metres.
+    pan, roll : float
+        The turns in place, degrees.
+    slide : float
+        The slide along the camera's x axis, metres.
+
+    Returns
+    -------
+    camlab.camera.Camera
+        The camera (no distortion).
     """
     K = cm.intrinsic_matrix(fx, fy, cx, cy, skew)
     base = cm.Camera.look_at(
@@ -105,13 +123,27 @@ WORLD_AXES_M = 1.25  # the world axes reach out of the house (1.0 x 1.4 m, 1.55 
 
 
 def explorer_plane_size(distance: float, K=None) -> float:
-    """The explorer's image-plane depth (m): 0.4 of the distance, so the plane always stands between the
-    camera and the house and the small picture on it keeps its size on screen as the camera backs off.
+    """The explorer's image-plane depth: 0.4 of the distance, or less for a wide or shifted camera.
+
+    0.4 of the distance, so the plane always stands between the camera and the house and the
+    small picture on it keeps its size on screen as the camera backs off.
 
     With ``K``, the plane is never larger than the default camera's (f = 800 px, principal point at the centre):
     a corner of the image lies r = |K^-1 (u, v, 1)|'s (x, y) from the axis per metre of depth (0.5 by default),
     and a short focal length or a shifted principal point raises r, so the depth shrinks by 0.5 / r: at
     f = 200 px the plane would otherwise be 6.4 m wide and cover the house on screen.
+
+    Parameters
+    ----------
+    distance : float
+        The camera's orbit distance, metres.
+    K : (3, 3) array_like, optional
+        The camera's intrinsics (a 640 x 480 image).
+
+    Returns
+    -------
+    float
+        The depth of the drawn image plane, metres.
     """
     depth = 0.4 * float(distance)
     if K is None:
@@ -145,6 +177,15 @@ def camera_explorer():
     The pose moves three ways: orbit (the camera looks at the house from anywhere on a sphere),
     turn in place (pan, roll: R changes, C stays) and slide (C moves along the camera's x axis,
     R stays). The text beside the figure shows K, R, t, the centre C = -R^T t and P = K [R | t].
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``fx``, ``fy``, ``cx``, ``cy``, ``skew`` (pixels), ``azimuth``,
+        ``elevation`` (degrees), ``distance`` (m), ``pan``, ``roll`` (degrees) and ``slide`` (m)
+        (:func:`explorer_camera`), the figure (the 3-D view and the camera's image, with the
+        principal point), the matrices beside it and ``state`` (``camera``, ``K``, ``R``,
+        ``t``, ``centre``, ``P``).
     """
     view = FigureView(figsize=(9, 4.2))
     scene = fixtures.house_scene()
@@ -412,6 +453,17 @@ def resectioning():
     pixel of correspondence ``pair`` along u and v. Changing N or the noise starts from
     fresh measurements. The 3-D view fits both cameras; an estimate more than FAR_M metres
     from the truth is shown by an arrow towards it, labelled with its distance.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``noise`` (pixel noise sigma, px), ``n_points`` (N), ``outlier``
+        and ``outlier_v`` (the shift of pair k along u and v, px), ``pair`` (k) and
+        ``refine``; the figure (the 3-D view of the true and estimated cameras and the
+        image); the readout; ``handlers["button_press_event"]`` (the click); and ``state``
+        (``P``, ``K``, ``R``, ``t``, ``centre``, ``rms``, ``focal_error``, ``centre_error``,
+        ``points_image``, ``redundancy``, ``expected_rms``, ``behind``, ``moved``,
+        ``errors``, ``far``).
     """
     view = FigureView(figsize=(9, 4.6))
     art = _resectioning_figure(view)
@@ -489,9 +541,19 @@ def resectioning():
 
 @register(lesson="04", sweep={"orbit": [-90, -60, 60, 90], "frame": ["OpenGL / Blender", "OpenCV"]})
 def opencv_vs_opengl():
-    """The same camera with OpenCV axes (x right, y down, z forward) or OpenGL/Blender axes
-    (x right, y up, z backward): the camera stays put, its y and z axes flip (R_gl = F R, F = diag(1, -1, -1))
-    and are relabelled."""
+    """The same camera with OpenCV axes or OpenGL/Blender axes: only the labels of y and z change.
+
+    OpenCV: x right, y down, z forward; OpenGL/Blender: x right, y up, z backward. The camera
+    stays put, its y and z axes flip (R_gl = F R, F = diag(1, -1, -1)) and are relabelled.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``orbit`` (degrees about the world's vertical) and ``frame``
+        (``"OpenCV"`` or ``"OpenGL / Blender"``), the figure (the camera and its three labelled
+        axes in 3-D), the formula beside it and ``state`` (``R_axes``, the axes drawn as rows;
+        ``frame``; ``camera``).
+    """
     from mpl_toolkits.mplot3d import Axes3D  # noqa: F401  (registers the 3-D projection)
 
     view = FigureView(figsize=(5.0, 3.4))

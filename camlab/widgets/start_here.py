@@ -31,13 +31,29 @@ ARROWHEAD = Path(
 
 
 def turn_path(angle_deg: float, scale: float, start: np.ndarray, samples: int = 61) -> np.ndarray:
-    r"""The path of ``start`` as the house turns by ``angle_deg``, then scales by ``scale``: (samples + 1, 2).
+    r"""The path of ``start`` as the house turns by ``angle_deg``, then scales by ``scale``.
 
     The first ``samples`` points are the turn, :math:`R(t \theta)\, x_0` for t from 0 to 1: an arc of the
     circle through ``start`` about the origin, clockwise on y-down axes for θ > 0 and anticlockwise on
     y-up axes. The last point is :math:`s R(\theta)\, x_0`, so the scaling is the straight step out
     (s > 1) or in (s < 1) along the radius, where the roof tip ends. The order is immaterial, since
     :math:`s R = R s`; turning first keeps the arc at the house's own size, where the turn shows.
+
+    Parameters
+    ----------
+    angle_deg : float
+        The turn θ, degrees.
+    scale : float
+        The scale s.
+    start : (2,) ndarray
+        The point's starting position, plot units.
+    samples : int
+        Points along the arc, both ends included.
+
+    Returns
+    -------
+    (samples + 1, 2) ndarray
+        The arc, then the scaled end point.
     """
     t = np.linspace(0.0, 1.0, samples)[:, None]
     theta = np.radians(angle_deg) * t
@@ -47,10 +63,23 @@ def turn_path(angle_deg: float, scale: float, start: np.ndarray, samples: int = 
 
 
 def turn_words(angle_deg: float, y_down: bool) -> str:
-    """How R(angle) turns a shape, from angle 0, as drawn on y-down or y-up axes: 'clockwise', 'anticlockwise'...
+    """How R(angle) turns a shape, from angle 0, as drawn on y-down or y-up axes.
 
     A positive angle turns x towards y: clockwise on screen when y points down, anticlockwise when it
     points up. At ±180° both ways end at the same place; the words name the way the angle went.
+
+    Parameters
+    ----------
+    angle_deg : float
+        The angle, degrees.
+    y_down : bool
+        True for image axes (y down), False for textbook axes (y up).
+
+    Returns
+    -------
+    str
+        ``"clockwise"`` or ``"anticlockwise"`` (with ``", half a turn"`` at ±180°), or
+        ``"no turn"`` at 0.
     """
     if angle_deg == 0:
         return "no turn"
@@ -115,12 +144,25 @@ def _house_panel(ax, y_down: bool, view: FigureView) -> dict:
 
 
 def screen_turn(ax, path: np.ndarray) -> str:
-    """Which way ``path`` turns as ``ax`` draws it on screen: 'clockwise', 'anticlockwise' or 'no turn'.
+    """Which way ``path`` turns as ``ax`` draws it on screen.
 
     Measured on the drawing, not taken from the sign of the angle: the path is mapped to display
     coordinates by the axes' own transform (which includes a flipped y axis), and the sign of the sum
     of the cross products of successive steps says which way it bends (display y runs up, so a
     positive sum is anticlockwise on screen).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes that draw the path.
+    path : (N, 2) array_like
+        The path in data coordinates, N >= 3.
+
+    Returns
+    -------
+    str
+        ``"clockwise"``, ``"anticlockwise"`` or ``"no turn"`` (a bend under 1e-9 of the squared
+        length).
     """
     screen = ax.transData.transform(np.asarray(path, dtype=float))
     steps = np.diff(screen, axis=0)
@@ -132,11 +174,23 @@ def screen_turn(ax, path: np.ndarray) -> str:
 
 
 def arrowhead_size(angle_deg: float, radius: float = 1.4) -> float:
-    """The arrowhead's marker size (points) for a turn of ``angle_deg`` on a circle of ``radius`` plot units.
+    """The arrowhead's marker size for a turn of ``angle_deg`` on a circle of ``radius``.
 
     15 points (about 0.5 plot units at the demo's size) for turns of 40° and more, where the arc is
     about twice as long as the dart; shorter arcs get a smaller dart, down to 7 points, so that the
     arc still shows on both sides of it (at 30° the arc is 0.73 plot units long).
+
+    Parameters
+    ----------
+    angle_deg : float
+        The turn, degrees (its sign does not matter).
+    radius : float
+        The circle's radius, plot units.
+
+    Returns
+    -------
+    float
+        The marker size, points, in [7, 15].
     """
     arc = abs(np.radians(angle_deg)) * radius  # plot units
     return float(np.clip(15.0 * arc / 0.98, 7.0, 15.0))
@@ -170,6 +224,14 @@ def stack_check() -> Demo:
     whose arrowhead shows the way), then the scaling (a straight step along the radius). The
     readout above the panels gives the roof tip's coordinates; the legend sits under the axes, since
     at scale 2 the house reaches every corner of them.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``angle`` (θ, degrees, -180 to 180) and ``scale`` (s, 0.3 to 2), the
+        figure (the two panels) and ``state`` (``A`` = s R(θ), ``house``, ``tip``, ``path``,
+        ``readout``, ``arrow`` (where the arrowhead sits and its screen angle per panel) and
+        ``turns`` (the way each panel's arc turns on screen)).
     """
     view = FigureView(figsize=(7.0, 4.55))
     ax_down, ax_up = view.fig.subplots(1, 2)
@@ -242,6 +304,13 @@ def stack_report() -> str:
 
     The browser's half (JupyterLab's ipywidgets and ipympl extensions) is out of the kernel's
     sight: the demo below is its test.
+
+    Returns
+    -------
+    str
+        Two lines: the versions of camlab, numpy, matplotlib, ipywidgets and ipympl, then
+        whether figures will be live (``%matplotlib widget``) or still pictures (naming the
+        backend).
     """
     from importlib.metadata import PackageNotFoundError, version
 

@@ -96,7 +96,8 @@ def _epipolar_figure(view: FigureView) -> SimpleNamespace:
     # an epipole off the image: an arrow (shaft + head) at the border pointing to it
     shafts = [ax.plot([], [], color="k", lw=1.8)[0] for ax in (axl, axr)]
     heads = [ax.plot([], [], color="k", ms=9, ls="none")[0] for ax in (axl, axr)]
-    axr.legend(loc="lower right", fontsize=8)
+    # below the image, not over it: every corner of the right image carries lines
+    axr.legend(loc="upper right", bbox_to_anchor=(1.0, -0.13), ncol=2, fontsize=8, frameon=False)
     moving = (
         wl,
         wr,
@@ -269,12 +270,70 @@ def epipolar_lines() -> Demo:
 # --------------------------------------------------------------------------- demo 2: rectification
 
 
+ZOOM = 12  # half-size pixels each side of the zoomed match: 25 x 25 crops
+
+
+def _crop(img: np.ndarray, u: int, v: int, r: int = ZOOM) -> np.ndarray:
+    """The (2r + 1) x (2r + 1) window of ``img`` centred on pixel (u, v), zero outside the image."""
+    pad = np.pad(img, r + 1)
+    return pad[v + 1 : v + 2 * r + 2, u + 1 : u + 2 * r + 2]
+
+
+def _zoom_pair(L: np.ndarray, R: np.ndarray, p1: np.ndarray, p2: np.ndarray):
+    """Crops of ``L`` around the match's left point ``p1`` and of ``R`` around ``p2``, both on the
+    left point's row, side by side (one black column between), and where the two points and the
+    left point's row fall in that strip (its pixels, the left crop's centre at (ZOOM, ZOOM))."""
+    r = ZOOM
+    cu1, cv = (int(round(c)) for c in p1)
+    cu2 = int(round(p2[0]))
+    strip = np.hstack([_crop(L, cu1, cv), np.zeros((2 * r + 1, 1), L.dtype), _crop(R, cu2, cv)])
+    a = np.array([r + p1[0] - cu1, r + p1[1] - cv])
+    b = np.array([3 * r + 2 + p2[0] - cu2, r + p2[1] - cv])
+    return strip, a, b
+
+
+def _zoomed_match(left_half: np.ndarray, x1: np.ndarray, x2: np.ndarray) -> int:
+    """The match to zoom on: among those 30 px inside the half-size images whose raw vertical
+    disparity exceeds 6 px, the one with the most structure around it (the spread of the gradient
+    magnitude over its 17 x 17 half-size neighbourhood), so the eye can follow it."""
+    s1 = map_points(HALF, x1)
+    inner = np.all((x1 > 60) & (x1 < [579, 419]) & (x2 > 60) & (x2 < [579, 419]), axis=1)
+    candidates = np.flatnonzero(inner & (np.abs(x1[:, 1] - x2[:, 1]) > 6))
+    grad = np.hypot(*np.gradient(left_half.astype(float)))
+    u, v = np.round(s1[candidates]).astype(int).T
+    spread = [grad[b - 8 : b + 9, a - 8 : a + 9].std() for a, b in zip(u, v, strict=True)]
+    return int(candidates[np.argmax(spread)])
+
+
+def _zoom_axes(axz, view: FigureView):
+    """The zoom panel of :func:`rectify_pair`: the strip image, the left point's row and the two points."""
+    r = ZOOM
+    axz.set(xticks=[], yticks=[], xlim=(-0.5, 4 * r + 2.5), ylim=(2 * r + 0.5, -0.5))
+    axz.set_title("the match in red squares, zoomed", fontsize=9)
+    zim = axz.imshow(
+        np.zeros((2 * r + 1, 4 * r + 3)),
+        cmap="gray",
+        vmin=0,
+        vmax=255,
+        interpolation="nearest",
+        extent=(-0.5, 4 * r + 2.5, 2 * r + 0.5, -0.5),
+    )
+    (row,) = axz.plot([], [], color=palette.TAB_RED, lw=1.0, ls="--")
+    (dots,) = axz.plot(
+        [], [], "o", ms=7, mfc="none", mec=palette.ORANGE, mew=2, path_effects=palette.halo(2)
+    )
+    view.animate(zim, row, dots)
+    return zim, row, dots
+
+
 def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
     """The figure of :func:`rectify_pair`: the ``half``-size pair side by side under a row grid, the
-    match lines, and the cumulative histogram of vertical disparity; returns the moving artists."""
-    gs = view.fig.add_gridspec(1, 3, width_ratios=[2.6, 0.05, 1])
-    ax = view.fig.add_subplot(gs[0])
-    axh = view.fig.add_subplot(gs[2])
+    match lines, the cumulative histogram of vertical disparity and a zoom on one match; returns
+    the moving artists."""
+    gs = view.fig.add_gridspec(2, 3, width_ratios=[2.6, 0.05, 1], height_ratios=[1.3, 1])
+    ax = view.fig.add_subplot(gs[:, 0])
+    axh = view.fig.add_subplot(gs[0, 2])
+    axz = view.fig.add_subplot(gs[1, 2])
     ax.set(xlim=(-0.5, 639.5), ylim=(239.5, -0.5), xticks=[], yticks=[])
     ax.set_title("left | right (half size)", fontsize=9)
     im = ax.imshow(
@@ -304,8 +363,13 @@ def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
     axh.axvline(0.5, color=palette.GREY, ls=":", lw=1)
     axh.set_title("vertical disparity", fontsize=9)
     axh.grid(True, which="major", color="0.93")
-    view.animate(im, *guides, match_lines, step)
-    return SimpleNamespace(im=im, match_lines=match_lines, step=step)
+    # the zoomed match, marked where it is in the pair
+    (zmark,) = ax.plot([], [], "s", ms=9, mfc="none", mec=palette.TAB_RED, mew=1.5, ls="none")
+    view.animate(im, *guides, match_lines, step, zmark)
+    zim, zrow, zdots = _zoom_axes(axz, view)
+    return SimpleNamespace(
+        im=im, match_lines=match_lines, step=step, zmark=zmark, zim=zim, zrow=zrow, zdots=zdots
+    )
 
 
 def _pair_controls() -> dict:
@@ -354,10 +418,11 @@ def rectify_pair() -> Demo:
     x1, x2, u1, u2 = matches
     cal1, cal2, cal_rms = bundled_rig_calibration()
     h1, h2 = cal1.resized(0.5), cal2.resized(0.5)
-    view = FigureView(figsize=(9.4, 3.6))
+    view = FigureView(figsize=(9.4, 3.8))
     art = _pair_figure(view, half)
     im, match_lines, step = art.im, art.match_lines, art.step
     sel = np.linspace(0, len(x1) - 1, 14).astype(int)
+    zi = _zoomed_match(half[0], x1, x2)
     readout = W.HTML()
 
     def update(v, state):
@@ -385,6 +450,11 @@ def rectify_pair() -> Demo:
         seg = np.full((len(sel), 3, 2), np.nan)
         seg[:, 0], seg[:, 1] = s1[sel], s2[sel] + [320, 0]
         match_lines.set_data(*seg.reshape(-1, 2).T)
+        strip, a, b = _zoom_pair(L, R, s1[zi], s2[zi])
+        art.zim.set_data(strip)
+        art.zrow.set_data([-0.5, 4 * ZOOM + 2.5], [a[1], a[1]])
+        art.zdots.set_data([a[0], b[0]], [a[1], b[1]])
+        art.zmark.set_data([s1[zi, 0], s2[zi, 0] + 320], [s1[zi, 1], s2[zi, 1]])
         vd = rc.vertical_disparity(y1, y2)
         values = np.sort(np.clip(vd.values, 1e-3, None))
         step.set_data(
@@ -404,6 +474,7 @@ def rectify_pair() -> Demo:
             vertical_p95=vd.p95,
             vertical_values=vd.values,
             method=v["method"],
+            zoom_offset=float(b[1] - a[1]),  # the zoomed match's vertical disparity, half-size px
         )
 
     return build_demo(
@@ -426,8 +497,9 @@ def rectify_pair() -> Demo:
 def disparity_depth() -> Demo:
     """Disparity by block matching (numpy) or SGBM, its depth error, and the 3-D points.
 
-    Small windows are noisy, large ones blur depth edges; SGBM adds smoothness along
-    8 directions. Each result is computed once per setting and cached.
+    Small windows are noisy, large ones blur depth edges; SGBM adds smoothness costs
+    along 5 directions (OpenCV's single-pass ``MODE_SGBM``). Each result is computed once
+    per setting and cached.
 
     Returns
     -------
@@ -451,10 +523,11 @@ def disparity_depth() -> Demo:
             )
         return dp.sgbm_disparity(L, R, max_disparity=44, block_size=block, min_disparity=8)
 
-    view = FigureView(figsize=(9.4, 3.4))
-    ax1 = view.fig.add_subplot(1, 3, 1)
-    ax2 = view.fig.add_subplot(1, 3, 2)
-    ax3 = scene3d.axes3d(view.fig, 1, 3, 3, elev=18, azim=-62)
+    view = FigureView(figsize=(9.4, 3.6))
+    gs = view.fig.add_gridspec(1, 3, width_ratios=[1, 1, 1.25])
+    ax1 = view.fig.add_subplot(gs[0])
+    ax2 = view.fig.add_subplot(gs[1])
+    ax3 = scene3d.axes3d(view.fig, gs[2], elev=18, azim=-62)
     for a, t in ((ax1, "disparity (px)"), (ax2, "depth error (%)")):
         a.set(xticks=[], yticks=[])
         a.set_title(t, fontsize=9)
@@ -464,8 +537,9 @@ def disparity_depth() -> Demo:
     view.fig.colorbar(im2, ax=ax2, shrink=0.7)
     ax3.set_title("3-D points, left camera (vertical: up, m)", fontsize=9)
     ax3.set(xlim=(-1.6, 1.6), ylim=(1.0, 4.5), zlim=(-0.8, 1.4))
-    ax3.set_xlabel("X (m)", fontsize=8, labelpad=-6)
-    ax3.set_ylabel("depth Z (m)", fontsize=8, labelpad=-6)
+    ax3.set_box_aspect(None, zoom=1.2)  # fill the panel: the default leaves a wide empty margin
+    ax3.set_xlabel("X (m)", fontsize=8, labelpad=-4)
+    ax3.set_ylabel("depth Z (m)", fontsize=8, labelpad=0)
     ax3.set_zlabel("")
     ax3.set(xticks=[-1, 0, 1], yticks=[1, 2, 3, 4], zticks=[-0.5, 0.5])
     ax3.tick_params(labelsize=7, pad=0)

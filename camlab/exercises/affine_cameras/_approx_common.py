@@ -83,8 +83,9 @@ def depth_and_ab(camera, X0):
     return float(x_c[2]), x_c[:2] / x_c[2]
 
 
-def last_row_cause(g, d0, expected, fix, r3=None) -> str:
-    """Why the last row is not (0, 0, 0, 1) (``r3``: the camera's optical axis, to recognise a kept r3)."""
+def last_row_cause(g, d0, expected, fix, r3=None, name="P_inf") -> str:
+    """Why the last row is not (0, 0, 0, 1) (``r3``: the camera's optical axis, to recognise a kept r3;
+    ``name``: the exercise's camera, P_inf or P_para, as the hint names it)."""
     if r3 is not None and np.linalg.norm(g[2, :3]) > 1e-9:
         k = float(g[2, :3] @ r3)
         if np.allclose(g[2, :3], k * r3, rtol=1e-6, atol=1e-9):
@@ -109,7 +110,7 @@ def last_row_cause(g, d0, expected, fix, r3=None) -> str:
                 return (
                     f"you set up K E but did not divide by d0 = {d0:.4g} m: the last row is (0, 0, 0, d0). "
                     f"Projectively it is the same camera (dividing by its third coordinate images every point "
-                    f"where P_inf does), but the prompt fixes the last row to (0, 0, 0, 1), so that u = M2 X + t2 "
+                    f"where {name} does), but the prompt fixes the last row to (0, 0, 0, 1), so that u = M2 X + t2 "
                     f"holds with no division; divide the whole matrix by d0 once: {fix}."
                 )
             return (
@@ -233,6 +234,28 @@ def common_context(camera, X0, fix=""):
     return SimpleNamespace(camera=camera, X0=X0, K=K, R=R, t=t, d0=float(R[2] @ X0 + t[2]), fix=fix)
 
 
+def nearly_right_cause(g, expected, fix) -> str | None:
+    """The cause when every entry is within 1e-4 (relative, or absolute near 0) of the answer but not within
+    the exercise's 1e-7: the form is right and only the digits are off (rounded numbers, float32, a
+    truncated constant), so no slip of the formula should be named."""
+    if not np.allclose(g, expected, rtol=1e-4, atol=1e-4):
+        return None
+    gap = float(np.abs(g - expected).max())
+    return (
+        f"every entry is within {gap:.1g} of the answer, so the formula is right, but the check asks for "
+        f"1e-7 (relative): were numbers rounded, or typed in from a printout? Compute {fix} from camera.K, "
+        f"camera.R, camera.t and X0 directly, without rounding."
+    )
+
+
+def swapped(K, *pairs):
+    """K with each ((row, col), (row, col)) pair of entries exchanged (fx <-> fy, cx <-> cy)."""
+    K = np.array(K, dtype=float)
+    for a, b in pairs:
+        K[a], K[b] = K[b], K[a]
+    return K
+
+
 def square_pixels(K):
     """K with fy replaced by fx: the square-pixel slip."""
     K = np.array(K, dtype=float)
@@ -347,6 +370,38 @@ COMMON_MISTAKES = (
         lambda s: (
             f"the second row is scaled by fx = {s.K[0, 0]:g} px where this camera's fy = {s.K[1, 1]:g} px: "
             f"pixels need not be square, so use all of K (K[1, 1] for v): {s.fix}."
+        ),
+    ),
+    Mistake(
+        "fx and fy swapped",
+        lambda s: dict(K=swapped(s.K, ((0, 0), (1, 1)))) if s.K[0, 0] != s.K[1, 1] else None,
+        lambda s: (
+            f"fx and fy are swapped: u is scaled by {s.K[1, 1]:g} px and v by {s.K[0, 0]:g} px, but this "
+            f"camera's fx = K[0, 0] = {s.K[0, 0]:g} px scales u (the image width direction) and "
+            f"fy = K[1, 1] = {s.K[1, 1]:g} px scales v (the height); use K as it is: {s.fix}."
+        ),
+    ),
+    Mistake(
+        "cx and cy swapped",
+        lambda s: dict(K=swapped(s.K, ((0, 2), (1, 2)))) if s.K[0, 2] != s.K[1, 2] else None,
+        lambda s: (
+            f"cx and cy are swapped: the last column is off by ({s.K[1, 2] - s.K[0, 2]:+g}, "
+            f"{s.K[0, 2] - s.K[1, 2]:+g}) px, which is (cy - cx, cx - cy). The principal point is "
+            f"(cx, cy) = (K[0, 2], K[1, 2]) = ({s.K[0, 2]:g}, {s.K[1, 2]:g}): cx is along u (the width), "
+            f"cy along v (the height); use K as it is: {s.fix}."
+        ),
+    ),
+    Mistake(
+        "fx, fy and cx, cy swapped",
+        lambda s: (
+            dict(K=swapped(s.K, ((0, 0), (1, 1)), ((0, 2), (1, 2))))
+            if s.K[0, 0] != s.K[1, 1] and s.K[0, 2] != s.K[1, 2]
+            else None
+        ),
+        lambda s: (
+            f"width and height are swapped throughout K: u gets fy = {s.K[1, 1]:g} px and cy = {s.K[1, 2]:g} px, "
+            f"v gets fx = {s.K[0, 0]:g} px and cx = {s.K[0, 2]:g} px. K's first row (fx, skew, cx) belongs "
+            f"to u, the width direction, its second (0, fy, cy) to v; use K as it is: {s.fix}."
         ),
     ),
     Mistake(

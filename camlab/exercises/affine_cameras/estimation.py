@@ -146,7 +146,25 @@ def _estimate_exception_hint(exc, args) -> str:
 
 
 def estimate_affine_camera(X, uv):
-    """Least-squares affine camera (H&Z algorithm 7.2): centre both point sets, then solve for M2."""
+    """Least-squares affine camera (H&Z algorithm 7.2): centre both point sets, then solve for M2.
+
+    Parameters
+    ----------
+    X : (N, 3) ndarray
+        World points, N >= 4, not all on one plane.
+    uv : (N, 2) ndarray
+        Their pixels.
+
+    Returns
+    -------
+    (3, 4) ndarray
+        The affine camera [[M2, um - M2 Xm], [0, 0, 0, 1]]: M2 the least-squares fit of the centred
+        pixels to the centred points (Xm, um the centroids, which correspond).
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 7.3 (algorithm 7.2).
+    """
     Xm, um = X.mean(axis=0), uv.mean(axis=0)
     M2 = np.linalg.lstsq(X - Xm, uv - um, rcond=None)[0].T  # (2, 3): uv - um = M2 (X - Xm)
     P = np.zeros((3, 4))

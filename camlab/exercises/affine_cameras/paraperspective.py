@@ -19,6 +19,7 @@ from ._approx_common import (
     image_of_X0_as_translation,
     last_row_cause,
     match_mistake,
+    nearly_right_cause,
     p_para,
     principal_point_cause,
     same_to_rounding,
@@ -248,10 +249,11 @@ def _para_diagnosis(args, got, expected) -> str:
     cause = first_mistake(_MISTAKES, _context(camera, X0), g, same_to_rounding) or match_mistake(
         g, camera, X0, lambda d: x_c[:2] / d, P_PARA
     )
+    cause = cause or nearly_right_cause(g, expected, P_PARA)
     if cause:
         return cause
     if not np.allclose(g[2], [0.0, 0.0, 0.0, 1.0], atol=1e-9):
-        return last_row_cause(g, d0, expected, P_PARA, camera.R[2])
+        return last_row_cause(g, d0, expected, P_PARA, camera.R[2], name="P_para")
     slip = v_flip_cause(g, expected) or image_of_X0_as_translation(g, expected, camera, X0)
     if slip:
         return slip
@@ -291,7 +293,7 @@ def _para_mistake(name):
             "R": R,
             "t": t,
             "d0": float(x_c[2]),
-            **row.answer(common_context(camera, X0)),
+            **(row.answer(common_context(camera, X0)) or {}),  # None: the slip changes nothing here
         }
         return p_para(kw["K"], kw["R"], kw["t"], kw["d0"], x_c[:2] / kw["d0"])
 
@@ -324,7 +326,21 @@ def _para_no_skew(camera, X0):
 
 
 def paraperspective_approximation(camera, X0):
-    """Perspective linearised at X0 (section 2): x -> (x - a (z - d0)) / d0, last row (0, 0, 0, 1)."""
+    """Perspective linearised at X0 (section 2): x -> (x - a (z - d0)) / d0, last row (0, 0, 0, 1).
+
+    Parameters
+    ----------
+    camera : camlab.camera.Camera
+        The perspective camera (K, R, t).
+    X0 : (3,) ndarray
+        The reference point, world coordinates, in front of the camera.
+
+    Returns
+    -------
+    (3, 4) ndarray
+        The paraperspective camera K E / d0, with d0 the depth of X0 and (a, b) its normalised image
+        position; it agrees with the camera at X0 to first order.
+    """
     K, R, t = camera.K, camera.R, camera.t
     x_c = R @ X0 + t  # X0 in the camera frame
     d0 = x_c[2]  # its depth
@@ -430,6 +446,12 @@ register_exercise(
             (_para_mistake("d0 = t3"), "depth of the world origin"),
             (_para_mistake("d0 = r3 . X0 - t3"), "t3 has the wrong sign"),
             (_para_mistake("no K"), "left out K"),
+            (_para_mistake("fx and fy swapped"), "fx and fy are swapped"),
+            (_para_mistake("cx and cy swapped"), "cx and cy are swapped"),
+            (
+                lambda camera, X0: np.round(af.paraperspective_approximation(camera, X0), 6),
+                "the formula is right",
+            ),
             (_para_mistake("K^-1"), "K^-1"),
             (_para_mistake("R.T"), "R.T"),
             (_para_mistake("t1, t2 sign"), "t1 and t2 have the wrong sign"),
@@ -438,7 +460,7 @@ register_exercise(
                 lambda camera, X0: (
                     af.paraperspective_approximation(camera, X0) * (camera.R[2] @ X0 + camera.t[2])
                 ),
-                "did not divide by d0",
+                "where P_para does",
             ),
             (lambda camera, X0: -af.paraperspective_approximation(camera, X0), "minus the answer"),
             (

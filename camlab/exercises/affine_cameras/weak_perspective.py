@@ -18,6 +18,7 @@ from ._approx_common import (
     image_of_X0_as_translation,
     last_row_cause,
     match_mistake,
+    nearly_right_cause,
     p_inf,
     principal_point_cause,
     proportional,
@@ -127,6 +128,7 @@ def _approx_diagnosis(args, got, expected) -> str:
     cause = first_mistake(_MISTAKES, _context(camera, X0), g, same_to_rounding) or match_mistake(
         g, camera, X0, lambda d: (0.0, 0.0), P_INF
     )
+    cause = cause or nearly_right_cause(g, expected, P_INF)
     if cause:
         return cause
     if not np.allclose(g[2], [0.0, 0.0, 0.0, 1.0], atol=1e-9):
@@ -135,7 +137,7 @@ def _approx_diagnosis(args, got, expected) -> str:
                 "this is the perspective camera P = K [R | t] itself (up to scale): its last row (r3, t3) gives "
                 f"every point its own depth. The affine camera replaces that row by the constant depth d0: {P_INF}."
             )
-        return last_row_cause(g, d0, expected, P_INF, camera.R[2])
+        return last_row_cause(g, d0, expected, P_INF, camera.R[2], name="P_inf")
     return _approx_top_rows_cause(g, expected, camera, X0, d0)
 
 
@@ -192,7 +194,7 @@ def _mistake(name):
             "R": R,
             "t": t,
             "d0": float(R[2] @ X0 + t[2]),
-            **row.answer(common_context(camera, X0)),
+            **(row.answer(common_context(camera, X0)) or {}),  # None: the slip changes nothing here
         }
         return p_inf(kw["K"], kw["R"], kw["t"], kw["d0"])
 
@@ -282,7 +284,24 @@ def _approx_K_in_place(camera, X0):
 
 
 def affine_approximation(camera, X0):
-    """Give every point the depth d0 of the reference point X0 (H&Z §6.3.1), last row (0, 0, 0, 1)."""
+    """Give every point the depth d0 of the reference point X0 (H&Z §6.3.1), last row (0, 0, 0, 1).
+
+    Parameters
+    ----------
+    camera : camlab.camera.Camera
+        The perspective camera (K, R, t).
+    X0 : (3,) ndarray
+        The reference point, world coordinates, in front of the camera.
+
+    Returns
+    -------
+    (3, 4) ndarray
+        The affine (weak-perspective) camera K [[R's first two rows, t's first two], [0, 0, 0, d0]] / d0.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 6.3.1.
+    """
     K, R, t = camera.K, camera.R, camera.t
     d0 = R[2] @ X0 + t[2]  # depth of X0 in the camera frame
     E = np.zeros((3, 4))
@@ -307,6 +326,13 @@ register_exercise(
                 "must scale (t1, t2) too",
             ),
             (_mistake("fx for both focal lengths"), "pixels need not be square"),
+            (_mistake("fx and fy swapped"), "fx and fy are swapped"),
+            (_mistake("cx and cy swapped"), "cx and cy are swapped"),
+            (_mistake("fx, fy and cx, cy swapped"), "width and height are swapped"),
+            (
+                lambda camera, X0: np.round(af.affine_approximation(camera, X0), 6),
+                "the formula is right",
+            ),
             (lambda camera, X0: camera.P, "perspective camera P = K [R | t] itself"),
             (lambda camera, X0: -af.affine_approximation(camera, X0), "minus the answer"),
             (_mistake("d0 = t3"), "depth of the world origin"),

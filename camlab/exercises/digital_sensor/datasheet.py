@@ -31,7 +31,7 @@ def _datasheet_reference(f_mm, sensor_mm, size):
     )
 
 
-def near(a, b):
+def _near(a, b):
     """Equal to rounding (the check's own tolerance is 1e-9)."""
     return np.isclose(a, b, rtol=1e-6, atol=1e-9)
 
@@ -40,7 +40,7 @@ def _unit_slip(factor, unit):
     """The row for f_x or f_y ``factor`` times the right value (a slip between mm, µm and m)."""
 
     def hint(s):
-        x_off, y_off = near(s.g[0, 0], s.fx * factor), near(s.g[1, 1], s.fy * factor)
+        x_off, y_off = _near(s.g[0, 0], s.fx * factor), _near(s.g[1, 1], s.fy * factor)
         which = "f_x and f_y are" if x_off and y_off else "f_x is" if x_off else "f_y is"
         return (
             f"{which} {unit}: a unit slip between mm, µm and m; keep f and the pitch in the same unit "
@@ -49,7 +49,7 @@ def _unit_slip(factor, unit):
 
     return Mistake(
         f"f {unit}",
-        lambda s: near(s.g[0, 0], s.fx * factor) or near(s.g[1, 1], s.fy * factor),
+        lambda s: _near(s.g[0, 0], s.fx * factor) or _near(s.g[1, 1], s.fy * factor),
         hint,
     )
 
@@ -65,7 +65,7 @@ _MISTAKES = (
     ),
     Mistake(
         "bottom row",
-        lambda s: not near(s.g[2], [0, 0, 1]).all(),
+        lambda s: not _near(s.g[2], [0, 0, 1]).all(),
         (
             "the bottom row of K is (0, 0, 1): it keeps the homogeneous coordinate, K @ (x, y, 1) = (u, v, 1)"
         ),
@@ -73,9 +73,9 @@ _MISTAKES = (
     Mistake(
         "H, W = size",
         lambda s: (
-            near(s.g[0, 0], s.f_mm * s.H / s.w_mm)
-            and near(s.g[1, 1], s.f_mm * s.W / s.h_mm)
-            and near(s.g[0, 2], s.cy)
+            _near(s.g[0, 0], s.f_mm * s.H / s.w_mm)
+            and _near(s.g[1, 1], s.f_mm * s.W / s.h_mm)
+            and _near(s.g[0, 2], s.cy)
         ),
         (
             "you unpacked size as H, W = size: size is (width, height), as in OpenCV, so W, H = size; with the "
@@ -85,9 +85,9 @@ _MISTAKES = (
     Mistake(
         "sensor_mm as (height, width)",
         lambda s: (
-            near(s.g[0, 0], s.f_mm * s.W / s.h_mm)
-            and near(s.g[1, 1], s.f_mm * s.H / s.w_mm)
-            and (not near(s.fx, s.f_mm * s.W / s.h_mm))
+            _near(s.g[0, 0], s.f_mm * s.W / s.h_mm)
+            and _near(s.g[1, 1], s.f_mm * s.H / s.w_mm)
+            and (not _near(s.fx, s.f_mm * s.W / s.h_mm))
         ),
         (
             "sensor_mm is (width, height), like size: s_x = sensor_mm[0] / W = width / W, "
@@ -96,7 +96,7 @@ _MISTAKES = (
     ),
     Mistake(
         "f_y negative",
-        lambda s: near(s.g[1, 1], -s.fy) and (not near(s.g[0, 0], -s.fx)),
+        lambda s: _near(s.g[1, 1], -s.fy) and (not _near(s.g[0, 0], -s.fx)),
         (
             "f_x and f_y are positive here: the course's image plane has y down, like v down the image, so "
             "f_y = f / s_y needs no minus sign (a y-up convention flips it; see docs/conventions.md)"
@@ -104,7 +104,7 @@ _MISTAKES = (
     ),
     Mistake(
         "f_x negative",
-        lambda s: near(s.g[0, 0], -s.fx) or near(s.g[1, 1], -s.fy),
+        lambda s: _near(s.g[0, 0], -s.fx) or _near(s.g[1, 1], -s.fy),
         (
             "f_x = f / s_x is positive: a focal length and a pitch are both positive lengths, so there is no "
             "minus sign in K (the course's x points right on the image plane, like u; docs/conventions.md)"
@@ -112,7 +112,7 @@ _MISTAKES = (
     ),
     Mistake(
         "field of view in degrees",
-        lambda s: near(s.g[0, 0], s.fx_degrees) or near(s.g[1, 1], s.fy_degrees),
+        lambda s: _near(s.g[0, 0], s.fx_degrees) or _near(s.g[1, 1], s.fy_degrees),
         (
             "f_x went through the field of view with the angle in degrees: np.tan takes radians, so "
             "(W / 2) / np.tan(np.degrees(fov) / 2) is far off (even negative). Leave the angle in radians, or skip "
@@ -129,7 +129,7 @@ _MISTAKES = (
     ),
     Mistake(
         "centre numbered from 1",
-        lambda s: near(s.g[0, 2], (s.W + 1) / 2) or near(s.g[1, 2], (s.H + 1) / 2),
+        lambda s: _near(s.g[0, 2], (s.W + 1) / 2) or _near(s.g[1, 2], (s.H + 1) / 2),
         (
             "(W + 1) / 2 is the centre when pixels are numbered from 1 (MATLAB's convention); numpy and camlab "
             "number them from 0, so u runs from 0 to W - 1 and the centre is (W - 1) / 2"
@@ -139,8 +139,8 @@ _MISTAKES = (
         "centre by integer division",
         lambda s: (
             s.W % 2 == 0
-            and near(s.g[0, 2], (s.W - 1) // 2)
-            or (s.H % 2 == 0 and near(s.g[1, 2], (s.H - 1) // 2))
+            and _near(s.g[0, 2], (s.W - 1) // 2)
+            or (s.H % 2 == 0 and _near(s.g[1, 2], (s.H - 1) // 2))
         ),
         lambda s: (
             f"c_x = {(s.W - 1) // 2} for W = {s.W} is the centre {(s.W - 1) / 2} cut short by half a pixel: integer "
@@ -153,8 +153,8 @@ _MISTAKES = (
         "W // 2 - 0.5",
         lambda s: (
             s.W % 2
-            and near(s.g[0, 2], s.W // 2 - 0.5)
-            or (s.H % 2 and near(s.g[1, 2], s.H // 2 - 0.5))
+            and _near(s.g[0, 2], s.W // 2 - 0.5)
+            or (s.H % 2 and _near(s.g[1, 2], s.H // 2 - 0.5))
         ),
         lambda s: (
             f"W // 2 - 0.5 is the centre only for an even W: for W = {s.W} it gives {s.W // 2 - 0.5}, half a pixel "
@@ -164,7 +164,7 @@ _MISTAKES = (
     ),
     Mistake(
         "c_x and c_y swapped",
-        lambda s: near(s.g[0, 2], s.cy) and near(s.g[1, 2], s.cx) and (not near(s.cx, s.cy)),
+        lambda s: _near(s.g[0, 2], s.cy) and _near(s.g[1, 2], s.cx) and (not _near(s.cx, s.cy)),
         (
             "c_x and c_y are swapped: c_x = (W - 1) / 2 comes from the width W = size[0], c_y = (H - 1) / 2 from "
             "the height H = size[1] (sizes are (width, height), as in OpenCV; an array's shape is (H, W))"
@@ -172,7 +172,7 @@ _MISTAKES = (
     ),
     Mistake(
         "centre W / 2",
-        lambda s: near(s.g[0, 2], s.W / 2) or near(s.g[1, 2], s.H / 2),
+        lambda s: _near(s.g[0, 2], s.W / 2) or _near(s.g[1, 2], s.H / 2),
         (
             "half a pixel off: with pixel centres at integers, u runs from 0 to W - 1, so the centre is "
             "(W - 1) / 2, not W / 2 (that is the centre in a pixel-corner convention), and not (W - 1) / 2 "
@@ -181,7 +181,7 @@ _MISTAKES = (
     ),
     Mistake(
         "c_x from the height",
-        lambda s: near(s.g[0, 2], s.cy) and (not near(s.cx, s.cy)),
+        lambda s: _near(s.g[0, 2], s.cy) and (not _near(s.cx, s.cy)),
         lambda s: (
             f"c_x comes from the width: (W - 1) / 2 with W = size[0] = {s.W}; you used the height H = {s.H} "
             f"(size is (width, height), as in OpenCV)"
@@ -189,7 +189,7 @@ _MISTAKES = (
     ),
     Mistake(
         "c_y from the width",
-        lambda s: near(s.g[1, 2], s.cx) and (not near(s.cx, s.cy)),
+        lambda s: _near(s.g[1, 2], s.cx) and (not _near(s.cx, s.cy)),
         lambda s: (
             f"c_y comes from the height: (H - 1) / 2 with H = size[1] = {s.H}; you used the width W = {s.W} "
             f"(size is (width, height), as in OpenCV)"
@@ -197,7 +197,7 @@ _MISTAKES = (
     ),
     Mistake(
         "principal point in millimetres",
-        lambda s: near(s.g[0, 2], s.w_mm / 2) or near(s.g[1, 2], s.h_mm / 2),
+        lambda s: _near(s.g[0, 2], s.w_mm / 2) or _near(s.g[1, 2], s.h_mm / 2),
         lambda s: (
             f"c_x and c_y are in pixels, not millimetres: sensor_mm / 2 = ({s.w_mm / 2:g}, {s.h_mm / 2:g}) mm is "
             f"the centre's distance from the sensor's corner; in pixels it is ((W - 1) / 2, (H - 1) / 2) = "
@@ -206,14 +206,14 @@ _MISTAKES = (
     ),
     Mistake(
         "centre at the image size",
-        lambda s: near(s.g[0, 2], s.W - 1) or near(s.g[0, 2], s.W) or near(s.g[1, 2], s.H - 1),
+        lambda s: _near(s.g[0, 2], s.W - 1) or _near(s.g[0, 2], s.W) or _near(s.g[1, 2], s.H - 1),
         (
             "the principal point is the image centre, (W - 1) / 2 and (H - 1) / 2, not the image size"
         ),
     ),
     Mistake(
         "f in millimetres",
-        lambda s: near(s.g[0, 0], s.f_mm) or near(s.g[1, 1], s.f_mm),
+        lambda s: _near(s.g[0, 0], s.f_mm) or _near(s.g[1, 1], s.f_mm),
         (
             "f_x is in pixels, not millimetres: divide the focal length by the pixel pitch, f_x = f / s_x with "
             "s_x = sensor width / W (both in mm, so the units cancel)"
@@ -232,7 +232,7 @@ _MISTAKES = (
         Mistake(
             f"centimetres, {unit}",
             lambda s, factor=factor: (
-                near(s.g[0, 0], s.fx * factor) and near(s.g[1, 1], s.fy * factor)
+                _near(s.g[0, 0], s.fx * factor) and _near(s.g[1, 1], s.fy * factor)
             ),
             lambda s, unit=unit: (
                 f"f_x and f_y are {unit}: a centimetre slip? f_mm = {s.f_mm:g} is already in millimetres, like "
@@ -244,7 +244,9 @@ _MISTAKES = (
     Mistake(
         "pitch along the diagonal",
         lambda s: (
-            near(s.g[0, 0], s.diagonal) and near(s.g[1, 1], s.diagonal) and (not near(s.fx, s.fy))
+            _near(s.g[0, 0], s.diagonal)
+            and _near(s.g[1, 1], s.diagonal)
+            and (not _near(s.fx, s.fy))
         ),
         lambda s: (
             f"you took the pitch along the diagonal, sqrt(w**2 + h**2) / sqrt(W**2 + H**2); that is each axis's "
@@ -255,7 +257,7 @@ _MISTAKES = (
     Mistake(
         "width over H",
         lambda s: (
-            near(s.g[1, 1], s.f_mm * s.H / s.w_mm) and (not near(s.fy, s.f_mm * s.H / s.w_mm))
+            _near(s.g[1, 1], s.f_mm * s.H / s.w_mm) and (not _near(s.fy, s.f_mm * s.H / s.w_mm))
         ),
         (
             "s_y = height / H: you divided the sensor's width by H (sensor_mm = (width, height): height is sensor_mm[1])"
@@ -264,7 +266,7 @@ _MISTAKES = (
     Mistake(
         "height over W",
         lambda s: (
-            near(s.g[0, 0], s.f_mm * s.W / s.h_mm) and (not near(s.fx, s.f_mm * s.W / s.h_mm))
+            _near(s.g[0, 0], s.f_mm * s.W / s.h_mm) and (not _near(s.fx, s.f_mm * s.W / s.h_mm))
         ),
         (
             "s_x = width / W: you divided the sensor's height by W (sensor_mm = (width, height): width is sensor_mm[0])"
@@ -272,12 +274,14 @@ _MISTAKES = (
     ),
     Mistake(
         "s_x / f",
-        lambda s: near(s.g[0, 0], 1 / s.fx) or near(s.g[0, 0], s.w_mm / s.W / s.f_mm),
+        lambda s: _near(s.g[0, 0], 1 / s.fx) or _near(s.g[0, 0], s.w_mm / s.W / s.f_mm),
         ("f_x = f / s_x, not s_x / f: the focal length in units of the pixel pitch"),
     ),
     Mistake(
         "f times the pitch",
-        lambda s: near(s.g[0, 0], s.f_mm * s.w_mm / s.W) or near(s.g[1, 1], s.f_mm * s.h_mm / s.H),
+        lambda s: (
+            _near(s.g[0, 0], s.f_mm * s.w_mm / s.W) or _near(s.g[1, 1], s.f_mm * s.h_mm / s.H)
+        ),
         (
             "you multiplied the focal length by the pitch, f * s_x; divide: f_x = f / s_x counts how many pixel "
             "pitches fit in the focal length, so finer pixels give a larger f_x"
@@ -285,7 +289,7 @@ _MISTAKES = (
     ),
     Mistake(
         "half f_x",
-        lambda s: near(s.g[0, 0], s.fx / 2) or near(s.g[1, 1], s.fy / 2),
+        lambda s: _near(s.g[0, 0], s.fx / 2) or _near(s.g[1, 1], s.fy / 2),
         (
             "f_x is half the right value: did you use half the sensor (width / 2) or double the pitch? "
             "f_x = f / s_x with s_x = width / W, the pitch of one pixel; the half width belongs to the field "
@@ -294,7 +298,7 @@ _MISTAKES = (
     ),
     Mistake(
         "twice f_x",
-        lambda s: near(s.g[0, 0], 2 * s.fx) or near(s.g[1, 1], 2 * s.fy),
+        lambda s: _near(s.g[0, 0], 2 * s.fx) or _near(s.g[1, 1], 2 * s.fy),
         (
             "f_x is twice the right value: did you halve the pitch (width / 2 / W)? "
             "f_x = f / s_x with s_x = width / W, the pitch of one pixel"
@@ -303,8 +307,8 @@ _MISTAKES = (
     Mistake(
         "W - 1 pixels",
         lambda s: (
-            near(s.g[0, 0], s.f_mm * (s.W - 1) / s.w_mm)
-            or near(s.g[1, 1], s.f_mm * (s.H - 1) / s.h_mm)
+            _near(s.g[0, 0], s.f_mm * (s.W - 1) / s.w_mm)
+            or _near(s.g[1, 1], s.f_mm * (s.H - 1) / s.h_mm)
         ),
         (
             "the pitch is sensor width / W: W pixels tile the width (W - 1 counts the gaps between centres)"
@@ -312,7 +316,7 @@ _MISTAKES = (
     ),
     Mistake(
         "f_x and f_y swapped",
-        lambda s: near(s.g[0, 0], s.fy) and near(s.g[1, 1], s.fx) and (not near(s.fx, s.fy)),
+        lambda s: _near(s.g[0, 0], s.fy) and _near(s.g[1, 1], s.fx) and (not _near(s.fx, s.fy)),
         (
             "f_x and f_y are swapped: f_x = f / s_x with the horizontal pitch s_x = width / W, f_y = f / s_y with "
             "s_y = height / H"
@@ -320,7 +324,7 @@ _MISTAKES = (
     ),
     Mistake(
         "square pixels assumed",
-        lambda s: (near(s.g[1, 1], s.fx) or near(s.g[0, 0], s.fy)) and (not near(s.fx, s.fy)),
+        lambda s: (_near(s.g[1, 1], s.fx) or _near(s.g[0, 0], s.fy)) and (not _near(s.fx, s.fy)),
         lambda s: (
             f"pixels need not be square: here s_x = {s.w_mm / s.W * 1e3:.4g} µm and s_y = {s.h_mm / s.H * 1e3:.4g} µm, so "
             f"f_x = f / s_x and f_y = f / s_y differ; compute each from its own axis"
@@ -328,7 +332,7 @@ _MISTAKES = (
     ),
     Mistake(
         "skew",
-        lambda s: not near(s.g[0, 1], 0),
+        lambda s: not _near(s.g[0, 1], 0),
         ("K[0, 1] is the skew, 0 for a sensor with perpendicular rows and columns"),
     ),
     Mistake(
@@ -398,7 +402,27 @@ def _datasheet_diagnosis(args, got, expected) -> str:
 
 
 def intrinsics_from_datasheet(f_mm, sensor_mm, size):
-    """K in pixels from a datasheet: focal length (mm), sensor (width, height) in mm, resolution (W, H) in pixels."""
+    """K in pixels from a datasheet: focal length (mm), sensor (width, height) in mm, resolution (W, H) in pixels.
+
+    Parameters
+    ----------
+    f_mm : float
+        The lens's focal length, mm.
+    sensor_mm : (2,) array_like
+        The sensor's active area (width, height), mm.
+    size : (2,) array_like of int
+        The resolution (W, H), pixels.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        K = [[f / s_x, 0, (W - 1)/2], [0, f / s_y, (H - 1)/2], [0, 0, 1]], with the pixel pitch
+        (s_x, s_y) = sensor_mm / size in mm per pixel and pixel centres at whole numbers.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 6.1 (alpha_x = f m_x).
+    """
     W, H = size
     sx, sy = sensor_mm[0] / W, sensor_mm[1] / H  # pixel pitch, mm per pixel (need not be square)
     return np.array(

@@ -389,7 +389,22 @@ def _cross_kernel_demosaic(raw, pattern):
 
 
 def demosaic_bilinear(raw, pattern):
-    """Section 4's formula, c = k * (m r) / (k * m) at the missing sites; measured samples kept."""
+    """Section 4's formula, c = k * (m r) / (k * m) at the missing sites; measured samples kept.
+
+    Parameters
+    ----------
+    raw : (H, W) array_like
+        The mosaic: one colour sample per pixel (uint8, uint16 or float).
+    pattern : str
+        The colours of the 2 x 2 tile, row by row: ``"RGGB"``, ``"BGGR"``, ``"GRBG"`` or ``"GBRG"``.
+
+    Returns
+    -------
+    (H, W, 3) ndarray of float
+        The RGB image: each pixel's measured colour as it was, the two others interpolated from the
+        neighbours that measured them (k the 3 x 3 tent kernel, m the colour's mask, zeros beyond the
+        border).
+    """
     raw = np.asarray(raw, dtype=float)  # float: uint8 sums would wrap around
     H, W = raw.shape
     m = np.zeros((H, W, 3))  # m[..., c] = 1 where the pixel measured colour c

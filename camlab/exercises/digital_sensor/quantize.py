@@ -22,7 +22,18 @@ def _quantize_cases():
 
 
 def not_an_array(got) -> str | None:
-    """The hint for an answer that is no numpy array (a list from .tolist() or a comprehension), else None."""
+    """The hint for an answer that is no numpy array (a list from .tolist() or a comprehension), else None.
+
+    Parameters
+    ----------
+    got : object
+        The student's answer.
+
+    Returns
+    -------
+    str or None
+        The hint naming the answer's type and the fix, or None for a numpy array.
+    """
     if isinstance(got, np.ndarray):
         return None
     return (
@@ -291,7 +302,20 @@ def _right_quantize_numbers(img, bits):
 
 
 def quantize_image(image, bits):
-    """Digital numbers DN = round(I (2**bits - 1)), clipped; uint8 up to 8 bits, uint16 above."""
+    """Digital numbers DN = round(I (2**bits - 1)), clipped; uint8 up to 8 bits, uint16 above.
+
+    Parameters
+    ----------
+    image : ndarray
+        Intensities, 0 to 1 (values beyond saturate).
+    bits : int
+        The converter's bit depth (uint16 holds up to 16).
+
+    Returns
+    -------
+    ndarray of uint8 (bits <= 8) or uint16
+        The digital numbers, 0 .. 2**bits - 1, of ``image``'s shape.
+    """
     levels = 2**bits - 1
     dn = np.clip(np.round(image * levels), 0, levels)  # round to nearest, then saturate
     return dn.astype(np.uint8 if bits <= 8 else np.uint16)

@@ -1,11 +1,18 @@
 """What lesson 02's distortion exercise recognises in an answer that is normalised and scaled back right:
-the model itself done wrong (a term's sign, a missing term, Brown-Conrady variants), and its test cases."""
+the model itself done wrong (a term's sign, a missing term, Brown-Conrady variants), and its test cases.
+
+The slips are the rows of :data:`MODEL_MISTAKES` (:class:`~camlab.exercises._core.Mistake`), checked in
+order by :func:`model_diagnosis`.
+"""
 
 from __future__ import annotations
+
+from types import SimpleNamespace
 
 import numpy as np
 
 from ... import distortion
+from .._core import Mistake, first_mistake
 
 # -- distort_pixels ---------------------------------------------------------------------------
 
@@ -74,121 +81,207 @@ def tangential_terms(x, d) -> np.ndarray:
     )
 
 
-def _sign_slip(x, d, g) -> str:
-    """A hint when ``g`` is the model with the radial or a tangential coefficient's sign flipped ('' if not)."""
-    k1, k2, p1, p2, k3 = d
-    flips = (
-        (
-            (-k1, -k2, p1, p2, -k3),
-            "the radial terms have the wrong sign: L = 1 + k1 r^2 + k2 r^4 + k3 r^6 "
-            "(k1 < 0 pulls points in, barrel)",
-            k1 or k2 or k3,
-        ),
-        (
-            (k1, k2, -p1, -p2, k3),
-            "the tangential terms have the wrong sign: x gets + 2 p1 x y + p2 (r^2 + 2 x^2), "
-            "y gets + p1 (r^2 + 2 y^2) + 2 p2 x y",
-            p1 and p2,
-        ),
-        (
-            (k1, k2, -p1, p2, k3),
-            "the p1 terms have the wrong sign: + 2 p1 x y in x_d, + p1 (r^2 + 2 y^2) in y_d",
-            p1,
-        ),
-        (
-            (k1, k2, p1, -p2, k3),
-            "the p2 terms have the wrong sign: + p2 (r^2 + 2 x^2) in x_d, + 2 p2 x y in y_d",
-            p2,
-        ),
+def _is(s, coefficients) -> bool:
+    """Whether the answer is the model with the coefficients ``coefficients`` (in OpenCV's order)."""
+    return np.allclose(s.g, distortion.distort_points(s.x, coefficients))
+
+
+def _tangential_sign(k: int, term: str) -> Mistake:
+    """The row for tangential term ``k`` (named ``term``) entering with a minus sign."""
+
+    def shows(s) -> bool:
+        t = tangential_terms(s.x, s.d)[k]
+        return np.allclose(s.g, s.expected - 2 * t) and t.any()
+
+    return Mistake(
+        f"minus {term}",
+        shows,
+        f"the sign of one tangential term: {term} enters with a plus sign (OpenCV's model, section 4)",
     )
-    for flipped, hint, present in flips:
-        if present and np.allclose(g, distortion.distort_points(x, flipped)):
-            return hint
-    return ""
+
+
+def _r2(s) -> np.ndarray:
+    return s.x[:, 0] ** 2 + s.x[:, 1] ** 2
+
+
+def _one_power_wrong(s, L_wrong) -> bool:
+    """Whether the answer is the model with the radial factor ``L_wrong(s, r2)`` and the tangential terms right."""
+    tangential = s.expected - distortion.distort_points(s.x, [s.k1, s.k2, 0, 0, s.k3])
+    return np.allclose(s.g, s.x * L_wrong(s, _r2(s))[:, None] + tangential)
+
+
+def _y_with_p1_p2_swapped(s) -> bool:
+    """x_d right, y_d with p1 and p2 exchanged."""
+    r2 = _r2(s)
+    u, v = s.x[:, 0], s.x[:, 1]
+    L = 1 + s.k1 * r2 + s.k2 * r2**2 + s.k3 * r2**3
+    y_swapped = np.column_stack(
+        [s.expected[:, 0], v * L + s.p2 * (r2 + 2 * v**2) + 2 * s.p1 * u * v]
+    )
+    return np.allclose(s.g, y_swapped)
+
+
+def _odd_powers_of_r(s) -> bool:
+    """The radial factor in powers of r, not r^2 (with or without the tangential terms)."""
+    r = np.hypot(s.x[:, 0], s.x[:, 1])
+    wrong_r = s.x * (1 + s.k1 * r + s.k2 * r**2 + s.k3 * r**3)[:, None]
+    radial_only = distortion.distort_points(s.x, [s.k1, s.k2, 0, 0, s.k3])
+    return np.allclose(s.g, wrong_r) or np.allclose(s.g, wrong_r + (s.expected - radial_only))
+
+
+# Checked in order on ``s``: the normalised points ``s.x``, the coefficients ``s.d`` (and each by name,
+# ``s.k1`` .. ``s.k3``, ``s.p1``, ``s.p2``), the answer ``s.g`` and the right one ``s.expected``, both
+# normalised. A row tests a slip only where the coefficients let it show (a k3 slip needs k3 != 0).
+MODEL_MISTAKES = (
+    Mistake(
+        "k3 read third",
+        lambda s: (s.p1 or s.p2 or s.k3) and _is(s, [s.k1, s.k2, s.p2, s.k3, s.p1]),
+        (
+            "you read dist as (k1, k2, k3, p1, p2); OpenCV's order is (k1, k2, p1, p2, k3): "
+            "k3 comes last, after the tangential p1, p2"
+        ),
+    ),
+    Mistake(
+        "k1 and k2 swapped",
+        lambda s: s.k1 != s.k2 and _is(s, [s.k2, s.k1, s.p1, s.p2, s.k3]),
+        "k1 and k2 are swapped: OpenCV's order is (k1, k2, p1, p2, k3), and L = 1 + k1 r^2 + k2 r^4 + k3 r^6",
+    ),
+    Mistake(
+        "no radial factor",
+        lambda s: (s.k1 or s.k2 or s.k3) and _is(s, [0, 0, s.p1, s.p2, 0]),
+        "you left out the radial factor: x_d = x L + (tangential terms), with L = 1 + k1 r^2 + k2 r^4 + k3 r^6",
+    ),
+    Mistake(
+        "p1 and p2 swapped",
+        lambda s: (s.p1 or s.p2) and _is(s, [s.k1, s.k2, s.p2, s.p1, s.k3]),
+        "p1 and p2 are swapped: OpenCV's order is (k1, k2, p1, p2, k3), and x gets 2 p1 x y + p2 (r^2 + 2 x^2)",
+    ),
+    Mistake(
+        "the cross terms' 2",
+        lambda s: (s.p1 or s.p2) and np.allclose(s.g, brown_variant(s.x, s.d, cross=1.0)),
+        "the cross terms need their factor 2: x gets 2 p1 x y, y gets 2 p2 x y",
+    ),
+    Mistake(
+        "x^2 and y^2 swapped",
+        lambda s: (
+            (s.p1 or s.p2) and np.allclose(s.g, brown_variant(s.x, s.d, squares_swapped=True))
+        ),
+        "x^2 and y^2 are swapped in the tangential terms: x gets p2 (r^2 + 2 x^2), y gets p1 (r^2 + 2 y^2)",
+    ),
+    Mistake(
+        "y_d's p1 term copied from x_d",
+        lambda s: s.p1 and np.allclose(s.g, brown_variant(s.x, s.d, y_copied=True)),
+        "y_d's p1 term is p1 (r^2 + 2 y^2), with y; yours has 2 x^2, copied from x_d's p2 term",
+    ),
+    *(_tangential_sign(k, term) for k, term in enumerate(_TANGENTIAL_TERMS)),
+    Mistake(
+        "divided by L",
+        lambda s: np.allclose(s.g, brown_variant(s.x, s.d, divide=True)),
+        "you divided by the radial factor L; distortion multiplies: x_d = x L + ... (dividing is a rough inverse)",
+    ),
+    Mistake(
+        "L without its 1",
+        lambda s: np.allclose(s.g, brown_variant(s.x, s.d, no_one=True)),
+        (
+            "your radial factor lacks its 1: L = 1 + k1 r^2 + k2 r^4 + k3 r^6, so x L is the point itself plus "
+            "the radial shift; without the 1 you return only the shift"
+        ),
+    ),
+    Mistake(
+        "the shift",
+        lambda s: np.allclose(s.g - s.x, s.expected) or np.allclose(s.x - s.g, s.expected),
+        "you returned the shift x_d - x (or x - x_d); return the distorted point x_d itself",
+    ),
+    Mistake(
+        "radial sign",
+        lambda s: (s.k1 or s.k2 or s.k3) and _is(s, [-s.k1, -s.k2, s.p1, s.p2, -s.k3]),
+        (
+            "the radial terms have the wrong sign: L = 1 + k1 r^2 + k2 r^4 + k3 r^6 "
+            "(k1 < 0 pulls points in, barrel)"
+        ),
+    ),
+    Mistake(
+        "tangential sign",
+        lambda s: (s.p1 and s.p2) and _is(s, [s.k1, s.k2, -s.p1, -s.p2, s.k3]),
+        (
+            "the tangential terms have the wrong sign: x gets + 2 p1 x y + p2 (r^2 + 2 x^2), "
+            "y gets + p1 (r^2 + 2 y^2) + 2 p2 x y"
+        ),
+    ),
+    Mistake(
+        "p1's sign",
+        lambda s: s.p1 and _is(s, [s.k1, s.k2, -s.p1, s.p2, s.k3]),
+        "the p1 terms have the wrong sign: + 2 p1 x y in x_d, + p1 (r^2 + 2 y^2) in y_d",
+    ),
+    Mistake(
+        "p2's sign",
+        lambda s: s.p2 and _is(s, [s.k1, s.k2, s.p1, -s.p2, s.k3]),
+        "the p2 terms have the wrong sign: + p2 (r^2 + 2 x^2) in x_d, + 2 p2 x y in y_d",
+    ),
+    Mistake(
+        "no tangential terms",
+        lambda s: (s.p1 or s.p2) and _is(s, [s.k1, s.k2, 0, 0, s.k3]),
+        "you left out the tangential terms p1, p2",
+    ),
+    Mistake(
+        "k1 alone",
+        lambda s: (s.k2 or s.k3 or s.p1 or s.p2) and _is(s, [s.k1, 0, 0, 0, 0]),
+        (
+            "you used k1 alone; dist holds five coefficients (k1, k2, p1, p2, k3), and every one of them counts: "
+            "L = 1 + k1 r^2 + k2 r^4 + k3 r^6, then the tangential terms with p1 and p2"
+        ),
+    ),
+    # one radial power wrong
+    Mistake(
+        "k3 r^4",
+        lambda s: (
+            s.k3 and _one_power_wrong(s, lambda s, r2: 1 + s.k1 * r2 + s.k2 * r2**2 + s.k3 * r2**2)
+        ),
+        "k3 goes with r^6: L = 1 + k1 r^2 + k2 r^4 + k3 r^6 (r2**3); yours gives k3 r^4",
+    ),
+    Mistake(
+        "k2 r^3",
+        lambda s: (
+            s.k2
+            and _one_power_wrong(s, lambda s, r2: 1 + s.k1 * r2 + s.k2 * r2**1.5 + s.k3 * r2**3)
+        ),
+        "k2 goes with r^4 (r2**2, even powers only): L = 1 + k1 r^2 + k2 r^4 + k3 r^6; yours gives k2 r^3",
+    ),
+    Mistake(
+        "k3 r^5",
+        lambda s: (
+            s.k3
+            and _one_power_wrong(s, lambda s, r2: 1 + s.k1 * r2 + s.k2 * r2**2 + s.k3 * r2**2.5)
+        ),
+        "k3 goes with r^6 (r2**3, even powers only): L = 1 + k1 r^2 + k2 r^4 + k3 r^6; yours gives k3 r^5",
+    ),
+    Mistake(
+        "y_d with p1 and p2 swapped",
+        lambda s: s.p1 != s.p2 and _y_with_p1_p2_swapped(s),
+        (
+            "x_d is right, but y_d has p1 and p2 swapped: y_d = y L + p1 (r^2 + 2 y^2) + 2 p2 x y (the "
+            "pattern of x_d with x and y, p1 and p2 exchanged)"
+        ),
+    ),
+    Mistake(
+        "odd powers of r",
+        _odd_powers_of_r,
+        "the radial factor uses even powers of r: 1 + k1 r^2 + k2 r^4 + k3 r^6 with r^2 = x^2 + y^2",
+    ),
+    Mistake(
+        "no k3",
+        lambda s: s.k3 and _is(s, [s.k1, s.k2, s.p1, s.p2, 0]),
+        "you dropped k3 (the fifth coefficient, r^6)",
+    ),
+)
 
 
 def model_diagnosis(x, d, g, expected) -> str:
-    """The likely slip in the Brown-Conrady model itself, on normalised points ('' if none is recognised)."""
+    """The likely slip in the Brown-Conrady model itself, on normalised points ('' if none is recognised).
+
+    ``x`` are the normalised points, ``d`` the coefficients (k1, k2, p1, p2, k3), ``g`` the answer and
+    ``expected`` the right one, both normalised; the slips are the rows of :data:`MODEL_MISTAKES`.
+    """
     k1, k2, p1, p2, k3 = d
-    if (p1 or p2 or k3) and np.allclose(g, distortion.distort_points(x, [k1, k2, p2, k3, p1])):
-        return (
-            "you read dist as (k1, k2, k3, p1, p2); OpenCV's order is (k1, k2, p1, p2, k3): "
-            "k3 comes last, after the tangential p1, p2"
-        )
-    if k1 != k2 and np.allclose(g, distortion.distort_points(x, [k2, k1, p1, p2, k3])):
-        return "k1 and k2 are swapped: OpenCV's order is (k1, k2, p1, p2, k3), and L = 1 + k1 r^2 + k2 r^4 + k3 r^6"
-    if (k1 or k2 or k3) and np.allclose(g, distortion.distort_points(x, [0, 0, p1, p2, 0])):
-        return "you left out the radial factor: x_d = x L + (tangential terms), with L = 1 + k1 r^2 + k2 r^4 + k3 r^6"
-    if (p1 or p2) and np.allclose(g, distortion.distort_points(x, [k1, k2, p2, p1, k3])):
-        return "p1 and p2 are swapped: OpenCV's order is (k1, k2, p1, p2, k3), and x gets 2 p1 x y + p2 (r^2 + 2 x^2)"
-    if (p1 or p2) and np.allclose(g, brown_variant(x, d, cross=1.0)):
-        return "the cross terms need their factor 2: x gets 2 p1 x y, y gets 2 p2 x y"
-    if (p1 or p2) and np.allclose(g, brown_variant(x, d, squares_swapped=True)):
-        return "x^2 and y^2 are swapped in the tangential terms: x gets p2 (r^2 + 2 x^2), y gets p1 (r^2 + 2 y^2)"
-    if p1 and np.allclose(g, brown_variant(x, d, y_copied=True)):
-        return (
-            "y_d's p1 term is p1 (r^2 + 2 y^2), with y; yours has 2 x^2, copied from x_d's p2 term"
-        )
-    for k, term in enumerate(_TANGENTIAL_TERMS):
-        if (
-            np.allclose(g, expected - 2 * tangential_terms(x, d)[k])
-            and tangential_terms(x, d)[k].any()
-        ):
-            return f"the sign of one tangential term: {term} enters with a plus sign (OpenCV's model, section 4)"
-    if np.allclose(g, brown_variant(x, d, divide=True)):
-        return "you divided by the radial factor L; distortion multiplies: x_d = x L + ... (dividing is a rough inverse)"
-    if np.allclose(g, brown_variant(x, d, no_one=True)):
-        return (
-            "your radial factor lacks its 1: L = 1 + k1 r^2 + k2 r^4 + k3 r^6, so x L is the point itself plus "
-            "the radial shift; without the 1 you return only the shift"
-        )
-    if np.allclose(g - x, expected) or np.allclose(x - g, expected):
-        return "you returned the shift x_d - x (or x - x_d); return the distorted point x_d itself"
-    sign = _sign_slip(x, d, g)
-    if sign:
-        return sign
-    if (p1 or p2) and np.allclose(g, distortion.distort_points(x, [k1, k2, 0, 0, k3])):
-        return "you left out the tangential terms p1, p2"
-    if (k2 or k3 or p1 or p2) and np.allclose(g, distortion.distort_points(x, [k1, 0, 0, 0, 0])):
-        return (
-            "you used k1 alone; dist holds five coefficients (k1, k2, p1, p2, k3), and every one of them counts: "
-            "L = 1 + k1 r^2 + k2 r^4 + k3 r^6, then the tangential terms with p1 and p2"
-        )
-    r2 = x[:, 0] ** 2 + x[:, 1] ** 2
-    tangential = expected - distortion.distort_points(x, [k1, k2, 0, 0, k3])
-    for L_wrong, hint, present in (  # one radial power wrong
-        (
-            1 + k1 * r2 + k2 * r2**2 + k3 * r2**2,
-            "k3 goes with r^6: L = 1 + k1 r^2 + k2 r^4 + k3 r^6 (r2**3); yours gives k3 r^4",
-            k3,
-        ),
-        (
-            1 + k1 * r2 + k2 * r2**1.5 + k3 * r2**3,
-            "k2 goes with r^4 (r2**2, even powers only): L = 1 + k1 r^2 + k2 r^4 + k3 r^6; yours gives k2 r^3",
-            k2,
-        ),
-        (
-            1 + k1 * r2 + k2 * r2**2 + k3 * r2**2.5,
-            "k3 goes with r^6 (r2**3, even powers only): L = 1 + k1 r^2 + k2 r^4 + k3 r^6; yours gives k3 r^5",
-            k3,
-        ),
-    ):
-        if present and np.allclose(g, x * L_wrong[:, None] + tangential):
-            return hint
-    if p1 != p2:  # x_d right, y_d with p1 and p2 exchanged
-        u, v = x[:, 0], x[:, 1]
-        L = 1 + k1 * r2 + k2 * r2**2 + k3 * r2**3
-        y_swapped = np.column_stack([expected[:, 0], v * L + p2 * (r2 + 2 * v**2) + 2 * p1 * u * v])
-        if np.allclose(g, y_swapped):
-            return (
-                "x_d is right, but y_d has p1 and p2 swapped: y_d = y L + p1 (r^2 + 2 y^2) + 2 p2 x y (the "
-                "pattern of x_d with x and y, p1 and p2 exchanged)"
-            )
-    r = np.hypot(x[:, 0], x[:, 1])
-    wrong_r = x * (1 + k1 * r + k2 * r**2 + k3 * r**3)[:, None]
-    radial_only = distortion.distort_points(x, [k1, k2, 0, 0, k3])
-    if np.allclose(g, wrong_r) or np.allclose(g, wrong_r + (expected - radial_only)):
-        return "the radial factor uses even powers of r: 1 + k1 r^2 + k2 r^4 + k3 r^6 with r^2 = x^2 + y^2"
-    if k3 and np.allclose(g, distortion.distort_points(x, [k1, k2, p1, p2, 0])):
-        return "you dropped k3 (the fifth coefficient, r^6)"
-    return ""
+    s = SimpleNamespace(x=x, d=d, g=g, expected=expected, k1=k1, k2=k2, p1=p1, p2=p2, k3=k3)
+    return first_mistake(MODEL_MISTAKES, s) or ""

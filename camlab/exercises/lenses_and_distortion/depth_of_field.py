@@ -281,7 +281,22 @@ _MARKED_STOPS = (1.0, 1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0, 16.0, 22.0, 32.0, 45.0
 
 
 def f_number_for_depth(f, c, near, far):
-    """The f-number that keeps blur <= c from near to far (metres), focused where both ends blur equally."""
+    """The f-number that keeps blur <= c from near to far (metres), focused where both ends blur equally.
+
+    Parameters
+    ----------
+    f : float
+        The focal length, m.
+    c : float
+        The largest blur circle allowed (the circle of confusion), m.
+    near, far : float
+        The nearest and farthest distances to keep sharp, m (f < near < far).
+
+    Returns
+    -------
+    float
+        N = f^2 (s - near) / (c near (s - f)), focused at the harmonic mean s = 2 near far / (near + far).
+    """
     # equal blur at both ends, (s - near) / near = (far - s) / far: the harmonic mean
     s = 2 * near * far / (near + far)
     # c(near) = (f/N) (f/(s - f)) (s - near) / near = c, solved for N

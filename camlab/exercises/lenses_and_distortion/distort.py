@@ -198,7 +198,7 @@ _PIXEL_MISTAKES = (
         ),
     ),
 )
-"""Slips in the way to pixels and back (the model's own slips are :func:`._distort_causes._model_diagnosis`),
+"""Slips in the way to pixels and back (the model's own slips are :func:`._distort_causes.model_diagnosis`),
 in the order they are tested, each a test of the answer ``s.g``."""
 
 
@@ -254,7 +254,29 @@ def _transposed_k(uv, K, d, g) -> bool:
 
 
 def distort_pixels(uv, K, dist):
-    """Where a lens with Brown-Conrady coefficients dist (OpenCV's order) moves (N, 2) ideal pixel positions."""
+    """Where a lens with Brown-Conrady coefficients dist (OpenCV's order) moves (N, 2) ideal pixel positions.
+
+    Parameters
+    ----------
+    uv : (N, 2) ndarray
+        Ideal (undistorted) pixel positions (u, v).
+    K : (3, 3) ndarray
+        The intrinsic matrix: f_x, f_y, c_x, c_y in pixels.
+    dist : (5,) array_like
+        The coefficients (k1, k2, p1, p2, k3), OpenCV's order.
+
+    Returns
+    -------
+    (N, 2) ndarray
+        The distorted pixel positions: normalised x = (u - c_x) / f_x, y likewise; x_d = x L + 2 p1 x y
+        + p2 (r^2 + 2 x^2), y_d = y L + p1 (r^2 + 2 y^2) + 2 p2 x y with L = 1 + k1 r^2 + k2 r^4 + k3 r^6;
+        back to pixels with K.
+
+    References
+    ----------
+    D. C. Brown (1966), "Decentering distortion of lenses", Photogrammetric Engineering 32(3);
+    A. E. Conrady (1919), "Decentred lens-systems", Monthly Notices of the RAS 79.
+    """
     k1, k2, p1, p2, k3 = dist  # note: k3 comes last
     fx, fy, cx, cy = K[0, 0], K[1, 1], K[0, 2], K[1, 2]
     # normalised: the model works at f = 1, from the optical axis

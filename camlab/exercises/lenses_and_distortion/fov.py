@@ -246,7 +246,22 @@ def _field_of_view_note(run) -> str:
 
 
 def field_of_view(f, w, z_o):
-    """Horizontal field of view (radians) of a lens f focused at z_o on a sensor w wide (metres)."""
+    """Horizontal field of view (radians) of a lens f focused at z_o on a sensor w wide (metres).
+
+    Parameters
+    ----------
+    f : float
+        The focal length, m.
+    w : float
+        The sensor's width, m.
+    z_o : float
+        The distance focused on, m (z_o > f).
+
+    Returns
+    -------
+    float
+        2 arctan(w / (2 z_i)), rad, with the image distance z_i = f z_o / (z_o - f) (thin-lens equation).
+    """
     z_i = f * z_o / (z_o - f)  # the sensor's distance behind the lens: the pinhole focal length
     return 2 * np.arctan(w / (2 * z_i))  # half the width over z_i is the tangent of the half-angle
 

@@ -291,7 +291,23 @@ def _newton_exception_hint(exc, args) -> str:
 
 
 def newton_step(x, x_d, k1, k2):
-    """One Newton step towards x L(r^2) = x_d (L = 1 + k1 r^2 + k2 r^4) from the current (N, 2) estimate x."""
+    """One Newton step towards x L(r^2) = x_d (L = 1 + k1 r^2 + k2 r^4) from the current (N, 2) estimate x.
+
+    Parameters
+    ----------
+    x : (N, 2) ndarray
+        The current estimates of the undistorted normalised points.
+    x_d : (N, 2) ndarray
+        The distorted normalised points.
+    k1, k2 : float
+        The radial coefficients.
+
+    Returns
+    -------
+    (N, 2) ndarray
+        x + delta, where J delta = -(x L - x_d) with each point's 2 x 2 Jacobian
+        J = L I + (2 k1 + 4 k2 r^2) x x^T; a new array (``x`` and ``x_d`` stay as they are).
+    """
     r2 = (x**2).sum(axis=1, keepdims=True)  # (N, 1), of the current x
     L = 1 + k1 * r2 + k2 * r2**2
     residual = x * L - x_d  # F(x) - x_d: zero at the answer

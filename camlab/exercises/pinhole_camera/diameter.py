@@ -107,6 +107,21 @@ class NearMinimumBlur:
     excess = 1e-3
 
     def __call__(self, got, expected) -> bool:
+        """Whether ``got`` blurs at most ``excess`` more than the best diameter ``expected`` does.
+
+        Parameters
+        ----------
+        got : object
+            The student's diameter, m.
+        expected : float
+            The best diameter, m.
+
+        Returns
+        -------
+        bool
+            True for a positive number whose blur, relative to the minimum, (r + 1/r)/2 - 1 with
+            r = got / expected, is at most ``excess``.
+        """
         if not is_number(got) or not float(got) > 0:
             return False
         r = float(got) / float(expected)
@@ -125,7 +140,20 @@ def _slip_under_root(ratio: float) -> str | None:
 
 
 def best_pinhole_diameter(f, wavelength):
-    """Minimise b(d) = d + 2.44 wavelength f / d: b'(d) = 1 - 2.44 wavelength f / d**2 = 0."""
+    """Minimise b(d) = d + 2.44 wavelength f / d: b'(d) = 1 - 2.44 wavelength f / d**2 = 0.
+
+    Parameters
+    ----------
+    f : float
+        The pinhole camera's length (hole to image), m.
+    wavelength : float
+        The light's wavelength, m.
+
+    Returns
+    -------
+    float
+        d* = sqrt(2.44 wavelength f), m: the diameter of least blur for a distant object.
+    """
     return float(np.sqrt(2.44 * wavelength * f))
 
 

@@ -34,6 +34,21 @@ class NearMinimumExposure:
     excess = 5e-4
 
     def __call__(self, got, expected) -> bool:
+        """Whether the hole behind ``got`` blurs at most ``excess`` more than the best one does.
+
+        Parameters
+        ----------
+        got : object
+            The student's exposure time, s.
+        expected : float
+            The exposure time with the best hole, s.
+
+        Returns
+        -------
+        bool
+            True for a positive number whose hole (d ~ 1 / sqrt(t)), relative to the best,
+            r = sqrt(expected / got), blurs (r + 1/r)/2 - 1 <= ``excess`` more.
+        """
         if not is_number(got) or not float(got) > 0:
             return False
         r = np.sqrt(float(expected) / float(got))
@@ -263,6 +278,22 @@ def best_pinhole_exposure(f, wavelength, t_lens, N_lens):
     """Exposure time (s) of a pinhole camera of length f with its best hole, matching a lens at N_lens for t_lens.
 
     The light on the image goes as (d / f)^2 = 1 / N^2, so the exposure time goes as N^2.
+
+    Parameters
+    ----------
+    f : float
+        The pinhole camera's length, m.
+    wavelength : float
+        The light's wavelength, m.
+    t_lens : float
+        The lens's exposure time, s.
+    N_lens : float
+        The lens's f-number.
+
+    Returns
+    -------
+    float
+        t_lens (N / N_lens)^2, s, with N = f / d* the f-number of the best hole d* = sqrt(2.44 wavelength f).
     """
     d_star = np.sqrt(2.44 * wavelength * f)  # the best hole for a distant object (section 3)
     N = f / d_star  # its f-number

@@ -29,7 +29,20 @@ FX_TOLERANCE = Tolerance(2e-4, 0.0)
 
 
 def one_number(got, what: str) -> str | None:
-    """Why ``got`` is not one number (a list or an array of numbers, say), or None."""
+    """Why ``got`` is not one number (a list or an array of numbers, say), or None.
+
+    Parameters
+    ----------
+    got : object
+        The student's answer.
+    what : str
+        What the number is, for the message ("f_x in pixels").
+
+    Returns
+    -------
+    str or None
+        The hint, or None when ``got`` is one number.
+    """
     if np.ndim(got) != 0:
         kind = "numpy array" if isinstance(got, np.ndarray) else type(got).__name__
         return (
@@ -245,6 +258,18 @@ def focal_length_pixels(fov_deg, size):
 
     The edge ray makes FOV / 2 with the axis and meets the sensor W / 2 pixels from its centre:
     tan(FOV / 2) = (W / 2) / f_x.
+
+    Parameters
+    ----------
+    fov_deg : float
+        The horizontal field of view, degrees.
+    size : (2,) array_like
+        The image's (width, height), pixels.
+
+    Returns
+    -------
+    float
+        f_x = (W / 2) / tan(FOV / 2), pixels.
     """
     width = size[0]
     half_angle = np.radians(fov_deg) / 2

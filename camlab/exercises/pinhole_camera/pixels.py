@@ -322,6 +322,22 @@ def project_to_pixels(X, f, pitch, size):
 
     x = f X / Z on the image plane (metres); divide by the pitch for pixels, f_x = f / pitch;
     add the principal point, the centre of a W x H image with pixel centres at integers.
+
+    Parameters
+    ----------
+    X : (N, 3) array_like
+        Points in the camera frame (x right, y down, z forward), m, with Z > 0.
+    f : float
+        The focal length, m.
+    pitch : float
+        The pixel pitch, m per pixel (square pixels).
+    size : (2,) array_like of int
+        The image's (W, H), pixels.
+
+    Returns
+    -------
+    (N, 2) ndarray
+        (u, v) = (f / pitch) (X / Z, Y / Z) + ((W - 1)/2, (H - 1)/2), pixels.
     """
     X = np.asarray(X, dtype=float)
     W, H = size

@@ -118,7 +118,24 @@ answer ``s.e``."""
 
 
 def pinhole_projection(X, f):
-    """Virtual image of camera-frame points: x = f X / Z, y = f Y / Z (similar triangles)."""
+    """Virtual image of camera-frame points: x = f X / Z, y = f Y / Z (similar triangles).
+
+    Parameters
+    ----------
+    X : (N, 3) array_like
+        Points in the camera frame, m, with Z > 0.
+    f : float
+        The focal length (pinhole to image plane), m.
+
+    Returns
+    -------
+    (N, 2) ndarray
+        (x, y) on the virtual image plane, m.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 6.1 (the basic pinhole model).
+    """
     X = np.asarray(X, dtype=float)
     Z = X[:, 2:3]  # (N, 1), so one division scales both columns
     return f * X[:, :2] / Z

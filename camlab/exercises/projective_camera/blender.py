@@ -192,7 +192,21 @@ def _blender_diagnosis(args, got, expected) -> str:
 
 
 def blender_matrix_world(R, t):
-    """Blender's matrix_world (world_from_cam, OpenGL axes) for the OpenCV pose cam_from_world (R, t)."""
+    """Blender's matrix_world (world_from_cam, OpenGL axes) for the OpenCV pose cam_from_world (R, t).
+
+    Parameters
+    ----------
+    R : (3, 3) array_like
+        The rotation of cam_from_world, OpenCV's camera axes (x right, y down, z forward).
+    t : (3,) array_like
+        The translation of cam_from_world, world units.
+
+    Returns
+    -------
+    (4, 4) ndarray
+        [[R_gl^T, -R_gl^T t_gl], [0, 1]] with (R_gl, t_gl) = (F R, F t), F = diag(1, -1, -1): the camera's
+        axes in the world (y up, z backward), its last column the camera centre C = -R^T t.
+    """
     F = np.diag([1.0, -1.0, -1.0])  # flip the camera's y and z: y up, z backward
     R_gl, t_gl = F @ np.asarray(R), F @ np.asarray(t)
     M = np.eye(4)

@@ -158,7 +158,22 @@ def _centre_exception_hint(exc, args) -> str:
 
 
 def camera_centre(P):
-    """The homogeneous centre C with P C = 0: P's right null vector, scaled to w = 1."""
+    """The homogeneous centre C with P C = 0: P's right null vector, scaled to w = 1.
+
+    Parameters
+    ----------
+    P : (3, 4) ndarray
+        A finite projective camera (its left 3 x 3 block invertible).
+
+    Returns
+    -------
+    (4,) ndarray
+        C = (X, Y, Z, 1), the camera centre in world coordinates.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 6.2.1 (camera anatomy).
+    """
     _, _, Vt = np.linalg.svd(P)
     # the null vector: the full SVD's 4th right singular vector (its singular value, 0, is not in S)
     C = Vt[-1]

@@ -221,7 +221,25 @@ def _dlt_exception_hint(exc, args) -> str:
 
 
 def estimate_projection_matrix(X, uv):
-    """The normalised DLT: normalise, two rows of u x P X = 0 per point, SVD, undo."""
+    """The normalised DLT: normalise, two rows of u x P X = 0 per point, SVD, undo.
+
+    Parameters
+    ----------
+    X : (N, 3) array_like
+        World points, N >= 6, not all on one plane.
+    uv : (N, 2) array_like
+        Their pixels.
+
+    Returns
+    -------
+    (3, 4) ndarray
+        P up to scale, with uv ~ P (X, 1): T^-1 P_hat U, where U and T move each point set's centroid to
+        0 and its mean distance to sqrt(3) (world) and sqrt(2) (pixels).
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 7.1 and algorithm 7.1.
+    """
     X, uv = np.asarray(X, dtype=float), np.asarray(uv, dtype=float)
 
     def normaliser(p):  # centroid to 0, mean distance to the centroid sqrt(D), D = 2 or 3

@@ -182,7 +182,24 @@ def _project_exception_hint(exc, args) -> str:
 
 
 def project_points(P, X):
-    """Pixels of (N, 3) world points: x = P (X, 1), then divide by the third coordinate."""
+    """Pixels of (N, 3) world points: x = P (X, 1), then divide by the third coordinate.
+
+    Parameters
+    ----------
+    P : (3, 4) array_like
+        The camera matrix.
+    X : (N, 3) array_like
+        World points.
+
+    Returns
+    -------
+    (N, 2) ndarray
+        Their pixels (u, v).
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 6.2.
+    """
     X = np.asarray(X, dtype=float)
     Xh = np.hstack([X, np.ones((len(X), 1))])  # (N, 4) homogeneous world points
     x = Xh @ np.asarray(P).T  # points are rows: (P Xh^T)^T = Xh P^T

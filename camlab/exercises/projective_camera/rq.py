@@ -132,7 +132,13 @@ def _unreproduced_cause(K, R, M) -> str:
 
 
 def sign_flips():
-    """The seven D = diag(+-1) other than I."""
+    """The seven D = diag(+-1) other than I.
+
+    Returns
+    -------
+    list of (3, 3) ndarray
+        Every diagonal matrix of +1 and -1 except the identity.
+    """
     return [
         np.diag(signs) for signs in np.array(np.meshgrid(*[[1.0, -1.0]] * 3)).reshape(3, -1).T[1:]
     ]
@@ -212,7 +218,24 @@ def _rq_qr(M):
 
 
 def rq_decomposition(M):
-    """M = K R with K upper triangular (positive diagonal) and R orthogonal, from numpy's QR."""
+    """M = K R with K upper triangular (positive diagonal) and R orthogonal, from numpy's QR.
+
+    Parameters
+    ----------
+    M : (3, 3) array_like
+        An invertible matrix (the left 3 x 3 block of a camera matrix).
+
+    Returns
+    -------
+    K : (3, 3) ndarray
+        Upper triangular, with a positive diagonal.
+    R : (3, 3) ndarray
+        Orthogonal (det R = sign of det M), with K R = M.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 6.2.4 and appendix A4.1.1.
+    """
     E = np.eye(3)[::-1]  # the exchange matrix reverses row order; E = E^T = E^-1
     Q, U = np.linalg.qr((E @ M).T)  # (E M)^T = Q U, so M = (E U^T E)(E Q^T)
     K, R = E @ U.T @ E, E @ Q.T  # E U^T E is upper triangular

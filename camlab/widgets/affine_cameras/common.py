@@ -38,19 +38,58 @@ REFERENCE_LABEL = "X0, the reference point"
 
 
 def reference_marker(ax, zorder=4):
-    """The X0 marker on ``ax`` (a figure legend names it: a label beside it would cover the data), as a
-    one-artist tuple, empty until :func:`place_reference` moves it."""
+    """The X0 marker on ``ax``, empty until :func:`place_reference` moves it.
+
+    A figure legend names it: a label beside it would cover the data.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    zorder : float
+        The marker's drawing order.
+
+    Returns
+    -------
+    tuple of matplotlib.lines.Line2D
+        The one marker, as a one-artist tuple (for ``view.animate(*...)``).
+    """
     (marker,) = ax.plot([], [], zorder=zorder, **REFERENCE_MARKER)
     return (marker,)
 
 
 def place_reference(artists, xy):
-    """Move the X0 marker made by :func:`reference_marker` to the point ``xy``."""
+    """Move the X0 marker made by :func:`reference_marker` to the point ``xy``.
+
+    Parameters
+    ----------
+    artists : tuple of matplotlib.lines.Line2D
+        What :func:`reference_marker` returned.
+    xy : (2,) array_like
+        The point, in the axes' data coordinates.
+    """
     artists[0].set_data([xy[0]], [xy[1]])
 
 
 def model_line(ax, model, lw=1.1, **kw):
-    """An empty line in ``model``'s colour and style, labelled with the model's name (for legends)."""
+    """An empty line in ``model``'s colour and style, labelled with the model's name (for legends).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw on.
+    model : str
+        A key of :data:`COLOURS` (``"perspective"``, ``"weak perspective"``, ...).
+    lw : float
+        The line width, points.
+    **kw
+        Other :meth:`matplotlib.axes.Axes.plot` options.
+
+    Returns
+    -------
+    matplotlib.lines.Line2D
+        The line, with no data yet.
+    """
     (ln,) = ax.plot([], [], color=COLOURS[model], ls=STYLES[model], lw=lw, label=model, **kw)
     return ln
 
@@ -60,8 +99,28 @@ PRINCIPAL_POINT_MARKER = dict(marker="+", color="0.3", ms=11, mew=1.2, ls="none"
 
 
 def model_legend(fig, models, reference=False, principal_point=False, extra=(), **kw):
-    """One legend above the figure naming each model's colour (drawn once, outside the data), the
-    X0 marker if ``reference``, the principal point's if ``principal_point`` and ``extra`` handles."""
+    """One legend above the figure naming each model's colour, drawn once, outside the data.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    models : sequence of str
+        The models to name, keys of :data:`COLOURS`.
+    reference : bool
+        Also name the X0 marker.
+    principal_point : bool
+        Also name the principal point's marker.
+    extra : sequence of artists
+        More handles, after those.
+    **kw
+        Other :meth:`matplotlib.figure.Figure.legend` options.
+
+    Returns
+    -------
+    matplotlib.legend.Legend
+        The legend, one row, outside the axes at the top.
+    """
     handles = [Line2D([], [], color=COLOURS[m], ls=STYLES[m], lw=1.5, label=m) for m in models]
     if reference:
         handles.append(Line2D([], [], label=REFERENCE_LABEL, **REFERENCE_MARKER))

@@ -49,9 +49,23 @@ class RailCameras(NamedTuple):
 
 
 def rail_cameras(yaw: float, pitch: float) -> RailCameras:
-    """The rail demo's perspective camera looking along the track (+y), turned by ``yaw`` about the
-    vertical and tilted down by ``pitch`` (radians; f = 500 px, 640 x 480), and its weak-perspective
-    approximation about :data:`RAIL_REFERENCE`."""
+    """The rail demo's perspective camera looking along the track, and its weak-perspective approximation.
+
+    The camera looks along the track (+y) from :data:`RAIL_EYE`, f = 500 px, 640 x 480; the
+    approximation is about :data:`RAIL_REFERENCE`.
+
+    Parameters
+    ----------
+    yaw : float
+        The turn about the vertical, radians.
+    pitch : float
+        The tilt down, radians.
+
+    Returns
+    -------
+    RailCameras
+        ``camera`` and its weak-perspective ``affine`` (3, 4) matrix.
+    """
     direction = cm.rotation_z(-yaw) @ np.array([0.0, np.cos(pitch), -np.sin(pitch)])
     cam = cm.Camera.look_at(
         RAIL_EYE, RAIL_EYE + direction, K=cm.intrinsic_matrix(500, 500, 319.5, 239.5)
@@ -65,8 +79,20 @@ def rail_cameras(yaw: float, pitch: float) -> RailCameras:
 # least 7 px apart.
 @register(lesson="05", sweep={"yaw": [-15, 15], "pitch": [10, 18]})
 def parallel_rails():
-    """Parallel rails meet at a vanishing point in perspective; an affine image keeps them parallel,
-    and keeps equal sleepers equal at every depth (no shrinking with distance)."""
+    """Parallel rails meet at a vanishing point in perspective; an affine image keeps them parallel.
+
+    The affine image also keeps equal sleepers equal at every depth (no shrinking with
+    distance).
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``yaw`` (degrees, + turns right) and ``pitch`` (degrees down), the
+        figure (the perspective and weak-perspective images of the track, each with the pixels
+        one metre of track spans near and far) and ``state`` (``vanishing_point``,
+        ``affine_direction``, ``camera``, ``P_affine``, ``horizon``, ``sleeper_gaps``,
+        ``reference_image``).
+    """
     view = FigureView(figsize=(10, 4.6))
     ax_p, ax_a = view.fig.subplots(1, 2)
     scene = fixtures.rail_track(*RAIL_TRACK)

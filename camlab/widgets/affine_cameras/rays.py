@@ -43,10 +43,25 @@ def _joined(*polylines):
 
 @register(lesson="05", sweep={"offset": [0.0, 1.0, 2.5]})
 def projection_rays():
-    """A top view of four camera models (after Szeliski fig. 2.7): how each sends the
-    corners of a block to the image line. Move the block sideways: on the optical axis weak and
-    para-perspective coincide; off it, para-perspective's rays run parallel to the line of sight to X0
-    (drawn dash-dot), its viewing direction, as weak perspective's run parallel to the optical axis."""
+    """A top view of four camera models: how each sends the corners of a block to the image line.
+
+    After Szeliski's figure of the projection models [1]_. Move the block sideways: on the
+    optical axis weak and para-perspective coincide; off it, para-perspective's rays run
+    parallel to the line of sight to X0 (drawn dash-dot), its viewing direction, as weak
+    perspective's run parallel to the optical axis.
+
+    Returns
+    -------
+    Demo
+        The demo: control ``offset`` (the block's x offset, m), the figure (one top view per
+        model of :data:`camlab.affine.PROJECTION_MODELS`) and ``state`` (``reference``, X0 as
+        (x, z) in m; ``image_x``, each model's corner images on the image line, m).
+
+    References
+    ----------
+    .. [1] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022, section
+       2.1.4 (3D to 2D projections), fig. 2.7.
+    """
     view = FigureView(figsize=(10, 4.75))
     axes = view.fig.subplots(1, 4, sharey=True)
     artists = {}

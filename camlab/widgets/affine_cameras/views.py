@@ -45,7 +45,17 @@ def _image_panel(ax, title, model, size=(640, 480), tick_labels=True):
     sweep={"azimuth": [-90, 10, 90], "elevation": [0, 50, 80], "distance": [2.0, 12.0, 20.0]},
 )
 def three_cameras():
-    """Perspective, weak-perspective and orthographic images of the same scene side by side."""
+    """Perspective, weak-perspective and orthographic images of the same scene side by side.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``azimuth``, ``elevation`` (degrees) and ``distance`` (m, a dolly
+        zoom), the figure (the three images, the weak one over the perspective one), the
+        readout (the largest gap inside the frame for the cube and the rails) and ``state``
+        (``camera``, ``P_weak``, ``focal`` in px, ``gaps``, ``max_difference`` in px,
+        ``reference_point``, ``reference_images``).
+    """
     view = FigureView(figsize=(9.5, 3.35))
     axes = view.fig.subplots(1, 3)
     scene = fixtures.box_and_rails()
@@ -133,7 +143,21 @@ def _rms_text(rms: float) -> str:
 
 
 def dolly_curves(offset: float, distances: np.ndarray) -> dict:
-    """RMS error (px) of weak and para-perspective along the dolly zoom with the cube ``offset`` px off centre."""
+    """RMS error of weak and para-perspective along the dolly zoom, the cube ``offset`` px off centre.
+
+    Parameters
+    ----------
+    offset : float
+        Where the cube is imaged, pixels right of the principal point.
+    distances : (D,) ndarray
+        The dolly zoom's distances, metres.
+
+    Returns
+    -------
+    dict of str to (D,) ndarray
+        ``"weak perspective"`` and ``"para-perspective"``: the RMS error over the cube's 8
+        corners at each distance, pixels (:func:`camlab.affine.dolly_zoom_errors`).
+    """
     pts = scenes.box_wireframe((0.0, 0.0, 0.5), (1.0, 1.0, 1.0)).reshape(-1, 3)
     return {
         m: af.dolly_zoom_errors(
@@ -202,11 +226,22 @@ def _dolly_error_axes(ax, distances):
 
 @register(lesson="05", sweep={"distance": [2.0, 6.0, 40.0, 150.0], "offset": [0, 50, 100]})
 def dolly_zoom():
-    """Move the camera away while zooming in (f = f0 d / D0): the object keeps its size, the
-    perspective image approaches its affine approximations and their error falls like 1/d. Off
-    the image centre, para-perspective stays closer than weak perspective; on the axis (offset 0)
-    the two coincide. Each affine image has its own panel over the perspective one, so neither
-    hides the other."""
+    """Move the camera away while zooming in (f = f0 d / D0): the object keeps its size.
+
+    The perspective image approaches its affine approximations and their error falls like
+    1/d. Off the image centre, para-perspective stays closer than weak perspective; on the
+    axis (offset 0) the two coincide. Each affine image has its own panel over the
+    perspective one, so neither hides the other.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``distance`` (d, m, a log slider) and ``offset`` (the cube right of
+        centre, px), the figure (the two affine images over the perspective one, and the
+        log-log error curves) and ``state`` (``distance``, ``offset``, ``focal`` in px,
+        ``rms_error`` and ``rms_paraperspective`` in px, ``curve``, ``curves``, ``camera``,
+        ``reference_image``).
+    """
     view = FigureView(figsize=(10, 3.9))
     ax_weak, ax_para, ax_err = view.fig.subplots(1, 3, width_ratios=(1.0, 1.0, 0.95))
     cube = scenes.box_wireframe((0.0, 0.0, 0.5), (1.0, 1.0, 1.0))

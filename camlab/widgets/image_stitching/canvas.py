@@ -6,10 +6,12 @@ from __future__ import annotations
 
 import ipywidgets as W
 import numpy as np
+from matplotlib.colors import to_rgb
 
 from ... import stitching as st
 from ...fixtures import panorama_examples as pe
 from ...plotting import palette
+from ...plotting.stitching import VIEW_COLOURS
 from ...projective import map_points
 from .._base import Demo, FigureView, build_demo, register
 from ..controls import monospace
@@ -81,28 +83,21 @@ def _fitted_points(points: np.ndarray, shape, box) -> np.ndarray:
     return np.asarray(points, float) * s + [ox, oy]
 
 
-@register(lesson="09", sweep={"reference": [0, 1, 3]})
-def panorama_canvas() -> Demo:
-    """Every image warped onto one canvas; the reference image decides the shape (and the stretch).
-
-    Shown at quarter size (160 x 120 images) so that even the widest canvas warps quickly;
-    each canvas is scaled to fill the picture (the title gives its size in pixels).
+def _outline_figure(box, lw: float, name: str, animate_legend: bool):
+    """The figure of a panorama with each image's outline: the image, four outline lines keyed
+    below the axes (over the animated panorama a key would be hidden by every live frame), no
+    ticks, a title to animate. Returns (view, ax, im, lines, legend, title).
     """
-    graph = pe.panorama_graph()
-    small, canvases = pe.reference_canvases()
-    box = (300, 800)  # the axes' units: (height, width), about the shape the axes get
     view = FigureView(figsize=(9, 3.6))
     ax = view.fig.subplots()
     im = view.animate(ax.imshow(np.zeros((10, 10, 3))))
-    colors = palette.SERIES[:4]
     lines = [
         view.animate(
-            ax.plot([], [], color=c, lw=1.5, path_effects=palette.halo(1.5), label=f"image {k}")[0]
+            ax.plot([], [], color=c, lw=lw, path_effects=palette.halo(lw), label=f"{name} {k}")[0]
         )
-        for k, c in enumerate(colors)
+        for k, c in enumerate(VIEW_COLOURS[:4])
     ]
-    # below the axes: over the (animated) panorama it would be hidden by every live frame
-    ax.legend(
+    legend = ax.legend(
         handles=lines,
         loc="upper center",
         bbox_to_anchor=(0.5, 0.0),
@@ -110,10 +105,38 @@ def panorama_canvas() -> Demo:
         fontsize=8,
         title="outline of",
     )
+    if animate_legend:  # it goes with the outlines when they are switched off
+        view.animate(legend)
     ax.set(xlim=(-0.5, box[1] - 0.5), ylim=(box[0] - 0.5, -0.5), aspect="equal")
     ax.set_xticks([])
     ax.set_yticks([])
     title = view.animate(ax.set_title(" ", fontsize=9))
+    return view, ax, im, lines, legend, title
+
+
+@register(lesson="09", sweep={"reference": [0, 1, 3]})
+def panorama_canvas() -> Demo:
+    """Every image warped onto one canvas; the reference image decides the shape (and the stretch).
+
+    Shown at quarter size (160 x 120 images) so that even the widest canvas warps quickly;
+    each canvas is scaled to fill the picture (the title gives its size in pixels). The
+    images are painted one after the other (overwrite) onto the canvas of the chosen
+    reference (:func:`camlab.fixtures.panorama_examples.reference_canvases`).
+
+    Returns
+    -------
+    Demo
+        The demo: control ``reference`` (the image the others are mapped into; it starts at
+        the match graph's best-connected image), the figure (the canvas scaled to fit, each
+        image's outline, and a title with the canvas size and the display scale) and
+        ``state`` (``reference``, ``canvas`` the canvas's (height, width) in quarter-size
+        px, ``T`` the translation into the canvas, ``display_scale`` the factor it is shown
+        at).
+    """
+    graph = pe.panorama_graph()
+    small, canvases = pe.reference_canvases()
+    box = (300, 800)  # the axes' units: (height, width), about the shape the axes get
+    view, ax, im, lines, _, title = _outline_figure(box, lw=1.5, name="image", animate_legend=False)
     readout = W.HTML()
     shown = {ref: _rgba(c.panorama) for ref, c in canvases.items()}
 
@@ -152,7 +175,35 @@ def panorama_canvas() -> Demo:
 
 @register(lesson="09", sweep={"method": list(st.BLENDS), "gains": [False, True], "levels": [1, 5]})
 def blending_seams() -> Demo:
-    """Overwrite, feather and multi-band blending of two differently exposed views, with a zoom on the seam."""
+    """Overwrite, feather and multi-band blending of two differently exposed views, with a zoom on the seam.
+
+    Images 1 and 2 of the half-size set on their common canvas
+    (:func:`camlab.fixtures.panorama_examples.exposure_pair`), every blend the controls
+    reach computed once (:func:`camlab.fixtures.panorama_examples.pair_blends`). The zoom
+    window is fixed and wide enough to hold both the overwrite seam (the border of the
+    image painted last) and the middle seam the other blends use, so switching methods
+    compares the same canvas pixels.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``method`` (a blend of :data:`camlab.stitching.BLENDS`),
+        ``gains`` (apply the exposure gains of gain compensation) and ``levels`` (the
+        pyramid levels, 1-6; multi-band only, disabled otherwise), the figure (the blended
+        canvas with the zoom window outlined, and the zoom) and ``state`` (``method``,
+        ``seam_jump`` the mean brightness step across the seam in grey levels 0-255,
+        ``image`` the blended canvas, (h, w, 3) floats in [0, 1]).
+
+    References
+    ----------
+    .. [1] P. J. Burt and E. H. Adelson, 1983, "A multiresolution spline with application to
+       image mosaics", *ACM Transactions on Graphics* 2(4), 217-236.
+    .. [2] M. Brown and D. G. Lowe, 2007, "Automatic panoramic image stitching using invariant
+       features", *International Journal of Computer Vision* 74(1), 59-73, sections 6 (gain
+       compensation) and 7 (multi-band blending).
+    .. [3] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022,
+       section 8.4 (compositing).
+    """
     wi, gains, seam = pe.exposure_pair()
     hh, ww = wi.shape
     row, z = hh // 2, 60
@@ -193,7 +244,10 @@ def blending_seams() -> Demo:
     jumps = {key: 255 * b.seam_step for key, b in blends.items()}
 
     def update(v: dict, state: dict) -> None:
-        key = (v["method"], bool(v["gains"]), int(v["levels"]) if v["method"] == "multiband" else 0)
+        multiband = v["method"] == "multiband"
+        # the pyramid belongs to multi-band blending only
+        controls["levels"].disabled = not multiband
+        key = (v["method"], bool(v["gains"]), int(v["levels"]) if multiband else 0)
         out, rgba = cache[key]
         im.set_data(rgba)
         imz.set_data(rgba[v0 : v0 + z, u0 : u0 + z])
@@ -202,7 +256,13 @@ def blending_seams() -> Demo:
         ]  # the exposure step across the seam, grey levels (overwrite: the last image's border)
         state.update(method=v["method"], seam_jump=jump, image=out)
         readout.value = monospace(
-            f"blend: {v['method']}\ngains: {np.round(gains, 3).tolist() if v['gains'] else 'off'}\n"
+            f"blend: {v['method']}"
+            + (
+                f", {int(v['levels'])} pyramid levels"
+                if multiband
+                else " (pyramid levels: multiband only)"
+            )
+            + f"\ngains: {np.round(gains, 3).tolist() if v['gains'] else 'off'}\n"
             f"mean step across the seam: {jump:.1f} grey levels"
         )
 
@@ -221,35 +281,34 @@ def blending_seams() -> Demo:
 def full_panorama() -> Demo:
     """The four-image panorama, planar or cylindrical, multi-band blended, with each image's footprint.
 
-    Each panorama is scaled to fill the picture (the title gives its size in pixels).
+    Each panorama is scaled to fill the picture (the title gives its size in pixels). Both
+    are stitched once by :func:`camlab.stitching.stitch`
+    (:func:`camlab.fixtures.panorama_examples.stitched_panoramas`); the side panel lists
+    every registered pair with its matches, inliers and verdict.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``projection`` (``"planar"`` or ``"cylindrical"``) and
+        ``outlines`` (draw each view's footprint and its key), the figure (the panorama
+        scaled to fit, the footprints, and a title with the size, the reference view and
+        the display scale) and ``state`` (``projection``, ``shape`` the panorama's
+        (height, width) in px, ``reference`` the reference view, ``display_scale``,
+        ``outlines_drawn`` the number of footprints drawn, ``legend`` whether their key
+        shows).
+
+    References
+    ----------
+    .. [1] M. Brown and D. G. Lowe, 2007, "Automatic panoramic image stitching using invariant
+       features", *International Journal of Computer Vision* 74(1), 59-73.
+    .. [2] P. J. Burt and E. H. Adelson, 1983, "A multiresolution spline with application to
+       image mosaics", *ACM Transactions on Graphics* 2(4), 217-236.
     """
     pans = pe.stitched_panoramas()
     box = (300, 780)  # the axes' units: (height, width), about the shape the axes get
-    view = FigureView(figsize=(9, 3.6))
-    ax = view.fig.subplots()
-    im = view.animate(ax.imshow(np.zeros((10, 10, 3))))
-    colors = palette.SERIES[:4]
-    lines = [
-        view.animate(
-            ax.plot([], [], color=c, lw=1.2, path_effects=palette.halo(1.2), label=f"view {k}")[0]
-        )
-        for k, c in enumerate(colors)
-    ]
-    # below the axes (over the animated panorama it would be hidden); animated, so it goes with the outlines
-    legend = view.animate(
-        ax.legend(
-            handles=lines,
-            loc="upper center",
-            bbox_to_anchor=(0.5, 0.0),
-            ncols=4,
-            fontsize=8,
-            title="outline of",
-        )
+    view, ax, im, lines, legend, title = _outline_figure(
+        box, lw=1.2, name="view", animate_legend=True
     )
-    ax.set(xlim=(-0.5, box[1] - 0.5), ylim=(box[0] - 0.5, -0.5), aspect="equal")
-    ax.set_xticks([])
-    ax.set_yticks([])
-    title = view.animate(ax.set_title(" ", fontsize=9))
     readout = W.HTML()
     shown = {k: _rgba(p.panorama) for k, p in pans.items()}
 
@@ -279,7 +338,7 @@ def full_panorama() -> Demo:
         )
         rows = "\n".join(
             f"{p.i}-{p.j}: {p.matches:4d} matches {p.inliers:4d} inliers "
-            f"rms {p.residual_rms:.2f} {'ok' if p.accepted else 'rejected'}"
+            + (f"rms {p.residual_rms:.2f} ok" if p.accepted else "rejected")
             for p in r.pairs
         )
         readout.value = monospace(
@@ -308,7 +367,7 @@ def _gallery() -> dict:
     gallery = {}
     for (n, proj), p in pe.canvas_previews(BOX).items():
         if p.image is None:
-            gallery[(n, proj)] = (None, f"{n} views, {p.fov_deg:.0f} degrees: {p.reason}")
+            gallery[(n, proj)] = (None, f"{n} views, {p.fov_deg:.0f} degrees of view: {p.reason}")
         else:
             gallery[(n, proj)] = (
                 _place(_rgba(p.image)),
@@ -331,7 +390,28 @@ def _place(rgba: np.ndarray) -> np.ndarray:
     sweep={"views": [2, 3, 4, 5, 6], "projection": ["planar", "cylindrical", "spherical"]},
 )
 def canvas_projections() -> Demo:
-    """The same photos on a plane, a cylinder and a sphere as the turn grows (precomputed previews)."""
+    """The same photos on a plane, a cylinder and a sphere as the turn grows (precomputed previews).
+
+    The first 2-6 views of the 200-degree sweep
+    (:func:`camlab.fixtures.panorama_examples.canvas_previews`), warped with their
+    bundle-adjusted cameras onto each canvas and scaled to fit :data:`BOX`. When the views
+    span too wide a turn for a plane, the figure says so instead of showing a canvas.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``views`` (how many views, 2-6) and ``projection``
+        (``"planar"``, ``"cylindrical"`` or ``"spherical"``), the figure (the canvas, or
+        why there is none, under a title with the views' field of view and the canvas
+        size) and ``state`` (``views``, ``projection``, ``failed`` True when the canvas
+        cannot hold the views, ``shape`` the shown picture's (height, width) in px,
+        :data:`BOX` with a canvas and None without).
+
+    References
+    ----------
+    .. [1] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022,
+       section 8.2 (image stitching: cylindrical and spherical coordinates).
+    """
     gallery = _gallery()
     view = FigureView(figsize=(6.4, 2.6))
     ax = view.fig.subplots()
@@ -345,18 +425,24 @@ def canvas_projections() -> Demo:
             transform=ax.transAxes,
             ha="center",
             va="center",
-            fontsize=10,
-            color=palette.TAB_RED,
+            fontsize=9,
+            color="0.15",
             wrap=True,
         )
     )
     ax.set(xlim=(-0.5, BOX[1] - 0.5), ylim=(BOX[0] - 0.5, -0.5), aspect="equal")
     ax.set_xticks([])
     ax.set_yticks([])
+    # the static picture has no side panel: which canvas, how many views and how wide, in the figure itself
+    title = view.animate(ax.set_title(" ", fontsize=9))
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
         img, text = gallery[(v["views"], v["projection"])]
+        title.set_text(
+            text.split(": ", 1)[0]
+            + (f": no {v['projection']} canvas" if img is None else ": " + text.split(": ", 1)[1])
+        )
         if img is None:
             im.set_data(blank)
             msg.set_text("the plane cannot hold this turn:\n" + text.split(": ", 1)[1])
@@ -390,14 +476,21 @@ def canvas_projections() -> Demo:
 # ----------------------------------------------------------------------------- parallax
 
 
+EDGE_RGB = tuple(
+    tuple(int(round(255 * c)) for c in to_rgb(colour))
+    for colour in (palette.TAB_BLUE, palette.ORANGE)
+)
+"""The edges of view 0 and view 1 in the parallax demo: the lesson's colours of views 0 and 1."""
+
+
 def _with_edges(rgba: np.ndarray, edges) -> np.ndarray:
-    """Paint view 0's edges red and view 1's cyan (white where both) onto an RGBA image."""
+    """Paint view 0's edges blue and view 1's orange (white where both) onto an RGBA image."""
     if edges is None:
         return rgba
     out = rgba.copy()
     e0, e1 = edges
-    out[e0 & ~e1, :3] = (255, 40, 40)
-    out[e1 & ~e0, :3] = (0, 230, 255)
+    out[e0 & ~e1, :3] = EDGE_RGB[0]
+    out[e1 & ~e0, :3] = EDGE_RGB[1]
     out[e0 & e1, :3] = 255
     return out
 
@@ -411,7 +504,27 @@ def _with_edges(rgba: np.ndarray, edges) -> np.ndarray:
     },
 )
 def parallax_ghosting() -> Demo:
-    """Move the camera sideways between shots: near objects no longer fit the homography and ghost."""
+    """Move the camera sideways between shots: near objects no longer fit the homography and ghost.
+
+    A room seen by a camera turned -16 degrees and by one turned -4 degrees whose centre
+    moved ``baseline`` metres to the right
+    (:func:`camlab.fixtures.panorama_examples.parallax_pairs`): view 1 is registered onto
+    view 0 by RANSAC, which locks onto the dominant plane (the back wall), and the two are
+    blended. The edges of each warped view can be painted over the blend: blue for view 0,
+    orange for view 1, white where they agree.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``baseline`` (the sideways move, m, one of
+        :data:`camlab.fixtures.panorama_examples.BASELINES`), ``method`` (``"feather"`` or
+        ``"multiband"``) and ``edges`` (paint both views' edges and show their key), the
+        figure (the blend scaled to fit, under a title with the inliers and the
+        misalignment) and ``state`` (``baseline`` in m, ``edges``, ``inlier_fraction`` the
+        share of the matches that fit the homography, ``residual_rms`` the inliers' RMS
+        transfer error in px, ``misalignment`` the mean |view 0 - view 1| on the overlap in
+        grey levels 0-255, ``method``, ``image`` the blend).
+    """
     pairs = pe.parallax_pairs()
     box = (
         280,
@@ -431,8 +544,8 @@ def parallax_ghosting() -> Demo:
     key = [
         Patch(facecolor=np.array(c) / 255, edgecolor="0.3", label=t)
         for c, t in (
-            ((255, 40, 40), "edge in view 0 only"),
-            ((0, 230, 255), "edge in view 1 only"),
+            (EDGE_RGB[0], "edge in view 0 only"),
+            (EDGE_RGB[1], "edge in view 1 only"),
             ((255, 255, 255), "edge in both"),
         )
     ]
@@ -483,7 +596,8 @@ def parallax_ghosting() -> Demo:
             f"camera moved {100 * b:.0f} cm\nmatches: {n}\n"
             f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\ninlier RMS: {reg.residual_rms:.2f} px\n"
             f"mean |view 0 - view 1| on the overlap:\n  {diff:.1f} grey levels\n"
-            f"edges: red = view 0, cyan = view 1 (white where they agree)"
+            f"edges of the two warped views (not of the blend):\n"
+            f"  blue = view 0, orange = view 1, white where they agree"
         )
 
     controls = {

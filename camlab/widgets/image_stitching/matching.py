@@ -21,7 +21,27 @@ from ..controls import log_slider, monospace
 
 @register(lesson="09", sweep={"ratio": [0.6, 0.8, 0.95, 1.0], "mutual": [True, False]})
 def feature_matches() -> Demo:
-    """SIFT matches between views 0 and 1: loosen the ratio test and watch wrong matches (red) appear."""
+    """SIFT matches between views 0 and 1: loosen the ratio test and watch wrong matches (red) appear.
+
+    Views 0 and 1 of the half-size set with their SIFT keypoints; each match is judged by
+    the true homography (green within 2 px, red otherwise:
+    :func:`camlab.fixtures.panorama_examples.correct_matches`). Every match is counted,
+    but at most about 200 are drawn (every k-th one when there are more).
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``ratio`` (the ratio-test threshold r of
+        :func:`camlab.features.filter_matches`) and ``mutual`` (keep only mutual nearest
+        neighbours), the figure (both views side by side with their keypoints and the
+        matches) and ``state`` (``matches`` the matches kept, ``wrong`` those the truth
+        rejects, ``precision`` the share that is right, NaN without matches).
+
+    References
+    ----------
+    .. [1] D. G. Lowe, 2004, "Distinctive image features from scale-invariant keypoints",
+       *International Journal of Computer Vision* 60(2), 91-110, section 7.1 (the ratio test).
+    """
     s, _, feats, knn = pe.panorama_example()
     i, j = 0, 1
     view = FigureView(figsize=(9, 3.4))
@@ -42,10 +62,7 @@ def feature_matches() -> Demo:
         color=palette.YELLOW,
         path_effects=palette.halo(0.7, "black"),
     )
-    ax.set_title(
-        f"views {i} and {j}: green = confirmed by the true homography, red = wrong match",
-        fontsize=9,
-    )
+    title = view.animate(ax.set_title(" ", fontsize=9))
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
@@ -58,6 +75,12 @@ def feature_matches() -> Demo:
         art["good"].set_segments(seg[good & show])
         art["bad"].set_segments(seg[~good & show])
         n, nbad = len(good), int((~good).sum())
+        every = max(1, len(seg) // 200 + 1)
+        title.set_text(
+            f"views {i} and {j}, r = {v['ratio']:.2f}: {n} matches, green = confirmed by the true homography, "
+            f"red = wrong ({nbad})\nyellow circles: SIFT keypoints, radius ~ the scale they were found at"
+            + (f"; one match in {every} drawn" if every > 1 else "")
+        )
         state.update(matches=n, wrong=nbad, precision=(n - nbad) / n if n else float("nan"))
         readout.value = monospace(
             f"keypoints: {len(feats[i].points)} / {len(feats[j].points)}\n"
@@ -77,9 +100,35 @@ def feature_matches() -> Demo:
 # ----------------------------------------------------------------------------- RANSAC
 
 
-@register(lesson="09", sweep={"threshold": [0.03, 0.05, 3.0, 15.0, 40.0], "ratio": [0.95, 0.7]})
+@register(lesson="09", sweep={"threshold": [0.02, 0.05, 3.0, 15.0, 40.0], "ratio": [0.95, 0.7]})
 def ransac_registration() -> Demo:
-    """RANSAC on real matches: the threshold decides which matches count as inliers, and the H you get."""
+    """RANSAC on real matches: the threshold decides which matches count as inliers, and the H you get.
+
+    The ratio-tested matches from image 1 to image 2 of the half-size set are registered by
+    :func:`camlab.stitching.register_pair` (RANSAC seeded with 0) at the chosen threshold,
+    and the pair is accepted or rejected by its test. Image 1's frame mapped by the
+    estimated H is drawn over image 2 beside the frame the true H gives.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``threshold`` (RANSAC's inlier threshold on the symmetric
+        transfer error, px, on a log slider) and ``ratio`` (the ratio-test threshold r),
+        the figure (image 2 with the inliers and outliers and the two frames; a histogram
+        of the matches' symmetric transfer errors under H on a log axis, with the
+        threshold and the verdict) and ``state`` (``inliers`` their count, ``corner_error``
+        the worst corner of the estimated frame against the true one in px, NaN without an
+        H, ``accepted`` whether the pair passes, and, when RANSAC finds an H,
+        ``false_inliers`` the inliers the truth rejects).
+
+    References
+    ----------
+    .. [1] M. A. Fischler and R. C. Bolles, 1981, "Random sample consensus: a paradigm for model
+       fitting with applications to image analysis and automated cartography",
+       *Communications of the ACM* 24(6), 381-395.
+    .. [2] M. Brown and D. G. Lowe, 2007, "Automatic panoramic image stitching using invariant
+       features", *International Journal of Computer Vision* 74(1), 59-73, section 3.2.
+    """
     s, imgs, feats, knn = pe.panorama_example()
     i, j = 1, 2
     view = FigureView(figsize=(9, 3.6))
@@ -120,12 +169,20 @@ def ransac_registration() -> Demo:
         )
     )
     h, w = imgs[j].shape[:2]
-    ax.set(xlim=(-0.5, w - 0.5), ylim=(h - 0.5, -0.5))
+    # wide enough for image i's mapped frame too (it lies left of image j), with room for a frame that is
+    # 20 px off, so the worst corner stays in view
+    true_frame = map_points(
+        s.true_homography(i, j), np.array([[0, 0], [w - 1, h - 1], [0, h - 1], [w - 1, 0]], float)
+    )
+    ax.set(
+        xlim=(min(-0.5, true_frame[:, 0].min() - 20), w - 0.5),
+        ylim=(max(h - 0.5, true_frame[:, 1].max() + 20), min(-0.5, true_frame[:, 1].min() - 20)),
+    )
     ax.legend(
         loc="upper center", bbox_to_anchor=(0.5, -0.02), ncols=4, fontsize=7, facecolor="0.75"
     )
     ax_e.set(
-        xlabel="transfer error per match (px, log scale)",
+        xlabel="transfer error per match (px, log scale)\nhatched end bars: < 0.02 px, > 300 px",
         ylabel="number of matches\n(relative to the tallest bar)",
         xscale="log",
         xlim=(0.02, 300),
@@ -136,15 +193,18 @@ def ransac_registration() -> Demo:
     verdict = view.animate(
         ax_e.text(0.5, 0.97, "", transform=ax_e.transAxes, ha="center", va="top", fontsize=8)
     )
-    ax_e.set_title("residuals under H (red: threshold)", fontsize=9)
+    ax_e.set_title("residuals under H (dashed: threshold)", fontsize=9)
     bins = np.logspace(
         np.log10(0.02), np.log10(300), 43
     )  # the first bar also counts errors below 0.02 px
     bars = ax_e.bar(
         bins[:-1], np.zeros(len(bins) - 1), width=np.diff(bins), align="edge", color="0.6"
     )
+    for end in (bars[0], bars[-1]):  # they also hold everything beyond the axis: marked, not hidden
+        end.set(hatch="////", edgecolor="0.25", facecolor="0.75")
     view.animate(*bars)
-    thr_line = view.animate(ax_e.axvline(3, color=palette.TAB_RED, lw=1.5))
+    # below the verdict (which sits in the top third, over no bar): the line never crosses its text
+    thr_line = view.animate(ax_e.axvline(3, ymax=1.08 / 1.55, color="black", ls="--", lw=1.5))
     readout = W.HTML()
     true_H = s.true_homography(i, j)
     corners = np.array([[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]], float)
@@ -197,8 +257,8 @@ def ransac_registration() -> Demo:
         )
 
     controls = {
-        "threshold": log_slider(3.0, 0.03, 40.0, 0.01, "threshold (px)"),
-        "ratio": slider(0.9, 0.5, 1.0, 0.01, "ratio test r"),
+        "threshold": log_slider(3.0, 0.02, 40.0, 0.01, "threshold (px)"),
+        "ratio": slider(0.75, 0.5, 1.0, 0.01, "ratio test r"),
     }
     return build_demo(
         "ransac_registration",

@@ -1,0 +1,14 @@
+"""Exercises for lesson 09, image stitching: the canvas bounds (:mod:`.canvas_box`), feathering weights
+(:mod:`.feather_weights`) and the focal length from a rotation-only homography (:mod:`.focal`)."""
+
+from __future__ import annotations
+
+# each module registers its exercise when imported: keep the lesson's order
+# isort: off
+from . import canvas_box
+from . import feather_weights
+from . import focal
+
+# isort: on
+
+__all__ = ["canvas_box", "feather_weights", "focal"]

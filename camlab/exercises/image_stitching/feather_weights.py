@@ -1,0 +1,135 @@
+"""Lesson 09, exercise 2: feathering weights (feather_weights), each pixel's distance to the image border."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ... import stitching as st
+from .._answers import same_array
+from .._core import Exercise, register_exercise
+
+# ----------------------------------------------------------------------------- feather weights
+
+
+def feather_weights(shape):
+    """Teaching solution: each pixel's distance to the nearest image border (pixel centres at integers).
+
+    Parameters
+    ----------
+    shape : tuple of int
+        The image's shape (height, width[, channels]).
+
+    Returns
+    -------
+    (height, width) ndarray of float
+        The distance in pixels from each pixel centre to the nearest border; the borders lie at
+        -1/2 and w - 1/2 (h - 1/2), so the corner pixel's weight is 1/2.
+    """
+    h, w = shape[:2]
+    u = np.arange(w, dtype=float)  # pixel centres 0 ... w-1; the borders at -1/2 and w - 1/2
+    v = np.arange(h, dtype=float)[:, None]
+    return np.minimum(np.minimum(u + 0.5, w - 0.5 - u), np.minimum(v + 0.5, h - 0.5 - v))
+
+
+def _feather_cases():
+    return [((3, 4),), ((5, 5),), ((6, 9),), ((1, 3),)]
+
+
+def _feather_diagnosis(args, got, expected) -> str:
+    g = np.asarray(got, dtype=float)
+    if g.shape != expected.shape:
+        return f"the weights should have the image's shape {expected.shape} (rows, columns), got {g.shape}."
+    if np.asarray(got).dtype.kind in "iub":
+        return (
+            f"your array has an integer dtype ({np.asarray(got).dtype}), so the half-pixel distances (u + 1/2, ...) "
+            "were cut to whole numbers when stored: build it as floats (np.zeros((h, w)), or np.minimum of float "
+            "arrays), not np.zeros((h, w), int)."
+        )
+    if g.max() > 0 and np.allclose(g, expected / expected.max()):
+        return (
+            "you normalised the weights to a maximum of 1; the prompt asks for the distance itself, in pixels "
+            "(feathering divides by the sum of the weights later, so the scale must be the same for every image)."
+        )
+    if np.allclose(g, expected - 0.5):
+        return (
+            "off by half a pixel: pixel centres are at integer u and the border at u = -1/2, so the first "
+            "column is 1/2 from the border (u + 1/2), not 0."
+        )
+    if np.allclose(g, expected + 0.5):
+        return "off by half a pixel: the border is at u = -1/2 and u = W - 1/2; use u + 1/2 and W - 1/2 - u."
+    h, w = expected.shape
+    u = np.arange(w, dtype=float)
+    du = np.minimum(u + 0.5, w - 0.5 - u)
+    if np.allclose(g, np.broadcast_to(du, (h, w))):
+        return "you only used the distance to the left and right borders; take the minimum with the vertical distance too."
+    if np.allclose(g, _feather_offsets(expected.shape, 1.5, 1.5)):
+        return (
+            "you counted pixels from 1: the first column is u = 0 (pixel centres at 0, 1, ..., W - 1), "
+            "so use np.arange(W), not np.arange(1, W + 1)."
+        )
+    for a in (0.0, 0.5, 1.0):
+        for b in (0.0, 0.5, 1.0):
+            if (a, b) != (0.5, 0.5) and np.allclose(g, _feather_offsets(expected.shape, a, b)):
+                near = (
+                    ""
+                    if a == 0.5
+                    else (
+                        f"the near border (you used u + {a:g}; the first pixel's centre u = 0 is 1/2 "
+                        "from the border at u = -1/2, so u + 1/2)"
+                    )
+                )
+                far = (
+                    ""
+                    if b == 0.5
+                    else (
+                        f"the far border (you used W - {b:g} - u; the last pixel's centre u = W - 1 is "
+                        "1/2 from the border at u = W - 1/2, so W - 1/2 - u)"
+                    )
+                )
+                return (
+                    "off by half a pixel at "
+                    + " and at ".join(x for x in (near, far) if x)
+                    + "; the same for v."
+                )
+    return "w(u, v) = min(u + 1/2, W - 1/2 - u, v + 1/2, H - 1/2 - v): the distance to the nearest border."
+
+
+def _feather_offsets(shape, a: float, b: float) -> np.ndarray:
+    """min(u + a, W - b - u, v + a, H - b - v): the feathering weights with the border put elsewhere (a slip)."""
+    h, w = shape
+    u, v = np.arange(w, dtype=float), np.arange(h, dtype=float)[:, None]
+    return np.minimum(np.minimum(u + a, w - b - u), np.minimum(v + a, h - b - v))
+
+
+register_exercise(
+    Exercise(
+        name="feather_weights",
+        lesson="09",
+        reference=st.feather_weights,
+        ndarray_only=True,
+        cases=_feather_cases,
+        compare=same_array(atol=1e-9),
+        diagnose=_feather_diagnosis,
+        teaching=feather_weights,
+        wrong_variants=(
+            (lambda shape: st.feather_weights(shape) - 0.5, "half a pixel"),
+            (
+                lambda shape: _feather_offsets(tuple(shape[:2]), 0.0, 0.0),
+                "half a pixel at the near border",
+            ),
+            (lambda shape: _feather_offsets(tuple(shape[:2]), 1.5, 1.5), "counted pixels from 1"),
+            (lambda shape: st.feather_weights(shape).astype(int), "integer dtype"),
+            (
+                lambda shape: st.feather_weights(shape) / st.feather_weights(shape).max(),
+                "normalised",
+            ),
+            (
+                lambda shape: np.broadcast_to(
+                    np.minimum(np.arange(shape[1]) + 0.5, shape[1] - 0.5 - np.arange(shape[1])),
+                    tuple(shape),
+                ).copy(),
+                "vertical",
+            ),
+        ),
+    )
+)

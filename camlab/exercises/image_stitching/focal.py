@@ -1,0 +1,351 @@
+"""Lesson 09, exercise 3: the focal length from a rotation-only homography (focal_from_rotation_homography).
+
+Each typical slip is tried with every way of combining the four formulas (columns and rows, one, a
+median or a mean), so the diagnosis names the slip whichever formulas the student used."""
+
+from __future__ import annotations
+
+import itertools
+from types import SimpleNamespace
+
+import numpy as np
+
+from ...homography import rotation_homography
+from .._core import Exercise, Mistake, first_mistake, register_exercise
+
+# ----------------------------------------------------------------------------- focal from a rotation homography
+
+
+def _focal_reference(H, shape):
+    """One focal for both images (the same camera): the median of what H's rows and columns give."""
+    from ...stitching.cameras import focal_from_homography
+
+    fs = [f for f in focal_from_homography(H, shape, shape) if np.isfinite(f)]
+    return float(np.median(fs)) if fs else float("nan")
+
+
+def focal_from_rotation_homography(H, shape):
+    """Teaching solution: the focal length (pixels) of a camera that turned, from H = K R K^-1.
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography between two photos taken by one camera turning about its centre, with the
+        principal point at the image centre and square pixels.
+    shape : tuple of int
+        The photos' shape (height, width[, channels]).
+
+    Returns
+    -------
+    float
+        f in pixels: the mean (median of two) of the estimates from R's columns and from its rows
+        being orthonormal, each by the better-conditioned of its two formulas (NaN when neither
+        gives a positive f^2).
+
+    References
+    ----------
+    R. Szeliski and H.-Y. Shum (1997), "Creating full view panoramic image mosaics and environment
+    maps", SIGGRAPH.
+    """
+    h, w = shape[:2]
+    # the principal point at the centre
+    C = np.array([[1.0, 0, (w - 1) / 2], [0, 1, (h - 1) / 2], [0, 0, 1]])
+    Hc = np.linalg.inv(C) @ np.asarray(H, float) @ C  # now H ~ diag(f, f, 1) R diag(1/f, 1/f, 1)
+    h0, h1, h2, h3, h4, h5, h6, h7, _ = Hc.ravel() / np.linalg.norm(Hc)
+    # R's columns 1 and 2 are orthogonal and equally long: two formulas for f^2, keep the better-conditioned one
+    n1, d1 = -(h0 * h1 + h3 * h4), h6 * h7
+    n2, d2 = h0**2 + h3**2 - h1**2 - h4**2, h7**2 - h6**2
+    f2_cols = n1 / d1 if abs(d1) > abs(d2) else n2 / d2
+    # R's rows 1 and 2 likewise
+    n1, d1 = -h2 * h5, h0 * h3 + h1 * h4
+    n2, d2 = h5**2 - h2**2, h0**2 + h1**2 - h3**2 - h4**2
+    f2_rows = n1 / d1 if abs(d1) > abs(d2) else n2 / d2
+    good = [np.sqrt(v) for v in (f2_rows, f2_cols) if np.isfinite(v) and v > 0]
+    return float(np.median(good)) if good else float("nan")
+
+
+def _focal_cases():
+    from ...camera import rotation_from_axis_angle
+
+    out = []
+    # The first turn is chosen so that every typical slip (C H C^-1, no centring, width and height swapped,
+    # a half-pixel or 1-based centre, the rows read as the columns of H^T) gives a finite, distinct focal
+    # length with each formula: the diagnosis then names the slip by its number, whichever formulas the
+    # student combined (only H transposed gives NaN with all four). Then a general turn and the two 0/0
+    # cases of the prompt (a pure pan: h7 = 0; a pure tilt: h6 = 0).
+    for f, (h, w), rvec in (
+        (520.0, (660, 900), [-0.523, 0.041, -0.054]),  # a tilt, a little pan and roll
+        (520.0, (660, 900), [0.05, -0.4, 0.03]),  # pan, tilt and roll
+        (700.0, (480, 640), [0.0, 0.35, 0.0]),  # a pure pan: h7 = 0
+        (1200.0, (600, 800), [0.2, 0.0, 0.0]),  # a pure tilt: h6 = 0
+    ):
+        K = np.array([[f, 0, (w - 1) / 2], [0, f, (h - 1) / 2], [0, 0, 1]])
+        out.append((rotation_homography(K, rotation_from_axis_angle(rvec)), (h, w)))
+    return out
+
+
+def _focal_uncentred(H, shape):
+    h0, h1, h2, h3, h4, h5, h6, h7, _ = np.asarray(H, float).ravel()
+    return float(np.sqrt(abs((h0**2 + h3**2 - h1**2 - h4**2) / (h7**2 - h6**2))))
+
+
+def _focal_number(got) -> float | None:
+    """``got`` as a float if it is one number (a Python or numpy scalar, or a 0-d array), else None."""
+    if isinstance(got, (bool, np.bool_)) or not (
+        np.isscalar(got) or (isinstance(got, np.ndarray) and got.ndim == 0)
+    ):
+        return None
+    try:
+        return float(got)
+    except (TypeError, ValueError):
+        return None
+
+
+def _same_focal(got, expected) -> bool:
+    """The comparison of the check: one finite number within 1e-6 of the focal length."""
+    g = _focal_number(got)
+    return g is not None and np.isfinite(g) and abs(g / expected - 1) < 1e-6
+
+
+_SLIP_CENTRES = {
+    # the principal point each slip puts the origin at, from (w, h)
+    "swap": lambda w, h: ((h - 1) / 2, (w - 1) / 2),
+    "half": lambda w, h: (w / 2, h / 2),
+    "one-based": lambda w, h: ((w + 1) / 2, (h + 1) / 2),
+    "uncentred": lambda w, h: (0.0, 0.0),
+}
+
+
+def _focal_formulas(H, shape, slip: str = "", absolute: bool = False) -> dict[str, float]:
+    """The four focal lengths of the prompt's formulas (columns: c1 orthogonal, c2 equally long; rows: r1, r2),
+    computed right or with one typical ``slip``; NaN where f^2 is 0/0 or negative.
+
+    Slips: "swap" (centre ((h-1)/2, (w-1)/2)), "half" ((w/2, h/2)), "one-based" (((w+1)/2, (h+1)/2)),
+    "uncentred" (no C at all), "C H C^-1" (the translation applied the wrong way round), "transposed"
+    (h = H.T.ravel()), "sign" (the orthogonality formula without its minus), "rows as H^T" (the column
+    formulas applied to H^T for the rows: they give 1/f^2 there). ``absolute`` takes sqrt(|f^2|), as a
+    student who silences the NaN does.
+    """
+    h, w = shape[:2]
+    cx, cy = _SLIP_CENTRES.get(slip, lambda w, h: ((w - 1) / 2, (h - 1) / 2))(w, h)
+    C = np.array([[1.0, 0, cx], [0, 1, cy], [0, 0, 1]])
+    Hm = np.asarray(H, float).T if slip == "transposed" else np.asarray(H, float)
+    Hc = C @ Hm @ np.linalg.inv(C) if slip == "C H C^-1" else np.linalg.inv(C) @ Hm @ C
+    h0, h1, h2, h3, h4, h5, h6, h7, _ = (Hc / np.linalg.norm(Hc)).ravel()
+    sign = -1.0 if slip == "sign" else 1.0
+    with np.errstate(all="ignore"):
+        f2 = {
+            "c1": -sign * (h0 * h1 + h3 * h4) / (h6 * h7),
+            "c2": (h0**2 + h3**2 - h1**2 - h4**2) / (h7**2 - h6**2),
+        }
+        if slip == "rows as H^T":
+            f2["r1"] = -(h0 * h3 + h1 * h4) / (h2 * h5)
+            f2["r2"] = (h0**2 + h1**2 - h3**2 - h4**2) / (h2**2 - h5**2)
+        else:
+            f2["r1"] = -h2 * h5 / (h0 * h3 + h1 * h4)
+            f2["r2"] = (h5**2 - h2**2) / (h0**2 + h1**2 - h3**2 - h4**2)
+    if absolute:
+        f2 = {k: abs(v) for k, v in f2.items()}
+    return {
+        k: float(np.sqrt(v)) if np.isfinite(v) and v >= 0 else float("nan") for k, v in f2.items()
+    }
+
+
+def _focal_answers(values: dict[str, float]) -> list[float]:
+    """What a student's combination of the formulas returns: one formula, the median or mean of any of them
+    (NaN dropped, as the prompt's "where both are defined" invites, or kept), and per pair the one with the
+    larger denominator (approximated by the one that is defined)."""
+    out = []
+    keys = list(values)
+    for n in range(1, len(keys) + 1):
+        for subset in itertools.combinations(keys, n):
+            vals = np.array([values[k] for k in subset])
+            finite = vals[np.isfinite(vals)]
+            out += [float(np.median(vals)), float(np.mean(vals))]
+            if finite.size:
+                out += [float(np.median(finite)), float(np.mean(finite))]
+    return out
+
+
+def _focal_slip(slip: str):
+    """A diagnosis row's answer: the focal lengths a student who made ``slip`` can return on this input,
+    or None where the slip changes no formula (it cannot show here)."""
+
+    def answer(s):
+        right_answers = _focal_answers(_focal_formulas(s.H, s.shape))
+        wrong = [
+            a
+            for absolute in (False, True)
+            for a in _focal_answers(_focal_formulas(s.H, s.shape, slip, absolute))
+            if not any(np.isclose(a, r, rtol=1e-6) for r in right_answers if np.isfinite(r))
+        ]
+        return wrong or None
+
+    return answer
+
+
+def _slipped_student(slip: str, H, shape, formulas=("c1", "c2", "r1", "r2")) -> float:
+    """A student's answer with ``slip``: the median of the defined ones among ``formulas`` (for the tests)."""
+    values = [
+        v for k, v in _focal_formulas(H, shape, slip).items() if k in formulas and np.isfinite(v)
+    ]
+    return float(np.median(values)) if values else float("nan")
+
+
+def _shows_slip(got: float, answers: list[float]) -> bool:
+    if np.isnan(got):
+        return any(np.isnan(a) for a in answers)
+    return any(np.isfinite(a) and np.isclose(got, a, rtol=1e-6) for a in answers)
+
+
+_FOCAL_SLIPS = (
+    Mistake(
+        "H transposed",
+        _focal_slip("transposed"),
+        "you used H transposed: with H[i, j] row-major, h0 h1 h2 is the first row, so take h = H.ravel() "
+        "(not H.T.ravel(), nor H.ravel(order='F')).",
+    ),
+    Mistake(
+        "width and height swapped",
+        _focal_slip("swap"),
+        "width and height swapped: you put the principal point at ((h-1)/2, (w-1)/2). A shape is (h, w) = "
+        "(rows, columns), so the centre is (u, v) = ((w-1)/2, (h-1)/2) with w = shape[1] and h = shape[0].",
+    ),
+    Mistake(
+        "centre (w/2, h/2)",
+        _focal_slip("half"),
+        "a half-pixel slip: pixel centres are at integers 0 ... w-1, so the image centre is ((w-1)/2, (h-1)/2), "
+        "not (w/2, h/2).",
+    ),
+    Mistake(
+        "1-based centre",
+        _focal_slip("one-based"),
+        "you counted pixels from 1: the centre of pixels 0 ... w-1 is (w-1)/2, not (w+1)/2.",
+    ),
+    Mistake(
+        "C H C^-1",
+        _focal_slip("C H C^-1"),
+        "the normalisation is applied the wrong way round: C maps centred coordinates to pixels, so the centred "
+        "homography is H_c = C^-1 H C (undo C on the way in, apply H, move back to centred coordinates), not C H C^-1.",
+    ),
+    Mistake(
+        "principal point not moved",
+        _focal_slip("uncentred"),
+        "move the principal point to the origin first: H_c = C^-1 H C with C the translation to the image "
+        "centre ((w-1)/2, (h-1)/2). The formulas hold for K = diag(f, f, 1) only.",
+    ),
+    Mistake(
+        "rows as the columns of H^T",
+        _focal_slip("rows as H^T"),
+        "the row conditions are not the column formulas applied to H^T: on H^T those give 1/f^2 (H^T is "
+        "diag(1/f, 1/f, 1) R^T diag(f, f, 1)). Rows 1 and 2 of R give f^2 = -h2 h5 / (h0 h3 + h1 h4) or "
+        "(h5^2 - h2^2) / (h0^2 + h1^2 - h3^2 - h4^2).",
+    ),
+    Mistake(
+        "sign flip",
+        _focal_slip("sign"),
+        "a sign flip: the orthogonality of columns 1 and 2 gives f^2 = -(h0 h1 + h3 h4) / (h6 h7), with the "
+        "minus (without it f^2 comes out negative and its square root NaN).",
+    ),
+)
+_FOCAL_SHORT = {
+    "H transposed": "H transposed: h = H.ravel(), row by row, not H.T.ravel()",
+    "width and height swapped": "width and height swapped: the centre is ((w-1)/2, (h-1)/2) with (h, w) = shape[:2]",
+    "centre (w/2, h/2)": "a half-pixel slip: the centre is ((w-1)/2, (h-1)/2), not (w/2, h/2)",
+    "1-based centre": "pixels counted from 1: the centre is ((w-1)/2, (h-1)/2)",
+    "C H C^-1": "the normalisation the wrong way round: H_c = C^-1 H C, not C H C^-1",
+    "principal point not moved": "the principal point not moved to the origin: H_c = C^-1 H C",
+    "rows as the columns of H^T": (
+        "the rows' formulas taken as the columns' on H^T (that gives 1/f^2): f^2 = -h2 h5 / (h0 h3 + h1 h4) "
+        "or (h5^2 - h2^2) / (h0^2 + h1^2 - h3^2 - h4^2)"
+    ),
+    "sign flip": "a sign flip: f^2 = -(h0 h1 + h3 h4) / (h6 h7), with the minus",
+}
+"""Each slip in a few words, for a NaN that more than one slip explains."""
+
+"""The focal length's slips, as the focal lengths they give (from H, the image ``shape``, ``w`` and ``h``),
+checked in this order; each row tries every way of combining the four formulas."""
+
+
+def _focal_diagnosis(args, got, expected) -> str:
+    H, shape = args
+    g = _focal_number(got)
+    if g is None:
+        return (
+            f"return one number, the focal length in pixels (a float); got {type(got).__name__}"
+            + (f" of shape {np.shape(got)}" if isinstance(got, np.ndarray) else "")
+            + "."
+        )
+    if np.isfinite(g) and np.isclose(g, expected**2, rtol=1e-3):
+        return "that is f squared: the orthogonality conditions give f^2; take the square root."
+    h, w = shape[:2]
+    context = SimpleNamespace(H=H, shape=shape, w=w, h=h, expected=expected)
+    right = _focal_formulas(H, shape)
+    if (
+        np.isnan(g)
+        and (np.isnan(right["c1"]) or np.isnan(right["r1"]))
+        and np.isfinite(right["c2"])
+    ):
+        return (
+            "you returned NaN or inf: for a pure pan h6 h7 = 0 (and for a pure tilt h6 = 0), so the orthogonality "
+            "formula is 0/0; use the other one (the equal-length condition), whichever denominator is larger."
+        )
+    if np.isnan(g):
+        # NaN does not tell the slips apart by value: name every slip that gives NaN here with some formula
+        causes = [
+            m for m in _FOCAL_SLIPS if (a := m.answer(context)) is not None and _shows_slip(g, a)
+        ]
+        if causes:
+            return (
+                "f^2 came out negative (its square root is NaN) on a turn where every formula is defined. "
+                + (
+                    causes[0].hint
+                    if len(causes) == 1
+                    else "Depending on the formulas you used, that is one of these slips: "
+                    + "; ".join(f"({k}) {_FOCAL_SHORT[m.name]}" for k, m in enumerate(causes, 1))
+                    + "."
+                )
+            )
+    cause = first_mistake(_FOCAL_SLIPS, context, g, _shows_slip)
+    if cause:
+        return cause
+    if not np.isfinite(g):
+        return (
+            "you returned NaN or inf on a turn where every formula is defined, so f^2 came out negative or 0/0 "
+            "by a slip. Check the indices: h0 ... h8 are H's entries row by row."
+        )
+    return (
+        "f^2 = -(h0 h1 + h3 h4) / (h6 h7) or (h0^2 + h3^2 - h1^2 - h4^2) / (h7^2 - h6^2) (columns), "
+        "-h2 h5 / (h0 h3 + h1 h4) or (h5^2 - h2^2) / (h0^2 + h1^2 - h3^2 - h4^2) (rows), on the centred H."
+    )
+
+
+register_exercise(
+    Exercise(
+        name="focal_from_rotation_homography",
+        lesson="09",
+        reference=_focal_reference,
+        cases=_focal_cases,
+        compare=_same_focal,
+        diagnose=_focal_diagnosis,
+        wrong_variants=(
+            (lambda H, shape: focal_from_rotation_homography(H, shape) ** 2, "square root"),
+            (_focal_uncentred, "principal point"),
+            (
+                lambda H, shape: focal_from_rotation_homography(np.asarray(H, float).T, shape),
+                "H transposed",
+            ),
+            (
+                lambda H, shape: focal_from_rotation_homography(H, tuple(shape[:2])[::-1]),
+                "width and height swapped",
+            ),
+            (lambda H, shape: _slipped_student("half", H, shape), "half-pixel slip"),
+            (lambda H, shape: _slipped_student("one-based", H, shape), "counted pixels from 1"),
+            (lambda H, shape: _slipped_student("C H C^-1", H, shape), "wrong way round"),
+            (lambda H, shape: _slipped_student("swap", H, shape), "width and height swapped"),
+            (lambda H, shape: _slipped_student("rows as H^T", H, shape, ("c1", "r1")), "1/f^2"),
+            (lambda H, shape: _slipped_student("sign", H, shape, ("c1",)), "sign flip"),
+        ),
+        teaching=focal_from_rotation_homography,
+    )
+)

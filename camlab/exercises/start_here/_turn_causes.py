@@ -1,0 +1,352 @@
+"""What went wrong in lesson 00's read_and_turn: the tables of its typical mistakes, one per part of the answer.
+
+The answer has three parts: the image's centre (:data:`CENTRE_MISTAKES`, read by :func:`centre_cause`),
+the pixel values under the points (:data:`VALUE_MISTAKES`, :func:`values_cause`) and the points turned
+about the centre (:data:`TURN_MISTAKES`, :func:`turned_cause`); :data:`RAISED` names the errors the
+student's code raises (:func:`exception_hint`). Each table is a tuple of
+:class:`~camlab.exercises._core.Mistake` rows, checked in order by
+:func:`~camlab.exercises._core.first_mistake`.
+"""
+
+from __future__ import annotations
+
+import re
+from types import SimpleNamespace
+
+import numpy as np
+
+from .._core import Mistake, first_mistake
+
+
+def numbers(a) -> str:
+    """A small array as the student could type it: [[5, 1], [0, 3]] (whole numbers without '.0')."""
+    a = np.asarray(a, dtype=float)
+    if a.ndim == 0:
+        return f"{float(a):.4g}"
+    return "[" + ", ".join(numbers(x) for x in a) + "]"
+
+
+# -- the centre ---------------------------------------------------------------------------------------
+
+_HALF = (
+    "half a pixel off: pixel centres sit at whole numbers, 0 .. W - 1, so the centre is halfway between the "
+    "first and the last, ((W - 1)/2, (H - 1)/2); W / 2 is the centre where whole numbers are pixel corners "
+    "(Pillow, COLMAP)"
+)
+
+# Centres students compute instead of ((W - 1)/2, (H - 1)/2) for an image of ``s.W`` x ``s.H`` pixels,
+# each with its cause (first match wins).
+CENTRE_MISTAKES = (
+    Mistake(
+        "W / 2",
+        lambda s: (s.W / 2, s.H / 2),
+        f"you used (W / 2, H / 2) (or W // 2): {_HALF}. W // 2 agrees with (W - 1)/2 only for odd W",
+    ),
+    Mistake(
+        "W // 2",
+        lambda s: (s.W // 2, s.H // 2),
+        f"you used (W // 2, H // 2): {_HALF}. W // 2 agrees with (W - 1)/2 only for odd W",
+    ),
+    Mistake(
+        "(W + 1) / 2",
+        lambda s: ((s.W + 1) / 2, (s.H + 1) / 2),
+        "you used (W + 1)/2: the centre counted from 1 (MATLAB's); here pixels count from 0, so ((W - 1)/2, (H - 1)/2)",
+    ),
+    Mistake(
+        "(W - 1) // 2",
+        lambda s: ((s.W - 1) // 2, (s.H - 1) // 2),
+        "you rounded the centre down to a whole pixel ((W - 1) // 2): an even side's centre lies between two pixels; keep (W - 1) / 2",
+    ),
+    Mistake(
+        "W and H swapped",
+        lambda s: ((s.H - 1) / 2, (s.W - 1) / 2),
+        "width and height swapped: numpy's img.shape is (H, W), rows first, so write H, W = img.shape; the centre is ((W - 1)/2, (H - 1)/2), u first",
+    ),
+    Mistake(
+        "W and H swapped, half a pixel off",
+        lambda s: (s.H / 2, s.W / 2),
+        "width and height swapped (img.shape is (H, W): H, W = img.shape), and half a pixel off: the centre is ((W - 1)/2, (H - 1)/2)",
+    ),
+    Mistake(
+        "the last pixel",
+        lambda s: (s.W - 1, s.H - 1),
+        "that is the last pixel, (W - 1, H - 1); the centre is halfway to it: ((W - 1)/2, (H - 1)/2)",
+    ),
+    Mistake(
+        "the size",
+        lambda s: (s.W, s.H),
+        "that is the size (W, H); the centre is ((W - 1)/2, (H - 1)/2)",
+    ),
+    Mistake(
+        "img.shape",
+        lambda s: (s.H, s.W),
+        "that is img.shape, (H, W); the centre is ((W - 1)/2, (H - 1)/2)",
+    ),
+)
+
+
+def _same_centre(c: np.ndarray, slip: tuple) -> bool:
+    return c.shape == (2,) and np.allclose(c, slip)
+
+
+def centre_cause(c: np.ndarray, W: int, H: int) -> str:
+    """Why ``c`` is not the centre of a ``W`` x ``H`` image: the first of :data:`CENTRE_MISTAKES` it is."""
+    hint = first_mistake(CENTRE_MISTAKES, SimpleNamespace(W=W, H=H), c, _same_centre)
+    return (
+        hint
+        or f"the centre of a W x H = {W} x {H} image is ((W - 1)/2, (H - 1)/2) = ({(W - 1) / 2:g}, {(H - 1) / 2:g})"
+    )
+
+
+# -- the values read ----------------------------------------------------------------------------------
+
+
+def _read_shifted(s, d: int) -> bool:
+    """Whether the values are those of the pixels ``d`` rows and columns further on (all inside the image)."""
+    uu, vv = s.u + d, s.v + d
+    inside = np.all((0 <= uu) & (uu < s.W) & (0 <= vv) & (vv < s.H))
+    return bool(inside) and np.allclose(s.values, s.img[vv, uu])
+
+
+# Checked in order on the values read, ``s.values``, for the image ``s.img`` (``s.H`` x ``s.W``) and the
+# points' columns and rows ``s.u``, ``s.v`` (``s.n`` points).
+VALUE_MISTAKES = (
+    Mistake(
+        "img[X]",
+        lambda s: s.values.shape == (s.n, 2, s.W),
+        "img[X] indexes rows with every number of X: take one row and one column per point, img[v, u] with u, v = X[:, 0], X[:, 1]",
+    ),
+    Mistake(
+        "every combination",
+        lambda s: s.values.shape == (s.n, s.n),
+        "you got every combination of the rows v and the columns u (img[v][:, u], or np.ix_): pair them, img[v, u], one value per point",
+    ),
+    Mistake(
+        "not one value per point",
+        lambda s: s.values.shape != (s.n,),
+        lambda s: (
+            f"one value per point: shape ({s.n},), got {s.values.shape}; img[v, u] with u, v = X[:, 0], X[:, 1] gives it"
+        ),
+    ),
+    Mistake(
+        "img[u, v]",
+        lambda s: s.H == s.W and np.allclose(s.values, s.img[s.u, s.v]),
+        "img[u, v] reads row u, column v: the transposed pixel. numpy indexes the row first, and the row is v: img[v, u]",
+    ),
+    Mistake(
+        "counted from 1",
+        lambda s: _read_shifted(s, -1),
+        "counting from 1 (u - 1, v - 1)? numpy counts from 0, and so do pixel coordinates",
+    ),
+    Mistake(
+        "one too far",
+        lambda s: _read_shifted(s, 1),
+        "an index one too far (u + 1, v + 1): pixel coordinates and numpy both count from 0",
+    ),
+)
+
+
+def _first_wrong_value(s) -> str:
+    """The first point whose value is wrong, the pixel it should have read, and the pixel the value names."""
+    u, v, img, H, W = s.u, s.v, s.img, s.H, s.W
+    k = int(np.argmax(~np.isclose(s.values, img[v, u])))
+    q = s.values[k]
+    where = ""
+    if q == int(q) and 0 <= q < 10 * H and int(q) % 10 < W:
+        where = f", the value of pixel (u, v) = ({int(q) % 10}, {int(q) // 10})"
+    return (
+        f"X[{k}] = ({u[k]}, {v[k]}) is pixel img[{v[k]}, {u[k]}] = {img[v[k], u[k]]}, but you returned {q:g}{where}: "
+        "read row v, column u, img[v, u]"
+    )
+
+
+def values_cause(values: np.ndarray, img: np.ndarray, X: np.ndarray) -> str:
+    """Why ``values`` are not img[v, u] at the rows of ``X``: a row of :data:`VALUE_MISTAKES`, else the first
+    wrong value and the pixel it came from (every test image names its pixels, img[v, u] = 10 v + u)."""
+    H, W = img.shape
+    u, v = np.rint(X).astype(int).T
+    s = SimpleNamespace(values=values, img=img, u=u, v=v, H=H, W=W, n=len(X))
+    return first_mistake(VALUE_MISTAKES, s) or _first_wrong_value(s)
+
+
+# -- the turned points --------------------------------------------------------------------------------
+
+
+def _inverse_turn(s):
+    """The points moved by A's inverse (None for a singular A, which has none)."""
+    if abs(np.linalg.det(s.A)) > 1e-12:
+        return (s.X - s.c) @ np.linalg.inv(s.A).T + s.c
+    return None
+
+
+def _about(centre: Mistake, transposed: bool):
+    """The points turned about the wrong centre that ``centre`` computes, by A (or by its transpose)."""
+
+    def answer(s):
+        w = np.asarray(centre.answer(s), dtype=float)
+        return (s.X - w) @ (s.A if transposed else s.A.T) + w
+
+    return answer
+
+
+# Checked in order (answer against answer, np.allclose) on the turned points, for the points ``s.X``,
+# the matrix ``s.A``, the right centre ``s.c`` and the image size ``s.W`` x ``s.H``.
+TURN_MISTAKES = (
+    Mistake(
+        "X @ A",
+        lambda s: (s.X - s.c) @ s.A + s.c,
+        "X @ A applies A's transpose (for a rotation, the opposite turn): with points as rows, the textbook's A x is X @ A.T",
+    ),
+    Mistake(
+        "about the origin",
+        lambda s: s.X @ s.A.T,
+        "you turned about the origin (0, 0), the top-left pixel's centre: turn about the image's centre, c + A (x - c): (X - c) @ A.T + c",
+    ),
+    Mistake(
+        "about the origin, X @ A",
+        lambda s: s.X @ s.A,
+        "you turned about the origin, and X @ A applies A's transpose: subtract the centre, turn with X @ A.T, add it back: (X - c) @ A.T + c",
+    ),
+    Mistake(
+        "the centre not added back",
+        lambda s: (s.X - s.c) @ s.A.T,
+        "you forgot to add the centre back after the turn: c + A (x - c), so (X - c) @ A.T + c",
+    ),
+    Mistake(
+        "the centre subtracted twice",
+        lambda s: (s.X - s.c) @ s.A.T - s.c,
+        "add the centre back after the turn (you subtracted it twice): (X - c) @ A.T + c",
+    ),
+    Mistake(
+        "a sign flip",
+        lambda s: s.c - (s.X - s.c) @ s.A.T,
+        "a sign flip: c - A (x - c) turns and mirrors through the centre; the move is c + A (x - c), (X - c) @ A.T + c",
+    ),
+    Mistake(
+        "the signs swapped",
+        lambda s: (s.X + s.c) @ s.A.T - s.c,
+        "the signs are swapped: move the centre to the origin first, X - c, then turn, then add c back: (X - c) @ A.T + c",
+    ),
+    Mistake(
+        "A's inverse",
+        _inverse_turn,
+        "you applied A's inverse, the move undone: x' = c + A (x - c) uses A itself, (X - c) @ A.T + c",
+    ),
+    *(
+        Mistake(
+            f"about {centre.name}" + (", X @ A" if transposed else ""),
+            _about(centre, transposed),
+            lambda s, centre=centre: (
+                f"you turned about the wrong centre, {numbers(centre.answer(s))}: {centre.hint}"
+            ),
+        )
+        for centre in CENTRE_MISTAKES
+        for transposed in (False, True)
+    ),
+)
+
+
+def turned_cause(t: np.ndarray, X: np.ndarray, A: np.ndarray, c: np.ndarray, W: int, H: int) -> str:
+    """Why ``t`` is not ``X`` turned by ``A`` about the centre ``c`` of a ``W`` x ``H`` image: its shape, else
+    the first row of :data:`TURN_MISTAKES` it equals."""
+    n = len(X)
+    if t.shape == (2, n) and n != 2:
+        return "one row per point: A @ X.T gives the points as columns; transpose back, (A @ X.T).T, or write X @ A.T"
+    if t.shape != (n, 2):
+        return f"the turned points are rows, shape ({n}, 2), like X; got {t.shape}"
+    s = SimpleNamespace(X=X, A=A, c=c, W=W, H=H)
+    return (
+        first_mistake(TURN_MISTAKES, s, t, np.allclose)
+        or "turn each row about the centre: x' = c + A (x - c), for rows (X - c) @ A.T + c"
+    )
+
+
+# -- errors the student's code raises -----------------------------------------------------------------
+
+
+def _index_error(s) -> bool:
+    return isinstance(s.exc, IndexError) and s.index is not None
+
+
+def _broadcast(s, shape: str) -> bool:
+    return (
+        isinstance(s.exc, ValueError) and "broadcast" in s.text and shape in s.text.replace(" ", "")
+    )
+
+
+# Checked in order on the error ``s.exc`` (its text ``s.text``; ``s.index``, ``s.axis``, ``s.size`` parsed
+# from an index out of bounds, else None) raised on the points ``s.X`` and an ``s.H`` x ``s.W`` image.
+RAISED = (
+    Mistake(
+        "img[u, v] past the last row",
+        lambda s: (
+            _index_error(s)
+            and s.axis == 0
+            and s.index in np.rint(s.X[:, 0]).astype(int)
+            and s.index >= s.H
+        ),
+        lambda s: (
+            f"img[u, v]: u = {s.index} was used as the row, and this image has {s.H} rows (shape ({s.H}, {s.W})). "
+            "numpy indexes the row first, and the row is v: img[v, u]"
+        ),
+    ),
+    Mistake(
+        "counted from 1",
+        lambda s: _index_error(s) and s.index == s.size,
+        lambda s: (
+            f"an index {s.size} on an axis of size {s.size}: counting from 1? numpy and pixel coordinates count from 0 "
+            "(the last row is H - 1, the last column W - 1): img[v, u]"
+        ),
+    ),
+    Mistake(
+        "float indices",
+        lambda s: (
+            isinstance(s.exc, IndexError) and ("integer" in s.text or "only integers" in s.text)
+        ),
+        (
+            "X holds floats (points are float arrays in this course) and numpy indexes with integers: "
+            "convert the whole-number coordinates first, u, v = X[:, 0].astype(int), X[:, 1].astype(int)"
+        ),
+    ),
+    Mistake(
+        "A @ X",
+        lambda s: isinstance(s.exc, ValueError) and "matmul" in s.text,
+        (
+            "A @ X treats X as one column per point, but points are rows, shape (N, 2): the textbook's A x is "
+            "X @ A.T for every row at once (or (A @ X.T).T)"
+        ),
+    ),
+    Mistake(
+        "columns plus a row",
+        lambda s: _broadcast(s, f"(2,{len(s.X)})"),
+        lambda s: (
+            f"A @ (X - c).T gives the points as columns, shape (2, {len(s.X)}), and c is one (u, v) row: transpose back "
+            "before adding c, (A @ (X - c).T).T + c, or keep points as rows throughout: (X - c) @ A.T + c"
+        ),
+    ),
+    Mistake(
+        "a (2, 1) centre",
+        lambda s: _broadcast(s, "(2,1)"),
+        (
+            "the centre is a (2, 1) column, and points are rows: make c a (2,) array, "
+            "np.array([(W - 1) / 2, (H - 1) / 2]), so that X - c subtracts it from every row"
+        ),
+    ),
+    Mistake(
+        "img.shape unpacked",
+        lambda s: isinstance(s.exc, ValueError) and "unpack" in s.text,
+        "img.shape is (H, W): two numbers, rows first: H, W = img.shape",
+    ),
+)
+
+
+def exception_hint(exc: Exception, args: tuple) -> str:
+    """The likely cause of ``exc``, raised by the student's function on ``args`` = (img, X, A): the first
+    row of :data:`RAISED` it matches, else '' (the hints every check shares)."""
+    img, X, _ = args
+    H, W = img.shape
+    text = str(exc)
+    match = re.search(r"index (-?\d+) is out of bounds for axis (\d) with size (\d+)", text)
+    index, axis, size = (int(g) for g in match.groups()) if match else (None, None, None)
+    s = SimpleNamespace(exc=exc, text=text, X=X, H=H, W=W, index=index, axis=axis, size=size)
+    return first_mistake(RAISED, s) or ""

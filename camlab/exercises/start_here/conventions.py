@@ -1,0 +1,260 @@
+"""Lesson 00's exercise read_and_turn: section 3's conventions at work.
+
+The image's centre ((W - 1)/2, (H - 1)/2), the pixel values img[v, u] under the points X, and X turned
+about the centre by a 2 x 2 matrix A. The diagnosis judges each of the three parts on its own, by the
+tables of :mod:`._turn_causes`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ... import projective
+from .._answers import same_array
+from .._core import Exercise, register_exercise
+from ._turn_causes import centre_cause, exception_hint, numbers, turned_cause, values_cause
+
+# Every test image holds img[v, u] = 10 v + u, so a value read names the pixel it came from (at most 10
+# columns), and a wrong read can be traced to its cause: img[u, v], a 1-based index, the wrong point.
+# Input 1 is square and odd (5 x 5), where img[u, v] raises nothing and silently reads the transposed pixel
+# (the lesson's warning), and A is a shear (A.T is neither A nor its inverse); input 2 is wider than tall
+# (6 x 4) with even sides, so W / 2 = W // 2 differs from (W - 1) / 2 and img[u, v] would raise for u >= 4;
+# input 3 is 7 x 3 with a turn and a scale.
+
+
+def _pixel_image(size: tuple[int, int]) -> np.ndarray:
+    """A ``size = (W, H)`` test image whose value at img[v, u] is 10 v + u: it names its own pixel."""
+    W, H = size
+    v, u = np.mgrid[0:H, 0:W]
+    return 10 * v + u
+
+
+def _turn(deg: float, scale: float = 1.0) -> np.ndarray:
+    t = np.radians(deg)
+    return scale * np.array([[np.cos(t), -np.sin(t)], [np.sin(t), np.cos(t)]])
+
+
+def _rt_cases() -> list[tuple]:
+    return [
+        (
+            _pixel_image((5, 5)),
+            np.array([[4.0, 0.0], [1.0, 3.0], [2.0, 2.0], [0.0, 4.0]]),
+            np.array([[1.0, 0.5], [0.0, 1.0]]),
+        ),
+        (
+            _pixel_image((6, 4)),
+            np.array([[5.0, 1.0], [0.0, 3.0], [2.0, 2.0]]),
+            _turn(90.0).round(12),
+        ),
+        (_pixel_image((7, 3)), np.array([[6.0, 2.0], [0.0, 0.0], [3.0, 1.0]]), _turn(30.0, 2.0)),
+    ]
+
+
+def _rt_describe(args: tuple) -> str:
+    img, X, A = args
+    H, W = img.shape
+    return f"img of shape ({H}, {W}), W = {W}, H = {H}, with img[v, u] = 10 v + u; X = {numbers(X)}; A = {numbers(A)}"
+
+
+def _read_and_turn_reference(img, X, A):
+    """The centre ((W - 1)/2, (H - 1)/2), img[v, u] at the rows of X, and X turned about the centre by A.
+
+    The turn is one homography, translate(c) A translate(-c), applied with camlab's homogeneous
+    coordinates: a route other than the teaching solution's ``(X - c) @ A.T + c``.
+    """
+    H, W = np.shape(img)[:2]
+    c = np.array([(W - 1) / 2, (H - 1) / 2])
+    X = np.asarray(X, dtype=float)
+    u, v = np.rint(X).astype(int).T
+    M = np.eye(3)
+    M[:2, :2] = A
+    M[:2, 2] = c - np.asarray(A) @ c
+    turned = projective.from_homogeneous(projective.to_homogeneous(X) @ M.T)
+    return c, np.asarray(img)[v, u], turned
+
+
+def _as_floats(part) -> np.ndarray | None:
+    try:
+        a = np.asarray(part, dtype=float)
+    except (TypeError, ValueError):
+        return None
+    return None if np.asarray(part).dtype.kind in "USOc" else a
+
+
+def _same_triple(got, expected) -> bool:
+    if not isinstance(got, (tuple, list)) or len(got) != 3:
+        return False
+    same = same_array(rtol=1e-9, atol=1e-9)
+    return all(_as_floats(g) is not None and same(g, e) for g, e in zip(got, expected, strict=True))
+
+
+def _rt_diagnose(args, got, expected) -> str:
+    img, X, A = args
+    H, W = img.shape
+    order = "return three things, in this order: the centre c, shape (2,); the values, shape (N,); the turned points, shape (N, 2): `return c, values, turned`"
+    if not isinstance(got, (tuple, list)):
+        a = _as_floats(got)
+        if a is not None and a.shape == (2,) and np.allclose(a, expected[0]):
+            return f"you returned only the centre (it is right); {order}"
+        return f"you returned {type(got).__name__ if not isinstance(got, np.ndarray) else 'one array'}; {order}"
+    if len(got) != 3:
+        return f"you returned {len(got)} things; {order}"
+    names = ("the centre c", "the values", "the turned points")
+    parts = [_as_floats(g) for g in got]
+    for name, part, g in zip(names, parts, got, strict=True):
+        if part is None:
+            return f"{name} is not numbers (a {type(g).__name__}); {order}"
+        if not np.isfinite(part).all():
+            return f"{name} holds NaN or inf"
+    c, values, turned = parts
+    same = same_array(rtol=1e-9, atol=1e-9)
+    causes = []
+    if not same(c, expected[0]):
+        if c.shape != (2,):
+            causes.append(f"the centre c is one point (u, v), shape (2,); got shape {c.shape}")
+        else:
+            causes.append(f"the centre: {centre_cause(c, W, H)}")
+    if not same(values, expected[1]):
+        causes.append(f"the values: {values_cause(values, img, X)}")
+    if not same(turned, expected[2]):
+        cause = turned_cause(turned, X, np.asarray(A, dtype=float), expected[0], W, H)
+        yours = (X - c) @ A.T + c if c.shape == (2,) else None
+        if yours is not None and not same(c, expected[0]) and turned.shape == yours.shape:
+            if np.allclose(turned, yours):
+                cause = "right for your centre c: fix c, and they follow"
+        causes.append(f"the turned points: {cause}")
+    return ("\n" + " " * 16).join(causes) if causes else "compare each part with the expected one"
+
+
+def read_and_turn(img, X, A):
+    """Section 3's conventions: the image's centre, the pixels under the points X, and X turned about the centre.
+
+    Parameters
+    ----------
+    img : (H, W) ndarray
+        A grey image.
+    X : (N, 2) ndarray
+        Points (u, v) at whole-number pixels, inside the image.
+    A : (2, 2) ndarray
+        The turn (any 2 x 2 matrix).
+
+    Returns
+    -------
+    c : (2,) ndarray
+        The centre ((W - 1)/2, (H - 1)/2).
+    values : (N,) ndarray
+        img[v, u] at each point.
+    turned : (N, 2) ndarray
+        c + A (x - c) for each point x.
+    """
+    H, W = img.shape[:2]  # numpy's shape: rows (H) first, then columns (W)
+    c = np.array([(W - 1) / 2, (H - 1) / 2])  # halfway between the first and the last pixel centres
+    u, v = X[:, 0].astype(int), X[:, 1].astype(int)
+    values = img[v, u]  # row v, column u
+    turned = (X - c) @ A.T + c  # x' = c + A (x - c), for every row at once
+    return c, values, turned
+
+
+def _rt_wrong(centre=None, read=None, turn=None):
+    """A wrong read_and_turn for the tests: the teaching solution with one step replaced."""
+
+    def wrong(img, X, A):
+        H, W = img.shape
+        c = (
+            np.array([(W - 1) / 2, (H - 1) / 2])
+            if centre is None
+            else np.asarray(centre(W, H), dtype=float)
+        )
+        u, v = X[:, 0].astype(int), X[:, 1].astype(int)
+        values = img[v, u] if read is None else read(img, u, v)
+        turned = (X - c) @ A.T + c if turn is None else turn(X, A, c)
+        return c, values, turned
+
+    return wrong
+
+
+def _float_index(img, X, A):
+    """Indexing with the float coordinates of X (a wrong variant for the tests)."""
+    return read_and_turn(img, X, A)[0], img[X[:, 1], X[:, 0]], read_and_turn(img, X, A)[2]
+
+
+register_exercise(
+    Exercise(
+        name="read_and_turn",
+        lesson="00",
+        reference=_read_and_turn_reference,
+        cases=_rt_cases,
+        compare=_same_triple,
+        diagnose=_rt_diagnose,
+        describe_input=_rt_describe,
+        exception_hint=exception_hint,
+        wrong_variants=(
+            (_rt_wrong(centre=lambda W, H: (W / 2, H / 2)), "you used (W / 2, H / 2)"),
+            (_rt_wrong(centre=lambda W, H: (W // 2, H // 2)), "W // 2"),
+            (_rt_wrong(centre=lambda W, H: ((W + 1) / 2, (H + 1) / 2)), "counted from 1"),
+            (
+                _rt_wrong(centre=lambda W, H: ((W - 1) // 2, (H - 1) // 2)),
+                "rounded the centre down",
+            ),
+            (_rt_wrong(centre=lambda W, H: ((H - 1) / 2, (W - 1) / 2)), "width and height swapped"),
+            (_rt_wrong(centre=lambda W, H: (W, H)), "that is the size"),
+            (  # two slips at once, points as columns: the hint names the centre, no numpy error
+                _rt_wrong(
+                    centre=lambda W, H: (W / 2, H / 2),
+                    turn=lambda X, A, c: ((X - c) @ A.T + c).T,
+                ),
+                "you used (W / 2, H / 2)",
+            ),
+            (_rt_wrong(read=lambda img, u, v: img[u, v]), "img[u, v] reads row u, column v"),
+            (
+                _rt_wrong(read=lambda img, u, v: img[v - 1, u - 1]),
+                "X[0] = (4, 0) is pixel img[0, 4] = 4",
+            ),
+            (_rt_wrong(read=lambda img, u, v: img[v + 1, u + 1]), "counting from 1?"),
+            (_rt_wrong(read=lambda img, u, v: img[v][:, u]), "every combination"),
+            (
+                lambda img, X, A: (
+                    read_and_turn(img, X, A)[0],
+                    img[X.astype(int)],
+                    read_and_turn(img, X, A)[2],
+                ),
+                "img[X] indexes rows",
+            ),
+            (_float_index, "numpy indexes with integers"),
+            (_rt_wrong(turn=lambda X, A, c: (X - c) @ A + c), "X @ A applies A's transpose"),
+            (
+                _rt_wrong(turn=lambda X, A, c: (A @ X.T).T * 0 + A @ X),
+                "A @ X treats X as one column per point",
+            ),
+            (_rt_wrong(turn=lambda X, A, c: A @ (X - c).T + c[:, None]), "(A @ X.T).T"),
+            (_rt_wrong(turn=lambda X, A, c: X @ A.T), "you turned about the origin"),
+            (_rt_wrong(turn=lambda X, A, c: A @ (X - c).T + c), "transpose back before adding c"),
+            (_rt_wrong(turn=lambda X, A, c: c - (X - c) @ A.T), "a sign flip"),
+            (
+                lambda img, X, A: (
+                    read_and_turn(img, X - np.array([[2.0], [2.0]]).T * 0, A)[:2]
+                    + ((X - np.array([[2.0], [2.0]])) @ A.T,)
+                ),
+                "the centre is a (2, 1) column",
+            ),
+            (
+                _rt_wrong(turn=lambda X, A, c: (X - c) @ np.linalg.inv(A).T + c),
+                "you applied A's inverse",
+            ),
+            (_rt_wrong(turn=lambda X, A, c: (X - c) @ A.T), "forgot to add the centre back"),
+            (
+                _rt_wrong(turn=lambda X, A, c: (X - [2.5, 2.5]) @ A.T + [2.5, 2.5]),
+                "you turned about the wrong centre, [2.5, 2.5]",
+            ),
+            (
+                _rt_wrong(
+                    centre=lambda W, H: (W / 2, H / 2), turn=lambda X, A, c: (X - c) @ A.T + c
+                ),
+                "right for your centre c",
+            ),
+            (lambda img, X, A: read_and_turn(img, X, A)[:2], "you returned 2 things"),
+            (lambda img, X, A: read_and_turn(img, X, A)[0], "you returned only the centre"),
+        ),
+        teaching=read_and_turn,
+    )
+)

@@ -1,0 +1,301 @@
+"""Lesson 07 demos on fitting and applying a homography: RANSAC against outliers, forward versus inverse warping."""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import ipywidgets as W
+import numpy as np
+
+from ... import fixtures, scenes
+from ... import homography as hg
+from ..._validate import DegenerateError
+from ...plotting import palette
+from ...projective import (
+    map_points,
+)
+from ...robust import required_iterations
+from ...warp import forward_warp, warp_perspective
+from .._base import Demo, FigureView, build_demo, register, slider
+from ..controls import (
+    monospace,
+)
+from .notes import warning_note
+
+CONFIDENCE = 0.995  # RANSAC's confidence p in the demo
+MAX_SAMPLES = 1000  # RANSAC's cap on the samples drawn in the demo
+
+# ----------------------------------------------------------------------------- RANSAC
+
+# What RANSAC did with each pair, against the truth the demo knows.
+_VERDICTS = (
+    ("inlier, kept", palette.GREEN),
+    ("outlier, wrongly kept", palette.RED),
+    ("inlier, wrongly rejected", palette.BLUE),
+    ("outlier, rejected", palette.GREY),
+)
+
+
+@register(
+    lesson="07", sweep={"outliers": [0.1, 0.4, 0.7], "threshold": [1.0, 3.0, 8.0], "seed": [0, 3]}
+)
+def ransac_outliers() -> Demo:
+    """RANSAC against a growing outlier fraction ε: each pair's verdict and the samples drawn.
+
+    The 200 pairs of :func:`camlab.fixtures.outlier_matches` (a 400 x 300 image, 1 px of
+    noise, a fraction ε of them random) go to :func:`camlab.homography.ransac_homography`
+    with confidence p = :data:`CONFIDENCE` and at most :data:`MAX_SAMPLES` samples. Each
+    pair's verdict is judged against the truth the demo knows, and the samples drawn are
+    set against k = log(1 - p) / log(1 - (1 - ε)^4), the number needed for the ε found.
+    Results are cached per setting, so revisiting one redraws without re-running RANSAC.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``outliers`` (the true outlier fraction ε), ``threshold``
+        (RANSAC's inlier threshold, px) and ``seed`` (of both the data and RANSAC), the
+        figure (left: each pair as a line from src to a dot at dst, coloured by its verdict,
+        the image frame mapped by the true H and by RANSAC's H, and the winning sample of 4;
+        right: k against ε on a log scale, the cap, the k needed for the ε found and the
+        samples drawn) and ``state`` (``H`` RANSAC's estimate, ``sample`` the indices of
+        its winning 4 pairs, ``iterations`` the samples drawn, ``inliers`` their count,
+        ``recall`` the share of the true inliers kept, ``corner_error`` the worst corner of
+        the mapped frame against the truth in px, ``verdicts`` the counts of inlier kept,
+        outlier wrongly kept, inlier wrongly rejected and outlier rejected,
+        ``outlier_fraction_found`` 1 - the inlier share, ``samples_needed`` k for it, and
+        ``error``, None or RANSAC's message when it fails; then every key above but
+        ``sample`` is None).
+
+    References
+    ----------
+    .. [1] M. A. Fischler and R. C. Bolles, 1981, "Random sample consensus: a paradigm for model
+       fitting with applications to image analysis and automated cartography",
+       *Communications of the ACM* 24(6), 381-395.
+    .. [2] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.7.1
+       (how many samples?).
+    """
+    from matplotlib.collections import LineCollection
+    from matplotlib.colors import to_rgba
+
+    view = FigureView(figsize=(9.6, 4.8))
+    ax, ax_k = view.fig.subplots(1, 2, width_ratios=[1.35, 1])
+    ax.set(
+        xlim=(-10, 440), ylim=(330, -10), aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)"
+    )
+    ax.set_title("each pair: a line from src to a dot at dst", fontsize=10, pad=3)
+    arrows = view.animate(ax.add_collection(LineCollection([], lw=1.0)))
+    heads = view.animate(ax.scatter(np.zeros(0), np.zeros(0), s=6))
+    box_true = view.animate(
+        ax.plot([], [], "-", color="0.3", lw=2, label="true H (image frame)")[0]
+    )
+    box_est = view.animate(ax.plot([], [], "--", color="k", lw=1.5, label="RANSAC H")[0])
+    best = view.animate(
+        ax.plot([], [], "o", mfc="none", mec="k", mew=2, ms=11, label="the winning sample of 4")[0]
+    )
+    for name, colour in _VERDICTS:
+        ax.plot([], [], "-", color=colour, lw=2, label=name)
+    # Below the figure (the layout makes room), never over the arrows; under the left panel it describes.
+    view.fig.legend(*ax.get_legend_handles_labels(), loc="outside lower left", fontsize=8, ncol=3)
+    failure = warning_note(view, ax, 0.5, 0.55, "center", "center")
+    eps = np.linspace(0.0, 0.97, 300)
+    k_curve = [required_iterations(1.0 - e, CONFIDENCE, 4) for e in eps]
+    ax_k.semilogy(eps, k_curve, color="0.5", label="k = log(1-p) / log(1-(1-ε)⁴), p = 0.995")
+    ax_k.axhline(MAX_SAMPLES, color="0.3", ls=":", lw=1, label=f"the cap: {MAX_SAMPLES} samples")
+    needed = view.animate(
+        ax_k.plot(
+            [], [], "o", mfc="none", mec="k", mew=1.5, ms=10, label="k for the ε RANSAC found"
+        )[0]
+    )
+    dot = view.animate(
+        ax_k.plot([], [], "o", color="k", ms=5, label="samples drawn (whole batches)")[0]
+    )
+    ax_k.set(
+        xlabel="outlier fraction ε",
+        ylabel="samples",
+        ylim=(1, 1e7),  # the whole curve: the ring for any ε found is on the axes, never pinned
+        xlim=(0, 0.97),
+        title="adaptive number of samples",
+    )
+    ax_k.legend(loc="upper left", fontsize=8)
+    ax_k.grid(True, color="0.93")
+    ax_k.text(
+        0.03,
+        0.66,
+        "samples come in batches (16, then\nup to 64), so the dot sits at or\nabove the ring, unless RANSAC\nstops at the cap",
+        transform=ax_k.transAxes,
+        ha="left",
+        va="top",
+        fontsize=8,
+        color="0.3",
+    )
+    readout = W.HTML()
+    frame = np.array([[0, 0], [399, 0], [399, 299], [0, 299], [0, 0]], float)
+
+    @lru_cache(
+        maxsize=256
+    )  # sliders revisit settings; the answer is a pure (seeded) function of them
+    def run(outlier_fraction: float, threshold: float, seed: int):
+        """The demo's data and RANSAC's answer, or its error message."""
+        data = fixtures.outlier_matches(outlier_fraction, seed)
+        try:
+            return data, hg.ransac_homography(
+                data[1], data[2], threshold, CONFIDENCE, MAX_SAMPLES, np.random.default_rng(seed)
+            )
+        except DegenerateError as exc:
+            return data, str(exc)
+
+    def update(v: dict, state: dict) -> None:
+        (H, src, dst, out), r = run(float(v["outliers"]), float(v["threshold"]), int(v["seed"]))
+        if isinstance(r, str):  # RANSAC failed: clear the last result, a stale plot would be a lie
+            exc = r
+            state.update(
+                iterations=None,
+                inliers=None,
+                recall=None,
+                corner_error=None,
+                H=None,
+                verdicts=None,
+                outlier_fraction_found=None,
+                samples_needed=None,
+                error=exc,
+            )
+            for artist in (box_est, dot, needed, best):
+                artist.set_data([], [])
+            arrows.set_segments([])
+            heads.set_offsets(np.zeros((0, 2)))
+            failure(
+                "RANSAC failed: no hypothesis had real support\n(the full message is beside the sliders)"
+            )
+            readout.value = monospace(exc)
+            return
+        failure("")
+        verdict = np.select([~out & r.inliers, out & r.inliers, ~out & ~r.inliers], [0, 1, 2], 3)
+        colours = np.array([to_rgba(c) for _, c in _VERDICTS])[verdict]
+        order = np.argsort(
+            -verdict
+        )  # rejected outliers first, so the interesting arrows sit on top
+        arrows.set_segments(np.stack([src, dst], axis=1)[order])
+        arrows.set_color(colours[order])
+        heads.set_offsets(dst[order])
+        heads.set_color(colours[order])
+        bt, be = map_points(H, frame), map_points(r.H, frame)
+        box_true.set_data(bt[:, 0], bt[:, 1])
+        box_est.set_data(be[:, 0], be[:, 1])
+        best.set_data(dst[r.sample, 0], dst[r.sample, 1])
+        eps_found = 1.0 - r.inliers.mean()
+        k_needed = required_iterations(1.0 - eps_found, CONFIDENCE, 4)
+        dot.set_data([v["outliers"]], [r.iterations])
+        needed.set_data([eps_found], [k_needed])
+        counts = np.bincount(verdict, minlength=4)
+        found_true = float(np.mean(r.inliers[~out])) if (~out).any() else float("nan")
+        err = float(np.max(np.linalg.norm(be - bt, axis=1)))
+        state.update(
+            sample=r.sample,
+            iterations=r.iterations,
+            inliers=int(r.inliers.sum()),
+            recall=found_true,
+            corner_error=err,
+            error=None,
+            H=r.H,
+            verdicts=counts,
+            outlier_fraction_found=eps_found,
+            samples_needed=k_needed,
+        )
+        readout.value = monospace(
+            f"true ε = {v['outliers']:.2f}, found ε = {eps_found:.2f}\n"
+            f"samples drawn: {r.iterations}{' (the cap)' if r.iterations >= MAX_SAMPLES else ''}; "
+            f"needed for the found ε: {k_needed:.0f}\n"
+            + "\n".join(
+                f"{name:25s} {c:4d}" for (name, _), c in zip(_VERDICTS, counts, strict=True)
+            )
+            + f"\nworst corner error: {err:.1f} px"
+        )
+
+    controls = {
+        "outliers": slider(0.4, 0.0, 0.8, 0.05, "outlier fraction ε"),
+        "threshold": slider(3.0, 0.5, 10.0, 0.5, "threshold (px)"),
+        "seed": W.IntSlider(value=0, min=0, max=9, description="seed"),
+    }
+    return build_demo("ransac_outliers", controls, view, update, title="RANSAC", extra=[readout])
+
+
+# ----------------------------------------------------------------------------- forward vs inverse
+
+
+@register(lesson="07", sweep={"scale": [0.6, 1.5, 2.8], "angle": [0.0, 25.0]})
+def forward_vs_inverse() -> Demo:
+    """Forward mapping leaves holes where H magnifies; inverse mapping never does.
+
+    An 80 x 60 picture is given a small projective part (v = (1e-3, 0)), scaled and rotated
+    about its centre, then warped into a 240 x 180 output twice, nearest neighbour both
+    times: forward (:func:`camlab.warp.forward_warp`, each source pixel pushed to where H
+    sends it) and inverse (:func:`camlab.warp.warp_perspective`, each output pixel pulled
+    from where H^-1 sends it).
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``scale`` and ``angle`` (the rotation, degrees), the figure (the
+        forward warp beside the inverse warp) and ``state`` (``H``, source to output pixels,
+        and ``hole_fraction``, the share of the inverse warp's interior pixels, those whose
+        four neighbours are covered too, that the forward warp never reaches).
+
+    References
+    ----------
+    .. [1] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022, section
+       3.6.1 (parametric transformations: forward and inverse warping).
+    """
+    pic = scenes.house_picture((80, 60))
+    out_hw = (180, 240)
+    view = FigureView(figsize=(9, 3.6))
+    ax_f, ax_i = view.fig.subplots(1, 2)
+    blank = np.zeros((*out_hw, 3), np.uint8)
+    im_f = view.animate(ax_f.imshow(blank, interpolation="nearest"))
+    im_i = view.animate(ax_i.imshow(blank, interpolation="nearest"))
+    ax_f.set_title("forward: push each source pixel", fontsize=10, pad=3)
+    for ax_ in (ax_f, ax_i):
+        ax_.set(xlabel="u (pixels)", ylabel="v (pixels)")
+    ax_i.set_title("inverse: pull each output pixel", fontsize=10, pad=3)
+    readout = W.HTML()
+    ones = np.ones(pic.shape[:2], np.uint8)
+
+    def update(v: dict, state: dict) -> None:
+        C = np.array([[1.0, 0, out_hw[1] / 2], [0, 1, out_hw[0] / 2], [0, 0, 1]])
+        P = np.array([[1.0, 0, -39.5], [0, 1, -29.5], [0, 0, 1]])
+        H = hg.compose(
+            C,
+            hg.similarity_homography(v["scale"], np.radians(v["angle"])),
+            hg.projective_homography(v=(1e-3, 0)),
+            P,
+        )
+        fwd = forward_warp(pic, H, out_hw)
+        inv = warp_perspective(
+            pic, H, out_hw, interpolation="nearest", method="cv2"
+        )  # same picture, fast
+        im_f.set_data(fwd)
+        im_i.set_data(inv)
+        covered = warp_perspective(ones, H, out_hw, interpolation="nearest", method="cv2") > 0
+        inner = covered.copy()
+        inner[1:-1, 1:-1] &= (
+            covered[:-2, 1:-1] & covered[2:, 1:-1] & covered[1:-1, :-2] & covered[1:-1, 2:]
+        )
+        reached = forward_warp(ones, H, out_hw) > 0
+        holes = float(np.mean(~reached[inner])) if inner.any() else 0.0
+        state.update(H=H, hole_fraction=holes)
+        readout.value = monospace(
+            f"holes in the forward warp: {100 * holes:.0f}% of the covered area\n"
+            f"holes in the inverse warp: 0%"
+        )
+
+    controls = {
+        "scale": slider(2.0, 0.4, 3.0, 0.05, "scale"),
+        "angle": slider(15.0, -45.0, 45.0, 1.0, "rotation (°)"),
+    }
+    return build_demo(
+        "forward_vs_inverse",
+        controls,
+        view,
+        update,
+        title="Forward versus inverse warping",
+        extra=[readout],
+    )

@@ -1,0 +1,426 @@
+"""Lesson 07 demos on what a homography does: the transformation hierarchy and four dragged corners."""
+
+from __future__ import annotations
+
+import textwrap
+
+import ipywidgets as W
+import numpy as np
+
+from ... import homography as hg
+from ... import scenes
+from ..._validate import DegenerateError
+from ...plotting import palette
+from ...projective import (
+    LINE_AT_INFINITY,
+    clip_line,
+    cross_ratio,
+    map_lines,
+    map_points,
+    map_polyline,
+    splits_at_infinity,
+)
+from ...warp import warp_perspective
+from .._base import Demo, FigureView, build_demo, register, slider
+from ..controls import (
+    connect_corner_drag,
+    corner_keys,
+    corner_text,
+    format_corners,
+    monospace,
+    parse_corners,
+)
+from .notes import TORN_DRAG, TORN_SHORT, warning_note
+
+# ----------------------------------------------------------------------------- hierarchy
+
+_GROUPS = tuple(hg.HIERARCHY)  # euclidean, similarity, affine, projective
+
+
+@register(
+    lesson="07",
+    sweep={
+        "group": list(_GROUPS),
+        "theta": [-30.0, 20.0],
+        "phi": [0.0, 40.0],
+        "v1": [0.0, 2.0, 14.0],
+        "tx": [-20.0, 30.0],
+    },
+)
+def transformation_hierarchy() -> Demo:
+    """Euclidean, similarity, affine, projective: sliders for each group acting on a picture.
+
+    The group's matrix :math:`H_g` (:func:`camlab.homography.hierarchy_matrix`, which uses
+    only the parameters its group has) acts about the picture's centre: the picture
+    shown is mapped by :math:`H = C H_g P`, where P moves the 160 x 120 picture's centre to
+    the origin and C the origin to the centre of the 480 x 360 canvas. The image of the
+    line at infinity (the vanishing line, H^-T l∞) is drawn when H moves it into view; the
+    group's dof and what it keeps are printed beside the picture, and a red note says when
+    the picture is torn (the line H sends to infinity crosses it).
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``group`` (``"euclidean"``, ``"similarity"``, ``"affine"`` or
+        ``"projective"``), ``theta`` (the rotation, degrees), ``scale``, ``phi`` (the angle
+        of the affine stretch's axes, degrees), ``aspect`` (the affine stretch, √(sx/sy)),
+        ``tx`` and ``ty`` (the translation, px) and ``v1``, ``v2`` (the projective bottom
+        row, in units of 1e-3), the figure (the mapped picture with the original outline,
+        the mapped grid and the vanishing line) and ``state``
+        (``H`` the group's matrix :math:`H_g`, ``group``, ``classified`` the smallest group
+        holding it, ``dof``, ``torn``, ``vanishing_line_in_view``).
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 2.4 (a
+       hierarchy of transformations), table 2.1.
+    """
+    pic = scenes.house_picture()
+    ph, pw = pic.shape[:2]
+    canvas_hw = (360, 480)
+    xlim, ylim = (-0.5, canvas_hw[1] - 0.5), (-0.5, canvas_hw[0] - 0.5)
+    # Picture coordinates centred on the origin; C places the origin at the canvas centre.
+    C = np.array([[1.0, 0, canvas_hw[1] / 2], [0, 1, canvas_hw[0] / 2], [0, 0, 1]])
+    P = np.array([[1.0, 0, -(pw - 1) / 2], [0, 1, -(ph - 1) / 2], [0, 0, 1]])
+    view = FigureView(figsize=(8.5, 4.2))
+    ax = view.fig.subplots()
+    ax.set(xlim=xlim, ylim=ylim[::-1], aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)")
+    im = view.animate(
+        ax.imshow(
+            np.zeros((*canvas_hw, 3), np.uint8),
+            interpolation="nearest",
+            extent=(xlim[0], xlim[1], ylim[1], ylim[0]),
+        )
+    )
+    outline0 = C @ P
+    box0 = map_points(
+        outline0, np.array([[0, 0], [pw - 1, 0], [pw - 1, ph - 1], [0, ph - 1], [0, 0]], float)
+    )
+    view.animate(
+        ax.plot(box0[:, 0], box0[:, 1], ":", color="0.2", lw=1.5, label="original outline")[0]
+    )
+    samples = np.linspace(0, 1, 60)  # dense, so the polylines follow the picture up to its tear
+    grid_lines = [
+        np.column_stack([np.full(60, x), samples * (ph - 1)]) for x in np.linspace(0, pw - 1, 5)
+    ]
+    grid_lines += [
+        np.column_stack([samples * (pw - 1), np.full(60, y)]) for y in np.linspace(0, ph - 1, 4)
+    ]
+    grid_art = view.animate(
+        ax.plot(
+            [],
+            [],
+            color=palette.ORANGE,
+            lw=1,
+            path_effects=palette.halo(1),
+            label="grid mapped by H",
+        )[0]
+    )
+    horizon_art = view.animate(
+        ax.plot(
+            [],
+            [],
+            "--",
+            color=palette.PURPLE,
+            lw=2,
+            label="vanishing line (image of\nl∞; at infinity unless\nthe group is projective)",
+        )[0]
+    )
+    ax.set_title(
+        "the picture mapped by H (its group, dof and invariants at the right)", fontsize=10
+    )
+    # beside the axes: over the warped picture the legend would need a redraw per update
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
+    # The group, its dof and what it keeps, in the figure itself (a static page has no readout).
+    facts = view.animate(
+        ax.text(
+            1.03, 0.72, "", transform=ax.transAxes, ha="left", va="top", fontsize=8, linespacing=1.3
+        )
+    )
+    warning = warning_note(
+        view, ax, 1.03, 0.0, "left", "bottom"
+    )  # beside the canvas, never over it
+    picture_corners = np.array([[0, 0], [pw - 1, 0], [pw - 1, ph - 1], [0, ph - 1]], float)
+    readout = W.HTML()
+
+    def update(v: dict, state: dict) -> None:
+        Hg = hg.hierarchy_matrix(
+            v["group"],
+            theta=np.radians(v["theta"]),
+            scale=v["scale"],
+            shear=np.radians(v["phi"]),
+            aspect=v["aspect"],
+            tx=v["tx"],
+            ty=v["ty"],
+            v=(v["v1"] * 1e-3, v["v2"] * 1e-3),
+        )
+        H = hg.compose(C, Hg, P)
+        im.set_data(warp_perspective(pic, H, canvas_hw, method="cv2", fill=255))
+        pieces = [np.vstack([map_polyline(H, line), [[np.nan, np.nan]]]) for line in grid_lines]
+        m = np.vstack(pieces)
+        grid_art.set_data(m[:, 0], m[:, 1])
+        # l' = H^-T l_inf: where parallel lines of the picture meet (outside the view for affine H)
+        vanishing = clip_line(map_lines(H, LINE_AT_INFINITY), xlim, ylim)
+        horizon_art.set_data(vanishing[:, 0], vanishing[:, 1])
+        info = hg.HIERARCHY[v["group"]]
+        kind = hg.classify(Hg)
+        torn = splits_at_infinity(H, picture_corners)
+        warning(TORN_SHORT if torn else "")
+        state.update(
+            H=Hg,
+            group=v["group"],
+            classified=kind,
+            dof=info["dof"],
+            torn=torn,
+            vanishing_line_in_view=bool(np.isfinite(vanishing).all()),
+        )
+        keeps = [f"- {name}" for name in info["own"]]
+        if info["larger"]:
+            keeps.append(
+                f"+ all that {'an' if info['larger'] == 'affine' else 'a'} {info['larger']} map keeps"
+            )
+        facts.set_text(
+            f"{v['group']}: {info['dof']} dof\n(H itself is {kind})\n\nkeeps:\n"
+            + "\n".join("\n".join(textwrap.wrap(k, 24, subsequent_indent="  ")) for k in keeps)
+        )
+        readout.value = monospace(
+            f"{v['group']}: {info['dof']} dof\nH =\n"
+            + np.array2string(Hg, precision=4, suppress_small=True)
+            + f"\nsmallest group holding H: {kind}\nkeeps: "
+            + ", ".join(info["invariants"])
+        )
+
+    controls = {
+        "group": W.Dropdown(options=list(_GROUPS), value="affine", description="group"),
+        "theta": slider(15.0, -180.0, 180.0, 1.0, "rotation θ (°)"),
+        "scale": slider(1.2, 0.3, 2.5, 0.05, "scale s"),
+        "phi": slider(30.0, -90.0, 90.0, 1.0, "affine: stretch axes φ (°)"),
+        "aspect": slider(1.4, 0.4, 2.5, 0.05, "affine: stretch √(sx/sy)"),
+        "tx": slider(0.0, -100.0, 100.0, 1.0, "tx (px)"),
+        "ty": slider(0.0, -80.0, 80.0, 1.0, "ty (px)"),
+        "v1": slider(1.5, -15.0, 15.0, 0.1, "projective: v1 (×1e-3)"),
+        "v2": slider(0.0, -15.0, 15.0, 0.1, "projective: v2 (×1e-3)"),
+    }
+    return build_demo(
+        "transformation_hierarchy",
+        controls,
+        view,
+        update,
+        title="The transformation hierarchy",
+        extra=[readout],
+    )
+
+
+# ----------------------------------------------------------------------------- drag corners
+
+SQUARE = np.array([[0.0, 0.0], [159.0, 0.0], [159.0, 119.0], [0.0, 119.0]])
+CORNER_NAMES = (
+    "top left",
+    "top right",
+    "bottom right",
+    "bottom left",
+)  # of the source picture, SQUARE's order
+_DRAG_START = np.array([[40.0, 30.0], [250.0, 60.0], [230.0, 200.0], [60.0, 230.0]])
+
+
+@register(
+    lesson="07",
+    sweep={
+        "corners": [
+            format_corners(_DRAG_START),
+            "20.0, 20.0; 280.0, 20.0; 280.0, 230.0; 20.0, 230.0",
+            "100.0, 40.0; 200.0, 40.0; 280.0, 230.0; 20.0, 230.0",
+        ],
+        "corner": [0, 2],
+        "corner_u": [10.0, 290.0],
+        "corner_v": [10.0, 250.0],
+    },
+)
+def drag_homography() -> Demo:
+    """Drag the four target corners: lines and the cross-ratio stay, lengths and angles change.
+
+    H maps the 160 x 120 source picture's corners (:data:`SQUARE`, in the order of
+    :data:`CORNER_NAMES`) to the four target corners
+    (:func:`camlab.homography.estimate_homography`). Four collinear points A, B, C, D of the
+    picture and their images A', B', C', D' are marked; under the source picture, the
+    cross-ratio, the ratio of lengths |AB| / |CD| and the top-left corner's angle are
+    printed for the source and the image. When the source line that H sends to infinity
+    crosses the picture it is drawn (purple, dashed) and a red note says the picture is
+    torn. Without a mouse, pick a corner and move it with its two sliders (or type the
+    corners).
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``corners`` (the text ``"u0, v0; u1, v1; u2, v2; u3, v3"``, the
+        target corners in :data:`CORNER_NAMES`' order, px) and ``corner`` (the corner its
+        linked ``corner_u`` and ``corner_v`` sliders move), the figure (the source picture
+        with A-D and the numbers; the warped picture with its outline, A'-D' and the
+        corners to drag) and ``state`` (``H`` source to target pixels, ``corners``,
+        ``corner``, ``torn``, ``cross_ratio_source`` and ``cross_ratio_image``,
+        ``length_ratio_source`` and ``length_ratio_image`` (|AB| / |CD|), ``corner_angle``
+        the target's top-left angle in degrees, ``error``: the message when the corners
+        cannot be used, else None). ``handlers`` holds the mouse handlers of the corner
+        drag.
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 2.5 (the
+       projective geometry of 1D: the cross ratio).
+    .. [2] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.1 (the
+       direct linear transformation).
+    """
+    pic = scenes.house_picture()
+    ph, pw = pic.shape[:2]
+    out_hw = (260, 300)
+    view = FigureView(figsize=(9, 4.6))
+    ax_s, ax_t = view.fig.subplots(1, 2, width_ratios=[1, 1.6])
+    ax_s.imshow(pic)
+    ax_s.set_anchor("N")  # the room under the source picture holds the numbers and the warning
+    ax_s.set(xlabel="u (pixels)", ylabel="v (pixels)")
+    ax_s.set_title("source picture", fontsize=10, pad=3)
+    ax_s.set(xlim=(-0.5, pw - 0.5), ylim=(ph - 0.5, -0.5))
+    ax_t.set(xlim=(-0.5, out_hw[1] - 0.5), ylim=(out_hw[0] - 0.5, -0.5), aspect="equal")
+    ax_t.set(xlabel="u (pixels)", ylabel="v (pixels)")
+    ax_t.set_title("drag a corner, or use the sliders", fontsize=10, pad=3)
+    # Four collinear points on the picture's diagonal (their cross-ratio is the invariant).
+    line_pts = np.array([[10.0, 10.0], [50.0, 40.0], [90.0, 70.0], [150.0, 115.0]])
+    line_dense = line_pts[0] + np.linspace(0, 1, 80)[:, None] * (line_pts[3] - line_pts[0])
+    square_dense = np.vstack(
+        [
+            SQUARE[i] + np.linspace(0, 1, 40)[:, None] * (SQUARE[(i + 1) % 4] - SQUARE[i])
+            for i in range(4)
+        ]
+    )
+    ax_s.plot(*line_pts.T, "o-", color=palette.BROWN, ms=5, lw=1.5, path_effects=palette.halo(1.5))
+    offsets = ((7, -3), (4, 6), (4, 6), (-14, 2))  # across the line; A and D sit near the frame
+    for name, p, off in zip("ABCD", line_pts, offsets, strict=True):
+        ax_s.annotate(
+            name,
+            p,
+            xytext=off,
+            textcoords="offset points",
+            fontsize=9,
+            color="k",
+            path_effects=palette.halo(),
+        )  # black on a white halo: readable on any colour
+    sent_away = view.animate(ax_s.plot([], [], "--", color=palette.PURPLE, lw=2)[0])
+    im = view.animate(
+        ax_t.imshow(
+            np.zeros((*out_hw, 3), np.uint8), extent=(-0.5, out_hw[1] - 0.5, out_hw[0] - 0.5, -0.5)
+        )
+    )
+    quad = view.animate(
+        ax_t.plot([], [], "-", color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0]
+    )
+    mapped_line = view.animate(
+        ax_t.plot([], [], "-", color=palette.BROWN, lw=1.5, path_effects=palette.halo(1.5))[0]
+    )
+    mapped_dots = view.animate(ax_t.plot([], [], "o", color=palette.BROWN, ms=5, mec="white")[0])
+    mapped_names = [
+        view.animate(
+            ax_t.annotate(
+                f"{name}'",
+                (np.nan, np.nan),
+                xytext=(4, 6),
+                textcoords="offset points",
+                fontsize=9,
+                color="k",
+                path_effects=palette.halo(),
+            )
+        )
+        for name in "ABCD"
+    ]
+    handles = view.animate(ax_t.plot([], [], "o", color=palette.ORANGE, ms=10, mec="k")[0])
+    chosen = view.animate(
+        ax_t.plot([], [], "o", ms=17, mfc="none", mec="k", mew=2)[0]
+    )  # the corner the keys move
+    numbers = view.animate(
+        ax_s.text(
+            0.0,
+            -0.27,
+            "",
+            transform=ax_s.transAxes,
+            ha="left",
+            va="top",
+            fontsize=8,
+            family="monospace",
+        )
+    )
+    warning = warning_note(
+        view, ax_s, 0.0, -0.62, "left", "top"
+    )  # under the numbers, off the target
+    readout = W.HTML()
+    control = corner_text(format_corners(_DRAG_START), "corners (u, v; ...)")
+    keys = corner_keys(control, CORNER_NAMES, out_hw[1] - 1, out_hw[0] - 1)
+    current = {"corners": _DRAG_START.copy()}
+
+    def update(v: dict, state: dict) -> None:
+        try:
+            corners = parse_corners(v["corners"])
+            H = hg.estimate_homography(SQUARE, corners)
+        except (ValueError, DegenerateError) as exc:
+            state.update(error=str(exc))
+            warning("cannot use these corners:\n" + "\n".join(textwrap.wrap(str(exc), 55)[:3]))
+            readout.value = monospace(f"cannot use these corners:\n{exc}")
+            return
+        current["corners"] = corners
+        torn = splits_at_infinity(H, SQUARE)
+        warning(TORN_DRAG if torn else "")
+        # H^T l_inf = (h31, h32, h33): the source line that H sends to infinity (drawn if in view)
+        away = clip_line(H[2], (-0.5, pw - 0.5), (-0.5, ph - 0.5))
+        sent_away.set_data(away[:, 0], away[:, 1])
+        im.set_data(warp_perspective(pic, H, out_hw, method="cv2", fill=255))
+        m = map_points(H, line_pts)
+        dense = map_polyline(H, line_dense)  # broken where it passes through infinity
+        mapped_line.set_data(dense[:, 0], dense[:, 1])
+        mapped_dots.set_data(m[:, 0], m[:, 1])
+        for label, p in zip(mapped_names, m, strict=True):
+            label.xy = tuple(p)
+        outline = map_polyline(H, square_dense)
+        quad.set_data(outline[:, 0], outline[:, 1])
+        handles.set_data(corners[:, 0], corners[:, 1])
+        chosen.set_data(corners[v["corner"], :1], corners[v["corner"], 1:])
+        cr0, cr1 = cross_ratio(line_pts), cross_ratio(m)
+        ratio0 = np.linalg.norm(line_pts[1] - line_pts[0]) / np.linalg.norm(
+            line_pts[3] - line_pts[2]
+        )
+        ratio1 = np.linalg.norm(m[1] - m[0]) / np.linalg.norm(m[3] - m[2])
+        e1, e2 = corners[1] - corners[0], corners[3] - corners[0]
+        angle = np.degrees(
+            np.arccos(np.clip(e1 @ e2 / np.linalg.norm(e1) / np.linalg.norm(e2), -1, 1))
+        )
+        state.update(
+            H=H,
+            error=None,
+            torn=torn,
+            corner=v["corner"],
+            cross_ratio_source=cr0,
+            cross_ratio_image=cr1,
+            length_ratio_source=ratio0,
+            length_ratio_image=ratio1,
+            corner_angle=angle,
+            corners=corners,
+        )
+        table = (
+            f"                 source   image\n"
+            f"cross-ratio      {cr0:6.4f}  {cr1:6.4f}  kept\n"
+            f"|AB| / |CD|      {ratio0:6.4f}  {ratio1:6.4f}  changes\n"
+            f"top-left angle   {90:5.1f}°   {angle:5.1f}°  changes"
+        )
+        numbers.set_text(table)
+        readout.value = monospace(
+            table + "\nH =\n" + np.array2string(H, precision=4, suppress_small=True)
+        )
+
+    demo = build_demo(
+        "drag_homography",
+        {"corners": control, "corner": keys.pop("corner")},
+        view,
+        update,
+        title="A homography from four corners",
+        extra=[readout],
+        linked=keys,
+    )
+    demo.handlers.update(connect_corner_drag(view, ax_t, control, lambda: current["corners"]))
+    return demo
