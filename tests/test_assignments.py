@@ -120,6 +120,7 @@ RIGHT = {
         "def vanishing_point(segments):\n    (a, b), (c, d) = np.asarray(segments, float)\n"
         "    return np.cross(np.cross([*a, 1], [*b, 1]), np.cross([*c, 1], [*d, 1]))"
     ),
+    "map_conic": "def map_conic(H, C):\n    G = np.linalg.inv(H)\n    return G.T @ C @ G",
 }
 ONE_WRONG = dict(
     RIGHT,
@@ -151,7 +152,7 @@ def test_nbgrader_generates_the_assignment_and_autogrades_submissions(tmp_path):
     student_view = released.read_text()
     assert "BEGIN SOLUTION" not in student_view and "camlab.projective.meet(" not in student_view
     assert (
-        student_view.count(json.dumps("    raise NotImplementedError")) == 3
+        student_view.count(json.dumps("    raise NotImplementedError")) == 4
     )  # the lesson's own stubs
     for student, answers in [("alice", RIGHT), ("bob", ONE_WRONG), ("carol", {})]:
         nb = json.loads(student_view)
@@ -167,7 +168,7 @@ def test_nbgrader_generates_the_assignment_and_autogrades_submissions(tmp_path):
             s: (gb.find_submission(lesson, s).score, gb.find_submission(lesson, s).max_score)
             for s in ("alice", "bob", "carol")
         }
-    assert scores == {"alice": (3.0, 3.0), "bob": (2.0, 3.0), "carol": (0.0, 3.0)}
+    assert scores == {"alice": (4.0, 4.0), "bob": (3.0, 4.0), "carol": (0.0, 4.0)}
     graded = _graded(_cells(course / "autograded" / "bob" / lesson / f"{lesson}.ipynb"))
     errors = {
         c["metadata"]["nbgrader"]["grade_id"]: [
@@ -182,4 +183,4 @@ def test_nbgrader_generates_the_assignment_and_autogrades_submissions(tmp_path):
     )  # the diagnosis stays
     _nbgrader(course, "generate_feedback", lesson)  # what the student gets back
     feedback = (course / "feedback" / "bob" / lesson / f"{lesson}.html").read_text()
-    assert "return the homogeneous 3-vector instead" in feedback and "Score: 2.0 / 3.0" in feedback
+    assert "return the homogeneous 3-vector instead" in feedback and "Score: 3.0 / 4.0" in feedback

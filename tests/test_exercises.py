@@ -1284,3 +1284,22 @@ def test_jupyter_shows_a_wrong_answer_as_its_message_not_camlab_source():
     shown = "\n".join(crashed.value._render_traceback_())
     assert "in crashing_lift" in shown and "return p[:, 5]" in shown and "IndexError" in shown
     assert "_core.py" not in shown and "_timer.py" not in shown
+
+
+@pytest.mark.parametrize(
+    "answer",
+    [
+        lambda H, C: np.linalg.solve(H.T, C) @ np.linalg.inv(H),  # solve instead of inv
+        lambda H, C: -2.0 * np.linalg.inv(H).T @ C @ np.linalg.inv(H),  # any non-zero scale
+        lambda H, C: (lambda G: G / G[2, 2])(np.linalg.inv(H).T @ C @ np.linalg.inv(H)),
+        lambda H, C: (lambda A: A.T @ C @ A)(np.linalg.inv(H / H[2, 2])),  # H rescaled first
+    ],
+)
+def test_map_conic_accepts_right_answers_in_other_forms(answer, capsys):
+    assert check("map_conic", answer).passed
+
+
+def test_map_conic_names_a_transposed_H_as_the_transpose_on_the_wrong_side():
+    # x @ H for H @ x in the student's head: they move the conic by H.T, i.e. inv(H) @ C @ inv(H).T
+    with pytest.raises(AssertionError, match="transpose is on the wrong factor"):
+        check("map_conic", lambda H, C: np.linalg.inv(H.T).T @ C @ np.linalg.inv(H.T))

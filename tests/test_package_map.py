@@ -45,7 +45,7 @@ def test_import_camlab_loads_no_topic_and_no_heavy_library():
     ).stdout
     assert out.strip() == (
         "['camlab._validate', 'camlab.projective', 'camlab.projective.conditioning', "
-        "'camlab.projective.plane', 'camlab.projective.vanishing', 'camlab.robust']"
+        "'camlab.projective.conics', 'camlab.projective.plane', 'camlab.projective.vanishing', 'camlab.robust']"
     )
 
 

@@ -257,6 +257,32 @@ def test_cross_ratio_demo_invariance():
     assert abs(s["ratio_after"] - s["ratio_before"]) > 0.05  # plain ratios are not invariant
 
 
+def test_conic_demo_keeps_points_on_the_mapped_conic_and_sees_similarities():
+    from camlab.widgets.projective_plane import conic_under_homography
+
+    demo = conic_under_homography()
+    s = demo.state
+    assert s["residual"] < 1e-12 and s["tangent_residual"] < 1e-12
+    assert not s["fixes_circular_points"] and s["axis_ratio"] == pytest.approx(0.687, abs=1e-3)
+    demo.set(h31=0.0, h32=0.0, aspect=1.0)  # a rotation: a similarity
+    assert demo.state["fixes_circular_points"] and demo.state["axis_ratio"] == pytest.approx(1.0)
+    demo.set(aspect=0.6)  # an affinity moves I and J, and the circle becomes an ellipse
+    assert not demo.state["fixes_circular_points"] and demo.state["axis_ratio"] == pytest.approx(
+        0.6
+    )
+    texts = [t.get_text() for ax in demo.figure.axes for t in ax.texts]
+    assert any("H is no similarity" in t for t in texts)
+
+
+def test_duality_demo_starts_with_p_on_l_and_says_so_in_the_figure():
+    from camlab.widgets.projective_plane import point_line_duality
+
+    demo = point_line_duality()
+    assert demo.state["on_line"] and demo.state["incidence"] == 0.0
+    texts = [t.get_text() for ax in demo.figure.axes for t in ax.texts]
+    assert any("p is on l" in t for t in texts)
+
+
 def test_unknown_control_is_a_clear_error():
     from camlab.widgets.start_here import stack_check
 

@@ -6,7 +6,7 @@ import numpy as np
 
 from .. import projective
 from ._answers import same_up_to_scale, shape_problem
-from ._core import Exercise, register_exercise
+from ._core import Exercise, Mistake, first_mistake, mistake_variant, register_exercise
 
 
 def _incidence(point: np.ndarray, line: np.ndarray) -> float:
@@ -98,6 +98,11 @@ def _line_diagnosis(args, got, expected) -> str:
     if not np.any(got):
         return "you returned (0, 0, 0), which is no line. Lift p and q to (x, y, 1) before the cross product."
     p, q = (np.append(a, 1.0) for a in args)
+    if same_up_to_scale(got, np.cross(np.append(p[1::-1], 1.0), np.append(q[1::-1], 1.0))):
+        return (
+            "you swapped the coordinates: your line passes through (y, x) of each point. A pixel "
+            "(u, v) = (column, row) lifts to (u, v, 1): p[0] first, then p[1], then 1."
+        )
     off = [_incidence(x, np.asarray(got, dtype=float)) for x in (p, q)]
     return (
         f"your line does not pass through both points (normalised |l . p| = {off[0]:.3g}, "
@@ -138,6 +143,10 @@ register_exercise(
         wrong_variants=(
             (lambda p, q: np.cross(np.append(p, 0.0), np.append(q, 0.0)), "Lift p and q"),
             (lambda p, q: np.append(q - p, 0.0), "does not pass through both points"),
+            (
+                lambda p, q: np.cross([p[1], p[0], 1.0], [q[1], q[0], 1.0]),
+                "swapped the coordinates",
+            ),
         ),
         teaching=line_through_points,
     )
@@ -155,6 +164,12 @@ def _vanishing_cases():
 
 def _vanishing_diagnosis(args, got, expected) -> str:
     (segments,) = args
+    swapped = np.asarray(segments, dtype=float)[..., ::-1]
+    if np.shape(got) == (3,) and same_up_to_scale(got, vanishing_point(swapped)):
+        return (
+            "you swapped the coordinates: your point is the vanishing point of the segments with (u, v) read "
+            "as (v, u). A pixel (u, v) = (column, row) lifts to (u, v, 1)."
+        )
     lines = [projective.join(s[0], s[1]) for s in segments]
     return _homogeneous_point_diagnosis(
         got,
@@ -207,7 +222,165 @@ register_exercise(
                 lambda s: projective.from_homogeneous(projective.vanishing_point(s)),
                 "homogeneous 3-vector",
             ),
+            (
+                lambda s: projective.vanishing_point(np.asarray(s)[..., ::-1]),
+                "swapped the coordinates",
+            ),
         ),
         teaching=vanishing_point,
+    )
+)
+
+
+# --- Exercise 4: move a conic by a homography -------------------------------------------
+
+
+def _conic_cases():
+    H_projective = np.array([[1.2, 0.3, 5.0], [-0.1, 0.9, 2.0], [0.02, 0.01, 1.0]])
+    H_affine = np.array([[2.0, 0.5, -3.0], [0.2, 1.5, 4.0], [0.0, 0.0, 1.0]])
+    c, s = 2.0 * np.cos(0.6), 2.0 * np.sin(0.6)
+    H_similarity = np.array([[c, -s, 10.0], [s, c, -5.0], [0.0, 0.0, 1.0]])
+    return [
+        (H_projective, projective.circle_conic([0.0, 0.0], 1.0)),
+        (H_affine, projective.conic_matrix(2.0, 0.5, 1.0, -1.0, 0.3, -4.0)),
+        (H_similarity, projective.circle_conic([3.0, -2.0], 2.5)),
+    ]
+
+
+def _inv(H):
+    return np.linalg.inv(H)
+
+
+_CONIC_RULE = (
+    "a point x' of the image comes from x = H^-1 x', and x^T C x = (H^-1 x')^T C (H^-1 x') "
+    "= x'^T (H^-T C H^-1) x', so C' = inv(H).T @ C @ inv(H)"
+)
+
+_CONIC_RULE_SENTENCE = _CONIC_RULE[0].upper() + _CONIC_RULE[1:]  # the rule after a full stop
+
+_CONIC_MISTAKES = (
+    Mistake(
+        "H for H^-1",
+        lambda a: a.H.T @ a.C @ a.H,
+        "you used H where its inverse belongs (H.T @ C @ H). Points move forward by H, so the conic must "
+        "undo it: " + _CONIC_RULE,
+    ),
+    Mistake(
+        "the dual-conic rule",
+        lambda a: a.H @ a.C @ a.H.T,
+        "H @ C @ H.T is how a *dual* conic (a conic of lines, C*) moves. A conic of points moves by the "
+        "inverse: " + _CONIC_RULE,
+    ),
+    Mistake(
+        "transposes on the wrong side",
+        lambda a: _inv(a.H) @ a.C @ _inv(a.H).T,
+        "the transpose is on the wrong factor (inv(H) @ C @ inv(H).T): " + _CONIC_RULE,
+    ),
+    Mistake(
+        "transpose forgotten",
+        lambda a: _inv(a.H) @ a.C @ _inv(a.H),
+        "inv(H) @ C @ inv(H) drops a transpose, so your C' is not symmetric, and a conic's matrix always "
+        "is (x^T C x only sees its symmetric part): the left factor is the transpose of the right one. "
+        + _CONIC_RULE_SENTENCE,
+    ),
+    Mistake(
+        "one factor, like a line",
+        lambda a: _inv(a.H).T @ a.C,
+        "only one factor of H^-1: that is how a line moves (l' = H^-T l). A conic is quadratic in the "
+        "point, so H^-1 appears on both sides: " + _CONIC_RULE,
+    ),
+    Mistake(
+        "entrywise products",
+        lambda a: _inv(a.H).T * a.C * _inv(a.H),
+        "`*` multiplies entry by entry; matrix products need `@`: inv(H).T @ C @ inv(H)",
+    ),
+    Mistake("C unchanged", lambda a: a.C, "you returned C unchanged; apply H: " + _CONIC_RULE),
+)
+
+
+def _conic_context(H, C):
+    from types import SimpleNamespace
+
+    return SimpleNamespace(H=np.asarray(H, dtype=float), C=np.asarray(C, dtype=float))
+
+
+def _conic_diagnosis(args, got, expected) -> str:
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + ". A conic is a symmetric (3, 3) matrix."
+    g = np.asarray(got, dtype=float)
+    named = first_mistake(_CONIC_MISTAKES, _conic_context(*args), g, same_up_to_scale)
+    if named:
+        return named
+    if np.abs(g - g.T).max() > 1e-9 * np.abs(g).max():
+        return (
+            f"your C' is not symmetric (C'[0, 1] = {g[0, 1]:.4g}, C'[1, 0] = {g[1, 0]:.4g}), and a conic's "
+            "matrix always is: the left factor must be the transpose of the right one. "
+            + _CONIC_RULE_SENTENCE
+        )
+    H, C = (np.asarray(a, dtype=float) for a in args)
+    x = projective.to_homogeneous(projective.map_points(H, projective.conic_points(C, 12)[:-1]))
+    off = np.abs(np.einsum("ni,ij,nj->n", x, g, x)) / (np.linalg.norm(g) * np.sum(x**2, axis=1))
+    return (
+        f"the images H x of points x on C do not lie on your C' (normalised |x'^T C' x'| up to {off.max():.3g}). "
+        + _CONIC_RULE_SENTENCE
+    )
+
+
+def map_conic(H, C):
+    """A point x' of the image comes from x = H^-1 x'; put that into x^T C x = 0.
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography; points move by x' = H x.
+    C : (3, 3) array_like
+        A symmetric conic matrix, x^T C x = 0.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        C' = H^-T C H^-1, up to scale: the conic through the moved points.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 2.3.1 (result 2.13).
+    """
+    H_inv = np.linalg.inv(H)
+    return H_inv.T @ C @ H_inv
+
+
+register_exercise(
+    Exercise(
+        name="map_conic",
+        lesson="06",
+        reference=projective.map_conic,
+        cases=_conic_cases,
+        compare=same_up_to_scale,
+        diagnose=_conic_diagnosis,
+        wrong_variants=(
+            *(
+                (mistake_variant(_CONIC_MISTAKES, row.name, _conic_context), hint_start)
+                for row, hint_start in zip(
+                    _CONIC_MISTAKES,
+                    (
+                        "where its inverse belongs",
+                        "*dual* conic",
+                        "wrong factor",
+                        "drops a transpose",
+                        "how a line moves",
+                        "entry by entry",
+                        "unchanged",
+                    ),
+                    strict=True,
+                )
+            ),
+            (lambda H, C: np.linalg.inv(H).T @ C @ H, "not symmetric"),
+            (
+                lambda H, C: np.linalg.inv(H).T @ np.linalg.inv(C) @ np.linalg.inv(H),
+                "do not lie on your C'",
+            ),
+        ),
+        teaching=map_conic,
     )
 )

@@ -10,13 +10,24 @@ point* (x, y, 0) on the *line at infinity* (0, 0, 1).
 Conventions (docs/conventions.md): points are rows, ``(N, 2)`` Euclidean or
 ``(N, 3)`` homogeneous, a single ``(2,)``/``(3,)`` point keeps its rank; lines are
 rows ``(N, 3)``; homographies map points by ``x' = H x`` (``X @ H.T`` for rows) and
-lines by ``l' = H^{-T} l``. See lesson 06.
+lines by ``l' = H^{-T} l``; conics are symmetric (3, 3) matrices mapping by ``H^{-T} C H^{-1}``,
+dual conics by ``H C* H^T`` (:mod:`.conics`, with the circular points). See lesson 06.
 """
 
 # the errors the functions raise, as pj.CamlabInputError and pj.DegenerateError
 from .._validate import CamlabInputError as CamlabInputError
 from .._validate import DegenerateError as DegenerateError
 from .conditioning import HartleyNormalised, hartley_normalise
+from .conics import (
+    CIRCULAR_POINTS,
+    DUAL_CONIC_AT_INFINITY,
+    circle_conic,
+    conic_matrix,
+    conic_points,
+    dual_conic,
+    map_conic,
+    map_dual_conic,
+)
 from .plane import (
     LINE_AT_INFINITY,
     clip_line,
@@ -45,6 +56,14 @@ from .vanishing import (
 )
 
 __all__ = [
+    "CIRCULAR_POINTS",
+    "DUAL_CONIC_AT_INFINITY",
+    "circle_conic",
+    "conic_matrix",
+    "conic_points",
+    "dual_conic",
+    "map_conic",
+    "map_dual_conic",
     "LINE_AT_INFINITY",
     "clip_line",
     "cross_ratio",

@@ -97,6 +97,52 @@ def _line_at_angle(angle_deg: float | np.ndarray, offset: float) -> np.ndarray:
     return pj.join([0.0, offset], np.stack([np.cos(t), offset + np.sin(t)], axis=-1))
 
 
+def _parallel_figure(view: FigureView) -> SimpleNamespace:
+    """The figure of :func:`parallel_lines`: the two lines and their meet (left), |w| of the meet against
+    l2's angle with l1's angle dotted (right), and the note for coincident lines; returns the artists."""
+    ax, axw = view.fig.subplots(1, 2, width_ratios=[1.3, 1])
+    plane_axes(ax, 4, "l1 = 30° fixed; turn l2")
+    (l1_artist,) = ax.plot([], [], color=palette.TAB_BLUE, lw=2, label="l1")
+    (l2_artist,) = ax.plot([], [], color=palette.ORANGE, lw=2, label="l2")
+    (meet_dot,) = ax.plot([], [], "o", color=palette.TAB_RED, ms=8, label="l1 × l2")
+    arrow = ax.annotate(
+        "", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="->", color=palette.TAB_RED, lw=2)
+    )
+    ax.legend(
+        loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=3, fontsize=8
+    )  # not over the lines
+    angle1 = 30.0
+    (w_curve,) = axw.plot([], [], color=palette.GREY)
+    (w_dot,) = axw.plot(
+        [], [], "o", color=palette.TAB_RED, clip_on=False, zorder=4
+    )  # whole at w = 0
+    axw.axvline(angle1, color=palette.TAB_BLUE, ls=":", lw=1)
+    axw.set(
+        xlim=(0, 60),
+        xlabel="angle of l2 (degrees)",
+        ylabel="|w| of the unit meet point",
+        title="w → 0: the meet point leaves the plane",
+        ylim=(0, 1.02),
+    )
+    axw.grid(True, color="0.93")
+    # constrained layout leaves the last tick label ("60") half outside the figure: pad the right edge
+    view.fig.get_layout_engine().set(w_pad=0.12)
+    boxed = {"ha": "center", "va": "center", "fontsize": 9, "color": palette.TAB_RED}
+    same_note = axw.text(0.5, 0.45, "", transform=axw.transAxes, **boxed)
+    same_note.set_bbox({"fc": "white", "ec": palette.TAB_RED})
+    same_note.set_visible(False)
+    return SimpleNamespace(
+        ax=ax,
+        l1=l1_artist,
+        l2=l2_artist,
+        meet_dot=meet_dot,
+        arrow=arrow,
+        w_curve=w_curve,
+        w_dot=w_dot,
+        same_note=same_note,
+    )
+
+
 @register(lesson="06", sweep={"angle2": [10.0, 25.0, 29.5, 30.0, 45.0], "offset2": [-1.0, 1.5]})
 def parallel_lines() -> Demo:
     """Two lines meet at l1 x l2; as they turn parallel the point runs to infinity (w -> 0).
@@ -110,31 +156,14 @@ def parallel_lines() -> Demo:
         length, ``point`` its Euclidean position; ``meet`` and ``point`` None, ``w`` NaN, when
         the lines coincide).
     """
-    view = FigureView(figsize=(9, 4))
-    ax, axw = view.fig.subplots(1, 2, width_ratios=[1.3, 1])
-    plane_axes(ax, 4, "l1 = 30° fixed; turn l2")
-    (l1_artist,) = ax.plot([], [], color=palette.TAB_BLUE, lw=2, label="l1")
-    (l2_artist,) = ax.plot([], [], color=palette.ORANGE, lw=2, label="l2")
-    (meet_dot,) = ax.plot([], [], "o", color=palette.TAB_RED, ms=8, label="l1 × l2")
-    arrow = ax.annotate(
-        "", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="->", color=palette.TAB_RED, lw=2)
-    )
-    ax.legend(loc="lower right", fontsize=8)
+    view = FigureView(figsize=(9, 4.4))
+    f = _parallel_figure(view)
+    ax, l1_artist, l2_artist, meet_dot, arrow = f.ax, f.l1, f.l2, f.meet_dot, f.arrow
+    w_curve, w_dot, same_note = f.w_curve, f.w_dot, f.same_note
     readout = W.HTML()
     angle1 = 30.0
     angles = np.linspace(0, 60, 241)
-    (w_curve,) = axw.plot([], [], color=palette.GREY)
-    (w_dot,) = axw.plot([], [], "o", color=palette.TAB_RED)
-    axw.axvline(angle1, color=palette.TAB_BLUE, ls=":", lw=1)
-    axw.set(
-        xlim=(0, 60),
-        xlabel="angle of l2 (degrees)",
-        ylabel="|w| of the unit meet point",
-        title="w → 0: the meet point leaves the plane",
-        ylim=(0, 1.02),
-    )
-    axw.grid(True, color="0.93")
-    view.animate(l1_artist, l2_artist, meet_dot, arrow, w_curve, w_dot)
+    view.animate(l1_artist, l2_artist, meet_dot, arrow, w_curve, w_dot, same_note)
 
     l1 = _line_at_angle(angle1, 0.5)
 
@@ -142,7 +171,13 @@ def parallel_lines() -> Demo:
         l2 = _line_at_angle(v["angle2"], v["offset2"])
         family = np.cross(l1, _line_at_angle(angles, v["offset2"]))
         with np.errstate(invalid="ignore"):  # the family may contain l1 itself (0/0 -> NaN)
-            w_curve.set_data(angles, np.abs(family[:, 2]) / np.linalg.norm(family, axis=1))
+            w_family = np.abs(family[:, 2]) / np.linalg.norm(family, axis=1)
+        # Through l1's own point (0, 0.5) every l2 meets l1 there, except at l1's angle, where
+        # l2 = l1 and there is no meet point: leave a visible gap, not one missing sample.
+        coincide_at = np.all(np.abs(np.cross(l1, _line_at_angle(angle1, v["offset2"]))) < 1e-12)
+        if coincide_at:
+            w_family = np.where(np.abs(angles - angle1) < 1.0, np.nan, w_family)
+        w_curve.set_data(angles, w_family)
         set_line(l1_artist, l1, ax)
         set_line(l2_artist, l2, ax)
         try:
@@ -152,10 +187,13 @@ def parallel_lines() -> Demo:
             meet_dot.set_data([], [])
             arrow.set_visible(False)
             w_dot.set_data([], [])
+            same_note.set_text("l2 = l1 at 30°: one line,\nno single meet point, no w")
+            same_note.set_visible(True)
             readout.value = monospace(
                 "l2 = l1: one line, every point shared,\nno single meet point"
             )
             return
+        same_note.set_visible(False)
         xu = x / np.linalg.norm(x)
         state.update(l2=l2, meet=x, w=float(abs(xu[2])), point=pj.from_homogeneous(x))
         pos, direction = arrow_to_infinity(x, ax)
@@ -195,8 +233,8 @@ def parallel_lines() -> Demo:
     sweep={
         "px": [-1.0, 0.5],
         "py": [0.8, -1.2],
-        "line_angle": [20.0, 120.0],
-        "line_dist": [0.5, 1.2],
+        "line_angle": [20.0, 120.0, 180.0],
+        "line_dist": [0.2, 1.2, 2.5],
     },
 )
 def point_line_duality() -> Demo:
@@ -210,17 +248,21 @@ def point_line_duality() -> Demo:
         line, and their duals) and ``state`` (``point`` and ``line`` homogeneous,
         ``incidence`` p · l, ``on_line``).
     """
-    view = FigureView(figsize=(9, 4.2))
-    ax_p, ax_d = view.fig.subplots(1, 2)
+    view = FigureView(figsize=(9, 4.9))
+    axes = view.fig.subplot_mosaic([["primal", "dual"], ["text", "text"]], height_ratios=[1, 0.06])
+    ax_p, ax_d, ax_t = axes["primal"], axes["dual"], axes["text"]
+    ax_t.set_axis_off()
+    # the incidence in the figure itself, so a static copy shows whether p is on l
+    text = ax_t.text(0.5, 0.5, "", transform=ax_t.transAxes, ha="center", va="center", fontsize=10)
     plane_axes(ax_p, 3, "primal: point p, line l")
     plane_axes(ax_d, 3, "dual: line p*, point l*")
     (p_dot,) = ax_p.plot([], [], "o", color=palette.TAB_BLUE, ms=9, label="p")
     (l_line,) = ax_p.plot([], [], color=palette.ORANGE, lw=2, label="l")
     (pd_line,) = ax_d.plot([], [], color=palette.TAB_BLUE, lw=2, label="p* (same 3 numbers as p)")
     (ld_dot,) = ax_d.plot([], [], "o", color=palette.ORANGE, ms=9, label="l* (same 3 numbers as l)")
-    for a in (ax_p, ax_d):
-        a.legend(loc="lower right", fontsize=8)
-    view.animate(p_dot, l_line, pd_line, ld_dot)
+    for a in (ax_p, ax_d):  # under the plots: inside, the lines would run through them
+        a.legend(loc="upper center", bbox_to_anchor=(0.5, -0.15), ncol=2, fontsize=8)
+    view.animate(p_dot, l_line, pd_line, ld_dot, text)
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
@@ -238,6 +280,14 @@ def point_line_duality() -> Demo:
         ld = pj.from_homogeneous(line)
         ld_dot.set_data([ld[0]], [ld[1]])
         p_text, l_text = (", ".join(f"{c:+.2f}" for c in x) for x in (p, line))
+        text.set_text(
+            f"p · l = {incidence:+.3f}: "
+            + (
+                "p is on l, and l* is on p*"
+                if state["on_line"]
+                else "p is not on l, and l* is not on p*"
+            )
+        )
         readout.value = monospace(
             f"p = ({p_text})\nl = ({l_text})\np · l = {incidence:+.3f}\n(0 ⇔ p on l ⇔ l* on p*)"
         )
@@ -245,7 +295,7 @@ def point_line_duality() -> Demo:
     controls = {
         "px": slider(1.0, -2.5, 2.5, 0.05, "p: x"),
         "py": slider(0.5, -2.5, 2.5, 0.05, "p: y"),
-        "line_angle": slider(45.0, 0.0, 180.0, 1.0, "l: normal angle (°)"),
+        "line_angle": slider(0.0, 0.0, 180.0, 1.0, "l: normal angle (°)"),
         "line_dist": slider(1.0, 0.2, 2.5, 0.05, "l: distance from origin"),
     }
     return build_demo(
@@ -275,7 +325,8 @@ def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespac
     )
     (vz_dot,) = ax.plot([], [], "o", color=palette.TAB_BLUE, mec="k", ms=11)
     (vx_dot,) = ax.plot([], [], "o", color=palette.TAB_GREEN, mec="k", ms=11)
-    ax.legend(loc="lower left", fontsize=8, framealpha=0.9)
+    # below the image: inside it, the grid's lines would run through the legend at some setting
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=3, fontsize=8)
     note = ax.text(
         0.98,
         0.03,
@@ -394,20 +445,15 @@ def vanishing_points() -> Demo:
     )
 
 
-@register(lesson="06", sweep={"h31": [0.0, 0.25, -0.3], "h32": [0.0, 0.2], "angle": [0.0, 30.0]})
-def cross_ratio_invariance() -> Demo:
-    """A homography changes lengths and ratios of lengths, but never the cross-ratio.
-
-    Returns
-    -------
-    Demo
-        The demo: controls ``h31``, ``h32`` (the homography's perspective row) and ``angle``
-        (its rotation, degrees), the figure (a grid and four collinear points A, B, C, D, before
-        and after) and ``state`` (``H``, ``mapped`` the points after, ``cross_ratio_before``,
-        ``cross_ratio_after``, ``ratio_before``, ``ratio_after`` AB / BC).
-    """
-    view = FigureView(figsize=(9, 4.2))
-    ax_s, ax_t = view.fig.subplots(1, 2)
+def _cross_ratio_figure(view: FigureView) -> SimpleNamespace:
+    """The figure of :func:`cross_ratio_invariance`: a grid and four collinear points (left), their
+    images (right) and a text strip for the two numbers; returns the points and artists by name."""
+    axes = view.fig.subplot_mosaic([["before", "after"], ["text", "text"]], height_ratios=[1, 0.08])
+    ax_s, ax_t = axes["before"], axes["after"]
+    axes["text"].set_axis_off()
+    # the two numbers the demo is about, in the figure, so a static copy shows them too
+    centred = {"ha": "center", "va": "center", "family": "monospace", "fontsize": 9}
+    numbers = axes["text"].text(0.5, 0.5, "", transform=axes["text"].transAxes, **centred)
     plane_axes(ax_s, 2.2, "before: four collinear points")
     plane_axes(ax_t, 2.2, "after the homography H")
     grid = np.array(
@@ -430,7 +476,34 @@ def cross_ratio_invariance() -> Demo:
     labels = [
         ax_t.annotate(name, (0, 0), xytext=(4, 6), textcoords="offset points") for name in "ABCD"
     ]
-    view.animate(mapped_grid, mapped_line, mapped_pts, *labels)
+    return SimpleNamespace(
+        grid=grid,
+        points=points,
+        mapped_grid=mapped_grid,
+        mapped_line=mapped_line,
+        mapped_pts=mapped_pts,
+        labels=labels,
+        numbers=numbers,
+    )
+
+
+@register(lesson="06", sweep={"h31": [0.0, 0.25, -0.3], "h32": [0.0, 0.2], "angle": [0.0, 30.0]})
+def cross_ratio_invariance() -> Demo:
+    """A homography changes lengths and ratios of lengths, but never the cross-ratio.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``h31``, ``h32`` (the homography's perspective row) and ``angle``
+        (its rotation, degrees), the figure (a grid and four collinear points A, B, C, D, before
+        and after) and ``state`` (``H``, ``mapped`` the points after, ``cross_ratio_before``,
+        ``cross_ratio_after``, ``ratio_before``, ``ratio_after`` AB / BC).
+    """
+    view = FigureView(figsize=(9, 4.6))
+    f = _cross_ratio_figure(view)
+    grid, points, mapped_grid, mapped_line = f.grid, f.points, f.mapped_grid, f.mapped_line
+    mapped_pts, labels, numbers = f.mapped_pts, f.labels, f.numbers
+    view.animate(mapped_grid, mapped_line, mapped_pts, *labels, numbers)
     readout = W.HTML()
 
     def ratio(p: np.ndarray) -> float:  # an affine invariant only: AB / BC
@@ -459,6 +532,10 @@ def cross_ratio_invariance() -> Demo:
             ratio_before=ratio(points),
             ratio_after=ratio(q),
         )
+        numbers.set_text(
+            f"(A, B; C, D): before {cr_before:.4f}, after {cr_after:.4f}      "
+            f"AB / BC: before {ratio(points):.4f}, after {ratio(q):.4f}"
+        )
         readout.value = monospace(
             f"             before   after\n"
             f"(A,B;C,D)  {cr_before:8.4f} {cr_after:8.4f}\n"
@@ -477,4 +554,181 @@ def cross_ratio_invariance() -> Demo:
         update,
         title="The cross-ratio is projectively invariant",
         extra=[readout],
+    )
+
+
+def _conic_figure(view: FigureView) -> SimpleNamespace:
+    """The figure of :func:`conic_under_homography`: the unit circle with its tangent square (left), their
+    images (right), legends under both and a text strip for the circular points (in the figure, so a
+    static copy shows it too); returns its axes and artists by name."""
+    axes = view.fig.subplot_mosaic([["before", "after"], ["text", "text"]], height_ratios=[1, 0.13])
+    ax_b, ax_a, ax_t = axes["before"], axes["after"], axes["text"]
+    plane_axes(ax_b, 2.0, "before: a circle C and 4 tangents")
+    plane_axes(ax_a, 3.0, "after H: C' = H^-T C H^-1")
+    ax_t.set_axis_off()
+    t = np.linspace(0, 2 * np.pi, 9)[:-1]
+    samples = np.stack([np.cos(t), np.sin(t)], axis=1)  # 8 points on the unit circle
+    circle = pj.conic_points(pj.circle_conic([0.0, 0.0], 1.0), 200)
+    ax_b.plot(*circle.T, color=palette.TAB_BLUE, lw=2, label="C (x² + y² = 1)")
+    ax_b.scatter(*samples.T, color=palette.ORANGE, s=25, zorder=3, label="8 points on C")
+    for k, line in enumerate(([1, 0, -1], [1, 0, 1], [0, 1, -1], [0, 1, 1])):
+        ends = pj.clip_line(line, (-2, 2), (-2, 2))
+        ax_b.plot(*ends.T, color=palette.GREEN, lw=1, label="tangent lines" if k == 0 else None)
+    ax_b.plot([0], [0], "k+", ms=10, mew=2, label="centre of C")
+    (conic,) = ax_a.plot([], [], color=palette.TAB_BLUE, lw=2, label="C' from the formula")
+    mapped = ax_a.scatter(
+        *samples.T, color=palette.ORANGE, s=25, zorder=3, label="H x (the 8 points)"
+    )
+    tangents = [ax_a.plot([], [], color=palette.GREEN, lw=1)[0] for _ in range(4)]
+    (centre_image,) = ax_a.plot([], [], "k+", ms=10, mew=2, label="H (centre of C)")
+    (centre_conic,) = ax_a.plot(
+        [], [], "x", color=palette.TAB_RED, ms=8, mew=2, label="centre of C'"
+    )
+    for a in (ax_b, ax_a):
+        a.legend(loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2, fontsize=8)
+    text = ax_t.text(
+        0.0, 1.0, "", transform=ax_t.transAxes, va="top", ha="left", family="monospace", fontsize=8
+    )
+    return SimpleNamespace(
+        samples=samples,
+        conic=conic,
+        mapped=mapped,
+        tangents=tangents,
+        centre_image=centre_image,
+        centre_conic=centre_conic,
+        text=text,
+        ax_b=ax_b,
+        ax_a=ax_a,
+    )
+
+
+def _complex_text(z: complex) -> str:
+    return f"{z.real:+.2f}{z.imag:+.2f}i"
+
+
+def _conic_geometry(v: dict, samples: np.ndarray) -> SimpleNamespace:
+    """What :func:`conic_under_homography` draws and reports for the control values ``v``: H, the
+    mapped unit circle C' (unit norm) and its centre, the mapped ``samples`` and tangents, the
+    residuals x'^T C' x' and l'^T C*' l', H I scaled to a first entry 1, the axis ratio."""
+    t = np.radians(v["angle"])
+    H = np.array(
+        [
+            [v["aspect"] * np.cos(t), -np.sin(t), 0.0],
+            [v["aspect"] * np.sin(t), np.cos(t), 0.0],
+            [v["h31"], v["h32"], 1.0],
+        ]
+    )
+    C = pj.circle_conic([0.0, 0.0], 1.0)
+    Cp = pj.map_conic(H, C)
+    Cp = Cp / np.linalg.norm(Cp)
+    q = pj.map_points(H, samples)
+    q_h = pj.to_homogeneous(q)
+    square = [[1.0, 0, -1], [1, 0, 1], [0, 1, -1], [0, 1, 1]]  # the tangents x = ±1, y = ±1
+    tangents = pj.normalise_lines(pj.map_lines(H, square))
+    Cs = pj.map_dual_conic(H, pj.dual_conic(C))
+    Cs = Cs / np.linalg.norm(Cs)
+    circular_I = pj.CIRCULAR_POINTS[0]  # I = (1, i, 0)
+    HI = H @ circular_I
+    lam = np.linalg.eigvalsh(Cp[:2, :2] * np.sign(np.trace(Cp[:2, :2])))  # made positive definite
+    return SimpleNamespace(
+        H=H,
+        C_mapped=Cp,
+        mapped=q,
+        tangents=tangents,
+        residual=float(np.abs(np.einsum("ni,ij,nj->n", q_h, Cp, q_h)).max()),
+        tangent_residual=float(np.abs(np.einsum("ni,ij,nj->n", tangents, Cs, tangents)).max()),
+        I_mapped=HI / HI[0],
+        fixed=bool(np.allclose(HI / HI[0], circular_I, atol=1e-9)),
+        axis_ratio=float(np.sqrt(lam[0] / lam[1])),
+        centre=np.linalg.solve(Cp[:2, :2], -Cp[:2, 2]),
+    )
+
+
+def _conic_text(g: SimpleNamespace, v: dict) -> str:
+    """The three lines under :func:`conic_under_homography`'s plots."""
+    # H sends the line H^T l_inf = (h31, h32, 1) to infinity; C' is an ellipse while C stays clear of it
+    h = np.hypot(v["h31"], v["h32"])
+    clearance = f"{1 / h:.1f}" if h > 0 else "∞"
+    verdict = (
+        "= I: H is a similarity, so C' is a circle again (axis ratio 1)"
+        if g.fixed
+        else "≠ I: H is no similarity, so C' is no circle"
+    )
+    HI = g.I_mapped
+    return (
+        f"H I = (1, {_complex_text(HI[1])}, {_complex_text(HI[2])}) {verdict}\n"
+        f"C': axis ratio {g.axis_ratio:.3f}; the line H sends to ∞ (h31 x + h32 y + 1 = 0) is {clearance} "
+        f"from C's centre: > 1, so C' is an ellipse\n"
+        f"max |x'ᵀC'x'| over the 8 points {g.residual:.0e};  "
+        f"max |l'ᵀC*'l'| over the 4 tangents {g.tangent_residual:.0e}"
+    )
+
+
+@register(
+    lesson="06",
+    sweep={
+        "angle": [-45.0, 45.0],
+        "aspect": [0.6, 1.4],
+        "h31": [0.0, -0.35, 0.35],
+        "h32": [0.0, 0.35],
+    },
+)
+def conic_under_homography() -> Demo:
+    """A circle under a homography becomes an ellipse C' = H^-T C H^-1; its tangents map by H^-T.
+
+    H rotates by ``angle``, stretches x by ``aspect`` and has the perspective row (h31, h32, 1).
+    The text under the plots says where H sends the circular point I = (1, i, 0): back to itself
+    exactly when H is a similarity (aspect 1, h31 = h32 = 0), and then the circle stays a circle.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``angle`` (degrees), ``aspect``, ``h31``, ``h32``, the figure and ``state``
+        (``H``, ``C_mapped`` the conic H^-T C H^-1, ``residual`` the largest |x'^T C' x'| over the 8
+        mapped points (C' scaled to unit norm, the points to w = 1), ``tangent_residual`` the same for
+        the 4 mapped tangents against the dual conic H C* H^T, ``I_mapped`` H I scaled to a first
+        entry 1, ``fixes_circular_points``, ``axis_ratio`` the ellipse's minor / major axis).
+    """
+    view = FigureView(figsize=(9, 5.6))
+    parts = _conic_figure(view)
+    view.animate(
+        parts.conic,
+        parts.mapped,
+        *parts.tangents,
+        parts.centre_image,
+        parts.centre_conic,
+        parts.text,
+    )
+
+    def update(v: dict, state: dict) -> None:
+        g = _conic_geometry(v, parts.samples)
+        state.update(
+            H=g.H,
+            C_mapped=g.C_mapped,
+            residual=g.residual,
+            tangent_residual=g.tangent_residual,
+            I_mapped=g.I_mapped,
+            fixes_circular_points=g.fixed,
+            axis_ratio=g.axis_ratio,
+        )
+        parts.conic.set_data(*pj.conic_points(g.C_mapped, 200).T)
+        parts.mapped.set_offsets(g.mapped)
+        for artist, line in zip(parts.tangents, g.tangents, strict=True):
+            set_line(artist, line, parts.ax_a)
+        parts.centre_image.set_data([0.0], [0.0])  # H keeps the origin: no translation
+        parts.centre_conic.set_data([g.centre[0]], [g.centre[1]])
+        parts.text.set_text(_conic_text(g, v))
+
+    controls = {
+        "angle": slider(20.0, -45.0, 45.0, 1.0, "rotation (°)"),
+        "aspect": slider(1.4, 0.6, 1.4, 0.05, "stretch x"),
+        "h31": slider(0.3, -0.35, 0.35, 0.01, "h31 (perspective x)"),
+        "h32": slider(0.15, -0.35, 0.35, 0.01, "h32 (perspective y)"),
+    }
+    return build_demo(
+        "conic_under_homography",
+        controls,
+        view,
+        update,
+        title="A circle under a homography: conics map by H^-T C H^-1",
     )
