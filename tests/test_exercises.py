@@ -903,6 +903,23 @@ def test_project_to_pixels_passes_right_answers_in_other_forms(right, capsys):
             "half-pixel offset",
         ),
         (
+            lambda X, f, p, size: (f * X[:, :2] / X[:, 2:3] + (np.array(size) - 1) / 2) / p,
+            "added the centre before dividing by the pitch",
+        ),
+        (
+            lambda X, f, p, size: f / p * X[:, :2] / X[:, 1:2] + (np.array(size) - 1) / 2,
+            r"divided by column 1 \(Y\)",
+        ),
+        (
+            lambda X, f, p, size: np.column_stack(
+                [
+                    f / p * X[:, 0] / X[:, 2] + (size[0] - 1) / 2,
+                    f / p * size[1] / size[0] * X[:, 1] / X[:, 2] + (size[1] - 1) / 2,
+                ]
+            ),
+            "scaled f_y by H / W",
+        ),
+        (
             lambda X, f, p, size: (
                 f / p * X[:, :2] / X[:, 2:3] + (np.array([size[1], size[0]]) - 1) / 2
             ),
