@@ -903,6 +903,23 @@ def test_project_to_pixels_passes_right_answers_in_other_forms(right, capsys):
             "half-pixel offset",
         ),
         (
+            lambda X, f, p, size: (f * X[:, :2] / X[:, 2:3] + (np.array(size) - 1) / 2) / p,
+            "added the centre before dividing by the pitch",
+        ),
+        (
+            lambda X, f, p, size: f / p * X[:, :2] / X[:, 1:2] + (np.array(size) - 1) / 2,
+            r"divided by column 1 \(Y\)",
+        ),
+        (
+            lambda X, f, p, size: np.column_stack(
+                [
+                    f / p * X[:, 0] / X[:, 2] + (size[0] - 1) / 2,
+                    f / p * size[1] / size[0] * X[:, 1] / X[:, 2] + (size[1] - 1) / 2,
+                ]
+            ),
+            "scaled f_y by H / W",
+        ),
+        (
             lambda X, f, p, size: (
                 f / p * X[:, :2] / X[:, 2:3] + (np.array([size[1], size[0]]) - 1) / 2
             ),
@@ -1025,6 +1042,7 @@ def test_best_pinhole_exposure_names_the_unit_of_time():
     for wrong, cause in (
         (lambda f, lam, t, N: 1e3 * t * f / (2.44 * lam * N**2), "milliseconds"),
         (lambda f, lam, t, N: t * f / (2.44 * lam * N**2) / 60, "minutes"),
+        (lambda f, lam, t, N: t * (np.sqrt(f) / np.sqrt(2.44 * lam * f) / N) ** 2, r"you used sqrt\(f\)"),
     ):
         with pytest.raises(AssertionError, match=cause) as info:
             check("best_pinhole_exposure", wrong)

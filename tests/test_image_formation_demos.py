@@ -94,10 +94,12 @@ def test_pinhole_size_regimes():
         0.05,
         0.35,
         1.5,
-    ):  # the lesson's claim: the best hole leaves four rows legible, the extremes one or two
+    ):  # the lesson's claim: the best hole leaves all five rows legible, the extremes three or two
         demo.set(diameter_mm=d)
         rows[d] = demo.state["legible_rows"]
-    assert rows == {0.05: 1, 0.35: 4, 1.5: 2}
+    assert rows == {0.05: 3, 0.35: 5, 1.5: 2}
+    demo.set(diameter_mm=2.5)  # as wide a blur as d = 0.05 mm, but a flat disc: one row
+    assert demo.state["legible_rows"] == 1
     demo.set(diameter_mm=0.35)  # within 5 % of the best 0.349 mm: the two terms are equal to 0.5 %
     assert demo.state["limited_by"] == "balanced"
     demo.set(focal_mm=300)  # the hole left at 0.35 mm, now too small: diffraction-limited
@@ -124,13 +126,16 @@ def test_pinhole_size_shows_the_light_a_hole_costs():
     assert np.allclose(demo.state["image"], compensated) and demo.state["light"] == pytest.approx(
         1.0
     )
-    demo.set(diameter_mm=0.05)  # 1/49 of the light: nearly black
+    assert demo.state["legible_rows"] == 5
+    demo.set(diameter_mm=0.05)  # 1/49 of the light: nearly black, no row legible
     assert demo.state["light"] == pytest.approx(1 / 49) and demo.state["image"].max() < 0.03
+    assert demo.state["legible_rows"] == 0
     demo.set(diameter_mm=1.5)  # 18.4 times the light: the white page burns out
     assert (
         demo.state["light"] == pytest.approx(18.37, abs=0.01)
         and np.mean(demo.state["image"] >= 1.0) > 0.5
     )
+    assert demo.state["legible_rows"] == 0  # burnt out: no row legible
     demo.set(fixed_exposure=False)
     assert 0.2 < demo.state["image"].mean() < 0.9
 

@@ -86,8 +86,8 @@ def letter_chart(
     """An optician's chart (6 : 5): rows of capitals, each row smaller, for judging blur by eye.
 
     The rows' cap heights are ``CHART_ROW_HEIGHTS`` / 600 of ``width`` (metres): the smallest row
-    is still legible while the blur is smaller than about 4/5 of its height (lesson 01's
-    ``camlab.widgets.pinhole_camera.LEGIBLE``, set by eye on that demo's pictures).
+    is still legible while a flat disc blur is smaller than about 4/5 of its height (lesson 01's
+    ``camlab.widgets.pinhole_camera.legible_rows``, calibrated by eye on that demo's pictures).
 
     Parameters
     ----------

@@ -333,30 +333,120 @@ REFERENCE = (
 )  # the (d, f) whose exposure time "fixed exposure" keeps: the demo's default
 
 
-LEGIBLE = 1.25  # a chart row counts as legible while its letters are taller than 1.25 times the blur diameter
-# (set by eye on the demo's own pictures: letters 1.47 times the blur read, 1.07 times do not)
+# A chart row counts as legible while the blur passes at least LEGIBLE_CONTRAST of the contrast of every detail
+# coarser than LEGIBLE_CYCLES cycles per letter height (no detail washed out or reversed), and, on the picture as
+# shown, its pixels still span SHOWN_CONTRAST of black-to-white (a burnt-out or nearly black chart has no legible row).
+# For a flat disc blur of diameter D the first rule reads "letters taller than 1.25 D" (2 J1(x)/x = 0.1 at x = 3.4,
+# and 3.4 / (pi 1.35) = 0.80): the threshold set by eye on the demo's earlier flat-disc pictures (1.47 D read, 1.07 D not).
+LEGIBLE_CYCLES = 1.35
+LEGIBLE_CONTRAST = 0.1
+SHOWN_CONTRAST = 0.15
+WAVELENGTH = 550e-9  # green light, as section 3
 
 
-def legible_rows(blur_px: float) -> int:
-    """How many rows of the demo's letter chart stay legible under a blur of ``blur_px`` pixels (the readout's count).
+def row_heights_px() -> np.ndarray:
+    """Each chart row's letter height in the demo's pixels: the same at every f (40, 26, 17, 11 and 7 px).
 
-    The chart's rows are :data:`CHART_ROW_HEIGHTS` tall on a 0.3 m chart of 600 texels; the demo's sensor
-    spans the same field of view at every f (0.36 f wide, 320 pixels) with the chart at :data:`PAGE_Z`, so
-    each row's height in pixels, H 0.3 / 600 x (320 / 0.36 / PAGE_Z), is the same at every f (40 px down
-    to 7 px). By eye a letter survives a blur up to 4/5 of its height (:data:`LEGIBLE`).
+    The rows are :data:`CHART_ROW_HEIGHTS` tall on a 0.3 m chart of 600 texels; the sensor spans the same
+    field of view at every f (0.36 f wide, 320 pixels) with the chart at :data:`PAGE_Z`, so a row is
+    H 0.3 / 600 x 320 / (0.36 PAGE_Z) pixels tall.
+    """
+    return np.array(CHART_ROW_HEIGHTS) * 0.3 / 600 * SIZE[0] / (0.36 * PAGE_Z)
+
+
+def _row_bands() -> list[tuple[int, int]]:
+    """The image rows (v, top to bottom) each chart row's letters occupy, as the chart texture lays them out
+    (600 x 500 texels, rows from texel 30 down, 1.6 row heights apart, centred in the image)."""
+    scale = 0.3 / 600 * SIZE[0] / (0.36 * PAGE_Z)  # pixels per texel
+    bands, top = [], 30.0
+    for cap in CHART_ROW_HEIGHTS:
+        v0 = (SIZE[1] - 1) / 2 + (top - 250) * scale
+        bands.append((int(np.floor(v0)), int(np.ceil(v0 + cap * scale)) + 1))
+        top += 1.6 * cap
+    return bands
+
+
+def pinhole_mtf(rho: np.ndarray, d: float, f: float, pitch: float) -> np.ndarray:
+    r"""The pinhole's transfer function (contrast passed) at spatial frequency ``rho`` cycles per pixel.
+
+    The blur is the hole's geometric shadow, a disc of diameter :math:`D = d(1 + f/Z)` (Z = :data:`PAGE_Z`),
+    convolved with the Airy pattern of a round hole of diameter d at distance f (Fraunhofer diffraction).
+    A convolution multiplies transfer functions:
+
+    * disc: :math:`2 J_1(\pi D 
+ho) / (\pi D 
+ho)` (negative between its zeros: contrast reversed);
+    * Airy: :math:`rac{2}{\pi}(rccos s - s\sqrt{1 - s^2})`, :math:`s = 
+ho / 
+ho_c`, zero from the
+      cut-off :math:`
+ho_c = d / (\lambda f)` on (Hecht 11.3.3; its first dark ring, 2.44 / rho_c wide, is
+      section 3's 2.44 lambda f / d).
 
     Parameters
     ----------
-    blur_px : float
-        The blur's diameter in the demo's pixels.
+    rho : array_like
+        Spatial frequencies, cycles per pixel (>= 0).
+    d, f, pitch : float
+        The hole's diameter, the focal length and the pixel pitch (m).
+
+    Returns
+    -------
+    np.ndarray
+        The transfer function, shaped like ``rho`` (1 at rho = 0).
+    """
+    from scipy.special import j1
+
+    rho = np.asarray(rho, dtype=float)
+    x = np.pi * d * (1 + f / PAGE_Z) / pitch * rho
+    safe = np.where(x > 1e-9, x, 1.0)
+    disc = np.where(x > 1e-9, 2 * j1(safe) / safe, 1.0)
+    s = np.minimum(rho / (d * pitch / (WAVELENGTH * f)), 1.0)
+    airy = 2 / np.pi * (np.arccos(s) - s * np.sqrt(1 - s * s))
+    return disc * airy
+
+
+def blur_through_pinhole(sharp: np.ndarray, d: float, f: float, pitch: float) -> np.ndarray:
+    """The ``sharp`` picture as a hole ``d`` at ``f`` records it: multiplied by :func:`pinhole_mtf` in
+    Fourier space (a convolution with disc-plus-Airy), the edges mirrored 64 px out so nothing wraps round."""
+    pad = 64
+    a = np.pad(sharp, pad, mode="reflect")
+    rho = np.hypot(np.fft.fftfreq(a.shape[0])[:, None], np.fft.rfftfreq(a.shape[1])[None, :])
+    out = np.fft.irfft2(np.fft.rfft2(a) * pinhole_mtf(rho, d, f, pitch), s=a.shape)
+    return np.clip(out[pad:-pad, pad:-pad], 0.0, 1.0)
+
+
+def legible_rows(d: float, f: float, shown: np.ndarray | None = None) -> int:
+    """How many rows of the demo's letter chart are legible through a hole ``d`` at ``f`` (the readout's count).
+
+    A row is legible while :func:`pinhole_mtf` stays over :data:`LEGIBLE_CONTRAST` at every frequency up to
+    :data:`LEGIBLE_CYCLES` cycles per letter height (:func:`row_heights_px`); and, given the picture as
+    ``shown`` (after the exposure), while its letters' pixels span at least :data:`SHOWN_CONTRAST` of
+    black-to-white (1st to 99th percentile), so a burnt-out or nearly black chart counts no row.
+
+    Parameters
+    ----------
+    d, f : float
+        The hole's diameter and the focal length (m).
+    shown : (240, 320) array or None
+        The picture as displayed, in [0, 1]; None counts from the blur alone.
 
     Returns
     -------
     int
-        The number of rows whose height is over ``LEGIBLE`` times ``blur_px``.
+        The number of legible rows (rows legible from the top down: a smaller row never reads when a larger does not).
     """
-    rows_px = np.array(CHART_ROW_HEIGHTS) * 0.3 / 600 * SIZE[0] / (0.36 * PAGE_Z)
-    return int(np.sum(rows_px > LEGIBLE * blur_px))
+    pitch = f * 0.36 / SIZE[0]
+    count = 0
+    for h, (v0, v1) in zip(row_heights_px(), _row_bands()):
+        sharp_enough = np.all(pinhole_mtf(np.linspace(0, LEGIBLE_CYCLES / h, 200), d, f, pitch) > LEGIBLE_CONTRAST)
+        if shown is not None:
+            lo, hi = np.percentile(shown[v0:v1, 40:-40], [1, 99])
+            sharp_enough = sharp_enough and hi - lo >= SHOWN_CONTRAST
+        if not sharp_enough:
+            break
+        count += 1
+    return count
 
 
 def _times(x: float) -> str:
@@ -457,7 +547,9 @@ def _expose(ax_img, img: np.ndarray, light: float, fixed: bool) -> np.ndarray:
         img = np.clip(img * light, 0.0, 1.0)
         grey = int(np.sum(img < 1.0))  # a count, never a percentage rounded up to "100 %"
         note = (
-            f", burnt out: all but {grey} pixels white"
+            ", burnt out: every pixel white"
+            if grey == 0
+            else f", burnt out: all but {grey} pixels white"
             if grey < 0.5 * img.size
             else ", nearly black"
             if img.max() < 0.1
@@ -495,7 +587,7 @@ def _size_readout(state: dict, best: float, d: float) -> str:
         f"your d = {d * 1e3:.2f} mm (grey line): {state['limited_by']}\n"
         f"blur {state['blur_mm']:.2f} mm = {state['blur_px']:.1f} px;"
         f" blur / f = {state['blur_mrad']:.1f} mrad\n"
-        f"rows legible: {state['legible_rows']} of {len(CHART_ROW_HEIGHTS)} (letters over {LEGIBLE:g} x blur)\n"
+        f"rows legible: {state['legible_rows']} of {len(CHART_ROW_HEIGHTS)} (in the picture as shown)\n"
         f"f/d = f/{state['f_number']:.0f}: {state['exposure_vs_f2_8']:,.0f} x the exposure of f/2.8\n"
         f"light per second: {_times(state['light'])} x that of {ref}"
     )
@@ -526,6 +618,10 @@ def pinhole_size():
     parts = _size_figure(view)
     art, ax_plot, ax_img, chart, im = parts.art, parts.ax_plot, parts.ax_img, parts.chart, parts.im
     readout = W.HTML()
+    # the sharp picture is the same at every f (the sensor spans the same field of view): render it once
+    f0 = REFERENCE[1]
+    pitch0 = f0 * 0.36 / SIZE[0]
+    sharp = render.render(chart, sensor.intrinsics_from_sensor(f0, (pitch0, pitch0), SIZE), SIZE).irradiance
 
     def update(values, state):
         f, d = values["focal_mm"] * 1e-3, values["diameter_mm"] * 1e-3
@@ -533,14 +629,13 @@ def pinhole_size():
         b = pinhole.pinhole_blur(d, f, object_distance=PAGE_Z)
         # a sensor whose 320 pixels span the same field of view at every f
         pitch = f * 0.36 / SIZE[0]
-        K = sensor.intrinsics_from_sensor(f, (pitch, pitch), SIZE)
         blur_px = float(b.total) / pitch
-        img = render.render(chart, K, SIZE, blur=blur_px).irradiance
+        img = blur_through_pinhole(sharp, d, f, pitch)  # disc (the hole's shadow) convolved with the Airy pattern
         light = relative_exposure(d, f)
         img = _expose(ax_img, img, light, values["fixed_exposure"])
         im.set_data(img)
         best = pinhole.optimal_pinhole_diameter(f, object_distance=PAGE_Z)
-        legible = legible_rows(blur_px)
+        legible = legible_rows(d, f, img)
         limited_by = _limited_by(b)
         f_number = f / d
         ax_plot.set_title(

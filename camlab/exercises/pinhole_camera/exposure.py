@@ -127,6 +127,14 @@ _EXPOSURE_SLIPS = (
         ),
     ),
     Mistake(
+        "sqrt(f) for f",
+        lambda s: s.t * (np.sqrt(s.f) / s.d / s.N) ** 2,
+        (
+            "the f-number is f / d*, with f itself on top (a length over a length); you used sqrt(f), which"
+            " belongs only inside d* = sqrt(2.44 lambda f)"
+        ),
+    ),
+    Mistake(
         "2.44 outside the root",
         lambda s: s.t * (s.f / (2.44 * np.sqrt(s.lam * s.f)) / s.N) ** 2,
         (

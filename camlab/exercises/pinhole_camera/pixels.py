@@ -61,6 +61,7 @@ def _pixel_context(X, f, pitch, size, e):
         metres=f * X[:, :2] / X[:, 2:3],
         homogeneous=X @ K.T,  # rows (u w, v w, w), w = Z
         x_at_K=X @ K,
+        aspect=size[1] / size[0],  # H / W
     )
 
 
@@ -140,6 +141,43 @@ _PIXEL_SLIPS = (
         (
             "the projection is 1000 times too small: the pitch in millimetres with f in metres? Keep both"
             " in metres"
+        ),
+    ),
+    Mistake(
+        "centre added before the pitch",
+        lambda s: s.m + s.c / s.pitch,
+        (
+            "you added the centre before dividing by the pitch: (f X / Z + c) / pitch divides the centre too;"
+            " the centre is already in pixels, so add it after the division: f X / Z / pitch + c"
+        ),
+    ),
+    Mistake(
+        "depth from column 1",
+        lambda s: s.f / s.pitch * s.X[:, :2] / s.X[:, 1:2] + s.c,
+        (
+            "you divided by column 1 (Y) instead of the depth Z: Python counts from 0, so Z is column 2,"
+            " X[:, 2:3]"
+        ),
+    ),
+    Mistake(
+        "depth from column 0",
+        lambda s: s.f / s.pitch * s.X[:, :2] / s.X[:, 0:1] + s.c,
+        ("you divided by column 0 (X) instead of the depth Z: Z is column 2, X[:, 2:3]"),
+    ),
+    Mistake(
+        "f_y scaled by H / W",
+        lambda s: np.column_stack([s.e[:, 0], s.m[:, 1] * s.aspect + s.c[1]]),
+        (
+            "you scaled f_y by H / W: the pixels are square (one pitch for both axes), so f_y = f_x = f / pitch;"
+            " the image's shape sets only the centre"
+        ),
+    ),
+    Mistake(
+        "f_y scaled by W / H",
+        lambda s: np.column_stack([s.e[:, 0], s.m[:, 1] / s.aspect + s.c[1]]),
+        (
+            "you scaled f_y by W / H: the pixels are square (one pitch for both axes), so f_y = f_x = f / pitch;"
+            " the image's shape sets only the centre"
         ),
     ),
     Mistake(

@@ -48,14 +48,15 @@ def draw_pinhole_blur(
     """
     d = np.geomspace(0.02e-3, 3e-3, 300)
     art = {
-        # brown and black: lesson 01 keeps blue for objects, orange for rays, red and green for the image planes
+        # black and grey only: lesson 01 keeps blue and brown for objects (its two object points), orange for rays,
+        # red and green for the image planes
         "geometric": ax.plot(
-            d * 1e3, d * 1e3, color=palette.BROWN, ls="--", label="geometric  d (1 + f/Z)"
+            d * 1e3, d * 1e3, color="0.35", ls="--", label="geometric  d (1 + f/Z)"
         )[0],
         "diffraction": ax.plot(
             d * 1e3,
             d * 1e3,
-            color=palette.BROWN,
+            color="0.35",
             ls=":",
             lw=2,
             label=r"diffraction  $2.44\lambda f/d$",
