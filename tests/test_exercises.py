@@ -1042,7 +1042,10 @@ def test_best_pinhole_exposure_names_the_unit_of_time():
     for wrong, cause in (
         (lambda f, lam, t, N: 1e3 * t * f / (2.44 * lam * N**2), "milliseconds"),
         (lambda f, lam, t, N: t * f / (2.44 * lam * N**2) / 60, "minutes"),
-        (lambda f, lam, t, N: t * (np.sqrt(f) / np.sqrt(2.44 * lam * f) / N) ** 2, r"you used sqrt\(f\)"),
+        (
+            lambda f, lam, t, N: t * (np.sqrt(f) / np.sqrt(2.44 * lam * f) / N) ** 2,
+            r"you used sqrt\(f\)",
+        ),
     ):
         with pytest.raises(AssertionError, match=cause) as info:
             check("best_pinhole_exposure", wrong)

@@ -318,6 +318,19 @@ def draw_turn_about(
     shift c to the origin (x - c), apply A there, and shift back (+ c). With points as rows that
     is ``(X - c) @ A.T + c``: the (2,) row c is subtracted from, and added to, every row of X.
 
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes to draw in.
+    size : (W, H)
+        The image's width and height in pixels.
+    A : (2, 2) array_like
+        The linear map (a turn, a scaling, ...).
+    centre : (2,) array_like
+        c, the point A turns about, in pixels (u, v).
+    title : str
+        The axes' title.
+
     Returns
     -------
     (W * H, 2) ndarray

@@ -350,6 +350,11 @@ def row_heights_px() -> np.ndarray:
     The rows are :data:`CHART_ROW_HEIGHTS` tall on a 0.3 m chart of 600 texels; the sensor spans the same
     field of view at every f (0.36 f wide, 320 pixels) with the chart at :data:`PAGE_Z`, so a row is
     H 0.3 / 600 x 320 / (0.36 PAGE_Z) pixels tall.
+
+    Returns
+    -------
+    (5,) ndarray
+        The letter heights in pixels, largest row first.
     """
     return np.array(CHART_ROW_HEIGHTS) * 0.3 / 600 * SIZE[0] / (0.36 * PAGE_Z)
 
@@ -373,14 +378,9 @@ def pinhole_mtf(rho: np.ndarray, d: float, f: float, pitch: float) -> np.ndarray
     convolved with the Airy pattern of a round hole of diameter d at distance f (Fraunhofer diffraction).
     A convolution multiplies transfer functions:
 
-    * disc: :math:`2 J_1(\pi D 
-ho) / (\pi D 
-ho)` (negative between its zeros: contrast reversed);
-    * Airy: :math:`rac{2}{\pi}(rccos s - s\sqrt{1 - s^2})`, :math:`s = 
-ho / 
-ho_c`, zero from the
-      cut-off :math:`
-ho_c = d / (\lambda f)` on (Hecht 11.3.3; its first dark ring, 2.44 / rho_c wide, is
+    * disc: :math:`2 J_1(\pi D \rho) / (\pi D \rho)` (negative between its zeros: contrast reversed);
+    * Airy: :math:`\frac{2}{\pi}(\arccos s - s\sqrt{1 - s^2})`, :math:`s = \rho / \rho_c`, zero from the
+      cut-off :math:`\rho_c = d / (\lambda f)` on (Hecht 11.3.3; its first dark ring, 2.44 / rho_c wide, is
       section 3's 2.44 lambda f / d).
 
     Parameters
@@ -407,8 +407,23 @@ ho_c = d / (\lambda f)` on (Hecht 11.3.3; its first dark ring, 2.44 / rho_c wide
 
 
 def blur_through_pinhole(sharp: np.ndarray, d: float, f: float, pitch: float) -> np.ndarray:
-    """The ``sharp`` picture as a hole ``d`` at ``f`` records it: multiplied by :func:`pinhole_mtf` in
-    Fourier space (a convolution with disc-plus-Airy), the edges mirrored 64 px out so nothing wraps round."""
+    """The ``sharp`` picture as a hole ``d`` at ``f`` records it.
+
+    Multiplied by :func:`pinhole_mtf` in Fourier space (a convolution with disc-plus-Airy), the
+    edges mirrored 64 px out so nothing wraps round.
+
+    Parameters
+    ----------
+    sharp : (H, W) ndarray
+        The picture a perfect lens would give, values in [0, 1].
+    d, f, pitch : float
+        The hole's diameter, the focal length and the pixel pitch (m).
+
+    Returns
+    -------
+    (H, W) ndarray
+        The blurred picture, clipped to [0, 1].
+    """
     pad = 64
     a = np.pad(sharp, pad, mode="reflect")
     rho = np.hypot(np.fft.fftfreq(a.shape[0])[:, None], np.fft.rfftfreq(a.shape[1])[None, :])
@@ -438,8 +453,10 @@ def legible_rows(d: float, f: float, shown: np.ndarray | None = None) -> int:
     """
     pitch = f * 0.36 / SIZE[0]
     count = 0
-    for h, (v0, v1) in zip(row_heights_px(), _row_bands()):
-        sharp_enough = np.all(pinhole_mtf(np.linspace(0, LEGIBLE_CYCLES / h, 200), d, f, pitch) > LEGIBLE_CONTRAST)
+    for h, (v0, v1) in zip(row_heights_px(), _row_bands(), strict=True):
+        sharp_enough = np.all(
+            pinhole_mtf(np.linspace(0, LEGIBLE_CYCLES / h, 200), d, f, pitch) > LEGIBLE_CONTRAST
+        )
         if shown is not None:
             lo, hi = np.percentile(shown[v0:v1, 40:-40], [1, 99])
             sharp_enough = sharp_enough and hi - lo >= SHOWN_CONTRAST
@@ -621,7 +638,9 @@ def pinhole_size():
     # the sharp picture is the same at every f (the sensor spans the same field of view): render it once
     f0 = REFERENCE[1]
     pitch0 = f0 * 0.36 / SIZE[0]
-    sharp = render.render(chart, sensor.intrinsics_from_sensor(f0, (pitch0, pitch0), SIZE), SIZE).irradiance
+    sharp = render.render(
+        chart, sensor.intrinsics_from_sensor(f0, (pitch0, pitch0), SIZE), SIZE
+    ).irradiance
 
     def update(values, state):
         f, d = values["focal_mm"] * 1e-3, values["diameter_mm"] * 1e-3
@@ -630,7 +649,9 @@ def pinhole_size():
         # a sensor whose 320 pixels span the same field of view at every f
         pitch = f * 0.36 / SIZE[0]
         blur_px = float(b.total) / pitch
-        img = blur_through_pinhole(sharp, d, f, pitch)  # disc (the hole's shadow) convolved with the Airy pattern
+        img = blur_through_pinhole(
+            sharp, d, f, pitch
+        )  # disc (the hole's shadow) convolved with the Airy pattern
         light = relative_exposure(d, f)
         img = _expose(ax_img, img, light, values["fixed_exposure"])
         im.set_data(img)
