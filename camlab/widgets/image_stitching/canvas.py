@@ -258,11 +258,13 @@ def blending_seams() -> Demo:
         readout.value = monospace(
             f"blend: {v['method']}"
             + (
-                f", {int(v['levels'])} pyramid levels"
+                f", {int(v['levels'])} pyramid level{'s' if int(v['levels']) != 1 else ''}"
                 if multiband
                 else " (pyramid levels: multiband only)"
             )
-            + f"\ngains: {np.round(gains, 3).tolist() if v['gains'] else 'off'}\n"
+            + "\ngains: "
+            + (", ".join(f"{g:.3f}" for g in gains) if v["gains"] else "off")
+            + "\n"
             f"mean step across the seam: {jump:.1f} grey levels"
         )
 
@@ -596,8 +598,12 @@ def parallax_ghosting() -> Demo:
             f"camera moved {100 * b:.0f} cm\nmatches: {n}\n"
             f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\ninlier RMS: {reg.residual_rms:.2f} px\n"
             f"mean |view 0 - view 1| on the overlap:\n  {diff:.1f} grey levels\n"
-            f"edges of the two warped views (not of the blend):\n"
-            f"  blue = view 0, orange = view 1, white where they agree"
+            + (
+                "edges of the two warped views (not of the blend):\n"
+                "  blue = view 0, orange = view 1, white where they agree"
+                if v.get("edges", True)
+                else "edges: off"
+            )
         )
 
     controls = {
