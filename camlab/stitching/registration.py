@@ -214,13 +214,19 @@ def register_pair(
     )
     need = max(min_inliers, int(np.floor(8 + 0.3 * n)) + 1)
     if k < need:
+        # A right model starved by a threshold below the features' localisation noise still has most matches
+        # close to it (within a pixel or ten thresholds); a wrong one (no overlap, wrong matches) does not.
+        near_px = max(1.0, 10 * threshold)
+        near = int((_hg.symmetric_transfer_error(H, m.src, m.dst) < near_px).sum())
+        cause = (
+            f"the threshold {threshold:.3g} px is below the features' localisation noise: {near} matches lie "
+            f"within {near_px:.3g} px of this H, so the model is likely right but starved of inliers; raise "
+            "the threshold (1 to 3 px is usual)"
+            if near >= need
+            else "the images probably do not overlap, or most matches are wrong"
+        )
         return PairRegistration(
-            H,
-            m,
-            inl,
-            rms,
-            False,
-            f"too few inliers: {k} of {n} matches (need {need}); the images probably do not overlap",
+            H, m, inl, rms, False, f"too few inliers: {k} of {n} matches (need {need}); {cause}"
         )
     if _mirrors(H, m.src[inl]):
         return PairRegistration(

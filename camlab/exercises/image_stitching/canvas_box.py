@@ -220,6 +220,13 @@ _CANVAS_SLIPS = (
         "use np.floor for the minimum and np.ceil for the maximum.",
     ),
     Mistake(
+        "truncated the whole box",
+        lambda s: np.trunc(np.array([s.corners.min(0), s.corners.max(0)])),
+        "astype(int) (like int()) truncates towards zero, and on the whole box that cuts both ends: a negative "
+        "minimum moves inwards (int(-30.3) = -30) and the maximum down (int(369.6) = 369), so warped pixels are "
+        "cut off. Use np.floor for the minimum and np.ceil for the maximum, then convert.",
+    ),
+    Mistake(
         "round outwards",
         lambda s: [
             np.array([np.ceil(s.corners.min(0)), np.floor(s.corners.max(0))]),
@@ -285,6 +292,7 @@ register_exercise(
             (_canvas_variant("H inverted"), "inverse of H"),
             (_canvas_variant("width and height swapped"), "width and height swapped"),
             (_canvas_variant("truncated"), "truncate towards zero"),
+            (_canvas_variant("truncated the whole box"), "cuts both ends"),
             (
                 lambda Hs, shapes: np.array(
                     [_corners(Hs, shapes).min(0), _corners(Hs, shapes).max(0)]

@@ -32,7 +32,8 @@ def feather_weights(shape):
 
 
 def _feather_cases():
-    return [((3, 4),), ((5, 5),), ((6, 9),), ((1, 3),)]
+    # the last shape has channels, as an image's shape may (exercise 1 and `stitch` pass image shapes)
+    return [((3, 4),), ((5, 5),), ((6, 9),), ((1, 3),), ((4, 7, 3),)]
 
 
 def _feather_diagnosis(args, got, expected) -> str:
@@ -49,6 +50,19 @@ def _feather_diagnosis(args, got, expected) -> str:
         return (
             "you normalised the weights to a maximum of 1; the prompt asks for the distance itself, in pixels "
             "(feathering divides by the sum of the weights later, so the scale must be the same for every image)."
+        )
+    if g.sum() > 0 and np.allclose(g, expected / expected.sum()):
+        return (
+            "you normalised the weights to sum to 1; the prompt asks for the distance itself, in pixels "
+            "(feathering divides by the sum of all the images' weights at each pixel later, not by one image's total)."
+        )
+    h, w = expected.shape
+    u, v = np.arange(w, dtype=float), np.arange(h, dtype=float)[:, None]
+    if np.allclose(g, (np.minimum(u + 0.5, w - 0.5 - u)) * np.minimum(v + 0.5, h - 0.5 - v)):
+        return (
+            "you multiplied the horizontal and vertical distances; the weight here is their minimum, the distance "
+            "to the nearest border (Brown & Lowe's separable w(x) w(y) is a product, but of weights scaled to 1 at "
+            "the centre, and this exercise asks for the distance map)."
         )
     if np.allclose(g, expected - 0.5):
         return (
@@ -91,7 +105,20 @@ def _feather_diagnosis(args, got, expected) -> str:
                     + " and at ".join(x for x in (near, far) if x)
                     + "; the same for v."
                 )
+    if g.min() < -1e-9:
+        return (
+            f"a weight below 0 ({g.min():g}) means a far border in the wrong place: the far borders are at "
+            "u = W - 1/2 (W = shape[1], the columns) and v = H - 1/2 (H = shape[0], the rows); check that W and H "
+            "are not swapped inside the terms."
+        )
     return "w(u, v) = min(u + 1/2, W - 1/2 - u, v + 1/2, H - 1/2 - v): the distance to the nearest border."
+
+
+def _feather_swapped_far(shape) -> np.ndarray:
+    """min(u + 1/2, H - 1/2 - u, v + 1/2, W - 1/2 - v): W and H swapped inside the far terms (a slip)."""
+    h, w = shape[:2]
+    u, v = np.arange(w, dtype=float), np.arange(h, dtype=float)[:, None]
+    return np.minimum(np.minimum(u + 0.5, h - 0.5 - u), np.minimum(v + 0.5, w - 0.5 - v))
 
 
 def _feather_offsets(shape, a: float, b: float) -> np.ndarray:
@@ -118,6 +145,8 @@ register_exercise(
                 "half a pixel at the near border",
             ),
             (lambda shape: _feather_offsets(tuple(shape[:2]), 1.5, 1.5), "counted pixels from 1"),
+            (lambda shape: st.feather_weights(shape) / st.feather_weights(shape).sum(), "sum to 1"),
+            (_feather_swapped_far, "far border in the wrong place"),
             (lambda shape: st.feather_weights(shape).astype(int), "integer dtype"),
             (
                 lambda shape: st.feather_weights(shape) / st.feather_weights(shape).max(),

@@ -73,14 +73,23 @@ def _focal_cases():
     # length with each formula: the diagnosis then names the slip by its number, whichever formulas the
     # student combined (only H transposed gives NaN with all four). Then a general turn and the two 0/0
     # cases of the prompt (a pure pan: h7 = 0; a pure tilt: h6 = 0).
-    for f, (h, w), rvec in (
+    # Turns 5 and 6 make the orthogonality formulas decide: with pan and tilt of one size (h6 = +-h7; turn 5
+    # is a tilt after a 45-degree roll, so h2 = 0 too) the columns' equal-length formula and the rows'
+    # orthogonality formula are 0/0, and on turn 6 both orthogonality formulas have the larger denominator.
+    # A sign flip or a wrong numerator in either of them, and a student who uses the equal-length formulas
+    # alone, therefore fail there.
+    tilt_after_roll = rotation_from_axis_angle([0.3, 0.0, 0.0]) @ rotation_from_axis_angle([0.0, 0.0, np.pi / 4])
+    for f, (h, w), R in (
         (520.0, (660, 900), [-0.523, 0.041, -0.054]),  # a tilt, a little pan and roll
         (520.0, (660, 900), [0.05, -0.4, 0.03]),  # pan, tilt and roll
         (700.0, (480, 640), [0.0, 0.35, 0.0]),  # a pure pan: h7 = 0
         (1200.0, (600, 800), [0.2, 0.0, 0.0]),  # a pure tilt: h6 = 0
+        (600.0, (480, 640), tilt_after_roll),  # h6 = h7 and h2 = 0
+        (800.0, (600, 900), [0.3, 0.3, 0.1]),  # pan about as large as tilt
     ):
         K = np.array([[f, 0, (w - 1) / 2], [0, f, (h - 1) / 2], [0, 0, 1]])
-        out.append((rotation_homography(K, rotation_from_axis_angle(rvec)), (h, w)))
+        R = np.asarray(R, float)
+        out.append((rotation_homography(K, R if R.shape == (3, 3) else rotation_from_axis_angle(R)), (h, w)))
     return out
 
 
@@ -116,15 +125,18 @@ _SLIP_CENTRES = {
 }
 
 
-def _focal_formulas(H, shape, slip: str = "", absolute: bool = False) -> dict[str, float]:
+def _focal_formulas(
+    H, shape, slip: str = "", absolute: bool = False, squared: bool = False
+) -> dict[str, float]:
     """The four focal lengths of the prompt's formulas (columns: c1 orthogonal, c2 equally long; rows: r1, r2),
     computed right or with one typical ``slip``; NaN where f^2 is 0/0 or negative.
 
     Slips: "swap" (centre ((h-1)/2, (w-1)/2)), "half" ((w/2, h/2)), "one-based" (((w+1)/2, (h+1)/2)),
     "uncentred" (no C at all), "C H C^-1" (the translation applied the wrong way round), "transposed"
-    (h = H.T.ravel()), "sign" (the orthogonality formula without its minus), "rows as H^T" (the column
+    (h = H.T.ravel()), "sign" (the orthogonality formulas without their minus), "rows as H^T" (the column
     formulas applied to H^T for the rows: they give 1/f^2 there). ``absolute`` takes sqrt(|f^2|), as a
-    student who silences the NaN does.
+    student who silences the NaN does. ``squared`` returns the four f^2 themselves (negative ones kept, NaN
+    where not finite), for a student who takes the median of f^2 and then its square root.
     """
     h, w = shape[:2]
     cx, cy = _SLIP_CENTRES.get(slip, lambda w, h: ((w - 1) / 2, (h - 1) / 2))(w, h)
@@ -142,19 +154,27 @@ def _focal_formulas(H, shape, slip: str = "", absolute: bool = False) -> dict[st
             f2["r1"] = -(h0 * h3 + h1 * h4) / (h2 * h5)
             f2["r2"] = (h0**2 + h1**2 - h3**2 - h4**2) / (h2**2 - h5**2)
         else:
-            f2["r1"] = -h2 * h5 / (h0 * h3 + h1 * h4)
+            f2["r1"] = -sign * h2 * h5 / (h0 * h3 + h1 * h4)
             f2["r2"] = (h5**2 - h2**2) / (h0**2 + h1**2 - h3**2 - h4**2)
     if absolute:
         f2 = {k: abs(v) for k, v in f2.items()}
+    if squared:
+        return {k: float(v) if np.isfinite(v) else float("nan") for k, v in f2.items()}
     return {
         k: float(np.sqrt(v)) if np.isfinite(v) and v >= 0 else float("nan") for k, v in f2.items()
     }
 
 
-def _focal_answers(values: dict[str, float]) -> list[float]:
+def _focal_answers(values: dict[str, float], squared: bool = False) -> list[float]:
     """What a student's combination of the formulas returns: one formula, the median or mean of any of them
     (NaN dropped, as the prompt's "where both are defined" invites, or kept), and per pair the one with the
-    larger denominator (approximated by the one that is defined)."""
+    larger denominator (a subset too). With ``squared`` the values are f^2 and the combination is
+    sqrt(median or mean of f^2), negative f^2 dropped with the NaN or kept (giving NaN)."""
+    if squared:
+        kept = _focal_answers(values)
+        dropped = _focal_answers({k: v if v > 0 else float("nan") for k, v in values.items()})
+        with np.errstate(invalid="ignore"):
+            return [float(np.sqrt(a)) if np.isfinite(a) and a >= 0 else float("nan") for a in kept + dropped]
     out = []
     keys = list(values)
     for n in range(1, len(keys) + 1):
@@ -172,11 +192,14 @@ def _focal_slip(slip: str):
     or None where the slip changes no formula (it cannot show here)."""
 
     def answer(s):
-        right_answers = _focal_answers(_focal_formulas(s.H, s.shape))
+        right_answers = _focal_answers(_focal_formulas(s.H, s.shape)) + _focal_answers(
+            _focal_formulas(s.H, s.shape, squared=True), squared=True
+        )
         wrong = [
             a
             for absolute in (False, True)
-            for a in _focal_answers(_focal_formulas(s.H, s.shape, slip, absolute))
+            for squared in (False, True)
+            for a in _focal_answers(_focal_formulas(s.H, s.shape, slip, absolute, squared), squared)
             if not any(np.isclose(a, r, rtol=1e-6) for r in right_answers if np.isfinite(r))
         ]
         return wrong or None
@@ -190,6 +213,68 @@ def _slipped_student(slip: str, H, shape, formulas=("c1", "c2", "r1", "r2")) -> 
         v for k, v in _focal_formulas(H, shape, slip).items() if k in formulas and np.isfinite(v)
     ]
     return float(np.median(values)) if values else float("nan")
+
+
+_FOCAL_ZERO_OVER_ZERO = {
+    "c1": ("-(h0 h1 + h3 h4) / (h6 h7) (columns orthogonal)", "h6 or h7 is 0"),
+    "c2": ("(h0^2 + h3^2 - h1^2 - h4^2) / (h7^2 - h6^2) (columns equally long)", "h6 = +-h7"),
+    "r1": ("-h2 h5 / (h0 h3 + h1 h4) (rows orthogonal)", "h2 or h5 is 0"),
+    "r2": ("(h5^2 - h2^2) / (h0^2 + h1^2 - h3^2 - h4^2) (rows equally long)", "h2 = +-h5"),
+}
+"""Each formula and when it is 0/0 on a rotation (numerator and denominator both exactly 0)."""
+
+
+def _zero_over_zero(H, shape) -> list[str]:
+    """The formulas that are 0/0 on this H: a denominator at round-off level next to its pair's other one."""
+    h, w = shape[:2]
+    C = np.array([[1.0, 0, (w - 1) / 2], [0, 1, (h - 1) / 2], [0, 0, 1]])
+    Hc = np.linalg.inv(C) @ np.asarray(H, float) @ C
+    h0, h1, h2, h3, h4, h5, h6, h7, _ = (Hc / np.linalg.norm(Hc)).ravel()
+    d = {"c1": h6 * h7, "c2": h7**2 - h6**2, "r1": h0 * h3 + h1 * h4, "r2": h0**2 + h1**2 - h3**2 - h4**2}
+    pair = {"c1": "c2", "c2": "c1", "r1": "r2", "r2": "r1"}
+    return [k for k in d if abs(d[k]) < 1e-9 * abs(d[pair[k]])]
+
+
+def _orthogonality_decides(H, shape) -> bool:
+    """Whether an orthogonality formula has the larger denominator in its pair (columns or rows) on this H."""
+    h, w = shape[:2]
+    C = np.array([[1.0, 0, (w - 1) / 2], [0, 1, (h - 1) / 2], [0, 0, 1]])
+    h0, h1, h2, h3, h4, h5, h6, h7, _ = (np.linalg.inv(C) @ np.asarray(H, float) @ C).ravel()
+    return abs(h6 * h7) > abs(h7**2 - h6**2) or abs(h0 * h3 + h1 * h4) > abs(h0**2 + h1**2 - h3**2 - h4**2)
+
+
+def _zero_over_zero_hint(zz: list[str], got: float) -> str:
+    what = "NaN" if np.isnan(got) else ("inf" if np.isinf(got) else f"{got:.6g}")
+    listed = "; ".join(f"{_FOCAL_ZERO_OVER_ZERO[k][0]} is 0/0 because {_FOCAL_ZERO_OVER_ZERO[k][1]}" for k in zz)
+    return (
+        f"you returned {what} on a turn where {listed}. 0/0 is round-off divided by round-off (NaN, inf or any "
+        "number), not a slip in your indices: in each pair use the formula whose denominator is larger in "
+        "magnitude (a pure pan has h7 = 0, a pure tilt h6 = 0, and pan and tilt of one size h6 = +-h7)."
+    )
+
+
+def _larger_denominator_student(slip: str, orthogonality_only=False, equal_length_only=False):
+    """A student who follows the prompt (per pair the formula with the larger denominator, then the median of
+    the positive ones) with ``slip``, or who uses one kind of formula only (for the tests)."""
+
+    def student(H, shape):
+        h, w = shape[:2]
+        C = np.array([[1.0, 0, (w - 1) / 2], [0, 1, (h - 1) / 2], [0, 0, 1]])
+        h0, h1, h2, h3, h4, h5, h6, h7, _ = (np.linalg.inv(C) @ np.asarray(H, float) @ C).ravel()
+        f2 = _focal_formulas(H, shape, slip, squared=True)
+        cols = abs(h6 * h7) > abs(h7**2 - h6**2)
+        rows = abs(h0 * h3 + h1 * h4) > abs(h0**2 + h1**2 - h3**2 - h4**2)
+        if orthogonality_only or equal_length_only:
+            cols = rows = orthogonality_only
+        with np.errstate(all="ignore"):
+            raw = -(h0 * h1 + h3 * h4) / (h6 * h7) if orthogonality_only else None
+        picked = [f2["c1"] if cols else f2["c2"], f2["r1"] if rows else f2["r2"]]
+        if orthogonality_only and not np.isfinite(raw):
+            return float(raw)  # inf on a pure pan, as the student's own division gives
+        good = [np.sqrt(v) for v in picked if np.isfinite(v) and v > 0]
+        return float(np.median(good)) if good else float("nan")
+
+    return student
 
 
 def _shows_slip(got: float, answers: list[float]) -> bool:
@@ -244,8 +329,9 @@ _FOCAL_SLIPS = (
     Mistake(
         "sign flip",
         _focal_slip("sign"),
-        "a sign flip: the orthogonality of columns 1 and 2 gives f^2 = -(h0 h1 + h3 h4) / (h6 h7), with the "
-        "minus (without it f^2 comes out negative and its square root NaN).",
+        "a sign flip: the orthogonality of columns 1 and 2 gives f^2 = -(h0 h1 + h3 h4) / (h6 h7), and that of "
+        "rows 1 and 2 f^2 = -h2 h5 / (h0 h3 + h1 h4), each with the minus (without it f^2 comes out negative and "
+        "its square root NaN).",
     ),
 )
 _FOCAL_SHORT = {
@@ -280,26 +366,38 @@ def _focal_diagnosis(args, got, expected) -> str:
         return "that is f squared: the orthogonality conditions give f^2; take the square root."
     h, w = shape[:2]
     context = SimpleNamespace(H=H, shape=shape, w=w, h=h, expected=expected)
-    right = _focal_formulas(H, shape)
-    if (
-        np.isnan(g)
-        and (np.isnan(right["c1"]) or np.isnan(right["r1"]))
-        and np.isfinite(right["c2"])
-    ):
-        return (
-            "you returned NaN or inf: for a pure pan h6 h7 = 0 (and for a pure tilt h6 = 0), so the orthogonality "
-            "formula is 0/0; use the other one (the equal-length condition), whichever denominator is larger."
-        )
+    zz = _zero_over_zero(H, shape)
+    if zz:
+        # the student used a 0/0 formula if the answer is not finite, far off, or what the 0/0 values give
+        raw = _focal_formulas(H, shape)
+        with_zz = [
+            a
+            for squared in (False, True)
+            for a in _focal_answers(_focal_formulas(H, shape, squared=squared), squared)
+        ]
+        far = np.isfinite(g) and g > 0 and abs(np.log(g / expected)) > np.log(10)
+        sign_nan = any(np.isnan(a) for a in _focal_answers(_focal_formulas(H, shape, "sign")))
+        if not np.isfinite(g) or far or (_shows_slip(g, with_zz) and not _shows_slip(g, list(raw.values()))):
+            hint = _zero_over_zero_hint(zz, g)
+            if np.isnan(g) and sign_nan:
+                hint += (
+                    " Or, if you used an orthogonality formula here, check its sign: f^2 = -(h0 h1 + h3 h4) / "
+                    "(h6 h7) and -h2 h5 / (h0 h3 + h1 h4), with the minus."
+                )
+            return hint
     if np.isnan(g):
         # NaN does not tell the slips apart by value: name every slip that gives NaN here with some formula
         causes = [
             m for m in _FOCAL_SLIPS if (a := m.answer(context)) is not None and _shows_slip(g, a)
         ]
+        if len(causes) > 1 and any(m.name == "sign flip" for m in causes) and _orthogonality_decides(H, shape):
+            # every other slip gives a wrong number on test input 1 already; here the minus is what is left
+            causes = [m for m in causes if m.name == "sign flip"]
         if causes:
             return (
                 "f^2 came out negative (its square root is NaN) on a turn where every formula is defined. "
                 + (
-                    causes[0].hint
+                    causes[0].hint[:1].upper() + causes[0].hint[1:]
                     if len(causes) == 1
                     else "Depending on the formulas you used, that is one of these slips: "
                     + "; ".join(f"({k}) {_FOCAL_SHORT[m.name]}" for k, m in enumerate(causes, 1))
@@ -311,8 +409,8 @@ def _focal_diagnosis(args, got, expected) -> str:
         return cause
     if not np.isfinite(g):
         return (
-            "you returned NaN or inf on a turn where every formula is defined, so f^2 came out negative or 0/0 "
-            "by a slip. Check the indices: h0 ... h8 are H's entries row by row."
+            "you returned NaN or inf on a turn where every formula is defined, so f^2 came out negative or divided "
+            "by zero through a slip. Check the indices: h0 ... h8 are H's entries row by row."
         )
     return (
         "f^2 = -(h0 h1 + h3 h4) / (h6 h7) or (h0^2 + h3^2 - h1^2 - h4^2) / (h7^2 - h6^2) (columns), "
@@ -345,6 +443,9 @@ register_exercise(
             (lambda H, shape: _slipped_student("swap", H, shape), "width and height swapped"),
             (lambda H, shape: _slipped_student("rows as H^T", H, shape, ("c1", "r1")), "1/f^2"),
             (lambda H, shape: _slipped_student("sign", H, shape, ("c1",)), "sign flip"),
+            (_larger_denominator_student("sign"), "sign flip"),
+            (_larger_denominator_student("", orthogonality_only=True), "0/0"),
+            (_larger_denominator_student("", equal_length_only=True), "0/0"),
         ),
         teaching=focal_from_rotation_homography,
     )

@@ -261,11 +261,13 @@ def blending_seams() -> Demo:
         readout.value = monospace(
             f"blend: {v['method']}"
             + (
-                f", {int(v['levels'])} pyramid levels"
+                f", {int(v['levels'])} pyramid level{'s' if int(v['levels']) != 1 else ''}"
                 if multiband
                 else " (pyramid levels: multiband only)"
             )
-            + f"\ngains: {np.round(gains, 3).tolist() if v['gains'] else 'off'}\n"
+            + "\ngains: "
+            + (", ".join(f"{g:.3f}" for g in gains) if v["gains"] else "off")
+            + "\n"
             f"mean step across the seam: {jump:.1f} grey levels"
         )
 
@@ -537,9 +539,12 @@ def _parallax_figure(view: FigureView) -> SimpleNamespace:
     return SimpleNamespace(im=im, title=title, legend=legend)
 
 
-def _parallax_texts(b: float, n: int, k: int, rms: float, diff: float) -> tuple[str, str]:
+def _parallax_texts(
+    b: float, n: int, k: int, rms: float, diff: float, edges: bool
+) -> tuple[str, str]:
     """The title and the readout of :func:`parallax_ghosting` for a move of ``b`` m: ``k`` of ``n``
-    matches inliers, their RMS ``rms`` px, the mean misalignment ``diff`` grey levels."""
+    matches inliers, their RMS ``rms`` px, the mean misalignment ``diff`` grey levels, and what
+    the edges mean when they are shown."""
     title = (
         f"camera moved {100 * b:.0f} cm: {k} of {n} matches fit one homography, "
         f"mean |view 0 - view 1| on the overlap {diff:.1f} grey levels"
@@ -548,8 +553,12 @@ def _parallax_texts(b: float, n: int, k: int, rms: float, diff: float) -> tuple[
         f"camera moved {100 * b:.0f} cm\nmatches: {n}\n"
         f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\ninlier RMS: {rms:.2f} px\n"
         f"mean |view 0 - view 1| on the overlap:\n  {diff:.1f} grey levels\n"
-        f"edges of the two warped views (not of the blend):\n"
-        f"  blue = view 0, orange = view 1, white where they agree"
+        + (
+            "edges of the two warped views (not of the blend):\n"
+            "  blue = view 0, orange = view 1, white where they agree"
+            if edges
+            else "edges: off"
+        )
     )
     return title, readout
 
@@ -619,7 +628,7 @@ def parallax_ghosting() -> Demo:
         art.legend.set_visible(bool(v["edges"]))
         n, k = len(reg.matches.src), int(reg.inliers.sum())
         diff = 255 * p.misalignment
-        title, readout.value = _parallax_texts(b, n, k, reg.residual_rms, diff)
+        title, readout.value = _parallax_texts(b, n, k, reg.residual_rms, diff, bool(v["edges"]))
         art.title.set_text(title)
         state.update(
             baseline=b,

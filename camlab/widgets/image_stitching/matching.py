@@ -139,7 +139,7 @@ def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
             ax,
             np.eye(3),
             imgs[i].shape,
-            color=palette.BLUE,
+            color=palette.YELLOW,
             lw=1.5,
             ls="--",
             label="RANSAC",
@@ -170,7 +170,10 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
         xlabel="transfer error per match (px, log scale)\nhatched end bars: < 0.02 px, > 300 px",
         ylabel="number of matches\n(relative to the tallest bar)",
         xscale="log",
-        xlim=(0.02, 300),
+        xlim=(
+            0.014,
+            300,
+        ),  # a little below the slider's 0.02 px, so the threshold line shows there too
         ylim=(0, 1.55),
         yticks=[0, 0.5, 1],
     )
@@ -212,12 +215,17 @@ def _registration_texts(r, n: int, wrong: int, err: float) -> tuple[str, str]:
         f"({wrong} of them wrong)\n"
         f"worst corner vs the true H: {err:.2f} px\n"
         + ("accepted" if r.accepted else f"rejected: {r.reason.split(':')[0]} (need {need})")
+        + (
+            "\nthe threshold is below the features' noise"
+            if "localisation noise" in r.reason
+            else ""
+        )
     )
     readout = monospace(
         f"matches: {n}\ninliers: {int(r.inliers.sum())} "
         f"({wrong} of them wrong)\n"
         f"inlier RMS: {r.residual_rms:.2f} px\nworst corner vs truth: {err:.2f} px\n"
-        f"accepted: {r.accepted} {r.reason}"
+        + ("verdict: accepted" if r.accepted else f"verdict: rejected, {r.reason}")
     )
     return verdict, readout
 
