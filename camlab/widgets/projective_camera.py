@@ -34,9 +34,9 @@ PAN_FOLLOW = 0.3
 # The resectioning viewer looks at the box's corner between its two faces of points (x = +1 and y = -1), so both
 # faces open up; the true camera (azimuth -55 deg) stands to the viewer's right, its frustum pointing at the box.
 RESECTION_AZIM, RESECTION_ELEV = -20.0, 24.0
-# The true camera's view of the scene is drawn light and wide under the estimate's dashed orange one: a dark grey
-# line under orange dashes read as one brown line when the two coincide.
-TRUE_VIEW_GREY = "0.78"
+# The true camera's view of the scene is drawn mid grey and wide under the estimate's dashed orange one: a dark grey
+# line under orange dashes read as one brown line when the two coincide; lighter than 0.55 falls below 3:1 on white.
+TRUE_VIEW_GREY = "0.55"
 MOVED_FROM_GREY = "0.55"  # the moved pixel's first spot and its dotted move
 FAR_M = 6.0  # an estimated camera farther than this from the true one is shown by an arrow, not fitted into view
 EYE_GL = np.array(

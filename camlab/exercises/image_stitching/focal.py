@@ -78,7 +78,9 @@ def _focal_cases():
     # orthogonality formula are 0/0, and on turn 6 both orthogonality formulas have the larger denominator.
     # A sign flip or a wrong numerator in either of them, and a student who uses the equal-length formulas
     # alone, therefore fail there.
-    tilt_after_roll = rotation_from_axis_angle([0.3, 0.0, 0.0]) @ rotation_from_axis_angle([0.0, 0.0, np.pi / 4])
+    tilt_after_roll = rotation_from_axis_angle([0.3, 0.0, 0.0]) @ rotation_from_axis_angle(
+        [0.0, 0.0, np.pi / 4]
+    )
     for f, (h, w), R in (
         (520.0, (660, 900), [-0.523, 0.041, -0.054]),  # a tilt, a little pan and roll
         (520.0, (660, 900), [0.05, -0.4, 0.03]),  # pan, tilt and roll
@@ -89,7 +91,12 @@ def _focal_cases():
     ):
         K = np.array([[f, 0, (w - 1) / 2], [0, f, (h - 1) / 2], [0, 0, 1]])
         R = np.asarray(R, float)
-        out.append((rotation_homography(K, R if R.shape == (3, 3) else rotation_from_axis_angle(R)), (h, w)))
+        out.append(
+            (
+                rotation_homography(K, R if R.shape == (3, 3) else rotation_from_axis_angle(R)),
+                (h, w),
+            )
+        )
     return out
 
 
@@ -174,7 +181,10 @@ def _focal_answers(values: dict[str, float], squared: bool = False) -> list[floa
         kept = _focal_answers(values)
         dropped = _focal_answers({k: v if v > 0 else float("nan") for k, v in values.items()})
         with np.errstate(invalid="ignore"):
-            return [float(np.sqrt(a)) if np.isfinite(a) and a >= 0 else float("nan") for a in kept + dropped]
+            return [
+                float(np.sqrt(a)) if np.isfinite(a) and a >= 0 else float("nan")
+                for a in kept + dropped
+            ]
     out = []
     keys = list(values)
     for n in range(1, len(keys) + 1):
@@ -230,7 +240,12 @@ def _zero_over_zero(H, shape) -> list[str]:
     C = np.array([[1.0, 0, (w - 1) / 2], [0, 1, (h - 1) / 2], [0, 0, 1]])
     Hc = np.linalg.inv(C) @ np.asarray(H, float) @ C
     h0, h1, h2, h3, h4, h5, h6, h7, _ = (Hc / np.linalg.norm(Hc)).ravel()
-    d = {"c1": h6 * h7, "c2": h7**2 - h6**2, "r1": h0 * h3 + h1 * h4, "r2": h0**2 + h1**2 - h3**2 - h4**2}
+    d = {
+        "c1": h6 * h7,
+        "c2": h7**2 - h6**2,
+        "r1": h0 * h3 + h1 * h4,
+        "r2": h0**2 + h1**2 - h3**2 - h4**2,
+    }
     pair = {"c1": "c2", "c2": "c1", "r1": "r2", "r2": "r1"}
     return [k for k in d if abs(d[k]) < 1e-9 * abs(d[pair[k]])]
 
@@ -240,12 +255,16 @@ def _orthogonality_decides(H, shape) -> bool:
     h, w = shape[:2]
     C = np.array([[1.0, 0, (w - 1) / 2], [0, 1, (h - 1) / 2], [0, 0, 1]])
     h0, h1, h2, h3, h4, h5, h6, h7, _ = (np.linalg.inv(C) @ np.asarray(H, float) @ C).ravel()
-    return abs(h6 * h7) > abs(h7**2 - h6**2) or abs(h0 * h3 + h1 * h4) > abs(h0**2 + h1**2 - h3**2 - h4**2)
+    return abs(h6 * h7) > abs(h7**2 - h6**2) or abs(h0 * h3 + h1 * h4) > abs(
+        h0**2 + h1**2 - h3**2 - h4**2
+    )
 
 
 def _zero_over_zero_hint(zz: list[str], got: float) -> str:
     what = "NaN" if np.isnan(got) else ("inf" if np.isinf(got) else f"{got:.6g}")
-    listed = "; ".join(f"{_FOCAL_ZERO_OVER_ZERO[k][0]} is 0/0 because {_FOCAL_ZERO_OVER_ZERO[k][1]}" for k in zz)
+    listed = "; ".join(
+        f"{_FOCAL_ZERO_OVER_ZERO[k][0]} is 0/0 because {_FOCAL_ZERO_OVER_ZERO[k][1]}" for k in zz
+    )
     return (
         f"you returned {what} on a turn where {listed}. 0/0 is round-off divided by round-off (NaN, inf or any "
         "number), not a slip in your indices: in each pair use the formula whose denominator is larger in "
@@ -377,7 +396,11 @@ def _focal_diagnosis(args, got, expected) -> str:
         ]
         far = np.isfinite(g) and g > 0 and abs(np.log(g / expected)) > np.log(10)
         sign_nan = any(np.isnan(a) for a in _focal_answers(_focal_formulas(H, shape, "sign")))
-        if not np.isfinite(g) or far or (_shows_slip(g, with_zz) and not _shows_slip(g, list(raw.values()))):
+        if (
+            not np.isfinite(g)
+            or far
+            or (_shows_slip(g, with_zz) and not _shows_slip(g, list(raw.values())))
+        ):
             hint = _zero_over_zero_hint(zz, g)
             if np.isnan(g) and sign_nan:
                 hint += (
@@ -390,7 +413,11 @@ def _focal_diagnosis(args, got, expected) -> str:
         causes = [
             m for m in _FOCAL_SLIPS if (a := m.answer(context)) is not None and _shows_slip(g, a)
         ]
-        if len(causes) > 1 and any(m.name == "sign flip" for m in causes) and _orthogonality_decides(H, shape):
+        if (
+            len(causes) > 1
+            and any(m.name == "sign flip" for m in causes)
+            and _orthogonality_decides(H, shape)
+        ):
             # every other slip gives a wrong number on test input 1 already; here the minus is what is left
             causes = [m for m in causes if m.name == "sign flip"]
         if causes:

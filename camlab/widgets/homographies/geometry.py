@@ -109,7 +109,15 @@ def transformation_hierarchy() -> Demo:
         outline0, np.array([[0, 0], [pw - 1, 0], [pw - 1, ph - 1], [0, ph - 1], [0, 0]], float)
     )
     view.animate(
-        ax.plot(box0[:, 0], box0[:, 1], ":", color="0.2", lw=1.5, label="original outline")[0]
+        ax.plot(
+            box0[:, 0],
+            box0[:, 1],
+            ":",
+            color="0.2",
+            lw=1.5,
+            label="original outline",
+            path_effects=palette.halo(1.5),  # over the dark mapped picture too
+        )[0]
     )
     samples = np.linspace(0, 1, 60)  # dense, so the polylines follow the picture up to its tear
     # on the picture's 40-pixel tile edges (pixel centres at integers: edges at -0.5 + 40 k)
