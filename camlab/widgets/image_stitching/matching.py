@@ -143,7 +143,7 @@ def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
             lw=1.5,
             ls="--",
             label="RANSAC",
-            path_effects=palette.halo(1.5),
+            path_effects=palette.halo(1.5, "black"),  # yellow on a white halo is 1.07:1
         )
     )
     h, w = imgs[j].shape[:2]
