@@ -419,7 +419,8 @@ def _resectioning_figure(view):
     # The estimate is drawn dashed and unfilled, as its view is in the image: near the truth it lies over the
     # true camera, which must still show through it.
     est_art.frustum.set_linestyle((0, (4, 2)))
-    est_art.plane.set_facecolor("none")
+    # a transparent colour, not "none": matplotlib 3.9 projects an empty colour array and fails
+    est_art.plane.set_facecolor((1.0, 1.0, 1.0, 0.0))
     pts3d = scene3d.draw_points(sv.ax3d, X, color="k", ms=3)
     # the moved correspondence(s), ringed in both panels: after the fit every residual grows, so
     # without a mark the mismatch is hard to find
