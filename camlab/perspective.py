@@ -44,10 +44,14 @@ __all__ = [
     "Rectified",
     "check_quadrilateral",
     "estimate_aspect_ratio",
+    "MetricRectification",
+    "dual_conic_from_orthogonal_lines",
     "find_document",
+    "metric_rectification",
     "order_corners",
     "rectangle_homography",
     "rectify_quadrilateral",
+    "square_grid_right_angles",
 ]
 
 
@@ -497,3 +501,245 @@ def find_document(image: ArrayLike, min_area_fraction: float = 0.1) -> np.ndarra
 
 
 # --------------------------------------------------------------------------- synthetic photos
+
+
+# --------------------------------------------------------------------------- metric rectification from right angles
+
+
+class MetricRectification(NamedTuple):
+    r"""The image of :math:`C^*_\infty` found from right angles, and the homography it gives.
+
+    Attributes
+    ----------
+    C_star : (3, 3) ndarray
+        The image of the dual conic :math:`C^*_\infty`, symmetric, rank 2, positive
+        semi-definite, scaled to unit Frobenius norm.
+    H : (3, 3) ndarray
+        ``metric_from_image``: maps the photo to a view of the plane that is right up to a
+        similarity (rotation, uniform scale, translation); :math:`H C^* H^T \propto
+        \operatorname{diag}(1, 1, 0)`. Its sign keeps the photo's handedness (no mirror).
+    residual : float
+        The largest :math:`|\cos\theta|` left between a rectified pair (0 for exact right angles).
+    """
+
+    C_star: np.ndarray
+    H: np.ndarray
+    residual: float
+
+
+def _line_rows(lines: ArrayLike, name: str) -> np.ndarray:
+    L = np.asarray(lines, dtype=float)
+    if L.ndim != 2 or L.shape[1] != 3 or not np.isfinite(L).all():
+        raise CamlabInputError(
+            f"{name}: expected (N, 3) homogeneous lines (a, b, c) of au + bv + c = 0, one per row, "
+            f"got shape {L.shape}; join two points with camlab.projective.join"
+        )
+    if (np.linalg.norm(L[:, :2], axis=1) == 0).any():
+        raise CamlabInputError(
+            f"{name}: a line (0, 0, c) is the line at infinity, which has no direction to be orthogonal to"
+        )
+    return L
+
+
+def dual_conic_from_orthogonal_lines(lines_l: ArrayLike, lines_m: ArrayLike) -> np.ndarray:
+    r"""The image of :math:`C^*_\infty` from N >= 5 pairs of lines orthogonal on the plane: :math:`l_i'^T C^{*\prime} m_i' = 0`.
+
+    Each pair gives one linear equation in the six entries of the symmetric :math:`C^{*\prime}`
+    (the cross terms appear as :math:`\tfrac12 (l_1 m_2 + l_2 m_1)` because :math:`b/2` sits in two
+    places); the stacked rows' null vector is the answer, found on Hartley-conditioned lines and
+    moved back. The full derivation is in :func:`metric_rectification`.
+
+    Parameters
+    ----------
+    lines_l, lines_m : (N, 3) array_like
+        Image lines (a, b, c) of au + bv + c = 0, pixels, N >= 5; ``lines_l[i]`` is orthogonal to
+        ``lines_m[i]`` on the plane.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        :math:`C^{*\prime}`, symmetric, with a positive trace, unit Frobenius norm (not yet forced to rank 2).
+
+    Raises
+    ------
+    DegenerateError
+        If the pairs fix fewer than 5 degrees of freedom.
+    """
+    L = _line_rows(lines_l, "lines_l")
+    M = _line_rows(lines_m, "lines_m")
+    if L.shape != M.shape or len(L) < 5:
+        raise CamlabInputError(
+            f"lines_l, lines_m: expected two (N, 3) arrays of the same N >= 5 (one orthogonal pair per "
+            f"row; C* has 5 degrees of freedom), got {L.shape} and {M.shape}"
+        )
+    # condition: a similarity T on the points, lines move by T^{-T}
+    feet = np.concatenate(
+        [-(X[:, 2] / (X[:, 0] ** 2 + X[:, 1] ** 2))[:, None] * X[:, :2] for X in (L, M)]
+    )
+    centre = feet.mean(axis=0)
+    scale = np.sqrt(2) / max(np.linalg.norm(feet - centre, axis=1).mean(), 1e-12)
+    T = np.array([[scale, 0, -scale * centre[0]], [0, scale, -scale * centre[1]], [0, 0, 1]])
+    Ln, Mn = L @ np.linalg.inv(T), M @ np.linalg.inv(T)  # rows: (T^{-T} l)^T = l^T T^{-1}
+    Ln /= np.linalg.norm(Ln, axis=1, keepdims=True)
+    Mn /= np.linalg.norm(Mn, axis=1, keepdims=True)
+    (l1, l2, l3), (m1, m2, m3) = Ln.T, Mn.T
+    A = np.stack(
+        [
+            l1 * m1,
+            (l1 * m2 + l2 * m1) / 2,
+            l2 * m2,
+            (l1 * m3 + l3 * m1) / 2,
+            (l2 * m3 + l3 * m2) / 2,
+            l3 * m3,
+        ],
+        axis=1,
+    )
+    _, s, Vt = np.linalg.svd(A)
+    if s[4] < 1e-8 * s[0]:
+        raise DegenerateError(
+            "lines_l, lines_m: the pairs fix fewer than 5 of C*'s degrees of freedom (they point in too "
+            "few directions: a rectangle's edges are one constraint however many); add pairs in another "
+            "direction, e.g. a square's diagonals"
+        )
+    a, b, c, d, e, f = Vt[-1]
+    Cn = np.array([[a, b / 2, d / 2], [b / 2, c, e / 2], [d / 2, e / 2, f]])
+    Tinv = np.linalg.inv(T)
+    C_star = Tinv @ Cn @ Tinv.T
+    C_star = (C_star + C_star.T) / 2
+    if np.trace(C_star) < 0:
+        C_star = -C_star
+    return C_star / np.linalg.norm(C_star)
+
+
+def metric_rectification(lines_l: ArrayLike, lines_m: ArrayLike) -> MetricRectification:
+    r"""Rectify a plane up to a similarity from N >= 5 pairs of lines that are orthogonal on it.
+
+    Derivation (Hartley & Zisserman, 2nd ed., §2.7.4-2.7.5, example 2.27). On the plane, the angle
+    between lines l and m satisfies :math:`\cos\theta \propto l^T C^*_\infty m` with
+    :math:`C^*_\infty = \operatorname{diag}(1, 1, 0)` (:data:`camlab.projective.DUAL_CONIC_AT_INFINITY`),
+    so orthogonal lines obey :math:`l^T C^*_\infty m = 0`. A photo ``x' = G x`` moves lines by
+    :math:`l' = G^{-T} l` and the dual conic by :math:`C^{*\prime} = G C^*_\infty G^T`
+    (:func:`camlab.projective.map_dual_conic`), and the product survives:
+    :math:`l'^T C^{*\prime} m' = l^T G^{-1} G C^*_\infty G^T G^{-T} m = l^T C^*_\infty m = 0`.
+    With :math:`C^{*\prime} = \begin{pmatrix} a & b/2 & d/2 \\ b/2 & c & e/2 \\ d/2 & e/2 & f \end{pmatrix}`
+    each imaged pair gives one linear equation in :math:`(a, b, c, d, e, f)`:
+
+    .. math::
+        l_1 m_1\, a + \tfrac12 (l_1 m_2 + l_2 m_1)\, b + l_2 m_2\, c
+        + \tfrac12 (l_1 m_3 + l_3 m_1)\, d + \tfrac12 (l_2 m_3 + l_3 m_2)\, e + l_3 m_3\, f = 0 .
+
+    Five independent pairs fix the 5 degrees of freedom; with more, the null vector of the stacked
+    rows (the last right singular vector) is the least-squares answer. The lines are first
+    conditioned (Hartley): a similarity T moves their feet (the points nearest the origin) to mean
+    distance :math:`\sqrt 2` about 0, lines become :math:`T^{-T} l`, and the dual conic found there,
+    :math:`C^*_n`, is moved back by :math:`C^{*\prime} = T^{-1} C^*_n T^{-T}`.
+
+    :math:`C^{*\prime}` is symmetric, positive semi-definite and of rank 2 (for exact data), so its
+    eigen-decomposition (here equal to its SVD) is :math:`C^{*\prime} = U \operatorname{diag}(s_1, s_2, 0) U^T`,
+    and :math:`G_0 = U \operatorname{diag}(\sqrt{s_1}, \sqrt{s_2}, 1)` satisfies
+    :math:`G_0 C^*_\infty G_0^T = C^{*\prime}`: it is the photo up to a similarity, and its inverse
+    :math:`H = \operatorname{diag}(1/\sqrt{s_1}, 1/\sqrt{s_2}, 1)\, U^T` rectifies. Two pairs of
+    parallel right angles (a rectangle's edges) are only *one* constraint on an affinity: the pairs
+    must point in at least two different directions (a square's edges and its diagonals).
+
+    Parameters
+    ----------
+    lines_l, lines_m : (N, 3) array_like
+        Image lines (a, b, c), pixels, N >= 5; ``lines_l[i]`` is orthogonal to ``lines_m[i]`` on the plane.
+
+    Returns
+    -------
+    MetricRectification
+        ``C_star``, ``H`` (metric_from_image) and the largest ``|cos|`` left.
+
+    Raises
+    ------
+    DegenerateError
+        If the pairs do not fix :math:`C^{*\prime}` (fewer than 5 independent, e.g. every pair in
+        the same two directions), or the estimate is not a real rank-2 conic (inconsistent pairs).
+
+    References
+    ----------
+    Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., §2.7.5, examples 2.26 and 2.27;
+    Liebowitz & Zisserman, "Metric rectification for perspective images of planes", CVPR 1998.
+    """
+    C_star = dual_conic_from_orthogonal_lines(lines_l, lines_m)
+    vals, U = np.linalg.eigh(C_star)
+    vals, U = vals[::-1], U[:, ::-1]  # s1 >= s2 >= s3
+    if vals[1] <= 1e-9 * vals[0]:
+        raise DegenerateError(
+            "lines_l, lines_m: the estimated C*' has fewer than two positive eigenvalues, so it is no image "
+            "of the circular points; the pairs are inconsistent (not orthogonal on one plane) or too noisy"
+        )
+    C_star = U[:, :2] @ np.diag(vals[:2]) @ U[:, :2].T  # the nearest rank-2 conic
+    C_star /= np.linalg.norm(C_star)
+    H = np.diag([1 / np.sqrt(vals[0]), 1 / np.sqrt(vals[1]), 1.0]) @ U.T
+    L, M = np.asarray(lines_l, dtype=float), np.asarray(lines_m, dtype=float)
+    feet = np.concatenate(
+        [-(X[:, 2] / (X[:, 0] ** 2 + X[:, 1] ** 2))[:, None] * X[:, :2] for X in (L, M)]
+    )
+    if H[2] @ np.append(feet.mean(axis=0), 1.0) < 0:  # the lines' points in front: w > 0
+        H = -H
+    if np.linalg.det(H) < 0:  # keep the photo's handedness: no mirror image
+        H[1] = -H[1]
+    lr, mr = L @ np.linalg.inv(H), M @ np.linalg.inv(H)  # rectified lines H^{-T} l, as rows
+    cos = np.abs((lr[:, :2] * mr[:, :2]).sum(1)) / (
+        np.linalg.norm(lr[:, :2], axis=1) * np.linalg.norm(mr[:, :2], axis=1)
+    )
+    return MetricRectification(C_star=C_star, H=H, residual=float(cos.max()))
+
+
+def square_grid_right_angles(grid: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    r"""Pairs of lines that are orthogonal on a grid of squares (a chessboard), from its image corners.
+
+    A grid of squares has right angles in two directions: its rows meet its columns, and the two
+    diagonals of any square block cross at 90°. Rows against columns alone are one constraint on
+    :math:`C^{*\prime}` however many (they all share two vanishing points); the diagonals add the
+    second direction. Each line is fitted through all its corners (total least squares), so a
+    pixel of noise on one corner moves it little.
+
+    Parameters
+    ----------
+    grid : (rows, cols, 2) array_like
+        Image corners (u, v), pixels, of a grid of squares, row by row, rows >= 2 and cols >= 2
+        (rows, cols >= 3 when they are equal).
+
+    Returns
+    -------
+    lines_l, lines_m : (6, 3) ndarray
+        The first and last rows against the first and last columns (4 pairs), then the two
+        diagonals of the largest square block at each end of the grid (2 pairs; for a square grid,
+        of the two overlapping blocks one square smaller).
+    """
+    g = np.asarray(grid, dtype=float)
+    if g.ndim != 3 or g.shape[2] != 2 or min(g.shape[:2]) < 2 or not np.isfinite(g).all():
+        raise CamlabInputError(
+            f"grid: expected (rows, cols, 2) corners with rows, cols >= 2 (e.g. cv2.findChessboardCorners' "
+            f"output reshaped to (rows, cols, 2)), got shape {g.shape}"
+        )
+
+    def fit(p: np.ndarray) -> np.ndarray:
+        """The line through points p in total least squares: normal = the smallest singular direction."""
+        c = p.mean(axis=0)
+        n = np.linalg.svd(p - c)[2][1]
+        return np.array([n[0], n[1], -n @ c])
+
+    rows, cols = g.shape[:2]
+    k = min(rows, cols)  # the largest square block is (k - 1) x (k - 1) squares
+    blocks = [(0, 0), (rows - k, cols - k)]
+    if rows == cols:  # one block only: take two overlapping smaller ones
+        k, blocks = k - 1, [(0, 0), (1, 1)]
+    if k < 2:
+        raise CamlabInputError(
+            f"grid: a square grid needs rows, cols >= 3 for two diagonal pairs, got shape {g.shape}"
+        )
+    L, M = [], []
+    for r in (0, rows - 1):
+        for c in (0, cols - 1):
+            L.append(fit(g[r]))
+            M.append(fit(g[:, c]))
+    for r0, c0 in blocks:
+        steps = np.arange(k)
+        L.append(fit(g[r0 + steps, c0 + steps]))
+        M.append(fit(g[r0 + k - 1 - steps, c0 + steps]))
+    return np.array(L), np.array(M)

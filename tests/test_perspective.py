@@ -141,3 +141,91 @@ def test_find_document_reports_when_none():
     cv2.circle(disc, (160, 120), 100, (250, 250, 250), -1)
     with pytest.raises(pp.DocumentNotFoundError, match="vertices"):
         pp.find_document(disc + rng.integers(0, 3, disc.shape, dtype=np.uint8))
+
+
+# --------------------------------------------------------------------------- metric rectification from right angles
+
+
+def _similarity_part(M):
+    """M / M[2, 2] if it is a similarity (no projective row, A A^T = s^2 I), else None."""
+    M = M / M[2, 2]
+    A = M[:2, :2]
+    s2 = np.trace(A @ A.T) / 2
+    if np.allclose(M[2, :2], 0, atol=1e-9 * abs(M).max()) and np.allclose(
+        A @ A.T, s2 * np.eye(2), rtol=0, atol=1e-7 * s2
+    ):
+        return M
+    return None
+
+
+@pytest.fixture(scope="module")
+def synthetic_grid():
+    """A 6 x 9 grid of 30 mm squares photographed obliquely by a known plane homography G."""
+    G = np.array([[9.0, 2.5, 180.0], [-1.2, 7.5, 90.0], [0.012, 0.009, 1.0]])
+    plane = np.stack(np.meshgrid(np.arange(9.0), np.arange(6.0)), axis=-1) * 30.0  # (6, 9, 2) mm
+    return G, map_points(G, plane.reshape(-1, 2)).reshape(6, 9, 2)
+
+
+def test_metric_rectification_recovers_the_plane_up_to_a_similarity(synthetic_grid):
+    G, grid = synthetic_grid
+    L, M = pp.square_grid_right_angles(grid)
+    r = pp.metric_rectification(L, M)
+    S = _similarity_part(r.H @ G)  # rectified <- plane
+    assert S is not None, (r.H @ G) / (r.H @ G)[2, 2]
+    assert np.linalg.det(S[:2, :2]) > 0  # not mirrored
+    assert r.residual < 1e-9
+    # the dual conic is the image of C*inf = diag(1, 1, 0), up to scale
+    want = G @ np.diag([1.0, 1.0, 0.0]) @ G.T
+    assert np.allclose(r.C_star, want / np.linalg.norm(want), atol=1e-9)
+    assert np.allclose(pp.dual_conic_from_orthogonal_lines(L, M), r.C_star, atol=1e-9)
+    # it agrees with camlab.projective.map_dual_conic and with the circular points
+    from camlab.projective import DUAL_CONIC_AT_INFINITY, map_dual_conic
+
+    C = map_dual_conic(r.H, r.C_star)
+    assert np.allclose(C / C[0, 0], DUAL_CONIC_AT_INFINITY, atol=1e-9)
+
+
+def test_metric_rectification_with_noise_stays_close(synthetic_grid):
+    G, grid = synthetic_grid
+    rng = np.random.default_rng(3)
+    L, M = pp.square_grid_right_angles(grid + rng.normal(0, 0.3, grid.shape))
+    S = pp.metric_rectification(L, M).H @ G
+    S = S / S[2, 2]
+    A = S[:2, :2] / np.sqrt(abs(np.linalg.det(S[:2, :2])))
+    assert np.abs(A @ A.T - np.eye(2)).max() < 0.02
+    assert np.abs(S[2, :2]).max() < 1e-4
+
+
+def test_metric_rectification_rejects_one_direction_and_bad_input(synthetic_grid):
+    G, grid = synthetic_grid
+    L, M = pp.square_grid_right_angles(grid)
+    with pytest.raises(DegenerateError, match="too few directions"):
+        pp.metric_rectification(
+            np.r_[L[:4], L[:4]], np.r_[M[:4], M[[1, 0, 3, 2]]]
+        )  # rows vs columns only
+    with pytest.raises(CamlabInputError, match=r"N >= 5"):
+        pp.metric_rectification(L[:4], M[:4])
+    with pytest.raises(CamlabInputError, match=r"lines_m: expected \(N, 3\)"):
+        pp.metric_rectification(L, M[:, :2])
+    with pytest.raises(CamlabInputError, match="grid: expected"):
+        pp.square_grid_right_angles(grid.reshape(-1, 2))
+    assert np.array_equal(L, pp.square_grid_right_angles(grid)[0])  # input untouched, deterministic
+
+
+def test_metric_rectification_of_a_real_chessboard_photo():
+    """OpenCV's left02 (Apache-2.0): the rectified corners fit a square grid to 4% of a square."""
+    from camlab.data import load_photo
+
+    image = load_photo("calib_left02", gray=True)
+    found, corners = cv2.findChessboardCorners(image, (9, 6))
+    assert found
+    corners = cv2.cornerSubPix(image, corners, (5, 5), (-1, -1), (3, 30, 0.01)).reshape(6, 9, 2)
+    r = pp.metric_rectification(*pp.square_grid_right_angles(corners))
+    q = map_points(r.H, corners.reshape(-1, 2))
+    board = np.stack(np.meshgrid(np.arange(9.0), np.arange(6.0)), axis=-1).reshape(-1, 2)
+    # the best similarity board -> rectified, as complex numbers: q = a z + b
+    z, w = board @ [1, 1j], q @ [1, 1j]
+    (a, b), *_ = np.linalg.lstsq(np.c_[z, np.ones_like(z)], w, rcond=None)
+    rms = np.sqrt(np.mean(np.abs(a * z + b - w) ** 2)) / abs(a)
+    assert rms < 0.04  # lens distortion (uncorrected) is most of it
+    assert r.residual < 0.01

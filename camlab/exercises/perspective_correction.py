@@ -196,3 +196,156 @@ register_exercise(
         teaching=order_corners,
     )
 )
+
+
+def _grid_photo(G) -> np.ndarray:
+    """The image corners of a 6 x 9 grid of unit squares seen through the plane homography G."""
+    plane = np.stack(np.meshgrid(np.arange(9.0), np.arange(6.0)), axis=-1).reshape(-1, 2)
+    return map_points(np.asarray(G, dtype=float), plane).reshape(6, 9, 2)
+
+
+def _conic_cases():
+    Gs = [
+        [[40.0, 8.0, 150.0], [-5.0, 32.0, 90.0], [0.03, 0.02, 1.0]],
+        [[30.0, -12.0, 300.0], [10.0, 35.0, 60.0], [-0.02, 0.045, 1.0]],
+        [
+            [25.0, 0.0, 200.0],
+            [0.0, 25.0, 100.0],
+            [0.0, 0.06, 1.0],
+        ],  # tilt only, like a keystone photo
+    ]
+    return [pp.square_grid_right_angles(_grid_photo(G)) for G in Gs]
+
+
+def _conic_diagnosis(args, got, expected) -> str:
+    g = np.asarray(got, dtype=float) if np.size(got) else np.asarray(got)
+    if g.shape == (6,):
+        return (
+            "you returned the null vector (a, b, c, d, e, f); arrange it as the symmetric 3 x 3 matrix "
+            "[[a, b/2, d/2], [b/2, c, e/2], [d/2, e/2, f]]."
+        )
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem
+    if not np.allclose(g, g.T, rtol=1e-6, atol=1e-9 * np.abs(g).max()):
+        return (
+            "your matrix is not symmetric: a dual conic is; put b/2 at [0, 1] and [1, 0], d/2 at [0, 2] "
+            "and [2, 0], e/2 at [1, 2] and [2, 1]."
+        )
+    lines_l, lines_m = args
+    off = np.ones((3, 3)) - np.eye(3)
+    halved = g * (1 - off / 2)  # a full b where b/2 belongs: halve the off-diagonal entries
+    if same_up_to_scale(halved, expected, rtol=1e-5):
+        return (
+            "the off-diagonal entries are twice too big: the row's cross terms (l1 m2 + l2 m1) multiply b, "
+            "and the matrix holds b/2 (as in a conic's matrix); either halve the cross terms in each row or "
+            "put b/2, d/2, e/2 into the matrix."
+        )
+    r = np.abs(np.einsum("ni,ij,nj->n", np.asarray(lines_l), g, np.asarray(lines_m)))
+    scale = np.linalg.norm(g) * np.linalg.norm(lines_l, axis=1) * np.linalg.norm(lines_m, axis=1)
+    if np.max(r / scale) > 1e-6:
+        return (
+            f"your matrix does not make the pairs orthogonal: |l_i^T C m_i| reaches {np.max(r / scale):.2g} "
+            "(relative); the answer is the null vector of the stacked rows, the LAST row of Vt from "
+            "np.linalg.svd (the smallest singular value), not the first."
+        )
+    return (
+        "every pair satisfies l^T C m = 0 but the matrix is not the one wanted: use all the pairs (at "
+        "least 5 independent ones) and one equation per pair."
+    )
+
+
+def dual_conic_from_orthogonal_lines(lines_l, lines_m):
+    """Each orthogonal pair gives l^T C* m = 0, one linear equation in (a, b, c, d, e, f); take the null vector.
+
+    Parameters
+    ----------
+    lines_l, lines_m : (N, 3) array_like
+        Image lines (a, b, c), N >= 5; ``lines_l[i]`` is orthogonal to ``lines_m[i]`` on the plane.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The image of the dual conic C*inf, symmetric, up to scale.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 2.7.5, example 2.27.
+    """
+    (l1, l2, l3), (m1, m2, m3) = np.asarray(lines_l, float).T, np.asarray(lines_m, float).T
+    rows = np.stack(
+        [
+            l1 * m1,
+            (l1 * m2 + l2 * m1) / 2,
+            l2 * m2,
+            (l1 * m3 + l3 * m1) / 2,
+            (l2 * m3 + l3 * m2) / 2,
+            l3 * m3,
+        ],
+        axis=1,
+    )
+    a, b, c, d, e, f = np.linalg.svd(rows)[2][-1]  # the null vector: the last row of Vt
+    return np.array([[a, b / 2, d / 2], [b / 2, c, e / 2], [d / 2, e / 2, f]])
+
+
+def _full_cross_terms(lines_l, lines_m):
+    """A typical slip: b, d, e (not b/2, d/2, e/2) off the diagonal."""
+    C = pp.dual_conic_from_orthogonal_lines(lines_l, lines_m)
+    return C * (1 + (np.ones((3, 3)) - np.eye(3)))
+
+
+def _first_singular_vector(lines_l, lines_m):
+    """A typical slip: the first row of Vt (the largest singular value) instead of the last."""
+    (l1, l2, l3), (m1, m2, m3) = np.asarray(lines_l, float).T, np.asarray(lines_m, float).T
+    rows = np.stack(
+        [
+            l1 * m1,
+            (l1 * m2 + l2 * m1) / 2,
+            l2 * m2,
+            (l1 * m3 + l3 * m1) / 2,
+            (l2 * m3 + l3 * m2) / 2,
+            l3 * m3,
+        ],
+        1,
+    )
+    a, b, c, d, e, f = np.linalg.svd(rows)[2][0]
+    return np.array([[a, b / 2, d / 2], [b / 2, c, e / 2], [d / 2, e / 2, f]])
+
+
+def _upper_triangle_only(lines_l, lines_m):
+    """A typical slip: the coefficients written into the upper triangle only."""
+    return np.triu(_full_cross_terms(lines_l, lines_m))
+
+
+register_exercise(
+    Exercise(
+        name="dual_conic_from_orthogonal_lines",
+        lesson="10",
+        reference=pp.dual_conic_from_orthogonal_lines,
+        cases=_conic_cases,
+        compare=lambda got, expected: same_up_to_scale(got, expected, rtol=1e-5),
+        diagnose=_conic_diagnosis,
+        wrong_variants=(
+            (_full_cross_terms, "twice too big"),
+            (_first_singular_vector, "LAST row of Vt"),
+            (_upper_triangle_only, "not symmetric"),
+            (
+                lambda L, M: np.linalg.svd(
+                    np.stack(
+                        [
+                            L[:, 0] * M[:, 0],
+                            (L[:, 0] * M[:, 1] + L[:, 1] * M[:, 0]) / 2,
+                            L[:, 1] * M[:, 1],
+                            (L[:, 0] * M[:, 2] + L[:, 2] * M[:, 0]) / 2,
+                            (L[:, 1] * M[:, 2] + L[:, 2] * M[:, 1]) / 2,
+                            L[:, 2] * M[:, 2],
+                        ],
+                        1,
+                    )
+                )[2][-1],
+                "null vector (a, b, c, d, e, f)",
+            ),
+        ),
+        teaching=dual_conic_from_orthogonal_lines,
+    )
+)

@@ -310,6 +310,20 @@ def document_scanner() -> Demo:
         dict(ls="-", color=palette.GREEN, lw=2, path_effects=palette.halo(2)),
     )
     readout = W.HTML()
+    # why no page was found, on the figure itself (a static picture has no readout)
+    why = view.animate(
+        ax_r.text(
+            0.5,
+            0.5,
+            "",
+            transform=ax_r.transAxes,
+            ha="center",
+            va="center",
+            fontsize=9,
+            wrap=True,
+            color=palette.RED,
+        )
+    )
 
     def update(v: dict, state: dict) -> None:
         photo = scenes.sample_photo("page", yaw=v["yaw"], pitch=v["pitch"])
@@ -322,7 +336,9 @@ def document_scanner() -> Demo:
             im_r.set_data(np.full((_SHOW, _SHOW, 3), 255, np.uint8))
             state.update(found=False, corner_error=None, message=str(exc))
             readout.value = monospace("no page found:\n" + str(exc).replace("; ", ";\n"))
+            why.set_text("no page found:\n" + str(exc).replace("; ", ";\n"))
             return
+        why.set_text("")
         closed = np.vstack([corners, corners[:1]])
         found.set_data(closed[:, 0], closed[:, 1])
         est = pp.estimate_aspect_ratio(corners, image.shape)
@@ -364,7 +380,7 @@ def keystone_correction() -> Demo:
         px and ``focal_source``).
     """
     view, ax_p, ax_r, im_p, im_r, quad = _photo_demo(
-        "photo (camera tilted up)",
+        "photo from the street",
         "keystone-corrected",
         dict(ls="--", color=palette.YELLOW, lw=1.5),
     )
@@ -381,9 +397,15 @@ def keystone_correction() -> Demo:
         ax_r.plot([], [], ":", color=palette.GREEN, lw=1.5, path_effects=palette.halo(1.5))[0]
     )
     readout = W.HTML()
+    view.animate(ax_p.title)  # says whether the camera is tilted
 
     def update(v: dict, state: dict) -> None:
         photo = scenes.sample_photo("facade", pitch=v["tilt"], yaw=v["yaw"])
+        ax_p.set_title(
+            "photo, camera tilted up" if v["tilt"] < 0 else "photo, camera level (no tilt)",
+            fontsize=10,
+            pad=3,
+        )
         _set_photo(im_p, photo.image)
         c = photo.corners
         closed = np.vstack([c, c[:1]])
