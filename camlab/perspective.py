@@ -564,6 +564,11 @@ def dual_conic_from_orthogonal_lines(lines_l: ArrayLike, lines_m: ArrayLike) -> 
     ------
     DegenerateError
         If the pairs fix fewer than 5 degrees of freedom.
+
+    References
+    ----------
+    Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., §2.7.5 (example 2.27).
+    R. Hartley, "In defense of the eight-point algorithm", IEEE PAMI 19(6), 1997 (the conditioning).
     """
     L = _line_rows(lines_l, "lines_l")
     M = _line_rows(lines_m, "lines_m")
