@@ -36,8 +36,11 @@ __all__ = [
 
 
 class Decomposition(NamedTuple):
-    """The factors of :math:`P = \\lambda K [R \\mid t]`: K (K[2, 2] = 1, positive focal lengths),
-    R (det +1), t (cam_from_world) and the camera centre C = -R^T t."""
+    r"""The factors of :math:`P = \lambda K [R \mid t]`.
+
+    K (K[2, 2] = 1, positive focal lengths), R (det +1), t (cam_from_world) and the camera centre C
+    = -R^T t.
+    """
 
     K: np.ndarray
     R: np.ndarray
