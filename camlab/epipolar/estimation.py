@@ -1,5 +1,7 @@
-r"""Estimating F from matches: the normalised 8-point algorithm (H&Z algorithm 11.1), the Sampson
-distance, and RANSAC over it (:func:`camlab.robust.ransac` with :class:`FundamentalModel`).
+r"""Estimating F from matches.
+
+The normalised 8-point algorithm (H&Z algorithm 11.1), the Sampson distance, and RANSAC over it
+(:func:`camlab.robust.ransac` with :class:`FundamentalModel`).
 
 Part of :mod:`camlab.epipolar` (every name here is importable from there).
 """
