@@ -1,5 +1,8 @@
-"""The DLT built in its right and wrong forms: the normalisers (Hartley's and the RMS one), the two rows per
-point of u x P X = 0, and the half-normalised or wrongly undone fits students write."""
+"""The DLT built in its right and wrong forms.
+
+The normalisers (Hartley's and the RMS one), the two rows per point of u x P X = 0, and the
+half-normalised or wrongly undone fits students write.
+"""
 
 from __future__ import annotations
 
@@ -105,8 +108,11 @@ def dlt_half(
     interleave=False,
     order="C",
 ):
-    """Normalised DLT variants, right and wrong: which sides are normalised and undone, the sign in A, Vt's row or
-    column, A's rows stacked (u rows, then v rows) or interleaved per point, the null vector read row by row or not."""
+    """Normalised DLT variants, right and wrong.
+
+    Which sides are normalised and undone, the sign in A, Vt's row or column, A's rows stacked (u
+    rows, then v rows) or interleaved per point, the null vector read row by row or not.
+    """
     X, uv = np.asarray(X, dtype=float), np.asarray(uv, dtype=float)
     U, T = normalisers(X, uv)
     U, T = (U if world else np.eye(4)), (T if pixels else np.eye(3))
