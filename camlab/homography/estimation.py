@@ -251,7 +251,8 @@ def _sq_transfer_batch(H: np.ndarray, p: np.ndarray, q: np.ndarray) -> np.ndarra
 def _sym_err_batch(H: np.ndarray, Hinv: np.ndarray, s: np.ndarray, d: np.ndarray) -> np.ndarray:
     """(B, N) symmetric transfer RMS errors for B homographies; inf where a point maps to infinity.
 
-    ``s`` and ``d`` are homogeneous columns (3, N) (:func:`_columns`)."""
+    ``s`` and ``d`` are homogeneous columns (3, N) (:func:`_columns`).
+    """
     with np.errstate(invalid="ignore", over="ignore"):
         e = np.sqrt(0.5 * (_sq_transfer_batch(H, s, d) + _sq_transfer_batch(Hinv, d, s)))
     return np.where(np.isfinite(e), e, np.inf)

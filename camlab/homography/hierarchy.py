@@ -1,6 +1,7 @@
-r"""The hierarchy of plane transformations (H&Z table 2.1): Euclidean, similarity, affine and
-projective homographies, which group a matrix belongs to, and the decomposition
-:math:`H = H_S H_A H_P` (H&Z section 2.4.6).
+r"""The hierarchy of plane transformations (H&Z table 2.1).
+
+Euclidean, similarity, affine and projective homographies, which group a matrix belongs to, and the
+decomposition :math:`H = H_S H_A H_P` (H&Z section 2.4.6).
 
 Part of :mod:`camlab.homography` (every name here is importable from there).
 """
