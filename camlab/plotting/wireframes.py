@@ -1,5 +1,7 @@
-"""Wireframes drawn fast (lessons 04, 05, 11): (M, 2, d) segments as one polyline with NaN breaks,
-in a 3-D axes or an image panel, world points and world axes, and segments clipped to the image.
+"""Wireframes drawn fast (lessons 04, 05, 11).
+
+(M, 2, d) segments as one polyline with NaN breaks, in a 3-D axes or an image panel, world points
+and world axes, and segments clipped to the image.
 
 Helpers of :mod:`camlab.plotting.scene3d`, which re-exports them.
 """
