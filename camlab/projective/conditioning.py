@@ -1,5 +1,7 @@
-r"""Hartley's conditioning: the similarity that centres points and scales them to unit size
-before a direct linear transform (DLT), so that the DLT's matrix is well conditioned.
+r"""Hartley's conditioning.
+
+The similarity that centres points and scales them to unit size before a direct linear transform
+(DLT), so that the DLT's matrix is well conditioned.
 
 Used by camlab's DLT estimators (homographies, fundamental matrices, projection matrices)
 and by :func:`camlab.projective.vanishing_point`.

@@ -1,5 +1,6 @@
-r"""Conics and dual conics of the projective plane, how a homography moves them, and the
-circular points with their dual conic :math:`C^*_\infty`.
+r"""Conics and dual conics of the projective plane.
+
+How a homography moves them, and the circular points with their dual conic :math:`C^*_\infty`.
 
 A **conic** is the curve :math:`a x^2 + b x y + c y^2 + d x + e y + f = 0`. In homogeneous
 coordinates (multiply through by :math:`w^2`) it is a quadratic form, :math:`x^T C x = 0`, with
