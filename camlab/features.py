@@ -241,8 +241,10 @@ def _check_features(f, name: str) -> Features:
 
 
 class FlannIndex(NamedTuple):
-    """A FLANN search structure over one image's SIFT descriptors (:func:`flann_index`); it
-    keeps the descriptors it indexes alive."""
+    """A FLANN search structure over one image's SIFT descriptors (:func:`flann_index`).
+
+    It keeps the descriptors it indexes alive.
+    """
 
     index: object
     descriptors: np.ndarray
