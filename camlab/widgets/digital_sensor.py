@@ -252,8 +252,11 @@ def _noise_controls() -> dict:
 
 
 def _noise_figure(view: FigureView) -> SimpleNamespace:
-    """The figure of :func:`bit_depth_and_noise`: the rendered photo (linear light, shown through
-    sRGB) and the profile of one row against the truth; returns the clean photo and the artists."""
+    """The figure of :func:`bit_depth_and_noise`.
+
+    The rendered photo (linear light, shown through sRGB) and the profile of one row against the
+    truth; returns the clean photo and the artists.
+    """
     ax_img, ax_p = view.fig.subplots(1, 2)
     K = np.array([[330.0, 0, 159.5], [0, 330.0, 119.5], [0, 0, 1]])
     # linear light, as a sensor counts it (the photo's JPEG values decoded), shown through sRGB
@@ -372,8 +375,11 @@ ZOOM_V = 100  # the default zoom: the flag's stripes, the spectacles' lower rim 
 
 
 def _demosaic_controls() -> dict:
-    """The controls of :func:`demosaicing`: the sensor's pattern, the pattern assumed, the method
-    and the zoom (where, and whether it shows the image or its error)."""
+    """The controls of :func:`demosaicing`.
+
+    The sensor's pattern, the pattern assumed, the method and the zoom (where, and whether it shows
+    the image or its error).
+    """
     patterns = ["RGGB", "BGGR", "GRBG", "GBRG"]
     return {
         "pattern": W.Dropdown(options=patterns, value="RGGB", description="sensor's pattern"),
@@ -395,8 +401,11 @@ def _demosaic_controls() -> dict:
 
 
 def _demosaic_figure(view: FigureView) -> SimpleNamespace:
-    """The figure of :func:`demosaicing`: the mosaic's zoom, the demosaiced frame with the zoom's
-    box, and the zoom; returns the true (linear) image and the artists by name."""
+    """The figure of :func:`demosaicing`.
+
+    The mosaic's zoom, the demosaiced frame with the zoom's box, and the zoom; returns the true
+    (linear) image and the artists by name.
+    """
     ax_raw, ax_full, ax_zoom = view.fig.subplots(1, 3, width_ratios=[0.75, 1, 0.75])
     # linear light (the photo's JPEG values decoded), as a sensor records it; every panel is shown through sRGB
     truth = render.render(
