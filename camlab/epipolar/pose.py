@@ -1,9 +1,14 @@
 r"""From E to a pose and 3-D points.
 
-The four poses in E (H&Z result 9.19), the one with the points in front of both cameras, and
-triangulation (H&Z section 12.2).
+The four poses in E ([1]_, result 9.19), the one with the points in front of both cameras, and
+triangulation ([1]_, section 12.2).
 
 Part of :mod:`camlab.epipolar` (every name here is importable from there).
+
+References
+----------
+.. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 9.6 (the essential
+   matrix) and section 12.2 (linear triangulation methods).
 """
 
 from __future__ import annotations
