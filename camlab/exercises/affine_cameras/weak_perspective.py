@@ -1,7 +1,11 @@
 """Lesson 05's first exercise.
 
-The weak-perspective camera P_inf about a reference point X0 (H&Z 6.3.1), every depth replaced by
-the constant d0 of X0.
+The weak-perspective camera P_inf about a reference point X0 ([1]_, section 6.3.1), every depth
+replaced by the constant d0 of X0.
+
+References
+----------
+.. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 6.3.1 (affine cameras).
 """
 
 from __future__ import annotations

@@ -1,7 +1,12 @@
 """The DLT built in its right and wrong forms.
 
-The normalisers (Hartley's and the RMS one), the two rows per point of u x P X = 0, and the
+The normalisers (Hartley's [1]_ and the RMS one), the two rows per point of u x P X = 0, and the
 half-normalised or wrongly undone fits students write.
+
+References
+----------
+.. [1] R. I. Hartley, 1997, "In defense of the eight-point algorithm", *IEEE Transactions on Pattern
+   Analysis and Machine Intelligence* 19(6), 580-593.
 """
 
 from __future__ import annotations
