@@ -1,10 +1,17 @@
 r"""Estimating a homography from point pairs: the normalised DLT, the error measures, RANSAC.
 
-:func:`estimate_homography` solves :math:`x' \times H x = 0` by SVD after Hartley
-normalisation (H&Z algorithm 4.2); :func:`transfer_error`, :func:`symmetric_transfer_error`
+:func:`estimate_homography` solves :math:`x' \times H x = 0` by SVD after Hartley's
+normalisation [1]_ [2]_; :func:`transfer_error`, :func:`symmetric_transfer_error`
 and :func:`sampson_distance` measure a fit; :func:`ransac_homography` finds H among outliers
 (:func:`camlab.robust.ransac` with :class:`HomographyModel`).
 Part of :mod:`camlab.homography` (every name here is importable from there).
+
+References
+----------
+.. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.4 and algorithm 4.2
+   (the normalised DLT).
+.. [2] R. I. Hartley, 1997, "In defense of the eight-point algorithm", *IEEE Transactions on Pattern
+   Analysis and Machine Intelligence* 19(6), 580-593.
 """
 
 from __future__ import annotations

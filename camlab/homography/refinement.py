@@ -1,9 +1,14 @@
 r"""Refining a homography by Levenberg-Marquardt.
 
-On the symmetric transfer error, and the Gold Standard (H&Z algorithm 4.3: the reprojection error
+On the symmetric transfer error, and the Gold Standard ([1]_, algorithm 4.3: the reprojection error
 over H and corrected points).
 
 Part of :mod:`camlab.homography` (every name here is importable from there).
+
+References
+----------
+.. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.5 and algorithm 4.3
+   (the Gold Standard algorithm).
 """
 
 from __future__ import annotations
