@@ -1,7 +1,14 @@
-r"""Calibrated rectification (Fusiello, Trucco & Verri 2000; Bouguet's method in OpenCV).
+r"""Calibrated rectification: Fusiello, Trucco & Verri's algorithm [1]_, Bouguet's in OpenCV [2]_.
 
 Turn both cameras about their centres to a common orientation along the baseline, give them the same
 intrinsics, and warp the images (and points) accordingly.
+
+References
+----------
+.. [1] A. Fusiello, E. Trucco and A. Verri, 2000, "A compact algorithm for rectification of stereo
+   pairs", *Machine Vision and Applications* 12(1), 16-22.
+.. [2] G. Bradski and A. Kaehler, 2008, *Learning OpenCV*, chapter 12 (Bouguet's stereo
+   rectification, ``cv2.stereoRectify``).
 """
 
 from __future__ import annotations
