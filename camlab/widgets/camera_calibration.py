@@ -22,7 +22,7 @@ from ..fixtures.calibration import bundled_calibration
 from ..plotting import palette
 from ..plotting.calibration import image_frame
 from ._base import Demo, FigureView, build_demo, register, slider
-from .controls import monospace
+from .controls import int_slider, monospace
 
 _NAMES = ("fx", "fy", "cx", "cy")
 _SIGMA_LIM = 8.0  # the sigma-unit axis spans +-8
@@ -97,15 +97,7 @@ def _accuracy_readout(n, sigma, res, s, est, std, truth, err, z) -> str:
 def _accuracy_controls() -> dict:
     """The controls of :func:`accuracy_vs_views`: the number of views and the corner noise."""
     return {
-        "n_views": W.IntSlider(
-            value=6,
-            min=3,
-            max=15,
-            description="views",
-            continuous_update=True,
-            style={"description_width": "initial"},
-            layout=W.Layout(width="300px"),
-        ),
+        "n_views": int_slider(6, 3, 15, "views"),
         "noise": slider(0.3, 0.0, 1.0, 0.05, "corner noise σ (px)"),
     }
 
@@ -250,15 +242,7 @@ def _inspector_controls(n_views: int) -> dict:
     The view (0 to ``n_views`` - 1) and the arrows' magnification.
     """
     return {
-        "view": W.IntSlider(
-            value=0,
-            min=0,
-            max=n_views - 1,
-            description="view",
-            continuous_update=True,
-            style={"description_width": "initial"},
-            layout=W.Layout(width="300px"),
-        ),
+        "view": int_slider(0, 0, n_views - 1, "view"),
         "magnify": slider(300.0, 1.0, 1000.0, 1.0, "arrow magnification"),
     }
 

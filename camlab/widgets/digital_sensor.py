@@ -11,7 +11,7 @@ from matplotlib.patches import Rectangle
 from .. import fixtures, render, scenes, sensor
 from ..plotting import images, palette
 from ._base import FigureView, build_demo, register, slider
-from .controls import monospace
+from .controls import int_slider, monospace
 
 SIZE = (320, 240)
 
@@ -106,15 +106,8 @@ def pixel_pitch():
 def _sampling_controls() -> dict:
     """The controls of :func:`sampling_aliasing`: the pixel size, the box filter and the lens blur."""
     return {
-        "factor": W.IntSlider(
-            value=3,  # odd: each point sample is its block's centre, so the fold shows on all four sides
-            min=1,
-            max=8,
-            description="pixel size (fine px)",
-            continuous_update=True,
-            style={"description_width": "initial"},
-            layout=W.Layout(width="300px"),
-        ),
+        # odd: each point sample is its block's centre, so the fold shows on all four sides
+        "factor": int_slider(3, 1, 8, "pixel size (fine px)"),
         "prefilter": W.Checkbox(
             value=False, description="average over the pixel area (box filter)"
         ),
@@ -227,15 +220,7 @@ UNIFORM = slice(100, 140)  # where the profile row crosses the dark uniform
 def _noise_controls() -> dict:
     """The controls of :func:`bit_depth_and_noise`: bit depth, exposure and read noise."""
     return {
-        "bits": W.IntSlider(
-            value=4,
-            min=1,
-            max=12,
-            description="bit depth",
-            continuous_update=True,
-            style={"description_width": "initial"},
-            layout=W.Layout(width="300px"),
-        ),
+        "bits": int_slider(4, 1, 12, "bit depth"),
         "exposure": W.FloatLogSlider(
             value=0.3,
             base=10,
