@@ -1,4 +1,4 @@
-r"""Affine epipolar geometry: do two views of a 3-D scene come from affine cameras?
+r"""Affine epipolar geometry: whether two views of a 3-D scene come from affine cameras.
 
 Two affine cameras (last row :math:`(0, 0, 0, 1)`, lesson 05) have parallel rays, so
 their epipolar lines are parallel in each image and their epipoles are at infinity.
@@ -173,7 +173,7 @@ def _least_sampson_fundamental(F0: np.ndarray, a: np.ndarray, b: np.ndarray) -> 
 
 
 def affine_epipolar_test(x1: ArrayLike, x2: ArrayLike) -> AffineEpipolarTest:
-    r"""Do N >= 9 matches need a general F, or do two affine cameras explain them?
+    r"""Whether N >= 9 matches need a general F, or two affine cameras explain them.
 
     Both models give each match one residual, its geometric error (exact for
     :math:`F_A`, Sampson's first-order value for F). :math:`F_A` has 4 degrees of freedom

@@ -613,8 +613,11 @@ def undistort_pixels(pixels: ArrayLike, K: ArrayLike, dist: ArrayLike | None) ->
 
 
 class DistortionMaps(NamedTuple):
-    """Per-pixel sampling maps for ``cv2.remap``: output pixel (u, v) samples the source at
-    ``(map_u[v, u], map_v[v, u])``. float32, shape (height, width)."""
+    """Per-pixel sampling maps for ``cv2.remap``.
+
+    Output pixel (u, v) samples the source at ``(map_u[v, u], map_v[v, u])``. float32, shape
+    (height, width).
+    """
 
     map_u: np.ndarray
     map_v: np.ndarray

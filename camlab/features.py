@@ -6,7 +6,7 @@ summarises the patch around each one in a vector that barely changes with rotati
 scale and lighting. Two descriptors that are close probably show the same scene point.
 
 * :func:`detect_features` runs SIFT (default: 128 floats from gradient histograms,
-  scale and rotation invariant, Lowe 2004) or ORB (the fast option: 256-bit binary
+  scale and rotation invariant [1]_) or ORB (the fast option: 256-bit binary
   descriptors compared by Hamming distance) through OpenCV and returns a
   :class:`Features` with an (N, 2) array of pixel positions.
 * :func:`knn_match` finds each descriptor's two nearest neighbours in the other image,
@@ -23,6 +23,11 @@ scale and lighting. Two descriptors that are close probably show the same scene 
 
 Pixel convention (docs/conventions.md): (u, v) = (column, row), origin at the centre of
 the top-left pixel (OpenCV's keypoint convention). See lesson 09, section 2.
+
+References
+----------
+.. [1] D. G. Lowe, 2004, "Distinctive image features from scale-invariant keypoints", *International
+   Journal of Computer Vision* 60(2), 91-110 (SIFT and the ratio test, section 7.1).
 """
 
 from __future__ import annotations
@@ -241,8 +246,10 @@ def _check_features(f, name: str) -> Features:
 
 
 class FlannIndex(NamedTuple):
-    """A FLANN search structure over one image's SIFT descriptors (:func:`flann_index`); it
-    keeps the descriptors it indexes alive."""
+    """A FLANN search structure over one image's SIFT descriptors (:func:`flann_index`).
+
+    It keeps the descriptors it indexes alive.
+    """
 
     index: object
     descriptors: np.ndarray

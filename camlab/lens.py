@@ -55,8 +55,11 @@ def _outside_focal_length(z_o: np.ndarray, f: float, name: str) -> None:
 
 
 def _conjugate(focal_length: float, z: ArrayLike, name: str) -> np.ndarray | float:
-    """The other distance of a thin lens: :math:`1/f = 1/z_o + 1/z_i` is symmetric in the two, so
-    either one follows from the other by :math:`f z / (z - f)`."""
+    """The other distance of a thin lens.
+
+    :math:`1/f = 1/z_o + 1/z_i` is symmetric in the two, so either one follows from the other by
+    :math:`f z / (z - f)`.
+    """
     f = check_positive(focal_length, "focal_length", "metres")
     z = _distances(z, name)
     if name == "image_distance" and np.any(z <= f):
@@ -363,6 +366,7 @@ class DepthOfField(NamedTuple):
 
     @property
     def total(self) -> float:
+        """The depth of field, ``far - near`` (metres)."""
         return self.far - self.near
 
 

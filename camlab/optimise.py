@@ -87,9 +87,9 @@ __all__ = [
 
 
 class LMResult(NamedTuple):
-    """The outcome of :func:`levenberg_marquardt`.
+    r"""The outcome of :func:`levenberg_marquardt`.
 
-    ``x`` the solution; ``cost`` :math:`\\tfrac12\\|r\\|^2` there; ``residuals`` r(x);
+    ``x`` the solution; ``cost`` :math:`\tfrac12\|r\|^2` there; ``residuals`` r(x);
     ``cost_history`` the cost after every iteration (entry 0 is the start; rejected steps
     repeat the previous cost); ``mu_history`` the damping used at each iteration;
     ``iterations``; ``converged`` and ``message`` say why it stopped; ``jacobian`` and
@@ -393,9 +393,11 @@ def _jacobian_or_differences(
 
 
 def _gain_ratio(decrease: float, delta: np.ndarray, A: Any, g: np.ndarray, mu: float) -> float:
-    r"""Nielsen's gain ratio :math:`\rho`: the actual decrease of the cost over the decrease the
-    linear model predicted, :math:`L(0) - L(\delta) = \tfrac12 \delta^\top (\mu D \delta - g)`;
-    -1 when the model predicts no decrease."""
+    r"""Nielsen's gain ratio :math:`\rho`.
+
+    The actual decrease of the cost over the decrease the linear model predicted, :math:`L(0) -
+    L(\delta) = \tfrac12 \delta^\top (\mu D \delta - g)`; -1 when the model predicts no decrease.
+    """
     predicted = 0.5 * float(delta @ (mu * _diag(A) * delta - g))
     return decrease / predicted if predicted > 0 else -1.0
 

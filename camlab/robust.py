@@ -125,6 +125,7 @@ class PairModel:
         self.x1, self.x2 = x1, x2
 
     def __len__(self) -> int:
+        """The number of matches."""
         return len(self.x1)
 
     def minimal(self, idx: np.ndarray) -> MinimalModels:

@@ -296,8 +296,11 @@ def add_noise(
 
 
 class DarkAndFlatFrames(NamedTuple):
-    """What :func:`dark_and_flat_frames` returns: ``darks``, a pair of frames taken with the lens capped, and
-    ``flats``, a list of pairs ``(a, b)`` of frames of an evenly lit white card, one pair per light level."""
+    """What :func:`dark_and_flat_frames` returns.
+
+    ``darks``, a pair of frames taken with the lens capped, and ``flats``, a list of pairs ``(a,
+    b)`` of frames of an evenly lit white card, one pair per light level.
+    """
 
     darks: tuple[np.ndarray, np.ndarray]
     flats: list[tuple[np.ndarray, np.ndarray]]

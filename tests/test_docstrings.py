@@ -9,6 +9,8 @@ docstring (docs/conventions.md, "Docstrings"):
 - a ``Returns`` section (``Yields`` for a generator) when it returns a value;
 - a ``References`` section when the docstring cites a source (H&Z, Szeliski, a paper).
 
+A module's docstring that cites a source has a ``References`` section too.
+
 Properties and dunder methods are left out (a property's summary says what it is). The packages
 of ``PENDING`` are still being documented on their branches; the lead empties the set as they
 merge, and an entry that no longer has anything missing fails, so the set only shrinks.
@@ -101,6 +103,13 @@ def _is_property(fn: ast.FunctionDef | ast.AsyncFunctionDef) -> bool:
     )
 
 
+def _cites_without_references(found: dict[str, list[str]]) -> bool:
+    cited = "\n".join(
+        text for title, body in found.items() if title != "References" for text in body
+    )
+    return bool(CITATION.search(cited)) and "References" not in found
+
+
 def docstring_problems(fn: ast.FunctionDef | ast.AsyncFunctionDef, method: bool) -> list[str]:
     """What one function's docstring lacks, as short phrases ([] when it meets the rule)."""
     doc = ast.get_docstring(fn)
@@ -122,17 +131,15 @@ def docstring_problems(fn: ast.FunctionDef | ast.AsyncFunctionDef, method: bool)
     gives = _gives(fn)
     if gives and gives not in found and not (gives == "Returns" and "Yields" in found):
         problems.append(f"no {gives}")
-    cited = "\n".join(
-        text for title, body in found.items() if title != "References" for text in body
-    )
-    if CITATION.search(cited) and "References" not in found:
+    if _cites_without_references(found):
         problems.append("cites a source without a References section")
     return problems
 
 
 def missing_sections(root: Path, pending: set[str] = frozenset()) -> dict[str, list[str]]:
     """{qualified name: problems} for every public function of the package at ``root`` whose
-    docstring breaks the rule, outside the ``pending`` packages."""
+    docstring breaks the rule, and every public module whose docstring cites without a References
+    section, outside the ``pending`` packages."""
     missing = {}
     for path in sorted(root.rglob("*.py")):
         parts = path.relative_to(root.parent).with_suffix("").parts
@@ -141,7 +148,11 @@ def missing_sections(root: Path, pending: set[str] = frozenset()) -> dict[str, l
         module = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
         if any(module == p or module.startswith(p + ".") for p in pending):
             continue
-        for node in ast.parse(path.read_text(), str(path)).body:
+        tree = ast.parse(path.read_text(), str(path))
+        module_doc = ast.get_docstring(tree)
+        if module_doc and _cites_without_references(sections(module_doc)):
+            missing[module] = ["module docstring cites a source without a References section"]
+        for node in tree.body:
             functions = [("", node, False)]
             if isinstance(node, ast.ClassDef) and not _private(node.name):
                 functions = [(f"{node.name}.", item, True) for item in node.body]
@@ -174,11 +185,16 @@ def test_pending_packages_still_pending():
 
 
 def test_the_scan_finds_each_gap(tmp_path):
-    """The rule can fail: each missing section is named; private functions and modules, properties
-    and complete docstrings pass."""
+    """The rule can fail: each missing section is named, a module's citation too; private functions
+    and modules, properties and complete docstrings pass."""
     pkg = tmp_path / "camlab"
     pkg.mkdir()
-    (pkg / "_private.py").write_text("def f(x):\n    return x\n")
+    (pkg / "_private.py").write_text('"""As in H&Z 4.1."""\n\ndef f(x):\n    return x\n')
+    (pkg / "cites.py").write_text('"""The DLT.\n\nAs in H&Z section 4.1.\n"""\n')
+    (pkg / "cites_right.py").write_text(
+        '"""The DLT.\n\nAs in [1]_, section 4.1.\n\nReferences\n----------\n'
+        '.. [1] Hartley & Zisserman, 2004.\n"""\n'
+    )
     (pkg / "a.py").write_text(
         "def bare(x):\n    return x\n\n"
         'def long_summary():\n    """One line\n    and another."""\n\n'
@@ -211,4 +227,5 @@ def test_the_scan_finds_each_gap(tmp_path):
         "camlab.a.gen": ["no Yields"],
         "camlab.a.cites": ["cites a source without a References section"],
         "camlab.a.Box.grow": ["no docstring"],
+        "camlab.cites": ["module docstring cites a source without a References section"],
     }

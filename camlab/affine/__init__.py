@@ -12,7 +12,7 @@ An affine camera is a 3x4 matrix whose last row is :math:`(0, 0, 0, 1)`:
 so projection is linear (no division by depth). Its centre is at infinity (all rays
 are parallel), parallel world lines stay parallel in the image, and the midpoint of
 a segment images to the midpoint of its image. The family, from special to general
-(H&Z section 6.3):
+([1]_, section 6.3):
 
 * **orthographic**: drop the camera z coordinate, :math:`u = (r_1 \cdot X + t_1,\ r_2 \cdot X + t_2)`;
 * **scaled orthographic**: the same times a scale k (pixels per metre);
@@ -22,10 +22,15 @@ a segment images to the midpoint of its image. The family, from special to gener
 A perspective camera looking at an object of depth range :math:`\Delta` at distance
 :math:`d_0` is close to affine when :math:`\Delta \ll d_0`: the weak-perspective
 image of a point differs from its perspective image by the factor
-:math:`\Delta / d_0` times its distance from the principal point (H&Z §6.3.2).
+:math:`\Delta / d_0` times its distance from the principal point ([1]_, section 6.3.2).
 
 Conventions (docs/conventions.md): R, t are cam_from_world, camera frame x right,
 y down, z forward; pixels (u, v) = (column, row); points are rows. See lesson 05.
+
+References
+----------
+.. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 6.3 (cameras at
+   infinity).
 """
 
 from __future__ import annotations

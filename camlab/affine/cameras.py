@@ -1,5 +1,7 @@
-r"""The affine cameras (orthographic, scaled orthographic, weak perspective, general affine) and
-the affine and para-perspective approximations of a perspective camera, with their errors.
+r"""The affine cameras and the affine approximations of a perspective camera.
+
+The orthographic, scaled orthographic, weak perspective and general affine cameras, and the affine
+and para-perspective approximations of a perspective camera, with their errors.
 """
 
 from __future__ import annotations

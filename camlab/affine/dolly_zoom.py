@@ -1,5 +1,7 @@
-r"""The dolly zoom (Hitchcock's vertigo shot): a camera that backs away while it zooms keeps its
-subject's size and tends to an affine camera; the errors and gaps it shows on the way.
+r"""The dolly zoom (Hitchcock's vertigo shot).
+
+A camera that backs away while it zooms keeps its subject's size and tends to an affine camera; the
+errors and gaps it shows on the way.
 """
 
 from __future__ import annotations

@@ -1,5 +1,7 @@
-r"""Affine cameras from data: the least-squares affine camera from 3-D/2-D correspondences, and how
-far a homography between two views departs from an affinity (the test of lesson 05).
+r"""Affine cameras from data.
+
+The least-squares affine camera from 3-D/2-D correspondences, and how far a homography between two
+views departs from an affinity (the test of lesson 05).
 """
 
 from __future__ import annotations

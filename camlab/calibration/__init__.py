@@ -2,8 +2,8 @@ r"""Camera calibration: Zhang's method stage by stage, refined by Levenberg-Marq
 
 A flat chessboard with known square size is photographed in several orientations. Each
 view gives a homography :math:`H = \lambda K [r_1\ r_2\ t]` from the board plane (Z = 0)
-to the image (:func:`camlab.homography.pose_homography`). Zhang (2000) turns those into
-the camera:
+to the image (:func:`camlab.homography.pose_homography`). Zhang's method [1]_ turns those
+into the camera:
 
 1. **detect** the inner corners in every image (:func:`find_chessboard`, OpenCV finds them,
    camlab normalises shapes and says why a detection failed);
@@ -37,6 +37,11 @@ and its Jacobian), :mod:`~camlab.calibration.calibrate` (the pipeline end to end
 :mod:`~camlab.calibration.coach`, :mod:`~camlab.calibration.undistortion`,
 :mod:`~camlab.calibration.io` and :mod:`~camlab.calibration.synthetic` (test data).
 Every public name is re-exported here: ``from camlab.calibration import calibrate_camera``.
+
+References
+----------
+.. [1] Z. Zhang, 2000, "A flexible new technique for camera calibration", *IEEE Transactions on
+   Pattern Analysis and Machine Intelligence* 22(11), 1330-1334.
 """
 
 from __future__ import annotations

@@ -1,6 +1,7 @@
-r"""Calibration from detected corners: :func:`calibrate_camera` (Zhang's closed form, then LM)
-and :func:`closed_form_with_distortion`, with their results. From photographs:
-:mod:`camlab.calibration.images`.
+r"""Calibration from detected corners.
+
+:func:`calibrate_camera` (Zhang's closed form, then LM) and :func:`closed_form_with_distortion`,
+with their results. From photographs: :mod:`camlab.calibration.images`.
 """
 
 from __future__ import annotations
@@ -89,10 +90,12 @@ class CalibrationResult:
 
     @property
     def n_views(self) -> int:
+        """The number of views V."""
         return len(self.rvecs)
 
     @property
     def n_points(self) -> int:
+        """The number of corners over all views."""
         return int(sum(len(p) for p in self.image_points))
 
     @property
@@ -250,8 +253,11 @@ def _refine(
     fix: Sequence[str],
     max_iter: int,
 ) -> CalibrationResult:
-    """Stage 7 of :func:`calibrate_camera`: Levenberg-Marquardt from ``start`` over views
-    validated once by :func:`_check_calibration_inputs`."""
+    """Stage 7 of :func:`calibrate_camera`.
+
+    Levenberg-Marquardt from ``start`` over views validated once by
+    :func:`_check_calibration_inputs`.
+    """
     objs, imgs = views
     fixed = set(fix) | ({"skew"} if not skew else set())
     free = np.array([name not in fixed for name in PARAM_NAMES])
@@ -414,8 +420,10 @@ def closed_form_with_distortion(
 def _check_calibration_inputs(
     object_points, image_points, image_size, fix
 ) -> tuple[Views, tuple[int, int]]:
-    """The views validated once (:func:`~camlab.calibration.zhang.check_views`), (width, height)
-    and the parameter names, or a clear error."""
+    """The views validated once, (width, height) and the parameter names.
+
+    Validated by :func:`~camlab.calibration.zhang.check_views`; a clear error otherwise.
+    """
     views = check_views(object_points, image_points, min_views=1)
     if len(views.image_points) < 3:
         raise CamlabInputError(
@@ -585,8 +593,11 @@ def pad_views(objs: list, imgs: list) -> PaddedViews:
 def _parameter_covariance(
     lm: LMResult, prob: CalibrationProblem, free: np.ndarray
 ) -> tuple[np.ndarray, dict]:
-    r"""Covariance of the free intrinsics, :math:`\hat\sigma^2 S^{-1}` with S the undamped Schur
-    complement, and the standard deviation of every parameter in ``PARAM_NAMES`` (0 if fixed)."""
+    r"""Covariance of the free intrinsics, :math:`\hat\sigma^2 S^{-1}`.
+
+    S is the undamped Schur complement. Also the standard deviation of every parameter in
+    ``PARAM_NAMES`` (0 if fixed).
+    """
     n_res, p = 2 * prob.mask.sum(), prob.ni + 6 * prob.V
     sigma2 = 2 * lm.cost / max(n_res - p, 1)
     S, _, _ = lm.normal[0].schur(0.0)

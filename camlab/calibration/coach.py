@@ -104,8 +104,10 @@ class CoachReport(NamedTuple):
 
 
 def _coverage_advice(covered: np.ndarray) -> list[str]:
-    """Advice on the image's edges and corners that no (or few) detected corners reached:
-    where distortion is strongest, so where the calibration needs data."""
+    """Advice on the image's edges and corners that no (or few) detected corners reached.
+
+    Where distortion is strongest, so where the calibration needs data.
+    """
     advice = []
     regions = {
         "left edge": covered[:, 0],

@@ -1,5 +1,7 @@
-r"""Calibration from photographs: find the chessboard in every image, report the ones that fail,
-calibrate from the rest (:func:`calibrate_from_images`).
+r"""Calibration from photographs.
+
+Find the chessboard in every image, report the ones that fail, calibrate from the rest
+(:func:`calibrate_from_images`).
 """
 
 from __future__ import annotations

@@ -135,7 +135,6 @@ def load_calibration(path: str | os.PathLike, *, name: str = "path") -> SavedCal
         malformed nodes, or sizes that are not a 3 x 3 K, 4 or 5 coefficients and a positive
         image size.
     """
-
     if not isinstance(path, (str, os.PathLike)):
         raise CamlabInputError(f"{name}: expected a file path, got {type(path).__name__}")
     if not Path(path).is_file():
@@ -198,8 +197,11 @@ def _open_storage(path: Path):
 
 
 def _matrix(node, path, name: str, expected: str) -> np.ndarray:
-    """A matrix node as a float array: OpenCV's ``!!opencv-matrix`` (with ``dt``), or ROS's map of
-    ``rows``, ``cols`` and ``data`` (no ``dt``: ``node.mat()`` fails on it with ``!dt.empty()``)."""
+    """A matrix node as a float array.
+
+    OpenCV's ``!!opencv-matrix`` (with ``dt``), or ROS's map of ``rows``, ``cols`` and ``data`` (no
+    ``dt``: ``node.mat()`` fails on it with ``!dt.empty()``).
+    """
     if node.empty():
         raise CamlabInputError(
             f"{name}: {str(path)!r} has no camera_matrix / distortion_coefficients nodes; {expected}"

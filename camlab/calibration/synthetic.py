@@ -15,9 +15,12 @@ from .detection import board_points
 
 
 class SyntheticSet(NamedTuple):
-    """Views of a board with known truth: ``object_points`` (N, 3), ``image_points`` list of (N, 2)
-    (noisy), ``exact`` list of (N, 2) (noise-free), ``K``, ``dist``, ``R`` (V, 3, 3), ``t`` (V, 3),
-    ``image_size``, ``noise`` (sigma, pixels)."""
+    """Views of a board with known truth.
+
+    ``object_points`` (N, 3), ``image_points`` list of (N, 2) (noisy), ``exact`` list of (N, 2)
+    (noise-free), ``K``, ``dist``, ``R`` (V, 3, 3), ``t`` (V, 3), ``image_size``, ``noise`` (sigma,
+    pixels).
+    """
 
     object_points: np.ndarray
     image_points: list

@@ -180,8 +180,11 @@ def _ideal_grid(Kb: bytes, db: bytes, w: int, h: int, step: int) -> np.ndarray |
 
 
 class Undistorted(NamedTuple):
-    """``image`` the undistorted image; ``K`` its intrinsics (no distortion); ``black_fraction`` and
-    ``lost_fraction`` as in :func:`undistortion_tradeoff`."""
+    """``image`` the undistorted image.
+
+    ``K`` its intrinsics (no distortion); ``black_fraction`` and ``lost_fraction`` as in
+    :func:`undistortion_tradeoff`.
+    """
 
     image: np.ndarray
     K: np.ndarray

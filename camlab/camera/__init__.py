@@ -23,11 +23,16 @@ The package holds three topics, every public name importable from ``camlab.camer
 * :mod:`camlab.camera.resection`: RQ and the decomposition of P, and P estimated from
   world-image correspondences (the camera DLT) with its reprojection errors.
 
-Conventions (docs/conventions.md): camera frame x right, y down, z forward (OpenCV,
-Hartley & Zisserman); ``R, t`` are *cam_from_world*; the camera centre is
+Conventions (docs/conventions.md): camera frame x right, y down, z forward (OpenCV, and
+Hartley & Zisserman's [1]_); ``R, t`` are *cam_from_world*; the camera centre is
 :math:`C = -R^\top t`; pixels (u, v) = (column, row) with the origin at the centre of the
 top-left pixel; points are rows, so the textbook :math:`x = P X` is ``X_h @ P.T``;
 angles in radians. See lesson 04.
+
+References
+----------
+.. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, chapter 6 (camera models),
+   section 6.1.
 """
 
 from __future__ import annotations

@@ -187,6 +187,7 @@ class Camera:
     image_size: tuple[int, int] = (640, 480)
 
     def __post_init__(self) -> None:
+        """Check every field; store K, R and t read-only, dist and image_size normalised."""
         object.__setattr__(self, "K", _frozen(check_intrinsics(self.K)))
         object.__setattr__(self, "R", _frozen(check_rotation(self.R)))
         object.__setattr__(self, "t", _frozen(check_matrix(self.t, (3,), "t")))
@@ -334,8 +335,10 @@ class Camera:
 
     @property
     def centre(self) -> np.ndarray:
-        r"""The camera centre in world coordinates, :math:`C = -R^\top t` (metres): the
-        point with :math:`P \tilde C = 0`."""
+        r"""The camera centre in world coordinates, :math:`C = -R^\top t` (metres).
+
+        The point with :math:`P \tilde C = 0`.
+        """
         return -self.R.T @ self.t
 
     @property
@@ -357,8 +360,11 @@ class Camera:
 
     @property
     def world_from_cam(self) -> np.ndarray:
-        r"""The (4, 4) inverse ``[[R^T, C], [0, 1]]``: the camera's pose in the world (its
-        columns are the camera axes and centre in world coordinates)."""
+        r"""The (4, 4) inverse ``[[R^T, C], [0, 1]]``.
+
+        The camera's pose in the world (its columns are the camera axes and centre in world
+        coordinates).
+        """
         T = np.eye(4)
         T[:3, :3], T[:3, 3] = self.R.T, self.centre
         return T
@@ -501,6 +507,7 @@ class Camera:
         return p.restore(ok)
 
     def __repr__(self) -> str:
+        """The intrinsics, the centre and the image size, rounded."""
         fx, fy, cx, cy = self.K[0, 0], self.K[1, 1], self.K[0, 2], self.K[1, 2]
         C = np.round(self.centre, 4)
         return (

@@ -2,9 +2,14 @@ r"""Decomposing and estimating a camera matrix: RQ, :math:`P = \lambda K [R \mid
 
 :func:`rq_decomposition` and :func:`decompose_projection_matrix` recover K, R, t and the
 centre from P; :func:`estimate_projection_matrix` finds P from N >= 6 world-image
-correspondences (resectioning, H&Z chapter 7), optionally refined on the
+correspondences (resectioning [1]_), optionally refined on the
 :func:`reprojection_errors`. Part of :mod:`camlab.camera` (every name here is importable
 from there).
+
+References
+----------
+.. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, chapter 7 (computation of the
+   camera matrix P), algorithm 7.1.
 """
 
 from __future__ import annotations
@@ -36,8 +41,11 @@ __all__ = [
 
 
 class Decomposition(NamedTuple):
-    """The factors of :math:`P = \\lambda K [R \\mid t]`: K (K[2, 2] = 1, positive focal lengths),
-    R (det +1), t (cam_from_world) and the camera centre C = -R^T t."""
+    r"""The factors of :math:`P = \lambda K [R \mid t]`.
+
+    K (K[2, 2] = 1, positive focal lengths), R (det +1), t (cam_from_world) and the camera centre C
+    = -R^T t.
+    """
 
     K: np.ndarray
     R: np.ndarray

@@ -1,5 +1,7 @@
-r"""Rotations and rigid poses: axis-angle (Rodrigues), Euler angles, the nearest rotation, look-at,
-and the conversion between the OpenCV camera frame and OpenGL's and Blender's.
+r"""Rotations and rigid poses.
+
+Axis-angle (Rodrigues), Euler angles, the nearest rotation, look-at, and the conversion between the
+OpenCV camera frame and OpenGL's and Blender's.
 
 A rotation R is a (3, 3) orthonormal matrix with det R = +1; as cam_from_world its rows are
 the camera's x, y, z axes written in world coordinates (docs/conventions.md). Angles in

@@ -152,7 +152,9 @@ def presentation_notebook(notebook: dict) -> dict:
 
 
 def voila_environment() -> dict[str, str]:
-    """This process's environment with :data:`VOILA_DATA` first on JUPYTER_PATH (where Voila finds templates).
+    """The environment of this process with :data:`VOILA_DATA` first on JUPYTER_PATH.
+
+    Voila finds its templates there.
 
     Returns
     -------

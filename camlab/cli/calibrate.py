@@ -1,5 +1,7 @@
-r"""``camlab calibrate`` (a camera from photos of a chessboard) and ``camlab undistort`` (photos,
-with the calibration file it wrote).
+r"""``camlab calibrate`` and ``camlab undistort``.
+
+``calibrate`` finds a camera from photos of a chessboard; ``undistort`` corrects photos with the
+calibration file it wrote.
 """
 
 from __future__ import annotations

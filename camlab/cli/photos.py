@@ -1,5 +1,7 @@
-r"""Reading and writing the commands' photos: one reader (upright by EXIF, truncated files refused
-by name), shrinking above ``--max-megapixels``, outputs written atomically.
+r"""Reading and writing the commands' photos.
+
+One reader (upright by EXIF, truncated files refused by name), shrinking above ``--max-megapixels``,
+outputs written atomically.
 """
 
 from __future__ import annotations

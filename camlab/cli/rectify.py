@@ -1,5 +1,6 @@
-r"""``camlab rectify LEFT RIGHT --out-dir D``: a stereo pair rectified from its matches (or from a
-calibration), with a vertical-disparity figure.
+r"""``camlab rectify LEFT RIGHT --out-dir D``.
+
+A stereo pair rectified from its matches (or from a calibration), with a vertical-disparity figure.
 """
 
 from __future__ import annotations
@@ -72,7 +73,6 @@ def run_rectify(args: argparse.Namespace) -> int:
     .. [1] R. Hartley, 1999, "Theory and practice of projective rectification", International
        Journal of Computer Vision 35(2).
     """
-
     import numpy as np
 
     from .. import epipolar, features
@@ -170,8 +170,9 @@ def _refuse_a_plane(x1, x2, threshold: float) -> None:
 
 
 def _rectify_calibrated_pair(calibration, scale: float, src, dst, size):
-    """Rectification from the camera's K and dist and the relative pose found from the matches;
-    also the matches the pose explains, and where they land in the rectified pair.
+    """Rectification from the camera's K and dist and the relative pose found from the matches.
+
+    Also the matches the pose explains, and where they land in the rectified pair.
 
     The essential matrix comes from the five-point algorithm (``cv2.findEssentialMat``),
     which, unlike the eight-point F, is determined by points on one plane; the pose is the

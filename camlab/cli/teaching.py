@@ -1,5 +1,6 @@
-r"""``camlab lessons``, ``camlab present`` and ``camlab assignments``: the course for students, the
-lecture view and nbgrader.
+r"""``camlab lessons``, ``camlab present`` and ``camlab assignments``.
+
+The course for students, the lecture view and nbgrader.
 """
 
 from __future__ import annotations

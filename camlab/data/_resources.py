@@ -133,8 +133,10 @@ def encode_image(image, ext: str, params: tuple[int, ...] = ()) -> bytes:
 
 
 def read_only(obj):
-    """Freeze every ndarray in ``obj`` and return ``obj``: arrays, and the NamedTuples, lists,
-    tuples, dicts and objects (their attributes) that hold them, all the way down.
+    """Freeze every ndarray in ``obj`` and return ``obj``.
+
+    Arrays, and the NamedTuples, lists, tuples, dicts and objects (their attributes) that hold them,
+    all the way down.
 
     A cache hands the same object to every caller, so one caller's in-place edit would
     otherwise change what the next one gets; copy an array (``a.copy()``) to change it.

@@ -1,6 +1,6 @@
 r"""A real rectified stereo pair with ground-truth disparity, ``data/middlebury/`` (lesson 11): its loader.
 
-Middlebury's 2014 "Motorcycle" scene (Scharstein et al., GCPR 2014), as scikit-image ships it
+Middlebury's 2014 "Motorcycle" scene [1]_, as scikit-image ships it
 (``skimage.data.stereo_motorcycle``, downsampled 4 x to 741 x 500): the only real pair in the
 course whose depth is known at (almost) every pixel, measured with structured light.
 
@@ -18,6 +18,12 @@ course whose depth is known at (almost) every pixel, measured with structured li
 Sources and licence: ``data/ATTRIBUTION.md``. Conventions: pixels (u, v) = (column, row),
 origin at the centre of the top-left pixel; the left pixel (u, v) matches the right pixel
 (u - d, v).
+
+References
+----------
+.. [1] D. Scharstein, H. Hirschmuller, Y. Kitajima, G. Krathwohl, N. Nesic, X. Wang and P. Westling,
+   2014, "High-resolution stereo datasets with subpixel-accurate ground truth", *German Conference
+   on Pattern Recognition (GCPR)*, LNCS 8753, 31-42.
 """
 
 from __future__ import annotations

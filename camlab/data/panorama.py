@@ -40,8 +40,11 @@ __all__ = [
 
 
 class PanoramaSet(NamedTuple):
-    """The rotation set: RGB ``images``, shared ``K``, cam_from_world ``R`` (n, 3, 3), ``gains``,
-    ``H_true[j][i]`` = the true homography from view i to view j, and the generator ``params``."""
+    """The rotation set.
+
+    RGB ``images``, shared ``K``, cam_from_world ``R`` (n, 3, 3), ``gains``, ``H_true[j][i]`` = the
+    true homography from view i to view j, and the generator ``params``.
+    """
 
     images: list
     K: np.ndarray

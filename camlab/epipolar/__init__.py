@@ -18,7 +18,7 @@ camera 1 (``X_2 = R X_1 + t``).
 Conventions (docs/conventions.md): points are rows, pixels (u, v) = (column, row) with the
 origin at the centre of the top-left pixel; ``x1`` are pixels in image 1 and ``x2`` the
 corresponding pixels in image 2, so ``x2_h @ F @ x1_h == 0``; poses are cam_from_world;
-metres. See lesson 11 and Hartley & Zisserman chapters 9-12.
+metres. See lesson 11 and [1]_.
 
 The package holds three topics, every public name importable from ``camlab.epipolar``:
 
@@ -28,6 +28,11 @@ The package holds three topics, every public name importable from ``camlab.epipo
   RANSAC with the Sampson distance;
 * :mod:`camlab.epipolar.pose`: the four poses in E, the one that puts the points in front of
   both cameras, and triangulation.
+
+References
+----------
+.. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, chapters 9-12 (two-view
+   geometry).
 """
 
 from __future__ import annotations

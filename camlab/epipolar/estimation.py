@@ -1,7 +1,14 @@
-r"""Estimating F from matches: the normalised 8-point algorithm (H&Z algorithm 11.1), the Sampson
-distance, and RANSAC over it (:func:`camlab.robust.ransac` with :class:`FundamentalModel`).
+r"""Estimating F from matches.
+
+The normalised 8-point algorithm ([1]_, algorithm 11.1), the Sampson distance, and RANSAC over it
+(:func:`camlab.robust.ransac` with :class:`FundamentalModel`).
 
 Part of :mod:`camlab.epipolar` (every name here is importable from there).
+
+References
+----------
+.. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 11.2 and algorithm 11.1
+   (the normalised 8-point algorithm).
 """
 
 from __future__ import annotations

@@ -1,7 +1,14 @@
-r"""From E to a pose and 3-D points: the four poses in E (H&Z result 9.19), the one with the
-points in front of both cameras, and triangulation (H&Z section 12.2).
+r"""From E to a pose and 3-D points.
+
+The four poses in E ([1]_, result 9.19), the one with the points in front of both cameras, and
+triangulation ([1]_, section 12.2).
 
 Part of :mod:`camlab.epipolar` (every name here is importable from there).
+
+References
+----------
+.. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 9.6 (the essential
+   matrix) and section 12.2 (linear triangulation methods).
 """
 
 from __future__ import annotations
@@ -150,10 +157,12 @@ def recover_pose(
 
 
 def _refine_points(Ps: list[np.ndarray], uvs: list[np.ndarray], X: np.ndarray) -> np.ndarray:
-    """Minimise the summed squared reprojection error over each point independently:
-    Levenberg-Marquardt (:func:`camlab.optimise.levenberg_marquardt`) on the block-diagonal
-    problem, 3 unknowns and 2 residuals per camera for each point. A point on a camera's
-    principal plane (depth 0) has no reprojection error and stays where it is."""
+    """Minimise the summed squared reprojection error over each point independently.
+
+    Levenberg-Marquardt (:func:`camlab.optimise.levenberg_marquardt`) on the block-diagonal problem,
+    3 unknowns and 2 residuals per camera for each point. A point on a camera's principal plane
+    (depth 0) has no reprojection error and stays where it is.
+    """
     X = X.copy()
     ok = np.all([(X @ P[2, :3] + P[2, 3]) != 0 for P in Ps], axis=0)
     obs = [uv[ok] for uv in uvs]

@@ -1,5 +1,6 @@
-"""What makes an answer right or wrong before any exercise looks at it: its type, its precision, its shape,
-and the comparisons within a tolerance.
+"""What makes an answer right or wrong before any exercise looks at it.
+
+Its type, its precision, its shape, and the comparisons within a tolerance.
 
 :func:`type_problem` names an answer that is no numbers (text, complex, a list beside an array),
 :func:`precision_problem` one too coarse to judge (float16), :func:`shape_problem` and :func:`unit_slip` the

@@ -69,8 +69,10 @@ _CAMLAB = str(Path(__file__).resolve().parents[1])
 
 
 class CheckFailed(AssertionError):
-    """A wrong answer: an AssertionError (so ``assert``-based grading and pytest see it) that
-    Jupyter shows as its message alone.
+    """A wrong answer.
+
+    An AssertionError (so ``assert``-based grading and pytest see it) that Jupyter shows as its
+    message alone.
 
     IPython displays an exception through its ``_render_traceback_`` method when it has one.
     Here that leaves out the check's own frames in camlab, which tell a student nothing and
@@ -296,8 +298,10 @@ def _in_place_message(
 def _run_student(
     name: str, student_function: Callable[..., Any], args: tuple, i: int, n: int, seconds: float
 ) -> Any:
-    """The student's answer on test input ``i`` of ``n``; AssertionError on a crash, a run longer than
-    ``seconds`` or an input changed in place."""
+    """The student's answer on test input ``i`` of ``n``.
+
+    AssertionError on a crash, a run longer than ``seconds`` or an input changed in place.
+    """
     passed = _copy(args)
     try:
         with time_limit(seconds):
@@ -466,8 +470,11 @@ def _exception_hint(exc: Exception) -> str:
 
 
 def _public_name(function: Callable[..., Any]) -> str:
-    """The shortest dotted name a student can type for ``function``: camlab.to_homogeneous, not
-    camlab.projective.plane.to_homogeneous, when the package re-exports it (the same object)."""
+    """The shortest dotted name a student can type for ``function``.
+
+    Camlab.to_homogeneous, not camlab.projective.plane.to_homogeneous, when the package re-exports
+    it (the same object).
+    """
     parts = function.__module__.split(".")
     for k in range(1, len(parts) + 1):
         module = sys.modules.get(".".join(parts[:k]))

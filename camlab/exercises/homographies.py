@@ -116,8 +116,11 @@ def _patch_distance(H1, H2) -> float:
 
 
 def _far_cause(src, dst, g) -> str:
-    """Name the slip behind an H that is too far off on a noisy far input: the slip whose own answer
-    lies much closer to g than g lies to the truth; else the usual suspects, all named."""
+    """Name the slip behind an H that is too far off on a noisy far input.
+
+    The slip whose own answer lies much closer to g than g lies to the truth; else the usual
+    suspects, all named.
+    """
     off = _far_error(g)
     slips = [
         (_patch_distance(g, _dlt_with(src, dst, normaliser)), hint)
@@ -135,7 +138,10 @@ def _far_cause(src, dst, g) -> str:
 
 
 def _dlt_follow_up(run) -> str:
-    """ "" when the student's DLT is as accurate as a normalised one over FAR_DRAWS noise draws."""
+    """The empty hint when the student's DLT is as accurate as a normalised one.
+
+    Measured over FAR_DRAWS noise draws.
+    """
     offs, worst = [], None
     for src, dst in _far_draws():
         try:
@@ -215,8 +221,11 @@ def _dlt_diagnosis(args, got, expected) -> str:
 
 
 def _row_slip(g, src, dst, expected) -> str:
-    """Name a slip in the two rows of A: u' and v' swapped, or a sign flipped in one row (in pixels or
-    in normalised coordinates); "" if none fits."""
+    """Name a slip in the two rows of A.
+
+    U' and v' swapped, or a sign flipped in one row (in pixels or in normalised coordinates); "" if
+    none fits.
+    """
     swap = np.array([[0.0, 1, 0], [1, 0, 0], [0, 0, 1]])
     flips = {"first": np.diag([1.0, -1, 1]), "second": np.diag([-1.0, 1, 1])}
     frames = [(np.eye(3), np.eye(3))] + [
@@ -304,8 +313,11 @@ _UNDO_MISTAKES = (
 
 
 def _normalisation_slip(g, src, dst, expected) -> str:
-    """Name a normalised DLT whose normalisation is not undone, undone the wrong way round or on one
-    side only, or whose null vector is a column of Vt; "" if none fits."""
+    """Name a normalised DLT done wrong; "" if none fits.
+
+    Its normalisation not undone, undone the wrong way round or on one side only, or its null vector
+    a column of Vt.
+    """
     inv = np.linalg.inv
     for Ts, Td in _normalisers(src, dst):
         context = SimpleNamespace(
@@ -337,8 +349,10 @@ def _dlt_rows(src, dst):
 
 
 def _dlt_unnormalised(src, dst, pick=-1, column=False):
-    """The plain DLT in pixels (a plausible student answer); ``pick`` chooses the singular vector,
-    ``column`` reads it from a column of Vt (a slip)."""
+    """The plain DLT in pixels (a plausible student answer).
+
+    ``pick`` chooses the singular vector, ``column`` reads it from a column of Vt (a slip).
+    """
     Vt = np.linalg.svd(_dlt_rows(src, dst))[2]
     return (Vt[:, pick] if column else Vt[pick]).reshape(3, 3)
 
@@ -373,8 +387,11 @@ def _dlt_undone_one_side(src, dst, side):
 
 
 def _dlt_normalised_variant(src, dst, slip):
-    """A normalised DLT with one slip: "swap" (u', v' swapped in the rows), "sign" (+u' x^T in the
-    second row), "src both" (undone with inv(T_src) @ H_n @ T_src)."""
+    """A normalised DLT with one slip.
+
+    "swap" (u', v' swapped in the rows), "sign" (+u' x^T in the second row), "src both" (undone with
+    inv(T_src) @ H_n @ T_src).
+    """
     src, dst = np.asarray(src, dtype=float), np.asarray(dst, dtype=float)
     Ts, Td = hartley_normalise(src).T, hartley_normalise(dst).T
     sn = (np.column_stack([src, np.ones(len(src))]) @ Ts.T)[:, :2]

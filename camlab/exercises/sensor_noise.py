@@ -16,8 +16,11 @@ variance, so a per-pair gain that leaves the darks' variance in comes out severa
 
 
 def _frames(full_well: float, read_noise: float, black: int, seed: int):
-    """Two dark frames and seven pairs of flat frames (uint16 DN) of a simulated 12-bit sensor, with a black
-    level and a fixed pattern (:func:`camlab.sensor.dark_and_flat_frames`)."""
+    """Two dark frames and seven pairs of flat frames of a simulated 12-bit sensor.
+
+    In uint16 DN, with a black level and a fixed pattern
+    (:func:`camlab.sensor.dark_and_flat_frames`).
+    """
     return sensor.dark_and_flat_frames(full_well, read_noise, black, LEVELS, rng=seed)
 
 
@@ -132,7 +135,8 @@ def _std_gains(darks, flats) -> np.ndarray:
 def _one_pair_gains(darks, flats) -> np.ndarray:
     """mean / var of the brightest flat pair alone, the black level left in the mean (var(a - b) / 2).
 
-    Only the brightest: the dim pairs' ratios spread over a range wide enough to catch other slips' answers."""
+    Only the brightest: the dim pairs' ratios spread over a range wide enough to catch other slips' answers.
+    """
     means, variances = _pair_stats(flats)
     brightest = np.argmax(means)
     return np.array([means[brightest] / variances[brightest]])

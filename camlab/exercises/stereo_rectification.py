@@ -65,8 +65,11 @@ def _eight_point_diagnosis(args, got, expected) -> str:
 
 
 def _unnormalisation_slip(g, x1, x2, expected, T1, T2) -> str:
-    """The hint for an F whose normalisation was not undone, undone the wrong way, or whose rank 2
-    was enforced after undoing it; '' if ``g`` is none of these (up to scale)."""
+    """The hint for an F whose normalisation went wrong; '' if none fits.
+
+    Its normalisation not undone, undone the wrong way, or its rank 2 enforced after undoing it; ''
+    if ``g`` is none of these (up to scale).
+    """
     iT1, iT2 = np.linalg.inv(T1), np.linalg.inv(T2)
     Fn = iT2.T @ expected @ iT1  # the reference in normalised coordinates
     right = "F = T2^T F_n T1, from x2^T F x1 = (T2 x2)^T F_n (T1 x1)"

@@ -15,7 +15,7 @@ The package holds five topics, every public name importable from ``camlab.homogr
   :func:`ransac_homography` (vectorised adaptive RANSAC) and the error measures
   :func:`transfer_error`, :func:`symmetric_transfer_error`, :func:`sampson_distance`;
 * :mod:`camlab.homography.refinement`: :func:`refine_homography` (LM on the symmetric
-  transfer error) and :func:`gold_standard_homography` (H&Z's maximum-likelihood estimate:
+  transfer error) and :func:`gold_standard_homography` (the maximum-likelihood estimate [1]_:
   LM on the reprojection error over H and corrected points);
 * :mod:`camlab.homography.hierarchy`: the transformation hierarchy,
   :func:`euclidean_homography`, :func:`similarity_homography`, :func:`affine_homography`,
@@ -28,6 +28,11 @@ The package holds five topics, every public name importable from ``camlab.homogr
 
 Pixel coordinates (u, v) = (column, row), origin at the centre of the top-left pixel
 (docs/conventions.md). See lesson 07.
+
+References
+----------
+.. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.5 and algorithm 4.3
+   (the Gold Standard algorithm).
 """
 
 from __future__ import annotations

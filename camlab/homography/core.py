@@ -1,5 +1,7 @@
-r"""What every homography function uses: checking H and point pairs, normalising H to
-H[2, 2] = 1, comparing up to scale, composing and inverting.
+r"""What every homography function uses.
+
+Checking H and point pairs, normalising H to H[2, 2] = 1, comparing up to scale, composing and
+inverting.
 
 Homographies are equal up to scale (docs/conventions.md), so every result is normalised.
 Part of :mod:`camlab.homography` (every name here is importable from there).

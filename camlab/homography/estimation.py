@@ -1,10 +1,17 @@
 r"""Estimating a homography from point pairs: the normalised DLT, the error measures, RANSAC.
 
-:func:`estimate_homography` solves :math:`x' \times H x = 0` by SVD after Hartley
-normalisation (H&Z algorithm 4.2); :func:`transfer_error`, :func:`symmetric_transfer_error`
+:func:`estimate_homography` solves :math:`x' \times H x = 0` by SVD after Hartley's
+normalisation [1]_ [2]_; :func:`transfer_error`, :func:`symmetric_transfer_error`
 and :func:`sampson_distance` measure a fit; :func:`ransac_homography` finds H among outliers
 (:func:`camlab.robust.ransac` with :class:`HomographyModel`).
 Part of :mod:`camlab.homography` (every name here is importable from there).
+
+References
+----------
+.. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.4 and algorithm 4.2
+   (the normalised DLT).
+.. [2] R. I. Hartley, 1997, "In defense of the eight-point algorithm", *IEEE Transactions on Pattern
+   Analysis and Machine Intelligence* 19(6), 580-593.
 """
 
 from __future__ import annotations
@@ -251,7 +258,8 @@ def _sq_transfer_batch(H: np.ndarray, p: np.ndarray, q: np.ndarray) -> np.ndarra
 def _sym_err_batch(H: np.ndarray, Hinv: np.ndarray, s: np.ndarray, d: np.ndarray) -> np.ndarray:
     """(B, N) symmetric transfer RMS errors for B homographies; inf where a point maps to infinity.
 
-    ``s`` and ``d`` are homogeneous columns (3, N) (:func:`_columns`)."""
+    ``s`` and ``d`` are homogeneous columns (3, N) (:func:`_columns`).
+    """
     with np.errstate(invalid="ignore", over="ignore"):
         e = np.sqrt(0.5 * (_sq_transfer_batch(H, s, d) + _sq_transfer_batch(Hinv, d, s)))
     return np.where(np.isfinite(e), e, np.inf)

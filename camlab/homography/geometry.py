@@ -1,6 +1,7 @@
-r"""Homographies from cameras and planes: a rotating camera :math:`K' R K^{-1}`, a plane seen from
-two cameras :math:`K'(R - t n^\top/d)K^{-1}`, and the world plane Z = 0 to the image
-:math:`K [r_1\ r_2\ t]`.
+r"""Homographies from cameras and planes.
+
+A rotating camera :math:`K' R K^{-1}`, a plane seen from two cameras :math:`K'(R - t
+n^\top/d)K^{-1}`, and the world plane Z = 0 to the image :math:`K [r_1\ r_2\ t]`.
 
 Part of :mod:`camlab.homography` (every name here is importable from there).
 """

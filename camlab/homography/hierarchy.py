@@ -1,8 +1,14 @@
-r"""The hierarchy of plane transformations (H&Z table 2.1): Euclidean, similarity, affine and
-projective homographies, which group a matrix belongs to, and the decomposition
-:math:`H = H_S H_A H_P` (H&Z section 2.4.6).
+r"""The hierarchy of plane transformations.
+
+Euclidean, similarity, affine and projective homographies ([1]_, table 2.1), which group a matrix
+belongs to, and the decomposition :math:`H = H_S H_A H_P` ([1]_, section 2.4.6).
 
 Part of :mod:`camlab.homography` (every name here is importable from there).
+
+References
+----------
+.. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 2.4 (a hierarchy of
+   transformations), table 2.1.
 """
 
 from __future__ import annotations

@@ -1,7 +1,14 @@
-r"""Refining a homography by Levenberg-Marquardt: on the symmetric transfer error, and the
-Gold Standard (H&Z algorithm 4.3: the reprojection error over H and corrected points).
+r"""Refining a homography by Levenberg-Marquardt.
+
+On the symmetric transfer error, and the Gold Standard ([1]_, algorithm 4.3: the reprojection error
+over H and corrected points).
 
 Part of :mod:`camlab.homography` (every name here is importable from there).
+
+References
+----------
+.. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.5 and algorithm 4.3
+   (the Gold Standard algorithm).
 """
 
 from __future__ import annotations
@@ -153,17 +160,17 @@ def refine_homography(
 
 
 class GoldStandardResult(NamedTuple):
-    """What :func:`gold_standard_homography` did.
+    r"""What :func:`gold_standard_homography` did.
 
     Attributes
     ----------
     H : (3, 3) ndarray
         The maximum-likelihood homography (H&Z algorithm 4.3), H[2, 2] = 1.
     src_corrected, dst_corrected : (N, 2) ndarray
-        The corrected points :math:`\\hat x_i` and :math:`\\hat x'_i = \\pi(H \\hat x_i)`: the
+        The corrected points :math:`\hat x_i` and :math:`\hat x'_i = \pi(H \hat x_i)`: the
         pairs closest to the measurements that H maps exactly onto each other.
     rms_initial, rms_final : float
-        RMS reprojection error in pixels, :math:`\\sqrt{\\sum_i d(x_i, \\hat x_i)^2 + d(x'_i, \\hat x'_i)^2 / 2N}`,
+        RMS reprojection error in pixels, :math:`\sqrt{\sum_i d(x_i, \hat x_i)^2 + d(x'_i, \hat x'_i)^2 / 2N}`,
         of the starting H (with its own best corrected points) and of the result.
     iterations : int
         Levenberg-Marquardt steps taken (accepted or rejected).
@@ -226,8 +233,11 @@ def correct_points(
 
 
 class _GoldNormal(NamedTuple):
-    """The normal equations of the Gold Standard problem in blocks: U (8, 8) for h, V (N, 2, 2)
-    for the corrected points (block diagonal), W (N, 8, 2) coupling them."""
+    """The normal equations of the Gold Standard problem in blocks.
+
+    U (8, 8) for h, V (N, 2, 2) for the corrected points (block diagonal), W (N, 8, 2) coupling
+    them.
+    """
 
     U: np.ndarray
     V: np.ndarray
@@ -251,8 +261,10 @@ def _gold_normal_equations(J, r):
 
 
 def _gold_damped_solve(A: _GoldNormal, g: np.ndarray, mu: float) -> np.ndarray:
-    r"""Solve the damped normal equations by the Schur complement (H&Z §A6.3): eliminate the
-    points' 2 x 2 blocks, solve 8 x 8 for h, back-substitute; O(N) instead of O(N^3)."""
+    r"""Solve the damped normal equations by the Schur complement (H&Z §A6.3).
+
+    Eliminate the points' 2 x 2 blocks, solve 8 x 8 for h, back-substitute; O(N) instead of O(N^3).
+    """
     n = len(A.V)
     U = A.U + mu * np.diag(np.maximum(np.diag(A.U), 1e-300))
     V = A.V + mu * np.einsum("nii->ni", A.V)[..., None] * np.eye(2)

@@ -1,12 +1,12 @@
 """Colours for figures: distinct for colour-blind readers, and contrasted enough to see.
 
 Every pair in :data:`SERIES` stays at CIE delta-E >= 13 in normal vision and for full
-protanopia, deuteranopia and tritanopia (Machado et al. 2009 simulation;
+protanopia, deuteranopia and tritanopia (Machado et al.'s simulation [1]_;
 ``tests/test_colour_vision.py`` checks it, and checks every demo's legend). The hues keep
 their everyday names, so a lesson can still say "the green arrows"; they are darker or
 lighter than matplotlib's ``tab:`` colours where those collapse (``tab:green`` against
 ``tab:red`` for deuteranopes, ``tab:orange`` against ``tab:green`` for protanopes).
-Based on Paul Tol's colour schemes (https://personal.sron.nl/~pault/).
+Based on Paul Tol's colour schemes [2]_.
 
 Every colour of the series reaches 3:1 against white, the contrast WCAG 2.1 asks of lines and
 markers (1.4.11); all but ORANGE also reach 4.5:1, enough for text (1.4.3). ORANGE is
@@ -14,6 +14,13 @@ darker than Tol's ``#EE9944`` (2.3:1) for that reason. ``tests/test_figure_contr
 measures every demo. A line or text drawn over a photograph, whose colours can be
 anything, gets a white outline with :func:`halo`. Value images use perceptually uniform
 colormaps (``viridis``, ``cividis``) with a colour bar instead.
+
+References
+----------
+.. [1] G. M. Machado, M. M. Oliveira and L. A. F. Fernandes, 2009, "A physiologically-based model
+   for simulation of color vision deficiency", *IEEE Transactions on Visualization and Computer
+   Graphics* 15(6), 1291-1298.
+.. [2] P. Tol, colour schemes, https://personal.sron.nl/~pault/.
 """
 
 BLUE = "#4477AA"  # 4.7:1 on white

@@ -74,7 +74,8 @@ __all__ = [
 def _plane_points(camera: Camera, uv: np.ndarray, size: float) -> np.ndarray:
     """Pixels (N, 2) lifted to the plane z_c = size in front of the camera, world coordinates.
 
-    NaN pixels stay NaN (segments that leave the picture break there)."""
+    NaN pixels stay NaN (segments that leave the picture break there).
+    """
     ones = np.ones((len(uv), 1))
     rays_c = np.linalg.solve(camera.K, np.hstack([uv, ones]).T).T  # z = 1 in camera frame
     return (rays_c * size - camera.t) @ camera.R

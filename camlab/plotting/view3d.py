@@ -1,5 +1,7 @@
-"""The 3-D axes every camera figure sits in (lessons 00, 04, 05): made at a set viewpoint,
-scaled equally on x, y and z, fitted to what they show, and text turned away from a line.
+"""The 3-D axes every camera figure sits in (lessons 00, 04, 05).
+
+Made at a set viewpoint, scaled equally on x, y and z, fitted to what they show, and text turned
+away from a line.
 
 Helpers of :mod:`camlab.plotting.scene3d`, which re-exports them.
 """

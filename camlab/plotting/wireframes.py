@@ -1,5 +1,7 @@
-"""Wireframes drawn fast (lessons 04, 05, 11): (M, 2, d) segments as one polyline with NaN breaks,
-in a 3-D axes or an image panel, world points and world axes, and segments clipped to the image.
+"""Wireframes drawn fast (lessons 04, 05, 11).
+
+(M, 2, d) segments as one polyline with NaN breaks, in a 3-D axes or an image panel, world points
+and world axes, and segments clipped to the image.
 
 Helpers of :mod:`camlab.plotting.scene3d`, which re-exports them.
 """
@@ -11,7 +13,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from . import palette
+from . import palette, plane
 
 __all__ = [
     "clip_segments",
@@ -161,7 +163,10 @@ def image_axes(ax, image_size: tuple[int, int], title: str = "", labels: bool = 
     """Set up a 2-D axes as an image: u right, v down, pixel centres at integers, equal aspect.
 
     ``labels=False`` leaves out the axis labels (each text costs about 1 ms per redraw in
-    a slider demo); the title then says "u right, v down".
+    a slider demo); the title then says "u right, v down". This is
+    :func:`camlab.plotting.plane.image_axes` with ``compact=True`` (small text, ticks on the
+    first, middle and last pixel centres), returning nothing so that a notebook cell ending in it
+    shows no repr.
 
     Parameters
     ----------
@@ -174,25 +179,7 @@ def image_axes(ax, image_size: tuple[int, int], title: str = "", labels: bool = 
     labels : bool
         Label the axes "u (px)" and "v (px)".
     """
-    w, h = image_size
-    ax.set_xlim(-0.5, w - 0.5)
-    ax.set_ylim(h - 0.5, -0.5)
-    ax.set_aspect("equal")
-    if labels:
-        ax.set_xlabel("u (px)", fontsize=8)
-        ax.set_ylabel("v (px)", fontsize=8)
-    elif title:
-        title = f"{title} (u right, v down, px)"
-    # Ticks on the first and last pixel centres and the image's centre ((W - 1)/2, (H - 1)/2): 319.5, not
-    # 320, for 640 (docs/conventions.md); a tick at W would widen the limits past the last pixel's edge.
-    for axis, n in ((ax.xaxis, w), (ax.yaxis, h)):
-        ticks = [0, (n - 1) / 2, n - 1]
-        axis.set_ticks(ticks, [f"{t:g}" for t in ticks])
-    ax.set_xlim(-0.5, w - 0.5)
-    ax.set_ylim(h - 0.5, -0.5)
-    ax.tick_params(labelsize=7)
-    if title:
-        ax.set_title(title, fontsize=9)
+    plane.image_axes(ax, image_size, title, labels=labels, compact=True)
 
 
 def clip_segments(segments: ArrayLike, image_size: tuple[int, int]) -> np.ndarray:

@@ -1,8 +1,17 @@
-r"""Hartley's conditioning: the similarity that centres points and scales them to unit size
-before a direct linear transform (DLT), so that the DLT's matrix is well conditioned.
+r"""Hartley's conditioning.
+
+The similarity that centres points and scales them to unit size before a direct linear transform
+(DLT) [1]_ [2]_, so that the DLT's matrix is well conditioned.
 
 Used by camlab's DLT estimators (homographies, fundamental matrices, projection matrices)
 and by :func:`camlab.projective.vanishing_point`.
+
+References
+----------
+.. [1] R. I. Hartley, 1997, "In defense of the eight-point algorithm", *IEEE Transactions on Pattern
+   Analysis and Machine Intelligence* 19(6), 580-593.
+.. [2] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.4.4 (normalising
+   transformations).
 """
 
 from __future__ import annotations

@@ -1,5 +1,6 @@
-r"""Conics and dual conics of the projective plane, how a homography moves them, and the
-circular points with their dual conic :math:`C^*_\infty`.
+r"""Conics and dual conics of the projective plane.
+
+How a homography moves them, and the circular points with their dual conic :math:`C^*_\infty`.
 
 A **conic** is the curve :math:`a x^2 + b x y + c y^2 + d x + e y + f = 0`. In homogeneous
 coordinates (multiply through by :math:`w^2`) it is a quadratic form, :math:`x^T C x = 0`, with
@@ -22,12 +23,19 @@ The **circular points** :math:`I, J = (1, \pm i, 0)` are the two complex ideal p
 every circle passes through (put w = 0 in a circle's equation: :math:`x^2 + y^2 = 0`). A
 homography fixes both exactly when it is a similarity, so they, or their dual conic
 :math:`C^*_\infty = I J^T + J I^T \propto \operatorname{diag}(1, 1, 0)`, carry everything
-metric: angles and ratios of lengths (Hartley & Zisserman §2.7.3). Lesson 08 finds the image of
-the absolute conic through the images of a board's circular points (Zhang's method); lesson 10
+metric: angles and ratios of lengths ([1]_, section 2.7.3). Lesson 08 finds the image of
+the absolute conic through the images of a board's circular points (Zhang's method [2]_); lesson 10
 rectifies a plane metrically with :math:`C^*_\infty`.
 
 Conventions as in :mod:`camlab.projective`: points map by ``x' = H x``, so point conics map by
 :math:`H^{-T} C H^{-1}` and dual conics by :math:`H C^* H^T`. See lesson 06, section 7.
+
+References
+----------
+.. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 2.7 (recovery of affine
+   and metric properties from images).
+.. [2] Z. Zhang, 2000, "A flexible new technique for camera calibration", *IEEE Transactions on
+   Pattern Analysis and Machine Intelligence* 22(11), 1330-1334.
 """
 
 from __future__ import annotations

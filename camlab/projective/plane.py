@@ -1,5 +1,7 @@
-r"""Points and lines of the projective plane: homogeneous coordinates, join and meet, incidence,
-ideal points, maps by homographies, the cross ratio, and a line clipped to a window.
+r"""Points and lines of the projective plane.
+
+Homogeneous coordinates, join and meet, incidence, ideal points, maps by homographies, the cross
+ratio, and a line clipped to a window.
 
 The conventions are in the package docstring (:mod:`camlab.projective`); see lesson 06.
 """

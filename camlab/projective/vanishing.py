@@ -1,5 +1,7 @@
-r"""Vanishing points from image segments: the least-squares point most segments' lines pass
-near, which segments point at a point, and a RANSAC fit robust to segments that point elsewhere.
+r"""Vanishing points from image segments.
+
+The least-squares point most segments' lines pass near, which segments point at a point, and a
+RANSAC fit robust to segments that point elsewhere.
 
 Lessons 05, 06 and 10 find vanishing points in photographs with these.
 """

@@ -1,6 +1,14 @@
-r"""Calibrated rectification (Fusiello, Trucco & Verri 2000; Bouguet's method in OpenCV): turn both
-cameras about their centres to a common orientation along the baseline, give them the same
+r"""Calibrated rectification: Fusiello, Trucco & Verri's algorithm [1]_, Bouguet's in OpenCV [2]_.
+
+Turn both cameras about their centres to a common orientation along the baseline, give them the same
 intrinsics, and warp the images (and points) accordingly.
+
+References
+----------
+.. [1] A. Fusiello, E. Trucco and A. Verri, 2000, "A compact algorithm for rectification of stereo
+   pairs", *Machine Vision and Applications* 12(1), 16-22.
+.. [2] G. Bradski and A. Kaehler, 2008, *Learning OpenCV*, chapter 12 (Bouguet's stereo
+   rectification, ``cv2.stereoRectify``).
 """
 
 from __future__ import annotations
@@ -94,8 +102,11 @@ def _rectified_normalised(camera: Camera, R_rect: np.ndarray, pixels: np.ndarray
 def _remap_tables(
     camera: Camera, R_rect: np.ndarray, K_new: np.ndarray, size: tuple[int, int]
 ) -> DistortionMaps:
-    r"""Output pixel p of the rectified image samples the original image at
-    :math:`K\,\mathrm{distort}(\pi(R_{rect}^\top K_{new}^{-1} p))`: no iteration needed."""
+    r"""The rectifying maps, in closed form: no iteration needed.
+
+    Output pixel p of the rectified image samples the original image at
+    :math:`K\,\mathrm{distort}(\pi(R_{rect}^\top K_{new}^{-1} p))`.
+    """
     w, h = size
     u, v = np.meshgrid(np.arange(w, dtype=np.float64), np.arange(h, dtype=np.float64))
     M = R_rect.T @ np.linalg.inv(K_new)  # rectified pixel -> ray in the original camera frame
@@ -127,9 +138,12 @@ def _remap_tables_cv2(
 
 
 def _common_orientation(camera1: Camera, camera2: Camera) -> tuple[np.ndarray, float]:
-    """Step 1: the rectified cameras' rotation R_new (rows x, y, z in world coordinates: x
-    along the baseline, z the mean viewing direction made orthogonal to it) and the
-    baseline B, metres; or a DegenerateError for rigs that cannot be rectified."""
+    """Step 1.
+
+    The rectified cameras' rotation R_new (rows x, y, z in world coordinates: x along the baseline,
+    z the mean viewing direction made orthogonal to it) and the baseline B, metres; or a
+    DegenerateError for rigs that cannot be rectified.
+    """
     base = camera2.centre - camera1.centre
     B = float(np.linalg.norm(base))
     scale = max(np.linalg.norm(camera1.centre), np.linalg.norm(camera2.centre), 1.0)
@@ -161,9 +175,12 @@ def _common_orientation(camera1: Camera, camera2: Camera) -> tuple[np.ndarray, f
 
 
 def _rectified_boxes(*views: tuple[Camera, np.ndarray]) -> tuple[list, list]:
-    """Step 2: where the image borders land in rectified normalised coordinates, for each
-    (camera, rotation): the intersection of the images' inner boxes and the union of their
-    bounding boxes, as [left, top, right, bottom]."""
+    """Step 2.
+
+    Where the image borders land in rectified normalised coordinates, for each (camera, rotation):
+    the intersection of the images' inner boxes and the union of their bounding boxes, as [left,
+    top, right, bottom].
+    """
     inner = [-np.inf, -np.inf, np.inf, np.inf]  # intersection of the per-image inner boxes
     outer = [np.inf, np.inf, -np.inf, -np.inf]  # union of the images' bounding boxes
     for cam, Rr in views:
@@ -196,8 +213,11 @@ def _rectified_boxes(*views: tuple[Camera, np.ndarray]) -> tuple[list, list]:
 
 
 def _shared_intrinsics(inner: list, outer: list, size: tuple[int, int], alpha: float) -> np.ndarray:
-    """Step 3: the one K of both rectified images: alpha = 0 fills the image with the region
-    both images cover (no black border), alpha = 1 keeps every pixel of both."""
+    """Step 3.
+
+    The one K of both rectified images: alpha = 0 fills the image with the region both images cover
+    (no black border), alpha = 1 keeps every pixel of both.
+    """
     w, h = size
     f_in = max((w - 1) / (inner[2] - inner[0]), (h - 1) / (inner[3] - inner[1]))
     f_out = min((w - 1) / (outer[2] - outer[0]), (h - 1) / (outer[3] - outer[1]))

@@ -52,7 +52,6 @@ def vertical_disparity(x1: ArrayLike, x2: ArrayLike) -> VerticalDisparity:
 
     Examples
     --------
-
     >>> vertical_disparity([[10, 5], [20, 7]], [[3, 5.5], [1, 7]]).median
     0.25
     """

@@ -1,5 +1,7 @@
-r"""Stereo calibration: both cameras' intrinsics and the rig's relative pose (R, t) from views of
-one chessboard seen by both, refined jointly (``cv2.stereoCalibrate``'s problem).
+r"""Stereo calibration.
+
+Both cameras' intrinsics and the rig's relative pose (R, t) from views of one chessboard seen by
+both, refined jointly (``cv2.stereoCalibrate``'s problem).
 """
 
 from __future__ import annotations

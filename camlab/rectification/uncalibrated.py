@@ -1,5 +1,15 @@
-r"""Uncalibrated rectification (Hartley 1999, H&Z section 11.12) from F and matches only, with
-Loop & Zhang's shear against distortion.
+r"""Uncalibrated rectification from F and matches only.
+
+Hartley's method [1]_ [2]_ with Loop & Zhang's shear against distortion [3]_.
+
+References
+----------
+.. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 11.12
+   (image rectification).
+.. [2] R. I. Hartley, 1999, "Theory and practice of projective rectification",
+   *International Journal of Computer Vision* 35(2), 115-127.
+.. [3] C. Loop and Z. Zhang, 1999, "Computing rectifying homographies for stereo vision",
+   *Proc. IEEE CVPR*, 125-131.
 """
 
 from __future__ import annotations
@@ -25,8 +35,11 @@ _FIT_PX = 3.0  # Sampson distance (pixels) within which a pair counts as consist
 
 
 class UncalibratedRectification(NamedTuple):
-    """What :func:`rectify_uncalibrated` computed: ``H1``, ``H2`` (3, 3) homographies taking
-    image i's pixels to rectified image i's pixels, and the output ``image_size``."""
+    """What :func:`rectify_uncalibrated` computed.
+
+    ``H1``, ``H2`` (3, 3) homographies taking image i's pixels to rectified image i's pixels, and
+    the output ``image_size``.
+    """
 
     H1: np.ndarray
     H2: np.ndarray

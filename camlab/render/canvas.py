@@ -1,6 +1,8 @@
-r"""How :func:`camlab.render.render` paints: each plane warped by its homography into an ideal
-canvas at ``supersample`` times the output resolution, composited far to near, blurred by its
-circle of confusion, distorted, and box-filtered down to the sensor.
+r"""How :func:`camlab.render.render` paints.
+
+Each plane warped by its homography into an ideal canvas at ``supersample`` times the output
+resolution, composited far to near, blurred by its circle of confusion, distorted, and box-filtered
+down to the sensor.
 """
 
 from __future__ import annotations
@@ -92,8 +94,11 @@ def visible_planes(planes: list[Plane], R: np.ndarray, t: np.ndarray) -> list[Ca
 
 
 class IdealCanvas(NamedTuple):
-    """Stage 2: the supersampled, undistorted canvas; ``K`` maps camera rays to canvas pixels and ``Ks``
-    to the supersampled output grid (the two differ when distortion pulls in rays from outside)."""
+    """Stage 2.
+
+    The supersampled, undistorted canvas; ``K`` maps camera rays to canvas pixels and ``Ks`` to the
+    supersampled output grid (the two differ when distortion pulls in rays from outside).
+    """
 
     K: np.ndarray
     Ks: np.ndarray

@@ -1,6 +1,8 @@
-r"""The virtual camera's model: its settings (:class:`Defocus`, :class:`Sensor`) and results
-(:class:`RenderResult`, :class:`GroundTruth`), the exact projection of plane points, and the near
-plane (``NEAR``) every stage clips at.
+r"""The virtual camera's model.
+
+Its settings (:class:`Defocus`, :class:`Sensor`) and results (:class:`RenderResult`,
+:class:`GroundTruth`), the exact projection of plane points, and the near plane (``NEAR``) every
+stage clips at.
 """
 
 from __future__ import annotations

@@ -1,5 +1,6 @@
-r"""The ground truth of a rendered image, computed analytically (never measured on the image): the
-pixel of every named plane point, and the depth map.
+r"""The ground truth of a rendered image, computed analytically (never measured on the image).
+
+The pixel of every named plane point, and the depth map.
 """
 
 from __future__ import annotations

@@ -1,5 +1,7 @@
-r""":func:`render`: the virtual camera's pipeline, stage by stage (:mod:`~camlab.render.canvas`
-paints, :mod:`~camlab.render.truth` measures nothing and computes the truth).
+r""":func:`render`.
+
+The virtual camera's pipeline, stage by stage (:mod:`~camlab.render.canvas` paints,
+:mod:`~camlab.render.truth` measures nothing and computes the truth).
 """
 
 from __future__ import annotations

@@ -1,5 +1,7 @@
-"""Stitching stages 6-7: exposure gains, seams (Voronoi and dynamic-programming) and blending
-(overwrite, feather, multi-band Laplacian pyramids), with the measures the lesson shows.
+"""Stitching stages 6-7.
+
+Exposure gains, seams (Voronoi and dynamic-programming) and blending (overwrite, feather, multi-band
+Laplacian pyramids), with the measures the lesson shows.
 
 See :mod:`camlab.stitching` for the whole pipeline; every name here is re-exported there.
 """
@@ -18,8 +20,11 @@ BLENDS = ("overwrite", "feather", "multiband")
 
 
 def _over_channels(op, image: np.ndarray) -> np.ndarray:
-    """``op`` (np.add, np.minimum, ...) folded over the channels of an (h, w, C) image, one channel at a
-    time (the same as ``op.reduce(image, axis=2)``, which numpy runs about 10x slower for a short last axis)."""
+    """``op`` (np.add, np.minimum, ...) folded over the channels of an (h, w, C) image.
+
+    One channel at a time: the same as ``op.reduce(image, axis=2)``, which numpy runs about 10x
+    slower for a short last axis.
+    """
     out = image[..., 0]
     for c in range(1, image.shape[2]):
         out = op(out, image[..., c])
@@ -456,9 +461,12 @@ def laplacian_blend(
 def _seam_work_box(
     m: np.ndarray, r0: int, c0: int, shape: tuple, step: int, pad: int
 ) -> tuple[int, int, int, int]:
-    """(y0, y1, x0, x1): the bounding box on the canvas of a seam mask ``m`` placed at (r0, c0),
-    padded by the filters' reach and aligned to the coarsest grid; outside it the blurred seam
-    mask is zero, so blending there changes nothing."""
+    """(y0, y1, x0, x1).
+
+    The bounding box on the canvas of a seam mask ``m`` placed at (r0, c0), padded by the filters'
+    reach and aligned to the coarsest grid; outside it the blurred seam mask is zero, so blending
+    there changes nothing.
+    """
     h, w = shape
     rows, cols = np.flatnonzero(m.any(axis=1)) + r0, np.flatnonzero(m.any(axis=0)) + c0
     y0, x0 = max(0, (rows[0] - pad) // step * step), max(0, (cols[0] - pad) // step * step)
@@ -480,8 +488,10 @@ def _multiband(
     *,
     extended: bool = False,
 ) -> np.ndarray:
-    """:func:`laplacian_blend` of images given in boxes of the canvas: ``images[k]``, ``masks[k]``
-    (seam) and ``feet[k]`` (footprint) cover the canvas pixels ``boxes[k] = (r0, r1, c0, c1)``.
+    """:func:`laplacian_blend` of images given in boxes of the canvas.
+
+    ``images[k]``, ``masks[k]`` (seam) and ``feet[k]`` (footprint) cover the canvas pixels
+    ``boxes[k] = (r0, r1, c0, c1)``.
 
     Each image is extended beyond its footprint before its pyramid is built: by push-pull
     (:func:`_fill_outside`), or, if ``extended`` (the images already repeat their edge

@@ -471,8 +471,11 @@ def bundle_adjust(
 
 
 class HomographyAdjustment(NamedTuple):
-    """The outcome of :func:`adjust_homographies`: ``homographies`` ref_from_k (None for images
-    left out), ``rms_before``/``rms_after`` (pixels), ``iterations``, ``message``, ``seconds`` (wall time)."""
+    """The outcome of :func:`adjust_homographies`.
+
+    ``homographies`` ref_from_k (None for images left out), ``rms_before``/``rms_after`` (pixels),
+    ``iterations``, ``message``, ``seconds`` (wall time).
+    """
 
     homographies: list
     rms_before: float

@@ -444,8 +444,11 @@ def _coarseness(imgs: list, megapixels: float | None) -> float:
 
 
 def _choose_projection(projection: str, fit: ModelChoice, shapes: list) -> str:
-    """Stage 5: the canvas; ``"auto"`` takes the plane for a flat scene and for fields of view up
-    to 100 degrees, the sphere beyond."""
+    """Stage 5.
+
+    The canvas; ``"auto"`` takes the plane for a flat scene and for fields of view up to 100
+    degrees, the sphere beyond.
+    """
     if projection != "auto":
         return projection
     if fit.model == "homography" or max(field_of_view(fit.Ks, fit.Rs, shapes)) <= 100:
@@ -520,8 +523,11 @@ def _result(
     crop: bool,
     times: dict,
 ) -> StitchResult:
-    """Stage 8: the optional crop, per-image lists over all inputs (None for those left out), and
-    the panorama in the inputs' type."""
+    """Stage 8.
+
+    The optional crop, per-image lists over all inputs (None for those left out), and the panorama
+    in the inputs' type.
+    """
     union = np.zeros(warped.shape, bool)
     for m, (r0, r1, c0, c1) in zip(warped.patch_masks, warped.boxes, strict=True):
         union[r0:r1, c0:c1] |= m

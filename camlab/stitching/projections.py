@@ -285,9 +285,12 @@ def footprint(
 
 
 class Canvas(NamedTuple):
-    """A panorama canvas: ``projection``, scale ``s`` (pixels per radian), ``origin`` (u, v) of
-    pixel (0, 0), ``shape`` (h, w), ``wraps`` (the canvas is one full turn wide, columns
-    modulo w), and ``boxes``: each image's (row0, row1, col0, col1), columns unwrapped."""
+    """A panorama canvas.
+
+    ``projection``, scale ``s`` (pixels per radian), ``origin`` (u, v) of pixel (0, 0), ``shape``
+    (h, w), ``wraps`` (the canvas is one full turn wide, columns modulo w), and ``boxes``: each
+    image's (row0, row1, col0, col1), columns unwrapped.
+    """
 
     projection: str
     s: float
@@ -386,7 +389,7 @@ def warp_by_rotation(
     box: tuple,
     extra: np.ndarray | None = None,
 ) -> CanvasPatch:
-    """Warp one image into its canvas box: canvas pixel -> world ray -> :math:`\\pi(K R d)` (bilinear).
+    r"""Warp one image into its canvas box: canvas pixel -> world ray -> :math:`\pi(K R d)` (bilinear).
 
     Returns the warped (r1-r0, c1-c0, C) patch, its bool mask (the pixel sees the image, in
     front of the camera) and, if given, ``extra`` (an (h, w) float32 channel such as feather

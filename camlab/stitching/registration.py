@@ -1,5 +1,7 @@
-"""Stitching stages 1-3: prepare the images, register each pair (matches + RANSAC, Brown and
-Lowe's acceptance test) and build the match graph that chains every image to the reference.
+"""Stitching stages 1-3.
+
+Prepare the images, register each pair (matches + RANSAC, Brown and Lowe's acceptance test) and
+build the match graph that chains every image to the reference.
 
 Also what :func:`camlab.stitching.stitch` checks on the way: a photo given twice
 (:func:`repeated_photos`), features on a reduced copy (:func:`detect_at_resolution`), pairs
@@ -90,7 +92,7 @@ def prepare_images(images: Sequence[ArrayLike]) -> list[np.ndarray]:
 
 
 class PairRegistration(NamedTuple):
-    """The registration of image i onto image j.
+    r"""The registration of image i onto image j.
 
     Attributes
     ----------
@@ -101,7 +103,7 @@ class PairRegistration(NamedTuple):
     inliers : (M,) bool ndarray
         Matches consistent with H (all False if H is None).
     residual_rms : float
-        RMS one-way transfer error :math:`\\|x_j - \\pi(H x_i)\\|` of the inliers, pixels.
+        RMS one-way transfer error :math:`\|x_j - \pi(H x_i)\|` of the inliers, pixels.
     accepted : bool
         Enough inliers to trust H (see :func:`register_pair`).
     reason : str
@@ -242,8 +244,11 @@ def register_pair(
 
 
 def _mirrors(H: np.ndarray, points: np.ndarray) -> bool:
-    r"""Whether H reverses orientation at the points' centroid x: the Jacobian of
-    :math:`\pi(H x)` has determinant :math:`\det H / w^3` with :math:`w = (H \tilde x)_3`."""
+    r"""Whether H reverses orientation at the points' centroid x.
+
+    The Jacobian of :math:`\pi(H x)` has determinant :math:`\det H / w^3` with :math:`w = (H \tilde
+    x)_3`.
+    """
     c = np.append(points.mean(axis=0), 1.0)
     return float(np.linalg.det(H) / (H[2] @ c) ** 3) < 0
 

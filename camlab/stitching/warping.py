@@ -117,14 +117,17 @@ class WarpedImages:
 
     @cached_property
     def images(self) -> list:
+        """The full-canvas images, one per view (made on first use)."""
         return self._on_canvas(self.patches)
 
     @cached_property
     def masks(self) -> list:
+        """The full-canvas masks, one per view (made on first use)."""
         return self._on_canvas(self.patch_masks)
 
     @cached_property
     def weights(self) -> list:
+        """The full-canvas blending weights, one per view (made on first use)."""
         return self._on_canvas(self.patch_weights)
 
     def subsampled(self, step: int) -> SubsampledCanvas:

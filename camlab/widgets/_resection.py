@@ -1,5 +1,8 @@
-"""The resection demo's words and labels (lesson 04): its readout and where the two cameras'
-labels hang. Helpers of :func:`camlab.widgets.projective_camera.resectioning`."""
+"""The resection demo's words and labels (lesson 04).
+
+Its readout and where the two cameras' labels hang. Helpers of
+:func:`camlab.widgets.projective_camera.resectioning`.
+"""
 
 from __future__ import annotations
 
@@ -11,8 +14,10 @@ __all__ = ["k_readout", "place_camera_labels", "resection_readout"]
 
 
 def resection_readout(err, K, cam_true, Xw, v, moved, info, centre_err, held_out=None):
-    """The readout beside the figure: the residuals, the error on fresh points (``held_out``, px RMS), the
-    errors of f and C, the redundancy and the RMS it leads one to expect; returns the numbers it states.
+    """The readout beside the figure.
+
+    The residuals, the error on fresh points (``held_out``, px RMS), the errors of f and C, the
+    redundancy and the RMS it leads one to expect; returns the numbers it states.
     """
     behind = int(
         np.count_nonzero(~np.isfinite(err))

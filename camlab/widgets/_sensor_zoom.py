@@ -1,5 +1,8 @@
-"""The true-scale zoom around the sensor under :func:`camlab.widgets.lenses_and_distortion.focus_and_blur`'s
-side view (lesson 02): where the cone of light crosses at z_i and the sensor cuts it in the blur c."""
+"""The true-scale zoom around the sensor under lesson 02's side view.
+
+Under :func:`camlab.widgets.lenses_and_distortion.focus_and_blur`'s side view: where the cone of
+light crosses at z_i and the sensor cuts it in the blur c.
+"""
 
 from __future__ import annotations
 

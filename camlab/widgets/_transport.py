@@ -90,9 +90,11 @@ def _pixel_box(image: Any) -> tuple[int, int, int, int]:
 
 
 def _resize(image: Any, a: np.ndarray, width: int, height: int) -> np.ndarray:
-    """``a`` resized to width x height as ``image`` displays it: a pixelated view ('nearest')
-    stays crisp; anything else is area-averaged when shrunk (as antialiasing would) and
-    interpolated when enlarged."""
+    """``a`` resized to width x height as ``image`` displays it.
+
+    A pixelated view ('nearest') stays crisp; anything else is area-averaged when shrunk (as
+    antialiasing would) and interpolated when enlarged.
+    """
     import cv2
 
     if image.get_interpolation() in ("nearest", "none"):

@@ -22,15 +22,18 @@ from ..fixtures.calibration import bundled_calibration
 from ..plotting import palette
 from ..plotting.calibration import image_frame
 from ._base import Demo, FigureView, build_demo, register, slider
-from .controls import monospace
+from .controls import int_slider, monospace
 
 _NAMES = ("fx", "fy", "cx", "cy")
 _SIGMA_LIM = 8.0  # the sigma-unit axis spans +-8
 
 
 def _accuracy_figure(view: FigureView, s) -> SimpleNamespace:
-    """The figure of :func:`accuracy_vs_views`: the errors in units of the reported sigma (left)
-    and the corners used, coloured by view (right); returns its animated artists by name."""
+    """The figure of :func:`accuracy_vs_views`.
+
+    The errors in units of the reported sigma (left) and the corners used, coloured by view (right);
+    returns its animated artists by name.
+    """
     ax, axi = view.fig.subplots(1, 2, width_ratios=[1, 1.3])
     ax.axhline(0, color="0.4", lw=1)
     # In units of the reported standard deviation: the bars are always +-3, so every setting
@@ -76,8 +79,10 @@ def _accuracy_figure(view: FigureView, s) -> SimpleNamespace:
 
 
 def _accuracy_readout(n, sigma, res, s, est, std, truth, err, z) -> str:
-    """The text beside :func:`accuracy_vs_views`: each estimate with its reported sigma, the truth
-    and the error in sigmas."""
+    """The text beside :func:`accuracy_vs_views`.
+
+    Each estimate with its reported sigma, the truth and the error in sigmas.
+    """
     lines = [f"{n} views, noise σ = {sigma:.2f} px, rms = {res.rms:.3f} px per corner"]
     lines += [
         f"{k:>2} = {e:8.2f} ± {sd:5.2f}  (true {t:.1f}, error {d:+.2f} = {zz:+.1f}σ)"
@@ -92,15 +97,7 @@ def _accuracy_readout(n, sigma, res, s, est, std, truth, err, z) -> str:
 def _accuracy_controls() -> dict:
     """The controls of :func:`accuracy_vs_views`: the number of views and the corner noise."""
     return {
-        "n_views": W.IntSlider(
-            value=6,
-            min=3,
-            max=15,
-            description="views",
-            continuous_update=True,
-            style={"description_width": "initial"},
-            layout=W.Layout(width="300px"),
-        ),
+        "n_views": int_slider(6, 3, 15, "views"),
         "noise": slider(0.3, 0.0, 1.0, 0.05, "corner noise σ (px)"),
     }
 
@@ -186,8 +183,11 @@ def accuracy_vs_views() -> Demo:
 
 
 def _inspector_figure(view: FigureView, res) -> SimpleNamespace:
-    """The figure of :func:`view_inspector`: the photo, the detected and the reprojected corners
-    and the residual arrows; returns its animated artists by name."""
+    """The figure of :func:`view_inspector`.
+
+    The photo, the detected and the reprojected corners and the residual arrows; returns its
+    animated artists by name.
+    """
     ax = view.fig.subplots()
     image_frame(ax, res.image_size)
     w, h = res.image_size
@@ -237,18 +237,12 @@ def _inspector_figure(view: FigureView, res) -> SimpleNamespace:
 
 
 def _inspector_controls(n_views: int) -> dict:
-    """The controls of :func:`view_inspector`: the view (0 to ``n_views`` - 1) and the arrows'
-    magnification."""
+    """The controls of :func:`view_inspector`.
+
+    The view (0 to ``n_views`` - 1) and the arrows' magnification.
+    """
     return {
-        "view": W.IntSlider(
-            value=0,
-            min=0,
-            max=n_views - 1,
-            description="view",
-            continuous_update=True,
-            style={"description_width": "initial"},
-            layout=W.Layout(width="300px"),
-        ),
+        "view": int_slider(0, 0, n_views - 1, "view"),
         "magnify": slider(300.0, 1.0, 1000.0, 1.0, "arrow magnification"),
     }
 

@@ -11,7 +11,7 @@ from matplotlib.patches import Rectangle
 from .. import fixtures, render, scenes, sensor
 from ..plotting import images, palette
 from ._base import FigureView, build_demo, register, slider
-from .controls import monospace
+from .controls import int_slider, monospace
 
 SIZE = (320, 240)
 
@@ -106,15 +106,8 @@ def pixel_pitch():
 def _sampling_controls() -> dict:
     """The controls of :func:`sampling_aliasing`: the pixel size, the box filter and the lens blur."""
     return {
-        "factor": W.IntSlider(
-            value=3,  # odd: each point sample is its block's centre, so the fold shows on all four sides
-            min=1,
-            max=8,
-            description="pixel size (fine px)",
-            continuous_update=True,
-            style={"description_width": "initial"},
-            layout=W.Layout(width="300px"),
-        ),
+        # odd: each point sample is its block's centre, so the fold shows on all four sides
+        "factor": int_slider(3, 1, 8, "pixel size (fine px)"),
         "prefilter": W.Checkbox(
             value=False, description="average over the pixel area (box filter)"
         ),
@@ -227,15 +220,7 @@ UNIFORM = slice(100, 140)  # where the profile row crosses the dark uniform
 def _noise_controls() -> dict:
     """The controls of :func:`bit_depth_and_noise`: bit depth, exposure and read noise."""
     return {
-        "bits": W.IntSlider(
-            value=4,
-            min=1,
-            max=12,
-            description="bit depth",
-            continuous_update=True,
-            style={"description_width": "initial"},
-            layout=W.Layout(width="300px"),
-        ),
+        "bits": int_slider(4, 1, 12, "bit depth"),
         "exposure": W.FloatLogSlider(
             value=0.3,
             base=10,
@@ -252,8 +237,11 @@ def _noise_controls() -> dict:
 
 
 def _noise_figure(view: FigureView) -> SimpleNamespace:
-    """The figure of :func:`bit_depth_and_noise`: the rendered photo (linear light, shown through
-    sRGB) and the profile of one row against the truth; returns the clean photo and the artists."""
+    """The figure of :func:`bit_depth_and_noise`.
+
+    The rendered photo (linear light, shown through sRGB) and the profile of one row against the
+    truth; returns the clean photo and the artists.
+    """
     ax_img, ax_p = view.fig.subplots(1, 2)
     K = np.array([[330.0, 0, 159.5], [0, 330.0, 119.5], [0, 0, 1]])
     # linear light, as a sensor counts it (the photo's JPEG values decoded), shown through sRGB
@@ -372,8 +360,11 @@ ZOOM_V = 100  # the default zoom: the flag's stripes, the spectacles' lower rim 
 
 
 def _demosaic_controls() -> dict:
-    """The controls of :func:`demosaicing`: the sensor's pattern, the pattern assumed, the method
-    and the zoom (where, and whether it shows the image or its error)."""
+    """The controls of :func:`demosaicing`.
+
+    The sensor's pattern, the pattern assumed, the method and the zoom (where, and whether it shows
+    the image or its error).
+    """
     patterns = ["RGGB", "BGGR", "GRBG", "GBRG"]
     return {
         "pattern": W.Dropdown(options=patterns, value="RGGB", description="sensor's pattern"),
@@ -395,8 +386,11 @@ def _demosaic_controls() -> dict:
 
 
 def _demosaic_figure(view: FigureView) -> SimpleNamespace:
-    """The figure of :func:`demosaicing`: the mosaic's zoom, the demosaiced frame with the zoom's
-    box, and the zoom; returns the true (linear) image and the artists by name."""
+    """The figure of :func:`demosaicing`.
+
+    The mosaic's zoom, the demosaiced frame with the zoom's box, and the zoom; returns the true
+    (linear) image and the artists by name.
+    """
     ax_raw, ax_full, ax_zoom = view.fig.subplots(1, 3, width_ratios=[0.75, 1, 0.75])
     # linear light (the photo's JPEG values decoded), as a sensor records it; every panel is shown through sRGB
     truth = render.render(

@@ -107,8 +107,11 @@ def _focus_controls() -> dict:
 
 
 def _focus_figure(view: FigureView) -> SimpleNamespace:
-    """The figure of :func:`focus_and_blur`: the cone through the lens with its zoom near the sensor,
-    the blur disc face on and the blur circle c(z); returns its animated artists by name."""
+    """The figure of :func:`focus_and_blur`.
+
+    The cone through the lens with its zoom near the sensor, the blur disc face on and the blur
+    circle c(z); returns its animated artists by name.
+    """
     grid = view.fig.add_gridspec(2, 3, width_ratios=[1.5, 0.85, 1.1], height_ratios=[2.1, 1])
     ax_cone = view.fig.add_subplot(grid[0, 0])
     ax_disc = view.fig.add_subplot(grid[:, 1])
@@ -260,9 +263,11 @@ def _dof_controls() -> dict:
 
 
 def _dof_figure(view: FigureView) -> SimpleNamespace:
-    """The figure of :func:`depth_of_field`: the rendered scene 1:1 on canvas pixels above its blur
-    curve with the sharp band and the planes; returns the scene, the curve's depths, the planes
-    and the animated artists by name."""
+    """The figure of :func:`depth_of_field`.
+
+    The rendered scene 1:1 on canvas pixels above its blur curve with the sharp band and the planes;
+    returns the scene, the curve's depths, the planes and the animated artists by name.
+    """
     width, height = view.fig.bbox.width, view.fig.bbox.height
     left, bottom = (
         64,
@@ -411,9 +416,11 @@ def _distortion_controls() -> dict:
 
 
 def _distortion_figure(view: FigureView) -> SimpleNamespace:
-    """The figure of :func:`lens_distortion`: the rendered board with its true corners and a grid
-    through the lens over the straight one; returns the board, the ideal grid and the animated
-    artists by name."""
+    """The figure of :func:`lens_distortion`.
+
+    The rendered board with its true corners and a grid through the lens over the straight one;
+    returns the board, the ideal grid and the animated artists by name.
+    """
     ax_img, ax_grid = view.fig.subplots(1, 2)
     board = scenes.checkerboard((11, 8), 0.04, t=(-0.2, -0.14, 0.45), px_per_square=32)
     # drawn smaller than its 480 x 360 pixels: area-averaged, or the square edges alias

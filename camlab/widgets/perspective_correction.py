@@ -55,8 +55,11 @@ _PHOTO_DISPLAY = (440, 330)  # about the photo axes' size on screen, in pixels
 
 
 def _set_photo(im: Any, image: np.ndarray) -> None:
-    """Show a 640x480 photo, downsampled once to screen size (matplotlib then draws it
-    nearly 1:1, twice as fast); the extent keeps the axes in photo pixel coordinates."""
+    """Show a 640x480 photo, downsampled once to screen size.
+
+    Matplotlib then draws it nearly 1:1, twice as fast; the extent keeps the axes in photo pixel
+    coordinates.
+    """
     import cv2
 
     im.set_data(
@@ -87,8 +90,11 @@ def _photo_demo(photo_title: str, result_title: str, outline: dict):
 
 
 def _rectify_artists(view: FigureView, ax_p: Any, ax_r: Any) -> SimpleNamespace:
-    """The artists :func:`rectify_photo` adds to the photo demo's figure: the corner handles, the
-    chosen corner's ring, the key, the other focal length's and the true shape's outlines."""
+    """The artists :func:`rectify_photo` adds to the photo demo's figure.
+
+    The corner handles, the chosen corner's ring, the key, the other focal length's and the true
+    shape's outlines.
+    """
     handles = view.animate(ax_p.plot([], [], "o", color=palette.ORANGE, ms=9, mec="k")[0])
     chosen = view.animate(
         ax_p.plot(
@@ -123,9 +129,11 @@ def _rectify_artists(view: FigureView, ax_p: Any, ax_r: Any) -> SimpleNamespace:
 
 
 def _show_shapes(im: Any, photo: Any, corners: np.ndarray, ratio: float, outlines) -> None:
-    """The rectified view of ``corners`` at width/height ``ratio``, as wide as the quadrilateral's
-    wider horizontal side, and ``outlines`` ((artist, ratio) pairs): the rectangles other ratios
-    would give, in the display box."""
+    """The rectified view of ``corners`` at width/height ``ratio``, and ``outlines``.
+
+    The view is as wide as the quadrilateral's wider horizontal side; ``outlines`` ((artist, ratio)
+    pairs) are the rectangles other ratios would give, in the display box.
+    """
     width = max(np.linalg.norm(corners[1] - corners[0]), np.linalg.norm(corners[2] - corners[3]))
     _show_rectified(im, photo.image, corners, (int(width), int(width / ratio)))
     # Outlines, in the display box, of the rectangle the other focal length and the truth would give.
@@ -136,8 +144,10 @@ def _show_shapes(im: Any, photo: Any, corners: np.ndarray, ratio: float, outline
 
 
 def _rectify_readout(est: Any, used: str, from_quad: Any, known: Any, photo: Any) -> str:
-    """The text beside :func:`rectify_photo`: the ratio shown, the ratios with f from the corners,
-    with f known and the true one."""
+    """The text beside :func:`rectify_photo`.
+
+    The ratio shown, the ratios with f from the corners, with f known and the true one.
+    """
     f = "—" if from_quad.focal_length is None else f"{from_quad.focal_length:.0f} px"
     return monospace(
         f"shown: w/h {est.ratio:.3f} ({used})\n"
@@ -150,9 +160,11 @@ def _rectify_readout(est: Any, used: str, from_quad: Any, known: Any, photo: Any
 
 
 def _new_photo(current: dict, scene: str, im: Any, control: W.Text) -> str:
-    """Switch :func:`rectify_photo` to ``scene``'s photo: show it, put its true corners in the
-    corners control (``current["busy"]`` keeps that from starting a second update) and return them
-    as text."""
+    """Switch :func:`rectify_photo` to ``scene``'s photo.
+
+    Show it, put its true corners in the corners control (``current["busy"]`` keeps that from
+    starting a second update) and return them as text.
+    """
     current["scene"], current["photo"] = scene, scenes.sample_photo(scene)
     _set_photo(im, current["photo"].image)
     text = format_corners(current["photo"].corners)
@@ -172,8 +184,11 @@ def _show_corners(quad: Any, handles: Any, chosen: Any, corners: np.ndarray, k: 
 
 
 def _rectify_controls(control: W.Text, keys: dict) -> dict:
-    """The controls of :func:`rectify_photo`: the photo, the corners' text, the known-focal
-    checkbox and the corner the keys move (taken out of ``keys``)."""
+    """The controls of :func:`rectify_photo`.
+
+    The photo, the corners' text, the known-focal checkbox and the corner the keys move (taken out
+    of ``keys``).
+    """
     return {
         "scene": W.Dropdown(
             options=["page", "painting", "facade"], value="page", description="photo"
@@ -292,7 +307,7 @@ def rectify_photo() -> Demo:
     sweep={"yaw": [-0.6, 0.0, 0.5], "pitch": [0.5, -0.3], "page_present": [False, True]},
 )
 def document_scanner() -> Demo:
-    """ "Scan this page": find the page automatically and rectify it; say so when there is none.
+    """The "Scan this page" demo: find the page and rectify it; say so when there is none.
 
     The page is found by edges, contours and the largest convex quadrilateral.
 

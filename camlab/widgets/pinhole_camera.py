@@ -66,8 +66,10 @@ def _bar_ends(u_min: float, u_max: float, width: int) -> tuple[list, list]:
 
 
 def _projection_controls() -> dict:
-    """The controls of :func:`pinhole_projection`: the focal length, the box's distance and which
-    image plane the image shows."""
+    """The controls of :func:`pinhole_projection`.
+
+    The focal length, the box's distance and which image plane the image shows.
+    """
     return {
         "focal_mm": slider(50, 15, 100, 1, "focal length f (mm)", readout_format=".0f"),
         "distance": slider(2.0, 0.8, 4.0, 0.1, "box distance Z (m)"),
@@ -78,9 +80,11 @@ def _projection_controls() -> dict:
 
 
 def _projection_figure(view: FigureView) -> SimpleNamespace:
-    """The figure of :func:`pinhole_projection`: the box, the pinhole and both image planes in 3-D
-    (depth squeezed by ``squeeze``) beside the recorded image with the box's width bar; returns
-    its artists by name."""
+    """The figure of :func:`pinhole_projection`.
+
+    The box, the pinhole and both image planes in 3-D (depth squeezed by ``squeeze``) beside the
+    recorded image with the box's width bar; returns its artists by name.
+    """
     view.fig.set_layout_engine(
         "none"
     )  # placed by hand: the layout engine does not see the 3-D axis labels
@@ -360,8 +364,11 @@ def row_heights_px() -> np.ndarray:
 
 
 def _row_bands() -> list[tuple[int, int]]:
-    """The image rows (v, top to bottom) each chart row's letters occupy, as the chart texture lays them out
-    (600 x 500 texels, rows from texel 30 down, 1.6 row heights apart, centred in the image)."""
+    """The image rows (v, top to bottom) each chart row's letters occupy.
+
+    As the chart texture lays them out: 600 x 500 texels, rows from texel 30 down, 1.6 row heights
+    apart, centred in the image.
+    """
     scale = 0.3 / 600 * SIZE[0] / (0.36 * PAGE_Z)  # pixels per texel
     bands, top = [], 30.0
     for cap in CHART_ROW_HEIGHTS:
@@ -501,8 +508,11 @@ D_LOG_MAX = np.log10(0.35) + 285 * D_LOG_STEP  # 2.51 mm
 
 
 def _size_controls() -> dict:
-    """The controls of :func:`pinhole_size`: the pinhole's diameter (a log slider), the focal length
-    and whether the exposure time stays the default's."""
+    """The controls of :func:`pinhole_size`.
+
+    The pinhole's diameter (a log slider), the focal length and whether the exposure time stays the
+    default's.
+    """
     return {
         "diameter_mm": W.FloatLogSlider(
             value=0.35,
@@ -524,8 +534,11 @@ def _size_controls() -> dict:
 
 
 def _size_figure(view: FigureView) -> SimpleNamespace:
-    """The figure of :func:`pinhole_size`: blur against the pinhole's diameter beside the letter
-    chart it records; returns the chart and the artists by name."""
+    """The figure of :func:`pinhole_size`.
+
+    Blur against the pinhole's diameter beside the letter chart it records; returns the chart and
+    the artists by name.
+    """
     ax_plot, ax_img = view.fig.subplots(1, 2)
     art = optics.draw_pinhole_blur(ax_plot, 0.1, object_distance=PAGE_Z)
     ax_plot.set_ylim(0.01, 30)
@@ -557,8 +570,11 @@ def _size_figure(view: FigureView) -> SimpleNamespace:
 
 
 def _expose(ax_img, img: np.ndarray, light: float, fixed: bool) -> np.ndarray:
-    """The chart as :func:`pinhole_size` shows it, titled: with the default's exposure time
-    (``fixed``), ``light`` times as bright, clipped; else brightness compensated, as rendered."""
+    """The chart as :func:`pinhole_size` shows it, titled.
+
+    With the default's exposure time (``fixed``), ``light`` times as bright, clipped; else
+    brightness compensated, as rendered.
+    """
     default = f"(d = {REFERENCE[0] * 1e3:g} mm, f = {REFERENCE[1] * 1e3:g} mm)"
     if fixed:  # the reference's exposure time: the image darkens (or burns out) with (d/f)^2
         img = np.clip(img * light, 0.0, 1.0)
@@ -585,8 +601,11 @@ def _expose(ax_img, img: np.ndarray, light: float, fixed: bool) -> np.ndarray:
 
 
 def _limited_by(b) -> str:
-    """What limits a pinhole's blur ``b`` (:func:`camlab.pinhole.pinhole_blur`): "balanced" while its
-    geometric and diffraction terms differ by under :data:`BALANCED` of the total, else the larger."""
+    """What limits a pinhole's blur ``b`` (:func:`camlab.pinhole.pinhole_blur`).
+
+    "balanced" while its geometric and diffraction terms differ by under :data:`BALANCED` of the
+    total, else the larger.
+    """
     return (
         "balanced"
         if abs(b.diffraction - b.geometric) < BALANCED * b.total

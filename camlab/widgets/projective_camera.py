@@ -266,9 +266,11 @@ def camera_explorer():
 
 
 def _show_estimate(art, trial, K, R, t, C, ringed, first_pixels):
-    """Draw the points, their pixels and reprojections (pairs ``ringed`` ringed), and the
-    estimated camera K [R | t] (centre C) or, when it is more than FAR_M from the truth, a
-    pointer towards it; a ringed pixel that moved also shows where it was first (``first_pixels``); returns the centre's error (m) and whether it is that far.
+    """Draw the points, their pixels and reprojections, and the estimated camera.
+
+    Pairs ``ringed`` are ringed. The estimated camera K [R | t] (centre C) or, when it is more than
+    FAR_M from the truth, a pointer towards it; a ringed pixel that moved also shows where it was
+    first (``first_pixels``). Returns the centre's error (m) and whether it is that far.
     """
     cam_true, Xw, uvn, P = trial.camera, trial.points_world, trial.points_image, trial.P
     est = cm.Camera(K, R, t)
@@ -342,8 +344,9 @@ def _segments_xy(start, end):
 
 
 def _resectioning_key(view):
-    """What the line styles of :func:`resectioning` mean, drawn once below the axes, where
-    it covers no data.
+    """What the line styles of :func:`resectioning` mean, below the axes.
+
+    Drawn once, where it covers no data.
     """
     from matplotlib.lines import Line2D
 
@@ -381,9 +384,10 @@ def _resectioning_key(view):
 
 
 def _resectioning_figure(view):
-    """The figure of :func:`resectioning`: the 3-D scene with the true and the estimated
-    camera, the image panel with the measured and reprojected pixels, the key below; returns
-    its artists by name.
+    """The figure of :func:`resectioning`.
+
+    The 3-D scene with the true and the estimated camera, the image panel with the measured and
+    reprojected pixels, the key below; returns its artists by name.
     """
     cam, X, uv = fixtures.resection_set(12, 0.5)
     box = scenes.box_wireframe((0.0, 0.0, 1.0), (2.0, 2.0, 2.0))

@@ -98,8 +98,11 @@ def _line_at_angle(angle_deg: float | np.ndarray, offset: float) -> np.ndarray:
 
 
 def _parallel_figure(view: FigureView) -> SimpleNamespace:
-    """The figure of :func:`parallel_lines`: the two lines and their meet (left), |w| of the meet against
-    l2's angle with l1's angle dotted (right), and the note for coincident lines; returns the artists."""
+    """The figure of :func:`parallel_lines`.
+
+    The two lines and their meet (left), |w| of the meet against l2's angle with l1's angle dotted
+    (right), and the note for coincident lines; returns the artists.
+    """
     ax, axw = view.fig.subplots(1, 2, width_ratios=[1.3, 1])
     plane_axes(ax, 4, "l1 = 30° fixed; turn l2")
     (l1_artist,) = ax.plot([], [], color=palette.TAB_BLUE, lw=2, label="l1")
@@ -309,9 +312,12 @@ def point_line_duality() -> Demo:
 
 
 def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespace:
-    """The figure of :func:`vanishing_points`: the image of ``size`` (width, height) with the two
-    families of ground lines, the horizon, the two vanishing points and the note for a horizon
-    above the image; returns its axes and artists by name."""
+    """The figure of :func:`vanishing_points`.
+
+    The image of ``size`` (width, height) with the two families of ground lines, the horizon, the
+    two vanishing points and the note for a horizon above the image; returns its axes and artists by
+    name.
+    """
     ax = view.fig.subplots()
     image_axes(ax, size, "ground grid seen by a tilted camera")
     from matplotlib.collections import LineCollection
@@ -446,8 +452,11 @@ def vanishing_points() -> Demo:
 
 
 def _cross_ratio_figure(view: FigureView) -> SimpleNamespace:
-    """The figure of :func:`cross_ratio_invariance`: a grid and four collinear points (left), their
-    images (right) and a text strip for the two numbers; returns the points and artists by name."""
+    """The figure of :func:`cross_ratio_invariance`.
+
+    A grid and four collinear points (left), their images (right) and a text strip for the two
+    numbers; returns the points and artists by name.
+    """
     axes = view.fig.subplot_mosaic([["before", "after"], ["text", "text"]], height_ratios=[1, 0.08])
     ax_s, ax_t = axes["before"], axes["after"]
     axes["text"].set_axis_off()
@@ -558,9 +567,12 @@ def cross_ratio_invariance() -> Demo:
 
 
 def _conic_figure(view: FigureView) -> SimpleNamespace:
-    """The figure of :func:`conic_under_homography`: the unit circle with its tangent square (left), their
-    images (right), legends under both and a text strip for the circular points (in the figure, so a
-    static copy shows it too); returns its axes and artists by name."""
+    """The figure of :func:`conic_under_homography`.
+
+    The unit circle with its tangent square (left), their images (right), legends under both and a
+    text strip for the circular points (in the figure, so a static copy shows it too); returns its
+    axes and artists by name.
+    """
     axes = view.fig.subplot_mosaic([["before", "after"], ["text", "text"]], height_ratios=[1, 0.13])
     ax_b, ax_a, ax_t = axes["before"], axes["after"], axes["text"]
     plane_axes(ax_b, 2.0, "before: a circle C and 4 tangents")
@@ -607,9 +619,11 @@ def _complex_text(z: complex) -> str:
 
 
 def _conic_geometry(v: dict, samples: np.ndarray) -> SimpleNamespace:
-    """What :func:`conic_under_homography` draws and reports for the control values ``v``: H, the
-    mapped unit circle C' (unit norm) and its centre, the mapped ``samples`` and tangents, the
-    residuals x'^T C' x' and l'^T C*' l', H I scaled to a first entry 1, the axis ratio."""
+    """What :func:`conic_under_homography` draws and reports for the control values ``v``.
+
+    H, the mapped unit circle C' (unit norm) and its centre, the mapped ``samples`` and tangents,
+    the residuals x'^T C' x' and l'^T C*' l', H I scaled to a first entry 1, the axis ratio.
+    """
     t = np.radians(v["angle"])
     H = np.array(
         [

@@ -77,9 +77,12 @@ def _line_polyline(lines: np.ndarray, size: tuple[int, int] = SIZE) -> np.ndarra
 
 
 def _epipolar_figure(view: FigureView) -> SimpleNamespace:
-    """The figure of :func:`epipolar_lines`: the left and right images with the scene's outlines, the
-    pencils of epipolar lines, the point and its lines, the depth marks and the epipoles (an arrow
-    at the border for one off the image); returns its axes and moving artists by name."""
+    """The figure of :func:`epipolar_lines`.
+
+    The left and right images with the scene's outlines, the pencils of epipolar lines, the point
+    and its lines, the depth marks and the epipoles (an arrow at the border for one off the image);
+    returns its axes and moving artists by name.
+    """
     axl, axr = view.fig.subplots(1, 2)
     image_axes(axl, SIZE, "left image: click a point")
     image_axes(axr, SIZE, "right image: its epipolar line")
@@ -134,8 +137,10 @@ def _epipolar_figure(view: FigureView) -> SimpleNamespace:
 
 
 def _show_epipole(e, marker, shaft, head, ax) -> None:
-    """Epipole ``e`` (homogeneous) as ``marker`` inside the image, else as an arrow (``shaft`` and
-    ``head``) at the border of ``ax`` pointing to it."""
+    """Epipole ``e`` (homogeneous) as ``marker`` inside the image, else as an arrow.
+
+    The arrow (``shaft`` and ``head``) sits at the border of ``ax`` pointing to it.
+    """
     xy, direction = arrow_to_infinity(e, ax)
     if not direction.any():  # inside the image
         marker.set_data([xy[0]], [xy[1]])
@@ -151,8 +156,11 @@ def _show_epipole(e, marker, shaft, head, ax) -> None:
 
 
 def _epipolar_readout(v: dict, e2: np.ndarray, inside: bool, uv: np.ndarray, l2: np.ndarray) -> str:
-    """The text beside :func:`epipolar_lines`: the motion, the right epipole ``e2`` and how far the
-    depth marks ``uv`` (px) lie from the epipolar line ``l2``."""
+    """The text beside :func:`epipolar_lines`.
+
+    The motion, the right epipole ``e2`` and how far the depth marks ``uv`` (px) lie from the
+    epipolar line ``l2``.
+    """
     at_inf = abs(e2[2]) < 1e-9
     ep2 = (
         "at infinity (lines parallel)"
@@ -280,9 +288,12 @@ def _crop(img: np.ndarray, u: int, v: int, r: int = ZOOM) -> np.ndarray:
 
 
 def _zoom_pair(L: np.ndarray, R: np.ndarray, p1: np.ndarray, p2: np.ndarray):
-    """Crops of ``L`` around the match's left point ``p1`` and of ``R`` around ``p2``, both on the
-    left point's row, side by side (one black column between), and where the two points and the
-    left point's row fall in that strip (its pixels, the left crop's centre at (ZOOM, ZOOM))."""
+    """Crops of ``L`` and ``R`` around the match, side by side, and where it falls.
+
+    ``L`` around the match's left point ``p1`` and ``R`` around ``p2``, both on the left point's
+    row, one black column between; and where the two points and the left point's row fall in that
+    strip (its pixels, the left crop's centre at (ZOOM, ZOOM)).
+    """
     r = ZOOM
     cu1, cv = (int(round(c)) for c in p1)
     cu2 = int(round(p2[0]))
@@ -293,9 +304,12 @@ def _zoom_pair(L: np.ndarray, R: np.ndarray, p1: np.ndarray, p2: np.ndarray):
 
 
 def _zoomed_match(left_half: np.ndarray, x1: np.ndarray, x2: np.ndarray) -> int:
-    """The match to zoom on: among those 30 px inside the half-size images whose raw vertical
-    disparity exceeds 6 px, the one with the most structure around it (the spread of the gradient
-    magnitude over its 17 x 17 half-size neighbourhood), so the eye can follow it."""
+    """The match to zoom on.
+
+    Among those 30 px inside the half-size images whose raw vertical disparity exceeds 6 px, the one
+    with the most structure around it (the spread of the gradient magnitude over its 17 x 17
+    half-size neighbourhood), so the eye can follow it.
+    """
     s1 = map_points(HALF, x1)
     inner = np.all((x1 > 60) & (x1 < [579, 419]) & (x2 > 60) & (x2 < [579, 419]), axis=1)
     candidates = np.flatnonzero(inner & (np.abs(x1[:, 1] - x2[:, 1]) > 6))
@@ -327,9 +341,11 @@ def _zoom_axes(axz, view: FigureView):
 
 
 def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
-    """The figure of :func:`rectify_pair`: the ``half``-size pair side by side under a row grid, the
-    match lines, the cumulative histogram of vertical disparity and a zoom on one match; returns
-    the moving artists."""
+    """The figure of :func:`rectify_pair`.
+
+    The ``half``-size pair side by side under a row grid, the match lines, the cumulative histogram
+    of vertical disparity and a zoom on one match; returns the moving artists.
+    """
     gs = view.fig.add_gridspec(2, 3, width_ratios=[2.6, 0.05, 1], height_ratios=[1.3, 1])
     ax = view.fig.add_subplot(gs[:, 0])
     axh = view.fig.add_subplot(gs[0, 2])

@@ -1,6 +1,8 @@
-"""Exercises for lesson 05, affine cameras: the weak-perspective (P_inf, :mod:`.weak_perspective`) and
-para-perspective (:mod:`.paraperspective`) approximations of a perspective camera, which share their test
-cameras and typical slips (:mod:`._approx_common`), and the least-squares affine camera (:mod:`.estimation`).
+"""Exercises for lesson 05, affine cameras.
+
+The weak-perspective (P_inf, :mod:`.weak_perspective`) and para-perspective
+(:mod:`.paraperspective`) approximations of a perspective camera, which share their test cameras and
+typical slips (:mod:`._approx_common`), and the least-squares affine camera (:mod:`.estimation`).
 
 Every diagnosis either names a cause it has tested (the answer equals exactly what that mistake
 gives) or says what differs (which entries, by how much), never a guess.

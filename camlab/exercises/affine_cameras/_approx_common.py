@@ -1,6 +1,9 @@
-"""What lesson 05's two approximations share: the test cameras, the matrices K E / d0 every mistake is built
-from, the slips both meet (a wrong depth d0, K or R misused: the table :data:`COMMON_MISTAKES`) and the
-measured description of what differs when no known slip matches."""
+"""What lesson 05's two approximations share.
+
+The test cameras, the matrices K E / d0 every mistake is built from, the slips both meet (a wrong
+depth d0, K or R misused: the table :data:`COMMON_MISTAKES`) and the measured description of what
+differs when no known slip matches.
+"""
 
 from __future__ import annotations
 
@@ -84,8 +87,11 @@ def depth_and_ab(camera, X0):
 
 
 def last_row_cause(g, d0, expected, fix, r3=None, name="P_inf") -> str:
-    """Why the last row is not (0, 0, 0, 1) (``r3``: the camera's optical axis, to recognise a kept r3;
-    ``name``: the exercise's camera, P_inf or P_para, as the hint names it)."""
+    """Why the last row is not (0, 0, 0, 1).
+
+    ``r3`` is the camera's optical axis, to recognise a kept r3; ``name`` is the exercise's camera,
+    P_inf or P_para, as the hint names it.
+    """
     if r3 is not None and np.linalg.norm(g[2, :3]) > 1e-9:
         k = float(g[2, :3] @ r3)
         if np.allclose(g[2, :3], k * r3, rtol=1e-6, atol=1e-9):
@@ -157,8 +163,10 @@ def what_differs(g, expected, camera, X0) -> str:
 
 
 def v_flip_cause(g, expected) -> str | None:
-    """The cause when row 1 (u) is right and row 2 gives c - v for the right v: the v axis flipped
-    (y up, -v) or the rows counted from the bottom (479 - v)."""
+    """The cause when row 1 (u) is right and row 2 gives c - v for the right v.
+
+    The v axis flipped (y up, -v) or the rows counted from the bottom (479 - v).
+    """
     if not (same_to_rounding(g[0], expected[0]) and same_to_rounding(g[1, :3], -expected[1, :3])):
         return None
     c = float(g[1, 3] + expected[1, 3])  # g's v = c - the right v
@@ -172,8 +180,10 @@ def v_flip_cause(g, expected) -> str | None:
 
 
 def image_of_X0_as_translation(g, expected, camera, X0) -> str | None:
-    """The cause when M2 is right and the last column is X0's image x_X0 (a first-order expansion about X0
-    written as x_X0 + M2 X instead of x_X0 + M2 (X - X0))."""
+    """The cause when M2 is right and the last column is X0's image x_X0.
+
+    A first-order expansion about X0 written as x_X0 + M2 X instead of x_X0 + M2 (X - X0).
+    """
     if same_to_rounding(g[:2, :3], expected[:2, :3]) and same_to_rounding(
         g[:2, 3], camera.project(X0)
     ):
@@ -235,9 +245,12 @@ def common_context(camera, X0, fix=""):
 
 
 def nearly_right_cause(g, expected, fix) -> str | None:
-    """The cause when every entry is within 1e-4 (relative, or absolute near 0) of the answer but not within
-    the exercise's 1e-7: the form is right and only the digits are off (rounded numbers, float32, a
-    truncated constant), so no slip of the formula should be named."""
+    """The cause when every entry is near the answer but not within the exercise's 1e-7.
+
+    Every entry is within 1e-4 (relative, or absolute near 0): the form is right and only the digits
+    are off (rounded numbers, float32, a truncated constant), so no slip of the formula should be
+    named.
+    """
     if not np.allclose(g, expected, rtol=1e-4, atol=1e-4):
         return None
     gap = float(np.abs(g - expected).max())
@@ -435,7 +448,8 @@ def match_mistake(g, camera, X0, ab_of, fix) -> str | None:
     """The cause of the first shared slip whose matrix ``g`` equals; ``ab_of(d0)`` gives (a, b) for a depth.
 
     A slip that changes d0 is tried with (a, b) for the right depth and for its own (the student may
-    have used the wrong d0 in one place or in both)."""
+    have used the wrong d0 in one place or in both).
+    """
     s = common_context(camera, X0, fix)
 
     def shows(got, change):

@@ -1,7 +1,10 @@
-"""The causes lesson 05's least-squares affine camera names beyond the first checks of its diagnosis: a
-normalisation left in or undone in the wrong order, a fit of the wrong system (algebraic, unscaled null
-vector, rearranged lstsq output: :data:`FORMS`), a wrong mean, a wrong translation, unit slips and
-rounding; else what differs, measured."""
+"""Causes of lesson 05's least-squares affine camera beyond the first checks.
+
+What its diagnosis names after the first checks: a normalisation left in or undone in the wrong
+order, a fit of the wrong system (algebraic, unscaled null vector, rearranged lstsq output:
+:data:`FORMS`), a wrong mean, a wrong translation, unit slips and rounding; else what differs,
+measured.
+"""
 
 from __future__ import annotations
 
@@ -26,8 +29,10 @@ def _rms(X, P2, uv) -> float:
 
 
 def algebraic_fit(X, uv):
-    """The homogeneous system [X 1 0 -u; 0 X 1 -v] h = 0 with a 9th unknown (the scale) solved by SVD, as for
-    the DLT: it minimises an algebraic error, not the pixel error."""
+    """The homogeneous system [X 1 0 -u; 0 X 1 -v] h = 0 solved by SVD, as for the DLT.
+
+    It has a 9th unknown (the scale) and minimises an algebraic error, not the pixel error.
+    """
     h = algebraic_null_vector(X, uv)
     return h[:8].reshape(2, 4) / h[8]
 
@@ -51,8 +56,11 @@ def similarity(points, scale):
 
 
 def _normalisation_scales(points):
-    """Scales s a student may normalise (N, D) points with: H&Z's isotropic sqrt(D) / mean distance
-    (and sqrt(2) for 3-D points, copied from the 2-D DLT), sqrt(D) / RMS distance, 1 / std."""
+    """Scales s a student may normalise (N, D) points with.
+
+    H&Z's isotropic sqrt(D) / mean distance (and sqrt(2) for 3-D points, copied from the 2-D DLT),
+    sqrt(D) / RMS distance, 1 / std.
+    """
     D = points.shape[1]
     c = points - points.mean(axis=0)
     dist = np.linalg.norm(c, axis=1)
@@ -136,8 +144,11 @@ def _same_camera(got, candidate) -> bool:
 
 
 def normalisation_slip(g, expected, X, uv) -> str | None:
-    """The cause when ``g`` is the least-squares camera with a similarity normalisation (of a kind in
-    :func:`_normalisation_scales`) left in it, or undone in the wrong order."""
+    """The cause when ``g`` keeps a similarity normalisation.
+
+    ``g`` is the least-squares camera with a similarity normalisation (of a kind in
+    :func:`_normalisation_scales`) left in it, or undone in the wrong order.
+    """
     for name_x, s_x in _normalisation_scales(X).items():
         for name_u, s_u in _normalisation_scales(uv).items():
             context = SimpleNamespace(
@@ -271,8 +282,11 @@ FORMS = (
 
 
 def estimate_other_cause(g, expected, X, uv) -> str:
-    """A flipped v, a point left out, unit slips, a lost normalisation, a DLT, an exact fit to a few points,
-    rounding; else what differs."""
+    """The named causes of a wrong least-squares affine camera, else what differs.
+
+    A flipped v, a point left out, unit slips, a lost normalisation, a DLT, an exact fit to a few
+    points, rounding.
+    """
     slip = _v_flip_cause(g, expected) or _point_left_out(g, X, uv)
     if slip:
         return slip
@@ -343,8 +357,10 @@ def estimate_other_cause(g, expected, X, uv) -> str:
 
 
 def _v_flip_cause(g, expected) -> str | None:
-    """The cause when row 1 (u) is the least-squares one and row 2 predicts c - v: the fit to -v (y up) or to
-    c - v (rows counted from the bottom of the image)."""
+    """The cause when row 1 (u) is the least-squares one and row 2 predicts c - v.
+
+    The fit to -v (y up) or to c - v (rows counted from the bottom of the image).
+    """
     if not (
         np.allclose(g[0], expected[0], rtol=1e-9, atol=1e-7)
         and np.allclose(g[1, :3], -expected[1, :3], rtol=1e-9, atol=1e-7)
@@ -407,8 +423,10 @@ def translation_cause(t2, t2_expected, um, M2Xm) -> str:
 
 
 def wrong_mean_cause(M2, X, uv) -> str | None:
-    """The cause when M2 is the fit after centring X or uv (or both) with a wrong mean: along axis=1 (each
-    point's own coordinates) or over every entry (no axis)."""
+    """The cause when M2 is the fit after centring X or uv (or both) with a wrong mean.
+
+    Along axis=1 (each point's own coordinates) or over every entry (no axis).
+    """
     means = {
         "axis=0": lambda A: A.mean(axis=0),
         "axis=1": lambda A: A.mean(axis=1, keepdims=True),

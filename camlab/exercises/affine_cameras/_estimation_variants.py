@@ -1,5 +1,8 @@
-"""Lesson 05's least-squares affine camera done wrong, as a student would: the wrong variants the test suite
-feeds the check (each must be named by its diagnosis), and one right answer in another form."""
+"""Lesson 05's least-squares affine camera done wrong, as a student would.
+
+The wrong variants the test suite feeds the check (each must be named by its diagnosis), and one
+right answer in another form.
+"""
 
 from __future__ import annotations
 
@@ -78,8 +81,11 @@ def estimate_shifted(shift):
 
 
 def estimate_normalised(how):
-    """H&Z algorithm 7.2 with similarity normalisation, undone ``how``: "right", "wrong order" (T_uv @ P_n @
-    inv(T_X)), "not undone", "pixels only" (inv(T_uv) @ P_n), or "std" (the wrong order, with 1/std scales)."""
+    """H&Z algorithm 7.2 with similarity normalisation, undone ``how``.
+
+    "right", "wrong order" (T_uv @ P_n @ inv(T_X)), "not undone", "pixels only" (inv(T_uv) @ P_n),
+    or "std" (the wrong order, with 1/std scales).
+    """
 
     def fit(X, uv):
         if how == "std":

@@ -1,5 +1,7 @@
-"""Lesson 05's third exercise: the least-squares affine camera from noisy correspondences
-(see the package docstring)."""
+"""Lesson 05's third exercise.
+
+The least-squares affine camera from noisy correspondences (see the package docstring).
+"""
 
 from __future__ import annotations
 

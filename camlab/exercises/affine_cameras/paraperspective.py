@@ -1,5 +1,8 @@
-"""Lesson 05's second exercise: the para-perspective camera about X0, perspective linearised at X0, which
-projects along the line of sight to X0 (section 2)."""
+"""Lesson 05's second exercise.
+
+The para-perspective camera about X0, perspective linearised at X0, which projects along the line of
+sight to X0 (section 2).
+"""
 
 from __future__ import annotations
 
@@ -46,8 +49,11 @@ def _para_outer_reshaped(camera, X0):
 
 
 def _context(camera, X0):
-    """What the rows of :data:`_MISTAKES` read: the camera, X0, its camera-frame position x_c, depth d0 and
-    normalised position (a, b), its pixels, and the numbers the slips take instead."""
+    """What the rows of :data:`_MISTAKES` read.
+
+    The camera, X0, its camera-frame position x_c, depth d0 and normalised position (a, b), its
+    pixels, and the numbers the slips take instead.
+    """
     K, R, t = camera.K, camera.R, camera.t
     x_c = R @ X0 + t
     return SimpleNamespace(
@@ -272,8 +278,11 @@ def _para_diagnosis(args, got, expected) -> str:
 
 
 def _ab_used(g, camera, d0):
-    """The (a, b) that ``g``'s left 2x3 block was built with, if it has the para-perspective form
-    d0 K2^-1 M2 = R2 - (a, b)^T r3 (K2 the upper-left 2x2 of K); None otherwise."""
+    """The (a, b) that ``g``'s left 2x3 block was built with; None otherwise.
+
+    Found if the block has the para-perspective form d0 K2^-1 M2 = R2 - (a, b)^T r3 (K2 the
+    upper-left 2x2 of K).
+    """
     block = np.linalg.solve(camera.K[:2, :2], d0 * g[:2, :3])
     used = (camera.R[:2] - block) @ camera.R[2]  # r3 is a unit vector orthogonal to r1 and r2
     if np.allclose(block, camera.R[:2] - np.outer(used, camera.R[2]), atol=1e-6):

@@ -1,5 +1,12 @@
-"""Lesson 05's first exercise: the weak-perspective camera P_inf about a reference point X0 (H&Z 6.3.1),
-every depth replaced by the constant d0 of X0."""
+"""Lesson 05's first exercise.
+
+The weak-perspective camera P_inf about a reference point X0 ([1]_, section 6.3.1), every depth
+replaced by the constant d0 of X0.
+
+References
+----------
+.. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 6.3.1 (affine cameras).
+"""
 
 from __future__ import annotations
 
@@ -142,8 +149,10 @@ def _approx_diagnosis(args, got, expected) -> str:
 
 
 def _approx_top_rows_cause(g, expected, camera, X0, d0) -> str:
-    """Why the top two rows are wrong when the last row is right: a cause only where the answer is
-    exactly what that mistake gives, else what differs."""
+    """Why the top two rows are wrong when the last row is right.
+
+    A cause only where the answer is exactly what that mistake gives, else what differs.
+    """
     M, m = g[:2, :3], g[:2, 3]
     M_e, m_e = expected[:2, :3], expected[:2, 3]
     c = camera.K[:2, 2]

@@ -1,6 +1,9 @@
-"""Exercises for lesson 03, the digital sensor: the intrinsic matrix from a datasheet (:mod:`.datasheet`,
-exercise 1), quantisation (:mod:`.quantize`, 2) and demosaicking (:mod:`.demosaic`, 4). The lesson's
-third, the sensor's gain and read noise, is :mod:`camlab.exercises.sensor_noise`."""
+"""Exercises for lesson 03, the digital sensor.
+
+The intrinsic matrix from a datasheet (:mod:`.datasheet`, exercise 1), quantisation
+(:mod:`.quantize`, 2) and demosaicking (:mod:`.demosaic`, 4). The lesson's third, the sensor's gain
+and read noise, is :mod:`camlab.exercises.sensor_noise`.
+"""
 
 from __future__ import annotations
 

@@ -13,8 +13,11 @@ from .quantize import not_an_array
 
 
 def _demosaic_cases():
-    """Random colours first (every interpolation direction matters), then odd sizes, all four patterns, a smooth
-    ramp, and a uint8 mosaic as the lesson's own raw is."""
+    """The test mosaics, random colours first.
+
+    Random colours first (every interpolation direction matters), then odd sizes, all four patterns,
+    a smooth ramp, and a uint8 mosaic as the lesson's own raw is.
+    """
     rng = np.random.default_rng(4)
     yy, xx = np.mgrid[0:7, 0:10].astype(float)
     smooth = np.stack([0.05 * xx, 0.04 * yy + 0.1, 0.5 - 0.02 * xx], axis=2)
@@ -216,8 +219,10 @@ def _demosaic_diagnosis(args, got, expected) -> str:
 
 
 def _interpolation_cause(raw, pattern, g, e) -> str:
-    """Why the image is wrong when the whole-image slips are ruled out: the samples, the dtype, the
-    neighbours averaged at each kind of site, or the border."""
+    """Why the image is wrong when the whole-image slips are ruled out.
+
+    The samples, the dtype, the neighbours averaged at each kind of site, or the border.
+    """
     m = sensor.bayer_masks(raw.shape, pattern)
     if not np.allclose(g[m], e[m]):
         return (

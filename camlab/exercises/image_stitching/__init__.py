@@ -1,5 +1,8 @@
-"""Exercises for lesson 09, image stitching: the canvas bounds (:mod:`.canvas_box`), feathering weights
-(:mod:`.feather_weights`) and the focal length from a rotation-only homography (:mod:`.focal`)."""
+"""Exercises for lesson 09, image stitching.
+
+The canvas bounds (:mod:`.canvas_box`), feathering weights (:mod:`.feather_weights`) and the focal
+length from a rotation-only homography (:mod:`.focal`).
+"""
 
 from __future__ import annotations
 

@@ -81,10 +81,12 @@ def _corners(
     swap: bool = False,
     one_shape: bool = False,
 ) -> np.ndarray:
-    """Every image's mapped corners, right or with one typical slip: ``transposed`` maps rows by ``c @ H`` (H^T),
-    ``swap`` reads the shape as (w, h), ``one_shape`` uses shapes[0] for every image, ``first`` and ``last``
-    put the corners at u = first and u = w - last (right: 0 and w - 1; pixel edges: -1/2 and w - 1/2;
-    1-based: 1 and w)."""
+    """Every image's mapped corners, right or with one typical slip.
+
+    ``transposed`` maps rows by ``c @ H`` (H^T), ``swap`` reads the shape as (w, h), ``one_shape``
+    uses shapes[0] for every image, ``first`` and ``last`` put the corners at u = first and u = w -
+    last (right: 0 and w - 1; pixel edges: -1/2 and w - 1/2; 1-based: 1 and w).
+    """
     pts = []
     for H, s in zip(Hs, shapes, strict=True):
         s = shapes[0] if one_shape else s
@@ -113,8 +115,11 @@ def _canvas_context(args, expected):
 
 
 def _one_image_box(s, k: int):
-    """The box of image k alone (a `return` inside the loop keeps only the first; `pts = ...` instead of
-    `pts.append(...)` keeps only the last); None where that image alone already gives the whole box."""
+    """The box of image k alone; None where that image alone gives the whole box.
+
+    A `return` inside the loop keeps only the first image; `pts = ...` instead of `pts.append(...)`
+    keeps only the last.
+    """
     box = _box(_corners(s.Hs[k : k + 1 or None], s.shapes[k : k + 1 or None]))
     return None if np.allclose(box, s.expected) else box
 

@@ -1,7 +1,8 @@
 """Lesson 09, exercise 3: the focal length from a rotation-only homography (focal_from_rotation_homography).
 
 Each typical slip is tried with every way of combining the four formulas (columns and rows, one, a
-median or a mean), so the diagnosis names the slip whichever formulas the student used."""
+median or a mean), so the diagnosis names the slip whichever formulas the student used.
+"""
 
 from __future__ import annotations
 
@@ -135,8 +136,10 @@ _SLIP_CENTRES = {
 def _focal_formulas(
     H, shape, slip: str = "", absolute: bool = False, squared: bool = False
 ) -> dict[str, float]:
-    """The four focal lengths of the prompt's formulas (columns: c1 orthogonal, c2 equally long; rows: r1, r2),
-    computed right or with one typical ``slip``; NaN where f^2 is 0/0 or negative.
+    """The four focal lengths of the prompt's formulas, right or with one ``slip``.
+
+    Columns: c1 orthogonal, c2 equally long; rows: r1, r2. Computed right or with one typical
+    ``slip``; NaN where f^2 is 0/0 or negative.
 
     Slips: "swap" (centre ((h-1)/2, (w-1)/2)), "half" ((w/2, h/2)), "one-based" (((w+1)/2, (h+1)/2)),
     "uncentred" (no C at all), "C H C^-1" (the translation applied the wrong way round), "transposed"
@@ -173,10 +176,13 @@ def _focal_formulas(
 
 
 def _focal_answers(values: dict[str, float], squared: bool = False) -> list[float]:
-    """What a student's combination of the formulas returns: one formula, the median or mean of any of them
-    (NaN dropped, as the prompt's "where both are defined" invites, or kept), and per pair the one with the
-    larger denominator (a subset too). With ``squared`` the values are f^2 and the combination is
-    sqrt(median or mean of f^2), negative f^2 dropped with the NaN or kept (giving NaN)."""
+    """What a student's combination of the formulas returns.
+
+    One formula, the median or mean of any of them (NaN dropped, as the prompt's "where both are
+    defined" invites, or kept), and per pair the one with the larger denominator (a subset too).
+    With ``squared`` the values are f^2 and the combination is sqrt(median or mean of f^2), negative
+    f^2 dropped with the NaN or kept (giving NaN).
+    """
     if squared:
         kept = _focal_answers(values)
         dropped = _focal_answers({k: v if v > 0 else float("nan") for k, v in values.items()})
@@ -198,8 +204,11 @@ def _focal_answers(values: dict[str, float], squared: bool = False) -> list[floa
 
 
 def _focal_slip(slip: str):
-    """A diagnosis row's answer: the focal lengths a student who made ``slip`` can return on this input,
-    or None where the slip changes no formula (it cannot show here)."""
+    """A diagnosis row's answer.
+
+    The focal lengths a student who made ``slip`` can return on this input, or None where the slip
+    changes no formula (it cannot show here).
+    """
 
     def answer(s):
         right_answers = _focal_answers(_focal_formulas(s.H, s.shape)) + _focal_answers(
@@ -273,8 +282,11 @@ def _zero_over_zero_hint(zz: list[str], got: float) -> str:
 
 
 def _larger_denominator_student(slip: str, orthogonality_only=False, equal_length_only=False):
-    """A student who follows the prompt (per pair the formula with the larger denominator, then the median of
-    the positive ones) with ``slip``, or who uses one kind of formula only (for the tests)."""
+    """A student who follows the prompt with ``slip``, or uses one kind of formula.
+
+    Following the prompt is, per pair, the formula with the larger denominator, then the median of
+    the positive ones; one kind of formula only is for the tests.
+    """
 
     def student(H, shape):
         h, w = shape[:2]

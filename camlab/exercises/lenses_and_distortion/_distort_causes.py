@@ -1,5 +1,7 @@
-"""What lesson 02's distortion exercise recognises in an answer that is normalised and scaled back right:
-the model itself done wrong (a term's sign, a missing term, Brown-Conrady variants), and its test cases.
+"""What lesson 02's distortion exercise recognises in the model itself.
+
+In an answer that is normalised and scaled back right: the model itself done wrong (a term's sign, a
+missing term, Brown-Conrady variants), and its test cases.
 
 The slips are the rows of :data:`MODEL_MISTAKES` (:class:`~camlab.exercises._core.Mistake`), checked in
 order by :func:`model_diagnosis`.
@@ -41,8 +43,11 @@ def brown_variant(
     no_one: bool = False,
     y_copied: bool = False,
 ) -> np.ndarray:
-    """The Brown-Conrady model with one typical slip: the cross term's 2, x^2 / y^2 swapped, x / L for x L,
-    L without its 1 (the displacement), or y_d's p1 term copied from x_d's p2 term (r^2 + 2 x^2)."""
+    """The Brown-Conrady model with one typical slip.
+
+    The cross term's 2, x^2 / y^2 swapped, x / L for x L, L without its 1 (the displacement), or
+    y_d's p1 term copied from x_d's p2 term (r^2 + 2 x^2).
+    """
     k1, k2, p1, p2, k3 = d
     u, v = x[:, 0], x[:, 1]
     r2 = u**2 + v**2

@@ -1,5 +1,7 @@
-"""Lesson 02's exercise f_number_for_depth: the aperture that makes a depth range sharp (section 2's c(z)
-solved the other way)."""
+"""Lesson 02's exercise f_number_for_depth.
+
+The aperture that makes a depth range sharp (section 2's c(z) solved the other way).
+"""
 
 from __future__ import annotations
 

@@ -18,8 +18,10 @@ from ._distort_causes import (
 
 
 def _normalised_with(f_wrong, c_wrong):
-    """The test for a wrong focal length or principal point, ``f_wrong(s)`` and ``c_wrong(s)``, used to normalise
-    (and either it or the right c to map back)."""
+    """The test for a wrong focal length or principal point used to normalise.
+
+    ``f_wrong(s)`` and ``c_wrong(s)`` (and either it or the right c to map back).
+    """
 
     def shows(s):
         fw, cw = f_wrong(s), c_wrong(s)

@@ -1,5 +1,8 @@
-"""Lesson 02's first exercise: the field of view of a lens focused closer than infinity (the thin lens of
-section 1 with the field of view of section 3)."""
+"""Lesson 02's first exercise.
+
+The field of view of a lens focused closer than infinity (the thin lens of section 1 with the field
+of view of section 3).
+"""
 
 from __future__ import annotations
 
@@ -21,8 +24,11 @@ def _field_of_view_cases():
 
 
 def _fov_context(f, w, zo, g, expected):
-    """What the rows of :data:`_FOV_MISTAKES` read: the input, the answer ``g``, the sensor distance ``zi``, the
-    signed magnification ``m`` and ``fov(distance, width)``, the field of view 2 arctan(width / (2 distance))."""
+    """What the rows of :data:`_FOV_MISTAKES` read.
+
+    The input, the answer ``g``, the sensor distance ``zi``, the signed magnification ``m`` and
+    ``fov(distance, width)``, the field of view 2 arctan(width / (2 distance)).
+    """
 
     def fov(distance, width=w):
         return 2 * np.arctan(width / (2 * distance))

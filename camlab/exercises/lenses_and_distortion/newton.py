@@ -1,5 +1,7 @@
-"""Lesson 02's exercise newton_step: one Newton step of undistortion from any current estimate (the whole
-2 x 2 Jacobian matters)."""
+"""Lesson 02's exercise newton_step.
+
+One Newton step of undistortion from any current estimate (the whole 2 x 2 Jacobian matters).
+"""
 
 from __future__ import annotations
 

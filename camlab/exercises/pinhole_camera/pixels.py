@@ -40,14 +40,19 @@ def _pixel_cases():
 
 
 def _broadcast_divide(a: np.ndarray, w: np.ndarray) -> np.ndarray:
-    """``a / w`` for an (N, 2) ``a`` and an (N,) ``w`` as numpy broadcasts it (column j by w[j]), NaN where it cannot
-    (N other than 1 or 2): the slip of dividing by a depth column that was not kept 2-D."""
+    """``a / w`` for an (N, 2) ``a`` and an (N,) ``w`` as numpy broadcasts it.
+
+    Column j is divided by w[j]; NaN where numpy cannot broadcast (N other than 1 or 2): the slip of
+    dividing by a depth column that was not kept 2-D.
+    """
     return a / w if len(w) in (1, 2) else np.full(a.shape, np.nan)
 
 
 def _pixel_context(X, f, pitch, size, e):
-    """What the rows of :data:`_PIXEL_SLIPS` read: the input, the right answer ``e``, the centre ``c`` and the
-    numbers the slips start from."""
+    """What the rows of :data:`_PIXEL_SLIPS` read.
+
+    The input, the right answer ``e``, the centre ``c`` and the numbers the slips start from.
+    """
     W, H = size
     c = np.array([(W - 1) / 2, (H - 1) / 2])
     K = np.array([[f / pitch, 0.0, c[0]], [0.0, f / pitch, c[1]], [0.0, 0.0, 1.0]])

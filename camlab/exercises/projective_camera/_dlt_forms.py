@@ -1,5 +1,13 @@
-"""The DLT built in its right and wrong forms: the normalisers (Hartley's and the RMS one), the two rows per
-point of u x P X = 0, and the half-normalised or wrongly undone fits students write."""
+"""The DLT built in its right and wrong forms.
+
+The normalisers (Hartley's [1]_ and the RMS one), the two rows per point of u x P X = 0, and the
+half-normalised or wrongly undone fits students write.
+
+References
+----------
+.. [1] R. I. Hartley, 1997, "In defense of the eight-point algorithm", *IEEE Transactions on Pattern
+   Analysis and Machine Intelligence* 19(6), 580-593.
+"""
 
 from __future__ import annotations
 
@@ -105,8 +113,11 @@ def dlt_half(
     interleave=False,
     order="C",
 ):
-    """Normalised DLT variants, right and wrong: which sides are normalised and undone, the sign in A, Vt's row or
-    column, A's rows stacked (u rows, then v rows) or interleaved per point, the null vector read row by row or not."""
+    """Normalised DLT variants, right and wrong.
+
+    Which sides are normalised and undone, the sign in A, Vt's row or column, A's rows stacked (u
+    rows, then v rows) or interleaved per point, the null vector read row by row or not.
+    """
     X, uv = np.asarray(X, dtype=float), np.asarray(uv, dtype=float)
     U, T = normalisers(X, uv)
     U, T = (U if world else np.eye(4)), (T if pixels else np.eye(3))

@@ -1,5 +1,8 @@
-"""The test of lesson 04's normalised DLT beyond exact pixels: a noisy survey whose camera must be as good
-as the predicted RMS error allows, and units and origins the answer must not depend on (the follow-up)."""
+"""The test of lesson 04's normalised DLT beyond exact pixels.
+
+A noisy survey whose camera must be as good as the predicted RMS error allows, and units and origins
+the answer must not depend on (the follow-up).
+"""
 
 from __future__ import annotations
 
@@ -234,8 +237,10 @@ def _residual_rms(P, X, uv) -> float:
 
 
 def _refinement(answers, X, uv) -> str | None:
-    """'converged' if every answer (one per units and origins, mapped back) is a refined camera, 'partial' if the
-    first is and another is not, else None.
+    """'converged', 'partial' or None: how many answers are refined cameras.
+
+    'converged' if every answer (one per units and origins, mapped back) is a refined camera,
+    'partial' if the first is and another is not, else None.
 
     The maximum-likelihood camera minimises the reprojection error in pixels, which no change of world units
     or origin, and no similarity of the pixels, alters. A linear DLT leaves an RMS residual a little above its

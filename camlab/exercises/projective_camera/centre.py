@@ -20,8 +20,10 @@ def _centre_cases():
 
 
 def _flat_centre(got):
-    """A (4, 1) column or (1, 4) row as the 4-vector it holds (H&Z writes C as a column; scipy's null_space
-    returns one); anything else unchanged."""
+    """A (4, 1) column or (1, 4) row as the 4-vector it holds.
+
+    H&Z writes C as a column; scipy's null_space returns one. Anything else is returned unchanged.
+    """
     try:
         g = np.asarray(got, dtype=float)
     except (TypeError, ValueError):

@@ -1,4 +1,10 @@
-"""Lesson 04's exercise estimate_projection_matrix: the normalised DLT (H&Z algorithm 7.1)."""
+"""Lesson 04's exercise estimate_projection_matrix: the normalised DLT [1]_.
+
+References
+----------
+.. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 7.1 and algorithm 7.1
+   (the normalised DLT for P).
+"""
 
 from __future__ import annotations
 

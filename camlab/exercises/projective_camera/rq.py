@@ -115,8 +115,10 @@ def _rq_diagnosis(args, got, expected) -> str:
 
 
 def _unreproduced_cause(K, R, M) -> str:
-    """The cause when K R does not give M back: swapped, QR instead of RQ, a misplaced or partial
-    sign fix, a transposed factor."""
+    """The cause when K R does not give M back.
+
+    Swapped, QR instead of RQ, a misplaced or partial sign fix, a transposed factor.
+    """
     if np.allclose(R @ K, M, rtol=1e-6, atol=1e-6 * np.abs(M).max()):
         if np.abs(np.tril(K, -1)).max() > 1e-6 * np.abs(K).max() and np.allclose(
             K @ K.T, np.eye(3), atol=1e-6

@@ -276,9 +276,12 @@ def image_convention_slip(xy: np.ndarray, p: np.ndarray) -> str:
 
 
 def cases() -> list[tuple[np.ndarray]]:
-    """The check's test inputs: the first has fractions, so an int cast shows at once; the second lies outside
-    the image (left of it, on the top row); the third is the bottom-right pixel of 640 x 480; the last has
-    decimals no binary float holds exactly, so a detour through float16 (3 digits) shows."""
+    """The check's test inputs.
+
+    The first has fractions, so an int cast shows at once; the second lies outside the image (left
+    of it, on the top row); the third is the bottom-right pixel of 640 x 480; the last has decimals
+    no binary float holds exactly, so a detour through float16 (3 digits) shows.
+    """
     return [
         (np.array([2.5, 4.25]),),
         (np.array([-1.5, 0.0]),),

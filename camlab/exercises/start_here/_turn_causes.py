@@ -102,8 +102,11 @@ def centre_cause(c: np.ndarray, W: int, H: int) -> str:
 
 
 def _read_at(s, vv: np.ndarray, uu: np.ndarray) -> np.ndarray | None:
-    """img[vv, uu] as numpy reads it (an index -1 wraps round to the last row or column), or None where
-    numpy would raise (the slip shows as an IndexError instead, named by :data:`RAISED`)."""
+    """``img[vv, uu]`` as numpy reads it, or None where numpy would raise.
+
+    An index -1 wraps round to the last row or column; where numpy raises, the slip shows as an
+    IndexError instead, named by :data:`RAISED`.
+    """
     vv, uu = np.asarray(vv), np.asarray(uu)
     if np.all((-s.H <= vv) & (vv < s.H) & (-s.W <= uu) & (uu < s.W)):
         return s.img[vv, uu]
@@ -233,9 +236,12 @@ def _first_wrong_value(s) -> str:
 def values_cause(
     values: np.ndarray, img: np.ndarray, X: np.ndarray, turned: np.ndarray | None = None
 ) -> str:
-    """Why ``values`` are not img[v, u] at the rows of ``X``: a row of :data:`VALUE_MISTAKES`, else the first
-    wrong value and the pixel it came from (every test image names its pixels, img[v, u] = 10 v + u).
-    ``turned``, the right turned points, lets the diagnosis tell values read there."""
+    """Why ``values`` are not img[v, u] at the rows of ``X``.
+
+    A row of :data:`VALUE_MISTAKES`, else the first wrong value and the pixel it came from (every
+    test image names its pixels, img[v, u] = 10 v + u). ``turned``, the right turned points, lets
+    the diagnosis tell values read there.
+    """
     H, W = img.shape
     u, v = np.rint(X).astype(int).T
     s = SimpleNamespace(values=values, img=img, u=u, v=v, H=H, W=W, n=len(X), X=X, turned=turned)
@@ -370,8 +376,10 @@ TURN_MISTAKES = (
 
 
 def turned_cause(t: np.ndarray, X: np.ndarray, A: np.ndarray, c: np.ndarray, W: int, H: int) -> str:
-    """Why ``t`` is not ``X`` turned by ``A`` about the centre ``c`` of a ``W`` x ``H`` image: its shape, else
-    the first row of :data:`TURN_MISTAKES` it equals."""
+    """Why ``t`` is not ``X`` turned by ``A`` about the centre ``c`` of a ``W`` x ``H`` image.
+
+    Its shape, else the first row of :data:`TURN_MISTAKES` it equals.
+    """
     n = len(X)
     if t.shape == (2, n) and n != 2:
         return "one row per point: A @ X.T gives the points as columns; transpose back, (A @ X.T).T, or write X @ A.T"
@@ -474,8 +482,10 @@ RAISED = (
 
 
 def exception_hint(exc: Exception, args: tuple) -> str:
-    """The likely cause of ``exc``, raised by the student's function on ``args`` = (img, X, A): the first
-    row of :data:`RAISED` it matches, else '' (the hints every check shares)."""
+    """The likely cause of ``exc``, raised by the student's function on ``args`` = (img, X, A).
+
+    The first row of :data:`RAISED` it matches, else '' (the hints every check shares).
+    """
     img, X, _ = args
     H, W = img.shape
     text = str(exc)

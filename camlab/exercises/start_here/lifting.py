@@ -213,8 +213,11 @@ def _xy_and_w(s: _Lifted) -> str:
 
 
 def _diagnose(args, got, expected) -> str:
-    """The likely cause of a wrong answer: its shape (:data:`SHAPE_MISTAKES`), a slip of the three numbers as
-    a whole (:data:`LIFT_MISTAKES`), else what is wrong with x and y and with w."""
+    """The likely cause of a wrong answer.
+
+    Its shape (:data:`SHAPE_MISTAKES`), a slip of the three numbers as a whole
+    (:data:`LIFT_MISTAKES`), else what is wrong with x and y and with w.
+    """
     problem = shape_problem(
         got, expected
     )  # check() has already named an answer that is not numbers

@@ -1,5 +1,6 @@
-"""Pinhole blur drawn (lesson 01): blur against the pinhole's diameter, and the cones of
-light through pinholes of several sizes.
+"""Pinhole blur drawn (lesson 01).
+
+Blur against the pinhole's diameter, and the cones of light through pinholes of several sizes.
 
 Each ``draw_*`` function draws once and returns a dict of artists; its ``update_*`` partner
 moves those artists, so widgets can redraw in place.
@@ -119,8 +120,9 @@ CONE_BEFORE = 3.0  # the cone figure shows the last 3 f of the rays before the p
 
 
 def _draw_cones(ax, heights, Z, f, b, a, x_in, x_img):
-    """Each object point's cone of rays through the hole and on to the image plane, with its
-    disc and the diffraction band around it; returns, per point, its height, where its rays
+    """Each object point's cone of rays through the hole and on to the image plane.
+
+    With its disc and the diffraction band around it; returns, per point, its height, where its rays
     enter at the right edge, and its colour.
     """
     entry = []
@@ -158,9 +160,7 @@ def _draw_cones(ax, heights, Z, f, b, a, x_in, x_img):
 
 
 def _label_cones(ax, entry, Z, f, a, x_in, x_img, wall):
-    """Name where each point's rays come in, and draw and name the screen and the image
-    plane.
-    """
+    """Name where each point's rays come in; draw and name the screen and image plane."""
     for (
         y_obj,
         y_in,

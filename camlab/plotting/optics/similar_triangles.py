@@ -71,8 +71,11 @@ def _set_dimension(
 
 
 def _signed(value: float, digits: int = 1) -> str:
-    """``value`` with a sign and ``digits`` decimals; a value that rounds to zero prints a plain "0.0" (never
-    "-0.0" or "+0.0", as the demo's title prints it)."""
+    """``value`` with a sign and ``digits`` decimals.
+
+    A value that rounds to zero prints a plain "0.0" (never "-0.0" or "+0.0", as the demo's title
+    prints it).
+    """
     rounded = round(value, digits) + 0.0
     return f"{rounded:+.{digits}f}" if rounded != 0 else f"{0:.{digits}f}"
 

@@ -1,5 +1,6 @@
-"""Thin lenses drawn (lesson 02): the ray diagram, the focus cone of depth of field and the
-blur disc seen face on.
+"""Thin lenses drawn (lesson 02).
+
+The ray diagram, the focus cone of depth of field and the blur disc seen face on.
 
 Each ``draw_*`` function draws once and returns a dict of artists; its ``update_*`` partner
 moves those artists, so widgets can redraw in place.

@@ -1,5 +1,8 @@
-"""What every lesson-05 demo shares: one colour and line style per camera model, the marker
-of the reference point X0, the legend; the scene's target and the dolly zoom's constants."""
+"""What every lesson-05 demo shares.
+
+One colour and line style per camera model, the marker of the reference point X0, the legend; the
+scene's target and the dolly zoom's constants.
+"""
 
 from __future__ import annotations
 

@@ -1,5 +1,7 @@
-"""Lesson 05's parallel rails: parallel lines vanish in a perspective image and stay parallel
-in an affine one."""
+"""Lesson 05's parallel rails.
+
+Parallel lines vanish in a perspective image and stay parallel in an affine one.
+"""
 
 from __future__ import annotations
 
@@ -75,8 +77,10 @@ def rail_cameras(yaw: float, pitch: float) -> RailCameras:
 
 
 def _rails_legend(fig) -> None:
-    """The figure legend of :func:`parallel_rails`: the two models, X0, the measured metres, the
-    ring, the vanishing point and the horizon."""
+    """The figure legend of :func:`parallel_rails`.
+
+    The two models, X0, the measured metres, the ring, the vanishing point and the horizon.
+    """
     model_legend(
         fig,
         (),
@@ -118,8 +122,11 @@ def _rails_legend(fig) -> None:
 
 
 def _rails_panels(ax_p, ax_a) -> tuple[list, list]:
-    """The two image panels of :func:`parallel_rails`: each one's track line and its readout text,
-    placed where no rail runs at any yaw and pitch; returns (lines, texts), perspective first."""
+    """The two image panels of :func:`parallel_rails`.
+
+    Each one's track line and its readout text, placed where no rail runs at any yaw and pitch;
+    returns (lines, texts), perspective first.
+    """
     ax_p.set_title("perspective: rails meet, far sleepers crowd", fontsize=9)
     ax_a.set_title("weak perspective: rails stay parallel, sleepers evenly spaced", fontsize=9)
     lines, texts = [], []
@@ -152,9 +159,12 @@ def _rails_panels(ax_p, ax_a) -> tuple[list, list]:
 
 
 def _rails_figure(view: FigureView) -> SimpleNamespace:
-    """The figure of :func:`parallel_rails`: the perspective and weak-perspective images of the
-    track, the vanishing point and horizon, the two measured metres, the ring round the far one,
-    the readouts, X0 in both and the legend; returns its moving artists by name."""
+    """The figure of :func:`parallel_rails`.
+
+    The perspective and weak-perspective images of the track, the vanishing point and horizon, the
+    two measured metres, the ring round the far one, the readouts, X0 in both and the legend;
+    returns its moving artists by name.
+    """
     ax_p, ax_a = view.fig.subplots(1, 2)
     lines, texts = _rails_panels(ax_p, ax_a)
     (vp,) = ax_p.plot([], [], "o", color=COLOURS["perspective"], ms=8, mfc="white", mew=2)
@@ -183,8 +193,11 @@ def _rails_figure(view: FigureView) -> SimpleNamespace:
 
 
 def _rails_readout(near: float, far: float) -> str:
-    """One panel's readout in :func:`parallel_rails`: the pixels one metre of track spans ``near``
-    (at the first of :data:`RAIL_SAMPLES`) and ``far`` (at the second)."""
+    """One panel's readout in :func:`parallel_rails`.
+
+    The pixels one metre of track spans ``near`` (at the first of :data:`RAIL_SAMPLES`) and ``far``
+    (at the second).
+    """
     return f"1 m of track: {near:5.1f} px at {RAIL_SAMPLES[0]:.0f} m, {far:5.1f} px at {RAIL_SAMPLES[1]:.0f} m"
 
 
@@ -197,8 +210,10 @@ def _rails_controls() -> dict:
 
 
 def _horizon_data(l_h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The horizon ``l_h`` (homogeneous line) across the image, u from -1 to 641: v = -(a u + c) / b
-    (NaN for a vertical line)."""
+    """The horizon ``l_h`` (homogeneous line) across the image, u from -1 to 641.
+
+    V = -(a u + c) / b (NaN for a vertical line).
+    """
     us = np.array([-1.0, 641.0])
     return us, -(l_h[0] * us + l_h[2]) / l_h[1] if abs(l_h[1]) > 1e-12 else [np.nan, np.nan]
 

@@ -1,5 +1,7 @@
-"""Lesson 05's projection rays: seen from above, the rays of each camera model, converging
-on the centre or parallel."""
+"""Lesson 05's projection rays.
+
+Seen from above, the rays of each camera model, converging on the centre or parallel.
+"""
 
 from __future__ import annotations
 
@@ -44,9 +46,11 @@ def _joined(*polylines):
 
 
 def _rays_panel(ax, model: str) -> tuple:
-    """One top view of :func:`projection_rays`: ``model``'s axes with the optical axis, the image
-    line, the centre and the plane z = d0 where the model has them; returns its moving artists
-    (block, rays, scaling, images, truth, x0)."""
+    """One top view of :func:`projection_rays`.
+
+    ``model``'s axes with the optical axis, the image line, the centre and the plane z = d0 where
+    the model has them; returns its moving artists (block, rays, scaling, images, truth, x0).
+    """
     ax.set_xlim(-1.3, 4.0)  # the turned block reaches x = -0.99 m at offset 0
     ax.set_ylim(-0.4, 7.4)
     ax.set_aspect("equal")
@@ -75,8 +79,11 @@ def _rays_panel(ax, model: str) -> tuple:
 
 
 def _rays_legend(fig) -> None:
-    """The figure legend of :func:`projection_rays`, above the four views: the ray styles, the
-    plane z = d0, the optical axis, the centre, the corner images, the line of sight and X0."""
+    """The figure legend of :func:`projection_rays`, above the four views.
+
+    The ray styles, the plane z = d0, the optical axis, the centre, the corner images, the line of
+    sight and X0.
+    """
     corner_images = tuple(
         Line2D([], [], marker="o", color=COLOURS[m], ms=4, ls="none") for m in af.PROJECTION_MODELS
     )
@@ -134,9 +141,12 @@ def _rays_legend(fig) -> None:
 
 
 def _rays_figure(view: FigureView) -> SimpleNamespace:
-    """The figure of :func:`projection_rays`: one top view per model of
-    :data:`camlab.affine.PROJECTION_MODELS`, the line of sight to X0 in para-perspective's and the
-    legend; returns ``artists`` ({model: its moving artists}) and ``sight``."""
+    """The figure of :func:`projection_rays`.
+
+    One top view per model of :data:`camlab.affine.PROJECTION_MODELS`, the line of sight to X0 in
+    para-perspective's and the legend; returns ``artists`` ({model: its moving artists}) and
+    ``sight``.
+    """
     axes = view.fig.subplots(1, 4, sharey=True)
     artists = {}
     for ax, model in zip(axes, af.PROJECTION_MODELS, strict=True):
@@ -160,9 +170,12 @@ def _rays_controls() -> dict:
 
 
 def _show_model(model: str, artists: tuple, r: np.ndarray, perspective: np.ndarray, reference):
-    """Move one top view of :func:`projection_rays`: ``model``'s ``artists`` (block, rays, scaling,
-    images, truth, x0) to its rays ``r`` (:func:`camlab.affine.projection_rays`), with the
-    ``perspective`` corner images to compare and X0 at ``reference``."""
+    """Move one top view of :func:`projection_rays`.
+
+    ``model``'s ``artists`` (block, rays, scaling, images, truth, x0) to its rays ``r``
+    (:func:`camlab.affine.projection_rays`), with the ``perspective`` corner images to compare and
+    X0 at ``reference``.
+    """
     block, rays, scaling, images, truth, x0 = artists
     block.set_xy(RAY_OBJECT + reference)
     if model == "perspective":  # the ray runs on through the image line to the centre

@@ -1,5 +1,8 @@
-"""Lesson 05's three cameras and dolly zoom: one scene seen by the perspective camera and its
-affine approximations, and when an affine camera is good enough."""
+"""Lesson 05's three cameras and dolly zoom.
+
+One scene seen by the perspective camera and its affine approximations, and when an affine camera is
+good enough.
+"""
 
 from __future__ import annotations
 
@@ -180,8 +183,10 @@ DOLLY_ERROR_LIMITS = (
 
 
 def _dolly_error_axes(ax, distances):
-    """The dolly zoom's log-log error panel: one (empty) curve and one marker per affine model, a slope -1
-    guide and the 1 px line."""
+    """The dolly zoom's log-log error panel.
+
+    One (empty) curve and one marker per affine model, a slope -1 guide and the 1 px line.
+    """
     from matplotlib.ticker import NullLocator
 
     curves = {

@@ -1,6 +1,8 @@
-"""Lesson 09's canvas demos: the panorama's canvas, blending and seams, the full panorama,
-the canvas projections and parallax ghosting (sections 3-6). Re-exported by
-:mod:`camlab.widgets.image_stitching`."""
+"""Lesson 09's canvas demos.
+
+The panorama's canvas, blending and seams, the full panorama, the canvas projections and parallax
+ghosting (sections 3-6). Re-exported by :mod:`camlab.widgets.image_stitching`.
+"""
 
 from __future__ import annotations
 
@@ -87,9 +89,11 @@ def _fitted_points(points: np.ndarray, shape, box) -> np.ndarray:
 
 
 def _outline_figure(box, lw: float, name: str, animate_legend: bool):
-    """The figure of a panorama with each image's outline: the image, four outline lines keyed
-    below the axes (over the animated panorama a key would be hidden by every live frame), no
-    ticks, a title to animate. Returns (view, ax, im, lines, legend, title).
+    """The figure of a panorama with each image's outline.
+
+    The image, four outline lines keyed below the axes (over the animated panorama a key would be
+    hidden by every live frame), no ticks, a title to animate. Returns (view, ax, im, lines, legend,
+    title).
     """
     view = FigureView(figsize=(9, 3.6))
     ax = view.fig.subplots()
@@ -367,8 +371,11 @@ BOX = (220, 560)  # (height, width) of canvas_projections' picture
 
 
 def _gallery() -> dict:
-    """{(views, projection): (RGBA image or None, message)}: :func:`camlab.fixtures.panorama_examples.canvas_previews`
-    placed in the demo's picture, with the text the demo shows."""
+    """{(views, projection): (RGBA image or None, message)}.
+
+    :func:`camlab.fixtures.panorama_examples.canvas_previews` placed in the demo's picture, with the
+    text the demo shows.
+    """
     gallery = {}
     for (n, proj), p in pe.canvas_previews(BOX).items():
         if p.image is None:
@@ -505,9 +512,11 @@ PARALLAX_BOX = (280, 460)
 
 
 def _parallax_figure(view: FigureView) -> SimpleNamespace:
-    """The figure of :func:`parallax_ghosting`: the blend in axes of :data:`PARALLAX_BOX`, its title
-    and the key to the edges' colours beside it; returns ``im``, ``title`` and ``legend``
-    (registered with ``view`` in that order)."""
+    """The figure of :func:`parallax_ghosting`.
+
+    The blend in axes of :data:`PARALLAX_BOX`, its title and the key to the edges' colours beside
+    it; returns ``im``, ``title`` and ``legend`` (registered with ``view`` in that order).
+    """
     box = PARALLAX_BOX
     ax = view.fig.subplots()
     im = view.animate(
@@ -542,9 +551,11 @@ def _parallax_figure(view: FigureView) -> SimpleNamespace:
 def _parallax_texts(
     b: float, n: int, k: int, rms: float, diff: float, edges: bool
 ) -> tuple[str, str]:
-    """The title and the readout of :func:`parallax_ghosting` for a move of ``b`` m: ``k`` of ``n``
-    matches inliers, their RMS ``rms`` px, the mean misalignment ``diff`` grey levels, and what
-    the edges mean when they are shown."""
+    """The title and the readout of :func:`parallax_ghosting` for a move of ``b`` m.
+
+    ``k`` of ``n`` matches inliers, their RMS ``rms`` px, the mean misalignment ``diff`` grey
+    levels, and what the edges mean when they are shown.
+    """
     title = (
         f"camera moved {100 * b:.0f} cm: {k} of {n} matches fit one homography, "
         f"mean |view 0 - view 1| on the overlap {diff:.1f} grey levels"

@@ -1,5 +1,8 @@
-"""Lesson 09's first demos: features matched between two photos, and the homography RANSAC
-registers them with (sections 1-2). Re-exported by :mod:`camlab.widgets.image_stitching`."""
+"""Lesson 09's first demos.
+
+Features matched between two photos, and the homography RANSAC registers them with (sections 1-2).
+Re-exported by :mod:`camlab.widgets.image_stitching`.
+"""
 
 from __future__ import annotations
 
@@ -108,9 +111,12 @@ _RESIDUAL_BINS = np.logspace(np.log10(0.02), np.log10(300), 43)
 
 
 def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
-    """The image panel of :func:`ransac_registration`: image ``j`` of the set ``s``, the frame of
-    image ``i`` under the true H, the legend below; returns the moving inliers, outliers and
-    estimated frame (registered with ``view`` in that order)."""
+    """The image panel of :func:`ransac_registration`.
+
+    Image ``j`` of the set ``s``, the frame of image ``i`` under the true H, the legend below;
+    returns the moving inliers, outliers and estimated frame (registered with ``view`` in that
+    order).
+    """
     ax.imshow(s.images[j], interpolation="nearest")
     ax.set_xticks([])
     ax.set_yticks([])
@@ -163,9 +169,11 @@ def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
 
 
 def _residual_axes(view: FigureView, ax_e) -> tuple:
-    """The histogram panel of :func:`ransac_registration`: the verdict text, one bar per bin of
-    :data:`_RESIDUAL_BINS` (the end bars hatched) and the threshold line, registered with ``view``
-    in that order and returned."""
+    """The histogram panel of :func:`ransac_registration`.
+
+    The verdict text, one bar per bin of :data:`_RESIDUAL_BINS` (the end bars hatched) and the
+    threshold line, registered with ``view`` in that order and returned.
+    """
     ax_e.set(
         xlabel="transfer error per match (px, log scale)\nhatched end bars: < 0.02 px, > 300 px",
         ylabel="number of matches\n(relative to the tallest bar)",
@@ -195,8 +203,11 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
 
 
 def _registration_figure(view: FigureView, s, imgs, i: int, j: int) -> SimpleNamespace:
-    """The figure of :func:`ransac_registration`: image ``j`` with the matches and the two frames,
-    and the histogram of residuals under H; returns its moving artists by name."""
+    """The figure of :func:`ransac_registration`.
+
+    Image ``j`` with the matches and the two frames, and the histogram of residuals under H; returns
+    its moving artists by name.
+    """
     ax, ax_e = view.fig.subplots(1, 2, width_ratios=[1.5, 1])
     inl, outl, est_box = _registration_image(view, ax, s, imgs, i, j)
     verdict, bars, thr_line = _residual_axes(view, ax_e)
@@ -206,9 +217,11 @@ def _registration_figure(view: FigureView, s, imgs, i: int, j: int) -> SimpleNam
 
 
 def _registration_texts(r, n: int, wrong: int, err: float) -> tuple[str, str]:
-    """The verdict in the figure and the readout beside :func:`ransac_registration`, for the
-    registration ``r`` of ``n`` matches with ``wrong`` false inliers and the worst corner ``err`` px
-    from the truth."""
+    """The verdict in the figure and the readout beside :func:`ransac_registration`.
+
+    For the registration ``r`` of ``n`` matches with ``wrong`` false inliers and the worst corner
+    ``err`` px from the truth.
+    """
     need = max(15, int(np.floor(8 + 0.3 * n)) + 1)  # register_pair's acceptance test
     verdict = (
         f"{int(r.inliers.sum())} of {n} matches are inliers "
