@@ -176,7 +176,7 @@ def _truncated_hint(X: np.ndarray) -> str:
     i, j = np.argwhere(np.trunc(X) != np.rint(X))[0]
     return (
         f"X holds whole numbers only up to floating-point rounding, as computed points do, and .astype(int) "
-        f"(or int(), or np.floor) truncates: X[{i}, {j}] = {X[i, j]!r} became {int(X[i, j])}, the pixel before. "
+        f"(or int(), or np.floor) truncates: X[{i}, {j}] = {float(X[i, j])!r} became {int(X[i, j])}, the pixel before. "
         "Round, then convert: u, v = np.rint(X).astype(int).T"
     )
 
