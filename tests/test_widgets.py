@@ -578,7 +578,12 @@ def test_pixel_explorer_reads_the_pixel_both_ways_and_places_each_tools_centre()
     from types import SimpleNamespace
 
     demo = DEMOS["pixel_explorer"].builder()
-    assert (demo.state["u"], demo.state["v"], demo.state["value"], demo.state["swapped"]) == (3, 1, 13, 31)
+    assert (demo.state["u"], demo.state["v"], demo.state["value"], demo.state["swapped"]) == (
+        3,
+        1,
+        13,
+        31,
+    )
     demo.set(u=5, v=2)
     assert demo.state["value"] == 25 and demo.state["swapped"] is None  # img[5, 2]: no row 5
     assert "IndexError (no row 5" in demo.state["readout"]

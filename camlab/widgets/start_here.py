@@ -20,7 +20,9 @@ HOUSE = np.array([[-1, 1], [1, 1], [1, -0.6], [0, -1.4], [-1, -0.6], [-1, 1]], d
 ROOF_TIP = 3  # HOUSE[3] is the roof tip, (0, -1.4)
 DEFAULT_ANGLE = 40.0  # degrees: a turn whose arc (0.98 plot units) shows the path on both sides of its arrowhead
 ARC_SAMPLES = 61  # points on the arc of the roof tip's turn
-SHORT_ARC = 0.5  # plot units: an arc shorter than this (a turn under 20°) hides under the dot and dart
+SHORT_ARC = (
+    0.5  # plot units: an arc shorter than this (a turn under 20°) hides under the dot and dart
+)
 MOVED = (
     "0.15"  # the moved house: near-black, so colour stays for the points the lesson reads (orange)
 )
@@ -351,7 +353,10 @@ def stack_report() -> str:
     )
 
 
-EXPLORER_SIZE = (6, 4)  # (W, H) of the pixel explorer's image: wider than tall, so img[u, v] can fail
+EXPLORER_SIZE = (
+    6,
+    4,
+)  # (W, H) of the pixel explorer's image: wider than tall, so img[u, v] can fail
 TOOLS = ("camlab, OpenCV", "MATLAB", "Pillow, COLMAP", "OpenGL window")
 
 
@@ -389,12 +394,22 @@ def _explorer_text(u: int, v: int, img: np.ndarray) -> str:
     """The explorer's readout: the value read both ways, then each tool's centre and read (monospace lines)."""
     H, W = img.shape
     if u < H and v < W:
-        swapped = f"img[u, v] = img[{u}, {v}] = {img[u, v]}:\n  pixel ({v}, {u}), the wrong one"
+        which = "the same pixel, since u = v" if u == v else f"pixel ({v}, {u}), the wrong one"
+        swapped = f"img[u, v] = img[{u}, {v}] = {img[u, v]}:\n  {which}"
     else:
         missing = f"no row {u}" if u >= H else f"no column {v}"
         swapped = f"img[u, v] = img[{u}, {v}]:\n  IndexError ({missing}: H = {H})"
-    lines = [f"img[v, u] = img[{v}, {u}] = {img[v, u]}", swapped, "", "its centre in each tool, and its read:"]
-    short = {"camlab, OpenCV": "camlab/OpenCV", "Pillow, COLMAP": "Pillow/COLMAP", "OpenGL window": "OpenGL"}
+    lines = [
+        f"img[v, u] = img[{v}, {u}] = {img[v, u]}",
+        swapped,
+        "",
+        "its centre in each tool, and its read:",
+    ]
+    short = {
+        "camlab, OpenCV": "camlab/OpenCV",
+        "Pillow, COLMAP": "Pillow/COLMAP",
+        "OpenGL window": "OpenGL",
+    }
     for tool, ((x, y), read) in tool_pixel(u, v, (W, H)).items():
         lines.append(f"{short.get(tool, tool):13s} {f'({x:g}, {y:g})':11s} {read}")
     return "\n".join(lines)
@@ -426,7 +441,9 @@ def pixel_explorer() -> Demo:
     img = 10 * rows + cols
     view = FigureView(figsize=(7.6, 3.6))
     ax, ax_text = view.fig.subplots(1, 2, width_ratios=[1.0, 1.0])
-    ax.imshow(img, cmap="gray", vmin=-120, vmax=40)  # light greys: dark numbers and marks read on all
+    ax.imshow(
+        img, cmap="gray", vmin=-120, vmax=40
+    )  # light greys: dark numbers and marks read on all
     for (r, q), value in np.ndenumerate(img):
         ax.text(q, r + 0.28, f"{value}", ha="center", va="center", fontsize=8, color="0.2")
     ax.plot(cols.ravel(), rows.ravel(), ".", color="0.25", ms=3)
@@ -436,19 +453,56 @@ def pixel_explorer() -> Demo:
     ax.set_ylabel("v (px): row", color=palette.GREEN)
     ax.set_title(f"a {W} x {H} image holding 10 v + u at img[v, u]", fontsize=10)
     square = view.animate(
-        ax.add_patch(Rectangle((0, 0), 1, 1, fill=False, ec=palette.ORANGE, lw=2.8, clip_on=False, label="pixel (u, v)"))
+        ax.add_patch(
+            Rectangle(
+                (0, 0),
+                1,
+                1,
+                fill=False,
+                ec=palette.ORANGE,
+                lw=2.8,
+                clip_on=False,
+                label="pixel (u, v)",
+            )
+        )
     )
     swapped = view.animate(
         ax.add_patch(
             Rectangle(
-                (0, 0), 1, 1, fill=False, ec=palette.PURPLE, lw=2.0, ls=(0, (4, 2)), clip_on=False, label="the pixel img[u, v] reads"
+                (0, 0),
+                1,
+                1,
+                fill=False,
+                ec=palette.PURPLE,
+                lw=2.0,
+                ls=(0, (4, 2)),
+                clip_on=False,
+                label="the pixel img[u, v] reads",
             )
         )
     )
-    centre = view.animate(ax.plot([], [], "o", color=palette.ORANGE, ms=8, mec="black", mew=0.8, label="its centre, (u, v)")[0])
+    centre = view.animate(
+        ax.plot(
+            [],
+            [],
+            "o",
+            color=palette.ORANGE,
+            ms=8,
+            mec="black",
+            mew=0.8,
+            label="its centre, (u, v)",
+        )[0]
+    )
     corner = view.animate(
         ax.plot(
-            [], [], "P", color=palette.BLUE, ms=9, mec="black", mew=0.8,
+            [],
+            [],
+            "P",
+            color=palette.BLUE,
+            ms=9,
+            mec="black",
+            mew=0.8,
+            clip_on=False,
             label="Pillow's and COLMAP's (u, v):\nthe pixel's top-left corner",
         )[0]
     )
@@ -457,7 +511,16 @@ def pixel_explorer() -> Demo:
     ax_text.axis("off")
     ax_text.legend(*ax.get_legend_handles_labels(), loc="lower left", fontsize=8.5, frameon=False)
     readout = view.animate(
-        ax_text.text(0.0, 1.0, "", va="top", ha="left", family="monospace", fontsize=8.5, transform=ax_text.transAxes)
+        ax_text.text(
+            0.0,
+            1.0,
+            "",
+            va="top",
+            ha="left",
+            family="monospace",
+            fontsize=8.5,
+            transform=ax_text.transAxes,
+        )
     )
 
     def update(values: dict, state: dict) -> None:
@@ -488,9 +551,14 @@ def pixel_explorer() -> Demo:
     def on_click(event) -> None:
         if event.inaxes is not ax or event.xdata is None:
             return
-        u, v = int(np.clip(np.rint(event.xdata), 0, W - 1)), int(np.clip(np.rint(event.ydata), 0, H - 1))
+        u, v = (
+            int(np.clip(np.rint(event.xdata), 0, W - 1)),
+            int(np.clip(np.rint(event.ydata), 0, H - 1)),
+        )
         demo.set(u=u, v=v)
 
     view.fig.canvas.mpl_connect("button_press_event", on_click)
-    demo.handlers["button_press_event"] = on_click  # tests call it with an object carrying inaxes, xdata, ydata
+    demo.handlers["button_press_event"] = (
+        on_click  # tests call it with an object carrying inaxes, xdata, ydata
+    )
     return demo

@@ -24,7 +24,9 @@ def numbers(a) -> str:
     if a.ndim == 0:
         x = float(a)
         near = round(x)
-        if x != near and abs(x - near) < 1e-9:  # a computed whole number: show it in full, 2.9999999999999996
+        if (
+            x != near and abs(x - near) < 1e-9
+        ):  # a computed whole number: show it in full, 2.9999999999999996
             return repr(x)
         return f"{x:.4g}"
     return "[" + ", ".join(numbers(x) for x in a) + "]"
