@@ -572,3 +572,29 @@ def test_stack_report_names_the_versions_and_whether_figures_are_live():
     report = stack_report()
     assert f"camlab {__version__}" in report and "ipywidgets" in report and "ipympl" in report
     assert "figures: still pictures, not live" in report  # the tests draw with Agg
+
+
+def test_pixel_explorer_reads_the_pixel_both_ways_and_places_each_tools_centre():
+    from types import SimpleNamespace
+
+    demo = DEMOS["pixel_explorer"].builder()
+    assert (demo.state["u"], demo.state["v"], demo.state["value"], demo.state["swapped"]) == (
+        3,
+        1,
+        13,
+        31,
+    )
+    demo.set(u=5, v=2)
+    assert demo.state["value"] == 25 and demo.state["swapped"] is None  # img[5, 2]: no row 5
+    assert "IndexError (no row 5" in demo.state["readout"]
+    assert demo.state["tools"] == {
+        "camlab, OpenCV": ((5.0, 2.0), "img[2, 5]"),
+        "MATLAB": ((6.0, 3.0), "img(3, 6)"),
+        "Pillow, COLMAP": ((5.5, 2.5), "getpixel((5, 2))"),
+        "OpenGL window": ((5.5, 1.5), "glReadPixels(5, 1, …)"),
+    }
+    ax = demo.figure.axes[0]
+    demo.handlers["button_press_event"](SimpleNamespace(inaxes=ax, xdata=0.7, ydata=3.4))
+    assert (demo.controls["u"].value, demo.controls["v"].value, demo.state["value"]) == (1, 3, 31)
+    demo.handlers["button_press_event"](SimpleNamespace(inaxes=None, xdata=None, ydata=None))
+    assert (demo.state["u"], demo.state["v"]) == (1, 3)  # a click outside the image changes nothing

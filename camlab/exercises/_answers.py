@@ -214,8 +214,9 @@ def worst_mismatch(got: Any, expected: Any, tolerance: Tolerance | None = None) 
     shown_got, shown_expected = f"{g[index] + 0.0:.6g}", f"{e[index] + 0.0:.6g}"  # + 0.0: no "-0"
     if shown_got == shown_expected:
         shown_got, shown_expected = repr(float(g[index])), repr(float(e[index]))
+    at = f"entry {int(index[0])}" if e.ndim == 1 else f"{where} {tuple(int(i) for i in index)}"
     return (
-        f"  worst    {where} {tuple(int(i) for i in index)}: got {shown_got}, expected {shown_expected}"
+        f"  worst    {at}: got {shown_got}, expected {shown_expected}"
         f" ({wrong} of {e.size} entries differ by more than {tol})\n"
     )
 

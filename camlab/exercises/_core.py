@@ -126,6 +126,9 @@ class Exercise:
     success_note: Callable[[Callable[..., Any]], str] | None = None
     """Called like ``follow_up`` once the function has passed, it returns a line printed under the congratulation:
     the answer to a question the prompt asked, computed with the student's own function."""
+    solution_note: str | None = None
+    """What :func:`solution` prints under the teaching solution, as comment lines, in place of the name of a
+    private reference: the public camlab functions that compute the same answer another way."""
     describe_input: Callable[[tuple], str] | None = None
     """``describe_input(args)``: the test input summarised in one line for messages, where printing it
     (stacks of frames, say) would bury the likely cause under hundreds of characters."""
@@ -175,8 +178,17 @@ def _fmt(value: Any) -> str:
 
 
 def _shown(value: Any) -> str:
-    """``_fmt`` for a message's got/expected line: a multi-line array continues under its first line."""
-    return _fmt(value).replace("\n", "\n" + " " * 11)
+    """``_fmt`` for a message's got/expected line: a multi-line array continues under its first line.
+
+    A tuple or list with a multi-line part shows one part per line, each continuing under its own
+    first line, so the rows of an array stay under the ``[[`` they belong to.
+    """
+    text = _fmt(value)
+    if isinstance(value, (tuple, list)) and "\n" in text and len(value) > 1:
+        opening, closing = ("[", "]") if isinstance(value, list) else ("(", ")")
+        parts = [_fmt(v).replace("\n", "\n" + " " * 12) for v in value]
+        return opening + (",\n" + " " * 12).join(parts) + closing  # each part under the first one
+    return text.replace("\n", "\n" + " " * 11)
 
 
 def _input_text(name: str, args: tuple) -> str:
@@ -490,6 +502,8 @@ def solution_source(name: str) -> str:
     where = _public_name(reference)
     if exercise.teaching is None:
         return inspect.getsource(reference)
+    if exercise.solution_note:
+        return inspect.getsource(exercise.teaching) + "\n" + exercise.solution_note.rstrip() + "\n"
     if reference.__name__.startswith("_"):  # a private helper: name it, and say what it computes
         summary = (inspect.getdoc(reference) or "").split("\n")[0]
         return (

@@ -299,8 +299,8 @@ def draw_transposed_read(
         f"left01 ({W} x {H}): the square crop photo[:, {crop_left}:] lies right of the dashed line (left of it: veiled)",
         fontsize=10,
     )
-    ax.set_xlabel("u (px)")
-    ax.set_ylabel("v (px)")
+    ax.set_xlabel("u (px)", color=X_COLOUR)
+    ax.set_ylabel("v (px)", color=Y_COLOUR)
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.1), fontsize=9, frameon=False)
 
 
@@ -311,8 +311,9 @@ def draw_turn_about(
 
     The image's outline and pixel centres stay in grey; the moved outline is drawn in black and the
     moved centres as orange dots. The top-right pixel (W - 1, 0) is followed by an arrow to where it
-    goes, and ``centre``, the one point that does not move, is ringed in black. The axes
-    are v down, like every image in the course.
+    goes along its true path (for a turn, the arc of the circle about ``centre``), and ``centre``, the
+    one point that does not move, is ringed in black. Every artist is labelled, so ``ax.legend()``
+    gives the figure its key. The axes are v down, like every image in the course.
 
     Derivation: a 2 x 2 matrix only moves points about the origin (A 0 = 0). To move them about c,
     shift c to the origin (x - c), apply A there, and shift back (+ c). With points as rows that
@@ -350,27 +351,47 @@ def draw_turn_about(
         ]
     )
     moved, moved_corners = (X - c) @ A.T + c, (corners - c) @ A.T + c
-    ax.plot(*corners.T, color="0.6", lw=1.2, ls="--", zorder=1)
+    ax.plot(*corners.T, color="0.6", lw=1.2, ls="--", zorder=1, label="before (grey)")
     ax.plot(*X.T, "o", color="0.6", ms=4, zorder=2)
-    ax.plot(*moved_corners.T, color="black", lw=1.5, zorder=3)
-    ax.plot(*moved.T, "o", color=POINT_COLOUR, ms=5, zorder=4)
+    ax.plot(*moved_corners.T, color="black", lw=1.5, zorder=3, label="after: outline")
+    ax.plot(*moved.T, "o", color=POINT_COLOUR, ms=5, zorder=4, label="after: pixel centres")
     k = width - 1  # the top-right pixel, (W - 1, 0)
+    # Its path: for a turn (A = s R), the true arc about c, c + s^t R(t theta) (x - c) for t in [0, 1];
+    # for any other A, the straight segment from x to where it goes.
+    scale = np.sqrt(abs(np.linalg.det(A)))
+    turn = A / scale if scale > 0 else A
+    if scale > 0 and np.allclose(turn.T @ turn, np.eye(2)) and np.linalg.det(turn) > 0:
+        theta = np.arctan2(turn[1, 0], turn[0, 0])
+        t = np.linspace(0.0, 1.0, 60)[:, None]
+        cos, sin = np.cos(t * theta), np.sin(t * theta)
+        d = X[k] - c
+        path = c + scale**t * np.hstack([cos * d[0] - sin * d[1], sin * d[0] + cos * d[1]])
+    else:
+        path = np.array([X[k], moved[k]])
+    ax.plot(*path[:-4].T, color=POINT_COLOUR, lw=1.5, zorder=5, label=f"the path of pixel ({k}, 0)")
     ax.annotate(
         "",
-        xy=moved[k],
-        xytext=X[k],
+        xy=path[-1],
+        xytext=path[-5],
         zorder=5,
         arrowprops={
             "arrowstyle": "-|>",
             "color": POINT_COLOUR,
             "lw": 1.5,
-            "shrinkA": 4,
+            "shrinkA": 0,
             "shrinkB": 4,
-            "connectionstyle": "arc3,rad=-0.3",
         },
     )
     ax.plot(
-        *c, "o", mfc="none", mec="black", ms=13, mew=1.6, zorder=6
+        *c,
+        "o",
+        mfc="none",
+        mec="black",
+        ms=13,
+        mew=1.6,
+        zorder=6,
+        ls="none",
+        label="the fixed point c",
     )  # a ring: the dot inside stays visible
     ax.set_aspect("equal")
     ax.invert_yaxis()  # v points down

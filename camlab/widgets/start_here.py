@@ -12,6 +12,7 @@ from matplotlib.transforms import Affine2D
 from ..plotting import palette
 from ..plotting.plane import plane_axes
 from ._base import Demo, FigureView, build_demo, display_mode, register, slider
+from .controls import int_slider
 
 # A little house outline, in plot units: the course's running example of a shape. y points down, as in
 # every image of the course, so the roof (drawn on top) has the most negative y.
@@ -19,6 +20,9 @@ HOUSE = np.array([[-1, 1], [1, 1], [1, -0.6], [0, -1.4], [-1, -0.6], [-1, 1]], d
 ROOF_TIP = 3  # HOUSE[3] is the roof tip, (0, -1.4)
 DEFAULT_ANGLE = 40.0  # degrees: a turn whose arc (0.98 plot units) shows the path on both sides of its arrowhead
 ARC_SAMPLES = 61  # points on the arc of the roof tip's turn
+SHORT_ARC = (
+    0.5  # plot units: an arc shorter than this (a turn under 20°) hides under the dot and dart
+)
 MOVED = (
     "0.15"  # the moved house: near-black, so colour stays for the points the lesson reads (orange)
 )
@@ -214,7 +218,10 @@ def _point_arrow(arrow, at: np.ndarray, way: np.ndarray, y_down: bool) -> float 
 
 @register(
     lesson="00",
-    sweep={"angle": [-180.0, -90.0, -30.0, 0.0, 90.0, 135.0, 180.0], "scale": [0.3, 0.5, 1.5, 2.0]},
+    sweep={
+        "angle": [-180.0, -90.0, -30.0, -5.0, 0.0, 5.0, 90.0, 135.0, 180.0],
+        "scale": [0.3, 0.5, 1.5, 2.0],
+    },
 )
 def stack_check() -> Demo:
     """Rotate and scale a house with two sliders, drawn on y-down axes (images) and y-up axes (textbooks).
@@ -258,6 +265,14 @@ def stack_check() -> Demo:
         middle = ARC_SAMPLES // 2  # the arrowhead sits half-way along the turn
         way = path[middle + 1] - path[middle - 1]  # the turn's direction there, in plot units
         arrows, turns = {}, {}
+        # A short arc (under about 20°) hides under the orange dot: the dart then sits just past the dot's end
+        # of the arc, along the turn, so the way it turns still shows.
+        where = path[middle]
+        short = 0 < abs(np.radians(angle)) * 1.4 < SHORT_ARC
+        if short:
+            end_way = path[ARC_SAMPLES - 1] - path[ARC_SAMPLES - 2]
+            where = s * path[ARC_SAMPLES - 1] + 0.38 * end_way / np.hypot(*end_way)
+            way = end_way
         for panel in panels:
             panel["house"].set_data(moved[:, 0], moved[:, 1])
             panel["tip"].set_data(
@@ -265,8 +280,8 @@ def stack_check() -> Demo:
             )
             panel["path"].set_data(path[:, 0], path[:, 1])
             key = "y down" if panel["y_down"] else "y up"
-            arrows[key] = _point_arrow(panel["arrow"], path[middle], way, panel["y_down"])
-            panel["arrow"].set_markersize(arrowhead_size(angle))
+            arrows[key] = _point_arrow(panel["arrow"], where, way, panel["y_down"])
+            panel["arrow"].set_markersize(11.0 if short else arrowhead_size(angle))
             # the way the drawn arc turns on screen, measured through the panel's own axes
             way_on_screen = screen_turn(panel["ax"], path[:-1]) if angle else "no turn"
             turns[key] = (
@@ -288,7 +303,7 @@ def stack_check() -> Demo:
             tip=moved[ROOF_TIP].copy(),
             path=path,
             readout=f"({x:+.2f}, {y:+.2f})",
-            arrow=dict(at=path[middle].copy(), **arrows),
+            arrow=dict(at=np.array(where, dtype=float), **arrows),
             turns=turns,
         )
 
@@ -336,3 +351,214 @@ def stack_report() -> str:
         + f"\nfigures: still pictures, not live: the matplotlib backend is {matplotlib.get_backend()!r}; "
         "run `%matplotlib widget` first (the setup cell's first line)"
     )
+
+
+EXPLORER_SIZE = (
+    6,
+    4,
+)  # (W, H) of the pixel explorer's image: wider than tall, so img[u, v] can fail
+TOOLS = ("camlab, OpenCV", "MATLAB", "Pillow, COLMAP", "OpenGL window")
+
+
+def tool_pixel(u: int, v: int, size: tuple[int, int]) -> dict[str, tuple[tuple[float, float], str]]:
+    """Where each tool of lesson 00's table puts the centre of the course's pixel (u, v), and how it reads it.
+
+    The course (camlab, OpenCV): centre (u, v), read ``img[v, u]``. MATLAB counts from 1: centre
+    (u + 1, v + 1), read ``img(v + 1, u + 1)``. Pillow and COLMAP put whole numbers on pixel corners:
+    centre (u + 0.5, v + 0.5); Pillow reads the pixel as ``getpixel((u, v))``. OpenGL's window
+    coordinates count rows from the bottom, y up: centre (u + 0.5, H - 0.5 - v), read by
+    ``glReadPixels(u, H - 1 - v, ...)``.
+
+    Parameters
+    ----------
+    u, v : int
+        The pixel, column and row in the course's convention (0-based, from the top-left).
+    size : (W, H)
+        The image's size, pixels.
+
+    Returns
+    -------
+    dict
+        Tool name (:data:`TOOLS`) -> ((x, y) of the pixel's centre in that tool, the read as code).
+    """
+    H = size[1]
+    return {
+        "camlab, OpenCV": ((float(u), float(v)), f"img[{v}, {u}]"),
+        "MATLAB": ((u + 1.0, v + 1.0), f"img({v + 1}, {u + 1})"),
+        "Pillow, COLMAP": ((u + 0.5, v + 0.5), f"getpixel(({u}, {v}))"),
+        "OpenGL window": ((u + 0.5, H - 0.5 - v), f"glReadPixels({u}, {H - 1 - v}, …)"),
+    }
+
+
+def _explorer_text(u: int, v: int, img: np.ndarray) -> str:
+    """The explorer's readout: the value read both ways, then each tool's centre and read (monospace lines)."""
+    H, W = img.shape
+    if u < H and v < W:
+        which = "the same pixel, since u = v" if u == v else f"pixel ({v}, {u}), the wrong one"
+        swapped = f"img[u, v] = img[{u}, {v}] = {img[u, v]}:\n  {which}"
+    else:
+        missing = f"no row {u}" if u >= H else f"no column {v}"
+        swapped = f"img[u, v] = img[{u}, {v}]:\n  IndexError ({missing}: H = {H})"
+    lines = [
+        f"img[v, u] = img[{v}, {u}] = {img[v, u]}",
+        swapped,
+        "",
+        "its centre in each tool, and its read:",
+    ]
+    short = {
+        "camlab, OpenCV": "camlab/OpenCV",
+        "Pillow, COLMAP": "Pillow/COLMAP",
+        "OpenGL window": "OpenGL",
+    }
+    for tool, ((x, y), read) in tool_pixel(u, v, (W, H)).items():
+        lines.append(f"{short.get(tool, tool):13s} {f'({x:g}, {y:g})':11s} {read}")
+    return "\n".join(lines)
+
+
+@register(lesson="00", sweep={"u": [0, 5], "v": [0, 3]})
+def pixel_explorer() -> Demo:
+    """Pick a pixel (u, v) of a 6 x 4 image with the sliders or a click: its square, its centre, its value
+    img[v, u], and where each tool's convention puts its centre.
+
+    Every pixel shows its value, 10 v + u, so the value names the pixel. The orange square is the
+    pixel, the orange dot its centre at the whole numbers (u, v); the blue + is the point Pillow and
+    COLMAP call (u, v), the pixel's top-left corner (their centre is half a pixel further on). The
+    purple dashed square is the pixel that the swapped read img[u, v] returns, where it exists (for
+    u >= H it raises an IndexError instead). The readout lists each tool's centre of the pixel.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``u`` (column, 0 to W - 1) and ``v`` (row, 0 to H - 1); the figure (the
+        image, and the readout beside it); ``handlers["button_press_event"]`` (a click picks the
+        pixel under it); and ``state`` (``u``, ``v``, ``value`` = img[v, u], ``swapped`` =
+        img[u, v] or None where it raises, ``tools``: :func:`tool_pixel`).
+    """
+    from matplotlib.patches import Rectangle
+
+    W, H = EXPLORER_SIZE
+    rows, cols = np.mgrid[0:H, 0:W]
+    img = 10 * rows + cols
+    view = FigureView(figsize=(7.6, 3.6))
+    ax, ax_text = view.fig.subplots(1, 2, width_ratios=[1.0, 1.0])
+    ax.imshow(
+        img, cmap="gray", vmin=-120, vmax=40
+    )  # light greys: dark numbers and marks read on all
+    for (r, q), value in np.ndenumerate(img):
+        ax.text(q, r + 0.28, f"{value}", ha="center", va="center", fontsize=8, color="0.2")
+    ax.plot(cols.ravel(), rows.ravel(), ".", color="0.25", ms=3)
+    ax.set_xticks(range(W))
+    ax.set_yticks(range(H))
+    ax.set_xlabel("u (px): column", color=palette.RED)
+    ax.set_ylabel("v (px): row", color=palette.GREEN)
+    ax.set_title(f"a {W} x {H} image holding 10 v + u at img[v, u]", fontsize=10)
+    square = view.animate(
+        ax.add_patch(
+            Rectangle(
+                (0, 0),
+                1,
+                1,
+                fill=False,
+                ec=palette.ORANGE,
+                lw=2.8,
+                clip_on=False,
+                label="pixel (u, v)",
+            )
+        )
+    )
+    swapped = view.animate(
+        ax.add_patch(
+            Rectangle(
+                (0, 0),
+                1,
+                1,
+                fill=False,
+                ec=palette.PURPLE,
+                lw=2.0,
+                ls=(0, (4, 2)),
+                clip_on=False,
+                label="the pixel img[u, v] reads",
+            )
+        )
+    )
+    centre = view.animate(
+        ax.plot(
+            [],
+            [],
+            "o",
+            color=palette.ORANGE,
+            ms=8,
+            mec="black",
+            mew=0.8,
+            label="its centre, (u, v)",
+        )[0]
+    )
+    corner = view.animate(
+        ax.plot(
+            [],
+            [],
+            "P",
+            color=palette.BLUE,
+            ms=9,
+            mec="black",
+            mew=0.8,
+            clip_on=False,
+            label="Pillow's and COLMAP's (u, v):\nthe pixel's top-left corner",
+        )[0]
+    )
+    ax.set_xlim(-0.5, W - 0.5)
+    ax.set_ylim(H - 0.5, -0.5)
+    ax_text.axis("off")
+    ax_text.legend(*ax.get_legend_handles_labels(), loc="lower left", fontsize=8.5, frameon=False)
+    readout = view.animate(
+        ax_text.text(
+            0.0,
+            1.0,
+            "",
+            va="top",
+            ha="left",
+            family="monospace",
+            fontsize=8.5,
+            transform=ax_text.transAxes,
+        )
+    )
+
+    def update(values: dict, state: dict) -> None:
+        u, v = int(values["u"]), int(values["v"])
+        square.set_xy((u - 0.5, v - 0.5))
+        centre.set_data([u], [v])
+        corner.set_data([u - 0.5], [v - 0.5])
+        inside = u < H and v < W  # img[u, v] exists: row u, column v
+        swapped.set_visible(inside)
+        if inside:
+            swapped.set_xy((v - 0.5, u - 0.5))  # row u, column v: the pixel (v, u)
+        readout.set_text(_explorer_text(u, v, img))
+        state.update(
+            u=u,
+            v=v,
+            value=int(img[v, u]),
+            swapped=int(img[u, v]) if inside else None,
+            tools=tool_pixel(u, v, (W, H)),
+            readout=readout.get_text(),
+        )
+
+    controls = {
+        "u": int_slider(3, 0, W - 1, "u (column)"),
+        "v": int_slider(1, 0, H - 1, "v (row)"),
+    }
+    demo = build_demo("pixel_explorer", controls, view, update, title="Which pixel is (u, v)?")
+
+    def on_click(event) -> None:
+        if event.inaxes is not ax or event.xdata is None:
+            return
+        u, v = (
+            int(np.clip(np.rint(event.xdata), 0, W - 1)),
+            int(np.clip(np.rint(event.ydata), 0, H - 1)),
+        )
+        demo.set(u=u, v=v)
+
+    view.fig.canvas.mpl_connect("button_press_event", on_click)
+    demo.handlers["button_press_event"] = (
+        on_click  # tests call it with an object carrying inaxes, xdata, ydata
+    )
+    return demo

@@ -22,7 +22,13 @@ def numbers(a) -> str:
     """A small array as the student could type it: [[5, 1], [0, 3]] (whole numbers without '.0')."""
     a = np.asarray(a, dtype=float)
     if a.ndim == 0:
-        return f"{float(a):.4g}"
+        x = float(a)
+        near = round(x)
+        if (
+            x != near and abs(x - near) < 1e-9
+        ):  # a computed whole number: show it in full, 2.9999999999999996
+            return repr(x)
+        return f"{x:.4g}"
     return "[" + ", ".join(numbers(x) for x in a) + "]"
 
 
@@ -170,6 +176,16 @@ def _read_turned(s, to_int) -> bool:
     return not np.allclose(s.turned, s.X) and _reads(s, vv, uu)
 
 
+def _truncated_hint(X: np.ndarray) -> str:
+    """The hint for values read at the truncated points, quoting the first entry of X that truncation moved."""
+    i, j = np.argwhere(np.trunc(X) != np.rint(X))[0]
+    return (
+        f"X holds whole numbers only up to floating-point rounding, as computed points do, and .astype(int) "
+        f"(or int(), or np.floor) truncates: X[{i}, {j}] = {float(X[i, j])!r} became {int(X[i, j])}, the pixel before. "
+        "Round, then convert: u, v = np.rint(X).astype(int).T"
+    )
+
+
 # Checked in order on the values read, ``s.values``, for the image ``s.img`` (``s.H`` x ``s.W``), the
 # points' columns and rows ``s.u``, ``s.v`` (``s.n`` points) and the right turned points ``s.turned``.
 VALUE_MISTAKES = (
@@ -205,6 +221,14 @@ VALUE_MISTAKES = (
         "u counted from the right",
         lambda s: _reads(s, s.v, s.W - 1 - s.u),
         "you read column W - 1 - u, counting u from the right: columns count from the left, so pixel (u, v) is img[v, u]",
+    ),
+    Mistake(
+        "truncated",
+        lambda s: (
+            not np.array_equal(np.trunc(s.X), np.rint(s.X))
+            and _reads(s, np.trunc(s.X[:, 1]).astype(int), np.trunc(s.X[:, 0]).astype(int))
+        ),
+        lambda s: _truncated_hint(s.X),
     ),
     *(_shift_mistake(dv, du) for dv, du in ((-1, -1), (0, -1), (-1, 0), (1, 1), (0, 1), (1, 0))),
     Mistake(
@@ -289,6 +313,12 @@ TURN_MISTAKES = (
         "only X - c",
         lambda s: s.X - s.c,
         "you moved the centre to the origin, X - c, and stopped: then turn by A and move back, (X - c) @ A.T + c",
+    ),
+    Mistake(
+        "u and v swapped",
+        lambda s: s.turned[:, ::-1],
+        "each of your turned points is (v, u), its two numbers swapped: points are rows (u, v), like X, so keep "
+        "the columns in that order: (X - c) @ A.T + c",
     ),
     Mistake(
         "rounded",
@@ -427,7 +457,21 @@ RAISED = (
         ),
         lambda s: (
             f"img[u, v]: u = {s.index} was used as the row, and this image has {s.H} rows (shape ({s.H}, {s.W})). "
-            "numpy indexes the row first, and the row is v: img[v, u]"
+            "numpy indexes the row first, and the row is v: img[v, u] (img[X] fails the same way: it reads every "
+            "number of X as a row; take u, v = X[:, 0], X[:, 1])"
+        ),
+    ),
+    Mistake(
+        "img[u, v] past the last column",
+        lambda s: (
+            _index_error(s)
+            and s.axis == 1
+            and s.index in np.rint(s.X[:, 1]).astype(int)
+            and s.index >= s.W
+        ),
+        lambda s: (
+            f"img[u, v]: v = {s.index} was used as the column, and this image, taller than wide, has {s.W} columns "
+            f"(shape ({s.H}, {s.W})). numpy indexes the row first, and the row is v: img[v, u]"
         ),
     ),
     Mistake(

@@ -18,10 +18,14 @@ from ._turn_causes import centre_cause, exception_hint, numbers, turned_cause, v
 
 # Every test image holds img[v, u] = 10 v + u, so a value read names the pixel it came from (at most 10
 # columns), and a wrong read can be traced to its cause: img[u, v], a 1-based index, the wrong point.
-# Input 1 is square and odd (5 x 5), where img[u, v] raises nothing and silently reads the transposed pixel
-# (the lesson's warning), and A is a shear (A.T is neither A nor its inverse); input 2 is wider than tall
-# (6 x 4) with even sides, so W / 2 = W // 2 differs from (W - 1) / 2 and img[u, v] would raise for u >= 4;
-# input 3 is 7 x 3 with a turn and a scale.
+# Input 1 is wider than tall (6 x 4) with even sides, so W / 2 = W // 2 differs from (W - 1) / 2, W and H
+# cannot be confused, and img[u, v] raises for u >= 4; its A is a shear (A.T is neither A nor its inverse,
+# so X @ A, A's inverse and a sign flip each show as themselves); input 2 is square and odd (5 x 5), where
+# img[u, v] raises nothing and silently reads the transposed pixel (the lesson's warning), with a quarter
+# turn; input 3 is 7 x 3 with a turn and a scale; input 4 is taller
+# than wide (4 x 6), where img[u, v] raises for v >= 4, and its X is computed, as points in a program are:
+# whole numbers up to floating-point rounding, some a unit in the last place below (2.9999999999999996),
+# so that .astype(int) alone truncates them to the pixel before.
 
 
 def _pixel_image(size: tuple[int, int]) -> np.ndarray:
@@ -36,19 +40,34 @@ def _turn(deg: float, scale: float = 1.0) -> np.ndarray:
     return scale * np.array([[np.cos(t), -np.sin(t)], [np.sin(t), np.cos(t)]])
 
 
+def _computed(X: np.ndarray, below: np.ndarray) -> np.ndarray:
+    """``X`` with the entries where ``below`` is True one unit in the last place under their whole number,
+    and the others one above (a computed 3 can be 2.9999999999999996 or 3.0000000000000004)."""
+    X = np.asarray(X, dtype=float)
+    return np.where(below, np.nextafter(X, -np.inf), np.where(X > 0, np.nextafter(X, np.inf), X))
+
+
 def _rt_cases() -> list[tuple]:
     return [
         (
-            _pixel_image((5, 5)),
-            np.array([[4.0, 0.0], [1.0, 3.0], [2.0, 2.0], [0.0, 4.0]]),
+            _pixel_image((6, 4)),
+            np.array([[5.0, 0.0], [0.0, 3.0], [2.0, 2.0]]),
             np.array([[1.0, 0.5], [0.0, 1.0]]),
         ),
         (
-            _pixel_image((6, 4)),
-            np.array([[5.0, 1.0], [0.0, 3.0], [2.0, 2.0]]),
+            _pixel_image((5, 5)),
+            np.array([[4.0, 0.0], [1.0, 3.0], [2.0, 2.0], [0.0, 4.0]]),
             _turn(90.0).round(12),
         ),
         (_pixel_image((7, 3)), np.array([[6.0, 2.0], [0.0, 0.0], [3.0, 1.0]]), _turn(30.0, 2.0)),
+        (
+            _pixel_image((4, 6)),
+            _computed(
+                [[3.0, 5.0], [0.0, 2.0], [2.0, 1.0], [1.0, 4.0]],
+                below=np.array([[True, False], [False, True], [False, False], [False, True]]),
+            ),
+            _turn(-60.0),
+        ),
     ]
 
 
@@ -61,8 +80,8 @@ def _rt_describe(args: tuple) -> str:
 def _read_and_turn_reference(img, X, A):
     """Returns the centre ((W - 1)/2, (H - 1)/2), the values img[v, u] at the rows of X, and X turned about it by A.
 
-    The turn is one homography, translate(c) A translate(-c), applied with camlab's homogeneous
-    coordinates: a route other than the teaching solution's ``(X - c) @ A.T + c``.
+    The turn is one 3 x 3 matrix, translate(c) A translate(-c), applied by :func:`camlab.map_points`: a route
+    other than the teaching solution's ``(X - c) @ A.T + c``.
     """
     H, W = np.shape(img)[:2]
     c = np.array([(W - 1) / 2, (H - 1) / 2])
@@ -71,8 +90,7 @@ def _read_and_turn_reference(img, X, A):
     M = np.eye(3)
     M[:2, :2] = A
     M[:2, 2] = c - np.asarray(A) @ c
-    turned = projective.from_homogeneous(projective.to_homogeneous(X) @ M.T)
-    return c, np.asarray(img)[v, u], turned
+    return c, np.asarray(img)[v, u], projective.map_points(M, X)
 
 
 def _as_floats(part) -> np.ndarray | None:
@@ -142,7 +160,8 @@ def read_and_turn(img, X, A):
     img : (H, W) ndarray
         A grey image.
     X : (N, 2) ndarray
-        Points (u, v) at whole-number pixels, inside the image.
+        Points (u, v) at pixel centres inside the image: whole numbers, up to floating-point
+        rounding.
     A : (2, 2) ndarray
         The turn (any 2 x 2 matrix).
 
@@ -156,14 +175,12 @@ def read_and_turn(img, X, A):
         c + A (x - c) for each point x.
     """
     H, W = img.shape[:2]  # numpy's shape: rows (H) first, then columns (W)
-    c = np.array([(W - 1) / 2, (H - 1) / 2])  # halfway between the first and the last pixel centres
-    u, v = (
-        np.rint(X).astype(int).T
-    )  # round, then convert: .astype(int) alone truncates 478.99999999999994 to 478
+    c = np.array([(W - 1) / 2, (H - 1) / 2])  # halfway between the first and last pixel centres
+    # round, then convert: .astype(int) alone truncates 2.9999999999999996 to 2
+    u, v = np.rint(X).astype(int).T
     values = img[v, u]  # row v, column u
-    turned = (
-        X - c
-    ) @ A.T + c  # x' = c + A (x - c): move c to the origin, turn, move back; every row at once
+    # x' = c + A (x - c): move c to the origin, turn, move back; every row at once
+    turned = (X - c) @ A.T + c
     return c, values, turned
 
 
@@ -217,7 +234,13 @@ register_exercise(
                 ),
                 "you used (W / 2, H / 2)",
             ),
-            (_rt_wrong(read=lambda img, u, v: img[u, v]), "img[u, v] reads row u, column v"),
+            (_rt_wrong(read=lambda img, u, v: img[u, v]), "u = 5 was used as the row"),
+            (  # img[u, v] where it raises nothing: the square image reads the transposed pixel
+                _rt_wrong(
+                    read=lambda img, u, v: img[u, v] if img.shape[0] == img.shape[1] else img[v, u]
+                ),
+                "img[u, v] reads row u, column v",
+            ),
             (
                 _rt_wrong(read=lambda img, u, v: img[v - 1, u - 1]),
                 "you read img[v - 1, u - 1], the pixel one row up and one column left",
@@ -284,9 +307,27 @@ register_exercise(
                     img[X.astype(int)],
                     read_and_turn(img, X, A)[2],
                 ),
-                "img[X] indexes rows",
+                "img[X] fails the same way: it reads every number of X as a row",
             ),
             (_float_index, "numpy indexes with integers"),
+            (
+                lambda img, X, A: (
+                    read_and_turn(img, X, A)[0],
+                    img[X[:, 1].astype(int), X[:, 0].astype(int)],
+                    read_and_turn(img, X, A)[2],
+                ),
+                "truncates: X[0, 0] = 2.9999999999999996 became 2",
+            ),
+            (  # img[u, v] as it fails on a taller image (on the others it fails first, naming the rows)
+                _rt_wrong(
+                    read=lambda img, u, v: img[u, v] if img.shape[0] > img.shape[1] else img[v, u]
+                ),
+                "v = 5 was used as the column, and this image, taller than wide, has 4 columns",
+            ),
+            (
+                _rt_wrong(turn=lambda X, A, c: ((X - c) @ A.T + c)[:, ::-1]),
+                "each of your turned points is (v, u)",
+            ),
             (_rt_wrong(turn=lambda X, A, c: (X - c) @ A + c), "X @ A applies A's transpose"),
             (
                 _rt_wrong(turn=lambda X, A, c: (A @ X.T).T * 0 + A @ X),
@@ -309,8 +350,8 @@ register_exercise(
             ),
             (_rt_wrong(turn=lambda X, A, c: (X - c) @ A.T), "forgot to add the centre back"),
             (
-                _rt_wrong(turn=lambda X, A, c: (X - [2.5, 2.5]) @ A.T + [2.5, 2.5]),
-                "you turned about the wrong centre, [2.5, 2.5]",
+                _rt_wrong(turn=lambda X, A, c: (X - (c + 0.5)) @ A.T + (c + 0.5)),
+                "you turned about the wrong centre, [3, 2]",
             ),
             (
                 _rt_wrong(
@@ -322,5 +363,9 @@ register_exercise(
             (lambda img, X, A: read_and_turn(img, X, A)[0], "you returned only the centre"),
         ),
         teaching=read_and_turn,
+        solution_note=(
+            "# camlab's own, tested route to the turn: one 3 x 3 matrix M = [[A, c - A c], [0, 0, 1]] applied\n"
+            "# by camlab.map_points(M, X) (lesson 06; read it with camlab.map_points??)"
+        ),
     )
 )

@@ -227,9 +227,9 @@ def _diagnose(args, got, expected) -> str:
         return f"{problem}: {_shape_slip(np.shape(got), g, p)}"
     if problem and np.isnan(g[-1]) and np.allclose(g[:2], p):  # x and y filled in, w left as it was
         return (
-            "w is NaN and x and y are right: an array made with np.empty(3) keeps whatever was in memory until "
-            "you fill it (here NaN, which the check leaves there), so set w too, or build the answer from p: "
-            f"{APPEND}"
+            "w is NaN and x and y are right: either you appended NaN (np.append(p, np.nan)), or an array made "
+            "with np.empty(3) kept whatever was in memory because w was never filled (here NaN, which the check "
+            f"leaves there). w is 1: {APPEND}"
         )
     if problem:
         return problem
@@ -357,7 +357,8 @@ register_exercise(
             (lambda p: np.append(np.floor(p + 0.5), 1.0), "rounded to whole pixels"),
             (lambda p: np.append(p.astype(np.float16), 1.0), "went through float16"),
             (lambda p: np.append(p, np.ones(len(p))), "two 1s"),
-            (_empty_unfilled, "w is NaN and x and y are right: an array made with np.empty(3)"),
+            (_empty_unfilled, "or an array made with np.empty(3) kept whatever was in memory"),
+            (lambda p: np.append(p, np.nan), "either you appended NaN (np.append(p, np.nan))"),
             (lambda p: np.resize(p, 3), "np.resize (or np.tile) repeats the array"),
             (lambda p: p.reshape(3), "reshape rearranges the numbers"),
             (lambda p: np.hstack([p, [[1.0]]]), "np.hstack joins a 1-D array to a 2-D one"),
