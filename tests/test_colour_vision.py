@@ -89,7 +89,10 @@ def _style(handle) -> tuple:
         hollow = str(handle.get_markerfacecolor()).lower() == "none"
         return line, str(handle.get_marker()), hollow, None
     hatch = handle.get_hatch() if hasattr(handle, "get_hatch") else None
-    return "patch", type(handle).__name__, False, hatch
+    # An outline's dash pattern tells two unfilled patches apart as a line's does.
+    dashes = getattr(handle, "_unscaled_dash_pattern", (0, None))[1]
+    outline = str(tuple(dashes)) if dashes is not None else "solid"
+    return "patch", type(handle).__name__, outline, hatch
 
 
 def _colour(handle):
@@ -98,7 +101,8 @@ def _colour(handle):
             c = getattr(handle, getter)()
             if isinstance(c, np.ndarray) and c.ndim == 2:
                 c = c[0] if len(c) else None
-            if c is not None and not (isinstance(c, str) and c == "none"):
+            transparent = not isinstance(c, str) and c is not None and len(c) == 4 and c[3] == 0
+            if c is not None and not (isinstance(c, str) and c == "none") and not transparent:
                 return c
     return None
 
@@ -142,6 +146,24 @@ def test_simulation_matches_known_confusions():
     assert delta_e("tab:blue", "tab:orange", "deuteranopia") > 30
     for m in MACHADO.values():
         assert np.allclose(m.sum(axis=1), 1.0, atol=1e-5)
+
+
+def test_outlines_are_told_apart_by_dashes_and_compared_by_edge_colour():
+    """Two unfilled squares: the same dashes make a colour-only pair (compared by edge colour, not
+    the transparent face); a dashed outline beside a solid one is told apart by its shape."""
+    from matplotlib.figure import Figure
+    from matplotlib.patches import Rectangle
+
+    fig = Figure()
+    ax = fig.subplots()
+    ax.add_patch(Rectangle((0, 0), 1, 1, fill=False, ec="tab:red", label="a"))
+    ax.add_patch(Rectangle((0, 0), 1, 1, fill=False, ec="tab:green", label="b"))
+    ax.add_patch(Rectangle((0, 0), 1, 1, fill=False, ec="tab:purple", ls="--", label="c"))
+    ax.legend()
+    pairs = colour_only_pairs(fig)
+    assert [(a, b) for a, b, *_ in pairs] == [("a", "b")]
+    _, _, c1, c2 = pairs[0]
+    assert delta_e(c1, c2, "normal") > 40  # the edges' red and green, not two transparent faces
 
 
 @pytest.mark.parametrize("name", sorted(DEMOS))

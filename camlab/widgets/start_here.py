@@ -417,8 +417,10 @@ def _explorer_text(u: int, v: int, img: np.ndarray) -> str:
 
 @register(lesson="00", sweep={"u": [0, 5], "v": [0, 3]})
 def pixel_explorer() -> Demo:
-    """Pick a pixel (u, v) of a 6 x 4 image with the sliders or a click: its square, its centre, its value
-    img[v, u], and where each tool's convention puts its centre.
+    """A pixel (u, v) of a 6 x 4 image, picked with the sliders or a click.
+
+    The figure shows the pixel's square, its centre, its value img[v, u], and where each tool's
+    convention puts its centre.
 
     Every pixel shows its value, 10 v + u, so the value names the pixel. The orange square is the
     pixel, the orange dot its centre at the whole numbers (u, v); the blue + is the point Pillow and

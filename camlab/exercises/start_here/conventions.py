@@ -41,8 +41,11 @@ def _turn(deg: float, scale: float = 1.0) -> np.ndarray:
 
 
 def _computed(X: np.ndarray, below: np.ndarray) -> np.ndarray:
-    """``X`` with the entries where ``below`` is True one unit in the last place under their whole number,
-    and the others one above (a computed 3 can be 2.9999999999999996 or 3.0000000000000004)."""
+    """``X`` nudged one unit in the last place off its whole numbers.
+
+    Entries where ``below`` is True go one ulp under, the others one above (a computed 3 can be
+    2.9999999999999996 or 3.0000000000000004).
+    """
     X = np.asarray(X, dtype=float)
     return np.where(below, np.nextafter(X, -np.inf), np.where(X > 0, np.nextafter(X, np.inf), X))
 
