@@ -415,34 +415,18 @@ def _explorer_text(u: int, v: int, img: np.ndarray) -> str:
     return "\n".join(lines)
 
 
-@register(lesson="00", sweep={"u": [0, 5], "v": [0, 3]})
-def pixel_explorer() -> Demo:
-    """A pixel (u, v) of a 6 x 4 image, picked with the sliders or a click.
+def _explorer_image(ax, img: np.ndarray) -> None:
+    """Draw the explorer's image: light greys, each pixel's value, its centre dot, u and v axes.
 
-    The figure shows the pixel's square, its centre, its value img[v, u], and where each tool's
-    convention puts its centre.
-
-    Every pixel shows its value, 10 v + u, so the value names the pixel. The orange square is the
-    pixel, the orange dot its centre at the whole numbers (u, v); the blue + is the point Pillow and
-    COLMAP call (u, v), the pixel's top-left corner (their centre is half a pixel further on). The
-    purple dashed square is the pixel that the swapped read img[u, v] returns, where it exists (for
-    u >= H it raises an IndexError instead). The readout lists each tool's centre of the pixel.
-
-    Returns
-    -------
-    Demo
-        The demo: controls ``u`` (column, 0 to W - 1) and ``v`` (row, 0 to H - 1); the figure (the
-        image, and the readout beside it); ``handlers["button_press_event"]`` (a click picks the
-        pixel under it); and ``state`` (``u``, ``v``, ``value`` = img[v, u], ``swapped`` =
-        img[u, v] or None where it raises, ``tools``: :func:`tool_pixel`).
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The image axes.
+    img : (H, W) ndarray
+        The image, each pixel holding 10 v + u.
     """
-    from matplotlib.patches import Rectangle
-
-    W, H = EXPLORER_SIZE
+    H, W = img.shape
     rows, cols = np.mgrid[0:H, 0:W]
-    img = 10 * rows + cols
-    view = FigureView(figsize=(7.6, 3.6))
-    ax, ax_text = view.fig.subplots(1, 2, width_ratios=[1.0, 1.0])
     ax.imshow(
         img, cmap="gray", vmin=-120, vmax=40
     )  # light greys: dark numbers and marks read on all
@@ -454,6 +438,28 @@ def pixel_explorer() -> Demo:
     ax.set_xlabel("u (px): column", color=palette.RED)
     ax.set_ylabel("v (px): row", color=palette.GREEN)
     ax.set_title(f"a {W} x {H} image holding 10 v + u at img[v, u]", fontsize=10)
+
+
+def _explorer_figure(view: FigureView, img: np.ndarray) -> tuple:
+    """The pixel explorer's image with its values, its key and its animated marks.
+
+    Parameters
+    ----------
+    view : FigureView
+        The demo's figure.
+    img : (H, W) ndarray
+        The image, each pixel holding 10 v + u.
+
+    Returns
+    -------
+    tuple
+        The image axes, then the animated pixel square, swapped-read square, centre dot,
+        top-left corner marker and readout text.
+    """
+    from matplotlib.patches import Rectangle
+
+    ax, ax_text = view.fig.subplots(1, 2, width_ratios=[1.0, 1.0])
+    _explorer_image(ax, img)
     square = view.animate(
         ax.add_patch(
             Rectangle(
@@ -508,8 +514,8 @@ def pixel_explorer() -> Demo:
             label="Pillow's and COLMAP's (u, v):\nthe pixel's top-left corner",
         )[0]
     )
-    ax.set_xlim(-0.5, W - 0.5)
-    ax.set_ylim(H - 0.5, -0.5)
+    ax.set_xlim(-0.5, img.shape[1] - 0.5)
+    ax.set_ylim(img.shape[0] - 0.5, -0.5)
     ax_text.axis("off")
     ax_text.legend(*ax.get_legend_handles_labels(), loc="lower left", fontsize=8.5, frameon=False)
     readout = view.animate(
@@ -524,6 +530,36 @@ def pixel_explorer() -> Demo:
             transform=ax_text.transAxes,
         )
     )
+
+    return ax, square, swapped, centre, corner, readout
+
+
+@register(lesson="00", sweep={"u": [0, 5], "v": [0, 3]})
+def pixel_explorer() -> Demo:
+    """A pixel (u, v) of a 6 x 4 image, picked with the sliders or a click.
+
+    The figure shows the pixel's square, its centre, its value img[v, u], and where each tool's
+    convention puts its centre.
+
+    Every pixel shows its value, 10 v + u, so the value names the pixel. The orange square is the
+    pixel, the orange dot its centre at the whole numbers (u, v); the blue + is the point Pillow and
+    COLMAP call (u, v), the pixel's top-left corner (their centre is half a pixel further on). The
+    purple dashed square is the pixel that the swapped read img[u, v] returns, where it exists (for
+    u >= H it raises an IndexError instead). The readout lists each tool's centre of the pixel.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``u`` (column, 0 to W - 1) and ``v`` (row, 0 to H - 1); the figure (the
+        image, and the readout beside it); ``handlers["button_press_event"]`` (a click picks the
+        pixel under it); and ``state`` (``u``, ``v``, ``value`` = img[v, u], ``swapped`` =
+        img[u, v] or None where it raises, ``tools``: :func:`tool_pixel`).
+    """
+    W, H = EXPLORER_SIZE
+    rows, cols = np.mgrid[0:H, 0:W]
+    img = 10 * rows + cols
+    view = FigureView(figsize=(7.6, 3.6))
+    ax, square, swapped, centre, corner, readout = _explorer_figure(view, img)
 
     def update(values: dict, state: dict) -> None:
         u, v = int(values["u"]), int(values["v"])
