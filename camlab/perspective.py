@@ -51,6 +51,7 @@ __all__ = [
     "order_corners",
     "rectangle_homography",
     "rectify_quadrilateral",
+    "OrthogonalLinePairs",
     "square_grid_right_angles",
 ]
 
@@ -694,7 +695,22 @@ def metric_rectification(lines_l: ArrayLike, lines_m: ArrayLike) -> MetricRectif
     return MetricRectification(C_star=C_star, H=H, residual=float(cos.max()))
 
 
-def square_grid_right_angles(grid: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+class OrthogonalLinePairs(NamedTuple):
+    """Pairs of image lines that are orthogonal on the plane.
+
+    Attributes
+    ----------
+    lines_l : (N, 3) ndarray
+        Image lines (a, b, c) of au + bv + c = 0, pixels.
+    lines_m : (N, 3) ndarray
+        The line orthogonal on the plane to ``lines_l[i]``, same form.
+    """
+
+    lines_l: np.ndarray
+    lines_m: np.ndarray
+
+
+def square_grid_right_angles(grid: ArrayLike) -> OrthogonalLinePairs:
     r"""Pairs of lines that are orthogonal on a grid of squares (a chessboard), from its image corners.
 
     A grid of squares has right angles in two directions: its rows meet its columns, and the two
@@ -711,8 +727,8 @@ def square_grid_right_angles(grid: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
 
     Returns
     -------
-    lines_l, lines_m : (6, 3) ndarray
-        The first and last rows against the first and last columns (4 pairs), then the two
+    OrthogonalLinePairs
+        ``lines_l`` and ``lines_m``, each (6, 3): the first and last rows against the first and last columns (4 pairs), then the two
         diagonals of the largest square block at each end of the grid (2 pairs; for a square grid,
         of the two overlapping blocks one square smaller).
     """
@@ -747,4 +763,4 @@ def square_grid_right_angles(grid: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         steps = np.arange(k)
         L.append(fit(g[r0 + steps, c0 + steps]))
         M.append(fit(g[r0 + k - 1 - steps, c0 + steps]))
-    return np.array(L), np.array(M)
+    return OrthogonalLinePairs(np.array(L), np.array(M))
