@@ -220,10 +220,11 @@ def camera_explorer():
         world_axes=WORLD_AXES_M,
     )
     # "C" hangs just above-left of the centre dot, its corner at the dot, not half a metre away
-    sv.camera_artist.label.set(ha="right", va="bottom")
+    sv.camera_artist.label.set(ha="right", va="bottom", path_effects=palette.halo())   # readable on the plane
     sv.camera_artist.label_offset = (-0.02, -0.04)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
-    (pp,) = sv.ax_image.plot([], [], "+", color=palette.PURPLE, ms=10, mew=2)
+    # not clipped: at cx or cy = -0.5 the principal point sits on the image's edge, and the whole + shows it
+    (pp,) = sv.ax_image.plot([], [], "+", color=palette.PURPLE, ms=10, mew=2, clip_on=False, zorder=3)
     view.animate(*sv.artists(), pp)
     controls = {
         "fx": slider(800, 200, 1600, 10, "fx (px)", readout_format=".0f"),
@@ -711,7 +712,7 @@ def resectioning():
 
 @register(lesson="04", sweep={"orbit": [-90, -60, 60, 90], "frame": ["OpenGL / Blender", "OpenCV"]})
 def opencv_vs_opengl():
-    """The same camera with OpenCV axes or OpenGL/Blender axes: only the labels of y and z change.
+    """The same camera with OpenCV axes or OpenGL/Blender axes: its y and z axes flip direction and are relabelled.
 
     OpenCV: x right, y down, z forward; OpenGL/Blender: x right, y up, z backward. The camera
     stays put, its y and z axes flip (R_gl = F R, F = diag(1, -1, -1)) and are relabelled.
@@ -785,7 +786,7 @@ def opencv_vs_opengl():
         matrix_world[:3, :3], matrix_world[:3, 3] = R_gl.T, C
         numbers = (
             _matrix("R_gl", R_gl, 3) + "\n" + f"t_gl = {_fmt(t_gl)}\n"
-            "matrix_world = [[R_gl^T, C], [0, 1]] (exercise 5):\n" + _matrix("M", matrix_world, 3)
+            "matrix_world = [[R_gl^T, C], [0, 1]] (exercise 5):\n" + _matrix("matrix_world", matrix_world, 3)
             if gl
             else _matrix("R", cam.R, 3) + "\n" + f"t = {_fmt(cam.t)}\nC = -R^T t = {_fmt(C)}"
         )
@@ -796,7 +797,7 @@ def opencv_vs_opengl():
                 if gl
                 else "<pre>OpenCV / H&amp;Z: X_cam = R X + t\ncamera looks along its +z axis\n"
             )
-            + "rows of R = the drawn axes, in world coordinates\n"
+            + ("rows of R_gl = the drawn axes, in world coordinates\n" if gl else "rows of R = the drawn axes, in world coordinates\n")
             + numbers
             + "</pre>"
         )
