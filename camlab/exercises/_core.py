@@ -360,8 +360,11 @@ def check(
         try:
             got = _run_student(name, student_function, args, i, len(cases), seconds)
         except NotImplementedError:
+            # one write, text and newline together: print's two writes could reach the notebook as two
+            # stream outputs, the second a lone newline
             print(
-                f"{name}: not attempted yet. Fill in the function above, run its cell, then this one."
+                f"{name}: not attempted yet. Fill in the function above, run its cell, then this one.\n",
+                end="",
             )
             return CheckResult(name, False)
         if got is None:

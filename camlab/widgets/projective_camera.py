@@ -28,15 +28,21 @@ TARGET = np.array([0.0, 0.0, 0.7])
 # old side, world Y pointed into the screen) and the camera's x, y and z each stand clear of the frustum; straight
 # behind the camera the viewer would look down its axis and pile everything up.
 VIEWER_OFFSET = 30.0
+# ... and looks down from 45 deg: from level with the camera (18 deg, the old height) its x (right) and z (forward)
+# both ran to the right on screen, one over the other, with both labels on the image plane's picture; from
+# above, x runs down-right, y down and z up-right, 40 to 140 deg apart, and the labels clear the picture.
+VIEWER_ELEV = 45.0
 # The viewer turns with the pan by this fraction: a fixed viewer saw the frustum end-on at one end of the pan,
 # one that followed fully would hide the turn; at 0.3 both ends show the frustum turned from the default.
 PAN_FOLLOW = 0.3
 # The resectioning viewer looks at the box's corner between its two faces of points (x = +1 and y = -1), so both
 # faces open up; the true camera (azimuth -55 deg) stands to the viewer's right, its frustum pointing at the box.
 RESECTION_AZIM, RESECTION_ELEV = -20.0, 24.0
-# The true camera's view of the scene is drawn mid grey and wide under the estimate's dashed orange one: a dark grey
-# line under orange dashes read as one brown line when the two coincide; lighter than 0.55 falls below 3:1 on white.
-TRUE_VIEW_GREY = "0.55"
+# The true camera's view of the scene is drawn thin and dark grey *over* the estimate's wider dashed orange one:
+# a wide grey line under orange dashes read as one tan-brown line where the two coincide (brown means a
+# construction in lesson 04); a thin dark line on an orange band reads as two lines, one on the other.
+TRUE_VIEW_GREY = "0.3"
+TRUE_VIEW_LW, EST_VIEW_LW = 0.9, 2.2
 MOVED_FROM_GREY = "0.55"  # the moved pixel's first spot and its dotted move
 FAR_M = 6.0  # an estimated camera farther than this from the true one is shown by an arrow, not fitted into view
 EYE_GL = np.array(
@@ -208,16 +214,17 @@ def camera_explorer():
         thumbnail=scenes.house_wireframe(),
         azim=-60
         + VIEWER_OFFSET,  # the default azimuth; update() follows the azimuth and part of the pan
-        elev=18,
+        elev=VIEWER_ELEV,
         camera_axis_length=0.8,
         width_ratios=(1.3, 1.0),
         world_axes=WORLD_AXES_M,
     )
     # "C" hangs just above-left of the centre dot, its corner at the dot, not half a metre away
-    sv.camera_artist.label.set(ha="right", va="bottom")
+    sv.camera_artist.label.set(ha="right", va="bottom", path_effects=palette.halo())   # readable on the plane
     sv.camera_artist.label_offset = (-0.02, -0.04)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
-    (pp,) = sv.ax_image.plot([], [], "+", color=palette.PURPLE, ms=10, mew=2)
+    # not clipped: at cx or cy = -0.5 the principal point sits on the image's edge, and the whole + shows it
+    (pp,) = sv.ax_image.plot([], [], "+", color=palette.PURPLE, ms=10, mew=2, clip_on=False, zorder=3)
     view.animate(*sv.artists(), pp)
     controls = {
         "fx": slider(800, 200, 1600, 10, "fx (px)", readout_format=".0f"),
@@ -242,7 +249,7 @@ def camera_explorer():
         cam = explorer_camera(**v)
         sv.camera_artist.size = explorer_plane_size(v["distance"], cam.K)
         sv.ax3d.view_init(
-            elev=18, azim=v["azimuth"] + VIEWER_OFFSET + PAN_FOLLOW * v["pan"]
+            elev=VIEWER_ELEV, azim=v["azimuth"] + VIEWER_OFFSET + PAN_FOLLOW * v["pan"]
         )  # sv.update refreshes the projection
         sv.update(cam)
         pp.set_data([cam.principal_point[0]], [cam.principal_point[1]])
@@ -292,7 +299,13 @@ def _show_estimate(art, trial, K, R, t, C, ringed, first_pixels):
     tip = (
         cam_true.centre + 1.5 * d
     )  # far: a 1.5 m pointer from the true camera towards the estimate
-    sv.fit(extra=np.vstack([tip, tip + 0.3 * d]) if far else est_art.extent_points(est))
+    # The view stays put while the estimate stays in the default view's room (a box 0.25 m round the scene and
+    # the true camera), so the box and the true camera keep their places on screen; it widens only for an
+    # estimate outside that room.
+    room = art.room
+    shown = np.vstack([tip, tip + 0.3 * d]) if far else est_art.extent_points(est)
+    inside = np.all((shown >= room.min(axis=0)) & (shown <= room.max(axis=0)))
+    sv.fit(extra=room if inside else np.vstack([room, shown]))
     for artist in est_art.artists():
         artist.set_visible(not far)
     place_camera_labels(sv.ax3d, sv.camera_artist, est_art)
@@ -309,6 +322,7 @@ def _show_estimate(art, trial, K, R, t, C, ringed, first_pixels):
     art.reproj.set_data(r[:, 0], r[:, 1])
     art.residuals.set_data(*_segments_xy(uvn, r))
     scene3d.update_segments(art.est_lines, cm.project_segments(P, art.frame))
+    show_residual_bars(art.bars, trial.errors, ringed)
     return centre_err, far
 
 
@@ -355,13 +369,14 @@ def _resectioning_key(view):
     keys = [
         Line2D([], [], color=palette.PURPLE, lw=1.2),
         Line2D([], [], color=palette.ORANGE, lw=1.2, ls=(0, (4, 2))),
-        Line2D([], [], color=TRUE_VIEW_GREY, lw=2.0),
-        Line2D([], [], color=palette.ORANGE, lw=1.0, ls="--"),
+        Line2D([], [], color=TRUE_VIEW_GREY, lw=TRUE_VIEW_LW),
+        Line2D([], [], color=palette.ORANGE, lw=EST_VIEW_LW, ls=(0, (3, 2))),
         Line2D([], [], marker="o", mfc="none", color="k", ls="none"),
         Line2D([], [], marker="+", color=palette.ORANGE, mew=1.5, ls="none"),
         Line2D([], [], color=palette.ORANGE, lw=1.2, marker="|", ms=4),
         Line2D([], [], marker="o", ms=10, mfc="none", mec="k", mew=2.0, ls="none"),
         Line2D([], [], marker="o", ms=5, color=MOVED_FROM_GREY, ls=":", lw=1.2),
+        Line2D([], [], color="k", lw=4.0, solid_capstyle="butt"),
     ]
     view.fig.legend(
         keys,
@@ -375,12 +390,71 @@ def _resectioning_key(view):
             "residual (measured o to its +)",
             "pair k, or a clicked pixel, where it is now",
             "where it was before the move",
+            "residual bar of pair k or a moved pixel",
         ],
         loc="outside lower center",
         ncols=4,
         fontsize=8,
         frameon=False,
     )
+
+
+def _residual_bars(ax):
+    """The residual panel of :func:`resectioning`: one bar per pair, its length |o - +| in pixels.
+
+    The axes are fixed (0 to 1 across, 0 to 1.3 up, no ticks), so nothing static goes stale: bar i stands
+    at (i + 0.5) / N and its height is its residual over the largest one; the two longest are labelled
+    with their lengths in pixels and their pair numbers, and the moved or ringed pairs' bars are black.
+    """
+    ax.set(xlim=(0.0, 1.0), ylim=(0.0, 1.32), xticks=[], yticks=[])
+    ax.set_title("residual of each pair\n(o to +), to scale", fontsize=9)   # the longest bar fills the height
+    ax.set_xlabel("pairs 0 .. N - 1", fontsize=8)
+    for side in ("top", "right"):
+        ax.spines[side].set_visible(False)
+    bar = dict(solid_capstyle="butt", lw=4.0)
+    (innocent,) = ax.plot([], [], color=palette.ORANGE, **bar)
+    (ringed,) = ax.plot([], [], color="k", **bar)
+    labels = [
+        ax.text(0, 0, "", fontsize=8, ha="center", va="bottom", path_effects=palette.halo())
+        for _ in range(2)
+    ]
+    return SimpleNamespace(ax=ax, innocent=innocent, ringed=ringed, labels=labels,
+                           artists=[innocent, ringed, *labels])
+
+
+def show_residual_bars(bars, err, ringed) -> list[tuple[int, float]]:
+    """Draw the residuals ``err`` (px) as bars, ``ringed`` pairs black; return the two longest (pair, px).
+
+    Bars of points behind the estimate (NaN residual) are left out.
+    """
+    err = np.asarray(err, dtype=float)
+    n = len(err)
+    finite = np.isfinite(err)
+    top = float(err[finite].max()) if finite.any() and err[finite].max() > 0 else 1.0
+    height = np.where(finite, err / top, 0.0)
+    x = (np.arange(n) + 0.5) / n
+    width = min(6.0, max(1.0, 0.55 * bars.ax.get_window_extent().width / n * 72 / bars.ax.figure.dpi))
+    black = np.zeros(n, dtype=bool)
+    black[list(ringed)] = True
+    for line, keep in ((bars.innocent, ~black), (bars.ringed, black)):
+        xs = np.repeat(x[keep], 3)
+        ys = np.column_stack([np.zeros(keep.sum()), height[keep], np.full(keep.sum(), np.nan)]).ravel()
+        line.set_data(xs, ys)
+        line.set_linewidth(width)
+    order = [int(i) for i in np.argsort(np.where(finite, err, -1.0))[::-1][:2] if finite[i]]
+    for k, text in enumerate(bars.labels):
+        if k >= len(order):
+            text.set_text("")
+            continue
+        i = order[k]
+        # each label above its bar, a bar near either end of the panel taking its label inwards; when the
+        # two bars stand close, the second label goes above the first one's
+        ha = "left" if x[i] < 0.25 else "right" if x[i] > 0.75 else "center"
+        y = height[i] + 0.02
+        if k == 1 and abs(x[i] - x[order[0]]) < 0.3:
+            y = height[order[0]] + 0.16
+        text.set(position=(x[i], y), text=f"{err[i]:.1f} px\npair {i}", ha=ha)
+    return [(i, float(err[i])) for i in order]
 
 
 def _resectioning_figure(view):
@@ -394,10 +468,17 @@ def _resectioning_figure(view):
     # The box's bottom edges lie on grid lines: drawn twice, two dash patterns interleave into a solid line.
     frame = np.concatenate([box[np.any(box[:, :, 2] > 0, axis=1)], scenes.ground_grid(2.0, 1.0)])
     # No world or camera axes here: red, green and blue would mean axes in one place and data in another.
+    # Three panels: the 3-D scene, the image, and each pair's residual as a bar (at 0.55 screen px per image
+    # px a 17.5 px residual is 10 screen px, no longer than its + marker: the bars make the lengths comparable).
+    gs = view.fig.add_gridspec(1, 3, width_ratios=(1.0, 1.05, 0.42))
+    ax3 = scene3d.axes3d(view.fig, gs[0, 0], elev=RESECTION_ELEV, azim=RESECTION_AZIM)
+    ax_image = view.fig.add_subplot(gs[0, 1])
+    ax_bars = view.fig.add_subplot(gs[0, 2])
     sv = scene3d.SceneView(
         view.fig,
         cam,
         frame,
+        axes=(ax3, ax_image),
         plane_size=1.0,
         image_title="measured (o) vs reprojected (+)",
         world_axes=0.0,
@@ -425,6 +506,18 @@ def _resectioning_figure(view):
     est_art.frustum.set_linestyle((0, (4, 2)))
     # a transparent colour, not "none": matplotlib 3.9 projects an empty colour array and fails
     est_art.plane.set_facecolor((1.0, 1.0, 1.0, 0.0))
+    # the two faces that hold the points, lightly shaded so the points read as lying on them
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    faces = Poly3DCollection(
+        [
+            [[1.0, -1.0, 0.0], [1.0, 1.0, 0.0], [1.0, 1.0, 2.0], [1.0, -1.0, 2.0]],
+            [[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [1.0, -1.0, 2.0], [-1.0, -1.0, 2.0]],
+        ],
+        facecolor=(0.0, 0.0, 0.0, 0.07),
+        edgecolor="none",
+    )
+    sv.ax3d.add_collection3d(faces)
     pts3d = scene3d.draw_points(sv.ax3d, X, color="k", ms=3)
     # the moved correspondence(s), ringed in both panels: after the fit every residual grows, so
     # without a mark the mismatch is hard to find
@@ -443,9 +536,12 @@ def _resectioning_figure(view):
     # where a moved pixel was measured first, and its move (dotted) to where it is now
     (first_spot,) = sv.ax_image.plot([], [], "o", ms=5, color=MOVED_FROM_GREY, ls="none")
     (move_lines,) = sv.ax_image.plot([], [], color=MOVED_FROM_GREY, lw=1.2, ls=":")
-    (est_lines,) = sv.ax_image.plot([], [], color=palette.ORANGE, lw=1.0, ls="--")
-    sv.image_lines.set_color(TRUE_VIEW_GREY)
-    sv.image_lines.set_linewidth(2.0)
+    (est_lines,) = sv.ax_image.plot([], [], color=palette.ORANGE, lw=EST_VIEW_LW, ls=(0, (3, 2)), zorder=1.9)
+    sv.image_lines.set(color=TRUE_VIEW_GREY, linewidth=TRUE_VIEW_LW, zorder=2.0)   # over the estimate's band
+    # The image's frame over the lines that run off its edges, live as in a full draw (a live frame drew the
+    # box's lines over a static top spine: 113 pixels differed from the first draw)
+    frame_spines = list(sv.ax_image.spines.values())
+    bars = _residual_bars(ax_bars)
     _resectioning_key(view)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
     # Registered in the order they were created (the true camera's view first), so a live frame stacks
@@ -453,6 +549,7 @@ def _resectioning_figure(view):
     view.animate(
         *sv.artists(),
         *est_art.artists(),
+        faces,
         pts3d,
         moved_3d,
         pointer,
@@ -464,8 +561,15 @@ def _resectioning_figure(view):
         residuals,
         reproj,
         est_lines,
+        *frame_spines,
+        *bars.artists,
     )
+    pts = np.vstack([frame.reshape(-1, 3), sv.camera_artist.extent_points(cam)])
+    lo, hi = pts.min(axis=0) - 0.25, pts.max(axis=0) + 0.25
+    room = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])
     return SimpleNamespace(
+        room=room,
+        bars=bars,
         frame=frame,
         sv=sv,
         est_art=est_art,
@@ -533,7 +637,7 @@ def resectioning():
         ``errors``, ``far``, ``held_out_rms``: the RMS error on 30 fresh points of the box, not fitted,
         against their true pixels; NaN if one is behind the estimate).
     """
-    view = FigureView(figsize=(9, 4.6))
+    view = FigureView(figsize=(10.4, 4.6))  # 936 px: the residual panel beside the image
     art = _resectioning_figure(view)
     controls = _resectioning_controls()
     clicked: dict[int, np.ndarray] = {}  # correspondence index -> clicked pixel
@@ -612,7 +716,7 @@ def resectioning():
 
 @register(lesson="04", sweep={"orbit": [-90, -60, 60, 90], "frame": ["OpenGL / Blender", "OpenCV"]})
 def opencv_vs_opengl():
-    """The same camera with OpenCV axes or OpenGL/Blender axes: only the labels of y and z change.
+    """The same camera with OpenCV axes or OpenGL/Blender axes: its y and z axes flip direction and are relabelled.
 
     OpenCV: x right, y down, z forward; OpenGL/Blender: x right, y up, z backward. The camera
     stays put, its y and z axes flip (R_gl = F R, F = diag(1, -1, -1)) and are relabelled.
@@ -686,7 +790,7 @@ def opencv_vs_opengl():
         matrix_world[:3, :3], matrix_world[:3, 3] = R_gl.T, C
         numbers = (
             _matrix("R_gl", R_gl, 3) + "\n" + f"t_gl = {_fmt(t_gl)}\n"
-            "matrix_world = [[R_gl^T, C], [0, 1]] (exercise 5):\n" + _matrix("M", matrix_world, 3)
+            "matrix_world = [[R_gl^T, C], [0, 1]] (exercise 5):\n" + _matrix("matrix_world", matrix_world, 3)
             if gl
             else _matrix("R", cam.R, 3) + "\n" + f"t = {_fmt(cam.t)}\nC = -R^T t = {_fmt(C)}"
         )
@@ -697,7 +801,7 @@ def opencv_vs_opengl():
                 if gl
                 else "<pre>OpenCV / H&amp;Z: X_cam = R X + t\ncamera looks along its +z axis\n"
             )
-            + "rows of R = the drawn axes, in world coordinates\n"
+            + ("rows of R_gl = the drawn axes, in world coordinates\n" if gl else "rows of R = the drawn axes, in world coordinates\n")
             + numbers
             + "</pre>"
         )

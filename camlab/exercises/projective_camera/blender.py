@@ -20,7 +20,21 @@ _F = np.diag([1.0, -1.0, -1.0])
 def _blender_cases():
     # the camera with t_x != 0 first: a look-at camera aimed above the origin has t_x = 0, where
     # -R^T F t (t not flipped) equals R^T t (a sign slip), so its diagnosis could not tell them apart
-    return [(c.R, c.t) for c in cameras()[::-1]]
+    cams = cameras()[::-1]
+    # ... and the last one as OpenCV returns it: cv2.solvePnP's tvec is a (3, 1) column
+    return [(c.R, c.t) for c in cams] + [(cams[0].R, cams[0].t.reshape(3, 1))]
+
+
+def _blender_exception_hint(exc: Exception, args: tuple) -> str:
+    """The cause when the answer fails on OpenCV's (3, 1) tvec (a broadcast or a shape error)."""
+    t = np.asarray(args[1])
+    if t.shape == (3, 1) and isinstance(exc, (ValueError, IndexError)):
+        return (
+            "this test passes t as a (3, 1) column, as OpenCV's tvec is (cv2.solvePnP, cv2.calibrateCamera): "
+            "R @ t is then (3, 1) and does not fit M[:3, 3], which is (3,). Flatten t first: "
+            "t = np.ravel(t) (or np.asarray(t).reshape(3))."
+        )
+    return ""
 
 
 def _flipped_axes(s):
@@ -170,7 +184,7 @@ column ``s.c`` against the pose (``s.R``, ``s.t``), its centre ``s.C`` and ``s.r
 
 
 def _blender_diagnosis(args, got, expected) -> str:
-    R, t = (np.asarray(a, dtype=float) for a in args)
+    R, t = np.asarray(args[0], dtype=float), np.ravel(np.asarray(args[1], dtype=float))
     problem = shape_problem(got, expected)
     if problem:
         return problem + ". Return the 4 x 4 matrix [[R_gl^T, C], [0, 0, 0, 1]]."
@@ -223,6 +237,7 @@ register_exercise(
         cases=_blender_cases,
         compare=same_array(rtol=1e-8, atol=1e-9),
         diagnose=_blender_diagnosis,
+        exception_hint=_blender_exception_hint,
         wrong_variants=(
             (
                 lambda R, t: np.block(

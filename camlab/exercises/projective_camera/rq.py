@@ -139,6 +139,13 @@ def _unreproduced_cause(K, R, M) -> str:
             "you fixed the signs of K (K D) but not of R: K R = (K D)(D R), so apply the same "
             "D = diag(sign(diag(K))) to R's rows too (D R), or K R no longer equals M."
         )
+    if _diagonal_made_positive(K, R, M):
+        return (
+            "you made the entries of K's diagonal positive one by one (abs() of the diagonal, or a sign flip of the "
+            "diagonal entries alone), and left R as RQ gave it: the off-diagonal entries of K and the rows of R "
+            "kept their old signs, so K R is no longer M. Flip whole columns of K and the same rows of R: "
+            "D = diag(sign(diag(K))), K D and D R."
+        )
     return "K R does not reproduce M; an RQ decomposition must satisfy M = K R exactly."
 
 
@@ -164,12 +171,41 @@ def _sign_fix_misplaced(K, R, M) -> str | None:
                 "you applied D to R's columns (R @ D). K R = (K D)(D R): D flips K's columns (K @ D) "
                 "and R's rows (D @ R), so that D D = I cancels between them."
             )
+        if np.allclose(D @ K @ R @ D, M, rtol=1e-6, atol=scale):
+            return (
+                "you applied D on the wrong side of both factors: D @ K flips K's rows and R @ D flips R's "
+                "columns. K R = (K D)(D R): D flips K's columns (K @ D) and R's rows (D @ R), so that D D = I "
+                "cancels between them."
+            )
         if np.allclose(D @ K @ D @ R, M, rtol=1e-6, atol=scale):
             return (
                 "you applied D to K's rows (D @ K). K R = (K D)(D R): D flips K's columns (K @ D) "
                 "and R's rows (D @ R), so that D D = I cancels between them."
             )
     return None
+
+
+def _diagonal_made_positive(K, R, M) -> bool:
+    """True if K is the raw RQ's K with only its diagonal made positive and R the raw R (up to D).
+
+    The raw factors are (K0 D, D R0) for some D, where (K0, R0) is the sign-fixed RQ of M; a diagonal made
+    positive entry by entry leaves diag(K) = diag(K0) but K's other entries and R's rows with D's signs.
+    """
+    from scipy.linalg import rq
+
+    K0, R0 = rq(M)
+    fix = np.diag(np.sign(np.diag(K0)))
+    K0, R0 = K0 @ fix, fix @ R0
+    if not np.allclose(np.diag(K), np.diag(K0), rtol=1e-6):
+        return False
+    for D in sign_flips():
+        if np.allclose(R, D @ R0, atol=1e-6):
+            K_raw = K0 @ D
+            return bool(
+                np.allclose(K - np.diag(np.diag(K)), K_raw - np.diag(np.diag(K_raw)), rtol=1e-6,
+                            atol=1e-6 * np.abs(M).max())
+            )
+    return False
 
 
 def _signs_fixed_in_k_only(K, R, M) -> bool:
