@@ -491,18 +491,26 @@ def test_accuracy_demo_recalibrates_and_reports_consistent_errors():
     np.testing.assert_allclose(demo.state["z"], demo.state["errors"] / demo.state["std"])
 
 
-def test_accuracy_demo_plots_in_sigma_units_and_marks_clipped_errors():
+def test_accuracy_demo_plots_errors_against_three_sigma_in_pixels():
     from camlab.widgets import camera_calibration as demos
 
     demo = demos.accuracy_vs_views()
     demo.set(n_views=3, noise=1.0)  # the setting the lesson recommends: cx lands far outside
-    z = demo.state["z"]
-    assert np.abs(z).max() > 3
+    err, std = demo.state["errors"], demo.state["std"]
+    assert np.abs(demo.state["z"]).max() > 3
     ax = demo.figure.axes[0]
-    dots, above, below = (line for line in ax.get_lines() if line.get_animated())
-    assert np.all(np.abs(dots.get_ydata()) < ax.get_ylim()[1])  # every dot on the axis
-    outside = np.abs(z) > ax.get_ylim()[1] - 0.4
-    assert len(above.get_xdata()) + len(below.get_xdata()) == outside.sum()
+    dots = next(line for line in ax.get_lines() if line.get_animated() and len(line.get_xdata()) == 4)
+    np.testing.assert_allclose(dots.get_ydata(), np.abs(err))  # the dots are the errors, px
+    bars = next(c for c in ax.collections if c.get_animated())
+    tops = [seg[1][1] for seg in bars.get_segments()]
+    np.testing.assert_allclose(tops, 3 * std)  # the bars reach 3 reported sigma
+    assert f"{int(np.sum(np.abs(err) > 3 * std))} of 4 beyond 3σ" in ax.get_title()
+    big = np.abs(err).max()
+    demo.set(n_views=15, noise=0.3)
+    assert np.abs(demo.state["errors"]).max() < big / 5  # more views, less noise: smaller errors
+    demo.set(noise=0.0)
+    assert "no noise" in ax.get_title()
+    assert np.all(np.array(dots.get_ydata()) >= ax.get_ylim()[0])  # rounding noise drawn at the floor
 
 
 def test_bundled_calibration_is_computed_once_and_read_only():

@@ -25,67 +25,59 @@ from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import monospace
 
 _NAMES = ("fx", "fy", "cx", "cy")
-_SIGMA_LIM = 8.0  # the sigma-unit axis spans +-8
+_PX_FLOOR, _PX_CEIL = 1e-3, 300.0  # the log axis of errors and 3 sigma, px
 
 
 def _accuracy_figure(view: FigureView, s) -> SimpleNamespace:
-    """The figure of :func:`accuracy_vs_views`: the errors in units of the reported sigma (left)
-    and the corners used, coloured by view (right); returns its animated artists by name."""
+    """The figure of :func:`accuracy_vs_views`: each intrinsic's actual error beside three reported
+    sigma, in pixels on a log axis (left), and the corners used (right); returns its animated
+    artists by name."""
     ax, axi = view.fig.subplots(1, 2, width_ratios=[1, 1.3])
-    ax.axhline(0, color="0.4", lw=1)
-    # In units of the reported standard deviation: the bars are always +-3, so every setting
-    # fits one fixed axis, and a dot outside them is a reported sigma that is too optimistic.
-    ax.axhspan(-3, 3, color=palette.TAB_BLUE, alpha=0.15, lw=0, label="±3σ (σ as reported)")
+    # In pixels on a log axis, so more views and less noise visibly lower both the bars and the
+    # dots; a dot above its bar is an error beyond 3 reported sigma (the sigma is too optimistic).
     ax.set(
         xlim=(-0.6, 3.6),
-        ylim=(-_SIGMA_LIM, _SIGMA_LIM),
+        ylim=(_PX_FLOOR, _PX_CEIL),
+        yscale="log",
         xticks=range(4),
         xticklabels=_NAMES,
-        ylabel="error / reported σ",
-        title="Errors in units of the reported σ",
+        ylabel="px (log scale)",
+        title="|error| against 3 × reported σ",
     )
-    ax.grid(True, axis="y", color="0.93")
-    (dots,) = ax.plot([], [], "o", color=palette.TAB_RED, ms=7, label="actual error")
+    ax.title.set_fontsize(10)
+    ax.grid(True, axis="y", which="major", color="0.9")
+    bars = ax.vlines(
+        np.arange(4), _PX_FLOOR, _PX_FLOOR, color=palette.TAB_BLUE, lw=14, alpha=0.35,
+        label="3 × reported σ",
+    )
+    (dots,) = ax.plot([], [], "o", color=palette.TAB_RED, ms=7, label="|actual error|")
     (above,) = ax.plot(
-        [],
-        [],
-        "^",
-        ls="none",
-        color=palette.TAB_RED,
-        ms=11,
-        label=f"beyond ±{_SIGMA_LIM:.0f}σ (clipped)",
+        [], [], "^", ls="none", color=palette.TAB_RED, ms=11, label=f"above {_PX_CEIL:.0f} px (clipped)"
     )
-    (below,) = ax.plot([], [], "v", ls="none", color=palette.TAB_RED, ms=11)
-    view.animate(dots, above, below)
-    ax.legend(loc="lower left", fontsize=7)
-    image_frame(axi, s.image_size, "Corners used, coloured by view")
-    pts = axi.scatter(
-        np.zeros(0),
-        np.zeros(0),
-        s=3,
-        c=np.zeros(0),
-        cmap="tab20",
-        vmin=-0.5,
-        vmax=14.5,
-        edgecolors="k",
-        linewidths=0.3,
-    )
-    view.fig.colorbar(pts, ax=axi, label="view", ticks=range(0, 15, 2), shrink=0.9)
-    view.animate(pts)
-    return SimpleNamespace(dots=dots, above=above, below=below, pts=pts)
+    title = ax.title
+    view.animate(bars, dots, above, title)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=3, fontsize=7, handlelength=1.2, handletextpad=0.9)
+    view.animate(ax.get_legend())  # below the axes, off the data
+    image_frame(axi, s.image_size, "Corners used; the last view added in red")
+    pts = axi.scatter(np.zeros(0), np.zeros(0), s=3, color="0.55", linewidths=0)
+    (last,) = axi.plot([], [], ".", color=palette.TAB_RED, ms=4)
+    (outline,) = axi.plot([], [], "-", color=palette.TAB_RED, lw=1)
+    view.animate(pts, last, outline)
+    return SimpleNamespace(dots=dots, above=above, bars=bars, pts=pts, last=last, outline=outline, title=title)
 
 
 def _accuracy_readout(n, sigma, res, s, est, std, truth, err, z) -> str:
     """The text beside :func:`accuracy_vs_views`: each estimate with its reported sigma, the truth
-    and the error in sigmas."""
+    and the error in sigmas (a dash without noise, where both are rounding noise)."""
     lines = [f"{n} views, noise σ = {sigma:.2f} px, rms = {res.rms:.3f} px per corner"]
     lines += [
-        f"{k:>2} = {e:8.2f} ± {sd:5.2f}  (true {t:.1f}, error {d:+.2f} = {zz:+.1f}σ)"
+        f"{k:>2} = {e:8.2f} ± {sd:5.2f}  (true {t:.1f}, error {d:+.2f}"
+        + (f" = {zz:+.1f}σ)" if np.isfinite(zz) else ")")
         for k, e, sd, t, d, zz in zip(_NAMES, est, std, truth, err, z, strict=True)
     ]
     lines.append(f"k1 = {res.dist[0]:+.3f} ± {res.std['k1']:.3f}  (true {s.dist[0]:+.3f})")
     if sigma == 0:
-        lines.append("no noise: errors and σ are both rounding noise")
+        lines.append("no noise: errors and σ are both rounding noise (drawn at the axis floor)")
     return monospace("\n".join(lines))
 
 
@@ -107,14 +99,14 @@ def _accuracy_controls() -> dict:
 
 @register(lesson="08", sweep={"n_views": [3, 6, 10, 15], "noise": [0.0, 0.3, 1.0]})
 def accuracy_vs_views() -> Demo:
-    """Calibrate from the first n views with sigma px of noise: errors in units of the reported sigma.
+    """Calibrate from the first n views with sigma px of noise: each error against 3 reported sigma.
 
     Returns
     -------
     Demo
         The demo: controls ``n_views`` (3-15 views of the lesson's synthetic camera) and
-        ``noise`` (the corner noise sigma, px), the figure (each intrinsic's error divided by
-        its reported sigma beside the corners used) and ``state`` (``K``, ``dist``, ``errors``,
+        ``noise`` (the corner noise sigma, px), the figure (each intrinsic's absolute error
+        beside three reported sigma, px on a log axis, and the corners used) and ``state`` (``K``, ``dist``, ``errors``,
         ``std``, ``z``, ``rms``, ``n_views``, ``noise``).
     """
     s = C.make_synthetic_views(
@@ -126,7 +118,9 @@ def accuracy_vs_views() -> Demo:
     truth = np.array([s.K[0, 0], s.K[1, 1], s.K[0, 2], s.K[1, 2]])
     view = FigureView(figsize=(9.4, 3.9))
     art = _accuracy_figure(view, s)
-    dots, above, below, pts = art.dots, art.above, art.below, art.pts
+    dots, above, pts = art.dots, art.above, art.pts
+    cols, n_pts = int(np.sum(s.object_points[:, 1] == s.object_points[0, 1])), len(s.object_points)
+    board = [0, cols - 1, n_pts - 1, n_pts - cols, 0]  # the board's outer corners, in a loop
     readout = W.HTML()
     # Warm start: each update starts LM from the previous solution (K, dist and every view's
     # last pose) instead of Zhang's closed form. The minimum is the same (a full calibration
@@ -139,8 +133,9 @@ def accuracy_vs_views() -> Demo:
     def update(v: dict, state: dict) -> None:
         n, sigma = int(v["n_views"]), float(v["noise"])
         obs = [s.exact[i] + sigma * unit[i] for i in range(n)]
-        pts.set_offsets(np.concatenate(obs))
-        pts.set_array(np.repeat(np.arange(n), len(s.object_points)).astype(float))
+        pts.set_offsets(np.concatenate(obs[:-1]) if n > 1 else np.zeros((0, 2)))
+        art.last.set_data(obs[-1][:, 0], obs[-1][:, 1])
+        art.outline.set_data(obs[-1][board, 0], obs[-1][board, 1])  # the board's outer corners
         try:
             res = C.calibrate_camera(
                 s.object_points,
@@ -154,8 +149,9 @@ def accuracy_vs_views() -> Demo:
             warm["poses"][:n] = np.column_stack([res.rvecs, res.tvecs])
         except (CamlabInputError, ConvergenceError) as exc:
             state.update(K=None, dist=None, errors=None, std=None, rms=None)
-            for artist in (dots, above, below):
+            for artist in (dots, above):
                 artist.set_data([], [])
+            art.bars.set_segments([])
             readout.value = monospace(f"calibration failed:\n{exc}")
             return
         est = np.array([res.intrinsics[k] for k in _NAMES])
@@ -169,10 +165,18 @@ def accuracy_vs_views() -> Demo:
             K=res.K, dist=res.dist, errors=err, std=std, z=z, rms=res.rms, n_views=n, noise=sigma
         )
         x = np.arange(4)
-        dots.set_data(x, np.clip(z, -_SIGMA_LIM + 0.4, _SIGMA_LIM - 0.4))
-        edge = _SIGMA_LIM - 0.4
-        above.set_data(x[z > edge], np.full(np.sum(z > edge), edge))
-        below.set_data(x[z < -edge], np.full(np.sum(z < -edge), -edge))
+        top = _PX_CEIL / 1.3  # clipped values sit just inside the axis
+        bar = np.clip(3 * std, _PX_FLOOR, top)
+        art.bars.set_segments([[(xi, _PX_FLOOR), (xi, b)] for xi, b in zip(x, bar)])
+        size = np.clip(np.abs(err), _PX_FLOOR * 1.3, top)
+        dots.set_data(x, size)
+        clipped = np.abs(err) > top
+        above.set_data(x[clipped], np.full(clipped.sum(), top))
+        outside = int(np.sum(np.abs(err) > 3 * std)) if sigma > 0 else 0
+        art.title.set_text(
+            f"{n} views, σ = {sigma:.2f} px: "
+            + ("no noise, no error" if sigma == 0 else f"{outside} of 4 beyond 3σ" if outside else "all within 3σ")
+        )
         readout.value = _accuracy_readout(n, sigma, res, s, est, std, truth, err, z)
 
     return build_demo(
@@ -233,7 +237,9 @@ def _inspector_figure(view: FigureView, res) -> SimpleNamespace:
     )
     ax.legend(loc="upper right", fontsize=8)
     view.animate(ax.get_legend())  # over the animated photo, or it would hide the legend
-    return SimpleNamespace(im=im, det=det, rep=rep, arrows=arrows)
+    ax.set_title(" ", fontsize=10)
+    view.animate(ax.title)  # names the view, its rms and the arrows' magnification
+    return SimpleNamespace(im=im, det=det, rep=rep, arrows=arrows, title=ax.title)
 
 
 def _inspector_controls(n_views: int) -> dict:
@@ -308,6 +314,10 @@ def view_inspector(
             worst_corner=worst,
             longest_arrow_px=float(np.linalg.norm(r[worst]) * v["magnify"]),
         )
+        art.title.set_text(
+            f"view {k} ({out.names[i]}): rms {res.per_view_rms[k]:.3f} px, "
+            f"worst corner {np.linalg.norm(r[worst]):.3f} px; arrows ×{v['magnify']:.0f}"
+        )
         readout.value = monospace(
             f"view {k} ({out.names[i]})\nrms {res.per_view_rms[k]:.3f} px "
             f"(median {np.median(res.per_view_rms):.3f})\nworst corner {worst}: "
@@ -359,6 +369,7 @@ def undistort_alpha(
     image_frame(ax0, (w, h), "distorted photo")
     ax0.imshow(image, cmap="gray", vmin=0, vmax=255, extent=(-0.5, w - 0.5, h - 0.5, -0.5))
     image_frame(ax1, (w, h), "undistorted")
+    view.animate(ax1.title)  # the new focal length and what alpha costs
     im = view.animate(
         ax1.imshow(
             np.zeros((h, w)), cmap="gray", vmin=0, vmax=255, extent=(-0.5, w - 0.5, h - 0.5, -0.5)
@@ -389,6 +400,11 @@ def undistort_alpha(
         im.set_data(out.image)
         b = (border_ideal - K[:2, 2]) / np.diag(K)[:2] * np.diag(out.K)[:2] + out.K[:2, 2]
         edge.set_data(b[:, 0], b[:, 1])
+        ax1.set_title(
+            f"undistorted, α = {v['alpha']:.2f}: fx {out.K[0, 0]:.0f} (photo {K[0, 0]:.0f}), "
+            f"{100 * out.black_fraction:.0f}% black, {100 * out.lost_fraction:.0f}% lost",
+            fontsize=9,
+        )
         state.update(
             new_K=out.K, black_fraction=out.black_fraction, lost_fraction=out.lost_fraction
         )
