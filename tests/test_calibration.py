@@ -529,14 +529,30 @@ def test_bundled_calibration_is_computed_once_and_read_only():
 
 
 def test_view_inspector_shows_the_chosen_view(bundled):
+    from camlab.data import load_calibration_set
     from camlab.widgets import camera_calibration as demos
 
-    demo = demos.view_inspector()
     out = bundled_calibration()
+    demo = demos.view_inspector(out, load_calibration_set().images)
     demo.set(view=4)
     assert demo.state["image_index"] == out.used[4]
     assert demo.state["rms"] == pytest.approx(out.result.per_view_rms[4])
     assert out.result.rms < 0.1  # the rendered corners are detected to a few hundredths of a pixel
+    assert f"rms {out.result.per_view_rms[4]:.3f} px" in demo.figure.axes[0].get_title()
+
+
+def test_view_inspector_defaults_to_the_real_photos():
+    from camlab.fixtures.calibration import real_calibration
+    from camlab.widgets import camera_calibration as demos
+
+    real, photos = real_calibration()
+    demo = demos.view_inspector()
+    demo.set(view=5, magnify=100.0)
+    assert demo.state["rms"] == pytest.approx(real.result.per_view_rms[5])
+    assert 0.15 < real.result.rms < 0.25  # real corners: four times the rendered set's error
+    assert "arrows ×100" in demo.figure.axes[0].get_title()
+    with pytest.raises(ValueError, match="read-only"):
+        photos[0][0, 0] = 0
 
 
 def test_undistort_demo_tradeoff_moves_with_alpha():

@@ -2,7 +2,7 @@
 
 * :func:`accuracy_vs_views`: recalibrate a known camera from 3-15 views and 0-1 px of corner
   noise; see the estimates' errors against their reported 3-sigma bars.
-* :func:`view_inspector`: one photo of the rendered set with its detected corners, the
+* :func:`view_inspector`: one real photo (or any calibrated set) with its detected corners, the
   calibrated model's reprojections and the (magnified) residuals.
 * :func:`undistort_alpha`: undistort a photo and trade black borders for lost pixels.
 
@@ -18,7 +18,7 @@ import numpy as np
 
 from .. import calibration as C
 from .._validate import CamlabInputError, ConvergenceError
-from ..fixtures.calibration import bundled_calibration
+from ..fixtures.calibration import bundled_calibration, real_calibration
 from ..plotting import palette
 from ..plotting.calibration import image_frame
 from ._base import Demo, FigureView, build_demo, register, slider
@@ -268,11 +268,12 @@ def view_inspector(
     Parameters
     ----------
     calibration : camlab.calibration.ImageCalibration, optional
-        The outcome of :func:`camlab.calibration.calibrate_from_images`. Default: the rendered
-        calibration set in data/, calibrated once (:func:`camlab.fixtures.calibration.bundled_calibration`).
+        The outcome of :func:`camlab.calibration.calibrate_from_images`. Default: the 14 real
+        photos in data/photos, calibrated once (:func:`camlab.fixtures.calibration.real_calibration`),
+        as lesson 08 shows them.
     images : list of (H, W) arrays, optional
         The images ``calibration`` was computed from, in its input order (grey levels 0-255).
-        Default: the rendered set's photos when ``calibration`` is the default too; with a
+        Default: the real photos when ``calibration`` is the default too; with a
         ``calibration`` of your own and no ``images``, each view shows a grey background.
 
     Returns
@@ -283,12 +284,11 @@ def view_inspector(
         ``state`` (``view``, ``image_index``, ``rms`` in px, ``worst_corner``,
         ``longest_arrow_px``).
     """
-    out = bundled_calibration() if calibration is None else calibration
+    if calibration is None:
+        calibration, photos = real_calibration()
+        images = photos if images is None else images
+    out = calibration
     res = out.result
-    if images is None and calibration is None:
-        from ..data import load_calibration_set
-
-        images = load_calibration_set().images
     view = FigureView(figsize=(7.5, 5))
     art = _inspector_figure(view, res)
     w, h = res.image_size
@@ -343,9 +343,10 @@ def undistort_alpha(
     Parameters
     ----------
     image : (H, W) or (H, W, 3) array, optional
-        The distorted photo (0-255). Default, or when ``K`` is not given: photo 3 of the
-        rendered calibration set, with that set's ``K`` and ``dist`` (the three replace
-        whatever was passed).
+        The distorted photo (0-255). Default, or when ``K`` is not given: the real photo
+        ``calib_left03`` with the calibration of the 14 real photos
+        (:func:`camlab.fixtures.calibration.real_calibration`; the three replace whatever was
+        passed), as lesson 08 shows it.
     K : (3, 3) array, optional
         The camera matrix the photo was taken with (px).
     dist : array of 5, optional
@@ -358,11 +359,9 @@ def undistort_alpha(
         figure (the photo beside its undistorted version with the photo's border traced) and
         ``state`` (``new_K``, ``black_fraction``, ``lost_fraction``).
     """
-    from ..data import load_calibration_set
-
     if image is None or K is None:
-        cs = load_calibration_set()
-        image, K, dist = cs.images[3], cs.K, cs.dist
+        real, photos = real_calibration()
+        image, K, dist = photos[2], real.result.K, real.result.dist
     h, w = image.shape[:2]
     view = FigureView(figsize=(9, 3.8))
     ax0, ax1 = view.fig.subplots(1, 2)
