@@ -548,6 +548,7 @@ def test_view_inspector_defaults_to_the_real_photos():
     real, photos = real_calibration()
     demo = demos.view_inspector()
     demo.set(view=5, magnify=100.0)
+    assert "calib_left06" in demo.figure.axes[0].get_title()
     assert demo.state["rms"] == pytest.approx(real.result.per_view_rms[5])
     assert 0.15 < real.result.rms < 0.25  # real corners: four times the rendered set's error
     assert "arrows ×100" in demo.figure.axes[0].get_title()
