@@ -255,11 +255,11 @@ def _inspector_controls(n_views: int) -> dict:
             style={"description_width": "initial"},
             layout=W.Layout(width="300px"),
         ),
-        "magnify": slider(100.0, 1.0, 1000.0, 1.0, "arrow magnification"),
+        "magnify": slider(100.0, 1.0, 300.0, 1.0, "arrow magnification"),  # 300 x 0.4 px: 120 px arrows
     }
 
 
-@register(lesson="08", sweep={"view": [0, 5, 13], "magnify": [1.0, 300.0, 1000.0]})
+@register(lesson="08", sweep={"view": [0, 5, 13], "magnify": [1.0, 100.0, 300.0]})
 def view_inspector(
     calibration: C.ImageCalibration | None = None, images: list | None = None
 ) -> Demo:
