@@ -602,3 +602,25 @@ def test_warm_start_reaches_the_same_minimum(noisy15):
         C.calibrate_camera(
             s.object_points, pts, s.image_size, K_guess=cold.K, pose_guess=np.zeros((3, 6))
         )
+
+
+def test_plot_extrinsics_puts_each_board_where_the_truth_has_it(bundled):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from camlab.plotting import calibration as cplot
+    from camlab.plotting import scene3d
+
+    out = bundled_calibration()
+    fig = plt.figure()
+    ax = scene3d.axes3d(fig, 111)
+    boards = cplot.plot_extrinsics(ax, out.result)
+    obj = C.board_points(bundled.pattern_size, bundled.square)
+    truth = np.stack([obj @ R.T + t for R, t in zip(bundled.R, bundled.t)])
+    np.testing.assert_allclose(boards, truth, atol=2e-3)  # within 2 mm of where the renderer put them
+    assert np.all(boards[:, :, 2] > 0)  # in front of the camera
+    drawn = [line for line in ax.get_lines() if len(line.get_data_3d()[0]) == 5]
+    assert len(drawn) >= 16  # one closed outline per view
+    plt.close(fig)
