@@ -26,6 +26,7 @@ from .controls import monospace
 
 _NAMES = ("fx", "fy", "cx", "cy")
 _PX_FLOOR, _PX_CEIL = 1e-3, 300.0  # the log axis of errors and 3 sigma, px
+_BAR_SHIFT = 0.13  # each 3-sigma bar this far left of its tick, the error's dot as far right
 
 
 def _accuracy_figure(view: FigureView, s) -> SimpleNamespace:
@@ -46,8 +47,9 @@ def _accuracy_figure(view: FigureView, s) -> SimpleNamespace:
     )
     ax.title.set_fontsize(10)
     ax.grid(True, axis="y", which="major", color="0.9")
+    # side by side, the bar left of its dot, so neither hides the other
     bars = ax.vlines(
-        np.arange(4), _PX_FLOOR, _PX_FLOOR, color=palette.TAB_BLUE, lw=14, alpha=0.35,
+        np.arange(4) - _BAR_SHIFT, _PX_FLOOR, _PX_FLOOR, color=palette.BLUE, lw=10,
         label="3 × reported σ",
     )
     (dots,) = ax.plot([], [], "o", color=palette.TAB_RED, ms=7, label="|actual error|")
@@ -167,11 +169,11 @@ def accuracy_vs_views() -> Demo:
         x = np.arange(4)
         top = _PX_CEIL / 1.3  # clipped values sit just inside the axis
         bar = np.clip(3 * std, _PX_FLOOR, top)
-        art.bars.set_segments([[(xi, _PX_FLOOR), (xi, b)] for xi, b in zip(x, bar)])
+        art.bars.set_segments([[(xi - _BAR_SHIFT, _PX_FLOOR), (xi - _BAR_SHIFT, b)] for xi, b in zip(x, bar)])
         size = np.clip(np.abs(err), _PX_FLOOR * 1.3, top)
-        dots.set_data(x, size)
+        dots.set_data(x + _BAR_SHIFT, size)
         clipped = np.abs(err) > top
-        above.set_data(x[clipped], np.full(clipped.sum(), top))
+        above.set_data(x[clipped] + _BAR_SHIFT, np.full(clipped.sum(), top))
         outside = int(np.sum(np.abs(err) > 3 * std)) if sigma > 0 else 0
         art.title.set_text(
             f"{n} views, σ = {sigma:.2f} px: "
