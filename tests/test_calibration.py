@@ -499,7 +499,9 @@ def test_accuracy_demo_plots_errors_against_three_sigma_in_pixels():
     err, std = demo.state["errors"], demo.state["std"]
     assert np.abs(demo.state["z"]).max() > 3
     ax = demo.figure.axes[0]
-    dots = next(line for line in ax.get_lines() if line.get_animated() and len(line.get_xdata()) == 4)
+    dots = next(
+        line for line in ax.get_lines() if line.get_animated() and len(line.get_xdata()) == 4
+    )
     np.testing.assert_allclose(dots.get_ydata(), np.abs(err))  # the dots are the errors, px
     bars = next(c for c in ax.collections if c.get_animated())
     tops = [seg[1][1] for seg in bars.get_segments()]
@@ -510,7 +512,9 @@ def test_accuracy_demo_plots_errors_against_three_sigma_in_pixels():
     assert np.abs(demo.state["errors"]).max() < big / 5  # more views, less noise: smaller errors
     demo.set(noise=0.0)
     assert "no noise" in ax.get_title()
-    assert np.all(np.array(dots.get_ydata()) >= ax.get_ylim()[0])  # rounding noise drawn at the floor
+    assert np.all(
+        np.array(dots.get_ydata()) >= ax.get_ylim()[0]
+    )  # rounding noise drawn at the floor
 
 
 def test_bundled_calibration_is_computed_once_and_read_only():
@@ -618,8 +622,10 @@ def test_plot_extrinsics_puts_each_board_where_the_truth_has_it(bundled):
     ax = scene3d.axes3d(fig, 111)
     boards = cplot.plot_extrinsics(ax, out.result)
     obj = C.board_points(bundled.pattern_size, bundled.square)
-    truth = np.stack([obj @ R.T + t for R, t in zip(bundled.R, bundled.t)])
-    np.testing.assert_allclose(boards, truth, atol=2e-3)  # within 2 mm of where the renderer put them
+    truth = np.stack([obj @ R.T + t for R, t in zip(bundled.R, bundled.t, strict=True)])
+    np.testing.assert_allclose(
+        boards, truth, atol=2e-3
+    )  # within 2 mm of where the renderer put them
     assert np.all(boards[:, :, 2] > 0)  # in front of the camera
     drawn = [line for line in ax.get_lines() if len(line.get_data_3d()[0]) == 5]
     assert len(drawn) >= 16  # one closed outline per view

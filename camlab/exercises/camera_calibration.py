@@ -33,7 +33,9 @@ def _zhang_diagnosis(args, got, expected) -> str:
     g = np.asarray(got, dtype=float)
     if np.allclose(g, calibration.zhang_constraints(H.T)):
         return "you used the rows of H; h_i is the i-th column, H[:, i]"
-    one_based = np.stack([calibration.zhang_v(H, 1, 2), calibration.zhang_v(H, 1, 1) - calibration.zhang_v(H, 2, 2)])
+    one_based = np.stack(
+        [calibration.zhang_v(H, 1, 2), calibration.zhang_v(H, 1, 1) - calibration.zhang_v(H, 2, 2)]
+    )
     if np.allclose(g, one_based):
         return (
             "you used columns 1 and 2 (h2 and h3): numpy counts from 0, so the paper's h1, h2 are "

@@ -18,7 +18,7 @@ import numpy as np
 
 from .. import calibration as C
 from .._validate import CamlabInputError, ConvergenceError
-from ..fixtures.calibration import bundled_calibration, real_calibration
+from ..fixtures.calibration import real_calibration
 from ..plotting import palette
 from ..plotting.calibration import image_frame
 from ._base import Demo, FigureView, build_demo, register, slider
@@ -49,23 +49,42 @@ def _accuracy_figure(view: FigureView, s) -> SimpleNamespace:
     ax.grid(True, axis="y", which="major", color="0.9")
     # side by side, the bar left of its dot, so neither hides the other
     bars = ax.vlines(
-        np.arange(4) - _BAR_SHIFT, _PX_FLOOR, _PX_FLOOR, color=palette.BLUE, lw=10,
+        np.arange(4) - _BAR_SHIFT,
+        _PX_FLOOR,
+        _PX_FLOOR,
+        color=palette.BLUE,
+        lw=10,
         label="3 × reported σ",
     )
     (dots,) = ax.plot([], [], "o", color=palette.TAB_RED, ms=7, label="|actual error|")
     (above,) = ax.plot(
-        [], [], "^", ls="none", color=palette.TAB_RED, ms=11, label=f"above {_PX_CEIL:.0f} px (clipped)"
+        [],
+        [],
+        "^",
+        ls="none",
+        color=palette.TAB_RED,
+        ms=11,
+        label=f"above {_PX_CEIL:.0f} px (clipped)",
     )
     title = ax.title
     view.animate(bars, dots, above, title)
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=3, fontsize=7, handlelength=1.2, handletextpad=0.9)
+    ax.legend(
+        loc="upper center",
+        bbox_to_anchor=(0.5, -0.1),
+        ncol=3,
+        fontsize=7,
+        handlelength=1.2,
+        handletextpad=0.9,
+    )
     view.animate(ax.get_legend())  # below the axes, off the data
     image_frame(axi, s.image_size, "Corners used; the last view added in red")
     pts = axi.scatter(np.zeros(0), np.zeros(0), s=3, color="0.55", linewidths=0)
     (last,) = axi.plot([], [], ".", color=palette.TAB_RED, ms=4)
     (outline,) = axi.plot([], [], "-", color=palette.TAB_RED, lw=1)
     view.animate(pts, last, outline)
-    return SimpleNamespace(dots=dots, above=above, bars=bars, pts=pts, last=last, outline=outline, title=title)
+    return SimpleNamespace(
+        dots=dots, above=above, bars=bars, pts=pts, last=last, outline=outline, title=title
+    )
 
 
 def _accuracy_readout(n, sigma, res, s, est, std, truth, err, z) -> str:
@@ -169,7 +188,12 @@ def accuracy_vs_views() -> Demo:
         x = np.arange(4)
         top = _PX_CEIL / 1.3  # clipped values sit just inside the axis
         bar = np.clip(3 * std, _PX_FLOOR, top)
-        art.bars.set_segments([[(xi - _BAR_SHIFT, _PX_FLOOR), (xi - _BAR_SHIFT, b)] for xi, b in zip(x, bar)])
+        art.bars.set_segments(
+            [
+                [(xi - _BAR_SHIFT, _PX_FLOOR), (xi - _BAR_SHIFT, b)]
+                for xi, b in zip(x, bar, strict=True)
+            ]
+        )
         size = np.clip(np.abs(err), _PX_FLOOR * 1.3, top)
         dots.set_data(x + _BAR_SHIFT, size)
         clipped = np.abs(err) > top
@@ -177,7 +201,13 @@ def accuracy_vs_views() -> Demo:
         outside = int(np.sum(np.abs(err) > 3 * std)) if sigma > 0 else 0
         art.title.set_text(
             f"{n} views, σ = {sigma:.2f} px: "
-            + ("no noise, no error" if sigma == 0 else f"{outside} of 4 beyond 3σ" if outside else "all within 3σ")
+            + (
+                "no noise, no error"
+                if sigma == 0
+                else f"{outside} of 4 beyond 3σ"
+                if outside
+                else "all within 3σ"
+            )
         )
         readout.value = _accuracy_readout(n, sigma, res, s, est, std, truth, err, z)
 
@@ -257,7 +287,9 @@ def _inspector_controls(n_views: int) -> dict:
             style={"description_width": "initial"},
             layout=W.Layout(width="300px"),
         ),
-        "magnify": slider(100.0, 1.0, 300.0, 1.0, "arrow magnification"),  # 300 x 0.4 px: 120 px arrows
+        "magnify": slider(
+            100.0, 1.0, 300.0, 1.0, "arrow magnification"
+        ),  # 300 x 0.4 px: 120 px arrows
     }
 
 
