@@ -447,7 +447,8 @@ def undistort_alpha(
             f"photo pixels lost: {100 * out.lost_fraction:.1f}%"
         )
 
-    controls = {"alpha": slider(0.0, 0.0, 1.0, 0.05, "alpha")}
+    # halfway by default: the border crosses the frame (at 0 it lies outside, invisible)
+    controls = {"alpha": slider(0.5, 0.0, 1.0, 0.05, "alpha")}
     return build_demo(
         "undistort_alpha",
         controls,
