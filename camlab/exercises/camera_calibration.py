@@ -33,6 +33,14 @@ def _zhang_diagnosis(args, got, expected) -> str:
     g = np.asarray(got, dtype=float)
     if np.allclose(g, calibration.zhang_constraints(H.T)):
         return "you used the rows of H; h_i is the i-th column, H[:, i]"
+    one_based = np.stack(
+        [calibration.zhang_v(H, 1, 2), calibration.zhang_v(H, 1, 1) - calibration.zhang_v(H, 2, 2)]
+    )
+    if np.allclose(g, one_based):
+        return (
+            "you used columns 1 and 2 (h2 and h3): numpy counts from 0, so the paper's h1, h2 are "
+            "H[:, 0] and H[:, 1] (v12 = v(0, 1), v11 - v22 = v(0, 0) - v(1, 1))"
+        )
     if np.allclose(g[1], calibration.zhang_v(H, 0, 0) + calibration.zhang_v(H, 1, 1)):
         return "the second row is v11 - v22 (equal lengths: h1^T B h1 = h2^T B h2), not the sum"
     if np.allclose(g[0], expected[0]) and not np.allclose(g[1], expected[1]):
@@ -99,6 +107,15 @@ register_exercise(
                 ),
                 "not the sum",
             ),
+            (
+                lambda H: np.stack(
+                    [
+                        calibration.zhang_v(H, 1, 2),
+                        calibration.zhang_v(H, 1, 1) - calibration.zhang_v(H, 2, 2),
+                    ]
+                ),
+                "numpy counts from 0",
+            ),
         ),
         teaching=zhang_constraints,
     )
@@ -124,8 +141,19 @@ def _lm_diagnosis(args, got, expected) -> str:
     A, grad = J.T @ J, J.T @ r
     if np.allclose(g, -expected):
         return "wrong sign: the step solves (A + mu D) delta = -J^T r (it must go downhill)"
+    if mu > 0 and np.allclose(g, np.linalg.solve(A + mu * np.diag(A)[None, :], -grad)):
+        return (
+            "broadcasting slip: np.diag(A) of a matrix is the (n,) vector of its diagonal, so A + mu * np.diag(A) "
+            "adds mu * A_jj to every entry of column j, not only to the diagonal; build the matrix with "
+            "np.diag(np.diag(A)) (or add mu * np.diag(A) to A[np.diag_indices_from(A)] on a copy)"
+        )
     if np.allclose(g, np.linalg.solve(A + mu * np.eye(len(A)), -grad)):
         return "you damped with mu * I; Marquardt scales by D = diag(J^T J) so every parameter's units cancel"
+    if mu > 0 and np.allclose(g, np.linalg.solve((1 + mu) * A, -grad)):
+        return (
+            "you damped with mu * J^T J (the whole matrix), which only shrinks the Gauss-Newton step by 1 + mu "
+            "without turning it: the damping is mu * diag(J^T J), the diagonal only"
+        )
     if np.allclose(g, np.linalg.solve(A, -grad)):
         return "that is the Gauss-Newton step: add the damping mu * diag(J^T J) to J^T J"
     return "solve (J^T J + mu diag(J^T J)) delta = -J^T r with np.linalg.solve"
@@ -177,6 +205,11 @@ register_exercise(
                 "mu * I",
             ),
             (lambda J, r, mu: np.linalg.solve(J.T @ J, -J.T @ r), "Gauss-Newton"),
+            (
+                lambda J, r, mu: np.linalg.solve(J.T @ J + mu * np.diag(J.T @ J), -J.T @ r),
+                "broadcasting slip",
+            ),
+            (lambda J, r, mu: np.linalg.solve((1 + mu) * (J.T @ J), -J.T @ r), "the whole matrix"),
         ),
         teaching=lm_step,
     )

@@ -16,6 +16,7 @@ from . import palette
 __all__ = [
     "image_frame",
     "plot_cost_history",
+    "plot_extrinsics",
     "plot_coverage",
     "plot_per_view_errors",
     "plot_residual_field",
@@ -214,6 +215,58 @@ def plot_cost_history(ax, result: CalibrationResult):
     ax.set(xlabel="LM iteration", ylabel="rms (px)", title="Levenberg-Marquardt cost")
     ax.grid(True, which="both", color="0.92")
     return line
+
+
+# The camera frame (x right, y down, z forward) drawn with matplotlib's Z up: world X = x,
+# world Y = z (forward), world Z = -y (up), i.e. X_cam = R_CAM_FROM_VIEW @ X_view.
+R_CAM_FROM_VIEW = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
+
+
+def plot_extrinsics(ax, result: CalibrationResult, size: float | None = None):
+    r"""The calibration's extrinsics, camera-centred: every view's board where it stood in front of the camera.
+
+    Each view's board corners in the camera frame, :math:`X_{cam} = R_v X_{board} + t_v`, are drawn as
+    the board's outline with its view number; the camera sits at the origin, drawn as a frustum
+    with its x (right), y (down), z (forward) axes. The axes show the camera frame with "up" up
+    (matplotlib's Z is :math:`-y`), so the picture reads like Bouguet's and MATLAB's extrinsics view.
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D
+        A 3-D axes (:func:`camlab.plotting.scene3d.axes3d`).
+    result : CalibrationResult
+        The calibration (its ``object_points``, ``rvecs``, ``tvecs``, ``K``, ``image_size``).
+    size : float, optional
+        The drawn frustum's depth, in the board's units (default: a third of the nearest board's distance).
+
+    Returns
+    -------
+    (V, N, 3) ndarray
+        Every view's corners in the camera frame, in the board's units.
+    """
+    from ..camera import Camera, rotation_from_axis_angle
+    from .scene3d import CameraArtist, set_equal_aspect
+
+    boards = np.stack(
+        [
+            result.object_points[v] @ rotation_from_axis_angle(result.rvecs[v]).T + result.tvecs[v]
+            for v in range(result.n_views)
+        ]
+    )
+    view = boards @ R_CAM_FROM_VIEW  # X_view = R^T X_cam, rows
+    obj = result.object_points[0]
+    cols = int(np.sum(obj[:, 1] == obj[0, 1]))
+    ring = [0, cols - 1, len(obj) - 1, len(obj) - cols, 0]  # the outer corners, in a loop
+    for v, b in enumerate(view):
+        colour = palette.SERIES[v % len(palette.SERIES)]
+        ax.plot(*b[ring].T, color=colour, lw=1.2)
+        ax.plot(*b[0], "o", color=colour, ms=3)  # the first corner: how the board is turned
+    depth = float(np.min(boards[:, :, 2]))
+    cam = Camera(K=result.K, R=R_CAM_FROM_VIEW, t=np.zeros(3), image_size=result.image_size)
+    CameraArtist(ax, cam, size=size or depth / 3, color=palette.GREY)
+    set_equal_aspect(ax, [view.reshape(-1, 3), np.zeros((1, 3))], tight=True)
+    ax.set(xlabel="x (right)", ylabel="z (forward)", zlabel="−y (up)")
+    return boards
 
 
 def report_figure(

@@ -2,7 +2,7 @@
 
 * :func:`accuracy_vs_views`: recalibrate a known camera from 3-15 views and 0-1 px of corner
   noise; see the estimates' errors against their reported 3-sigma bars.
-* :func:`view_inspector`: one photo of the rendered set with its detected corners, the
+* :func:`view_inspector`: one real photo (or any calibrated set) with its detected corners, the
   calibrated model's reprojections and the (magnified) residuals.
 * :func:`undistort_alpha`: undistort a photo and trade black borders for lost pixels.
 
@@ -18,37 +18,47 @@ import numpy as np
 
 from .. import calibration as C
 from .._validate import CamlabInputError, ConvergenceError
-from ..fixtures.calibration import bundled_calibration
+from ..fixtures.calibration import real_calibration
 from ..plotting import palette
 from ..plotting.calibration import image_frame
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import int_slider, monospace
 
 _NAMES = ("fx", "fy", "cx", "cy")
-_SIGMA_LIM = 8.0  # the sigma-unit axis spans +-8
+_PX_FLOOR, _PX_CEIL = 1e-3, 300.0  # the log axis of errors and 3 sigma, px
+_BAR_SHIFT = 0.13  # each 3-sigma bar this far left of its tick, the error's dot as far right
 
 
 def _accuracy_figure(view: FigureView, s) -> SimpleNamespace:
     """The figure of :func:`accuracy_vs_views`.
 
-    The errors in units of the reported sigma (left) and the corners used, coloured by view (right);
-    returns its animated artists by name.
+    Each intrinsic's actual error beside three reported sigma, in pixels on a log axis (left),
+    and the corners used (right); returns its animated artists by name.
     """
     ax, axi = view.fig.subplots(1, 2, width_ratios=[1, 1.3])
-    ax.axhline(0, color="0.4", lw=1)
-    # In units of the reported standard deviation: the bars are always +-3, so every setting
-    # fits one fixed axis, and a dot outside them is a reported sigma that is too optimistic.
-    ax.axhspan(-3, 3, color=palette.TAB_BLUE, alpha=0.15, lw=0, label="±3σ (σ as reported)")
+    # In pixels on a log axis, so more views and less noise visibly lower both the bars and the
+    # dots; a dot above its bar is an error beyond 3 reported sigma (the sigma is too optimistic).
     ax.set(
         xlim=(-0.6, 3.6),
-        ylim=(-_SIGMA_LIM, _SIGMA_LIM),
+        ylim=(_PX_FLOOR, _PX_CEIL),
+        yscale="log",
         xticks=range(4),
         xticklabels=_NAMES,
-        ylabel="error / reported σ",
-        title="Errors in units of the reported σ",
+        ylabel="px (log scale)",
+        title="|error| against 3 × reported σ",
     )
-    ax.grid(True, axis="y", color="0.93")
-    (dots,) = ax.plot([], [], "o", color=palette.TAB_RED, ms=7, label="actual error")
+    ax.title.set_fontsize(10)
+    ax.grid(True, axis="y", which="major", color="0.9")
+    # side by side, the bar left of its dot, so neither hides the other
+    bars = ax.vlines(
+        np.arange(4) - _BAR_SHIFT,
+        _PX_FLOOR,
+        _PX_FLOOR,
+        color=palette.BLUE,
+        lw=10,
+        label="3 × reported σ",
+    )
+    (dots,) = ax.plot([], [], "o", color=palette.TAB_RED, ms=7, label="|actual error|")
     (above,) = ax.plot(
         [],
         [],
@@ -56,41 +66,44 @@ def _accuracy_figure(view: FigureView, s) -> SimpleNamespace:
         ls="none",
         color=palette.TAB_RED,
         ms=11,
-        label=f"beyond ±{_SIGMA_LIM:.0f}σ (clipped)",
+        label=f"above {_PX_CEIL:.0f} px (clipped)",
     )
-    (below,) = ax.plot([], [], "v", ls="none", color=palette.TAB_RED, ms=11)
-    view.animate(dots, above, below)
-    ax.legend(loc="lower left", fontsize=7)
-    image_frame(axi, s.image_size, "Corners used, coloured by view")
-    pts = axi.scatter(
-        np.zeros(0),
-        np.zeros(0),
-        s=3,
-        c=np.zeros(0),
-        cmap="tab20",
-        vmin=-0.5,
-        vmax=14.5,
-        edgecolors="k",
-        linewidths=0.3,
+    title = ax.title
+    view.animate(bars, dots, above, title)
+    ax.legend(
+        loc="upper center",
+        bbox_to_anchor=(0.5, -0.1),
+        ncol=3,
+        fontsize=7,
+        handlelength=1.2,
+        handletextpad=0.9,
     )
-    view.fig.colorbar(pts, ax=axi, label="view", ticks=range(0, 15, 2), shrink=0.9)
-    view.animate(pts)
-    return SimpleNamespace(dots=dots, above=above, below=below, pts=pts)
+    view.animate(ax.get_legend())  # below the axes, off the data
+    image_frame(axi, s.image_size, "Corners used; the last view added in red")
+    pts = axi.scatter(np.zeros(0), np.zeros(0), s=3, color="0.55", linewidths=0)
+    (last,) = axi.plot([], [], ".", color=palette.TAB_RED, ms=4)
+    (outline,) = axi.plot([], [], "-", color=palette.TAB_RED, lw=1)
+    view.animate(pts, last, outline)
+    return SimpleNamespace(
+        dots=dots, above=above, bars=bars, pts=pts, last=last, outline=outline, title=title
+    )
 
 
 def _accuracy_readout(n, sigma, res, s, est, std, truth, err, z) -> str:
     """The text beside :func:`accuracy_vs_views`.
 
-    Each estimate with its reported sigma, the truth and the error in sigmas.
+    Each estimate with its reported sigma, the truth and the error in sigmas (a dash without
+    noise, where both are rounding noise).
     """
     lines = [f"{n} views, noise σ = {sigma:.2f} px, rms = {res.rms:.3f} px per corner"]
     lines += [
-        f"{k:>2} = {e:8.2f} ± {sd:5.2f}  (true {t:.1f}, error {d:+.2f} = {zz:+.1f}σ)"
+        f"{k:>2} = {e:8.2f} ± {sd:5.2f}  (true {t:.1f}, error {d:+.2f}"
+        + (f" = {zz:+.1f}σ)" if np.isfinite(zz) else ")")
         for k, e, sd, t, d, zz in zip(_NAMES, est, std, truth, err, z, strict=True)
     ]
     lines.append(f"k1 = {res.dist[0]:+.3f} ± {res.std['k1']:.3f}  (true {s.dist[0]:+.3f})")
     if sigma == 0:
-        lines.append("no noise: errors and σ are both rounding noise")
+        lines.append("no noise: errors and σ are both rounding noise (drawn at the axis floor)")
     return monospace("\n".join(lines))
 
 
@@ -104,14 +117,14 @@ def _accuracy_controls() -> dict:
 
 @register(lesson="08", sweep={"n_views": [3, 6, 10, 15], "noise": [0.0, 0.3, 1.0]})
 def accuracy_vs_views() -> Demo:
-    """Calibrate from the first n views with sigma px of noise: errors in units of the reported sigma.
+    """Calibrate from the first n views with sigma px of noise: each error against 3 reported sigma.
 
     Returns
     -------
     Demo
         The demo: controls ``n_views`` (3-15 views of the lesson's synthetic camera) and
-        ``noise`` (the corner noise sigma, px), the figure (each intrinsic's error divided by
-        its reported sigma beside the corners used) and ``state`` (``K``, ``dist``, ``errors``,
+        ``noise`` (the corner noise sigma, px), the figure (each intrinsic's absolute error
+        beside three reported sigma, px on a log axis, and the corners used) and ``state`` (``K``, ``dist``, ``errors``,
         ``std``, ``z``, ``rms``, ``n_views``, ``noise``).
     """
     s = C.make_synthetic_views(
@@ -123,7 +136,9 @@ def accuracy_vs_views() -> Demo:
     truth = np.array([s.K[0, 0], s.K[1, 1], s.K[0, 2], s.K[1, 2]])
     view = FigureView(figsize=(9.4, 3.9))
     art = _accuracy_figure(view, s)
-    dots, above, below, pts = art.dots, art.above, art.below, art.pts
+    dots, above, pts = art.dots, art.above, art.pts
+    cols, n_pts = int(np.sum(s.object_points[:, 1] == s.object_points[0, 1])), len(s.object_points)
+    board = [0, cols - 1, n_pts - 1, n_pts - cols, 0]  # the board's outer corners, in a loop
     readout = W.HTML()
     # Warm start: each update starts LM from the previous solution (K, dist and every view's
     # last pose) instead of Zhang's closed form. The minimum is the same (a full calibration
@@ -136,8 +151,9 @@ def accuracy_vs_views() -> Demo:
     def update(v: dict, state: dict) -> None:
         n, sigma = int(v["n_views"]), float(v["noise"])
         obs = [s.exact[i] + sigma * unit[i] for i in range(n)]
-        pts.set_offsets(np.concatenate(obs))
-        pts.set_array(np.repeat(np.arange(n), len(s.object_points)).astype(float))
+        pts.set_offsets(np.concatenate(obs[:-1]) if n > 1 else np.zeros((0, 2)))
+        art.last.set_data(obs[-1][:, 0], obs[-1][:, 1])
+        art.outline.set_data(obs[-1][board, 0], obs[-1][board, 1])  # the board's outer corners
         try:
             res = C.calibrate_camera(
                 s.object_points,
@@ -151,8 +167,9 @@ def accuracy_vs_views() -> Demo:
             warm["poses"][:n] = np.column_stack([res.rvecs, res.tvecs])
         except (CamlabInputError, ConvergenceError) as exc:
             state.update(K=None, dist=None, errors=None, std=None, rms=None)
-            for artist in (dots, above, below):
+            for artist in (dots, above):
                 artist.set_data([], [])
+            art.bars.set_segments([])
             readout.value = monospace(f"calibration failed:\n{exc}")
             return
         est = np.array([res.intrinsics[k] for k in _NAMES])
@@ -166,10 +183,29 @@ def accuracy_vs_views() -> Demo:
             K=res.K, dist=res.dist, errors=err, std=std, z=z, rms=res.rms, n_views=n, noise=sigma
         )
         x = np.arange(4)
-        dots.set_data(x, np.clip(z, -_SIGMA_LIM + 0.4, _SIGMA_LIM - 0.4))
-        edge = _SIGMA_LIM - 0.4
-        above.set_data(x[z > edge], np.full(np.sum(z > edge), edge))
-        below.set_data(x[z < -edge], np.full(np.sum(z < -edge), -edge))
+        top = _PX_CEIL / 1.3  # clipped values sit just inside the axis
+        bar = np.clip(3 * std, _PX_FLOOR, top)
+        art.bars.set_segments(
+            [
+                [(xi - _BAR_SHIFT, _PX_FLOOR), (xi - _BAR_SHIFT, b)]
+                for xi, b in zip(x, bar, strict=True)
+            ]
+        )
+        size = np.clip(np.abs(err), _PX_FLOOR * 1.3, top)
+        dots.set_data(x + _BAR_SHIFT, size)
+        clipped = np.abs(err) > top
+        above.set_data(x[clipped] + _BAR_SHIFT, np.full(clipped.sum(), top))
+        outside = int(np.sum(np.abs(err) > 3 * std)) if sigma > 0 else 0
+        art.title.set_text(
+            f"{n} views, σ = {sigma:.2f} px: "
+            + (
+                "no noise, no error"
+                if sigma == 0
+                else f"{outside} of 4 beyond 3σ"
+                if outside
+                else "all within 3σ"
+            )
+        )
         readout.value = _accuracy_readout(n, sigma, res, s, est, std, truth, err, z)
 
     return build_demo(
@@ -233,7 +269,9 @@ def _inspector_figure(view: FigureView, res) -> SimpleNamespace:
     )
     ax.legend(loc="upper right", fontsize=8)
     view.animate(ax.get_legend())  # over the animated photo, or it would hide the legend
-    return SimpleNamespace(im=im, det=det, rep=rep, arrows=arrows)
+    ax.set_title(" ", fontsize=10)
+    view.animate(ax.title)  # names the view, its rms and the arrows' magnification
+    return SimpleNamespace(im=im, det=det, rep=rep, arrows=arrows, title=ax.title)
 
 
 def _inspector_controls(n_views: int) -> dict:
@@ -243,11 +281,13 @@ def _inspector_controls(n_views: int) -> dict:
     """
     return {
         "view": int_slider(0, 0, n_views - 1, "view"),
-        "magnify": slider(300.0, 1.0, 1000.0, 1.0, "arrow magnification"),
+        "magnify": slider(
+            100.0, 1.0, 300.0, 1.0, "arrow magnification"
+        ),  # 300 x 0.4 px: 120 px arrows
     }
 
 
-@register(lesson="08", sweep={"view": [0, 5, 11], "magnify": [1.0, 300.0, 1000.0]})
+@register(lesson="08", sweep={"view": [0, 5, 13], "magnify": [1.0, 100.0, 300.0]})
 def view_inspector(
     calibration: C.ImageCalibration | None = None, images: list | None = None
 ) -> Demo:
@@ -256,11 +296,12 @@ def view_inspector(
     Parameters
     ----------
     calibration : camlab.calibration.ImageCalibration, optional
-        The outcome of :func:`camlab.calibration.calibrate_from_images`. Default: the rendered
-        calibration set in data/, calibrated once (:func:`camlab.fixtures.calibration.bundled_calibration`).
+        The outcome of :func:`camlab.calibration.calibrate_from_images`. Default: the 14 real
+        photos in data/photos, calibrated once (:func:`camlab.fixtures.calibration.real_calibration`),
+        as lesson 08 shows them.
     images : list of (H, W) arrays, optional
         The images ``calibration`` was computed from, in its input order (grey levels 0-255).
-        Default: the rendered set's photos when ``calibration`` is the default too; with a
+        Default: the real photos when ``calibration`` is the default too; with a
         ``calibration`` of your own and no ``images``, each view shows a grey background.
 
     Returns
@@ -271,12 +312,11 @@ def view_inspector(
         ``state`` (``view``, ``image_index``, ``rms`` in px, ``worst_corner``,
         ``longest_arrow_px``).
     """
-    out = bundled_calibration() if calibration is None else calibration
+    if calibration is None:
+        calibration, photos = real_calibration()
+        images = photos if images is None else images
+    out = calibration
     res = out.result
-    if images is None and calibration is None:
-        from ..data import load_calibration_set
-
-        images = load_calibration_set().images
     view = FigureView(figsize=(7.5, 5))
     art = _inspector_figure(view, res)
     w, h = res.image_size
@@ -301,6 +341,10 @@ def view_inspector(
             rms=float(res.per_view_rms[k]),
             worst_corner=worst,
             longest_arrow_px=float(np.linalg.norm(r[worst]) * v["magnify"]),
+        )
+        art.title.set_text(
+            f"view {k} ({out.names[i]}): rms {res.per_view_rms[k]:.3f} px, "
+            f"worst corner {np.linalg.norm(r[worst]):.3f} px; arrows ×{v['magnify']:.0f}"
         )
         readout.value = monospace(
             f"view {k} ({out.names[i]})\nrms {res.per_view_rms[k]:.3f} px "
@@ -327,9 +371,10 @@ def undistort_alpha(
     Parameters
     ----------
     image : (H, W) or (H, W, 3) array, optional
-        The distorted photo (0-255). Default, or when ``K`` is not given: photo 3 of the
-        rendered calibration set, with that set's ``K`` and ``dist`` (the three replace
-        whatever was passed).
+        The distorted photo (0-255). Default, or when ``K`` is not given: the real photo
+        ``calib_left03`` with the calibration of the 14 real photos
+        (:func:`camlab.fixtures.calibration.real_calibration`; the three replace whatever was
+        passed), as lesson 08 shows it.
     K : (3, 3) array, optional
         The camera matrix the photo was taken with (px).
     dist : array of 5, optional
@@ -342,17 +387,16 @@ def undistort_alpha(
         figure (the photo beside its undistorted version with the photo's border traced) and
         ``state`` (``new_K``, ``black_fraction``, ``lost_fraction``).
     """
-    from ..data import load_calibration_set
-
     if image is None or K is None:
-        cs = load_calibration_set()
-        image, K, dist = cs.images[3], cs.K, cs.dist
+        real, photos = real_calibration()
+        image, K, dist = photos[2], real.result.K, real.result.dist
     h, w = image.shape[:2]
     view = FigureView(figsize=(9, 3.8))
     ax0, ax1 = view.fig.subplots(1, 2)
     image_frame(ax0, (w, h), "distorted photo")
     ax0.imshow(image, cmap="gray", vmin=0, vmax=255, extent=(-0.5, w - 0.5, h - 0.5, -0.5))
     image_frame(ax1, (w, h), "undistorted")
+    view.animate(ax1.title)  # the new focal length and what alpha costs
     im = view.animate(
         ax1.imshow(
             np.zeros((h, w)), cmap="gray", vmin=0, vmax=255, extent=(-0.5, w - 0.5, h - 0.5, -0.5)
@@ -383,6 +427,11 @@ def undistort_alpha(
         im.set_data(out.image)
         b = (border_ideal - K[:2, 2]) / np.diag(K)[:2] * np.diag(out.K)[:2] + out.K[:2, 2]
         edge.set_data(b[:, 0], b[:, 1])
+        ax1.set_title(
+            f"undistorted, α = {v['alpha']:.2f}: fx {out.K[0, 0]:.0f} (photo {K[0, 0]:.0f}), "
+            f"{100 * out.black_fraction:.0f}% black, {100 * out.lost_fraction:.0f}% lost",
+            fontsize=9,
+        )
         state.update(
             new_K=out.K, black_fraction=out.black_fraction, lost_fraction=out.lost_fraction
         )
@@ -392,7 +441,8 @@ def undistort_alpha(
             f"photo pixels lost: {100 * out.lost_fraction:.1f}%"
         )
 
-    controls = {"alpha": slider(0.0, 0.0, 1.0, 0.05, "alpha")}
+    # halfway by default: the border crosses the frame (at 0 it lies outside, invisible)
+    controls = {"alpha": slider(0.5, 0.0, 1.0, 0.05, "alpha")}
     return build_demo(
         "undistort_alpha",
         controls,

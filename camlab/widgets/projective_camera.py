@@ -220,11 +220,15 @@ def camera_explorer():
         world_axes=WORLD_AXES_M,
     )
     # "C" hangs just above-left of the centre dot, its corner at the dot, not half a metre away
-    sv.camera_artist.label.set(ha="right", va="bottom", path_effects=palette.halo())   # readable on the plane
+    sv.camera_artist.label.set(
+        ha="right", va="bottom", path_effects=palette.halo()
+    )  # readable on the plane
     sv.camera_artist.label_offset = (-0.02, -0.04)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
     # not clipped: at cx or cy = -0.5 the principal point sits on the image's edge, and the whole + shows it
-    (pp,) = sv.ax_image.plot([], [], "+", color=palette.PURPLE, ms=10, mew=2, clip_on=False, zorder=3)
+    (pp,) = sv.ax_image.plot(
+        [], [], "+", color=palette.PURPLE, ms=10, mew=2, clip_on=False, zorder=3
+    )
     view.animate(*sv.artists(), pp)
     controls = {
         "fx": slider(800, 200, 1600, 10, "fx (px)", readout_format=".0f"),
@@ -407,7 +411,9 @@ def _residual_bars(ax):
     with their lengths in pixels and their pair numbers, and the moved or ringed pairs' bars are black.
     """
     ax.set(xlim=(0.0, 1.0), ylim=(0.0, 1.32), xticks=[], yticks=[])
-    ax.set_title("residual of each pair\n(o to +), to scale", fontsize=9)   # the longest bar fills the height
+    ax.set_title(
+        "residual of each pair\n(o to +), to scale", fontsize=9
+    )  # the longest bar fills the height
     ax.set_xlabel("pairs 0 .. N - 1", fontsize=8)
     for side in ("top", "right"):
         ax.spines[side].set_visible(False)
@@ -418,8 +424,9 @@ def _residual_bars(ax):
         ax.text(0, 0, "", fontsize=8, ha="center", va="bottom", path_effects=palette.halo())
         for _ in range(2)
     ]
-    return SimpleNamespace(ax=ax, innocent=innocent, ringed=ringed, labels=labels,
-                           artists=[innocent, ringed, *labels])
+    return SimpleNamespace(
+        ax=ax, innocent=innocent, ringed=ringed, labels=labels, artists=[innocent, ringed, *labels]
+    )
 
 
 def show_residual_bars(bars, err, ringed) -> list[tuple[int, float]]:
@@ -433,12 +440,16 @@ def show_residual_bars(bars, err, ringed) -> list[tuple[int, float]]:
     top = float(err[finite].max()) if finite.any() and err[finite].max() > 0 else 1.0
     height = np.where(finite, err / top, 0.0)
     x = (np.arange(n) + 0.5) / n
-    width = min(6.0, max(1.0, 0.55 * bars.ax.get_window_extent().width / n * 72 / bars.ax.figure.dpi))
+    width = min(
+        6.0, max(1.0, 0.55 * bars.ax.get_window_extent().width / n * 72 / bars.ax.figure.dpi)
+    )
     black = np.zeros(n, dtype=bool)
     black[list(ringed)] = True
     for line, keep in ((bars.innocent, ~black), (bars.ringed, black)):
         xs = np.repeat(x[keep], 3)
-        ys = np.column_stack([np.zeros(keep.sum()), height[keep], np.full(keep.sum(), np.nan)]).ravel()
+        ys = np.column_stack(
+            [np.zeros(keep.sum()), height[keep], np.full(keep.sum(), np.nan)]
+        ).ravel()
         line.set_data(xs, ys)
         line.set_linewidth(width)
     order = [int(i) for i in np.argsort(np.where(finite, err, -1.0))[::-1][:2] if finite[i]]
@@ -536,8 +547,12 @@ def _resectioning_figure(view):
     # where a moved pixel was measured first, and its move (dotted) to where it is now
     (first_spot,) = sv.ax_image.plot([], [], "o", ms=5, color=MOVED_FROM_GREY, ls="none")
     (move_lines,) = sv.ax_image.plot([], [], color=MOVED_FROM_GREY, lw=1.2, ls=":")
-    (est_lines,) = sv.ax_image.plot([], [], color=palette.ORANGE, lw=EST_VIEW_LW, ls=(0, (3, 2)), zorder=1.9)
-    sv.image_lines.set(color=TRUE_VIEW_GREY, linewidth=TRUE_VIEW_LW, zorder=2.0)   # over the estimate's band
+    (est_lines,) = sv.ax_image.plot(
+        [], [], color=palette.ORANGE, lw=EST_VIEW_LW, ls=(0, (3, 2)), zorder=1.9
+    )
+    sv.image_lines.set(
+        color=TRUE_VIEW_GREY, linewidth=TRUE_VIEW_LW, zorder=2.0
+    )  # over the estimate's band
     # The image's frame over the lines that run off its edges, live as in a full draw (a live frame drew the
     # box's lines over a static top spine: 113 pixels differed from the first draw)
     frame_spines = list(sv.ax_image.spines.values())
@@ -566,7 +581,9 @@ def _resectioning_figure(view):
     )
     pts = np.vstack([frame.reshape(-1, 3), sv.camera_artist.extent_points(cam)])
     lo, hi = pts.min(axis=0) - 0.25, pts.max(axis=0) + 0.25
-    room = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])
+    room = np.array(
+        [[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
+    )
     return SimpleNamespace(
         room=room,
         bars=bars,
@@ -790,7 +807,8 @@ def opencv_vs_opengl():
         matrix_world[:3, :3], matrix_world[:3, 3] = R_gl.T, C
         numbers = (
             _matrix("R_gl", R_gl, 3) + "\n" + f"t_gl = {_fmt(t_gl)}\n"
-            "matrix_world = [[R_gl^T, C], [0, 1]] (exercise 5):\n" + _matrix("matrix_world", matrix_world, 3)
+            "matrix_world = [[R_gl^T, C], [0, 1]] (exercise 5):\n"
+            + _matrix("matrix_world", matrix_world, 3)
             if gl
             else _matrix("R", cam.R, 3) + "\n" + f"t = {_fmt(cam.t)}\nC = -R^T t = {_fmt(C)}"
         )
@@ -801,7 +819,11 @@ def opencv_vs_opengl():
                 if gl
                 else "<pre>OpenCV / H&amp;Z: X_cam = R X + t\ncamera looks along its +z axis\n"
             )
-            + ("rows of R_gl = the drawn axes, in world coordinates\n" if gl else "rows of R = the drawn axes, in world coordinates\n")
+            + (
+                "rows of R_gl = the drawn axes, in world coordinates\n"
+                if gl
+                else "rows of R = the drawn axes, in world coordinates\n"
+            )
             + numbers
             + "</pre>"
         )

@@ -202,8 +202,12 @@ def _diagonal_made_positive(K, R, M) -> bool:
         if np.allclose(R, D @ R0, atol=1e-6):
             K_raw = K0 @ D
             return bool(
-                np.allclose(K - np.diag(np.diag(K)), K_raw - np.diag(np.diag(K_raw)), rtol=1e-6,
-                            atol=1e-6 * np.abs(M).max())
+                np.allclose(
+                    K - np.diag(np.diag(K)),
+                    K_raw - np.diag(np.diag(K_raw)),
+                    rtol=1e-6,
+                    atol=1e-6 * np.abs(M).max(),
+                )
             )
     return False
 
