@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 from types import SimpleNamespace
 
 import ipywidgets as W
@@ -525,7 +526,7 @@ def _size_controls() -> dict:
 
 def _size_figure(view: FigureView) -> SimpleNamespace:
     """The figure of :func:`pinhole_size`: blur against the pinhole's diameter beside the letter
-    chart it records; returns the chart and the artists by name."""
+    chart it records; returns the artists by name."""
     ax_plot, ax_img = view.fig.subplots(1, 2)
     art = optics.draw_pinhole_blur(ax_plot, 0.1, object_distance=PAGE_Z)
     ax_plot.set_ylim(0.01, 30)
@@ -534,7 +535,6 @@ def _size_figure(view: FigureView) -> SimpleNamespace:
         [0.03, 0.1, 0.3, 1, 3], ["0.03", "0.1", "0.3", "1", "3"]
     )  # plain numbers: read d = 0.35 off
     ax_plot.set_yticks([0.01, 0.1, 1, 10], ["0.01", "0.1", "1", "10"])
-    chart = scenes.letter_chart(0.3, t=(0, 0, PAGE_Z))
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
     for spine in (
         ax_img.spines.values()
@@ -553,15 +553,51 @@ def _size_figure(view: FigureView) -> SimpleNamespace:
         art["marker"],
         art["best"],
     )
-    return SimpleNamespace(art=art, ax_plot=ax_plot, ax_img=ax_img, chart=chart, im=im)
+    return SimpleNamespace(art=art, ax_plot=ax_plot, ax_img=ax_img, im=im)
 
 
-def _expose(ax_img, img: np.ndarray, light: float, fixed: bool) -> np.ndarray:
-    """The chart as :func:`pinhole_size` shows it, titled: with the default's exposure time
-    (``fixed``), ``light`` times as bright, clipped; else brightness compensated, as rendered."""
-    default = f"(d = {REFERENCE[0] * 1e3:g} mm, f = {REFERENCE[1] * 1e3:g} mm)"
-    if fixed:  # the reference's exposure time: the image darkens (or burns out) with (d/f)^2
+@functools.lru_cache(maxsize=1)
+def sharp_chart() -> np.ndarray:
+    """The letter chart of :func:`pinhole_size` before any blur, (240, 320), read-only.
+
+    The sensor spans the same field of view at every f, so the sharp picture is the same at
+    every f: it is rendered once, at the default f.
+    """
+    f0 = REFERENCE[1]
+    pitch0 = f0 * 0.36 / SIZE[0]
+    chart = scenes.letter_chart(0.3, t=(0, 0, PAGE_Z))
+    img = render.render(chart, sensor.intrinsics_from_sensor(f0, (pitch0, pitch0), SIZE), SIZE).irradiance
+    img.setflags(write=False)
+    return img
+
+
+def chart_as_shown(d: float, f: float, fixed_exposure: bool = False) -> SimpleNamespace:
+    """The chart :func:`pinhole_size` shows for a hole ``d`` at ``f`` (metres), without building the demo.
+
+    Blurred by the hole (:func:`blur_through_pinhole`); with ``fixed_exposure`` the default's
+    exposure time, so ``light`` (:func:`relative_exposure`) times as bright and clipped to 1,
+    else brightness compensated, as rendered.
+
+    Returns
+    -------
+    SimpleNamespace
+        ``image`` (240, 320) in 0-1, ``light``, ``legible_rows`` (:func:`legible_rows` on the
+        picture as shown) and ``not_white``, the number of pixels below full white.
+    """
+    img = blur_through_pinhole(sharp_chart(), d, f, f * 0.36 / SIZE[0])
+    light = relative_exposure(d, f)
+    if fixed_exposure:  # the reference's exposure time: the image darkens (or burns out) with (d/f)^2
         img = np.clip(img * light, 0.0, 1.0)
+    return SimpleNamespace(
+        image=img, light=light, legible_rows=legible_rows(d, f, img), not_white=int(np.sum(img < 1.0))
+    )
+
+
+def _expose_title(ax_img, img: np.ndarray, light: float, fixed: bool) -> None:
+    """Title the chart as :func:`pinhole_size` shows it (:func:`chart_as_shown`): with the default's
+    exposure time (``fixed``), ``light`` times as bright; else brightness compensated."""
+    default = f"(d = {REFERENCE[0] * 1e3:g} mm, f = {REFERENCE[1] * 1e3:g} mm)"
+    if fixed:
         grey = int(np.sum(img < 1.0))  # a count, never a percentage rounded up to "100 %"
         note = (
             ", burnt out: every pixel white"
@@ -581,7 +617,6 @@ def _expose(ax_img, img: np.ndarray, light: float, fixed: bool) -> np.ndarray:
             f"exposure time {_times(1 / light)} x the default's\n{default}: brightness compensated",
             fontsize=9,
         )
-    return img
 
 
 def _limited_by(b) -> str:
@@ -633,14 +668,8 @@ def pinhole_size():
     controls = _size_controls()
     view = FigureView(figsize=(8.8, 4))
     parts = _size_figure(view)
-    art, ax_plot, ax_img, chart, im = parts.art, parts.ax_plot, parts.ax_img, parts.chart, parts.im
+    art, ax_plot, ax_img, im = parts.art, parts.ax_plot, parts.ax_img, parts.im
     readout = W.HTML()
-    # the sharp picture is the same at every f (the sensor spans the same field of view): render it once
-    f0 = REFERENCE[1]
-    pitch0 = f0 * 0.36 / SIZE[0]
-    sharp = render.render(
-        chart, sensor.intrinsics_from_sensor(f0, (pitch0, pitch0), SIZE), SIZE
-    ).irradiance
 
     def update(values, state):
         f, d = values["focal_mm"] * 1e-3, values["diameter_mm"] * 1e-3
@@ -649,14 +678,12 @@ def pinhole_size():
         # a sensor whose 320 pixels span the same field of view at every f
         pitch = f * 0.36 / SIZE[0]
         blur_px = float(b.total) / pitch
-        img = blur_through_pinhole(
-            sharp, d, f, pitch
-        )  # disc (the hole's shadow) convolved with the Airy pattern
-        light = relative_exposure(d, f)
-        img = _expose(ax_img, img, light, values["fixed_exposure"])
+        # disc (the hole's shadow) convolved with the Airy pattern, exposed as the checkbox says
+        shown = chart_as_shown(d, f, values["fixed_exposure"])
+        img, light, legible = shown.image, shown.light, shown.legible_rows
+        _expose_title(ax_img, img, light, values["fixed_exposure"])
         im.set_data(img)
         best = pinhole.optimal_pinhole_diameter(f, object_distance=PAGE_Z)
-        legible = legible_rows(d, f, img)
         limited_by = _limited_by(b)
         f_number = f / d
         ax_plot.set_title(
