@@ -85,8 +85,22 @@ def _projection_figure(view: FigureView) -> SimpleNamespace:
     view.fig.set_layout_engine(
         "none"
     )  # placed by hand: the layout engine does not see the 3-D axis labels
-    ax3 = view.fig.add_axes((0.05, 0.04, 0.63, 0.9), projection="3d")
-    ax_img = view.fig.add_axes((0.68, 0.15, 0.3, 0.7))  # room right of it for the "319" tick label
+    ax3 = view.fig.add_axes((0.1, 0.03, 0.53, 0.84), projection="3d")
+    ax_img = view.fig.add_axes((0.685, 0.43, 0.3, 0.42))  # room right of it for the "319" tick label
+    # under it, the two planes' pictures of the 3-D view at a readable size, seen from behind as there
+    planes = {}
+    for name, x0, colour, title in (
+        ("virtual", 0.655, palette.GREEN, "green plane (virtual):\nupright"),
+        ("real", 0.825, palette.RED, "red plane (real), from\nbehind: rotated 180 deg"),
+    ):
+        ax = view.fig.add_axes((x0, 0.035, 0.155, 0.24))
+        planes[name] = images.show_image(ax, np.zeros(SIZE[::-1]), vmax=1.0)
+        ax.set_xticks([])
+        ax.set_yticks([])
+        ax.set_title(title, fontsize=8, color=colour, pad=3)
+        for spine in ax.spines.values():
+            spine.set_color(colour)
+            spine.set_linewidth(2.5)
     edges, faces = _box_outline(fixtures.box_before_wall(2.0)[0])
     art = optics.draw_pinhole_3d(ax3, edges, 0.6, faces=faces)
     ax3.set_xlim(*DEPTH_RANGE)
@@ -127,6 +141,7 @@ def _projection_figure(view: FigureView) -> SimpleNamespace:
     # everything that moves is blitted over the cached static figure (the pinhole too: a ray passes over it)
     view.animate(
         im,
+        *planes.values(),
         width_bar,
         bar_ends,
         ax_img.title,
@@ -143,6 +158,7 @@ def _projection_figure(view: FigureView) -> SimpleNamespace:
         art=art,
         ax_img=ax_img,
         im=im,
+        planes=planes,
         width_bar=width_bar,
         bar_ends=bar_ends,
         scale_note=scale_note,
@@ -167,7 +183,7 @@ def pinhole_projection():
         ``depth_squeeze``, ``bar_clipped``).
     """
     controls = _projection_controls()
-    view = FigureView(figsize=(8.8, 4.0))
+    view = FigureView(figsize=(8.8, 4.8))
     parts = _projection_figure(view)
     art, ax_img, im, squeeze = parts.art, parts.ax_img, parts.im, parts.squeeze
     width_bar, bar_ends, scale_note = parts.width_bar, parts.bar_ends, parts.scale_note
@@ -186,6 +202,8 @@ def pinhole_projection():
         )  # the sensor's frame
         K = sensor.intrinsics_from_sensor(f, (PITCH, PITCH), SIZE)
         img = render.render(scene, K, SIZE).irradiance
+        parts.planes["virtual"].set_data(img)
+        parts.planes["real"].set_data(img[::-1, ::-1])  # the real plane seen from behind: rotated 180 degrees
         u = (
             K[0, 0] * corners[:, 0] / corners[:, 2] + K[0, 2]
         )  # the corners' columns, x = f X / Z in pixels
