@@ -23,6 +23,7 @@ from numpy.typing import ArrayLike
 from ._validate import CamlabInputError, as_float, as_points, check_positive
 
 __all__ = [
+    "BandEdges",
     "BandHeights",
     "PinholeBlur",
     "band_edges",
@@ -273,7 +274,23 @@ def level_crossing(profile: ArrayLike, level: float, start: int) -> float:
     return float(k - 1 + (level - p[k - 1]) / (p[k] - p[k - 1]))
 
 
-def band_edges(column: ArrayLike, rough_top: int, rough_bottom: int, share: float = 0.5) -> tuple[float, float, float]:
+class BandEdges(NamedTuple):
+    """The edges of one dark band down one column (:func:`band_edges`).
+
+    Attributes
+    ----------
+    top, bottom : float
+        The edge rows (v, pixels).
+    level : float
+        The brightness they were found at.
+    """
+
+    top: float
+    bottom: float
+    level: float
+
+
+def band_edges(column: ArrayLike, rough_top: int, rough_bottom: int, share: float = 0.5) -> BandEdges:
     """The top and bottom edges of a dark band (a window's glass) under a bright one, down one image column.
 
     The bright level is the median of the 6 pixels ending 2 above ``rough_top`` (the frame
@@ -292,14 +309,15 @@ def band_edges(column: ArrayLike, rough_top: int, rough_bottom: int, share: floa
 
     Returns
     -------
-    top, bottom, level : float
-        The two edge rows (v, pixels) and the brightness they were found at.
+    BandEdges
+        ``top``, ``bottom``: the two edge rows (v, pixels); ``level``: the brightness they were
+        found at.
     """
     c = np.asarray(column, dtype=float)
     bright = np.median(c[rough_top - 8 : rough_top - 2])
     dark = np.median(c[rough_top + 5 : rough_bottom - 5])
     level = dark + share * (bright - dark)
-    return level_crossing(c, level, rough_top - 6), level_crossing(c, level, rough_bottom - 6), float(level)
+    return BandEdges(level_crossing(c, level, rough_top - 6), level_crossing(c, level, rough_bottom - 6), float(level))
 
 
 class BandHeights(NamedTuple):

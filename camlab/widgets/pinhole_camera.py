@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import functools
 from types import SimpleNamespace
 
 import ipywidgets as W
@@ -574,27 +573,42 @@ def _size_figure(view: FigureView) -> SimpleNamespace:
     return SimpleNamespace(art=art, ax_plot=ax_plot, ax_img=ax_img, im=im)
 
 
-@functools.lru_cache(maxsize=1)
 def sharp_chart() -> np.ndarray:
-    """The letter chart of :func:`pinhole_size` before any blur, (240, 320), read-only.
+    """The letter chart of :func:`pinhole_size` before any blur.
 
     The sensor spans the same field of view at every f, so the sharp picture is the same at
-    every f: it is rendered once, at the default f.
+    every f: it is rendered at the default f.
+
+    Returns
+    -------
+    (240, 320) ndarray
+        Irradiance in 0-1, indexed ``[v, u]``.
     """
     f0 = REFERENCE[1]
     pitch0 = f0 * 0.36 / SIZE[0]
     chart = scenes.letter_chart(0.3, t=(0, 0, PAGE_Z))
-    img = render.render(chart, sensor.intrinsics_from_sensor(f0, (pitch0, pitch0), SIZE), SIZE).irradiance
-    img.setflags(write=False)
-    return img
+    return render.render(chart, sensor.intrinsics_from_sensor(f0, (pitch0, pitch0), SIZE), SIZE).irradiance
 
 
-def chart_as_shown(d: float, f: float, fixed_exposure: bool = False) -> SimpleNamespace:
-    """The chart :func:`pinhole_size` shows for a hole ``d`` at ``f`` (metres), without building the demo.
+def chart_as_shown(
+    d: float, f: float, fixed_exposure: bool = False, sharp: np.ndarray | None = None
+) -> SimpleNamespace:
+    """The chart :func:`pinhole_size` shows for a hole ``d`` at ``f``, without building the demo.
 
     Blurred by the hole (:func:`blur_through_pinhole`); with ``fixed_exposure`` the default's
     exposure time, so ``light`` (:func:`relative_exposure`) times as bright and clipped to 1,
     else brightness compensated, as rendered.
+
+    Parameters
+    ----------
+    d : float
+        The pinhole's diameter (m).
+    f : float
+        The focal length (m).
+    fixed_exposure : bool, optional
+        Keep the default's exposure time (the demo's checkbox).
+    sharp : (240, 320) ndarray, optional
+        :func:`sharp_chart`, when the caller has it already (the demo renders it once).
 
     Returns
     -------
@@ -602,7 +616,7 @@ def chart_as_shown(d: float, f: float, fixed_exposure: bool = False) -> SimpleNa
         ``image`` (240, 320) in 0-1, ``light``, ``legible_rows`` (:func:`legible_rows` on the
         picture as shown) and ``not_white``, the number of pixels below full white.
     """
-    img = blur_through_pinhole(sharp_chart(), d, f, f * 0.36 / SIZE[0])
+    img = blur_through_pinhole(sharp_chart() if sharp is None else sharp, d, f, f * 0.36 / SIZE[0])
     light = relative_exposure(d, f)
     if fixed_exposure:  # the reference's exposure time: the image darkens (or burns out) with (d/f)^2
         img = np.clip(img * light, 0.0, 1.0)
@@ -688,6 +702,7 @@ def pinhole_size():
     parts = _size_figure(view)
     art, ax_plot, ax_img, im = parts.art, parts.ax_plot, parts.ax_img, parts.im
     readout = W.HTML()
+    sharp = sharp_chart()  # the same at every f: rendered once
 
     def update(values, state):
         f, d = values["focal_mm"] * 1e-3, values["diameter_mm"] * 1e-3
@@ -697,7 +712,7 @@ def pinhole_size():
         pitch = f * 0.36 / SIZE[0]
         blur_px = float(b.total) / pitch
         # disc (the hole's shadow) convolved with the Airy pattern, exposed as the checkbox says
-        shown = chart_as_shown(d, f, values["fixed_exposure"])
+        shown = chart_as_shown(d, f, values["fixed_exposure"], sharp)
         img, light, legible = shown.image, shown.light, shown.legible_rows
         _expose_title(ax_img, img, light, values["fixed_exposure"])
         im.set_data(img)
