@@ -23,12 +23,17 @@ from numpy.typing import ArrayLike
 from ._validate import CamlabInputError, as_float, as_points, check_positive
 
 __all__ = [
+    "BandEdges",
+    "BandHeights",
     "PinholeBlur",
+    "band_edges",
+    "band_heights",
     "diffraction_blur",
     "geometric_blur",
     "optimal_pinhole_diameter",
     "pinhole_blur",
     "project_pinhole",
+    "level_crossing",
 ]
 
 
@@ -229,3 +234,163 @@ def optimal_pinhole_diameter(
         else 1.0
     )
     return float(np.sqrt(2.44 * lam * f / m))
+
+
+# ----------------------------------------------------------------------------------------------
+# Reading image heights off a photograph (lesson 01, section 2: h = f H / Z on the church photo)
+
+
+def level_crossing(profile: ArrayLike, level: float, start: int) -> float:
+    """The first position from index ``start`` on where ``profile`` crosses ``level``, to a fraction of a pixel.
+
+    The profile is sampled at whole pixels (pixel centres at integers); between the last
+    sample on ``start``'s side and the first on the other side it is taken as a straight
+    line, so the crossing is ``k - 1 + (level - p[k-1]) / (p[k] - p[k-1])``.
+
+    Parameters
+    ----------
+    profile : (N,) array_like
+        Brightness along a row or column of an image.
+    level : float
+        The brightness whose crossing is wanted.
+    start : int
+        Where to start looking (an index into ``profile``).
+
+    Returns
+    -------
+    float
+        The crossing's position, in pixels along the profile.
+    """
+    p = np.asarray(profile, dtype=float)
+    if p.ndim != 1:
+        raise CamlabInputError(
+            f"profile: expected a 1-D array, got shape {p.shape}; pass one column, grey[:, u]"
+        )
+    side = p > level
+    other = np.flatnonzero(side[start:] != side[start])
+    if other.size == 0:
+        raise CamlabInputError(
+            f"profile: never crosses {level:.1f} after index {start}; start nearer the edge you want"
+        )
+    k = start + other[0]  # the first pixel on the other side
+    return float(k - 1 + (level - p[k - 1]) / (p[k] - p[k - 1]))
+
+
+class BandEdges(NamedTuple):
+    """The edges of one dark band down one column (:func:`band_edges`).
+
+    Attributes
+    ----------
+    top, bottom : float
+        The edge rows (v, pixels).
+    level : float
+        The brightness they were found at.
+    """
+
+    top: float
+    bottom: float
+    level: float
+
+
+def band_edges(
+    column: ArrayLike, rough_top: int, rough_bottom: int, share: float = 0.5
+) -> BandEdges:
+    """The top and bottom edges of a dark band (a window's glass) under a bright one, down one image column.
+
+    The bright level is the median of the 6 pixels ending 2 above ``rough_top`` (the frame
+    above the glass), the dark level the median of the band's inside (5 pixels in from either
+    rough edge). Each edge is where the column crosses ``share`` of the way from dark to
+    bright, searched for from 6 pixels above its rough row (:func:`level_crossing`).
+
+    Parameters
+    ----------
+    column : (H,) array_like
+        Brightness down one column, ``grey[:, u]``.
+    rough_top, rough_bottom : int
+        The band's top and bottom rows read by eye, to a pixel or two.
+    share : float, optional
+        Where between dark (0) and bright (1) an edge lies; default half-way.
+
+    Returns
+    -------
+    BandEdges
+        ``top``, ``bottom``: the two edge rows (v, pixels); ``level``: the brightness they were
+        found at.
+    """
+    c = np.asarray(column, dtype=float)
+    bright = np.median(c[rough_top - 8 : rough_top - 2])
+    dark = np.median(c[rough_top + 5 : rough_bottom - 5])
+    level = dark + share * (bright - dark)
+    return BandEdges(
+        level_crossing(c, level, rough_top - 6),
+        level_crossing(c, level, rough_bottom - 6),
+        float(level),
+    )
+
+
+class BandHeights(NamedTuple):
+    """Dark-band heights read off a photograph by :func:`band_heights` (rows v, pixels).
+
+    Attributes
+    ----------
+    top, bottom, level : (K,) ndarray
+        Each band's edges down its middle column at half-way, and that brightness.
+    height : (K,) ndarray
+        ``bottom - top``.
+    low, high : (K,) ndarray
+        The least and largest height over every column offset and share tried: the
+        reading's spread.
+    """
+
+    top: np.ndarray
+    bottom: np.ndarray
+    level: np.ndarray
+    height: np.ndarray
+    low: np.ndarray
+    high: np.ndarray
+
+
+def band_heights(
+    grey: ArrayLike,
+    rough: dict,
+    offsets: tuple = (-2, -1, 0, 1, 2),
+    shares: tuple = (0.4, 0.5, 0.6),
+) -> BandHeights:
+    """Heights of dark bands (windows' glass) in a grey image, and how well each is read.
+
+    Each band is read down its middle column at half-way (:func:`band_edges`), then again
+    down the columns ``u + offsets`` with the edge at each of ``shares``; the least and
+    largest of those readings give the spread.
+
+    Parameters
+    ----------
+    grey : (H, W) array_like
+        Brightness, indexed ``grey[v, u]``.
+    rough : dict
+        ``{u: (rough_top, rough_bottom)}``: each band's middle column and its edge rows read
+        by eye.
+    offsets, shares : tuple, optional
+        The column offsets and edge shares of the repeat readings.
+
+    Returns
+    -------
+    BandHeights
+        Edges, heights and the spread, one entry per band in ``rough``'s order.
+    """
+    g = np.asarray(grey, dtype=float)
+    if g.ndim != 2:
+        raise CamlabInputError(
+            f"grey: expected an (H, W) grey image, got shape {g.shape}; average the colours first"
+        )
+    top, bottom, level = np.array([band_edges(g[:, u], *rows) for u, rows in rough.items()]).T
+    readings = np.array(
+        [
+            [
+                np.subtract(*band_edges(g[:, u + du], *rows, share)[1::-1])
+                for du in offsets
+                for share in shares
+            ]
+            for u, rows in rough.items()
+        ]
+    )
+    return BandHeights(top, bottom, level, bottom - top, readings.min(axis=1), readings.max(axis=1))

@@ -1325,3 +1325,33 @@ def test_map_conic_names_a_transposed_H_as_the_transpose_on_the_wrong_side():
     # x @ H for H @ x in the student's head: they move the conic by H.T, i.e. inv(H) @ C @ inv(H).T
     with pytest.raises(AssertionError, match="transpose is on the wrong factor"):
         check("map_conic", lambda H, C: np.linalg.inv(H.T).T @ C @ np.linalg.inv(H.T))
+
+
+def test_project_to_pixels_passes_a_float32_projection_and_keeps_the_broadcasting_hint_for_its_slip():
+    def float32(X, f, pitch, size):
+        X = np.asarray(X, dtype=np.float32)
+        return (
+            np.float32(f / pitch) * X[:, :2] / X[:, 2:3] + (np.array(size, np.float32) - 1) / 2
+        ).astype(float)
+
+    check(
+        "project_to_pixels", float32
+    )  # float32 arithmetic returned as float64: within a thousandth of a pixel
+    with pytest.raises(AssertionError) as info:
+        check(
+            "project_to_pixels",
+            lambda X, f, p, size: f / p * X[:, :2] / X[:, 2] + (np.array(size) - 1) / 2,
+        )
+    assert "test input 2 of 3" in str(info.value) and "broadcasting slip" in str(info.value)
+    with pytest.raises(AssertionError) as info:
+        check(
+            "project_to_pixels",
+            lambda X, f, p, size: f / p * X[:, :2] / X[:, 2:3] + (np.array(size) - 1) / 2 + 0.01,
+        )
+    assert "broadcasting" not in str(info.value)
+
+
+def test_focal_length_pixels_rejects_an_integer_half_width_on_an_odd_width():
+    with pytest.raises(AssertionError) as info:
+        check("focal_length_pixels", lambda fov, size: size[0] // 2 / np.tan(np.radians(fov) / 2))
+    assert "641 // 2 is 320" in str(info.value)

@@ -509,10 +509,9 @@ def solution_source(name: str) -> str:
         return inspect.getsource(exercise.teaching) + "\n" + exercise.solution_note.rstrip() + "\n"
     if reference.__name__.startswith("_"):  # a private helper: name it, and say what it computes
         summary = (inspect.getdoc(reference) or "").split("\n")[0]
-        return (
+        return (  # a private helper is no place to send a student: say what it computes, in public names
             inspect.getsource(exercise.teaching)
-            + f"\n# camlab's own, tested reference is {where}; the check compares your answer with it"
-            + f"\n# (read it with {where}??). {summary}\n"
+            + f"\n# the check compares your answer with camlab's own, tested reference: {summary}\n"
         )
     return (
         inspect.getsource(exercise.teaching)

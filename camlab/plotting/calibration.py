@@ -243,6 +243,10 @@ def plot_extrinsics(ax, result: CalibrationResult, size: float | None = None):
     -------
     (V, N, 3) ndarray
         Every view's corners in the camera frame, in the board's units.
+
+    References
+    ----------
+    J.-Y. Bouguet, *Camera Calibration Toolbox for Matlab*, Caltech (the extrinsics view).
     """
     from ..camera import Camera, rotation_from_axis_angle
     from .scene3d import CameraArtist, set_equal_aspect

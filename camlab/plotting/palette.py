@@ -30,6 +30,9 @@ RED = "#CC3311"  # 5.2:1
 PURPLE = "#AA3377"  # 6.1:1
 BROWN = "#8C564B"  # 5.9:1
 GREY = "#808080"  # 4.0:1: reference lines ("before", "original", construction)
+DARK_ORANGE = (
+    "#7A4600"  # 8.0:1: a second shade of ORANGE, for a second bundle of rays (lesson 01's cones)
+)
 
 SERIES = (BLUE, ORANGE, GREEN, RED, PURPLE, BROWN)  # for numbered things: image 0, 1, 2...
 

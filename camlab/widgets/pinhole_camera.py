@@ -88,8 +88,24 @@ def _projection_figure(view: FigureView) -> SimpleNamespace:
     view.fig.set_layout_engine(
         "none"
     )  # placed by hand: the layout engine does not see the 3-D axis labels
-    ax3 = view.fig.add_axes((0.05, 0.04, 0.63, 0.9), projection="3d")
-    ax_img = view.fig.add_axes((0.68, 0.15, 0.3, 0.7))  # room right of it for the "319" tick label
+    ax3 = view.fig.add_axes((0.1, 0.03, 0.53, 0.84), projection="3d")
+    ax_img = view.fig.add_axes(
+        (0.685, 0.43, 0.3, 0.42)
+    )  # room right of it for the "319" tick label
+    # under it, the two planes' pictures of the 3-D view at a readable size, seen from behind as there
+    planes = {}
+    for name, x0, colour, title in (
+        ("virtual", 0.655, palette.GREEN, "green plane (virtual):\nupright"),
+        ("real", 0.825, palette.RED, "red plane (real), from\nbehind: rotated 180 deg"),
+    ):
+        ax = view.fig.add_axes((x0, 0.035, 0.155, 0.24))
+        planes[name] = images.show_image(ax, np.zeros(SIZE[::-1]), vmax=1.0)
+        ax.set_xticks([])
+        ax.set_yticks([])
+        ax.set_title(title, fontsize=8, color=colour, pad=3)
+        for spine in ax.spines.values():
+            spine.set_color(colour)
+            spine.set_linewidth(2.5)
     edges, faces = _box_outline(fixtures.box_before_wall(2.0)[0])
     art = optics.draw_pinhole_3d(ax3, edges, 0.6, faces=faces)
     ax3.set_xlim(*DEPTH_RANGE)
@@ -130,6 +146,7 @@ def _projection_figure(view: FigureView) -> SimpleNamespace:
     # everything that moves is blitted over the cached static figure (the pinhole too: a ray passes over it)
     view.animate(
         im,
+        *planes.values(),
         width_bar,
         bar_ends,
         ax_img.title,
@@ -146,6 +163,7 @@ def _projection_figure(view: FigureView) -> SimpleNamespace:
         art=art,
         ax_img=ax_img,
         im=im,
+        planes=planes,
         width_bar=width_bar,
         bar_ends=bar_ends,
         scale_note=scale_note,
@@ -170,7 +188,7 @@ def pinhole_projection():
         ``depth_squeeze``, ``bar_clipped``).
     """
     controls = _projection_controls()
-    view = FigureView(figsize=(8.8, 4.0))
+    view = FigureView(figsize=(8.8, 4.8))
     parts = _projection_figure(view)
     art, ax_img, im, squeeze = parts.art, parts.ax_img, parts.im, parts.squeeze
     width_bar, bar_ends, scale_note = parts.width_bar, parts.bar_ends, parts.scale_note
@@ -189,6 +207,10 @@ def pinhole_projection():
         )  # the sensor's frame
         K = sensor.intrinsics_from_sensor(f, (PITCH, PITCH), SIZE)
         img = render.render(scene, K, SIZE).irradiance
+        parts.planes["virtual"].set_data(img)
+        parts.planes["real"].set_data(
+            img[::-1, ::-1]
+        )  # the real plane seen from behind: rotated 180 degrees
         u = (
             K[0, 0] * corners[:, 0] / corners[:, 2] + K[0, 2]
         )  # the corners' columns, x = f X / Z in pixels
@@ -536,8 +558,8 @@ def _size_controls() -> dict:
 def _size_figure(view: FigureView) -> SimpleNamespace:
     """The figure of :func:`pinhole_size`.
 
-    Blur against the pinhole's diameter beside the letter chart it records; returns the chart and
-    the artists by name.
+    Blur against the pinhole's diameter beside the letter chart it records; returns the artists
+    by name.
     """
     ax_plot, ax_img = view.fig.subplots(1, 2)
     art = optics.draw_pinhole_blur(ax_plot, 0.1, object_distance=PAGE_Z)
@@ -547,7 +569,6 @@ def _size_figure(view: FigureView) -> SimpleNamespace:
         [0.03, 0.1, 0.3, 1, 3], ["0.03", "0.1", "0.3", "1", "3"]
     )  # plain numbers: read d = 0.35 off
     ax_plot.set_yticks([0.01, 0.1, 1, 10], ["0.01", "0.1", "1", "10"])
-    chart = scenes.letter_chart(0.3, t=(0, 0, PAGE_Z))
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
     for spine in (
         ax_img.spines.values()
@@ -566,18 +587,76 @@ def _size_figure(view: FigureView) -> SimpleNamespace:
         art["marker"],
         art["best"],
     )
-    return SimpleNamespace(art=art, ax_plot=ax_plot, ax_img=ax_img, chart=chart, im=im)
+    return SimpleNamespace(art=art, ax_plot=ax_plot, ax_img=ax_img, im=im)
 
 
-def _expose(ax_img, img: np.ndarray, light: float, fixed: bool) -> np.ndarray:
-    """The chart as :func:`pinhole_size` shows it, titled.
+def sharp_chart() -> np.ndarray:
+    """The letter chart of :func:`pinhole_size` before any blur.
 
-    With the default's exposure time (``fixed``), ``light`` times as bright, clipped; else
-    brightness compensated, as rendered.
+    The sensor spans the same field of view at every f, so the sharp picture is the same at
+    every f: it is rendered at the default f.
+
+    Returns
+    -------
+    (240, 320) ndarray
+        Irradiance in 0-1, indexed ``[v, u]``.
+    """
+    f0 = REFERENCE[1]
+    pitch0 = f0 * 0.36 / SIZE[0]
+    chart = scenes.letter_chart(0.3, t=(0, 0, PAGE_Z))
+    return render.render(
+        chart, sensor.intrinsics_from_sensor(f0, (pitch0, pitch0), SIZE), SIZE
+    ).irradiance
+
+
+def chart_as_shown(
+    d: float, f: float, fixed_exposure: bool = False, sharp: np.ndarray | None = None
+) -> SimpleNamespace:
+    """The chart :func:`pinhole_size` shows for a hole ``d`` at ``f``, without building the demo.
+
+    Blurred by the hole (:func:`blur_through_pinhole`); with ``fixed_exposure`` the default's
+    exposure time, so ``light`` (:func:`relative_exposure`) times as bright and clipped to 1,
+    else brightness compensated, as rendered.
+
+    Parameters
+    ----------
+    d : float
+        The pinhole's diameter (m).
+    f : float
+        The focal length (m).
+    fixed_exposure : bool, optional
+        Keep the default's exposure time (the demo's checkbox).
+    sharp : (240, 320) ndarray, optional
+        :func:`sharp_chart`, when the caller has it already (the demo renders it once).
+
+    Returns
+    -------
+    SimpleNamespace
+        ``image`` (240, 320) in 0-1, ``light``, ``legible_rows`` (:func:`legible_rows` on the
+        picture as shown) and ``not_white``, the number of pixels below full white.
+    """
+    img = blur_through_pinhole(sharp_chart() if sharp is None else sharp, d, f, f * 0.36 / SIZE[0])
+    light = relative_exposure(d, f)
+    if (
+        fixed_exposure
+    ):  # the reference's exposure time: the image darkens (or burns out) with (d/f)^2
+        img = np.clip(img * light, 0.0, 1.0)
+    return SimpleNamespace(
+        image=img,
+        light=light,
+        legible_rows=legible_rows(d, f, img),
+        not_white=int(np.sum(img < 1.0)),
+    )
+
+
+def _expose_title(ax_img, img: np.ndarray, light: float, fixed: bool) -> None:
+    """Title the chart as :func:`pinhole_size` shows it (:func:`chart_as_shown`).
+
+    With the default's exposure time (``fixed``), ``light`` times as bright; else brightness
+    compensated.
     """
     default = f"(d = {REFERENCE[0] * 1e3:g} mm, f = {REFERENCE[1] * 1e3:g} mm)"
-    if fixed:  # the reference's exposure time: the image darkens (or burns out) with (d/f)^2
-        img = np.clip(img * light, 0.0, 1.0)
+    if fixed:
         grey = int(np.sum(img < 1.0))  # a count, never a percentage rounded up to "100 %"
         note = (
             ", burnt out: every pixel white"
@@ -597,7 +676,6 @@ def _expose(ax_img, img: np.ndarray, light: float, fixed: bool) -> np.ndarray:
             f"exposure time {_times(1 / light)} x the default's\n{default}: brightness compensated",
             fontsize=9,
         )
-    return img
 
 
 def _limited_by(b) -> str:
@@ -652,14 +730,9 @@ def pinhole_size():
     controls = _size_controls()
     view = FigureView(figsize=(8.8, 4))
     parts = _size_figure(view)
-    art, ax_plot, ax_img, chart, im = parts.art, parts.ax_plot, parts.ax_img, parts.chart, parts.im
+    art, ax_plot, ax_img, im = parts.art, parts.ax_plot, parts.ax_img, parts.im
     readout = W.HTML()
-    # the sharp picture is the same at every f (the sensor spans the same field of view): render it once
-    f0 = REFERENCE[1]
-    pitch0 = f0 * 0.36 / SIZE[0]
-    sharp = render.render(
-        chart, sensor.intrinsics_from_sensor(f0, (pitch0, pitch0), SIZE), SIZE
-    ).irradiance
+    sharp = sharp_chart()  # the same at every f: rendered once
 
     def update(values, state):
         f, d = values["focal_mm"] * 1e-3, values["diameter_mm"] * 1e-3
@@ -668,14 +741,12 @@ def pinhole_size():
         # a sensor whose 320 pixels span the same field of view at every f
         pitch = f * 0.36 / SIZE[0]
         blur_px = float(b.total) / pitch
-        img = blur_through_pinhole(
-            sharp, d, f, pitch
-        )  # disc (the hole's shadow) convolved with the Airy pattern
-        light = relative_exposure(d, f)
-        img = _expose(ax_img, img, light, values["fixed_exposure"])
+        # disc (the hole's shadow) convolved with the Airy pattern, exposed as the checkbox says
+        shown = chart_as_shown(d, f, values["fixed_exposure"], sharp)
+        img, light, legible = shown.image, shown.light, shown.legible_rows
+        _expose_title(ax_img, img, light, values["fixed_exposure"])
         im.set_data(img)
         best = pinhole.optimal_pinhole_diameter(f, object_distance=PAGE_Z)
-        legible = legible_rows(d, f, img)
         limited_by = _limited_by(b)
         f_number = f / d
         ax_plot.set_title(

@@ -326,7 +326,7 @@ def _show_estimate(art, trial, K, R, t, C, ringed, first_pixels):
     art.reproj.set_data(r[:, 0], r[:, 1])
     art.residuals.set_data(*_segments_xy(uvn, r))
     scene3d.update_segments(art.est_lines, cm.project_segments(P, art.frame))
-    show_residual_bars(art.bars, trial.errors, ringed)
+    _show_residual_bars(art.bars, trial.errors, ringed)
     return centre_err, far
 
 
@@ -429,7 +429,7 @@ def _residual_bars(ax):
     )
 
 
-def show_residual_bars(bars, err, ringed) -> list[tuple[int, float]]:
+def _show_residual_bars(bars, err, ringed) -> list[tuple[int, float]]:
     """Draw the residuals ``err`` (px) as bars, ``ringed`` pairs black; return the two longest (pair, px).
 
     Bars of points behind the estimate (NaN residual) are left out.

@@ -21,7 +21,8 @@ def _fx_reference(fov_deg, size):
 
 def _fx_cases():
     # no 60 or 90 degrees: tan 30 = 1 / tan 60 and tan 45 = 1 make slips coincide with each other or the answer
-    return [(50.0, (640, 480)), (75.0, (1920, 1080)), (39.6, (320, 240))]
+    # and one odd width, last: W // 2 equals W / 2 for the three even ones (641 // 2 is 320, not 320.5)
+    return [(50.0, (640, 480)), (75.0, (1920, 1080)), (39.6, (320, 240)), (55.0, (641, 481))]
 
 
 FX_TOLERANCE = Tolerance(2e-4, 0.0)
@@ -86,6 +87,14 @@ _FX_SLIPS = (
         "full angle and W",
         lambda s: s.W / np.tan(s.full),
         ("both halves missing: tan(FOV / 2) = (W / 2) / f_x (half the angle, half the width)"),
+    ),
+    Mistake(
+        "W // 2",
+        lambda s: s.W // 2 / np.tan(s.half),
+        (
+            "size[0] // 2 drops the half pixel of an odd width (641 // 2 is 320, not 320.5): the half-width is"
+            " W / 2, divided with /, not //"
+        ),
     ),
     Mistake(
         "(W - 1) / 2",
@@ -225,6 +234,11 @@ radians), the size ``s.W``, ``s.H`` and the right answer ``s.expected``."""
 
 def _fx_diagnosis(args, got, expected) -> str:
     fov, (W, H) = args
+    if np.shape(got) == (2,) and not isinstance(got, str):
+        return (
+            "you returned two numbers, perhaps (f_x, f_y): return f_x alone, one float (the pixels are square, so"
+            " f_y is the same number)"
+        )
     problem = one_number(got, "f_x in pixels")
     if problem:
         return problem
@@ -316,6 +330,11 @@ register_exercise(
                 "and besides: the sensor spans all W pixels",
             ),
             (lambda fov, size: (size[0] / 2 / np.tan(np.radians(fov) / 2),), "trailing comma"),
+            (lambda fov, size: size[0] // 2 / np.tan(np.radians(fov) / 2), "641 // 2 is 320"),
+            (
+                lambda fov, size: (size[0] / 2 / np.tan(np.radians(fov) / 2),) * 2,
+                "perhaps (f_x, f_y)",
+            ),
             (
                 lambda fov, size: f"{size[0] / 2 / np.tan(np.radians(fov) / 2):.1f}",
                 "you returned a str",

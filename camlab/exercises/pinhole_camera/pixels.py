@@ -12,6 +12,10 @@ from .._core import Exercise, Mistake, first_mistake, register_exercise
 
 # ---------------------------------------------------------------- project_to_pixels
 
+PIXEL_ATOL = 1e-3
+"""How close (pixels) an answer must be: a thousandth of a pixel, loose enough for a projection computed in
+float32 (about 2e-4 px at u = 3600) and far tighter than any slip below (the smallest, half a pixel)."""
+
 
 def _pixel_reference(X, f, pitch, size):
     """camlab.pinhole.project_pinhole(X, f) / pitch + ((W - 1) / 2, (H - 1) / 2): the projection, in pixels."""
@@ -67,6 +71,7 @@ def _pixel_context(X, f, pitch, size, e):
         homogeneous=X @ K.T,  # rows (u w, v w, w), w = Z
         x_at_K=X @ K,
         aspect=size[1] / size[0],  # H / W
+        W=W,
     )
 
 
@@ -288,6 +293,27 @@ _PIXEL_SLIPS = (
         ),
     ),
     Mistake(
+        "centre divided by Z",
+        lambda s: (s.f / s.pitch * s.X[:, :2] + s.c) / s.X[:, 2:3],
+        (
+            "you added the centre before dividing by Z, so the centre was divided too: divide first, then add"
+            " the centre, u = f_x X / Z + c_u"
+        ),
+    ),
+    Mistake(
+        "over Z squared",
+        lambda s: s.f / s.pitch * s.X[:, :2] / s.X[:, 2:3] ** 2 + s.c,
+        ("you divided by Z twice (Z ** 2): one division by the depth, u = f_x X / Z + c_u"),
+    ),
+    Mistake(
+        "f_x divided by W",
+        lambda s: s.f / (s.pitch * s.W) * s.X[:, :2] / s.X[:, 2:3] + s.c,
+        (
+            "you divided f by the sensor's width in pixels too: f_x = f / pitch alone is the focal length in"
+            " pixels (the width sets only the centre)"
+        ),
+    ),
+    Mistake(
         "broadcasting slip",
         lambda s: _broadcast_divide(s.homogeneous[:, :2], s.homogeneous[:, 2]),
         (
@@ -329,7 +355,11 @@ def _pixel_diagnosis(args, got, expected) -> str:
     problem = shape_problem(got, expected)
     if problem:
         return problem + ". Return one (u, v) row per point."
-    if np.allclose(g, _broadcast_divide(f / pitch * X[:, :2], X[:, 2]) + c):
+    broadcast = _broadcast_divide(f / pitch * X[:, :2], X[:, 2]) + c
+    # only where the slip changes the answer (two points; with one, X[:, 2] broadcasts harmlessly)
+    if not np.allclose(broadcast, expected, rtol=0, atol=PIXEL_ATOL) and np.allclose(
+        g, broadcast, rtol=0, atol=PIXEL_ATOL
+    ):
         return (
             "a broadcasting slip: X[:, :2] / X[:, 2] divides column j by the depth of point j; keep the depth"
             " column 2-D, X[:, 2:3], so each row is divided by its own Z"
@@ -338,7 +368,11 @@ def _pixel_diagnosis(args, got, expected) -> str:
         _PIXEL_SLIPS,
         _pixel_context(X, f, pitch, size, expected),
         g,
-        lambda got, slip: np.allclose(got, slip, rtol=1e-9, atol=1e-6),
+        # within PIXEL_ATOL, or a thousandth of the slip's own offset from the centre where that is smaller: slips
+        # that squeeze every point onto the centre (a pitch in micrometres, times the pitch) stay told apart
+        lambda got, slip: np.allclose(
+            got, slip, rtol=0, atol=min(PIXEL_ATOL, 1e-3 * np.abs(slip - c).max())
+        ),
     )
     if cause:
         return cause
@@ -395,7 +429,7 @@ register_exercise(
         lesson="01",
         reference=_pixel_reference,
         cases=_pixel_cases,
-        compare=same_array(rtol=1e-9, atol=1e-6),
+        compare=same_array(rtol=1e-9, atol=PIXEL_ATOL),
         diagnose=_pixel_diagnosis,
         ndarray_only=True,
         wrong_variants=(
@@ -452,6 +486,20 @@ register_exercise(
                 "integer division",
             ),
             (lambda X, f, s, size: f"{f / s * X[0, 0] / X[0, 2]:.1f}", "you returned a str"),
+            (
+                lambda X, f, s, size: (f / s * X[:, :2] + (np.array(size) - 1) / 2) / X[:, 2:3],
+                "the centre was divided too",
+            ),
+            (
+                lambda X, f, s, size: f / s * X[:, :2] / X[:, 2:3] ** 2 + (np.array(size) - 1) / 2,
+                "Z twice",
+            ),
+            (
+                lambda X, f, s, size: (
+                    f / (s * size[0]) * X[:, :2] / X[:, 2:3] + (np.array(size) - 1) / 2
+                ),
+                "f_x = f / pitch alone",
+            ),
         ),
         teaching=project_to_pixels,
     )

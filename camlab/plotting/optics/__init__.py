@@ -10,6 +10,7 @@ importable from here.
 
 from __future__ import annotations
 
+from .band_heights import draw_band_heights
 from .pinhole_blur import (
     CONE_BEFORE,
     CONE_COLOURS,
@@ -53,6 +54,7 @@ from .thin_lens import (
 )
 
 __all__ = [
+    "draw_band_heights",
     "SHORTEST_ARROW",
     "F_LABEL_ROOM",
     "Z_LABEL_ROOM",

@@ -113,9 +113,9 @@ def update_pinhole_blur(
 
 
 CONE_COLOURS = (
-    palette.BLUE,
-    palette.BROWN,
-)  # the two object points (purple read as the real plane's red)
+    palette.ORANGE,
+    palette.DARK_ORANGE,
+)  # the two object points' rays: lesson 01's ray orange, in two shades (blue is its object, red its real plane)
 CONE_BEFORE = 3.0  # the cone figure shows the last 3 f of the rays before the pinhole (units of f)
 
 
@@ -175,8 +175,8 @@ def _label_cones(ax, entry, Z, f, a, x_in, x_img, wall):
             ha="right",
             va="top" if side > 0 else "bottom",
             fontsize=8,
-            color=colour,
-            arrowprops=dict(arrowstyle="->", color=colour, lw=1, shrinkA=1, shrinkB=0),
+            color="k",  # black text (orange is too light for text); the arrow carries the point's colour
+            arrowprops=dict(arrowstyle="->", color=colour, lw=1.5, shrinkA=1, shrinkB=0),
         )
     ax.plot(
         [0, 0, np.nan, 0, 0], [wall, a, np.nan, -a, -wall], color="k", lw=3, solid_capstyle="butt"

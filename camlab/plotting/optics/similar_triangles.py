@@ -143,9 +143,8 @@ def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
     }
     for key in ("y", "y_real"):
         art["dims"][key]["label"].set_fontsize(9)
-    ax.set_xlim(
-        -0.28 * z_max, 1.14 * z_max
-    )  # room for the real plane's label at f = 1 m and for Y's at Z = 5 m
+    # room for the real plane's label at f = 1 m, and for Y's beyond the object at the largest Z (z_max - 0.6)
+    ax.set_xlim(-0.28 * z_max, z_max + 0.5)
     ax.set_ylim(-h_max, h_max)
     ax.set_aspect("equal")  # similar triangles look similar only at equal scales
     ax.set_xlabel("depth z (m)")
