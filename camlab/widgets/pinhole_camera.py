@@ -85,13 +85,10 @@ def _projection_figure(view: FigureView) -> SimpleNamespace:
     The box, the pinhole and both image planes in 3-D (depth squeezed by ``squeeze``) beside the
     recorded image with the box's width bar; returns its artists by name.
     """
-    view.fig.set_layout_engine(
-        "none"
-    )  # placed by hand: the layout engine does not see the 3-D axis labels
+    # placed by hand: the layout engine does not see the 3-D axis labels
+    view.fig.set_layout_engine("none")
     ax3 = view.fig.add_axes((0.1, 0.03, 0.53, 0.84), projection="3d")
-    ax_img = view.fig.add_axes(
-        (0.685, 0.43, 0.3, 0.42)
-    )  # room right of it for the "319" tick label
+    ax_img = view.fig.add_axes((0.685, 0.43, 0.3, 0.42))  # room right for the "319" tick label
     # under it, the two planes' pictures of the 3-D view at a readable size, seen from behind as there
     planes = {}
     for name, x0, colour, title in (
@@ -114,9 +111,8 @@ def _projection_figure(view: FigureView) -> SimpleNamespace:
     ax3.set_box_aspect((2.6, 1, 1), zoom=1.25)
     optics.label_camera_axes(ax3, labelpad=1)
     ax3.xaxis.labelpad = 8  # clear of the depth axis' tick labels
-    squeeze = (
-        optics.axis_scales(ax3)[1] / optics.axis_scales(ax3)[0]
-    )  # x, y per metre against z per metre
+    # x, y per metre against z per metre
+    squeeze = optics.axis_scales(ax3)[1] / optics.axis_scales(ax3)[0]
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
     # pixels, as the title counts; the middle ticks on the principal point ((W - 1) / 2, (H - 1) / 2)
     ax_img.set_xticks(
@@ -202,18 +198,14 @@ def pinhole_projection():
         corners = np.unique(e.reshape(-1, 3), axis=0)
         f_draw = plane_distance(f, corners[:, 2].min())
         scale = f_draw / f
-        optics.update_pinhole_3d(
-            art, e, f_draw, faces, plane_half=scale * SENSOR[0] / 2
-        )  # the sensor's frame
+        # the planes drawn as the sensor's frame
+        optics.update_pinhole_3d(art, e, f_draw, faces, plane_half=scale * SENSOR[0] / 2)
         K = sensor.intrinsics_from_sensor(f, (PITCH, PITCH), SIZE)
         img = render.render(scene, K, SIZE).irradiance
         parts.planes["virtual"].set_data(img)
-        parts.planes["real"].set_data(
-            img[::-1, ::-1]
-        )  # the real plane seen from behind: rotated 180 degrees
-        u = (
-            K[0, 0] * corners[:, 0] / corners[:, 2] + K[0, 2]
-        )  # the corners' columns, x = f X / Z in pixels
+        # the real plane seen from behind: rotated 180 degrees
+        parts.planes["real"].set_data(img[::-1, ::-1])
+        u = K[0, 0] * corners[:, 0] / corners[:, 2] + K[0, 2]  # the corners' columns, x = f X / Z
         v_bar = 0.92 * SIZE[1]
         if values["real_plane"]:
             img = img[::-1, ::-1]  # the real image in the camera's axes: rotated 180 degrees
@@ -225,7 +217,7 @@ def pinhole_projection():
         centre = pinhole.project_pinhole([0.0, 0.0, Z], f)
         fov = np.degrees(
             2 * np.arctan(SENSOR[0] / (2 * f))
-        )  # the sensor's width w seen from the pinhole
+        )  # the sensor's width w from the pinhole
         span = float(u.max() - u.min())
         state.update(
             K=K,

@@ -212,17 +212,14 @@ def camera_explorer():
         scene,
         plane_size=explorer_plane_size(5.0),
         thumbnail=scenes.house_wireframe(),
-        azim=-60
-        + VIEWER_OFFSET,  # the default azimuth; update() follows the azimuth and part of the pan
+        azim=-60 + VIEWER_OFFSET,  # update() follows the azimuth and part of the pan
         elev=VIEWER_ELEV,
         camera_axis_length=0.8,
         width_ratios=(1.3, 1.0),
         world_axes=WORLD_AXES_M,
     )
     # "C" hangs just above-left of the centre dot, its corner at the dot, not half a metre away
-    sv.camera_artist.label.set(
-        ha="right", va="bottom", path_effects=palette.halo()
-    )  # readable on the plane
+    sv.camera_artist.label.set(ha="right", va="bottom", path_effects=palette.halo())  # on the plane
     sv.camera_artist.label_offset = (-0.02, -0.04)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
     # not clipped: at cx or cy = -0.5 the principal point sits on the image's edge, and the whole + shows it
@@ -252,9 +249,9 @@ def camera_explorer():
     def update(v, state):
         cam = explorer_camera(**v)
         sv.camera_artist.size = explorer_plane_size(v["distance"], cam.K)
-        sv.ax3d.view_init(
-            elev=VIEWER_ELEV, azim=v["azimuth"] + VIEWER_OFFSET + PAN_FOLLOW * v["pan"]
-        )  # sv.update refreshes the projection
+        # sv.update refreshes the projection
+        azim = v["azimuth"] + VIEWER_OFFSET + PAN_FOLLOW * v["pan"]
+        sv.ax3d.view_init(elev=VIEWER_ELEV, azim=azim)
         sv.update(cam)
         pp.set_data([cam.principal_point[0]], [cam.principal_point[1]])
         info.value = (
