@@ -40,7 +40,6 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._validate import DegenerateError, as_point_pairs
-from .camera import rotation_from_axis_angle
 from .epipolar import estimate_fundamental_matrix, sampson_distance
 from .optimise import levenberg_marquardt
 from .projective import hartley_normalise
@@ -149,6 +148,22 @@ def estimate_affine_fundamental(x1: ArrayLike, x2: ArrayLike) -> AffineFundament
     return AffineFundamental(F, residuals, float(np.sqrt(np.mean(residuals**2))))
 
 
+def _rotations(rvecs: np.ndarray) -> np.ndarray:
+    r"""(B, 3, 3) rotations from (B, 3) rotation vectors, Rodrigues' formula batched.
+
+    :math:`R = I + \sin\theta\,[k]_\times + (1 - \cos\theta)\,[k]_\times^2`, as
+    :func:`camlab.camera.rotation_from_axis_angle` for one vector; at :math:`\theta = 0` the
+    identity.
+    """
+    theta = np.linalg.norm(rvecs, axis=1)
+    k = rvecs / np.where(theta > 0, theta, 1.0)[:, None]
+    K = np.zeros((len(rvecs), 3, 3))
+    K[:, 0, 1], K[:, 0, 2], K[:, 1, 2] = -k[:, 2], k[:, 1], -k[:, 0]
+    K -= np.transpose(K, (0, 2, 1))
+    s, c = np.sin(theta)[:, None, None], np.cos(theta)[:, None, None]
+    return np.eye(3) + s * K + (1 - c) * K @ K
+
+
 def _least_sampson_fundamental(F0: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     r"""The rank-2 F downhill from ``F0`` that minimises the summed squared Sampson distance (pixels).
 
@@ -157,19 +172,34 @@ def _least_sampson_fundamental(F0: np.ndarray, a: np.ndarray, b: np.ndarray) -> 
     magnitude and the search stall; the residuals stay in pixels. :math:`F_n` is kept rank 2 by
     its SVD, :math:`F_n = U R(\omega)\,\mathrm{diag}(1, s, 0)\,(V R(\eta))^\top` with :math:`U, V`
     from the start: 7 parameters :math:`(\omega, \eta, s)`, F's 7 degrees of freedom, refined by
-    Levenberg-Marquardt (central-difference Jacobian).
+    Levenberg-Marquardt. Its Jacobian is :func:`camlab.optimise.numeric_jacobian`'s central
+    differences (the same steps), evaluated for all 14 shifted parameter vectors at once.
     """
     T1, T2 = hartley_normalise(a, "x1").T, hartley_normalise(b, "x2").T
     U, sv, Vt = np.linalg.svd(np.linalg.inv(T2).T @ F0 @ np.linalg.inv(T1))
+    ah, bh = np.c_[a, np.ones(len(a))], np.c_[b, np.ones(len(b))]
 
-    def compose(x):
-        left, right = U @ rotation_from_axis_angle(x[:3]), Vt.T @ rotation_from_axis_angle(x[3:6])
-        return T2.T @ (left @ np.diag([1.0, x[6], 0.0]) @ right.T) @ T1
+    def compose(x):  # (B, 7) parameters -> (B, 3, 3) F in pixels
+        left, right = U @ _rotations(x[:, :3]), Vt.T @ _rotations(x[:, 3:6])
+        middle = np.zeros((len(x), 3, 3))
+        middle[:, 0, 0], middle[:, 1, 1] = 1.0, x[:, 6]
+        return T2.T @ (left @ middle @ np.transpose(right, (0, 2, 1))) @ T1
+
+    def sampson(F):  # (B, 3, 3) -> (B, N), epipolar.sampson_distance for a stack, inputs known valid
+        Fx, Ftx = ah @ np.transpose(F, (0, 2, 1)), bh @ F  # lines in image 2, in image 1
+        den = Fx[..., 0] ** 2 + Fx[..., 1] ** 2 + Ftx[..., 0] ** 2 + Ftx[..., 1] ** 2
+        return np.abs(np.sum(Fx * bh, axis=2)) / np.sqrt(den)
+
+    def jacobian(x):  # central differences, h_k = 1e-6 max(1, |x_k|), as numeric_jacobian
+        h = 1e-6 * np.maximum(1.0, np.abs(x))
+        shifts = np.diag(h)
+        r = sampson(compose(np.r_[x + shifts, x - shifts]))
+        return ((r[:7] - r[7:]) / (2 * h[:, None])).T
 
     fit = levenberg_marquardt(
-        lambda x: sampson_distance(compose(x), a, b), np.r_[np.zeros(6), sv[1] / sv[0]]
+        lambda x: sampson(compose(x[None]))[0], np.r_[np.zeros(6), sv[1] / sv[0]], jacobian
     )
-    return compose(fit.x)
+    return compose(fit.x[None])[0]
 
 
 def affine_epipolar_test(x1: ArrayLike, x2: ArrayLike) -> AffineEpipolarTest:

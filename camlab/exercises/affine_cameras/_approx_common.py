@@ -457,12 +457,30 @@ def match_mistake(g, camera, X0, ab_of, fix) -> str | None:
         if abs(kw["d0"]) < 1e-12:
             return False
         abs_tried = [ab_of(s.d0), ab_of(kw["d0"])] if "d0" in change else [ab_of(kw["d0"])]
+        if np.any(ab_of(1.0)) and {"R", "t"} & change.keys():  # para-perspective only
+            # the slip made in (a, b) too: x_c = R X0 + t with the slipped R or t, over the (slipped) d0
+            x_c = np.asarray(kw["R"]) @ np.asarray(s.X0, dtype=float) + np.asarray(kw["t"])
+            abs_tried.append(x_c[:2] / kw["d0"])
         return any(
             same_to_rounding(got, p_para(kw["K"], kw["R"], kw["t"], kw["d0"], ab))
             for ab in abs_tried
         )
 
     return first_mistake(COMMON_MISTAKES, s, g, shows)
+
+
+def transposed_cause(got, expected) -> str | None:
+    """A hint when ``got`` is the expected (3, 4) matrix transposed, else None."""
+    try:
+        g = np.asarray(got, dtype=float)
+    except (TypeError, ValueError):
+        return None
+    if g.shape == expected.shape[::-1] and np.allclose(g.T, expected, rtol=1e-6, atol=1e-9):
+        return (
+            f"your array is the right matrix transposed (shape {g.shape}, expected {expected.shape}): "
+            "build it from rows (np.vstack of its three rows), and drop any final .T"
+        )
+    return None
 
 
 def without_skew(K):

@@ -165,7 +165,7 @@ def estimate_affine_camera(X, uv):
 
     References
     ----------
-    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 7.3 (algorithm 7.2).
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 7.2.2 (algorithm 7.2).
     """
     Xm, um = X.mean(axis=0), uv.mean(axis=0)
     M2 = np.linalg.lstsq(X - Xm, uv - um, rcond=None)[0].T  # (2, 3): uv - um = M2 (X - Xm)

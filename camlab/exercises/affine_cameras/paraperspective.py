@@ -26,6 +26,7 @@ from ._approx_common import (
     p_para,
     principal_point_cause,
     same_to_rounding,
+    transposed_cause,
     v_flip_cause,
     what_differs,
     without_skew,
@@ -245,7 +246,7 @@ _MISTAKES = (
 
 
 def _para_diagnosis(args, got, expected) -> str:
-    problem = shape_problem(got, expected)
+    problem = transposed_cause(got, expected) or shape_problem(got, expected)
     if problem:
         return problem + ". Return the 3x4 affine camera."
     camera, X0 = args

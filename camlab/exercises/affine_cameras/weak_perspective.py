@@ -30,6 +30,7 @@ from ._approx_common import (
     principal_point_cause,
     proportional,
     same_to_rounding,
+    transposed_cause,
     v_flip_cause,
     what_differs,
     without_skew,
@@ -126,7 +127,7 @@ _MISTAKES = (
 
 
 def _approx_diagnosis(args, got, expected) -> str:
-    problem = shape_problem(got, expected)
+    problem = transposed_cause(got, expected) or shape_problem(got, expected)
     if problem:
         return problem + ". Return the 3x4 affine camera."
     camera, X0 = args

@@ -69,10 +69,12 @@ def three_cameras():
     axes[2].set_title("orthographic (m; camera x right, y down)", fontsize=9)
     axes[2].set_xlabel("x (m)", fontsize=8)
     axes[2].set_ylabel("y (m)", fontsize=8)
-    axes[2].set_xlim(-2.2, 2.2)
-    axes[2].set_ylim(1.65, -1.65)
-    axes[2].set_xticks([-2, 0, 2])
-    axes[2].set_yticks([-1, 0, 1])
+    # the scene reaches 3.14 m from its centre (a rail's end), which images at the origin: limits
+    # of +-4.4 x +-3.3 m (4:3, as the pixel panels) hold it at every view
+    axes[2].set_xlim(-4.4, 4.4)
+    axes[2].set_ylim(3.3, -3.3)
+    axes[2].set_xticks([-4, -2, 0, 2, 4])
+    axes[2].set_yticks([-3, 0, 3])
     axes[2].tick_params(labelsize=7)
     orth = model_line(axes[2], "orthographic")
     ghost = model_line(
