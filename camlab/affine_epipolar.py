@@ -185,7 +185,9 @@ def _least_sampson_fundamental(F0: np.ndarray, a: np.ndarray, b: np.ndarray) -> 
         middle[:, 0, 0], middle[:, 1, 1] = 1.0, x[:, 6]
         return T2.T @ (left @ middle @ np.transpose(right, (0, 2, 1))) @ T1
 
-    def sampson(F):  # (B, 3, 3) -> (B, N), epipolar.sampson_distance for a stack, inputs known valid
+    def sampson(
+        F,
+    ):  # (B, 3, 3) -> (B, N), epipolar.sampson_distance for a stack, inputs known valid
         Fx, Ftx = ah @ np.transpose(F, (0, 2, 1)), bh @ F  # lines in image 2, in image 1
         den = Fx[..., 0] ** 2 + Fx[..., 1] ** 2 + Ftx[..., 0] ** 2 + Ftx[..., 1] ** 2
         return np.abs(np.sum(Fx * bh, axis=2)) / np.sqrt(den)
