@@ -286,8 +286,8 @@ def _in_place_message(
     # arrays inside a tuple or a list (a pair of frames, a list of pairs) get examples of their own
     if not isinstance(args[changed[0]], np.ndarray):
         examples, new = (
-            f"`a -= black` or `a[0, 0] = 0` on one of the arrays in `{a}`",
-            "`a - black`",
+            f"`a /= a[2, 2]`, `a -= m` or `a[0, 0] = 0` on one of the arrays in `{a}`",
+            "`a / a[2, 2]`, `a - m`",
         )
         copy = "convert each array to a new one first (`a = np.asarray(a, dtype=float)`: uint16 becomes a float copy)"
     elif np.ndim(args[changed[0]]) == 1:
@@ -295,6 +295,8 @@ def _in_place_message(
             f"`{a}[1] = -{a}[1]`, `{a} += d`, `{a}.sort()`",
             f"`{a} + d`, `np.append({a}, 1.0)`",
         )
+    elif np.shape(args[changed[0]]) == (3, 3):  # a matrix: its normalisation is the usual in-place slip
+        examples, new = f"`{a} /= {a}[2, 2]`, `{a}[:, 0] = ...`, `{a} += d`", f"`{a} / {a}[2, 2]`"
     else:
         examples, new = f"`{a} *= L`, `{a}[:, 0] = ...`, `{a} += d`", f"`{a} * L`"
     if isinstance(args[changed[0]], np.ndarray):

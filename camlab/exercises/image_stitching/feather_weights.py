@@ -128,9 +128,21 @@ def _feather_offsets(shape, a: float, b: float) -> np.ndarray:
     return np.minimum(np.minimum(u + a, w - b - u), np.minimum(v + a, h - b - v))
 
 
+def _feather_exception_hint(exc: Exception, args: tuple) -> str:
+    """A broadcasting error here is a row and a column that are not: ``v`` must be an (h, 1) column."""
+    if isinstance(exc, ValueError) and "broadcast" in str(exc):
+        return (
+            "a broadcasting slip: the distances along u (a row, np.arange(w), shape (w,)) and along v must meet in "
+            "an (h, w) grid, so make v a column, np.arange(h)[:, None] (shape (h, 1)); two 1-D arrays of "
+            "lengths h and w cannot be combined."
+        )
+    return ""
+
+
 register_exercise(
     Exercise(
         name="feather_weights",
+        exception_hint=_feather_exception_hint,
         lesson="09",
         reference=st.feather_weights,
         ndarray_only=True,

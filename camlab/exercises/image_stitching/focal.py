@@ -82,6 +82,8 @@ def _focal_cases():
     tilt_after_roll = rotation_from_axis_angle([0.3, 0.0, 0.0]) @ rotation_from_axis_angle(
         [0.0, 0.0, np.pi / 4]
     )
+    # Turn 2 is given at another scale (times -3.7), as a homography from an estimator is: only the
+    # ratios of H's entries carry f, and an in-place `H /= H[2, 2]` then changes the caller's array.
     for f, (h, w), R in (
         (520.0, (660, 900), [-0.523, 0.041, -0.054]),  # a tilt, a little pan and roll
         (520.0, (660, 900), [0.05, -0.4, 0.03]),  # pan, tilt and roll
@@ -92,12 +94,8 @@ def _focal_cases():
     ):
         K = np.array([[f, 0, (w - 1) / 2], [0, f, (h - 1) / 2], [0, 0, 1]])
         R = np.asarray(R, float)
-        out.append(
-            (
-                rotation_homography(K, R if R.shape == (3, 3) else rotation_from_axis_angle(R)),
-                (h, w),
-            )
-        )
+        H = rotation_homography(K, R if R.shape == (3, 3) else rotation_from_axis_angle(R))
+        out.append((H * (-3.7 if len(out) == 1 else 1.0), (h, w)))
     return out
 
 
@@ -269,6 +267,22 @@ def _orthogonality_decides(H, shape) -> bool:
     )
 
 
+def _zero_over_zero_answers(H, shape, zz: list[str]) -> list[float]:
+    """What a student gets whose 0/0 formulas came out as 0 or inf (their own round-off), combined as usual.
+
+    A student who takes the 0/0 formula anyway divides round-off by round-off; when the numerator is an exact
+    0 and the denominator is not, that is f^2 = 0 (or inf the other way round), and the median with the
+    other formulas lands between them (300 px for a truth of 600).
+    """
+    out = []
+    for fill in (0.0, np.inf):
+        for squared in (False, True):
+            values = _focal_formulas(H, shape, squared=squared)
+            values.update(dict.fromkeys(zz, fill))
+            out += [a for a in _focal_answers(values, squared) if np.isfinite(a)]
+    return out
+
+
 def _zero_over_zero_hint(zz: list[str], got: float) -> str:
     what = "NaN" if np.isnan(got) else ("inf" if np.isinf(got) else f"{got:.6g}")
     listed = "; ".join(
@@ -412,6 +426,7 @@ def _focal_diagnosis(args, got, expected) -> str:
             not np.isfinite(g)
             or far
             or (_shows_slip(g, with_zz) and not _shows_slip(g, list(raw.values())))
+            or _shows_slip(g, _zero_over_zero_answers(H, shape, zz))
         ):
             hint = _zero_over_zero_hint(zz, g)
             if np.isnan(g) and sign_nan:

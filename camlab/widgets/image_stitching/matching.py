@@ -31,7 +31,7 @@ def feature_matches() -> Demo:
     Views 0 and 1 of the half-size set with their SIFT keypoints; each match is judged by
     the true homography (green within 2 px, red otherwise:
     :func:`camlab.fixtures.panorama_examples.correct_matches`). Every match is counted,
-    but at most about 200 are drawn (every k-th one when there are more).
+    but only about 200 are drawn: every wrong one, and every k-th right one when there are more.
 
     Returns
     -------
@@ -74,23 +74,23 @@ def feature_matches() -> Demo:
         m = ft.filter_matches(knn[(i, j)], v["ratio"], v["mutual"])
         good = pe.correct_matches(s, i, j, m.src, m.dst)
         seg = match_segments(m.src, m.dst, art["offset"])
-        show = (
-            np.arange(len(seg)) % max(1, len(seg) // 200 + 1) == 0
-        )  # draw at most ~200 lines (speed)
+        # every wrong match is drawn; the right ones are thinned to about 200 lines in all (speed, and the
+        # photos stay visible)
+        every = max(1, int(good.sum()) // max(1, 200 - int((~good).sum())) + 1)
+        show = np.cumsum(good) % every == 1 if every > 1 else good
         art["good"].set_segments(seg[good & show])
-        art["bad"].set_segments(seg[~good & show])
+        art["bad"].set_segments(seg[~good])
         n, nbad = len(good), int((~good).sum())
-        every = max(1, len(seg) // 200 + 1)
         title.set_text(
             f"views {i} and {j}, r = {v['ratio']:.2f}: {n} matches, green = confirmed by the true homography, "
             f"red = wrong ({nbad})\nyellow circles: SIFT keypoints, radius ~ the scale they were found at"
-            + (f"; one match in {every} drawn" if every > 1 else "")
+            + (f"; one green match in {every} drawn, every red one" if every > 1 else "")
         )
         state.update(matches=n, wrong=nbad, precision=(n - nbad) / n if n else float("nan"))
         readout.value = monospace(
             f"keypoints: {len(feats[i].points)} / {len(feats[j].points)}\n"
             f"matches kept: {n}\nwrong (red): {nbad} ({100 * nbad / max(n, 1):.0f}%)"
-            + ("\n(at most 200 lines drawn)" if n > 200 else "")
+            + (f"\n(one right match in {every} drawn; every wrong one)" if every > 1 else "")
         )
 
     controls = {
@@ -145,11 +145,11 @@ def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
             ax,
             np.eye(3),
             imgs[i].shape,
-            color=palette.YELLOW,
+            color="black",
             lw=1.5,
             ls="--",
             label="RANSAC",
-            path_effects=palette.halo(1.5, "black"),  # yellow on a white halo is 1.07:1
+            path_effects=palette.halo(1.5, "white"),  # black dashes on white: yellow is kept for keypoints
         )
     )
     h, w = imgs[j].shape[:2]
@@ -175,7 +175,7 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
     threshold line, registered with ``view`` in that order and returned.
     """
     ax_e.set(
-        xlabel="transfer error per match (px, log scale)\nhatched end bars: < 0.02 px, > 300 px",
+        xlabel="symmetric transfer error per match: RMS of the errors both ways\n(px, log scale; hatched end bars: < 0.02 px, > 300 px)",
         ylabel="number of matches\n(relative to the tallest bar)",
         xscale="log",
         xlim=(
