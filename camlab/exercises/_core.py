@@ -295,7 +295,10 @@ def _in_place_message(
             f"`{a}[1] = -{a}[1]`, `{a} += d`, `{a}.sort()`",
             f"`{a} + d`, `np.append({a}, 1.0)`",
         )
-    elif np.shape(args[changed[0]]) == (3, 3):  # a matrix: its normalisation is the usual in-place slip
+    elif np.shape(args[changed[0]]) == (
+        3,
+        3,
+    ):  # a matrix: its normalisation is the usual in-place slip
         examples, new = f"`{a} /= {a}[2, 2]`, `{a}[:, 0] = ...`, `{a} += d`", f"`{a} / {a}[2, 2]`"
     else:
         examples, new = f"`{a} *= L`, `{a}[:, 0] = ...`, `{a} += d`", f"`{a} * L`"

@@ -149,7 +149,9 @@ def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
             lw=1.5,
             ls="--",
             label="RANSAC",
-            path_effects=palette.halo(1.5, "white"),  # black dashes on white: yellow is kept for keypoints
+            path_effects=palette.halo(
+                1.5, "white"
+            ),  # black dashes on white: yellow is kept for keypoints
         )
     )
     h, w = imgs[j].shape[:2]
