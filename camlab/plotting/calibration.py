@@ -278,8 +278,7 @@ def plot_extrinsics(ax, result: CalibrationResult, size: float | None = None):
         colour = palette.SERIES[v % len(palette.SERIES)]
         ax.plot(*b[ring].T, color=colour, lw=1.2)
         ax.plot(*b[0], "o", color=colour, ms=3)  # the first corner: how the board is turned
-        centre = b.mean(axis=0)
-        ax.text(*centre, str(v), color=colour, fontsize=7, ha="center", va="center")
+        ax.text(*b[0], f" {v}", color=colour, fontsize=8, ha="left", va="bottom")  # at its first corner
     depth = float(np.min(boards[:, :, 2]))
     cam = Camera(K=result.K, R=R_CAM_FROM_VIEW, t=np.zeros(3), image_size=result.image_size)
     CameraArtist(ax, cam, size=size or depth / 3, color=palette.GREY)

@@ -413,7 +413,7 @@ def undistort_alpha(
     )
     view.animate(edge, kept)
     for a in (ax0, ax1):  # below the photos, off the data
-        a.legend(loc="upper center", bbox_to_anchor=(0.5, -0.02), fontsize=8, frameon=False)
+        a.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), fontsize=8, frameon=False)
     t = np.linspace(0, 1, 40)
     border = np.concatenate(
         [
