@@ -30,8 +30,10 @@ the cost with the decrease the linear model predicted, the *gain ratio*
           L(0) - L(\delta) = -\tfrac12 \delta^\top (2 g + A \delta)
           = \tfrac12 \delta^\top (\mu D \delta - g).
 
-If :math:`\rho > 0` the step is accepted and the model was trustworthy, so damping shrinks
-smoothly: :math:`\mu \leftarrow \mu \max(\tfrac13, 1 - (2\rho - 1)^3)`,
+If :math:`\rho > 0` the step is accepted and damping is rescaled smoothly:
+:math:`\mu \leftarrow \mu \max(\tfrac13, 1 - (2\rho - 1)^3)`, a factor in :math:`[\tfrac13, 2)` that
+shrinks :math:`\mu` when the model predicted well (:math:`\rho > \tfrac12`) and grows it when
+it did not (:math:`0 < \rho < \tfrac12`);
 :math:`\nu \leftarrow 2`. If :math:`\rho \le 0` the step is rejected and damping grows
 ever faster: :math:`\mu \leftarrow \mu \nu`, :math:`\nu \leftarrow 2 \nu`. The start is
 :math:`\mu_0 = \tau` (default :math:`10^{-3}`): relative to D, so nearly Gauss-Newton.

@@ -63,6 +63,16 @@ def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | N
     not_real = _not_real_numbers(got, kind, wanted)
     if not_real:
         return not_real
+    if (
+        isinstance(got, tuple)
+        and len(got) > 1
+        and isinstance(expected, np.ndarray)
+        and any(isinstance(x, np.ndarray) and x.shape == expected.shape for x in got)
+    ):
+        return (
+            f"you returned {len(got)} values (`return a, b` makes a tuple); {wanted}, "
+            "only the answer itself"
+        )
     try:
         np.asarray(got, dtype=float)
     except (TypeError, ValueError):

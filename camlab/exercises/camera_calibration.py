@@ -6,7 +6,7 @@ import numpy as np
 
 from .. import calibration, camera, optimise
 from ..camera import rotation_from_axis_angle
-from ._answers import same_array, shape_problem
+from ._answers import SameArray, Tolerance, same_array, shape_problem
 from ._core import Exercise, register_exercise
 
 # ------------------------------------------------------------------ V from one homography
@@ -20,9 +20,33 @@ def _zhang_cases():
         r = rng.normal(0, 0.4, 3)
         R = rotation_from_axis_angle(r)
         H = K @ np.column_stack([R[:, 0], R[:, 1], [0.02, -0.01, 0.5]])
-        out.append((H / H[2, 2],))
-    out.append((np.array([[2.0, 0.3, 5.0], [-0.1, 1.5, 2.0], [0.01, 0.02, 1.0]]),))
+        out.append((H,))  # H[2, 2] = 0.5 t_z-ish, not 1: an in-place H /= H[2, 2] changes the caller's H
+    out.append((np.array([[2.0, 0.3, 5.0], [-0.1, 1.5, 2.0], [0.01, 0.02, 3.0]]),))
     return out
+
+
+def _common_scale(got, expected) -> float:
+    """The factor s minimising ||got - s expected|| (0 when either is 0)."""
+    g, e = np.ravel(np.asarray(got, dtype=float)), np.ravel(np.asarray(expected, dtype=float))
+    return float(g @ e / (e @ e)) if e @ e > 0 else 0.0
+
+
+class _SameUpToScale(SameArray):
+    """Same (2, 6) rows up to one common non-zero factor: V b = 0 does not care how H was scaled.
+
+    A student who rescales H (H / H[2, 2], H / ||H||) first returns the right rows times
+    s**2; that is as good for the null vector b, so it passes.
+    """
+
+    def __call__(self, got, expected) -> bool:
+        try:
+            g = np.asarray(got, dtype=float)
+        except (TypeError, ValueError):
+            return False
+        if g.shape != np.shape(expected) or not np.isfinite(g).all():
+            return False
+        s = _common_scale(g, expected)
+        return s != 0 and super().__call__(g / s, expected)
 
 
 def _zhang_diagnosis(args, got, expected) -> str:
@@ -31,8 +55,22 @@ def _zhang_diagnosis(args, got, expected) -> str:
         return problem + ". Return a (2, 6) array: the rows v12 and v11 - v22."
     (H,) = args
     g = np.asarray(got, dtype=float)
+    s0 = _common_scale(g[0], expected[0])
+    if s0 != 0 and np.allclose(g[1] / s0, -expected[1], rtol=1e-6, atol=1e-12 * np.abs(expected).max()):
+        return "the second row has the wrong sign: it is v11 - v22 (h1^T B h1 - h2^T B h2), not v22 - v11"
     if np.allclose(g, calibration.zhang_constraints(H.T)):
         return "you used the rows of H; h_i is the i-th column, H[:, i]"
+    e = np.asarray(expected, dtype=float)
+    for order, entries in (([0, 1, 2, 4, 3, 5], "B13 and B23"), ([0, 2, 1, 3, 4, 5], "B12 and B22")):
+        if _SameUpToScale(Tolerance(1e-6, 1e-12))(g[:, order], e):
+            return f"the entries for {entries} are swapped: b = (B11, B12, B22, B13, B23, B33), in that order"
+    single = [0, 2, 5]
+    s = _common_scale(g[:, single], e[:, single])
+    if s != 0 and np.allclose(g[:, single] / s, e[:, single], rtol=1e-6, atol=1e-12 * np.abs(e).max()):
+        return (
+            "the entries for B11, B22, B33 are right, those for B12, B13, B23 are not: each of these appears twice "
+            "in h_i^T B h_j (B is symmetric), so its entry is a sum of two products, e.g. hi1 hj2 + hi2 hj1"
+        )
     one_based = np.stack(
         [calibration.zhang_v(H, 1, 2), calibration.zhang_v(H, 1, 1) - calibration.zhang_v(H, 2, 2)]
     )
@@ -94,8 +132,9 @@ register_exercise(
         lesson="08",
         reference=calibration.zhang_constraints,
         cases=_zhang_cases,
-        compare=same_array(rtol=1e-7, atol=1e-12),
+        compare=_SameUpToScale(Tolerance(rtol=1e-7, atol=1e-12)),
         diagnose=_zhang_diagnosis,
+        ndarray_only=True,
         wrong_variants=(
             (lambda H: calibration.zhang_constraints(H.T), "rows of H"),
             (
@@ -115,6 +154,21 @@ register_exercise(
                     ]
                 ),
                 "numpy counts from 0",
+            ),
+            (
+                lambda H: calibration.zhang_constraints(H) * np.array([[1.0], [-1.0]]),
+                "wrong sign",
+            ),
+            (
+                lambda H: np.stack(
+                    [
+                        np.array([H[0, i] * H[0, j], H[0, i] * H[1, j], H[1, i] * H[1, j],
+                                  H[2, i] * H[0, j], H[2, i] * H[1, j], H[2, i] * H[2, j]])
+                        for i, j in [(0, 1)]
+                    ]
+                    + [calibration.zhang_v(H, 0, 0) - calibration.zhang_v(H, 1, 1)]
+                ),
+                "appears twice",
             ),
         ),
         teaching=zhang_constraints,
@@ -157,6 +211,17 @@ def _lm_diagnosis(args, got, expected) -> str:
     if np.allclose(g, np.linalg.solve(A, -grad)):
         return "that is the Gauss-Newton step: add the damping mu * diag(J^T J) to J^T J"
     return "solve (J^T J + mu diag(J^T J)) delta = -J^T r with np.linalg.solve"
+
+
+def _lm_gauss_newton_note(run) -> str:
+    """The prompt's question, answered with the student's own function: is mu = 0 the Gauss-Newton step?"""
+    J, r, _ = _lm_cases()[0]
+    gauss_newton = np.linalg.lstsq(J, -r, rcond=None)[0]  # minimises ||J delta + r||: Gauss-Newton
+    gap = np.max(np.abs(np.asarray(run(J, r, 0.0), dtype=float) - gauss_newton))
+    return (
+        f"  mu = 0: your step equals the Gauss-Newton step np.linalg.lstsq(J, -r) to {gap:.0e}: "
+        "with no damping, LM is Gauss-Newton"
+    )
 
 
 def lm_step(J, r, mu):
@@ -212,6 +277,7 @@ register_exercise(
             (lambda J, r, mu: np.linalg.solve((1 + mu) * (J.T @ J), -J.T @ r), "the whole matrix"),
         ),
         teaching=lm_step,
+        success_note=_lm_gauss_newton_note,
     )
 )
 
@@ -234,10 +300,32 @@ def _rotation_diagnosis(args, got, expected) -> str:
     if problem:
         return problem
     g = np.asarray(got, dtype=float)
+    (M,) = args
+    U, _, Vt = np.linalg.svd(M)
+    for candidate in (U @ Vt.T, U @ np.diag([1, 1, np.sign(np.linalg.det(U @ Vt.T))]) @ Vt.T):
+        if np.allclose(g, candidate, atol=1e-8):
+            return (
+                "np.linalg.svd returns V^T as its third output (Vt), not V: U V^T is U @ Vt; "
+                "U @ Vt.T is U V"
+            )
     if not np.allclose(g.T @ g, np.eye(3), atol=1e-8):
         return "your matrix is not orthonormal (R^T R != I): use the SVD M = U S V^T and drop S"
     if np.linalg.det(g) < 0:
         return "det R = -1, a reflection: flip the sign of the last column of U when det(U V^T) < 0"
+    if np.linalg.det(U @ Vt) < 0:
+        if np.allclose(g, -(U @ Vt), atol=1e-8):
+            return (
+                "you negated the whole matrix: -U V^T has det +1 but flips all three directions, far from M; "
+                "flip only the direction of the smallest singular value, U[:, -1] *= -1"
+            )
+        for k in (0, 1):
+            flip = np.ones(3)
+            flip[k] = -1
+            if np.allclose(g, U @ np.diag(flip) @ Vt, atol=1e-8):
+                return (
+                    f"you flipped column {k} of U; flip the last one, U[:, -1], the direction of the smallest "
+                    "singular value: flipping it changes M the least"
+                )
     return "a rotation, but not the closest one to M: take U V^T from the SVD of M"
 
 
@@ -283,7 +371,11 @@ register_exercise(
             (lambda M: (lambda U, S, Vt: U @ Vt)(*np.linalg.svd(M)), "det R = -1"),
             (lambda M: M / np.linalg.norm(M, axis=0), "not orthonormal"),
             (_gram_schmidt, "not the closest"),
+            (lambda M: (lambda U, S, Vt: U @ Vt.T)(*np.linalg.svd(M)), "third output"),
+            (lambda M: (lambda U, S, Vt: -(U @ Vt) if np.linalg.det(U @ Vt) < 0 else U @ Vt)(*np.linalg.svd(M)),
+             "negated the whole matrix"),
         ),
         teaching=nearest_rotation,
+        ndarray_only=True,
     )
 )

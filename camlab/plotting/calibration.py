@@ -80,18 +80,24 @@ def plot_per_view_errors(ax, result: CalibrationResult, highlight_ratio: float =
     ]
     bars = ax.bar(np.arange(len(err)), err, color=colors)
     ax.axhline(result.rms, color="k", ls="--", lw=1, label=f"overall rms {result.rms:.2f} px")
-    ax.set(xlabel="view", ylabel="rms error (px)", title="Error per view")
+    ax.set(xlabel="view", ylabel="rms error (px)")
+    ax.set_title("Error per view", fontsize=10)
     ax.set_xticks(np.arange(len(err)))
     ax.tick_params(axis="x", labelsize=7)
     ax.legend(fontsize=8, loc="upper right")
     return bars
 
 
-def plot_residual_field(ax, result: CalibrationResult, scale: float | None = None):
+def plot_residual_field(
+    ax, result: CalibrationResult, scale: float | None = None, cap: float = 60.0
+):
     """Every corner's residual (observed - reprojected) as an arrow at its position, magnified.
 
     Random arrows mean noise; a pattern (swirls, arrows pointing out at the edges) means
-    the model is missing something (more distortion terms, a bad view).
+    the model is missing something (more distortion terms, a bad view). All arrows are one
+    colour (:data:`palette.MAGENTA`, the lesson's residual colour); an arrow that the
+    magnification would draw longer than ``cap`` pixels is drawn ``cap`` long in black, so one
+    spoiled view cannot cross the frame and bury the others.
 
     Parameters
     ----------
@@ -101,28 +107,37 @@ def plot_residual_field(ax, result: CalibrationResult, scale: float | None = Non
         A calibration (:func:`camlab.calibration.calibrate_camera`).
     scale : float or None
         Magnification of the arrows; None makes the 90th percentile residual 25 px long.
+    cap : float
+        The longest arrow drawn, image pixels; longer ones are shortened to it and drawn black.
 
     Returns
     -------
     matplotlib.quiver.Quiver
-        The arrows, coloured by residual length (px).
+        The arrows, in image pixels (the residuals times ``scale``, capped at ``cap``).
     """
     pts = np.concatenate(result.image_points)
     res = np.concatenate(result.residuals)
     if scale is None:
         typical = np.percentile(np.linalg.norm(res, axis=1), 90)
         scale = 25.0 / max(typical, 1e-9)
-    image_frame(ax, result.image_size, f"Residuals x{scale:.0f}")
+    arrows = res * scale
+    length = np.linalg.norm(arrows, axis=1)
+    capped = length > cap
+    arrows[capped] *= (cap / length[capped])[:, None]
+    title = f"Residuals ×{scale:.0f}"
+    if capped.any():
+        title += f" (black: {capped.sum()} capped at {cap:.0f} px)"
+    image_frame(ax, result.image_size, title)
+    colours = np.where(capped[:, None], np.array([[0.0, 0.0, 0.0, 1.0]]), np.array([[1.0, 0.0, 1.0, 1.0]]))
     q = ax.quiver(
         pts[:, 0],
         pts[:, 1],
-        res[:, 0] * scale,
-        res[:, 1] * scale,
-        np.linalg.norm(res, axis=1),
+        arrows[:, 0],
+        arrows[:, 1],
+        color=colours,
         angles="xy",
         scale_units="xy",
         scale=1,
-        cmap="viridis",
         width=0.004,
     )
     return q
@@ -212,7 +227,8 @@ def plot_cost_history(ax, result: CalibrationResult):
     (line,) = ax.semilogy(
         np.arange(len(result.rms_history)), np.maximum(result.rms_history, 1e-16), "o-", ms=3
     )
-    ax.set(xlabel="LM iteration", ylabel="rms (px)", title="Levenberg-Marquardt cost")
+    ax.set(xlabel="LM iteration", ylabel="rms (px)")
+    ax.set_title("Levenberg-Marquardt: rms per iteration", fontsize=10)
     ax.grid(True, which="both", color="0.92")
     return line
 
@@ -226,7 +242,8 @@ def plot_extrinsics(ax, result: CalibrationResult, size: float | None = None):
     r"""The calibration's extrinsics, camera-centred: every view's board where it stood in front of the camera.
 
     Each view's board corners in the camera frame, :math:`X_{cam} = R_v X_{board} + t_v`, are drawn as
-    the board's outline with its view number; the camera sits at the origin, drawn as a frustum
+    the board's outline with its view number (0-based, as in the per-view plots), the colours
+    repeating every six views; the camera sits at the origin, drawn as a frustum
     with its x (right), y (down), z (forward) axes. The axes show the camera frame with "up" up
     (matplotlib's Z is :math:`-y`), so the picture reads like Bouguet's and MATLAB's extrinsics view.
 
@@ -265,11 +282,12 @@ def plot_extrinsics(ax, result: CalibrationResult, size: float | None = None):
         colour = palette.SERIES[v % len(palette.SERIES)]
         ax.plot(*b[ring].T, color=colour, lw=1.2)
         ax.plot(*b[0], "o", color=colour, ms=3)  # the first corner: how the board is turned
+        ax.text(*b[0], f" {v}", color=colour, fontsize=8, ha="left", va="bottom")  # at its first corner
     depth = float(np.min(boards[:, :, 2]))
     cam = Camera(K=result.K, R=R_CAM_FROM_VIEW, t=np.zeros(3), image_size=result.image_size)
     CameraArtist(ax, cam, size=size or depth / 3, color=palette.GREY)
     set_equal_aspect(ax, [view.reshape(-1, 3), np.zeros((1, 3))], tight=True)
-    ax.set(xlabel="x (right)", ylabel="z (forward)", zlabel="−y (up)")
+    ax.set(xlabel="x (right, m)", ylabel="z (forward, m)", zlabel="−y (up, m)")
     return boards
 
 

@@ -236,7 +236,7 @@ def _inspector_figure(view: FigureView, res) -> SimpleNamespace:
         [],
         [],
         "+",
-        color=palette.GREEN,
+        color=palette.TAB_RED,
         ms=8,
         mew=1.5,
         label="detected",
@@ -247,12 +247,14 @@ def _inspector_figure(view: FigureView, res) -> SimpleNamespace:
         [],
         "o",
         mfc="none",
-        color=palette.RED,
+        color=palette.TAB_BLUE,
         ms=6,
         label="reprojected",
         path_effects=palette.halo(),
     )
     view.animate(det, rep)
+    # the legend's entry for the arrows (a quiver has no legend handle of its own)
+    ax.plot([], [], "-", color=palette.MAGENTA, lw=1.5, label="residual, from o to +")
     n = len(res.object_points[0])
     arrows = view.animate(
         ax.quiver(
@@ -405,9 +407,13 @@ def undistort_alpha(
     (edge,) = ax1.plot(
         [], [], color=palette.ORANGE, lw=1.5, label="photo's border", path_effects=palette.halo(1.5)
     )
-    view.animate(edge)
-    ax1.legend(loc="lower right", fontsize=8)
-    view.animate(ax1.get_legend())  # over the animated photo, or it would hide the legend
+    (kept,) = ax0.plot(
+        [], [], "--", color=palette.ORANGE, lw=1.5, label="what the output shows",
+        path_effects=palette.halo(1.5),
+    )
+    view.animate(edge, kept)
+    for a in (ax0, ax1):  # below the photos, off the data
+        a.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), fontsize=8, frameon=False)
     t = np.linspace(0, 1, 40)
     border = np.concatenate(
         [
@@ -417,7 +423,7 @@ def undistort_alpha(
             np.column_stack([0 * t, (1 - t) * (h - 1)]),
         ]
     )
-    from ..distortion import undistort_pixels
+    from ..distortion import distort_pixels, undistort_pixels
 
     border_ideal = undistort_pixels(border, K, dist)  # ideal pixels with the old K
     readout = W.HTML()
@@ -427,6 +433,9 @@ def undistort_alpha(
         im.set_data(out.image)
         b = (border_ideal - K[:2, 2]) / np.diag(K)[:2] * np.diag(out.K)[:2] + out.K[:2, 2]
         edge.set_data(b[:, 0], b[:, 1])
+        # the output's frame, traced back into the photo: outside it, photo pixels are lost
+        seen = distort_pixels((border - out.K[:2, 2]) / np.diag(out.K)[:2] * np.diag(K)[:2] + K[:2, 2], K, dist)
+        kept.set_data(seen[:, 0], seen[:, 1])
         ax1.set_title(
             f"undistorted, α = {v['alpha']:.2f}: fx {out.K[0, 0]:.0f} (photo {K[0, 0]:.0f}), "
             f"{100 * out.black_fraction:.0f}% black, {100 * out.lost_fraction:.0f}% lost",
