@@ -576,7 +576,7 @@ register_exercise(
         wrong_variants=(
             (lambda s, d: hg.estimate_homography(d, s), "inverse"),
             (lambda s, d: hg.estimate_homography(s, d).T, "transposed"),
-            (lambda s, d: _dlt_unnormalised(s, d, pick=0), "*largest* singular value"),
+            (lambda s, d: _dlt_unnormalised(s, d, pick=0), "sorts the singular values"),
             (_dlt_unnormalised, "Normalise each point set"),
             (_dlt_not_undone, "not undone"),
             (_dlt_undone_wrong_order, "wrong way round"),
@@ -748,7 +748,7 @@ register_exercise(
                 lambda H, p: (lambda Y: Y[:, :2] / np.abs(Y[:, 2:]))(
                     np.column_stack([p, np.ones(len(p))]) @ np.asarray(H).T
                 ),
-                "you divided by |w|",
+                "took the sign away",
             ),
             (lambda H, p: map_points(H, p).tolist(), "you returned a list"),
             (lambda H, p: map_points(H, np.asarray(p) + 1.0), "counting pixels from 1"),
@@ -920,12 +920,12 @@ register_exercise(
         diagnose=_samples_diagnosis,
         success_note=_samples_note,
         wrong_variants=(
-            (lambda p, w: np.log(1 - p) / np.log(1 - w**4), "round *up*"),
+            (lambda p, w: np.log(1 - p) / np.log(1 - w**4), "a fraction of a sample"),
             (lambda p, w: round(np.log(1 - p) / np.log(1 - w**4)), "rounded down"),
             (lambda p, w: int(np.log(1 - p) / np.log(1 - w**4)), "rounded down"),
             (lambda p, w: int(np.ceil(np.log(1 - p) / np.log(1 - w))), "probability w^4"),
             (lambda p, w: int(np.ceil(np.log(1 - p) / np.log(1 - w**2))), "sample size is not 4"),
-            (lambda p, w: int(np.ceil(np.log(1 - p) / np.log(1 - (1 - w) ** 4))), "*inlier* ratio"),
+            (lambda p, w: int(np.ceil(np.log(1 - p) / np.log(1 - (1 - w) ** 4))), "epsilon = 1 - w"),
             (lambda p, w: int(np.ceil(np.log(p) / np.log(1 - w**4))), "log(p)"),
             (lambda p, w: int(np.ceil(np.log(1 - p) / np.log(w**4))), "log(w^4)"),
             (lambda p, w: int(np.ceil(np.log10(1 - p) / np.log(1 - w**4))), "different bases"),

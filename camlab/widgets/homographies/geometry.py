@@ -386,7 +386,7 @@ def drag_homography() -> Demo:
     )
     ax_s.plot(*line_pts.T, "o-", color=palette.BROWN, ms=5, lw=1.5, path_effects=palette.halo(1.5))
     # across the line, clear of its halo; A and D sit near the frame, D's label inside the picture
-    offsets = ((7, -3), (6, 8), (6, 8), (-16, 6))
+    offsets = ((7, -3), (6, 8), (-12, -14), (-18, -2))
     for name, p, off in zip("ABCD", line_pts, offsets, strict=True):
         ax_s.annotate(
             name,
