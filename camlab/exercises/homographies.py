@@ -8,8 +8,11 @@ import numpy as np
 
 from .. import homography as hg
 from ..projective import hartley_normalise, map_points
+from ..robust import required_iterations
 from ._answers import same_array, same_up_to_scale, shape_problem
 from ._core import Exercise, Mistake, first_mistake, register_exercise
+from ._numbers import is_number as _is_number
+from ._numbers import not_one_number, same_number
 
 # A patch far from the origin (like a crop of a large photo) with 1 px of noise: there the
 # unnormalised DLT is off by tens of pixels, while any Hartley-style normalisation is off by
@@ -99,6 +102,31 @@ _FAR_SLIPS = (
         "of units from 0 instead of sqrt(2). Use s = sqrt(2) / (mean distance to the centroid).",
     ),
     (
+        lambda p: np.diag([np.sqrt(2) / _mean_distance(p), np.sqrt(2) / _mean_distance(p), 1.0]),
+        "your T scales but does not move the centroid to 0 (its third column is (0, 0, 1)): scaled about "
+        "the origin, points about 3200 px out end up about 22 units from 0 with a spread of only about 1.4, "
+        "so the columns of A still range from 1 to about 300 and the noise is amplified. Put the "
+        "translation in: T = [[s, 0, -s cx], [0, s, -s cy], [0, 0, 1]].",
+    ),
+    (
+        lambda p: np.array(
+            [
+                [np.sqrt(2) / _mean_distance(p), 0, -p.mean(axis=0)[0]],
+                [0, np.sqrt(2) / _mean_distance(p), -p.mean(axis=0)[1]],
+                [0, 0, 1.0],
+            ]
+        ),
+        "your T's translation is -c, not -s c: T x = s x - c moves the points to s x - c, thousands of "
+        "units from 0, not to the centroid. T first subtracts the centroid, then scales, so its last column "
+        "is (-s cx, -s cy, 1).",
+    ),
+    (
+        lambda p: np.array([[2 / 640, 0, -1.0], [0, 2 / 480, -1.0], [0, 0, 1.0]]),
+        "your T is fixed for a 640 x 480 image, but these points lie 2000 to 2600 px from the origin, "
+        "outside any such image, so after it they sit near (6, 8), not around 0. Build T from the points "
+        "themselves: their centroid to 0, their mean distance to sqrt(2).",
+    ),
+    (
         lambda p: np.eye(3),
         "you did not normalise: the columns of A range from 1 to u u', several million here, so A is badly "
         "conditioned. Exact data hides it, noise does not. Normalise each point set first (Hartley, "
@@ -129,11 +157,20 @@ def _far_cause(src, dst, g) -> str:
     closest, hint = min(slips, key=lambda pair: pair[0])
     if closest < 0.25 * off:
         return hint
+    if len(src) > 4:
+        four = _patch_distance(g, _dlt_with(src[:4], dst[:4], lambda p: hartley_normalise(p).T))
+        if four < 0.25 * off:
+            return (
+                f"your H fits only the first 4 of the {len(src)} pairs (a loop over range(4)?): four pairs "
+                f"fix H exactly, noise and all. Stack two rows for *every* pair, A of shape (2N, 9), so "
+                f"the least-squares solution averages the noise out."
+            )
     return (
-        "more than the noise explains (a normalised DLT is about 1.4 px off at the median). The usual "
-        "causes: centring without scaling (the columns of A then still range up to ~1e5), the scale "
-        "inverted (s must be sqrt(2) / mean distance, not its inverse), or no normalisation at all. "
-        "Give each point set its own T: centroid to 0, mean distance sqrt(2)."
+        "more than the noise explains (a normalised DLT is about 1.4 px off at the median). Check how "
+        "you build each T: it must move the centroid to 0 and then scale, "
+        "T = [[s, 0, -s cx], [0, s, -s cy], [0, 0, 1]] with s = sqrt(2) / (mean distance to the "
+        "centroid), built from the point set itself (not from an image size), one for src and one for "
+        "dst; and use all N pairs."
     )
 
 
@@ -167,6 +204,48 @@ def _dlt_follow_up(run) -> str:
         f"(a normalised DLT: about 1.4 px at the median, and never above {FAR_WORST_PX:g} px; test input 5 "
         f"alone was a lucky draw).\n  likely cause: {cause}"
     )
+
+
+def _one_set_only(run) -> str:
+    """A note for a DLT that passes although it normalises only one point set ("" otherwise)."""
+    src, dst = next(iter(_far_draws()))
+    g = np.asarray(run(src.copy(), dst.copy()), dtype=float)
+    for T in (lambda p: hartley_normalise(p).T, _normalisers_rms):
+        for which, only in (("src", (T, lambda p: np.eye(3))), ("dst", (lambda p: np.eye(3), T))):
+            if same_up_to_scale(g, _dlt_with_each(src, dst, *only), rtol=1e-6) and not same_up_to_scale(
+                g, _dlt_with(src, dst, T), rtol=1e-6
+            ):
+                return (
+                    f"Note: you normalised only {which}. That passes on this patch, but A still mixes the "
+                    f"other set's raw pixels (thousands) with entries of order 1; Hartley's recipe gives "
+                    f"each set its own T (H&Z §4.4.4)."
+                )
+    return ""
+
+
+def _normalisers_rms(p):
+    c = p.mean(axis=0)
+    k = np.sqrt(2 / np.mean(np.sum((p - c) ** 2, axis=1)))
+    return np.array([[k, 0, -k * c[0]], [0, k, -k * c[1]], [0, 0, 1]])
+
+
+def _dlt_with_each(src, dst, normalise_src, normalise_dst):
+    """The DLT with a different normaliser for each set, undone (H = T_dst^-1 H_n T_src)."""
+    Ts, Td = normalise_src(src), normalise_dst(dst)
+    sn = (np.column_stack([src, np.ones(len(src))]) @ Ts.T)[:, :2]
+    dn = (np.column_stack([dst, np.ones(len(dst))]) @ Td.T)[:, :2]
+    return np.linalg.inv(Td) @ np.linalg.svd(_dlt_rows(sn, dn))[2][-1].reshape(3, 3) @ Ts
+
+
+def _dlt_success_note(run) -> str:
+    """What a passing DLT did on the follow-up's draws, and a note if it normalised only one set."""
+    offs = [_far_error(np.asarray(run(s.copy(), d.copy()), dtype=float)) for s, d in _far_draws()]
+    line = (
+        f"On the {FAR_DRAWS} noisy draws of the far patch your H is {np.median(offs):.2f} px off the truth "
+        f"at the median (the worst grid point of each), {max(offs):.2f} px at worst."
+    )
+    note = _one_set_only(run)
+    return line + ("\n" + note if note else "")
 
 
 def _noisy_case(expected) -> bool:
@@ -297,6 +376,26 @@ _UNDO_MISTAKES = (
         "factor must apply the *source's* normalisation. H = inv(T_dst) @ H_n @ T_src.",
     ),
     Mistake(
+        "T transposed in the undo",
+        lambda s: np.linalg.inv(s.Td.T) @ s.Hn @ s.Ts.T,
+        "you undid the normalisation with T transposed (inv(T_dst.T) @ H_n @ T_src.T): the translation "
+        "of T sits in its last column, so T.T puts it in the bottom row and makes T projective. With "
+        "points as rows you normalise by X @ T.T, but the undo is a product of the matrices themselves: "
+        "H = inv(T_dst) @ H_n @ T_src.",
+    ),
+    Mistake(
+        "elementwise products",
+        lambda s: np.linalg.inv(s.Td) * s.Hn * s.Ts,
+        "you multiplied the matrices element by element (inv(T_dst) * H_n * T_src): on numpy arrays * "
+        "is the entrywise product. Use the matrix product: H = inv(T_dst) @ H_n @ T_src.",
+    ),
+    Mistake(
+        "H_n transposed",
+        lambda s: np.linalg.inv(s.Td) @ s.Hn.T @ s.Ts,
+        "your H_n is transposed (the normalisation itself is undone right): h lists H row by row, so "
+        "reshape it with h.reshape(3, 3), not order='F' or .T, before undoing the normalisation.",
+    ),
+    Mistake(
         "destination's normalisation only undone",
         lambda s: np.linalg.inv(s.Td) @ s.Hn,
         "you undid only the destination's normalisation (inv(T_dst) @ H_n): the result still "
@@ -328,6 +427,13 @@ def _normalisation_slip(g, src, dst, expected) -> str:
         )
         if cause:
             return cause
+    for largest in (_dlt_unnormalised(src, dst, pick=0), _dlt_normalised_largest(src, dst)):
+        if same_up_to_scale(g, largest, rtol=1e-5):
+            return (
+                "you took the singular vector of the *largest* singular value, Vt[0]. np.linalg.svd sorts "
+                "the singular values from large to small, so the one of the smallest, the h that makes "
+                "|A h| least, is the last row: Vt[-1]."
+            )
     for column in (_dlt_unnormalised(src, dst, column=True), _dlt_normalised_column(src, dst)):
         if same_up_to_scale(g, column, rtol=1e-5):
             return (
@@ -367,6 +473,14 @@ def _dlt_normalised_parts(src, dst, column=False):
     return Ts, Td, (Vt[:, -1] if column else Vt[-1]).reshape(3, 3)
 
 
+def _dlt_normalised_largest(src, dst):
+    src, dst = np.asarray(src, dtype=float), np.asarray(dst, dtype=float)
+    Ts, Td = hartley_normalise(src).T, hartley_normalise(dst).T
+    sn = (np.column_stack([src, np.ones(len(src))]) @ Ts.T)[:, :2]
+    dn = (np.column_stack([dst, np.ones(len(dst))]) @ Td.T)[:, :2]
+    return np.linalg.inv(Td) @ np.linalg.svd(_dlt_rows(sn, dn))[2][0].reshape(3, 3) @ Ts
+
+
 def _dlt_normalised_column(src, dst):
     Ts, Td, Hn = _dlt_normalised_parts(src, dst, column=True)
     return np.linalg.inv(Td) @ Hn @ Ts
@@ -402,6 +516,17 @@ def _dlt_normalised_variant(src, dst, slip):
         dn = dn * [-1.0, 1.0]  # +u' x^T in the second row is the DLT of (-u', v')
     Hn = np.linalg.svd(_dlt_rows(sn, dn))[2][-1].reshape(3, 3)
     return np.linalg.inv(Ts if slip == "src both" else Td) @ Hn @ Ts
+
+
+def _undo_variant(src, dst, name):
+    """The normalised DLT undone by the row ``name`` of _UNDO_MISTAKES (a student's wrong answer)."""
+    src, dst = np.asarray(src, dtype=float), np.asarray(dst, dtype=float)
+    Ts, Td = hartley_normalise(src).T, hartley_normalise(dst).T
+    sn = (np.column_stack([src, np.ones(len(src))]) @ Ts.T)[:, :2]
+    dn = (np.column_stack([dst, np.ones(len(dst))]) @ Td.T)[:, :2]
+    Hn = np.linalg.svd(_dlt_rows(sn, dn))[2][-1].reshape(3, 3)
+    row = next(m for m in _UNDO_MISTAKES if m.name == name)
+    return row.answer(SimpleNamespace(Ts=Ts, Td=Td, Hn=Hn))
 
 
 def dlt_homography(src, dst):
@@ -451,7 +576,7 @@ register_exercise(
         wrong_variants=(
             (lambda s, d: hg.estimate_homography(d, s), "inverse"),
             (lambda s, d: hg.estimate_homography(s, d).T, "transposed"),
-            (lambda s, d: _dlt_unnormalised(s, d, pick=0), "smallest singular value"),
+            (lambda s, d: _dlt_unnormalised(s, d, pick=0), "sorts the singular values"),
             (_dlt_unnormalised, "Normalise each point set"),
             (_dlt_not_undone, "not undone"),
             (_dlt_undone_wrong_order, "wrong way round"),
@@ -463,8 +588,20 @@ register_exercise(
             (lambda s, d: _dlt_normalised_variant(s, d, "swap"), "swapped u' and v'"),
             (lambda s, d: _dlt_normalised_variant(s, d, "sign"), "sign slip in the second row"),
             (lambda s, d: _dlt_normalised_variant(s, d, "src both"), "T_src on both sides"),
+            (lambda s, d: _dlt_with(s, d, _FAR_SLIPS[2][0]), "does not move the centroid"),
+            (lambda s, d: _dlt_with(s, d, _FAR_SLIPS[3][0]), "translation is -c, not -s c"),
+            (lambda s, d: _dlt_with(s, d, _FAR_SLIPS[4][0]), "fixed for a 640 x 480 image"),
+            (lambda s, d: _undo_variant(s, d, "T transposed in the undo"), "T transposed"),
+            (lambda s, d: _undo_variant(s, d, "elementwise products"), "element by element"),
+            (lambda s, d: _undo_variant(s, d, "H_n transposed"), "H_n is transposed"),
+            (_dlt_normalised_largest, "largest"),
+            (
+                lambda s, d: hg.estimate_homography(np.asarray(s)[:4], np.asarray(d)[:4]),
+                "first 4 of the 30 pairs",
+            ),
         ),
         follow_up=_dlt_follow_up,
+        success_note=_dlt_success_note,
         teaching=dlt_homography,
     )
 )
@@ -478,6 +615,10 @@ def _apply_cases():
         (np.diag([4.0, 6.0, 2.0]), np.array([[1.0, 1.0], [2.0, -1.0]])),
         (0.5 * H, rng.uniform(0, 400, (5, 2))),  # h33 = 0.5 and w varies from point to point
         (3.0 * H, np.array([[0.0, 0.0]])),
+        # w < 0 at the second point: it lies beyond the line that H sends to infinity (section 3),
+        # so dividing by |w| instead of w puts its image on the wrong side
+        (2.0 * np.array([[1.0, 0.1, 4.0], [0.05, 1.0, -3.0], [-4e-3, 1e-3, 1.0]]),
+         np.array([[50.0, 20.0], [400.0, 100.0], [120.0, 300.0]])),
     ]
 
 
@@ -502,7 +643,7 @@ def _apply_diagnosis(args, got, expected) -> str:
     z = x @ H
     if np.allclose(g, z[:, :2] / z[:, 2:], rtol=1e-6):
         return "you multiplied by H transposed: with points as rows, x' = X @ H.T."
-    if np.allclose(g.T, expected, rtol=1e-6):
+    if g.T.shape == np.shape(expected) and np.allclose(g.T, expected, rtol=1e-6):
         return (
             "your result is transposed: its columns are the points, as in the column form H @ X.T. "
             "With points as rows return (N, 2): (H @ X.T).T, or X @ H.T directly."
@@ -521,6 +662,29 @@ def _apply_diagnosis(args, got, expected) -> str:
                 f"you shifted the points (or the result) by {shift:+g} px: a half-pixel offset. The course puts "
                 "pixel centres at integers, so map the points as given: no +0.5 or -0.5 anywhere."
             )
+    if (y[:, 2] < 0).any() and np.allclose(g, y[:, :2] / np.abs(y[:, 2:]), rtol=1e-6):
+        return (
+            "you divided by |w| (or took the sign away): w is negative for a point beyond the line that H "
+            "sends to infinity (here "
+            + ", ".join(_fmt_point(q) for q in pts[y[:, 2] < 0])
+            + "), and (u', v') = (x/w, y/w) needs w's sign, or its image lands on the wrong side. "
+            "Divide by Y[:, 2:3] itself."
+        )
+    for shift in (1.0, -1.0):
+        moved_in = (x + [shift, shift, 0]) @ H.T
+        if np.allclose(g, np.asarray(expected) + shift, rtol=1e-6, atol=1e-9) or np.allclose(
+            g, moved_in[:, :2] / moved_in[:, 2:], rtol=1e-6, atol=1e-9
+        ):
+            return (
+                f"you shifted the points (or the result) by {shift:+g} px: counting pixels from 1? The course "
+                "counts from 0 (pixel (0, 0) is the top-left one), so map the points as given."
+            )
+    for factor in (1e3, 1e-3):
+        if np.allclose(g, factor * np.asarray(expected), rtol=1e-6):
+            return (
+                f"your points are {factor:g} times the expected ones: a unit slip (mm for m, or a scale "
+                "applied twice). The points and H are in pixels; the result is in pixels too."
+            )
     if np.allclose(g, -np.asarray(expected), rtol=1e-6):
         return (
             "your points have the wrong sign: you divided by -w (or negated the result). "
@@ -532,6 +696,10 @@ def _apply_diagnosis(args, got, expected) -> str:
     return (
         "check the three steps: lift to (u, v, 1), multiply by H (X @ H.T for rows), divide by w."
     )
+
+
+def _fmt_point(q) -> str:
+    return "(" + ", ".join(f"{c:g}" for c in q) + ")"
 
 
 def apply_homography(H, points):
@@ -576,7 +744,194 @@ register_exercise(
                 lambda H, p: (np.column_stack([p, np.ones(len(p))]) @ H.T)[:, :2] / H[2, 2],
                 "divided by h33",
             ),
+            (
+                lambda H, p: (lambda Y: Y[:, :2] / np.abs(Y[:, 2:]))(
+                    np.column_stack([p, np.ones(len(p))]) @ np.asarray(H).T
+                ),
+                "took the sign away",
+            ),
+            (lambda H, p: map_points(H, p).tolist(), "you returned a list"),
+            (lambda H, p: map_points(H, np.asarray(p) + 1.0), "counting pixels from 1"),
+            (lambda H, p: 1000 * map_points(H, p), "a unit slip"),
         ),
+        ndarray_only=True,
         teaching=apply_homography,
+    )
+)
+
+
+# ---------------------------------------------------------------- exercise 3: RANSAC's number of samples
+
+
+def _ransac_samples_cases():
+    # (confidence p, inlier ratio w); each k has a fraction part that tells ceil from round and floor
+    return [(0.99, 0.5), (0.95, 0.8), (0.995, 0.3), (0.999, 0.9)]
+
+
+def _samples_needed(p, w):
+    """The whole number of 4-pair samples RANSAC needs: ceil(log(1 - p) / log(1 - w^4))."""
+    return int(np.ceil(required_iterations(w, p, 4)))
+
+
+def _k(numerator, denominator):
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return numerator / denominator
+
+
+def _samples_context(p, w, g):
+    """The numbers the slips below give on (p, w), and the student's answer g."""
+    ln = np.log
+    return SimpleNamespace(
+        p=p,
+        w=w,
+        g=g,
+        exact=_k(ln(1 - p), ln(1 - w**4)),
+        ways=lambda k: {np.ceil(k), np.round(k), np.floor(k), k},
+    )
+
+
+def _is_any(g, values) -> bool:
+    return any(np.isfinite(v) and np.isclose(g, v, rtol=1e-9) for v in values)
+
+
+_SAMPLES_MISTAKES = (
+    Mistake(
+        "not rounded up",
+        lambda s: np.isclose(s.g, s.exact, rtol=1e-9) and not float(s.g).is_integer(),
+        "you returned k itself, a fraction of a sample. RANSAC draws whole samples, and k is the "
+        "fewest that reach the confidence p, so round *up*: int(np.ceil(k)).",
+    ),
+    Mistake(
+        "rounded down or to nearest",
+        lambda s: _is_any(s.g, {np.round(s.exact), np.floor(s.exact)}) and s.g != np.ceil(s.exact),
+        "you rounded down (int() or np.floor) or to the nearest whole number: one sample fewer than k "
+        "leaves the chance of a clean sample below p. Round up: int(np.ceil(k)).",
+    ),
+    Mistake(
+        "w instead of w^4",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log(1 - s.w)))),
+        "you used w where the chance of a clean *sample* belongs: a homography's sample has 4 pairs, "
+        "all of which must be inliers, which happens with probability w^4 (independent draws). "
+        "k = log(1 - p) / log(1 - w**4).",
+    ),
+    Mistake(
+        "wrong sample size",
+        lambda s: any(
+            _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log(1 - s.w**m)))) for m in (2, 3, 5, 8)
+        ),
+        "your sample size is not 4: a homography has 8 degrees of freedom and each pair gives two "
+        "equations, so a minimal sample is 4 pairs, clean with probability w^4.",
+    ),
+    Mistake(
+        "outlier ratio for w",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log(1 - (1 - s.w) ** 4)))),
+        "you used (1 - w)^4: w is the *inlier* ratio here (section 7 writes the outlier fraction "
+        "epsilon = 1 - w), so a sample is clean with probability w^4.",
+    ),
+    Mistake(
+        "p for 1 - p",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(s.p), np.log(1 - s.w**4)))),
+        "you took log(p) in the numerator: 1 - p is the chance that *every* one of the k samples is "
+        "contaminated, (1 - w^4)^k = 1 - p, so k = log(1 - p) / log(1 - w^4).",
+    ),
+    Mistake(
+        "w^4 for 1 - w^4",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log(s.w**4)))),
+        "your denominator is log(w^4), the log of the chance that a sample is clean; the k samples must "
+        "all *fail* for RANSAC to fail, each with probability 1 - w^4: k = log(1 - p) / log(1 - w^4).",
+    ),
+    Mistake(
+        "mixed log bases",
+        lambda s: _is_any(s.g, s.ways(s.exact * np.log(10)) | s.ways(s.exact / np.log(10))),
+        "your two logarithms have different bases (np.log10 in one, np.log in the other): the ratio "
+        "log(1 - p) / log(1 - w^4) is the same in any base, but only if both use the same one.",
+    ),
+    Mistake(
+        "p and w swapped",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.w), np.log(1 - s.p**4)))),
+        "you swapped p and w: the function is called as ransac_samples(p, w), the confidence first.",
+    ),
+    Mistake(
+        "percent",
+        lambda s: _is_any(s.g, s.ways(s.exact * 100) | s.ways(s.exact / 100)),
+        "your answer is off by a factor 100: p and w are fractions (0.99, not 99 %).",
+    ),
+)
+"""The slips in k = ceil(log(1 - p) / log(1 - w^4)), in the order they are tested (rows give a bool)."""
+
+
+def _samples_diagnosis(args, got, expected) -> str:
+    p, w = args
+    if not _is_number(got):
+        return not_one_number(got, "the whole number of samples k")
+    context = _samples_context(p, w, float(got))
+    causes = [m.hint for m in _SAMPLES_MISTAKES if m.answer(context)]
+    if len(causes) > 1:  # small k: several slips round up to the same whole number
+        return "two slips give this number here; either " + " Or ".join(causes)
+    return causes[0] if causes else (
+        "a sample of 4 pairs is clean with probability w^4; k samples all fail with probability "
+        "(1 - w^4)^k, which must be at most 1 - p: k = ceil(log(1 - p) / log(1 - w^4))."
+    )
+
+
+def _samples_note(run) -> str:
+    """Self-check 4, answered with the student's own function once it passes."""
+    k40, k70 = run(0.995, 0.6), run(0.995, 0.3)
+    return (
+        f"With p = 0.995: {k40} samples at 40 % outliers (w = 0.6), {k70} at 70 % (w = 0.3), "
+        f"{k70 / k40:.0f} times more (section 7's cell prints the same)."
+    )
+
+
+def ransac_samples(p, w):
+    """The whole number of 4-pair samples that give one clean sample with probability p.
+
+    A sample of 4 pairs is clean (all inliers) with probability w^4; k samples all fail with
+    probability (1 - w^4)^k. Setting that to 1 - p and solving for k gives
+    k = log(1 - p) / log(1 - w^4), rounded up to whole samples.
+
+    Parameters
+    ----------
+    p : float
+        The confidence, in (0, 1): the probability of at least one clean sample.
+    w : float
+        The inlier ratio, in (0, 1).
+
+    Returns
+    -------
+    int
+        k, rounded up.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 4.7.1 (how many samples?).
+    """
+    k = np.log(1 - p) / np.log(1 - w**4)
+    return int(np.ceil(k))
+
+
+register_exercise(
+    Exercise(
+        name="ransac_samples",
+        lesson="07",
+        reference=_samples_needed,
+        cases=_ransac_samples_cases,
+        compare=same_number(rtol=1e-9),
+        diagnose=_samples_diagnosis,
+        success_note=_samples_note,
+        wrong_variants=(
+            (lambda p, w: np.log(1 - p) / np.log(1 - w**4), "a fraction of a sample"),
+            (lambda p, w: round(np.log(1 - p) / np.log(1 - w**4)), "rounded down"),
+            (lambda p, w: int(np.log(1 - p) / np.log(1 - w**4)), "rounded down"),
+            (lambda p, w: int(np.ceil(np.log(1 - p) / np.log(1 - w))), "probability w^4"),
+            (lambda p, w: int(np.ceil(np.log(1 - p) / np.log(1 - w**2))), "sample size is not 4"),
+            (lambda p, w: int(np.ceil(np.log(1 - p) / np.log(1 - (1 - w) ** 4))), "epsilon = 1 - w"),
+            (lambda p, w: int(np.ceil(np.log(p) / np.log(1 - w**4))), "log(p)"),
+            (lambda p, w: int(np.ceil(np.log(1 - p) / np.log(w**4))), "log(w^4)"),
+            (lambda p, w: int(np.ceil(np.log10(1 - p) / np.log(1 - w**4))), "different bases"),
+            (lambda p, w: int(np.ceil(np.log(1 - w) / np.log(1 - p**4))), "swapped p and w"),
+            (lambda p, w: [int(np.ceil(np.log(1 - p) / np.log(1 - w**4)))], "return one number"),
+        ),
+        teaching=ransac_samples,
     )
 )

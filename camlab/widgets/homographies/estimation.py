@@ -7,6 +7,7 @@ from functools import lru_cache
 import cv2
 import ipywidgets as W
 import numpy as np
+from matplotlib.colors import to_rgb
 
 from ... import fixtures, scenes
 from ... import homography as hg
@@ -97,7 +98,7 @@ def ransac_outliers() -> Demo:
         ax.plot([], [], "-", color=colour, lw=2, label=name)
     # Below the figure (the layout makes room), never over the arrows; under the left panel it describes.
     view.fig.legend(*ax.get_legend_handles_labels(), loc="outside lower left", fontsize=8, ncol=3)
-    failure = warning_note(view, ax, 0.5, 0.55, "center", "center")
+    failure = warning_note(view, ax_k, 0.5, 0.3, "center", "center")  # over the emptied right panel, off the pairs
     eps = np.linspace(0.0, 0.97, 300)
     k_curve = [required_iterations(1.0 - e, CONFIDENCE, 4) for e in eps]
     ax_k.semilogy(eps, k_curve, color="0.5", label="k = log(1-p) / log(1-(1-ε)⁴), p = 0.995")
@@ -235,6 +236,9 @@ def ransac_outliers() -> Demo:
 
 # ----------------------------------------------------------------------------- forward vs inverse
 
+HOLE_COLOUR = tuple(round(255 * c) for c in to_rgb(palette.MAGENTA))
+"""The forward warp's holes inside the area the picture covers: magenta, apart from the black outside."""
+
 
 @register(lesson="07", sweep={"scale": [0.6, 1.5, 2.8], "angle": [0.0, 25.0]})
 def forward_vs_inverse() -> Demo:
@@ -266,7 +270,7 @@ def forward_vs_inverse() -> Demo:
     blank = np.zeros((*out_hw, 3), np.uint8)
     im_f = view.animate(ax_f.imshow(blank, interpolation="nearest"))
     im_i = view.animate(ax_i.imshow(blank, interpolation="nearest"))
-    ax_f.set_title("forward: push each source pixel", fontsize=10, pad=3)
+    ax_f.set_title("forward: push each source pixel (holes magenta)", fontsize=10, pad=3)
     for ax_ in (ax_f, ax_i):
         ax_.set(xlabel="u (pixels)", ylabel="v (pixels)")
     ax_i.set_title("inverse: pull each output pixel", fontsize=10, pad=3)
@@ -274,7 +278,8 @@ def forward_vs_inverse() -> Demo:
     ones = np.ones(pic.shape[:2], np.uint8)
 
     def update(v: dict, state: dict) -> None:
-        C = np.array([[1.0, 0, out_hw[1] / 2], [0, 1, out_hw[0] / 2], [0, 0, 1]])
+        # the output's centre, (119.5, 89.5): pixel centres sit at integers
+        C = np.array([[1.0, 0, (out_hw[1] - 1) / 2], [0, 1, (out_hw[0] - 1) / 2], [0, 0, 1]])
         P = np.array([[1.0, 0, -39.5], [0, 1, -29.5], [0, 0, 1]])
         H = hg.compose(
             C,
@@ -286,8 +291,7 @@ def forward_vs_inverse() -> Demo:
         inv = warp_perspective(
             pic, H, out_hw, interpolation="nearest", method="cv2"
         )  # same picture, fast
-        im_f.set_data(fwd)
-        im_i.set_data(inv)
+
         # the area the picture covers, from its mapped outline (one pixel in from the edge)
         outline = map_points(H, np.array([[-0.5, -0.5], [79.5, -0.5], [79.5, 59.5], [-0.5, 59.5]]))
         inside = np.zeros(out_hw, np.uint8)
@@ -295,6 +299,10 @@ def forward_vs_inverse() -> Demo:
         inner = cv2.erode(inside, np.ones((3, 3), np.uint8)) > 0
         reached = forward_warp(ones, H, out_hw) > 0
         pulled = warp_perspective(ones, H, out_hw, interpolation="nearest", method="cv2") > 0
+        shown = fwd.copy()
+        shown[inner & ~reached] = HOLE_COLOUR  # holes in magenta, apart from the black outside
+        im_f.set_data(shown)
+        im_i.set_data(inv)
         holes = float(np.mean(~reached[inner])) if inner.any() else 0.0
         holes_inverse = float(np.mean(~pulled[inner])) if inner.any() else 0.0
         state.update(H=H, hole_fraction=holes, hole_fraction_inverse=holes_inverse)

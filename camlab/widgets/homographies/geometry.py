@@ -92,7 +92,8 @@ def transformation_hierarchy() -> Demo:
     canvas_hw = (360, 480)
     xlim, ylim = (-0.5, canvas_hw[1] - 0.5), (-0.5, canvas_hw[0] - 0.5)
     # Picture coordinates centred on the origin; C places the origin at the canvas centre.
-    C = np.array([[1.0, 0, canvas_hw[1] / 2], [0, 1, canvas_hw[0] / 2], [0, 0, 1]])
+    # Pixel centres at integers: the centre of a W-pixel axis is (W - 1) / 2, so (239.5, 179.5).
+    C = np.array([[1.0, 0, (canvas_hw[1] - 1) / 2], [0, 1, (canvas_hw[0] - 1) / 2], [0, 0, 1]])
     P = np.array([[1.0, 0, -(pw - 1) / 2], [0, 1, -(ph - 1) / 2], [0, 0, 1]])
     view = FigureView(figsize=(8.5, 4.2))
     ax = view.fig.subplots()
@@ -207,11 +208,11 @@ def transformation_hierarchy() -> Demo:
             f"{_GROUP_NAMES[v['group']]}: {info['dof']} dof\n"
             "H, in coordinates centred on the picture and the canvas (what the sliders set;\n"
             "θ turns about the picture's centre) =\n"
-            + np.array2string(Hg, precision=4, suppress_small=True)
+            + _matrix_text(Hg)
             + "\nthe map drawn, from source pixels to canvas pixels, C H P =\n"
-            + np.array2string(H, precision=4, suppress_small=True)
+            + _matrix_text(H)
             + f"\n(P moves the picture's centre ({(pw - 1) / 2:g}, {(ph - 1) / 2:g}) to 0,"
-            f" C moves 0 to the canvas centre ({canvas_hw[1] / 2:g}, {canvas_hw[0] / 2:g}))"
+            f" C moves 0 to the canvas centre ({(canvas_hw[1] - 1) / 2:g}, {(canvas_hw[0] - 1) / 2:g}))"
             + f"\nsmallest group holding H: {kind}\nkeeps: "
             + ", ".join(info["invariants"])
         )
@@ -224,8 +225,8 @@ def transformation_hierarchy() -> Demo:
         "aspect": slider(1.4, 0.4, 2.5, 0.05, "affine: stretch √(sx/sy)"),
         "tx": slider(0.0, -100.0, 100.0, 1.0, "tx (px)"),
         "ty": slider(0.0, -80.0, 80.0, 1.0, "ty (px)"),
-        "v1": slider(1.5, -15.0, 15.0, 0.1, "projective: v1 (×1e-3)"),
-        "v2": slider(0.0, -15.0, 15.0, 0.1, "projective: v2 (×1e-3)"),
+        "v1": slider(1.5, -15.0, 15.0, 0.1, "projective: v1 (×1e-3 /px)"),
+        "v2": slider(0.0, -15.0, 15.0, 0.1, "projective: v2 (×1e-3 /px)"),
     }
     return build_demo(
         "transformation_hierarchy",
@@ -249,12 +250,32 @@ CORNER_NAMES = (
 _DRAG_START = np.array([[40.0, 30.0], [250.0, 60.0], [230.0, 200.0], [60.0, 230.0]])
 
 
+def _matrix_text(M: np.ndarray) -> str:
+    """A matrix as the readouts print it: 4 decimals, and what rounds to zero printed as 0, never -0.
+
+    Parameters
+    ----------
+    M : ndarray
+        The matrix.
+
+    Returns
+    -------
+    str
+        ``np.array2string`` of M with its negative zeros cleared.
+    """
+    M = np.asarray(M, dtype=float)
+    return np.array2string(
+        np.where(np.round(M, 4) == 0, 0.0, M), precision=4, suppress_small=True
+    )
+
+
 def drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, angle0, angle1) -> list:
     """The drag demo's table: (quantity, source, image, verdict) with the verdict computed.
 
     "kept" when the two numbers agree within 0.1 % (0.1° for the angle), else "changes":
     the cross-ratio is always kept; an affine H (a parallelogram target) also keeps the
-    ratio of lengths along the line, and a similarity (a square target) the angle too.
+    ratio of lengths along the line, and the top-left angle stays 90° when the target's corner
+    there is a right angle (a rectangle, for one, whatever its H).
 
     Parameters
     ----------
@@ -364,7 +385,8 @@ def drag_homography() -> Demo:
         ]
     )
     ax_s.plot(*line_pts.T, "o-", color=palette.BROWN, ms=5, lw=1.5, path_effects=palette.halo(1.5))
-    offsets = ((7, -3), (4, 6), (4, 6), (-14, 2))  # across the line; A and D sit near the frame
+    # across the line, clear of its halo; A and D sit near the frame, D's label inside the picture
+    offsets = ((7, -3), (6, 8), (-12, -14), (-18, -2))
     for name, p, off in zip("ABCD", line_pts, offsets, strict=True):
         ax_s.annotate(
             name,
@@ -489,7 +511,7 @@ def drag_homography() -> Demo:
         )
         numbers.set_text(table)
         readout.value = monospace(
-            table + "\nH =\n" + np.array2string(H, precision=4, suppress_small=True)
+            table + "\nH =\n" + _matrix_text(H)
         )
 
     demo = build_demo(
