@@ -20,7 +20,9 @@ def _zhang_cases():
         r = rng.normal(0, 0.4, 3)
         R = rotation_from_axis_angle(r)
         H = K @ np.column_stack([R[:, 0], R[:, 1], [0.02, -0.01, 0.5]])
-        out.append((H,))  # H[2, 2] = 0.5 t_z-ish, not 1: an in-place H /= H[2, 2] changes the caller's H
+        out.append(
+            (H,)
+        )  # H[2, 2] = 0.5 t_z-ish, not 1: an in-place H /= H[2, 2] changes the caller's H
     out.append((np.array([[2.0, 0.3, 5.0], [-0.1, 1.5, 2.0], [0.01, 0.02, 3.0]]),))
     return out
 
@@ -56,17 +58,24 @@ def _zhang_diagnosis(args, got, expected) -> str:
     (H,) = args
     g = np.asarray(got, dtype=float)
     s0 = _common_scale(g[0], expected[0])
-    if s0 != 0 and np.allclose(g[1] / s0, -expected[1], rtol=1e-6, atol=1e-12 * np.abs(expected).max()):
+    if s0 != 0 and np.allclose(
+        g[1] / s0, -expected[1], rtol=1e-6, atol=1e-12 * np.abs(expected).max()
+    ):
         return "the second row has the wrong sign: it is v11 - v22 (h1^T B h1 - h2^T B h2), not v22 - v11"
     if np.allclose(g, calibration.zhang_constraints(H.T)):
         return "you used the rows of H; h_i is the i-th column, H[:, i]"
     e = np.asarray(expected, dtype=float)
-    for order, entries in (([0, 1, 2, 4, 3, 5], "B13 and B23"), ([0, 2, 1, 3, 4, 5], "B12 and B22")):
+    for order, entries in (
+        ([0, 1, 2, 4, 3, 5], "B13 and B23"),
+        ([0, 2, 1, 3, 4, 5], "B12 and B22"),
+    ):
         if _SameUpToScale(Tolerance(1e-6, 1e-12))(g[:, order], e):
             return f"the entries for {entries} are swapped: b = (B11, B12, B22, B13, B23, B33), in that order"
     single = [0, 2, 5]
     s = _common_scale(g[:, single], e[:, single])
-    if s != 0 and np.allclose(g[:, single] / s, e[:, single], rtol=1e-6, atol=1e-12 * np.abs(e).max()):
+    if s != 0 and np.allclose(
+        g[:, single] / s, e[:, single], rtol=1e-6, atol=1e-12 * np.abs(e).max()
+    ):
         return (
             "the entries for B11, B22, B33 are right, those for B12, B13, B23 are not: each of these appears twice "
             "in h_i^T B h_j (B is symmetric), so its entry is a sum of two products, e.g. hi1 hj2 + hi2 hj1"
@@ -162,8 +171,16 @@ register_exercise(
             (
                 lambda H: np.stack(
                     [
-                        np.array([H[0, i] * H[0, j], H[0, i] * H[1, j], H[1, i] * H[1, j],
-                                  H[2, i] * H[0, j], H[2, i] * H[1, j], H[2, i] * H[2, j]])
+                        np.array(
+                            [
+                                H[0, i] * H[0, j],
+                                H[0, i] * H[1, j],
+                                H[1, i] * H[1, j],
+                                H[2, i] * H[0, j],
+                                H[2, i] * H[1, j],
+                                H[2, i] * H[2, j],
+                            ]
+                        )
                         for i, j in [(0, 1)]
                     ]
                     + [calibration.zhang_v(H, 0, 0) - calibration.zhang_v(H, 1, 1)]
@@ -214,7 +231,7 @@ def _lm_diagnosis(args, got, expected) -> str:
 
 
 def _lm_gauss_newton_note(run) -> str:
-    """The prompt's question, answered with the student's own function: is mu = 0 the Gauss-Newton step?"""
+    """The prompt's question, whether mu = 0 is the Gauss-Newton step, answered with the student's function."""
     J, r, _ = _lm_cases()[0]
     gauss_newton = np.linalg.lstsq(J, -r, rcond=None)[0]  # minimises ||J delta + r||: Gauss-Newton
     gap = np.max(np.abs(np.asarray(run(J, r, 0.0), dtype=float) - gauss_newton))
@@ -372,8 +389,12 @@ register_exercise(
             (lambda M: M / np.linalg.norm(M, axis=0), "not orthonormal"),
             (_gram_schmidt, "not the closest"),
             (lambda M: (lambda U, S, Vt: U @ Vt.T)(*np.linalg.svd(M)), "third output"),
-            (lambda M: (lambda U, S, Vt: -(U @ Vt) if np.linalg.det(U @ Vt) < 0 else U @ Vt)(*np.linalg.svd(M)),
-             "negated the whole matrix"),
+            (
+                lambda M: (lambda U, S, Vt: -(U @ Vt) if np.linalg.det(U @ Vt) < 0 else U @ Vt)(
+                    *np.linalg.svd(M)
+                ),
+                "negated the whole matrix",
+            ),
         ),
         teaching=nearest_rotation,
         ndarray_only=True,

@@ -128,7 +128,9 @@ def plot_residual_field(
     if capped.any():
         title += f" (black: {capped.sum()} capped at {cap:.0f} px)"
     image_frame(ax, result.image_size, title)
-    colours = np.where(capped[:, None], np.array([[0.0, 0.0, 0.0, 1.0]]), np.array([[1.0, 0.0, 1.0, 1.0]]))
+    colours = np.where(
+        capped[:, None], np.array([[0.0, 0.0, 0.0, 1.0]]), np.array([[1.0, 0.0, 1.0, 1.0]])
+    )
     q = ax.quiver(
         pts[:, 0],
         pts[:, 1],
@@ -282,7 +284,9 @@ def plot_extrinsics(ax, result: CalibrationResult, size: float | None = None):
         colour = palette.SERIES[v % len(palette.SERIES)]
         ax.plot(*b[ring].T, color=colour, lw=1.2)
         ax.plot(*b[0], "o", color=colour, ms=3)  # the first corner: how the board is turned
-        ax.text(*b[0], f" {v}", color=colour, fontsize=8, ha="left", va="bottom")  # at its first corner
+        ax.text(
+            *b[0], f" {v}", color=colour, fontsize=8, ha="left", va="bottom"
+        )  # at its first corner
     depth = float(np.min(boards[:, :, 2]))
     cam = Camera(K=result.K, R=R_CAM_FROM_VIEW, t=np.zeros(3), image_size=result.image_size)
     CameraArtist(ax, cam, size=size or depth / 3, color=palette.GREY)

@@ -116,6 +116,16 @@ def _accuracy_controls() -> dict:
 
 
 @register(lesson="08", sweep={"n_views": [3, 6, 10, 15], "noise": [0.0, 0.3, 1.0]})
+def _accuracy_title(n: int, sigma: float, err: np.ndarray, std: np.ndarray) -> str:
+    """The title of :func:`accuracy_vs_views`: the setting and how many errors lie beyond 3 sigma."""
+    outside = int(np.sum(np.abs(err) > 3 * std)) if sigma > 0 else 0
+    if sigma == 0:
+        verdict = "no noise, no error"
+    else:
+        verdict = f"{outside} of 4 beyond 3σ" if outside else "all within 3σ"
+    return f"{n} views, σ = {sigma:.2f} px: {verdict}"
+
+
 def accuracy_vs_views() -> Demo:
     """Calibrate from the first n views with sigma px of noise: each error against 3 reported sigma.
 
@@ -127,12 +137,8 @@ def accuracy_vs_views() -> Demo:
         beside three reported sigma, px on a log axis, and the corners used) and ``state`` (``K``, ``dist``, ``errors``,
         ``std``, ``z``, ``rms``, ``n_views``, ``noise``).
     """
-    s = C.make_synthetic_views(
-        15, 0.0, rng=np.random.default_rng(0)
-    )  # exact views of the lesson's camera
-    unit = np.random.default_rng(1).normal(
-        size=(15, len(s.object_points), 2)
-    )  # one fixed draw, scaled by sigma
+    s = C.make_synthetic_views(15, 0.0, rng=np.random.default_rng(0))  # the lesson's camera, exact
+    unit = np.random.default_rng(1).normal(size=(15, len(s.object_points), 2))  # scaled by sigma
     truth = np.array([s.K[0, 0], s.K[1, 1], s.K[0, 2], s.K[1, 2]])
     view = FigureView(figsize=(9.4, 3.9))
     art = _accuracy_figure(view, s)
@@ -176,9 +182,8 @@ def accuracy_vs_views() -> Demo:
         std = np.array([res.std[k] for k in _NAMES])
         err = est - truth
         with np.errstate(divide="ignore", invalid="ignore"):
-            z = np.where(
-                std > 1e-9, err / std, np.nan
-            )  # no noise: both ~1e-12, their ratio is meaningless
+            # no noise: both ~1e-12, their ratio is meaningless
+            z = np.where(std > 1e-9, err / std, np.nan)
         state.update(
             K=res.K, dist=res.dist, errors=err, std=std, z=z, rms=res.rms, n_views=n, noise=sigma
         )
@@ -195,17 +200,7 @@ def accuracy_vs_views() -> Demo:
         dots.set_data(x + _BAR_SHIFT, size)
         clipped = np.abs(err) > top
         above.set_data(x[clipped] + _BAR_SHIFT, np.full(clipped.sum(), top))
-        outside = int(np.sum(np.abs(err) > 3 * std)) if sigma > 0 else 0
-        art.title.set_text(
-            f"{n} views, σ = {sigma:.2f} px: "
-            + (
-                "no noise, no error"
-                if sigma == 0
-                else f"{outside} of 4 beyond 3σ"
-                if outside
-                else "all within 3σ"
-            )
-        )
+        art.title.set_text(_accuracy_title(n, sigma, err, std))
         readout.value = _accuracy_readout(n, sigma, res, s, est, std, truth, err, z)
 
     return build_demo(
@@ -408,7 +403,12 @@ def undistort_alpha(
         [], [], color=palette.ORANGE, lw=1.5, label="photo's border", path_effects=palette.halo(1.5)
     )
     (kept,) = ax0.plot(
-        [], [], "--", color=palette.ORANGE, lw=1.5, label="what the output shows",
+        [],
+        [],
+        "--",
+        color=palette.ORANGE,
+        lw=1.5,
+        label="what the output shows",
         path_effects=palette.halo(1.5),
     )
     view.animate(edge, kept)
@@ -434,7 +434,9 @@ def undistort_alpha(
         b = (border_ideal - K[:2, 2]) / np.diag(K)[:2] * np.diag(out.K)[:2] + out.K[:2, 2]
         edge.set_data(b[:, 0], b[:, 1])
         # the output's frame, traced back into the photo: outside it, photo pixels are lost
-        seen = distort_pixels((border - out.K[:2, 2]) / np.diag(out.K)[:2] * np.diag(K)[:2] + K[:2, 2], K, dist)
+        seen = distort_pixels(
+            (border - out.K[:2, 2]) / np.diag(out.K)[:2] * np.diag(K)[:2] + K[:2, 2], K, dist
+        )
         kept.set_data(seen[:, 0], seen[:, 1])
         ax1.set_title(
             f"undistorted, α = {v['alpha']:.2f}: fx {out.K[0, 0]:.0f} (photo {K[0, 0]:.0f}), "

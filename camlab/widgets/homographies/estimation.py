@@ -98,7 +98,9 @@ def ransac_outliers() -> Demo:
         ax.plot([], [], "-", color=colour, lw=2, label=name)
     # Below the figure (the layout makes room), never over the arrows; under the left panel it describes.
     view.fig.legend(*ax.get_legend_handles_labels(), loc="outside lower left", fontsize=8, ncol=3)
-    failure = warning_note(view, ax_k, 0.5, 0.3, "center", "center")  # over the emptied right panel, off the pairs
+    failure = warning_note(
+        view, ax_k, 0.5, 0.3, "center", "center"
+    )  # over the emptied right panel, off the pairs
     eps = np.linspace(0.0, 0.97, 300)
     k_curve = [required_iterations(1.0 - e, CONFIDENCE, 4) for e in eps]
     ax_k.semilogy(eps, k_curve, color="0.5", label="k = log(1-p) / log(1-(1-ε)⁴), p = 0.995")

@@ -264,9 +264,7 @@ def _matrix_text(M: np.ndarray) -> str:
         ``np.array2string`` of M with its negative zeros cleared.
     """
     M = np.asarray(M, dtype=float)
-    return np.array2string(
-        np.where(np.round(M, 4) == 0, 0.0, M), precision=4, suppress_small=True
-    )
+    return np.array2string(np.where(np.round(M, 4) == 0, 0.0, M), precision=4, suppress_small=True)
 
 
 def drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, angle0, angle1) -> list:
@@ -510,9 +508,7 @@ def drag_homography() -> Demo:
             f"{name:15s} {a:>7s}  {b:>7s}  {verdict}" for name, a, b, verdict in rows
         )
         numbers.set_text(table)
-        readout.value = monospace(
-            table + "\nH =\n" + _matrix_text(H)
-        )
+        readout.value = monospace(table + "\nH =\n" + _matrix_text(H))
 
     demo = build_demo(
         "drag_homography",

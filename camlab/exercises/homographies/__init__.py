@@ -1,0 +1,17 @@
+"""Exercises for lesson 07, homographies.
+
+Applying a homography (:mod:`.apply`), the normalised DLT (:mod:`.dlt`) and the number of RANSAC
+samples (:mod:`.ransac`).
+"""
+
+from __future__ import annotations
+
+# each module registers its exercise when imported: keep the registration order
+# isort: off
+from . import dlt
+from . import apply
+from . import ransac
+
+# isort: on
+
+__all__ = ["apply", "dlt", "ransac"]

@@ -1,0 +1,193 @@
+"""Exercise 3 of lesson 07: how many RANSAC samples (`ransac_samples`)."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+
+from ...robust import required_iterations
+from .._core import Exercise, Mistake, register_exercise
+from .._numbers import is_number as _is_number
+from .._numbers import not_one_number, same_number
+
+
+def _ransac_samples_cases():
+    # (confidence p, inlier ratio w); each k has a fraction part that tells ceil from round and floor
+    return [(0.99, 0.5), (0.95, 0.8), (0.995, 0.3), (0.999, 0.9)]
+
+
+def _samples_needed(p, w):
+    """The whole number of 4-pair samples RANSAC needs: ceil(log(1 - p) / log(1 - w^4))."""
+    return int(np.ceil(required_iterations(w, p, 4)))
+
+
+def _k(numerator, denominator):
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return numerator / denominator
+
+
+def _samples_context(p, w, g):
+    """The numbers the slips below give on (p, w), and the student's answer g."""
+    ln = np.log
+    return SimpleNamespace(
+        p=p,
+        w=w,
+        g=g,
+        exact=_k(ln(1 - p), ln(1 - w**4)),
+        ways=lambda k: {np.ceil(k), np.round(k), np.floor(k), k},
+    )
+
+
+def _is_any(g, values) -> bool:
+    return any(np.isfinite(v) and np.isclose(g, v, rtol=1e-9) for v in values)
+
+
+_SAMPLES_MISTAKES = (
+    Mistake(
+        "not rounded up",
+        lambda s: np.isclose(s.g, s.exact, rtol=1e-9) and not float(s.g).is_integer(),
+        "you returned k itself, a fraction of a sample. RANSAC draws whole samples, and k is the "
+        "fewest that reach the confidence p, so round *up*: int(np.ceil(k)).",
+    ),
+    Mistake(
+        "rounded down or to nearest",
+        lambda s: _is_any(s.g, {np.round(s.exact), np.floor(s.exact)}) and s.g != np.ceil(s.exact),
+        "you rounded down (int() or np.floor) or to the nearest whole number: one sample fewer than k "
+        "leaves the chance of a clean sample below p. Round up: int(np.ceil(k)).",
+    ),
+    Mistake(
+        "w instead of w^4",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log(1 - s.w)))),
+        "you used w where the chance of a clean *sample* belongs: a homography's sample has 4 pairs, "
+        "all of which must be inliers, which happens with probability w^4 (independent draws). "
+        "k = log(1 - p) / log(1 - w**4).",
+    ),
+    Mistake(
+        "wrong sample size",
+        lambda s: any(
+            _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log(1 - s.w**m)))) for m in (2, 3, 5, 8)
+        ),
+        "your sample size is not 4: a homography has 8 degrees of freedom and each pair gives two "
+        "equations, so a minimal sample is 4 pairs, clean with probability w^4.",
+    ),
+    Mistake(
+        "outlier ratio for w",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log(1 - (1 - s.w) ** 4)))),
+        "you used (1 - w)^4: w is the *inlier* ratio here (section 7 writes the outlier fraction "
+        "epsilon = 1 - w), so a sample is clean with probability w^4.",
+    ),
+    Mistake(
+        "p for 1 - p",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(s.p), np.log(1 - s.w**4)))),
+        "you took log(p) in the numerator: 1 - p is the chance that *every* one of the k samples is "
+        "contaminated, (1 - w^4)^k = 1 - p, so k = log(1 - p) / log(1 - w^4).",
+    ),
+    Mistake(
+        "w^4 for 1 - w^4",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log(s.w**4)))),
+        "your denominator is log(w^4), the log of the chance that a sample is clean; the k samples must "
+        "all *fail* for RANSAC to fail, each with probability 1 - w^4: k = log(1 - p) / log(1 - w^4).",
+    ),
+    Mistake(
+        "mixed log bases",
+        lambda s: _is_any(s.g, s.ways(s.exact * np.log(10)) | s.ways(s.exact / np.log(10))),
+        "your two logarithms have different bases (np.log10 in one, np.log in the other): the ratio "
+        "log(1 - p) / log(1 - w^4) is the same in any base, but only if both use the same one.",
+    ),
+    Mistake(
+        "p and w swapped",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.w), np.log(1 - s.p**4)))),
+        "you swapped p and w: the function is called as ransac_samples(p, w), the confidence first.",
+    ),
+    Mistake(
+        "percent",
+        lambda s: _is_any(s.g, s.ways(s.exact * 100) | s.ways(s.exact / 100)),
+        "your answer is off by a factor 100: p and w are fractions (0.99, not 99 %).",
+    ),
+)
+"""The slips in k = ceil(log(1 - p) / log(1 - w^4)), in the order they are tested (rows give a bool)."""
+
+
+def _samples_diagnosis(args, got, expected) -> str:
+    p, w = args
+    if not _is_number(got):
+        return not_one_number(got, "the whole number of samples k")
+    context = _samples_context(p, w, float(got))
+    causes = [m.hint for m in _SAMPLES_MISTAKES if m.answer(context)]
+    if len(causes) > 1:  # small k: several slips round up to the same whole number
+        return "two slips give this number here; either " + " Or ".join(causes)
+    return (
+        causes[0]
+        if causes
+        else (
+            "a sample of 4 pairs is clean with probability w^4; k samples all fail with probability "
+            "(1 - w^4)^k, which must be at most 1 - p: k = ceil(log(1 - p) / log(1 - w^4))."
+        )
+    )
+
+
+def _samples_note(run) -> str:
+    """Self-check 4, answered with the student's own function once it passes."""
+    k40, k70 = run(0.995, 0.6), run(0.995, 0.3)
+    return (
+        f"With p = 0.995: {k40} samples at 40 % outliers (w = 0.6), {k70} at 70 % (w = 0.3), "
+        f"{k70 / k40:.0f} times more (section 7's cell prints the same)."
+    )
+
+
+def ransac_samples(p, w):
+    """The whole number of 4-pair samples that give one clean sample with probability p.
+
+    A sample of 4 pairs is clean (all inliers) with probability w^4; k samples all fail with
+    probability (1 - w^4)^k. Setting that to 1 - p and solving for k gives
+    k = log(1 - p) / log(1 - w^4), rounded up to whole samples.
+
+    Parameters
+    ----------
+    p : float
+        The confidence, in (0, 1): the probability of at least one clean sample.
+    w : float
+        The inlier ratio, in (0, 1).
+
+    Returns
+    -------
+    int
+        k, rounded up.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 4.7.1 (how many samples?).
+    """
+    k = np.log(1 - p) / np.log(1 - w**4)
+    return int(np.ceil(k))
+
+
+register_exercise(
+    Exercise(
+        name="ransac_samples",
+        lesson="07",
+        reference=_samples_needed,
+        cases=_ransac_samples_cases,
+        compare=same_number(rtol=1e-9),
+        diagnose=_samples_diagnosis,
+        success_note=_samples_note,
+        wrong_variants=(
+            (lambda p, w: np.log(1 - p) / np.log(1 - w**4), "a fraction of a sample"),
+            (lambda p, w: round(np.log(1 - p) / np.log(1 - w**4)), "rounded down"),
+            (lambda p, w: int(np.log(1 - p) / np.log(1 - w**4)), "rounded down"),
+            (lambda p, w: int(np.ceil(np.log(1 - p) / np.log(1 - w))), "probability w^4"),
+            (lambda p, w: int(np.ceil(np.log(1 - p) / np.log(1 - w**2))), "sample size is not 4"),
+            (
+                lambda p, w: int(np.ceil(np.log(1 - p) / np.log(1 - (1 - w) ** 4))),
+                "epsilon = 1 - w",
+            ),
+            (lambda p, w: int(np.ceil(np.log(p) / np.log(1 - w**4))), "log(p)"),
+            (lambda p, w: int(np.ceil(np.log(1 - p) / np.log(w**4))), "log(w^4)"),
+            (lambda p, w: int(np.ceil(np.log10(1 - p) / np.log(1 - w**4))), "different bases"),
+            (lambda p, w: int(np.ceil(np.log(1 - w) / np.log(1 - p**4))), "swapped p and w"),
+            (lambda p, w: [int(np.ceil(np.log(1 - p) / np.log(1 - w**4)))], "return one number"),
+        ),
+        teaching=ransac_samples,
+    )
+)
