@@ -150,8 +150,8 @@ def _focal_text(est: Any, true_focal: float) -> str:
     """How the focal length behind a ratio was found, for a readout."""
     f = "" if est.focal_length is None else f"{est.focal_length:.0f} px"
     return {
-        "assumed": f"f assumed {f}, the image width (true {true_focal:.0f}): the corners give no f, "
-        "an edge pair\nis parallel or f^2 <= 0 (no rectangle seen by this camera has these corners)",
+        "assumed": f"f assumed {f}, the image width (true {true_focal:.0f}): the corners give\n"
+        "none (an edge pair parallel in the photo, or f\u00b2 \u2264 0)",
         "estimated": f"f estimated {f} from the corners (true {true_focal:.0f})",
         "given": f"f given {f}",
         "not needed": "f not needed (an affine view)",
@@ -358,7 +358,7 @@ def rectify_photo() -> Demo:
 
 @register(
     lesson="10",
-    sweep={"yaw": [-0.6, 0.0, 0.5], "pitch": [0.5, -0.3], "page_present": [False, True]},
+    sweep={"yaw": [-0.8, 0.0, 0.5, 0.8], "pitch": [0.7, -0.7], "page_present": [False, True]},
 )
 def document_scanner() -> Demo:
     """The "Scan this page" demo: find the page and rectify it; say so when there is none.
@@ -439,7 +439,8 @@ def document_scanner() -> Demo:
 
 
 @register(
-    lesson="10", sweep={"tilt": [-0.7, 0.0, -0.3], "yaw": [0.3, 0.0], "use_focal": [False, True]}
+    lesson="10",
+    sweep={"tilt": [-0.8, 0.0, -0.3], "yaw": [0.3, 0.0, -0.5, 0.5], "use_focal": [False, True]},
 )
 def keystone_correction() -> Demo:
     """Keystone: a camera tilted up at a facade makes its verticals converge; a homography undoes it.
