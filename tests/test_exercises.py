@@ -1356,10 +1356,18 @@ def test_focal_length_pixels_rejects_an_integer_half_width_on_an_odd_width():
         check("focal_length_pixels", lambda fov, size: size[0] // 2 / np.tan(np.radians(fov) / 2))
     assert "641 // 2 is 320" in str(info.value)
 
+
 def _conic_rows_for_test(L, M):
     (l1, l2, l3), (m1, m2, m3) = np.asarray(L, float).T, np.asarray(M, float).T
     return np.stack(
-        [l1 * m1, (l1 * m2 + l2 * m1) / 2, l2 * m2, (l1 * m3 + l3 * m1) / 2, (l2 * m3 + l3 * m2) / 2, l3 * m3],
+        [
+            l1 * m1,
+            (l1 * m2 + l2 * m1) / 2,
+            l2 * m2,
+            (l1 * m3 + l3 * m1) / 2,
+            (l2 * m3 + l3 * m2) / 2,
+            l3 * m3,
+        ],
         1,
     )
 

@@ -59,8 +59,10 @@ _RECT_MISTAKES = (
     Mistake(
         "size read as (height, width)",
         lambda s: s.fit(s.corners, _rect_target(s.h, s.w)),
-        lambda s: f"you read size as (height, width): your target is {s.h - 1} wide and {s.w - 1} tall. A size "
-        f"is (width, height) (docs/conventions.md), so width, height = size, here {s.w} and {s.h}.",
+        lambda s: (
+            f"you read size as (height, width): your target is {s.h - 1} wide and {s.w - 1} tall. A size "
+            f"is (width, height) (docs/conventions.md), so width, height = size, here {s.w} and {s.h}."
+        ),
     ),
     Mistake(
         "target as (v, u)",
@@ -77,7 +79,8 @@ _RECT_MISTAKES = (
     Mistake(
         "1-based",
         lambda s: s.fit(s.corners, _rect_target(s.w, s.h, offset=1.0)),
-        "your target is 1-based, (1, 1) to (w, h): numpy and camlab count pixels from 0; " + _PIXEL_CENTRES,
+        "your target is 1-based, (1, 1) to (w, h): numpy and camlab count pixels from 0; "
+        + _PIXEL_CENTRES,
     ),
     Mistake(
         "pixel edges",
@@ -93,10 +96,15 @@ _RECT_MISTAKES = (
     Mistake(
         "shifted by half a pixel",
         lambda s: next(
-            (H for d in (-0.5, 0.5) if s.same(H := s.fit(s.corners, _rect_target(s.w, s.h, offset=d)))),
+            (
+                H
+                for d in (-0.5, 0.5)
+                if s.same(H := s.fit(s.corners, _rect_target(s.w, s.h, offset=d)))
+            ),
             None,
         ),
-        "every corner is off by half a pixel (a +-0.5 shift of the whole target): " + _PIXEL_CENTRES,
+        "every corner is off by half a pixel (a +-0.5 shift of the whole target): "
+        + _PIXEL_CENTRES,
     ),
     Mistake(
         "Z order",
@@ -292,7 +300,11 @@ def _order_diagnosis(args, got, expected) -> str:
             "(not indices, not moved, not (v, u))."
         )
     if len({int(k[0]) for k in which}) < 4:
-        twice = "the u + v / v - u shortcut" if np.allclose(g, _sum_difference_trick(corners)) else "your method"
+        twice = (
+            "the u + v / v - u shortcut"
+            if np.allclose(g, _sum_difference_trick(corners))
+            else "your method"
+        )
         return (
             f"one input corner comes back twice and another is missing: {twice} (TL = argmin u + v, TR = argmin "
             "v - u, ...) holds for upright rectangles only; a page seen in perspective can have one corner "
@@ -369,7 +381,7 @@ register_exercise(
             (_sorted_by_angle, "does not start at the top-left"),
             (lambda c: pp.order_corners(c)[[0, 1, 3, 2]], "Z order"),
             (lambda c: pp.order_corners(c)[:, ::-1], "(v, u)"),
-            (_sum_difference_trick, "the u + v / v - u shortcut"),
+            (_sum_difference_trick, "holds for upright rectangles only"),
         ),
         ndarray_only=True,
         teaching=order_corners,
@@ -400,7 +412,14 @@ def _conic_rows(lines_l, lines_m, half=True):
     """The rows of section 8, one per pair; ``half=False``: the cross terms without their 1/2."""
     (l1, l2, l3), (m1, m2, m3) = np.asarray(lines_l, float).T, np.asarray(lines_m, float).T
     k = 0.5 if half else 1.0
-    cols = [l1 * m1, k * (l1 * m2 + l2 * m1), l2 * m2, k * (l1 * m3 + l3 * m1), k * (l2 * m3 + l3 * m2), l3 * m3]
+    cols = [
+        l1 * m1,
+        k * (l1 * m2 + l2 * m1),
+        l2 * m2,
+        k * (l1 * m3 + l3 * m1),
+        k * (l2 * m3 + l3 * m2),
+        l3 * m3,
+    ]
     return np.stack(cols, axis=1)
 
 
@@ -471,9 +490,13 @@ def _conic_diagnosis(args, got, expected) -> str:
     mine = _conic_vector(g)
     for perm in itertools.permutations(range(6)):
         if perm != tuple(range(6)) and same_up_to_scale(mine, want[list(perm)], rtol=1e-4):
-            moved = [f"{_UNKNOWNS[i]} where {_UNKNOWNS[p]} belongs" for i, p in enumerate(perm) if i != p]
+            moved = [
+                f"{_UNKNOWNS[i]} where {_UNKNOWNS[p]} belongs" for i, p in enumerate(perm) if i != p
+            ]
             return (
-                "your entries are the right numbers in the wrong places (" + ", ".join(moved) + "): the "
+                "your entries are the right numbers in the wrong places ("
+                + ", ".join(moved)
+                + "): the "
                 "columns of your rows and the unknowns you arrange into the matrix must be in the same order, "
                 "(a, b, c, d, e, f) for l1 m1, (l1 m2 + l2 m1)/2, l2 m2, (l1 m3 + l3 m1)/2, (l2 m3 + l3 m2)/2, "
                 "l3 m3, and the matrix [[a, b/2, d/2], [b/2, c, e/2], [d/2, e/2, f]]."
@@ -624,7 +647,14 @@ def _shape_cases():
     """Rectangles photographed by cameras of known f and principal point (not the image centre)."""
 
     def photo(w, h, f, c, yaw, pitch, roll, distance):
-        cy, sy, cp, sp, cr, sr = np.cos(yaw), np.sin(yaw), np.cos(pitch), np.sin(pitch), np.cos(roll), np.sin(roll)
+        cy, sy, cp, sp, cr, sr = (
+            np.cos(yaw),
+            np.sin(yaw),
+            np.cos(pitch),
+            np.sin(pitch),
+            np.cos(roll),
+            np.sin(roll),
+        )
         R = (
             np.array([[cr, -sr, 0], [sr, cr, 0], [0, 0, 1]])
             @ np.array([[1, 0, 0], [0, cp, -sp], [0, sp, cp]])
@@ -668,7 +698,9 @@ def _zhang_he(corners, principal_point, order=(0, 1, 3, 2), centre=True):
 
 
 def _shape_from(n2, n3, f2):
-    ratio2 = ((n2[0] ** 2 + n2[1] ** 2) / f2 + n2[2] ** 2) / ((n3[0] ** 2 + n3[1] ** 2) / f2 + n3[2] ** 2)
+    ratio2 = ((n2[0] ** 2 + n2[1] ** 2) / f2 + n2[2] ** 2) / (
+        (n3[0] ** 2 + n3[1] ** 2) / f2 + n3[2] ** 2
+    )
     return ratio2, f2
 
 
@@ -749,7 +781,9 @@ def _shape_diagnosis(args, got, expected) -> str:
             "with n3; check that both n_ij are divided by f^2 on their first two entries only."
         )
     if np.isclose(g[0], ratio, rtol=1e-6):
-        return "your ratio is right but f is not: f^2 = -(n21 n31 + n22 n32) / (n23 n33), in pixels."
+        return (
+            "your ratio is right but f is not: f^2 = -(n21 n31 + n22 n32) / (n23 n33), in pixels."
+        )
     return (
         "check k2 and k3 (both use m1 x m4, dotted with m3 and m2), then n2 = k2 m2 - m1 and n3 = k3 m3 - m1, "
         "with m_i the corners relative to the principal point in Zhang & He's order TL, TR, BL, BR."
@@ -784,7 +818,9 @@ def rectangle_shape(corners, principal_point):
     k3 = np.cross(m1, m4) @ m2 / (np.cross(m3, m4) @ m2)
     n2, n3 = k2 * m2 - m1, k3 * m3 - m1  # along w e1 and h e2, through A = diag(f, f, 1)
     f2 = -(n2[0] * n3[0] + n2[1] * n3[1]) / (n2[2] * n3[2])  # from e1 . e2 = 0
-    ratio2 = ((n2[0] ** 2 + n2[1] ** 2) / f2 + n2[2] ** 2) / ((n3[0] ** 2 + n3[1] ** 2) / f2 + n3[2] ** 2)
+    ratio2 = ((n2[0] ** 2 + n2[1] ** 2) / f2 + n2[2] ** 2) / (
+        (n3[0] ** 2 + n3[1] ** 2) / f2 + n3[2] ** 2
+    )
     return float(np.sqrt(ratio2)), float(np.sqrt(f2))
 
 
@@ -807,7 +843,10 @@ register_exercise(
         wrong_variants=(
             (lambda c, p: (1 / _shape_reference(c, p)[0], _shape_reference(c, p)[1]), "h/w"),
             (lambda c, p: _shape_reference(c, p)[::-1], "(ratio, f), w/h first"),
-            (lambda c, p: (_shape_reference(c, p)[0] ** 2, _shape_reference(c, p)[1]), "take np.sqrt"),
+            (
+                lambda c, p: (_shape_reference(c, p)[0] ** 2, _shape_reference(c, p)[1]),
+                "take np.sqrt",
+            ),
             (_shape_wrong(order=(0, 1, 2, 3)), "Zhang & He's numbering"),
             (
                 lambda c, p: tuple(np.sqrt(_shape_from(*_zhang_he(c, p, order=(0, 1, 2, 3))))),

@@ -205,6 +205,13 @@ def _rectify_readout(
     )
 
 
+def _widest_angle(corners: np.ndarray) -> float:
+    """The quadrilateral's largest interior angle, degrees (180 when three corners are in a line)."""
+    before, after = np.roll(corners, 1, axis=0) - corners, np.roll(corners, -1, axis=0) - corners
+    cos = (before * after).sum(1) / np.linalg.norm(before, axis=1) / np.linalg.norm(after, axis=1)
+    return float(np.degrees(np.arccos(np.clip(cos, -1, 1))).max())
+
+
 def _new_photo(current: dict, scene: str, im: Any, control: W.Text) -> str:
     """Switch :func:`rectify_photo` to ``scene``'s photo.
 
@@ -341,7 +348,16 @@ def rectify_photo() -> Demo:
         ax_r.set_title(f"rectified with {used}", fontsize=10, pad=3)
         if v["scene"] not in slips:  # once per scene: 32 estimates
             slips[v["scene"]] = _corner_slip_range(photo.corners, photo.image.shape, photo.K[0, 0])
-        readout.value = _rectify_readout(est, used, from_quad, known, photo, slips[v["scene"]])
+        text = _rectify_readout(est, used, from_quad, known, photo, slips[v["scene"]])
+        widest = _widest_angle(corners)
+        if widest > 160:  # a corner almost on the line through its neighbours
+            text = text.replace(
+                "shown:",
+                f"careful: a corner angle of {widest:.0f}°, three corners nearly in a line;\n"
+                "the ratio then means little\nshown:",
+                1,
+            )
+        readout.value = text
 
     demo = build_demo(
         "rectify_photo",
