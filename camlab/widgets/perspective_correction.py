@@ -79,6 +79,9 @@ def _photo_demo(photo_title: str, result_title: str, outline: dict):
         )
     )
     ax_p.set(xlim=(-0.5, 639.5), ylim=(479.5, -0.5))
+    ax_p.set_xlabel("u (px, right)", fontsize=8, labelpad=1)
+    ax_p.set_ylabel("v (px, down)", fontsize=8, labelpad=1)
+    ax_p.tick_params(labelsize=7)
     im_r = view.animate(
         ax_r.imshow(np.full((_SHOW, _SHOW, 3), 255, np.uint8), interpolation="nearest")
     )
@@ -143,20 +146,70 @@ def _show_shapes(im: Any, photo: Any, corners: np.ndarray, ratio: float, outline
         artist.set_data([x0, x0 + w, x0 + w, x0, x0], [y0, y0, y0 + h, y0 + h, y0])
 
 
-def _rectify_readout(est: Any, used: str, from_quad: Any, known: Any, photo: Any) -> str:
+def _focal_text(est: Any, true_focal: float) -> str:
+    """How the focal length behind a ratio was found, for a readout."""
+    f = "" if est.focal_length is None else f"{est.focal_length:.0f} px"
+    return {
+        "assumed": f"f assumed {f}, the image width (true {true_focal:.0f}): the corners give\n"
+        "none (an edge pair parallel in the photo, or f\u00b2 \u2264 0)",
+        "estimated": f"f estimated {f} from the corners (true {true_focal:.0f})",
+        "given": f"f given {f}",
+        "not needed": "f not needed (an affine view)",
+    }[est.focal_source]
+
+
+_SLIP_PX = 5.0  # how far a hand click is off, in the readout's sensitivity line
+
+
+def _corner_slip_range(corners: np.ndarray, image_shape: tuple, focal_length: float) -> dict:
+    """The spread of w/h (and of f from the corners) when one corner slips by 5 px, either axis.
+
+    The 16 quadrilaterals with one corner moved by +-5 px in u or in v; for each, the ratio with f
+    from the corners and with ``focal_length`` given. Returns ``ratio_from_quad``, ``ratio_known``
+    and ``focal`` as (min, max) pairs; the lesson prints the same numbers (section 3).
+    """
+    from_quad, known, focal = [], [], []
+    for k in range(4):
+        for step in ((_SLIP_PX, 0), (-_SLIP_PX, 0), (0, _SLIP_PX), (0, -_SLIP_PX)):
+            q = np.array(corners, dtype=float)
+            q[k] += step
+            est = pp.estimate_aspect_ratio(q, image_shape)
+            from_quad.append(est.ratio)
+            focal.append(est.focal_length)
+            known.append(pp.estimate_aspect_ratio(q, image_shape, focal_length=focal_length).ratio)
+    return {
+        "ratio_from_quad": (min(from_quad), max(from_quad)),
+        "ratio_known": (min(known), max(known)),
+        "focal": (min(focal), max(focal)),
+    }
+
+
+def _rectify_readout(
+    est: Any, used: str, from_quad: Any, known: Any, photo: Any, slip: dict
+) -> str:
     """The text beside :func:`rectify_photo`.
 
-    The ratio shown, the ratios with f from the corners, with f known and the true one.
+    The ratio shown, the ratios with f from the corners, with f known and the true one, how f was
+    found, and how far a 5 px slip of one of the scene's exact corners moves each ratio.
     """
-    f = "—" if from_quad.focal_length is None else f"{from_quad.focal_length:.0f} px"
+    f_true = photo.K[0, 0]
+    (a, b), (c, d), (f0, f1) = slip["ratio_from_quad"], slip["ratio_known"], slip["focal"]
     return monospace(
         f"shown: w/h {est.ratio:.3f} ({used})\n"
-        f"w/h with f from the corners: {from_quad.ratio:.3f}  (f = {f}, {from_quad.focal_source})\n"
-        f"w/h with f known ({photo.K[0, 0]:.0f} px): {known.ratio:.3f}\n"
-        f"w/h true:                   {photo.aspect:.3f}\n"
-        "the rectified view uses the ticked choice;\ndrag a corner a few px: the estimated f moves,\n"
-        "the known-f ratio hardly does"
+        f"w/h with f from the corners: {from_quad.ratio:.3f}\n"
+        f"w/h with f known ({f_true:.0f} px):     {known.ratio:.3f}\n"
+        f"w/h true:                    {photo.aspect:.3f}\n"
+        f"{_focal_text(from_quad, f_true)}\n"
+        f"this scene, one exact corner {_SLIP_PX:.0f} px off: f from the corners {f0:.0f}-{f1:.0f} px,\n"
+        f"  w/h {a:.3f}-{b:.3f} with it, {c:.3f}-{d:.3f} with f known"
     )
+
+
+def _widest_angle(corners: np.ndarray) -> float:
+    """The quadrilateral's largest interior angle, degrees (180 when three corners are in a line)."""
+    before, after = np.roll(corners, 1, axis=0) - corners, np.roll(corners, -1, axis=0) - corners
+    cos = (before * after).sum(1) / np.linalg.norm(before, axis=1) / np.linalg.norm(after, axis=1)
+    return float(np.degrees(np.arccos(np.clip(cos, -1, 1))).max())
 
 
 def _new_photo(current: dict, scene: str, im: Any, control: W.Text) -> str:
@@ -236,7 +289,7 @@ def rectify_photo() -> Demo:
     view, ax_p, ax_r, im_p, im_r, quad = _photo_demo(
         "photo: drag the orange corners",
         "rectified",
-        dict(ls="-", color=palette.ORANGE, lw=1.5, path_effects=palette.halo(1.5)),
+        dict(ls="--", color=palette.YELLOW, lw=1.5, path_effects=palette.halo(1.5, "black")),
     )
     art = _rectify_artists(view, ax_p, ax_r)
     handles, chosen, other, truth_box = art.handles, art.chosen, art.other, art.truth_box
@@ -250,6 +303,7 @@ def rectify_photo() -> Demo:
         "corners": first.corners,
         "busy": False,
     }
+    slips: dict[str, dict] = {}
 
     def update(v: dict, state: dict) -> None:
         if current["busy"]:
@@ -285,9 +339,25 @@ def rectify_photo() -> Demo:
             ratio_known_focal=known.ratio,
             focal_from_quad=from_quad.focal_length,
         )
-        used = "known f" if v["use_focal"] else "f from the corners"
+        if v["use_focal"]:
+            used = f"known f ({photo.K[0, 0]:.0f} px)"
+        elif from_quad.focal_source == "assumed":
+            used = f"f assumed ({from_quad.focal_length:.0f} px)"
+        else:
+            used = "f from the corners"
         ax_r.set_title(f"rectified with {used}", fontsize=10, pad=3)
-        readout.value = _rectify_readout(est, used, from_quad, known, photo)
+        if v["scene"] not in slips:  # once per scene: 32 estimates
+            slips[v["scene"]] = _corner_slip_range(photo.corners, photo.image.shape, photo.K[0, 0])
+        text = _rectify_readout(est, used, from_quad, known, photo, slips[v["scene"]])
+        widest = _widest_angle(corners)
+        if widest > 160:  # a corner almost on the line through its neighbours
+            text = text.replace(
+                "shown:",
+                f"careful: a corner angle of {widest:.0f}°, three corners nearly in a line;\n"
+                "the ratio then means little\nshown:",
+                1,
+            )
+        readout.value = text
 
     demo = build_demo(
         "rectify_photo",
@@ -304,7 +374,7 @@ def rectify_photo() -> Demo:
 
 @register(
     lesson="10",
-    sweep={"yaw": [-0.6, 0.0, 0.5], "pitch": [0.5, -0.3], "page_present": [False, True]},
+    sweep={"yaw": [-0.8, 0.0, 0.5, 0.8], "pitch": [0.7, -0.7], "page_present": [False, True]},
 )
 def document_scanner() -> Demo:
     """The "Scan this page" demo: find the page and rectify it; say so when there is none.
@@ -317,12 +387,13 @@ def document_scanner() -> Demo:
         The demo: controls ``yaw`` and ``pitch`` (the page's turn, rad) and ``page_present``,
         the figure (the photo with the quadrilateral found, the page rectified) and ``state``
         (``found``, ``corner_error`` the worst corner's distance from the truth in px,
-        ``ratio`` the estimated w/h, ``message`` why no page was found).
+        ``ratio`` the estimated w/h, ``focal`` in px and ``focal_source`` behind it, ``message`` why
+        no page was found).
     """
     view, ax_p, ax_r, im_p, im_r, found = _photo_demo(
         "photo with the detected outline",
         "scanned page",
-        dict(ls="-", color=palette.GREEN, lw=2, path_effects=palette.halo(2)),
+        dict(ls="-", color=palette.YELLOW, lw=2, path_effects=palette.halo(2, "black")),
     )
     readout = W.HTML()
     # why no page was found, on the figure itself (a static picture has no readout)
@@ -359,10 +430,18 @@ def document_scanner() -> Demo:
         est = pp.estimate_aspect_ratio(corners, image.shape)
         _show_rectified(im_r, image, corners, (400, int(400 / est.ratio)))
         err = float(np.abs(corners - photo.corners).max())
-        state.update(found=True, corner_error=err, ratio=est.ratio, message="")
+        state.update(
+            found=True,
+            corner_error=err,
+            ratio=est.ratio,
+            focal=est.focal_length,
+            focal_source=est.focal_source,
+            message="",
+        )
         readout.value = monospace(
             f"page found; worst corner error {err:.1f} px\n"
-            f"aspect w/h {est.ratio:.3f} (true {photo.aspect:.3f}, A4 = 0.707)"
+            f"aspect w/h {est.ratio:.3f} (true {photo.aspect:.3f}, A4 = 0.707)\n"
+            f"{_focal_text(est, photo.K[0, 0])}"
         )
 
     controls = {
@@ -376,7 +455,8 @@ def document_scanner() -> Demo:
 
 
 @register(
-    lesson="10", sweep={"tilt": [-0.7, 0.0, -0.3], "yaw": [0.3, 0.0], "use_focal": [False, True]}
+    lesson="10",
+    sweep={"tilt": [-0.8, 0.0, -0.3], "yaw": [0.3, 0.0, -0.5, 0.5], "use_focal": [False, True]},
 )
 def keystone_correction() -> Demo:
     """Keystone: a camera tilted up at a facade makes its verticals converge; a homography undoes it.
@@ -397,7 +477,7 @@ def keystone_correction() -> Demo:
     view, ax_p, ax_r, im_p, im_r, quad = _photo_demo(
         "photo from the street",
         "keystone-corrected",
-        dict(ls="--", color=palette.YELLOW, lw=1.5),
+        dict(ls="--", color=palette.YELLOW, lw=1.5, path_effects=palette.halo(1.5, "black")),
     )
     ax_r.text(
         0.5,
@@ -443,16 +523,11 @@ def keystone_correction() -> Demo:
             focal=est.focal_length,
             ratio_error_percent=off,
         )
-        f_px = f"{est.focal_length:.0f} px" if est.focal_length is not None else ""
-        f_text = {
-            "assumed": f"f assumed {f_px} (cannot be estimated; true {photo.K[0, 0]:.0f})",
-            "estimated": f"f estimated {f_px} (true {photo.K[0, 0]:.0f})",
-            "given": f"f given {f_px}",
-            "not needed": "f not needed (an affine view)",
-        }[est.focal_source]
+        off_text = f"{off:+.1f}%" if round(off, 1) != 0 else "0.0%"  # never -0.0%
         readout.value = monospace(
             f"verticals converge by {abs(converge):.1f}°\n"
-            f"aspect w/h estimated {est.ratio:.3f} (true {photo.aspect:.3f}, {off:+.1f}%)\n{f_text}"
+            f"aspect w/h estimated {est.ratio:.3f} (true {photo.aspect:.3f}, {off_text})\n"
+            f"{_focal_text(est, photo.K[0, 0])}"
         )
 
     controls = {
