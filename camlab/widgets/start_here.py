@@ -437,7 +437,9 @@ def _explorer_image(ax, img: np.ndarray) -> None:
     ax.set_yticks(range(H))
     ax.set_xlabel("u (px): column", color=palette.RED)
     ax.set_ylabel("v (px): row", color=palette.GREEN)
-    ax.set_title(f"a {W} x {H} image holding 10 v + u at img[v, u]", fontsize=10)
+    ax.set_title(
+        f"a {W} x {H} image holding 10 v + u at img[v, u]", fontsize=10, pad=10
+    )  # clear of the +
 
 
 def _explorer_figure(view: FigureView, img: np.ndarray) -> tuple:
