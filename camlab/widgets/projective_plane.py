@@ -700,17 +700,21 @@ def _conic_text(g: SimpleNamespace, v: dict) -> str:
         if g.fixed
         else "≠ I: H is no similarity, so some circles become non-circles"
     )
-    shape = "a circle" if abs(g.axis_ratio - 1.0) < 5e-4 else "an ellipse"
+    if abs(g.axis_ratio - 1.0) < 5e-4:
+        shape = "a circle"
+    elif g.axis_ratio > 0.99:
+        shape = "an ellipse, nearly a circle"
+    else:
+        shape = "an ellipse"
     bounded = (
-        "H keeps l∞ (h31 = h32 = 0), so C' stays bounded"
+        "H keeps l∞, so C' stays bounded"
         if h == 0
-        else f"the line H sends to ∞ (h31 x + h32 y + 1 = 0) is {1 / h:.1f} from C's centre"
-        " (> radius 1), so C' stays bounded"
+        else f"the line H sends to ∞, h31 x + h32 y + 1 = 0, is {1 / h:.1f} from C's centre (> 1)"
     )
     HI = g.I_mapped
     return (
         f"H I = (1, {_complex_text(HI[1])}, {_complex_text(HI[2])}) {verdict}\n"
-        f"C': axis ratio {g.axis_ratio:.3f}, so C' is {shape}; {bounded}\n"
+        f"C': axis ratio {g.axis_ratio:.3f}, {shape}; {bounded}\n"
         f"max |x'ᵀC'x'| over the 8 points {g.residual:.0e};  "
         f"max |l'ᵀC*'l'| over the 4 tangents {g.tangent_residual:.0e}"
     )
