@@ -355,7 +355,7 @@ def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespac
     ax.add_collection(grid_z)
     ax.add_collection(grid_x)
     (horizon_artist,) = ax.plot(
-        [], [], "--", color=palette.TAB_RED, lw=1.5, label="horizon = vp_z × vp_x"
+        [], [], "--", color=palette.TAB_RED, lw=1.5, label="horizon = vp_z × vp_x (when in the image)"
     )
     (vz_dot,) = ax.plot([], [], "o", color=palette.TAB_BLUE, mec="k", ms=11)
     (vx_dot,) = ax.plot([], [], "o", color=palette.TAB_GREEN, mec="k", ms=11)
@@ -479,6 +479,9 @@ def vanishing_points() -> Demo:
     )
 
 
+_CR_H = 0.3  # the cross-ratio demo's largest |h31|, |h32|
+
+
 def _cross_ratio_figure(view: FigureView) -> SimpleNamespace:
     """The figure of :func:`cross_ratio_invariance`.
 
@@ -493,11 +496,14 @@ def _cross_ratio_figure(view: FigureView) -> SimpleNamespace:
     numbers = axes["text"].text(0.5, 0.5, "", transform=axes["text"].transAxes, **centred)
     plane_axes(ax_s, 2.2, "before: four collinear points")
     plane_axes(ax_t, 2.2, "after the homography H")
+    # With |h31|, |h32| <= _CR_H the grid's w = 1 + h31 x + h32 y stays >= 1 - 2 * 0.3 * 1.4 = 0.16 > 0:
+    # no grid line crosses the line H sends to infinity, so each maps to one straight segment; and
+    # A and D (w >= 0.55) land within the +-2.2 panel at every setting.
     grid = np.array(
-        [[[x, -1.5], [x, 1.5]] for x in np.linspace(-1.5, 1.5, 7)]
-        + [[[-1.5, y], [1.5, y]] for y in np.linspace(-1.5, 1.5, 7)]
+        [[[x, -1.4], [x, 1.4]] for x in np.linspace(-1.4, 1.4, 7)]
+        + [[[-1.4, y], [1.4, y]] for y in np.linspace(-1.4, 1.4, 7)]
     )
-    points = np.array([[-1.2, -0.6], [-0.3, -0.15], [0.4, 0.2], [1.3, 0.65]])
+    points = np.array([[-1.0, -0.5], [-0.3, -0.15], [0.4, 0.2], [1.0, 0.5]])
     colors = [palette.TAB_BLUE, palette.ORANGE, palette.TAB_GREEN, palette.TAB_RED]
     from matplotlib.collections import LineCollection
 
@@ -524,7 +530,7 @@ def _cross_ratio_figure(view: FigureView) -> SimpleNamespace:
     )
 
 
-@register(lesson="06", sweep={"h31": [0.0, 0.25, -0.3], "h32": [0.0, 0.2], "angle": [0.0, 30.0]})
+@register(lesson="06", sweep={"h31": [0.0, 0.25, -0.3, 0.3], "h32": [0.0, 0.2, -0.3, 0.3], "angle": [0.0, 30.0]})
 def cross_ratio_invariance() -> Demo:
     """A homography changes lengths and ratios of lengths, but never the cross-ratio.
 
@@ -580,8 +586,8 @@ def cross_ratio_invariance() -> Demo:
         )
 
     controls = {
-        "h31": slider(0.2, -0.35, 0.35, 0.01, "h31 (perspective x)"),
-        "h32": slider(0.1, -0.35, 0.35, 0.01, "h32 (perspective y)"),
+        "h31": slider(0.2, -_CR_H, _CR_H, 0.01, "h31 (perspective x)"),
+        "h32": slider(0.1, -_CR_H, _CR_H, 0.01, "h32 (perspective y)"),
         "angle": slider(10.0, -45.0, 45.0, 1.0, "rotation (°)"),
     }
     return build_demo(
