@@ -152,7 +152,7 @@ def _line_slips(p, q):
     """(the line a slip gives, its hint) for the slips a student makes on the points p, q."""
     right = _line_through(p, q)
     shifted = (
-        "your line passes through both points shifted by {:+g} px in x and y: {}. Use the pixels as given: "
+        "your line passes through both points shifted by {:+g} px in x and y ({}). Use the pixels as given: "
         "(u, v) lifts to (u, v, 1) with no offset"
     )
     return [
@@ -166,7 +166,7 @@ def _line_slips(p, q):
         *(
             (_line_through(p + d, q + d), shifted.format(d, why))
             for d, why in ((0.5, "a half-pixel offset"), (-0.5, "a half-pixel offset"), (1.0, "1-based pixels?"),
-                           (-1.0, "an off-by-one"))
+                           (-1.0, "an off-by-one?"))
         ),
     ]
 
@@ -279,6 +279,7 @@ def _conditionings(segments):
         "unit mean distance": 1 / np.linalg.norm(pts - centre, axis=1).mean(),
         "unit standard deviation": 1 / (pts - centre).std(),
         "largest |coordinate| 1": 1 / np.abs(pts - centre).max(),
+        "centring only": 1.0,
     }
     return [np.array([[k, 0, -k * centre[0]], [0, k, -k * centre[1]], [0, 0, 1]]) for k in spread.values()]
 
@@ -313,6 +314,18 @@ def _vanishing_diagnosis(args, got, expected) -> str:
         slip = _conditioning_slip(segments, np.asarray(got, dtype=float), expected)
         if slip:
             return slip
+        seg = np.asarray(segments, dtype=float)
+        for moved, why in (
+            (seg + 0.5, "shifted by +0.5 px in u and v: a half-pixel offset"),
+            (seg - 0.5, "shifted by -0.5 px in u and v: a half-pixel offset"),
+            (seg + 1.0, "shifted by +1 px in u and v: 1-based pixels?"),
+            (seg * [1.0, -1.0], "with v negated: a y flip (y up instead of the image's v down)"),
+        ):
+            if same_up_to_scale(got, vanishing_point(moved)):
+                return (
+                    f"your point is the vanishing point of the segments {why}. Use the endpoints as given: "
+                    "(u, v) lifts to (u, v, 1)."
+                )
     lines = [projective.join(s[0], s[1]) for s in segments]
     return _homogeneous_point_diagnosis(
         got,
@@ -404,6 +417,8 @@ register_exercise(
                 "lines are parallel",
             ),
             (_cross_2d_twice, "np.cross of two 2-vectors"),
+            (lambda s: projective.vanishing_point(np.asarray(s) + 0.5), "half-pixel"),
+            (lambda s: projective.vanishing_point(np.asarray(s) * [1.0, -1.0]), "y flip"),
         ),
         exception_hint=_vanishing_exception_hint,
         teaching=vanishing_point,
