@@ -42,12 +42,13 @@ def lift_to_plane() -> Demo:
     """
     view = FigureView(figsize=(9, 4.6))
     ax3 = view.fig.add_subplot(1, 2, 1, projection="3d")
-    ax2 = plane_axes(view.fig.add_subplot(1, 2, 2), 2, "the image plane w = 1 (drawn y up)")
+    ax2 = plane_axes(view.fig.add_subplot(1, 2, 2), 2, "the plane w = 1 (drawn y up)")
     box, w_max = _LIFT_BOX, _LIFT_SCALE
     ax3.set(xlim=(-box, box), ylim=(-box, box), zlim=(-w_max, w_max), xlabel="x", ylabel="y", zlabel="w")
     ax3.set_box_aspect((1, 1, 0.75))
     ax3.view_init(elev=16, azim=-60)
     ax3.set_title("homogeneous space (x, y, w)")
+    view.fig.get_layout_engine().set(wspace=0.12)  # the 3-D w label and the plane's y label apart
     ax3.set(xticks=[-3, 0, 3], yticks=[-3, 0, 3], zticks=[-2, -1, 0, 1, 2])
     gx, gy = np.meshgrid(np.linspace(-2, 2, 5), np.linspace(-2, 2, 5))
     ax3.plot_surface(
