@@ -1395,3 +1395,48 @@ def test_order_corners_rejects_the_sum_and_difference_shortcut_on_a_page_in_pers
 
     with pytest.raises(AssertionError, match="u \\+ v / v - u shortcut"):
         check("order_corners", shortcut)
+
+
+@pytest.mark.parametrize(
+    "answer",
+    [
+        lambda H: np.cross(H[:, 0], H[:, 1]),  # the two ground vanishing points joined
+        lambda H: np.linalg.solve(H.T, [0.0, 0.0, 1.0]),
+        lambda H: -3.0 * np.linalg.inv(H)[2],  # inv(H)'s third row, any scale
+    ],
+)
+def test_horizon_line_accepts_right_answers_in_other_forms(answer, capsys):
+    assert check("horizon_line", answer).passed
+    assert "H[:, 0] x H[:, 1] is the same line" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(
+    "name, answer, phrase",
+    [
+        (
+            "intersect_lines",
+            lambda l1, l2: np.append(np.linalg.solve([l1[:2], l2[:2]], [-l1[2], -l2[2]]), 1.0),
+            "parallel lines",
+        ),
+        (
+            "vanishing_point",
+            lambda s: np.append(
+                np.linalg.solve(
+                    [
+                        np.cross([*s[0, 0], 1], [*s[0, 1], 1])[:2],
+                        np.cross([*s[1, 0], 1], [*s[1, 1], 1])[:2],
+                    ],
+                    [
+                        -np.cross([*s[0, 0], 1], [*s[0, 1], 1])[2],
+                        -np.cross([*s[1, 0], 1], [*s[1, 1], 1])[2],
+                    ],
+                ),
+                1.0,
+            ),
+            "parallel lines",
+        ),
+    ],
+)
+def test_projective_plane_checks_name_a_euclidean_solve_on_parallel_lines(name, answer, phrase):
+    with pytest.raises(AssertionError, match=phrase):
+        check(name, answer)

@@ -16,6 +16,33 @@ def _incidence(point: np.ndarray, line: np.ndarray) -> float:
     return float(abs(line @ x) / norms) if norms > 0 else np.inf
 
 
+def _quiet(f):
+    """``f`` with numpy's divide warnings silenced (a wrong variant that divides by 0 on purpose)."""
+
+    def quiet(*args):
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return f(*args)
+
+    return quiet
+
+
+def _then(problem: str, more: str) -> str:
+    """``problem`` followed by the sentence ``more`` (no ". " after a question mark)."""
+    return problem + (" " if problem.rstrip().endswith("?") else ". ") + more
+
+
+_PARALLEL_MEET = (
+    "two parallel lines meet at an ideal point (x, y, 0), whose w is 0: dividing by w gives inf or NaN, "
+    "and solving the 2 x 2 system fails. Keep the cross product's (x, y, w) as it is"
+)
+
+
+def _parallel(lines) -> bool:
+    """True when the two lines have the same normal direction (they meet at an ideal point)."""
+    (a1, b1, _), (a2, b2, _) = (np.asarray(ln, dtype=float) for ln in lines)
+    return abs(a1 * b2 - a2 * b1) <= 1e-12 * (np.hypot(a1, b1) * np.hypot(a2, b2))
+
+
 def _homogeneous_point_diagnosis(got, expected, lines, how: str) -> str:
     problem = shape_problem(got, expected)
     if problem and np.shape(got) == (2,):
@@ -23,8 +50,16 @@ def _homogeneous_point_diagnosis(got, expected, lines, how: str) -> str:
             "you returned a Euclidean (x, y); return the homogeneous 3-vector instead. "
             "Parallel lines meet at an ideal point (x, y, 0), which has no (x, y)."
         )
+    if problem and np.shape(got) == np.shape(expected) and _parallel(lines):
+        return "this test input's lines are parallel: " + _PARALLEL_MEET + "."
     if problem:
         return problem
+    g = np.asarray(got, dtype=float)
+    if same_up_to_scale(g, np.asarray(expected, dtype=float)[[1, 0, 2]]):
+        return (
+            "you swapped x and y: your point is (y, x, w) of the right one. Keep the cross product's "
+            "entries in their order (x, y, w)."
+        )
     off = [_incidence(got, ln) for ln in lines]
     if max(off) > 1e-6:
         return (
@@ -32,6 +67,20 @@ def _homogeneous_point_diagnosis(got, expected, lines, how: str) -> str:
             f"{how}"
         )
     return "the point is on both lines but differs from the expected one; check the inputs you used"
+
+
+def _solve_hint(exc: Exception, lines) -> str:
+    """The likely cause when a student's Euclidean solve fails on two lines, or ''."""
+    if isinstance(
+        exc, (np.linalg.LinAlgError, ZeroDivisionError, FloatingPointError)
+    ) and _parallel(lines):
+        return (
+            f"{type(exc).__name__} on parallel lines: a Euclidean solve (np.linalg.solve, inv, Cramer's "
+            "rule) has no answer there, but the projective plane has one: "
+            + _PARALLEL_MEET
+            + " (l1 x l2 gives it)"
+        )
+    return ""
 
 
 def _intersect_cases():
@@ -76,7 +125,16 @@ register_exercise(
         wrong_variants=(
             (lambda l1, l2: (np.cross(l1, l2) / np.cross(l1, l2)[2])[:2], "homogeneous 3-vector"),
             (lambda l1, l2: l1 + l2, "not on both lines"),
+            (lambda l1, l2: np.cross(l1, l2)[[1, 0, 2]], "swapped x and y"),
+            (_quiet(lambda l1, l2: np.cross(l1, l2) / np.cross(l1, l2)[2]), "lines are parallel"),
+            (
+                lambda l1, l2: np.append(
+                    np.linalg.solve(np.array([l1[:2], l2[:2]]), -np.array([l1[2], l2[2]])), 1.0
+                ),
+                "parallel lines",
+            ),
         ),
+        exception_hint=_solve_hint,
         teaching=intersect_lines,
     )
 )
@@ -84,29 +142,96 @@ register_exercise(
 
 def _line_cases():
     return [
-        (np.array([0.0, 0.0]), np.array([1.0, 1.0])),
+        (np.array([320.0, 240.0]), np.array([10.0, 470.0])),
         (np.array([100.0, 50.0]), np.array([100.0, 400.0])),  # vertical
         (np.array([-3.0, 7.0]), np.array([12.0, 7.0])),  # horizontal
-        (np.array([320.0, 240.0]), np.array([10.0, 470.0])),
+        (np.array([0.0, 0.0]), np.array([1.0, 1.0])),  # through the origin: c = 0
+    ]
+
+
+def _line_through(p, q) -> np.ndarray:
+    return np.cross(
+        np.append(np.asarray(p, dtype=float), 1.0), np.append(np.asarray(q, dtype=float), 1.0)
+    )
+
+
+def _line_slips(p, q):
+    """(the line a slip gives, its hint) for the slips a student makes on the points p, q."""
+    right = _line_through(p, q)
+    shifted = (
+        "your line passes through both points shifted by {:+g} px in x and y ({}). Use the pixels as given: "
+        "(u, v) lifts to (u, v, 1) with no offset"
+    )
+    return [
+        (
+            np.append(np.asarray(q, float) - p, 0.0),
+            "your (a, b) is the line's direction q - p; the line's "
+            "(a, b) is its normal, perpendicular to that, and c places it. Both come out of p~ x q~",
+        ),
+        (
+            right * [1, 1, -1],
+            "your (a, b) is right but c has the wrong sign, so the line is mirrored through "
+            "the origin: for l = (a, b, c), a x + b y + c = 0. Take the whole cross product p~ x q~; do not "
+            "recompute or negate c by hand",
+        ),
+        (
+            _line_through(p * [1, -1], q * [1, -1]),
+            "your line passes through (x, -y) of each point: a y flip "
+            "(y up instead of the image's v down). Lift (u, v) as it is, to (u, v, 1)",
+        ),
+        *(
+            (_line_through(p + d, q + d), shifted.format(d, why))
+            for d, why in (
+                (0.5, "a half-pixel offset"),
+                (-0.5, "a half-pixel offset"),
+                (1.0, "1-based pixels?"),
+                (-1.0, "an off-by-one?"),
+            )
+        ),
     ]
 
 
 def _line_diagnosis(args, got, expected) -> str:
+    if np.ndim(got) == 0 and not isinstance(got, (str, bytes)) and got is not None:
+        return (
+            "you returned one number: np.cross of two 2-vectors gives only the z of their 3-D cross product "
+            "(and numpy 2 deprecates it). Lift p and q to (x, y, 1) first: np.cross(np.append(p, 1.0), "
+            "np.append(q, 1.0))"
+        )
     problem = shape_problem(got, expected)
+    if problem and np.shape(got) == (3,) and 0 in np.asarray(expected)[2:]:
+        return _then(
+            problem,
+            "This test input's line passes through the origin, so its c is 0: dividing by c "
+            "(to make it 1) gives inf. Any non-zero scale is accepted; return the line unscaled",
+        )
     if problem:
-        return problem + ". A line is the 3-vector (a, b, c) of ax + by + c = 0."
-    if not np.any(got):
-        return "you returned (0, 0, 0), which is no line. Lift p and q to (x, y, 1) before the cross product."
-    p, q = (np.append(a, 1.0) for a in args)
-    if same_up_to_scale(got, np.cross(np.append(p[1::-1], 1.0), np.append(q[1::-1], 1.0))):
+        return _then(problem, "A line is the 3-vector (a, b, c) of ax + by + c = 0.")
+    g = np.asarray(got, dtype=float)
+    if not np.any(g):
+        return (
+            "you returned (0, 0, 0), which is no line: did you lift with w = 0 (the point (0, 0) then becomes "
+            "the zero vector)? Lift p and q to (x, y, 1) before the cross product."
+        )
+    if not np.any(g[:2]):
+        return (
+            "your line is (0, 0, c), the line at infinity: you lifted the points with w = 0, which makes them "
+            "directions, not points. Lift p and q to (x, y, 1) before the cross product."
+        )
+    p, q = (np.asarray(a, dtype=float) for a in args)
+    if same_up_to_scale(g, _line_through(p[::-1], q[::-1])):
         return (
             "you swapped the coordinates: your line passes through (y, x) of each point. A pixel "
             "(u, v) = (column, row) lifts to (u, v, 1): p[0] first, then p[1], then 1."
         )
-    off = [_incidence(x, np.asarray(got, dtype=float)) for x in (p, q)]
+    for line, hint in _line_slips(p, q):
+        if same_up_to_scale(g, line):
+            return hint
+    off = [_incidence(np.append(x, 1.0), g) for x in (p, q)]
     return (
         f"your line does not pass through both points (normalised |l . p| = {off[0]:.3g}, "
-        f"|l . q| = {off[1]:.3g}). Lift p and q to (x, y, 1) before the cross product."
+        f"|l . q| = {off[1]:.3g}). The line through them is the cross product of the lifted points, "
+        "(x1, y1, 1) x (x2, y2, 1)."
     )
 
 
@@ -141,8 +266,17 @@ register_exercise(
         compare=same_up_to_scale,
         diagnose=_line_diagnosis,
         wrong_variants=(
-            (lambda p, q: np.cross(np.append(p, 0.0), np.append(q, 0.0)), "Lift p and q"),
-            (lambda p, q: np.append(q - p, 0.0), "does not pass through both points"),
+            (lambda p, q: np.cross(np.append(p, 0.0), np.append(q, 0.0)), "with w = 0"),
+            (lambda p, q: np.append(q - p, 0.0), "direction q - p"),
+            (lambda p, q: _line_through(p + 0.5, q + 0.5), "half-pixel"),
+            (lambda p, q: _line_through(p * [1, -1], q * [1, -1]), "y flip"),
+            (lambda p, q: _line_through(p, q) * [1, 1, -1], "wrong sign"),
+            (lambda p, q: np.array(p[0] * q[1] - p[1] * q[0]), "np.cross of two 2-vectors"),
+            (_quiet(lambda p, q: _line_through(p, q) / _line_through(p, q)[2]), "dividing by c"),
+            (
+                lambda p, q: _line_through(p, q) + [0.0, 0.0, 3.0],
+                "does not pass through both points",
+            ),
             (
                 lambda p, q: np.cross([p[1], p[0], 1.0], [q[1], q[0], 1.0]),
                 "swapped the coordinates",
@@ -154,12 +288,47 @@ register_exercise(
 
 
 def _vanishing_cases():
-    # Two images of parallel rails: segments [[u1, v1], [u2, v2]] in pixels.
+    # Two images of parallel edges: segments [[u1, v1], [u2, v2]] in pixels (not the worked example's rails).
     return [
-        (np.array([[[100.0, 480.0], [280.0, 200.0]], [[540.0, 480.0], [360.0, 200.0]]]),),
+        (np.array([[[120.0, 470.0], [250.0, 260.0]], [[600.0, 455.0], [420.0, 250.0]]]),),
         (np.array([[[0.0, 300.0], [640.0, 260.0]], [[0.0, 420.0], [640.0, 330.0]]]),),
         (np.array([[[10.0, 10.0], [110.0, 60.0]], [[10.0, 110.0], [110.0, 160.0]]]),),  # parallel
     ]
+
+
+def _conditionings(segments):
+    """Similarities T (centre, then scale) a student may condition the endpoints with, by name."""
+    pts = np.asarray(segments, dtype=float).reshape(-1, 2)
+    centre = pts.mean(axis=0)
+    spread = {
+        "mean distance sqrt(2)": np.sqrt(2) / np.linalg.norm(pts - centre, axis=1).mean(),
+        "unit mean distance": 1 / np.linalg.norm(pts - centre, axis=1).mean(),
+        "unit standard deviation": 1 / (pts - centre).std(),
+        "largest |coordinate| 1": 1 / np.abs(pts - centre).max(),
+        "centring only": 1.0,
+    }
+    return [
+        np.array([[k, 0, -k * centre[0]], [0, k, -k * centre[1]], [0, 0, 1]])
+        for k in spread.values()
+    ]
+
+
+def _conditioning_slip(segments, got, expected) -> str | None:
+    """The hint when ``got`` is the vanishing point in conditioned coordinates, or undone wrongly."""
+    e = np.asarray(expected, dtype=float)
+    for T in _conditionings(segments):
+        if same_up_to_scale(got, T @ e):
+            return (
+                "your point is the right one in conditioned coordinates (x_c = T x): the conditioning was not "
+                "undone. Map it back with x = inv(T) @ x_c (lines, if you condition them, move by inv(T).T)"
+            )
+        for wrong, how in ((T.T @ T @ e, "T.T"), (T @ T @ e, "T again")):
+            if same_up_to_scale(got, wrong):
+                return (
+                    f"you undid the conditioning with {how} instead of its inverse: the point in conditioned "
+                    "coordinates is x_c = T x, so x = inv(T) @ x_c"
+                )
+    return None
 
 
 def _vanishing_diagnosis(args, got, expected) -> str:
@@ -170,13 +339,51 @@ def _vanishing_diagnosis(args, got, expected) -> str:
             "you swapped the coordinates: your point is the vanishing point of the segments with (u, v) read "
             "as (v, u). A pixel (u, v) = (column, row) lifts to (u, v, 1)."
         )
+    if np.shape(got) == (3,) and np.isfinite(np.asarray(got, dtype=float)).all():
+        slip = _conditioning_slip(segments, np.asarray(got, dtype=float), expected)
+        if slip:
+            return slip
+        seg = np.asarray(segments, dtype=float)
+        for moved, why in (
+            (seg + 0.5, "shifted by +0.5 px in u and v: a half-pixel offset"),
+            (seg - 0.5, "shifted by -0.5 px in u and v: a half-pixel offset"),
+            (seg + 1.0, "shifted by +1 px in u and v: 1-based pixels?"),
+            (seg * [1.0, -1.0], "with v negated: a y flip (y up instead of the image's v down)"),
+        ):
+            if same_up_to_scale(got, vanishing_point(moved)):
+                return (
+                    f"your point is the vanishing point of the segments {why}. Use the endpoints as given: "
+                    "(u, v) lifts to (u, v, 1)."
+                )
     lines = [projective.join(s[0], s[1]) for s in segments]
     return _homogeneous_point_diagnosis(
         got,
         expected,
         lines,
-        "Make one line per segment (join its two endpoints), then intersect the two lines.",
+        "Make one line per segment (join its two endpoints), then intersect the two lines. If you "
+        "conditioned the endpoints (x_c = T x), undo it at the end: x = inv(T) @ x_c.",
     )
+
+
+def _cross_2d_twice(s):
+    """The slip np.cross(np.cross(a1, b1), np.cross(a2, b2)) on raw 2-vectors: numpy raises on the scalars."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)
+        return np.cross(np.cross(s[0, 0], s[0, 1]), np.cross(s[1, 0], s[1, 1]))
+
+
+def _vanishing_exception_hint(exc: Exception, args) -> str:
+    (segments,) = args
+    lines = [projective.join(s[0], s[1]) for s in segments]
+    if isinstance(exc, ValueError) and "zero dimension" in str(exc):
+        return (
+            "np.cross of two 2-vectors gives a number, not a line, and a second np.cross of those numbers "
+            "fails. Lift each endpoint to (u, v, 1) before joining: np.cross(np.append(a, 1.0), "
+            "np.append(b, 1.0))"
+        )
+    return _solve_hint(exc, lines)
 
 
 def vanishing_point(segments):
@@ -226,7 +433,25 @@ register_exercise(
                 lambda s: projective.vanishing_point(np.asarray(s)[..., ::-1]),
                 "swapped the coordinates",
             ),
+            (
+                lambda s: _conditionings(s)[0] @ projective.vanishing_point(s),
+                "not undone",
+            ),
+            (
+                lambda s: (
+                    _conditionings(s)[0].T @ _conditionings(s)[0] @ projective.vanishing_point(s)
+                ),
+                "instead of its inverse",
+            ),
+            (
+                _quiet(lambda s: projective.vanishing_point(s) / projective.vanishing_point(s)[2]),
+                "lines are parallel",
+            ),
+            (_cross_2d_twice, "np.cross of two 2-vectors"),
+            (lambda s: projective.vanishing_point(np.asarray(s) + 0.5), "half-pixel"),
+            (lambda s: projective.vanishing_point(np.asarray(s) * [1.0, -1.0]), "y flip"),
         ),
+        exception_hint=_vanishing_exception_hint,
         teaching=vanishing_point,
     )
 )
@@ -382,5 +607,175 @@ register_exercise(
             ),
         ),
         teaching=map_conic,
+    )
+)
+
+
+# --- Exercise 5: the horizon, the image of the ground's line at infinity ---------------------
+
+
+def _ground_homography(pitch_deg: float, yaw_deg: float, focal: float, height: float) -> np.ndarray:
+    """H = K [r1 r3 h r2]: ground (X, Z, 1) -> pixels for the scene of ``fixtures.ground_plane_view``."""
+    from ..fixtures import ground_plane_view
+
+    view = ground_plane_view(np.radians(pitch_deg), np.radians(yaw_deg), focal)
+    K, R = view.K, view.R
+    return K @ np.column_stack([R[:, 0], R[:, 2], height * R[:, 1]])
+
+
+def _horizon_cases():
+    return [
+        (_ground_homography(8.0, 25.0, 650.0, 1.6),),
+        (
+            _ground_homography(20.0, 0.0, 500.0, 1.2),
+        ),  # yaw 0: the ground's x direction vanishes at infinity
+        (_ground_homography(0.0, -30.0, 800.0, 2.0),),  # level camera: the horizon is the row c_y
+    ]
+
+
+def _horizon_reference(H):
+    return projective.map_lines(H, projective.LINE_AT_INFINITY)
+
+
+_HORIZON_RULE = "lines move by H^-T, so the horizon is inv(H).T @ (0, 0, 1)"
+
+_HORIZON_MISTAKES = (
+    Mistake(
+        "the points' rule",
+        lambda a: a.H @ a.l,
+        "you moved the line like a point (H @ l): that is H's third column, the image of the ground's "
+        "origin, a point. Incidence l'.x' = l.x needs lines to move by the inverse transpose: "
+        + _HORIZON_RULE,
+    ),
+    Mistake(
+        "transpose forgotten",
+        lambda a: np.linalg.inv(a.H) @ a.l,
+        "inv(H) @ l (or H[0] x H[1], the rows' cross product) drops the transpose: it is inv(H)'s third "
+        "column, and the horizon is its third row. " + _HORIZON_RULE[0].upper() + _HORIZON_RULE[1:],
+    ),
+    Mistake(
+        "the backward map",
+        lambda a: a.H.T @ a.l,
+        "H.T @ l pulls an image line back to the ground (the way back, ground <- image); to push the "
+        "ground's line at infinity into the image, " + _HORIZON_RULE,
+    ),
+    Mistake(
+        "l_inf unchanged",
+        lambda a: a.l,
+        "you returned (0, 0, 1), the ground's own line at infinity; its image is the horizon: "
+        + _HORIZON_RULE,
+    ),
+    Mistake(
+        "a finite point joined (x axis)",
+        lambda a: np.cross(a.H[:, 0], a.H[:, 2]),
+        "you joined H[:, 0] and H[:, 2]; H[:, 2] is the image of the ground's origin (0, 0, 1), a finite "
+        "point, so your line is the image of the ground's x axis. The horizon joins the images of two "
+        "ideal points, (1, 0, 0) and (0, 1, 0): H[:, 0] x H[:, 1]",
+    ),
+    Mistake(
+        "a finite point joined (z axis)",
+        lambda a: np.cross(a.H[:, 1], a.H[:, 2]),
+        "you joined H[:, 1] and H[:, 2]; H[:, 2] is the image of the ground's origin (0, 0, 1), a finite "
+        "point, so your line is the image of the ground's z axis. The horizon joins the images of two "
+        "ideal points, (1, 0, 0) and (0, 1, 0): H[:, 0] x H[:, 1]",
+    ),
+)
+
+
+def _horizon_context(H):
+    from types import SimpleNamespace
+
+    return SimpleNamespace(H=np.asarray(H, dtype=float), l=np.array([0.0, 0.0, 1.0]))
+
+
+def _horizon_diagnosis(args, got, expected) -> str:
+    (H,) = args
+    problem = shape_problem(got, expected)
+    if problem and np.shape(got) == (3,) and abs(np.asarray(H)[2, 0]) < 1e-12:
+        return _then(
+            problem,
+            "This camera has yaw 0, so the ground's x direction (1, 0, 0) vanishes at infinity: H[:, 0] "
+            "has w = 0. Dividing a vanishing point by its w fails there; join them as they are.",
+        )
+    if problem:
+        return _then(problem, "A line is the 3-vector (a, b, c) of a u + b v + c = 0.")
+    g = np.asarray(got, dtype=float)
+    named = first_mistake(_HORIZON_MISTAKES, _horizon_context(H), g, same_up_to_scale)
+    if named:
+        return named
+    vps = [np.asarray(H, dtype=float)[:, k] for k in (0, 1)]
+    off = [_incidence(v, g) for v in vps]
+    return (
+        "your line misses the ground's vanishing points H[:, 0] and H[:, 1] (normalised |l . v| = "
+        f"{off[0]:.3g} and {off[1]:.3g}), and every ground vanishing point lies on the horizon. "
+        + _HORIZON_RULE[0].upper()
+        + _HORIZON_RULE[1:]
+        + "."
+    )
+
+
+def _horizon_note(run) -> str:
+    (H,) = _horizon_cases()[0]
+    line = np.asarray(run(H), dtype=float)
+    off = max(_incidence(H[:, k], line) for k in (0, 1))
+    return (
+        "Your horizon also holds H[:, 0] and H[:, 1], the images of the ground's ideal points (1, 0, 0) and "
+        f"(0, 1, 0) (normalised |l . v| {'below 1e-12' if off < 1e-12 else f'= {off:.1e}'}): "
+        "H[:, 0] x H[:, 1] is the same line, up to scale."
+    )
+
+
+def horizon_line(H):
+    """The ground's line at infinity l = (0, 0, 1) seen through H: lines move by H^-T.
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography from the ground (X, Z, 1) to pixels.
+
+    Returns
+    -------
+    (3,) ndarray
+        The horizon (a, b, c), a u + b v + c = 0, up to scale: inv(H).T @ (0, 0, 1).
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., sections 2.3.1 (result 2.13's lines) and 8.6.
+    """
+    return np.linalg.inv(H).T @ np.array([0.0, 0.0, 1.0])
+
+
+register_exercise(
+    Exercise(
+        name="horizon_line",
+        lesson="06",
+        reference=_horizon_reference,
+        cases=_horizon_cases,
+        compare=same_up_to_scale,
+        diagnose=_horizon_diagnosis,
+        wrong_variants=(
+            *(
+                (mistake_variant(_HORIZON_MISTAKES, row.name, _horizon_context), hint_start)
+                for row, hint_start in zip(
+                    _HORIZON_MISTAKES,
+                    (
+                        "like a point",
+                        "drops the transpose",
+                        "pulls an image line back",
+                        "own line at infinity",
+                        "ground's x axis",
+                        "ground's z axis",
+                    ),
+                    strict=True,
+                )
+            ),
+            (
+                _quiet(lambda H: np.cross(H[:, 0] / H[2, 0], H[:, 1] / H[2, 1])),
+                "yaw 0",
+            ),
+        ),
+        success_note=_horizon_note,
+        solution_note="# camlab: camlab.projective.map_lines(H, camlab.projective.LINE_AT_INFINITY),\n# or camlab.projective.join(H[:, 0], H[:, 1]), the two ground vanishing points joined",
+        teaching=horizon_line,
     )
 )

@@ -19,26 +19,40 @@ from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes, plane_
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import monospace
 
+# The sliders' ranges, and the 3-D box that holds every scaled point they reach: |λ x| <= 2 * 1.5.
+_LIFT_XY, _LIFT_SCALE = 1.5, 2.0
+_LIFT_BOX = _LIFT_XY * _LIFT_SCALE
 
-@register(lesson="06", sweep={"x": [-1.5, 0.0, 1.2], "y": [1.0, -0.5], "scale": [0.4, 1.0, 2.5]})
+
+@register(
+    lesson="06", sweep={"x": [-1.5, 0.0, 1.5], "y": [1.5, -1.5], "scale": [-2.0, -0.6, 0.0, 2.0]}
+)
 def lift_to_plane() -> Demo:
-    """A point (x, y) is the ray through (x, y, 1): every scaled copy names the same point.
+    """A point (x, y) is the line through the origin and (x, y, 1): every non-zero multiple names it.
+
+    The 3-D box is sized once for the sliders' extremes (|λ x|, |λ y| up to 3, |λ| up to 2), so
+    the scaled point never leaves it; a negative λ puts it on the other half of the line, below
+    w = 0, and λ = 0 gives (0, 0, 0), which names no point.
 
     Returns
     -------
     Demo
         The demo: controls ``x``, ``y`` (the point) and ``scale`` (λ), the figure (the plane
-        w = 1 in 3-D with the ray through the point) and ``state`` (``point_h`` the scaled
-        homogeneous 3-vector λ (x, y, 1), ``point`` its Euclidean (x, y)).
+        w = 1 in 3-D with the line through the point) and ``state`` (``point_h`` the scaled
+        homogeneous 3-vector λ (x, y, 1), ``point`` the Euclidean (x, y) it names).
     """
-    view = FigureView(figsize=(9, 4.2))
+    view = FigureView(figsize=(9, 4.6))
     ax3 = view.fig.add_subplot(1, 2, 1, projection="3d")
-    ax2 = plane_axes(view.fig.add_subplot(1, 2, 2), 2, "the image plane w = 1")
-    ax3.set(xlim=(-2, 2), ylim=(-2, 2), zlim=(0, 2.5), xlabel="x", ylabel="y", zlabel="w")
-    ax3.set_box_aspect((1, 1, 0.65))
-    ax3.view_init(elev=18, azim=-60)
+    ax2 = plane_axes(view.fig.add_subplot(1, 2, 2), 2, "the plane w = 1 (drawn y up)")
+    box, w_max = _LIFT_BOX, _LIFT_SCALE
+    ax3.set(
+        xlim=(-box, box), ylim=(-box, box), zlim=(-w_max, w_max), xlabel="x", ylabel="y", zlabel="w"
+    )
+    ax3.set_box_aspect((1, 1, 0.75))
+    ax3.view_init(elev=16, azim=-60)
     ax3.set_title("homogeneous space (x, y, w)")
-    ax3.set(xticks=[-2, 0, 2], yticks=[-2, 0, 2], zticks=[0, 1, 2])
+    view.fig.get_layout_engine().set(wspace=0.12)  # the 3-D w label and the plane's y label apart
+    ax3.set(xticks=[-3, 0, 3], yticks=[-3, 0, 3], zticks=[-2, -1, 0, 1, 2])
     gx, gy = np.meshgrid(np.linspace(-2, 2, 5), np.linspace(-2, 2, 5))
     ax3.plot_surface(
         gx,
@@ -49,37 +63,41 @@ def lift_to_plane() -> Demo:
         edgecolor=palette.TAB_BLUE,
         lw=0.3,
     )
-    ax3.text(-2, 2, 1.1, "w = 1", color=palette.TAB_BLUE)
+    ax3.text(-2, 2, 1.15, "w = 1", color=palette.TAB_BLUE)
     ax3.scatter([0], [0], [0], color="k", s=15)
     (ray,) = ax3.plot(
-        [], [], [], color=palette.TAB_BLUE, lw=1.5, label="ray = one projective point"
+        [], [], [], color=palette.TAB_BLUE, lw=1.5, label="line through 0 = one projective point"
     )
-    (scaled,) = ax3.plot([], [], [], "o", color=palette.ORANGE, label="λ(x, y, 1)")
+    (scaled,) = ax3.plot([], [], [], "o", color=palette.ORANGE, label="λ(x, y, 1), any λ ≠ 0")
     (hit,) = ax3.plot([], [], [], "o", color=palette.TAB_BLUE, label="(x, y, 1)")
-    ax3.legend(loc="upper left", fontsize=8)
+    # under the 3-D box, where nothing is drawn (inside it, the line reaches every corner)
+    ax3.legend(loc="upper center", bbox_to_anchor=(0.5, 0.02), ncol=2, fontsize=8)
     view.animate(ray, scaled, hit)
     (dot,) = ax2.plot([], [], "o", color=palette.TAB_BLUE, ms=9)
     view.animate(dot)
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
-        xh = v["scale"] * pj.to_homogeneous([v["x"], v["y"]])
-        xy = pj.from_homogeneous(xh)
+        lam = v["scale"]
+        xh = lam * pj.to_homogeneous([v["x"], v["y"]])
+        xy = np.array([v["x"], v["y"]])  # the point named: xh / w when λ != 0
         state.update(point_h=xh, point=xy)
-        end = 2.4 * np.array([v["x"], v["y"], 1.0])
-        ray.set_data_3d([0, end[0]], [0, end[1]], [0, end[2]])
+        end = _LIFT_SCALE * np.array([v["x"], v["y"], 1.0])  # the whole line within the box
+        ray.set_data_3d([-end[0], end[0]], [-end[1], end[1]], [-end[2], end[2]])
         scaled.set_data_3d([xh[0]], [xh[1]], [xh[2]])
         hit.set_data_3d([xy[0]], [xy[1]], [1.0])
         dot.set_data([xy[0]], [xy[1]])
-        readout.value = monospace(
-            f"λ(x, y, 1) = ({xh[0]:.2f}, {xh[1]:.2f}, {xh[2]:.2f})\n"
-            f"divide by w → ({xy[0]:.2f}, {xy[1]:.2f})"
-        )
+        if abs(lam) < 1e-12:
+            second = "λ = 0 gives (0, 0, 0): on every line through 0, so it names no point"
+        else:
+            back = xh[:2] / xh[2]
+            second = f"divide by w = {xh[2]:.2f} → ({back[0]:.2f}, {back[1]:.2f})"
+        readout.value = monospace(f"λ(x, y, 1) = ({xh[0]:.2f}, {xh[1]:.2f}, {xh[2]:.2f})\n{second}")
 
     controls = {
-        "x": slider(1.0, -1.8, 1.8, 0.05, "x"),
-        "y": slider(0.5, -1.8, 1.8, 0.05, "y"),
-        "scale": slider(1.6, 0.2, 2.4, 0.05, "scale λ"),
+        "x": slider(1.0, -_LIFT_XY, _LIFT_XY, 0.05, "x"),
+        "y": slider(0.5, -_LIFT_XY, _LIFT_XY, 0.05, "y"),
+        "scale": slider(1.6, -_LIFT_SCALE, _LIFT_SCALE, 0.05, "scale λ"),
     }
     return build_demo(
         "lift_to_plane",
@@ -236,7 +254,7 @@ def parallel_lines() -> Demo:
     sweep={
         "px": [-1.0, 0.5],
         "py": [0.8, -1.2],
-        "line_angle": [20.0, 120.0, 180.0],
+        "line_angle": [20.0, 45.0, 120.0, 180.0],
         "line_dist": [0.2, 1.2, 2.5],
     },
 )
@@ -263,9 +281,13 @@ def point_line_duality() -> Demo:
     (l_line,) = ax_p.plot([], [], color=palette.ORANGE, lw=2, label="l")
     (pd_line,) = ax_d.plot([], [], color=palette.TAB_BLUE, lw=2, label="p* (same 3 numbers as p)")
     (ld_dot,) = ax_d.plot([], [], "o", color=palette.ORANGE, ms=9, label="l* (same 3 numbers as l)")
+    # l* off the dual panel (far out as l nears the origin): an arrow at the edge points to it
+    ld_arrow = ax_d.annotate(
+        "", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="->", color=palette.ORANGE, lw=2)
+    )
     for a in (ax_p, ax_d):  # under the plots: inside, the lines would run through them
         a.legend(loc="upper center", bbox_to_anchor=(0.5, -0.15), ncol=2, fontsize=8)
-    view.animate(p_dot, l_line, pd_line, ld_dot, text)
+    view.animate(p_dot, l_line, pd_line, ld_dot, ld_arrow, text)
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
@@ -281,7 +303,16 @@ def point_line_duality() -> Demo:
         set_line(l_line, line, ax_p)
         set_line(pd_line, p, ax_d)
         ld = pj.from_homogeneous(line)
-        ld_dot.set_data([ld[0]], [ld[1]])
+        pos, direction = arrow_to_infinity(line, ax_d)
+        if direction.any():  # l* is off the panel: an arrow at the edge, pointing where it is
+            ld_dot.set_data([], [])
+            ld_arrow.xy, ld_arrow.xyann = tuple(pos), tuple(pos - 0.9 * direction)
+            ld_arrow.set_visible(True)
+            off = f"; l* = ({ld[0] + 0.0:.1f}, {ld[1] + 0.0:.1f}) is off the dual panel (arrow)"
+        else:
+            ld_dot.set_data([ld[0]], [ld[1]])
+            ld_arrow.set_visible(False)
+            off = ""
         p_text, l_text = (", ".join(f"{c:+.2f}" for c in x) for x in (p, line))
         text.set_text(
             f"p · l = {incidence:+.3f}: "
@@ -290,6 +321,7 @@ def point_line_duality() -> Demo:
                 if state["on_line"]
                 else "p is not on l, and l* is not on p*"
             )
+            + off
         )
         readout.value = monospace(
             f"p = ({p_text})\nl = ({l_text})\np · l = {incidence:+.3f}\n(0 ⇔ p on l ⇔ l* on p*)"
@@ -327,7 +359,12 @@ def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespac
     ax.add_collection(grid_z)
     ax.add_collection(grid_x)
     (horizon_artist,) = ax.plot(
-        [], [], "--", color=palette.TAB_RED, lw=1.5, label="horizon = vp_z × vp_x"
+        [],
+        [],
+        "--",
+        color=palette.TAB_RED,
+        lw=1.5,
+        label="horizon = vp_z × vp_x (when in the image)",
     )
     (vz_dot,) = ax.plot([], [], "o", color=palette.TAB_BLUE, mec="k", ms=11)
     (vx_dot,) = ax.plot([], [], "o", color=palette.TAB_GREEN, mec="k", ms=11)
@@ -451,6 +488,9 @@ def vanishing_points() -> Demo:
     )
 
 
+_CR_H = 0.3  # the cross-ratio demo's largest |h31|, |h32|
+
+
 def _cross_ratio_figure(view: FigureView) -> SimpleNamespace:
     """The figure of :func:`cross_ratio_invariance`.
 
@@ -465,11 +505,14 @@ def _cross_ratio_figure(view: FigureView) -> SimpleNamespace:
     numbers = axes["text"].text(0.5, 0.5, "", transform=axes["text"].transAxes, **centred)
     plane_axes(ax_s, 2.2, "before: four collinear points")
     plane_axes(ax_t, 2.2, "after the homography H")
+    # With |h31|, |h32| <= _CR_H the grid's w = 1 + h31 x + h32 y stays >= 1 - 2 * 0.3 * 1.4 = 0.16 > 0:
+    # no grid line crosses the line H sends to infinity, so each maps to one straight segment; and
+    # A and D (w >= 0.55) land within the +-2.2 panel at every setting.
     grid = np.array(
-        [[[x, -1.5], [x, 1.5]] for x in np.linspace(-1.5, 1.5, 7)]
-        + [[[-1.5, y], [1.5, y]] for y in np.linspace(-1.5, 1.5, 7)]
+        [[[x, -1.4], [x, 1.4]] for x in np.linspace(-1.4, 1.4, 7)]
+        + [[[-1.4, y], [1.4, y]] for y in np.linspace(-1.4, 1.4, 7)]
     )
-    points = np.array([[-1.2, -0.6], [-0.3, -0.15], [0.4, 0.2], [1.3, 0.65]])
+    points = np.array([[-1.0, -0.5], [-0.3, -0.15], [0.4, 0.2], [1.0, 0.5]])
     colors = [palette.TAB_BLUE, palette.ORANGE, palette.TAB_GREEN, palette.TAB_RED]
     from matplotlib.collections import LineCollection
 
@@ -496,7 +539,10 @@ def _cross_ratio_figure(view: FigureView) -> SimpleNamespace:
     )
 
 
-@register(lesson="06", sweep={"h31": [0.0, 0.25, -0.3], "h32": [0.0, 0.2], "angle": [0.0, 30.0]})
+@register(
+    lesson="06",
+    sweep={"h31": [0.0, 0.25, -0.3, 0.3], "h32": [0.0, 0.2, -0.3, 0.3], "angle": [0.0, 30.0]},
+)
 def cross_ratio_invariance() -> Demo:
     """A homography changes lengths and ratios of lengths, but never the cross-ratio.
 
@@ -552,8 +598,8 @@ def cross_ratio_invariance() -> Demo:
         )
 
     controls = {
-        "h31": slider(0.2, -0.35, 0.35, 0.01, "h31 (perspective x)"),
-        "h32": slider(0.1, -0.35, 0.35, 0.01, "h32 (perspective y)"),
+        "h31": slider(0.2, -_CR_H, _CR_H, 0.01, "h31 (perspective x)"),
+        "h32": slider(0.1, -_CR_H, _CR_H, 0.01, "h32 (perspective y)"),
         "angle": slider(10.0, -45.0, 45.0, 1.0, "rotation (°)"),
     }
     return build_demo(
@@ -659,20 +705,34 @@ def _conic_geometry(v: dict, samples: np.ndarray) -> SimpleNamespace:
 
 
 def _conic_text(g: SimpleNamespace, v: dict) -> str:
-    """The three lines under :func:`conic_under_homography`'s plots."""
-    # H sends the line H^T l_inf = (h31, h32, 1) to infinity; C' is an ellipse while C stays clear of it
+    """The three lines under :func:`conic_under_homography`'s plots.
+
+    The first judges H (does it fix I?), the second the conic itself (its axis ratio): a
+    similarity maps *every* circle to a circle, but a non-similarity can still map *this* one to
+    a circle (stretch = sqrt(1 - h31^2) with h32 = 0), so the shape is read from C', not from H.
+    """
+    # H sends the line H^T l_inf = (h31, h32, 1) to infinity; C' is bounded while C stays clear of it
     h = np.hypot(v["h31"], v["h32"])
-    clearance = f"{1 / h:.1f}" if h > 0 else "∞"
     verdict = (
-        "= I: H is a similarity, so C' is a circle again (axis ratio 1)"
+        "= I: H is a similarity, so it maps every circle to a circle"
         if g.fixed
-        else "≠ I: H is no similarity, so C' is no circle"
+        else "≠ I: H is no similarity, so some circles become non-circles"
+    )
+    if abs(g.axis_ratio - 1.0) < 5e-4:
+        shape = "a circle"
+    elif g.axis_ratio > 0.99:
+        shape = "an ellipse, nearly a circle"
+    else:
+        shape = "an ellipse"
+    bounded = (
+        "H keeps l∞, so C' stays bounded"
+        if h == 0
+        else f"the line H sends to ∞, h31 x + h32 y + 1 = 0, is {1 / h:.1f} from C's centre (> 1)"
     )
     HI = g.I_mapped
     return (
         f"H I = (1, {_complex_text(HI[1])}, {_complex_text(HI[2])}) {verdict}\n"
-        f"C': axis ratio {g.axis_ratio:.3f}; the line H sends to ∞ (h31 x + h32 y + 1 = 0) is {clearance} "
-        f"from C's centre: > 1, so C' is an ellipse\n"
+        f"C': axis ratio {g.axis_ratio:.3f}, {shape}; {bounded}\n"
         f"max |x'ᵀC'x'| over the 8 points {g.residual:.0e};  "
         f"max |l'ᵀC*'l'| over the 4 tangents {g.tangent_residual:.0e}"
     )
