@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import projective
+from ..camera import centred_intrinsics, rotation_x, rotation_y
 from ._answers import same_up_to_scale, shape_problem
 from ._core import Exercise, Mistake, first_mistake, mistake_variant, register_exercise
 
@@ -615,11 +616,13 @@ register_exercise(
 
 
 def _ground_homography(pitch_deg: float, yaw_deg: float, focal: float, height: float) -> np.ndarray:
-    """H = K [r1 r3 h r2]: ground (X, Z, 1) -> pixels for the scene of ``fixtures.ground_plane_view``."""
-    from ..fixtures import ground_plane_view
+    """H = K [r1 r3 h r2]: ground (X, Z, 1) -> pixels for the scene of ``fixtures.ground_plane_view``.
 
-    view = ground_plane_view(np.radians(pitch_deg), np.radians(yaw_deg), focal)
-    K, R = view.K, view.R
+    The same camera as that fixture (K centred on a 640 x 480 image, R tilted down by the pitch
+    after the yaw), built here because exercises sit below the fixtures.
+    """
+    K = centred_intrinsics(focal, (640, 480))
+    R = rotation_x(np.radians(pitch_deg)) @ rotation_y(-np.radians(yaw_deg))
     return K @ np.column_stack([R[:, 0], R[:, 2], height * R[:, 1]])
 
 

@@ -252,6 +252,28 @@ def _rectify_controls(control: W.Text, keys: dict) -> dict:
     }
 
 
+def _focal_used(use_focal: bool, photo, from_quad) -> str:
+    """Which f :func:`rectify_photo` rectified with, as its title and readout name it."""
+    if use_focal:
+        return f"known f ({photo.K[0, 0]:.0f} px)"
+    if from_quad.focal_source == "assumed":
+        return f"f assumed ({from_quad.focal_length:.0f} px)"
+    return "f from the corners"
+
+
+def _warn_if_flat(text: str, corners: np.ndarray) -> str:
+    """The readout ``text``, warned when a corner angle over 160° puts three corners nearly in a line."""
+    widest = _widest_angle(corners)
+    if widest <= 160:
+        return text
+    return text.replace(
+        "shown:",
+        f"careful: a corner angle of {widest:.0f}°, three corners nearly in a line;\n"
+        "the ratio then means little\nshown:",
+        1,
+    )
+
+
 @register(
     lesson="10",
     sweep={
@@ -297,12 +319,7 @@ def rectify_photo() -> Demo:
     first = scenes.sample_photo("page")
     control = corner_text(format_corners(first.corners), "corners (TL; TR; BR; BL)")
     keys = corner_keys(control, ("top left", "top right", "bottom right", "bottom left"), 639, 479)
-    current: dict[str, Any] = {
-        "scene": None,
-        "photo": None,
-        "corners": first.corners,
-        "busy": False,
-    }
+    current: dict[str, Any] = dict(scene=None, photo=None, corners=first.corners, busy=False)
     slips: dict[str, dict] = {}
 
     def update(v: dict, state: dict) -> None:
@@ -339,25 +356,12 @@ def rectify_photo() -> Demo:
             ratio_known_focal=known.ratio,
             focal_from_quad=from_quad.focal_length,
         )
-        if v["use_focal"]:
-            used = f"known f ({photo.K[0, 0]:.0f} px)"
-        elif from_quad.focal_source == "assumed":
-            used = f"f assumed ({from_quad.focal_length:.0f} px)"
-        else:
-            used = "f from the corners"
+        used = _focal_used(v["use_focal"], photo, from_quad)
         ax_r.set_title(f"rectified with {used}", fontsize=10, pad=3)
         if v["scene"] not in slips:  # once per scene: 32 estimates
             slips[v["scene"]] = _corner_slip_range(photo.corners, photo.image.shape, photo.K[0, 0])
         text = _rectify_readout(est, used, from_quad, known, photo, slips[v["scene"]])
-        widest = _widest_angle(corners)
-        if widest > 160:  # a corner almost on the line through its neighbours
-            text = text.replace(
-                "shown:",
-                f"careful: a corner angle of {widest:.0f}°, three corners nearly in a line;\n"
-                "the ratio then means little\nshown:",
-                1,
-            )
-        readout.value = text
+        readout.value = _warn_if_flat(text, corners)
 
     demo = build_demo(
         "rectify_photo",

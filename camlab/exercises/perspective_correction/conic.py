@@ -1,0 +1,266 @@
+"""Exercise 4 of lesson 10: the image of the dual conic C*inf from right angles (`dual_conic_from_orthogonal_lines`)."""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+
+from ... import perspective as pp
+from ...projective import map_points
+from .._answers import same_up_to_scale, shape_problem
+from .._core import Exercise, register_exercise
+
+
+def _grid_photo(G) -> np.ndarray:
+    """The image corners of a 6 x 9 grid of unit squares seen through the plane homography G."""
+    plane = np.stack(np.meshgrid(np.arange(9.0), np.arange(6.0)), axis=-1).reshape(-1, 2)
+    return map_points(np.asarray(G, dtype=float), plane).reshape(6, 9, 2)
+
+
+def _conic_cases():
+    Gs = [
+        [[40.0, 8.0, 150.0], [-5.0, 32.0, 90.0], [0.03, 0.02, 1.0]],
+        [[30.0, -12.0, 300.0], [10.0, 35.0, 60.0], [-0.02, 0.045, 1.0]],
+        [
+            [25.0, 0.0, 200.0],
+            [0.0, 25.0, 100.0],
+            [0.0, 0.06, 1.0],
+        ],  # tilt only, like a keystone photo
+    ]
+    return [pp.square_grid_right_angles(_grid_photo(G)) for G in Gs]
+
+
+def _conic_rows(lines_l, lines_m, half=True):
+    """The rows of section 8, one per pair; ``half=False``: the cross terms without their 1/2."""
+    (l1, l2, l3), (m1, m2, m3) = np.asarray(lines_l, float).T, np.asarray(lines_m, float).T
+    k = 0.5 if half else 1.0
+    cols = [
+        l1 * m1,
+        k * (l1 * m2 + l2 * m1),
+        l2 * m2,
+        k * (l1 * m3 + l3 * m1),
+        k * (l2 * m3 + l3 * m2),
+        l3 * m3,
+    ]
+    return np.stack(cols, axis=1)
+
+
+def _conic_matrix(x, half=True):
+    """(a, b, c, d, e, f) arranged as the symmetric matrix, b/2, d/2, e/2 off the diagonal (``half=False``: b, d, e)."""
+    a, b, c, d, e, f = x
+    k = 0.5 if half else 1.0
+    return np.array([[a, k * b, k * d], [k * b, c, k * e], [k * d, k * e, f]])
+
+
+def _conic_vector(C):
+    """The matrix's (a, b, c, d, e, f), as section 8 names them."""
+    return np.array([C[0, 0], 2 * C[0, 1], C[1, 1], 2 * C[0, 2], 2 * C[1, 2], C[2, 2]])
+
+
+_UNKNOWNS = "a b c d e f".split()
+
+
+def _same_dual_conic(got, expected, rtol=1e-3) -> bool:
+    """Equal up to scale, after rescaling the image axes so that expected's diagonal is 1.
+
+    In pixels the entries of C*' span many orders of magnitude (a ~ 1, f ~ 1e5), so a plain relative
+    comparison weighs f alone; D C D with D = diag(|expected_ii|^-1/2) is the same conic in other
+    pixel units (a change of coordinates, x -> D x), where every entry counts. rtol 1e-3 passes any
+    sound solver of the stacked rows (an SVD of the rows, with or without Hartley conditioning, or the
+    smallest eigenvector of A^T A, which squares the rows' condition number and lands about 1e-4 away on
+    these pixel lines) and rejects each typical slip by orders of magnitude more.
+    """
+    e = np.asarray(expected, dtype=float)
+    D = np.diag(1 / np.sqrt(np.abs(np.diag(e))))
+    g = np.asarray(got, dtype=float)
+    if g.shape != e.shape:
+        return False
+    return same_up_to_scale(D @ g @ D, D @ e @ D, rtol=rtol)
+
+
+def _conic_diagnosis(args, got, expected) -> str:
+    g = np.asarray(got, dtype=float) if np.size(got) else np.asarray(got)
+    if g.shape == (6,):
+        return (
+            "you returned the null vector (a, b, c, d, e, f); arrange it as the symmetric 3 x 3 matrix "
+            "[[a, b/2, d/2], [b/2, c, e/2], [d/2, e/2, f]]."
+        )
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem
+    if not np.allclose(g, g.T, rtol=1e-6, atol=1e-9 * np.abs(g).max()):
+        return (
+            "your matrix is not symmetric: a dual conic is; put b/2 at [0, 1] and [1, 0], d/2 at [0, 2] "
+            "and [2, 0], e/2 at [1, 2] and [2, 1]."
+        )
+    lines_l, lines_m = args
+    e = np.asarray(expected, dtype=float)
+    off = np.ones((3, 3)) - np.eye(3)
+    if _same_dual_conic(g * (1 - off / 2), e):
+        return (
+            "the off-diagonal entries are twice too big: the row's cross terms (l1 m2 + l2 m1) multiply b, "
+            "and the matrix holds b/2 (as in a conic's matrix); either halve the cross terms in each row or "
+            "put b/2, d/2, e/2 into the matrix."
+        )
+    if _same_dual_conic(g * (1 + off), e):
+        return (
+            "the off-diagonal entries are half what they should be: your rows have the full cross terms "
+            "(l1 m2 + l2 m1, no 1/2), so the unknown they multiply is already the matrix entry, and you "
+            "halved it again. Halve once: the 1/2 in the rows (as in section 8) or b/2 in the matrix, not both."
+        )
+    want = _conic_vector(e)
+    mine = _conic_vector(g)
+    for perm in itertools.permutations(range(6)):
+        if perm != tuple(range(6)) and same_up_to_scale(mine, want[list(perm)], rtol=1e-4):
+            moved = [
+                f"{_UNKNOWNS[i]} where {_UNKNOWNS[p]} belongs" for i, p in enumerate(perm) if i != p
+            ]
+            return (
+                "your entries are the right numbers in the wrong places ("
+                + ", ".join(moved)
+                + "): the "
+                "columns of your rows and the unknowns you arrange into the matrix must be in the same order, "
+                "(a, b, c, d, e, f) for l1 m1, (l1 m2 + l2 m1)/2, l2 m2, (l1 m3 + l3 m1)/2, (l2 m3 + l3 m2)/2, "
+                "l3 m3, and the matrix [[a, b/2, d/2], [b/2, c, e/2], [d/2, e/2, f]]."
+            )
+    for half in (True, False):
+        Vt = np.linalg.svd(_conic_rows(lines_l, lines_m, half))[2]
+        if same_up_to_scale(g, _conic_matrix(Vt[:, -1], half), rtol=1e-5):
+            return (
+                "you took a column of Vt. np.linalg.svd returns Vt, V transposed: the right singular "
+                "vectors are its rows, so the null vector is the last row, Vt[-1], not Vt[:, -1]."
+            )
+        if same_up_to_scale(g, _conic_matrix(Vt[0], half), rtol=1e-5):
+            return (
+                "you took the FIRST row of Vt, the direction of the largest singular value; the null vector "
+                "(the smallest singular value, 0 here) is the LAST row of Vt, Vt[-1]."
+            )
+    rows = _conic_rows(lines_l, lines_m)
+    residual = np.linalg.norm(rows @ mine) / (np.linalg.norm(rows, 2) * np.linalg.norm(mine))
+    if residual > 1e-6:
+        return (
+            f"your matrix does not make the pairs orthogonal: the rows times your (a, b, c, d, e, f) reach "
+            f"{residual:.2g} (relative), where the answer gives 0. Check each row against section 8 (one row "
+            "per pair, the 1/2 on the cross terms) and take the null vector, the last row of Vt."
+        )
+    return (
+        "every pair satisfies l^T C m = 0 but only roughly (your matrix is close to the answer, not within "
+        "1e-3 of it): a solver that squares the rows' condition number (np.linalg.eigh(A.T @ A), np.linalg.inv "
+        "of normal equations) loses digits on pixel lines; take the SVD of the rows themselves, or normalise "
+        "the lines first (lesson 07, section 6)."
+    )
+
+
+def dual_conic_from_orthogonal_lines(lines_l, lines_m):
+    """Each orthogonal pair gives l^T C* m = 0, one linear equation in (a, b, c, d, e, f); take the null vector.
+
+    Parameters
+    ----------
+    lines_l, lines_m : (N, 3) array_like
+        Image lines (a, b, c), N >= 5; ``lines_l[i]`` is orthogonal to ``lines_m[i]`` on the plane.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The image of the dual conic C*inf, symmetric, up to scale.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 2.7.5, example 2.27.
+    """
+    (l1, l2, l3), (m1, m2, m3) = np.asarray(lines_l, float).T, np.asarray(lines_m, float).T
+    rows = np.stack(
+        [
+            l1 * m1,
+            (l1 * m2 + l2 * m1) / 2,
+            l2 * m2,
+            (l1 * m3 + l3 * m1) / 2,
+            (l2 * m3 + l3 * m2) / 2,
+            l3 * m3,
+        ],
+        axis=1,
+    )
+    a, b, c, d, e, f = np.linalg.svd(rows)[2][-1]  # the null vector: the last row of Vt
+    return np.array([[a, b / 2, d / 2], [b / 2, c, e / 2], [d / 2, e / 2, f]])
+
+
+def _full_cross_terms(lines_l, lines_m):
+    """A typical slip: b, d, e (not b/2, d/2, e/2) off the diagonal."""
+    C = pp.dual_conic_from_orthogonal_lines(lines_l, lines_m)
+    return C * (1 + (np.ones((3, 3)) - np.eye(3)))
+
+
+def _first_singular_vector(lines_l, lines_m):
+    """A typical slip: the first row of Vt (the largest singular value) instead of the last."""
+    (l1, l2, l3), (m1, m2, m3) = np.asarray(lines_l, float).T, np.asarray(lines_m, float).T
+    rows = np.stack(
+        [
+            l1 * m1,
+            (l1 * m2 + l2 * m1) / 2,
+            l2 * m2,
+            (l1 * m3 + l3 * m1) / 2,
+            (l2 * m3 + l3 * m2) / 2,
+            l3 * m3,
+        ],
+        1,
+    )
+    a, b, c, d, e, f = np.linalg.svd(rows)[2][0]
+    return np.array([[a, b / 2, d / 2], [b / 2, c, e / 2], [d / 2, e / 2, f]])
+
+
+def _upper_triangle_only(lines_l, lines_m):
+    """A typical slip: the coefficients written into the upper triangle only."""
+    return np.triu(_full_cross_terms(lines_l, lines_m))
+
+
+register_exercise(
+    Exercise(
+        name="dual_conic_from_orthogonal_lines",
+        lesson="10",
+        reference=pp.dual_conic_from_orthogonal_lines,
+        cases=_conic_cases,
+        compare=_same_dual_conic,
+        diagnose=_conic_diagnosis,
+        wrong_variants=(
+            (_full_cross_terms, "twice too big"),
+            (_first_singular_vector, "LAST row of Vt"),
+            (_upper_triangle_only, "not symmetric"),
+            (
+                lambda L, M: np.linalg.svd(
+                    np.stack(
+                        [
+                            L[:, 0] * M[:, 0],
+                            (L[:, 0] * M[:, 1] + L[:, 1] * M[:, 0]) / 2,
+                            L[:, 1] * M[:, 1],
+                            (L[:, 0] * M[:, 2] + L[:, 2] * M[:, 0]) / 2,
+                            (L[:, 1] * M[:, 2] + L[:, 2] * M[:, 1]) / 2,
+                            L[:, 2] * M[:, 2],
+                        ],
+                        1,
+                    )
+                )[2][-1],
+                "null vector (a, b, c, d, e, f)",
+            ),
+            (
+                lambda L, M: _conic_matrix(np.linalg.svd(_conic_rows(L, M, half=False))[2][-1]),
+                "half what they should be",
+            ),
+            (
+                lambda L, M: _conic_matrix(
+                    _conic_vector(pp.dual_conic_from_orthogonal_lines(L, M))[[0, 1, 2, 4, 3, 5]]
+                ),
+                "d where e belongs",
+            ),
+            (
+                lambda L, M: _conic_matrix(np.linalg.svd(_conic_rows(L, M))[2][:, -1]),
+                "column of Vt",
+            ),
+        ),
+        ndarray_only=True,
+        teaching=dual_conic_from_orthogonal_lines,
+    )
+)
+
+
+# --------------------------------------------------------------------------- aspect ratio and f from four corners

@@ -1,0 +1,148 @@
+"""Exercise 3 of lesson 10: the four corners in the order TL, TR, BR, BL (`order_corners`)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ... import perspective as pp
+from ... import scenes
+from .._answers import same_array, shape_problem
+from .._core import Exercise, register_exercise
+
+
+def _rotated_rectangle(angle_deg: float, centre=(320.0, 240.0), size=(260.0, 150.0)) -> np.ndarray:
+    """Corners of a w x h rectangle turned by angle_deg on screen, in TL, TR, BR, BL order of the unturned one."""
+    t = np.radians(angle_deg)
+    R = np.array([[np.cos(t), -np.sin(t)], [np.sin(t), np.cos(t)]])
+    w, h = size
+    return np.array([[-w, -h], [w, -h], [w, h], [-w, h]]) / 2 @ R.T + centre
+
+
+def _order_cases():
+    page = scenes.sample_photo("page").corners
+    return [
+        (np.array([[10.0, 0.0], [0.0, 0.0], [0.0, 10.0], [10.0, 10.0]]),),
+        (page[[2, 0, 3, 1]],),
+        (page[[3, 2, 1, 0]],),
+        (
+            np.array([[300.0, 50.0], [520.0, 120.0], [90.0, 300.0], [480.0, 420.0]]),
+        ),  # bow-tie order
+        # turned quadrilaterals: the corner with the smallest angle around the centroid is
+        # then not the top-left one, so sorting by angle alone starts in the wrong place
+        (_rotated_rectangle(25.0)[[1, 3, 0, 2]],),
+        (_rotated_rectangle(-35.0)[[2, 1, 3, 0]],),
+        (_rotated_rectangle(40.0, size=(200.0, 300.0))[[3, 0, 2, 1]],),
+        # pages seen in perspective and turned: convex, but no rectangle, so the "u + v, v - u"
+        # trick (TL = argmin u + v, TR = argmin v - u, ...) picks one corner twice
+        (np.array([[482.0, 344.0], [194.0, 290.0], [352.0, 18.0], [211.0, 505.0]]),),
+        (np.array([[150.0, 60.0], [600.0, 180.0], [420.0, 300.0], [60.0, 250.0]]),),
+    ]
+
+
+def _sum_difference_trick(corners):
+    """A popular shortcut that holds for rectangles only: TL, TR, BR, BL by the extremes of u + v and v - u."""
+    q = np.asarray(corners, dtype=float)
+    s, d = q.sum(axis=1), q[:, 1] - q[:, 0]
+    return q[[np.argmin(s), np.argmin(d), np.argmax(s), np.argmax(d)]]
+
+
+def _order_diagnosis(args, got, expected) -> str:
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem
+    g = np.asarray(got, dtype=float)
+    corners = np.asarray(args[0], dtype=float)
+    which = [np.flatnonzero(np.all(np.isclose(corners, p), axis=1)) for p in g]
+    if any(len(k) == 0 for k in which):
+        return (
+            "your four points are not the input corners: return the same four points (u, v), reordered "
+            "(not indices, not moved, not (v, u))."
+        )
+    if len({int(k[0]) for k in which}) < 4:
+        twice = (
+            "the u + v / v - u shortcut"
+            if np.allclose(g, _sum_difference_trick(corners))
+            else "your method"
+        )
+        return (
+            f"one input corner comes back twice and another is missing: {twice} (TL = argmin u + v, TR = argmin "
+            "v - u, ...) holds for upright rectangles only; a page seen in perspective can have one corner "
+            "extreme in both sums. Sort by the angle around the centroid (np.arctan2(v - v_c, u - u_c)), then "
+            "start at the smallest u + v."
+        )
+    for shift in (1, 2, 3):
+        if np.allclose(g, np.roll(expected, shift, axis=0)):
+            return "the cyclic order is right but it does not start at the top-left corner (smallest u + v)."
+    if np.allclose(g[:, ::-1], expected):
+        return (
+            "your points come back as (v, u), row first: return each corner as it came in, (u, v), column first "
+            "(on a square this also looks like counter-clockwise order)."
+        )
+    if any(np.allclose(g, np.roll(expected[::-1], s, axis=0)) for s in range(4)):
+        return "your corners go counter-clockwise on screen; remember v points down, so sort by increasing angle."
+    if np.allclose(g, expected[[0, 1, 3, 2]]):
+        return (
+            "your corners are in Z order (TL, TR, BL, BR, what sorting by v, then u, gives): it zig-zags "
+            "across the page, and a homography fed that order makes a bow tie. Go round the quadrilateral: "
+            "sort by the angle around the centroid (np.arctan2(v - v_c, u - u_c)), then start at the "
+            "smallest u + v."
+        )
+    return (
+        "your order crosses itself or does not go round the quadrilateral; sort by the angle around the "
+        "centroid (np.arctan2(v - v_c, u - u_c)), which works for any convex quadrilateral, then start at "
+        "the top-left corner (smallest u + v)."
+    )
+
+
+def order_corners(corners):
+    """Sort by angle around the centroid (clockwise on screen, v down), then start at min u + v.
+
+    Parameters
+    ----------
+    corners : (4, 2) array_like
+        A convex quadrilateral's corners (u, v), pixels, in any order.
+
+    Returns
+    -------
+    (4, 2) ndarray
+        The corners clockwise on screen, starting at the top-left one (smallest u + v).
+    """
+    q = np.asarray(corners, dtype=float)
+    c = q.mean(axis=0)
+    q = q[np.argsort(np.arctan2(q[:, 1] - c[1], q[:, 0] - c[0]))]
+    return np.roll(q, -np.argmin(q.sum(axis=1)), axis=0)
+
+
+def _sorted_by_angle(corners):
+    """A plausible mistake: sort by angle around the centroid, but never rotate to the top-left."""
+    q = np.asarray(corners, dtype=float)
+    c = q.mean(axis=0)
+    return q[np.argsort(np.arctan2(q[:, 1] - c[1], q[:, 0] - c[0]))]
+
+
+register_exercise(
+    Exercise(
+        name="order_corners",
+        lesson="10",
+        reference=pp.order_corners,
+        cases=_order_cases,
+        compare=same_array(),
+        diagnose=_order_diagnosis,
+        wrong_variants=(
+            (lambda c: np.roll(pp.order_corners(c), 1, axis=0), "does not start at the top-left"),
+            (lambda c: pp.order_corners(c)[::-1], "counter-clockwise"),
+            (
+                lambda c: np.asarray(c, float)[
+                    np.lexsort((np.asarray(c)[:, 0], np.asarray(c)[:, 1]))
+                ],
+                "sort by the angle",
+            ),
+            (_sorted_by_angle, "does not start at the top-left"),
+            (lambda c: pp.order_corners(c)[[0, 1, 3, 2]], "Z order"),
+            (lambda c: pp.order_corners(c)[:, ::-1], "(v, u)"),
+            (_sum_difference_trick, "holds for upright rectangles only"),
+        ),
+        ndarray_only=True,
+        teaching=order_corners,
+    )
+)

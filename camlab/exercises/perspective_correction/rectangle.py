@@ -1,0 +1,250 @@
+"""Exercise 1 of lesson 10: the homography that maps four corners to a w x h rectangle (`rectangle_homography`)."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+
+from ... import perspective as pp
+from ... import scenes
+from ...homography import estimate_homography
+from ...projective import map_points
+from .._answers import same_up_to_scale, shape_problem
+from .._core import Exercise, Mistake, first_mistake, register_exercise
+
+
+def _rect_cases():
+    return [
+        (np.array([[10.0, 10.0], [110.0, 10.0], [110.0, 60.0], [10.0, 60.0]]), (101, 51)),
+        (scenes.sample_photo("page").corners, (210, 297)),
+        (scenes.sample_photo("facade").corners, (400, 300)),
+    ]
+
+
+def _rect_target(w, h, order=(0, 1, 2, 3), offset=0.0, extent=None):
+    """The target corners TL, TR, BR, BL of a w x h image (``extent``: the far corner), in ``order``."""
+    x1, y1 = (w - 1, h - 1) if extent is None else extent
+    target = np.array([[0, 0], [x1, 0], [x1, y1], [0, y1]], dtype=float) + offset
+    return target[list(order)]
+
+
+_PIXEL_CENTRES = (
+    "camlab's pixel coordinates put the centre of the top-left pixel at (0, 0) (docs/conventions.md), "
+    "so the corners go to the corner pixels' centres (0, 0), (w - 1, 0), (w - 1, h - 1), (0, h - 1)."
+)
+
+_RECT_MISTAKES = (
+    # mistakes in H itself: compared with the right H, up to scale
+    Mistake(
+        "inverse",
+        lambda s: np.linalg.inv(s.expected),
+        "your H maps the rectangle into the photo; the rectifying H goes from the photo corners to the "
+        "rectangle (estimate_homography(corners, target), not (target, corners)).",
+    ),
+    Mistake(
+        "transposed",
+        lambda s: s.expected.T,
+        "your H is the transpose of the right one: with points as rows a homography maps them by "
+        "x @ H.T, and the DLT's null vector fills H row by row (h.reshape(3, 3), not order='F' or .T).",
+    ),
+    Mistake(
+        "corners as (v, u)",
+        lambda s: s.fit(s.corners[:, ::-1], s.target()),
+        "you swapped u and v of the photo corners (read them as (row, column)?): a point is (u, v), "
+        "column first, and corners[:, 0] is u.",
+    ),
+    # mistakes in the target rectangle
+    Mistake(
+        "size read as (height, width)",
+        lambda s: s.fit(s.corners, _rect_target(s.h, s.w)),
+        lambda s: (
+            f"you read size as (height, width): your target is {s.h - 1} wide and {s.w - 1} tall. A size "
+            f"is (width, height) (docs/conventions.md), so width, height = size, here {s.w} and {s.h}."
+        ),
+    ),
+    Mistake(
+        "target as (v, u)",
+        lambda s: s.fit(s.corners, s.target()[:, ::-1]),
+        "your target corners are (row, column) = (v, u): a point is (u, v), so the top-right corner is "
+        "(w - 1, 0), not (0, w - 1).",
+    ),
+    Mistake(
+        "off by one",
+        lambda s: s.fit(s.corners, _rect_target(s.w, s.h, extent=(s.w, s.h))),
+        "off by one: the last pixel centre of a width-w image is at u = w - 1, so map to "
+        "(w - 1, 0), (w - 1, h - 1), (0, h - 1).",
+    ),
+    Mistake(
+        "1-based",
+        lambda s: s.fit(s.corners, _rect_target(s.w, s.h, offset=1.0)),
+        "your target is 1-based, (1, 1) to (w, h): numpy and camlab count pixels from 0; "
+        + _PIXEL_CENTRES,
+    ),
+    Mistake(
+        "pixel edges",
+        lambda s: s.fit(s.corners, _rect_target(s.w, s.h, offset=-0.5, extent=(s.w, s.h))),
+        "half a pixel: you mapped to the outer edges of the corner pixels, (-0.5, -0.5) to (w - 0.5, "
+        "h - 0.5); " + _PIXEL_CENTRES,
+    ),
+    Mistake(
+        "half a pixel in",
+        lambda s: s.fit(s.corners, _rect_target(s.w, s.h, offset=0.5, extent=(s.w - 2, s.h - 2))),
+        "half a pixel: you mapped to (0.5, 0.5) to (w - 1.5, h - 1.5); " + _PIXEL_CENTRES,
+    ),
+    Mistake(
+        "shifted by half a pixel",
+        lambda s: next(
+            (
+                H
+                for d in (-0.5, 0.5)
+                if s.same(H := s.fit(s.corners, _rect_target(s.w, s.h, offset=d)))
+            ),
+            None,
+        ),
+        "every corner is off by half a pixel (a +-0.5 shift of the whole target): "
+        + _PIXEL_CENTRES,
+    ),
+    Mistake(
+        "Z order",
+        lambda s: s.fit(s.corners, s.target((0, 1, 3, 2))),
+        "your target corners are in Z order (TL, TR, BL, BR): they must go round the rectangle in the "
+        "corners' order, TL, TR, BR, BL = (0, 0), (w - 1, 0), (w - 1, h - 1), (0, h - 1).",
+    ),
+    Mistake(
+        "counter-clockwise",
+        lambda s: s.fit(s.corners, s.target((0, 3, 2, 1))),
+        "your target goes counter-clockwise (TL, BL, BR, TR): pair TL, TR, BR, BL with (0, 0), "
+        "(w - 1, 0), (w - 1, h - 1), (0, h - 1) in that order.",
+    ),
+)
+"""Ex 1's typical mistakes, each the H it gives, in the order the diagnosis tries them."""
+
+
+def _fit_or_none(src, dst):
+    """The homography taking src to dst, or None where the four pairs fix none (a mistake that cannot show here)."""
+    try:
+        return estimate_homography(src, dst)
+    except ValueError:
+        return None
+
+
+def _rect_diagnosis(args, got, expected) -> str:
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem
+    corners, (w, h) = args
+    g = np.asarray(got, dtype=float)
+    corners = np.asarray(corners, dtype=float)
+
+    def same(wrong):
+        return same_up_to_scale(g, wrong, rtol=1e-6)
+
+    context = SimpleNamespace(
+        expected=np.asarray(expected, dtype=float),
+        corners=corners,
+        w=int(w),
+        h=int(h),
+        target=lambda order=(0, 1, 2, 3): _rect_target(w, h, order),
+        fit=_fit_or_none,
+        same=same,
+    )
+    cause = first_mistake(_RECT_MISTAKES, context, g, lambda got_, wrong: same(wrong))
+    if cause:
+        return cause
+    moved = map_points(g, corners)
+    want = _rect_target(w, h)
+    k = int(np.argmax(np.linalg.norm(moved - want, axis=1)))
+    return (
+        f"corner {k} ({'TL TR BR BL'.split()[k]}) goes to {np.round(moved[k], 2)}, expected {want[k]}: check "
+        "that H maps each photo corner (u, v) to its target pixel, TL, TR, BR, BL to (0, 0), (w - 1, 0), "
+        "(w - 1, h - 1), (0, h - 1)."
+    )
+
+
+def rectangle_homography(corners, size):
+    """Four pairs fix H: with h33 = 1 each pair gives two linear equations in the other 8 entries.
+
+    Parameters
+    ----------
+    corners : (4, 2) array_like
+        The quadrilateral's corners in the photo (u, v), pixels, in the order top-left, top-right,
+        bottom-right, bottom-left.
+    size : (2,) array_like of int
+        The rectified image's (width, height), pixels.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        H with h33 = 1 mapping the corners to (0, 0), (width - 1, 0), (width - 1, height - 1),
+        (0, height - 1).
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 4.1.2 (inhomogeneous solution).
+    """
+    width, height = size
+    target = np.array(
+        [[0, 0], [width - 1, 0], [width - 1, height - 1], [0, height - 1]], dtype=float
+    )
+    A, b = [], []
+    for (u, v), (x, y) in zip(np.asarray(corners, dtype=float), target, strict=True):
+        A.append([u, v, 1, 0, 0, 0, -x * u, -x * v])  # x (h31 u + h32 v + 1) = h11 u + h12 v + h13
+        A.append([0, 0, 0, u, v, 1, -y * u, -y * v])  # y (h31 u + h32 v + 1) = h21 u + h22 v + h23
+        b += [x, y]
+    h = np.linalg.solve(np.array(A), np.array(b))
+    return np.append(h, 1.0).reshape(3, 3)
+
+
+register_exercise(
+    Exercise(
+        name="rectangle_homography",
+        lesson="10",
+        reference=pp.rectangle_homography,
+        cases=_rect_cases,
+        compare=lambda got, expected: same_up_to_scale(got, expected, rtol=1e-6),
+        diagnose=_rect_diagnosis,
+        wrong_variants=(
+            (
+                lambda c, size: np.linalg.inv(pp.rectangle_homography(c, size)),
+                "maps the rectangle into the photo",
+            ),
+            (lambda c, size: pp.rectangle_homography(c, size).T, "transpose"),
+            (lambda c, size: pp.rectangle_homography(c, size[::-1]), "(height, width)"),
+            (
+                lambda c, size: estimate_homography(np.asarray(c)[:, ::-1], _rect_target(*size)),
+                "swapped u and v",
+            ),
+            (
+                lambda c, size: estimate_homography(c, _rect_target(*size, extent=size)),
+                "off by one",
+            ),
+            (
+                lambda c, size: estimate_homography(c, _rect_target(*size, offset=1.0)),
+                "1-based",
+            ),
+            (
+                lambda c, size: estimate_homography(
+                    c, _rect_target(*size, offset=-0.5, extent=size)
+                ),
+                "outer edges of the corner pixels",
+            ),
+            (
+                lambda c, size: estimate_homography(c, _rect_target(*size, offset=0.5)),
+                "off by half a pixel",
+            ),
+            (
+                lambda c, size: estimate_homography(c, _rect_target(*size, order=(0, 1, 3, 2))),
+                "Z order",
+            ),
+            (
+                lambda c, size: estimate_homography(
+                    c, [[0, 0], [0, size[1] - 1], np.subtract(size, 1), [size[0] - 1, 0]]
+                ),
+                "counter-clockwise",
+            ),
+        ),
+        ndarray_only=True,
+        teaching=rectangle_homography,
+    )
+)

@@ -1,0 +1,230 @@
+"""Exercise 2 of lesson 10: a rectangle's aspect ratio and the focal length from its four corners (`rectangle_shape`)."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+
+from ... import perspective as pp
+from .._core import Exercise, Mistake, first_mistake, register_exercise
+
+
+def _shape_cases():
+    """Rectangles photographed by cameras of known f and principal point (not the image centre)."""
+
+    def photo(w, h, f, c, yaw, pitch, roll, distance):
+        cy, sy, cp, sp, cr, sr = (
+            np.cos(yaw),
+            np.sin(yaw),
+            np.cos(pitch),
+            np.sin(pitch),
+            np.cos(roll),
+            np.sin(roll),
+        )
+        R = (
+            np.array([[cr, -sr, 0], [sr, cr, 0], [0, 0, 1]])
+            @ np.array([[1, 0, 0], [0, cp, -sp], [0, sp, cp]])
+            @ np.array([[cy, 0, sy], [0, 1, 0], [-sy, 0, cy]])
+        )
+        K = np.array([[f, 0, c[0]], [0, f, c[1]], [0, 0, 1.0]])
+        plane = np.array([[-w, -h], [w, -h], [w, h], [-w, h]]) / 2  # TL, TR, BR, BL, y down
+        X = np.column_stack([plane, np.zeros(4)]) @ R.T + [0, 0, distance]
+        x = X @ K.T
+        return x[:, :2] / x[:, 2:]
+
+    return [
+        (photo(2.97, 2.10, 800.0, (319.5, 239.5), 0.5, 0.35, 0.1, 5.0), (319.5, 239.5)),
+        (photo(1.0, 1.6, 1200.0, (700.0, 380.0), -0.3, -0.45, -0.05, 4.0), (700.0, 380.0)),
+        (photo(3.0, 1.0, 650.0, (330.0, 250.0), 0.25, 0.6, 0.0, 9.0), (330.0, 250.0)),
+    ]
+
+
+def _shape_reference(corners, principal_point):
+    est = pp.estimate_aspect_ratio(corners, principal_point=principal_point)
+    return est.ratio, est.focal_length
+
+
+def _shape_compare(got, expected) -> bool:
+    try:
+        g = np.asarray(got, dtype=float)
+    except (TypeError, ValueError):
+        return False
+    return g.shape == (2,) and bool(np.allclose(g, expected, rtol=1e-6, atol=0))
+
+
+def _zhang_he(corners, principal_point, order=(0, 1, 3, 2), centre=True):
+    """Section 3 with the corners taken as m1..m4 in ``order`` (Zhang & He's: TL, TR, BL, BR)."""
+    q = np.asarray(corners, dtype=float) - (np.asarray(principal_point, float) if centre else 0.0)
+    m1, m2, m3, m4 = np.column_stack([q, np.ones(4)])[list(order)]
+    k2 = np.cross(m1, m4) @ m3 / (np.cross(m2, m4) @ m3)
+    k3 = np.cross(m1, m4) @ m2 / (np.cross(m3, m4) @ m2)
+    n2, n3 = k2 * m2 - m1, k3 * m3 - m1
+    f2 = -(n2[0] * n3[0] + n2[1] * n3[1]) / (n2[2] * n3[2])
+    return n2, n3, f2
+
+
+def _shape_from(n2, n3, f2):
+    ratio2 = ((n2[0] ** 2 + n2[1] ** 2) / f2 + n2[2] ** 2) / (
+        (n3[0] ** 2 + n3[1] ** 2) / f2 + n3[2] ** 2
+    )
+    return ratio2, f2
+
+
+_SHAPE_MISTAKES = (
+    Mistake(
+        "(f, ratio)",
+        lambda s: (s.f, s.ratio),
+        "you returned (f, ratio); return them as (ratio, f), w/h first.",
+    ),
+    Mistake(
+        "h/w",
+        lambda s: (1 / s.ratio, s.f),
+        "your ratio is h/w: the edge TL-TR (n2, along e1) is the width, so w/h = |A^-1 n2| / |A^-1 n3|, "
+        "not its inverse.",
+    ),
+    Mistake(
+        "squares",
+        lambda s: (s.ratio**2, s.f**2),
+        "you returned (w/h)^2 and f^2: take the square roots of both formulas.",
+    ),
+    Mistake(
+        "ratio squared",
+        lambda s: (s.ratio**2, s.f),
+        "your ratio is (w/h)^2: section 3's formula gives the square; take np.sqrt.",
+    ),
+    Mistake(
+        "f squared",
+        lambda s: (s.ratio, s.f**2),
+        "your f is f^2: section 3's formula gives the square; take np.sqrt.",
+    ),
+    Mistake(
+        "section 2's order as m1..m4",
+        lambda s: s.wrong(order=(0, 1, 2, 3)),
+        "you took the corners TL, TR, BR, BL as m1, m2, m3, m4, but in section 3 (Zhang & He's numbering) "
+        "m3 is the bottom-LEFT corner and m4 the bottom-right: m1, m2, m3, m4 = corners[[0, 1, 3, 2]].",
+    ),
+    Mistake(
+        "principal point not subtracted",
+        lambda s: s.wrong(centre=False),
+        "the corners must be taken relative to the principal point (m_i = (u_i - c_u, v_i - c_v, 1)): the "
+        "formula assumes A = diag(f, f, 1), a camera whose principal point is the origin.",
+    ),
+)
+"""Ex 'rectangle_shape''s typical mistakes, each the (ratio, f) it gives."""
+
+
+def _shape_diagnosis(args, got, expected) -> str:
+    try:
+        g = np.asarray(got, dtype=float)
+    except (TypeError, ValueError):
+        g = None
+    if g is None or g.shape != (2,):
+        shape = "nothing" if g is None else f"shape {g.shape}"
+        return f"return two numbers, (ratio, f): w/h and the focal length in pixels; got {shape}."
+    corners, principal_point = args
+    ratio, f = expected
+    if not np.isfinite(g).all():
+        return (
+            "NaN: f^2 (or (w/h)^2) came out negative, so np.sqrt gave NaN; a rectangle's true corners never do "
+            "that. Check the corner order (section 3, Zhang & He, numbers them m1 = TL, m2 = TR, m3 = BL, m4 = BR, "
+            "while the input is TL, TR, BR, BL, so m1, m2, m3, m4 = corners[[0, 1, 3, 2]]) and that the corners "
+            "are taken relative to the principal_point given (not the image centre, not the origin)."
+        )
+
+    def wrong(**how):  # what a student who made this slip returns (np.sqrt of abs, so no NaN)
+        ratio2, f2 = _shape_from(*_zhang_he(corners, principal_point, **how))
+        return np.sqrt(abs(ratio2)), np.sqrt(abs(f2))
+
+    context = SimpleNamespace(ratio=ratio, f=f, wrong=wrong)
+    cause = first_mistake(
+        _SHAPE_MISTAKES, context, g, lambda mine, theirs: bool(np.allclose(mine, theirs, rtol=1e-6))
+    )
+    if cause:
+        return cause
+    if np.isclose(g[1], f, rtol=1e-6):
+        return (
+            "your f is right but the ratio is not: w/h squared is ((n21^2 + n22^2)/f^2 + n23^2) over the same "
+            "with n3; check that both n_ij are divided by f^2 on their first two entries only."
+        )
+    if np.isclose(g[0], ratio, rtol=1e-6):
+        return (
+            "your ratio is right but f is not: f^2 = -(n21 n31 + n22 n32) / (n23 n33), in pixels."
+        )
+    return (
+        "check k2 and k3 (both use m1 x m4, dotted with m3 and m2), then n2 = k2 m2 - m1 and n3 = k3 m3 - m1, "
+        "with m_i the corners relative to the principal point in Zhang & He's order TL, TR, BL, BR."
+    )
+
+
+def rectangle_shape(corners, principal_point):
+    """Zhang & He (section 3): k2, k3 from triple products, n2, n3, then f^2 and (w/h)^2.
+
+    Parameters
+    ----------
+    corners : (4, 2) array_like
+        The rectangle's corners in the photo (u, v), pixels, TL, TR, BR, BL; no edge pair parallel.
+    principal_point : (2,) array_like
+        (c_u, c_v), pixels.
+
+    Returns
+    -------
+    ratio : float
+        The rectangle's width / height (width = the TL-TR edge).
+    f : float
+        The focal length in pixels.
+
+    References
+    ----------
+    Z. Zhang and L.-W. He, "Whiteboard scanning and image enhancement", Digital Signal Processing
+    17(2), 2007.
+    """
+    q = np.asarray(corners, dtype=float) - np.asarray(principal_point, dtype=float)
+    m1, m2, m4, m3 = np.column_stack([q, np.ones(4)])  # TL, TR, BR, BL in; Zhang & He's m3 is BL
+    k2 = np.cross(m1, m4) @ m3 / (np.cross(m2, m4) @ m3)
+    k3 = np.cross(m1, m4) @ m2 / (np.cross(m3, m4) @ m2)
+    n2, n3 = k2 * m2 - m1, k3 * m3 - m1  # along w e1 and h e2, through A = diag(f, f, 1)
+    f2 = -(n2[0] * n3[0] + n2[1] * n3[1]) / (n2[2] * n3[2])  # from e1 . e2 = 0
+    ratio2 = ((n2[0] ** 2 + n2[1] ** 2) / f2 + n2[2] ** 2) / (
+        (n3[0] ** 2 + n3[1] ** 2) / f2 + n3[2] ** 2
+    )
+    return float(np.sqrt(ratio2)), float(np.sqrt(f2))
+
+
+def _shape_wrong(order=(0, 1, 3, 2), centre=True):
+    def student(corners, principal_point):
+        ratio2, f2 = _shape_from(*_zhang_he(corners, principal_point, order, centre))
+        return float(np.sqrt(abs(ratio2))), float(np.sqrt(abs(f2)))
+
+    return student
+
+
+register_exercise(
+    Exercise(
+        name="rectangle_shape",
+        lesson="10",
+        reference=_shape_reference,
+        cases=_shape_cases,
+        compare=_shape_compare,
+        diagnose=_shape_diagnosis,
+        wrong_variants=(
+            (lambda c, p: (1 / _shape_reference(c, p)[0], _shape_reference(c, p)[1]), "h/w"),
+            (lambda c, p: _shape_reference(c, p)[::-1], "(ratio, f), w/h first"),
+            (
+                lambda c, p: (_shape_reference(c, p)[0] ** 2, _shape_reference(c, p)[1]),
+                "take np.sqrt",
+            ),
+            (_shape_wrong(order=(0, 1, 2, 3)), "Zhang & He's numbering"),
+            (
+                lambda c, p: tuple(np.sqrt(_shape_from(*_zhang_he(c, p, order=(0, 1, 2, 3))))),
+                "corners[[0, 1, 3, 2]]",
+            ),
+            (_shape_wrong(centre=False), "relative to the principal point"),
+        ),
+        teaching=rectangle_shape,
+        solution_note=(
+            "# camlab's own, tested route: camlab.perspective.estimate_aspect_ratio(corners,\n"
+            "# principal_point=...) returns .ratio and .focal_length (read it with pp.estimate_aspect_ratio??)"
+        ),
+    )
+)
