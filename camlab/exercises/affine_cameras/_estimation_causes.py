@@ -319,14 +319,9 @@ def estimate_other_cause(g, expected, X, uv) -> str:
             f"on a few of them (np.linalg.solve on 4 points?) fits their noise too. Use all the points in one "
             f"least-squares solve: {_LSQ}."
         )
-    for decimals in range(5):
-        if np.allclose(g, np.round(expected, decimals), rtol=0, atol=1e-9):
-            step = "whole numbers" if decimals == 0 else f"{decimals} decimals"
-            return (
-                f"your entries are the least-squares ones rounded to {step}; return them unrounded: rounding "
-                f"an entry of M2 by up to {0.5 * 10.0**-decimals:g} moves the image of a point 1 m from the "
-                f"centroid by as many pixels."
-            )
+    rounded = rounded_cause(g, expected)
+    if rounded:
+        return rounded
     for name, cut in (
         ("truncated towards zero (.astype(int) or int())", np.trunc),
         ("rounded down (np.floor or //)", np.floor),
@@ -353,6 +348,41 @@ def estimate_other_cause(g, expected, X, uv) -> str:
         f"residual is {r_got:.6f} px against the least-squares minimum {r_exp:.6f} px ({r_got - r_exp:.2g} px "
         f"more): the least-squares camera is the one with the smallest residual, and yours is not it. "
         f"Compare your steps with: {_LSQ}."
+    )
+
+
+def rounded_cause(g, expected) -> str | None:
+    """The cause when every entry is the least-squares one rounded to 0 to 8 decimals."""
+    for decimals in range(9):
+        if np.allclose(g, np.round(expected, decimals), rtol=0, atol=1e-9):
+            step = "whole numbers" if decimals == 0 else f"{decimals} decimals"
+            return (
+                f"your entries are the least-squares ones rounded to {step}; return them unrounded: rounding "
+                f"an entry of M2 by up to {0.5 * 10.0**-decimals:g} moves the image of a point 1 m from the "
+                f"centroid by as many pixels."
+            )
+    return None
+
+
+def nearly_right_cause(g, expected, X, uv) -> str | None:
+    """The cause when the answer is the least-squares camera to within its digits.
+
+    Rounded entries, or points cast to float32 (about 7 significant digits), leave every entry within
+    1e-4 px (plus 1e-6 relative) of the answer; a different solver (total least squares, a stopped
+    iteration) misses by far more, so it is not named here. No slip of the steps is named.
+    """
+    rounded = rounded_cause(g, expected)
+    if rounded:
+        return rounded
+    if not np.allclose(g, expected, rtol=1e-6, atol=1e-4):
+        return None
+    gap = float(np.abs(g - expected).max())
+    more = _rms(X, g[:2], uv) - _rms(X, expected[:2], uv)
+    return (
+        f"every entry is within {gap:.1g} of the least-squares camera (your RMS residual is {more:.1g} px "
+        f"above the minimum), so your steps are right and only the digits differ, which the check's 1e-7 "
+        f"does not allow: were numbers rounded or typed in from a printout, or X and uv cast to float32 "
+        f"(about 7 significant digits)? Fit the float64 arrays as given and return the result unrounded."
     )
 
 
@@ -394,7 +424,15 @@ def _point_left_out(g, X, uv) -> str | None:
 def translation_cause(t2, t2_expected, um, M2Xm) -> str:
     """Why t2 is wrong when M2 is right."""
     if np.allclose(t2, um + M2Xm, atol=1e-6):
-        return "t2 has a sign flipped: the centroids correspond, mean(uv) = M2 @ mean(X) + t2, so t2 = mean(uv) - M2 @ mean(X)."
+        return (
+            "t2 has a sign flipped on its M2 @ mean(X) term: the centroids correspond, mean(uv) = M2 @ mean(X) + t2, "
+            "so t2 = mean(uv) - M2 @ mean(X)."
+        )
+    if np.allclose(t2, -t2_expected, atol=1e-6):
+        return (
+            "t2 has the wrong sign as a whole: you computed M2 @ mean(X) - mean(uv). The centroids correspond, "
+            "mean(uv) = M2 @ mean(X) + t2, so t2 = mean(uv) - M2 @ mean(X)."
+        )
     if np.allclose(t2, um, atol=1e-6):
         return (
             "t2 = mean(uv) is the translation column for the centred points X - mean(X); for the world points "

@@ -74,6 +74,12 @@ def estimate_t2_sign(X, uv):
     return P
 
 
+def estimate_t2_sign_whole(X, uv):
+    P = af.estimate_affine_camera(X, uv)
+    P[:2, 3] = P[:2, :3] @ X.mean(axis=0) - uv.mean(axis=0)
+    return P
+
+
 def estimate_shifted(shift):
     return lambda X, uv: (
         af.estimate_affine_camera(X, uv) + np.c_[np.zeros((3, 3)), [shift, shift, 0.0]]

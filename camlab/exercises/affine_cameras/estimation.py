@@ -16,6 +16,7 @@ from ._estimation_causes import (
     algebraic_fit,
     estimate_other_cause,
     forms_context,
+    nearly_right_cause,
     normalisation_slip,
     translation_cause,
     unscaled_null_vector,
@@ -45,6 +46,7 @@ from ._estimation_variants import (
     estimate_shifted,
     estimate_solve,
     estimate_t2_sign,
+    estimate_t2_sign_whole,
     estimate_uncentred,
 )
 
@@ -118,6 +120,11 @@ def _estimate_diagnosis(args, got, expected) -> str:
             "you regressed the pixels on the raw world points, so the fit had no constant term and M2 absorbed "
             "the offset: centre both point sets first (or append a column of ones to X)."
         )
+    near = nearly_right_cause(
+        g, expected, X, uv
+    )  # before the slips: a near miss is not one of them
+    if near:
+        return near
     if np.allclose(M2, M2_expected, atol=1e-6):
         return translation_cause(t2, t2_expected, um, M2 @ Xm)
     return estimate_other_cause(g, expected, X, uv)
@@ -213,6 +220,14 @@ register_exercise(
             (lambda X, uv: af.estimate_affine_camera(X[:-1], uv[:-1]), "the last (X[:-1]"),
             (lambda X, uv: af.estimate_affine_camera(X[1:], uv[1:]), "the first (X[1:]?)"),
             (estimate_t2_sign, "sign flipped"),
+            (estimate_t2_sign_whole, "wrong sign as a whole"),
+            (lambda X, uv: np.round(af.estimate_affine_camera(X, uv), 4), "rounded to 4 decimals"),
+            (
+                lambda X, uv: af.estimate_affine_camera(
+                    X.astype(np.float32), uv.astype(np.float32)
+                ),
+                "float32",
+            ),
             (estimate_shifted(0.5), "half a pixel"),
             (estimate_scaling_not_undone, "not undo it"),
             (estimate_normalised("wrong order"), "undid it in the wrong order"),
