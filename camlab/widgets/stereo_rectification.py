@@ -113,10 +113,12 @@ def _epipolar_figure(view: FigureView) -> SimpleNamespace:
             key(color=palette.TAB_RED, lw=1.2, ls="--"),
             key(marker="o", color=palette.TAB_RED, ls="none"),
         ],
-        ["epipolar lines of 5 fixed pixels", "l, the point's own line", "the point x"],
+        ["5 fixed pixels' epipolar lines", "l, the point's line", "point x"],
         loc="upper left",
-        bbox_to_anchor=(0.0, -0.13),
-        ncol=2,
+        bbox_to_anchor=(-0.08, -0.13),
+        ncol=3,
+        handlelength=1.5,
+        columnspacing=1.0,
         fontsize=8,
         frameon=False,
     )
@@ -131,13 +133,15 @@ def _epipolar_figure(view: FigureView) -> SimpleNamespace:
         [
             "their lines here",
             "l' = F x",
-            "depth 1, 2, ..., 6 m",
-            "epipole (inside)",
-            "arrow: towards an epipole off the image",
+            "depth 1, ..., 6 m",
+            "epipole",
+            "arrow: to an epipole off the image",
         ],
         loc="upper right",
-        bbox_to_anchor=(1.0, -0.13),
-        ncol=2,
+        bbox_to_anchor=(1.06, -0.13),
+        ncol=3,
+        handlelength=1.5,
+        columnspacing=1.0,
         fontsize=8,
         frameon=False,
     )
@@ -264,7 +268,7 @@ def epipolar_lines() -> Demo:
         marks 1-6 m and the epipoles) and ``state`` (``F``, ``epipoles``, ``line_right`` l',
         ``depth_points`` in px, ``point``, ``epipole_inside``). ``handlers`` holds the click.
     """
-    view = FigureView(figsize=(9.4, 3.9))
+    view = FigureView(figsize=(9.4, 4.1))
     segs = scenes.plane_outlines(stereo_scene())
     art = _epipolar_figure(view)
     axl, axr, shafts, heads = art.axl, art.axr, art.shafts, art.heads
@@ -627,7 +631,7 @@ def disparity_depth() -> Demo:
     ax3.set_box_aspect(None, zoom=1.2)  # fill the panel: the default leaves a wide empty margin
     ax3.set_xlabel("X (m)", fontsize=8, labelpad=-4)
     ax3.set_ylabel("depth Z (m)", fontsize=8, labelpad=0)
-    ax3.set_zlabel("up (m)", fontsize=8, labelpad=-4)
+    ax3.set_zlabel("up (m)", fontsize=8, labelpad=-6)
     ax3.set(xticks=[-1, 0, 1], yticks=[1, 2, 3, 4], zticks=[-0.5, 0.5])
     ax3.tick_params(labelsize=7, pad=0)
     (pts,) = ax3.plot([], [], [], ".", ms=1.0, color=palette.TAB_BLUE)
