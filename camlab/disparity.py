@@ -287,8 +287,9 @@ def bad_pixel_rate(disparity: ArrayLike, truth: ArrayLike, threshold: float = 1.
 
     A pixel is scored when it has both a match (``disparity`` finite) and a true disparity
     (``truth`` finite); it is *bad* when :math:`|d - d_{true}| > \tau`. Pixels without a match
-    are left out (report the fraction matched beside it); Middlebury's "bad 1.0" and "bad 2.0"
-    are this rate at :math:`\tau` = 1 and 2 px.
+    are left out (report the fraction matched beside it). Middlebury's SDK (``evaldisp``) divides
+    instead by every pixel with a true disparity, reports the unmatched ones apart ("invalid")
+    and adds them in "totbad": its "bad 1.0" is this rate times the fraction matched.
 
     Parameters
     ----------

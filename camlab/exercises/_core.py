@@ -283,6 +283,7 @@ def _in_place_message(
     )
     first = _parameter_name(student_function, changed[0]).strip("`")
     a = first if first.isidentifier() else "x"
+    k = "c" if a == "d" else "d"  # the added constant's name must not be the argument's own
     # arrays inside a tuple or a list (a pair of frames, a list of pairs) get examples of their own
     if not isinstance(args[changed[0]], np.ndarray):
         examples, new = (
@@ -292,16 +293,16 @@ def _in_place_message(
         copy = "convert each array to a new one first (`a = np.asarray(a, dtype=float)`: uint16 becomes a float copy)"
     elif np.ndim(args[changed[0]]) == 1:
         examples, new = (
-            f"`{a}[1] = -{a}[1]`, `{a} += d`, `{a}.sort()`",
-            f"`{a} + d`, `np.append({a}, 1.0)`",
+            f"`{a}[1] = -{a}[1]`, `{a} += {k}`, `{a}.sort()`",
+            f"`{a} + {k}`, `np.append({a}, 1.0)`",
         )
     elif np.shape(args[changed[0]]) == (
         3,
         3,
     ):  # a matrix: its normalisation is the usual in-place slip
-        examples, new = f"`{a} /= {a}[2, 2]`, `{a}[:, 0] = ...`, `{a} += d`", f"`{a} / {a}[2, 2]`"
+        examples, new = f"`{a} /= {a}[2, 2]`, `{a}[:, 0] = ...`, `{a} += {k}`", f"`{a} / {a}[2, 2]`"
     else:
-        examples, new = f"`{a} *= L`, `{a}[:, 0] = ...`, `{a} += d`", f"`{a} * L`"
+        examples, new = f"`{a} *= L`, `{a}[:, 0] = ...`, `{a} += {k}`", f"`{a} * L`"
     if isinstance(args[changed[0]], np.ndarray):
         copy = f"work on a copy first (`{a} = np.array({a}, dtype=float)`)"
     return (

@@ -57,6 +57,23 @@ def _eight_point_diagnosis(args, got, expected) -> str:
             "your F matches the 8-point algorithm without normalisation: normalise each image's points "
             "(centroid to 0, mean distance sqrt(2)) first, then undo it with F = T2^T F_n T1"
         )
+    for off, what in (
+        (0.5, "a half-pixel"),
+        (-0.5, "a half-pixel"),
+        (1.0, "a 1-based"),
+        (-1.0, "a 1-based"),
+    ):
+        shifted = epipolar.estimate_fundamental_matrix(x1 + off, x2 + off)
+        if same_up_to_scale(g, shifted, rtol=1e-4):
+            return (
+                f"your F is the right F for every point moved by {off:+g} px: {what} offset. The points are "
+                "already pixel coordinates with the origin at the centre of the top-left pixel; use them as given"
+            )
+    if same_up_to_scale(g, _scaled_not_centred(x1, x2), rtol=1e-3):
+        return (
+            "you scaled the points but did not centre them: Hartley's T first moves the centroid to the "
+            "origin, then scales to mean distance sqrt(2); without the translation A stays badly conditioned"
+        )
     err = np.median(epipolar.sampson_distance(g, x1, x2)) if np.any(g) else np.inf
     return (
         f"median Sampson error of your F on the input pairs is {err:.3g} px; check the row of the linear "
@@ -139,6 +156,19 @@ def _rms_normalised(x1, x2):
     a = np.column_stack([x1, np.ones(len(x1))]) @ T1.T
     b = np.column_stack([x2, np.ones(len(x2))]) @ T2.T
     A = np.column_stack([b[:, [0]] * a, b[:, [1]] * a, a])
+    U, S, Vt = np.linalg.svd(np.linalg.svd(A)[2][-1].reshape(3, 3))
+    return T2.T @ U @ np.diag([S[0], S[1], 0.0]) @ Vt @ T1
+
+
+def _scaled_not_centred(x1, x2):
+    """The 8-point algorithm with each image scaled to mean distance sqrt(2) from 0, not centred."""
+    a, b = np.asarray(x1, float), np.asarray(x2, float)
+    T1, T2 = (
+        np.diag([s, s, 1.0])
+        for s in (np.sqrt(2) / np.linalg.norm(p, axis=1).mean() for p in (a, b))
+    )
+    ah, bh = np.c_[a, np.ones(len(a))] @ T1.T, np.c_[b, np.ones(len(b))] @ T2.T
+    A = np.column_stack([bh[:, [0]] * ah, bh[:, [1]] * ah, ah])
     U, S, Vt = np.linalg.svd(np.linalg.svd(A)[2][-1].reshape(3, 3))
     return T2.T @ U @ np.diag([S[0], S[1], 0.0]) @ Vt @ T1
 
@@ -273,10 +303,28 @@ def _epipole_diagnosis(args, got, expected) -> str:
         return (
             "you swapped them: e1 is the right null vector (F e1 = 0), e2 the left one (F^T e2 = 0)"
         )
+    for e, name in ((e1, "e1"), (e2, "e2")):
+        if not np.linalg.norm(e) > 1e-12:
+            return (
+                f"your {name} is the zero vector, which is no point at all (every vector is its multiple). "
+                "A cross product of two rows (or columns) of F vanishes when they are parallel or zero, as "
+                "they are here; take the null vector from the SVD F = U S V^T instead: e1 = last row of V^T, "
+                "e2 = last column of U"
+            )
+    if same_up_to_scale(e2, expected.e1) and not same_up_to_scale(e1, expected.e2):
+        return (
+            "your e2 is e1, the null vector of F: e2 is the null vector of F^T (F^T e2 = 0), the last "
+            "column of U in F = U S V^T, not the last row of V^T again"
+        )
     r1 = np.linalg.norm(F @ e1) / max(np.linalg.norm(e1), 1e-300)
     r2 = np.linalg.norm(F.T @ e2) / max(np.linalg.norm(e2), 1e-300)
+    bad = " and ".join(
+        f"|{m}| / |{n}| = {r:.2g}"
+        for r, m, n in ((r1, "F e1", "e1"), (r2, "F^T e2", "e2"))
+        if r > 1e-9
+    )
     return (
-        f"|F e1| / |e1| = {r1:.2g} and |F^T e2| / |e2| = {r2:.2g} should both be 0: take the last row of V^T "
+        f"{bad} (should be 0 up to rounding, about 1e-15): take the last row of V^T "
         f"(for e1) and the last column of U (for e2) from the SVD F = U S V^T"
     )
 
@@ -319,7 +367,9 @@ register_exercise(
         diagnose=_epipole_diagnosis,
         wrong_variants=(
             (lambda F: tuple(reversed(epipolar.epipoles(F))), "swapped"),
-            (lambda F: (np.linalg.svd(F)[2][0], np.linalg.svd(F)[0][:, 0]), "should both be 0"),
+            (lambda F: (np.linalg.svd(F)[2][0], np.linalg.svd(F)[0][:, 0]), "should be 0"),
+            (lambda F: (np.cross(F[0], F[1]), np.cross(F[:, 0], F[:, 1])), "zero vector"),
+            (lambda F: (np.linalg.svd(F)[2][-1], np.linalg.svd(F)[2][-1]), "null vector of F^T"),
             (_divided_by_w, "Do not divide by w"),
         ),
         teaching=epipoles,
@@ -351,6 +401,16 @@ def _depth_diagnosis(args, got, expected) -> str:
         return "you forgot the focal length: d is in pixels and B in metres, so Z = f B / d with f in pixels"
     if np.allclose(g, f / d):
         return "you forgot the baseline: Z = f B / d, and B (metres) sets the units of Z"
+    if np.allclose(g, f / (B * d)):
+        return "you divided by the baseline: Z = f B / d, the baseline multiplies (a wider rig sees deeper)"
+    if np.allclose(g, f * B // d):
+        return "you used floor division (//), which rounds the depth down: Z = f B / d with true division"
+    for off in (0.5, 1.0, -0.5, -1.0):
+        if np.allclose(g, f * B / (d + off)):
+            return (
+                f"your depths are f B / (d {off:+g}): the disparity is a difference of two pixel columns, "
+                "so no half-pixel or 1-based offset belongs in it; Z = f B / d"
+            )
     ratio = g / expected
     if np.allclose(ratio, ratio.flat[0], rtol=1e-6):
         k = float(ratio.flat[0])
@@ -409,7 +469,9 @@ register_exercise(
             (lambda d, f, B: f * d / B, "Z = f B / d"),
             (lambda d, f, B: B / d, "focal length"),
             (lambda d, f, B: 1000 * f * B / d, "unit slip"),
-            (lambda d, f, B: f * B / (d + 1.0), "inversely proportional"),
+            (lambda d, f, B: f * B / (d + 1.0), "1-based offset"),
+            (lambda d, f, B: f * B // d, "floor division"),
+            (lambda d, f, B: f / (B * d), "divided by the baseline"),
             (lambda d, f, B: -f * B / d, "depths are negative"),
         ),
         teaching=disparity_to_depth,
@@ -448,8 +510,8 @@ def _essential_compare(got, expected) -> bool:
         or not (np.isfinite(Rs).all() and np.isfinite(ts).all())
     ):
         return False
-    if np.any(np.linalg.norm(ts, axis=1) == 0):
-        return False
+    if not np.allclose(np.linalg.norm(ts, axis=1), 1.0, atol=1e-6):
+        return False  # the prompt fixes the scale: unit vectors
     mine = _pose_set(Rs, ts)
     return all(
         any(np.allclose(R, Rg, atol=1e-8) and np.allclose(t, tg, atol=1e-8) for Rg, tg in mine)
@@ -465,6 +527,26 @@ def _essential_diagnosis(args, got, expected) -> str:
         return "return two arrays (Rs, ts): Rs of shape (4, 3, 3) and ts of shape (4, 3), one row per candidate"
     if Rs.shape != (4, 3, 3) or ts.shape != (4, 3):
         return f"expected Rs (4, 3, 3) and ts (4, 3), got {Rs.shape} and {ts.shape}: four candidates, (R_a, ±t), (R_b, ±t)"
+    gram = np.einsum("kji,kjl->kil", Rs, Rs)
+    if not np.allclose(gram, np.eye(3), atol=1e-6):
+        dets = np.linalg.det(Rs)
+        kept_s = np.allclose(dets, 0, atol=1e-9)
+        return (
+            f"your R are not rotations (R^T R != I; det R = {', '.join(f'{x:.2g}' for x in dets)})"
+            + (
+                ": you kept the singular values, U diag(s) V^T. E's third singular value is 0, so that "
+                "R is singular; R = U W V^T without S"
+                if kept_s
+                else ": R = U W V^T from the orthogonal U and V^T of the SVD, with no other factor"
+            )
+        )
+    norms = np.linalg.norm(ts, axis=1)
+    if not np.allclose(norms, 1.0, atol=1e-6):
+        return (
+            f"your t have lengths {', '.join(f'{x:.3g}' for x in norms)}: the prompt asks for unit vectors. "
+            "E fixes t only up to scale, so return t = ±u3 (the last column of U, already of length 1), "
+            "not a multiple of it"
+        )
     dets = np.linalg.det(Rs)
     if np.any(dets < 0):
         return (
@@ -482,6 +564,24 @@ def _essential_diagnosis(args, got, expected) -> str:
             "your t is the right null vector of E (last row of V^T); t is the LEFT null vector, the last "
             "column of U: t^T E = t^T [t]x R = 0"
         )
+    if any(
+        abs(abs(t @ U_row) - 1) < 1e-8 and abs(abs(t @ u3) - 1) > 1e-6
+        for t in ts
+        for U_row in [np.linalg.svd(E)[0][2]]
+    ):
+        return "your t is the last ROW of U; t is the last COLUMN, U[:, 2] (t^T E = 0)"
+    exp_set = _pose_set(*expected)
+    centres = [(R, -R.T @ t) for R, t in exp_set]
+    if all(
+        any(np.allclose(R, Re, atol=1e-8) and np.allclose(t, c, atol=1e-8) for Re, c in centres)
+        for R, t in _pose_set(Rs, ts)
+    ) and not _essential_compare(got, expected):
+        return (
+            "your t is the camera centre C = -R^T t, not t: with X2 = R X1 + t, t is the left null vector "
+            "of E (the last column of U), while C is where camera 2 sits in camera 1's frame"
+        )
+    if np.all(ts @ u3 > 0) or np.all(ts @ u3 < 0):
+        return "all your t have the same sign: the four candidates are (R_a, +t), (R_a, -t), (R_b, +t), (R_b, -t)"
     expected_Rs = np.asarray(expected[0], dtype=float)
     if all(any(np.allclose(R.T, Re, atol=1e-8) for Re in expected_Rs) for R in Rs) and not all(
         any(np.allclose(R, Re, atol=1e-8) for Re in expected_Rs) for R in Rs
@@ -530,9 +630,18 @@ def decompose_essential(E):
 
 
 def _no_det_fix(E):
-    U, _, Vt = np.linalg.svd(E)  # numpy returns det(U) = -1 on the first test case
+    U, _, Vt = np.linalg.svd(
+        E
+    )  # numpy returns det(V^T) = -1 on the first test case, det(U) = -1 on the others
     W = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
     Ra, Rb = U @ W @ Vt, U @ W.T @ Vt
+    return np.stack([Ra, Ra, Rb, Rb]), np.stack([U[:, 2], -U[:, 2], U[:, 2], -U[:, 2]])
+
+
+def _kept_singular_values(E):
+    U, S, Vt = np.linalg.svd(E)
+    W = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    Ra, Rb = U @ W @ np.diag(S) @ Vt, U @ W.T @ np.diag(S) @ Vt
     return np.stack([Ra, Ra, Rb, Rb]), np.stack([U[:, 2], -U[:, 2], U[:, 2], -U[:, 2]])
 
 
@@ -553,6 +662,20 @@ register_exercise(
         wrong_variants=(
             (_no_det_fix, "det = -1"),
             (_right_null_vector, "LEFT null vector"),
+            (
+                lambda E: (decompose_essential(E)[0], 7.3 * decompose_essential(E)[1]),
+                "unit vectors",
+            ),
+            (_kept_singular_values, "kept the singular values"),
+            (
+                lambda E: (
+                    lambda Rs, ts: (
+                        Rs,
+                        np.abs(ts @ np.linalg.svd(E)[0][:, 2])[:, None] * np.linalg.svd(E)[0][:, 2],
+                    )
+                )(*decompose_essential(E)),
+                "same sign",
+            ),
             (
                 lambda E: (lambda Rs, ts: (np.stack([Rs[0]] * 4), ts))(*decompose_essential(E)),
                 "only one rotation",
@@ -614,6 +737,20 @@ def _bad_pixel_diagnosis(args, got, expected) -> str:
             "you averaged over every pixel: NaN > threshold is False, so the pixels without a match or "
             "without a true disparity counted as good. Score only the pixels where both are finite"
         )
+    n_bad = np.sum(np.abs(err[scored]) > tau)
+    truth_only = n_bad / known.sum()
+    if np.isclose(g, truth_only):
+        return (
+            "you divided by every pixel with a true disparity, so the pixels without a match counted as "
+            "good: that is Middlebury's bad% (section 6), which reports the holes separately. This exercise "
+            "asks for the rate over the pixels where both d and d_true are finite"
+        )
+    if np.isclose(g, 1 - expected):
+        return "you returned the fraction of GOOD pixels (|d - d_true| <= threshold): the bad-pixel rate is 1 minus that"
+    if np.isclose(g, n_bad):
+        return f"you returned the count of bad pixels ({n_bad}): divide by the number of scored pixels for a fraction"
+    if np.isclose(g, np.mean((err[scored]) ** 2 > tau)):
+        return "you compared the squared error with the threshold: the rule is |d - d_true| > threshold (pixels)"
     if np.isclose(g, unmatched_bad):
         return (
             "you counted the pixels without a match as bad: this rate is over the matched pixels that "
@@ -672,6 +809,15 @@ register_exercise(
                     np.sum(np.isfinite(t) & ~(np.abs(d - t) <= tau)) / np.isfinite(t).sum()
                 ),
                 "without a match as bad",
+            ),
+            (
+                lambda d, t, tau: np.sum(np.abs(d - t) > tau) / np.isfinite(t).sum(),
+                "Middlebury's bad%",
+            ),
+            (lambda d, t, tau: 1 - disparity.bad_pixel_rate(d, t, tau), "GOOD pixels"),
+            (
+                lambda d, t, tau: float(np.sum(np.abs(d - t)[np.isfinite(d - t)] > tau)),
+                "count of bad pixels",
             ),
         ),
         teaching=bad_pixel_rate,

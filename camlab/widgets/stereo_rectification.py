@@ -93,14 +93,58 @@ def _epipolar_figure(view: FigureView) -> SimpleNamespace:
     (point,) = axl.plot([], [], "o", color=palette.TAB_RED, ms=8)
     (line_l,) = axl.plot([], [], color=palette.TAB_RED, lw=1.2, ls="--")
     (line_r,) = axr.plot([], [], color=palette.TAB_RED, lw=1.8)
-    (depth_dots,) = axr.plot([], [], "o", color=palette.ORANGE, ms=5, label="depth 1, 2, ..., 6 m")
+    (depth_dots,) = axr.plot([], [], "o", color=palette.ORANGE, ms=5)
     (epi_l,) = axl.plot([], [], "*", color="k", ms=13)
-    (epi_r,) = axr.plot([], [], "*", color="k", ms=13, label="epipole")
+    (epi_r,) = axr.plot([], [], "*", color="k", ms=13)
     # an epipole off the image: an arrow (shaft + head) at the border pointing to it
     shafts = [ax.plot([], [], color="k", lw=1.8)[0] for ax in (axl, axr)]
     heads = [ax.plot([], [], color="k", ms=9, ls="none")[0] for ax in (axl, axr)]
-    # below the image, not over it: every corner of the right image carries lines
-    axr.legend(loc="upper right", bbox_to_anchor=(1.0, -0.13), ncol=2, fontsize=8, frameon=False)
+    # keys below the images, not over them (every corner of the right image carries lines); the
+    # epipole's two looks (a star inside, an arrow at the border towards it) are both keyed
+    from matplotlib.lines import Line2D
+
+    def key(**kw):
+        return Line2D([], [], **kw)
+
+    blue = {"color": palette.BLUE, "lw": 1.0}
+    axl.legend(
+        [
+            key(**blue),
+            key(color=palette.TAB_RED, lw=1.2, ls="--"),
+            key(marker="o", color=palette.TAB_RED, ls="none"),
+        ],
+        ["5 fixed pixels' epipolar lines", "l, the point's line", "point x"],
+        loc="upper left",
+        bbox_to_anchor=(-0.08, -0.13),
+        ncol=3,
+        handlelength=1.5,
+        columnspacing=1.0,
+        fontsize=8,
+        frameon=False,
+    )
+    axr.legend(
+        [
+            key(**blue),
+            key(color=palette.TAB_RED, lw=1.8),
+            depth_dots,
+            epi_r,
+            key(marker=">", color="k", lw=1.8, ms=7),
+        ],
+        [
+            "their lines here",
+            "l' = F x",
+            "depth 1, ..., 6 m",
+            "epipole",
+            "arrow: to an epipole off the image",
+        ],
+        loc="upper right",
+        bbox_to_anchor=(1.06, -0.13),
+        ncol=3,
+        handlelength=1.5,
+        columnspacing=1.0,
+        fontsize=8,
+        frameon=False,
+    )
     moving = (
         wl,
         wr,
@@ -168,7 +212,12 @@ def _epipolar_readout(v: dict, e2: np.ndarray, inside: bool, uv: np.ndarray, l2:
         else f"({e2[0] / e2[2]:.0f}, {e2[1] / e2[2]:.0f}) px"
     )
     return monospace(
-        f"{v['motion']}: baseline {v['baseline']:.2f} m, turn {v['toe_in']:.0f} deg\n"
+        f"{v['motion']}: baseline {v['baseline']:.2f} m, "
+        + (
+            f"toe-in {v['toe_in']:g} deg in all (each camera turned {v['toe_in'] / 2:g} deg)\n"
+            if v["motion"].startswith("sideways")
+            else f"second camera turned {v['toe_in']:g} deg\n"
+        )
         + ("the right epipole is inside the image: the lines fan out from it\n" if inside else "")
         + f"right epipole e' = {ep2}\n"
         f"max distance of the depth marks from l' = "
@@ -179,10 +228,11 @@ def _epipolar_readout(v: dict, e2: np.ndarray, inside: bool, uv: np.ndarray, l2:
 def _epipolar_controls() -> dict:
     """The controls of :func:`epipolar_lines`: the point (u, v), the baseline, the toe-in and the motion."""
     return {
-        "u": slider(420.0, 0.0, 639.0, 1.0, "u (px)"),
-        "v": slider(300.0, 0.0, 479.0, 1.0, "v (px)"),
+        # 10 px inside the border: the point's marker stays whole at the ends of the sweep
+        "u": slider(420.0, 10.0, 629.0, 1.0, "u (px)"),
+        "v": slider(300.0, 10.0, 469.0, 1.0, "v (px)"),
         "baseline": slider(0.2, 0.02, 0.5, 0.01, "baseline (m)"),
-        "toe_in": slider(10.0, -20.0, 20.0, 0.5, "toe-in / turn (deg)"),
+        "toe_in": slider(10.0, -20.0, 20.0, 0.5, "toe-in, total / turn (deg)"),
         "motion": W.ToggleButtons(
             options=list(_MOTIONS),
             value="sideways (stereo rig)",
@@ -218,7 +268,7 @@ def epipolar_lines() -> Demo:
         marks 1-6 m and the epipoles) and ``state`` (``F``, ``epipoles``, ``line_right`` l',
         ``depth_points`` in px, ``point``, ``epipole_inside``). ``handlers`` holds the click.
     """
-    view = FigureView(figsize=(9.4, 3.9))
+    view = FigureView(figsize=(9.4, 4.1))
     segs = scenes.plane_outlines(stereo_scene())
     art = _epipolar_figure(view)
     axl, axr, shafts, heads = art.axl, art.axr, art.shafts, art.heads
@@ -246,8 +296,12 @@ def epipolar_lines() -> Demo:
             *_line_polyline(np.cross(np.column_stack([ref, np.ones(len(ref))]), e.e1)).T
         )
         art.depth_dots.set_data(uv[:, 0], uv[:, 1])
-        _show_epipole(e.e1, art.epi_l, shafts[0], heads[0], axl)
-        _show_epipole(e.e2, art.epi_r, shafts[1], heads[1], axr)
+        # the epipoles as the images of the other camera's centre, P' C and P C': the same points as
+        # F's null vectors, with a sign that says on which side the other camera is (for w = 0 too)
+        e1_dir = c1.P @ np.append(c2.centre, 1.0)
+        e2_dir = c2.P @ np.append(c1.centre, 1.0)
+        _show_epipole(e1_dir, art.epi_l, shafts[0], heads[0], axl)
+        _show_epipole(e2_dir, art.epi_r, shafts[1], heads[1], axr)
         inside = not arrow_to_infinity(e.e2, axr)[1].any()
         state.update(epipole_inside=inside)
         readout.value = _epipolar_readout(v, e.e2, inside, uv, l2)
@@ -265,8 +319,8 @@ def epipolar_lines() -> Demo:
     def on_click(event):
         if event.inaxes is not axl or event.xdata is None:
             return
-        demo.controls["u"].value = float(np.clip(event.xdata, 0, 639))
-        demo.controls["v"].value = float(np.clip(event.ydata, 0, 479))
+        demo.controls["u"].value = float(np.clip(event.xdata, 10, 629))
+        demo.controls["v"].value = float(np.clip(event.ydata, 10, 469))
 
     view.fig.canvas.mpl_connect("button_press_event", on_click)
     demo.handlers["button_press_event"] = (
@@ -377,6 +431,9 @@ def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
         ylabel="fraction of matches ≤ x",
     )
     axh.axvline(0.5, color=palette.GREY, ls=":", lw=1)
+    axh.text(
+        0.55, 0.04, "0.5 px", color=palette.GREY, fontsize=7, transform=axh.get_xaxis_transform()
+    )
     axh.set_title("vertical disparity", fontsize=9)
     axh.grid(True, which="major", color="0.93")
     # the zoomed match, marked where it is in the pair
@@ -478,8 +535,8 @@ def rectify_pair() -> Demo:
         )
         source = {
             "calibrated": f"cameras from a stereo calibration (rms {cal_rms:.3f} px)",
-            "uncalibrated": "F from noisy matches (0.3 px)",
-            "original": "the raw pair",
+            "uncalibrated": "F from noisy matches (0.3 px); alpha: calibrated only",
+            "original": "the raw pair; alpha: calibrated only",
         }[v["method"]]
         readout.value = monospace(
             f"{v['method']}: {source}\nvertical disparity of {len(vd.values)} true matches\n"
@@ -493,7 +550,7 @@ def rectify_pair() -> Demo:
             zoom_offset=float(b[1] - a[1]),  # the zoomed match's vertical disparity, half-size px
         )
 
-    return build_demo(
+    demo = build_demo(
         "rectify_pair",
         _pair_controls(),
         view,
@@ -501,6 +558,15 @@ def rectify_pair() -> Demo:
         title="Rectification makes epipolar lines the same rows",
         extra=[readout],
     )
+    alpha = demo.controls["alpha"]
+
+    def alpha_only_when_calibrated(
+        change,
+    ) -> None:  # alpha sets K_new: only the calibrated route has one
+        alpha.disabled = change["new"] != "calibrated"
+
+    demo.controls["method"].observe(alpha_only_when_calibrated, names="value")
+    return demo
 
 
 # --------------------------------------------------------------------------- demo 3: disparity and depth
@@ -524,9 +590,15 @@ def disparity_depth() -> Demo:
         matching in numpy or OpenCV's SGBM), the figure (disparity, depth error, 3-D points)
         and ``state`` (``disparity`` map in half-size px, ``median_error_percent`` of depth,
         ``within_5`` the fraction of matched pixels within 5 % of the true depth,
-        ``coverage`` the fraction of textured pixels matched).
+        ``coverage`` the fraction of textured pixels matched, ``edge_bad`` the fraction of matched
+        pixels within 4 px of a depth jump whose disparity is off by more than 1 px).
     """
+    import scipy.ndimage as ndi
+    from matplotlib import colormaps
+
     from ..plotting import scene3d
+
+    plt_colormap = colormaps.get_cmap
 
     rect, L, R, gt, smooth = half_size_rectification()
     f, B = rect.K[0, 0], rect.baseline
@@ -544,24 +616,31 @@ def disparity_depth() -> Demo:
     ax1 = view.fig.add_subplot(gs[0])
     ax2 = view.fig.add_subplot(gs[1])
     ax3 = scene3d.axes3d(view.fig, gs[2], elev=18, azim=-62)
-    for a, t in ((ax1, "disparity (px)"), (ax2, "depth error (%)")):
+    for a, t in ((ax1, "disparity (px); grey: no match"), (ax2, "depth error (%); grey: no match")):
         a.set(xticks=[], yticks=[])
         a.set_title(t, fontsize=9)
-    im1 = ax1.imshow(gt, cmap="viridis", vmin=8, vmax=40, interpolation="nearest")
+    # no match (NaN) in mid grey: coolwarm's 0 % and the image's background are near-white
+    viridis = plt_colormap("viridis").with_extremes(bad=palette.GREY)
+    coolwarm = plt_colormap("coolwarm").with_extremes(bad=palette.GREY)
+    im1 = ax1.imshow(gt, cmap=viridis, vmin=8, vmax=40, interpolation="nearest")
     view.fig.colorbar(im1, ax=ax1, shrink=0.7)
-    im2 = ax2.imshow(np.zeros_like(gt), cmap="coolwarm", vmin=-5, vmax=5, interpolation="nearest")
+    im2 = ax2.imshow(np.zeros_like(gt), cmap=coolwarm, vmin=-5, vmax=5, interpolation="nearest")
     view.fig.colorbar(im2, ax=ax2, shrink=0.7)
-    ax3.set_title("3-D points, left camera (vertical: up, m)", fontsize=9)
+    ax3.set_title("3-D points, left camera", fontsize=9)
     ax3.set(xlim=(-1.6, 1.6), ylim=(1.0, 4.5), zlim=(-0.8, 1.4))
     ax3.set_box_aspect(None, zoom=1.2)  # fill the panel: the default leaves a wide empty margin
     ax3.set_xlabel("X (m)", fontsize=8, labelpad=-4)
     ax3.set_ylabel("depth Z (m)", fontsize=8, labelpad=0)
-    ax3.set_zlabel("")
+    ax3.set_zlabel("up (m)", fontsize=8, labelpad=-6)
     ax3.set(xticks=[-1, 0, 1], yticks=[1, 2, 3, 4], zticks=[-0.5, 0.5])
     ax3.tick_params(labelsize=7, pad=0)
     (pts,) = ax3.plot([], [], [], ".", ms=1.0, color=palette.TAB_BLUE)
     view.animate(im1, im2, pts)
     zt = dp.disparity_to_depth(gt, f, B)
+    # near depth jumps: within 4 px of a disparity step over 2 px (a 9 x 9 window's range), where a
+    # large window straddles two depths; small windows lose the planes, large ones these pixels
+    g = np.nan_to_num(gt, nan=-100.0)
+    jumps = np.isfinite(gt) & (ndi.maximum_filter(g, 9) - ndi.minimum_filter(g, 9) > 2)
     readout = W.HTML()
 
     def update(v, state):
@@ -576,8 +655,10 @@ def disparity_depth() -> Demo:
         )  # camera frame (y down) drawn with depth back, up up
         ok = smooth & np.isfinite(err)
         rel = np.abs(err[ok])
+        near = jumps & np.isfinite(d)
         state.update(
             disparity=d,
+            edge_bad=float(np.mean(np.abs(d[near] - gt[near]) > 1)),
             median_error_percent=float(np.median(rel)),
             within_5=float(np.mean(rel < 5)),
             coverage=float(ok.sum() / smooth.sum()),
@@ -586,7 +667,8 @@ def disparity_depth() -> Demo:
             f"{v['method']}, {int(v['block_size'])} x {int(v['block_size'])} window\n"
             f"on textured planes: {100 * state['coverage']:.0f}% matched, median depth error "
             f"{state['median_error_percent']:.2f}%\n"
-            f"{100 * state['within_5']:.1f}% of matched pixels within 5% of the true depth"
+            f"{100 * state['within_5']:.1f}% of matched pixels within 5% of the true depth\n"
+            f"near depth jumps: {100 * state['edge_bad']:.0f}% of matched pixels off by > 1 px"
         )
 
     controls = {
