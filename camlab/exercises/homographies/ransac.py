@@ -13,8 +13,9 @@ from .._numbers import not_one_number, same_number
 
 
 def _ransac_samples_cases():
-    # (confidence p, inlier ratio w); each k has a fraction part that tells ceil from round and floor
-    return [(0.99, 0.5), (0.95, 0.8), (0.995, 0.3), (0.999, 0.9)]
+    # (confidence p, inlier ratio w); each k has a fraction part that tells ceil from round and floor,
+    # and no w is 0.5, where w^4 and (1 - w)^4 are one number and two slips one answer
+    return [(0.99, 0.6), (0.95, 0.8), (0.995, 0.3), (0.999, 0.9)]
 
 
 def _samples_needed(p, w):
