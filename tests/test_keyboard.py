@@ -24,6 +24,7 @@ MOUSE = ("button_press_event", "motion_notify_event", "button_release_event")
 # Demo -> the controls that do with the keyboard what a click or drag on its canvas does.
 KEYBOARD_TWINS = {
     "similar_triangles": ("Z", "Y"),  # a click or drag puts the object point at (Z, Y)
+    "pixel_explorer": ("u", "v"),  # a click picks the pixel (u, v)
     "epipolar_lines": ("u", "v"),  # a click picks the point (u, v) in the left image
     "drag_homography": ("corner", "corner_u", "corner_v", "corners"),  # drag a corner
     "rectify_photo": ("corner", "corner_u", "corner_v", "corners"),  # drag a corner

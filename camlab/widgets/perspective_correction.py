@@ -496,7 +496,7 @@ def keystone_correction() -> Demo:
         ax_r.plot([], [], ":", color=palette.GREEN, lw=1.5, path_effects=palette.halo(1.5))[0]
     )
     readout = W.HTML()
-    view.animate(ax_p.title)  # says whether the camera is tilted
+    view.animate(ax_p.title, ax_r.title)  # whether the camera is tilted; which f rectified it
 
     def update(v: dict, state: dict) -> None:
         photo = scenes.sample_photo("facade", pitch=v["tilt"], yaw=v["yaw"])
@@ -513,6 +513,8 @@ def keystone_correction() -> Demo:
             c, photo.image.shape, focal_length=photo.K[0, 0] if v["use_focal"] else None
         )
         _show_rectified(im_r, photo.image, c, (400, int(round(400 / est.ratio))))
+        how = {"given": "the known f", "estimated": "f from the corners", "assumed": "f assumed"}
+        ax_r.set_title(f"rectified with {how.get(est.focal_source, 'no f')}", fontsize=10, pad=3)
         w, h = _fit((400, int(round(400 / photo.aspect))))
         x0, y0 = (_SHOW - w) // 2 - 0.5, (_SHOW - h) // 2 - 0.5
         truth_box.set_data([x0, x0 + w, x0 + w, x0, x0], [y0, y0, y0 + h, y0 + h, y0])
