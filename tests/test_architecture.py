@@ -200,8 +200,8 @@ BARE_TUPLES_ALLOWED = {
     "camlab.exercises.projective_camera.rq.rq_decomposition": "an exercise's teaching solution",
     "camlab.exercises.sensor_noise.gain_and_read_noise": "an exercise's teaching solution",
     "camlab.exercises.start_here.conventions.read_and_turn": "an exercise's teaching solution",
-    "camlab.exercises.stereo_rectification.epipoles": "an exercise's teaching solution",
-    "camlab.exercises.stereo_rectification.decompose_essential": "an exercise's teaching solution",
+    "camlab.exercises.stereo_rectification.epipoles.epipoles": "an exercise's teaching solution",
+    "camlab.exercises.stereo_rectification.essential.decompose_essential": "an exercise's teaching solution",
     "camlab.exercises.perspective_correction.shape.rectangle_shape": "an exercise's teaching solution",
     # a sequence of artists splatted into view.animate(*...), not a record of named values
     "camlab.widgets.affine_cameras.common.reference_marker": "a sequence of artists, not a record",

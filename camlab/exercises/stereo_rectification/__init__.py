@@ -1,0 +1,20 @@
+"""Exercises for lesson 11, epipolar geometry and stereo rectification.
+
+The 8-point algorithm (:mod:`.eight_point`), the epipoles (:mod:`.epipoles`), depth from disparity
+(:mod:`.depth`), the essential matrix's pose (:mod:`.essential`) and the bad-pixel rate
+(:mod:`.bad_pixels`).
+"""
+
+from __future__ import annotations
+
+# each module registers its exercise when imported: keep the registration order
+# isort: off
+from . import eight_point
+from . import epipoles
+from . import depth
+from . import essential
+from . import bad_pixels
+
+# isort: on
+
+__all__ = ["bad_pixels", "depth", "eight_point", "epipoles", "essential"]

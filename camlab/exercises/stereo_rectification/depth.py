@@ -1,0 +1,110 @@
+"""Exercise 3 of lesson 11: depth from disparity (`disparity_to_depth`)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ... import disparity
+from .._answers import same_array, shape_problem
+from .._core import Exercise, register_exercise
+
+# --------------------------------------------------------------------------- depth from disparity
+
+
+def _depth_cases():
+    return [
+        (np.array([80.0, 40.0, 16.0]), 800.0, 0.12),
+        (np.array([[10.5, 64.0], [33.0, 7.25]]), 1200.0, 0.3),
+    ]
+
+
+def _depth_diagnosis(args, got, expected) -> str:
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem
+    d, f, B = args
+    g = np.asarray(got, dtype=float)
+    if np.allclose(g, d * B / f) or np.allclose(g, f * d / B):
+        return (
+            "depth falls as disparity grows: Z = f B / d (similar triangles), not proportional to d"
+        )
+    if np.allclose(g, B / d):
+        return "you forgot the focal length: d is in pixels and B in metres, so Z = f B / d with f in pixels"
+    if np.allclose(g, f / d):
+        return "you forgot the baseline: Z = f B / d, and B (metres) sets the units of Z"
+    if np.allclose(g, f / (B * d)):
+        return "you divided by the baseline: Z = f B / d, the baseline multiplies (a wider rig sees deeper)"
+    if np.allclose(g, f * B // d):
+        return "you used floor division (//), which rounds the depth down: Z = f B / d with true division"
+    for off in (0.5, 1.0, -0.5, -1.0):
+        if np.allclose(g, f * B / (d + off)):
+            return (
+                f"your depths are f B / (d {off:+g}): the disparity is a difference of two pixel columns, "
+                "so no half-pixel or 1-based offset belongs in it; Z = f B / d"
+            )
+    ratio = g / expected
+    if np.allclose(ratio, ratio.flat[0], rtol=1e-6):
+        k = float(ratio.flat[0])
+        if np.isclose(k, -1.0):
+            return (
+                "your depths are negative: the disparity d = u1 - u2 (left column minus right column) is "
+                "positive for a point in front of the rig, and so is Z = f B / d; a sign flip (u2 - u1, "
+                "or a minus in the formula) gives -Z"
+            )
+        for factor, hint in ((1000.0, "millimetres"), (100.0, "centimetres")):
+            if np.isclose(k, factor) or np.isclose(k, 1 / factor):
+                return (
+                    f"your depths are {k:.4g} times the true ones: a unit slip ({hint}?). With f in pixels "
+                    f"and B in metres, Z = f B / d comes out in metres"
+                )
+        return (
+            f"your depths are {k:.4g} times the true ones at every pixel: the shape Z ~ 1/d is right, "
+            f"a constant is wrong. Check the formula Z = f B / d"
+        )
+    i = np.unravel_index(np.argmax(np.abs(g - expected)), g.shape)
+    return (
+        f"at d = {d[i]:g} px (f = {f:g} px, B = {B:g} m) you give Z = {g[i]:.4g} m; f B / d = {expected[i]:.4g} m. "
+        f"Z must be inversely proportional to d"
+    )
+
+
+def disparity_to_depth(d, f, B):
+    """Similar triangles: d = f B / Z, so Z = f B / d (metres when B is in metres, f and d in pixels).
+
+    Parameters
+    ----------
+    d : float or array_like
+        Disparities, pixels (> 0).
+    f : float
+        The rectified cameras' focal length, pixels.
+    B : float
+        The baseline, m.
+
+    Returns
+    -------
+    ndarray
+        The depths Z = f B / d, m, of ``d``'s shape.
+    """
+    return f * B / np.asarray(d, dtype=float)
+
+
+register_exercise(
+    Exercise(
+        name="disparity_to_depth",
+        lesson="11",
+        reference=disparity.disparity_to_depth,
+        cases=_depth_cases,
+        compare=same_array(rtol=1e-9),
+        diagnose=_depth_diagnosis,
+        wrong_variants=(
+            (lambda d, f, B: f * d / B, "Z = f B / d"),
+            (lambda d, f, B: B / d, "focal length"),
+            (lambda d, f, B: 1000 * f * B / d, "unit slip"),
+            (lambda d, f, B: f * B / (d + 1.0), "1-based offset"),
+            (lambda d, f, B: f * B // d, "floor division"),
+            (lambda d, f, B: f / (B * d), "divided by the baseline"),
+            (lambda d, f, B: -f * B / d, "depths are negative"),
+        ),
+        teaching=disparity_to_depth,
+    )
+)

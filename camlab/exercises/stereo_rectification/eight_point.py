@@ -1,0 +1,249 @@
+"""Exercise 1 of lesson 11: the normalised 8-point algorithm (`eight_point`)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ... import epipolar
+from ...projective import hartley_normalise
+from .._answers import same_up_to_scale, shape_problem
+from .._core import Exercise, register_exercise
+from ._rig import rig_points
+
+# --------------------------------------------------------------------------- the 8-point algorithm
+
+
+def _eight_point_cases():
+    return [
+        rig_points(0, 0.0),
+        rig_points(1, 0.5),
+        rig_points(2, 1.0, n=40, baseline=(0.5, -0.05, 0.1)),
+    ]
+
+
+def _eight_point_diagnosis(args, got, expected) -> str:
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + ". F is the (3, 3) matrix with x2_h @ F @ x1_h = 0."
+    x1, x2 = args
+    g = np.asarray(got, dtype=float)
+    # judge the rank in normalised coordinates, where F's entries are all of order 1
+    T1, T2 = hartley_normalise(x1).T, hartley_normalise(x2).T
+    s = np.linalg.svd(np.linalg.inv(T2).T @ g @ np.linalg.inv(T1), compute_uv=False)
+    if s[2] > 1e-8 * s[0]:
+        return (
+            "your F has rank 3 (smallest singular value "
+            f"{s[2] / s[0]:.2g} of the largest): enforce rank 2 by zeroing the smallest singular value, "
+            "U diag(s1, s2, 0) V^T, so all epipolar lines meet in one epipole"
+        )
+    if same_up_to_scale(g.T, expected, rtol=1e-5):
+        return "your F is transposed: with rows (u'u, u'v, u', v'u, v'v, v', u, v, 1) the constraint is x2^T F x1 = 0"
+    hint = _unnormalisation_slip(g, x1, x2, expected, T1, T2)
+    if hint:
+        return hint
+    raw = epipolar.estimate_fundamental_matrix(x1, x2, normalise=False, plane_tol=0)
+    if same_up_to_scale(g, raw, rtol=1e-4):
+        return (
+            "your F matches the 8-point algorithm without normalisation: normalise each image's points "
+            "(centroid to 0, mean distance sqrt(2)) first, then undo it with F = T2^T F_n T1"
+        )
+    for off, what in (
+        (0.5, "a half-pixel"),
+        (-0.5, "a half-pixel"),
+        (1.0, "a 1-based"),
+        (-1.0, "a 1-based"),
+    ):
+        shifted = epipolar.estimate_fundamental_matrix(x1 + off, x2 + off)
+        if same_up_to_scale(g, shifted, rtol=1e-4):
+            return (
+                f"your F is the right F for every point moved by {off:+g} px: {what} offset. The points are "
+                "already pixel coordinates with the origin at the centre of the top-left pixel; use them as given"
+            )
+    if same_up_to_scale(g, _scaled_not_centred(x1, x2), rtol=1e-3):
+        return (
+            "you scaled the points but did not centre them: Hartley's T first moves the centroid to the "
+            "origin, then scales to mean distance sqrt(2); without the translation A stays badly conditioned"
+        )
+    err = np.median(epipolar.sampson_distance(g, x1, x2)) if np.any(g) else np.inf
+    return (
+        f"median Sampson error of your F on the input pairs is {err:.3g} px; check the row of the linear "
+        "system (u'u, u'v, u', v'u, v'v, v', u, v, 1), the SVD (last row of V^T) and the un-normalisation"
+    )
+
+
+def _unnormalisation_slip(g, x1, x2, expected, T1, T2) -> str:
+    """The hint for an F whose normalisation went wrong; '' if none fits.
+
+    Its normalisation not undone, undone the wrong way, or its rank 2 enforced after undoing it; ''
+    if ``g`` is none of these (up to scale).
+    """
+    iT1, iT2 = np.linalg.inv(T1), np.linalg.inv(T2)
+    Fn = iT2.T @ expected @ iT1  # the reference in normalised coordinates
+    right = "F = T2^T F_n T1, from x2^T F x1 = (T2 x2)^T F_n (T1 x1)"
+    U, S, Vt = np.linalg.svd(_no_rank2(x1, x2))
+    forms = [
+        (Fn, "you returned F_n, the F of the normalised points: undo the normalisation, " + right),
+        (
+            iT2 @ Fn @ T1,
+            "you undid the normalisation as for a homography (T2^-1 F_n T1): a homography maps points, "
+            "but F sits between two points, so each side takes its own T transposed: " + right,
+        ),
+        (T2 @ Fn @ T1, "you undid the normalisation with T2 where T2^T belongs: " + right),
+        (
+            T1.T @ Fn @ T2,
+            "you swapped T1 and T2 when undoing the normalisation: T1 (image 1) goes on the right, "
+            + right,
+        ),
+        (
+            iT2.T @ Fn @ iT1,
+            "you undid the normalisation with the inverse matrices: F_n was fitted to T x, so "
+            + right,
+        ),
+        (
+            U @ np.diag([S[0], S[1], 0.0]) @ Vt,
+            "you enforced rank 2 after undoing the normalisation: zero the smallest singular value of "
+            "F_n first, in normalised coordinates (in pixels the entries span many orders of magnitude, "
+            "and the nearest rank-2 matrix there is a worse F), then F = T2^T F_n T1",
+        ),
+    ]
+    for F_wrong, hint in forms:
+        if same_up_to_scale(g, F_wrong, rtol=1e-3):
+            return hint
+    return ""
+
+
+def _forgot_unnormalising(x1, x2):
+    T1, T2 = hartley_normalise(x1).T, hartley_normalise(x2).T
+    F = epipolar.estimate_fundamental_matrix(x1, x2)
+    return np.linalg.inv(T2).T @ F @ np.linalg.inv(T1)
+
+
+def _homography_style(x1, x2):
+    T1, T2 = hartley_normalise(x1).T, hartley_normalise(x2).T
+    return np.linalg.inv(T2) @ _forgot_unnormalising(x1, x2) @ T1
+
+
+def _swapped_t(x1, x2):
+    T1, T2 = hartley_normalise(x1).T, hartley_normalise(x2).T
+    return T1.T @ _forgot_unnormalising(x1, x2) @ T2
+
+
+def _rank_after(x1, x2):
+    U, S, Vt = np.linalg.svd(_no_rank2(x1, x2))
+    return U @ np.diag([S[0], S[1], 0.0]) @ Vt
+
+
+def _rms_normalised(x1, x2):
+    """A right answer in another valid form: scale to RMS distance sqrt(2), not the mean (tests)."""
+    x1, x2 = np.asarray(x1, dtype=float), np.asarray(x2, dtype=float)
+
+    def normaliser(p):
+        c = p.mean(axis=0)
+        s = np.sqrt(2) / np.sqrt(np.mean(np.sum((p - c) ** 2, axis=1)))
+        return np.array([[s, 0, -s * c[0]], [0, s, -s * c[1]], [0, 0, 1]])
+
+    T1, T2 = normaliser(x1), normaliser(x2)
+    a = np.column_stack([x1, np.ones(len(x1))]) @ T1.T
+    b = np.column_stack([x2, np.ones(len(x2))]) @ T2.T
+    A = np.column_stack([b[:, [0]] * a, b[:, [1]] * a, a])
+    U, S, Vt = np.linalg.svd(np.linalg.svd(A)[2][-1].reshape(3, 3))
+    return T2.T @ U @ np.diag([S[0], S[1], 0.0]) @ Vt @ T1
+
+
+def _scaled_not_centred(x1, x2):
+    """The 8-point algorithm with each image scaled to mean distance sqrt(2) from 0, not centred."""
+    a, b = np.asarray(x1, float), np.asarray(x2, float)
+    T1, T2 = (
+        np.diag([s, s, 1.0])
+        for s in (np.sqrt(2) / np.linalg.norm(p, axis=1).mean() for p in (a, b))
+    )
+    ah, bh = np.c_[a, np.ones(len(a))] @ T1.T, np.c_[b, np.ones(len(b))] @ T2.T
+    A = np.column_stack([bh[:, [0]] * ah, bh[:, [1]] * ah, ah])
+    U, S, Vt = np.linalg.svd(np.linalg.svd(A)[2][-1].reshape(3, 3))
+    return T2.T @ U @ np.diag([S[0], S[1], 0.0]) @ Vt @ T1
+
+
+def _no_rank2(x1, x2):
+    a, b = np.asarray(x1, float), np.asarray(x2, float)
+    T1, T2 = hartley_normalise(a).T, hartley_normalise(b).T
+    an = a @ T1[:2, :2].T + T1[:2, 2]
+    bn = b @ T2[:2, :2].T + T2[:2, 2]
+    A = np.column_stack(
+        [
+            bn[:, 0] * an[:, 0],
+            bn[:, 0] * an[:, 1],
+            bn[:, 0],
+            bn[:, 1] * an[:, 0],
+            bn[:, 1] * an[:, 1],
+            bn[:, 1],
+            an[:, 0],
+            an[:, 1],
+            np.ones(len(a)),
+        ]
+    )
+    F = np.linalg.svd(A)[2][-1].reshape(3, 3)
+    return T2.T @ F @ T1
+
+
+def eight_point(x1, x2):
+    """Normalise, one row (u'u, u'v, u', v'u, v'v, v', u, v, 1) per match, SVD, rank 2, un-normalise.
+
+    Parameters
+    ----------
+    x1, x2 : (N, 2) array_like
+        Matching pixels in image 1 and image 2, N >= 8.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The fundamental matrix F, rank 2, up to scale, with x2^T F x1 = 0.
+
+    References
+    ----------
+    R. I. Hartley (1997), "In defense of the eight-point algorithm", IEEE TPAMI 19(6);
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 11.2 and algorithm 11.1.
+    """
+    x1, x2 = np.asarray(x1, dtype=float), np.asarray(x2, dtype=float)
+
+    def normaliser(p):  # centroid to 0, mean distance sqrt(2)
+        c = p.mean(axis=0)
+        s = np.sqrt(2) / np.mean(np.linalg.norm(p - c, axis=1))
+        return np.array([[s, 0, -s * c[0]], [0, s, -s * c[1]], [0, 0, 1]])
+
+    T1, T2 = normaliser(x1), normaliser(x2)
+    a = np.column_stack([x1, np.ones(len(x1))]) @ T1.T
+    b = np.column_stack([x2, np.ones(len(x2))]) @ T2.T
+    A = np.column_stack([b[:, [0]] * a, b[:, [1]] * a, a])  # x2^T F x1 = 0, F row by row
+    F = np.linalg.svd(A)[2][-1].reshape(3, 3)
+    U, S, Vt = np.linalg.svd(F)
+    F = U @ np.diag([S[0], S[1], 0.0]) @ Vt  # rank 2: one epipole
+    return T2.T @ F @ T1
+
+
+register_exercise(
+    Exercise(
+        name="eight_point",
+        lesson="11",
+        reference=epipolar.estimate_fundamental_matrix,
+        cases=_eight_point_cases,
+        # 1e-3: another normalisation (RMS distance sqrt(2)) moves F by ~4e-5; rank 2 enforced in
+        # pixels instead of normalised coordinates moves it by ~1e-2 on the noisy case
+        compare=lambda got, expected: same_up_to_scale(got, expected, rtol=1e-3),
+        diagnose=_eight_point_diagnosis,
+        wrong_variants=(
+            (_no_rank2, "rank 2"),
+            (lambda x1, x2: epipolar.estimate_fundamental_matrix(x1, x2).T, "transposed"),
+            (
+                lambda x1, x2: epipolar.estimate_fundamental_matrix(
+                    x1, x2, normalise=False, plane_tol=0
+                ),
+                "normalis",
+            ),
+            (_forgot_unnormalising, "you returned F_n"),
+            (_homography_style, "as for a homography"),
+            (_swapped_t, "swapped T1 and T2"),
+            (_rank_after, "rank 2 after undoing"),
+        ),
+        teaching=eight_point,
+    )
+)
