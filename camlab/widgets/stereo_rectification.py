@@ -431,9 +431,7 @@ def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
         ylabel="fraction of matches ≤ x",
     )
     axh.axvline(0.5, color=palette.GREY, ls=":", lw=1)
-    axh.text(
-        0.55, 0.04, "0.5 px", color=palette.GREY, fontsize=7, transform=axh.get_xaxis_transform()
-    )
+    axh.text(0.55, 0.04, "0.5 px", color="0.35", fontsize=7, transform=axh.get_xaxis_transform())
     axh.set_title("vertical disparity", fontsize=9)
     axh.grid(True, which="major", color="0.93")
     # the zoomed match, marked where it is in the pair
