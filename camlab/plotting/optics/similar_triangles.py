@@ -106,7 +106,8 @@ def draw_similar_triangles(ax, z_max: float, h_max: float) -> dict:
         ``"pinhole"`` and ``"pinhole_dot"``, and ``"dims"`` (the dimension lines ``"f"``, ``"Z"``,
         ``"Y"``, ``"y"``, ``"y_real"``, each an arrow and a label).
     """
-    ax.axhline(0, color="0.4", lw=0.8, zorder=0)
+    # the optical axis; "0.4" measured 2.75:1 against the fills under matplotlib 3.9.4
+    ax.axhline(0, color="0.2", lw=0.8, zorder=0)
     art = {
         # returned with the moving artists: a ray passes over the hole, and the dot must stay on top
         "pinhole_dot": ax.plot(
