@@ -331,7 +331,9 @@ def plot_extrinsics(ax, result: CalibrationResult, size: float | None = None):
     CameraArtist(ax, cam, size=size or depth / 3, color=palette.GREY)
     set_equal_aspect(ax, [view.reshape(-1, 3), np.zeros((1, 3))], tight=True)
     _label_boards(ax, view, ring)
-    ax.set(xlabel="x (right, m)", ylabel="z (forward, m)", zlabel="−y (up, m)")
+    ax.set_xlabel("x (right, m)", labelpad=10)
+    ax.set_ylabel("z (forward, m)", labelpad=10)  # clear of its own tick labels
+    ax.set_zlabel("−y (up, m)", labelpad=8)
     return boards
 
 
