@@ -630,3 +630,13 @@ def test_plot_extrinsics_puts_each_board_where_the_truth_has_it(bundled):
     drawn = [line for line in ax.get_lines() if len(line.get_data_3d()[0]) == 5]
     assert len(drawn) >= 16  # one closed outline per view
     plt.close(fig)
+
+
+def test_synthetic_views_fixed_tilt():
+    """tilt=(a, a) turns every board by exactly a from facing the camera; None keeps 15-50 degrees."""
+    a = np.radians(30.0)
+    s = C.make_synthetic_views(5, 0.0, tilt=(a, a), rng=np.random.default_rng(1))
+    assert np.allclose(np.arccos(np.abs(s.R[:, 2, 2])), a, atol=1e-12)
+    free = C.make_synthetic_views(20, 0.0, rng=np.random.default_rng(1))
+    angles = np.degrees(np.arccos(np.abs(free.R[:, 2, 2])))
+    assert angles.min() >= 15 - 1e-9 and angles.max() <= 50 + 1e-9 and np.ptp(angles) > 10

@@ -49,11 +49,12 @@ def make_synthetic_views(
     square: float = 0.025,
     image_size: Sequence[int] = (640, 480),
     margin: float = 20.0,
+    tilt: Sequence[float] | None = None,
     rng: np.random.Generator | None = None,
 ) -> SyntheticSet:
     """Random well-spread views of a chessboard through a known camera (corners only, no images).
 
-    Each view tilts the board by 15-50 degrees about a random in-plane axis, spins it,
+    Each view tilts the board by 15-50 degrees (or ``tilt``) about a random in-plane axis, spins it,
     places it 0.3-0.6 m away at a random spot so that every corner lands at least
     ``margin`` pixels inside the image, and adds Gaussian noise of ``noise`` pixels to the
     exact corners (projected with :func:`camlab.render.project`).
@@ -76,6 +77,9 @@ def make_synthetic_views(
         Pixels.
     margin : float
         Least distance of every corner from the image border, pixels.
+    tilt : (lo, hi) sequence of float, optional
+        The range the tilt is drawn from, radians (``(a, a)``: every view tilted by ``a``);
+        None (the default) is 15-50 degrees.
     rng : numpy.random.Generator, optional
         The random source (default a fresh, unseeded one).
 
@@ -111,8 +115,8 @@ def make_synthetic_views(
                 "use a smaller board or a wider camera"
             )
         axis = rng.uniform(0, 2 * np.pi)
-        tilt = np.radians(rng.uniform(15, 50))
-        R_tilt = rotation_from_axis_angle(tilt * np.array([np.cos(axis), np.sin(axis), 0.0]))
+        angle = np.radians(rng.uniform(15, 50)) if tilt is None else rng.uniform(*tilt)
+        R_tilt = rotation_from_axis_angle(angle * np.array([np.cos(axis), np.sin(axis), 0.0]))
         R = R_tilt @ rotation_from_euler(0, 0, rng.uniform(-0.5, 0.5))
         depth = rng.uniform(0.3, 0.6)
         target = np.array([rng.uniform(-0.35, 0.35), rng.uniform(-0.3, 0.3), 1.0]) * depth

@@ -64,6 +64,11 @@ def _zhang_diagnosis(args, got, expected) -> str:
         return "the second row has the wrong sign: it is v11 - v22 (h1^T B h1 - h2^T B h2), not v22 - v11"
     if np.allclose(g, calibration.zhang_constraints(H.T)):
         return "you used the rows of H; h_i is the i-th column, H[:, i]"
+    if _SameUpToScale(Tolerance(1e-6, 1e-12))(g[::-1], expected):
+        return (
+            "the two rows are swapped: row 0 is v12 (h1^T B h2 = 0, orthogonal columns), "
+            "row 1 is v11 - v22 (equal lengths)"
+        )
     e = np.asarray(expected, dtype=float)
     for order, entries in (
         ([0, 1, 2, 4, 3, 5], "B13 and B23"),
@@ -168,6 +173,7 @@ register_exercise(
                 lambda H: calibration.zhang_constraints(H) * np.array([[1.0], [-1.0]]),
                 "wrong sign",
             ),
+            (lambda H: calibration.zhang_constraints(H)[::-1], "rows are swapped"),
             (
                 lambda H: np.stack(
                     [
@@ -295,6 +301,7 @@ register_exercise(
         ),
         teaching=lm_step,
         success_note=_lm_gauss_newton_note,
+        ndarray_only=True,
     )
 )
 
@@ -325,6 +332,11 @@ def _rotation_diagnosis(args, got, expected) -> str:
                 "np.linalg.svd returns V^T as its third output (Vt), not V: U V^T is U @ Vt; "
                 "U @ Vt.T is U V"
             )
+    if np.allclose(g, np.asarray(expected).T, atol=1e-8):
+        return (
+            "you returned the transpose, V U^T = R^T (the inverse rotation): the nearest rotation to M is "
+            "U @ Vt, in that order (with the last column of U flipped if det < 0)"
+        )
     if not np.allclose(g.T @ g, np.eye(3), atol=1e-8):
         return "your matrix is not orthonormal (R^T R != I): use the SVD M = U S V^T and drop S"
     if np.linalg.det(g) < 0:
@@ -389,6 +401,7 @@ register_exercise(
             (lambda M: M / np.linalg.norm(M, axis=0), "not orthonormal"),
             (_gram_schmidt, "not the closest"),
             (lambda M: (lambda U, S, Vt: U @ Vt.T)(*np.linalg.svd(M)), "third output"),
+            (lambda M: camera.nearest_rotation(M).T, "transpose"),
             (
                 lambda M: (lambda U, S, Vt: -(U @ Vt) if np.linalg.det(U @ Vt) < 0 else U @ Vt)(
                     *np.linalg.svd(M)

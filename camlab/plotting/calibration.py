@@ -240,11 +240,53 @@ def plot_cost_history(ax, result: CalibrationResult):
 R_CAM_FROM_VIEW = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
 
 
+def _label_boards(ax, view: np.ndarray, ring: list[int]) -> None:
+    """Write each board's view number at the point of its outline farthest, on screen, from the others' numbers.
+
+    The candidates are the outline's four corners and the middles of its four edges; boards are
+    labelled greedily, in view order, so 14 overlapping boards still get 14 readable numbers.
+    """
+    from mpl_toolkits.mplot3d import proj3d
+
+    corners = view[:, ring[:4]]  # (V, 4, 3)
+    candidates = np.concatenate([corners, (corners + np.roll(corners, -1, axis=1)) / 2], axis=1)
+    flat = candidates.reshape(-1, 3)
+    sx, sy, _ = proj3d.proj_transform(*flat.T, ax.get_proj())
+    screen = np.column_stack([sx, sy]).reshape(len(view), -1, 2)
+    outward = np.linalg.norm(
+        screen - screen.reshape(-1, 2).mean(axis=0), axis=2
+    )  # off the crowd's middle
+    placed: list[np.ndarray] = []
+    for v in range(len(view)):
+        gaps = (
+            np.linalg.norm(screen[v][:, None] - np.array(placed)[None], axis=2).min(axis=1)
+            if placed
+            else np.zeros(len(screen[v]))
+        )
+        k = int(np.argmax(gaps + 0.5 * outward[v]))
+        placed.append(screen[v][k])
+        colour = palette.SERIES[v % len(palette.SERIES)]
+        colour = (
+            palette.DARK_ORANGE if colour == palette.ORANGE else colour
+        )  # orange is too light for text
+        ax.text(
+            *candidates[v, k],
+            f"{v}",
+            color=colour,
+            fontsize=8,
+            ha="center",
+            va="center",
+            fontweight="bold",
+            path_effects=palette.halo(),  # readable where it sits on another board's outline
+        )
+
+
 def plot_extrinsics(ax, result: CalibrationResult, size: float | None = None):
     r"""The calibration's extrinsics, camera-centred: every view's board where it stood in front of the camera.
 
     Each view's board corners in the camera frame, :math:`X_{cam} = R_v X_{board} + t_v`, are drawn as
-    the board's outline with its view number (0-based, as in the per-view plots), the colours
+    the board's outline with its view number (0-based, as in the per-view plots; each number at the
+    point of its outline farthest from the numbers already placed), the colours
     repeating every six views; the camera sits at the origin, drawn as a frustum
     with its x (right), y (down), z (forward) axes. The axes show the camera frame with "up" up
     (matplotlib's Z is :math:`-y`), so the picture reads like Bouguet's and MATLAB's extrinsics view.
@@ -284,14 +326,14 @@ def plot_extrinsics(ax, result: CalibrationResult, size: float | None = None):
         colour = palette.SERIES[v % len(palette.SERIES)]
         ax.plot(*b[ring].T, color=colour, lw=1.2)
         ax.plot(*b[0], "o", color=colour, ms=3)  # the first corner: how the board is turned
-        ax.text(
-            *b[0], f" {v}", color=colour, fontsize=8, ha="left", va="bottom"
-        )  # at its first corner
     depth = float(np.min(boards[:, :, 2]))
     cam = Camera(K=result.K, R=R_CAM_FROM_VIEW, t=np.zeros(3), image_size=result.image_size)
     CameraArtist(ax, cam, size=size or depth / 3, color=palette.GREY)
     set_equal_aspect(ax, [view.reshape(-1, 3), np.zeros((1, 3))], tight=True)
-    ax.set(xlabel="x (right, m)", ylabel="z (forward, m)", zlabel="−y (up, m)")
+    _label_boards(ax, view, ring)
+    ax.set_xlabel("x (right, m)", labelpad=10)
+    ax.set_ylabel("z (forward, m)", labelpad=10)  # clear of its own tick labels
+    ax.set_zlabel("−y (up, m)", labelpad=8)
     return boards
 
 
