@@ -132,6 +132,26 @@ def _fit_to_display(image: Any, array: Any) -> Any:
     return _resize(image, a, width, height)
 
 
+def _nearest_at_centres(
+    a: np.ndarray, us: list[float], vs: list[float], box: tuple[int, int, int, int]
+) -> np.ndarray:
+    """``a`` (row 0 at the bottom) sampled at the centres of the canvas pixels ``box`` covers.
+
+    ``us`` and ``vs`` are the unrounded canvas edges of the image's extent, (left, right) and
+    (bottom, top): canvas pixel ``x`` shows data column ``floor((x + 0.5 - left) / (right -
+    left) * width)``, as matplotlib's nearest-neighbour resampler picks it. OpenCV's
+    ``INTER_NEAREST`` on the rounded box picks from the pixel's corner instead, which moves
+    the picked columns of a 1.4x enlargement by one here and there: a different moiré of a
+    one-pixel pattern live than in a saved figure.
+    """
+    left, right, bottom, top = box
+    cols = np.floor((np.arange(left, right) + 0.5 - us[0]) / (us[1] - us[0]) * a.shape[1])
+    rows = np.floor((np.arange(bottom, top) + 0.5 - vs[0]) / (vs[1] - vs[0]) * a.shape[0])
+    cols = np.clip(cols.astype(int), 0, a.shape[1] - 1)
+    rows = np.clip(rows.astype(int), 0, a.shape[0] - 1)
+    return a[rows[:, None], cols[None, :]]
+
+
 def _screen_image(image: Any) -> tuple[np.ndarray, int, int] | None:
     """``image``'s RGBA pixels as they land on the canvas, and their lower-left corner; None: use matplotlib.
 
@@ -172,7 +192,16 @@ def _screen_image(image: Any) -> tuple[np.ndarray, int, int] | None:
     cl, cr, cb, ct = round(clip.x0), round(clip.x1), round(clip.y0), round(clip.y1)
     if min(right, cr) - max(left, cl) < 1 or min(top, ct) - max(bottom, cb) < 1:
         return np.zeros((0, 0, 4), np.uint8), 0, 0
-    if a.shape[:2] != (
+    if a.shape[:2] != (top - bottom, right - left) and image.get_interpolation() in (
+        "nearest",
+        "none",
+    ):
+        # pixelated and enlarged: pick the data pixel under each canvas pixel's centre, as
+        # matplotlib's resampler does from the unrounded extent, so a live frame equals a full draw
+        a = _nearest_at_centres(
+            a, sorted((u_left, u_right)), sorted((v_row0, v_rowN)), (left, right, bottom, top)
+        )
+    elif a.shape[:2] != (
         top - bottom,
         right - left,
     ):  # smaller than shown (set_data already shrank larger ones)

@@ -98,9 +98,8 @@ def ransac_outliers() -> Demo:
         ax.plot([], [], "-", color=colour, lw=2, label=name)
     # Below the figure (the layout makes room), never over the arrows; under the left panel it describes.
     view.fig.legend(*ax.get_legend_handles_labels(), loc="outside lower left", fontsize=8, ncol=3)
-    failure = warning_note(
-        view, ax_k, 0.5, 0.3, "center", "center"
-    )  # over the emptied right panel, off the pairs
+    # Where the batch note stands (hidden then), above the k(ε) curve and off the pairs.
+    failure = warning_note(view, ax_k, 0.03, 0.66, "left", "top")
     eps = np.linspace(0.0, 0.97, 300)
     k_curve = [required_iterations(1.0 - e, CONFIDENCE, 4) for e in eps]
     ax_k.semilogy(eps, k_curve, color="0.5", label="k = log(1-p) / log(1-(1-ε)⁴), p = 0.995")
@@ -129,15 +128,17 @@ def ransac_outliers() -> Demo:
     )
     ax_k.legend(loc="upper left", fontsize=8)
     ax_k.grid(True, color="0.93")
-    ax_k.text(
-        0.03,
-        0.66,
-        "samples come in batches (16, then\nup to 64), so the dot sits at or\nabove the ring, unless RANSAC\nstops at the cap",
-        transform=ax_k.transAxes,
-        ha="left",
-        va="top",
-        fontsize=8,
-        color="0.3",
+    batches = view.animate(
+        ax_k.text(
+            0.03,
+            0.66,
+            "samples come in batches (16, then\nup to 64), so the dot sits at or\nabove the ring, unless RANSAC\nstops at the cap",
+            transform=ax_k.transAxes,
+            ha="left",
+            va="top",
+            fontsize=8,
+            color="0.3",
+        )
     )
     readout = W.HTML()
     frame = np.array([[0, 0], [399, 0], [399, 299], [0, 299], [0, 0]], float)
@@ -177,13 +178,15 @@ def ransac_outliers() -> Demo:
             arrows.set_color("0.8")
             heads.set_offsets(dst)
             heads.set_color("0.8")
+            batches.set_visible(False)
             failure(
-                "RANSAC failed: no hypothesis had real support, so the pairs\n"
-                "are drawn without a verdict (the full message is beside the sliders)"
+                "RANSAC failed: no hypothesis had\nreal support, so the pairs are\n"
+                "drawn without a verdict (the full\nmessage is beside the sliders)"
             )
             readout.value = monospace(exc)
             return
         failure("")
+        batches.set_visible(True)
         verdict = np.select([~out & r.inliers, out & r.inliers, ~out & ~r.inliers], [0, 1, 2], 3)
         colours = np.array([to_rgba(c) for _, c in _VERDICTS])[verdict]
         order = np.argsort(
