@@ -1464,3 +1464,22 @@ def test_eight_point_accepts_other_similarity_normalisations(target, capsys):
         return T2.T @ U @ np.diag([S[0], S[1], 0.0]) @ Vt @ T1
 
     assert check("eight_point", eight_point).passed
+
+
+def test_triangulate_point_accepts_the_inhomogeneous_least_squares_form(capsys):
+    """X_h = (X, 1) and least squares on the 4 x 3 system: H&Z's inhomogeneous method, as valid."""
+
+    def triangulate_point(P1, P2, x1, x2):
+        P1, P2 = np.asarray(P1), np.asarray(P2)
+        A = np.array(
+            [
+                x1[0] * P1[2] - P1[0],
+                x1[1] * P1[2] - P1[1],
+                x2[0] * P2[2] - P2[0],
+                x2[1] * P2[2] - P2[1],
+            ]
+        )
+        A /= np.linalg.norm(A, axis=1, keepdims=True)
+        return np.linalg.lstsq(A[:, :3], -A[:, 3], rcond=None)[0]
+
+    assert check("triangulate_point", triangulate_point).passed
