@@ -1440,3 +1440,46 @@ def test_horizon_line_accepts_right_answers_in_other_forms(answer, capsys):
 def test_projective_plane_checks_name_a_euclidean_solve_on_parallel_lines(name, answer, phrase):
     with pytest.raises(AssertionError, match=phrase):
         check(name, answer)
+
+
+@pytest.mark.parametrize("target", ["half", "box"])
+def test_eight_point_accepts_other_similarity_normalisations(target, capsys):
+    """Mean distance 0.5 or the box [-1, 1], undone correctly, pass (the reference uses sqrt(2))."""
+
+    def eight_point(x1, x2):
+        def normaliser(p):
+            if target == "box":
+                lo, hi = p.min(axis=0), p.max(axis=0)
+                c, s = (lo + hi) / 2, 2 / (hi - lo)
+                return np.array([[s[0], 0, -s[0] * c[0]], [0, s[1], -s[1] * c[1]], [0, 0, 1]])
+            c = p.mean(axis=0)
+            s = 0.5 / np.mean(np.linalg.norm(p - c, axis=1))
+            return np.array([[s, 0, -s * c[0]], [0, s, -s * c[1]], [0, 0, 1]])
+
+        T1, T2 = normaliser(x1), normaliser(x2)
+        a = np.c_[x1, np.ones(len(x1))] @ T1.T
+        b = np.c_[x2, np.ones(len(x2))] @ T2.T
+        A = np.column_stack([b[:, [0]] * a, b[:, [1]] * a, a])
+        U, S, Vt = np.linalg.svd(np.linalg.svd(A)[2][-1].reshape(3, 3))
+        return T2.T @ U @ np.diag([S[0], S[1], 0.0]) @ Vt @ T1
+
+    assert check("eight_point", eight_point).passed
+
+
+def test_triangulate_point_accepts_the_inhomogeneous_least_squares_form(capsys):
+    """X_h = (X, 1) and least squares on the 4 x 3 system: H&Z's inhomogeneous method, as valid."""
+
+    def triangulate_point(P1, P2, x1, x2):
+        P1, P2 = np.asarray(P1), np.asarray(P2)
+        A = np.array(
+            [
+                x1[0] * P1[2] - P1[0],
+                x1[1] * P1[2] - P1[1],
+                x2[0] * P2[2] - P2[0],
+                x2[1] * P2[2] - P2[1],
+            ]
+        )
+        A /= np.linalg.norm(A, axis=1, keepdims=True)
+        return np.linalg.lstsq(A[:, :3], -A[:, 3], rcond=None)[0]
+
+    assert check("triangulate_point", triangulate_point).passed

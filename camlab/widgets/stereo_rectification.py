@@ -273,7 +273,9 @@ def epipolar_lines() -> Demo:
     art = _epipolar_figure(view)
     axl, axr, shafts, heads = art.axl, art.axr, art.shafts, art.heads
     readout = W.HTML()
-    ref = np.array([[80.0, 60.0], [560.0, 60.0], [320.0, 240.0], [80.0, 420.0], [560.0, 420.0]])
+    # four pixels 80 x 60 px in from the corners and the centre of the 640 x 480 image, (319.5, 239.5)
+    # with pixel centres at integers: the pencil of the blue lines, symmetric about the centre
+    ref = np.array([[79.5, 59.5], [559.5, 59.5], [319.5, 239.5], [79.5, 419.5], [559.5, 419.5]])
 
     def update(v, state):
         c1, c2 = _MOTIONS[v["motion"]](v["baseline"], np.deg2rad(v["toe_in"]))
@@ -610,7 +612,8 @@ def disparity_depth() -> Demo:
         return dp.sgbm_disparity(L, R, max_disparity=44, block_size=block, min_disparity=8)
 
     view = FigureView(figsize=(9.4, 3.6))
-    gs = view.fig.add_gridspec(1, 3, width_ratios=[1, 1, 1.25])
+    # the empty fourth column keeps the 3-D panel's z label ("up (m)") inside the figure
+    gs = view.fig.add_gridspec(1, 4, width_ratios=[1, 1, 1.25, 0.07])
     ax1 = view.fig.add_subplot(gs[0])
     ax2 = view.fig.add_subplot(gs[1])
     ax3 = scene3d.axes3d(view.fig, gs[2], elev=18, azim=-62)
@@ -629,7 +632,7 @@ def disparity_depth() -> Demo:
     ax3.set_box_aspect(None, zoom=1.2)  # fill the panel: the default leaves a wide empty margin
     ax3.set_xlabel("X (m)", fontsize=8, labelpad=-4)
     ax3.set_ylabel("depth Z (m)", fontsize=8, labelpad=0)
-    ax3.set_zlabel("up (m)", fontsize=8, labelpad=-6)
+    ax3.set_zlabel("up (m)", fontsize=8, labelpad=-4)
     ax3.set(xticks=[-1, 0, 1], yticks=[1, 2, 3, 4], zticks=[-0.5, 0.5])
     ax3.tick_params(labelsize=7, pad=0)
     (pts,) = ax3.plot([], [], [], ".", ms=1.0, color=palette.TAB_BLUE)

@@ -1,8 +1,8 @@
 """Exercises for lesson 11, epipolar geometry and stereo rectification.
 
-The 8-point algorithm (:mod:`.eight_point`), the epipoles (:mod:`.epipoles`), depth from disparity
-(:mod:`.depth`), the essential matrix's pose (:mod:`.essential`) and the bad-pixel rate
-(:mod:`.bad_pixels`).
+The 8-point algorithm (:mod:`.eight_point`), the epipoles (:mod:`.epipoles`), the essential matrix's
+pose (:mod:`.essential`), linear triangulation (:mod:`.triangulate`), depth from disparity
+(:mod:`.depth`) and the bad-pixel rate (:mod:`.bad_pixels`).
 """
 
 from __future__ import annotations
@@ -13,8 +13,9 @@ from . import eight_point
 from . import epipoles
 from . import depth
 from . import essential
+from . import triangulate
 from . import bad_pixels
 
 # isort: on
 
-__all__ = ["bad_pixels", "depth", "eight_point", "epipoles", "essential"]
+__all__ = ["bad_pixels", "depth", "eight_point", "epipoles", "essential", "triangulate"]

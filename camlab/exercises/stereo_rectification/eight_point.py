@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from ... import epipolar
@@ -19,6 +21,36 @@ def _eight_point_cases():
         rig_points(1, 0.5),
         rig_points(2, 1.0, n=40, baseline=(0.5, -0.05, 0.1)),
     ]
+
+
+@lru_cache(maxsize=1)
+def _cases_with_reference():
+    return [(args, epipolar.estimate_fundamental_matrix(*args)) for args in _eight_point_cases()]
+
+
+def _fits_as_well(got, expected) -> bool:
+    """Right: the reference up to scale, or a rank-2 F that fits the test pairs as well as it does.
+
+    Hartley's mean distance sqrt(2) is one choice: centring and scaling to mean distance 0.5, RMS
+    sqrt(2) or the box [-1, 1] is as valid when it is undone correctly, and moves F on noisy pairs by
+    up to ~3e-3. Such an F is judged on the original points: rank 2 (in normalised coordinates) and
+    a mean squared Sampson distance within 2 % of the reference's (other normalisations: within
+    0.7 %; rank 2 enforced in pixels: 4-23 % worse; no normalisation: 7-22 times worse).
+    """
+    if same_up_to_scale(got, expected, rtol=1e-3):
+        return True
+    g = np.asarray(got, dtype=float)
+    found = [a for a, ref in _cases_with_reference() if np.array_equal(ref, expected)]
+    if not found or g.shape != (3, 3) or not np.all(np.isfinite(g)) or not np.any(g):
+        return False
+    x1, x2 = found[0]
+    T1, T2 = hartley_normalise(x1).T, hartley_normalise(x2).T
+    s = np.linalg.svd(np.linalg.inv(T2).T @ g @ np.linalg.inv(T1), compute_uv=False)
+    if s[2] > 1e-8 * s[0]:
+        return False
+    mine = np.mean(epipolar.sampson_distance(g, x1, x2) ** 2)
+    best = np.mean(epipolar.sampson_distance(expected, x1, x2) ** 2)
+    return bool(mine <= 1.02 * best + 1e-12)
 
 
 def _eight_point_diagnosis(args, got, expected) -> str:
@@ -226,9 +258,7 @@ register_exercise(
         lesson="11",
         reference=epipolar.estimate_fundamental_matrix,
         cases=_eight_point_cases,
-        # 1e-3: another normalisation (RMS distance sqrt(2)) moves F by ~4e-5; rank 2 enforced in
-        # pixels instead of normalised coordinates moves it by ~1e-2 on the noisy case
-        compare=lambda got, expected: same_up_to_scale(got, expected, rtol=1e-3),
+        compare=_fits_as_well,
         diagnose=_eight_point_diagnosis,
         wrong_variants=(
             (_no_rank2, "rank 2"),

@@ -1,0 +1,188 @@
+"""Exercise 4 of lesson 11: triangulate one match by the linear DLT (`triangulate_point`)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ... import epipolar, fixtures
+from .._answers import same_array, shape_problem
+from .._core import Exercise, register_exercise
+
+# --------------------------------------------------------------------------- linear triangulation
+
+
+def _triangulation_cases():
+    """Three exact matches of two rigs, one with 0.3 px of noise, one with P scaled by 1e-3."""
+    rng = np.random.default_rng(11)
+    cases = []
+    for (b, toe), X, noise, scale in (
+        ((0.2, 0.0), (0.1, 2.0, 1.2), 0.0, 1.0),
+        ((0.5, np.deg2rad(30)), (-0.3, 3.5, 0.6), 0.0, 1.0),
+        ((0.3, np.deg2rad(10)), (0.4, 1.5, 1.4), 0.3, 1.0),
+        ((0.2, np.deg2rad(5)), (0.0, 2.5, 0.9), 0.0, 1e-3),
+    ):
+        c1, c2 = fixtures.stereo_pair(b, toe)
+        X = np.array(X)
+        x1, x2 = (c.project(X[None])[0] + rng.normal(0, noise, 2) for c in (c1, c2))
+        cases.append((scale * c1.P, scale * c2.P, x1, x2))
+    return cases
+
+
+def _reference(P1, P2, x1, x2):
+    """camlab.epipolar.triangulate_points on one match: the linear DLT, its rows scaled to unit norm."""
+    return epipolar.triangulate_points(
+        np.asarray(P1), np.asarray(P2), np.reshape(x1, (1, 2)), np.reshape(x2, (1, 2))
+    )[0]
+
+
+def _rows(P1, P2, x1, x2, swap_uv=False):
+    (u1, v1), (u2, v2) = (x1[::-1], x2[::-1]) if swap_uv else (x1, x2)
+    return np.array(
+        [u1 * P1[2] - P1[0], v1 * P1[2] - P1[1], u2 * P2[2] - P2[0], v2 * P2[2] - P2[1]]
+    )
+
+
+def _plain(A, pick=lambda Vt: Vt[-1]):
+    Xh = pick(np.linalg.svd(A)[2])
+    return Xh[:3] / Xh[3]
+
+
+def _triangulation_diagnosis(args, got, expected) -> str:
+    P1, P2, x1, x2 = (np.asarray(a, dtype=float) for a in args)
+    g = np.asarray(got, dtype=float)
+    if g.shape in ((4,), (4, 1), (1, 4)):
+        return (
+            "you returned the homogeneous 4-vector: divide by its last entry and return the first "
+            "three, X = X_h[:3] / X_h[3]"
+        )
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + ". Return the world point X as a (3,) array, metres."
+    Xh = np.linalg.svd(_rows(P1, P2, x1, x2))[2][-1]
+    if np.allclose(g, Xh[:3], rtol=1e-4) or np.allclose(g, -Xh[:3], rtol=1e-4):
+        return (
+            "you returned the first three entries of the unit singular vector without dividing by "
+            "its fourth: the SVD fixes |X_h| = 1, the world point is X_h[:3] / X_h[3]"
+        )
+    forms = [
+        (
+            _plain(_rows(P1, P2, x1, x2), lambda Vt: Vt[0]),
+            "you took the first row of V^T, the direction of the LARGEST singular value: the null "
+            "vector of A is the LAST row, Vt[-1]",
+        ),
+        (
+            _plain(_rows(P1, P2, x1, x2), lambda Vt: Vt[:, -1]),
+            "you took the last column of V^T (Vt[:, -1]); the right singular vectors are its rows, "
+            "so the null vector is Vt[-1]",
+        ),
+        (
+            _plain(_rows(P1, P2, x1, x2, swap_uv=True)),
+            "you swapped u and v: u multiplies the third row of P against the FIRST (u p3 - p1), v "
+            "against the second (v p3 - p2); pixels are (u, v) = (column, row)",
+        ),
+        (
+            _plain(_rows(P1, P2, x2, x1)),
+            "you paired each camera with the other image's pixel: x1 is seen by P1 and x2 by P2",
+        ),
+        (
+            _plain(_rows(P2, P1, x1, x2)),
+            "you paired each camera with the other image's pixel: x1 is seen by P1 and x2 by P2",
+        ),
+    ]
+    for off, what in (
+        (0.5, "a half-pixel"),
+        (-0.5, "a half-pixel"),
+        (1.0, "a 1-based"),
+        (-1.0, "a 1-based"),
+    ):
+        forms.append(
+            (
+                _plain(_rows(P1, P2, x1 + off, x2 + off)),
+                f"your point is the right one for pixels moved by {off:+g} px: {what} offset. The "
+                "pixels are already in the course's convention (pixel centres at integers); use them as given",
+            )
+        )
+    for wrong, hint in forms:
+        if np.allclose(g, wrong, rtol=1e-6, atol=1e-9):
+            return hint
+    if np.allclose(g, -expected, rtol=1e-6):
+        return "your X is -X: a sign slip in the rows (p1 - u p3 is fine, but use the same sign for all four)"
+    for factor, unit in ((1000.0, "millimetres"), (100.0, "centimetres")):
+        if np.allclose(g, factor * expected, rtol=1e-6) or np.allclose(
+            g, expected / factor, rtol=1e-6
+        ):
+            return f"your X is off by a factor {factor:g}: a unit slip ({unit}?). P maps metres to pixels"
+    reproj = [
+        np.linalg.norm(P[:2] @ np.append(g, 1) / (P[2] @ np.append(g, 1)) - x)
+        for P, x in ((P1, x1), (P2, x2))
+    ]
+    return (
+        f"your X reprojects {reproj[0]:.3g} px and {reproj[1]:.3g} px from the two pixels; check the four "
+        "rows u p3 - p1, v p3 - p2 (p_i the rows of P, for each image), the SVD's last row of V^T and the "
+        "division by X_h[3]"
+    )
+
+
+def triangulate_point(P1, P2, x1, x2):
+    r"""Linear (DLT) triangulation: the world point seen at ``x1`` by ``P1`` and ``x2`` by ``P2``.
+
+    :math:`\tilde x \times P \tilde X = 0` gives two independent rows per image,
+    :math:`u\,p_3^\top - p_1^\top` and :math:`v\,p_3^\top - p_2^\top` (:math:`p_i^\top` the rows
+    of :math:`P`); stacked for both images they make :math:`A \tilde X = 0`, solved by the right
+    singular vector of the smallest singular value, then de-homogenised.
+
+    Parameters
+    ----------
+    P1, P2 : (3, 4) array_like
+        The two camera matrices (undistorted pixels from world metres).
+    x1, x2 : (2,) array_like
+        The pixel (u, v) of the point in image 1 and in image 2.
+
+    Returns
+    -------
+    (3,) ndarray
+        The world point X, metres.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 12.2 (linear triangulation).
+    """
+    P1, P2 = np.asarray(P1, dtype=float), np.asarray(P2, dtype=float)
+    (u1, v1), (u2, v2) = x1, x2
+    A = np.array([u1 * P1[2] - P1[0], v1 * P1[2] - P1[1], u2 * P2[2] - P2[0], v2 * P2[2] - P2[1]])
+    Xh = np.linalg.svd(A)[2][-1]  # the null vector of A, |X_h| = 1
+    return Xh[:3] / Xh[3]
+
+
+register_exercise(
+    Exercise(
+        name="triangulate_point",
+        lesson="11",
+        reference=_reference,
+        cases=_triangulation_cases,
+        # 1e-4 m: on the noisy input the plain DLT and camlab's (rows scaled to unit norm) differ by
+        # ~1e-5 m; every slip below moves X by centimetres or more
+        compare=same_array(rtol=0.0, atol=1e-4),
+        diagnose=_triangulation_diagnosis,
+        wrong_variants=(
+            (
+                lambda P1, P2, x1, x2: np.append(triangulate_point(P1, P2, x1, x2), 1.0),
+                "homogeneous",
+            ),
+            (
+                lambda P1, P2, x1, x2: np.linalg.svd(_rows(P1, P2, x1, x2))[2][-1][:3],
+                "without dividing",
+            ),
+            (lambda P1, P2, x1, x2: _plain(_rows(P1, P2, x1, x2), lambda Vt: Vt[0]), "LARGEST"),
+            (lambda P1, P2, x1, x2: _plain(_rows(P1, P2, x1, x2), lambda Vt: Vt[:, -1]), "column"),
+            (lambda P1, P2, x1, x2: _plain(_rows(P1, P2, x1, x2, swap_uv=True)), "swapped u and v"),
+            (lambda P1, P2, x1, x2: _plain(_rows(P1, P2, x2, x1)), "other image's pixel"),
+            (
+                lambda P1, P2, x1, x2: triangulate_point(P1, P2, np.add(x1, 1), np.add(x2, 1)),
+                "1-based",
+            ),
+            (lambda P1, P2, x1, x2: 1000 * triangulate_point(P1, P2, x1, x2), "unit slip"),
+        ),
+        teaching=triangulate_point,
+    )
+)

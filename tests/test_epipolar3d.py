@@ -1,0 +1,42 @@
+"""The 3-D epipolar figure of lesson 11 (camlab.plotting.epipolar3d)."""
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from camlab import fixtures
+from camlab.plotting import epipolar3d, scene3d
+
+
+def test_epipolar_line_ends_pass_through_the_image_of_x_and_the_epipole():
+    c1, c2 = fixtures.stereo_pair(0.5, np.deg2rad(40))
+    X = np.array([0.05, 1.2, 1.25])
+    for cam, other in ((c1, c2), (c2, c1)):
+        ends = epipolar3d.epipolar_line_ends(cam, other, X)
+        line = np.cross(*np.c_[ends, np.ones(2)])
+        x = np.append(cam.project(X[None])[0], 1.0)
+        e = cam.P @ np.append(other.centre, 1.0)
+        assert abs(line @ x) / np.linalg.norm(line[:2]) < 1e-9
+        assert abs(line @ e) / np.linalg.norm(line[:2]) / abs(e[2]) < 1e-6
+
+
+def test_image_plane_corners_lie_at_the_given_depth_and_project_to_the_pixel_corners():
+    c1, _ = fixtures.stereo_pair(0.2, 0.1)
+    corners = epipolar3d.image_plane_corners(c1, 0.3)
+    assert np.allclose(c1.depth(corners), 0.3)
+    w, h = c1.image_size
+    assert np.allclose(
+        c1.project(corners), [[-0.5, -0.5], [w - 0.5, -0.5], [w - 0.5, h - 0.5], [-0.5, h - 0.5]]
+    )
+
+
+def test_draw_epipolar_geometry_draws_without_error():
+    fig = plt.figure()
+    ax = scene3d.axes3d(fig, 111)
+    pair = fixtures.stereo_pair(0.5, np.deg2rad(40))
+    epipolar3d.draw_epipolar_geometry(ax, *pair, [0.05, 1.2, 1.25], ghosts=pair)
+    assert len(ax.lines) > 8
+    plt.close(fig)
