@@ -102,12 +102,7 @@ def _rq_diagnosis(args, got, expected) -> str:
             )
         return "K must be upper triangular."
     if np.any(np.diag(K) < 0) and np.linalg.det(M) < 0 and np.linalg.det(R) > 0:
-        opencv = (
-            "This is what cv2.RQDecomp3x3 returns: it keeps det R = +1 and leaves the minus sign in K[2, 2]. "
-            if np.all(np.diag(K)[:2] > 0) and K[2, 2] < 0
-            else ""
-        )
-        return opencv + (
+        return _opencv_k33_note(K) + (
             "det M < 0 here, and your R is a rotation (det R = +1), so K must carry the minus sign: K R = M with "
             "a positive-diagonal K forces det K > 0 and so det R = det M / det K < 0, a reflection. Do not "
             "negate K and R (or K's last column and R's last row) to make det R = +1; fix only the signs of "
@@ -120,6 +115,13 @@ def _rq_diagnosis(args, got, expected) -> str:
             "use K D and D R with D = diag(sign(diag(K)))."
         )
     return "K R = M with K positive upper triangular, but the factors differ; is R orthogonal?"
+
+
+def _opencv_k33_note(K) -> str:
+    """A note naming cv2.RQDecomp3x3 when K has a positive fx, fy and K[2, 2] < 0, as it returns."""
+    if np.all(np.diag(K)[:2] > 0) and K[2, 2] < 0:
+        return "This is what cv2.RQDecomp3x3 returns: it keeps det R = +1 and leaves the minus sign in K[2, 2]. "
+    return ""
 
 
 def _raw_opencv_cause(got) -> str | None:
