@@ -1483,3 +1483,31 @@ def test_triangulate_point_accepts_the_inhomogeneous_least_squares_form(capsys):
         return np.linalg.lstsq(A[:, :3], -A[:, 3], rcond=None)[0]
 
     assert check("triangulate_point", triangulate_point).passed
+
+
+@pytest.mark.parametrize("take", [slice(None), slice(0, 2)])
+def test_rq_decomposition_names_raw_rqdecomp3x3_output(take):
+    import cv2
+
+    with pytest.raises(AssertionError, match=r"likely cause: you returned .* of cv2.RQDecomp3x3"):
+        check("rq_decomposition", lambda M: cv2.RQDecomp3x3(M)[take])
+
+
+def test_rq_decomposition_names_rqdecomp3x3_sign_in_k33():
+    import cv2
+
+    with pytest.raises(AssertionError, match=r"likely cause: This is what cv2.RQDecomp3x3 returns"):
+        check("rq_decomposition", lambda M: cv2.RQDecomp3x3(M)[1:3])
+
+
+@pytest.mark.parametrize("axis", [0, 1])
+def test_project_points_half_pixel_on_one_axis_named(axis):
+    from camlab import camera as cm
+
+    def project_points(P, X):
+        uv = cm.project_points(P, X)
+        uv[:, axis] += 0.5
+        return uv
+
+    with pytest.raises(AssertionError, match=r"likely cause: every [uv] is off by \+0.5 px while"):
+        check("project_points", project_points)

@@ -37,6 +37,7 @@ References
 
 from __future__ import annotations
 
+from .dlt_analysis import dlt_conditioning, dlt_matrix, predicted_rms_error, unnormalised_dlt
 from .model import (
     Camera,
     CameraPair,
@@ -86,6 +87,10 @@ __all__ = [
     "camera_centre",
     "check_camera_matrix",
     "decompose_projection_matrix",
+    "dlt_conditioning",
+    "dlt_matrix",
+    "predicted_rms_error",
+    "unnormalised_dlt",
     "estimate_projection_matrix",
     "euler_from_rotation",
     "intrinsic_matrix",

@@ -96,10 +96,11 @@ class CameraArtist:
         Frustum colour.
     label : str
         Text at the camera centre (e.g. "C" or "left").
-    label_offset : (float, float)
+    label_offset : (float, float) or (float, float, float)
         Where the label sits, in image-plane depths along the camera's x (right) and y (down)
         axes from the centre: up-left by default; give two cameras drawn close together
-        different offsets so their labels do not overprint.
+        different offsets so their labels do not overprint. A third entry moves it along the
+        camera's z (negative: behind the centre, where no frustum is drawn).
     image : (H, W) or (H, W, 3) array, optional
         A raster image drawn on the image plane as a coarse textured mesh of
         ``image_grid`` quads (block means), fast enough for sliders.
@@ -233,10 +234,11 @@ class CameraArtist:
         return np.vstack([cam.centre, self.corners(cam), *tips])
 
     def _label_position(self, camera: Camera) -> np.ndarray:
-        right, down = (
-            self.label_offset
-        )  # in image-plane depths, at least 0.5 m: a tiny frustum's label clears it
-        return camera.centre + max(self.size, 0.5) * (right * camera.R[0] + down * camera.R[1])
+        # in image-plane depths, at least 0.5 m: a tiny frustum's label clears it; an optional third
+        # entry moves it along the optical axis (negative: behind the centre, off the frustum on screen)
+        right, down, forward = (*self.label_offset, 0.0)[:3]
+        offset = right * camera.R[0] + down * camera.R[1] + forward * camera.R[2]
+        return camera.centre + max(self.size, 0.5) * offset
 
     def update(
         self, camera: Camera, image: np.ndarray | None = None, image_lines: ArrayLike | None = None

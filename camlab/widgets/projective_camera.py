@@ -13,6 +13,7 @@ from types import SimpleNamespace
 
 import ipywidgets as W
 import numpy as np
+from matplotlib.ticker import MaxNLocator
 
 from .. import camera as cm
 from .. import fixtures, scenes
@@ -45,6 +46,7 @@ TRUE_VIEW_GREY = "0.3"
 TRUE_VIEW_LW, EST_VIEW_LW = 0.9, 2.2
 MOVED_FROM_GREY = "0.55"  # the moved pixel's first spot and its dotted move
 FAR_M = 6.0  # an estimated camera farther than this from the true one is shown by an arrow, not fitted into view
+RESECTION_FRUSTUM_M = 1.8  # the cameras' image planes, drawn 1.8 m in front: large enough that the dashed estimate reads over the truth
 EYE_GL = np.array(
     [2.6, -2.6, 1.0]
 )  # opencv_vs_opengl's camera, far enough from the house that "z forward" clears it
@@ -218,9 +220,10 @@ def camera_explorer():
         width_ratios=(1.3, 1.0),
         world_axes=WORLD_AXES_M,
     )
-    # "C" hangs just above-left of the centre dot, its corner at the dot, not half a metre away
+    # "C" hangs just above-left of the centre dot and a little behind it, so that it never sits inside
+    # the frustum, whatever the pan or distance
     sv.camera_artist.label.set(ha="right", va="bottom", path_effects=palette.halo())  # on the plane
-    sv.camera_artist.label_offset = (-0.02, -0.04)
+    sv.camera_artist.label_offset = (-0.02, -0.04, -0.06)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
     # not clipped: at cx or cy = -0.5 the principal point sits on the image's edge, and the whole + shows it
     (pp,) = sv.ax_image.plot(
@@ -249,6 +252,9 @@ def camera_explorer():
     def update(v, state):
         cam = explorer_camera(**v)
         sv.camera_artist.size = explorer_plane_size(v["distance"], cam.K)
+        # the camera's axes a third of the way to the image plane: their labels stay near the centre,
+        # clear of the small picture on the plane
+        sv.camera_artist.axis_length = min(0.8, max(0.35, 0.3 * sv.camera_artist.size))
         # sv.update refreshes the projection
         azim = v["azimuth"] + VIEWER_OFFSET + PAN_FOLLOW * v["pan"]
         sv.ax3d.view_init(elev=VIEWER_ELEV, azim=azim)
@@ -290,9 +296,9 @@ def _show_estimate(art, trial, K, R, t, C, ringed, first_pixels):
     art.move_lines.set_data(*_segments_xy(first, uvn[moved]))
     art.moved_3d.set_data_3d(Xw[ringed, 0], Xw[ringed, 1], Xw[ringed, 2])
     # A wild fit (N = 6 with an outlier) can have a focal length of a few tens of pixels; its frustum at
-    # the usual depth would be metres wide and cover the view, so shorten it to at most 1.2 m across.
+    # the usual depth would be metres wide and cover the view, so shorten it to at most 1.5 m across (the true camera's is 1.44 m).
     w, h = est.image_size
-    est_art.size = min(1.0, 0.6 / max(w / 2 / abs(K[0, 0]), h / 2 / abs(K[1, 1])))
+    est_art.size = min(RESECTION_FRUSTUM_M, 0.75 / max(w / 2 / abs(K[0, 0]), h / 2 / abs(K[1, 1])))
     est_art.update(est)
     centre_err = float(np.linalg.norm(C - cam_true.centre))
     far = centre_err > FAR_M
@@ -403,15 +409,18 @@ def _resectioning_key(view):
 def _residual_bars(ax):
     """The residual panel of :func:`resectioning`: one bar per pair, its length |o - +| in pixels.
 
-    The axes are fixed (0 to 1 across, 0 to 1.3 up, no ticks), so nothing static goes stale: bar i stands
-    at (i + 0.5) / N and its height is its residual over the largest one; the two longest are labelled
-    with their lengths in pixels and their pair numbers, and the moved or ringed pairs' bars are black.
+    Bar i stands at (i + 0.5) / N across; the vertical axis is in pixels, from 0 to 1.32 times the
+    longest residual but never less than 1.32 px, so round-off (sigma = 0) stays flat. That axis
+    changes with the data, so it is animated with the bars (a static one would go stale in live
+    frames). The two longest bars are labelled with their lengths and pair numbers; the moved or
+    ringed pairs' bars are black.
     """
-    ax.set(xlim=(0.0, 1.0), ylim=(0.0, 1.32), xticks=[], yticks=[])
-    ax.set_title(
-        "residual of each pair\n(o to +), to scale", fontsize=9
-    )  # the longest bar fills the height
+    ax.set(xlim=(0.0, 1.0), ylim=(0.0, 1.32), xticks=[])
+    ax.set_title("residual of each pair\n(o to +), to scale", fontsize=9)
     ax.set_xlabel("pairs 0 .. N - 1", fontsize=8)
+    ax.set_ylabel("px", fontsize=8, labelpad=1)
+    ax.tick_params(axis="y", labelsize=7, pad=1)
+    ax.yaxis.set_major_locator(MaxNLocator(nbins=3, steps=[1, 2, 2.5, 5, 10]))
     for side in ("top", "right"):
         ax.spines[side].set_visible(False)
     bar = dict(solid_capstyle="butt", lw=4.0)
@@ -422,20 +431,31 @@ def _residual_bars(ax):
         for _ in range(2)
     ]
     return SimpleNamespace(
-        ax=ax, innocent=innocent, ringed=ringed, labels=labels, artists=[innocent, ringed, *labels]
+        ax=ax,
+        innocent=innocent,
+        ringed=ringed,
+        labels=labels,
+        artists=[ax.yaxis, ax.spines["left"], innocent, ringed, *labels],
     )
+
+
+RESIDUAL_FLOOR_PX = (
+    1.0  # the bar panel's axis reaches at least 1.32 px: round-off is not drawn full height
+)
 
 
 def _show_residual_bars(bars, err, ringed) -> list[tuple[int, float]]:
     """Draw the residuals ``err`` (px) as bars, ``ringed`` pairs black; return the two longest (pair, px).
 
-    Bars of points behind the estimate (NaN residual) are left out.
+    Bars of points behind the estimate (NaN residual) are left out. When the two longest bars stand
+    close, one label over the taller names both, longest first.
     """
     err = np.asarray(err, dtype=float)
     n = len(err)
     finite = np.isfinite(err)
-    top = float(err[finite].max()) if finite.any() and err[finite].max() > 0 else 1.0
-    height = np.where(finite, err / top, 0.0)
+    top = max(float(err[finite].max()) if finite.any() else 0.0, RESIDUAL_FLOOR_PX)
+    bars.ax.set_ylim(0.0, 1.32 * top)
+    height = np.where(finite, err, 0.0)
     x = (np.arange(n) + 0.5) / n
     width = min(
         6.0, max(1.0, 0.55 * bars.ax.get_window_extent().width / n * 72 / bars.ax.figure.dpi)
@@ -450,18 +470,22 @@ def _show_residual_bars(bars, err, ringed) -> list[tuple[int, float]]:
         line.set_data(xs, ys)
         line.set_linewidth(width)
     order = [int(i) for i in np.argsort(np.where(finite, err, -1.0))[::-1][:2] if finite[i]]
-    for k, text in enumerate(bars.labels):
-        if k >= len(order):
-            text.set_text("")
-            continue
-        i = order[k]
-        # each label above its bar, a bar near either end of the panel taking its label inwards; when the
-        # two bars stand close, the second label goes above the first one's
+    labelled = [i for i in order if err[i] >= 0.05]  # round-off (sigma = 0) gets no "0.0 px" labels
+    for text in bars.labels:
+        text.set_text("")
+    close = len(labelled) == 2 and abs(x[labelled[1]] - x[labelled[0]]) < 0.3
+    groups = [labelled] if close else [[i] for i in labelled]
+    for text, group in zip(bars.labels, groups, strict=False):
+        i = group[
+            0
+        ]  # over the longest bar of the group, a bar near either end taking its label inwards
         ha = "left" if x[i] < 0.25 else "right" if x[i] > 0.75 else "center"
-        y = height[i] + 0.02
-        if k == 1 and abs(x[i] - x[order[0]]) < 0.3:
-            y = height[order[0]] + 0.16
-        text.set(position=(x[i], y), text=f"{err[i]:.1f} px\npair {i}", ha=ha)
+        words = (
+            "\n".join(f"pair {k}: {err[k]:.1f} px" for k in group)
+            if close
+            else f"{err[i]:.1f} px\npair {i}"
+        )
+        text.set(position=(x[i], height[i] + 0.02 * top), text=words, ha=ha)
     return [(i, float(err[i])) for i in order]
 
 
@@ -487,7 +511,7 @@ def _resectioning_figure(view):
         cam,
         frame,
         axes=(ax3, ax_image),
-        plane_size=1.0,
+        plane_size=RESECTION_FRUSTUM_M,
         image_title="measured (o) vs reprojected (+)",
         world_axes=0.0,
         camera_axes=False,
@@ -502,7 +526,7 @@ def _resectioning_figure(view):
     est_art = scene3d.CameraArtist(
         sv.ax3d,
         cam,
-        size=1.0,
+        size=RESECTION_FRUSTUM_M,
         color=palette.ORANGE,
         show_axes=False,
         label="est. ",
@@ -791,7 +815,7 @@ def opencv_vs_opengl():
         # The limits fit both frames' label tips, so toggling the frame changes only the labels
         label_tips = C + 1.3 * np.vstack([cam.R, -cam.R[1:]])
         scene3d.fit_view(
-            ax, [house_segments, np.zeros(3), label_tips, art.extent_points(cam)], fill=0.78
+            ax, [house_segments, np.zeros(3), label_tips, art.extent_points(cam)], fill=0.8
         )
         for i, (ln, tx) in enumerate(zip(lines, texts, strict=True)):
             e = C + 0.9 * R_axes[i]  # row i of R = camera axis i in world coordinates
@@ -803,11 +827,11 @@ def opencv_vs_opengl():
         matrix_world = np.eye(4)  # Blender's world_from_cam: the inverse of [R_gl | t_gl]
         matrix_world[:3, :3], matrix_world[:3, 3] = R_gl.T, C
         numbers = (
-            _matrix("R_gl", R_gl, 3) + "\n" + f"t_gl = {_fmt(t_gl)}\n"
+            _matrix("R_gl", R_gl, 3) + "\n" + f"t_gl = {_fmt(t_gl)} m\n"
             "matrix_world = [[R_gl^T, C], [0, 1]] (exercise 5):\n"
             + _matrix("matrix_world", matrix_world, 3)
             if gl
-            else _matrix("R", cam.R, 3) + "\n" + f"t = {_fmt(cam.t)}\nC = -R^T t = {_fmt(C)}"
+            else _matrix("R", cam.R, 3) + "\n" + f"t = {_fmt(cam.t)} m\nC = -R^T t = {_fmt(C)} m"
         )
         title.value = (
             (
@@ -822,7 +846,7 @@ def opencv_vs_opengl():
                 else "rows of R = the drawn axes, in world coordinates\n"
             )
             + numbers
-            + "</pre>"
+            + "\nin the figure: world axes 0.6 m, camera axes 0.9 m, house 0.6 m wide</pre>"
         )
         state.update(R_axes=R_axes, frame=v["frame"], camera=cam, matrix_world=matrix_world)
 

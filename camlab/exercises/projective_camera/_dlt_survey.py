@@ -7,9 +7,9 @@ the answer must not depend on (the follow-up).
 from __future__ import annotations
 
 import numpy as np
-import scipy.linalg
 
 from ... import camera as cm
+from ...camera import predicted_rms_error
 from .._answers import same_up_to_scale
 from ._dlt_forms import NORMALISER_SLIPS, dlt_p34, dlt_slipped
 from ._scenes import cameras
@@ -112,37 +112,6 @@ def _rms_gap(got, expected, X) -> float:
     return float(
         np.sqrt(np.mean(np.sum((pixels_of(got, X) - pixels_of(expected, X)) ** 2, axis=1)))
     )
-
-
-def predicted_rms_error(P, X, sigma, X_test) -> float:
-    r"""The RMS pixel error at ``X_test`` expected of a least-squares camera fitted to ``X`` with noise ``sigma``.
-
-    First-order covariance propagation (H&Z 5.2): with J the Jacobian of the fitted pixels with
-    respect to P's 12 entries (P normalised to unit norm), restricted to the 11 directions B orthogonal
-    to P (the scale direction moves no pixel), the estimate's covariance is
-    :math:`\Sigma_p = \sigma^2 B (B^\top J^\top J B)^{-1} B^\top`, and a test point's pixels have
-    covariance :math:`J_t \Sigma_p J_t^\top`. Returns the square root of the mean trace. (A pseudo-inverse
-    of :math:`J^\top J` with a relative cut-off would drop real directions: in metres and pixels its
-    eigenvalues span 20 orders of magnitude, and the prediction came out half the true 1.2 px.)
-    """
-    p0 = np.asarray(P, dtype=float).ravel() / np.linalg.norm(P)
-
-    def jacobian(points):
-        J, h = np.zeros((2 * len(points), 12)), 1e-7
-        for k in range(12):
-            d = np.zeros(12)
-            d[k] = h
-            J[:, k] = (
-                pixels_of((p0 + d).reshape(3, 4), points)
-                - pixels_of((p0 - d).reshape(3, 4), points)
-            ).ravel() / (2 * h)
-        return J
-
-    J, J_test = jacobian(np.asarray(X, dtype=float)), jacobian(np.asarray(X_test, dtype=float))
-    B = scipy.linalg.null_space(p0[None, :])  # (12, 11): the directions that change the camera
-    JB = J @ B
-    cov = sigma**2 * B @ np.linalg.inv(JB.T @ JB) @ B.T
-    return float(np.sqrt(np.trace(J_test @ cov @ J_test.T) / len(X_test)))
 
 
 def _as_camera_matrix(got):

@@ -129,6 +129,17 @@ def _pixel_slip(got, expected, P=None) -> str:
             "every pixel is off by half a pixel: P already puts pixel centres at integers (the principal "
             "point is in P), so return x / w as it is, with no +-0.5."
         )
+    for axis, name, other in ((0, "u", "v"), (1, "v", "u")):
+        if (
+            np.allclose(shift, shift[0], atol=1e-6)
+            and np.isclose(abs(shift[0, axis]), 0.5, atol=1e-6)
+            and np.isclose(shift[0, 1 - axis], 0.0, atol=1e-6)
+        ):
+            return (
+                f"every {name} is off by {shift[0, axis]:+.1f} px while {other} is right: a half-pixel shift on one "
+                f"coordinate only, as from a pixel-edge convention (the image's left edge at 0) on {name}. P already "
+                f"puts pixel centres at integers on both axes (the principal point is in P): return x / w as it is."
+            )
     if np.allclose(shift, shift[0], atol=1e-6) and np.allclose(np.abs(shift[0]), 1.0, atol=1e-6):
         return (
             "every pixel is off by one: pixel indices start at 0 (the top-left pixel's centre is (0, 0), in numpy "

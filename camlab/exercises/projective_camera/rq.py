@@ -40,6 +40,9 @@ def _rq_compare(got, expected) -> bool:
 
 def _rq_diagnosis(args, got, expected) -> str:
     (M,) = args
+    raw = _raw_opencv_cause(got)
+    if raw:
+        return raw
     try:
         K, R = (np.asarray(g, dtype=float) for g in got)
         assert K.shape == R.shape == (3, 3)
@@ -99,7 +102,7 @@ def _rq_diagnosis(args, got, expected) -> str:
             )
         return "K must be upper triangular."
     if np.any(np.diag(K) < 0) and np.linalg.det(M) < 0 and np.linalg.det(R) > 0:
-        return (
+        return _opencv_k33_note(K) + (
             "det M < 0 here, and your R is a rotation (det R = +1), so K must carry the minus sign: K R = M with "
             "a positive-diagonal K forces det K > 0 and so det R = det M / det K < 0, a reflection. Do not "
             "negate K and R (or K's last column and R's last row) to make det R = +1; fix only the signs of "
@@ -112,6 +115,31 @@ def _rq_diagnosis(args, got, expected) -> str:
             "use K D and D R with D = diag(sign(diag(K)))."
         )
     return "K R = M with K positive upper triangular, but the factors differ; is R orthogonal?"
+
+
+def _opencv_k33_note(K) -> str:
+    """A note naming cv2.RQDecomp3x3 when K has a positive fx, fy and K[2, 2] < 0, as it returns."""
+    if np.all(np.diag(K)[:2] > 0) and K[2, 2] < 0:
+        return "This is what cv2.RQDecomp3x3 returns: it keeps det R = +1 and leaves the minus sign in K[2, 2]. "
+    return ""
+
+
+def _raw_opencv_cause(got) -> str | None:
+    """The cause when ``got`` is cv2.RQDecomp3x3's output, or its first two items, rather than (K, R)."""
+    if not isinstance(got, (tuple, list)) or len(got) not in (2, 6):
+        return None
+    try:
+        first = np.asarray(got[0], dtype=float)
+    except (TypeError, ValueError):
+        return None
+    if first.shape != (3,):
+        return None
+    what = "all six of its outputs" if len(got) == 6 else "its first two outputs"
+    return (
+        f"you returned {what} of cv2.RQDecomp3x3: it returns the Euler angles (degrees) first, then K, R and "
+        f"the three rotations Qx, Qy, Qz. Take K, R = cv2.RQDecomp3x3(M)[1:3], then fix the signs as section 4 "
+        f"does (OpenCV keeps det R = +1 and leaves a minus sign of M in K[2, 2])."
+    )
 
 
 def _unreproduced_cause(K, R, M) -> str:
