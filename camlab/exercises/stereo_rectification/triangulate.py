@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from ... import epipolar, fixtures
+from ... import epipolar
 from .._answers import same_array, shape_problem
 from .._core import Exercise, register_exercise
+from ._rig import converging_pair
 
 # --------------------------------------------------------------------------- linear triangulation
 
@@ -21,7 +22,7 @@ def _triangulation_cases():
         ((0.3, np.deg2rad(10)), (0.4, 1.5, 1.4), 0.3, 1.0),
         ((0.2, np.deg2rad(5)), (0.0, 2.5, 0.9), 0.0, 1e-3),
     ):
-        c1, c2 = fixtures.stereo_pair(b, toe)
+        c1, c2 = converging_pair(b, toe)
         X = np.array(X)
         x1, x2 = (c.project(X[None])[0] + rng.normal(0, noise, 2) for c in (c1, c2))
         cases.append((scale * c1.P, scale * c2.P, x1, x2))
