@@ -203,7 +203,7 @@ def _rectify_readout(
         f"shown: w/h {est.ratio:.3f} ({used})\n"
         f"w/h with {quad_f + ':':27s} {from_quad.ratio:.3f}\n"
         f"w/h with {f'f known ({f_true:.0f} px):':27s} {known.ratio:.3f}\n"
-        f"w/h true:{'':25s} {photo.aspect:.3f}\n"
+        f"w/h true:{'':27s} {photo.aspect:.3f}\n"
         f"{_focal_text(from_quad, f_true)}\n"
         f"this scene, one exact corner {_SLIP_PX:.0f} px off: f from the corners {f0:.0f}-{f1:.0f} px,\n"
         f"  w/h {a:.3f}-{b:.3f} with it, {c:.3f}-{d:.3f} with f known"
