@@ -193,16 +193,52 @@ def _rectify_readout(
     found, and how far a 5 px slip of one of the scene's exact corners moves each ratio.
     """
     f_true = photo.K[0, 0]
+    quad_f = (
+        f"f assumed ({from_quad.focal_length:.0f} px)"
+        if from_quad.focal_source == "assumed"
+        else "f from the corners"
+    )
     (a, b), (c, d), (f0, f1) = slip["ratio_from_quad"], slip["ratio_known"], slip["focal"]
     return monospace(
         f"shown: w/h {est.ratio:.3f} ({used})\n"
-        f"w/h with f from the corners: {from_quad.ratio:.3f}\n"
-        f"w/h with f known ({f_true:.0f} px):     {known.ratio:.3f}\n"
-        f"w/h true:                    {photo.aspect:.3f}\n"
+        f"w/h with {quad_f + ':':27s} {from_quad.ratio:.3f}\n"
+        f"w/h with {f'f known ({f_true:.0f} px):':27s} {known.ratio:.3f}\n"
+        f"w/h true:{'':27s} {photo.aspect:.3f}\n"
         f"{_focal_text(from_quad, f_true)}\n"
         f"this scene, one exact corner {_SLIP_PX:.0f} px off: f from the corners {f0:.0f}-{f1:.0f} px,\n"
         f"  w/h {a:.3f}-{b:.3f} with it, {c:.3f}-{d:.3f} with f known"
     )
+
+
+def _focal_conditioning(corners: np.ndarray, image_shape: tuple) -> str:
+    """A readout line: how far f from the corners moves when one corner moves by 1 px.
+
+    Near a degenerate view (an edge pair nearly parallel in the photo, its vanishing point far
+    away) f^2 is a ratio of two small numbers, so the scanner's 1-2 px corner errors decide it.
+    Empty when f is not estimated from the corners.
+    """
+    est = pp.estimate_aspect_ratio(corners, image_shape)
+    if est.focal_source != "estimated":
+        return ""
+    fs = [
+        pp.estimate_aspect_ratio(corners + np.eye(4)[k][:, None] * step, image_shape).focal_length
+        for k in range(4)
+        for step in ((1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0))
+    ]
+    before, after = corners[[1, 3]] - corners[[0, 0]], corners[[2, 2]] - corners[[3, 1]]
+    cos = (
+        np.abs((before * after).sum(1))
+        / np.linalg.norm(before, axis=1)
+        / np.linalg.norm(after, axis=1)
+    )
+    least = float(np.degrees(np.arccos(np.clip(cos, -1, 1))).min())
+    line = f"\none corner 1 px off: f {min(fs):.0f}-{max(fs):.0f} px"
+    if max(fs) - min(fs) > 0.5 * est.focal_length:
+        line += (
+            f"\nf NOT DETERMINED: an edge pair converges by only {least:.1f}\u00b0, so f comes from\n"
+            "corner noise (section 3), and so does w/h"
+        )
+    return line
 
 
 def _widest_angle(corners: np.ndarray) -> float:
@@ -445,7 +481,7 @@ def document_scanner() -> Demo:
         readout.value = monospace(
             f"page found; worst corner error {err:.1f} px\n"
             f"aspect w/h {est.ratio:.3f} (true {photo.aspect:.3f}, A4 = 0.707)\n"
-            f"{_focal_text(est, photo.K[0, 0])}"
+            f"{_focal_text(est, photo.K[0, 0])}{_focal_conditioning(corners, image.shape)}"
         )
 
     controls = {

@@ -138,6 +138,14 @@ def _conic_diagnosis(args, got, expected) -> str:
             )
     rows = _conic_rows(lines_l, lines_m)
     residual = np.linalg.norm(rows @ mine) / (np.linalg.norm(rows, 2) * np.linalg.norm(mine))
+    eig = np.abs(np.linalg.eigvalsh(g))
+    if residual > 1e-6 and eig.min() < 1e-8 * eig.max():
+        return (
+            "your matrix is a dual conic of rank 2, as the image of C*inf is, but not the one of these lines: "
+            "the pairs are not orthogonal under it. Did you normalise the lines (l_hat = T^-T l, with T from "
+            "lesson 07's point normalisation) and return C_hat, the conic of the normalised image? Undo the "
+            "change of coordinates at the end: C*' = T^-1 C_hat T^-T (lines move by T^-T, dual conics by T)."
+        )
     if residual > 1e-6:
         return (
             f"your matrix does not make the pairs orthogonal: the rows times your (a, b, c, d, e, f) reach "
@@ -214,6 +222,15 @@ def _upper_triangle_only(lines_l, lines_m):
     return np.triu(_full_cross_terms(lines_l, lines_m))
 
 
+def _normalised_not_undone(lines_l, lines_m):
+    """A typical slip: lines conditioned by l_hat = T^-T l, and C_hat returned without T^-1 C_hat T^-T."""
+    T = np.array([[1 / 300, 0, -320 / 300], [0, 1 / 300, -240 / 300], [0, 0, 1]])
+    move = np.linalg.inv(T).T  # lines: l_hat = T^-T l; as rows, l @ T^-1
+    return pp.dual_conic_from_orthogonal_lines(
+        np.asarray(lines_l) @ move.T, np.asarray(lines_m) @ move.T
+    )
+
+
 register_exercise(
     Exercise(
         name="dual_conic_from_orthogonal_lines",
@@ -256,6 +273,7 @@ register_exercise(
                 lambda L, M: _conic_matrix(np.linalg.svd(_conic_rows(L, M))[2][:, -1]),
                 "column of Vt",
             ),
+            (_normalised_not_undone, "T^-1 C_hat T^-T"),
         ),
         ndarray_only=True,
         teaching=dual_conic_from_orthogonal_lines,

@@ -21,7 +21,8 @@ def _rotated_rectangle(angle_deg: float, centre=(320.0, 240.0), size=(260.0, 150
 def _order_cases():
     page = scenes.sample_photo("page").corners
     return [
-        (np.array([[10.0, 0.0], [0.0, 0.0], [0.0, 10.0], [10.0, 10.0]]),),
+        # a 20 x 10 rectangle, not a square: on a square, (v, u) and counter-clockwise look alike
+        (np.array([[20.0, 0.0], [0.0, 0.0], [0.0, 10.0], [20.0, 10.0]]),),
         (page[[2, 0, 3, 1]],),
         (page[[3, 2, 1, 0]],),
         (
@@ -53,6 +54,12 @@ def _order_diagnosis(args, got, expected) -> str:
     g = np.asarray(got, dtype=float)
     corners = np.asarray(args[0], dtype=float)
     which = [np.flatnonzero(np.all(np.isclose(corners, p), axis=1)) for p in g]
+    swapped = [np.flatnonzero(np.all(np.isclose(corners, p), axis=1)) for p in g[:, ::-1]]
+    if any(len(k) == 0 for k in which) and all(len(k) for k in swapped):
+        return (
+            "your points come back as (v, u), row first: return each corner as it came in, (u, v), column "
+            "first (did you swap the columns, or index img-style [row, col]?)."
+        )
     if any(len(k) == 0 for k in which):
         return (
             "your four points are not the input corners: return the same four points (u, v), reordered "
@@ -73,11 +80,6 @@ def _order_diagnosis(args, got, expected) -> str:
     for shift in (1, 2, 3):
         if np.allclose(g, np.roll(expected, shift, axis=0)):
             return "the cyclic order is right but it does not start at the top-left corner (smallest u + v)."
-    if np.allclose(g[:, ::-1], expected):
-        return (
-            "your points come back as (v, u), row first: return each corner as it came in, (u, v), column first "
-            "(on a square this also looks like counter-clockwise order)."
-        )
     if any(np.allclose(g, np.roll(expected[::-1], s, axis=0)) for s in range(4)):
         return "your corners go counter-clockwise on screen; remember v points down, so sort by increasing angle."
     if np.allclose(g, expected[[0, 1, 3, 2]]):

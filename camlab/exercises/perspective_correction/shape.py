@@ -53,14 +53,18 @@ def _shape_compare(got, expected) -> bool:
     return g.shape == (2,) and bool(np.allclose(g, expected, rtol=1e-6, atol=0))
 
 
-def _zhang_he(corners, principal_point, order=(0, 1, 3, 2), centre=True):
-    """Section 3 with the corners taken as m1..m4 in ``order`` (Zhang & He's: TL, TR, BL, BR)."""
-    q = np.asarray(corners, dtype=float) - (np.asarray(principal_point, float) if centre else 0.0)
+def _zhang_he(corners, principal_point, order=(0, 1, 3, 2), centre=True, minus=True, swap=False):
+    """Section 3 with the corners taken as m1..m4 in ``order`` (Zhang & He's: TL, TR, BL, BR).
+
+    ``minus=False``: f^2 without its minus sign; ``swap=True``: the principal point as (c_v, c_u).
+    """
+    c = np.asarray(principal_point, float)[::-1] if swap else np.asarray(principal_point, float)
+    q = np.asarray(corners, dtype=float) - (c if centre else 0.0)
     m1, m2, m3, m4 = np.column_stack([q, np.ones(4)])[list(order)]
     k2 = np.cross(m1, m4) @ m3 / (np.cross(m2, m4) @ m3)
     k3 = np.cross(m1, m4) @ m2 / (np.cross(m3, m4) @ m2)
     n2, n3 = k2 * m2 - m1, k3 * m3 - m1
-    f2 = -(n2[0] * n3[0] + n2[1] * n3[1]) / (n2[2] * n3[2])
+    f2 = (-1 if minus else 1) * (n2[0] * n3[0] + n2[1] * n3[1]) / (n2[2] * n3[2])
     return n2, n3, f2
 
 
@@ -110,6 +114,19 @@ _SHAPE_MISTAKES = (
         "the corners must be taken relative to the principal point (m_i = (u_i - c_u, v_i - c_v, 1)): the "
         "formula assumes A = diag(f, f, 1), a camera whose principal point is the origin.",
     ),
+    Mistake(
+        "principal point swapped",
+        lambda s: s.wrong(swap=True),
+        "you subtracted the principal point as (c_v, c_u): it comes as (c_u, c_v), column first like the "
+        "corners (u, v), so m_i = (u_i - c_u, v_i - c_v, 1).",
+    ),
+    Mistake(
+        "minus dropped in f^2",
+        lambda s: s.wrong(minus=False),
+        "your f^2 has lost its minus sign: e1 . e2 = 0 gives f^2 = -(n21 n31 + n22 n32) / (n23 n33), "
+        "and for a real rectangle that is positive; without the minus it is negative (np.sqrt gives NaN, "
+        "np.abs hides it but the ratio then divides by -f^2).",
+    ),
 )
 """Ex 'rectangle_shape''s typical mistakes, each the (ratio, f) it gives."""
 
@@ -124,7 +141,20 @@ def _shape_diagnosis(args, got, expected) -> str:
         return f"return two numbers, (ratio, f): w/h and the focal length in pixels; got {shape}."
     corners, principal_point = args
     ratio, f = expected
+
+    def plain(**how):  # the slip with a plain np.sqrt: NaN where the square came out negative
+        with np.errstate(invalid="ignore"):
+            return np.sqrt(_shape_from(*_zhang_he(corners, principal_point, **how)))
+
     if not np.isfinite(g).all():
+        for how, cause in (
+            ({"minus": False}, _SHAPE_MISTAKES[-1].hint),
+            ({"swap": True}, _SHAPE_MISTAKES[-2].hint),
+            ({"centre": False}, _SHAPE_MISTAKES[-3].hint),
+            ({"order": (0, 1, 2, 3)}, _SHAPE_MISTAKES[-4].hint),
+        ):
+            if np.allclose(g, plain(**how), rtol=1e-6, equal_nan=True):
+                return "NaN: " + cause
         return (
             "NaN: f^2 (or (w/h)^2) came out negative, so np.sqrt gave NaN; a rectangle's true corners never do "
             "that. Check the corner order (section 3, Zhang & He, numbers them m1 = TL, m2 = TR, m3 = BL, m4 = BR, "
@@ -191,9 +221,14 @@ def rectangle_shape(corners, principal_point):
     return float(np.sqrt(ratio2)), float(np.sqrt(f2))
 
 
-def _shape_wrong(order=(0, 1, 3, 2), centre=True):
+def _shape_wrong(order=(0, 1, 3, 2), centre=True, plain=False, **how):
+    """A student's ``rectangle_shape`` with one slip; ``plain``: np.sqrt without abs (NaN allowed)."""
+
     def student(corners, principal_point):
-        ratio2, f2 = _shape_from(*_zhang_he(corners, principal_point, order, centre))
+        ratio2, f2 = _shape_from(*_zhang_he(corners, principal_point, order, centre, **how))
+        if plain:
+            with np.errstate(invalid="ignore"):
+                return float(np.sqrt(ratio2)), float(np.sqrt(f2))
         return float(np.sqrt(abs(ratio2))), float(np.sqrt(abs(f2)))
 
     return student
@@ -220,6 +255,10 @@ register_exercise(
                 "corners[[0, 1, 3, 2]]",
             ),
             (_shape_wrong(centre=False), "relative to the principal point"),
+            (_shape_wrong(swap=True), "(c_v, c_u)"),
+            (_shape_wrong(swap=True, plain=True), "(c_v, c_u)"),
+            (_shape_wrong(minus=False), "lost its minus sign"),
+            (_shape_wrong(minus=False, plain=True), "lost its minus sign"),
         ),
         teaching=rectangle_shape,
         solution_note=(
