@@ -12,7 +12,8 @@ from __future__ import annotations
 from . import lines
 from . import conic
 from . import horizon
+from . import angles
 
 # isort: on
 
-__all__ = ["conic", "horizon", "lines"]
+__all__ = ["angles", "conic", "horizon", "lines"]
