@@ -84,6 +84,7 @@ def _angle_context(l1, l2, C):
         right=right,
         signed=_quiet_degrees(np.clip(_cosine(l1, l2, C), -1, 1)),
         image=_angle_deg(l1, l2, _DUAL_AT_INFINITY),
+        inverted=_angle_deg(l1, l2, np.linalg.pinv(C)),
         no_norm=float(no_norm),
         no_sqrt=float(no_sqrt),
     )
@@ -103,6 +104,14 @@ _ANGLE_MISTAKES = (
         "you measured the angle the lines make *in the image* (C* = diag(1, 1, 0), or the normals "
         "(a, b) directly). The photo changes angles; the world's angle comes through the given C_star, "
         "the image of C*inf: " + _FORMULA + ".",
+    ),
+    Mistake(
+        "C_star inverted",
+        lambda a: a.inverted,
+        "you used the (pseudo-)inverse of C_star. Lines pair with the dual conic itself, l^T C* m; C* is "
+        "rank 2 and has no inverse, and pinv(C*) is no conic of points that lines could use. "
+        + _FORMULA
+        + ".",
     ),
     Mistake(
         "no absolute value",
@@ -218,6 +227,7 @@ register_exercise(
                 ),
                 "without the square root",
             ),
+            (lambda l1, l2, C: _angle_deg(l1, l2, np.linalg.pinv(C)), "pseudo-)inverse"),
             (lambda l1, l2, C: [_angle_deg(l1, l2, C)], "one number"),
         ),
         teaching=angle_between_lines,
