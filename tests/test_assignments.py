@@ -122,6 +122,11 @@ RIGHT = {
     ),
     "map_conic": "def map_conic(H, C):\n    G = np.linalg.inv(H)\n    return G.T @ C @ G",
     "horizon_line": "def horizon_line(H):\n    return np.linalg.inv(H).T @ np.array([0.0, 0.0, 1.0])",
+    "angle_between_lines": (
+        "def angle_between_lines(l1, l2, C_star):\n    C = C_star / np.abs(C_star).max()\n"
+        "    c = abs(l1 @ C @ l2) / np.sqrt((l1 @ C @ l1) * (l2 @ C @ l2))\n"
+        "    return float(np.degrees(np.arccos(np.clip(c, 0.0, 1.0))))"
+    ),
 }
 ONE_WRONG = dict(
     RIGHT,
@@ -153,7 +158,7 @@ def test_nbgrader_generates_the_assignment_and_autogrades_submissions(tmp_path):
     student_view = released.read_text()
     assert "BEGIN SOLUTION" not in student_view and "camlab.projective.meet(" not in student_view
     assert (
-        student_view.count(json.dumps("    raise NotImplementedError")) == 5
+        student_view.count(json.dumps("    raise NotImplementedError")) == 6
     )  # the lesson's own stubs
     for student, answers in [("alice", RIGHT), ("bob", ONE_WRONG), ("carol", {})]:
         nb = json.loads(student_view)
@@ -169,7 +174,7 @@ def test_nbgrader_generates_the_assignment_and_autogrades_submissions(tmp_path):
             s: (gb.find_submission(lesson, s).score, gb.find_submission(lesson, s).max_score)
             for s in ("alice", "bob", "carol")
         }
-    assert scores == {"alice": (5.0, 5.0), "bob": (4.0, 5.0), "carol": (0.0, 5.0)}
+    assert scores == {"alice": (6.0, 6.0), "bob": (5.0, 6.0), "carol": (0.0, 6.0)}
     graded = _graded(_cells(course / "autograded" / "bob" / lesson / f"{lesson}.ipynb"))
     errors = {
         c["metadata"]["nbgrader"]["grade_id"]: [
@@ -184,4 +189,4 @@ def test_nbgrader_generates_the_assignment_and_autogrades_submissions(tmp_path):
     )  # the diagnosis stays
     _nbgrader(course, "generate_feedback", lesson)  # what the student gets back
     feedback = (course / "feedback" / "bob" / lesson / f"{lesson}.html").read_text()
-    assert "return the homogeneous 3-vector instead" in feedback and "Score: 4.0 / 5.0" in feedback
+    assert "return the homogeneous 3-vector instead" in feedback and "Score: 5.0 / 6.0" in feedback

@@ -242,6 +242,23 @@ def same_up_to_scale(got: Any, expected: np.ndarray, rtol: float = 1e-6) -> bool
     return bool(min(np.linalg.norm(g - e), np.linalg.norm(g + e)) <= rtol)
 
 
+def rescaled_to(got: Any, expected: Any) -> np.ndarray | None:
+    """``expected`` times the scale that best matches ``got`` (least squares), or None if none does.
+
+    A scale-free check compares ``got`` with ``s * expected`` for the best ``s``; showing the raw
+    ``expected`` beside ``got`` (and naming its worst raw entry) would report differences that are
+    only the scale. None when the shapes differ, ``got`` is not finite or either is all zeros.
+    """
+    try:
+        g = np.asarray(got, dtype=float)
+        e = np.asarray(expected, dtype=float)
+    except (TypeError, ValueError):
+        return None
+    if g.shape != e.shape or not np.isfinite(g).all() or not np.any(g) or not np.any(e):
+        return None
+    return e * float(np.sum(g * e) / np.sum(e * e)) if np.sum(g * e) != 0 else None
+
+
 REDUCED_PRECISION_SLACK = 100
 """An answer in a shorter float type is held to this many of its epsilons (float32: 1.2e-5)."""
 

@@ -59,6 +59,8 @@ from ._answers import (
     SameArray,
     as_array,
     precision_problem,
+    rescaled_to,
+    same_up_to_scale,
     type_problem,
     with_article,
     worst_mismatch,
@@ -399,12 +401,16 @@ def check(
             tolerance = (
                 exercise.compare.tolerance if isinstance(exercise.compare, SameArray) else None
             )
+            shown, scaled = expected, ""
+            if exercise.compare is same_up_to_scale and rescaled_to(got, expected) is not None:
+                shown = rescaled_to(got, expected)  # compare after fixing the free scale
+                scaled = "  (rescaled to your answer's scale)"
             raise CheckFailed(
                 f"{name}: wrong answer on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_input_text(name, args)}\n"
                 f"  got      {_shown(as_array(got))}\n"
-                f"  expected {_shown(expected)}\n"
-                + worst_mismatch(got, expected, tolerance)
+                f"  expected {_shown(shown)}{scaled}\n"
+                + worst_mismatch(got, shown, tolerance)
                 + f"  likely cause: {exercise.diagnose(args, got, expected)}"
             )
     if exercise.follow_up is not None:

@@ -509,7 +509,7 @@ def _cross_ratio_figure(view: FigureView) -> SimpleNamespace:
         + [[[-1.4, y], [1.4, y]] for y in np.linspace(-1.4, 1.4, 7)]
     )
     points = np.array([[-1.0, -0.5], [-0.3, -0.15], [0.4, 0.2], [1.0, 0.5]])
-    colors = [palette.TAB_BLUE, palette.ORANGE, palette.TAB_GREEN, palette.TAB_RED]
+    colors = [palette.TAB_BLUE] * 4  # one colour: the letters name them (lesson 06's colour code)
     from matplotlib.collections import LineCollection
 
     ax_s.add_collection(LineCollection(grid, colors=palette.GREY, lw=0.8))

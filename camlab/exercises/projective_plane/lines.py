@@ -1,24 +1,45 @@
-"""Exercises for lesson 06, the projective plane."""
+"""Lesson 06, exercises 1-3: the line through two points, the meet of two lines, a vanishing point."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from .. import projective
-from ..camera import centred_intrinsics, rotation_x, rotation_y
-from ._answers import same_up_to_scale, shape_problem
-from ._core import Exercise, Mistake, first_mistake, mistake_variant, register_exercise
+from ... import projective
+from .._answers import same_up_to_scale, shape_problem
+from .._core import Exercise, register_exercise
 
 
-def _incidence(point: np.ndarray, line: np.ndarray) -> float:
-    """|l . x| for unit-norm l and x: 0 when x lies on l, whatever their scales."""
+def incidence(point: np.ndarray, line: np.ndarray) -> float:
+    """|l . x| for unit-norm l and x: 0 when x lies on l, whatever their scales.
+
+    Parameters
+    ----------
+    point, line : (3,) array_like
+        A homogeneous point and a line, any non-zero scales.
+
+    Returns
+    -------
+    float
+        The normalised incidence, inf when either is all zeros.
+    """
     x = np.asarray(point, dtype=float)
     norms = np.linalg.norm(line) * np.linalg.norm(x)
     return float(abs(line @ x) / norms) if norms > 0 else np.inf
 
 
-def _quiet(f):
-    """``f`` with numpy's divide warnings silenced (a wrong variant that divides by 0 on purpose)."""
+def silenced(f):
+    """``f`` with numpy's divide warnings silenced (a wrong variant that divides by 0 on purpose).
+
+    Parameters
+    ----------
+    f : callable
+        A student's (wrong) function.
+
+    Returns
+    -------
+    callable
+        ``f`` run under ``np.errstate(divide="ignore", invalid="ignore")``.
+    """
 
     def quiet(*args):
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -27,8 +48,19 @@ def _quiet(f):
     return quiet
 
 
-def _then(problem: str, more: str) -> str:
-    """``problem`` followed by the sentence ``more`` (no ". " after a question mark)."""
+def followed_by(problem: str, more: str) -> str:
+    """``problem`` followed by the sentence ``more`` (no ". " after a question mark).
+
+    Parameters
+    ----------
+    problem, more : str
+        Two sentences of a hint.
+
+    Returns
+    -------
+    str
+        Both, joined.
+    """
     return problem + (" " if problem.rstrip().endswith("?") else ". ") + more
 
 
@@ -61,7 +93,7 @@ def _homogeneous_point_diagnosis(got, expected, lines, how: str) -> str:
             "you swapped x and y: your point is (y, x, w) of the right one. Keep the cross product's "
             "entries in their order (x, y, w)."
         )
-    off = [_incidence(got, ln) for ln in lines]
+    off = [incidence(got, ln) for ln in lines]
     if max(off) > 1e-6:
         return (
             f"your point is not on both lines (normalised |l . x| = {off[0]:.3g} and {off[1]:.3g}). "
@@ -127,7 +159,7 @@ register_exercise(
             (lambda l1, l2: (np.cross(l1, l2) / np.cross(l1, l2)[2])[:2], "homogeneous 3-vector"),
             (lambda l1, l2: l1 + l2, "not on both lines"),
             (lambda l1, l2: np.cross(l1, l2)[[1, 0, 2]], "swapped x and y"),
-            (_quiet(lambda l1, l2: np.cross(l1, l2) / np.cross(l1, l2)[2]), "lines are parallel"),
+            (silenced(lambda l1, l2: np.cross(l1, l2) / np.cross(l1, l2)[2]), "lines are parallel"),
             (
                 lambda l1, l2: np.append(
                     np.linalg.solve(np.array([l1[:2], l2[:2]]), -np.array([l1[2], l2[2]])), 1.0
@@ -201,13 +233,13 @@ def _line_diagnosis(args, got, expected) -> str:
         )
     problem = shape_problem(got, expected)
     if problem and np.shape(got) == (3,) and 0 in np.asarray(expected)[2:]:
-        return _then(
+        return followed_by(
             problem,
             "This test input's line passes through the origin, so its c is 0: dividing by c "
             "(to make it 1) gives inf. Any non-zero scale is accepted; return the line unscaled",
         )
     if problem:
-        return _then(problem, "A line is the 3-vector (a, b, c) of ax + by + c = 0.")
+        return followed_by(problem, "A line is the 3-vector (a, b, c) of ax + by + c = 0.")
     g = np.asarray(got, dtype=float)
     if not np.any(g):
         return (
@@ -228,7 +260,7 @@ def _line_diagnosis(args, got, expected) -> str:
     for line, hint in _line_slips(p, q):
         if same_up_to_scale(g, line):
             return hint
-    off = [_incidence(np.append(x, 1.0), g) for x in (p, q)]
+    off = [incidence(np.append(x, 1.0), g) for x in (p, q)]
     return (
         f"your line does not pass through both points (normalised |l . p| = {off[0]:.3g}, "
         f"|l . q| = {off[1]:.3g}). The line through them is the cross product of the lifted points, "
@@ -273,7 +305,7 @@ register_exercise(
             (lambda p, q: _line_through(p * [1, -1], q * [1, -1]), "y flip"),
             (lambda p, q: _line_through(p, q) * [1, 1, -1], "wrong sign"),
             (lambda p, q: np.array(p[0] * q[1] - p[1] * q[0]), "np.cross of two 2-vectors"),
-            (_quiet(lambda p, q: _line_through(p, q) / _line_through(p, q)[2]), "dividing by c"),
+            (silenced(lambda p, q: _line_through(p, q) / _line_through(p, q)[2]), "dividing by c"),
             (
                 lambda p, q: _line_through(p, q) + [0.0, 0.0, 3.0],
                 "does not pass through both points",
@@ -445,7 +477,9 @@ register_exercise(
                 "instead of its inverse",
             ),
             (
-                _quiet(lambda s: projective.vanishing_point(s) / projective.vanishing_point(s)[2]),
+                silenced(
+                    lambda s: projective.vanishing_point(s) / projective.vanishing_point(s)[2]
+                ),
                 "lines are parallel",
             ),
             (_cross_2d_twice, "np.cross of two 2-vectors"),
@@ -454,331 +488,5 @@ register_exercise(
         ),
         exception_hint=_vanishing_exception_hint,
         teaching=vanishing_point,
-    )
-)
-
-
-# --- Exercise 4: move a conic by a homography -------------------------------------------
-
-
-def _conic_cases():
-    H_projective = np.array([[1.2, 0.3, 5.0], [-0.1, 0.9, 2.0], [0.02, 0.01, 1.0]])
-    H_affine = np.array([[2.0, 0.5, -3.0], [0.2, 1.5, 4.0], [0.0, 0.0, 1.0]])
-    c, s = 2.0 * np.cos(0.6), 2.0 * np.sin(0.6)
-    H_similarity = np.array([[c, -s, 10.0], [s, c, -5.0], [0.0, 0.0, 1.0]])
-    return [
-        (H_projective, projective.circle_conic([0.0, 0.0], 1.0)),
-        (H_affine, projective.conic_matrix(2.0, 0.5, 1.0, -1.0, 0.3, -4.0)),
-        (H_similarity, projective.circle_conic([3.0, -2.0], 2.5)),
-    ]
-
-
-def _inv(H):
-    return np.linalg.inv(H)
-
-
-_CONIC_RULE = (
-    "a point x' of the image comes from x = H^-1 x', and x^T C x = (H^-1 x')^T C (H^-1 x') "
-    "= x'^T (H^-T C H^-1) x', so C' = inv(H).T @ C @ inv(H)"
-)
-
-_CONIC_RULE_SENTENCE = _CONIC_RULE[0].upper() + _CONIC_RULE[1:]  # the rule after a full stop
-
-_CONIC_MISTAKES = (
-    Mistake(
-        "H for H^-1",
-        lambda a: a.H.T @ a.C @ a.H,
-        "you used H where its inverse belongs (H.T @ C @ H). Points move forward by H, so the conic must "
-        "undo it: " + _CONIC_RULE,
-    ),
-    Mistake(
-        "the dual-conic rule",
-        lambda a: a.H @ a.C @ a.H.T,
-        "H @ C @ H.T is how a *dual* conic (a conic of lines, C*) moves. A conic of points moves by the "
-        "inverse: " + _CONIC_RULE,
-    ),
-    Mistake(
-        "transposes on the wrong side",
-        lambda a: _inv(a.H) @ a.C @ _inv(a.H).T,
-        "the transpose is on the wrong factor (inv(H) @ C @ inv(H).T): " + _CONIC_RULE,
-    ),
-    Mistake(
-        "transpose forgotten",
-        lambda a: _inv(a.H) @ a.C @ _inv(a.H),
-        "inv(H) @ C @ inv(H) drops a transpose, so your C' is not symmetric, and a conic's matrix always "
-        "is (x^T C x only sees its symmetric part): the left factor is the transpose of the right one. "
-        + _CONIC_RULE_SENTENCE,
-    ),
-    Mistake(
-        "one factor, like a line",
-        lambda a: _inv(a.H).T @ a.C,
-        "only one factor of H^-1: that is how a line moves (l' = H^-T l). A conic is quadratic in the "
-        "point, so H^-1 appears on both sides: " + _CONIC_RULE,
-    ),
-    Mistake(
-        "entrywise products",
-        lambda a: _inv(a.H).T * a.C * _inv(a.H),
-        "`*` multiplies entry by entry; matrix products need `@`: inv(H).T @ C @ inv(H)",
-    ),
-    Mistake("C unchanged", lambda a: a.C, "you returned C unchanged; apply H: " + _CONIC_RULE),
-)
-
-
-def _conic_context(H, C):
-    from types import SimpleNamespace
-
-    return SimpleNamespace(H=np.asarray(H, dtype=float), C=np.asarray(C, dtype=float))
-
-
-def _conic_diagnosis(args, got, expected) -> str:
-    problem = shape_problem(got, expected)
-    if problem:
-        return problem + ". A conic is a symmetric (3, 3) matrix."
-    g = np.asarray(got, dtype=float)
-    named = first_mistake(_CONIC_MISTAKES, _conic_context(*args), g, same_up_to_scale)
-    if named:
-        return named
-    if np.abs(g - g.T).max() > 1e-9 * np.abs(g).max():
-        return (
-            f"your C' is not symmetric (C'[0, 1] = {g[0, 1]:.4g}, C'[1, 0] = {g[1, 0]:.4g}), and a conic's "
-            "matrix always is: the left factor must be the transpose of the right one. "
-            + _CONIC_RULE_SENTENCE
-        )
-    H, C = (np.asarray(a, dtype=float) for a in args)
-    x = projective.to_homogeneous(projective.map_points(H, projective.conic_points(C, 12)[:-1]))
-    off = np.abs(np.einsum("ni,ij,nj->n", x, g, x)) / (np.linalg.norm(g) * np.sum(x**2, axis=1))
-    return (
-        f"the images H x of points x on C do not lie on your C' (normalised |x'^T C' x'| up to {off.max():.3g}). "
-        + _CONIC_RULE_SENTENCE
-    )
-
-
-def map_conic(H, C):
-    """A point x' of the image comes from x = H^-1 x'; put that into x^T C x = 0.
-
-    Parameters
-    ----------
-    H : (3, 3) array_like
-        The homography; points move by x' = H x.
-    C : (3, 3) array_like
-        A symmetric conic matrix, x^T C x = 0.
-
-    Returns
-    -------
-    (3, 3) ndarray
-        C' = H^-T C H^-1, up to scale: the conic through the moved points.
-
-    References
-    ----------
-    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 2.3.1 (result 2.13).
-    """
-    H_inv = np.linalg.inv(H)
-    return H_inv.T @ C @ H_inv
-
-
-register_exercise(
-    Exercise(
-        name="map_conic",
-        lesson="06",
-        reference=projective.map_conic,
-        cases=_conic_cases,
-        compare=same_up_to_scale,
-        diagnose=_conic_diagnosis,
-        wrong_variants=(
-            *(
-                (mistake_variant(_CONIC_MISTAKES, row.name, _conic_context), hint_start)
-                for row, hint_start in zip(
-                    _CONIC_MISTAKES,
-                    (
-                        "where its inverse belongs",
-                        "*dual* conic",
-                        "wrong factor",
-                        "drops a transpose",
-                        "how a line moves",
-                        "entry by entry",
-                        "unchanged",
-                    ),
-                    strict=True,
-                )
-            ),
-            (lambda H, C: np.linalg.inv(H).T @ C @ H, "not symmetric"),
-            (
-                lambda H, C: np.linalg.inv(H).T @ np.linalg.inv(C) @ np.linalg.inv(H),
-                "do not lie on your C'",
-            ),
-        ),
-        teaching=map_conic,
-    )
-)
-
-
-# --- Exercise 5: the horizon, the image of the ground's line at infinity ---------------------
-
-
-def _ground_homography(pitch_deg: float, yaw_deg: float, focal: float, height: float) -> np.ndarray:
-    """H = K [r1 r3 h r2]: ground (X, Z, 1) -> pixels for the scene of ``fixtures.ground_plane_view``.
-
-    The same camera as that fixture (K centred on a 640 x 480 image, R tilted down by the pitch
-    after the yaw), built here because exercises sit below the fixtures.
-    """
-    K = centred_intrinsics(focal, (640, 480))
-    R = rotation_x(np.radians(pitch_deg)) @ rotation_y(-np.radians(yaw_deg))
-    return K @ np.column_stack([R[:, 0], R[:, 2], height * R[:, 1]])
-
-
-def _horizon_cases():
-    return [
-        (_ground_homography(8.0, 25.0, 650.0, 1.6),),
-        (
-            _ground_homography(20.0, 0.0, 500.0, 1.2),
-        ),  # yaw 0: the ground's x direction vanishes at infinity
-        (_ground_homography(0.0, -30.0, 800.0, 2.0),),  # level camera: the horizon is the row c_y
-    ]
-
-
-def _horizon_reference(H):
-    return projective.map_lines(H, projective.LINE_AT_INFINITY)
-
-
-_HORIZON_RULE = "lines move by H^-T, so the horizon is inv(H).T @ (0, 0, 1)"
-
-_HORIZON_MISTAKES = (
-    Mistake(
-        "the points' rule",
-        lambda a: a.H @ a.l,
-        "you moved the line like a point (H @ l): that is H's third column, the image of the ground's "
-        "origin, a point. Incidence l'.x' = l.x needs lines to move by the inverse transpose: "
-        + _HORIZON_RULE,
-    ),
-    Mistake(
-        "transpose forgotten",
-        lambda a: np.linalg.inv(a.H) @ a.l,
-        "inv(H) @ l (or H[0] x H[1], the rows' cross product) drops the transpose: it is inv(H)'s third "
-        "column, and the horizon is its third row. " + _HORIZON_RULE[0].upper() + _HORIZON_RULE[1:],
-    ),
-    Mistake(
-        "the backward map",
-        lambda a: a.H.T @ a.l,
-        "H.T @ l pulls an image line back to the ground (the way back, ground <- image); to push the "
-        "ground's line at infinity into the image, " + _HORIZON_RULE,
-    ),
-    Mistake(
-        "l_inf unchanged",
-        lambda a: a.l,
-        "you returned (0, 0, 1), the ground's own line at infinity; its image is the horizon: "
-        + _HORIZON_RULE,
-    ),
-    Mistake(
-        "a finite point joined (x axis)",
-        lambda a: np.cross(a.H[:, 0], a.H[:, 2]),
-        "you joined H[:, 0] and H[:, 2]; H[:, 2] is the image of the ground's origin (0, 0, 1), a finite "
-        "point, so your line is the image of the ground's x axis. The horizon joins the images of two "
-        "ideal points, (1, 0, 0) and (0, 1, 0): H[:, 0] x H[:, 1]",
-    ),
-    Mistake(
-        "a finite point joined (z axis)",
-        lambda a: np.cross(a.H[:, 1], a.H[:, 2]),
-        "you joined H[:, 1] and H[:, 2]; H[:, 2] is the image of the ground's origin (0, 0, 1), a finite "
-        "point, so your line is the image of the ground's z axis. The horizon joins the images of two "
-        "ideal points, (1, 0, 0) and (0, 1, 0): H[:, 0] x H[:, 1]",
-    ),
-)
-
-
-def _horizon_context(H):
-    from types import SimpleNamespace
-
-    return SimpleNamespace(H=np.asarray(H, dtype=float), l=np.array([0.0, 0.0, 1.0]))
-
-
-def _horizon_diagnosis(args, got, expected) -> str:
-    (H,) = args
-    problem = shape_problem(got, expected)
-    if problem and np.shape(got) == (3,) and abs(np.asarray(H)[2, 0]) < 1e-12:
-        return _then(
-            problem,
-            "This camera has yaw 0, so the ground's x direction (1, 0, 0) vanishes at infinity: H[:, 0] "
-            "has w = 0. Dividing a vanishing point by its w fails there; join them as they are.",
-        )
-    if problem:
-        return _then(problem, "A line is the 3-vector (a, b, c) of a u + b v + c = 0.")
-    g = np.asarray(got, dtype=float)
-    named = first_mistake(_HORIZON_MISTAKES, _horizon_context(H), g, same_up_to_scale)
-    if named:
-        return named
-    vps = [np.asarray(H, dtype=float)[:, k] for k in (0, 1)]
-    off = [_incidence(v, g) for v in vps]
-    return (
-        "your line misses the ground's vanishing points H[:, 0] and H[:, 1] (normalised |l . v| = "
-        f"{off[0]:.3g} and {off[1]:.3g}), and every ground vanishing point lies on the horizon. "
-        + _HORIZON_RULE[0].upper()
-        + _HORIZON_RULE[1:]
-        + "."
-    )
-
-
-def _horizon_note(run) -> str:
-    (H,) = _horizon_cases()[0]
-    line = np.asarray(run(H), dtype=float)
-    off = max(_incidence(H[:, k], line) for k in (0, 1))
-    return (
-        "Your horizon also holds H[:, 0] and H[:, 1], the images of the ground's ideal points (1, 0, 0) and "
-        f"(0, 1, 0) (normalised |l . v| {'below 1e-12' if off < 1e-12 else f'= {off:.1e}'}): "
-        "H[:, 0] x H[:, 1] is the same line, up to scale."
-    )
-
-
-def horizon_line(H):
-    """The ground's line at infinity l = (0, 0, 1) seen through H: lines move by H^-T.
-
-    Parameters
-    ----------
-    H : (3, 3) array_like
-        The homography from the ground (X, Z, 1) to pixels.
-
-    Returns
-    -------
-    (3,) ndarray
-        The horizon (a, b, c), a u + b v + c = 0, up to scale: inv(H).T @ (0, 0, 1).
-
-    References
-    ----------
-    Hartley & Zisserman, Multiple View Geometry, 2nd ed., sections 2.3.1 (result 2.13's lines) and 8.6.
-    """
-    return np.linalg.inv(H).T @ np.array([0.0, 0.0, 1.0])
-
-
-register_exercise(
-    Exercise(
-        name="horizon_line",
-        lesson="06",
-        reference=_horizon_reference,
-        cases=_horizon_cases,
-        compare=same_up_to_scale,
-        diagnose=_horizon_diagnosis,
-        wrong_variants=(
-            *(
-                (mistake_variant(_HORIZON_MISTAKES, row.name, _horizon_context), hint_start)
-                for row, hint_start in zip(
-                    _HORIZON_MISTAKES,
-                    (
-                        "like a point",
-                        "drops the transpose",
-                        "pulls an image line back",
-                        "own line at infinity",
-                        "ground's x axis",
-                        "ground's z axis",
-                    ),
-                    strict=True,
-                )
-            ),
-            (
-                _quiet(lambda H: np.cross(H[:, 0] / H[2, 0], H[:, 1] / H[2, 1])),
-                "yaw 0",
-            ),
-        ),
-        success_note=_horizon_note,
-        solution_note="# camlab: camlab.projective.map_lines(H, camlab.projective.LINE_AT_INFINITY),\n# or camlab.projective.join(H[:, 0], H[:, 1]), the two ground vanishing points joined",
-        teaching=horizon_line,
     )
 )

@@ -1,0 +1,19 @@
+"""Exercises for lesson 06, the projective plane.
+
+Points and lines (:mod:`.lines`: the join, the meet, a vanishing point), a conic moved by a
+homography (:mod:`.conic`), the horizon (:mod:`.horizon`) and an angle measured through the
+image of the dual conic of the circular points (:mod:`.angles`).
+"""
+
+from __future__ import annotations
+
+# each module registers its exercises when imported: keep the lesson's order
+# isort: off
+from . import lines
+from . import conic
+from . import horizon
+from . import angles
+
+# isort: on
+
+__all__ = ["angles", "conic", "horizon", "lines"]

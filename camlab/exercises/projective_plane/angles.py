@@ -1,0 +1,235 @@
+"""Lesson 06, exercise 6: the angle between two lines of a plane, measured in a photo of it.
+
+The lines l', m' are image lines and ``C_star`` the image of the dual conic of the circular
+points, C*' = H C*inf H^T. The angle between the *world* lines is
+
+    cos(theta) = |l'^T C*' m'| / sqrt((l'^T C*' l') (m'^T C*' m')),
+
+since l' = H^-T l gives l'^T C*' m' = l^T C*inf m = l_1 m_1 + l_2 m_2: the ordinary formula for
+the angle between the normals (l_1, l_2) and (m_1, m_2).
+
+References
+----------
+Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 2.7.4 (angles on the projective plane).
+"""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+
+from .._core import Exercise, Mistake, register_exercise
+from .._numbers import is_number, not_one_number, same_number
+
+_DUAL_AT_INFINITY = np.diag([1.0, 1.0, 0.0])
+
+# A photo of the plane: a homography with a strong perspective part (angles change by tens of degrees)
+_PHOTO = np.array([[1.1, 0.35, 40.0], [-0.15, 0.8, 25.0], [0.004, 0.0025, 1.0]])
+
+
+def _world_line(angle_deg: float, through) -> np.ndarray:
+    """The world line through the point ``through`` with direction at ``angle_deg`` to the x axis."""
+    a = np.radians(angle_deg)
+    normal = np.array([-np.sin(a), np.cos(a)])
+    return np.append(normal, -normal @ np.asarray(through, dtype=float))
+
+
+def _angle_cases():
+    """(l', m', C*') for world lines at known angles, seen through _PHOTO; C*' at several scales."""
+    H = _PHOTO
+    H_inv_t = np.linalg.inv(H).T
+    C_image = H @ _DUAL_AT_INFINITY @ H.T
+    cases = []
+    # world angles 0/35 (35 deg), 20/92 (72 deg), 10/170 (20 deg; cos < 0 as given), 15/105 (90 deg)
+    for (a, b), scale, (s1, s2) in (
+        ((0.0, 35.0), 1.0, (2.0, 0.7)),
+        ((20.0, 92.0), 1e-4, (1.0, 3.0)),
+        ((10.0, 170.0), -3.0, (0.5, -1.0)),
+        ((15.0, 105.0), 2.5, (1.5, 1.0)),
+    ):
+        l1 = s1 * H_inv_t @ _world_line(a, (30.0, 50.0))
+        l2 = s2 * H_inv_t @ _world_line(b, (120.0, 10.0))
+        cases.append((l1, l2, scale * C_image))
+    return cases
+
+
+def _cosine(l1, l2, C):
+    return (l1 @ C @ l2) / np.sqrt((l1 @ C @ l1) * (l2 @ C @ l2))
+
+
+def _angle_deg(l1, l2, C):
+    """The reference: the acute angle, in degrees, between the world lines."""
+    l1, l2, C = (np.asarray(a, dtype=float) for a in (l1, l2, C))
+    return float(np.degrees(np.arccos(np.clip(abs(_cosine(l1, l2, C)), 0.0, 1.0))))
+
+
+def _quiet_degrees(value):
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return float(np.degrees(np.arccos(value)))
+
+
+def _angle_context(l1, l2, C):
+    l1, l2, C = (np.asarray(a, dtype=float) for a in (l1, l2, C))
+    right = _angle_deg(l1, l2, C)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        no_norm = np.degrees(np.arccos(np.clip(l1 @ C @ l2, -1, 1)))
+        no_sqrt = np.degrees(
+            np.arccos(np.clip(abs(l1 @ C @ l2) / ((l1 @ C @ l1) * (l2 @ C @ l2)), -1, 1))
+        )
+    return SimpleNamespace(
+        l1=l1,
+        l2=l2,
+        C=C,
+        right=right,
+        signed=_quiet_degrees(np.clip(_cosine(l1, l2, C), -1, 1)),
+        image=_angle_deg(l1, l2, _DUAL_AT_INFINITY),
+        inverted=_angle_deg(l1, l2, np.linalg.pinv(C)),
+        no_norm=float(no_norm),
+        no_sqrt=float(no_sqrt),
+    )
+
+
+_FORMULA = "cos(theta) = |l^T C* m| / sqrt((l^T C* l) (m^T C* m)), then np.degrees(np.arccos(...))"
+
+_ANGLE_MISTAKES = (
+    Mistake(
+        "radians",
+        lambda a: np.radians(a.right),
+        "your angle is in radians; the prompt asks for degrees: np.degrees(np.arccos(...)).",
+    ),
+    Mistake(
+        "the image's own angle",
+        lambda a: a.image,
+        "you measured the angle the lines make *in the image* (C* = diag(1, 1, 0), or the normals "
+        "(a, b) directly). The photo changes angles; the world's angle comes through the given C_star, "
+        "the image of C*inf: " + _FORMULA + ".",
+    ),
+    Mistake(
+        "C_star inverted",
+        lambda a: a.inverted,
+        "you used the (pseudo-)inverse of C_star. Lines pair with the dual conic itself, l^T C* m; C* is "
+        "rank 2 and has no inverse, and pinv(C*) is no conic of points that lines could use. "
+        + _FORMULA
+        + ".",
+    ),
+    Mistake(
+        "no absolute value",
+        lambda a: a.signed if abs(a.signed - a.right) > 1e-6 else None,
+        "you returned the obtuse angle 180 - theta: l^T C* m is negative here because a line's sign is "
+        "free (l and -l are one line), and lines have no direction. Take the absolute value of the "
+        "cosine, so the angle is between 0 and 90 degrees.",
+    ),
+    Mistake(
+        "the complement",
+        lambda a: 90.0 - a.right,
+        "you returned 90 - theta: np.arcsin where np.arccos belongs (or the angle between a line and "
+        "the other's normal). l^T C* m is the cosine of the angle between the lines' normals, which is "
+        "the angle between the lines.",
+    ),
+    Mistake(
+        "not normalised",
+        lambda a: a.no_norm,
+        "you took arccos of l^T C* m alone: it scales with l, m and C_star (the check passes C_star "
+        "at scales 1e-4 and -3), so it is no cosine. Divide by sqrt((l^T C* l) (m^T C* m)): "
+        + _FORMULA,
+    ),
+    Mistake(
+        "no square root",
+        lambda a: a.no_sqrt,
+        "you divided by (l^T C* l) (m^T C* m) without the square root: the denominator must scale like "
+        "the numerator (once in l, once in m). " + _FORMULA,
+    ),
+)
+
+
+def _angle_diagnosis(args, got, expected) -> str:
+    if np.ndim(got) == 0 and isinstance(got, (float, np.floating)) and np.isnan(got):
+        return (
+            "your angle is NaN: np.arccos of a number outside [-1, 1]. Is the cosine normalised, "
+            "|l^T C* m| / sqrt((l^T C* l) (m^T C* m))? (Rounding can also push it just past 1 for "
+            "parallel lines: min(|c|, 1).)"
+        )
+    if not is_number(got):
+        return not_one_number(got, "the angle in degrees")
+    context = _angle_context(*args)
+    for mistake in _ANGLE_MISTAKES:
+        slip = mistake.answer(context)
+        if slip is not None and np.isfinite(slip) and np.isclose(float(got), slip, atol=1e-6):
+            return mistake.hint
+    return (
+        f"the world lines meet at {expected:.2f} deg here, not {float(got):.4g}. In the photo, angles "
+        "are measured through C_star, the image of C*inf: " + _FORMULA + "."
+    )
+
+
+def angle_between_lines(l1, l2, C_star):
+    """The angle between two world lines, from their images and the image of C*inf.
+
+    Lines move by H^-T and C*inf by H C*inf H^T, so l'^T C*' m' = l^T C*inf m = l_1 m_1 + l_2 m_2:
+    the dot product of the world lines' normals. Normalise by both lengths, and take the absolute
+    value, since a line's sign is free.
+
+    Parameters
+    ----------
+    l1, l2 : (3,) array_like
+        Two image lines (a, b, c), any scale and sign.
+    C_star : (3, 3) array_like
+        The image of the dual conic of the circular points, H C*inf H^T, any non-zero scale.
+
+    Returns
+    -------
+    float
+        The angle between the world lines, degrees, in [0, 90].
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 2.7.4 (angles on the projective plane).
+    """
+    c = l1 @ C_star @ l2 / np.sqrt((l1 @ C_star @ l1) * (l2 @ C_star @ l2))
+    return np.degrees(np.arccos(min(abs(c), 1.0)))
+
+
+register_exercise(
+    Exercise(
+        name="angle_between_lines",
+        lesson="06",
+        reference=_angle_deg,
+        cases=_angle_cases,
+        compare=same_number(rtol=1e-7),
+        diagnose=_angle_diagnosis,
+        wrong_variants=(
+            (
+                lambda l1, l2, C: np.radians(_angle_deg(l1, l2, C)),
+                "radians",
+            ),
+            (lambda l1, l2, C: _angle_deg(l1, l2, _DUAL_AT_INFINITY), "*in the image*"),
+            (
+                lambda l1, l2, C: np.degrees(
+                    np.arccos(l1 @ C @ l2 / np.sqrt((l1 @ C @ l1) * (l2 @ C @ l2)))
+                ),
+                "obtuse angle",
+            ),
+            (
+                lambda l1, l2, C: np.degrees(
+                    np.arcsin(abs(l1 @ C @ l2) / np.sqrt((l1 @ C @ l1) * (l2 @ C @ l2)))
+                ),
+                "90 - theta",
+            ),
+            (
+                lambda l1, l2, C: _quiet_degrees(np.clip(l1 @ C @ l2, -1, 1)),
+                "l^T C* m alone",
+            ),
+            (lambda l1, l2, C: _quiet_degrees(l1 @ C @ l2), "NaN"),
+            (
+                lambda l1, l2, C: _quiet_degrees(
+                    abs(l1 @ C @ l2) / ((l1 @ C @ l1) * (l2 @ C @ l2))
+                ),
+                "without the square root",
+            ),
+            (lambda l1, l2, C: _angle_deg(l1, l2, np.linalg.pinv(C)), "pseudo-)inverse"),
+            (lambda l1, l2, C: [_angle_deg(l1, l2, C)], "one number"),
+        ),
+        teaching=angle_between_lines,
+    )
+)
