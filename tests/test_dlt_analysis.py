@@ -45,7 +45,9 @@ def test_predicted_rms_error_matches_monte_carlo():
 
 def test_survey_is_exercise_4s():
     survey, (X, uv) = fixtures.dlt_survey(), _noisy_survey()
-    assert np.array_equal(survey.points_world, X) and np.allclose(survey.points_image, uv, atol=1e-9)
+    assert np.array_equal(survey.points_world, X) and np.allclose(
+        survey.points_image, uv, atol=1e-9
+    )
 
 
 def test_bad_input_named():
