@@ -129,6 +129,9 @@ def _focus_figure(view: FigureView) -> SimpleNamespace:
     airy = ax_c.axhline(1, color=palette.BROWN, ls=":", lw=1.8, zorder=2.6)
     (marker,) = ax_c.plot([], [], "o", color=palette.GREEN, mec="k", ms=7, zorder=3, clip_on=False)
     ax_c.set_title(" \n \n ", fontsize=9)  # room for the three lines update writes
+    # when the band is off the axis or thinner than a pixel, a note says where the sharp zone is
+    off_band = ax_c.text(0.97, 0.03, "", transform=ax_c.transAxes, ha="right", fontsize=8)
+    off_band.set(color=palette.PURPLE, path_effects=palette.halo())
     ax_c.set(
         xlim=(0.2, 5.0),
         yscale="log",
@@ -169,9 +172,18 @@ def _focus_figure(view: FigureView) -> SimpleNamespace:
         airy,
         marker,
         ax_c.title,
+        off_band,
     )
     return SimpleNamespace(
-        art=art, zoom=zoom, disc=disc, curve=curve, band=band, airy=airy, marker=marker, ax_c=ax_c
+        art=art,
+        zoom=zoom,
+        disc=disc,
+        curve=curve,
+        band=band,
+        airy=airy,
+        marker=marker,
+        ax_c=ax_c,
+        off_band=off_band,
     )
 
 
@@ -227,6 +239,15 @@ def focus_and_blur():
         marker.set_data([z_o], [C_AXIS_UM[0] if below else c_um])
         marker.set_marker("v" if below else "o")
         far = f"{dof.far:.3f} m" if np.isfinite(dof.far) else "infinity"
+        # the band beyond the axis, or under a pixel: a note at the edge it is near says where it is
+        beyond, thin = dof.near > 5.0, min(dof.far, 5.0) - dof.near < 0.03
+        note = (
+            f"sharp zone {dof.near:.3g} m to {far} →"
+            if beyond
+            else f"← sharp {dof.near:.3f} to {far}: too thin"
+        )
+        parts.off_band.set(text=note if thin else "", x=0.97 if beyond else 0.06)
+        parts.off_band.set_ha("right" if beyond else "left")
         soft = (
             "but the Airy disc alone > 30 µm" if state["airy"] > COC_OK else " "
         )  # 3 lines always: the layout
@@ -269,10 +290,8 @@ def _dof_figure(view: FigureView) -> SimpleNamespace:
     returns the scene, the curve's depths, the planes and the animated artists by name.
     """
     width, height = view.fig.bbox.width, view.fig.bbox.height
-    left, bottom = (
-        64,
-        300,
-    )  # canvas pixels: room for the curve's y label, and for the curve under the image
+    # canvas pixels: room for the curve's y label, and for the curve under the image
+    left, bottom = 64, 300
     ax_img = view.fig.add_axes((left / width, bottom / height, SIZE[0] / width, SIZE[1] / height))
     ax_c = view.fig.add_axes((left / width, 68 / height, SIZE[0] / width, 194 / height))
     view.fig.set_layout_engine("none")  # fixed pixel boxes, not constrained layout
@@ -348,9 +367,8 @@ def depth_of_field():
     parts = _dof_figure(view)
     scene, im, z, curve, band = parts.scene, parts.im, parts.z, parts.curve, parts.band
     planes, limits = parts.planes, parts.limits
-    readout = (
-        W.HTML()
-    )  # the blur of each plane beside the sliders: canvas text costs ~4 ms per line per redraw
+    # the blur of each plane beside the sliders: canvas text costs ~4 ms per line per redraw
+    readout = W.HTML()
 
     def update(values, state):
         N, s = float(values["f_number"]), values["focus_m"]
