@@ -85,10 +85,12 @@ def update_sensor_zoom(zoom: dict, A: float, z_i: float, z_s: float, c: float) -
     zoom["blur"].set_data([x_s, x_s], [-half_c, half_c])
     zoom["focus"].set_data([x_i], [0])
     zoom["bar_text"].set_text(f"{W / 4:g} mm")  # the bar spans a quarter of W (0.25 axis units)
-    zoom["z_i"].set_position((x_i, 0.05 * ZOOM_Y))
-    zoom["z_i"].set_ha(
-        "right" if abs(x_i - x_s) < 0.15 else "center"
-    )  # clear of the c beside the sensor
+    close = (
+        abs(x_i - x_s) < 0.15
+    )  # then z_i goes under the axis, left of the sensor: clear of c and z_s
+    zoom["z_i"].set_position((x_s - 0.05, -0.05 * ZOOM_Y) if close else (x_i, 0.05 * ZOOM_Y))
+    zoom["z_i"].set_ha("right" if close else "center")
+    zoom["z_i"].set_va("top" if close else "bottom")
     zoom["z_s"].set_position((x_s + 0.03, 0.95 * ZOOM_Y))
     zoom["c"].set_position((x_s + 0.04, min(half_c, 0.7 * ZOOM_Y) * 0.5 + 0.02))
     return {"zoom_half_mm": W}

@@ -129,6 +129,9 @@ def _focus_figure(view: FigureView) -> SimpleNamespace:
     airy = ax_c.axhline(1, color=palette.BROWN, ls=":", lw=1.8, zorder=2.6)
     (marker,) = ax_c.plot([], [], "o", color=palette.GREEN, mec="k", ms=7, zorder=3, clip_on=False)
     ax_c.set_title(" \n \n ", fontsize=9)  # room for the three lines update writes
+    # when the band is off the axis or thinner than a pixel, a note says where the sharp zone is
+    off_band = ax_c.text(0.97, 0.03, "", transform=ax_c.transAxes, ha="right", fontsize=8)
+    off_band.set(color=palette.PURPLE, path_effects=palette.halo())
     ax_c.set(
         xlim=(0.2, 5.0),
         yscale="log",
@@ -169,9 +172,18 @@ def _focus_figure(view: FigureView) -> SimpleNamespace:
         airy,
         marker,
         ax_c.title,
+        off_band,
     )
     return SimpleNamespace(
-        art=art, zoom=zoom, disc=disc, curve=curve, band=band, airy=airy, marker=marker, ax_c=ax_c
+        art=art,
+        zoom=zoom,
+        disc=disc,
+        curve=curve,
+        band=band,
+        airy=airy,
+        marker=marker,
+        ax_c=ax_c,
+        off_band=off_band,
     )
 
 
@@ -227,6 +239,15 @@ def focus_and_blur():
         marker.set_data([z_o], [C_AXIS_UM[0] if below else c_um])
         marker.set_marker("v" if below else "o")
         far = f"{dof.far:.3f} m" if np.isfinite(dof.far) else "infinity"
+        # the band beyond the axis, or under a pixel: a note at the edge it is near says where it is
+        beyond, thin = dof.near > 5.0, min(dof.far, 5.0) - dof.near < 0.03
+        note = (
+            f"sharp zone {dof.near:.3g} m to {far} →"
+            if beyond
+            else f"← sharp {dof.near:.3f} to {far}: too thin"
+        )
+        parts.off_band.set(text=note if thin else "", x=0.97 if beyond else 0.06)
+        parts.off_band.set_ha("right" if beyond else "left")
         soft = (
             "but the Airy disc alone > 30 µm" if state["airy"] > COC_OK else " "
         )  # 3 lines always: the layout
@@ -269,10 +290,8 @@ def _dof_figure(view: FigureView) -> SimpleNamespace:
     returns the scene, the curve's depths, the planes and the animated artists by name.
     """
     width, height = view.fig.bbox.width, view.fig.bbox.height
-    left, bottom = (
-        64,
-        300,
-    )  # canvas pixels: room for the curve's y label, and for the curve under the image
+    # canvas pixels: room for the curve's y label, and for the curve under the image
+    left, bottom = 64, 300
     ax_img = view.fig.add_axes((left / width, bottom / height, SIZE[0] / width, SIZE[1] / height))
     ax_c = view.fig.add_axes((left / width, 68 / height, SIZE[0] / width, 194 / height))
     view.fig.set_layout_engine("none")  # fixed pixel boxes, not constrained layout
@@ -348,9 +367,8 @@ def depth_of_field():
     parts = _dof_figure(view)
     scene, im, z, curve, band = parts.scene, parts.im, parts.z, parts.curve, parts.band
     planes, limits = parts.planes, parts.limits
-    readout = (
-        W.HTML()
-    )  # the blur of each plane beside the sliders: canvas text costs ~4 ms per line per redraw
+    # the blur of each plane beside the sliders: canvas text costs ~4 ms per line per redraw
+    readout = W.HTML()
 
     def update(values, state):
         N, s = float(values["f_number"]), values["focus_m"]
@@ -378,10 +396,11 @@ def depth_of_field():
             f"f/{N:g}, focused at {s:.2f} m: sharp (purple band) from {dof.near:.2f} m to {far_text}"
         )
         blurs = "\n".join(
-            f"  {name:<12}{zp:g} m: {state['coc_px'][zp]:.1f}" for name, zp in planes.items()
+            f"  {name:<12}{f'{zp:g} m':>5}: {state['coc_px'][zp]:5.1f}"
+            for name, zp in planes.items()
         )
         readout.value = monospace(
-            f"N = {N}, focused at {s:.2f} m\nsharp (c < 2 px) from {dof.near:.2f} m to {far_text}\n"
+            f"N = {N}, focused at {s:.2f} m\nsharp (c &lt; 2 px) from {dof.near:.2f} m to {far_text}\n"
             f"blur circle (px):\n{blurs}"
         )
 
@@ -391,6 +410,11 @@ def depth_of_field():
 
 
 K_D = np.array([[420.0, 0.0, 239.5], [0.0, 420.0, 179.5], [0.0, 0.0, 1.0]])
+# each pixel's normalised radius, and the purple that marks pixels beyond the fold (no ideal ray reaches them)
+R_PIX = np.hypot(
+    *np.meshgrid((np.arange(SIZE[0]) - 239.5) / 420, (np.arange(SIZE[1]) - 179.5) / 420)
+)
+FOLD_RGBA = np.array([0xAA, 0x33, 0x77, 0xD9]) / 255  # palette.PURPLE at alpha 0.85
 
 
 def _grid_lines(n: int = 9, samples: int = 60) -> np.ndarray:
@@ -401,6 +425,24 @@ def _grid_lines(n: int = 9, samples: int = 60) -> np.ndarray:
     lines = [np.column_stack([np.full(samples, u), t * (SIZE[1] - 1)]) for u in us]
     lines += [np.column_stack([t * (SIZE[0] - 1), np.full(samples, v)]) for v in vs]
     return np.array(lines)
+
+
+def _shifts(d: np.ndarray, ideal: np.ndarray) -> dict:
+    """The radial shifts (px, + outwards) of the frame's corner and top edge's middle, the longest shift.
+
+    The longest shift is the length of the largest displacement of a grid point, not its
+    largest x or y component.
+    """
+    probe = np.array([[0.0, 0.0], [K_D[0, 2], 0.0]])
+    shift = np.linalg.norm(distortion.distort_pixels(probe, K_D, d) - K_D[:2, 2], axis=1)
+    shift -= np.linalg.norm(probe - K_D[:2, 2], axis=1)
+    points = ideal.reshape(-1, 2)
+    moved = np.linalg.norm(distortion.distort_pixels(points, K_D, d) - points, axis=1)
+    return {
+        "corner_shift": float(shift[0]),
+        "edge_middle_shift": float(shift[1]),
+        "max_shift": float(moved.max()),
+    }
 
 
 def _distortion_controls() -> dict:
@@ -425,6 +467,9 @@ def _distortion_figure(view: FigureView) -> SimpleNamespace:
     board = scenes.checkerboard((11, 8), 0.04, t=(-0.2, -0.14, 0.45), px_per_square=32)
     # drawn smaller than its 480 x 360 pixels: area-averaged, or the square edges alias
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=255, interpolation="antialiased")
+    fold = ax_img.imshow(
+        np.zeros((SIZE[1], SIZE[0], 4)), interpolation="nearest"
+    )  # beyond the fold
     (dots,) = ax_img.plot([], [], "o", color=palette.RED, ms=3.5, path_effects=palette.halo())
     ideal = _grid_lines()
     for k, ln in enumerate(ideal):  # the undistorted grid, drawn once in grey behind the bent one
@@ -452,10 +497,11 @@ def _distortion_figure(view: FigureView) -> SimpleNamespace:
     )  # below: never over the grid
     img_title = ax_img.set_title(" \n ", fontsize=10)  # two lines, as update writes
     grid_title = ax_grid.set_title(" \n ", fontsize=10)  # two lines, as update writes
-    view.animate(im, dots, *bent, img_title, grid_title)
+    view.animate(im, fold, dots, *bent, img_title, grid_title)
     return SimpleNamespace(
         board=board,
         im=im,
+        fold=fold,
         dots=dots,
         ideal=ideal,
         bent=bent,
@@ -485,7 +531,8 @@ def lens_distortion():
         ``undistort``, the figure (the rendered board with its true corners, a grid through
         the lens over the straight one) and ``state`` (``kind`` of distortion,
         ``corner_shift`` and ``edge_middle_shift`` radial shifts in px, ``corner0``,
-        ``max_shift`` in px, ``grid_error`` in px after undistorting).
+        ``max_shift`` in px (the longest shift's length), ``beyond_fold`` (pixels past the fold,
+        painted purple), ``grid_error`` in px after undistorting).
     """
     controls = _distortion_controls()
     view = FigureView(figsize=(8.6, 4.5))
@@ -508,6 +555,9 @@ def lens_distortion():
                 distortion.undistort_pixels(ln, K_D, d) for ln in through
             ]  # back onto the straight grid
         im.set_data(img)
+        r_fold = distortion.max_valid_radius(d)  # radial terms only: 3.0 when there is no fold
+        beyond = (R_PIX > r_fold * distortion.radial_scale(r_fold, d)) & (not values["undistort"])
+        parts.fold.set_data(np.where(beyond[..., None], FOLD_RGBA, 0.0))
         dots.set_data(corners[:, 0], corners[:, 1])
         for line, ln in zip(bent, through, strict=True):
             line.set_data(*ln.T)
@@ -522,27 +572,17 @@ def lens_distortion():
             if values["undistort"]
             else f"a straight grid through the lens: {kind}\n(grey: the same grid without it)"
         )
-        # the radial shift (px, + outwards) of the frame's corner pixel and of its top edge's middle
-        probe = np.array([[0.0, 0.0], [K_D[0, 2], 0.0]])
-        shift = np.linalg.norm(
-            distortion.distort_pixels(probe, K_D, d) - K_D[:2, 2], axis=1
-        ) - np.linalg.norm(probe - K_D[:2, 2], axis=1)
         state.update(
+            _shifts(d, ideal),
             kind=kind,
-            corner_shift=float(shift[0]),
-            edge_middle_shift=float(shift[1]),
             corner0=corners[0],
-            max_shift=float(
-                np.abs(
-                    distortion.distort_pixels(ideal.reshape(-1, 2), K_D, d) - ideal.reshape(-1, 2)
-                ).max()
-            ),
+            beyond_fold=int(beyond.sum()),
             grid_error=float(
                 max(np.abs(ln - i).max() for ln, i in zip(through, ideal, strict=True))
             ),
         )
         readout.value = monospace(
-            f"distortion: {kind}\nlargest shift {state['max_shift']:.1f} px\n"
+            f"distortion: {kind}\nlargest shift |Δ| {state['max_shift']:.1f} px\n"
             + (
                 "left: undistorted, lines straight again"
                 if values["undistort"]

@@ -118,6 +118,17 @@ _F_NUMBER_MISTAKES = (
         _APEX,
     ),
     Mistake(
+        "divided by s, not z",
+        lambda s: any(
+            np.isclose(s.g, s.f**2 * abs(end - s.focus) / (s.c * s.focus * (s.focus - s.f)))
+            for end in (s.n, s.r)
+        ),
+        (
+            "c(z) = (f/N) (f/(s - f)) |z - s| / z divides by z, the depth of the end you make sharp (near or "
+            "far), not by the focus distance s: the cone's apex sits at that depth's image point"
+        ),
+    ),
+    Mistake(
         "focused at one end",
         lambda s: _one_end(s) is not None,
         lambda s: (
@@ -323,6 +334,14 @@ register_exercise(
                 "harmonic mean",
             ),
             (lambda f, c, n, r: f**2 * (r - n) / (2 * c * n * r), "dropped f from s - f"),
+            (
+                lambda f, c, n, r: (
+                    f**2
+                    * (2 * n * r / (n + r) - n)
+                    / (c * (2 * n * r / (n + r)) * (2 * n * r / (n + r) - f))
+                ),
+                "not by the focus distance s",
+            ),
             (lambda f, c, n, r: 2 * _f_number_reference(f, c, n, r), "not its radius"),
             (lambda f, c, n, r: _f_number_reference(f, c, n, r) / 2, "you doubled c"),
             (lambda f, c, n, r: 1e3 * _f_number_reference(f, c, n, r), "mixed units"),

@@ -199,6 +199,14 @@ _PIXEL_MISTAKES = (
             "you returned the shift in pixels; return where the point lands: u_d = f_x x_d + c_x, v_d = f_y y_d + c_y"
         ),
     ),
+    Mistake(
+        "half a pixel added to the result",
+        lambda s: np.allclose(np.abs(s.g - s.expected), 0.5),
+        (
+            "every point is off by exactly half a pixel: pixel centres sit at integers here (the centre of a "
+            "w-pixel row is (w - 1) / 2), so nothing adds or subtracts 0.5: u_d = f_x x_d + c_x, v_d = f_y y_d + c_y"
+        ),
+    ),
 )
 """Slips in the way to pixels and back (the model's own slips are :func:`._distort_causes.model_diagnosis`),
 in the order they are tested, each a test of the answer ``s.g``."""
@@ -360,6 +368,7 @@ register_exercise(
                 "half-pixel",
             ),
             (lambda uv, K, d: distortion.distort_pixels(uv, K, d) - uv, "shift in pixels"),
+            (lambda uv, K, d: distortion.distort_pixels(uv, K, d) + 0.5, "exactly half a pixel"),
             (
                 lambda uv, K, d: (
                     distortion.distort_points((uv - [319.5, 239.5]) / K[[0, 1], [0, 1]], d)
