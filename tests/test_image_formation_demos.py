@@ -496,7 +496,7 @@ def test_sensor_demos_read_as_the_lesson_says():
     )  # a lens blur of half a pixel: the false rings all but gone
     assert (
         "contrast 0.01" in s.figure.axes[1].get_title()
-        and "lens blur 0.5 px" in s.figure.axes[1].get_title()
+        and "lens blur σ = 0.5 coarse px" in s.figure.axes[1].get_title()
     )
     d = digital_sensor.demosaicing()
     psnr = {}

@@ -207,7 +207,7 @@ def sampling_aliasing():
         else:  # the number section 2 prints for the static figure (0.35 point, 0.06 box at 6)
             where = f"red square: Nyquist limit; false-ring contrast {state['alias_contrast']:.2f}"
         kind = "box samples" if values["prefilter"] else "point samples"
-        blurred = f", lens blur {values['blur']:.1f} px" if values["blur"] else ""
+        blurred = f", lens blur σ = {values['blur']:.1f} coarse px" if values["blur"] else ""
         ax_s.set_title(f"{kind}, pixel size {k} fine px{blurred}\n({where})", fontsize=10)
 
     return build_demo("sampling_aliasing", controls, view, update, title="Sampling and aliasing")
@@ -335,7 +335,7 @@ def bit_depth_and_noise():
             fontsize=9,
         )
         readout.value = monospace(
-            f"{2**bits} levels\nSNR {snr:.1f} at half of white\n"
+            f"{2**bits} levels\nmodel SNR {snr:.1f} at half of white\n"
             f"rms error {state['rms_error']:.3f} of full scale"
         )
 
@@ -352,9 +352,7 @@ K_DEMOSAIC = np.array([[900.0, 0, 159.5], [0, 900.0, 119.5], [0, 0, 1]])
 
 _SAME = "same as the sensor"
 CROP = 48
-ZOOM_MAX = (
-    216  # the zoom's last position still holds the face's right side, not only the flat background
-)
+ZOOM_MAX = SIZE[0] - CROP  # the zoom's last column at the frame's last column
 ZOOM_V_MAX = SIZE[1] - CROP  # the zoom's bottom row at the frame's last row
 ZOOM_V = 100  # the default zoom: the flag's stripes, the spectacles' lower rim above it, the cheek
 
