@@ -207,7 +207,7 @@ def sampling_aliasing():
         else:  # the number section 2 prints for the static figure (0.35 point, 0.06 box at 6)
             where = f"red square: Nyquist limit; false-ring contrast {state['alias_contrast']:.2f}"
         kind = "box samples" if values["prefilter"] else "point samples"
-        blurred = f", lens blur σ = {values['blur']:.1f} coarse px" if values["blur"] else ""
+        blurred = f", blur σ = {values['blur']:.1f} coarse px" if values["blur"] else ""
         ax_s.set_title(f"{kind}, pixel size {k} fine px{blurred}\n({where})", fontsize=10)
 
     return build_demo("sampling_aliasing", controls, view, update, title="Sampling and aliasing")
