@@ -496,15 +496,16 @@ def test_sensor_demos_read_as_the_lesson_says():
     )  # a lens blur of half a pixel: the false rings all but gone
     assert (
         "contrast 0.01" in s.figure.axes[1].get_title()
-        and "lens blur 0.5 px" in s.figure.axes[1].get_title()
+        and "blur σ = 0.5 coarse px" in s.figure.axes[1].get_title()
     )
     d = digital_sensor.demosaicing()
     psnr = {}
     for method in ("camlab bilinear", "OpenCV VNG", "OpenCV edge-aware"):
         d.set(method=method)
         psnr[method] = d.state["psnr"]
-    # the zoom's last position still shows the face, not only the flat background
-    d.set(method="truth", zoom_u=digital_sensor.ZOOM_MAX)
+    # the zoom reaches the frame's right edge, and at u = 216 still shows the face's right side
+    assert digital_sensor.ZOOM_MAX + digital_sensor.CROP == digital_sensor.SIZE[0]
+    d.set(method="truth", zoom_u=216)
     zoom = d.figure.axes[2].images[0].get_array()
     assert np.ptp(np.asarray(zoom, float)) > 0.3
     d.set(zoom_u=120)

@@ -16,6 +16,33 @@ from .controls import int_slider, monospace
 SIZE = (320, 240)
 
 
+def _side_view(fig):
+    """A to-scale top view of lens, sensor and field of view (mm) beside the image; returns its artists and update.
+
+    The sensor, W pixels of pitch s, sits f behind the lens; the rays through its two edges and the lens
+    centre bound the field of view. Finer pixels at a fixed pixel count: a smaller sensor, a narrower view.
+    """
+    ax = fig.add_axes((0.805, 0.08, 0.19, 0.5))
+    ax.set(xlim=(-7.5, 7.5), ylim=(-4, 7), aspect="equal")
+    ax.set_xticks([-5, 0, 5])
+    ax.set_yticks([])
+    ax.tick_params(labelsize=7)
+    ax.set_xlabel("x (mm)", fontsize=8)
+    ax.set_title("top view, to scale:\nsensor (blue) 3 mm\nbehind the lens (black)", fontsize=7.5)
+    ax.axvline(0, color=palette.GREY, lw=0.6, ls=":")
+    ax.plot([-0.9, 0.9], [0, 0], color="k", lw=2)  # the lens, at z = 0
+    (sensor_line,) = ax.plot([], [], color=palette.BLUE, lw=3, solid_capstyle="butt")
+    (rays,) = ax.plot([], [], color=palette.ORANGE, lw=1)
+
+    def update(pitch_mm, cx_px, width_px):
+        x_left, x_right = -(cx_px + 0.5) * pitch_mm, (width_px - 0.5 - cx_px) * pitch_mm
+        sensor_line.set_data([x_left, x_right], [-3, -3])
+        # through the lens centre: a sensor point at x, 3 mm behind, sees the direction -x / 3 forward
+        rays.set_data([x_left, -x_left * 2, np.nan, x_right, -x_right * 2], [-3, 6, np.nan, -3, 6])
+
+    return (sensor_line, rays), update
+
+
 @register(
     lesson="03", sweep={"pitch_um": [2.0, 3.0, 6.0, 12.0, 15.0], "cx_offset": [-60, -40, 0, 40, 60]}
 )
@@ -67,13 +94,17 @@ def pixel_pitch():
     ax_img.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=9, borderaxespad=0)
     ax_img.set_title("f = 3 mm, always 320 x 240 pixels", fontsize=10)
     readout = W.HTML()  # the numbers beside the sliders: canvas text costs ~15 ms per redraw
-    view.animate(im, mark, pp, ax_img.title)  # the centre mark too, or the blitted image covers it
+    side_artists, side_update = _side_view(view.fig)
+    view.animate(
+        im, mark, pp, ax_img.title, *side_artists
+    )  # the centre mark too, or the blitted image covers it
 
     def update(values, state):
         pitch = values["pitch_um"] * 1e-6
         K = sensor.intrinsics_from_sensor(3e-3, (pitch, pitch), SIZE, (values["cx_offset"], 0.0))
         im.set_data(render.render(scene, K, SIZE).irradiance)
         pp.set_data([K[0, 2]], [K[1, 2]])
+        side_update(pitch * 1e3, K[0, 2], SIZE[0])
         # the frame's left and right edges, u = -0.5 and W - 0.5, seen from the principal point: with c_x off
         # centre the two halves differ, and their sum is a little less than 2 atan(W / 2 / f_x)
         left, right = (
@@ -207,7 +238,7 @@ def sampling_aliasing():
         else:  # the number section 2 prints for the static figure (0.35 point, 0.06 box at 6)
             where = f"red square: Nyquist limit; false-ring contrast {state['alias_contrast']:.2f}"
         kind = "box samples" if values["prefilter"] else "point samples"
-        blurred = f", lens blur {values['blur']:.1f} px" if values["blur"] else ""
+        blurred = f", blur σ = {values['blur']:.1f} coarse px" if values["blur"] else ""
         ax_s.set_title(f"{kind}, pixel size {k} fine px{blurred}\n({where})", fontsize=10)
 
     return build_demo("sampling_aliasing", controls, view, update, title="Sampling and aliasing")
@@ -335,7 +366,7 @@ def bit_depth_and_noise():
             fontsize=9,
         )
         readout.value = monospace(
-            f"{2**bits} levels\nSNR {snr:.1f} at half of white\n"
+            f"{2**bits} levels\nmodel SNR {snr:.1f} at half of white\n"
             f"rms error {state['rms_error']:.3f} of full scale"
         )
 
@@ -352,9 +383,7 @@ K_DEMOSAIC = np.array([[900.0, 0, 159.5], [0, 900.0, 119.5], [0, 0, 1]])
 
 _SAME = "same as the sensor"
 CROP = 48
-ZOOM_MAX = (
-    216  # the zoom's last position still holds the face's right side, not only the flat background
-)
+ZOOM_MAX = SIZE[0] - CROP  # the zoom's last column at the frame's last column
 ZOOM_V_MAX = SIZE[1] - CROP  # the zoom's bottom row at the frame's last row
 ZOOM_V = 100  # the default zoom: the flag's stripes, the spectacles' lower rim above it, the cheek
 

@@ -300,8 +300,18 @@ _MISTAKES = (
         "twice f_x",
         lambda s: _near(s.g[0, 0], 2 * s.fx) or _near(s.g[1, 1], 2 * s.fy),
         (
-            "f_x is twice the right value: did you halve the pitch (width / 2 / W)? "
-            "f_x = f / s_x with s_x = width / W, the pitch of one pixel"
+            "f_x is twice the right value: did you halve the pitch (width / 2 / W), or take the pitch of a "
+            "Quad-Bayer sensor's 48 MP (8064 pixels across) for a 12 MP image? A binned image's pixel is a 2 x 2 "
+            "group of the sensor's; f_x = f / s_x with s_x = width / W, W the width of the image you work with"
+        ),
+    ),
+    Mistake(
+        "35 mm-equivalent focal length",
+        lambda s: _near(s.g[0, 0], s.fx * np.hypot(36, 24) / np.hypot(s.w_mm, s.h_mm)),
+        lambda s: (
+            f"f_x is {np.hypot(36, 24) / np.hypot(s.w_mm, s.h_mm):.2f} times the right value, the ratio of a full "
+            f"frame's 43.3 mm diagonal to this sensor's {np.hypot(s.w_mm, s.h_mm):.2f} mm: you used the "
+            f"35 mm-equivalent focal length, a field of view; K needs the real one, f_x = f / s_x"
         ),
     ),
     Mistake(
@@ -340,7 +350,7 @@ _MISTAKES = (
         lambda s: np.allclose(s.g, s.e, rtol=0.01, atol=0),
         lambda s: (
             "within 1 % but not exact: a rounded intermediate value, such as the pitch rounded to a few digits "
-            f"({s.w_mm / s.W * 1e3:.2f} µm for {s.w_mm / s.W * 1e3:.6g} µm)? Keep full precision; the check allows a relative 1e-9 (float32's own precision for a float32 K)"
+            f"({s.w_mm / s.W * 1e3:.2f} µm for {s.w_mm / s.W * 1e3:.6g} µm)? Keep full precision: the check allows a relative 1e-9 (widened for a float32 K to a few of its 1e-7 steps)"
         ),
     ),
 )

@@ -104,6 +104,13 @@ def _nan_hint(raw, pattern, got) -> str | None:
         return None
     m = sensor.bayer_masks(np.shape(raw), pattern)
     bad = ~np.isfinite(g)
+    rows, cols = np.nonzero(bad.any(axis=2))
+    if np.all((rows == 0) | (cols == 0)):
+        return (
+            "NaN only on row 0 and column 0: your masks start at 1 (m[1::2, 1::2], m[1::2, 2::2], ... as in "
+            "1-based MATLAB), so no mask covers row 0 or column 0 and some of their pixels see no sample of a "
+            f"colour (0 / 0). Python counts from 0: {pattern}'s {pattern[0]} is at row 0, column 0, m[0::2, 0::2]"
+        )
     if np.any(bad[..., 0] & m[..., 2]) or np.any(bad[..., 2] & m[..., 0]):
         return (
             "NaN at red's value at blue sites (or blue's at red ones): their 4 cross neighbours (left, right, "
@@ -188,6 +195,13 @@ def _demosaic_diagnosis(args, got, expected) -> str:
     if nan:
         return nan
     problem = not_an_array(got) or shape_problem(got, expected)
+    ring = (
+        not problem
+        and np.issubdtype(np.asarray(raw).dtype, np.integer)
+        and _ring_only(got, expected)
+    )
+    if ring:
+        return ring
     if problem:
         H, W = np.shape(raw)
         if (H % 2 or W % 2) and np.shape(got)[:2] == (H // 2 * 2, W // 2 * 2):
@@ -216,6 +230,25 @@ def _demosaic_diagnosis(args, got, expected) -> str:
     ):
         return f"you rounded the interpolated values to whole numbers: {whole}; return them unrounded, as floats"
     return _interpolation_cause(raw, pattern, g, e)
+
+
+def _ring_only(got, expected) -> str | None:
+    """The hint for an answer right inside (to OpenCV's rounding, 0.5) but wrong on the outermost ring.
+
+    Asked only for integer mosaics, the ones cv2.cvtColor demosaics; there 0.5 DN is its rounding.
+    """
+    g, e = np.asarray(got, dtype=float), np.asarray(expected)
+    inner = (slice(1, -1), slice(1, -1))
+    if min(e.shape[:2]) < 3 or not np.allclose(g[inner], e[inner], rtol=0, atol=0.5 + 1e-9):
+        return None
+    if np.allclose(g, e, rtol=0, atol=0.5 + 1e-9):
+        return None
+    return (
+        "right inside, wrong only on the outermost ring of pixels: OpenCV's cv2.cvtColor (COLOR_Bayer...) fills "
+        "that ring its own way (the Pitfalls: up to 121 DN off on the lesson's photo). Write the normalised "
+        "convolution yourself, c = k * (m r) / (k * m) with zeros beyond the border, so the edge pixels average "
+        "only the neighbours that exist"
+    )
 
 
 def _interpolation_cause(raw, pattern, g, e) -> str:
@@ -258,21 +291,32 @@ def _interpolation_cause(raw, pattern, g, e) -> str:
     if problems:
         return "; ".join(problems)
     # a 3 x 3 kernel reaches one pixel out, where 'reflect' and 'nearest' both repeat the edge pixel
-    for mode, what in (
+    for mode, what, why in (
         (
             "reflect",
             "mode='reflect', scipy.ndimage.convolve's default (or mode='nearest', the same "
             "one pixel out)",
+            "repeats the edge pixel beyond the frame, where the pattern has the other colour, so a copy of "
+            "the edge's colour stands where none was measured",
         ),
-        ("mirror", "mode='mirror' (cv2.filter2D's default border, BORDER_REFLECT_101)"),
-        ("wrap", "mode='wrap'"),
+        (
+            "mirror",
+            "mode='mirror' (cv2.filter2D's default border, BORDER_REFLECT_101)",
+            "reflects about the edge pixel: the pattern is kept, but the sample just inside the edge is "
+            "counted twice (green at a bottom-edge site becomes (2 above + left + right) / 4, not the mean "
+            "of its 3 neighbours)",
+        ),
+        (
+            "wrap",
+            "mode='wrap'",
+            "copies samples from the opposite side of the frame, which are not this pixel's neighbours",
+        ),
     ):
         if np.allclose(g, _padded_demosaic(raw, pattern, mode)):
             return (
-                f"right inside, wrong at the border: with {what} the convolution invents samples beyond the "
-                f"frame, mirrored or copied from inside it, and both k * (m r) and k * m count them (and a "
-                f"mirrored copy of a Bayer mosaic does not even keep the pattern); use mode='constant' (zeros "
-                f"outside; cv2.BORDER_CONSTANT) for both, so the ratio averages only the samples that exist"
+                f"right inside, wrong at the border: {what} {why}, and both k * (m r) and k * m count it; use "
+                f"mode='constant' (zeros outside; cv2.BORDER_CONSTANT) for both, so the ratio averages only "
+                f"the samples that exist"
             )
     return (
         "right inside, wrong at the border: average only the neighbours that exist "
@@ -393,6 +437,40 @@ def _cross_kernel_demosaic(raw, pattern):
     return np.where(m == 1, raw[..., None], est)
 
 
+def _one_based_masks_demosaic(raw, pattern):
+    """Masks translated from 1-based MATLAB: m[1::2, 1::2] for the first letter, m[2::2, 2::2] for the last."""
+    from scipy.ndimage import convolve
+
+    raw = np.asarray(raw, dtype=float)
+    m = np.zeros(raw.shape + (3,))
+    for (dy, dx), colour in zip([(1, 1), (1, 2), (2, 1), (2, 2)], pattern, strict=True):
+        m[dy::2, dx::2, "RGB".index(colour)] = 1
+    k = np.array([[1, 2, 1], [2, 4, 2], [1, 2, 1]]) / 4.0
+    with np.errstate(invalid="ignore", divide="ignore"):
+        est = np.stack(
+            [
+                convolve(raw * m[..., c], k, mode="constant")
+                / convolve(m[..., c], k, mode="constant")
+                for c in range(3)
+            ],
+            axis=2,
+        )
+    return np.where(m == 1, raw[..., None], est)
+
+
+def _opencv_ring_demosaic(raw, pattern):
+    """cv2.cvtColor on the integer mosaic: the right image inside, rounded, with OpenCV's own outermost ring.
+
+    The ring is imitated by copies of the next ring in; float mosaics (which cvtColor refuses) get the right image.
+    """
+    out = sensor.demosaic_bilinear(raw, pattern)
+    if not np.issubdtype(np.asarray(raw).dtype, np.integer):
+        return out
+    out = np.rint(out)
+    out[0], out[-1], out[:, 0], out[:, -1] = out[1], out[-2], out[:, 1], out[:, -2]
+    return out
+
+
 def demosaic_bilinear(raw, pattern):
     """Section 4's formula, c = k * (m r) / (k * m) at the missing sites; measured samples kept.
 
@@ -495,7 +573,9 @@ register_exercise(
                 ),
                 "transposed",
             ),
-            (lambda raw, pattern: _padded_demosaic(raw, pattern, "mirror"), "BORDER_REFLECT_101"),
+            (lambda raw, pattern: _padded_demosaic(raw, pattern, "mirror"), "counted twice"),
+            (_one_based_masks_demosaic, "NaN only on row 0 and column 0"),
+            (_opencv_ring_demosaic, "outermost ring"),
             (lambda raw, pattern: _padded_demosaic(raw, pattern, "nearest"), "or mode='nearest'"),
         ),
         teaching=demosaic_bilinear,

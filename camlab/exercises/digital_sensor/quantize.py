@@ -197,6 +197,29 @@ _MISTAKES = (
             f"codes 0 to 2**bits - 1 = {s.levels}; scale by 2**bits - 1"
         ),
     ),
+    Mistake(
+        "^ for a power",
+        lambda s: any(
+            x != s.levels and _same_after_cast(s.g, np.clip(np.rint(s.img * x), 0, max(x, 0)))
+            for x in (2 ^ (s.bits - 1), (2 ^ s.bits) - 1)
+        ),
+        lambda s: (
+            f"you wrote 2^bits: in Python ^ is bitwise XOR, not a power, and binds after the minus, so "
+            f"2^bits - 1 is 2 XOR (bits - 1) = {2 ^ (s.bits - 1)} at {s.bits} bits, not {s.levels}; powers are "
+            f"**: 2**bits - 1"
+        ),
+    ),
+    Mistake(
+        "clipped one code low",
+        lambda s: any(
+            _same_after_cast(s.g, np.clip(np.rint(x * s.levels), 0, s.levels - 1))
+            for x in (s.img, s.clipped)
+        ),
+        lambda s: (
+            f"you clipped to 2**bits - 2 = {s.levels - 1}, so white loses its code (the scaling is right): the "
+            f"top code is 2**bits - 1 = {s.levels}; clip to [0, 2**bits - 1]"
+        ),
+    ),
     Mistake("top code too low", _wrong_top, _top_code_hint),
     Mistake(
         "codes from 1",
@@ -444,6 +467,18 @@ register_exercise(
                     np.uint8 if bits <= 8 else np.uint16
                 ),
                 "count from 0",
+            ),
+            (
+                lambda img, bits: np.clip(np.rint(img * (2 ^ bits - 1)), 0, 2 ^ bits - 1).astype(
+                    np.uint8 if bits <= 8 else np.uint16
+                ),
+                "bitwise XOR",
+            ),
+            (
+                lambda img, bits: np.clip(np.rint(img * (2**bits - 1)), 0, 2**bits - 2).astype(
+                    np.uint8 if bits <= 8 else np.uint16
+                ),
+                "you clipped to 2**bits - 2",
             ),
             (
                 lambda img, bits: np.minimum(np.rint(img * (2**bits - 1)), 2**bits - 1).astype(
