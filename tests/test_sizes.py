@@ -28,11 +28,6 @@ EXCEPTIONS = {
     "camlab.widgets.stereo_rectification._epipolar_figure": "grew in i29-11b; split next",
     "camlab.widgets.stereo_rectification.rectify_pair": "grew in i29-11b; split next",
     "camlab.widgets.stereo_rectification.disparity_depth": "grew in i29-11b; split next",
-    # grew past 80 lines in lesson 04's review round 7 (i28-04f: residual lines, the moved pixel's first
-    # spot, a fuller OpenGL readout); to be split by step like the other builders
-    "camlab.widgets.projective_camera._resectioning_figure": "grew in i28-04f; split next",
-    "camlab.widgets.projective_camera.resectioning": "grew in i28-04f; split next",
-    "camlab.widgets.projective_camera.opencv_vs_opengl": "grew in i28-04f; split next",
     # i27-plots splits these (issue 27, item 2)
     "camlab.widgets.homographies.geometry.transformation_hierarchy": "i27-plots (issue 27)",
     "camlab.widgets.homographies.geometry.drag_homography": "i27-plots (issue 27)",

@@ -8,7 +8,15 @@ from typing import NamedTuple
 
 from .._validate import CamlabInputError
 
-__all__ = ["Call", "called", "find_lesson", "lesson_files", "only_statement", "stub_name"]
+__all__ = [
+    "Call",
+    "called",
+    "code_statements",
+    "find_lesson",
+    "lesson_files",
+    "only_statement",
+    "stub_name",
+]
 
 
 def lesson_files() -> list[Path]:
@@ -56,6 +64,28 @@ def find_lesson(spec: str) -> Path:
     return matches[0]
 
 
+def code_statements(cell: dict) -> list[ast.stmt] | None:
+    """The Python statements of a code cell, or None (markdown, or a cell that does not parse).
+
+    Parameters
+    ----------
+    cell : dict
+        A notebook cell as nbformat's JSON holds it (``cell_type``, ``source``...).
+
+    Returns
+    -------
+    list of ast.stmt or None
+        The cell's top-level statements; None for a markdown cell or one that does not parse
+        (a magic, a syntax error).
+    """
+    if cell["cell_type"] != "code":
+        return None
+    try:
+        return ast.parse("".join(cell["source"])).body
+    except SyntaxError:
+        return None
+
+
 def only_statement(cell: dict) -> ast.stmt | None:
     """The single Python statement of a code cell, or None (markdown, magics, several statements).
 
@@ -70,13 +100,8 @@ def only_statement(cell: dict) -> ast.stmt | None:
         The statement; None for a markdown cell, a cell that does not parse, or one of more
         (or no) statements.
     """
-    if cell["cell_type"] != "code":
-        return None
-    try:
-        body = ast.parse("".join(cell["source"])).body
-    except SyntaxError:
-        return None
-    return body[0] if len(body) == 1 else None
+    body = code_statements(cell)
+    return body[0] if body is not None and len(body) == 1 else None
 
 
 def stub_name(stmt: ast.stmt | None) -> str | None:

@@ -29,7 +29,7 @@ from pathlib import Path
 
 from .. import _access as access
 from .._validate import CamlabInputError
-from .lessons import called, find_lesson, only_statement, stub_name
+from .lessons import called, code_statements, find_lesson, only_statement, stub_name
 
 __all__ = ["is_demo_cell", "presentation_notebook", "serve"]
 
@@ -72,15 +72,11 @@ def is_demo_cell(cell: dict) -> bool:
     bool
         Whether the cell shows a demo.
     """
-    stmt = only_statement(cell)
-    if stmt is not None:
-        return isinstance(stmt, ast.Expr) and _is_demo_call(stmt.value)
-    if cell["cell_type"] != "code":
+    body = code_statements(cell)
+    if body is None:
         return False
-    try:
-        body = ast.parse("".join(cell["source"])).body
-    except SyntaxError:
-        return False
+    if len(body) == 1:
+        return isinstance(body[0], ast.Expr) and _is_demo_call(body[0].value)
     return (
         len(body) == 2
         and isinstance(body[0], ast.Assign)

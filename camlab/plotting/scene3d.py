@@ -39,6 +39,7 @@ from ..camera import Camera, project_segments
 from . import palette
 from .view3d import align_away, axes3d, fit_view, refresh_projection, set_equal_aspect
 from .wireframes import (
+    axis_artists,
     clip_segments,
     draw_points,
     draw_segments,
@@ -144,22 +145,9 @@ class CameraArtist:
         self.axes_lines, self.axes_text = [], []
         if show_axes:
             for c, name in zip(palette.AXIS_COLOURS, ("x", "y", "z"), strict=True):
-                (ln,) = ax.plot([], [], [], color=c, lw=2.0)
+                ln, text = axis_artists(ax, c, name)
                 self.axes_lines.append(ln)
-                self.axes_text.append(
-                    ax.text(
-                        0,
-                        0,
-                        0,
-                        name,
-                        color=c,
-                        fontsize=9,
-                        fontweight="bold",
-                        ha="center",
-                        va="center",
-                        path_effects=palette.halo(),
-                    )
-                )
+                self.axes_text.append(text)
         (self.centre_marker,) = ax.plot([], [], [], "o", color=color, ms=4)
         self.label = ax.text(0, 0, 0, label, color=color, fontsize=9) if label else None
         (self.lines,) = ax.plot(

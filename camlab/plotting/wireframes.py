@@ -8,7 +8,7 @@ Helpers of :mod:`camlab.plotting.scene3d`, which re-exports them.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -16,6 +16,8 @@ from numpy.typing import ArrayLike
 from . import palette, plane
 
 __all__ = [
+    "AxisArtists",
+    "axis_artists",
     "clip_segments",
     "draw_points",
     "draw_segments",
@@ -142,21 +144,66 @@ def draw_world_axes(
     for i, (c, name) in enumerate(zip(palette.AXIS_COLOURS, labels, strict=True)):
         e = o.copy()
         e[i] += length
-        (ln,) = ax.plot(*np.c_[o, e], color=c, lw=2.0)
-        out.append(ln)
-        out.append(
-            ax.text(
-                *(o + (e - o) * 1.12),
-                name,
-                color=c,
-                fontsize=9,
-                fontweight="bold",
-                ha="center",
-                va="center",
-                path_effects=palette.halo(),
-            )
-        )  # readable over the scene
+        out.extend(axis_artists(ax, c, name, (o, e)))
     return out
+
+
+class AxisArtists(NamedTuple):
+    """One drawn axis (:func:`axis_artists`).
+
+    Attributes
+    ----------
+    line : Line3D
+        The axis.
+    label : Text
+        Its name, bold, with a white halo.
+    """
+
+    line: Any
+    label: Any
+
+
+def axis_artists(ax, colour: str, name: str, segment: tuple | None = None) -> AxisArtists:
+    """One axis in 3-D: its line and its bold label with a white halo (readable over the scene).
+
+    The one style of every drawn axis, the world's (:func:`draw_world_axes`) and a camera's
+    (:class:`~camlab.plotting.scene3d.CameraArtist`).
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D
+        The 3-D axes to draw in.
+    colour : str
+        The axis colour, from :data:`~camlab.plotting.palette.AXIS_COLOURS`.
+    name : str
+        The label.
+    segment : ((3,) array_like, (3,) array_like) or None
+        The axis from its start to its end, world coordinates (m); the label sits 1.12 axis
+        lengths out. None draws nothing yet (line empty, label at the origin) for an artist that
+        is updated later.
+
+    Returns
+    -------
+    AxisArtists
+        ``line`` and ``label``.
+    """
+    if segment is None:
+        xyz, tip = ([], [], []), (0, 0, 0)
+    else:
+        o, e = np.asarray(segment[0], dtype=float), np.asarray(segment[1], dtype=float)
+        xyz, tip = np.c_[o, e], o + (e - o) * 1.12
+    (line,) = ax.plot(*xyz, color=colour, lw=2.0)
+    text = ax.text(
+        *tip,
+        name,
+        color=colour,
+        fontsize=9,
+        fontweight="bold",
+        ha="center",
+        va="center",
+        path_effects=palette.halo(),
+    )
+    return AxisArtists(line, text)
 
 
 def image_axes(ax, image_size: tuple[int, int], title: str = "", labels: bool = True) -> None:

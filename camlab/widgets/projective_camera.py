@@ -489,16 +489,18 @@ def _show_residual_bars(bars, err, ringed) -> list[tuple[int, float]]:
     return [(i, float(err[i])) for i in order]
 
 
-def _resectioning_figure(view):
-    """The figure of :func:`resectioning`.
+def _resectioning_cameras(view, cam, frame):
+    """The 3-D and image panels of :func:`resectioning` with the true and the estimated camera.
 
-    The 3-D scene with the true and the estimated camera, the image panel with the measured and
-    reprojected pixels, the key below; returns its artists by name.
+    Returns
+    -------
+    sv : SceneView
+        The true camera's scene view (3-D axes and image panel).
+    est_art : CameraArtist
+        The estimated camera, dashed orange.
+    ax_bars : Axes
+        The third panel, for the residual bars.
     """
-    cam, X, uv = fixtures.resection_set(12, 0.5)
-    box = scenes.box_wireframe((0.0, 0.0, 1.0), (2.0, 2.0, 2.0))
-    # The box's bottom edges lie on grid lines: drawn twice, two dash patterns interleave into a solid line.
-    frame = np.concatenate([box[np.any(box[:, :, 2] > 0, axis=1)], scenes.ground_grid(2.0, 1.0)])
     # No world or camera axes here: red, green and blue would mean axes in one place and data in another.
     # Three panels: the 3-D scene, the image, and each pair's residual as a bar (at 0.55 screen px per image
     # px a 17.5 px residual is 10 screen px, no longer than its + marker: the bars make the lengths comparable).
@@ -538,6 +540,19 @@ def _resectioning_figure(view):
     est_art.frustum.set_linestyle((0, (4, 2)))
     # a transparent colour, not "none": matplotlib 3.9 projects an empty colour array and fails
     est_art.plane.set_facecolor((1.0, 1.0, 1.0, 0.0))
+    return sv, est_art, ax_bars
+
+
+def _resectioning_marks(sv, X):
+    """The points and the marks of :func:`resectioning`, in the order a full draw stacks them.
+
+    Returns
+    -------
+    SimpleNamespace
+        ``faces`` and ``pts3d`` (the box's two faces of points), ``moved_3d``, ``pointer`` and
+        ``pointer_text`` in 3-D; ``moved_img``, ``meas``, ``reproj``, ``residuals``,
+        ``first_spot``, ``move_lines`` and ``est_lines`` in the image.
+    """
     # the two faces that hold the points, lightly shaded so the points read as lying on them
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
@@ -574,6 +589,34 @@ def _resectioning_figure(view):
     sv.image_lines.set(
         color=TRUE_VIEW_GREY, linewidth=TRUE_VIEW_LW, zorder=2.0
     )  # over the estimate's band
+    return SimpleNamespace(
+        faces=faces,
+        pts3d=pts3d,
+        moved_3d=moved_3d,
+        pointer=pointer,
+        pointer_text=pointer_text,
+        moved_img=moved_img,
+        meas=meas,
+        reproj=reproj,
+        residuals=residuals,
+        first_spot=first_spot,
+        move_lines=move_lines,
+        est_lines=est_lines,
+    )
+
+
+def _resectioning_figure(view):
+    """The figure of :func:`resectioning`.
+
+    The 3-D scene with the true and the estimated camera, the image panel with the measured and
+    reprojected pixels, the key below; returns its artists by name.
+    """
+    cam, X, uv = fixtures.resection_set(12, 0.5)
+    box = scenes.box_wireframe((0.0, 0.0, 1.0), (2.0, 2.0, 2.0))
+    # The box's bottom edges lie on grid lines: drawn twice, two dash patterns interleave into a solid line.
+    frame = np.concatenate([box[np.any(box[:, :, 2] > 0, axis=1)], scenes.ground_grid(2.0, 1.0)])
+    sv, est_art, ax_bars = _resectioning_cameras(view, cam, frame)
+    m = _resectioning_marks(sv, X)
     # The image's frame over the lines that run off its edges, live as in a full draw (a live frame drew the
     # box's lines over a static top spine: 113 pixels differed from the first draw)
     frame_spines = list(sv.ax_image.spines.values())
@@ -585,18 +628,18 @@ def _resectioning_figure(view):
     view.animate(
         *sv.artists(),
         *est_art.artists(),
-        faces,
-        pts3d,
-        moved_3d,
-        pointer,
-        pointer_text,
-        first_spot,
-        move_lines,
-        moved_img,
-        meas,
-        residuals,
-        reproj,
-        est_lines,
+        m.faces,
+        m.pts3d,
+        m.moved_3d,
+        m.pointer,
+        m.pointer_text,
+        m.first_spot,
+        m.move_lines,
+        m.moved_img,
+        m.meas,
+        m.residuals,
+        m.reproj,
+        m.est_lines,
         *frame_spines,
         *bars.artists,
     )
@@ -606,23 +649,7 @@ def _resectioning_figure(view):
         [[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])]
     )
     return SimpleNamespace(
-        room=room,
-        bars=bars,
-        frame=frame,
-        sv=sv,
-        est_art=est_art,
-        pts3d=pts3d,
-        moved_3d=moved_3d,
-        pointer=pointer,
-        pointer_text=pointer_text,
-        moved_img=moved_img,
-        first_spot=first_spot,
-        move_lines=move_lines,
-        residuals=residuals,
-        meas=meas,
-        reproj=reproj,
-        est_lines=est_lines,
-        info=info,
+        room=room, bars=bars, frame=frame, sv=sv, est_art=est_art, info=info, **vars(m)
     )
 
 
@@ -735,9 +762,28 @@ def resectioning():
         title="Resection: estimate P from N point pairs (DLT); click the image (or use the shift sliders) to move a pixel",
         extra=[art.info],
     )
+    _connect_resectioning_click(demo, art.sv.ax_image, clicked, update)
+    return demo
+
+
+def _connect_resectioning_click(demo, ax_image, clicked, update):
+    """Connect :func:`resectioning`'s click: move the nearest measured pixel to where you clicked.
+
+    Parameters
+    ----------
+    demo : Demo
+        The demo; its handler is stored as ``demo.handlers["button_press_event"]`` (tests call
+        it with an object carrying ``inaxes``, ``xdata``, ``ydata``).
+    ax_image : Axes
+        The image panel; clicks elsewhere are ignored.
+    clicked : dict
+        {correspondence index: clicked pixel}, shared with the demo's ``update``.
+    update : callable
+        The demo's ``update(values, state)``, run after each click.
+    """
 
     def on_click(event):
-        if event.inaxes is not art.sv.ax_image or event.xdata is None:
+        if event.inaxes is not ax_image or event.xdata is None:
             return
         uvn = demo.state["points_image"]
         i = int(np.argmin(np.linalg.norm(uvn - [event.xdata, event.ydata], axis=1)))
@@ -745,11 +791,8 @@ def resectioning():
         update({k: c.value for k, c in demo.controls.items()}, demo.state)
         demo.view.refresh()
 
-    view.fig.canvas.mpl_connect("button_press_event", on_click)
-    demo.handlers["button_press_event"] = (
-        on_click  # tests call it with an object carrying inaxes, xdata, ydata
-    )
-    return demo
+    demo.view.fig.canvas.mpl_connect("button_press_event", on_click)
+    demo.handlers["button_press_event"] = on_click
 
 
 @register(lesson="04", sweep={"orbit": [-90, -60, 60, 90], "frame": ["OpenGL / Blender", "OpenCV"]})
@@ -768,32 +811,10 @@ def opencv_vs_opengl():
         Blender's ``matrix_world`` in OpenGL) and ``state`` (``R_axes``, the axes drawn as rows;
         ``frame``; ``camera``; ``matrix_world``).
     """
-    from mpl_toolkits.mplot3d import Axes3D  # noqa: F401  (registers the 3-D projection)
-
-    view = FigureView(
-        figsize=(6.0, 4.0)
-    )  # 600 px: the axes and their labels readable beside the matrices
-    ax = scene3d.axes3d(view.fig, 1, 1, 1, elev=VIEW_GL_ELEV, azim=_view_gl_azim(0.0))
-    ax.set_axis_off()
-    ax.set_position(
-        (0.0, -0.12, 1.0, 1.2)
-    )  # 3-D axes keep a square box: let it fill the wide canvas
-    world = scene3d.draw_world_axes(ax, 0.6)
-    house_segments = scenes.house_wireframe((0.0, 0.0, 0.0), 0.6)
-    house = scene3d.draw_segments(ax, house_segments, color=palette.GREY)
-    cam0 = cm.Camera.look_at(EYE_GL, [0.0, 0.0, 0.4])
-    art = scene3d.CameraArtist(
-        ax, cam0, size=0.5, show_axes=False
-    )  # about half the axes' length, so "z forward" clears the frustum's far edge
-    lines, texts = [], []
-    for c in palette.AXIS_COLOURS:
-        (ln,) = ax.plot([], [], [], color=c, lw=2.5)
-        lines.append(ln)
-        texts.append(ax.text(0, 0, 0, "", color=c, fontsize=9, fontweight="bold"))
+    # 600 px: the axes and their labels readable beside the matrices
+    view = FigureView(figsize=(6.0, 4.0))
+    ax, house_segments, art, lines, texts = _opengl_figure(view)
     title = W.HTML()  # the formula beside the figure: long canvas text costs ~7 ms per redraw
-    # The limits follow the orbiting camera (house, axes and labels fill the canvas at every angle), so
-    # everything in the 3-D axes moves with the projection and is animated.
-    view.animate(*world, house, *art.artists(), *lines, *texts)
     controls = {
         "orbit": slider(0, -90, 90, 2, "orbit (deg)"),
         "frame": W.ToggleButtons(
@@ -826,28 +847,7 @@ def opencv_vs_opengl():
         R_gl, t_gl = cm.opengl_from_opencv(cam.R, cam.t)
         matrix_world = np.eye(4)  # Blender's world_from_cam: the inverse of [R_gl | t_gl]
         matrix_world[:3, :3], matrix_world[:3, 3] = R_gl.T, C
-        numbers = (
-            _matrix("R_gl", R_gl, 3) + "\n" + f"t_gl = {_fmt(t_gl)} m\n"
-            "matrix_world = [[R_gl^T, C], [0, 1]] (exercise 5):\n"
-            + _matrix("matrix_world", matrix_world, 3)
-            if gl
-            else _matrix("R", cam.R, 3) + "\n" + f"t = {_fmt(cam.t)} m\nC = -R^T t = {_fmt(C)} m"
-        )
-        title.value = (
-            (
-                "<pre>OpenGL/Blender: R_gl = diag(1,-1,-1) R, t_gl = diag(1,-1,-1) t\n"
-                "camera looks along its -z axis (rows 2 and 3 of R flipped)\n"
-                if gl
-                else "<pre>OpenCV / H&amp;Z: X_cam = R X + t\ncamera looks along its +z axis\n"
-            )
-            + (
-                "rows of R_gl = the drawn axes, in world coordinates\n"
-                if gl
-                else "rows of R = the drawn axes, in world coordinates\n"
-            )
-            + numbers
-            + "\nin the figure: world axes 0.6 m, camera axes 0.9 m, house 0.6 m wide</pre>"
-        )
+        title.value = _opengl_text(gl, cam, R_gl, t_gl, matrix_world)
         state.update(R_axes=R_axes, frame=v["frame"], camera=cam, matrix_world=matrix_world)
 
     return build_demo(
@@ -858,3 +858,86 @@ def opencv_vs_opengl():
         title="Same camera, two axis conventions",
         extra=[title],
     )
+
+
+def _opengl_text(gl, cam, R_gl, t_gl, matrix_world):
+    """The formula and the matrices :func:`opencv_vs_opengl` shows beside its figure (HTML).
+
+    Parameters
+    ----------
+    gl : bool
+        True for the OpenGL/Blender frame, False for OpenCV.
+    cam : Camera
+        The camera (OpenCV frame).
+    R_gl, t_gl : ndarray
+        Its pose in the OpenGL frame.
+    matrix_world : (4, 4) ndarray
+        Blender's ``matrix_world``.
+
+    Returns
+    -------
+    str
+        The ``<pre>`` block.
+    """
+    C = cam.centre
+    numbers = (
+        _matrix("R_gl", R_gl, 3) + "\n" + f"t_gl = {_fmt(t_gl)} m\n"
+        "matrix_world = [[R_gl^T, C], [0, 1]] (exercise 5):\n"
+        + _matrix("matrix_world", matrix_world, 3)
+        if gl
+        else _matrix("R", cam.R, 3) + "\n" + f"t = {_fmt(cam.t)} m\nC = -R^T t = {_fmt(C)} m"
+    )
+    return (
+        (
+            "<pre>OpenGL/Blender: R_gl = diag(1,-1,-1) R, t_gl = diag(1,-1,-1) t\n"
+            "camera looks along its -z axis (rows 2 and 3 of R flipped)\n"
+            if gl
+            else "<pre>OpenCV / H&amp;Z: X_cam = R X + t\ncamera looks along its +z axis\n"
+        )
+        + (
+            "rows of R_gl = the drawn axes, in world coordinates\n"
+            if gl
+            else "rows of R = the drawn axes, in world coordinates\n"
+        )
+        + numbers
+        + "\nin the figure: world axes 0.6 m, camera axes 0.9 m, house 0.6 m wide</pre>"
+    )
+
+
+def _opengl_figure(view):
+    """The 3-D figure of :func:`opencv_vs_opengl`: world axes, the house, the camera, its axes.
+
+    Returns
+    -------
+    ax : Axes3D
+        The 3-D axes.
+    house_segments : (M, 2, 3) ndarray
+        The house, metres.
+    art : CameraArtist
+        The camera.
+    lines, texts : list
+        The camera's three axes and their labels, in the order x, y, z.
+    """
+    from mpl_toolkits.mplot3d import Axes3D  # noqa: F401  (registers the 3-D projection)
+
+    ax = scene3d.axes3d(view.fig, 1, 1, 1, elev=VIEW_GL_ELEV, azim=_view_gl_azim(0.0))
+    ax.set_axis_off()
+    ax.set_position(
+        (0.0, -0.12, 1.0, 1.2)
+    )  # 3-D axes keep a square box: let it fill the wide canvas
+    world = scene3d.draw_world_axes(ax, 0.6)
+    house_segments = scenes.house_wireframe((0.0, 0.0, 0.0), 0.6)
+    house = scene3d.draw_segments(ax, house_segments, color=palette.GREY)
+    cam0 = cm.Camera.look_at(EYE_GL, [0.0, 0.0, 0.4])
+    art = scene3d.CameraArtist(
+        ax, cam0, size=0.5, show_axes=False
+    )  # about half the axes' length, so "z forward" clears the frustum's far edge
+    lines, texts = [], []
+    for c in palette.AXIS_COLOURS:
+        (ln,) = ax.plot([], [], [], color=c, lw=2.5)
+        lines.append(ln)
+        texts.append(ax.text(0, 0, 0, "", color=c, fontsize=9, fontweight="bold"))
+    # The limits follow the orbiting camera (house, axes and labels fill the canvas at every angle), so
+    # everything in the 3-D axes moves with the projection and is animated.
+    view.animate(*world, house, *art.artists(), *lines, *texts)
+    return ax, house_segments, art, lines, texts

@@ -244,6 +244,38 @@ def common_context(camera, X0, fix=""):
     return SimpleNamespace(camera=camera, X0=X0, K=K, R=R, t=t, d0=float(R[2] @ X0 + t[2]), fix=fix)
 
 
+def common_slip(name, formula):
+    """The shared slip ``name`` (a row of :data:`COMMON_MISTAKES`) as a student's function.
+
+    Parameters
+    ----------
+    name : str
+        The row's name.
+    formula : callable
+        ``formula(camera, X0, K, R, t, d0)``: the exercise's camera built from the parts the
+        slip may have changed (its row's answer replaces some of K, R, t and d0).
+
+    Returns
+    -------
+    callable
+        ``wrong(camera, X0)``, the 3x4 camera a student with that slip returns.
+    """
+    [row] = [m for m in COMMON_MISTAKES if m.name == name]
+
+    def wrong(camera, X0):
+        context = common_context(camera, X0)
+        kw = {
+            "K": context.K,
+            "R": context.R,
+            "t": context.t,
+            "d0": context.d0,
+            **(row.answer(context) or {}),  # None: the slip changes nothing here
+        }
+        return formula(camera, X0, **kw)
+
+    return wrong
+
+
 def nearly_right_cause(g, expected, fix) -> str | None:
     """The cause when every entry is near the answer but not within the exercise's 1e-7.
 

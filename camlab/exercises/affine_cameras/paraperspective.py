@@ -14,10 +14,9 @@ from ... import affine as af
 from .._answers import same_array, shape_problem
 from .._core import Exercise, Mistake, first_mistake, mistake_variant, register_exercise
 from ._approx_common import (
-    COMMON_MISTAKES,
     P_PARA,
     approx_cases,
-    common_context,
+    common_slip,
     depth_and_ab,
     image_of_X0_as_translation,
     last_row_cause,
@@ -293,21 +292,10 @@ def _ab_used(g, camera, d0):
 
 def _para_mistake(name):
     """The shared slip ``name`` (a row of COMMON_MISTAKES), built for para-perspective, as a student's function."""
-    [row] = [m for m in COMMON_MISTAKES if m.name == name]
-
-    def wrong(camera, X0):
-        K, R, t = camera.K, camera.R, camera.t
-        x_c = R @ X0 + t
-        kw = {
-            "K": K,
-            "R": R,
-            "t": t,
-            "d0": float(x_c[2]),
-            **(row.answer(common_context(camera, X0)) or {}),  # None: the slip changes nothing here
-        }
-        return p_para(kw["K"], kw["R"], kw["t"], kw["d0"], x_c[:2] / kw["d0"])
-
-    return wrong
+    return common_slip(
+        name,
+        lambda camera, X0, K, R, t, d0: p_para(K, R, t, d0, (camera.R @ X0 + camera.t)[:2] / d0),
+    )
 
 
 def _para_ab_without_skew(camera, X0):

@@ -18,10 +18,9 @@ from ... import affine as af
 from .._answers import same_array, shape_problem
 from .._core import Exercise, Mistake, first_mistake, mistake_variant, register_exercise
 from ._approx_common import (
-    COMMON_MISTAKES,
     P_INF,
     approx_cases,
-    common_context,
+    common_slip,
     image_of_X0_as_translation,
     last_row_cause,
     match_mistake,
@@ -195,20 +194,7 @@ def _approx_top_rows_cause(g, expected, camera, X0, d0) -> str:
 
 def _mistake(name):
     """The shared slip ``name`` (a row of COMMON_MISTAKES), built for weak perspective, as a student's function."""
-    [row] = [m for m in COMMON_MISTAKES if m.name == name]
-
-    def wrong(camera, X0):
-        K, R, t = camera.K, camera.R, camera.t
-        kw = {
-            "K": K,
-            "R": R,
-            "t": t,
-            "d0": float(R[2] @ X0 + t[2]),
-            **(row.answer(common_context(camera, X0)) or {}),  # None: the slip changes nothing here
-        }
-        return p_inf(kw["K"], kw["R"], kw["t"], kw["d0"])
-
-    return wrong
+    return common_slip(name, lambda camera, X0, K, R, t, d0: p_inf(K, R, t, d0))
 
 
 def _approx_unnormalised(camera, X0):

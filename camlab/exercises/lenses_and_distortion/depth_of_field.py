@@ -47,10 +47,22 @@ def _by_sensor(s, end):
     return s.f / s.c * abs(z_s - z_i) / z_s
 
 
+def _n_focused_at(s, focus, end):
+    """N that blurs ``end`` to exactly c with the lens focused at ``focus``: f^2 |end - focus| / (c end (focus - f))."""
+    return s.f**2 * abs(end - focus) / (s.c * end * (focus - s.f))
+
+
+def _focused_at(s, focus):
+    """True when the answer is N focused at ``focus`` with the blur c at the near or the far end."""
+    return np.isclose(s.g, _n_focused_at(s, focus, s.n)) or np.isclose(
+        s.g, _n_focused_at(s, focus, s.r)
+    )
+
+
 def _one_end(s):
     """'near' or 'far' when the answer is N focused at that end (sharp there, c at the other), else None."""
     for focus, other, where in ((s.n, s.r, "near"), (s.r, s.n, "far")):
-        if np.isclose(s.g, s.f**2 * abs(other - focus) / (s.c * other * (focus - s.f))):
+        if np.isclose(s.g, _n_focused_at(s, focus, other)):
             return where
     return None
 
@@ -58,10 +70,7 @@ def _one_end(s):
 _F_NUMBER_MISTAKES = (
     Mistake(
         "geometric mean focus",
-        lambda s: (
-            np.isclose(s.g, s.f**2 * (s.geometric - s.n) / (s.c * s.n * (s.geometric - s.f)))
-            or np.isclose(s.g, s.f**2 * (s.r - s.geometric) / (s.c * s.r * (s.geometric - s.f)))
-        ),
+        lambda s: _focused_at(s, s.geometric),
         (
             "you focused at the geometric mean sqrt(near far); equal blur at both ends needs "
             "(s - near) / near = (far - s) / far, whose solution is the harmonic mean 2 near far / (near + far)"
@@ -81,10 +90,7 @@ _F_NUMBER_MISTAKES = (
     ),
     Mistake(
         "midpoint focus",
-        lambda s: (
-            np.isclose(s.g, s.f**2 * (s.mid - s.n) / (s.c * s.n * (s.mid - s.f)))
-            or np.isclose(s.g, s.f**2 * (s.r - s.mid) / (s.c * s.r * (s.mid - s.f)))
-        ),
+        lambda s: _focused_at(s, s.mid),
         (
             "you focused at the midpoint (near + far) / 2; the blur grows as |z - s| / z, faster in front of the "
             "focus than behind it, so equal blur at both ends needs s = 2 near far / (near + far), the harmonic mean"

@@ -124,14 +124,15 @@ def _pixel_slip(got, expected, P=None) -> str:
                     f"column), so x / w is the pixel itself, counted from the top-left pixel's centre: return "
                     f"x / w with nothing {how}."
                 )
-    if np.allclose(shift, shift[0], atol=1e-6) and np.allclose(np.abs(shift[0]), 0.5, atol=1e-6):
+    same_shift = np.allclose(shift, shift[0], atol=1e-6)  # every pixel moved by the same (du, dv)
+    if same_shift and np.allclose(np.abs(shift[0]), 0.5, atol=1e-6):
         return (
             "every pixel is off by half a pixel: P already puts pixel centres at integers (the principal "
             "point is in P), so return x / w as it is, with no +-0.5."
         )
     for axis, name, other in ((0, "u", "v"), (1, "v", "u")):
         if (
-            np.allclose(shift, shift[0], atol=1e-6)
+            same_shift
             and np.isclose(abs(shift[0, axis]), 0.5, atol=1e-6)
             and np.isclose(shift[0, 1 - axis], 0.0, atol=1e-6)
         ):
@@ -140,12 +141,12 @@ def _pixel_slip(got, expected, P=None) -> str:
                 f"coordinate only, as from a pixel-edge convention (the image's left edge at 0) on {name}. P already "
                 f"puts pixel centres at integers on both axes (the principal point is in P): return x / w as it is."
             )
-    if np.allclose(shift, shift[0], atol=1e-6) and np.allclose(np.abs(shift[0]), 1.0, atol=1e-6):
+    if same_shift and np.allclose(np.abs(shift[0]), 1.0, atol=1e-6):
         return (
             "every pixel is off by one: pixel indices start at 0 (the top-left pixel's centre is (0, 0), in numpy "
             "as in camlab and OpenCV), and P already puts them there; return x / w as it is, with no +-1."
         )
-    if np.allclose(shift, shift[0], atol=1e-6) and np.abs(shift[0]).max() > 1.0:
+    if same_shift and np.abs(shift[0]).max() > 1.0:
         return (
             f"every pixel is shifted by the same ({shift[0, 0]:.4g}, {shift[0, 1]:.4g}) px: did you subtract an image "
             f"centre such as (320, 240)? Pixels count from the top-left pixel's centre, and P already puts them "
