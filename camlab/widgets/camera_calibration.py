@@ -345,7 +345,7 @@ def view_inspector(
         )
         readout.value = monospace(
             f"view {k} ({out.names[i]})\nrms {res.per_view_rms[k]:.3f} px "
-            f"(median {np.median(res.per_view_rms):.3f})\nworst corner {worst}: "
+            f"(median view {np.median(res.per_view_rms):.3f})\nworst corner {worst}: "
             f"{np.linalg.norm(r[worst]):.3f} px\narrows ×{v['magnify']:.0f}"
         )
 
