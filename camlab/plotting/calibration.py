@@ -165,12 +165,14 @@ def plot_coverage(ax, result: CalibrationResult, report: CoachReport | None = No
     report = coach(result) if report is None else report
     w, h = result.image_size
     rows, cols = report.coverage_grid.shape
-    image_frame(ax, result.image_size, f"Coverage {100 * report.coverage:.0f}% of cells")
+    image_frame(
+        ax, result.image_size, f"Coverage {100 * report.coverage:.0f}% of cells (grey: no corner)"
+    )
     empty = np.ma.masked_where(report.coverage_grid > 0, np.ones_like(report.coverage_grid, float))
     ax.imshow(
         empty,
         extent=(-0.5, w - 0.5, h - 0.5, -0.5),
-        cmap="Reds",
+        cmap="Greys",
         vmin=0,
         vmax=2.5,
         alpha=0.6,

@@ -26,13 +26,13 @@ from .controls import int_slider, monospace
 
 _NAMES = ("fx", "fy", "cx", "cy")
 _PX_FLOOR, _PX_CEIL = 1e-3, 300.0  # the log axis of errors and 3 sigma, px
-_BAR_SHIFT = 0.13  # each 3-sigma bar this far left of its tick, the error's dot as far right
+_TICK_HALF = 0.25  # half the width of each 3-sigma tick, centred on the error's dot
 
 
 def _accuracy_figure(view: FigureView, s) -> SimpleNamespace:
     """The figure of :func:`accuracy_vs_views`.
 
-    Each intrinsic's actual error beside three reported sigma, in pixels on a log axis (left),
+    Each intrinsic's actual error (a dot) against three reported sigma (a tick), px on a log axis (left),
     and the corners used (right); returns its animated artists by name.
     """
     ax, axi = view.fig.subplots(1, 2, width_ratios=[1, 1.3])
@@ -49,40 +49,35 @@ def _accuracy_figure(view: FigureView, s) -> SimpleNamespace:
     )
     ax.title.set_fontsize(10)
     ax.grid(True, axis="y", which="major", color="0.9")
-    # side by side, the bar left of its dot, so neither hides the other
-    bars = ax.vlines(
-        np.arange(4) - _BAR_SHIFT,
-        _PX_FLOOR,
-        _PX_FLOOR,
+    # 3 reported sigma as a horizontal tick, the error as a dot on the same x: a dot above its
+    # tick is an error beyond 3 sigma (on a log axis only heights mean something, so no bars)
+    bars = ax.hlines(
+        np.full(4, _PX_FLOOR),
+        np.arange(4) - _TICK_HALF,
+        np.arange(4) + _TICK_HALF,
         color=palette.BLUE,
-        lw=10,
+        lw=3,
         label="3 × reported σ",
     )
-    (dots,) = ax.plot([], [], "o", color=palette.TAB_RED, ms=7, label="|actual error|")
+    (dots,) = ax.plot([], [], "o", color="k", ms=6, ls="none", label="|actual error|")
     (above,) = ax.plot(
-        [],
-        [],
-        "^",
-        ls="none",
-        color=palette.TAB_RED,
-        ms=11,
-        label=f"above {_PX_CEIL:.0f} px (clipped)",
-    )
+        [], [], "^", ls="none", color="k", ms=10
+    )  # beyond the axis (not seen in practice)
     title = ax.title
     view.animate(bars, dots, above, title)
     ax.legend(
         loc="upper center",
         bbox_to_anchor=(0.5, -0.1),
-        ncol=3,
+        ncol=2,
         fontsize=7,
         handlelength=1.2,
         handletextpad=0.9,
     )
     view.animate(ax.get_legend())  # below the axes, off the data
-    image_frame(axi, s.image_size, "Corners used; the last view added in red")
+    image_frame(axi, s.image_size, "Corners used; the last view added in orange")
     pts = axi.scatter(np.zeros(0), np.zeros(0), s=3, color="0.55", linewidths=0)
-    (last,) = axi.plot([], [], ".", color=palette.TAB_RED, ms=4)
-    (outline,) = axi.plot([], [], "-", color=palette.TAB_RED, lw=1)
+    (last,) = axi.plot([], [], ".", color=palette.ORANGE, ms=4)
+    (outline,) = axi.plot([], [], "-", color=palette.ORANGE, lw=1)
     view.animate(pts, last, outline)
     return SimpleNamespace(
         dots=dots, above=above, bars=bars, pts=pts, last=last, outline=outline, title=title
@@ -191,15 +186,12 @@ def accuracy_vs_views() -> Demo:
         top = _PX_CEIL / 1.3  # clipped values sit just inside the axis
         bar = np.clip(3 * std, _PX_FLOOR, top)
         art.bars.set_segments(
-            [
-                [(xi - _BAR_SHIFT, _PX_FLOOR), (xi - _BAR_SHIFT, b)]
-                for xi, b in zip(x, bar, strict=True)
-            ]
+            [[(xi - _TICK_HALF, b), (xi + _TICK_HALF, b)] for xi, b in zip(x, bar, strict=True)]
         )
         size = np.clip(np.abs(err), _PX_FLOOR * 1.3, top)
-        dots.set_data(x + _BAR_SHIFT, size)
+        dots.set_data(x, size)
         clipped = np.abs(err) > top
-        above.set_data(x[clipped] + _BAR_SHIFT, np.full(clipped.sum(), top))
+        above.set_data(x[clipped], np.full(clipped.sum(), top))
         art.title.set_text(_accuracy_title(n, sigma, err, std))
         readout.value = _accuracy_readout(n, sigma, res, s, est, std, truth, err, z)
 
@@ -208,7 +200,7 @@ def accuracy_vs_views() -> Demo:
         _accuracy_controls(),
         view,
         update,
-        title="More views, less noise: a better camera",
+        title="Accuracy against views and noise",
         extra=[readout],
     )
 
@@ -353,7 +345,7 @@ def view_inspector(
         )
         readout.value = monospace(
             f"view {k} ({out.names[i]})\nrms {res.per_view_rms[k]:.3f} px "
-            f"(median {np.median(res.per_view_rms):.3f})\nworst corner {worst}: "
+            f"(median view {np.median(res.per_view_rms):.3f})\nworst corner {worst}: "
             f"{np.linalg.norm(r[worst]):.3f} px\narrows ×{v['magnify']:.0f}"
         )
 
