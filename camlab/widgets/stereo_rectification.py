@@ -199,11 +199,13 @@ def _show_epipole(e, marker, shaft, head, ax) -> None:
     head.set_marker(arrow_marker(direction, ax))
 
 
-def _epipolar_readout(v: dict, e2: np.ndarray, inside: bool, uv: np.ndarray, l2: np.ndarray) -> str:
+def _epipolar_readout(
+    v: dict, e2: np.ndarray, inside: bool, uv: np.ndarray, l2: np.ndarray, skipped: np.ndarray
+) -> str:
     """The text beside :func:`epipolar_lines`.
 
-    The motion, the right epipole ``e2`` and how far the depth marks ``uv`` (px) lie from the
-    epipolar line ``l2``.
+    The motion, the right epipole ``e2``, how far the depth marks ``uv`` (px) lie from the
+    epipolar line ``l2``, and the reference pixels ``skipped`` because they are the left epipole.
     """
     at_inf = abs(e2[2]) < 1e-9
     ep2 = (
@@ -219,6 +221,10 @@ def _epipolar_readout(v: dict, e2: np.ndarray, inside: bool, uv: np.ndarray, l2:
             else f"second camera turned {v['toe_in']:g} deg\n"
         )
         + ("the right epipole is inside the image: the lines fan out from it\n" if inside else "")
+        + "".join(
+            f"the pixel ({u:g}, {w:g}) is the left epipole: its epipolar line is undefined (not drawn)\n"
+            for u, w in skipped
+        )
         + f"right epipole e' = {ep2}\n"
         f"max distance of the depth marks from l' = "
         f"{np.nanmax(np.abs(np.append(uv, np.ones((len(uv), 1)), 1) @ l2)):.1e} px"
@@ -293,10 +299,14 @@ def epipolar_lines() -> Demo:
         art.point.set_data([x[0]], [x[1]])
         art.line_r.set_data(*_line_polyline(l2[None]).T)
         art.line_l.set_data(*_line_polyline(l1[None]).T)
-        art.pencil_r.set_data(*_line_polyline(ep.epipolar_lines(F, ref, image=1)).T)
-        art.pencil_l.set_data(
-            *_line_polyline(np.cross(np.column_stack([ref, np.ones(len(ref))]), e.e1)).T
-        )
+        # a reference pixel at the left epipole (the centre, in forward motion) has no epipolar
+        # line: epipolar_lines gives NaN there and the pencils skip it rather than draw noise
+        pencil_r = ep.epipolar_lines(F, ref, image=1)
+        on_epipole = np.isnan(pencil_r[:, 0])
+        pencil_l = np.cross(np.column_stack([ref, np.ones(len(ref))]), e.e1)
+        art.pencil_r.set_data(*_line_polyline(pencil_r[~on_epipole]).T)
+        art.pencil_l.set_data(*_line_polyline(pencil_l[~on_epipole]).T)
+        state.update(pencil_skipped=ref[on_epipole])
         art.depth_dots.set_data(uv[:, 0], uv[:, 1])
         # the epipoles as the images of the other camera's centre, P' C and P C': the same points as
         # F's null vectors, with a sign that says on which side the other camera is (for w = 0 too)
@@ -306,7 +316,7 @@ def epipolar_lines() -> Demo:
         _show_epipole(e2_dir, art.epi_r, shafts[1], heads[1], axr)
         inside = not arrow_to_infinity(e.e2, axr)[1].any()
         state.update(epipole_inside=inside)
-        readout.value = _epipolar_readout(v, e.e2, inside, uv, l2)
+        readout.value = _epipolar_readout(v, e.e2, inside, uv, l2, ref[on_epipole])
         state.update(F=F, epipoles=e, line_right=l2, depth_points=uv, point=x)
 
     demo = build_demo(
