@@ -71,3 +71,10 @@ def test_rectifying_rotation_names_each_typical_slip(index):
     wrong, needle = EXERCISES["rectifying_rotation"].wrong_variants[index]
     with pytest.raises(AssertionError, match=r"likely cause: .*" + needle):
         check("rectifying_rotation", wrong)
+
+
+def test_eight_point_names_division_by_the_image_size_without_centring():
+    from camlab.exercises.stereo_rectification.eight_point import _scaled_not_centred
+
+    with pytest.raises(AssertionError, match=r"did not centre them \(divided by the image size\)"):
+        check("eight_point", lambda x1, x2: _scaled_not_centred(x1, x2, (1 / 640, 1 / 480)))
