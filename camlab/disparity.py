@@ -23,6 +23,8 @@ unit) along the rectified optical axis. See docs/conventions.md.
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -31,6 +33,7 @@ from ._validate import CamlabInputError, as_float, check_image, check_integer, c
 __all__ = [
     "bad_pixel_rate",
     "block_matching_disparity",
+    "CostCurve",
     "box_sum",
     "matching_cost",
     "disparity_to_depth",
@@ -111,6 +114,17 @@ def box_sum(a: np.ndarray, size: int) -> np.ndarray:
     return out
 
 
+class CostCurve(NamedTuple):
+    """One left pixel's matching cost against disparity (:func:`matching_cost`).
+
+    ``disparities`` (D,) int, pixels; ``cost`` (D,) float, inf where the window would leave the
+    right image.
+    """
+
+    disparities: np.ndarray
+    cost: np.ndarray
+
+
 def matching_cost(
     left: ArrayLike,
     right: ArrayLike,
@@ -120,7 +134,7 @@ def matching_cost(
     block_size: int = 9,
     *,
     min_disparity: int = 0,
-) -> tuple[np.ndarray, np.ndarray]:
+) -> CostCurve:
     r"""The cost curve of one left pixel: step 1 of :func:`block_matching_disparity`, alone.
 
     For each :math:`d` the sum over the ``block_size`` window around (u, v) of
@@ -141,10 +155,9 @@ def matching_cost(
 
     Returns
     -------
-    ds : (D,) int ndarray
-        The disparities ``min_disparity`` ... ``max_disparity``.
-    cost : (D,) float ndarray
-        Their costs; inf where the window would leave the right image.
+    CostCurve
+        ``disparities`` ``min_disparity`` ... ``max_disparity`` and their ``cost``; inf where
+        the window would leave the right image.
     """
     L, R = _grey_pair(left, right)
     h, w = L.shape
@@ -163,7 +176,7 @@ def matching_cost(
     for k, d in enumerate(ds):
         if u >= d + r:  # the whole window stays inside the right image
             cost[k] = np.abs(Lz[rows, cols] - Rz[rows, cols - d]).sum()
-    return ds, cost
+    return CostCurve(ds, cost)
 
 
 def block_matching_disparity(

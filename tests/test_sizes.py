@@ -23,11 +23,6 @@ MAX_FUNCTION_LINES = 80
 # (camlab.projective), a function by module, classes and enclosing functions
 # (camlab.optimise.levenberg_marquardt, camlab.widgets.projective_camera.resectioning.update).
 EXCEPTIONS = {
-    # grew past 80 lines in lesson 11's review fix (i29-11b: legends naming every mark, the walls
-    # border masks, the window-size readout); to be split by step like the other builders
-    "camlab.widgets.stereo_rectification._epipolar_figure": "grew in i29-11b; split next",
-    "camlab.widgets.stereo_rectification.rectify_pair": "grew in i29-11b; split next",
-    "camlab.widgets.stereo_rectification.disparity_depth": "grew in i29-11b; split next",
     # grew past 80 lines in lesson 04's review round 7 (i28-04f: residual lines, the moved pixel's first
     # spot, a fuller OpenGL readout); to be split by step like the other builders
     "camlab.widgets.projective_camera._resectioning_figure": "grew in i28-04f; split next",
