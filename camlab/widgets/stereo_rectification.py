@@ -218,7 +218,8 @@ def _epipolar_readout(
     ep2 = (
         "at infinity (lines parallel)"
         if at_inf
-        else f"({e2[0] / e2[2]:.0f}, {e2[1] / e2[2]:.0f}) px"
+        else f"({e2[0] / e2[2]:.0f}, {e2[1] / e2[2]:.0f}) px, "
+        f"|u(e') - c_x| = {abs(e2[0] / e2[2] - (SIZE[0] - 1) / 2):,.0f} px"
     )
     return monospace(
         f"{v['motion']}: baseline {v['baseline']:.2f} m, "
