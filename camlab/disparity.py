@@ -23,6 +23,8 @@ unit) along the rectified optical axis. See docs/conventions.md.
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -31,7 +33,9 @@ from ._validate import CamlabInputError, as_float, check_image, check_integer, c
 __all__ = [
     "bad_pixel_rate",
     "block_matching_disparity",
+    "CostCurve",
     "box_sum",
+    "matching_cost",
     "disparity_to_depth",
     "disparity_to_points",
     "sgbm_disparity",
@@ -108,6 +112,71 @@ def box_sum(a: np.ndarray, size: int) -> np.ndarray:
         S[n + r + 1 :] = S[n + r]  # zero beyond the edge: the running sum stays flat
         out = np.moveaxis(S[size:] - S[:-size], 0, axis)
     return out
+
+
+class CostCurve(NamedTuple):
+    """One left pixel's matching cost against disparity (:func:`matching_cost`).
+
+    ``disparities`` (D,) int, pixels; ``cost`` (D,) float, inf where the window would leave the
+    right image.
+    """
+
+    disparities: np.ndarray
+    cost: np.ndarray
+
+
+def matching_cost(
+    left: ArrayLike,
+    right: ArrayLike,
+    u: int,
+    v: int,
+    max_disparity: int = 64,
+    block_size: int = 9,
+    *,
+    min_disparity: int = 0,
+) -> CostCurve:
+    r"""The cost curve of one left pixel: step 1 of :func:`block_matching_disparity`, alone.
+
+    For each :math:`d` the sum over the ``block_size`` window around (u, v) of
+    :math:`|\tilde L(v, u) - \tilde R(v, u - d)|`, the images minus their local window
+    mean, as in the cost volume: the volume's column at (u, v), to draw the curve whose
+    minimum, parabola and second minimum the matcher uses.
+
+    Parameters
+    ----------
+    left, right : (H, W) or (H, W, 3) array_like
+        A rectified pair, ``img[v, u]``.
+    u, v : int
+        The left pixel (column, row).
+    max_disparity, min_disparity : int
+        The search range, pixels.
+    block_size : int
+        Odd window size, pixels.
+
+    Returns
+    -------
+    CostCurve
+        ``disparities`` ``min_disparity`` ... ``max_disparity`` and their ``cost``; inf where
+        the window would leave the right image.
+    """
+    L, R = _grey_pair(left, right)
+    h, w = L.shape
+    D, b = _check_search(max_disparity, block_size, w)
+    if not (0 <= int(u) < w and 0 <= int(v) < h):
+        raise CamlabInputError(
+            f"u, v: expected a pixel inside the {w} x {h} image, got ({u!r}, {v!r})"
+        )
+    count = box_sum(np.ones((h, w)), b)
+    Lz = L - box_sum(L, b) / count
+    Rz = R - box_sum(R, b) / count
+    r, u, v = b // 2, int(u), int(v)
+    rows, cols = slice(max(v - r, 0), v + r + 1), np.arange(max(u - r, 0), min(u + r + 1, w))
+    ds = np.arange(int(min_disparity), D + 1)
+    cost = np.full(len(ds), np.inf)
+    for k, d in enumerate(ds):
+        if u >= d + r:  # the whole window stays inside the right image
+            cost[k] = np.abs(Lz[rows, cols] - Rz[rows, cols - d]).sum()
+    return CostCurve(ds, cost)
 
 
 def block_matching_disparity(

@@ -99,3 +99,20 @@ def test_bad_input():
         dp.block_matching_disparity(img, img[:, :-1], 8)
     with pytest.raises(CamlabInputError, match="baseline: expected a positive"):
         dp.disparity_to_depth([1.0], 800, 0)
+
+
+def test_matching_cost_is_the_block_matchers_cost_curve():
+    from camlab.fixtures.stereo import half_size_rectification
+
+    hs = half_size_rectification()
+    d = dp.block_matching_disparity(
+        hs.left, hs.right, 44, 5, min_disparity=8, uniqueness=0, lr_check=0
+    )
+    for u, v in [(200, 120), (150, 60), (250, 200)]:
+        ds, c = dp.matching_cost(hs.left, hs.right, u, v, 44, 5, min_disparity=8)
+        k = int(np.argmin(c))
+        cm, c0, cp = c[k - 1 : k + 2]
+        assert d[v, u] == pytest.approx(ds[k] + (cm - cp) / (2 * (cm - 2 * c0 + cp)), abs=1e-4)
+    assert np.isinf(dp.matching_cost(hs.left, hs.right, 3, 50, 44, 5)[1][-1])
+    with pytest.raises(CamlabInputError, match="u, v"):
+        dp.matching_cost(hs.left, hs.right, -1, 50, 44, 5)

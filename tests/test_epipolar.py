@@ -311,3 +311,19 @@ def test_exactly_eight_pairs_are_enough():
         *_rig(n=9, seed=4)[3:], threshold=0.5, rng=np.random.default_rng(0)
     )
     assert res.inliers.all()
+
+
+def test_epipolar_lines_are_nan_at_the_epipole():
+    # forward motion: the left epipole is the image centre, where F x vanishes up to rounding
+    from camlab import fixtures
+
+    c1, c2 = fixtures.forward_pair(0.2, np.deg2rad(10))
+    F = ep.fundamental_from_cameras(c1, c2)
+    e1 = ep.epipoles(F).e1
+    lines = ep.epipolar_lines(F, [e1[:2] / e1[2], [100.0, 50.0]])
+    assert np.isnan(lines[0]).all()
+    assert np.isfinite(lines[1]).all() and abs(np.hypot(*lines[1, :2]) - 1) < 1e-12
+    # one pixel away it is a proper line again, through the right epipole
+    l2 = ep.epipolar_lines(F, e1[:2] / e1[2] + [1.0, 0.0])
+    e2 = ep.epipoles(F).e2
+    assert abs(l2 @ e2) < 1e-9 * np.linalg.norm(e2)

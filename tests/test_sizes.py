@@ -23,11 +23,6 @@ MAX_FUNCTION_LINES = 80
 # (camlab.projective), a function by module, classes and enclosing functions
 # (camlab.optimise.levenberg_marquardt, camlab.widgets.projective_camera.resectioning.update).
 EXCEPTIONS = {
-    # grew past 80 lines in lesson 11's review fix (i29-11b: legends naming every mark, the walls
-    # border masks, the window-size readout); to be split by step like the other builders
-    "camlab.widgets.stereo_rectification._epipolar_figure": "grew in i29-11b; split next",
-    "camlab.widgets.stereo_rectification.rectify_pair": "grew in i29-11b; split next",
-    "camlab.widgets.stereo_rectification.disparity_depth": "grew in i29-11b; split next",
     # i27-plots splits these (issue 27, item 2)
     "camlab.widgets.homographies.geometry.transformation_hierarchy": "i27-plots (issue 27)",
     "camlab.widgets.homographies.geometry.drag_homography": "i27-plots (issue 27)",

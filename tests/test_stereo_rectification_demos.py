@@ -85,6 +85,10 @@ def test_epipolar_lines_forward_motion_puts_the_epipole_in_the_image():
     assert abs(demo.state["line_right"] @ e2) < 1e-9 * np.linalg.norm(
         demo.state["line_right"]
     ) * np.linalg.norm(e2)
+    # the centre reference pixel is the left epipole: skipped, not drawn as rounding noise
+    np.testing.assert_allclose(demo.state["pencil_skipped"], [[319.5, 239.5]])
+    demo.set(motion="sideways (stereo rig)")
+    assert len(demo.state["pencil_skipped"]) == 0
 
 
 def test_disparity_demo_depth_accuracy_and_block_size():

@@ -509,7 +509,7 @@ class Camera:
     def __repr__(self) -> str:
         """The intrinsics, the centre and the image size, rounded."""
         fx, fy, cx, cy = self.K[0, 0], self.K[1, 1], self.K[0, 2], self.K[1, 2]
-        C = np.round(self.centre, 4)
+        C = np.round(self.centre, 4) + 0.0  # + 0.0: no "-0.0" in the printout
         return (
             f"Camera(fx={fx:.6g}, fy={fy:.6g}, cx={cx:.6g}, cy={cy:.6g}, skew={self.K[0, 1]:.3g}, "
             f"centre={C.tolist()}, image_size={self.image_size})"

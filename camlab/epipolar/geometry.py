@@ -358,7 +358,8 @@ def epipolar_lines(F: ArrayLike, points: ArrayLike, image: int = 1) -> np.ndarra
     -------
     (N, 3) or (3,) ndarray
         Lines (a, b, c) with :math:`a^2 + b^2 = 1`, so :math:`a u + b v + c` is the signed
-        distance in pixels of (u, v) from the line.
+        distance in pixels of (u, v) from the line. A point at the epipole (:math:`F \tilde x \approx 0`,
+        relative to :math:`\|F\| \|\tilde x\|`, 1e-9) has no epipolar line: its row is NaN.
 
     >>> F = np.array([[0, 0, 0], [0, 0, -1], [0, 1, 0]])
     >>> epipolar_lines(F, [10, 20])  # the row v = 20
@@ -371,12 +372,15 @@ def epipolar_lines(F: ArrayLike, points: ArrayLike, image: int = 1) -> np.ndarra
         )
     p = as_points(points, 2, "points")
     M = F if image == 1 else F.T
-    lines = to_homogeneous(p.array) @ M.T
-    if np.any(np.linalg.norm(lines[:, :2], axis=1) == 0):
-        raise DegenerateError(
-            "epipolar_lines: a point is the epipole itself, whose epipolar line is undefined"
-        )
-    return p.restore(normalise_lines(lines))
+    xh = to_homogeneous(p.array)
+    lines = xh @ M.T
+    # a point at the epipole has F x = 0 up to rounding: its line is undefined (NaN), not noise
+    scale = np.linalg.norm(F) * np.linalg.norm(xh, axis=1)
+    undefined = np.linalg.norm(lines[:, :2], axis=1) <= 1e-9 * scale
+    lines[undefined] = 1.0  # a placeholder the normalisation accepts, replaced by NaN below
+    out = normalise_lines(lines)
+    out[undefined] = np.nan
+    return p.restore(out)
 
 
 def epipolar_distance(F: ArrayLike, x1: ArrayLike, x2: ArrayLike) -> np.ndarray:

@@ -76,31 +76,12 @@ def _line_polyline(lines: np.ndarray, size: tuple[int, int] = SIZE) -> np.ndarra
     return out.reshape(-1, 2)
 
 
-def _epipolar_figure(view: FigureView) -> SimpleNamespace:
-    """The figure of :func:`epipolar_lines`.
+def _epipolar_legends(axl, axr, depth_dots, epi_r) -> None:
+    """The keys of :func:`_epipolar_figure`, below the images, not over them.
 
-    The left and right images with the scene's outlines, the pencils of epipolar lines, the point
-    and its lines, the depth marks and the epipoles (an arrow at the border for one off the image);
-    returns its axes and moving artists by name.
+    Every corner of the right image carries lines; the epipole's two looks (a star inside, an
+    arrow at the border towards it) are both keyed.
     """
-    axl, axr = view.fig.subplots(1, 2)
-    image_axes(axl, SIZE, "left image: click a point")
-    image_axes(axr, SIZE, "right image: its epipolar line")
-    (wl,) = axl.plot([], [], color="0.55", lw=0.8)
-    (wr,) = axr.plot([], [], color="0.55", lw=0.8)
-    (pencil_l,) = axl.plot([], [], color=palette.BLUE, lw=0.6, path_effects=palette.halo(0.6))
-    (pencil_r,) = axr.plot([], [], color=palette.BLUE, lw=0.6, path_effects=palette.halo(0.6))
-    (point,) = axl.plot([], [], "o", color=palette.TAB_RED, ms=8)
-    (line_l,) = axl.plot([], [], color=palette.TAB_RED, lw=1.2, ls="--")
-    (line_r,) = axr.plot([], [], color=palette.TAB_RED, lw=1.8)
-    (depth_dots,) = axr.plot([], [], "o", color=palette.ORANGE, ms=5)
-    (epi_l,) = axl.plot([], [], "*", color="k", ms=13)
-    (epi_r,) = axr.plot([], [], "*", color="k", ms=13)
-    # an epipole off the image: an arrow (shaft + head) at the border pointing to it
-    shafts = [ax.plot([], [], color="k", lw=1.8)[0] for ax in (axl, axr)]
-    heads = [ax.plot([], [], color="k", ms=9, ls="none")[0] for ax in (axl, axr)]
-    # keys below the images, not over them (every corner of the right image carries lines); the
-    # epipole's two looks (a star inside, an arrow at the border towards it) are both keyed
     from matplotlib.lines import Line2D
 
     def key(**kw):
@@ -145,6 +126,32 @@ def _epipolar_figure(view: FigureView) -> SimpleNamespace:
         fontsize=8,
         frameon=False,
     )
+
+
+def _epipolar_figure(view: FigureView) -> SimpleNamespace:
+    """The figure of :func:`epipolar_lines`.
+
+    The left and right images with the scene's outlines, the pencils of epipolar lines, the point
+    and its lines, the depth marks and the epipoles (an arrow at the border for one off the image);
+    returns its axes and moving artists by name.
+    """
+    axl, axr = view.fig.subplots(1, 2)
+    image_axes(axl, SIZE, "left image: click a point")
+    image_axes(axr, SIZE, "right image: its epipolar line")
+    (wl,) = axl.plot([], [], color="0.55", lw=0.8)
+    (wr,) = axr.plot([], [], color="0.55", lw=0.8)
+    (pencil_l,) = axl.plot([], [], color=palette.BLUE, lw=0.6, path_effects=palette.halo(0.6))
+    (pencil_r,) = axr.plot([], [], color=palette.BLUE, lw=0.6, path_effects=palette.halo(0.6))
+    (point,) = axl.plot([], [], "o", color=palette.TAB_RED, ms=8)
+    (line_l,) = axl.plot([], [], color=palette.TAB_RED, lw=1.2, ls="--")
+    (line_r,) = axr.plot([], [], color=palette.TAB_RED, lw=1.8)
+    (depth_dots,) = axr.plot([], [], "o", color=palette.ORANGE, ms=5)
+    (epi_l,) = axl.plot([], [], "*", color="k", ms=13)
+    (epi_r,) = axr.plot([], [], "*", color="k", ms=13)
+    # an epipole off the image: an arrow (shaft + head) at the border pointing to it
+    shafts = [ax.plot([], [], color="k", lw=1.8)[0] for ax in (axl, axr)]
+    heads = [ax.plot([], [], color="k", ms=9, ls="none")[0] for ax in (axl, axr)]
+    _epipolar_legends(axl, axr, depth_dots, epi_r)
     moving = (
         wl,
         wr,
@@ -199,17 +206,20 @@ def _show_epipole(e, marker, shaft, head, ax) -> None:
     head.set_marker(arrow_marker(direction, ax))
 
 
-def _epipolar_readout(v: dict, e2: np.ndarray, inside: bool, uv: np.ndarray, l2: np.ndarray) -> str:
+def _epipolar_readout(
+    v: dict, e2: np.ndarray, inside: bool, uv: np.ndarray, l2: np.ndarray, skipped: np.ndarray
+) -> str:
     """The text beside :func:`epipolar_lines`.
 
-    The motion, the right epipole ``e2`` and how far the depth marks ``uv`` (px) lie from the
-    epipolar line ``l2``.
+    The motion, the right epipole ``e2``, how far the depth marks ``uv`` (px) lie from the
+    epipolar line ``l2``, and the reference pixels ``skipped`` because they are the left epipole.
     """
     at_inf = abs(e2[2]) < 1e-9
     ep2 = (
         "at infinity (lines parallel)"
         if at_inf
-        else f"({e2[0] / e2[2]:.0f}, {e2[1] / e2[2]:.0f}) px"
+        else f"({e2[0] / e2[2]:.0f}, {e2[1] / e2[2]:.0f}) px, "
+        f"|u(e') - c_x| = {abs(e2[0] / e2[2] - (SIZE[0] - 1) / 2):,.0f} px"
     )
     return monospace(
         f"{v['motion']}: baseline {v['baseline']:.2f} m, "
@@ -219,6 +229,10 @@ def _epipolar_readout(v: dict, e2: np.ndarray, inside: bool, uv: np.ndarray, l2:
             else f"second camera turned {v['toe_in']:g} deg\n"
         )
         + ("the right epipole is inside the image: the lines fan out from it\n" if inside else "")
+        + "".join(
+            f"the pixel ({u:g}, {w:g}) is the left epipole: its epipolar line is undefined (not drawn)\n"
+            for u, w in skipped
+        )
         + f"right epipole e' = {ep2}\n"
         f"max distance of the depth marks from l' = "
         f"{np.nanmax(np.abs(np.append(uv, np.ones((len(uv), 1)), 1) @ l2)):.1e} px"
@@ -293,10 +307,14 @@ def epipolar_lines() -> Demo:
         art.point.set_data([x[0]], [x[1]])
         art.line_r.set_data(*_line_polyline(l2[None]).T)
         art.line_l.set_data(*_line_polyline(l1[None]).T)
-        art.pencil_r.set_data(*_line_polyline(ep.epipolar_lines(F, ref, image=1)).T)
-        art.pencil_l.set_data(
-            *_line_polyline(np.cross(np.column_stack([ref, np.ones(len(ref))]), e.e1)).T
-        )
+        # a reference pixel at the left epipole (the centre, in forward motion) has no epipolar
+        # line: epipolar_lines gives NaN there and the pencils skip it rather than draw noise
+        pencil_r = ep.epipolar_lines(F, ref, image=1)
+        on_epipole = np.isnan(pencil_r[:, 0])
+        pencil_l = np.cross(np.column_stack([ref, np.ones(len(ref))]), e.e1)
+        art.pencil_r.set_data(*_line_polyline(pencil_r[~on_epipole]).T)
+        art.pencil_l.set_data(*_line_polyline(pencil_l[~on_epipole]).T)
+        state.update(pencil_skipped=ref[on_epipole])
         art.depth_dots.set_data(uv[:, 0], uv[:, 1])
         # the epipoles as the images of the other camera's centre, P' C and P C': the same points as
         # F's null vectors, with a sign that says on which side the other camera is (for w = 0 too)
@@ -306,7 +324,7 @@ def epipolar_lines() -> Demo:
         _show_epipole(e2_dir, art.epi_r, shafts[1], heads[1], axr)
         inside = not arrow_to_infinity(e.e2, axr)[1].any()
         state.update(epipole_inside=inside)
-        readout.value = _epipolar_readout(v, e.e2, inside, uv, l2)
+        readout.value = _epipolar_readout(v, e.e2, inside, uv, l2, ref[on_epipole])
         state.update(F=F, epipoles=e, line_right=l2, depth_points=uv, point=x)
 
     demo = build_demo(
@@ -445,6 +463,50 @@ def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
     )
 
 
+def _pair_views(method: str, alpha: float, ctx: SimpleNamespace) -> tuple:
+    """The half-size pair of :func:`rectify_pair` for ``method``, with its matches.
+
+    Returns the left and right images ``L, R``, the true matches in full-size rectified pixels
+    ``y1, y2`` (what the vertical disparity is measured on), the same in half-size pixels
+    ``s1, s2`` (what is drawn) and the calibrated route's ``K_new`` (None otherwise).
+    """
+    import cv2
+
+    (cal1, cal2), (h1, h2), half = ctx.cal, ctx.half_cams, ctx.half
+    x1, x2, u1, u2 = ctx.matches
+    if method == "calibrated":
+        rect = rc.rectify_calibrated(h1, h2, alpha=alpha, method="cv2")
+        L, R = rc.rectify_images(rect, half[0], half[1])
+        full = rc.rectify_calibrated(cal1, cal2, alpha=alpha, maps=False)
+        y1 = rc.rectify_points(full, cal1, x1, 1)
+        y2 = rc.rectify_points(full, cal2, x2, 2)
+        s1 = rc.rectify_points(rect, h1, map_points(HALF, x1), 1)
+        s2 = rc.rectify_points(rect, h2, map_points(HALF, x2), 2)
+        return L, R, y1, y2, s1, s2, full.K
+    if method == "uncalibrated":
+        L, R = (
+            cv2.warpPerspective(im_, H, (320, 240))
+            for im_, H in zip(ctx.und_half, ctx.unc_half, strict=True)
+        )
+        y1, y2 = map_points(ctx.unc.H1, u1), map_points(ctx.unc.H2, u2)
+        return L, R, y1, y2, map_points(HALF, y1), map_points(HALF, y2), None
+    L, R = half
+    return L, R, x1, x2, map_points(HALF, x1), map_points(HALF, x2), None
+
+
+def _pair_readout(method: str, cal_rms: float, vd) -> str:
+    """The text beside :func:`rectify_pair`: the route and the true matches' vertical disparity."""
+    source = {
+        "calibrated": f"cameras from a stereo calibration (rms {cal_rms:.3f} px)",
+        "uncalibrated": "F from noisy matches (0.3 px); alpha: calibrated only",
+        "original": "the raw pair; alpha: calibrated only",
+    }[method]
+    return monospace(
+        f"{method}: {source}\nvertical disparity of {len(vd.values)} true matches\n"
+        f"median {vd.median:.3g} px, 95th percentile {vd.p95:.3g} px"
+    )
+
+
 def _pair_controls() -> dict:
     """The controls of :func:`rectify_pair`: the pair shown (original, calibrated, uncalibrated) and alpha."""
     return {
@@ -491,6 +553,15 @@ def rectify_pair() -> Demo:
     x1, x2, u1, u2 = matches
     cal1, cal2, cal_rms = bundled_rig_calibration()
     h1, h2 = cal1.resized(0.5), cal2.resized(0.5)
+    ctx = SimpleNamespace(
+        half=half,
+        und_half=und_half,
+        unc=unc,
+        unc_half=unc_half,
+        matches=matches,
+        cal=(cal1, cal2),
+        half_cams=(h1, h2),
+    )
     view = FigureView(figsize=(9.4, 3.8))
     art = _pair_figure(view, half)
     im, match_lines, step = art.im, art.match_lines, art.step
@@ -499,26 +570,9 @@ def rectify_pair() -> Demo:
     readout = W.HTML()
 
     def update(v, state):
-        if v["method"] == "calibrated":
-            rect = rc.rectify_calibrated(h1, h2, alpha=v["alpha"], method="cv2")
-            L, R = rc.rectify_images(rect, half[0], half[1])
-            full = rc.rectify_calibrated(cal1, cal2, alpha=v["alpha"], maps=False)
-            y1 = rc.rectify_points(full, cal1, x1, 1)
-            y2 = rc.rectify_points(full, cal2, x2, 2)
-            s1 = rc.rectify_points(rect, h1, map_points(HALF, x1), 1)
-            s2 = rc.rectify_points(rect, h2, map_points(HALF, x2), 2)
-            state.update(rectified_K=full.K)  # alpha sets the zoom of the rectified images
-        elif v["method"] == "uncalibrated":
-            L, R = (
-                cv2.warpPerspective(im_, H, (320, 240))
-                for im_, H in zip(und_half, unc_half, strict=True)
-            )
-            y1, y2 = map_points(unc.H1, u1), map_points(unc.H2, u2)
-            s1, s2 = map_points(HALF, y1), map_points(HALF, y2)
-        else:
-            L, R = half
-            y1, y2 = x1, x2
-            s1, s2 = map_points(HALF, x1), map_points(HALF, x2)
+        L, R, y1, y2, s1, s2, K_new = _pair_views(v["method"], v["alpha"], ctx)
+        if K_new is not None:
+            state.update(rectified_K=K_new)  # alpha sets the zoom of the rectified images
         im.set_data(np.hstack([L, R]))
         seg = np.full((len(sel), 3, 2), np.nan)
         seg[:, 0], seg[:, 1] = s1[sel], s2[sel] + [320, 0]
@@ -533,15 +587,7 @@ def rectify_pair() -> Demo:
         step.set_data(
             np.r_[1e-3, values], np.r_[0.0, np.arange(1, len(values) + 1) / max(1, len(values))]
         )
-        source = {
-            "calibrated": f"cameras from a stereo calibration (rms {cal_rms:.3f} px)",
-            "uncalibrated": "F from noisy matches (0.3 px); alpha: calibrated only",
-            "original": "the raw pair; alpha: calibrated only",
-        }[v["method"]]
-        readout.value = monospace(
-            f"{v['method']}: {source}\nvertical disparity of {len(vd.values)} true matches\n"
-            f"median {vd.median:.3g} px, 95th percentile {vd.p95:.3g} px"
-        )
+        readout.value = _pair_readout(v["method"], cal_rms, vd)
         state.update(
             vertical_median=vd.median,
             vertical_p95=vd.p95,
@@ -572,45 +618,17 @@ def rectify_pair() -> Demo:
 # --------------------------------------------------------------------------- demo 3: disparity and depth
 
 
-@register(
-    lesson="11",
-    sweep={"block_size": [3, 7, 15], "method": ["block matching (numpy)", "SGBM (OpenCV)"]},
-)
-def disparity_depth() -> Demo:
-    """Disparity by block matching (numpy) or SGBM, its depth error, and the 3-D points.
+def _disparity_figure(gt: np.ndarray) -> tuple:
+    """The figure of :func:`disparity_depth`: disparity, depth error and the 3-D points.
 
-    Small windows are noisy, large ones blur depth edges; SGBM adds smoothness costs
-    along 5 directions (OpenCV's single-pass ``MODE_SGBM``). Each result is computed once
-    per setting and cached.
-
-    Returns
-    -------
-    Demo
-        The demo: controls ``block_size`` (the matching window, px) and ``method`` (block
-        matching in numpy or OpenCV's SGBM), the figure (disparity, depth error, 3-D points)
-        and ``state`` (``disparity`` map in half-size px, ``median_error_percent`` of depth,
-        ``within_5`` the fraction of matched pixels within 5 % of the true depth,
-        ``coverage`` the fraction of textured pixels matched, ``edge_bad`` the fraction of matched
-        pixels within 4 px of a depth jump whose disparity is off by more than 1 px).
+    ``gt`` is the true disparity the first panel starts with; returns the view and the three
+    moving artists (the two images and the points).
     """
-    import scipy.ndimage as ndi
     from matplotlib import colormaps
 
     from ..plotting import scene3d
 
     plt_colormap = colormaps.get_cmap
-
-    rect, L, R, gt, smooth = half_size_rectification()
-    f, B = rect.K[0, 0], rect.baseline
-
-    @lru_cache(maxsize=16)  # sliders revisit settings; matching is the slow part
-    def match(method: str, block: int) -> np.ndarray:
-        if method == "block matching (numpy)":
-            return dp.block_matching_disparity(
-                L, R, max_disparity=44, block_size=block, min_disparity=8
-            )
-        return dp.sgbm_disparity(L, R, max_disparity=44, block_size=block, min_disparity=8)
-
     view = FigureView(figsize=(9.4, 3.6))
     # the empty fourth column keeps the 3-D panel's z label ("up (m)") inside the figure
     gs = view.fig.add_gridspec(1, 4, width_ratios=[1, 1, 1.25, 0.07])
@@ -637,6 +655,44 @@ def disparity_depth() -> Demo:
     ax3.tick_params(labelsize=7, pad=0)
     (pts,) = ax3.plot([], [], [], ".", ms=1.0, color=palette.TAB_BLUE)
     view.animate(im1, im2, pts)
+    return view, im1, im2, pts
+
+
+@register(
+    lesson="11",
+    sweep={"block_size": [3, 7, 15], "method": ["block matching (numpy)", "SGBM (OpenCV)"]},
+)
+def disparity_depth() -> Demo:
+    """Disparity by block matching (numpy) or SGBM, its depth error, and the 3-D points.
+
+    Small windows are noisy, large ones blur depth edges; SGBM adds smoothness costs
+    along 5 directions (OpenCV's single-pass ``MODE_SGBM``). Each result is computed once
+    per setting and cached.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``block_size`` (the matching window, px) and ``method`` (block
+        matching in numpy or OpenCV's SGBM), the figure (disparity, depth error, 3-D points)
+        and ``state`` (``disparity`` map in half-size px, ``median_error_percent`` of depth,
+        ``within_5`` the fraction of matched pixels within 5 % of the true depth,
+        ``coverage`` the fraction of textured pixels matched, ``edge_bad`` the fraction of matched
+        pixels within 4 px of a depth jump whose disparity is off by more than 1 px).
+    """
+    import scipy.ndimage as ndi
+
+    rect, L, R, gt, smooth = half_size_rectification()
+    f, B = rect.K[0, 0], rect.baseline
+
+    @lru_cache(maxsize=16)  # sliders revisit settings; matching is the slow part
+    def match(method: str, block: int) -> np.ndarray:
+        if method == "block matching (numpy)":
+            return dp.block_matching_disparity(
+                L, R, max_disparity=44, block_size=block, min_disparity=8
+            )
+        return dp.sgbm_disparity(L, R, max_disparity=44, block_size=block, min_disparity=8)
+
+    view, im1, im2, pts = _disparity_figure(gt)
     zt = dp.disparity_to_depth(gt, f, B)
     # near depth jumps: within 4 px of a disparity step over 2 px (a 9 x 9 window's range), where a
     # large window straddles two depths; small windows lose the planes, large ones these pixels

@@ -1,7 +1,8 @@
 """Exercises for lesson 11, epipolar geometry and stereo rectification.
 
 The 8-point algorithm (:mod:`.eight_point`), the epipoles (:mod:`.epipoles`), the essential matrix's
-pose (:mod:`.essential`), linear triangulation (:mod:`.triangulate`), depth from disparity
+pose (:mod:`.essential`), linear triangulation (:mod:`.triangulate`), the rectifying rotation
+(:mod:`.rectifying`), depth from disparity
 (:mod:`.depth`) and the bad-pixel rate (:mod:`.bad_pixels`).
 """
 
@@ -14,8 +15,17 @@ from . import epipoles
 from . import depth
 from . import essential
 from . import triangulate
+from . import rectifying
 from . import bad_pixels
 
 # isort: on
 
-__all__ = ["bad_pixels", "depth", "eight_point", "epipoles", "essential", "triangulate"]
+__all__ = [
+    "bad_pixels",
+    "depth",
+    "eight_point",
+    "epipoles",
+    "essential",
+    "rectifying",
+    "triangulate",
+]

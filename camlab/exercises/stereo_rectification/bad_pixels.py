@@ -1,4 +1,4 @@
-"""Exercise 5 of lesson 11: the bad-pixel rate against ground truth (`bad_pixel_rate`)."""
+"""Exercise 7 of lesson 11: the bad-pixel rate against ground truth (`bad_pixel_rate`)."""
 
 from __future__ import annotations
 

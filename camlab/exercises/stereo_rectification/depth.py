@@ -1,4 +1,4 @@
-"""Exercise 3 of lesson 11: depth from disparity (`disparity_to_depth`)."""
+"""Exercise 6 of lesson 11: depth from disparity (`disparity_to_depth`)."""
 
 from __future__ import annotations
 

@@ -91,11 +91,15 @@ def _eight_point_diagnosis(args, got, expected) -> str:
                 f"your F is the right F for every point moved by {off:+g} px: {what} offset. The points are "
                 "already pixel coordinates with the origin at the centre of the top-left pixel; use them as given"
             )
-    if same_up_to_scale(g, _scaled_not_centred(x1, x2), rtol=1e-3):
-        return (
-            "you scaled the points but did not centre them: Hartley's T first moves the centroid to the "
-            "origin, then scales to mean distance sqrt(2); without the translation A stays badly conditioned"
-        )
+    top = np.vstack([x1, x2]).max(axis=0)  # the image size, as a student might take it
+    for scale in (None, (1 / 640, 1 / 480), (2 / 640, 2 / 480), tuple(1 / top)):
+        if same_up_to_scale(g, _scaled_not_centred(x1, x2, scale), rtol=1e-3):
+            return (
+                "you scaled the points but did not centre them"
+                + ("" if scale is None else " (divided by the image size)")
+                + ": Hartley's T first moves the centroid to the origin, then scales to mean distance "
+                "sqrt(2); without the translation A stays badly conditioned"
+            )
     err = np.median(epipolar.sampson_distance(g, x1, x2)) if np.any(g) else np.inf
     return (
         f"median Sampson error of your F on the input pairs is {err:.3g} px; check the row of the linear "
@@ -182,11 +186,16 @@ def _rms_normalised(x1, x2):
     return T2.T @ U @ np.diag([S[0], S[1], 0.0]) @ Vt @ T1
 
 
-def _scaled_not_centred(x1, x2):
-    """The 8-point algorithm with each image scaled to mean distance sqrt(2) from 0, not centred."""
+def _scaled_not_centred(x1, x2, scale=None):
+    """The 8-point algorithm with the points scaled but not centred.
+
+    ``scale`` None: each image to mean distance sqrt(2) from 0 (Hartley's scale without his
+    translation); ``scale`` (su, sv): both images by diag(su, sv, 1), e.g. (1/640, 1/480), the
+    image size.
+    """
     a, b = np.asarray(x1, float), np.asarray(x2, float)
     T1, T2 = (
-        np.diag([s, s, 1.0])
+        np.diag([s, s, 1.0]) if scale is None else np.diag([scale[0], scale[1], 1.0])
         for s in (np.sqrt(2) / np.linalg.norm(p, axis=1).mean() for p in (a, b))
     )
     ah, bh = np.c_[a, np.ones(len(a))] @ T1.T, np.c_[b, np.ones(len(b))] @ T2.T

@@ -1,4 +1,4 @@
-"""Exercise 4 of lesson 11: R and t from the essential matrix (`decompose_essential`)."""
+"""Exercise 3 of lesson 11: R and t from the essential matrix (`decompose_essential`)."""
 
 from __future__ import annotations
 

@@ -48,6 +48,47 @@ def _plain(A, pick=lambda Vt: Vt[-1]):
     return Xh[:3] / Xh[3]
 
 
+def _reprojection_ss(P1, P2, x1, x2, X) -> float:
+    """Sum of the squared reprojection errors (px^2) of the world point ``X`` in both images."""
+    Xh = np.append(X, 1.0)
+    return float(sum(np.sum((P[:2] @ Xh / (P[2] @ Xh) - x) ** 2) for P, x in ((P1, x1), (P2, x2))))
+
+
+def _answer_args():
+    """The test inputs by the reference's answer: the compare sees only (got, expected)."""
+    return {_reference(*case).tobytes(): case for case in _triangulation_cases()}
+
+
+_ARGS = _answer_args()
+_NEAR = same_array(rtol=0.0, atol=1e-4)
+
+
+def _triangulation_compare(got, expected) -> bool:
+    """Within 0.1 mm of the reference, or (on the noisy input) reprojecting no worse than it.
+
+    Any linear least-squares form (four rows, six rows scaled to unit norm, inhomogeneous lstsq,
+    the midpoint of the rays) lands within about 0.1 mm of the reference on the noisy input and
+    reprojects as well; the test is that reprojection error, within 2 % of the reference's.
+    """
+    if _NEAR(got, expected):
+        return True
+    g = np.asarray(got, dtype=float) if np.ndim(got) == 1 else None
+    case = _ARGS.get(np.asarray(expected, dtype=float).tobytes())
+    if g is None or g.shape != (3,) or not np.isfinite(g).all() or case is None:
+        return False
+    P1, P2, x1, x2 = (np.asarray(a, dtype=float) for a in case)
+    if np.linalg.norm(g - expected) > 0.01:  # 1 cm: no linear form of the method lands this far
+        return False
+    return _reprojection_ss(P1, P2, x1, x2, g) <= 1.02 * _reprojection_ss(P1, P2, x1, x2, expected)
+
+
+def _six_rows(P1, P2, x1, x2):
+    """All three rows of [x]x P per image, unscaled: the third, u p2 - v p1, is ~u times the others."""
+    return np.vstack(
+        [np.cross(np.append(x, 1.0)[:, None], P, axis=0) for P, x in ((P1, x1), (P2, x2))]
+    )
+
+
 def _triangulation_diagnosis(args, got, expected) -> str:
     P1, P2, x1, x2 = (np.asarray(a, dtype=float) for a in args)
     g = np.asarray(got, dtype=float)
@@ -66,6 +107,12 @@ def _triangulation_diagnosis(args, got, expected) -> str:
             "its fourth: the SVD fixes |X_h| = 1, the world point is X_h[:3] / X_h[3]"
         )
     forms = [
+        (
+            _plain(_six_rows(P1, P2, x1, x2)),
+            "you kept all three rows of x × (P X) = 0 per image, unscaled: the third, u p2 - v p1, is about "
+            "u (hundreds of px) times larger than the other two and dominates the least squares on the "
+            "noisy match. Drop it (two rows per image, as H&Z 12.2 does) or scale every row to unit norm",
+        ),
         (
             _plain(_rows(P1, P2, x1, x2), lambda Vt: Vt[0]),
             "you took the first row of V^T, the direction of the LARGEST singular value: the null "
@@ -161,9 +208,9 @@ register_exercise(
         lesson="11",
         reference=_reference,
         cases=_triangulation_cases,
-        # 1e-4 m: on the noisy input the plain DLT and camlab's (rows scaled to unit norm) differ by
-        # ~1e-5 m; every slip below moves X by centimetres or more
-        compare=same_array(rtol=0.0, atol=1e-4),
+        # 1e-4 m, or no worse reprojection on the noisy input: every linear least-squares form
+        # passes; every slip below moves X by centimetres or more
+        compare=_triangulation_compare,
         diagnose=_triangulation_diagnosis,
         wrong_variants=(
             (
@@ -183,6 +230,7 @@ register_exercise(
                 "1-based",
             ),
             (lambda P1, P2, x1, x2: 1000 * triangulate_point(P1, P2, x1, x2), "unit slip"),
+            (lambda P1, P2, x1, x2: _plain(_six_rows(P1, P2, x1, x2)), "third, u p2 - v p1"),
         ),
         teaching=triangulate_point,
     )

@@ -1,0 +1,80 @@
+"""Lesson 11's exercise checks: the rectifying rotation and the triangulation's accepted forms."""
+
+import numpy as np
+import pytest
+
+import camlab.exercises.stereo_rectification  # noqa: F401  (registers the lesson's exercises)
+from camlab.exercises import EXERCISES, check
+
+
+def _skew(x):
+    u, v = x
+    return np.array([[0, -1, v], [1, 0, -u], [-v, u, 0]], dtype=float)
+
+
+def _six_rows(P1, P2, x1, x2, scaled):
+    A = np.vstack([_skew(x1) @ np.asarray(P1), _skew(x2) @ np.asarray(P2)])
+    if scaled:
+        A /= np.linalg.norm(A, axis=1, keepdims=True)
+    Xh = np.linalg.svd(A)[2][-1]
+    return Xh[:3] / Xh[3]
+
+
+def _midpoint(P1, P2, x1, x2):
+    rays = []
+    for P, x in ((np.asarray(P1), x1), (np.asarray(P2), x2)):
+        M = P[:, :3]
+        d = np.linalg.solve(M, np.append(x, 1.0))
+        rays.append((-np.linalg.solve(M, P[:, 3]), d / np.linalg.norm(d)))
+    (C1, d1), (C2, d2) = rays
+    s = np.linalg.lstsq(np.c_[d1, -d2], C2 - C1, rcond=None)[0]
+    return (C1 + s[0] * d1 + C2 + s[1] * d2) / 2
+
+
+@pytest.mark.parametrize(
+    "answer",
+    [lambda *a: _six_rows(*a, scaled=True), _midpoint],
+    ids=["six rows scaled (H&Z 12.2)", "midpoint of the rays"],
+)
+def test_triangulate_point_accepts_other_least_squares_forms(answer, capsys):
+    assert check("triangulate_point", answer).passed
+
+
+def test_triangulate_point_names_the_unscaled_six_row_form():
+    with pytest.raises(AssertionError, match=r"likely cause: you kept all three rows"):
+        check("triangulate_point", lambda *a: _six_rows(*a, scaled=False))
+
+
+def test_rectifying_rotation_reference_aligns_rows_and_accepts_another_form(capsys):
+    ex = EXERCISES["rectifying_rotation"]
+    assert ex.lesson == "11" and check("rectifying_rotation", ex.reference).passed
+    for C1, C2, R1 in ex.cases():
+        R = ex.reference(C1, C2, R1)
+        np.testing.assert_allclose(R @ R.T, np.eye(3), atol=1e-12)
+        assert np.linalg.det(R) > 0 and R[2] @ R1[2] > 0  # a rotation that still looks forward
+        # the baseline in the new frame is (B, 0, 0): both centres on one row, epipoles at (1, 0, 0)
+        b = R @ (np.asarray(C2) - C1)
+        np.testing.assert_allclose(b[1:], 0, atol=1e-12)
+        assert b[0] > 0
+
+    def z_first(C1, C2, R1):  # the old axis made orthogonal to x first, then y = z × x: as valid
+        x = np.subtract(C2, C1) / np.linalg.norm(np.subtract(C2, C1))
+        z = np.asarray(R1)[2] - (np.asarray(R1)[2] @ x) * x
+        z /= np.linalg.norm(z)
+        return [list(x), list(np.cross(z, x)), list(z)]
+
+    assert check("rectifying_rotation", z_first).passed
+
+
+@pytest.mark.parametrize("index", range(6))
+def test_rectifying_rotation_names_each_typical_slip(index):
+    wrong, needle = EXERCISES["rectifying_rotation"].wrong_variants[index]
+    with pytest.raises(AssertionError, match=r"likely cause: .*" + needle):
+        check("rectifying_rotation", wrong)
+
+
+def test_eight_point_names_division_by_the_image_size_without_centring():
+    from camlab.exercises.stereo_rectification.eight_point import _scaled_not_centred
+
+    with pytest.raises(AssertionError, match=r"did not centre them \(divided by the image size\)"):
+        check("eight_point", lambda x1, x2: _scaled_not_centred(x1, x2, (1 / 640, 1 / 480)))
