@@ -64,7 +64,7 @@ def ransac_outliers() -> Demo:
         ``recall`` the share of the true inliers kept, ``corner_error`` the worst corner of
         the mapped frame against the truth in px, ``verdicts`` the counts of inlier kept,
         outlier wrongly kept, inlier wrongly rejected and outlier rejected,
-        ``outlier_fraction_found`` 1 - the inlier share, ``samples_needed`` k for it, and
+        ``outlier_fraction_found`` 1 - the inlier share, ``samples_needed`` k for it rounded up, and
         ``error``, None or RANSAC's message when it fails; then every key above but
         ``sample`` is None).
 
@@ -219,12 +219,12 @@ def ransac_outliers() -> Demo:
             H=r.H,
             verdicts=counts,
             outlier_fraction_found=eps_found,
-            samples_needed=k_needed,
+            samples_needed=int(np.ceil(k_needed)),  # whole samples: rounded up, never to nearest
         )
         readout.value = monospace(
             f"true ε = {v['outliers']:.2f}, found ε = {eps_found:.2f}\n"
             f"samples drawn: {r.iterations}{' (the cap)' if r.iterations >= MAX_SAMPLES else ''}; "
-            f"needed for the found ε: {k_needed:.0f}\n"
+            f"needed for the found ε: k = {k_needed:.1f}, so {int(np.ceil(k_needed))} samples\n"
             + "\n".join(
                 f"{name:25s} {c:4d}" for (name, _), c in zip(_VERDICTS, counts, strict=True)
             )
