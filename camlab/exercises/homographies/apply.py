@@ -42,8 +42,19 @@ def _apply_diagnosis(args, got, expected) -> str:
             "you divided by h33, but w is the third coordinate of each mapped point, "
             "w = h31 u + h32 v + h33, which changes from point to point: divide by Y[:, 2:3]."
         )
+    w_no_h33 = y[:, 2:] - H[2, 2] + 1.0  # h31 u + h32 v + 1: the textbook form assuming h33 = 1
+    if not np.allclose(w_no_h33, 1.0) and np.allclose(g, y[:, :2] / w_no_h33, rtol=1e-6):
+        return (
+            "you divided by h31 u + h32 v + 1, the form that assumes h33 = 1. These test matrices are not "
+            "scaled to h33 = 1, so w = h31 u + h32 v + h33: divide by Y[:, 2:3], the whole third coordinate."
+        )
     if np.allclose(g, y[:, :2], rtol=1e-6):
-        return "you forgot to divide by w, the third homogeneous coordinate: (x/w, y/w)."
+        also = (
+            f" (Or you divided by h31 u + h32 v + 1, which assumes h33 = 1; here h33 = {H[2, 2]:g}.)"
+            if not np.isclose(H[2, 2], 1.0)
+            else ""
+        )
+        return "you forgot to divide by w, the third homogeneous coordinate: (x/w, y/w)." + also
     z = x @ H
     if np.allclose(g, z[:, :2] / z[:, 2:], rtol=1e-6):
         return "you multiplied by H transposed: with points as rows, x' = X @ H.T."
@@ -102,6 +113,13 @@ def _apply_diagnosis(args, got, expected) -> str:
     )
 
 
+def _h33_is_one(H, points):
+    """The textbook formula that assumes h33 = 1: divide by h31 u + h32 v + 1."""
+    x = np.column_stack([points, np.ones(len(points))])
+    y = x @ np.asarray(H).T
+    return y[:, :2] / (y[:, 2:] - H[2, 2] + 1.0)
+
+
 def _fmt_point(q) -> str:
     return "(" + ", ".join(f"{c:g}" for c in q) + ")"
 
@@ -141,6 +159,7 @@ register_exercise(
             (lambda H, p: map_points(H, p)[:, ::-1], "columns are swapped"),
             (lambda H, p: map_points(H, np.asarray(p)[:, ::-1]), "you lifted"),
             (lambda H, p: map_points(np.linalg.inv(H), p), "the inverse"),
+            (lambda H, p: _h33_is_one(H, p), "assumes h33 = 1"),
             (lambda H, p: map_points(H, np.asarray(p) + 0.5), "half-pixel offset"),
             (lambda H, p: map_points(H, p) + 0.5, "half-pixel offset"),
             (lambda H, p: -map_points(H, p), "wrong sign"),
