@@ -240,3 +240,16 @@ def test_dlt_exercise_judges_the_noisy_input_against_the_truth_not_camlabs_estim
     all_exercises()  # registers them
     assert check("dlt_homography", lambda s, d: _dlt_variant(s, d, per_axis=True))
     assert check("dlt_homography", lambda s, d: _dlt_variant(s, d, three_rows=True))
+
+
+def test_ransac_demo_rounds_the_samples_needed_up():
+    # k = 38.2 at a found ε of 0.40 needs 39 whole samples (cell 20), not the nearest 38
+    from camlab.robust import required_iterations
+
+    d = h07.ransac_outliers()
+    for threshold in (3.0, 10.0):
+        d.set(outliers=0.4, threshold=threshold, seed=0)
+        k = required_iterations(1.0 - d.state["outlier_fraction_found"], h07.CONFIDENCE, 4)
+        assert d.state["samples_needed"] == int(np.ceil(k)) and d.state["samples_needed"] > k
+        readouts = [w.value for w in d.widget.children[0].children if "needed for" in str(w.value)]
+        assert len(readouts) == 1 and f"so {d.state['samples_needed']} samples" in readouts[0]

@@ -42,8 +42,19 @@ def _apply_diagnosis(args, got, expected) -> str:
             "you divided by h33, but w is the third coordinate of each mapped point, "
             "w = h31 u + h32 v + h33, which changes from point to point: divide by Y[:, 2:3]."
         )
+    w_no_h33 = y[:, 2:] - H[2, 2] + 1.0  # h31 u + h32 v + 1: the textbook form assuming h33 = 1
+    if not np.allclose(w_no_h33, 1.0) and np.allclose(g, y[:, :2] / w_no_h33, rtol=1e-6):
+        return (
+            "you divided by h31 u + h32 v + 1, the form that assumes h33 = 1. These test matrices are not "
+            "scaled to h33 = 1, so w = h31 u + h32 v + h33: divide by Y[:, 2:3], the whole third coordinate."
+        )
     if np.allclose(g, y[:, :2], rtol=1e-6):
-        return "you forgot to divide by w, the third homogeneous coordinate: (x/w, y/w)."
+        also = (
+            f" (Or you divided by h31 u + h32 v + 1, which assumes h33 = 1; here h33 = {H[2, 2]:g}.)"
+            if not np.isclose(H[2, 2], 1.0)
+            else ""
+        )
+        return "you forgot to divide by w, the third homogeneous coordinate: (x/w, y/w)." + also
     z = x @ H
     if np.allclose(g, z[:, :2] / z[:, 2:], rtol=1e-6):
         return "you multiplied by H transposed: with points as rows, x' = X @ H.T."
@@ -57,15 +68,9 @@ def _apply_diagnosis(args, got, expected) -> str:
     swapped = x[:, [1, 0, 2]] @ H.T
     if np.allclose(g, swapped[:, :2] / swapped[:, 2:], rtol=1e-6):
         return "you lifted (v, u, 1): points[:, 0] is u (the column) and points[:, 1] is v, so lift (u, v, 1)."
-    for shift in (0.5, -0.5):
-        moved_in = (x + [shift, shift, 0]) @ H.T
-        if np.allclose(g, np.asarray(expected) + shift, rtol=1e-6, atol=1e-9) or np.allclose(
-            g, moved_in[:, :2] / moved_in[:, 2:], rtol=1e-6, atol=1e-9
-        ):
-            return (
-                f"you shifted the points (or the result) by {shift:+g} px: a half-pixel offset. The course puts "
-                "pixel centres at integers, so map the points as given: no +0.5 or -0.5 anywhere."
-            )
+    cause = _shift_slip(g, x, H, expected)
+    if cause:
+        return cause
     if (y[:, 2] < 0).any() and np.allclose(g, y[:, :2] / np.abs(y[:, 2:]), rtol=1e-6):
         return (
             "you divided by |w| (or took the sign away): w is negative for a point beyond the line that H "
@@ -74,15 +79,6 @@ def _apply_diagnosis(args, got, expected) -> str:
             + "), and (u', v') = (x/w, y/w) needs w's sign, or its image lands on the wrong side. "
             "Divide by Y[:, 2:3] itself."
         )
-    for shift in (1.0, -1.0):
-        moved_in = (x + [shift, shift, 0]) @ H.T
-        if np.allclose(g, np.asarray(expected) + shift, rtol=1e-6, atol=1e-9) or np.allclose(
-            g, moved_in[:, :2] / moved_in[:, 2:], rtol=1e-6, atol=1e-9
-        ):
-            return (
-                f"you shifted the points (or the result) by {shift:+g} px: counting pixels from 1? The course "
-                "counts from 0 (pixel (0, 0) is the top-left one), so map the points as given."
-            )
     for factor in (1e3, 1e-3):
         if np.allclose(g, factor * np.asarray(expected), rtol=1e-6):
             return (
@@ -100,6 +96,32 @@ def _apply_diagnosis(args, got, expected) -> str:
     return (
         "check the three steps: lift to (u, v, 1), multiply by H (X @ H.T for rows), divide by w."
     )
+
+
+def _shift_slip(g, x, H, expected) -> str:
+    """Name a shift of the points or of the result by half a pixel or a whole one ("" if none)."""
+    for shift in (0.5, -0.5, 1.0, -1.0):
+        moved_in = (x + [shift, shift, 0]) @ H.T
+        if np.allclose(g, np.asarray(expected) + shift, rtol=1e-6, atol=1e-9) or np.allclose(
+            g, moved_in[:, :2] / moved_in[:, 2:], rtol=1e-6, atol=1e-9
+        ):
+            if abs(shift) == 0.5:
+                return (
+                    f"you shifted the points (or the result) by {shift:+g} px: a half-pixel offset. The course "
+                    "puts pixel centres at integers, so map the points as given: no +0.5 or -0.5 anywhere."
+                )
+            return (
+                f"you shifted the points (or the result) by {shift:+g} px: counting pixels from 1? The course "
+                "counts from 0 (pixel (0, 0) is the top-left one), so map the points as given."
+            )
+    return ""
+
+
+def _h33_is_one(H, points):
+    """The textbook formula that assumes h33 = 1: divide by h31 u + h32 v + 1."""
+    x = np.column_stack([points, np.ones(len(points))])
+    y = x @ np.asarray(H).T
+    return y[:, :2] / (y[:, 2:] - H[2, 2] + 1.0)
 
 
 def _fmt_point(q) -> str:
@@ -141,6 +163,7 @@ register_exercise(
             (lambda H, p: map_points(H, p)[:, ::-1], "columns are swapped"),
             (lambda H, p: map_points(H, np.asarray(p)[:, ::-1]), "you lifted"),
             (lambda H, p: map_points(np.linalg.inv(H), p), "the inverse"),
+            (lambda H, p: _h33_is_one(H, p), "assumes h33 = 1"),
             (lambda H, p: map_points(H, np.asarray(p) + 0.5), "half-pixel offset"),
             (lambda H, p: map_points(H, p) + 0.5, "half-pixel offset"),
             (lambda H, p: -map_points(H, p), "wrong sign"),

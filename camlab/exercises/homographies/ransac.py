@@ -46,6 +46,13 @@ def _is_any(g, values) -> bool:
 
 _SAMPLES_MISTAKES = (
     Mistake(
+        "negative k",
+        lambda s: s.g < 0,
+        "your k is negative, but both logs are negative (1 - p and 1 - w^4 lie between 0 and 1), so "
+        "their ratio is positive: check for a stray minus sign, or a log missing from one side. "
+        "k = log(1 - p) / log(1 - w^4).",
+    ),
+    Mistake(
         "not rounded up",
         lambda s: np.isclose(s.g, s.exact, rtol=1e-9) and not float(s.g).is_integer(),
         "you returned k itself, a fraction of a sample. RANSAC draws whole samples, and k is the "
@@ -117,7 +124,7 @@ def _samples_diagnosis(args, got, expected) -> str:
     context = _samples_context(p, w, float(got))
     causes = [m.hint for m in _SAMPLES_MISTAKES if m.answer(context)]
     if len(causes) > 1:  # small k: several slips round up to the same whole number
-        return "two slips give this number here; either " + " Or ".join(causes)
+        return f"{len(causes)} different slips give this number here; either " + " Or ".join(causes)
     return (
         causes[0]
         if causes
@@ -130,7 +137,10 @@ def _samples_diagnosis(args, got, expected) -> str:
 
 def _samples_note(run) -> str:
     """Self-check 4, answered with the student's own function once it passes."""
-    k40, k70 = run(0.995, 0.6), run(0.995, 0.3)
+    k40, k70 = (
+        int(run(0.995, 0.6)),
+        int(run(0.995, 0.3)),
+    )  # an integral float prints as a whole number
     return (
         f"With p = 0.995: {k40} samples at 40 % outliers (w = 0.6), {k70} at 70 % (w = 0.3), "
         f"{k70 / k40:.0f} times more (section 7's cell prints the same)."
@@ -188,6 +198,7 @@ register_exercise(
             (lambda p, w: int(np.ceil(np.log10(1 - p) / np.log(1 - w**4))), "different bases"),
             (lambda p, w: int(np.ceil(np.log(1 - w) / np.log(1 - p**4))), "swapped p and w"),
             (lambda p, w: [int(np.ceil(np.log(1 - p) / np.log(1 - w**4)))], "return one number"),
+            (lambda p, w: int(np.ceil(np.log(1 - p) / (1 - w**4))), "your k is negative"),
         ),
         teaching=ransac_samples,
     )

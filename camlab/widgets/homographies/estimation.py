@@ -7,7 +7,7 @@ from functools import lru_cache
 import cv2
 import ipywidgets as W
 import numpy as np
-from matplotlib.colors import to_rgb
+from matplotlib.patches import Rectangle
 
 from ... import fixtures, scenes
 from ... import homography as hg
@@ -64,7 +64,7 @@ def ransac_outliers() -> Demo:
         ``recall`` the share of the true inliers kept, ``corner_error`` the worst corner of
         the mapped frame against the truth in px, ``verdicts`` the counts of inlier kept,
         outlier wrongly kept, inlier wrongly rejected and outlier rejected,
-        ``outlier_fraction_found`` 1 - the inlier share, ``samples_needed`` k for it, and
+        ``outlier_fraction_found`` 1 - the inlier share, ``samples_needed`` k for it rounded up, and
         ``error``, None or RANSAC's message when it fails; then every key above but
         ``sample`` is None).
 
@@ -219,12 +219,12 @@ def ransac_outliers() -> Demo:
             H=r.H,
             verdicts=counts,
             outlier_fraction_found=eps_found,
-            samples_needed=k_needed,
+            samples_needed=int(np.ceil(k_needed)),  # whole samples: rounded up, never to nearest
         )
         readout.value = monospace(
             f"true ε = {v['outliers']:.2f}, found ε = {eps_found:.2f}\n"
             f"samples drawn: {r.iterations}{' (the cap)' if r.iterations >= MAX_SAMPLES else ''}; "
-            f"needed for the found ε: {k_needed:.0f}\n"
+            f"needed for the found ε: k = {k_needed:.1f}, so {int(np.ceil(k_needed))} samples\n"
             + "\n".join(
                 f"{name:25s} {c:4d}" for (name, _), c in zip(_VERDICTS, counts, strict=True)
             )
@@ -241,8 +241,23 @@ def ransac_outliers() -> Demo:
 
 # ----------------------------------------------------------------------------- forward vs inverse
 
-HOLE_COLOUR = tuple(round(255 * c) for c in to_rgb(palette.MAGENTA))
-"""The forward warp's holes inside the area the picture covers: magenta, apart from the black outside."""
+HOLE_COLOUR = (0, 0, 0)
+"""The forward warp's holes inside the area the picture covers: black, against the pale sky and the
+red house alike (outside the picture both panels are a mid grey, OUTSIDE_GREY)."""
+OUTSIDE_GREY = 128
+ZOOM = (80, 108, 18, 24)
+"""The zoomed window of the forward warp: (top row, left column, height, width) in output pixels,
+over the house's roof at the default setting, where each landing spot shows as one square."""
+
+
+def _painted(fwd, inv, inside, reached, pulled):
+    """The two warps as shown: the forward warp's holes black, outside both pictures mid grey."""
+    shown = fwd.copy()
+    shown[inside & ~reached] = HOLE_COLOUR
+    shown[~inside] = OUTSIDE_GREY
+    inv = inv.copy()
+    inv[~pulled] = OUTSIDE_GREY
+    return shown, inv
 
 
 @register(lesson="07", sweep={"scale": [0.6, 1.5, 2.8], "angle": [0.0, 25.0]})
@@ -259,7 +274,8 @@ def forward_vs_inverse() -> Demo:
     -------
     Demo
         The demo: controls ``scale`` and ``angle`` (the rotation, degrees), the figure (the
-        forward warp beside the inverse warp) and ``state`` (``H``, source to output pixels,
+        forward warp with its holes black, the window :data:`ZOOM` of it enlarged, and the
+        inverse warp; outside the picture both are grey) and ``state`` (``H``, source to output pixels,
         and ``hole_fraction``, the share of the inverse warp's interior pixels, those whose
         four neighbours are covered too, that the forward warp never reaches).
 
@@ -270,13 +286,23 @@ def forward_vs_inverse() -> Demo:
     """
     pic = scenes.house_picture((80, 60))
     out_hw = (180, 240)
-    view = FigureView(figsize=(9, 3.6))
-    ax_f, ax_i = view.fig.subplots(1, 2)
+    view = FigureView(figsize=(9.6, 3.6))
+    ax_f, ax_z, ax_i = view.fig.subplots(1, 3, width_ratios=[1, 0.62, 1])
     blank = np.zeros((*out_hw, 3), np.uint8)
     im_f = view.animate(ax_f.imshow(blank, interpolation="nearest"))
     im_i = view.animate(ax_i.imshow(blank, interpolation="nearest"))
-    ax_f.set_title("forward: push each source pixel (holes magenta)", fontsize=10, pad=3)
-    for ax_ in (ax_f, ax_i):
+    top, left, h, w = ZOOM
+    im_z = view.animate(
+        ax_z.imshow(
+            blank[:h, :w],
+            interpolation="nearest",
+            extent=(left - 0.5, left + w - 0.5, top + h - 0.5, top - 0.5),
+        )
+    )
+    ax_f.add_patch(Rectangle((left - 0.5, top - 0.5), w, h, fill=False, ec=palette.YELLOW, lw=1.5))
+    ax_f.set_title("forward: push each source pixel\n(holes black)", fontsize=10, pad=3)
+    ax_z.set_title("the yellow box enlarged:\none square per output pixel", fontsize=10, pad=3)
+    for ax_ in (ax_f, ax_z, ax_i):
         ax_.set(xlabel="u (pixels)", ylabel="v (pixels)")
     ax_i.set_title("inverse: pull each output pixel", fontsize=10, pad=3)
     readout = W.HTML()
@@ -304,9 +330,9 @@ def forward_vs_inverse() -> Demo:
         inner = cv2.erode(inside, np.ones((3, 3), np.uint8)) > 0
         reached = forward_warp(ones, H, out_hw) > 0
         pulled = warp_perspective(ones, H, out_hw, interpolation="nearest", method="cv2") > 0
-        shown = fwd.copy()
-        shown[inner & ~reached] = HOLE_COLOUR  # holes in magenta, apart from the black outside
+        shown, inv = _painted(fwd, inv, inside > 0, reached, pulled)
         im_f.set_data(shown)
+        im_z.set_data(shown[top : top + h, left : left + w])
         im_i.set_data(inv)
         holes = float(np.mean(~reached[inner])) if inner.any() else 0.0
         holes_inverse = float(np.mean(~pulled[inner])) if inner.any() else 0.0
