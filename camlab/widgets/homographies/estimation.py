@@ -299,12 +299,17 @@ def forward_vs_inverse() -> Demo:
             extent=(left - 0.5, left + w - 0.5, top + h - 0.5, top - 0.5),
         )
     )
-    ax_f.add_patch(Rectangle((left - 0.5, top - 0.5), w, h, fill=False, ec=palette.YELLOW, lw=1.5))
-    ax_f.set_title("forward: push each source pixel\n(holes black)", fontsize=10, pad=3)
-    ax_z.set_title("the yellow box enlarged:\none square per output pixel", fontsize=10, pad=3)
+    # animated after the image, or the live frame paints the picture over it
+    view.animate(
+        ax_f.add_patch(
+            Rectangle((left - 0.5, top - 0.5), w, h, fill=False, ec=palette.YELLOW, lw=1.5)
+        )
+    )
+    ax_f.set_title("forward: push each source pixel\n(holes black)", fontsize=10, pad=6)
+    ax_z.set_title("the yellow box enlarged:\none square per output pixel", fontsize=10, pad=6)
     for ax_ in (ax_f, ax_z, ax_i):
         ax_.set(xlabel="u (pixels)", ylabel="v (pixels)")
-    ax_i.set_title("inverse: pull each output pixel", fontsize=10, pad=3)
+    ax_i.set_title("inverse: pull each output pixel", fontsize=10, pad=6)
     readout = W.HTML()
     ones = np.ones(pic.shape[:2], np.uint8)
 
