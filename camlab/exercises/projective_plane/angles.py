@@ -41,11 +41,12 @@ def _angle_cases():
     H_inv_t = np.linalg.inv(H).T
     C_image = H @ _DUAL_AT_INFINITY @ H.T
     cases = []
-    # world angles 0/35 (35 deg), 20/92 (72 deg), 10/170 (20 deg; cos < 0 as given), 15/105 (90 deg)
+    # world angles 0/35.3 (35.3 deg), 20/92.4 (72.4 deg), 10/170.6 (19.4 deg; cos < 0 as given),
+    # 15/105 (90 deg); not whole numbers, so a rounded angle fails
     for (a, b), scale, (s1, s2) in (
-        ((0.0, 35.0), 1.0, (2.0, 0.7)),
-        ((20.0, 92.0), 1e-4, (1.0, 3.0)),
-        ((10.0, 170.0), -3.0, (0.5, -1.0)),
+        ((0.0, 35.3), 1.0, (2.0, 0.7)),
+        ((20.0, 92.4), 1e-4, (1.0, 3.0)),
+        ((10.0, 170.6), -3.0, (0.5, -1.0)),
         ((15.0, 105.0), 2.5, (1.5, 1.0)),
     ):
         l1 = s1 * H_inv_t @ _world_line(a, (30.0, 50.0))
@@ -87,12 +88,25 @@ def _angle_context(l1, l2, C):
         inverted=_angle_deg(l1, l2, np.linalg.pinv(C)),
         no_norm=float(no_norm),
         no_sqrt=float(no_sqrt),
+        negative_scale=bool(l1 @ C @ l1 < 0),
     )
 
 
 _FORMULA = "cos(theta) = |l^T C* m| / sqrt((l^T C* l) (m^T C* m)), then np.degrees(np.arccos(...))"
 
+_NEGATIVE_SCALE = (
+    "C_star came at a negative scale here (-3 H C*inf H^T), so l^T C* l and m^T C* m are both "
+    "negative: np.sqrt of each alone is NaN (and min(1, nan) is 1, i.e. 0 deg). Take the square "
+    "root of their product, np.sqrt((l @ C @ l) * (m @ C @ m)), which is positive, or |.| inside "
+    "each root."
+)
+
 _ANGLE_MISTAKES = (
+    Mistake(
+        "separate square roots, negative C_star",
+        lambda a: 0.0 if a.negative_scale and a.right > 1e-3 else None,
+        "you returned 0 deg. " + _NEGATIVE_SCALE,
+    ),
     Mistake(
         "radians",
         lambda a: np.radians(a.right),
@@ -145,6 +159,8 @@ _ANGLE_MISTAKES = (
 
 def _angle_diagnosis(args, got, expected) -> str:
     if np.ndim(got) == 0 and isinstance(got, (float, np.floating)) and np.isnan(got):
+        if _angle_context(*args).negative_scale:
+            return "your angle is NaN. " + _NEGATIVE_SCALE
         return (
             "your angle is NaN: np.arccos of a number outside [-1, 1]. Is the cosine normalised, "
             "|l^T C* m| / sqrt((l^T C* l) (m^T C* m))? (Rounding can also push it just past 1 for "

@@ -94,15 +94,17 @@ _HORIZON_MISTAKES = (
     Mistake(
         "a finite point joined (x axis)",
         lambda a: np.cross(a.H[:, 0], a.H[:, 2]),
-        "you joined H[:, 0] and H[:, 2]; H[:, 2] is the image of the ground's origin (0, 0, 1), a finite "
-        "point, so your line is the image of the ground's x axis. The horizon joins the images of two "
+        "your line is the image of the ground's x axis: you joined H[:, 0] and H[:, 2] (H[:, 2] is the "
+        "image of the ground's origin, a finite point), or you moved the line (0, 1, 0) with inv(H).T "
+        "instead of l_inf = (0, 0, 1). The horizon joins the images of two "
         "ideal points, (1, 0, 0) and (0, 1, 0): H[:, 0] x H[:, 1]",
     ),
     Mistake(
         "a finite point joined (z axis)",
         lambda a: np.cross(a.H[:, 1], a.H[:, 2]),
-        "you joined H[:, 1] and H[:, 2]; H[:, 2] is the image of the ground's origin (0, 0, 1), a finite "
-        "point, so your line is the image of the ground's z axis. The horizon joins the images of two "
+        "your line is the image of the ground's z axis: you joined H[:, 1] and H[:, 2] (H[:, 2] is the "
+        "image of the ground's origin, a finite point), or you moved the line (1, 0, 0) with inv(H).T "
+        "instead of l_inf = (0, 0, 1). The horizon joins the images of two "
         "ideal points, (1, 0, 0) and (0, 1, 0): H[:, 0] x H[:, 1]",
     ),
     Mistake(
@@ -186,7 +188,7 @@ def horizon_line(H):
 
     References
     ----------
-    Hartley & Zisserman, Multiple View Geometry, 2nd ed., sections 2.3.1 (result 2.13's lines) and 8.6.
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., sections 2.3.1 (eq. 2.6, how lines move) and 8.6.
     """
     return np.linalg.inv(H).T @ np.array([0.0, 0.0, 1.0])
 
