@@ -418,13 +418,10 @@ def _diagonal_only_demosaic(raw, pattern):
     return out
 
 
-def _cross_kernel_demosaic(raw, pattern):
-    """Green's cross kernel used for red and blue too: 0 / 0 (NaN) at red's blue sites and blue's red ones."""
+def _fill_by_normalised_convolution(raw, m, k):
+    """Each channel's missing samples as the k-weighted mean of the channel's samples (masks m)."""
     from scipy.ndimage import convolve
 
-    raw = np.asarray(raw, dtype=float)
-    m = sensor.bayer_masks(raw.shape, pattern).astype(float)
-    k = np.array([[0, 1, 0], [1, 4, 1], [0, 1, 0]]) / 4.0
     with np.errstate(invalid="ignore", divide="ignore"):
         est = np.stack(
             [
@@ -437,25 +434,22 @@ def _cross_kernel_demosaic(raw, pattern):
     return np.where(m == 1, raw[..., None], est)
 
 
+def _cross_kernel_demosaic(raw, pattern):
+    """Green's cross kernel used for red and blue too: 0 / 0 (NaN) at red's blue sites and blue's red ones."""
+    raw = np.asarray(raw, dtype=float)
+    m = sensor.bayer_masks(raw.shape, pattern).astype(float)
+    k = np.array([[0, 1, 0], [1, 4, 1], [0, 1, 0]]) / 4.0
+    return _fill_by_normalised_convolution(raw, m, k)
+
+
 def _one_based_masks_demosaic(raw, pattern):
     """Masks translated from 1-based MATLAB: m[1::2, 1::2] for the first letter, m[2::2, 2::2] for the last."""
-    from scipy.ndimage import convolve
-
     raw = np.asarray(raw, dtype=float)
     m = np.zeros(raw.shape + (3,))
     for (dy, dx), colour in zip([(1, 1), (1, 2), (2, 1), (2, 2)], pattern, strict=True):
         m[dy::2, dx::2, "RGB".index(colour)] = 1
     k = np.array([[1, 2, 1], [2, 4, 2], [1, 2, 1]]) / 4.0
-    with np.errstate(invalid="ignore", divide="ignore"):
-        est = np.stack(
-            [
-                convolve(raw * m[..., c], k, mode="constant")
-                / convolve(m[..., c], k, mode="constant")
-                for c in range(3)
-            ],
-            axis=2,
-        )
-    return np.where(m == 1, raw[..., None], est)
+    return _fill_by_normalised_convolution(raw, m, k)
 
 
 def _opencv_ring_demosaic(raw, pattern):
