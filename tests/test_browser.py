@@ -123,9 +123,10 @@ def _scroll_until_drawn(page, demo, tries: int = 3) -> None:
 
     A canvas scrolled into view while the kernel is still busy with the demos above it can stay
     unsized (0 x 0) after the kernel catches up (seen in CI under load, and once in three local
-    runs); a 1 px change of the window's height makes ipympl ask the kernel for the frame again
-    (the width, which the test measures, stays). The canvas must still become visible: the last
-    try raises.
+    runs). The second try changes the window's height by 1 px, which makes ipympl ask the kernel
+    for the frame again (the width, which the test measures, stays); the third runs the demo's
+    cell again, so a fresh figure sends ipympl's "initialized" handshake (CI once saw a canvas
+    stay 0 x 0 through three resizes). The canvas must still become visible: the last try raises.
     """
     from playwright.sync_api import TimeoutError as PlaywrightTimeout
 
@@ -137,11 +138,20 @@ def _scroll_until_drawn(page, demo, tries: int = 3) -> None:
         except PlaywrightTimeout:
             if attempt == tries - 1:
                 raise
-            size = page.viewport_size
-            if size:
+            if attempt == 0:
+                size = page.viewport_size
                 page.set_viewport_size({"width": size["width"], "height": size["height"] - 1})
                 page.wait_for_timeout(500)
                 page.set_viewport_size(size)
+            else:
+                _run_cell_again(page, demo)
+
+
+def _run_cell_again(page, element) -> None:
+    """Select the notebook cell around ``element`` and run it (``element`` is redrawn in place)."""
+    cell = element.locator("xpath=ancestor::div[contains(@class, 'jp-CodeCell')]").first
+    cell.locator(".jp-InputPrompt").first.click()
+    page.evaluate("() => { window.jupyterapp.commands.execute('notebook:run-cell'); }")
 
 
 def test_every_demo_fits_at_1400_px_with_the_file_browser_open(lab):
