@@ -1511,3 +1511,37 @@ def test_project_points_half_pixel_on_one_axis_named(axis):
 
     with pytest.raises(AssertionError, match=r"likely cause: every [uv] is off by \+0.5 px while"):
         check("project_points", project_points)
+
+
+def test_a_def_with_the_wrong_parameters_is_named_only_when_the_call_itself_fails():
+    def two(img, X):
+        return None
+
+    with pytest.raises(AssertionError) as info:
+        check("read_and_turn", two)
+    assert "calls your function as read_and_turn(img, X, A), 3 arguments" in str(info.value)
+
+    def inner_slip(
+        img, X, A
+    ):  # a TypeError from a call inside the student's code is not about their def
+        return np.linalg.inv(A, X)
+
+    with pytest.raises(AssertionError) as info:
+        check("read_and_turn", inner_slip)
+    assert "wrong number of parameters" not in str(info.value)
+
+
+def test_int_of_an_array_gets_a_hint_in_every_lesson():
+    def centred(X):
+        return X - int(X.mean(axis=0))
+
+    hint = exercises._core._exception_hint(_raised(centred, np.ones((3, 2))))
+    assert "int() or float() of an array" in hint
+
+
+def _raised(function, *args):
+    try:
+        function(*args)
+    except Exception as exc:  # noqa: BLE001 - the error is what the test inspects
+        return exc
+    raise AssertionError("expected an error")

@@ -452,12 +452,30 @@ def _leave_nan_in_freed_memory(expected: Any) -> None:
 def _exercise_exception_hint(name: str, exc: Exception, args: tuple) -> str:
     """The exercise's own hint for ``exc`` (its ``exception_hint``) as a 'likely cause' line, else the shared one."""
     exercise = EXERCISES.get(name)
-    own = (
-        exercise.exception_hint(exc, args)
-        if exercise is not None and exercise.exception_hint
-        else ""
-    )
+    own = _call_hint(name, exc, args) if exercise is not None else ""
+    if not own and exercise is not None and exercise.exception_hint:
+        own = exercise.exception_hint(exc, args)
     return f"\n  likely cause: {own}" if own else _exception_hint(exc)
+
+
+def _call_hint(name: str, exc: Exception, args: tuple) -> str:
+    """The cause when the call itself failed: the student's function takes another number of arguments.
+
+    Python raises that TypeError at the call, so its traceback holds no frame of the student's code.
+    """
+    at_call = exc.__traceback__ is not None and exc.__traceback__.tb_next is None
+    if not (isinstance(exc, TypeError) and at_call and "argument" in str(exc)):
+        return ""
+    exercise = EXERCISES[name]
+    try:
+        wanted = ", ".join(inspect.signature(exercise.teaching or exercise.reference).parameters)
+    except (TypeError, ValueError):
+        wanted = ""
+    n = len(args)
+    return (
+        f"the wrong number of parameters: the check calls your function as {name}({wanted}), {n} "
+        f"argument{'s' * (n != 1)}, as the prompt's def line has them; give your def exactly those parameters"
+    )
 
 
 def _exception_hint(exc: Exception) -> str:
@@ -474,6 +492,11 @@ def _exception_hint(exc: Exception) -> str:
         )
     if isinstance(exc, IndexError) and "out of bounds" in str(exc):
         return one_based
+    if isinstance(exc, TypeError) and "converted to Python scalars" in str(exc):
+        return (
+            "\n  likely cause: int() or float() of an array: they convert one number, and the array holds several;"
+            " convert every entry at once (np.rint(a).astype(int), a.astype(float)) or take one entry, a[k]"
+        )
     if (
         isinstance(exc, ValueError)
         and "broadcast" in str(exc)

@@ -71,6 +71,14 @@ def _rounded(s: _XY) -> bool:
     return fractional and any(np.allclose(s.xy, k) for k in whole)
 
 
+def _rounding(s: _XY) -> str:
+    """Which rounding took the fractions off: np.ceil and np.floor named, the others together."""
+    for way, name in ((np.ceil, "np.ceil rounds up"), (np.floor, "np.floor rounds down")):
+        if np.allclose(s.xy, way(s.p)) and not np.allclose(s.xy, np.round(s.p)):
+            return f"{name} ({s.p[0]:g} became {way(s.p[0]):g})"
+    return "you cast to int or rounded to whole pixels (int, np.round, np.floor(p + 0.5))"
+
+
 def _float16_hint(s: _XY) -> str:
     short = np.float16
     return (
@@ -125,8 +133,7 @@ XY_MISTAKES = (
         "rounded to whole pixels",
         _rounded,
         lambda s: (
-            "the coordinates lost their fractions: you cast to int or rounded to whole pixels (int, np.round, "
-            "np.floor(p + 0.5)), but image points are real numbers (sub-pixel positions, such as this input's "
+            f"the coordinates lost their fractions: {_rounding(s)}, but image points are real numbers (sub-pixel positions, such as this input's "
             f"({s.p[0]:g}, {s.p[1]:g})); keep floats"
         ),
     ),

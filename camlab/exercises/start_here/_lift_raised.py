@@ -54,6 +54,31 @@ def raised_where(exc: BaseException) -> tuple[str, str]:
     return called, operation
 
 
+def unpacked_from(exc: BaseException) -> str:
+    """What the student's line unpacked when ``exc`` was raised: '.shape' for ``H, W, C = img.shape``, 'X' for ``u, v = X``.
+
+    Read from the bytecode before the failing ``UNPACK_SEQUENCE``: an attribute as '.name', a variable as its
+    name, '' for anything else (a call's result).
+    """
+    tb = exc.__traceback__
+    while tb is not None and tb.tb_next is not None:
+        tb = tb.tb_next
+    if tb is None:
+        return ""
+    code = [i for i in dis.get_instructions(tb.tb_frame.f_code) if i.opname != "CACHE"]
+    at = next((k for k, i in enumerate(code) if i.offset == tb.tb_lasti), 0)
+    if at == 0 or code[at].opname != "UNPACK_SEQUENCE":
+        return ""
+    before = code[at - 1]
+    if before.opname == "LOAD_ATTR":
+        return f".{before.argval}"
+    return (
+        str(before.argval)
+        if before.opname.startswith(("LOAD_FAST", "LOAD_NAME", "LOAD_GLOBAL", "LOAD_DEREF"))
+        else ""
+    )
+
+
 def index_hint(exc: Exception) -> str:
     """An index past the end of the point: writing p[2] (growing the array) or reading it (1-based)."""
     called, operation = raised_where(exc)
@@ -90,6 +115,22 @@ def _concatenation_axis(s) -> bool:
 # Each row's test reads the error ``s.exc``, its text ``s.text`` and the numpy function the student's code
 # called, ``s.called`` (:func:`raised_where`); checked in order, the first that matches names the cause.
 RAISED = (
+    Mistake(
+        "int() of the point",
+        lambda s: isinstance(s.exc, TypeError) and "converted to Python scalars" in s.text,
+        (
+            "int() (or float()) converts one number, and p holds two, x and y: lifting keeps them as they are, "
+            f"floats, and appends w: {APPEND}"
+        ),
+    ),
+    Mistake(
+        "p unpacked into three",
+        lambda s: isinstance(s.exc, ValueError) and "expected 3, got 2" in s.text,
+        (
+            "p holds two numbers, x and y, and you unpacked it into three names (x, y, w = p): the point has "
+            f"no w yet; x, y = p, or build the answer from p at once: {APPEND}"
+        ),
+    ),
     Mistake(
         "an index past the end of the point",
         lambda s: isinstance(s.exc, IndexError) and "out of bounds for axis 0" in s.text,

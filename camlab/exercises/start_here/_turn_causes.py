@@ -16,6 +16,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from .._core import Mistake, first_mistake
+from ._lift_raised import unpacked_from
 
 
 def numbers(a) -> str:
@@ -186,6 +187,18 @@ def _truncated_hint(X: np.ndarray) -> str:
     )
 
 
+def _ceil_moved(X: np.ndarray) -> str | None:
+    """How np.ceil moved the first entry of ``X`` it rounds up past its nearest whole number, or None."""
+    moved = np.argwhere(np.ceil(X) != np.rint(X))
+    if not len(moved):
+        return None
+    i, j = moved[0]
+    return (
+        f"np.ceil rounds up: X[{i}, {j}] = {float(X[i, j])!r}, a computed {np.rint(X[i, j]):g}, became "
+        f"{np.ceil(X[i, j]):g}, the pixel after"
+    )
+
+
 # Checked in order on the values read, ``s.values``, for the image ``s.img`` (``s.H`` x ``s.W``), the
 # points' columns and rows ``s.u``, ``s.v`` (``s.n`` points) and the right turned points ``s.turned``.
 VALUE_MISTAKES = (
@@ -229,6 +242,16 @@ VALUE_MISTAKES = (
             and _reads(s, np.trunc(s.X[:, 1]).astype(int), np.trunc(s.X[:, 0]).astype(int))
         ),
         lambda s: _truncated_hint(s.X),
+    ),
+    Mistake(
+        "rounded up",
+        lambda s: (
+            _ceil_moved(s.X) is not None
+            and _reads(s, np.ceil(s.X[:, 1]).astype(int), np.ceil(s.X[:, 0]).astype(int))
+        ),
+        lambda s: (
+            f"{_ceil_moved(s.X)}. Round to the nearest, then convert: u, v = np.rint(X).astype(int).T"
+        ),
     ),
     *(_shift_mistake(dv, du) for dv, du in ((-1, -1), (0, -1), (-1, 0), (1, 1), (0, 1), (1, 0))),
     Mistake(
@@ -391,6 +414,16 @@ TURN_MISTAKES = (
             )
         ),
     ),
+    Mistake(
+        "A's inverse transposed",
+        lambda s: (
+            None if abs(np.linalg.det(s.A)) < 1e-12 else (s.X - s.c) @ np.linalg.inv(s.A) + s.c
+        ),
+        (
+            "you applied inv(A) where A itself is to be applied, (X - c) @ inv(A): for a rotation inv(A) = A.T, so it "
+            "passes on a turn, but for any other A (this one) it is another move: x' = c + A (x - c), (X - c) @ A.T + c"
+        ),
+    ),
     *(
         Mistake(
             f"about {centre.name}" + (", X @ A" if transposed else ""),
@@ -475,6 +508,13 @@ RAISED = (
         ),
     ),
     Mistake(
+        "rounded up by np.ceil",
+        lambda s: _index_error(s) and s.index == s.size and _ceil_moved(s.X) is not None,
+        lambda s: (
+            f"{_ceil_moved(s.X)}. Round to the nearest whole number, then convert: u, v = np.rint(X).astype(int).T"
+        ),
+    ),
+    Mistake(
         "counted from 1",
         lambda s: _index_error(s) and s.index == s.size,
         lambda s: (
@@ -518,11 +558,51 @@ RAISED = (
         ),
     ),
     Mistake(
-        "img.shape unpacked",
+        "a colour image's shape unpacked",
+        lambda s: _unpack(s, "expected 3, got 2") and s.unpacked in (".shape", ""),
+        lambda s: (
+            f"H, W, C = img.shape unpacks a colour image's (H, W, 3); this grey image's shape is ({s.H}, {s.W}), "
+            "two numbers: H, W = img.shape[:2] reads both kinds"
+        ),
+    ),
+    Mistake(
+        "points unpacked as rows",
+        lambda s: _unpack(s, "too many values") and s.unpacked != ".shape",
+        lambda s: (
+            f"{'u, v = ' + s.unpacked if s.unpacked not in ('', '.T') else 'unpacking an (N, 2) array into u, v'} "
+            f"takes its rows, one per point, and X has {len(s.X)} points: unpack its two columns, "
+            "u, v = np.rint(X).astype(int).T (.T makes the columns rows)"
+        ),
+    ),
+    Mistake(
+        "Pillow's img.size",
+        lambda s: isinstance(s.exc, TypeError) and "cannot unpack non-iterable int" in s.text,
+        lambda s: (
+            f"{'numpy' + chr(39) + 's img.size is the number of pixels, one int (H * W = ' + str(s.H * s.W) + ')' if s.unpacked == '.size' else 'you unpacked one number into two names'}"
+            "; Pillow's img.size is (W, H), but img here is a numpy array: H, W = img.shape"
+        ),
+    ),
+    Mistake(
+        "unpacked into the wrong number of names",
         lambda s: isinstance(s.exc, ValueError) and "unpack" in s.text,
-        "img.shape is (H, W): two numbers, rows first: H, W = img.shape",
+        lambda s: (
+            f"{s.unpacked or 'the value'} holds another number of items than the names you unpacked it into: "
+            "img.shape is (H, W), and u, v = np.rint(X).astype(int).T gives the two columns of X"
+        ),
+    ),
+    Mistake(
+        "int() of an array",
+        lambda s: isinstance(s.exc, TypeError) and "converted to Python scalars" in s.text,
+        lambda s: (
+            f"int() converts one number, and a column of X holds {len(s.X)}: convert the whole array at once, "
+            "after rounding: u, v = np.rint(X).astype(int).T"
+        ),
     ),
 )
+
+
+def _unpack(s, words: str) -> bool:
+    return isinstance(s.exc, ValueError) and "unpack" in s.text and words in s.text
 
 
 def exception_hint(exc: Exception, args: tuple) -> str:
@@ -535,5 +615,15 @@ def exception_hint(exc: Exception, args: tuple) -> str:
     text = str(exc)
     match = re.search(r"index (-?\d+) is out of bounds for axis (\d) with size (\d+)", text)
     index, axis, size = (int(g) for g in match.groups()) if match else (None, None, None)
-    s = SimpleNamespace(exc=exc, text=text, X=X, H=H, W=W, index=index, axis=axis, size=size)
+    s = SimpleNamespace(
+        exc=exc,
+        text=text,
+        X=X,
+        H=H,
+        W=W,
+        index=index,
+        axis=axis,
+        size=size,
+        unpacked=unpacked_from(exc),
+    )
     return first_mistake(RAISED, s) or ""

@@ -210,6 +210,42 @@ def _float_index(img, X, A):
     return read_and_turn(img, X, A)[0], img[X[:, 1], X[:, 0]], read_and_turn(img, X, A)[2]
 
 
+def _colour_shape(img, X, A):
+    """``H, W, C = img.shape``, a colour habit, on a grey image (a wrong variant for the tests)."""
+    H, W, _ = img.shape
+    return read_and_turn(img, X, A)
+
+
+def _rows_unpacked(img, X, A):
+    """``u, v = X``: the rows unpacked, not the columns (a wrong variant for the tests)."""
+    u, v = X
+    return read_and_turn(img, X, A)
+
+
+def _pillow_size(img, X, A):
+    """``W, H = img.size``, Pillow's habit, on a numpy array (a wrong variant for the tests)."""
+    W, H = img.size
+    return read_and_turn(img, X, A)
+
+
+def _int_of_column(img, X, A):
+    """``int(X[:, 0])``: int() of an array (a wrong variant for the tests)."""
+    u, v = int(X[:, 0]), int(X[:, 1])
+    return read_and_turn(img, X, A)[0], img[v, u], read_and_turn(img, X, A)[2]
+
+
+def _ceil_read(img, X, A):
+    """``np.ceil(X)`` as the pixel index: a computed 5.000000000000001 reads pixel 6 (a wrong variant for the tests)."""
+    u, v = np.ceil(X).astype(int).T
+    c, _, turned = read_and_turn(img, X, A)
+    return c, img[v, u], turned
+
+
+def _two_parameters(img, X):
+    """A def that leaves out A (a wrong variant for the tests)."""
+    return read_and_turn(img, X, np.eye(2))
+
+
 register_exercise(
     Exercise(
         name="read_and_turn",
@@ -361,6 +397,16 @@ register_exercise(
                     centre=lambda W, H: (W / 2, H / 2), turn=lambda X, A, c: (X - c) @ A.T + c
                 ),
                 "right for your centre c",
+            ),
+            (_colour_shape, "H, W = img.shape[:2]"),
+            (_rows_unpacked, "u, v = X takes its rows"),
+            (_pillow_size, "numpy's img.size is the number of pixels"),
+            (_int_of_column, "int() converts one number"),
+            (_two_parameters, "calls your function as read_and_turn(img, X, A)"),
+            (_ceil_read, "np.ceil rounds up: X[0, 1] = 5.000000000000001"),
+            (
+                _rt_wrong(turn=lambda X, A, c: (X - c) @ np.linalg.inv(A) + c),
+                "you applied inv(A) where A itself is to be applied",
             ),
             (lambda img, X, A: read_and_turn(img, X, A)[:2], "you returned 2 things"),
             (lambda img, X, A: read_and_turn(img, X, A)[0], "you returned only the centre"),

@@ -243,6 +243,12 @@ def _list_append(p):
     return p
 
 
+def _unpack_three(p):
+    """``x, y, w = p``: a w the point does not have yet (a wrong variant for the tests)."""
+    x, y, w = p
+    return np.array([x, y, 1.0])
+
+
 def _list_grow(p):
     """A list grown by assignment (a wrong variant for the tests)."""
     q = list(p)
@@ -391,6 +397,10 @@ register_exercise(
                 "test input 1's point, not this input's: the answer does not depend on p",
             ),
             (_list_append, "no .append method"),
+            (lambda p: np.append(np.ceil(p), 1.0), "np.ceil rounds up (2.5 became 3)"),
+            (lambda p: np.append(int(p), 1.0), "int() (or float()) converts one number"),
+            (_unpack_three, "you unpacked it into three names"),
+            (lambda p, w: np.append(p, w), "calls your function as lift(p), 1 argument"),
             (lambda p: p + [1.0], "not the list concatenation"),
             (lambda p: np.concatenate(p, 1), "its second argument is the axis"),
             (lambda p: np.concatenate([p, 1.0]), "the 1 is a bare number"),
