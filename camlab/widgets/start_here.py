@@ -487,7 +487,7 @@ def _explorer_figure(view: FigureView, img: np.ndarray) -> tuple:
                 lw=2.0,
                 ls=(0, (4, 2)),
                 clip_on=False,
-                label="the pixel img[u, v] reads",
+                label="the pixel img[u, v] reads\n(none for u ≥ H: an IndexError)",
             )
         )
     )
