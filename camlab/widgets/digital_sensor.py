@@ -459,6 +459,9 @@ def _demosaic_figure(view: FigureView) -> SimpleNamespace:
         ax_full, 120, ZOOM_V, CROP, color="white"
     )  # white on a black outline: seen on the red stripes too
     box.set_path_effects(palette.halo(1.5, "black"))
+    box.set_clip_on(
+        False
+    )  # at u = 0 or v = 0 the box lies on the frame's edge: drawn whole, not half clipped
     ax_full.set_title("camlab bilinear: PSNR 00.00 dB (linear)", fontsize=10)
     view.animate(im_raw, im_full, im_zoom, box, ax_full.title, ax_zoom.title)
     return SimpleNamespace(
