@@ -473,6 +473,25 @@ def test_sensor_demos_read_as_the_lesson_says():
         np.degrees(np.arctan(100 / 500))
     )
     assert "field of view 35.1°" in ax.get_title()
+    # round i28: the top view is not mirrored. The ray it draws through the plane's left end is the one
+    # that projects to u = -1/2 and holds the wider half (23.7°), on the world's left (X < 0), and the
+    # image centre (u = 159.5 < c_x = 219.5) sits left of the axis there as it does in the image
+    top = p.figure.axes[1]
+    plane, rays, mark_top = top.lines[2], top.lines[3], top.lines[4]
+    K = p.state["K"]
+    x_left, x_right = plane.get_xdata()
+    x_far_left, x_far_right = np.asarray(rays.get_xdata())[[1, 4]]
+    z_far = rays.get_ydata()[1]
+    assert x_left < 0 < x_right and x_far_left < 0 < x_far_right
+    assert K[0, 0] * x_far_left / z_far + K[0, 2] == pytest.approx(-0.5)
+    assert K[0, 0] * x_far_right / z_far + K[0, 2] == pytest.approx(319.5)
+    assert np.degrees(np.arctan(-x_far_left / z_far)) == pytest.approx(left)
+    assert mark_top.get_xdata()[0] < 0 and centre[0] < K[0, 2]
+    p.set(cx_offset=-60)  # and the other way round
+    x_far_left, x_far_right = np.asarray(rays.get_xdata())[[1, 4]]
+    assert (
+        top.lines[4].get_xdata()[0] > 0 and -x_far_left < x_far_right
+    )  # the wider half now on the right
     # lesson 03, "Interactive: sampling and aliasing": the title's false-ring contrast is section 2's 0.35 and 0.06
     s = digital_sensor.sampling_aliasing()
     s.set(factor=6, prefilter=False)

@@ -17,30 +17,50 @@ SIZE = (320, 240)
 
 
 def _side_view(fig):
-    """A to-scale top view of lens, sensor and field of view (mm) beside the image; returns its artists and update.
+    """A to-scale top view of pinhole, image plane and field of view (mm) beside the image; returns its artists and update.
 
-    The sensor, W pixels of pitch s, sits f behind the lens; the rays through its two edges and the lens
-    centre bound the field of view. Finer pixels at a fixed pixel count: a smaller sensor, a narrower view.
+    Drawn as H&Z's figure 6.1 draws it: the image plane f in front of the centre, upright, so that its left
+    edge u = -1/2 is on the left (X < 0), as in the image beside it (the physical sensor, f behind the lens,
+    holds the same picture rotated by 180°). The rays from the centre through the plane's two edges bound
+    the field of view. Finer pixels at a fixed pixel count: a smaller plane, a narrower view.
     """
-    ax = fig.add_axes((0.805, 0.08, 0.19, 0.5))
-    ax.set(xlim=(-7.5, 7.5), ylim=(-4, 7), aspect="equal")
+    ax = fig.add_axes((0.675, 0.07, 0.315, 0.58))
+    ax.set(xlim=(-7.5, 7.5), ylim=(-1.5, 9.5), aspect="equal")
     ax.set_xticks([-5, 0, 5])
-    ax.set_yticks([])
+    ax.set_yticks([0, 3, 6, 9])
     ax.tick_params(labelsize=7)
-    ax.set_xlabel("x (mm)", fontsize=8)
-    ax.set_title("top view, to scale:\nsensor (blue) 3 mm\nbehind the lens (black)", fontsize=7.5)
+    ax.set_xlabel("X (mm), right →", fontsize=8)
+    ax.set_ylabel("Z (mm), forward ↑", fontsize=8, labelpad=1)
+    ax.set_title(
+        "top view, to scale: the image plane (blue)\nf = 3 mm in front of the pinhole (H&Z 6.1)",
+        fontsize=8,
+    )
     ax.axvline(0, color=palette.GREY, lw=0.6, ls=":")
-    ax.plot([-0.9, 0.9], [0, 0], color="k", lw=2)  # the lens, at z = 0
-    (sensor_line,) = ax.plot([], [], color=palette.BLUE, lw=3, solid_capstyle="butt")
+    ax.plot([0], [0], "o", color="k", ms=4)  # the pinhole (camera centre), at Z = 0
+    ax.text(0.4, -0.3, "pinhole", fontsize=7.5, va="top")
+    (plane,) = ax.plot([], [], color=palette.BLUE, lw=2.5, solid_capstyle="butt")
     (rays,) = ax.plot([], [], color=palette.ORANGE, lw=1)
+    (centre,) = ax.plot([], [], "x", color=palette.BLUE, ms=7, mew=1.5, path_effects=palette.halo())
+    (principal,) = ax.plot(
+        [], [], "+", color=palette.ORANGE, ms=9, mew=1.5, path_effects=palette.halo()
+    )
+    edge_text = dict(fontsize=7.5, va="top", color=palette.BLUE)
+    left_label = ax.text(0, 2.6, "u = −½", ha="right", **edge_text)
+    right_label = ax.text(0, 2.6, "W − ½", ha="left", **edge_text)
 
     def update(pitch_mm, cx_px, width_px):
-        x_left, x_right = -(cx_px + 0.5) * pitch_mm, (width_px - 0.5 - cx_px) * pitch_mm
-        sensor_line.set_data([x_left, x_right], [-3, -3])
-        # through the lens centre: a sensor point at x, 3 mm behind, sees the direction -x / 3 forward
-        rays.set_data([x_left, -x_left * 2, np.nan, x_right, -x_right * 2], [-3, 6, np.nan, -3, 6])
+        # a pixel u on the virtual plane sits at X = (u - c_x) s, Z = f: left of the axis when u < c_x
+        x_left, x_right = (-0.5 - cx_px) * pitch_mm, (width_px - 0.5 - cx_px) * pitch_mm
+        plane.set_data([x_left, x_right], [3, 3])
+        rays.set_data(
+            [0, x_left * 3, np.nan, 0, x_right * 3], [0, 9, np.nan, 0, 9]
+        )  # on to Z = 9 mm
+        centre.set_data([((width_px - 1) / 2 - cx_px) * pitch_mm], [3])
+        principal.set_data([0], [3])
+        left_label.set_position((x_left - 0.3, 2.6))
+        right_label.set_position((x_right + 0.3, 2.6))
 
-    return (sensor_line, rays), update
+    return (plane, rays, centre, principal, left_label, right_label), update
 
 
 @register(
@@ -61,11 +81,14 @@ def pixel_pitch():
         "pitch_um": slider(6.0, 2.0, 15.0, 0.5, "pixel pitch (µm)"),
         "cx_offset": slider(0, -60, 60, 2, "principal point offset (px)"),
     }
-    view = FigureView(figsize=(7.2, 4.4))
-    ax_img = view.fig.subplots()
+    view = FigureView(figsize=(8.6, 4.4))
+    view.fig.set_layout_engine(
+        "none"
+    )  # placed by hand: the image, its legend, and the top view beside them
+    ax_img = view.fig.add_axes((0.07, 0.1, 0.56, 0.78), anchor="W")
     scene = [
         scenes.checkerboard((9, 6), 0.05, t=(-0.2, -0.125, 1.2)),
-        scenes.photo_plane(0.25, t=(0.32, 0.05, 1.3)),
+        scenes.photo_plane(0.25, t=(0.34, 0.05, 1.3)),
     ]
     im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
     centre = ((SIZE[0] - 1) / 2, (SIZE[1] - 1) / 2)
@@ -436,6 +459,9 @@ def _demosaic_figure(view: FigureView) -> SimpleNamespace:
         ax_full, 120, ZOOM_V, CROP, color="white"
     )  # white on a black outline: seen on the red stripes too
     box.set_path_effects(palette.halo(1.5, "black"))
+    box.set_clip_on(
+        False
+    )  # at u = 0 or v = 0 the box lies on the frame's edge: drawn whole, not half clipped
     ax_full.set_title("camlab bilinear: PSNR 00.00 dB (linear)", fontsize=10)
     view.animate(im_raw, im_full, im_zoom, box, ax_full.title, ax_zoom.title)
     return SimpleNamespace(

@@ -258,6 +258,17 @@ def _interpolation_cause(raw, pattern, g, e) -> str:
     """
     m = sensor.bayer_masks(raw.shape, pattern)
     if not np.allclose(g[m], e[m]):
+        bad = (~np.isclose(g, e) & m).any(axis=2)
+        H, W = raw.shape
+        edge = np.zeros_like(bad)
+        edge[H - 1 :, :] |= H % 2 == 1
+        edge[:, W - 1 :] |= W % 2 == 1
+        if edge.any() and not (bad & ~edge).any():
+            return (
+                f"the last row or column of this {H} x {W} mosaic (an odd size) lost its measured samples: a loop "
+                "over 2 x 2 blocks, range(0, H - 1, 2), or masks for H // 2 blocks stop one short; fill the "
+                "last row and column too"
+            )
         return (
             "the measured samples changed: keep each pixel's own colour as measured, and check which "
             "colour sits where in the pattern (RGGB: R at row 0, column 0)"
