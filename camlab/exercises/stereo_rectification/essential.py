@@ -200,7 +200,7 @@ register_exercise(
         wrong_variants=(
             (_no_det_fix, "det = -1"),
             (_right_null_vector, "LEFT null vector"),
-            (_camera_centre, "camera centre"),
+            (_camera_centre, "camera 2's centre C"),
             (
                 lambda E: (decompose_essential(E)[0], 7.3 * decompose_essential(E)[1]),
                 "unit vectors",
