@@ -656,7 +656,7 @@ def _disparity_figure(gt: np.ndarray) -> tuple:
     view.fig.colorbar(im1, ax=ax1, shrink=0.7)
     im2 = ax2.imshow(np.zeros_like(gt), cmap=coolwarm, vmin=-5, vmax=5, interpolation="nearest")
     bar = view.fig.colorbar(im2, ax=ax2, shrink=0.7)  # the sign: red = estimated too far
-    bar.set_label("(Z - Z_true) / Z_true (%): + too far", fontsize=8)
+    bar.set_label("depth error (%), + = too far", fontsize=8)
     ax3.set_title("3-D points, left camera", fontsize=9)
     ax3.set(xlim=(-1.6, 1.6), ylim=(1.0, 4.5), zlim=(-0.8, 1.4))
     ax3.set_box_aspect(None, zoom=1.2)  # fill the panel: the default leaves a wide empty margin
