@@ -358,7 +358,8 @@ def test_float32_answer_is_held_to_float32_precision_not_beyond():
         AssertionError, match="wrong answer"
     ):  # a real mistake in float32 still fails
         check(
-            "disparity_to_depth", lambda d, f, B: np.float32(1.001) * (f * B / d).astype(np.float32)
+            "disparity_to_depth",
+            lambda d, f, B, o: np.float32(1.001) * (f * B / (d + o)).astype(np.float32),
         )
 
 
@@ -1280,7 +1281,9 @@ def test_decompose_essential_accepts_any_order_and_disparity_to_depth_any_float(
 
     reordered = lambda E: tuple(a[[2, 0, 3, 1]] for a in decompose_essential(E))  # noqa: E731
     assert check("decompose_essential", reordered).passed
-    assert check("disparity_to_depth", lambda d, f, B: f * B / np.asarray(d, np.float32)).passed
+    assert check(
+        "disparity_to_depth", lambda d, f, B, o: f * B / (np.asarray(d, np.float32) + o)
+    ).passed
 
 
 def test_jupyter_shows_a_wrong_answer_as_its_message_not_camlab_source():

@@ -60,6 +60,18 @@ def _bad_pixel_diagnosis(args, got, expected) -> str:
             "good: that is Middlebury's bad% (section 6), which reports the holes separately. This exercise "
             "asks for the rate over the pixels where both d and d_true are finite"
         )
+    matched = np.isfinite(d)
+    if np.isclose(g, np.mean(np.abs(err[matched]) > tau)):
+        return (
+            "you masked only the matcher's NaNs (isfinite(d)): the pixels without a true disparity stayed "
+            "in and counted as good (NaN > threshold is False). Score the pixels where both d and d_true "
+            "are finite"
+        )
+    if np.isclose(g, np.mean(np.abs(err[scored]) / np.abs(truth[scored]) > tau)):
+        return (
+            "you compared the relative error |d - d_true| / d_true with the threshold: the threshold is an "
+            "absolute error in pixels, |d - d_true| > threshold"
+        )
     if np.isclose(g, 1 - expected):
         return "you returned the fraction of GOOD pixels (|d - d_true| <= threshold): the bad-pixel rate is 1 minus that"
     if np.isclose(g, n_bad):
@@ -128,6 +140,14 @@ register_exercise(
             (
                 lambda d, t, tau: np.sum(np.abs(d - t) > tau) / np.isfinite(t).sum(),
                 "Middlebury's bad%",
+            ),
+            (
+                lambda d, t, tau: np.mean(np.abs(d - t)[np.isfinite(d)] > tau),
+                "masked only the matcher's NaNs",
+            ),
+            (
+                lambda d, t, tau: np.mean((np.abs(d - t) / t)[np.isfinite(d - t)] > tau),
+                "relative error",
             ),
             (lambda d, t, tau: 1 - disparity.bad_pixel_rate(d, t, tau), "GOOD pixels"),
             (

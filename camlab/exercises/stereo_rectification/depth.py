@@ -12,18 +12,41 @@ from .._core import Exercise, register_exercise
 
 
 def _depth_cases():
+    """Two rigs with one principal point (doffs 0), then Middlebury's Motorcycle (doffs 31.086 px)."""
     return [
-        (np.array([80.0, 40.0, 16.0]), 800.0, 0.12),
-        (np.array([[10.5, 64.0], [33.0, 7.25]]), 1200.0, 0.3),
+        (np.array([80.0, 40.0, 16.0]), 800.0, 0.12, 0.0),
+        (np.array([[10.5, 64.0], [33.0, 7.25]]), 1200.0, 0.3, 0.0),
+        (np.array([[12.0, 55.5], [30.25, 7.0]]), 994.978, 0.193001, 31.086),
     ]
+
+
+def _reference(d, f, B, doffs=0.0):
+    """camlab's depth with the principal-point offset: Z = f B / (d + doffs)."""
+    return disparity.disparity_to_depth(np.asarray(d, dtype=float) + doffs, f, B)
 
 
 def _depth_diagnosis(args, got, expected) -> str:
     problem = shape_problem(got, expected)
     if problem:
         return problem
-    d, f, B = args
+    d, f, B, doffs = args
     g = np.asarray(got, dtype=float)
+    if doffs and np.allclose(g, f * B / d):
+        return (
+            f"you left out doffs = {doffs:g} px: the right camera's principal point sits doffs px to the "
+            "right (c_x' = c_x + doffs), so d = f B / Z - doffs and Z = f B / (d + doffs)"
+        )
+    if doffs and np.allclose(g, f * B / (d - doffs)):
+        return (
+            "you subtracted doffs: d = u1 - u2 = f B / Z - doffs, since the right principal point sits "
+            "doffs px to the right; solve for Z: Z = f B / (d + doffs)"
+        )
+    if doffs and np.allclose(g, f * B / d + doffs):
+        return "you added doffs to the depth: it is a disparity (pixels), so it goes into the denominator, Z = f B / (d + doffs)"
+    d_in, d = (
+        d,
+        d + doffs,
+    )  # d + doffs, the effective disparity: every slip below is about f, B and d
     if np.allclose(g, d * B / f) or np.allclose(g, f * d / B):
         return (
             "depth falls as disparity grows: Z = f B / d (similar triangles), not proportional to d"
@@ -63,13 +86,14 @@ def _depth_diagnosis(args, got, expected) -> str:
         )
     i = np.unravel_index(np.argmax(np.abs(g - expected)), g.shape)
     return (
-        f"at d = {d[i]:g} px (f = {f:g} px, B = {B:g} m) you give Z = {g[i]:.4g} m; f B / d = {expected[i]:.4g} m. "
+        f"at d = {d_in[i]:g} px (f = {f:g} px, B = {B:g} m, doffs = {doffs:g} px) you give Z = {g[i]:.4g} m; "
+        f"f B / (d + doffs) = {expected[i]:.4g} m. "
         f"Z must be inversely proportional to d"
     )
 
 
-def disparity_to_depth(d, f, B):
-    """Similar triangles: d = f B / Z, so Z = f B / d (metres when B is in metres, f and d in pixels).
+def disparity_to_depth(d, f, B, doffs=0.0):
+    """Similar triangles: d + doffs = f B / Z, so Z = f B / (d + doffs) (metres when B is in metres).
 
     Parameters
     ----------
@@ -79,31 +103,36 @@ def disparity_to_depth(d, f, B):
         The rectified cameras' focal length, pixels.
     B : float
         The baseline, m.
+    doffs : float
+        How far right the right camera's principal point sits, pixels (c_x' = c_x + doffs; 0 when
+        both rectified cameras share one K, as in the rendered rig).
 
     Returns
     -------
     ndarray
-        The depths Z = f B / d, m, of ``d``'s shape.
+        The depths Z = f B / (d + doffs), m, of ``d``'s shape.
     """
-    return f * B / np.asarray(d, dtype=float)
+    return f * B / (np.asarray(d, dtype=float) + doffs)
 
 
 register_exercise(
     Exercise(
         name="disparity_to_depth",
         lesson="11",
-        reference=disparity.disparity_to_depth,
+        reference=_reference,
         cases=_depth_cases,
         compare=same_array(rtol=1e-9),
         diagnose=_depth_diagnosis,
         wrong_variants=(
-            (lambda d, f, B: f * d / B, "Z = f B / d"),
-            (lambda d, f, B: B / d, "focal length"),
-            (lambda d, f, B: 1000 * f * B / d, "unit slip"),
-            (lambda d, f, B: f * B / (d + 1.0), "1-based offset"),
-            (lambda d, f, B: f * B // d, "floor division"),
-            (lambda d, f, B: f / (B * d), "divided by the baseline"),
-            (lambda d, f, B: -f * B / d, "depths are negative"),
+            (lambda d, f, B, o=0.0: f * (d + o) / B, "Z = f B / d"),
+            (lambda d, f, B, o=0.0: B / (d + o), "focal length"),
+            (lambda d, f, B, o=0.0: 1000 * f * B / (d + o), "unit slip"),
+            (lambda d, f, B, o=0.0: f * B / (d + o + 1.0), "1-based offset"),
+            (lambda d, f, B, o=0.0: f * B // (d + o), "floor division"),
+            (lambda d, f, B, o=0.0: f / (B * (d + o)), "divided by the baseline"),
+            (lambda d, f, B, o=0.0: -f * B / (d + o), "depths are negative"),
+            (lambda d, f, B, o=0.0: f * B / d, "left out doffs"),
+            (lambda d, f, B, o=0.0: f * B / (d - o), "subtracted doffs"),
         ),
         teaching=disparity_to_depth,
     )

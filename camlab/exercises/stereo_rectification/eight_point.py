@@ -103,21 +103,35 @@ def _eight_point_diagnosis(args, got, expected) -> str:
     err = np.median(epipolar.sampson_distance(g, x1, x2)) if np.any(g) else np.inf
     return (
         f"median Sampson error of your F on the input pairs is {err:.3g} px; check the row of the linear "
-        "system (u'u, u'v, u', v'u, v'v, v', u, v, 1), the SVD (last row of V^T) and the un-normalisation"
+        "system (u'u, u'v, u', v'u, v'v, v', u, v, 1), the SVD (last row of V^T) and the un-normalisation. "
+        "If you fixed F33 = 1 and solved by least squares: that fails when F33 is near 0 (as for these "
+        "rigs); take f as the null vector with |f| = 1 instead"
     )
 
 
 def _unnormalisation_slip(g, x1, x2, expected, T1, T2) -> str:
     """The hint for an F whose normalisation went wrong; '' if none fits.
 
-    Its normalisation not undone, undone the wrong way, or its rank 2 enforced after undoing it; ''
-    if ``g`` is none of these (up to scale).
+    Its largest singular value zeroed, F_n reshaped column-major, its normalisation not undone or
+    undone the wrong way, or its rank 2 enforced after undoing it; '' if ``g`` is none of these
+    (up to scale).
     """
     iT1, iT2 = np.linalg.inv(T1), np.linalg.inv(T2)
     Fn = iT2.T @ expected @ iT1  # the reference in normalised coordinates
     right = "F = T2^T F_n T1, from x2^T F x1 = (T2 x2)^T F_n (T1 x1)"
     U, S, Vt = np.linalg.svd(_no_rank2(x1, x2))
+    Un, Sn, Vnt = np.linalg.svd(iT2.T @ _no_rank2(x1, x2) @ iT1)  # F_n before its rank-2 step
     forms = [
+        (
+            T2.T @ Un @ np.diag([0.0, Sn[1], Sn[2]]) @ Vnt @ T1,
+            "you zeroed the LARGEST singular value of F_n: rank 2 keeps the two largest, "
+            "U diag(s1, s2, 0) V^T (numpy's svd sorts them in decreasing order, so zero S[2])",
+        ),
+        (
+            T2.T @ (Un @ np.diag([Sn[0], Sn[1], 0.0]) @ Vnt).T @ T1,
+            "you reshaped f column by column (order='F'): that gives F_n transposed. f = (F11, F12, F13, "
+            "F21, ...) is row-major, as the row (u'u, u'v, u', v'u, ...) assumes: f.reshape(3, 3)",
+        ),
         (Fn, "you returned F_n, the F of the normalised points: undo the normalisation, " + right),
         (
             iT2 @ Fn @ T1,
@@ -167,6 +181,18 @@ def _swapped_t(x1, x2):
 def _rank_after(x1, x2):
     U, S, Vt = np.linalg.svd(_no_rank2(x1, x2))
     return U @ np.diag([S[0], S[1], 0.0]) @ Vt
+
+
+def _largest_zeroed(x1, x2):
+    T1, T2 = hartley_normalise(x1).T, hartley_normalise(x2).T
+    U, S, Vt = np.linalg.svd(np.linalg.inv(T2).T @ _no_rank2(x1, x2) @ np.linalg.inv(T1))
+    return T2.T @ U @ np.diag([0.0, S[1], S[2]]) @ Vt @ T1
+
+
+def _column_major(x1, x2):
+    T1, T2 = hartley_normalise(x1).T, hartley_normalise(x2).T
+    U, S, Vt = np.linalg.svd((np.linalg.inv(T2).T @ _no_rank2(x1, x2) @ np.linalg.inv(T1)).T)
+    return T2.T @ U @ np.diag([S[0], S[1], 0.0]) @ Vt @ T1
 
 
 def _rms_normalised(x1, x2):
@@ -282,6 +308,8 @@ register_exercise(
             (_homography_style, "as for a homography"),
             (_swapped_t, "swapped T1 and T2"),
             (_rank_after, "rank 2 after undoing"),
+            (_largest_zeroed, "LARGEST singular value"),
+            (_column_major, "order='F'"),
         ),
         teaching=eight_point,
     )

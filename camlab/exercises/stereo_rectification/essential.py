@@ -48,6 +48,25 @@ def _essential_compare(got, expected) -> bool:
     )
 
 
+def _centre_hint(Rs, ts, got, expected) -> str:
+    """The hint for t returned as camera 2's centre (C = -R^T t, or R^T t); '' if it is not that."""
+    exp_set = _pose_set(*expected)
+    centres = [(R, -R.T @ t) for R, t in exp_set]  # C = -R^T t (and R^T t, its sign flip)
+    if all(
+        any(
+            np.allclose(R, Re, atol=1e-8) and min(np.abs(t - c).max(), np.abs(t + c).max()) < 1e-8
+            for Re, c in centres
+        )
+        for R, t in _pose_set(Rs, ts)
+    ) and not _essential_compare(got, expected):
+        return (
+            "your t is camera 2's centre C = -R^T t (or R^T t), which is also E's right null vector (last "
+            "row of V^T: E C = [t]x R (-R^T t) = -t x t = 0). With X2 = R X1 + t, t is the LEFT null vector "
+            "of E, the last column of U (t^T E = 0); C is where camera 2 sits in camera 1's frame"
+        )
+    return ""
+
+
 def _essential_diagnosis(args, got, expected) -> str:
     (E,) = args
     try:
@@ -82,6 +101,9 @@ def _essential_diagnosis(args, got, expected) -> str:
             "some of your R have det = -1 (reflections, not rotations): the SVD's U and V can be "
             "reflections; flip the sign of U (or V^T) when its determinant is -1, before forming U W V^T"
         )
+    hint = _centre_hint(Rs, ts, got, expected)
+    if hint:
+        return hint
     u3 = np.linalg.svd(E)[0][:, 2]
     v3 = np.linalg.svd(E)[2][2]
     if any(
@@ -99,16 +121,6 @@ def _essential_diagnosis(args, got, expected) -> str:
         for U_row in [np.linalg.svd(E)[0][2]]
     ):
         return "your t is the last ROW of U; t is the last COLUMN, U[:, 2] (t^T E = 0)"
-    exp_set = _pose_set(*expected)
-    centres = [(R, -R.T @ t) for R, t in exp_set]
-    if all(
-        any(np.allclose(R, Re, atol=1e-8) and np.allclose(t, c, atol=1e-8) for Re, c in centres)
-        for R, t in _pose_set(Rs, ts)
-    ) and not _essential_compare(got, expected):
-        return (
-            "your t is the camera centre C = -R^T t, not t: with X2 = R X1 + t, t is the left null vector "
-            "of E (the last column of U), while C is where camera 2 sits in camera 1's frame"
-        )
     if np.all(ts @ u3 > 0) or np.all(ts @ u3 < 0):
         return "all your t have the same sign: the four candidates are (R_a, +t), (R_a, -t), (R_b, +t), (R_b, -t)"
     expected_Rs = np.asarray(expected[0], dtype=float)
@@ -174,6 +186,11 @@ def _kept_singular_values(E):
     return np.stack([Ra, Ra, Rb, Rb]), np.stack([U[:, 2], -U[:, 2], U[:, 2], -U[:, 2]])
 
 
+def _camera_centre(E):
+    Rs, ts = decompose_essential(E)
+    return Rs, -np.einsum("kji,kj->ki", Rs, ts)  # C = -R^T t for each candidate
+
+
 def _right_null_vector(E):
     Rs, _ = decompose_essential(E)
     v3 = np.linalg.svd(E)[2][2]
@@ -191,6 +208,7 @@ register_exercise(
         wrong_variants=(
             (_no_det_fix, "det = -1"),
             (_right_null_vector, "LEFT null vector"),
+            (_camera_centre, "camera 2's centre C"),
             (
                 lambda E: (decompose_essential(E)[0], 7.3 * decompose_essential(E)[1]),
                 "unit vectors",

@@ -108,6 +108,16 @@ def _rectifying_diagnosis(args, got, expected) -> str:
             "your y is x × z_old, which points up, and so z points backwards: y = z_old × x (z_old = R1[2]) "
             "keeps y pointing down and z looking forward, like the old camera",
         ),
+        (
+            _fusiello(C1, C2, np.array([0.0, 0.0, 1.0])),
+            "your old viewing direction is the world's z axis (0, 0, 1), which is UP in this course's "
+            "worlds, not where camera 1 looks: its optical axis in world coordinates is R1[2]",
+        ),
+        (
+            _fusiello(C1, C2, R1[1]),
+            "your old viewing direction is R1[1], camera 1's y axis (down in its image): the optical "
+            "axis is the third row, z_old = R1[2]",
+        ),
     ]
     for wrong, hint in forms:
         if np.allclose(g, wrong, atol=1e-8):
@@ -153,6 +163,8 @@ register_exercise(
                 lambda C1, C2, R1: _fusiello(C1, C2, np.asarray(R1)[2], normalise=False),
                 "normalise y",
             ),
+            (lambda C1, C2, R1: _fusiello(C1, C2, np.array([0.0, 0.0, 1.0])), "world's z axis"),
+            (lambda C1, C2, R1: _fusiello(C1, C2, np.asarray(R1)[1]), "camera 1's y axis"),
         ),
         teaching=rectifying_rotation,
     )
