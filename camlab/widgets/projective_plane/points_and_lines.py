@@ -81,6 +81,7 @@ def lift_to_plane() -> Demo:
         end = _LIFT_SCALE * np.array([v["x"], v["y"], 1.0])  # the whole line within the box
         ray.set_data_3d([-end[0], end[0]], [-end[1], end[1]], [-end[2], end[2]])
         scaled.set_data_3d([xh[0]], [xh[1]], [xh[2]])
+        scaled.set_visible(abs(lam) > 1e-12)  # λ = 0 names no point: the legend says λ ≠ 0
         hit.set_data_3d([xy[0]], [xy[1]], [1.0])
         dot.set_data([xy[0]], [xy[1]])
         if abs(lam) < 1e-12:
