@@ -512,7 +512,10 @@ register_exercise(
             (_cross_2d_twice, "np.cross of two 2-vectors"),
             (lambda s: projective.vanishing_point(np.asarray(s) + 0.5), "half-pixel"),
             (lambda s: projective.vanishing_point(np.asarray(s) * [1.0, -1.0]), "y flip"),
-            (lambda s: projective.vanishing_point(479.0 - np.asarray(s) * [-1.0, 1.0]), "479 - v"),
+            (
+                lambda s: projective.vanishing_point(np.asarray(s) * [1.0, -1.0] + [0.0, 479.0]),
+                "479 - v",
+            ),
             (lambda s: projective.vanishing_point(np.asarray(s) - 1.0), "-1 px"),
             (
                 lambda s: (
