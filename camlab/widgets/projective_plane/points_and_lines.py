@@ -401,8 +401,27 @@ def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespac
         lw=1.5,
         label="horizon = vp_z × vp_x (when in the image)",
     )
-    (vz_dot,) = ax.plot([], [], "o", color=palette.TAB_BLUE, mec="k", ms=11)
-    (vx_dot,) = ax.plot([], [], "o", color=palette.TAB_GREEN, mec="k", ms=11)
+    # an arrowhead on the horizon when the point is off the image; never clipped at the frame
+    (vz_dot,) = ax.plot(
+        [],
+        [],
+        "o",
+        color=palette.TAB_BLUE,
+        mec="k",
+        ms=12,
+        clip_on=False,
+        label="v_z (or an arrow to it)",
+    )
+    (vx_dot,) = ax.plot(
+        [],
+        [],
+        "o",
+        color=palette.TAB_GREEN,
+        mec="k",
+        ms=12,
+        clip_on=False,
+        label="v_x (or an arrow to it)",
+    )
     # below the image: inside it, the grid's lines would run through the legend at some setting
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=3, fontsize=8)
     note = ax.text(
