@@ -365,7 +365,9 @@ def point_line_duality() -> Demo:
     controls = {
         "px": slider(1.0, -2.5, 2.5, 0.05, "p: x"),
         "py": slider(0.5, -2.5, 2.5, 0.05, "p: y"),
-        "line_angle": slider(0.0, 0.0, 180.0, 1.0, "l: normal angle (°)"),
+        "line_angle": slider(
+            0.0, 0.0, 359.0, 1.0, "l: normal angle (°)"
+        ),  # every line: y = -1 at 270
         "line_dist": slider(1.0, 0.2, 2.5, 0.05, "l: distance from origin"),
     }
     return build_demo(
