@@ -141,3 +141,21 @@ def test_inputs_are_not_modified():
     H0, C0 = H.copy(), C.copy()
     pj.map_conic(H, C), pj.map_dual_conic(H, C), pj.dual_conic(C), pj.conic_points(C)
     assert np.array_equal(H, H0) and np.array_equal(C, C0)
+
+
+def test_line_angle_reads_the_plane_angle_off_a_photo():
+    """60 deg on the plane, seen through a projective H: the image's own angle differs, H C*inf H^T gives 60 back."""
+    H = np.array([[1.2, 0.3, 5.0], [-0.1, 0.9, 2.0], [0.02, 0.01, 1.0]])
+    l60, m = (
+        np.array([np.sin(np.radians(60)), -np.cos(np.radians(60)), 0.5]),
+        np.array([0.0, 1.0, -1.0]),
+    )
+    l_img, m_img = pj.map_lines(H, l60), pj.map_lines(H, m)
+    C_img = pj.map_dual_conic(H, pj.DUAL_CONIC_AT_INFINITY)
+    assert np.isclose(np.degrees(pj.line_angle(l60, m)), 60.0)
+    assert np.isclose(
+        np.degrees(pj.line_angle(-2 * l_img, m_img, -3 * C_img)), 60.0
+    )  # any scale, sign
+    assert abs(np.degrees(pj.line_angle(l_img, m_img)) - 60.0) > 5
+    with pytest.raises(pj.CamlabInputError, match="l2: expected a line"):
+        pj.line_angle(l60, [0.0, 1.0])

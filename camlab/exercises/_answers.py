@@ -247,7 +247,9 @@ def rescaled_to(got: Any, expected: Any) -> np.ndarray | None:
 
     A scale-free check compares ``got`` with ``s * expected`` for the best ``s``; showing the raw
     ``expected`` beside ``got`` (and naming its worst raw entry) would report differences that are
-    only the scale. None when the shapes differ, ``got`` is not finite or either is all zeros.
+    only the scale. None when the shapes differ, ``got`` is not finite, either is all zeros, or
+    ``got`` points far from ``expected`` (cosine of their angle below 0.9): a far-off answer
+    would stretch ``expected`` to a scale that only confuses.
     """
     try:
         g = np.asarray(got, dtype=float)
@@ -256,7 +258,9 @@ def rescaled_to(got: Any, expected: Any) -> np.ndarray | None:
         return None
     if g.shape != e.shape or not np.isfinite(g).all() or not np.any(g) or not np.any(e):
         return None
-    return e * float(np.sum(g * e) / np.sum(e * e)) if np.sum(g * e) != 0 else None
+    if abs(np.sum(g * e)) < 0.9 * np.linalg.norm(g) * np.linalg.norm(e):
+        return None
+    return e * float(np.sum(g * e) / np.sum(e * e))
 
 
 REDUCED_PRECISION_SLACK = 100

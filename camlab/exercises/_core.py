@@ -346,6 +346,22 @@ def _run_student(
     return got
 
 
+def _expected_shown(exercise: Exercise, got: Any, expected: Any) -> tuple[Any, str]:
+    """The expected answer as a failed check shows it, and a note on its scale.
+
+    A scale-free answer is shown at the student's scale when theirs points nearly the same way,
+    else at unit length: stretching it to a far-off answer's scale would only confuse.
+    """
+    if exercise.compare is not same_up_to_scale:
+        return expected, ""
+    if rescaled_to(got, expected) is not None:  # compare after fixing the free scale
+        return rescaled_to(got, expected), "  (rescaled to your answer's scale)"
+    e = np.asarray(expected, dtype=float)
+    if np.any(e) and np.isfinite(e).all():
+        return e / np.linalg.norm(e), "  (unit length; any non-zero scale is accepted)"
+    return expected, ""
+
+
 def check(
     name: str, student_function: Callable[..., Any], *, time_limit_s: float | None = None
 ) -> CheckResult:
@@ -401,10 +417,7 @@ def check(
             tolerance = (
                 exercise.compare.tolerance if isinstance(exercise.compare, SameArray) else None
             )
-            shown, scaled = expected, ""
-            if exercise.compare is same_up_to_scale and rescaled_to(got, expected) is not None:
-                shown = rescaled_to(got, expected)  # compare after fixing the free scale
-                scaled = "  (rescaled to your answer's scale)"
+            shown, scaled = _expected_shown(exercise, got, expected)
             raise CheckFailed(
                 f"{name}: wrong answer on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_input_text(name, args)}\n"

@@ -25,6 +25,7 @@ from .conics import (
     conic_matrix,
     conic_points,
     dual_conic,
+    line_angle,
     map_conic,
     map_dual_conic,
 )
@@ -62,6 +63,7 @@ __all__ = [
     "conic_matrix",
     "conic_points",
     "dual_conic",
+    "line_angle",
     "map_conic",
     "map_dual_conic",
     "LINE_AT_INFINITY",

@@ -258,3 +258,44 @@ def conic_points(C: ArrayLike, n: int = 100) -> np.ndarray:
     lam, V = np.linalg.eigh(A)
     t = np.linspace(0, 2 * np.pi, n)
     return x0 + (np.stack([np.cos(t), np.sin(t)], axis=1) * np.sqrt(k / lam)) @ V.T
+
+
+def line_angle(l1: ArrayLike, l2: ArrayLike, C_star: ArrayLike = DUAL_CONIC_AT_INFINITY) -> float:
+    r"""The angle between two lines, measured through a dual conic of the circular points.
+
+    For lines of the plane itself :math:`l^T C^*_\infty m = l_1 m_1 + l_2 m_2` (lines l, m) is the dot
+    product of their normals, so
+
+    .. math:: \cos\theta = \frac{|l^T C^* m|}{\sqrt{(l^T C^* l)(m^T C^* m)}} ,
+
+    with the absolute value because a line's sign is free. Every factor is invariant: in a photo
+    through H, lines are :math:`H^{-T} l` and :math:`C^{*\prime}_\infty = H C^*_\infty H^T`, so the
+    same formula with the image's lines and :math:`C^{*\prime}_\infty` gives the angle *on the
+    plane*. The square root is of the product, so a negative scale of ``C_star`` cancels.
+
+    Parameters
+    ----------
+    l1, l2 : (3,) array_like
+        The two lines (a, b, c), any scale and sign.
+    C_star : (3, 3) array_like
+        The dual conic of the circular points, or its image :math:`H C^*_\infty H^T`, any
+        non-zero scale (default :data:`DUAL_CONIC_AT_INFINITY`, the plane's own).
+
+    Returns
+    -------
+    float
+        The acute angle between the lines, radians, in [0, pi/2].
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 2.7.4 (the angle formula).
+    """
+    Cs = _symmetric(C_star, "C_star")
+    lv, mv = (np.asarray(v, dtype=float) for v in (l1, l2))
+    for name, v in (("l1", lv), ("l2", mv)):
+        if v.shape != (3,):
+            raise CamlabInputError(
+                f"{name}: expected a line (a, b, c) of shape (3,), got shape {v.shape}; pass one line as a 3-vector"
+            )
+    cos = abs(lv @ Cs @ mv) / np.sqrt((lv @ Cs @ lv) * (mv @ Cs @ mv))
+    return float(np.arccos(min(1.0, cos)))

@@ -1,7 +1,7 @@
 """Exercises for lesson 06, the projective plane.
 
-Points and lines (:mod:`.lines`: the join, the meet, a vanishing point), a conic moved by a
-homography (:mod:`.conic`), the horizon (:mod:`.horizon`) and an angle measured through the
+Points and lines (:mod:`.lines`: the join, the meet, a vanishing point), the horizon
+(:mod:`.horizon`), a conic moved by a homography (:mod:`.conic`) and an angle measured through the
 image of the dual conic of the circular points (:mod:`.angles`).
 """
 
@@ -10,8 +10,8 @@ from __future__ import annotations
 # each module registers its exercises when imported: keep the lesson's order
 # isort: off
 from . import lines
-from . import conic
 from . import horizon
+from . import conic
 from . import angles
 
 # isort: on

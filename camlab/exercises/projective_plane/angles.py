@@ -60,7 +60,7 @@ def _cosine(l1, l2, C):
 
 
 def _angle_deg(l1, l2, C):
-    """The reference: the acute angle, in degrees, between the world lines."""
+    """The acute angle, in degrees, between the world lines (camlab.projective.line_angle's formula)."""
     l1, l2, C = (np.asarray(a, dtype=float) for a in (l1, l2, C))
     return float(np.degrees(np.arccos(np.clip(abs(_cosine(l1, l2, C)), 0.0, 1.0))))
 

@@ -1,4 +1,4 @@
-"""Lesson 06, exercise 4: move a conic by a homography."""
+"""Lesson 06, exercise 5: move a conic by a homography."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from ... import projective
 from .._answers import same_up_to_scale, shape_problem
 from .._core import Exercise, Mistake, first_mistake, mistake_variant, register_exercise
 
-# --- Exercise 4: move a conic by a homography -------------------------------------------
+# --- Exercise 5: move a conic by a homography -------------------------------------------
 
 
 def _conic_cases():
@@ -17,7 +17,8 @@ def _conic_cases():
     c, s = 2.0 * np.cos(0.6), 2.0 * np.sin(0.6)
     H_similarity = np.array([[c, -s, 10.0], [s, c, -5.0], [0.0, 0.0, 1.0]])
     return [
-        (H_projective, projective.circle_conic([0.0, 0.0], 1.0)),
+        # off-centre, so C^-1 is no multiple of C and inverting the whole product is told apart
+        (H_projective, projective.circle_conic([0.5, -0.3], 1.2)),
         (H_affine, projective.conic_matrix(2.0, 0.5, 1.0, -1.0, 0.3, -4.0)),
         (H_similarity, projective.circle_conic([3.0, -2.0], 2.5)),
     ]
@@ -69,6 +70,12 @@ _CONIC_MISTAKES = (
         "entrywise products",
         lambda a: _inv(a.H).T * a.C * _inv(a.H),
         "`*` multiplies entry by entry; matrix products need `@`: inv(H).T @ C @ inv(H)",
+    ),
+    Mistake(
+        "the whole product inverted",
+        lambda a: _inv(a.H.T @ a.C @ a.H),
+        "you inverted the whole product, inv(H.T @ C @ H) = inv(H) @ inv(C) @ inv(H).T: that is the dual "
+        "conic's rule applied to C's inverse, not C moved. Invert H only, not C: " + _CONIC_RULE,
     ),
     Mistake("C unchanged", lambda a: a.C, "you returned C unchanged; apply H: " + _CONIC_RULE),
 )
@@ -146,6 +153,7 @@ register_exercise(
                         "drops a transpose",
                         "how a line moves",
                         "entry by entry",
+                        "inverted the whole product",
                         "unchanged",
                     ),
                     strict=True,

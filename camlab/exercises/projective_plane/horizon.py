@@ -1,4 +1,4 @@
-"""Lesson 06, exercise 5: the horizon, the image of the ground's line at infinity."""
+"""Lesson 06, exercise 4: the horizon, the image of the ground's line at infinity."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from .._answers import same_up_to_scale, shape_problem
 from .._core import Exercise, Mistake, first_mistake, mistake_variant, register_exercise
 from .lines import followed_by, incidence, silenced
 
-# --- Exercise 5: the horizon, the image of the ground's line at infinity ---------------------
+# --- Exercise 4: the horizon, the image of the ground's line at infinity ---------------------
 
 
 def _ground_homography(
@@ -94,17 +94,17 @@ _HORIZON_MISTAKES = (
     Mistake(
         "a finite point joined (x axis)",
         lambda a: np.cross(a.H[:, 0], a.H[:, 2]),
-        "your line is the image of the ground's x axis: you joined H[:, 0] and H[:, 2] (H[:, 2] is the "
-        "image of the ground's origin, a finite point), or you moved the line (0, 1, 0) with inv(H).T "
-        "instead of l_inf = (0, 0, 1). The horizon joins the images of two "
+        "your line is the image of the ground's x axis, the line Z = 0: either you moved the line "
+        "(0, 1, 0) with inv(H).T instead of l_inf = (0, 0, 1), or you joined H[:, 0] and H[:, 2] "
+        "(H[:, 2] is the image of the ground's origin, a finite point). The horizon joins the images of two "
         "ideal points, (1, 0, 0) and (0, 1, 0): H[:, 0] x H[:, 1]",
     ),
     Mistake(
         "a finite point joined (z axis)",
         lambda a: np.cross(a.H[:, 1], a.H[:, 2]),
-        "your line is the image of the ground's z axis: you joined H[:, 1] and H[:, 2] (H[:, 2] is the "
-        "image of the ground's origin, a finite point), or you moved the line (1, 0, 0) with inv(H).T "
-        "instead of l_inf = (0, 0, 1). The horizon joins the images of two "
+        "your line is the image of the ground's z axis, the line X = 0: either you moved the line "
+        "(1, 0, 0) with inv(H).T instead of l_inf = (0, 0, 1), or you joined H[:, 1] and H[:, 2] "
+        "(H[:, 2] is the image of the ground's origin, a finite point). The horizon joins the images of two "
         "ideal points, (1, 0, 0) and (0, 1, 0): H[:, 0] x H[:, 1]",
     ),
     Mistake(

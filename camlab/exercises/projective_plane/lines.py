@@ -232,6 +232,14 @@ def _line_diagnosis(args, got, expected) -> str:
             "np.append(q, 1.0))"
         )
     problem = shape_problem(got, expected)
+    p, q = (np.asarray(a, dtype=float) for a in args)
+    if problem and np.shape(got) == (3,) and p[0] == q[0]:
+        return followed_by(
+            problem,
+            "This test line is vertical (both points have x = "
+            f"{p[0]:g}): it has no slope, so a slope-intercept form (m, -1, b) breaks. The cross "
+            "product of the lifted points needs no slope: it gives (a, b, c) = (1, 0, -x) up to scale",
+        )
     if problem and np.shape(got) == (3,) and 0 in np.asarray(expected)[2:]:
         return followed_by(
             problem,
@@ -251,7 +259,6 @@ def _line_diagnosis(args, got, expected) -> str:
             "your line is (0, 0, c), the line at infinity: you lifted the points with w = 0, which makes them "
             "directions, not points. Lift p and q to (x, y, 1) before the cross product."
         )
-    p, q = (np.asarray(a, dtype=float) for a in args)
     if same_up_to_scale(g, _line_through(p[::-1], q[::-1])):
         return (
             "you swapped the coordinates: your line passes through (y, x) of each point. A pixel "
@@ -314,6 +321,14 @@ register_exercise(
                 lambda p, q: np.cross([p[1], p[0], 1.0], [q[1], q[0], 1.0]),
                 "swapped the coordinates",
             ),
+            (  # slope-intercept form: breaks on the vertical test line
+                silenced(
+                    lambda p, q: (lambda m: np.array([m, -1.0, p[1] - m * p[0]]))(
+                        (q[1] - p[1]) / (q[0] - p[0])
+                    )
+                ),
+                "has no slope",
+            ),
         ),
         teaching=line_through_points,
     )
@@ -361,6 +376,11 @@ def _conditioning_slip(segments, got, expected) -> str | None:
                     f"you undid the conditioning with {how} instead of its inverse: the point in conditioned "
                     "coordinates is x_c = T x, so x = inv(T) @ x_c"
                 )
+        if same_up_to_scale(got, np.linalg.inv(T).T @ T @ e):
+            return (
+                "you undid the conditioning with inv(T).T, the rule that moves *lines*; your result is a "
+                "point, and points move back by inv(T) itself: x = inv(T) @ x_c"
+            )
     return None
 
 
@@ -381,11 +401,18 @@ def _vanishing_diagnosis(args, got, expected) -> str:
             (seg + 0.5, "shifted by +0.5 px in u and v: a half-pixel offset"),
             (seg - 0.5, "shifted by -0.5 px in u and v: a half-pixel offset"),
             (seg + 1.0, "shifted by +1 px in u and v: 1-based pixels?"),
+            (seg - 1.0, "shifted by -1 px in u and v: an off-by-one?"),
             (seg * [1.0, -1.0], "with v negated: a y flip (y up instead of the image's v down)"),
+            (
+                seg * [1.0, -1.0] + [0.0, 479.0],
+                "flipped upside down, v -> 479 - v: a y flip (y up instead of the image's v down)",
+            ),
         ):
             if same_up_to_scale(got, vanishing_point(moved)):
                 return (
-                    f"your point is the vanishing point of the segments {why}. Use the endpoints as given: "
+                    f"your point is the vanishing point of the segments {why}"
+                    + (" " if why.endswith("?") else ". ")
+                    + "Use the endpoints as given: "
                     "(u, v) lifts to (u, v, 1)."
                 )
     lines = [projective.join(s[0], s[1]) for s in segments]
@@ -485,6 +512,19 @@ register_exercise(
             (_cross_2d_twice, "np.cross of two 2-vectors"),
             (lambda s: projective.vanishing_point(np.asarray(s) + 0.5), "half-pixel"),
             (lambda s: projective.vanishing_point(np.asarray(s) * [1.0, -1.0]), "y flip"),
+            (
+                lambda s: projective.vanishing_point(np.asarray(s) * [1.0, -1.0] + [0.0, 479.0]),
+                "479 - v",
+            ),
+            (lambda s: projective.vanishing_point(np.asarray(s) - 1.0), "-1 px"),
+            (
+                lambda s: (
+                    np.linalg.inv(_conditionings(s)[0]).T
+                    @ _conditionings(s)[0]
+                    @ projective.vanishing_point(s)
+                ),
+                "moves *lines*",
+            ),
         ),
         exception_hint=_vanishing_exception_hint,
         teaching=vanishing_point,

@@ -127,7 +127,7 @@ def _conic_text(g: SimpleNamespace, v: dict) -> str:
     bounded = (
         "H keeps l∞, so C' stays bounded"
         if h == 0
-        else f"the line H sends to ∞, h31 x + h32 y + 1 = 0, is {1 / h:.1f} from C's centre (> 1)"
+        else f"H sends h31 x + h32 y + 1 = 0 to ∞: {1 / h:.1f} from C's centre (> 1)"
     )
     HI = g.I_mapped
     return (

@@ -20,24 +20,8 @@ _LIFT_XY, _LIFT_SCALE = 1.5, 2.0
 _LIFT_BOX = _LIFT_XY * _LIFT_SCALE
 
 
-@register(
-    lesson="06", sweep={"x": [-1.5, 0.0, 1.5], "y": [1.5, -1.5], "scale": [-2.0, -0.6, 0.0, 2.0]}
-)
-def lift_to_plane() -> Demo:
-    """A point (x, y) is the line through the origin and (x, y, 1): every non-zero multiple names it.
-
-    The 3-D box is sized once for the sliders' extremes (|λ x|, |λ y| up to 3, |λ| up to 2), so
-    the scaled point never leaves it; a negative λ puts it on the other half of the line, below
-    w = 0, and λ = 0 gives (0, 0, 0), which names no point.
-
-    Returns
-    -------
-    Demo
-        The demo: controls ``x``, ``y`` (the point) and ``scale`` (λ), the figure (the plane
-        w = 1 in 3-D with the line through the point) and ``state`` (``point_h`` the scaled
-        homogeneous 3-vector λ (x, y, 1), ``point`` the Euclidean (x, y) it names).
-    """
-    view = FigureView(figsize=(9, 4.6))
+def _lift_figure(view: FigureView) -> SimpleNamespace:
+    """The figure of :func:`lift_to_plane`: the ray in 3-D (left), the plane w = 1 (right)."""
     ax3 = view.fig.add_subplot(1, 2, 1, projection="3d")
     ax2 = plane_axes(view.fig.add_subplot(1, 2, 2), 2, "the plane w = 1 (drawn y up)")
     box, w_max = _LIFT_BOX, _LIFT_SCALE
@@ -59,40 +43,95 @@ def lift_to_plane() -> Demo:
         edgecolor=palette.TAB_BLUE,
         lw=0.3,
     )
-    ax3.text(-2, 2, 1.15, "w = 1", color=palette.TAB_BLUE)
+    ax3.text(
+        -2.0, -2.0, 1.2, "w = 1", color=palette.TAB_BLUE, ha="right"
+    )  # the left corner, off the ray's path
     ax3.scatter([0], [0], [0], color="k", s=15)
     (ray,) = ax3.plot(
         [], [], [], color=palette.TAB_BLUE, lw=1.5, label="line through 0 = one projective point"
     )
-    (scaled,) = ax3.plot([], [], [], "o", color=palette.ORANGE, label="λ(x, y, 1), any λ ≠ 0")
-    (hit,) = ax3.plot([], [], [], "o", color=palette.TAB_BLUE, label="(x, y, 1)")
+    (scaled,) = ax3.plot([], [], [], "o", color=palette.ORANGE, label="λ(x, y, w), any λ ≠ 0")
+    (hit,) = ax3.plot([], [], [], "o", color=palette.TAB_BLUE, label="(x/w, y/w, 1)")
     # under the 3-D box, where nothing is drawn (inside it, the line reaches every corner)
     ax3.legend(loc="upper center", bbox_to_anchor=(0.5, 0.02), ncol=2, fontsize=8)
-    view.animate(ray, scaled, hit)
     (dot,) = ax2.plot([], [], "o", color=palette.TAB_BLUE, ms=9)
-    view.animate(dot)
+    note = ax2.text(0, -1.8, "", ha="center", fontsize=8, color="k", bbox={"fc": "w", "ec": "none"})
+    return SimpleNamespace(ax2=ax2, ray=ray, scaled=scaled, hit=hit, dot=dot, note=note)
+
+
+@register(
+    lesson="06",
+    sweep={
+        "x": [-1.5, 0.0, 1.5],
+        "y": [1.5, -1.5],
+        "w": [1.0, 0.4, 0.1, 0.0],
+        "scale": [-2.0, -0.6, 0.0, 2.0],
+    },
+)
+def lift_to_plane() -> Demo:
+    """A point (x, y) is the line through the origin and (x, y, 1): every non-zero multiple names it.
+
+    The ray's direction is (x, y, w). Tilting it down to w = 0 sends the point it names,
+    (x/w, y/w), off to infinity: at w = 0 the ray lies in the plane w = 0 and never meets w = 1,
+    an ideal point, drawn as an arrow at the edge of the plane. The 3-D box is sized once; the
+    ray is clipped to it. A negative λ puts the scaled point on the other half of the ray, and
+    λ = 0 gives (0, 0, 0), which names no point (its marker is then hidden).
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``x``, ``y``, ``w`` (the ray's direction) and ``scale`` (λ), the
+        figure (the ray in 3-D, the plane w = 1 drawn flat) and ``state`` (``point_h`` the scaled
+        homogeneous 3-vector λ (x, y, w), ``point`` the Euclidean (x/w, y/w) it names, or None
+        at w = 0).
+    """
+    view = FigureView(figsize=(9, 4.6))
+    f = _lift_figure(view)
+    ax2, ray, scaled, hit, dot, note = f.ax2, f.ray, f.scaled, f.hit, f.dot, f.note
+    box, w_max = _LIFT_BOX, _LIFT_SCALE
+    view.animate(ray, scaled, hit, dot, note)
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
-        lam = v["scale"]
-        xh = lam * pj.to_homogeneous([v["x"], v["y"]])
-        xy = np.array([v["x"], v["y"]])  # the point named: xh / w when λ != 0
-        state.update(point_h=xh, point=xy)
-        end = _LIFT_SCALE * np.array([v["x"], v["y"], 1.0])  # the whole line within the box
+        lam, r = v["scale"], np.array([v["x"], v["y"], v["w"]])
+        xh = lam * r
+        ideal = abs(r[2]) < 1e-12
+        state.update(point_h=xh, point=None if ideal else r[:2] / r[2])
+        reach = min(box / max(abs(r[0]), abs(r[1]), 1e-12), w_max / max(abs(r[2]), 1e-12))
+        end = reach * r  # the ray, both halves, clipped to the 3-D box
         ray.set_data_3d([-end[0], end[0]], [-end[1], end[1]], [-end[2], end[2]])
         scaled.set_data_3d([xh[0]], [xh[1]], [xh[2]])
-        hit.set_data_3d([xy[0]], [xy[1]], [1.0])
-        dot.set_data([xy[0]], [xy[1]])
+        scaled.set_visible(abs(lam) > 1e-12)  # λ = 0 names no point: the legend says λ ≠ 0
+        on_plane = not ideal and np.abs(r[:2] / r[2]).max() <= box
+        hit.set_data_3d(*([[c] for c in r / r[2]] if on_plane else [[], [], []]))
+        if not r.any():  # x = y = w = 0: the zero vector is no ray
+            dot.set_data([], [])
+            note.set_text("(x, y, w) = (0, 0, 0) is no ray: it names no point")
+            readout.value = monospace("(x, y, w) = (0, 0, 0): no ray through 0, no point")
+            return
+        pos, direction = arrow_to_infinity(r, ax2)
+        dot.set_data([pos[0]], [pos[1]])
+        dot.set_marker("o" if not direction.any() else arrow_marker(direction, ax2))
+        note.set_text(
+            "w = 0: an ideal point, the direction (x, y)"
+            if ideal
+            else (
+                "" if not direction.any() else "(x/w, y/w) is off this view: the arrow points to it"
+            )
+        )
         if abs(lam) < 1e-12:
             second = "λ = 0 gives (0, 0, 0): on every line through 0, so it names no point"
+        elif ideal:
+            second = "w = 0: no division; the ray lies in the plane w = 0 and never meets w = 1"
         else:
             back = xh[:2] / xh[2]
             second = f"divide by w = {xh[2]:.2f} → ({back[0]:.2f}, {back[1]:.2f})"
-        readout.value = monospace(f"λ(x, y, 1) = ({xh[0]:.2f}, {xh[1]:.2f}, {xh[2]:.2f})\n{second}")
+        readout.value = monospace(f"λ(x, y, w) = ({xh[0]:.2f}, {xh[1]:.2f}, {xh[2]:.2f})\n{second}")
 
     controls = {
         "x": slider(1.0, -_LIFT_XY, _LIFT_XY, 0.05, "x"),
         "y": slider(0.5, -_LIFT_XY, _LIFT_XY, 0.05, "y"),
+        "w": slider(1.0, 0.0, 1.0, 0.05, "ray's w"),
         "scale": slider(1.6, -_LIFT_SCALE, _LIFT_SCALE, 0.05, "scale λ"),
     }
     return build_demo(
@@ -326,7 +365,9 @@ def point_line_duality() -> Demo:
     controls = {
         "px": slider(1.0, -2.5, 2.5, 0.05, "p: x"),
         "py": slider(0.5, -2.5, 2.5, 0.05, "p: y"),
-        "line_angle": slider(0.0, 0.0, 180.0, 1.0, "l: normal angle (°)"),
+        "line_angle": slider(
+            0.0, 0.0, 359.0, 1.0, "l: normal angle (°)"
+        ),  # every line: y = -1 at 270
         "line_dist": slider(1.0, 0.2, 2.5, 0.05, "l: distance from origin"),
     }
     return build_demo(
@@ -362,8 +403,27 @@ def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespac
         lw=1.5,
         label="horizon = vp_z × vp_x (when in the image)",
     )
-    (vz_dot,) = ax.plot([], [], "o", color=palette.TAB_BLUE, mec="k", ms=11)
-    (vx_dot,) = ax.plot([], [], "o", color=palette.TAB_GREEN, mec="k", ms=11)
+    # an arrowhead on the horizon when the point is off the image; never clipped at the frame
+    (vz_dot,) = ax.plot(
+        [],
+        [],
+        "o",
+        color=palette.TAB_BLUE,
+        mec="k",
+        ms=12,
+        clip_on=False,
+        label="v_z (or an arrow to it)",
+    )
+    (vx_dot,) = ax.plot(
+        [],
+        [],
+        "o",
+        color=palette.TAB_GREEN,
+        mec="k",
+        ms=12,
+        clip_on=False,
+        label="v_x (or an arrow to it)",
+    )
     # below the image: inside it, the grid's lines would run through the legend at some setting
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=3, fontsize=8)
     note = ax.text(
@@ -500,13 +560,14 @@ def _cross_ratio_figure(view: FigureView) -> SimpleNamespace:
     centred = {"ha": "center", "va": "center", "family": "monospace", "fontsize": 9}
     numbers = axes["text"].text(0.5, 0.5, "", transform=axes["text"].transAxes, **centred)
     plane_axes(ax_s, 2.2, "before: four collinear points")
-    plane_axes(ax_t, 2.2, "after the homography H")
-    # With |h31|, |h32| <= _CR_H the grid's w = 1 + h31 x + h32 y stays >= 1 - 2 * 0.3 * 1.4 = 0.16 > 0:
-    # no grid line crosses the line H sends to infinity, so each maps to one straight segment; and
-    # A and D (w >= 0.55) land within the +-2.2 panel at every setting.
+    plane_axes(ax_t, 3.6, "after the homography H")
+    # With |h31|, |h32| <= _CR_H the grid's w = 1 + h31 x + h32 y stays >= 1 - 2 * 0.3 * 1 = 0.4 > 0:
+    # no grid line crosses the line H sends to infinity, so each maps to one straight segment, and
+    # every mapped corner lies within sqrt(2) / 0.4 = 3.54 of the origin: inside the +-3.6 panel
+    # at every setting (rotation keeps that distance), so the grid is never cut.
     grid = np.array(
-        [[[x, -1.4], [x, 1.4]] for x in np.linspace(-1.4, 1.4, 7)]
-        + [[[-1.4, y], [1.4, y]] for y in np.linspace(-1.4, 1.4, 7)]
+        [[[x, -1.0], [x, 1.0]] for x in np.linspace(-1.0, 1.0, 5)]
+        + [[[-1.0, y], [1.0, y]] for y in np.linspace(-1.0, 1.0, 5)]
     )
     points = np.array([[-1.0, -0.5], [-0.3, -0.15], [0.4, 0.2], [1.0, 0.5]])
     colors = [palette.TAB_BLUE] * 4  # one colour: the letters name them (lesson 06's colour code)
@@ -520,7 +581,9 @@ def _cross_ratio_figure(view: FigureView) -> SimpleNamespace:
     mapped_grid = LineCollection([], colors=palette.GREY, lw=0.8)
     ax_t.add_collection(mapped_grid)
     (mapped_line,) = ax_t.plot([], [], "-", color="0.3")
-    mapped_pts = ax_t.scatter(points[:, 0], points[:, 1], c=colors, s=50, zorder=3)
+    mapped_pts = ax_t.scatter(  # orange: the points moved (lesson 06's colour code)
+        points[:, 0], points[:, 1], c=[palette.ORANGE] * 4, s=50, zorder=3
+    )
     labels = [
         ax_t.annotate(name, (0, 0), xytext=(4, 6), textcoords="offset points") for name in "ABCD"
     ]
