@@ -454,3 +454,108 @@ register_exercise(
         ndarray_only=True,
     )
 )
+
+
+# ------------------------------------------------------------------ the rms a calibration should reach
+
+
+def _rms_reference(sigma, n_corners, n_params):
+    return float(np.sqrt(2.0) * sigma * np.sqrt(1.0 - n_params / (2.0 * n_corners)))
+
+
+def _rms_cases():
+    # the rendered set of section 7, three views of one board, a small fit that leaves little redundancy
+    return [(0.0346, 864, 105), (0.3, 162, 27), (1.0, 100, 20), (0.5, 20, 30)]
+
+
+def _rms_diagnosis(args, got, expected) -> str:
+    sigma, n, p = args
+    g = float(np.asarray(got, dtype=float))
+    slips = (
+        (
+            expected / np.sqrt(2),
+            "that is the rms per coordinate; camlab's and OpenCV's rms is per corner point, whose "
+            "error is a 2-vector: multiply by sqrt(2)",
+        ),
+        (
+            np.sqrt(2) * sigma * np.sqrt(1 - p / n),
+            "each corner gives two residuals, so there are 2N of them: the factor is "
+            "sqrt(1 - p / (2N)), not sqrt(1 - p / N)",
+        ),
+        (
+            np.sqrt(2) * sigma * (1 - p / (2 * n)),
+            "the factor is a square root, sqrt(1 - p / (2N)): it scales a variance, sigma^2",
+        ),
+        (
+            np.sqrt(2) * sigma,
+            "you left out sqrt(1 - p / (2N)): the fit uses up p of the 2N residuals' degrees of "
+            "freedom, so its residuals come out smaller than the noise",
+        ),
+        (
+            2 * sigma * np.sqrt(1 - p / (2 * n)),
+            "a point's error has two coordinates, each with variance sigma^2: the variances add, "
+            "so its rms is sqrt(2) sigma, not 2 sigma",
+        ),
+        (
+            np.sqrt(2) * sigma * np.sqrt(1 + p / (2 * n)),
+            "the fit makes the residuals smaller than the noise: 1 - p / (2N), not 1 + p / (2N)",
+        ),
+    )
+    for value, cause in slips:
+        if np.isclose(g, value, rtol=1e-6):
+            return cause
+    return "expected rms = sqrt(2) sigma sqrt(1 - p / (2N)), N corners, p unknowns"
+
+
+def expected_rms(sigma, n_corners, n_params):
+    """The rms reprojection error per corner a calibration should reach at corner noise sigma.
+
+    With noise sigma in each coordinate, the maximum-likelihood residual per coordinate is
+    sigma sqrt(1 - p / (2N)) (H&Z 5.1.3: the fit absorbs p of the 2N degrees of freedom); a
+    corner's error is a 2-vector, so its rms is sqrt(2) times that.
+
+    Parameters
+    ----------
+    sigma : float
+        The corner noise per coordinate, px.
+    n_corners : int
+        N, the number of corners over all views.
+    n_params : int
+        p, the number of unknowns fitted (intrinsics, distortion and 6 per view).
+
+    Returns
+    -------
+    float
+        sqrt(2) sigma sqrt(1 - p / (2N)), px.
+
+    References
+    ----------
+    R. Hartley and A. Zisserman (2004), *Multiple View Geometry in Computer Vision*, 2nd ed.,
+    section 5.1.3.
+    """
+    return float(np.sqrt(2.0) * sigma * np.sqrt(1.0 - n_params / (2.0 * n_corners)))
+
+
+register_exercise(
+    Exercise(
+        name="expected_rms",
+        lesson="08",
+        reference=_rms_reference,
+        cases=_rms_cases,
+        compare=same_array(rtol=1e-6, atol=1e-12),
+        diagnose=_rms_diagnosis,
+        wrong_variants=(
+            (lambda s, n, p: s * np.sqrt(1 - p / (2 * n)), "per coordinate"),
+            (lambda s, n, p: np.sqrt(2) * s * np.sqrt(1 - p / n), "2N of them"),
+            (lambda s, n, p: np.sqrt(2) * s * (1 - p / (2 * n)), "a square root"),
+            (lambda s, n, p: np.sqrt(2) * s, "left out"),
+            (lambda s, n, p: 2 * s * np.sqrt(1 - p / (2 * n)), "variances add"),
+            (lambda s, n, p: np.sqrt(2) * s * np.sqrt(1 + p / (2 * n)), "1 + p"),
+        ),
+        teaching=expected_rms,
+        solution_note=(
+            "# camlab has no function for it: lesson 08, section 7, computes the same line beside the\n"
+            "# coach, from the detector's noise and the calibration's N and p"
+        ),
+    )
+)
