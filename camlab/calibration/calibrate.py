@@ -147,8 +147,16 @@ class CalibrationResult:
         )
         if "skew" in self.free_params:
             lines.append(f"  skew = {p['skew']:.3f} ± {s['skew']:.3f}")
-        lines.append("  " + "  ".join(f"{k} = {p[k]:+.4g} ± {s[k]:.2g}" for k in PARAM_NAMES[5:]))
+        lines.append("  " + "  ".join(f"{k} = {_plus_minus(p[k], s[k])}" for k in PARAM_NAMES[5:]))
         return "\n".join(lines)
+
+
+def _plus_minus(value: float, std: float) -> str:
+    """``value ± std`` with the std to 2 significant digits and the value to the same decimal place."""
+    if not np.isfinite(std) or std <= 0:  # a fixed parameter
+        return f"{value:+.4g} ± 0"
+    decimals = max(0, 1 - int(np.floor(np.log10(std))))
+    return f"{value:+.{decimals}f} ± {std:.{decimals}f}"
 
 
 def _rms(res: np.ndarray, mask: np.ndarray) -> tuple[float, np.ndarray]:

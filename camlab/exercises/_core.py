@@ -154,6 +154,18 @@ def _fmt(value: Any) -> str:
             finite = value[np.isfinite(value)] if real else value[:0]
             span = f", values {finite.min():.4g} .. {finite.max():.4g}" if finite.size else ""
             return f"<array of shape {value.shape}, dtype {value.dtype}{span}>"
+        finite = value[np.isfinite(value)] if value.dtype.kind == "f" else value[:0]
+        if (
+            finite.size and 0 < np.abs(finite).max() < 1e-3
+        ):  # tiny, not zero: 3 digits, never all 0.0
+            text = np.array2string(
+                value, separator=", ", formatter={"float_kind": lambda x: f"{x:.3g}"}
+            )
+            return (
+                text
+                if value.ndim != 1
+                else "[" + ", ".join(t.strip() for t in text[1:-1].split(",")) + "]"
+            )
         if value.dtype.kind == "f":  # what prints as zero prints as 0, never -0.0000
             value = np.where(np.round(value.astype(float), 4) == 0, 0.0, value)
         text = np.array2string(

@@ -67,20 +67,34 @@ def _zhang_diagnosis(args, got, expected) -> str:
             "row 1 is v11 - v22 (equal lengths)"
         )
     e = np.asarray(expected, dtype=float)
-    for order, entries in (
-        ([0, 1, 2, 4, 3, 5], "B13 and B23"),
-        ([0, 2, 1, 3, 4, 5], "B12 and B22"),
+    if _SameUpToScale(Tolerance(1e-6, 1e-12))(g, calibration.zhang_constraints(np.linalg.inv(H))):
+        return (
+            "you used inv(H), the map from the image to the board; Zhang's H maps the board (X, Y, 1) "
+            "to the image, h_i ∝ K r_i, and that is the H the function receives"
+        )
+    zhang = "Zhang's b = (B11, B12, B22, B13, B23, B33), in that order"
+    for order, cause in (
+        ([0, 1, 3, 2, 4, 5], "you ordered b row by row of B, (B11, B12, B13, B22, B23, B33)"),
+        ([0, 1, 2, 4, 3, 5], "the entries for B13 and B23 are swapped"),
+        ([0, 2, 1, 3, 4, 5], "the entries for B12 and B22 are swapped"),
     ):
         if _SameUpToScale(Tolerance(1e-6, 1e-12))(g[:, order], e):
-            return f"the entries for {entries} are swapped: b = (B11, B12, B22, B13, B23, B33), in that order"
-    single = [0, 2, 5]
-    s = _common_scale(g[:, single], e[:, single])
-    if s != 0 and np.allclose(
-        g[:, single] / s, e[:, single], rtol=1e-6, atol=1e-12 * np.abs(e).max()
+            return f"{cause}; {zhang}"
+    names = ["B11", "B12", "B22", "B13", "B23", "B33"]
+    scales = [_common_scale(g[r, [0, 2, 5]], e[r, [0, 2, 5]]) for r in range(2)]
+    if all(scales) and np.allclose(
+        g[:, [0, 2, 5]] / np.c_[scales], e[:, [0, 2, 5]], rtol=1e-6, atol=1e-12 * np.abs(e).max()
     ):
+        tol = 1e-6 * np.abs(e).max()
+        wrong = [
+            names[k]
+            for k in (1, 3, 4)
+            if not np.allclose(g[:, k] / np.array(scales), e[:, k], rtol=1e-6, atol=tol)
+        ]
         return (
-            "the entries for B11, B22, B33 are right, those for B12, B13, B23 are not: each of these appears twice "
-            "in h_i^T B h_j (B is symmetric), so its entry is a sum of two products, e.g. hi1 hj2 + hi2 hj1"
+            f"the entries for B11, B22, B33 are right, those for {', '.join(wrong)} are not: each of these appears "
+            "twice in h_i^T B h_j (B is symmetric), so its entry is a sum of two different products, "
+            "e.g. hi3 hj1 + hi1 hj3 for B13 (not 2 hi3 hj1)"
         )
     one_based = np.stack(
         [calibration.zhang_v(H, 1, 2), calibration.zhang_v(H, 1, 1) - calibration.zhang_v(H, 2, 2)]
@@ -173,6 +187,8 @@ register_exercise(
                 "numpy counts from 0",
             ),
             (lambda H: calibration.zhang_constraints(H)[::-1], "rows are swapped"),
+            (lambda H: calibration.zhang_constraints(H)[:, [0, 1, 3, 2, 4, 5]], "row by row of B"),
+            (lambda H: calibration.zhang_constraints(np.linalg.inv(H)), "inv(H)"),
             (
                 lambda H: np.stack(
                     [
@@ -232,6 +248,12 @@ def _lm_diagnosis(args, got, expected) -> str:
         )
     if np.allclose(g, np.linalg.solve(A, -grad)):
         return "that is the Gauss-Newton step: add the damping mu * diag(J^T J) to J^T J"
+    for factor in (0.5, 2.0):
+        if np.allclose(g, factor * expected):
+            return (
+                f"your step is {factor:g} times the right one: the right-hand side is -J^T r, the gradient of "
+                "(1/2)|r|^2 (without the 1/2 the gradient is 2 J^T r, but the 2 also multiplies J^T J and cancels)"
+            )
     return "solve (J^T J + mu diag(J^T J)) delta = -J^T r with np.linalg.solve"
 
 
@@ -367,6 +389,13 @@ def _rotation_diagnosis(args, got, expected) -> str:
                     f"you flipped column {k} of U; flip the last one, U[:, -1], the direction of the smallest "
                     "singular value: flipping it changes M the least"
                 )
+        flip_col = Vt.copy()
+        flip_col[:, -1] *= -1
+        if np.allclose(g, U @ flip_col, atol=1e-8):
+            return (
+                "you flipped the last column of Vt; V's last column is Vt's last row: Vt[-1, :] *= -1 "
+                "(or U[:, -1] *= -1)"
+            )
     return "a rotation, but not the closest one to M: take U V^T from the SVD of M"
 
 
@@ -423,5 +452,110 @@ register_exercise(
         ),
         teaching=nearest_rotation,
         ndarray_only=True,
+    )
+)
+
+
+# ------------------------------------------------------------------ the rms a calibration should reach
+
+
+def _rms_reference(sigma, n_corners, n_params):
+    return float(np.sqrt(2.0) * sigma * np.sqrt(1.0 - n_params / (2.0 * n_corners)))
+
+
+def _rms_cases():
+    # the rendered set of section 7, three views of one board, a small fit that leaves little redundancy
+    return [(0.0346, 864, 105), (0.3, 162, 27), (1.0, 100, 20), (0.5, 20, 30)]
+
+
+def _rms_diagnosis(args, got, expected) -> str:
+    sigma, n, p = args
+    g = float(np.asarray(got, dtype=float))
+    slips = (
+        (
+            expected / np.sqrt(2),
+            "that is the rms per coordinate; camlab's and OpenCV's rms is per corner point, whose "
+            "error is a 2-vector: multiply by sqrt(2)",
+        ),
+        (
+            np.sqrt(2) * sigma * np.sqrt(1 - p / n),
+            "each corner gives two residuals, so there are 2N of them: the factor is "
+            "sqrt(1 - p / (2N)), not sqrt(1 - p / N)",
+        ),
+        (
+            np.sqrt(2) * sigma * (1 - p / (2 * n)),
+            "the factor is a square root, sqrt(1 - p / (2N)): it scales a variance, sigma^2",
+        ),
+        (
+            np.sqrt(2) * sigma,
+            "you left out sqrt(1 - p / (2N)): the fit uses up p of the 2N residuals' degrees of "
+            "freedom, so its residuals come out smaller than the noise",
+        ),
+        (
+            2 * sigma * np.sqrt(1 - p / (2 * n)),
+            "a point's error has two coordinates, each with variance sigma^2: the variances add, "
+            "so its rms is sqrt(2) sigma, not 2 sigma",
+        ),
+        (
+            np.sqrt(2) * sigma * np.sqrt(1 + p / (2 * n)),
+            "the fit makes the residuals smaller than the noise: 1 - p / (2N), not 1 + p / (2N)",
+        ),
+    )
+    for value, cause in slips:
+        if np.isclose(g, value, rtol=1e-6):
+            return cause
+    return "expected rms = sqrt(2) sigma sqrt(1 - p / (2N)), N corners, p unknowns"
+
+
+def expected_rms(sigma, n_corners, n_params):
+    """The rms reprojection error per corner a calibration should reach at corner noise sigma.
+
+    With noise sigma in each coordinate, the maximum-likelihood residual per coordinate is
+    sigma sqrt(1 - p / (2N)) (H&Z 5.1.3: the fit absorbs p of the 2N degrees of freedom); a
+    corner's error is a 2-vector, so its rms is sqrt(2) times that.
+
+    Parameters
+    ----------
+    sigma : float
+        The corner noise per coordinate, px.
+    n_corners : int
+        N, the number of corners over all views.
+    n_params : int
+        p, the number of unknowns fitted (intrinsics, distortion and 6 per view).
+
+    Returns
+    -------
+    float
+        sqrt(2) sigma sqrt(1 - p / (2N)), px.
+
+    References
+    ----------
+    R. Hartley and A. Zisserman (2004), *Multiple View Geometry in Computer Vision*, 2nd ed.,
+    section 5.1.3.
+    """
+    return float(np.sqrt(2.0) * sigma * np.sqrt(1.0 - n_params / (2.0 * n_corners)))
+
+
+register_exercise(
+    Exercise(
+        name="expected_rms",
+        lesson="08",
+        reference=_rms_reference,
+        cases=_rms_cases,
+        compare=same_array(rtol=1e-6, atol=1e-12),
+        diagnose=_rms_diagnosis,
+        wrong_variants=(
+            (lambda s, n, p: s * np.sqrt(1 - p / (2 * n)), "per coordinate"),
+            (lambda s, n, p: np.sqrt(2) * s * np.sqrt(1 - p / n), "2N of them"),
+            (lambda s, n, p: np.sqrt(2) * s * (1 - p / (2 * n)), "a square root"),
+            (lambda s, n, p: np.sqrt(2) * s, "left out"),
+            (lambda s, n, p: 2 * s * np.sqrt(1 - p / (2 * n)), "variances add"),
+            (lambda s, n, p: np.sqrt(2) * s * np.sqrt(1 + p / (2 * n)), "1 + p"),
+        ),
+        teaching=expected_rms,
+        solution_note=(
+            "# camlab has no function for it: lesson 08, section 7, computes the same line beside the\n"
+            "# coach, from the detector's noise and the calibration's N and p"
+        ),
     )
 )

@@ -393,7 +393,9 @@ def undistort_alpha(
     image_frame(ax0, (w, h), "distorted photo")
     ax0.imshow(image, cmap="gray", vmin=0, vmax=255, extent=(-0.5, w - 0.5, h - 0.5, -0.5))
     image_frame(ax1, (w, h), "undistorted")
-    view.animate(ax1.title)  # the new focal length and what alpha costs
+    pad = 30  # px of white margin: at alpha = 0 the photo's border runs just outside the frame
+    ax1.set(xlim=(-0.5 - pad, w - 0.5 + pad), ylim=(h - 0.5 + pad, -0.5 - pad))
+    view.animate(ax1.title)  # the new focal length
     im = view.animate(
         ax1.imshow(
             np.zeros((h, w)), cmap="gray", vmin=0, vmax=255, extent=(-0.5, w - 0.5, h - 0.5, -0.5)
@@ -413,7 +415,7 @@ def undistort_alpha(
     )
     view.animate(edge, kept)
     for a in (ax0, ax1):  # below the photos, off the data
-        a.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), fontsize=8, frameon=False)
+        a.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), fontsize=8, frameon=False, ncol=2)
     t = np.linspace(0, 1, 40)
     border = np.concatenate(
         [
@@ -439,8 +441,7 @@ def undistort_alpha(
         )
         kept.set_data(seen[:, 0], seen[:, 1])
         ax1.set_title(
-            f"undistorted, α = {v['alpha']:.2f}: fx {out.K[0, 0]:.0f} (photo {K[0, 0]:.0f}), "
-            f"{100 * out.black_fraction:.0f}% black, {100 * out.lost_fraction:.0f}% lost",
+            f"undistorted, α = {v['alpha']:.2f}: fx {out.K[0, 0]:.0f} px (photo {K[0, 0]:.0f})",
             fontsize=9,
         )
         state.update(
