@@ -51,7 +51,13 @@ def thin_lens():
     art = optics.draw_thin_lens(ax, 0.05, THIN_LENS_DEFAULT_M)
     # the foci over the object arrow, the image (and its dot) over the foci
     view.animate(
-        art["object"], art["image"], art["image_dot"], *art["rays"], art["foci"], art["text"]
+        art["object"],
+        art["image"],
+        art["image_dot"],
+        *art["rays"],
+        art["foci"],
+        art["text"],
+        art["F"],
     )
 
     def update(values, state):
