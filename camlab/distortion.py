@@ -276,7 +276,7 @@ def undistort_points(
         )
         raise ConvergenceError(
             f"undistort_points: {int(bad.sum())} of {len(bad)} points did not converge "
-            f"(first: point {i} = {target[i]}, at distorted radius {np.hypot(*target[i]):.3g}: {how_far}); "
+            f"(first: point {i} = ({target[i][0]:.3g}, {target[i][1]:.3g}), at distorted radius {np.hypot(*target[i]):.3g}: {how_far}); "
             f"they lie outside the valid field of view of dist = {d.tolist()}: the model folds over at ideal radius "
             f"{r_fold:.3g}, which it sends to distorted radius {r_fold * float(radial_scale(r_fold, d)):.3g}, "
             f"so a distorted point farther out has no inverse inside the fold"

@@ -54,12 +54,15 @@ def update_sensor_zoom(zoom: dict, A: float, z_i: float, z_s: float, c: float) -
     """Redraw the zoom for aperture ``A``, image point ``z_i`` and sensor ``z_s`` (metres); blur ``c`` there.
 
     The window is centred between z_i and z_s, its half-width W the smallest step with both
-    inside 70 % of it; heights use the same scale, so the cone's angle is true. Returns
+    inside 70 % of it and the blur bar inside 80 % of its height; heights use the same scale, so the cone's angle is true. Returns
     ``{"zoom_half_mm"}``.
     """
     zi, zs, a = z_i * 1e3, z_s * 1e3, A / 2 * 1e3  # mm
     centre = (zi + zs) / 2
-    W = next((w for w in ZOOM_HALF_MM if abs(zs - zi) / 2 <= 0.7 * w), ZOOM_HALF_MM[-1])
+    fits = (  # both points inside 70 % of the width, the blur bar inside 80 % of the height
+        w for w in ZOOM_HALF_MM if abs(zs - zi) / 2 <= 0.7 * w and c / 2 * 1e3 <= 0.8 * ZOOM_Y * w
+    )
+    W = next(fits, ZOOM_HALF_MM[-1])
 
     def ray(z):  # the upper marginal ray's height (mm): a at the lens, 0 at z_i
         return a * (1 - z / zi)
@@ -88,7 +91,7 @@ def update_sensor_zoom(zoom: dict, A: float, z_i: float, z_s: float, c: float) -
     close = (
         abs(x_i - x_s) < 0.15
     )  # then z_i goes under the axis, left of the sensor: clear of c and z_s
-    zoom["z_i"].set_position((x_s - 0.05, -0.05 * ZOOM_Y) if close else (x_i, 0.05 * ZOOM_Y))
+    zoom["z_i"].set_position((x_s - 0.05, -0.05 * ZOOM_Y) if close else (x_i, 0.15 * ZOOM_Y))
     zoom["z_i"].set_ha("right" if close else "center")
     zoom["z_i"].set_va("top" if close else "bottom")
     zoom["z_s"].set_position((x_s + 0.03, 0.95 * ZOOM_Y))

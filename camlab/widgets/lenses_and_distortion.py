@@ -51,7 +51,13 @@ def thin_lens():
     art = optics.draw_thin_lens(ax, 0.05, THIN_LENS_DEFAULT_M)
     # the foci over the object arrow, the image (and its dot) over the foci
     view.animate(
-        art["object"], art["image"], art["image_dot"], *art["rays"], art["foci"], art["text"]
+        art["object"],
+        art["image"],
+        art["image_dot"],
+        *art["rays"],
+        art["foci"],
+        art["text"],
+        art["F"],
     )
 
     def update(values, state):
@@ -347,7 +353,9 @@ def _dof_figure(view: FigureView) -> SimpleNamespace:
     )
 
 
-@register(lesson="02", sweep={"f_number": [1.4, 4.0, 16.0], "focus_m": [0.5, 0.6, 1.2, 2.4, 4.0]})
+@register(
+    lesson="02", sweep={"f_number": [1.4, 4.0, 16.0], "focus_m": [0.5, 0.55, 0.6, 1.2, 2.4, 4.0]}
+)
 def depth_of_field():
     """A scene of planes at 0.6, 1.2, 2.4 and 4 m rendered with thin-lens blur, above its blur curve.
 
@@ -492,9 +500,9 @@ def _distortion_figure(view: FigureView) -> SimpleNamespace:
     )
     ax_grid.set_xlabel("u (px)")
     ax_grid.set_ylabel("v (px)")
-    ax_grid.legend(
-        fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.15), ncol=3
-    )  # below: never over the grid
+    ax_grid.legend(  # below the grid, inside the figure: constrained layout makes room for it
+        fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=3, borderaxespad=0.3
+    )
     img_title = ax_img.set_title(" \n ", fontsize=10)  # two lines, as update writes
     grid_title = ax_grid.set_title(" \n ", fontsize=10)  # two lines, as update writes
     view.animate(im, fold, dots, *bent, img_title, grid_title)

@@ -290,3 +290,62 @@ def model_diagnosis(x, d, g, expected) -> str:
     k1, k2, p1, p2, k3 = d
     s = SimpleNamespace(x=x, d=d, g=g, expected=expected, k1=k1, k2=k2, p1=p1, p2=p2, k3=k3)
     return first_mistake(MODEL_MISTAKES, s) or ""
+
+
+def transposed_k(uv, K, d, g) -> bool:
+    """True when ``g`` is distort_pixels with K (or its inverse) applied to row points without .T, either way."""
+    K = np.asarray(K, dtype=float)
+    rows = np.c_[uv, np.ones(len(uv))]
+
+    def dehomogenise(h):
+        return h[:, :2] / h[:, 2:]
+
+    forward = {
+        "right": dehomogenise(rows @ np.linalg.inv(K).T),
+        "no .T": dehomogenise(rows @ np.linalg.inv(K)),
+    }
+    for way_in, x in forward.items():
+        h = np.c_[distortion.distort_points(x, d), np.ones(len(x))]
+        for way_out, back in (
+            ("right", dehomogenise(h @ K.T)),
+            ("no .T", dehomogenise(h @ K)),
+            ("no .T", (h @ K)[:, :2]),
+        ):
+            if (way_in, way_out) != ("right", "right") and np.allclose(g, back):
+                return True
+    return False
+
+
+def in_place_distortion(uv, K, d):
+    out = distortion.distort_pixels(uv, K, d)
+    uv[:] = out  # the typical slip: the answer written over the caller's points
+    return out
+
+
+def pixel_variant(model):
+    """A student's distort_pixels whose normalisation is right and whose model is ``model(x, d)``."""
+
+    def wrong(uv, K, d):
+        f, c = np.array([K[0, 0], K[1, 1]]), np.array([K[0, 2], K[1, 2]])
+        return model((uv - c) / f, np.asarray(d, dtype=float)) * f + c
+
+    return wrong
+
+
+def normalised_with(f_wrong, c_wrong):
+    """The test for a wrong focal length or principal point used to normalise.
+
+    ``f_wrong(s)`` and ``c_wrong(s)`` (and either it or the right c to map back).
+    """
+
+    def shows(s):
+        fw, cw = f_wrong(s), c_wrong(s)
+        back = distortion.distort_points((s.uv - cw) / fw, s.d) * fw
+        return np.allclose(s.g, back + cw) or np.allclose(s.g, back + s.c)
+
+    return shows
+
+
+def back_with(s, f_back):
+    """The model on the right normalised points, mapped back to pixels with focal lengths ``f_back``."""
+    return np.allclose(s.g, s.x_d * f_back + s.c)

@@ -10,28 +10,43 @@ from ... import distortion
 from .._answers import same_array, shape_problem
 from .._core import Exercise, Mistake, first_mistake, register_exercise
 from ._distort_causes import (
+    back_with,
     brown_variant,
     distort_cases,
+    in_place_distortion,
     model_diagnosis,
+    normalised_with,
+    pixel_variant,
     tangential_terms,
+    transposed_k,
 )
 
-
-def _normalised_with(f_wrong, c_wrong):
-    """The test for a wrong focal length or principal point used to normalise.
-
-    ``f_wrong(s)`` and ``c_wrong(s)`` (and either it or the right c to map back).
-    """
-
-    def shows(s):
-        fw, cw = f_wrong(s), c_wrong(s)
-        back = distortion.distort_points((s.uv - cw) / fw, s.d) * fw
-        return np.allclose(s.g, back + cw) or np.allclose(s.g, back + s.c)
-
-    return shows
-
-
 _PIXEL_MISTAKES = (
+    Mistake(
+        "uv returned",
+        lambda s: np.any(s.d) and np.allclose(s.g, s.uv),
+        (
+            "you returned uv itself, unchanged: the model was never applied (or you left out the radial factor, "
+            "when the case has no tangential terms); normalise, x_d = x L + (tangential terms) with "
+            "L = 1 + k1 r^2 + k2 r^4 + k3 r^6, then back to pixels: u_d = f_x x_d + c_x, v_d = f_y y_d + c_y"
+        ),
+    ),
+    Mistake(
+        "row 0 skipped",
+        lambda s: (
+            len(s.g) > 1
+            and np.allclose(s.g[1:], s.expected[1:])
+            and not np.allclose(s.g[0], s.expected[0])
+        ),
+        "every row is right but the first: a loop over the points that skipped point 0 (range(1, N)? Python "
+        "counts from 0); or drop the loop, the array formulas handle all N rows at once",
+    ),
+    Mistake(
+        "one f on the way back",
+        lambda s: back_with(s, s.f[[0, 0]]) or back_with(s, s.f[[1, 1]]),
+        "the way in is right, but back to pixels you used one focal length for both: u_d = f_x x_d + c_x with "
+        "f_x = K[0, 0], v_d = f_y y_d + c_y with f_y = K[1, 1]",
+    ),
     Mistake(
         "rounded to whole pixels",
         lambda s: (
@@ -81,7 +96,7 @@ _PIXEL_MISTAKES = (
         ),
     ),
     *(
-        Mistake(name, _normalised_with(f_wrong, c_wrong), hint)
+        Mistake(name, normalised_with(f_wrong, c_wrong), hint)
         for name, f_wrong, c_wrong, hint in (
             (
                 "no principal point",
@@ -123,6 +138,23 @@ _PIXEL_MISTAKES = (
                 lambda s: np.array([320.0, 240.0]),
                 "you used the image centre as the principal point; take it from K, "
                 "c_x = K[0, 2], c_y = K[1, 2]: a calibrated camera's is off the centre",
+            ),
+            (
+                "no division by f",
+                lambda s: np.ones(2),
+                lambda s: s.c,
+                "you subtracted c but did not divide by f: the model works on normalised coordinates, "
+                "x = (u - c_x) / f_x, y = (v - c_y) / f_y, and maps back with u_d = f_x x_d + c_x",
+            ),
+            *(
+                (
+                    f"c {k:+d}",
+                    lambda s: s.f,
+                    lambda s, k=k: s.c + k,
+                    "a one-pixel shift of the principal point (1-based pixels?): take c_x = K[0, 2], "
+                    "c_y = K[1, 2] as they are; pixel centres sit at integers counted from 0",
+                )
+                for k in (1, -1)
             ),
             (
                 "c + 0.5",
@@ -185,7 +217,7 @@ _PIXEL_MISTAKES = (
     ),
     Mistake(
         "K without .T",
-        lambda s: _transposed_k(s.uv, s.K, s.d, s.g),
+        lambda s: transposed_k(s.uv, s.K, s.d, s.g),
         (
             "points are rows, so a matrix acts from the right transposed: normalise with "
             "np.c_[uv, ones] @ np.linalg.inv(K).T and map back with np.c_[x_d, ones] @ K.T (or write "
@@ -239,30 +271,6 @@ def _distort_pixels_diagnosis(args, got, expected) -> str:
     )
 
 
-def _transposed_k(uv, K, d, g) -> bool:
-    """True when ``g`` is distort_pixels with K (or its inverse) applied to row points without .T, either way."""
-    K = np.asarray(K, dtype=float)
-    rows = np.c_[uv, np.ones(len(uv))]
-
-    def dehomogenise(h):
-        return h[:, :2] / h[:, 2:]
-
-    forward = {
-        "right": dehomogenise(rows @ np.linalg.inv(K).T),
-        "no .T": dehomogenise(rows @ np.linalg.inv(K)),
-    }
-    for way_in, x in forward.items():
-        h = np.c_[distortion.distort_points(x, d), np.ones(len(x))]
-        for way_out, back in (
-            ("right", dehomogenise(h @ K.T)),
-            ("no .T", dehomogenise(h @ K)),
-            ("no .T", (h @ K)[:, :2]),
-        ):
-            if (way_in, way_out) != ("right", "right") and np.allclose(g, back):
-                return True
-    return False
-
-
 def distort_pixels(uv, K, dist):
     """Where a lens with Brown-Conrady coefficients dist (OpenCV's order) moves (N, 2) ideal pixel positions.
 
@@ -297,22 +305,6 @@ def distort_pixels(uv, K, dist):
     xd = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x**2)
     yd = y * radial + p1 * (r2 + 2 * y**2) + 2 * p2 * x * y
     return np.column_stack([fx * xd + cx, fy * yd + cy])  # back to pixels
-
-
-def _in_place_distortion(uv, K, d):
-    out = distortion.distort_pixels(uv, K, d)
-    uv[:] = out  # the typical slip: the answer written over the caller's points
-    return out
-
-
-def _pixel_variant(model):
-    """A student's distort_pixels whose normalisation is right and whose model is ``model(x, d)``."""
-
-    def wrong(uv, K, d):
-        f, c = np.array([K[0, 0], K[1, 1]]), np.array([K[0, 2], K[1, 2]])
-        return model((uv - c) / f, np.asarray(d, dtype=float)) * f + c
-
-    return wrong
 
 
 register_exercise(
@@ -368,6 +360,31 @@ register_exercise(
                 "half-pixel",
             ),
             (lambda uv, K, d: distortion.distort_pixels(uv, K, d) - uv, "shift in pixels"),
+            (lambda uv, K, d: uv.copy(), "you returned uv itself"),
+            (
+                lambda uv, K, d: np.r_[uv[:1], distortion.distort_pixels(uv, K, d)[1:]],
+                "skipped point 0",
+            ),
+            (
+                lambda uv, K, d: (
+                    distortion.distort_points((uv - K[:2, 2]) / K[[0, 1], [0, 1]], d) * K[1, 1]
+                    + K[:2, 2]
+                ),
+                "one focal length for both",
+            ),
+            (
+                lambda uv, K, d: distortion.distort_points(uv - K[:2, 2], d) + K[:2, 2],
+                "did not divide by f",
+            ),
+            (
+                lambda uv, K, d: (
+                    distortion.distort_points((uv - K[:2, 2] - 1) / K[[0, 1], [0, 1]], d)
+                    * K[[0, 1], [0, 1]]
+                    + K[:2, 2]
+                    + 1
+                ),
+                "one-pixel shift",
+            ),
             (lambda uv, K, d: distortion.distort_pixels(uv, K, d) + 0.5, "exactly half a pixel"),
             (
                 lambda uv, K, d: (
@@ -417,23 +434,23 @@ register_exercise(
                 "without .T puts c_x into",
             ),
             (
-                _pixel_variant(
+                pixel_variant(
                     lambda x, d: distortion.distort_points(x, [d[0], d[1], d[3], d[2], d[4]])
                 ),
                 "p1 and p2 are swapped",
             ),
             (
-                _pixel_variant(lambda x, d: distortion.distort_points(x, [d[0], d[1], 0, 0, d[4]])),
+                pixel_variant(lambda x, d: distortion.distort_points(x, [d[0], d[1], 0, 0, d[4]])),
                 "tangential",
             ),
             (
-                _pixel_variant(
+                pixel_variant(
                     lambda x, d: distortion.distort_points(x, [d[0], d[1], d[3], d[4], d[2]])
                 ),
                 "k3 comes last",
             ),
             (
-                _pixel_variant(
+                pixel_variant(
                     lambda x, d: (
                         x
                         * (
@@ -446,34 +463,34 @@ register_exercise(
                 ),
                 "even powers",
             ),
-            (_pixel_variant(lambda x, d: brown_variant(x, d, cross=1.0)), "factor 2"),
+            (pixel_variant(lambda x, d: brown_variant(x, d, cross=1.0)), "factor 2"),
             (
-                _pixel_variant(lambda x, d: brown_variant(x, d, squares_swapped=True)),
+                pixel_variant(lambda x, d: brown_variant(x, d, squares_swapped=True)),
                 "swapped in the tangential terms",
             ),
             (
-                _pixel_variant(lambda x, d: brown_variant(x, d, y_copied=True)),
+                pixel_variant(lambda x, d: brown_variant(x, d, y_copied=True)),
                 "copied from x_d's p2 term",
             ),
             (
-                _pixel_variant(lambda x, d: brown_variant(x, d, divide=True)),
+                pixel_variant(lambda x, d: brown_variant(x, d, divide=True)),
                 "divided by the radial factor",
             ),
-            (_pixel_variant(lambda x, d: brown_variant(x, d, no_one=True)), "lacks its 1"),
+            (pixel_variant(lambda x, d: brown_variant(x, d, no_one=True)), "lacks its 1"),
             (
-                _pixel_variant(
+                pixel_variant(
                     lambda x, d: distortion.distort_points(x, [-d[0], -d[1], d[2], d[3], -d[4]])
                 ),
                 "radial terms have the wrong sign",
             ),
             (
-                _pixel_variant(
+                pixel_variant(
                     lambda x, d: distortion.distort_points(x, [d[0], d[1], -d[2], -d[3], d[4]])
                 ),
                 "tangential terms have the wrong",
             ),
             (
-                _pixel_variant(
+                pixel_variant(
                     lambda x, d: distortion.distort_points(x, [d[0], d[1], d[2], d[3], 0])
                 ),
                 "dropped k3",
@@ -483,14 +500,14 @@ register_exercise(
                 "wrap the values in np.array",
             ),
             (lambda uv, K, d: distortion.distort_pixels(uv, K, d).T, "expected an array of shape"),
-            (_in_place_distortion, "in place"),
+            (in_place_distortion, "in place"),
             (lambda uv, K, d: distortion.undistort_pixels(uv, K, d), "you undistorted"),
             (
-                _pixel_variant(lambda x, d: distortion.distort_points(x, [d[0], 0, 0, 0, 0])),
+                pixel_variant(lambda x, d: distortion.distort_points(x, [d[0], 0, 0, 0, 0])),
                 "you used k1 alone",
             ),
             (
-                _pixel_variant(
+                pixel_variant(
                     lambda x, d: (
                         distortion.distort_points(x, d)
                         + x * (d[4] * ((x**2).sum(1) ** 2 - (x**2).sum(1) ** 3))[:, None]
@@ -499,7 +516,7 @@ register_exercise(
                 "yours gives k3 r",
             ),
             (
-                _pixel_variant(
+                pixel_variant(
                     lambda x, d: (
                         distortion.distort_points(x, d)
                         + x * (d[1] * ((x**2).sum(1) ** 1.5 - (x**2).sum(1) ** 2))[:, None]
@@ -508,7 +525,7 @@ register_exercise(
                 "yours gives k2 r",
             ),
             (
-                _pixel_variant(
+                pixel_variant(
                     lambda x, d: np.column_stack(
                         [
                             distortion.distort_points(x, d)[:, 0],
@@ -528,13 +545,13 @@ register_exercise(
                 "left out the radial factor",
             ),
             (
-                _pixel_variant(
+                pixel_variant(
                     lambda x, d: distortion.distort_points(x, d) - 2 * tangential_terms(x, d)[3]
                 ),
                 "y_d's 2 p2 x y enters with a plus sign",
             ),
             (
-                _pixel_variant(
+                pixel_variant(
                     lambda x, d: distortion.distort_points(x, d) - 2 * tangential_terms(x, d)[0]
                 ),
                 "x_d's 2 p1 x y enters with a plus sign",

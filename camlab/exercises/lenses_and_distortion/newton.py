@@ -241,7 +241,12 @@ def _newton_diagnosis(args, got, expected) -> str:
     untouched = np.isclose(g, x, rtol=0, atol=1e-12).all(axis=1) & ~np.isclose(expected, x).all(
         axis=1
     )
-    if untouched.any() and (stepped | untouched).all():
+    if untouched.all():
+        return (
+            "you returned x itself, unchanged: the step was never added (x + delta makes a new array: "
+            "return it, or assign it first); take the Newton step x + delta with J(x) delta = -(F(x) - x_d)"
+        )
+    if untouched.any() and stepped.any() and (stepped | untouched).all():
         rows = np.flatnonzero(untouched).tolist()
         return (
             f"row{'s' if len(rows) > 1 else ''} {rows} came back unchanged, the others are right: a loop over the "
@@ -268,10 +273,28 @@ def _newton_diagnosis(args, got, expected) -> str:
         return (
             "the radial factor uses even powers of r: L = 1 + k1 r^2 + k2 r^4 with r^2 = x^2 + y^2"
         )
+    if np.allclose(g, expected, rtol=0, atol=1e-6):
+        return (
+            "close but not exact (within 1e-6): a numerical Jacobian? Derive it as asked, "
+            "J = L I + (2 k1 + 4 k2 r^2) x x^T, and solve with it"
+        )
     return (
         "one Newton step from the current x: J delta = -(x L - x_d) with J = L I + (2 k1 + 4 k2 r^2) x x^T, "
         "L and r^2 of x; return x + delta"
     )
+
+
+def _numerical_jacobian_newton(x, x_d, k1, k2):
+    """A typical slip: the Jacobian by central differences, close to the exact step but not equal."""
+
+    def F(p):
+        return p * (
+            1 + k1 * (p**2).sum(-1, keepdims=True) + k2 * (p**2).sum(-1, keepdims=True) ** 2
+        )
+
+    h = 1e-7
+    J = np.stack([(F(x + h * e) - F(x - h * e)) / (2 * h) for e in np.eye(2)], axis=-1)
+    return x - np.linalg.solve(J, (F(x) - x_d)[:, :, None])[:, :, 0]
 
 
 def _newton_exception_hint(exc, args) -> str:
@@ -419,6 +442,8 @@ register_exercise(
             (_flat_rhs_newton, "np.linalg.solve on a stack"),
             (_flat_r2_newton, "x * L lines it up"),
             (_loop_from_one_newton, "skipped the first, point 0"),
+            (lambda x, x_d, k1, k2: x.copy(), "you returned x itself"),
+            (_numerical_jacobian_newton, "a numerical Jacobian"),
             (
                 lambda x, x_d, k1, k2: _newton_step_reference(x, x_d, k1, k2).tolist(),
                 "wrap the values in np.array",

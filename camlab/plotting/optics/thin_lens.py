@@ -58,7 +58,7 @@ def draw_thin_lens(ax, focal_length: float, object_distance: float) -> dict:
     dict
         The artists for :func:`update_thin_lens`: ``"lens"``, ``"axis"``, ``"foci"``, ``"object"``
         and ``"image"`` (annotation arrows), ``"image_dot"``, ``"rays"`` (three Line2D) and
-        ``"text"`` (the title with the numbers).
+        ``"text"`` (the title with the numbers), ``"F"`` (the label of F, moved clear of a near object).
     """
     styles = (
         "-",
@@ -95,7 +95,7 @@ def draw_thin_lens(ax, focal_length: float, object_distance: float) -> dict:
     }
     # F below the axis, left of its cross (on the object side every ray and the object arrow stay above the
     # axis); F' above it, right of its cross (on the image side the rays and a real image stay below it)
-    ax.annotate(
+    art["F"] = ax.annotate(
         "F", (-1, 0), xytext=(-4, -4), textcoords="offset points", ha="right", va="top", fontsize=10
     )
     ax.annotate(
@@ -127,7 +127,7 @@ def _thin_lens_note(xo: float, xi: float, m: float) -> str:
     lo, hi = THIN_LENS_X
     notes = [f"object at {-xo:.1f} f, beyond the left edge" if xo < lo else ""]
     if xi > hi or not THIN_LENS_Y[0] <= m <= THIN_LENS_Y[1]:  # its numbers are on the line above
-        notes.append(f"the image is beyond the {'right edge' if xi > hi else 'axes'}")
+        notes.append("the image is beyond the axes")  # its rays may leave through the bottom first
     return "; ".join(n for n in notes if n)
 
 
@@ -169,6 +169,8 @@ def update_thin_lens(art: dict, f: float, zo: float, requested: float | None = N
     art["image"].arrow_patch.set_arrowstyle("-" if headless else "-|>")
     art["image"].arrow_patch.set_mutation_scale(10 * min(1.0, abs(m) / 0.3) + 1)
     art["object"].set_visible(xo >= lo)  # an arrow at the edge would not meet its rays
+    # an object within 0.3 f of F: its label goes left of the arrow's foot, clear of the arrow and the cross
+    art["F"].xy = (min(xo, -1.0), 0) if xo > -1.3 else (-1.0, 0)
     art["image"].set_visible(xi <= hi)
     art["image_dot"].set_data(*(([xi], [m]) if headless and xi <= hi else ([], [])))
     # parallel ray -> through F'; central ray undeviated; ray through F -> parallel (exact lines, clipped by the axes)
