@@ -253,3 +253,14 @@ def test_ransac_demo_rounds_the_samples_needed_up():
         assert d.state["samples_needed"] == int(np.ceil(k)) and d.state["samples_needed"] > k
         readouts = [w.value for w in d.widget.children[0].children if "needed for" in str(w.value)]
         assert len(readouts) == 1 and f"so {d.state['samples_needed']} samples" in readouts[0]
+
+
+def test_dlt_exercise_accepts_rows_r1_r3_and_says_why_they_are_noisier(capsys):
+    # any two of the three cross-product rows fix H; r1, r3 weights the second equation by v'
+    from camlab.exercises.homographies.dlt import _dlt_two_rows
+
+    all_exercises()
+    for keep, rows, weight in (((0, 2), "r1 and r3", "v'"), ((1, 2), "r2 and r3", "u'")):
+        assert check("dlt_homography", lambda s, d, keep=keep: _dlt_two_rows(s, d, keep))
+        out = capsys.readouterr().out
+        assert f"you kept rows {rows}" in out and f"weighted by {weight}" in out
