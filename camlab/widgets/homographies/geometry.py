@@ -267,6 +267,46 @@ def _matrix_text(M: np.ndarray) -> str:
     return np.array2string(np.where(np.round(M, 4) == 0, 0.0, M), precision=4, suppress_small=True)
 
 
+def _place_names(labels, points, corners, out_hw) -> None:
+    """Put the names A'..D' beside their points, clear of the corner markers and of each other.
+
+    A name sits up and to the right of its point, or on the side away from a corner marker within
+    20 px. It is hidden where its text would run off the canvas, where its point lies under a marker
+    (within 4 px of a corner), or within 14 px of a name already shown.
+
+    Parameters
+    ----------
+    labels : list of matplotlib.text.Annotation
+        The names, in the order of ``points``.
+    points : (4, 2) ndarray
+        The mapped points A'..D' (pixels; NaN or inf where mapped to infinity).
+    corners : (4, 2) ndarray
+        The corner markers (pixels).
+    out_hw : tuple of int
+        The canvas (height, width) in pixels.
+    """
+    shown = []
+    for label, p in zip(labels, points, strict=True):
+        label.xy = tuple(p)
+        gap = np.linalg.norm(corners - p, axis=1) if np.isfinite(p).all() else np.full(4, np.inf)
+        away = p - corners[np.argmin(gap)]
+        offset = (4.0, 6.0)
+        if gap.min() < 20:  # the side away from the nearest marker (v points down, offsets up)
+            d = away / max(np.linalg.norm(away), 1e-9) * 12
+            offset = (d[0] - (12 if d[0] < 0 else 0), -d[1] - (8 if d[1] > 0 else 0))
+        label.xyann = offset
+        visible = bool(
+            np.isfinite(p).all()
+            and 0 <= p[0] <= out_hw[1] - 22
+            and 14 <= p[1] <= out_hw[0]
+            and gap.min() >= 4
+            and all(np.linalg.norm(p - q) >= 14 for q in shown)
+        )
+        label.set_visible(visible)
+        if visible:
+            shown.append(p)
+
+
 def drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, angle0, angle1) -> list:
     """The drag demo's table: (quantity, source, image, verdict) with the verdict computed.
 
@@ -466,14 +506,7 @@ def drag_homography() -> Demo:
         dense = map_polyline(H, line_dense)  # broken where it passes through infinity
         mapped_line.set_data(dense[:, 0], dense[:, 1])
         mapped_dots.set_data(m[:, 0], m[:, 1])
-        for label, p in zip(mapped_names, m, strict=True):
-            label.xy = tuple(p)
-            # a name whose text would run off the canvas is hidden rather than clipped
-            label.set_visible(
-                bool(
-                    np.isfinite(p).all() and 0 <= p[0] <= out_hw[1] - 22 and 14 <= p[1] <= out_hw[0]
-                )
-            )
+        _place_names(mapped_names, m, corners, out_hw)
         outline = map_polyline(H, square_dense)
         quad.set_data(outline[:, 0], outline[:, 1])
         handles.set_data(corners[:, 0], corners[:, 1])
