@@ -35,6 +35,12 @@ from .notes import TORN_DRAG, TORN_SHORT, warning_note
 # ----------------------------------------------------------------------------- hierarchy
 
 _GROUPS = tuple(hg.HIERARCHY)  # euclidean, similarity, affine, projective
+_SLIDERS_USED = {  # the sliders each group's matrix reads; the others are greyed out
+    "euclidean": {"theta", "tx", "ty"},
+    "similarity": {"theta", "tx", "ty", "scale"},
+    "affine": {"theta", "tx", "ty", "scale", "phi", "aspect"},
+    "projective": {"theta", "tx", "ty", "scale", "phi", "aspect", "v1", "v2"},
+}
 _GROUP_NAMES = {
     "euclidean": "Euclidean",
     "similarity": "similarity",
@@ -142,7 +148,7 @@ def transformation_hierarchy() -> Demo:
             "--",
             color=palette.PURPLE,
             lw=2,
-            label="vanishing line (image of\nl∞; at infinity unless\nthe group is projective)",
+            label="vanishing line (image of\nl∞), drawn when it\ncrosses the canvas",
         )[0]
     )
     ax.set_title(
@@ -175,6 +181,8 @@ def transformation_hierarchy() -> Demo:
             v=(v["v1"] * 1e-3, v["v2"] * 1e-3),
         )
         H = hg.compose(C, Hg, P)
+        for name, control in controls.items():  # grey out what the group ignores
+            control.disabled = name != "group" and name not in _SLIDERS_USED[v["group"]]
         im.set_data(warp_perspective(pic, H, canvas_hw, method="cv2", fill=255))
         pieces = [np.vstack([map_polyline(H, line), [[np.nan, np.nan]]]) for line in grid_lines]
         m = np.vstack(pieces)
