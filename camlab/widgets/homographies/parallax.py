@@ -124,7 +124,7 @@ def plane_parallax() -> Demo:
         state.update(H=H, parallax=parallax)
         lines = [f"plane Z = {v['plane']:g} m; median parallax |x2 - H x1| over the 12 rays:"]
         lines += [
-            f"  Z = {Z:g} m: {p:6.1f} px   (|1/Z - 1/d| = {abs(1 / Z - 1 / v['plane']):.3f} /m)"
+            f"  Z = {Z:>3g} m: {p:6.1f} px   (|1/Z - 1/d| = {abs(1 / Z - 1 / v['plane']):.3f} /m)"
             for Z, p in parallax.items()
         ]
         readout.value = monospace("\n".join(lines))
