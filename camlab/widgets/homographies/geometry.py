@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import textwrap
+from types import SimpleNamespace
 
 import ipywidgets as W
 import numpy as np
@@ -55,52 +56,69 @@ _A_MAP = {
 }
 
 
-@register(
-    lesson="07",
-    sweep={
-        "group": list(_GROUPS),
-        "theta": [-30.0, 20.0],
-        "phi": [0.0, 40.0],
-        "v1": [0.0, 2.0, 14.0],
-        "tx": [-20.0, 30.0],
-    },
-)
-def transformation_hierarchy() -> Demo:
-    """Euclidean, similarity, affine, projective: sliders for each group acting on a picture.
+def _hierarchy_texts(group, kind, Hg, H, picture_shape, canvas_hw):
+    """The hierarchy demo's two texts: the facts beside the canvas, and the readout.
 
-    The group's matrix :math:`H_g` (:func:`camlab.homography.hierarchy_matrix`, which uses
-    only the parameters its group has) acts about the picture's centre: the picture
-    shown is mapped by :math:`H = C H_g P`, where P moves the 160 x 120 picture's centre to
-    the origin and C the origin to the centre of the 480 x 360 canvas. The image of the
-    line at infinity (the vanishing line, H^-T l∞) is drawn when H moves it into view; the
-    group's dof and what it keeps are printed beside the picture, and a red note says when
-    the picture is torn (the line H sends to infinity crosses it).
+    Parameters
+    ----------
+    group, kind : str
+        The chosen group, and the smallest group holding ``Hg``.
+    Hg, H : (3, 3) ndarray
+        The group's matrix (centred coordinates) and the map drawn, C Hg P.
+    picture_shape, canvas_hw : tuple of int
+        The picture's shape and the canvas (height, width).
 
     Returns
     -------
-    Demo
-        The demo: controls ``group`` (``"euclidean"``, ``"similarity"``, ``"affine"`` or
-        ``"projective"``), ``theta`` (the rotation, degrees), ``scale``, ``phi`` (the angle
-        of the affine stretch's axes, degrees), ``aspect`` (the affine stretch, √(sx/sy)),
-        ``tx`` and ``ty`` (the translation, px) and ``v1``, ``v2`` (the projective bottom
-        row, in units of 1e-3), the figure (the mapped picture with the original outline,
-        the mapped grid and the vanishing line) and ``state``
-        (``H`` the group's matrix :math:`H_g`, ``group``, ``classified`` the smallest group
-        holding it, ``dof``, ``torn``, ``vanishing_line_in_view``).
-
-    References
-    ----------
-    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 2.4 (a
-       hierarchy of transformations), table 2.1.
+    tuple of str
+        The facts (group, dof, what it keeps) and the readout (both matrices).
     """
-    pic = scenes.house_picture()
+    info = hg.HIERARCHY[group]
+    ph, pw = picture_shape[:2]
+    keeps = [f"- {name}" for name in info["own"]]
+    if info["larger"]:
+        keeps.append(
+            f"+ all that {'an' if info['larger'] == 'affine' else 'a'} {info['larger']} map keeps"
+        )
+    facts = (
+        f"{_GROUP_NAMES[group]}: {info['dof']} dof\n(H itself is {_A_MAP[kind]})\n\nkeeps:\n"
+        + "\n".join("\n".join(textwrap.wrap(k, 24, subsequent_indent="  ")) for k in keeps)
+    )
+    readout = (
+        f"{_GROUP_NAMES[group]}: {info['dof']} dof\n"
+        "H, in coordinates centred on the picture and the canvas (what the sliders set;\n"
+        "θ turns about the picture's centre) =\n"
+        + _matrix_text(Hg)
+        + "\nthe map drawn, from source pixels to canvas pixels, C H P =\n"
+        + _matrix_text(H)
+        + f"\n(P moves the picture's centre ({(pw - 1) / 2:g}, {(ph - 1) / 2:g}) to 0,"
+        f" C moves 0 to the canvas centre ({(canvas_hw[1] - 1) / 2:g}, {(canvas_hw[0] - 1) / 2:g}))"
+        + f"\nsmallest group holding H: {kind}\nkeeps: "
+        + ", ".join(info["invariants"])
+    )
+    return facts, readout
+
+
+def _hierarchy_figure(pic, C, P, canvas_hw):
+    """The hierarchy demo's figure: its view, the animated artists and the grid lines to map.
+
+    Parameters
+    ----------
+    pic : (h, w, 3) ndarray
+        The picture.
+    C, P : (3, 3) ndarray
+        The canvas-centring and picture-centring translations.
+    canvas_hw : tuple of int
+        The canvas (height, width).
+
+    Returns
+    -------
+    SimpleNamespace
+        ``view``, ``ax``, ``im``, ``grid_art``, ``horizon_art``, ``facts``, ``warning``,
+        ``grid_lines``, ``xlim``, ``ylim``.
+    """
     ph, pw = pic.shape[:2]
-    canvas_hw = (360, 480)
     xlim, ylim = (-0.5, canvas_hw[1] - 0.5), (-0.5, canvas_hw[0] - 0.5)
-    # Picture coordinates centred on the origin; C places the origin at the canvas centre.
-    # Pixel centres at integers: the centre of a W-pixel axis is (W - 1) / 2, so (239.5, 179.5).
-    C = np.array([[1.0, 0, (canvas_hw[1] - 1) / 2], [0, 1, (canvas_hw[0] - 1) / 2], [0, 0, 1]])
-    P = np.array([[1.0, 0, -(pw - 1) / 2], [0, 1, -(ph - 1) / 2], [0, 0, 1]])
     view = FigureView(figsize=(8.5, 4.2))
     ax = view.fig.subplots()
     ax.set(xlim=xlim, ylim=ylim[::-1], aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)")
@@ -166,6 +184,68 @@ def transformation_hierarchy() -> Demo:
     warning = warning_note(
         view, ax, 1.03, 0.0, "left", "bottom"
     )  # beside the canvas, never over it
+    return SimpleNamespace(
+        view=view,
+        ax=ax,
+        im=im,
+        grid_art=grid_art,
+        horizon_art=horizon_art,
+        facts=facts,
+        warning=warning,
+        grid_lines=grid_lines,
+        xlim=xlim,
+        ylim=ylim,
+    )
+
+
+@register(
+    lesson="07",
+    sweep={
+        "group": list(_GROUPS),
+        "theta": [-30.0, 20.0],
+        "phi": [0.0, 40.0],
+        "v1": [0.0, 2.0, 14.0],
+        "tx": [-20.0, 30.0],
+    },
+)
+def transformation_hierarchy() -> Demo:
+    """Euclidean, similarity, affine, projective: sliders for each group acting on a picture.
+
+    The group's matrix :math:`H_g` (:func:`camlab.homography.hierarchy_matrix`, which uses
+    only the parameters its group has) acts about the picture's centre: the picture
+    shown is mapped by :math:`H = C H_g P`, where P moves the 160 x 120 picture's centre to
+    the origin and C the origin to the centre of the 480 x 360 canvas. The image of the
+    line at infinity (the vanishing line, H^-T l∞) is drawn when H moves it into view; the
+    group's dof and what it keeps are printed beside the picture, and a red note says when
+    the picture is torn (the line H sends to infinity crosses it).
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``group`` (``"euclidean"``, ``"similarity"``, ``"affine"`` or
+        ``"projective"``), ``theta`` (the rotation, degrees), ``scale``, ``phi`` (the angle
+        of the affine stretch's axes, degrees), ``aspect`` (the affine stretch, √(sx/sy)),
+        ``tx`` and ``ty`` (the translation, px) and ``v1``, ``v2`` (the projective bottom
+        row, in units of 1e-3), the figure (the mapped picture with the original outline,
+        the mapped grid and the vanishing line) and ``state``
+        (``H`` the group's matrix :math:`H_g`, ``group``, ``classified`` the smallest group
+        holding it, ``dof``, ``torn``, ``vanishing_line_in_view``).
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 2.4 (a
+       hierarchy of transformations), table 2.1.
+    """
+    pic = scenes.house_picture()
+    ph, pw = pic.shape[:2]
+    canvas_hw = (360, 480)
+    # Picture coordinates centred on the origin; C places the origin at the canvas centre.
+    # Pixel centres at integers: the centre of a W-pixel axis is (W - 1) / 2, so (239.5, 179.5).
+    C = np.array([[1.0, 0, (canvas_hw[1] - 1) / 2], [0, 1, (canvas_hw[0] - 1) / 2], [0, 0, 1]])
+    P = np.array([[1.0, 0, -(pw - 1) / 2], [0, 1, -(ph - 1) / 2], [0, 0, 1]])
+    fig = _hierarchy_figure(pic, C, P, canvas_hw)
+    view, im, grid_art, horizon_art = fig.view, fig.im, fig.grid_art, fig.horizon_art
+    facts, warning, grid_lines = fig.facts, fig.warning, fig.grid_lines
     picture_corners = np.array([[0, 0], [pw - 1, 0], [pw - 1, ph - 1], [0, ph - 1]], float)
     readout = W.HTML()
 
@@ -188,7 +268,7 @@ def transformation_hierarchy() -> Demo:
         m = np.vstack(pieces)
         grid_art.set_data(m[:, 0], m[:, 1])
         # l' = H^-T l_inf: where parallel lines of the picture meet (outside the view for affine H)
-        vanishing = clip_line(map_lines(H, LINE_AT_INFINITY), xlim, ylim)
+        vanishing = clip_line(map_lines(H, LINE_AT_INFINITY), fig.xlim, fig.ylim)
         horizon_art.set_data(vanishing[:, 0], vanishing[:, 1])
         info = hg.HIERARCHY[v["group"]]
         kind = hg.classify(Hg)
@@ -203,27 +283,9 @@ def transformation_hierarchy() -> Demo:
             torn=torn,
             vanishing_line_in_view=bool(np.isfinite(vanishing).all()),
         )
-        keeps = [f"- {name}" for name in info["own"]]
-        if info["larger"]:
-            keeps.append(
-                f"+ all that {'an' if info['larger'] == 'affine' else 'a'} {info['larger']} map keeps"
-            )
-        facts.set_text(
-            f"{_GROUP_NAMES[v['group']]}: {info['dof']} dof\n(H itself is {_A_MAP[kind]})\n\nkeeps:\n"
-            + "\n".join("\n".join(textwrap.wrap(k, 24, subsequent_indent="  ")) for k in keeps)
-        )
-        readout.value = monospace(
-            f"{_GROUP_NAMES[v['group']]}: {info['dof']} dof\n"
-            "H, in coordinates centred on the picture and the canvas (what the sliders set;\n"
-            "θ turns about the picture's centre) =\n"
-            + _matrix_text(Hg)
-            + "\nthe map drawn, from source pixels to canvas pixels, C H P =\n"
-            + _matrix_text(H)
-            + f"\n(P moves the picture's centre ({(pw - 1) / 2:g}, {(ph - 1) / 2:g}) to 0,"
-            f" C moves 0 to the canvas centre ({(canvas_hw[1] - 1) / 2:g}, {(canvas_hw[0] - 1) / 2:g}))"
-            + f"\nsmallest group holding H: {kind}\nkeeps: "
-            + ", ".join(info["invariants"])
-        )
+        facts_text, readout_text = _hierarchy_texts(v["group"], kind, Hg, H, pic.shape, canvas_hw)
+        facts.set_text(facts_text)
+        readout.value = monospace(readout_text)
 
     controls = {
         "group": W.Dropdown(options=list(_GROUPS), value="affine", description="group"),
