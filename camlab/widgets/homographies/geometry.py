@@ -423,6 +423,36 @@ def drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, angle0, angle1) 
     ]
 
 
+def _drag_axes(ax_s, ax_t, pic, out_hw) -> None:
+    """The drag demo's two axes: the source picture (anchored at the top) and the empty target canvas."""
+    ph, pw = pic.shape[:2]
+    ax_s.imshow(pic)
+    ax_s.set_anchor("N")  # the room under the source picture holds the numbers and the warning
+    ax_s.set(xlabel="u (pixels)", ylabel="v (pixels)")
+    ax_s.set_title("source picture", fontsize=10, pad=3)
+    ax_s.set(xlim=(-0.5, pw - 0.5), ylim=(ph - 0.5, -0.5))
+    ax_t.set(xlim=(-0.5, out_hw[1] - 0.5), ylim=(out_hw[0] - 0.5, -0.5), aspect="equal")
+    ax_t.set(xlabel="u (pixels)", ylabel="v (pixels)")
+    ax_t.set_title("drag a corner, or use the sliders", fontsize=10, pad=3)
+
+
+def _drag_line_names(ax_s, line_pts) -> None:
+    """The points A..D on the source picture's diagonal, with their names."""
+    ax_s.plot(*line_pts.T, "o-", color=palette.BROWN, ms=5, lw=1.5, path_effects=palette.halo(1.5))
+    # across the line, clear of its halo; A and D sit near the frame, D's label inside the picture
+    offsets = ((7, -3), (6, 8), (-12, -14), (-18, -2))
+    for name, p, off in zip("ABCD", line_pts, offsets, strict=True):
+        ax_s.annotate(
+            name,
+            p,
+            xytext=off,
+            textcoords="offset points",
+            fontsize=9,
+            color="k",
+            path_effects=palette.halo(),
+        )  # black on a white halo: readable on any colour
+
+
 @register(
     lesson="07",
     sweep={
@@ -475,14 +505,7 @@ def drag_homography() -> Demo:
     out_hw = (260, 300)
     view = FigureView(figsize=(9, 4.6))
     ax_s, ax_t = view.fig.subplots(1, 2, width_ratios=[1, 1.6])
-    ax_s.imshow(pic)
-    ax_s.set_anchor("N")  # the room under the source picture holds the numbers and the warning
-    ax_s.set(xlabel="u (pixels)", ylabel="v (pixels)")
-    ax_s.set_title("source picture", fontsize=10, pad=3)
-    ax_s.set(xlim=(-0.5, pw - 0.5), ylim=(ph - 0.5, -0.5))
-    ax_t.set(xlim=(-0.5, out_hw[1] - 0.5), ylim=(out_hw[0] - 0.5, -0.5), aspect="equal")
-    ax_t.set(xlabel="u (pixels)", ylabel="v (pixels)")
-    ax_t.set_title("drag a corner, or use the sliders", fontsize=10, pad=3)
+    _drag_axes(ax_s, ax_t, pic, out_hw)
     # Four collinear points on the picture's diagonal (their cross-ratio is the invariant).
     line_pts = np.array([[10.0, 10.0], [50.0, 40.0], [90.0, 70.0], [150.0, 115.0]])
     line_dense = line_pts[0] + np.linspace(0, 1, 80)[:, None] * (line_pts[3] - line_pts[0])
@@ -492,19 +515,7 @@ def drag_homography() -> Demo:
             for i in range(4)
         ]
     )
-    ax_s.plot(*line_pts.T, "o-", color=palette.BROWN, ms=5, lw=1.5, path_effects=palette.halo(1.5))
-    # across the line, clear of its halo; A and D sit near the frame, D's label inside the picture
-    offsets = ((7, -3), (6, 8), (-12, -14), (-18, -2))
-    for name, p, off in zip("ABCD", line_pts, offsets, strict=True):
-        ax_s.annotate(
-            name,
-            p,
-            xytext=off,
-            textcoords="offset points",
-            fontsize=9,
-            color="k",
-            path_effects=palette.halo(),
-        )  # black on a white halo: readable on any colour
+    _drag_line_names(ax_s, line_pts)
     sent_away = view.animate(ax_s.plot([], [], "--", color=palette.PURPLE, lw=2)[0])
     im = view.animate(
         ax_t.imshow(
