@@ -24,7 +24,6 @@ MAX_FUNCTION_LINES = 80
 # (camlab.optimise.levenberg_marquardt, camlab.widgets.projective_camera.resectioning.update).
 EXCEPTIONS = {
     # i27-plots splits these (issue 27, item 2)
-    "camlab.widgets.homographies.geometry.drag_homography": "i27-plots (issue 27)",
     "camlab.widgets.homographies.estimation.ransac_outliers": "i27-plots (issue 27)",
 }
 

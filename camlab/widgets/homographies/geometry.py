@@ -423,6 +423,99 @@ def drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, angle0, angle1) 
     ]
 
 
+def _dense_outline(quad: np.ndarray) -> np.ndarray:
+    """A closed quadrilateral's four sides, 40 points each (dense, so a map through infinity shows its break)."""
+    return np.vstack(
+        [quad[i] + np.linspace(0, 1, 40)[:, None] * (quad[(i + 1) % 4] - quad[i]) for i in range(4)]
+    )
+
+
+def _drag_artists(view, ax_s, ax_t, out_hw) -> SimpleNamespace:
+    """The drag demo's animated artists: the line sent to infinity, the warp, the mapped marks and the texts."""
+    sent_away = view.animate(ax_s.plot([], [], "--", color=palette.PURPLE, lw=2)[0])
+    im = view.animate(
+        ax_t.imshow(
+            np.zeros((*out_hw, 3), np.uint8), extent=(-0.5, out_hw[1] - 0.5, out_hw[0] - 0.5, -0.5)
+        )
+    )
+    quad = view.animate(
+        ax_t.plot([], [], "-", color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0]
+    )
+    mapped_line = view.animate(
+        ax_t.plot([], [], "-", color=palette.BROWN, lw=1.5, path_effects=palette.halo(1.5))[0]
+    )
+    mapped_dots = view.animate(ax_t.plot([], [], "o", color=palette.BROWN, ms=5, mec="white")[0])
+    mapped_names = [
+        view.animate(
+            ax_t.annotate(
+                f"{name}'",
+                (np.nan, np.nan),
+                xytext=(4, 6),
+                textcoords="offset points",
+                fontsize=9,
+                color="k",
+                path_effects=palette.halo(),
+            )
+        )
+        for name in "ABCD"
+    ]
+    handles = view.animate(ax_t.plot([], [], "o", color=palette.ORANGE, ms=10, mec="k")[0])
+    chosen = view.animate(
+        ax_t.plot([], [], "o", ms=17, mfc="none", mec="k", mew=2)[0]
+    )  # the corner the keys move
+    numbers = view.animate(
+        ax_s.text(
+            0.0,
+            -0.27,
+            "",
+            transform=ax_s.transAxes,
+            ha="left",
+            va="top",
+            fontsize=8,
+            family="monospace",
+        )
+    )
+    warning = warning_note(
+        view, ax_s, 0.0, -0.62, "left", "top"
+    )  # under the numbers, off the target
+    return SimpleNamespace(
+        sent_away=sent_away,
+        im=im,
+        quad=quad,
+        mapped_line=mapped_line,
+        mapped_dots=mapped_dots,
+        mapped_names=mapped_names,
+        handles=handles,
+        chosen=chosen,
+        numbers=numbers,
+        warning=warning,
+    )
+
+
+def _drag_measures(line_pts, m, corners) -> tuple:
+    """What the drag demo's table compares: cross-ratio, |AD|, |AB| / |CD| and the top-left angle.
+
+    Returns the measures (for the demo's state) and the table's rows (:func:`drag_table_rows`).
+    """
+    cr0, cr1 = cross_ratio(line_pts), cross_ratio(m)
+    length0, length1 = (float(np.linalg.norm(p[3] - p[0])) for p in (line_pts, m))  # |AD|
+    ratio0 = np.linalg.norm(line_pts[1] - line_pts[0]) / np.linalg.norm(line_pts[3] - line_pts[2])
+    ratio1 = np.linalg.norm(m[1] - m[0]) / np.linalg.norm(m[3] - m[2])
+    e1, e2 = corners[1] - corners[0], corners[3] - corners[0]
+    angle = np.degrees(np.arccos(np.clip(e1 @ e2 / np.linalg.norm(e1) / np.linalg.norm(e2), -1, 1)))
+    rows = drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, 90.0, angle)
+    measures = dict(
+        cross_ratio_source=cr0,
+        cross_ratio_image=cr1,
+        length_source=length0,
+        length_image=length1,
+        length_ratio_source=ratio0,
+        length_ratio_image=ratio1,
+        corner_angle=angle,
+    )
+    return measures, rows
+
+
 def _drag_axes(ax_s, ax_t, pic, out_hw) -> None:
     """The drag demo's two axes: the source picture (anchored at the top) and the empty target canvas."""
     ph, pw = pic.shape[:2]
@@ -509,59 +602,9 @@ def drag_homography() -> Demo:
     # Four collinear points on the picture's diagonal (their cross-ratio is the invariant).
     line_pts = np.array([[10.0, 10.0], [50.0, 40.0], [90.0, 70.0], [150.0, 115.0]])
     line_dense = line_pts[0] + np.linspace(0, 1, 80)[:, None] * (line_pts[3] - line_pts[0])
-    square_dense = np.vstack(
-        [
-            SQUARE[i] + np.linspace(0, 1, 40)[:, None] * (SQUARE[(i + 1) % 4] - SQUARE[i])
-            for i in range(4)
-        ]
-    )
+    square_dense = _dense_outline(SQUARE)
     _drag_line_names(ax_s, line_pts)
-    sent_away = view.animate(ax_s.plot([], [], "--", color=palette.PURPLE, lw=2)[0])
-    im = view.animate(
-        ax_t.imshow(
-            np.zeros((*out_hw, 3), np.uint8), extent=(-0.5, out_hw[1] - 0.5, out_hw[0] - 0.5, -0.5)
-        )
-    )
-    quad = view.animate(
-        ax_t.plot([], [], "-", color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0]
-    )
-    mapped_line = view.animate(
-        ax_t.plot([], [], "-", color=palette.BROWN, lw=1.5, path_effects=palette.halo(1.5))[0]
-    )
-    mapped_dots = view.animate(ax_t.plot([], [], "o", color=palette.BROWN, ms=5, mec="white")[0])
-    mapped_names = [
-        view.animate(
-            ax_t.annotate(
-                f"{name}'",
-                (np.nan, np.nan),
-                xytext=(4, 6),
-                textcoords="offset points",
-                fontsize=9,
-                color="k",
-                path_effects=palette.halo(),
-            )
-        )
-        for name in "ABCD"
-    ]
-    handles = view.animate(ax_t.plot([], [], "o", color=palette.ORANGE, ms=10, mec="k")[0])
-    chosen = view.animate(
-        ax_t.plot([], [], "o", ms=17, mfc="none", mec="k", mew=2)[0]
-    )  # the corner the keys move
-    numbers = view.animate(
-        ax_s.text(
-            0.0,
-            -0.27,
-            "",
-            transform=ax_s.transAxes,
-            ha="left",
-            va="top",
-            fontsize=8,
-            family="monospace",
-        )
-    )
-    warning = warning_note(
-        view, ax_s, 0.0, -0.62, "left", "top"
-    )  # under the numbers, off the target
+    art = _drag_artists(view, ax_s, ax_t, out_hw)
     readout = W.HTML()
     control = corner_text(format_corners(_DRAG_START), "corners (u, v; ...)")
     keys = corner_keys(control, CORNER_NAMES, out_hw[1] - 1, out_hw[0] - 1)
@@ -573,55 +616,39 @@ def drag_homography() -> Demo:
             H = hg.estimate_homography(SQUARE, corners)
         except (ValueError, DegenerateError) as exc:
             state.update(error=str(exc))
-            warning("cannot use these corners:\n" + "\n".join(textwrap.wrap(str(exc), 55)[:3]))
+            art.warning("cannot use these corners:\n" + "\n".join(textwrap.wrap(str(exc), 55)[:3]))
             readout.value = monospace(f"cannot use these corners:\n{exc}")
             return
         current["corners"] = corners
         torn = splits_at_infinity(H, SQUARE)
-        warning(TORN_DRAG if torn else "")
+        art.warning(TORN_DRAG if torn else "")
         # H^T l_inf = (h31, h32, h33): the source line that H sends to infinity (drawn if in view)
         away = clip_line(H[2], (-0.5, pw - 0.5), (-0.5, ph - 0.5))
-        sent_away.set_data(away[:, 0], away[:, 1])
-        im.set_data(warp_perspective(pic, H, out_hw, method="cv2", fill=255))
+        art.sent_away.set_data(away[:, 0], away[:, 1])
+        art.im.set_data(warp_perspective(pic, H, out_hw, method="cv2", fill=255))
         m = map_points(H, line_pts)
         dense = map_polyline(H, line_dense)  # broken where it passes through infinity
-        mapped_line.set_data(dense[:, 0], dense[:, 1])
-        mapped_dots.set_data(m[:, 0], m[:, 1])
-        _place_names(mapped_names, m, corners, out_hw)
+        art.mapped_line.set_data(dense[:, 0], dense[:, 1])
+        art.mapped_dots.set_data(m[:, 0], m[:, 1])
+        _place_names(art.mapped_names, m, corners, out_hw)
         outline = map_polyline(H, square_dense)
-        quad.set_data(outline[:, 0], outline[:, 1])
-        handles.set_data(corners[:, 0], corners[:, 1])
-        chosen.set_data(corners[v["corner"], :1], corners[v["corner"], 1:])
-        cr0, cr1 = cross_ratio(line_pts), cross_ratio(m)
-        length0, length1 = (float(np.linalg.norm(p[3] - p[0])) for p in (line_pts, m))  # |AD|
-        ratio0 = np.linalg.norm(line_pts[1] - line_pts[0]) / np.linalg.norm(
-            line_pts[3] - line_pts[2]
-        )
-        ratio1 = np.linalg.norm(m[1] - m[0]) / np.linalg.norm(m[3] - m[2])
-        e1, e2 = corners[1] - corners[0], corners[3] - corners[0]
-        angle = np.degrees(
-            np.arccos(np.clip(e1 @ e2 / np.linalg.norm(e1) / np.linalg.norm(e2), -1, 1))
-        )
-        rows = drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, 90.0, angle)
+        art.quad.set_data(outline[:, 0], outline[:, 1])
+        art.handles.set_data(corners[:, 0], corners[:, 1])
+        art.chosen.set_data(corners[v["corner"], :1], corners[v["corner"], 1:])
+        measures, rows = _drag_measures(line_pts, m, corners)
         state.update(
             H=H,
             error=None,
             torn=torn,
             corner=v["corner"],
-            cross_ratio_source=cr0,
-            cross_ratio_image=cr1,
-            length_source=length0,
-            length_image=length1,
-            length_ratio_source=ratio0,
-            length_ratio_image=ratio1,
-            corner_angle=angle,
             corners=corners,
             verdicts={name: verdict for name, _, _, verdict in rows},
+            **measures,
         )
         table = "                 source    image\n" + "\n".join(
             f"{name:15s} {a:>7s}  {b:>7s}  {verdict}" for name, a, b, verdict in rows
         )
-        numbers.set_text(table)
+        art.numbers.set_text(table)
         readout.value = monospace(table + "\nH =\n" + _matrix_text(H))
 
     demo = build_demo(
