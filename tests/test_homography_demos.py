@@ -253,3 +253,26 @@ def test_ransac_demo_rounds_the_samples_needed_up():
         assert d.state["samples_needed"] == int(np.ceil(k)) and d.state["samples_needed"] > k
         readouts = [w.value for w in d.widget.children[0].children if "needed for" in str(w.value)]
         assert len(readouts) == 1 and f"so {d.state['samples_needed']} samples" in readouts[0]
+
+
+def test_dlt_exercise_accepts_rows_r1_r3_and_says_why_they_are_noisier(capsys):
+    # any two of the three cross-product rows fix H; r1, r3 weights the second equation by v'
+    from camlab.exercises.homographies.dlt import _dlt_two_rows
+
+    all_exercises()
+    for keep, rows, weight in (((0, 2), "r1 and r3", "v'"), ((1, 2), "r2 and r3", "u'")):
+        assert check("dlt_homography", lambda s, d, keep=keep: _dlt_two_rows(s, d, keep))
+        out = capsys.readouterr().out
+        assert f"you kept rows {rows}" in out and f"weighted by {weight}" in out
+
+
+def test_plane_parallax_demo_is_zero_on_the_plane_and_for_a_turning_camera():
+    d = h07.plane_parallax()
+    p = d.state["parallax"]  # the default is section 9's cameras: cell 40's 101.4 and 51.9 px
+    assert p[3.0] < 1e-9 and abs(p[1.5] - 101.4) < 0.1 and abs(p[6.0] - 51.9) < 0.1
+    d.set(move=0.0)  # a camera that only turns: no parallax at any depth
+    assert max(d.state["parallax"].values()) < 1e-9
+    d.set(move=0.4, plane=6.0)  # the plane moves back: the points at 6 m lie on it
+    assert d.state["parallax"][6.0] < 1e-9 and d.state["parallax"][3.0] > 10
+    readouts = [w.value for w in d.widget.children[0].children if "median parallax" in str(w.value)]
+    assert len(readouts) == 1 and "|1/Z - 1/d|" in readouts[0]

@@ -63,7 +63,7 @@ def test_presentation_of_lesson_07_runs_and_shows_only_demos():
         for c in nb.cells
         if c.cell_type == "code" and c.outputs and c.source != ACCESSIBILITY_SCRIPT
     ]
-    assert len(shown) == 4 and all(is_demo_cell(c) for c in shown)
+    assert len(shown) == 5 and all(is_demo_cell(c) for c in shown)
     assert all("application/vnd.jupyter.widget-view+json" in c.outputs[0]["data"] for c in shown)
 
 

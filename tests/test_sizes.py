@@ -22,12 +22,7 @@ MAX_FUNCTION_LINES = 80
 # {qualified name: why it is still over the limit}. A module is keyed by its dotted name
 # (camlab.projective), a function by module, classes and enclosing functions
 # (camlab.optimise.levenberg_marquardt, camlab.widgets.projective_camera.resectioning.update).
-EXCEPTIONS = {
-    # i27-plots splits these (issue 27, item 2)
-    "camlab.widgets.homographies.geometry.transformation_hierarchy": "i27-plots (issue 27)",
-    "camlab.widgets.homographies.geometry.drag_homography": "i27-plots (issue 27)",
-    "camlab.widgets.homographies.estimation.ransac_outliers": "i27-plots (issue 27)",
-}
+EXCEPTIONS = {}
 
 
 def _module_name(path: Path, root: Path) -> str:

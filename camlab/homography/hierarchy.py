@@ -45,7 +45,7 @@ _OWN_INVARIANTS = {  # what each group keeps beyond the larger group above it (H
     "affine": [
         "parallelism",
         "ratio of areas",
-        "ratio of lengths on parallel lines",
+        "ratio of lengths on collinear or parallel lines",
         "the line at infinity",
     ],
     "similarity": ["angle", "ratio of lengths", "the circular points (H&Z 2.7.3)"],

@@ -161,6 +161,14 @@ def _far_cause(src, dst, g) -> str:
     closest, hint = min(slips, key=lambda pair: pair[0])
     if closest < 0.25 * off:
         return hint
+    rows = _row_choice(src, dst, g)
+    if rows:
+        return (
+            f"you kept rows {rows} of x' x Hx = 0. They fix H on exact data, but with w' = 1, "
+            f"r3 = -(u' r1 + v' r2), so the pair's other equation enters only weighted by "
+            f"{'v' if rows == 'r1 and r3' else 'u'}', near 0 for normalised points near the centroid: "
+            f"those pairs give almost one equation. Keep r1 and r2 (section 5, H&Z (4.3)), or all three."
+        )
     if len(src) > 4:
         four = _patch_distance(g, _dlt_with(src[:4], dst[:4], lambda p: hartley_normalise(p).T))
         if four < 0.25 * off:
@@ -201,9 +209,11 @@ def _dlt_follow_up(run) -> str:
         if worst is None or off > worst[0]:
             worst = (off, src, dst, g)
     median, largest = float(np.median(offs)), max(offs)
+    off, src, dst, g = worst
     if median <= FAR_MEDIAN_PX and largest <= FAR_WORST_PX:
         return ""
-    off, src, dst, g = worst
+    if g is not None and np.isfinite(off) and _row_choice(src, dst, g):
+        return ""  # r1, r3 (or r2, r3): valid, noisier; the success note says why
     cause = (
         _far_cause(src, dst, g)
         if g is not None and np.isfinite(off)
@@ -256,6 +266,16 @@ def _dlt_success_note(run) -> str:
         f"at the median (the worst grid point of each), {max(offs):.2f} px at worst."
     )
     note = _one_set_only(run)
+    src, dst = next(iter(_far_draws()))
+    rows = _row_choice(src, dst, np.asarray(run(src.copy(), dst.copy()), dtype=float))
+    if rows:
+        note = (note + "\n" if note else "") + (
+            f"Note: you kept rows {rows} of x' x Hx = 0 for each pair. That is valid (any two of the three "
+            f"fix H on exact data), but with w' = 1, r3 = -(u' r1 + v' r2): the pair's other equation then "
+            f"enters weighted by {'v' if rows == 'r1 and r3' else 'u'}', near 0 for normalised points near "
+            f"the centroid, so the noise is averaged over fewer equations (a DLT with r1 and r2 is "
+            f"{_reference_median():.2f} px off at the median). Section 5 and H&Z (4.3) keep r1 and r2."
+        )
     return line + ("\n" + note if note else "")
 
 
@@ -455,6 +475,20 @@ def _normalisation_slip(g, src, dst, expected) -> str:
         )
         if cause:
             return cause
+        for Ms, Md, how in (
+            (
+                Ts * [[1, 1, 0], [1, 1, 0], [1, 1, 1]],
+                Td * [[1, 1, 0], [1, 1, 0], [1, 1, 1]],
+                "dropped",
+            ),
+            (Ts.T, Td.T, "divided by"),
+        ):  # X @ T normalises the points by T^T: w dropped (only scaled) or divided by (projective)
+            if same_up_to_scale(g, inv(Td) @ Md @ expected @ inv(Ms) @ Ts, rtol=1e-5):
+                return (
+                    f"you normalised the points with X @ T, but with points as rows it is X @ T.T (x_n = T x "
+                    f"for a column x). X @ T puts T's translation into the w column, which you {how}, so "
+                    f"the points were not centred; the undo inv(T_dst) @ H_n @ T_src then assumes they were."
+                )
     for largest in (_dlt_unnormalised(src, dst, pick=0), _dlt_normalised_largest(src, dst)):
         if same_up_to_scale(g, largest, rtol=1e-5):
             return (
@@ -480,6 +514,40 @@ def _dlt_rows(src, dst):
             np.concatenate([x, np.zeros(3), -up * x]),
         ]
     return np.array(rows)
+
+
+def _row_choice(src, dst, g) -> str:
+    """Return "r1 and r3" or "r2 and r3" if g is the normalised DLT with those rows per pair, else ""."""
+    for keep, rows in (((0, 2), "r1 and r3"), ((1, 2), "r2 and r3")):
+        if _patch_distance(g, _dlt_two_rows(src, dst, keep)) < 0.05:
+            return rows
+    return ""
+
+
+def _dlt_two_rows(src, dst, keep):
+    """The normalised DLT with rows ``keep`` of (r1, r2, r3) per pair (a valid-looking choice, noisier)."""
+    src, dst = np.asarray(src, dtype=float), np.asarray(dst, dtype=float)
+    Ts, Td = hartley_normalise(src).T, hartley_normalise(dst).T
+    a = np.column_stack([src, np.ones(len(src))]) @ Ts.T
+    b = np.column_stack([dst, np.ones(len(dst))]) @ Td.T
+    rows = []
+    for x, (up, vp, wp) in zip(a, b, strict=True):
+        r = (
+            np.r_[np.zeros(3), -wp * x, vp * x],
+            np.r_[wp * x, np.zeros(3), -up * x],
+            np.r_[-vp * x, up * x, np.zeros(3)],
+        )
+        rows += [r[keep[0]], r[keep[1]]]
+    return np.linalg.inv(Td) @ np.linalg.svd(np.array(rows))[2][-1].reshape(3, 3) @ Ts
+
+
+def _dlt_points_times_t(src, dst):
+    """A normalised DLT whose points were normalised by X @ T (not X @ T.T), w dropped, undone with T."""
+    src, dst = np.asarray(src, dtype=float), np.asarray(dst, dtype=float)
+    Ts, Td = hartley_normalise(src).T, hartley_normalise(dst).T
+    sn = (np.column_stack([src, np.ones(len(src))]) @ Ts)[:, :2]
+    dn = (np.column_stack([dst, np.ones(len(dst))]) @ Td)[:, :2]
+    return np.linalg.inv(Td) @ np.linalg.svd(_dlt_rows(sn, dn))[2][-1].reshape(3, 3) @ Ts
 
 
 def _dlt_unnormalised(src, dst, pick=-1, column=False):
@@ -629,6 +697,7 @@ register_exercise(
             ),
             (lambda s, d: hg.estimate_homography(np.asarray(s) + 0.5, d), "half-pixel offset"),
             (lambda s, d: hg.estimate_homography(s, d).tolist(), "you returned a list"),
+            (_dlt_points_times_t, "with X @ T, but"),
             (
                 lambda s, d: hg.estimate_homography(np.asarray(s)[:4], np.asarray(d)[:4]),
                 "first 4 of the 30 pairs",

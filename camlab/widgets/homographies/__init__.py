@@ -11,6 +11,7 @@ from __future__ import annotations
 from ..controls import format_corners
 from .estimation import CONFIDENCE, MAX_SAMPLES, forward_vs_inverse, ransac_outliers
 from .geometry import CORNER_NAMES, SQUARE, drag_homography, transformation_hierarchy
+from .parallax import plane_parallax
 
 __all__ = [
     "CONFIDENCE",
@@ -20,6 +21,7 @@ __all__ = [
     "drag_homography",
     "format_corners",
     "forward_vs_inverse",
+    "plane_parallax",
     "ransac_outliers",
     "transformation_hierarchy",
 ]

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from functools import lru_cache
+from types import SimpleNamespace
 
 import cv2
 import ipywidgets as W
@@ -38,46 +39,9 @@ _VERDICTS = (
 )
 
 
-@register(
-    lesson="07", sweep={"outliers": [0.1, 0.4, 0.7], "threshold": [1.0, 3.0, 8.0], "seed": [0, 3]}
-)
-def ransac_outliers() -> Demo:
-    """RANSAC against a growing outlier fraction ε: each pair's verdict and the samples drawn.
-
-    The 200 pairs of :func:`camlab.fixtures.outlier_matches` (a 400 x 300 image, 1 px of
-    noise, a fraction ε of them random) go to :func:`camlab.homography.ransac_homography`
-    with confidence p = :data:`CONFIDENCE` and at most :data:`MAX_SAMPLES` samples. Each
-    pair's verdict is judged against the truth the demo knows, and the samples drawn are
-    set against k = log(1 - p) / log(1 - (1 - ε)^4), the number needed for the ε found.
-    Results are cached per setting, so revisiting one redraws without re-running RANSAC.
-
-    Returns
-    -------
-    Demo
-        The demo: controls ``outliers`` (the true outlier fraction ε), ``threshold``
-        (RANSAC's inlier threshold, px) and ``seed`` (of both the data and RANSAC), the
-        figure (left: each pair as a line from src to a dot at dst, coloured by its verdict,
-        the image frame mapped by the true H and by RANSAC's H, and the winning sample of 4;
-        right: k against ε on a log scale, the cap, the k needed for the ε found and the
-        samples drawn) and ``state`` (``H`` RANSAC's estimate, ``sample`` the indices of
-        its winning 4 pairs, ``iterations`` the samples drawn, ``inliers`` their count,
-        ``recall`` the share of the true inliers kept, ``corner_error`` the worst corner of
-        the mapped frame against the truth in px, ``verdicts`` the counts of inlier kept,
-        outlier wrongly kept, inlier wrongly rejected and outlier rejected,
-        ``outlier_fraction_found`` 1 - the inlier share, ``samples_needed`` k for it rounded up, and
-        ``error``, None or RANSAC's message when it fails; then every key above but
-        ``sample`` is None).
-
-    References
-    ----------
-    .. [1] M. A. Fischler and R. C. Bolles, 1981, "Random sample consensus: a paradigm for model
-       fitting with applications to image analysis and automated cartography",
-       *Communications of the ACM* 24(6), 381-395.
-    .. [2] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.7.1
-       (how many samples?).
-    """
+def _ransac_figure() -> SimpleNamespace:
+    """The RANSAC demo's figure: the pairs' panel and the k(ε) panel, with their animated artists."""
     from matplotlib.collections import LineCollection
-    from matplotlib.colors import to_rgba
 
     view = FigureView(figsize=(9.6, 4.8))
     ax, ax_k = view.fig.subplots(1, 2, width_ratios=[1.35, 1])
@@ -140,72 +104,133 @@ def ransac_outliers() -> Demo:
             color="0.3",
         )
     )
+    return SimpleNamespace(
+        view=view,
+        arrows=arrows,
+        heads=heads,
+        box_true=box_true,
+        box_est=box_est,
+        best=best,
+        failure=failure,
+        needed=needed,
+        dot=dot,
+        batches=batches,
+    )
+
+
+@lru_cache(maxsize=256)  # sliders revisit settings; the answer is a pure (seeded) function of them
+def _ransac_run(outlier_fraction: float, threshold: float, seed: int):
+    """The demo's data and RANSAC's answer, or its error message."""
+    data = fixtures.outlier_matches(outlier_fraction, seed)
+    try:
+        return data, hg.ransac_homography(
+            data[1], data[2], threshold, CONFIDENCE, MAX_SAMPLES, np.random.default_rng(seed)
+        )
+    except DegenerateError as exc:
+        return data, str(exc)
+
+
+def _ransac_failed(art, state, src, dst, exc) -> None:
+    """RANSAC failed: clear the last answer's marks and draw the pairs without a verdict."""
+    state.update(
+        iterations=None,
+        inliers=None,
+        recall=None,
+        corner_error=None,
+        H=None,
+        verdicts=None,
+        outlier_fraction_found=None,
+        samples_needed=None,
+        error=exc,
+    )
+    for artist in (art.box_est, art.dot, art.needed, art.best):
+        artist.set_data([], [])
+    # the pairs are still the data: drawn in one neutral grey, since there is no verdict
+    art.arrows.set_segments(np.stack([src, dst], axis=1))
+    art.arrows.set_color("0.8")
+    art.heads.set_offsets(dst)
+    art.heads.set_color("0.8")
+    art.batches.set_visible(False)
+    art.failure(
+        "RANSAC failed: no hypothesis had\nreal support, so the pairs are\n"
+        "drawn without a verdict (the full\nmessage is beside the sliders)"
+    )
+
+
+@register(
+    lesson="07", sweep={"outliers": [0.1, 0.4, 0.7], "threshold": [1.0, 3.0, 8.0], "seed": [0, 3]}
+)
+def ransac_outliers() -> Demo:
+    """RANSAC against a growing outlier fraction ε: each pair's verdict and the samples drawn.
+
+    The 200 pairs of :func:`camlab.fixtures.outlier_matches` (a 400 x 300 image, 1 px of
+    noise, a fraction ε of them random) go to :func:`camlab.homography.ransac_homography`
+    with confidence p = :data:`CONFIDENCE` and at most :data:`MAX_SAMPLES` samples. Each
+    pair's verdict is judged against the truth the demo knows, and the samples drawn are
+    set against k = log(1 - p) / log(1 - (1 - ε)^4), the number needed for the ε found.
+    Results are cached per setting, so revisiting one redraws without re-running RANSAC.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``outliers`` (the true outlier fraction ε), ``threshold``
+        (RANSAC's inlier threshold, px) and ``seed`` (of both the data and RANSAC), the
+        figure (left: each pair as a line from src to a dot at dst, coloured by its verdict,
+        the image frame mapped by the true H and by RANSAC's H, and the winning sample of 4;
+        right: k against ε on a log scale, the cap, the k needed for the ε found and the
+        samples drawn) and ``state`` (``H`` RANSAC's estimate, ``sample`` the indices of
+        its winning 4 pairs, ``iterations`` the samples drawn, ``inliers`` their count,
+        ``recall`` the share of the true inliers kept, ``corner_error`` the worst corner of
+        the mapped frame against the truth in px, ``verdicts`` the counts of inlier kept,
+        outlier wrongly kept, inlier wrongly rejected and outlier rejected,
+        ``outlier_fraction_found`` 1 - the inlier share, ``samples_needed`` k for it rounded up, and
+        ``error``, None or RANSAC's message when it fails; then every key above but
+        ``sample`` is None).
+
+    References
+    ----------
+    .. [1] M. A. Fischler and R. C. Bolles, 1981, "Random sample consensus: a paradigm for model
+       fitting with applications to image analysis and automated cartography",
+       *Communications of the ACM* 24(6), 381-395.
+    .. [2] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 4.7.1
+       (how many samples?).
+    """
+    art = _ransac_figure()
+    view = art.view
     readout = W.HTML()
     frame = np.array([[0, 0], [399, 0], [399, 299], [0, 299], [0, 0]], float)
 
-    @lru_cache(
-        maxsize=256
-    )  # sliders revisit settings; the answer is a pure (seeded) function of them
-    def run(outlier_fraction: float, threshold: float, seed: int):
-        """The demo's data and RANSAC's answer, or its error message."""
-        data = fixtures.outlier_matches(outlier_fraction, seed)
-        try:
-            return data, hg.ransac_homography(
-                data[1], data[2], threshold, CONFIDENCE, MAX_SAMPLES, np.random.default_rng(seed)
-            )
-        except DegenerateError as exc:
-            return data, str(exc)
-
     def update(v: dict, state: dict) -> None:
-        (H, src, dst, out), r = run(float(v["outliers"]), float(v["threshold"]), int(v["seed"]))
+        from matplotlib.colors import to_rgba
+
+        (H, src, dst, out), r = _ransac_run(
+            float(v["outliers"]), float(v["threshold"]), int(v["seed"])
+        )
         if isinstance(r, str):  # RANSAC failed: clear the last result, a stale plot would be a lie
-            exc = r
-            state.update(
-                iterations=None,
-                inliers=None,
-                recall=None,
-                corner_error=None,
-                H=None,
-                verdicts=None,
-                outlier_fraction_found=None,
-                samples_needed=None,
-                error=exc,
-            )
-            for artist in (box_est, dot, needed, best):
-                artist.set_data([], [])
-            # the pairs are still the data: drawn in one neutral grey, since there is no verdict
-            arrows.set_segments(np.stack([src, dst], axis=1))
-            arrows.set_color("0.8")
-            heads.set_offsets(dst)
-            heads.set_color("0.8")
-            batches.set_visible(False)
-            failure(
-                "RANSAC failed: no hypothesis had\nreal support, so the pairs are\n"
-                "drawn without a verdict (the full\nmessage is beside the sliders)"
-            )
-            readout.value = monospace(exc)
+            _ransac_failed(art, state, src, dst, r)
+            readout.value = monospace(r)
             return
-        failure("")
-        batches.set_visible(True)
+        art.failure("")
+        art.batches.set_visible(True)
         verdict = np.select([~out & r.inliers, out & r.inliers, ~out & ~r.inliers], [0, 1, 2], 3)
         colours = np.array([to_rgba(c) for _, c in _VERDICTS])[verdict]
         order = np.argsort(
             -verdict
         )  # rejected outliers first, so the interesting arrows sit on top
-        arrows.set_segments(np.stack([src, dst], axis=1)[order])
-        arrows.set_color(colours[order])
-        heads.set_offsets(dst[order])
-        heads.set_color(colours[order])
+        art.arrows.set_segments(np.stack([src, dst], axis=1)[order])
+        art.arrows.set_color(colours[order])
+        art.heads.set_offsets(dst[order])
+        art.heads.set_color(colours[order])
         bt, be = map_points(H, frame), map_points(r.H, frame)
-        box_true.set_data(bt[:, 0], bt[:, 1])
-        box_est.set_data(be[:, 0], be[:, 1])
-        best.set_data(dst[r.sample, 0], dst[r.sample, 1])
+        art.box_true.set_data(bt[:, 0], bt[:, 1])
+        art.box_est.set_data(be[:, 0], be[:, 1])
+        art.best.set_data(dst[r.sample, 0], dst[r.sample, 1])
         eps_found = 1.0 - r.inliers.mean()
         k_needed = required_iterations(1.0 - eps_found, CONFIDENCE, 4)
-        dot.set_data(
+        art.dot.set_data(
             [eps_found], [r.iterations]
         )  # RANSAC knows only the ε it found, not the true one
-        needed.set_data([eps_found], [k_needed])
+        art.needed.set_data([eps_found], [k_needed])
         counts = np.bincount(verdict, minlength=4)
         found_true = float(np.mean(r.inliers[~out])) if (~out).any() else float("nan")
         err = float(np.max(np.linalg.norm(be - bt, axis=1)))

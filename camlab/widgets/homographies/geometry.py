@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import textwrap
+from types import SimpleNamespace
 
 import ipywidgets as W
 import numpy as np
@@ -35,6 +36,12 @@ from .notes import TORN_DRAG, TORN_SHORT, warning_note
 # ----------------------------------------------------------------------------- hierarchy
 
 _GROUPS = tuple(hg.HIERARCHY)  # euclidean, similarity, affine, projective
+_SLIDERS_USED = {  # the sliders each group's matrix reads; the others are greyed out
+    "euclidean": {"theta", "tx", "ty"},
+    "similarity": {"theta", "tx", "ty", "scale"},
+    "affine": {"theta", "tx", "ty", "scale", "phi", "aspect"},
+    "projective": {"theta", "tx", "ty", "scale", "phi", "aspect", "v1", "v2"},
+}
 _GROUP_NAMES = {
     "euclidean": "Euclidean",
     "similarity": "similarity",
@@ -49,52 +56,69 @@ _A_MAP = {
 }
 
 
-@register(
-    lesson="07",
-    sweep={
-        "group": list(_GROUPS),
-        "theta": [-30.0, 20.0],
-        "phi": [0.0, 40.0],
-        "v1": [0.0, 2.0, 14.0],
-        "tx": [-20.0, 30.0],
-    },
-)
-def transformation_hierarchy() -> Demo:
-    """Euclidean, similarity, affine, projective: sliders for each group acting on a picture.
+def _hierarchy_texts(group, kind, Hg, H, picture_shape, canvas_hw):
+    """The hierarchy demo's two texts: the facts beside the canvas, and the readout.
 
-    The group's matrix :math:`H_g` (:func:`camlab.homography.hierarchy_matrix`, which uses
-    only the parameters its group has) acts about the picture's centre: the picture
-    shown is mapped by :math:`H = C H_g P`, where P moves the 160 x 120 picture's centre to
-    the origin and C the origin to the centre of the 480 x 360 canvas. The image of the
-    line at infinity (the vanishing line, H^-T l∞) is drawn when H moves it into view; the
-    group's dof and what it keeps are printed beside the picture, and a red note says when
-    the picture is torn (the line H sends to infinity crosses it).
+    Parameters
+    ----------
+    group, kind : str
+        The chosen group, and the smallest group holding ``Hg``.
+    Hg, H : (3, 3) ndarray
+        The group's matrix (centred coordinates) and the map drawn, C Hg P.
+    picture_shape, canvas_hw : tuple of int
+        The picture's shape and the canvas (height, width).
 
     Returns
     -------
-    Demo
-        The demo: controls ``group`` (``"euclidean"``, ``"similarity"``, ``"affine"`` or
-        ``"projective"``), ``theta`` (the rotation, degrees), ``scale``, ``phi`` (the angle
-        of the affine stretch's axes, degrees), ``aspect`` (the affine stretch, √(sx/sy)),
-        ``tx`` and ``ty`` (the translation, px) and ``v1``, ``v2`` (the projective bottom
-        row, in units of 1e-3), the figure (the mapped picture with the original outline,
-        the mapped grid and the vanishing line) and ``state``
-        (``H`` the group's matrix :math:`H_g`, ``group``, ``classified`` the smallest group
-        holding it, ``dof``, ``torn``, ``vanishing_line_in_view``).
-
-    References
-    ----------
-    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 2.4 (a
-       hierarchy of transformations), table 2.1.
+    tuple of str
+        The facts (group, dof, what it keeps) and the readout (both matrices).
     """
-    pic = scenes.house_picture()
+    info = hg.HIERARCHY[group]
+    ph, pw = picture_shape[:2]
+    keeps = [f"- {name}" for name in info["own"]]
+    if info["larger"]:
+        keeps.append(
+            f"+ all that {'an' if info['larger'] == 'affine' else 'a'} {info['larger']} map keeps"
+        )
+    facts = (
+        f"{_GROUP_NAMES[group]}: {info['dof']} dof\n(H itself is {_A_MAP[kind]})\n\nkeeps:\n"
+        + "\n".join("\n".join(textwrap.wrap(k, 24, subsequent_indent="  ")) for k in keeps)
+    )
+    readout = (
+        f"{_GROUP_NAMES[group]}: {info['dof']} dof\n"
+        "H, in coordinates centred on the picture and the canvas (what the sliders set;\n"
+        "θ turns about the picture's centre) =\n"
+        + _matrix_text(Hg)
+        + "\nthe map drawn, from source pixels to canvas pixels, C H P =\n"
+        + _matrix_text(H)
+        + f"\n(P moves the picture's centre ({(pw - 1) / 2:g}, {(ph - 1) / 2:g}) to 0,"
+        f" C moves 0 to the canvas centre ({(canvas_hw[1] - 1) / 2:g}, {(canvas_hw[0] - 1) / 2:g}))"
+        + f"\nsmallest group holding H: {kind}\nkeeps: "
+        + ", ".join(info["invariants"])
+    )
+    return facts, readout
+
+
+def _hierarchy_figure(pic, C, P, canvas_hw):
+    """The hierarchy demo's figure: its view, the animated artists and the grid lines to map.
+
+    Parameters
+    ----------
+    pic : (h, w, 3) ndarray
+        The picture.
+    C, P : (3, 3) ndarray
+        The canvas-centring and picture-centring translations.
+    canvas_hw : tuple of int
+        The canvas (height, width).
+
+    Returns
+    -------
+    SimpleNamespace
+        ``view``, ``ax``, ``im``, ``grid_art``, ``horizon_art``, ``facts``, ``warning``,
+        ``grid_lines``, ``xlim``, ``ylim``.
+    """
     ph, pw = pic.shape[:2]
-    canvas_hw = (360, 480)
     xlim, ylim = (-0.5, canvas_hw[1] - 0.5), (-0.5, canvas_hw[0] - 0.5)
-    # Picture coordinates centred on the origin; C places the origin at the canvas centre.
-    # Pixel centres at integers: the centre of a W-pixel axis is (W - 1) / 2, so (239.5, 179.5).
-    C = np.array([[1.0, 0, (canvas_hw[1] - 1) / 2], [0, 1, (canvas_hw[0] - 1) / 2], [0, 0, 1]])
-    P = np.array([[1.0, 0, -(pw - 1) / 2], [0, 1, -(ph - 1) / 2], [0, 0, 1]])
     view = FigureView(figsize=(8.5, 4.2))
     ax = view.fig.subplots()
     ax.set(xlim=xlim, ylim=ylim[::-1], aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)")
@@ -142,7 +166,7 @@ def transformation_hierarchy() -> Demo:
             "--",
             color=palette.PURPLE,
             lw=2,
-            label="vanishing line (image of\nl∞; at infinity unless\nthe group is projective)",
+            label="vanishing line (image of\nl∞), drawn when it\ncrosses the canvas",
         )[0]
     )
     ax.set_title(
@@ -160,6 +184,68 @@ def transformation_hierarchy() -> Demo:
     warning = warning_note(
         view, ax, 1.03, 0.0, "left", "bottom"
     )  # beside the canvas, never over it
+    return SimpleNamespace(
+        view=view,
+        ax=ax,
+        im=im,
+        grid_art=grid_art,
+        horizon_art=horizon_art,
+        facts=facts,
+        warning=warning,
+        grid_lines=grid_lines,
+        xlim=xlim,
+        ylim=ylim,
+    )
+
+
+@register(
+    lesson="07",
+    sweep={
+        "group": list(_GROUPS),
+        "theta": [-30.0, 20.0],
+        "phi": [0.0, 40.0],
+        "v1": [0.0, 2.0, 14.0],
+        "tx": [-20.0, 30.0],
+    },
+)
+def transformation_hierarchy() -> Demo:
+    """Euclidean, similarity, affine, projective: sliders for each group acting on a picture.
+
+    The group's matrix :math:`H_g` (:func:`camlab.homography.hierarchy_matrix`, which uses
+    only the parameters its group has) acts about the picture's centre: the picture
+    shown is mapped by :math:`H = C H_g P`, where P moves the 160 x 120 picture's centre to
+    the origin and C the origin to the centre of the 480 x 360 canvas. The image of the
+    line at infinity (the vanishing line, H^-T l∞) is drawn when H moves it into view; the
+    group's dof and what it keeps are printed beside the picture, and a red note says when
+    the picture is torn (the line H sends to infinity crosses it).
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``group`` (``"euclidean"``, ``"similarity"``, ``"affine"`` or
+        ``"projective"``), ``theta`` (the rotation, degrees), ``scale``, ``phi`` (the angle
+        of the affine stretch's axes, degrees), ``aspect`` (the affine stretch, √(sx/sy)),
+        ``tx`` and ``ty`` (the translation, px) and ``v1``, ``v2`` (the projective bottom
+        row, in units of 1e-3), the figure (the mapped picture with the original outline,
+        the mapped grid and the vanishing line) and ``state``
+        (``H`` the group's matrix :math:`H_g`, ``group``, ``classified`` the smallest group
+        holding it, ``dof``, ``torn``, ``vanishing_line_in_view``).
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 2.4 (a
+       hierarchy of transformations), table 2.1.
+    """
+    pic = scenes.house_picture()
+    ph, pw = pic.shape[:2]
+    canvas_hw = (360, 480)
+    # Picture coordinates centred on the origin; C places the origin at the canvas centre.
+    # Pixel centres at integers: the centre of a W-pixel axis is (W - 1) / 2, so (239.5, 179.5).
+    C = np.array([[1.0, 0, (canvas_hw[1] - 1) / 2], [0, 1, (canvas_hw[0] - 1) / 2], [0, 0, 1]])
+    P = np.array([[1.0, 0, -(pw - 1) / 2], [0, 1, -(ph - 1) / 2], [0, 0, 1]])
+    fig = _hierarchy_figure(pic, C, P, canvas_hw)
+    view, im, grid_art, horizon_art = fig.view, fig.im, fig.grid_art, fig.horizon_art
+    facts, warning, grid_lines = fig.facts, fig.warning, fig.grid_lines
     picture_corners = np.array([[0, 0], [pw - 1, 0], [pw - 1, ph - 1], [0, ph - 1]], float)
     readout = W.HTML()
 
@@ -175,12 +261,14 @@ def transformation_hierarchy() -> Demo:
             v=(v["v1"] * 1e-3, v["v2"] * 1e-3),
         )
         H = hg.compose(C, Hg, P)
+        for name, control in controls.items():  # grey out what the group ignores
+            control.disabled = name != "group" and name not in _SLIDERS_USED[v["group"]]
         im.set_data(warp_perspective(pic, H, canvas_hw, method="cv2", fill=255))
         pieces = [np.vstack([map_polyline(H, line), [[np.nan, np.nan]]]) for line in grid_lines]
         m = np.vstack(pieces)
         grid_art.set_data(m[:, 0], m[:, 1])
         # l' = H^-T l_inf: where parallel lines of the picture meet (outside the view for affine H)
-        vanishing = clip_line(map_lines(H, LINE_AT_INFINITY), xlim, ylim)
+        vanishing = clip_line(map_lines(H, LINE_AT_INFINITY), fig.xlim, fig.ylim)
         horizon_art.set_data(vanishing[:, 0], vanishing[:, 1])
         info = hg.HIERARCHY[v["group"]]
         kind = hg.classify(Hg)
@@ -195,27 +283,9 @@ def transformation_hierarchy() -> Demo:
             torn=torn,
             vanishing_line_in_view=bool(np.isfinite(vanishing).all()),
         )
-        keeps = [f"- {name}" for name in info["own"]]
-        if info["larger"]:
-            keeps.append(
-                f"+ all that {'an' if info['larger'] == 'affine' else 'a'} {info['larger']} map keeps"
-            )
-        facts.set_text(
-            f"{_GROUP_NAMES[v['group']]}: {info['dof']} dof\n(H itself is {_A_MAP[kind]})\n\nkeeps:\n"
-            + "\n".join("\n".join(textwrap.wrap(k, 24, subsequent_indent="  ")) for k in keeps)
-        )
-        readout.value = monospace(
-            f"{_GROUP_NAMES[v['group']]}: {info['dof']} dof\n"
-            "H, in coordinates centred on the picture and the canvas (what the sliders set;\n"
-            "θ turns about the picture's centre) =\n"
-            + _matrix_text(Hg)
-            + "\nthe map drawn, from source pixels to canvas pixels, C H P =\n"
-            + _matrix_text(H)
-            + f"\n(P moves the picture's centre ({(pw - 1) / 2:g}, {(ph - 1) / 2:g}) to 0,"
-            f" C moves 0 to the canvas centre ({(canvas_hw[1] - 1) / 2:g}, {(canvas_hw[0] - 1) / 2:g}))"
-            + f"\nsmallest group holding H: {kind}\nkeeps: "
-            + ", ".join(info["invariants"])
-        )
+        facts_text, readout_text = _hierarchy_texts(v["group"], kind, Hg, H, pic.shape, canvas_hw)
+        facts.set_text(facts_text)
+        readout.value = monospace(readout_text)
 
     controls = {
         "group": W.Dropdown(options=list(_GROUPS), value="affine", description="group"),
@@ -267,6 +337,46 @@ def _matrix_text(M: np.ndarray) -> str:
     return np.array2string(np.where(np.round(M, 4) == 0, 0.0, M), precision=4, suppress_small=True)
 
 
+def _place_names(labels, points, corners, out_hw) -> None:
+    """Put the names A'..D' beside their points, clear of the corner markers and of each other.
+
+    A name sits up and to the right of its point, or on the side away from a corner marker within
+    20 px. It is hidden where its text would run off the canvas, where its point lies under a marker
+    (within 4 px of a corner), or within 14 px of a name already shown.
+
+    Parameters
+    ----------
+    labels : list of matplotlib.text.Annotation
+        The names, in the order of ``points``.
+    points : (4, 2) ndarray
+        The mapped points A'..D' (pixels; NaN or inf where mapped to infinity).
+    corners : (4, 2) ndarray
+        The corner markers (pixels).
+    out_hw : tuple of int
+        The canvas (height, width) in pixels.
+    """
+    shown = []
+    for label, p in zip(labels, points, strict=True):
+        label.xy = tuple(p)
+        gap = np.linalg.norm(corners - p, axis=1) if np.isfinite(p).all() else np.full(4, np.inf)
+        away = p - corners[np.argmin(gap)]
+        offset = (4.0, 6.0)
+        if gap.min() < 20:  # the side away from the nearest marker (v points down, offsets up)
+            d = away / max(np.linalg.norm(away), 1e-9) * 12
+            offset = (d[0] - (12 if d[0] < 0 else 0), -d[1] - (8 if d[1] > 0 else 0))
+        label.xyann = offset
+        visible = bool(
+            np.isfinite(p).all()
+            and 0 <= p[0] <= out_hw[1] - 22
+            and 14 <= p[1] <= out_hw[0]
+            and gap.min() >= 4
+            and all(np.linalg.norm(p - q) >= 14 for q in shown)
+        )
+        label.set_visible(visible)
+        if visible:
+            shown.append(p)
+
+
 def drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, angle0, angle1) -> list:
     """The drag demo's table: (quantity, source, image, verdict) with the verdict computed.
 
@@ -311,6 +421,129 @@ def drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, angle0, angle1) 
         ),
         ("top-left angle", f"{angle0:.1f}°", f"{angle1:.1f}°", verdict(abs(angle0 - angle1) < 0.1)),
     ]
+
+
+def _dense_outline(quad: np.ndarray) -> np.ndarray:
+    """A closed quadrilateral's four sides, 40 points each (dense, so a map through infinity shows its break)."""
+    return np.vstack(
+        [quad[i] + np.linspace(0, 1, 40)[:, None] * (quad[(i + 1) % 4] - quad[i]) for i in range(4)]
+    )
+
+
+def _drag_artists(view, ax_s, ax_t, out_hw) -> SimpleNamespace:
+    """The drag demo's animated artists: the line sent to infinity, the warp, the mapped marks and the texts."""
+    sent_away = view.animate(ax_s.plot([], [], "--", color=palette.PURPLE, lw=2)[0])
+    im = view.animate(
+        ax_t.imshow(
+            np.zeros((*out_hw, 3), np.uint8), extent=(-0.5, out_hw[1] - 0.5, out_hw[0] - 0.5, -0.5)
+        )
+    )
+    quad = view.animate(
+        ax_t.plot([], [], "-", color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0]
+    )
+    mapped_line = view.animate(
+        ax_t.plot([], [], "-", color=palette.BROWN, lw=1.5, path_effects=palette.halo(1.5))[0]
+    )
+    mapped_dots = view.animate(ax_t.plot([], [], "o", color=palette.BROWN, ms=5, mec="white")[0])
+    mapped_names = [
+        view.animate(
+            ax_t.annotate(
+                f"{name}'",
+                (np.nan, np.nan),
+                xytext=(4, 6),
+                textcoords="offset points",
+                fontsize=9,
+                color="k",
+                path_effects=palette.halo(),
+            )
+        )
+        for name in "ABCD"
+    ]
+    handles = view.animate(ax_t.plot([], [], "o", color=palette.ORANGE, ms=10, mec="k")[0])
+    chosen = view.animate(
+        ax_t.plot([], [], "o", ms=17, mfc="none", mec="k", mew=2)[0]
+    )  # the corner the keys move
+    numbers = view.animate(
+        ax_s.text(
+            0.0,
+            -0.27,
+            "",
+            transform=ax_s.transAxes,
+            ha="left",
+            va="top",
+            fontsize=8,
+            family="monospace",
+        )
+    )
+    warning = warning_note(
+        view, ax_s, 0.0, -0.62, "left", "top"
+    )  # under the numbers, off the target
+    return SimpleNamespace(
+        sent_away=sent_away,
+        im=im,
+        quad=quad,
+        mapped_line=mapped_line,
+        mapped_dots=mapped_dots,
+        mapped_names=mapped_names,
+        handles=handles,
+        chosen=chosen,
+        numbers=numbers,
+        warning=warning,
+    )
+
+
+def _drag_measures(line_pts, m, corners) -> tuple:
+    """What the drag demo's table compares: cross-ratio, |AD|, |AB| / |CD| and the top-left angle.
+
+    Returns the measures (for the demo's state) and the table's rows (:func:`drag_table_rows`).
+    """
+    cr0, cr1 = cross_ratio(line_pts), cross_ratio(m)
+    length0, length1 = (float(np.linalg.norm(p[3] - p[0])) for p in (line_pts, m))  # |AD|
+    ratio0 = np.linalg.norm(line_pts[1] - line_pts[0]) / np.linalg.norm(line_pts[3] - line_pts[2])
+    ratio1 = np.linalg.norm(m[1] - m[0]) / np.linalg.norm(m[3] - m[2])
+    e1, e2 = corners[1] - corners[0], corners[3] - corners[0]
+    angle = np.degrees(np.arccos(np.clip(e1 @ e2 / np.linalg.norm(e1) / np.linalg.norm(e2), -1, 1)))
+    rows = drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, 90.0, angle)
+    measures = dict(
+        cross_ratio_source=cr0,
+        cross_ratio_image=cr1,
+        length_source=length0,
+        length_image=length1,
+        length_ratio_source=ratio0,
+        length_ratio_image=ratio1,
+        corner_angle=angle,
+    )
+    return measures, rows
+
+
+def _drag_axes(ax_s, ax_t, pic, out_hw) -> None:
+    """The drag demo's two axes: the source picture (anchored at the top) and the empty target canvas."""
+    ph, pw = pic.shape[:2]
+    ax_s.imshow(pic)
+    ax_s.set_anchor("N")  # the room under the source picture holds the numbers and the warning
+    ax_s.set(xlabel="u (pixels)", ylabel="v (pixels)")
+    ax_s.set_title("source picture", fontsize=10, pad=3)
+    ax_s.set(xlim=(-0.5, pw - 0.5), ylim=(ph - 0.5, -0.5))
+    ax_t.set(xlim=(-0.5, out_hw[1] - 0.5), ylim=(out_hw[0] - 0.5, -0.5), aspect="equal")
+    ax_t.set(xlabel="u (pixels)", ylabel="v (pixels)")
+    ax_t.set_title("drag a corner, or use the sliders", fontsize=10, pad=3)
+
+
+def _drag_line_names(ax_s, line_pts) -> None:
+    """The points A..D on the source picture's diagonal, with their names."""
+    ax_s.plot(*line_pts.T, "o-", color=palette.BROWN, ms=5, lw=1.5, path_effects=palette.halo(1.5))
+    # across the line, clear of its halo; A and D sit near the frame, D's label inside the picture
+    offsets = ((7, -3), (6, 8), (-12, -14), (-18, -2))
+    for name, p, off in zip("ABCD", line_pts, offsets, strict=True):
+        ax_s.annotate(
+            name,
+            p,
+            xytext=off,
+            textcoords="offset points",
+            fontsize=9,
+            color="k",
+            path_effects=palette.halo(),
+        )  # black on a white halo: readable on any colour
 
 
 @register(
@@ -365,82 +598,13 @@ def drag_homography() -> Demo:
     out_hw = (260, 300)
     view = FigureView(figsize=(9, 4.6))
     ax_s, ax_t = view.fig.subplots(1, 2, width_ratios=[1, 1.6])
-    ax_s.imshow(pic)
-    ax_s.set_anchor("N")  # the room under the source picture holds the numbers and the warning
-    ax_s.set(xlabel="u (pixels)", ylabel="v (pixels)")
-    ax_s.set_title("source picture", fontsize=10, pad=3)
-    ax_s.set(xlim=(-0.5, pw - 0.5), ylim=(ph - 0.5, -0.5))
-    ax_t.set(xlim=(-0.5, out_hw[1] - 0.5), ylim=(out_hw[0] - 0.5, -0.5), aspect="equal")
-    ax_t.set(xlabel="u (pixels)", ylabel="v (pixels)")
-    ax_t.set_title("drag a corner, or use the sliders", fontsize=10, pad=3)
+    _drag_axes(ax_s, ax_t, pic, out_hw)
     # Four collinear points on the picture's diagonal (their cross-ratio is the invariant).
     line_pts = np.array([[10.0, 10.0], [50.0, 40.0], [90.0, 70.0], [150.0, 115.0]])
     line_dense = line_pts[0] + np.linspace(0, 1, 80)[:, None] * (line_pts[3] - line_pts[0])
-    square_dense = np.vstack(
-        [
-            SQUARE[i] + np.linspace(0, 1, 40)[:, None] * (SQUARE[(i + 1) % 4] - SQUARE[i])
-            for i in range(4)
-        ]
-    )
-    ax_s.plot(*line_pts.T, "o-", color=palette.BROWN, ms=5, lw=1.5, path_effects=palette.halo(1.5))
-    # across the line, clear of its halo; A and D sit near the frame, D's label inside the picture
-    offsets = ((7, -3), (6, 8), (-12, -14), (-18, -2))
-    for name, p, off in zip("ABCD", line_pts, offsets, strict=True):
-        ax_s.annotate(
-            name,
-            p,
-            xytext=off,
-            textcoords="offset points",
-            fontsize=9,
-            color="k",
-            path_effects=palette.halo(),
-        )  # black on a white halo: readable on any colour
-    sent_away = view.animate(ax_s.plot([], [], "--", color=palette.PURPLE, lw=2)[0])
-    im = view.animate(
-        ax_t.imshow(
-            np.zeros((*out_hw, 3), np.uint8), extent=(-0.5, out_hw[1] - 0.5, out_hw[0] - 0.5, -0.5)
-        )
-    )
-    quad = view.animate(
-        ax_t.plot([], [], "-", color=palette.ORANGE, lw=1, path_effects=palette.halo(1))[0]
-    )
-    mapped_line = view.animate(
-        ax_t.plot([], [], "-", color=palette.BROWN, lw=1.5, path_effects=palette.halo(1.5))[0]
-    )
-    mapped_dots = view.animate(ax_t.plot([], [], "o", color=palette.BROWN, ms=5, mec="white")[0])
-    mapped_names = [
-        view.animate(
-            ax_t.annotate(
-                f"{name}'",
-                (np.nan, np.nan),
-                xytext=(4, 6),
-                textcoords="offset points",
-                fontsize=9,
-                color="k",
-                path_effects=palette.halo(),
-            )
-        )
-        for name in "ABCD"
-    ]
-    handles = view.animate(ax_t.plot([], [], "o", color=palette.ORANGE, ms=10, mec="k")[0])
-    chosen = view.animate(
-        ax_t.plot([], [], "o", ms=17, mfc="none", mec="k", mew=2)[0]
-    )  # the corner the keys move
-    numbers = view.animate(
-        ax_s.text(
-            0.0,
-            -0.27,
-            "",
-            transform=ax_s.transAxes,
-            ha="left",
-            va="top",
-            fontsize=8,
-            family="monospace",
-        )
-    )
-    warning = warning_note(
-        view, ax_s, 0.0, -0.62, "left", "top"
-    )  # under the numbers, off the target
+    square_dense = _dense_outline(SQUARE)
+    _drag_line_names(ax_s, line_pts)
+    art = _drag_artists(view, ax_s, ax_t, out_hw)
     readout = W.HTML()
     control = corner_text(format_corners(_DRAG_START), "corners (u, v; ...)")
     keys = corner_keys(control, CORNER_NAMES, out_hw[1] - 1, out_hw[0] - 1)
@@ -452,62 +616,39 @@ def drag_homography() -> Demo:
             H = hg.estimate_homography(SQUARE, corners)
         except (ValueError, DegenerateError) as exc:
             state.update(error=str(exc))
-            warning("cannot use these corners:\n" + "\n".join(textwrap.wrap(str(exc), 55)[:3]))
+            art.warning("cannot use these corners:\n" + "\n".join(textwrap.wrap(str(exc), 55)[:3]))
             readout.value = monospace(f"cannot use these corners:\n{exc}")
             return
         current["corners"] = corners
         torn = splits_at_infinity(H, SQUARE)
-        warning(TORN_DRAG if torn else "")
+        art.warning(TORN_DRAG if torn else "")
         # H^T l_inf = (h31, h32, h33): the source line that H sends to infinity (drawn if in view)
         away = clip_line(H[2], (-0.5, pw - 0.5), (-0.5, ph - 0.5))
-        sent_away.set_data(away[:, 0], away[:, 1])
-        im.set_data(warp_perspective(pic, H, out_hw, method="cv2", fill=255))
+        art.sent_away.set_data(away[:, 0], away[:, 1])
+        art.im.set_data(warp_perspective(pic, H, out_hw, method="cv2", fill=255))
         m = map_points(H, line_pts)
         dense = map_polyline(H, line_dense)  # broken where it passes through infinity
-        mapped_line.set_data(dense[:, 0], dense[:, 1])
-        mapped_dots.set_data(m[:, 0], m[:, 1])
-        for label, p in zip(mapped_names, m, strict=True):
-            label.xy = tuple(p)
-            # a name whose text would run off the canvas is hidden rather than clipped
-            label.set_visible(
-                bool(
-                    np.isfinite(p).all() and 0 <= p[0] <= out_hw[1] - 22 and 14 <= p[1] <= out_hw[0]
-                )
-            )
+        art.mapped_line.set_data(dense[:, 0], dense[:, 1])
+        art.mapped_dots.set_data(m[:, 0], m[:, 1])
+        _place_names(art.mapped_names, m, corners, out_hw)
         outline = map_polyline(H, square_dense)
-        quad.set_data(outline[:, 0], outline[:, 1])
-        handles.set_data(corners[:, 0], corners[:, 1])
-        chosen.set_data(corners[v["corner"], :1], corners[v["corner"], 1:])
-        cr0, cr1 = cross_ratio(line_pts), cross_ratio(m)
-        length0, length1 = (float(np.linalg.norm(p[3] - p[0])) for p in (line_pts, m))  # |AD|
-        ratio0 = np.linalg.norm(line_pts[1] - line_pts[0]) / np.linalg.norm(
-            line_pts[3] - line_pts[2]
-        )
-        ratio1 = np.linalg.norm(m[1] - m[0]) / np.linalg.norm(m[3] - m[2])
-        e1, e2 = corners[1] - corners[0], corners[3] - corners[0]
-        angle = np.degrees(
-            np.arccos(np.clip(e1 @ e2 / np.linalg.norm(e1) / np.linalg.norm(e2), -1, 1))
-        )
-        rows = drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, 90.0, angle)
+        art.quad.set_data(outline[:, 0], outline[:, 1])
+        art.handles.set_data(corners[:, 0], corners[:, 1])
+        art.chosen.set_data(corners[v["corner"], :1], corners[v["corner"], 1:])
+        measures, rows = _drag_measures(line_pts, m, corners)
         state.update(
             H=H,
             error=None,
             torn=torn,
             corner=v["corner"],
-            cross_ratio_source=cr0,
-            cross_ratio_image=cr1,
-            length_source=length0,
-            length_image=length1,
-            length_ratio_source=ratio0,
-            length_ratio_image=ratio1,
-            corner_angle=angle,
             corners=corners,
             verdicts={name: verdict for name, _, _, verdict in rows},
+            **measures,
         )
         table = "                 source    image\n" + "\n".join(
             f"{name:15s} {a:>7s}  {b:>7s}  {verdict}" for name, a, b, verdict in rows
         )
-        numbers.set_text(table)
+        art.numbers.set_text(table)
         readout.value = monospace(table + "\nH =\n" + _matrix_text(H))
 
     demo = build_demo(

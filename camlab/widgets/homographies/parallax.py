@@ -1,0 +1,139 @@
+"""Lesson 07 demo on the homographies that come from geometry: a plane's, and the parallax off it."""
+
+from __future__ import annotations
+
+import cv2
+import ipywidgets as W
+import numpy as np
+from matplotlib.patches import Rectangle
+
+from ... import homography as hg
+from ...plotting import palette
+from ...projective import map_points
+from .._base import Demo, FigureView, build_demo, register, slider
+from ..controls import monospace
+
+K_PARALLAX = np.array([[800.0, 0, 320], [0, 800, 240], [0, 0, 1]])
+"""Both cameras' intrinsics (640 x 480 images), as in section 9's cells."""
+DEPTHS = (1.5, 3.0, 6.0)
+"""The depths (metres, along camera 1's axis) of the three points on each ray."""
+# One look per depth, as in section 9's static figure: magenta and olive appear nowhere else.
+_LOOKS = (("o", palette.MAGENTA, 9), ("s", "k", 5.5), ("D", palette.OLIVE, 6))
+
+
+def _rays() -> np.ndarray:
+    """The 12 rays of camera 1 (directions with z = 1), through pixels left of its centre."""
+    uv = np.stack(np.meshgrid(np.linspace(-0.39, -0.12, 3), np.linspace(-0.08, 0.26, 4)), -1)
+    return np.column_stack([uv.reshape(-1, 2), np.ones(12)])
+
+
+def _project(X: np.ndarray, R: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Pixels of points X (camera 1's frame) in a camera K[R | t] (NaN behind it)."""
+    x = (X @ R.T + t) @ K_PARALLAX.T
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(x[:, 2:] > 0, x[:, :2] / x[:, 2:], np.nan)
+
+
+def _segments(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Segments a[i] -> b[i] as one polyline broken by NaN rows (for a single Line2D)."""
+    gap = np.full_like(a, np.nan)
+    return np.stack([a, b, gap], axis=1).reshape(-1, 2)
+
+
+@register(lesson="07", sweep={"move": [0.0, -0.6, 0.6], "turn": [0.0, 20.0], "plane": [1.5, 6.0]})
+def plane_parallax() -> Demo:
+    r"""Move and turn camera 2: the plane's homography, and the parallax of points off the plane.
+
+    Camera 1 is :math:`K[I \mid 0]`; camera 2 is :math:`K[R \mid t]`, turned by ``turn``
+    degrees about its vertical axis (plus a fixed small tilt) and moved ``move`` metres
+    sideways (``t = (move, -move / 4, move / 8)``). The plane is :math:`Z = d` in camera 1
+    (``plane``), so :math:`n = (0, 0, -1)` and :math:`H = K(R - t n^T / d)K^{-1}`
+    (:func:`camlab.homography.plane_homography`). On 12 rays of camera 1 sit points at
+    the depths :data:`DEPTHS`; camera 2 sees each where it really is, and :math:`H` sends
+    camera 1's pixel of the ray to where the point *of the plane* on that ray would appear.
+    The gap is the parallax: zero on the plane, zero for every depth when camera 2 only turns,
+    and otherwise proportional to :math:`|1/Z - 1/d|` to first order.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``move`` (metres), ``turn`` (degrees) and ``plane`` (d, metres), the
+        figure (camera 2's 640 x 480 image: grey rings at :math:`H x`, the points at the three
+        depths, each joined to its ring) and ``state`` (``H``, ``parallax``: depth -> the
+        median parallax over the rays, pixels).
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 13.1,
+       eq. (13.2).
+    """
+    rays = _rays()
+    x_first = _project(rays, np.eye(3), np.zeros(3))  # camera 1: one pixel per ray
+    view = FigureView(figsize=(6.4, 5.0))
+    ax = view.fig.subplots()
+    ax.add_patch(Rectangle((-0.5, -0.5), 640, 480, fill=False, ec="0.6", lw=1, ls=":"))
+    ax.set(
+        xlim=(-20, 660), ylim=(500, -20), aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)"
+    )
+    ax.set_title("camera 2's 640 x 480 image (dotted)", fontsize=10)
+    rings = view.animate(
+        ax.plot(
+            [],
+            [],
+            "o",
+            ms=14,
+            mfc="none",
+            mec=palette.GREY,
+            mew=1.5,
+            label="H x: camera 1's pixel, mapped by H",
+        )[0]
+    )
+    gaps, seen = [], []
+    for Z, (marker, colour, size) in zip(DEPTHS, _LOOKS, strict=True):
+        gaps.append(view.animate(ax.plot([], [], "-", color=colour, lw=1.2)[0]))
+        seen.append(
+            view.animate(
+                ax.plot(
+                    [],
+                    [],
+                    marker,
+                    ms=size,
+                    color=colour,
+                    mec="k",
+                    mew=0.6,
+                    ls="none",
+                    label=f"seen by camera 2, Z = {Z:g} m",
+                )[0]
+            )
+        )
+    view.fig.legend(loc="outside lower center", ncols=2, fontsize=8)
+    readout = W.HTML()
+
+    def update(v: dict, state: dict) -> None:
+        R = cv2.Rodrigues(np.array([0.05, np.radians(v["turn"]), 0.02]))[0]
+        t = v["move"] * np.array([1.0, -0.25, 0.125])
+        H = hg.plane_homography(K_PARALLAX, R, t, np.array([0.0, 0.0, -1.0]), v["plane"])
+        predicted = map_points(H, x_first)  # where H sends camera 1's pixel of each ray
+        rings.set_data(predicted[:, 0], predicted[:, 1])
+        parallax = {}
+        for Z, gap_art, seen_art in zip(DEPTHS, gaps, seen, strict=True):
+            where = _project(rays * Z, R, t)  # where camera 2 really sees the point at depth Z
+            gap_art.set_data(*_segments(predicted, where).T)
+            seen_art.set_data(where[:, 0], where[:, 1])
+            parallax[Z] = float(np.nanmedian(np.linalg.norm(where - predicted, axis=1)))
+        state.update(H=H, parallax=parallax)
+        lines = [f"plane Z = {v['plane']:g} m; median parallax |x2 - H x1| over the 12 rays:"]
+        lines += [
+            f"  Z = {Z:>3g} m: {p:6.1f} px   (|1/Z - 1/d| = {abs(1 / Z - 1 / v['plane']):.3f} /m)"
+            for Z, p in parallax.items()
+        ]
+        readout.value = monospace("\n".join(lines))
+
+    controls = {
+        "move": slider(0.4, -0.6, 0.6, 0.05, "camera 2 moves (m)"),
+        "turn": slider(14.3, 0.0, 20.0, 0.1, "camera 2 turns (°)"),
+        "plane": slider(3.0, 1.5, 6.0, 0.1, "plane distance d (m)"),
+    }
+    return build_demo(
+        "plane_parallax", controls, view, update, title="Parallax off the plane", extra=[readout]
+    )
