@@ -115,7 +115,7 @@ def _rectify_artists(view: FigureView, ax_p: Any, ax_r: Any) -> SimpleNamespace:
     ax_r.text(
         0.5,
         -0.02,
-        "red dashed: the other focal length's shape; green dotted: the true shape",
+        "red dashed: the other f's shape; green dotted: the true shape",
         transform=ax_r.transAxes,
         ha="center",
         va="top",
@@ -273,6 +273,20 @@ def _focal_conditioning(corners: np.ndarray, image_shape: tuple) -> tuple[str, b
     ), True
 
 
+def _scan_estimate(corners: np.ndarray, image_shape: tuple):
+    """The scanner's w/h: f from the corners, or the assumed f when the corners do not determine it.
+
+    Returns the estimate, the readout's conditioning line and whether f was NOT DETERMINED.
+    """
+    est = pp.estimate_aspect_ratio(corners, image_shape)
+    conditioning, undetermined = _focal_conditioning(corners, image_shape)
+    if undetermined:  # f from the corners is noise: fall back to the assumed f, and say so
+        f_assumed = float(max(image_shape[:2]))
+        ratio = pp.estimate_aspect_ratio(corners, image_shape, focal_length=f_assumed).ratio
+        est = pp.AspectRatio(ratio, f_assumed, "assumed")
+    return est, conditioning, undetermined
+
+
 def _widest_angle(corners: np.ndarray) -> float:
     """The quadrilateral's largest interior angle, degrees (180 when three corners are in a line)."""
     before, after = np.roll(corners, 1, axis=0) - corners, np.roll(corners, -1, axis=0) - corners
@@ -345,20 +359,23 @@ def _warn_if_flat(text: str, corners: np.ndarray) -> str:
     )
 
 
-@register(
-    lesson="10",
-    sweep={
-        "scene": ["page", "painting", "facade"],
-        "corners": [
-            "250.0, 120.0; 420.0, 140.0; 400.0, 380.0; 230.0, 350.0",
-            "200.0, 100.0; 450.0, 100.0; 450.0, 380.0; 200.0, 380.0",
-        ],
-        "use_focal": [True, False],
-        "corner": [3, 0],
-        "corner_u": [100.0, 300.0],
-        "corner_v": [50.0, 250.0],
-    },
-)
+_RECTIFY_SWEEP = {
+    "scene": ["page", "painting", "facade"],
+    "corners": [
+        "250.0, 120.0; 420.0, 140.0; 400.0, 380.0; 230.0, 350.0",
+        "200.0, 100.0; 450.0, 100.0; 450.0, 380.0; 200.0, 380.0",
+        "250.0, 120.0; 420.0, 140.0; 230.0, 350.0; 400.0, 380.0",  # a bow tie: refused
+        "250.0, 120.0; 420.0, 140.0; 300.0, 200.0; 230.0, 350.0",  # a dent: refused
+    ],
+    "use_focal": [True, False],
+    "corner": [3, 0],
+    "corner_u": [100.0, 300.0],
+    "corner_v": [50.0, 250.0],
+}
+"""The settings the review renders: each scene, a few corners (two refused), the checkbox."""
+
+
+@register(lesson="10", sweep=_RECTIFY_SWEEP)
 def rectify_photo() -> Demo:
     """Drag the four corners of a page, painting or facade; the rectified view follows.
 
@@ -469,8 +486,9 @@ def document_scanner() -> Demo:
     view, ax_p, ax_r, im_p, im_r, found = _photo_demo(
         "photo with the detected outline",
         "scanned page",
-        dict(ls="-", color=palette.YELLOW, lw=2, path_effects=palette.halo(2, "black")),
+        dict(ls="-", color=palette.YELLOW, lw=1, path_effects=palette.halo(1, "black")),
     )
+    view.animate(ax_r.title)  # says which f the scan used
     readout = W.HTML()
     # why no page was found, on the figure itself (a static picture has no readout)
     why = view.animate(
@@ -499,20 +517,20 @@ def document_scanner() -> Demo:
             state.update(found=False, corner_error=None, message=str(exc))
             readout.value = monospace("no page found:\n" + str(exc).replace("; ", ";\n"))
             why.set_text("no page found:\n" + str(exc).replace("; ", ";\n"))
+            ax_r.set_title("scanned page", fontsize=10, pad=3)
             return
         why.set_text("")
         closed = np.vstack([corners, corners[:1]])
         found.set_data(closed[:, 0], closed[:, 1])
-        est = pp.estimate_aspect_ratio(corners, image.shape)
-        conditioning, undetermined = _focal_conditioning(corners, image.shape)
-        if undetermined:  # f from the corners is noise: fall back to the assumed f, and say so
-            f_assumed = float(max(image.shape[:2]))
-            est = pp.AspectRatio(
-                pp.estimate_aspect_ratio(corners, image.shape, focal_length=f_assumed).ratio,
-                f_assumed,
-                "assumed",
-            )
+        est, conditioning, undetermined = _scan_estimate(corners, image.shape)
         _show_rectified(im_r, image, corners, (400, int(400 / est.ratio)))
+        how = {
+            "estimated": "f from the corners",
+            "assumed": f"f assumed, {est.focal_length:.0f} px",
+        }
+        ax_r.set_title(
+            f"scanned page ({how.get(est.focal_source, 'no f needed')})", fontsize=10, pad=3
+        )
         err = float(np.abs(corners - photo.corners).max())
         state.update(
             found=True,
