@@ -9,6 +9,7 @@ the keyboard (a corner dropdown and two sliders), or typed into the corners text
 
 from __future__ import annotations
 
+import textwrap
 from types import SimpleNamespace
 from typing import Any
 
@@ -115,7 +116,7 @@ def _rectify_artists(view: FigureView, ax_p: Any, ax_r: Any) -> SimpleNamespace:
     ax_r.text(
         0.5,
         -0.02,
-        "red dashed: the other f's shape; green dotted: the true shape",
+        "red dashed: the other focal length's shape; green dotted: the true shape",
         transform=ax_r.transAxes,
         ha="center",
         va="top",
@@ -161,7 +162,7 @@ def _show_invalid(
     for line in (art.other, art.truth_box):
         line.set_data([], [])
     ax_r.set_title("not rectified", fontsize=10, pad=3)
-    art.why.set_text(f"cannot rectify these corners (red):\n{exc}")
+    art.why.set_text("cannot rectify these corners (red):\n" + textwrap.fill(str(exc), 44))
 
 
 def _show_shapes(im: Any, photo: Any, corners: np.ndarray, ratio: float, outlines) -> None:

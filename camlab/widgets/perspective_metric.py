@@ -138,7 +138,7 @@ def _figure():
     for ax in (ax_p, ax_r):
         ax.tick_params(labelsize=7)
     ax_r.plot(*_PLANE.reshape(-1, 2).T, "+", color=palette.GREEN, ms=12, mew=1.2, zorder=1)
-    ax_r.set_title("rectified corners (orange) on the true ones (green +)", fontsize=10, pad=3)
+    ax_r.set_title("rectified (orange) on the true corners (green +)", fontsize=10, pad=3)
     dots = view.animate(ax_p.plot([], [], "o", ms=3, color="k", zorder=3)[0])
     lines = [
         view.animate(ax_p.plot([], [], color=c, lw=1.2, zorder=2)[0])
