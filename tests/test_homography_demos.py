@@ -127,6 +127,16 @@ def test_document_scanner_reports_missing_page():
     assert d.state["found"] is False and "no convex quadrilateral" in d.state["message"]
 
 
+def test_document_scanner_falls_back_to_the_assumed_f_when_f_is_not_determined():
+    # pitch only: the found corners' 1-2 px noise gives f = 102 px, which 1 px sends over 412-1114 px
+    d = p10.document_scanner()
+    d.set(yaw=0.0, pitch=0.5)
+    assert d.state["focal_source"] == "assumed" and d.state["focal"] == 640
+    assert abs(d.state["ratio"] - 0.742) < 0.001  # not the 0.804 that f = 102 px gives
+    d.set(yaw=0.45, pitch=0.35)  # a well-conditioned view keeps f from the corners
+    assert d.state["focal_source"] == "estimated" and abs(d.state["focal"] - 800) < 15
+
+
 def test_keystone_demo_corrects_converging_verticals():
     d = p10.keystone_correction()
     d.set(tilt=-0.6, yaw=0.0)

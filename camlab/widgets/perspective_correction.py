@@ -9,6 +9,7 @@ the keyboard (a corner dropdown and two sliders), or typed into the corners text
 
 from __future__ import annotations
 
+import textwrap
 from types import SimpleNamespace
 from typing import Any
 
@@ -128,7 +129,40 @@ def _rectify_artists(view: FigureView, ax_p: Any, ax_r: Any) -> SimpleNamespace:
         ax_r.plot([], [], ":", color=palette.GREEN, lw=1.5, path_effects=palette.halo(1.5))[0]
     )
     view.animate(ax_r.title)  # says which focal length the rectified view uses
-    return SimpleNamespace(handles=handles, chosen=chosen, other=other, truth_box=truth_box)
+    why = view.animate(  # why the corners cannot be rectified, on the figure itself
+        ax_r.text(
+            0.5,
+            0.5,
+            "",
+            transform=ax_r.transAxes,
+            ha="center",
+            va="center",
+            fontsize=9,
+            wrap=True,
+            color=palette.RED,
+        )
+    )
+    return SimpleNamespace(
+        handles=handles, chosen=chosen, other=other, truth_box=truth_box, why=why
+    )
+
+
+def _show_invalid(
+    art: SimpleNamespace, quad: Any, im_r: Any, ax_r: Any, text: str, k: int, exc: Exception
+) -> None:
+    """Draw corners that cannot be rectified (a bow tie, a dent) in red and blank the rectified view."""
+    try:
+        corners = parse_corners(text)
+    except ValueError:
+        corners = None
+    if corners is not None:
+        _show_corners(quad, art.handles, art.chosen, corners, k)
+    quad.set_color(palette.RED)
+    im_r.set_data(np.full((_SHOW, _SHOW, 3), 255, np.uint8))
+    for line in (art.other, art.truth_box):
+        line.set_data([], [])
+    ax_r.set_title("not rectified", fontsize=10, pad=3)
+    art.why.set_text("cannot rectify these corners (red):\n" + textwrap.fill(str(exc), 44))
 
 
 def _show_shapes(im: Any, photo: Any, corners: np.ndarray, ratio: float, outlines) -> None:
@@ -193,11 +227,7 @@ def _rectify_readout(
     found, and how far a 5 px slip of one of the scene's exact corners moves each ratio.
     """
     f_true = photo.K[0, 0]
-    quad_f = (
-        f"f assumed ({from_quad.focal_length:.0f} px)"
-        if from_quad.focal_source == "assumed"
-        else "f from the corners"
-    )
+    quad_f = _focal_used(False, photo, from_quad)
     (a, b), (c, d), (f0, f1) = slip["ratio_from_quad"], slip["ratio_known"], slip["focal"]
     return monospace(
         f"shown: w/h {est.ratio:.3f} ({used})\n"
@@ -210,16 +240,17 @@ def _rectify_readout(
     )
 
 
-def _focal_conditioning(corners: np.ndarray, image_shape: tuple) -> str:
+def _focal_conditioning(corners: np.ndarray, image_shape: tuple) -> tuple[str, bool]:
     """A readout line: how far f from the corners moves when one corner moves by 1 px.
 
     Near a degenerate view (an edge pair nearly parallel in the photo, its vanishing point far
     away) f^2 is a ratio of two small numbers, so the scanner's 1-2 px corner errors decide it.
+    Returns the line and whether f is then NOT DETERMINED (the 1 px range wider than half of f).
     Empty when f is not estimated from the corners.
     """
     est = pp.estimate_aspect_ratio(corners, image_shape)
     if est.focal_source != "estimated":
-        return ""
+        return "", False
     fs = [
         pp.estimate_aspect_ratio(corners + np.eye(4)[k][:, None] * step, image_shape).focal_length
         for k in range(4)
@@ -232,13 +263,29 @@ def _focal_conditioning(corners: np.ndarray, image_shape: tuple) -> str:
         / np.linalg.norm(after, axis=1)
     )
     least = float(np.degrees(np.arccos(np.clip(cos, -1, 1))).min())
-    line = f"\none corner 1 px off: f {min(fs):.0f}-{max(fs):.0f} px"
-    if max(fs) - min(fs) > 0.5 * est.focal_length:
-        line += (
-            f"\nf NOT DETERMINED: an edge pair converges by only {least:.1f}\u00b0, so f comes from\n"
-            "corner noise (section 3), and so does w/h"
-        )
-    return line
+    line = f"\none corner 1 px off: f from the corners {min(fs):.0f}-{max(fs):.0f} px"
+    if max(fs) - min(fs) <= 0.5 * est.focal_length:
+        return line, False
+    assumed = max(image_shape[0], image_shape[1])
+    return line + (
+        f"\nf NOT DETERMINED: an edge pair converges by only {least:.1f}\u00b0, so the\n"
+        f"{est.focal_length:.0f} px the corners give is corner noise (section 3);\n"
+        f"the scan uses f assumed {assumed} px (the image width) instead"
+    ), True
+
+
+def _scan_estimate(corners: np.ndarray, image_shape: tuple):
+    """The scanner's w/h: f from the corners, or the assumed f when the corners do not determine it.
+
+    Returns the estimate, the readout's conditioning line and whether f was NOT DETERMINED.
+    """
+    est = pp.estimate_aspect_ratio(corners, image_shape)
+    conditioning, undetermined = _focal_conditioning(corners, image_shape)
+    if undetermined:  # f from the corners is noise: fall back to the assumed f, and say so
+        f_assumed = float(max(image_shape[:2]))
+        ratio = pp.estimate_aspect_ratio(corners, image_shape, focal_length=f_assumed).ratio
+        est = pp.AspectRatio(ratio, f_assumed, "assumed")
+    return est, conditioning, undetermined
 
 
 def _widest_angle(corners: np.ndarray) -> float:
@@ -268,6 +315,7 @@ def _show_corners(quad: Any, handles: Any, chosen: Any, corners: np.ndarray, k: 
     """The quadrilateral's outline, its corner handles and the ring on corner ``k``."""
     closed = np.vstack([corners, corners[:1]])
     quad.set_data(closed[:, 0], closed[:, 1])
+    quad.set_color(palette.YELLOW)  # red when invalid: see _show_invalid
     handles.set_data(corners[:, 0], corners[:, 1])
     chosen.set_data(corners[k, :1], corners[k, 1:])
 
@@ -293,7 +341,9 @@ def _focal_used(use_focal: bool, photo, from_quad) -> str:
     if use_focal:
         return f"known f ({photo.K[0, 0]:.0f} px)"
     if from_quad.focal_source == "assumed":
-        return f"f assumed ({from_quad.focal_length:.0f} px)"
+        return f"f assumed, {from_quad.focal_length:.0f} px"
+    if from_quad.focal_source == "not needed":
+        return "no f (an affine view: f cancels)"
     return "f from the corners"
 
 
@@ -310,20 +360,23 @@ def _warn_if_flat(text: str, corners: np.ndarray) -> str:
     )
 
 
-@register(
-    lesson="10",
-    sweep={
-        "scene": ["page", "painting", "facade"],
-        "corners": [
-            "250.0, 120.0; 420.0, 140.0; 400.0, 380.0; 230.0, 350.0",
-            "200.0, 100.0; 450.0, 100.0; 450.0, 380.0; 200.0, 380.0",
-        ],
-        "use_focal": [True, False],
-        "corner": [3, 0],
-        "corner_u": [100.0, 300.0],
-        "corner_v": [50.0, 250.0],
-    },
-)
+_RECTIFY_SWEEP = {
+    "scene": ["page", "painting", "facade"],
+    "corners": [
+        "250.0, 120.0; 420.0, 140.0; 400.0, 380.0; 230.0, 350.0",
+        "200.0, 100.0; 450.0, 100.0; 450.0, 380.0; 200.0, 380.0",
+        "250.0, 120.0; 420.0, 140.0; 230.0, 350.0; 400.0, 380.0",  # a bow tie: refused
+        "250.0, 120.0; 420.0, 140.0; 300.0, 200.0; 230.0, 350.0",  # a dent: refused
+    ],
+    "use_focal": [True, False],
+    "corner": [3, 0],
+    "corner_u": [100.0, 300.0],
+    "corner_v": [50.0, 250.0],
+}
+"""The settings the review renders: each scene, a few corners (two refused), the checkbox."""
+
+
+@register(lesson="10", sweep=_RECTIFY_SWEEP)
 def rectify_photo() -> Demo:
     """Drag the four corners of a page, painting or facade; the rectified view follows.
 
@@ -365,14 +418,15 @@ def rectify_photo() -> Demo:
             v = {**v, "corners": _new_photo(current, v["scene"], im_p, control)}
         photo = current["photo"]
         try:
-            corners = parse_corners(v["corners"])
-            corners = pp.check_quadrilateral(corners)
+            corners = pp.check_quadrilateral(parse_corners(v["corners"]))
             from_quad = pp.estimate_aspect_ratio(corners, photo.image.shape)
             known = pp.estimate_aspect_ratio(corners, photo.image.shape, focal_length=photo.K[0, 0])
         except (ValueError, pp.DegenerateError) as exc:
             state.update(error=str(exc), ratio=None)
             readout.value = monospace(f"cannot rectify:\n{exc}")
+            _show_invalid(art, quad, im_r, ax_r, v["corners"], v["corner"], exc)
             return
+        art.why.set_text("")
         est, alt = (known, from_quad) if v["use_focal"] else (from_quad, known)
         current["corners"] = corners
         _show_corners(quad, handles, chosen, corners, v["corner"])
@@ -433,8 +487,9 @@ def document_scanner() -> Demo:
     view, ax_p, ax_r, im_p, im_r, found = _photo_demo(
         "photo with the detected outline",
         "scanned page",
-        dict(ls="-", color=palette.YELLOW, lw=2, path_effects=palette.halo(2, "black")),
+        dict(ls="-", color=palette.YELLOW, lw=1, path_effects=palette.halo(1, "black")),
     )
+    view.animate(ax_r.title)  # says which f the scan used
     readout = W.HTML()
     # why no page was found, on the figure itself (a static picture has no readout)
     why = view.animate(
@@ -463,12 +518,20 @@ def document_scanner() -> Demo:
             state.update(found=False, corner_error=None, message=str(exc))
             readout.value = monospace("no page found:\n" + str(exc).replace("; ", ";\n"))
             why.set_text("no page found:\n" + str(exc).replace("; ", ";\n"))
+            ax_r.set_title("scanned page", fontsize=10, pad=3)
             return
         why.set_text("")
         closed = np.vstack([corners, corners[:1]])
         found.set_data(closed[:, 0], closed[:, 1])
-        est = pp.estimate_aspect_ratio(corners, image.shape)
+        est, conditioning, undetermined = _scan_estimate(corners, image.shape)
         _show_rectified(im_r, image, corners, (400, int(400 / est.ratio)))
+        how = {
+            "estimated": "f from the corners",
+            "assumed": f"f assumed, {est.focal_length:.0f} px",
+        }
+        ax_r.set_title(
+            f"scanned page ({how.get(est.focal_source, 'no f needed')})", fontsize=10, pad=3
+        )
         err = float(np.abs(corners - photo.corners).max())
         state.update(
             found=True,
@@ -481,7 +544,7 @@ def document_scanner() -> Demo:
         readout.value = monospace(
             f"page found; worst corner error {err:.1f} px\n"
             f"aspect w/h {est.ratio:.3f} (true {photo.aspect:.3f}, A4 = 0.707)\n"
-            f"{_focal_text(est, photo.K[0, 0])}{_focal_conditioning(corners, image.shape)}"
+            + (conditioning[1:] if undetermined else _focal_text(est, photo.K[0, 0]) + conditioning)
         )
 
     controls = {

@@ -125,7 +125,7 @@ def squareness(q: np.ndarray) -> Squareness:
 
 
 def _figure():
-    """The demo's figure: the photo's axes (corners, 12 line artists) and the rectified corners'."""
+    """The demo's figure: the photo's axes (corners, 16 line artists) and the rectified corners'."""
     view = FigureView(figsize=(9, 3.8))
     ax_p, ax_r = view.fig.subplots(1, 2, width_ratios=[1.3, 1])
     ax_p.set(xlim=(-0.5, 639.5), ylim=(479.5, -0.5), aspect="equal")
@@ -137,12 +137,12 @@ def _figure():
     ax_r.set_ylabel("down (squares)", fontsize=8, labelpad=1)
     for ax in (ax_p, ax_r):
         ax.tick_params(labelsize=7)
-    ax_r.plot(*_PLANE.reshape(-1, 2).T, "+", color="k", ms=12, mew=0.8, zorder=1)
-    ax_r.set_title("rectified corners (orange) on the true ones (+)", fontsize=10, pad=3)
+    ax_r.plot(*_PLANE.reshape(-1, 2).T, "+", color=palette.GREEN, ms=12, mew=1.2, zorder=1)
+    ax_r.set_title("rectified (orange) on the true corners (green +)", fontsize=10, pad=3)
     dots = view.animate(ax_p.plot([], [], "o", ms=3, color="k", zorder=3)[0])
     lines = [
         view.animate(ax_p.plot([], [], color=c, lw=1.2, zorder=2)[0])
-        for c in [palette.ORANGE, palette.BLUE] * 6
+        for c in [palette.ORANGE, palette.BLUE] * 8
     ]
     rect = view.animate(
         ax_r.plot([], [], "o", ms=5, color=palette.ORANGE, mec="k", mew=0.5, zorder=3)[0]
@@ -191,17 +191,21 @@ def right_angle_rectification() -> Demo:
         grid = board_photo(v["pitch"], v["yaw"], v["noise"])
         dots.set_data(*grid.reshape(-1, 2).T)
         k = min(grid.shape[:2])
-        segs = [grid[0, [0, -1]], grid[[0, -1], 0], grid[-1, [0, -1]], grid[[0, -1], -1]]
-        if v["diagonals"]:
+        if v[
+            "diagonals"
+        ]:  # the outer rows and columns, and two blocks' diagonals (orange with blue)
+            segs = [grid[0, [0, -1]], grid[[0, -1], 0], grid[-1, [0, -1]], grid[[0, -1], -1]]
             segs += [grid[[0, k - 1], [0, k - 1]], grid[[k - 1, 0], [0, k - 1]]]
             segs += [grid[[0, k - 1], [8 - k + 1, 8]], grid[[k - 1, 0], [8 - k + 1, 8]]]
+            colours, width = [palette.ORANGE, palette.BLUE] * 4, 1.2
             L, M = pp.square_grid_right_angles(grid)
-        else:
+        else:  # every row (orange) against every column (blue), thin
+            segs = [r[[0, -1]] for r in grid] + [c[[0, -1]] for c in grid.transpose(1, 0, 2)]
+            colours, width = [palette.ORANGE] * len(grid) + [palette.BLUE] * grid.shape[1], 0.8
             L, M = rows_and_columns(grid)
-        for artist, seg in zip(
-            lines, segs + [np.empty((0, 2))] * (len(lines) - len(segs)), strict=True
-        ):
-            artist.set_data(*seg.T)
+        for n, artist in enumerate(lines):
+            artist.set_data(*(segs[n] if n < len(segs) else np.empty((0, 2))).T)
+            artist.set(color=colours[n] if n < len(segs) else palette.ORANGE, lw=width)
         try:
             met = pp.metric_rectification(L, M)
         except pp.DegenerateError as exc:
@@ -217,7 +221,9 @@ def right_angle_rectification() -> Demo:
         photo_ratio, photo_worst = squareness(grid)
         state.update(ratio=ratio, worst_angle=worst, error=None)
         readout.value = monospace(
-            f"{len(L)} orthogonal pairs, corner noise {v['noise']:.2f} px\n"
+            f"{len(L)} orthogonal pairs"
+            + ("" if v["diagonals"] else " (all 6 rows x 9 columns)")
+            + f", corner noise {v['noise']:.2f} px\n"
             f"photo:     side across / down {photo_ratio:.3f}, worst angle off 90 by {photo_worst:.1f}\u00b0\n"
             f"rectified: side across / down {ratio:.3f}, worst angle off 90 by {worst:.1f}\u00b0"
             + (

@@ -133,20 +133,21 @@ def _conic_diagnosis(args, got, expected) -> str:
             )
         if same_up_to_scale(g, _conic_matrix(Vt[0], half), rtol=1e-5):
             return (
-                "you took the FIRST row of Vt, the direction of the largest singular value; the null vector "
-                "(the smallest singular value, 0 here) is the LAST row of Vt, Vt[-1]."
+                "you took the direction of the LARGEST singular value (the FIRST row of Vt, or the last "
+                "eigenvector of np.linalg.eigh(A.T @ A), whose eigenvalues come in ascending order); the null "
+                "vector (the smallest singular value, 0 here) is the LAST row of Vt, Vt[-1]."
             )
-    rows = _conic_rows(lines_l, lines_m)
-    residual = np.linalg.norm(rows @ mine) / (np.linalg.norm(rows, 2) * np.linalg.norm(mine))
-    eig = np.abs(np.linalg.eigvalsh(g))
-    if residual > 1e-6 and eig.min() < 1e-8 * eig.max():
+    if slip := _sign_or_inverse_slip(g, lines_l, lines_m, e):
+        return slip
+    residual, eig = _residual_and_eigenvalues(g, e, lines_l, lines_m)
+    if residual > 1e-4 and eig.min() < 1e-8 * eig.max():
         return (
             "your matrix is a dual conic of rank 2, as the image of C*inf is, but not the one of these lines: "
             "the pairs are not orthogonal under it. Did you normalise the lines (l_hat = T^-T l, with T from "
             "lesson 07's point normalisation) and return C_hat, the conic of the normalised image? Undo the "
             "change of coordinates at the end: C*' = T^-1 C_hat T^-T (lines move by T^-T, dual conics by T)."
         )
-    if residual > 1e-6:
+    if residual > 1e-4:
         return (
             f"your matrix does not make the pairs orthogonal: the rows times your (a, b, c, d, e, f) reach "
             f"{residual:.2g} (relative), where the answer gives 0. Check each row against section 8 (one row "
@@ -158,6 +159,57 @@ def _conic_diagnosis(args, got, expected) -> str:
         "of normal equations) loses digits on pixel lines; take the SVD of the rows themselves, or normalise "
         "the lines first (lesson 07, section 6)."
     )
+
+
+def _residual_and_eigenvalues(g, e, lines_l, lines_m):
+    """The rows' relative residual under ``g`` and ``g``'s |eigenvalues|, in rescaled pixel units.
+
+    Judged where every entry counts (x -> D x, lines by D^-1, dual conics by D C D, D from the
+    answer ``e``): in pixels any such matrix has a tiny smallest eigenvalue, right or wrong.
+    """
+    D = np.diag(1 / np.sqrt(np.abs(np.diag(e))))
+    Dinv = np.linalg.inv(D)
+    rows = _conic_rows(np.asarray(lines_l, float) @ Dinv, np.asarray(lines_m, float) @ Dinv)
+    mine_d = _conic_vector(D @ g @ D)
+    residual = np.linalg.norm(rows @ mine_d) / (np.linalg.norm(rows, 2) * np.linalg.norm(mine_d))
+    return residual, np.abs(np.linalg.eigvalsh(D @ g @ D))
+
+
+def _sign_or_inverse_slip(g, lines_l, lines_m, e) -> str | None:
+    """A cross term with the wrong sign (in the matrix or in the rows), or the inverse returned."""
+    names, places, cols = ("b", "d", "e"), ((0, 1), (0, 2), (1, 2)), (1, 3, 4)
+    (L1, L2, L3), (M1, M2, M3) = np.asarray(lines_l, float).T, np.asarray(lines_m, float).T
+    minus = ((L1 * M2 - L2 * M1) / 2, (L1 * M3 - L3 * M1) / 2, (L2 * M3 - L3 * M2) / 2)
+    for r in range(1, 4):
+        for which in itertools.combinations(range(3), r):
+            flipped = g.copy()
+            rows = _conic_rows(lines_l, lines_m)
+            for k in which:
+                i, j = places[k]
+                flipped[i, j], flipped[j, i] = -g[i, j], -g[j, i]
+                rows[:, cols[k]] = minus[k]
+            named = " and ".join(
+                [", ".join(names[k] for k in which[:-1]), names[which[-1]]][r == 1 :]
+            )
+            if _same_dual_conic(flipped, e):
+                return (
+                    f"{'the sign of ' + named + ' is' if r == 1 else 'the signs of ' + named + ' are'} flipped in "
+                    "your matrix (np.abs, or a minus sign): the matrix is "
+                    "[[a, b/2, d/2], [b/2, c, e/2], [d/2, e/2, f]] with the null vector's entries as they come."
+                )
+            if _same_dual_conic(g, _conic_matrix(np.linalg.svd(rows)[2][-1]), rtol=1e-4):
+                return (
+                    f"a cross term of your rows has the wrong sign (the column of {named}): l^T C m sums "
+                    "l_i m_j + l_j m_i for each pair of indices, so the row holds (l1 m2 + l2 m1)/2, "
+                    "(l1 m3 + l3 m1)/2 and (l2 m3 + l3 m2)/2, all with a plus."
+                )
+    if np.all(np.isfinite(g)) and _same_dual_conic(np.linalg.pinv(g), e, rtol=1e-2):
+        return (
+            "your matrix is the (pseudo-)inverse of the answer, a point conic: the right angles constrain "
+            "the DUAL conic itself, l^T C* m = 0, so the null vector arranged as a matrix is the answer; "
+            "do not invert it."
+        )
+    return None
 
 
 def dual_conic_from_orthogonal_lines(lines_l, lines_m):
@@ -274,6 +326,14 @@ register_exercise(
                 "column of Vt",
             ),
             (_normalised_not_undone, "T^-1 C_hat T^-T"),
+            (
+                lambda L, M: pp.dual_conic_from_orthogonal_lines(L, M) * np.where(np.eye(3), 1, -1),
+                "signs of b, d and e are flipped",
+            ),
+            (
+                lambda L, M: np.linalg.pinv(pp.dual_conic_from_orthogonal_lines(L, M)),
+                "(pseudo-)inverse",
+            ),
         ),
         ndarray_only=True,
         teaching=dual_conic_from_orthogonal_lines,

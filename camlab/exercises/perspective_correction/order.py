@@ -48,6 +48,11 @@ def _sum_difference_trick(corners):
 
 
 def _order_diagnosis(args, got, expected) -> str:
+    if np.shape(got) == (4,) and sorted(np.asarray(got).tolist()) == [0, 1, 2, 3]:
+        return (
+            "you returned the order, indices of the input corners; return the corners themselves, "
+            "corners[order], a (4, 2) array (u, v) in the order TL, TR, BR, BL."
+        )
     problem = shape_problem(got, expected)
     if problem:
         return problem
@@ -133,6 +138,12 @@ register_exercise(
         wrong_variants=(
             (lambda c: np.roll(pp.order_corners(c), 1, axis=0), "does not start at the top-left"),
             (lambda c: pp.order_corners(c)[::-1], "counter-clockwise"),
+            (
+                lambda c: np.array(
+                    [np.flatnonzero(np.isclose(c, p).all(1))[0] for p in pp.order_corners(c)]
+                ),
+                "indices of the input corners",
+            ),
             (
                 lambda c: np.asarray(c, float)[
                     np.lexsort((np.asarray(c)[:, 0], np.asarray(c)[:, 1]))

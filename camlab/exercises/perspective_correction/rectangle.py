@@ -40,7 +40,8 @@ _RECT_MISTAKES = (
         "inverse",
         lambda s: np.linalg.inv(s.expected),
         "your H maps the rectangle into the photo; the rectifying H goes from the photo corners to the "
-        "rectangle (estimate_homography(corners, target), not (target, corners)).",
+        "rectangle: write each pair's equations with the photo corner (u, v) as the source and the "
+        "target corner (x, y) as the result, not the other way round.",
     ),
     Mistake(
         "transposed",

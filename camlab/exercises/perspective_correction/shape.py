@@ -34,7 +34,7 @@ def _shape_cases():
         return x[:, :2] / x[:, 2:]
 
     return [
-        (photo(2.97, 2.10, 800.0, (319.5, 239.5), 0.5, 0.35, 0.1, 5.0), (319.5, 239.5)),
+        (photo(2.97, 2.10, 800.0, (331.0, 226.5), 0.5, 0.35, 0.1, 5.0), (331.0, 226.5)),
         (photo(1.0, 1.6, 1200.0, (700.0, 380.0), -0.3, -0.45, -0.05, 4.0), (700.0, 380.0)),
         (photo(3.0, 1.0, 650.0, (330.0, 250.0), 0.25, 0.6, 0.0, 9.0), (330.0, 250.0)),
     ]
@@ -53,12 +53,16 @@ def _shape_compare(got, expected) -> bool:
     return g.shape == (2,) and bool(np.allclose(g, expected, rtol=1e-6, atol=0))
 
 
-def _zhang_he(corners, principal_point, order=(0, 1, 3, 2), centre=True, minus=True, swap=False):
+def _zhang_he(
+    corners, principal_point, order=(0, 1, 3, 2), centre=True, minus=True, swap=False, at=None
+):
     """Section 3 with the corners taken as m1..m4 in ``order`` (Zhang & He's: TL, TR, BL, BR).
 
-    ``minus=False``: f^2 without its minus sign; ``swap=True``: the principal point as (c_v, c_u).
+    ``minus=False``: f^2 without its minus sign; ``swap=True``: the principal point as (c_v, c_u);
+    ``at``: another centre used in place of the principal point.
     """
     c = np.asarray(principal_point, float)[::-1] if swap else np.asarray(principal_point, float)
+    c = c if at is None else np.asarray(at, float)
     q = np.asarray(corners, dtype=float) - (c if centre else 0.0)
     m1, m2, m3, m4 = np.column_stack([q, np.ones(4)])[list(order)]
     k2 = np.cross(m1, m4) @ m3 / (np.cross(m2, m4) @ m3)
@@ -131,6 +135,27 @@ _SHAPE_MISTAKES = (
 """Ex 'rectangle_shape''s typical mistakes, each the (ratio, f) it gives."""
 
 
+def _other_centre(corners, principal_point, g, wrong) -> str | None:
+    """The hint when ``g`` is the answer for corners taken relative to another centre than the given one."""
+    c = np.asarray(principal_point, float)
+    others = (
+        ("the centroid of the corners", np.asarray(corners, float).mean(axis=0)),
+        ("the centre of a 640 x 480 image, (319.5, 239.5)", (319.5, 239.5)),
+        ("(320, 240), half a pixel off the centre of a 640 x 480 image", (320.0, 240.0)),
+        ("the principal point moved by half a pixel", c + 0.5),
+        ("the principal point moved by half a pixel", c - 0.5),
+        ("the principal point counted from 1 (1-based)", c + 1),
+    )
+    for name, at in others:
+        if not np.allclose(at, c) and np.allclose(g, wrong(at=at), rtol=1e-6):
+            return (
+                f"your answer matches the corners taken relative to {name}, not to the principal_point "
+                "given: use principal_point as it comes, m_i = (u_i - c_u, v_i - c_v, 1); the test photos' "
+                "principal points are off the image centre."
+            )
+    return None
+
+
 def _shape_diagnosis(args, got, expected) -> str:
     try:
         g = np.asarray(got, dtype=float)
@@ -166,6 +191,9 @@ def _shape_diagnosis(args, got, expected) -> str:
         ratio2, f2 = _shape_from(*_zhang_he(corners, principal_point, **how))
         return np.sqrt(abs(ratio2)), np.sqrt(abs(f2))
 
+    centre_slip = _other_centre(corners, principal_point, g, wrong)
+    if centre_slip:
+        return centre_slip
     context = SimpleNamespace(ratio=ratio, f=f, wrong=wrong)
     cause = first_mistake(
         _SHAPE_MISTAKES, context, g, lambda mine, theirs: bool(np.allclose(mine, theirs, rtol=1e-6))
@@ -255,6 +283,11 @@ register_exercise(
                 "corners[[0, 1, 3, 2]]",
             ),
             (_shape_wrong(centre=False), "relative to the principal point"),
+            (_shape_wrong(at=(319.5, 239.5)), "not to the principal_point"),
+            (
+                lambda c, p: _shape_wrong(at=np.asarray(c, float).mean(axis=0))(c, p),
+                "relative to the centroid of the corners",
+            ),
             (_shape_wrong(swap=True), "(c_v, c_u)"),
             (_shape_wrong(swap=True, plain=True), "(c_v, c_u)"),
             (_shape_wrong(minus=False), "lost its minus sign"),
