@@ -93,6 +93,23 @@ def _photo_demo(photo_title: str, result_title: str, outline: dict):
     return view, ax_p, ax_r, im_p, im_r, line
 
 
+def _why_text(view: FigureView, ax: Any) -> Any:
+    """A red message centred on ``ax``, animated: why there is no result (a static picture has no readout)."""
+    return view.animate(
+        ax.text(
+            0.5,
+            0.5,
+            "",
+            transform=ax.transAxes,
+            ha="center",
+            va="center",
+            fontsize=9,
+            wrap=True,
+            color=palette.RED,
+        )
+    )
+
+
 def _rectify_artists(view: FigureView, ax_p: Any, ax_r: Any) -> SimpleNamespace:
     """The artists :func:`rectify_photo` adds to the photo demo's figure.
 
@@ -129,19 +146,7 @@ def _rectify_artists(view: FigureView, ax_p: Any, ax_r: Any) -> SimpleNamespace:
         ax_r.plot([], [], ":", color=palette.GREEN, lw=1.5, path_effects=palette.halo(1.5))[0]
     )
     view.animate(ax_r.title)  # says which focal length the rectified view uses
-    why = view.animate(  # why the corners cannot be rectified, on the figure itself
-        ax_r.text(
-            0.5,
-            0.5,
-            "",
-            transform=ax_r.transAxes,
-            ha="center",
-            va="center",
-            fontsize=9,
-            wrap=True,
-            color=palette.RED,
-        )
-    )
+    why = _why_text(view, ax_r)  # why the corners cannot be rectified
     return SimpleNamespace(
         handles=handles, chosen=chosen, other=other, truth_box=truth_box, why=why
     )
@@ -364,9 +369,10 @@ _RECTIFY_SWEEP = {
     "scene": ["page", "painting", "facade"],
     "corners": [
         "250.0, 120.0; 420.0, 140.0; 400.0, 380.0; 230.0, 350.0",
-        "200.0, 100.0; 450.0, 100.0; 450.0, 380.0; 200.0, 380.0",
         "250.0, 120.0; 420.0, 140.0; 230.0, 350.0; 400.0, 380.0",  # a bow tie: refused
         "250.0, 120.0; 420.0, 140.0; 300.0, 200.0; 230.0, 350.0",  # a dent: refused
+        # a valid quad last: the sweeps of the other controls start where this one ends
+        "200.0, 100.0; 450.0, 100.0; 450.0, 380.0; 200.0, 380.0",
     ],
     "use_focal": [True, False],
     "corner": [3, 0],
@@ -491,20 +497,7 @@ def document_scanner() -> Demo:
     )
     view.animate(ax_r.title)  # says which f the scan used
     readout = W.HTML()
-    # why no page was found, on the figure itself (a static picture has no readout)
-    why = view.animate(
-        ax_r.text(
-            0.5,
-            0.5,
-            "",
-            transform=ax_r.transAxes,
-            ha="center",
-            va="center",
-            fontsize=9,
-            wrap=True,
-            color=palette.RED,
-        )
-    )
+    why = _why_text(view, ax_r)  # why no page was found
 
     def update(v: dict, state: dict) -> None:
         photo = scenes.sample_photo("page", yaw=v["yaw"], pitch=v["pitch"])

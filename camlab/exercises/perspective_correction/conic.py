@@ -253,20 +253,7 @@ def _full_cross_terms(lines_l, lines_m):
 
 def _first_singular_vector(lines_l, lines_m):
     """A typical slip: the first row of Vt (the largest singular value) instead of the last."""
-    (l1, l2, l3), (m1, m2, m3) = np.asarray(lines_l, float).T, np.asarray(lines_m, float).T
-    rows = np.stack(
-        [
-            l1 * m1,
-            (l1 * m2 + l2 * m1) / 2,
-            l2 * m2,
-            (l1 * m3 + l3 * m1) / 2,
-            (l2 * m3 + l3 * m2) / 2,
-            l3 * m3,
-        ],
-        1,
-    )
-    a, b, c, d, e, f = np.linalg.svd(rows)[2][0]
-    return np.array([[a, b / 2, d / 2], [b / 2, c, e / 2], [d / 2, e / 2, f]])
+    return _conic_matrix(np.linalg.svd(_conic_rows(lines_l, lines_m))[2][0])
 
 
 def _upper_triangle_only(lines_l, lines_m):
@@ -296,19 +283,7 @@ register_exercise(
             (_first_singular_vector, "LAST row of Vt"),
             (_upper_triangle_only, "not symmetric"),
             (
-                lambda L, M: np.linalg.svd(
-                    np.stack(
-                        [
-                            L[:, 0] * M[:, 0],
-                            (L[:, 0] * M[:, 1] + L[:, 1] * M[:, 0]) / 2,
-                            L[:, 1] * M[:, 1],
-                            (L[:, 0] * M[:, 2] + L[:, 2] * M[:, 0]) / 2,
-                            (L[:, 1] * M[:, 2] + L[:, 2] * M[:, 1]) / 2,
-                            L[:, 2] * M[:, 2],
-                        ],
-                        1,
-                    )
-                )[2][-1],
+                lambda L, M: np.linalg.svd(_conic_rows(L, M))[2][-1],
                 "null vector (a, b, c, d, e, f)",
             ),
             (
