@@ -1548,3 +1548,18 @@ def _raised(function, *args):
     except Exception as exc:  # noqa: BLE001 - the error is what the test inspects
         return exc
     raise AssertionError("expected an error")
+
+
+def test_a_diagnosis_that_fails_on_an_unforeseen_answer_still_reports_a_wrong_answer(monkeypatch):
+    """A (1,) array where a number belongs once made a diagnosis raise TypeError out of the check."""
+    import dataclasses
+
+    from camlab.exercises import _core
+
+    def broken(args, got, expected):
+        raise TypeError("only 0-dimensional arrays can be converted to Python scalars")
+
+    exercise = dataclasses.replace(_core.EXERCISES["expected_rms"], diagnose=broken)
+    monkeypatch.setitem(_core.EXERCISES, "expected_rms", exercise)
+    with pytest.raises(_core.CheckFailed, match="could not diagnose this answer"):
+        _core.check("expected_rms", lambda sigma, N, p: np.array([2 * sigma]))

@@ -374,6 +374,22 @@ def _expected_shown(exercise: Exercise, got: Any, expected: Any) -> tuple[Any, s
     return expected, ""
 
 
+def _likely_cause(exercise: Exercise, args: tuple, got: Any, expected: Any) -> str:
+    """The exercise's diagnosis of a wrong answer; a plain hint if the answer's form defeats it.
+
+    A diagnosis is written for the slips its table names; an answer of an unforeseen form (a
+    (1,) array where a number belongs, a nested list) must still get a wrong-answer report, not a
+    traceback from inside the check.
+    """
+    try:
+        return exercise.diagnose(args, got, expected)
+    except Exception:  # noqa: BLE001 - any failure of the diagnosis, never of the student's code
+        return (
+            f"the check could not diagnose this answer ({with_article(got)}): return it in the form "
+            "of the expected value above, then compare the two term by term"
+        )
+
+
 def check(
     name: str, student_function: Callable[..., Any], *, time_limit_s: float | None = None
 ) -> CheckResult:
@@ -436,7 +452,7 @@ def check(
                 f"  got      {_shown(as_array(got))}\n"
                 f"  expected {_shown(shown)}{scaled}\n"
                 + worst_mismatch(got, shown, tolerance)
-                + f"  likely cause: {exercise.diagnose(args, got, expected)}"
+                + f"  likely cause: {_likely_cause(exercise, args, got, expected)}"
             )
     if exercise.follow_up is not None:
         problem = exercise.follow_up(
