@@ -383,7 +383,7 @@ def _likely_cause(exercise: Exercise, args: tuple, got: Any, expected: Any) -> s
     """
     try:
         return exercise.diagnose(args, got, expected)
-    except Exception:  # noqa: BLE001 - any failure of the diagnosis, never of the student's code
+    except Exception:  # a failure of the diagnosis itself, never of the student's code
         return (
             f"the check could not diagnose this answer ({with_article(got)}): return it in the form "
             "of the expected value above, then compare the two term by term"
