@@ -1598,3 +1598,12 @@ def test_read_and_turn_names_the_notebooks_W_H_and_c(monkeypatch):
     with pytest.raises(AssertionError) as info:
         check("read_and_turn", stale(0, 0, main.c))
     assert "(1.5, 1) is the notebook's variable c (section 3.3)" in str(info.value)
+
+
+def test_the_lift_solution_names_camlabs_tested_route():
+    # lesson 00 tells students the teaching solution's last line names camlab.to_homogeneous
+    assert (
+        solution_source("lift")
+        .rstrip()
+        .endswith("camlab.to_homogeneous (read it with camlab.to_homogeneous??)")
+    )

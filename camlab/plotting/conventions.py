@@ -391,7 +391,7 @@ def draw_turn_about(
         mew=1.6,
         zorder=6,
         ls="none",
-        label="the fixed point c",
+        label="the fixed point the image turns about",
     )  # a ring: the dot inside stays visible
     ax.set_aspect("equal")
     ax.invert_yaxis()  # v points down
