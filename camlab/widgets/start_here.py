@@ -431,7 +431,7 @@ def _explorer_image(ax, img: np.ndarray) -> None:
         img, cmap="gray", vmin=-120, vmax=40
     )  # light greys: dark numbers and marks read on all
     for (r, q), value in np.ndenumerate(img):
-        ax.text(q, r + 0.28, f"{value}", ha="center", va="center", fontsize=8, color="0.2")
+        ax.text(q, r + 0.3, f"{value}", ha="center", va="center", fontsize=10, color="0.1")
     ax.plot(cols.ravel(), rows.ravel(), ".", color="0.25", ms=3)
     ax.set_xticks(range(W))
     ax.set_yticks(range(H))
@@ -508,7 +508,7 @@ def _explorer_figure(view: FigureView, img: np.ndarray) -> tuple:
             [],
             [],
             "P",
-            color=palette.BLUE,
+            color="white",  # not blue: blue is the z axis in every lesson
             ms=9,
             mec="black",
             mew=0.8,
@@ -544,7 +544,7 @@ def pixel_explorer() -> Demo:
     convention puts its centre.
 
     Every pixel shows its value, 10 v + u, so the value names the pixel. The orange square is the
-    pixel, the orange dot its centre at the whole numbers (u, v); the blue + is the point Pillow and
+    pixel, the orange dot its centre at the whole numbers (u, v); the white + is the point Pillow and
     COLMAP call (u, v), the pixel's top-left corner (their centre is half a pixel further on). The
     purple dashed square is the pixel that the swapped read img[u, v] returns, where it exists (for
     u >= H it raises an IndexError instead). The readout lists each tool's centre of the pixel.
@@ -560,7 +560,7 @@ def pixel_explorer() -> Demo:
     W, H = EXPLORER_SIZE
     rows, cols = np.mgrid[0:H, 0:W]
     img = 10 * rows + cols
-    view = FigureView(figsize=(7.6, 3.6))
+    view = FigureView(figsize=(8.2, 3.9))
     ax, square, swapped, centre, corner, readout = _explorer_figure(view, img)
 
     def update(values: dict, state: dict) -> None:
