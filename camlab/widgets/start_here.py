@@ -99,6 +99,8 @@ def _house_panel(ax, y_down: bool, view: FigureView) -> dict:
         xlabel="x, right (plot units)",
         ylabel=f"y, {'down' if y_down else 'up'} (plot units)",
     )
+    ax.xaxis.label.set_color(palette.RED)  # x red, y green: the axis colours of every lesson
+    ax.yaxis.label.set_color(palette.GREEN)
     if y_down:
         ax.invert_yaxis()  # y down, as in images and in the camera frame
     # A light fill keeps the original visible where the moved outline covers its edge (angle 0, scale 1).
