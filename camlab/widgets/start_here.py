@@ -474,6 +474,7 @@ def _explorer_figure(view: FigureView, img: np.ndarray) -> tuple:
                 ec=palette.ORANGE,
                 lw=2.8,
                 clip_on=False,
+                zorder=3,  # over the spines (2.5) on every draw, the first as the live ones
                 label="pixel (u, v)",
             )
         )
@@ -489,6 +490,7 @@ def _explorer_figure(view: FigureView, img: np.ndarray) -> tuple:
                 lw=2.0,
                 ls=(0, (4, 2)),
                 clip_on=False,
+                zorder=3,
                 label="the pixel img[u, v] reads\n(none for u ≥ H: an IndexError)",
             )
         )
