@@ -2,6 +2,7 @@
 
 import builtins
 import dis
+import sys
 import types
 
 import numpy as np
@@ -1563,3 +1564,61 @@ def test_a_diagnosis_that_fails_on_an_unforeseen_answer_still_reports_a_wrong_an
     monkeypatch.setitem(_core.EXERCISES, "expected_rms", exercise)
     with pytest.raises(_core.CheckFailed, match="could not diagnose this answer"):
         _core.check("expected_rms", lambda sigma, N, p: np.array([2 * sigma]))
+
+
+def _read_and_turn_about(centre):
+    """A read_and_turn whose centre is right but whose turn uses ``centre(img, c)``."""
+
+    def answer(img, X, A):
+        H, W = img.shape
+        c = np.array([(W - 1) / 2, (H - 1) / 2])
+        values = img[np.rint(X[:, 1]).astype(int), np.rint(X[:, 0]).astype(int)]
+        w = np.asarray(centre(img, c), dtype=float)
+        return c, values, (X - w) @ A.T + w
+
+    return answer
+
+
+def test_read_and_turn_names_a_wrong_turn_centre_only_when_it_is_the_one_fit():
+    # about the swapped centre (1.5, 2.5) of the 6 x 4 image: named as swapped, never as another centre
+    with pytest.raises(AssertionError) as info:
+        check("read_and_turn", _read_and_turn_about(lambda img, c: c[::-1]))
+    message = str(info.value)
+    assert "the wrong centre, [1.5, 2.5]" in message and "width and height swapped" in message, (
+        message
+    )
+    assert "counted from 1" not in message, message
+
+
+def test_read_and_turn_names_the_notebooks_W_H_and_c(monkeypatch):
+    main = sys.modules["__main__"]
+    monkeypatch.setattr(main, "W", 640, raising=False)
+    monkeypatch.setattr(main, "H", 480, raising=False)
+    monkeypatch.setattr(main, "c", np.array([1.5, 1.0]), raising=False)
+
+    def stale(W, H, c):
+        def answer(img, X, A):
+            centre = np.array([(W - 1) / 2, (H - 1) / 2]) if c is None else c
+            values = img[np.rint(X[:, 1]).astype(int), np.rint(X[:, 0]).astype(int)]
+            return centre, values, (X - centre) @ A.T + centre
+
+        return answer
+
+    with pytest.raises(AssertionError) as info:
+        check("read_and_turn", stale(640, 480, None))
+    assert (
+        "(319.5, 239.5) is the centre of a 640 x 480 image: your function reads the notebook's W, H"
+        in str(info.value)
+    )
+    with pytest.raises(AssertionError) as info:
+        check("read_and_turn", stale(0, 0, main.c))
+    assert "(1.5, 1) is the notebook's variable c (section 3.3)" in str(info.value)
+
+
+def test_the_lift_solution_names_camlabs_tested_route():
+    # lesson 00 tells students the teaching solution's last line names camlab.to_homogeneous
+    assert (
+        solution_source("lift")
+        .rstrip()
+        .endswith("camlab.to_homogeneous (read it with camlab.to_homogeneous??)")
+    )

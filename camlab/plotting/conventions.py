@@ -58,16 +58,11 @@ def draw_pixel_grid(ax: Axes, size: tuple[int, int], points: np.ndarray, marked:
     ):  # the centres, and the edges -0.5 and n - 0.5
         axis.set_ticks(range(n))
         axis.set_ticks([-0.5, n - 0.5], [f"{t:g}" for t in (-0.5, n - 0.5)], minor=True)
-    # The image's edges, half a pixel out, in small grey type on long ticks, so they are not read as centres at a glance.
-    ax.tick_params(which="minor", length=6, width=1, labelsize=8.5, labelcolor="0.35", color="0.35")
-    # Each edge label leans inwards from its tick (u's -0.5 to the right, v's 2.5 upwards ...), so the two that
-    # meet at a corner, u's -0.5 and v's H - 0.5, do not touch.
-    first, last = ax.xaxis.get_minor_ticks()[:2]
-    first.label1.set_horizontalalignment("left")
-    last.label1.set_horizontalalignment("right")
-    top, bottom = ax.yaxis.get_minor_ticks()[:2]
-    top.label1.set_verticalalignment("top")
-    bottom.label1.set_verticalalignment("bottom")
+    # The image's edges, half a pixel out, in small grey type on long ticks: their labels sit a row beyond
+    # the centres' (below u's, left of v's), centred on their ticks, so "-0.5" never reads as part of "0".
+    ax.tick_params(
+        which="minor", length=15, width=1, labelsize=8.5, labelcolor="0.35", color="0.35"
+    )
     ax.plot(u.ravel(), v.ravel(), ".", color="0.45", ms=3)
     points = np.asarray(points, dtype=float)
     ax.plot(points[:, 0], points[:, 1], "o", color=POINT_COLOUR, ms=7)
@@ -391,7 +386,7 @@ def draw_turn_about(
         mew=1.6,
         zorder=6,
         ls="none",
-        label="the fixed point c",
+        label="the fixed point the image turns about",
     )  # a ring: the dot inside stays visible
     ax.set_aspect("equal")
     ax.invert_yaxis()  # v points down

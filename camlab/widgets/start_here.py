@@ -99,6 +99,8 @@ def _house_panel(ax, y_down: bool, view: FigureView) -> dict:
         xlabel="x, right (plot units)",
         ylabel=f"y, {'down' if y_down else 'up'} (plot units)",
     )
+    ax.xaxis.label.set_color(palette.RED)  # x red, y green: the axis colours of every lesson
+    ax.yaxis.label.set_color(palette.GREEN)
     if y_down:
         ax.invert_yaxis()  # y down, as in images and in the camera frame
     # A light fill keeps the original visible where the moved outline covers its edge (angle 0, scale 1).
@@ -431,7 +433,7 @@ def _explorer_image(ax, img: np.ndarray) -> None:
         img, cmap="gray", vmin=-120, vmax=40
     )  # light greys: dark numbers and marks read on all
     for (r, q), value in np.ndenumerate(img):
-        ax.text(q, r + 0.28, f"{value}", ha="center", va="center", fontsize=8, color="0.2")
+        ax.text(q, r + 0.3, f"{value}", ha="center", va="center", fontsize=10, color="0.1")
     ax.plot(cols.ravel(), rows.ravel(), ".", color="0.25", ms=3)
     ax.set_xticks(range(W))
     ax.set_yticks(range(H))
@@ -472,6 +474,7 @@ def _explorer_figure(view: FigureView, img: np.ndarray) -> tuple:
                 ec=palette.ORANGE,
                 lw=2.8,
                 clip_on=False,
+                zorder=3,  # over the spines (2.5) on every draw, the first as the live ones
                 label="pixel (u, v)",
             )
         )
@@ -487,6 +490,7 @@ def _explorer_figure(view: FigureView, img: np.ndarray) -> tuple:
                 lw=2.0,
                 ls=(0, (4, 2)),
                 clip_on=False,
+                zorder=3,
                 label="the pixel img[u, v] reads\n(none for u ≥ H: an IndexError)",
             )
         )
@@ -508,7 +512,7 @@ def _explorer_figure(view: FigureView, img: np.ndarray) -> tuple:
             [],
             [],
             "P",
-            color=palette.BLUE,
+            color="white",  # not blue: blue is the z axis in every lesson
             ms=9,
             mec="black",
             mew=0.8,
@@ -544,7 +548,7 @@ def pixel_explorer() -> Demo:
     convention puts its centre.
 
     Every pixel shows its value, 10 v + u, so the value names the pixel. The orange square is the
-    pixel, the orange dot its centre at the whole numbers (u, v); the blue + is the point Pillow and
+    pixel, the orange dot its centre at the whole numbers (u, v); the white + is the point Pillow and
     COLMAP call (u, v), the pixel's top-left corner (their centre is half a pixel further on). The
     purple dashed square is the pixel that the swapped read img[u, v] returns, where it exists (for
     u >= H it raises an IndexError instead). The readout lists each tool's centre of the pixel.
@@ -560,7 +564,7 @@ def pixel_explorer() -> Demo:
     W, H = EXPLORER_SIZE
     rows, cols = np.mgrid[0:H, 0:W]
     img = 10 * rows + cols
-    view = FigureView(figsize=(7.6, 3.6))
+    view = FigureView(figsize=(8.2, 3.9))
     ax, square, swapped, centre, corner, readout = _explorer_figure(view, img)
 
     def update(values: dict, state: dict) -> None:

@@ -176,7 +176,7 @@ XY_MISTAKES = (
         lambda s: _scaled(s, lambda k: s.p[-1] != 0 and np.isclose(k, 1 / s.p[-1])),
         (
             "you divided by p[-1], which is y: the point has no w yet (dividing by w is the way back from "
-            "homogeneous coordinates, lesson 04 §0), and lifting divides nothing"
+            "homogeneous coordinates, section 4 of this lesson), and lifting divides nothing"
         ),
     ),
     Mistake(

@@ -11,6 +11,7 @@ student's code raises (:func:`exception_hint`). Each table is a tuple of
 from __future__ import annotations
 
 import re
+import sys
 from types import SimpleNamespace
 
 import numpy as np
@@ -96,9 +97,42 @@ def _same_centre(c: np.ndarray, slip: tuple) -> bool:
     return c.shape == (2,) and np.allclose(c, slip)
 
 
+def _whole(x) -> bool:
+    return isinstance(x, (int, np.integer)) and not isinstance(x, bool) and x > 0
+
+
+def notebook_centre(c: np.ndarray, W: int, H: int) -> str:
+    """Whether ``c`` comes from the notebook's variables (section 3.4's ``W, H``, section 3.3's ``c``), not ``img``.
+
+    A function that writes ``(W - 1) / 2`` without ``H, W = img.shape`` reads the notebook's ``W, H = 640, 480``
+    and returns (319.5, 239.5) for every image; one that never computes ``c`` returns the notebook's ``c``.
+    '' when neither explains ``c``.
+    """
+    names = vars(sys.modules["__main__"]) if "__main__" in sys.modules else {}
+    Wn, Hn = names.get("W"), names.get("H")
+    if _whole(Wn) and _whole(Hn) and (Wn, Hn) != (W, H):
+        if np.allclose(c, ((Wn - 1) / 2, (Hn - 1) / 2)):
+            return (
+                f"({c[0]:g}, {c[1]:g}) is the centre of a {Wn} x {Hn} image: your function reads the notebook's "
+                f"W, H = {Wn}, {Hn} (section 3.4), not this image's {W} x {H}; write H, W = img.shape inside it"
+            )
+    try:
+        cn = np.asarray(names.get("c"), dtype=float)
+    except (TypeError, ValueError):
+        return ""
+    if cn.shape == (2,) and np.allclose(c, cn) and not np.allclose(cn, ((W - 1) / 2, (H - 1) / 2)):
+        return (
+            f"({c[0]:g}, {c[1]:g}) is the notebook's variable c (section 3.3), not this image's centre: compute "
+            "it inside your function, H, W = img.shape; c = ((W - 1)/2, (H - 1)/2)"
+        )
+    return ""
+
+
 def centre_cause(c: np.ndarray, W: int, H: int) -> str:
-    """Why ``c`` is not the centre of a ``W`` x ``H`` image: the first of :data:`CENTRE_MISTAKES` it is."""
-    hint = first_mistake(CENTRE_MISTAKES, SimpleNamespace(W=W, H=H), c, _same_centre)
+    """Why ``c`` is not the centre of a ``W`` x ``H`` image: a notebook variable, else the first of :data:`CENTRE_MISTAKES`."""
+    hint = notebook_centre(c, W, H) or first_mistake(
+        CENTRE_MISTAKES, SimpleNamespace(W=W, H=H), c, _same_centre
+    )
     return (
         hint
         or f"the centre of a W x H = {W} x {H} image is ((W - 1)/2, (H - 1)/2) = ({(W - 1) / 2:g}, {(H - 1) / 2:g})"
@@ -316,9 +350,14 @@ def _y_flip_is_inverse(s) -> bool:
 def _about(centre: Mistake, transposed: bool):
     """The points turned about the wrong centre that ``centre`` computes, by A (or by its transpose)."""
 
-    def answer(s):
+    def answer(
+        s,
+    ):  # (X - w) M + w = X M + w (I - M): w is named only when I - M is invertible, the one fit
         w = np.asarray(centre.answer(s), dtype=float)
-        return (s.X - w) @ (s.A if transposed else s.A.T) + w
+        M = s.A if transposed else s.A.T
+        if abs(np.linalg.det(np.eye(2) - M)) < 1e-9:
+            return None
+        return (s.X - w) @ M + w
 
     return answer
 

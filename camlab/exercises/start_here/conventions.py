@@ -19,8 +19,9 @@ from ._turn_causes import centre_cause, exception_hint, numbers, turned_cause, v
 # Every test image holds img[v, u] = 10 v + u, so a value read names the pixel it came from (at most 10
 # columns), and a wrong read can be traced to its cause: img[u, v], a 1-based index, the wrong point.
 # Input 1 is wider than tall (6 x 4) with even sides, so W / 2 = W // 2 differs from (W - 1) / 2, W and H
-# cannot be confused, and img[u, v] raises for u >= 4; its A is a shear (A.T is neither A nor its inverse,
-# so X @ A, A's inverse and a sign flip each show as themselves); input 2 is square and odd (5 x 5), where
+# cannot be confused, and img[u, v] raises for u >= 4; its A is a shear with a scale, not a turn (A.T is
+# neither A nor its inverse, so X @ A, A's inverse and a sign flip each show as themselves, and A - I is
+# invertible, so a wrong centre can be read back from the turned points); input 2 is square and odd (5 x 5), where
 # img[u, v] raises nothing and silently reads the transposed pixel (the lesson's warning), with a quarter
 # turn; input 3 is 7 x 3 with a turn and a scale; input 4 is taller
 # than wide (4 x 6), where img[u, v] raises for v >= 4, and its X is computed, as points in a program are:
@@ -55,7 +56,7 @@ def _rt_cases() -> list[tuple]:
         (
             _pixel_image((6, 4)),
             np.array([[5.0, 0.0], [0.0, 3.0], [2.0, 2.0]]),
-            np.array([[1.0, 0.5], [0.0, 1.0]]),
+            np.array([[0.8, 0.5], [0.0, 1.2]]),
         ),
         (
             _pixel_image((5, 5)),
@@ -330,13 +331,13 @@ register_exercise(
                 ),
                 "came back in the wrong order, (c, turned, values)",
             ),
-            (  # a y-up habit: A with y flipped; for the first test's shear that is A's inverse, and the hint says so
+            (  # a y-up habit: A with y flipped
                 _rt_wrong(
                     turn=lambda X, A, c: (
                         (X - c) @ (np.diag([1.0, -1.0]) @ A @ np.diag([1.0, -1.0])).T + c
                     )
                 ),
-                "a y-up habit gives it too",
+                "as a y-up habit does",
             ),
             (_rt_wrong(read=lambda img, u, v: img[v + 1, u + 1]), "counting from 1?"),
             (_rt_wrong(read=lambda img, u, v: img[v][:, u]), "every combination"),
