@@ -328,6 +328,15 @@ def rectify_calibrated(
     return CalibratedRectification(R1, R2, P1, P2, Q, K, cam1, cam2, B, m1, m2, size, alpha)
 
 
+def _rotation_of(rect: CalibratedRectification, which: int) -> np.ndarray:
+    """R1 for ``which`` = 1 (the left camera), R2 for 2; a clear error for anything else."""
+    if which not in (1, 2):
+        raise CamlabInputError(
+            f"which: expected 1 or 2 (the camera the pixels belong to), got {which!r}"
+        )
+    return rect.R1 if which == 1 else rect.R2
+
+
 def rectify_points(
     rect: CalibratedRectification, camera: Camera, pixels: ArrayLike, which: int
 ) -> np.ndarray:
@@ -357,12 +366,9 @@ def rectify_points(
     CamlabInputError
         ``which`` not 1 or 2, or ``pixels`` not 2-D points.
     """
-    if which not in (1, 2):
-        raise CamlabInputError(
-            f"which: expected 1 or 2 (the camera the pixels belong to), got {which!r}"
-        )
+    R = _rotation_of(rect, which)
     p = as_points(pixels, 2, "pixels")
-    q = _rectified_normalised(camera, rect.R1 if which == 1 else rect.R2, p.array)
+    q = _rectified_normalised(camera, R, p.array)
     return p.restore(q @ rect.K[:2, :2].T + rect.K[:2, 2])
 
 
@@ -396,16 +402,9 @@ def unrectify_points(
     CamlabInputError
         ``which`` not 1 or 2, or ``pixels`` not 2-D points.
     """
-    if which not in (1, 2):
-        raise CamlabInputError(
-            f"which: expected 1 or 2 (the camera the pixels belong to), got {which!r}"
-        )
+    R = _rotation_of(rect, which)
     p = as_points(pixels, 2, "pixels")
-    rays = (
-        np.column_stack([p.array, np.ones(len(p.array))])
-        @ np.linalg.inv(rect.K).T
-        @ (rect.R1 if which == 1 else rect.R2)
-    )
+    rays = np.column_stack([p.array, np.ones(len(p.array))]) @ np.linalg.inv(rect.K).T @ R
     with np.errstate(divide="ignore", invalid="ignore"):
         xn = np.where(rays[:, 2:3] > 0, rays[:, :2] / rays[:, 2:3], np.nan)
     if any(camera.dist):
