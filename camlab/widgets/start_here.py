@@ -517,6 +517,7 @@ def _explorer_figure(view: FigureView, img: np.ndarray) -> tuple:
             mec="black",
             mew=0.8,
             clip_on=False,
+            zorder=4,  # over the squares (3): the + sits on their corner
             label="Pillow's and COLMAP's (u, v):\nthe pixel's top-left corner",
         )[0]
     )
