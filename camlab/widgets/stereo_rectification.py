@@ -643,20 +643,17 @@ def _disparity_figure(gt: np.ndarray) -> tuple:
     ax3 = scene3d.axes3d(view.fig, gs[2], elev=18, azim=-62)
     for a, t in (
         (ax1, "disparity (px); grey: no match"),
-        (ax2, "depth error; dark grey: no match"),
+        (ax2, "depth error (%), red: too far;\ngrey: no match"),
     ):
         a.set(xticks=[], yticks=[])
         a.set_title(t, fontsize=9)
-    # no match (NaN) in mid grey: coolwarm's 0 % and the image's background are near-white
+    # no match (NaN) in the same mid grey in both maps: darker than coolwarm's light-grey 0 %
     viridis = plt_colormap("viridis").with_extremes(bad=palette.GREY)
-    coolwarm = plt_colormap("coolwarm").with_extremes(
-        bad="0.3"
-    )  # darker: coolwarm's 0 is light grey
+    coolwarm = plt_colormap("coolwarm").with_extremes(bad=palette.GREY)
     im1 = ax1.imshow(gt, cmap=viridis, vmin=8, vmax=40, interpolation="nearest")
     view.fig.colorbar(im1, ax=ax1, shrink=0.7)
     im2 = ax2.imshow(np.zeros_like(gt), cmap=coolwarm, vmin=-5, vmax=5, interpolation="nearest")
-    bar = view.fig.colorbar(im2, ax=ax2, shrink=0.7)  # the sign: red = estimated too far
-    bar.set_label("depth error (%), + = too far", fontsize=8)
+    view.fig.colorbar(im2, ax=ax2, shrink=0.7)  # the sign (red = estimated too far) is in the title
     ax3.set_title("3-D points, left camera", fontsize=9)
     ax3.set(xlim=(-1.6, 1.6), ylim=(1.0, 4.5), zlim=(-0.8, 1.4))
     ax3.set_box_aspect(None, zoom=1.2)  # fill the panel: the default leaves a wide empty margin
