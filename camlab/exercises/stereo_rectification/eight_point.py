@@ -73,6 +73,12 @@ def _eight_point_diagnosis(args, got, expected) -> str:
     hint = _unnormalisation_slip(g, x1, x2, expected, T1, T2)
     if hint:
         return hint
+    swapped = epipolar.estimate_fundamental_matrix(x1[:, ::-1], x2[:, ::-1])
+    if same_up_to_scale(g, swapped, rtol=1e-4):
+        return (
+            "your F is right for the points with u and v swapped, (v, u) as in img[v, u]: each row of x1, "
+            "x2 is (u, v) = (column, row), and the equation's row is (u'u, u'v, u', v'u, v'v, v', u, v, 1)"
+        )
     raw = epipolar.estimate_fundamental_matrix(x1, x2, normalise=False, plane_tol=0)
     if same_up_to_scale(g, raw, rtol=1e-4):
         return (
@@ -334,6 +340,12 @@ register_exercise(
             (_rank_after, "rank 2 after undoing"),
             (_largest_zeroed, "LARGEST singular value"),
             (_column_major, "order='F'"),
+            (
+                lambda x1, x2: epipolar.estimate_fundamental_matrix(
+                    np.asarray(x1)[:, ::-1], np.asarray(x2)[:, ::-1]
+                ),
+                "u and v swapped",
+            ),
             (
                 lambda x1, x2: _scaled_not_centred(x1, x2, centre=True),
                 "centred the points but did not scale",

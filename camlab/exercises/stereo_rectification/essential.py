@@ -67,6 +67,24 @@ def _centre_hint(Rs, ts, got, expected) -> str:
     return ""
 
 
+def _reflection_hint(Rs) -> str:
+    """The hint for candidates with det R = -1 (-W for W^T, or no det fix); '' if all are rotations."""
+    dets = np.linalg.det(Rs)
+    if np.any(dets < 0) and any(
+        np.allclose(-R, Rp, atol=1e-8) for R in Rs[dets < 0] for Rp in Rs[dets > 0]
+    ):
+        return (
+            "some of your R are minus another of your R (det -1): you used -W where W^T belongs. "
+            "det(-W) = -1, so U (-W) V^T is a reflection; R_b = U W^T V^T"
+        )
+    if np.any(dets < 0):
+        return (
+            "some of your R have det = -1 (reflections, not rotations): the SVD's U and V can be "
+            "reflections; flip the sign of U (or V^T) when its determinant is -1, before forming U W V^T"
+        )
+    return ""
+
+
 def _essential_diagnosis(args, got, expected) -> str:
     (E,) = args
     try:
@@ -95,19 +113,9 @@ def _essential_diagnosis(args, got, expected) -> str:
             "E fixes t only up to scale, so return t = ±u3 (the last column of U, already of length 1), "
             "not a multiple of it"
         )
-    dets = np.linalg.det(Rs)
-    if np.any(dets < 0) and any(
-        np.allclose(-R, Rp, atol=1e-8) for R in Rs[dets < 0] for Rp in Rs[dets > 0]
-    ):
-        return (
-            "some of your R are minus another of your R (det -1): you used -W where W^T belongs. "
-            "det(-W) = -1, so U (-W) V^T is a reflection; R_b = U W^T V^T"
-        )
-    if np.any(dets < 0):
-        return (
-            "some of your R have det = -1 (reflections, not rotations): the SVD's U and V can be "
-            "reflections; flip the sign of U (or V^T) when its determinant is -1, before forming U W V^T"
-        )
+    hint = _reflection_hint(Rs)
+    if hint:
+        return hint
     hint = _centre_hint(Rs, ts, got, expected)
     if hint:
         return hint
