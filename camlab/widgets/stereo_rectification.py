@@ -32,6 +32,8 @@ from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import int_slider, monospace
 
 SIZE = (640, 480)
+# the epipolar demo's fixed pixels (their epipolar lines drawn in blue): four near the corners, the centre
+REF_PIXELS = np.array([[79.5, 59.5], [559.5, 99.5], [319.5, 239.5], [139.5, 419.5], [499.5, 399.5]])
 
 
 # --------------------------------------------------------------------------- shared data
@@ -90,11 +92,11 @@ def _epipolar_legends(axl, axr, depth_dots, epi_r) -> None:
     blue = {"color": palette.BLUE, "lw": 1.0}
     axl.legend(
         [
-            key(**blue),
+            key(**blue, marker="s", mec="w", ms=6),
             key(color=palette.TAB_RED, lw=1.2, ls="--"),
             key(marker="o", color=palette.TAB_RED, ls="none"),
         ],
-        ["5 fixed pixels' epipolar lines", "l, the point's line", "point x"],
+        ["5 fixed pixels, their epipolar lines", "l, the point's line", "point x"],
         loc="upper left",
         bbox_to_anchor=(-0.08, -0.13),
         ncol=3,
@@ -293,9 +295,13 @@ def epipolar_lines() -> Demo:
     art = _epipolar_figure(view)
     axl, axr, shafts, heads = art.axl, art.axr, art.shafts, art.heads
     readout = W.HTML()
-    # four pixels 80 x 60 px in from the corners and the centre of the 640 x 480 image, (319.5, 239.5)
-    # with pixel centres at integers: the pencil of the blue lines, symmetric about the centre
-    ref = np.array([[79.5, 59.5], [559.5, 59.5], [319.5, 239.5], [79.5, 419.5], [559.5, 419.5]])
+    # four pixels, one near each corner, and the centre of the 640 x 480 image (319.5, 239.5), with
+    # pixel centres at integers: the pencil of the blue lines. No two of the four lie on one line
+    # through the centre, so in forward motion (epipole at the centre) they give four distinct lines
+    ref = REF_PIXELS
+    axl.plot(
+        *ref.T, "s", color=palette.BLUE, mec="w", ms=6, zorder=4
+    )  # the fixed pixels themselves
 
     def update(v, state):
         c1, c2 = _MOTIONS[v["motion"]](v["baseline"], np.deg2rad(v["toe_in"]))
