@@ -92,7 +92,7 @@ def _epipolar_legends(axl, axr, depth_dots, epi_r) -> None:
     blue = {"color": palette.BLUE, "lw": 1.0}
     axl.legend(
         [
-            key(**blue, marker="s", mec="w", ms=6),
+            key(**blue, marker="s", mec="k", ms=6),
             key(color=palette.TAB_RED, lw=1.2, ls="--"),
             key(marker="o", color=palette.TAB_RED, ls="none"),
         ],
@@ -300,7 +300,7 @@ def epipolar_lines() -> Demo:
     # through the centre, so in forward motion (epipole at the centre) they give four distinct lines
     ref = REF_PIXELS
     axl.plot(
-        *ref.T, "s", color=palette.BLUE, mec="w", ms=6, zorder=4
+        *ref.T, "s", color=palette.BLUE, mec="k", ms=6, zorder=4
     )  # the fixed pixels themselves
 
     def update(v, state):
