@@ -437,7 +437,7 @@ def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
     axh = view.fig.add_subplot(gs[0, 2])
     axz = view.fig.add_subplot(gs[1, 2])
     ax.set(xlim=(-0.5, 639.5), ylim=(239.5, -0.5), xticks=[], yticks=[])
-    ax.set_title("left | right (half size)", fontsize=9)
+    title = ax.set_title("left | right (half size)", fontsize=9)  # the update names the method
     im = ax.imshow(
         np.hstack(half),
         cmap="gray",
@@ -448,7 +448,7 @@ def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
     )
     # guides over the animated pair (drawn under it they would be hidden): rows to judge rectification by
     guides = [
-        ax.axhline(r, color=palette.TAB_CYAN, lw=0.5, alpha=0.7, gid="grid")
+        ax.axhline(r, color=palette.YELLOW, lw=0.7, alpha=0.9, gid="grid")
         for r in range(20, 240, 20)
     ]
     guides.append(ax.axvline(319.5, color="w", lw=1, gid="grid"))
@@ -468,10 +468,17 @@ def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
     axh.grid(True, which="major", color="0.93")
     # the zoomed match, marked where it is in the pair
     (zmark,) = ax.plot([], [], "s", ms=9, mfc="none", mec=palette.TAB_RED, mew=1.5, ls="none")
-    view.animate(im, *guides, match_lines, step, zmark)
+    view.animate(im, *guides, match_lines, step, zmark, title)
     zim, zrow, zdots = _zoom_axes(axz, view)
     return SimpleNamespace(
-        im=im, match_lines=match_lines, step=step, zmark=zmark, zim=zim, zrow=zrow, zdots=zdots
+        im=im,
+        match_lines=match_lines,
+        step=step,
+        zmark=zmark,
+        zim=zim,
+        zrow=zrow,
+        zdots=zdots,
+        title=title,
     )
 
 
@@ -586,6 +593,10 @@ def rectify_pair() -> Demo:
         if K_new is not None:
             state.update(rectified_K=K_new)  # alpha sets the zoom of the rectified images
         im.set_data(np.hstack([L, R]))
+        art.title.set_text(
+            f"left | right (half size): {v['method']}"
+            + (f", alpha = {v['alpha']:g}" if v["method"] == "calibrated" else "")
+        )
         seg = np.full((len(sel), 3, 2), np.nan)
         seg[:, 0], seg[:, 1] = s1[sel], s2[sel] + [320, 0]
         match_lines.set_data(*seg.reshape(-1, 2).T)
