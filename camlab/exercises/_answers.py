@@ -233,7 +233,14 @@ def worst_mismatch(got: Any, expected: Any, tolerance: Tolerance | None = None) 
 
 def same_up_to_scale(got: Any, expected: np.ndarray, rtol: float = 1e-6) -> bool:
     """True if ``got`` equals ``expected`` times some non-zero scalar (homogeneous equality)."""
-    g = np.asarray(got, dtype=float)
+    g = np.asarray(got)
+    if np.iscomplexobj(
+        g
+    ):  # e.g. a null vector from np.linalg.eig: real only if its imaginary part is ~0
+        if not np.all(np.abs(g.imag) <= 1e-12 * max(1.0, float(np.abs(g).max()))):
+            return False
+        g = g.real
+    g = np.asarray(g, dtype=float)
     e = np.asarray(expected, dtype=float)
     if g.shape != e.shape or not np.isfinite(g).all() or not np.any(g):
         return False

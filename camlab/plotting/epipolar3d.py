@@ -90,6 +90,7 @@ def draw_epipolar_geometry(
     size: float = 0.3,
     plane_color: str = palette.GREY,
     ghosts: tuple[Camera, Camera] | None = None,
+    also: ArrayLike | None = None,
 ) -> None:
     """Draw two cameras' centres and image planes, the baseline, X, its rays and epipolar plane.
 
@@ -108,6 +109,9 @@ def draw_epipolar_geometry(
     ghosts : (Camera, Camera) or None
         Two more cameras whose image planes are drawn dashed in light grey (the original cameras
         behind a rectified pair).
+    also : (N, 3) array_like or None
+        More world points, normally on the epipolar plane: each drawn as an open circle with its
+        two rays (dotted) and its images (open circles), which then lie on the same red lines.
     """
     X = np.asarray(X, dtype=float)
     C1, C2 = camera1.centre, camera2.centre
@@ -129,6 +133,13 @@ def draw_epipolar_geometry(
         ax.plot(*x, "o", color=palette.RED, ms=4)
     ax.plot(*X, "o", color="k", ms=6)
     ax.text(*X, "  X", fontsize=9)
+    for Y in np.zeros((0, 3)) if also is None else np.atleast_2d(np.asarray(also, dtype=float)):
+        for cam in (camera1, camera2):
+            ax.plot(*np.array([cam.centre, Y]).T, color="0.25", lw=1, ls=":")
+            y = _lift(cam, cam.project(Y[None])[:1], size)[0]
+            ax.plot(*y, "o", mfc="w", mec=palette.RED, mew=1.5, ms=5)
+        ax.plot(*Y, "o", mfc="w", mec="k", mew=1.5, ms=6)
+        ax.text(*Y, "  Y", fontsize=9)
     for C, name in ((C1, "C"), (C2, "C'")):
         ax.plot(*C, "o", color="k", ms=5)
         ax.text(C[0], C[1], C[2] - 0.06, name, fontsize=9, ha="center", va="top")

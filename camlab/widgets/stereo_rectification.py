@@ -32,6 +32,8 @@ from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import int_slider, monospace
 
 SIZE = (640, 480)
+# the epipolar demo's fixed pixels (their epipolar lines drawn in blue): four near the corners, the centre
+REF_PIXELS = np.array([[79.5, 59.5], [559.5, 99.5], [319.5, 239.5], [139.5, 419.5], [499.5, 399.5]])
 
 
 # --------------------------------------------------------------------------- shared data
@@ -90,11 +92,11 @@ def _epipolar_legends(axl, axr, depth_dots, epi_r) -> None:
     blue = {"color": palette.BLUE, "lw": 1.0}
     axl.legend(
         [
-            key(**blue),
+            key(**blue, marker="s", mec="k", ms=6),
             key(color=palette.TAB_RED, lw=1.2, ls="--"),
             key(marker="o", color=palette.TAB_RED, ls="none"),
         ],
-        ["5 fixed pixels' epipolar lines", "l, the point's line", "point x"],
+        ["5 fixed pixels, their epipolar lines", "l, the point's line", "point x"],
         loc="upper left",
         bbox_to_anchor=(-0.08, -0.13),
         ncol=3,
@@ -293,9 +295,13 @@ def epipolar_lines() -> Demo:
     art = _epipolar_figure(view)
     axl, axr, shafts, heads = art.axl, art.axr, art.shafts, art.heads
     readout = W.HTML()
-    # four pixels 80 x 60 px in from the corners and the centre of the 640 x 480 image, (319.5, 239.5)
-    # with pixel centres at integers: the pencil of the blue lines, symmetric about the centre
-    ref = np.array([[79.5, 59.5], [559.5, 59.5], [319.5, 239.5], [79.5, 419.5], [559.5, 419.5]])
+    # four pixels, one near each corner, and the centre of the 640 x 480 image (319.5, 239.5), with
+    # pixel centres at integers: the pencil of the blue lines. No two of the four lie on one line
+    # through the centre, so in forward motion (epipole at the centre) they give four distinct lines
+    ref = REF_PIXELS
+    axl.plot(
+        *ref.T, "s", color=palette.BLUE, mec="k", ms=6, zorder=4
+    )  # the fixed pixels themselves
 
     def update(v, state):
         c1, c2 = _MOTIONS[v["motion"]](v["baseline"], np.deg2rad(v["toe_in"]))
@@ -431,7 +437,7 @@ def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
     axh = view.fig.add_subplot(gs[0, 2])
     axz = view.fig.add_subplot(gs[1, 2])
     ax.set(xlim=(-0.5, 639.5), ylim=(239.5, -0.5), xticks=[], yticks=[])
-    ax.set_title("left | right (half size)", fontsize=9)
+    title = ax.set_title("left | right (half size)", fontsize=9)  # the update names the method
     im = ax.imshow(
         np.hstack(half),
         cmap="gray",
@@ -442,7 +448,7 @@ def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
     )
     # guides over the animated pair (drawn under it they would be hidden): rows to judge rectification by
     guides = [
-        ax.axhline(r, color=palette.TAB_CYAN, lw=0.5, alpha=0.7, gid="grid")
+        ax.axhline(r, color=palette.YELLOW, lw=0.7, alpha=0.9, gid="grid")
         for r in range(20, 240, 20)
     ]
     guides.append(ax.axvline(319.5, color="w", lw=1, gid="grid"))
@@ -462,10 +468,17 @@ def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
     axh.grid(True, which="major", color="0.93")
     # the zoomed match, marked where it is in the pair
     (zmark,) = ax.plot([], [], "s", ms=9, mfc="none", mec=palette.TAB_RED, mew=1.5, ls="none")
-    view.animate(im, *guides, match_lines, step, zmark)
+    view.animate(im, *guides, match_lines, step, zmark, title)
     zim, zrow, zdots = _zoom_axes(axz, view)
     return SimpleNamespace(
-        im=im, match_lines=match_lines, step=step, zmark=zmark, zim=zim, zrow=zrow, zdots=zdots
+        im=im,
+        match_lines=match_lines,
+        step=step,
+        zmark=zmark,
+        zim=zim,
+        zrow=zrow,
+        zdots=zdots,
+        title=title,
     )
 
 
@@ -580,6 +593,10 @@ def rectify_pair() -> Demo:
         if K_new is not None:
             state.update(rectified_K=K_new)  # alpha sets the zoom of the rectified images
         im.set_data(np.hstack([L, R]))
+        art.title.set_text(
+            f"left | right (half size): {v['method']}"
+            + (f", alpha = {v['alpha']:g}" if v["method"] == "calibrated" else "")
+        )
         seg = np.full((len(sel), 3, 2), np.nan)
         seg[:, 0], seg[:, 1] = s1[sel], s2[sel] + [320, 0]
         match_lines.set_data(*seg.reshape(-1, 2).T)
@@ -643,20 +660,17 @@ def _disparity_figure(gt: np.ndarray) -> tuple:
     ax3 = scene3d.axes3d(view.fig, gs[2], elev=18, azim=-62)
     for a, t in (
         (ax1, "disparity (px); grey: no match"),
-        (ax2, "depth error; dark grey: no match"),
+        (ax2, "depth error (%), red: too far;\ngrey: no match"),
     ):
         a.set(xticks=[], yticks=[])
         a.set_title(t, fontsize=9)
-    # no match (NaN) in mid grey: coolwarm's 0 % and the image's background are near-white
+    # no match (NaN) in the same mid grey in both maps: darker than coolwarm's light-grey 0 %
     viridis = plt_colormap("viridis").with_extremes(bad=palette.GREY)
-    coolwarm = plt_colormap("coolwarm").with_extremes(
-        bad="0.3"
-    )  # darker: coolwarm's 0 is light grey
+    coolwarm = plt_colormap("coolwarm").with_extremes(bad=palette.GREY)
     im1 = ax1.imshow(gt, cmap=viridis, vmin=8, vmax=40, interpolation="nearest")
     view.fig.colorbar(im1, ax=ax1, shrink=0.7)
     im2 = ax2.imshow(np.zeros_like(gt), cmap=coolwarm, vmin=-5, vmax=5, interpolation="nearest")
-    bar = view.fig.colorbar(im2, ax=ax2, shrink=0.7)  # the sign: red = estimated too far
-    bar.set_label("depth error (%), + = too far", fontsize=8)
+    view.fig.colorbar(im2, ax=ax2, shrink=0.7)  # the sign (red = estimated too far) is in the title
     ax3.set_title("3-D points, left camera", fontsize=9)
     ax3.set(xlim=(-1.6, 1.6), ylim=(1.0, 4.5), zlim=(-0.8, 1.4))
     ax3.set_box_aspect(None, zoom=1.2)  # fill the panel: the default leaves a wide empty margin

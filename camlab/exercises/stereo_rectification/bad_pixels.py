@@ -52,6 +52,12 @@ def _bad_pixel_diagnosis(args, got, expected) -> str:
             "you averaged over every pixel: NaN > threshold is False, so the pixels without a match or "
             "without a true disparity counted as good. Score only the pixels where both are finite"
         )
+    if np.isclose(g, np.mean(np.abs(np.nan_to_num(d) - np.nan_to_num(truth)) > tau)):
+        return (
+            "you set the NaNs to 0 (np.nan_to_num) before scoring: each hole became a disparity of 0 "
+            "and counted as a wildly bad match. NaN means no data: score only the pixels where both d "
+            "and d_true are finite"
+        )
     n_bad = np.sum(np.abs(err[scored]) > tau)
     truth_only = n_bad / known.sum()
     if np.isclose(g, truth_only):
@@ -150,6 +156,10 @@ register_exercise(
                 "relative error",
             ),
             (lambda d, t, tau: 1 - disparity.bad_pixel_rate(d, t, tau), "GOOD pixels"),
+            (
+                lambda d, t, tau: np.mean(np.abs(np.nan_to_num(d) - np.nan_to_num(t)) > tau),
+                "np.nan_to_num",
+            ),
             (
                 lambda d, t, tau: float(np.sum(np.abs(d - t)[np.isfinite(d - t)] > tau)),
                 "count of bad pixels",

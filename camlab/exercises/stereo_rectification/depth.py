@@ -41,6 +41,11 @@ def _depth_diagnosis(args, got, expected) -> str:
             "you subtracted doffs: d = u1 - u2 = f B / Z - doffs, since the right principal point sits "
             "doffs px to the right; solve for Z: Z = f B / (d + doffs)"
         )
+    if doffs and np.allclose(g, f * B / (d + 2 * doffs)):
+        return (
+            f"you added doffs = {doffs:g} px twice (d + 2 doffs): add it once, Z = f B / (d + doffs). "
+            "If you did d = d + doffs and then used d + doffs, keep only one of the two"
+        )
     if doffs and np.allclose(g, f * B / d + doffs):
         return "you added doffs to the depth: it is a disparity (pixels), so it goes into the denominator, Z = f B / (d + doffs)"
     d_in, d = (
@@ -87,8 +92,7 @@ def _depth_diagnosis(args, got, expected) -> str:
     i = np.unravel_index(np.argmax(np.abs(g - expected)), g.shape)
     return (
         f"at d = {d_in[i]:g} px (f = {f:g} px, B = {B:g} m, doffs = {doffs:g} px) you give Z = {g[i]:.4g} m; "
-        f"f B / (d + doffs) = {expected[i]:.4g} m. "
-        f"Z must be inversely proportional to d"
+        f"f B / (d + doffs) = {expected[i]:.4g} m: check each term of Z = f B / (d + doffs)"
     )
 
 
@@ -126,6 +130,7 @@ register_exercise(
         wrong_variants=(
             (lambda d, f, B, o=0.0: f * (d + o) / B, "Z = f B / d"),
             (lambda d, f, B, o=0.0: B / (d + o), "focal length"),
+            (lambda d, f, B, o=0.0: f * B / (d + 2 * o), "doffs = "),
             (lambda d, f, B, o=0.0: 1000 * f * B / (d + o), "unit slip"),
             (lambda d, f, B, o=0.0: f * B / (d + o + 1.0), "1-based offset"),
             (lambda d, f, B, o=0.0: f * B // (d + o), "floor division"),

@@ -73,6 +73,12 @@ def _eight_point_diagnosis(args, got, expected) -> str:
     hint = _unnormalisation_slip(g, x1, x2, expected, T1, T2)
     if hint:
         return hint
+    swapped = epipolar.estimate_fundamental_matrix(x1[:, ::-1], x2[:, ::-1])
+    if same_up_to_scale(g, swapped, rtol=1e-4):
+        return (
+            "your F is right for the points with u and v swapped, (v, u) as in img[v, u]: each row of x1, "
+            "x2 is (u, v) = (column, row), and the equation's row is (u'u, u'v, u', v'u, v'v, v', u, v, 1)"
+        )
     raw = epipolar.estimate_fundamental_matrix(x1, x2, normalise=False, plane_tol=0)
     if same_up_to_scale(g, raw, rtol=1e-4):
         return (
@@ -100,6 +106,11 @@ def _eight_point_diagnosis(args, got, expected) -> str:
                 + ": Hartley's T first moves the centroid to the origin, then scales to mean distance "
                 "sqrt(2); without the translation A stays badly conditioned"
             )
+    if same_up_to_scale(g, _scaled_not_centred(x1, x2, centre=True), rtol=1e-3):
+        return (
+            "you centred the points but did not scale them: products like u'u are still ~1e5 next to the "
+            "1s, so A stays badly conditioned. Hartley's T also scales each image to mean distance sqrt(2)"
+        )
     err = np.median(epipolar.sampson_distance(g, x1, x2)) if np.any(g) else np.inf
     return (
         f"median Sampson error of your F on the input pairs is {err:.3g} px; check the row of the linear "
@@ -139,6 +150,14 @@ def _unnormalisation_slip(g, x1, x2, expected, T1, T2) -> str:
             "but F sits between two points, so each side takes its own T transposed: " + right,
         ),
         (T2 @ Fn @ T1, "you undid the normalisation with T2 where T2^T belongs: " + right),
+        (
+            T2.T @ Fn,
+            "you undid only image 2's normalisation (T2^T F_n): T1 goes on the right, " + right,
+        ),
+        (
+            Fn @ T1,
+            "you undid only image 1's normalisation (F_n T1): T2^T goes on the left, " + right,
+        ),
         (
             T1.T @ Fn @ T2,
             "you swapped T1 and T2 when undoing the normalisation: T1 (image 1) goes on the right, "
@@ -212,22 +231,33 @@ def _rms_normalised(x1, x2):
     return T2.T @ U @ np.diag([S[0], S[1], 0.0]) @ Vt @ T1
 
 
-def _scaled_not_centred(x1, x2, scale=None):
-    """The 8-point algorithm with the points scaled but not centred.
+def _scaled_not_centred(x1, x2, scale=None, centre=False):
+    """The 8-point algorithm with the points scaled but not centred (or, ``centre``, the reverse).
 
     ``scale`` None: each image to mean distance sqrt(2) from 0 (Hartley's scale without his
     translation); ``scale`` (su, sv): both images by diag(su, sv, 1), e.g. (1/640, 1/480), the
-    image size.
+    image size. ``centre`` True: each image's centroid moved to 0 and no scaling.
     """
     a, b = np.asarray(x1, float), np.asarray(x2, float)
     T1, T2 = (
         np.diag([s, s, 1.0]) if scale is None else np.diag([scale[0], scale[1], 1.0])
         for s in (np.sqrt(2) / np.linalg.norm(p, axis=1).mean() for p in (a, b))
     )
+    if centre:
+        T1, T2 = (
+            np.array([[1.0, 0, -p[:, 0].mean()], [0, 1, -p[:, 1].mean()], [0, 0, 1]])
+            for p in (a, b)
+        )
     ah, bh = np.c_[a, np.ones(len(a))] @ T1.T, np.c_[b, np.ones(len(b))] @ T2.T
     A = np.column_stack([bh[:, [0]] * ah, bh[:, [1]] * ah, ah])
     U, S, Vt = np.linalg.svd(np.linalg.svd(A)[2][-1].reshape(3, 3))
     return T2.T @ U @ np.diag([S[0], S[1], 0.0]) @ Vt @ T1
+
+
+def _only_t2(x1, x2):
+    """The normalised F with only image 2's normalisation undone, T2^T F_n (tests)."""
+    T1 = hartley_normalise(np.asarray(x1, float)).T
+    return epipolar.estimate_fundamental_matrix(x1, x2) @ np.linalg.inv(T1)
 
 
 def _no_rank2(x1, x2):
@@ -310,6 +340,17 @@ register_exercise(
             (_rank_after, "rank 2 after undoing"),
             (_largest_zeroed, "LARGEST singular value"),
             (_column_major, "order='F'"),
+            (
+                lambda x1, x2: epipolar.estimate_fundamental_matrix(
+                    np.asarray(x1)[:, ::-1], np.asarray(x2)[:, ::-1]
+                ),
+                "u and v swapped",
+            ),
+            (
+                lambda x1, x2: _scaled_not_centred(x1, x2, centre=True),
+                "centred the points but did not scale",
+            ),
+            (_only_t2, "only image 2's normalisation"),
         ),
         teaching=eight_point,
     )

@@ -67,6 +67,24 @@ def _centre_hint(Rs, ts, got, expected) -> str:
     return ""
 
 
+def _reflection_hint(Rs) -> str:
+    """The hint for candidates with det R = -1 (-W for W^T, or no det fix); '' if all are rotations."""
+    dets = np.linalg.det(Rs)
+    if np.any(dets < 0) and any(
+        np.allclose(-R, Rp, atol=1e-8) for R in Rs[dets < 0] for Rp in Rs[dets > 0]
+    ):
+        return (
+            "some of your R are minus another of your R (det -1): you used -W where W^T belongs. "
+            "det(-W) = -1, so U (-W) V^T is a reflection; R_b = U W^T V^T"
+        )
+    if np.any(dets < 0):
+        return (
+            "some of your R have det = -1 (reflections, not rotations): the SVD's U and V can be "
+            "reflections; flip the sign of U (or V^T) when its determinant is -1, before forming U W V^T"
+        )
+    return ""
+
+
 def _essential_diagnosis(args, got, expected) -> str:
     (E,) = args
     try:
@@ -95,12 +113,9 @@ def _essential_diagnosis(args, got, expected) -> str:
             "E fixes t only up to scale, so return t = ±u3 (the last column of U, already of length 1), "
             "not a multiple of it"
         )
-    dets = np.linalg.det(Rs)
-    if np.any(dets < 0):
-        return (
-            "some of your R have det = -1 (reflections, not rotations): the SVD's U and V can be "
-            "reflections; flip the sign of U (or V^T) when its determinant is -1, before forming U W V^T"
-        )
+    hint = _reflection_hint(Rs)
+    if hint:
+        return hint
     hint = _centre_hint(Rs, ts, got, expected)
     if hint:
         return hint
@@ -111,6 +126,13 @@ def _essential_diagnosis(args, got, expected) -> str:
         and abs(abs(t @ u3) / np.linalg.norm(t) - 1) > 1e-6
         for t in ts
     ):
+        expected_Rs = np.asarray(expected[0], dtype=float)
+        if all(any(np.allclose(R.T, Re, atol=1e-8) for Re in expected_Rs) for R in Rs):
+            return (
+                "your t is E's right null vector and your rotations are transposed: you decomposed E^T "
+                "(or swapped U and V^T). E = [t]x R = U diag(1, 1, 0) V^T: R = U W V^T or U W^T V^T, "
+                "t = ±U[:, 2]"
+            )
         return (
             "your t is the right null vector of E (last row of V^T); t is the LEFT null vector, the last "
             "column of U: t^T E = t^T [t]x R = 0"
@@ -214,6 +236,13 @@ register_exercise(
                 "unit vectors",
             ),
             (_kept_singular_values, "kept the singular values"),
+            (
+                lambda E: (lambda Rs, ts: (np.stack([Rs[0], Rs[0], -Rs[0], -Rs[0]]), ts))(
+                    *decompose_essential(E)
+                ),
+                "-W where W^T belongs",
+            ),
+            (lambda E: decompose_essential(np.asarray(E).T), "decomposed E^T"),
             (
                 lambda E: (
                     lambda Rs, ts: (

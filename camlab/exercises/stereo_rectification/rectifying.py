@@ -72,13 +72,13 @@ def rectifying_rotation(C1, C2, R1):
     return np.vstack([x, y, np.cross(x, y)])
 
 
-def _fusiello(C1, C2, z_old, sign=1.0, y_first=True, normalise=True):
+def _fusiello(C1, C2, z_old, sign=1.0, y_first=True, normalise=True, z_kept=False):
     x = sign * (np.asarray(C2, float) - np.asarray(C1, float))
     x /= np.linalg.norm(x)
     y = np.cross(z_old, x) if y_first else np.cross(x, z_old)
     if normalise:
         y /= np.linalg.norm(y)
-    return np.vstack([x, y, np.cross(x, y)])
+    return np.vstack([x, y, np.asarray(z_old, float) if z_kept else np.cross(x, y)])
 
 
 def _rectifying_diagnosis(args, got, expected) -> str:
@@ -125,8 +125,20 @@ def _rectifying_diagnosis(args, got, expected) -> str:
     if np.allclose(g[:2], expected[:2], atol=1e-8) and np.allclose(g[2], -expected[2], atol=1e-8):
         return "your z = y × x is -z: det R_new = -1, a left-handed frame. z = x × y"
     gram = g @ g.T
+    norms = np.linalg.norm(g, axis=1)
+    if np.allclose(norms, 1.0, atol=1e-6) and not np.allclose(gram, np.eye(3), atol=1e-6):
+        i, k = np.unravel_index(np.argmax(np.abs(gram - np.eye(3))), gram.shape)
+        names = "xyz"
+        return (
+            f"your rows are unit vectors but not perpendicular: {names[i]} . {names[k]} = {gram[i, k]:.3g}"
+            + (
+                ". Your z is the old viewing direction itself, which is not perpendicular to the "
+                "baseline x when the cameras converge: take z = x × y"
+                if np.allclose(g[2], R1[2], atol=1e-8)
+                else ". Build y = z_old × x (normalised) and then z = x × y, so each is perpendicular to the others"
+            )
+        )
     if not np.allclose(gram, np.eye(3), atol=1e-6):
-        norms = np.linalg.norm(g, axis=1)
         return (
             f"your rows have lengths {', '.join(f'{n:.4g}' for n in norms)} (R R^T != I): z_old × x has "
             "length sin(angle between them), not 1 when the cameras converge or the baseline is tilted; "
@@ -164,6 +176,7 @@ register_exercise(
                 "normalise y",
             ),
             (lambda C1, C2, R1: _fusiello(C1, C2, np.array([0.0, 0.0, 1.0])), "world's z axis"),
+            (lambda C1, C2, R1: _fusiello(C1, C2, np.asarray(R1)[2], z_kept=True), "z = x × y"),
             (lambda C1, C2, R1: _fusiello(C1, C2, np.asarray(R1)[1]), "camera 1's y axis"),
         ),
         teaching=rectifying_rotation,
