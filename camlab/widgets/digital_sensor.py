@@ -157,6 +157,21 @@ def pixel_pitch():
     )
 
 
+def _blocks_on_screen(image, samples: np.ndarray, k: int) -> np.ndarray:
+    """Each sample as a k x k block of fine pixels, area-averaged to the canvas pixels ``image`` covers.
+
+    Averaged here rather than by the display's resampler, the image is drawn 1:1 ("nearest"), so the
+    first draw (a saved figure) and every live frame show the same pixels.
+    """
+    import cv2
+
+    from ._transport import _pixel_box
+
+    left, right, bottom, top = _pixel_box(image)
+    blocks = np.kron(samples, np.ones((k, k), np.float32)).astype(np.float32)
+    return cv2.resize(blocks, (right - left, top - bottom), interpolation=cv2.INTER_AREA)
+
+
 def _sampling_controls() -> dict:
     """The controls of :func:`sampling_aliasing`: the pixel size, the box filter and the lens blur."""
     return {
@@ -193,7 +208,7 @@ def sampling_aliasing():
     images.show_image(
         ax_t, zp, "scene: zone plate (frequency grows with radius)", interpolation="antialiased"
     )
-    im = images.show_image(ax_s, zp, "sampled", interpolation="antialiased")
+    im = images.show_image(ax_s, zp, "sampled\n(two lines, as update writes)", interpolation="nearest")
     # A square grid samples each axis separately: the alias-free region is a square (|fx|, |fy| < 1/2 cycle per
     # coarse px), not a circle; the zone plate's local frequency is (x, y) k / pi, so the square is |x|, |y| < r.
     # short dashes with long gaps: the fold's grey ring systems, centred on the square's sides, show between them;
@@ -217,18 +232,21 @@ def sampling_aliasing():
     ax_s.set_autoscale_on(
         False
     )  # the frame stays the scene's, whatever part of it a pixel size samples
+    # the layout fixed now, before the first update: the samples are averaged to the panel's screen pixels
+    view.fig.get_layout_engine().execute(view.fig)
+    view.fig.set_layout_engine("none")
+    for ax in (ax_t, ax_s):
+        ax.apply_aspect()  # as a draw does: the image's box on the screen is final from here on
     view.animate(im, nyq, ax_s.title)
 
     def update(values, state):
         k = int(values["factor"])
         s = sensor.sample(zp, k, prefilter=values["prefilter"], blur=float(values["blur"]))
-        # Each coarse sample as a block of k x k fine pixels, the whole drawn like the scene: area-averaged to
-        # the screen. A block is then k * 0.82 screen px wide at the default size; "nearest" would draw it 1 or
-        # 2 px wide at pixel size 2 (1.65 px), alternating, which beats into a moire of the screen's own where
-        # the samples have none. Averaged, each screen pixel shows the mean of the blocks it covers.
-        im.set_data(np.kron(s, np.ones((k, k))))
         # the samples cover the whole blocks only: (384 // k) k fine px (378 at k = 7), not stretched to 384
         im.set_extent((-0.5, s.shape[1] * k - 0.5, s.shape[0] * k - 0.5, -0.5))
+        # each sample a k x k block, area-averaged to the screen as the scene is: at pixel size 2 a block is
+        # 1.65 screen px, which drawn pixel by pixel would beat into a moire of the screen's own
+        im.set_data(_blocks_on_screen(im, s, k))
         # the local frequency (pi / 768) x / pi cycles per fine px reaches 0.5 cycle per coarse px at x = 384 / k
         r = zp.shape[0] / k
         cx, cy = (zp.shape[1] - 1) / 2, (zp.shape[0] - 1) / 2
