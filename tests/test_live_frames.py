@@ -313,4 +313,6 @@ def test_sampling_demo_first_draw_equals_its_live_frame():
     live = demo.view.pixels()[..., :3].astype(int)
     assert first.shape == live.shape
     differ = int((np.abs(first - live).max(axis=2) > 20).sum())
-    assert differ < 50, f"{differ} pixels of the first draw differ from the live frame by over 20 levels"
+    assert differ < 50, (
+        f"{differ} pixels of the first draw differ from the live frame by over 20 levels"
+    )

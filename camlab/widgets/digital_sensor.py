@@ -165,9 +165,16 @@ def _blocks_on_screen(image, samples: np.ndarray, k: int) -> np.ndarray:
     """
     import cv2
 
-    from ._transport import _pixel_box
-
-    left, right, bottom, top = _pixel_box(image)
+    x0, x1, y0, y1 = (
+        image.get_extent()
+    )  # the canvas pixels the extent covers, rounded as the live path does
+    (u0, v0), (u1, v1) = image.get_transform().transform([(x0, y0), (x1, y1)])
+    left, right, bottom, top = (
+        round(min(u0, u1)),
+        round(max(u0, u1)),
+        round(min(v0, v1)),
+        round(max(v0, v1)),
+    )
     blocks = np.kron(samples, np.ones((k, k), np.float32)).astype(np.float32)
     return cv2.resize(blocks, (right - left, top - bottom), interpolation=cv2.INTER_AREA)
 
@@ -208,7 +215,9 @@ def sampling_aliasing():
     images.show_image(
         ax_t, zp, "scene: zone plate (frequency grows with radius)", interpolation="antialiased"
     )
-    im = images.show_image(ax_s, zp, "sampled\n(two lines, as update writes)", interpolation="nearest")
+    im = images.show_image(
+        ax_s, zp, "sampled\n(two lines, as update writes)", interpolation="nearest"
+    )
     # A square grid samples each axis separately: the alias-free region is a square (|fx|, |fy| < 1/2 cycle per
     # coarse px), not a circle; the zone plate's local frequency is (x, y) k / pi, so the square is |x|, |y| < r.
     # short dashes with long gaps: the fold's grey ring systems, centred on the square's sides, show between them;
@@ -335,11 +344,12 @@ def _noise_figure(view: FigureView) -> SimpleNamespace:
     )
     # the truth wide and pale beneath, the recording thin on top: both stay visible where they agree;
     # the title names them, so no legend covers the profile
-    ax_p.plot(clean[row], color=palette.GREY, lw=3.5, solid_capstyle="butt")
-    (prof,) = ax_p.plot(clean[row], color=palette.BLUE, lw=1)
+    # both in display (sRGB) values, as the image: a linear axis would squeeze the shadows' bands into its bottom
+    ax_p.plot(sensor.gamma_encode(clean[row]), color=palette.GREY, lw=3.5, solid_capstyle="butt")
+    (prof,) = ax_p.plot(sensor.gamma_encode(clean[row]), color=palette.BLUE, lw=1)
     ax_p.set_ylim(-0.05, 1.08)
     ax_p.set_xlabel("u (px)")
-    ax_p.set_ylabel("linear value (1: the photo's white)")
+    ax_p.set_ylabel("sRGB value, as shown (1: the photo's white)")
     ax_p.set_title("", fontsize=9)
     view.animate(im, prof, ax_p.title)
     return SimpleNamespace(clean=clean, im=im, prof=prof, ax_p=ax_p, row=row)
@@ -363,7 +373,7 @@ def bit_depth_and_noise():
         ``read_noise`` (electrons), the figure (the recorded photo and one row's profile against
         the truth) and ``state`` (``levels``, ``snr`` at half of white, ``rms_error`` as a
         fraction of full scale, ``electrons`` of the white, the dark uniform and the background,
-        ``dn_electrons`` the electrons per digital number).
+        ``dn_electrons`` the electrons per digital number, ``clean_row`` the profiled row's truth, linear).
     """
     controls = _noise_controls()
     view = FigureView(figsize=(9, 4))
@@ -381,7 +391,7 @@ def bit_depth_and_noise():
         dn = sensor.quantise(np.clip(noisy / expo, 0, 1), bits)  # shown with gain 1 / exposure
         shown = sensor.dequantise(dn, bits)
         im.set_data(sensor.gamma_encode(shown))
-        prof.set_ydata(shown[row])
+        prof.set_ydata(sensor.gamma_encode(shown[row]))
         signal = 0.5 * expo * full_well
         step = (
             full_well * expo / (2**bits - 1)
@@ -398,6 +408,7 @@ def bit_depth_and_noise():
             rms_error=float(np.sqrt(np.mean((shown - clean) ** 2))),
             electrons=electrons,
             dn_electrons=step,
+            clean_row=clean[row],
         )
         dn = f"{step:.{max(0, 2 - int(np.floor(np.log10(step))))}f}"  # 3 significant figures: 11.8, 0.733, 3000
         ax_p.set_title(
