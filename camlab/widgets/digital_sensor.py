@@ -375,7 +375,8 @@ def bit_depth_and_noise():
         ``read_noise`` (electrons), the figure (the recorded photo and one row's profile against
         the truth) and ``state`` (``levels``, ``snr`` at half of white, ``rms_error`` as a
         fraction of full scale, ``electrons`` of the white, the dark uniform and the background,
-        ``dn_electrons`` the electrons per digital number, ``clean_row`` the profiled row's truth, linear).
+        ``dn_electrons`` the electrons per digital number, ``clean_row`` the profiled row's truth, linear, ``snr_background`` the model's and the
+        measured SNR in the grey background, inf where every pixel there has one code).
     """
     controls = _noise_controls()
     view = FigureView(figsize=(9, 4))
@@ -399,6 +400,10 @@ def bit_depth_and_noise():
             full_well * expo / (2**bits - 1)
         )  # one DN in electrons: the gain g of section 3 at this exposure
         snr = signal / np.sqrt(signal + values["read_noise"] ** 2 + step**2 / 12)
+        # measured where the truth is flat, the grey background: mean over spread, against the model there
+        n_bg, flat = BACKGROUND * expo * full_well, shown[clean == BACKGROUND]
+        model_bg = n_bg / np.sqrt(n_bg + values["read_noise"] ** 2 + step**2 / 12)
+        measured_bg = float(flat.mean() / flat.std()) if flat.std() > 0 else np.inf
         electrons = {
             "white": expo * full_well,
             "uniform": float(clean[row, UNIFORM].mean()) * expo * full_well,
@@ -411,6 +416,7 @@ def bit_depth_and_noise():
             electrons=electrons,
             dn_electrons=step,
             clean_row=clean[row],
+            snr_background=(float(model_bg), measured_bg),
         )
         dn = f"{step:.{max(0, 2 - int(np.floor(np.log10(step))))}f}"  # 3 significant figures: 11.8, 0.733, 3000
         ax_p.set_title(
@@ -421,6 +427,8 @@ def bit_depth_and_noise():
         )
         readout.value = monospace(
             f"{2**bits} levels\nmodel SNR {snr:.1f} at half of white\n"
+            f"grey background: model SNR {model_bg:.1f}, measured "
+            f"{'-- (one code: no spread)' if np.isinf(measured_bg) else f'{measured_bg:.1f}'}\n"
             f"rms error {state['rms_error']:.3f} of full scale"
         )
 
