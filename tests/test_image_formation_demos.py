@@ -10,7 +10,7 @@ import pytest
 
 os.environ.setdefault("CAMLAB_FIGURE_MODE", "agg")
 
-from camlab import distortion, fixtures, lens, render, scenes  # noqa: E402
+from camlab import distortion, fixtures, lens, render, scenes, sensor  # noqa: E402
 from camlab.exercises import all_exercises, check  # noqa: E402
 from camlab.widgets import (  # noqa: E402
     REGISTRY,  # noqa: E402
@@ -321,13 +321,16 @@ def test_sensor_demos_show_what_they_claim():
         # the samples as blocks of factor x factor fine px, area-averaged to the screen like the scene: a block
         # 1.65 screen px wide (pixel size 2) drawn 'nearest' alternates 1 and 2 px and beats into a screen moire
         s.set(factor=factor)
+        # (the demo averages them to the screen's pixels itself and draws those 1:1, so that the first draw,
+        # a saved figure, and the live frame agree)
         assert (
-            samples.get_interpolation() == "antialiased"
+            samples.get_interpolation() == "nearest"
+            and samples.get_array().shape[0] < 384
             and s.state["samples"] == (384 // factor,) * 2
         )
         assert samples.get_extent() == [-0.5, 383.5, 383.5, -0.5]  # at the scene's scale
     s.set(factor=1)
-    assert samples.get_interpolation() == "antialiased"
+    assert samples.get_interpolation() == "nearest" and samples.get_array().shape[0] < 384
     b = digital_sensor.bit_depth_and_noise()
     ax_img, ax_p = b.figure.axes[:2]
     # the row is marked by ticks beside the image (round 5: a line over it hid the very row the profile shows)
@@ -339,6 +342,11 @@ def test_sensor_demos_show_what_they_claim():
     )
     b.set(bits=1, exposure=1.0, read_noise=40.0)
     assert ax_p.lines[1].get_ydata().max() <= 1.0 < ax_p.get_ylim()[1]
+    # the profile in display (sRGB) values, as the image: at the default 4 bits the shadows' bands show in it
+    b.set(bits=4, exposure=0.3, read_noise=5.0)
+    true, recorded = (np.asarray(line.get_ydata()) for line in ax_p.lines[:2])
+    assert np.allclose(true, sensor.gamma_encode(b.state["clean_row"]))
+    assert np.abs(recorded - true)[digital_sensor.UNIFORM].mean() > 0.03
     # lesson 03, cell "Interactive: bit depth and noise": the electrons the prose quotes, at the settings it names
     b.set(bits=4, exposure=0.3, read_noise=5.0)
     assert b.state["dn_electrons"] == pytest.approx(200)

@@ -24,11 +24,11 @@ def _side_view(fig):
     holds the same picture rotated by 180°). The rays from the centre through the plane's two edges bound
     the field of view. Finer pixels at a fixed pixel count: a smaller plane, a narrower view.
     """
-    ax = fig.add_axes((0.675, 0.07, 0.315, 0.58))
-    ax.set(xlim=(-7.5, 7.5), ylim=(-1.5, 9.5), aspect="equal")
-    ax.set_xticks([-5, 0, 5])
-    ax.set_yticks([0, 3, 6, 9])
-    ax.tick_params(labelsize=7)
+    ax = fig.add_axes((0.675, 0.07, 0.315, 0.62))
+    ax.set(xlim=(-5, 5), ylim=(-1.2, 6.6), aspect="equal")
+    ax.set_xticks([-4, -2, 0, 2, 4])
+    ax.set_yticks([0, 3, 6])
+    ax.tick_params(labelsize=8)
     ax.set_xlabel("X (mm), right →", fontsize=8)
     ax.set_ylabel("Z (mm), forward ↑", fontsize=8, labelpad=1)
     ax.set_title(
@@ -38,11 +38,12 @@ def _side_view(fig):
     ax.axvline(0, color=palette.GREY, lw=0.6, ls=":")
     ax.plot([0], [0], "o", color="k", ms=4)  # the pinhole (camera centre), at Z = 0
     ax.text(0.4, -0.3, "pinhole", fontsize=7.5, va="top")
-    (plane,) = ax.plot([], [], color=palette.BLUE, lw=2.5, solid_capstyle="butt")
+    # the plane thick and on top; the two marks just above it, so a 0.6 mm plane (2 µm pixels) still shows
+    (plane,) = ax.plot([], [], color=palette.BLUE, lw=3.5, solid_capstyle="butt", zorder=3)
     (rays,) = ax.plot([], [], color=palette.ORANGE, lw=1)
-    (centre,) = ax.plot([], [], "x", color=palette.BLUE, ms=7, mew=1.5, path_effects=palette.halo())
+    (centre,) = ax.plot([], [], "x", color=palette.BLUE, ms=6, mew=1.5, path_effects=palette.halo())
     (principal,) = ax.plot(
-        [], [], "+", color=palette.ORANGE, ms=9, mew=1.5, path_effects=palette.halo()
+        [], [], "+", color=palette.ORANGE, ms=8, mew=1.5, path_effects=palette.halo()
     )
     edge_text = dict(fontsize=7.5, va="top", color=palette.BLUE)
     left_label = ax.text(0, 2.6, "u = −½", ha="right", **edge_text)
@@ -53,10 +54,10 @@ def _side_view(fig):
         x_left, x_right = (-0.5 - cx_px) * pitch_mm, (width_px - 0.5 - cx_px) * pitch_mm
         plane.set_data([x_left, x_right], [3, 3])
         rays.set_data(
-            [0, x_left * 3, np.nan, 0, x_right * 3], [0, 9, np.nan, 0, 9]
-        )  # on to Z = 9 mm
-        centre.set_data([((width_px - 1) / 2 - cx_px) * pitch_mm], [3])
-        principal.set_data([0], [3])
+            [0, x_left * 2, np.nan, 0, x_right * 2], [0, 6, np.nan, 0, 6]
+        )  # on to Z = 6 mm
+        centre.set_data([((width_px - 1) / 2 - cx_px) * pitch_mm], [3.45])
+        principal.set_data([0], [3.45])
         left_label.set_position((x_left - 0.3, 2.6))
         right_label.set_position((x_right + 0.3, 2.6))
 
@@ -90,7 +91,8 @@ def pixel_pitch():
         scenes.checkerboard((9, 6), 0.05, t=(-0.2, -0.125, 1.2)),
         scenes.photo_plane(0.25, t=(0.34, 0.05, 1.3)),
     ]
-    im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0)
+    # drawn pixel by pixel: 320 px at about 1.35 screen px each, so no resampled grey seam at a checker edge
+    im = images.show_image(ax_img, np.zeros(SIZE[::-1]), vmax=1.0, interpolation="nearest")
     centre = ((SIZE[0] - 1) / 2, (SIZE[1] - 1) / 2)
     (mark,) = ax_img.plot(
         *centre,
@@ -157,6 +159,28 @@ def pixel_pitch():
     )
 
 
+def _blocks_on_screen(image, samples: np.ndarray, k: int) -> np.ndarray:
+    """Each sample as a k x k block of fine pixels, area-averaged to the canvas pixels ``image`` covers.
+
+    Averaged here rather than by the display's resampler, the image is drawn 1:1 ("nearest"), so the
+    first draw (a saved figure) and every live frame show the same pixels.
+    """
+    import cv2
+
+    x0, x1, y0, y1 = (
+        image.get_extent()
+    )  # the canvas pixels the extent covers, rounded as the live path does
+    (u0, v0), (u1, v1) = image.get_transform().transform([(x0, y0), (x1, y1)])
+    left, right, bottom, top = (
+        round(min(u0, u1)),
+        round(max(u0, u1)),
+        round(min(v0, v1)),
+        round(max(v0, v1)),
+    )
+    blocks = np.kron(samples, np.ones((k, k), np.float32)).astype(np.float32)
+    return cv2.resize(blocks, (right - left, top - bottom), interpolation=cv2.INTER_AREA)
+
+
 def _sampling_controls() -> dict:
     """The controls of :func:`sampling_aliasing`: the pixel size, the box filter and the lens blur."""
     return {
@@ -193,7 +217,9 @@ def sampling_aliasing():
     images.show_image(
         ax_t, zp, "scene: zone plate (frequency grows with radius)", interpolation="antialiased"
     )
-    im = images.show_image(ax_s, zp, "sampled", interpolation="antialiased")
+    im = images.show_image(
+        ax_s, zp, "sampled\n(two lines, as update writes)", interpolation="nearest"
+    )
     # A square grid samples each axis separately: the alias-free region is a square (|fx|, |fy| < 1/2 cycle per
     # coarse px), not a circle; the zone plate's local frequency is (x, y) k / pi, so the square is |x|, |y| < r.
     # short dashes with long gaps: the fold's grey ring systems, centred on the square's sides, show between them;
@@ -217,18 +243,21 @@ def sampling_aliasing():
     ax_s.set_autoscale_on(
         False
     )  # the frame stays the scene's, whatever part of it a pixel size samples
+    # the layout fixed now, before the first update: the samples are averaged to the panel's screen pixels
+    view.fig.get_layout_engine().execute(view.fig)
+    view.fig.set_layout_engine("none")
+    for ax in (ax_t, ax_s):
+        ax.apply_aspect()  # as a draw does: the image's box on the screen is final from here on
     view.animate(im, nyq, ax_s.title)
 
     def update(values, state):
         k = int(values["factor"])
         s = sensor.sample(zp, k, prefilter=values["prefilter"], blur=float(values["blur"]))
-        # Each coarse sample as a block of k x k fine pixels, the whole drawn like the scene: area-averaged to
-        # the screen. A block is then k * 0.82 screen px wide at the default size; "nearest" would draw it 1 or
-        # 2 px wide at pixel size 2 (1.65 px), alternating, which beats into a moire of the screen's own where
-        # the samples have none. Averaged, each screen pixel shows the mean of the blocks it covers.
-        im.set_data(np.kron(s, np.ones((k, k))))
         # the samples cover the whole blocks only: (384 // k) k fine px (378 at k = 7), not stretched to 384
         im.set_extent((-0.5, s.shape[1] * k - 0.5, s.shape[0] * k - 0.5, -0.5))
+        # each sample a k x k block, area-averaged to the screen as the scene is: at pixel size 2 a block is
+        # 1.65 screen px, which drawn pixel by pixel would beat into a moire of the screen's own
+        im.set_data(_blocks_on_screen(im, s, k))
         # the local frequency (pi / 768) x / pi cycles per fine px reaches 0.5 cycle per coarse px at x = 384 / k
         r = zp.shape[0] / k
         cx, cy = (zp.shape[1] - 1) / 2, (zp.shape[0] - 1) / 2
@@ -317,11 +346,12 @@ def _noise_figure(view: FigureView) -> SimpleNamespace:
     )
     # the truth wide and pale beneath, the recording thin on top: both stay visible where they agree;
     # the title names them, so no legend covers the profile
-    ax_p.plot(clean[row], color=palette.GREY, lw=3.5, solid_capstyle="butt")
-    (prof,) = ax_p.plot(clean[row], color=palette.BLUE, lw=1)
+    # both in display (sRGB) values, as the image: a linear axis would squeeze the shadows' bands into its bottom
+    ax_p.plot(sensor.gamma_encode(clean[row]), color=palette.GREY, lw=3.5, solid_capstyle="butt")
+    (prof,) = ax_p.plot(sensor.gamma_encode(clean[row]), color=palette.BLUE, lw=1)
     ax_p.set_ylim(-0.05, 1.08)
     ax_p.set_xlabel("u (px)")
-    ax_p.set_ylabel("linear value (1: the photo's white)")
+    ax_p.set_ylabel("sRGB value, as shown (1: the photo's white)")
     ax_p.set_title("", fontsize=9)
     view.animate(im, prof, ax_p.title)
     return SimpleNamespace(clean=clean, im=im, prof=prof, ax_p=ax_p, row=row)
@@ -345,7 +375,8 @@ def bit_depth_and_noise():
         ``read_noise`` (electrons), the figure (the recorded photo and one row's profile against
         the truth) and ``state`` (``levels``, ``snr`` at half of white, ``rms_error`` as a
         fraction of full scale, ``electrons`` of the white, the dark uniform and the background,
-        ``dn_electrons`` the electrons per digital number).
+        ``dn_electrons`` the electrons per digital number, ``clean_row`` the profiled row's truth, linear, ``snr_background`` the model's and the
+        measured SNR in the grey background, inf where every pixel there has one code).
     """
     controls = _noise_controls()
     view = FigureView(figsize=(9, 4))
@@ -363,12 +394,16 @@ def bit_depth_and_noise():
         dn = sensor.quantise(np.clip(noisy / expo, 0, 1), bits)  # shown with gain 1 / exposure
         shown = sensor.dequantise(dn, bits)
         im.set_data(sensor.gamma_encode(shown))
-        prof.set_ydata(shown[row])
+        prof.set_ydata(sensor.gamma_encode(shown[row]))
         signal = 0.5 * expo * full_well
         step = (
             full_well * expo / (2**bits - 1)
         )  # one DN in electrons: the gain g of section 3 at this exposure
         snr = signal / np.sqrt(signal + values["read_noise"] ** 2 + step**2 / 12)
+        # measured where the truth is flat, the grey background: mean over spread, against the model there
+        n_bg, flat = BACKGROUND * expo * full_well, shown[clean == BACKGROUND]
+        model_bg = n_bg / np.sqrt(n_bg + values["read_noise"] ** 2 + step**2 / 12)
+        measured_bg = float(flat.mean() / flat.std()) if flat.std() > 0 else np.inf
         electrons = {
             "white": expo * full_well,
             "uniform": float(clean[row, UNIFORM].mean()) * expo * full_well,
@@ -380,6 +415,8 @@ def bit_depth_and_noise():
             rms_error=float(np.sqrt(np.mean((shown - clean) ** 2))),
             electrons=electrons,
             dn_electrons=step,
+            clean_row=clean[row],
+            snr_background=(float(model_bg), measured_bg),
         )
         dn = f"{step:.{max(0, 2 - int(np.floor(np.log10(step))))}f}"  # 3 significant figures: 11.8, 0.733, 3000
         ax_p.set_title(
@@ -390,6 +427,8 @@ def bit_depth_and_noise():
         )
         readout.value = monospace(
             f"{2**bits} levels\nmodel SNR {snr:.1f} at half of white\n"
+            f"grey background: model SNR {model_bg:.1f}, measured "
+            f"{'-- (one code: no spread)' if np.isinf(measured_bg) else f'{measured_bg:.1f}'}\n"
             f"rms error {state['rms_error']:.3f} of full scale"
         )
 

@@ -136,6 +136,23 @@ _MISTAKES = (
         ),
     ),
     Mistake(
+        "W - 1/2: the brackets left out",
+        lambda s: _near(s.g[0, 2], s.W - 0.5) or _near(s.g[1, 2], s.H - 0.5),
+        lambda s: (
+            f"c_x = {s.W - 0.5} is W - 1/2: Python divides before it subtracts, so W - 1 / 2 is W - 0.5, the "
+            f"image's right edge, not its centre; write the brackets, (W - 1) / 2 = {(s.W - 1) / 2}"
+        ),
+    ),
+    Mistake(
+        "principal point left at the origin",
+        lambda s: _near(s.g[0, 2], 0) or _near(s.g[1, 2], 0),
+        (
+            "the principal point is 0, pixel (0, 0), the top-left pixel: it is where the optical axis meets "
+            "the sensor, which a datasheet takes to be the image centre, c = ((W - 1) / 2, (H - 1) / 2); "
+            "K = diag(f_x, f_y, 1) alone leaves it out"
+        ),
+    ),
+    Mistake(
         "centre by integer division",
         lambda s: (
             s.W % 2 == 0
@@ -581,6 +598,11 @@ register_exercise(
                 lambda f, s, n: _datasheet_variant(f, s, n, cx=n[0] / 2 - 1, cy=n[1] / 2 - 1),
                 "W / 2 - 1",
             ),
+            (
+                lambda f, s, n: _datasheet_variant(f, s, n, cx=n[0] - 1 / 2, cy=n[1] - 1 / 2),
+                "Python divides before it subtracts",
+            ),
+            (lambda f, s, n: _datasheet_variant(f, s, n, cx=0.0, cy=0.0), "the top-left pixel"),
             (
                 lambda f, s, n: _datasheet_variant(f, s, n, fx=f * s[0] / n[0], fy=f * s[1] / n[1]),
                 "multiplied the focal",

@@ -9,6 +9,14 @@ import numpy as np
 from ... import sensor
 from .._answers import SameArray, Tolerance, shape_problem
 from .._core import Exercise, Mistake, first_mistake, register_exercise
+from ._demosaic_slips import (
+    cross_kernel_demosaic,
+    one_based_masks_demosaic,
+    opencv_demosaic,
+    opencv_ring_demosaic,
+    tiled_masks_demosaic,
+    uncast_demosaic,
+)
 from .quantize import not_an_array
 
 
@@ -55,6 +63,12 @@ def _demosaic_exception_hint(exc, args) -> str:
         and ("broadcast" in str(exc) or "boolean index" in str(exc) or "shape" in str(exc))
     ):
         return _tile_hint(raw.shape)
+    if "CV_8U" in str(exc) and "demosaic" in str(exc).lower():
+        return (
+            "cv2.cvtColor demosaics only uint8 and uint16 mosaics, and it fills the outermost ring of pixels its "
+            "own way (the Pitfalls); this exercise asks for section 4's normalised convolution, "
+            "c = k * (m r) / (k * m) with zeros beyond the border, written in numpy on the float mosaic"
+        )
     return ""
 
 
@@ -195,11 +209,7 @@ def _demosaic_diagnosis(args, got, expected) -> str:
     if nan:
         return nan
     problem = not_an_array(got) or shape_problem(got, expected)
-    ring = (
-        not problem
-        and np.issubdtype(np.asarray(raw).dtype, np.integer)
-        and _ring_only(got, expected)
-    )
+    ring = not problem and _ring_only(raw, got, expected)
     if ring:
         return ring
     if problem:
@@ -232,22 +242,37 @@ def _demosaic_diagnosis(args, got, expected) -> str:
     return _interpolation_cause(raw, pattern, g, e)
 
 
-def _ring_only(got, expected) -> str | None:
-    """The hint for an answer right inside (to OpenCV's rounding, 0.5) but wrong on the outermost ring.
+def _ring_only(raw, got, expected) -> str | None:
+    """The hint for an answer right inside, to the rounding of OpenCV's codes, but wrong on the outermost ring.
 
-    Asked only for integer mosaics, the ones cv2.cvtColor demosaics; there 0.5 DN is its rounding.
+    cv2.cvtColor demosaics only uint8 and uint16 mosaics and rounds its result: 0.5 DN on an integer
+    mosaic. A float mosaic must first be turned into codes, so inside the answer is then off by up to
+    one 8-bit code, 1/255 of the values' range, yet not exact (an exact inside with a wrong ring is a
+    border mode, named by :func:`_interpolation_cause`).
     """
     g, e = np.asarray(got, dtype=float), np.asarray(expected)
     inner = (slice(1, -1), slice(1, -1))
-    if min(e.shape[:2]) < 3 or not np.allclose(g[inner], e[inner], rtol=0, atol=0.5 + 1e-9):
+    if min(e.shape[:2]) < 3:
         return None
-    if np.allclose(g, e, rtol=0, atol=0.5 + 1e-9):
+    integer = np.issubdtype(np.asarray(raw).dtype, np.integer)
+    scale = max(1.0, float(np.abs(e).max()))
+    off = np.abs(g[inner] - e[inner]).max() if np.isfinite(g).all() else np.inf
+    if integer and not off <= 0.5 + 1e-9:
         return None
+    if not integer and not 1e-6 * scale < off <= 1.01 * scale / 255:
+        return None
+    if np.allclose(g, e, rtol=0, atol=0.5 + 1e-9 if integer else 1.01 * scale / 255):
+        return None
+    codes = (
+        ""
+        if integer
+        else ", on uint8 or uint16 codes as it takes no floats (their rounding is the small error inside)"
+    )
     return (
-        "right inside, wrong only on the outermost ring of pixels: OpenCV's cv2.cvtColor (COLOR_Bayer...) fills "
-        "that ring its own way (the Pitfalls: up to 121 DN off on the lesson's photo). Write the normalised "
-        "convolution yourself, c = k * (m r) / (k * m) with zeros beyond the border, so the edge pixels average "
-        "only the neighbours that exist"
+        f"right inside, wrong only on the outermost ring of pixels: this is OpenCV's cv2.cvtColor "
+        f"with a COLOR_Bayer code{codes}, which fills that ring its own way (the Pitfalls: up to 121 DN off on the "
+        f"lesson's photo). Write the normalised convolution yourself, on the float mosaic, c = k * (m r) / (k * m) "
+        f"with zeros beyond the border, so the edge pixels average only the neighbours that exist"
     )
 
 
@@ -319,7 +344,7 @@ def _interpolation_cause(raw, pattern, g, e) -> str:
         ),
         (
             "wrap",
-            "mode='wrap'",
+            "mode='wrap' (or np.roll)",
             "copies samples from the opposite side of the frame, which are not this pixel's neighbours",
         ),
     ):
@@ -381,34 +406,6 @@ def _unnormalised_tent_demosaic(raw, pattern):
     return np.where(m, raw[..., None], est)
 
 
-def _uncast_demosaic(raw, pattern):
-    """Normalised convolution without converting the mosaic to float: uint8 stays uint8."""
-    from scipy.ndimage import convolve
-
-    m = sensor.bayer_masks(raw.shape, pattern)
-    k = np.array([[1, 2, 1], [2, 4, 2], [1, 2, 1]]) / 4.0
-    est = np.stack(
-        [
-            convolve(raw * m[..., c], k, mode="constant")
-            / convolve(m[..., c] * 1.0, k, mode="constant")
-            for c in range(3)
-        ],
-        axis=2,
-    )
-    return np.where(m, raw[..., None], est)
-
-
-def _tiled_masks_demosaic(raw, pattern):
-    """Masks from np.tile(block, (H // 2, W // 2)): one row or column short on an odd-sized mosaic."""
-    raw = np.asarray(raw, dtype=float)
-    H, W = raw.shape
-    blocks = [np.array([[pattern[0], pattern[1]], [pattern[2], pattern[3]]]) == c for c in "RGB"]
-    masks = np.stack([np.tile(b, (H // 2, W // 2)) for b in blocks], axis=2)
-    return np.where(
-        masks, raw[..., None], sensor.demosaic_bilinear(raw, pattern)
-    )  # crashes: (H, W, 1) vs masks
-
-
 def _one_line_green_demosaic(raw, pattern, axis=1):
     """Green at red and blue sites from its left and right neighbours only (axis 0: above and below)."""
     out = sensor.demosaic_bilinear(raw, pattern)
@@ -426,53 +423,6 @@ def _diagonal_only_demosaic(raw, pattern):
         out[..., c] = np.where(
             m[..., 1], out[..., 1], out[..., c]
         )  # a common shortcut: copy green there
-    return out
-
-
-def _fill_by_normalised_convolution(raw, m, k):
-    """Each channel's missing samples as the k-weighted mean of the channel's samples (masks m)."""
-    from scipy.ndimage import convolve
-
-    with np.errstate(invalid="ignore", divide="ignore"):
-        est = np.stack(
-            [
-                convolve(raw * m[..., c], k, mode="constant")
-                / convolve(m[..., c], k, mode="constant")
-                for c in range(3)
-            ],
-            axis=2,
-        )
-    return np.where(m == 1, raw[..., None], est)
-
-
-def _cross_kernel_demosaic(raw, pattern):
-    """Green's cross kernel used for red and blue too: 0 / 0 (NaN) at red's blue sites and blue's red ones."""
-    raw = np.asarray(raw, dtype=float)
-    m = sensor.bayer_masks(raw.shape, pattern).astype(float)
-    k = np.array([[0, 1, 0], [1, 4, 1], [0, 1, 0]]) / 4.0
-    return _fill_by_normalised_convolution(raw, m, k)
-
-
-def _one_based_masks_demosaic(raw, pattern):
-    """Masks translated from 1-based MATLAB: m[1::2, 1::2] for the first letter, m[2::2, 2::2] for the last."""
-    raw = np.asarray(raw, dtype=float)
-    m = np.zeros(raw.shape + (3,))
-    for (dy, dx), colour in zip([(1, 1), (1, 2), (2, 1), (2, 2)], pattern, strict=True):
-        m[dy::2, dx::2, "RGB".index(colour)] = 1
-    k = np.array([[1, 2, 1], [2, 4, 2], [1, 2, 1]]) / 4.0
-    return _fill_by_normalised_convolution(raw, m, k)
-
-
-def _opencv_ring_demosaic(raw, pattern):
-    """cv2.cvtColor on the integer mosaic: the right image inside, rounded, with OpenCV's own outermost ring.
-
-    The ring is imitated by copies of the next ring in; float mosaics (which cvtColor refuses) get the right image.
-    """
-    out = sensor.demosaic_bilinear(raw, pattern)
-    if not np.issubdtype(np.asarray(raw).dtype, np.integer):
-        return out
-    out = np.rint(out)
-    out[0], out[-1], out[:, 0], out[:, -1] = out[1], out[-2], out[:, 1], out[:, -2]
     return out
 
 
@@ -544,8 +494,8 @@ register_exercise(
                 lambda raw, pattern: sensor.demosaic_bilinear(raw, pattern).tolist(),
                 "you returned a list",
             ),
-            (_uncast_demosaic, "convert first: raw.astype"),
-            (_tiled_masks_demosaic, "a mask built with np.tile"),
+            (uncast_demosaic, "convert first: raw.astype"),
+            (tiled_masks_demosaic, "a mask built with np.tile"),
             (_one_line_green_demosaic, "only the green neighbours on its left and right"),
             (
                 lambda raw, pattern: _one_line_green_demosaic(raw, pattern, axis=0),
@@ -559,7 +509,7 @@ register_exercise(
                 "you returned integers",
             ),
             (_diagonal_only_demosaic, "red or blue at a green site"),
-            (_cross_kernel_demosaic, "are all green"),
+            (cross_kernel_demosaic, "are all green"),
             (_unnormalised_tent_demosaic, "twice the mean"),
             (_reflect_border_demosaic, "mode='reflect', scipy.ndimage.convolve's default"),
             (
@@ -579,8 +529,13 @@ register_exercise(
                 "transposed",
             ),
             (lambda raw, pattern: _padded_demosaic(raw, pattern, "mirror"), "counted twice"),
-            (_one_based_masks_demosaic, "NaN only on row 0 and column 0"),
-            (_opencv_ring_demosaic, "outermost ring"),
+            (one_based_masks_demosaic, "NaN only on row 0 and column 0"),
+            (opencv_ring_demosaic, "outermost ring"),
+            (opencv_demosaic, "on uint8 or uint16 codes as it takes no floats"),
+            (
+                lambda raw, pattern: opencv_demosaic(raw, pattern, via_codes=False),
+                "cv2.cvtColor demosaics only uint8 and uint16",
+            ),
             (lambda raw, pattern: _padded_demosaic(raw, pattern, "nearest"), "or mode='nearest'"),
         ),
         teaching=demosaic_bilinear,
