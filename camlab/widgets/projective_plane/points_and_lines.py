@@ -9,6 +9,7 @@ import numpy as np
 
 from ... import fixtures
 from ... import projective as pj
+from ...camera import rotation_z
 from ..._validate import DegenerateError
 from ...plotting import palette
 from ...plotting.plane import arrow_marker, arrow_to_infinity, image_axes, plane_axes, set_line
@@ -380,6 +381,26 @@ def point_line_duality() -> Demo:
     )
 
 
+def _rolled_view(pitch: float, yaw: float, roll: float, focal: float, size) -> SimpleNamespace:
+    """:func:`camlab.fixtures.ground_plane_view`, then the camera rolled by ``roll`` degrees.
+
+    Rolling turns the camera about its own centre (about its optical axis), so the whole image
+    moves by the homography :math:`M = K R_z K^{-1}`: points (segments, vanishing points) by
+    :math:`M`, the horizon by :math:`M^{-T}`. Positive ``roll`` turns the image clockwise on the
+    screen (x right, v down), so the horizon falls to the right.
+    """
+    g = fixtures.ground_plane_view(np.radians(pitch), np.radians(yaw), focal, size)
+    M = g.K @ rotation_z(np.radians(roll)) @ np.linalg.inv(g.K)
+    segments = pj.map_points(M, g.segments.reshape(-1, 2)).reshape(-1, 2, 2)
+    return SimpleNamespace(
+        segments=segments,
+        n_along_z=g.n_along_z,
+        vp_z=M @ g.vp_z,
+        vp_x=M @ g.vp_x,
+        horizon=np.linalg.inv(M).T @ g.horizon,
+    )
+
+
 def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespace:
     """The figure of :func:`vanishing_points`.
 
@@ -450,7 +471,12 @@ def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespac
 
 @register(
     lesson="06",
-    sweep={"pitch": [5.0, 15.0, 30.0, 40.0], "yaw": [0.0, 20.0, -35.0], "focal": [400.0, 800.0]},
+    sweep={
+        "pitch": [5.0, 15.0, 30.0, 40.0],
+        "yaw": [0.0, 20.0, -35.0],
+        "roll": [12.0, -12.0],
+        "focal": [400.0, 800.0],
+    },
 )
 def vanishing_points() -> Demo:
     """A tilted camera looks at a ground grid; parallel rails meet at vanishing points on the horizon.
@@ -458,7 +484,7 @@ def vanishing_points() -> Demo:
     Returns
     -------
     Demo
-        The demo: controls ``pitch`` and ``yaw`` (the camera's, degrees) and ``focal`` (px),
+        The demo: controls ``pitch``, ``yaw`` and ``roll`` (the camera's, degrees) and ``focal`` (px),
         the figure (the image of the ground grid with the horizon and the two vanishing points,
         arrows when off the image) and ``state`` (``vp_z``, ``vp_x`` estimated from the drawn
         lines, ``horizon``, their camera truths ``vp_z_true``, ``vp_x_true``,
@@ -474,9 +500,7 @@ def vanishing_points() -> Demo:
     view.animate(grid_z, grid_x, horizon_artist, vz_dot, vx_dot, note)
 
     def update(v: dict, state: dict) -> None:
-        g = fixtures.ground_plane_view(
-            np.radians(v["pitch"]), np.radians(v["yaw"]), v["focal"], size
-        )
+        g = _rolled_view(v["pitch"], v["yaw"], v["roll"], v["focal"], size)
         segs = g.segments
         n = g.n_along_z
         grid_z.set_segments(segs[:n])
@@ -531,7 +555,8 @@ def vanishing_points() -> Demo:
 
     controls = {
         "pitch": slider(12.0, 0.0, 40.0, 0.5, "pitch down (°)"),
-        "yaw": slider(15.0, -45.0, 45.0, 0.5, "yaw (°)"),
+        "yaw": slider(15.0, -45.0, 45.0, 0.5, "yaw (°, + moves v_z left)"),
+        "roll": slider(0.0, -20.0, 20.0, 0.5, "roll (°, + clockwise)"),
         "focal": slider(600.0, 300.0, 1200.0, 10.0, "focal length (px)"),
     }
     return build_demo(
