@@ -97,7 +97,23 @@ def _parallel(lines) -> bool:
     return abs(a1 * b2 - a2 * b1) <= 1e-12 * (np.hypot(a1, b1) * np.hypot(a2, b2))
 
 
-def _homogeneous_point_diagnosis(got, expected, lines, how: str) -> str:
+def homogeneous_point_diagnosis(got, expected, lines, how: str) -> str:
+    """The likely cause when a student's homogeneous point (exercises 2 and 3) is wrong.
+
+    Parameters
+    ----------
+    got, expected : array_like
+        The student's answer and the right point (x, y, w).
+    lines : sequence of (3,) array_like
+        The two lines the point must lie on.
+    how : str
+        The sentence that says how to get the point right, ending the generic hint.
+
+    Returns
+    -------
+    str
+        The hint: a named slip, or how far (in pixels) the point misses each line, then ``how``.
+    """
     if np.ndim(got) == 0 and got is not None and not isinstance(got, (str, bytes)):
         return (
             "you returned one number: np.cross of two 2-vectors gives only the z of their 3-D cross "
@@ -135,8 +151,21 @@ def _homogeneous_point_diagnosis(got, expected, lines, how: str) -> str:
     return "the point is on both lines but differs from the expected one; check the inputs you used"
 
 
-def _solve_hint(exc: Exception, lines) -> str:
-    """The likely cause when a student's Euclidean solve fails on two lines, or ''."""
+def solve_hint(exc: Exception, lines) -> str:
+    """The likely cause when a student's Euclidean solve fails on two lines, or ''.
+
+    Parameters
+    ----------
+    exc : Exception
+        What the student's function raised.
+    lines : sequence of (3,) array_like
+        The two test lines.
+
+    Returns
+    -------
+    str
+        The hint for a solve on parallel lines, else ''.
+    """
     if isinstance(
         exc, (np.linalg.LinAlgError, ZeroDivisionError, FloatingPointError)
     ) and _parallel(lines):
@@ -185,7 +214,7 @@ register_exercise(
         reference=projective.meet,
         cases=_intersect_cases,
         compare=same_up_to_scale,
-        diagnose=lambda args, got, expected: _homogeneous_point_diagnosis(
+        diagnose=lambda args, got, expected: homogeneous_point_diagnosis(
             got, expected, args, "The point on two lines is their cross product l1 x l2."
         ),
         wrong_variants=(
@@ -202,7 +231,7 @@ register_exercise(
                 "parallel lines",
             ),
         ),
-        exception_hint=_solve_hint,
+        exception_hint=solve_hint,
         teaching=intersect_lines,
     )
 )
@@ -223,7 +252,8 @@ def _line_through(p, q) -> np.ndarray:
     )
 
 
-_SHIFTS = tuple(
+#: (shift (du, dv) in px, its likely cause): the pixel-offset slips exercises 1 and 3 name
+PIXEL_SHIFTS = tuple(
     (np.array(d), why)
     for d, why in (
         ((0.5, 0.5), "a half-pixel offset"),
@@ -268,7 +298,7 @@ def _line_slips(p, q):
             "your line passes through (x, 479 - y) of each point: the image flipped upside down (y up "
             "instead of the image's v down). Lift (u, v) as it is, to (u, v, 1)",
         ),
-        *((_line_through(p + d, q + d), shifted.format(*d, why)) for d, why in _SHIFTS),
+        *((_line_through(p + d, q + d), shifted.format(*d, why)) for d, why in PIXEL_SHIFTS),
     ]
 
 

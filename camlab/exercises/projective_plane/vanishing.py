@@ -7,7 +7,7 @@ import numpy as np
 from ... import projective
 from .._answers import same_up_to_scale
 from .._core import Exercise, register_exercise
-from .lines import _SHIFTS, _homogeneous_point_diagnosis, _solve_hint, silenced
+from .lines import PIXEL_SHIFTS, homogeneous_point_diagnosis, silenced, solve_hint
 
 
 def _vanishing_cases():
@@ -95,7 +95,7 @@ def _vanishing_diagnosis(args, got, expected) -> str:
         for moved, why in (
             *(
                 (seg + d, f"shifted by ({d[0]:+g}, {d[1]:+g}) px in (u, v): {w}")
-                for d, w in _SHIFTS
+                for d, w in PIXEL_SHIFTS
             ),
             (seg * [1.0, -1.0], "with v negated: a y flip (y up instead of the image's v down)"),
             (seg * [-1.0, 1.0] + [639.0, 0.0], "flipped left to right, u -> 639 - u"),
@@ -112,7 +112,7 @@ def _vanishing_diagnosis(args, got, expected) -> str:
                     "(u, v) lifts to (u, v, 1)."
                 )
     lines = [projective.join(s[0], s[1]) for s in segments]
-    return _homogeneous_point_diagnosis(
+    return homogeneous_point_diagnosis(
         got,
         expected,
         lines,
@@ -139,7 +139,7 @@ def _vanishing_exception_hint(exc: Exception, args) -> str:
             "fails. Lift each endpoint to (u, v, 1) before joining: np.cross(np.append(a, 1.0), "
             "np.append(b, 1.0))"
         )
-    return _solve_hint(exc, lines)
+    return solve_hint(exc, lines)
 
 
 def vanishing_point(segments):

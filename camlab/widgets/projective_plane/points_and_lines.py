@@ -9,8 +9,8 @@ import numpy as np
 
 from ... import fixtures
 from ... import projective as pj
-from ...camera import rotation_z
 from ..._validate import DegenerateError
+from ...camera import rotation_z
 from ...plotting import palette
 from ...plotting.plane import arrow_marker, arrow_to_infinity, image_axes, plane_axes, set_line
 from .._base import Demo, FigureView, build_demo, register, slider
@@ -381,6 +381,14 @@ def point_line_duality() -> Demo:
     )
 
 
+_VANISHING_SWEEP = {
+    "pitch": [5.0, 15.0, 30.0, 40.0],
+    "yaw": [0.0, 20.0, -35.0],
+    "roll": [12.0, -12.0],
+    "focal": [400.0, 800.0],
+}
+
+
 def _rolled_view(pitch: float, yaw: float, roll: float, focal: float, size) -> SimpleNamespace:
     """:func:`camlab.fixtures.ground_plane_view`, then the camera rolled by ``roll`` degrees.
 
@@ -471,12 +479,7 @@ def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespac
 
 @register(
     lesson="06",
-    sweep={
-        "pitch": [5.0, 15.0, 30.0, 40.0],
-        "yaw": [0.0, 20.0, -35.0],
-        "roll": [12.0, -12.0],
-        "focal": [400.0, 800.0],
-    },
+    sweep=_VANISHING_SWEEP,
 )
 def vanishing_points() -> Demo:
     """A tilted camera looks at a ground grid; parallel rails meet at vanishing points on the horizon.
