@@ -21,8 +21,8 @@ def _conic_figure(view: FigureView) -> SimpleNamespace:
     """
     axes = view.fig.subplot_mosaic([["before", "after"], ["text", "text"]], height_ratios=[1, 0.13])
     ax_b, ax_a, ax_t = axes["before"], axes["after"], axes["text"]
-    plane_axes(ax_b, 2.0, "before: a circle C and 4 tangents")
-    plane_axes(ax_a, 3.0, "after H: C' = H^-T C H^-1")
+    plane_axes(ax_b, 3.0, "before: a circle C and 4 tangents")
+    plane_axes(ax_a, 3.0, "after H: C' = H^-T C H^-1 (same scale)")
     ax_t.set_axis_off()
     t = np.linspace(0, 2 * np.pi, 9)[:-1]
     samples = np.stack([np.cos(t), np.sin(t)], axis=1)  # 8 points on the unit circle
