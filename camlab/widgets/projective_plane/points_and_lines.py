@@ -45,7 +45,7 @@ def _lift_figure(view: FigureView) -> SimpleNamespace:
         lw=0.3,
     )
     ax3.text(
-        -box, -box, 1.2, "w = 1", color=palette.TAB_BLUE, ha="right"
+        -box, -box, 1.25, "w = 1", color=palette.TAB_BLUE, ha="left"
     )  # the left corner, off the ray's path
     ax3.scatter([0], [0], [0], color="k", s=15)
     (ray,) = ax3.plot(
