@@ -362,12 +362,14 @@ def _expected_shown(exercise: Exercise, got: Any, expected: Any) -> tuple[Any, s
     """The expected answer as a failed check shows it, and a note on its scale.
 
     A scale-free answer is shown at the student's scale when theirs points nearly the same way,
-    else at unit length: stretching it to a far-off answer's scale would only confuse.
+    else at unit length: stretching it to a far-off answer's scale would only confuse, and a
+    rescaled vector whose entries all fall below 1e-3 would print as zeros (the line at infinity).
     """
     if exercise.compare is not same_up_to_scale:
         return expected, ""
-    if rescaled_to(got, expected) is not None:  # compare after fixing the free scale
-        return rescaled_to(got, expected), "  (rescaled to your answer's scale)"
+    shown = rescaled_to(got, expected)  # compare after fixing the free scale
+    if shown is not None and np.abs(shown).max() >= 1e-3:  # else it would print as 0.0000
+        return shown, "  (rescaled to your answer's scale)"
     e = np.asarray(expected, dtype=float)
     if np.any(e) and np.isfinite(e).all():
         return e / np.linalg.norm(e), "  (unit length; any non-zero scale is accepted)"
