@@ -358,17 +358,23 @@ def _run_student(
     return got
 
 
+def _hidden_by_rounding(vector: np.ndarray) -> bool:
+    """True when an entry that is not zero (above 1e-9 of the largest) prints as 0.0000."""
+    v = np.abs(np.asarray(vector, dtype=float))
+    return bool(np.any((v > 1e-9 * v.max()) & (np.round(v, 4) == 0)))
+
+
 def _expected_shown(exercise: Exercise, got: Any, expected: Any) -> tuple[Any, str]:
     """The expected answer as a failed check shows it, and a note on its scale.
 
     A scale-free answer is shown at the student's scale when theirs points nearly the same way,
-    else at unit length: stretching it to a far-off answer's scale would only confuse, and a
-    rescaled vector whose entries all fall below 1e-3 would print as zeros (the line at infinity).
+    else at unit length: stretching it to a far-off answer's scale would only confuse, and so
+    would a rescaled vector whose small entries print as 0.0000 (a horizon read as l_inf).
     """
     if exercise.compare is not same_up_to_scale:
         return expected, ""
     shown = rescaled_to(got, expected)  # compare after fixing the free scale
-    if shown is not None and np.abs(shown).max() >= 1e-3:  # else it would print as 0.0000
+    if shown is not None and not _hidden_by_rounding(shown):
         return shown, "  (rescaled to your answer's scale)"
     e = np.asarray(expected, dtype=float)
     if np.any(e) and np.isfinite(e).all():
