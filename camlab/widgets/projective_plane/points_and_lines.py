@@ -178,7 +178,7 @@ def _parallel_figure(view: FigureView) -> SimpleNamespace:
         xlim=(0, 60),
         xlabel="angle of l2 (degrees)",
         ylabel="|w| of the unit meet point",
-        title="w → 0: the meet point leaves the plane",
+        title="w → 0: the meet point runs to infinity",
         ylim=(0, 1.02),
     )
     axw.grid(True, color="0.93")
