@@ -178,7 +178,9 @@ def _fmt(value: Any) -> str:
             text = "[" + ", ".join(item.strip() for item in text[1:-1].split(",")) + "]"
         return text
     if isinstance(value, np.generic):
-        return repr(value.item())  # 2.5, not np.float64(2.5)
+        value = value.item()  # 2.5, not np.float64(2.5)
+    if isinstance(value, float) and np.isfinite(value):
+        return repr(float(f"{value:.12g}"))  # 35.3, not 35.300000000000004
     if isinstance(value, (tuple, list)):
         inner = ", ".join(_fmt(v) for v in value)
         return (

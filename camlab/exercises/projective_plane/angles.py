@@ -142,6 +142,12 @@ _ANGLE_MISTAKES = (
         "np.degrees(np.arccos(|cos|)) itself.",
     ),
     Mistake(
+        "rounded",
+        lambda a: float(round(a.right)) if abs(round(a.right) - a.right) > 1e-6 else None,
+        "you rounded the angle to whole degrees; return it as computed (the check's angles are 35.3, "
+        "72.4, 19.4 and 90 deg, so a rounded answer is off by up to 0.6 deg).",
+    ),
+    Mistake(
         "the complement",
         lambda a: 90.0 - a.right,
         "you returned 90 - theta: np.arcsin where np.arccos belongs (or the angle between a line and "
@@ -254,6 +260,7 @@ register_exercise(
             (lambda l1, l2, C: _angle_deg(l1, l2, np.linalg.pinv(C)), "pseudo-)inverse"),
             (lambda l1, l2, C: [_angle_deg(l1, l2, C)], "one number"),
             (lambda l1, l2, C: 180.0 - _angle_deg(l1, l2, C), "cosine is positive here"),
+            (lambda l1, l2, C: float(round(_angle_deg(l1, l2, C))), "rounded the angle"),
         ),
         teaching=angle_between_lines,
     )
