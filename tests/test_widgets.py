@@ -245,6 +245,10 @@ def test_vanishing_points_demo_agrees_with_camera_truth():
         assert min(np.linalg.norm(h - t), np.linalg.norm(h + t)) < 1e-8
     demo.set(yaw=0.0)  # lines across the view are parallel in the image: ideal vanishing point
     assert abs(demo.state["vp_x"][2]) < 1e-9
+    demo.set(yaw=15.0, roll=12.0)  # rolled: the horizon tilts by the roll, falling to the right
+    h = demo.state["horizon"]
+    assert np.degrees(np.arctan(-h[0] / h[1])) == pytest.approx(12.0, abs=1e-6)
+    np.testing.assert_allclose(demo.state["vp_z"], demo.state["vp_z_true"], rtol=1e-8, atol=1e-8)
 
 
 def test_cross_ratio_demo_invariance():

@@ -178,7 +178,9 @@ def _fmt(value: Any) -> str:
             text = "[" + ", ".join(item.strip() for item in text[1:-1].split(",")) + "]"
         return text
     if isinstance(value, np.generic):
-        return repr(value.item())  # 2.5, not np.float64(2.5)
+        value = value.item()  # 2.5, not np.float64(2.5)
+    if isinstance(value, float) and np.isfinite(value):
+        return repr(float(f"{value:.12g}"))  # 35.3, not 35.300000000000004
     if isinstance(value, (tuple, list)):
         inner = ", ".join(_fmt(v) for v in value)
         return (
@@ -358,16 +360,24 @@ def _run_student(
     return got
 
 
+def _hidden_by_rounding(vector: np.ndarray) -> bool:
+    """True when an entry that is not zero (above 1e-9 of the largest) prints as 0.0000."""
+    v = np.abs(np.asarray(vector, dtype=float))
+    return bool(np.any((v > 1e-9 * v.max()) & (np.round(v, 4) == 0)))
+
+
 def _expected_shown(exercise: Exercise, got: Any, expected: Any) -> tuple[Any, str]:
     """The expected answer as a failed check shows it, and a note on its scale.
 
     A scale-free answer is shown at the student's scale when theirs points nearly the same way,
-    else at unit length: stretching it to a far-off answer's scale would only confuse.
+    else at unit length: stretching it to a far-off answer's scale would only confuse, and so
+    would a rescaled vector whose small entries print as 0.0000 (a horizon read as l_inf).
     """
     if exercise.compare is not same_up_to_scale:
         return expected, ""
-    if rescaled_to(got, expected) is not None:  # compare after fixing the free scale
-        return rescaled_to(got, expected), "  (rescaled to your answer's scale)"
+    shown = rescaled_to(got, expected)  # compare after fixing the free scale
+    if shown is not None and not _hidden_by_rounding(shown):
+        return shown, "  (rescaled to your answer's scale)"
     e = np.asarray(expected, dtype=float)
     if np.any(e) and np.isfinite(e).all():
         return e / np.linalg.norm(e), "  (unit length; any non-zero scale is accepted)"

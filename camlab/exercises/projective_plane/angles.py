@@ -135,6 +135,19 @@ _ANGLE_MISTAKES = (
         "cosine, so the angle is between 0 and 90 degrees.",
     ),
     Mistake(
+        "always 180 - theta",
+        lambda a: 180.0 - a.right if a.right < 90.0 - 1e-6 else None,
+        "you returned 180 - theta, the obtuse angle, although the cosine is positive here: lines have no "
+        "direction, so the angle between two lines is the acute one, between 0 and 90 degrees. Return "
+        "np.degrees(np.arccos(|cos|)) itself.",
+    ),
+    Mistake(
+        "rounded",
+        lambda a: float(round(a.right)) if abs(round(a.right) - a.right) > 1e-6 else None,
+        "you rounded the angle to whole degrees; return it as computed (the check's angles are 35.3, "
+        "72.4, 19.4 and 90 deg, so a rounded answer is off by up to 0.6 deg).",
+    ),
+    Mistake(
         "the complement",
         lambda a: 90.0 - a.right,
         "you returned 90 - theta: np.arcsin where np.arccos belongs (or the angle between a line and "
@@ -174,7 +187,8 @@ def _angle_diagnosis(args, got, expected) -> str:
         if slip is not None and np.isfinite(slip) and np.isclose(float(got), slip, atol=1e-6):
             return mistake.hint
     return (
-        f"the world lines meet at {expected:.2f} deg here, not {float(got):.4g}. In the photo, angles "
+        f"the world lines meet at {expected:.2f} deg here, not {float(got):.4g} (rounding fails too: the check "
+        "uses 35.3, 72.4, 19.4 and 90 deg). In the photo, angles "
         "are measured through C_star, the image of C*inf: " + _FORMULA + "."
     )
 
@@ -245,6 +259,8 @@ register_exercise(
             ),
             (lambda l1, l2, C: _angle_deg(l1, l2, np.linalg.pinv(C)), "pseudo-)inverse"),
             (lambda l1, l2, C: [_angle_deg(l1, l2, C)], "one number"),
+            (lambda l1, l2, C: 180.0 - _angle_deg(l1, l2, C), "cosine is positive here"),
+            (lambda l1, l2, C: float(round(_angle_deg(l1, l2, C))), "rounded the angle"),
         ),
         teaching=angle_between_lines,
     )

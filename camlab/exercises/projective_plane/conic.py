@@ -77,6 +77,13 @@ _CONIC_MISTAKES = (
         "you inverted the whole product, inv(H.T @ C @ H) = inv(H) @ inv(C) @ inv(H).T: that is the dual "
         "conic's rule applied to C's inverse, not C moved. Invert H only, not C: " + _CONIC_RULE,
     ),
+    Mistake(
+        "the moved dual conic",
+        lambda a: a.H @ np.linalg.inv(a.C) @ a.H.T,
+        "you returned the moved *dual* conic C*' = H C* H^T (C* = inv(C) or adj C): its tangent lines "
+        "touch the image, but the question asks for the point conic C', on which the moved points lie: "
+        + _CONIC_RULE,
+    ),
     Mistake("C unchanged", lambda a: a.C, "you returned C unchanged; apply H: " + _CONIC_RULE),
 )
 
@@ -154,6 +161,7 @@ register_exercise(
                         "how a line moves",
                         "entry by entry",
                         "inverted the whole product",
+                        "*dual* conic C*'",
                         "unchanged",
                     ),
                     strict=True,

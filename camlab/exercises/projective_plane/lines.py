@@ -27,6 +27,27 @@ def incidence(point: np.ndarray, line: np.ndarray) -> float:
     return float(abs(line @ x) / norms) if norms > 0 else np.inf
 
 
+def miss_px(point, line) -> str:
+    """The distance of a homogeneous point from a line, in pixels, as text (for a hint).
+
+    Parameters
+    ----------
+    point, line : (3,) array_like
+        A homogeneous point and a line, any non-zero scales.
+
+    Returns
+    -------
+    str
+        ``"0.42 px"``, or the normalised incidence when the point is ideal (w = 0) or the line is
+        the line at infinity, where no distance in pixels exists.
+    """
+    x, ln = np.asarray(point, dtype=float), np.asarray(line, dtype=float)
+    scale = abs(x[2]) * np.hypot(ln[0], ln[1])
+    if scale > 1e-12 * np.linalg.norm(x) * np.linalg.norm(ln):
+        return f"{abs(ln @ x) / scale:.3g} px"
+    return f"normalised |l . x| = {incidence(x, ln):.3g}"
+
+
 def silenced(f):
     """``f`` with numpy's divide warnings silenced (a wrong variant that divides by 0 on purpose).
 
@@ -76,7 +97,28 @@ def _parallel(lines) -> bool:
     return abs(a1 * b2 - a2 * b1) <= 1e-12 * (np.hypot(a1, b1) * np.hypot(a2, b2))
 
 
-def _homogeneous_point_diagnosis(got, expected, lines, how: str) -> str:
+def homogeneous_point_diagnosis(got, expected, lines, how: str) -> str:
+    """The likely cause when a student's homogeneous point (exercises 2 and 3) is wrong.
+
+    Parameters
+    ----------
+    got, expected : array_like
+        The student's answer and the right point (x, y, w).
+    lines : sequence of (3,) array_like
+        The two lines the point must lie on.
+    how : str
+        The sentence that says how to get the point right, ending the generic hint.
+
+    Returns
+    -------
+    str
+        The hint: a named slip, or how far (in pixels) the point misses each line, then ``how``.
+    """
+    if np.ndim(got) == 0 and got is not None and not isinstance(got, (str, bytes)):
+        return (
+            "you returned one number: np.cross of two 2-vectors gives only the z of their 3-D cross "
+            "product. Cross the whole 3-vectors: np.cross(l1, l2)"
+        )
     problem = shape_problem(got, expected)
     if problem and np.shape(got) == (2,):
         return (
@@ -88,22 +130,42 @@ def _homogeneous_point_diagnosis(got, expected, lines, how: str) -> str:
     if problem:
         return problem
     g = np.asarray(got, dtype=float)
+    if not np.any(g):
+        return (
+            "you returned (0, 0, 0), which is no point: did you lift with w = 0, or cross a vector with "
+            "itself? Lift each pixel to (u, v, 1), join, then meet."
+        )
+    if same_up_to_scale(g, np.asarray(expected, dtype=float) * [-1, -1, 1]):
+        return (
+            "your point is (-x, -y) of the right one: a sign slip, such as solving A (x, y) = c instead of "
+            "-c, or (x, y, -w). Keep the cross product l1 x l2 as it is."
+        )
     if same_up_to_scale(g, np.asarray(expected, dtype=float)[[1, 0, 2]]):
         return (
             "you swapped x and y: your point is (y, x, w) of the right one. Keep the cross product's "
             "entries in their order (x, y, w)."
         )
-    off = [incidence(got, ln) for ln in lines]
-    if max(off) > 1e-6:
-        return (
-            f"your point is not on both lines (normalised |l . x| = {off[0]:.3g} and {off[1]:.3g}). "
-            f"{how}"
-        )
+    if max(incidence(got, ln) for ln in lines) > 1e-6:
+        off = [miss_px(g, ln) for ln in lines]
+        return f"your point is not on both lines (it misses them by {off[0]} and {off[1]}). {how}"
     return "the point is on both lines but differs from the expected one; check the inputs you used"
 
 
-def _solve_hint(exc: Exception, lines) -> str:
-    """The likely cause when a student's Euclidean solve fails on two lines, or ''."""
+def solve_hint(exc: Exception, lines) -> str:
+    """The likely cause when a student's Euclidean solve fails on two lines, or ''.
+
+    Parameters
+    ----------
+    exc : Exception
+        What the student's function raised.
+    lines : sequence of (3,) array_like
+        The two test lines.
+
+    Returns
+    -------
+    str
+        The hint for a solve on parallel lines, else ''.
+    """
     if isinstance(
         exc, (np.linalg.LinAlgError, ZeroDivisionError, FloatingPointError)
     ) and _parallel(lines):
@@ -152,12 +214,14 @@ register_exercise(
         reference=projective.meet,
         cases=_intersect_cases,
         compare=same_up_to_scale,
-        diagnose=lambda args, got, expected: _homogeneous_point_diagnosis(
+        diagnose=lambda args, got, expected: homogeneous_point_diagnosis(
             got, expected, args, "The point on two lines is their cross product l1 x l2."
         ),
         wrong_variants=(
             (lambda l1, l2: (np.cross(l1, l2) / np.cross(l1, l2)[2])[:2], "homogeneous 3-vector"),
             (lambda l1, l2: l1 + l2, "not on both lines"),
+            (lambda l1, l2: np.cross(l1, l2) * [-1, -1, 1], "(-x, -y)"),
+            (lambda l1, l2: np.array(l1[0] * l2[1] - l1[1] * l2[0]), "np.cross of two 2-vectors"),
             (lambda l1, l2: np.cross(l1, l2)[[1, 0, 2]], "swapped x and y"),
             (silenced(lambda l1, l2: np.cross(l1, l2) / np.cross(l1, l2)[2]), "lines are parallel"),
             (
@@ -167,7 +231,7 @@ register_exercise(
                 "parallel lines",
             ),
         ),
-        exception_hint=_solve_hint,
+        exception_hint=solve_hint,
         teaching=intersect_lines,
     )
 )
@@ -188,11 +252,28 @@ def _line_through(p, q) -> np.ndarray:
     )
 
 
+#: (shift (du, dv) in px, its likely cause): the pixel-offset slips exercises 1 and 3 name
+PIXEL_SHIFTS = tuple(
+    (np.array(d), why)
+    for d, why in (
+        ((0.5, 0.5), "a half-pixel offset"),
+        ((-0.5, -0.5), "a half-pixel offset"),
+        ((0.5, 0.0), "a half-pixel offset on one axis"),
+        ((0.0, 0.5), "a half-pixel offset on one axis"),
+        ((-0.5, 0.0), "a half-pixel offset on one axis"),
+        ((0.0, -0.5), "a half-pixel offset on one axis"),
+        ((1.0, 1.0), "1-based pixels?"),
+        ((-1.0, -1.0), "an off-by-one?"),
+    )
+)
+
+
 def _line_slips(p, q):
     """(the line a slip gives, its hint) for the slips a student makes on the points p, q."""
     right = _line_through(p, q)
     shifted = (
-        "your line passes through both points shifted by {:+g} px in x and y ({}). Use the pixels as given: "
+        "your line passes through both points shifted by ({:+g}, {:+g}) px in (x, y) ({}). Use the pixels as "
+        "given: "
         "(u, v) lifts to (u, v, 1) with no offset"
     )
     return [
@@ -212,15 +293,12 @@ def _line_slips(p, q):
             "your line passes through (x, -y) of each point: a y flip "
             "(y up instead of the image's v down). Lift (u, v) as it is, to (u, v, 1)",
         ),
-        *(
-            (_line_through(p + d, q + d), shifted.format(d, why))
-            for d, why in (
-                (0.5, "a half-pixel offset"),
-                (-0.5, "a half-pixel offset"),
-                (1.0, "1-based pixels?"),
-                (-1.0, "an off-by-one?"),
-            )
+        (
+            _line_through(p * [1, -1] + [0, 479], q * [1, -1] + [0, 479]),
+            "your line passes through (x, 479 - y) of each point: the image flipped upside down (y up "
+            "instead of the image's v down). Lift (u, v) as it is, to (u, v, 1)",
         ),
+        *((_line_through(p + d, q + d), shifted.format(*d, why)) for d, why in PIXEL_SHIFTS),
     ]
 
 
@@ -267,10 +345,9 @@ def _line_diagnosis(args, got, expected) -> str:
     for line, hint in _line_slips(p, q):
         if same_up_to_scale(g, line):
             return hint
-    off = [incidence(np.append(x, 1.0), g) for x in (p, q)]
+    off = [miss_px(np.append(x, 1.0), g) for x in (p, q)]
     return (
-        f"your line does not pass through both points (normalised |l . p| = {off[0]:.3g}, "
-        f"|l . q| = {off[1]:.3g}). The line through them is the cross product of the lifted points, "
+        f"your line does not pass through both points (it misses p by {off[0]} and q by {off[1]}). The line through them is the cross product of the lifted points, "
         "(x1, y1, 1) x (x2, y2, 1)."
     )
 
@@ -310,6 +387,8 @@ register_exercise(
             (lambda p, q: np.append(q - p, 0.0), "direction q - p"),
             (lambda p, q: _line_through(p + 0.5, q + 0.5), "half-pixel"),
             (lambda p, q: _line_through(p * [1, -1], q * [1, -1]), "y flip"),
+            (lambda p, q: _line_through(p + [0.5, 0.0], q + [0.5, 0.0]), "on one axis"),
+            (lambda p, q: _line_through(p * [1, -1] + [0, 479], q * [1, -1] + [0, 479]), "479 - y"),
             (lambda p, q: _line_through(p, q) * [1, 1, -1], "wrong sign"),
             (lambda p, q: np.array(p[0] * q[1] - p[1] * q[0]), "np.cross of two 2-vectors"),
             (silenced(lambda p, q: _line_through(p, q) / _line_through(p, q)[2]), "dividing by c"),
@@ -331,202 +410,5 @@ register_exercise(
             ),
         ),
         teaching=line_through_points,
-    )
-)
-
-
-def _vanishing_cases():
-    # Two images of parallel edges: segments [[u1, v1], [u2, v2]] in pixels (not the worked example's rails).
-    return [
-        (np.array([[[120.0, 470.0], [250.0, 260.0]], [[600.0, 455.0], [420.0, 250.0]]]),),
-        (np.array([[[0.0, 300.0], [640.0, 260.0]], [[0.0, 420.0], [640.0, 330.0]]]),),
-        (np.array([[[10.0, 10.0], [110.0, 60.0]], [[10.0, 110.0], [110.0, 160.0]]]),),  # parallel
-    ]
-
-
-def _conditionings(segments):
-    """Similarities T (centre, then scale) a student may condition the endpoints with, by name."""
-    pts = np.asarray(segments, dtype=float).reshape(-1, 2)
-    centre = pts.mean(axis=0)
-    spread = {
-        "mean distance sqrt(2)": np.sqrt(2) / np.linalg.norm(pts - centre, axis=1).mean(),
-        "unit mean distance": 1 / np.linalg.norm(pts - centre, axis=1).mean(),
-        "unit standard deviation": 1 / (pts - centre).std(),
-        "largest |coordinate| 1": 1 / np.abs(pts - centre).max(),
-        "centring only": 1.0,
-    }
-    return [
-        np.array([[k, 0, -k * centre[0]], [0, k, -k * centre[1]], [0, 0, 1]])
-        for k in spread.values()
-    ]
-
-
-def _conditioning_slip(segments, got, expected) -> str | None:
-    """The hint when ``got`` is the vanishing point in conditioned coordinates, or undone wrongly."""
-    e = np.asarray(expected, dtype=float)
-    for T in _conditionings(segments):
-        if same_up_to_scale(got, T @ e):
-            return (
-                "your point is the right one in conditioned coordinates (x_c = T x): the conditioning was not "
-                "undone. Map it back with x = inv(T) @ x_c (lines, if you condition them, move by inv(T).T)"
-            )
-        for wrong, how in ((T.T @ T @ e, "T.T"), (T @ T @ e, "T again")):
-            if same_up_to_scale(got, wrong):
-                return (
-                    f"you undid the conditioning with {how} instead of its inverse: the point in conditioned "
-                    "coordinates is x_c = T x, so x = inv(T) @ x_c"
-                )
-        if same_up_to_scale(got, np.linalg.inv(T).T @ T @ e):
-            return (
-                "you undid the conditioning with inv(T).T, the rule that moves *lines*; your result is a "
-                "point, and points move back by inv(T) itself: x = inv(T) @ x_c"
-            )
-    return None
-
-
-def _vanishing_diagnosis(args, got, expected) -> str:
-    (segments,) = args
-    swapped = np.asarray(segments, dtype=float)[..., ::-1]
-    if np.shape(got) == (3,) and same_up_to_scale(got, vanishing_point(swapped)):
-        return (
-            "you swapped the coordinates: your point is the vanishing point of the segments with (u, v) read "
-            "as (v, u). A pixel (u, v) = (column, row) lifts to (u, v, 1)."
-        )
-    if np.shape(got) == (3,) and np.isfinite(np.asarray(got, dtype=float)).all():
-        slip = _conditioning_slip(segments, np.asarray(got, dtype=float), expected)
-        if slip:
-            return slip
-        seg = np.asarray(segments, dtype=float)
-        for moved, why in (
-            (seg + 0.5, "shifted by +0.5 px in u and v: a half-pixel offset"),
-            (seg - 0.5, "shifted by -0.5 px in u and v: a half-pixel offset"),
-            (seg + 1.0, "shifted by +1 px in u and v: 1-based pixels?"),
-            (seg - 1.0, "shifted by -1 px in u and v: an off-by-one?"),
-            (seg * [1.0, -1.0], "with v negated: a y flip (y up instead of the image's v down)"),
-            (
-                seg * [1.0, -1.0] + [0.0, 479.0],
-                "flipped upside down, v -> 479 - v: a y flip (y up instead of the image's v down)",
-            ),
-        ):
-            if same_up_to_scale(got, vanishing_point(moved)):
-                return (
-                    f"your point is the vanishing point of the segments {why}"
-                    + (" " if why.endswith("?") else ". ")
-                    + "Use the endpoints as given: "
-                    "(u, v) lifts to (u, v, 1)."
-                )
-    lines = [projective.join(s[0], s[1]) for s in segments]
-    return _homogeneous_point_diagnosis(
-        got,
-        expected,
-        lines,
-        "Make one line per segment (join its two endpoints), then intersect the two lines. If you "
-        "conditioned the endpoints (x_c = T x), undo it at the end: x = inv(T) @ x_c.",
-    )
-
-
-def _cross_2d_twice(s):
-    """The slip np.cross(np.cross(a1, b1), np.cross(a2, b2)) on raw 2-vectors: numpy raises on the scalars."""
-    import warnings
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeprecationWarning)
-        return np.cross(np.cross(s[0, 0], s[0, 1]), np.cross(s[1, 0], s[1, 1]))
-
-
-def _vanishing_exception_hint(exc: Exception, args) -> str:
-    (segments,) = args
-    lines = [projective.join(s[0], s[1]) for s in segments]
-    if isinstance(exc, ValueError) and "zero dimension" in str(exc):
-        return (
-            "np.cross of two 2-vectors gives a number, not a line, and a second np.cross of those numbers "
-            "fails. Lift each endpoint to (u, v, 1) before joining: np.cross(np.append(a, 1.0), "
-            "np.append(b, 1.0))"
-        )
-    return _solve_hint(exc, lines)
-
-
-def vanishing_point(segments):
-    """One line per segment (join its endpoints), then meet the two lines; stay homogeneous.
-
-    Parameters
-    ----------
-    segments : (2, 2, 2) array_like
-        Two image segments, each as its endpoints ((x, y), (x, y)), pixels.
-
-    Returns
-    -------
-    (3,) ndarray
-        Where the two segments' lines meet, homogeneous (w = 0 when they are parallel in the image).
-
-    References
-    ----------
-    Hartley & Zisserman, Multiple View Geometry, 2nd ed., sections 2.2.1 and 8.6.
-    """
-    (a1, b1), (a2, b2) = np.asarray(segments, dtype=float)
-    line1 = np.cross([a1[0], a1[1], 1.0], [b1[0], b1[1], 1.0])
-    line2 = np.cross([a2[0], a2[1], 1.0], [b2[0], b2[1], 1.0])
-    return np.cross(line1, line2)
-
-
-register_exercise(
-    Exercise(
-        name="vanishing_point",
-        lesson="06",
-        reference=projective.vanishing_point,
-        cases=_vanishing_cases,
-        compare=same_up_to_scale,
-        diagnose=_vanishing_diagnosis,
-        wrong_variants=(
-            # Joins the two segments' start points instead of each segment's endpoints.
-            (
-                lambda s: np.cross(
-                    np.cross([*s[0, 0], 1], [*s[1, 0], 1]), np.cross([*s[0, 1], 1], [*s[1, 1], 1])
-                ),
-                "not on both lines",
-            ),
-            (
-                lambda s: projective.from_homogeneous(projective.vanishing_point(s)),
-                "homogeneous 3-vector",
-            ),
-            (
-                lambda s: projective.vanishing_point(np.asarray(s)[..., ::-1]),
-                "swapped the coordinates",
-            ),
-            (
-                lambda s: _conditionings(s)[0] @ projective.vanishing_point(s),
-                "not undone",
-            ),
-            (
-                lambda s: (
-                    _conditionings(s)[0].T @ _conditionings(s)[0] @ projective.vanishing_point(s)
-                ),
-                "instead of its inverse",
-            ),
-            (
-                silenced(
-                    lambda s: projective.vanishing_point(s) / projective.vanishing_point(s)[2]
-                ),
-                "lines are parallel",
-            ),
-            (_cross_2d_twice, "np.cross of two 2-vectors"),
-            (lambda s: projective.vanishing_point(np.asarray(s) + 0.5), "half-pixel"),
-            (lambda s: projective.vanishing_point(np.asarray(s) * [1.0, -1.0]), "y flip"),
-            (
-                lambda s: projective.vanishing_point(np.asarray(s) * [1.0, -1.0] + [0.0, 479.0]),
-                "479 - v",
-            ),
-            (lambda s: projective.vanishing_point(np.asarray(s) - 1.0), "-1 px"),
-            (
-                lambda s: (
-                    np.linalg.inv(_conditionings(s)[0]).T
-                    @ _conditionings(s)[0]
-                    @ projective.vanishing_point(s)
-                ),
-                "moves *lines*",
-            ),
-        ),
-        exception_hint=_vanishing_exception_hint,
-        teaching=vanishing_point,
     )
 )

@@ -21,8 +21,8 @@ def _conic_figure(view: FigureView) -> SimpleNamespace:
     """
     axes = view.fig.subplot_mosaic([["before", "after"], ["text", "text"]], height_ratios=[1, 0.13])
     ax_b, ax_a, ax_t = axes["before"], axes["after"], axes["text"]
-    plane_axes(ax_b, 2.0, "before: a circle C and 4 tangents")
-    plane_axes(ax_a, 3.0, "after H: C' = H^-T C H^-1")
+    plane_axes(ax_b, 3.0, "before: a circle C and 4 tangents")
+    plane_axes(ax_a, 3.0, "after H: C' = H^-T C H^-1 (same scale)")
     ax_t.set_axis_off()
     t = np.linspace(0, 2 * np.pi, 9)[:-1]
     samples = np.stack([np.cos(t), np.sin(t)], axis=1)  # 8 points on the unit circle
@@ -30,7 +30,7 @@ def _conic_figure(view: FigureView) -> SimpleNamespace:
     ax_b.plot(*circle.T, color=palette.TAB_BLUE, lw=2, label="C (x² + y² = 1)")
     ax_b.scatter(*samples.T, color=palette.ORANGE, s=25, zorder=3, label="8 points on C")
     for k, line in enumerate(([1, 0, -1], [1, 0, 1], [0, 1, -1], [0, 1, 1])):
-        ends = pj.clip_line(line, (-2, 2), (-2, 2))
+        ends = pj.clip_line(line, (-3, 3), (-3, 3))
         ax_b.plot(*ends.T, color=palette.GREEN, lw=1, label="tangent lines" if k == 0 else None)
     ax_b.plot([0], [0], "k+", ms=10, mew=2, label="centre of C")
     (conic,) = ax_a.plot([], [], color=palette.TAB_BLUE, lw=2, label="C' from the formula")
@@ -163,7 +163,7 @@ def conic_under_homography() -> Demo:
         the 4 mapped tangents against the dual conic H C* H^T, ``I_mapped`` H I scaled to a first
         entry 1, ``fixes_circular_points``, ``axis_ratio`` the ellipse's minor / major axis).
     """
-    view = FigureView(figsize=(9, 5.6))
+    view = FigureView(figsize=(9, 6.0))
     parts = _conic_figure(view)
     view.animate(
         parts.conic,

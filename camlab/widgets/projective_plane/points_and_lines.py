@@ -10,6 +10,7 @@ import numpy as np
 from ... import fixtures
 from ... import projective as pj
 from ..._validate import DegenerateError
+from ...camera import rotation_z
 from ...plotting import palette
 from ...plotting.plane import arrow_marker, arrow_to_infinity, image_axes, plane_axes, set_line
 from .._base import Demo, FigureView, build_demo, register, slider
@@ -33,7 +34,7 @@ def _lift_figure(view: FigureView) -> SimpleNamespace:
     ax3.set_title("homogeneous space (x, y, w)")
     view.fig.get_layout_engine().set(wspace=0.12)  # the 3-D w label and the plane's y label apart
     ax3.set(xticks=[-3, 0, 3], yticks=[-3, 0, 3], zticks=[-2, -1, 0, 1, 2])
-    gx, gy = np.meshgrid(np.linspace(-2, 2, 5), np.linspace(-2, 2, 5))
+    gx, gy = np.meshgrid(*[np.linspace(-box, box, 7)] * 2)  # w = 1 over the whole box
     ax3.plot_surface(
         gx,
         gy,
@@ -44,7 +45,7 @@ def _lift_figure(view: FigureView) -> SimpleNamespace:
         lw=0.3,
     )
     ax3.text(
-        -2.0, -2.0, 1.2, "w = 1", color=palette.TAB_BLUE, ha="right"
+        -box, -box, 1.25, "w = 1", color=palette.TAB_BLUE, ha="left"
     )  # the left corner, off the ray's path
     ax3.scatter([0], [0], [0], color="k", s=15)
     (ray,) = ax3.plot(
@@ -177,7 +178,7 @@ def _parallel_figure(view: FigureView) -> SimpleNamespace:
         xlim=(0, 60),
         xlabel="angle of l2 (degrees)",
         ylabel="|w| of the unit meet point",
-        title="w → 0: the meet point leaves the plane",
+        title="w → 0: the meet point runs to infinity",
         ylim=(0, 1.02),
     )
     axw.grid(True, color="0.93")
@@ -380,6 +381,34 @@ def point_line_duality() -> Demo:
     )
 
 
+_VANISHING_SWEEP = {
+    "pitch": [5.0, 15.0, 30.0, 40.0],
+    "yaw": [0.0, 20.0, -35.0],
+    "roll": [12.0, -12.0],
+    "focal": [400.0, 800.0],
+}
+
+
+def _rolled_view(pitch: float, yaw: float, roll: float, focal: float, size) -> SimpleNamespace:
+    """:func:`camlab.fixtures.ground_plane_view`, then the camera rolled by ``roll`` degrees.
+
+    Rolling turns the camera about its own centre (about its optical axis), so the whole image
+    moves by the homography :math:`M = K R_z K^{-1}`: points (segments, vanishing points) by
+    :math:`M`, the horizon by :math:`M^{-T}`. Positive ``roll`` turns the image clockwise on the
+    screen (x right, v down), so the horizon falls to the right.
+    """
+    g = fixtures.ground_plane_view(np.radians(pitch), np.radians(yaw), focal, size)
+    M = g.K @ rotation_z(np.radians(roll)) @ np.linalg.inv(g.K)
+    segments = pj.map_points(M, g.segments.reshape(-1, 2)).reshape(-1, 2, 2)
+    return SimpleNamespace(
+        segments=segments,
+        n_along_z=g.n_along_z,
+        vp_z=M @ g.vp_z,
+        vp_x=M @ g.vp_x,
+        horizon=np.linalg.inv(M).T @ g.horizon,
+    )
+
+
 def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespace:
     """The figure of :func:`vanishing_points`.
 
@@ -450,7 +479,7 @@ def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespac
 
 @register(
     lesson="06",
-    sweep={"pitch": [5.0, 15.0, 30.0, 40.0], "yaw": [0.0, 20.0, -35.0], "focal": [400.0, 800.0]},
+    sweep=_VANISHING_SWEEP,
 )
 def vanishing_points() -> Demo:
     """A tilted camera looks at a ground grid; parallel rails meet at vanishing points on the horizon.
@@ -458,7 +487,7 @@ def vanishing_points() -> Demo:
     Returns
     -------
     Demo
-        The demo: controls ``pitch`` and ``yaw`` (the camera's, degrees) and ``focal`` (px),
+        The demo: controls ``pitch``, ``yaw`` and ``roll`` (the camera's, degrees) and ``focal`` (px),
         the figure (the image of the ground grid with the horizon and the two vanishing points,
         arrows when off the image) and ``state`` (``vp_z``, ``vp_x`` estimated from the drawn
         lines, ``horizon``, their camera truths ``vp_z_true``, ``vp_x_true``,
@@ -474,9 +503,7 @@ def vanishing_points() -> Demo:
     view.animate(grid_z, grid_x, horizon_artist, vz_dot, vx_dot, note)
 
     def update(v: dict, state: dict) -> None:
-        g = fixtures.ground_plane_view(
-            np.radians(v["pitch"]), np.radians(v["yaw"]), v["focal"], size
-        )
+        g = _rolled_view(v["pitch"], v["yaw"], v["roll"], v["focal"], size)
         segs = g.segments
         n = g.n_along_z
         grid_z.set_segments(segs[:n])
@@ -531,7 +558,8 @@ def vanishing_points() -> Demo:
 
     controls = {
         "pitch": slider(12.0, 0.0, 40.0, 0.5, "pitch down (°)"),
-        "yaw": slider(15.0, -45.0, 45.0, 0.5, "yaw (°)"),
+        "yaw": slider(15.0, -45.0, 45.0, 0.5, "yaw (°, + moves v_z left)"),
+        "roll": slider(0.0, -20.0, 20.0, 0.5, "roll (°, + clockwise)"),
         "focal": slider(600.0, 300.0, 1200.0, 10.0, "focal length (px)"),
     }
     return build_demo(
@@ -547,6 +575,16 @@ def vanishing_points() -> Demo:
 _CR_H = 0.3  # the cross-ratio demo's largest |h31|, |h32|
 
 
+_MID = {"ha": "center", "va": "center"}
+
+
+def _label_offset(points: np.ndarray) -> tuple[float, float]:
+    """An offset (points) of 10 along the normal of the line through ``points``, its upper side."""
+    d = points[-1] - points[0]
+    n = np.array([-d[1], d[0]]) / np.linalg.norm(d)
+    return tuple(10.0 * (n if n[1] >= 0 else -n))
+
+
 def _cross_ratio_figure(view: FigureView) -> SimpleNamespace:
     """The figure of :func:`cross_ratio_invariance`.
 
@@ -560,11 +598,11 @@ def _cross_ratio_figure(view: FigureView) -> SimpleNamespace:
     centred = {"ha": "center", "va": "center", "family": "monospace", "fontsize": 9}
     numbers = axes["text"].text(0.5, 0.5, "", transform=axes["text"].transAxes, **centred)
     plane_axes(ax_s, 2.2, "before: four collinear points")
-    plane_axes(ax_t, 3.6, "after the homography H")
+    plane_axes(ax_t, 2.2, "after the homography H (same scale)")
     # With |h31|, |h32| <= _CR_H the grid's w = 1 + h31 x + h32 y stays >= 1 - 2 * 0.3 * 1 = 0.4 > 0:
-    # no grid line crosses the line H sends to infinity, so each maps to one straight segment, and
-    # every mapped corner lies within sqrt(2) / 0.4 = 3.54 of the origin: inside the +-3.6 panel
-    # at every setting (rotation keeps that distance), so the grid is never cut.
+    # no grid line crosses the line H sends to infinity, so each maps to one straight segment. The
+    # four points (|p| <= 1.12, w >= 1 - 0.3 - 0.15 = 0.55) stay within 2.03 of the origin: inside
+    # the +-2.2 panel, drawn at the before panel's scale, at every setting (the grid may be cut).
     grid = np.array(
         [[[x, -1.0], [x, 1.0]] for x in np.linspace(-1.0, 1.0, 5)]
         + [[[-1.0, y], [1.0, y]] for y in np.linspace(-1.0, 1.0, 5)]
@@ -576,8 +614,8 @@ def _cross_ratio_figure(view: FigureView) -> SimpleNamespace:
     ax_s.add_collection(LineCollection(grid, colors=palette.GREY, lw=0.8))
     ax_s.plot(points[:, 0], points[:, 1], "-", color="0.3")
     ax_s.scatter(points[:, 0], points[:, 1], c=colors, s=50, zorder=3)
-    for name, p in zip("ABCD", points, strict=True):
-        ax_s.annotate(name, p, xytext=(4, 6), textcoords="offset points")
+    for name, p in zip("ABCD", points, strict=True):  # beside the line, on its normal
+        ax_s.annotate(name, p, xytext=_label_offset(points), textcoords="offset points", **_MID)
     mapped_grid = LineCollection([], colors=palette.GREY, lw=0.8)
     ax_t.add_collection(mapped_grid)
     (mapped_line,) = ax_t.plot([], [], "-", color="0.3")
@@ -585,7 +623,8 @@ def _cross_ratio_figure(view: FigureView) -> SimpleNamespace:
         points[:, 0], points[:, 1], c=[palette.ORANGE] * 4, s=50, zorder=3
     )
     labels = [
-        ax_t.annotate(name, (0, 0), xytext=(4, 6), textcoords="offset points") for name in "ABCD"
+        ax_t.annotate(name, (0, 0), xytext=(0, 10), textcoords="offset points", **_MID)
+        for name in "ABCD"
     ]
     return SimpleNamespace(
         grid=grid,
@@ -636,7 +675,7 @@ def cross_ratio_invariance() -> Demo:
         mapped_line.set_data(q[:, 0], q[:, 1])
         mapped_pts.set_offsets(q)
         for lab, p in zip(labels, q, strict=True):
-            lab.xy = tuple(p)
+            lab.xy, lab.xyann = tuple(p), _label_offset(q)
         cr_before, cr_after = pj.cross_ratio(points), pj.cross_ratio(q)
         state.update(
             H=H,

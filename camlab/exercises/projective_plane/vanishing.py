@@ -1,0 +1,235 @@
+"""Lesson 06, exercise 3: a vanishing point from two image segments."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ... import projective
+from .._answers import same_up_to_scale
+from .._core import Exercise, register_exercise
+from .lines import PIXEL_SHIFTS, homogeneous_point_diagnosis, silenced, solve_hint
+
+
+def _vanishing_cases():
+    # Two images of parallel edges: segments [[u1, v1], [u2, v2]] in pixels (not the worked example's rails).
+    return [
+        (np.array([[[120.0, 470.0], [250.0, 260.0]], [[600.0, 455.0], [420.0, 250.0]]]),),
+        (np.array([[[0.0, 300.0], [640.0, 260.0]], [[0.0, 420.0], [640.0, 330.0]]]),),
+        (np.array([[[10.0, 10.0], [110.0, 60.0]], [[10.0, 110.0], [110.0, 160.0]]]),),  # parallel
+    ]
+
+
+def _conditionings(segments):
+    """Similarities T (centre, then scale) a student may condition the endpoints with, by name."""
+    pts = np.asarray(segments, dtype=float).reshape(-1, 2)
+    centre = pts.mean(axis=0)
+    spread = {
+        "mean distance sqrt(2)": np.sqrt(2) / np.linalg.norm(pts - centre, axis=1).mean(),
+        "unit mean distance": 1 / np.linalg.norm(pts - centre, axis=1).mean(),
+        "unit standard deviation": 1 / (pts - centre).std(),
+        "largest |coordinate| 1": 1 / np.abs(pts - centre).max(),
+        "centring only": 1.0,
+    }
+    return [
+        np.array([[k, 0, -k * centre[0]], [0, k, -k * centre[1]], [0, 0, 1]])
+        for k in spread.values()
+    ]
+
+
+def _translate_then_scale(T):
+    """(S, T_t) with T = S @ T_t: the scale and the translation of a conditioning T."""
+    S, T_t = np.diag([T[0, 0], T[0, 0], 1.0]), T.copy()
+    T_t[:2, 2] /= T[0, 0]
+    return S, T_t
+
+
+def _undone_in_wrong_order(s):
+    """The slip inv(S) @ inv(T_t) @ x_c for x_c = T x, T = S @ T_t (the reverse order is right)."""
+    T = _conditionings(s)[0]
+    S, T_t = _translate_then_scale(T)
+    return np.linalg.inv(S) @ np.linalg.inv(T_t) @ T @ projective.vanishing_point(s)
+
+
+def _conditioning_slip(segments, got, expected) -> str | None:
+    """The hint when ``got`` is the vanishing point in conditioned coordinates, or undone wrongly."""
+    e = np.asarray(expected, dtype=float)
+    for T in _conditionings(segments):
+        if same_up_to_scale(got, T @ e):
+            return (
+                "your point is the right one in conditioned coordinates (x_c = T x): the conditioning was not "
+                "undone. Map it back with x = inv(T) @ x_c (lines, if you condition them, move by inv(T).T)"
+            )
+        for wrong, how in ((T.T @ T @ e, "T.T"), (T @ T @ e, "T again")):
+            if same_up_to_scale(got, wrong):
+                return (
+                    f"you undid the conditioning with {how} instead of its inverse: the point in conditioned "
+                    "coordinates is x_c = T x, so x = inv(T) @ x_c"
+                )
+        S, T_t = _translate_then_scale(T)  # T = S @ T_t: translate, then scale
+        if T[0, 0] != 1 and same_up_to_scale(got, np.linalg.inv(S) @ np.linalg.inv(T_t) @ T @ e):
+            return (
+                "you undid the conditioning in the wrong order: T = S @ T_t (translate, then scale), so "
+                "inv(T) = inv(T_t) @ inv(S): undo the scale first, then the translation"
+            )
+        if same_up_to_scale(got, np.linalg.inv(T).T @ T @ e):
+            return (
+                "you undid the conditioning with inv(T).T, the rule that moves *lines*; your result is a "
+                "point, and points move back by inv(T) itself: x = inv(T) @ x_c"
+            )
+    return None
+
+
+def _vanishing_diagnosis(args, got, expected) -> str:
+    (segments,) = args
+    swapped = np.asarray(segments, dtype=float)[..., ::-1]
+    if np.shape(got) == (3,) and same_up_to_scale(got, vanishing_point(swapped)):
+        return (
+            "you swapped the coordinates: your point is the vanishing point of the segments with (u, v) read "
+            "as (v, u). A pixel (u, v) = (column, row) lifts to (u, v, 1)."
+        )
+    if np.shape(got) == (3,) and np.isfinite(np.asarray(got, dtype=float)).all():
+        slip = _conditioning_slip(segments, np.asarray(got, dtype=float), expected)
+        if slip:
+            return slip
+        seg = np.asarray(segments, dtype=float)
+        for moved, why in (
+            *(
+                (seg + d, f"shifted by ({d[0]:+g}, {d[1]:+g}) px in (u, v): {w}")
+                for d, w in PIXEL_SHIFTS
+            ),
+            (seg * [1.0, -1.0], "with v negated: a y flip (y up instead of the image's v down)"),
+            (seg * [-1.0, 1.0] + [639.0, 0.0], "flipped left to right, u -> 639 - u"),
+            (
+                seg * [1.0, -1.0] + [0.0, 479.0],
+                "flipped upside down, v -> 479 - v: a y flip (y up instead of the image's v down)",
+            ),
+        ):
+            if same_up_to_scale(got, vanishing_point(moved)):
+                return (
+                    f"your point is the vanishing point of the segments {why}"
+                    + (" " if why.endswith("?") else ". ")
+                    + "Use the endpoints as given: "
+                    "(u, v) lifts to (u, v, 1)."
+                )
+    lines = [projective.join(s[0], s[1]) for s in segments]
+    return homogeneous_point_diagnosis(
+        got,
+        expected,
+        lines,
+        "Make one line per segment (join its two endpoints), then intersect the two lines. If you "
+        "conditioned the endpoints (x_c = T x), undo it at the end: x = inv(T) @ x_c.",
+    )
+
+
+def _cross_2d_twice(s):
+    """The slip np.cross(np.cross(a1, b1), np.cross(a2, b2)) on raw 2-vectors: numpy raises on the scalars."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)
+        return np.cross(np.cross(s[0, 0], s[0, 1]), np.cross(s[1, 0], s[1, 1]))
+
+
+def _vanishing_exception_hint(exc: Exception, args) -> str:
+    (segments,) = args
+    lines = [projective.join(s[0], s[1]) for s in segments]
+    if isinstance(exc, ValueError) and "zero dimension" in str(exc):
+        return (
+            "np.cross of two 2-vectors gives a number, not a line, and a second np.cross of those numbers "
+            "fails. Lift each endpoint to (u, v, 1) before joining: np.cross(np.append(a, 1.0), "
+            "np.append(b, 1.0))"
+        )
+    return solve_hint(exc, lines)
+
+
+def vanishing_point(segments):
+    """One line per segment (join its endpoints), then meet the two lines; stay homogeneous.
+
+    Parameters
+    ----------
+    segments : (2, 2, 2) array_like
+        Two image segments, each as its endpoints ((x, y), (x, y)), pixels.
+
+    Returns
+    -------
+    (3,) ndarray
+        Where the two segments' lines meet, homogeneous (w = 0 when they are parallel in the image).
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., sections 2.2.1 and 8.6.
+    """
+    (a1, b1), (a2, b2) = np.asarray(segments, dtype=float)
+    line1 = np.cross([a1[0], a1[1], 1.0], [b1[0], b1[1], 1.0])
+    line2 = np.cross([a2[0], a2[1], 1.0], [b2[0], b2[1], 1.0])
+    return np.cross(line1, line2)
+
+
+register_exercise(
+    Exercise(
+        name="vanishing_point",
+        lesson="06",
+        reference=projective.vanishing_point,
+        cases=_vanishing_cases,
+        compare=same_up_to_scale,
+        diagnose=_vanishing_diagnosis,
+        wrong_variants=(
+            # Joins the two segments' start points instead of each segment's endpoints.
+            (
+                lambda s: np.cross(
+                    np.cross([*s[0, 0], 1], [*s[1, 0], 1]), np.cross([*s[0, 1], 1], [*s[1, 1], 1])
+                ),
+                "not on both lines",
+            ),
+            (
+                lambda s: projective.from_homogeneous(projective.vanishing_point(s)),
+                "homogeneous 3-vector",
+            ),
+            (
+                lambda s: projective.vanishing_point(np.asarray(s)[..., ::-1]),
+                "swapped the coordinates",
+            ),
+            (
+                lambda s: _conditionings(s)[0] @ projective.vanishing_point(s),
+                "not undone",
+            ),
+            (
+                lambda s: (
+                    _conditionings(s)[0].T @ _conditionings(s)[0] @ projective.vanishing_point(s)
+                ),
+                "instead of its inverse",
+            ),
+            (
+                silenced(
+                    lambda s: projective.vanishing_point(s) / projective.vanishing_point(s)[2]
+                ),
+                "lines are parallel",
+            ),
+            (_cross_2d_twice, "np.cross of two 2-vectors"),
+            (lambda s: projective.vanishing_point(np.asarray(s) + 0.5), "half-pixel"),
+            (lambda s: projective.vanishing_point(np.asarray(s) * [1.0, -1.0]), "y flip"),
+            (
+                lambda s: projective.vanishing_point(np.asarray(s) * [1.0, -1.0] + [0.0, 479.0]),
+                "479 - v",
+            ),
+            (lambda s: projective.vanishing_point(np.asarray(s) - 1.0), "(-1, -1) px"),
+            (lambda s: projective.vanishing_point(np.asarray(s) + [0.5, 0.0]), "on one axis"),
+            (
+                lambda s: projective.vanishing_point(np.asarray(s) * [-1.0, 1.0] + [639, 0]),
+                "639 - u",
+            ),
+            (lambda s: np.zeros(3), "(0, 0, 0)"),
+            (_undone_in_wrong_order, "wrong order"),
+            (
+                lambda s: (
+                    np.linalg.inv(_conditionings(s)[0]).T
+                    @ _conditionings(s)[0]
+                    @ projective.vanishing_point(s)
+                ),
+                "moves *lines*",
+            ),
+        ),
+        exception_hint=_vanishing_exception_hint,
+        teaching=vanishing_point,
+    )
+)
