@@ -576,7 +576,7 @@ def lens_distortion():
             else "the rendered board, as the lens\nrecords it (red: the true corners)"
         )
         parts.legend.get_texts()[1].set_text(
-            "through the lens, then undistorted" if values["undistort"] else "through the lens"
+            "lens, then undistorted" if values["undistort"] else "through the lens"
         )
         kind = distortion.classify_distortion(d, r_max=float(np.hypot(*SIZE) / 2 / K_D[0, 0]))
         grid_title.set_text(
