@@ -42,7 +42,10 @@ def draw_sensor_zoom(ax) -> dict:
     for key, (ha, va) in zip(
         ZOOM_LABELS, (("center", "bottom"), ("left", "top"), ("left", "center")), strict=True
     ):
-        zoom[key] = ax.text(0, 0, key, fontsize=9, ha=ha, va=va, path_effects=palette.halo(2))
+        label = {"z_i": "$z_i$", "z_s": "$z_s$", "c": "$c$"}[
+            key
+        ]  # mathtext, as the prose typesets them
+        zoom[key] = ax.text(0, 0, label, fontsize=9, ha=ha, va=va, path_effects=palette.halo(2))
     ax.axhline(0, color="0.4", lw=0.8, zorder=0.5)
     ax.set(xlim=(-1, 1), ylim=(-ZOOM_Y, ZOOM_Y), xticks=[], yticks=[])
     ax.set_aspect("equal")

@@ -172,6 +172,7 @@ def _focus_figure(view: FigureView) -> SimpleNamespace:
         ],
         *[disc[k] for k in ("grid", "blur", "ok", "airy", "bar", "bar_text", "text")],
         *[zoom[k] for k in ZOOM_ARTISTS + ZOOM_LABELS],
+        *zoom["cone"].axes.spines.values(),  # over the moving cone, as a full draw paints them
         curve,
         band,
         coc_line,
