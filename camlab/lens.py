@@ -30,6 +30,7 @@ __all__ = [
     "angle_of_view",
     "aperture_diameter",
     "aperture_for_depth_of_field",
+    "aperture_kernel",
     "circle_of_confusion",
     "depth_of_field",
     "hyperfocal_distance",
@@ -417,3 +418,52 @@ def depth_of_field(
     near = s * (H - f) / (H + s - 2 * f)
     far = s * (H - f) / (H - s) if s < H else float("inf")
     return DepthOfField(float(near), float(far), float(H))
+
+
+def aperture_kernel(diameter_px: float, blades: int = 0) -> np.ndarray:
+    r"""The blur of a defocused point: the aperture's shape scaled to the blur diameter (bokeh).
+
+    Every ray from one object point passes the aperture and reaches the sensor inside the
+    cone's cross-section there, a copy of the aperture scaled by :math:`c / A`. So the point
+    spreads into the aperture's shape: a disc for a round stop, a regular polygon for a
+    diaphragm of ``blades`` straight blades (its corners on the circle of diameter ``c``).
+    Each pixel's weight is its area covered by the shape (4 x 4 samples), normalised to sum 1.
+
+    Parameters
+    ----------
+    diameter_px : float
+        The blur's diameter c in pixels (> 0), corner to corner for a polygon.
+    blades : int, optional
+        0 for a round aperture (the default), else the number of straight blades (>= 3).
+
+    Returns
+    -------
+    (n, n) ndarray
+        The kernel, n odd, summing to 1, centred on its middle pixel.
+
+    Examples
+    --------
+    >>> round(float(aperture_kernel(20, blades=6).sum()), 6)
+    1.0
+    """
+    r = check_positive(diameter_px, "diameter_px", "pixels") / 2
+    if not isinstance(blades, (int, np.integer)) or (blades != 0 and blades < 3):
+        raise CamlabInputError(
+            f"blades: expected 0 (a round aperture) or a whole number of blades >= 3, got {blades!r}; "
+            "pass e.g. 6 for a hexagonal diaphragm"
+        )
+    n = int(np.ceil(r)) + 1
+    s = (np.arange(4) + 0.5) / 4 - 0.5  # 4 x 4 samples in each pixel
+    y, x = np.mgrid[-n : n + 1, -n : n + 1].astype(float)
+    y, x = np.broadcast_arrays(y[..., None, None] + s[:, None], x[..., None, None] + s[None, :])
+    y, x = y.reshape(*y.shape[:2], 16), x.reshape(*x.shape[:2], 16)
+    if blades == 0:
+        inside = x**2 + y**2 <= r * r
+    else:  # a regular polygon: inside every edge's half-plane, the edges at r cos(pi / blades)
+        angles = (np.arange(blades) + 0.5) * 2 * np.pi / blades - np.pi / 2
+        apothem = r * np.cos(np.pi / blades)
+        inside = np.all([x * np.cos(a) + y * np.sin(a) <= apothem for a in angles], axis=0)
+    cover = inside.mean(axis=-1)
+    if cover.sum() == 0:  # smaller than a sample: all in the middle pixel
+        cover[n, n] = 1
+    return cover / cover.sum()

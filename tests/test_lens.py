@@ -97,3 +97,20 @@ def test_aperture_for_depth_of_field_gives_exactly_that_depth_of_field():
         assert lens.circle_of_confusion(f, N, s, near) == pytest.approx(c)
     with pytest.raises(CamlabInputError, match="near < far"):
         lens.aperture_for_depth_of_field(0.05, 3e-5, 4.0, 2.0)
+
+
+def test_aperture_kernel_is_the_aperture_scaled_to_the_blur():
+    """Round: the renderer's disc, area pi r^2; six blades: a regular hexagon, 3 sqrt(3) / 2 pi of it."""
+    from camlab.render.canvas import _disk_kernel
+
+    disc, hexagon = lens.aperture_kernel(40), lens.aperture_kernel(40, blades=6)
+    assert np.isclose(disc.sum(), 1) and np.isclose(hexagon.sum(), 1)
+    assert np.allclose(disc, _disk_kernel(40))
+    assert np.isclose(1 / disc.max(), np.pi * 20**2, rtol=0.01)
+    assert np.isclose(disc.max() / hexagon.max(), 3 * np.sqrt(3) / (2 * np.pi), atol=0.005)
+    assert np.allclose(hexagon, hexagon[::-1]) and np.allclose(hexagon, hexagon[:, ::-1])
+    assert not np.allclose(hexagon, hexagon.T)  # corners up and down, flat sides left and right
+    with pytest.raises(CamlabInputError, match="blades"):
+        lens.aperture_kernel(10, blades=2)
+    with pytest.raises(CamlabInputError, match="diameter_px"):
+        lens.aperture_kernel(-1)

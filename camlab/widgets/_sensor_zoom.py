@@ -42,7 +42,10 @@ def draw_sensor_zoom(ax) -> dict:
     for key, (ha, va) in zip(
         ZOOM_LABELS, (("center", "bottom"), ("left", "top"), ("left", "center")), strict=True
     ):
-        zoom[key] = ax.text(0, 0, key, fontsize=9, ha=ha, va=va, path_effects=palette.halo(2))
+        label = {"z_i": "$z_i$", "z_s": "$z_s$", "c": "$c$"}[
+            key
+        ]  # mathtext, as the prose typesets them
+        zoom[key] = ax.text(0, 0, label, fontsize=9, ha=ha, va=va, path_effects=palette.halo(2))
     ax.axhline(0, color="0.4", lw=0.8, zorder=0.5)
     ax.set(xlim=(-1, 1), ylim=(-ZOOM_Y, ZOOM_Y), xticks=[], yticks=[])
     ax.set_aspect("equal")
@@ -54,13 +57,13 @@ def update_sensor_zoom(zoom: dict, A: float, z_i: float, z_s: float, c: float) -
     """Redraw the zoom for aperture ``A``, image point ``z_i`` and sensor ``z_s`` (metres); blur ``c`` there.
 
     The window is centred between z_i and z_s, its half-width W the smallest step with both
-    inside 70 % of it and the blur bar inside 80 % of its height; heights use the same scale, so the cone's angle is true. Returns
-    ``{"zoom_half_mm"}``.
+    inside 70 % of it and the blur bar inside 60 % of its height (clear of the z_s label above
+    it); heights use the same scale, so the cone's angle is true. Returns ``{"zoom_half_mm"}``.
     """
     zi, zs, a = z_i * 1e3, z_s * 1e3, A / 2 * 1e3  # mm
     centre = (zi + zs) / 2
-    fits = (  # both points inside 70 % of the width, the blur bar inside 80 % of the height
-        w for w in ZOOM_HALF_MM if abs(zs - zi) / 2 <= 0.7 * w and c / 2 * 1e3 <= 0.8 * ZOOM_Y * w
+    fits = (  # both points inside 70 % of the width, the blur bar inside 60 % of the height
+        w for w in ZOOM_HALF_MM if abs(zs - zi) / 2 <= 0.7 * w and c / 2 * 1e3 <= 0.6 * ZOOM_Y * w
     )
     W = next(fits, ZOOM_HALF_MM[-1])
 
@@ -88,12 +91,16 @@ def update_sensor_zoom(zoom: dict, A: float, z_i: float, z_s: float, c: float) -
     zoom["blur"].set_data([x_s, x_s], [-half_c, half_c])
     zoom["focus"].set_data([x_i], [0])
     zoom["bar_text"].set_text(f"{W / 4:g} mm")  # the bar spans a quarter of W (0.25 axis units)
-    close = (
-        abs(x_i - x_s) < 0.15
-    )  # then z_i goes under the axis, left of the sensor: clear of c and z_s
-    zoom["z_i"].set_position((x_s - 0.05, -0.05 * ZOOM_Y) if close else (x_i, 0.15 * ZOOM_Y))
-    zoom["z_i"].set_ha("right" if close else "center")
+    # z_i and z_s close: both labels go right of the sensor, where no light is, z_i under the
+    # axis and c above it, clear of the red x, the marginal rays and each other
+    close = abs(x_i - x_s) < 0.15
+    zoom["z_i"].set_position((x_s + 0.04, -0.12 * ZOOM_Y) if close else (x_i, 0.15 * ZOOM_Y))
+    zoom["z_i"].set_ha("left" if close else "center")
     zoom["z_i"].set_va("top" if close else "bottom")
     zoom["z_s"].set_position((x_s + 0.03, 0.95 * ZOOM_Y))
-    zoom["c"].set_position((x_s + 0.04, min(half_c, 0.7 * ZOOM_Y) * 0.5 + 0.02))
+    zoom["c"].set_position(
+        (x_s + 0.04, 0.22 * ZOOM_Y)
+        if close
+        else (x_s + 0.04, min(half_c, 0.7 * ZOOM_Y) * 0.5 + 0.02)
+    )
     return {"zoom_half_mm": W}

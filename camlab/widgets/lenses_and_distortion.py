@@ -172,6 +172,7 @@ def _focus_figure(view: FigureView) -> SimpleNamespace:
         ],
         *[disc[k] for k in ("grid", "blur", "ok", "airy", "bar", "bar_text", "text")],
         *[zoom[k] for k in ZOOM_ARTISTS + ZOOM_LABELS],
+        *zoom["cone"].axes.spines.values(),  # over the moving cone, as a full draw paints them
         curve,
         band,
         coc_line,
@@ -500,13 +501,14 @@ def _distortion_figure(view: FigureView) -> SimpleNamespace:
     )
     ax_grid.set_xlabel("u (px)")
     ax_grid.set_ylabel("v (px)")
-    ax_grid.legend(  # below the grid, inside the figure: constrained layout makes room for it
+    legend = ax_grid.legend(  # below the grid, inside the figure: constrained layout makes room
         fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=3, borderaxespad=0.3
-    )
+    )  # animated: update names the blue grid per mode
     img_title = ax_img.set_title(" \n ", fontsize=10)  # two lines, as update writes
     grid_title = ax_grid.set_title(" \n ", fontsize=10)  # two lines, as update writes
-    view.animate(im, fold, dots, *bent, img_title, grid_title)
+    view.animate(im, fold, dots, *bent, img_title, grid_title, legend)
     return SimpleNamespace(
+        legend=legend,
         board=board,
         im=im,
         fold=fold,
@@ -573,6 +575,9 @@ def lens_distortion():
             "the rendered board, undistorted\n(red: the true corners, undistorted)"
             if values["undistort"]
             else "the rendered board, as the lens\nrecords it (red: the true corners)"
+        )
+        parts.legend.get_texts()[1].set_text(
+            "lens, then undistorted" if values["undistort"] else "through the lens"
         )
         kind = distortion.classify_distortion(d, r_max=float(np.hypot(*SIZE) / 2 / K_D[0, 0]))
         grid_title.set_text(

@@ -126,6 +126,16 @@ def _y_with_p1_p2_swapped(s) -> bool:
     return np.allclose(s.g, y_swapped)
 
 
+def _tangential_with_r(s) -> np.ndarray:
+    """The model with r where the tangential terms take r^2 (the radial factor right)."""
+    u, v = s.x[:, 0], s.x[:, 1]
+    r = np.hypot(u, v)
+    radial = distortion.distort_points(s.x, [s.k1, s.k2, 0, 0, s.k3])
+    return radial + np.column_stack(
+        [2 * s.p1 * u * v + s.p2 * (r + 2 * u**2), s.p1 * (r + 2 * v**2) + 2 * s.p2 * u * v]
+    )
+
+
 def _odd_powers_of_r(s) -> bool:
     """The radial factor in powers of r, not r^2 (with or without the tangential terms)."""
     r = np.hypot(s.x[:, 0], s.x[:, 1])
@@ -172,6 +182,14 @@ MODEL_MISTAKES = (
             (s.p1 or s.p2) and np.allclose(s.g, brown_variant(s.x, s.d, squares_swapped=True))
         ),
         "x^2 and y^2 are swapped in the tangential terms: x gets p2 (r^2 + 2 x^2), y gets p1 (r^2 + 2 y^2)",
+    ),
+    Mistake(
+        "r for r^2 in the tangential terms",
+        lambda s: (s.p1 or s.p2) and np.allclose(s.g, _tangential_with_r(s)),
+        (
+            "the tangential terms take r^2, not r: x gets p2 (r^2 + 2 x^2), y gets p1 (r^2 + 2 y^2), with "
+            "the same r^2 = x^2 + y^2 as in L"
+        ),
     ),
     Mistake(
         "y_d's p1 term copied from x_d",

@@ -130,7 +130,7 @@ _F_NUMBER_MISTAKES = (
             for end in (s.n, s.r)
         ),
         (
-            "c(z) = (f/N) (f/(s - f)) |z - s| / z divides by z, the depth of the end you make sharp (near or "
+            "c(z) = (f/N) (f/(s - f)) |z - s| / z divides by z, the depth of the end whose blur you set to c (near or "
             "far), not by the focus distance s: the cone's apex sits at that depth's image point"
         ),
     ),
@@ -296,6 +296,19 @@ def _f_number_diagnosis(args, got, expected) -> str:
     )
 
 
+def _f_number_note(run) -> str:
+    """Exercise 2's diffraction caveat, computed with the student's own function once it passes."""
+    N = float(run(0.028, 0.02e-3, 0.8, 1.6))
+    airy = 2.44 * 550e-9 * N  # the Airy disc's diameter in green light
+    best = np.sqrt(N * 0.02e-3 / (2.44 * 550e-9))  # where the defocus N c / N' meets the Airy disc
+    return (
+        f"Diffraction: 28 mm for 0.8 m to 1.6 m at c = 20 µm needs f/{N:.1f}, where the Airy disc 2.44 λN is "
+        f"already {airy * 1e6:.1f} µm, {airy / 20e-6:.0%} of c. Section 2's blur budget adds the two: at best "
+        f"(f/{best:.1f}) they make {np.sqrt(2) * 2.44 * 550e-9 * best * 1e6:.0f} µm, so this range cannot be "
+        f"held to 20 µm at any f-number."
+    )
+
+
 _MARKED_STOPS = (1.0, 1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0, 16.0, 22.0, 32.0, 45.0, 64.0)
 
 
@@ -330,6 +343,7 @@ register_exercise(
         cases=_f_number_cases,
         compare=same_number(rtol=1e-9),
         diagnose=_f_number_diagnosis,
+        success_note=_f_number_note,
         wrong_variants=(
             (
                 lambda f, c, n, r: f**2 * ((n + r) / 2 - n) / (c * n * ((n + r) / 2 - f)),

@@ -469,6 +469,22 @@ register_exercise(
                 "swapped in the tangential terms",
             ),
             (
+                pixel_variant(
+                    lambda x, d: (
+                        distortion.distort_points(x, [d[0], d[1], 0, 0, d[4]])
+                        + np.column_stack(
+                            [
+                                2 * d[2] * x[:, 0] * x[:, 1]
+                                + d[3] * (np.hypot(*x.T) + 2 * x[:, 0] ** 2),
+                                d[2] * (np.hypot(*x.T) + 2 * x[:, 1] ** 2)
+                                + 2 * d[3] * x[:, 0] * x[:, 1],
+                            ]
+                        )
+                    )
+                ),
+                "take r^2, not r",
+            ),
+            (
                 pixel_variant(lambda x, d: brown_variant(x, d, y_copied=True)),
                 "copied from x_d's p2 term",
             ),

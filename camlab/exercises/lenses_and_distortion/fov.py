@@ -226,6 +226,34 @@ _FOV_MISTAKES = (
             "0.036 is 36 mm)"
         ),
     ),
+    Mistake(
+        "infinity's angle scaled",
+        lambda s: np.isclose(s.g, s.fov(s.f) * s.f / s.zi),
+        (
+            "you scaled the field of view at infinity by f / z_i: the angle is not proportional to the distance "
+            "(it is an arctangent). Compute it afresh over z_i: 2 arctan(w / (2 z_i))"
+        ),
+    ),
+    Mistake(
+        "the sensor's height",
+        lambda s: np.isclose(s.g, s.fov(s.zi, 2 * s.w / 3)),
+        (
+            "that is the field of view across the sensor's height (2/3 of its width on a 3:2 sensor); the "
+            "horizontal field of view takes the width w itself: 2 arctan(w / (2 z_i))"
+        ),
+    ),
+    Mistake(
+        "rounded",
+        lambda s: any(
+            np.isclose(s.g, conv(round(float(np.degrees(s.expected)), k)), rtol=0, atol=1e-12)
+            for k in (0, 1, 2)
+            for conv in (np.radians, float)
+        ),
+        (
+            "you rounded the angle; return it exact, in radians (round only when you print it, as the "
+            "check's note does)"
+        ),
+    ),
 )
 """The field of view's slips, in the order they are tested: in the angle (degrees, sign, tangent, half) and in
 the distance it is taken over (z_i from a wrong thin lens, z_o, f), or in the width."""
@@ -332,6 +360,20 @@ register_exercise(
             (
                 lambda f, w, zo: np.degrees(2 * np.arctan(w / (2 * f))),
                 "two slips: that is the field",
+            ),
+            (
+                lambda f, w, zo: 2 * np.arctan(w / (2 * f)) * (zo - f) / zo,
+                "scaled the field of view at infinity",
+            ),
+            (
+                lambda f, w, zo: 2 * np.arctan(2 * w / 3 / (2 * f * zo / (zo - f))),
+                "across the sensor's height",
+            ),
+            (
+                lambda f, w, zo: np.radians(
+                    round(float(np.degrees(lens.angle_of_view(f, w, zo))), 1)
+                ),
+                "you rounded the angle",
             ),
         ),
         teaching=field_of_view,
