@@ -602,3 +602,19 @@ def test_pixel_explorer_reads_the_pixel_both_ways_and_places_each_tools_centre()
     assert (demo.controls["u"].value, demo.controls["v"].value, demo.state["value"]) == (1, 3, 31)
     demo.handlers["button_press_event"](SimpleNamespace(inaxes=None, xdata=None, ydata=None))
     assert (demo.state["u"], demo.state["v"]) == (1, 3)  # a click outside the image changes nothing
+
+
+@pytest.mark.parametrize(
+    "angle, drawn", [(15.0, False), (-19.0, False), (22.0, True), (-40.0, True)]
+)
+def test_stack_check_draws_no_arrowhead_on_an_arc_too_short_to_show(angle, drawn):
+    """Under about 20° (SHORT_ARC / 1.4 rad) the arc hides under the dot; a dart there read as the tip moving on."""
+    from camlab.widgets.start_here import SHORT_ARC
+
+    assert 20 < np.degrees(SHORT_ARC / 1.4) < 21
+    demo = DEMOS["stack_check"].builder()
+    demo.set(angle=angle)
+    assert (demo.state["arrow"]["y down"] is not None) == drawn
+    for ax in demo.figure.axes:
+        (arrow,) = [ln for ln in ax.lines if ln.get_label() == "_the way"]
+        assert (len(arrow.get_xdata()) == 1) == drawn

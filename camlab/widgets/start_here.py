@@ -21,7 +21,7 @@ ROOF_TIP = 3  # HOUSE[3] is the roof tip, (0, -1.4)
 DEFAULT_ANGLE = 40.0  # degrees: a turn whose arc (0.98 plot units) shows the path on both sides of its arrowhead
 ARC_SAMPLES = 61  # points on the arc of the roof tip's turn
 SHORT_ARC = (
-    0.5  # plot units: an arc shorter than this (a turn under 20°) hides under the dot and dart
+    0.5  # plot units: an arc shorter than this (a turn under 20°) hides under the dot: no dart
 )
 MOVED = (
     "0.15"  # the moved house: near-black, so colour stays for the points the lesson reads (orange)
@@ -267,14 +267,10 @@ def stack_check() -> Demo:
         middle = ARC_SAMPLES // 2  # the arrowhead sits half-way along the turn
         way = path[middle + 1] - path[middle - 1]  # the turn's direction there, in plot units
         arrows, turns = {}, {}
-        # A short arc (under about 20°) hides under the orange dot: the dart then sits just past the dot's end
-        # of the arc, along the turn, so the way it turns still shows.
-        where = path[middle]
-        short = 0 < abs(np.radians(angle)) * 1.4 < SHORT_ARC
-        if short:
-            end_way = path[ARC_SAMPLES - 1] - path[ARC_SAMPLES - 2]
-            where = s * path[ARC_SAMPLES - 1] + 0.38 * end_way / np.hypot(*end_way)
-            way = end_way
+        # An arc too short to carry the dart (a turn under about 20°) hides under the orange dot: no dart
+        # then (one drawn past the dot read as the tip moving on); cell 7 of the lesson names the turn.
+        if abs(np.radians(angle)) * 1.4 < SHORT_ARC:
+            way = np.zeros(2)
         for panel in panels:
             panel["house"].set_data(moved[:, 0], moved[:, 1])
             panel["tip"].set_data(
@@ -282,8 +278,8 @@ def stack_check() -> Demo:
             )
             panel["path"].set_data(path[:, 0], path[:, 1])
             key = "y down" if panel["y_down"] else "y up"
-            arrows[key] = _point_arrow(panel["arrow"], where, way, panel["y_down"])
-            panel["arrow"].set_markersize(11.0 if short else arrowhead_size(angle))
+            arrows[key] = _point_arrow(panel["arrow"], path[middle], way, panel["y_down"])
+            panel["arrow"].set_markersize(arrowhead_size(angle))
             # the way the drawn arc turns on screen, measured through the panel's own axes
             way_on_screen = screen_turn(panel["ax"], path[:-1]) if angle else "no turn"
             turns[key] = (
@@ -297,7 +293,7 @@ def stack_check() -> Demo:
         )  # no turn and no scaling: the moved house hides the original
         readout.set_text(f"({x:+.2f}, {y:+.2f})" + ("  (unmoved: no path)" if unmoved else ""))
         # tip: where the orange dot is drawn (lesson 00 recomputes it by hand); readout: the numbers shown
-        # arrow: where the arrowhead sits, and its angle on screen in each panel (None: no turn to show)
+        # arrow: where the arrowhead sits, and its angle on screen in each panel (None: no dart drawn)
         # turns: the way each panel's drawn arc turns on screen (screen_turn), measured, not read off the angle
         state.update(
             A=A,
@@ -305,7 +301,7 @@ def stack_check() -> Demo:
             tip=moved[ROOF_TIP].copy(),
             path=path,
             readout=f"({x:+.2f}, {y:+.2f})",
-            arrow=dict(at=np.array(where, dtype=float), **arrows),
+            arrow=dict(at=np.array(path[middle], dtype=float), **arrows),
             turns=turns,
         )
 
