@@ -11,7 +11,7 @@ from matplotlib.patches import Rectangle
 from .. import fixtures, render, scenes, sensor
 from ..plotting import images, palette
 from ._base import FigureView, build_demo, register, slider
-from .controls import int_slider, monospace
+from .controls import int_slider, log_slider, monospace
 
 SIZE = (320, 240)
 
@@ -304,17 +304,7 @@ def _noise_controls() -> dict:
     """The controls of :func:`bit_depth_and_noise`: bit depth, exposure and read noise."""
     return {
         "bits": int_slider(4, 1, 12, "bit depth"),
-        "exposure": W.FloatLogSlider(
-            value=0.3,
-            base=10,
-            min=-2,
-            max=0,
-            step=0.05,
-            description="exposure (x full well)",
-            continuous_update=True,
-            style={"description_width": "initial"},
-            layout=W.Layout(width="300px"),
-        ),
+        "exposure": log_slider(0.3, 0.01, 1.0, 0.05, "exposure (x full well)"),
         "read_noise": slider(5.0, 0.0, 40.0, 1.0, "read noise (electrons)"),
     }
 

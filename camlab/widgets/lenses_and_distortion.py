@@ -14,7 +14,7 @@ from ._base import FigureView, build_demo, register, slider
 from ._sensor_zoom import ZOOM_ARTISTS, ZOOM_LABELS, draw_sensor_zoom, update_sensor_zoom
 from ._sensor_zoom import ZOOM_HALF_MM as ZOOM_HALF_MM  # re-exported: it lived here
 from ._sensor_zoom import ZOOM_Y as ZOOM_Y  # re-exported: it lived here
-from .controls import monospace
+from .controls import choice_slider, monospace
 
 SIZE = (480, 360)
 K_DOF = np.array([[560.0, 0.0, 239.5], [0.0, 560.0, 179.5], [0.0, 0.0, 1.0]])
@@ -99,14 +99,7 @@ def blur_curve_depths(focus: float) -> np.ndarray:
 def _focus_controls() -> dict:
     """The controls of :func:`focus_and_blur`: the f-number, the object's distance and the sensor's."""
     return {
-        "f_number": W.SelectionSlider(
-            options=F_NUMBERS,
-            value=2.8,
-            description="f-number N",
-            continuous_update=True,
-            style={"description_width": "initial"},
-            layout=W.Layout(width="300px"),
-        ),
+        "f_number": choice_slider(F_NUMBERS, 2.8, "f-number N"),
         "object_m": slider(1.5, 0.3, 2.0, 0.01, "object distance z (m)"),
         "sensor_mm": slider(52.63, SENSOR_MIN_MM, 60.0, 0.01, "sensor behind lens z_s (mm)"),
     }
@@ -278,14 +271,7 @@ def focus_and_blur():
 def _dof_controls() -> dict:
     """The controls of :func:`depth_of_field`: the f-number and the focus distance."""
     return {
-        "f_number": W.SelectionSlider(
-            options=[1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0, 16.0],
-            value=2.8,
-            description="f-number N",
-            continuous_update=True,
-            style={"description_width": "initial"},
-            layout=W.Layout(width="300px"),
-        ),
+        "f_number": choice_slider([1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0, 16.0], 2.8, "f-number N"),
         "focus_m": slider(1.2, 0.5, 4.0, 0.05, "focus distance (m)"),
     }
 
