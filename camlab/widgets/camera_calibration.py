@@ -392,9 +392,13 @@ def undistort_alpha(
     ax0, ax1 = view.fig.subplots(1, 2)
     image_frame(ax0, (w, h), "distorted photo")
     ax0.imshow(image, cmap="gray", vmin=0, vmax=255, extent=(-0.5, w - 0.5, h - 0.5, -0.5))
-    image_frame(ax1, (w, h), "undistorted")
-    pad = 30  # px of white margin: at alpha = 0 the photo's border runs just outside the frame
-    ax1.set(xlim=(-0.5 - pad, w - 0.5 + pad), ylim=(h - 0.5 + pad, -0.5 - pad))
+    image_frame(ax1, (w, h), "undistorted, α = 0.00\nfx 000 px (photo 000)")  # 2 lines: room kept
+    pad = 30  # px of white margin: the border (right) and the output's frame (left) run outside
+    for a in (ax0, ax1):
+        a.set(xlim=(-0.5 - pad, w - 0.5 + pad), ylim=(h - 0.5 + pad, -0.5 - pad))
+    ax0.set_title("distorted photo\n(dashed: what the output shows)", fontsize=9)
+    view.fig.set_layout_engine(None)  # the layout ignores an animated title: reserve its room
+    view.fig.subplots_adjust(left=0.07, right=0.99, top=0.87, bottom=0.21, wspace=0.17)
     view.animate(ax1.title)  # the new focal length
     im = view.animate(
         ax1.imshow(
@@ -441,7 +445,7 @@ def undistort_alpha(
         )
         kept.set_data(seen[:, 0], seen[:, 1])
         ax1.set_title(
-            f"undistorted, α = {v['alpha']:.2f}: fx {out.K[0, 0]:.0f} px (photo {K[0, 0]:.0f})",
+            f"undistorted, α = {v['alpha']:.2f}\nfx {out.K[0, 0]:.0f} px (photo {K[0, 0]:.0f})",
             fontsize=9,
         )
         state.update(
