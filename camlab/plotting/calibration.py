@@ -125,8 +125,15 @@ def plot_residual_field(
     capped = length > cap
     arrows[capped] *= (cap / length[capped])[:, None]
     title = f"Residuals ×{scale:.0f}"
-    if capped.any():
-        title += f" (black: {capped.sum()} capped at {cap:.0f} px)"
+    if capped.any():  # which views the black arrows belong to, so black is not read as one view's
+        views = np.repeat(np.arange(len(result.residuals)), [len(r) for r in result.residuals])
+        counts = sorted(
+            ((int(np.sum(capped & (views == v))), int(v)) for v in set(views[capped])), reverse=True
+        )
+        listed = ", ".join(f"{c} in view {v}" for c, v in counts[:3]) + (
+            ", ..." if len(counts) > 3 else ""
+        )
+        title += f"\nblack: {capped.sum()} capped at {cap:.0f} px ({listed})"
     image_frame(ax, result.image_size, title)
     colours = np.where(
         capped[:, None], np.array([[0.0, 0.0, 0.0, 1.0]]), np.array([[1.0, 0.0, 1.0, 1.0]])
