@@ -190,7 +190,9 @@ def plot_coverage(ax, result: CalibrationResult, report: CoachReport | None = No
     for r in np.linspace(-0.5, h - 0.5, rows + 1)[1:-1]:
         ax.axhline(r, color="0.8", lw=0.5, gid="grid")
     colors = np.concatenate([np.full(len(p), v) for v, p in enumerate(result.image_points)])
-    return ax.scatter(*np.concatenate(result.image_points).T, c=colors, s=3, cmap="tab20")
+    return ax.scatter(
+        *np.concatenate(result.image_points).T, c=colors, s=3, cmap="viridis"
+    )  # no red: red + is a detection
 
 
 def plot_uncertainty_map(ax, result: CalibrationResult, step: int = 16):

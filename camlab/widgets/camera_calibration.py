@@ -74,10 +74,10 @@ def _accuracy_figure(view: FigureView, s) -> SimpleNamespace:
         handletextpad=0.9,
     )
     view.animate(ax.get_legend())  # below the axes, off the data
-    image_frame(axi, s.image_size, "Corners used; the last view added in orange")
+    image_frame(axi, s.image_size, "Corners used; the last view added in purple")
     pts = axi.scatter(np.zeros(0), np.zeros(0), s=3, color="0.55", linewidths=0)
-    (last,) = axi.plot([], [], ".", color=palette.ORANGE, ms=4)
-    (outline,) = axi.plot([], [], "-", color=palette.ORANGE, lw=1)
+    (last,) = axi.plot([], [], ".", color=palette.PURPLE, ms=4)
+    (outline,) = axi.plot([], [], "-", color=palette.PURPLE, lw=1)
     view.animate(pts, last, outline)
     return SimpleNamespace(
         dots=dots, above=above, bars=bars, pts=pts, last=last, outline=outline, title=title
