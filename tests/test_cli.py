@@ -120,7 +120,7 @@ def test_wrong_pattern_size_is_explained(photos, tmp_path, capsys):
             "--no-report",
         ]
     )
-    assert "use --pattern 9x6" in capsys.readouterr().err
+    assert "(on the command line, --pattern 9x6)" in capsys.readouterr().err
 
 
 def test_no_matching_files_and_no_command(capsys):

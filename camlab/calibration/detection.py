@@ -310,7 +310,7 @@ def _why_not_found(img: np.ndarray, pattern: tuple[int, int]) -> str:
         return (
             f"wrong pattern size: a board with {cols - 1} x {rows - 1} inner corners was found; "
             f"pattern_size counts inner corners (where four squares meet), not squares: "
-            f"use --pattern {cols - 1}x{rows - 1}"
+            f"use pattern_size ({cols - 1}, {rows - 1}) (on the command line, --pattern {cols - 1}x{rows - 1})"
         )
     # OpenCV's "SB" detector with CALIB_CB_LARGER also reports partial boards
     import cv2
@@ -334,7 +334,8 @@ def _why_not_found(img: np.ndarray, pattern: tuple[int, int]) -> str:
             )
         return (
             f"a chessboard is visible but its {cols} x {rows} inner corners could not all be matched: check "
-            f"--pattern (count inner corners, where four squares meet), glare and anything covering the board"
+            f"the pattern size (pattern_size, or --pattern on the command line: count inner corners, where four "
+            f"squares meet), glare and anything covering the board"
         )
     width = _edge_width(img)
     if width > 4.0:
@@ -343,6 +344,7 @@ def _why_not_found(img: np.ndarray, pattern: tuple[int, int]) -> str:
             f"focus on the board and hold the camera still"
         )
     return (
-        f"no {cols} x {rows} chessboard found: check --pattern (inner corners, e.g. 9x6 for a board of "
-        f"10 x 7 squares), that the whole board is visible with a white border, and that it is in focus"
+        f"no {cols} x {rows} chessboard found: check the pattern size, in inner corners (pattern_size (9, 6), "
+        f"or --pattern 9x6 on the command line, for a board of 10 x 7 squares), that the whole board "
+        f"is visible with a white border, and that it is in focus"
     )

@@ -6,7 +6,7 @@ import numpy as np
 
 from .. import calibration, camera, optimise
 from ..camera import rotation_from_axis_angle
-from ._answers import SameArray, Tolerance, same_array, shape_problem
+from ._answers import SameArray, Tolerance, same_array, shape_problem, type_problem
 from ._core import Exercise, register_exercise
 
 # ------------------------------------------------------------------ V from one homography
@@ -468,7 +468,32 @@ def _rms_cases():
     return [(0.0346, 864, 105), (0.3, 162, 27), (1.0, 100, 20), (0.5, 20, 30)]
 
 
+def _rms_form_problem(args, got, expected) -> str | None:
+    """Why ``got`` is not one finite number (None, a string, an array, NaN from swapped N and p), or None."""
+    sigma, n, p = args
+    if got is None or type_problem(got, expected):
+        return shape_problem(got, expected)
+    g = np.asarray(got, dtype=float)
+    if g.shape != ():
+        return (
+            f"expected one number, got an array of shape {g.shape}: return a float, e.g. float(x) "
+            "or x.item() (np.array([x]) or np.sqrt of a length-1 array keeps the array)"
+        )
+    with np.errstate(invalid="ignore"):
+        swapped = np.sqrt(2.0) * sigma * np.sqrt(1.0 - n / (2.0 * p))
+    if not np.isfinite(g) or np.isclose(g, swapped, rtol=1e-6):
+        return (
+            f"{'NaN: ' if not np.isfinite(g) else ''}did you swap n_corners and n_params? With N = {n} "
+            f"corners and p = {p} unknowns, 1 - p / (2N) = {1 - p / (2 * n):.3f}; with them swapped it is "
+            f"1 - N / (2p) = {1 - n / (2 * p):.3f}{' (negative: its square root is NaN)' if n > 2 * p else ''}"
+        )
+    return None
+
+
 def _rms_diagnosis(args, got, expected) -> str:
+    problem = _rms_form_problem(args, got, expected)
+    if problem:
+        return problem
     sigma, n, p = args
     g = float(np.asarray(got, dtype=float))
     slips = (
@@ -485,6 +510,11 @@ def _rms_diagnosis(args, got, expected) -> str:
         (
             np.sqrt(2) * sigma * (1 - p / (2 * n)),
             "the factor is a square root, sqrt(1 - p / (2N)): it scales a variance, sigma^2",
+        ),
+        (
+            expected**2,
+            "that is the mean square error 2 sigma^2 (1 - p / (2N)), a variance in px^2: the rms is "
+            "its square root",
         ),
         (
             np.sqrt(2) * sigma,
@@ -504,6 +534,11 @@ def _rms_diagnosis(args, got, expected) -> str:
     for value, cause in slips:
         if np.isclose(g, value, rtol=1e-6):
             return cause
+    if any(np.isclose(g, round(expected, d), rtol=0, atol=1e-12) for d in range(1, 5)):
+        return (
+            f"your {g:g} is the right value rounded ({expected:.6g}): return the unrounded number "
+            "and round only when printing, f'{rms:.3f}'"
+        )
     return "expected rms = sqrt(2) sigma sqrt(1 - p / (2N)), N corners, p unknowns"
 
 
@@ -551,6 +586,13 @@ register_exercise(
             (lambda s, n, p: np.sqrt(2) * s, "left out"),
             (lambda s, n, p: 2 * s * np.sqrt(1 - p / (2 * n)), "variances add"),
             (lambda s, n, p: np.sqrt(2) * s * np.sqrt(1 + p / (2 * n)), "1 + p"),
+            (lambda s, n, p: np.array([np.sqrt(2) * s * np.sqrt(1 - p / (2 * n))]), "shape (1,)"),
+            (
+                lambda s, n, p: np.sqrt(2) * s * np.sqrt(1 - n / (2 * p)),
+                "swap n_corners and n_params",
+            ),
+            (lambda s, n, p: round(np.sqrt(2) * s * np.sqrt(1 - p / (2 * n)), 3), "rounded"),
+            (lambda s, n, p: 2 * s**2 * (1 - p / (2 * n)), "mean square"),
         ),
         teaching=expected_rms,
         solution_note=(

@@ -125,8 +125,15 @@ def plot_residual_field(
     capped = length > cap
     arrows[capped] *= (cap / length[capped])[:, None]
     title = f"Residuals ×{scale:.0f}"
-    if capped.any():
-        title += f" (black: {capped.sum()} capped at {cap:.0f} px)"
+    if capped.any():  # which views the black arrows belong to, so black is not read as one view's
+        views = np.repeat(np.arange(len(result.residuals)), [len(r) for r in result.residuals])
+        counts = sorted(
+            ((int(np.sum(capped & (views == v))), int(v)) for v in set(views[capped])), reverse=True
+        )
+        listed = ", ".join(f"{c} in view {v}" for c, v in counts[:3]) + (
+            ", ..." if len(counts) > 3 else ""
+        )
+        title += f"\nblack: {capped.sum()} capped at {cap:.0f} px ({listed})"
     image_frame(ax, result.image_size, title)
     colours = np.where(
         capped[:, None], np.array([[0.0, 0.0, 0.0, 1.0]]), np.array([[1.0, 0.0, 1.0, 1.0]])
@@ -183,7 +190,9 @@ def plot_coverage(ax, result: CalibrationResult, report: CoachReport | None = No
     for r in np.linspace(-0.5, h - 0.5, rows + 1)[1:-1]:
         ax.axhline(r, color="0.8", lw=0.5, gid="grid")
     colors = np.concatenate([np.full(len(p), v) for v, p in enumerate(result.image_points)])
-    return ax.scatter(*np.concatenate(result.image_points).T, c=colors, s=3, cmap="tab20")
+    return ax.scatter(
+        *np.concatenate(result.image_points).T, c=colors, s=3, cmap="viridis"
+    )  # no red: red + is a detection
 
 
 def plot_uncertainty_map(ax, result: CalibrationResult, step: int = 16):

@@ -74,10 +74,10 @@ def _accuracy_figure(view: FigureView, s) -> SimpleNamespace:
         handletextpad=0.9,
     )
     view.animate(ax.get_legend())  # below the axes, off the data
-    image_frame(axi, s.image_size, "Corners used; the last view added in orange")
+    image_frame(axi, s.image_size, "Corners used; the last view added in purple")
     pts = axi.scatter(np.zeros(0), np.zeros(0), s=3, color="0.55", linewidths=0)
-    (last,) = axi.plot([], [], ".", color=palette.ORANGE, ms=4)
-    (outline,) = axi.plot([], [], "-", color=palette.ORANGE, lw=1)
+    (last,) = axi.plot([], [], ".", color=palette.PURPLE, ms=4)
+    (outline,) = axi.plot([], [], "-", color=palette.PURPLE, lw=1)
     view.animate(pts, last, outline)
     return SimpleNamespace(
         dots=dots, above=above, bars=bars, pts=pts, last=last, outline=outline, title=title
@@ -92,13 +92,13 @@ def _accuracy_readout(n, sigma, res, s, est, std, truth, err, z) -> str:
     """
     lines = [f"{n} views, noise σ = {sigma:.2f} px, rms = {res.rms:.3f} px per corner"]
     lines += [
-        f"{k:>2} = {e:8.2f} ± {sd:5.2f}  (true {t:.1f}, error {d:+.2f}"
+        f"{k:>2} = {e:8.2f} ± {sd:5.2f}  (true {t:.1f}, error {round(d, 2) + 0.0:+.2f}"
         + (f" = {zz:+.1f}σ)" if np.isfinite(zz) else ")")
         for k, e, sd, t, d, zz in zip(_NAMES, est, std, truth, err, z, strict=True)
     ]
     lines.append(f"k1 = {res.dist[0]:+.3f} ± {res.std['k1']:.3f}  (true {s.dist[0]:+.3f})")
     if sigma == 0:
-        lines.append("no noise: errors and σ are both rounding noise (drawn at the axis floor)")
+        lines.append("no noise: errors and σ are both rounding noise (not drawn)")
     return monospace("\n".join(lines))
 
 
@@ -190,6 +190,11 @@ def accuracy_vs_views() -> Demo:
         )
         size = np.clip(np.abs(err), _PX_FLOOR * 1.3, top)
         dots.set_data(x, size)
+        if (
+            sigma == 0
+        ):  # both are rounding noise: a dot above a tick at the floor would read "beyond 3σ"
+            dots.set_data([], [])
+            art.bars.set_segments([])
         clipped = np.abs(err) > top
         above.set_data(x[clipped], np.full(clipped.sum(), top))
         art.title.set_text(_accuracy_title(n, sigma, err, std))
@@ -239,7 +244,18 @@ def _inspector_figure(view: FigureView, res) -> SimpleNamespace:
         label="reprojected",
         path_effects=palette.halo(),
     )
-    view.animate(det, rep)
+    (worst,) = ax.plot(
+        [],
+        [],
+        "o",
+        mfc="none",
+        color="k",
+        ms=15,
+        mew=1.6,
+        label="worst corner",
+        path_effects=palette.halo(1.6),
+    )
+    view.animate(det, rep, worst)
     # the legend's entry for the arrows (a quiver has no legend handle of its own)
     ax.plot(  # haloed black, as magenta alone is 3.1:1 on the legend's white
         [],
@@ -264,11 +280,11 @@ def _inspector_figure(view: FigureView, res) -> SimpleNamespace:
             width=0.004,
         )
     )
-    ax.legend(loc="upper right", fontsize=8)
-    view.animate(ax.get_legend())  # over the animated photo, or it would hide the legend
+    # below the photo, off the corners and arrows
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.11), fontsize=8, ncol=4, frameon=False)
     ax.set_title(" ", fontsize=10)
     view.animate(ax.title)  # names the view, its rms and the arrows' magnification
-    return SimpleNamespace(im=im, det=det, rep=rep, arrows=arrows, title=ax.title)
+    return SimpleNamespace(im=im, det=det, rep=rep, worst=worst, arrows=arrows, title=ax.title)
 
 
 def _inspector_controls(n_views: int) -> dict:
@@ -332,6 +348,7 @@ def view_inspector(
         art.arrows.set_offsets(pred)
         art.arrows.set_UVC(r[:, 0] * v["magnify"], r[:, 1] * v["magnify"])
         worst = int(np.argmax(np.linalg.norm(r, axis=1)))
+        art.worst.set_data(obs[worst, :1], obs[worst, 1:])
         state.update(
             view=k,
             image_index=i,
@@ -346,7 +363,7 @@ def view_inspector(
         readout.value = monospace(
             f"view {k} ({out.names[i]})\nrms {res.per_view_rms[k]:.3f} px "
             f"(median view {np.median(res.per_view_rms):.3f})\nworst corner {worst}: "
-            f"{np.linalg.norm(r[worst]):.3f} px\narrows ×{v['magnify']:.0f}"
+            f"{np.linalg.norm(r[worst]):.3f} px (ringed)\narrows ×{v['magnify']:.0f}"
         )
 
     return build_demo(
@@ -357,6 +374,47 @@ def view_inspector(
         title="Detected versus reprojected corners",
         extra=[readout],
     )
+
+
+def _undistort_figure(image: np.ndarray) -> tuple[FigureView, SimpleNamespace]:
+    """The figure of :func:`undistort_alpha`: the photo and its undistorted version, 30 px margins.
+
+    Returns the view and the artists updates move (``ax1``, ``im``, ``edge``, ``kept``).
+    """
+    h, w = image.shape[:2]
+    view = FigureView(figsize=(9, 3.8))
+    ax0, ax1 = view.fig.subplots(1, 2)
+    image_frame(ax0, (w, h))
+    ax0.imshow(image, cmap="gray", vmin=0, vmax=255, extent=(-0.5, w - 0.5, h - 0.5, -0.5))
+    image_frame(ax1, (w, h), "undistorted, α = 0.00\nfx 000 px (photo 000)")  # 2 lines: room kept
+    pad = 30  # px of white margin: the border (right) and the output's frame (left) run outside
+    for a in (ax0, ax1):
+        a.set(xlim=(-0.5 - pad, w - 0.5 + pad), ylim=(h - 0.5 + pad, -0.5 - pad))
+    ax0.set_title("distorted photo\n(dashed: what the output shows)", fontsize=9)
+    view.fig.set_layout_engine(None)  # the layout ignores an animated title: reserve its room
+    view.fig.subplots_adjust(left=0.07, right=0.99, top=0.87, bottom=0.21, wspace=0.17)
+    view.animate(ax1.title)  # the new focal length
+    im = view.animate(
+        ax1.imshow(
+            np.zeros((h, w)), cmap="gray", vmin=0, vmax=255, extent=(-0.5, w - 0.5, h - 0.5, -0.5)
+        )
+    )
+    (edge,) = ax1.plot(
+        [], [], color=palette.ORANGE, lw=1.5, label="photo's border", path_effects=palette.halo(1.5)
+    )
+    (kept,) = ax0.plot(
+        [],
+        [],
+        "--",
+        color=palette.ORANGE,
+        lw=1.5,
+        label="what the output shows",
+        path_effects=palette.halo(1.5),
+    )
+    view.animate(edge, kept)
+    for a in (ax0, ax1):  # below the photos, off the data
+        a.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), fontsize=8, frameon=False, ncol=2)
+    return view, SimpleNamespace(ax1=ax1, im=im, edge=edge, kept=kept)
 
 
 @register(lesson="08", sweep={"alpha": [0.0, 0.5, 1.0]})
@@ -388,34 +446,8 @@ def undistort_alpha(
         real, photos = real_calibration()
         image, K, dist = photos[2], real.result.K, real.result.dist
     h, w = image.shape[:2]
-    view = FigureView(figsize=(9, 3.8))
-    ax0, ax1 = view.fig.subplots(1, 2)
-    image_frame(ax0, (w, h), "distorted photo")
-    ax0.imshow(image, cmap="gray", vmin=0, vmax=255, extent=(-0.5, w - 0.5, h - 0.5, -0.5))
-    image_frame(ax1, (w, h), "undistorted")
-    pad = 30  # px of white margin: at alpha = 0 the photo's border runs just outside the frame
-    ax1.set(xlim=(-0.5 - pad, w - 0.5 + pad), ylim=(h - 0.5 + pad, -0.5 - pad))
-    view.animate(ax1.title)  # the new focal length
-    im = view.animate(
-        ax1.imshow(
-            np.zeros((h, w)), cmap="gray", vmin=0, vmax=255, extent=(-0.5, w - 0.5, h - 0.5, -0.5)
-        )
-    )
-    (edge,) = ax1.plot(
-        [], [], color=palette.ORANGE, lw=1.5, label="photo's border", path_effects=palette.halo(1.5)
-    )
-    (kept,) = ax0.plot(
-        [],
-        [],
-        "--",
-        color=palette.ORANGE,
-        lw=1.5,
-        label="what the output shows",
-        path_effects=palette.halo(1.5),
-    )
-    view.animate(edge, kept)
-    for a in (ax0, ax1):  # below the photos, off the data
-        a.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), fontsize=8, frameon=False, ncol=2)
+    view, art = _undistort_figure(image)
+    ax1, im, edge, kept = art.ax1, art.im, art.edge, art.kept
     t = np.linspace(0, 1, 40)
     border = np.concatenate(
         [
@@ -441,7 +473,7 @@ def undistort_alpha(
         )
         kept.set_data(seen[:, 0], seen[:, 1])
         ax1.set_title(
-            f"undistorted, α = {v['alpha']:.2f}: fx {out.K[0, 0]:.0f} px (photo {K[0, 0]:.0f})",
+            f"undistorted, α = {v['alpha']:.2f}\nfx {out.K[0, 0]:.0f} px (photo {K[0, 0]:.0f})",
             fontsize=9,
         )
         state.update(
