@@ -613,3 +613,21 @@ def test_field_of_view_check_answers_the_prompts_question_and_names_a_one_tuple(
         assert check("field_of_view", field_of_view)
     assert "39.6 deg focused at infinity and 33.4 deg focused at 0.3 m" in out.getvalue()
     assert _fmt((0.5829,)) == "(0.5829,)" and _fmt((1.0, 2.0)) == "(1.0, 2.0)"
+
+
+def test_bit_depth_readout_says_one_code_where_the_background_has_no_spread():
+    """At exposure 1.0 and 4 bits every background pixel has one code: once printed as SNR 7.2e15 (V6)."""
+    from camlab.widgets import all_demos
+
+    demo = all_demos()["bit_depth_and_noise"].builder()
+    demo.set(exposure=1.0)
+    assert np.isinf(demo.state["snr_background"][1])
+
+    def texts(widget):
+        if isinstance(getattr(widget, "value", None), str):
+            yield widget.value
+        for child in getattr(widget, "children", ()):
+            yield from texts(child)
+
+    shown = list(texts(demo.widget))
+    assert any("one code: no spread" in text for text in shown), shown

@@ -393,7 +393,8 @@ def bit_depth_and_noise():
         # measured where the truth is flat, the grey background: mean over spread, against the model there
         n_bg, flat = BACKGROUND * expo * full_well, shown[clean == BACKGROUND]
         model_bg = n_bg / np.sqrt(n_bg + values["read_noise"] ** 2 + step**2 / 12)
-        measured_bg = float(flat.mean() / flat.std()) if flat.std() > 0 else np.inf
+        # one code everywhere: no spread (a float std of equal values is ~1e-17, not 0: test the codes)
+        measured_bg = np.inf if np.ptp(flat) == 0 else float(flat.mean() / flat.std())
         electrons = {
             "white": expo * full_well,
             "uniform": float(clean[row, UNIFORM].mean()) * expo * full_well,
