@@ -299,9 +299,8 @@ def epipolar_lines() -> Demo:
     # pixel centres at integers: the pencil of the blue lines. No two of the four lie on one line
     # through the centre, so in forward motion (epipole at the centre) they give four distinct lines
     ref = REF_PIXELS
-    axl.plot(
-        *ref.T, "s", color=palette.BLUE, mec="k", ms=6, zorder=4
-    )  # the fixed pixels themselves
+    # the fixed pixels themselves, animated: the moving lines' halos would paint over a static marker
+    view.animate(axl.plot(*ref.T, "s", color=palette.BLUE, mec="k", ms=6, zorder=4)[0])
 
     def update(v, state):
         c1, c2 = _MOTIONS[v["motion"]](v["baseline"], np.deg2rad(v["toe_in"]))
