@@ -131,6 +131,9 @@ class Exercise:
     solution_note: str | None = None
     """What :func:`solution` prints under the teaching solution, as comment lines, in place of the name of a
     private reference: the public camlab functions that compute the same answer another way."""
+    up_to_scale: bool = False
+    """The answer is homogeneous though ``compare`` is not :func:`same_up_to_scale`: a failed check
+    shows the expected answer at the student's scale, as it does for that comparison."""
     describe_input: Callable[[tuple], str] | None = None
     """``describe_input(args)``: the test input summarised in one line for messages, where printing it
     (stacks of frames, say) would bury the likely cause under hundreds of characters."""
@@ -364,7 +367,7 @@ def _expected_shown(exercise: Exercise, got: Any, expected: Any) -> tuple[Any, s
     A scale-free answer is shown at the student's scale when theirs points nearly the same way,
     else at unit length: stretching it to a far-off answer's scale would only confuse.
     """
-    if exercise.compare is not same_up_to_scale:
+    if exercise.compare is not same_up_to_scale and not exercise.up_to_scale:
         return expected, ""
     if rescaled_to(got, expected) is not None:  # compare after fixing the free scale
         return rescaled_to(got, expected), "  (rescaled to your answer's scale)"

@@ -435,7 +435,9 @@ def _drag_artists(view, ax_s, ax_t, out_hw) -> SimpleNamespace:
     sent_away = view.animate(ax_s.plot([], [], "--", color=palette.PURPLE, lw=2)[0])
     im = view.animate(
         ax_t.imshow(
-            np.zeros((*out_hw, 3), np.uint8), extent=(-0.5, out_hw[1] - 0.5, out_hw[0] - 0.5, -0.5)
+            np.zeros((*out_hw, 3), np.uint8),
+            extent=(-0.5, out_hw[1] - 0.5, out_hw[0] - 0.5, -0.5),
+            interpolation="nearest",  # as the hierarchy demo: a live frame then equals the first draw
         )
     )
     quad = view.animate(
