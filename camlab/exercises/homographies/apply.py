@@ -13,8 +13,12 @@ def _apply_cases():
     H = np.array([[1.1, 0.2, 5.0], [-0.1, 0.9, 12.0], [1e-3, 2e-3, 1.0]])
     rng = np.random.default_rng(3)
     return [
-        # h33 = 2: the scale of H is arbitrary, so w is never 1 here (a missing division shows)
-        (np.diag([4.0, 6.0, 2.0]), np.array([[1.0, 1.0], [2.0, -1.0]])),
+        # h33 = 2: the scale of H is arbitrary, so w is never 1 here (a missing division shows);
+        # h12 = 1 makes H non-symmetric, so X @ H (H transposed) is told apart already here
+        (
+            np.array([[4.0, 1.0, 0.0], [0.0, 6.0, 0.0], [0.0, 0.0, 2.0]]),
+            np.array([[1.0, 1.0], [2.0, -1.0]]),
+        ),
         (0.5 * H, rng.uniform(0, 400, (5, 2))),  # h33 = 0.5 and w varies from point to point
         (3.0 * H, np.array([[0.0, 0.0]])),
         # w < 0 at the second point: it lies beyond the line that H sends to infinity (section 3),
