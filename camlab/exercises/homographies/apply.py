@@ -97,6 +97,11 @@ def _apply_diagnosis(args, got, expected) -> str:
     inverse = x @ np.linalg.inv(H).T
     if np.allclose(g, inverse[:, :2] / inverse[:, 2:], rtol=1e-6):
         return "you applied the inverse, H^-1: the prompt maps points by H itself, x' ~ H x."
+    if np.allclose(g, expected, rtol=1e-5, atol=1e-6):  # right method, float32 arithmetic
+        return (
+            "your answer agrees to about 7 digits: the method is right, but the arithmetic ran in float32 "
+            "(float32 inputs, or np.float32 somewhere). Compute in float64: np.asarray(H, dtype=float)."
+        )
     return (
         "check the three steps: lift to (u, v, 1), multiply by H (X @ H.T for rows), divide by w."
     )
@@ -184,6 +189,10 @@ register_exercise(
             (lambda H, p: map_points(H, p).tolist(), "you returned a list"),
             (lambda H, p: map_points(H, np.asarray(p) + 1.0), "counting pixels from 1"),
             (lambda H, p: 1000 * map_points(H, p), "a unit slip"),
+            (
+                lambda H, p: map_points(np.float32(H), np.float32(p)).astype(np.float64),
+                "ran in float32",
+            ),
         ),
         ndarray_only=True,
         teaching=apply_homography,
