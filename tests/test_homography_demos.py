@@ -286,3 +286,32 @@ def test_plane_parallax_demo_is_zero_on_the_plane_and_for_a_turning_camera():
     assert d.state["parallax"][6.0] < 1e-9 and d.state["parallax"][3.0] > 10
     readouts = [w.value for w in d.widget.children[0].children if "median parallax" in str(w.value)]
     assert len(readouts) == 1 and "|1/Z - 1/d|" in readouts[0]
+    d.set(plane=3.0, move=-0.6)  # points leave the image: the median counts only those in view
+    assert d.state["outside"][1.5] == 9 and d.state["outside"][3.0] == 0
+    readouts = [w.value for w in d.widget.children[0].children if "median parallax" in str(w.value)]
+    assert "9 of 12 outside the image, not counted" in readouts[0]
+
+
+def test_ransac_demo_shows_red_when_outliers_lie_near_the_model():
+    d = h07.ransac_outliers()
+    d.set(outliers=0.4, threshold=10.0, seed=0)
+    assert d.state["verdicts"][1] <= 1  # random outliers: almost never kept
+    d.set(near=0.5)  # 40 of the 80 outliers 4 to 15 px off H: a loose threshold keeps half of them
+    assert d.state["verdicts"][1] == 20
+    d.set(threshold=3.0)
+    assert d.state["verdicts"][1] == 0
+
+
+def test_ransac_samples_check_tells_log_p_from_swapped_arguments():
+    # both give k = 1 on the first inputs; the check runs the function on the others to tell them apart
+    from camlab.exercises import check_ransac_samples
+    from camlab.exercises._core import CheckFailed
+
+    slips = {
+        "you took log(p)": lambda p, w: int(np.ceil(np.log(p) / np.log(1 - w**4))),
+        "you swapped p and w": lambda p, w: int(np.ceil(np.log(1 - w) / np.log(1 - p**4))),
+    }
+    for cause, slip in slips.items():
+        with pytest.raises(CheckFailed) as failed:
+            check_ransac_samples(slip)
+        assert cause in str(failed.value) and "different slips" not in str(failed.value)

@@ -188,6 +188,14 @@ def test_outlier_matches_hold_the_stated_fraction_of_wrong_pairs():
     assert err[~m.is_outlier].max() < 6 and np.median(err[m.is_outlier]) > 30
     with pytest.raises(ValueError, match="outlier_fraction"):
         fixtures.outlier_matches(1.5)
+    near = fixtures.outlier_matches(0.3, seed=2, near_share=0.5)
+    assert np.array_equal(near.src, m.src) and np.array_equal(near.is_outlier, m.is_outlier)
+    err_near = np.linalg.norm(map_points(m.H, near.src) - near.dst, axis=1)[m.is_outlier]
+    assert (
+        np.sum((err_near >= 4) & (err_near <= 15)) >= 30
+    )  # 30 of the 60 placed near, a few random ones too
+    with pytest.raises(ValueError, match="near_share"):
+        fixtures.outlier_matches(0.3, near_share=2)
 
 
 def test_sleeper_gaps_shrink_with_distance_only_in_perspective():

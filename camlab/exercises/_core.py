@@ -48,6 +48,7 @@ import sys
 import traceback
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from functools import partial
 from pathlib import Path
 from typing import Any, NamedTuple
 
@@ -131,6 +132,12 @@ class Exercise:
     solution_note: str | None = None
     """What :func:`solution` prints under the teaching solution, as comment lines, in place of the name of a
     private reference: the public camlab functions that compute the same answer another way."""
+    diagnosis_runs: bool = False
+    """``diagnose`` takes a fourth argument, ``run(*args)``, the student's function: slips that tie on
+    one test input (several round up to k = 1, say) are told apart on the others."""
+    up_to_scale: bool = False
+    """The answer is homogeneous though ``compare`` is not :func:`same_up_to_scale`: a failed check
+    shows the expected answer at the student's scale, as it does for that comparison."""
     describe_input: Callable[[tuple], str] | None = None
     """``describe_input(args)``: the test input summarised in one line for messages, where printing it
     (stacks of frames, say) would bury the likely cause under hundreds of characters."""
@@ -373,7 +380,7 @@ def _expected_shown(exercise: Exercise, got: Any, expected: Any) -> tuple[Any, s
     else at unit length: stretching it to a far-off answer's scale would only confuse, and so
     would a rescaled vector whose small entries print as 0.0000 (a horizon read as l_inf).
     """
-    if exercise.compare is not same_up_to_scale:
+    if exercise.compare is not same_up_to_scale and not exercise.up_to_scale:
         return expected, ""
     shown = rescaled_to(got, expected)  # compare after fixing the free scale
     if shown is not None and not _hidden_by_rounding(shown):
@@ -384,7 +391,7 @@ def _expected_shown(exercise: Exercise, got: Any, expected: Any) -> tuple[Any, s
     return expected, ""
 
 
-def _likely_cause(exercise: Exercise, args: tuple, got: Any, expected: Any) -> str:
+def _likely_cause(exercise: Exercise, args: tuple, got: Any, expected: Any, run=None) -> str:
     """The exercise's diagnosis of a wrong answer; a plain hint if the answer's form defeats it.
 
     A diagnosis is written for the slips its table names; an answer of an unforeseen form (a
@@ -392,6 +399,8 @@ def _likely_cause(exercise: Exercise, args: tuple, got: Any, expected: Any) -> s
     traceback from inside the check.
     """
     try:
+        if exercise.diagnosis_runs:
+            return exercise.diagnose(args, got, expected, lambda *again: run(again))
         return exercise.diagnose(args, got, expected)
     except Exception:  # a failure of the diagnosis itself, never of the student's code
         return (
@@ -456,13 +465,16 @@ def check(
                 exercise.compare.tolerance if isinstance(exercise.compare, SameArray) else None
             )
             shown, scaled = _expected_shown(exercise, got, expected)
+            run_again = partial(
+                _run_student, name, student_function, i=i, n=len(cases), seconds=seconds
+            )
             raise CheckFailed(
                 f"{name}: wrong answer on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_input_text(name, args)}\n"
                 f"  got      {_shown(as_array(got))}\n"
                 f"  expected {_shown(shown)}{scaled}\n"
                 + worst_mismatch(got, shown, tolerance)
-                + f"  likely cause: {_likely_cause(exercise, args, got, expected)}"
+                + f"  likely cause: {_likely_cause(exercise, args, got, expected, run_again)}"
             )
     if exercise.follow_up is not None:
         problem = exercise.follow_up(

@@ -13,8 +13,12 @@ def _apply_cases():
     H = np.array([[1.1, 0.2, 5.0], [-0.1, 0.9, 12.0], [1e-3, 2e-3, 1.0]])
     rng = np.random.default_rng(3)
     return [
-        # h33 = 2: the scale of H is arbitrary, so w is never 1 here (a missing division shows)
-        (np.diag([4.0, 6.0, 2.0]), np.array([[1.0, 1.0], [2.0, -1.0]])),
+        # h33 = 2: the scale of H is arbitrary, so w is never 1 here (a missing division shows);
+        # h12 = 1 makes H non-symmetric, so X @ H (H transposed) is told apart already here
+        (
+            np.array([[4.0, 1.0, 0.0], [0.0, 6.0, 0.0], [0.0, 0.0, 2.0]]),
+            np.array([[1.0, 1.0], [2.0, -1.0]]),
+        ),
         (0.5 * H, rng.uniform(0, 400, (5, 2))),  # h33 = 0.5 and w varies from point to point
         (3.0 * H, np.array([[0.0, 0.0]])),
         # w < 0 at the second point: it lies beyond the line that H sends to infinity (section 3),
@@ -93,6 +97,11 @@ def _apply_diagnosis(args, got, expected) -> str:
     inverse = x @ np.linalg.inv(H).T
     if np.allclose(g, inverse[:, :2] / inverse[:, 2:], rtol=1e-6):
         return "you applied the inverse, H^-1: the prompt maps points by H itself, x' ~ H x."
+    if np.allclose(g, expected, rtol=1e-5, atol=1e-6):  # right method, float32 arithmetic
+        return (
+            "your answer agrees to about 7 digits: the method is right, but the arithmetic ran in float32 "
+            "(float32 inputs, or np.float32 somewhere). Compute in float64: np.asarray(H, dtype=float)."
+        )
     return (
         "check the three steps: lift to (u, v, 1), multiply by H (X @ H.T for rows), divide by w."
     )
@@ -180,6 +189,10 @@ register_exercise(
             (lambda H, p: map_points(H, p).tolist(), "you returned a list"),
             (lambda H, p: map_points(H, np.asarray(p) + 1.0), "counting pixels from 1"),
             (lambda H, p: 1000 * map_points(H, p), "a unit slip"),
+            (
+                lambda H, p: map_points(np.float32(H), np.float32(p)).astype(np.float64),
+                "ran in float32",
+            ),
         ),
         ndarray_only=True,
         teaching=apply_homography,

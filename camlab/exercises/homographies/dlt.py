@@ -668,6 +668,7 @@ register_exercise(
         reference=hg.estimate_homography,
         cases=_dlt_cases,
         compare=_same_homography,
+        up_to_scale=True,
         diagnose=_dlt_diagnosis,
         wrong_variants=(
             (lambda s, d: hg.estimate_homography(d, s), "inverse"),

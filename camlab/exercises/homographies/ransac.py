@@ -14,8 +14,9 @@ from .._numbers import not_one_number, same_number
 
 def _ransac_samples_cases():
     # (confidence p, inlier ratio w); each k has a fraction part that tells ceil from round and floor,
-    # and no w is 0.5, where w^4 and (1 - w)^4 are one number and two slips one answer
-    return [(0.99, 0.6), (0.95, 0.8), (0.995, 0.3), (0.999, 0.9)]
+    # and no w is 0.5, where w^4 and (1 - w)^4 are one number and two slips one answer. The last
+    # tells log(p) (13) from swapped p and w (1), which give k = 1 on all the others
+    return [(0.99, 0.6), (0.95, 0.8), (0.995, 0.3), (0.999, 0.9), (0.9, 0.3)]
 
 
 def _samples_needed(p, w):
@@ -117,12 +118,28 @@ _SAMPLES_MISTAKES = (
 """The slips in k = ceil(log(1 - p) / log(1 - w^4)), in the order they are tested (rows give a bool)."""
 
 
-def _samples_diagnosis(args, got, expected) -> str:
+def _narrowed(tied, args, run) -> list:
+    """The slips among ``tied`` that also give the student's answers on the other test inputs."""
+    for p, w in _ransac_samples_cases():
+        if (p, w) == tuple(args):
+            continue
+        try:
+            g = float(run(p, w))
+        except Exception:  # the student's function fails there: that input tells nothing
+            continue
+        tied = [m for m in tied if m.answer(_samples_context(p, w, g))]
+    return tied
+
+
+def _samples_diagnosis(args, got, expected, run=None) -> str:
     p, w = args
     if not _is_number(got):
         return not_one_number(got, "the whole number of samples k")
     context = _samples_context(p, w, float(got))
-    causes = [m.hint for m in _SAMPLES_MISTAKES if m.answer(context)]
+    tied = [m for m in _SAMPLES_MISTAKES if m.answer(context)]
+    if len(tied) > 1 and run is not None:  # small k: several slips give it; the other inputs decide
+        tied = _narrowed(tied, args, run) or tied
+    causes = [m.hint for m in tied]
     if len(causes) > 1:  # small k: several slips round up to the same whole number
         return f"{len(causes)} different slips give this number here; either " + " Or ".join(causes)
     return (
@@ -182,6 +199,7 @@ register_exercise(
         cases=_ransac_samples_cases,
         compare=same_number(rtol=1e-9),
         diagnose=_samples_diagnosis,
+        diagnosis_runs=True,
         success_note=_samples_note,
         wrong_variants=(
             (lambda p, w: np.log(1 - p) / np.log(1 - w**4), "a fraction of a sample"),

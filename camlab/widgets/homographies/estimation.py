@@ -119,9 +119,9 @@ def _ransac_figure() -> SimpleNamespace:
 
 
 @lru_cache(maxsize=256)  # sliders revisit settings; the answer is a pure (seeded) function of them
-def _ransac_run(outlier_fraction: float, threshold: float, seed: int):
+def _ransac_run(outlier_fraction: float, threshold: float, seed: int, near: float = 0.0):
     """The demo's data and RANSAC's answer, or its error message."""
-    data = fixtures.outlier_matches(outlier_fraction, seed)
+    data = fixtures.outlier_matches(outlier_fraction, seed, near_share=near)
     try:
         return data, hg.ransac_homography(
             data[1], data[2], threshold, CONFIDENCE, MAX_SAMPLES, np.random.default_rng(seed)
@@ -158,13 +158,20 @@ def _ransac_failed(art, state, src, dst, exc) -> None:
 
 
 @register(
-    lesson="07", sweep={"outliers": [0.1, 0.4, 0.7], "threshold": [1.0, 3.0, 8.0], "seed": [0, 3]}
+    lesson="07",
+    sweep={
+        "outliers": [0.1, 0.4, 0.7],
+        "threshold": [1.0, 3.0, 8.0],
+        "seed": [0, 3],
+        "near": [0.5, 1.0],
+    },
 )
 def ransac_outliers() -> Demo:
     """RANSAC against a growing outlier fraction ε: each pair's verdict and the samples drawn.
 
     The 200 pairs of :func:`camlab.fixtures.outlier_matches` (a 400 x 300 image, 1 px of
-    noise, a fraction ε of them random) go to :func:`camlab.homography.ransac_homography`
+    noise, a fraction ε of them wrong: random, or a chosen share of them 4 to 15 px off the true H,
+    as parallax places real mismatches) go to :func:`camlab.homography.ransac_homography`
     with confidence p = :data:`CONFIDENCE` and at most :data:`MAX_SAMPLES` samples. Each
     pair's verdict is judged against the truth the demo knows, and the samples drawn are
     set against k = log(1 - p) / log(1 - (1 - ε)^4), the number needed for the ε found.
@@ -174,7 +181,8 @@ def ransac_outliers() -> Demo:
     -------
     Demo
         The demo: controls ``outliers`` (the true outlier fraction ε), ``threshold``
-        (RANSAC's inlier threshold, px) and ``seed`` (of both the data and RANSAC), the
+        (RANSAC's inlier threshold, px), ``near`` (the share of the outliers placed near the
+        model) and ``seed`` (of both the data and RANSAC), the
         figure (left: each pair as a line from src to a dot at dst, coloured by its verdict,
         the image frame mapped by the true H and by RANSAC's H, and the winning sample of 4;
         right: k against ε on a log scale, the cap, the k needed for the ε found and the
@@ -204,7 +212,7 @@ def ransac_outliers() -> Demo:
         from matplotlib.colors import to_rgba
 
         (H, src, dst, out), r = _ransac_run(
-            float(v["outliers"]), float(v["threshold"]), int(v["seed"])
+            float(v["outliers"]), float(v["threshold"]), int(v["seed"]), float(v["near"])
         )
         if isinstance(r, str):  # RANSAC failed: clear the last result, a stale plot would be a lie
             _ransac_failed(art, state, src, dst, r)
@@ -259,6 +267,7 @@ def ransac_outliers() -> Demo:
     controls = {
         "outliers": slider(0.4, 0.0, 0.8, 0.05, "outlier fraction ε"),
         "threshold": slider(3.0, 0.5, 10.0, 0.5, "threshold (px)"),
+        "near": slider(0.0, 0.0, 1.0, 0.25, "outliers near H (share)"),
         "seed": W.IntSlider(value=0, min=0, max=9, description="seed"),
     }
     return build_demo("ransac_outliers", controls, view, update, title="RANSAC", extra=[readout])

@@ -435,7 +435,9 @@ def _drag_artists(view, ax_s, ax_t, out_hw) -> SimpleNamespace:
     sent_away = view.animate(ax_s.plot([], [], "--", color=palette.PURPLE, lw=2)[0])
     im = view.animate(
         ax_t.imshow(
-            np.zeros((*out_hw, 3), np.uint8), extent=(-0.5, out_hw[1] - 0.5, out_hw[0] - 0.5, -0.5)
+            np.zeros((*out_hw, 3), np.uint8),
+            extent=(-0.5, out_hw[1] - 0.5, out_hw[0] - 0.5, -0.5),
+            interpolation="nearest",  # as the hierarchy demo: a live frame then equals the first draw
         )
     )
     quad = view.animate(
@@ -459,9 +461,14 @@ def _drag_artists(view, ax_s, ax_t, out_hw) -> SimpleNamespace:
         )
         for name in "ABCD"
     ]
-    handles = view.animate(ax_t.plot([], [], "o", color=palette.ORANGE, ms=10, mec="k")[0])
+    # white halos: drawn "nearest", the picture under a corner can be as dark as the marks
+    handles = view.animate(
+        ax_t.plot([], [], "o", color=palette.ORANGE, ms=10, mec="k", path_effects=palette.halo(1))[
+            0
+        ]
+    )
     chosen = view.animate(
-        ax_t.plot([], [], "o", ms=17, mfc="none", mec="k", mew=2)[0]
+        ax_t.plot([], [], "o", ms=17, mfc="none", mec="k", mew=2, path_effects=palette.halo(1))[0]
     )  # the corner the keys move
     numbers = view.animate(
         ax_s.text(

@@ -34,6 +34,12 @@ def _project(X: np.ndarray, R: np.ndarray, t: np.ndarray) -> np.ndarray:
         return np.where(x[:, 2:] > 0, x[:, :2] / x[:, 2:], np.nan)
 
 
+def _inside(x: np.ndarray) -> np.ndarray:
+    """True for pixels inside camera 2's 640 x 480 image (False for NaN, behind the camera)."""
+    with np.errstate(invalid="ignore"):
+        return np.all((x >= -0.5) & (x <= [639.5, 479.5]), axis=1)
+
+
 def _segments(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Segments a[i] -> b[i] as one polyline broken by NaN rows (for a single Line2D)."""
     gap = np.full_like(a, np.nan)
@@ -60,7 +66,8 @@ def plane_parallax() -> Demo:
         The demo: controls ``move`` (metres), ``turn`` (degrees) and ``plane`` (d, metres), the
         figure (camera 2's 640 x 480 image: grey rings at :math:`H x`, the points at the three
         depths, each joined to its ring) and ``state`` (``H``, ``parallax``: depth -> the
-        median parallax over the rays, pixels).
+        median parallax over the rays whose two marks are both inside camera 2's image, pixels;
+        ``outside``: depth -> how many of the 12 rays that leaves out).
 
     References
     ----------
@@ -115,16 +122,20 @@ def plane_parallax() -> Demo:
         H = hg.plane_homography(K_PARALLAX, R, t, np.array([0.0, 0.0, -1.0]), v["plane"])
         predicted = map_points(H, x_first)  # where H sends camera 1's pixel of each ray
         rings.set_data(predicted[:, 0], predicted[:, 1])
-        parallax = {}
+        parallax, hidden = {}, {}
         for Z, gap_art, seen_art in zip(DEPTHS, gaps, seen, strict=True):
             where = _project(rays * Z, R, t)  # where camera 2 really sees the point at depth Z
             gap_art.set_data(*_segments(predicted, where).T)
             seen_art.set_data(where[:, 0], where[:, 1])
-            parallax[Z] = float(np.nanmedian(np.linalg.norm(where - predicted, axis=1)))
-        state.update(H=H, parallax=parallax)
-        lines = [f"plane Z = {v['plane']:g} m; median parallax |x2 - H x1| over the 12 rays:"]
+            shown = _inside(where) & _inside(predicted)  # both marks in camera 2's image
+            hidden[Z] = int(np.sum(~shown))
+            gap = np.linalg.norm(where - predicted, axis=1)[shown]
+            parallax[Z] = float(np.median(gap)) if gap.size else float("nan")
+        state.update(H=H, parallax=parallax, outside=hidden)
+        lines = [f"plane Z = {v['plane']:g} m; median parallax |x2 - H x1| over the rays in view:"]
         lines += [
             f"  Z = {Z:>3g} m: {p:6.1f} px   (|1/Z - 1/d| = {abs(1 / Z - 1 / v['plane']):.3f} /m)"
+            + (f"  {hidden[Z]} of 12 outside the image, not counted" if hidden[Z] else "")
             for Z, p in parallax.items()
         ]
         readout.value = monospace("\n".join(lines))
