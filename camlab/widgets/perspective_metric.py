@@ -226,12 +226,6 @@ def right_angle_rectification() -> Demo:
             + f", corner noise {v['noise']:.2f} px\n"
             f"photo:     side across / down {photo_ratio:.3f}, worst angle off 90 by {photo_worst:.1f}\u00b0\n"
             f"rectified: side across / down {ratio:.3f}, worst angle off 90 by {worst:.1f}\u00b0"
-            + (
-                ""
-                if v["diagonals"]
-                else "\nrows against columns only: one pair of directions, so the constraint\n"
-                "that fixed the shape came from the corner noise, not from the board"
-            )
         )
 
     controls = {
