@@ -40,12 +40,15 @@ from .warp import warp_perspective
 
 __all__ = [
     "AspectRatio",
+    "ConicRows",
     "DocumentNotFoundError",
+    "NULL_GAP",
     "Rectified",
     "check_quadrilateral",
     "estimate_aspect_ratio",
     "MetricRectification",
     "dual_conic_from_orthogonal_lines",
+    "dual_conic_rows",
     "find_document",
     "metric_rectification",
     "order_corners",
@@ -507,6 +510,21 @@ def find_document(image: ArrayLike, min_area_fraction: float = 0.1) -> np.ndarra
 # --------------------------------------------------------------------------- metric rectification from right angles
 
 
+class ConicRows(NamedTuple):
+    r"""The stacked, conditioned rows of :math:`l_i^T C^* m_i = 0` (:func:`dual_conic_rows`).
+
+    Attributes
+    ----------
+    A : (N, 6) ndarray
+        One row per pair, against (a, b, c, d, e, f) of the conditioned :math:`C^*_n`.
+    T : (3, 3) ndarray
+        The conditioning similarity: :math:`C^{*\prime} = T^{-1} C^*_n T^{-T}`.
+    """
+
+    A: np.ndarray
+    T: np.ndarray
+
+
 class MetricRectification(NamedTuple):
     r"""The image of :math:`C^*_\infty` found from right angles, and the homography it gives.
 
@@ -542,33 +560,25 @@ def _line_rows(lines: ArrayLike, name: str) -> np.ndarray:
     return L
 
 
-def dual_conic_from_orthogonal_lines(lines_l: ArrayLike, lines_m: ArrayLike) -> np.ndarray:
-    r"""The image of :math:`C^*_\infty` from N >= 5 pairs of lines orthogonal on the plane: :math:`l_i'^T C^{*\prime} m_i' = 0`.
+def dual_conic_rows(lines_l: ArrayLike, lines_m: ArrayLike) -> ConicRows:
+    r"""The stacked rows :math:`A` of :math:`l_i^T C^* m_i = 0`, on Hartley-conditioned lines.
 
-    Each pair gives one linear equation in the six entries of the symmetric :math:`C^{*\prime}`
-    (the cross terms appear as :math:`\tfrac12 (l_1 m_2 + l_2 m_1)` because :math:`b/2` sits in two
-    places); the stacked rows' null vector is the answer, found on Hartley-conditioned lines and
-    moved back. The full derivation is in :func:`metric_rectification`.
+    A similarity :math:`T` puts the lines' feet (their points nearest the origin) at mean
+    distance :math:`\sqrt 2` about 0; lines move by :math:`T^{-T}` and are scaled to unit norm, so
+    all six columns of :math:`A` are of order 1 and its singular values can be compared.
 
     Parameters
     ----------
     lines_l, lines_m : (N, 3) array_like
-        Image lines (a, b, c) of au + bv + c = 0, pixels, N >= 5; ``lines_l[i]`` is orthogonal to
-        ``lines_m[i]`` on the plane.
+        Image lines (a, b, c), pixels, N >= 5; ``lines_l[i]`` is orthogonal to ``lines_m[i]`` on the plane.
 
     Returns
     -------
-    (3, 3) ndarray
-        :math:`C^{*\prime}`, symmetric, with a positive trace, unit Frobenius norm (not yet forced to rank 2).
-
-    Raises
-    ------
-    DegenerateError
-        If the pairs fix fewer than 5 degrees of freedom.
+    ConicRows
+        ``A`` (N, 6), one row per pair, and ``T`` (3, 3), the conditioning similarity.
 
     References
     ----------
-    Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., §2.7.5 (example 2.27).
     R. Hartley, "In defense of the eight-point algorithm", IEEE PAMI 19(6), 1997 (the conditioning).
     """
     L = _line_rows(lines_l, "lines_l")
@@ -600,12 +610,56 @@ def dual_conic_from_orthogonal_lines(lines_l: ArrayLike, lines_m: ArrayLike) -> 
         ],
         axis=1,
     )
+    return ConicRows(A=A, T=T)
+
+
+NULL_GAP = 0.1
+"""Largest ratio of the 6th to the 5th singular value for which the null vector counts as determined."""
+
+
+def dual_conic_from_orthogonal_lines(lines_l: ArrayLike, lines_m: ArrayLike) -> np.ndarray:
+    r"""The image of :math:`C^*_\infty` from N >= 5 pairs of lines orthogonal on the plane: :math:`l_i'^T C^{*\prime} m_i' = 0`.
+
+    Each pair gives one linear equation in the six entries of the symmetric :math:`C^{*\prime}`
+    (the cross terms appear as :math:`\tfrac12 (l_1 m_2 + l_2 m_1)` because :math:`b/2` sits in two
+    places); the stacked rows' null vector is the answer, found on Hartley-conditioned lines and
+    moved back. The full derivation is in :func:`metric_rectification`.
+
+    Parameters
+    ----------
+    lines_l, lines_m : (N, 3) array_like
+        Image lines (a, b, c) of au + bv + c = 0, pixels, N >= 5; ``lines_l[i]`` is orthogonal to
+        ``lines_m[i]`` on the plane.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        :math:`C^{*\prime}`, symmetric, with a positive trace, unit Frobenius norm (not yet forced to rank 2).
+
+    Raises
+    ------
+    DegenerateError
+        If the pairs fix fewer than 5 degrees of freedom: exactly (5th singular value of the stacked,
+        conditioned rows 0), or up to noise (the 6th above ``NULL_GAP`` times the 5th, so no null
+        vector stands out, e.g. a noisy grid's rows against its columns only).
+
+    References
+    ----------
+    Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., §2.7.5 (example 2.27).
+    R. Hartley, "In defense of the eight-point algorithm", IEEE PAMI 19(6), 1997 (the conditioning).
+    """
+    A, T = dual_conic_rows(lines_l, lines_m)
     _, s, Vt = np.linalg.svd(A)
-    if s[4] < 1e-8 * s[0]:
+    # Exact pairs in too few directions leave s[4] = 0; measured ones leave s[4] ~ s[5], both noise
+    # (the null vector is then whatever the noise picks). A well-posed set has s[5] << s[4]: on
+    # noisy chessboards s[5] / s[4] < 0.003 with the diagonals, > 0.25 with rows and columns only.
+    if s[4] < 1e-8 * s[0] or s[5] > NULL_GAP * s[4]:
         raise DegenerateError(
             "lines_l, lines_m: the pairs fix fewer than 5 of C*'s degrees of freedom (they point in too "
-            "few directions: a rectangle's edges are one constraint however many); add pairs in another "
-            "direction, e.g. a square's diagonals"
+            "few directions: a rectangle's edges are one constraint however many; here the 5th and 6th "
+            f"singular values of the stacked rows are {s[4] / s[0]:.2g} and {s[5] / s[0]:.2g} of the "
+            "largest, so noise would pick the answer); add pairs in another direction, e.g. a square's "
+            "diagonals"
         )
     a, b, c, d, e, f = Vt[-1]
     Cn = np.array([[a, b / 2, d / 2], [b / 2, c, e / 2], [d / 2, e / 2, f]])

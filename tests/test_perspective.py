@@ -212,6 +212,23 @@ def test_metric_rectification_rejects_one_direction_and_bad_input(synthetic_grid
     assert np.array_equal(L, pp.square_grid_right_angles(grid)[0])  # input untouched, deterministic
 
 
+def test_metric_rectification_refuses_noisy_rows_against_columns(synthetic_grid):
+    """Noise makes the one-direction rows full rank; the missing 6th-vs-5th gap still flags it."""
+    G, grid = synthetic_grid
+    noisy = grid + np.random.default_rng(5).normal(0, 0.5, grid.shape)
+    from camlab.widgets.perspective_metric import rows_and_columns
+
+    L, M = rows_and_columns(noisy)
+    s = np.linalg.svd(pp.dual_conic_rows(L, M)[0], compute_uv=False)
+    assert s[4] > 1e-8 * s[0] and s[5] > pp.NULL_GAP * s[4]  # not exactly degenerate, but no gap
+    with pytest.raises(DegenerateError, match="too few directions.*noise would pick"):
+        pp.metric_rectification(L, M)
+    L, M = pp.square_grid_right_angles(noisy)  # with the diagonals: a clear gap, accepted
+    s = np.linalg.svd(pp.dual_conic_rows(L, M)[0], compute_uv=False)
+    assert s[5] < 0.01 * s[4]
+    assert pp.metric_rectification(L, M).residual < 0.05
+
+
 def test_metric_rectification_of_a_real_chessboard_photo():
     """OpenCV's left02 (Apache-2.0): the rectified corners fit a square grid to 4% of a square."""
     from camlab.data import load_photo

@@ -142,7 +142,7 @@ def _figure():
     dots = view.animate(ax_p.plot([], [], "o", ms=3, color="k", zorder=3)[0])
     lines = [
         view.animate(ax_p.plot([], [], color=c, lw=1.2, zorder=2)[0])
-        for c in [palette.ORANGE, palette.BLUE] * 8
+        for c in [palette.BROWN, palette.BLUE] * 8
     ]
     rect = view.animate(
         ax_r.plot([], [], "o", ms=5, color=palette.ORANGE, mec="k", mew=0.5, zorder=3)[0]
@@ -193,19 +193,19 @@ def right_angle_rectification() -> Demo:
         k = min(grid.shape[:2])
         if v[
             "diagonals"
-        ]:  # the outer rows and columns, and two blocks' diagonals (orange with blue)
+        ]:  # the outer rows and columns, and two blocks' diagonals (brown with blue)
             segs = [grid[0, [0, -1]], grid[[0, -1], 0], grid[-1, [0, -1]], grid[[0, -1], -1]]
             segs += [grid[[0, k - 1], [0, k - 1]], grid[[k - 1, 0], [0, k - 1]]]
             segs += [grid[[0, k - 1], [8 - k + 1, 8]], grid[[k - 1, 0], [8 - k + 1, 8]]]
-            colours, width = [palette.ORANGE, palette.BLUE] * 4, 1.2
+            colours, width = [palette.BROWN, palette.BLUE] * 4, 1.2
             L, M = pp.square_grid_right_angles(grid)
-        else:  # every row (orange) against every column (blue), thin
+        else:  # every row (brown) against every column (blue), thin
             segs = [r[[0, -1]] for r in grid] + [c[[0, -1]] for c in grid.transpose(1, 0, 2)]
-            colours, width = [palette.ORANGE] * len(grid) + [palette.BLUE] * grid.shape[1], 0.8
+            colours, width = [palette.BROWN] * len(grid) + [palette.BLUE] * grid.shape[1], 0.8
             L, M = rows_and_columns(grid)
         for n, artist in enumerate(lines):
             artist.set_data(*(segs[n] if n < len(segs) else np.empty((0, 2))).T)
-            artist.set(color=colours[n] if n < len(segs) else palette.ORANGE, lw=width)
+            artist.set(color=colours[n] if n < len(segs) else palette.BROWN, lw=width)
         try:
             met = pp.metric_rectification(L, M)
         except pp.DegenerateError as exc:
@@ -226,12 +226,6 @@ def right_angle_rectification() -> Demo:
             + f", corner noise {v['noise']:.2f} px\n"
             f"photo:     side across / down {photo_ratio:.3f}, worst angle off 90 by {photo_worst:.1f}\u00b0\n"
             f"rectified: side across / down {ratio:.3f}, worst angle off 90 by {worst:.1f}\u00b0"
-            + (
-                ""
-                if v["diagonals"]
-                else "\nrows against columns only: one pair of directions, so the constraint\n"
-                "that fixed the shape came from the corner noise, not from the board"
-            )
         )
 
     controls = {

@@ -79,6 +79,17 @@ def _same_dual_conic(got, expected, rtol=1e-3) -> bool:
     return same_up_to_scale(D @ g @ D, D @ e @ D, rtol=rtol)
 
 
+_NOT_UNDONE = (
+    "your matrix is a dual conic of rank 2, as the image of C*inf is, but not the one of these lines: "
+    "the pairs are not orthogonal under it. Did you normalise the lines (l_hat = T^-T l, with T from "
+    "lesson 07's point normalisation) and then return C_hat, the conic of the normalised image, or undo "
+    "the change of coordinates the wrong way (T C_hat T^T, with T for T^-1; or T^-T C_hat T^-1, "
+    "transposed)? A dual conic moves like a point's outer product: C_hat = T C*' T^T, so "
+    "C*' = T^-1 C_hat T^-T."
+)
+"""Ex 4's hint for a rank-2 conic of other coordinates: normalisation not undone, or undone wrongly."""
+
+
 def _conic_diagnosis(args, got, expected) -> str:
     g = np.asarray(got, dtype=float) if np.size(got) else np.asarray(got)
     if g.shape == (6,):
@@ -141,12 +152,7 @@ def _conic_diagnosis(args, got, expected) -> str:
         return slip
     residual, eig = _residual_and_eigenvalues(g, e, lines_l, lines_m)
     if residual > 1e-4 and eig.min() < 1e-8 * eig.max():
-        return (
-            "your matrix is a dual conic of rank 2, as the image of C*inf is, but not the one of these lines: "
-            "the pairs are not orthogonal under it. Did you normalise the lines (l_hat = T^-T l, with T from "
-            "lesson 07's point normalisation) and return C_hat, the conic of the normalised image? Undo the "
-            "change of coordinates at the end: C*' = T^-1 C_hat T^-T (lines move by T^-T, dual conics by T)."
-        )
+        return _NOT_UNDONE
     if residual > 1e-4:
         return (
             f"your matrix does not make the pairs orthogonal: the rows times your (a, b, c, d, e, f) reach "
@@ -270,6 +276,18 @@ def _normalised_not_undone(lines_l, lines_m):
     )
 
 
+def _undone_wrong_way(transposed):
+    """A typical slip: normalised as in :func:`_normalised_not_undone`, then undone by T (or T^-T) instead of T^-1."""
+    T = np.array([[1 / 300, 0, -320 / 300], [0, 1 / 300, -240 / 300], [0, 0, 1]])
+
+    def wrong(lines_l, lines_m):
+        C_hat = _normalised_not_undone(lines_l, lines_m)
+        U = np.linalg.inv(T).T if transposed else T
+        return U @ C_hat @ U.T
+
+    return wrong
+
+
 register_exercise(
     Exercise(
         name="dual_conic_from_orthogonal_lines",
@@ -301,6 +319,8 @@ register_exercise(
                 "column of Vt",
             ),
             (_normalised_not_undone, "T^-1 C_hat T^-T"),
+            (_undone_wrong_way(False), "with T for T^-1"),
+            (_undone_wrong_way(True), "transposed"),
             (
                 lambda L, M: pp.dual_conic_from_orthogonal_lines(L, M) * np.where(np.eye(3), 1, -1),
                 "signs of b, d and e are flipped",

@@ -85,6 +85,11 @@ def _order_diagnosis(args, got, expected) -> str:
     for shift in (1, 2, 3):
         if np.allclose(g, np.roll(expected, shift, axis=0)):
             return "the cyclic order is right but it does not start at the top-left corner (smallest u + v)."
+    if np.allclose(g, _swapped_arctan2(corners)):
+        return (
+            "your corners go counter-clockwise on screen: the arguments of np.arctan2 are swapped; it takes "
+            "(y, x), so the angle around the centroid is np.arctan2(v - v_c, u - u_c), v first."
+        )
     if any(np.allclose(g, np.roll(expected[::-1], s, axis=0)) for s in range(4)):
         return "your corners go counter-clockwise on screen; remember v points down, so sort by increasing angle."
     if np.allclose(g, expected[[0, 1, 3, 2]]):
@@ -127,6 +132,14 @@ def _sorted_by_angle(corners):
     return q[np.argsort(np.arctan2(q[:, 1] - c[1], q[:, 0] - c[0]))]
 
 
+def _swapped_arctan2(corners):
+    """A typical slip: np.arctan2(u - u_c, v - v_c), arguments swapped, then started at the top-left."""
+    q = np.asarray(corners, dtype=float)
+    c = q.mean(axis=0)
+    q = q[np.argsort(np.arctan2(q[:, 0] - c[0], q[:, 1] - c[1]))]
+    return np.roll(q, -np.argmin(q.sum(axis=1)), axis=0)
+
+
 register_exercise(
     Exercise(
         name="order_corners",
@@ -138,6 +151,7 @@ register_exercise(
         wrong_variants=(
             (lambda c: np.roll(pp.order_corners(c), 1, axis=0), "does not start at the top-left"),
             (lambda c: pp.order_corners(c)[::-1], "counter-clockwise"),
+            (_swapped_arctan2, "arguments of np.arctan2 are swapped"),
             (
                 lambda c: np.array(
                     [np.flatnonzero(np.isclose(c, p).all(1))[0] for p in pp.order_corners(c)]

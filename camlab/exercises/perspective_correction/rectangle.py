@@ -113,6 +113,13 @@ _RECT_MISTAKES = (
         "corners' order, TL, TR, BR, BL = (0, 0), (w - 1, 0), (w - 1, h - 1), (0, h - 1).",
     ),
     Mistake(
+        "third row's sign",
+        lambda s: _sign_slip(s.corners, (s.w, s.h)),
+        "the third row of H has the wrong sign: x (h31 u + h32 v + 1) = h11 u + h12 v + h13 moves "
+        "x h31 u and x h32 v to the left as -x u and -x v (and -y u, -y v in the y row); you wrote +x u, "
+        "+x v. (An axis-aligned rectangle, h31 = h32 = 0, hides this slip.)",
+    ),
+    Mistake(
         "counter-clockwise",
         lambda s: s.fit(s.corners, s.target((0, 3, 2, 1))),
         "your target goes counter-clockwise (TL, BL, BR, TR): pair TL, TR, BR, BL with (0, 0), "
@@ -120,6 +127,18 @@ _RECT_MISTAKES = (
     ),
 )
 """Ex 1's typical mistakes, each the H it gives, in the order the diagnosis tries them."""
+
+
+def _sign_slip(corners, size):
+    """A typical slip: the 8 x 8 system with +x u, +x v (and +y u, +y v) where -x u, -x v belong."""
+    A, b = [], []
+    for (u, v), (x, y) in zip(np.asarray(corners, dtype=float), _rect_target(*size), strict=True):
+        A += [[u, v, 1, 0, 0, 0, x * u, x * v], [0, 0, 0, u, v, 1, y * u, y * v]]
+        b += [x, y]
+    try:
+        return np.append(np.linalg.solve(np.array(A), np.array(b)), 1.0).reshape(3, 3)
+    except np.linalg.LinAlgError:
+        return None
 
 
 def _fit_or_none(src, dst):
@@ -238,6 +257,7 @@ register_exercise(
                 lambda c, size: estimate_homography(c, _rect_target(*size, order=(0, 1, 3, 2))),
                 "Z order",
             ),
+            (_sign_slip, "third row of H has the wrong sign"),
             (
                 lambda c, size: estimate_homography(
                     c, [[0, 0], [0, size[1] - 1], np.subtract(size, 1), [size[0] - 1, 0]]

@@ -145,6 +145,7 @@ def _other_centre(corners, principal_point, g, wrong) -> str | None:
         ("the principal point moved by half a pixel", c + 0.5),
         ("the principal point moved by half a pixel", c - 0.5),
         ("the principal point counted from 1 (1-based)", c + 1),
+        ("the principal point moved by -1 (a 1-based conversion done on a 0-based value)", c - 1),
     )
     for name, at in others:
         if not np.allclose(at, c) and np.allclose(g, wrong(at=at), rtol=1e-6):
@@ -284,6 +285,10 @@ register_exercise(
             ),
             (_shape_wrong(centre=False), "relative to the principal point"),
             (_shape_wrong(at=(319.5, 239.5)), "not to the principal_point"),
+            (
+                lambda c, p: _shape_wrong(at=np.asarray(p, float) - 1)(c, p),
+                "moved by -1",
+            ),
             (
                 lambda c, p: _shape_wrong(at=np.asarray(c, float).mean(axis=0))(c, p),
                 "relative to the centroid of the corners",
