@@ -301,6 +301,22 @@ def test_largest_gap_in_frame_counts_only_what_the_picture_shows():
     assert np.isnan(af.largest_gap_in_frame(cam, P, far))
 
 
+def test_matched_points_pair_each_points_two_images():
+    cam = cm.Camera.look_at([4.0, -3.0, 2.0], [0.0, 0.0, 0.5])
+    P = af.affine_approximation(cam, [0.0, 0.0, 0.5])
+    rail = np.array([[[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0]]])
+    m = af.matched_points_in_frame(cam, P, rail, samples=3)  # the two ends and the middle
+    ends = np.array([[-1.0, 0.0, 0.0], [0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
+    assert m.perspective.shape == m.affine.shape == (3, 2)
+    assert np.allclose(m.perspective, cam.project(ends)) and np.allclose(
+        m.affine, cm.project_points(P, ends)
+    )
+    longest = np.linalg.norm(m.perspective - m.affine, axis=1).max()
+    assert af.largest_gap_in_frame(cam, P, rail, samples=3) == pytest.approx(longest)
+    with pytest.raises(CamlabInputError, match="segments"):
+        af.matched_points_in_frame(cam, P, np.zeros((2, 3)))
+
+
 def test_paraperspective_error_law_is_exact():
     cam = cm.Camera.look_at([4.0, -3.0, 2.0], [0.3, 0.2, 0.5])
     X0 = np.array([0.6, 0.4, 0.9])

@@ -48,11 +48,13 @@ from .cameras import (
     weak_perspective_matrix,
 )
 from .dolly_zoom import (
+    MatchedPoints,
     ThreeImages,
     dolly_zoom_camera,
     dolly_zoom_errors,
     dolly_zoom_focal,
     largest_gap_in_frame,
+    matched_points_in_frame,
     three_images,
 )
 from .estimation import (
@@ -74,6 +76,8 @@ __all__ = [
     "image_of_direction",
     "is_affine",
     "largest_gap_in_frame",
+    "matched_points_in_frame",
+    "MatchedPoints",
     "orthographic_matrix",
     "paraperspective_approximation",
     "projection_rays",

@@ -26,6 +26,8 @@ __all__ = [
     "dolly_zoom_errors",
     "dolly_zoom_focal",
     "largest_gap_in_frame",
+    "matched_points_in_frame",
+    "MatchedPoints",
     "ThreeImages",
     "three_images",
 ]
@@ -214,6 +216,72 @@ def three_images(camera: Camera, segments: ArrayLike) -> ThreeImages:
     )
 
 
+class MatchedPoints(NamedTuple):
+    """The two images of the same world points, where both fall inside the frame.
+
+    Attributes
+    ----------
+    perspective, affine : (K, 2) ndarray
+        The perspective and affine images, pixels; row k of each images the same world point.
+    """
+
+    perspective: np.ndarray
+    affine: np.ndarray
+
+
+def matched_points_in_frame(
+    camera: Camera,
+    P_affine: ArrayLike,
+    segments: ArrayLike,
+    size: tuple[int, int] = (640, 480),
+    samples: int = 41,
+) -> MatchedPoints:
+    """The perspective and affine images of points along segments, where both are in the frame.
+
+    Parameters
+    ----------
+    camera : Camera
+        The perspective camera (its distortion is ignored).
+    P_affine : (3, 4) array_like
+        The affine camera compared with it.
+    segments : (M, 2, 3) array_like
+        World segments, metres.
+    size : (2,) tuple of int
+        The frame (width, height), pixels.
+    samples : int
+        Points sampled evenly along each segment, end points included (7 on a 6 m rail: one a
+        metre).
+
+    Returns
+    -------
+    MatchedPoints
+        ``perspective`` and ``affine``, (K, 2) pixels each: the images of the K samples whose two
+        images both fall inside the frame.
+
+    Raises
+    ------
+    CamlabInputError
+        Segments not (M, 2, 3) or not finite.
+    """
+    segs = check_finite(np.asarray(segments, dtype=float), "segments")
+    if segs.ndim != 3 or segs.shape[1:] != (2, 3):
+        raise CamlabInputError(
+            f"segments: expected (M, 2, 3) pairs of world points, got shape {segs.shape}"
+        )
+    s = np.linspace(0.0, 1.0, samples)[None, :, None]
+    X = (segs[:, :1] + s * (segs[:, 1:] - segs[:, :1])).reshape(-1, 3)
+    a, b = camera.replace(dist=(0.0,) * 5).project(X), project_points(P_affine, X)
+    w, h = size
+    inside = np.all(
+        [
+            (p[:, 0] >= -0.5) & (p[:, 0] <= w - 0.5) & (p[:, 1] >= -0.5) & (p[:, 1] <= h - 0.5)
+            for p in (a, b)
+        ],
+        axis=0,
+    )
+    return MatchedPoints(a[inside], b[inside])
+
+
 def largest_gap_in_frame(
     camera: Camera,
     P_affine: ArrayLike,
@@ -223,8 +291,8 @@ def largest_gap_in_frame(
 ) -> float:
     """The largest pixel gap between the perspective and affine images of one point in the frame.
 
-    Over ``samples`` points along each segment whose two images both fall inside the frame:
-    what a reader can see in the picture.
+    Over ``samples`` points along each segment whose two images both fall inside the frame
+    (:func:`matched_points_in_frame`): what a reader can see in the picture.
 
     Parameters
     ----------
@@ -249,25 +317,8 @@ def largest_gap_in_frame(
     CamlabInputError
         Segments not (M, 2, 3) or not finite.
     """
-    segs = check_finite(np.asarray(segments, dtype=float), "segments")
-    if segs.ndim != 3 or segs.shape[1:] != (2, 3):
-        raise CamlabInputError(
-            f"segments: expected (M, 2, 3) pairs of world points, got shape {segs.shape}"
-        )
-    s = np.linspace(0.0, 1.0, samples)[None, :, None]
-    X = (segs[:, :1] + s * (segs[:, 1:] - segs[:, :1])).reshape(-1, 3)
-    a, b = camera.replace(dist=(0.0,) * 5).project(X), project_points(P_affine, X)
-    w, h = size
-    inside = np.all(
-        [
-            (p[:, 0] >= -0.5) & (p[:, 0] <= w - 0.5) & (p[:, 1] >= -0.5) & (p[:, 1] <= h - 0.5)
-            for p in (a, b)
-        ],
-        axis=0,
-    )
-    return (
-        float(np.linalg.norm(a[inside] - b[inside], axis=1).max()) if inside.any() else float("nan")
-    )
+    a, b = matched_points_in_frame(camera, P_affine, segments, size, samples)
+    return float(np.linalg.norm(a - b, axis=1).max()) if len(a) else float("nan")
 
 
 def dolly_zoom_focal(f0: float, d0: float, d: float) -> float:

@@ -47,6 +47,7 @@ from .rays import (
 from .views import (
     APPROXIMATIONS,
     DOLLY_ERROR_LIMITS,
+    GAP_SAMPLES,
     dolly_curves,
     dolly_zoom,
     three_cameras,
@@ -65,6 +66,7 @@ __all__ = [
     "DOLLY_VIEW",
     "dolly_zoom",
     "F0",
+    "GAP_SAMPLES",
     "model_legend",
     "model_line",
     "parallel_rails",

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import ipywidgets as W
 import numpy as np
+from matplotlib.lines import Line2D
 
 from ... import affine as af
 from ... import camera as cm
@@ -30,6 +31,10 @@ from .common import (
     place_reference,
     reference_marker,
 )
+
+# Where the middle panel joins the two images of one point: the cube's corners (a segment's two end
+# points) and the rails' metre marks (7 points along 6 m).
+GAP_SAMPLES = {"cube": 2, "rails": 7}
 
 
 def _image_panel(ax, title, model, size=(640, 480), tick_labels=True):
@@ -55,33 +60,16 @@ def three_cameras():
     Demo
         The demo: controls ``azimuth``, ``elevation`` (degrees) and ``distance`` (m, a dolly
         zoom), the figure (the three images, the weak one over the perspective one), the
-        readout (the largest gap inside the frame for the cube and the rails) and ``state``
+        readout (the longest orange segment, joining a point's two images, for the cube's
+        corners and the rails' metre marks) and ``state``
         (``camera``, ``P_weak``, ``focal`` in px, ``gaps``, ``max_difference`` in px,
         ``reference_point``, ``reference_images``).
     """
     view = FigureView(figsize=(9.5, 3.35))
     axes = view.fig.subplots(1, 3)
     scene = fixtures.box_and_rails()
-    persp = _image_panel(axes[0], "perspective (px)", "perspective")
-    weak = _image_panel(axes[1], "weak perspective over perspective (px)", "weak perspective")
-    axes[1].set_ylabel("")
-    axes[2].set_aspect("equal")
-    axes[2].set_title("orthographic (m; camera x right, y down)", fontsize=9)
-    axes[2].set_xlabel("x (m)", fontsize=8)
-    axes[2].set_ylabel("y (m)", fontsize=8)
-    # the scene reaches 3.14 m from its centre (a rail's end), which images at the origin: limits
-    # of +-4.4 x +-3.3 m (4:3, as the pixel panels) hold it at every view
-    axes[2].set_xlim(-4.4, 4.4)
-    axes[2].set_ylim(3.3, -3.3)
-    axes[2].set_xticks([-4, -2, 0, 2, 4])
-    axes[2].set_yticks([-3, 0, 3])
-    axes[2].tick_params(labelsize=7)
-    orth = model_line(axes[2], "orthographic")
-    ghost = model_line(
-        axes[1], "perspective", lw=0.8, zorder=1.5
-    )  # under the blue dashes, live and redrawn alike
-    model_legend(view.fig, ("perspective", "weak perspective", "orthographic"), reference=True)
-    view.animate(persp, ghost, weak, orth)
+    persp, ghost, weak, orth, gap_lines = _three_panels(view.fig, axes)
+    view.animate(persp, ghost, weak, orth, gap_lines)
     X0 = scene.reshape(-1, 3).mean(
         axis=0
     )  # the weak-perspective camera's reference point (three_images)
@@ -111,9 +99,11 @@ def three_cameras():
         ]
         for artists, xy in zip(references, images_of_X0, strict=True):
             place_reference(artists, xy)
-        gaps = {part: af.largest_gap_in_frame(cam, P_weak, segs) for part, segs in parts.items()}
+        # the orange segments join the two images of each cube corner and each rail metre mark
+        segments, gaps = _matched_gaps(cam, P_weak, parts)
+        scene3d.update_segments(gap_lines, segments)
         readout.value = monospace(
-            "weak perspective against perspective,\nlargest gap inside the frame:\n"
+            "weak perspective against perspective,\nlongest orange segment\n(one point's gap):\n"
             + "\n".join(f"  {part:5s} {_gap_text(g)}" for part, g in gaps.items())
             + f"\nfocal length f = {f:.0f} px"
         )
@@ -122,7 +112,7 @@ def three_cameras():
             P_weak=P_weak,
             focal=f,
             gaps=gaps,
-            max_difference=af.largest_gap_in_frame(cam, P_weak, scene),
+            max_difference=max((g for g in gaps.values() if g == g), default=float("nan")),
             reference_point=X0,
             reference_images=images_of_X0,
         )
@@ -135,6 +125,53 @@ def three_cameras():
         title="One scene, three cameras (the middle panel repeats the perspective image in red)",
         extra=[readout],
     )
+
+
+def _three_panels(fig, axes):
+    """The three panels' empty lines (perspective, its ghost, weak, orthographic, the gaps) and the legend."""
+    persp = _image_panel(axes[0], "perspective (px)", "perspective")
+    weak = _image_panel(axes[1], "weak perspective over perspective (px)", "weak perspective")
+    axes[1].set_ylabel("")
+    axes[2].set_aspect("equal")
+    axes[2].set_title("orthographic (m; camera x right, y down)", fontsize=9)
+    axes[2].set_xlabel("x (m)", fontsize=8)
+    axes[2].set_ylabel("y (m)", fontsize=8)
+    # the scene reaches 3.14 m from its centre (a rail's end), which images at the origin: limits
+    # of +-4.4 x +-3.3 m (4:3, as the pixel panels) hold it at every view
+    axes[2].set_xlim(-4.4, 4.4)
+    axes[2].set_ylim(3.3, -3.3)
+    axes[2].set_xticks([-4, -2, 0, 2, 4])
+    axes[2].set_yticks([-3, 0, 3])
+    axes[2].tick_params(labelsize=7)
+    orth = model_line(axes[2], "orthographic")
+    ghost = model_line(
+        axes[1], "perspective", lw=0.8, zorder=1.5
+    )  # under the blue dashes, live and redrawn alike
+    # a dot on each image of a point, a segment for its gap: the slide along a rail shows too
+    gap_style = dict(color=palette.ORANGE, lw=1.8, marker="o", ms=2.5, zorder=3.5)
+    (gap_lines,) = axes[1].plot([], [], **gap_style)
+    gap_key = Line2D([], [], label="one point's two images", **gap_style)
+    model_legend(
+        fig,
+        ("perspective", "weak perspective", "orthographic"),
+        reference=True,
+        extra=(gap_key,),
+    )
+    return persp, ghost, weak, orth, gap_lines
+
+
+def _matched_gaps(cam, P_weak, parts):
+    """The orange segments joining each sampled point's two images, and each part's longest, px."""
+    matched = {
+        part: af.matched_points_in_frame(cam, P_weak, segs, samples=GAP_SAMPLES[part])
+        for part, segs in parts.items()
+    }
+    segments = np.stack([np.vstack(ab) for ab in zip(*matched.values(), strict=True)], axis=1)
+    gaps = {
+        part: float(np.linalg.norm(a - b, axis=1).max()) if len(a) else float("nan")
+        for part, (a, b) in matched.items()
+    }
+    return segments, gaps
 
 
 def _gap_text(gap: float) -> str:
