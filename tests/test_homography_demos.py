@@ -132,7 +132,9 @@ def test_document_scanner_falls_back_to_the_assumed_f_when_f_is_not_determined()
     d = p10.document_scanner()
     d.set(yaw=0.0, pitch=0.5)
     assert d.state["focal_source"] == "assumed" and d.state["focal"] == 640
-    assert abs(d.state["ratio"] - 0.742) < 0.001  # not the 0.804 that f = 102 px gives
+    # not the 0.804 that f = 102 px gives; the found corners differ a little between OpenCV releases
+    # (0.742 with the newest, 0.739 with the oldest supported: make test-oldest)
+    assert abs(d.state["ratio"] - 0.742) < 0.005
     d.set(yaw=0.45, pitch=0.35)  # a well-conditioned view keeps f from the corners
     assert d.state["focal_source"] == "estimated" and abs(d.state["focal"] - 800) < 15
 
