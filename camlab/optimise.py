@@ -79,6 +79,7 @@ __all__ = [
     "block_normal_equations",
     "dense_damped_solve",
     "dense_normal_equations",
+    "huber_jacobian",
     "huber_residuals",
     "levenberg_marquardt",
     "lm_step",
@@ -538,6 +539,17 @@ def _diag(A: Any) -> np.ndarray:
     return np.diag(A) if isinstance(A, np.ndarray) else A.diagonal()
 
 
+def _error_rows(errors: ArrayLike, delta: float) -> np.ndarray:
+    e = np.asarray(errors, dtype=float)
+    if e.ndim != 2:
+        raise CamlabInputError(
+            f"errors: expected an (N, D) array of error vectors, got shape {e.shape}"
+        )
+    if not (np.isfinite(delta) and delta > 0):
+        raise CamlabInputError(f"delta: expected a positive threshold, got {delta!r}")
+    return e
+
+
 def huber_residuals(errors: ArrayLike, delta: float) -> np.ndarray:
     r"""Rescale error vectors so that least squares on them minimises the Huber loss.
 
@@ -566,15 +578,49 @@ def huber_residuals(errors: ArrayLike, delta: float) -> np.ndarray:
     array([[1.8, 2.4],
            [0.3, 0.4]])
     """
-    e = np.asarray(errors, dtype=float)
-    if e.ndim != 2:
-        raise CamlabInputError(
-            f"errors: expected an (N, D) array of error vectors, got shape {e.shape}"
-        )
-    if not (np.isfinite(delta) and delta > 0):
-        raise CamlabInputError(f"delta: expected a positive threshold, got {delta!r}")
+    e = _error_rows(errors, delta)
     s = np.linalg.norm(e, axis=1, keepdims=True)
     big = s > delta
     scale = np.ones_like(s)
     scale[big] = np.sqrt(2 * delta * s[big] - delta**2) / s[big]
     return e * scale
+
+
+def huber_jacobian(errors: ArrayLike, delta: float) -> np.ndarray:
+    r"""The derivative of :func:`huber_residuals` with respect to each error vector.
+
+    Inside the threshold the residual is the error (identity). Beyond it
+    :math:`\tilde e = g(s)\, e` with :math:`g(s) = \sqrt{2\delta s - \delta^2}/s` and
+    :math:`s = \|e\|`, so
+
+    .. math:: \frac{\partial \tilde e}{\partial e} = g(s)\, I + \frac{g'(s)}{s}\, e e^\top,
+              \qquad g'(s) = \frac{\delta}{s \sqrt{2\delta s - \delta^2}} - \frac{\sqrt{2\delta s - \delta^2}}{s^2}.
+
+    Parameters
+    ----------
+    errors : (N, D) array_like
+        One error vector per row.
+    delta : float
+        Where the loss turns linear (> 0).
+
+    Returns
+    -------
+    (N, D, D) ndarray
+        ``out[n] @ de`` is the change of residual n for a change ``de`` of error n.
+
+    >>> huber_jacobian([[0.3, 0.4]], 1.0)[0]
+    array([[1., 0.],
+           [0., 1.]])
+    """
+    e = _error_rows(errors, delta)
+    s = np.linalg.norm(e, axis=1)
+    out = np.repeat(np.eye(e.shape[1])[None], len(e), axis=0)
+    big = s > delta
+    sb, eb = s[big], e[big]
+    root = np.sqrt(2 * delta * sb - delta**2)
+    g = root / sb
+    dg = delta / (sb * root) - root / sb**2
+    out[big] = (
+        g[:, None, None] * out[big] + (dg / sb)[:, None, None] * eb[:, :, None] * eb[:, None, :]
+    )
+    return out

@@ -43,7 +43,12 @@ from numpy.typing import ArrayLike
 
 from .._validate import DegenerateError, check_matrix
 from ..camera import centred_intrinsics, nearest_rotation, rotation_from_axis_angle
-from ..optimise import huber_residuals, levenberg_marquardt
+from ..optimise import huber_jacobian, huber_residuals, levenberg_marquardt
+from .bundle_jacobian import (
+    homography_transfer_jacobians,
+    left_jacobian,
+    transfer_error_jacobians,
+)
 
 __all__ = [
     "BundleResult",
@@ -303,14 +308,19 @@ def pair_transfer_errors(K_i, R_i, K_j, R_j, x_i: np.ndarray, x_j: np.ndarray) -
     return _project(K_j @ R_j @ R_i.T @ np.linalg.inv(K_i), x_i) - x_j
 
 
-def _adjust(blocks: dict, build, pair_errors, pairs: list, huber: float, max_iter: int):
+def _adjust(
+    blocks: dict, build, pair_errors, pairs: list, huber: float, max_iter: int, pair_jacobians=None
+):
     """Levenberg-Marquardt over per-image parameter blocks and pairwise match errors.
 
     ``blocks[k] = (x0_k, steps_k)``: image k's starting parameters and forward-difference
     steps; ``build(k, x_k)`` makes image k's model from them; ``pair_errors(m_i, m_j, a, b)``
     gives the (N, 2) errors of matches a (image i) <-> b (image j). The residuals are every
-    pair's errors both ways through the Huber loss; the Jacobian is by forward differences,
-    one image's block at a time over only the pairs that see that image.
+    pair's errors both ways through the Huber loss. ``pair_jacobians(m_i, m_j, a)``, when
+    given, returns the errors' (N, 2, n_i) and (N, 2, n_j) derivatives with respect to the
+    two images' parameters, and the Jacobian is assembled from them (two blocks per row);
+    otherwise it is by forward differences, one image's block at a time over only the pairs
+    that see that image.
     """
     layout, n = {}, 0
     for k, (x0k, _) in blocks.items():
@@ -349,6 +359,19 @@ def _adjust(blocks: dict, build, pair_errors, pairs: list, huber: float, max_ite
                         J[rows[q], p] = (block(mp, i, j, a, b) - base[q]) / steps[p]
         return J
 
+    def analytic_jacobian(x):
+        m = models(x)
+        J = np.zeros((start, n))
+        for q, (i, j, a, b) in enumerate(pairs):
+            e = np.vstack([pair_errors(m[i], m[j], a, b), pair_errors(m[j], m[i], b, a)])
+            forward, backward = pair_jacobians(m[i], m[j], a), pair_jacobians(m[j], m[i], b)
+            d_i = np.concatenate([forward[0], backward[1]])  # (2N, 2, n_i): both error sets
+            d_j = np.concatenate([forward[1], backward[0]])
+            robust = huber_jacobian(e, huber)
+            J[rows[q], layout[i]] = (robust @ d_i).reshape(2 * len(e), d_i.shape[2])
+            J[rows[q], layout[j]] = (robust @ d_j).reshape(2 * len(e), d_j.shape[2])
+        return J
+
     def rms(x):
         m = models(x)
         e = np.vstack([pair_errors(m[i], m[j], a, b) for i, j, a, b in pairs])
@@ -357,7 +380,13 @@ def _adjust(blocks: dict, build, pair_errors, pairs: list, huber: float, max_ite
     if n == 0:
         return models(x0), rms(x0), rms(x0), np.zeros(1), 0, "nothing to adjust", 0.0
     t0 = time.perf_counter()
-    res = levenberg_marquardt(residuals, x0, jacobian, max_iter=max_iter, ftol=1e-8)
+    res = levenberg_marquardt(
+        residuals,
+        x0,
+        analytic_jacobian if pair_jacobians else jacobian,
+        max_iter=max_iter,
+        ftol=1e-8,
+    )
     return (
         models(res.x),
         rms(x0),
@@ -402,8 +431,9 @@ def bundle_adjust(
     Parameters are, per camera, f and a rotation vector :math:`\omega` applied on the left,
     :math:`R_k = \exp([\omega_k]_\times) R_k^{(0)}` (no singularity near the start). Camera
     ``fixed`` keeps its rotation (the world frame is otherwise free: turning every camera
-    together changes no error). The Jacobian is by forward differences, one camera at a time
-    over only the pairs that see it; :func:`camlab.optimise.levenberg_marquardt` does the rest.
+    together changes no error). The Jacobian is analytic, two blocks per match
+    (:mod:`camlab.stitching.bundle_jacobian` derives it);
+    :func:`camlab.optimise.levenberg_marquardt` does the rest.
 
     Parameters
     ----------
@@ -452,12 +482,28 @@ def bundle_adjust(
         if focal:
             K[0, 0] = K[1, 1] = xk[0]
         w = xk[1:] if focal else xk
-        return K, (rotation_from_axis_angle(w) @ Rs[k] if len(w) else np.asarray(Rs[k], float))
+        if not len(w):
+            return K, np.asarray(Rs[k], float), None
+        return K, rotation_from_axis_angle(w) @ Rs[k], left_jacobian(w)
 
     def errors(ci, cj, a, b):
         return pair_transfer_errors(ci[0], ci[1], cj[0], cj[1], a, b)
 
-    m, before, after, costs, its, msg, secs = _adjust(blocks, build, errors, pairs, huber, max_iter)
+    def jacobians(ci, cj, a):
+        """d errors / d (f, w) of both cameras, only the columns each camera's block has."""
+        out = []
+        for d, c in zip(
+            transfer_error_jacobians(ci[0], ci[1], cj[0], cj[1], a), (ci, cj), strict=True
+        ):
+            parts = ([d[:, :, :1]] if focal else []) + (
+                [d[:, :, 1:] @ c[2]] if c[2] is not None else []
+            )
+            out.append(np.concatenate(parts, axis=2) if parts else d[:, :, :0])
+        return out
+
+    m, before, after, costs, its, msg, secs = _adjust(
+        blocks, build, errors, pairs, huber, max_iter, jacobians
+    )
     return BundleResult(
         [m[k][0] if k in m else None for k in range(len(Rs))],
         [m[k][1] if k in m else None for k in range(len(Rs))],
@@ -536,12 +582,19 @@ def adjust_homographies(
 
     def build(k, xk):
         H = np.append(xk, 1.0).reshape(3, 3) if len(xk) else H0[k]
-        return H, np.linalg.inv(H)
+        return H, np.linalg.inv(H), bool(len(xk))
 
     def errors(hi, hj, a, b):
         return _project(hj[1] @ hi[0], a) - b
 
-    m, before, after, _, its, msg, secs = _adjust(blocks, build, errors, pairs, huber, max_iter)
+    def jacobians(hi, hj, a):
+        """d errors / d H entries of both images; none for the reference, which stays."""
+        d = homography_transfer_jacobians(hi[0], hj[0], a)
+        return [dk if h[2] else dk[:, :, :0] for dk, h in zip(d, (hi, hj), strict=True)]
+
+    m, before, after, _, its, msg, secs = _adjust(
+        blocks, build, errors, pairs, huber, max_iter, jacobians
+    )
     return HomographyAdjustment(
         [m[k][0] if k in m else None for k in range(len(ref_from_k))], before, after, its, msg, secs
     )
