@@ -168,6 +168,7 @@ def rows(repeat: int = 3) -> list[dict]:
     cv2.setNumThreads(1)
     out, stages = [], []
     rows.load = [os.getloadavg()[0]]
+    rows.adjustments = []
     for name, (images, names, f_true) in sets().items():
         mode, mode_name = cv_mode(images)
         tc, to, cc, co, st_runs = [], [], [], [], []
@@ -184,6 +185,7 @@ def rows(repeat: int = 3) -> list[dict]:
             to.append(time.perf_counter() - t0)
             co.append(time.process_time() - c0)
         rows.load.append(os.getloadavg()[0])
+        rows.adjustments += [f"{name}: {line}" for line in res.adjustments]  # the last run's
         cam, ocv = 1e3 * float(np.median(tc)), 1e3 * float(np.median(to))
         pairs = [(i, j) for i in range(len(images)) for j in range(i + 1, len(images))]
         indep = independent_matches(images, pairs)
@@ -256,3 +258,6 @@ if __name__ == "__main__":
         ["set"] + STAGES + ["total"],
         title="camlab per stage (median ms over the runs)",
     )
+    print("\nBundle adjustment, last run of each set:")
+    for line in rows.adjustments:
+        print(f"  {line}")

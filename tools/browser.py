@@ -104,6 +104,11 @@ def jupyterlab(root: Path, base: Path) -> Iterator[dict]:
     (settings / "notification.jupyterlab-settings").write_text(
         json.dumps({"fetchNews": "false", "checkForUpdates": False})
     )
+    # Every cell attached and laid out: under JupyterLab's default ("contentVisibility") an
+    # off-screen ipympl canvas has no size to take, and CI saw one stay 0 x 0 under load.
+    notebook = base / "settings" / "@jupyterlab" / "notebook-extension"
+    notebook.mkdir(parents=True)
+    (notebook / "tracker.jupyterlab-settings").write_text(json.dumps({"windowingMode": "none"}))
     env = dict(
         os.environ,
         JUPYTER_CONFIG_DIR=str(base / "config"),

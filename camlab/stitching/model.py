@@ -41,6 +41,8 @@ class ModelChoice(NamedTuple):
         reference_from_image homographies of every image, for the plane model only.
     bundle_seconds : float
         Time spent in bundle adjustment (of the cameras and of the homographies).
+    adjustments : tuple of str
+        One line per adjustment run (model, iterations, stopping rule, RMS, seconds).
     """
 
     keep: list
@@ -51,6 +53,7 @@ class ModelChoice(NamedTuple):
     Rs: list
     plane: list | None
     bundle_seconds: float
+    adjustments: tuple
 
 
 def choose_model(
@@ -133,4 +136,11 @@ def choose_model(
     Ks = [est.Ks[k] for k in keep] if rotation else [None] * len(keep)
     Rs = [est.Rs[k] for k in keep] if rotation else [None] * len(keep)
     seconds = (0.0 if est is None else est.bundle.seconds) + (0.0 if adj is None else adj.seconds)
-    return ModelChoice(keep, model, float(resid), est, Ks, Rs, plane, seconds)
+    runs = [("rotation model", est.bundle)] if est is not None else []
+    runs += [("homographies", adj)] if adj is not None else []
+    adjustments = tuple(
+        f"{what}: {r.iterations} Levenberg-Marquardt iterations, stopped: {r.message}; "
+        f"RMS {r.rms_before:.3f} -> {r.rms_after:.3f} px in {r.seconds:.3f} s"
+        for what, r in runs
+    )
+    return ModelChoice(keep, model, float(resid), est, Ks, Rs, plane, seconds, adjustments)

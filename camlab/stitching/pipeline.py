@@ -101,6 +101,9 @@ class StitchResult(NamedTuple):
         Seconds per stage: features, matching, estimation (focal, rotations, model choice),
         bundle_adjustment (of the cameras, or of the homographies of a flat scene), warping,
         exposure, seams, compositing (gains applied and blending).
+    adjustments : list of str
+        One line per bundle adjustment run: which model, Levenberg-Marquardt iterations, why it
+        stopped, RMS before and after, seconds.
     """
 
     panorama: np.ndarray
@@ -119,6 +122,7 @@ class StitchResult(NamedTuple):
     outlines: list
     names: list
     timings: dict
+    adjustments: list
 
 
 def _names(names, n: int) -> list:
@@ -577,6 +581,7 @@ def _result(
         O_out,
         photos.names,
         times,
+        list(fit.adjustments),
     )
 
 
