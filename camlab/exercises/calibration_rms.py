@@ -232,7 +232,7 @@ register_exercise(
         ),
         teaching=expected_rms,
         solution_note=(
-            "# camlab has no function for it: lesson 08, section 7, computes the same value beside the\n"
+            "# camlab has no function for it: lesson 08, section 5, computes the same value beside the\n"
             "# coach, from the detector's noise and the calibration's N and p"
         ),
     )

@@ -26,6 +26,7 @@ from .controls import int_slider, monospace
 
 _NAMES = ("fx", "fy", "cx", "cy")
 _PX_FLOOR, _PX_CEIL = 1e-2, 300.0  # the log axis of errors and 3 sigma, px
+_ARROW_CAP_PX = 60.0  # the view inspector's longest arrow, px: longer ones are drawn this long
 _TICK_HALF = 0.25  # half the width of each 3-sigma tick, centred on the error's dot
 
 
@@ -346,7 +347,13 @@ def view_inspector(
         art.det.set_data(obs[:, 0], obs[:, 1])
         art.rep.set_data(pred[:, 0], pred[:, 1])
         art.arrows.set_offsets(pred)
-        art.arrows.set_UVC(r[:, 0] * v["magnify"], r[:, 1] * v["magnify"])
+        d = r * v["magnify"]
+        length = np.linalg.norm(d, axis=1)
+        capped = (
+            length > _ARROW_CAP_PX
+        )  # drawn _ARROW_CAP_PX long, as the coach's residual field does
+        d[capped] *= (_ARROW_CAP_PX / length[capped])[:, None]
+        art.arrows.set_UVC(d[:, 0], d[:, 1])
         worst = int(np.argmax(np.linalg.norm(r, axis=1)))
         art.worst.set_data(obs[worst, :1], obs[worst, 1:])
         state.update(
@@ -355,6 +362,7 @@ def view_inspector(
             rms=float(res.per_view_rms[k]),
             worst_corner=worst,
             longest_arrow_px=float(np.linalg.norm(r[worst]) * v["magnify"]),
+            capped_arrows=int(capped.sum()),
         )
         art.title.set_text(
             f"view {k} ({out.names[i]}): rms {res.per_view_rms[k]:.3f} px, "
@@ -364,6 +372,7 @@ def view_inspector(
             f"view {k} ({out.names[i]})\nrms {res.per_view_rms[k]:.3f} px "
             f"(median view {np.median(res.per_view_rms):.3f})\nworst corner (index {worst}): "
             f"{np.linalg.norm(r[worst]):.3f} px (ringed)\narrows ×{v['magnify']:.0f}"
+            + (f", {capped.sum()} capped at {_ARROW_CAP_PX:.0f} px" if capped.any() else "")
         )
 
     return build_demo(
