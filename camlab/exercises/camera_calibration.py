@@ -276,6 +276,11 @@ def _lm_diagnosis(args, got, expected) -> str:
         )
     if np.allclose(g, np.linalg.solve(A, -grad)):
         return "that is the Gauss-Newton step: add the damping mu * diag(J^T J) to J^T J"
+    if mu > 0 and np.allclose(g, np.linalg.solve(A + mu * np.diag(np.sqrt(np.diag(A))), -grad)):
+        return (
+            "you damped with the square root of diag(J^T J) (the column norms of J); Marquardt's D is "
+            "diag(J^T J) itself, so that mu D has the units of J^T J"
+        )
     for factor in (0.5, 2.0):
         if np.allclose(g, factor * expected):
             return (
@@ -359,6 +364,12 @@ register_exercise(
                 "broadcasting slip",
             ),
             (lambda J, r, mu: np.linalg.solve((1 + mu) * (J.T @ J), -J.T @ r), "the whole matrix"),
+            (
+                lambda J, r, mu: np.linalg.solve(
+                    J.T @ J + mu * np.diag(np.sqrt(np.diag(J.T @ J))), -J.T @ r
+                ),
+                "square root of diag",
+            ),
         ),
         teaching=lm_step,
         exception_hint=_lm_exception_hint,
@@ -401,6 +412,11 @@ def _rotation_diagnosis(args, got, expected) -> str:
         )
     if not np.allclose(g.T @ g, np.eye(3), atol=1e-8):
         return "your matrix is not orthonormal (R^T R != I): use the SVD M = U S V^T and drop S"
+    if np.linalg.det(U @ Vt) > 0 and np.allclose(g, U @ np.diag([1, 1, -1]) @ Vt, atol=1e-8):
+        return (
+            "you flipped U's last column although det(U V^T) was already +1, which makes it a reflection: "
+            "flip only when det(U V^T) < 0, e.g. U @ np.diag([1, 1, np.linalg.det(U @ Vt)]) @ Vt"
+        )
     if np.linalg.det(g) < 0:
         return "det R = -1, a reflection: flip the sign of the last column of U when det(U V^T) < 0"
     if np.linalg.det(U @ Vt) < 0:
@@ -469,6 +485,10 @@ register_exercise(
             (lambda M: (lambda U, S, Vt: U @ Vt)(*np.linalg.svd(M)), "det R = -1"),
             (lambda M: M / np.linalg.norm(M, axis=0), "not orthonormal"),
             (_gram_schmidt, "not the closest"),
+            (
+                lambda M: (lambda U, S, Vt: U @ np.diag([1.0, 1.0, -1.0]) @ Vt)(*np.linalg.svd(M)),
+                "already +1",
+            ),
             (lambda M: (lambda U, S, Vt: U @ Vt.T)(*np.linalg.svd(M)), "third output"),
             (lambda M: camera.nearest_rotation(M).T, "transpose"),
             (

@@ -319,7 +319,7 @@ def _label_boards(ax, view: np.ndarray, ring: list[int]) -> None:
         )
         k = int(np.argmax(gaps + 0.5 * outward[v]))
         placed.append(screen[v][k])
-        colour = palette.SERIES[v % len(palette.SERIES)]
+        colour = palette.VIEWS[v % len(palette.VIEWS)]
         colour = (
             palette.DARK_ORANGE if colour == palette.ORANGE else colour
         )  # orange is too light for text
@@ -341,7 +341,7 @@ def plot_extrinsics(ax, result: CalibrationResult, size: float | None = None):
     Each view's board corners in the camera frame, :math:`X_{cam} = R_v X_{board} + t_v`, are drawn as
     the board's outline with its view number (0-based, as in the per-view plots; each number at the
     point of its outline farthest from the numbers already placed), the colours
-    repeating every six views; the camera sits at the origin, drawn as a frustum
+    repeating every four views; the camera sits at the origin, drawn as a frustum
     with its x (right), y (down), z (forward) axes. The axes show the camera frame with "up" up
     (matplotlib's Z is :math:`-y`), so the picture reads like Bouguet's and MATLAB's extrinsics view.
 
@@ -377,7 +377,7 @@ def plot_extrinsics(ax, result: CalibrationResult, size: float | None = None):
     cols = int(np.sum(obj[:, 1] == obj[0, 1]))
     ring = [0, cols - 1, len(obj) - 1, len(obj) - cols, 0]  # the outer corners, in a loop
     for v, b in enumerate(view):
-        colour = palette.SERIES[v % len(palette.SERIES)]
+        colour = palette.VIEWS[v % len(palette.VIEWS)]
         ax.plot(*b[ring].T, color=colour, lw=1.2)
         ax.plot(*b[0], "o", color=colour, ms=3)  # the first corner: how the board is turned
     depth = float(np.min(boards[:, :, 2]))
