@@ -640,3 +640,20 @@ def test_synthetic_views_fixed_tilt():
     free = C.make_synthetic_views(20, 0.0, rng=np.random.default_rng(1))
     angles = np.degrees(np.arccos(np.abs(free.R[:, 2, 2])))
     assert angles.min() >= 15 - 1e-9 and angles.max() <= 50 + 1e-9 and np.ptp(angles) > 10
+
+
+def test_view_inspector_caps_long_arrows():
+    """At x300 the longest real residuals would leave the photo: they are drawn 60 px long and counted."""
+    from camlab.widgets import camera_calibration as demos
+
+    demo = demos.view_inspector()
+    demo.set(view=4, magnify=300.0)
+    quiver = [c for c in demo.figure.axes[0].collections if hasattr(c, "U")][0]
+    lengths = np.hypot(quiver.U, quiver.V)
+    assert demo.state["longest_arrow_px"] > 60 and demo.state["capped_arrows"] > 0
+    assert (
+        lengths.max() == pytest.approx(60.0)
+        and np.sum(np.isclose(lengths, 60.0)) == demo.state["capped_arrows"]
+    )
+    demo.set(magnify=10.0)
+    assert demo.state["capped_arrows"] == 0

@@ -1563,7 +1563,7 @@ def test_a_diagnosis_that_fails_on_an_unforeseen_answer_still_reports_a_wrong_an
     exercise = dataclasses.replace(_core.EXERCISES["expected_rms"], diagnose=broken)
     monkeypatch.setitem(_core.EXERCISES, "expected_rms", exercise)
     with pytest.raises(_core.CheckFailed, match="could not diagnose this answer"):
-        _core.check("expected_rms", lambda sigma, N, p: np.array([2 * sigma]))
+        _core.check("expected_rms", lambda sigma, *counts: np.array([2 * sigma]))
 
 
 def _read_and_turn_about(centre):

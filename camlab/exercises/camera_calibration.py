@@ -6,7 +6,7 @@ import numpy as np
 
 from .. import calibration, camera, optimise
 from ..camera import rotation_from_axis_angle
-from ._answers import SameArray, Tolerance, same_array, shape_problem, type_problem
+from ._answers import SameArray, Tolerance, same_array, shape_problem
 from ._core import Exercise, register_exercise
 
 # ------------------------------------------------------------------ V from one homography
@@ -53,6 +53,15 @@ class _SameUpToScale(SameArray):
         return bool(np.all(scales != 0)) and super().__call__(g / scales[:, None], e)
 
 
+def _undoubled(g, e, scales) -> bool:
+    """Row 0 right and row 1's B12, B13, B23 entries half the truth: v_ii's cross terms not doubled."""
+    tol = 1e-6 * np.abs(e).max()
+    row0 = np.allclose(g[0] / scales[0], e[0], rtol=1e-6, atol=tol)
+    return row0 and np.allclose(
+        g[1, [1, 3, 4]] / scales[1], e[1, [1, 3, 4]] / 2, rtol=1e-6, atol=tol
+    )
+
+
 def _zhang_diagnosis(args, got, expected) -> str:
     problem = shape_problem(got, expected)
     if problem:
@@ -91,10 +100,16 @@ def _zhang_diagnosis(args, got, expected) -> str:
             for k in (1, 3, 4)
             if not np.allclose(g[:, k] / np.array(scales), e[:, k], rtol=1e-6, atol=tol)
         ]
+        if _undoubled(g, e, scales):
+            return (
+                "row 0 (v12) is right, but in row 1 the entries for B12, B13, B23 are half the truth: for i = j "
+                "the two products of hi3 hj1 + hi1 hj3 are equal, so v_ii's entry is 2 hi1 hi3 (likewise "
+                "2 hi1 hi2 and 2 hi2 hi3); you kept only one of them"
+            )
         return (
             f"the entries for B11, B22, B33 are right, those for {', '.join(wrong)} are not: each of these appears "
-            "twice in h_i^T B h_j (B is symmetric), so its entry is a sum of two different products, "
-            "e.g. hi3 hj1 + hi1 hj3 for B13 (not 2 hi3 hj1)"
+            "twice in h_i^T B h_j (B is symmetric), so its entry is a sum of two products, "
+            "e.g. hi3 hj1 + hi1 hj3 for B13 (for i = j the two are equal: 2 hi1 hi3)"
         )
     one_based = np.stack(
         [calibration.zhang_v(H, 1, 2), calibration.zhang_v(H, 1, 1) - calibration.zhang_v(H, 2, 2)]
@@ -157,6 +172,18 @@ def zhang_constraints(H):
     return np.stack([v(0, 1), v(0, 0) - v(1, 1)])
 
 
+def _v_undoubled(H):
+    """Rows v12 and v11 - v22 with v_ii's cross terms not doubled (hi1 hi2 for 2 hi1 hi2)."""
+
+    def v(i, j):
+        a, b = H[:, i], H[:, j]
+        return np.array(
+            [a[0] * b[0], a[0] * b[1], a[1] * b[1], a[2] * b[0], a[2] * b[1], a[2] * b[2]]
+        )
+
+    return np.stack([calibration.zhang_v(H, 0, 1), v(0, 0) - v(1, 1)])
+
+
 register_exercise(
     Exercise(
         name="zhang_constraints",
@@ -208,6 +235,7 @@ register_exercise(
                 ),
                 "appears twice",
             ),
+            (lambda H: _v_undoubled(H), "you kept only one"),
         ),
         teaching=zhang_constraints,
     )
@@ -248,6 +276,11 @@ def _lm_diagnosis(args, got, expected) -> str:
         )
     if np.allclose(g, np.linalg.solve(A, -grad)):
         return "that is the Gauss-Newton step: add the damping mu * diag(J^T J) to J^T J"
+    if mu > 0 and np.allclose(g, np.linalg.solve(A + mu * np.diag(np.sqrt(np.diag(A))), -grad)):
+        return (
+            "you damped with the square root of diag(J^T J) (the column norms of J); Marquardt's D is "
+            "diag(J^T J) itself, so that mu D has the units of J^T J"
+        )
     for factor in (0.5, 2.0):
         if np.allclose(g, factor * expected):
             return (
@@ -331,6 +364,12 @@ register_exercise(
                 "broadcasting slip",
             ),
             (lambda J, r, mu: np.linalg.solve((1 + mu) * (J.T @ J), -J.T @ r), "the whole matrix"),
+            (
+                lambda J, r, mu: np.linalg.solve(
+                    J.T @ J + mu * np.diag(np.sqrt(np.diag(J.T @ J))), -J.T @ r
+                ),
+                "square root of diag",
+            ),
         ),
         teaching=lm_step,
         exception_hint=_lm_exception_hint,
@@ -373,6 +412,11 @@ def _rotation_diagnosis(args, got, expected) -> str:
         )
     if not np.allclose(g.T @ g, np.eye(3), atol=1e-8):
         return "your matrix is not orthonormal (R^T R != I): use the SVD M = U S V^T and drop S"
+    if np.linalg.det(U @ Vt) > 0 and np.allclose(g, U @ np.diag([1, 1, -1]) @ Vt, atol=1e-8):
+        return (
+            "you flipped U's last column although det(U V^T) was already +1, which makes it a reflection: "
+            "flip only when det(U V^T) < 0, e.g. U @ np.diag([1, 1, np.linalg.det(U @ Vt)]) @ Vt"
+        )
     if np.linalg.det(g) < 0:
         return "det R = -1, a reflection: flip the sign of the last column of U when det(U V^T) < 0"
     if np.linalg.det(U @ Vt) < 0:
@@ -441,6 +485,10 @@ register_exercise(
             (lambda M: (lambda U, S, Vt: U @ Vt)(*np.linalg.svd(M)), "det R = -1"),
             (lambda M: M / np.linalg.norm(M, axis=0), "not orthonormal"),
             (_gram_schmidt, "not the closest"),
+            (
+                lambda M: (lambda U, S, Vt: U @ np.diag([1.0, 1.0, -1.0]) @ Vt)(*np.linalg.svd(M)),
+                "already +1",
+            ),
             (lambda M: (lambda U, S, Vt: U @ Vt.T)(*np.linalg.svd(M)), "third output"),
             (lambda M: camera.nearest_rotation(M).T, "transpose"),
             (
@@ -452,152 +500,5 @@ register_exercise(
         ),
         teaching=nearest_rotation,
         ndarray_only=True,
-    )
-)
-
-
-# ------------------------------------------------------------------ the rms a calibration should reach
-
-
-def _rms_reference(sigma, n_corners, n_params):
-    return float(np.sqrt(2.0) * sigma * np.sqrt(1.0 - n_params / (2.0 * n_corners)))
-
-
-def _rms_cases():
-    # the rendered set of section 7, three views of one board, a small fit that leaves little redundancy
-    return [(0.0346, 864, 105), (0.3, 162, 27), (1.0, 100, 20), (0.5, 20, 30)]
-
-
-def _rms_form_problem(args, got, expected) -> str | None:
-    """Why ``got`` is not one finite number (None, a string, an array, NaN from swapped N and p), or None."""
-    sigma, n, p = args
-    if got is None or type_problem(got, expected):
-        return shape_problem(got, expected)
-    g = np.asarray(got, dtype=float)
-    if g.shape != ():
-        return (
-            f"expected one number, got an array of shape {g.shape}: return a float, e.g. float(x) "
-            "or x.item() (np.array([x]) or np.sqrt of a length-1 array keeps the array)"
-        )
-    with np.errstate(invalid="ignore"):
-        swapped = np.sqrt(2.0) * sigma * np.sqrt(1.0 - n / (2.0 * p))
-    if not np.isfinite(g) or np.isclose(g, swapped, rtol=1e-6):
-        return (
-            f"{'NaN: ' if not np.isfinite(g) else ''}did you swap n_corners and n_params? With N = {n} "
-            f"corners and p = {p} unknowns, 1 - p / (2N) = {1 - p / (2 * n):.3f}; with them swapped it is "
-            f"1 - N / (2p) = {1 - n / (2 * p):.3f}{' (negative: its square root is NaN)' if n > 2 * p else ''}"
-        )
-    return None
-
-
-def _rms_diagnosis(args, got, expected) -> str:
-    problem = _rms_form_problem(args, got, expected)
-    if problem:
-        return problem
-    sigma, n, p = args
-    g = float(np.asarray(got, dtype=float))
-    slips = (
-        (
-            expected / np.sqrt(2),
-            "that is the rms per coordinate; camlab's and OpenCV's rms is per corner point, whose "
-            "error is a 2-vector: multiply by sqrt(2)",
-        ),
-        (
-            np.sqrt(2) * sigma * np.sqrt(1 - p / n),
-            "each corner gives two residuals, so there are 2N of them: the factor is "
-            "sqrt(1 - p / (2N)), not sqrt(1 - p / N)",
-        ),
-        (
-            np.sqrt(2) * sigma * (1 - p / (2 * n)),
-            "the factor is a square root, sqrt(1 - p / (2N)): it scales a variance, sigma^2",
-        ),
-        (
-            expected**2,
-            "that is the mean square error 2 sigma^2 (1 - p / (2N)), a variance in px^2: the rms is "
-            "its square root",
-        ),
-        (
-            np.sqrt(2) * sigma,
-            "you left out sqrt(1 - p / (2N)): the fit uses up p of the 2N residuals' degrees of "
-            "freedom, so its residuals come out smaller than the noise",
-        ),
-        (
-            2 * sigma * np.sqrt(1 - p / (2 * n)),
-            "a point's error has two coordinates, each with variance sigma^2: the variances add, "
-            "so its rms is sqrt(2) sigma, not 2 sigma",
-        ),
-        (
-            np.sqrt(2) * sigma * np.sqrt(1 + p / (2 * n)),
-            "the fit makes the residuals smaller than the noise: 1 - p / (2N), not 1 + p / (2N)",
-        ),
-    )
-    for value, cause in slips:
-        if np.isclose(g, value, rtol=1e-6):
-            return cause
-    if any(np.isclose(g, round(expected, d), rtol=0, atol=1e-12) for d in range(1, 5)):
-        return (
-            f"your {g:g} is the right value rounded ({expected:.6g}): return the unrounded number "
-            "and round only when printing, f'{rms:.3f}'"
-        )
-    return "expected rms = sqrt(2) sigma sqrt(1 - p / (2N)), N corners, p unknowns"
-
-
-def expected_rms(sigma, n_corners, n_params):
-    """The rms reprojection error per corner a calibration should reach at corner noise sigma.
-
-    With noise sigma in each coordinate, the maximum-likelihood residual per coordinate is
-    sigma sqrt(1 - p / (2N)) (H&Z 5.1.3: the fit absorbs p of the 2N degrees of freedom); a
-    corner's error is a 2-vector, so its rms is sqrt(2) times that.
-
-    Parameters
-    ----------
-    sigma : float
-        The corner noise per coordinate, px.
-    n_corners : int
-        N, the number of corners over all views.
-    n_params : int
-        p, the number of unknowns fitted (intrinsics, distortion and 6 per view).
-
-    Returns
-    -------
-    float
-        sqrt(2) sigma sqrt(1 - p / (2N)), px.
-
-    References
-    ----------
-    R. Hartley and A. Zisserman (2004), *Multiple View Geometry in Computer Vision*, 2nd ed.,
-    section 5.1.3.
-    """
-    return float(np.sqrt(2.0) * sigma * np.sqrt(1.0 - n_params / (2.0 * n_corners)))
-
-
-register_exercise(
-    Exercise(
-        name="expected_rms",
-        lesson="08",
-        reference=_rms_reference,
-        cases=_rms_cases,
-        compare=same_array(rtol=1e-6, atol=1e-12),
-        diagnose=_rms_diagnosis,
-        wrong_variants=(
-            (lambda s, n, p: s * np.sqrt(1 - p / (2 * n)), "per coordinate"),
-            (lambda s, n, p: np.sqrt(2) * s * np.sqrt(1 - p / n), "2N of them"),
-            (lambda s, n, p: np.sqrt(2) * s * (1 - p / (2 * n)), "a square root"),
-            (lambda s, n, p: np.sqrt(2) * s, "left out"),
-            (lambda s, n, p: 2 * s * np.sqrt(1 - p / (2 * n)), "variances add"),
-            (lambda s, n, p: np.sqrt(2) * s * np.sqrt(1 + p / (2 * n)), "1 + p"),
-            (lambda s, n, p: np.array([np.sqrt(2) * s * np.sqrt(1 - p / (2 * n))]), "shape (1,)"),
-            (
-                lambda s, n, p: np.sqrt(2) * s * np.sqrt(1 - n / (2 * p)),
-                "swap n_corners and n_params",
-            ),
-            (lambda s, n, p: round(np.sqrt(2) * s * np.sqrt(1 - p / (2 * n)), 3), "rounded"),
-            (lambda s, n, p: 2 * s**2 * (1 - p / (2 * n)), "mean square"),
-        ),
-        teaching=expected_rms,
-        solution_note=(
-            "# camlab has no function for it: lesson 08, section 7, computes the same line beside the\n"
-            "# coach, from the detector's noise and the calibration's N and p"
-        ),
     )
 )

@@ -57,7 +57,7 @@ def image_frame(ax, image_size: tuple[int, int], title: str = "") -> None:
 def plot_per_view_errors(ax, result: CalibrationResult, highlight_ratio: float = 2.0):
     """Bar chart of each view's rms (px) with the overall rms; outlying views in red.
 
-    A view is red when its rms is at least ``highlight_ratio`` times the median and over 0.1 px.
+    A view is black (the others grey) when its rms is at least ``highlight_ratio`` times the median and over 0.1 px.
 
     Parameters
     ----------
@@ -75,10 +75,12 @@ def plot_per_view_errors(ax, result: CalibrationResult, highlight_ratio: float =
     """
     err = result.per_view_rms
     med = np.median(err)
-    colors = [
-        palette.TAB_RED if e >= highlight_ratio * med and e > 0.1 else palette.TAB_BLUE for e in err
-    ]
+    bad = [e >= highlight_ratio * med and e > 0.1 for e in err]
+    colors = ["k" if b else palette.GREY for b in bad]  # no red: red + is a detection
     bars = ax.bar(np.arange(len(err)), err, color=colors)
+    for bar in (b for b, flagged in zip(bars, bad, strict=True) if flagged):
+        bar.set_label(f"over {highlight_ratio:g} x the median")  # one legend entry for all of them
+        break
     ax.axhline(result.rms, color="k", ls="--", lw=1, label=f"overall rms {result.rms:.2f} px")
     ax.set(xlabel="view", ylabel="rms error (px)")
     ax.set_title("Error per view", fontsize=10)
@@ -167,7 +169,7 @@ def plot_coverage(ax, result: CalibrationResult, report: CoachReport | None = No
     Returns
     -------
     matplotlib.collections.PathCollection
-        The corners, coloured by view.
+        The corners of every view, black dots.
     """
     report = coach(result) if report is None else report
     w, h = result.image_size
@@ -189,13 +191,18 @@ def plot_coverage(ax, result: CalibrationResult, report: CoachReport | None = No
         ax.axvline(c, color="0.8", lw=0.5, gid="grid")
     for r in np.linspace(-0.5, h - 0.5, rows + 1)[1:-1]:
         ax.axhline(r, color="0.8", lw=0.5, gid="grid")
-    colors = np.concatenate([np.full(len(p), v) for v, p in enumerate(result.image_points)])
     return ax.scatter(
-        *np.concatenate(result.image_points).T, c=colors, s=3, cmap="viridis"
-    )  # no red: red + is a detection
+        *np.concatenate(result.image_points).T, color="k", s=2, lw=0
+    )  # one colour, every view: no red, red + is a detection
 
 
-def plot_uncertainty_map(ax, result: CalibrationResult, step: int = 16):
+def plot_uncertainty_map(
+    ax,
+    result: CalibrationResult,
+    step: int = 16,
+    hatch_empty: bool = False,
+    title: str | None = None,
+):
     """1-sigma projection uncertainty (px) from the intrinsics' covariance, across the image.
 
     Parameters
@@ -206,21 +213,55 @@ def plot_uncertainty_map(ax, result: CalibrationResult, step: int = 16):
         A calibration (:func:`camlab.calibration.calibrate_camera`).
     step : int
         Spacing of the sample grid, pixels (:func:`camlab.calibration.projection_uncertainty`).
+    hatch_empty : bool
+        Hatch the coverage cells that no corner reached (:func:`plot_coverage`'s grey cells).
+    title : str or None
+        The panel's title; None gives "Projection uncertainty (px, 1σ)".
 
     Returns
     -------
     matplotlib.image.AxesImage
-        The uncertainty map (px), with a colour bar added to the figure.
+        The uncertainty map (px), with a colour bar added to the figure (log colours when the
+        map spans more than a factor of 5).
     """
     us, vs, sig = projection_uncertainty(result, step)
-    image_frame(ax, result.image_size, "Projection uncertainty (px, 1σ)")
+    image_frame(ax, result.image_size, title or "Projection uncertainty (px, 1σ)")
     w, h = result.image_size
+    from matplotlib.colors import LogNorm
+
     im = ax.imshow(
-        sig, extent=(-0.5, w - 0.5, h - 0.5, -0.5), cmap="viridis", interpolation="bilinear"
+        sig,
+        extent=(-0.5, w - 0.5, h - 0.5, -0.5),
+        cmap="viridis",
+        interpolation="bilinear",
+        norm=LogNorm() if sig.max() > 5 * sig.min() else None,  # a wide range: log colours
     )
-    ax.figure.colorbar(
+    if hatch_empty:
+        from matplotlib.patches import Rectangle
+
+        grid = coach(result).coverage_grid
+        gh, gw = grid.shape
+        for i, j in zip(*np.nonzero(grid == 0), strict=True):
+            ax.add_patch(
+                Rectangle(
+                    (j * w / gw - 0.5, i * h / gh - 0.5),
+                    w / gw,
+                    h / gh,
+                    fill=False,
+                    hatch="//",
+                    ec="w",
+                    lw=0,
+                )
+            )
+    bar = ax.figure.colorbar(
         im, ax=ax, shrink=0.8, label="1σ (px)"
     )  # the label keeps the ticks off the edge
+    if isinstance(im.norm, LogNorm):  # 0.5, 1, 2, 5 rather than 5 x 10^-1
+        from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+        bar.ax.yaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+        bar.ax.yaxis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:g}"))
+        bar.ax.yaxis.set_minor_formatter(NullFormatter())
     return im
 
 
@@ -278,7 +319,7 @@ def _label_boards(ax, view: np.ndarray, ring: list[int]) -> None:
         )
         k = int(np.argmax(gaps + 0.5 * outward[v]))
         placed.append(screen[v][k])
-        colour = palette.SERIES[v % len(palette.SERIES)]
+        colour = palette.VIEWS[v % len(palette.VIEWS)]
         colour = (
             palette.DARK_ORANGE if colour == palette.ORANGE else colour
         )  # orange is too light for text
@@ -300,7 +341,7 @@ def plot_extrinsics(ax, result: CalibrationResult, size: float | None = None):
     Each view's board corners in the camera frame, :math:`X_{cam} = R_v X_{board} + t_v`, are drawn as
     the board's outline with its view number (0-based, as in the per-view plots; each number at the
     point of its outline farthest from the numbers already placed), the colours
-    repeating every six views; the camera sits at the origin, drawn as a frustum
+    repeating every four views; the camera sits at the origin, drawn as a frustum
     with its x (right), y (down), z (forward) axes. The axes show the camera frame with "up" up
     (matplotlib's Z is :math:`-y`), so the picture reads like Bouguet's and MATLAB's extrinsics view.
 
@@ -336,7 +377,7 @@ def plot_extrinsics(ax, result: CalibrationResult, size: float | None = None):
     cols = int(np.sum(obj[:, 1] == obj[0, 1]))
     ring = [0, cols - 1, len(obj) - 1, len(obj) - cols, 0]  # the outer corners, in a loop
     for v, b in enumerate(view):
-        colour = palette.SERIES[v % len(palette.SERIES)]
+        colour = palette.VIEWS[v % len(palette.VIEWS)]
         ax.plot(*b[ring].T, color=colour, lw=1.2)
         ax.plot(*b[0], "o", color=colour, ms=3)  # the first corner: how the board is turned
     depth = float(np.min(boards[:, :, 2]))

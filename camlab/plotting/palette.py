@@ -35,6 +35,12 @@ DARK_ORANGE = (
 )
 
 SERIES = (BLUE, ORANGE, GREEN, RED, PURPLE, BROWN)  # for numbered things: image 0, 1, 2...
+VIEWS = (
+    BLUE,
+    ORANGE,
+    GREEN,
+    BROWN,
+)  # numbered views where red means a detection and purple a residual (lesson 08)
 
 # The colours demos drew before this palette, kept under a name here so that every colour a
 # figure uses is spelt in this module (``tests/test_palette.py`` fails on a raw colour

@@ -25,7 +25,8 @@ from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import int_slider, monospace
 
 _NAMES = ("fx", "fy", "cx", "cy")
-_PX_FLOOR, _PX_CEIL = 1e-3, 300.0  # the log axis of errors and 3 sigma, px
+_PX_FLOOR, _PX_CEIL = 1e-2, 300.0  # the log axis of errors and 3 sigma, px
+_ARROW_CAP_PX = 60.0  # the view inspector's longest arrow, px: longer ones are drawn this long
 _TICK_HALF = 0.25  # half the width of each 3-sigma tick, centred on the error's dot
 
 
@@ -74,10 +75,10 @@ def _accuracy_figure(view: FigureView, s) -> SimpleNamespace:
         handletextpad=0.9,
     )
     view.animate(ax.get_legend())  # below the axes, off the data
-    image_frame(axi, s.image_size, "Corners used; the last view added in purple")
+    image_frame(axi, s.image_size, "Corners used; the last view added in black")
     pts = axi.scatter(np.zeros(0), np.zeros(0), s=3, color="0.55", linewidths=0)
-    (last,) = axi.plot([], [], ".", color=palette.PURPLE, ms=4)
-    (outline,) = axi.plot([], [], "-", color=palette.PURPLE, lw=1)
+    (last,) = axi.plot([], [], ".", color="k", ms=4)  # no purple: magenta-like is for residuals
+    (outline,) = axi.plot([], [], "-", color="k", lw=1)
     view.animate(pts, last, outline)
     return SimpleNamespace(
         dots=dots, above=above, bars=bars, pts=pts, last=last, outline=outline, title=title
@@ -295,12 +296,12 @@ def _inspector_controls(n_views: int) -> dict:
     return {
         "view": int_slider(0, 0, n_views - 1, "view"),
         "magnify": slider(
-            100.0, 1.0, 300.0, 1.0, "arrow magnification"
+            100.0, 10.0, 300.0, 1.0, "arrow magnification"
         ),  # 300 x 0.4 px: 120 px arrows
     }
 
 
-@register(lesson="08", sweep={"view": [0, 5, 13], "magnify": [1.0, 100.0, 300.0]})
+@register(lesson="08", sweep={"view": [0, 5, 13], "magnify": [10.0, 100.0, 300.0]})
 def view_inspector(
     calibration: C.ImageCalibration | None = None, images: list | None = None
 ) -> Demo:
@@ -346,7 +347,13 @@ def view_inspector(
         art.det.set_data(obs[:, 0], obs[:, 1])
         art.rep.set_data(pred[:, 0], pred[:, 1])
         art.arrows.set_offsets(pred)
-        art.arrows.set_UVC(r[:, 0] * v["magnify"], r[:, 1] * v["magnify"])
+        d = r * v["magnify"]
+        length = np.linalg.norm(d, axis=1)
+        capped = (
+            length > _ARROW_CAP_PX
+        )  # drawn _ARROW_CAP_PX long, as the coach's residual field does
+        d[capped] *= (_ARROW_CAP_PX / length[capped])[:, None]
+        art.arrows.set_UVC(d[:, 0], d[:, 1])
         worst = int(np.argmax(np.linalg.norm(r, axis=1)))
         art.worst.set_data(obs[worst, :1], obs[worst, 1:])
         state.update(
@@ -355,6 +362,7 @@ def view_inspector(
             rms=float(res.per_view_rms[k]),
             worst_corner=worst,
             longest_arrow_px=float(np.linalg.norm(r[worst]) * v["magnify"]),
+            capped_arrows=int(capped.sum()),
         )
         art.title.set_text(
             f"view {k} ({out.names[i]}): rms {res.per_view_rms[k]:.3f} px, "
@@ -362,8 +370,9 @@ def view_inspector(
         )
         readout.value = monospace(
             f"view {k} ({out.names[i]})\nrms {res.per_view_rms[k]:.3f} px "
-            f"(median view {np.median(res.per_view_rms):.3f})\nworst corner {worst}: "
+            f"(median view {np.median(res.per_view_rms):.3f})\nworst corner (index {worst}): "
             f"{np.linalg.norm(r[worst]):.3f} px (ringed)\narrows ×{v['magnify']:.0f}"
+            + (f", {capped.sum()} capped at {_ARROW_CAP_PX:.0f} px" if capped.any() else "")
         )
 
     return build_demo(
