@@ -12,7 +12,15 @@ Three topics, every public name importable from ``camlab.measurement``:
 
 from .depth import RectifiedCameras, depth_sigma, rectified_cameras, triangulate_rectified
 from .plane import PlaneMeasurement, area_on_plane, measure_on_plane, pixels_to_plane
-from .pnp import PlaneFrame, PnPResult, plane_frame, pose_jacobian, project_pose, solve_pnp
+from .pnp import (
+    PlaneFrame,
+    PnPResult,
+    plane_frame,
+    pose_covariance,
+    pose_jacobian,
+    project_pose,
+    solve_pnp,
+)
 
 __all__ = [
     "PlaneFrame",
@@ -24,6 +32,7 @@ __all__ = [
     "measure_on_plane",
     "pixels_to_plane",
     "plane_frame",
+    "pose_covariance",
     "pose_jacobian",
     "project_pose",
     "rectified_cameras",

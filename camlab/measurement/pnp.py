@@ -59,7 +59,14 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._validate import CamlabInputError, DegenerateError, as_point_pairs, check_intrinsics
+from .._validate import (
+    CamlabInputError,
+    DegenerateError,
+    as_point_pairs,
+    as_points,
+    check_intrinsics,
+    check_number,
+)
 from ..calibration.zhang import extrinsics_from_homography
 from ..camera import (
     axis_angle_from_rotation,
@@ -71,7 +78,15 @@ from ..distortion import as_dist, distort_pixels, undistort_pixels
 from ..homography import estimate_homography
 from ..optimise import levenberg_marquardt
 
-__all__ = ["PlaneFrame", "PnPResult", "plane_frame", "pose_jacobian", "project_pose", "solve_pnp"]
+__all__ = [
+    "PlaneFrame",
+    "PnPResult",
+    "plane_frame",
+    "pose_covariance",
+    "pose_jacobian",
+    "project_pose",
+    "solve_pnp",
+]
 
 METHODS = ("auto", "planar", "dlt")
 PLANAR_TOL = 1e-9
@@ -235,6 +250,41 @@ def pose_jacobian(K: np.ndarray, R: np.ndarray, t: np.ndarray, X: np.ndarray) ->
     return (dproj @ dXc).reshape(-1, 6)
 
 
+def pose_covariance(
+    K: ArrayLike, R: ArrayLike, t: ArrayLike, object_points: ArrayLike, sigma_px: float
+) -> np.ndarray:
+    r"""The 6 x 6 covariance :math:`\sigma^2 (J^\top J)^{-1}` of a pose seen through N points.
+
+    What the pose's uncertainty *would be* with pixel noise ``sigma_px`` per coordinate: for
+    planning a measurement (how far, how tilted) before taking the photo.
+
+    Parameters
+    ----------
+    K : (3, 3) array_like
+        Intrinsics, pixels.
+    R : (3, 3) array_like
+        Rotation, cam_from_world.
+    t : (3,) array_like
+        Translation, cam_from_world.
+    object_points : (N, 3) array_like
+        The points that fix the pose (a board's corners).
+    sigma_px : float
+        Pixel noise per coordinate, pixels (>= 0).
+
+    Returns
+    -------
+    (6, 6) ndarray
+        Covariance of (:math:`\delta\omega`, :math:`\delta t`), as :attr:`PnPResult.covariance`.
+    """
+    Km = check_intrinsics(K, "K")
+    X = as_points(object_points, 3, "object_points", min_count=4).array
+    s = check_number(sigma_px, "sigma_px", "pixels")
+    if s < 0:
+        raise CamlabInputError(f"sigma_px: expected a noise >= 0 pixels, got {sigma_px!r}")
+    J = pose_jacobian(Km, np.asarray(R, dtype=float), np.asarray(t, dtype=float), X)
+    return s**2 * np.linalg.pinv(J.T @ J)
+
+
 def _update(x: np.ndarray, delta: np.ndarray) -> np.ndarray:
     """Step the pose (rvec, t) by a left rotation delta[:3] and a translation delta[3:]."""
     R = rotation_from_axis_angle(delta[:3]) @ rotation_from_axis_angle(x[:3])
@@ -393,7 +443,6 @@ def solve_pnp(
     res = reproj - uv
     n = len(X)
     sigma2 = float(np.sum(res**2)) / max(2 * n - 6, 1)
-    J = jacobian(lm.x)
-    cov = sigma2 * np.linalg.pinv(J.T @ J)
+    cov = pose_covariance(Km, R, t, X, np.sqrt(sigma2))
     rms = float(np.sqrt(np.sum(res**2) / n))
     return PnPResult(R, t, rvec, rms, res, lm.iterations, cov, np.sqrt(sigma2), used, (R0, t0))
