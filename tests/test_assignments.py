@@ -25,7 +25,7 @@ def _graded(cells: list[dict]) -> list[dict]:
 
 def test_every_lesson_becomes_a_course_whose_solutions_pass_their_checks(tmp_path, capsys):
     course = assignments.write_course(tmp_path / "course")
-    assert list(course) == [p.stem for p in lessons.lesson_files()] and len(course) == 12
+    assert list(course) == [p.stem for p in lessons.lesson_files()] and len(course) == 13
     assert (tmp_path / "course" / "nbgrader_config.py").read_text().count("code_stub") == 1
     total = 0
     for stem, names in course.items():

@@ -109,7 +109,10 @@ def _figure() -> SimpleNamespace:
     (corners,) = ax_img.plot([], [], ".", ms=3, color=palette.BLUE)
     (edge,) = ax_img.plot([], [], "-o", lw=2, ms=4, color=palette.ORANGE)
     ax_plot.set(
-        xlim=(0, 75), xlabel="tilt off the board's normal (deg)", ylabel="sigma of 0.2 m (mm)"
+        xlim=(0, 77),  # room for the dot at 75 deg
+        ylim=(0, Y_MAX_MM),
+        xlabel="tilt off the board's normal (deg)",
+        ylabel="σ of the 0.2 m edge (mm)",
     )
     ax_plot.xaxis.label.set_fontsize(8)
     ax_plot.yaxis.label.set_fontsize(8)
