@@ -109,7 +109,7 @@ def _figure() -> SimpleNamespace:
     (corners,) = ax_img.plot([], [], ".", ms=3, color=palette.BLUE)
     (edge,) = ax_img.plot([], [], "-o", lw=2, ms=4, color=palette.ORANGE)
     ax_plot.set(
-        xlim=(0, 77),  # room for the dot at 75 deg
+        xlim=(-2, 77),  # room for the dot at 0 and 75 deg
         ylim=(0, Y_MAX_MM),
         xlabel="tilt off the board's normal (deg)",
         ylabel="σ of the 0.2 m edge (mm)",
