@@ -42,6 +42,8 @@ topic                     main functions
                           essential_matrix, recover_pose, triangulate_points
 ``rectification`` (11)    rectify_calibrated, rectify_uncalibrated
 ``disparity`` (11)        block_matching_disparity, sgbm_disparity, disparity_to_depth
+``measurement`` (12)      solve_pnp, measure_on_plane, area_on_plane, depth_sigma,
+                          triangulate_rectified
 ``robust``, ``optimise``  the shared engines: ransac, levenberg_marquardt
 ``render``, ``scenes``    the virtual camera with ground truth, and what it photographs
 ``data``                  the shipped photographs and data sets, loaded (load_photo ...)
@@ -124,6 +126,13 @@ _MAIN: dict[str, tuple[str, ...]] = {
     ),
     "rectification": ("rectify_calibrated", "rectify_uncalibrated"),
     "disparity": ("block_matching_disparity", "sgbm_disparity", "disparity_to_depth"),
+    "measurement": (
+        "solve_pnp",
+        "measure_on_plane",
+        "area_on_plane",
+        "depth_sigma",
+        "triangulate_rectified",
+    ),
     "robust": ("ransac",),
     "optimise": ("levenberg_marquardt",),
     "data": ("load_photo",),

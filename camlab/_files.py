@@ -16,7 +16,10 @@ file or the complete new one, never a torn or empty one.
 from __future__ import annotations
 
 import contextlib
+import datetime
+import itertools
 import os
+import shutil
 import tempfile
 from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
@@ -28,9 +31,11 @@ from ._validate import CamlabInputError
 __all__ = [
     "PhotoReadError",
     "atomic_output",
+    "backup_name",
     "check_not_an_input",
     "check_output_path",
     "damaged_image_file",
+    "keep_a_copy",
     "output_folder",
     "read_photo",
 ]
@@ -193,6 +198,52 @@ def check_not_an_input(
             raise CamlabInputError(
                 f"{name}: writing {str(out)!r} would overwrite the input photo {str(hit)!r}; {fix}"
             )
+
+
+def backup_name(target: Path, kind: str) -> Path:
+    """``<stem>.<kind>-<YYYY-MM-DD>[-n]<suffix>`` beside ``target``, the first that does not exist yet."""
+    stamp = datetime.date.today().isoformat()
+    for n in itertools.count(1):
+        candidate = target.with_name(
+            f"{target.stem}.{kind}-{stamp}{'' if n == 1 else f'-{n}'}{target.suffix}"
+        )
+        if not candidate.exists():
+            return candidate
+    raise AssertionError("unreachable")
+
+
+def keep_a_copy(path: str | os.PathLike, name: str = "path") -> Path | None:
+    """Copy an existing file to ``<stem>.previous-<date><suffix>`` beside it before it is replaced.
+
+    Parameters
+    ----------
+    path : str or PathLike
+        The file about to be overwritten.
+    name : str
+        The argument named in the error message.
+
+    Returns
+    -------
+    Path or None
+        The copy, or None when ``path`` does not exist yet (nothing to keep).
+
+    Raises
+    ------
+    CamlabInputError
+        When the copy cannot be written (then nothing should be overwritten).
+    """
+    p = Path(path)
+    if not p.is_file():
+        return None
+    copy = backup_name(p, "previous")
+    try:
+        shutil.copy2(p, copy)
+    except OSError as exc:
+        raise CamlabInputError(
+            f"{name}: could not keep a copy of {str(p)!r} before replacing it ({exc.strerror}); "
+            f"choose another file name"
+        ) from None
+    return copy
 
 
 def _umask_mode() -> int:

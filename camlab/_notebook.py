@@ -19,6 +19,9 @@ import warnings
 from pathlib import Path
 from typing import Any, TextIO
 
+UPLOAD_NEEDS_KERNEL = "Uploading photos needs a running kernel: open this lesson in JupyterLab."
+"""What a page without a live kernel (the website, lecture mode) shows for a photo upload control."""
+
 
 def is_cell_file(filename: str) -> bool:
     """True for the file name IPython gives a cell's code (ipykernel's temporary file, or ``<ipython-input-...>``)."""

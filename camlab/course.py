@@ -16,15 +16,14 @@ folder and renamed into place, so an interrupted run leaves each file old or new
 
 from __future__ import annotations
 
-import datetime
 import errno
 import hashlib
-import itertools
 import json
 from pathlib import Path
 from typing import NamedTuple
 
 from ._files import atomic_output
+from ._files import backup_name as _backup_name
 from ._validate import CamlabInputError
 
 __all__ = [
@@ -242,18 +241,6 @@ def _backup_pattern(name: str, kind: str) -> str:
     """``lessons/NN_name.<kind>-<date>.ipynb``: what a backup of ``name`` will be called."""
     path = Path(name)
     return str(path.with_name(f"{path.stem}.{kind}-<date>{path.suffix}"))
-
-
-def _backup_name(target: Path, kind: str) -> Path:
-    """``NN_name.<kind>-<YYYY-MM-DD>[-n].ipynb`` beside ``target``, the first that does not exist yet."""
-    stamp = datetime.date.today().isoformat()
-    for n in itertools.count(1):
-        candidate = target.with_name(
-            f"{target.stem}.{kind}-{stamp}{'' if n == 1 else f'-{n}'}{target.suffix}"
-        )
-        if not candidate.exists():
-            return candidate
-    raise AssertionError("unreachable")
 
 
 def _write(target: Path, data: bytes) -> None:

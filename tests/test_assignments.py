@@ -25,7 +25,7 @@ def _graded(cells: list[dict]) -> list[dict]:
 
 def test_every_lesson_becomes_a_course_whose_solutions_pass_their_checks(tmp_path, capsys):
     course = assignments.write_course(tmp_path / "course")
-    assert list(course) == [p.stem for p in lessons.lesson_files()] and len(course) == 12
+    assert list(course) == [p.stem for p in lessons.lesson_files()] and len(course) == 13
     assert (tmp_path / "course" / "nbgrader_config.py").read_text().count("code_stub") == 1
     total = 0
     for stem, names in course.items():
@@ -99,16 +99,16 @@ def test_non_empty_dest_is_refused_and_left_alone(tmp_path, capsys):
 
 def test_lesson_without_exercises_is_refused(tmp_path, capsys, monkeypatch):
     real = lessons.lesson_files()
-    plain = tmp_path / "lessons" / "12_no_exercises.ipynb"
+    plain = tmp_path / "lessons" / "99_no_exercises.ipynb"
     plain.parent.mkdir()
     notebook = json.loads(real[6].read_text())
     notebook["cells"] = [c for c in notebook["cells"] if "check_" not in "".join(c["source"])]
     plain.write_text(json.dumps(notebook))
     monkeypatch.setattr(lessons, "lesson_files", lambda: [*real, plain])
     dest = tmp_path / "course"
-    assert cli.main(["assignments", str(dest), "06", "12"]) == 2
+    assert cli.main(["assignments", str(dest), "06", "99"]) == 2
     err = capsys.readouterr().err
-    assert "12_no_exercises has no exercises" in err and err.count("\n") == 1
+    assert "99_no_exercises has no exercises" in err and err.count("\n") == 1
     assert not dest.exists()  # lesson 06 was fine, but nothing is written when any lesson fails
 
 

@@ -65,7 +65,7 @@ FLOORS = {
     6: ["affine_epipolar", "scenes", "stitching"],
     7: ["render", "perspective"],
     8: ["calibration"],
-    9: ["rectification", "plotting", "exercises"],
+    9: ["rectification", "measurement", "plotting", "exercises"],
     10: ["fixtures"],
     11: ["widgets", "classroom"],
     12: ["course"],

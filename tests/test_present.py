@@ -328,3 +328,30 @@ def test_keyboard_alone_reaches_a_corner_slider_and_moves_the_figure(lecture):
         f"corner 0 should have moved from u = 40 to 70: {corners}"
     )
     assert changed, "the keys moved the slider but the figure did not change"
+
+
+def test_presentation_says_that_a_photo_upload_needs_jupyterlab():
+    from camlab._notebook import UPLOAD_NEEDS_KERNEL
+
+    lesson = {
+        "cells": [
+            {"cell_type": "markdown", "metadata": {}, "source": "# 08 · A lesson\n"},
+            {"cell_type": "markdown", "metadata": {}, "source": "## 9. Your own photos\n"},
+            {
+                "cell_type": "code",
+                "metadata": {},
+                "outputs": [],
+                "execution_count": None,
+                "source": 'up = PhotoUpload("Your board photos")\nup',
+            },
+        ],
+        "metadata": {},
+    }
+    cells = presentation_notebook(lesson)["cells"]
+    upload = next(i for i, c in enumerate(cells) if "PhotoUpload(" in c["source"])
+    assert cells[upload]["source"].startswith("%%capture\n")
+    assert cells[upload + 1] == {
+        "cell_type": "markdown",
+        "metadata": {},
+        "source": f"*{UPLOAD_NEEDS_KERNEL}*",
+    }

@@ -23,7 +23,7 @@ import pytest
 
 from camlab.widgets import all_demos
 
-# Without CAMLAB_SITE_DIR the module's first test builds the site (all twelve lessons executed) inside
+# Without CAMLAB_SITE_DIR the module's first test builds the site (all thirteen lessons executed) inside
 # its deadline: about 2 min on a quiet 2-core machine, past 5 min under load. Still bounded.
 pytestmark = pytest.mark.timeout(900)
 

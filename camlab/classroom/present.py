@@ -28,6 +28,7 @@ import tempfile
 from pathlib import Path
 
 from .. import _access as access
+from .._notebook import UPLOAD_NEEDS_KERNEL
 from .._validate import CamlabInputError
 from .lessons import called, code_statements, find_lesson, only_statement, stub_name
 
@@ -116,7 +117,8 @@ def presentation_notebook(notebook: dict) -> dict:
 
     After the title, a cell runs the accessibility script; every other code cell but the
     exercises runs silently (``%%capture``, its new figures closed); markdown other than the
-    demos' headings is dropped.
+    demos' headings is dropped. A cell that builds a photo upload control is followed by
+    :data:`camlab._notebook.UPLOAD_NEEDS_KERNEL` (the lecture runs on the lesson's own photos).
 
     Parameters
     ----------
@@ -141,8 +143,11 @@ def presentation_notebook(notebook: dict) -> dict:
                 shown = heading
             cells.append(dict(cell, source="".join(cell["source"])))
         elif cell["cell_type"] == "code" and not _is_exercise(cell):
-            cell["source"] = SILENT.format(code="".join(cell["source"]))
+            source = "".join(cell["source"])
+            cell["source"] = SILENT.format(code=source)
             cells.append(cell)
+            if "PhotoUpload(" in source:  # the lesson's own photos are used; say why
+                cells.append(_markdown(f"*{UPLOAD_NEEDS_KERNEL}*"))
     nb["cells"] = cells
     return nb
 

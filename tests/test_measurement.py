@@ -1,0 +1,222 @@
+"""Tests for camlab.measurement: PnP against cv2.solvePnP, plane measurements, the depth law."""
+
+import cv2
+import numpy as np
+import pytest
+
+from camlab._validate import CamlabInputError, DegenerateError
+from camlab.camera import rotation_from_axis_angle
+from camlab.data.middlebury import load_middlebury
+from camlab.fixtures.calibration import real_calibration
+from camlab.measurement import (
+    area_on_plane,
+    depth_sigma,
+    measure_on_plane,
+    pixels_to_plane,
+    project_pose,
+    rectified_cameras,
+    solve_pnp,
+    triangulate_rectified,
+)
+
+# OpenCV's camera model has no skew (it reads fx, fy, cx, cy only), so K has none here.
+K = np.array([[800.0, 0.0, 320.0], [0.0, 790.0, 240.0], [0.0, 0.0, 1.0]])
+BOARD = np.hstack([np.mgrid[0:9, 0:6].T.reshape(-1, 2) * 0.025, np.zeros((54, 1))])
+POSES = [([0.3, -0.2, 0.1], [-0.1, -0.05, 0.8]), ([2.9, 0.1, 0.2], [0.1, 0.05, 0.6])]
+
+
+def _general_points():
+    return np.random.default_rng(0).uniform(-0.2, 0.2, (30, 3))
+
+
+def _tilted_plane():
+    R = rotation_from_axis_angle([0.4, -0.3, 0.2])
+    return BOARD @ R.T + [0.05, -0.02, 0.1]
+
+
+@pytest.mark.parametrize(
+    "points", [BOARD, _general_points(), _tilted_plane()], ids=["board", "general", "tilted"]
+)
+@pytest.mark.parametrize("pose", POSES, ids=["front", "turned"])
+@pytest.mark.parametrize(
+    "flag", [cv2.SOLVEPNP_ITERATIVE, cv2.SOLVEPNP_SQPNP], ids=["iterative", "sqpnp"]
+)
+def test_solve_pnp_matches_opencv_on_noise_free_points(points, pose, flag):
+    R, t = rotation_from_axis_angle(pose[0]), np.array(pose[1])
+    uv = project_pose(K, R, t, points)
+    ours = solve_pnp(points, uv, K)
+    _, rvec, tvec = cv2.solvePnP(points, uv, K, None, flags=flag)
+    R_cv, t_cv = cv2.Rodrigues(rvec)[0], tvec.ravel()
+    assert np.abs(ours.R - R_cv).max() < 1e-6
+    assert np.linalg.norm(ours.t - t_cv) / np.linalg.norm(t_cv) < 1e-6
+    assert np.allclose(ours.R, R, atol=1e-9) and np.allclose(ours.t, t, atol=1e-9)
+    assert ours.rms < 1e-8
+    assert ours.method == ("dlt" if points is not BOARD and points.shape == (30, 3) else "planar")
+
+
+@pytest.fixture(scope="module")
+def real():
+    return real_calibration().calibration.result
+
+
+def test_solve_pnp_rms_equals_opencv_on_the_real_photos(real):
+    ratios = []
+    for X, uv in zip(real.object_points, real.image_points, strict=True):
+        ours = solve_pnp(X, uv, real.K, real.dist)
+        _, rvec, tvec = cv2.solvePnP(X, uv, real.K, real.dist, flags=cv2.SOLVEPNP_ITERATIVE)
+        proj = cv2.projectPoints(X, rvec, tvec, real.K, real.dist)[0].reshape(-1, 2)
+        rms_cv = np.sqrt(np.mean(np.sum((proj - uv) ** 2, axis=1)))
+        ratios.append(ours.rms / rms_cv)
+        assert np.sqrt(np.mean(np.sum(ours.residuals**2, axis=1))) == pytest.approx(ours.rms)
+    assert len(ratios) == 14
+    assert np.all(np.abs(np.array(ratios) - 1) < 0.01), ratios
+
+
+def _held_out(X, square=0.025):
+    """Fit on the corners with even i + j; pairs of odd corners two squares apart."""
+    ij = np.round(X[:, :2] / square).astype(int)
+    fit = ij.sum(axis=1) % 2 == 0
+    where = {tuple(k): n for n, k in enumerate(ij)}
+    a, b = [], []
+    for n, (i, j) in enumerate(ij):
+        for di, dj in ((2, 0), (0, 2)):
+            m = where.get((i + di, j + dj))
+            if not fit[n] and m is not None:
+                a.append(n)
+                b.append(m)
+    return fit, np.array(a), np.array(b)
+
+
+def test_measure_on_plane_against_held_out_squares_on_the_real_photos(real):
+    z_all, err_all = [], []
+    for X, uv in zip(real.object_points, real.image_points, strict=True):
+        fit, a, b = _held_out(X)
+        pose = solve_pnp(X[fit], uv[fit], real.K, real.dist)
+        m = measure_on_plane(pose, real.K, uv[a], uv[b], real.dist)
+        err_all.append(m.value - 0.05)
+        z_all.append((m.value - 0.05) / m.sigma)
+    err, z = np.concatenate(err_all), np.concatenate(z_all)
+    assert np.sqrt(np.mean(err**2)) < 0.0003  # 0.3 mm on 50 mm: 0.6 %
+    assert 0.9 <= np.mean(np.abs(z) < 2) <= 0.995
+
+
+def test_measure_on_plane_uncertainty_is_calibrated_on_synthetic_boards():
+    rng = np.random.default_rng(1)
+    R, t = rotation_from_axis_angle([0.5, -0.3, 0.1]), np.array([-0.1, -0.05, 0.7])
+    uv_true = project_pose(K, R, t, BOARD)
+    fit, a, b = _held_out(BOARD)
+    inside, areas = [], []
+    for _ in range(200):
+        uv = uv_true + rng.normal(0, 0.3, uv_true.shape)
+        pose = solve_pnp(BOARD[fit], uv[fit], K)
+        m = measure_on_plane(pose, K, uv[a[:6]], uv[b[:6]])
+        inside.append(np.abs(m.value - 0.05) < 2 * m.sigma)
+        quad = uv[[0, 8, 53, 45]]
+        ar = area_on_plane(pose, K, quad)
+        areas.append(abs(ar.value[0] - 0.2 * 0.125) < 2 * ar.sigma[0])
+    assert 0.92 <= np.mean(inside) <= 0.98
+    assert 0.90 <= np.mean(areas) <= 0.99
+
+
+def test_pixels_to_plane_inverts_the_projection_and_undistorts(real):
+    X, uv = real.object_points[0], real.image_points[0]
+    pose = solve_pnp(X, uv, real.K, real.dist)
+    back = pixels_to_plane(pose, real.K, uv, real.dist)
+    assert np.sqrt(np.mean(np.sum((back - X[:, :2]) ** 2, axis=1))) < 0.0005
+    no_dist = pixels_to_plane(pose, real.K, uv)
+    assert np.abs(no_dist - X[:, :2]).max() > 2 * np.abs(back - X[:, :2]).max()
+
+
+def test_pose_covariance_predicts_the_spread_of_poses():
+    rng = np.random.default_rng(2)
+    R, t = rotation_from_axis_angle([0.3, -0.2, 0.1]), np.array([-0.1, -0.05, 0.8])
+    uv_true = project_pose(K, R, t, BOARD)
+    centres = []
+    for _ in range(300):
+        fit = solve_pnp(BOARD, uv_true + rng.normal(0, 0.5, uv_true.shape), K)
+        centres.append(fit.centre)
+    predicted = solve_pnp(BOARD, uv_true + rng.normal(0, 0.5, uv_true.shape), K).std()["centre"]
+    spread = np.std(centres, axis=0)
+    assert np.allclose(spread / predicted, 1, atol=0.2), (spread, predicted)
+
+
+def test_triangulate_rectified_agrees_with_the_middlebury_calibration():
+    mb = load_middlebury()
+    v, u = np.nonzero(np.isfinite(mb.disparity))
+    pick = np.random.default_rng(3).choice(len(u), 2000, replace=False)
+    uv, d = np.column_stack([u[pick], v[pick]]).astype(float), mb.disparity[v[pick], u[pick]]
+    P = triangulate_rectified(uv, d, mb.focal, mb.cx, mb.cy, mb.baseline, mb.doffs)
+    assert np.allclose(P[:, 2], mb.focal * mb.baseline / (d + mb.doffs), rtol=1e-9)
+    P1, P2 = rectified_cameras(mb.focal, mb.cx, mb.cy, mb.baseline, mb.doffs)
+    back = np.hstack([P, np.ones((len(P), 1))]) @ P1.T
+    assert np.allclose(back[:, :2] / back[:, 2:], uv, atol=1e-6)
+
+
+def test_depth_law_matches_triangulated_errors_on_middlebury():
+    mb = load_middlebury()
+    rng = np.random.default_rng(4)
+    v, u = np.nonzero(np.isfinite(mb.disparity))
+    pick = rng.choice(len(u), 20000, replace=False)
+    uv, d = np.column_stack([u[pick], v[pick]]).astype(float), mb.disparity[v[pick], u[pick]]
+    Z = triangulate_rectified(uv, d, mb.focal, mb.cx, mb.cy, mb.baseline, mb.doffs)[:, 2]
+    sigma_d = 0.5
+    Zn = triangulate_rectified(
+        uv, d + rng.normal(0, sigma_d, len(d)), mb.focal, mb.cx, mb.cy, mb.baseline, mb.doffs
+    )[:, 2]
+    edges = np.quantile(Z, np.linspace(0, 1, 6))
+    for lo, hi in zip(edges[:-1], edges[1:], strict=True):
+        inside = (Z >= lo) & (Z < hi)
+        measured = np.std(Zn[inside] - Z[inside])
+        predicted = np.sqrt(np.mean(depth_sigma(Z[inside], mb.focal, mb.baseline, sigma_d) ** 2))
+        assert measured == pytest.approx(predicted, rel=0.08)
+
+
+def test_depth_sigma_values():
+    assert depth_sigma(2.0, 800, 0.1, 0.25) == pytest.approx(0.0125)
+    assert np.allclose(
+        depth_sigma([1.0, 2.0], 800, 0.1, 1.0) / depth_sigma(1.0, 800, 0.1, 1.0), [1, 4]
+    )
+
+
+@pytest.mark.parametrize(
+    ("call", "words"),
+    [
+        (lambda: solve_pnp(BOARD[:3], np.zeros((3, 2)), K), ("object_points", "4")),
+        (lambda: solve_pnp(BOARD, np.zeros((53, 2)), K), ("image_points", "same number")),
+        (lambda: solve_pnp(BOARD, np.zeros((54, 3)), K), ("image_points",)),
+        (lambda: solve_pnp(BOARD, np.zeros((54, 2)), np.eye(2)), ("K",)),
+        (lambda: solve_pnp(BOARD, np.zeros((54, 2)), K, method="epnp"), ("method", "auto")),
+        (
+            lambda: solve_pnp(_general_points(), np.zeros((30, 2)), K, method="planar"),
+            ("planar", "coplanar"),
+        ),
+        (lambda: solve_pnp(BOARD, np.zeros((54, 2)), K, method="dlt"), ("dlt", "coplanar")),
+        (lambda: solve_pnp(_general_points()[:5], np.zeros((5, 2)), K), ("N >= 6",)),
+        (lambda: measure_on_plane("pose", K, [[0, 0]], [[1, 1]]), ("pose", "solve_pnp")),
+        (lambda: depth_sigma(-1.0, 800, 0.1, 0.5), ("Z", "> 0")),
+        (lambda: depth_sigma(1.0, 800, 0.0, 0.5), ("baseline",)),
+        (lambda: depth_sigma(1.0, 800, 0.1, -0.5), ("sigma_d", ">= 0")),
+        (
+            lambda: triangulate_rectified([[1.0, 2.0]], [1.0, 2.0], 800, 320, 240, 0.1),
+            ("disparity", "one"),
+        ),
+    ],
+)
+def test_bad_input_names_the_argument(call, words):
+    with pytest.raises(CamlabInputError) as err:
+        call()
+    for w in words:
+        assert w in str(err.value)
+
+
+def test_bad_plane_inputs():
+    uv = project_pose(K, np.eye(3), np.array([-0.1, -0.05, 0.8]), BOARD)
+    pose = solve_pnp(BOARD, uv, K)
+    with pytest.raises(CamlabInputError, match="pixels_a, pixels_b"):
+        measure_on_plane(pose, K, uv[:3], uv[:2])
+    with pytest.raises(CamlabInputError, match="pixel_sigma"):
+        measure_on_plane(pose, K, uv[:3], uv[3:6], pixel_sigma=-1)
+    with pytest.raises(CamlabInputError, match="polygon"):
+        area_on_plane(pose, K, uv[:2])
+    with pytest.raises(DegenerateError, match="collinear|general position|three"):
+        solve_pnp(BOARD[:9], uv[:9], K)
