@@ -85,6 +85,40 @@ def followed_by(problem: str, more: str) -> str:
     return problem + (" " if problem.rstrip().endswith("?") else ". ") + more
 
 
+def one_number_hint(got, a, b, fix: str) -> str:
+    """Why one number came back where a join or meet (a 3-vector) belongs: a dot product or a 2-D cross.
+
+    Parameters
+    ----------
+    got : scalar
+        The student's answer.
+    a, b : (3,) array_like
+        The two inputs as homogeneous 3-vectors (points lifted to w = 1, or lines).
+    fix : str
+        The right call, quoted at the end of the hint.
+
+    Returns
+    -------
+    str
+        The hint: the incidence test (a dot product) used for a join or meet, or np.cross of 2-vectors.
+    """
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    try:
+        value = float(got)
+    except (TypeError, ValueError):
+        value = np.nan
+    if np.isclose(value, a @ b, rtol=1e-9, atol=1e-12):
+        return (
+            "you returned one number, the dot product of the two inputs. A dot product l . x tests "
+            "incidence (0 when x lies on l); the line through two points, or the point on two lines, "
+            f"is the vector orthogonal to both: their cross product, {fix}"
+        )
+    return (
+        "you returned one number: np.cross of two 2-vectors gives only the z of their 3-D cross "
+        f"product (and numpy 2 deprecates it). Cross the whole 3-vectors: {fix}"
+    )
+
+
 _PARALLEL_MEET = (
     "two parallel lines meet at an ideal point (x, y, 0), whose w is 0: dividing by w gives inf or NaN, "
     "and solving the 2 x 2 system fails. Keep the cross product's (x, y, w) as it is"
@@ -115,10 +149,7 @@ def homogeneous_point_diagnosis(got, expected, lines, how: str) -> str:
         The hint: a named slip, or how far (in pixels) the point misses each line, then ``how``.
     """
     if np.ndim(got) == 0 and got is not None and not isinstance(got, (str, bytes)):
-        return (
-            "you returned one number: np.cross of two 2-vectors gives only the z of their 3-D cross "
-            "product. Cross the whole 3-vectors: np.cross(l1, l2)"
-        )
+        return one_number_hint(got, *lines, "np.cross(l1, l2)")
     problem = shape_problem(got, expected)
     if problem and np.shape(got) == (2,):
         return (
@@ -222,6 +253,7 @@ register_exercise(
             (lambda l1, l2: l1 + l2, "not on both lines"),
             (lambda l1, l2: np.cross(l1, l2) * [-1, -1, 1], "(-x, -y)"),
             (lambda l1, l2: np.array(l1[0] * l2[1] - l1[1] * l2[0]), "np.cross of two 2-vectors"),
+            (lambda l1, l2: l1 @ l2, "tests incidence"),
             (lambda l1, l2: np.cross(l1, l2)[[1, 0, 2]], "swapped x and y"),
             (silenced(lambda l1, l2: np.cross(l1, l2) / np.cross(l1, l2)[2]), "lines are parallel"),
             (
@@ -304,11 +336,8 @@ def _line_slips(p, q):
 
 def _line_diagnosis(args, got, expected) -> str:
     if np.ndim(got) == 0 and not isinstance(got, (str, bytes)) and got is not None:
-        return (
-            "you returned one number: np.cross of two 2-vectors gives only the z of their 3-D cross product "
-            "(and numpy 2 deprecates it). Lift p and q to (x, y, 1) first: np.cross(np.append(p, 1.0), "
-            "np.append(q, 1.0))"
-        )
+        lifted = (np.append(np.asarray(a, dtype=float), 1.0) for a in args)
+        return one_number_hint(got, *lifted, "np.cross(np.append(p, 1.0), np.append(q, 1.0))")
     problem = shape_problem(got, expected)
     p, q = (np.asarray(a, dtype=float) for a in args)
     if problem and np.shape(got) == (3,) and p[0] == q[0]:
@@ -391,6 +420,7 @@ register_exercise(
             (lambda p, q: _line_through(p * [1, -1] + [0, 479], q * [1, -1] + [0, 479]), "479 - y"),
             (lambda p, q: _line_through(p, q) * [1, 1, -1], "wrong sign"),
             (lambda p, q: np.array(p[0] * q[1] - p[1] * q[0]), "np.cross of two 2-vectors"),
+            (lambda p, q: np.append(p, 1.0) @ np.append(q, 1.0), "tests incidence"),
             (silenced(lambda p, q: _line_through(p, q) / _line_through(p, q)[2]), "dividing by c"),
             (
                 lambda p, q: _line_through(p, q) + [0.0, 0.0, 3.0],
