@@ -1,4 +1,4 @@
-"""Lesson 06, exercise 6: the angle between two lines of a plane, measured in a photo of it.
+"""Lesson 06, exercise 7: the angle between two lines of a plane, measured in a photo of it.
 
 The lines l', m' are image lines and ``C_star`` the image of the dual conic of the circular
 points, C*' = H C*inf H^T. The angle between the *world* lines is
