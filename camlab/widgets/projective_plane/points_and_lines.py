@@ -599,13 +599,14 @@ def _cross_ratio_figure(view: FigureView) -> SimpleNamespace:
     numbers = axes["text"].text(0.5, 0.5, "", transform=axes["text"].transAxes, **centred)
     plane_axes(ax_s, 2.2, "before: four collinear points")
     plane_axes(ax_t, 2.2, "after the homography H (same scale)")
-    # With |h31|, |h32| <= _CR_H the grid's w = 1 + h31 x + h32 y stays >= 1 - 2 * 0.3 * 1 = 0.4 > 0:
-    # no grid line crosses the line H sends to infinity, so each maps to one straight segment. The
-    # four points (|p| <= 1.12, w >= 1 - 0.3 - 0.15 = 0.55) stay within 2.03 of the origin: inside
-    # the +-2.2 panel, drawn at the before panel's scale, at every setting (the grid may be cut).
+    # The grid is the rectangle |x| <= 1, |y| <= 0.5 whose diagonal carries A, B, C, D. With |h31|,
+    # |h32| <= _CR_H its w = 1 + h31 x + h32 y stays >= 1 - 0.3 - 0.15 = 0.55 > 0: no grid line
+    # crosses the line H sends to infinity, so each maps to one straight segment, and every grid
+    # point (|p| <= 1.12) stays within 1.12 / 0.55 = 2.03 of the origin: inside the +-2.2 panel,
+    # drawn at the before panel's scale, at every setting (nothing is cut).
     grid = np.array(
-        [[[x, -1.0], [x, 1.0]] for x in np.linspace(-1.0, 1.0, 5)]
-        + [[[-1.0, y], [1.0, y]] for y in np.linspace(-1.0, 1.0, 5)]
+        [[[x, -0.5], [x, 0.5]] for x in np.linspace(-1.0, 1.0, 5)]
+        + [[[-1.0, y], [1.0, y]] for y in np.linspace(-0.5, 0.5, 3)]
     )
     points = np.array([[-1.0, -0.5], [-0.3, -0.15], [0.4, 0.2], [1.0, 0.5]])
     colors = [palette.TAB_BLUE] * 4  # one colour: the letters name them (lesson 06's colour code)
