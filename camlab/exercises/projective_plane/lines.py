@@ -171,6 +171,15 @@ def homogeneous_point_diagnosis(got, expected, lines, how: str) -> str:
             "your point is (-x, -y) of the right one: a sign slip, such as solving A (x, y) = c instead of "
             "-c, or (x, y, -w). Keep the cross product l1 x l2 as it is."
         )
+    for flip, axis, entry in (
+        ([1, -1, 1], "x", "y = a3 b1 - a1 b3"),
+        ([-1, 1, 1], "y", "x = a2 b3 - a3 b2"),
+    ):
+        if same_up_to_scale(g, np.asarray(expected, dtype=float) * flip):
+            return (
+                f"your point is the right one mirrored in the {axis} axis: one component of the cross product "
+                f"has the wrong sign. Written out, {entry}; or let np.cross do it."
+            )
     if same_up_to_scale(g, np.asarray(expected, dtype=float)[[1, 0, 2]]):
         return (
             "you swapped x and y: your point is (y, x, w) of the right one. Keep the cross product's "
@@ -254,6 +263,7 @@ register_exercise(
             (lambda l1, l2: np.cross(l1, l2) * [-1, -1, 1], "(-x, -y)"),
             (lambda l1, l2: np.array(l1[0] * l2[1] - l1[1] * l2[0]), "np.cross of two 2-vectors"),
             (lambda l1, l2: l1 @ l2, "tests incidence"),
+            (lambda l1, l2: np.cross(l1, l2) * [1, -1, 1], "mirrored in the x axis"),
             (lambda l1, l2: np.cross(l1, l2)[[1, 0, 2]], "swapped x and y"),
             (silenced(lambda l1, l2: np.cross(l1, l2) / np.cross(l1, l2)[2]), "lines are parallel"),
             (
@@ -374,6 +384,13 @@ def _line_diagnosis(args, got, expected) -> str:
     for line, hint in _line_slips(p, q):
         if same_up_to_scale(g, line):
             return hint
+    d = q - p
+    if any(same_up_to_scale(g, np.append(d, -d @ x)) for x in (p, q)):
+        return (
+            "your line's normal (a, b) is q - p, the direction from p to q, so your line crosses the segment pq "
+            "at a right angle. The normal of the line through p and q is perpendicular to q - p, (-(qy - py), "
+            "qx - px); the cross product of the lifted points (x1, y1, 1) x (x2, y2, 1) gives it with c."
+        )
     off = [miss_px(np.append(x, 1.0), g) for x in (p, q)]
     return (
         f"your line does not pass through both points (it misses p by {off[0]} and q by {off[1]}). The line through them is the cross product of the lifted points, "
@@ -421,6 +438,7 @@ register_exercise(
             (lambda p, q: _line_through(p, q) * [1, 1, -1], "wrong sign"),
             (lambda p, q: np.array(p[0] * q[1] - p[1] * q[0]), "np.cross of two 2-vectors"),
             (lambda p, q: np.append(p, 1.0) @ np.append(q, 1.0), "tests incidence"),
+            (lambda p, q: np.append(q - p, -(q - p) @ p), "normal (a, b) is q - p"),
             (silenced(lambda p, q: _line_through(p, q) / _line_through(p, q)[2]), "dividing by c"),
             (
                 lambda p, q: _line_through(p, q) + [0.0, 0.0, 3.0],
