@@ -81,7 +81,7 @@ def _unsigned(xy) -> float:
 
 
 def _cross_reference(points) -> float:
-    """camlab's (A, B; C, D), from ``projective.cross_ratio``."""
+    """The cross-ratio (A, B; C, D), from ``camlab.projective.cross_ratio``."""
     return float(projective.cross_ratio(np.asarray(points, dtype=float)))
 
 
