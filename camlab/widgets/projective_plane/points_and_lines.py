@@ -539,7 +539,7 @@ def vanishing_points() -> Demo:
                 + (
                     "at infinity, direction ({:+.2f}, {:+.2f})".format(*vp[:2])
                     if abs(vp[2]) < 1e-9
-                    else f"({vp[0]:.0f}, {vp[1]:.0f}) px"
+                    else f"({vp[0]:.1f}, {vp[1]:.1f}) px"
                     + ("" if not direction.any() else " (off image)")
                 )
             )
