@@ -120,6 +120,11 @@ RIGHT = {
         "def vanishing_point(segments):\n    (a, b), (c, d) = np.asarray(segments, float)\n"
         "    return np.cross(np.cross([*a, 1], [*b, 1]), np.cross([*c, 1], [*d, 1]))"
     ),
+    "cross_ratio": (
+        "def cross_ratio(points):\n    x = np.asarray(points, float)\n    xy = x[:, :2] / x[:, 2:]\n"
+        "    t = (xy - xy[0]) @ (xy[3] - xy[0])\n"
+        "    return (t[2] - t[0]) * (t[3] - t[1]) / ((t[2] - t[1]) * (t[3] - t[0]))"
+    ),
     "map_conic": "def map_conic(H, C):\n    G = np.linalg.inv(H)\n    return G.T @ C @ G",
     "horizon_line": "def horizon_line(H):\n    return np.linalg.inv(H).T @ np.array([0.0, 0.0, 1.0])",
     "angle_between_lines": (
@@ -158,7 +163,7 @@ def test_nbgrader_generates_the_assignment_and_autogrades_submissions(tmp_path):
     student_view = released.read_text()
     assert "BEGIN SOLUTION" not in student_view and "camlab.projective.meet(" not in student_view
     assert (
-        student_view.count(json.dumps("    raise NotImplementedError")) == 6
+        student_view.count(json.dumps("    raise NotImplementedError")) == 7
     )  # the lesson's own stubs
     for student, answers in [("alice", RIGHT), ("bob", ONE_WRONG), ("carol", {})]:
         nb = json.loads(student_view)
@@ -174,7 +179,7 @@ def test_nbgrader_generates_the_assignment_and_autogrades_submissions(tmp_path):
             s: (gb.find_submission(lesson, s).score, gb.find_submission(lesson, s).max_score)
             for s in ("alice", "bob", "carol")
         }
-    assert scores == {"alice": (6.0, 6.0), "bob": (5.0, 6.0), "carol": (0.0, 6.0)}
+    assert scores == {"alice": (7.0, 7.0), "bob": (6.0, 7.0), "carol": (0.0, 7.0)}
     graded = _graded(_cells(course / "autograded" / "bob" / lesson / f"{lesson}.ipynb"))
     errors = {
         c["metadata"]["nbgrader"]["grade_id"]: [
@@ -189,4 +194,4 @@ def test_nbgrader_generates_the_assignment_and_autogrades_submissions(tmp_path):
     )  # the diagnosis stays
     _nbgrader(course, "generate_feedback", lesson)  # what the student gets back
     feedback = (course / "feedback" / "bob" / lesson / f"{lesson}.html").read_text()
-    assert "return the homogeneous 3-vector instead" in feedback and "Score: 5.0 / 6.0" in feedback
+    assert "return the homogeneous 3-vector instead" in feedback and "Score: 6.0 / 7.0" in feedback

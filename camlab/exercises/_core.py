@@ -609,7 +609,7 @@ def solution_source(name: str) -> str:
         summary = (inspect.getdoc(reference) or "").split("\n")[0]
         return (  # a private helper is no place to send a student: say what it computes, in public names
             inspect.getsource(exercise.teaching)
-            + f"\n# the check compares your answer with camlab's own, tested reference: {summary}\n"
+            + f"\n# the check compares your answer with camlab's own, tested reference.\n# {summary}\n"
         )
     return (
         inspect.getsource(exercise.teaching)

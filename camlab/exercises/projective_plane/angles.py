@@ -1,4 +1,4 @@
-"""Lesson 06, exercise 6: the angle between two lines of a plane, measured in a photo of it.
+"""Lesson 06, exercise 7: the angle between two lines of a plane, measured in a photo of it.
 
 The lines l', m' are image lines and ``C_star`` the image of the dual conic of the circular
 points, C*' = H C*inf H^T. The angle between the *world* lines is
@@ -41,12 +41,13 @@ def _angle_cases():
     H_inv_t = np.linalg.inv(H).T
     C_image = H @ _DUAL_AT_INFINITY @ H.T
     cases = []
-    # world angles 0/35.3 (35.3 deg), 20/92.4 (72.4 deg), 10/170.6 (19.4 deg; cos < 0 as given),
-    # 15/105 (90 deg); not whole numbers, so a rounded angle fails
+    # world angles 0/35.2644 (35.2644 deg), 20/92.4326 (72.4326 deg), 10/170.6183 (19.3817 deg;
+    # cos < 0 as given), 15/105 (90 deg): no round numbers, so an angle rounded to whole degrees,
+    # tenths or hundredths fails
     for (a, b), scale, (s1, s2) in (
-        ((0.0, 35.3), 1.0, (2.0, 0.7)),
-        ((20.0, 92.4), 1e-4, (1.0, 3.0)),
-        ((10.0, 170.6), -3.0, (0.5, -1.0)),
+        ((0.0, 35.2644), 1.0, (2.0, 0.7)),
+        ((20.0, 92.4326), 1e-4, (1.0, 3.0)),
+        ((10.0, 170.6183), -3.0, (0.5, -1.0)),
         ((15.0, 105.0), 2.5, (1.5, 1.0)),
     ):
         l1 = s1 * H_inv_t @ _world_line(a, (30.0, 50.0))
@@ -142,12 +143,6 @@ _ANGLE_MISTAKES = (
         "np.degrees(np.arccos(|cos|)) itself.",
     ),
     Mistake(
-        "rounded",
-        lambda a: float(round(a.right)) if abs(round(a.right) - a.right) > 1e-6 else None,
-        "you rounded the angle to whole degrees; return it as computed (the check's angles are 35.3, "
-        "72.4, 19.4 and 90 deg, so a rounded answer is off by up to 0.6 deg).",
-    ),
-    Mistake(
         "the complement",
         lambda a: 90.0 - a.right,
         "you returned 90 - theta: np.arcsin where np.arccos belongs (or the angle between a line and "
@@ -184,11 +179,25 @@ def _angle_diagnosis(args, got, expected) -> str:
     context = _angle_context(*args)
     for mistake in _ANGLE_MISTAKES:
         slip = mistake.answer(context)
-        if slip is not None and np.isfinite(slip) and np.isclose(float(got), slip, atol=1e-6):
-            return mistake.hint
+        if (
+            slip is not None
+            and np.isfinite(slip)
+            and np.isclose(float(got), slip, rtol=1e-9, atol=1e-9)
+        ):
+            return mistake.hint(context) if callable(mistake.hint) else mistake.hint
+    for digits, unit in (
+        (0, "whole degrees"),
+        (1, "tenths of a degree"),
+        (2, "hundredths of a degree"),
+    ):
+        rounded = round(context.right, digits)
+        if abs(rounded - float(got)) < 1e-9 and abs(rounded - context.right) > 1e-7 * context.right:
+            return (
+                f"you rounded the angle to {unit}: {rounded:g} deg, where it is {context.right:.4f} deg. "
+                'Return it as computed, and round only when you print it (f"{angle:.1f}").'
+            )
     return (
-        f"the world lines meet at {expected:.2f} deg here, not {float(got):.4g} (rounding fails too: the check "
-        "uses 35.3, 72.4, 19.4 and 90 deg). In the photo, angles "
+        f"the world lines meet at {expected:.4f} deg here, not {float(got):.6g}. In the photo, angles "
         "are measured through C_star, the image of C*inf: " + _FORMULA + "."
     )
 
@@ -261,6 +270,8 @@ register_exercise(
             (lambda l1, l2, C: [_angle_deg(l1, l2, C)], "one number"),
             (lambda l1, l2, C: 180.0 - _angle_deg(l1, l2, C), "cosine is positive here"),
             (lambda l1, l2, C: float(round(_angle_deg(l1, l2, C))), "rounded the angle"),
+            (lambda l1, l2, C: float(round(_angle_deg(l1, l2, C), 1)), "tenths of a degree"),
+            (lambda l1, l2, C: float(f"{_angle_deg(l1, l2, C):.2f}"), "hundredths of a degree"),
         ),
         teaching=angle_between_lines,
     )

@@ -1,4 +1,4 @@
-"""Lesson 06, exercise 5: move a conic by a homography."""
+"""Lesson 06, exercise 6: move a conic by a homography."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from ... import projective
 from .._answers import same_up_to_scale, shape_problem
 from .._core import Exercise, Mistake, first_mistake, mistake_variant, register_exercise
 
-# --- Exercise 5: move a conic by a homography -------------------------------------------
+# --- Exercise 6: move a conic by a homography -------------------------------------------
 
 
 def _conic_cases():

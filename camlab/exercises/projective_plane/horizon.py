@@ -107,6 +107,19 @@ _HORIZON_MISTAKES = (
         "(H[:, 2] is the image of the ground's origin, a finite point). The horizon joins the images of two "
         "ideal points, (1, 0, 0) and (0, 1, 0): H[:, 0] x H[:, 1]",
     ),
+    *(
+        Mistake(
+            f"the image's centre row v = {row:g}",
+            lambda a, row=row: np.array([0.0, 1.0, -row]),
+            lambda a, row=row: (
+                f"your line is the image's centre row v = {row:g} (the principal point's row, c_y): that is "
+                "the horizon only for a level camera, pitch 0 and no roll. This test camera looks down, so "
+                "its horizon lies above c_y (at roll 0, v = c_y - f tan(pitch), section 5). Take it from H: "
+                + _HORIZON_RULE
+            ),
+        )
+        for row in (239.5, 240.0)
+    ),
     Mistake(
         "an image row through the vanishing point ahead",
         lambda a: _image_row(a.H[:, 1]),
@@ -213,6 +226,8 @@ register_exercise(
                         "own line at infinity",
                         "ground's x axis",
                         "ground's z axis",
+                        "centre row v = 239.5",
+                        "centre row v = 240",
                         "image row v = const through the vanishing point ahead",
                     ),
                     strict=True,

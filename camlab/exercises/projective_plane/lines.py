@@ -85,6 +85,40 @@ def followed_by(problem: str, more: str) -> str:
     return problem + (" " if problem.rstrip().endswith("?") else ". ") + more
 
 
+def one_number_hint(got, a, b, fix: str) -> str:
+    """Why one number came back where a join or meet (a 3-vector) belongs: a dot product or a 2-D cross.
+
+    Parameters
+    ----------
+    got : scalar
+        The student's answer.
+    a, b : (3,) array_like
+        The two inputs as homogeneous 3-vectors (points lifted to w = 1, or lines).
+    fix : str
+        The right call, quoted at the end of the hint.
+
+    Returns
+    -------
+    str
+        The hint: the incidence test (a dot product) used for a join or meet, or np.cross of 2-vectors.
+    """
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    try:
+        value = float(got)
+    except (TypeError, ValueError):
+        value = np.nan
+    if np.isclose(value, a @ b, rtol=1e-9, atol=1e-12):
+        return (
+            "you returned one number, the dot product of the two inputs. A dot product l . x tests "
+            "incidence (0 when x lies on l); the line through two points, or the point on two lines, "
+            f"is the vector orthogonal to both: their cross product, {fix}"
+        )
+    return (
+        "you returned one number: np.cross of two 2-vectors gives only the z of their 3-D cross "
+        f"product (and numpy 2 deprecates it). Cross the whole 3-vectors: {fix}"
+    )
+
+
 _PARALLEL_MEET = (
     "two parallel lines meet at an ideal point (x, y, 0), whose w is 0: dividing by w gives inf or NaN, "
     "and solving the 2 x 2 system fails. Keep the cross product's (x, y, w) as it is"
@@ -115,10 +149,7 @@ def homogeneous_point_diagnosis(got, expected, lines, how: str) -> str:
         The hint: a named slip, or how far (in pixels) the point misses each line, then ``how``.
     """
     if np.ndim(got) == 0 and got is not None and not isinstance(got, (str, bytes)):
-        return (
-            "you returned one number: np.cross of two 2-vectors gives only the z of their 3-D cross "
-            "product. Cross the whole 3-vectors: np.cross(l1, l2)"
-        )
+        return one_number_hint(got, *lines, "np.cross(l1, l2)")
     problem = shape_problem(got, expected)
     if problem and np.shape(got) == (2,):
         return (
@@ -140,6 +171,15 @@ def homogeneous_point_diagnosis(got, expected, lines, how: str) -> str:
             "your point is (-x, -y) of the right one: a sign slip, such as solving A (x, y) = c instead of "
             "-c, or (x, y, -w). Keep the cross product l1 x l2 as it is."
         )
+    for flip, axis, entry in (
+        ([1, -1, 1], "x", "y = a3 b1 - a1 b3"),
+        ([-1, 1, 1], "y", "x = a2 b3 - a3 b2"),
+    ):
+        if same_up_to_scale(g, np.asarray(expected, dtype=float) * flip):
+            return (
+                f"your point is the right one mirrored in the {axis} axis: one component of the cross product "
+                f"has the wrong sign. Written out, {entry}; or let np.cross do it."
+            )
     if same_up_to_scale(g, np.asarray(expected, dtype=float)[[1, 0, 2]]):
         return (
             "you swapped x and y: your point is (y, x, w) of the right one. Keep the cross product's "
@@ -222,6 +262,8 @@ register_exercise(
             (lambda l1, l2: l1 + l2, "not on both lines"),
             (lambda l1, l2: np.cross(l1, l2) * [-1, -1, 1], "(-x, -y)"),
             (lambda l1, l2: np.array(l1[0] * l2[1] - l1[1] * l2[0]), "np.cross of two 2-vectors"),
+            (lambda l1, l2: l1 @ l2, "tests incidence"),
+            (lambda l1, l2: np.cross(l1, l2) * [1, -1, 1], "mirrored in the x axis"),
             (lambda l1, l2: np.cross(l1, l2)[[1, 0, 2]], "swapped x and y"),
             (silenced(lambda l1, l2: np.cross(l1, l2) / np.cross(l1, l2)[2]), "lines are parallel"),
             (
@@ -304,11 +346,8 @@ def _line_slips(p, q):
 
 def _line_diagnosis(args, got, expected) -> str:
     if np.ndim(got) == 0 and not isinstance(got, (str, bytes)) and got is not None:
-        return (
-            "you returned one number: np.cross of two 2-vectors gives only the z of their 3-D cross product "
-            "(and numpy 2 deprecates it). Lift p and q to (x, y, 1) first: np.cross(np.append(p, 1.0), "
-            "np.append(q, 1.0))"
-        )
+        lifted = (np.append(np.asarray(a, dtype=float), 1.0) for a in args)
+        return one_number_hint(got, *lifted, "np.cross(np.append(p, 1.0), np.append(q, 1.0))")
     problem = shape_problem(got, expected)
     p, q = (np.asarray(a, dtype=float) for a in args)
     if problem and np.shape(got) == (3,) and p[0] == q[0]:
@@ -345,6 +384,13 @@ def _line_diagnosis(args, got, expected) -> str:
     for line, hint in _line_slips(p, q):
         if same_up_to_scale(g, line):
             return hint
+    d = q - p
+    if any(same_up_to_scale(g, np.append(d, -d @ x)) for x in (p, q)):
+        return (
+            "your line's normal (a, b) is q - p, the direction from p to q, so your line crosses the segment pq "
+            "at a right angle. The normal of the line through p and q is perpendicular to q - p, (-(qy - py), "
+            "qx - px); the cross product of the lifted points (x1, y1, 1) x (x2, y2, 1) gives it with c."
+        )
     off = [miss_px(np.append(x, 1.0), g) for x in (p, q)]
     return (
         f"your line does not pass through both points (it misses p by {off[0]} and q by {off[1]}). The line through them is the cross product of the lifted points, "
@@ -391,6 +437,8 @@ register_exercise(
             (lambda p, q: _line_through(p * [1, -1] + [0, 479], q * [1, -1] + [0, 479]), "479 - y"),
             (lambda p, q: _line_through(p, q) * [1, 1, -1], "wrong sign"),
             (lambda p, q: np.array(p[0] * q[1] - p[1] * q[0]), "np.cross of two 2-vectors"),
+            (lambda p, q: np.append(p, 1.0) @ np.append(q, 1.0), "tests incidence"),
+            (lambda p, q: np.append(q - p, -(q - p) @ p), "normal (a, b) is q - p"),
             (silenced(lambda p, q: _line_through(p, q) / _line_through(p, q)[2]), "dividing by c"),
             (
                 lambda p, q: _line_through(p, q) + [0.0, 0.0, 3.0],

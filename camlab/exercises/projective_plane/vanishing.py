@@ -50,9 +50,48 @@ def _undone_in_wrong_order(s):
     return np.linalg.inv(S) @ np.linalg.inv(T_t) @ T @ projective.vanishing_point(s)
 
 
+def _scaled_about_a_centre(segments, got, e) -> bool:
+    """True when ``got`` is k (e - c) for some scale k and a centre c a student may condition with.
+
+    Catches a conditioning (any scale k, centred on the endpoints' mean, their bounding box, the
+    image centre, or not centred) that was not undone, whatever scale the student chose.
+    """
+    g = np.asarray(got, dtype=float)
+    if (
+        not (np.any(g) and np.any(e))
+        or min(abs(g[2]) / np.linalg.norm(g), abs(e[2]) / np.linalg.norm(e)) < 1e-12
+    ):
+        return False  # an ideal point: a similarity keeps it ideal, and says nothing here
+    pts = np.asarray(segments, dtype=float).reshape(-1, 2)
+    g2, e2 = g[:2] / g[2], e[:2] / e[2]
+    for c in (
+        pts.mean(axis=0),
+        (pts.min(axis=0) + pts.max(axis=0)) / 2,
+        np.zeros(2),
+        np.array([319.5, 239.5]),
+    ):
+        d = e2 - c
+        k = (g2 @ d) / (d @ d) if d @ d > 0 else 0.0
+        moved = abs(k - 1) > 1e-6 or np.any(c != 0)
+        if (
+            moved
+            and abs(k) > 1e-12
+            and np.linalg.norm(g2 - k * d) < 1e-7 * max(np.linalg.norm(g2), 1e-9)
+        ):
+            return True
+    return False
+
+
 def _conditioning_slip(segments, got, expected) -> str | None:
     """The hint when ``got`` is the vanishing point in conditioned coordinates, or undone wrongly."""
     e = np.asarray(expected, dtype=float)
+    g = np.asarray(got, dtype=float)
+    if not np.any(g[:2]) and g[2] != 0:
+        return (
+            "your point is (0, 0, w), the origin: did you cross the two segments' directions (d, 0)? Two "
+            "directions are two ideal points, and their cross product is the line at infinity, read as a "
+            "point. Join each segment's endpoints to a line first, then meet the two lines"
+        )
     for T in _conditionings(segments):
         if same_up_to_scale(got, T @ e):
             return (
@@ -76,6 +115,11 @@ def _conditioning_slip(segments, got, expected) -> str | None:
                 "you undid the conditioning with inv(T).T, the rule that moves *lines*; your result is a "
                 "point, and points move back by inv(T) itself: x = inv(T) @ x_c"
             )
+    if _scaled_about_a_centre(segments, got, e):
+        return (
+            "your point is the right one scaled about a centre (k (x - c)): conditioned coordinates "
+            "(x_c = T x), the conditioning was not undone. Map it back with x = inv(T) @ x_c"
+        )
     return None
 
 
@@ -174,6 +218,24 @@ register_exercise(
         compare=same_up_to_scale,
         diagnose=_vanishing_diagnosis,
         wrong_variants=(
+            (  # conditioned by 1/640 without centring, never undone
+                lambda s: projective.vanishing_point(np.asarray(s, dtype=float) / 640.0),
+                "conditioning was not undone",
+            ),
+            (  # centred, largest distance sqrt(2), never undone
+                lambda s: projective.vanishing_point(
+                    (s - s.reshape(-1, 2).mean(axis=0))
+                    * np.sqrt(2)
+                    / np.linalg.norm(s.reshape(-1, 2) - s.reshape(-1, 2).mean(axis=0), axis=1).max()
+                ),
+                "conditioning was not undone",
+            ),
+            (
+                lambda s: np.cross(
+                    np.append(s[0, 1] - s[0, 0], 0.0), np.append(s[1, 1] - s[1, 0], 0.0)
+                ),
+                "segments' directions",
+            ),
             # Joins the two segments' start points instead of each segment's endpoints.
             (
                 lambda s: np.cross(

@@ -28,7 +28,15 @@ def _conic_figure(view: FigureView) -> SimpleNamespace:
     samples = np.stack([np.cos(t), np.sin(t)], axis=1)  # 8 points on the unit circle
     circle = pj.conic_points(pj.circle_conic([0.0, 0.0], 1.0), 200)
     ax_b.plot(*circle.T, color=palette.TAB_BLUE, lw=2, label="C (x² + y² = 1)")
-    ax_b.scatter(*samples.T, color=palette.ORANGE, s=25, zorder=3, label="8 points on C")
+    ax_b.scatter(  # blue: the object given (lesson 06); white edges keep them visible on C
+        *samples.T,
+        color=palette.TAB_BLUE,
+        edgecolors="white",
+        linewidths=1,
+        s=36,
+        zorder=3,
+        label="8 points on C",
+    )
     for k, line in enumerate(([1, 0, -1], [1, 0, 1], [0, 1, -1], [0, 1, 1])):
         ends = pj.clip_line(line, (-3, 3), (-3, 3))
         ax_b.plot(*ends.T, color=palette.GREEN, lw=1, label="tangent lines" if k == 0 else None)

@@ -539,7 +539,7 @@ def vanishing_points() -> Demo:
                 + (
                     "at infinity, direction ({:+.2f}, {:+.2f})".format(*vp[:2])
                     if abs(vp[2]) < 1e-9
-                    else f"({vp[0]:.0f}, {vp[1]:.0f}) px"
+                    else f"({vp[0]:.1f}, {vp[1]:.1f}) px"
                     + ("" if not direction.any() else " (off image)")
                 )
             )
@@ -559,7 +559,7 @@ def vanishing_points() -> Demo:
     controls = {
         "pitch": slider(12.0, 0.0, 40.0, 0.5, "pitch down (°)"),
         "yaw": slider(15.0, -45.0, 45.0, 0.5, "yaw (°, + moves v_z left)"),
-        "roll": slider(0.0, -20.0, 20.0, 0.5, "roll (°, + clockwise)"),
+        "roll": slider(0.0, -20.0, 20.0, 0.5, "roll (°, + turns the image clockwise)"),
         "focal": slider(600.0, 300.0, 1200.0, 10.0, "focal length (px)"),
     }
     return build_demo(
@@ -599,13 +599,14 @@ def _cross_ratio_figure(view: FigureView) -> SimpleNamespace:
     numbers = axes["text"].text(0.5, 0.5, "", transform=axes["text"].transAxes, **centred)
     plane_axes(ax_s, 2.2, "before: four collinear points")
     plane_axes(ax_t, 2.2, "after the homography H (same scale)")
-    # With |h31|, |h32| <= _CR_H the grid's w = 1 + h31 x + h32 y stays >= 1 - 2 * 0.3 * 1 = 0.4 > 0:
-    # no grid line crosses the line H sends to infinity, so each maps to one straight segment. The
-    # four points (|p| <= 1.12, w >= 1 - 0.3 - 0.15 = 0.55) stay within 2.03 of the origin: inside
-    # the +-2.2 panel, drawn at the before panel's scale, at every setting (the grid may be cut).
+    # The grid is the rectangle |x| <= 1, |y| <= 0.5 whose diagonal carries A, B, C, D. With |h31|,
+    # |h32| <= _CR_H its w = 1 + h31 x + h32 y stays >= 1 - 0.3 - 0.15 = 0.55 > 0: no grid line
+    # crosses the line H sends to infinity, so each maps to one straight segment, and every grid
+    # point (|p| <= 1.12) stays within 1.12 / 0.55 = 2.03 of the origin: inside the +-2.2 panel,
+    # drawn at the before panel's scale, at every setting (nothing is cut).
     grid = np.array(
-        [[[x, -1.0], [x, 1.0]] for x in np.linspace(-1.0, 1.0, 5)]
-        + [[[-1.0, y], [1.0, y]] for y in np.linspace(-1.0, 1.0, 5)]
+        [[[x, -0.5], [x, 0.5]] for x in np.linspace(-1.0, 1.0, 5)]
+        + [[[-1.0, y], [1.0, y]] for y in np.linspace(-0.5, 0.5, 3)]
     )
     points = np.array([[-1.0, -0.5], [-0.3, -0.15], [0.4, 0.2], [1.0, 0.5]])
     colors = [palette.TAB_BLUE] * 4  # one colour: the letters name them (lesson 06's colour code)
