@@ -181,6 +181,19 @@ def test_bad_arguments_are_named(kwargs, message):
         PhotoUpload("Your photos", **kwargs)
 
 
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (("not bytes", "x.png"), "data: expected the file's content as bytes"),
+        ((b"", "x.png", 0), "max_pixels: expected a positive whole number"),
+        ((b"", "x.png", 2.5), "max_pixels: expected a positive whole number"),
+    ],
+)
+def test_decode_photo_names_a_bad_argument(args, message):
+    with pytest.raises(CamlabInputError, match=message):
+        decode_photo(*args)
+
+
 def test_without_a_kernel_the_control_shows_one_sentence_as_a_picture_with_alt_text():
     data, metadata = PhotoUpload("Your photos")._repr_mimebundle_()
     assert "application/vnd.jupyter.widget-view+json" in data

@@ -104,6 +104,20 @@ def decode_photo(data: bytes, name: str, max_pixels: int | None = None) -> Decod
     """
     import cv2
 
+    if not isinstance(data, (bytes, bytearray, memoryview)):
+        raise CamlabInputError(
+            f"data: expected the file's content as bytes (e.g. open(path, 'rb').read()), "
+            f"got {type(data).__name__}"
+        )
+    if max_pixels is not None and (
+        isinstance(max_pixels, bool)
+        or not isinstance(max_pixels, (int, np.integer))
+        or max_pixels < 1
+    ):
+        raise CamlabInputError(
+            f"max_pixels: expected a positive whole number of pixels or None, got {max_pixels!r}"
+        )
+    data = bytes(data)
     why = damaged_image_file(data)
     image = None if why else cv2.imdecode(np.frombuffer(data, np.uint8), cv2.IMREAD_COLOR)
     if image is None:
