@@ -155,14 +155,18 @@ def test_save_to_writes_inside_the_folder_and_keeps_the_old_file(tmp_path):
     assert "kept as a.previous-" in up.status.value
 
 
-@pytest.mark.parametrize("name", ["../x.jpg", "/tmp/evil.png", "sub/../../x.png", "..\\x.png"])
+@pytest.mark.parametrize(
+    "name", ["../x.jpg", "/tmp/evil.png", "sub/../../x.png", "..\\x.png", "sub/x.png", ".."]
+)
 def test_save_to_refuses_a_name_that_leads_outside_the_folder(tmp_path, name):
     folder = tmp_path / "inside" / "mine"
     up = PhotoUpload("Your photos", save_to=folder)
     _upload(up, (name, _encode(_image())))
     assert up.photos == []
     (problem,) = up.problems
-    assert "leads outside the folder" in problem and repr(name) in problem
+    assert (
+        "only a plain file name is written inside the folder" in problem and repr(name) in problem
+    )
     written = [p for p in tmp_path.rglob("*") if p.is_file()]
     assert written == []
 
@@ -179,6 +183,19 @@ def test_save_to_refuses_a_name_that_leads_outside_the_folder(tmp_path, name):
 def test_bad_arguments_are_named(kwargs, message):
     with pytest.raises(CamlabInputError, match=message):
         PhotoUpload("Your photos", **kwargs)
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (("not bytes", "x.png"), "data: expected the file's content as bytes"),
+        ((b"", "x.png", 0), "max_pixels: expected a positive whole number"),
+        ((b"", "x.png", 2.5), "max_pixels: expected a positive whole number"),
+    ],
+)
+def test_decode_photo_names_a_bad_argument(args, message):
+    with pytest.raises(CamlabInputError, match=message):
+        decode_photo(*args)
 
 
 def test_without_a_kernel_the_control_shows_one_sentence_as_a_picture_with_alt_text():

@@ -7,6 +7,7 @@ import sys
 from collections.abc import Callable
 
 from .._validate import CamlabInputError, ConvergenceError
+from .board import add_board, run_board
 from .calibrate import add_calibrate, add_undistort, run_calibrate, run_undistort
 from .rectify import add_rectify, run_rectify
 from .stitch import add_stitch, run_stitch
@@ -30,6 +31,11 @@ COMMANDS: dict[
     str, tuple[str, Callable[[argparse.ArgumentParser], None], Callable[[argparse.Namespace], int]]
 ] = {
     "calibrate": ("calibrate a camera from photos of a chessboard", add_calibrate, run_calibrate),
+    "board": (
+        "write a printable chessboard PDF at true scale, with a 10 cm ruler",
+        add_board,
+        run_board,
+    ),
     "undistort": ("undistort photos with a calibration file", add_undistort, run_undistort),
     "stitch": ("stitch overlapping photos into a panorama", add_stitch, run_stitch),
     "rectify": (

@@ -22,7 +22,7 @@ Each uploaded file is checked and decoded in the kernel, in memory:
   merges) and the status line says from what size to what.
 
 Nothing is written to disk unless ``save_to`` names a folder; then each decoded photo is
-written inside that folder only (a name that leads out of it is refused), and a file already
+written inside that folder only (a name with a folder part, ``..`` or an absolute path is refused), and a file already
 there is kept as ``<name>.previous-<date>`` first.
 
 The uploads live in the kernel. A page without one (the course website, a saved HTML copy)
@@ -104,6 +104,20 @@ def decode_photo(data: bytes, name: str, max_pixels: int | None = None) -> Decod
     """
     import cv2
 
+    if not isinstance(data, (bytes, bytearray, memoryview)):
+        raise CamlabInputError(
+            f"data: expected the file's content as bytes (e.g. open(path, 'rb').read()), "
+            f"got {type(data).__name__}"
+        )
+    if max_pixels is not None and (
+        isinstance(max_pixels, bool)
+        or not isinstance(max_pixels, (int, np.integer))
+        or max_pixels < 1
+    ):
+        raise CamlabInputError(
+            f"max_pixels: expected a positive whole number of pixels or None, got {max_pixels!r}"
+        )
+    data = bytes(data)
     why = damaged_image_file(data)
     image = None if why else cv2.imdecode(np.frombuffer(data, np.uint8), cv2.IMREAD_COLOR)
     if image is None:
@@ -123,8 +137,8 @@ def decode_photo(data: bytes, name: str, max_pixels: int | None = None) -> Decod
 
 
 def _inside(folder: Path, name: str) -> Path | None:
-    """``folder / name`` if it stays inside ``folder`` (no absolute name, no ``..`` out), else None."""
-    if not name or os.path.isabs(name) or Path(name).drive or "\\" in name:
+    """``folder / name`` for a plain file name (no folder, no ``..``, not absolute), else None."""
+    if not name or os.path.isabs(name) or Path(name).drive or "/" in name or "\\" in name:
         return None
     target = (folder / name).resolve()
     root = folder.resolve()
@@ -252,6 +266,9 @@ class PhotoUpload:
                 image, note = decode_photo(data, name, self.max_pixels)
                 if self.save_to is not None:
                     note += self._save(name, image)
+            except OSError as exc:  # the folder vanished or became read-only after the check
+                problems.append(f"{name!r}: not saved in {str(self.save_to)!r}: {exc.strerror}")
+                continue
             except CamlabInputError as exc:
                 problems.append(str(exc))
                 continue
@@ -270,8 +287,9 @@ class PhotoUpload:
         target = _inside(folder, name)
         if target is None:
             raise CamlabInputError(
-                f"{name!r}: not saved: the name leads outside the folder {str(self.save_to)!r}; "
-                f"rename the file (a plain name such as photo_1.jpg)"
+                f"{name!r}: not saved: only a plain file name is written inside the folder "
+                f"{str(self.save_to)!r} (no folders, no '..', not absolute); rename the file, "
+                f"e.g. photo_1.jpg"
             )
         if target.suffix.lower() not in WRITABLE:
             target = target.with_name(target.name + ".png")
