@@ -112,8 +112,10 @@ def _why_text(view: FigureView, ax: Any) -> Any:
 
 
 _OUTLINE_STYLE = "--"  # the corners' outline on the photo, yellow
-_KEY = "red dashed: the other focal length's shape; green dotted: the true shape"
-_KEY_OFF_PAGE = "red dashed: the other focal length's shape (no green: not the page's corners)"
+_KEY = "red dashed: the other focal length's shape\ngreen dotted: the true shape"
+_KEY_OFF_PAGE = (
+    "red dashed: the other focal length's shape\nno green: these are not the scene's corners"
+)
 _ON_PAGE_PX = 10.0  # corners this close to the scene's true ones still mark its rectangle
 
 

@@ -8,6 +8,7 @@ happens without the second direction (the blocks' diagonals).
 
 from __future__ import annotations
 
+import textwrap
 from typing import NamedTuple
 
 import ipywidgets as W
@@ -137,6 +138,7 @@ def _figure():
     ax_p.set_ylabel("v (px, down)", fontsize=8, labelpad=1)
     ax_p.set_title("photo: corners and the right angles used", fontsize=10, pad=3)
     ax_r.set(xlim=(-1, 9), ylim=(6, -2), aspect="equal")  # room above the grid for a refusal
+    ax_r.set_yticks(range(7))
     ax_r.set_xlabel("across (squares)", fontsize=8, labelpad=1)
     ax_r.set_ylabel("down (squares)", fontsize=8, labelpad=1)
     for ax in (ax_p, ax_r):
@@ -207,7 +209,7 @@ def right_angle_rectification() -> Demo:
             rect.set_data([], [])
             why.set_text("no rectification: all right angles are\nbetween the same two directions")
             state.update(ratio=None, worst_angle=None, error=str(exc))
-            readout.value = monospace("refused: " + str(exc).replace("; ", ";\n"))
+            readout.value = monospace(textwrap.fill("refused: " + str(exc), 76))
             return
         why.set_text("")
         q = upright_on_squares(met.H, grid)
