@@ -125,7 +125,9 @@ def _rectify_artists(view: FigureView, ax_p: Any, ax_r: Any) -> SimpleNamespace:
     The corner handles, the chosen corner's ring, the key, the other focal length's and the true
     shape's outlines.
     """
-    handles = view.animate(ax_p.plot([], [], "o", color=palette.ORANGE, ms=9, mec="k")[0])
+    handles = view.animate(
+        ax_p.plot([], [], "o", color=palette.ORANGE, ms=9, mec="k", path_effects=palette.halo(1))[0]
+    )  # the halo keeps them visible on the dark desk and on the white page alike
     chosen = view.animate(
         ax_p.plot(
             [],
