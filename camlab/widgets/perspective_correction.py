@@ -116,6 +116,7 @@ _KEY = "red dashed: the other focal length's shape\ngreen dotted: the true shape
 _KEY_OFF_PAGE = (
     "red dashed: the other focal length's shape\nno green: these are not the scene's corners"
 )
+_SCAN_KEY = "green dotted: the page's true shape (A4)"
 _ON_PAGE_PX = 10.0  # corners this close to the scene's true ones still mark its rectangle
 
 
@@ -565,7 +566,12 @@ def document_scanner() -> Demo:
         dict(ls="-", color=palette.YELLOW, lw=1, path_effects=palette.halo(1, "black")),
     )
     view.animate(ax_r.title)  # says which f the scan used
-    truth_box = _truth_artist(view, ax_r, "green dotted: the page's true shape (A4)")
+    truth_box = _truth_artist(view, ax_r, None)
+    key = view.animate(
+        ax_r.text(
+            0.5, -0.02, _SCAN_KEY, transform=ax_r.transAxes, ha="center", va="top", fontsize=8
+        )
+    )
     readout = W.HTML()
     why = _why_text(view, ax_r)  # why no page was found
 
@@ -581,10 +587,12 @@ def document_scanner() -> Demo:
             im_r.set_data(np.full((_SHOW, _SHOW, 3), 255, np.uint8))
             state.update(found=False, corner_error=None, message=str(exc))
             readout.value = monospace("no page found:\n" + str(exc).replace("; ", ";\n"))
-            why.set_text("no page found:\n" + str(exc).replace("; ", ";\n"))
+            why.set_text("no page found:\n" + textwrap.fill(str(exc), 44))
+            key.set_text("")  # no page, no true shape
             ax_r.set_title("scanned page", fontsize=10, pad=3)
             return
         why.set_text("")
+        key.set_text(_SCAN_KEY)
         closed = np.vstack([corners, corners[:1]])
         found.set_data(closed[:, 0], closed[:, 1])
         est, conditioning, undetermined = _scan_estimate(corners, image.shape)
