@@ -655,11 +655,13 @@ def dual_conic_from_orthogonal_lines(lines_l: ArrayLike, lines_m: ArrayLike) -> 
     # noisy chessboards s[5] / s[4] < 0.003 with the diagonals, > 0.25 with rows and columns only.
     if s[4] < 1e-8 * s[0] or s[5] > NULL_GAP * s[4]:
         raise DegenerateError(
-            "lines_l, lines_m: the pairs fix fewer than 5 of C*'s degrees of freedom (they point in too "
-            "few directions: a rectangle's edges are one constraint however many; here the 5th and 6th "
+            "lines_l, lines_m: the pairs fix fewer than 5 of C*'s degrees of freedom, they point in too "
+            "few directions (the 5th and 6th "
             f"singular values of the stacked rows are {s[4] / s[0]:.2g} and {s[5] / s[0]:.2g} of the "
-            "largest, so noise would pick the answer); add pairs in another direction, e.g. a square's "
-            "diagonals"
+            "largest, so noise would pick the answer). Right angles all between the same two "
+            "directions (a rectangle's edges, however many pairs) fix only 4: every a v1 v1^T + "
+            "b v2 v2^T satisfies them (v1, v2 their vanishing points), and the free b / a is the "
+            "unknown aspect ratio; add pairs in another direction, e.g. a square's diagonals"
         )
     a, b, c, d, e, f = Vt[-1]
     Cn = np.array([[a, b / 2, d / 2], [b / 2, c, e / 2], [d / 2, e / 2, f]])
@@ -768,9 +770,9 @@ def square_grid_right_angles(grid: ArrayLike) -> OrthogonalLinePairs:
     r"""Pairs of lines that are orthogonal on a grid of squares (a chessboard), from its image corners.
 
     A grid of squares has right angles in two directions: its rows meet its columns, and the two
-    diagonals of any square block cross at 90°. Rows against columns alone are one constraint on
-    :math:`C^{*\prime}` however many (they all share two vanishing points); the diagonals add the
-    second direction. Each line is fitted through all its corners (total least squares), so a
+    diagonals of any square block cross at 90°. Rows against columns alone, however many, give only 4
+    independent linear constraints on :math:`C^{*\prime}` (its 5 degrees of freedom less the
+    aspect ratio: they all share two vanishing points); the diagonals add the second direction. Each line is fitted through all its corners (total least squares), so a
     pixel of noise on one corner moves it little.
 
     Parameters

@@ -317,3 +317,36 @@ def test_ransac_samples_check_tells_log_p_from_swapped_arguments():
         with pytest.raises(CheckFailed) as failed:
             check_ransac_samples(slip)
         assert cause in str(failed.value) and "different slips" not in str(failed.value)
+
+
+def test_scanner_counts_only_slips_that_give_an_f():
+    """At yaw 0, pitch 0.5 the found corners give f = 102 px, but 8 of the 16 one-pixel slips give
+    no f at all (f^2 <= 0): the scanner must say so and fall back to the assumed f, not quote a
+    range that mixes the assumed 640 px in with estimates."""
+    d = p10.document_scanner()
+    d.set(yaw=0.0, pitch=0.5)
+    assert d.state["focal_source"] == "assumed" and abs(d.state["ratio"] - 0.742) < 0.001
+    line, undetermined = p10._focal_conditioning(
+        *(lambda ph: (p10.pp.find_document(ph.image), ph.image.shape))(
+            p10.scenes.sample_photo("page", yaw=0.0, pitch=0.5)
+        )
+    )
+    assert undetermined and "412-1114 px" in line and "8 of the 16 give no f" in line
+
+
+def test_rectify_demo_draws_the_true_shape_only_on_the_scenes_corners():
+    d = p10.rectify_photo()
+    truth = [a for a in d.figure.axes[1].lines if a.get_color() == p10.palette.GREEN][0]
+    assert len(truth.get_xdata()) == 5
+    d.set(corners="200.0, 100.0; 450.0, 100.0; 450.0, 380.0; 200.0, 380.0")
+    assert len(truth.get_xdata()) == 0
+
+
+def test_right_angle_demo_reports_the_error_of_h_apart_from_corner_noise():
+    from camlab.widgets import perspective_metric as p10m
+
+    d = p10m.right_angle_rectification()
+    d.set(noise=3.0)
+    assert d.state["worst_angle"] > 15 and d.state["exact_worst_angle"] < 1
+    d.set(diagonals=False, noise=0.0)
+    assert "fix only 4" in d.state["error"]

@@ -86,6 +86,7 @@ def _photo_demo(photo_title: str, result_title: str, outline: dict):
     im_r = view.animate(
         ax_r.imshow(np.full((_SHOW, _SHOW, 3), 255, np.uint8), interpolation="nearest")
     )
+    ax_r.set(xlim=(-8.5, _SHOW + 7.5))  # a margin: the box never touches the figure's edge
     ax_r.set_axis_off()
     ax_p.set_title(photo_title, fontsize=10, pad=3)
     ax_r.set_title(result_title, fontsize=10, pad=3)
@@ -111,7 +112,12 @@ def _why_text(view: FigureView, ax: Any) -> Any:
 
 
 _OUTLINE_STYLE = "--"  # the corners' outline on the photo, yellow
-_KEY = "red dashed: the other focal length's shape; green dotted: the true shape"
+_KEY = "red dashed: the other focal length's shape\ngreen dotted: the true shape"
+_KEY_OFF_PAGE = (
+    "red dashed: the other focal length's shape\nno green: these are not the scene's corners"
+)
+_SCAN_KEY = "green dotted: the page's true shape (A4)"
+_ON_PAGE_PX = 10.0  # corners this close to the scene's true ones still mark its rectangle
 
 
 def _rectify_artists(view: FigureView, ax_p: Any, ax_r: Any) -> SimpleNamespace:
@@ -120,7 +126,9 @@ def _rectify_artists(view: FigureView, ax_p: Any, ax_r: Any) -> SimpleNamespace:
     The corner handles, the chosen corner's ring, the key, the other focal length's and the true
     shape's outlines.
     """
-    handles = view.animate(ax_p.plot([], [], "o", color=palette.ORANGE, ms=9, mec="k")[0])
+    handles = view.animate(
+        ax_p.plot([], [], "o", color=palette.ORANGE, ms=9, mec="k", path_effects=palette.halo(1))[0]
+    )  # the halo keeps them visible on the dark desk and on the white page alike
     chosen = view.animate(
         ax_p.plot(
             [],
@@ -148,9 +156,7 @@ def _rectify_artists(view: FigureView, ax_p: Any, ax_r: Any) -> SimpleNamespace:
     other = view.animate(
         ax_r.plot([], [], "--", color=palette.RED, lw=1.5, path_effects=palette.halo(1.5))[0]
     )
-    truth_box = view.animate(
-        ax_r.plot([], [], ":", color=palette.GREEN, lw=1.5, path_effects=palette.halo(1.5))[0]
-    )
+    truth_box = _truth_artist(view, ax_r, None)
     view.animate(ax_r.title)  # says which focal length the rectified view uses
     why = _why_text(view, ax_r)  # why the corners cannot be rectified
     return SimpleNamespace(
@@ -187,9 +193,26 @@ def _show_shapes(im: Any, photo: Any, corners: np.ndarray, ratio: float, outline
     _show_rectified(im, photo.image, corners, (int(width), int(width / ratio)))
     # Outlines, in the display box, of the rectangle the other focal length and the truth would give.
     for artist, ratio in outlines:
-        w, h = _fit((int(width), int(width / ratio)))
-        x0, y0 = (_SHOW - w) // 2 - 0.5, (_SHOW - h) // 2 - 0.5
-        artist.set_data([x0, x0 + w, x0 + w, x0, x0], [y0, y0, y0 + h, y0 + h, y0])
+        if ratio is None:  # not drawn
+            artist.set_data([], [])
+        else:
+            _box_outline(artist, (int(width), int(width / ratio)))
+
+
+def _truth_artist(view: FigureView, ax_r: Any, key: str | None) -> Any:
+    """The green dotted outline of the true shape on the result panel (and its static ``key`` line)."""
+    if key:
+        ax_r.text(0.5, -0.02, key, transform=ax_r.transAxes, ha="center", va="top", fontsize=8)
+    return view.animate(
+        ax_r.plot([], [], ":", color=palette.GREEN, lw=1.5, path_effects=palette.halo(1.5))[0]
+    )
+
+
+def _box_outline(artist: Any, size_wh: tuple[int, int]) -> None:
+    """Outline, centred in the display box, the rectangle :func:`_show_rectified` draws at ``size_wh``."""
+    w, h = _fit(size_wh)
+    x0, y0 = (_SHOW - w) // 2 - 0.5, (_SHOW - h) // 2 - 0.5
+    artist.set_data([x0, x0 + w, x0 + w, x0, x0], [y0, y0, y0 + h, y0 + h, y0])
 
 
 def _focal_text(est: Any, true_focal: float) -> str:
@@ -231,7 +254,7 @@ def _corner_slip_range(corners: np.ndarray, image_shape: tuple, focal_length: fl
 
 
 def _rectify_readout(
-    est: Any, used: str, from_quad: Any, known: Any, photo: Any, slip: dict
+    est: Any, used: str, from_quad: Any, known: Any, photo: Any, slip: dict, on_page: bool = True
 ) -> str:
     """The text beside :func:`rectify_photo`.
 
@@ -241,11 +264,16 @@ def _rectify_readout(
     f_true = photo.K[0, 0]
     quad_f = _focal_used(False, photo, from_quad)
     (a, b), (c, d), (f0, f1) = slip["ratio_from_quad"], slip["ratio_known"], slip["focal"]
+    true = (
+        f"w/h true:{'':27s} {photo.aspect:.3f}"
+        if on_page  # else the scene's rectangle is not the one these corners mark
+        else f"w/h true: unknown (the scene's {photo.aspect:.3f} is not these corners' shape)"
+    )
     return monospace(
-        f"shown: w/h {est.ratio:.3f} ({used})\n"
+        f"shown: w/h {est.ratio:.3f}, rectified with {used}\n"
         f"w/h with {quad_f + ':':27s} {from_quad.ratio:.3f}\n"
         f"w/h with {f'f known ({f_true:.0f} px):':27s} {known.ratio:.3f}\n"
-        f"w/h true:{'':27s} {photo.aspect:.3f}\n"
+        f"{true}\n"
         f"{_focal_text(from_quad, f_true)}\n"
         f"this scene, one exact corner {_SLIP_PX:.0f} px off: f from the corners {f0:.0f}-{f1:.0f} px,\n"
         f"  w/h {a:.3f}-{b:.3f} with it, {c:.3f}-{d:.3f} with f known"
@@ -257,17 +285,20 @@ def _focal_conditioning(corners: np.ndarray, image_shape: tuple) -> tuple[str, b
 
     Near a degenerate view (an edge pair nearly parallel in the photo, its vanishing point far
     away) f^2 is a ratio of two small numbers, so the scanner's 1-2 px corner errors decide it.
-    Returns the line and whether f is then NOT DETERMINED (the 1 px range wider than half of f).
+    Returns the line and whether f is then NOT DETERMINED: a 1 px slip gives no f at all
+    (f^2 <= 0), or the slips' f span more than half of f.
     Empty when f is not estimated from the corners.
     """
     est = pp.estimate_aspect_ratio(corners, image_shape)
     if est.focal_source != "estimated":
         return "", False
-    fs = [
-        pp.estimate_aspect_ratio(corners + np.eye(4)[k][:, None] * step, image_shape).focal_length
+    slipped = [
+        pp.estimate_aspect_ratio(corners + np.eye(4)[k][:, None] * step, image_shape)
         for k in range(4)
         for step in ((1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0))
     ]
+    # only the slips that still give an f: the others fall back to the assumed f, no estimate
+    fs = [e.focal_length for e in slipped if e.focal_source == "estimated"]
     before, after = corners[[1, 3]] - corners[[0, 0]], corners[[2, 2]] - corners[[3, 1]]
     cos = (
         np.abs((before * after).sum(1))
@@ -275,8 +306,13 @@ def _focal_conditioning(corners: np.ndarray, image_shape: tuple) -> tuple[str, b
         / np.linalg.norm(after, axis=1)
     )
     least = float(np.degrees(np.arccos(np.clip(cos, -1, 1))).min())
-    line = f"\none corner 1 px off: f from the corners {min(fs):.0f}-{max(fs):.0f} px"
-    if max(fs) - min(fs) <= 0.5 * est.focal_length:
+    none = len(slipped) - len(fs)
+    line = "\none corner 1 px off (16 ways): " + (
+        f"f from the corners {min(fs):.0f}-{max(fs):.0f} px" if fs else "no f at all"
+    )
+    if none and fs:
+        line += f";\n  {none} of the 16 give no f at all (f\u00b2 \u2264 0)"
+    if fs and not none and max(fs) - min(fs) <= 0.5 * est.focal_length:
         return line, False
     assumed = max(image_shape[0], image_shape[1])
     return line + (
@@ -357,8 +393,25 @@ def _focal_used(use_focal: bool, photo, from_quad) -> str:
     if from_quad.focal_source == "assumed":
         return f"f assumed, {from_quad.focal_length:.0f} px"
     if from_quad.focal_source == "not needed":
-        return "no f (an affine view: f cancels)"
+        return "no f (affine: f cancels)"
     return "f from the corners"
+
+
+def _warn_if_skewed(text: str, corners: np.ndarray, from_quad: Any) -> str:
+    """The readout ``text``, warned when both edge pairs are parallel but the corners are not right angles.
+
+    Both vanishing points at infinity put the vanishing line at infinity: the plane faces the
+    camera, and with square pixels a rectangle then photographs as a rectangle, not a skewed
+    parallelogram.
+    """
+    off = abs(_widest_angle(corners) - 90.0)
+    if from_quad.focal_source != "not needed" or off <= 1.0:
+        return text
+    return (
+        f"careful: both edge pairs are parallel, yet the corners are {off:.0f}° off a right\n"
+        "angle: a plane facing the camera shows a rectangle as a rectangle, so no\n"
+        "rectangle projects to these corners (square pixels); the ratio is meaningless\n" + text
+    )
 
 
 def _warn_if_flat(text: str, corners: np.ndarray) -> str:
@@ -444,12 +497,17 @@ def rectify_photo() -> Demo:
             _show_invalid(art, quad, im_r, ax_r, v["corners"], v["corner"], exc)
             return
         art.why.set_text("")
-        art.key.set_text(_KEY)
         est, alt = (known, from_quad) if v["use_focal"] else (from_quad, known)
         current["corners"] = corners
         _show_corners(quad, handles, chosen, corners, v["corner"])
+        on_page = bool(np.abs(corners - photo.corners).max() <= _ON_PAGE_PX)
+        art.key.set_text(_KEY if on_page else _KEY_OFF_PAGE)
         _show_shapes(
-            im_r, photo, corners, est.ratio, ((other, alt.ratio), (truth_box, photo.aspect))
+            im_r,
+            photo,
+            corners,
+            est.ratio,
+            ((other, alt.ratio), (truth_box, photo.aspect if on_page else None)),
         )
         state.update(
             error=None,
@@ -468,8 +526,8 @@ def rectify_photo() -> Demo:
         ax_r.set_title(f"rectified with {used}", fontsize=10, pad=3)
         if v["scene"] not in slips:  # once per scene: 32 estimates
             slips[v["scene"]] = _corner_slip_range(photo.corners, photo.image.shape, photo.K[0, 0])
-        text = _rectify_readout(est, used, from_quad, known, photo, slips[v["scene"]])
-        readout.value = _warn_if_flat(text, corners)
+        text = _rectify_readout(est, used, from_quad, known, photo, slips[v["scene"]], on_page)
+        readout.value = _warn_if_flat(_warn_if_skewed(text, corners, from_quad), corners)
 
     demo = build_demo(
         "rectify_photo",
@@ -508,6 +566,12 @@ def document_scanner() -> Demo:
         dict(ls="-", color=palette.YELLOW, lw=1, path_effects=palette.halo(1, "black")),
     )
     view.animate(ax_r.title)  # says which f the scan used
+    truth_box = _truth_artist(view, ax_r, None)
+    key = view.animate(
+        ax_r.text(
+            0.5, -0.02, _SCAN_KEY, transform=ax_r.transAxes, ha="center", va="top", fontsize=8
+        )
+    )
     readout = W.HTML()
     why = _why_text(view, ax_r)  # why no page was found
 
@@ -519,17 +583,21 @@ def document_scanner() -> Demo:
             corners = pp.find_document(image)
         except pp.DocumentNotFoundError as exc:
             found.set_data([], [])
+            truth_box.set_data([], [])
             im_r.set_data(np.full((_SHOW, _SHOW, 3), 255, np.uint8))
             state.update(found=False, corner_error=None, message=str(exc))
             readout.value = monospace("no page found:\n" + str(exc).replace("; ", ";\n"))
-            why.set_text("no page found:\n" + str(exc).replace("; ", ";\n"))
+            why.set_text("no page found:\n" + textwrap.fill(str(exc), 44))
+            key.set_text("")  # no page, no true shape
             ax_r.set_title("scanned page", fontsize=10, pad=3)
             return
         why.set_text("")
+        key.set_text(_SCAN_KEY)
         closed = np.vstack([corners, corners[:1]])
         found.set_data(closed[:, 0], closed[:, 1])
         est, conditioning, undetermined = _scan_estimate(corners, image.shape)
         _show_rectified(im_r, image, corners, (400, int(400 / est.ratio)))
+        _box_outline(truth_box, (400, int(400 / photo.aspect)))
         how = {
             "estimated": "f from the corners",
             "assumed": f"f assumed, {est.focal_length:.0f} px",
@@ -587,18 +655,8 @@ def keystone_correction() -> Demo:
         "keystone-corrected",
         dict(ls="--", color=palette.YELLOW, lw=1.5, path_effects=palette.halo(1.5, "black")),
     )
-    ax_r.text(
-        0.5,
-        -0.02,
-        "green dotted: the true shape (numbers in the readout)",
-        transform=ax_r.transAxes,
-        ha="center",
-        va="top",
-        fontsize=8,
-    )  # static: canvas text costs ~4 ms per line per redraw
-    truth_box = view.animate(
-        ax_r.plot([], [], ":", color=palette.GREEN, lw=1.5, path_effects=palette.halo(1.5))[0]
-    )
+    # a static key: canvas text costs ~4 ms per line per redraw
+    truth_box = _truth_artist(view, ax_r, "green dotted: the true shape (numbers in the readout)")
     readout = W.HTML()
     view.animate(ax_p.title, ax_r.title)  # whether the camera is tilted; which f rectified it
 
@@ -619,9 +677,7 @@ def keystone_correction() -> Demo:
         _show_rectified(im_r, photo.image, c, (400, int(round(400 / est.ratio))))
         how = {"given": "the known f", "estimated": "f from the corners", "assumed": "f assumed"}
         ax_r.set_title(f"rectified with {how.get(est.focal_source, 'no f')}", fontsize=10, pad=3)
-        w, h = _fit((400, int(round(400 / photo.aspect))))
-        x0, y0 = (_SHOW - w) // 2 - 0.5, (_SHOW - h) // 2 - 0.5
-        truth_box.set_data([x0, x0 + w, x0 + w, x0, x0], [y0, y0, y0 + h, y0 + h, y0])
+        _box_outline(truth_box, (400, int(round(400 / photo.aspect))))
         left, right = c[3] - c[0], c[2] - c[1]
         converge = float(np.degrees(np.arctan2(left[0], left[1]) - np.arctan2(right[0], right[1])))
         off = 100 * (est.ratio / photo.aspect - 1)

@@ -8,6 +8,7 @@ happens without the second direction (the blocks' diagonals).
 
 from __future__ import annotations
 
+import textwrap
 from typing import NamedTuple
 
 import ipywidgets as W
@@ -129,10 +130,15 @@ def _figure():
     view = FigureView(figsize=(9, 3.8))
     ax_p, ax_r = view.fig.subplots(1, 2, width_ratios=[1.3, 1])
     ax_p.set(xlim=(-0.5, 639.5), ylim=(479.5, -0.5), aspect="equal")
-    ax_p.set_xlabel("u (px, right)", fontsize=8, labelpad=1)
+    ax_p.set_xlabel(
+        "u (px, right); each pair: a brown line l at right angles to a blue line m",
+        fontsize=8,
+        labelpad=1,
+    )
     ax_p.set_ylabel("v (px, down)", fontsize=8, labelpad=1)
     ax_p.set_title("photo: corners and the right angles used", fontsize=10, pad=3)
-    ax_r.set(xlim=(-1, 9), ylim=(6, -1), aspect="equal")
+    ax_r.set(xlim=(-1, 9), ylim=(6, -2), aspect="equal")  # room above the grid for a refusal
+    ax_r.set_yticks(range(7))
     ax_r.set_xlabel("across (squares)", fontsize=8, labelpad=1)
     ax_r.set_ylabel("down (squares)", fontsize=8, labelpad=1)
     for ax in (ax_p, ax_r):
@@ -148,17 +154,7 @@ def _figure():
         ax_r.plot([], [], "o", ms=5, color=palette.ORANGE, mec="k", mew=0.5, zorder=3)[0]
     )
     why = view.animate(
-        ax_r.text(
-            4,
-            2.5,
-            "",
-            ha="center",
-            va="center",
-            fontsize=9,
-            color=palette.RED,
-            zorder=4,
-            bbox=dict(boxstyle="round,pad=0.3", fc="white", ec="none"),
-        )
+        ax_r.text(4, -1.0, "", ha="center", va="center", fontsize=8.5, color=palette.RED, zorder=4)
     )
     return view, dots, lines, rect, why
 
@@ -182,7 +178,8 @@ def right_angle_rectification() -> Demo:
         noise, px) and ``diagonals`` (use the blocks' diagonals, the second direction), the
         figure (the photographed corners with the line pairs used; the rectified corners on
         the true squares) and ``state`` (``ratio`` side across / side down, ``worst_angle`` in
-        degrees, ``error`` the refusal when the right angles are all in one pair of directions).
+        degrees, ``exact_worst_angle`` the same for the estimated H applied to the noise-free
+        corners, ``error`` the refusal when the right angles are all in one pair of directions).
     """
     view, dots, lines, rect, why = _figure()
     readout = W.HTML()
@@ -210,22 +207,29 @@ def right_angle_rectification() -> Demo:
             met = pp.metric_rectification(L, M)
         except pp.DegenerateError as exc:
             rect.set_data([], [])
-            why.set_text("no rectification:\nall right angles are between\nthe same two directions")
+            why.set_text("no rectification: all right angles are\nbetween the same two directions")
             state.update(ratio=None, worst_angle=None, error=str(exc))
-            readout.value = monospace("refused: " + str(exc).replace("; ", ";\n"))
+            readout.value = monospace(textwrap.fill("refused: " + str(exc), 76))
             return
         why.set_text("")
         q = upright_on_squares(met.H, grid)
         rect.set_data(*q.reshape(-1, 2).T)
         ratio, worst = squareness(q)
         photo_ratio, photo_worst = squareness(grid)
-        state.update(ratio=ratio, worst_angle=worst, error=None)
+        # H's own error, apart from the noise on single corners: H applied to the exact corners
+        exact = squareness(upright_on_squares(met.H, board_photo(v["pitch"], v["yaw"], 0.0)))
+        state.update(
+            ratio=ratio, worst_angle=worst, exact_worst_angle=exact.worst_angle, error=None
+        )
         readout.value = monospace(
             f"{len(L)} orthogonal pairs"
             + ("" if v["diagonals"] else " (all 6 rows x 9 columns)")
             + f", corner noise {v['noise']:.2f} px\n"
             f"photo:     side across / down {photo_ratio:.3f}, worst angle off 90 by {photo_worst:.1f}\u00b0\n"
-            f"rectified: side across / down {ratio:.3f}, worst angle off 90 by {worst:.1f}\u00b0"
+            f"rectified: side across / down {ratio:.3f}, worst angle off 90 by {worst:.1f}\u00b0\n"
+            f"  (the noisy corners: one square's angle moves with its corners' noise)\n"
+            f"H on the exact corners: across / down {exact.ratio:.4f}, worst angle off 90 by "
+            f"{exact.worst_angle:.2f}\u00b0\n  (the rectification's own error)"
         )
 
     controls = {

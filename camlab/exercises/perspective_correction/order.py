@@ -85,13 +85,19 @@ def _order_diagnosis(args, got, expected) -> str:
     for shift in (1, 2, 3):
         if np.allclose(g, np.roll(expected, shift, axis=0)):
             return "the cyclic order is right but it does not start at the top-left corner (smallest u + v)."
-    if np.allclose(g, _swapped_arctan2(corners)):
-        return (
-            "your corners go counter-clockwise on screen: the arguments of np.arctan2 are swapped; it takes "
-            "(y, x), so the angle around the centroid is np.arctan2(v - v_c, u - u_c), v first."
+    ccw = [s for s in range(4) if np.allclose(g, np.roll(expected[::-1], s, axis=0))]
+    if ccw:
+        # the usual slips all give the same answer on every input (arctan2(u, v) is arctan2(v, u)
+        # reflected; -(v - v_c) and a descending sort reverse the order), so name them all
+        start = (
+            "" if np.allclose(g[0], expected[0]) else " (and start at the top-left, smallest u + v)"
         )
-    if any(np.allclose(g, np.roll(expected[::-1], s, axis=0)) for s in range(4)):
-        return "your corners go counter-clockwise on screen; remember v points down, so sort by increasing angle."
+        return (
+            "your corners go counter-clockwise on screen. v points down, so clockwise on screen is "
+            f"increasing np.arctan2(v - v_c, u - u_c){start}. Each of these reverses it: a descending "
+            "sort, the arguments of np.arctan2 swapped (it takes (y, x), v first), v flipped to point "
+            "up (-(v - v_c)), or cv2.convexHull(..., clockwise=True), which means clockwise with y up."
+        )
     if np.allclose(g, expected[[0, 1, 3, 2]]):
         return (
             "your corners are in Z order (TL, TR, BL, BR, what sorting by v, then u, gives): it zig-zags "
@@ -151,7 +157,7 @@ register_exercise(
         wrong_variants=(
             (lambda c: np.roll(pp.order_corners(c), 1, axis=0), "does not start at the top-left"),
             (lambda c: pp.order_corners(c)[::-1], "counter-clockwise"),
-            (_swapped_arctan2, "arguments of np.arctan2 are swapped"),
+            (_swapped_arctan2, "the arguments of np.arctan2 swapped"),
             (
                 lambda c: np.array(
                     [np.flatnonzero(np.isclose(c, p).all(1))[0] for p in pp.order_corners(c)]

@@ -11,12 +11,14 @@ from ... import scenes
 from ...homography import estimate_homography
 from ...projective import map_points
 from .._answers import same_up_to_scale, shape_problem
-from .._core import Exercise, Mistake, first_mistake, register_exercise
+from .._core import Exercise, Mistake, register_exercise
 
 
 def _rect_cases():
     return [
-        (np.array([[10.0, 10.0], [110.0, 10.0], [110.0, 60.0], [10.0, 60.0]]), (101, 51)),
+        # offset by (10, 20), not equally: with equal offsets, photo corners read as (v, u) and a
+        # target written as (v, u) give the same H, and the check could not say which slip it was
+        (np.array([[10.0, 20.0], [110.0, 20.0], [110.0, 70.0], [10.0, 70.0]]), (101, 51)),
         (scenes.sample_photo("page").corners, (210, 297)),
         (scenes.sample_photo("facade").corners, (400, 300)),
     ]
@@ -69,6 +71,12 @@ _RECT_MISTAKES = (
         lambda s: s.fit(s.corners, s.target()[:, ::-1]),
         "your target corners are (row, column) = (v, u): a point is (u, v), so the top-right corner is "
         "(w - 1, 0), not (0, w - 1).",
+    ),
+    Mistake(
+        "both as (v, u)",
+        lambda s: s.fit(s.corners[:, ::-1], s.target()[:, ::-1]),
+        "both your photo corners and your target corners are (row, column) = (v, u): a point is "
+        "(u, v), column first, so corners[:, 0] is u and the top-right target is (w - 1, 0).",
     ),
     Mistake(
         "off by one",
@@ -125,6 +133,21 @@ _RECT_MISTAKES = (
         "your target goes counter-clockwise (TL, BL, BR, TR): pair TL, TR, BR, BL with (0, 0), "
         "(w - 1, 0), (w - 1, h - 1), (0, h - 1) in that order.",
     ),
+    Mistake(
+        "target starts elsewhere",
+        lambda s: next(
+            (
+                H
+                for k in (1, 2, 3)
+                if (H := s.fit(s.corners, s.target(np.roll(range(4), -k)))) is not None
+                and s.same(H)
+            ),
+            None,
+        ),
+        "your target corners go round the right way but start at the wrong corner: the photo's TL "
+        "goes to (0, 0), so the target list is (0, 0), (w - 1, 0), (w - 1, h - 1), (0, h - 1), in "
+        "that order.",
+    ),
 )
 """Ex 1's typical mistakes, each the H it gives, in the order the diagnosis tries them."""
 
@@ -169,9 +192,17 @@ def _rect_diagnosis(args, got, expected) -> str:
         fit=_fit_or_none,
         same=same,
     )
-    cause = first_mistake(_RECT_MISTAKES, context, g, lambda got_, wrong: same(wrong))
-    if cause:
-        return cause
+    causes = [
+        m.hint(context) if callable(m.hint) else m.hint
+        for m in _RECT_MISTAKES
+        if (wrong := m.answer(context)) is not None and same(wrong)
+    ]
+    if len(causes) == 1:
+        return causes[0]
+    if causes:  # several slips give this same H on this input: name them all, not the first
+        return "on this input these slips give the same H, so it is one of them: " + "; or ".join(
+            causes
+        )
     moved = map_points(g, corners)
     want = _rect_target(w, h)
     k = int(np.argmax(np.linalg.norm(moved - want, axis=1)))
@@ -258,6 +289,20 @@ register_exercise(
                 "Z order",
             ),
             (_sign_slip, "third row of H has the wrong sign"),
+            (
+                lambda c, size: estimate_homography(c, _rect_target(*size)[:, ::-1]),
+                "your target corners are",
+            ),
+            (
+                lambda c, size: estimate_homography(
+                    np.asarray(c)[:, ::-1], _rect_target(*size)[:, ::-1]
+                ),
+                "both your photo corners and your target corners",
+            ),
+            (
+                lambda c, size: estimate_homography(c, _rect_target(*size, order=(1, 2, 3, 0))),
+                "start at the wrong corner",
+            ),
             (
                 lambda c, size: estimate_homography(
                     c, [[0, 0], [0, size[1] - 1], np.subtract(size, 1), [size[0] - 1, 0]]
