@@ -46,7 +46,7 @@ def _ransac_figure() -> SimpleNamespace:
     view = FigureView(figsize=(9.6, 4.8))
     ax, ax_k = view.fig.subplots(1, 2, width_ratios=[1.35, 1])
     ax.set(
-        xlim=(-10, 440), ylim=(330, -10), aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)"
+        xlim=(-10, 440), ylim=(330, -40), aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)"
     )
     ax.set_title("each pair: a line from src to a dot at dst", fontsize=10, pad=3)
     arrows = view.animate(ax.add_collection(LineCollection([], lw=1.0)))
@@ -148,6 +148,7 @@ def _ransac_failed(art, state, src, dst, exc) -> None:
     # the pairs are still the data: drawn in one neutral grey, since there is no verdict
     art.arrows.set_segments(np.stack([src, dst], axis=1))
     art.arrows.set_color("0.8")
+    art.arrows.set_linewidths(1.0)
     art.heads.set_offsets(dst)
     art.heads.set_color("0.8")
     art.batches.set_visible(False)
@@ -174,7 +175,7 @@ def ransac_outliers() -> Demo:
     as parallax places real mismatches) go to :func:`camlab.homography.ransac_homography`
     with confidence p = :data:`CONFIDENCE` and at most :data:`MAX_SAMPLES` samples. Each
     pair's verdict is judged against the truth the demo knows, and the samples drawn are
-    set against k = log(1 - p) / log(1 - (1 - ε)^4), the number needed for the ε found.
+    set against k, the number needed for the ε found (H&Z section 4.7.1; exercise 3).
     Results are cached per setting, so revisiting one redraws without re-running RANSAC.
 
     Returns
@@ -222,11 +223,15 @@ def ransac_outliers() -> Demo:
         art.batches.set_visible(True)
         verdict = np.select([~out & r.inliers, out & r.inliers, ~out & ~r.inliers], [0, 1, 2], 3)
         colours = np.array([to_rgba(c) for _, c in _VERDICTS])[verdict]
+        colours[verdict == 3, 3] = (
+            0.45  # rejected outliers: light, thin and underneath, so the rest shows
+        )
         order = np.argsort(
             -verdict
         )  # rejected outliers first, so the interesting arrows sit on top
         art.arrows.set_segments(np.stack([src, dst], axis=1)[order])
         art.arrows.set_color(colours[order])
+        art.arrows.set_linewidths(np.where(verdict[order] == 3, 0.6, 1.0))
         art.heads.set_offsets(dst[order])
         art.heads.set_color(colours[order])
         bt, be = map_points(H, frame), map_points(r.H, frame)
