@@ -192,8 +192,9 @@ def test_ransac_demo_colours_verdicts_against_the_truth_and_clears_on_failure():
     d.set(outliers=0.2, threshold=10.0, seed=0)
     kept_in, kept_out, lost_in, rejected_out = d.state["verdicts"]
     assert kept_in + lost_in == 160 and kept_out + rejected_out == 40
-    arrows = d.figure.axes[0].collections[0]
-    assert len(arrows.get_segments()) == 200
+    rejected, arrows = d.figure.axes[0].collections[:2]  # rejected outliers drawn thin, underneath
+    assert len(rejected.get_segments()) == rejected_out and rejected.get_linewidth()[0] < 1.0
+    assert len(arrows.get_segments()) == 200 - rejected_out
     sample = d.state["sample"]  # the winning minimal sample, ringed on the figure
     assert len(set(sample.tolist())) == 4 and d.state["verdicts"] is not None
     d.set(outliers=0.8, threshold=0.5)  # nothing supports any hypothesis
@@ -203,7 +204,7 @@ def test_ransac_demo_colours_verdicts_against_the_truth_and_clears_on_failure():
         and "too few inliers" in d.state["error"]
     )
     # no stale verdict of the last success: the new pairs are drawn, all in one neutral grey
-    assert len(arrows.get_segments()) == 200
+    assert len(arrows.get_segments()) == 200 and len(rejected.get_segments()) == 0
     assert len({tuple(c) for c in arrows.get_colors()}) == 1
 
 

@@ -49,6 +49,8 @@ def _ransac_figure() -> SimpleNamespace:
         xlim=(-10, 440), ylim=(330, -40), aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)"
     )
     ax.set_title("each pair: a line from src to a dot at dst", fontsize=10, pad=3)
+    # rejected outliers thin and underneath, so the pairs with a verdict worth reading show through
+    rejected = view.animate(ax.add_collection(LineCollection([], lw=0.5, color=palette.GREY)))
     arrows = view.animate(ax.add_collection(LineCollection([], lw=1.0)))
     heads = view.animate(ax.scatter(np.zeros(0), np.zeros(0), s=6))
     box_true = view.animate(
@@ -107,6 +109,7 @@ def _ransac_figure() -> SimpleNamespace:
     return SimpleNamespace(
         view=view,
         arrows=arrows,
+        rejected=rejected,
         heads=heads,
         box_true=box_true,
         box_est=box_est,
@@ -148,7 +151,7 @@ def _ransac_failed(art, state, src, dst, exc) -> None:
     # the pairs are still the data: drawn in one neutral grey, since there is no verdict
     art.arrows.set_segments(np.stack([src, dst], axis=1))
     art.arrows.set_color("0.8")
-    art.arrows.set_linewidths(1.0)
+    art.rejected.set_segments([])
     art.heads.set_offsets(dst)
     art.heads.set_color("0.8")
     art.batches.set_visible(False)
@@ -223,15 +226,13 @@ def ransac_outliers() -> Demo:
         art.batches.set_visible(True)
         verdict = np.select([~out & r.inliers, out & r.inliers, ~out & ~r.inliers], [0, 1, 2], 3)
         colours = np.array([to_rgba(c) for _, c in _VERDICTS])[verdict]
-        colours[verdict == 3, 3] = (
-            0.45  # rejected outliers: light, thin and underneath, so the rest shows
-        )
         order = np.argsort(
             -verdict
         )  # rejected outliers first, so the interesting arrows sit on top
-        art.arrows.set_segments(np.stack([src, dst], axis=1)[order])
-        art.arrows.set_color(colours[order])
-        art.arrows.set_linewidths(np.where(verdict[order] == 3, 0.6, 1.0))
+        segments, kept = np.stack([src, dst], axis=1)[order], verdict[order] != 3
+        art.rejected.set_segments(segments[~kept])  # thin, underneath
+        art.arrows.set_segments(segments[kept])
+        art.arrows.set_color(colours[order][kept])
         art.heads.set_offsets(dst[order])
         art.heads.set_color(colours[order])
         bt, be = map_points(H, frame), map_points(r.H, frame)

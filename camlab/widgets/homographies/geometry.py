@@ -353,7 +353,7 @@ def _across(points) -> np.ndarray:
 def _place_names(labels, points, corners, out_hw) -> None:
     """Put the names A'..D' beside their points, clear of the corner markers and of each other.
 
-    A name sits across the line A'D' from its point (on the upper side, centred 11 points off, clear of
+    A name sits across the line A'D' from its point (on the upper side, centred 13 points off, clear of
     the line's halo), or on the side away from a corner marker within 20 px. It is hidden where its text would run off the canvas, where its point lies under a marker
     (within 4 px of a corner), or within 14 px of a name already shown.
 
@@ -374,7 +374,7 @@ def _place_names(labels, points, corners, out_hw) -> None:
         label.xy = tuple(p)
         gap = np.linalg.norm(corners - p, axis=1) if np.isfinite(p).all() else np.full(4, np.inf)
         away = p - corners[np.argmin(gap)]
-        offset = tuple(11 * across)
+        offset = tuple(13 * across)
         if gap.min() < 20:  # the side away from the nearest marker (v points down, offsets up)
             d = away / max(np.linalg.norm(away), 1e-9) * 13
             offset = (d[0], -d[1])
@@ -569,13 +569,13 @@ def _drag_axes(ax_s, ax_t, pic, out_hw) -> None:
 def _drag_line_names(ax_s, line_pts) -> None:
     """The points A..D on the source picture's diagonal, with their names."""
     ax_s.plot(*line_pts.T, "o-", color=palette.BROWN, ms=5, lw=1.5, path_effects=palette.halo(1.5))
-    # centred across the line, below it, clear of its halo (the line runs down to the right)
-    below = -11 * _across(line_pts)
+    # centred across the line, clear of its halo: below it, but D above it (below D is the frame)
+    across = 13 * _across(line_pts)
     for name, p in zip("ABCD", line_pts, strict=True):
         ax_s.annotate(
             name,
             p,
-            xytext=tuple(below),
+            xytext=tuple(across if name == "D" else -across),
             textcoords="offset points",
             ha="center",
             va="center",
