@@ -350,12 +350,21 @@ def _across(points) -> np.ndarray:
     return perp if perp[1] > 0 or (perp[1] == 0 and perp[0] > 0) else -perp
 
 
+def _off_canvas(points, out_hw) -> str:
+    """A readout line naming the mapped points A'..D' that fall off the canvas ("" if none)."""
+    with np.errstate(invalid="ignore"):
+        seen = np.all((points >= -0.5) & (points <= [out_hw[1] - 0.5, out_hw[0] - 0.5]), axis=1)
+    off = [f"{name}'" for name, inside in zip("ABCD", seen, strict=True) if not inside]
+    return f"\n{', '.join(off)} off the canvas" if off else ""
+
+
 def _place_names(labels, points, corners, out_hw) -> None:
     """Put the names A'..D' beside their points, clear of the corner markers and of each other.
 
-    A name sits across the line A'D' from its point (on the upper side, centred 13 points off, clear of
-    the line's halo), or on the side away from a corner marker within 20 px. It is hidden where its text would run off the canvas, where its point lies under a marker
-    (within 4 px of a corner), or within 14 px of a name already shown.
+    A name sits across the line A'D' from its point (on the upper side, centred 13 points off, clear
+    of the line's halo), or on the side away from a corner marker within 20 px. It is hidden where
+    its text would run off the canvas, where its point lies under a marker (within 4 px of a
+    corner), or within 14 px of a name already shown.
 
     Parameters
     ----------
@@ -688,7 +697,7 @@ def drag_homography() -> Demo:
             f"{name:15s} {a:>7s}  {b:>7s}  {verdict}" for name, a, b, verdict in rows
         )
         art.numbers.set_text(table)
-        readout.value = monospace(table + "\nH =\n" + _matrix_text(H))
+        readout.value = monospace(table + _off_canvas(m, out_hw) + "\nH =\n" + _matrix_text(H))
 
     demo = build_demo(
         "drag_homography",
