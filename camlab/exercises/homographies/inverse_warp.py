@@ -144,6 +144,13 @@ _WARP_MISTAKES = (
         "pixel off on average. The nearest pixel centre is the rounded one: np.rint(u), np.rint(v).",
     ),
     Mistake(
+        "int(u + 0.5)",
+        lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, rounding=lambda x: np.trunc(x + 0.5)),
+        "you rounded with int(u + 0.5), which truncates toward zero: for u = -0.7 it gives 0, not -1, so "
+        "points just left of or above the picture read its first column or row. Round with np.rint(u) "
+        "or np.floor(u + 0.5).",
+    ),
+    Mistake(
         "rounded up",
         lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, rounding=np.ceil),
         "you rounded the source point up (np.ceil): the nearest pixel centre is the *rounded* one, np.rint.",
@@ -275,6 +282,12 @@ register_exercise(
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, divide=False), "divide by w"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, rounding=np.floor), "truncated"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, shift=0.5), "half-pixel offset"),
+            (
+                lambda im, H, s: _warp(
+                    im, np.linalg.inv(H), s, rounding=lambda x: np.trunc(x + 0.5)
+                ),
+                "truncates toward zero",
+            ),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, early=True), "before rounding"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, clamp=True), "clamped"),
             (lambda im, H, s: _bilinear(im, H, s), "bilinearly"),
