@@ -1,7 +1,7 @@
 """Exercises for lesson 07, homographies.
 
 Applying a homography (:mod:`.apply`), the normalised DLT (:mod:`.dlt`), the number of RANSAC
-samples (:mod:`.ransac`) and mapping a line (:mod:`.lines`).
+samples (:mod:`.ransac`) and the inverse warp (:mod:`.inverse_warp`).
 """
 
 from __future__ import annotations
@@ -11,8 +11,8 @@ from __future__ import annotations
 from . import dlt
 from . import apply
 from . import ransac
-from . import lines
+from . import inverse_warp
 
 # isort: on
 
-__all__ = ["apply", "dlt", "lines", "ransac"]
+__all__ = ["apply", "dlt", "inverse_warp", "ransac"]

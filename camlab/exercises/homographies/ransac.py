@@ -15,8 +15,17 @@ from .._numbers import not_one_number, same_number
 def _ransac_samples_cases():
     # (confidence p, inlier ratio w); each k has a fraction part that tells ceil from round and floor,
     # and no w is 0.5, where w^4 and (1 - w)^4 are one number and two slips one answer. The last
-    # tells log(p) (13) from swapped p and w (1), which give k = 1 on all the others
-    return [(0.99, 0.6), (0.95, 0.8), (0.995, 0.3), (0.999, 0.9), (0.9, 0.3)]
+    # tells log(p) (13) from swapped p and w (1), which give k = 1 on all the others. The last has a
+    # whole k: w^4 = 81/256 and 1 - p = (175/256)^2, so k = 2 exactly in every form of the formula
+    # (log, log1p, log10), where int(k) + 1 asks for 3
+    return [
+        (0.99, 0.6),
+        (0.95, 0.8),
+        (0.995, 0.3),
+        (0.999, 0.9),
+        (0.9, 0.3),
+        (0.5326995849609375, 0.75),
+    ]
 
 
 def _samples_needed(p, w):
@@ -64,6 +73,20 @@ _SAMPLES_MISTAKES = (
         lambda s: _is_any(s.g, {np.round(s.exact), np.floor(s.exact)}) and s.g != np.ceil(s.exact),
         "you rounded down (int() or np.floor) or to the nearest whole number: one sample fewer than k "
         "leaves the chance of a clean sample below p. Round up: int(np.ceil(k)).",
+    ),
+    Mistake(
+        "int(k) + 1",
+        # also true for a right answer on a fractional k: so the slip survives narrowing by those inputs
+        lambda s: s.g == np.floor(s.exact) + 1,
+        "you returned int(k) + 1 (or np.floor(k) + 1): that rounds up only when k has a fraction. Here "
+        "k is a whole number, so it asks for one sample more than the fewest that reach p. "
+        "Round up with int(np.ceil(k)).",
+    ),
+    Mistake(
+        "ceil(k) + 1",
+        lambda s: s.g == np.ceil(s.exact) + 1,
+        "you returned one sample more than int(np.ceil(k)) (a + 1 after rounding up, or k counted from "
+        "0): k samples already reach the confidence p, since (1 - w^4)^k <= 1 - p. Return int(np.ceil(k)).",
     ),
     Mistake(
         "w instead of w^4",
@@ -203,6 +226,8 @@ register_exercise(
         success_note=_samples_note,
         wrong_variants=(
             (lambda p, w: np.log(1 - p) / np.log(1 - w**4), "a fraction of a sample"),
+            (lambda p, w: int(np.log(1 - p) / np.log(1 - w**4)) + 1, "int(k) + 1"),
+            (lambda p, w: int(np.ceil(np.log(1 - p) / np.log(1 - w**4))) + 1, "one sample more"),
             (lambda p, w: round(np.log(1 - p) / np.log(1 - w**4)), "rounded down"),
             (lambda p, w: int(np.log(1 - p) / np.log(1 - w**4)), "rounded down"),
             (lambda p, w: int(np.ceil(np.log(1 - p) / np.log(1 - w))), "probability w^4"),

@@ -46,9 +46,11 @@ def _ransac_figure() -> SimpleNamespace:
     view = FigureView(figsize=(9.6, 4.8))
     ax, ax_k = view.fig.subplots(1, 2, width_ratios=[1.35, 1])
     ax.set(
-        xlim=(-10, 440), ylim=(330, -10), aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)"
+        xlim=(-10, 440), ylim=(330, -40), aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)"
     )
     ax.set_title("each pair: a line from src to a dot at dst", fontsize=10, pad=3)
+    # rejected outliers thin and underneath, so the pairs with a verdict worth reading show through
+    rejected = view.animate(ax.add_collection(LineCollection([], lw=0.5, color=palette.GREY)))
     arrows = view.animate(ax.add_collection(LineCollection([], lw=1.0)))
     heads = view.animate(ax.scatter(np.zeros(0), np.zeros(0), s=6))
     box_true = view.animate(
@@ -66,7 +68,7 @@ def _ransac_figure() -> SimpleNamespace:
     failure = warning_note(view, ax_k, 0.03, 0.66, "left", "top")
     eps = np.linspace(0.0, 0.97, 300)
     k_curve = [required_iterations(1.0 - e, CONFIDENCE, 4) for e in eps]
-    ax_k.semilogy(eps, k_curve, color="0.5", label="k = log(1-p) / log(1-(1-ε)⁴), p = 0.995")
+    ax_k.semilogy(eps, k_curve, color="0.5", label="k: samples needed for p = 0.995 (exercise 3)")
     ax_k.axhline(MAX_SAMPLES, color="0.3", ls=":", lw=1, label=f"the cap: {MAX_SAMPLES} samples")
     needed = view.animate(
         ax_k.plot(
@@ -107,6 +109,7 @@ def _ransac_figure() -> SimpleNamespace:
     return SimpleNamespace(
         view=view,
         arrows=arrows,
+        rejected=rejected,
         heads=heads,
         box_true=box_true,
         box_est=box_est,
@@ -148,6 +151,7 @@ def _ransac_failed(art, state, src, dst, exc) -> None:
     # the pairs are still the data: drawn in one neutral grey, since there is no verdict
     art.arrows.set_segments(np.stack([src, dst], axis=1))
     art.arrows.set_color("0.8")
+    art.rejected.set_segments([])
     art.heads.set_offsets(dst)
     art.heads.set_color("0.8")
     art.batches.set_visible(False)
@@ -174,7 +178,7 @@ def ransac_outliers() -> Demo:
     as parallax places real mismatches) go to :func:`camlab.homography.ransac_homography`
     with confidence p = :data:`CONFIDENCE` and at most :data:`MAX_SAMPLES` samples. Each
     pair's verdict is judged against the truth the demo knows, and the samples drawn are
-    set against k = log(1 - p) / log(1 - (1 - ε)^4), the number needed for the ε found.
+    set against k, the number needed for the ε found (H&Z section 4.7.1; exercise 3).
     Results are cached per setting, so revisiting one redraws without re-running RANSAC.
 
     Returns
@@ -225,8 +229,10 @@ def ransac_outliers() -> Demo:
         order = np.argsort(
             -verdict
         )  # rejected outliers first, so the interesting arrows sit on top
-        art.arrows.set_segments(np.stack([src, dst], axis=1)[order])
-        art.arrows.set_color(colours[order])
+        segments, kept = np.stack([src, dst], axis=1)[order], verdict[order] != 3
+        art.rejected.set_segments(segments[~kept])  # thin, underneath
+        art.arrows.set_segments(segments[kept])
+        art.arrows.set_color(colours[order][kept])
         art.heads.set_offsets(dst[order])
         art.heads.set_color(colours[order])
         bt, be = map_points(H, frame), map_points(r.H, frame)
@@ -261,7 +267,7 @@ def ransac_outliers() -> Demo:
             + "\n".join(
                 f"{name:25s} {c:4d}" for (name, _), c in zip(_VERDICTS, counts, strict=True)
             )
-            + f"\nworst corner error: {err:.1f} px"
+            + f"\nframe corners, RANSAC H vs true H: worst {err:.1f} px apart"
         )
 
     controls = {

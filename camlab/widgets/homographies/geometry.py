@@ -216,7 +216,7 @@ def transformation_hierarchy() -> Demo:
     shown is mapped by :math:`H = C H_g P`, where P moves the 160 x 120 picture's centre to
     the origin and C the origin to the centre of the 480 x 360 canvas. The image of the
     line at infinity (the vanishing line, H^-T l∞) is drawn when H moves it into view; the
-    group's dof and what it keeps are printed beside the picture, and a red note says when
+    group's dof and what it keeps are printed beside the picture, and a black note says when
     the picture is torn (the line H sends to infinity crosses it).
 
     Returns
@@ -337,12 +337,34 @@ def _matrix_text(M: np.ndarray) -> str:
     return np.array2string(np.where(np.round(M, 4) == 0, 0.0, M), precision=4, suppress_small=True)
 
 
+def _across(points) -> np.ndarray:
+    """The unit offset (points, y up) across the line through ``points``, on its upper side (up for none)."""
+    finite = points[np.isfinite(points).all(axis=1)]
+    if len(finite) < 2:
+        return np.array([0.0, 1.0])
+    d = finite[-1] - finite[0]
+    e = np.array([d[0], -d[1]]) / max(
+        np.linalg.norm(d), 1e-9
+    )  # on screen: v points down, offsets up
+    perp = np.array([-e[1], e[0]])
+    return perp if perp[1] > 0 or (perp[1] == 0 and perp[0] > 0) else -perp
+
+
+def _off_canvas(points, out_hw) -> str:
+    """A readout line naming the mapped points A'..D' that fall off the canvas ("" if none)."""
+    with np.errstate(invalid="ignore"):
+        seen = np.all((points >= -0.5) & (points <= [out_hw[1] - 0.5, out_hw[0] - 0.5]), axis=1)
+    off = [f"{name}'" for name, inside in zip("ABCD", seen, strict=True) if not inside]
+    return f"\n{', '.join(off)} off the canvas" if off else ""
+
+
 def _place_names(labels, points, corners, out_hw) -> None:
     """Put the names A'..D' beside their points, clear of the corner markers and of each other.
 
-    A name sits up and to the right of its point, or on the side away from a corner marker within
-    20 px. It is hidden where its text would run off the canvas, where its point lies under a marker
-    (within 4 px of a corner), or within 14 px of a name already shown.
+    A name sits across the line A'D' from its point (on the upper side, centred 13 points off, clear
+    of the line's halo), or on the side away from a corner marker within 20 px. It is hidden where
+    its text would run off the canvas, where its point lies under a marker (within 4 px of a
+    corner), or within 14 px of a name already shown.
 
     Parameters
     ----------
@@ -356,19 +378,20 @@ def _place_names(labels, points, corners, out_hw) -> None:
         The canvas (height, width) in pixels.
     """
     shown = []
+    across = _across(points)
     for label, p in zip(labels, points, strict=True):
         label.xy = tuple(p)
         gap = np.linalg.norm(corners - p, axis=1) if np.isfinite(p).all() else np.full(4, np.inf)
         away = p - corners[np.argmin(gap)]
-        offset = (4.0, 6.0)
+        offset = tuple(13 * across)
         if gap.min() < 20:  # the side away from the nearest marker (v points down, offsets up)
-            d = away / max(np.linalg.norm(away), 1e-9) * 12
-            offset = (d[0] - (12 if d[0] < 0 else 0), -d[1] - (8 if d[1] > 0 else 0))
+            d = away / max(np.linalg.norm(away), 1e-9) * 13
+            offset = (d[0], -d[1])
         label.xyann = offset
         visible = bool(
             np.isfinite(p).all()
-            and 0 <= p[0] <= out_hw[1] - 22
-            and 14 <= p[1] <= out_hw[0]
+            and 12 <= p[0] <= out_hw[1] - 12
+            and 12 <= p[1] <= out_hw[0] - 4
             and gap.min() >= 4
             and all(np.linalg.norm(p - q) >= 14 for q in shown)
         )
@@ -390,9 +413,11 @@ def drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, angle0, angle1) 
     cr0, cr1 : float
         The cross-ratio of the four points on the line, in the source and in the image.
     length0, length1 : float
-        |AD| in pixels, in the source and in the image.
+        |AD| in pixels, in the source and in the image (inf where the image of AD runs
+        through infinity, shown as ∞).
     ratio0, ratio1 : float
-        |AB| / |CD|, in the source and in the image.
+        |AB| / |CD|, in the source and in the image (inf or 0 where one of the two segments runs
+        through infinity, NaN where both do).
     angle0, angle1 : float
         The top-left corner's angle in degrees, in the source and in the image.
 
@@ -405,18 +430,21 @@ def drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, angle0, angle1) 
     def verdict(same: bool) -> str:
         return "kept" if same else "changes"
 
+    def shown(x: float, spec: str) -> str:  # a segment through infinity has no finite length
+        return f"{x:{spec}}" if np.isfinite(x) else ("∞" if x == np.inf else "∞ / ∞")
+
     return [
         ("cross-ratio", f"{cr0:.4f}", f"{cr1:.4f}", verdict(np.isclose(cr0, cr1, rtol=1e-3))),
         (
             "|AD| (px)",
             f"{length0:.1f}",
-            f"{length1:.1f}",
+            shown(length1, ".1f"),
             verdict(np.isclose(length0, length1, rtol=1e-3)),
         ),
         (
             "|AB| / |CD|",
             f"{ratio0:.4f}",
-            f"{ratio1:.4f}",
+            shown(ratio1, ".4f"),
             verdict(np.isclose(ratio0, ratio1, rtol=1e-3)),
         ),
         ("top-left angle", f"{angle0:.1f}°", f"{angle1:.1f}°", verdict(abs(angle0 - angle1) < 0.1)),
@@ -454,6 +482,8 @@ def _drag_artists(view, ax_s, ax_t, out_hw) -> SimpleNamespace:
                 (np.nan, np.nan),
                 xytext=(4, 6),
                 textcoords="offset points",
+                ha="center",
+                va="center",
                 fontsize=9,
                 color="k",
                 path_effects=palette.halo(),
@@ -499,15 +529,24 @@ def _drag_artists(view, ax_s, ax_t, out_hw) -> SimpleNamespace:
     )
 
 
-def _drag_measures(line_pts, m, corners) -> tuple:
+def _drag_measures(line_pts, m, corners, H) -> tuple:
     """What the drag demo's table compares: cross-ratio, |AD|, |AB| / |CD| and the top-left angle.
 
-    Returns the measures (for the demo's state) and the table's rows (:func:`drag_table_rows`).
+    A segment whose ends H sends to opposite sides of the line at infinity (w of opposite signs)
+    maps through infinity: its image is infinitely long, not the finite segment between the two
+    mapped ends. Returns the measures (for the demo's state) and the table's rows
+    (:func:`drag_table_rows`).
     """
+    w = np.c_[line_pts, np.ones(4)] @ H[2]
+
+    def image_length(i: int, j: int) -> float:
+        return float(np.linalg.norm(m[j] - m[i])) if w[i] * w[j] > 0 else np.inf
+
     cr0, cr1 = cross_ratio(line_pts), cross_ratio(m)
-    length0, length1 = (float(np.linalg.norm(p[3] - p[0])) for p in (line_pts, m))  # |AD|
+    length0, length1 = float(np.linalg.norm(line_pts[3] - line_pts[0])), image_length(0, 3)  # |AD|
     ratio0 = np.linalg.norm(line_pts[1] - line_pts[0]) / np.linalg.norm(line_pts[3] - line_pts[2])
-    ratio1 = np.linalg.norm(m[1] - m[0]) / np.linalg.norm(m[3] - m[2])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio1 = np.divide(image_length(0, 1), image_length(2, 3))
     e1, e2 = corners[1] - corners[0], corners[3] - corners[0]
     angle = np.degrees(np.arccos(np.clip(e1 @ e2 / np.linalg.norm(e1) / np.linalg.norm(e2), -1, 1)))
     rows = drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, 90.0, angle)
@@ -539,14 +578,16 @@ def _drag_axes(ax_s, ax_t, pic, out_hw) -> None:
 def _drag_line_names(ax_s, line_pts) -> None:
     """The points A..D on the source picture's diagonal, with their names."""
     ax_s.plot(*line_pts.T, "o-", color=palette.BROWN, ms=5, lw=1.5, path_effects=palette.halo(1.5))
-    # across the line, clear of its halo; A and D sit near the frame, D's label inside the picture
-    offsets = ((7, -3), (6, 8), (-12, -14), (-18, -2))
-    for name, p, off in zip("ABCD", line_pts, offsets, strict=True):
+    # centred across the line, clear of its halo: below it, but D above it (below D is the frame)
+    across = 13 * _across(line_pts)
+    for name, p in zip("ABCD", line_pts, strict=True):
         ax_s.annotate(
             name,
             p,
-            xytext=off,
+            xytext=tuple(across if name == "D" else -across),
             textcoords="offset points",
+            ha="center",
+            va="center",
             fontsize=9,
             color="k",
             path_effects=palette.halo(),
@@ -575,7 +616,7 @@ def drag_homography() -> Demo:
     picture and their images A', B', C', D' are marked; under the source picture, the
     cross-ratio, the ratio of lengths |AB| / |CD| and the top-left corner's angle are
     printed for the source and the image. When the source line that H sends to infinity
-    crosses the picture it is drawn (purple, dashed) and a red note says the picture is
+    crosses the picture it is drawn (purple, dashed) and a black note says the picture is
     torn. Without a mouse, pick a corner and move it with its two sliders (or type the
     corners).
 
@@ -642,7 +683,7 @@ def drag_homography() -> Demo:
         art.quad.set_data(outline[:, 0], outline[:, 1])
         art.handles.set_data(corners[:, 0], corners[:, 1])
         art.chosen.set_data(corners[v["corner"], :1], corners[v["corner"], 1:])
-        measures, rows = _drag_measures(line_pts, m, corners)
+        measures, rows = _drag_measures(line_pts, m, corners, H)
         state.update(
             H=H,
             error=None,
@@ -656,7 +697,7 @@ def drag_homography() -> Demo:
             f"{name:15s} {a:>7s}  {b:>7s}  {verdict}" for name, a, b, verdict in rows
         )
         art.numbers.set_text(table)
-        readout.value = monospace(table + "\nH =\n" + _matrix_text(H))
+        readout.value = monospace(table + _off_canvas(m, out_hw) + "\nH =\n" + _matrix_text(H))
 
     demo = build_demo(
         "drag_homography",

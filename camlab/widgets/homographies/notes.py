@@ -1,11 +1,10 @@
-"""The red note the lesson-07 demos show beside a torn or failed picture."""
+"""The note the lesson-07 demos show beside a torn or failed picture (black in a black box: red means a verdict)."""
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from typing import Any
 
-from ...plotting import palette
 from .._base import FigureView
 
 
@@ -17,7 +16,7 @@ def warning_note(
     ha: str = "left",
     va: str = "bottom",
 ) -> Callable[[str], None]:
-    """An animated red note in a white box in ``ax``, hidden until there is something to say.
+    """An animated black note in a black-edged white box in ``ax``, hidden until there is something to say.
 
     Parameters
     ----------
@@ -45,8 +44,8 @@ def warning_note(
             ha=ha,
             va=va,
             fontsize=8,
-            color=palette.TAB_RED,
-            bbox=dict(fc="white", ec=palette.TAB_RED, alpha=0.9),
+            color="k",
+            bbox=dict(fc="white", ec="k", lw=1.2, alpha=0.9),
             visible=False,
         )
     )

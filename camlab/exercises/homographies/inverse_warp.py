@@ -1,0 +1,302 @@
+"""Exercise 4 of lesson 07: warping an image by inverse mapping, nearest neighbour (`warp_nearest`)."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+
+from .._answers import shape_problem, type_problem
+from .._core import Exercise, Mistake, first_mistake, register_exercise
+
+_MISMATCH_ALLOWED = 0.002
+"""The fraction of output pixels that may differ: only sample points within float rounding of a tie
+between two pixels (u = k + 0.5), where np.rint, floor(u + 0.5) and cv2 may round either way."""
+
+
+def _images():
+    rng = np.random.default_rng(7)
+    return [rng.integers(10, 250, shape).astype(float) for shape in ((24, 32), (30, 40), (20, 36))]
+
+
+def _warp_cases():
+    a, b, c = _images()
+    cs, sn = 1.6 * np.cos(0.35), 1.6 * np.sin(0.35)
+    similarity = np.array([[cs, -sn, 12.0], [sn, cs, -4.0], [0.0, 0.0, 1.0]])
+    tilt = 2.0 * np.array([[0.9, 0.15, 8.0], [-0.1, 1.1, 5.0], [1.2e-3, 2.5e-3, 1.0]])  # h33 = 2
+    shrink = np.array([[0.7, 0.12, 3.3], [-0.1, 0.72, 6.1], [0.0, 0.0, 1.0]])
+    # each output differs from its image in shape and has height != width: a swapped shape shows
+    return [(a, similarity, (50, 64)), (b, tilt, (56, 48)), (c, shrink, (30, 34))]
+
+
+def _warp(
+    image, M, out_shape, *, rounding=np.rint, shift=0.0, divide=True, early=False, clamp=False
+):
+    """Nearest-neighbour sampling of ``image`` at M (u', v', 1) for every output pixel, with slips as options."""
+    h, w = np.shape(image)[:2]
+    v, u = np.mgrid[0 : out_shape[0], 0 : out_shape[1]]
+    X = np.stack([u + shift, v + shift, np.ones_like(u)], axis=-1) @ np.asarray(M, dtype=float).T
+    with np.errstate(divide="ignore", invalid="ignore"):
+        su, sv = (
+            (X[..., 0] / X[..., 2], X[..., 1] / X[..., 2]) if divide else (X[..., 0], X[..., 1])
+        )
+    iu, iv = rounding(su), rounding(sv)
+    inside = (
+        (su >= 0) & (su <= w - 1) & (sv >= 0) & (sv <= h - 1)
+        if early
+        else (iu >= 0) & (iu <= w - 1) & (iv >= 0) & (iv <= h - 1)
+    )
+    if clamp:
+        inside = np.isfinite(iu) & np.isfinite(iv)
+    iu = np.clip(np.nan_to_num(iu), 0, w - 1).astype(int)
+    iv = np.clip(np.nan_to_num(iv), 0, h - 1).astype(int)
+    return np.where(inside, np.asarray(image, dtype=float)[iv, iu], 0.0)
+
+
+def _reference(image, H, out_shape):
+    """Inverse mapping: each output pixel reads the source pixel nearest to H^-1 (u', v', 1)."""
+    return _warp(image, np.linalg.inv(np.asarray(H, dtype=float)), out_shape)
+
+
+def _bilinear(image, H, out_shape):
+    """The same warp with bilinear interpolation (cv2.INTER_LINEAR's sample points, no fixed point)."""
+    img = np.asarray(image, dtype=float)
+    h, w = img.shape
+    v, u = np.mgrid[0 : out_shape[0], 0 : out_shape[1]]
+    X = np.stack([u, v, np.ones_like(u)], axis=-1) @ np.linalg.inv(H).T
+    su, sv = X[..., 0] / X[..., 2], X[..., 1] / X[..., 2]
+    u0, v0 = np.floor(su).astype(int), np.floor(sv).astype(int)
+    fu, fv = su - u0, sv - v0
+    padded = np.pad(img, 1)
+    out = np.zeros(su.shape)
+    for du, dv, weight in (
+        (0, 0, (1 - fu) * (1 - fv)),
+        (1, 0, fu * (1 - fv)),
+        (0, 1, (1 - fu) * fv),
+        (1, 1, fu * fv),
+    ):
+        cu, cv = np.clip(u0 + du + 1, 0, w + 1), np.clip(v0 + dv + 1, 0, h + 1)
+        out += weight * padded[cv, cu]
+    return out
+
+
+def _forward(image, H, out_shape):
+    """Forward mapping: push each source pixel to the output pixel nearest to H (u, v, 1)."""
+    h, w = np.shape(image)
+    v, u = np.mgrid[0:h, 0:w]
+    X = np.stack([u, v, np.ones_like(u)], axis=-1) @ np.asarray(H, dtype=float).T
+    iu, iv = np.rint(X[..., 0] / X[..., 2]).astype(int), np.rint(X[..., 1] / X[..., 2]).astype(int)
+    keep = (iu >= 0) & (iu < out_shape[1]) & (iv >= 0) & (iv < out_shape[0])
+    out = np.zeros(out_shape)
+    out[iv[keep], iu[keep]] = np.asarray(image, dtype=float)[v[keep], u[keep]]
+    return out
+
+
+def _indexed_image_u_v(image, H, out_shape):
+    """The slip image[u, v] (column first), with the range test of image[v, u]: an IndexError."""
+    Hinv = np.linalg.inv(H)
+    out = np.zeros(out_shape)
+    for v_out in range(out_shape[0]):
+        for u_out in range(out_shape[1]):
+            x, y, w = Hinv @ [u_out, v_out, 1.0]
+            u, v = int(np.rint(x / w)), int(np.rint(y / w))
+            if 0 <= u < image.shape[1] and 0 <= v < image.shape[0]:
+                out[v_out, u_out] = image[u, v]
+    return out
+
+
+def _same_picture(got, expected) -> bool:
+    """Same shape, and all but :data:`_MISMATCH_ALLOWED` of the pixels equal (within float32 rounding)."""
+    try:
+        g = np.asarray(got, dtype=float)
+    except (TypeError, ValueError):
+        return False
+    if g.shape != np.shape(expected):
+        return False
+    return bool(np.mean(~np.isclose(g, expected, rtol=1e-5, atol=1e-3)) <= _MISMATCH_ALLOWED)
+
+
+_PULL = "each output pixel (u', v') reads image[v, u] at the nearest pixel to H^-1 (u', v', 1), divided by w"
+
+_WARP_MISTAKES = (
+    Mistake(
+        "H for H^-1",
+        lambda c: _warp(c.image, c.H, c.shape),
+        "you sampled the source at H (u', v', 1): that pushes the *output* pixel forward. Inverse mapping "
+        "pulls from where the output pixel came from, H^-1 (u', v', 1): Hinv = np.linalg.inv(H).",
+    ),
+    Mistake(
+        "H^T",
+        lambda c: _warp(c.image, np.linalg.inv(c.H).T, c.shape),
+        "you used H^-1 transposed: with pixels as rows, multiply by Hinv.T (X @ Hinv.T), or as columns "
+        "by Hinv itself (Hinv @ x), not both transposes at once.",
+    ),
+    Mistake(
+        "no division by w",
+        lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, divide=False),
+        "you did not divide by w, the third coordinate of H^-1 (u', v', 1): the source point is (x/w, y/w). "
+        "H^-1 is not scaled to h33 = 1 here (and has a projective row in test 2), so w is not 1.",
+    ),
+    Mistake(
+        "truncated",
+        lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, rounding=np.floor),
+        "you truncated the source point (int() or np.floor): that takes the pixel to its upper left, half a "
+        "pixel off on average. The nearest pixel centre is the rounded one: np.rint(u), np.rint(v).",
+    ),
+    Mistake(
+        "int(u + 0.5)",
+        lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, rounding=lambda x: np.trunc(x + 0.5)),
+        "you rounded with int(u + 0.5), which truncates toward zero: for u = -0.7 it gives 0, not -1, so "
+        "points just left of or above the picture read its first column or row. Round with np.rint(u) "
+        "or np.floor(u + 0.5).",
+    ),
+    Mistake(
+        "rounded up",
+        lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, rounding=np.ceil),
+        "you rounded the source point up (np.ceil): the nearest pixel centre is the *rounded* one, np.rint.",
+    ),
+    Mistake(
+        "half-pixel offset",
+        lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, shift=0.5),
+        "you mapped (u' + 0.5, v' + 0.5): a half-pixel offset. The course puts pixel centres at integers, so "
+        "output pixel (u', v') is the point (u', v') itself.",
+    ),
+    Mistake(
+        "tested before rounding",
+        lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, early=True),
+        "you tested 0 <= u <= w - 1 before rounding, so source points just outside the pixel centres, such "
+        "as u = -0.3, read nothing. Pixel 0 covers -0.5 <= u < 0.5 (extents of ±0.5): round first, then "
+        "test the rounded index, 0 <= iu < width.",
+    ),
+    Mistake(
+        "clamped",
+        lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, clamp=True),
+        "you clamped the index to the picture (np.clip), so output pixels whose source lies outside the "
+        "picture repeat its border pixels. They get 0: keep only 0 <= iu < width and 0 <= iv < height.",
+    ),
+    Mistake(
+        "bilinear",
+        lambda c: _bilinear(c.image, c.H, c.shape),
+        "you interpolated bilinearly: a fine warp, but the prompt asks for nearest neighbour, one source "
+        "pixel per output pixel: image[int(np.rint(v)), int(np.rint(u))].",
+    ),
+)
+"""The slips of an inverse nearest-neighbour warp, in the order they are tested."""
+
+
+def _warp_diagnosis(args, got, expected) -> str:
+    image, H, out_shape = args
+    problem = shape_problem(got, expected)
+    if problem:
+        g_shape = (
+            np.shape(np.asarray(got, dtype=float)) if not type_problem(got, expected) else None
+        )
+        if g_shape == tuple(out_shape)[::-1]:
+            return (
+                f"your output is {g_shape}, (width, height): out_shape is (rows, columns) = (height, width), "
+                "as numpy arrays are; make it with np.zeros(out_shape)."
+            )
+        return problem + ". Return the warped picture, an array of shape out_shape."
+    context = SimpleNamespace(image=image, H=np.asarray(H, dtype=float), shape=tuple(out_shape))
+    cause = first_mistake(_WARP_MISTAKES, context, got, _same_picture)
+    if cause:
+        return cause
+    g = np.asarray(got, dtype=float)
+    holes = (g == 0) & (np.asarray(expected) != 0)
+    if (
+        holes.mean() > 0.02
+        and _same_picture(g, _forward(image, H, out_shape))
+        or holes.mean() > 0.2
+    ):
+        return (
+            f"{holes.mean():.0%} of the picture's output pixels stayed 0: holes, as forward mapping leaves "
+            "them (pushing each source pixel to H x). Loop over the *output* pixels instead and pull each "
+            "one's value from H^-1 (u', v', 1)."
+        )
+    return _PULL + "; outside the picture, 0."
+
+
+def _index_hint(exc: Exception, args: tuple) -> str:
+    if isinstance(exc, IndexError):
+        return (
+            "an index ran past the picture. Images are indexed image[v, u] (row v first, column u second), "
+            "and the source pixel must pass 0 <= iu < width and 0 <= iv < height (width = image.shape[1]) "
+            "before you read it; otherwise the output pixel stays 0."
+        )
+    return ""
+
+
+def warp_nearest(image, H, out_shape):
+    """Warp ``image`` by H with inverse mapping and nearest-neighbour sampling.
+
+    Every output pixel (u', v') pulls its value from the source point x = H^-1 (u', v', 1), divided
+    by its third coordinate, rounded to the nearest pixel centre (centres at integers); if that
+    pixel lies outside the picture, the output pixel stays 0. Every output pixel gets exactly one
+    value, so there are no holes.
+
+    Parameters
+    ----------
+    image : (h, w) ndarray
+        The source picture, indexed image[v, u].
+    H : (3, 3) array_like
+        The homography from source pixels to output pixels.
+    out_shape : (height, width)
+        The size of the output.
+
+    Returns
+    -------
+    (height, width) ndarray
+        The warped picture, float, 0 where the source point lies outside the picture.
+
+    References
+    ----------
+    Szeliski, Computer Vision: Algorithms and Applications, 2nd ed., section 3.6.1 (inverse warping).
+    """
+    Hinv = np.linalg.inv(np.asarray(H, dtype=float))
+    out = np.zeros(out_shape)
+    for v_out in range(out_shape[0]):
+        for u_out in range(out_shape[1]):
+            x, y, w = Hinv @ [u_out, v_out, 1.0]
+            u, v = int(np.rint(x / w)), int(np.rint(y / w))
+            if 0 <= u < image.shape[1] and 0 <= v < image.shape[0]:
+                out[v_out, u_out] = image[v, u]
+    return out
+
+
+register_exercise(
+    Exercise(
+        name="warp_nearest",
+        lesson="07",
+        reference=_reference,
+        cases=_warp_cases,
+        compare=_same_picture,
+        diagnose=_warp_diagnosis,
+        exception_hint=_index_hint,
+        solution_note=(
+            "# camlab: camlab.warp.warp_perspective(image, H, out_shape, interpolation='nearest'), or\n"
+            "# cv2.warpPerspective(image, H, (width, height), flags=cv2.INTER_NEAREST), compute the same"
+        ),
+        wrong_variants=(
+            (lambda im, H, s: _warp(im, H, s), "H (u', v', 1)"),
+            (lambda im, H, s: _warp(im, np.linalg.inv(H).T, s), "transposed"),
+            (lambda im, H, s: _warp(im, np.linalg.inv(H), s, divide=False), "divide by w"),
+            (lambda im, H, s: _warp(im, np.linalg.inv(H), s, rounding=np.floor), "truncated"),
+            (lambda im, H, s: _warp(im, np.linalg.inv(H), s, shift=0.5), "half-pixel offset"),
+            (
+                lambda im, H, s: _warp(
+                    im, np.linalg.inv(H), s, rounding=lambda x: np.trunc(x + 0.5)
+                ),
+                "truncates toward zero",
+            ),
+            (lambda im, H, s: _warp(im, np.linalg.inv(H), s, early=True), "before rounding"),
+            (lambda im, H, s: _warp(im, np.linalg.inv(H), s, clamp=True), "clamped"),
+            (lambda im, H, s: _bilinear(im, H, s), "bilinearly"),
+            (lambda im, H, s: _forward(im, H, s), "forward mapping"),
+            (lambda im, H, s: _reference(im, H, s).T, "(rows, columns)"),
+            (lambda im, H, s: _reference(im, H, s).tolist(), "list"),
+            (_indexed_image_u_v, "image[v, u]"),
+        ),
+        ndarray_only=True,
+        teaching=warp_nearest,
+    )
+)
