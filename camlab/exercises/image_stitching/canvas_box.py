@@ -176,6 +176,12 @@ _CANVAS_SLIPS = (
         "you counted pixels from 1: the corner pixels are at 0 and w - 1 (not 1 and w), as numpy indexes them.",
     ),
     Mistake(
+        "1-based first corner",
+        lambda s: _box(_corners(s.Hs, s.shapes, first=1, last=1)),
+        "your first corner is at (1, 1): pixels are counted from 0, so the corner pixels are (0, 0) and "
+        "(w - 1, h - 1), as numpy indexes them (img[0, 0] is the top-left pixel).",
+    ),
+    Mistake(
         "divided by the width",
         lambda s: _box(
             np.vstack(
@@ -292,6 +298,7 @@ register_exercise(
             (_canvas_variant("w - 1"), "w - 1"),
             (_canvas_variant("pixel edges"), "pixel edges"),
             (_canvas_variant("1-based"), "counted pixels from 1"),
+            (_canvas_variant("1-based first corner"), "first corner is at (1, 1)"),
             (_canvas_variant("divided by the width"), "divided by the image width"),
             (_canvas_variant("H transposed"), "H transposed"),
             (_canvas_variant("H inverted"), "inverse of H"),
