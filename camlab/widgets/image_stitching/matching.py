@@ -154,6 +154,7 @@ def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
         color=palette.GREY,
         lw=3,
         label="true",
+        path_effects=palette.halo(1.5, "black"),  # grey with a black edge: not the seams' white
         zorder=1.5,  # under the moving marks and frame, in a full redraw as in a live frame
     )
     est_box = view.animate(
