@@ -219,6 +219,15 @@ _CANVAS_SLIPS = (
         "(w-1, 0), (w-1, h-1), (0, h-1) with w = shape[1] and h = shape[0].",
     ),
     Mistake(
+        "size for the maximum",
+        lambda s: [
+            np.array([s.expected[0], s.expected[1] - s.expected[0] + 1]),
+            np.array([s.expected[0], s.expected[1] - s.expected[0]]),
+        ],
+        "the second row is the canvas size, not its corner: return the box's corners [[u_min, v_min], "
+        "[u_max, v_max]] (canvas_bounds turns them into a size, u_max - u_min + 1).",
+    ),
+    Mistake(
         "truncated",
         lambda s: np.array([np.trunc(s.corners.min(0)), s.expected[1]]),
         "int() and astype(int) truncate towards zero, so a negative minimum moves inwards (int(-30.3) = -30): "
@@ -303,6 +312,7 @@ register_exercise(
             (_canvas_variant("H transposed"), "H transposed"),
             (_canvas_variant("H inverted"), "inverse of H"),
             (_canvas_variant("width and height swapped"), "width and height swapped"),
+            (_canvas_variant("size for the maximum"), "canvas size, not its corner"),
             (_canvas_variant("truncated"), "truncate towards zero"),
             (_canvas_variant("truncated the whole box"), "cuts both ends"),
             (
