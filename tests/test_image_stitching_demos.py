@@ -25,6 +25,40 @@ def test_feature_matches_ratio_lets_wrong_matches_in():
     assert mutual["wrong"] < d.state["wrong"]
 
 
+def test_thin_matches_keeps_the_true_share():
+    import numpy as np
+
+    from camlab.plotting.stitching import thin_matches
+
+    rng = np.random.default_rng(1)
+    for n, share in ((150, 0.9), (656, 0.47), (1123, 0.28), (5000, 0.02)):
+        good = rng.random(n) < share
+        show, every = thin_matches(good, 200)
+        assert show.sum() <= 202 and (every == 1) == (n <= 200)
+        assert abs(good[show].mean() - good.mean()) < 0.02
+    assert thin_matches(np.ones(10, bool), 200)[0].all()
+    with pytest.raises(ValueError, match="limit"):
+        thin_matches(np.ones(3, bool), 0)
+
+
+@pytest.mark.parametrize("ratio", [0.75, 0.95, 1.0])
+def test_feature_matches_draws_about_200_lines_in_the_true_share(ratio):
+    d = demos.feature_matches()
+    d.set(ratio=ratio)
+    s = d.state
+    drawn = s["drawn_right"] + s["drawn_wrong"]
+    assert drawn <= 202 and s["drawn_right"] >= 1
+    assert abs(s["drawn_wrong"] / drawn - s["wrong"] / s["matches"]) < 0.02
+
+
+def test_ransac_true_frame_lies_under_the_moving_marks():
+    """A full redraw layers the static true frame as the live path does: under every animated artist."""
+    d = demos.ransac_registration()
+    ax = d.view._animated[0].axes
+    true = next(ln for ln in ax.get_lines() if ln.get_label() == "true")
+    assert all(a.get_zorder() > true.get_zorder() for a in d.view._animated if a.axes is ax)
+
+
 def test_ransac_demo_threshold():
     d = demos.ransac_registration()
     d.set(threshold=3.0)

@@ -15,11 +15,13 @@ from . import palette
 __all__ = [
     "VIEW_COLOURS",
     "SideBySide",
+    "Thinned",
     "draw_keypoints",
     "draw_matches",
     "match_segments",
     "outline",
     "side_by_side",
+    "thin_matches",
 ]
 
 
@@ -99,6 +101,49 @@ def match_segments(src: np.ndarray, dst: np.ndarray, offset: float) -> np.ndarra
     src = np.asarray(src, dtype=float).reshape(-1, 2)
     dst = np.asarray(dst, dtype=float).reshape(-1, 2) + [offset, 0.0]
     return np.stack([src, dst], axis=1)
+
+
+class Thinned(NamedTuple):
+    """:func:`thin_matches`: which matches to draw.
+
+    Attributes
+    ----------
+    show : (n,) ndarray of bool
+        True for the matches to draw.
+    every : int
+        The stride k: 1 in k of each kind is drawn (1: all).
+    """
+
+    show: np.ndarray
+    every: int
+
+
+def thin_matches(good: np.ndarray, limit: int = 200) -> Thinned:
+    """Which matches to draw: at most about ``limit``, 1 in k of the right ones and 1 in k of the wrong ones.
+
+    Both kinds are thinned by the same stride ``k = ceil(n / limit)`` (every match when
+    ``n <= limit``), so the share of right matches among the lines drawn equals their share
+    among all ``n`` matches, up to one line of each kind.
+
+    Parameters
+    ----------
+    good : (n,) array_like of bool
+        True where a match is right.
+    limit : int, optional
+        The most lines to draw (each kind may round up by one).
+
+    Returns
+    -------
+    Thinned
+        ``show`` (True for the matches to draw: the 1st, (k+1)-th, ... right match and likewise
+        the wrong ones) and ``every``, the stride k (1: all drawn).
+    """
+    good = np.asarray(good, dtype=bool).ravel()
+    if limit < 1:
+        raise ValueError(f"thin_matches: limit must be a positive number of lines, got {limit}")
+    every = max(1, -(-len(good) // int(limit)))  # ceil(n / limit)
+    rank = np.where(good, np.cumsum(good), np.cumsum(~good)) - 1  # 0, 1, 2 ... within each kind
+    return Thinned(rank % every == 0, every)
 
 
 def draw_keypoints(

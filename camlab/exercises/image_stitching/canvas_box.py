@@ -176,6 +176,12 @@ _CANVAS_SLIPS = (
         "you counted pixels from 1: the corner pixels are at 0 and w - 1 (not 1 and w), as numpy indexes them.",
     ),
     Mistake(
+        "1-based first corner",
+        lambda s: _box(_corners(s.Hs, s.shapes, first=1, last=1)),
+        "your first corner is at (1, 1): pixels are counted from 0, so the corner pixels are (0, 0) and "
+        "(w - 1, h - 1), as numpy indexes them (img[0, 0] is the top-left pixel).",
+    ),
+    Mistake(
         "divided by the width",
         lambda s: _box(
             np.vstack(
@@ -211,6 +217,15 @@ _CANVAS_SLIPS = (
         lambda s: _box(_corners(s.Hs, s.shapes, swap=True)),
         "width and height swapped: a shape is (h, w) = (rows, columns), so the corners are (0, 0), "
         "(w-1, 0), (w-1, h-1), (0, h-1) with w = shape[1] and h = shape[0].",
+    ),
+    Mistake(
+        "size for the maximum",
+        lambda s: [
+            np.array([s.expected[0], s.expected[1] - s.expected[0] + 1]),
+            np.array([s.expected[0], s.expected[1] - s.expected[0]]),
+        ],
+        "the second row is the canvas size, not its corner: return the box's corners [[u_min, v_min], "
+        "[u_max, v_max]] (canvas_bounds turns them into a size, u_max - u_min + 1).",
     ),
     Mistake(
         "truncated",
@@ -292,10 +307,12 @@ register_exercise(
             (_canvas_variant("w - 1"), "w - 1"),
             (_canvas_variant("pixel edges"), "pixel edges"),
             (_canvas_variant("1-based"), "counted pixels from 1"),
+            (_canvas_variant("1-based first corner"), "first corner is at (1, 1)"),
             (_canvas_variant("divided by the width"), "divided by the image width"),
             (_canvas_variant("H transposed"), "H transposed"),
             (_canvas_variant("H inverted"), "inverse of H"),
             (_canvas_variant("width and height swapped"), "width and height swapped"),
+            (_canvas_variant("size for the maximum"), "canvas size, not its corner"),
             (_canvas_variant("truncated"), "truncate towards zero"),
             (_canvas_variant("truncated the whole box"), "cuts both ends"),
             (

@@ -583,7 +583,7 @@ def _parallax_controls() -> dict:
         "method": W.Dropdown(
             options=["feather", "multiband"], value="feather", description="blend"
         ),
-        "edges": W.Checkbox(value=True, description="both views' edges"),
+        "edges": W.Checkbox(value=False, description="both views' edges"),
     }
 
 

@@ -16,7 +16,13 @@ from ... import homography as hg
 from ... import stitching as st
 from ...fixtures import panorama_examples as pe
 from ...plotting import palette
-from ...plotting.stitching import draw_keypoints, draw_matches, match_segments, outline
+from ...plotting.stitching import (
+    draw_keypoints,
+    draw_matches,
+    match_segments,
+    outline,
+    thin_matches,
+)
 from ...projective import map_points
 from .._base import Demo, FigureView, build_demo, register, slider
 from ..controls import log_slider, monospace
@@ -31,7 +37,8 @@ def feature_matches() -> Demo:
     Views 0 and 1 of the half-size set with their SIFT keypoints; each match is judged by
     the true homography (green within 2 px, red otherwise:
     :func:`camlab.fixtures.panorama_examples.correct_matches`). Every match is counted,
-    but only about 200 are drawn: every wrong one, and every k-th right one when there are more.
+    but at most about 200 are drawn (:func:`camlab.plotting.stitching.thin_matches`): 1 in k of
+    each kind, so the picture keeps the true share of right matches.
 
     Returns
     -------
@@ -40,7 +47,8 @@ def feature_matches() -> Demo:
         :func:`camlab.features.filter_matches`) and ``mutual`` (keep only mutual nearest
         neighbours), the figure (both views side by side with their keypoints and the
         matches) and ``state`` (``matches`` the matches kept, ``wrong`` those the truth
-        rejects, ``precision`` the share that is right, NaN without matches).
+        rejects, ``precision`` the share that is right, NaN without matches, ``drawn_right``
+        and ``drawn_wrong`` the green and red lines drawn).
 
     References
     ----------
@@ -52,7 +60,10 @@ def feature_matches() -> Demo:
     view = FigureView(figsize=(9, 3.4))
     ax = view.fig.subplots()
     art = draw_matches(ax, s.images[i], s.images[j], np.zeros((0, 2)), np.zeros((0, 2)))
-    view.animate(art["good"], art["bad"])  # the images and keypoints stay: only the lines move
+    art["good"].set_zorder(
+        art["bad"].get_zorder() + 0.1
+    )  # green over red, in a redraw and a live frame
+    view.animate(art["bad"], art["good"])  # the images and keypoints stay: only the lines move
     draw_keypoints(
         ax,
         feats[i].points,
@@ -74,23 +85,28 @@ def feature_matches() -> Demo:
         m = ft.filter_matches(knn[(i, j)], v["ratio"], v["mutual"])
         good = pe.correct_matches(s, i, j, m.src, m.dst)
         seg = match_segments(m.src, m.dst, art["offset"])
-        # every wrong match is drawn; the right ones are thinned to about 200 lines in all (speed, and the
-        # photos stay visible)
-        every = max(1, int(good.sum()) // max(1, 200 - int((~good).sum())) + 1)
-        show = np.cumsum(good) % every == 1 if every > 1 else good
+        # at most about 200 lines (speed, and the photos stay visible): 1 in k of each kind, so the
+        # drawn share of right matches is the true one
+        show, every = thin_matches(good, 200)
         art["good"].set_segments(seg[good & show])
-        art["bad"].set_segments(seg[~good])
+        art["bad"].set_segments(seg[~good & show])
         n, nbad = len(good), int((~good).sum())
+        thinned = f"1 in {every} of each colour drawn" if every > 1 else "all drawn"
         title.set_text(
-            f"views {i} and {j}, r = {v['ratio']:.2f}: {n} matches, green = confirmed by the true homography, "
-            f"red = wrong ({nbad})\nyellow circles: SIFT keypoints, radius ~ the scale they were found at"
-            + (f"; one green match in {every} drawn, every red one" if every > 1 else "")
+            f"views {i} and {j}, r = {v['ratio']:.2f}: {n} matches, {n - nbad} right (green: within 2 px "
+            f"of the true H), {nbad} wrong (red)\n{thinned}; yellow circles: SIFT keypoints, radius ~ their scale"
         )
-        state.update(matches=n, wrong=nbad, precision=(n - nbad) / n if n else float("nan"))
+        state.update(
+            matches=n,
+            wrong=nbad,
+            precision=(n - nbad) / n if n else float("nan"),
+            drawn_right=int((good & show).sum()),
+            drawn_wrong=int((~good & show).sum()),
+        )
         readout.value = monospace(
             f"keypoints: {len(feats[i].points)} / {len(feats[j].points)}\n"
             f"matches kept: {n}\nwrong (red): {nbad} ({100 * nbad / max(n, 1):.0f}%)"
-            + (f"\n(one right match in {every} drawn; every wrong one)" if every > 1 else "")
+            + f"\nlines drawn: {int((good & show).sum())} green, {int((~good & show).sum())} red ({thinned})"
         )
 
     controls = {
@@ -135,10 +151,11 @@ def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
         ax,
         s.true_homography(i, j),
         imgs[i].shape,
-        color="white",
-        lw=2,
+        color=palette.GREY,
+        lw=3,
         label="true",
-        path_effects=palette.halo(2, "black"),
+        path_effects=palette.halo(1.5, "black"),  # grey with a black edge: not the seams' white
+        zorder=1.5,  # under the moving marks and frame, in a full redraw as in a live frame
     )
     est_box = view.animate(
         outline(
@@ -177,7 +194,7 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
     threshold line, registered with ``view`` in that order and returned.
     """
     ax_e.set(
-        xlabel="symmetric transfer error per match: RMS of the errors both ways\n(px, log scale; hatched end bars: < 0.02 px, > 300 px)",
+        xlabel="symmetric transfer error per match (px, log)",
         ylabel="number of matches\n(relative to the tallest bar)",
         xscale="log",
         xlim=(
@@ -191,7 +208,10 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
     verdict = view.animate(
         ax_e.text(0.5, 0.97, "", transform=ax_e.transAxes, ha="center", va="top", fontsize=8)
     )
-    ax_e.set_title("residuals under H (dashed: threshold)", fontsize=9)
+    ax_e.set_title(
+        "residuals under H (dashed: threshold)\nhatched end bars: < 0.02 px and > 300 px",
+        fontsize=9,
+    )
     bins = _RESIDUAL_BINS
     bars = ax_e.bar(
         bins[:-1], np.zeros(len(bins) - 1), width=np.diff(bins), align="edge", color="0.6"
