@@ -163,6 +163,34 @@ class PairModel:
         """
         raise NotImplementedError
 
+    def fit_many(self, masks: np.ndarray) -> MinimalModels:
+        """Least-squares models of several pair sets at once (local optimisation's refits).
+
+        This default calls :meth:`fit` once per set; a model whose least squares is one
+        eigenvector can solve the whole batch in one call instead (HomographyModel does).
+
+        Parameters
+        ----------
+        masks : (S, N) bool ndarray
+            One row per pair set: which pairs it holds.
+
+        Returns
+        -------
+        MinimalModels
+            ``models`` (S, ...) and ``usable`` (S,), False where :meth:`fit` raised
+            DegenerateError (that row of ``models`` means nothing).
+        """
+        fits, usable = [], np.zeros(len(masks), bool)
+        for k, mask in enumerate(masks):
+            try:
+                fits.append(self.fit(np.flatnonzero(mask)))
+                usable[k] = True
+            except DegenerateError:
+                fits.append(None)
+        shape = next((f.shape for f in fits if f is not None), ())
+        models = np.stack([np.full(shape, np.nan) if f is None else f for f in fits])
+        return MinimalModels(models, usable)
+
     def residuals(
         self, models: np.ndarray, i1: np.ndarray | None = None, i2: np.ndarray | None = None
     ) -> np.ndarray:
@@ -355,20 +383,25 @@ def local_optimisation(
     subsets = [inl] + (
         [rng.choice(inl, size, replace=False) for _ in range(inner)] if size > s else []
     )
-    thresholds = np.geomspace(_LO_FACTOR * threshold, threshold, steps)
-    for sub in subsets:
-        try:
-            m = model.fit(sub)
-            for thr in thresholds:
-                sel = np.flatnonzero(model.residuals(m[None])[0] < thr)
-                if len(sel) <= s:
-                    break
-                m = model.fit(sel)
-        except DegenerateError:
-            continue
-        cost = float(msac_cost(model.residuals(m[None])[0], threshold))
-        if cost < best_cost:
-            best, best_cost = m, cost
+    masks = np.zeros((len(subsets), len(model)), bool)
+    for row, sub in zip(masks, subsets, strict=True):
+        row[sub] = True
+    # Every subset refitted together: one batched solve per threshold instead of one per subset.
+    models, alive = model.fit_many(masks)
+    for thr in np.geomspace(_LO_FACTOR * threshold, threshold, steps):
+        with np.errstate(invalid="ignore"):
+            sel = model.residuals(models) < thr
+        moving = np.flatnonzero(alive & (sel.sum(axis=1) > s))  # the others keep their fit
+        if len(moving) == 0:
+            break
+        refit, ok = model.fit_many(sel[moving])
+        models[moving[ok]] = refit[ok]
+        alive[moving[~ok]] = False  # a refit that fails drops its subset
+    if alive.any():
+        costs = msac_cost(model.residuals(models[alive]), threshold)
+        k = int(np.argmin(costs))
+        if costs[k] < best_cost:
+            best, best_cost = models[alive][k], float(costs[k])
     return LocalOptimum(best, best_cost)
 
 

@@ -246,21 +246,26 @@ def _sq_transfer_batch(H: np.ndarray, p: np.ndarray, q: np.ndarray) -> np.ndarra
     """(B, N) squared distances |q - pi(H p)|^2 for a stack of homographies (B, 3, 3).
 
     ``p`` and ``q`` are homogeneous columns (3, N) (:func:`_columns`), so mapping all points
-    by each H is one (3, 3) @ (3, N) product per homography.
+    by each H is one (3, 3) @ (3, N) product per homography. A point mapped to infinity
+    divides by zero: the caller silences that (:func:`_sym_err_batch`, once for both ways).
     """
     y = H @ p  # (B, 3, N)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        e = y[:, :2] / y[:, 2:] - q[:2]  # (B, 2, N)
-        e *= e
-        return e[:, 0] + e[:, 1]
+    e = y[:, :2] / y[:, 2:] - q[:2]  # (B, 2, N)
+    e *= e
+    return e[:, 0] + e[:, 1]
 
 
-def _sym_err_batch(H: np.ndarray, Hinv: np.ndarray, s: np.ndarray, d: np.ndarray) -> np.ndarray:
+def _sym_err_batch(
+    H: np.ndarray, Hinv: np.ndarray | None, s: np.ndarray, d: np.ndarray
+) -> np.ndarray:
     """(B, N) symmetric transfer RMS errors for B homographies; inf where a point maps to infinity.
 
-    ``s`` and ``d`` are homogeneous columns (3, N) (:func:`_columns`).
+    ``s`` and ``d`` are homogeneous columns (3, N) (:func:`_columns`); ``Hinv`` None inverts
+    ``H`` here. One ``errstate`` for all of it: RANSAC calls this hundreds of times a run.
     """
-    with np.errstate(invalid="ignore", over="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        if Hinv is None:
+            Hinv = np.linalg.inv(H)
         e = np.sqrt(0.5 * (_sq_transfer_batch(H, s, d) + _sq_transfer_batch(Hinv, d, s)))
     return np.where(np.isfinite(e), e, np.inf)
 
@@ -392,6 +397,8 @@ class HomographyModel(PairModel):
         self.dn, self.Td = hartley_normalise(dst)
         self.Td_inv = np.linalg.inv(self.Td)
         self.A = _dlt_rows(self.sn, self.dn).reshape(-1, 2, 9)  # each pair's two DLT rows, once
+        # each pair's share of A^T A, so any subset's A^T A is one (S, N) @ (N, 81) product
+        self.AtA = np.einsum("nki,nkj->nij", self.A, self.A).reshape(len(self.A), 81)
         self.c1, self.c2 = _columns(self.x1), _columns(self.x2)  # homogeneous columns, once
 
     def normalised_to_pixels(self, Hn: np.ndarray) -> np.ndarray:
@@ -450,6 +457,27 @@ class HomographyModel(PairModel):
         H = self.normalised_to_pixels(V[:, 0].reshape(3, 3))
         return H / np.linalg.norm(H)
 
+    def fit_many(self, masks: np.ndarray) -> MinimalModels:
+        """The normalised DLT of several pair sets in one batched solve (see :meth:`PairModel.fit_many`).
+
+        Parameters
+        ----------
+        masks : (S, N) bool ndarray
+            One row per pair set.
+
+        Returns
+        -------
+        MinimalModels
+            ``models`` (S, 3, 3) in pixels, unit Frobenius norm, and ``usable`` (S,), False
+            where the set does not fix a unique homography (as :meth:`fit` would raise).
+        """
+        AtA = (masks.astype(float) @ self.AtA).reshape(-1, 9, 9)
+        ev, V = np.linalg.eigh(AtA)
+        H = self.normalised_to_pixels(V[:, :, 0].reshape(-1, 3, 3))
+        return MinimalModels(
+            H / np.linalg.norm(H, axis=(1, 2), keepdims=True), ev[:, 1] > 1e-12 * ev[:, -1]
+        )
+
     def residuals(
         self, models: np.ndarray, i1: np.ndarray | None = None, i2: np.ndarray | None = None
     ) -> np.ndarray:
@@ -473,9 +501,7 @@ class HomographyModel(PairModel):
             return _sampson_batch(models, s, d)
         s = self.c1 if i1 is None else self.c1[:, i1]
         d = self.c2 if i1 is None else self.c2[:, i1 if i2 is None else i2]
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            inv = np.linalg.inv(models)
-        return _sym_err_batch(models, inv, s, d)
+        return _sym_err_batch(models, None, s, d)
 
 
 def ransac_homography(
