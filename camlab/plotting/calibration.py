@@ -180,7 +180,8 @@ def plot_residual_field(
     result : CalibrationResult
         A calibration (:func:`camlab.calibration.calibrate_camera`).
     scale : float or None
-        Magnification of the arrows; None makes the 90th percentile residual 25 px long.
+        Magnification of the arrows; None takes the round value (1, 2 or 5 x a power of ten) that
+        draws the 90th percentile residual at most 25 px long.
     cap : float
         The longest arrow drawn, image pixels; longer ones are shortened to it and drawn black.
 
@@ -193,7 +194,9 @@ def plot_residual_field(
     res = np.concatenate(result.residuals)
     if scale is None:
         typical = np.percentile(np.linalg.norm(res, axis=1), 90)
-        scale = 25.0 / max(typical, 1e-9)
+        raw = 25.0 / max(typical, 1e-9)
+        decade = 10.0 ** np.floor(np.log10(raw))  # rounded down to 1, 2 or 5 x a power of ten
+        scale = decade * max(m for m in (1.0, 2.0, 5.0) if m * decade <= raw)
     arrows, capped = cap_arrows(pts, res * scale, cap, result.image_size)
     title = f"Residuals ×{scale:.0f}"
     if capped.any():  # which views the black arrows belong to, so black is not read as one view's
