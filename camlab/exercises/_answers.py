@@ -73,6 +73,11 @@ def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | N
             f"you returned {len(got)} values (`return a, b` makes a tuple); {wanted}, "
             "only the answer itself"
         )
+    if _stacks_into(got, expected):
+        return (
+            f"you returned a pair (matrix, vector), such as (R, t); {wanted}: join them "
+            "side by side, np.column_stack([R, t])"
+        )
     try:
         np.asarray(got, dtype=float)
     except (TypeError, ValueError):
@@ -85,6 +90,20 @@ def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | N
     if ndarray_only and not isinstance(got, np.ndarray):
         return f"you returned a {kind}; {wanted}: wrap the values in np.array(...)"
     return None
+
+
+def _stacks_into(got: Any, expected: Any) -> bool:
+    """Whether ``got`` is a pair (matrix, vector), such as (R, t), that np.column_stack joins into ``expected``."""
+    if not (isinstance(got, (tuple, list)) and len(got) == 2 and isinstance(expected, np.ndarray)):
+        return False
+    a, b = got
+    return (
+        isinstance(a, np.ndarray)
+        and isinstance(b, np.ndarray)
+        and a.ndim == 2
+        and b.ndim == 1
+        and expected.shape == (a.shape[0], a.shape[1] + 1) == (len(b), a.shape[1] + 1)
+    )
 
 
 def precision_problem(got: Any, expected: Any) -> str | None:

@@ -147,6 +147,14 @@ EXERCISES: dict[str, Exercise] = {}
 
 
 def register_exercise(exercise: Exercise) -> Exercise:
+    old = EXERCISES.get(exercise.name)
+    if (
+        old is not None and old.lesson != exercise.lesson
+    ):  # one name, one check: the later would win
+        raise ValueError(
+            f"exercise {exercise.name!r} of lesson {exercise.lesson} is already registered by lesson "
+            f"{old.lesson}: give it another name"
+        )
     EXERCISES[exercise.name] = exercise
     return exercise
 

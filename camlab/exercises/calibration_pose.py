@@ -1,4 +1,7 @@
-"""Exercises for lesson 08, camera calibration: a view's pose from its homography."""
+"""Exercises for lesson 08, camera calibration: a view's pose from its homography.
+
+The exercise is ``view_pose``: lesson 12 has its own ``pose_from_homography`` (measurement.py).
+"""
 
 from __future__ import annotations
 
@@ -59,6 +62,22 @@ def _pose_slips(K, H, e):
             "t is the camera's centre -R^T t in board coordinates; return t itself, lambda K^-1 h3",
         ),
         (
+            _whole_flip(K, H),
+            "det R = -1: you negated all of R when t_z < 0, which flips r3 too (r3 = r1 x r2 does not "
+            "change sign when r1 and r2 both do); flip r1, r2 and t before forming r3 = r1 x r2",
+        ),
+        (
+            _raw(K.T, H),
+            "you used K^T: r_k and t are proportional to K^-1 h_k with K itself (np.linalg.solve(K, H)), "
+            "K is upper triangular",
+        ),
+        (
+            _raw(K, H, gram_schmidt=True),
+            "your R is a rotation, but not the nearest one to [r1 r2 r1 x r2]: Gram-Schmidt (or QR) "
+            "keeps r1 exactly and bends only r2; the nearest rotation U V^T (exercise 3) shares the "
+            "correction between them",
+        ),
+        (
             _raw(K, H.T),
             "you used the rows of H; h_i is the i-th column, H[:, i]",
         ),
@@ -90,7 +109,10 @@ def _pose_diagnosis(args, got, expected) -> str:
             "are not quite orthogonal, so replace [r1 r2 r3] by its nearest rotation U V^T (exercise 3)"
         )
     if np.linalg.det(R) < 0:
-        return "det R = -1, a reflection: r3 = r1 x r2 (right-handed), not r2 x r1"
+        return (
+            "det R = -1, a reflection: r3 = r1 x r2 (right-handed), not r2 x r1; and if you flip signs "
+            "when t_z < 0, flip r1, r2 and t before forming r3 (negating all of R flips r3 too)"
+        )
     if np.isclose(np.linalg.norm(t), 1.0, atol=1e-6):
         return (
             "your t has length 1: it shares the factor lambda = 1 / ||K^-1 h1|| with r1 and r2 "
@@ -106,7 +128,7 @@ def _pose_diagnosis(args, got, expected) -> str:
     )
 
 
-def pose_from_homography(K, H):
+def view_pose(K, H):
     """A view's pose [R | t], cam_from_board, from the intrinsics K and its homography H.
 
     K^-1 H = lambda [r1 r2 t] up to an unknown factor lambda (and sign): lambda = 1 / ||K^-1 h1||,
@@ -140,7 +162,7 @@ def pose_from_homography(K, H):
     return np.column_stack([R, t])
 
 
-def _raw(K, H, flip=True, fix=True, own_t=False, cross=np.cross):
+def _raw(K, H, flip=True, fix=True, own_t=False, cross=np.cross, gram_schmidt=False):
     """A pose with one step changed, for the wrong variants."""
     A = np.linalg.solve(K, H)
     lam = 1.0 / np.linalg.norm(A[:, 0])
@@ -149,11 +171,22 @@ def _raw(K, H, flip=True, fix=True, own_t=False, cross=np.cross):
     r1, r2, t = lam * A[:, 0], lam * A[:, 1], lam * A[:, 2]
     if own_t:
         t = t / np.linalg.norm(t)
+    if gram_schmidt:  # a rotation, but not the nearest: r1 kept, r2 made orthogonal to it
+        q1 = r1 / np.linalg.norm(r1)
+        q2 = r2 - (q1 @ r2) * q1
+        q2 /= np.linalg.norm(q2)
+        return np.column_stack([q1, q2, np.cross(q1, q2), t])
     M = np.column_stack([r1, r2, cross(r1, r2)])
     if fix:
         U, _, Vt = np.linalg.svd(M)
         M = U @ np.diag([1.0, 1.0, np.sign(np.linalg.det(U @ Vt))]) @ Vt
     return np.column_stack([M, t])
+
+
+def _whole_flip(K, H):
+    """[R | t] built without the sign fix, then all of it negated when t_z < 0: det R = -1."""
+    g = _raw(K, H, flip=False)
+    return -g if g[2, 3] < 0 else g
 
 
 def _t_only(K, H):
@@ -163,7 +196,7 @@ def _t_only(K, H):
 
 register_exercise(
     Exercise(
-        name="pose_from_homography",
+        name="view_pose",
         lesson="08",
         reference=_pose_reference,
         cases=_pose_cases,
@@ -173,6 +206,10 @@ register_exercise(
         wrong_variants=(
             (lambda K, H: _raw(K, H, flip=False), "behind the camera"),
             (_t_only, "flipped t but not"),
+            (_whole_flip, "flips r3 too"),
+            (lambda K, H: _raw(K.T, H), "K^T"),
+            (lambda K, H: _raw(K, H, gram_schmidt=True), "not the nearest one"),
+            (lambda K, H: (_raw(K, H)[:, :3], _raw(K, H)[:, 3]), "np.column_stack([R, t])"),
             (lambda K, H: _raw(K, H, fix=False), "nearest rotation"),
             (lambda K, H: _raw(K, H, own_t=True), "length 1"),
             (lambda K, H: _raw(K, H, cross=lambda a, b: np.cross(b, a), fix=False), "r2 x r1"),
@@ -187,7 +224,10 @@ register_exercise(
                 "centre",
             ),
         ),
-        teaching=pose_from_homography,
-        solution_note="# camlab's version: camlab.calibration.extrinsics_from_homography(K, H), a (R, t) pair",
+        teaching=view_pose,
+        solution_note=(
+            "# camlab's version: camlab.calibration.extrinsics_from_homography(K, H) returns a (R, t) "
+            "pair; this exercise joins them, np.column_stack([R, t])"
+        ),
     )
 )

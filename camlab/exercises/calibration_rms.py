@@ -23,7 +23,7 @@ def _rms_reference(sigma, n_views, corners_per_view, n_camera):
 
 
 def _rms_cases():
-    # the rendered set of section 7, three views, a small board, two views of a tiny one (little redundancy)
+    # the rendered set of section 5, three views, a small board, two views of a tiny one (little redundancy)
     return [(0.0346, 16, 54, 9), (0.3, 3, 54, 9), (1.0, 4, 25, 4), (0.5, 2, 12, 8)]
 
 
@@ -58,6 +58,19 @@ def _count_slips(sigma, n_views, corners, n_camera):
         (
             _rms(sigma, n, n_camera + 6),
             f"each of the {n_views} views has its own pose: p = n_camera + 6 n_views = {p}, not n_camera + 6",
+        ),
+        *(
+            (
+                _rms(sigma, n, n_camera + k * n_views),
+                f"a pose has 6 unknowns (3 rotation as an axis-angle vector, 3 translation), not {k}"
+                + why
+                + f": p = n_camera + 6 n_views = {p}",
+            )
+            for k, why in (
+                (3, " (the rotation or the translation alone)"),
+                (7, " (a quaternion's 4 numbers carry only 3 degrees of freedom)"),
+                (12, " (a rotation matrix's 9 entries carry only 3 degrees of freedom)"),
+            )
         ),
         (
             _rms(sigma, n_views, p),
@@ -148,9 +161,12 @@ def _rms_diagnosis(args, got, expected) -> str:
             f"your {g:g} is the right value rounded ({expected:.6g}): return the unrounded number "
             "and round only when printing, f'{rms:.3f}'"
         )
+    if any(np.isclose(g, expected * f, rtol=1e-6) for f in (1e3, 1e-3)):
+        return "a factor of 1000 off: sigma is already in pixels and so is the answer; convert no units"
     return (
-        f"with N = {n} corners and p = {p} unknowns the expected rms is {expected:.6g}; check N, p and "
-        "the formula of section 7"
+        "not the rms of section 5, sqrt(2) sigma sqrt(1 - p / (2N)): N counts the corners of all "
+        "views, p the camera's unknowns plus 6 per view (3 rotation, 3 translation); recount both "
+        "and check each factor"
     )
 
 

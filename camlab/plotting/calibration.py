@@ -6,14 +6,18 @@ Pixels (u, v) = (column, row), origin at the centre of the top-left pixel, v dow
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
+from matplotlib.colors import to_rgba
 
 from ..calibration import CalibrationResult, CoachReport, coach, projection_uncertainty
 from . import palette
 
 __all__ = [
+    "CappedArrows",
+    "arrow_colours",
+    "cap_arrows",
     "image_frame",
     "plot_cost_history",
     "plot_extrinsics",
@@ -79,7 +83,7 @@ def plot_per_view_errors(ax, result: CalibrationResult, highlight_ratio: float =
     colors = ["k" if b else palette.GREY for b in bad]  # no red: red + is a detection
     bars = ax.bar(np.arange(len(err)), err, color=colors)
     for bar in (b for b, flagged in zip(bars, bad, strict=True) if flagged):
-        bar.set_label(f"over {highlight_ratio:g} x the median")  # one legend entry for all of them
+        bar.set_label(f"over {highlight_ratio:g} × the median")  # one legend entry for all of them
         break
     ax.axhline(result.rms, color="k", ls="--", lw=1, label=f"overall rms {result.rms:.2f} px")
     ax.set(xlabel="view", ylabel="rms error (px)")
@@ -88,6 +92,74 @@ def plot_per_view_errors(ax, result: CalibrationResult, highlight_ratio: float =
     ax.tick_params(axis="x", labelsize=7)
     ax.legend(fontsize=8, loc="upper right")
     return bars
+
+
+class CappedArrows(NamedTuple):
+    """The arrows :func:`cap_arrows` draws.
+
+    Attributes
+    ----------
+    arrows : (N, 2) ndarray
+        The arrows drawn, pixels, each along its own direction.
+    capped : (N,) bool ndarray
+        True where an arrow was shortened (drawn black by the lesson's convention).
+    """
+
+    arrows: np.ndarray
+    capped: np.ndarray
+
+
+def cap_arrows(tails, arrows, cap: float, image_size) -> CappedArrows:
+    """Arrows shortened to at most ``cap`` px and to end inside the image; which were shortened.
+
+    Parameters
+    ----------
+    tails : (N, 2) array
+        Where the arrows start, pixels (inside the image).
+    arrows : (N, 2) array
+        The arrows, pixels.
+    cap : float
+        The longest arrow drawn, pixels.
+    image_size : (width, height)
+        The image's size: a tip beyond its outer pixel edges is pulled back onto them.
+
+    Returns
+    -------
+    CappedArrows
+        ``arrows``, the arrows drawn, and ``capped``, which of them were shortened.
+    """
+    tails, arrows = np.asarray(tails, dtype=float), np.array(arrows, dtype=float)
+    length = np.linalg.norm(arrows, axis=1)
+    capped = length > cap
+    arrows[capped] *= (cap / length[capped])[:, None]
+    lo, hi = np.array([-0.5, -0.5]), np.array(image_size, dtype=float) - 0.5
+    with np.errstate(divide="ignore", invalid="ignore"):  # the fraction of each arrow that fits
+        room = np.where(
+            arrows > 0, (hi - tails) / arrows, np.where(arrows < 0, (lo - tails) / arrows, np.inf)
+        )
+    fits = np.clip(room.min(axis=1), 0.0, 1.0)
+    arrows *= fits[:, None]
+    return CappedArrows(arrows, capped | (fits < 1))
+
+
+def arrow_colours(capped) -> np.ndarray:
+    """RGBA per arrow: magenta (the lesson's residual colour), black where ``capped``.
+
+    Parameters
+    ----------
+    capped : (N,) bool array
+        Which arrows were shortened (:func:`cap_arrows`).
+
+    Returns
+    -------
+    (N, 4) ndarray
+        One RGBA row per arrow, for a quiver's ``color``.
+    """
+    return np.where(
+        np.asarray(capped)[:, None],
+        np.array([to_rgba("k")]),
+        np.array([to_rgba(palette.MAGENTA)]),
+    )
 
 
 def plot_residual_field(
@@ -108,7 +180,8 @@ def plot_residual_field(
     result : CalibrationResult
         A calibration (:func:`camlab.calibration.calibrate_camera`).
     scale : float or None
-        Magnification of the arrows; None makes the 90th percentile residual 25 px long.
+        Magnification of the arrows; None takes the round value (1, 2 or 5 x a power of ten) that
+        draws the 90th percentile residual at most 25 px long.
     cap : float
         The longest arrow drawn, image pixels; longer ones are shortened to it and drawn black.
 
@@ -121,11 +194,10 @@ def plot_residual_field(
     res = np.concatenate(result.residuals)
     if scale is None:
         typical = np.percentile(np.linalg.norm(res, axis=1), 90)
-        scale = 25.0 / max(typical, 1e-9)
-    arrows = res * scale
-    length = np.linalg.norm(arrows, axis=1)
-    capped = length > cap
-    arrows[capped] *= (cap / length[capped])[:, None]
+        raw = 25.0 / max(typical, 1e-9)
+        decade = 10.0 ** np.floor(np.log10(raw))  # rounded down to 1, 2 or 5 x a power of ten
+        scale = decade * max(m for m in (1.0, 2.0, 5.0) if m * decade <= raw)
+    arrows, capped = cap_arrows(pts, res * scale, cap, result.image_size)
     title = f"Residuals ×{scale:.0f}"
     if capped.any():  # which views the black arrows belong to, so black is not read as one view's
         views = np.repeat(np.arange(len(result.residuals)), [len(r) for r in result.residuals])
@@ -135,11 +207,9 @@ def plot_residual_field(
         listed = ", ".join(f"{c} in view {v}" for c, v in counts[:3]) + (
             ", ..." if len(counts) > 3 else ""
         )
-        title += f"\nblack: {capped.sum()} capped at {cap:.0f} px ({listed})"
+        title += f"\nblack: {capped.sum()} capped at {cap:.0f} px or the frame ({listed})"
     image_frame(ax, result.image_size, title)
-    colours = np.where(
-        capped[:, None], np.array([[0.0, 0.0, 0.0, 1.0]]), np.array([[1.0, 0.0, 1.0, 1.0]])
-    )
+    colours = arrow_colours(capped)
     q = ax.quiver(
         pts[:, 0],
         pts[:, 1],
@@ -297,13 +367,16 @@ R_CAM_FROM_VIEW = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
 def _label_boards(ax, view: np.ndarray, ring: list[int]) -> None:
     """Write each board's view number at the point of its outline farthest, on screen, from the others' numbers.
 
-    The candidates are the outline's four corners and the middles of its four edges; boards are
+    The candidates are the outline's four corners and the points 1/4, 1/2, 3/4 along its edges; boards are
     labelled greedily, in view order, so 14 overlapping boards still get 14 readable numbers.
     """
     from mpl_toolkits.mplot3d import proj3d
 
     corners = view[:, ring[:4]]  # (V, 4, 3)
-    candidates = np.concatenate([corners, (corners + np.roll(corners, -1, axis=1)) / 2], axis=1)
+    nxt = np.roll(corners, -1, axis=1)  # each corner and the points 1/4, 1/2, 3/4 along each edge
+    candidates = np.concatenate(
+        [corners + f * (nxt - corners) for f in (0.0, 0.25, 0.5, 0.75)], axis=1
+    )
     flat = candidates.reshape(-1, 3)
     sx, sy, _ = proj3d.proj_transform(*flat.T, ax.get_proj())
     screen = np.column_stack([sx, sy]).reshape(len(view), -1, 2)
@@ -376,10 +449,16 @@ def plot_extrinsics(ax, result: CalibrationResult, size: float | None = None):
     obj = result.object_points[0]
     cols = int(np.sum(obj[:, 1] == obj[0, 1]))
     ring = [0, cols - 1, len(obj) - 1, len(obj) - cols, 0]  # the outer corners, in a loop
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
     for v, b in enumerate(view):
         colour = palette.VIEWS[v % len(palette.VIEWS)]
-        ax.plot(*b[ring].T, color=colour, lw=1.2)
-        ax.plot(*b[0], "o", color=colour, ms=3)  # the first corner: how the board is turned
+        # a faint fill tells the overlapping boards apart (a static figure: no redraw loses it)
+        ax.add_collection3d(Poly3DCollection([b[ring[:4]]], facecolor=colour, alpha=0.07, lw=0))
+        ax.plot(*b[ring].T, color=colour, lw=1.0)
+        ax.plot(
+            *b[0], "o", color=colour, ms=4, mec="k", mew=0.5
+        )  # the first corner: how it is turned
     depth = float(np.min(boards[:, :, 2]))
     cam = Camera(K=result.K, R=R_CAM_FROM_VIEW, t=np.zeros(3), image_size=result.image_size)
     CameraArtist(ax, cam, size=size or depth / 3, color=palette.GREY)
@@ -389,6 +468,14 @@ def plot_extrinsics(ax, result: CalibrationResult, size: float | None = None):
     ax.set_ylabel("z (forward, m)", labelpad=10)  # clear of its own tick labels
     ax.set_zlabel("−y (up, m)", labelpad=8)
     return boards
+
+
+def _pm(value: float, std: float) -> str:
+    """``value ± std``: the std to 2 significant digits, the value to its decimal place, no "-0"."""
+    if not np.isfinite(std) or std <= 0:  # a fixed parameter
+        return f"{value + 0.0:g} (fixed)"
+    decimals = max(0, 1 - int(np.floor(np.log10(std))))
+    return f"{round(value, decimals) + 0.0:+.{decimals}f} ± {std:.{decimals}f}"
 
 
 def report_figure(
@@ -428,7 +515,7 @@ def report_figure(
         f"fy = {p['fy']:.2f} ± {s['fy']:.2f}",
         f"cx = {p['cx']:.2f} ± {s['cx']:.2f}",
         f"cy = {p['cy']:.2f} ± {s['cy']:.2f}",
-        "dist = " + ", ".join(f"{v:+.3f}" for v in result.dist),
+        *(f"{k} = {_pm(p[k], s[k])}" for k in ("k1", "k2", "p1", "p2", "k3")),
         f"rms = {result.rms:.3f} px",
         "",
         "Advice:",

@@ -18,9 +18,9 @@ import numpy as np
 
 from .. import calibration as C
 from .._validate import CamlabInputError, ConvergenceError
-from ..fixtures.calibration import real_calibration
+from ..fixtures.calibration import real_calibration, real_calibration_k3_fixed
 from ..plotting import palette
-from ..plotting.calibration import image_frame
+from ..plotting.calibration import arrow_colours, cap_arrows, image_frame
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import int_slider, monospace
 
@@ -267,6 +267,7 @@ def _inspector_figure(view: FigureView, res) -> SimpleNamespace:
         label="residual, from o to +",
         path_effects=palette.halo(1.5, "black"),
     )
+    ax.plot([], [], "-", color="k", lw=1.5, label="capped residual")
     n = len(res.object_points[0])
     arrows = view.animate(
         ax.quiver(
@@ -279,12 +280,14 @@ def _inspector_figure(view: FigureView, res) -> SimpleNamespace:
             scale_units="xy",
             scale=1,
             width=0.004,
+            edgecolor="w",
+            linewidth=0.4,
         )
     )
     # below the photo, off the corners and arrows
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.11), fontsize=8, ncol=4, frameon=False)
-    ax.set_title(" ", fontsize=10)
-    view.animate(ax.title)  # names the view, its rms and the arrows' magnification
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.11), fontsize=8, ncol=5, frameon=False)
+    ax.set_title(" \n ", fontsize=10)  # two lines: room kept for the animated title
+    view.animate(ax.title)  # names the view, its rms, the arrows' magnification and the capped ones
     return SimpleNamespace(im=im, det=det, rep=rep, worst=worst, arrows=arrows, title=ax.title)
 
 
@@ -347,12 +350,11 @@ def view_inspector(
         art.det.set_data(obs[:, 0], obs[:, 1])
         art.rep.set_data(pred[:, 0], pred[:, 1])
         art.arrows.set_offsets(pred)
-        d = r * v["magnify"]
-        length = np.linalg.norm(d, axis=1)
-        capped = (
-            length > _ARROW_CAP_PX
-        )  # drawn _ARROW_CAP_PX long, as the coach's residual field does
-        d[capped] *= (_ARROW_CAP_PX / length[capped])[:, None]
+        # as the coach's residual field: longer than _ARROW_CAP_PX, or leaving the photo, drawn black
+        d, capped = cap_arrows(pred, r * v["magnify"], _ARROW_CAP_PX, res.image_size)
+        art.arrows.set_facecolor(
+            arrow_colours(capped)
+        )  # the white edge stays: black reads on black squares
         art.arrows.set_UVC(d[:, 0], d[:, 1])
         worst = int(np.argmax(np.linalg.norm(r, axis=1)))
         art.worst.set_data(obs[worst, :1], obs[worst, 1:])
@@ -366,13 +368,22 @@ def view_inspector(
         )
         art.title.set_text(
             f"view {k} ({out.names[i]}): rms {res.per_view_rms[k]:.3f} px, "
-            f"worst corner {np.linalg.norm(r[worst]):.3f} px; arrows ×{v['magnify']:.0f}"
+            f"worst corner {np.linalg.norm(r[worst]):.3f} px; arrows ×{v['magnify']:.0f}\n"
+            + (
+                f"black: {capped.sum()} capped at {_ARROW_CAP_PX:.0f} px or the frame"
+                if capped.any()
+                else "no arrow capped"
+            )
         )
         readout.value = monospace(
             f"view {k} ({out.names[i]})\nrms {res.per_view_rms[k]:.3f} px "
             f"(median view {np.median(res.per_view_rms):.3f})\nworst corner (index {worst}): "
             f"{np.linalg.norm(r[worst]):.3f} px (ringed)\narrows ×{v['magnify']:.0f}"
-            + (f", {capped.sum()} capped at {_ARROW_CAP_PX:.0f} px" if capped.any() else "")
+            + (
+                f", {capped.sum()} capped at {_ARROW_CAP_PX:.0f} px or the frame (black)"
+                if capped.any()
+                else ""
+            )
         )
 
     return build_demo(
@@ -436,9 +447,9 @@ def undistort_alpha(
     ----------
     image : (H, W) or (H, W, 3) array, optional
         The distorted photo (0-255). Default, or when ``K`` is not given: the real photo
-        ``calib_left03`` with the calibration of the 14 real photos
-        (:func:`camlab.fixtures.calibration.real_calibration`; the three replace whatever was
-        passed), as lesson 08 shows it.
+        ``calib_left03`` with the calibration of the 14 real photos with k3 fixed at 0
+        (:func:`camlab.fixtures.calibration.real_calibration_k3_fixed`, as lesson 08 recommends
+        for them; the three replace whatever was passed).
     K : (3, 3) array, optional
         The camera matrix the photo was taken with (px).
     dist : array of 5, optional
@@ -452,8 +463,8 @@ def undistort_alpha(
         ``state`` (``new_K``, ``black_fraction``, ``lost_fraction``).
     """
     if image is None or K is None:
-        real, photos = real_calibration()
-        image, K, dist = photos[2], real.result.K, real.result.dist
+        res = real_calibration_k3_fixed()
+        image, K, dist = real_calibration().photos[2], res.K, res.dist
     h, w = image.shape[:2]
     view, art = _undistort_figure(image)
     ax1, im, edge, kept = art.ax1, art.im, art.edge, art.kept
