@@ -200,6 +200,10 @@ class AspectRatio(NamedTuple):
     focal_source: str
 
 
+_RIGHT_ANGLE_TOL_DEG = 0.5
+"""How far from 90 degrees a parallelogram's corners may be when both edge pairs are parallel."""
+
+
 def estimate_aspect_ratio(
     corners: ArrayLike,
     image_shape: Sequence[int] | None = None,
@@ -233,7 +237,10 @@ def estimate_aspect_ratio(
     When a pair of opposite edges is parallel in the image (:math:`n_{23} n_{33} = 0`)
     f cannot be estimated; then it is taken from ``focal_length`` or assumed to be
     ``max(width, height)`` of the image (about a 53 degree field of view), and the
-    result says so. When both pairs are parallel the view is affine and f cancels.
+    result says so. When both pairs are parallel f cancels: under a pinhole camera the
+    rectangle then faces the camera and its photo is a similarity of it, so the corners must
+    meet at right angles (within ``_RIGHT_ANGLE_TOL_DEG``); a sheared parallelogram is refused
+    (:class:`DegenerateError`), as no rectangle projects to it.
 
     Parameters
     ----------
@@ -250,6 +257,12 @@ def estimate_aspect_ratio(
     -------
     AspectRatio
         ``ratio`` (width / height), ``focal_length``, ``focal_source``.
+
+    Raises
+    ------
+    DegenerateError
+        Both edge pairs parallel but not at right angles (no rectangle's photo), or no f
+        from the corners and no ``image_shape`` to assume one from.
 
     Examples
     --------
@@ -282,7 +295,16 @@ def estimate_aspect_ratio(
     n3 = k3 * m3 - m1
     par2 = abs(n2[2]) < 1e-9 * np.linalg.norm(n2)
     par3 = abs(n3[2]) < 1e-9 * np.linalg.norm(n3)
-    if par2 and par3:
+    if par2 and par3:  # a fronto-parallel rectangle: its photo is a similarity, so a right angle
+        cos = abs(n2[:2] @ n3[:2]) / (np.linalg.norm(n2[:2]) * np.linalg.norm(n3[:2]))
+        if cos > np.sin(np.radians(_RIGHT_ANGLE_TOL_DEG)):
+            raise DegenerateError(
+                "estimate_aspect_ratio: both edge pairs are parallel in the image (an affine view), so "
+                "the rectangle must face the camera and its photo keep right angles, but these corners "
+                f"meet at {np.degrees(np.arccos(cos)):.1f} deg, not 90 (tolerance "
+                f"{_RIGHT_ANGLE_TOL_DEG} deg): no rectangle projects to this parallelogram. Check the "
+                "corners, or give the target size yourself (rectify_quadrilateral(..., size=(w, h)))"
+            )
         return AspectRatio(
             float(np.linalg.norm(n2[:2]) / np.linalg.norm(n3[:2])), focal_length, "not needed"
         )

@@ -63,6 +63,28 @@ def test_aspect_ratio_with_noise_is_close():
 def test_fronto_parallel_needs_no_focal():
     est = pp.estimate_aspect_ratio([[100, 100], [400, 100], [400, 250], [100, 250]], (480, 640))
     assert est.focal_source == "not needed" and np.isclose(est.ratio, 2.0)
+    # turned in its plane (roll 30 deg) it is still a similarity of the rectangle: right angles, ratio 2
+    c, s = np.cos(np.pi / 6), np.sin(np.pi / 6)
+    turned = np.array([[0, 0], [300, 0], [300, 150], [0, 150]]) @ [[c, s], [-s, c]] + [200, 100]
+    est = pp.estimate_aspect_ratio(turned, (480, 640), focal_length=900.0)
+    assert est.focal_source == "not needed" and np.isclose(est.ratio, 2.0)
+
+
+@pytest.mark.parametrize("shear", [50.0, 3.0])
+def test_sheared_parallelogram_is_no_rectangle(shear):
+    """Both edge pairs parallel means a fronto-parallel plane: its photo keeps right angles."""
+    q = [[200, 100], [450, 100], [450 + shear, 380], [200 + shear, 380]]  # 79.9 and 89.4 deg
+    with pytest.raises(DegenerateError, match=r"parallel in the image.*meet at (79\.9|89\.4) deg"):
+        pp.estimate_aspect_ratio(q, (480, 640))
+    with pytest.raises(DegenerateError, match="no rectangle projects"):
+        pp.rectify_quadrilateral(np.zeros((480, 640)), q)
+    nearly = [
+        [200, 100],
+        [450, 100],
+        [451, 380],
+        [201, 380],
+    ]  # 89.8 deg: within the 0.5 deg tolerance
+    assert pp.estimate_aspect_ratio(nearly, (480, 640)).focal_source == "not needed"
 
 
 def test_rectify_recovers_the_texture(photos):

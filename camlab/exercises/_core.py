@@ -314,7 +314,9 @@ def _in_place_message(
     )
     first = _parameter_name(student_function, changed[0]).strip("`")
     a = first if first.isidentifier() else "x"
+    taken = {n.strip("`") for n in names}
     k = "c" if a == "d" else "d"  # the added constant's name must not be the argument's own
+    sc = next(c for c in ("L", "s", "t") if c != a and c not in taken)  # nor the scale's
     # arrays inside a tuple or a list (a pair of frames, a list of pairs) get examples of their own
     if not isinstance(args[changed[0]], np.ndarray):
         examples, new = (
@@ -333,9 +335,14 @@ def _in_place_message(
     ):  # a matrix: its normalisation is the usual in-place slip
         examples, new = f"`{a} /= {a}[2, 2]`, `{a}[:, 0] = ...`, `{a} += {k}`", f"`{a} / {a}[2, 2]`"
     else:
-        examples, new = f"`{a} *= L`, `{a}[:, 0] = ...`, `{a} += {k}`", f"`{a} * L`"
+        examples, new = f"`{a} *= {sc}`, `{a}[:, 0] = ...`, `{a} += {k}`", f"`{a} * {sc}`"
     if isinstance(args[changed[0]], np.ndarray):
-        copy = f"work on a copy first (`{a} = np.array({a}, dtype=float)`)"
+        copies = [
+            f"`{x} = np.array({x}, dtype=float)`"
+            for x, c in zip((n.strip("`") for n in names), changed, strict=True)
+            if x.isidentifier() and isinstance(args[c], np.ndarray)
+        ] or [f"`{a} = np.array({a}, dtype=float)`"]
+        copy = f"work on a copy first ({', '.join(copies)})"
     return (
         f"{name}: your function changed its {inputs} {what} in place (test input {i + 1} of {n}); the caller's "
         f"{arrays} must come back as {it} went in\n"

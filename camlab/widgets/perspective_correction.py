@@ -315,9 +315,14 @@ def _focal_conditioning(corners: np.ndarray, image_shape: tuple) -> tuple[str, b
     if fs and not none and max(fs) - min(fs) <= 0.5 * est.focal_length:
         return line, False
     assumed = max(image_shape[0], image_shape[1])
+    rule = (
+        f"{none} of 16 slips give no f"
+        if none
+        else f"the slips' f span {max(fs) - min(fs):.0f} px > f/2"
+    )
     return line + (
-        f"\nf NOT DETERMINED: an edge pair converges by only {least:.1f}\u00b0, so the\n"
-        f"{est.focal_length:.0f} px the corners give is corner noise (section 3);\n"
+        f"\nf NOT DETERMINED ({rule}): an edge pair converges by\n"
+        f"only {least:.1f}\u00b0, so the {est.focal_length:.0f} px the corners give is corner noise (section 3);\n"
         f"the scan uses f assumed {assumed} px (the image width) instead"
     ), True
 
@@ -433,6 +438,7 @@ _RECTIFY_SWEEP = {
         "250.0, 120.0; 420.0, 140.0; 400.0, 380.0; 230.0, 350.0",
         "250.0, 120.0; 420.0, 140.0; 230.0, 350.0; 400.0, 380.0",  # a bow tie: refused
         "250.0, 120.0; 420.0, 140.0; 300.0, 200.0; 230.0, 350.0",  # a dent: refused
+        "200.0, 100.0; 450.0, 100.0; 500.0, 380.0; 250.0, 380.0",  # sheared: no rectangle's photo
         # a valid quad last: the sweeps of the other controls start where this one ends
         "200.0, 100.0; 450.0, 100.0; 450.0, 380.0; 200.0, 380.0",
     ],
@@ -441,7 +447,7 @@ _RECTIFY_SWEEP = {
     "corner_u": [100.0, 300.0],
     "corner_v": [50.0, 250.0],
 }
-"""The settings the review renders: each scene, a few corners (two refused), the checkbox."""
+"""The settings the review renders: each scene, a few corners (three refused), the checkbox."""
 
 
 @register(lesson="10", sweep=_RECTIFY_SWEEP)
@@ -566,6 +572,7 @@ def document_scanner() -> Demo:
         dict(ls="-", color=palette.YELLOW, lw=1, path_effects=palette.halo(1, "black")),
     )
     view.animate(ax_r.title)  # says which f the scan used
+    view.animate(ax_p.title)  # says whether an outline was detected
     truth_box = _truth_artist(view, ax_r, None)
     key = view.animate(
         ax_r.text(
@@ -590,8 +597,10 @@ def document_scanner() -> Demo:
             why.set_text("no page found:\n" + textwrap.fill(str(exc), 44))
             key.set_text("")  # no page, no true shape
             ax_r.set_title("scanned page", fontsize=10, pad=3)
+            ax_p.set_title("photo: no outline detected", fontsize=10, pad=3)
             return
         why.set_text("")
+        ax_p.set_title("photo with the detected outline", fontsize=10, pad=3)
         key.set_text(_SCAN_KEY)
         closed = np.vstack([corners, corners[:1]])
         found.set_data(closed[:, 0], closed[:, 1])
@@ -697,7 +706,7 @@ def keystone_correction() -> Demo:
         )
 
     controls = {
-        "tilt": slider(-0.5, -0.8, 0.0, 0.05, "camera tilt (rad)"),
+        "tilt": slider(-0.5, -0.8, 0.0, 0.05, "camera tilt (rad, negative = up)"),
         "yaw": slider(0.0, -0.5, 0.5, 0.05, "yaw (rad)"),
         "use_focal": W.Checkbox(value=False, description="use the known focal length (800 px)"),
     }

@@ -227,8 +227,12 @@ def right_angle_rectification() -> Demo:
             + f", corner noise {v['noise']:.2f} px\n"
             f"photo:     side across / down {photo_ratio:.3f}, worst angle off 90 by {photo_worst:.1f}\u00b0\n"
             f"rectified: side across / down {ratio:.3f}, worst angle off 90 by {worst:.1f}\u00b0\n"
-            f"  (the noisy corners: one square's angle moves with its corners' noise)\n"
-            f"H on the exact corners: across / down {exact.ratio:.4f}, worst angle off 90 by "
+            + (
+                "  (the noisy corners: one square's angle moves with its corners' noise)\n"
+                if v["noise"] > 0
+                else "  (exact corners: no noise to move them)\n"
+            )
+            + f"H on the exact corners: across / down {exact.ratio:.4f}, worst angle off 90 by "
             f"{exact.worst_angle:.2f}\u00b0\n  (the rectification's own error)"
         )
 

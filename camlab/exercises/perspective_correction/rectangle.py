@@ -207,7 +207,7 @@ def _rect_diagnosis(args, got, expected) -> str:
     want = _rect_target(w, h)
     k = int(np.argmax(np.linalg.norm(moved - want, axis=1)))
     return (
-        f"corner {k} ({'TL TR BR BL'.split()[k]}) goes to {np.round(moved[k], 2)}, expected {want[k]}: check "
+        f"corner {k} ({'TL TR BR BL'.split()[k]}) goes to {np.round(moved[k], 2) + 0.0}, expected {want[k]}: check "
         "that H maps each photo corner (u, v) to its target pixel, TL, TR, BR, BL to (0, 0), (w - 1, 0), "
         "(w - 1, h - 1), (0, h - 1)."
     )
@@ -311,6 +311,7 @@ register_exercise(
             ),
         ),
         ndarray_only=True,
+        up_to_scale=True,  # a failed check shows the expected H at the student's scale
         teaching=rectangle_homography,
     )
 )

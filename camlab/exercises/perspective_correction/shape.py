@@ -11,7 +11,7 @@ from .._core import Exercise, Mistake, first_mistake, register_exercise
 
 
 def _shape_cases():
-    """Rectangles photographed by cameras of known f and principal point (not the image centre)."""
+    """Rectangles photographed by cameras of known f (not whole pixels) and principal point (not the image centre)."""
 
     def photo(w, h, f, c, yaw, pitch, roll, distance):
         cy, sy, cp, sp, cr, sr = (
@@ -34,9 +34,9 @@ def _shape_cases():
         return x[:, :2] / x[:, 2:]
 
     return [
-        (photo(2.97, 2.10, 800.0, (331.0, 226.5), 0.5, 0.35, 0.1, 5.0), (331.0, 226.5)),
-        (photo(1.0, 1.6, 1200.0, (700.0, 380.0), -0.3, -0.45, -0.05, 4.0), (700.0, 380.0)),
-        (photo(3.0, 1.0, 650.0, (330.0, 250.0), 0.25, 0.6, 0.0, 9.0), (330.0, 250.0)),
+        (photo(2.97, 2.10, 812.7, (331.0, 226.5), 0.5, 0.35, 0.1, 5.0), (331.0, 226.5)),
+        (photo(1.0, 1.6, 1187.3, (700.0, 380.0), -0.3, -0.45, -0.05, 4.0), (700.0, 380.0)),
+        (photo(3.0, 1.0, 653.4, (330.0, 250.0), 0.25, 0.6, 0.0, 9.0), (330.0, 250.0)),
     ]
 
 
@@ -201,6 +201,20 @@ def _shape_diagnosis(args, got, expected) -> str:
     )
     if cause:
         return cause
+    rounded = [
+        name
+        for name, mine, right in (("w/h", g[0], ratio), ("f", g[1], f))
+        if not np.isclose(mine, right, rtol=1e-6)
+        and any(np.isclose(mine, round(right, d), rtol=1e-12) for d in range(5))
+    ]
+    if rounded and all(
+        np.isclose(g[k], expected[k], rtol=1e-6) or n in rounded for k, n in enumerate(("w/h", "f"))
+    ):
+        return (
+            f"your {' and '.join(rounded)} {'is' if len(rounded) == 1 else 'are'} rounded: return the "
+            "numbers unrounded (the test cameras' f are not whole pixels, e.g. 812.7 px); round only "
+            "when you print."
+        )
     if np.isclose(g[1], f, rtol=1e-6):
         return (
             "your f is right but the ratio is not: w/h squared is ((n21^2 + n22^2)/f^2 + n23^2) over the same "
@@ -297,6 +311,14 @@ register_exercise(
             (_shape_wrong(swap=True, plain=True), "(c_v, c_u)"),
             (_shape_wrong(minus=False), "lost its minus sign"),
             (_shape_wrong(minus=False, plain=True), "lost its minus sign"),
+            (
+                lambda c, p: (_shape_reference(c, p)[0], round(_shape_reference(c, p)[1])),
+                "f is rounded",
+            ),
+            (
+                lambda c, p: (round(_shape_reference(c, p)[0], 3), _shape_reference(c, p)[1]),
+                "w/h is rounded",
+            ),
         ),
         teaching=rectangle_shape,
         solution_note=(
