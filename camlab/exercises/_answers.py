@@ -73,6 +73,12 @@ def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | N
             f"you returned {len(got)} values (`return a, b` makes a tuple); {wanted}, "
             "only the answer itself"
         )
+    joined = _column_stacked(got)
+    if joined is not None and isinstance(expected, np.ndarray) and joined.shape == expected.shape:
+        return (
+            f"you returned {len(got)} parts side by side (`return R, t` makes a tuple); {wanted}: "
+            "join the parts as columns, np.column_stack([R, t])"
+        )
     try:
         np.asarray(got, dtype=float)
     except (TypeError, ValueError):
@@ -85,6 +91,19 @@ def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | N
     if ndarray_only and not isinstance(got, np.ndarray):
         return f"you returned a {kind}; {wanted}: wrap the values in np.array(...)"
     return None
+
+
+def _column_stacked(got: Any) -> np.ndarray | None:
+    """A tuple of arrays of different shapes joined as columns (``return R, t``), else None."""
+    if not isinstance(got, tuple) or len(got) < 2:
+        return None
+    try:
+        parts = [np.asarray(x, dtype=float) for x in got]
+        if len({p.shape for p in parts}) == 1:
+            return None
+        return np.column_stack(parts)
+    except (TypeError, ValueError):
+        return None
 
 
 def precision_problem(got: Any, expected: Any) -> str | None:
