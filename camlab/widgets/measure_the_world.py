@@ -128,12 +128,16 @@ def _figure() -> SimpleNamespace:
     ax_plot.yaxis.label.set_fontsize(8)
     ax_plot.tick_params(labelsize=7)
     ax_plot.grid(alpha=0.3)
-    # the total (thick, pale) is drawn under its picking part (thin, dotted): they nearly coincide
-    (total,) = ax_plot.plot(
-        [], [], "-", color=palette.BLUE, lw=5, alpha=0.45, label="along the slope: total"
-    )
+    # the total (thick) under its picking part (dotted, haloed): they nearly coincide
+    (total,) = ax_plot.plot([], [], "-", color=palette.BLUE, lw=4.5, label="along the slope: total")
     (picks,) = ax_plot.plot(
-        [], [], ":", color=palette.PURPLE, lw=1.5, label="   its part from picking the ends"
+        [],
+        [],
+        ":",
+        color=palette.PURPLE,
+        lw=1.5,
+        path_effects=palette.halo(1.5),
+        label="   its part from picking the ends",
     )
     (pose,) = ax_plot.plot([], [], "--", color=palette.GREEN, label="   its part from the pose")
     (across,) = ax_plot.plot([], [], "-", color=palette.BROWN, label="across the slope: total")
@@ -208,7 +212,7 @@ def plane_error() -> Demo:
             across_mm=1000 * now_x.sigma,
         )
         readout.value = monospace(
-            f"tilt {v['tilt']:.0f} deg, {v['distance']:.2f} m: the board spans {now.board_px:.0f} px"
+            f"tilt {v['tilt']:.0f} deg, {v['distance']:.2f} m: the board's first row spans {now.board_px:.0f} px"
             + ("" if now.in_frame and now_x.in_frame else " (part of it is outside the photo!)")
             + "\n"
             f"sigma of the 0.2 m edge along the slope (blue): {1000 * now.sigma:.2f} mm\n"
