@@ -159,21 +159,26 @@ def _figure() -> SimpleNamespace:
     )
 
 
-@register(lesson="12", sweep={"tilt": [0.0, 40.0, 75.0], "distance": [0.4, 0.6, 1.5]})
+@register(
+    lesson="12",
+    sweep={"tilt": [0.0, 40.0, 75.0], "distance": [0.4, 0.6, 1.5], "pick": [0.05, 0.25]},
+)
 def plane_error() -> Demo:
     """The error of two 0.2 m lengths on a table beside a 9 x 6 board, against tilt and distance.
 
     The camera of the shipped photos looks at the board's centre; the board's 54 corners, found to
-    0.14 px, fix the pose (its covariance from the Jacobian), and the edge's two ends are picked to
-    0.5 px. The error, first order (``camlab.measurement.measure_on_plane``), is split into what the
-    pose and what the picking contribute, and drawn against the tilt at this distance.
+    0.14 px, fix the pose (its covariance from the Jacobian), and each edge's two ends are picked
+    to ``pick`` px (0.5 by default: by hand). The error, first order
+    (``camlab.measurement.measure_on_plane``), is split into what the pose and what the picking
+    contribute, and drawn against the tilt at this distance.
 
     Returns
     -------
     Demo
-        Controls ``tilt`` (degrees off the board's normal) and ``distance`` (metres to the board's
-        centre); ``state`` holds ``sigma_mm``, ``pose_mm``, ``pixels_mm``, ``board_px`` and
-        ``curve_mm`` (sigma at each tilt of ``TILTS``), ``across_mm`` (the edge across the slope).
+        Controls ``tilt`` (degrees off the board's normal), ``distance`` (metres to the board's
+        centre) and ``pick`` (how precisely the ends are picked, pixels); ``state`` holds
+        ``sigma_mm``, ``pose_mm``, ``pixels_mm``, ``board_px``, ``curve_mm`` (sigma at each tilt of
+        ``TILTS``) and ``across_mm`` (the edge across the slope).
     """
     fig = _figure()
     readout = W.HTML()
@@ -181,19 +186,20 @@ def plane_error() -> Demo:
     @lru_cache(
         maxsize=64
     )  # the distance slider revisits settings; the tilt slider only moves the dot
-    def curve(distance: float) -> tuple:
+    def curve(distance: float, pick: float) -> tuple:
         """sigma (mm) along the slope: total, from the pose, from the picks; across: total."""
-        c = [length_sigma(a, distance) for a in TILTS]
+        c = [length_sigma(a, distance, pick) for a in TILTS]
         along = [1000 * np.array([getattr(x, k) for x in c]) for k in ("sigma", "pose", "pixels")]
         return (
             *along,
-            1000 * np.array([length_sigma(a, distance, across=True).sigma for a in TILTS]),
+            1000 * np.array([length_sigma(a, distance, pick, across=True).sigma for a in TILTS]),
         )
 
     def update(v, state):
-        now = length_sigma(v["tilt"], v["distance"])
-        now_x = length_sigma(v["tilt"], v["distance"], across=True)
-        total, from_pose, from_picks, across = curve(round(float(v["distance"]), 4))
+        pick = round(float(v["pick"]), 4)
+        now = length_sigma(v["tilt"], v["distance"], pick)
+        now_x = length_sigma(v["tilt"], v["distance"], pick, across=True)
+        total, from_pose, from_picks, across = curve(round(float(v["distance"]), 4), pick)
         fig.corners.set_data(*now.corners.T)
         fig.edge.set_data(*now.ends.T)
         fig.edge_x.set_data(*now_x.ends.T)
@@ -217,13 +223,14 @@ def plane_error() -> Demo:
             + "\n"
             f"sigma of the 0.2 m edge along the slope (blue): {1000 * now.sigma:.2f} mm\n"
             f"  from the pose:         {1000 * now.pose:.2f} mm\n"
-            f"  from picking the ends: {1000 * now.pixels:.2f} mm\n"
+            f"  from picking the ends ({pick:g} px): {1000 * now.pixels:.2f} mm\n"
             f"sigma of the 0.2 m edge across the slope (brown): {1000 * now_x.sigma:.2f} mm"
         )
 
     controls = {
         "tilt": slider(30.0, 0.0, 75.0, 1.0, "tilt (deg)"),
         "distance": slider(0.6, 0.4, 1.5, 0.05, "distance (m)", continuous_update=False),
+        "pick": slider(0.5, 0.05, 0.5, 0.05, "picking σ (px)", continuous_update=False),
     }
     return build_demo(
         "plane_error",
