@@ -55,3 +55,31 @@ def test_pose_from_homography_rejects_a_list_and_none(wrong, phrase):
     with pytest.raises(AssertionError) as info:
         check("pose_from_homography", wrong)
     assert phrase in str(info.value)
+
+
+def test_pose_covariance_accepts_a_solve_and_a_pseudo_inverse(capsys):
+    def solved(J, r):
+        return (r @ r) / (len(r) - 6) * np.linalg.solve(J.T @ J, np.eye(6))
+
+    def pseudo(J, r):
+        return np.linalg.pinv(J) @ np.linalg.pinv(J).T * np.sum(r**2) / (len(r) - 6)
+
+    assert check("pose_covariance", solved).passed is True
+    assert check("pose_covariance", pseudo).passed is True
+
+
+def test_pose_from_homography_names_a_returned_pair_and_accepts_averaged_norms(capsys):
+    def averaged(K, H):  # 1 / lambda as the mean of ||K^-1 h1|| and ||K^-1 h2|| (lesson 12, cell 4)
+        A = np.linalg.solve(K, H)
+        lam = 2 / (np.linalg.norm(A[:, 0]) + np.linalg.norm(A[:, 1])) * np.sign(A[2, 2])
+        r1, r2, t = lam * A[:, 0], lam * A[:, 1], lam * A[:, 2]
+        return np.column_stack([r1, r2, np.cross(r1, r2), t])
+
+    def pair(K, H):
+        Rt = averaged(K, H)
+        return Rt[:, :3], Rt[:, 3]
+
+    assert check("pose_from_homography", averaged).passed is True
+    with pytest.raises(AssertionError) as info:
+        check("pose_from_homography", pair)
+    assert "np.column_stack([R, t])" in str(info.value)

@@ -96,14 +96,13 @@ def _stacks_into(got: Any, expected: Any) -> bool:
     """Whether ``got`` is a pair (matrix, vector), such as (R, t), that np.column_stack joins into ``expected``."""
     if not (isinstance(got, (tuple, list)) and len(got) == 2 and isinstance(expected, np.ndarray)):
         return False
-    a, b = got
-    return (
-        isinstance(a, np.ndarray)
-        and isinstance(b, np.ndarray)
-        and a.ndim == 2
-        and b.ndim == 1
-        and expected.shape == (a.shape[0], a.shape[1] + 1) == (len(b), a.shape[1] + 1)
-    )
+    try:
+        a, b = (np.asarray(x, dtype=float) for x in got)
+        return (
+            a.ndim == 2 and a.shape != b.shape and np.column_stack([a, b]).shape == expected.shape
+        )
+    except (TypeError, ValueError):
+        return False
 
 
 def precision_problem(got: Any, expected: Any) -> str | None:

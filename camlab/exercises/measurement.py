@@ -38,7 +38,7 @@ def _pose_cases():
     cases = []
     for rvec, t, scale in (
         ([0.3, -0.2, 0.1], [-0.1, -0.05, 0.45], 2.7),
-        ([2.8, 0.15, -0.3], [0.08, -0.06, 0.6], -0.013),
+        ([0.45, 0.15, -0.3], [0.08, -0.06, 0.6], -0.013),
         ([-0.5, 0.4, 1.2], [-0.05, 0.02, 0.35], 1.0 / 0.35),
     ):
         R = _rodrigues(rvec)
@@ -58,7 +58,18 @@ def _pose_context(K, H):
     lam = 1 / np.linalg.norm(A[:, 0])
     right = _pose_with(A, np.sign(A[2, 2]) * lam)
     R, t = right[:, :3], right[:, 3]
-    return SimpleNamespace(K=K, H=H, A=A, lam=lam, right=right, R=R, t=t)
+    negative = A[2, 2] < 0  # H came at a negative scale: a sign fixed late goes wrong only then
+    flipped_late = np.column_stack([R[:, 0], R[:, 1], -R[:, 2], t]) if negative else right
+    only_t = np.column_stack([-R[:, 0], -R[:, 1], R[:, 2], t]) if negative else right
+    return SimpleNamespace(
+        K=K, H=H, A=A, lam=lam, right=right, R=R, t=t, flipped_late=flipped_late, only_t=only_t
+    )
+
+
+def _wrong_side(M, A_of):
+    """The pose from a wrong K^-1 H (``A_of(M)``), scaled as the prompt says."""
+    A = A_of(M)
+    return _pose_with(A, np.sign(A[2, 2]) / np.linalg.norm(A[:, 0]))
 
 
 _POSE_MISTAKES = (
@@ -80,8 +91,26 @@ _POSE_MISTAKES = (
     Mistake(
         "no scale",
         lambda c: _pose_with(c.A, 1.0),
-        "your r1 and r2 are not unit vectors: H is known only up to scale, so K^-1 H = lambda [r1 r2 t] "
-        "with an unknown lambda. Divide all three columns by ||K^-1 h1|| (a rotation's columns have length 1).",
+        "your r1 and r2 are not unit vectors: H is known only up to scale, so [r1 r2 t] = lambda K^-1 H "
+        "with lambda = 1 / ||K^-1 h1||. Divide all three columns by ||K^-1 h1|| (a rotation's columns have "
+        "length 1).",
+    ),
+    Mistake(
+        "times the norm",
+        lambda c: _pose_with(c.A, np.sign(c.A[2, 2]) * np.linalg.norm(c.A[:, 0])),
+        "you multiplied K^-1 H by ||K^-1 h1|| instead of dividing by it: [r1 r2 t] = lambda K^-1 H with "
+        "lambda = 1 / ||K^-1 h1||, so r1 = K^-1 h1 / ||K^-1 h1|| has length 1 (yours has ||K^-1 h1||^2).",
+    ),
+    Mistake(
+        "H K^-1",
+        lambda c: _wrong_side(c.H, lambda M: M @ np.linalg.inv(c.K)),
+        "you multiplied on the wrong side, H @ inv(K): H = K [r1 r2 t] up to scale, so K comes off the "
+        "LEFT, A = np.linalg.solve(K, H) = K^-1 H.",
+    ),
+    Mistake(
+        "K^-T H",
+        lambda c: _wrong_side(c.H, lambda M: np.linalg.solve(c.K.T, M)),
+        "you undid K.T instead of K (np.linalg.inv(K.T) @ H): H = K [r1 r2 t], so A = np.linalg.solve(K, H).",
     ),
     Mistake(
         "scale from h3",
@@ -94,6 +123,20 @@ _POSE_MISTAKES = (
         lambda c: _pose_with(c.A, c.lam),
         "your t has t_z < 0: the board would sit behind the camera. H came at a negative scale here "
         "(it is defined only up to scale, sign included), so flip the sign of lambda when (K^-1 H)[2, 2] < 0.",
+    ),
+    Mistake(
+        "negated R",
+        lambda c: c.flipped_late,
+        "you fixed the sign after building R (R, t = -R, -t when t_z < 0): negating all three columns of "
+        "a rotation flips det R to -1 (a reflection), because r3 = r1 x r2 does not change sign when r1 "
+        "and r2 both do. Flip lambda first (lambda < 0 when (K^-1 H)[2, 2] < 0), then r1, r2, t = lambda "
+        "a1, lambda a2, lambda a3 and r3 = r1 x r2.",
+    ),
+    Mistake(
+        "only t flipped",
+        lambda c: c.only_t,
+        "you flipped only t to make t_z > 0: the sign belongs to lambda, which multiplies all three "
+        "columns, [r1 r2 t] = lambda K^-1 H. Flip lambda, then build r1, r2, t and r3 = r1 x r2.",
     ),
     Mistake(
         "r3 = r2 x r1",
@@ -127,7 +170,10 @@ def _pose_diagnosis(args, got, expected) -> str:
         return hint
     R = g[:, :3]
     if not np.allclose(R.T @ R, np.eye(3), atol=1e-6):
-        return "your R is not a rotation (R^T R != I): check lambda = 1 / ||K^-1 h1|| and r3 = r1 x r2."
+        return (
+            "your R is not a rotation (R^T R != I): [r1 r2 t] = lambda K^-1 H with lambda = 1 / ||K^-1 h1||, "
+            "so r1 = lambda a1 has length 1; and r3 = r1 x r2."
+        )
     return (
         "your [R | t] projects the board elsewhere: K [r1 r2 t] should equal H up to scale. "
         "Follow A = K^-1 H, lambda = 1 / ||a1|| (sign so that t_z > 0), r1 = lambda a1, r2 = lambda a2, "
@@ -136,7 +182,7 @@ def _pose_diagnosis(args, got, expected) -> str:
 
 
 def pose_from_homography(K, H):
-    """Zhang's pose: K^-1 H = lambda [r1 r2 t], lambda = 1 / ||K^-1 h1||, sign so that t_z > 0.
+    """Zhang's pose: [r1 r2 t] = lambda K^-1 H, lambda = 1 / ||K^-1 h1||, sign so that t_z > 0.
 
     Parameters
     ----------
@@ -174,6 +220,12 @@ register_exercise(
             (_pose_variant("no K inverse"), "K^-1 H"),
             (_pose_variant("transposed H"), "H.T"),
             (_pose_variant("no scale"), "unit vectors"),
+            (_pose_variant("times the norm"), "instead of dividing"),
+            (_pose_variant("H K^-1"), "wrong side"),
+            (_pose_variant("K^-T H"), "K.T"),
+            (_pose_variant("negated R"), "after building R"),
+            (_pose_variant("only t flipped"), "only t"),
+            ((lambda K, H: tuple(np.hsplit(pose_from_homography(K, H), [3]))), "np.column_stack"),
             (_pose_variant("scale from h3"), "third column"),
             (_pose_variant("sign not fixed"), "t_z < 0"),
             (_pose_variant("r3 = r2 x r1"), "r3 = r1 x r2"),
@@ -232,7 +284,22 @@ def _length_context(H, a, b):
         mm=1000 * dist,
         squared=dist**2,
         half=float(np.linalg.norm(back(Hi, np.asarray(a) + 0.5) - back(Hi, np.asarray(b) + 0.5))),
+        minus_half=float(
+            np.linalg.norm(back(Hi, np.asarray(a) - 0.5) - back(Hi, np.asarray(b) - 0.5))
+        ),
+        one_based=float(np.linalg.norm(back(Hi, np.asarray(a) - 1) - back(Hi, np.asarray(b) - 1))),
+        swapped=float(
+            np.linalg.norm(back(Hi, np.asarray(a)[::-1]) - back(Hi, np.asarray(b)[::-1]))
+        ),
+        no_keepdims=_no_keepdims(Hi, a, b),
     )
+
+
+def _no_keepdims(Hi, a, b) -> float:
+    """Both pixels as rows, divided by w without keepdims: column j is divided by row j's w."""
+    P = np.column_stack([np.vstack([a, b]), np.ones(2)]) @ Hi.T
+    q = P[:, :2] / P[:, 2]
+    return float(np.linalg.norm(q[0] - q[1]))
 
 
 _LENGTH_MISTAKES = (
@@ -275,6 +342,30 @@ _LENGTH_MISTAKES = (
         lambda c: c.half,
         "you shifted the pixels by half a pixel: camlab's pixel (u, v) is already the pixel's centre "
         "(origin at the centre of the top-left pixel), so map (u, v, 1) as it is.",
+    ),
+    Mistake(
+        "minus half pixel",
+        lambda c: c.minus_half,
+        "you shifted the pixels by -0.5: camlab's pixel (u, v) is already the pixel's centre (origin at "
+        "the centre of the top-left pixel), so there is no corner-to-centre shift; map (u, v, 1) as it is.",
+    ),
+    Mistake(
+        "one-based",
+        lambda c: c.one_based,
+        "you subtracted 1 from the pixels (1-based indices): camlab's pixels start at 0, the centre of "
+        "the top-left pixel, so map (u, v, 1) as it is.",
+    ),
+    Mistake(
+        "u and v swapped",
+        lambda c: c.swapped,
+        "you swapped u and v (row, column order, as an array index reads them): a pixel here is (u, v) = "
+        "(column, row), the order H expects; map (a[0], a[1], 1).",
+    ),
+    Mistake(
+        "no keepdims",
+        lambda c: c.no_keepdims,
+        "you divided by w without keepdims: with both points as rows, P[:, :2] / P[:, 2] divides column j "
+        "by row j's w (broadcasting). Use P[:, :2] / P[:, 2:] (or P[:, 2, None]).",
     ),
 )
 
@@ -335,6 +426,10 @@ register_exercise(
             (_length_variant("millimetres"), "1000 times"),
             (_length_variant("squared"), "squared"),
             (_length_variant("half pixel"), "half a pixel"),
+            (_length_variant("minus half pixel"), "-0.5"),
+            (_length_variant("one-based"), "1-based"),
+            (_length_variant("u and v swapped"), "swapped u and v"),
+            (_length_variant("no keepdims"), "keepdims"),
         ),
         teaching=length_on_plane,
     )
@@ -360,6 +455,10 @@ def _reach_context(f, B, s, e):
         mm=1000 * right,
         squared=e * f * B / s if not np.isclose(right, 1) else None,
         cube=float(np.cbrt(e * f * B / s)),
+        one_input_mm=float(np.sqrt(1000) * right),
+        no_sigma=float(np.sqrt(e * f * B)) if not np.isclose(s, 1) else None,
+        two_sigma=float(np.sqrt(e * f * B / (2 * s))),
+        disparity_depth=f * B / s,
     )
 
 
@@ -384,8 +483,31 @@ _REACH_MISTAKES = (
     Mistake(
         "sigma outside the root",
         lambda c: c.sigma_outside,
-        "you divided by sigma_d outside the square root: solve Z^2 = max_error f B / sigma_d first, then "
-        "take the root of the whole right-hand side.",
+        "you divided by sigma_d outside the square root, or used a variance sigma_d^2 where the law has "
+        "sigma_d: solve Z^2 = max_error f B / sigma_d first, then take the root of the whole right-hand side.",
+    ),
+    Mistake(
+        "one input in millimetres",
+        lambda c: c.one_input_mm,
+        "your depth is sqrt(1000) = 31.6 times too far: one input was in millimetres (B or max_error). "
+        "Pass both in metres; Z_max = sqrt(max_error f B / sigma_d) comes out in metres.",
+    ),
+    Mistake(
+        "no sigma_d",
+        lambda c: c.no_sigma,
+        "you left out sigma_d: the disparity noise sets the depth noise, sigma_Z = Z^2 sigma_d / (f B), so "
+        "Z_max = sqrt(max_error f B / sigma_d).",
+    ),
+    Mistake(
+        "two sigma",
+        lambda c: c.two_sigma,
+        "you used 2 sigma_d: the tolerance is one sigma, sigma_Z = Z^2 sigma_d / (f B) = max_error.",
+    ),
+    Mistake(
+        "disparity equals sigma",
+        lambda c: c.disparity_depth,
+        "you returned f B / sigma_d, the depth where the disparity itself equals its noise: the question "
+        "asks where the depth ERROR reaches max_error, Z^2 sigma_d / (f B) = max_error.",
     ),
     Mistake(
         "no focal length",
@@ -412,7 +534,7 @@ def _reach_diagnosis(args, got, expected) -> str:
     )
     return hint or (
         f"for f = {args[0]:g} px, B = {args[1]:g} m, sigma_d = {args[2]:g} px and a tolerated error of "
-        f"{args[3]:g} m the answer is {expected:.4g} m, not {float(got):.4g}: solve "
+        f"{args[3]:g} m the answer is {expected:.7g} m, not {float(got):.7g}: solve "
         "Z^2 sigma_d / (f B) = max_error for Z."
     )
 
@@ -458,6 +580,10 @@ register_exercise(
             (_reach_variant("sigma outside the root"), "outside the square root"),
             (_reach_variant("no focal length"), "focal length"),
             (_reach_variant("millimetres"), "1000 times"),
+            (_reach_variant("one input in millimetres"), "31.6"),
+            (_reach_variant("no sigma_d"), "left out sigma_d"),
+            (_reach_variant("two sigma"), "2 sigma_d"),
+            (_reach_variant("disparity equals sigma"), "disparity itself"),
         ),
         teaching=max_depth,
     )

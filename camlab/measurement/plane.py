@@ -2,7 +2,7 @@ r"""Measure on a plane: pixels to metres on a board's plane, lengths and areas w
 
 A board lying on a table fixes the table's plane (world Z = 0) and its scale: once
 :func:`camlab.measurement.solve_pnp` has the board's pose (R, t), the plane's points map to the
-ideal pixels by the homography :math:`H = K [r_1\ r_2\ t]` (Zhang 2000, section 2.3 [1]_;
+ideal pixels by the homography :math:`H = K [r_1\ r_2\ t]` (Zhang 2000, section 2.2 [1]_;
 H&Z section 8.1.1 [2]_), and a pixel u on the plane goes back to the plane by
 :math:`\tilde p \simeq H^{-1} \tilde u`. A length is :math:`\|p_a - p_b\|` and a polygon's area
 the shoelace formula :math:`\tfrac12 |\sum_i x_i y_{i+1} - x_{i+1} y_i|`, in the board's units.
@@ -14,7 +14,8 @@ covariance :math:`\Sigma_p` from :func:`solve_pnp`) and on the pixels picked on 
 .. math:: \sigma_m^2 = g_p^\top \Sigma_p\, g_p + \sigma_u^2 \|g_u\|^2,
 
 with the gradients :math:`g_p = \partial m / \partial p` and :math:`g_u = \partial m / \partial u`
-taken by central differences. Why first order and not Monte Carlo: the corner noise (0.1-0.5 px)
+taken by central differences, :math:`g_u` in the measured (distorted) pixels where the picking
+noise lives (chained through the undistortion's local Jacobian). Why first order and not Monte Carlo: the corner noise (0.1-0.5 px)
 is tiny against the pixels over which :math:`H^{-1}` bends (hundreds), so the map is linear
 at the scale of the noise and the formula is exact to a few per cent; it is deterministic
 (no random draws in a lesson) and a thousand times cheaper. ``tests/test_measurement.py``
@@ -25,7 +26,7 @@ stands off the plane (its top is not on Z = 0).
 References
 ----------
 .. [1] Z. Zhang, 2000, "A flexible new technique for camera calibration", *IEEE Transactions on
-   Pattern Analysis and Machine Intelligence* 22(11), 1330-1334, section 2.3.
+   Pattern Analysis and Machine Intelligence* 22(11), 1330-1334, section 2.2.
 .. [2] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, sections 2.7 (metric
    properties from a rectified plane), 5.2 (forward propagation of covariance) and 8.1.1.
 """
@@ -41,6 +42,7 @@ from numpy.typing import ArrayLike
 from .._validate import CamlabInputError, DegenerateError, as_points, check_intrinsics
 from ..camera import rotation_from_axis_angle
 from ..distortion import as_dist, undistort_pixels
+from .pnp import distortion_jacobian
 
 __all__ = ["PlaneMeasurement", "area_on_plane", "measure_on_plane", "pixels_to_plane"]
 
@@ -143,11 +145,17 @@ def _propagate(
     value_of: Callable[[np.ndarray], np.ndarray],
     pose,
     K: np.ndarray,
-    uv: np.ndarray,
+    measured: np.ndarray,
+    dist,
     pixel_sigma: float,
 ) -> PlaneMeasurement:
-    """A value of the plane points and its first-order sigma (central differences, see the module)."""
+    """A value of the plane points and its first-order sigma (central differences, see the module).
+
+    The picking noise is in the measured pixels: the gradient in the ideal pixels is chained
+    through the undistortion's local 2 x 2 Jacobian at each picked pixel.
+    """
     R, t, cov = _pose_parts(pose)
+    uv = _ideal(measured, K, dist)
 
     def value(Ri, ti, u):
         return np.atleast_1d(value_of(_to_plane(K, Ri, ti, u)))
@@ -166,6 +174,9 @@ def _propagate(
         d[k] = _STEP_PIXEL
         step = d.reshape(uv.shape)
         g_pix[:, k] = (value(R, t, uv + step) - value(R, t, uv - step)) / (2 * _STEP_PIXEL)
+    if np.any(as_dist(dist)):  # d ideal / d measured at each picked pixel
+        D = distortion_jacobian(lambda q: _ideal(q, K, dist), measured)
+        g_pix = np.einsum("mki,kij->mkj", g_pix.reshape(len(m), -1, 2), D).reshape(len(m), -1)
     var_pose = np.einsum("mi,ij,mj->m", g_pose, cov, g_pose)
     var_pix = pixel_sigma**2 * np.sum(g_pix**2, axis=1)
     s_pose, s_pix = np.sqrt(np.maximum(var_pose, 0)), np.sqrt(var_pix)
@@ -239,12 +250,12 @@ def measure_on_plane(
             f"{len(a.array)} and {len(b.array)}; pass matched rows"
         )
     m = len(a.array)
-    uv = _ideal(np.vstack([a.array, b.array]), Km, dist)
+    uv = np.vstack([a.array, b.array])
 
     def lengths(p: np.ndarray) -> np.ndarray:
         return np.linalg.norm(p[:m] - p[m:], axis=1)
 
-    return _propagate(lengths, pose, Km, uv, _pixel_sigma(pixel_sigma, pose))
+    return _propagate(lengths, pose, Km, uv, dist, _pixel_sigma(pixel_sigma, pose))
 
 
 def area_on_plane(
@@ -281,4 +292,4 @@ def area_on_plane(
         x, y = p[:, 0], p[:, 1]
         return np.array([0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))])
 
-    return _propagate(area, pose, Km, _ideal(poly, Km, dist), _pixel_sigma(pixel_sigma, pose))
+    return _propagate(area, pose, Km, poly, dist, _pixel_sigma(pixel_sigma, pose))

@@ -31,7 +31,9 @@ so :func:`solve_pnp` starts from a closed-form estimate and polishes it:
 With distortion the measured pixels are first undistorted (:func:`camlab.distortion.
 undistort_pixels`) and the pinhole problem is solved on the ideal pixels; the residuals and the
 rms are reported in the measured pixels (the pose reprojected through the distortion), the
-numbers OpenCV's ``solvePnP`` minimises.
+numbers OpenCV's ``solvePnP`` minimises. The noise lives in the measured pixels, so the
+covariance below uses the Jacobian of the *distorted* projection, :math:`J = D_i J_i^{\text{ideal}}`
+with :math:`D_i` the 2 x 2 Jacobian of the distortion at each point (:func:`distortion_jacobian`).
 
 **Uncertainty.** Near the minimum the residuals are linear in the six parameters,
 :math:`r(p) \approx r + J \delta p`, and pixel noise of variance :math:`\sigma^2` per
@@ -83,6 +85,7 @@ __all__ = [
     "PnPResult",
     "plane_frame",
     "pose_covariance",
+    "distortion_jacobian",
     "pose_jacobian",
     "project_pose",
     "solve_pnp",
@@ -248,6 +251,36 @@ def pose_jacobian(K: np.ndarray, R: np.ndarray, t: np.ndarray, X: np.ndarray) ->
     dXc[:, :, :3] = -np.stack([_skew(p) for p in RX])
     dXc[:, :, 3:] = np.eye(3)
     return (dproj @ dXc).reshape(-1, 6)
+
+
+def distortion_jacobian(mapping, uv: np.ndarray, step: float = 1e-4) -> np.ndarray:
+    r"""The (N, 2, 2) Jacobians of a pixel map at each pixel, by central differences.
+
+    ``mapping`` takes (N, 2) pixels to (N, 2) pixels, one point at a time (e.g.
+    ``lambda p: distort_pixels(p, K, dist)``); row ``k`` of the result is
+    :math:`\partial\, \text{mapping}(u_k) / \partial u_k`. A pixel noise :math:`\delta u` on one
+    side becomes :math:`D_k\, \delta u` on the other.
+
+    Parameters
+    ----------
+    mapping : callable
+        (N, 2) ndarray -> (N, 2) ndarray, each point mapped on its own.
+    uv : (N, 2) ndarray
+        Where to take the derivatives, pixels.
+    step : float
+        Central-difference step, pixels.
+
+    Returns
+    -------
+    (N, 2, 2) ndarray
+        ``D[k, i, j]`` = d mapping_i / d u_j at point k.
+    """
+    D = np.zeros((len(uv), 2, 2))
+    for j in range(2):
+        e = np.zeros(2)
+        e[j] = step
+        D[:, :, j] = (mapping(uv + e) - mapping(uv - e)) / (2 * step)
+    return D
 
 
 def pose_covariance(
@@ -443,6 +476,10 @@ def solve_pnp(
     res = reproj - uv
     n = len(X)
     sigma2 = float(np.sum(res**2)) / max(2 * n - 6, 1)
-    cov = pose_covariance(Km, R, t, X, np.sqrt(sigma2))
+    J = pose_jacobian(Km, R, t, X)
+    if np.any(d):  # the noise is in the measured pixels: chain through the distortion
+        D = distortion_jacobian(lambda p: distort_pixels(p, Km, d), project_pose(Km, R, t, X))
+        J = (D @ J.reshape(n, 2, 6)).reshape(-1, 6)
+    cov = sigma2 * np.linalg.pinv(J.T @ J)
     rms = float(np.sqrt(np.sum(res**2) / n))
     return PnPResult(R, t, rvec, rms, res, lm.iterations, cov, np.sqrt(sigma2), used, (R0, t0))

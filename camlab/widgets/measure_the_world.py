@@ -22,7 +22,7 @@ from ..plotting import palette
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import monospace
 
-__all__ = ["OBJECT", "geometry", "length_sigma", "plane_error"]
+__all__ = ["OBJECT", "OBJECT_ACROSS", "geometry", "length_sigma", "plane_error"]
 
 K_DEMO = np.array([[532.8, 0.0, 341.8], [0.0, 533.0, 234.1], [0.0, 0.0, 1.0]])
 """The intrinsics of the shipped real chessboard photos (lesson 08's calibration, rounded)."""
@@ -30,7 +30,9 @@ SIZE = (640, 480)
 BOARD = board_points((9, 6), 0.025)
 CENTRE = np.array([0.1, 0.0625, 0.0])
 OBJECT = np.array([[0.24, -0.0375, 0.0], [0.24, 0.1625, 0.0]])
-"""A 0.2 m edge lying on the table 4 cm beyond the board's last corner column (board units, metres)."""
+"""A 0.2 m edge on the table 4 cm beyond the board's last corner column, along the board's y: along the slope."""
+OBJECT_ACROSS = np.array([[0.0, -0.04, 0.0], [0.2, -0.04, 0.0]])
+"""A 0.2 m edge on the table 4 cm before the board's first row, along x: across the slope (the tilt axis)."""
 SIGMA_PX = 0.14
 """Corner noise per coordinate, pixels: the real photos' (0.137 px on calib_left01, lesson 12 section 1)."""
 TILTS = np.linspace(0.0, 75.0, 61)
@@ -59,8 +61,13 @@ def geometry(tilt_deg: float, distance: float) -> SimpleNamespace:
     return SimpleNamespace(R=R, t=-R @ eye, eye=eye)
 
 
-def length_sigma(tilt_deg: float, distance: float, pixel_sigma: float = 0.5) -> SimpleNamespace:
+def length_sigma(
+    tilt_deg: float, distance: float, pixel_sigma: float = 0.5, across: bool = False
+) -> SimpleNamespace:
     """The predicted error of :data:`OBJECT`'s length from one photo at this tilt and distance.
+
+    The camera tilts about the board's x axis (it moves toward -y), so :data:`OBJECT` runs along
+    the slope and :data:`OBJECT_ACROSS` (``across=True``) along the tilt axis.
 
     Parameters
     ----------
@@ -70,6 +77,8 @@ def length_sigma(tilt_deg: float, distance: float, pixel_sigma: float = 0.5) -> 
         Metres to the board's centre.
     pixel_sigma : float
         How precisely the object's ends are picked, pixels.
+    across : bool
+        Measure :data:`OBJECT_ACROSS` instead of :data:`OBJECT`.
 
     Returns
     -------
@@ -81,7 +90,7 @@ def length_sigma(tilt_deg: float, distance: float, pixel_sigma: float = 0.5) -> 
     g = geometry(tilt_deg, distance)
     cov = pose_covariance(K_DEMO, g.R, g.t, BOARD, SIGMA_PX)
     pose = SimpleNamespace(R=g.R, t=g.t, covariance=cov, sigma=SIGMA_PX)
-    ends = project_pose(K_DEMO, g.R, g.t, OBJECT)
+    ends = project_pose(K_DEMO, g.R, g.t, OBJECT_ACROSS if across else OBJECT)
     m = measure_on_plane(pose, K_DEMO, ends[:1], ends[1:], pixel_sigma=pixel_sigma)
     corners = project_pose(K_DEMO, g.R, g.t, BOARD)
     width = np.linalg.norm(corners[8] - corners[0])
@@ -105,31 +114,44 @@ def _figure() -> SimpleNamespace:
     ax_img.set_xlabel("u (px)", fontsize=8)
     ax_img.set_ylabel("v (px)", fontsize=8)
     ax_img.tick_params(labelsize=7)
-    ax_img.set_title("the photo: board corners (blue), the 0.2 m edge (orange)", fontsize=9)
-    (corners,) = ax_img.plot([], [], ".", ms=3, color=palette.BLUE)
-    (edge,) = ax_img.plot([], [], "-o", lw=2, ms=4, color=palette.ORANGE)
+    ax_img.set_title("the photo: board corners, the two 0.2 m edges", fontsize=9)
+    (corners,) = ax_img.plot([], [], ".", ms=3, color=palette.GREY)
+    (edge,) = ax_img.plot([], [], "-o", lw=2, ms=4, color=palette.BLUE)
+    (edge_x,) = ax_img.plot([], [], "-s", lw=2, ms=4, color=palette.BROWN)
     ax_plot.set(
         xlim=(-2, 77),  # room for the dot at 0 and 75 deg
         ylim=(0, Y_MAX_MM),
         xlabel="tilt off the board's normal (deg)",
-        ylabel="σ of the 0.2 m edge (mm)",
+        ylabel="σ of a 0.2 m edge (mm)",
     )
     ax_plot.xaxis.label.set_fontsize(8)
     ax_plot.yaxis.label.set_fontsize(8)
     ax_plot.tick_params(labelsize=7)
     ax_plot.grid(alpha=0.3)
-    (total,) = ax_plot.plot([], [], "-", color=palette.BLUE, label="total")
-    (pose,) = ax_plot.plot([], [], "--", color=palette.GREEN, label="from the pose")
-    (picks,) = ax_plot.plot([], [], ":", color=palette.PURPLE, label="from picking the ends")
-    (here,) = ax_plot.plot([], [], "o", color=palette.RED, ms=6, label="this setting")
+    # the total (thick) under its picking part (dotted, haloed): they nearly coincide
+    (total,) = ax_plot.plot([], [], "-", color=palette.BLUE, lw=4.5, label="along the slope: total")
+    (picks,) = ax_plot.plot(
+        [],
+        [],
+        ":",
+        color=palette.PURPLE,
+        lw=1.5,
+        path_effects=palette.halo(1.5),
+        label="   its part from picking the ends",
+    )
+    (pose,) = ax_plot.plot([], [], "--", color=palette.GREEN, label="   its part from the pose")
+    (across,) = ax_plot.plot([], [], "-", color=palette.BROWN, label="across the slope: total")
+    (here,) = ax_plot.plot([], [], "o", color=palette.RED, ms=6, label="this setting (along)")
     ax_plot.legend(fontsize=7, loc="upper left")
     ax_plot.set_title("predicted error at this distance", fontsize=9)
-    view.animate(corners, edge, total, pose, picks, here)
+    view.animate(corners, edge, edge_x, total, pose, picks, across, here)
     return SimpleNamespace(
         view=view,
         ax_plot=ax_plot,
         corners=corners,
         edge=edge,
+        edge_x=edge_x,
+        across=across,
         total=total,
         pose=pose,
         picks=picks,
@@ -137,21 +159,26 @@ def _figure() -> SimpleNamespace:
     )
 
 
-@register(lesson="12", sweep={"tilt": [0.0, 40.0, 75.0], "distance": [0.4, 0.6, 1.5]})
+@register(
+    lesson="12",
+    sweep={"tilt": [0.0, 40.0, 75.0], "distance": [0.4, 0.6, 1.5], "pick": [0.05, 0.25]},
+)
 def plane_error() -> Demo:
-    """The error of a 0.2 m length measured on a table beside a 9 x 6 board, against tilt and distance.
+    """The error of two 0.2 m lengths on a table beside a 9 x 6 board, against tilt and distance.
 
     The camera of the shipped photos looks at the board's centre; the board's 54 corners, found to
-    0.14 px, fix the pose (its covariance from the Jacobian), and the edge's two ends are picked to
-    0.5 px. The error, first order (``camlab.measurement.measure_on_plane``), is split into what the
-    pose and what the picking contribute, and drawn against the tilt at this distance.
+    0.14 px, fix the pose (its covariance from the Jacobian), and each edge's two ends are picked
+    to ``pick`` px (0.5 by default: by hand). The error, first order
+    (``camlab.measurement.measure_on_plane``), is split into what the pose and what the picking
+    contribute, and drawn against the tilt at this distance.
 
     Returns
     -------
     Demo
-        Controls ``tilt`` (degrees off the board's normal) and ``distance`` (metres to the board's
-        centre); ``state`` holds ``sigma_mm``, ``pose_mm``, ``pixels_mm``, ``board_px`` and
-        ``curve_mm`` (sigma at each tilt of ``TILTS``).
+        Controls ``tilt`` (degrees off the board's normal), ``distance`` (metres to the board's
+        centre) and ``pick`` (how precisely the ends are picked, pixels); ``state`` holds
+        ``sigma_mm``, ``pose_mm``, ``pixels_mm``, ``board_px``, ``curve_mm`` (sigma at each tilt of
+        ``TILTS``) and ``across_mm`` (the edge across the slope).
     """
     fig = _figure()
     readout = W.HTML()
@@ -159,18 +186,24 @@ def plane_error() -> Demo:
     @lru_cache(
         maxsize=64
     )  # the distance slider revisits settings; the tilt slider only moves the dot
-    def curve(distance: float) -> tuple:
-        """sigma (mm) in total, from the pose and from the picks at every tilt of TILTS."""
-        c = [length_sigma(a, distance) for a in TILTS]
-        return tuple(
-            1000 * np.array([getattr(x, k) for x in c]) for k in ("sigma", "pose", "pixels")
+    def curve(distance: float, pick: float) -> tuple:
+        """sigma (mm) along the slope: total, from the pose, from the picks; across: total."""
+        c = [length_sigma(a, distance, pick) for a in TILTS]
+        along = [1000 * np.array([getattr(x, k) for x in c]) for k in ("sigma", "pose", "pixels")]
+        return (
+            *along,
+            1000 * np.array([length_sigma(a, distance, pick, across=True).sigma for a in TILTS]),
         )
 
     def update(v, state):
-        now = length_sigma(v["tilt"], v["distance"])
-        total, from_pose, from_picks = curve(round(float(v["distance"]), 4))
+        pick = round(float(v["pick"]), 4)
+        now = length_sigma(v["tilt"], v["distance"], pick)
+        now_x = length_sigma(v["tilt"], v["distance"], pick, across=True)
+        total, from_pose, from_picks, across = curve(round(float(v["distance"]), 4), pick)
         fig.corners.set_data(*now.corners.T)
         fig.edge.set_data(*now.ends.T)
+        fig.edge_x.set_data(*now_x.ends.T)
+        fig.across.set_data(TILTS, across)
         fig.total.set_data(TILTS, total)
         fig.pose.set_data(TILTS, from_pose)
         fig.picks.set_data(TILTS, from_picks)
@@ -180,21 +213,24 @@ def plane_error() -> Demo:
             pose_mm=1000 * now.pose,
             pixels_mm=1000 * now.pixels,
             board_px=now.board_px,
-            in_frame=now.in_frame,
+            in_frame=now.in_frame and now_x.in_frame,
             curve_mm=total,
+            across_mm=1000 * now_x.sigma,
         )
         readout.value = monospace(
-            f"tilt {v['tilt']:.0f} deg, {v['distance']:.2f} m: the board spans {now.board_px:.0f} px"
-            + ("" if now.in_frame else " (part of it is outside the photo!)")
+            f"tilt {v['tilt']:.0f} deg, {v['distance']:.2f} m: the board's first row spans {now.board_px:.0f} px"
+            + ("" if now.in_frame and now_x.in_frame else " (part of it is outside the photo!)")
             + "\n"
-            f"sigma of the 0.2 m edge: {1000 * now.sigma:.2f} mm\n"
-            f"  from the pose:        {1000 * now.pose:.2f} mm\n"
-            f"  from picking the ends: {1000 * now.pixels:.2f} mm"
+            f"sigma of the 0.2 m edge along the slope (blue): {1000 * now.sigma:.2f} mm\n"
+            f"  from the pose:         {1000 * now.pose:.2f} mm\n"
+            f"  from picking the ends ({pick:g} px): {1000 * now.pixels:.2f} mm\n"
+            f"sigma of the 0.2 m edge across the slope (brown): {1000 * now_x.sigma:.2f} mm"
         )
 
     controls = {
         "tilt": slider(30.0, 0.0, 75.0, 1.0, "tilt (deg)"),
         "distance": slider(0.6, 0.4, 1.5, 0.05, "distance (m)", continuous_update=False),
+        "pick": slider(0.5, 0.05, 0.5, 0.05, "picking σ (px)", continuous_update=False),
     }
     return build_demo(
         "plane_error",
