@@ -57,7 +57,9 @@ import numpy as np
 from .._validate import CamlabInputError
 from ._answers import (
     JOIN_HINT,
+    SCALE_FREE_RTOL,
     SameArray,
+    Tolerance,
     as_array,
     precision_problem,
     rescaled_to,
@@ -174,7 +176,8 @@ def _fmt(value: Any) -> str:
                 else "[" + ", ".join(t.strip() for t in text[1:-1].split(",")) + "]"
             )
         if value.dtype.kind == "f":  # what prints as zero prints as 0, never -0.0000
-            value = np.where(np.round(value.astype(float), 4) == 0, 0.0, value)
+            with np.errstate(over="ignore"):  # rounding 1e308 overflows on the way; it is not 0
+                value = np.where(np.round(value.astype(float), 4) == 0, 0.0, value)
         text = np.array2string(
             value, precision=4, suppress_small=True, separator=", ", floatmode="maxprec_equal"
         )
@@ -465,6 +468,12 @@ def check(
                 exercise.compare.tolerance if isinstance(exercise.compare, SameArray) else None
             )
             shown, scaled = _expected_shown(exercise, got, expected)
+            if scaled:  # compared as unit vectors: an entry's allowance is a share of the length
+                tolerance = Tolerance(
+                    0.0,
+                    SCALE_FREE_RTOL * float(np.linalg.norm(shown)),
+                    f"{SCALE_FREE_RTOL:g} of the vector's length, after fixing the scale",
+                )
             run_again = partial(
                 _run_student, name, student_function, i=i, n=len(cases), seconds=seconds
             )

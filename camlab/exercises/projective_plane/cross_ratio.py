@@ -250,8 +250,14 @@ register_exercise(
         wrong_variants=(
             (_unsigned_wrong, "unsigned lengths"),
             (lambda p: _unsigned(np.asarray(p, dtype=float)[:, :2]), "without dividing by w"),
-            (lambda p: _signed_ratio(_positions(np.asarray(p, dtype=float)[:, :2])), "without dividing by w"),
-            (lambda p: _signed_ratio(_positions(np.asarray(p, dtype=float))), "without dividing by w"),
+            (
+                lambda p: _signed_ratio(_positions(np.asarray(p, dtype=float)[:, :2])),
+                "without dividing by w",
+            ),
+            (
+                lambda p: _signed_ratio(_positions(np.asarray(p, dtype=float))),
+                "without dividing by w",
+            ),
             (lambda p: _unsigned(np.asarray(p, dtype=float)), "without dividing by w"),
             (
                 lambda p: _signed_ratio(_positions(np.asarray(p, dtype=float)[[0, 2, 1, 3], :2])),
@@ -259,7 +265,10 @@ register_exercise(
             ),
             (
                 lambda p: _signed_ratio(
-                    _positions(np.asarray(p, dtype=float)[:, :2] / np.abs(np.asarray(p, dtype=float)[:, 2:]))
+                    _positions(
+                        np.asarray(p, dtype=float)[:, :2]
+                        / np.abs(np.asarray(p, dtype=float)[:, 2:])
+                    )
                 ),
                 "divided by |w|",
             ),
