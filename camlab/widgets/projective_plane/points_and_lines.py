@@ -455,13 +455,16 @@ def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespac
     )
     # below the image: inside it, the grid's lines would run through the legend at some setting
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=3, fontsize=8)
+    below = (0.5, -0.31)  # under the legend: inside the image the note would cover grid lines
+    # an unseen two-line stand-in keeps room for the note: the layout is fixed at the first draw,
+    # when the note is empty (the horizon is in the image at the default)
+    ax.text(*below, "room\nfor the\nnote", transform=ax.transAxes, va="top", fontsize=8, alpha=0)
     note = ax.text(
-        0.98,
-        0.03,
+        *below,
         "",
         transform=ax.transAxes,
-        ha="right",
-        va="bottom",
+        ha="center",
+        va="top",
         fontsize=8,
         color=palette.TAB_RED,
         bbox=dict(fc="white", ec=palette.TAB_RED, alpha=0.9),
@@ -547,8 +550,8 @@ def vanishing_points() -> Demo:
         note.set_text(
             ""
             if visible
-            else f"the horizon is above the image (v = {v_horizon:.0f} px at u = 0):\n"
-            f"pitched down {v['pitch']:.0f}°, it sees only ground;\nthe lines still meet there (arrows)"
+            else f"the horizon is above the image (v = {v_horizon:.0f} px at u = 0): pitched down "
+            f"{v['pitch']:.0f}°, the camera sees only ground;\nthe lines still meet there (arrows)"
         )
         note.set_visible(
             not visible
