@@ -394,6 +394,23 @@ def _expected_shown(exercise: Exercise, got: Any, expected: Any) -> tuple[Any, s
     return expected, ""
 
 
+def _shown_with_tolerance(exercise: Exercise, got: Any, expected: Any) -> tuple[Any, str, Any]:
+    """:func:`_expected_shown`, and the tolerance a failed check names beside it.
+
+    A scale-free answer is compared as a unit vector (:func:`same_up_to_scale`), so each entry's
+    allowance is a share of the vector's length, not numpy's default ``rtol``.
+    """
+    tolerance = exercise.compare.tolerance if isinstance(exercise.compare, SameArray) else None
+    shown, scaled = _expected_shown(exercise, got, expected)
+    if scaled:
+        tolerance = Tolerance(
+            0.0,
+            SCALE_FREE_RTOL * float(np.linalg.norm(shown)),
+            f"{SCALE_FREE_RTOL:g} of the vector's length, after fixing the scale",
+        )
+    return shown, scaled, tolerance
+
+
 def _likely_cause(exercise: Exercise, args: tuple, got: Any, expected: Any, run=None) -> str:
     """The exercise's diagnosis of a wrong answer; a plain hint if the answer's form defeats it.
 
@@ -464,16 +481,7 @@ def check(
                 f"  likely cause: {too_coarse}"
             )
         if not exercise.compare(got, expected):
-            tolerance = (
-                exercise.compare.tolerance if isinstance(exercise.compare, SameArray) else None
-            )
-            shown, scaled = _expected_shown(exercise, got, expected)
-            if scaled:  # compared as unit vectors: an entry's allowance is a share of the length
-                tolerance = Tolerance(
-                    0.0,
-                    SCALE_FREE_RTOL * float(np.linalg.norm(shown)),
-                    f"{SCALE_FREE_RTOL:g} of the vector's length, after fixing the scale",
-                )
+            shown, scaled, tolerance = _shown_with_tolerance(exercise, got, expected)
             run_again = partial(
                 _run_student, name, student_function, i=i, n=len(cases), seconds=seconds
             )
