@@ -456,9 +456,9 @@ def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespac
     # below the image: inside it, the grid's lines would run through the legend at some setting
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=3, fontsize=8)
     below = (0.5, -0.31)  # under the legend: inside the image the note would cover grid lines
-    # an unseen two-line stand-in keeps room for the note: the layout is fixed at the first draw,
+    # an unseen (blank) stand-in keeps room for the note: the layout is fixed at the first draw,
     # when the note is empty (the horizon is in the image at the default)
-    ax.text(*below, "room\nfor the\nnote", transform=ax.transAxes, va="top", fontsize=8, alpha=0)
+    ax.text(*below, " \n \n ", transform=ax.transAxes, va="top", fontsize=8)
     note = ax.text(
         *below,
         "",
