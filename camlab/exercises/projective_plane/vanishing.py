@@ -146,6 +146,13 @@ def _vanishing_diagnosis(args, got, expected) -> str:
             "you swapped the coordinates: your point is the vanishing point of the segments with (u, v) read "
             "as (v, u). A pixel (u, v) = (column, row) lifts to (u, v, 1)."
         )
+    transposed = np.asarray(segments, dtype=float).transpose(1, 0, 2)
+    if np.shape(got) == (3,) and same_up_to_scale(got, vanishing_point(transposed)):
+        return (
+            "you read the segments along the wrong axis: segments[:, k] (the k-th endpoint of every "
+            "segment) where segments[k] (segment k, both endpoints) belongs. The axes are (segment, "
+            "endpoint, coordinate): join segments[k][0] and segments[k][1] for each k, then meet the lines."
+        )
     if np.shape(got) == (3,) and np.isfinite(np.asarray(got, dtype=float)).all():
         slip = _conditioning_slip(segments, np.asarray(got, dtype=float), expected)
         if slip:
@@ -266,7 +273,7 @@ register_exercise(
                 lambda s: np.cross(
                     np.cross([*s[0, 0], 1], [*s[1, 0], 1]), np.cross([*s[0, 1], 1], [*s[1, 1], 1])
                 ),
-                "not on both lines",
+                "wrong axis",
             ),
             (
                 lambda s: projective.from_homogeneous(projective.vanishing_point(s)),
@@ -308,6 +315,10 @@ register_exercise(
             (lambda s: np.zeros(3), "(0, 0, 0)"),
             (_undone_in_wrong_order, "wrong order"),
             (_hartley_undone_as_scale_after_shift, "wrong order"),
+            (
+                lambda s: projective.vanishing_point(np.asarray(s).transpose(1, 0, 2)),
+                "wrong axis",
+            ),
             (
                 lambda s: projective.vanishing_point(np.asarray(s) * [1.0, -1.0] + [0.0, 639.0]),
                 "width and height swapped",
