@@ -44,9 +44,12 @@ def _lift_figure(view: FigureView) -> SimpleNamespace:
         edgecolor=palette.TAB_BLUE,
         lw=0.3,
     )
+    ax3.plot_surface(  # the plane w = 0, faintly: where an ideal point's ray lies
+        gx, gy, np.zeros_like(gx), color="0.5", alpha=0.08, edgecolor="none"
+    )
     ax3.text(
-        -box, -box, 1.25, "w = 1", color=palette.TAB_BLUE, ha="left"
-    )  # the left corner, off the ray's path
+        -0.6 * box, -box, 1.3, "w = 1", color=palette.TAB_BLUE, ha="left"
+    )  # near the left corner, off the ray's path and clear of the panel's edge
     ax3.scatter([0], [0], [0], color="k", s=15)
     (ray,) = ax3.plot(
         [], [], [], color=palette.TAB_BLUE, lw=1.5, label="line through 0 = one projective point"
@@ -130,8 +133,8 @@ def lift_to_plane() -> Demo:
         readout.value = monospace(f"λ(x, y, w) = ({xh[0]:.2f}, {xh[1]:.2f}, {xh[2]:.2f})\n{second}")
 
     controls = {
-        "x": slider(1.0, -_LIFT_XY, _LIFT_XY, 0.05, "x"),
-        "y": slider(0.5, -_LIFT_XY, _LIFT_XY, 0.05, "y"),
+        "x": slider(1.0, -_LIFT_XY, _LIFT_XY, 0.05, "ray's x"),
+        "y": slider(0.5, -_LIFT_XY, _LIFT_XY, 0.05, "ray's y"),
         "w": slider(1.0, 0.0, 1.0, 0.05, "ray's w"),
         "scale": slider(1.6, -_LIFT_SCALE, _LIFT_SCALE, 0.05, "scale λ"),
     }
