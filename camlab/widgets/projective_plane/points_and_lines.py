@@ -164,7 +164,7 @@ def _parallel_figure(view: FigureView) -> SimpleNamespace:
     plane_axes(ax, 4, "l1 = 30° fixed; turn l2")
     (l1_artist,) = ax.plot([], [], color=palette.TAB_BLUE, lw=2, label="l1")
     (l2_artist,) = ax.plot([], [], color=palette.ORANGE, lw=2, label="l2")
-    (meet_dot,) = ax.plot([], [], "o", color=palette.TAB_RED, ms=8, label="l1 × l2")
+    (meet_dot,) = ax.plot([], [], "o", color=palette.TAB_RED, ms=8, label="l1 × l2 (when l2 ≠ l1)")
     arrow = ax.annotate(
         "", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="->", color=palette.TAB_RED, lw=2)
     )
@@ -177,6 +177,7 @@ def _parallel_figure(view: FigureView) -> SimpleNamespace:
         [], [], "o", color=palette.TAB_RED, clip_on=False, zorder=4
     )  # whole at w = 0
     axw.axvline(angle1, color=palette.TAB_BLUE, ls=":", lw=1)
+    axw.text(angle1, 0.97, " l1's angle", color=palette.TAB_BLUE, fontsize=8, ha="left", va="top")
     axw.set(
         xlim=(0, 60),
         xlabel="angle of l2 (degrees)",
