@@ -234,7 +234,7 @@ def worst_mismatch(got: Any, expected: Any, tolerance: Tolerance | None = None) 
     failing = ~tol.close(g, e)
     wrong = int(np.sum(failing))
     with np.errstate(
-        divide="ignore", invalid="ignore"
+        divide="ignore", invalid="ignore", over="ignore"
     ):  # how many allowances past: 0 allowance -> inf
         excess = np.where(failing, err / (tol.atol + tol.rtol * np.abs(e)), -1.0)
     excess[failing & ~np.isfinite(excess)] = np.inf
@@ -249,7 +249,20 @@ def worst_mismatch(got: Any, expected: Any, tolerance: Tolerance | None = None) 
     )
 
 
-def same_up_to_scale(got: Any, expected: np.ndarray, rtol: float = 1e-6) -> bool:
+SCALE_FREE_RTOL = 1e-6
+""":func:`same_up_to_scale`'s default: the two unit vectors may differ by this much (Euclidean norm)."""
+
+
+def _overflowed(g: np.ndarray) -> bool:
+    """True when an entry is within 1e8 of the largest float.
+
+    Such an entry is an overflow, or an inf replaced by np.nan_to_num, never a coordinate: its
+    square overflows, and no scale makes it comparable.
+    """
+    return bool(np.abs(g).max(initial=0.0) > np.finfo(float).max / 1e8)
+
+
+def same_up_to_scale(got: Any, expected: np.ndarray, rtol: float = SCALE_FREE_RTOL) -> bool:
     """True if ``got`` equals ``expected`` times some non-zero scalar (homogeneous equality)."""
     g = np.asarray(got)
     if np.iscomplexobj(
@@ -260,7 +273,7 @@ def same_up_to_scale(got: Any, expected: np.ndarray, rtol: float = 1e-6) -> bool
         g = g.real
     g = np.asarray(g, dtype=float)
     e = np.asarray(expected, dtype=float)
-    if g.shape != e.shape or not np.isfinite(g).all() or not np.any(g):
+    if g.shape != e.shape or not np.isfinite(g).all() or not np.any(g) or _overflowed(g):
         return False
     g = g / np.linalg.norm(g)
     e = e / np.linalg.norm(e)
@@ -281,7 +294,13 @@ def rescaled_to(got: Any, expected: Any) -> np.ndarray | None:
         e = np.asarray(expected, dtype=float)
     except (TypeError, ValueError):
         return None
-    if g.shape != e.shape or not np.isfinite(g).all() or not np.any(g) or not np.any(e):
+    if (
+        g.shape != e.shape
+        or not np.isfinite(g).all()
+        or not np.any(g)
+        or not np.any(e)
+        or _overflowed(g)
+    ):
         return None
     if abs(np.sum(g * e)) < 0.9 * np.linalg.norm(g) * np.linalg.norm(e):
         return None
@@ -315,6 +334,9 @@ class Tolerance:
 
     rtol: float = 1e-5
     atol: float = 1e-8
+    note: str = ""
+    """How a failed check words the tolerance, when ``rtol`` and ``atol`` alone would mislead (a
+    scale-free comparison of unit vectors); empty: ``rtol ..., atol ...``."""
 
     def for_answer(self, got: Any, expected: Any) -> Tolerance:
         eps = _coarsest_eps(got)
@@ -323,7 +345,7 @@ class Tolerance:
         slack = REDUCED_PRECISION_SLACK * eps
         e = np.abs(np.asarray(expected, dtype=float))
         scale = float(e[np.isfinite(e)].max(initial=0.0))
-        return Tolerance(max(self.rtol, slack), max(self.atol, slack * scale))
+        return Tolerance(max(self.rtol, slack), max(self.atol, slack * scale), self.note)
 
     def close(self, got: Any, expected: Any) -> np.ndarray:
         """Per entry: within the tolerance (in float64)."""
@@ -335,7 +357,7 @@ class Tolerance:
         )
 
     def __str__(self) -> str:
-        return f"rtol {self.rtol:.1g}, atol {self.atol:.1g}"
+        return self.note or f"rtol {self.rtol:.1g}, atol {self.atol:.1g}"
 
 
 @dataclass(frozen=True)

@@ -57,7 +57,9 @@ import numpy as np
 from .._validate import CamlabInputError
 from ._answers import (
     JOIN_HINT,
+    SCALE_FREE_RTOL,
     SameArray,
+    Tolerance,
     as_array,
     precision_problem,
     rescaled_to,
@@ -182,7 +184,8 @@ def _fmt(value: Any) -> str:
                 else "[" + ", ".join(t.strip() for t in text[1:-1].split(",")) + "]"
             )
         if value.dtype.kind == "f":  # what prints as zero prints as 0, never -0.0000
-            value = np.where(np.round(value.astype(float), 4) == 0, 0.0, value)
+            with np.errstate(over="ignore"):  # rounding 1e308 overflows on the way; it is not 0
+                value = np.where(np.round(value.astype(float), 4) == 0, 0.0, value)
         text = np.array2string(
             value, precision=4, suppress_small=True, separator=", ", floatmode="maxprec_equal"
         )
@@ -406,6 +409,23 @@ def _expected_shown(exercise: Exercise, got: Any, expected: Any) -> tuple[Any, s
     return expected, ""
 
 
+def _shown_with_tolerance(exercise: Exercise, got: Any, expected: Any) -> tuple[Any, str, Any]:
+    """:func:`_expected_shown`, and the tolerance a failed check names beside it.
+
+    A scale-free answer is compared as a unit vector (:func:`same_up_to_scale`), so each entry's
+    allowance is a share of the vector's length, not numpy's default ``rtol``.
+    """
+    tolerance = exercise.compare.tolerance if isinstance(exercise.compare, SameArray) else None
+    shown, scaled = _expected_shown(exercise, got, expected)
+    if scaled:
+        tolerance = Tolerance(
+            0.0,
+            SCALE_FREE_RTOL * float(np.linalg.norm(shown)),
+            f"{SCALE_FREE_RTOL:g} of the vector's length, after fixing the scale",
+        )
+    return shown, scaled, tolerance
+
+
 def _likely_cause(exercise: Exercise, args: tuple, got: Any, expected: Any, run=None) -> str:
     """The exercise's diagnosis of a wrong answer; a plain hint if the answer's form defeats it.
 
@@ -476,10 +496,7 @@ def check(
                 f"  likely cause: {too_coarse}"
             )
         if not exercise.compare(got, expected):
-            tolerance = (
-                exercise.compare.tolerance if isinstance(exercise.compare, SameArray) else None
-            )
-            shown, scaled = _expected_shown(exercise, got, expected)
+            shown, scaled, tolerance = _shown_with_tolerance(exercise, got, expected)
             run_again = partial(
                 _run_student, name, student_function, i=i, n=len(cases), seconds=seconds
             )

@@ -90,6 +90,8 @@ def _angle_context(l1, l2, C):
         no_norm=float(no_norm),
         no_sqrt=float(no_sqrt),
         negative_scale=bool(l1 @ C @ l1 < 0),
+        cosine=float(_cosine(l1, l2, C)),
+        block=_angle_deg(l1[:2], l2[:2], C[:2, :2]),
     )
 
 
@@ -162,6 +164,19 @@ _ANGLE_MISTAKES = (
         "you divided by (l^T C* l) (m^T C* m) without the square root: the denominator must scale like "
         "the numerator (once in l, once in m). " + _FORMULA,
     ),
+    Mistake(
+        "the cosine",
+        lambda a: (abs(a.cosine), a.cosine),
+        "you returned the cosine of the angle, not the angle: finish with np.degrees(np.arccos(|cos|)).",
+    ),
+    Mistake(
+        "the 2 x 2 block",
+        lambda a: a.block if abs(a.block - a.right) > 1e-6 else None,
+        "you used only the 2 x 2 block of C_star with the lines' normals (a, b): that shortcut holds only "
+        "where C* keeps the form diag(1, 1, 0), on the plane itself or after an affinity. Through a "
+        "homography C*' = H C*inf H^T fills its last row and column; use the whole 3-vectors and 3 x 3 "
+        "matrix: " + _FORMULA,
+    ),
 )
 
 
@@ -178,11 +193,9 @@ def _angle_diagnosis(args, got, expected) -> str:
         return not_one_number(got, "the angle in degrees")
     context = _angle_context(*args)
     for mistake in _ANGLE_MISTAKES:
-        slip = mistake.answer(context)
-        if (
-            slip is not None
-            and np.isfinite(slip)
-            and np.isclose(float(got), slip, rtol=1e-9, atol=1e-9)
+        slips = mistake.answer(context)  # one number, or every number the slip can give
+        if slips is not None and np.any(
+            np.isclose(float(got), np.atleast_1d(slips), rtol=1e-9, atol=1e-9)
         ):
             return mistake.hint(context) if callable(mistake.hint) else mistake.hint
     for digits, unit in (
@@ -270,6 +283,13 @@ register_exercise(
             (lambda l1, l2, C: [_angle_deg(l1, l2, C)], "one number"),
             (lambda l1, l2, C: 180.0 - _angle_deg(l1, l2, C), "cosine is positive here"),
             (lambda l1, l2, C: float(round(_angle_deg(l1, l2, C))), "rounded the angle"),
+            (lambda l1, l2, C: abs(_cosine(l1, l2, C)), "the cosine of the angle"),
+            (
+                lambda l1, l2, C: _angle_deg(
+                    np.asarray(l1)[:2], np.asarray(l2)[:2], np.asarray(C)[:2, :2]
+                ),
+                "2 x 2 block",
+            ),
             (lambda l1, l2, C: float(round(_angle_deg(l1, l2, C), 1)), "tenths of a degree"),
             (lambda l1, l2, C: float(f"{_angle_deg(l1, l2, C):.2f}"), "hundredths of a degree"),
         ),

@@ -98,9 +98,25 @@ def _context(points):
         xy=xy,
         right=r,
         w=x[:, 2],
-        raw=[_unsigned(x[:, :2]), _unsigned(x), _signed_ratio(_positions(x[:, :2]))],
+        raw=_every_order(x[:, :2]) + _every_order(x),
+        abs_w=_every_order(x[:, :2] / np.abs(x[:, 2:])),
         orders=orders,
     )
+
+
+def _every_order(xy) -> list[float]:
+    """Signed and unsigned cross-ratios of the rows of ``xy`` taken in each of the 24 orders."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return [
+            f(xy[list(order)])
+            for order in permutations(range(4))
+            for f in (lambda q: _signed_ratio(_positions(q)), _unsigned)
+        ]
+
+
+def _slip_among(candidates, right):
+    """The candidates that differ from the right answer (a slip that gives the right number is no slip)."""
+    return [c for c in candidates if np.isfinite(c) and abs(c - right) > 1e-9 * abs(right)]
 
 
 def _order_hint(a, got) -> str | None:
@@ -138,15 +154,17 @@ _CROSS_MISTAKES = (
         "position t along the line, t = (P - A) . (D - A), and take AC = t_C - t_A.",
     ),
     Mistake(
-        "not divided by w",
+        "divided by |w|",
+        lambda a: _slip_among(a.abs_w, a.right) if np.any(a.w < 0) else None,
         lambda a: (
-            next(
-                (r for r in a.raw if np.isfinite(r) and abs(r - a.right) > 1e-9 * abs(a.right)),
-                None,
-            )
-            if np.any(a.w != 1)
-            else None
+            "you divided by |w|, not by w: a point whose w is negative (here w = "
+            f"{', '.join(f'{w:g}' for w in a.w)}) lands on the mirror image of itself through the origin, "
+            "off the line. Divide by w itself, keeping its sign: points[:, :2] / points[:, 2:]."
         ),
+    ),
+    Mistake(
+        "not divided by w",
+        lambda a: _slip_among(a.raw, a.right) if np.any(a.w != 1) else None,
         lambda a: (
             "you measured lengths between the homogeneous vectors (x, y, w) as they came, without "
             f"dividing by w (their w here are {', '.join(f'{w:g}' for w in a.w)}): x and y are scaled by w, so "
@@ -180,8 +198,8 @@ def _cross_diagnosis(args, got, expected) -> str:
     if not is_number(got):
         return not_one_number(got, "the cross-ratio (A, B; C, D)")
     for mistake in _CROSS_MISTAKES:
-        slip = mistake.answer(context)
-        if slip is not None and np.isfinite(slip) and np.isclose(float(got), slip, rtol=1e-9):
+        slips = mistake.answer(context)  # one number, or every number this slip can give
+        if slips is not None and np.any(np.isclose(float(got), np.atleast_1d(slips), rtol=1e-9)):
             return mistake.hint(context) if callable(mistake.hint) else mistake.hint
     return _order_hint(context, got) or (
         f"(A, B; C, D) = {expected:.6g} here, not {float(got):.6g}. Divide by w, measure signed positions "
@@ -232,6 +250,28 @@ register_exercise(
         wrong_variants=(
             (_unsigned_wrong, "unsigned lengths"),
             (lambda p: _unsigned(np.asarray(p, dtype=float)[:, :2]), "without dividing by w"),
+            (
+                lambda p: _signed_ratio(_positions(np.asarray(p, dtype=float)[:, :2])),
+                "without dividing by w",
+            ),
+            (
+                lambda p: _signed_ratio(_positions(np.asarray(p, dtype=float))),
+                "without dividing by w",
+            ),
+            (lambda p: _unsigned(np.asarray(p, dtype=float)), "without dividing by w"),
+            (
+                lambda p: _signed_ratio(_positions(np.asarray(p, dtype=float)[[0, 2, 1, 3], :2])),
+                "without dividing by w",
+            ),
+            (
+                lambda p: _signed_ratio(
+                    _positions(
+                        np.asarray(p, dtype=float)[:, :2]
+                        / np.abs(np.asarray(p, dtype=float)[:, 2:])
+                    )
+                ),
+                "divided by |w|",
+            ),
             (lambda p: 1.0 - 1.0 / _cross_reference(p), "Hartley & Zisserman's Cross"),
             (lambda p: 1.0 / _cross_reference(p), "numerator and denominator swapped"),
             (lambda p: _signed_ratio(_positions(_euclidean(p)[[0, 2, 1, 3]])), "(A, C; B, D)"),

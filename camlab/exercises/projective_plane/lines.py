@@ -161,6 +161,24 @@ def homogeneous_point_diagnosis(got, expected, lines, how: str) -> str:
     if problem:
         return problem
     g = np.asarray(got, dtype=float)
+    if np.abs(g).max() > np.finfo(float).max / 1e8:
+        return (
+            f"your point holds {np.abs(g).max():.3g}, about the largest float: an inf from a division by w = 0, "
+            "hidden by np.nan_to_num (or a clip). "
+            + (
+                "This test input's lines are parallel: " + _PARALLEL_MEET
+                if _parallel(lines)
+                else how
+            )
+            + "."
+        )
+    if _parallel(lines) and abs(g[2]) > 1e-9 * np.linalg.norm(g):
+        return (
+            "this test input's lines are parallel, so no finite point (x, y, 1) lies on both; a least-squares "
+            "solve (np.linalg.lstsq, pinv) returns a compromise between them, but "
+            + _PARALLEL_MEET
+            + "."
+        )
     if not np.any(g):
         return (
             "you returned (0, 0, 0), which is no point: did you lift with w = 0, or cross a vector with "
@@ -266,6 +284,16 @@ register_exercise(
             (lambda l1, l2: np.cross(l1, l2) * [1, -1, 1], "mirrored in the x axis"),
             (lambda l1, l2: np.cross(l1, l2)[[1, 0, 2]], "swapped x and y"),
             (silenced(lambda l1, l2: np.cross(l1, l2) / np.cross(l1, l2)[2]), "lines are parallel"),
+            (
+                silenced(lambda l1, l2: np.nan_to_num(np.cross(l1, l2) / np.cross(l1, l2)[2])),
+                "hidden by np.nan_to_num",
+            ),
+            (
+                lambda l1, l2: np.append(
+                    np.linalg.lstsq(np.array([l1[:2], l2[:2]]), -np.array([l1[2], l2[2]]))[0], 1.0
+                ),
+                "least-squares",
+            ),
             (
                 lambda l1, l2: np.append(
                     np.linalg.solve(np.array([l1[:2], l2[:2]]), -np.array([l1[2], l2[2]])), 1.0

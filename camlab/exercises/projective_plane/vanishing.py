@@ -37,9 +37,14 @@ def _conditionings(segments):
 
 
 def _translate_then_scale(T):
-    """(S, T_t) with T = S @ T_t: the scale and the translation of a conditioning T."""
-    S, T_t = np.diag([T[0, 0], T[0, 0], 1.0]), T.copy()
-    T_t[:2, 2] /= T[0, 0]
+    """(S, T_t) with T = S @ T_t: the scale k and the translation by -c of a conditioning T.
+
+    T x = k (x - c), so T_t moves by -c = T[:2, 2] / k and S scales by k. Undoing them in the
+    wrong order, inv(S) @ inv(T_t) @ x_c, is the slip x = (x_c + c) / k.
+    """
+    k = T[0, 0]
+    S = np.diag([k, k, 1.0])
+    T_t = np.array([[1.0, 0.0, T[0, 2] / k], [0.0, 1.0, T[1, 2] / k], [0.0, 0.0, 1.0]])
     return S, T_t
 
 
@@ -48,6 +53,16 @@ def _undone_in_wrong_order(s):
     T = _conditionings(s)[0]
     S, T_t = _translate_then_scale(T)
     return np.linalg.inv(S) @ np.linalg.inv(T_t) @ T @ projective.vanishing_point(s)
+
+
+def _hartley_undone_as_scale_after_shift(s):
+    """A student's slip written out by hand: centre on c, scale by k (mean distance sqrt 2), then x = (x_c + c) / k."""
+    pts = np.asarray(s, dtype=float).reshape(-1, 2)
+    c = pts.mean(axis=0)
+    k = np.sqrt(2) / np.linalg.norm(pts - c, axis=1).mean()
+    q = np.column_stack([k * (pts - c), np.ones(len(pts))]).reshape(2, 2, 3)
+    x_c = np.cross(np.cross(q[0, 0], q[0, 1]), np.cross(q[1, 0], q[1, 1]))
+    return np.append((x_c[:2] / x_c[2] + c) / k, 1.0)
 
 
 def _scaled_about_a_centre(segments, got, e) -> bool:
@@ -131,6 +146,13 @@ def _vanishing_diagnosis(args, got, expected) -> str:
             "you swapped the coordinates: your point is the vanishing point of the segments with (u, v) read "
             "as (v, u). A pixel (u, v) = (column, row) lifts to (u, v, 1)."
         )
+    transposed = np.asarray(segments, dtype=float).transpose(1, 0, 2)
+    if np.shape(got) == (3,) and same_up_to_scale(got, vanishing_point(transposed)):
+        return (
+            "you read the segments along the wrong axis: segments[:, k] (the k-th endpoint of every "
+            "segment) where segments[k] (segment k, both endpoints) belongs. The axes are (segment, "
+            "endpoint, coordinate): join segments[k][0] and segments[k][1] for each k, then meet the lines."
+        )
     if np.shape(got) == (3,) and np.isfinite(np.asarray(got, dtype=float)).all():
         slip = _conditioning_slip(segments, np.asarray(got, dtype=float), expected)
         if slip:
@@ -143,6 +165,16 @@ def _vanishing_diagnosis(args, got, expected) -> str:
             ),
             (seg * [1.0, -1.0], "with v negated: a y flip (y up instead of the image's v down)"),
             (seg * [-1.0, 1.0] + [639.0, 0.0], "flipped left to right, u -> 639 - u"),
+            (
+                seg * [1.0, -1.0] + [0.0, 639.0],
+                "flipped upside down with v -> 639 - v: width and height swapped (the image is 640 wide, "
+                "480 tall; the last row is v = 479)",
+            ),
+            (
+                seg * [-1.0, 1.0] + [479.0, 0.0],
+                "flipped left to right with u -> 479 - u: width and height swapped (the image is 640 wide, "
+                "480 tall; the last column is u = 639)",
+            ),
             (
                 seg * [1.0, -1.0] + [0.0, 479.0],
                 "flipped upside down, v -> 479 - v: a y flip (y up instead of the image's v down)",
@@ -241,7 +273,7 @@ register_exercise(
                 lambda s: np.cross(
                     np.cross([*s[0, 0], 1], [*s[1, 0], 1]), np.cross([*s[0, 1], 1], [*s[1, 1], 1])
                 ),
-                "not on both lines",
+                "wrong axis",
             ),
             (
                 lambda s: projective.from_homogeneous(projective.vanishing_point(s)),
@@ -282,6 +314,15 @@ register_exercise(
             ),
             (lambda s: np.zeros(3), "(0, 0, 0)"),
             (_undone_in_wrong_order, "wrong order"),
+            (_hartley_undone_as_scale_after_shift, "wrong order"),
+            (
+                lambda s: projective.vanishing_point(np.asarray(s).transpose(1, 0, 2)),
+                "wrong axis",
+            ),
+            (
+                lambda s: projective.vanishing_point(np.asarray(s) * [1.0, -1.0] + [0.0, 639.0]),
+                "width and height swapped",
+            ),
             (
                 lambda s: (
                     np.linalg.inv(_conditionings(s)[0]).T

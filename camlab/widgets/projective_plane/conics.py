@@ -139,7 +139,7 @@ def _conic_text(g: SimpleNamespace, v: dict) -> str:
     )
     HI = g.I_mapped
     return (
-        f"H I = (1, {_complex_text(HI[1])}, {_complex_text(HI[2])}) {verdict}\n"
+        f"H I ∝ (1, {_complex_text(HI[1])}, {_complex_text(HI[2])}) {verdict}\n"
         f"C': axis ratio {g.axis_ratio:.3f}, {shape}; {bounded}\n"
         f"max |x'ᵀC'x'| over the 8 points {g.residual:.0e};  "
         f"max |l'ᵀC*'l'| over the 4 tangents {g.tangent_residual:.0e}"

@@ -44,9 +44,12 @@ def _lift_figure(view: FigureView) -> SimpleNamespace:
         edgecolor=palette.TAB_BLUE,
         lw=0.3,
     )
+    ax3.plot_surface(  # the plane w = 0, faintly: where an ideal point's ray lies
+        gx, gy, np.zeros_like(gx), color="0.5", alpha=0.08, edgecolor="none"
+    )
     ax3.text(
-        -box, -box, 1.25, "w = 1", color=palette.TAB_BLUE, ha="left"
-    )  # the left corner, off the ray's path
+        -0.6 * box, -box, 1.3, "w = 1", color=palette.TAB_BLUE, ha="left"
+    )  # near the left corner, off the ray's path and clear of the panel's edge
     ax3.scatter([0], [0], [0], color="k", s=15)
     (ray,) = ax3.plot(
         [], [], [], color=palette.TAB_BLUE, lw=1.5, label="line through 0 = one projective point"
@@ -130,8 +133,8 @@ def lift_to_plane() -> Demo:
         readout.value = monospace(f"λ(x, y, w) = ({xh[0]:.2f}, {xh[1]:.2f}, {xh[2]:.2f})\n{second}")
 
     controls = {
-        "x": slider(1.0, -_LIFT_XY, _LIFT_XY, 0.05, "x"),
-        "y": slider(0.5, -_LIFT_XY, _LIFT_XY, 0.05, "y"),
+        "x": slider(1.0, -_LIFT_XY, _LIFT_XY, 0.05, "ray's x"),
+        "y": slider(0.5, -_LIFT_XY, _LIFT_XY, 0.05, "ray's y"),
         "w": slider(1.0, 0.0, 1.0, 0.05, "ray's w"),
         "scale": slider(1.6, -_LIFT_SCALE, _LIFT_SCALE, 0.05, "scale λ"),
     }
@@ -161,7 +164,7 @@ def _parallel_figure(view: FigureView) -> SimpleNamespace:
     plane_axes(ax, 4, "l1 = 30° fixed; turn l2")
     (l1_artist,) = ax.plot([], [], color=palette.TAB_BLUE, lw=2, label="l1")
     (l2_artist,) = ax.plot([], [], color=palette.ORANGE, lw=2, label="l2")
-    (meet_dot,) = ax.plot([], [], "o", color=palette.TAB_RED, ms=8, label="l1 × l2")
+    (meet_dot,) = ax.plot([], [], "o", color=palette.TAB_RED, ms=8, label="l1 × l2 (when l2 ≠ l1)")
     arrow = ax.annotate(
         "", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="->", color=palette.TAB_RED, lw=2)
     )
@@ -174,6 +177,7 @@ def _parallel_figure(view: FigureView) -> SimpleNamespace:
         [], [], "o", color=palette.TAB_RED, clip_on=False, zorder=4
     )  # whole at w = 0
     axw.axvline(angle1, color=palette.TAB_BLUE, ls=":", lw=1)
+    axw.text(angle1, 0.97, " l1's angle", color=palette.TAB_BLUE, fontsize=8, ha="left", va="top")
     axw.set(
         xlim=(0, 60),
         xlabel="angle of l2 (degrees)",
@@ -455,13 +459,16 @@ def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespac
     )
     # below the image: inside it, the grid's lines would run through the legend at some setting
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=3, fontsize=8)
+    below = (0.5, -0.31)  # under the legend: inside the image the note would cover grid lines
+    # an unseen (blank) stand-in keeps room for the note: the layout is fixed at the first draw,
+    # when the note is empty (the horizon is in the image at the default)
+    ax.text(*below, " \n \n ", transform=ax.transAxes, va="top", fontsize=8)
     note = ax.text(
-        0.98,
-        0.03,
+        *below,
         "",
         transform=ax.transAxes,
-        ha="right",
-        va="bottom",
+        ha="center",
+        va="top",
         fontsize=8,
         color=palette.TAB_RED,
         bbox=dict(fc="white", ec=palette.TAB_RED, alpha=0.9),
@@ -547,8 +554,8 @@ def vanishing_points() -> Demo:
         note.set_text(
             ""
             if visible
-            else f"the horizon is above the image (v = {v_horizon:.0f} px at u = 0):\n"
-            f"pitched down {v['pitch']:.0f}°, it sees only ground;\nthe lines still meet there (arrows)"
+            else f"the horizon is above the image (v = {v_horizon:.0f} px at u = 0): pitched down "
+            f"{v['pitch']:.0f}°, the camera sees only ground;\nthe lines still meet there (arrows)"
         )
         note.set_visible(
             not visible
