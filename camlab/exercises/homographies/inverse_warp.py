@@ -326,7 +326,10 @@ register_exercise(
             (lambda im, H, s: _warp(im, H, s), "H (u', v', 1)"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H).T, s), "transposed"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, divide=False), "divide by w"),
-            (lambda im, H, s: _warp(im, np.linalg.inv(H), s, rounding=np.floor), "truncated"),
+            (
+                lambda im, H, s: _warp(im, np.linalg.inv(H), s, rounding=np.floor),
+                "rounded the source point down",
+            ),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, shift=0.5), "half-pixel offset"),
             (
                 lambda im, H, s: _warp(
