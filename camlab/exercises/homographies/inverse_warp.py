@@ -30,10 +30,27 @@ def _warp_cases():
 
 
 def _warp(
-    image, M, out_shape, *, rounding=np.rint, shift=0.0, divide=True, early=False, clamp=False
+    image,
+    M,
+    out_shape,
+    *,
+    rounding=np.rint,
+    shift=0.0,
+    divide=True,
+    early=False,
+    clamp=False,
+    lower=True,
+    top=1,
+    swap=False,
 ):
-    """Nearest-neighbour sampling of ``image`` at M (u', v', 1) for every output pixel, with slips as options."""
+    """Nearest-neighbour sampling of ``image`` at M (u', v', 1) for every output pixel, with slips as options.
+
+    ``lower=False`` drops the test iu >= 0 (negative indices wrap to the far side, as numpy's do),
+    ``top=2`` tests iu < width - 1, ``swap=True`` reads image[u, v] with the bounds swapped to match.
+    """
     h, w = np.shape(image)[:2]
+    if swap:
+        image, h, w = np.asarray(image).T, w, h
     v, u = np.mgrid[0 : out_shape[0], 0 : out_shape[1]]
     X = np.stack([u + shift, v + shift, np.ones_like(u)], axis=-1) @ np.asarray(M, dtype=float).T
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -41,15 +58,16 @@ def _warp(
             (X[..., 0] / X[..., 2], X[..., 1] / X[..., 2]) if divide else (X[..., 0], X[..., 1])
         )
     iu, iv = rounding(su), rounding(sv)
+    low_u, low_v = (iu >= 0, iv >= 0) if lower else (iu >= -w, iv >= -h)
     inside = (
         (su >= 0) & (su <= w - 1) & (sv >= 0) & (sv <= h - 1)
         if early
-        else (iu >= 0) & (iu <= w - 1) & (iv >= 0) & (iv <= h - 1)
+        else low_u & (iu <= w - top) & low_v & (iv <= h - top)
     )
     if clamp:
         inside = np.isfinite(iu) & np.isfinite(iv)
-    iu = np.clip(np.nan_to_num(iu), 0, w - 1).astype(int)
-    iv = np.clip(np.nan_to_num(iv), 0, h - 1).astype(int)
+    iu = np.clip(np.nan_to_num(iu), -w, w - 1).astype(int) % w
+    iv = np.clip(np.nan_to_num(iv), -h, h - 1).astype(int) % h
     return np.where(inside, np.asarray(image, dtype=float)[iv, iu], 0.0)
 
 
@@ -140,8 +158,36 @@ _WARP_MISTAKES = (
     Mistake(
         "truncated",
         lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, rounding=np.floor),
-        "you truncated the source point (int() or np.floor): that takes the pixel to its upper left, half a "
+        "you rounded the source point down (np.floor): that takes the pixel to its upper left, half a "
         "pixel off on average. The nearest pixel centre is the rounded one: np.rint(u), np.rint(v).",
+    ),
+    Mistake(
+        "int() truncation",
+        lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, rounding=np.trunc),
+        "you rounded with int(u), which truncates toward zero: it takes the pixel to the upper left of "
+        "the point (half a pixel off on average), and for -1 < u < 0 it gives 0, so points just left of "
+        "or above the picture read its first column or row. Round to the nearest: int(np.rint(u)).",
+    ),
+    Mistake(
+        "image[u, v]",
+        lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, swap=True),
+        "you read image[u, v] and tested u against the height, v against the width: numpy images are "
+        "image[row v, column u], with height = image.shape[0] rows and width = image.shape[1] columns. "
+        "Read image[iv, iu] and test 0 <= iu < width, 0 <= iv < height.",
+    ),
+    Mistake(
+        "no lower bound",
+        lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, lower=False),
+        "you tested only iu < width and iv < height, not iu >= 0 and iv >= 0: numpy reads a negative "
+        "index from the far end (image[v, -3] is the third column from the right), so points left of or "
+        "above the picture wrap around to its other side. Test 0 <= iu < width and 0 <= iv < height.",
+    ),
+    Mistake(
+        "bound width - 1",
+        lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, top=2),
+        "you tested iu < width - 1 (and iv < height - 1): off by one, so the last column and row of the "
+        "picture are never read. Valid indices run from 0 to width - 1: test 0 <= iu < width "
+        "(or iu <= width - 1).",
     ),
     Mistake(
         "int(u + 0.5)",
@@ -280,7 +326,10 @@ register_exercise(
             (lambda im, H, s: _warp(im, H, s), "H (u', v', 1)"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H).T, s), "transposed"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, divide=False), "divide by w"),
-            (lambda im, H, s: _warp(im, np.linalg.inv(H), s, rounding=np.floor), "truncated"),
+            (
+                lambda im, H, s: _warp(im, np.linalg.inv(H), s, rounding=np.floor),
+                "rounded the source point down",
+            ),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, shift=0.5), "half-pixel offset"),
             (
                 lambda im, H, s: _warp(
@@ -295,6 +344,10 @@ register_exercise(
             (lambda im, H, s: _reference(im, H, s).T, "(rows, columns)"),
             (lambda im, H, s: _reference(im, H, s).tolist(), "list"),
             (_indexed_image_u_v, "image[v, u]"),
+            (lambda im, H, s: _warp(im, np.linalg.inv(H), s, rounding=np.trunc), "toward zero"),
+            (lambda im, H, s: _warp(im, np.linalg.inv(H), s, swap=True), "image[row v, column u]"),
+            (lambda im, H, s: _warp(im, np.linalg.inv(H), s, lower=False), "negative index"),
+            (lambda im, H, s: _warp(im, np.linalg.inv(H), s, top=2), "off by one"),
         ),
         ndarray_only=True,
         teaching=warp_nearest,

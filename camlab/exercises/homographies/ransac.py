@@ -116,6 +116,19 @@ _SAMPLES_MISTAKES = (
         "contaminated, (1 - w^4)^k = 1 - p, so k = log(1 - p) / log(1 - w^4).",
     ),
     Mistake(
+        "ratio upside down",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.w**4), np.log(1 - s.p)))),
+        "your ratio is upside down: log(1 - w^4) / log(1 - p) is 1 / k, below 1 whenever more than one "
+        "sample is needed, so it rounds up to 1. From (1 - w^4)^k = 1 - p, take logs: "
+        "k log(1 - w^4) = log(1 - p), so k = log(1 - p) / log(1 - w^4).",
+    ),
+    Mistake(
+        "log((1 - w)^4)",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log((1 - s.w) ** 4)))),
+        "your denominator is log((1 - w)^4): the 1 - belongs outside the power. A sample is clean with "
+        "probability w^4, so it fails with probability 1 - w^4: k = log(1 - p) / log(1 - w**4).",
+    ),
+    Mistake(
         "w^4 for 1 - w^4",
         lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log(s.w**4)))),
         "your denominator is log(w^4), the log of the chance that a sample is clean; the k samples must "
@@ -238,6 +251,8 @@ register_exercise(
             ),
             (lambda p, w: int(np.ceil(np.log(p) / np.log(1 - w**4))), "log(p)"),
             (lambda p, w: int(np.ceil(np.log(1 - p) / np.log(w**4))), "log(w^4)"),
+            (lambda p, w: int(np.ceil(np.log(1 - w**4) / np.log(1 - p))), "upside down"),
+            (lambda p, w: int(np.ceil(np.log(1 - p) / np.log((1 - w) ** 4))), "log((1 - w)^4)"),
             (lambda p, w: int(np.ceil(np.log10(1 - p) / np.log(1 - w**4))), "different bases"),
             (lambda p, w: int(np.ceil(np.log(1 - w) / np.log(1 - p**4))), "swapped p and w"),
             (lambda p, w: [int(np.ceil(np.log(1 - p) / np.log(1 - w**4)))], "return one number"),

@@ -157,7 +157,8 @@ def _ransac_failed(art, state, src, dst, exc) -> None:
     art.batches.set_visible(False)
     art.failure(
         "RANSAC failed: no hypothesis had\nreal support, so the pairs are\n"
-        "drawn without a verdict (the full\nmessage is beside the sliders)"
+        "drawn light grey, without a verdict:\nthe legend's four verdicts do not\n"
+        "apply (the full message is beside\nthe sliders)"
     )
 
 
