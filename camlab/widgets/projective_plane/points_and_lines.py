@@ -566,7 +566,7 @@ def vanishing_points() -> Demo:
     controls = {
         "pitch": slider(12.0, 0.0, 40.0, 0.5, "pitch down (°)"),
         "yaw": slider(15.0, -45.0, 45.0, 0.5, "yaw (°, + moves v_z left)"),
-        "roll": slider(0.0, -20.0, 20.0, 0.5, "roll (°, + turns the image clockwise)"),
+        "roll": slider(0.0, -20.0, 20.0, 0.5, "roll (°, + = clockwise)"),
         "focal": slider(600.0, 300.0, 1200.0, 10.0, "focal length (px)"),
     }
     return build_demo(
