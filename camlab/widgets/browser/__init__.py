@@ -142,7 +142,8 @@ class BrowserView(FigureView):
 
     The matplotlib figure is always an Agg figure, updated as in any demo; in a kernel the widget
     shown is a :class:`BrowserCanvas` instead of the figure, and the figure is drawn only when
-    asked (:meth:`pixels`, the static PNG). Headless (no kernel) it is a plain agg FigureView.
+    asked (:meth:`pixels`, the static PNG). Headless (no kernel), or with browser drawing switched
+    off (:func:`browser_drawing`), it is a plain FigureView in the display mode.
     """
 
     def __init__(
@@ -153,8 +154,10 @@ class BrowserView(FigureView):
         dpi: float = 90,
     ):
         wanted = mode or display_mode()
-        super().__init__(figsize, mode="agg", dpi=dpi)
-        self.browser = browser_drawing(wanted)
+        browser = browser_drawing(wanted)
+        # Drawn in the browser, the figure stays an Agg figure; switched off, the kernel path as ever.
+        super().__init__(figsize, mode="agg" if browser else wanted, dpi=dpi)
+        self.browser = browser
         self.params = tuple(params)
         self._stale = False
         self.canvas: BrowserCanvas | None = None
