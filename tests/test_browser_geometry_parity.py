@@ -98,15 +98,17 @@ def test_compose_and_project_equal_the_camera_model():
     cams = [random_camera(rng) for _ in range(CASES)]
     points = [rng.normal(scale=4, size=(20, 3)) for _ in cams]
     calls = [("composeP", [c.K.tolist(), c.R.tolist(), c.t.tolist()]) for c in cams]
-    calls += [("projectPoints", [c.P.tolist(), X.tolist()]) for c, X in zip(cams, points)]
+    calls += [
+        ("projectPoints", [c.P.tolist(), X.tolist()]) for c, X in zip(cams, points, strict=True)
+    ]
     out = run_js(calls)
-    worst = max(assert_twins(o, c.P, "composeP") for o, c in zip(out[:CASES], cams))
+    worst = max(assert_twins(o, c.P, "composeP") for o, c in zip(out[:CASES], cams, strict=True))
     projected = out[CASES:]
     worst = max(
         worst,
         *(
             assert_twins(o, project_points(c.P, X), "projectPoints")
-            for o, c, X in zip(projected, cams, points)
+            for o, c, X in zip(projected, cams, points, strict=True)
         ),
     )
     assert any(np.isnan(np.asarray(o, dtype=float)).any() for o in projected), (
@@ -121,32 +123,41 @@ def test_join_meet_and_maps_equal_the_projective_plane():
     lines = rng.normal(size=(2, CASES, 3))
     H = rng.normal(size=(CASES, 3, 3))
     pts = [rng.normal(scale=50, size=(15, 2)) for _ in range(CASES)]
-    pts[0][0] = (
-        -H[0][2, :2] / np.linalg.norm(H[0][2, :2]) ** 2 * H[0][2, 2]
-    calls = [("join", [a.tolist(), b.tolist()]) for a, b in zip(p, q)]
-    calls += [("meet", [a.tolist(), b.tolist()]) for a, b in zip(*lines)]
-    calls += [("mapPoints", [h.tolist(), x.tolist()]) for h, x in zip(H, pts)]
+    H[0][2], pts[0][0] = (
+        [1.0, 0.0, -2.0],
+        [2.0, 5.0],
+    )  # w = 2 - 2 = 0 exactly: a point mapped to infinity
+    calls = [("join", [a.tolist(), b.tolist()]) for a, b in zip(p, q, strict=True)]
+    calls += [("meet", [a.tolist(), b.tolist()]) for a, b in zip(*lines, strict=True)]
+    calls += [("mapPoints", [h.tolist(), x.tolist()]) for h, x in zip(H, pts, strict=True)]
     calls += [("fromHomogeneous", [b.tolist()]) for b in q] + [
         ("fromHomogeneous", [[1.0, 2.0, 0.0]])
     ]
     out = run_js(calls)
     n = CASES
-    worst = max(assert_twins(o, join(a, b), "join") for o, a, b in zip(out[:n], p, q))
+    worst = max(assert_twins(o, join(a, b), "join") for o, a, b in zip(out[:n], p, q, strict=True))
     worst = max(
-        worst, *(assert_twins(o, meet(a, b), "meet") for o, a, b in zip(out[n : 2 * n], *lines))
+        worst,
+        *(
+            assert_twins(o, meet(a, b), "meet")
+            for o, a, b in zip(out[n : 2 * n], *lines, strict=True)
+        ),
+    )
+    assert np.isnan(np.asarray(out[2 * n][0], dtype=float)).all(), (
+        "a point at infinity came back finite"
     )
     worst = max(
         worst,
         *(
             assert_twins(o, map_points(h, x), "mapPoints")
-            for o, h, x in zip(out[2 * n : 3 * n], H, pts)
+            for o, h, x in zip(out[2 * n : 3 * n], H, pts, strict=True)
         ),
     )
     worst = max(
         worst,
         *(
             assert_twins(o, from_homogeneous(b), "fromHomogeneous")
-            for o, b in zip(out[3 * n :], [*q, [1.0, 2.0, 0.0]])
+            for o, b in zip(out[3 * n :], [*q, [1.0, 2.0, 0.0]], strict=True)
         ),
     )
     print(f"join/meet/mapPoints/fromHomogeneous: worst relative error {worst:.2e}")
@@ -158,26 +169,29 @@ def test_the_stack_check_arithmetic_equals_the_demo():
     scales = rng.uniform(0.3, 2.0, len(angles))
     starts = rng.normal(size=(len(angles), 2))
     n = len(angles)
-    calls = [("turnAndScale", [a, s]) for a, s in zip(angles, scales)]
-    calls += [("turnPath", [a, s, x0.tolist(), 61]) for a, s, x0 in zip(angles, scales, starts)]
+    calls = [("turnAndScale", [a, s]) for a, s in zip(angles, scales, strict=True)]
+    calls += [
+        ("turnPath", [a, s, x0.tolist(), 61])
+        for a, s, x0 in zip(angles, scales, starts, strict=True)
+    ]
     calls += [("arrowheadSize", [a]) for a in angles]
     out = run_js(calls)
     worst = max(
         assert_twins(o, turn_and_scale(a, s), "turnAndScale")
-        for o, a, s in zip(out[:n], angles, scales)
+        for o, a, s in zip(out[:n], angles, scales, strict=True)
     )
     worst = max(
         worst,
         *(
             assert_twins(o, turn_path(a, s, x0, 61), "turnPath")
-            for o, a, s, x0 in zip(out[n : 2 * n], angles, scales, starts)
+            for o, a, s, x0 in zip(out[n : 2 * n], angles, scales, starts, strict=True)
         ),
     )
     worst = max(
         worst,
         *(
             assert_twins(o, arrowhead_size(a), "arrowheadSize")
-            for o, a in zip(out[2 * n :], angles)
+            for o, a in zip(out[2 * n :], angles, strict=True)
         ),
     )
     print(f"stack_check arithmetic: worst relative error {worst:.2e}")
@@ -189,12 +203,16 @@ def test_the_readout_text_is_the_same_string():
         [
             [
                 round(float(v), int(d))
-                for v, d in zip(rng.uniform(-3, 3, 400), rng.integers(1, 5, 400))
+                for v, d in zip(rng.uniform(-3, 3, 400), rng.integers(1, 5, 400), strict=True)
             ],
             [0.125, -0.125, 0.375, -0.375, 1.625, -2.875, 0.005, -0.005, -0.001, 0.0, -0.0, 2.675],
         ]
     )
     points = values.reshape(-1, 2)
     out = run_js([("tipReadout", [p.tolist()]) for p in points])
-    wrong = [(p.tolist(), o, tip_readout(p)) for o, p in zip(out, points) if o != tip_readout(p)]
+    wrong = [
+        (p.tolist(), o, tip_readout(p))
+        for o, p in zip(out, points, strict=True)
+        if o != tip_readout(p)
+    ]
     assert not wrong, f"JS and Python readouts differ: {wrong[:5]}"

@@ -403,13 +403,14 @@ def stack_check() -> Demo:
 def stack_report() -> str:
     """What the kernel can see of the interactive stack: the versions, and whether demos will be live figures.
 
-    The browser's half (JupyterLab's ipywidgets and ipympl extensions) is out of the kernel's
-    sight: the demo below is its test.
+    The browser's half (JupyterLab's ipywidgets, anywidget and ipympl extensions) is out of the
+    kernel's sight: the demo below is its test (it is drawn by anywidget in the browser; the
+    pixel explorer further down is an ipympl figure).
 
     Returns
     -------
     str
-        Two lines: the versions of camlab, numpy, matplotlib, ipywidgets and ipympl, then
+        Two lines: the versions of camlab, numpy, matplotlib, ipywidgets, anywidget and ipympl, then
         whether figures will be live (``%matplotlib widget``) or still pictures (naming the
         backend).
     """
@@ -419,13 +420,15 @@ def stack_report() -> str:
 
     from .. import __version__
 
-    try:
-        ipympl = version("ipympl")
-    except PackageNotFoundError:
-        ipympl = "missing"
+    found = {}
+    for name in ("anywidget", "ipympl"):
+        try:
+            found[name] = version(name)
+        except PackageNotFoundError:
+            found[name] = "missing"
     versions = (
         f"camlab {__version__}, numpy {np.__version__}, matplotlib {matplotlib.__version__}, "
-        f"ipywidgets {W.__version__}, ipympl {ipympl}"
+        f"ipywidgets {W.__version__}, anywidget {found['anywidget']}, ipympl {found['ipympl']}"
     )
     if display_mode() == "ipympl":
         return (
