@@ -45,7 +45,7 @@ __all__ = [
     "to_canvas_pixels",
 ]
 
-MODULES = ("geometry.js", "drawing.js", "stack_check.js")
+MODULES = ("geometry.js", "drawing.js", "stack_check.js", "widget.js")
 """The ES modules, in dependency order, joined into the one module anywidget loads."""
 
 
@@ -129,11 +129,26 @@ def to_canvas_pixels(ax: Any) -> list[list[float]]:
     return (flip @ ax.transData.get_affine().get_matrix()).tolist()
 
 
-def _png_data_url(rgba: np.ndarray) -> str:
-    from matplotlib.image import imsave
+BACKGROUND_SCALE = 2
+"""The static background is sent at twice the figure's pixels, sharp on screens of device pixel ratio up to 2."""
 
+
+def _background_png(view: FigureView, scale: int = BACKGROUND_SCALE) -> str:
+    """The figure without its animated artists, at ``scale`` times its pixels, as a PNG data URL.
+
+    The Agg canvas is drawn again afterwards (printing at another dpi leaves it at that size), which
+    also captures the blitting background at the figure's own size.
+    """
+    shown = [a for a in view._animated if a.get_visible()]  # noqa: SLF001 - the view's own artists
+    for artist in shown:
+        artist.set_visible(False)
     buf = io.BytesIO()
-    imsave(buf, rgba, format="png")
+    try:
+        view.fig.savefig(buf, format="png", dpi=view.fig.dpi * scale)
+    finally:
+        for artist in shown:
+            artist.set_visible(True)
+        view.fig.canvas.draw()
     return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii")
 
 
@@ -194,8 +209,7 @@ class BrowserView(FigureView):
         if self.canvas is None:
             return
         fig = self.fig
-        background = np.asarray(self._background)
-        height, width = background.shape[:2]
+        height, width = np.asarray(self._background).shape[:2]
         self.canvas.scene = dict(
             scene,
             kind=demo.name,
@@ -203,7 +217,7 @@ class BrowserView(FigureView):
             width=width,
             height=height,
             pxPerPoint=fig.dpi / 72.0,
-            background=_png_data_url(background),
+            background=_background_png(self),
         )
         for name in self.params:
             setattr(self.canvas, name, float(demo.controls[name].value))
