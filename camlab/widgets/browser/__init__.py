@@ -176,6 +176,9 @@ class BrowserView(FigureView):
         self.params = tuple(params)
         self._stale = False
         self.canvas: BrowserCanvas | None = None
+        self.links: list[
+            W.Widget
+        ] = []  # slider -> canvas trait, in the browser (ipywidgets.jslink)
         if self.browser:
             self.canvas = canvas_class(self.params)()
             self.canvas.layout = W.Layout(max_width="100%")
@@ -218,10 +221,11 @@ class BrowserView(FigureView):
             height=height,
             pxPerPoint=fig.dpi / 72.0,
             background=_background_png(self),
+            backgroundScale=BACKGROUND_SCALE,
         )
         for name in self.params:
             setattr(self.canvas, name, float(demo.controls[name].value))
-            W.jslink((demo.controls[name], "value"), (self.canvas, name))
+            self.links.append(W.jslink((demo.controls[name], "value"), (self.canvas, name)))
         self.canvas.alt = demo.alt_text
 
         def on_change(_change: Any = None) -> None:

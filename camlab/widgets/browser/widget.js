@@ -21,7 +21,8 @@ function render({ model, el }) {
     ctx.setTransform(1, 0, 0, 1, 0, 0);
     ctx.clearRect(0, 0, canvas.width, canvas.height);
     ctx.setTransform(canvas.width / scene.width, 0, 0, canvas.height / scene.height, 0, 0);
-    ctx.drawImage(background, 0, 0, scene.width, scene.height);
+    const k = scene.backgroundScale || 1; // drawn at its own size: the figure's height may end in half a pixel
+    ctx.drawImage(background, 0, 0, background.naturalWidth / k, background.naturalHeight / k);
     SCENES[scene.kind](ctx, scene, params);
   };
   const load = () => {
