@@ -38,6 +38,7 @@ setup(
     package_data={
         "camlab": ["py.typed"],
         "camlab.classroom": ["jupyter_data/voila/templates/camlab/*"],  # present.py
+        "camlab.widgets.browser": ["*.js"],  # the browser-drawn demos' ES modules (no build step)
         **RESOURCE_DATA,
     },
 )

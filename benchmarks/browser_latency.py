@@ -6,7 +6,13 @@ and times, inside the page, from the keydown event to the first animation frame 
 the demo's canvas pixels differ: the kernel's callback and draw, ipympl's PNG diff, the
 websocket, and the browser's decode and paint, as a student's eye would see it.
 
-Usage: python benchmarks/browser_latency.py [--presses N]   (``make bench-browser``)
+Demos drawn in the browser (``camlab/widgets/browser``) are timed the same way; the table says
+which path drew each demo ("browser" or "kernel"). ``--demos`` times the named demos instead of
+one per lesson; ``--kernel-path`` switches browser drawing off (``CAMLAB_BROWSER_DRAWING=0``), to
+compare the two paths on the same demo.
+
+Usage: python benchmarks/browser_latency.py [--presses N] [--demos a,b] [--kernel-path]
+(``make bench-browser``)
 """
 
 from __future__ import annotations
@@ -86,10 +92,14 @@ def stages(sample: dict) -> dict[str, float]:
     (callback, draw and encode in the kernel happen between reply and frame).
     ``pixels_ms``: keydown to the first animation frame whose canvas pixels differ (the
     browser decoded the PNG and drew it).
+    A browser-drawn demo changes its pixels before any message arrives: its reply and frame are
+    NaN (nothing waited for the kernel).
     """
     frames = [(t, n) for t, n in sample["frames"] if t <= sample["pixels"]]
-    if sample["pixels"] < 0 or not frames:
+    if sample["pixels"] < 0:
         return {"pixels_ms": float("nan"), "reply_ms": float("nan"), "frame_ms": float("nan")}
+    if not frames:
+        return {"pixels_ms": sample["pixels"], "reply_ms": float("nan"), "frame_ms": float("nan")}
     return {
         "pixels_ms": sample["pixels"],
         "reply_ms": frames[0][0],
@@ -144,11 +154,14 @@ def _notebook(names: list[str]) -> dict:
     }
 
 
-def measure(presses: int = 7) -> dict[str, dict[str, float]]:
-    """Median milliseconds of each stage (see :func:`stages`) per chosen demo, by demo name."""
+def measure(presses: int = 7, demos: list[str] | None = None) -> dict[str, dict]:
+    """Median milliseconds of each stage (see :func:`stages`), the p95 of pixels and the path, per demo.
+
+    ``demos`` names the demos to time; None takes one per lesson (:func:`slider_demos`).
+    """
     from playwright.sync_api import sync_playwright
 
-    chosen = slider_demos()
+    chosen = {n: n for n in demos} if demos else slider_demos()
     with tempfile.TemporaryDirectory() as tmp:
         base = Path(tmp)
         (base / "root").mkdir()
@@ -182,6 +195,11 @@ def measure(presses: int = 7) -> dict[str, dict[str, float]]:
                     results[name] = {
                         k: float(np.nanmedian([s[k] for s in samples])) for k in samples[0]
                     }
+                    results[name]["pixels_p95"] = float(
+                        np.nanpercentile([s["pixels_ms"] for s in samples], 95)
+                    )
+                    browser_drawn = demo.locator("canvas.camlab-browser-canvas").count() > 0
+                    results[name]["path"] = "browser" if browser_drawn else "kernel"
             finally:
                 context.close()
     return results
@@ -190,15 +208,21 @@ def measure(presses: int = 7) -> dict[str, dict[str, float]]:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--presses", type=int, default=7)
+    parser.add_argument(
+        "--demos", default="", help="comma-separated demo names (default: one per lesson)"
+    )
+    parser.add_argument("--kernel-path", action="store_true", help="draw every demo in the kernel")
     args = parser.parse_args()
+    if args.kernel_path:
+        os.environ["CAMLAB_BROWSER_DRAWING"] = "0"  # the kernel JupyterLab starts inherits it
     from camlab.widgets import all_demos
 
     specs = all_demos()
-    measured = measure(args.presses)
+    measured = measure(args.presses, [d for d in args.demos.split(",") if d] or None)
     rows = [{"lesson": specs[n].lesson, "demo": n, **ms} for n, ms in measured.items()]
     print_table(
         rows,
-        ["lesson", "demo", "pixels_ms", "reply_ms", "frame_ms"],
+        ["lesson", "demo", "path", "pixels_ms", "pixels_p95", "reply_ms", "frame_ms"],
         "Slider keydown to changed canvas pixels, JupyterLab in headless Chromium (median; see stages())",
     )
 

@@ -200,3 +200,46 @@ def click_slider(page, demo: str, fraction: float) -> tuple[bytes, bytes, str, s
         after_png = figure.screenshot()
     page.wait_for_timeout(500)  # and let it finish drawing
     return before_png, figure.screenshot(), before_text, readout.text_content()
+
+
+# Arm: at the next keydown, poll every animation frame until the canvas's pixels differ.
+ARM_KEY_TO_CANVAS = """(selector) => {
+  window.__camlabKeyToPixels = undefined;
+  const canvas = document.querySelector(selector);
+  const ctx = canvas.getContext('2d', {willReadFrequently: true});
+  const checksum = () => {
+    const d = ctx.getImageData(0, 0, canvas.width, canvas.height).data;
+    let s = 0;
+    for (let i = 0; i < d.length; i += 7) s = (s * 31 + d[i]) | 0;
+    return s;
+  };
+  const before = checksum();
+  document.addEventListener('keydown', () => {
+    const t0 = performance.now();
+    const poll = () => {
+      if (checksum() !== before) window.__camlabKeyToPixels = performance.now() - t0;
+      else if (performance.now() - t0 > 5000) window.__camlabKeyToPixels = -1;
+      else requestAnimationFrame(poll);
+    };
+    requestAnimationFrame(poll);
+  }, {capture: true, once: true});
+}"""
+
+
+def key_to_pixels(page, demo: str, canvas: str, presses: int = 20) -> list[float]:
+    """Milliseconds from each keydown on the demo's first slider to the first frame its canvas changed.
+
+    ``demo`` is the demo's CSS class, ``canvas`` a selector inside it. Arrow keys alternate right and
+    left, so the slider stays near its value. Measured in the page with ``performance.now()``: the
+    keydown, then every animation frame until the canvas's pixels differ (-1: none in 5 s).
+    """
+    handle = page.locator(f".{demo} .widget-slider:not(.mod-disabled) .noUi-handle").first
+    samples = []
+    for i in range(presses):
+        handle.focus()
+        page.evaluate(ARM_KEY_TO_CANVAS, f".{demo} {canvas}")
+        page.keyboard.press("ArrowRight" if i % 2 == 0 else "ArrowLeft")
+        page.wait_for_function("() => window.__camlabKeyToPixels !== undefined", polling=20)
+        samples.append(float(page.evaluate("() => window.__camlabKeyToPixels")))
+        page.wait_for_timeout(200)
+    return samples

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import ipywidgets as W
 import numpy as np
-from matplotlib.colors import to_rgba
+from matplotlib.colors import to_hex, to_rgba
 from matplotlib.markers import MarkerStyle
 from matplotlib.path import Path
 from matplotlib.transforms import Affine2D
@@ -12,6 +12,7 @@ from matplotlib.transforms import Affine2D
 from ..plotting import palette
 from ..plotting.plane import plane_axes
 from ._base import Demo, FigureView, build_demo, display_mode, register, slider
+from .browser import BrowserView, line_style, to_canvas_pixels
 from .controls import int_slider
 
 # A little house outline, in plot units: the course's running example of a shape. y points down, as in
@@ -64,6 +65,54 @@ def turn_path(angle_deg: float, scale: float, start: np.ndarray, samples: int = 
     x, y = start
     arc = np.hstack([x * np.cos(theta) - y * np.sin(theta), x * np.sin(theta) + y * np.cos(theta)])
     return np.vstack([arc, scale * arc[-1]])
+
+
+def turn_and_scale(angle_deg: float, scale: float) -> np.ndarray:
+    r"""The 3x3 homogeneous map of :math:`x' = s R(\theta)\, x`: the turn by ``angle_deg``, then the scale.
+
+    :math:`R(\theta) = \begin{pmatrix} \cos\theta & -\sin\theta \\ \sin\theta & \cos\theta
+    \end{pmatrix}` turns x towards y; its upper 2x2 block is the demo's ``A``. The browser's
+    twin is ``turnAndScale`` in ``widgets/browser/geometry.js``.
+
+    Parameters
+    ----------
+    angle_deg : float
+        The turn θ, degrees.
+    scale : float
+        The scale s.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        ``[[s cos θ, -s sin θ, 0], [s sin θ, s cos θ, 0], [0, 0, 1]]``.
+    """
+    t = np.radians(angle_deg)
+    return np.array(
+        [
+            [scale * np.cos(t), -scale * np.sin(t), 0.0],
+            [scale * np.sin(t), scale * np.cos(t), 0.0],
+            [0.0, 0.0, 1.0],
+        ]
+    )
+
+
+def tip_readout(point: np.ndarray) -> str:
+    """The readout of a point, ``"(+x.xx, -y.yy)"``: two decimals, a sign always, never ``-0.00``.
+
+    The browser's twin is ``tipReadout`` in ``widgets/browser/geometry.js``.
+
+    Parameters
+    ----------
+    point : (2,) array_like
+        The point, plot units.
+
+    Returns
+    -------
+    str
+        The two coordinates rounded to 2 decimals (``round`` then ``+ 0.0`` turns a rounded -0.0 into 0.0).
+    """
+    x, y = (round(float(c), 2) + 0.0 for c in point)
+    return f"({x:+.2f}, {y:+.2f})"
 
 
 def turn_words(angle_deg: float, y_down: bool) -> str:
@@ -218,6 +267,44 @@ def _point_arrow(arrow, at: np.ndarray, way: np.ndarray, y_down: bool) -> float 
     return angle
 
 
+def _browser_scene(panels: list[dict], readout, dpi: float) -> dict:
+    """What ``stack_check.js`` needs to draw the moving artists as matplotlib draws them (sizes in canvas pixels)."""
+    pt = dpi / 72.0
+    first = panels[0]
+    path, arrow, house, tip = (first[k] for k in ("path", "arrow", "house", "tip"))
+    fig_h = readout.figure.bbox.height
+    x, y = readout.get_transform().transform(readout.get_position())
+    return dict(
+        house=HOUSE.tolist(),
+        roofTip=ROOF_TIP,
+        arcSamples=ARC_SAMPLES,
+        shortArc=SHORT_ARC,
+        arrowhead=ARROWHEAD.vertices[:-1].tolist(),
+        panels=[dict(toPixels=to_canvas_pixels(p["ax"]), yDown=p["y_down"]) for p in panels],
+        styles=dict(
+            path=line_style(path, pt, halo="#ffffff", haloWidth=(path.get_linewidth() + 2.0) * pt),
+            house=line_style(house, pt),
+            arrow=dict(
+                color=to_hex(arrow.get_color()),
+                edge=to_hex(arrow.get_markeredgecolor()),
+                edgeWidth=arrow.get_markeredgewidth() * pt,
+            ),
+            tip=dict(
+                color=to_hex(tip.get_color()),
+                edge=to_hex(tip.get_markeredgecolor()),
+                size=tip.get_markersize() * pt,
+                edgeWidth=tip.get_markeredgewidth() * pt,
+            ),
+        ),
+        readout=dict(
+            x=float(x),
+            y=float(fig_h - y),
+            font=f"{readout.get_fontsize() * pt:.2f}px 'DejaVu Sans', sans-serif",
+            color=to_hex(readout.get_color()),
+        ),
+    )
+
+
 @register(
     lesson="00",
     sweep={
@@ -242,7 +329,7 @@ def stack_check() -> Demo:
         ``readout``, ``arrow`` (where the arrowhead sits and its screen angle per panel) and
         ``turns`` (the way each panel's arc turns on screen)).
     """
-    view = FigureView(figsize=(7.0, 4.55))
+    view = BrowserView(("angle", "scale"), figsize=(7.0, 4.55))
     ax_down, ax_up = view.fig.subplots(1, 2)
     panels = [_house_panel(ax_down, True, view), _house_panel(ax_up, False, view)]
     # The readout over both panels: a static label, and the numbers (few glyphs: each costs time in every
@@ -260,8 +347,7 @@ def stack_check() -> Demo:
 
     def update(v: dict, state: dict) -> None:
         angle, s = v["angle"], v["scale"]
-        t = np.radians(angle)
-        A = s * np.array([[np.cos(t), -np.sin(t)], [np.sin(t), np.cos(t)]])  # x' = s R(angle) x
+        A = turn_and_scale(angle, s)[:2, :2]  # x' = s R(angle) x
         moved = HOUSE @ A.T  # points are rows: the textbook's A x for every corner at once
         path = turn_path(angle, s, HOUSE[ROOF_TIP], samples=ARC_SAMPLES)
         middle = ARC_SAMPLES // 2  # the arrowhead sits half-way along the turn
@@ -287,11 +373,11 @@ def stack_check() -> Demo:
                 if abs(angle) == 180 and way_on_screen != "no turn"
                 else way_on_screen
             )
-        x, y = (round(c, 2) + 0.0 for c in moved[ROOF_TIP])  # + 0.0 turns a rounded -0.0 into 0.0
+        numbers = tip_readout(moved[ROOF_TIP])
         unmoved = (
             angle == 0 and s == 1
         )  # no turn and no scaling: the moved house hides the original
-        readout.set_text(f"({x:+.2f}, {y:+.2f})" + ("  (unmoved: no path)" if unmoved else ""))
+        readout.set_text(numbers + ("  (unmoved: no path)" if unmoved else ""))
         # tip: where the orange dot is drawn (lesson 00 recomputes it by hand); readout: the numbers shown
         # arrow: where the arrowhead sits, and its angle on screen in each panel (None: no dart drawn)
         # turns: the way each panel's drawn arc turns on screen (screen_turn), measured, not read off the angle
@@ -300,7 +386,7 @@ def stack_check() -> Demo:
             house=moved,
             tip=moved[ROOF_TIP].copy(),
             path=path,
-            readout=f"({x:+.2f}, {y:+.2f})",
+            readout=numbers,
             arrow=dict(at=np.array(path[middle], dtype=float), **arrows),
             turns=turns,
         )
@@ -309,19 +395,22 @@ def stack_check() -> Demo:
         "angle": slider(DEFAULT_ANGLE, -180.0, 180.0, 1.0, "angle θ (°)", readout_format=".0f"),
         "scale": slider(1.0, 0.3, 2.0, 0.05, "scale s"),
     }
-    return build_demo("stack_check", controls, view, update, title="Is everything working?")
+    demo = build_demo("stack_check", controls, view, update, title="Is everything working?")
+    view.publish(demo, _browser_scene(panels, readout, view.fig.dpi))  # the browser draws the moves
+    return demo
 
 
 def stack_report() -> str:
     """What the kernel can see of the interactive stack: the versions, and whether demos will be live figures.
 
-    The browser's half (JupyterLab's ipywidgets and ipympl extensions) is out of the kernel's
-    sight: the demo below is its test.
+    The browser's half (JupyterLab's ipywidgets, anywidget and ipympl extensions) is out of the
+    kernel's sight: the demo below is its test (it is drawn by anywidget in the browser; the
+    pixel explorer further down is an ipympl figure).
 
     Returns
     -------
     str
-        Two lines: the versions of camlab, numpy, matplotlib, ipywidgets and ipympl, then
+        Two lines: the versions of camlab, numpy, matplotlib, ipywidgets, anywidget and ipympl, then
         whether figures will be live (``%matplotlib widget``) or still pictures (naming the
         backend).
     """
@@ -331,13 +420,15 @@ def stack_report() -> str:
 
     from .. import __version__
 
-    try:
-        ipympl = version("ipympl")
-    except PackageNotFoundError:
-        ipympl = "missing"
+    found = {}
+    for name in ("anywidget", "ipympl"):
+        try:
+            found[name] = version(name)
+        except PackageNotFoundError:
+            found[name] = "missing"
     versions = (
         f"camlab {__version__}, numpy {np.__version__}, matplotlib {matplotlib.__version__}, "
-        f"ipywidgets {W.__version__}, ipympl {ipympl}"
+        f"ipywidgets {W.__version__}, anywidget {found['anywidget']}, ipympl {found['ipympl']}"
     )
     if display_mode() == "ipympl":
         return (

@@ -1,0 +1,266 @@
+"""The browser-side drawing path: demos whose per-move work is geometry, drawn on a <canvas>.
+
+Under ipympl every slider move is a round trip: the browser sends the value to the kernel, the
+kernel draws with matplotlib and sends a PNG back, the browser decodes and paints it (82-207 ms
+measured in JupyterLab, issue 31). Here the kernel sends the *scene* once (the static part of the
+figure as a PNG, each panel's data-to-pixel map, colours and sizes) and links each slider to a
+synced trait of an anywidget canvas *in the browser* (``ipywidgets.jslink``). A keydown moves the
+slider, the link sets the trait, and the browser computes the moving artists with
+``geometry.js`` and draws them: nothing waits for the kernel.
+
+Python stays the source of truth. Every function of ``geometry.js`` has a numpy twin in camlab
+(named in its comment) and ``tests/test_browser_geometry_parity.py`` runs both under node on
+random inputs. The matplotlib figure is still built and updated by the demo's ``update``: it is
+the static PNG the website shows, what ``demo.pixels()`` returns headless, and what the headless
+tests sweep. Without a kernel (tests, benchmarks) a :class:`BrowserView` is a plain
+:class:`~camlab.widgets._base.FigureView` in the "agg" mode.
+
+Set ``CAMLAB_BROWSER_DRAWING=0`` to draw such demos the old way (the kernel path), e.g. to
+compare latencies.
+"""
+
+from __future__ import annotations
+
+import base64
+import io
+import os
+from collections.abc import Mapping, Sequence
+from importlib import resources
+from typing import Any
+
+import anywidget
+import ipywidgets as W
+import numpy as np
+import traitlets
+from matplotlib.colors import to_hex
+
+from .._base import Demo, FigureView, display_mode
+
+__all__ = [
+    "BrowserView",
+    "browser_drawing",
+    "canvas_class",
+    "esm_source",
+    "line_style",
+    "to_canvas_pixels",
+]
+
+MODULES = ("geometry.js", "drawing.js", "stack_check.js", "widget.js")
+"""The ES modules, in dependency order, joined into the one module anywidget loads."""
+
+
+def esm_source() -> str:
+    """The ES module the canvas runs: :data:`MODULES` joined, their imports of one another dropped.
+
+    anywidget loads a single module from a string, so the files (kept apart for the node parity
+    tests, which import ``geometry.js`` alone) are concatenated; nothing is built or fetched.
+
+    Returns
+    -------
+    str
+        The module's JavaScript.
+    """
+    here = resources.files(__name__)
+    parts = [(here / name).read_text(encoding="utf-8") for name in MODULES]
+    return "\n".join(
+        line for part in parts for line in part.splitlines() if not line.startswith("import ")
+    )
+
+
+class BrowserCanvas(anywidget.AnyWidget):
+    """A <canvas> that draws a scene in the browser (``drawing.js``); subclassed per demo by :func:`canvas_class`."""
+
+    _esm = esm_source()
+    scene = traitlets.Dict().tag(sync=True)
+    alt = traitlets.Unicode("").tag(sync=True)
+
+
+def canvas_class(params: Sequence[str]) -> type[BrowserCanvas]:
+    """A :class:`BrowserCanvas` with one synced float trait per parameter the browser redraws on.
+
+    Parameters
+    ----------
+    params : sequence of str
+        The control names whose values the browser needs (each is linked to its slider).
+
+    Returns
+    -------
+    type
+        The canvas class.
+    """
+    traits = {name: traitlets.Float(0.0).tag(sync=True) for name in params}
+    return type("BrowserCanvas_" + "_".join(params), (BrowserCanvas,), traits)
+
+
+def browser_drawing(mode: str) -> bool:
+    """True when a demo in display ``mode`` is drawn in the browser (a kernel, and not switched off).
+
+    Parameters
+    ----------
+    mode : str
+        :func:`~camlab.widgets._base.display_mode`'s answer.
+
+    Returns
+    -------
+    bool
+        True in a kernel ("ipympl" or "png") unless ``CAMLAB_BROWSER_DRAWING=0``.
+    """
+    return mode in ("ipympl", "png") and os.environ.get("CAMLAB_BROWSER_DRAWING", "1") != "0"
+
+
+def to_canvas_pixels(ax: Any) -> list[list[float]]:
+    """The 3x3 map from ``ax``'s data coordinates to canvas pixels (u right, v down, origin top left).
+
+    matplotlib's display coordinates run up from the bottom of the figure; a canvas runs down
+    from its top, so v = height - y. Only linear axes have such a map.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Axes with linear scales, after the figure's layout is fixed.
+
+    Returns
+    -------
+    list of 3 lists of 3 floats
+        The map, rows, as JSON for the scene.
+    """
+    height = ax.figure.bbox.height
+    flip = np.array([[1.0, 0.0, 0.0], [0.0, -1.0, height], [0.0, 0.0, 1.0]])
+    return (flip @ ax.transData.get_affine().get_matrix()).tolist()
+
+
+BACKGROUND_SCALE = 2
+"""The static background is sent at twice the figure's pixels, sharp on screens of device pixel ratio up to 2."""
+
+
+def _background_png(view: FigureView, scale: int = BACKGROUND_SCALE) -> str:
+    """The figure without its animated artists, at ``scale`` times its pixels, as a PNG data URL.
+
+    The Agg canvas is drawn again afterwards (printing at another dpi leaves it at that size), which
+    also captures the blitting background at the figure's own size.
+    """
+    shown = [a for a in view._animated if a.get_visible()]  # noqa: SLF001 - the view's own artists
+    for artist in shown:
+        artist.set_visible(False)
+    buf = io.BytesIO()
+    try:
+        view.fig.savefig(buf, format="png", dpi=view.fig.dpi * scale)
+    finally:
+        for artist in shown:
+            artist.set_visible(True)
+        view.fig.canvas.draw()
+    return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii")
+
+
+class BrowserView(FigureView):
+    """A :class:`FigureView` whose live picture is drawn in the browser when a kernel shows it.
+
+    The matplotlib figure is always an Agg figure, updated as in any demo; in a kernel the widget
+    shown is a :class:`BrowserCanvas` instead of the figure, and the figure is drawn only when
+    asked (:meth:`pixels`, the static PNG). Headless (no kernel), or with browser drawing switched
+    off (:func:`browser_drawing`), it is a plain FigureView in the display mode.
+    """
+
+    def __init__(
+        self,
+        params: Sequence[str],
+        figsize: tuple[float, float] = (8, 4),
+        mode: str | None = None,
+        dpi: float = 90,
+    ):
+        wanted = mode or display_mode()
+        browser = browser_drawing(wanted)
+        # Drawn in the browser, the figure stays an Agg figure; switched off, the kernel path as ever.
+        super().__init__(figsize, mode="agg" if browser else wanted, dpi=dpi)
+        self.browser = browser
+        self.params = tuple(params)
+        self._stale = False
+        self.canvas: BrowserCanvas | None = None
+        self.links: list[
+            W.Widget
+        ] = []  # slider -> canvas trait, in the browser (ipywidgets.jslink)
+        if self.browser:
+            self.canvas = canvas_class(self.params)()
+            self.canvas.layout = W.Layout(max_width="100%")
+            self.widget = self.canvas
+
+    def refresh(self) -> None:
+        """Keep the figure for :meth:`pixels`; in the browser path the canvas draws itself."""
+        if self.browser and self._background is not None:
+            self._stale = True  # the Agg picture is drawn when someone asks for it
+            return
+        super().refresh()
+
+    def pixels(self) -> np.ndarray:
+        """The figure at the current settings, as an (H, W, 4) uint8 array (the numpy/matplotlib twin)."""
+        if self._stale:
+            super().refresh()
+            self._stale = False
+        return super().pixels()
+
+    def publish(self, demo: Demo, scene: Mapping[str, Any]) -> None:
+        """Send the scene once and link each parameter's slider to the canvas, in the browser.
+
+        Parameters
+        ----------
+        demo : Demo
+            The built demo (its first update has drawn the figure, so the layout is fixed).
+        scene : mapping
+            What the scene's drawer in ``drawing.js`` needs; ``kind``, ``params``, the size and
+            the background are added here.
+        """
+        if self.canvas is None:
+            return
+        fig = self.fig
+        height, width = np.asarray(self._background).shape[:2]
+        self.canvas.scene = dict(
+            scene,
+            kind=demo.name,
+            params=list(self.params),
+            width=width,
+            height=height,
+            pxPerPoint=fig.dpi / 72.0,
+            background=_background_png(self),
+            backgroundScale=BACKGROUND_SCALE,
+        )
+        for name in self.params:
+            setattr(self.canvas, name, float(demo.controls[name].value))
+            self.links.append(W.jslink((demo.controls[name], "value"), (self.canvas, name)))
+        self.canvas.alt = demo.alt_text
+
+        def on_change(_change: Any = None) -> None:
+            self.canvas.alt = demo.alt_text
+
+        for control in demo.controls.values():
+            control.observe(on_change, names="value")
+
+
+def line_style(line: Any, px_per_point: float, **extra: Any) -> dict:
+    """A matplotlib line's colour, width and dashes in canvas pixels (for :func:`drawing.js` polyline).
+
+    Parameters
+    ----------
+    line : matplotlib.lines.Line2D
+        The artist whose look the browser copies.
+    px_per_point : float
+        Figure dpi / 72.
+    **extra
+        Added to the style (``halo``, ``haloWidth``, ``closed`` ...).
+
+    Returns
+    -------
+    dict
+        ``color``, ``width`` (px), ``dash`` (px, [] for solid), ``join`` and ``cap``.
+    """
+    offset, dashes = line._dash_pattern  # noqa: SLF001 - the pattern matplotlib draws, already scaled by width
+    join = {"round": "round", "miter": "miter", "bevel": "bevel"}
+    caps = {"butt": "butt", "round": "round", "projecting": "square"}
+    solid = dashes is None
+    return dict(
+        color=to_hex(line.get_color()),
+        width=line.get_linewidth() * px_per_point,
+        dash=[] if solid else [d * px_per_point for d in dashes],
+        join=join[(line.get_solid_joinstyle() if solid else line.get_dash_joinstyle())],
+        cap=caps[(line.get_solid_capstyle() if solid else line.get_dash_capstyle())],
+        **extra,
+    )

@@ -1,0 +1,33 @@
+import { turnAndScale, mapPoints, turnPath, arrowheadSize, tipReadout } from "./geometry.js";
+// Lesson 00's stack_check drawn in the browser: twin of camlab.widgets.start_here.stack_check's update.
+import { polyline, dot, marker } from "./drawing.js";
+
+export function drawStackCheck(ctx, scene, p) {
+  const A = turnAndScale(p.angle, p.scale);
+  const moved = mapPoints(A, scene.house);
+  const tip = moved[scene.roofTip];
+  const path = turnPath(p.angle, p.scale, scene.house[scene.roofTip], scene.arcSamples);
+  const middle = Math.floor(scene.arcSamples / 2);
+  let way = [path[middle + 1][0] - path[middle - 1][0], path[middle + 1][1] - path[middle - 1][1]];
+  if (Math.abs((p.angle * Math.PI) / 180) * 1.4 < scene.shortArc) way = [0, 0];
+  const st = scene.styles;
+  const arrow = { ...st.arrow, size: arrowheadSize(p.angle) * scene.pxPerPoint };
+  for (const panel of scene.panels) {
+    const T = panel.toPixels;
+    const px = (pts) => mapPoints(T, pts);
+    polyline(ctx, px(path), st.path);
+    const [a, b] = px([path[middle], [path[middle][0] + way[0], path[middle][1] + way[1]]]);
+    if (Math.hypot(way[0], way[1]) >= 1e-9) marker(ctx, a, [b[0] - a[0], b[1] - a[1]], scene.arrowhead, arrow);
+    polyline(ctx, px(moved), st.house);
+    dot(ctx, px([tip])[0], st.tip);
+  }
+  const r = scene.readout;
+  ctx.save();
+  ctx.font = r.font;
+  ctx.fillStyle = r.color;
+  ctx.textBaseline = "top";
+  const unmoved = p.angle === 0 && p.scale === 1 ? "  (unmoved: no path)" : "";
+  ctx.fillText(tipReadout(tip) + unmoved, r.x, r.y);
+  ctx.restore();
+  return tipReadout(tip);
+}

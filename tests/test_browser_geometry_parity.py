@@ -1,0 +1,218 @@
+"""The browser's arithmetic (camlab/widgets/browser/geometry.js) equals its numpy twins.
+
+Each JavaScript function runs under node on random inputs and is compared with the camlab
+function named as its twin in geometry.js, at 1e-9 relative (of the result's magnitude). Skipped,
+with the reason, where node is not installed.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from camlab.camera import Camera, project_points
+from camlab.projective import from_homogeneous, join, map_points, meet
+from camlab.widgets.start_here import arrowhead_size, tip_readout, turn_and_scale, turn_path
+
+GEOMETRY = Path(__file__).resolve().parent.parent / "camlab" / "widgets" / "browser" / "geometry.js"
+NODE = shutil.which("node")
+RTOL = 1e-9
+CASES = 200
+
+pytestmark = pytest.mark.skipif(
+    NODE is None, reason="node is not installed: the JavaScript twins cannot be run"
+)
+
+RUNNER = """
+import * as G from %s;
+let input = "";
+process.stdin.on("data", (d) => (input += d));
+process.stdin.on("end", () => {
+  const calls = JSON.parse(input);
+  const out = calls.map(([name, args]) => G[name](...args));
+  process.stdout.write(JSON.stringify(out, (k, v) => (typeof v === "number" && !Number.isFinite(v) ? String(v) : v)));
+});
+"""
+
+
+def run_js(calls: list[tuple[str, list]]) -> list:
+    """Call geometry.js's functions under node: ``[(name, args), ...]`` -> their results (NaN kept)."""
+    script = RUNNER % json.dumps(GEOMETRY.as_uri())
+    done = subprocess.run(
+        [NODE, "--input-type=module", "-e", script],
+        input=json.dumps(calls),
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+    )
+    assert done.returncode == 0, done.stderr
+
+    def undo(v):
+        if isinstance(v, list):
+            return [undo(x) for x in v]
+        return float(v) if isinstance(v, str) and v in ("NaN", "Infinity", "-Infinity") else v
+
+    return undo(json.loads(done.stdout))
+
+
+def assert_twins(js, py, what: str) -> float:
+    """Assert equal at RTOL of the result's magnitude (NaN where NaN); return the worst relative error."""
+    js, py = np.asarray(js, dtype=float), np.asarray(py, dtype=float)
+    assert js.shape == py.shape, f"{what}: JS shape {js.shape}, numpy {py.shape}"
+    assert np.array_equal(np.isnan(js), np.isnan(py)), f"{what}: NaN in different places"
+    ok = ~np.isnan(py)
+    scale = max(float(np.abs(py[ok]).max(initial=0.0)), 1e-300)
+    err = float(np.abs(js[ok] - py[ok]).max(initial=0.0)) / scale
+    assert err <= RTOL, f"{what}: relative error {err:.3g} > {RTOL}"
+    return err
+
+
+def random_rotation(rng: np.random.Generator) -> np.ndarray:
+    q, r = np.linalg.qr(rng.normal(size=(3, 3)))
+    q = q * np.sign(np.diag(r))
+    return q if np.linalg.det(q) > 0 else -q
+
+
+def random_camera(rng: np.random.Generator) -> Camera:
+    f = rng.uniform(200, 2000)
+    K = np.array(
+        [
+            [f, rng.uniform(-5, 5), rng.uniform(100, 900)],
+            [0, f * rng.uniform(0.8, 1.2), rng.uniform(100, 700)],
+            [0, 0, 1],
+        ]
+    )
+    return Camera(
+        K=K, R=random_rotation(rng), t=rng.normal(scale=3, size=3), image_size=(1000, 800)
+    )
+
+
+def test_compose_and_project_equal_the_camera_model():
+    rng = np.random.default_rng(31)
+    cams = [random_camera(rng) for _ in range(CASES)]
+    points = [rng.normal(scale=4, size=(20, 3)) for _ in cams]
+    calls = [("composeP", [c.K.tolist(), c.R.tolist(), c.t.tolist()]) for c in cams]
+    calls += [
+        ("projectPoints", [c.P.tolist(), X.tolist()]) for c, X in zip(cams, points, strict=True)
+    ]
+    out = run_js(calls)
+    worst = max(assert_twins(o, c.P, "composeP") for o, c in zip(out[:CASES], cams, strict=True))
+    projected = out[CASES:]
+    worst = max(
+        worst,
+        *(
+            assert_twins(o, project_points(c.P, X), "projectPoints")
+            for o, c, X in zip(projected, cams, points, strict=True)
+        ),
+    )
+    assert any(np.isnan(np.asarray(o, dtype=float)).any() for o in projected), (
+        "no point behind a camera was tried"
+    )
+    print(f"composeP/projectPoints: worst relative error {worst:.2e}")
+
+
+def test_join_meet_and_maps_equal_the_projective_plane():
+    rng = np.random.default_rng(6)
+    p, q = rng.normal(size=(CASES, 2)) * 100, rng.normal(size=(CASES, 3))
+    lines = rng.normal(size=(2, CASES, 3))
+    H = rng.normal(size=(CASES, 3, 3))
+    pts = [rng.normal(scale=50, size=(15, 2)) for _ in range(CASES)]
+    H[0][2], pts[0][0] = (
+        [1.0, 0.0, -2.0],
+        [2.0, 5.0],
+    )  # w = 2 - 2 = 0 exactly: a point mapped to infinity
+    calls = [("join", [a.tolist(), b.tolist()]) for a, b in zip(p, q, strict=True)]
+    calls += [("meet", [a.tolist(), b.tolist()]) for a, b in zip(*lines, strict=True)]
+    calls += [("mapPoints", [h.tolist(), x.tolist()]) for h, x in zip(H, pts, strict=True)]
+    calls += [("fromHomogeneous", [b.tolist()]) for b in q] + [
+        ("fromHomogeneous", [[1.0, 2.0, 0.0]])
+    ]
+    out = run_js(calls)
+    n = CASES
+    worst = max(assert_twins(o, join(a, b), "join") for o, a, b in zip(out[:n], p, q, strict=True))
+    worst = max(
+        worst,
+        *(
+            assert_twins(o, meet(a, b), "meet")
+            for o, a, b in zip(out[n : 2 * n], *lines, strict=True)
+        ),
+    )
+    assert np.isnan(np.asarray(out[2 * n][0], dtype=float)).all(), (
+        "a point at infinity came back finite"
+    )
+    worst = max(
+        worst,
+        *(
+            assert_twins(o, map_points(h, x), "mapPoints")
+            for o, h, x in zip(out[2 * n : 3 * n], H, pts, strict=True)
+        ),
+    )
+    worst = max(
+        worst,
+        *(
+            assert_twins(o, from_homogeneous(b), "fromHomogeneous")
+            for o, b in zip(out[3 * n :], [*q, [1.0, 2.0, 0.0]], strict=True)
+        ),
+    )
+    print(f"join/meet/mapPoints/fromHomogeneous: worst relative error {worst:.2e}")
+
+
+def test_the_stack_check_arithmetic_equals_the_demo():
+    rng = np.random.default_rng(0)
+    angles = np.concatenate([rng.uniform(-180, 180, CASES), [-180.0, -90.0, 0.0, 5.0, 90.0, 180.0]])
+    scales = rng.uniform(0.3, 2.0, len(angles))
+    starts = rng.normal(size=(len(angles), 2))
+    n = len(angles)
+    calls = [("turnAndScale", [a, s]) for a, s in zip(angles, scales, strict=True)]
+    calls += [
+        ("turnPath", [a, s, x0.tolist(), 61])
+        for a, s, x0 in zip(angles, scales, starts, strict=True)
+    ]
+    calls += [("arrowheadSize", [a]) for a in angles]
+    out = run_js(calls)
+    worst = max(
+        assert_twins(o, turn_and_scale(a, s), "turnAndScale")
+        for o, a, s in zip(out[:n], angles, scales, strict=True)
+    )
+    worst = max(
+        worst,
+        *(
+            assert_twins(o, turn_path(a, s, x0, 61), "turnPath")
+            for o, a, s, x0 in zip(out[n : 2 * n], angles, scales, starts, strict=True)
+        ),
+    )
+    worst = max(
+        worst,
+        *(
+            assert_twins(o, arrowhead_size(a), "arrowheadSize")
+            for o, a in zip(out[2 * n :], angles, strict=True)
+        ),
+    )
+    print(f"stack_check arithmetic: worst relative error {worst:.2e}")
+
+
+def test_the_readout_text_is_the_same_string():
+    rng = np.random.default_rng(1)
+    values = np.concatenate(
+        [
+            [
+                round(float(v), int(d))
+                for v, d in zip(rng.uniform(-3, 3, 400), rng.integers(1, 5, 400), strict=True)
+            ],
+            [0.125, -0.125, 0.375, -0.375, 1.625, -2.875, 0.005, -0.005, -0.001, 0.0, -0.0, 2.675],
+        ]
+    )
+    points = values.reshape(-1, 2)
+    out = run_js([("tipReadout", [p.tolist()]) for p in points])
+    wrong = [
+        (p.tolist(), o, tip_readout(p))
+        for o, p in zip(out, points, strict=True)
+        if o != tip_readout(p)
+    ]
+    assert not wrong, f"JS and Python readouts differ: {wrong[:5]}"

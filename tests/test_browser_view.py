@@ -1,0 +1,82 @@
+"""The kernel's half of a browser-drawn demo (camlab/widgets/browser): the scene it sends, the links, the fallbacks.
+
+The browser's half is tested by tests/test_browser_geometry_parity.py (the arithmetic, under node)
+and tests/test_browser_drawing.py (the canvas in JupyterLab and Voila).
+"""
+
+import base64
+import io
+
+import numpy as np
+import pytest
+from matplotlib.image import imread
+
+from camlab.widgets.browser import BACKGROUND_SCALE, BrowserCanvas
+from camlab.widgets.start_here import HOUSE, stack_check
+
+
+@pytest.fixture
+def in_a_kernel(monkeypatch):
+    """Build demos as `%matplotlib widget` in a kernel would (the display mode "ipympl")."""
+    monkeypatch.setenv("CAMLAB_FIGURE_MODE", "ipympl")
+    monkeypatch.delenv("CAMLAB_BROWSER_DRAWING", raising=False)
+
+
+def test_in_a_kernel_the_demo_shows_a_browser_canvas_with_the_scene(in_a_kernel):
+    demo = stack_check()
+    canvas = demo.view.canvas
+    assert isinstance(canvas, BrowserCanvas) and demo.view.widget is canvas
+    assert canvas in demo.widget.children[1:], "the canvas is not where the figure goes"
+    scene = canvas.scene
+    assert scene["kind"] == "stack_check" and scene["params"] == ["angle", "scale"]
+    assert (canvas.angle, canvas.scale) == (40.0, 1.0)  # the sliders' values when it was built
+    png = imread(io.BytesIO(base64.b64decode(scene["background"].split(",", 1)[1])))
+    bbox = demo.figure.bbox
+    assert png.shape[:2] == (
+        round(bbox.height * BACKGROUND_SCALE),
+        round(bbox.width * BACKGROUND_SCALE),
+    )
+    assert scene["backgroundScale"] == BACKGROUND_SCALE
+    assert "house" in canvas.alt.lower()
+    links = {link.target[1]: link.source for link in demo.view.links}
+    assert links == {
+        "angle": (demo.controls["angle"], "value"),
+        "scale": (demo.controls["scale"], "value"),
+    }
+    assert all(link.target[0] is canvas for link in demo.view.links)
+
+
+def test_the_scene_maps_data_to_the_pixels_matplotlib_draws(in_a_kernel):
+    demo = stack_check()
+    for panel, ax in zip(demo.view.canvas.scene["panels"], demo.figure.axes, strict=True):
+        T = np.array(panel["toPixels"])
+        data = HOUSE
+        ours = np.c_[data, np.ones(len(data))] @ T.T
+        x, y = ax.transData.transform(data).T
+        assert np.allclose(ours[:, 0], x) and np.allclose(ours[:, 1], demo.figure.bbox.height - y)
+
+
+def test_pixels_in_a_kernel_equal_the_headless_drawing(in_a_kernel, monkeypatch):
+    demo = stack_check()
+    demo.set(angle=-135.0, scale=1.7)
+    live = demo.view.pixels()
+    monkeypatch.setenv("CAMLAB_FIGURE_MODE", "agg")
+    headless = stack_check()
+    headless.set(angle=-135.0, scale=1.7)
+    assert np.array_equal(live, headless.view.pixels())
+    assert demo.state["readout"] == headless.state["readout"]
+
+
+def test_switched_off_the_demo_is_drawn_in_the_kernel(in_a_kernel, monkeypatch):
+    import matplotlib.pyplot as plt
+
+    monkeypatch.setenv("CAMLAB_BROWSER_DRAWING", "0")
+    backend = plt.get_backend()
+    plt.switch_backend("module://ipympl.backend_nbagg")
+    try:
+        demo = stack_check()
+        plt.close(demo.figure)
+    finally:
+        plt.switch_backend(backend)
+    assert demo.view.canvas is None and demo.view.mode == "ipympl"
+    assert type(demo.view.widget).__name__ == "Canvas"  # ipympl's
