@@ -37,6 +37,10 @@ def _pose_cases():
         R = rotation_from_axis_angle(rng.normal(0, 0.5, 3))
         t = np.array([rng.normal(0, 0.05), rng.normal(0, 0.05), 0.45 + 0.1 * rng.random()])
         out.append((_K.copy(), scale * _skewed(_K, R, t, skew)))
+    # the board turned about 162 degrees in its own plane (OpenCV may start the corners at the other
+    # end): r11 < 0, so a sign chosen by "r11 > 0" puts this board behind the camera
+    R = rotation_from_axis_angle(np.array([0.2, 0.1, 0.9 * np.pi]))
+    out.append((_K.copy(), 0.7 * _skewed(_K, R, np.array([0.03, -0.02, 0.5]), 0.0)))
     return out
 
 
@@ -46,8 +50,29 @@ def _pose_slips(K, H, e):
     return (
         (
             _raw(K, H, flip=False),
-            "the board is behind the camera (t_z < 0): H is known only up to sign, so K^-1 H = lambda "
-            "[r1 r2 t] holds for -lambda too; when t_z < 0 flip the signs of r1, r2 and t",
+            "the board is behind the camera (t_z < 0): H is known only up to sign, so K^-1 H = s "
+            "[r1 r2 t] holds for -s too; when t_z < 0 flip the signs of r1, r2 and t",
+        ),
+        (
+            _raw(K, H, flip=False, sign_from=(0, 0)),
+            "you chose the sign so that r11 > 0: that fails when the board is turned more than 90 "
+            "degrees in its own plane (here r11 < 0); the sign is fixed by t_z > 0 (board in front "
+            "of the camera), not by any entry of R",
+        ),
+        (
+            np.column_stack([R.T, -R.T @ t]),
+            "you returned the inverse pose board_from_cam, [R^T | -R^T t]; return cam_from_board, "
+            "X_cam = R X_board + t, with R = [r1 r2 r3] and t = s K^-1 h3",
+        ),
+        (
+            np.column_stack([R, 1000.0 * t]),
+            "t is 1000 times too long: t comes out in the board's units (here metres, as K^-1 h3 "
+            "is scaled by the same s as r1); do not convert it to millimetres",
+        ),
+        (
+            _raw(K, H, right=True),
+            "you multiplied H @ K^-1: K^-1 multiplies H from the left, K^-1 H = s [r1 r2 t] "
+            "(np.linalg.solve(K, H))",
         ),
         (
             _t_only(K, H),
@@ -59,7 +84,7 @@ def _pose_slips(K, H, e):
         ),
         (
             np.column_stack([R, -R.T @ t]),
-            "t is the camera's centre -R^T t in board coordinates; return t itself, lambda K^-1 h3",
+            "t is the camera's centre -R^T t in board coordinates; return t itself, s K^-1 h3",
         ),
         (
             _whole_flip(K, H),
@@ -110,20 +135,20 @@ def _pose_diagnosis(args, got, expected) -> str:
         )
     if np.linalg.det(R) < 0:
         return (
-            "det R = -1, a reflection: r3 = r1 x r2 (right-handed), not r2 x r1; and if you flip signs "
+            "det R = -1, a reflection: r3 = r1 x r2, in that order (r2 x r1 makes a reflection); and if you flip signs "
             "when t_z < 0, flip r1, r2 and t before forming r3 (negating all of R flips r3 too)"
         )
     if np.isclose(np.linalg.norm(t), 1.0, atol=1e-6):
         return (
-            "your t has length 1: it shares the factor lambda = 1 / ||K^-1 h1|| with r1 and r2 "
-            "(t = lambda K^-1 h3), it is not normalised by its own length"
+            "your t has length 1: it shares the factor s = 1 / ||K^-1 h1|| with r1 and r2 "
+            "(t = s K^-1 h3), it is not normalised by its own length"
         )
     if t[2] < 0:
         return "t_z < 0 puts the board behind the camera: flip the signs of r1, r2 and t when it comes out negative"
     if np.allclose(R, e[:, :3], atol=1e-6):
-        return "R is right, t is not: t = lambda K^-1 h3 with the same lambda = 1 / ||K^-1 h1|| as r1 (and the same sign)"
+        return "R is right, t is not: t = s K^-1 h3 with the same s = 1 / ||K^-1 h1|| as r1 (and the same sign)"
     return (
-        "R = [r1 r2 r1 x r2] and t from lambda K^-1 [h1 h2 h3], lambda = 1 / ||K^-1 h1||, signed so that "
+        "R = [r1 r2 r1 x r2] and t from s K^-1 [h1 h2 h3], s = 1 / ||K^-1 h1||, signed so that "
         "t_z > 0, then R replaced by its nearest rotation"
     )
 
@@ -131,7 +156,7 @@ def _pose_diagnosis(args, got, expected) -> str:
 def view_pose(K, H):
     """A view's pose [R | t], cam_from_board, from the intrinsics K and its homography H.
 
-    K^-1 H = lambda [r1 r2 t] up to an unknown factor lambda (and sign): lambda = 1 / ||K^-1 h1||,
+    K^-1 H = s [r1 r2 t] up to an unknown factor s (and sign): s = 1 / ||K^-1 h1||,
     signed so that the board is in front of the camera (t_z > 0); r3 = r1 x r2, and noise is
     removed by replacing [r1 r2 r3] with its nearest rotation U V^T.
 
@@ -152,21 +177,27 @@ def view_pose(K, H):
     Z. Zhang (2000), "A flexible new technique for camera calibration", IEEE TPAMI 22(11),
     section 3.1 and appendix C.
     """
-    A = np.linalg.solve(K, H)  # lambda [r1 r2 t]
-    lam = 1.0 / np.linalg.norm(A[:, 0])
-    if A[2, 2] * lam < 0:  # the board must be in front: t_z > 0
-        lam = -lam
-    r1, r2, t = lam * A[:, 0], lam * A[:, 1], lam * A[:, 2]
+    A = np.linalg.solve(K, H)  # s [r1 r2 t]
+    s = 1.0 / np.linalg.norm(A[:, 0])
+    if A[2, 2] * s < 0:  # the board must be in front: t_z > 0
+        s = -s
+    r1, r2, t = s * A[:, 0], s * A[:, 1], s * A[:, 2]
     U, _, Vt = np.linalg.svd(np.column_stack([r1, r2, np.cross(r1, r2)]))
     R = U @ np.diag([1.0, 1.0, np.linalg.det(U @ Vt)]) @ Vt
     return np.column_stack([R, t])
 
 
-def _raw(K, H, flip=True, fix=True, own_t=False, cross=np.cross, gram_schmidt=False):
-    """A pose with one step changed, for the wrong variants."""
-    A = np.linalg.solve(K, H)
+def _raw(K, H, flip=True, fix=True, own_t=False, cross=np.cross, gram_schmidt=False, **slip):
+    """A pose with one step changed, for the wrong variants.
+
+    ``sign_from=(i, j)`` signs the scale so that entry (i, j) of R is positive (the "r11 > 0" slip);
+    ``right=True`` forms H K^-1 instead of K^-1 H.
+    """
+    A = H @ np.linalg.inv(K) if slip.get("right") else np.linalg.solve(K, H)
     lam = 1.0 / np.linalg.norm(A[:, 0])
     if flip and A[2, 2] * lam < 0:
+        lam = -lam
+    if "sign_from" in slip and A[slip["sign_from"]] * lam < 0:
         lam = -lam
     r1, r2, t = lam * A[:, 0], lam * A[:, 1], lam * A[:, 2]
     if own_t:
@@ -210,6 +241,18 @@ register_exercise(
             (lambda K, H: _raw(K.T, H), "K^T"),
             (lambda K, H: _raw(K, H, gram_schmidt=True), "not the nearest one"),
             (lambda K, H: (_raw(K, H)[:, :3], _raw(K, H)[:, 3]), "np.column_stack([R, t])"),
+            (lambda K, H: _raw(K, H, flip=False, sign_from=(0, 0)), "r11 > 0"),
+            (
+                lambda K, H: (lambda g: np.column_stack([g[:, :3].T, -g[:, :3].T @ g[:, 3]]))(
+                    _raw(K, H)
+                ),
+                "inverse pose",
+            ),
+            (
+                lambda K, H: (lambda g: np.column_stack([g[:, :3], 1000 * g[:, 3]]))(_raw(K, H)),
+                "1000 times",
+            ),
+            (lambda K, H: _raw(K, H, right=True), "from the left"),
             (lambda K, H: _raw(K, H, fix=False), "nearest rotation"),
             (lambda K, H: _raw(K, H, own_t=True), "length 1"),
             (lambda K, H: _raw(K, H, cross=lambda a, b: np.cross(b, a), fix=False), "r2 x r1"),

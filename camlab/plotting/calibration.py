@@ -462,11 +462,13 @@ def plot_extrinsics(ax, result: CalibrationResult, size: float | None = None):
     depth = float(np.min(boards[:, :, 2]))
     cam = Camera(K=result.K, R=R_CAM_FROM_VIEW, t=np.zeros(3), image_size=result.image_size)
     CameraArtist(ax, cam, size=size or depth / 3, color=palette.GREY)
-    set_equal_aspect(ax, [view.reshape(-1, 3), np.zeros((1, 3))], tight=True)
+    # a wider margin than the default: a board near the box's front-bottom edge is drawn in front of
+    # the back panes and would seem to poke out of the box
+    set_equal_aspect(ax, [view.reshape(-1, 3), np.zeros((1, 3))], tight=True, margin=0.15)
     _label_boards(ax, view, ring)
     ax.set_xlabel("x (right, m)", labelpad=10)
     ax.set_ylabel("z (forward, m)", labelpad=10)  # clear of its own tick labels
-    ax.set_zlabel("−y (up, m)", labelpad=8)
+    ax.set_zlabel("−y (up, m)", labelpad=4)
     return boards
 
 

@@ -23,6 +23,7 @@ from .controls import monospace
 
 _K = np.array([[820.0, 0.0, 322.4], [0.0, 818.0, 236.8], [0.0, 0.0, 1.0]])  # section 1's camera
 _ROLL = 0.4  # rad: the board turned in its own plane, as section 2's fronto-parallel view
+_COINCIDE_DEG = 1e-3  # lines closer than this are one line (they are 0 to rounding when degenerate)
 _TRUTH = 1e6 / np.diag(_K)[:2] ** 2  # (1/fx^2, 1/fy^2) in 10^-6 px^-2
 
 
@@ -71,9 +72,15 @@ def _figure(view: FigureView) -> SimpleNamespace:
             label="aspect-ratio line (fronto-parallel view)")  # fmt: skip
     (solid,) = ax.plot([], [], "-", color=palette.BLUE, lw=1.6, label="h₁ᵀBh₂ = 0")
     (dashed,) = ax.plot([], [], "--", color=palette.BLUE, lw=1.6, label="equal lengths")
-    (cross,) = ax.plot([], [], "o", color=palette.BLUE, mec="w", ms=8, label="where they cross")
-    ax.plot(*_TRUTH, "*", color="k", mec="w", ms=13, zorder=5, label="truth (1/fx², 1/fy²)")
-    view.animate(solid, dashed, cross)
+    # a hollow ring, so the truth star stays visible inside it; the star is animated too, so the
+    # live path (which paints animated artists over a cached background) keeps it on top
+    (cross,) = ax.plot(
+        [], [], "o", mfc="none", mec=palette.BLUE, mew=2, ms=14, label="where they cross"
+    )
+    (truth,) = ax.plot(
+        *_TRUTH, "*", color="k", mec="w", ms=12, zorder=5, label="truth (1/fx², 1/fy²)"
+    )
+    view.animate(solid, dashed, cross, truth)
     ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.02, 0.5))  # beside, off the lines
     ax.set_title(" ", fontsize=10)
     view.animate(ax.title)
@@ -93,8 +100,9 @@ def tilt_constraints() -> Demo:
         The demo: controls ``tilt`` (the board's tilt from facing the camera, degrees),
         ``axis`` (the direction of the tilt axis in the board's plane, degrees) and ``noise``
         (corner noise, px), the figure (the view's two lines, their crossing and the truth) and
-        ``state`` (``angle_deg`` between the lines, ``fx``, ``fy`` where they cross, NaN when
-        they do not, and ``fx_error`` relative to the truth).
+        ``state`` (``angle_deg`` between the lines, ``coincide`` when they are one line,
+        ``fx``, ``fy`` where they cross, NaN when they do not or coincide, and ``fx_error``
+        relative to the truth).
     """
     obj = C.board_points((9, 6), 0.025)
     unit = np.random.default_rng(3).normal(size=(len(obj), 2))  # one fixed draw, scaled by noise
@@ -111,29 +119,32 @@ def tilt_constraints() -> Demo:
             artist.set_data(*_segment(line, reach).T)
         normals = lines[:, :2] / np.linalg.norm(lines[:, :2], axis=1, keepdims=True)
         angle = float(np.degrees(np.arccos(min(1.0, abs(normals[0] @ normals[1])))))
+        coincide = angle < _COINCIDE_DEG
         with np.errstate(divide="ignore", invalid="ignore"):
-            ab = np.linalg.solve(lines[:, :2], -lines[:, 2]) if angle > 1e-6 else np.full(2, np.nan)
+            ab = np.full(2, np.nan) if coincide else np.linalg.solve(lines[:, :2], -lines[:, 2])
         f = np.sqrt(1e6 / ab) if np.all(ab > 0) else np.full(2, np.nan)
         art.cross.set_data(ab[:1], ab[1:])
         err = f[0] / _K[0, 0] - 1
+        if coincide:
+            verdict = "the two lines coincide: any point on them fits"
+        elif np.isfinite(err):
+            verdict = f"fx {round(100 * err, 1) + 0:+.1f} %"  # + 0: no "-0.0 %"
+            verdict += "" if np.all((ab >= 0) & (ab <= 2 * _TRUTH)) else " (off the plot)"
+        else:
+            verdict = "they cross outside fx², fy² > 0"
         art.title.set_text(
-            f"tilt {v['tilt']:.0f}°, noise {v['noise']:.2f} px: lines {angle:.1f}° apart, "
-            + (f"fx {100 * err:+.1f} %" if np.isfinite(err) else "no crossing with fx² > 0")
-            + (
-                ""
-                if np.all((ab >= 0) & (ab <= 2 * _TRUTH)) or not np.isfinite(err)
-                else " (off the plot)"
-            )
+            f"tilt {v['tilt']:.0f}°, noise {v['noise']:.2f} px: lines {angle:.1f}° apart\n{verdict}"
         )
-        state.update(angle_deg=angle, fx=float(f[0]), fy=float(f[1]), fx_error=float(err))
-        readout.value = monospace(
-            f"angle between the two lines: {angle:.2f}°\n"
-            + (
-                f"they cross at fx = {f[0]:.0f}, fy = {f[1]:.0f} px (truth {_K[0, 0]:.0f}, {_K[1, 1]:.0f})"
-                if np.all(np.isfinite(f))
-                else "they do not cross at positive 1/fx², 1/fy²: K is not determined"
-            )
+        state.update(
+            angle_deg=angle, coincide=coincide, fx=float(f[0]), fy=float(f[1]), fx_error=float(err)
         )
+        if coincide:
+            found = "the two lines coincide: one equation, a whole line of (fx, fy) fits, K is not determined"
+        elif np.all(np.isfinite(f)):
+            found = f"they cross at fx = {f[0]:.0f}, fy = {f[1]:.0f} px (truth {_K[0, 0]:.0f}, {_K[1, 1]:.0f})"
+        else:
+            found = "they cross outside positive 1/fx², 1/fy²: K is not determined"
+        readout.value = monospace(f"angle between the two lines: {angle:.2f}°\n" + found)
 
     controls = {
         "tilt": slider(30.0, 0.0, 60.0, 1.0, "tilt (°)"),
