@@ -411,7 +411,10 @@ def full_panorama() -> Demo:
 
 # ----------------------------------------------------------------------------- plane, cylinder, sphere
 
-BOX = (220, 560)  # (height, width) of canvas_projections' picture
+BOX = (
+    300,
+    780,
+)  # (height, width) of canvas_projections' picture: within the 810 px of the other demos
 
 
 def _gallery() -> dict:
@@ -469,7 +472,7 @@ def canvas_projections() -> Demo:
        section 8.2 (image stitching: cylindrical and spherical coordinates).
     """
     gallery = _gallery()
-    view = FigureView(figsize=(6.4, 2.6))
+    view = FigureView(figsize=(8.4, 3.4))
     ax = view.fig.subplots()
     blank = np.full((*BOX, 4), 255, np.uint8)
     im = view.animate(ax.imshow(blank, interpolation="nearest"))
