@@ -143,7 +143,7 @@ def panorama_canvas() -> Demo:
     graph = pe.panorama_graph()
     small, canvases = pe.reference_canvases()
     box = (300, 800)  # the axes' units: (height, width), about the shape the axes get
-    view, ax, im, lines, _, title = _outline_figure(box, lw=1.5, name="image", animate_legend=False)
+    view, ax, im, lines, _, title = _outline_figure(box, lw=1.5, name="view", animate_legend=False)
     readout = W.HTML()
     shown = {ref: _rgba(c.panorama) for ref, c in canvases.items()}
 
@@ -158,11 +158,11 @@ def panorama_canvas() -> Demo:
             ln.set_data(p[:, 0], p[:, 1])
         scale = _fit(c.shape, box)[0]
         title.set_text(
-            f"reference image {ref}: canvas {ww} x {hh} px (160 x 120 images), shown x{scale:.2f} to fit"
+            f"reference view {ref}: canvas {ww} x {hh} px (160 x 120 images), shown x{scale:.2f} to fit"
         )
         state.update(reference=ref, canvas=(hh, ww), T=c.T, display_scale=scale)
         readout.value = monospace(
-            f"reference image: {ref}\ncanvas: {ww} x {hh} px\n"
+            f"reference view: {ref}\ncanvas: {ww} x {hh} px\n"
             f"translation T: ({int(round(c.T[0, 2])):+d}, {int(round(c.T[1, 2])):+d}) px\n"
             f"best-connected image: {graph.reference}"
         )

@@ -136,7 +136,7 @@ def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
     ax.imshow(s.images[j], interpolation="nearest")
     ax.set_xticks([])
     ax.set_yticks([])
-    ax.set_title(f"matches in image {j}; frame of image {i} mapped by H", fontsize=9)
+    ax.set_title(f"matches in view {j}; frame of view {i} mapped by H", fontsize=9)
     inl = view.animate(
         ax.plot(
             [], [], ".", color=palette.GREEN, ms=4, label="inliers", path_effects=palette.halo()
