@@ -180,7 +180,6 @@ def panorama_canvas() -> Demo:
 # ----------------------------------------------------------------------------- blending
 
 
-@register(lesson="09", sweep={"method": list(st.BLENDS), "gains": [False, True], "levels": [1, 5]})
 def _seam_marks(
     mask: np.ndarray, overlap: np.ndarray, rows: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -209,6 +208,7 @@ def _seam_marks(
     return np.array(xs), np.array(ys)
 
 
+@register(lesson="09", sweep={"method": list(st.BLENDS), "gains": [False, True], "levels": [1, 5]})
 def blending_seams() -> Demo:
     """Overwrite, feather and multi-band blending of two differently exposed views, with a zoom on the seam.
 
