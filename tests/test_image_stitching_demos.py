@@ -161,3 +161,86 @@ def test_exercises_reference_passes_and_solution_prints(home, name, capsys):
     reference = getattr(importlib.import_module(f"camlab.{home}"), name)
     assert getattr(ex, f"check_{name}")(reference).passed is True
     assert ex.solution(name) is None and f"def {name}" in capsys.readouterr().out
+
+
+def _focal_student(method, scale):
+    """A student's focal from a rotation H: ``method`` combines the four Szeliski-Shum formulas."""
+    import numpy as np
+
+    def student(H, shape):
+        h, w = shape[:2]
+        C = np.array([[1.0, 0, (w - 1) / 2], [0, 1, (h - 1) / 2], [0, 0, 1]])
+        Hc = np.linalg.inv(C) @ np.asarray(H, float) @ C
+        Hc = Hc / {"h22": Hc[2, 2], "norm": np.linalg.norm(Hc), "none": 1.0}[scale]
+        h0, h1, h2, h3, h4, h5, h6, h7, _ = Hc.ravel()
+        nd = [
+            (-(h0 * h1 + h3 * h4), h6 * h7),
+            (h0**2 + h3**2 - h1**2 - h4**2, h7**2 - h6**2),
+            (-h2 * h5, h0 * h3 + h1 * h4),
+            (h5**2 - h2**2, h0**2 + h1**2 - h3**2 - h4**2),
+        ]
+        with np.errstate(all="ignore"):
+            if method == "larger denominator":
+                f2 = [a / b if abs(b) > abs(d) else c / d for (a, b), (c, d) in (nd[:2], nd[2:])]
+            else:
+                f2 = [n / d for n, d in nd]
+                f2 = f2[1::2] if method == "equal-length only" else f2
+        fs = [np.sqrt(v) for v in f2 if np.isfinite(v) and v > 0]  # the natural filter drops 0/0
+        return (
+            float(np.mean(fs) if method == "mean of all four" else np.median(fs)) if fs else np.nan
+        )
+
+    return student
+
+
+@pytest.mark.parametrize("scale", ["h22", "norm", "none"])
+@pytest.mark.parametrize("method", ["median of all four", "mean of all four", "equal-length only"])
+def test_focal_check_rejects_ignoring_the_larger_denominator_rule_naming_0_over_0(method, scale):
+    with pytest.raises(AssertionError, match="is 0/0 because") as info:
+        ex.check_focal_from_rotation_homography(_focal_student(method, scale))
+    assert "f^2 > 0" in str(info.value)
+
+
+@pytest.mark.parametrize("scale", ["h22", "norm", "none"])
+def test_focal_check_passes_the_rule_at_any_scale_and_a_numerical_search(scale, capsys):
+    import numpy as np
+    from scipy.optimize import minimize_scalar
+
+    assert ex.check_focal_from_rotation_homography(
+        _focal_student("larger denominator", scale)
+    ).passed
+
+    def search(H, shape):  # the f that makes K^-1 H K closest to a rotation (up to scale)
+        h, w = shape[:2]
+
+        def off(f):
+            K = np.array([[f, 0, (w - 1) / 2], [0, f, (h - 1) / 2], [0, 0, 1]])
+            R = np.linalg.inv(K) @ np.asarray(H, float) @ K
+            R = R / np.cbrt(np.linalg.det(R))
+            return np.linalg.norm(R.T @ R - np.eye(3))
+
+        return minimize_scalar(off, bounds=(100, 5000), method="bounded", options={"xatol": 1e-9}).x
+
+    assert ex.check_focal_from_rotation_homography(search).passed
+
+
+def test_shape_unpacked_without_channels_gets_the_hint():
+    from camlab.stitching import feather_weights
+    from camlab.warp import canvas_box
+
+    def feather(shape):
+        h, w = shape  # (h, w, 3) fails here
+        return feather_weights((h, w))
+
+    def box(Hs, shapes):
+        for s in shapes:
+            h, w = s
+        return canvas_box(Hs, shapes)
+
+    for name, student, fix in (
+        ("feather_weights", feather, "shape[:2]"),
+        ("canvas_box", box, "s[:2]"),
+    ):
+        with pytest.raises(AssertionError) as info:
+            getattr(ex, f"check_{name}")(student)
+        assert "too many values to unpack" in str(info.value) and f"h, w = {fix}" in str(info.value)

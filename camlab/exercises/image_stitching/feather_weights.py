@@ -7,6 +7,7 @@ import numpy as np
 from ... import stitching as st
 from .._answers import same_array
 from .._core import Exercise, register_exercise
+from .canvas_box import _shape_unpack_hint
 
 # ----------------------------------------------------------------------------- feather weights
 
@@ -136,7 +137,7 @@ def _feather_exception_hint(exc: Exception, args: tuple) -> str:
             "an (h, w) grid, so make v a column, np.arange(h)[:, None] (shape (h, 1)); two 1-D arrays of "
             "lengths h and w cannot be combined."
         )
-    return ""
+    return _shape_unpack_hint(exc, "shape")
 
 
 register_exercise(

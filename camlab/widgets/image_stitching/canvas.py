@@ -143,7 +143,7 @@ def panorama_canvas() -> Demo:
     graph = pe.panorama_graph()
     small, canvases = pe.reference_canvases()
     box = (300, 800)  # the axes' units: (height, width), about the shape the axes get
-    view, ax, im, lines, _, title = _outline_figure(box, lw=1.5, name="image", animate_legend=False)
+    view, ax, im, lines, _, title = _outline_figure(box, lw=1.5, name="view", animate_legend=False)
     readout = W.HTML()
     shown = {ref: _rgba(c.panorama) for ref, c in canvases.items()}
 
@@ -158,11 +158,11 @@ def panorama_canvas() -> Demo:
             ln.set_data(p[:, 0], p[:, 1])
         scale = _fit(c.shape, box)[0]
         title.set_text(
-            f"reference image {ref}: canvas {ww} x {hh} px (160 x 120 images), shown x{scale:.2f} to fit"
+            f"reference view {ref}: canvas {ww} x {hh} px (160 x 120 images), shown x{scale:.2f} to fit"
         )
         state.update(reference=ref, canvas=(hh, ww), T=c.T, display_scale=scale)
         readout.value = monospace(
-            f"reference image: {ref}\ncanvas: {ww} x {hh} px\n"
+            f"reference view: {ref}\ncanvas: {ww} x {hh} px\n"
             f"translation T: ({int(round(c.T[0, 2])):+d}, {int(round(c.T[1, 2])):+d}) px\n"
             f"best-connected image: {graph.reference}"
         )
@@ -178,6 +178,34 @@ def panorama_canvas() -> Demo:
 
 
 # ----------------------------------------------------------------------------- blending
+
+
+def _seam_marks(
+    mask: np.ndarray, overlap: np.ndarray, rows: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """The seam (where ``mask`` switches in or at ``overlap``) at the top and bottom sixth of ``rows``.
+
+    Returns x and y for one Line2D: each mark's points, the two marks split by a NaN, so the cut between the
+    marks (the data the seam's step is measured on) is left uncovered.
+    """
+    sixth = max(len(rows) // 6, 2)
+    xs, ys = [], []
+    for part in (rows[:sixth], rows[-sixth:]):
+        for r in part:
+            cols = np.flatnonzero(
+                (mask[r, :-1] != mask[r, 1:]) & (overlap[r, :-1] | overlap[r, 1:])
+            )
+            if len(cols):
+                if (
+                    xs and abs(cols[0] + 0.5 - xs[-1]) > 3
+                ):  # the seam left this row's run (an image's corner)
+                    xs.append(np.nan)
+                    ys.append(np.nan)
+                xs.append(cols[0] + 0.5)
+                ys.append(float(r))
+        xs.append(np.nan)
+        ys.append(np.nan)
+    return np.array(xs), np.array(ys)
 
 
 @register(lesson="09", sweep={"method": list(st.BLENDS), "gains": [False, True], "levels": [1, 5]})
@@ -243,7 +271,20 @@ def blending_seams() -> Demo:
     imz = view.animate(ax_z.imshow(np.zeros((z, z, 3), np.float32), interpolation="nearest"))
     ax_z.set_xticks([])
     ax_z.set_yticks([])
-    ax_z.set_title("zoom on the seam", fontsize=9)
+    ax_z.set_title("zoom on the seam (white marks)", fontsize=9)
+    # the seam each method's step is measured across, marked at both ends in the key's style (white, black edge)
+    both = wi.masks[0] & wi.masks[1]
+    overlap_rows = np.flatnonzero(both.any(axis=1))
+    zoom_rows = np.arange(v0, v0 + z)
+    seam_lines = []
+    for a in (ax, ax_z):
+        for colour, lw in (("black", 3.0), ("white", 1.2)):
+            seam_lines.append(view.animate(a.plot([], [], color=colour, lw=lw)[0]))
+    seam_marks = {}
+    for name, mask in (("overwrite", wi.masks[1]), ("middle", seam)):
+        x, y = _seam_marks(mask, both, overlap_rows)
+        xz, yz = _seam_marks(mask, both, zoom_rows)
+        seam_marks[name] = ((x, y), (xz - u0, yz - v0))
     readout = W.HTML()
     # every setting the controls can reach, blended once (pe.pair_blends)
     blends = pe.pair_blends()
@@ -258,6 +299,9 @@ def blending_seams() -> Demo:
         out, rgba = cache[key]
         im.set_data(rgba)
         imz.set_data(rgba[v0 : v0 + z, u0 : u0 + z])
+        marks = seam_marks["overwrite" if v["method"] == "overwrite" else "middle"]
+        for k, line in enumerate(seam_lines):
+            line.set_data(*marks[k // 2])
         jump = jumps[
             key
         ]  # the exposure step across the seam, grey levels (overwrite: the last image's border)
@@ -367,7 +411,10 @@ def full_panorama() -> Demo:
 
 # ----------------------------------------------------------------------------- plane, cylinder, sphere
 
-BOX = (220, 560)  # (height, width) of canvas_projections' picture
+BOX = (
+    300,
+    780,
+)  # (height, width) of canvas_projections' picture: within the 810 px of the other demos
 
 
 def _gallery() -> dict:
@@ -425,7 +472,7 @@ def canvas_projections() -> Demo:
        section 8.2 (image stitching: cylindrical and spherical coordinates).
     """
     gallery = _gallery()
-    view = FigureView(figsize=(6.4, 2.6))
+    view = FigureView(figsize=(8.4, 3.4))
     ax = view.fig.subplots()
     blank = np.full((*BOX, 4), 255, np.uint8)
     im = view.animate(ax.imshow(blank, interpolation="nearest"))

@@ -121,9 +121,9 @@ def feature_matches() -> Demo:
 # ----------------------------------------------------------------------------- RANSAC
 
 
-# the residual histogram's bins, log-spaced over the axis; the first bar also counts errors below
-# 0.02 px, the last those above 300 px
-_RESIDUAL_BINS = np.logspace(np.log10(0.02), np.log10(300), 43)
+# the residual histogram's bins, log-spaced from 0.02 to 300 px, and one more from 300 to 450 px for every
+# error above 300 px (drawn whole inside the axis); the first bar also counts errors below 0.02 px
+_RESIDUAL_BINS = np.append(np.logspace(np.log10(0.02), np.log10(300), 43), 450.0)
 
 
 def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
@@ -136,7 +136,7 @@ def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
     ax.imshow(s.images[j], interpolation="nearest")
     ax.set_xticks([])
     ax.set_yticks([])
-    ax.set_title(f"matches in image {j}; frame of image {i} mapped by H", fontsize=9)
+    ax.set_title(f"matches in view {j}; frame of view {i} mapped by H", fontsize=9)
     inl = view.animate(
         ax.plot(
             [], [], ".", color=palette.GREEN, ms=4, label="inliers", path_effects=palette.halo()
@@ -194,13 +194,13 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
     threshold line, registered with ``view`` in that order and returned.
     """
     ax_e.set(
-        xlabel="symmetric transfer error per match (px, log)",
+        xlabel="symmetric transfer error (px, log)",
         ylabel="number of matches\n(relative to the tallest bar)",
         xscale="log",
         xlim=(
             0.014,
-            300,
-        ),  # a little below the slider's 0.02 px, so the threshold line shows there too
+            450,
+        ),  # a little below the slider's 0.02 px (its threshold line shows), the > 300 px bar whole
         ylim=(0, 1.55),
         yticks=[0, 0.5, 1],
     )
@@ -330,7 +330,7 @@ def ransac_registration() -> Demo:
         box = map_points(r.H, np.vstack([corners, corners[:1]]))
         art.est_box.set_data(box[:, 0], box[:, 1])
         res = hg.symmetric_transfer_error(r.H, m.src, m.dst)
-        counts, _ = np.histogram(np.clip(res, 0.0201, 299), _RESIDUAL_BINS)
+        counts, _ = np.histogram(np.clip(res, 0.0201, 449), _RESIDUAL_BINS)
         top = max(counts.max(), 1)
         for b, c in zip(art.bars, counts, strict=True):
             b.set_height(c / top)
