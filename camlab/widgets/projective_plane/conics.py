@@ -15,7 +15,7 @@ from .._base import Demo, FigureView, build_demo, register, slider
 def _conic_figure(view: FigureView) -> SimpleNamespace:
     """The figure of :func:`conic_under_homography`.
 
-    The unit circle with its tangent square (left), their images (right), legends under both and a
+    The unit circle with its tangent square and the line H sends to infinity (left), their images (right), legends under both and a
     text strip for the circular points (in the figure, so a static copy shows it too); returns its
     axes and artists by name.
     """
@@ -41,6 +41,9 @@ def _conic_figure(view: FigureView) -> SimpleNamespace:
         ends = pj.clip_line(line, (-3, 3), (-3, 3))
         ax_b.plot(*ends.T, color=palette.GREEN, lw=1, label="tangent lines" if k == 0 else None)
     ax_b.plot([0], [0], "k+", ms=10, mew=2, label="centre of C")
+    (to_infinity,) = ax_b.plot(  # h31 x + h32 y + 1 = 0, moved by update
+        [], [], "--", color=palette.TAB_RED, lw=2, label="the line H sends to ∞"
+    )
     (conic,) = ax_a.plot([], [], color=palette.TAB_BLUE, lw=2, label="C' from the formula")
     mapped = ax_a.scatter(
         *samples.T, color=palette.ORANGE, s=25, zorder=3, label="H x (the 8 points)"
@@ -57,6 +60,7 @@ def _conic_figure(view: FigureView) -> SimpleNamespace:
     )
     return SimpleNamespace(
         samples=samples,
+        to_infinity=to_infinity,
         conic=conic,
         mapped=mapped,
         tangents=tangents,
@@ -174,6 +178,7 @@ def conic_under_homography() -> Demo:
     view = FigureView(figsize=(9, 6.0))
     parts = _conic_figure(view)
     view.animate(
+        parts.to_infinity,
         parts.conic,
         parts.mapped,
         *parts.tangents,
@@ -200,6 +205,10 @@ def conic_under_homography() -> Demo:
         parts.centre_image.set_data([0.0], [0.0])  # H keeps the origin: no translation
         parts.centre_conic.set_data([g.centre[0]], [g.centre[1]])
         parts.text.set_text(_conic_text(g, v))
+        if v["h31"] == 0 and v["h32"] == 0:  # H keeps l_inf: no finite line goes to infinity
+            parts.to_infinity.set_data([], [])
+        else:
+            set_line(parts.to_infinity, np.array([v["h31"], v["h32"], 1.0]), parts.ax_b)
 
     controls = {
         "angle": slider(20.0, -45.0, 45.0, 1.0, "rotation (°)"),
