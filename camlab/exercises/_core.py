@@ -326,7 +326,7 @@ def _in_place_message(
             f"`a /= a[2, 2]`, `a -= m` or `a[0, 0] = 0` on one of the arrays in `{a}`",
             "`a / a[2, 2]`, `a - m`",
         )
-        copy = "convert each array to a new one first (`a = np.asarray(a, dtype=float)`: uint16 becomes a float copy)"
+        copy = "convert each array to a new one first (`a = np.array(a, dtype=float)` always copies; np.asarray returns a float64 array itself)"
     elif np.ndim(args[changed[0]]) == 1:
         examples, new = (
             f"`{a}[1] = -{a}[1]`, `{a} += {k}`, `{a}.sort()`",
