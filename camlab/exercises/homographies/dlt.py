@@ -411,6 +411,7 @@ _UNDO_MISTAKES = (
     ),
     _wrong_way_round("T_dst @ H_n @ T_src", lambda s: s.Td @ s.Hn @ s.Ts),
     _wrong_way_round("inv(T_src) @ H_n @ T_dst", lambda s: np.linalg.inv(s.Ts) @ s.Hn @ s.Td),
+    _wrong_way_round("T_src @ H_n @ inv(T_dst)", lambda s: s.Ts @ s.Hn @ np.linalg.inv(s.Td)),
     Mistake(
         "T_src on both sides",
         lambda s: np.linalg.inv(s.Ts) @ s.Hn @ s.Ts,
@@ -677,6 +678,12 @@ register_exercise(
             (_dlt_unnormalised, "Normalise each point set"),
             (_dlt_not_undone, "not undone"),
             (_dlt_undone_wrong_order, "wrong way round"),
+            (
+                lambda s, d: (lambda Ts, Td, Hn: Ts @ Hn @ np.linalg.inv(Td))(
+                    *_dlt_normalised_parts(s, d)
+                ),
+                "T_src @ H_n @ inv(T_dst)",
+            ),
             (lambda s, d: _dlt_undone_one_side(s, d, "dst"), "undid only the destination's"),
             (lambda s, d: _dlt_undone_one_side(s, d, "src"), "undid only the source's"),
             (lambda s, d: _dlt_normalised_column(s, d), "a column of Vt"),
