@@ -682,7 +682,7 @@ register_exercise(
                 lambda s, d: (lambda Ts, Td, Hn: Ts @ Hn @ np.linalg.inv(Td))(
                     *_dlt_normalised_parts(s, d)
                 ),
-                "T_src @ H_n @ inv(T_dst)",
+                "T_src @ H_n @ inv",
             ),
             (lambda s, d: _dlt_undone_one_side(s, d, "dst"), "undid only the destination's"),
             (lambda s, d: _dlt_undone_one_side(s, d, "src"), "undid only the source's"),
