@@ -351,3 +351,17 @@ def test_right_angle_demo_reports_the_error_of_h_apart_from_corner_noise():
     assert d.state["worst_angle"] > 15 and d.state["exact_worst_angle"] < 1
     d.set(diagonals=False, noise=0.0)
     assert "fix only 4" in d.state["error"]
+
+
+def test_dlt_exercise_notes_a_scaling_without_centring(capsys):
+    # passes on accuracy (about as close as a centred DLT), but the note names the missing centring
+    from camlab.exercises.homographies import dlt as dlt_exercise
+
+    def scale_only(s, d):
+        s, d = np.asarray(s, float), np.asarray(d, float)
+        return dlt_exercise._dlt_with_each(s, d, dlt_exercise._scale_only, dlt_exercise._scale_only)
+
+    assert check("dlt_homography", scale_only)
+    assert "did not move its centroid" in capsys.readouterr().out
+    assert check("dlt_homography", all_exercises()["dlt_homography"].reference)
+    assert "did not move its centroid" not in capsys.readouterr().out

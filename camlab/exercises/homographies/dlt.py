@@ -228,7 +228,7 @@ def _dlt_follow_up(run) -> str:
 
 
 def _one_set_only(run) -> str:
-    """A note for a DLT that passes although it normalises only one point set ("" otherwise)."""
+    """A note for a DLT that passes although it normalises only one set, or does not centre ("" otherwise)."""
     src, dst = next(iter(_far_draws()))
     g = np.asarray(run(src.copy(), dst.copy()), dtype=float)
     for T in (lambda p: hartley_normalise(p).T, _normalisers_rms):
@@ -241,7 +241,20 @@ def _one_set_only(run) -> str:
                     f"other set's raw pixels (thousands) with entries of order 1; Hartley's recipe gives "
                     f"each set its own T (H&Z §4.4.4)."
                 )
+    if same_up_to_scale(g, _dlt_with_each(src, dst, _scale_only, _scale_only), rtol=1e-6):
+        return (
+            "Note: you scaled each set but did not move its centroid to the origin. That passes on this "
+            f"patch (a centred DLT is {_reference_median():.2f} px off at the median), but without centring "
+            "the answer still depends on where the pixel origin lies, which normalisation exists to remove "
+            "(H&Z §4.4.2): step 1 moves each centroid to 0, then scales."
+        )
     return ""
+
+
+def _scale_only(p):
+    """A scaling to mean distance sqrt(2) from the origin, without centring (a slip the note names)."""
+    k = np.sqrt(2) / np.mean(np.linalg.norm(p, axis=1))
+    return np.diag([k, k, 1.0])
 
 
 def _normalisers_rms(p):
@@ -411,6 +424,7 @@ _UNDO_MISTAKES = (
     ),
     _wrong_way_round("T_dst @ H_n @ T_src", lambda s: s.Td @ s.Hn @ s.Ts),
     _wrong_way_round("inv(T_src) @ H_n @ T_dst", lambda s: np.linalg.inv(s.Ts) @ s.Hn @ s.Td),
+    _wrong_way_round("T_src @ H_n @ inv(T_dst)", lambda s: s.Ts @ s.Hn @ np.linalg.inv(s.Td)),
     Mistake(
         "T_src on both sides",
         lambda s: np.linalg.inv(s.Ts) @ s.Hn @ s.Ts,
@@ -677,6 +691,12 @@ register_exercise(
             (_dlt_unnormalised, "Normalise each point set"),
             (_dlt_not_undone, "not undone"),
             (_dlt_undone_wrong_order, "wrong way round"),
+            (
+                lambda s, d: (lambda Ts, Td, Hn: Ts @ Hn @ np.linalg.inv(Td))(
+                    *_dlt_normalised_parts(s, d)
+                ),
+                "T_src @ H_n @ inv",
+            ),
             (lambda s, d: _dlt_undone_one_side(s, d, "dst"), "undid only the destination's"),
             (lambda s, d: _dlt_undone_one_side(s, d, "src"), "undid only the source's"),
             (lambda s, d: _dlt_normalised_column(s, d), "a column of Vt"),

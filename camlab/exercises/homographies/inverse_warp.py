@@ -66,8 +66,9 @@ def _warp(
     )
     if clamp:
         inside = np.isfinite(iu) & np.isfinite(iv)
-    iu = np.clip(np.nan_to_num(iu), -w, w - 1).astype(int) % w
-    iv = np.clip(np.nan_to_num(iv), -h, h - 1).astype(int) % h
+    low_w, low_h = (0, 0) if clamp else (-w, -h)  # clamp: np.clip(iu, 0, w - 1), the real slip
+    iu = np.clip(np.nan_to_num(iu), low_w, w - 1).astype(int) % w
+    iv = np.clip(np.nan_to_num(iv), low_h, h - 1).astype(int) % h
     return np.where(inside, np.asarray(image, dtype=float)[iv, iu], 0.0)
 
 
