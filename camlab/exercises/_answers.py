@@ -414,3 +414,13 @@ def unit_slip(got: Any, expected: Any) -> str | None:
                 f"the inputs and the answer are in metres"
             )
     return None
+
+
+def shape_unpack_hint(exc: Exception, name: str) -> str:
+    """``h, w = shape`` on a shape with channels, (h, w, 3): Python says only 'too many values to unpack'."""
+    if isinstance(exc, ValueError) and "too many values to unpack" in str(exc):
+        return (
+            f"a shape may carry channels, (h, w, 3): `h, w = {name}` (a shape) then has three values for two names. "
+            f"Take the first two, `h, w = {name}[:2]`."
+        )
+    return ""

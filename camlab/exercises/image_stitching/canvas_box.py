@@ -9,7 +9,7 @@ import numpy as np
 from ...camera import rotation_y
 from ...homography import rotation_homography
 from ...warp import canvas_box as _canvas_box_reference
-from .._answers import same_array
+from .._answers import same_array, shape_unpack_hint
 from .._core import Exercise, Mistake, first_mistake, register_exercise
 
 # ----------------------------------------------------------------------------- canvas bounds
@@ -277,16 +277,6 @@ def _canvas_diagnosis(args, got, expected) -> str:
     )
 
 
-def _shape_unpack_hint(exc: Exception, name: str) -> str:
-    """``h, w = shape`` on a shape with channels, (h, w, 3): Python says only 'too many values to unpack'."""
-    if isinstance(exc, ValueError) and "too many values to unpack" in str(exc):
-        return (
-            f"a shape may carry channels, (h, w, 3): `h, w = {name}` (a shape) then has three values for two names. "
-            f"Take the first two, `h, w = {name}[:2]`."
-        )
-    return ""
-
-
 def _canvas_variant(name: str):
     """The row ``name`` of _CANVAS_SLIPS as a student's function (for the tests)."""
     rows = [m for m in _CANVAS_SLIPS if m.name == name]
@@ -308,7 +298,7 @@ register_exercise(
         compare=same_array(atol=1e-9),
         diagnose=_canvas_diagnosis,
         teaching=canvas_box,
-        exception_hint=lambda exc, args: _shape_unpack_hint(exc, "s"),
+        exception_hint=lambda exc, args: shape_unpack_hint(exc, "s"),
         wrong_variants=(
             (lambda Hs, shapes: _canvas_box_reference(Hs, shapes)[:, ::-1], "(u, v)"),
             (_canvas_variant("first image only"), "`return` indented inside"),

@@ -5,9 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from ... import stitching as st
-from .._answers import same_array
+from .._answers import same_array, shape_unpack_hint
 from .._core import Exercise, register_exercise
-from .canvas_box import _shape_unpack_hint
 
 # ----------------------------------------------------------------------------- feather weights
 
@@ -137,7 +136,7 @@ def _feather_exception_hint(exc: Exception, args: tuple) -> str:
             "an (h, w) grid, so make v a column, np.arange(h)[:, None] (shape (h, 1)); two 1-D arrays of "
             "lengths h and w cannot be combined."
         )
-    return _shape_unpack_hint(exc, "shape")
+    return shape_unpack_hint(exc, "shape")
 
 
 register_exercise(

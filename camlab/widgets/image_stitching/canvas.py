@@ -276,10 +276,12 @@ def blending_seams() -> Demo:
     both = wi.masks[0] & wi.masks[1]
     overlap_rows = np.flatnonzero(both.any(axis=1))
     zoom_rows = np.arange(v0, v0 + z)
-    seam_lines = []
-    for a in (ax, ax_z):
-        for colour, lw in (("black", 3.0), ("white", 1.2)):
-            seam_lines.append(view.animate(a.plot([], [], color=colour, lw=lw)[0]))
+    seam_lines = [
+        view.animate(
+            a.plot([], [], color="white", lw=1.5, path_effects=palette.halo(3.0, "black"))[0]
+        )
+        for a in (ax, ax_z)
+    ]
     seam_marks = {}
     for name, mask in (("overwrite", wi.masks[1]), ("middle", seam)):
         x, y = _seam_marks(mask, both, overlap_rows)
@@ -300,8 +302,8 @@ def blending_seams() -> Demo:
         im.set_data(rgba)
         imz.set_data(rgba[v0 : v0 + z, u0 : u0 + z])
         marks = seam_marks["overwrite" if v["method"] == "overwrite" else "middle"]
-        for k, line in enumerate(seam_lines):
-            line.set_data(*marks[k // 2])
+        for line, xy in zip(seam_lines, marks, strict=True):
+            line.set_data(*xy)
         jump = jumps[
             key
         ]  # the exposure step across the seam, grey levels (overwrite: the last image's border)
