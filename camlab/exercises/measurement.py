@@ -17,6 +17,7 @@ import numpy as np
 
 from ._answers import same_array, shape_problem
 from ._core import Exercise, Mistake, first_mistake, mistake_variant, register_exercise
+from ._measurement_mistakes import POSE_MISTAKES_MORE
 from ._numbers import is_number, not_one_number, same_number
 
 _K = np.array([[532.8, 0.0, 341.8], [0.0, 533.0, 234.1], [0.0, 0.0, 1.0]])
@@ -155,6 +156,7 @@ _POSE_MISTAKES = (
         lambda c: np.column_stack([c.R.T, c.t]),
         "your R is transposed (board_from_cam): r1 and r2 are COLUMNS of R, np.column_stack([r1, r2, r3]).",
     ),
+    *POSE_MISTAKES_MORE,
 )
 
 
@@ -231,6 +233,8 @@ register_exercise(
             (_pose_variant("r3 = r2 x r1"), "r3 = r1 x r2"),
             (_pose_variant("the camera centre"), "camera centre"),
             (_pose_variant("R transposed"), "transposed"),
+            (_pose_variant("rows of K^-1 H"), "ROWS of A"),
+            (_pose_variant("the inverse pose"), "inverse pose"),
         ),
         teaching=pose_from_homography,
         ndarray_only=True,

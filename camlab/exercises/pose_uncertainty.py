@@ -52,7 +52,22 @@ def pose_covariance(J, r):
 def _context(J, r):
     rss, m = float(np.sum(np.asarray(r) ** 2)), len(r)
     inv = np.linalg.inv(J.T @ J)
-    return SimpleNamespace(rss=rss, m=m, inv=inv, JtJ=J.T @ J, s2=rss / (m - 6))
+    r = np.asarray(r, dtype=float)
+    return SimpleNamespace(
+        rss=rss, m=m, inv=inv, JtJ=J.T @ J, s2=rss / (m - 6), var=np.var(r), var6=np.var(r, ddof=6)
+    )
+
+
+def _root(x):
+    """Elementwise square root, NaN where x < 0, without the RuntimeWarning (a student's slip)."""
+    with np.errstate(invalid="ignore"):
+        return np.sqrt(x)
+
+
+_MEAN_HINT = (
+    "np.var / np.std subtract the mean of r first: the residuals at the minimum ARE the noise (its mean "
+    "is 0 by assumption), so sigma^2 = np.sum(r**2) / (len(r) - 6), with no mean taken out"
+)
 
 
 _MISTAKES = (
@@ -73,6 +88,43 @@ _MISTAKES = (
         lambda c: c.rss / (2 * c.m - 6) * c.inv,
         "you took len(r) as N and divided by 2 len(r) - 6: r already holds the 2N coordinates, so the "
         "divisor is len(r) - 6.",
+    ),
+    Mistake(
+        "np.var",
+        lambda c: c.var * c.inv,
+        _MEAN_HINT + "; np.var(r) also divides by 2N where the pose's 6 unknowns leave 2N - 6.",
+    ),
+    Mistake(
+        "np.var ddof=6", lambda c: c.var6 * c.inv, _MEAN_HINT + " (ddof=6 fixes only the divisor)."
+    ),
+    Mistake(
+        "divided by N - 6",
+        lambda c: c.rss / (c.m / 2 - 6) * c.inv,
+        "you divided by N - 6 (points minus unknowns): the fit has 2N numbers (u and v of each point), "
+        "so the divisor is 2N - 6 = len(r) - 6.",
+    ),
+    Mistake(
+        "elementwise reciprocal",
+        lambda c: c.s2 / c.JtJ,
+        "you took 1 / (J^T J) entry by entry: the inverse of a matrix is np.linalg.inv(J.T @ J) "
+        "(or np.linalg.solve(J.T @ J, np.eye(6))), not the reciprocal of each entry.",
+    ),
+    Mistake(
+        "divided by the inverse",
+        lambda c: c.s2 / c.inv,
+        "you divided by (J^T J)^-1 entry by entry: multiply by it, sigma^2 * np.linalg.inv(J.T @ J).",
+    ),
+    Mistake(
+        "square root of Sigma",
+        lambda c: _root(c.s2 * c.inv),
+        "you took an elementwise square root (np.sqrt or ** 0.5) of the covariance: Sigma = sigma^2 "
+        "(J^T J)^-1 is a variance, with no root; off-diagonal entries are negative, hence the NaN.",
+    ),
+    Mistake(
+        "square root of the inverse",
+        lambda c: c.s2 * _root(c.inv),
+        "you took an elementwise square root (** 0.5) of (J^T J)^-1: Sigma = sigma^2 (J^T J)^-1 needs the "
+        "matrix inverse itself, np.linalg.inv(J.T @ J); off-diagonal entries are negative, hence the NaN.",
     ),
     Mistake(
         "no inverse",
@@ -103,18 +155,21 @@ def _diagnosis(args, got, expected) -> str:
             f"you returned a ({len(r)}, {len(r)}) matrix: that is J J^T (or J Sigma J^T), one entry per "
             "residual pair; the pose's covariance is 6 x 6, sigma^2 (J^T J)^-1 with J.T @ J."
         )
-    problem = shape_problem(got, expected)
-    if problem:
-        return problem
-    hint = first_mistake(
-        _MISTAKES,
-        _context(*args),
-        np.asarray(got, dtype=float),
-        lambda a, b: np.allclose(a, b, rtol=1e-6, atol=0),
-    )
-    return hint or (
-        "your covariance differs from sigma^2 (J^T J)^-1 with sigma^2 = sum(r^2) / (2N - 6), 2N = len(r): "
-        "check each factor."
+    hint = None
+    if g is not None and g.shape == np.shape(expected) and g.dtype.kind in "fiu":
+        hint = first_mistake(  # before shape_problem, whose NaN hint would hide a square root
+            _MISTAKES,
+            _context(*args),
+            g.astype(float),
+            lambda a, b: np.allclose(a, b, rtol=1e-6, atol=0, equal_nan=True),
+        )
+    return (
+        hint
+        or shape_problem(got, expected)
+        or (
+            "your covariance differs from sigma^2 (J^T J)^-1 with sigma^2 = sum(r^2) / (2N - 6), 2N = len(r): "
+            "check each factor."
+        )
     )
 
 
@@ -135,6 +190,14 @@ register_exercise(
             (_variant("divided by N"), "count of points"),
             (_variant("len(r) taken as N"), "len(r) - 6"),
             (_variant("no inverse"), "instead of its inverse"),
+            ((lambda J, r: np.var(r) * np.linalg.inv(J.T @ J)), "subtract the mean"),
+            ((lambda J, r: np.std(r) ** 2 * np.linalg.inv(J.T @ J)), "subtract the mean"),
+            ((lambda J, r: np.var(r, ddof=6) * np.linalg.inv(J.T @ J)), "ddof=6"),
+            (_variant("divided by N - 6"), "N - 6"),
+            ((lambda J, r: np.sum(r**2) / (len(r) - 6) / (J.T @ J)), "entry by entry"),
+            (_variant("divided by the inverse"), "multiply by it"),
+            ((lambda J, r: _root(pose_covariance(J, r))), "elementwise square root"),
+            (_variant("square root of the inverse"), "elementwise square root"),
             (_variant("sigma not squared"), "variance"),
             (_variant("no sigma"), "left out the noise"),
             ((lambda J, r: np.sum(r**2) / (len(r) - 6) * J @ J.T), "J J^T"),
