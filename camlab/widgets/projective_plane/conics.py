@@ -139,7 +139,7 @@ def _conic_text(g: SimpleNamespace, v: dict) -> str:
     if abs(g.axis_ratio - 1.0) < 5e-4:
         shape = "a circle"
     elif g.axis_ratio > 0.99:
-        shape = "an ellipse, nearly a circle"
+        shape = "nearly a circle"
     else:
         shape = "an ellipse"
     if h == 0:  # the legend's dashed line is then l_inf itself, which no view shows
