@@ -1652,6 +1652,13 @@ def _cr_signed_norms(points):
     return s(0, 2) * s(1, 3) / (s(1, 2) * s(0, 3))
 
 
+def _cr_distance_from_a(points):
+    """The slip: positions as unsigned distances from A, right only while A is an end point."""
+    xy = points[:, :2] / points[:, 2:]
+    a, b, c, d = np.linalg.norm(xy - xy[0], axis=1)
+    return (c - a) * (d - b) / ((c - b) * (d - a))
+
+
 @pytest.mark.parametrize("right", [_cr_brackets, _cr_unit_direction, _cr_signed_norms])
 def test_cross_ratio_passes_right_answers_in_other_forms(right, capsys):
     assert check("cross_ratio", right).passed
@@ -1662,6 +1669,10 @@ def test_cross_ratio_passes_right_answers_in_other_forms(right, capsys):
     [
         (lambda p: 1.0 - 1.0 / _cr_brackets(p), "Hartley & Zisserman's Cross"),
         (lambda p: abs(_cr_brackets(p)), "unsigned lengths"),
+        (
+            lambda p: _cr_distance_from_a(np.asarray(p, dtype=float)),
+            "unsigned distance from A",
+        ),
         (
             lambda p: _cr_signed_norms(np.c_[np.asarray(p)[:, :2], np.ones(4)]),
             "without dividing by w",

@@ -276,6 +276,13 @@ def test_conic_demo_keeps_points_on_the_mapped_conic_and_sees_similarities():
     )
     texts = [t.get_text() for ax in demo.figure.axes for t in ax.texts]
     assert any("H is no similarity" in t for t in texts)
+    assert any("l∞ itself" in t for t in texts)  # h31 = h32 = 0: the dashed line is l_inf itself
+    demo.set(h31=0.31)  # the line x = -1/0.31 = -3.2 lies left of the view's edge x = -3
+    texts = [t.get_text() for ax in demo.figure.axes for t in ax.texts]
+    assert any("off the view" in t for t in texts)
+    demo.set(h31=0.35)  # x = -2.9: in view
+    texts = [t.get_text() for ax in demo.figure.axes for t in ax.texts]
+    assert not any("off the view" in t for t in texts)
 
 
 def test_duality_demo_starts_with_p_on_l_and_says_so_in_the_figure():

@@ -57,6 +57,13 @@ def _cross_cases():
                 [1.0, 1.0, 1.0, 1.0],
             ),
         ),
+        # a slanted line with A between B and C: positions -1, 0, 2, 3 steps from A, (A, B; C, D) = 8/9
+        (
+            lift(
+                [[300.0, 250.0], [240.0, 295.0], [420.0, 160.0], [480.0, 115.0]],
+                [1.5, 1.0, 2.0, 1.0],
+            ),
+        ),
     ]
 
 
@@ -73,6 +80,11 @@ def _euclidean(points) -> np.ndarray:
 def _positions(xy) -> np.ndarray:
     """Signed positions of the rows of ``xy`` along the direction from the first to the last."""
     return (xy - xy[0]) @ (xy[3] - xy[0])
+
+
+def _distance_from_a(xy) -> float:
+    """The slip: each point's position taken as its unsigned distance from A."""
+    return _signed_ratio(np.linalg.norm(xy - xy[0], axis=1))
 
 
 def _unsigned(xy) -> float:
@@ -152,6 +164,14 @@ _CROSS_MISTAKES = (
         "you used unsigned lengths (np.linalg.norm): here D lies between A and B, so AD and BD point "
         "opposite ways along the line and the cross-ratio is negative. Measure each point by its signed "
         "position t along the line, t = (P - A) . (D - A), and take AC = t_C - t_A.",
+    ),
+    Mistake(
+        "distance from A",
+        lambda a: _slip_among([_distance_from_a(a.xy)], a.right),
+        "you measured each point's position as its unsigned distance from A, |P - A|. That is its "
+        "signed position only while no point lies on the far side of A; here B does (A lies between "
+        "B and C), so t_B gets the wrong sign. Project on one direction of the line instead: "
+        "t = (P - A) . (D - A).",
     ),
     Mistake(
         "divided by |w|",
@@ -249,6 +269,7 @@ register_exercise(
         diagnose=_cross_diagnosis,
         wrong_variants=(
             (_unsigned_wrong, "unsigned lengths"),
+            (lambda p: _distance_from_a(_euclidean(p)), "unsigned distance from A"),
             (lambda p: _unsigned(np.asarray(p, dtype=float)[:, :2]), "without dividing by w"),
             (
                 lambda p: _signed_ratio(_positions(np.asarray(p, dtype=float)[:, :2])),

@@ -116,6 +116,12 @@ def _conic_geometry(v: dict, samples: np.ndarray) -> SimpleNamespace:
     )
 
 
+def _in_view(line: np.ndarray, lim: float = 3.0) -> bool:
+    """Whether ``line`` crosses the square view [-lim, lim]^2 of the demo's left plot."""
+    ends = pj.clip_line(line, (-lim, lim), (-lim, lim))  # NaN rows when it misses the view
+    return len(ends) == 2 and bool(np.all(np.isfinite(ends)))
+
+
 def _conic_text(g: SimpleNamespace, v: dict) -> str:
     """The three lines under :func:`conic_under_homography`'s plots.
 
@@ -133,14 +139,14 @@ def _conic_text(g: SimpleNamespace, v: dict) -> str:
     if abs(g.axis_ratio - 1.0) < 5e-4:
         shape = "a circle"
     elif g.axis_ratio > 0.99:
-        shape = "an ellipse, nearly a circle"
+        shape = "nearly a circle"
     else:
         shape = "an ellipse"
-    bounded = (
-        "H keeps l∞, so C' stays bounded"
-        if h == 0
-        else f"H sends h31 x + h32 y + 1 = 0 to ∞: {1 / h:.1f} from C's centre (> 1)"
-    )
+    if h == 0:  # the legend's dashed line is then l_inf itself, which no view shows
+        bounded = "H keeps l∞ (the line it sends to ∞ is l∞ itself), so C' stays bounded"
+    else:
+        seen = "" if _in_view(np.array([v["h31"], v["h32"], 1.0])) else ", off the view"
+        bounded = f"H sends h31 x + h32 y + 1 = 0 to ∞: {1 / h:.1f} from C's centre (> 1{seen})"
     HI = g.I_mapped
     return (
         f"H I ∝ (1, {_complex_text(HI[1])}, {_complex_text(HI[2])}) {verdict}\n"
