@@ -66,6 +66,16 @@ def test_drag_homography_keeps_cross_ratio_and_maps_corners():
         "|AB| / |CD|": "kept",
         "top-left angle": "kept",
     }
+    # a bow tie: the left edge passes through infinity, so its image leaves the top-left corner
+    # away from the bottom-left target corner; the angle is the mapped edges' (146.3 deg, checked
+    # by mapping points a small step along each edge), not the target corners' 33.7 deg
+    d.set(corners="40, 30; 250, 60; 60, 230; 230, 200")
+    assert d.state["torn"] and d.state["verdicts"]["top-left angle"] == "changes"
+    tl = map_points(d.state["H"], np.array([[0.0, 0.0], [1e-4, 0.0], [0.0, 1e-4]]))
+    e1, e2 = tl[1] - tl[0], tl[2] - tl[0]
+    stepped = np.degrees(np.arccos(e1 @ e2 / np.linalg.norm(e1) / np.linalg.norm(e2)))
+    assert np.isclose(d.state["corner_angle"], stepped, atol=1e-3)
+    assert np.isclose(d.state["corner_angle"], 146.31, atol=0.01)
     # a bad corner set is reported, not raised
     d.set(corners="0, 0; 10, 10; 20, 20; 0, 30")
     assert "collinear" in d.state["error"]

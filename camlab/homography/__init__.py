@@ -56,6 +56,7 @@ from .estimation import (
     transfer_error,
 )
 from .geometry import (
+    mapped_angle,
     plane_homography,
     pose_homography,
     rotation_homography,
@@ -99,6 +100,7 @@ __all__ = [
     "gold_standard_homography",
     "hierarchy_matrix",
     "invert",
+    "mapped_angle",
     "normalise_homography",
     "plane_homography",
     "pose_homography",

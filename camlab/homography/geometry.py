@@ -23,6 +23,7 @@ from .._validate import (
 from .core import check_homography, normalise_homography
 
 __all__ = [
+    "mapped_angle",
     "plane_homography",
     "pose_homography",
     "rotation_homography",
@@ -146,3 +147,65 @@ def pose_homography(K: ArrayLike, R: ArrayLike, t: ArrayLike) -> np.ndarray:
     tv = check_matrix(np.ravel(as_float(t, "t")), (3,), "t")
     H = Km @ np.column_stack([Rm[:, 0], Rm[:, 1], tv])
     return normalise_homography(check_homography(H, "pose_homography"))
+
+
+def mapped_angle(H: ArrayLike, corner: ArrayLike, d1: ArrayLike, d2: ArrayLike) -> float:
+    r"""The angle, in degrees, between the images under H of two directions leaving ``corner``.
+
+    Write :math:`H = \begin{pmatrix} A & t \\ b^\top & h_{33} \end{pmatrix}`, so a point x maps
+    to :math:`f(x) = (A x + t) / w` with :math:`w = b^\top x + h_{33}`. Differentiating,
+
+    .. math:: J = \frac{\partial f}{\partial x} = \frac{A - f(x)\, b^\top}{w},
+
+    and a curve leaving x along d leaves f(x) along :math:`J d`. The angle between two mapped
+    edges at a corner is the angle between :math:`J d_1` and :math:`J d_2`. This is exact, and it
+    stays right when an edge passes through infinity: the chord from f(x) to the image of the
+    edge's far end then points *backwards* (the edge's image leaves f(x) the other way, runs
+    out to infinity and comes back from the opposite side), so an angle built from the mapped
+    corners gives the supplement. Scaling H by any non-zero number (even a negative one)
+    leaves J unchanged.
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography.
+    corner : (2,) array_like
+        The corner x in the source, pixels; H must not send it to infinity (w != 0).
+    d1, d2 : (2,) array_like
+        The two edge directions leaving the corner in the source (any non-zero lengths).
+
+    Returns
+    -------
+    float
+        The mapped angle in degrees, in [0, 180].
+
+    Raises
+    ------
+    DegenerateError
+        If H sends the corner to infinity, or maps a direction to zero.
+
+    Examples
+    --------
+    >>> H = np.array([[2.0, 0, 0], [0, 1, 0], [0, 0, 1]])
+    >>> round(mapped_angle(H, [0, 0], [1, 0], [1, 1]), 2)   # x stretched twice: 45 deg becomes 26.57
+    26.57
+    """
+    Hm = check_homography(H, "H")
+    x = check_matrix(np.ravel(as_float(corner, "corner")), (2,), "corner")
+    D = np.stack(
+        [check_matrix(np.ravel(as_float(d, n)), (2,), n) for d, n in ((d1, "d1"), (d2, "d2"))]
+    )
+    w = Hm[2, :2] @ x + Hm[2, 2]
+    if abs(w) < 1e-12 * np.abs(Hm[2]).max() * (1 + np.abs(x).max()):
+        raise DegenerateError(
+            f"corner: H sends {x} to infinity (w = 0), so no angle is defined there; move the corner"
+        )
+    f = (Hm[:2, :2] @ x + Hm[:2, 2]) / w
+    J = (Hm[:2, :2] - np.outer(f, Hm[2, :2])) / w  # the derivative of the mapping at the corner
+    e1, e2 = D @ J.T
+    n1, n2 = np.linalg.norm(e1), np.linalg.norm(e2)
+    if min(n1, n2) == 0:
+        raise DegenerateError(
+            "d1, d2: expected non-zero directions that H does not flatten, got a zero image; check them"
+        )
+    return float(np.degrees(np.arccos(np.clip(e1 @ e2 / (n1 * n2), -1.0, 1.0))))

@@ -283,10 +283,10 @@ def warp_nearest(image, H, out_shape):
 
     Parameters
     ----------
-    image : (h, w) ndarray
+    image : (height, width) ndarray
         The source picture, indexed image[v, u].
     H : (3, 3) array_like
-        The homography from source pixels to output pixels.
+        The homography from source pixels to output pixels (w below is the third coordinate).
     out_shape : (height, width)
         The size of the output.
 

@@ -529,7 +529,7 @@ def _drag_artists(view, ax_s, ax_t, out_hw) -> SimpleNamespace:
     )
 
 
-def _drag_measures(line_pts, m, corners, H) -> tuple:
+def _drag_measures(line_pts, m, H) -> tuple:
     """What the drag demo's table compares: cross-ratio, |AD|, |AB| / |CD| and the top-left angle.
 
     A segment whose ends H sends to opposite sides of the line at infinity (w of opposite signs)
@@ -547,8 +547,9 @@ def _drag_measures(line_pts, m, corners, H) -> tuple:
     ratio0 = np.linalg.norm(line_pts[1] - line_pts[0]) / np.linalg.norm(line_pts[3] - line_pts[2])
     with np.errstate(invalid="ignore", divide="ignore"):
         ratio1 = np.divide(image_length(0, 1), image_length(2, 3))
-    e1, e2 = corners[1] - corners[0], corners[3] - corners[0]
-    angle = np.degrees(np.arccos(np.clip(e1 @ e2 / np.linalg.norm(e1) / np.linalg.norm(e2), -1, 1)))
+    # the angle between the mapped edges' tangents at the mapped corner (not the chords to the
+    # target corners, which point backwards along an edge that passes through infinity)
+    angle = hg.mapped_angle(H, SQUARE[0], SQUARE[1] - SQUARE[0], SQUARE[3] - SQUARE[0])
     rows = drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, 90.0, angle)
     measures = dict(
         cross_ratio_source=cr0,
@@ -630,7 +631,8 @@ def drag_homography() -> Demo:
         corners to drag) and ``state`` (``H`` source to target pixels, ``corners``,
         ``corner``, ``torn``, ``cross_ratio_source`` and ``cross_ratio_image``,
         ``length_ratio_source`` and ``length_ratio_image`` (|AB| / |CD|), ``corner_angle``
-        the target's top-left angle in degrees, ``error``: the message when the corners
+        the angle in degrees between the two mapped edges at the top-left corner (their
+        tangents there, right also when an edge passes through infinity), ``error``: the message when the corners
         cannot be used, else None). ``handlers`` holds the mouse handlers of the corner
         drag.
 
@@ -683,7 +685,7 @@ def drag_homography() -> Demo:
         art.quad.set_data(outline[:, 0], outline[:, 1])
         art.handles.set_data(corners[:, 0], corners[:, 1])
         art.chosen.set_data(corners[v["corner"], :1], corners[v["corner"], 1:])
-        measures, rows = _drag_measures(line_pts, m, corners, H)
+        measures, rows = _drag_measures(line_pts, m, H)
         state.update(
             H=H,
             error=None,

@@ -84,7 +84,7 @@ def plane_parallax() -> Demo:
     ax = view.fig.subplots()
     ax.add_patch(Rectangle((-0.5, -0.5), 640, 480, fill=False, ec="0.6", lw=1, ls=":"))
     ax.set(
-        xlim=(-20, 660), ylim=(500, -20), aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)"
+        xlim=(-30, 670), ylim=(505, -25), aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)"
     )
     ax.set_title("camera 2's 640 x 480 image (dotted)", fontsize=10)
     rings = view.animate(
