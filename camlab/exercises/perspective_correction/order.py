@@ -117,11 +117,14 @@ def _order_diagnosis(args, got, expected) -> str:
 
 def _start_rule(first, corners) -> str:
     """Name the tempting start rule the answer followed: the topmost or the leftmost corner."""
-    for rule, k in (("topmost corner (smallest v)", 1), ("leftmost corner (smallest u)", 0)):
+    for rule, k, often in (
+        ("topmost corner (smallest v)", 1, "top-right"),
+        ("leftmost corner (smallest u)", 0, "bottom-left"),
+    ):
         if np.allclose(first, corners[np.argmin(corners[:, k])]):
             return (
-                f": you started at the {rule}. In a turned or tilted page that is often the top-right or "
-                "the bottom-left corner; the top-left one is the corner with the smallest u + v."
+                f": you started at the {rule}. In a turned or tilted page that is often the {often} "
+                "corner; the top-left one is the corner with the smallest u + v."
             )
     return " (smallest u + v)."
 

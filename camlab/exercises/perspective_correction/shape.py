@@ -254,7 +254,7 @@ def _assumed_f_or_edges(corners, principal_point, g, ratio, f) -> str | None:
             mine = np.sqrt(_shape_from(n2, n3, assumed**2)[0])
         if np.isclose(g[0], mine, rtol=1e-6) and np.isclose(g[1], assumed, rtol=1e-6):
             named = (
-                " (640 px, or max(width, height) of the image: camlab's fallback when f is unknown)"
+                " (camlab's fallback when f is unknown: max(width, height) of the image)"
                 if assumed in (640.0, fallback)
                 else ""
             )
