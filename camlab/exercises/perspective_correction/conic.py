@@ -150,8 +150,8 @@ def _conic_diagnosis(args, got, expected) -> str:
             )
     if slip := _sign_or_inverse_slip(g, lines_l, lines_m, e):
         return slip
-    residual, eig = _residual_and_eigenvalues(g, e, lines_l, lines_m)
-    if residual > 1e-4 and eig.min() < 1e-8 * eig.max():
+    residual, _ = _residual_and_eigenvalues(g, e, lines_l, lines_m)
+    if residual > 1e-4 and _own_rank(g) == 2:
         return _NOT_UNDONE
     if residual > 1e-4:
         return (
@@ -165,6 +165,17 @@ def _conic_diagnosis(args, got, expected) -> str:
         "of normal equations) loses digits on pixel lines; take the SVD of the rows themselves, or normalise "
         "the lines first (lesson 07, section 6)."
     )
+
+
+def _own_rank(g) -> int:
+    """``g``'s rank judged in its own scale: rescaled by its own diagonal, singular values over the largest.
+
+    A badly scaled wrong answer looks singular in the expected matrix's units; in its own it does not.
+    """
+    d = np.abs(np.diag(g))
+    d = np.where(d > 1e-300 * max(d.max(), 1e-300), d, 1.0)
+    s = np.linalg.svd(g / np.sqrt(np.outer(d, d)), compute_uv=False)
+    return int(np.sum(s > 1e-8 * s[0])) if s[0] > 0 else 0
 
 
 def _residual_and_eigenvalues(g, e, lines_l, lines_m):
@@ -328,6 +339,13 @@ register_exercise(
             (
                 lambda L, M: np.linalg.pinv(pp.dual_conic_from_orthogonal_lines(L, M)),
                 "(pseudo-)inverse",
+            ),
+            (  # badly scaled and not rank 2: must not get the "normalisation not undone" hint
+                lambda L, M: sum(
+                    np.outer(a, b) + np.outer(b, a)
+                    for a, b in zip(np.asarray(L, float), np.asarray(M, float), strict=True)
+                ),
+                "does not make the pairs orthogonal",
             ),
         ),
         ndarray_only=True,

@@ -84,7 +84,10 @@ def _order_diagnosis(args, got, expected) -> str:
         )
     for shift in (1, 2, 3):
         if np.allclose(g, np.roll(expected, shift, axis=0)):
-            return "the cyclic order is right but it does not start at the top-left corner (smallest u + v)."
+            return (
+                "the cyclic order is right but it does not start at the top-left corner"
+                + _start_rule(g[0], corners)
+            )
     ccw = [s for s in range(4) if np.allclose(g, np.roll(expected[::-1], s, axis=0))]
     if ccw:
         # the usual slips all give the same answer on every input (arctan2(u, v) is arctan2(v, u)
@@ -110,6 +113,30 @@ def _order_diagnosis(args, got, expected) -> str:
         "centroid (np.arctan2(v - v_c, u - u_c)), which works for any convex quadrilateral, then start at "
         "the top-left corner (smallest u + v)."
     )
+
+
+def _start_rule(first, corners) -> str:
+    """Name the tempting start rule the answer followed: the topmost or the leftmost corner."""
+    for rule, k, often in (
+        ("topmost corner (smallest v)", 1, "top-right"),
+        ("leftmost corner (smallest u)", 0, "bottom-left"),
+    ):
+        if np.allclose(first, corners[np.argmin(corners[:, k])]):
+            return (
+                f": you started at the {rule}. In a turned or tilted page that is often the {often} "
+                "corner; the top-left one is the corner with the smallest u + v."
+            )
+    return " (smallest u + v)."
+
+
+def _start_at(k):
+    """A tempting slip: sort by angle, then start at the corner with the smallest coordinate ``k``."""
+
+    def student(corners):
+        q = _sorted_by_angle(corners)
+        return np.roll(q, -np.argmin(q[:, k]), axis=0)
+
+    return student
 
 
 def order_corners(corners):
@@ -171,6 +198,8 @@ register_exercise(
                 "sort by the angle",
             ),
             (_sorted_by_angle, "does not start at the top-left"),
+            (_start_at(1), "topmost corner (smallest v)"),
+            (_start_at(0), "leftmost corner (smallest u)"),
             (lambda c: pp.order_corners(c)[[0, 1, 3, 2]], "Z order"),
             (lambda c: pp.order_corners(c)[:, ::-1], "(v, u)"),
             (_sum_difference_trick, "holds for upright rectangles only"),

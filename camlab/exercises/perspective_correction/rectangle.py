@@ -128,6 +128,20 @@ _RECT_MISTAKES = (
         "+x v. (An axis-aligned rectangle, h31 = h32 = 0, hides this slip.)",
     ),
     Mistake(
+        "third row's sign in the y row only",
+        lambda s: _sign_slip(s.corners, (s.w, s.h), rows="y"),
+        "the y row of your 8 x 8 system has the wrong sign on its last two entries: y (h31 u + h32 v + 1) "
+        "= h21 u + h22 v + h23 moves y h31 u and y h32 v to the left as -y u and -y v; you wrote +y u, +y v "
+        "(your x row is right).",
+    ),
+    Mistake(
+        "third row's sign in the x row only",
+        lambda s: _sign_slip(s.corners, (s.w, s.h), rows="x"),
+        "the x row of your 8 x 8 system has the wrong sign on its last two entries: x (h31 u + h32 v + 1) "
+        "= h11 u + h12 v + h13 moves x h31 u and x h32 v to the left as -x u and -x v; you wrote +x u, +x v "
+        "(your y row is right).",
+    ),
+    Mistake(
         "counter-clockwise",
         lambda s: s.fit(s.corners, s.target((0, 3, 2, 1))),
         "your target goes counter-clockwise (TL, BL, BR, TR): pair TL, TR, BR, BL with (0, 0), "
@@ -152,11 +166,18 @@ _RECT_MISTAKES = (
 """Ex 1's typical mistakes, each the H it gives, in the order the diagnosis tries them."""
 
 
-def _sign_slip(corners, size):
-    """A typical slip: the 8 x 8 system with +x u, +x v (and +y u, +y v) where -x u, -x v belong."""
+def _sign_slip(corners, size, rows="xy"):
+    """A typical slip: the 8 x 8 system with +x u, +x v (and +y u, +y v) where -x u, -x v belong.
+
+    ``rows``: the rows that carry the slip ("xy" both, "x" or "y" one only).
+    """
+    sx, sy = (1 if "x" in rows else -1), (1 if "y" in rows else -1)
     A, b = [], []
     for (u, v), (x, y) in zip(np.asarray(corners, dtype=float), _rect_target(*size), strict=True):
-        A += [[u, v, 1, 0, 0, 0, x * u, x * v], [0, 0, 0, u, v, 1, y * u, y * v]]
+        A += [
+            [u, v, 1, 0, 0, 0, sx * x * u, sx * x * v],
+            [0, 0, 0, u, v, 1, sy * y * u, sy * y * v],
+        ]
         b += [x, y]
     try:
         return np.append(np.linalg.solve(np.array(A), np.array(b)), 1.0).reshape(3, 3)
@@ -289,6 +310,8 @@ register_exercise(
                 "Z order",
             ),
             (_sign_slip, "third row of H has the wrong sign"),
+            (lambda c, s: _sign_slip(c, s, rows="y"), "the y row of your 8 x 8 system"),
+            (lambda c, s: _sign_slip(c, s, rows="x"), "the x row of your 8 x 8 system"),
             (
                 lambda c, size: estimate_homography(c, _rect_target(*size)[:, ::-1]),
                 "your target corners are",

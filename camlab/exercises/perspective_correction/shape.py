@@ -163,7 +163,9 @@ def _shape_diagnosis(args, got, expected) -> str:
     except (TypeError, ValueError):
         g = None
     if g is None or g.shape != (2,):
-        shape = "nothing" if g is None else f"shape {g.shape}"
+        shape = f"a {type(got).__name__}" if g is None else f"shape {g.shape}"
+        if isinstance(got, dict):
+            shape = f"a dict with keys {sorted(map(str, got))}; return a tuple, (ratio, f)"
         return f"return two numbers, (ratio, f): w/h and the focal length in pixels; got {shape}."
     corners, principal_point = args
     ratio, f = expected
@@ -201,10 +203,13 @@ def _shape_diagnosis(args, got, expected) -> str:
     )
     if cause:
         return cause
-    rounded = [
+    if slip := _assumed_f_or_edges(corners, principal_point, g, ratio, f):
+        return slip
+    rounded = [  # only the right answer rounded (within 1%), not any wrong whole number
         name
         for name, mine, right in (("w/h", g[0], ratio), ("f", g[1], f))
         if not np.isclose(mine, right, rtol=1e-6)
+        and np.isclose(mine, right, rtol=1e-2)
         and any(np.isclose(mine, round(right, d), rtol=1e-12) for d in range(5))
     ]
     if rounded and all(
@@ -228,6 +233,43 @@ def _shape_diagnosis(args, got, expected) -> str:
         "check k2 and k3 (both use m1 x m4, dotted with m3 and m2), then n2 = k2 m2 - m1 and n3 = k3 m3 - m1, "
         "with m_i the corners relative to the principal point in Zhang & He's order TL, TR, BL, BR."
     )
+
+
+def _edge_ratios(corners):
+    """w/h read off the photo's edge lengths: TL-TR over TL-BL, and the opposite edges' means."""
+    tl, tr, br, bl = np.asarray(corners, dtype=float)
+    top, bottom = np.linalg.norm(tr - tl), np.linalg.norm(br - bl)
+    left, right = np.linalg.norm(bl - tl), np.linalg.norm(br - tr)
+    return top / left, (top + bottom) / (left + right), np.sqrt(top * bottom / (left * right))
+
+
+def _assumed_f_or_edges(corners, principal_point, g, ratio, f) -> str | None:
+    """The hint for f assumed rather than solved, or w/h measured on the photo's edges."""
+    n2, n3, _ = _zhang_he(corners, principal_point)
+    fallback = 2 * max(principal_point)  # max(width, height) for a centred principal point
+    for assumed in (640.0, fallback, g[1]):
+        if np.isclose(assumed, f, rtol=1e-6):
+            continue
+        with np.errstate(invalid="ignore", divide="ignore"):
+            mine = np.sqrt(_shape_from(n2, n3, assumed**2)[0])
+        if np.isclose(g[0], mine, rtol=1e-6) and np.isclose(g[1], assumed, rtol=1e-6):
+            named = (
+                " (camlab's fallback when f is unknown: max(width, height) of the image)"
+                if assumed in (640.0, fallback)
+                else ""
+            )
+            return (
+                f"your ratio follows from an assumed f = {assumed:.6g} px{named}, not from the corners: "
+                f"solve f from e1 . e2 = 0, f^2 = -(n21 n31 + n22 n32) / (n23 n33) (here {f:.6g} px), "
+                "then use that f in the ratio. A fallback f is only for when the corners fix none."
+            )
+    if any(np.isclose(g[0], r, rtol=1e-6) for r in _edge_ratios(corners)):
+        return (
+            "your w/h is read off the photo's edge lengths (|TR - TL| / |BL - TL|, or the opposite edges' "
+            "means): in a perspective photo the edges are foreshortened by different amounts, so their "
+            "lengths are not the rectangle's. Use section 3's formula, w/h = |A^-1 n2| / |A^-1 n3|."
+        )
+    return None
 
 
 def rectangle_shape(corners, principal_point):
@@ -314,6 +356,22 @@ register_exercise(
             (
                 lambda c, p: (_shape_reference(c, p)[0], round(_shape_reference(c, p)[1])),
                 "f is rounded",
+            ),
+            (
+                lambda c, p: (
+                    np.sqrt(_shape_from(*_zhang_he(c, p)[:2], 640.0**2)[0]),
+                    640.0,
+                ),
+                "camlab's fallback",
+            ),
+            (
+                lambda c, p: (_edge_ratios(c)[0], _shape_reference(c, p)[1]),
+                "the photo's edge lengths",
+            ),
+            (lambda c, p: (1.0, _shape_reference(c, p)[1]), "your f is right but the ratio"),
+            (
+                lambda c, p: dict(zip(("ratio", "f"), _shape_reference(c, p), strict=True)),
+                "a dict with keys ['f', 'ratio']",
             ),
             (
                 lambda c, p: (round(_shape_reference(c, p)[0], 3), _shape_reference(c, p)[1]),
