@@ -521,7 +521,9 @@ def canvas_projections() -> Demo:
     controls = {
         "views": W.IntSlider(value=3, min=2, max=6, description="views"),
         "projection": W.Dropdown(
-            options=["planar", "cylindrical", "spherical"], value="planar", description="canvas"
+            options=["planar", "cylindrical", "spherical"],
+            value="cylindrical",
+            description="canvas",
         ),
     }
     return build_demo(
