@@ -1,5 +1,7 @@
 """The analytic Jacobian of bundle adjustment against central differences (issue: compute at library speed)."""
 
+import contextlib
+
 import numpy as np
 import pytest
 
@@ -13,6 +15,20 @@ def _rng_cameras(rng, n):
     Ks = [cm.intrinsics(f, (480, 640)) for f in rng.uniform(400, 900, n)]
     Rs = [rotation_from_axis_angle(rng.normal(0, 0.3, 3)) for _ in range(n)]
     return Ks, Rs
+
+
+@contextlib.contextmanager
+def _captured_problem(monkeypatch):
+    """The residuals, start and Jacobian an adjustment hands to Levenberg-Marquardt (which never runs)."""
+    seen = {}
+
+    def capture(residuals, x0, jacobian, **kw):
+        seen.update(residuals=residuals, x0=x0, jacobian=jacobian)
+        raise StopIteration
+
+    monkeypatch.setattr(cm, "levenberg_marquardt", capture)
+    with pytest.raises(StopIteration):
+        yield seen
 
 
 def _noise_and_outliers(rng, shape):
@@ -79,14 +95,7 @@ def test_the_assembled_bundle_jacobian_equals_central_differences(monkeypatch, f
         a = rng.uniform([0, 0], [640, 480], (30, 2))
         b = cm.pair_transfer_errors(Ks[i], Rs[i], Ks[j], Rs[j], a, np.zeros_like(a))
         matches[(i, j)] = (a, b + _noise_and_outliers(rng, b.shape))
-    seen = {}
-
-    def capture(residuals, x0, jacobian, **kw):
-        seen.update(residuals=residuals, x0=x0, jacobian=jacobian)
-        raise StopIteration
-
-    monkeypatch.setattr(cm, "levenberg_marquardt", capture)
-    with pytest.raises(StopIteration):
+    with _captured_problem(monkeypatch) as seen:
         cm.bundle_adjust(Ks, Rs, matches, focal=focal)
     x = seen["x0"] + rng.normal(0, 0.05, len(seen["x0"])) * np.where(seen["x0"] > 100, 100, 1)
     analytic = seen["jacobian"](x)
@@ -107,14 +116,7 @@ def test_the_assembled_homography_adjustment_jacobian_equals_central_differences
         a = rng.uniform([0, 0], [640, 480], (30, 2))
         b = cm._project(np.linalg.inv(Hs[j]) @ Hs[i], a)
         matches[(i, j)] = (a, b + _noise_and_outliers(rng, b.shape))
-    seen = {}
-
-    def capture(residuals, x0, jacobian, **kw):
-        seen.update(residuals=residuals, x0=x0, jacobian=jacobian)
-        raise StopIteration
-
-    monkeypatch.setattr(cm, "levenberg_marquardt", capture)
-    with pytest.raises(StopIteration):
+    with _captured_problem(monkeypatch) as seen:
         cm.adjust_homographies(Hs, matches, reference=0)
     x = seen["x0"] * (1 + rng.normal(0, 1e-3, len(seen["x0"])))
     analytic = seen["jacobian"](x)
