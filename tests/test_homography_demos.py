@@ -346,7 +346,9 @@ def test_scanner_counts_only_slips_that_give_an_f():
         )
     )
     if not undetermined:  # the oldest declared OpenCV finds corners whose every slip gives an f
-        pytest.skip(f"this OpenCV's corners leave no slip without an f: nothing to count ({line!r})")
+        pytest.skip(
+            f"this OpenCV's corners leave no slip without an f: nothing to count ({line!r})"
+        )
     no_f = re.search(r"(\d+) of the 16 give no f", line)
     assert undetermined and no_f and int(no_f.group(1)) >= 1, line
     assert re.search(r"the other \d+ give \d+-\d+ px", line) or "412-1114 px" in line, line
