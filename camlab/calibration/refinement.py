@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validate import as_float, as_points, check_intrinsics, check_matrix
-from ..camera import rotation_from_axis_angle
+from ..camera import cross_matrix, division_jacobian, rotation_from_axis_angle
 from ..distortion import as_dist, beyond_valid_radius, distort_xy, distortion_jacobian
 from ..optimise import NormalEquations
 
@@ -33,7 +33,7 @@ def _rotations_and_left_jacobians(rvecs: np.ndarray) -> tuple[np.ndarray, np.nda
     Near :math:`\theta = 0` the coefficients use their Taylor limits (1, 1/2, 1/6).
     """
     theta = np.linalg.norm(rvecs, axis=1)
-    S = _skew(rvecs)
+    S = cross_matrix(rvecs)
     S2 = S @ S
     small = theta < 1e-6
     th = np.where(small, 1.0, theta)
@@ -44,15 +44,6 @@ def _rotations_and_left_jacobians(rvecs: np.ndarray) -> tuple[np.ndarray, np.nda
     R = eye + a[:, None, None] * S + b[:, None, None] * S2
     Jl = eye + b[:, None, None] * S + c[:, None, None] * S2
     return R, Jl
-
-
-def _skew(w: np.ndarray) -> np.ndarray:
-    """[w]_x for (..., 3) vectors: (..., 3, 3)."""
-    out = np.zeros(w.shape[:-1] + (3, 3))
-    out[..., 0, 1], out[..., 0, 2] = -w[..., 2], w[..., 1]
-    out[..., 1, 0], out[..., 1, 2] = w[..., 2], -w[..., 0]
-    out[..., 2, 0], out[..., 2, 1] = -w[..., 1], w[..., 0]
-    return out
 
 
 class ViewProjection(NamedTuple):
@@ -173,12 +164,8 @@ def project_views(
     A = np.empty_like(Jd)  # d uv / d (x, y) = K_p @ Jd
     A[..., 0, :] = fx * Jd[..., 0, :] + s * Jd[..., 1, :]
     A[..., 1, :] = fy * Jd[..., 1, :]
-    inv_z = 1.0 / z
-    P = np.zeros((V, M, 2, 3))  # d (x, y) / d Xc
-    P[..., 0, 0], P[..., 0, 2] = inv_z, -x * inv_z
-    P[..., 1, 1], P[..., 1, 2] = inv_z, -y * inv_z
-    dXc = A @ P  # (V, M, 2, 3): d uv / d Xc = d uv / d t
-    dR = -_skew(RX) @ Jl[:, None]  # d (R X) / d rvec, (V, M, 3, 3)
+    dXc = A @ division_jacobian(Xc)  # (V, M, 2, 3): d uv / d Xc = d uv / d t
+    dR = -cross_matrix(RX) @ Jl[:, None]  # d (R X) / d rvec, (V, M, 3, 3)
     Jp = np.concatenate([dXc @ dR, dXc], axis=-1)
     return ViewProjection(uv, Jg, Jp)
 

@@ -37,6 +37,7 @@ References
 
 from __future__ import annotations
 
+from .derivatives import cross_matrix, division_jacobian
 from .dlt_analysis import dlt_conditioning, dlt_matrix, predicted_rms_error, unnormalised_dlt
 from .model import (
     Camera,
@@ -86,7 +87,9 @@ __all__ = [
     "axis_angle_from_rotation",
     "camera_centre",
     "check_camera_matrix",
+    "cross_matrix",
     "decompose_projection_matrix",
+    "division_jacobian",
     "dlt_conditioning",
     "dlt_matrix",
     "predicted_rms_error",

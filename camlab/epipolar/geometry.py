@@ -24,7 +24,7 @@ from .._validate import (
     check_matrix,
     check_rotation,
 )
-from ..camera import Camera, Pose, camera_centre, check_camera_matrix
+from ..camera import Camera, Pose, camera_centre, check_camera_matrix, cross_matrix
 from ..projective import normalise_lines, to_homogeneous
 
 __all__ = [
@@ -61,8 +61,7 @@ def skew(v: ArrayLike) -> np.ndarray:
     >>> skew([1, 2, 3]) @ np.array([4, 5, 6]), np.cross([1, 2, 3], [4, 5, 6])
     (array([-3.,  6., -3.]), array([-3,  6, -3]))
     """
-    a = check_matrix(v, (3,), "v")
-    return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+    return cross_matrix(check_matrix(v, (3,), "v"))
 
 
 def check_fundamental(F: ArrayLike, name: str = "F") -> np.ndarray:

@@ -72,6 +72,8 @@ from .._validate import (
 from ..calibration.zhang import extrinsics_from_homography
 from ..camera import (
     axis_angle_from_rotation,
+    cross_matrix,
+    division_jacobian,
     estimate_projection_matrix,
     nearest_rotation,
     rotation_from_axis_angle,
@@ -166,7 +168,7 @@ class PnPResult(NamedTuple):
         (3, 3) ndarray
             World units squared.
         """
-        Jc = np.hstack([-self.R.T @ _skew(self.t), -self.R.T])
+        Jc = np.hstack([-self.R.T @ cross_matrix(self.t), -self.R.T])
         return Jc @ self.covariance @ Jc.T
 
     def std(self) -> dict:
@@ -183,10 +185,6 @@ class PnPResult(NamedTuple):
             "t": d[3:],
             "centre": np.sqrt(np.diag(self.centre_covariance())),
         }
-
-
-def _skew(w: np.ndarray) -> np.ndarray:
-    return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
 
 
 def project_pose(K: np.ndarray, R: np.ndarray, t: np.ndarray, X: np.ndarray) -> np.ndarray:
@@ -237,18 +235,9 @@ def pose_jacobian(K: np.ndarray, R: np.ndarray, t: np.ndarray, X: np.ndarray) ->
         Pixels per radian (first three columns) and per world unit (last three).
     """
     RX = X @ R.T
-    Xc = RX + t
-    x, y, z = Xc.T
-    fx, s, fy = K[0, 0], K[0, 1], K[1, 1]
-    # d(u, v)/d Xc: u = fx x/z + s y/z + cx, v = fy y/z + cy
-    dproj = np.zeros((len(X), 2, 3))
-    dproj[:, 0, 0] = fx / z
-    dproj[:, 0, 1] = s / z
-    dproj[:, 0, 2] = -(fx * x + s * y) / z**2
-    dproj[:, 1, 1] = fy / z
-    dproj[:, 1, 2] = -fy * y / z**2
+    dproj = K[:2, :2] @ division_jacobian(RX + t)  # d(u, v)/d Xc
     dXc = np.zeros((len(X), 3, 6))
-    dXc[:, :, :3] = -np.stack([_skew(p) for p in RX])
+    dXc[:, :, :3] = -cross_matrix(RX)
     dXc[:, :, 3:] = np.eye(3)
     return (dproj @ dXc).reshape(-1, 6)
 

@@ -46,6 +46,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validate import as_points, check_matrix
+from ..camera import cross_matrix, division_jacobian
 
 __all__ = [
     "PairJacobians",
@@ -66,10 +67,6 @@ class PairJacobians(NamedTuple):
 
 
 _E = np.diag([1.0, 1.0, 0.0])  # dK/df when f sits in both diagonal places
-
-
-def _skew(w: np.ndarray) -> np.ndarray:
-    return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
 
 
 def left_jacobian(w: ArrayLike) -> np.ndarray:
@@ -95,7 +92,7 @@ def left_jacobian(w: ArrayLike) -> np.ndarray:
     """
     w = check_matrix(w, (3,), "w")
     theta = float(np.linalg.norm(w))
-    W = _skew(w)
+    W = cross_matrix(w)
     if theta < 1e-5:
         return np.eye(3) + W / 2 + W @ W / 6
     return (
@@ -103,22 +100,6 @@ def left_jacobian(w: ArrayLike) -> np.ndarray:
         + (1 - np.cos(theta)) / theta**2 * W
         + (theta - np.sin(theta)) / theta**3 * (W @ W)
     )
-
-
-def _projection_jacobian(p: np.ndarray) -> np.ndarray:
-    """d pi / d p for pi(p) = (p1 / p3, p2 / p3), every row of p: (N, 2, 3)."""
-    d = np.zeros((len(p), 2, 3))
-    d[:, 0, 0] = d[:, 1, 1] = 1 / p[:, 2]
-    d[:, :, 2] = -p[:, :2] / p[:, 2:3] ** 2
-    return d
-
-
-def _times_cross(A: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """A [v_n]_x for every row v_n of v: (N, 3, 3)."""
-    skews = np.zeros((len(v), 3, 3))
-    skews[:, 0, 1], skews[:, 0, 2], skews[:, 1, 2] = -v[:, 2], v[:, 1], -v[:, 0]
-    skews -= skews.transpose(0, 2, 1)
-    return A @ skews
 
 
 def transfer_error_jacobians(
@@ -152,9 +133,9 @@ def transfer_error_jacobians(
     q = r @ (R_j @ R_i.T).T
     M = K_j @ R_j @ R_i.T
     p = q @ K_j.T
-    dpi = _projection_jacobian(p)
-    dp_i = np.concatenate([-(r @ _E.T @ K_i_inv.T @ M.T)[:, :, None], _times_cross(M, r)], axis=2)
-    dp_j = np.concatenate([(q @ _E.T)[:, :, None], -_times_cross(K_j, q)], axis=2)
+    dpi = division_jacobian(p)
+    dp_i = np.concatenate([-(r @ _E.T @ K_i_inv.T @ M.T)[:, :, None], M @ cross_matrix(r)], axis=2)
+    dp_j = np.concatenate([(q @ _E.T)[:, :, None], -K_j @ cross_matrix(q)], axis=2)
     return PairJacobians(dpi @ dp_i, dpi @ dp_j)
 
 
@@ -182,7 +163,7 @@ def homography_transfer_jacobians(H_i: ArrayLike, H_j: ArrayLike, x_i: ArrayLike
     x = np.c_[as_points(x_i, 2, "x_i").array, np.ones(len(x_i))]
     G = np.linalg.inv(H_j)
     p = x @ (G @ H_i).T
-    dpi = _projection_jacobian(p)
+    dpi = division_jacobian(p)
     dp_i = np.einsum("kr,nc->nkrc", G, x).reshape(len(x), 3, 9)[:, :, :8]
     dp_j = -np.einsum("kr,nc->nkrc", G, p).reshape(len(x), 3, 9)[:, :, :8]
     return PairJacobians(dpi @ dp_i, dpi @ dp_j)
