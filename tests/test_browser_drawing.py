@@ -111,56 +111,22 @@ def test_stack_check_is_drawn_in_the_browser_within_50_ms_of_a_keydown(tmp_path)
 
 def test_stack_check_is_drawn_in_the_browser_in_the_lecture_mode(tmp_path):
     """``camlab present 00`` (Voila): the anywidget canvas shows and follows a keydown there too."""
-    import os
-    import signal
-    import socket
-    import subprocess
-    import time
-
     from playwright.sync_api import sync_playwright
 
     browser.require_chromium()
-    port = browser.free_port()
-    env = dict(
-        os.environ,
-        JUPYTER_CONFIG_DIR=str(tmp_path / "config"),
-        JUPYTER_RUNTIME_DIR=str(tmp_path / "runtime"),
-        MPLBACKEND="module://ipympl.backend_nbagg",
-    )
-    env.pop("CAMLAB_FIGURE_MODE", None)
-    with open(tmp_path / "voila.log", "wb") as log:
-        server = subprocess.Popen(
-            [sys.executable, "-m", "camlab.cli", "present", "00", f"--port={port}", "--no-browser"],
-            env=env,
-            stdout=log,
-            stderr=subprocess.STDOUT,
-            start_new_session=True,
-        )
+    with browser.lecture_mode("00", tmp_path) as port, sync_playwright() as p:
+        context = browser.launch(p, tmp_path / "chromium")
         try:
-            deadline = time.time() + 60
-            while True:
-                try:
-                    with socket.create_connection(("127.0.0.1", port), timeout=2):
-                        break
-                except OSError:
-                    assert time.time() < deadline and server.poll() is None, "voila did not start"
-                    time.sleep(0.5)
-            with sync_playwright() as p:
-                context = browser.launch(p, tmp_path / "chromium")
-                try:
-                    page = context.new_page()
-                    page.set_default_timeout(120_000)
-                    page.goto(f"http://127.0.0.1:{port}/", wait_until="commit")
-                    canvas = page.locator(f".{DEMO} {CANVAS}")
-                    canvas.wait_for(state="visible")
-                    canvas.scroll_into_view_if_needed()
-                    page.wait_for_timeout(1000)
-                    samples = browser.key_to_pixels(page, DEMO, CANVAS, presses=10)
-                finally:
-                    context.close()
+            page = context.new_page()
+            page.set_default_timeout(120_000)
+            page.goto(f"http://127.0.0.1:{port}/", wait_until="commit")
+            canvas = page.locator(f".{DEMO} {CANVAS}")
+            canvas.wait_for(state="visible")
+            canvas.scroll_into_view_if_needed()
+            page.wait_for_timeout(1000)
+            samples = browser.key_to_pixels(page, DEMO, CANVAS, presses=10)
         finally:
-            os.killpg(server.pid, signal.SIGTERM)
-            server.wait(timeout=20)
+            context.close()
     assert all(s >= 0 for s in samples), f"a keydown left the canvas unchanged in Voila: {samples}"
     median = statistics.median(samples)
     print(json.dumps({"demo": "stack_check", "path": "browser, lecture mode", "median_ms": median}))

@@ -3,7 +3,6 @@
 import json
 import os
 import signal
-import socket
 import subprocess
 import sys
 import time
@@ -168,60 +167,23 @@ def lecture(tmp_path_factory):
     from playwright.sync_api import sync_playwright
 
     tmp_path = tmp_path_factory.mktemp("present")
-    port = browser.free_port()
-    env = dict(
-        os.environ,
-        JUPYTER_CONFIG_DIR=str(tmp_path / "config"),
-        JUPYTER_RUNTIME_DIR=str(tmp_path / "runtime"),
-        MPLBACKEND="module://ipympl.backend_nbagg",
-    )
-    env.pop("CAMLAB_FIGURE_MODE", None)
-    log = open(tmp_path / "voila.log", "wb")
-    server = subprocess.Popen(
-        [sys.executable, "-m", "camlab.cli", "present", "07", f"--port={port}", "--no-browser"],
-        env=env,
-        stdout=log,
-        stderr=subprocess.STDOUT,
-        start_new_session=True,
-    )
-    try:
-        deadline = time.time() + 60
-        while True:
-            try:
-                with socket.create_connection(("127.0.0.1", port), timeout=2):
-                    break  # voila listens (it renders the lesson when the page is requested)
-            except OSError:
-                pass
-            if time.time() > deadline or server.poll() is not None:
-                pytest.fail(
-                    "voila did not start:\n"
-                    + (tmp_path / "voila.log").read_text(errors="replace")[-3000:]
-                )
-            time.sleep(0.5)
-        with sync_playwright() as p:
-            context = browser.launch(p, tmp_path / "chromium")
-            try:
-                page = context.new_page()
-                page.set_default_timeout(120_000)
-                started = time.time()
-                page.goto(f"http://127.0.0.1:{port}/", wait_until="commit")
-                for name in DEMOS_07:
-                    page.locator(f".camlab-demo-{name} canvas").first.wait_for(state="visible")
-                print(
-                    f"lesson 07 in lecture mode: all 4 demos visible after {time.time() - started:.1f} s"
-                )
-                page.wait_for_timeout(2000)
-                page.screenshot(path=str(tmp_path / "present_07.png"))
-                yield dict(page=page, dir=tmp_path)
-            finally:
-                context.close()
-    finally:
-        os.killpg(server.pid, signal.SIGTERM)
+    with browser.lecture_mode("07", tmp_path) as port, sync_playwright() as p:
+        context = browser.launch(p, tmp_path / "chromium")
         try:
-            server.wait(timeout=20)
-        except subprocess.TimeoutExpired:
-            os.killpg(server.pid, signal.SIGKILL)
-        log.close()
+            page = context.new_page()
+            page.set_default_timeout(120_000)
+            started = time.time()
+            page.goto(f"http://127.0.0.1:{port}/", wait_until="commit")
+            for name in DEMOS_07:
+                page.locator(f".camlab-demo-{name} canvas").first.wait_for(state="visible")
+            print(
+                f"lesson 07 in lecture mode: all 4 demos visible after {time.time() - started:.1f} s"
+            )
+            page.wait_for_timeout(2000)
+            page.screenshot(path=str(tmp_path / "present_07.png"))
+            yield dict(page=page, dir=tmp_path)
+        finally:
+            context.close()
 
 
 @pytest.mark.browser

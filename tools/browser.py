@@ -12,6 +12,7 @@ import json
 import os
 import secrets
 import shutil
+import signal
 import socket
 import subprocess
 import sys
@@ -91,6 +92,61 @@ def stop(process: subprocess.Popen) -> None:
         process.wait(timeout=15)
     except subprocess.TimeoutExpired:
         process.kill()
+
+
+@contextlib.contextmanager
+def lecture_mode(lesson: str, base: Path) -> Iterator[int]:
+    """Run ``camlab present LESSON`` (Voila) on a free port with scratch folders under ``base``.
+
+    Yields the port once Voila listens (it renders the lesson when the page is requested);
+    raises with Voila's log if it dies or does not listen within 60 s. The whole process
+    group is stopped on exit, kernels included.
+    """
+    port = free_port()
+    env = dict(
+        os.environ,
+        JUPYTER_CONFIG_DIR=str(base / "config"),
+        JUPYTER_RUNTIME_DIR=str(base / "runtime"),
+        MPLBACKEND="module://ipympl.backend_nbagg",
+    )
+    env.pop("CAMLAB_FIGURE_MODE", None)
+    log_path = base / "voila.log"
+    with open(log_path, "wb") as log:
+        server = subprocess.Popen(
+            [
+                sys.executable,
+                "-m",
+                "camlab.cli",
+                "present",
+                lesson,
+                f"--port={port}",
+                "--no-browser",
+            ],
+            env=env,
+            stdout=log,
+            stderr=subprocess.STDOUT,
+            start_new_session=True,
+        )
+        try:
+            deadline = time.time() + 60
+            while True:
+                try:
+                    with socket.create_connection(("127.0.0.1", port), timeout=2):
+                        break
+                except OSError:
+                    pass
+                if time.time() > deadline or server.poll() is not None:
+                    raise RuntimeError(
+                        "voila did not start:\n" + log_path.read_text(errors="replace")[-3000:]
+                    )
+                time.sleep(0.5)
+            yield port
+        finally:
+            os.killpg(server.pid, signal.SIGTERM)
+            try:
+                server.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                os.killpg(server.pid, signal.SIGKILL)
 
 
 @contextlib.contextmanager
