@@ -52,36 +52,6 @@ WATCH_WEBSOCKETS = """(() => {
     set(fn) { watch(this); onmessage.set.call(this, fn); }, get() { return onmessage.get.call(this); } });
 })();"""
 
-# Arm: at the next keydown start a frame loop; record when the canvas pixels change.
-ARM_KEY_TO_PIXELS = """(selector) => {
-  window.__camlabLatency = undefined;
-  window.__camlabFrames = [];
-  window.__camlabArmed = true;
-  const canvas = document.querySelector(selector + ' canvas');
-  const ctx = canvas.getContext('2d', {willReadFrequently: true});
-  const checksum = () => {
-    const d = ctx.getImageData(0, 0, canvas.width, canvas.height).data;
-    let s = 0;
-    for (let i = 0; i < d.length; i += 7) s = (s * 31 + d[i]) | 0;
-    return s;
-  };
-  const before = checksum();
-  document.addEventListener('keydown', (e) => {
-    const t0 = performance.now();
-    const done = (ms) => {
-      window.__camlabArmed = false;
-      const frames = window.__camlabFrames.map(([t, n]) => [t - t0, n]);
-      window.__camlabLatency = {pixels: ms, frames: frames};
-    };
-    const poll = () => {
-      if (checksum() !== before) done(performance.now() - t0);
-      else if (performance.now() - t0 > 5000) done(-1);
-      else requestAnimationFrame(poll);
-    };
-    requestAnimationFrame(poll);
-  }, {capture: true, once: true});
-}"""
-
 
 def stages(sample: dict) -> dict[str, float]:
     """Split one press into its path: the server round trip, the figure frame's arrival, its paint.
@@ -185,7 +155,9 @@ def measure(presses: int = 7, demos: list[str] | None = None) -> dict[str, dict]
                     samples = []
                     for i in range(presses):
                         handle.focus()
-                        page.evaluate(ARM_KEY_TO_PIXELS, selector)  # never awaits a promise
+                        page.evaluate(
+                            browser.ARM_KEY_TO_CANVAS, f"{selector} canvas"
+                        )  # never awaits
                         page.keyboard.press("ArrowRight" if i % 2 == 0 else "ArrowLeft")
                         page.wait_for_function(
                             "() => window.__camlabLatency !== undefined", polling=50

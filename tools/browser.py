@@ -259,8 +259,12 @@ def click_slider(page, demo: str, fraction: float) -> tuple[bytes, bytes, str, s
 
 
 # Arm: at the next keydown, poll every animation frame until the canvas's pixels differ.
+# Sets window.__camlabLatency = {pixels: ms (-1: none in 5 s), frames: [[ms, bytes], ...]}; the
+# frames are the websocket messages a watcher (benchmarks/browser_latency.py) logged while armed.
 ARM_KEY_TO_CANVAS = """(selector) => {
-  window.__camlabKeyToPixels = undefined;
+  window.__camlabLatency = undefined;
+  window.__camlabFrames = [];
+  window.__camlabArmed = true;
   const canvas = document.querySelector(selector);
   const ctx = canvas.getContext('2d', {willReadFrequently: true});
   const checksum = () => {
@@ -272,9 +276,14 @@ ARM_KEY_TO_CANVAS = """(selector) => {
   const before = checksum();
   document.addEventListener('keydown', () => {
     const t0 = performance.now();
+    const done = (ms) => {
+      window.__camlabArmed = false;
+      const frames = window.__camlabFrames.map(([t, n]) => [t - t0, n]);
+      window.__camlabLatency = {pixels: ms, frames: frames};
+    };
     const poll = () => {
-      if (checksum() !== before) window.__camlabKeyToPixels = performance.now() - t0;
-      else if (performance.now() - t0 > 5000) window.__camlabKeyToPixels = -1;
+      if (checksum() !== before) done(performance.now() - t0);
+      else if (performance.now() - t0 > 5000) done(-1);
       else requestAnimationFrame(poll);
     };
     requestAnimationFrame(poll);
@@ -295,7 +304,7 @@ def key_to_pixels(page, demo: str, canvas: str, presses: int = 20) -> list[float
         handle.focus()
         page.evaluate(ARM_KEY_TO_CANVAS, f".{demo} {canvas}")
         page.keyboard.press("ArrowRight" if i % 2 == 0 else "ArrowLeft")
-        page.wait_for_function("() => window.__camlabKeyToPixels !== undefined", polling=20)
-        samples.append(float(page.evaluate("() => window.__camlabKeyToPixels")))
+        page.wait_for_function("() => window.__camlabLatency !== undefined", polling=20)
+        samples.append(float(page.evaluate("() => window.__camlabLatency.pixels")))
         page.wait_for_timeout(200)
     return samples
