@@ -117,14 +117,20 @@ def demo_latency(spec, rounds: int) -> dict:
     }
 
 
-def import_time() -> float:
-    """Seconds for `python -c "import camlab"` in a fresh interpreter (best of 5)."""
-    best = np.inf
-    for _ in range(5):
+IMPORT_TARGET_S = 0.2  # issue 32: `import camlab` in a fresh interpreter
+
+
+def import_time(runs: int = 7) -> tuple[float, float]:
+    """Seconds for `python -c "import camlab"` in a fresh interpreter: (median, best) of ``runs``.
+
+    The interpreter's own start-up (about 0.03 s here) is included, as a student's first cell pays it.
+    """
+    times = []
+    for _ in range(runs):
         t0 = time.perf_counter()
         subprocess.run([sys.executable, "-c", "import camlab"], check=True)
-        best = min(best, time.perf_counter() - t0)
-    return best
+        times.append(time.perf_counter() - t0)
+    return float(np.median(times)), float(min(times))
 
 
 def rows(rounds: int = 5, names: list[str] | None = None) -> list[dict]:
@@ -181,9 +187,11 @@ def main(argv: list[str] | None = None) -> None:
         f"\n{len(table) - len(missed)} of {len(table)} demos within target; median of medians "
         f"{np.median(medians):.1f} ms" + (f"; missed: {', '.join(missed)}" if missed else "")
     )
-    t = import_time()
+    median, best = import_time()
+    verdict = "ok" if median <= IMPORT_TARGET_S else "TOO SLOW"
     print(
-        f'\n`python -c "import camlab"`: {t:.3f} s (target <= 0.3 s): {"ok" if t <= 0.3 else "TOO SLOW"}'
+        f'\n`python -c "import camlab"`: median {median:.3f} s, best {best:.3f} s of 7'
+        f" (target <= {IMPORT_TARGET_S} s on the median): {verdict}"
     )
 
 
