@@ -45,10 +45,16 @@ def save_static_figures(executed, prefix: str, out: Path) -> int:
 
 
 def parse_setting(text: str) -> tuple[str, dict]:
-    """``"demo:a=1,b=true"`` -> ("demo", {"a": 1, "b": True}) (numbers, booleans, else strings)."""
+    """``"demo:a=1,b=true"`` -> ("demo", {"a": 1, "b": True}) (numbers, booleans, else strings).
+
+    A comma splits only before the next ``name=``, so a text value may hold commas
+    (``"demo:label=a, b,n=2"`` -> {"label": "a, b", "n": 2}).
+    """
+    import re
+
     demo, _, rest = text.partition(":")
     values = {}
-    for item in filter(None, rest.split(",")):
+    for item in filter(None, re.split(r",(?=\s*[A-Za-z_]\w*\s*=)", rest)):
         key, _, raw = item.partition("=")
         low = raw.strip().lower()
         if low in ("true", "false"):
