@@ -425,9 +425,9 @@ def _rolled_view(pitch: float, yaw: float, roll: float, focal: float, size) -> S
 def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespace:
     """The figure of :func:`vanishing_points`.
 
-    The image of ``size`` (width, height) with the two families of ground lines, the horizon, the
-    two vanishing points and the note for a horizon above the image; returns its axes and artists by
-    name.
+    The image of ``size`` (width, height) with the two families of ground lines, the horizon and the
+    two vanishing points; the axes' title doubles as the note for a horizon above the image (the
+    readout says it in full). Returns its axes and artists by name.
     """
     ax = view.fig.subplots()
     image_axes(ax, size, _VANISHING_TITLE)
