@@ -336,7 +336,11 @@ def _in_place_message(
         3,
         3,
     ):  # a matrix: its normalisation is the usual in-place slip
-        examples, new = f"`{a} /= {a}[2, 2]`, `{a}[:, 0] = ...`, `{a} += {k}`", f"`{a} / {a}[2, 2]`"
+        matrix = np.asarray(args[changed[0]], dtype=float)
+        # a homography is normalised by its (2, 2) entry; a conic or a dual conic (C*inf's image has
+        # a (2, 2) entry of 0, or nearly) by its norm, so the hint never suggests a division by 0
+        by = f"{a}[2, 2]" if not np.allclose(matrix, matrix.T) else f"np.linalg.norm({a})"
+        examples, new = f"`{a} /= {by}`, `{a}[:, 0] = ...`, `{a} += {k}`", f"`{a} / {by}`"
     else:
         examples, new = f"`{a} *= {sc}`, `{a}[:, 0] = ...`, `{a} += {k}`", f"`{a} * {sc}`"
     if isinstance(args[changed[0]], np.ndarray):

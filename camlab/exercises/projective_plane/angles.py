@@ -95,13 +95,15 @@ def _angle_context(l1, l2, C):
     )
 
 
-_FORMULA = "cos(theta) = |l^T C* m| / sqrt((l^T C* l) (m^T C* m)), then np.degrees(np.arccos(...))"
+_FORMULA = (
+    "section 7's cosine is |l^T C* m| divided by the square root of the product (l^T C* l)(m^T C* m), "
+    "all with the given C_star, and the angle is its arccos in degrees"
+)
 
 _NEGATIVE_SCALE = (
     "C_star came at a negative scale here (-3 H C*inf H^T), so l^T C* l and m^T C* m are both "
     "negative: np.sqrt of each alone is NaN (and min(1, nan) is 1, i.e. 0 deg). Take the square "
-    "root of their product, np.sqrt((l @ C @ l) * (m @ C @ m)), which is positive, or |.| inside "
-    "each root."
+    "root of their product, which is positive, or the absolute value inside each root."
 )
 
 _ANGLE_MISTAKES = (
@@ -113,7 +115,7 @@ _ANGLE_MISTAKES = (
     Mistake(
         "radians",
         lambda a: np.radians(a.right),
-        "your angle is in radians; the prompt asks for degrees: np.degrees(np.arccos(...)).",
+        "your angle is in radians; the prompt asks for degrees (np.degrees converts).",
     ),
     Mistake(
         "the image's own angle",
@@ -142,7 +144,7 @@ _ANGLE_MISTAKES = (
         lambda a: 180.0 - a.right if a.right < 90.0 - 1e-6 else None,
         "you returned 180 - theta, the obtuse angle, although the cosine is positive here: lines have no "
         "direction, so the angle between two lines is the acute one, between 0 and 90 degrees. Return "
-        "np.degrees(np.arccos(|cos|)) itself.",
+        "the acute angle itself.",
     ),
     Mistake(
         "the complement",
@@ -155,19 +157,18 @@ _ANGLE_MISTAKES = (
         "not normalised",
         lambda a: a.no_norm,
         "you took arccos of l^T C* m alone: it scales with l, m and C_star (the check passes C_star "
-        "at scales 1e-4 and -3), so it is no cosine. Divide by sqrt((l^T C* l) (m^T C* m)): "
-        + _FORMULA,
+        "at scales 1e-4 and -3), so it is no cosine. Normalise it: " + _FORMULA + ".",
     ),
     Mistake(
         "no square root",
         lambda a: a.no_sqrt,
         "you divided by (l^T C* l) (m^T C* m) without the square root: the denominator must scale like "
-        "the numerator (once in l, once in m). " + _FORMULA,
+        "the numerator (once in l, once in m): " + _FORMULA + ".",
     ),
     Mistake(
         "the cosine",
         lambda a: (abs(a.cosine), a.cosine),
-        "you returned the cosine of the angle, not the angle: finish with np.degrees(np.arccos(|cos|)).",
+        "you returned the cosine of the angle, not the angle: finish with its arccos, in degrees.",
     ),
     Mistake(
         "the 2 x 2 block",
@@ -175,7 +176,7 @@ _ANGLE_MISTAKES = (
         "you used only the 2 x 2 block of C_star with the lines' normals (a, b): that shortcut holds only "
         "where C* keeps the form diag(1, 1, 0), on the plane itself or after an affinity. Through a "
         "homography C*' = H C*inf H^T fills its last row and column; use the whole 3-vectors and 3 x 3 "
-        "matrix: " + _FORMULA,
+        "matrix: " + _FORMULA + ".",
     ),
 )
 
@@ -185,8 +186,8 @@ def _angle_diagnosis(args, got, expected) -> str:
         if _angle_context(*args).negative_scale:
             return "your angle is NaN. " + _NEGATIVE_SCALE
         return (
-            "your angle is NaN: np.arccos of a number outside [-1, 1]. Is the cosine normalised, "
-            "|l^T C* m| / sqrt((l^T C* l) (m^T C* m))? (Rounding can also push it just past 1 for "
+            "your angle is NaN: np.arccos of a number outside [-1, 1]. Is the cosine normalised by the "
+            "square root of (l^T C* l)(m^T C* m)? (Rounding can also push it just past 1 for "
             "parallel lines: min(|c|, 1).)"
         )
     if not is_number(got):

@@ -30,7 +30,7 @@ def _inv(H):
 
 _CONIC_RULE = (
     "a point x' of the image comes from x = H^-1 x', and x^T C x = (H^-1 x')^T C (H^-1 x') "
-    "= x'^T (H^-T C H^-1) x', so C' = inv(H).T @ C @ inv(H)"
+    "= x'^T (H^-T C H^-1) x': the matrix between x'^T and x' is C'"
 )
 
 _CONIC_RULE_SENTENCE = _CONIC_RULE[0].upper() + _CONIC_RULE[1:]  # the rule after a full stop
@@ -69,7 +69,8 @@ _CONIC_MISTAKES = (
     Mistake(
         "entrywise products",
         lambda a: _inv(a.H).T * a.C * _inv(a.H),
-        "`*` multiplies entry by entry; matrix products need `@`: inv(H).T @ C @ inv(H)",
+        "`*` multiplies entry by entry; a product of matrices needs `@` (or np.matmul) between every two "
+        "factors",
     ),
     Mistake(
         "the whole product inverted",

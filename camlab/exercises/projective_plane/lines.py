@@ -27,24 +27,27 @@ def incidence(point: np.ndarray, line: np.ndarray) -> float:
     return float(abs(line @ x) / norms) if norms > 0 else np.inf
 
 
-def miss_px(point, line) -> str:
+def miss_px(point, line, unit: str = "px") -> str:
     """The distance of a homogeneous point from a line, in pixels, as text (for a hint).
 
     Parameters
     ----------
     point, line : (3,) array_like
         A homogeneous point and a line, any non-zero scales.
+    unit : str
+        The unit written after the distance: ``"px"`` for image lines, ``"units"`` for the
+        abstract lines of the plane.
 
     Returns
     -------
     str
         ``"0.42 px"``, or the normalised incidence when the point is ideal (w = 0) or the line is
-        the line at infinity, where no distance in pixels exists.
+        the line at infinity, where no distance exists.
     """
     x, ln = np.asarray(point, dtype=float), np.asarray(line, dtype=float)
     scale = abs(x[2]) * np.hypot(ln[0], ln[1])
     if scale > 1e-12 * np.linalg.norm(x) * np.linalg.norm(ln):
-        return f"{abs(ln @ x) / scale:.3g} px"
+        return f"{abs(ln @ x) / scale:.3g} {unit}"
     return f"normalised |l . x| = {incidence(x, ln):.3g}"
 
 
@@ -204,7 +207,7 @@ def homogeneous_point_diagnosis(got, expected, lines, how: str) -> str:
             "entries in their order (x, y, w)."
         )
     if max(incidence(got, ln) for ln in lines) > 1e-6:
-        off = [miss_px(g, ln) for ln in lines]
+        off = [miss_px(g, ln, "units") for ln in lines]  # abstract lines: no pixels
         return f"your point is not on both lines (it misses them by {off[0]} and {off[1]}). {how}"
     return "the point is on both lines but differs from the expected one; check the inputs you used"
 

@@ -26,8 +26,14 @@ def _lift_figure(view: FigureView) -> SimpleNamespace:
     ax3 = view.fig.add_subplot(1, 2, 1, projection="3d")
     ax2 = plane_axes(view.fig.add_subplot(1, 2, 2), 2, "the plane w = 1 (drawn y up)")
     box, w_max = _LIFT_BOX, _LIFT_SCALE
+    pad = 1.12  # the ray is clipped to |x|, |y| <= box, |w| <= w_max: the axes' box holds it with room
     ax3.set(
-        xlim=(-box, box), ylim=(-box, box), zlim=(-w_max, w_max), xlabel="x", ylabel="y", zlabel="w"
+        xlim=(-pad * box, pad * box),
+        ylim=(-pad * box, pad * box),
+        zlim=(-pad * w_max, pad * w_max),
+        xlabel="x",
+        ylabel="y",
+        zlabel="w",
     )
     ax3.set_box_aspect((1, 1, 0.75))
     ax3.view_init(elev=16, azim=-60)
@@ -204,7 +210,7 @@ def _parallel_figure(view: FigureView) -> SimpleNamespace:
     )
 
 
-@register(lesson="06", sweep={"angle2": [10.0, 25.0, 29.5, 30.0, 45.0], "offset2": [-1.0, 1.5]})
+@register(lesson="06", sweep={"angle2": [10.0, 25.0, 29.5, 30.0, 45.0], "offset2": [-2.5, 1.5]})
 def parallel_lines() -> Demo:
     """Two lines meet at l1 x l2; as they turn parallel the point runs to infinity (w -> 0).
 
@@ -393,6 +399,9 @@ _VANISHING_SWEEP = {
 }
 
 
+_VANISHING_TITLE = "ground grid seen by a tilted camera"
+
+
 def _rolled_view(pitch: float, yaw: float, roll: float, focal: float, size) -> SimpleNamespace:
     """:func:`camlab.fixtures.ground_plane_view`, then the camera rolled by ``roll`` degrees.
 
@@ -416,12 +425,12 @@ def _rolled_view(pitch: float, yaw: float, roll: float, focal: float, size) -> S
 def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespace:
     """The figure of :func:`vanishing_points`.
 
-    The image of ``size`` (width, height) with the two families of ground lines, the horizon, the
-    two vanishing points and the note for a horizon above the image; returns its axes and artists by
-    name.
+    The image of ``size`` (width, height) with the two families of ground lines, the horizon and the
+    two vanishing points; the axes' title doubles as the note for a horizon above the image (the
+    readout says it in full). Returns its axes and artists by name.
     """
     ax = view.fig.subplots()
-    image_axes(ax, size, "ground grid seen by a tilted camera")
+    image_axes(ax, size, _VANISHING_TITLE)
     from matplotlib.collections import LineCollection
 
     grid_z = LineCollection([], colors=palette.TAB_BLUE, lw=1, label="lines along z (ahead)")
@@ -434,7 +443,7 @@ def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespac
         "--",
         color=palette.TAB_RED,
         lw=1.5,
-        label="horizon = vp_z × vp_x (when in the image)",
+        label="horizon = v_z × v_x (when in the image)",
     )
     # an arrowhead on the horizon when the point is off the image; never clipped at the frame
     (vz_dot,) = ax.plot(
@@ -458,21 +467,10 @@ def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespac
         label="v_x (or an arrow to it)",
     )
     # below the image: inside it, the grid's lines would run through the legend at some setting
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=3, fontsize=8)
-    below = (0.5, -0.31)  # under the legend: inside the image the note would cover grid lines
-    # an unseen (blank) stand-in keeps room for the note: the layout is fixed at the first draw,
-    # when the note is empty (the horizon is in the image at the default)
-    ax.text(*below, " \n \n ", transform=ax.transAxes, va="top", fontsize=8)
-    note = ax.text(
-        *below,
-        "",
-        transform=ax.transAxes,
-        ha="center",
-        va="top",
-        fontsize=8,
-        color=palette.TAB_RED,
-        bbox=dict(fc="white", ec=palette.TAB_RED, alpha=0.9),
-    )
+    view.fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", ncol=3, fontsize=8)
+    # the note for a horizon above the image replaces the title (one line, so the layout, fixed at
+    # the first draw, stays right); no band is reserved for it under the legend
+    note = ax.title
     return SimpleNamespace(
         ax=ax,
         grid_z=grid_z,
@@ -501,7 +499,7 @@ def vanishing_points() -> Demo:
         ``horizon_true``, and ``horizon_visible``).
     """
     size = (640, 480)
-    view = FigureView(figsize=(7, 5))
+    view = FigureView(figsize=(7, 6))
     parts = _vanishing_figure(view, size)
     ax, grid_z, grid_x, note = parts.ax, parts.grid_z, parts.grid_x, parts.note
     horizon_artist, vz_dot, vx_dot = parts.horizon, parts.vz_dot, parts.vx_dot
@@ -537,7 +535,7 @@ def vanishing_points() -> Demo:
         # from the middle of the horizon's visible piece towards the point.
         anchor = ends.mean(axis=0) if visible else None
         lines = []
-        for dot, vp, name in ((vz_dot, vp_z, "vp_z"), (vx_dot, vp_x, "vp_x")):
+        for dot, vp, name in ((vz_dot, vp_z, "v_z"), (vx_dot, vp_x, "v_x")):
             pos, direction = arrow_to_infinity(vp, ax, anchor)
             dot.set_data([pos[0]], [pos[1]])
             dot.set_marker("o" if not direction.any() else arrow_marker(direction, ax))
@@ -552,14 +550,16 @@ def vanishing_points() -> Demo:
             )
         v_horizon = float(-hz[2] / hz[1]) if abs(hz[1]) > 1e-12 else float("nan")
         note.set_text(
-            ""
+            _VANISHING_TITLE
             if visible
-            else f"the horizon is above the image (v = {v_horizon:.0f} px at u = 0): pitched down "
-            f"{v['pitch']:.0f}°, the camera sees only ground;\nthe lines still meet there (arrows)"
+            else f"horizon above the image: v = {v_horizon:.0f} px at u = 0"
         )
-        note.set_visible(
-            not visible
-        )  # an invisible text costs nothing to draw; an empty one with a box does
+        note.set_color("k" if visible else palette.TAB_RED)
+        if not visible:
+            lines.append(
+                f"the horizon is above the image (v = {v_horizon:.0f} px at u = 0): pitched down "
+                f"{v['pitch']:.0f}°, the camera sees only ground; the lines still meet there (arrows)"
+            )
         state.update(horizon_visible=visible)
         readout.value = monospace("\n".join(lines))
 
