@@ -95,12 +95,12 @@ def point_jacobian(K, R, t, X):
     Xc = R @ X + t  # the point in the camera frame
     x, y, z = Xc
     fx, fy = K[0, 0], K[1, 1]
-    dpix = np.array(
-        [[fx / z, 0.0, -fx * x / z**2], [0.0, fy / z, -fy * y / z**2]]
-    )  # d(u, v) / d Xc
-    a, b, c = Xc - t  # R X
-    minus_skew = -np.array([[0.0, -c, b], [c, 0.0, -a], [-b, a, 0.0]])  # d Xc / d dw = -[Xc - t]x
-    return np.hstack([dpix @ minus_skew, dpix])  # d Xc / d dt = I
+    # d(u, v) / d Xc, from u = fx x / z + cx and v = fy y / z + cy
+    dpix = np.array([[fx / z, 0.0, -fx * x / z**2], [0.0, fy / z, -fy * y / z**2]])
+    # d Xc / d dw = -[Xc - t]x, the skew matrix of R X with a minus; d Xc / d dt = I
+    a, b, c = Xc - t
+    minus_skew = -np.array([[0.0, -c, b], [c, 0.0, -a], [-b, a, 0.0]])
+    return np.hstack([dpix @ minus_skew, dpix])
 
 
 def _context(K, R, t, X):
@@ -120,6 +120,8 @@ def _context(K, R, t, X):
         R=R,
         no_cross=np.array([[fx / z, 0.0, 0.0], [0.0, fy / z, 0.0]]),
         z_once=np.array([[fx / z, 0.0, -fx * x / z], [0.0, fy / z, -fy * y / z]]),
+        z_plus=np.array([[fx / z, 0.0, fx * x / z**2], [0.0, fy / z, fy * y / z**2]]),
+        fx_twice=np.array([[fx / z, 0.0, -fx * x / z**2], [0.0, fx / z, -fx * y / z**2]]),
     )
 
 
@@ -158,6 +160,18 @@ _MISTAKES = (
         "z not squared",
         lambda c: c.with_(-_skew(c.RX), c.z_once),
         "your d(u, v)/dz divides by z once: d(x / z)/dz = -x / z^2, so du/dz = -fx x / z^2.",
+    ),
+    Mistake(
+        "z term sign",
+        lambda c: c.with_(-_skew(c.RX), c.z_plus),
+        "your du/dz and dv/dz have the wrong sign: moving a point away (z up) pulls its pixel toward "
+        "the principal point, d(x / z)/dz = -x / z^2, so du/dz = -fx x / z^2.",
+    ),
+    Mistake(
+        "fx for fy",
+        lambda c: c.with_(-_skew(c.RX), c.fx_twice),
+        "your v row uses fx: v = fy y / z + cy, so the v row's derivatives carry fy = K[1, 1] "
+        "(fx and fy differ slightly on a real camera).",
     ),
     Mistake(
         "degrees",
@@ -235,6 +249,8 @@ register_exercise(
             (_variant("right perturbation"), "on the right"),
             (_variant("no -x/z^2 term"), "third column"),
             (_variant("z not squared"), "divides by z once"),
+            (_variant("z term sign"), "wrong sign: moving"),
+            (_variant("fx for fy"), "uses fx"),
             (_variant("degrees"), "per degree"),
             (_variant("blocks swapped"), "(dt, dw)"),
             (_variant("residual"), "residual"),
