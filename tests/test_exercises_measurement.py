@@ -8,15 +8,36 @@ from camlab.exercises import all_exercises, check
 all_exercises()  # registers lesson 12's exercises (a lesson reaches them through check_<name>)
 
 
-def test_pose_from_homography_accepts_other_valid_forms(capsys):
-    def by_h2_and_svd(K, H):  # scale from h2, then the nearest rotation by SVD (Zhang's appendix C)
-        A = np.linalg.inv(K) @ H
-        lam = 1 / np.linalg.norm(A[:, 1]) * np.sign(A[2, 2])
-        r1, r2, t = lam * A[:, 0], lam * A[:, 1], lam * A[:, 2]
-        U, _, Vt = np.linalg.svd(np.column_stack([r1, r2, np.cross(r1, r2)]))
-        return np.hstack([U @ Vt, t[:, None]])
+def test_point_jacobian_reference_is_pose_jacobian_and_accepts_central_differences(capsys):
+    from camlab.camera import rotation_from_axis_angle
+    from camlab.exercises.point_jacobian import _cases, _reference
+    from camlab.measurement import pose_jacobian, project_pose
 
-    assert check("pose_from_homography", by_h2_and_svd).passed is True
+    for K, R, t, X in _cases():
+        assert np.allclose(
+            _reference(K, R, t, X), pose_jacobian(K, R, t, X[None]), rtol=1e-12, atol=1e-9
+        )
+
+    def numerical(K, R, t, X):  # the left perturbation, one parameter at a time
+        def pixel(p):
+            return project_pose(K, rotation_from_axis_angle(p[:3]) @ R, t + p[3:], X[None])[0]
+
+        return np.column_stack([(pixel(h) - pixel(-h)) / 2e-6 for h in 1e-6 * np.eye(6)])
+
+    assert check("point_jacobian", numerical).passed is True
+
+
+@pytest.mark.parametrize(
+    ("wrong", "phrase"),
+    [
+        (lambda K, R, t, X: np.zeros((2, 6)).tolist(), ""),
+        (lambda K, R, t, X: None, "return"),
+    ],
+)
+def test_point_jacobian_rejects_a_list_and_none(wrong, phrase):
+    with pytest.raises(AssertionError) as info:
+        check("point_jacobian", wrong)
+    assert phrase in str(info.value)
 
 
 def test_length_on_plane_accepts_rows_and_a_solve(capsys):
@@ -44,19 +65,6 @@ def test_max_depth_accepts_a_numerical_root(capsys):
     assert check("max_depth", bisect).passed is True
 
 
-@pytest.mark.parametrize(
-    ("wrong", "phrase"),
-    [
-        (lambda K, H: np.hstack([np.eye(3), np.ones((3, 1))]).tolist(), ""),
-        (lambda K, H: None, "return"),
-    ],
-)
-def test_pose_from_homography_rejects_a_list_and_none(wrong, phrase):
-    with pytest.raises(AssertionError) as info:
-        check("pose_from_homography", wrong)
-    assert phrase in str(info.value)
-
-
 def test_pose_covariance_accepts_a_solve_and_a_pseudo_inverse(capsys):
     def solved(J, r):
         return (r @ r) / (len(r) - 6) * np.linalg.solve(J.T @ J, np.eye(6))
@@ -66,20 +74,3 @@ def test_pose_covariance_accepts_a_solve_and_a_pseudo_inverse(capsys):
 
     assert check("pose_covariance", solved).passed is True
     assert check("pose_covariance", pseudo).passed is True
-
-
-def test_pose_from_homography_names_a_returned_pair_and_accepts_averaged_norms(capsys):
-    def averaged(K, H):  # 1 / lambda as the mean of ||K^-1 h1|| and ||K^-1 h2|| (lesson 12, cell 4)
-        A = np.linalg.solve(K, H)
-        lam = 2 / (np.linalg.norm(A[:, 0]) + np.linalg.norm(A[:, 1])) * np.sign(A[2, 2])
-        r1, r2, t = lam * A[:, 0], lam * A[:, 1], lam * A[:, 2]
-        return np.column_stack([r1, r2, np.cross(r1, r2), t])
-
-    def pair(K, H):
-        Rt = averaged(K, H)
-        return Rt[:, :3], Rt[:, 3]
-
-    assert check("pose_from_homography", averaged).passed is True
-    with pytest.raises(AssertionError) as info:
-        check("pose_from_homography", pair)
-    assert "np.column_stack([R, t])" in str(info.value)

@@ -1,6 +1,6 @@
 """Exercises for lesson 08, camera calibration: a view's pose from its homography.
 
-The exercise is ``view_pose``: lesson 12 has its own ``pose_from_homography`` (measurement.py).
+The exercise is ``view_pose``; lesson 12 builds on it with the pose's Jacobian (``point_jacobian``).
 """
 
 from __future__ import annotations

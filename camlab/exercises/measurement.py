@@ -1,11 +1,10 @@
-"""Exercises for lesson 12, measure the world: the pose from a homography, a length on a plane, how far stereo sees.
+"""Exercises for lesson 12, measure the world: a length on a plane, how far stereo sees.
 
 Each diagnosis is a table of :class:`Mistake` rows (``first_mistake``): what a typical slip returns
 on the test input, and the hint that names its cause.
 
 References
 ----------
-Z. Zhang, 2000, "A flexible new technique for camera calibration", IEEE TPAMI 22(11), section 3.1;
 Hartley & Zisserman, Multiple View Geometry, 2nd ed., sections 2.7 and 12.6.
 """
 
@@ -15,9 +14,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ._answers import same_array, shape_problem
 from ._core import Exercise, Mistake, first_mistake, mistake_variant, register_exercise
-from ._measurement_mistakes import POSE_MISTAKES_MORE
 from ._numbers import is_number, not_one_number, same_number
 
 _K = np.array([[532.8, 0.0, 341.8], [0.0, 533.0, 234.1], [0.0, 0.0, 1.0]])
@@ -31,218 +28,7 @@ def _rodrigues(r) -> np.ndarray:
     return np.eye(3) + np.sin(th) * S + (1 - np.cos(th)) * S @ S
 
 
-# --------------------------------------------------------------------------- exercise 1: pose from H
-
-
-def _pose_cases():
-    """Board -> image homographies K [r1 r2 t] at arbitrary scales, one negative (H is up to scale)."""
-    cases = []
-    for rvec, t, scale in (
-        ([0.3, -0.2, 0.1], [-0.1, -0.05, 0.45], 2.7),
-        ([0.45, 0.15, -0.3], [0.08, -0.06, 0.6], -0.013),
-        ([-0.5, 0.4, 1.2], [-0.05, 0.02, 0.35], 1.0 / 0.35),
-    ):
-        R = _rodrigues(rvec)
-        H = scale * _K @ np.column_stack([R[:, 0], R[:, 1], t])
-        cases.append((_K.copy(), H))
-    return cases
-
-
-def _pose_with(A, lam):
-    """[r1 r2 r1 x r2 | t] from the columns of A scaled by lam."""
-    r1, r2, t = lam * A[:, 0], lam * A[:, 1], lam * A[:, 2]
-    return np.column_stack([r1, r2, np.cross(r1, r2), t])
-
-
-def _pose_context(K, H):
-    A = np.linalg.solve(K, H)
-    lam = 1 / np.linalg.norm(A[:, 0])
-    right = _pose_with(A, np.sign(A[2, 2]) * lam)
-    R, t = right[:, :3], right[:, 3]
-    negative = A[2, 2] < 0  # H came at a negative scale: a sign fixed late goes wrong only then
-    flipped_late = np.column_stack([R[:, 0], R[:, 1], -R[:, 2], t]) if negative else right
-    only_t = np.column_stack([-R[:, 0], -R[:, 1], R[:, 2], t]) if negative else right
-    return SimpleNamespace(
-        K=K, H=H, A=A, lam=lam, right=right, R=R, t=t, flipped_late=flipped_late, only_t=only_t
-    )
-
-
-def _wrong_side(M, A_of):
-    """The pose from a wrong K^-1 H (``A_of(M)``), scaled as the prompt says."""
-    A = A_of(M)
-    return _pose_with(A, np.sign(A[2, 2]) / np.linalg.norm(A[:, 0]))
-
-
-_POSE_MISTAKES = (
-    Mistake(
-        "no K inverse",
-        lambda c: _pose_with(c.H, np.sign(c.H[2, 2]) / np.linalg.norm(c.H[:, 0])),
-        "you read r1, r2, t from the columns of H itself: H = K [r1 r2 t] up to scale, so the "
-        "columns of H are in pixels. Undo the intrinsics first: A = np.linalg.solve(K, H) = K^-1 H.",
-    ),
-    Mistake(
-        "transposed H",
-        lambda c: _pose_with(
-            np.linalg.solve(c.K, c.H.T),
-            np.sign(np.linalg.solve(c.K, c.H.T)[2, 2])
-            / np.linalg.norm(np.linalg.solve(c.K, c.H.T)[:, 0]),
-        ),
-        "you used H.T (rows for columns): r1, r2 and t are the COLUMNS of K^-1 H, A[:, 0], A[:, 1], A[:, 2].",
-    ),
-    Mistake(
-        "no scale",
-        lambda c: _pose_with(c.A, 1.0),
-        "your r1 and r2 are not unit vectors: H is known only up to scale, so [r1 r2 t] = lambda K^-1 H "
-        "with lambda = 1 / ||K^-1 h1||. Divide all three columns by ||K^-1 h1|| (a rotation's columns have "
-        "length 1).",
-    ),
-    Mistake(
-        "times the norm",
-        lambda c: _pose_with(c.A, np.sign(c.A[2, 2]) * np.linalg.norm(c.A[:, 0])),
-        "you multiplied K^-1 H by ||K^-1 h1|| instead of dividing by it: [r1 r2 t] = lambda K^-1 H with "
-        "lambda = 1 / ||K^-1 h1||, so r1 = K^-1 h1 / ||K^-1 h1|| has length 1 (yours has ||K^-1 h1||^2).",
-    ),
-    Mistake(
-        "H K^-1",
-        lambda c: _wrong_side(c.H, lambda M: M @ np.linalg.inv(c.K)),
-        "you multiplied on the wrong side, H @ inv(K): H = K [r1 r2 t] up to scale, so K comes off the "
-        "LEFT, A = np.linalg.solve(K, H) = K^-1 H.",
-    ),
-    Mistake(
-        "K^-T H",
-        lambda c: _wrong_side(c.H, lambda M: np.linalg.solve(c.K.T, M)),
-        "you undid K.T instead of K (np.linalg.inv(K.T) @ H): H = K [r1 r2 t], so A = np.linalg.solve(K, H).",
-    ),
-    Mistake(
-        "scale from h3",
-        lambda c: _pose_with(c.A, np.sign(c.A[2, 2]) / np.linalg.norm(c.A[:, 2])),
-        "you scaled by the length of the third column: t has any length (the distance to the board); the "
-        "scale comes from the rotation's columns, lambda = 1 / ||K^-1 h1||.",
-    ),
-    Mistake(
-        "sign not fixed",
-        lambda c: _pose_with(c.A, c.lam),
-        "your t has t_z < 0: the board would sit behind the camera. H came at a negative scale here "
-        "(it is defined only up to scale, sign included), so flip the sign of lambda when (K^-1 H)[2, 2] < 0.",
-    ),
-    Mistake(
-        "negated R",
-        lambda c: c.flipped_late,
-        "you fixed the sign after building R (R, t = -R, -t when t_z < 0): negating all three columns of "
-        "a rotation flips det R to -1 (a reflection), because r3 = r1 x r2 does not change sign when r1 "
-        "and r2 both do. Flip lambda first (lambda < 0 when (K^-1 H)[2, 2] < 0), then r1, r2, t = lambda "
-        "a1, lambda a2, lambda a3 and r3 = r1 x r2.",
-    ),
-    Mistake(
-        "only t flipped",
-        lambda c: c.only_t,
-        "you flipped only t to make t_z > 0: the sign belongs to lambda, which multiplies all three "
-        "columns, [r1 r2 t] = lambda K^-1 H. Flip lambda, then build r1, r2, t and r3 = r1 x r2.",
-    ),
-    Mistake(
-        "r3 = r2 x r1",
-        lambda c: np.column_stack([c.R[:, 0], c.R[:, 1], -c.R[:, 2], c.t]),
-        "your third column points the wrong way (det R = -1, a reflection): r3 = r1 x r2, in that "
-        "order (np.cross(r1, r2)), so that x, y, z are right-handed.",
-    ),
-    Mistake(
-        "the camera centre",
-        lambda c: np.column_stack([c.R, -c.R.T @ c.t]),
-        "your last column is the camera centre C = -R^T t (where the camera is, in board coordinates); "
-        "the prompt asks for t of X_cam = R X + t, the board's origin in camera coordinates.",
-    ),
-    Mistake(
-        "R transposed",
-        lambda c: np.column_stack([c.R.T, c.t]),
-        "your R is transposed (board_from_cam): r1 and r2 are COLUMNS of R, np.column_stack([r1, r2, r3]).",
-    ),
-    *POSE_MISTAKES_MORE,
-)
-
-
-def _pose_diagnosis(args, got, expected) -> str:
-    problem = shape_problem(got, expected)
-    if problem:
-        return problem
-    g = np.asarray(got, dtype=float)
-    hint = first_mistake(
-        _POSE_MISTAKES, _pose_context(*args), g, lambda a, b: np.allclose(a, b, atol=1e-6)
-    )
-    if hint:
-        return hint
-    R = g[:, :3]
-    if not np.allclose(R.T @ R, np.eye(3), atol=1e-6):
-        return (
-            "your R is not a rotation (R^T R != I): [r1 r2 t] = lambda K^-1 H with lambda = 1 / ||K^-1 h1||, "
-            "so r1 = lambda a1 has length 1; and r3 = r1 x r2."
-        )
-    return (
-        "your [R | t] projects the board elsewhere: K [r1 r2 t] should equal H up to scale. "
-        "Follow A = K^-1 H, lambda = 1 / ||a1|| (sign so that t_z > 0), r1 = lambda a1, r2 = lambda a2, "
-        "r3 = r1 x r2, t = lambda a3."
-    )
-
-
-def pose_from_homography(K, H):
-    """Zhang's pose: [r1 r2 t] = lambda K^-1 H, lambda = 1 / ||K^-1 h1||, sign so that t_z > 0.
-
-    Parameters
-    ----------
-    K : (3, 3) ndarray
-        Intrinsics, pixels.
-    H : (3, 3) ndarray
-        The board -> image homography (board in metres), any scale and sign.
-
-    Returns
-    -------
-    (3, 4) ndarray
-        [R | t], cam_from_board.
-    """
-    A = np.linalg.solve(K, H)
-    lam = 1 / np.linalg.norm(A[:, 0])
-    if A[2, 2] < 0:  # the board must be in front: t_z > 0
-        lam = -lam
-    r1, r2, t = lam * A[:, 0], lam * A[:, 1], lam * A[:, 2]
-    return np.column_stack([r1, r2, np.cross(r1, r2), t])
-
-
-def _pose_variant(name):
-    return mistake_variant(_POSE_MISTAKES, name, _pose_context)
-
-
-register_exercise(
-    Exercise(
-        name="pose_from_homography",
-        lesson="12",
-        reference=pose_from_homography,
-        cases=_pose_cases,
-        compare=same_array(rtol=1e-6, atol=1e-8),
-        diagnose=_pose_diagnosis,
-        wrong_variants=(
-            (_pose_variant("no K inverse"), "K^-1 H"),
-            (_pose_variant("transposed H"), "H.T"),
-            (_pose_variant("no scale"), "unit vectors"),
-            (_pose_variant("times the norm"), "instead of dividing"),
-            (_pose_variant("H K^-1"), "wrong side"),
-            (_pose_variant("K^-T H"), "K.T"),
-            (_pose_variant("negated R"), "after building R"),
-            (_pose_variant("only t flipped"), "only t"),
-            ((lambda K, H: tuple(np.hsplit(pose_from_homography(K, H), [3]))), "np.column_stack"),
-            (_pose_variant("scale from h3"), "third column"),
-            (_pose_variant("sign not fixed"), "t_z < 0"),
-            (_pose_variant("r3 = r2 x r1"), "r3 = r1 x r2"),
-            (_pose_variant("the camera centre"), "camera centre"),
-            (_pose_variant("R transposed"), "transposed"),
-            (_pose_variant("rows of K^-1 H"), "ROWS of A"),
-            (_pose_variant("the inverse pose"), "inverse pose"),
-        ),
-        teaching=pose_from_homography,
-        ndarray_only=True,
-    )
-)
-
-
-# --------------------------------------------------------------------------- exercise 2: a length on the plane
+# --------------------------------------------------------------------------- exercise 3: a length on the plane
 
 
 def _length_cases():
@@ -286,6 +72,9 @@ def _length_context(H, a, b):
         transposed=float(np.linalg.norm(right_mult(Hi, a) - right_mult(Hi, b))),
         pixels=float(np.linalg.norm(np.asarray(a) - b)),
         mm=1000 * dist,
+        cm=100 * dist,
+        one_w=_one_w(Hi, a, b),
+        manhattan=float(np.abs(back(Hi, a) - back(Hi, b)).sum()),
         squared=dist**2,
         half=float(np.linalg.norm(back(Hi, np.asarray(a) + 0.5) - back(Hi, np.asarray(b) + 0.5))),
         minus_half=float(
@@ -304,6 +93,12 @@ def _no_keepdims(Hi, a, b) -> float:
     P = np.column_stack([np.vstack([a, b]), np.ones(2)]) @ Hi.T
     q = P[:, :2] / P[:, 2]
     return float(np.linalg.norm(q[0] - q[1]))
+
+
+def _one_w(Hi, a, b) -> float:
+    """Both pixels mapped by H^-1, both divided by the FIRST point's w."""
+    pa, pb = (Hi @ np.append(p, 1.0) for p in (a, b))
+    return float(np.linalg.norm((pa[:2] - pb[:2]) / pa[2]))
 
 
 _LENGTH_MISTAKES = (
@@ -328,13 +123,33 @@ _LENGTH_MISTAKES = (
     Mistake(
         "transposed",
         lambda c: c.transposed,
-        "you multiplied x @ H^-1 (a row vector on the left): that applies the transpose. With points as "
-        "rows, use x @ np.linalg.inv(H).T, or np.linalg.inv(H) @ x for a column.",
+        "you applied the transpose H^-T: either x @ H^-1 (a row vector on the left) or inv(H).T @ x, the "
+        "rule for LINES (l' = H^-T l). A point goes back by H^-1 itself: with points as rows, "
+        "x @ np.linalg.inv(H).T, or np.linalg.inv(H) @ x for a column.",
     ),
     Mistake(
         "millimetres",
         lambda c: c.mm,
         "your length is 1000 times too big: H maps metres on the board, so the answer is in metres.",
+    ),
+    Mistake(
+        "centimetres",
+        lambda c: c.cm,
+        "your length is 100 times too big (centimetres): H maps metres on the board, so the answer is "
+        "in metres; return it as it comes out.",
+    ),
+    Mistake(
+        "one w for both",
+        lambda c: c.one_w,
+        "you divided both mapped points by the first one's w: each homogeneous point has its own third "
+        "coordinate (the plane is seen in perspective, so w differs from point to point); divide pa by "
+        "pa[2] and pb by pb[2].",
+    ),
+    Mistake(
+        "Manhattan distance",
+        lambda c: c.manhattan,
+        "you added |dx| + |dy| (a Manhattan distance): a length is the Euclidean norm, "
+        "np.hypot(dx, dy) or np.linalg.norm(pa - pb).",
     ),
     Mistake(
         "squared",
@@ -426,8 +241,11 @@ register_exercise(
             (_length_variant("pixels"), "in pixels"),
             (_length_variant("forward H"), "board -> image"),
             (_length_variant("no division by w"), "divide by w"),
-            (_length_variant("transposed"), "transpose"),
+            (_length_variant("transposed"), "rule for LINES"),
             (_length_variant("millimetres"), "1000 times"),
+            (_length_variant("centimetres"), "centimetres"),
+            (_length_variant("one w for both"), "first one's w"),
+            (_length_variant("Manhattan distance"), "Manhattan"),
             (_length_variant("squared"), "squared"),
             (_length_variant("half pixel"), "half a pixel"),
             (_length_variant("minus half pixel"), "-0.5"),
@@ -440,7 +258,7 @@ register_exercise(
 )
 
 
-# --------------------------------------------------------------------------- exercise 3: how far can stereo see
+# --------------------------------------------------------------------------- exercise 4: how far can stereo see
 
 
 def _reach_cases():
@@ -454,6 +272,10 @@ def _reach_context(f, B, s, e):
         right=right,
         linear=e * f * B / s,
         inverted=float(np.sqrt(s / (e * f * B))),
+        tolerance_inverted=float(np.sqrt(f * B / (s * e))),
+        doubled=float(np.sqrt(2 * e * f * B / s)),
+        negative=-right,
+        half=right / 2,
         sigma_outside=float(np.sqrt(e * f * B) / s),
         no_f=float(np.sqrt(e * B / s)),
         mm=1000 * right,
@@ -501,6 +323,30 @@ _REACH_MISTAKES = (
         lambda c: c.no_sigma,
         "you left out sigma_d: the disparity noise sets the depth noise, sigma_Z = Z^2 sigma_d / (f B), so "
         "Z_max = sqrt(max_error f B / sigma_d).",
+    ),
+    Mistake(
+        "tolerance inverted",
+        lambda c: c.tolerance_inverted,
+        "you divided by max_error where it multiplies: a LARGER tolerated error lets you see FARTHER. "
+        "From Z^2 sigma_d / (f B) = max_error, Z^2 = max_error f B / sigma_d.",
+    ),
+    Mistake(
+        "doubled tolerance",
+        lambda c: c.doubled,
+        "you doubled the tolerance (a +-max_error band read as 2 max_error): max_error is one sigma, "
+        "Z^2 sigma_d / (f B) = max_error.",
+    ),
+    Mistake(
+        "negative root",
+        lambda c: c.negative,
+        "you returned the negative root: Z^2 = max_error f B / sigma_d has two roots, and only Z > 0 "
+        "lies in front of the cameras.",
+    ),
+    Mistake(
+        "half",
+        lambda c: c.half,
+        "your depth is half the answer: nothing is halved in sigma_Z = Z^2 sigma_d / (f B) (the "
+        "baseline is B, not B / 2 from each camera); Z = sqrt(max_error f B / sigma_d).",
     ),
     Mistake(
         "two sigma",
@@ -587,6 +433,10 @@ register_exercise(
             (_reach_variant("one input in millimetres"), "31.6"),
             (_reach_variant("no sigma_d"), "left out sigma_d"),
             (_reach_variant("two sigma"), "2 sigma_d"),
+            (_reach_variant("tolerance inverted"), "divided by max_error"),
+            (_reach_variant("doubled tolerance"), "doubled the tolerance"),
+            (_reach_variant("negative root"), "negative root"),
+            (_reach_variant("half"), "half the answer"),
             (_reach_variant("disparity equals sigma"), "disparity itself"),
         ),
         teaching=max_depth,

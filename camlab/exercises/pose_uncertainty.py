@@ -54,7 +54,15 @@ def _context(J, r):
     inv = np.linalg.inv(J.T @ J)
     r = np.asarray(r, dtype=float)
     return SimpleNamespace(
-        rss=rss, m=m, inv=inv, JtJ=J.T @ J, s2=rss / (m - 6), var=np.var(r), var6=np.var(r, ddof=6)
+        rss=rss,
+        m=m,
+        inv=inv,
+        JtJ=J.T @ J,
+        s2=rss / (m - 6),
+        var=np.var(r),
+        var6=np.var(r, ddof=6),
+        diag_inv=np.diag(1 / np.diag(J.T @ J)),
+        mean_abs=float(np.mean(np.abs(r))),
     )
 
 
@@ -139,6 +147,19 @@ _MISTAKES = (
         "with sigma^2 = sum(r^2) / (2N - 6) (no square root).",
     ),
     Mistake(
+        "inverse of the diagonal",
+        lambda c: c.s2 * c.diag_inv,
+        "you inverted only the diagonal of J^T J (1 / its diagonal entries): the pose's six parameters "
+        "are correlated, so J^T J has off-diagonal terms and its inverse is np.linalg.inv(J.T @ J), "
+        "whose diagonal is larger than 1 / diag(J^T J).",
+    ),
+    Mistake(
+        "sigma from mean |r|",
+        lambda c: c.mean_abs**2 * c.inv,
+        "you took sigma as the mean of |r|: for Gaussian noise that is sigma sqrt(2 / pi), about 0.8 "
+        "sigma. Use the root of the mean square, sigma^2 = sum(r^2) / (2N - 6).",
+    ),
+    Mistake(
         "no sigma",
         lambda c: c.inv,
         "you left out the noise: (J^T J)^-1 is the covariance for 1 px of noise; multiply by "
@@ -200,6 +221,8 @@ register_exercise(
             (_variant("square root of the inverse"), "elementwise square root"),
             (_variant("sigma not squared"), "variance"),
             (_variant("no sigma"), "left out the noise"),
+            (_variant("inverse of the diagonal"), "only the diagonal"),
+            (_variant("sigma from mean |r|"), "mean of |r|"),
             ((lambda J, r: np.sum(r**2) / (len(r) - 6) * J @ J.T), "J J^T"),
         ),
         teaching=pose_covariance,

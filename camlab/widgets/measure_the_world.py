@@ -23,7 +23,7 @@ from ..plotting import palette
 from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import monospace
 
-__all__ = ["OBJECT", "OBJECT_ACROSS", "geometry", "length_sigma", "plane_error"]
+__all__ = ["OBJECT", "OBJECT_ACROSS", "click_to_measure", "geometry", "length_sigma", "plane_error"]
 
 K_DEMO = np.array([[532.8, 0.0, 341.8], [0.0, 533.0, 234.1], [0.0, 0.0, 1.0]])
 """The intrinsics of the shipped real chessboard photos (lesson 08's calibration, rounded)."""
@@ -32,8 +32,10 @@ BOARD = board_points((9, 6), 0.025)
 CENTRE = np.array([0.1, 0.0625, 0.0])
 OBJECT = np.array([[0.24, -0.0375, 0.0], [0.24, 0.1625, 0.0]])
 """A 0.2 m edge on the table 4 cm beyond the board's last corner column, along the board's y: along the slope."""
-OBJECT_ACROSS = np.array([[0.0, -0.04, 0.0], [0.2, -0.04, 0.0]])
-"""A 0.2 m edge on the table 4 cm before the board's first row, along x: across the slope (the tilt axis)."""
+OBJECT_ACROSS = np.array([[0.0, 0.165, 0.0], [0.2, 0.165, 0.0]])
+"""A 0.2 m edge on the table 4 cm beyond the board's last row, along x: across the slope (the tilt axis).
+
+It is the board's near side: the camera stands on the board's +y side, as a person at a table does."""
 SIGMA_PX = 0.14
 """Corner noise per coordinate, pixels: the real photos' (0.137 px on calib_left01, lesson 12 section 1)."""
 TILTS = np.linspace(0.0, 75.0, 61)
@@ -55,9 +57,15 @@ def geometry(tilt_deg: float, distance: float) -> SimpleNamespace:
     -------
     SimpleNamespace
         ``R``, ``t`` (cam_from_board) and ``eye`` (the camera centre, board frame).
+
+    Notes
+    -----
+    The camera stands on the board's +y side (its last row is the near side) and keeps the board's
+    -y up, so the photo looks like one taken standing at a table: the near edge at the bottom of the
+    frame, the far rows converging toward the top.
     """
     a = np.radians(tilt_deg)
-    eye = CENTRE + distance * np.array([0.0, -np.sin(a), -np.cos(a)])
+    eye = CENTRE + distance * np.array([0.0, np.sin(a), -np.cos(a)])
     R = look_at_rotation(eye, CENTRE, up=(0.0, -1.0, 0.0))
     return SimpleNamespace(R=R, t=-R @ eye, eye=eye)
 
@@ -67,7 +75,7 @@ def length_sigma(
 ) -> SimpleNamespace:
     """The predicted error of :data:`OBJECT`'s length from one photo at this tilt and distance.
 
-    The camera tilts about the board's x axis (it moves toward -y), so :data:`OBJECT` runs along
+    The camera tilts about the board's x axis (it moves toward +y), so :data:`OBJECT` runs along
     the slope and :data:`OBJECT_ACROSS` (``across=True``) along the tilt axis.
 
     Parameters
@@ -130,16 +138,10 @@ def _figure() -> SimpleNamespace:
     ax_plot.yaxis.label.set_fontsize(8)
     ax_plot.tick_params(labelsize=7)
     ax_plot.grid(alpha=0.3)
-    # the total (thick) under its picking part (dotted, haloed): they nearly coincide
+    # the total (thick) under its picking part (dotted, near-black): they nearly coincide
     (total,) = ax_plot.plot([], [], "-", color=palette.BLUE, lw=4.5, label="along the slope: total")
     (picks,) = ax_plot.plot(
-        [],
-        [],
-        ":",
-        color=palette.PURPLE,
-        lw=1.5,
-        path_effects=palette.halo(1.5),
-        label="   its part from picking the ends",
+        [], [], ":", color="0.1", lw=2.0, label="   its part from picking the ends"
     )
     (pose,) = ax_plot.plot([], [], "--", color=palette.GREEN, label="   its part from the pose")
     (across,) = ax_plot.plot([], [], "-", color=palette.BROWN, label="across the slope: total")
@@ -148,8 +150,8 @@ def _figure() -> SimpleNamespace:
     ax_plot.legend(
         fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncols=2
     )  # below: never on a curve
-    ax_plot.set_title("predicted error at this distance", fontsize=9)
-    view.animate(corners, edge, edge_x, total, pose, picks, across, here)
+    ax_plot.set_title(" ", fontsize=9)  # the distance, set by update
+    view.animate(corners, edge, edge_x, total, pose, picks, across, here, ax_plot.title)
     return SimpleNamespace(
         view=view,
         ax_plot=ax_plot,
@@ -213,6 +215,7 @@ def plane_error() -> Demo:
         fig.pose.set_data(TILTS, from_pose)
         fig.picks.set_data(TILTS, from_picks)
         fig.here.set_data([v["tilt"]], [1000 * now.sigma])
+        fig.ax_plot.title.set_text(f"predicted error at {v['distance']:.2f} m from the board")
         state.update(
             sigma_mm=1000 * now.sigma,
             pose_mm=1000 * now.pose,
@@ -245,3 +248,63 @@ def plane_error() -> Demo:
         title="Measure on a plane: tilt, distance and the error",
         extra=[readout],
     )
+
+
+def click_to_measure(ax, length_text, area_text) -> SimpleNamespace:
+    """Measure on a photo by clicking it (ipympl): two clicks give a length, more clicks an area.
+
+    Left-click points on ``ax``: after the second, ``length_text(a, b)`` is shown in the axes'
+    title; further left clicks extend the outline, and a right-click closes it and shows
+    ``area_text(points)``. The next left click starts again; a right-click with fewer than three
+    points clears. Clicks while the toolbar zooms or pans are ignored. Under a static backend
+    nothing is clicked and the figure stays as drawn.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes showing the photo in pixel coordinates (u, v).
+    length_text : callable
+        ``length_text(a, b) -> str`` for two (2,) pixels.
+    area_text : callable
+        ``area_text(points) -> str`` for (N, 2) pixels, N >= 3, in order around the outline.
+
+    Returns
+    -------
+    SimpleNamespace
+        ``points`` (the clicks so far), ``line`` (the drawn outline), ``click(u, v, button)``
+        (what a mouse click does; tests call it) and ``connection`` (the canvas callback id).
+    """
+    (line,) = ax.plot([], [], "-o", color=palette.ORANGE, lw=2, ms=5)
+    state = SimpleNamespace(points=[], closed=False, line=line)
+
+    def show(text: str) -> None:
+        pts = np.array(state.points).reshape(-1, 2)
+        loop = np.vstack([pts, pts[:1]]) if state.closed else pts
+        line.set_data(*loop.T)
+        if text:
+            ax.set_title(text, fontsize=10)
+        ax.figure.canvas.draw_idle()
+
+    def click(u: float, v: float, button: int = 1) -> None:
+        if state.closed:
+            state.points, state.closed = [], False
+        if button == 1:
+            state.points.append((float(u), float(v)))
+            n = len(state.points)
+            show(length_text(*np.array(state.points)) if n == 2 else "")
+        elif len(state.points) >= 3:
+            state.closed = True
+            show(area_text(np.array(state.points)))
+        else:
+            state.points = []
+            show("")
+
+    def on_press(event) -> None:
+        toolbar = getattr(ax.figure.canvas, "toolbar", None)
+        if event.inaxes is not ax or getattr(toolbar, "mode", "") or event.xdata is None:
+            return
+        click(event.xdata, event.ydata, 1 if event.button == 1 else 3)
+
+    state.click = click
+    state.connection = ax.figure.canvas.mpl_connect("button_press_event", on_press)
+    return state

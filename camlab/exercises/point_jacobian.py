@@ -1,0 +1,268 @@
+r"""Exercise for lesson 12, measure the world: the 2 x 6 Jacobian of one point's pixel in PnP.
+
+The pose is refined by a small rotation applied on the left, :math:`R \leftarrow \exp([\delta\omega]_\times) R`,
+and a translation step, :math:`t \leftarrow t + \delta t`. The point :math:`X_c = R X + t` then moves by
+:math:`\partial X_c / \partial \delta\omega = -[X_c - t]_\times` (since :math:`[\delta\omega]_\times R X =
+-[R X]_\times \delta\omega`) and :math:`\partial X_c / \partial \delta t = I`, and the pixel
+:math:`u = f_x x/z + c_x`, :math:`v = f_y y/z + c_y` by
+
+.. math:: \frac{\partial (u, v)}{\partial X_c} = \begin{pmatrix} f_x/z & 0 & -f_x x/z^2 \\
+          0 & f_y/z & -f_y y/z^2 \end{pmatrix} .
+
+The chain rule gives the 2 x 6 Jacobian, columns :math:`(\delta\omega, \delta t)`, one point's rows of
+:func:`camlab.measurement.pose_jacobian` (``tests/test_exercises_measurement.py`` compares them).
+
+References
+----------
+Hartley & Zisserman, Multiple View Geometry, 2nd ed., sections 6.2 and A6.2 (the Jacobian of a
+projection); Szeliski, Computer Vision, 2nd ed., section 11.2.2 (the left update of a rotation).
+"""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+
+from ._answers import same_array, shape_problem
+from ._core import Exercise, Mistake, first_mistake, mistake_variant, register_exercise
+
+_K = np.array([[532.8, 0.0, 341.8], [0.0, 533.0, 234.1], [0.0, 0.0, 1.0]])
+
+
+def _rotation(r) -> np.ndarray:
+    r = np.asarray(r, dtype=float)
+    th = np.linalg.norm(r)
+    S = _skew(r / th)
+    return np.eye(3) + np.sin(th) * S + (1 - np.cos(th)) * S @ S
+
+
+def _skew(w) -> np.ndarray:
+    return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
+
+
+def _cases():
+    """(K, R, t, X): a board corner (Z = 0) and a point off the board, seen from three poses."""
+    return [
+        (
+            _K.copy(),
+            _rotation([0.3, -0.2, 0.1]),
+            np.array([-0.1, -0.05, 0.45]),
+            np.array([0.15, 0.1, 0.0]),
+        ),
+        (
+            _K.copy(),
+            _rotation([0.45, 0.15, -0.3]),
+            np.array([0.08, -0.06, 0.6]),
+            np.array([0.05, 0.125, 0.0]),
+        ),
+        (
+            _K.copy(),
+            _rotation([-0.5, 0.4, 1.2]),
+            np.array([-0.05, 0.02, 0.55]),
+            np.array([0.1, 0.05, -0.08]),
+        ),
+    ]
+
+
+def _reference(K, R, t, X):
+    """The (2, 6) Jacobian by columns: d X_c / d dw_k = e_k x (R X), as camlab.measurement.pose_jacobian."""
+    K, R, t, X = (np.asarray(v, dtype=float) for v in (K, R, t, X))
+    Xc = R @ X + t
+    P = K @ Xc
+    dpix = (K[:2] - np.outer(P[:2] / P[2], K[2])) / P[2]  # d(P[:2] / P[2]) / d Xc
+    dXc = np.hstack([np.cross(np.eye(3), R @ X).T, np.eye(3)])
+    return dpix @ dXc
+
+
+def point_jacobian(K, R, t, X):
+    """The (2, 6) Jacobian of the pixel of X under R <- exp([dw]x) R, t <- t + dt.
+
+    Parameters
+    ----------
+    K : (3, 3) ndarray
+        Intrinsics, pixels, no skew.
+    R, t : (3, 3), (3,) ndarray
+        The pose, cam_from_world (X_c = R X + t).
+    X : (3,) ndarray
+        One world point.
+
+    Returns
+    -------
+    (2, 6) ndarray
+        Rows u, v; columns dw (pixels per radian), then dt (pixels per world unit).
+    """
+    Xc = R @ X + t  # the point in the camera frame
+    x, y, z = Xc
+    fx, fy = K[0, 0], K[1, 1]
+    # d(u, v) / d Xc, from u = fx x / z + cx and v = fy y / z + cy
+    dpix = np.array([[fx / z, 0.0, -fx * x / z**2], [0.0, fy / z, -fy * y / z**2]])
+    # d Xc / d dw = -[Xc - t]x, the skew matrix of R X with a minus; d Xc / d dt = I
+    a, b, c = Xc - t
+    minus_skew = -np.array([[0.0, -c, b], [c, 0.0, -a], [-b, a, 0.0]])
+    return np.hstack([dpix @ minus_skew, dpix])
+
+
+def _context(K, R, t, X):
+    K, R, t, X = (np.asarray(v, dtype=float) for v in (K, R, t, X))
+    Xc = R @ X + t
+    x, y, z = Xc
+    fx, fy = K[0, 0], K[1, 1]
+    dpix = np.array([[fx / z, 0.0, -fx * x / z**2], [0.0, fy / z, -fy * y / z**2]])
+    right = _reference(K, R, t, X)
+    return SimpleNamespace(
+        right=right,
+        dpix=dpix,
+        with_=lambda dw, dp=dpix: np.hstack([dp @ dw, dp]),
+        RX=Xc - t,
+        X=X,
+        Xc=Xc,
+        R=R,
+        no_cross=np.array([[fx / z, 0.0, 0.0], [0.0, fy / z, 0.0]]),
+        z_once=np.array([[fx / z, 0.0, -fx * x / z], [0.0, fy / z, -fy * y / z]]),
+        z_plus=np.array([[fx / z, 0.0, fx * x / z**2], [0.0, fy / z, fy * y / z**2]]),
+        fx_twice=np.array([[fx / z, 0.0, -fx * x / z**2], [0.0, fx / z, -fx * y / z**2]]),
+    )
+
+
+_MISTAKES = (
+    Mistake(
+        "skew sign",
+        lambda c: c.with_(_skew(c.RX)),
+        "your rotation columns have the wrong sign: [dw]x (R X) = dw x (R X) = -(R X) x dw, so "
+        "d X_c / d dw = -[X_c - t]x, with a minus.",
+    ),
+    Mistake(
+        "X for X_c - t",
+        lambda c: c.with_(-_skew(c.X)),
+        "you used the world point X in the skew matrix: the small rotation turns R X, the point already "
+        "rotated into the camera's axes, so d X_c / d dw = -[R X]x = -[X_c - t]x.",
+    ),
+    Mistake(
+        "X_c for X_c - t",
+        lambda c: c.with_(-_skew(c.Xc)),
+        "you used X_c in the skew matrix: the left rotation turns R X and not t (t <- t + dt moves "
+        "separately), so d X_c / d dw = -[X_c - t]x = -[R X]x.",
+    ),
+    Mistake(
+        "right perturbation",
+        lambda c: c.with_(-c.R @ _skew(c.X)),
+        "you perturbed on the right, R <- R exp([dw]x) (dw in the world's axes): section 1 applies the "
+        "small rotation on the LEFT, R <- exp([dw]x) R, so d X_c / d dw = -[R X]x.",
+    ),
+    Mistake(
+        "no -x/z^2 term",
+        lambda c: c.with_(-_skew(c.RX), c.no_cross),
+        "your d(u, v)/d X_c lacks its third column: u = fx x / z + cx depends on z too, "
+        "du/dz = -fx x / z^2 and dv/dz = -fy y / z^2.",
+    ),
+    Mistake(
+        "z not squared",
+        lambda c: c.with_(-_skew(c.RX), c.z_once),
+        "your d(u, v)/dz divides by z once: d(x / z)/dz = -x / z^2, so du/dz = -fx x / z^2.",
+    ),
+    Mistake(
+        "z term sign",
+        lambda c: c.with_(-_skew(c.RX), c.z_plus),
+        "your du/dz and dv/dz have the wrong sign: moving a point away (z up) pulls its pixel toward "
+        "the principal point, d(x / z)/dz = -x / z^2, so du/dz = -fx x / z^2.",
+    ),
+    Mistake(
+        "fx for fy",
+        lambda c: c.with_(-_skew(c.RX), c.fx_twice),
+        "your v row uses fx: v = fy y / z + cy, so the v row's derivatives carry fy = K[1, 1] "
+        "(fx and fy differ slightly on a real camera).",
+    ),
+    Mistake(
+        "degrees",
+        lambda c: np.hstack([c.right[:, :3] * np.pi / 180, c.right[:, 3:]]),
+        "your rotation columns are pi / 180 times too small: per degree, not per radian. dw is in "
+        "radians (the API's unit); do not convert.",
+    ),
+    Mistake(
+        "blocks swapped",
+        lambda c: np.hstack([c.right[:, 3:], c.right[:, :3]]),
+        "your columns are (dt, dw): the prompt orders them (dw, dt), the rotation's three first.",
+    ),
+    Mistake(
+        "residual",
+        lambda c: -c.right,
+        "every entry has the wrong sign: you differentiated the residual u_measured - pi(...); the "
+        "exercise asks for the pixel's own Jacobian, d pi / d(dw, dt).",
+    ),
+    Mistake(
+        "no focal length",
+        lambda c: c.right / np.array([[c.dpix[0, 0] * c.Xc[2]], [c.dpix[1, 1] * c.Xc[2]]]),
+        "your Jacobian is in normalised coordinates (x / z, y / z): multiply the u row by fx and the v "
+        "row by fy, since u = fx x / z + cx.",
+    ),
+    Mistake(
+        "rows swapped",
+        lambda c: c.right[::-1],
+        "your rows are (v, u): row 0 is u (the column), row 1 is v (the row), as pixels are (u, v).",
+    ),
+)
+
+
+def _diagnosis(args, got, expected) -> str:
+    g = np.asarray(got) if got is not None else None
+    if g is not None and g.shape == (6, 2):
+        return (
+            "you returned a (6, 2) array, the transpose: one row per pixel coordinate (u, v) and one "
+            "column per pose parameter (dw, dt), shape (2, 6); build it with np.hstack, not np.vstack."
+        )
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem
+    hint = first_mistake(
+        _MISTAKES,
+        _context(*args),
+        g.astype(float),
+        lambda a, b: np.allclose(a, b, rtol=1e-6, atol=1e-6),
+    )
+    if hint:
+        return hint
+    bad = [k for k in range(6) if not np.allclose(g[:, k], expected[:, k], rtol=1e-5, atol=1e-5)]
+    return (
+        f"columns {bad} differ (0-2: dw, 3-5: dt): check d(u, v)/d X_c = [[fx/z, 0, -fx x/z^2], "
+        "[0, fy/z, -fy y/z^2]], then d X_c / d dw = -[X_c - t]x and d X_c / d dt = I. Central "
+        "differences of your projection, one parameter at a time, show which is off."
+    )
+
+
+def _variant(name):
+    return mistake_variant(_MISTAKES, name, _context)
+
+
+register_exercise(
+    Exercise(
+        name="point_jacobian",
+        lesson="12",
+        reference=_reference,
+        cases=_cases,
+        compare=same_array(rtol=1e-6, atol=1e-6),
+        diagnose=_diagnosis,
+        wrong_variants=(
+            (_variant("skew sign"), "wrong sign: [dw]x"),
+            (_variant("X for X_c - t"), "world point X"),
+            (_variant("X_c for X_c - t"), "used X_c"),
+            (_variant("right perturbation"), "on the right"),
+            (_variant("no -x/z^2 term"), "third column"),
+            (_variant("z not squared"), "divides by z once"),
+            (_variant("z term sign"), "wrong sign: moving"),
+            (_variant("fx for fy"), "uses fx"),
+            (_variant("degrees"), "per degree"),
+            (_variant("blocks swapped"), "(dt, dw)"),
+            (_variant("residual"), "residual"),
+            (_variant("no focal length"), "normalised"),
+            (_variant("rows swapped"), "(v, u)"),
+            ((lambda K, R, t, X: point_jacobian(K, R, t, X).T), "transpose"),
+        ),
+        teaching=point_jacobian,
+        ndarray_only=True,
+        solution_note=(
+            "# camlab: camlab.measurement.pose_jacobian(K, R, t, X[None]) gives the same for N points, "
+            "(2N, 6);\n# solve_pnp uses it in Levenberg-Marquardt and in the pose's covariance."
+        ),
+    )
+)

@@ -1,0 +1,37 @@
+"""Lesson 12's click-to-measure: two clicks give a length, more and a right-click an area."""
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from camlab.widgets.measure_the_world import click_to_measure  # noqa: E402
+
+
+def test_clicks_measure_a_length_then_an_area_and_start_again():
+    fig, ax = plt.subplots()
+    seen = []
+
+    def length(a, b):
+        seen.append(("length", np.linalg.norm(b - a)))
+        return "L"
+
+    def area(points):
+        seen.append(("area", len(points)))
+        return "A"
+
+    clicks = click_to_measure(ax, length, area)
+    clicks.click(0, 0)
+    assert seen == [] and ax.get_title() == ""
+    clicks.click(3, 4)
+    assert seen == [("length", 5.0)] and ax.get_title() == "L"
+    clicks.click(3, 0)
+    clicks.click(0, 0, button=3)
+    assert seen[-1] == ("area", 3) and ax.get_title() == "A"
+    assert len(clicks.line.get_xdata()) == 4  # the outline drawn closed
+    clicks.click(1, 1)  # a new measurement starts
+    assert clicks.points == [(1.0, 1.0)]
+    clicks.click(2, 2, button=3)  # a right-click with fewer than three points clears
+    assert clicks.points == []
+    plt.close(fig)
