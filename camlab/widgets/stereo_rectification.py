@@ -419,7 +419,14 @@ def _zoom_axes(axz, view: FigureView):
     )
     (row,) = axz.plot([], [], color=palette.TAB_RED, lw=1.0, ls="--")
     (dots,) = axz.plot(
-        [], [], "o", ms=7, mfc="none", mec=palette.ORANGE, mew=2, path_effects=palette.halo(2)
+        [],
+        [],
+        "o",
+        ms=7,
+        mfc="none",
+        mec=palette.TAB_CYAN,
+        mew=2,
+        path_effects=palette.halo(2, "k"),
     )
     view.animate(zim, row, dots)
     return zim, row, dots
@@ -451,9 +458,20 @@ def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
         for r in range(20, 240, 20)
     ]
     guides.append(ax.axvline(319.5, color="w", lw=1, gid="grid"))
-    (match_lines,) = ax.plot([], [], color=palette.ORANGE, lw=0.9, path_effects=palette.halo(0.9))
+    # the true matches: cyan (far from the yellow rows) in a dark halo, a dot at each end
+    (match_lines,) = ax.plot(
+        [],
+        [],
+        color=palette.TAB_CYAN,
+        lw=1.0,
+        marker="o",
+        ms=3.5,
+        mec="k",
+        mew=0.6,
+        path_effects=palette.halo(1.0, "k"),
+    )
     # Cumulative, on a log axis: raw (pixels), calibrated and uncalibrated (hundredths) all readable.
-    (step,) = axh.plot([], [], drawstyle="steps-post", color=palette.TAB_PURPLE, lw=2.5)
+    (step,) = axh.plot([], [], drawstyle="steps-post", color="0.15", lw=2.5)
     axh.set(
         xscale="log",
         xlim=(1e-3, 30),
@@ -462,7 +480,17 @@ def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
         ylabel="fraction of matches ≤ x",
     )
     axh.axvline(0.5, color=palette.GREY, ls=":", lw=1)
-    axh.text(0.55, 0.04, "0.5 px", color="0.35", fontsize=7, transform=axh.get_xaxis_transform())
+    # beside the line at mid height, where no curve passes (they cross 0.5 px near 0 or near 1)
+    axh.text(
+        0.6,
+        0.5,
+        "0.5 px",
+        color="0.35",
+        fontsize=7,
+        rotation=90,
+        va="center",
+        transform=axh.get_xaxis_transform(),
+    )
     axh.set_title("vertical disparity", fontsize=9)
     axh.grid(True, which="major", color="0.93")
     # the zoomed match, marked where it is in the pair
