@@ -98,7 +98,7 @@ def _epipolar_legends(axl, axr, depth_dots, epi_r) -> None:
         ],
         ["5 fixed pixels, their epipolar lines", "l, the point's line", "point x"],
         loc="upper left",
-        bbox_to_anchor=(-0.08, -0.13),
+        bbox_to_anchor=(-0.08, -0.18),
         ncol=3,
         handlelength=1.5,
         columnspacing=1.0,
@@ -118,10 +118,10 @@ def _epipolar_legends(axl, axr, depth_dots, epi_r) -> None:
             "l' = F x",
             "depth 1, ..., 6 m",
             "epipole",
-            "arrow: to an epipole off the image",
+            "arrow: epipole off the image",
         ],
         loc="upper right",
-        bbox_to_anchor=(1.06, -0.13),
+        bbox_to_anchor=(1.0, -0.18),
         ncol=3,
         handlelength=1.5,
         columnspacing=1.0,
@@ -408,7 +408,7 @@ def _zoom_axes(axz, view: FigureView):
     """The zoom panel of :func:`rectify_pair`: the strip image, the left point's row and the two points."""
     r = ZOOM
     axz.set(xticks=[], yticks=[], xlim=(-0.5, 4 * r + 2.5), ylim=(2 * r + 0.5, -0.5))
-    axz.set_title("the match in red squares, zoomed", fontsize=9)
+    axz.set_title("the match in red squares, zoomed", fontsize=10)
     zim = axz.imshow(
         np.zeros((2 * r + 1, 4 * r + 3)),
         cmap="gray",
@@ -443,7 +443,7 @@ def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
     axh = view.fig.add_subplot(gs[0, 2])
     axz = view.fig.add_subplot(gs[1, 2])
     ax.set(xlim=(-0.5, 639.5), ylim=(239.5, -0.5), xticks=[], yticks=[])
-    title = ax.set_title("left | right (half size)", fontsize=9)  # the update names the method
+    title = ax.set_title("left | right (half size)", fontsize=10)  # the update names the method
     im = ax.imshow(
         np.hstack(half),
         cmap="gray",
@@ -491,7 +491,7 @@ def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
         va="center",
         transform=axh.get_xaxis_transform(),
     )
-    axh.set_title("vertical disparity", fontsize=9)
+    axh.set_title("vertical disparity", fontsize=10)
     axh.grid(True, which="major", color="0.93")
     # the zoomed match, marked where it is in the pair
     (zmark,) = ax.plot([], [], "s", ms=9, mfc="none", mec=palette.TAB_RED, mew=1.5, ls="none")
