@@ -701,12 +701,12 @@ def _disparity_figure(gt: np.ndarray) -> tuple:
     ax3.set_title("3-D points, left camera", fontsize=9)
     ax3.set(xlim=(-1.6, 1.6), ylim=(1.0, 4.5), zlim=(-0.8, 1.4))
     ax3.set_box_aspect(None, zoom=1.2)  # fill the panel: the default leaves a wide empty margin
-    ax3.set_xlabel("X (m)", fontsize=8, labelpad=-4)
-    ax3.set_ylabel("depth Z (m)", fontsize=8, labelpad=0)
-    ax3.set_zlabel("up (m)", fontsize=8, labelpad=-4)
+    ax3.set_xlabel("X (m)", fontsize=9, labelpad=-4)
+    ax3.set_ylabel("depth Z (m)", fontsize=9, labelpad=0)
+    ax3.set_zlabel("up (m)", fontsize=9, labelpad=-4)
     ax3.set(xticks=[-1, 0, 1], yticks=[1, 2, 3, 4], zticks=[-0.5, 0.5])
-    ax3.tick_params(labelsize=7, pad=0)
-    (pts,) = ax3.plot([], [], [], ".", ms=1.0, color=palette.TAB_BLUE)
+    ax3.tick_params(labelsize=8, pad=0)
+    (pts,) = ax3.plot([], [], [], ".", ms=1.0, color=palette.PURPLE)
     view.animate(im1, im2, pts)
     return view, im1, im2, pts
 
@@ -759,6 +759,8 @@ def disparity_depth() -> Demo:
         err = 100 * (z - zt) / zt
         im1.set_data(d)
         im2.set_data(err)
+        # the lesson's matcher colours: block matching purple, SGBM brown
+        pts.set_color(palette.PURPLE if v["method"].startswith("block") else palette.BROWN)
         P = dp.disparity_to_points(d, rect.K, B, step=3)
         pts.set_data_3d(
             P[:, 0], P[:, 2], -P[:, 1]
