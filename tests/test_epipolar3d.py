@@ -40,3 +40,24 @@ def test_draw_epipolar_geometry_draws_without_error():
     epipolar3d.draw_epipolar_geometry(ax, *pair, [0.05, 1.2, 1.25], ghosts=pair)
     assert len(ax.lines) > 8
     plt.close(fig)
+
+
+def test_lesson_11_figures_keep_both_camera_centres_inside_the_axes():
+    """Cells 6 and 20 zoom the scene (1.2); at 1.4 mplot3d clipped camera C out of the panel."""
+    from mpl_toolkits.mplot3d import proj3d
+
+    pair = fixtures.stereo_pair(0.5, np.deg2rad(40))
+    for figsize, cols in (((7.5, 3.9), 1), ((10.5, 4.2), 2)):  # cell 6, cell 20 (two panels)
+        fig = plt.figure(figsize=figsize, layout="constrained")
+        axes = []
+        for k in range(cols):
+            ax = scene3d.axes3d(fig, 100 + 10 * cols + k + 1, elev=20, azim=-58)
+            epipolar3d.draw_epipolar_geometry(ax, *pair, [0.05, 1.2, 1.25], also=[0.0, 0.7, 1.1])
+            ax.set_box_aspect(ax.get_box_aspect(), zoom=1.2)
+            axes.append(ax)
+        fig.canvas.draw()
+        for ax in axes:
+            for C in (pair[0].centre, pair[1].centre):
+                x, y, _ = proj3d.proj_transform(*C, ax.get_proj())
+                assert ax.bbox.contains(*ax.transData.transform((x, y))), C
+        plt.close(fig)

@@ -132,21 +132,21 @@ def draw_epipolar_geometry(
         x = _lift(cam, cam.project(X[None])[:1], size)[0]
         ax.plot(*x, "o", color=palette.RED, ms=4)
     ax.plot(*X, "o", color="k", ms=6)
-    ax.text(*X, "  X", fontsize=9)
+    ax.text(*X, "  X", fontsize=10)
     for Y in np.zeros((0, 3)) if also is None else np.atleast_2d(np.asarray(also, dtype=float)):
         for cam in (camera1, camera2):
             ax.plot(*np.array([cam.centre, Y]).T, color="0.25", lw=1, ls=":")
             y = _lift(cam, cam.project(Y[None])[:1], size)[0]
             ax.plot(*y, "o", mfc="w", mec=palette.RED, mew=1.5, ms=5)
         ax.plot(*Y, "o", mfc="w", mec="k", mew=1.5, ms=6)
-        ax.text(*Y, "  Y", fontsize=9)
+        ax.text(*Y, "  Y", fontsize=10)
     for C, name in ((C1, "C"), (C2, "C'")):
         ax.plot(*C, "o", color="k", ms=5)
-        ax.text(C[0], C[1], C[2] - 0.06, name, fontsize=9, ha="center", va="top")
+        ax.text(C[0], C[1], C[2] - 0.06, name, fontsize=10, ha="center", va="top")
     pts = [tri] + [image_plane_corners(c, size) for c in (camera1, camera2)]
     set_equal_aspect(ax, pts, tight=True)
     ax.locator_params(nbins=4)
-    ax.tick_params(labelsize=7, pad=0)
-    ax.set_xlabel("x (m)", fontsize=8, labelpad=-2)
-    ax.set_ylabel("y, ahead (m)", fontsize=8, labelpad=-2)
-    ax.set_zlabel("z, up (m)", fontsize=8, labelpad=-2)
+    ax.tick_params(labelsize=8.5, pad=0)
+    ax.set_xlabel("x (m)", fontsize=9.5, labelpad=0)
+    ax.set_ylabel("y, ahead (m)", fontsize=9.5, labelpad=0)
+    ax.set_zlabel("z, up (m)", fontsize=9.5, labelpad=0)

@@ -52,8 +52,9 @@ VIEWS = (
 TAB_BLUE = "tab:blue"  # #1F77B4, 4.8:1 on white
 TAB_RED = "tab:red"  # #D62728, 5.0:1
 TAB_GREEN = "tab:green"  # #2CA02C, 3.4:1: lines and markers, not text
-TAB_CYAN = "tab:cyan"  # #17BECF, 2.3:1: row guides over the grey stereo pair (lesson 11)
-TAB_PURPLE = "tab:purple"  # #9467BD, 4.3:1: the |v1 - v2| step plot of lesson 11
+TAB_CYAN = (
+    "tab:cyan"  # #17BECF, 2.3:1: true matches over the grey stereo pair (lesson 11, dark halo)
+)
 DARK_GREEN = "darkgreen"  # #006400, 7.4:1: labels A-D of the green points (lesson 07)
 YELLOW = "yellow"  # #FFFF00, 1.1:1: marks over photographs (keypoints, crops, a traced quad)
 MAGENTA = "magenta"  # #FF00FF, 3.1:1: residual arrows over a grey calibration photo

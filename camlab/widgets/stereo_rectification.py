@@ -98,7 +98,7 @@ def _epipolar_legends(axl, axr, depth_dots, epi_r) -> None:
         ],
         ["5 fixed pixels, their epipolar lines", "l, the point's line", "point x"],
         loc="upper left",
-        bbox_to_anchor=(-0.08, -0.13),
+        bbox_to_anchor=(-0.08, -0.18),
         ncol=3,
         handlelength=1.5,
         columnspacing=1.0,
@@ -118,10 +118,10 @@ def _epipolar_legends(axl, axr, depth_dots, epi_r) -> None:
             "l' = F x",
             "depth 1, ..., 6 m",
             "epipole",
-            "arrow: to an epipole off the image",
+            "arrow: epipole off the image",
         ],
         loc="upper right",
-        bbox_to_anchor=(1.06, -0.13),
+        bbox_to_anchor=(1.0, -0.18),
         ncol=3,
         handlelength=1.5,
         columnspacing=1.0,
@@ -408,7 +408,7 @@ def _zoom_axes(axz, view: FigureView):
     """The zoom panel of :func:`rectify_pair`: the strip image, the left point's row and the two points."""
     r = ZOOM
     axz.set(xticks=[], yticks=[], xlim=(-0.5, 4 * r + 2.5), ylim=(2 * r + 0.5, -0.5))
-    axz.set_title("the match in red squares, zoomed", fontsize=9)
+    axz.set_title("the match in red squares, zoomed", fontsize=10)
     zim = axz.imshow(
         np.zeros((2 * r + 1, 4 * r + 3)),
         cmap="gray",
@@ -419,7 +419,14 @@ def _zoom_axes(axz, view: FigureView):
     )
     (row,) = axz.plot([], [], color=palette.TAB_RED, lw=1.0, ls="--")
     (dots,) = axz.plot(
-        [], [], "o", ms=7, mfc="none", mec=palette.ORANGE, mew=2, path_effects=palette.halo(2)
+        [],
+        [],
+        "o",
+        ms=7,
+        mfc="none",
+        mec=palette.TAB_CYAN,
+        mew=2,
+        path_effects=palette.halo(2, "k"),
     )
     view.animate(zim, row, dots)
     return zim, row, dots
@@ -436,7 +443,7 @@ def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
     axh = view.fig.add_subplot(gs[0, 2])
     axz = view.fig.add_subplot(gs[1, 2])
     ax.set(xlim=(-0.5, 639.5), ylim=(239.5, -0.5), xticks=[], yticks=[])
-    title = ax.set_title("left | right (half size)", fontsize=9)  # the update names the method
+    title = ax.set_title("left | right (half size)", fontsize=10)  # the update names the method
     im = ax.imshow(
         np.hstack(half),
         cmap="gray",
@@ -451,9 +458,20 @@ def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
         for r in range(20, 240, 20)
     ]
     guides.append(ax.axvline(319.5, color="w", lw=1, gid="grid"))
-    (match_lines,) = ax.plot([], [], color=palette.ORANGE, lw=0.9, path_effects=palette.halo(0.9))
+    # the true matches: cyan (far from the yellow rows) in a dark halo, a dot at each end
+    (match_lines,) = ax.plot(
+        [],
+        [],
+        color=palette.TAB_CYAN,
+        lw=1.0,
+        marker="o",
+        ms=3.5,
+        mec="k",
+        mew=0.6,
+        path_effects=palette.halo(1.0, "k"),
+    )
     # Cumulative, on a log axis: raw (pixels), calibrated and uncalibrated (hundredths) all readable.
-    (step,) = axh.plot([], [], drawstyle="steps-post", color=palette.TAB_PURPLE, lw=2.5)
+    (step,) = axh.plot([], [], drawstyle="steps-post", color="0.15", lw=2.5)
     axh.set(
         xscale="log",
         xlim=(1e-3, 30),
@@ -462,8 +480,18 @@ def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
         ylabel="fraction of matches ≤ x",
     )
     axh.axvline(0.5, color=palette.GREY, ls=":", lw=1)
-    axh.text(0.55, 0.04, "0.5 px", color="0.35", fontsize=7, transform=axh.get_xaxis_transform())
-    axh.set_title("vertical disparity", fontsize=9)
+    # beside the line at mid height, where no curve passes (they cross 0.5 px near 0 or near 1)
+    axh.text(
+        0.6,
+        0.5,
+        "0.5 px",
+        color="0.35",
+        fontsize=7,
+        rotation=90,
+        va="center",
+        transform=axh.get_xaxis_transform(),
+    )
+    axh.set_title("vertical disparity", fontsize=10)
     axh.grid(True, which="major", color="0.93")
     # the zoomed match, marked where it is in the pair
     (zmark,) = ax.plot([], [], "s", ms=9, mfc="none", mec=palette.TAB_RED, mew=1.5, ls="none")
@@ -673,12 +701,12 @@ def _disparity_figure(gt: np.ndarray) -> tuple:
     ax3.set_title("3-D points, left camera", fontsize=9)
     ax3.set(xlim=(-1.6, 1.6), ylim=(1.0, 4.5), zlim=(-0.8, 1.4))
     ax3.set_box_aspect(None, zoom=1.2)  # fill the panel: the default leaves a wide empty margin
-    ax3.set_xlabel("X (m)", fontsize=8, labelpad=-4)
-    ax3.set_ylabel("depth Z (m)", fontsize=8, labelpad=0)
-    ax3.set_zlabel("up (m)", fontsize=8, labelpad=-4)
+    ax3.set_xlabel("X (m)", fontsize=9, labelpad=-4)
+    ax3.set_ylabel("depth Z (m)", fontsize=9, labelpad=0)
+    ax3.set_zlabel("up (m)", fontsize=9, labelpad=-4)
     ax3.set(xticks=[-1, 0, 1], yticks=[1, 2, 3, 4], zticks=[-0.5, 0.5])
-    ax3.tick_params(labelsize=7, pad=0)
-    (pts,) = ax3.plot([], [], [], ".", ms=1.0, color=palette.TAB_BLUE)
+    ax3.tick_params(labelsize=8, pad=0)
+    (pts,) = ax3.plot([], [], [], ".", ms=1.0, color=palette.PURPLE)
     view.animate(im1, im2, pts)
     return view, im1, im2, pts
 
@@ -731,6 +759,8 @@ def disparity_depth() -> Demo:
         err = 100 * (z - zt) / zt
         im1.set_data(d)
         im2.set_data(err)
+        # the lesson's matcher colours: block matching purple, SGBM brown
+        pts.set_color(palette.PURPLE if v["method"].startswith("block") else palette.BROWN)
         P = dp.disparity_to_points(d, rect.K, B, step=3)
         pts.set_data_3d(
             P[:, 0], P[:, 2], -P[:, 1]

@@ -140,8 +140,10 @@ def _unnormalisation_slip(g, x1, x2, expected, T1, T2) -> str:
         ),
         (
             T2.T @ (Un @ np.diag([Sn[0], Sn[1], 0.0]) @ Vnt).T @ T1,
-            "you reshaped f column by column (order='F'): that gives F_n transposed. f = (F11, F12, F13, "
-            "F21, ...) is row-major, as the row (u'u, u'v, u', v'u, ...) assumes: f.reshape(3, 3)",
+            "your F_n is transposed: either you reshaped f column by column (order='F'), or you built each "
+            "row for x1^T F x2, with image 1's and image 2's coordinates swapped inside the products. "
+            "The row for x2^T F x1 is (u'u, u'v, u', v'u, v'v, v', u, v, 1), (u', v') from x2, and "
+            "f = (F11, F12, F13, F21, ...) is row-major: f.reshape(3, 3)",
         ),
         (Fn, "you returned F_n, the F of the normalised points: undo the normalisation, " + right),
         (
