@@ -208,7 +208,9 @@ def _seam_marks(
     return np.array(xs), np.array(ys)
 
 
-def _rows_inside(mask: np.ndarray, overlap: np.ndarray, rows: np.ndarray, u0: int, z: int) -> np.ndarray:
+def _rows_inside(
+    mask: np.ndarray, overlap: np.ndarray, rows: np.ndarray, u0: int, z: int
+) -> np.ndarray:
     """The ``rows`` where the seam (``mask`` switching inside ``overlap``) lies in the zoom's columns ``u0 .. u0 + z - 1``.
 
     A diagonal seam enters and leaves a square zoom through any of its sides; marking the top and bottom sixth of
@@ -447,7 +449,12 @@ def _gallery() -> dict:
             gallery[(n, proj)] = (
                 _place(_rgba(p.image)),
                 f"{n} views, {p.fov_deg:.0f} degrees of view: {proj} canvas "
-                f"{p.shape[1]} x {p.shape[0]} px (shown scaled to fit)",
+                f"{p.shape[1]} x {p.shape[0]} px "
+                + (
+                    "(shown scaled to fit)"
+                    if proj == "planar"
+                    else "(cylinder and sphere at one scale)"
+                ),
             )
     return gallery
 
