@@ -183,10 +183,18 @@ def test_canvas_previews_the_plane_cannot_hold_a_wide_turn():
             continue
         assert p.reason == "" and p.image.dtype == np.uint8 and p.image.max() > 50
         h, w = p.image.shape[:2]
-        assert (
-            h <= 220 and w <= 560 and (h >= 219 or w >= 559)
-        )  # scaled to fit the box, touching one side
+        assert h <= 220 and w <= 560  # within the box
+        if (
+            proj != "spherical"
+        ):  # the plane fits on its own; the cylinder, the taller, sets the curved scale
+            assert h >= 219 or w >= 559  # touching one side
         assert abs(w / h - p.shape[1] / p.shape[0]) < 0.02 * w / h  # the canvas' aspect ratio kept
+    for n in range(2, 7):  # the cylinder and the sphere at one scale: the same px per canvas px
+        cyl, sph = previews[(n, "cylindrical")], previews[(n, "spherical")]
+        assert cyl.image.shape[0] / cyl.shape[0] == pytest.approx(
+            sph.image.shape[0] / sph.shape[0], rel=0.02
+        )
+        assert cyl.image.shape[0] > 1.1 * sph.image.shape[0]  # so the cylinder shows taller
     widths = [previews[(n, "cylindrical")].shape[1] for n in range(2, 7)]
     assert all(a < b for a, b in pairwise(widths))  # every view adds width
     assert (

@@ -474,3 +474,19 @@ def test_warp_images_bad_input():
         CamlabInputError, match="homographies: expected one per image, got 2 for 1 images"
     ):
         st.warp_images([np.zeros((10, 10, 3))], [np.eye(3), np.eye(3)])
+
+
+def test_gains_from_overlaps_known_answers_and_bad_input():
+    # two images that agree on their overlap keep gain 1; a 30 % brighter one is pulled down towards the other
+    N = np.array([[0.0, 5000], [5000, 0]])
+    same = st.gains_from_overlaps(N, np.array([[0.0, 0.4], [0.4, 0]]))
+    np.testing.assert_allclose(same, [1, 1], atol=1e-12)
+    g = st.gains_from_overlaps(N, np.array([[0.0, 0.4], [0.52, 0]]))
+    assert g[0] * 0.4 == pytest.approx(g[1] * 0.52, rel=0.01) and g[1] < 1 < g[0]
+    # an image with no overlap keeps gain 1
+    N3 = np.zeros((3, 3))
+    N3[0, 1] = N3[1, 0] = 100
+    I3 = np.array([[0, 0.5, 0], [0.6, 0, 0], [0, 0, 0]])
+    assert st.gains_from_overlaps(N3, I3)[2] == 1.0
+    with pytest.raises(CamlabInputError, match="I_mean: expected two"):
+        st.gains_from_overlaps(N, np.zeros((3, 3)))

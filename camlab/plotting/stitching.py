@@ -219,7 +219,7 @@ def draw_matches(
         seg[g], colors=palette.GREEN, linewidths=0.8, path_effects=palette.halo(0.8)
     )
     lc_bad = LineCollection(
-        seg[~g], colors=palette.RED, linewidths=0.9, path_effects=palette.halo(0.9)
+        seg[~g], colors=palette.RED, linewidths=0.9, path_effects=palette.halo(0.9, "black")
     )
     ax.add_collection(lc_good)
     ax.add_collection(lc_bad)

@@ -31,6 +31,59 @@ def _over_channels(op, image: np.ndarray) -> np.ndarray:
     return out
 
 
+def gains_from_overlaps(
+    N: ArrayLike, I_mean: ArrayLike, sigma_n: float = 10.0 / 255, sigma_g: float = 1.0
+) -> np.ndarray:
+    r"""Solve gain compensation's normal equations for the gains, given the overlaps' sizes and means.
+
+    With :math:`N_{ij}` pixels in the overlap of images i and j and :math:`\bar I_{ij}` the mean
+    of image i there, :math:`\partial e / \partial g_i = 0` (see :func:`gain_compensation`) is
+
+    .. math:: g_i \sum_{j} N_{ij} \Big(\frac{2 \bar I_{ij}^2}{\sigma_N^2} + \frac{1}{\sigma_g^2}\Big)
+              - \sum_j g_j N_{ij} \frac{2 \bar I_{ij} \bar I_{ji}}{\sigma_N^2} = \sum_j \frac{N_{ij}}{\sigma_g^2} ,
+
+    one linear equation per image, :math:`A g = b`. An image with no overlap keeps the gain 1.
+
+    Parameters
+    ----------
+    N : (n, n) array_like
+        Pixels in each overlap, symmetric; the diagonal is ignored.
+    I_mean : (n, n) array_like
+        ``I_mean[i, j]``: the mean intensity of image i on its overlap with image j (the
+        images' units; 0 where there is no overlap).
+    sigma_n : float
+        :math:`\sigma_N`, the intensity noise, in the images' units.
+    sigma_g : float
+        :math:`\sigma_g`, the prior's spread of the gains about 1.
+
+    Returns
+    -------
+    (n,) ndarray
+        The gains :math:`g`.
+
+    Raises
+    ------
+    CamlabInputError
+        N or I_mean not square, or of different sizes.
+    """
+    N = np.asarray(N, dtype=float)
+    I_mean = np.asarray(I_mean, dtype=float)
+    if N.ndim != 2 or N.shape[0] != N.shape[1] or I_mean.shape != N.shape:
+        raise CamlabInputError(
+            f"N, I_mean: expected two (n, n) arrays (overlap sizes and means), got shapes {N.shape} and "
+            f"{I_mean.shape}; entry [i, j] is about the overlap of images i and j"
+        )
+    n = len(N)
+    off = ~np.eye(n, dtype=bool)
+    W = np.where(off, N, 0.0)
+    A = -W * 2 * I_mean * I_mean.T / sigma_n**2  # off the diagonal: -N_ij 2 I_ij I_ji / sigma_N^2
+    A[np.diag_indices(n)] = (W * (2 * I_mean**2 / sigma_n**2 + 1 / sigma_g**2)).sum(axis=1)
+    b = W.sum(axis=1) / sigma_g**2
+    alone = A.diagonal() == 0  # no overlap: keep the gain at 1
+    A[alone, alone], b[alone] = 1.0, 1.0
+    return np.linalg.solve(A, b)
+
+
 def gain_compensation(
     warped: WarpedImages,
     sigma_n: float = 10.0 / 255,
@@ -99,25 +152,15 @@ def gain_compensation(
         m & (_over_channels(np.minimum, im) > clip[0]) & (_over_channels(np.maximum, im) < clip[1])
         for m, im in zip(masks, imgs, strict=True)
     ]
-    A = np.zeros((n, n))
-    b = np.zeros(n)
+    N = np.zeros((n, n))
+    I_mean = np.zeros((n, n))
     for i in range(n):
         for j in range(n):
-            if i == j:
-                continue
             both = ok[i] & ok[j]
-            N = int(both.sum()) * step * step
-            if N == 0:
-                continue
-            Iij, Iji = float(lum[i][both].mean()), float(lum[j][both].mean())
-            # d e / d g_i from the (i, j) and (j, i) terms
-            A[i, i] += N * (2 * Iij * Iij / sigma_n**2 + 1 / sigma_g**2)
-            A[i, j] -= N * 2 * Iij * Iji / sigma_n**2
-            b[i] += N / sigma_g**2
-    for i in range(n):
-        if A[i, i] == 0:  # no overlap: keep the gain at 1
-            A[i, i], b[i] = 1.0, 1.0
-    g = np.linalg.solve(A, b)
+            if i != j and both.any():
+                N[i, j] = int(both.sum()) * step * step
+                I_mean[i, j] = float(lum[i][both].mean())
+    g = gains_from_overlaps(N, I_mean, sigma_n, sigma_g)
     if reference is not None:
         g = g / g[int(reference)]
     return g

@@ -1,7 +1,8 @@
 """Exercises for lesson 09, image stitching.
 
-The canvas bounds (:mod:`.canvas_box`), feathering weights (:mod:`.feather_weights`) and the focal
-length from a rotation-only homography (:mod:`.focal`).
+The canvas bounds (:mod:`.canvas_box`), feathering weights (:mod:`.feather_weights`), the focal
+length from a rotation-only homography (:mod:`.focal`) and gain compensation's normal equations
+(:mod:`.gains`).
 """
 
 from __future__ import annotations
@@ -11,7 +12,8 @@ from __future__ import annotations
 from . import canvas_box
 from . import feather_weights
 from . import focal
+from . import gains
 
 # isort: on
 
-__all__ = ["canvas_box", "feather_weights", "focal"]
+__all__ = ["canvas_box", "feather_weights", "focal", "gains"]

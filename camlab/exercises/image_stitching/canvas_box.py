@@ -179,7 +179,8 @@ _CANVAS_SLIPS = (
         "1-based first corner",
         lambda s: _box(_corners(s.Hs, s.shapes, first=1, last=1)),
         "your first corner is at (1, 1): pixels are counted from 0, so the corner pixels are (0, 0) and "
-        "(w - 1, h - 1), as numpy indexes them (img[0, 0] is the top-left pixel).",
+        "(w - 1, h - 1), as numpy indexes them (img[0, 0] is the top-left pixel). Or you rounded with np.ceil "
+        "at both ends, which gives the same box here: the minimum must round down (np.floor).",
     ),
     Mistake(
         "divided by the width",
@@ -245,6 +246,12 @@ _CANVAS_SLIPS = (
         "astype(int) (like int()) truncates towards zero, and on the whole box that cuts both ends: a negative "
         "minimum moves inwards (int(-30.3) = -30) and the maximum down (int(369.6) = 369), so warped pixels are "
         "cut off. Use np.floor for the minimum and np.ceil for the maximum, then convert.",
+    ),
+    Mistake(
+        "floor both",
+        lambda s: np.floor(np.array([s.corners.min(0), s.corners.max(0)])),
+        "you floored both ends: floor is right for the minimum, but the maximum must round up (np.ceil), "
+        "or the last partly covered column and row are cut off.",
     ),
     Mistake(
         "round outwards",
@@ -316,6 +323,13 @@ register_exercise(
             (_canvas_variant("size for the maximum"), "canvas size, not its corner"),
             (_canvas_variant("truncated"), "truncate towards zero"),
             (_canvas_variant("truncated the whole box"), "cuts both ends"),
+            (_canvas_variant("floor both"), "floored both ends"),
+            (
+                lambda Hs, shapes: np.ceil(
+                    np.array([_corners(Hs, shapes).min(0), _corners(Hs, shapes).max(0)])
+                ),
+                "np.ceil at both ends",
+            ),
             (
                 lambda Hs, shapes: np.array(
                     [_corners(Hs, shapes).min(0), _corners(Hs, shapes).max(0)]

@@ -81,37 +81,81 @@ def _feather_diagnosis(args, got, expected) -> str:
             "you counted pixels from 1: the first column is u = 0 (pixel centres at 0, 1, ..., W - 1), "
             "so use np.arange(W), not np.arange(1, W + 1)."
         )
-    for a in (0.0, 0.5, 1.0):
-        for b in (0.0, 0.5, 1.0):
-            if (a, b) != (0.5, 0.5) and np.allclose(g, _feather_offsets(expected.shape, a, b)):
-                near = (
-                    ""
-                    if a == 0.5
-                    else (
-                        f"the near border (you used u + {a:g}; the first pixel's centre u = 0 is 1/2 "
-                        "from the border at u = -1/2, so u + 1/2)"
-                    )
-                )
-                far = (
-                    ""
-                    if b == 0.5
-                    else (
-                        f"the far border (you used W - {b:g} - u; the last pixel's centre u = W - 1 is "
-                        "1/2 from the border at u = W - 1/2, so W - 1/2 - u)"
-                    )
-                )
-                return (
-                    "off by half a pixel at "
-                    + " and at ".join(x for x in (near, far) if x)
-                    + "; the same for v."
-                )
+    offsets = _offset_hint(g, expected.shape)
+    if offsets:
+        return offsets
     if g.min() < -1e-9:
-        return (
-            f"a weight below 0 ({g.min():g}) means a far border in the wrong place: the far borders are at "
-            "u = W - 1/2 (W = shape[1], the columns) and v = H - 1/2 (H = shape[0], the rows); check that W and H "
-            "are not swapped inside the terms."
-        )
+        return _negative_hint(g, expected.shape)
     return "w(u, v) = min(u + 1/2, W - 1/2 - u, v + 1/2, H - 1/2 - v): the distance to the nearest border."
+
+
+def _term(side: str, c: float) -> str:
+    """The near (u + c) or far (W - c - u) term as a student wrote it, with c as a fraction: u - 1/2, W - 3/2 - u."""
+    frac = {0.0: "0", 0.5: "1/2", 1.0: "1", 1.5: "3/2", -0.5: "1/2"}[c]
+    if side == "near":
+        return "u" if c == 0 else f"u {'+' if c > 0 else '-'} {frac}"
+    return "W - u" if c == 0 else f"W {'-' if c > 0 else '+'} {frac} - u"
+
+
+def _offset_hint(g: np.ndarray, shape) -> str:
+    """Name the border(s) a half-pixel (or whole-pixel) slip put elsewhere: min(u + a, W - b - u, ...)."""
+    for a in (-0.5, 0.0, 0.5, 1.0):
+        for b in (-0.5, 0.0, 0.5, 1.0, 1.5):
+            if (a, b) == (0.5, 0.5) or not np.allclose(g, _feather_offsets(shape, a, b)):
+                continue
+            near = (
+                ""
+                if a == 0.5
+                else (
+                    f"the near border (you used {_term('near', a)}; the first pixel's centre u = 0 is 1/2 "
+                    "from the border at u = -1/2, so u + 1/2"
+                    + ("; with u - 1/2 the first pixel gets a weight below 0" if a < 0 else "")
+                    + ")"
+                )
+            )
+            far = (
+                ""
+                if b == 0.5
+                else (
+                    f"the far border (you used {_term('far', b)}; the last pixel's centre u = W - 1 is "
+                    "1/2 from the border at u = W - 1/2, so W - 1/2 - u"
+                    + (
+                        "; with W + 1/2 - u the last pixel weighs 3/2, more than its neighbour"
+                        if b < 0
+                        else ""
+                    )
+                    + ")"
+                )
+            )
+            size = "half a pixel" if {abs(a - 0.5), abs(b - 0.5)} <= {0.0, 0.5} else "a whole pixel"
+            return (
+                f"off by {size} at "
+                + " and at ".join(x for x in (near, far) if x)
+                + "; the same for v."
+            )
+    return ""
+
+
+def _negative_hint(g: np.ndarray, shape) -> str:
+    """A weight below 0: say where it is (the first or the last row or column) and so which term went negative."""
+    h, w = shape
+    r, c = np.unravel_index(np.argmin(g), g.shape)
+    where = []
+    if c == 0 or r == 0:
+        where.append(
+            "at the first column or row (u = 0 or v = 0) the near term u + 1/2 (v + 1/2) went below 0"
+        )
+    if c == w - 1 or r == h - 1:
+        where.append(
+            "at the last column or row the far term went below 0 (a far border in the wrong place): the far borders are at u = W - 1/2 "
+            "(W = shape[1], the columns) and v = H - 1/2 (H = shape[0], the rows); check that W and H are not "
+            "swapped inside the terms"
+        )
+    if not where:
+        where.append(
+            "inside the image a distance went below 0; each term must be the distance to one border"
+        )
+    return f"a weight below 0 ({g.min():g} at row {r}, column {c}): " + "; ".join(where) + "."
 
 
 def _feather_swapped_far(shape) -> np.ndarray:
@@ -157,6 +201,18 @@ register_exercise(
                 "half a pixel at the near border",
             ),
             (lambda shape: _feather_offsets(tuple(shape[:2]), 1.5, 1.5), "counted pixels from 1"),
+            (
+                lambda shape: _feather_offsets(tuple(shape[:2]), -0.5, 0.5),
+                "near border (you used u - 1/2",
+            ),
+            (
+                lambda shape: _feather_offsets(tuple(shape[:2]), 0.5, -0.5),
+                "far border (you used W + 1/2 - u",
+            ),
+            (
+                lambda shape: _feather_offsets(tuple(shape[:2]), 0.5, 1.5),
+                "far border (you used W - 3/2 - u",
+            ),
             (lambda shape: st.feather_weights(shape) / st.feather_weights(shape).sum(), "sum to 1"),
             (_feather_swapped_far, "far border in the wrong place"),
             (lambda shape: st.feather_weights(shape).astype(int), "integer dtype"),

@@ -53,7 +53,7 @@ def focal_from_rotation_homography(H, shape):
     C = np.array([[1.0, 0, (w - 1) / 2], [0, 1, (h - 1) / 2], [0, 0, 1]])
     Hc = np.linalg.inv(C) @ np.asarray(H, float) @ C  # now H ~ diag(f, f, 1) R diag(1/f, 1/f, 1)
     h0, h1, h2, h3, h4, h5, h6, h7, _ = Hc.ravel() / np.linalg.norm(Hc)
-    # R's columns 1 and 2 are orthogonal and equally long: two formulas for f^2, keep the better-conditioned one
+    # R's first two columns (0 and 1) are orthogonal and equally long: two formulas for f^2, keep the better-conditioned one
     n1, d1 = -(h0 * h1 + h3 * h4), h6 * h7
     n2, d2 = h0**2 + h3**2 - h1**2 - h4**2, h7**2 - h6**2
     f2_cols = n1 / d1 if abs(d1) > abs(d2) else n2 / d2
@@ -389,8 +389,8 @@ _FOCAL_SLIPS = (
     Mistake(
         "sign flip",
         _focal_slip("sign"),
-        "a sign flip: the orthogonality of columns 1 and 2 gives f^2 = -(h0 h1 + h3 h4) / (h6 h7), and that of "
-        "rows 1 and 2 f^2 = -h2 h5 / (h0 h3 + h1 h4), each with the minus (without it f^2 comes out negative and "
+        "a sign flip: the orthogonality of the first two columns (0 and 1) gives f^2 = -(h0 h1 + h3 h4) / (h6 h7), and that of "
+        "the first two rows f^2 = -h2 h5 / (h0 h3 + h1 h4), each with the minus (without it f^2 comes out negative and "
         "its square root NaN).",
     ),
 )

@@ -208,6 +208,22 @@ def _seam_marks(
     return np.array(xs), np.array(ys)
 
 
+def _rows_inside(
+    mask: np.ndarray, overlap: np.ndarray, rows: np.ndarray, u0: int, z: int
+) -> np.ndarray:
+    """The ``rows`` where the seam (``mask`` switching inside ``overlap``) lies in the zoom's columns ``u0 .. u0 + z - 1``.
+
+    A diagonal seam enters and leaves a square zoom through any of its sides; marking the top and bottom sixth of
+    these rows puts one mark where it enters and one where it leaves.
+    """
+    keep = []
+    for r in rows:
+        cols = np.flatnonzero((mask[r, :-1] != mask[r, 1:]) & (overlap[r, :-1] | overlap[r, 1:]))
+        if len(cols) and u0 <= cols[0] < u0 + z - 1:
+            keep.append(r)
+    return np.array(keep, dtype=int)
+
+
 @register(lesson="09", sweep={"method": list(st.BLENDS), "gains": [False, True], "levels": [1, 5]})
 def blending_seams() -> Demo:
     """Overwrite, feather and multi-band blending of two differently exposed views, with a zoom on the seam.
@@ -285,7 +301,7 @@ def blending_seams() -> Demo:
     seam_marks = {}
     for name, mask in (("overwrite", wi.masks[1]), ("middle", seam)):
         x, y = _seam_marks(mask, both, overlap_rows)
-        xz, yz = _seam_marks(mask, both, zoom_rows)
+        xz, yz = _seam_marks(mask, both, _rows_inside(mask, both, zoom_rows, u0, z))
         seam_marks[name] = ((x, y), (xz - u0, yz - v0))
     readout = W.HTML()
     # every setting the controls can reach, blended once (pe.pair_blends)
@@ -433,7 +449,12 @@ def _gallery() -> dict:
             gallery[(n, proj)] = (
                 _place(_rgba(p.image)),
                 f"{n} views, {p.fov_deg:.0f} degrees of view: {proj} canvas "
-                f"{p.shape[1]} x {p.shape[0]} px (shown scaled to fit)",
+                f"{p.shape[1]} x {p.shape[0]} px "
+                + (
+                    "(shown scaled to fit)"
+                    if proj == "planar"
+                    else "(cylinder and sphere at one scale)"
+                ),
             )
     return gallery
 

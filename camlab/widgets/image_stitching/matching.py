@@ -195,7 +195,7 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
     """
     ax_e.set(
         xlabel="symmetric transfer error (px, log)",
-        ylabel="number of matches\n(relative to the tallest bar)",
+        ylabel="matches per bin\n(share of the tallest bin)",
         xscale="log",
         xlim=(
             0.014,

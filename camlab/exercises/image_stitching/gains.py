@@ -1,0 +1,249 @@
+"""Lesson 09, exercise 4: gain compensation's normal equations (gains_from_overlaps) and the slips its diagnosis names."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+
+from ...stitching import gains_from_overlaps as _gains_reference
+from .._answers import same_array
+from .._core import Exercise, Mistake, first_mistake, register_exercise
+
+SIGMA_N, SIGMA_G = 10.0, 1.0
+"""The exercise's noise (grey levels, as the intensities) and prior spread, as in section 5."""
+
+# ----------------------------------------------------------------------------- gains from the overlaps
+
+
+def gains_from_overlaps(N, I_mean):
+    """Teaching solution: one gain per image, from the overlaps' sizes and mean intensities.
+
+    Parameters
+    ----------
+    N : (n, n) array_like
+        ``N[i, j]``: pixels in the overlap of images i and j (symmetric); ``N[i, i]`` is image i's own
+        size and is not an overlap.
+    I_mean : (n, n) array_like
+        ``I_mean[i, j]``: the mean grey level (0-255) of image i on its overlap with image j.
+
+    Returns
+    -------
+    (n,) ndarray
+        The gains g minimising section 5's error with sigma_N = 10 grey levels and sigma_g = 1.
+    """
+    sigma_n, sigma_g = 10.0, 1.0  # grey levels, as the means; the prior's spread about 1
+    N = np.array(N, dtype=float)  # a copy: the input stays as it was
+    M = np.asarray(I_mean, dtype=float)
+    np.fill_diagonal(N, 0)  # an image does not overlap itself
+    n = len(N)
+    A, b = np.zeros((n, n)), np.zeros(n)
+    for i in range(n):
+        for j in range(n):
+            # d e / d g_i = 0: the data term pulls g_i I_ij towards g_j I_ji, the prior pulls g_i towards 1
+            A[i, i] += N[i, j] * (2 * M[i, j] ** 2 / sigma_n**2 + 1 / sigma_g**2)
+            A[i, j] -= N[i, j] * 2 * M[i, j] * M[j, i] / sigma_n**2
+            b[i] += N[i, j] / sigma_g**2
+    return np.linalg.solve(A, b)
+
+
+def _reference(N, I_mean):
+    """camlab.stitching.gains_from_overlaps on N with its diagonal zeroed, sigma_N = 10 and sigma_g = 1."""
+    N = np.array(N, dtype=float)
+    np.fill_diagonal(N, 0)
+    return _gains_reference(N, I_mean, SIGMA_N, SIGMA_G)
+
+
+def _scene(exposures, overlaps, size=(240, 320), seed=0):
+    """N and I_mean for images of one scene: overlap (i, j, pixels, scene mean), each image scaled by its exposure."""
+    n = len(exposures)
+    rng = np.random.default_rng(seed)
+    N = np.diag(np.full(n, float(size[0] * size[1])))
+    M = np.diag(rng.uniform(90, 140, n) * np.asarray(exposures))
+    for i, j, pixels, mean in overlaps:
+        N[i, j] = N[j, i] = pixels
+        M[i, j] = exposures[i] * mean + rng.normal(
+            0, 0.5
+        )  # a little noise: the two means never agree exactly
+        M[j, i] = exposures[j] * mean + rng.normal(0, 0.5)
+    return N, M
+
+
+def _gains_cases():
+    return [
+        _scene([1.0, 1.3], [(0, 1, 9000, 110.0)]),  # two photos, the second 30 % brighter
+        _scene(
+            [1.1, 1.0, 0.8], [(0, 1, 12000, 120.0), (1, 2, 7000, 95.0)], seed=1
+        ),  # a chain: 0 and 2 never meet
+        _scene(
+            [1.0, 0.9, 1.2, 1.05],
+            [(0, 1, 15000, 100.0), (1, 2, 9000, 130.0), (2, 3, 11000, 80.0), (0, 3, 4000, 115.0)],
+            seed=2,
+        ),  # a loop of four
+    ]
+
+
+def _solve(
+    N,
+    M,
+    *,
+    sigma_n=SIGMA_N,
+    square=True,
+    factor=2.0,
+    prior_a=True,
+    prior_b=True,
+    sign=-1.0,
+    diag=False,
+):
+    """Section 5's normal equations with one slip switched on (the keywords' defaults are right)."""
+    N = np.array(N, dtype=float)
+    if not diag:  # the slip "diagonal kept" leaves N_ii in: with j = i the data terms cancel, the prior's stay
+        np.fill_diagonal(N, 0)
+    s2 = sigma_n**2 if square else sigma_n
+    A = sign * N * factor * M * M.T / s2
+    A[np.diag_indices(len(N))] = (
+        N * (factor * M**2 / s2 + (1 / SIGMA_G**2 if prior_a else 0))
+    ).sum(axis=1)
+    if diag:
+        A[np.diag_indices(len(N))] -= np.diag(N) * factor * np.diag(M) ** 2 / s2
+    b = N.sum(axis=1) / SIGMA_G**2 if prior_b else np.zeros(len(N))
+    with np.errstate(all="ignore"):
+        try:
+            return np.linalg.solve(A, b)
+        except np.linalg.LinAlgError:
+            return np.full(len(N), np.nan)
+
+
+def _context(args, expected):
+    N, M = (np.asarray(a, dtype=float) for a in args)
+    return SimpleNamespace(N=N, M=M, expected=expected)
+
+
+_GAIN_SLIPS = (
+    Mistake(
+        "no prior",
+        lambda c: [np.zeros(len(c.N)), _solve(c.N, c.M, prior_a=False, prior_b=False)],
+        "all gains 0: without the prior the equations are homogeneous (every term has a g), so g = 0 solves "
+        "them (so does any multiple of one solution). Add N_ij / sigma_g^2 on the diagonal and on the right-hand "
+        "side b_i = sum_j N_ij / sigma_g^2: the prior keeps the gains near 1.",
+    ),
+    Mistake(
+        "prior only on the right",
+        lambda c: _solve(c.N, c.M, prior_a=False),
+        "the prior (1 - g_i)^2 / sigma_g^2 gives two terms: N_ij / sigma_g^2 on the right-hand side, and "
+        "g_i N_ij / sigma_g^2 on the diagonal. You have the first only.",
+    ),
+    Mistake(
+        "I transposed",
+        lambda c: _solve(c.N, c.M.T),
+        "I_mean[i, j] is image i's mean on its overlap with j, and the diagonal term of equation i uses it "
+        "(2 I_ij^2 / sigma_N^2): you used I_mean[j, i], the other image's mean there (I_mean transposed).",
+    ),
+    Mistake(
+        "sign",
+        lambda c: _solve(c.N, c.M, sign=1.0),
+        "a sign flip: differentiating (g_i I_ij - g_j I_ji)^2 by g_i gives 2 I_ij (g_i I_ij - g_j I_ji), so the "
+        "coupling term -2 N_ij I_ij I_ji / sigma_N^2 enters A[i, j] with a minus.",
+    ),
+    Mistake(
+        "no factor 2",
+        lambda c: _solve(c.N, c.M, factor=1.0),
+        "the data terms lost their factor 2: d/dg_i of (g_i I_ij - g_j I_ji)^2 is 2 I_ij (...), while the "
+        "prior's 1/2-free term (1 - g_i)^2 / sigma_g^2 appears for both (i, j) and (j, i), which is why the 1/2 "
+        "in front of e cancels only there. Keep 2 I_ij^2 / sigma_N^2 and 2 I_ij I_ji / sigma_N^2.",
+    ),
+    Mistake(
+        "sigma not squared",
+        lambda c: _solve(c.N, c.M, square=False),
+        "divide by sigma_N^2 (100 grey levels^2), not sigma_N (10): the error weighs squared differences by the "
+        "variance.",
+    ),
+    Mistake(
+        "sigma in 0-1 units",
+        lambda c: _solve(c.N, c.M, sigma_n=SIGMA_N / 255),
+        "sigma_N = 10/255 is for intensities in [0, 1]; these means are grey levels 0-255, so sigma_N = 10. With "
+        "the smaller sigma the prior barely counts.",
+    ),
+    Mistake(
+        "diagonal kept",
+        lambda c: _solve(c.N, c.M, diag=True),
+        "N[i, i] is image i's own size, not an overlap: skip j = i (or zero N's diagonal, on a copy) before "
+        "summing over j.",
+    ),
+    Mistake(
+        "normalised",
+        lambda c: [c.expected / c.expected[k] for k in range(len(c.expected))],
+        "you divided the gains by one image's gain; the prompt asks for the solution g itself (stitch divides "
+        "by the reference's gain afterwards, outside this function).",
+    ),
+)
+"""gains_from_overlaps' slips, as the gains they give on the test input (checked in this order)."""
+
+
+def _same(got, answer) -> bool:
+    answers = answer if isinstance(answer, list) else [answer]
+    return any(
+        np.shape(a) == np.shape(got) and np.allclose(got, a, rtol=1e-6, atol=1e-9) for a in answers
+    )
+
+
+def _gains_diagnosis(args, got, expected) -> str:
+    g = np.asarray(got, dtype=float)
+    if g.shape != expected.shape:
+        return (
+            f"return one gain per image, an array of shape {expected.shape}, got shape {g.shape}."
+        )
+    cause = first_mistake(_GAIN_SLIPS, _context(args, expected), g, _same)
+    if cause:
+        return cause
+    return (
+        "build A and b from section 5's equation, one row per image: A[i, i] = sum_j N_ij (2 I_ij^2 / sigma_N^2 "
+        "+ 1 / sigma_g^2), A[i, j] = -2 N_ij I_ij I_ji / sigma_N^2, b_i = sum_j N_ij / sigma_g^2 (j != i), "
+        "then np.linalg.solve(A, b)."
+    )
+
+
+def _gains_exception_hint(exc: Exception, args: tuple) -> str:
+    if isinstance(exc, np.linalg.LinAlgError):
+        return (
+            "a singular matrix: without the prior's N_ij / sigma_g^2 on the diagonal the data terms alone only fix "
+            "the gains' ratios (any multiple of a solution is one), so A has no inverse. Add the prior."
+        )
+    return ""
+
+
+def _variant(name: str):
+    """The row ``name`` of _GAIN_SLIPS as a student's function (for the tests)."""
+    row = next(m for m in _GAIN_SLIPS if m.name == name)
+
+    def wrong(N, I_mean):
+        a = row.answer(_context((N, I_mean), _reference(N, I_mean)))
+        return np.array(a[-1] if isinstance(a, list) else a)
+
+    return wrong
+
+
+register_exercise(
+    Exercise(
+        name="gains_from_overlaps",
+        lesson="09",
+        reference=_reference,
+        ndarray_only=True,
+        cases=_gains_cases,
+        compare=same_array(rtol=1e-6, atol=1e-9),
+        diagnose=_gains_diagnosis,
+        teaching=gains_from_overlaps,
+        exception_hint=_gains_exception_hint,
+        wrong_variants=(
+            (lambda N, M: np.zeros(len(N)), "without the prior"),
+            (_variant("prior only on the right"), "first only"),
+            (_variant("I transposed"), "I_mean transposed"),
+            (_variant("sign"), "sign flip"),
+            (_variant("no factor 2"), "factor 2"),
+            (_variant("sigma not squared"), "not sigma_N (10)"),
+            (_variant("sigma in 0-1 units"), "grey levels 0-255"),
+            (_variant("diagonal kept"), "own size, not an overlap"),
+            (lambda N, M: _reference(N, M) / _reference(N, M)[0], "divided the gains"),
+        ),
+    )
+)
