@@ -304,9 +304,9 @@ def draw_turn_about(
 ) -> np.ndarray:
     """A ``size = (W, H)`` image's pixel centres moved by ``A`` about ``centre``: x' = c + A (x - c).
 
-    The image's outline and pixel centres stay in grey; the moved outline is drawn in black and the
-    moved centres as orange dots. The top-right pixel (W - 1, 0) is followed by an arrow to where it
-    goes along its true path (for a turn, the arc of the circle about ``centre``), and ``centre``, the
+    The image's outline and pixel centres stay in grey; the moved outline and centres are drawn in
+    black. The top-right pixel (W - 1, 0), the one point the lesson follows, is orange before and
+    after, with an orange arrow to where it goes along its true path (for a turn, the arc of the circle about ``centre``), and ``centre``, the
     one point that does not move, is ringed in black. Every artist is labelled, so ``ax.legend()``
     gives the figure its key. The axes are v down, like every image in the course.
 
@@ -349,8 +349,12 @@ def draw_turn_about(
     ax.plot(*corners.T, color="0.6", lw=1.2, ls="--", zorder=1, label="before (grey)")
     ax.plot(*X.T, "o", color="0.6", ms=4, zorder=2)
     ax.plot(*moved_corners.T, color="black", lw=1.5, zorder=3, label="after: outline")
-    ax.plot(*moved.T, "o", color=POINT_COLOUR, ms=5, zorder=4, label="after: pixel centres")
-    k = width - 1  # the top-right pixel, (W - 1, 0)
+    ax.plot(*moved.T, "o", color="black", ms=4, zorder=4, label="after: pixel centres")
+    k = (
+        width - 1
+    )  # the top-right pixel, (W - 1, 0): the one point in orange, as in the rest of lesson 00
+    ax.plot(*X[k], "o", color=POINT_COLOUR, ms=6, zorder=6, ls="none")
+    ax.plot(*moved[k], "o", color=POINT_COLOUR, ms=7, mec="black", mew=0.8, zorder=7, ls="none")
     # Its path: for a turn (A = s R), the true arc about c, c + s^t R(t theta) (x - c) for t in [0, 1];
     # for any other A, the straight segment from x to where it goes.
     scale = np.sqrt(abs(np.linalg.det(A)))
@@ -363,7 +367,9 @@ def draw_turn_about(
         path = c + scale**t * np.hstack([cos * d[0] - sin * d[1], sin * d[0] + cos * d[1]])
     else:
         path = np.array([X[k], moved[k]])
-    ax.plot(*path[:-4].T, color=POINT_COLOUR, lw=1.5, zorder=5, label=f"the path of pixel ({k}, 0)")
+    ax.plot(
+        *path[:-4].T, color=POINT_COLOUR, lw=1.5, zorder=5, label=f"pixel ({k}, 0) and its path"
+    )
     ax.annotate(
         "",
         xy=path[-1],
@@ -395,3 +401,42 @@ def draw_turn_about(
     ax.set_ylabel("v (px)", color=Y_COLOUR)
     ax.grid(True, color="0.9", lw=0.6, zorder=0)
     return moved
+
+
+def draw_channel_order(axes: Sequence[Axes], bgr: np.ndarray, pixel: tuple[int, int]) -> None:
+    """A colour photo as ``cv2.imread`` returns it, shown as it is (left) and flipped to R, G, B (right).
+
+    ``cv2.imread`` stores each pixel's channels as B, G, R; matplotlib's ``imshow`` reads the three
+    numbers as R, G, B, so the unflipped picture swaps red and blue: a red-orange spot turns blue.
+    ``bgr[..., ::-1]`` reverses the last axis and gives the true colours. Pixel ``(u, v)`` is ringed
+    in orange (with a white halo) in both panels, at x = u, y = v.
+
+    Parameters
+    ----------
+    axes : two matplotlib.axes.Axes
+        Left: the photo as read; right: the photo flipped to R, G, B.
+    bgr : (H, W, 3) ndarray
+        A uint8 colour photo in ``cv2.imread``'s B, G, R order.
+    pixel : (u, v)
+        The pixel to ring, column and row.
+    """
+    u, v = pixel
+    titles = (
+        "cv2.imread shown as it is:\nB, G, R read as R, G, B",
+        "flipped to R, G, B: img[..., ::-1]",
+    )
+    for ax, image, title in zip(axes, (bgr, bgr[..., ::-1]), titles, strict=True):
+        ax.imshow(image)
+        ax.plot(
+            u,
+            v,
+            "o",
+            ms=16,
+            mfc="none",
+            mec=POINT_COLOUR,
+            mew=2.6,
+            path_effects=palette.halo(0),
+        )
+        ax.set_title(title, fontsize=10)
+        ax.set_xlabel("u (px)", color=X_COLOUR)
+        ax.set_ylabel("v (px)", color=Y_COLOUR)
