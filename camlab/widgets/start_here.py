@@ -609,8 +609,9 @@ def _explorer_figure(view: FigureView, img: np.ndarray) -> tuple:
             label="Pillow's and COLMAP's (u, v):\nthe pixel's top-left corner",
         )[0]
     )
-    ax.set_xlim(-0.5, img.shape[1] - 0.5)
-    ax.set_ylim(img.shape[0] - 0.5, -0.5)
+    # A margin of 0.25 px round the image: the squares and the + on an edge pixel stay clear of the spines.
+    ax.set_xlim(-0.75, img.shape[1] - 0.25)
+    ax.set_ylim(img.shape[0] - 0.25, -0.75)
     ax_text.axis("off")
     ax_text.legend(*ax.get_legend_handles_labels(), loc="lower left", fontsize=8.5, frameon=False)
     readout = view.animate(
