@@ -440,3 +440,85 @@ def draw_channel_order(axes: Sequence[Axes], bgr: np.ndarray, pixel: tuple[int, 
         ax.set_title(title, fontsize=10)
         ax.set_xlabel("u (px)", color=X_COLOUR)
         ax.set_ylabel("v (px)", color=Y_COLOUR)
+
+
+def draw_homogeneous_rays(
+    ax: Axes, point: np.ndarray, scales: Sequence[float], direction: np.ndarray
+) -> np.ndarray:
+    """Homogeneous coordinates as rays through the origin (the model of H&Z Fig. 2.1), on 3-D axes.
+
+    The point (x, y) is the ray through the origin and (x, y, 1), which crosses the plane w = 1
+    (grey) at the point itself (orange). Its multiples (wx, wy, w), one per ``scales`` entry (black
+    dots), lie on the same ray, and dividing by w slides each back to (x, y, 1). A vector
+    (dx, dy, 0) lies in the plane w = 0 (dashed outline): its ray runs parallel to the plane w = 1
+    and never meets it, so it names a direction, an ideal point, not a point of the image.
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D
+        3-D axes to draw in.
+    point : (2,) array_like
+        (x, y), the point on the plane w = 1.
+    scales : sequence of float
+        The w of each multiple drawn, nonzero.
+    direction : (2,) array_like
+        (dx, dy), drawn as the ideal point (dx, dy, 0).
+
+    Returns
+    -------
+    (len(scales), 3) ndarray
+        The multiples (wx, wy, w) drawn, one per row.
+
+    References
+    ----------
+    R. Hartley and A. Zisserman, *Multiple View Geometry in Computer Vision*, 2nd ed., Cambridge
+    University Press, 2004: Fig. 2.1, a model for the projective plane.
+    """
+    x, y = np.asarray(point, dtype=float)
+    dx, dy = np.asarray(direction, dtype=float)
+    multiples = np.array([[w * x, w * y, w] for w in scales])
+    top = max(max(scales), 1.0) * 1.15
+    square = np.array([[-1, -1], [2.5, -1], [2.5, 2], [-1, 2], [-1, -1]], dtype=float)
+    ax.plot_surface(
+        np.array([[-1, 2.5], [-1, 2.5]]),
+        np.array([[-1, -1], [2, 2]]),
+        np.ones((2, 2)),
+        color="0.75",
+        alpha=0.3,
+        shade=False,
+    )
+    ax.plot(*square.T, np.ones(5), color="0.45", lw=1, label="the plane w = 1: the image")
+    ax.plot(*square.T, np.zeros(5), color="0.45", lw=1, ls="--", label="the plane w = 0")
+    ax.plot(
+        [0, top * x], [0, top * y], [0, top], color=POINT_COLOUR, lw=1.6, label="the ray of (x, y)"
+    )
+    ax.plot(*multiples.T, "o", color="black", ms=5, ls="none", label="(wx, wy, w) on the ray")
+    ax.plot(
+        [x],
+        [y],
+        [1.0],
+        "o",
+        color=POINT_COLOUR,
+        ms=8,
+        mec="black",
+        mew=0.8,
+        ls="none",
+        label="(x, y, 1): divided by w",
+    )
+    ax.plot(
+        [0, dx],
+        [0, dy],
+        [0, 0],
+        color=palette.PURPLE,
+        lw=2.4,
+        label="(dx, dy, 0): w = 0, a direction",
+    )
+    ax.plot([0], [0], [0], "k+", ms=9, ls="none", label="the origin (0, 0, 0)")
+    ax.set_xticks([-1, 0, 1, 2, 3])
+    ax.set_yticks([-1, 0, 1, 2])
+    ax.set_zticks([0, 1, 2])
+    ax.set_xlabel("x", color=X_COLOUR)
+    ax.set_ylabel("y", color=Y_COLOUR)
+    ax.set_zlabel("w")
+    ax.view_init(elev=16, azim=-58)
+    return multiples
