@@ -1685,3 +1685,90 @@ def test_cross_ratio_passes_right_answers_in_other_forms(right, capsys):
 def test_cross_ratio_names_the_typical_slips(wrong, cause):
     with pytest.raises(AssertionError, match=cause):
         check("cross_ratio", wrong)
+
+
+def _read_and_turn_with(centre, turn):
+    """A read_and_turn whose centre and turn are given; the values are read the right way."""
+
+    def answer(img, X, A):
+        c = np.asarray(centre(img), dtype=float)
+        values = img[np.rint(X[:, 1]).astype(int), np.rint(X[:, 0]).astype(int)]
+        return c, values, turn(X, c, np.asarray(A))
+
+    return answer
+
+
+def _right_centre(img):
+    return np.array([(img.shape[1] - 1) / 2, (img.shape[0] - 1) / 2])
+
+
+@pytest.mark.parametrize(
+    "wrong, cause",
+    [
+        (lambda p: p + np.array([0.0, 0.0, 1.0]), "p has 2 entries and your array 3"),
+        (lambda p: p * np.ones(3), "p has 2 entries and your array 3"),
+    ],
+    ids=["p + [0, 0, 1]", "p * ones(3)"],
+)
+def test_lift_names_arithmetic_that_cannot_add_a_coordinate(wrong, cause):
+    """A9's first wrong attempt: + or * of the (2,) point with a (3,) array, not a division by X[:, 2]."""
+    with pytest.raises(AssertionError) as info:
+        check("lift", wrong)
+    message = str(info.value)
+    assert cause in message and "np.append(p, 1.0)" in message, message
+    assert "X[:, 2]" not in message, message
+
+
+@pytest.mark.parametrize(
+    "turn, cause",
+    [
+        (
+            lambda X, c, A: (X - c) * A + c,
+            "* multiplies entry by entry, and X - c, shape (3, 2), and A",
+        ),
+        (lambda X, c, A: (X - c) * np.diag(A) + c, "scales u and v by A's diagonal alone"),
+        (lambda X, c, A: (X - c) * A[0, 0] + c, "* by one entry of A"),
+    ],
+    ids=["* A (raises)", "* diag(A)", "* A[0, 0]"],
+)
+def test_read_and_turn_names_star_for_matrix_product(turn, cause):
+    with pytest.raises(AssertionError) as info:
+        check("read_and_turn", _read_and_turn_with(_right_centre, turn))
+    message = str(info.value)
+    assert cause in message and "(X - c) @ A.T + c" in message, message
+    assert "X[:, 2]" not in message, message
+
+
+def test_read_and_turn_names_the_precedence_slip_in_the_centre():
+    answer = _read_and_turn_with(
+        lambda img: np.array(img.shape[::-1]) - 1 / 2, lambda X, c, A: (X - c) @ A.T + c
+    )
+    with pytest.raises(AssertionError) as info:
+        check("read_and_turn", answer)
+    assert "/ binds before -" in str(info.value), str(info.value)
+
+
+@pytest.mark.parametrize(
+    "left, right, named, flat",
+    [
+        ((6, 2), (6,), "(6, 2) and (6,)", True),
+        ((3, 2), (2, 2), "(3, 2) and (2, 2)", False),
+        ((2,), (3,), "(2,) and (3,)", False),
+        ((3, 2), (4,), "(3, 2) and (4,)", False),
+    ],
+)
+def test_the_shared_broadcasting_hint_names_the_two_shapes(left, right, named, flat):
+    """The fallback names the shapes numpy could not pair; only an (N,) beside an (N, k) gets X[:, 2:3]."""
+    hint = exercises._core._exception_hint(
+        _raised(lambda a, b: a / b, np.ones(left), np.ones(right))
+    )
+    assert "broadcasting slip" in hint and named in hint, hint
+    assert ("X[:, 2:3]" in hint) == flat, hint
+
+
+def test_got_and_expected_print_with_the_same_decimals():
+    with pytest.raises(AssertionError) as info:
+        check("lift", lambda p: np.r_[p, 1.0] / 1000)
+    message = str(info.value)
+    assert "got      [0.00250, 0.00425, 0.00100]" in message, message
+    assert "expected [2.50000, 4.25000, 1.00000]" in message, message

@@ -211,16 +211,78 @@ def _fmt(value: Any) -> str:
     return repr(value)
 
 
-def _shown(value: Any) -> str:
+def _decimals(*arrays: np.ndarray) -> int | None:
+    """The decimals that print every entry of ``arrays`` exactly (0 .. 6), 4 if none do, None if not real arrays.
+
+    A wrong answer's got and expected lines use the same number, so 8.5 is not printed beside 4.25 as
+    [8.5] against [4.25] with another precision, nor 0.00425 rounded to 0.0043.
+    """
+    if not all(
+        isinstance(a, np.ndarray)
+        and a.dtype.kind in "biuf"
+        and 0 < a.size <= _MAX_PRINTED
+        and np.isfinite(a).all()
+        for a in arrays
+    ):
+        return None
+    values = np.concatenate([a.astype(float).ravel() for a in arrays])
+    for d in range(7):
+        if np.allclose(values, np.round(values, d), rtol=1e-12, atol=0):
+            return d
+    return 4
+
+
+def _fixed(value: np.ndarray, decimals: int) -> str:
+    """An array with ``decimals`` decimals on every entry: [5.00, 8.50, 2.00] beside [2.50, 4.25, 1.00]."""
+    value = np.where(np.round(value.astype(float), decimals) == 0, 0.0, value.astype(float))
+    text = np.array2string(
+        value, precision=decimals, floatmode="fixed", suppress_small=True, separator=", "
+    )
+    text = re.sub(
+        r"(\d)\.(?=[,\]\s]|$)", r"\1", text
+    )  # 0 decimals: [5, 30, 22], not [5., 30., 22.]
+    if value.ndim == 1:
+        text = "[" + ", ".join(item.strip() for item in text[1:-1].split(",")) + "]"
+    return text
+
+
+def _fmt_like(value: Any, like: Any) -> str:
+    """``_fmt`` of ``value``, with as many decimals as ``like`` (its got or expected partner) needs."""
+    if isinstance(value, (tuple, list)) and isinstance(like, (tuple, list)):
+        if len(value) == len(like):
+            inner = [_fmt_like(v, w) for v, w in zip(value, like, strict=True)]
+            opening, closing = ("[", "]") if isinstance(value, list) else ("(", ")")
+            return opening + ", ".join(inner) + closing
+    if isinstance(value, np.ndarray) and isinstance(like, np.ndarray) and value.shape == like.shape:
+        decimals = _decimals(value, like)
+        if decimals is not None:
+            return _fixed(value, decimals)
+    return _fmt(value)
+
+
+def _shown(value: Any, like: Any = None) -> str:
     """``_fmt`` for a message's got/expected line: a multi-line array continues under its first line.
 
     A tuple or list with a multi-line part shows one part per line, each continuing under its own
-    first line, so the rows of an array stay under the ``[[`` they belong to.
+    first line, so the rows of an array stay under the ``[[`` they belong to. With ``like`` (the
+    answer it is printed beside) each array gets the decimals both need, so the two lines compare
+    digit by digit.
     """
-    text = _fmt(value)
+
+    def fmt(v, w=None):
+        return _fmt(v) if like is None else _fmt_like(v, w)
+
+    text = fmt(value, like)
     if isinstance(value, (tuple, list)) and "\n" in text and len(value) > 1:
         opening, closing = ("[", "]") if isinstance(value, list) else ("(", ")")
-        parts = [_fmt(v).replace("\n", "\n" + " " * 12) for v in value]
+        partners = (
+            like
+            if isinstance(like, (tuple, list)) and len(like) == len(value)
+            else [None] * len(value)
+        )
+        parts = [
+            fmt(v, w).replace("\n", "\n" + " " * 12) for v, w in zip(value, partners, strict=True)
+        ]
         return opening + (",\n" + " " * 12).join(parts) + closing  # each part under the first one
     return text.replace("\n", "\n" + " " * 11)
 
@@ -507,8 +569,8 @@ def check(
             raise CheckFailed(
                 f"{name}: wrong answer on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_input_text(name, args)}\n"
-                f"  got      {_shown(as_array(got))}\n"
-                f"  expected {_shown(shown)}{scaled}\n"
+                f"  got      {_shown(as_array(got), shown)}\n"
+                f"  expected {_shown(shown, as_array(got))}{scaled}\n"
                 + worst_mismatch(got, shown, tolerance)
                 + f"  likely cause: {_likely_cause(exercise, args, got, expected, run_again)}"
             )
@@ -603,10 +665,7 @@ def _exception_hint(exc: Exception) -> str:
     ):
         return one_based + " (a slice past the last column, X[:, 3:4], is empty)"
     if isinstance(exc, ValueError) and "broadcast" in str(exc):
-        return (
-            "\n  likely cause: a broadcasting slip. Dividing an (N, 2) array by an (N,) column such as X[:, 2]"
-            " lines the column up with the last axis; keep it 2-D: X[:, 2:3], X[:, 2, None] or keepdims=True"
-        )
+        return "\n  likely cause: " + _broadcast_hint(str(exc))
     if isinstance(exc, ValueError) and "inhomogeneous" in str(exc):
         return f"\n  likely cause: an array beside numbers, as in np.array([p, 1]), makes no array of numbers: {JOIN_HINT}"
     if isinstance(exc, ValueError) and "matmul" in str(exc):
@@ -616,6 +675,37 @@ def _exception_hint(exc: Exception) -> str:
             " coordinates (append a column of ones) before a 3 x 4 or 3 x 3 projective matrix"
         )
     return ""
+
+
+def _broadcast_hint(text: str) -> str:
+    """The shared cause of a broadcasting ValueError, naming the two shapes numpy could not pair up.
+
+    numpy pairs shapes from the last axis, and each pair of sizes must be equal or 1. An (N,) array
+    beside an (N, k) one, N != k, is the flat column ``X[:, 2]`` divided into ``X[:, :2]``: that case
+    gets its fix; any other pair gets the rule and the two shapes, never a cause it cannot know.
+    """
+    tail = text.split("shapes", 1)[-1]
+    shapes = re.findall(r"\(([\d,]*)\)->" if "->" in tail else r"\(([\d,]*)\)", tail)
+    sizes = [tuple(int(n) for n in shape.split(",") if n) for shape in shapes[:2]]
+    named = " and ".join(f"({', '.join(map(str, s))}{',' * (len(s) == 1)})" for s in sizes)
+    flat_column = (
+        len(sizes) == 2
+        and sorted(map(len, sizes)) == [1, 2]
+        and max(sizes, key=len)[0] == min(sizes, key=len)[0] != max(sizes, key=len)[1]
+    )
+    if flat_column:
+        return (
+            f"a broadcasting slip: shapes {named} do not pair up. An (N,) column such as X[:, 2] divided into"
+            " an (N, 2) array lines up with its last axis, not its rows; keep it 2-D: X[:, 2:3], X[:, 2, None]"
+            " or keepdims=True"
+        )
+    matrix = len(sizes) == 2 and any(len(s) == 2 and s[0] == s[1] for s in sizes)
+    return (
+        f"a broadcasting slip: numpy cannot pair up the shapes {named or 'of the two arrays'}. Entry-by-entry"
+        " operations (+, -, *, /) match shapes from the last axis, and each pair of sizes must be equal or 1;"
+        " print the shapes of the arrays on that line"
+        + (" (a square matrix acts on points with @, not *: X @ A.T)" if matrix else "")
+    )
 
 
 def _public_name(function: Callable[..., Any]) -> str:

@@ -304,9 +304,9 @@ def draw_turn_about(
 ) -> np.ndarray:
     """A ``size = (W, H)`` image's pixel centres moved by ``A`` about ``centre``: x' = c + A (x - c).
 
-    The image's outline and pixel centres stay in grey; the moved outline is drawn in black and the
-    moved centres as orange dots. The top-right pixel (W - 1, 0) is followed by an arrow to where it
-    goes along its true path (for a turn, the arc of the circle about ``centre``), and ``centre``, the
+    The image's outline and pixel centres stay in grey; the moved outline and centres are drawn in
+    black. The top-right pixel (W - 1, 0), the one point the lesson follows, is orange before and
+    after, with an orange arrow to where it goes along its true path (for a turn, the arc of the circle about ``centre``), and ``centre``, the
     one point that does not move, is ringed in black. Every artist is labelled, so ``ax.legend()``
     gives the figure its key. The axes are v down, like every image in the course.
 
@@ -349,8 +349,12 @@ def draw_turn_about(
     ax.plot(*corners.T, color="0.6", lw=1.2, ls="--", zorder=1, label="before (grey)")
     ax.plot(*X.T, "o", color="0.6", ms=4, zorder=2)
     ax.plot(*moved_corners.T, color="black", lw=1.5, zorder=3, label="after: outline")
-    ax.plot(*moved.T, "o", color=POINT_COLOUR, ms=5, zorder=4, label="after: pixel centres")
-    k = width - 1  # the top-right pixel, (W - 1, 0)
+    ax.plot(*moved.T, "o", color="black", ms=4, zorder=4, label="after: pixel centres")
+    k = (
+        width - 1
+    )  # the top-right pixel, (W - 1, 0): the one point in orange, as in the rest of lesson 00
+    ax.plot(*X[k], "o", color=POINT_COLOUR, ms=6, zorder=6, ls="none")
+    ax.plot(*moved[k], "o", color=POINT_COLOUR, ms=7, mec="black", mew=0.8, zorder=7, ls="none")
     # Its path: for a turn (A = s R), the true arc about c, c + s^t R(t theta) (x - c) for t in [0, 1];
     # for any other A, the straight segment from x to where it goes.
     scale = np.sqrt(abs(np.linalg.det(A)))
@@ -363,7 +367,9 @@ def draw_turn_about(
         path = c + scale**t * np.hstack([cos * d[0] - sin * d[1], sin * d[0] + cos * d[1]])
     else:
         path = np.array([X[k], moved[k]])
-    ax.plot(*path[:-4].T, color=POINT_COLOUR, lw=1.5, zorder=5, label=f"the path of pixel ({k}, 0)")
+    ax.plot(
+        *path[:-4].T, color=POINT_COLOUR, lw=1.5, zorder=5, label=f"pixel ({k}, 0) and its path"
+    )
     ax.annotate(
         "",
         xy=path[-1],
@@ -395,3 +401,124 @@ def draw_turn_about(
     ax.set_ylabel("v (px)", color=Y_COLOUR)
     ax.grid(True, color="0.9", lw=0.6, zorder=0)
     return moved
+
+
+def draw_channel_order(axes: Sequence[Axes], bgr: np.ndarray, pixel: tuple[int, int]) -> None:
+    """A colour photo as ``cv2.imread`` returns it, shown as it is (left) and flipped to R, G, B (right).
+
+    ``cv2.imread`` stores each pixel's channels as B, G, R; matplotlib's ``imshow`` reads the three
+    numbers as R, G, B, so the unflipped picture swaps red and blue: a red-orange spot turns blue.
+    ``bgr[..., ::-1]`` reverses the last axis and gives the true colours. Pixel ``(u, v)`` is ringed
+    in orange (with a white halo) in both panels, at x = u, y = v.
+
+    Parameters
+    ----------
+    axes : two matplotlib.axes.Axes
+        Left: the photo as read; right: the photo flipped to R, G, B.
+    bgr : (H, W, 3) ndarray
+        A uint8 colour photo in ``cv2.imread``'s B, G, R order.
+    pixel : (u, v)
+        The pixel to ring, column and row.
+    """
+    u, v = pixel
+    titles = (
+        "cv2.imread shown as it is:\nB, G, R read as R, G, B",
+        "flipped to R, G, B: img[..., ::-1]",
+    )
+    for ax, image, title in zip(axes, (bgr, bgr[..., ::-1]), titles, strict=True):
+        ax.imshow(image)
+        ax.plot(
+            u,
+            v,
+            "o",
+            ms=16,
+            mfc="none",
+            mec=POINT_COLOUR,
+            mew=2.6,
+            path_effects=palette.halo(0),
+        )
+        ax.set_title(title, fontsize=10)
+        ax.set_xlabel("u (px)", color=X_COLOUR)
+        ax.set_ylabel("v (px)", color=Y_COLOUR)
+
+
+def draw_homogeneous_rays(
+    ax: Axes, point: np.ndarray, scales: Sequence[float], direction: np.ndarray
+) -> np.ndarray:
+    """Homogeneous coordinates as rays through the origin (the model of H&Z Fig. 2.1), on 3-D axes.
+
+    The point (x, y) is the ray through the origin and (x, y, 1), which crosses the plane w = 1
+    (grey) at the point itself (orange). Its multiples (wx, wy, w), one per ``scales`` entry (black
+    dots), lie on the same ray, and dividing by w slides each back to (x, y, 1). A vector
+    (dx, dy, 0) lies in the plane w = 0 (dashed outline): its ray runs parallel to the plane w = 1
+    and never meets it, so it names a direction, an ideal point, not a point of the image.
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D
+        3-D axes to draw in.
+    point : (2,) array_like
+        (x, y), the point on the plane w = 1.
+    scales : sequence of float
+        The w of each multiple drawn, nonzero.
+    direction : (2,) array_like
+        (dx, dy), drawn as the ideal point (dx, dy, 0).
+
+    Returns
+    -------
+    (len(scales), 3) ndarray
+        The multiples (wx, wy, w) drawn, one per row.
+
+    References
+    ----------
+    R. Hartley and A. Zisserman, *Multiple View Geometry in Computer Vision*, 2nd ed., Cambridge
+    University Press, 2004: Fig. 2.1, a model for the projective plane.
+    """
+    x, y = np.asarray(point, dtype=float)
+    dx, dy = np.asarray(direction, dtype=float)
+    multiples = np.array([[w * x, w * y, w] for w in scales])
+    top = max(max(scales), 1.0) * 1.15
+    square = np.array([[-1, -1], [2.5, -1], [2.5, 2], [-1, 2], [-1, -1]], dtype=float)
+    ax.plot_surface(
+        np.array([[-1, 2.5], [-1, 2.5]]),
+        np.array([[-1, -1], [2, 2]]),
+        np.ones((2, 2)),
+        color="0.75",
+        alpha=0.3,
+        shade=False,
+    )
+    ax.plot(*square.T, np.ones(5), color="0.45", lw=1, label="the plane w = 1: the image")
+    ax.plot(*square.T, np.zeros(5), color="0.45", lw=1, ls="--", label="the plane w = 0")
+    ax.plot(
+        [0, top * x], [0, top * y], [0, top], color=POINT_COLOUR, lw=1.6, label="the ray of (x, y)"
+    )
+    ax.plot(*multiples.T, "o", color="black", ms=5, ls="none", label="(wx, wy, w) on the ray")
+    ax.plot(
+        [x],
+        [y],
+        [1.0],
+        "o",
+        color=POINT_COLOUR,
+        ms=8,
+        mec="black",
+        mew=0.8,
+        ls="none",
+        label="(x, y, 1): divided by w",
+    )
+    ax.plot(
+        [0, dx],
+        [0, dy],
+        [0, 0],
+        color=palette.PURPLE,
+        lw=2.4,
+        label="(dx, dy, 0): w = 0, a direction",
+    )
+    ax.plot([0], [0], [0], "k+", ms=9, ls="none", label="the origin (0, 0, 0)")
+    ax.set_xticks([-1, 0, 1, 2, 3])
+    ax.set_yticks([-1, 0, 1, 2])
+    ax.set_zticks([0, 1, 2])
+    ax.set_xlabel("x", color=X_COLOUR)
+    ax.set_ylabel("y", color=Y_COLOUR)
+    ax.set_zlabel("w")
+    ax.view_init(elev=16, azim=-58)
+    return multiples

@@ -404,8 +404,8 @@ def stack_report() -> str:
     """What the kernel can see of the interactive stack: the versions, and whether demos will be live figures.
 
     The browser's half (JupyterLab's ipywidgets, anywidget and ipympl extensions) is out of the
-    kernel's sight: the demo below is its test (it is drawn by anywidget in the browser; the
-    pixel explorer further down is an ipympl figure).
+    kernel's sight: the demo below tests anywidget (it is drawn in the browser), and the figures
+    from section 3 on, the pixel explorer among them, test ipympl.
 
     Returns
     -------
@@ -433,7 +433,8 @@ def stack_report() -> str:
     if display_mode() == "ipympl":
         return (
             versions
-            + "\nfigures: live (%matplotlib widget is on); the demo below tests the browser's side"
+            + "\nfigures: live (%matplotlib widget is on); in the browser, the demo below tests anywidget, "
+            "section 3's figures ipympl"
         )
     return (
         versions
@@ -608,8 +609,9 @@ def _explorer_figure(view: FigureView, img: np.ndarray) -> tuple:
             label="Pillow's and COLMAP's (u, v):\nthe pixel's top-left corner",
         )[0]
     )
-    ax.set_xlim(-0.5, img.shape[1] - 0.5)
-    ax.set_ylim(img.shape[0] - 0.5, -0.5)
+    # A margin of 0.25 px round the image: the squares and the + on an edge pixel stay clear of the spines.
+    ax.set_xlim(-0.75, img.shape[1] - 0.25)
+    ax.set_ylim(img.shape[0] - 0.25, -0.75)
     ax_text.axis("off")
     ax_text.legend(*ax.get_legend_handles_labels(), loc="lower left", fontsize=8.5, frameon=False)
     readout = view.animate(

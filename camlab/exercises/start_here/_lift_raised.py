@@ -116,6 +116,19 @@ def _concatenation_axis(s) -> bool:
 # called, ``s.called`` (:func:`raised_where`); checked in order, the first that matches names the cause.
 RAISED = (
     Mistake(
+        "p plus a 3-vector",
+        lambda s: (
+            isinstance(s.exc, ValueError)
+            and "broadcast" in s.text
+            and {"(2,)", "(3,)"} <= set(re.findall(r"\(\d+,\)", s.text))
+        ),
+        (
+            "numpy's + and * act entry by entry and need equal lengths: p has 2 entries and your array 3 "
+            "(p + [0, 0, 1], p * np.ones(3)), so they cannot pair up, and arithmetic cannot add a coordinate; "
+            f"make a new array with one more entry: {APPEND}"
+        ),
+    ),
+    Mistake(
         "int() of the point",
         lambda s: isinstance(s.exc, TypeError) and "converted to Python scalars" in s.text,
         (

@@ -76,6 +76,12 @@ CENTRE_MISTAKES = (
         "width and height swapped (img.shape is (H, W): H, W = img.shape), and half a pixel off: the centre is ((W - 1)/2, (H - 1)/2)",
     ),
     Mistake(
+        "W - 1/2",
+        lambda s: (s.W - 0.5, s.H - 0.5),
+        "you computed W - 1/2, which is W - 0.5: / binds before -, as in arithmetic; bracket the difference, "
+        "((W - 1) / 2, (H - 1) / 2)",
+    ),
+    Mistake(
         "the last pixel",
         lambda s: (s.W - 1, s.H - 1),
         "that is the last pixel, (W - 1, H - 1); the centre is halfway to it: ((W - 1)/2, (H - 1)/2)",
@@ -400,6 +406,18 @@ TURN_MISTAKES = (
         "X @ A applies A's transpose (for a rotation, the opposite turn): with points as rows, the textbook's A x is X @ A.T",
     ),
     Mistake(
+        "* for @, A's diagonal",
+        lambda s: (s.X - s.c) * np.diag(s.A) + s.c,
+        "* multiplies entry by entry: (X - c) * np.diag(A) scales u and v by A's diagonal alone and drops the "
+        "rest of A; a matrix acts on points with @: (X - c) @ A.T + c",
+    ),
+    Mistake(
+        "* for @, one entry of A",
+        lambda s: (s.X - s.c) * s.A[0, 0] + s.c,
+        "* by one entry of A, A[0, 0], scales the points and drops the rest of A: a matrix acts on points with "
+        "@, (X - c) @ A.T + c",
+    ),
+    Mistake(
         "about the origin",
         lambda s: s.X @ s.A.T,
         "you turned about the origin (0, 0), the top-left pixel's centre: turn about the image's centre, c + A (x - c): (X - c) @ A.T + c",
@@ -578,6 +596,14 @@ RAISED = (
         (
             "A @ X treats X as one column per point, but points are rows, shape (N, 2): the textbook's A x is "
             "X @ A.T for every row at once (or (A @ X.T).T)"
+        ),
+    ),
+    Mistake(
+        "* for @",
+        lambda s: _broadcast(s, f"({len(s.X)},2)") and _broadcast(s, "(2,2)"),
+        lambda s: (
+            f"* multiplies entry by entry, and X - c, shape ({len(s.X)}, 2), and A, shape (2, 2), do not pair up: "
+            "a matrix acts on points with @, so (X - c) @ A.T + c"
         ),
     ),
     Mistake(
