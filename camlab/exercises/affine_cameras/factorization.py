@@ -185,6 +185,10 @@ def reproject_rank3(tracks):
     (m, N, 2) ndarray
         Every point reprojected by every fitted affine camera: the rank-3 part of the centred
         measurement matrix, each view's mean added back.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 18.2 (algorithm 18.1).
     """
     m, N, _ = tracks.shape
     t = tracks.mean(axis=1, keepdims=True)  # (m, 1, 2): each view's image of the centroid
