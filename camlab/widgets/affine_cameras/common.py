@@ -37,7 +37,7 @@ STYLES = {
 
 # The reference point X0 of every affine approximation (or its image), one marker in every lesson-05 figure.
 REFERENCE_MARKER = dict(marker="D", ms=6, mfc="white", mec="0.1", mew=1.3, ls="none")
-REFERENCE_LABEL = "X0, the reference point"
+REFERENCE_LABEL = "$X_0$, the reference point"
 
 
 def reference_marker(ax, zorder=4):

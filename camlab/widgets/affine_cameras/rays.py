@@ -118,7 +118,7 @@ def _rays_legend(fig) -> None:
                 ls="none",
                 label="perspective image, to compare",
             ),
-            Line2D([], [], label="line of sight to X0", **SIGHT_STYLE),
+            Line2D([], [], label="line of sight to $X_0$", **SIGHT_STYLE),
             Line2D([], [], label=REFERENCE_LABEL, **REFERENCE_MARKER),
         ],
         labels=[
