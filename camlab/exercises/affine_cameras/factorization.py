@@ -87,6 +87,13 @@ _MISTAKES = (
         "the translations, and rank 3 cannot hold them and the shape.",
     ),
     Mistake(
+        "uncentred rank 4",
+        lambda s: _tracks(_rank_k(_measurement(s.W), 4), s.m),
+        "you kept four terms of the SVD of the uncentred tracks: that fits a fourth dimension freely, "
+        "where the translations need only a constant one. Subtract each view's mean "
+        "(W.mean(axis=1, keepdims=True)), keep three terms, and add the means back.",
+    ),
+    Mistake(
         "means not added back",
         lambda s: _fit(s.W, s.view_means) - s.view_means,
         "the rank-3 part is right, but you did not add each view's mean back: the answer is in the "
@@ -214,6 +221,7 @@ register_exercise(
         wrong_variants=(
             (_variant("input returned"), "tracks themselves"),
             (_variant("not centred"), "without centring"),
+            (_variant("uncentred rank 4"), "four terms of the SVD of the uncentred"),
             (_variant("means not added back"), "did not add each view's mean back"),
             (_variant("centred per point"), "each point's mean over the views"),
             (_variant("one mean"), "no axis"),
