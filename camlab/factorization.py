@@ -39,7 +39,7 @@ from numpy.typing import ArrayLike
 
 from ._validate import CamlabInputError, check_finite
 
-__all__ = ["AffineReconstruction", "affine_factorization"]
+__all__ = ["AffineReconstruction", "affine_factorization", "rank3_reprojection"]
 
 
 class AffineReconstruction(NamedTuple):
@@ -118,3 +118,34 @@ def affine_factorization(tracks: ArrayLike) -> AffineReconstruction:
         np.sqrt(np.sum(s[3:] ** 2) / centred.size)
     )  # Eckart-Young: the dropped singular values
     return AffineReconstruction(cameras, shape.T, s, rms)
+
+
+def rank3_reprojection(tracks: ArrayLike) -> np.ndarray:
+    r"""The tracks as the rank-3 affine model sees them: every point reprojected by every fitted camera.
+
+    :math:`\hat u_{ij} = \hat M_i \hat X_j + t_i` from :func:`affine_factorization`: the closest
+    tracks (least squares over all pixels) that m affine cameras and N points can produce. Unlike the
+    cameras and points, which are fixed only up to an affine map of space, this is unique (when the
+    third singular value exceeds the fourth), so lesson 05's exercise checks it.
+
+    Parameters
+    ----------
+    tracks : (m, N, 2) array_like
+        Pixel (u, v) of point j in view i, as for :func:`affine_factorization`.
+
+    Returns
+    -------
+    (m, N, 2) ndarray
+        The reprojected pixels; ``tracks`` minus it is the part no affine camera explains.
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(0)
+    >>> exact = np.einsum("fij,nj->fni", rng.normal(size=(4, 2, 3)), rng.normal(size=(20, 3)))
+    >>> bool(np.allclose(rank3_reprojection(exact), exact))
+    True
+    """
+    fit = affine_factorization(tracks)
+    return (
+        np.einsum("fij,nj->fni", fit.cameras[:, :2, :3], fit.points) + fit.cameras[:, None, :2, 3]
+    )

@@ -1772,3 +1772,27 @@ def test_got_and_expected_print_with_the_same_decimals():
     message = str(info.value)
     assert "got      [0.00250, 0.00425, 0.00100]" in message, message
     assert "expected [2.50000, 4.25000, 1.00000]" in message, message
+
+
+def _rank3_via(layout):
+    """A student's Tomasi-Kanade reprojection with another (valid) measurement-matrix layout."""
+
+    def student(tracks):
+        m, N, _ = tracks.shape
+        t = tracks.mean(axis=1, keepdims=True)
+        if layout == "stacked":  # all u rows, then all v rows
+            W = (tracks - t).transpose(2, 0, 1).reshape(2 * m, N)
+        else:  # the transpose, N x 2m
+            W = (tracks - t).transpose(1, 0, 2).reshape(N, 2 * m)
+        U, s, Vt = np.linalg.svd(W, full_matrices=True)
+        W3 = U[:, :3] @ np.diag(s[:3]) @ Vt[:3]
+        if layout == "stacked":
+            return W3.reshape(2, m, N).transpose(1, 2, 0) + t
+        return W3.reshape(N, m, 2).transpose(1, 0, 2) + t
+
+    return student
+
+
+@pytest.mark.parametrize("layout", ["stacked", "transposed"])
+def test_reproject_rank3_accepts_any_layout_of_the_measurement_matrix(layout, capsys):
+    assert check("reproject_rank3", _rank3_via(layout)).passed is True

@@ -2,7 +2,8 @@
 
 The weak-perspective (P_inf, :mod:`.weak_perspective`) and para-perspective
 (:mod:`.paraperspective`) approximations of a perspective camera, which share their test cameras and
-typical slips (:mod:`._approx_common`), and the least-squares affine camera (:mod:`.estimation`).
+typical slips (:mod:`._approx_common`), the least-squares affine camera (:mod:`.estimation`), and the
+rank-3 reprojection of Tomasi-Kanade factorisation (:mod:`.factorization`).
 
 Every diagnosis either names a cause it has tested (the answer equals exactly what that mistake
 gives) or says what differs (which entries, by how much), never a guess.
@@ -15,7 +16,8 @@ from __future__ import annotations
 from . import weak_perspective
 from . import paraperspective
 from . import estimation
+from . import factorization
 
 # isort: on
 
-__all__ = ["estimation", "paraperspective", "weak_perspective"]
+__all__ = ["estimation", "factorization", "paraperspective", "weak_perspective"]

@@ -37,7 +37,7 @@ STYLES = {
 
 # The reference point X0 of every affine approximation (or its image), one marker in every lesson-05 figure.
 REFERENCE_MARKER = dict(marker="D", ms=6, mfc="white", mec="0.1", mew=1.3, ls="none")
-REFERENCE_LABEL = "X0, the reference point"
+REFERENCE_LABEL = "$X_0$, the reference point"
 
 
 def reference_marker(ax, zorder=4):
@@ -101,7 +101,7 @@ def model_line(ax, model, lw=1.1, **kw):
 PRINCIPAL_POINT_MARKER = dict(marker="+", color="0.3", ms=11, mew=1.2, ls="none", zorder=5)
 
 
-def model_legend(fig, models, reference=False, principal_point=False, extra=(), **kw):
+def model_legend(fig, models, reference=False, principal_point=False, extra=(), ncols=None, **kw):
     """One legend above the figure naming each model's colour, drawn once, outside the data.
 
     Parameters
@@ -116,13 +116,15 @@ def model_legend(fig, models, reference=False, principal_point=False, extra=(), 
         Also name the principal point's marker.
     extra : sequence of artists
         More handles, after those.
+    ncols : int, optional
+        Columns of the legend; default one row (as many columns as handles).
     **kw
         Other :meth:`matplotlib.figure.Figure.legend` options.
 
     Returns
     -------
     matplotlib.legend.Legend
-        The legend, one row, outside the axes at the top.
+        The legend, one row unless ``ncols`` says otherwise, outside the axes at the top.
     """
     handles = [Line2D([], [], color=COLOURS[m], ls=STYLES[m], lw=1.5, label=m) for m in models]
     if reference:
@@ -133,7 +135,7 @@ def model_legend(fig, models, reference=False, principal_point=False, extra=(), 
     return fig.legend(
         handles=handles,
         loc="outside upper center",
-        ncols=len(handles),
+        ncols=ncols or len(handles),
         fontsize=8,
         frameon=False,
         **kw,

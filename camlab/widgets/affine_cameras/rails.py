@@ -19,6 +19,7 @@ from .._base import FigureView, build_demo, register
 from ..controls import int_slider
 from .common import (
     COLOURS,
+    STYLES,
     model_legend,
     model_line,
     place_reference,
@@ -89,6 +90,14 @@ def _rails_legend(fig) -> None:
             Line2D(
                 [],
                 [],
+                color=COLOURS["para-perspective"],
+                ls=STYLES["para-perspective"],
+                lw=1.6,
+                label="para-perspective: the track's centre line",
+            ),
+            Line2D(
+                [],
+                [],
                 color="0.1",
                 lw=3.5,
                 label=f"the metres the readouts measure ({RAIL_SAMPLES[0]:.0f} and "
@@ -118,6 +127,7 @@ def _rails_legend(fig) -> None:
             ),
             Line2D([], [], color=palette.GREY, lw=0.8, ls="--", label="horizon"),
         ),
+        ncols=4,
     )
 
 
@@ -176,7 +186,9 @@ def _rails_figure(view: FigureView) -> SimpleNamespace:
     ]
     # The far metre images only a few pixels long in perspective: a ring shows where it is.
     (ring,) = ax_p.plot([], [], "o", ms=15, mfc="none", mec="0.1", mew=1.1, zorder=3)
-    view.animate(*lines, vp, horizon, *measured, ring, *texts)
+    # Para-perspective's image of the track's centre line: through X0 in perspective's direction there.
+    para = model_line(ax_a, "para-perspective", lw=1.6, zorder=3)
+    view.animate(*lines, vp, horizon, *measured, ring, para, *texts)
     references = [
         (view.animate(*reference_marker(ax)),) for ax in (ax_p, ax_a)
     ]  # where the two images agree
@@ -188,6 +200,7 @@ def _rails_figure(view: FigureView) -> SimpleNamespace:
         horizon=horizon,
         measured=measured,
         ring=ring,
+        para=para,
         references=references,
     )
 
@@ -236,7 +249,8 @@ def parallel_rails():
         figure (the perspective and weak-perspective images of the track, each with the pixels
         one metre of track spans near and far) and ``state`` (``vanishing_point``,
         ``affine_direction``, ``camera``, ``P_affine``, ``horizon``, ``sleeper_gaps``,
-        ``reference_image``).
+        ``reference_image``, ``P_para``: para-perspective about X0, whose image of the track's
+        centre line the right panel draws green, dotted).
     """
     view = FigureView(figsize=(10, 4.6))
     scene = fixtures.rail_track(*RAIL_TRACK)
@@ -255,6 +269,9 @@ def parallel_rails():
         l_h = np.cross(af.image_of_direction(cam.P, [1.0, 0.0, 0.0]), v_p)
         art.horizon.set_data(*_horizon_data(l_h))
         x0 = cm.project_points(P_aff, RAIL_REFERENCE)
+        centre_line = np.array([[0.0, RAIL_TRACK[0], 0.0], [0.0, RAIL_TRACK[1], 0.0]])
+        P_para = af.paraperspective_approximation(cam, RAIL_REFERENCE)
+        art.para.set_data(*cm.project_points(P_para, centre_line).T)
         for artists, xy in zip(references, (cam.project(RAIL_REFERENCE), x0), strict=True):
             place_reference(artists, xy)
         ys = np.repeat(RAIL_SAMPLES, 2) + [0.0, 1.0, 0.0, 1.0]
@@ -278,6 +295,7 @@ def parallel_rails():
             horizon=l_h,
             sleeper_gaps=gaps,
             reference_image=x0,
+            P_para=P_para,
         )
 
     return build_demo(

@@ -65,8 +65,10 @@ def three_cameras():
         (``camera``, ``P_weak``, ``focal`` in px, ``gaps``, ``max_difference`` in px,
         ``reference_point``, ``reference_images``).
     """
-    view = FigureView(figsize=(9.5, 3.35))
-    axes = view.fig.subplots(1, 3)
+    view = FigureView(figsize=(9.5, 3.9))
+    axes = view.fig.subplots(
+        1, 3, width_ratios=(0.8, 1.4, 0.8)
+    )  # the middle panel, where the gaps are, larger
     scene = fixtures.box_and_rails()
     persp, ghost, weak, orth, gap_lines = _three_panels(view.fig, axes)
     view.animate(persp, ghost, weak, orth, gap_lines)
@@ -133,9 +135,9 @@ def _three_panels(fig, axes):
     weak = _image_panel(axes[1], "weak perspective over perspective (px)", "weak perspective")
     axes[1].set_ylabel("")
     axes[2].set_aspect("equal")
-    axes[2].set_title("orthographic (m; camera x right, y down)", fontsize=9)
-    axes[2].set_xlabel("x (m)", fontsize=8)
-    axes[2].set_ylabel("y (m)", fontsize=8)
+    axes[2].set_title("orthographic (m)", fontsize=9)
+    axes[2].set_xlabel("camera x (m), right", fontsize=8)
+    axes[2].set_ylabel("camera y (m), down", fontsize=8)
     # the scene reaches 3.14 m from its centre (a rail's end), which images at the origin: limits
     # of +-4.4 x +-3.3 m (4:3, as the pixel panels) hold it at every view
     axes[2].set_xlim(-4.4, 4.4)
