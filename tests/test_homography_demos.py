@@ -324,7 +324,9 @@ def test_ransac_samples_check_tells_log_p_from_swapped_arguments():
 
     slips = {
         "you took log(p)": lambda p, w: int(np.ceil(np.log(p) / np.log(1 - w**4))),
-        "you swapped p and w": lambda p, w: int(np.ceil(np.log(1 - w) / np.log(1 - p**4))),
+        "you swapped p and inlier_ratio": lambda p, w: int(
+            np.ceil(np.log(1 - w) / np.log(1 - p**4))
+        ),
     }
     for cause, slip in slips.items():
         with pytest.raises(CheckFailed) as failed:
