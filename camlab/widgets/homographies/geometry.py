@@ -339,7 +339,9 @@ def _matrix_text(M: np.ndarray, significant: int | None = None) -> str:
     M = np.asarray(M, dtype=float)
     if significant is not None:
         M = np.where(M == 0, 0.0, M)
-        return np.array2string(M, formatter={"float_kind": lambda x: f"{x:>{significant + 6}.{significant}g}"})
+        return np.array2string(
+            M, formatter={"float_kind": lambda x: f"{x:>{significant + 6}.{significant}g}"}
+        )
     return np.array2string(np.where(np.round(M, 4) == 0, 0.0, M), precision=4, suppress_small=True)
 
 

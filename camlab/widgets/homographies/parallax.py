@@ -127,16 +127,30 @@ def plane_parallax() -> Demo:
         predicted = map_points(H, x_first)  # where H sends camera 1's pixel of each ray
         rings.set_data(predicted[:, 0], predicted[:, 1])
         parallax, hidden = {}, {}
+        wheres = {
+            Z: _project(rays * Z, R, t) for Z in DEPTHS
+        }  # where camera 2 really sees each point
+        shown = {
+            Z: _inside(w) & _inside(predicted) for Z, w in wheres.items()
+        }  # both marks in view
+        common = np.logical_and.reduce(
+            list(shown.values())
+        )  # like for like: the same rays at every depth
         for Z, gap_art, seen_art in zip(DEPTHS, gaps, seen, strict=True):
-            where = _project(rays * Z, R, t)  # where camera 2 really sees the point at depth Z
-            gap_art.set_data(*_segments(predicted, where).T)
-            seen_art.set_data(where[:, 0], where[:, 1])
-            shown = _inside(where) & _inside(predicted)  # both marks in camera 2's image
-            hidden[Z] = int(np.sum(~shown))
-            gap = np.linalg.norm(where - predicted, axis=1)[shown]
+            gap_art.set_data(*_segments(predicted, wheres[Z]).T)
+            seen_art.set_data(wheres[Z][:, 0], wheres[Z][:, 1])
+            hidden[Z] = int(np.sum(~shown[Z]))
+            gap = np.linalg.norm(wheres[Z] - predicted, axis=1)[
+                common if common.any() else shown[Z]
+            ]
             parallax[Z] = float(np.median(gap)) if gap.size else float("nan")
-        state.update(H=H, parallax=parallax, outside=hidden)
-        lines = [f"plane Z = {v['plane']:g} m; median parallax |x2 - H x1| over the rays in view:"]
+        state.update(H=H, parallax=parallax, outside=hidden, common=int(common.sum()))
+        over = (
+            f"over the {int(common.sum())} rays in view at all three depths"
+            if common.any()
+            else "over the rays in view at each depth (none is in view at all three)"
+        )
+        lines = [f"plane Z = {v['plane']:g} m; median parallax |x2 - H x1| {over}:"]
         lines += [
             f"  Z = {Z:>3g} m: {p:6.1f} px   (|1/Z - 1/d| = {abs(1 / Z - 1 / v['plane']):.3f} /m)"
             + (f"  {hidden[Z]} of 12 outside the image, not counted" if hidden[Z] else "")
