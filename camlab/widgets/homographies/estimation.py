@@ -389,8 +389,13 @@ def forward_vs_inverse() -> Demo:
         holes = float(np.mean(~reached[inner])) if inner.any() else 0.0
         holes_inverse = float(np.mean(~pulled[inner])) if inner.any() else 0.0
         state.update(H=H, hole_fraction=holes, hole_fraction_inverse=holes_inverse)
+        # the picture runs off the canvas at large scales: say that the share is of the part on it
+        clipped = not np.all((outline >= -0.5) & (outline <= [out_hw[1] - 0.5, out_hw[0] - 0.5]))
+        where = "of the covered area" + (
+            " on the canvas (the picture runs off it)" if clipped else ""
+        )
         readout.value = monospace(
-            f"holes in the forward warp: {100 * holes:.0f}% of the covered area\n"
+            f"holes in the forward warp: {100 * holes:.0f}% {where}\n"
             f"holes in the inverse warp: {100 * holes_inverse:.0f}%"
         )
 

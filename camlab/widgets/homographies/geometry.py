@@ -172,6 +172,7 @@ def _hierarchy_figure(pic, C, P, canvas_hw):
     ax.set_title(
         "the picture mapped by H about its centre (group, dof, invariants at the right)",
         fontsize=10,
+        pad=10,  # clear of the top tick label "0", which stands half its height above the axes
     )
     # beside the axes: over the warped picture the legend would need a redraw per update
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
@@ -378,6 +379,16 @@ def _unlabelled(labels, points, out_hw) -> str:
     if not hidden:
         return ""
     return f"\n{', '.join(hidden)} drawn without a name: under a corner handle, near the edge or beside another name"
+
+
+def _drag_notes(labels, points, out_hw, H) -> str:
+    """The drag readout under its table: points off the canvas or unnamed, and H to 5 significant digits."""
+    return (
+        _off_canvas(points, out_hw)
+        + _unlabelled(labels, points, out_hw)
+        + "\nH (h33 = 1, 5 significant digits) =\n"
+        + _matrix_text(H / H[2, 2], significant=5)
+    )
 
 
 def _place_names(labels, points, corners, out_hw) -> None:
@@ -721,13 +732,7 @@ def drag_homography() -> Demo:
             f"{name:15s} {a:>7s}  {b:>7s}  {verdict}" for name, a, b, verdict in rows
         )
         art.numbers.set_text(table)
-        readout.value = monospace(
-            table
-            + _off_canvas(m, out_hw)
-            + _unlabelled(art.mapped_names, m, out_hw)
-            + "\nH (h33 = 1, 5 significant digits) =\n"
-            + _matrix_text(H / H[2, 2], significant=5)
-        )
+        readout.value = monospace(table + _drag_notes(art.mapped_names, m, out_hw, H))
 
     demo = build_demo(
         "drag_homography",
