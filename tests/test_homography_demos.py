@@ -301,10 +301,13 @@ def test_plane_parallax_demo_is_zero_on_the_plane_and_for_a_turning_camera():
     assert d.state["parallax"][6.0] < 1e-9 and d.state["parallax"][3.0] > 10
     readouts = [w.value for w in d.widget.children[0].children if "median parallax" in str(w.value)]
     assert len(readouts) == 1 and "|1/Z - 1/d|" in readouts[0]
-    d.set(plane=3.0, move=-0.6)  # points leave the image: the median counts only those in view
-    assert d.state["outside"][1.5] == 6 and d.state["outside"][3.0] == 0
+    d.set(
+        plane=3.0, move=-0.6
+    )  # points leave the image: the medians count the rays in view at every depth
+    assert d.state["outside"][1.5] == 6 and d.state["outside"][3.0] == 0 and d.state["common"] <= 6
     readouts = [w.value for w in d.widget.children[0].children if "median parallax" in str(w.value)]
-    assert "6 of 12 outside the image, not counted" in readouts[0]
+    assert "6 of 12 outside the image" in readouts[0]
+    assert f"over the {d.state['common']} rays in view at all three depths" in readouts[0]
 
 
 def test_ransac_demo_shows_red_when_outliers_lie_near_the_model():
@@ -324,7 +327,9 @@ def test_ransac_samples_check_tells_log_p_from_swapped_arguments():
 
     slips = {
         "you took log(p)": lambda p, w: int(np.ceil(np.log(p) / np.log(1 - w**4))),
-        "you swapped p and w": lambda p, w: int(np.ceil(np.log(1 - w) / np.log(1 - p**4))),
+        "you swapped p and inlier_ratio": lambda p, w: int(
+            np.ceil(np.log(1 - w) / np.log(1 - p**4))
+        ),
     }
     for cause, slip in slips.items():
         with pytest.raises(CheckFailed) as failed:

@@ -72,7 +72,7 @@ def _apply_diagnosis(args, got, expected) -> str:
     swapped = x[:, [1, 0, 2]] @ H.T
     if np.allclose(g, swapped[:, :2] / swapped[:, 2:], rtol=1e-6):
         return "you lifted (v, u, 1): points[:, 0] is u (the column) and points[:, 1] is v, so lift (u, v, 1)."
-    cause = _shift_slip(g, x, H, expected)
+    cause = _shift_slip(g, x, H, expected) or _conjugated_slip(g, pts, H)
     if cause:
         return cause
     if (y[:, 2] < 0).any() and np.allclose(g, y[:, :2] / np.abs(y[:, 2:]), rtol=1e-6):
@@ -123,6 +123,53 @@ def _shift_slip(g, x, H, expected) -> str:
                 f"you shifted the points (or the result) by {shift:+g} px: counting pixels from 1? The course "
                 "counts from 0 (pixel (0, 0) is the top-left one), so map the points as given."
             )
+    return ""
+
+
+def _conjugated_slip(g, pts, H) -> str:
+    """Name a change of coordinates made on the way in and undone on the way out ("" if none).
+
+    H is not invariant under such a change (H' = S^-1 H S is another matrix), so swapping u and v,
+    shifting by half a pixel or changing the unit on both sides maps the points by the wrong H.
+    """
+    pts = np.asarray(pts, dtype=float)
+    changes = (
+        (
+            lambda q: q[:, ::-1],
+            lambda q: q[:, ::-1],
+            "you swapped u and v on the way in and back on the way out, as if the points were "
+            "(row, column) = (v, u): here they are (u, v), and H is written for (u, v, 1). "
+            "Lift the points as given, (points[:, 0], points[:, 1], 1).",
+        ),
+        (
+            lambda q: q + 0.5,
+            lambda q: q - 0.5,
+            "you added half a pixel before mapping and took it off after (pixel corners at integers): "
+            "the course puts pixel centres at integers, and H is written for those coordinates, so a "
+            "projective map does not commute with the shift. Map the points as given.",
+        ),
+        (
+            lambda q: q - 0.5,
+            lambda q: q + 0.5,
+            "you took half a pixel off before mapping and added it back after: the course puts pixel "
+            "centres at integers, and H is written for those coordinates. Map the points as given.",
+        ),
+    ) + tuple(
+        (
+            lambda q, f=f: q * f,
+            lambda q, f=f: q / f,
+            f"you changed the unit of the points (x {f:g}) before mapping and back after: H is written "
+            "for pixels (its third row carries 1/pixel), so it needs the points in pixels. "
+            "Map the points as given.",
+        )
+        for f in (1e3, 1e-3)
+    )
+    for into, back, hint in changes:
+        with np.errstate(all="ignore"):
+            moved = np.column_stack([into(pts), np.ones(len(pts))]) @ np.asarray(H).T
+            candidate = back(moved[:, :2] / moved[:, 2:])
+        if g.shape == candidate.shape and np.allclose(g, candidate, rtol=1e-6, atol=1e-9):
+            return hint
     return ""
 
 
@@ -189,6 +236,12 @@ register_exercise(
             (lambda H, p: map_points(H, p).tolist(), "you returned a list"),
             (lambda H, p: map_points(H, np.asarray(p) + 1.0), "counting pixels from 1"),
             (lambda H, p: 1000 * map_points(H, p), "a unit slip"),
+            (lambda H, p: map_points(H, np.asarray(p)[:, ::-1])[:, ::-1], "(row, column)"),
+            (
+                lambda H, p: map_points(H, np.asarray(p) + 0.5) - 0.5,
+                "before mapping and took it off",
+            ),
+            (lambda H, p: 1000 * map_points(H, np.asarray(p) / 1000), "changed the unit"),
             (
                 lambda H, p: map_points(np.float32(H), np.float32(p)).astype(np.float64),
                 "ran in float32",

@@ -42,11 +42,13 @@ def _warp(
     lower=True,
     top=1,
     swap=False,
+    first=0,
 ):
     """Nearest-neighbour sampling of ``image`` at M (u', v', 1) for every output pixel, with slips as options.
 
     ``lower=False`` drops the test iu >= 0 (negative indices wrap to the far side, as numpy's do),
-    ``top=2`` tests iu < width - 1, ``swap=True`` reads image[u, v] with the bounds swapped to match.
+    ``first=1`` tests iu >= 1 (1-based), ``top=2`` tests iu < width - 1, ``swap=True`` reads
+    image[u, v] with the bounds swapped to match.
     """
     h, w = np.shape(image)[:2]
     if swap:
@@ -58,7 +60,7 @@ def _warp(
             (X[..., 0] / X[..., 2], X[..., 1] / X[..., 2]) if divide else (X[..., 0], X[..., 1])
         )
     iu, iv = rounding(su), rounding(sv)
-    low_u, low_v = (iu >= 0, iv >= 0) if lower else (iu >= -w, iv >= -h)
+    low_u, low_v = (iu >= first, iv >= first) if lower else (iu >= -w, iv >= -h)
     inside = (
         (su >= 0) & (su <= w - 1) & (sv >= 0) & (sv <= h - 1)
         if early
@@ -191,6 +193,12 @@ _WARP_MISTAKES = (
         "(or iu <= width - 1).",
     ),
     Mistake(
+        "bound from 1",
+        lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, first=1),
+        "you tested iu >= 1 (and iv >= 1), as if pixels were counted from 1: the first column and row "
+        "of the picture are never read. Python counts from 0: test 0 <= iu < width and 0 <= iv < height.",
+    ),
+    Mistake(
         "int(u + 0.5)",
         lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, rounding=lambda x: np.trunc(x + 0.5)),
         "you rounded with int(u + 0.5), which truncates toward zero: for u = -0.7 it gives 0, not -1, so "
@@ -233,6 +241,9 @@ _WARP_MISTAKES = (
 
 def _warp_diagnosis(args, got, expected) -> str:
     image, H, out_shape = args
+    nan_outside = _nan_outside(got, expected)
+    if nan_outside:
+        return nan_outside
     problem = shape_problem(got, expected)
     if problem:
         g_shape = (
@@ -261,6 +272,23 @@ def _warp_diagnosis(args, got, expected) -> str:
             "one's value from H^-1 (u', v', 1)."
         )
     return _PULL + "; outside the picture, 0."
+
+
+def _nan_outside(got, expected) -> str:
+    """The cause when the picture is right but the pixels outside it hold NaN ("" otherwise)."""
+    try:
+        g = np.asarray(got, dtype=float)
+    except (TypeError, ValueError):
+        return ""
+    e = np.asarray(expected, dtype=float)
+    nan = np.isnan(g) if g.shape == e.shape else np.zeros(0, bool)
+    if not nan.any() or not np.allclose(g[~nan], e[~nan]) or np.any(e[nan] != 0):
+        return ""
+    return (
+        f"the picture is right, but {nan.mean():.0%} of the output pixels hold NaN: those whose source "
+        "point lies outside the picture. There the output stays 0: start from np.zeros(out_shape) "
+        "(not np.full(out_shape, np.nan) or np.empty) and write only the pixels that pass the test."
+    )
 
 
 def _index_hint(exc: Exception, args: tuple) -> str:
@@ -325,6 +353,11 @@ register_exercise(
         ),
         wrong_variants=(
             (lambda im, H, s: _warp(im, H, s), "H (u', v', 1)"),
+            (lambda im, H, s: _warp(im, np.linalg.inv(H), s, first=1), "counted from 1"),
+            (
+                lambda im, H, s: np.where(_reference(im, H, s) == 0, np.nan, _reference(im, H, s)),
+                "hold NaN",
+            ),
             (lambda im, H, s: _warp(im, np.linalg.inv(H).T, s), "transposed"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, divide=False), "divide by w"),
             (

@@ -13,10 +13,10 @@ from .._numbers import not_one_number, same_number
 
 
 def _ransac_samples_cases():
-    # (confidence p, inlier ratio w); each k has a fraction part that tells ceil from round and floor,
-    # and no w is 0.5, where w^4 and (1 - w)^4 are one number and two slips one answer. The last
-    # tells log(p) (13) from swapped p and w (1), which give k = 1 on all the others. The last has a
-    # whole k: w^4 = 81/256 and 1 - p = (175/256)^2, so k = 2 exactly in every form of the formula
+    # (confidence p, inlier ratio q); each k has a fraction part that tells ceil from round and floor,
+    # and no q is 0.5, where q^4 and (1 - q)^4 are one number and two slips one answer. The last
+    # tells log(p) (13) from swapped p and q (1), which give k = 1 on all the others. The last has a
+    # whole k: q^4 = 81/256 and 1 - p = (175/256)^2, so k = 2 exactly in every form of the formula
     # (log, log1p, log10), where int(k) + 1 asks for 3
     return [
         (0.99, 0.6),
@@ -24,13 +24,16 @@ def _ransac_samples_cases():
         (0.995, 0.3),
         (0.999, 0.9),
         (0.9, 0.3),
+        # a low p and a high q: the upside-down ratio gives 10, log(p) / log(q^4) 14 and p / 100 gives 1,
+        # which all give k = 1 on the inputs above
+        (0.2, 0.97),
         (0.5326995849609375, 0.75),
     ]
 
 
-def _samples_needed(p, w):
-    """The whole number of 4-pair samples RANSAC needs: ceil(log(1 - p) / log(1 - w^4))."""
-    return int(np.ceil(required_iterations(w, p, 4)))
+def _samples_needed(p, q):
+    """The whole number of 4-pair samples RANSAC needs: ceil(log(1 - p) / log(1 - q^4))."""
+    return int(np.ceil(required_iterations(q, p, 4)))
 
 
 def _k(numerator, denominator):
@@ -38,14 +41,14 @@ def _k(numerator, denominator):
         return numerator / denominator
 
 
-def _samples_context(p, w, g):
-    """The numbers the slips below give on (p, w), and the student's answer g."""
+def _samples_context(p, q, g):
+    """The numbers the slips below give on (p, q), and the student's answer g."""
     ln = np.log
     return SimpleNamespace(
         p=p,
-        w=w,
+        q=q,
         g=g,
-        exact=_k(ln(1 - p), ln(1 - w**4)),
+        exact=_k(ln(1 - p), ln(1 - q**4)),
         ways=lambda k: {np.ceil(k), np.round(k), np.floor(k), k},
     )
 
@@ -56,11 +59,17 @@ def _is_any(g, values) -> bool:
 
 _SAMPLES_MISTAKES = (
     Mistake(
+        "p in per cent",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p / 100), np.log(1 - s.q**4)))),
+        "you divided p by 100, as if it came in per cent: p is already a probability in (0, 1) "
+        "(0.99 means 99 %), so use it as it is: k = log(1 - p) / log(1 - q^4).",
+    ),
+    Mistake(
         "negative k",
         lambda s: s.g < 0,
-        "your k is negative, but both logs are negative (1 - p and 1 - w^4 lie between 0 and 1), so "
+        "your k is negative, but both logs are negative (1 - p and 1 - q^4 lie between 0 and 1), so "
         "their ratio is positive: check for a stray minus sign, or a log missing from one side. "
-        "k = log(1 - p) / log(1 - w^4).",
+        "k = log(1 - p) / log(1 - q^4).",
     ),
     Mistake(
         "not rounded up",
@@ -86,92 +95,99 @@ _SAMPLES_MISTAKES = (
         "ceil(k) + 1",
         lambda s: s.g == np.ceil(s.exact) + 1,
         "you returned one sample more than int(np.ceil(k)) (a + 1 after rounding up, or k counted from "
-        "0): k samples already reach the confidence p, since (1 - w^4)^k <= 1 - p. Return int(np.ceil(k)).",
+        "0): k samples already reach the confidence p, since (1 - q^4)^k <= 1 - p. Return int(np.ceil(k)).",
     ),
     Mistake(
-        "w instead of w^4",
-        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log(1 - s.w)))),
-        "you used w where the chance of a clean *sample* belongs: a homography's sample has 4 pairs, "
-        "all of which must be inliers, which happens with probability w^4 (independent draws). "
-        "k = log(1 - p) / log(1 - w**4).",
+        "q instead of q^4",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log(1 - s.q)))),
+        "you used q where the chance of a clean *sample* belongs: a homography's sample has 4 pairs, "
+        "all of which must be inliers, which happens with probability q^4 (independent draws). "
+        "k = log(1 - p) / log(1 - q**4).",
     ),
     Mistake(
         "wrong sample size",
         lambda s: any(
-            _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log(1 - s.w**m)))) for m in (2, 3, 5, 8)
+            _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log(1 - s.q**m)))) for m in (2, 3, 5, 8)
         ),
         "your sample size is not 4: a homography has 8 degrees of freedom and each pair gives two "
-        "equations, so a minimal sample is 4 pairs, clean with probability w^4.",
+        "equations, so a minimal sample is 4 pairs, clean with probability q^4.",
     ),
     Mistake(
-        "outlier ratio for w",
-        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log(1 - (1 - s.w) ** 4)))),
-        "you used (1 - w)^4: w is the *inlier* ratio here (section 7 writes the outlier fraction "
-        "epsilon = 1 - w), so a sample is clean with probability w^4.",
+        "outlier ratio for q",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log(1 - (1 - s.q) ** 4)))),
+        "you used (1 - q)^4: q is the *inlier* ratio here (section 7 writes the outlier fraction "
+        "epsilon = 1 - q), so a sample is clean with probability q^4.",
     ),
     Mistake(
         "p for 1 - p",
-        lambda s: _is_any(s.g, s.ways(_k(np.log(s.p), np.log(1 - s.w**4)))),
+        lambda s: _is_any(s.g, s.ways(_k(np.log(s.p), np.log(1 - s.q**4)))),
         "you took log(p) in the numerator: 1 - p is the chance that *every* one of the k samples is "
-        "contaminated, (1 - w^4)^k = 1 - p, so k = log(1 - p) / log(1 - w^4).",
+        "contaminated, (1 - q^4)^k = 1 - p, so k = log(1 - p) / log(1 - q^4).",
+    ),
+    Mistake(
+        "p for 1 - p and q^4 for 1 - q^4",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(s.p), np.log(s.q**4)))),
+        "you took log(p) / log(q^4): that sets the chance that *every* sample is clean to p. RANSAC "
+        "needs only one clean sample, so it is the chance that every sample is *contaminated*, "
+        "(1 - q^4)^k, that must be 1 - p: k = log(1 - p) / log(1 - q^4).",
     ),
     Mistake(
         "ratio upside down",
-        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.w**4), np.log(1 - s.p)))),
-        "your ratio is upside down: log(1 - w^4) / log(1 - p) is 1 / k, below 1 whenever more than one "
-        "sample is needed, so it rounds up to 1. From (1 - w^4)^k = 1 - p, take logs: "
-        "k log(1 - w^4) = log(1 - p), so k = log(1 - p) / log(1 - w^4).",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.q**4), np.log(1 - s.p)))),
+        "your ratio is upside down: log(1 - q^4) / log(1 - p) is 1 / k, below 1 whenever more than one "
+        "sample is needed, so it rounds up to 1. From (1 - q^4)^k = 1 - p, take logs: "
+        "k log(1 - q^4) = log(1 - p), so k = log(1 - p) / log(1 - q^4).",
     ),
     Mistake(
-        "log((1 - w)^4)",
-        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log((1 - s.w) ** 4)))),
-        "your denominator is log((1 - w)^4): the 1 - belongs outside the power. A sample is clean with "
-        "probability w^4, so it fails with probability 1 - w^4: k = log(1 - p) / log(1 - w**4).",
+        "log((1 - q)^4)",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log((1 - s.q) ** 4)))),
+        "your denominator is log((1 - q)^4): the 1 - belongs outside the power. A sample is clean with "
+        "probability q^4, so it fails with probability 1 - q^4: k = log(1 - p) / log(1 - q**4).",
     ),
     Mistake(
-        "w^4 for 1 - w^4",
-        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log(s.w**4)))),
-        "your denominator is log(w^4), the log of the chance that a sample is clean; the k samples must "
-        "all *fail* for RANSAC to fail, each with probability 1 - w^4: k = log(1 - p) / log(1 - w^4).",
+        "q^4 for 1 - q^4",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log(s.q**4)))),
+        "your denominator is log(q^4), the log of the chance that a sample is clean; the k samples must "
+        "all *fail* for RANSAC to fail, each with probability 1 - q^4: k = log(1 - p) / log(1 - q^4).",
     ),
     Mistake(
         "mixed log bases",
         lambda s: _is_any(s.g, s.ways(s.exact * np.log(10)) | s.ways(s.exact / np.log(10))),
         "your two logarithms have different bases (np.log10 in one, np.log in the other): the ratio "
-        "log(1 - p) / log(1 - w^4) is the same in any base, but only if both use the same one.",
+        "log(1 - p) / log(1 - q^4) is the same in any base, but only if both use the same one.",
     ),
     Mistake(
-        "p and w swapped",
-        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.w), np.log(1 - s.p**4)))),
-        "you swapped p and w: the function is called as ransac_samples(p, w), the confidence first.",
+        "p and q swapped",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.q), np.log(1 - s.p**4)))),
+        "you swapped p and inlier_ratio: the function is called as ransac_samples(p, inlier_ratio), the confidence first.",
     ),
     Mistake(
         "percent",
         lambda s: _is_any(s.g, s.ways(s.exact * 100) | s.ways(s.exact / 100)),
-        "your answer is off by a factor 100: p and w are fractions (0.99, not 99 %).",
+        "your answer is off by a factor 100: p and q are fractions (0.99, not 99 %).",
     ),
 )
-"""The slips in k = ceil(log(1 - p) / log(1 - w^4)), in the order they are tested (rows give a bool)."""
+"""The slips in k = ceil(log(1 - p) / log(1 - q^4)), in the order they are tested (rows give a bool)."""
 
 
 def _narrowed(tied, args, run) -> list:
     """The slips among ``tied`` that also give the student's answers on the other test inputs."""
-    for p, w in _ransac_samples_cases():
-        if (p, w) == tuple(args):
+    for p, q in _ransac_samples_cases():
+        if (p, q) == tuple(args):
             continue
         try:
-            g = float(run(p, w))
+            g = float(run(p, q))
         except Exception:  # the student's function fails there: that input tells nothing
             continue
-        tied = [m for m in tied if m.answer(_samples_context(p, w, g))]
+        tied = [m for m in tied if m.answer(_samples_context(p, q, g))]
     return tied
 
 
 def _samples_diagnosis(args, got, expected, run=None) -> str:
-    p, w = args
+    p, q = args
     if not _is_number(got):
         return not_one_number(got, "the whole number of samples k")
-    context = _samples_context(p, w, float(got))
+    context = _samples_context(p, q, float(got))
     tied = [m for m in _SAMPLES_MISTAKES if m.answer(context)]
     if len(tied) > 1 and run is not None:  # small k: several slips give it; the other inputs decide
         tied = _narrowed(tied, args, run) or tied
@@ -182,10 +198,21 @@ def _samples_diagnosis(args, got, expected, run=None) -> str:
         causes[0]
         if causes
         else (
-            "a sample of 4 pairs is clean with probability w^4; k samples all fail with probability "
-            "(1 - w^4)^k, which must be at most 1 - p: k = ceil(log(1 - p) / log(1 - w^4))."
+            "a sample of 4 pairs is clean with probability q^4; k samples all fail with probability "
+            "(1 - q^4)^k, which must be at most 1 - p: k = ceil(log(1 - p) / log(1 - q^4))."
         )
     )
+
+
+def _samples_exception_hint(exc, args) -> str:
+    """The cause of a NaN k: the log of a negative number, most often p or q taken as per cent."""
+    if isinstance(exc, ValueError) and "NaN" in str(exc):
+        return (
+            "k came out NaN, the log of a negative number: 1 - p or 1 - q^4 fell below 0. If you "
+            "multiplied p (or q) by 100 to turn it into per cent, don't: both are probabilities in "
+            "(0, 1), 0.99 means 99 %. k = log(1 - p) / log(1 - q^4)."
+        )
+    return ""
 
 
 def _samples_note(run) -> str:
@@ -195,24 +222,24 @@ def _samples_note(run) -> str:
         int(run(0.995, 0.3)),
     )  # an integral float prints as a whole number
     return (
-        f"With p = 0.995: {k40} samples at 40 % outliers (w = 0.6), {k70} at 70 % (w = 0.3), "
+        f"With p = 0.995: {k40} samples at 40 % outliers (q = 0.6), {k70} at 70 % (q = 0.3), "
         f"{k70 / k40:.0f} times more (section 7's cell prints the same)."
     )
 
 
-def ransac_samples(p, w):
+def ransac_samples(p, inlier_ratio):
     """The whole number of 4-pair samples that give one clean sample with probability p.
 
-    A sample of 4 pairs is clean (all inliers) with probability w^4; k samples all fail with
-    probability (1 - w^4)^k. Setting that to 1 - p and solving for k gives
-    k = log(1 - p) / log(1 - w^4), rounded up to whole samples.
+    A sample of 4 pairs is clean (all inliers) with probability q^4; k samples all fail with
+    probability (1 - q^4)^k. Setting that to 1 - p and solving for k gives
+    k = log(1 - p) / log(1 - q^4), rounded up to whole samples.
 
     Parameters
     ----------
     p : float
         The confidence, in (0, 1): the probability of at least one clean sample.
-    w : float
-        The inlier ratio, in (0, 1).
+    inlier_ratio : float
+        q, the fraction of pairs that are inliers, in (0, 1): 1 - epsilon in section 7.
 
     Returns
     -------
@@ -223,7 +250,8 @@ def ransac_samples(p, w):
     ----------
     Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 4.7.1 (how many samples?).
     """
-    k = np.log(1 - p) / np.log(1 - w**4)
+    q = inlier_ratio
+    k = np.log(1 - p) / np.log(1 - q**4)
     return int(np.ceil(k))
 
 
@@ -236,27 +264,34 @@ register_exercise(
         compare=same_number(rtol=1e-9),
         diagnose=_samples_diagnosis,
         diagnosis_runs=True,
+        exception_hint=_samples_exception_hint,
         success_note=_samples_note,
         wrong_variants=(
-            (lambda p, w: np.log(1 - p) / np.log(1 - w**4), "a fraction of a sample"),
-            (lambda p, w: int(np.log(1 - p) / np.log(1 - w**4)) + 1, "int(k) + 1"),
-            (lambda p, w: int(np.ceil(np.log(1 - p) / np.log(1 - w**4))) + 1, "one sample more"),
-            (lambda p, w: round(np.log(1 - p) / np.log(1 - w**4)), "rounded down"),
-            (lambda p, w: int(np.log(1 - p) / np.log(1 - w**4)), "rounded down"),
-            (lambda p, w: int(np.ceil(np.log(1 - p) / np.log(1 - w))), "probability w^4"),
-            (lambda p, w: int(np.ceil(np.log(1 - p) / np.log(1 - w**2))), "sample size is not 4"),
+            (lambda p, q: np.log(1 - p) / np.log(1 - q**4), "a fraction of a sample"),
+            (lambda p, q: int(np.log(1 - p) / np.log(1 - q**4)) + 1, "int(k) + 1"),
+            (lambda p, q: int(np.ceil(np.log(1 - p) / np.log(1 - q**4))) + 1, "one sample more"),
+            (lambda p, q: round(np.log(1 - p) / np.log(1 - q**4)), "rounded down"),
+            (lambda p, q: int(np.log(1 - p) / np.log(1 - q**4)), "rounded down"),
+            (lambda p, q: int(np.ceil(np.log(1 - p) / np.log(1 - q))), "probability q^4"),
+            (lambda p, q: int(np.ceil(np.log(1 - p) / np.log(1 - q**2))), "sample size is not 4"),
             (
-                lambda p, w: int(np.ceil(np.log(1 - p) / np.log(1 - (1 - w) ** 4))),
-                "epsilon = 1 - w",
+                lambda p, q: int(np.ceil(np.log(1 - p) / np.log(1 - (1 - q) ** 4))),
+                "epsilon = 1 - q",
             ),
-            (lambda p, w: int(np.ceil(np.log(p) / np.log(1 - w**4))), "log(p)"),
-            (lambda p, w: int(np.ceil(np.log(1 - p) / np.log(w**4))), "log(w^4)"),
-            (lambda p, w: int(np.ceil(np.log(1 - w**4) / np.log(1 - p))), "upside down"),
-            (lambda p, w: int(np.ceil(np.log(1 - p) / np.log((1 - w) ** 4))), "log((1 - w)^4)"),
-            (lambda p, w: int(np.ceil(np.log10(1 - p) / np.log(1 - w**4))), "different bases"),
-            (lambda p, w: int(np.ceil(np.log(1 - w) / np.log(1 - p**4))), "swapped p and w"),
-            (lambda p, w: [int(np.ceil(np.log(1 - p) / np.log(1 - w**4)))], "return one number"),
-            (lambda p, w: int(np.ceil(np.log(1 - p) / (1 - w**4))), "your k is negative"),
+            (lambda p, q: int(np.ceil(np.log(p) / np.log(1 - q**4))), "log(p)"),
+            (lambda p, q: int(np.ceil(np.log(1 - p) / np.log(q**4))), "log(q^4)"),
+            (lambda p, q: int(np.ceil(np.log(1 - q**4) / np.log(1 - p))), "upside down"),
+            (lambda p, q: int(np.ceil(np.log(1 - p) / np.log((1 - q) ** 4))), "log((1 - q)^4)"),
+            (lambda p, q: int(np.ceil(np.log10(1 - p) / np.log(1 - q**4))), "different bases"),
+            (
+                lambda p, q: int(np.ceil(np.log(1 - q) / np.log(1 - p**4))),
+                "swapped p and inlier_ratio",
+            ),
+            (lambda p, q: int(np.ceil(np.log(p) / np.log(q**4))), "every sample is *contaminated*"),
+            (lambda p, q: int(np.ceil(np.log(1 - p / 100) / np.log(1 - q**4))), "per cent"),
+            (lambda p, q: int(np.ceil(np.log(1 - 100 * p) / np.log(1 - q**4))), "per cent"),
+            (lambda p, q: [int(np.ceil(np.log(1 - p) / np.log(1 - q**4)))], "return one number"),
+            (lambda p, q: int(np.ceil(np.log(1 - p) / (1 - q**4))), "your k is negative"),
         ),
         teaching=ransac_samples,
     )

@@ -60,12 +60,16 @@ def _ransac_figure() -> SimpleNamespace:
     best = view.animate(
         ax.plot([], [], "o", mfc="none", mec="k", mew=2, ms=11, label="the winning sample of 4")[0]
     )
+    # "wrongly kept" is told from "kept" by its open triangle as well as its hue (red and green
+    # look alike to a deuteranope)
+    wrong = view.animate(ax.plot([], [], "^", mfc="white", mec=palette.RED, mew=1.2, ms=6)[0])
     for name, colour in _VERDICTS:
-        ax.plot([], [], "-", color=colour, lw=2, label=name)
+        marker = dict(marker="^", mfc="white", mec=colour, ms=6) if colour == palette.RED else {}
+        ax.plot([], [], "-", color=colour, lw=2, label=name, **marker)
     # Below the figure (the layout makes room), never over the arrows; under the left panel it describes.
     view.fig.legend(*ax.get_legend_handles_labels(), loc="outside lower left", fontsize=8, ncol=3)
-    # Where the batch note stands (hidden then), above the k(ε) curve and off the pairs.
-    failure = warning_note(view, ax_k, 0.03, 0.66, "left", "top")
+    # Between the legend and the cap line (the batch note's place, hidden then), off the k(ε) curve.
+    failure = warning_note(view, ax_k, 0.03, 0.72, "left", "top")
     eps = np.linspace(0.0, 0.97, 300)
     k_curve = [required_iterations(1.0 - e, CONFIDENCE, 4) for e in eps]
     ax_k.semilogy(eps, k_curve, color="0.5", label="k: samples needed for p = 0.995 (exercise 3)")
@@ -115,6 +119,7 @@ def _ransac_figure() -> SimpleNamespace:
         box_est=box_est,
         best=best,
         failure=failure,
+        wrong=wrong,
         needed=needed,
         dot=dot,
         batches=batches,
@@ -146,7 +151,7 @@ def _ransac_failed(art, state, src, dst, exc) -> None:
         samples_needed=None,
         error=exc,
     )
-    for artist in (art.box_est, art.dot, art.needed, art.best):
+    for artist in (art.box_est, art.dot, art.needed, art.best, art.wrong):
         artist.set_data([], [])
     # the pairs are still the data: drawn in one neutral grey, since there is no verdict
     art.arrows.set_segments(np.stack([src, dst], axis=1))
@@ -156,9 +161,9 @@ def _ransac_failed(art, state, src, dst, exc) -> None:
     art.heads.set_color("0.8")
     art.batches.set_visible(False)
     art.failure(
-        "RANSAC failed: no hypothesis had\nreal support, so the pairs are\n"
-        "drawn light grey, without a verdict:\nthe legend's four verdicts do not\n"
-        "apply (the full message is beside\nthe sliders)"
+        "RANSAC failed: no hypothesis had real support.\n"
+        "Pairs in light grey: the legend's verdicts\n"
+        "do not apply (message beside the sliders)"
     )
 
 
@@ -240,6 +245,7 @@ def ransac_outliers() -> Demo:
         art.box_true.set_data(bt[:, 0], bt[:, 1])
         art.box_est.set_data(be[:, 0], be[:, 1])
         art.best.set_data(dst[r.sample, 0], dst[r.sample, 1])
+        art.wrong.set_data(dst[verdict == 1, 0], dst[verdict == 1, 1])
         eps_found = 1.0 - r.inliers.mean()
         k_needed = required_iterations(1.0 - eps_found, CONFIDENCE, 4)
         art.dot.set_data(
@@ -383,8 +389,13 @@ def forward_vs_inverse() -> Demo:
         holes = float(np.mean(~reached[inner])) if inner.any() else 0.0
         holes_inverse = float(np.mean(~pulled[inner])) if inner.any() else 0.0
         state.update(H=H, hole_fraction=holes, hole_fraction_inverse=holes_inverse)
+        # the picture runs off the canvas at large scales: say that the share is of the part on it
+        clipped = not np.all((outline >= -0.5) & (outline <= [out_hw[1] - 0.5, out_hw[0] - 0.5]))
+        where = "of the covered area" + (
+            " on the canvas (the picture runs off it)" if clipped else ""
+        )
         readout.value = monospace(
-            f"holes in the forward warp: {100 * holes:.0f}% of the covered area\n"
+            f"holes in the forward warp: {100 * holes:.0f}% {where}\n"
             f"holes in the inverse warp: {100 * holes_inverse:.0f}%"
         )
 

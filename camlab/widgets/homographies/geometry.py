@@ -172,6 +172,7 @@ def _hierarchy_figure(pic, C, P, canvas_hw):
     ax.set_title(
         "the picture mapped by H about its centre (group, dof, invariants at the right)",
         fontsize=10,
+        pad=10,  # clear of the top tick label "0", which stands half its height above the axes
     )
     # beside the axes: over the warped picture the legend would need a redraw per update
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
@@ -320,13 +321,16 @@ CORNER_NAMES = (
 _DRAG_START = np.array([[40.0, 30.0], [250.0, 60.0], [230.0, 200.0], [60.0, 230.0]])
 
 
-def _matrix_text(M: np.ndarray) -> str:
+def _matrix_text(M: np.ndarray, significant: int | None = None) -> str:
     """A matrix as the readouts print it: 4 decimals, and what rounds to zero printed as 0, never -0.
 
     Parameters
     ----------
     M : ndarray
         The matrix.
+    significant : int, optional
+        Print this many significant digits instead of 4 decimals, so that a small entry such as
+        h31 = -0.00704 keeps its digits (the drag demo's H must reproduce its table).
 
     Returns
     -------
@@ -334,6 +338,11 @@ def _matrix_text(M: np.ndarray) -> str:
         ``np.array2string`` of M with its negative zeros cleared.
     """
     M = np.asarray(M, dtype=float)
+    if significant is not None:
+        M = np.where(M == 0, 0.0, M)
+        return np.array2string(
+            M, formatter={"float_kind": lambda x: f"{x:>{significant + 6}.{significant}g}"}
+        )
     return np.array2string(np.where(np.round(M, 4) == 0, 0.0, M), precision=4, suppress_small=True)
 
 
@@ -356,6 +365,30 @@ def _off_canvas(points, out_hw) -> str:
         seen = np.all((points >= -0.5) & (points <= [out_hw[1] - 0.5, out_hw[0] - 0.5]), axis=1)
     off = [f"{name}'" for name, inside in zip("ABCD", seen, strict=True) if not inside]
     return f"\n{', '.join(off)} off the canvas" if off else ""
+
+
+def _unlabelled(labels, points, out_hw) -> str:
+    """A readout line naming the mapped points on the canvas whose names are hidden ("" if none)."""
+    with np.errstate(invalid="ignore"):
+        seen = np.all((points >= -0.5) & (points <= [out_hw[1] - 0.5, out_hw[0] - 0.5]), axis=1)
+    hidden = [
+        f"{name}'"
+        for name, label, inside in zip("ABCD", labels, seen, strict=True)
+        if inside and not label.get_visible()
+    ]
+    if not hidden:
+        return ""
+    return f"\n{', '.join(hidden)} drawn without a name: under a corner handle, near the edge or beside another name"
+
+
+def _drag_notes(labels, points, out_hw, H) -> str:
+    """The drag readout under its table: points off the canvas or unnamed, and H to 5 significant digits."""
+    return (
+        _off_canvas(points, out_hw)
+        + _unlabelled(labels, points, out_hw)
+        + "\nH (h33 = 1, 5 significant digits) =\n"
+        + _matrix_text(H / H[2, 2], significant=5)
+    )
 
 
 def _place_names(labels, points, corners, out_hw) -> None:
@@ -699,7 +732,7 @@ def drag_homography() -> Demo:
             f"{name:15s} {a:>7s}  {b:>7s}  {verdict}" for name, a, b, verdict in rows
         )
         art.numbers.set_text(table)
-        readout.value = monospace(table + _off_canvas(m, out_hw) + "\nH =\n" + _matrix_text(H))
+        readout.value = monospace(table + _drag_notes(art.mapped_names, m, out_hw, H))
 
     demo = build_demo(
         "drag_homography",

@@ -50,6 +50,33 @@ def _segments(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.stack([a, b, gap], axis=1).reshape(-1, 2)
 
 
+def _median_parallax(predicted, wheres) -> tuple[dict, dict, int]:
+    """The median parallax |x2 - H x1| per depth, over the same rays at every depth.
+
+    Parameters
+    ----------
+    predicted : (N, 2) ndarray
+        Where H sends camera 1's pixel of each ray (pixels).
+    wheres : dict
+        Depth Z (m) -> (N, 2) ndarray, where camera 2 really sees the ray's point at that depth.
+
+    Returns
+    -------
+    tuple
+        (median parallax per depth in px, rays out of view per depth, the number of rays in view
+        at every depth). The medians are over those rays, so the depths compare like for like;
+        if none is in view at every depth, each median is over the rays in view at its own depth.
+    """
+    shown = {Z: _inside(w) & _inside(predicted) for Z, w in wheres.items()}  # both marks in view
+    common = np.logical_and.reduce(list(shown.values()))
+    parallax, hidden = {}, {}
+    for Z, where in wheres.items():
+        hidden[Z] = int(np.sum(~shown[Z]))
+        gap = np.linalg.norm(where - predicted, axis=1)[common if common.any() else shown[Z]]
+        parallax[Z] = float(np.median(gap)) if gap.size else float("nan")
+    return parallax, hidden, int(common.sum())
+
+
 @register(lesson="07", sweep={"move": [0.0, -0.6, 0.6], "turn": [0.0, 20.0], "plane": [1.5, 6.0]})
 def plane_parallax() -> Demo:
     r"""Move and turn camera 2: the plane's homography, and the parallax of points off the plane.
@@ -126,20 +153,23 @@ def plane_parallax() -> Demo:
         H = hg.plane_homography(K_PARALLAX, R, t, np.array([0.0, 0.0, -1.0]), v["plane"])
         predicted = map_points(H, x_first)  # where H sends camera 1's pixel of each ray
         rings.set_data(predicted[:, 0], predicted[:, 1])
-        parallax, hidden = {}, {}
+        wheres = {
+            Z: _project(rays * Z, R, t) for Z in DEPTHS
+        }  # where camera 2 really sees each point
         for Z, gap_art, seen_art in zip(DEPTHS, gaps, seen, strict=True):
-            where = _project(rays * Z, R, t)  # where camera 2 really sees the point at depth Z
-            gap_art.set_data(*_segments(predicted, where).T)
-            seen_art.set_data(where[:, 0], where[:, 1])
-            shown = _inside(where) & _inside(predicted)  # both marks in camera 2's image
-            hidden[Z] = int(np.sum(~shown))
-            gap = np.linalg.norm(where - predicted, axis=1)[shown]
-            parallax[Z] = float(np.median(gap)) if gap.size else float("nan")
-        state.update(H=H, parallax=parallax, outside=hidden)
-        lines = [f"plane Z = {v['plane']:g} m; median parallax |x2 - H x1| over the rays in view:"]
+            gap_art.set_data(*_segments(predicted, wheres[Z]).T)
+            seen_art.set_data(wheres[Z][:, 0], wheres[Z][:, 1])
+        parallax, hidden, common = _median_parallax(predicted, wheres)
+        state.update(H=H, parallax=parallax, outside=hidden, common=common)
+        over = (
+            f"over the {common} rays in view at all three depths"
+            if common
+            else "over the rays in view at each depth (none is in view at all three)"
+        )
+        lines = [f"plane Z = {v['plane']:g} m; median parallax |x2 - H x1| {over}:"]
         lines += [
             f"  Z = {Z:>3g} m: {p:6.1f} px   (|1/Z - 1/d| = {abs(1 / Z - 1 / v['plane']):.3f} /m)"
-            + (f"  {hidden[Z]} of 12 outside the image, not counted" if hidden[Z] else "")
+            + (f"  {hidden[Z]} of 12 outside the image" if hidden[Z] else "")
             for Z, p in parallax.items()
         ]
         readout.value = monospace("\n".join(lines))
