@@ -681,8 +681,8 @@ def dual_conic_from_orthogonal_lines(lines_l: ArrayLike, lines_m: ArrayLike) -> 
             "few directions (the 5th and 6th "
             f"singular values of the stacked rows are {s[4] / s[0]:.2g} and {s[5] / s[0]:.2g} of the "
             "largest, so noise would pick the answer). Right angles all between the same two "
-            "directions (a rectangle's edges, however many pairs) fix only 4: every a v1 v1^T + "
-            "b v2 v2^T satisfies them (v1, v2 their vanishing points), and the free b / a is the "
+            "directions (a rectangle's edges, however many pairs) fix only 4: every alpha v1 v1^T + "
+            "beta v2 v2^T satisfies them (v1, v2 their vanishing points), and the free beta / alpha is the "
             "unknown aspect ratio; add pairs in another direction, e.g. a square's diagonals"
         )
     a, b, c, d, e, f = Vt[-1]

@@ -112,9 +112,9 @@ def _why_text(view: FigureView, ax: Any) -> Any:
 
 
 _OUTLINE_STYLE = "--"  # the corners' outline on the photo, yellow
-_KEY = "red dashed: the other focal length's shape\ngreen dotted: the true shape"
+_KEY = "brown dashed: the other focal length's shape\ngreen dotted: the true shape"
 _KEY_OFF_PAGE = (
-    "red dashed: the other focal length's shape\nno green: these are not the scene's corners"
+    "brown dashed: the other focal length's shape\nno green: these are not the scene's corners"
 )
 _SCAN_KEY = "green dotted: the page's true shape (A4)"
 _ON_PAGE_PX = 10.0  # corners this close to the scene's true ones still mark its rectangle
@@ -154,7 +154,7 @@ def _rectify_artists(view: FigureView, ax_p: Any, ax_r: Any) -> SimpleNamespace:
         )
     )
     other = view.animate(
-        ax_r.plot([], [], "--", color=palette.RED, lw=1.5, path_effects=palette.halo(1.5))[0]
+        ax_r.plot([], [], "--", color=palette.BROWN, lw=1.5, path_effects=palette.halo(1.5))[0]
     )
     truth_box = _truth_artist(view, ax_r, None)
     view.animate(ax_r.title)  # says which focal length the rectified view uses
@@ -174,7 +174,7 @@ def _show_invalid(
         corners = None
     if corners is not None:
         _show_corners(quad, art.handles, art.chosen, corners, k)
-    quad.set(color=palette.RED, linestyle="-")  # solid: red dashed is the other f's outline
+    quad.set(color=palette.RED, linestyle="-")  # red means refused, in every lesson-10 demo
     art.key.set_text("")  # no outlines to explain
     im_r.set_data(np.full((_SHOW, _SHOW, 3), 255, np.uint8))
     for line in (art.other, art.truth_box):
