@@ -671,8 +671,11 @@ def keystone_correction() -> Demo:
 
     def update(v: dict, state: dict) -> None:
         photo = scenes.sample_photo("facade", pitch=v["tilt"], yaw=v["yaw"])
+        turned = " and turned" if v["yaw"] != 0 else ""
         ax_p.set_title(
-            "photo, camera tilted up" if v["tilt"] < 0 else "photo, camera level (no tilt)",
+            f"photo, camera tilted up{turned}"
+            if v["tilt"] < 0
+            else ("photo, camera level, turned" if turned else "photo, camera level (no tilt)"),
             fontsize=10,
             pad=3,
         )
@@ -685,11 +688,16 @@ def keystone_correction() -> Demo:
         )
         _show_rectified(im_r, photo.image, c, (400, int(round(400 / est.ratio))))
         how = {"given": "the known f", "estimated": "f from the corners", "assumed": "f assumed"}
-        ax_r.set_title(f"rectified with {how.get(est.focal_source, 'no f')}", fontsize=10, pad=3)
         _box_outline(truth_box, (400, int(round(400 / photo.aspect))))
         left, right = c[3] - c[0], c[2] - c[1]
         converge = float(np.degrees(np.arctan2(left[0], left[1]) - np.arctan2(right[0], right[1])))
         off = 100 * (est.ratio / photo.aspect - 1)
+        off_text = f"{off:+.1f}%" if round(off, 1) != 0 else "0.0%"  # never -0.0%
+        ax_r.set_title(
+            f"rectified with {how.get(est.focal_source, 'no f')}: w/h {off_text}",
+            fontsize=10,
+            pad=3,
+        )
         state.update(
             ratio=est.ratio,
             true_ratio=photo.aspect,
@@ -698,7 +706,6 @@ def keystone_correction() -> Demo:
             focal=est.focal_length,
             ratio_error_percent=off,
         )
-        off_text = f"{off:+.1f}%" if round(off, 1) != 0 else "0.0%"  # never -0.0%
         readout.value = monospace(
             f"verticals converge by {abs(converge):.1f}°\n"
             f"aspect w/h estimated {est.ratio:.3f} (true {photo.aspect:.3f}, {off_text})\n"
