@@ -204,7 +204,7 @@ def _truth_artist(view: FigureView, ax_r: Any, key: str | None) -> Any:
     if key:
         ax_r.text(0.5, -0.02, key, transform=ax_r.transAxes, ha="center", va="top", fontsize=8)
     return view.animate(
-        ax_r.plot([], [], ":", color=palette.GREEN, lw=1.5, path_effects=palette.halo(1.5))[0]
+        ax_r.plot([], [], ":", color=palette.GREEN, lw=2, path_effects=palette.halo(2, "black"))[0]
     )
 
 
@@ -494,7 +494,10 @@ def rectify_photo() -> Demo:
             v = {**v, "corners": _new_photo(current, v["scene"], im_p, control)}
         photo = current["photo"]
         try:
-            corners = pp.check_quadrilateral(parse_corners(v["corners"]))
+            parsed = parse_corners(v["corners"])
+            if v["corners"] == format_corners(photo.corners):  # the text rounds to 0.01 px:
+                parsed = photo.corners  # while it shows the scene's own corners, use them exactly
+            corners = pp.check_quadrilateral(parsed)
             from_quad = pp.estimate_aspect_ratio(corners, photo.image.shape)
             known = pp.estimate_aspect_ratio(corners, photo.image.shape, focal_length=photo.K[0, 0])
         except (ValueError, pp.DegenerateError) as exc:
@@ -694,7 +697,7 @@ def keystone_correction() -> Demo:
         off = 100 * (est.ratio / photo.aspect - 1)
         off_text = f"{off:+.1f}%" if round(off, 1) != 0 else "0.0%"  # never -0.0%
         ax_r.set_title(
-            f"rectified with {how.get(est.focal_source, 'no f')}: w/h {off_text}",
+            f"rectified with {how.get(est.focal_source, 'no f')}: w/h {off_text} off true",
             fontsize=10,
             pad=3,
         )

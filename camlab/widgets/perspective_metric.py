@@ -143,7 +143,9 @@ def _figure():
     ax_r.set_ylabel("down (squares)", fontsize=8, labelpad=1)
     for ax in (ax_p, ax_r):
         ax.tick_params(labelsize=7)
-    ax_r.plot(*_PLANE.reshape(-1, 2).T, "+", color=palette.GREEN, ms=12, mew=1.2, zorder=1)
+    truth = view.animate(  # hidden with a refusal: then there is nothing to compare with
+        ax_r.plot(*_PLANE.reshape(-1, 2).T, "+", color=palette.GREEN, ms=12, mew=1.2, zorder=1)[0]
+    )
     ax_r.set_title("rectified (black) on the true corners (green +)", fontsize=10, pad=3)
     dots = view.animate(ax_p.plot([], [], "o", ms=3, color="k", zorder=3)[0])
     lines = [
@@ -164,7 +166,7 @@ def _figure():
             bbox=dict(boxstyle="round,pad=0.3", fc="white", ec=palette.RED),
         )
     )
-    return view, dots, lines, rect, why
+    return view, dots, lines, rect, why, truth
 
 
 @register(
@@ -189,7 +191,7 @@ def right_angle_rectification() -> Demo:
         degrees, ``exact_worst_angle`` the same for the estimated H applied to the noise-free
         corners, ``error`` the refusal when the right angles are all in one pair of directions).
     """
-    view, dots, lines, rect, why = _figure()
+    view, dots, lines, rect, why, truth = _figure()
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
@@ -215,11 +217,13 @@ def right_angle_rectification() -> Demo:
             met = pp.metric_rectification(L, M)
         except pp.DegenerateError as exc:
             rect.set_data([], [])
+            truth.set_visible(False)
             why.set_text("no rectification: all right angles are\nbetween the same two directions")
             state.update(ratio=None, worst_angle=None, error=str(exc))
             readout.value = monospace(textwrap.fill("refused: " + str(exc), 76))
             return
         why.set_text("")
+        truth.set_visible(True)
         q = upright_on_squares(met.H, grid)
         rect.set_data(*q.reshape(-1, 2).T)
         ratio, worst = squareness(q)
