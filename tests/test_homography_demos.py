@@ -156,7 +156,7 @@ def test_document_scanner_falls_back_to_the_assumed_f_when_f_is_not_determined()
 
 def test_keystone_demo_corrects_converging_verticals():
     d = p10.keystone_correction()
-    d.set(tilt=-0.6, yaw=0.0)
+    d.set(tilt=0.6, yaw=0.0)
     assert abs(d.state["convergence"]) > 5
     d.set(yaw=0.2)  # with both edge pairs converging the focal length and ratio are exact
     assert np.isclose(d.state["ratio"], d.state["true_ratio"], rtol=1e-6)

@@ -644,7 +644,7 @@ def document_scanner() -> Demo:
 
 @register(
     lesson="10",
-    sweep={"tilt": [-0.8, 0.0, -0.3], "yaw": [0.3, 0.0, -0.5, 0.5], "use_focal": [False, True]},
+    sweep={"tilt": [0.8, 0.0, 0.3], "yaw": [0.3, 0.0, -0.5, 0.5], "use_focal": [False, True]},
 )
 def keystone_correction() -> Demo:
     """Keystone: a camera tilted up at a facade makes its verticals converge; a homography undoes it.
@@ -656,7 +656,7 @@ def keystone_correction() -> Demo:
     Returns
     -------
     Demo
-        The demo: controls ``tilt`` and ``yaw`` (the camera's, rad) and ``use_focal`` (give
+        The demo: controls ``tilt`` (the camera's tilt up) and ``yaw`` (rad) and ``use_focal`` (give
         the known f), the figure (the facade with its outline, rectified beside the true
         shape) and ``state`` (``ratio`` estimated and ``true_ratio`` w/h,
         ``ratio_error_percent``, ``convergence`` of the verticals in degrees, ``focal`` in
@@ -673,11 +673,11 @@ def keystone_correction() -> Demo:
     view.animate(ax_p.title, ax_r.title)  # whether the camera is tilted; which f rectified it
 
     def update(v: dict, state: dict) -> None:
-        photo = scenes.sample_photo("facade", pitch=v["tilt"], yaw=v["yaw"])
+        photo = scenes.sample_photo("facade", pitch=-v["tilt"], yaw=v["yaw"])  # pitch < 0: up
         turned = " and turned" if v["yaw"] != 0 else ""
         ax_p.set_title(
             f"photo, camera tilted up{turned}"
-            if v["tilt"] < 0
+            if v["tilt"] > 0
             else ("photo, camera level, turned" if turned else "photo, camera level (no tilt)"),
             fontsize=10,
             pad=3,
@@ -716,7 +716,7 @@ def keystone_correction() -> Demo:
         )
 
     controls = {
-        "tilt": slider(-0.5, -0.8, 0.0, 0.05, "camera tilt (rad, negative = up)"),
+        "tilt": slider(0.5, 0.0, 0.8, 0.05, "camera tilt up (rad)"),
         "yaw": slider(0.0, -0.5, 0.5, 0.05, "yaw (rad)"),
         "use_focal": W.Checkbox(value=False, description="use the known focal length (800 px)"),
     }
