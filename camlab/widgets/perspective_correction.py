@@ -691,6 +691,7 @@ def keystone_correction() -> Demo:
         )
         _show_rectified(im_r, photo.image, c, (400, int(round(400 / est.ratio))))
         how = {"given": "the known f", "estimated": "f from the corners", "assumed": "f assumed"}
+        how["not needed"] = "no f (none needed)"
         _box_outline(truth_box, (400, int(round(400 / photo.aspect))))
         left, right = c[3] - c[0], c[2] - c[1]
         converge = float(np.degrees(np.arctan2(left[0], left[1]) - np.arctan2(right[0], right[1])))

@@ -78,6 +78,28 @@ def _static_scene(ax) -> None:
     )
 
 
+def _label_vanishing_point(label, tilt: float, height: float) -> None:
+    """Say where the vertical ray meets the image plane: at the point drawn, off the top, or never."""
+    if height < _TOP - 0.5:
+        label.xy = (0, height)
+        label.set_va("bottom")
+        label.set_text(
+            "the verticals' vanishing point:\nthe vertical ray (purple) meets\n"
+            "the image plane (dotted)"
+        )
+        return
+    label.xy = (2.2, _TOP - 0.35)  # right of the image plane, left of the rays
+    label.set_va("top")
+    label.set_text(
+        "the vertical ray (purple)\n"
+        + (
+            "never meets the image\nplane: both are vertical"
+            if tilt <= 0
+            else f"meets the image plane\n{height:.0f} m up, off the top"
+        )
+    )
+
+
 @register(lesson="10", sweep={"tilt": [0.0, 0.15, 0.8]})
 def keystone_side_view() -> Demo:
     """The keystone camera from the side: tilt it and watch the verticals' vanishing point move.
@@ -94,8 +116,8 @@ def keystone_side_view() -> Demo:
     ax = view.fig.subplots()
     _static_scene(ax)
     axis = view.animate(ax.plot([], [], color=palette.GREY, lw=1, ls="--")[0])
-    axis_label = view.animate(
-        ax.annotate("", (0, 0), xytext=(6, -6), textcoords="offset points", va="top", fontsize=9)
+    axis_label = view.animate(  # in the empty corner, off every ray at any tilt
+        ax.text(7.5, -0.85, "", ha="right", va="bottom", fontsize=9)
     )
     plane = view.animate(ax.plot([], [], color="k", lw=1, ls=":")[0])
     photo = view.animate(ax.plot([], [], color="k", lw=3)[0])
@@ -124,8 +146,7 @@ def keystone_side_view() -> Demo:
         along, up = np.array([np.cos(t), np.sin(t)]), np.array([-np.sin(t), np.cos(t)])
         centre = _PLANE_M * along
         axis.set_data(*np.c_[[0, 0], 3.2 * along])
-        axis_label.xy = 3.2 * along
-        axis_label.set_text(f"optical axis,\ntilted up {t:.2f} rad")
+        axis_label.set_text(f"dashed: the optical axis,\ntilted up {t:.2f} rad")
         height = _PLANE_M / np.sin(t) if t > 0 else np.inf  # the vertical ray meets the plane here
         reach = min(_PLANE_M / np.tan(t) + 0.3, 12.0) if t > 0 else 12.0
         plane.set_data(*(centre + np.outer([-1.4, reach], up)).T)
@@ -133,26 +154,8 @@ def keystone_side_view() -> Demo:
         photo_label.xy = centre - _HALF_M * up
         ray.set_data([0, 0], [0, min(height + 0.6, _TOP)])
         px = vanishing_point_px(t)
-        if height < _TOP - 0.5:
-            vp.set_data([0], [height])
-            vp_label.xy = (0, height)
-            vp_label.set_va("bottom")
-            vp_label.set_text(
-                "the verticals' vanishing point: the ray\nparallel to them (purple) meets the "
-                "image\nplane (dotted) far above the photo"
-            )
-        else:
-            vp.set_data([], [])
-            vp_label.xy = (2.2, _TOP - 0.35)  # right of the image plane, left of the rays
-            vp_label.set_va("top")
-            vp_label.set_text(
-                "the vertical ray (purple)\n"
-                + (
-                    "never meets the image\nplane: both are vertical"
-                    if t <= 0
-                    else f"meets the image plane\n{height:.0f} m up, off the top"
-                )
-            )
+        vp.set_data(*(([0], [height]) if height < _TOP - 0.5 else ([], [])))
+        _label_vanishing_point(vp_label, t, height)
         state.update(vanishing_px=px)
         readout.value = monospace(
             f"tilt {t:.2f} rad: "
