@@ -44,6 +44,7 @@ __all__ = [
     "DocumentNotFoundError",
     "NULL_GAP",
     "Rectified",
+    "affine_rectification",
     "check_quadrilateral",
     "estimate_aspect_ratio",
     "MetricRectification",
@@ -349,6 +350,45 @@ class Rectified(NamedTuple):
     H: np.ndarray
     corners: np.ndarray
     aspect: AspectRatio | None
+
+
+def affine_rectification(corners: ArrayLike) -> np.ndarray:
+    r"""H_P, the homography that sends a photographed rectangle's vanishing line back to infinity.
+
+    The top and bottom edges meet at one vanishing point, the left and right edges at another
+    (meets of joins, lesson 06); their join is the plane's vanishing line
+    :math:`l = (l_1, l_2, l_3)`, and
+
+    .. math:: H_P = \begin{pmatrix} 1 & 0 & 0 \\ 0 & 1 & 0 \\ l_1 & l_2 & l_3 \end{pmatrix},
+              \qquad H_P^{-T} l \sim (0, 0, 1)^T,
+
+    so lines parallel on the plane are parallel again: what remains is an affinity (lesson 10,
+    section 7). Everything stays homogeneous, so a vanishing point at infinity (an edge pair
+    parallel in the photo) needs no special case.
+
+    Parameters
+    ----------
+    corners : (4, 2) array_like
+        The rectangle's corners (u, v) in the photo, pixels: top-left, top-right, bottom-right,
+        bottom-left.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        H_P, with l scaled to unit length and its sign chosen so that the corners keep a
+        positive w = l . (u, v, 1) (the affine view is not turned by 180 degrees).
+
+    References
+    ----------
+    Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., §2.7.1 (affine rectification) and
+    §2.4.6 (H_P, the projective factor of a homography).
+    """
+    q = np.c_[check_quadrilateral(corners), np.ones(4)]
+    v_across = np.cross(np.cross(q[0], q[1]), np.cross(q[3], q[2]))  # top and bottom edges meet
+    v_up = np.cross(np.cross(q[0], q[3]), np.cross(q[1], q[2]))  # left and right edges meet
+    line = np.cross(v_across, v_up)
+    line = line / np.linalg.norm(line) * np.sign(line @ q.mean(axis=0))
+    return np.vstack([np.eye(3)[:2], line])
 
 
 def rectangle_homography(corners: ArrayLike, size: tuple[int, int]) -> np.ndarray:
@@ -681,8 +721,8 @@ def dual_conic_from_orthogonal_lines(lines_l: ArrayLike, lines_m: ArrayLike) -> 
             "few directions (the 5th and 6th "
             f"singular values of the stacked rows are {s[4] / s[0]:.2g} and {s[5] / s[0]:.2g} of the "
             "largest, so noise would pick the answer). Right angles all between the same two "
-            "directions (a rectangle's edges, however many pairs) fix only 4: every a v1 v1^T + "
-            "b v2 v2^T satisfies them (v1, v2 their vanishing points), and the free b / a is the "
+            "directions (a rectangle's edges, however many pairs) fix only 4: every alpha v1 v1^T + "
+            "beta v2 v2^T satisfies them (v1, v2 their vanishing points), and the free beta / alpha is the "
             "unknown aspect ratio; add pairs in another direction, e.g. a square's diagonals"
         )
     a, b, c, d, e, f = Vt[-1]

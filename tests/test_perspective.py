@@ -268,3 +268,40 @@ def test_metric_rectification_of_a_real_chessboard_photo():
     rms = np.sqrt(np.mean(np.abs(a * z + b - w) ** 2)) / abs(a)
     assert rms < 0.04  # lens distortion (uncorrected) is most of it
     assert r.residual < 0.01
+
+
+@pytest.mark.parametrize(
+    "kind, pose", [("facade", {}), ("page", {}), ("facade", {"pitch": -0.5, "yaw": 0.0})]
+)
+def test_affine_rectification_sends_the_vanishing_line_to_infinity(kind, pose):
+    """H_P makes opposite edges parallel; an affinity then gives OpenCV's rectifying H."""
+    import cv2
+
+    from camlab.projective import map_lines
+
+    photo = scenes.sample_photo(kind, **pose)
+    H_P = pp.affine_rectification(photo.corners)
+    c = np.c_[photo.corners, np.ones(4)]
+    line = np.cross(
+        np.cross(np.cross(c[0], c[1]), np.cross(c[3], c[2])),
+        np.cross(np.cross(c[0], c[3]), np.cross(c[1], c[2])),
+    )
+    sent = map_lines(H_P, line)
+    assert np.allclose(sent[:2] / sent[2], 0, atol=1e-12)
+    par = map_points(H_P, photo.corners)
+    assert np.allclose(par[1] - par[0], par[2] - par[3]) and np.allclose(
+        par[3] - par[0], par[2] - par[1]
+    )
+    target = np.array([[0, 0], [299, 0], [299, 199], [0, 199]], float)
+    A = np.linalg.lstsq(np.c_[par[:3], np.ones(3)], target[:3], rcond=None)[0].T
+    H_cv = cv2.getPerspectiveTransform(np.float32(photo.corners), np.float32(target))
+    from camlab.homography import same_homography
+
+    assert same_homography(np.vstack([A, [0, 0, 1]]) @ H_P, H_cv, tol=1e-5)
+    assert (c @ H_P[2] > 0).all()  # the corners keep w > 0
+
+
+def test_affine_rectification_refuses_a_bow_tie():
+    corners = scenes.sample_photo("page").corners[[0, 1, 3, 2]]
+    with pytest.raises(pp.DegenerateError, match="corners"):
+        pp.affine_rectification(corners)

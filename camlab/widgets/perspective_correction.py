@@ -112,9 +112,9 @@ def _why_text(view: FigureView, ax: Any) -> Any:
 
 
 _OUTLINE_STYLE = "--"  # the corners' outline on the photo, yellow
-_KEY = "red dashed: the other focal length's shape\ngreen dotted: the true shape"
+_KEY = "brown dashed: the other focal length's shape\ngreen dotted: the true shape"
 _KEY_OFF_PAGE = (
-    "red dashed: the other focal length's shape\nno green: these are not the scene's corners"
+    "brown dashed: the other focal length's shape\nno green: these are not the scene's corners"
 )
 _SCAN_KEY = "green dotted: the page's true shape (A4)"
 _ON_PAGE_PX = 10.0  # corners this close to the scene's true ones still mark its rectangle
@@ -154,7 +154,7 @@ def _rectify_artists(view: FigureView, ax_p: Any, ax_r: Any) -> SimpleNamespace:
         )
     )
     other = view.animate(
-        ax_r.plot([], [], "--", color=palette.RED, lw=1.5, path_effects=palette.halo(1.5))[0]
+        ax_r.plot([], [], "--", color=palette.BROWN, lw=1.5, path_effects=palette.halo(1.5))[0]
     )
     truth_box = _truth_artist(view, ax_r, None)
     view.animate(ax_r.title)  # says which focal length the rectified view uses
@@ -174,7 +174,7 @@ def _show_invalid(
         corners = None
     if corners is not None:
         _show_corners(quad, art.handles, art.chosen, corners, k)
-    quad.set(color=palette.RED, linestyle="-")  # solid: red dashed is the other f's outline
+    quad.set(color=palette.RED, linestyle="-")  # red means refused, in every lesson-10 demo
     art.key.set_text("")  # no outlines to explain
     im_r.set_data(np.full((_SHOW, _SHOW, 3), 255, np.uint8))
     for line in (art.other, art.truth_box):
@@ -204,7 +204,7 @@ def _truth_artist(view: FigureView, ax_r: Any, key: str | None) -> Any:
     if key:
         ax_r.text(0.5, -0.02, key, transform=ax_r.transAxes, ha="center", va="top", fontsize=8)
     return view.animate(
-        ax_r.plot([], [], ":", color=palette.GREEN, lw=1.5, path_effects=palette.halo(1.5))[0]
+        ax_r.plot([], [], ":", color=palette.GREEN, lw=2, path_effects=palette.halo(2, "black"))[0]
     )
 
 
@@ -494,7 +494,10 @@ def rectify_photo() -> Demo:
             v = {**v, "corners": _new_photo(current, v["scene"], im_p, control)}
         photo = current["photo"]
         try:
-            corners = pp.check_quadrilateral(parse_corners(v["corners"]))
+            parsed = parse_corners(v["corners"])
+            if v["corners"] == format_corners(photo.corners):  # the text rounds to 0.01 px:
+                parsed = photo.corners  # while it shows the scene's own corners, use them exactly
+            corners = pp.check_quadrilateral(parsed)
             from_quad = pp.estimate_aspect_ratio(corners, photo.image.shape)
             known = pp.estimate_aspect_ratio(corners, photo.image.shape, focal_length=photo.K[0, 0])
         except (ValueError, pp.DegenerateError) as exc:
@@ -641,7 +644,7 @@ def document_scanner() -> Demo:
 
 @register(
     lesson="10",
-    sweep={"tilt": [-0.8, 0.0, -0.3], "yaw": [0.3, 0.0, -0.5, 0.5], "use_focal": [False, True]},
+    sweep={"tilt": [0.8, 0.0, 0.3], "yaw": [0.3, 0.0, -0.5, 0.5], "use_focal": [False, True]},
 )
 def keystone_correction() -> Demo:
     """Keystone: a camera tilted up at a facade makes its verticals converge; a homography undoes it.
@@ -653,7 +656,7 @@ def keystone_correction() -> Demo:
     Returns
     -------
     Demo
-        The demo: controls ``tilt`` and ``yaw`` (the camera's, rad) and ``use_focal`` (give
+        The demo: controls ``tilt`` (the camera's tilt up) and ``yaw`` (rad) and ``use_focal`` (give
         the known f), the figure (the facade with its outline, rectified beside the true
         shape) and ``state`` (``ratio`` estimated and ``true_ratio`` w/h,
         ``ratio_error_percent``, ``convergence`` of the verticals in degrees, ``focal`` in
@@ -670,9 +673,12 @@ def keystone_correction() -> Demo:
     view.animate(ax_p.title, ax_r.title)  # whether the camera is tilted; which f rectified it
 
     def update(v: dict, state: dict) -> None:
-        photo = scenes.sample_photo("facade", pitch=v["tilt"], yaw=v["yaw"])
+        photo = scenes.sample_photo("facade", pitch=-v["tilt"], yaw=v["yaw"])  # pitch < 0: up
+        turned = " and turned" if v["yaw"] != 0 else ""
         ax_p.set_title(
-            "photo, camera tilted up" if v["tilt"] < 0 else "photo, camera level (no tilt)",
+            f"photo, camera tilted up{turned}"
+            if v["tilt"] > 0
+            else ("photo, camera level, turned" if turned else "photo, camera level (no tilt)"),
             fontsize=10,
             pad=3,
         )
@@ -685,11 +691,17 @@ def keystone_correction() -> Demo:
         )
         _show_rectified(im_r, photo.image, c, (400, int(round(400 / est.ratio))))
         how = {"given": "the known f", "estimated": "f from the corners", "assumed": "f assumed"}
-        ax_r.set_title(f"rectified with {how.get(est.focal_source, 'no f')}", fontsize=10, pad=3)
+        how["not needed"] = "no f (none needed)"
         _box_outline(truth_box, (400, int(round(400 / photo.aspect))))
         left, right = c[3] - c[0], c[2] - c[1]
         converge = float(np.degrees(np.arctan2(left[0], left[1]) - np.arctan2(right[0], right[1])))
         off = 100 * (est.ratio / photo.aspect - 1)
+        off_text = f"{off:+.1f}%" if round(off, 1) != 0 else "0.0%"  # never -0.0%
+        ax_r.set_title(
+            f"rectified with {how.get(est.focal_source, 'no f')}: w/h {off_text} off true",
+            fontsize=10,
+            pad=3,
+        )
         state.update(
             ratio=est.ratio,
             true_ratio=photo.aspect,
@@ -698,7 +710,6 @@ def keystone_correction() -> Demo:
             focal=est.focal_length,
             ratio_error_percent=off,
         )
-        off_text = f"{off:+.1f}%" if round(off, 1) != 0 else "0.0%"  # never -0.0%
         readout.value = monospace(
             f"verticals converge by {abs(converge):.1f}°\n"
             f"aspect w/h estimated {est.ratio:.3f} (true {photo.aspect:.3f}, {off_text})\n"
@@ -706,7 +717,7 @@ def keystone_correction() -> Demo:
         )
 
     controls = {
-        "tilt": slider(-0.5, -0.8, 0.0, 0.05, "camera tilt (rad, negative = up)"),
+        "tilt": slider(0.5, 0.0, 0.8, 0.05, "camera tilt up (rad)"),
         "yaw": slider(0.0, -0.5, 0.5, 0.05, "yaw (rad)"),
         "use_focal": W.Checkbox(value=False, description="use the known focal length (800 px)"),
     }

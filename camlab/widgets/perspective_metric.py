@@ -131,32 +131,42 @@ def _figure():
     ax_p, ax_r = view.fig.subplots(1, 2, width_ratios=[1.3, 1])
     ax_p.set(xlim=(-0.5, 639.5), ylim=(479.5, -0.5), aspect="equal")
     ax_p.set_xlabel(
-        "u (px, right); each pair: a brown line l at right angles to a blue line m",
+        "u (px, right); each pair: a blue line l at right angles to a purple line m",
         fontsize=8,
         labelpad=1,
     )
     ax_p.set_ylabel("v (px, down)", fontsize=8, labelpad=1)
     ax_p.set_title("photo: corners and the right angles used", fontsize=10, pad=3)
-    ax_r.set(xlim=(-1, 9), ylim=(6, -2), aspect="equal")  # room above the grid for a refusal
-    ax_r.set_yticks(range(7))
+    ax_r.set(xlim=(-0.7, 8.7), ylim=(5.7, -0.7), aspect="equal")  # the same margin on all sides
+    ax_r.set_yticks(range(6))
     ax_r.set_xlabel("across (squares)", fontsize=8, labelpad=1)
     ax_r.set_ylabel("down (squares)", fontsize=8, labelpad=1)
     for ax in (ax_p, ax_r):
         ax.tick_params(labelsize=7)
-    ax_r.plot(*_PLANE.reshape(-1, 2).T, "+", color=palette.GREEN, ms=12, mew=1.2, zorder=1)
-    ax_r.set_title("rectified (orange) on the true corners (green +)", fontsize=10, pad=3)
+    truth = view.animate(  # hidden with a refusal: then there is nothing to compare with
+        ax_r.plot(*_PLANE.reshape(-1, 2).T, "+", color=palette.GREEN, ms=12, mew=1.2, zorder=1)[0]
+    )
+    ax_r.set_title("rectified (black) on the true corners (green +)", fontsize=10, pad=3)
     dots = view.animate(ax_p.plot([], [], "o", ms=3, color="k", zorder=3)[0])
     lines = [
         view.animate(ax_p.plot([], [], color=c, lw=1.2, zorder=2)[0])
-        for c in [palette.BROWN, palette.BLUE] * 8
+        for c in [palette.BLUE, palette.PURPLE] * 8
     ]
-    rect = view.animate(
-        ax_r.plot([], [], "o", ms=5, color=palette.ORANGE, mec="k", mew=0.5, zorder=3)[0]
-    )
+    rect = view.animate(ax_r.plot([], [], "o", ms=5, color="k", zorder=3)[0])
     why = view.animate(
-        ax_r.text(4, -1.0, "", ha="center", va="center", fontsize=8.5, color=palette.RED, zorder=4)
+        ax_r.text(
+            4,
+            2.5,
+            "",
+            ha="center",
+            va="center",
+            fontsize=8.5,
+            color=palette.RED,
+            zorder=4,
+            bbox=dict(boxstyle="round,pad=0.3", fc="white", ec=palette.RED),
+        )
     )
-    return view, dots, lines, rect, why
+    return view, dots, lines, rect, why, truth
 
 
 @register(
@@ -181,7 +191,7 @@ def right_angle_rectification() -> Demo:
         degrees, ``exact_worst_angle`` the same for the estimated H applied to the noise-free
         corners, ``error`` the refusal when the right angles are all in one pair of directions).
     """
-    view, dots, lines, rect, why = _figure()
+    view, dots, lines, rect, why, truth = _figure()
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
@@ -190,28 +200,30 @@ def right_angle_rectification() -> Demo:
         k = min(grid.shape[:2])
         if v[
             "diagonals"
-        ]:  # the outer rows and columns, and two blocks' diagonals (brown with blue)
+        ]:  # the outer rows and columns, and two blocks' diagonals (blue with purple)
             segs = [grid[0, [0, -1]], grid[[0, -1], 0], grid[-1, [0, -1]], grid[[0, -1], -1]]
             segs += [grid[[0, k - 1], [0, k - 1]], grid[[k - 1, 0], [0, k - 1]]]
             segs += [grid[[0, k - 1], [8 - k + 1, 8]], grid[[k - 1, 0], [8 - k + 1, 8]]]
-            colours, width = [palette.BROWN, palette.BLUE] * 4, 1.2
+            colours, width = [palette.BLUE, palette.PURPLE] * 4, 1.2
             L, M = pp.square_grid_right_angles(grid)
-        else:  # every row (brown) against every column (blue), thin
+        else:  # every row (blue) against every column (purple), thin
             segs = [r[[0, -1]] for r in grid] + [c[[0, -1]] for c in grid.transpose(1, 0, 2)]
-            colours, width = [palette.BROWN] * len(grid) + [palette.BLUE] * grid.shape[1], 0.8
+            colours, width = [palette.BLUE] * len(grid) + [palette.PURPLE] * grid.shape[1], 0.8
             L, M = rows_and_columns(grid)
         for n, artist in enumerate(lines):
             artist.set_data(*(segs[n] if n < len(segs) else np.empty((0, 2))).T)
-            artist.set(color=colours[n] if n < len(segs) else palette.BROWN, lw=width)
+            artist.set(color=colours[n] if n < len(segs) else palette.BLUE, lw=width)
         try:
             met = pp.metric_rectification(L, M)
         except pp.DegenerateError as exc:
             rect.set_data([], [])
+            truth.set_visible(False)
             why.set_text("no rectification: all right angles are\nbetween the same two directions")
             state.update(ratio=None, worst_angle=None, error=str(exc))
             readout.value = monospace(textwrap.fill("refused: " + str(exc), 76))
             return
         why.set_text("")
+        truth.set_visible(True)
         q = upright_on_squares(met.H, grid)
         rect.set_data(*q.reshape(-1, 2).T)
         ratio, worst = squareness(q)

@@ -1,8 +1,8 @@
 """Exercises for lesson 10, perspective correction.
 
 The rectangle's homography (:mod:`.rectangle`), its shape and the focal length from four corners
-(:mod:`.shape`), the corners' order (:mod:`.order`) and the image of C*inf from right angles
-(:mod:`.conic`).
+(:mod:`.shape`), the corners' order (:mod:`.order`), the image of C*inf from right angles
+(:mod:`.conic`) and the affine-rectifying H_P (:mod:`.affine`).
 """
 
 from __future__ import annotations
@@ -13,7 +13,8 @@ from . import rectangle
 from . import order
 from . import conic
 from . import shape
+from . import affine
 
 # isort: on
 
-__all__ = ["conic", "order", "rectangle", "shape"]
+__all__ = ["affine", "conic", "order", "rectangle", "shape"]

@@ -28,7 +28,31 @@ def _conic_cases():
             [0.0, 0.06, 1.0],
         ],  # tilt only, like a keystone photo
     ]
-    return [pp.square_grid_right_angles(_grid_photo(G)) for G in Gs]
+    cases = [pp.square_grid_right_angles(_grid_photo(G)) for G in Gs]
+    return cases + [_over_determined(Gs[0])]
+
+
+def _line_through(p: np.ndarray) -> np.ndarray:
+    """The line (a, b, c) through the first and last of the points ``p`` (exact corners: all on it).
+
+    Scaled to a unit normal (a^2 + b^2 = 1), as ``pp.square_grid_right_angles`` returns its lines.
+    """
+    line = np.cross([*p[0], 1.0], [*p[-1], 1.0])
+    return line / np.linalg.norm(line[:2])
+
+
+def _over_determined(G):
+    """An over-determined case: 56 pairs, every row against every column, the diagonals in the middle.
+
+    The grid's 54 row-against-column pairs, with its blocks' two diagonal pairs after the 27th. Any
+    five of the first 27 or the last 27 are right angles between one pair of directions (rank 4), so
+    a solver that uses five pairs, not all of them, is caught.
+    """
+    g = _grid_photo(G)
+    rows_cols = [(_line_through(r), _line_through(c)) for r in g for c in g.transpose(1, 0, 2)]
+    L, M = pp.square_grid_right_angles(g)
+    pairs = rows_cols[:27] + list(zip(L[4:], M[4:], strict=True)) + rows_cols[27:]
+    return pp.OrthogonalLinePairs(np.array([p[0] for p in pairs]), np.array([p[1] for p in pairs]))
 
 
 def _conic_rows(lines_l, lines_m, half=True):
@@ -151,6 +175,8 @@ def _conic_diagnosis(args, got, expected) -> str:
     if slip := _sign_or_inverse_slip(g, lines_l, lines_m, e):
         return slip
     residual, _ = _residual_and_eigenvalues(g, e, lines_l, lines_m)
+    if residual > 1e-4 and (few := _pairs_used(g, e, lines_l, lines_m)):
+        return few
     if residual > 1e-4 and _own_rank(g) == 2:
         return _NOT_UNDONE
     if residual > 1e-4:
@@ -190,6 +216,27 @@ def _residual_and_eigenvalues(g, e, lines_l, lines_m):
     mine_d = _conic_vector(D @ g @ D)
     residual = np.linalg.norm(rows @ mine_d) / (np.linalg.norm(rows, 2) * np.linalg.norm(mine_d))
     return residual, np.abs(np.linalg.eigvalsh(D @ g @ D))
+
+
+def _pairs_used(g, e, lines_l, lines_m) -> str | None:
+    """The hint for an answer that satisfies the first (or last) five pairs exactly, not all N."""
+    D = np.diag(1 / np.sqrt(np.abs(np.diag(e))))
+    Dinv = np.linalg.inv(D)
+    rows = _conic_rows(np.asarray(lines_l, float) @ Dinv, np.asarray(lines_m, float) @ Dinv)
+    rows /= np.linalg.norm(rows, axis=1, keepdims=True)
+    mine = _conic_vector(D @ g @ D)
+    each = np.abs(rows @ mine) / np.linalg.norm(mine)
+    for part, which in (("first", slice(0, 5)), ("last", slice(-5, None))):
+        if len(rows) > 5 and each[which].max() < 1e-8 < each.max():
+            return (
+                f"your matrix satisfies the {part} five pairs exactly but not the other {len(rows) - 5}: "
+                "you used five pairs, not all N. Five fix C* only when they are independent; here those "
+                "five are all right angles between the grid's rows and columns, one pair of directions, "
+                "which fix only 4 of its 5 degrees of freedom (section 8), and with measured lines no "
+                "five agree with the rest. Stack one row per pair, all N of them, and take the null "
+                "vector of the whole stack (Vt[-1]: the least-squares answer when the rows disagree)."
+            )
+    return None
 
 
 def _sign_or_inverse_slip(g, lines_l, lines_m, e) -> str | None:
@@ -339,6 +386,10 @@ register_exercise(
             (
                 lambda L, M: np.linalg.pinv(pp.dual_conic_from_orthogonal_lines(L, M)),
                 "(pseudo-)inverse",
+            ),
+            (
+                lambda L, M: _conic_matrix(np.linalg.svd(_conic_rows(L[:5], M[:5]))[2][-1]),
+                "five pairs, not all N",
             ),
             (  # badly scaled and not rank 2: must not get the "normalisation not undone" hint
                 lambda L, M: sum(

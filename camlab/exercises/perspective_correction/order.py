@@ -47,7 +47,7 @@ def _sum_difference_trick(corners):
     return q[[np.argmin(s), np.argmin(d), np.argmax(s), np.argmax(d)]]
 
 
-def _order_diagnosis(args, got, expected) -> str:
+def _order_diagnosis(args, got, expected, run=None) -> str:
     if np.shape(got) == (4,) and sorted(np.asarray(got).tolist()) == [0, 1, 2, 3]:
         return (
             "you returned the order, indices of the input corners; return the corners themselves, "
@@ -86,7 +86,7 @@ def _order_diagnosis(args, got, expected) -> str:
         if np.allclose(g, np.roll(expected, shift, axis=0)):
             return (
                 "the cyclic order is right but it does not start at the top-left corner"
-                + _start_rule(g[0], corners)
+                + _start_rule(g, corners, run)
             )
     ccw = [s for s in range(4) if np.allclose(g, np.roll(expected[::-1], s, axis=0))]
     if ccw:
@@ -108,6 +108,12 @@ def _order_diagnosis(args, got, expected) -> str:
             "sort by the angle around the centroid (np.arctan2(v - v_c, u - u_c)), then start at the "
             "smallest u + v."
         )
+    if np.allclose(g, _two_topmost(corners)):
+        return (
+            "you took the two topmost corners (smallest v) as the top edge: a shortcut for upright pages "
+            "only; here the two topmost corners are opposite corners, so your order crosses itself. Sort by "
+            "the angle around the centroid (np.arctan2(v - v_c, u - u_c)), then start at the smallest u + v."
+        )
     return (
         "your order crosses itself or does not go round the quadrilateral; sort by the angle around the "
         "centroid (np.arctan2(v - v_c, u - u_c)), which works for any convex quadrilateral, then start at "
@@ -115,18 +121,67 @@ def _order_diagnosis(args, got, expected) -> str:
     )
 
 
-def _start_rule(first, corners) -> str:
-    """Name the tempting start rule the answer followed: the topmost or the leftmost corner."""
-    for rule, k, often in (
-        ("topmost corner (smallest v)", 1, "top-right"),
-        ("leftmost corner (smallest u)", 0, "bottom-left"),
-    ):
-        if np.allclose(first, corners[np.argmin(corners[:, k])]):
-            return (
-                f": you started at the {rule}. In a turned or tilted page that is often the {often} "
-                "corner; the top-left one is the corner with the smallest u + v."
-            )
-    return " (smallest u + v)."
+_ROLL = "np.roll(q, -np.argmin(q.sum(axis=1)), axis=0)"
+
+
+# Quadrilaterals on which the four start rules below pairwise differ, to tell them apart
+_PROBES = (
+    np.array([[150.0, 235.0], [260.0, 40.0], [540.0, 250.0], [330.0, 430.0]]),
+    np.array([[482.0, 344.0], [194.0, 290.0], [352.0, 18.0], [211.0, 505.0]]),
+    np.array([[100.0, 300.0], [200.0, 80.0], [450.0, 60.0], [420.0, 400.0]]),
+)
+
+
+def _start_rule(got, corners, run=None) -> str:
+    """Name the start rule the answer followed, where it is one of the tempting ones, else the fix.
+
+    Several rules can give the same order on one input; ``run`` (the student's function, on other
+    input) then tells them apart on :data:`_PROBES`.
+    """
+    rules = [
+        (
+            _sorted_by_angle,
+            "you sorted by angle but did not rotate the sorted corners to start at the top-left one: "
+            "the sort starts wherever np.arctan2's -pi falls (the corner left of the centroid)",
+        ),
+        (
+            _two_topmost,
+            "you took the two topmost corners (smallest v) as the top edge, sorted by u: a shortcut "
+            "for upright pages only; once a page is turned further than its diagonal (tan of the turn "
+            "> h / w) the two topmost corners are a side edge, TL and BL or TR and BR",
+        ),
+        (
+            _start_at(1),
+            "you started at the topmost corner (smallest v), often the top-right one in a turned page",
+        ),
+        (
+            _start_at(0),
+            "you started at the leftmost corner (smallest u), often the bottom-left one in a turned page",
+        ),
+    ]
+    named = [(rule, hint) for rule, hint in rules if np.allclose(got, rule(corners))]
+    if len(named) > 1 and run is not None:
+        try:
+            answers = [np.asarray(run(q.copy()), dtype=float) for q in _PROBES]
+            named = [
+                (rule, hint)
+                for rule, hint in named
+                if all(
+                    a.shape == (4, 2) and np.allclose(a, rule(q))
+                    for a, q in zip(answers, _PROBES, strict=True)
+                )
+            ] or named
+        except Exception:  # the student's function fails on a probe: keep every candidate
+            pass
+    named = [hint for _, hint in named]
+    fix = f". The top-left corner is the one with the smallest u + v: {_ROLL}."
+    if not named:
+        return f" (smallest u + v): rotate the sorted corners, {_ROLL}."
+    if len(named) == 1:
+        return ": " + named[0] + fix
+    return (
+        ": on this input several slips give this order, one of them: " + "; or ".join(named) + fix
+    )
 
 
 def _start_at(k):
@@ -165,6 +220,17 @@ def _sorted_by_angle(corners):
     return q[np.argsort(np.arctan2(q[:, 1] - c[1], q[:, 0] - c[0]))]
 
 
+def _two_topmost(corners):
+    """A tempting shortcut: the two topmost corners (smallest v) as the top edge, sorted by u.
+
+    The other two are the bottom edge, sorted by u descending.
+    """
+    q = np.asarray(corners, dtype=float)
+    q = q[np.argsort(q[:, 1], kind="stable")]
+    top, bottom = q[:2][np.argsort(q[:2, 0])], q[2:][np.argsort(-q[2:, 0])]
+    return np.vstack([top, bottom])
+
+
 def _swapped_arctan2(corners):
     """A typical slip: np.arctan2(u - u_c, v - v_c), arguments swapped, then started at the top-left."""
     q = np.asarray(corners, dtype=float)
@@ -181,6 +247,7 @@ register_exercise(
         cases=_order_cases,
         compare=same_array(),
         diagnose=_order_diagnosis,
+        diagnosis_runs=True,
         wrong_variants=(
             (lambda c: np.roll(pp.order_corners(c), 1, axis=0), "does not start at the top-left"),
             (lambda c: pp.order_corners(c)[::-1], "counter-clockwise"),
@@ -197,7 +264,8 @@ register_exercise(
                 ],
                 "sort by the angle",
             ),
-            (_sorted_by_angle, "does not start at the top-left"),
+            (_sorted_by_angle, "did not rotate the sorted corners"),
+            (_two_topmost, "two topmost corners"),
             (_start_at(1), "started at the topmost corner"),
             (_start_at(0), "started at the leftmost corner"),
             (lambda c: pp.order_corners(c)[[0, 1, 3, 2]], "Z order"),

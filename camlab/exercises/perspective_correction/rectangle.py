@@ -9,7 +9,7 @@ import numpy as np
 from ... import perspective as pp
 from ... import scenes
 from ...homography import estimate_homography
-from ...projective import map_points
+from ...projective import hartley_normalise, map_points
 from .._answers import same_up_to_scale, shape_problem
 from .._core import Exercise, Mistake, register_exercise
 
@@ -17,8 +17,10 @@ from .._core import Exercise, Mistake, register_exercise
 def _rect_cases():
     return [
         # offset by (10, 20), not equally: with equal offsets, photo corners read as (v, u) and a
-        # target written as (v, u) give the same H, and the check could not say which slip it was
-        (np.array([[10.0, 20.0], [110.0, 20.0], [110.0, 70.0], [10.0, 70.0]]), (101, 51)),
+        # target written as (v, u) give the same H, and the check could not say which slip it was;
+        # 150 x 50 onto 101 x 51, another shape: a translated copy would make a normalised DLT's
+        # H_hat the identity, and a normalisation undone the wrong way would read as the inverse
+        (np.array([[10.0, 20.0], [160.0, 20.0], [160.0, 70.0], [10.0, 70.0]]), (101, 51)),
         (scenes.sample_photo("page").corners, (210, 297)),
         (scenes.sample_photo("facade").corners, (400, 300)),
     ]
@@ -141,6 +143,31 @@ _RECT_MISTAKES = (
         "= h11 u + h12 v + h13 moves x h31 u and x h32 v to the left as -x u and -x v; you wrote +x u, +x v "
         "(your y row is right).",
     ),
+    # lesson 07's normalised DLT (Hartley's T1 for the photo corners, T2 for the target), undone wrongly
+    Mistake(
+        "normalisation not undone",
+        lambda s: next((H for H in _normalised(s) if s.same(H)), None),
+        "your H is H_hat, the homography between the NORMALISED points: you conditioned the corners "
+        "(lesson 07's T, centroid at 0, mean distance sqrt 2) and did not undo it. Undo it: "
+        "H = T2^-1 H_hat T1 (T1 for the photo corners, T2 for the target; T2 = I if you normalised "
+        "the photo corners only).",
+    ),
+    Mistake(
+        "normalisation undone on the wrong side",
+        lambda s: next((H for H in _normalised(s, undone_wrongly=True) if s.same(H)), None),
+        "you normalised the corners (lesson 07's T) and undid it on the wrong side or with T1 and T2 "
+        "swapped: H_hat maps T1 x to T2 x', so H = T2^-1 H_hat T1 (the photo's T1 on the right, where "
+        "the photo corners go in; the target's T2 inverted on the left).",
+    ),
+    Mistake(
+        "rounded",
+        lambda s: next(
+            (H for k in range(7) if s.same(H := np.round(s.expected / s.expected[2, 2], k))), None
+        ),
+        "your H is the right one rounded (np.round, or printed and copied): the third row's h31 and "
+        "h32 are about 1e-3 per pixel or less, and multiplied by u, v in the hundreds their lost digits "
+        "move the corners; return H at full precision.",
+    ),
     Mistake(
         "counter-clockwise",
         lambda s: s.fit(s.corners, s.target((0, 3, 2, 1))),
@@ -164,6 +191,24 @@ _RECT_MISTAKES = (
     ),
 )
 """Ex 1's typical mistakes, each the H it gives, in the order the diagnosis tries them."""
+
+
+def _normalised(s, undone_wrongly=False):
+    """The H of lesson 07's normalised DLT not undone (or, ``undone_wrongly``, undone wrongly).
+
+    Both point sets conditioned (T1, T2), or the photo corners only (T2 = I).
+    """
+    T1 = hartley_normalise(s.corners).T
+    found = []
+    for T2 in (hartley_normalise(s.target()).T, np.eye(3)):
+        H_hat = T2 @ s.expected @ np.linalg.inv(T1)
+        if not undone_wrongly:
+            found.append(H_hat)
+            continue
+        i1, i2 = np.linalg.inv(T1), np.linalg.inv(T2)
+        found += [i1 @ H_hat @ T2, T2 @ H_hat @ i1, T1 @ H_hat, H_hat @ i2, i2 @ H_hat @ i1]
+        found += [T2 @ H_hat @ T1, i1 @ H_hat @ i2]
+    return found
 
 
 def _sign_slip(corners, size, rows="xy"):
@@ -268,6 +313,23 @@ def rectangle_homography(corners, size):
     return np.append(h, 1.0).reshape(3, 3)
 
 
+def _normalised_dlt(corners, size, slip):
+    """A student's lesson-07 normalised DLT, with one ``slip`` in undoing the normalisation.
+
+    "not undone" (H_hat returned), "swapped" (T1^-1 H_hat T2) or "one side" (only the photo corners
+    normalised, undone as T1 H_hat).
+    """
+    target = _rect_target(*size)
+    T1 = hartley_normalise(corners).T
+    T2 = np.eye(3) if slip == "one side" else hartley_normalise(target).T
+    H_hat = estimate_homography(map_points(T1, corners), map_points(T2, target), normalise=False)
+    return {
+        "not undone": H_hat,
+        "swapped": np.linalg.inv(T1) @ H_hat @ T2,
+        "one side": T1 @ H_hat,
+    }[slip]
+
+
 register_exercise(
     Exercise(
         name="rectangle_homography",
@@ -326,6 +388,9 @@ register_exercise(
                 lambda c, size: estimate_homography(c, _rect_target(*size, order=(1, 2, 3, 0))),
                 "start at the wrong corner",
             ),
+            (lambda c, size: _normalised_dlt(c, size, "not undone"), "did not undo it"),
+            (lambda c, size: _normalised_dlt(c, size, "swapped"), "wrong side"),
+            (lambda c, size: _normalised_dlt(c, size, "one side"), "wrong side"),
             (
                 lambda c, size: estimate_homography(
                     c, [[0, 0], [0, size[1] - 1], np.subtract(size, 1), [size[0] - 1, 0]]

@@ -88,8 +88,10 @@ _SHAPE_MISTAKES = (
     Mistake(
         "h/w",
         lambda s: (1 / s.ratio, s.f),
-        "your ratio is h/w: the edge TL-TR (n2, along e1) is the width, so w/h = |A^-1 n2| / |A^-1 n3|, "
-        "not its inverse.",
+        "your ratio is h/w (your f is right): either you inverted it (the edge TL-TR, n2 along e1, is "
+        "the width, so w/h = |A^-1 n2| / |A^-1 n3|), or your m1 is not the top-left corner (TR or BL "
+        "taken as TL turns the rectangle by 90 degrees and swaps width and height): m1, m2, m3, m4 = "
+        "corners[[0, 1, 3, 2]], TL, TR, BL, BR.",
     ),
     Mistake(
         "squares",
@@ -142,8 +144,14 @@ def _other_centre(corners, principal_point, g, wrong) -> str | None:
         ("the centroid of the corners", np.asarray(corners, float).mean(axis=0)),
         ("the centre of a 640 x 480 image, (319.5, 239.5)", (319.5, 239.5)),
         ("(320, 240), half a pixel off the centre of a 640 x 480 image", (320.0, 240.0)),
-        ("the principal point moved by half a pixel", c + 0.5),
-        ("the principal point moved by half a pixel", c - 0.5),
+        (
+            "a point half a pixel off the principal point (the corners or it shifted by 0.5 px: pixel edges for centres?)",
+            c + 0.5,
+        ),
+        (
+            "a point half a pixel off the principal point (the corners or it shifted by 0.5 px: pixel edges for centres?)",
+            c - 0.5,
+        ),
         ("the principal point counted from 1 (1-based)", c + 1),
         ("the principal point moved by -1 (a 1-based conversion done on a 0-based value)", c - 1),
     )
