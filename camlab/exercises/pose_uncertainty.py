@@ -176,6 +176,11 @@ def _diagnosis(args, got, expected) -> str:
             f"you returned a ({len(r)}, {len(r)}) matrix: that is J J^T (or J Sigma J^T), one entry per "
             "residual pair; the pose's covariance is 6 x 6, sigma^2 (J^T J)^-1 with J.T @ J."
         )
+    if g is not None and g.shape == (6,):
+        return (
+            "you returned 6 numbers, the variances alone (the diagonal): return the whole (6, 6) "
+            "covariance, whose off-diagonal terms carry the correlations between the pose's parameters."
+        )
     hint = None
     if g is not None and g.shape == np.shape(expected) and g.dtype.kind in "fiu":
         hint = first_mistake(  # before shape_problem, whose NaN hint would hide a square root
@@ -224,6 +229,7 @@ register_exercise(
             (_variant("inverse of the diagonal"), "only the diagonal"),
             (_variant("sigma from mean |r|"), "mean of |r|"),
             ((lambda J, r: np.sum(r**2) / (len(r) - 6) * J @ J.T), "J J^T"),
+            ((lambda J, r: np.diag(pose_covariance(J, r))), "the variances alone"),
         ),
         teaching=pose_covariance,
         ndarray_only=True,
