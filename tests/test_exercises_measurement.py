@@ -79,8 +79,7 @@ def test_pose_covariance_accepts_a_solve_and_a_pseudo_inverse(capsys):
 def test_length_sigma_reference_is_measure_on_plane_and_accepts_forward_differences(capsys):
     from types import SimpleNamespace
 
-    from camlab.exercises.length_sigma import _exp, _homography_of, length_sigma
-    from camlab.exercises.point_jacobian import _K
+    from camlab.exercises.length_sigma import _K, _exp, _homography_of, length_sigma
     from camlab.measurement import measure_on_plane
 
     R, t = _exp([0.35, -0.1, 0.2]), np.array([-0.1, -0.05, 0.5])

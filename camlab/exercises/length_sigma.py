@@ -23,8 +23,8 @@ import numpy as np
 
 from ._core import Exercise, Mistake, first_mistake, mistake_variant, register_exercise
 from ._numbers import is_number, not_one_number, same_number
-from .point_jacobian import _K, _reference
 
+_K = np.array([[532.8, 0.0, 341.8], [0.0, 533.0, 234.1], [0.0, 0.0, 1.0]])
 _BOARD = np.array([[0.025 * i, 0.025 * j, 0.0] for j in range(6) for i in range(9)])
 
 
@@ -37,6 +37,14 @@ def _exp(w) -> np.ndarray:
     k = w / th
     S = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
     return np.eye(3) + np.sin(th) * S + (1 - np.cos(th)) * S @ S
+
+
+def _pose_jacobian(K, R, t, X) -> np.ndarray:
+    """One point's (2, 6) pixel Jacobian for the left update (dw, dt), as lesson 12's Exercise 1."""
+    Xc = R @ X + t
+    P = K @ Xc
+    dpix = (K[:2] - np.outer(P[:2] / P[2], K[2])) / P[2]
+    return dpix @ np.hstack([np.cross(np.eye(3), R @ X).T, np.eye(3)])
 
 
 def _homography_of(K, R, t):
@@ -58,7 +66,9 @@ def _cases():
         ([-0.4, 0.25, 1.2], [-0.08, 0.02, 0.6], ((1, 5), (7, 1)), 0.14),
     ):
         R, t = _exp(w), np.array(t)
-        J = np.vstack([_reference(_K, R, t, X) for X in _BOARD])  # (108, 6), left update (dw, dt)
+        J = np.vstack(
+            [_pose_jacobian(_K, R, t, X) for X in _BOARD]
+        )  # (108, 6), left update (dw, dt)
         Sigma_p = 0.14**2 * np.linalg.inv(J.T @ J)
         H_of = _homography_of(_K, R, t)
         ends = [H_of(np.zeros(6)) @ np.array([0.025 * i, 0.025 * j, 1.0]) for i, j in (i, j)]
