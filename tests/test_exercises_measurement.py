@@ -74,3 +74,31 @@ def test_pose_covariance_accepts_a_solve_and_a_pseudo_inverse(capsys):
 
     assert check("pose_covariance", solved).passed is True
     assert check("pose_covariance", pseudo).passed is True
+
+
+def test_length_sigma_reference_is_measure_on_plane_and_accepts_forward_differences(capsys):
+    from types import SimpleNamespace
+
+    from camlab.exercises.length_sigma import _K, _exp, _homography_of, length_sigma
+    from camlab.measurement import measure_on_plane
+
+    R, t = _exp([0.35, -0.1, 0.2]), np.array([-0.1, -0.05, 0.5])
+    Sigma_p = np.diag([4e-6, 4e-6, 1e-6, 1e-8, 1e-8, 4e-8])
+    a, b = np.array([250.0, 180.0]), np.array([420.0, 300.0])
+    pose = SimpleNamespace(R=R, t=t, covariance=Sigma_p)
+    library = measure_on_plane(pose, _K, a, b, None, pixel_sigma=0.3)
+    ours = length_sigma(_homography_of(_K, R, t), Sigma_p, a, b, 0.3)
+    assert abs(ours / library.sigma[0] - 1) < 1e-4
+
+    def forward(H_of, Sigma_p, a, b, sigma_u):  # one-sided differences, other steps, points as rows
+        def length(p, u):
+            q = np.column_stack([np.reshape(u, (2, 2)), np.ones(2)]) @ np.linalg.inv(H_of(p)).T
+            q = q[:, :2] / q[:, 2:]
+            return np.hypot(*(q[0] - q[1]))
+
+        p0, u0 = np.zeros(6), np.r_[a, b]
+        g_p = np.array([(length(h, u0) - length(p0, u0)) / 1e-7 for h in 1e-7 * np.eye(6)])
+        g_u = np.array([(length(p0, u0 + h) - length(p0, u0)) / 1e-3 for h in 1e-3 * np.eye(4)])
+        return np.sqrt(g_p @ Sigma_p @ g_p + sigma_u**2 * np.sum(g_u**2))
+
+    assert check("length_sigma", forward).passed is True

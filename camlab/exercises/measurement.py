@@ -279,7 +279,7 @@ def _reach_context(f, B, s, e):
         sigma_outside=float(np.sqrt(e * f * B) / s),
         no_f=float(np.sqrt(e * B / s)),
         mm=1000 * right,
-        squared=e * f * B / s if not np.isclose(right, 1) else None,
+        swapped=float(np.sqrt(s * f * B / e)),
         cube=float(np.cbrt(e * f * B / s)),
         one_input_mm=float(np.sqrt(1000) * right),
         no_sigma=float(np.sqrt(e * f * B)) if not np.isclose(s, 1) else None,
@@ -290,10 +290,17 @@ def _reach_context(f, B, s, e):
 
 _REACH_MISTAKES = (
     Mistake(
-        "linear law",
+        "no root",
         lambda c: c.linear,
-        "you solved sigma_Z = Z sigma_d / (f B), a law linear in Z: the depth error grows with Z^2 "
-        "(dZ/dd = -Z^2 / (f B)), so Z_max = sqrt(max_error f B / sigma_d).",
+        "you returned max_error f B / sigma_d, which is Z^2, not Z. Either you stopped at Z^2 and forgot "
+        "the square root, or you solved sigma_Z = Z sigma_d / (f B), a law linear in Z, where the depth "
+        "error grows with Z^2 (dZ/dd = -Z^2 / (f B)). Z_max = sqrt(max_error f B / sigma_d).",
+    ),
+    Mistake(
+        "sigma_d and max_error swapped",
+        lambda c: c.swapped,
+        "you swapped sigma_d and max_error: the disparity noise sigma_d (pixels) divides and the tolerated "
+        "depth error max_error (metres) multiplies, Z_max = sqrt(max_error f B / sigma_d).",
     ),
     Mistake(
         "cube root",
@@ -424,7 +431,9 @@ register_exercise(
         compare=same_number(rtol=1e-9),
         diagnose=_reach_diagnosis,
         wrong_variants=(
-            (_reach_variant("linear law"), "linear in Z"),
+            (_reach_variant("no root"), "forgot the square root"),
+            (_reach_variant("no root"), "linear in Z"),
+            (_reach_variant("sigma_d and max_error swapped"), "swapped sigma_d and max_error"),
             (_reach_variant("cube root"), "cube root"),
             (_reach_variant("inverted"), "upside down"),
             (_reach_variant("sigma outside the root"), "outside the square root"),

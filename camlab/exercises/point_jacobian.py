@@ -122,6 +122,11 @@ def _context(K, R, t, X):
         z_once=np.array([[fx / z, 0.0, -fx * x / z], [0.0, fy / z, -fy * y / z]]),
         z_plus=np.array([[fx / z, 0.0, fx * x / z**2], [0.0, fy / z, fy * y / z**2]]),
         fx_twice=np.array([[fx / z, 0.0, -fx * x / z**2], [0.0, fx / z, -fx * y / z**2]]),
+        fx_fy_swapped=np.array([[fy / z, 0.0, -fy * x / z**2], [0.0, fx / z, -fx * y / z**2]]),
+        no_division=np.array([[fx, 0.0, 0.0], [0.0, fy, 0.0]]),
+        times_z=z * dpix,
+        K_rows=K[:2],
+        transposed=_reference(K, R.T, t, X),  # the right formula, R.T used for R throughout
     )
 
 
@@ -172,6 +177,43 @@ _MISTAKES = (
         lambda c: c.with_(-_skew(c.RX), c.fx_twice),
         "your v row uses fx: v = fy y / z + cy, so the v row's derivatives carry fy = K[1, 1] "
         "(fx and fy differ slightly on a real camera).",
+    ),
+    Mistake(
+        "no perspective division",
+        lambda c: c.with_(-_skew(c.RX), c.no_division),
+        "you forgot the perspective division: u = fx x / z + cx, not fx x + cx, so d(u, v)/d X_c = "
+        "[[fx/z, 0, -fx x/z^2], [0, fy/z, -fy y/z^2]] (dividing by z also brings the third column).",
+    ),
+    Mistake(
+        "K rows only",
+        lambda c: c.with_(-_skew(c.RX), c.K_rows),
+        "you took K[:2] as d(u, v)/d X_c: that is the Jacobian of the homogeneous pixel K X_c before the "
+        "division by its third entry z. Differentiate u = fx x / z + cx: [[fx/z, 0, -fx x/z^2], "
+        "[0, fy/z, -fy y/z^2]].",
+    ),
+    Mistake(
+        "quotient rule without the last /z",
+        lambda c: c.with_(-_skew(c.RX), c.times_z),
+        "your d(u, v)/d X_c is z times too large: the quotient rule gives (fx z - fx x * 0) / z^2 = fx / z "
+        "and -fx x / z^2; you left out one division by z (the perspective division's).",
+    ),
+    Mistake(
+        "R.T for R",
+        lambda c: c.transposed,
+        "you rotated with R.T: the pose is cam_from_world, X_c = R X + t with R itself, not its "
+        "transpose (R.T maps the camera's axes back to the world's).",
+    ),
+    Mistake(
+        "fx and fy swapped",
+        lambda c: c.with_(-_skew(c.RX), c.fx_fy_swapped),
+        "you swapped fx and fy: u = fx x / z + cx uses fx = K[0, 0] and v = fy y / z + cy uses "
+        "fy = K[1, 1] (they differ slightly on a real camera).",
+    ),
+    Mistake(
+        "times 180 / pi",
+        lambda c: np.hstack([c.right[:, :3] * 180 / np.pi, c.right[:, 3:]]),
+        "your rotation columns are 180 / pi = 57.3 times too large: you multiplied by 180 / pi where "
+        "a conversion would need pi / 180, and dw is in radians already (the API's unit): do not convert.",
     ),
     Mistake(
         "degrees",
@@ -251,6 +293,12 @@ register_exercise(
             (_variant("z not squared"), "divides by z once"),
             (_variant("z term sign"), "wrong sign: moving"),
             (_variant("fx for fy"), "uses fx"),
+            (_variant("no perspective division"), "perspective division"),
+            (_variant("K rows only"), "K[:2]"),
+            (_variant("quotient rule without the last /z"), "z times too large"),
+            (_variant("R.T for R"), "rotated with R.T"),
+            (_variant("fx and fy swapped"), "swapped fx and fy"),
+            (_variant("times 180 / pi"), "180 / pi"),
             (_variant("degrees"), "per degree"),
             (_variant("blocks swapped"), "(dt, dw)"),
             (_variant("residual"), "residual"),

@@ -63,6 +63,7 @@ def _context(J, r):
         var6=np.var(r, ddof=6),
         diag_inv=np.diag(1 / np.diag(J.T @ J)),
         mean_abs=float(np.mean(np.abs(r))),
+        sum_abs=float(np.sum(np.abs(r))),
     )
 
 
@@ -96,6 +97,18 @@ _MISTAKES = (
         lambda c: c.rss / (2 * c.m - 6) * c.inv,
         "you took len(r) as N and divided by 2 len(r) - 6: r already holds the 2N coordinates, so the "
         "divisor is len(r) - 6.",
+    ),
+    Mistake(
+        "divided by 2N - 7",
+        lambda c: c.rss / (c.m - 7) * c.inv,
+        "you divided by 2N - 7: the pose has 6 unknowns (3 for the rotation, 3 for the translation), "
+        "so sigma^2 = sum(r^2) / (2N - 6), 2N = len(r).",
+    ),
+    Mistake(
+        "square of the sum",
+        lambda c: c.sum_abs**2 / (c.m - 6) * c.inv,
+        "you squared the sum of the residuals' sizes: square each residual first, then add, "
+        "sigma^2 = np.sum(r**2) / (len(r) - 6).",
     ),
     Mistake(
         "np.var",
@@ -176,6 +189,11 @@ def _diagnosis(args, got, expected) -> str:
             f"you returned a ({len(r)}, {len(r)}) matrix: that is J J^T (or J Sigma J^T), one entry per "
             "residual pair; the pose's covariance is 6 x 6, sigma^2 (J^T J)^-1 with J.T @ J."
         )
+    if g is not None and g.shape == (6,):
+        return (
+            "you returned 6 numbers, the variances alone (the diagonal): return the whole (6, 6) "
+            "covariance, whose off-diagonal terms carry the correlations between the pose's parameters."
+        )
     hint = None
     if g is not None and g.shape == np.shape(expected) and g.dtype.kind in "fiu":
         hint = first_mistake(  # before shape_problem, whose NaN hint would hide a square root
@@ -215,6 +233,8 @@ register_exercise(
             ((lambda J, r: np.std(r) ** 2 * np.linalg.inv(J.T @ J)), "subtract the mean"),
             ((lambda J, r: np.var(r, ddof=6) * np.linalg.inv(J.T @ J)), "ddof=6"),
             (_variant("divided by N - 6"), "N - 6"),
+            (_variant("divided by 2N - 7"), "2N - 7"),
+            (_variant("square of the sum"), "square each residual first"),
             ((lambda J, r: np.sum(r**2) / (len(r) - 6) / (J.T @ J)), "entry by entry"),
             (_variant("divided by the inverse"), "multiply by it"),
             ((lambda J, r: _root(pose_covariance(J, r))), "elementwise square root"),
@@ -224,6 +244,7 @@ register_exercise(
             (_variant("inverse of the diagonal"), "only the diagonal"),
             (_variant("sigma from mean |r|"), "mean of |r|"),
             ((lambda J, r: np.sum(r**2) / (len(r) - 6) * J @ J.T), "J J^T"),
+            ((lambda J, r: np.diag(pose_covariance(J, r))), "the variances alone"),
         ),
         teaching=pose_covariance,
         ndarray_only=True,

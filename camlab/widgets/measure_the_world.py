@@ -123,7 +123,7 @@ def _figure() -> SimpleNamespace:
     ax_img.set_xlabel("u (px)", fontsize=8)
     ax_img.set_ylabel("v (px)", fontsize=8)
     ax_img.tick_params(labelsize=7)
-    ax_img.set_title("the photo: board corners, the two 0.2 m edges", fontsize=9)
+    ax_img.set_title("the photo: board corners, edges along (blue), across (brown)", fontsize=9)
     (corners,) = ax_img.plot([], [], ".", ms=3, color=palette.GREY)
     (edge,) = ax_img.plot([], [], "-o", lw=2, ms=4, color=palette.BLUE)
     (edge_x,) = ax_img.plot([], [], "-s", lw=2, ms=4, color=palette.BROWN)
@@ -145,7 +145,9 @@ def _figure() -> SimpleNamespace:
     )
     (pose,) = ax_plot.plot([], [], "--", color=palette.GREEN, label="   its part from the pose")
     (across,) = ax_plot.plot([], [], "-", color=palette.BROWN, label="across the slope: total")
-    (here,) = ax_plot.plot([], [], "o", color=palette.RED, ms=6, label="this setting (along)")
+    (here,) = ax_plot.plot(
+        [], [], "o", mfc="white", mec="0.1", mew=1.5, ms=7, label="this tilt (both edges)"
+    )
     ax_plot.yaxis.set_major_formatter(FuncFormatter(lambda y, _: f"{y:g}"))  # 0.1, 1, 10, not 10^-1
     ax_plot.legend(
         fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncols=2
@@ -214,7 +216,7 @@ def plane_error() -> Demo:
         fig.total.set_data(TILTS, total)
         fig.pose.set_data(TILTS, from_pose)
         fig.picks.set_data(TILTS, from_picks)
-        fig.here.set_data([v["tilt"]], [1000 * now.sigma])
+        fig.here.set_data([v["tilt"]] * 2, [1000 * now.sigma, 1000 * now_x.sigma])
         fig.ax_plot.title.set_text(f"predicted error at {v['distance']:.2f} m from the board")
         state.update(
             sigma_mm=1000 * now.sigma,

@@ -1,0 +1,244 @@
+r"""Exercise for lesson 12, measure the world: the first-order sigma of a length on the board's plane.
+
+A length between the pixels :math:`a` and :math:`b` on the plane is
+:math:`L = \|\pi(H^{-1}\tilde a) - \pi(H^{-1}\tilde b)\|`, with :math:`H = K[r_1\ r_2\ t]` the pose's
+homography of the plane. It depends on the six pose parameters p (covariance :math:`\Sigma_p`) and on
+the four picked coordinates (independent, variance :math:`\sigma_u^2` each), so to first order
+
+.. math:: \sigma_L^2 = g_p^\top \Sigma_p\, g_p + \sigma_u^2 \|g_u\|^2,
+          \qquad g_p = \partial L / \partial p,\quad g_u = \partial L / \partial (a, b),
+
+the gradients by central differences, as :func:`camlab.measurement.measure_on_plane` takes them.
+
+References
+----------
+Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 5.2 (forward propagation of covariance).
+"""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+
+from ._core import Exercise, Mistake, first_mistake, mistake_variant, register_exercise
+from ._numbers import is_number, not_one_number, same_number
+
+_K = np.array([[532.8, 0.0, 341.8], [0.0, 533.0, 234.1], [0.0, 0.0, 1.0]])
+_BOARD = np.array([[0.025 * i, 0.025 * j, 0.0] for j in range(6) for i in range(9)])
+
+
+def _exp(w) -> np.ndarray:
+    """Rodrigues' formula, exp([w]x), the identity at w = 0."""
+    w = np.asarray(w, dtype=float)
+    th = np.linalg.norm(w)
+    if th < 1e-15:
+        return np.eye(3)
+    k = w / th
+    S = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    return np.eye(3) + np.sin(th) * S + (1 - np.cos(th)) * S @ S
+
+
+def _pose_jacobian(K, R, t, X) -> np.ndarray:
+    """One point's (2, 6) pixel Jacobian for the left update (dw, dt), as lesson 12's Exercise 1."""
+    Xc = R @ X + t
+    P = K @ Xc
+    dpix = (K[:2] - np.outer(P[:2] / P[2], K[2])) / P[2]
+    return dpix @ np.hstack([np.cross(np.eye(3), R @ X).T, np.eye(3)])
+
+
+def _homography_of(K, R, t):
+    """H_of(p): the plane's homography K [r1 r2 t] of the pose moved by p = (dw, dt), left update."""
+
+    def H_of(p):
+        p = np.asarray(p, dtype=float)
+        R_p, t_p = _exp(p[:3]) @ R, t + p[3:]
+        return K @ np.column_stack([R_p[:, 0], R_p[:, 1], t_p])
+
+    return H_of
+
+
+def _cases():
+    """(H_of, Sigma_p, a, b, sigma_u): a 9 x 6 board of 25 mm at two poses, ends picked or detected."""
+    cases = []
+    for w, t, (i, j), sigma_u in (
+        ([0.3, -0.2, 0.1], [-0.1, -0.05, 0.45], ((0, 0), (8, 0)), 0.5),
+        ([-0.4, 0.25, 1.2], [-0.08, 0.02, 0.6], ((1, 5), (7, 1)), 0.14),
+    ):
+        R, t = _exp(w), np.array(t)
+        J = np.vstack(
+            [_pose_jacobian(_K, R, t, X) for X in _BOARD]
+        )  # (108, 6), left update (dw, dt)
+        Sigma_p = 0.14**2 * np.linalg.inv(J.T @ J)
+        H_of = _homography_of(_K, R, t)
+        ends = [H_of(np.zeros(6)) @ np.array([0.025 * i, 0.025 * j, 1.0]) for i, j in (i, j)]
+        a, b = (e[:2] / e[2] for e in ends)
+        cases.append((H_of, Sigma_p, a, b, sigma_u))
+    return cases
+
+
+def _parts(H_of, Sigma_p, a, b):
+    """The gradients g_p (6,) and g_u (4,) of the length, by central differences."""
+
+    def length(p, u):
+        q = np.linalg.solve(H_of(p), np.vstack([u.reshape(2, 2).T, np.ones(2)]))
+        q = q[:2] / q[2]
+        return np.linalg.norm(q[:, 0] - q[:, 1])
+
+    p0, u0 = np.zeros(6), np.concatenate([a, b]).astype(float)
+    g_p = np.array([(length(p0 + h, u0) - length(p0 - h, u0)) / 2e-6 for h in 1e-6 * np.eye(6)])
+    g_u = np.array([(length(p0, u0 + h) - length(p0, u0 - h)) / 2e-4 for h in 1e-4 * np.eye(4)])
+    return g_p, g_u
+
+
+def length_sigma(H_of, Sigma_p, a, b, sigma_u):
+    """The first-order one-sigma of the length between pixels a and b on the plane, metres.
+
+    Parameters
+    ----------
+    H_of : callable
+        ``H_of(p)``: the (3, 3) homography plane (metres) -> pixels of the pose moved by
+        p = (dw, dt), six numbers; ``H_of(np.zeros(6))`` is the solved pose's.
+    Sigma_p : (6, 6) ndarray
+        The pose's covariance, in the order (dw, dt) of p.
+    a, b : (2,) ndarray
+        The two ends, pixels (u, v).
+    sigma_u : float
+        The picking noise of each pixel coordinate, px.
+
+    Returns
+    -------
+    float
+        sigma_L, metres.
+    """
+
+    def length(p, u):  # the length on the plane for pose update p and the ends' pixels u = (a, b)
+        H = H_of(p)
+        q = np.linalg.solve(H, np.vstack([u.reshape(2, 2).T, np.ones(2)]))  # H^-1 [a b; 1 1]
+        q = q[:2] / q[2]  # dehomogenise each column
+        return np.linalg.norm(q[:, 0] - q[:, 1])
+
+    p0, u0 = np.zeros(6), np.concatenate([a, b]).astype(float)
+    h, k = 1e-6, 1e-4  # steps: radians and metres; pixels
+    g_p = np.array([(length(p0 + d, u0) - length(p0 - d, u0)) / (2 * h) for d in h * np.eye(6)])
+    g_u = np.array([(length(p0, u0 + d) - length(p0, u0 - d)) / (2 * k) for d in k * np.eye(4)])
+    return float(np.sqrt(g_p @ Sigma_p @ g_p + sigma_u**2 * g_u @ g_u))
+
+
+def _context(H_of, Sigma_p, a, b, sigma_u):
+    g_p, g_u = _parts(H_of, Sigma_p, a, b)
+    pose2 = float(g_p @ Sigma_p @ g_p)
+    pix2 = float(sigma_u**2 * g_u @ g_u)
+    return SimpleNamespace(
+        right=np.sqrt(pose2 + pix2),
+        variance=pose2 + pix2,
+        sigma_u_once=np.sqrt(pose2 + sigma_u * g_u @ g_u),
+        no_pose=np.sqrt(pix2),
+        no_pixels=np.sqrt(pose2),
+        one_end=np.sqrt(pose2 + sigma_u**2 * g_u[:2] @ g_u[:2]),
+        sigmas_added=np.sqrt(pose2) + np.sqrt(pix2),
+        inverse=np.sqrt(g_p @ np.linalg.inv(Sigma_p) @ g_p + pix2),
+        swapped_order=np.sqrt(np.r_[g_p[3:], g_p[:3]] @ Sigma_p @ np.r_[g_p[3:], g_p[:3]] + pix2),
+        mm=1000 * np.sqrt(pose2 + pix2),
+    )
+
+
+_MISTAKES = (
+    Mistake(
+        "variance",
+        lambda c: c.variance,
+        "you returned the variance sigma_L^2: g_p^T Sigma_p g_p + sigma_u^2 |g_u|^2 is in metres squared; "
+        "take its square root.",
+    ),
+    Mistake(
+        "sigma_u not squared",
+        lambda c: c.sigma_u_once,
+        "you multiplied |g_u|^2 by sigma_u where the variance sigma_u^2 belongs: each picked coordinate "
+        "adds sigma_u^2 (dL/du)^2, so the pixel term is sigma_u**2 * g_u @ g_u.",
+    ),
+    Mistake(
+        "no pose term",
+        lambda c: c.no_pose,
+        "you left out the pose's part, g_p^T Sigma_p g_p: the homography itself is uncertain (Sigma_p), "
+        "and moving the pose by p moves every length.",
+    ),
+    Mistake(
+        "no pixel term",
+        lambda c: c.no_pixels,
+        "you left out the picking: the two ends are picked with noise sigma_u per coordinate, which adds "
+        "sigma_u^2 |g_u|^2, g_u the length's gradient with respect to the ends' four coordinates.",
+    ),
+    Mistake(
+        "one end only",
+        lambda c: c.one_end,
+        "your pixel term has only one end: both a and b are picked, so g_u has four entries (a's u, v "
+        "and b's u, v), and sigma_u^2 |g_u|^2 sums all four.",
+    ),
+    Mistake(
+        "sigmas added",
+        lambda c: c.sigmas_added,
+        "you added the two sigmas: independent errors add in variance, sigma_L = "
+        "sqrt(g_p^T Sigma_p g_p + sigma_u^2 |g_u|^2), not sigma_pose + sigma_pixels.",
+    ),
+    Mistake(
+        "inverse covariance",
+        lambda c: c.inverse,
+        "you used the inverse of Sigma_p (the information matrix): forward propagation takes the "
+        "covariance itself, g_p^T Sigma_p g_p.",
+    ),
+    Mistake(
+        "parameter order",
+        lambda c: c.swapped_order,
+        "your g_p is in the order (dt, dw) while Sigma_p is in (dw, dt): perturb p[0:3] (the rotation) "
+        "first, as H_of expects, so g_p and Sigma_p index the same parameters.",
+    ),
+    Mistake(
+        "millimetres",
+        lambda c: c.mm,
+        "your sigma is 1000 times too big: the plane is in metres, so sigma_L comes out in metres.",
+    ),
+)
+
+
+def _diagnosis(args, got, expected) -> str:
+    if not is_number(got):
+        return not_one_number(got, "sigma_L in metres")
+    hint = first_mistake(
+        _MISTAKES, _context(*args), float(got), lambda a, b: np.isclose(a, b, rtol=1e-4, atol=0)
+    )
+    return hint or (
+        f"expected sigma_L = {1000 * expected:.4f} mm, got {1000 * float(got):.4f} mm: take g_p (6) and "
+        "g_u (4) by central differences of the length, then sqrt(g_p @ Sigma_p @ g_p + sigma_u**2 * g_u @ g_u)."
+    )
+
+
+def _variant(name):
+    return mistake_variant(_MISTAKES, name, _context)
+
+
+register_exercise(
+    Exercise(
+        name="length_sigma",
+        lesson="12",
+        reference=length_sigma,
+        cases=_cases,
+        compare=same_number(rtol=1e-4),
+        diagnose=_diagnosis,
+        wrong_variants=(
+            (_variant("variance"), "square root"),
+            (_variant("sigma_u not squared"), "sigma_u^2 belongs"),
+            (_variant("no pose term"), "pose's part"),
+            (_variant("no pixel term"), "left out the picking"),
+            (_variant("one end only"), "only one end"),
+            (_variant("sigmas added"), "add in variance"),
+            (_variant("inverse covariance"), "information matrix"),
+            (_variant("parameter order"), "(dt, dw)"),
+            (_variant("millimetres"), "1000 times"),
+        ),
+        teaching=length_sigma,
+        solution_note=(
+            "# camlab: camlab.measurement.measure_on_plane(pose, K, a, b, dist, pixel_sigma) takes the same "
+            "gradients\n# (with the distortion) and returns the length, its sigma and the two parts."
+        ),
+    )
+)
