@@ -216,3 +216,68 @@ def test_the_readout_text_is_the_same_string():
         if o != tip_readout(p)
     ]
     assert not wrong, f"JS and Python readouts differ: {wrong[:5]}"
+
+
+def _signed_cases(rng: np.random.Generator) -> np.ndarray:
+    """Values to format: random, on the sliders' 0.05 grid, exact ties at 0 to 3 decimals, zeros."""
+    grid = np.round(rng.integers(-40, 41, 200) * 0.05, 10) * rng.choice([1.0, 100.0, 0.01], 200)
+    ties = np.array([k / 2 ** (d + 1) for d in range(4) for k in (-7, -3, -1, 1, 3, 5, 11)])
+    cases = np.concatenate([rng.uniform(-300, 300, 200), grid, ties, [0.0, -0.0, 1e-4, -1e-4]])
+    return [float(v) for v in cases]  # the demos format Python floats (numpy rounds otherwise)
+
+
+def test_numbers_are_formatted_as_python_formats_them():
+    from camlab.plotting.optics.similar_triangles import _signed
+
+    values = _signed_cases(np.random.default_rng(11))
+    calls = [("formatFixed", [v, d]) for d in range(4) for v in values]
+    calls += [("signed", [v, d]) for d in range(4) for v in values]
+    out = run_js(calls)  # JSON keeps -0.0's sign
+    expected = [f"{v:.{d}f}" for d in range(4) for v in values]
+    expected += [_signed(v, d) for d in range(4) for v in values]
+    wrong = [(c, o, e) for c, o, e in zip(calls, out, expected, strict=True) if o != e]
+    assert not wrong, f"JS and Python format differently: {wrong[:5]}"
+
+
+def _layout_numbers(layout: dict) -> list[float]:
+    """Every number of a similar-triangles layout, in one order (its dims' texts and alignments apart)."""
+    keys = ("big", "small", "object", "point", "ray", "planes", "virtual", "real", "pinhole")
+    numbers = [layout["y"]] + [float(x) for k in keys for x in np.ravel(layout[k])]
+    for key in sorted(layout["dims"]):
+        d = layout["dims"][key]
+        numbers += [*d["a"], *d["b"], *d["at"], float(d["shown"])]
+    return numbers
+
+
+def test_the_similar_triangles_layout_and_title_equal_the_demo():
+    from camlab.plotting import optics
+    from camlab.widgets.pinhole_camera import ratios_title
+
+    rng = np.random.default_rng(1)
+    f = np.concatenate([rng.uniform(0.3, 1.0, CASES), [0.3, 0.85, 0.9, 1.0, 0.5, 0.8]])
+    Z = np.concatenate([rng.uniform(1.2, 5.0, CASES), [1.2, 2.2, 2.15, 5.0, 3.0, 3.0]])
+    Y = np.concatenate([rng.uniform(-1.0, 1.0, CASES), [0.0, -0.0, 0.25, -0.3, 1.0, -0.8]])
+    f, Z, Y = ([float(v) for v in a] for a in (f, Z, Y))  # as the sliders give them
+    rooms = dict(
+        shortest=optics.SHORTEST_ARROW, fRoom=optics.F_LABEL_ROOM, zRoom=optics.Z_LABEL_ROOM
+    )
+    h = 1.3 * 0.85
+    n = len(f)
+    calls = [
+        ("similarTrianglesLayout", [a, b, c, h, rooms]) for a, b, c in zip(f, Z, Y, strict=True)
+    ]
+    calls += [("ratiosTitle", [a, b, c]) for a, b, c in zip(f, Z, Y, strict=True)]
+    out = run_js(calls)
+    worst = 0.0
+    for js, a, b, c in zip(out[:n], f, Z, Y, strict=True):
+        py = optics.similar_triangles_layout(a, b, c, h)
+        worst = max(worst, assert_twins(_layout_numbers(js), _layout_numbers(py), "layout"))
+        for key, d in py["dims"].items():
+            got = js["dims"][key]
+            assert (got["text"], got["ha"], got["va"]) == (d["text"], d["ha"], d["va"]), (
+                f"similarTrianglesLayout({a}, {b}, {c}) label {key}: {got} != {d}"
+            )
+    titles = [(o, ratios_title(a, b, c)) for o, a, b, c in zip(out[n:], f, Z, Y, strict=True)]
+    wrong = [t for t in titles if t[0] != t[1]]
+    assert not wrong, f"JS and Python titles differ: {wrong[:3]}"
+    print(f"similar_triangles layout: worst relative error {worst:.2e}")

@@ -80,3 +80,31 @@ def test_switched_off_the_demo_is_drawn_in_the_kernel(in_a_kernel, monkeypatch):
         plt.switch_backend(backend)
     assert demo.view.canvas is None and demo.view.mode == "ipympl"
     assert type(demo.view.widget).__name__ == "Canvas"  # ipympl's
+
+
+def test_similar_triangles_sends_its_scene_links_its_three_sliders_and_draws_as_headless(
+    in_a_kernel, monkeypatch
+):
+    from camlab.plotting import optics
+    from camlab.widgets.pinhole_camera import similar_triangles
+
+    demo = similar_triangles()
+    canvas = demo.view.canvas
+    scene = canvas.scene
+    assert scene["kind"] == "similar_triangles" and scene["params"] == ["f", "Z", "Y"]
+    assert (canvas.f, canvas.Z, canvas.Y) == (0.8, 3.0, -0.8)
+    links = {link.target[1]: link.source for link in demo.view.links}
+    assert links == {k: (demo.controls[k], "value") for k in ("f", "Z", "Y")}
+    # the layout's h is the kernel's: 0.85 of the axes' top
+    assert scene["h"] == demo.figure.axes[0].get_ylim()[1] * 0.85
+    assert scene["rooms"]["zRoom"] == optics.Z_LABEL_ROOM
+    assert scene["ranges"]["Z"] == dict(min=1.2, max=5.0, step=0.05)
+    title = scene["styles"]["title"]
+    assert len(title["baselines"]) == 2 and title["baselines"][0] < title["baselines"][1]
+    demo.set(f=0.45, Z=1.6, Y=0.35)
+    live = demo.view.pixels()
+    monkeypatch.setenv("CAMLAB_FIGURE_MODE", "agg")
+    headless = similar_triangles()
+    headless.set(f=0.45, Z=1.6, Y=0.35)
+    assert np.array_equal(live, headless.view.pixels())
+    assert demo.state == headless.state

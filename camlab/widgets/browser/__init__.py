@@ -42,10 +42,13 @@ __all__ = [
     "canvas_class",
     "esm_source",
     "line_style",
+    "marker_style",
+    "text_lines",
+    "text_style",
     "to_canvas_pixels",
 ]
 
-MODULES = ("geometry.js", "drawing.js", "stack_check.js", "widget.js")
+MODULES = ("geometry.js", "drawing.js", "stack_check.js", "similar_triangles.js", "widget.js")
 """The ES modules, in dependency order, joined into the one module anywidget loads."""
 
 
@@ -263,4 +266,86 @@ def line_style(line: Any, px_per_point: float, **extra: Any) -> dict:
         join=join[(line.get_solid_joinstyle() if solid else line.get_dash_joinstyle())],
         cap=caps[(line.get_solid_capstyle() if solid else line.get_dash_capstyle())],
         **extra,
+    )
+
+
+def marker_style(line: Any, px_per_point: float) -> dict:
+    """A matplotlib marker's look in canvas pixels (for ``drawing.js``'s ``dot``).
+
+    Parameters
+    ----------
+    line : matplotlib.lines.Line2D
+        A line drawn with a round marker ("o").
+    px_per_point : float
+        Figure dpi / 72.
+
+    Returns
+    -------
+    dict
+        ``color``, ``edge``, ``size`` (the marker's diameter, px) and ``edgeWidth`` (px).
+    """
+    return dict(
+        color=to_hex(line.get_markerfacecolor()),
+        edge=to_hex(line.get_markeredgecolor()),
+        size=line.get_markersize() * px_per_point,
+        edgeWidth=line.get_markeredgewidth() * px_per_point,
+    )
+
+
+def text_style(text: Any, **extra: Any) -> dict:
+    """A matplotlib text's font and colour, and its line box as matplotlib measures it, in canvas pixels.
+
+    matplotlib aligns a line of text by the ink box of "lp" (its ascent above the baseline and
+    descent below): ``drawing.js``'s ``label`` places a baseline from these two numbers, so the
+    browser aligns as matplotlib does whatever the browser's own font metrics.
+
+    Parameters
+    ----------
+    text : matplotlib.text.Text
+        The artist whose look the browser copies (after a draw, so it has a renderer).
+    **extra
+        Added to the style (``box``: a background colour, ``pad``: its padding, px).
+
+    Returns
+    -------
+    dict
+        ``font`` (CSS), ``color``, ``ascent`` and ``descent`` (px).
+    """
+    fig = text.figure
+    renderer = fig.canvas.get_renderer()
+    _w, h, d = renderer.get_text_width_height_descent("lp", text.get_fontproperties(), ismath=False)
+    px = text.get_fontsize() * fig.dpi / 72.0
+    return dict(
+        font=f"{px:.3f}px 'DejaVu Sans', sans-serif",
+        color=to_hex(text.get_color()),
+        ascent=float(h - d),
+        descent=float(d),
+        **extra,
+    )
+
+
+def text_lines(text: Any) -> dict:
+    """Where matplotlib puts each line of a text, in canvas pixels: its anchor x and each baseline.
+
+    For a text whose anchor and number of lines stay put while its words change (a title).
+
+    Parameters
+    ----------
+    text : matplotlib.text.Text
+        The artist, after a draw.
+
+    Returns
+    -------
+    dict
+        ``x`` (the anchor, px from the left), ``baselines`` (px from the top, one per line) and
+        ``align`` (the canvas's textAlign: left, center or right).
+    """
+    fig = text.figure
+    _bbox, info, _d = text._get_layout(fig.canvas.get_renderer())  # noqa: SLF001 - matplotlib's own line layout
+    x, y = text.get_transform().transform(text.get_unitless_position())
+    height = fig.bbox.height
+    return dict(
+        x=float(x),
+        baselines=[float(height - (y + dy)) for _line, _wad, (_dx, dy) in info],
+        align=text.get_horizontalalignment(),
     )

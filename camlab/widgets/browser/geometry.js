@@ -108,20 +108,111 @@ export function arrowheadSize(angleDeg, radius = 1.4) {
   return Math.min(15, Math.max(7, (15 * arc) / 0.98));
 }
 
-// Twin: camlab.widgets.start_here.tip_readout(point): "(+x.xx, -y.yy)" as Python's format of
-// round(c, 2) + 0.0 writes it: exact ties (c = k/8, k odd) round half to even, as Python's round
-// does (toFixed would round them up), and a value that rounds to zero is "+0.00", never "-0.00".
-export function fixed2(c) {
-  let r = c.toFixed(2);
-  if (Number.isInteger(c * 8) && !Number.isInteger(c * 4)) {
-    const n = c * 100; // exact for these dyadic values
+// Twin: Python's format(x, f".{digits}f"). toFixed picks the decimal nearest the double, as Python
+// does, but rounds an exact tie away from zero where Python rounds half to even: a tie at `digits`
+// decimals is a double x with x 2^(digits+1) odd (x 10^digits = m 5^digits / 2), fixed here. -0 keeps
+// its sign, as in Python.
+export function formatFixed(x, digits) {
+  let r = x.toFixed(digits);
+  if (Number.isInteger(x * 2 ** (digits + 1)) && !Number.isInteger(x * 2 ** digits)) {
+    const n = x * 10 ** digits; // exact: m 5^digits / 2
     const f = Math.floor(n);
-    r = ((f % 2 === 0 ? f : f + 1) / 100).toFixed(2);
+    r = ((f % 2 === 0 ? f : f + 1) / 10 ** digits).toFixed(digits);
   }
-  if (r === "-0.00") r = "0.00";
+  if (Object.is(x, -0) || (x < 0 && !r.startsWith("-"))) r = `-${r}`;
+  return r;
+}
+
+function roundsToZero(text) {
+  return /^-?0(\.0*)?$/.test(text);
+}
+
+// Twin: camlab.widgets.start_here.tip_readout's numbers: format(round(c, 2) + 0.0, "+.2f").
+export function fixed2(c) {
+  const r = formatFixed(c, 2);
+  if (roundsToZero(r)) return "+0.00";
   return r.startsWith("-") ? r : `+${r}`;
 }
 
+// Twin: camlab.widgets.start_here.tip_readout(point): "(+x.xx, -y.yy)".
 export function tipReadout([x, y]) {
   return `(${fixed2(x)}, ${fixed2(y)})`;
 }
+
+// Twin: camlab.plotting.optics.similar_triangles._signed (and camlab.widgets.pinhole_camera._signed):
+// the value with its sign, and a plain "0.0" where it rounds to zero.
+export function signed(x, digits) {
+  const r = formatFixed(x, digits);
+  if (roundsToZero(r)) return (0).toFixed(digits);
+  return r.startsWith("-") ? r : `+${r}`;
+}
+
+// Twin: camlab.plotting.optics.similar_triangles._dimension_layout.
+function dimensionLayout(a, b, text, { offset = [0, 0], ha = "center", va = "center", labelAt = null, minArrow = 0 } = {}) {
+  const at = labelAt !== null ? labelAt : [(a[0] + b[0]) / 2 + offset[0], (a[1] + b[1]) / 2 + offset[1]];
+  const shown = Math.hypot(b[0] - a[0], b[1] - a[1]) >= minArrow;
+  return { a, b, shown, text, at, ha, va };
+}
+
+// Twin: camlab.plotting.optics.similar_triangles_layout(f, Z, Y, h): the side view's moving parts in
+// (z, -y) plot coordinates and their labels; `rooms` carries its constants (SHORTEST_ARROW,
+// F_LABEL_ROOM, Z_LABEL_ROOM) as {shortest, fRoom, zRoom}.
+export function similarTrianglesLayout(f, Z, Y, h, rooms) {
+  const y = (f * Y) / Z;
+  const up = -Y, upImg = -y;
+  const away = up >= 0 ? -0.12 * h : 0.12 * h;
+  const inside = Z >= rooms.zRoom;
+  const fInside = f >= rooms.fRoom;
+  const lift = Math.abs(up) >= 0.3 ? 0.0 : (away < 0 ? 0.15 : -0.15) - up / 2;
+  const short = rooms.shortest;
+  const dims = {
+    Z: dimensionLayout([0, 3 * away], [Z, 3 * away], `Z = ${formatFixed(Z, 2)} m`, {
+      ha: inside ? "center" : "left",
+      labelAt: inside ? null : [Z + 0.08, 3 * away],
+    }),
+    f: dimensionLayout([0, away], [f, away], `f = ${formatFixed(f, 2)} m`, {
+      offset: [0, away],
+      ha: fInside ? "center" : "left",
+      labelAt: fInside ? null : [f + 0.06, away],
+    }),
+    Y: dimensionLayout([Z + 0.1, 0], [Z + 0.1, up], ` Y = ${signed(Y, 2)} m`, {
+      offset: [0.05, lift],
+      ha: "left",
+      minArrow: short,
+    }),
+    y: dimensionLayout([f + 0.06, 0], [f + 0.06, upImg], `virtual: y = ${signed(y * 100, 1)} cm`, {
+      va: "bottom",
+      labelAt: [f, h + 0.02],
+      minArrow: short,
+    }),
+    y_real: dimensionLayout([-f - 0.06, 0], [-f - 0.06, -upImg], `real: ${signed(-y * 100, 1)} cm`, {
+      va: "top",
+      labelAt: [-f, -h - 0.02],
+      minArrow: short,
+    }),
+  };
+  return {
+    y,
+    big: [[0, 0], [Z, 0], [Z, up]],
+    small: [[0, 0], [f, 0], [f, upImg]],
+    object: [[Z, 0], [Z, up]],
+    point: [Z, up],
+    ray: [[-f, y], [Z, up]],
+    planes: [[-f, -h], [-f, h], [NaN, NaN], [f, -h], [f, h]],
+    virtual: [[f, 0], [f, upImg]],
+    real: [[-f, 0], [-f, y]],
+    pinhole: [0, 4.6 * away],
+    dims,
+  };
+}
+
+// Twin: camlab.widgets.pinhole_camera.ratios_title(f, Z, Y): the two ratios over similar_triangles.
+export function ratiosTitle(f, Z, Y) {
+  const y = (f * Y) / Z;
+  return (
+    `y / f = ${signed(y * 100, 1)} cm / ${formatFixed(f * 100, 0)} cm = ${signed(y / f, 3)}   and   ` +
+    `Y / Z = ${signed(Y, 2)} m / ${formatFixed(Z, 2)} m = ${signed(Y / Z, 3)}\n` +
+    "click or drag in the figure to move the object point"
+  );
+}
+
