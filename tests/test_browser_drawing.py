@@ -23,7 +23,12 @@ sys.path.insert(0, str(REPO / "tools"))
 import browser  # noqa: E402
 
 # The demos drawn in the browser, and a word their alt text must carry.
-BROWSER_DEMOS = {"stack_check": "house", "similar_triangles": "camera obscura"}
+BROWSER_DEMOS = {
+    "stack_check": "house",
+    "similar_triangles": "camera obscura",
+    "three_cameras": "orthographic",
+    "dolly_zoom": "zooming",
+}
 CANVAS = "canvas.camlab-browser-canvas"
 
 

@@ -108,3 +108,48 @@ def test_similar_triangles_sends_its_scene_links_its_three_sliders_and_draws_as_
     headless.set(f=0.45, Z=1.6, Y=0.35)
     assert np.array_equal(live, headless.view.pixels())
     assert demo.state == headless.state
+
+
+def test_three_cameras_sends_its_world_and_draws_as_headless(in_a_kernel, monkeypatch):
+    from camlab.fixtures import box_and_rails
+    from camlab.widgets.affine_cameras import three_cameras
+
+    demo = three_cameras()
+    scene = demo.view.canvas.scene
+    assert scene["kind"] == "three_cameras"
+    assert scene["params"] == ["azimuth", "elevation", "distance"]
+    assert np.array_equal(scene["segments"], box_and_rails())
+    assert scene["parts"] == {"cube": [0, 12, 2], "rails": [12, 16, 7]}
+    assert scene["principalPoint"] == [319.5, 239.5] and scene["size"] == [640, 480]
+    assert len(scene["panels"]) == 3
+    demo.set(azimuth=60, elevation=70, distance=2.5)
+    live = demo.view.pixels()
+    monkeypatch.setenv("CAMLAB_FIGURE_MODE", "agg")
+    headless = three_cameras()
+    headless.set(azimuth=60, elevation=70, distance=2.5)
+    assert np.array_equal(live, headless.view.pixels())
+    assert demo.state["gaps"] == headless.state["gaps"]
+
+
+def test_dolly_zoom_sends_its_panels_and_draws_as_headless(in_a_kernel, monkeypatch):
+    from camlab.widgets.affine_cameras import dolly_zoom
+
+    demo = dolly_zoom()
+    scene = demo.view.canvas.scene
+    assert scene["kind"] == "dolly_zoom" and scene["params"] == ["distance", "offset"]
+    assert [p["model"] for p in scene["images"]] == ["weak perspective", "para-perspective"]
+    assert len(scene["distances"]) == 60 and scene["principalPoint"] == [319.5, 239.5]
+    # the error panel's map takes log10 of the data: its corners land on the axes' box
+    ax = demo.figure.axes[2]
+    T = np.array(scene["error"]["toPixels"])
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    corners = np.c_[np.log10([[x0, y0], [x1, y1]]), np.ones(2)] @ T.T
+    box = scene["error"]["box"]
+    assert np.allclose(corners[:, :2], [[box["left"], box["bottom"]], [box["right"], box["top"]]])
+    demo.set(distance=30.0, offset=40)
+    live = demo.view.pixels()
+    monkeypatch.setenv("CAMLAB_FIGURE_MODE", "agg")
+    headless = dolly_zoom()
+    headless.set(distance=30.0, offset=40)
+    assert np.array_equal(live, headless.view.pixels())
+    assert demo.state["rms_error"] == headless.state["rms_error"]

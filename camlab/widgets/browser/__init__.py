@@ -48,7 +48,15 @@ __all__ = [
     "to_canvas_pixels",
 ]
 
-MODULES = ("geometry.js", "drawing.js", "stack_check.js", "similar_triangles.js", "widget.js")
+MODULES = (
+    "geometry.js",
+    "drawing.js",
+    "stack_check.js",
+    "similar_triangles.js",
+    "three_cameras.js",
+    "dolly_zoom.js",
+    "widget.js",
+)
 """The ES modules, in dependency order, joined into the one module anywidget loads."""
 
 

@@ -159,3 +159,49 @@ export function marker(ctx, at, way, verts, style) {
   ctx.stroke();
   ctx.restore();
 }
+
+// A polygon marker (matplotlib's "D", "s" ...) at canvas point `at`: style.verts its outline for a
+// size of 1 (y up), style.size in px, filled with style.color and edged with style.edge.
+export function pathMarker(ctx, at, style) {
+  if (!Number.isFinite(at[0]) || !Number.isFinite(at[1])) return;
+  ctx.save();
+  ctx.beginPath();
+  style.verts.forEach(([vx, vy], i) => {
+    const x = at[0] + style.size * vx, y = at[1] - style.size * vy;
+    if (i === 0) ctx.moveTo(x, y);
+    else ctx.lineTo(x, y);
+  });
+  ctx.closePath();
+  ctx.fillStyle = style.color;
+  ctx.fill();
+  ctx.lineJoin = "miter";
+  ctx.lineWidth = style.edgeWidth;
+  ctx.strokeStyle = style.edge;
+  ctx.stroke();
+  ctx.restore();
+}
+
+// Clip what follows to an axes' box {left, right, top, bottom} (canvas pixels), as matplotlib clips
+// a line and its markers to its axes; undone by the caller's ctx.restore().
+export function clipTo(ctx, box) {
+  ctx.beginPath();
+  ctx.rect(box.left, box.top, box.right - box.left, box.bottom - box.top);
+  ctx.clip();
+}
+
+// matplotlib's "+" marker at canvas point `at`: two strokes style.size px long, style.width wide.
+export function plus(ctx, at, style) {
+  if (!Number.isFinite(at[0]) || !Number.isFinite(at[1])) return;
+  const h = style.size / 2;
+  ctx.save();
+  ctx.strokeStyle = style.color;
+  ctx.lineWidth = style.width;
+  ctx.lineCap = "butt";
+  ctx.beginPath();
+  ctx.moveTo(at[0] - h, at[1]);
+  ctx.lineTo(at[0] + h, at[1]);
+  ctx.moveTo(at[0], at[1] - h);
+  ctx.lineTo(at[0], at[1] + h);
+  ctx.stroke();
+  ctx.restore();
+}

@@ -216,3 +216,160 @@ export function ratiosTitle(f, Z, Y) {
   );
 }
 
+// ---- lesson 05: the dolly zoom camera and its affine approximations ----------------------------
+
+function dot3(a, b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+function unit(v) {
+  const n = Math.hypot(v[0], v[1], v[2]);
+  return v.map((c) => c / n);
+}
+
+// Twin: camlab.camera.orbit_eye(azimuth, elevation, distance, target): radians, metres.
+export function orbitEye(azimuth, elevation, distance, target) {
+  const ce = Math.cos(elevation);
+  return [
+    target[0] + distance * ce * Math.cos(azimuth),
+    target[1] + distance * ce * Math.sin(azimuth),
+    target[2] + distance * Math.sin(elevation),
+  ];
+}
+
+// Twin: camlab.camera.look_at_rotation(eye, target, up) (what Camera.look_at uses): R (cam_from_world), rows the camera's x, y, z axes.
+export function lookAt(eye, target, up = [0, 0, 1]) {
+  const z = unit([target[0] - eye[0], target[1] - eye[1], target[2] - eye[2]]);
+  const x = unit(cross(z, up));
+  return [x, cross(z, x), z];
+}
+
+// Twin: camlab.affine.dolly_zoom_camera(distance, azimuth, elevation, target, f0, d0,
+// principal_point, image_offset): {K, R, t}, focal f0 d / d0, the target at depth d.
+export function dollyZoomCamera(distance, azimuth, elevation, target, f0, d0, principalPoint, imageOffset = 0) {
+  const f = (f0 * distance) / d0;
+  const R = lookAt(orbitEye(azimuth, elevation, distance, target), target);
+  const shift = (imageOffset * d0) / f0;
+  const centre = target.map((c, i) => c - shift * R[0][i] - distance * R[2][i]);
+  const K = [[f, 0, principalPoint[0]], [0, f, principalPoint[1]], [0, 0, 1]];
+  return { K, R, t: R.map((row) => -dot3(row, centre)) };
+}
+
+// Twin: camlab.camera.Camera(K, R, t).project(X) without distortion: NaN where z_cam <= 0.
+export function cameraProject(cam, X) {
+  const { K, R, t } = cam;
+  return X.map((p) => {
+    const c = R.map((row, i) => dot3(row, p) + t[i]);
+    if (!(c[2] > 0)) return [NaN, NaN];
+    const x = c[0] / c[2], y = c[1] / c[2];
+    return [K[0][0] * x + K[0][1] * y + K[0][2], K[1][0] * x + K[1][1] * y + K[1][2]];
+  });
+}
+
+// Twin: camlab.affine.affine_approximation(camera, X0): K [r1 t1; r2 t2; 0 d0] / d0, d0 = X0's depth.
+export function affineApproximation(cam, X0) {
+  const { K, R, t } = cam;
+  const d0 = dot3(R[2], X0) + t[2];
+  const E = [[...R[0], t[0]], [...R[1], t[1]], [0, 0, 0, d0]];
+  return matmul(K, E).map((row) => row.map((v) => v / d0));
+}
+
+// Twin: camlab.affine.orthographic_matrix(R, t): keep the camera x, y (metres), forget depth.
+export function orthographicMatrix(R, t) {
+  return [[...R[0], t[0]], [...R[1], t[1]], [0, 0, 0, 1]];
+}
+
+function signedDepths(camOrP, points) {
+  if (!Array.isArray(camOrP)) return points.map((p) => dot3(camOrP.R[2], p) + camOrP.t[2]);
+  const P = camOrP;
+  let scale = 0;
+  for (const row of P) for (const v of row) scale = Math.max(scale, Math.abs(v));
+  const det = det3(P);
+  if (Math.abs(det) <= 1e-12 * scale ** 3) return points.map(() => 1);
+  return points.map((p) => Math.sign(det) * (dot3(P[2], p) + P[2][3]));
+}
+
+// Twin: camlab.camera.project_segments(camera, segments): (M, 2, 3) world segments to (M, 2, 2)
+// pixels, a half-visible segment clipped at 1/1000 of its front end's depth first; `camOrP` is a
+// camera {K, R, t} or a 3x4 P.
+export function projectSegments(camOrP, segments, near = 1e-3) {
+  const clipped = segments.map((seg) => {
+    const [za, zb] = signedDepths(camOrP, seg);
+    const out = [seg[0], seg[1]];
+    for (const [behind, front, zBehind, zFront] of [[0, 1, za, zb], [1, 0, zb, za]]) {
+      if (zBehind <= 0 && zFront > 0) {
+        const s = ((1 - near) * zFront) / (zFront - zBehind);
+        out[behind] = seg[front].map((c, i) => c + s * (seg[behind][i] - c));
+      }
+    }
+    return out;
+  });
+  const flat = clipped.flat();
+  const uv = Array.isArray(camOrP) ? projectPoints(camOrP, flat) : cameraProject(camOrP, flat);
+  return clipped.map((_, i) => [uv[2 * i], uv[2 * i + 1]]);
+}
+
+// Twin: camlab.affine.matched_points_in_frame(camera, P_affine, segments, size, samples): the two
+// images of `samples` points along each segment, where both fall inside the (width, height) frame.
+export function matchedPointsInFrame(cam, PAffine, segments, size, samples) {
+  const X = [];
+  for (const [a, b] of segments) {
+    for (let k = 0; k < samples; k++) {
+      const s = samples === 1 ? 0 : k / (samples - 1);
+      X.push(a.map((c, i) => c + s * (b[i] - c)));
+    }
+  }
+  const pa = cameraProject(cam, X), pb = projectPoints(PAffine, X);
+  const [w, h] = size;
+  const inFrame = ([u, v]) => u >= -0.5 && u <= w - 0.5 && v >= -0.5 && v <= h - 0.5;
+  const keep = pa.map((p, i) => inFrame(p) && inFrame(pb[i]));
+  return { perspective: pa.filter((_, i) => keep[i]), affine: pb.filter((_, i) => keep[i]) };
+}
+
+// Twin: camlab.plotting.wireframes.polyline_data for 2-D segments: start, end and a NaN row each.
+export function polylineData(segments) {
+  return segments.flatMap((seg) => [seg[0], seg[1], [NaN, NaN]]);
+}
+
+// Twin: camlab.affine.paraperspective_approximation(camera, X0): perspective linearised at X0,
+// K [r1 - a r3, t1 - a (t3 - d0); r2 - b r3, t2 - b (t3 - d0); 0, d0] / d0 with (a, b) X0's
+// normalised image position.
+export function paraperspectiveApproximation(cam, X0) {
+  const { K, R, t } = cam;
+  const d0 = dot3(R[2], X0) + t[2];
+  const ab = [0, 1].map((i) => (dot3(R[i], X0) + t[i]) / d0);
+  const E = [0, 1].map((i) => [...R[i].map((r, j) => r - ab[i] * R[2][j]), t[i] - ab[i] * (t[2] - d0)]);
+  E.push([0, 0, 0, d0]);
+  return matmul(K, E).map((row) => row.map((v) => v / d0));
+}
+
+// Twin: camlab.affine.weak_perspective_error(camera, X, X0, approximation): each point's pixel
+// distance between its perspective image and its image by approximation(cam, X0): a twin above, or
+// its name in APPROXIMATIONS.
+export function approximationError(cam, X, X0, approximation) {
+  const approximate = typeof approximation === "string" ? APPROXIMATIONS[approximation] : approximation;
+  const PA = approximate(cam, X0);
+  const a = cameraProject(cam, X), b = projectPoints(PA, X);
+  return a.map((p, i) => Math.hypot(p[0] - b[i][0], p[1] - b[i][1]));
+}
+
+// Twin: camlab.affine.dolly_zoom_errors(X, distances, azimuth, elevation, target, f0, d0,
+// approximation, image_offset): the RMS of approximationError at each distance, pixels.
+export function dollyZoomErrors(X, distances, azimuth, elevation, target, f0, d0, approximation, imageOffset, principalPoint) {
+  return distances.map((d) => {
+    const cam = dollyZoomCamera(d, azimuth, elevation, target, f0, d0, principalPoint, imageOffset);
+    const e = approximationError(cam, X, target, approximation);
+    return Math.sqrt(e.reduce((s, v) => s + v * v, 0) / e.length);
+  });
+}
+
+// The affine approximations by the names lesson 05 gives them (camlab.widgets.affine_cameras.APPROXIMATIONS).
+export const APPROXIMATIONS = {
+  "weak perspective": affineApproximation,
+  "para-perspective": paraperspectiveApproximation,
+};
+
+// Twin: camlab.widgets.affine_cameras.views._rms_text(rms): to 0.1 px, below 1 px to 0.01 px.
+export function rmsText(rms) {
+  return rms >= 0.995 ? `RMS ${formatFixed(rms, 1)} px` : `RMS ${formatFixed(rms, 2)} px`;
+}

@@ -11,12 +11,22 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
+import numpy as np
 from matplotlib.colors import to_hex, to_rgba
 
 from ...plotting import optics
 from . import line_style, marker_style, text_lines, text_style, to_canvas_pixels
 
-__all__ = ["fill_style", "similar_triangles_scene"]
+__all__ = [
+    "axes_box",
+    "cross_marker_style",
+    "dolly_zoom_scene",
+    "fill_style",
+    "log_canvas_pixels",
+    "path_marker_style",
+    "similar_triangles_scene",
+    "three_cameras_scene",
+]
 
 
 def fill_style(patch: Any) -> dict:
@@ -76,7 +86,6 @@ def similar_triangles_scene(ax: Any, art: dict, controls: Mapping[str, Any]) -> 
     dims = art["dims"]
     ray = art["ray"]
     pinhole = art["pinhole"]
-    box = ax.get_window_extent()
     leader = pinhole.arrow_patch
     return dict(
         toPixels=to_canvas_pixels(ax),
@@ -84,12 +93,7 @@ def similar_triangles_scene(ax: Any, art: dict, controls: Mapping[str, Any]) -> 
         rooms=dict(
             shortest=optics.SHORTEST_ARROW, fRoom=optics.F_LABEL_ROOM, zRoom=optics.Z_LABEL_ROOM
         ),
-        axes=dict(
-            left=float(box.x0),
-            right=float(box.x1),
-            top=float(fig.bbox.height - box.y1),
-            bottom=float(fig.bbox.height - box.y0),
-        ),
+        axes=axes_box(ax),
         ranges=_ranges(controls, "Z", "Y"),
         styles=dict(
             big=fill_style(art["big"]),
@@ -124,4 +128,200 @@ def similar_triangles_scene(ax: Any, art: dict, controls: Mapping[str, Any]) -> 
             },
             title=dict(text_style(ax.title), **text_lines(ax.title)),
         ),
+    )
+
+
+def axes_box(ax: Any) -> dict:
+    """The axes' box in canvas pixels (what matplotlib clips its lines and markers to).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes, after the figure's layout is fixed.
+
+    Returns
+    -------
+    dict
+        ``left``, ``right``, ``top`` and ``bottom``, px from the canvas's top left.
+    """
+    box = ax.get_window_extent()
+    height = ax.figure.bbox.height
+    return dict(
+        left=float(box.x0),
+        right=float(box.x1),
+        top=float(height - box.y1),
+        bottom=float(height - box.y0),
+    )
+
+
+def path_marker_style(line: Any, px_per_point: float) -> dict:
+    """A line's marker as a closed path (``drawing.js``'s ``pathMarker``): vertices in points, y up.
+
+    Parameters
+    ----------
+    line : matplotlib.lines.Line2D
+        A line drawn with a polygon marker ("D", "s", ...).
+    px_per_point : float
+        Figure dpi / 72.
+
+    Returns
+    -------
+    dict
+        ``verts`` (the marker's outline for a size of 1), ``size`` (px), ``color`` (face),
+        ``edge`` and ``edgeWidth`` (px).
+    """
+    marker = line._marker  # noqa: SLF001 - the MarkerStyle matplotlib draws
+    verts = marker.get_path().transformed(marker.get_transform()).vertices
+    return dict(
+        verts=np.round(verts[:-1], 12).tolist(),
+        size=line.get_markersize() * px_per_point,
+        color=to_hex(line.get_markerfacecolor()),
+        edge=to_hex(line.get_markeredgecolor()),
+        edgeWidth=line.get_markeredgewidth() * px_per_point,
+    )
+
+
+def three_cameras_scene(
+    axes: Any, lines: Mapping[str, Any], reference: Any, world: Mapping[str, Any]
+) -> dict:
+    """What ``three_cameras.js`` needs to draw lesson 05's three images as matplotlib draws them.
+
+    Parameters
+    ----------
+    axes : sequence of 3 matplotlib.axes.Axes
+        The perspective, weak-perspective and orthographic panels (drawn once).
+    lines : mapping
+        The moving lines: ``perspective``, ``ghost``, ``weak``, ``orthographic``, ``gaps``.
+    reference : matplotlib.lines.Line2D
+        One of the X0 markers (all three look alike).
+    world : mapping
+        The numbers of the scene: ``segments`` ((M, 2, 3) world segments, m), ``parts`` (name ->
+        (first, last) rows of ``segments`` and the samples along each), ``X0``, ``target``, ``f0``,
+        ``d0``, ``principal_point``, ``size`` (the frame, px).
+
+    Returns
+    -------
+    dict
+        The scene (JSON): per panel its map and box, the world's numbers and the styles.
+    """
+    pt = axes[0].figure.dpi / 72.0
+    gaps = lines["gaps"]
+    return dict(
+        panels=[dict(toPixels=to_canvas_pixels(ax), box=axes_box(ax)) for ax in axes],
+        segments=np.asarray(world["segments"], dtype=float).tolist(),
+        parts=dict(world["parts"]),
+        X0=np.asarray(world["X0"], dtype=float).tolist(),
+        target=np.asarray(world["target"], dtype=float).tolist(),
+        f0=float(world["f0"]),
+        d0=float(world["d0"]),
+        principalPoint=[float(c) for c in world["principal_point"]],
+        size=[int(c) for c in world["size"]],
+        styles=dict(
+            {k: line_style(lines[k], pt) for k in ("perspective", "ghost", "weak", "orthographic")},
+            gaps=line_style(gaps, pt),
+            gapDots=marker_style(gaps, pt),
+            reference=path_marker_style(reference, pt),
+        ),
+    )
+
+
+def log_canvas_pixels(ax: Any) -> list[list[float]]:
+    """The 3x3 map from (log10 x, log10 y) to canvas pixels, for an axes with log scales on both axes.
+
+    matplotlib maps data through the axes' scale (log10 here), then an affine map from the scaled
+    view limits to the display; this is that affine map with the canvas's flip (v = height - y).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Log-log axes, after the figure's layout is fixed.
+
+    Returns
+    -------
+    list of 3 lists of 3 floats
+        The map, rows.
+    """
+    height = ax.figure.bbox.height
+    flip = np.array([[1.0, 0.0, 0.0], [0.0, -1.0, height], [0.0, 0.0, 1.0]])
+    return (flip @ (ax.transLimits + ax.transAxes).get_matrix()).tolist()
+
+
+def cross_marker_style(line: Any, px_per_point: float) -> dict:
+    """A "+" marker's colour, size (px) and stroke width (px).
+
+    Parameters
+    ----------
+    line : matplotlib.lines.Line2D
+        A line drawn with the "+" marker.
+    px_per_point : float
+        Figure dpi / 72.
+
+    Returns
+    -------
+    dict
+        ``color``, ``size`` and ``width``.
+    """
+    return dict(
+        color=to_hex(line.get_markeredgecolor()),
+        size=line.get_markersize() * px_per_point,
+        width=line.get_markeredgewidth() * px_per_point,
+    )
+
+
+def dolly_zoom_scene(
+    panels: Mapping[str, Any], err: Mapping[str, Any], world: Mapping[str, Any]
+) -> dict:
+    """What ``dolly_zoom.js`` needs to draw lesson 05's dolly zoom as matplotlib draws it.
+
+    Parameters
+    ----------
+    panels : mapping
+        Per affine model (``"weak perspective"``, ``"para-perspective"``) its image panel's
+        artists: ``ax``, ``under`` (the perspective image), ``line`` (the model's), ``reference``
+        (X0's marker), ``centre`` (the principal point's +) and ``readout`` (the RMS text).
+    err : mapping
+        The error panel: ``ax`` (log-log), ``curves`` and ``markers`` (per model).
+    world : mapping
+        ``cube`` ((M, 2, 3) segments, m), ``view`` (azimuth and elevation, radians), ``target``,
+        ``f0``, ``d0``, ``principal_point``, ``distances`` (the curves' abscissae, m).
+
+    Returns
+    -------
+    dict
+        The scene (JSON).
+    """
+    ax_err = err["ax"]
+    pt = ax_err.figure.dpi / 72.0
+    height = ax_err.figure.bbox.height
+    images = []
+    for model, art in panels.items():
+        x, y = art["readout"].get_transform().transform(art["readout"].get_position())
+        images.append(
+            dict(
+                model=model,
+                toPixels=to_canvas_pixels(art["ax"]),
+                box=axes_box(art["ax"]),
+                under=line_style(art["under"], pt),
+                line=line_style(art["line"], pt),
+                reference=path_marker_style(art["reference"], pt),
+                centre=cross_marker_style(art["centre"], pt),
+                centreAt=np.asarray(art["centre"].get_xydata()[0], dtype=float).tolist(),
+                readout=dict(text_style(art["readout"]), x=float(x), y=float(height - y)),
+            )
+        )
+    return dict(
+        images=images,
+        error=dict(
+            toPixels=log_canvas_pixels(ax_err),
+            box=axes_box(ax_err),
+            curves={m: line_style(c, pt) for m, c in err["curves"].items()},
+            markers={m: marker_style(c, pt) for m, c in err["markers"].items()},
+        ),
+        cube=np.asarray(world["cube"], dtype=float).tolist(),
+        view=[float(a) for a in world["view"]],
+        target=np.asarray(world["target"], dtype=float).tolist(),
+        f0=float(world["f0"]),
+        d0=float(world["d0"]),
+        principalPoint=[float(c) for c in world["principal_point"]],
+        distances=np.asarray(world["distances"], dtype=float).tolist(),
     )

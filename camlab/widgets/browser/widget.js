@@ -2,6 +2,8 @@
 // parameter change (each parameter is a synced trait linked to its slider in the browser).
 import { drawStackCheck } from "./stack_check.js";
 import { drawSimilarTriangles, dragSimilarTriangles } from "./similar_triangles.js";
+import { drawThreeCameras } from "./three_cameras.js";
+import { drawDollyZoom } from "./dolly_zoom.js";
 
 // The scene drawers by demo name (the scene's "kind"); a new browser-drawn demo adds its own here.
 // `drag(scene, [u, v])`, where a demo takes the mouse, turns a press or drag at figure pixel (u, v)
@@ -9,6 +11,8 @@ import { drawSimilarTriangles, dragSimilarTriangles } from "./similar_triangles.
 const SCENES = {
   stack_check: { draw: drawStackCheck },
   similar_triangles: { draw: drawSimilarTriangles, drag: dragSimilarTriangles },
+  three_cameras: { draw: drawThreeCameras },
+  dolly_zoom: { draw: drawDollyZoom },
 };
 
 // A press, and a move with the button held, on the canvas set the parameters the demo's drag names.
