@@ -88,16 +88,23 @@ def write_notebook(path: Path, names) -> None:
 
 
 @pytest.fixture(scope="module")
-def lab_page(tmp_path_factory):
-    """One JupyterLab and one Chromium page showing every browser-drawn demo, all cells run."""
+def playwright():
+    """One Playwright for the module (a second sync_playwright inside the first one's loop fails)."""
     from playwright.sync_api import sync_playwright
 
     browser.require_chromium()
+    with sync_playwright() as p:
+        yield p
+
+
+@pytest.fixture(scope="module")
+def lab_page(playwright, tmp_path_factory):
+    """One JupyterLab and one Chromium page showing every browser-drawn demo, all cells run."""
     tmp = tmp_path_factory.mktemp("browser_drawing")
     (tmp / "root").mkdir()
     write_notebook(tmp / "root" / "drawing.ipynb", BROWSER_DEMOS)
-    with browser.jupyterlab(tmp / "root", tmp) as lab, sync_playwright() as p:
-        context = browser.launch(p, lab["profile"])
+    with browser.jupyterlab(tmp / "root", tmp) as lab:
+        context = browser.launch(playwright, lab["profile"])
         try:
             page = context.new_page()
             page.set_default_timeout(90_000)
@@ -206,13 +213,10 @@ def test_a_drag_on_the_similar_triangles_canvas_moves_the_object_point_and_the_k
     assert share >= 0.95, f"after the drag the canvas matches matplotlib's on {share:.0%}"
 
 
-def test_stack_check_is_drawn_in_the_browser_in_the_lecture_mode(tmp_path):
+def test_stack_check_is_drawn_in_the_browser_in_the_lecture_mode(playwright, tmp_path):
     """``camlab present 00`` (Voila): the anywidget canvas shows and follows a keydown there too."""
-    from playwright.sync_api import sync_playwright
-
-    browser.require_chromium()
-    with browser.lecture_mode("00", tmp_path) as port, sync_playwright() as p:
-        context = browser.launch(p, tmp_path / "chromium")
+    with browser.lecture_mode("00", tmp_path) as port:
+        context = browser.launch(playwright, tmp_path / "chromium")
         try:
             page = context.new_page()
             page.set_default_timeout(120_000)

@@ -39,6 +39,7 @@ from .common import (
 # Where the middle panel joins the two images of one point: the cube's corners (a segment's two end
 # points) and the rails' metre marks (7 points along 6 m).
 GAP_SAMPLES = {"cube": 2, "rails": 7}
+CUBE_EDGES = 12  # fixtures.box_and_rails: 12 cube edges, then 4 rails
 
 
 def _image_panel(ax, title, model, size=(640, 480), tick_labels=True):
@@ -78,7 +79,7 @@ def three_cameras():
         axis=0
     )  # the weak-perspective camera's reference point (three_images)
     references = [(view.animate(*reference_marker(ax)),) for ax in axes]  # the legend names it
-    parts = {"cube": scene[:12], "rails": scene[12:]}  # box_and_rails: 12 cube edges, then 4 rails
+    parts = {"cube": scene[:CUBE_EDGES], "rails": scene[CUBE_EDGES:]}
     readout = W.HTML()
     controls = {
         "azimuth": int_slider(-40, -90, 90, "azimuth (deg)", step=2),
@@ -134,8 +135,8 @@ def three_cameras():
     world = dict(
         segments=scene,
         parts={
-            "cube": [0, 12, GAP_SAMPLES["cube"]],
-            "rails": [12, len(scene), GAP_SAMPLES["rails"]],
+            "cube": [0, CUBE_EDGES, GAP_SAMPLES["cube"]],
+            "rails": [CUBE_EDGES, len(scene), GAP_SAMPLES["rails"]],
         },
         X0=X0,
         target=TARGET,

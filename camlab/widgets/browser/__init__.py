@@ -40,6 +40,7 @@ __all__ = [
     "BrowserView",
     "browser_drawing",
     "canvas_class",
+    "canvas_height",
     "esm_source",
     "line_style",
     "marker_style",
@@ -119,6 +120,26 @@ def browser_drawing(mode: str) -> bool:
     return mode in ("ipympl", "png") and os.environ.get("CAMLAB_BROWSER_DRAWING", "1") != "0"
 
 
+def canvas_height(fig: Any) -> int:
+    """The height, in pixels, that matplotlib's Agg canvas flips y about: the figure's, rounded down.
+
+    Agg draws into a buffer of ``int(height)`` rows and maps display y to row ``int(height) - y``;
+    a figure whose height ends in half a pixel (3.35 in at 90 dpi: 301.5 px) would otherwise be
+    drawn half a pixel low in the browser.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+
+    Returns
+    -------
+    int
+        The rows of the figure's Agg buffer (and of the static background).
+    """
+    return int(fig.bbox.height)
+
+
 def to_canvas_pixels(ax: Any) -> list[list[float]]:
     """The 3x3 map from ``ax``'s data coordinates to canvas pixels (u right, v down, origin top left).
 
@@ -135,7 +156,7 @@ def to_canvas_pixels(ax: Any) -> list[list[float]]:
     list of 3 lists of 3 floats
         The map, rows, as JSON for the scene.
     """
-    height = ax.figure.bbox.height
+    height = canvas_height(ax.figure)
     flip = np.array([[1.0, 0.0, 0.0], [0.0, -1.0, height], [0.0, 0.0, 1.0]])
     return (flip @ ax.transData.get_affine().get_matrix()).tolist()
 
@@ -261,7 +282,9 @@ def line_style(line: Any, px_per_point: float, **extra: Any) -> dict:
     Returns
     -------
     dict
-        ``color``, ``width`` (px), ``dash`` (px, [] for solid), ``join`` and ``cap``.
+        ``color``, ``width`` (px), ``dash`` (px, [] for solid), ``join``, ``cap`` and ``snap``
+        (matplotlib snaps a path of horizontal and vertical segments to the pixel grid unless the
+        line says not to).
     """
     offset, dashes = line._dash_pattern  # noqa: SLF001 - the pattern matplotlib draws, already scaled by width
     join = {"round": "round", "miter": "miter", "bevel": "bevel"}
@@ -273,6 +296,7 @@ def line_style(line: Any, px_per_point: float, **extra: Any) -> dict:
         dash=[] if solid else [d * px_per_point for d in dashes],
         join=join[(line.get_solid_joinstyle() if solid else line.get_dash_joinstyle())],
         cap=caps[(line.get_solid_capstyle() if solid else line.get_dash_capstyle())],
+        snap=line.get_snap() is not False,
         **extra,
     )
 
@@ -351,7 +375,7 @@ def text_lines(text: Any) -> dict:
     fig = text.figure
     _bbox, info, _d = text._get_layout(fig.canvas.get_renderer())  # noqa: SLF001 - matplotlib's own line layout
     x, y = text.get_transform().transform(text.get_unitless_position())
-    height = fig.bbox.height
+    height = canvas_height(fig)
     return dict(
         x=float(x),
         baselines=[float(height - (y + dy)) for _line, _wad, (_dx, dy) in info],

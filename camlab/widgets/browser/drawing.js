@@ -16,9 +16,26 @@ function runs(pts) {
   return out.filter((r) => r.length >= 2);
 }
 
+// matplotlib's pixel snapping (path.snap, Agg's PathSnapper): a path whose every segment is
+// horizontal or vertical (within 1e-4 px), of at most 1024 vertices, has its vertices moved to pixel
+// edges, or to pixel centres for a line of odd width (in whole pixels), so it draws crisp.
+function snapped(drawn, width) {
+  const all = drawn.flat();
+  if (all.length > 1024) return drawn;
+  for (const run of drawn) {
+    for (let i = 1; i < run.length; i++) {
+      const [x0, y0] = run[i - 1], [x1, y1] = run[i];
+      if (Math.abs(x1 - x0) >= 1e-4 && Math.abs(y1 - y0) >= 1e-4) return drawn;
+    }
+  }
+  const half = Math.round(width) % 2 ? 0.5 : 0.0;
+  return drawn.map((run) => run.map(([x, y]) => [Math.floor(x + 0.5) + half, Math.floor(y + 0.5) + half]));
+}
+
 export function polyline(ctx, pts, style) {
-  const drawn = runs(pts);
+  let drawn = runs(pts);
   if (!drawn.length) return;
+  if (style.snap) drawn = snapped(drawn, style.width);
   ctx.save();
   ctx.lineJoin = style.join || "round";
   ctx.lineCap = style.cap || "butt";

@@ -15,7 +15,7 @@ import numpy as np
 from matplotlib.colors import to_hex, to_rgba
 
 from ...plotting import optics
-from . import line_style, marker_style, text_lines, text_style, to_canvas_pixels
+from . import canvas_height, line_style, marker_style, text_lines, text_style, to_canvas_pixels
 
 __all__ = [
     "axes_box",
@@ -145,7 +145,7 @@ def axes_box(ax: Any) -> dict:
         ``left``, ``right``, ``top`` and ``bottom``, px from the canvas's top left.
     """
     box = ax.get_window_extent()
-    height = ax.figure.bbox.height
+    height = canvas_height(ax.figure)
     return dict(
         left=float(box.x0),
         right=float(box.x1),
@@ -241,7 +241,7 @@ def log_canvas_pixels(ax: Any) -> list[list[float]]:
     list of 3 lists of 3 floats
         The map, rows.
     """
-    height = ax.figure.bbox.height
+    height = canvas_height(ax.figure)
     flip = np.array([[1.0, 0.0, 0.0], [0.0, -1.0, height], [0.0, 0.0, 1.0]])
     return (flip @ (ax.transLimits + ax.transAxes).get_matrix()).tolist()
 
@@ -292,7 +292,7 @@ def dolly_zoom_scene(
     """
     ax_err = err["ax"]
     pt = ax_err.figure.dpi / 72.0
-    height = ax_err.figure.bbox.height
+    height = canvas_height(ax_err.figure)
     images = []
     for model, art in panels.items():
         x, y = art["readout"].get_transform().transform(art["readout"].get_position())
