@@ -53,7 +53,10 @@ def test_the_scene_maps_data_to_the_pixels_matplotlib_draws(in_a_kernel):
         data = HOUSE
         ours = np.c_[data, np.ones(len(data))] @ T.T
         x, y = ax.transData.transform(data).T
-        assert np.allclose(ours[:, 0], x) and np.allclose(ours[:, 1], demo.figure.bbox.height - y)
+        # Agg's buffer has int(height) rows (409 for a 409.5 px figure) and flips y about that
+        assert np.allclose(ours[:, 0], x) and np.allclose(
+            ours[:, 1], int(demo.figure.bbox.height) - y
+        )
 
 
 def test_pixels_in_a_kernel_equal_the_headless_drawing(in_a_kernel, monkeypatch):
@@ -80,3 +83,76 @@ def test_switched_off_the_demo_is_drawn_in_the_kernel(in_a_kernel, monkeypatch):
         plt.switch_backend(backend)
     assert demo.view.canvas is None and demo.view.mode == "ipympl"
     assert type(demo.view.widget).__name__ == "Canvas"  # ipympl's
+
+
+def test_similar_triangles_sends_its_scene_links_its_three_sliders_and_draws_as_headless(
+    in_a_kernel, monkeypatch
+):
+    from camlab.plotting import optics
+    from camlab.widgets.pinhole_camera import similar_triangles
+
+    demo = similar_triangles()
+    canvas = demo.view.canvas
+    scene = canvas.scene
+    assert scene["kind"] == "similar_triangles" and scene["params"] == ["f", "Z", "Y"]
+    assert (canvas.f, canvas.Z, canvas.Y) == (0.8, 3.0, -0.8)
+    links = {link.target[1]: link.source for link in demo.view.links}
+    assert links == {k: (demo.controls[k], "value") for k in ("f", "Z", "Y")}
+    # the layout's h is the kernel's: 0.85 of the axes' top
+    assert scene["h"] == demo.figure.axes[0].get_ylim()[1] * 0.85
+    assert scene["rooms"]["zRoom"] == optics.Z_LABEL_ROOM
+    assert scene["ranges"]["Z"] == dict(min=1.2, max=5.0, step=0.05)
+    title = scene["styles"]["title"]
+    assert len(title["baselines"]) == 2 and title["baselines"][0] < title["baselines"][1]
+    demo.set(f=0.45, Z=1.6, Y=0.35)
+    live = demo.view.pixels()
+    monkeypatch.setenv("CAMLAB_FIGURE_MODE", "agg")
+    headless = similar_triangles()
+    headless.set(f=0.45, Z=1.6, Y=0.35)
+    assert np.array_equal(live, headless.view.pixels())
+    assert demo.state == headless.state
+
+
+def test_three_cameras_sends_its_world_and_draws_as_headless(in_a_kernel, monkeypatch):
+    from camlab.fixtures import box_and_rails
+    from camlab.widgets.affine_cameras import three_cameras
+
+    demo = three_cameras()
+    scene = demo.view.canvas.scene
+    assert scene["kind"] == "three_cameras"
+    assert scene["params"] == ["azimuth", "elevation", "distance"]
+    assert np.array_equal(scene["segments"], box_and_rails())
+    assert scene["parts"] == {"cube": [0, 12, 2], "rails": [12, 16, 7]}
+    assert scene["principalPoint"] == [319.5, 239.5] and scene["size"] == [640, 480]
+    assert len(scene["panels"]) == 3
+    demo.set(azimuth=60, elevation=70, distance=2.5)
+    live = demo.view.pixels()
+    monkeypatch.setenv("CAMLAB_FIGURE_MODE", "agg")
+    headless = three_cameras()
+    headless.set(azimuth=60, elevation=70, distance=2.5)
+    assert np.array_equal(live, headless.view.pixels())
+    assert demo.state["gaps"] == headless.state["gaps"]
+
+
+def test_dolly_zoom_sends_its_panels_and_draws_as_headless(in_a_kernel, monkeypatch):
+    from camlab.widgets.affine_cameras import dolly_zoom
+
+    demo = dolly_zoom()
+    scene = demo.view.canvas.scene
+    assert scene["kind"] == "dolly_zoom" and scene["params"] == ["distance", "offset"]
+    assert [p["model"] for p in scene["images"]] == ["weak perspective", "para-perspective"]
+    assert len(scene["distances"]) == 60 and scene["principalPoint"] == [319.5, 239.5]
+    # the error panel's map takes log10 of the data: its corners land on the axes' box
+    ax = demo.figure.axes[2]
+    T = np.array(scene["error"]["toPixels"])
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    corners = np.c_[np.log10([[x0, y0], [x1, y1]]), np.ones(2)] @ T.T
+    box = scene["error"]["box"]
+    assert np.allclose(corners[:, :2], [[box["left"], box["bottom"]], [box["right"], box["top"]]])
+    demo.set(distance=30.0, offset=40)
+    live = demo.view.pixels()
+    monkeypatch.setenv("CAMLAB_FIGURE_MODE", "agg")
+    headless = dolly_zoom()
+    headless.set(distance=30.0, offset=40)
+    assert np.array_equal(live, headless.view.pixels())
+    assert demo.state["rms_error"] == headless.state["rms_error"]

@@ -11,6 +11,8 @@ from .. import fixtures, pinhole, render, scenes, sensor
 from ..plotting import images, optics, palette
 from ..scenes.planes import CHART_ROW_HEIGHTS
 from ._base import FigureView, build_demo, register, slider
+from .browser import BrowserView
+from .browser.scenes import similar_triangles_scene
 from .controls import monospace
 
 SIZE = (320, 240)
@@ -265,6 +267,33 @@ def _signed(x: float, digits: int) -> str:
     return f"{x:+.{digits}f}" if round(x, digits) != 0 else f"{0:.{digits}f}"
 
 
+def ratios_title(f: float, Z: float, Y: float) -> str:
+    """The title over :func:`similar_triangles`: y / f and Y / Z, with their numbers, equal.
+
+    The browser's twin is ``ratiosTitle`` in ``widgets/browser/geometry.js``.
+
+    Parameters
+    ----------
+    f : float
+        Focal length, metres.
+    Z : float
+        The object point's depth, metres.
+    Y : float
+        The object point's camera y, metres (y down).
+
+    Returns
+    -------
+    str
+        Two lines: the ratios, and how to move the object point.
+    """
+    y = f * Y / Z
+    return (
+        f"y / f = {_signed(y * 100, 1)} cm / {f * 100:.0f} cm = {_signed(y / f, 3)}   and   Y / Z ="
+        f" {_signed(Y, 2)} m / {Z:.2f} m = {_signed(Y / Z, 3)}\nclick or drag in the figure to move the object"
+        " point"
+    )
+
+
 @register(lesson="01", sweep={"f": [0.3, 1.0], "Z": [1.2, 5.0], "Y": [-1.0, 0.0, 0.4, 1.0]})
 def similar_triangles():
     """A side view of a room-sized camera obscura: drag the object point and read y / f = Y / Z off the triangles.
@@ -281,7 +310,7 @@ def similar_triangles():
         "Z": slider(3.0, 1.2, 5.0, 0.05, "object depth Z (m)"),
         "Y": slider(-0.8, -1.0, 1.0, 0.05, "object Y (m; y points down)"),
     }
-    view = FigureView(figsize=(8.8, 4))
+    view = BrowserView(("f", "Z", "Y"), figsize=(8.8, 4))
     ax = view.fig.subplots()
     art = optics.draw_similar_triangles(ax, z_max=5.6, h_max=1.3)
     ax.set_title(
@@ -311,12 +340,7 @@ def similar_triangles():
         f, Z, Y = values["f"], values["Z"], values["Y"]
         y = optics.update_similar_triangles(art, f, Z, Y)
         state.update(y=y, ratio_image=y / f, ratio_object=Y / Z)
-        ax.set_title(
-            f"y / f = {_signed(y * 100, 1)} cm / {f * 100:.0f} cm = {_signed(y / f, 3)}   and   Y / Z ="
-            f" {_signed(Y, 2)} m / {Z:.2f} m = {_signed(Y / Z, 3)}\nclick or drag in the figure to move the object"
-            " point",
-            fontsize=9,
-        )
+        ax.set_title(ratios_title(f, Z, Y), fontsize=9)
         readout.value = monospace(
             f"y / f = {_signed(y / f, 3)}\nY / Z = {_signed(Y / Z, 3)}\n=> y = f Y / Z = {_signed(y * 100, 1)} cm"
         )
@@ -340,6 +364,8 @@ def similar_triangles():
 
     view.fig.canvas.mpl_connect("button_press_event", on_mouse)
     view.fig.canvas.mpl_connect("motion_notify_event", on_mouse)
+    # the browser draws the moves, and a click or drag there sets Z and Y as on_mouse does
+    view.publish(demo, similar_triangles_scene(ax, art, controls))
     return demo
 
 

@@ -12,7 +12,7 @@ from matplotlib.transforms import Affine2D
 from ..plotting import palette
 from ..plotting.plane import plane_axes
 from ._base import Demo, FigureView, build_demo, display_mode, register, slider
-from .browser import BrowserView, line_style, to_canvas_pixels
+from .browser import BrowserView, canvas_height, line_style, to_canvas_pixels
 from .controls import int_slider
 
 # A little house outline, in plot units: the course's running example of a shape. y points down, as in
@@ -272,7 +272,7 @@ def _browser_scene(panels: list[dict], readout, dpi: float) -> dict:
     pt = dpi / 72.0
     first = panels[0]
     path, arrow, house, tip = (first[k] for k in ("path", "arrow", "house", "tip"))
-    fig_h = readout.figure.bbox.height
+    fig_h = canvas_height(readout.figure)
     x, y = readout.get_transform().transform(readout.get_position())
     return dict(
         house=HOUSE.tolist(),

@@ -33,6 +33,7 @@ from .similar_triangles import (
     SHORTEST_ARROW,
     Z_LABEL_ROOM,
     draw_similar_triangles,
+    similar_triangles_layout,
     update_similar_triangles,
 )
 from .thin_lens import (
@@ -76,6 +77,7 @@ __all__ = [
     "draw_pinhole_3d",
     "update_pinhole_3d",
     "draw_similar_triangles",
+    "similar_triangles_layout",
     "update_similar_triangles",
     "draw_thin_lens",
     "update_thin_lens",

@@ -17,6 +17,7 @@ __all__ = [
     "SHORTEST_ARROW",
     "Z_LABEL_ROOM",
     "draw_similar_triangles",
+    "similar_triangles_layout",
     "update_similar_triangles",
 ]
 
@@ -42,8 +43,7 @@ def _dimension(ax, color: str) -> dict:
     return {"arrow": arrow, "label": label}
 
 
-def _set_dimension(
-    dim: dict,
+def _dimension_layout(
     a,
     b,
     text: str,
@@ -52,19 +52,33 @@ def _set_dimension(
     va: str = "center",
     label_at=None,
     min_arrow: float = 0.0,
-) -> None:
-    """Place a dimension line from ``a`` to ``b`` and its label (at the middle plus ``offset``, or at ``label_at``).
+) -> dict:
+    """A dimension line from ``a`` to ``b`` and its label (at the middle plus ``offset``, or at ``label_at``).
 
-    An arrow shorter than ``min_arrow`` (data units) is hidden: its two heads would overlap into a star.
+    An arrow shorter than ``min_arrow`` (data units) is not shown: its two heads would overlap into a star.
     """
-    dim["arrow"].xy, dim["arrow"].xyann = tuple(b), tuple(a)
-    dim["arrow"].set_visible(bool(np.hypot(b[0] - a[0], b[1] - a[1]) >= min_arrow))
     at = (
         label_at
         if label_at is not None
         else ((a[0] + b[0]) / 2 + offset[0], (a[1] + b[1]) / 2 + offset[1])
     )
-    dim["label"].set_position(at)
+    shown = bool(np.hypot(b[0] - a[0], b[1] - a[1]) >= min_arrow)
+    return dict(
+        a=[float(a[0]), float(a[1])],
+        b=[float(b[0]), float(b[1])],
+        shown=shown,
+        text=text,
+        at=[float(at[0]), float(at[1])],
+        ha=ha,
+        va=va,
+    )
+
+
+def _set_dimension(dim: dict, a, b, shown: bool, text: str, at, ha: str, va: str) -> None:
+    """Place a dimension line's arrow and label as :func:`_dimension_layout` laid them out."""
+    dim["arrow"].xy, dim["arrow"].xyann = tuple(b), tuple(a)
+    dim["arrow"].set_visible(shown)
+    dim["label"].set_position(tuple(at))
     dim["label"].set_text(text)
     dim["label"].set_horizontalalignment(ha)
     dim["label"].set_verticalalignment(va)
@@ -160,10 +174,107 @@ Z_LABEL_ROOM = (
 )
 
 
+def similar_triangles_layout(f: float, Z: float, Y: float, h: float) -> dict:
+    """Where every moving part of the side view goes for ``f``, ``Z`` and ``Y``, and its label text.
+
+    The arithmetic of :func:`update_similar_triangles`, apart from matplotlib, so the browser's
+    twin (``similarTrianglesLayout`` in ``camlab/widgets/browser/geometry.js``) can be tested
+    against it. The figure's vertical axis is -y (up), so the object point is at height -Y.
+
+    Parameters
+    ----------
+    f : float
+        Focal length (pinhole to image plane), metres.
+    Z : float
+        The object point's depth, metres (> 0).
+    Y : float
+        The object point's camera y, metres.
+    h : float
+        Half the height of the dashed image planes, metres (0.85 of the axes' top).
+
+    Returns
+    -------
+    dict
+        ``y`` (= f Y / Z, metres); the polylines ``big``, ``small`` (the triangles), ``object``,
+        ``ray``, ``planes`` (a NaN row between the two planes), ``virtual``, ``real``, as
+        (N, 2) lists of (z, -y) rows; ``point`` (z, -y); ``pinhole`` (where the pinhole's label
+        sits); ``dims``: per dimension line (``f``, ``Z``, ``Y``, ``y``, ``y_real``) its ends
+        ``a`` and ``b``, ``shown`` (False for an arrow shorter than :data:`SHORTEST_ARROW`), its
+        label's ``text``, position ``at`` and alignments ``ha`` and ``va``.
+    """
+    y = f * Y / Z
+    up, up_img = -Y, -y  # heights on the page
+    away = -0.12 * h if up >= 0 else 0.12 * h  # dimension lines go on the side away from the object
+    # the Z label inside its arrow when the arrow is long enough to hold it, else just beyond its end
+    inside = Z >= Z_LABEL_ROOM
+    f_inside = f >= F_LABEL_ROOM
+    # at Y near 0 the label would sit on the axis line: lift it clear (above, or below for an object below)
+    lift = 0.0 if abs(up) >= 0.3 else (0.15 if away < 0 else -0.15) - up / 2
+    dims = {
+        "Z": _dimension_layout(
+            (0, 3 * away),
+            (Z, 3 * away),
+            f"Z = {Z:.2f} m",
+            ha="center" if inside else "left",
+            label_at=None if inside else (Z + 0.08, 3 * away),
+        ),
+        # the f label inside its arrow when there is room, else just beyond its end (clear of the virtual plane)
+        "f": _dimension_layout(
+            (0, away),
+            (f, away),
+            f"f = {f:.2f} m",
+            offset=(0, away),
+            ha="center" if f_inside else "left",
+            label_at=None if f_inside else (f + 0.06, away),
+        ),
+        "Y": _dimension_layout(
+            (Z + 0.1, 0),
+            (Z + 0.1, up),
+            f" Y = {_signed(Y, 2)} m",
+            offset=(0.05, lift),
+            ha="left",
+            min_arrow=SHORTEST_ARROW,
+        ),
+        # each image's label at the far end of its plane's dashed line (virtual at the top, real at the
+        # bottom): outside both triangles and off the ray at every setting, never between two close planes
+        "y": _dimension_layout(
+            (f + 0.06, 0),
+            (f + 0.06, up_img),
+            f"virtual: y = {_signed(y * 100)} cm",
+            va="bottom",
+            label_at=(f, h + 0.02),
+            min_arrow=SHORTEST_ARROW,
+        ),
+        "y_real": _dimension_layout(
+            (-f - 0.06, 0),
+            (-f - 0.06, -up_img),
+            f"real: {_signed(-y * 100)} cm",
+            va="top",
+            label_at=(-f, -h - 0.02),
+            min_arrow=SHORTEST_ARROW,
+        ),
+    }
+    nan = float("nan")
+    return dict(
+        y=y,
+        big=[[0.0, 0.0], [Z, 0.0], [Z, up]],
+        small=[[0.0, 0.0], [f, 0.0], [f, up_img]],
+        object=[[Z, 0.0], [Z, up]],
+        point=[Z, up],
+        ray=[[-f, y], [Z, up]],
+        planes=[[-f, -h], [-f, h], [nan, nan], [f, -h], [f, h]],
+        virtual=[[f, 0.0], [f, up_img]],
+        real=[[-f, 0.0], [-f, y]],
+        pinhole=[0.0, 4.6 * away],
+        dims=dims,
+    )
+
+
 def update_similar_triangles(art: dict, f: float, Z: float, Y: float) -> float:
     """Redraw for focal length ``f``, object depth ``Z`` and ``Y`` (metres, camera frame: y down); returns y.
 
-    The figure's vertical axis is -y (up), so the object point is drawn at height -Y.
+    The figure's vertical axis is -y (up), so the object point is drawn at height -Y; the
+    positions are :func:`similar_triangles_layout`'s.
 
     Parameters
     ----------
@@ -181,70 +292,14 @@ def update_similar_triangles(art: dict, f: float, Z: float, Y: float) -> float:
     float
         The image height ``y = f Y / Z`` on the virtual plane, metres.
     """
-    y = f * Y / Z
-    up, up_img = -Y, -y  # heights on the page
-    art["big"].set_xy([[0, 0], [Z, 0], [Z, up]])
-    art["small"].set_xy([[0, 0], [f, 0], [f, up_img]])
-    art["object"].set_data([Z, Z], [0, up])
-    art["point"].set_data([Z], [up])
-    art["ray"].set_data([-f, Z], [y, up])
     h = art["planes"].axes.get_ylim()[1] * 0.85
-    art["planes"].set_data([-f, -f, np.nan, f, f], [-h, h, np.nan, -h, h])
-    art["virtual"].set_data([f, f], [0, up_img])
-    art["real"].set_data([-f, -f], [0, y])
-    away = -0.12 * h if up >= 0 else 0.12 * h  # dimension lines go on the side away from the object
-    d = art["dims"]
-    # the Z label inside its arrow when the arrow is long enough to hold it, else just beyond its end
-    inside = Z >= Z_LABEL_ROOM
-    _set_dimension(
-        d["Z"],
-        (0, 3 * away),
-        (Z, 3 * away),
-        f"Z = {Z:.2f} m",
-        ha="center" if inside else "left",
-        label_at=None if inside else (Z + 0.08, 3 * away),
-    )
-    # the f label inside its arrow when there is room, else just beyond its end (clear of the dashed virtual plane)
-    f_inside = f >= F_LABEL_ROOM
-    _set_dimension(
-        d["f"],
-        (0, away),
-        (f, away),
-        f"f = {f:.2f} m",
-        offset=(0, away),
-        ha="center" if f_inside else "left",
-        label_at=None if f_inside else (f + 0.06, away),
-    )
-    # at Y near 0 the label would sit on the axis line: lift it clear (above, or below for an object below)
-    lift = 0.0 if abs(up) >= 0.3 else (0.15 if away < 0 else -0.15) - up / 2
-    _set_dimension(
-        d["Y"],
-        (Z + 0.1, 0),
-        (Z + 0.1, up),
-        f" Y = {_signed(Y, 2)} m",
-        offset=(0.05, lift),
-        ha="left",
-        min_arrow=SHORTEST_ARROW,
-    )
-    # each image's label at the far end of its plane's dashed line (virtual at the top, real at the bottom):
-    # outside both triangles and off the ray at every setting, and never between two planes a short f puts close
-    _set_dimension(
-        d["y"],
-        (f + 0.06, 0),
-        (f + 0.06, up_img),
-        f"virtual: y = {_signed(y * 100)} cm",
-        va="bottom",
-        label_at=(f, h + 0.02),
-        min_arrow=SHORTEST_ARROW,
-    )
-    _set_dimension(
-        d["y_real"],
-        (-f - 0.06, 0),
-        (-f - 0.06, -up_img),
-        f"real: {_signed(-y * 100)} cm",
-        va="top",
-        label_at=(-f, -h - 0.02),
-        min_arrow=SHORTEST_ARROW,
-    )
-    art["pinhole"].xyann = (0, 4.6 * away)
-    return y
+    lay = similar_triangles_layout(f, Z, Y, h)
+    art["big"].set_xy(lay["big"])
+    art["small"].set_xy(lay["small"])
+    for key in ("object", "ray", "planes", "virtual", "real"):
+        art[key].set_data(*np.transpose(lay[key]))
+    art["point"].set_data([lay["point"][0]], [lay["point"][1]])
+    for key, dim in lay["dims"].items():
+        _set_dimension(art["dims"][key], **dim)
+    art["pinhole"].xyann = tuple(lay["pinhole"])
+    return lay["y"]

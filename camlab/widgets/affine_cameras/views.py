@@ -6,6 +6,8 @@ good enough.
 
 from __future__ import annotations
 
+import inspect
+
 import ipywidgets as W
 import numpy as np
 from matplotlib.lines import Line2D
@@ -14,7 +16,9 @@ from ... import affine as af
 from ... import camera as cm
 from ... import fixtures, scenes
 from ...plotting import palette, scene3d
-from .._base import FigureView, build_demo, register, slider
+from .._base import build_demo, register, slider
+from ..browser import BrowserView
+from ..browser.scenes import dolly_zoom_scene, three_cameras_scene
 from ..controls import int_slider, log_slider, monospace
 from .common import (
     COLOURS,
@@ -35,6 +39,7 @@ from .common import (
 # Where the middle panel joins the two images of one point: the cube's corners (a segment's two end
 # points) and the rails' metre marks (7 points along 6 m).
 GAP_SAMPLES = {"cube": 2, "rails": 7}
+CUBE_EDGES = 12  # fixtures.box_and_rails: 12 cube edges, then 4 rails
 
 
 def _image_panel(ax, title, model, size=(640, 480), tick_labels=True):
@@ -65,7 +70,7 @@ def three_cameras():
         (``camera``, ``P_weak``, ``focal`` in px, ``gaps``, ``max_difference`` in px,
         ``reference_point``, ``reference_images``).
     """
-    view = FigureView(figsize=(9.5, 3.9))
+    view = BrowserView(("azimuth", "elevation", "distance"), figsize=(9.5, 3.9))
     axes = view.fig.subplots(
         1, 3, width_ratios=(0.8, 1.4, 0.8)
     )  # the middle panel, where the gaps are, larger
@@ -76,7 +81,7 @@ def three_cameras():
         axis=0
     )  # the weak-perspective camera's reference point (three_images)
     references = [(view.animate(*reference_marker(ax)),) for ax in axes]  # the legend names it
-    parts = {"cube": scene[:12], "rails": scene[12:]}  # box_and_rails: 12 cube edges, then 4 rails
+    parts = {"cube": scene[:CUBE_EDGES], "rails": scene[CUBE_EDGES:]}
     readout = W.HTML()
     controls = {
         "azimuth": int_slider(-40, -90, 90, "azimuth (deg)", step=2),
@@ -119,7 +124,7 @@ def three_cameras():
             reference_images=images_of_X0,
         )
 
-    return build_demo(
+    demo = build_demo(
         "three_cameras",
         controls,
         view,
@@ -127,6 +132,23 @@ def three_cameras():
         title="One scene, three cameras (the middle panel repeats the perspective image in red)",
         extra=[readout],
     )
+    # the browser draws the moves; the kernel keeps the readout and state
+    lines = dict(perspective=persp, ghost=ghost, weak=weak, orthographic=orth, gaps=gap_lines)
+    world = dict(
+        segments=scene,
+        parts={
+            "cube": [0, CUBE_EDGES, GAP_SAMPLES["cube"]],
+            "rails": [CUBE_EDGES, len(scene), GAP_SAMPLES["rails"]],
+        },
+        X0=X0,
+        target=TARGET,
+        f0=F0,
+        d0=D0,
+        principal_point=demo.state["camera"].K[:2, 2],  # dolly_zoom_camera's
+        size=inspect.signature(af.matched_points_in_frame).parameters["size"].default,
+    )
+    view.publish(demo, three_cameras_scene(axes, lines, references[0][0], world))
+    return demo
 
 
 def _three_panels(fig, axes):
@@ -270,6 +292,33 @@ def _dolly_error_axes(ax, distances):
     return curves, markers
 
 
+def _dolly_image_panel(view, ax, model, first):
+    """One affine model's image panel of :func:`dolly_zoom`: its lines, markers and readout, empty.
+
+    Returns a dict: ``ax``, ``under`` (the perspective image, red), ``line`` (the model's),
+    ``centre`` (the principal point's +), ``reference`` (X0's diamond) and ``readout`` (the RMS text).
+    """
+    scene3d.image_axes(ax, (640, 480))
+    ax.set_title(f"{model} over perspective", fontsize=9)
+    ax.tick_params(labelleft=first)
+    if not first:
+        ax.set_ylabel("")
+    under = model_line(
+        ax, "perspective", lw=0.9, zorder=1.5
+    )  # red under the affine cube, as in three_cameras
+    line = model_line(
+        ax, model, lw=1.6 if model == "weak perspective" else 1.9
+    )  # the dots thicker, to read
+    # Animated like the X0 diamond it must stay above (a static + would sit in the cached background,
+    # under every live frame's diamond, and vanish at offset 0 where the two coincide).
+    centre = view.animate(ax.plot([319.5], [239.5], **PRINCIPAL_POINT_MARKER)[0])
+    (reference,) = reference_marker(ax)
+    # The readout sits in the top-left corner, where no part of the cube comes at any setting (its images
+    # stay right of u = 170 px and below v = 95 px).
+    readout = ax.text(0.02, 0.975, "", transform=ax.transAxes, fontsize=8, ha="left", va="top")
+    return dict(ax=ax, under=under, line=line, centre=centre, reference=reference, readout=readout)
+
+
 @register(lesson="05", sweep={"distance": [2.0, 6.0, 40.0, 150.0], "offset": [0, 50, 100]})
 def dolly_zoom():
     """Move the camera away while zooming in (f = f0 d / D0): the object keeps its size.
@@ -288,33 +337,19 @@ def dolly_zoom():
         ``rms_error`` and ``rms_paraperspective`` in px, ``curve``, ``curves``, ``camera``,
         ``reference_image``).
     """
-    view = FigureView(figsize=(10, 3.9))
+    view = BrowserView(("distance", "offset"), figsize=(10, 3.9))
     ax_weak, ax_para, ax_err = view.fig.subplots(1, 3, width_ratios=(1.0, 1.0, 0.95))
     cube = scenes.box_wireframe((0.0, 0.0, 0.5), (1.0, 1.0, 1.0))
     pts = cube.reshape(-1, 3)
     models = ("perspective", "weak perspective", "para-perspective")
-    lines, under, readouts, references = {}, {}, {}, {}
-    for ax, m in ((ax_weak, "weak perspective"), (ax_para, "para-perspective")):
-        scene3d.image_axes(ax, (640, 480))
-        ax.set_title(f"{m} over perspective", fontsize=9)
-        ax.tick_params(labelleft=ax is ax_weak)
-        if ax is ax_para:
-            ax.set_ylabel("")
-        under[m] = model_line(
-            ax, "perspective", lw=0.9, zorder=1.5
-        )  # red under the affine cube, as in three_cameras
-        lines[m] = model_line(
-            ax, m, lw=1.6 if m == "weak perspective" else 1.9
-        )  # the dots thicker, to read
-        # Animated like the X0 diamond it must stay above (a static + would sit in the cached background,
-        # under every live frame's diamond, and vanish at offset 0 where the two coincide).
-        view.animate(ax.plot([319.5], [239.5], **PRINCIPAL_POINT_MARKER)[0])
-        references[m] = reference_marker(ax)
-        # The readout sits in the top-left corner, where no part of the cube comes at any setting (its images
-        # stay right of u = 170 px and below v = 95 px).
-        readouts[m] = ax.text(
-            0.02, 0.975, "", transform=ax.transAxes, fontsize=8, ha="left", va="top"
-        )
+    panels = {
+        m: _dolly_image_panel(view, ax, m, first=ax is ax_weak)
+        for ax, m in ((ax_weak, "weak perspective"), (ax_para, "para-perspective"))
+    }
+    under, lines, readouts = (
+        {m: p[k] for m, p in panels.items()} for k in ("under", "line", "readout")
+    )
+    references = {m: (p["reference"],) for m, p in panels.items()}
     distances = np.geomspace(*DOLLY_DISTANCES, 60)
     curves, markers = _dolly_error_axes(ax_err, distances)
     model_legend(view.fig, models, reference=True, principal_point=True)
@@ -363,10 +398,22 @@ def dolly_zoom():
             reference_image=x_X0,
         )
 
-    return build_demo(
+    demo = build_demo(
         "dolly_zoom",
         controls,
         view,
         update,
         title="Dolly zoom: when is an affine camera good enough?",
     )
+    world = dict(
+        cube=cube,
+        view=DOLLY_VIEW,
+        target=TARGET,
+        f0=F0,
+        d0=D0,
+        principal_point=demo.state["camera"].K[:2, 2],  # dolly_zoom_camera's
+        distances=distances,
+    )
+    err = dict(ax=ax_err, curves=curves, markers=markers)
+    view.publish(demo, dolly_zoom_scene(panels, err, world))  # the browser draws the moves
+    return demo

@@ -40,12 +40,24 @@ __all__ = [
     "BrowserView",
     "browser_drawing",
     "canvas_class",
+    "canvas_height",
     "esm_source",
     "line_style",
+    "marker_style",
+    "text_lines",
+    "text_style",
     "to_canvas_pixels",
 ]
 
-MODULES = ("geometry.js", "drawing.js", "stack_check.js", "widget.js")
+MODULES = (
+    "geometry.js",
+    "drawing.js",
+    "stack_check.js",
+    "similar_triangles.js",
+    "three_cameras.js",
+    "dolly_zoom.js",
+    "widget.js",
+)
 """The ES modules, in dependency order, joined into the one module anywidget loads."""
 
 
@@ -108,6 +120,26 @@ def browser_drawing(mode: str) -> bool:
     return mode in ("ipympl", "png") and os.environ.get("CAMLAB_BROWSER_DRAWING", "1") != "0"
 
 
+def canvas_height(fig: Any) -> int:
+    """The height, in pixels, that matplotlib's Agg canvas flips y about: the figure's, rounded down.
+
+    Agg draws into a buffer of ``int(height)`` rows and maps display y to row ``int(height) - y``;
+    a figure whose height ends in half a pixel (3.35 in at 90 dpi: 301.5 px) would otherwise be
+    drawn half a pixel low in the browser.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+
+    Returns
+    -------
+    int
+        The rows of the figure's Agg buffer (and of the static background).
+    """
+    return int(fig.bbox.height)
+
+
 def to_canvas_pixels(ax: Any) -> list[list[float]]:
     """The 3x3 map from ``ax``'s data coordinates to canvas pixels (u right, v down, origin top left).
 
@@ -124,7 +156,7 @@ def to_canvas_pixels(ax: Any) -> list[list[float]]:
     list of 3 lists of 3 floats
         The map, rows, as JSON for the scene.
     """
-    height = ax.figure.bbox.height
+    height = canvas_height(ax.figure)
     flip = np.array([[1.0, 0.0, 0.0], [0.0, -1.0, height], [0.0, 0.0, 1.0]])
     return (flip @ ax.transData.get_affine().get_matrix()).tolist()
 
@@ -250,7 +282,9 @@ def line_style(line: Any, px_per_point: float, **extra: Any) -> dict:
     Returns
     -------
     dict
-        ``color``, ``width`` (px), ``dash`` (px, [] for solid), ``join`` and ``cap``.
+        ``color``, ``width`` (px), ``dash`` (px, [] for solid), ``join``, ``cap`` and ``snap``
+        (matplotlib snaps a path of horizontal and vertical segments to the pixel grid unless the
+        line says not to).
     """
     offset, dashes = line._dash_pattern  # noqa: SLF001 - the pattern matplotlib draws, already scaled by width
     join = {"round": "round", "miter": "miter", "bevel": "bevel"}
@@ -262,5 +296,88 @@ def line_style(line: Any, px_per_point: float, **extra: Any) -> dict:
         dash=[] if solid else [d * px_per_point for d in dashes],
         join=join[(line.get_solid_joinstyle() if solid else line.get_dash_joinstyle())],
         cap=caps[(line.get_solid_capstyle() if solid else line.get_dash_capstyle())],
+        snap=line.get_snap() is not False,
         **extra,
+    )
+
+
+def marker_style(line: Any, px_per_point: float) -> dict:
+    """A matplotlib marker's look in canvas pixels (for ``drawing.js``'s ``dot``).
+
+    Parameters
+    ----------
+    line : matplotlib.lines.Line2D
+        A line drawn with a round marker ("o").
+    px_per_point : float
+        Figure dpi / 72.
+
+    Returns
+    -------
+    dict
+        ``color``, ``edge``, ``size`` (the marker's diameter, px) and ``edgeWidth`` (px).
+    """
+    return dict(
+        color=to_hex(line.get_markerfacecolor()),
+        edge=to_hex(line.get_markeredgecolor()),
+        size=line.get_markersize() * px_per_point,
+        edgeWidth=line.get_markeredgewidth() * px_per_point,
+    )
+
+
+def text_style(text: Any, **extra: Any) -> dict:
+    """A matplotlib text's font and colour, and its line box as matplotlib measures it, in canvas pixels.
+
+    matplotlib aligns a line of text by the ink box of "lp" (its ascent above the baseline and
+    descent below): ``drawing.js``'s ``label`` places a baseline from these two numbers, so the
+    browser aligns as matplotlib does whatever the browser's own font metrics.
+
+    Parameters
+    ----------
+    text : matplotlib.text.Text
+        The artist whose look the browser copies (after a draw, so it has a renderer).
+    **extra
+        Added to the style (``box``: a background colour, ``pad``: its padding, px).
+
+    Returns
+    -------
+    dict
+        ``font`` (CSS), ``color``, ``ascent`` and ``descent`` (px).
+    """
+    fig = text.figure
+    renderer = fig.canvas.get_renderer()
+    _w, h, d = renderer.get_text_width_height_descent("lp", text.get_fontproperties(), ismath=False)
+    px = text.get_fontsize() * fig.dpi / 72.0
+    return dict(
+        font=f"{px:.3f}px 'DejaVu Sans', sans-serif",
+        color=to_hex(text.get_color()),
+        ascent=float(h - d),
+        descent=float(d),
+        **extra,
+    )
+
+
+def text_lines(text: Any) -> dict:
+    """Where matplotlib puts each line of a text, in canvas pixels: its anchor x and each baseline.
+
+    For a text whose anchor and number of lines stay put while its words change (a title).
+
+    Parameters
+    ----------
+    text : matplotlib.text.Text
+        The artist, after a draw.
+
+    Returns
+    -------
+    dict
+        ``x`` (the anchor, px from the left), ``baselines`` (px from the top, one per line) and
+        ``align`` (the canvas's textAlign: left, center or right).
+    """
+    fig = text.figure
+    _bbox, info, _d = text._get_layout(fig.canvas.get_renderer())  # noqa: SLF001 - matplotlib's own line layout
+    x, y = text.get_transform().transform(text.get_unitless_position())
+    height = canvas_height(fig)
+    return dict(
+        x=float(x),
+        baselines=[float(height - (y + dy)) for _line, _wad, (_dx, dy) in info],
+        align=text.get_horizontalalignment(),
     )

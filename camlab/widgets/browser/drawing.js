@@ -6,17 +6,46 @@
 // the browser computes and draws the moving artists with geometry.js. Primitives take canvas
 // pixels (y down); colours come from the scene (camlab.plotting.palette), never from here.
 
+// Split a polyline at its non-finite points, as matplotlib breaks a line at NaN.
+function runs(pts) {
+  const out = [[]];
+  for (const p of pts) {
+    if (Number.isFinite(p[0]) && Number.isFinite(p[1])) out[out.length - 1].push(p);
+    else if (out[out.length - 1].length) out.push([]);
+  }
+  return out.filter((r) => r.length >= 2);
+}
+
+// matplotlib's pixel snapping (path.snap, Agg's PathSnapper): a path whose every segment is
+// horizontal or vertical (within 1e-4 px), of at most 1024 vertices, has its vertices moved to pixel
+// edges, or to pixel centres for a line of odd width (in whole pixels), so it draws crisp.
+function snapped(drawn, width) {
+  const all = drawn.flat();
+  if (all.length > 1024) return drawn;
+  for (const run of drawn) {
+    for (let i = 1; i < run.length; i++) {
+      const [x0, y0] = run[i - 1], [x1, y1] = run[i];
+      if (Math.abs(x1 - x0) >= 1e-4 && Math.abs(y1 - y0) >= 1e-4) return drawn;
+    }
+  }
+  const half = Math.round(width) % 2 ? 0.5 : 0.0;
+  return drawn.map((run) => run.map(([x, y]) => [Math.floor(x + 0.5) + half, Math.floor(y + 0.5) + half]));
+}
+
 export function polyline(ctx, pts, style) {
-  const drawn = pts.filter(([x, y]) => Number.isFinite(x) && Number.isFinite(y));
-  if (drawn.length < 2) return;
+  let drawn = runs(pts);
+  if (!drawn.length) return;
+  if (style.snap) drawn = snapped(drawn, style.width);
   ctx.save();
   ctx.lineJoin = style.join || "round";
   ctx.lineCap = style.cap || "butt";
   const trace = () => {
     ctx.beginPath();
-    ctx.moveTo(drawn[0][0], drawn[0][1]);
-    for (const [x, y] of drawn.slice(1)) ctx.lineTo(x, y);
-    if (style.closed) ctx.closePath();
+    for (const run of drawn) {
+      ctx.moveTo(run[0][0], run[0][1]);
+      for (const [x, y] of run.slice(1)) ctx.lineTo(x, y);
+      if (style.closed) ctx.closePath();
+    }
   };
   if (style.halo) {
     ctx.setLineDash(style.haloDash || style.dash || []);
@@ -32,6 +61,79 @@ export function polyline(ctx, pts, style) {
   if (style.fill) {
     ctx.fillStyle = style.fill;
     ctx.fill();
+  }
+  ctx.stroke();
+  ctx.restore();
+}
+
+// A filled polygon without an edge (matplotlib's fill with lw=0); style.fill is a CSS colour.
+export function polygon(ctx, pts, style) {
+  if (pts.some(([x, y]) => !Number.isFinite(x) || !Number.isFinite(y))) return;
+  ctx.save();
+  ctx.beginPath();
+  pts.forEach(([x, y], i) => (i === 0 ? ctx.moveTo(x, y) : ctx.lineTo(x, y)));
+  ctx.closePath();
+  ctx.fillStyle = style.fill;
+  ctx.fill();
+  ctx.restore();
+}
+
+// One line of text at canvas point `at`, aligned as matplotlib aligns it: ha left/center/right,
+// va by the "lp" box (style.ascent above the baseline, style.descent below), on a box of colour
+// style.box padded by style.pad when given. Returns the text's box {x0, x1, top, bottom}.
+export function label(ctx, text, at, style, ha = "center", va = "center") {
+  ctx.save();
+  ctx.font = style.font;
+  const width = ctx.measureText(text).width;
+  const x0 = ha === "left" ? at[0] : ha === "right" ? at[0] - width : at[0] - width / 2;
+  const a = style.ascent, d = style.descent;
+  const base = { top: at[1] + a, bottom: at[1] - d, baseline: at[1] }[va] ?? at[1] + (a - d) / 2;
+  const box = { x0, x1: x0 + width, top: base - a, bottom: base + d };
+  if (style.box && text.trim()) {
+    const p = style.pad || 0;
+    ctx.fillStyle = style.box;
+    ctx.fillRect(box.x0 - p, box.top - p, width + 2 * p, a + d + 2 * p);
+  }
+  ctx.fillStyle = style.color;
+  ctx.textAlign = "left";
+  ctx.textBaseline = "alphabetic";
+  ctx.fillText(text, x0, base);
+  ctx.restore();
+  return box;
+}
+
+// matplotlib's "<->" arrow (ArrowStyle.CurveAB) from a to b, canvas pixels: the shaft and an open
+// head at each end, each head's two strokes head_dist = hypot(length, width) long at atan(width /
+// length) to the shaft, its tip drawn back by half the line width / sin of that angle.
+export function doubleArrow(ctx, a, b, style) {
+  const len = Math.hypot(b[0] - a[0], b[1] - a[1]);
+  if (!(len > 0)) return;
+  const headDist = Math.hypot(style.headLength, style.headWidth);
+  const cos = style.headLength / headDist, sin = style.headWidth / headDist;
+  const back = (0.5 * style.width) / sin;
+  const head = (tip, from) => {
+    const ux = (from[0] - tip[0]) / len, uy = (from[1] - tip[1]) / len;
+    const t = [tip[0] + back * ux, tip[1] + back * uy];
+    const dx = ux * headDist, dy = uy * headDist;
+    return [
+      [t[0] + cos * dx + sin * dy, t[1] - sin * dx + cos * dy],
+      t,
+      [t[0] + cos * dx - sin * dy, t[1] + sin * dx + cos * dy],
+    ];
+  };
+  const ha = head(a, b), hb = head(b, a);
+  ctx.save();
+  ctx.strokeStyle = style.color;
+  ctx.lineWidth = style.width;
+  ctx.lineJoin = "miter";
+  ctx.lineCap = "butt";
+  ctx.beginPath();
+  ctx.moveTo(ha[1][0], ha[1][1]);
+  ctx.lineTo(hb[1][0], hb[1][1]);
+  for (const h of [ha, hb]) {
+    ctx.moveTo(h[0][0], h[0][1]);
+    ctx.lineTo(h[1][0], h[1][1]);
+    ctx.lineTo(h[2][0], h[2][1]);
   }
   ctx.stroke();
   ctx.restore();
@@ -71,6 +173,52 @@ export function marker(ctx, at, way, verts, style) {
   ctx.lineJoin = "round";
   ctx.lineWidth = style.edgeWidth;
   ctx.strokeStyle = style.edge;
+  ctx.stroke();
+  ctx.restore();
+}
+
+// A polygon marker (matplotlib's "D", "s" ...) at canvas point `at`: style.verts its outline for a
+// size of 1 (y up), style.size in px, filled with style.color and edged with style.edge.
+export function pathMarker(ctx, at, style) {
+  if (!Number.isFinite(at[0]) || !Number.isFinite(at[1])) return;
+  ctx.save();
+  ctx.beginPath();
+  style.verts.forEach(([vx, vy], i) => {
+    const x = at[0] + style.size * vx, y = at[1] - style.size * vy;
+    if (i === 0) ctx.moveTo(x, y);
+    else ctx.lineTo(x, y);
+  });
+  ctx.closePath();
+  ctx.fillStyle = style.color;
+  ctx.fill();
+  ctx.lineJoin = "miter";
+  ctx.lineWidth = style.edgeWidth;
+  ctx.strokeStyle = style.edge;
+  ctx.stroke();
+  ctx.restore();
+}
+
+// Clip what follows to an axes' box {left, right, top, bottom} (canvas pixels), as matplotlib clips
+// a line and its markers to its axes; undone by the caller's ctx.restore().
+export function clipTo(ctx, box) {
+  ctx.beginPath();
+  ctx.rect(box.left, box.top, box.right - box.left, box.bottom - box.top);
+  ctx.clip();
+}
+
+// matplotlib's "+" marker at canvas point `at`: two strokes style.size px long, style.width wide.
+export function plus(ctx, at, style) {
+  if (!Number.isFinite(at[0]) || !Number.isFinite(at[1])) return;
+  const h = style.size / 2;
+  ctx.save();
+  ctx.strokeStyle = style.color;
+  ctx.lineWidth = style.width;
+  ctx.lineCap = "butt";
+  ctx.beginPath();
+  ctx.moveTo(at[0] - h, at[1]);
+  ctx.lineTo(at[0] + h, at[1]);
+  ctx.moveTo(at[0], at[1] - h);
+  ctx.lineTo(at[0], at[1] + h);
   ctx.stroke();
   ctx.restore();
 }

@@ -108,20 +108,268 @@ export function arrowheadSize(angleDeg, radius = 1.4) {
   return Math.min(15, Math.max(7, (15 * arc) / 0.98));
 }
 
-// Twin: camlab.widgets.start_here.tip_readout(point): "(+x.xx, -y.yy)" as Python's format of
-// round(c, 2) + 0.0 writes it: exact ties (c = k/8, k odd) round half to even, as Python's round
-// does (toFixed would round them up), and a value that rounds to zero is "+0.00", never "-0.00".
-export function fixed2(c) {
-  let r = c.toFixed(2);
-  if (Number.isInteger(c * 8) && !Number.isInteger(c * 4)) {
-    const n = c * 100; // exact for these dyadic values
+// Twin: Python's format(x, f".{digits}f"). toFixed picks the decimal nearest the double, as Python
+// does, but rounds an exact tie away from zero where Python rounds half to even: a tie at `digits`
+// decimals is a double x with x 2^(digits+1) odd (x 10^digits = m 5^digits / 2), fixed here. -0 keeps
+// its sign, as in Python.
+export function formatFixed(x, digits) {
+  let r = x.toFixed(digits);
+  if (Number.isInteger(x * 2 ** (digits + 1)) && !Number.isInteger(x * 2 ** digits)) {
+    const n = x * 10 ** digits; // exact: m 5^digits / 2
     const f = Math.floor(n);
-    r = ((f % 2 === 0 ? f : f + 1) / 100).toFixed(2);
+    r = ((f % 2 === 0 ? f : f + 1) / 10 ** digits).toFixed(digits);
   }
-  if (r === "-0.00") r = "0.00";
+  if (Object.is(x, -0) || (x < 0 && !r.startsWith("-"))) r = `-${r}`;
+  return r;
+}
+
+function roundsToZero(text) {
+  return /^-?0(\.0*)?$/.test(text);
+}
+
+// Twin: camlab.widgets.start_here.tip_readout's numbers: format(round(c, 2) + 0.0, "+.2f").
+export function fixed2(c) {
+  const r = formatFixed(c, 2);
+  if (roundsToZero(r)) return "+0.00";
   return r.startsWith("-") ? r : `+${r}`;
 }
 
+// Twin: camlab.widgets.start_here.tip_readout(point): "(+x.xx, -y.yy)".
 export function tipReadout([x, y]) {
   return `(${fixed2(x)}, ${fixed2(y)})`;
+}
+
+// Twin: camlab.plotting.optics.similar_triangles._signed (and camlab.widgets.pinhole_camera._signed):
+// the value with its sign, and a plain "0.0" where it rounds to zero.
+export function signed(x, digits) {
+  const r = formatFixed(x, digits);
+  if (roundsToZero(r)) return (0).toFixed(digits);
+  return r.startsWith("-") ? r : `+${r}`;
+}
+
+// Twin: camlab.plotting.optics.similar_triangles._dimension_layout.
+function dimensionLayout(a, b, text, { offset = [0, 0], ha = "center", va = "center", labelAt = null, minArrow = 0 } = {}) {
+  const at = labelAt !== null ? labelAt : [(a[0] + b[0]) / 2 + offset[0], (a[1] + b[1]) / 2 + offset[1]];
+  const shown = Math.hypot(b[0] - a[0], b[1] - a[1]) >= minArrow;
+  return { a, b, shown, text, at, ha, va };
+}
+
+// Twin: camlab.plotting.optics.similar_triangles_layout(f, Z, Y, h): the side view's moving parts in
+// (z, -y) plot coordinates and their labels; `rooms` carries its constants (SHORTEST_ARROW,
+// F_LABEL_ROOM, Z_LABEL_ROOM) as {shortest, fRoom, zRoom}.
+export function similarTrianglesLayout(f, Z, Y, h, rooms) {
+  const y = (f * Y) / Z;
+  const up = -Y, upImg = -y;
+  const away = up >= 0 ? -0.12 * h : 0.12 * h;
+  const inside = Z >= rooms.zRoom;
+  const fInside = f >= rooms.fRoom;
+  const lift = Math.abs(up) >= 0.3 ? 0.0 : (away < 0 ? 0.15 : -0.15) - up / 2;
+  const short = rooms.shortest;
+  const dims = {
+    Z: dimensionLayout([0, 3 * away], [Z, 3 * away], `Z = ${formatFixed(Z, 2)} m`, {
+      ha: inside ? "center" : "left",
+      labelAt: inside ? null : [Z + 0.08, 3 * away],
+    }),
+    f: dimensionLayout([0, away], [f, away], `f = ${formatFixed(f, 2)} m`, {
+      offset: [0, away],
+      ha: fInside ? "center" : "left",
+      labelAt: fInside ? null : [f + 0.06, away],
+    }),
+    Y: dimensionLayout([Z + 0.1, 0], [Z + 0.1, up], ` Y = ${signed(Y, 2)} m`, {
+      offset: [0.05, lift],
+      ha: "left",
+      minArrow: short,
+    }),
+    y: dimensionLayout([f + 0.06, 0], [f + 0.06, upImg], `virtual: y = ${signed(y * 100, 1)} cm`, {
+      va: "bottom",
+      labelAt: [f, h + 0.02],
+      minArrow: short,
+    }),
+    y_real: dimensionLayout([-f - 0.06, 0], [-f - 0.06, -upImg], `real: ${signed(-y * 100, 1)} cm`, {
+      va: "top",
+      labelAt: [-f, -h - 0.02],
+      minArrow: short,
+    }),
+  };
+  return {
+    y,
+    big: [[0, 0], [Z, 0], [Z, up]],
+    small: [[0, 0], [f, 0], [f, upImg]],
+    object: [[Z, 0], [Z, up]],
+    point: [Z, up],
+    ray: [[-f, y], [Z, up]],
+    planes: [[-f, -h], [-f, h], [NaN, NaN], [f, -h], [f, h]],
+    virtual: [[f, 0], [f, upImg]],
+    real: [[-f, 0], [-f, y]],
+    pinhole: [0, 4.6 * away],
+    dims,
+  };
+}
+
+// Twin: camlab.widgets.pinhole_camera.ratios_title(f, Z, Y): the two ratios over similar_triangles.
+export function ratiosTitle(f, Z, Y) {
+  const y = (f * Y) / Z;
+  return (
+    `y / f = ${signed(y * 100, 1)} cm / ${formatFixed(f * 100, 0)} cm = ${signed(y / f, 3)}   and   ` +
+    `Y / Z = ${signed(Y, 2)} m / ${formatFixed(Z, 2)} m = ${signed(Y / Z, 3)}\n` +
+    "click or drag in the figure to move the object point"
+  );
+}
+
+// ---- lesson 05: the dolly zoom camera and its affine approximations ----------------------------
+
+function dot3(a, b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+function unit(v) {
+  const n = Math.hypot(v[0], v[1], v[2]);
+  return v.map((c) => c / n);
+}
+
+// Twin: camlab.camera.orbit_eye(azimuth, elevation, distance, target): radians, metres.
+export function orbitEye(azimuth, elevation, distance, target) {
+  const ce = Math.cos(elevation);
+  return [
+    target[0] + distance * ce * Math.cos(azimuth),
+    target[1] + distance * ce * Math.sin(azimuth),
+    target[2] + distance * Math.sin(elevation),
+  ];
+}
+
+// Twin: camlab.camera.look_at_rotation(eye, target, up) (what Camera.look_at uses): R (cam_from_world), rows the camera's x, y, z axes.
+export function lookAt(eye, target, up = [0, 0, 1]) {
+  const z = unit([target[0] - eye[0], target[1] - eye[1], target[2] - eye[2]]);
+  const x = unit(cross(z, up));
+  return [x, cross(z, x), z];
+}
+
+// Twin: camlab.affine.dolly_zoom_camera(distance, azimuth, elevation, target, f0, d0,
+// principal_point, image_offset): {K, R, t}, focal f0 d / d0, the target at depth d.
+export function dollyZoomCamera(distance, azimuth, elevation, target, f0, d0, principalPoint, imageOffset = 0) {
+  const f = (f0 * distance) / d0;
+  const R = lookAt(orbitEye(azimuth, elevation, distance, target), target);
+  const shift = (imageOffset * d0) / f0;
+  const centre = target.map((c, i) => c - shift * R[0][i] - distance * R[2][i]);
+  const K = [[f, 0, principalPoint[0]], [0, f, principalPoint[1]], [0, 0, 1]];
+  return { K, R, t: R.map((row) => -dot3(row, centre)) };
+}
+
+// Twin: camlab.camera.Camera(K, R, t).project(X) without distortion: NaN where z_cam <= 0.
+export function cameraProject(cam, X) {
+  const { K, R, t } = cam;
+  return X.map((p) => {
+    const c = R.map((row, i) => dot3(row, p) + t[i]);
+    if (!(c[2] > 0)) return [NaN, NaN];
+    const x = c[0] / c[2], y = c[1] / c[2];
+    return [K[0][0] * x + K[0][1] * y + K[0][2], K[1][0] * x + K[1][1] * y + K[1][2]];
+  });
+}
+
+// Twin: camlab.affine.affine_approximation(camera, X0): K [r1 t1; r2 t2; 0 d0] / d0, d0 = X0's depth.
+export function affineApproximation(cam, X0) {
+  const { K, R, t } = cam;
+  const d0 = dot3(R[2], X0) + t[2];
+  const E = [[...R[0], t[0]], [...R[1], t[1]], [0, 0, 0, d0]];
+  return matmul(K, E).map((row) => row.map((v) => v / d0));
+}
+
+// Twin: camlab.affine.orthographic_matrix(R, t): keep the camera x, y (metres), forget depth.
+export function orthographicMatrix(R, t) {
+  return [[...R[0], t[0]], [...R[1], t[1]], [0, 0, 0, 1]];
+}
+
+function signedDepths(camOrP, points) {
+  if (!Array.isArray(camOrP)) return points.map((p) => dot3(camOrP.R[2], p) + camOrP.t[2]);
+  const P = camOrP;
+  let scale = 0;
+  for (const row of P) for (const v of row) scale = Math.max(scale, Math.abs(v));
+  const det = det3(P);
+  if (Math.abs(det) <= 1e-12 * scale ** 3) return points.map(() => 1);
+  return points.map((p) => Math.sign(det) * (dot3(P[2], p) + P[2][3]));
+}
+
+// Twin: camlab.camera.project_segments(camera, segments): (M, 2, 3) world segments to (M, 2, 2)
+// pixels, a half-visible segment clipped at 1/1000 of its front end's depth first; `camOrP` is a
+// camera {K, R, t} or a 3x4 P.
+export function projectSegments(camOrP, segments, near = 1e-3) {
+  const clipped = segments.map((seg) => {
+    const [za, zb] = signedDepths(camOrP, seg);
+    const out = [seg[0], seg[1]];
+    for (const [behind, front, zBehind, zFront] of [[0, 1, za, zb], [1, 0, zb, za]]) {
+      if (zBehind <= 0 && zFront > 0) {
+        const s = ((1 - near) * zFront) / (zFront - zBehind);
+        out[behind] = seg[front].map((c, i) => c + s * (seg[behind][i] - c));
+      }
+    }
+    return out;
+  });
+  const flat = clipped.flat();
+  const uv = Array.isArray(camOrP) ? projectPoints(camOrP, flat) : cameraProject(camOrP, flat);
+  return clipped.map((_, i) => [uv[2 * i], uv[2 * i + 1]]);
+}
+
+// Twin: camlab.affine.matched_points_in_frame(camera, P_affine, segments, size, samples): the two
+// images of `samples` points along each segment, where both fall inside the (width, height) frame.
+export function matchedPointsInFrame(cam, PAffine, segments, size, samples) {
+  const X = [];
+  for (const [a, b] of segments) {
+    for (let k = 0; k < samples; k++) {
+      const s = samples === 1 ? 0 : k / (samples - 1);
+      X.push(a.map((c, i) => c + s * (b[i] - c)));
+    }
+  }
+  const pa = cameraProject(cam, X), pb = projectPoints(PAffine, X);
+  const [w, h] = size;
+  const inFrame = ([u, v]) => u >= -0.5 && u <= w - 0.5 && v >= -0.5 && v <= h - 0.5;
+  const keep = pa.map((p, i) => inFrame(p) && inFrame(pb[i]));
+  return { perspective: pa.filter((_, i) => keep[i]), affine: pb.filter((_, i) => keep[i]) };
+}
+
+// Twin: camlab.plotting.wireframes.polyline_data for 2-D segments: start, end and a NaN row each.
+export function polylineData(segments) {
+  return segments.flatMap((seg) => [seg[0], seg[1], [NaN, NaN]]);
+}
+
+// Twin: camlab.affine.paraperspective_approximation(camera, X0): perspective linearised at X0,
+// K [r1 - a r3, t1 - a (t3 - d0); r2 - b r3, t2 - b (t3 - d0); 0, d0] / d0 with (a, b) X0's
+// normalised image position.
+export function paraperspectiveApproximation(cam, X0) {
+  const { K, R, t } = cam;
+  const d0 = dot3(R[2], X0) + t[2];
+  const ab = [0, 1].map((i) => (dot3(R[i], X0) + t[i]) / d0);
+  const E = [0, 1].map((i) => [...R[i].map((r, j) => r - ab[i] * R[2][j]), t[i] - ab[i] * (t[2] - d0)]);
+  E.push([0, 0, 0, d0]);
+  return matmul(K, E).map((row) => row.map((v) => v / d0));
+}
+
+// Twin: camlab.affine.weak_perspective_error(camera, X, X0, approximation): each point's pixel
+// distance between its perspective image and its image by approximation(cam, X0): a twin above, or
+// its name in APPROXIMATIONS.
+export function approximationError(cam, X, X0, approximation) {
+  const approximate = typeof approximation === "string" ? APPROXIMATIONS[approximation] : approximation;
+  const PA = approximate(cam, X0);
+  const a = cameraProject(cam, X), b = projectPoints(PA, X);
+  return a.map((p, i) => Math.hypot(p[0] - b[i][0], p[1] - b[i][1]));
+}
+
+// Twin: camlab.affine.dolly_zoom_errors(X, distances, azimuth, elevation, target, f0, d0,
+// approximation, image_offset): the RMS of approximationError at each distance, pixels.
+export function dollyZoomErrors(X, distances, azimuth, elevation, target, f0, d0, approximation, imageOffset, principalPoint) {
+  return distances.map((d) => {
+    const cam = dollyZoomCamera(d, azimuth, elevation, target, f0, d0, principalPoint, imageOffset);
+    const e = approximationError(cam, X, target, approximation);
+    return Math.sqrt(e.reduce((s, v) => s + v * v, 0) / e.length);
+  });
+}
+
+// The affine approximations by the names lesson 05 gives them (camlab.widgets.affine_cameras.APPROXIMATIONS).
+export const APPROXIMATIONS = {
+  "weak perspective": affineApproximation,
+  "para-perspective": paraperspectiveApproximation,
+};
+
+// Twin: camlab.widgets.affine_cameras.views._rms_text(rms): to 0.1 px, below 1 px to 0.01 px.
+export function rmsText(rms) {
+  return rms >= 0.995 ? `RMS ${formatFixed(rms, 1)} px` : `RMS ${formatFixed(rms, 2)} px`;
 }

@@ -1,9 +1,41 @@
 // anywidget's entry point: a <canvas> that draws the scene the kernel sent, redrawn on every
 // parameter change (each parameter is a synced trait linked to its slider in the browser).
 import { drawStackCheck } from "./stack_check.js";
+import { drawSimilarTriangles, dragSimilarTriangles } from "./similar_triangles.js";
+import { drawThreeCameras } from "./three_cameras.js";
+import { drawDollyZoom } from "./dolly_zoom.js";
 
 // The scene drawers by demo name (the scene's "kind"); a new browser-drawn demo adds its own here.
-const SCENES = { stack_check: drawStackCheck };
+// `drag(scene, [u, v])`, where a demo takes the mouse, turns a press or drag at figure pixel (u, v)
+// into the parameters to set (or null): set on the canvas, they reach the sliders by their links.
+const SCENES = {
+  stack_check: { draw: drawStackCheck },
+  similar_triangles: { draw: drawSimilarTriangles, drag: dragSimilarTriangles },
+  three_cameras: { draw: drawThreeCameras },
+  dolly_zoom: { draw: drawDollyZoom },
+};
+
+// A press, and a move with the button held, on the canvas set the parameters the demo's drag names.
+function listenToMouse(canvas, model) {
+  const onPointer = (event) => {
+    const scene = model.get("scene");
+    const drag = scene && SCENES[scene.kind] && SCENES[scene.kind].drag;
+    if (!drag || !(event.buttons & 1)) return;
+    const r = canvas.getBoundingClientRect();
+    const u = ((event.clientX - r.left) * scene.width) / r.width;
+    const v = ((event.clientY - r.top) * scene.height) / r.height;
+    const values = drag(scene, [u, v]);
+    if (!values) return;
+    event.preventDefault();
+    for (const [name, value] of Object.entries(values)) model.set(name, value);
+    model.save_changes();
+  };
+  canvas.addEventListener("pointerdown", (event) => {
+    canvas.setPointerCapture(event.pointerId);
+    onPointer(event);
+  });
+  canvas.addEventListener("pointermove", onPointer);
+}
 
 function render({ model, el }) {
   const canvas = document.createElement("canvas");
@@ -23,7 +55,7 @@ function render({ model, el }) {
     ctx.setTransform(canvas.width / scene.width, 0, 0, canvas.height / scene.height, 0, 0);
     const k = scene.backgroundScale || 1; // drawn at its own size: the figure's height may end in half a pixel
     ctx.drawImage(background, 0, 0, background.naturalWidth / k, background.naturalHeight / k);
-    SCENES[scene.kind](ctx, scene, params);
+    SCENES[scene.kind].draw(ctx, scene, params);
   };
   const load = () => {
     const scene = model.get("scene");
@@ -46,6 +78,7 @@ function render({ model, el }) {
       listening.add(name);
     }
   };
+  listenToMouse(canvas, model);
   model.on("change:scene", load);
   model.on("change:alt", () => canvas.setAttribute("aria-label", model.get("alt") || ""));
   load();
