@@ -71,6 +71,20 @@ def _quiet_degrees(value):
         return float(np.degrees(np.arccos(value)))
 
 
+def _inv_angle(l1, l2, C) -> float | None:
+    """The angle a student gets through np.linalg.inv(C), or None where inv raises.
+
+    C is rank 2, so its computed inverse is huge along C's null vector n, nearly k n n^T, and
+    every pair of lines looks parallel (0 deg).
+    """
+    try:
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            C_inv = np.linalg.inv(C)
+            return float(np.degrees(np.arccos(min(abs(_cosine(l1, l2, C_inv)), 1.0))))
+    except (np.linalg.LinAlgError, ValueError):
+        return None
+
+
 def _angle_context(l1, l2, C):
     l1, l2, C = (np.asarray(a, dtype=float) for a in (l1, l2, C))
     right = _angle_deg(l1, l2, C)
@@ -87,6 +101,7 @@ def _angle_context(l1, l2, C):
         signed=_quiet_degrees(np.clip(_cosine(l1, l2, C), -1, 1)),
         image=_angle_deg(l1, l2, _DUAL_AT_INFINITY),
         inverted=_angle_deg(l1, l2, np.linalg.pinv(C)),
+        inv=_inv_angle(l1, l2, C),
         no_norm=float(no_norm),
         no_sqrt=float(no_sqrt),
         negative_scale=bool(l1 @ C @ l1 < 0),
@@ -123,6 +138,26 @@ _ANGLE_MISTAKES = (
         "you measured the angle the lines make *in the image* (C* = diag(1, 1, 0), or the normals "
         "(a, b) directly). The photo changes angles; the world's angle comes through the given C_star, "
         "the image of C*inf: " + _FORMULA + ".",
+    ),
+    Mistake(
+        "inv(C_star)",
+        lambda a: a.inv if a.inv is not None and abs(a.inv - a.right) > 1e-6 else None,
+        lambda a: (
+            f"you returned {a.inv:.3g} deg, as if the lines were parallel. "
+            + (
+                "Two slips give that here. Either you took arccos of l^T C* m alone, unnormalised (it "
+                "scales with l, m and C_star, and np.clip makes it 1), or "
+                if abs(a.no_norm - a.inv) < 1e-6
+                else ""
+            )
+            + "you inverted C_star (np.linalg.inv): C*inf = diag(1, 1, 0) has rank 2, and so has "
+            "H C*inf H^T, so it has no inverse, and the computed one is huge along C_star's null vector, "
+            "which makes every pair of lines look parallel. C* = C^-1 holds for a non-degenerate conic "
+            "only; lines pair with the dual conic as given. "
+            + _FORMULA[0].upper()
+            + _FORMULA[1:]
+            + "."
+        ),
     ),
     Mistake(
         "C_star inverted",
@@ -281,6 +316,7 @@ register_exercise(
                 "without the square root",
             ),
             (lambda l1, l2, C: _angle_deg(l1, l2, np.linalg.pinv(C)), "pseudo-)inverse"),
+            (lambda l1, l2, C: _inv_angle(l1, l2, C), "you inverted C_star"),
             (lambda l1, l2, C: [_angle_deg(l1, l2, C)], "one number"),
             (lambda l1, l2, C: 180.0 - _angle_deg(l1, l2, C), "cosine is positive here"),
             (lambda l1, l2, C: float(round(_angle_deg(l1, l2, C))), "rounded the angle"),

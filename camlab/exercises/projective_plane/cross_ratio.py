@@ -221,6 +221,15 @@ def _cross_diagnosis(args, got, expected) -> str:
         slips = mistake.answer(context)  # one number, or every number this slip can give
         if slips is not None and np.any(np.isclose(float(got), np.atleast_1d(slips), rtol=1e-9)):
             return mistake.hint(context) if callable(mistake.hint) else mistake.hint
+    for digits in range(5):  # rounded before returning: name it, as the angle check does
+        rounded = round(context.right, digits)
+        if abs(rounded - float(got)) < 1e-12 and abs(rounded - context.right) > 1e-9 * abs(
+            context.right
+        ):
+            return (
+                f"you rounded the cross-ratio to {digits} decimal{'s' * (digits != 1)}: {rounded:g}, where it is "
+                f'{context.right:.9g}. Return it as computed, and round only when you print it (f"{{r:.3f}}").'
+            )
     return _order_hint(context, got) or (
         f"(A, B; C, D) = {expected:.6g} here, not {float(got):.6g}. Divide by w, measure signed positions "
         "t along the line, then (t_C - t_A)(t_D - t_B) / ((t_C - t_B)(t_D - t_A))."
@@ -299,6 +308,7 @@ register_exercise(
             (silenced(lambda p: _signed_ratio(_euclidean(p)[:, 0])), "same x"),
             (lambda p: [_cross_reference(p)], "one number"),
             (lambda p: _simple_ratio(_euclidean(p)), "ratio of two lengths"),
+            (lambda p: round(_cross_reference(p), 3), "rounded the cross-ratio to 3 decimals"),
         ),
         teaching=cross_ratio,
     )

@@ -151,6 +151,13 @@ def _horizon_diagnosis(args, got, expected) -> str:
             "This camera has yaw 0, so the ground's x direction (1, 0, 0) vanishes at infinity: H[:, 0] "
             "has w = 0. Dividing a vanishing point by its w fails there; join them as they are.",
         )
+    if problem and np.shape(got) == (3,) and abs(np.asarray(H)[2, 2]) < 1e-12:
+        return followed_by(
+            problem,
+            "This camera is level (pitch 0), so H[2, 2] = h r2_z = 0: the ground point below the camera "
+            "images at infinity. Dividing H by H[2, 2] (lesson 07's habit) divides by 0 here; any scale "
+            "of H gives the same horizon, so do not normalise it.",
+        )
     if problem:
         return followed_by(problem, "A line is the 3-vector (a, b, c) of a u + b v + c = 0.")
     g = np.asarray(got, dtype=float)
@@ -236,6 +243,10 @@ register_exercise(
             (
                 silenced(lambda H: np.cross(H[:, 0] / H[2, 0], H[:, 1] / H[2, 1])),
                 "yaw 0",
+            ),
+            (
+                silenced(lambda H: np.linalg.inv(H / H[2, 2]).T @ [0.0, 0.0, 1.0]),
+                "H[2, 2] = h r2_z = 0",
             ),
             (  # the row through the vanishing point across, where it is finite (right at roll 0)
                 lambda H: _image_row(H[:, 0]) if H[2, 0] else _horizon_reference(H),

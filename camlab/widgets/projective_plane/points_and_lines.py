@@ -56,6 +56,9 @@ def _lift_figure(view: FigureView) -> SimpleNamespace:
     ax3.text(
         -0.6 * box, -box, 1.3, "w = 1", color=palette.TAB_BLUE, ha="left"
     )  # near the left corner, off the ray's path and clear of the panel's edge
+    ax3.text(
+        -0.8 * box, -box, 0.0, "w = 0", color="0.35", ha="left", va="top"
+    )  # the faint plane, its front edge
     ax3.scatter([0], [0], [0], color="k", s=15)
     (ray,) = ax3.plot(
         [], [], [], color=palette.TAB_BLUE, lw=1.5, label="line through 0 = one projective point"
@@ -123,7 +126,7 @@ def lift_to_plane() -> Demo:
         dot.set_data([pos[0]], [pos[1]])
         dot.set_marker("o" if not direction.any() else arrow_marker(direction, ax2))
         note.set_text(
-            "w = 0: an ideal point, the direction (x, y)"
+            "w = 0: an ideal point, the direction ±(x, y)\n(no sign: the arrow could point either way)"
             if ideal
             else (
                 "" if not direction.any() else "(x/w, y/w) is off this view: the arrow points to it"
@@ -169,7 +172,7 @@ def _parallel_figure(view: FigureView) -> SimpleNamespace:
     ax, axw = view.fig.subplots(1, 2, width_ratios=[1.3, 1])
     plane_axes(ax, 4, "l1 = 30° fixed; turn l2")
     (l1_artist,) = ax.plot([], [], color=palette.TAB_BLUE, lw=2, label="l1")
-    (l2_artist,) = ax.plot([], [], color=palette.ORANGE, lw=2, label="l2")
+    (l2_artist,) = ax.plot([], [], "--", color=palette.ORANGE, lw=2, label="l2")  # l1 shows through
     (meet_dot,) = ax.plot([], [], "o", color=palette.TAB_RED, ms=8, label="l1 × l2 (when l2 ≠ l1)")
     arrow = ax.annotate(
         "", xy=(0, 0), xytext=(0, 0), arrowprops=dict(arrowstyle="->", color=palette.TAB_RED, lw=2)
@@ -322,7 +325,7 @@ def point_line_duality() -> Demo:
     # the incidence in the figure itself, so a static copy shows whether p is on l
     text = ax_t.text(0.5, 0.5, "", transform=ax_t.transAxes, ha="center", va="center", fontsize=10)
     plane_axes(ax_p, 3, "primal: point p, line l")
-    plane_axes(ax_d, 3, "dual: line p*, point l*")
+    plane_axes(ax_d, 3, "dual: line p*, point l*", xlabel="a/c", ylabel="b/c")  # l* = (a/c, b/c)
     (p_dot,) = ax_p.plot([], [], "o", color=palette.TAB_BLUE, ms=9, label="p")
     (l_line,) = ax_p.plot([], [], color=palette.ORANGE, lw=2, label="l")
     (pd_line,) = ax_d.plot([], [], color=palette.TAB_BLUE, lw=2, label="p* (same 3 numbers as p)")
