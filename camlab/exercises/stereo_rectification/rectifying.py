@@ -138,6 +138,16 @@ def _rectifying_diagnosis(args, got, expected) -> str:
                 else ". Build y = z_old × x (normalised) and then z = x × y, so each is perpendicular to the others"
             )
         )
+    if not np.isclose(norms[0], 1.0, atol=1e-6) and np.isclose(
+        norms[0], np.linalg.norm(C2 - C1), rtol=1e-6
+    ):
+        return (
+            f"your x is the baseline C2 - C1 itself, of length |C2 - C1| = {norms[0]:.4g} m, not a unit "
+            "vector (rows of lengths "
+            + ", ".join(f"{n:.4g}" for n in norms)
+            + "): divide it by its length, "
+            "x = (C2 - C1) / |C2 - C1|, before y = z_old × x and z = x × y"
+        )
     if not np.allclose(gram, np.eye(3), atol=1e-6):
         return (
             f"your rows have lengths {', '.join(f'{n:.4g}' for n in norms)} (R R^T != I): z_old × x has "
@@ -174,6 +184,17 @@ register_exercise(
             (
                 lambda C1, C2, R1: _fusiello(C1, C2, np.asarray(R1)[2], normalise=False),
                 "normalise y",
+            ),
+            (
+                lambda C1, C2, R1: (
+                    _fusiello(C1, C2, np.asarray(R1)[2])
+                    * [
+                        [np.linalg.norm(np.subtract(C2, C1))],
+                        [1],
+                        [np.linalg.norm(np.subtract(C2, C1))],
+                    ]
+                ),
+                "not a unit vector",
             ),
             (lambda C1, C2, R1: _fusiello(C1, C2, np.array([0.0, 0.0, 1.0])), "world's z axis"),
             (lambda C1, C2, R1: _fusiello(C1, C2, np.asarray(R1)[2], z_kept=True), "z = x × y"),
