@@ -78,3 +78,45 @@ def test_eight_point_names_division_by_the_image_size_without_centring():
 
     with pytest.raises(AssertionError, match=r"did not centre them \(divided by the image size\)"):
         check("eight_point", lambda x1, x2: _scaled_not_centred(x1, x2, (1 / 640, 1 / 480)))
+
+
+def _polyfit_vertex(ds, cost):  # the same parabola by least squares through the three samples
+    k = int(np.argmin(cost))
+    a, b, _ = np.polyfit(np.asarray(ds[k - 1 : k + 2], float), cost[k - 1 : k + 2], 2)
+    return -b / (2 * a)
+
+
+def _gradient_step(
+    ds, cost
+):  # Newton's step on finite differences: d - c'(d) / c''(d), the same vertex
+    c = np.asarray(cost, float)
+    k = int(np.argmin(c))
+    return np.float32(ds[k] - (c[k + 1] - c[k - 1]) / 2 / (c[k + 1] - 2 * c[k] + c[k - 1]))
+
+
+@pytest.mark.parametrize(
+    "answer", [_polyfit_vertex, _gradient_step], ids=["np.polyfit", "Newton step, float32"]
+)
+def test_subpixel_disparity_accepts_other_forms(answer, capsys):
+    assert check("subpixel_disparity", answer).passed
+
+
+@pytest.mark.parametrize(
+    "slip, needle",
+    [
+        (lambda ds, c: ds[np.argmax(c[1:-1]) + 1], "largest cost"),
+        (
+            lambda ds, c: (
+                ds[np.argmin(c)]
+                + (c[np.argmin(c) - 1] - c[np.argmin(c) + 1])
+                / (2 * (c[np.argmin(c) - 1] + 2 * c[np.argmin(c)] + c[np.argmin(c) + 1]))
+            ),
+            "denominator",
+        ),
+        (lambda ds, c: float(np.argmin(c)), "index"),
+    ],
+    ids=["argmax", "denominator sign", "index, no refinement"],
+)
+def test_subpixel_disparity_names_each_typical_slip(slip, needle):
+    with pytest.raises(AssertionError, match=r"likely cause: .*" + needle):
+        check("subpixel_disparity", slip)

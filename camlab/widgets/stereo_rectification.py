@@ -695,9 +695,11 @@ def _disparity_figure(gt: np.ndarray) -> tuple:
     viridis = plt_colormap("viridis").with_extremes(bad=palette.GREY)
     coolwarm = plt_colormap("coolwarm").with_extremes(bad=palette.GREY)
     im1 = ax1.imshow(gt, cmap=viridis, vmin=8, vmax=40, interpolation="nearest")
-    view.fig.colorbar(im1, ax=ax1, shrink=0.7)
+    view.fig.colorbar(im1, ax=ax1, shrink=0.7, label="d (half-size px)")
     im2 = ax2.imshow(np.zeros_like(gt), cmap=coolwarm, vmin=-5, vmax=5, interpolation="nearest")
-    view.fig.colorbar(im2, ax=ax2, shrink=0.7)  # the sign (red = estimated too far) is in the title
+    view.fig.colorbar(
+        im2, ax=ax2, shrink=0.7, label="depth error (%)"
+    )  # red = too far: in the title
     ax3.set_title("3-D points, left camera", fontsize=9)
     ax3.set(xlim=(-1.6, 1.6), ylim=(1.0, 4.5), zlim=(-0.8, 1.4))
     ax3.set_box_aspect(None, zoom=1.2)  # fill the panel: the default leaves a wide empty margin

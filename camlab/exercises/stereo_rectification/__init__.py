@@ -3,7 +3,8 @@
 The 8-point algorithm (:mod:`.eight_point`), the epipoles (:mod:`.epipoles`), the essential matrix's
 pose (:mod:`.essential`), linear triangulation (:mod:`.triangulate`), the rectifying rotation
 (:mod:`.rectifying`), depth from disparity
-(:mod:`.depth`) and the bad-pixel rate (:mod:`.bad_pixels`).
+(:mod:`.depth`), the bad-pixel rate (:mod:`.bad_pixels`) and block matching's sub-pixel
+disparity (:mod:`.subpixel`).
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from . import essential
 from . import triangulate
 from . import rectifying
 from . import bad_pixels
+from . import subpixel
 
 # isort: on
 
@@ -27,5 +29,6 @@ __all__ = [
     "epipoles",
     "essential",
     "rectifying",
+    "subpixel",
     "triangulate",
 ]

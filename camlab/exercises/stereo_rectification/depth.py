@@ -140,5 +140,6 @@ register_exercise(
             (lambda d, f, B, o=0.0: f * B / (d - o), "subtracted doffs"),
         ),
         teaching=disparity_to_depth,
+        ndarray_only=True,  # the prompt asks for "an array of d's shape"
     )
 )

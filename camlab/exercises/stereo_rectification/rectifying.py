@@ -81,6 +81,21 @@ def _fusiello(C1, C2, z_old, sign=1.0, y_first=True, normalise=True, z_kept=Fals
     return np.vstack([x, y, np.asarray(z_old, float) if z_kept else np.cross(x, y)])
 
 
+def _baseline_not_unit(norms, C1, C2) -> str | None:
+    """The hint for x = C2 - C1 left at the baseline's length (rows of lengths |B|, 1, |B|), else None."""
+    if np.isclose(norms[0], 1.0, atol=1e-6) or not np.isclose(
+        norms[0], np.linalg.norm(C2 - C1), rtol=1e-6
+    ):
+        return None
+    return (
+        f"your x is the baseline C2 - C1 itself, of length |C2 - C1| = {norms[0]:.4g} m, not a unit "
+        "vector (rows of lengths "
+        + ", ".join(f"{n:.4g}" for n in norms)
+        + "): divide it by its length, "
+        "x = (C2 - C1) / |C2 - C1|, before y = z_old × x and z = x × y"
+    )
+
+
 def _rectifying_diagnosis(args, got, expected) -> str:
     C1, C2, R1 = (np.asarray(a, dtype=float) for a in args)
     problem = shape_problem(got, expected)
@@ -138,6 +153,9 @@ def _rectifying_diagnosis(args, got, expected) -> str:
                 else ". Build y = z_old × x (normalised) and then z = x × y, so each is perpendicular to the others"
             )
         )
+    unit = _baseline_not_unit(norms, C1, C2)
+    if unit:
+        return unit
     if not np.allclose(gram, np.eye(3), atol=1e-6):
         return (
             f"your rows have lengths {', '.join(f'{n:.4g}' for n in norms)} (R R^T != I): z_old × x has "
@@ -174,6 +192,17 @@ register_exercise(
             (
                 lambda C1, C2, R1: _fusiello(C1, C2, np.asarray(R1)[2], normalise=False),
                 "normalise y",
+            ),
+            (
+                lambda C1, C2, R1: (
+                    _fusiello(C1, C2, np.asarray(R1)[2])
+                    * [
+                        [np.linalg.norm(np.subtract(C2, C1))],
+                        [1],
+                        [np.linalg.norm(np.subtract(C2, C1))],
+                    ]
+                ),
+                "not a unit vector",
             ),
             (lambda C1, C2, R1: _fusiello(C1, C2, np.array([0.0, 0.0, 1.0])), "world's z axis"),
             (lambda C1, C2, R1: _fusiello(C1, C2, np.asarray(R1)[2], z_kept=True), "z = x × y"),
