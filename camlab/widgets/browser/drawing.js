@@ -170,7 +170,7 @@ export function marker(ctx, at, way, verts, style) {
   ctx.closePath();
   ctx.fillStyle = style.color;
   ctx.fill();
-  ctx.lineJoin = "round";
+  ctx.lineJoin = style.join || "round";
   ctx.lineWidth = style.edgeWidth;
   ctx.strokeStyle = style.edge;
   ctx.stroke();
@@ -178,24 +178,11 @@ export function marker(ctx, at, way, verts, style) {
 }
 
 // A polygon marker (matplotlib's "D", "s" ...) at canvas point `at`: style.verts its outline for a
-// size of 1 (y up), style.size in px, filled with style.color and edged with style.edge.
+// size of 1 (y up), style.size in px, filled with style.color and edged with style.edge. It is
+// `marker` unturned, at twice the size (marker's vertices span -0.5..0.5), with mitred corners.
 export function pathMarker(ctx, at, style) {
   if (!Number.isFinite(at[0]) || !Number.isFinite(at[1])) return;
-  ctx.save();
-  ctx.beginPath();
-  style.verts.forEach(([vx, vy], i) => {
-    const x = at[0] + style.size * vx, y = at[1] - style.size * vy;
-    if (i === 0) ctx.moveTo(x, y);
-    else ctx.lineTo(x, y);
-  });
-  ctx.closePath();
-  ctx.fillStyle = style.color;
-  ctx.fill();
-  ctx.lineJoin = "miter";
-  ctx.lineWidth = style.edgeWidth;
-  ctx.strokeStyle = style.edge;
-  ctx.stroke();
-  ctx.restore();
+  marker(ctx, at, [1, 0], style.verts, { ...style, size: 2 * style.size, join: "miter" });
 }
 
 // Clip what follows to an axes' box {left, right, top, bottom} (canvas pixels), as matplotlib clips
