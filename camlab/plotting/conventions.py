@@ -15,7 +15,9 @@ from .plane import image_axes
 # The camera frame's axes, here and wherever lesson 00 ties u and v to them (one home for the three).
 X_COLOUR, Y_COLOUR, Z_COLOUR = palette.AXIS_COLOURS  # x red, y green, z blue, as every 3-D camera
 POINT_COLOUR = palette.ORANGE  # the points lesson 00 reads: the demo's roof tip, the rows of X here
-DIRECTION_COLOUR = "0.3"  # a direction, w = 0, dark grey: purple stays "the wrong read" in lesson 00
+DIRECTION_COLOUR = (
+    "0.3"  # a direction, w = 0, dark grey: purple stays "the wrong read" in lesson 00
+)
 
 
 def draw_pixel_grid(ax: Axes, size: tuple[int, int], points: np.ndarray, marked: int) -> AxesImage:
@@ -429,7 +431,9 @@ def draw_channel_order(axes: Sequence[Axes], bgr: np.ndarray, pixel: tuple[int, 
     for ax, image, title in zip(axes, (bgr, bgr[..., ::-1]), titles, strict=True):
         ax.imshow(image)
         ax.plot(u, v, "o", ms=34, mfc="none", mec="black", mew=4.2)  # a white ring edged in black,
-        ax.plot(u, v, "o", ms=34, mfc="none", mec="white", mew=1.8)  # wide enough to leave the spot clear
+        ax.plot(
+            u, v, "o", ms=34, mfc="none", mec="white", mew=1.8
+        )  # wide enough to leave the spot clear
         ax.set_title(title, fontsize=10)
         ax.set_xlabel("u (px)", color=X_COLOUR)
         ax.set_ylabel("v (px)", color=Y_COLOUR)
@@ -486,13 +490,23 @@ def draw_homogeneous_rays(
     )
     ax.plot(*square.T, np.ones(5), color="0.45", lw=1, label="the plane w = 1: the image", zorder=2)
     ax.plot(*square.T, np.zeros(5), color="0.45", lw=1, ls="--", label="the plane w = 0", zorder=2)
-    ax.plot([0, x], [0, y], [0, 1], color=POINT_COLOUR, lw=1.4, ls=(0, (3, 2)), zorder=3)  # below w = 1
     ax.plot(
-        [x, top * x], [y, top * y], [1, top], color=POINT_COLOUR, lw=2, label="the ray of (x, y)", zorder=5
+        [0, x], [0, y], [0, 1], color=POINT_COLOUR, lw=1.4, ls=(0, (3, 2)), zorder=3
+    )  # below w = 1
+    ax.plot(
+        [x, top * x],
+        [y, top * y],
+        [1, top],
+        color=POINT_COLOUR,
+        lw=2,
+        label="the ray of (x, y)",
+        zorder=5,
     )
     for wx, wy, w in (*multiples, (x, y, 1.0)):  # drop lines to w = 0 show each mark's height
         ax.plot([wx, wx], [wy, wy], [0, w], color="0.35", lw=0.8, ls=":", zorder=3)
-    ax.plot(*multiples.T, "o", color="black", ms=5, ls="none", label="(wx, wy, w) on the ray", zorder=6)
+    ax.plot(
+        *multiples.T, "o", color="black", ms=5, ls="none", label="(wx, wy, w) on the ray", zorder=6
+    )
     ax.plot(
         [x],
         [y],
@@ -507,10 +521,10 @@ def draw_homogeneous_rays(
         zorder=7,
     )
     for wx, wy, w in (*multiples, (x, y, 1.0)):
-        ax.text(wx + 0.12, wy, w, f"  w = {w:g}", fontsize=9, zorder=8, path_effects=palette.halo(2))
-    ax.quiver(
-        0, 0, 0, dx, dy, 0, color=DIRECTION_COLOUR, lw=2.2, arrow_length_ratio=0.15, zorder=4
-    )
+        ax.text(
+            wx + 0.12, wy, w, f"  w = {w:g}", fontsize=9, zorder=8, path_effects=palette.halo(2)
+        )
+    ax.quiver(0, 0, 0, dx, dy, 0, color=DIRECTION_COLOUR, lw=2.2, arrow_length_ratio=0.15, zorder=4)
     ax.plot([], [], color=DIRECTION_COLOUR, lw=2.2, label="(dx, dy, 0): w = 0, a direction")
     ax.plot([0], [0], [0], "k+", ms=9, ls="none", label="the origin (0, 0, 0)", zorder=8)
     ax.set_xticks([-1, 0, 1, 2, 3])

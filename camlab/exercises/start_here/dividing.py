@@ -100,8 +100,10 @@ DIVIDE_MISTAKES = (
     ),
     Mistake(
         "rounded",
-        lambda s: _same(s, np.rint(s.h[:, :2] / s.h[:, 2:]))
-        or _same(s, np.trunc(s.h[:, :2] / s.h[:, 2:])),
+        lambda s: (
+            _same(s, np.rint(s.h[:, :2] / s.h[:, 2:]))
+            or _same(s, np.trunc(s.h[:, :2] / s.h[:, 2:]))
+        ),
         (
             "the points were rounded to whole numbers (np.rint, //, or an int array): dividing by w gives "
             "fractions (-0.6 / -0.3 is 2, but 8.5 / 2 is 4.25); keep floats"
@@ -124,17 +126,26 @@ def _diagnose(args, got, expected) -> str:
             f"return x and y only: {KEEPDIMS}"
         )
     if problem and shape == (2, len(h)) and len(h) != 2:
-        return f"{problem}: a (2, N) array, one column per point; points are rows: return (N, 2) (.T)"
+        return (
+            f"{problem}: a (2, N) array, one column per point; points are rows: return (N, 2) (.T)"
+        )
     if problem:
         return problem
     context = SimpleNamespace(h=h, g=np.asarray(got, dtype=float))
-    return first_mistake(DIVIDE_MISTAKES, context) or f"divide x and y of each row by that row's w: {KEEPDIMS}"
+    return (
+        first_mistake(DIVIDE_MISTAKES, context)
+        or f"divide x and y of each row by that row's w: {KEEPDIMS}"
+    )
 
 
 def _exception_hint(exc: Exception, args: tuple) -> str:
     """The flat w on three points, and w looked for at index 3 (counted from 1)."""
     text = str(exc)
-    if isinstance(exc, ValueError) and "broadcast" in text and re.search(r"\(3,\s?2\)\s+\(3,\)", text):
+    if (
+        isinstance(exc, ValueError)
+        and "broadcast" in text
+        and re.search(r"\(3,\s?2\)\s+\(3,\)", text)
+    ):
         return (
             "you divided by the flat h[:, 2], shape (3,), which numpy lines up with the last axis, the columns "
             "(there are 2): no keepdims. With two points it would raise nothing and divide the wrong entries, "
@@ -169,7 +180,8 @@ def _follow_up(run) -> str | None:
         return (
             f"on h = {_WITH_DIRECTION.tolist()}, whose row 1 has w = 0, rows 0 and 2 came back as "
             f"{got[[0, 2]].tolist()}, not [[1.0, 2.0], [1.0, 1.0]]\n"
-            "  likely cause: the w = 0 row changed the others; divide each row by its own w: " + KEEPDIMS
+            "  likely cause: the w = 0 row changed the others; divide each row by its own w: "
+            + KEEPDIMS
         )
     if np.isfinite(got[1]).any():
         shown = ", ".join(f"{v:.3g}" for v in got[1])
@@ -220,6 +232,7 @@ register_exercise(
         exception_hint=_exception_hint,
         follow_up=_follow_up,
         teaching=divide_by_w,
+        ndarray_only=True,  # as lift and read_and_turn: the prompt asks for a numpy array
         wrong_variants=(
             (_variant(lambda h: h[:, :2] / h[:, 2]), "you divided by the flat h[:, 2], shape (3,)"),
             (
@@ -240,6 +253,7 @@ register_exercise(
             (_variant(lambda h: np.rint(h[:, :2] / h[:, 2:])), "rounded"),
             (_variant(lambda h: h[:, :2] / (h[:, 2:] + 1e-12)), "w + eps"),
             (_variant(lambda h: h[:, 1::-1] / h[:, 2:]), "swapped"),
+            (_variant(lambda h: (h[:, :2] / h[:, 2:]).tolist()), "you returned a list"),
         ),
     )
 )
