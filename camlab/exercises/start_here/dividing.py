@@ -26,7 +26,13 @@ KEEPDIMS = "h[:, :2] / h[:, 2:] (h[:, 2:] is an (N, 1) column: each row divided 
 
 
 def cases() -> list[tuple[np.ndarray]]:
-    """The check's test inputs: three rows, two rows, one row; every w different, one negative."""
+    """The check's test inputs: three rows, two rows, one row; every w different, one negative.
+
+    Returns
+    -------
+    list of tuple
+        One ``(h,)`` per test input, ``h`` of shape (N, 3).
+    """
     return [
         (np.array([[5.0, 8.5, 2.0], [-0.6, 0.3, -0.3], [1279.0, 958.0, 4.0]]),),
         (np.array([[2.0, 4.0, 2.0], [3.0, 5.0, 0.5]]),),
