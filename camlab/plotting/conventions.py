@@ -534,4 +534,5 @@ def draw_homogeneous_rays(
     ax.set_ylabel("y", color=Y_COLOUR)
     ax.set_zlabel("w", color=Z_COLOUR)
     ax.view_init(elev=16, azim=-58)
+    ax.set_box_aspect(None, zoom=1.2)  # fill the figure: mplot3d leaves a wide margin
     return multiples
