@@ -166,9 +166,9 @@ def draw_camera_frame(ax: Axes, size: tuple[int, int] = (4, 3)) -> None:
     h = pixel * height / 2
     ax.add_patch(Rectangle((-w, -h), 2 * w, 2 * h, facecolor="0.95", edgecolor="0.45", lw=1))
     for k in range(1, width):
-        ax.plot([-w + k * pixel] * 2, [-h, h], color="0.82", lw=0.6)
+        ax.plot([-w + k * pixel] * 2, [-h, h], color="0.62", lw=0.8)
     for k in range(1, height):
-        ax.plot([-w, w], [-h + k * pixel] * 2, color="0.82", lw=0.6)
+        ax.plot([-w, w], [-h + k * pixel] * 2, color="0.62", lw=0.8)
     ax.text(
         0.12, h + 0.06, "image plane", color="0.25", ha="left", va="top", fontsize=9
     )  # right of the y axis
