@@ -1796,3 +1796,48 @@ def _rank3_via(layout):
 @pytest.mark.parametrize("layout", ["stacked", "transposed"])
 def test_reproject_rank3_accepts_any_layout_of_the_measurement_matrix(layout, capsys):
     assert check("reproject_rank3", _rank3_via(layout)).passed is True
+
+
+@pytest.mark.parametrize(
+    "right",
+    [
+        lambda h: h[:, :2] / h[:, 2, None],
+        lambda h: h[:, :2] / h[:, [2]],
+        lambda h: (h[:, :2].T / h[:, 2]).T,
+        lambda h: np.array([row[:2] / row[2] for row in h]),
+        lambda h: np.array(
+            [[a / w, b / w] for a, b, w in h.tolist()]
+        ),  # Python floats: 3.0 / 0.0 raises
+    ],
+    ids=["None", "list index", "transposed twice", "numpy loop", "python loop"],
+)
+def test_divide_by_w_passes_right_answers_in_other_forms(right, capsys):
+    assert check("divide_by_w", right).passed is True
+
+
+def test_divide_by_w_names_the_flat_w_on_two_points_once_three_points_are_worked_round():
+    """N = 3 raises for the flat w; a student who special-cases it is caught silently wrong on N = 2."""
+    with pytest.raises(
+        AssertionError, match=r"test input 2 of 3(.|\n)*flat h\[:, 2\](.|\n)*keep w a column"
+    ):
+        check("divide_by_w", lambda h: h[:, :2] / (h[:, 2] if len(h) != 3 else h[:, 2:]))
+
+
+def test_read_and_turn_rejects_lists_as_lift_and_divide_by_w_do():
+    def as_lists(img, X, A):
+        from camlab.exercises.start_here.conventions import read_and_turn
+
+        c, values, turned = read_and_turn(img, X, A)
+        return list(c), values.tolist(), turned.tolist()
+
+    with pytest.raises(
+        AssertionError,
+        match=r"the centre c came back as a list(.|\n)*the values came back as a list",
+    ):
+        check("read_and_turn", as_lists)
+    for name, answer in (
+        ("lift", lambda p: [p[0], p[1], 1.0]),
+        ("divide_by_w", lambda h: (h[:, :2] / h[:, 2:]).tolist()),
+    ):
+        with pytest.raises(AssertionError, match="you returned a list"):
+            check(name, answer)

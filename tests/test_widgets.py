@@ -625,3 +625,24 @@ def test_stack_check_draws_no_arrowhead_on_an_arc_too_short_to_show(angle, drawn
     for ax in demo.figure.axes:
         (arrow,) = [ln for ln in ax.lines if ln.get_label() == "_the way"]
         assert (len(arrow.get_xdata()) == 1) == drawn
+
+
+@pytest.mark.parametrize(
+    "angle, scale, note",
+    [
+        (0.0, 1.0, "(unmoved: no path)"),
+        (5.0, 1.0, "(path hidden under the dot)"),
+        (-5.0, 1.0, "hidden"),
+        (30.0, 1.0, ""),
+        (5.0, 1.5, ""),
+        (0.0, 2.0, ""),
+    ],
+)
+def test_stack_check_readout_says_when_the_legends_path_is_not_seen(angle, scale, note):
+    """The legend lists the roof tip's path; at 0° it is not there, below 10° it hides under the dot."""
+    from camlab.widgets.start_here import stack_check
+
+    demo = stack_check()
+    demo.controls["angle"].value, demo.controls["scale"].value = angle, scale
+    text = _stack_check_readout(demo).get_text()
+    assert (note in text) if note else ("(" not in text.split(")", 1)[1])

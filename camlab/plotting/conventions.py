@@ -15,6 +15,9 @@ from .plane import image_axes
 # The camera frame's axes, here and wherever lesson 00 ties u and v to them (one home for the three).
 X_COLOUR, Y_COLOUR, Z_COLOUR = palette.AXIS_COLOURS  # x red, y green, z blue, as every 3-D camera
 POINT_COLOUR = palette.ORANGE  # the points lesson 00 reads: the demo's roof tip, the rows of X here
+DIRECTION_COLOUR = (
+    "0.3"  # a direction, w = 0, dark grey: purple stays "the wrong read" in lesson 00
+)
 
 
 def draw_pixel_grid(ax: Axes, size: tuple[int, int], points: np.ndarray, marked: int) -> AxesImage:
@@ -163,9 +166,9 @@ def draw_camera_frame(ax: Axes, size: tuple[int, int] = (4, 3)) -> None:
     h = pixel * height / 2
     ax.add_patch(Rectangle((-w, -h), 2 * w, 2 * h, facecolor="0.95", edgecolor="0.45", lw=1))
     for k in range(1, width):
-        ax.plot([-w + k * pixel] * 2, [-h, h], color="0.82", lw=0.6)
+        ax.plot([-w + k * pixel] * 2, [-h, h], color="0.62", lw=0.8)
     for k in range(1, height):
-        ax.plot([-w, w], [-h + k * pixel] * 2, color="0.82", lw=0.6)
+        ax.plot([-w, w], [-h + k * pixel] * 2, color="0.62", lw=0.8)
     ax.text(
         0.12, h + 0.06, "image plane", color="0.25", ha="left", va="top", fontsize=9
     )  # right of the y axis
@@ -409,7 +412,7 @@ def draw_channel_order(axes: Sequence[Axes], bgr: np.ndarray, pixel: tuple[int, 
     ``cv2.imread`` stores each pixel's channels as B, G, R; matplotlib's ``imshow`` reads the three
     numbers as R, G, B, so the unflipped picture swaps red and blue: a red-orange spot turns blue.
     ``bgr[..., ::-1]`` reverses the last axis and gives the true colours. Pixel ``(u, v)`` is ringed
-    in orange (with a white halo) in both panels, at x = u, y = v.
+    in white edged with black in both panels, at x = u, y = v, wide of the spot so its colour shows.
 
     Parameters
     ----------
@@ -427,16 +430,10 @@ def draw_channel_order(axes: Sequence[Axes], bgr: np.ndarray, pixel: tuple[int, 
     )
     for ax, image, title in zip(axes, (bgr, bgr[..., ::-1]), titles, strict=True):
         ax.imshow(image)
+        ax.plot(u, v, "o", ms=34, mfc="none", mec="black", mew=4.2)  # a white ring edged in black,
         ax.plot(
-            u,
-            v,
-            "o",
-            ms=16,
-            mfc="none",
-            mec=POINT_COLOUR,
-            mew=2.6,
-            path_effects=palette.halo(0),
-        )
+            u, v, "o", ms=34, mfc="none", mec="white", mew=1.8
+        )  # wide enough to leave the spot clear
         ax.set_title(title, fontsize=10)
         ax.set_xlabel("u (px)", color=X_COLOUR)
         ax.set_ylabel("v (px)", color=Y_COLOUR)
@@ -449,9 +446,11 @@ def draw_homogeneous_rays(
 
     The point (x, y) is the ray through the origin and (x, y, 1), which crosses the plane w = 1
     (grey) at the point itself (orange). Its multiples (wx, wy, w), one per ``scales`` entry (black
-    dots), lie on the same ray, and dividing by w slides each back to (x, y, 1). A vector
-    (dx, dy, 0) lies in the plane w = 0 (dashed outline): its ray runs parallel to the plane w = 1
-    and never meets it, so it names a direction, an ideal point, not a point of the image.
+    dots, each labelled with its w and dropped to w = 0 by a dotted line, so its height reads), lie
+    on the same ray (dashed below the plane w = 1, solid above), and dividing by w slides each back
+    to (x, y, 1). A vector (dx, dy, 0) (dark grey arrow) lies in the plane w = 0 (dashed outline): its
+    ray runs parallel to the plane w = 1 and never meets it, so it names a direction, an ideal
+    point, not a point of the image.
 
     Parameters
     ----------
@@ -479,6 +478,7 @@ def draw_homogeneous_rays(
     multiples = np.array([[w * x, w * y, w] for w in scales])
     top = max(max(scales), 1.0) * 1.15
     square = np.array([[-1, -1], [2.5, -1], [2.5, 2], [-1, 2], [-1, -1]], dtype=float)
+    ax.computed_zorder = False  # draw in the order given: the marks over the translucent plane
     ax.plot_surface(
         np.array([[-1, 2.5], [-1, 2.5]]),
         np.array([[-1, -1], [2, 2]]),
@@ -486,13 +486,27 @@ def draw_homogeneous_rays(
         color="0.75",
         alpha=0.3,
         shade=False,
+        zorder=1,
     )
-    ax.plot(*square.T, np.ones(5), color="0.45", lw=1, label="the plane w = 1: the image")
-    ax.plot(*square.T, np.zeros(5), color="0.45", lw=1, ls="--", label="the plane w = 0")
+    ax.plot(*square.T, np.ones(5), color="0.45", lw=1, label="the plane w = 1: the image", zorder=2)
+    ax.plot(*square.T, np.zeros(5), color="0.45", lw=1, ls="--", label="the plane w = 0", zorder=2)
     ax.plot(
-        [0, top * x], [0, top * y], [0, top], color=POINT_COLOUR, lw=1.6, label="the ray of (x, y)"
+        [0, x], [0, y], [0, 1], color=POINT_COLOUR, lw=1.4, ls=(0, (3, 2)), zorder=3
+    )  # below w = 1
+    ax.plot(
+        [x, top * x],
+        [y, top * y],
+        [1, top],
+        color=POINT_COLOUR,
+        lw=2,
+        label="the ray of (x, y)",
+        zorder=5,
     )
-    ax.plot(*multiples.T, "o", color="black", ms=5, ls="none", label="(wx, wy, w) on the ray")
+    for wx, wy, w in (*multiples, (x, y, 1.0)):  # drop lines to w = 0 show each mark's height
+        ax.plot([wx, wx], [wy, wy], [0, w], color="0.35", lw=0.8, ls=":", zorder=3)
+    ax.plot(
+        *multiples.T, "o", color="black", ms=5, ls="none", label="(wx, wy, w) on the ray", zorder=6
+    )
     ax.plot(
         [x],
         [y],
@@ -504,21 +518,21 @@ def draw_homogeneous_rays(
         mew=0.8,
         ls="none",
         label="(x, y, 1): divided by w",
+        zorder=7,
     )
-    ax.plot(
-        [0, dx],
-        [0, dy],
-        [0, 0],
-        color=palette.PURPLE,
-        lw=2.4,
-        label="(dx, dy, 0): w = 0, a direction",
-    )
-    ax.plot([0], [0], [0], "k+", ms=9, ls="none", label="the origin (0, 0, 0)")
+    for wx, wy, w in (*multiples, (x, y, 1.0)):
+        ax.text(
+            wx + 0.12, wy, w, f"  w = {w:g}", fontsize=9, zorder=8, path_effects=palette.halo(2)
+        )
+    ax.quiver(0, 0, 0, dx, dy, 0, color=DIRECTION_COLOUR, lw=2.2, arrow_length_ratio=0.15, zorder=4)
+    ax.plot([], [], color=DIRECTION_COLOUR, lw=2.2, label="(dx, dy, 0): w = 0, a direction")
+    ax.plot([0], [0], [0], "k+", ms=9, ls="none", label="the origin (0, 0, 0)", zorder=8)
     ax.set_xticks([-1, 0, 1, 2, 3])
     ax.set_yticks([-1, 0, 1, 2])
     ax.set_zticks([0, 1, 2])
     ax.set_xlabel("x", color=X_COLOUR)
     ax.set_ylabel("y", color=Y_COLOUR)
-    ax.set_zlabel("w")
+    ax.set_zlabel("w", color=Z_COLOUR)
     ax.view_init(elev=16, azim=-58)
+    ax.set_box_aspect(None, zoom=1.2)  # fill the figure: mplot3d leaves a wide margin
     return multiples

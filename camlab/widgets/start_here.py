@@ -228,6 +228,35 @@ def screen_turn(ax, path: np.ndarray) -> str:
     return "anticlockwise" if bend > 0 else "clockwise"
 
 
+HIDDEN_TURN_DEG = (
+    10.0  # below this turn (and at scale 1) the arc and its dart hide under the orange dot
+)
+
+
+def path_note(angle_deg: float, scale: float) -> str:
+    """What the readout adds when the path the legend lists is not seen: none, or hidden under the dot.
+
+    The browser's twin is the same test in ``widgets/browser/stack_check.js``.
+
+    Parameters
+    ----------
+    angle_deg : float
+        The turn θ, degrees.
+    scale : float
+        The scale s.
+
+    Returns
+    -------
+    str
+        '' when the path shows, else a note starting with two spaces.
+    """
+    if scale != 1:
+        return ""
+    if angle_deg == 0:
+        return "  (unmoved: no path)"
+    return "  (path hidden under the dot)" if abs(angle_deg) < HIDDEN_TURN_DEG else ""
+
+
 def arrowhead_size(angle_deg: float, radius: float = 1.4) -> float:
     """The arrowhead's marker size for a turn of ``angle_deg`` on a circle of ``radius``.
 
@@ -374,10 +403,9 @@ def stack_check() -> Demo:
                 else way_on_screen
             )
         numbers = tip_readout(moved[ROOF_TIP])
-        unmoved = (
-            angle == 0 and s == 1
-        )  # no turn and no scaling: the moved house hides the original
-        readout.set_text(numbers + ("  (unmoved: no path)" if unmoved else ""))
+        readout.set_text(
+            numbers + path_note(angle, s)
+        )  # at 0°, scale 1 the moved house hides the original
         # tip: where the orange dot is drawn (lesson 00 recomputes it by hand); readout: the numbers shown
         # arrow: where the arrowhead sits, and its angle on screen in each panel (None: no dart drawn)
         # turns: the way each panel's drawn arc turns on screen (screen_turn), measured, not read off the angle

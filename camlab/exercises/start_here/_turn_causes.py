@@ -565,6 +565,23 @@ RAISED = (
         ),
     ),
     Mistake(
+        "a transposed image read [v, u]",
+        lambda s: (
+            _index_error(s)
+            and s.H != s.W
+            and (
+                (s.axis == 1 and s.size == s.H and s.index in np.rint(s.X[:, 0]).astype(int))
+                or (s.axis == 0 and s.size == s.W and s.index in np.rint(s.X[:, 1]).astype(int))
+            )
+        ),
+        lambda s: (
+            f"the image was transposed: an axis of size {s.size} met "
+            f"{'u' if s.axis == 1 else 'v'} = {s.index}, as in img.T[v, u] (or an image built with its axes "
+            f"swapped, np.zeros((W, H))). img itself has shape ({s.H}, {s.W}), rows first: read it as it is, "
+            "img[v, u], with no .T"
+        ),
+    ),
+    Mistake(
         "rounded up by np.ceil",
         lambda s: _index_error(s) and s.index == s.size and _ceil_moved(s.X) is not None,
         lambda s: (
@@ -577,6 +594,15 @@ RAISED = (
         lambda s: (
             f"an index {s.size} on an axis of size {s.size}: counting from 1? numpy and pixel coordinates count from 0 "
             "(the last row is H - 1, the last column W - 1): img[v, u]"
+        ),
+    ),
+    Mistake(
+        "an index past the image",
+        lambda s: _index_error(s),
+        lambda s: (
+            f"an index {s.index} on axis {s.axis}, of size {s.size}: this image has shape ({s.H}, {s.W}), so its rows "
+            f"(axis 0, v) run 0 .. {s.H - 1} and its columns (axis 1, u) 0 .. {s.W - 1}; read img[v, u] with the "
+            "points' own u and v, rounded: u, v = np.rint(X).astype(int).T"
         ),
     ),
     Mistake(

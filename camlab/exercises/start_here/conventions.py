@@ -109,7 +109,20 @@ def _same_triple(got, expected) -> bool:
     if not isinstance(got, (tuple, list)) or len(got) != 3:
         return False
     same = same_array(rtol=1e-9, atol=1e-9)
-    return all(_as_floats(g) is not None and same(g, e) for g, e in zip(got, expected, strict=True))
+    return all(
+        isinstance(g, np.ndarray) and _as_floats(g) is not None and same(g, e)
+        for g, e in zip(got, expected, strict=True)
+    )
+
+
+def _not_arrays(got, parts, names) -> str:
+    """The parts returned as lists or tuples: the prompt asks for numpy arrays, as ``lift`` does."""
+    shapes = ("(2,)", "(N,)", "(N, 2)")
+    return "; ".join(
+        f"{name} came back as a {type(g).__name__}: return a numpy array of shape {shape} (np.array(...))"
+        for name, part, g, shape in zip(names, parts, got, shapes, strict=True)
+        if not isinstance(g, np.ndarray)
+    )
 
 
 def _rt_diagnose(args, got, expected) -> str:
@@ -132,6 +145,8 @@ def _rt_diagnose(args, got, expected) -> str:
             return f"{name} holds NaN or inf"
     c, values, turned = parts
     same = same_array(rtol=1e-9, atol=1e-9)
+    if all(same(part, e) for part, e in zip(parts, expected, strict=True)):
+        return _not_arrays(got, parts, names)  # the right numbers, not all as arrays
     for order in permutations(range(3)):
         if order != (0, 1, 2) and all(
             same(parts[k], e) for k, e in zip(order, expected, strict=True)
@@ -258,6 +273,17 @@ register_exercise(
         describe_input=_rt_describe,
         exception_hint=exception_hint,
         wrong_variants=(
+            (
+                lambda img, X, A: tuple(p.tolist() for p in read_and_turn(img, X, A)),
+                "the centre c came back as a list: return a numpy array of shape (2,)",
+            ),
+            (
+                lambda img, X, A: (
+                    *read_and_turn(img, X, A)[:2],
+                    read_and_turn(img, X, A)[2].tolist(),
+                ),
+                "the turned points came back as a list: return a numpy array of shape (N, 2)",
+            ),
             (_rt_wrong(centre=lambda W, H: (W / 2, H / 2)), "you used (W / 2, H / 2)"),
             (_rt_wrong(centre=lambda W, H: (W // 2, H // 2)), "W // 2"),
             (_rt_wrong(centre=lambda W, H: ((W + 1) / 2, (H + 1) / 2)), "counted from 1"),
@@ -275,6 +301,8 @@ register_exercise(
                 "you used (W / 2, H / 2)",
             ),
             (_rt_wrong(read=lambda img, u, v: img[u, v]), "u = 5 was used as the row"),
+            (_rt_wrong(read=lambda img, u, v: img.T[v, u]), "the image was transposed"),
+            (_rt_wrong(read=lambda img, u, v: img[v + 3, u]), "its rows (axis 0, v) run 0 .. 3"),
             (  # img[u, v] where it raises nothing: the square image reads the transposed pixel
                 _rt_wrong(
                     read=lambda img, u, v: img[u, v] if img.shape[0] == img.shape[1] else img[v, u]

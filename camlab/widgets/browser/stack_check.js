@@ -26,8 +26,10 @@ export function drawStackCheck(ctx, scene, p) {
   ctx.font = r.font;
   ctx.fillStyle = r.color;
   ctx.textBaseline = "top";
-  const unmoved = p.angle === 0 && p.scale === 1 ? "  (unmoved: no path)" : "";
-  ctx.fillText(tipReadout(tip) + unmoved, r.x, r.y);
+  // path_note in widgets/start_here.py: the path the legend lists is not seen
+  const hidden = p.angle !== 0 && Math.abs(p.angle) < 10 ? "  (path hidden under the dot)" : "";
+  const note = p.scale !== 1 ? "" : p.angle === 0 ? "  (unmoved: no path)" : hidden;
+  ctx.fillText(tipReadout(tip) + note, r.x, r.y);
   ctx.restore();
   return tipReadout(tip);
 }

@@ -1,0 +1,265 @@
+"""Lesson 00's exercise divide_by_w: homogeneous rows back to points, each row divided by its own w.
+
+``h`` is an ``(N, 3)`` array of rows (wx, wy, w); the answer is the ``(N, 2)`` array of (x, y). The slip
+the lesson warns about is the flat ``h[:, 2]``, shape ``(N,)``: numpy pairs it with the last axis, the
+columns, so it raises for N >= 3, silently divides each column by one row's w for N = 2, and happens to
+be right for N = 1. The test inputs are N = 3, N = 2 and N = 1 in that order, so the slip raises first,
+is named on the second input if the student works round the error, and the third shows why a one-point
+test would not catch it. The rows have varied w, one negative, so dividing by |w| shows. A follow-up
+feeds a row with w = 0 (a direction, no point): it must come back as no finite point (inf or NaN, as
+numpy's x / 0 gives, or a ZeroDivisionError from Python floats), not as the huge finite
+numbers of a division by w + eps.
+"""
+
+from __future__ import annotations
+
+import re
+from types import SimpleNamespace
+
+import numpy as np
+
+from ... import projective
+from .._answers import same_array, shape_problem
+from .._core import Exercise, Mistake, first_mistake, register_exercise
+
+KEEPDIMS = "h[:, :2] / h[:, 2:] (h[:, 2:] is an (N, 1) column: each row divided by its own w)"
+
+
+def cases() -> list[tuple[np.ndarray]]:
+    """The check's test inputs: three rows, two rows, one row; every w different, one negative.
+
+    Returns
+    -------
+    list of tuple
+        One ``(h,)`` per test input, ``h`` of shape (N, 3).
+    """
+    return [
+        (np.array([[5.0, 8.5, 2.0], [-0.6, 0.3, -0.3], [1279.0, 958.0, 4.0]]),),
+        (np.array([[2.0, 4.0, 2.0], [3.0, 5.0, 0.5]]),),
+        (np.array([[7.5, -3.0, 2.5]]),),
+    ]
+
+
+def _flat(s) -> np.ndarray:
+    return s.h[:, :2] / s.h[:, 2]
+
+
+def _same(s, candidate) -> bool:
+    candidate = np.asarray(candidate, dtype=float)
+    return candidate.shape == s.g.shape and np.allclose(s.g, candidate)
+
+
+# Checked in order on an (N, 2) answer with the wrong numbers; ``s.h`` is the input, ``s.g`` the answer.
+DIVIDE_MISTAKES = (
+    Mistake(
+        "the flat w (no keepdims)",
+        lambda s: len(s.h) == 2 and _same(s, _flat(s)),
+        (
+            "you divided by the flat h[:, 2], shape (N,): numpy lines it up with the last axis, the columns, so "
+            "for two points column 0 is divided by row 0's w and column 1 by row 1's (for three points numpy "
+            f"raises, for one it happens to be right); keep w a column: {KEEPDIMS}"
+        ),
+    ),
+    Mistake(
+        "not divided",
+        lambda s: _same(s, s.h[:, :2]),
+        f"you dropped w without dividing by it: (wx, wy) is not (x, y) unless w = 1; {KEEPDIMS}",
+    ),
+    Mistake(
+        "multiplied by w",
+        lambda s: _same(s, s.h[:, :2] * s.h[:, 2:]),
+        f"you multiplied by w; the way back divides: {KEEPDIMS}",
+    ),
+    Mistake(
+        "w over x and y",
+        lambda s: _same(s, s.h[:, 2:] / s.h[:, :2]),
+        f"the division is upside down, w / x: x = (wx) / w; {KEEPDIMS}",
+    ),
+    Mistake(
+        "one w for every row",
+        lambda s: any(_same(s, s.h[:, :2] / s.h[k, 2]) for k in (0, -1)),
+        (
+            "every row was divided by the same w (h[0, 2] or h[-1, 2], one number): each row has its own w; "
+            f"{KEEPDIMS}"
+        ),
+    ),
+    Mistake(
+        "divided by x or y",
+        lambda s: any(_same(s, s.h[:, :2] / s.h[:, k : k + 1]) for k in (0, 1)),
+        (
+            "you divided by x or y (column 0 or 1): w is the last column, index 2, since numpy counts "
+            f"from 0: {KEEPDIMS}"
+        ),
+    ),
+    Mistake(
+        "divided by |w|",
+        lambda s: _same(s, s.h[:, :2] / np.abs(s.h[:, 2:])),
+        (
+            "you divided by |w|: a negative w is allowed ((-0.6, 0.3, -0.3) is the point (2, -1)), and its "
+            f"sign must divide too: {KEEPDIMS}"
+        ),
+    ),
+    Mistake(
+        "x and y swapped",
+        lambda s: _same(s, (s.h[:, :2] / s.h[:, 2:])[:, ::-1]),
+        "x and y came out swapped: keep the columns in order, (x, y)",
+    ),
+    Mistake(
+        "rounded",
+        lambda s: (
+            _same(s, np.rint(s.h[:, :2] / s.h[:, 2:]))
+            or _same(s, np.trunc(s.h[:, :2] / s.h[:, 2:]))
+        ),
+        (
+            "the points were rounded to whole numbers (np.rint, //, or an int array): dividing by w gives "
+            "fractions (-0.6 / -0.3 is 2, but 8.5 / 2 is 4.25); keep floats"
+        ),
+    ),
+)
+
+
+def _diagnose(args, got, expected) -> str:
+    """The likely cause of a wrong answer: its shape, then a row of :data:`DIVIDE_MISTAKES`."""
+    h = np.asarray(args[0], dtype=float)
+    problem = shape_problem(got, expected)
+    shape = np.shape(got)
+    if problem and shape == (len(h), 3):
+        g = np.asarray(got, dtype=float)
+        if np.allclose(g, h):
+            return f"{problem}: you returned h as it came in; divide x and y by w and drop w: {KEEPDIMS}"
+        return (
+            f"{problem}: you kept all three columns (h / h[:, 2:] also divides w by itself, a column of 1s); "
+            f"return x and y only: {KEEPDIMS}"
+        )
+    if problem and shape == (2, len(h)) and len(h) != 2:
+        return (
+            f"{problem}: a (2, N) array, one column per point; points are rows: return (N, 2) (.T)"
+        )
+    if problem:
+        return problem
+    context = SimpleNamespace(h=h, g=np.asarray(got, dtype=float))
+    return (
+        first_mistake(DIVIDE_MISTAKES, context)
+        or f"divide x and y of each row by that row's w: {KEEPDIMS}"
+    )
+
+
+def _exception_hint(exc: Exception, args: tuple) -> str:
+    """The flat w on three points, and w looked for at index 3 (counted from 1)."""
+    text = str(exc)
+    if (
+        isinstance(exc, ValueError)
+        and "broadcast" in text
+        and re.search(r"\(3,\s?2\)\s+\(3,\)", text)
+    ):
+        return (
+            "you divided by the flat h[:, 2], shape (3,), which numpy lines up with the last axis, the columns "
+            "(there are 2): no keepdims. With two points it would raise nothing and divide the wrong entries, "
+            f"with one it would be right by luck; keep w a column: {KEEPDIMS}"
+        )
+    if isinstance(exc, IndexError) and "axis 1 with size 3" in text:
+        return (
+            "counting from 1: numpy counts from 0, so the columns of h are 0 (wx), 1 (wy) and 2 (w), and there "
+            f"is no column 3: {KEEPDIMS}"
+        )
+    return ""
+
+
+_WITH_DIRECTION = np.array([[2.0, 4.0, 2.0], [3.0, -1.5, 0.0], [1.0, 1.0, 1.0]])
+
+
+def _follow_up(run) -> str | None:
+    """A row with w = 0 names a direction, no point: it must not come back as a finite point."""
+    try:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            got = np.asarray(run(_WITH_DIRECTION.copy()), dtype=float)
+    except AssertionError as failed:  # Python's own x / 0.0 raises: that too says 'no point'
+        if isinstance(failed.__cause__, ZeroDivisionError):
+            return None
+        raise
+    if got.shape != (3, 2):
+        return (
+            f"on h = {_WITH_DIRECTION.tolist()} it returned shape {got.shape}, not (3, 2)\n"
+            f"  likely cause: a row with w = 0 dropped or added; keep one row per point: {KEEPDIMS}"
+        )
+    if not np.allclose(got[[0, 2]], [[1.0, 2.0], [1.0, 1.0]]):
+        return (
+            f"on h = {_WITH_DIRECTION.tolist()}, whose row 1 has w = 0, rows 0 and 2 came back as "
+            f"{got[[0, 2]].tolist()}, not [[1.0, 2.0], [1.0, 1.0]]\n"
+            "  likely cause: the w = 0 row changed the others; divide each row by its own w: "
+            + KEEPDIMS
+        )
+    if np.isfinite(got[1]).any():
+        shown = ", ".join(f"{v:.3g}" for v in got[1])
+        return (
+            f"on h = {_WITH_DIRECTION.tolist()} row 1, (3, -1.5, 0), came back as the finite point ({shown}).\n"
+            "  likely cause: dividing by w + eps (or by a w clipped away from 0). With w = 0 the row is a "
+            "direction, no point of the image (section 4), and a huge finite point hides that; divide by w "
+            "itself: numpy's x / 0 gives inf (or NaN), which says 'no point'"
+        )
+    return None
+
+
+def divide_by_w(h):
+    """Homogeneous rows back to points: divide each row's x and y by its own w.
+
+    Parameters
+    ----------
+    h : (N, 3) array_like
+        Rows (wx, wy, w), w nonzero.
+
+    Returns
+    -------
+    (N, 2) ndarray
+        Rows (x, y). ``h[:, 2:]`` keeps w an (N, 1) column, so each row is divided by its own w; the
+        flat ``h[:, 2]``, shape (N,), would line up with the columns. A row with w = 0 (a direction)
+        comes back as inf or NaN.
+
+    References
+    ----------
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 2.2.1.
+    """
+    h = np.asarray(h, dtype=float)
+    return h[:, :2] / h[:, 2:]
+
+
+def _variant(form):
+    return lambda h: form(np.asarray(h, dtype=float))
+
+
+register_exercise(
+    Exercise(
+        name="divide_by_w",
+        lesson="00",
+        reference=projective.from_homogeneous,
+        cases=cases,
+        compare=same_array(),
+        diagnose=_diagnose,
+        exception_hint=_exception_hint,
+        follow_up=_follow_up,
+        teaching=divide_by_w,
+        ndarray_only=True,  # as lift and read_and_turn: the prompt asks for a numpy array
+        wrong_variants=(
+            (_variant(lambda h: h[:, :2] / h[:, 2]), "you divided by the flat h[:, 2], shape (3,)"),
+            (
+                _variant(lambda h: h[:, :2] / (h[:, 2] if len(h) != 3 else h[:, 2:])),
+                "column 0 is divided by row 0's w",
+            ),
+            (_variant(lambda h: h[:, :2]), "you dropped w without dividing"),
+            (_variant(lambda h: h[:, :2] * h[:, 2:]), "you multiplied by w"),
+            (_variant(lambda h: h / h[:, 2:]), "you kept all three columns"),
+            (_variant(lambda h: h), "you returned h as it came in"),
+            (_variant(lambda h: h[:, :2] / h[0, 2]), "the same w"),
+            (_variant(lambda h: h[:, :2] / h[:, 1:2]), "you divided by x or y"),
+            (_variant(lambda h: h[:, :2] / h[:, 3:4]), "counting columns from 1"),
+            (_variant(lambda h: h[:, :2] / h[:, 3, None]), "no column 3"),
+            (_variant(lambda h: h[:, :2] / np.abs(h[:, 2:])), "you divided by |w|"),
+            (_variant(lambda h: h[:, 2:] / h[:, :2]), "upside down"),
+            (_variant(lambda h: (h[:, :2] / h[:, 2:]).T), "(2, N)"),
+            (_variant(lambda h: np.rint(h[:, :2] / h[:, 2:])), "rounded"),
+            (_variant(lambda h: h[:, :2] / (h[:, 2:] + 1e-12)), "w + eps"),
+            (_variant(lambda h: h[:, 1::-1] / h[:, 2:]), "swapped"),
+            (_variant(lambda h: (h[:, :2] / h[:, 2:]).tolist()), "you returned a list"),
+        ),
+    )
+)
