@@ -7,11 +7,11 @@ the demo's canvas pixels differ: the kernel's callback and draw, ipympl's PNG di
 websocket, and the browser's decode and paint, as a student's eye would see it.
 
 Demos drawn in the browser (``camlab/widgets/browser``) are timed the same way; the table says
-which path drew each demo ("browser" or "kernel"). ``--demos`` times the named demos instead of
-one per lesson; ``--kernel-path`` switches browser drawing off (``CAMLAB_BROWSER_DRAWING=0``), to
-compare the two paths on the same demo.
+which path drew each demo ("browser" or "kernel"). ``--demos`` times the named demos and ``--all``
+every demo with a slider, instead of one per lesson; ``--kernel-path`` switches browser drawing off
+(``CAMLAB_BROWSER_DRAWING=0``), to compare the two paths on the same demo.
 
-Usage: python benchmarks/browser_latency.py [--presses N] [--demos a,b] [--kernel-path]
+Usage: python benchmarks/browser_latency.py [--presses N] [--demos a,b | --all] [--kernel-path]
 (``make bench-browser``)
 """
 
@@ -77,8 +77,11 @@ def stages(sample: dict) -> dict[str, float]:
     }
 
 
-def slider_demos() -> dict[str, str]:
-    """Per lesson, the first registered demo (by name) whose controls include an enabled slider."""
+def slider_demos(every: bool = False) -> dict[str, str]:
+    """Per lesson, the first registered demo (by name) whose controls include an enabled slider.
+
+    With ``every``, all such demos, keyed by name (``--all``: the per-demo table issue 31 asks for).
+    """
     os.environ["CAMLAB_FIGURE_MODE"] = "agg"
     import ipywidgets as W
     import matplotlib.pyplot as plt
@@ -89,14 +92,14 @@ def slider_demos() -> dict[str, str]:
     specs = all_demos()
     for name in sorted(specs, key=lambda n: (specs[n].lesson, n)):
         spec = specs[name]
-        if spec.lesson in chosen:
+        if spec.lesson in chosen and not every:
             continue
         demo = spec.builder()
         if any(
             isinstance(c, (W.FloatSlider, W.IntSlider)) and not c.disabled
             for c in demo.controls.values()
         ):
-            chosen[spec.lesson] = name
+            chosen[name if every else spec.lesson] = name
         plt.close(demo.figure)
     return chosen
 
@@ -124,14 +127,17 @@ def _notebook(names: list[str]) -> dict:
     }
 
 
-def measure(presses: int = 7, demos: list[str] | None = None) -> dict[str, dict]:
+def measure(
+    presses: int = 7, demos: list[str] | None = None, every: bool = False
+) -> dict[str, dict]:
     """Median milliseconds of each stage (see :func:`stages`), the p95 of pixels and the path, per demo.
 
-    ``demos`` names the demos to time; None takes one per lesson (:func:`slider_demos`).
+    ``demos`` names the demos to time; None takes one per lesson, or every slider demo with
+    ``every`` (:func:`slider_demos`).
     """
     from playwright.sync_api import sync_playwright
 
-    chosen = {n: n for n in demos} if demos else slider_demos()
+    chosen = {n: n for n in demos} if demos else slider_demos(every)
     with tempfile.TemporaryDirectory() as tmp:
         base = Path(tmp)
         (base / "root").mkdir()
@@ -183,6 +189,9 @@ def main() -> None:
     parser.add_argument(
         "--demos", default="", help="comma-separated demo names (default: one per lesson)"
     )
+    parser.add_argument(
+        "--all", action="store_true", help="every demo with a slider, not one per lesson"
+    )
     parser.add_argument("--kernel-path", action="store_true", help="draw every demo in the kernel")
     args = parser.parse_args()
     if args.kernel_path:
@@ -190,7 +199,7 @@ def main() -> None:
     from camlab.widgets import all_demos
 
     specs = all_demos()
-    measured = measure(args.presses, [d for d in args.demos.split(",") if d] or None)
+    measured = measure(args.presses, [d for d in args.demos.split(",") if d] or None, args.all)
     rows = [{"lesson": specs[n].lesson, "demo": n, **ms} for n, ms in measured.items()]
     print_table(
         rows,
