@@ -123,6 +123,7 @@ def test_blending_demo_seam_steps():
     assert over > 15 and d.state["seam_jump"] < over / 4
     d.set(method="overwrite", gains=True)
     assert d.state["seam_jump"] < over / 4
+    assert d.state["seam_own"] < 2 < d.state["seam_jump"]  # what is left is the scene's own step
 
 
 def test_parallax_demo_residuals_grow_with_baseline():
