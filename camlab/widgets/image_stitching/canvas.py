@@ -237,9 +237,10 @@ def _blend_readout(v: dict, gains, jump: float, scene: float, own: float) -> str
         )
         + "\ngains: "
         + (", ".join(f"{g:.3f}" for g in gains) if v["gains"] else "off")
-        + f"\nthe seam's own step: {own:.1f} grey levels\n"
-        f"  = |step across it ({jump:.1f}) - the scene's own ({scene:.1f}:\n"
-        "     one photo alone across the same line, no seam)|"
+        + f"\nstep across the seam: {jump:.1f} grey levels\n"
+        f"the scene's own step there: {scene:.1f}\n"
+        "  (one photo alone across the same line, no seam)\n"
+        f"the seam's own step: {own:.1f} (the difference)"
     )
 
 
