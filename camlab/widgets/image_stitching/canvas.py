@@ -158,7 +158,7 @@ def panorama_canvas() -> Demo:
             ln.set_data(p[:, 0], p[:, 1])
         scale = _fit(c.shape, box)[0]
         title.set_text(
-            f"reference view {ref}: canvas {ww} x {hh} px (160 x 120 images), shown x{scale:.2f} to fit"
+            f"reference view {ref}: canvas {ww} x {hh} px (160 x 120 images), scaled to fit"
         )
         state.update(reference=ref, canvas=(hh, ww), T=c.T, display_scale=scale)
         readout.value = monospace(
@@ -409,7 +409,7 @@ def full_panorama() -> Demo:
         legend.set_visible(bool(v["outlines"]))
         scale = _fit((hh, ww), box)[0]
         title.set_text(
-            f"{v['projection']} canvas: {ww} x {hh} px, reference view {r.reference}, shown x{scale:.2f} to fit"
+            f"{v['projection']} canvas: {ww} x {hh} px, reference view {r.reference}, scaled to fit"
         )
         state.update(
             projection=v["projection"],
