@@ -304,7 +304,7 @@ def blending_seams() -> Demo:
     )  # over the image
     ax.set_xticks([])
     ax.set_yticks([])
-    ax.set_title("two views, exposures differ by 30%", fontsize=9)
+    ax.set_title("two views whose exposures differ by 30% (before gains)", fontsize=9)
     imz = view.animate(ax_z.imshow(np.zeros((z, z, 3), np.float32), interpolation="nearest"))
     ax_z.set_xticks([])
     ax_z.set_yticks([])
