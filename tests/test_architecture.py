@@ -203,6 +203,7 @@ BARE_TUPLES_ALLOWED = {
     "camlab.exercises.stereo_rectification.epipoles.epipoles": "an exercise's teaching solution",
     "camlab.exercises.stereo_rectification.essential.decompose_essential": "an exercise's teaching solution",
     "camlab.exercises.perspective_correction.shape.rectangle_shape": "an exercise's teaching solution",
+    "camlab.exercises.image_stitching.focal.focal_from_rotation_homography": "an exercise's teaching solution",
     # a sequence of artists splatted into view.animate(*...), not a record of named values
     "camlab.widgets.affine_cameras.common.reference_marker": "a sequence of artists, not a record",
 }

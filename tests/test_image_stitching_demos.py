@@ -123,6 +123,7 @@ def test_blending_demo_seam_steps():
     assert over > 15 and d.state["seam_jump"] < over / 4
     d.set(method="overwrite", gains=True)
     assert d.state["seam_jump"] < over / 4
+    assert d.state["seam_own"] < 2 < d.state["seam_jump"]  # what is left is the scene's own step
 
 
 def test_parallax_demo_residuals_grow_with_baseline():
@@ -164,7 +165,7 @@ def test_exercises_reference_passes_and_solution_prints(home, name, capsys):
 
 
 def _focal_student(method, scale):
-    """A student's focal from a rotation H: ``method`` combines the four Szeliski-Shum formulas."""
+    """A student's (f_from, f_to) from a rotation H: ``method`` combines each pair of Szeliski-Shum formulas."""
     import numpy as np
 
     def student(H, shape):
@@ -173,28 +174,27 @@ def _focal_student(method, scale):
         Hc = np.linalg.inv(C) @ np.asarray(H, float) @ C
         Hc = Hc / {"h22": Hc[2, 2], "norm": np.linalg.norm(Hc), "none": 1.0}[scale]
         h0, h1, h2, h3, h4, h5, h6, h7, _ = Hc.ravel()
-        nd = [
-            (-(h0 * h1 + h3 * h4), h6 * h7),
-            (h0**2 + h3**2 - h1**2 - h4**2, h7**2 - h6**2),
-            (-h2 * h5, h0 * h3 + h1 * h4),
-            (h5**2 - h2**2, h0**2 + h1**2 - h3**2 - h4**2),
-        ]
+        rows = [(-h2 * h5, h0 * h3 + h1 * h4), (h5**2 - h2**2, h0**2 + h1**2 - h3**2 - h4**2)]
+        cols = [(-(h0 * h1 + h3 * h4), h6 * h7), (h0**2 + h3**2 - h1**2 - h4**2, h7**2 - h6**2)]
+        out = []
         with np.errstate(all="ignore"):
-            if method == "larger denominator":
-                f2 = [a / b if abs(b) > abs(d) else c / d for (a, b), (c, d) in (nd[:2], nd[2:])]
-            else:
-                f2 = [n / d for n, d in nd]
-                f2 = f2[1::2] if method == "equal-length only" else f2
-        fs = [np.sqrt(v) for v in f2 if np.isfinite(v) and v > 0]  # the natural filter drops 0/0
-        return (
-            float(np.mean(fs) if method == "mean of all four" else np.median(fs)) if fs else np.nan
-        )
+            for (a, b), (c, d) in (rows, cols):
+                if method == "larger denominator":
+                    f2 = [a / b if abs(b) > abs(d) else c / d]
+                else:
+                    f2 = [c / d] if method == "equal-length only" else [a / b, c / d]
+                fs = [
+                    np.sqrt(v) for v in f2 if np.isfinite(v) and v > 0
+                ]  # the natural filter drops 0/0
+                agg = np.mean if method == "mean of both" else np.median
+                out.append(float(agg(fs)) if fs else np.nan)
+        return tuple(out)
 
     return student
 
 
 @pytest.mark.parametrize("scale", ["h22", "norm", "none"])
-@pytest.mark.parametrize("method", ["median of all four", "mean of all four", "equal-length only"])
+@pytest.mark.parametrize("method", ["median of both", "mean of both", "equal-length only"])
 def test_focal_check_rejects_ignoring_the_larger_denominator_rule_naming_0_over_0(method, scale):
     with pytest.raises(AssertionError, match="is 0/0 because") as info:
         ex.check_focal_from_rotation_homography(_focal_student(method, scale))
@@ -204,24 +204,39 @@ def test_focal_check_rejects_ignoring_the_larger_denominator_rule_naming_0_over_
 @pytest.mark.parametrize("scale", ["h22", "norm", "none"])
 def test_focal_check_passes_the_rule_at_any_scale_and_a_numerical_search(scale, capsys):
     import numpy as np
-    from scipy.optimize import minimize_scalar
+    from scipy.optimize import least_squares
 
     assert ex.check_focal_from_rotation_homography(
         _focal_student("larger denominator", scale)
     ).passed
 
-    def search(H, shape):  # the f that makes K^-1 H K closest to a rotation (up to scale)
+    def search(
+        H, shape
+    ):  # the (f_from, f_to) that make K_to^-1 H K_from closest to a rotation (up to scale)
         h, w = shape[:2]
 
-        def off(f):
-            K = np.array([[f, 0, (w - 1) / 2], [0, f, (h - 1) / 2], [0, 0, 1]])
-            R = np.linalg.inv(K) @ np.asarray(H, float) @ K
-            R = R / np.cbrt(np.linalg.det(R))
-            return np.linalg.norm(R.T @ R - np.eye(3))
+        def K(f):
+            return np.array([[f, 0, (w - 1) / 2], [0, f, (h - 1) / 2], [0, 0, 1]])
 
-        return minimize_scalar(off, bounds=(100, 5000), method="bounded", options={"xatol": 1e-9}).x
+        def off(fs):
+            R = np.linalg.inv(K(fs[1])) @ np.asarray(H, float) @ K(fs[0])
+            R = R / np.cbrt(np.linalg.det(R))
+            return (R.T @ R - np.eye(3)).ravel()
+
+        fit = least_squares(
+            off, [500.0, 500.0], x_scale=[500.0, 500.0], xtol=1e-15, ftol=1e-15, gtol=1e-15
+        )
+        return tuple(fit.x)
 
     assert ex.check_focal_from_rotation_homography(search).passed
+
+
+@pytest.mark.parametrize("formula", ["c1", "c2", "r1", "r2"])
+def test_focal_check_names_a_sign_flip_in_any_one_formula(formula):
+    from camlab.exercises.image_stitching.focal import _flipped
+
+    with pytest.raises(AssertionError, match="sign flip"):
+        ex.check_focal_from_rotation_homography(_flipped(formula))
 
 
 def test_shape_unpacked_without_channels_gets_the_hint():
@@ -244,3 +259,27 @@ def test_shape_unpacked_without_channels_gets_the_hint():
         with pytest.raises(AssertionError) as info:
             getattr(ex, f"check_{name}")(student)
         assert "too many values to unpack" in str(info.value) and f"h, w = {fix}" in str(info.value)
+
+
+def test_gains_check_passes_an_optimiser_that_stopped_short_and_names_brown_and_lowes_sigma():
+    import numpy as np
+    from scipy.optimize import minimize
+
+    def bfgs(N, I_mean):  # e minimised directly: converged to about 2e-6, not to round-off
+        N = np.array(N, dtype=float)
+        M = np.asarray(I_mean, dtype=float)
+        np.fill_diagonal(N, 0)
+
+        def e(g):
+            return 0.5 * np.sum(
+                N * ((g[:, None] * M - g[None, :] * M.T) ** 2 / 100 + (1 - g[:, None]) ** 2)
+            )
+
+        return minimize(e, np.ones(len(N)), method="BFGS").x
+
+    assert ex.check_gains_from_overlaps(bfgs).passed
+
+    from camlab.exercises.image_stitching.gains import _solve
+
+    with pytest.raises(AssertionError, match="Brown & Lowe's value"):
+        ex.check_gains_from_overlaps(lambda N, M: _solve(N, np.asarray(M, float), sigma_g=0.1))

@@ -71,12 +71,20 @@ class PanoramaSet(NamedTuple):
 
 
 class PlanarPair(NamedTuple):
-    """Two views of a flat poster; ``H`` maps view 0's pixels to view 1's."""
+    """Two views of a flat poster; ``H`` maps view 0's pixels to view 1's.
+
+    ``R`` and ``t`` (metres) take view 0's camera frame to view 1's, ``X_1 = R X_0 + t``; the poster is
+    the plane ``n^T X_0 + d = 0`` (``plane_n``, ``plane_d`` in metres), so ``H ~ K (R - t n^T / d) K^-1``.
+    """
 
     images: list
     K: np.ndarray
     H: np.ndarray
     params: dict
+    R: np.ndarray | None = None
+    t: np.ndarray | None = None
+    plane_n: np.ndarray | None = None
+    plane_d: float | None = None
 
 
 def _read(path: Path, scale: float) -> np.ndarray:
@@ -150,7 +158,14 @@ def load_planar_pair(directory: Path | str | None = None, scale: float = 1.0) ->
     S = scale_intrinsics(np.eye(3), scale)
     H = S @ np.array(pp["H_10"]) @ np.linalg.inv(S)
     return PlanarPair(
-        images, scale_intrinsics(np.array(truth["K"]), scale), H / H[2, 2], truth["params"]
+        images,
+        scale_intrinsics(np.array(truth["K"]), scale),
+        H / H[2, 2],
+        truth["params"],
+        np.array(pp["R1"], dtype=float),
+        np.array(pp["t1"], dtype=float),
+        np.array(pp["plane_n"], dtype=float),
+        float(pp["plane_d"]),
     )
 
 

@@ -216,7 +216,7 @@ def draw_matches(
     seg = match_segments(src, dst, off)
     g = np.ones(len(seg), bool) if good is None else np.asarray(good, bool)
     lc_good = LineCollection(
-        seg[g], colors=palette.GREEN, linewidths=0.8, path_effects=palette.halo(0.8)
+        seg[g], colors=palette.GREEN, linewidths=0.8, path_effects=palette.halo(0.8, "black")
     )
     lc_bad = LineCollection(
         seg[~g], colors=palette.RED, linewidths=0.9, path_effects=palette.halo(0.9, "black")

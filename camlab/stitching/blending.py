@@ -331,7 +331,9 @@ def overlap_difference(warped: WarpedImages, i: int = 0, j: int = 1) -> float:
     return float(np.abs(warped.images[i][both] - warped.images[j][both]).mean())
 
 
-def seam_step(image: np.ndarray, seam: np.ndarray, overlap: np.ndarray, width: int = 4) -> float:
+def seam_step(
+    image: np.ndarray, seam: np.ndarray, overlap: np.ndarray, width: int = 4, signed: bool = False
+) -> float:
     """How visible a vertical seam is: the mean brightness step across it, in the image's units.
 
     For every row, the seam is where ``seam`` (one image's seam mask) switches on or off
@@ -350,12 +352,16 @@ def seam_step(image: np.ndarray, seam: np.ndarray, overlap: np.ndarray, width: i
         Where both images cover the canvas.
     width : int
         Pixels averaged on each side of the seam.
+    signed : bool
+        Return the mean step with its sign (from outside ``seam`` into it), so that two
+        steps across the same line can be subtracted: a blend's step less the scene's own
+        (one photo alone across the same line) is what the seam adds.
 
     Returns
     -------
     float
         The absolute mean step (0 for a perfect blend; the exposure difference times the
-        brightness for overwrite), or 0.0 if there is no seam.
+        brightness for overwrite), or 0.0 if there is no seam; with ``signed`` its sign kept.
     """
     lum = np.asarray(image, dtype=float)
     lum = lum.mean(axis=2) if lum.ndim == 3 else lum
@@ -368,7 +374,8 @@ def seam_step(image: np.ndarray, seam: np.ndarray, overlap: np.ndarray, width: i
                 continue
             sign = 1.0 if seam[r, c + 1] else -1.0  # orient: from the other image into this one
             steps.append(sign * (lum[r, c + 1 : hi].mean() - lum[r, lo : c + 1].mean()))
-    return float(abs(np.mean(steps))) if steps else 0.0
+    mean = float(np.mean(steps)) if steps else 0.0
+    return mean if signed else abs(mean)
 
 
 def _pyr_down(image: np.ndarray) -> np.ndarray:

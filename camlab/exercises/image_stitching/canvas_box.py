@@ -6,7 +6,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ...camera import rotation_y
+from ...camera import rotation_y, rotation_z
 from ...homography import rotation_homography
 from ...warp import canvas_box as _canvas_box_reference
 from .._answers import same_array, shape_unpack_hint
@@ -68,7 +68,15 @@ def _canvas_cases():
             ],
             [(200, 300, 3), (240, 320), (260, 360)],
         ),  # three images, sizes differ
+        # a roll, then a general homography: each of the four corners alone decides a side of the box
+        ([rotation_homography(K, rotation_z(np.radians(25)) @ yaw(15))], [(240, 320)]),
+        ([_projective()], [(240, 320, 3)]),
     ]
+
+
+def _projective():
+    """A general homography (perspective in both directions, a shear): no two corners share an extreme."""
+    return np.array([[0.9, 0.25, 410.3], [-0.15, 1.1, 60.6], [0.0004, -0.0006, 1.0]])
 
 
 def _corners(
@@ -80,12 +88,14 @@ def _corners(
     transposed: bool = False,
     swap: bool = False,
     one_shape: bool = False,
+    keep: tuple[int, ...] = (0, 1, 2, 3),
 ) -> np.ndarray:
     """Every image's mapped corners, right or with one typical slip.
 
     ``transposed`` maps rows by ``c @ H`` (H^T), ``swap`` reads the shape as (w, h), ``one_shape``
     uses shapes[0] for every image, ``first`` and ``last`` put the corners at u = first and u = w -
-    last (right: 0 and w - 1; pixel edges: -1/2 and w - 1/2; 1-based: 1 and w).
+    last (right: 0 and w - 1; pixel edges: -1/2 and w - 1/2; 1-based: 1 and w), ``keep`` maps only
+    those corners (TL, TR, BR, BL = 0, 1, 2, 3).
     """
     pts = []
     for H, s in zip(Hs, shapes, strict=True):
@@ -100,13 +110,19 @@ def _corners(
                 [first, h - last, 1],
             ],
             float,
-        ) @ (H if transposed else H.T)
+        )[list(keep)] @ (H if transposed else H.T)
         pts.append(c[:, :2] / c[:, 2:] if divide else c[:, :2])
     return np.vstack(pts)
 
 
 def _box(p: np.ndarray) -> np.ndarray:
     return np.array([np.floor(p.min(axis=0) + 1e-9), np.ceil(p.max(axis=0) - 1e-9)])
+
+
+def _missing_corners_box(s, keep: tuple[int, ...]):
+    """The box from only the corners ``keep`` of every image; None where it is the right box."""
+    box = _box(_corners(s.Hs, s.shapes, keep=keep))
+    return None if np.allclose(box, s.expected) else box
 
 
 def _canvas_context(args, expected):
@@ -153,6 +169,35 @@ _CANVAS_SLIPS = (
         lambda s: _box(_corners(s.Hs, s.shapes, one_shape=True)),
         "you used the first image's shape for every image: image k has shape shapes[k] (zip(homographies, "
         "shapes) pairs them up); here the images differ in size.",
+    ),
+    *(
+        Mistake(
+            f"missing {name}",
+            lambda s, k=k: _missing_corners_box(s, tuple(j for j in range(4) if j != k)),
+            f"your box leaves out the {name} corner {corner}: map all four corners of every image. With a roll or "
+            "perspective (the last test input) each corner alone can decide a side of the box.",
+        )
+        for k, (name, corner) in enumerate(
+            (
+                ("top-left", "(0, 0)"),
+                ("top-right", "(w-1, 0)"),
+                ("bottom-right", "(w-1, h-1)"),
+                ("bottom-left", "(0, h-1)"),
+            )
+        )
+    ),
+    Mistake(
+        "two corners only",
+        lambda s: (
+            [
+                b
+                for keep in ((0, 2), (1, 3), (0, 1), (2, 3), (0, 3), (1, 2))
+                if (b := _missing_corners_box(s, keep)) is not None
+            ]
+            or None
+        ),
+        "your box comes from only two corners of each image: map all four, (0, 0), (w-1, 0), (w-1, h-1) and "
+        "(0, h-1). Under a roll or perspective (the last test input) the other two stick out.",
     ),
     Mistake(
         "divide",
@@ -289,7 +334,10 @@ def _canvas_variant(name: str):
     rows = [m for m in _CANVAS_SLIPS if m.name == name]
 
     def wrong(Hs, shapes):
-        a = rows[0].answer(_canvas_context((Hs, shapes), _canvas_box_reference(Hs, shapes)))
+        right = _canvas_box_reference(Hs, shapes)
+        a = rows[0].answer(_canvas_context((Hs, shapes), right))
+        if a is None:  # the slip cannot show on this input: the student's box is the right one
+            return right
         return np.array(a[0] if isinstance(a, list) else a)
 
     return wrong
@@ -324,6 +372,11 @@ register_exercise(
             (_canvas_variant("truncated"), "truncate towards zero"),
             (_canvas_variant("truncated the whole box"), "cuts both ends"),
             (_canvas_variant("floor both"), "floored both ends"),
+            *(
+                (_canvas_variant(f"missing {c}"), f"leaves out the {c} corner")
+                for c in ("top-left", "top-right", "bottom-right", "bottom-left")
+            ),
+            (_canvas_variant("two corners only"), "only two corners"),
             (
                 lambda Hs, shapes: np.ceil(
                     np.array([_corners(Hs, shapes).min(0), _corners(Hs, shapes).max(0)])

@@ -64,6 +64,17 @@ def _feather_diagnosis(args, got, expected) -> str:
             "to the nearest border (Brown & Lowe's separable w(x) w(y) is a product, but of weights scaled to 1 at "
             "the centre, and this exercise asks for the distance map)."
         )
+    du, dv = np.minimum(u + 0.5, w - 0.5 - u), np.minimum(v + 0.5, h - 0.5 - v)
+    if np.allclose(g, (du / du.max()) * (dv / dv.max())):
+        return (
+            "that is Brown & Lowe's separable weight w(x) w(y), each factor scaled to 1 at the centre; this "
+            "exercise asks for the distance map itself: the minimum of the four distances, in pixels, not a product."
+        )
+    if np.allclose(g, _feather_swapped_far((h, w))):
+        return (
+            "a far border in the wrong place, W and H swapped inside the far terms: the far borders are at u = W - 1/2 (W = shape[1], the columns) "
+            "and v = H - 1/2 (H = shape[0], the rows), so the terms are W - 1/2 - u and H - 1/2 - v."
+        )
     if np.allclose(g, expected - 0.5):
         return (
             "off by half a pixel: pixel centres are at integer u and the border at u = -1/2, so the first "
@@ -165,6 +176,14 @@ def _feather_swapped_far(shape) -> np.ndarray:
     return np.minimum(np.minimum(u + 0.5, h - 0.5 - u), np.minimum(v + 0.5, w - 0.5 - v))
 
 
+def _separable(shape) -> np.ndarray:
+    """Brown & Lowe's w(x) w(y), each factor the distance to the nearer border scaled to 1 at the centre."""
+    h, w = shape[:2]
+    u, v = np.arange(w, dtype=float), np.arange(h, dtype=float)[:, None]
+    du, dv = np.minimum(u + 0.5, w - 0.5 - u), np.minimum(v + 0.5, h - 0.5 - v)
+    return (du / du.max()) * (dv / dv.max())
+
+
 def _feather_offsets(shape, a: float, b: float) -> np.ndarray:
     """min(u + a, W - b - u, v + a, H - b - v): the feathering weights with the border put elsewhere (a slip)."""
     h, w = shape
@@ -196,6 +215,7 @@ register_exercise(
         teaching=feather_weights,
         wrong_variants=(
             (lambda shape: st.feather_weights(shape) - 0.5, "half a pixel"),
+            (lambda shape: _separable(shape), "separable weight w(x) w(y)"),
             (
                 lambda shape: _feather_offsets(tuple(shape[:2]), 0.0, 0.0),
                 "half a pixel at the near border",

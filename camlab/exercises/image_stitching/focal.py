@@ -1,7 +1,10 @@
-"""Lesson 09, exercise 3: the focal length from a rotation-only homography (focal_from_rotation_homography).
+"""Lesson 09, exercise 3: the focal lengths from a rotation-only homography (focal_from_rotation_homography).
 
-Each typical slip is tried with every way of combining the four formulas (columns and rows, one, a
-median or a mean), so the diagnosis names the slip whichever formulas the student used.
+H maps a photo taken with focal f_from to one taken with f_to after the camera turned (Brown & Lowe's
+setting: each photo its own focal). The rows of the centred H give f_from, the columns f_to, so every one
+of the four formulas decides an answer on some test input, and a slip in any one of them shows. Each
+typical slip is tried with every way of combining the two formulas of a pair (one, a median or a mean,
+the larger denominator), so the diagnosis names the slip whichever formulas the student used.
 """
 
 from __future__ import annotations
@@ -11,37 +14,38 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ...homography import rotation_homography
 from .._core import Exercise, Mistake, first_mistake, register_exercise
 
 # ----------------------------------------------------------------------------- focal from a rotation homography
 
 
 def _focal_reference(H, shape):
-    """One focal for both images (the same camera): the median of what H's rows and columns give."""
-    from ...stitching.cameras import focal_from_homography
+    """(f_from, f_to): what H's rows and its columns give, as an array.
 
-    fs = [f for f in focal_from_homography(H, shape, shape) if np.isfinite(f)]
-    return float(np.median(fs)) if fs else float("nan")
+    camlab's ``stitching.cameras.focal_from_homography`` computes the same but calls a denominator
+    under 1e-12 (of the normalised H) undetermined, to keep near-translations from voting; with
+    f over about 1000 px a genuine h7^2 - h6^2 is that small, so the check takes the formulas as
+    they are.
+    """
+    return np.array(focal_from_rotation_homography(H, shape), dtype=float)
 
 
 def focal_from_rotation_homography(H, shape):
-    """Teaching solution: the focal length (pixels) of a camera that turned, from H = K R K^-1.
+    """Teaching solution: the focal lengths (f_from, f_to), pixels, from H = K_to R K_from^-1.
 
     Parameters
     ----------
     H : (3, 3) array_like
-        The homography between two photos taken by one camera turning about its centre, with the
-        principal point at the image centre and square pixels.
+        Maps a photo taken with focal f_from to one taken with f_to after the camera turned about
+        its centre; both photos have the principal point at the image centre and square pixels.
     shape : tuple of int
         The photos' shape (height, width[, channels]).
 
     Returns
     -------
-    float
-        f in pixels: the mean (median of two) of the estimates from R's columns and from its rows
-        being orthonormal, each by the better-conditioned of its two formulas (NaN when neither
-        gives a positive f^2).
+    tuple of float
+        (f_from, f_to) in pixels: R's rows being orthonormal give f_from, its columns f_to, each by
+        the formula of its pair with the larger denominator (NaN where that f^2 is not positive).
 
     References
     ----------
@@ -51,18 +55,20 @@ def focal_from_rotation_homography(H, shape):
     h, w = shape[:2]
     # the principal point at the centre
     C = np.array([[1.0, 0, (w - 1) / 2], [0, 1, (h - 1) / 2], [0, 0, 1]])
-    Hc = np.linalg.inv(C) @ np.asarray(H, float) @ C  # now H ~ diag(f, f, 1) R diag(1/f, 1/f, 1)
+    Hc = (
+        np.linalg.inv(C) @ np.asarray(H, float) @ C
+    )  # now H ~ diag(f_to, f_to, 1) R diag(1/f_from, 1/f_from, 1)
     h0, h1, h2, h3, h4, h5, h6, h7, _ = Hc.ravel() / np.linalg.norm(Hc)
-    # R's first two columns (0 and 1) are orthogonal and equally long: two formulas for f^2, keep the better-conditioned one
+    # R's first two columns (0 and 1) are orthogonal and equally long: f_to^2, the better-conditioned formula
     n1, d1 = -(h0 * h1 + h3 * h4), h6 * h7
     n2, d2 = h0**2 + h3**2 - h1**2 - h4**2, h7**2 - h6**2
-    f2_cols = n1 / d1 if abs(d1) > abs(d2) else n2 / d2
-    # R's rows 1 and 2 likewise
+    f2_to = n1 / d1 if abs(d1) > abs(d2) else n2 / d2
+    # R's first two rows (0 and 1) likewise: f_from^2
     n1, d1 = -h2 * h5, h0 * h3 + h1 * h4
     n2, d2 = h5**2 - h2**2, h0**2 + h1**2 - h3**2 - h4**2
-    f2_rows = n1 / d1 if abs(d1) > abs(d2) else n2 / d2
-    good = [np.sqrt(v) for v in (f2_rows, f2_cols) if np.isfinite(v) and v > 0]
-    return float(np.median(good)) if good else float("nan")
+    f2_from = n1 / d1 if abs(d1) > abs(d2) else n2 / d2
+    f_from, f_to = (float(np.sqrt(v)) if v > 0 else float("nan") for v in (f2_from, f2_to))
+    return f_from, f_to
 
 
 def _focal_cases():
@@ -89,18 +95,25 @@ def _focal_cases():
     diagonal = 0.3 * np.array([1.0, 1.0, 0.0]) / np.sqrt(2)
     # Turn 2 is given at another scale (times -3.7), as a homography from an estimator is: only the
     # ratios of H's entries carry f, and an in-place `H /= H[2, 2]` then changes the caller's array.
-    for f, (h, w), R, seed in (
-        (520.0, (660, 900), [-0.523, 0.041, -0.054], None),  # a tilt, a little pan and roll
-        (520.0, (660, 900), [0.05, -0.4, 0.03], None),  # pan, tilt and roll
-        (700.0, (480, 640), [0.0, 0.35, 0.0], 1),  # a pure pan: h7 = 0
-        (1200.0, (600, 800), [0.2, 0.0, 0.0], 2),  # a pure tilt: h6 = 0
-        (600.0, (480, 640), tilt_after_roll, 103),  # h6 = h7 and h2 = 0
-        (800.0, (600, 900), [0.3, 0.3, 0.1], 4),  # pan about as large as tilt
-        (640.0, (480, 640), diagonal, 2),  # about a diagonal axis: h6 = -h7 and h2 = -h5
+    # The second photo's focal differs from the first's (a zoom between shots),
+    # so the rows (f_from) and the columns (f_to) are two answers: each pair's formula with the larger
+    # denominator decides one of them, and over the turns every one of the four formulas decides one.
+    for f, zoom, (h, w), R, seed in (
+        (520.0, 1.15, (660, 900), [-0.523, 0.041, -0.054], None),  # a tilt, a little pan and roll
+        (520.0, 0.9, (660, 900), [0.05, -0.4, 0.03], None),  # pan, tilt and roll
+        (700.0, 1.2, (480, 640), [0.0, 0.35, 0.0], 1),  # a pure pan: h7 = 0
+        (1200.0, 0.85, (600, 800), [0.2, 0.0, 0.0], 2),  # a pure tilt: h6 = 0
+        (600.0, 1.1, (480, 640), tilt_after_roll, 103),  # h6 = h7 and h2 = 0
+        (800.0, 1.25, (600, 900), [0.3, 0.3, 0.1], 4),  # pan about as large as tilt
+        (640.0, 1.05, (480, 640), diagonal, 2),  # about a diagonal axis: h6 = -h7 and h2 = -h5
     ):
-        K = np.array([[f, 0, (w - 1) / 2], [0, f, (h - 1) / 2], [0, 0, 1]])
+        K_from, K_to = (
+            np.array([[fk, 0, (w - 1) / 2], [0, fk, (h - 1) / 2], [0, 0, 1]])
+            for fk in (f, f * zoom)
+        )
         R = np.asarray(R, float)
-        H = rotation_homography(K, R if R.shape == (3, 3) else rotation_from_axis_angle(R))
+        R = R if R.shape == (3, 3) else rotation_from_axis_angle(R)
+        H = K_to @ R @ np.linalg.inv(K_from)
         if seed is not None:
             H = H * (1 + 1e-9 * np.random.default_rng(seed).standard_normal((3, 3)))
         out.append((H * (-3.7 if len(out) == 1 else 1.0), (h, w)))
@@ -109,29 +122,10 @@ def _focal_cases():
 
 def _focal_uncentred(H, shape):
     h0, h1, h2, h3, h4, h5, h6, h7, _ = np.asarray(H, float).ravel()
-    return float(np.sqrt(abs((h0**2 + h3**2 - h1**2 - h4**2) / (h7**2 - h6**2))))
-
-
-def _focal_number(got) -> float | None:
-    """``got`` as a float if it is one number (a Python or numpy scalar, or a 0-d array), else None."""
-    if isinstance(got, (bool, np.bool_)) or not (
-        np.isscalar(got) or (isinstance(got, np.ndarray) and got.ndim == 0)
-    ):
-        return None
-    try:
-        return float(got)
-    except (TypeError, ValueError):
-        return None
-
-
-def _same_focal(got, expected) -> bool:
-    """The comparison of the check: one finite number within 1e-5 of the focal length.
-
-    The test turns' round-off-size noise moves a right answer by up to about 1e-8 (relative), more for a
-    method that weighs every condition (a search for the f that makes K^-1 H K a rotation).
-    """
-    g = _focal_number(got)
-    return g is not None and np.isfinite(g) and abs(g / expected - 1) < 1e-5
+    with np.errstate(all="ignore"):
+        f_to = np.sqrt(abs((h0**2 + h3**2 - h1**2 - h4**2) / (h7**2 - h6**2)))
+        f_from = np.sqrt(abs((h5**2 - h2**2) / (h0**2 + h1**2 - h3**2 - h4**2)))
+    return float(f_from), float(f_to)
 
 
 _SLIP_CENTRES = {
@@ -153,7 +147,8 @@ def _focal_formulas(
 
     Slips: "swap" (centre ((h-1)/2, (w-1)/2)), "half" ((w/2, h/2)), "one-based" (((w+1)/2, (h+1)/2)),
     "uncentred" (no C at all), "C H C^-1" (the translation applied the wrong way round), "transposed"
-    (h = H.T.ravel()), "sign" (the orthogonality formulas without their minus), "rows as H^T" (the column
+    (h = H.T.ravel()), "sign" (the orthogonality formulas without their minus), "sign, equal length"
+    (the equal-length formulas' numerator or denominator the wrong way round), "rows as H^T" (the column
     formulas applied to H^T for the rows: they give 1/f^2 there). ``absolute`` takes sqrt(|f^2|), as a
     student who silences the NaN does. ``squared`` returns the four f^2 themselves (negative ones kept, NaN
     where not finite), for a student who takes the median of f^2 and then its square root.
@@ -165,17 +160,18 @@ def _focal_formulas(
     Hc = C @ Hm @ np.linalg.inv(C) if slip == "C H C^-1" else np.linalg.inv(C) @ Hm @ C
     h0, h1, h2, h3, h4, h5, h6, h7, _ = (Hc / np.linalg.norm(Hc)).ravel()
     sign = -1.0 if slip == "sign" else 1.0
+    flip = -1.0 if slip == "sign, equal length" else 1.0
     with np.errstate(all="ignore"):
         f2 = {
             "c1": -sign * (h0 * h1 + h3 * h4) / (h6 * h7),
-            "c2": (h0**2 + h3**2 - h1**2 - h4**2) / (h7**2 - h6**2),
+            "c2": flip * (h0**2 + h3**2 - h1**2 - h4**2) / (h7**2 - h6**2),
         }
         if slip == "rows as H^T":
             f2["r1"] = -(h0 * h3 + h1 * h4) / (h2 * h5)
             f2["r2"] = (h0**2 + h1**2 - h3**2 - h4**2) / (h2**2 - h5**2)
         else:
             f2["r1"] = -sign * h2 * h5 / (h0 * h3 + h1 * h4)
-            f2["r2"] = (h5**2 - h2**2) / (h0**2 + h1**2 - h3**2 - h4**2)
+            f2["r2"] = flip * (h5**2 - h2**2) / (h0**2 + h1**2 - h3**2 - h4**2)
     if absolute:
         f2 = {k: abs(v) for k, v in f2.items()}
     if squared:
@@ -213,24 +209,70 @@ def _focal_answers(values: dict[str, float], squared: bool = False) -> list[floa
     return out
 
 
+_ROWS, _COLUMNS = ("r1", "r2"), ("c1", "c2")
+"""The formulas that give f_from (R's rows) and f_to (R's columns)."""
+
+
+def _focal_number(got) -> float | None:
+    """``got`` as a float if it is one number (a Python or numpy scalar, or a 0-d array), else None."""
+    if isinstance(got, (bool, np.bool_)) or not (
+        np.isscalar(got) or (isinstance(got, np.ndarray) and got.ndim == 0)
+    ):
+        return None
+    try:
+        return float(got)
+    except (TypeError, ValueError):
+        return None
+
+
+def _focal_pair(got) -> tuple[float, float] | None:
+    """``got`` as (f_from, f_to) if it is two numbers (a tuple, a list or a (2,) array), else None."""
+    if isinstance(got, np.ndarray):
+        got = list(got) if got.shape == (2,) else None
+    if not isinstance(got, (tuple, list)) or len(got) != 2:
+        return None
+    pair = [_focal_number(v) for v in got]
+    return None if None in pair else (pair[0], pair[1])
+
+
+def _same_focal(got, expected) -> bool:
+    """The comparison of the check: two finite numbers, each within 1e-5 of its focal length.
+
+    The test turns' round-off-size noise moves a right answer by up to about 1e-8 (relative), more for a
+    method that weighs every condition (a search for the f's that make K_to^-1 H K_from a rotation).
+    """
+    pair = _focal_pair(got)
+    return pair is not None and all(
+        np.isfinite(g) and abs(g / e - 1) < 1e-5 for g, e in zip(pair, expected, strict=True)
+    )
+
+
 def _focal_slip(slip: str):
     """A diagnosis row's answer.
 
-    The focal lengths a student who made ``slip`` can return on this input, or None where the slip
-    changes no formula (it cannot show here).
+    The focal lengths a student who made ``slip`` can return for the focal ``s.keys`` give (the rows'
+    or the columns'), or None where the slip changes no formula there (it cannot show).
     """
 
+    def pick(values):
+        return {k: v for k, v in values.items() if k in s_keys[0]}
+
+    s_keys = [()]
+
     def answer(s):
+        s_keys[0] = s.keys
         right_answers = np.array(
-            _focal_answers(_focal_formulas(s.H, s.shape))
-            + _focal_answers(_focal_formulas(s.H, s.shape, squared=True), squared=True)
+            _focal_answers(pick(_focal_formulas(s.H, s.shape)))
+            + _focal_answers(pick(_focal_formulas(s.H, s.shape, squared=True)), squared=True)
         )
         right_answers = right_answers[np.isfinite(right_answers)]
         wrong = [
             a
             for absolute in (False, True)
             for squared in (False, True)
-            for a in _focal_answers(_focal_formulas(s.H, s.shape, slip, absolute, squared), squared)
+            for a in _focal_answers(
+                pick(_focal_formulas(s.H, s.shape, slip, absolute, squared)), squared
+            )
             if not np.isclose(a, right_answers, rtol=1e-6).any()  # one call: the test ran minutes
         ]
         return wrong or None
@@ -238,12 +280,18 @@ def _focal_slip(slip: str):
     return answer
 
 
-def _slipped_student(slip: str, H, shape, formulas=("c1", "c2", "r1", "r2")) -> float:
-    """A student's answer with ``slip``: the median of the defined ones among ``formulas`` (for the tests)."""
-    values = [
-        v for k, v in _focal_formulas(H, shape, slip).items() if k in formulas and np.isfinite(v)
-    ]
-    return float(np.median(values)) if values else float("nan")
+def _slipped_student(slip: str, formulas=("c1", "c2", "r1", "r2")):
+    """A student with ``slip`` who returns, per focal, the median of the defined ones among ``formulas``."""
+
+    def student(H, shape):
+        values = _focal_formulas(H, shape, slip)
+        out = []
+        for keys in (_ROWS, _COLUMNS):
+            v = [values[k] for k in keys if k in formulas and np.isfinite(values[k])]
+            out.append(float(np.median(v)) if v else float("nan"))
+        return tuple(out)
+
+    return student
 
 
 _FOCAL_ZERO_OVER_ZERO = {
@@ -255,57 +303,65 @@ _FOCAL_ZERO_OVER_ZERO = {
 """Each formula and when it is 0/0 on a rotation (numerator and denominator both exactly 0)."""
 
 
-def _zero_over_zero(H, shape) -> list[str]:
-    """The formulas that are 0/0 on this H: a denominator at round-off level next to its pair's other one."""
+def _centred_entries(H, shape):
     h, w = shape[:2]
     C = np.array([[1.0, 0, (w - 1) / 2], [0, 1, (h - 1) / 2], [0, 0, 1]])
     Hc = np.linalg.inv(C) @ np.asarray(H, float) @ C
-    h0, h1, h2, h3, h4, h5, h6, h7, _ = (Hc / np.linalg.norm(Hc)).ravel()
-    d = {
+    return (Hc / np.linalg.norm(Hc)).ravel()
+
+
+def _denominators(H, shape) -> dict[str, float]:
+    h0, h1, h2, h3, h4, h5, h6, h7, _ = _centred_entries(H, shape)
+    return {
         "c1": h6 * h7,
         "c2": h7**2 - h6**2,
         "r1": h0 * h3 + h1 * h4,
         "r2": h0**2 + h1**2 - h3**2 - h4**2,
     }
-    pair = {"c1": "c2", "c2": "c1", "r1": "r2", "r2": "r1"}
-    return [k for k in d if abs(d[k]) < 1e-6 * abs(d[pair[k]])]  # noise of 1e-9 leaves ~1e-8
 
 
-def _orthogonality_decides(H, shape) -> bool:
-    """Whether an orthogonality formula has the larger denominator in its pair (columns or rows) on this H."""
-    h, w = shape[:2]
-    C = np.array([[1.0, 0, (w - 1) / 2], [0, 1, (h - 1) / 2], [0, 0, 1]])
-    h0, h1, h2, h3, h4, h5, h6, h7, _ = (np.linalg.inv(C) @ np.asarray(H, float) @ C).ravel()
-    return abs(h6 * h7) > abs(h7**2 - h6**2) or abs(h0 * h3 + h1 * h4) > abs(
-        h0**2 + h1**2 - h3**2 - h4**2
-    )
+_PARTNER = {"c1": "c2", "c2": "c1", "r1": "r2", "r2": "r1"}
 
 
-def _zero_over_zero_answers(H, shape, zz: list[str]) -> list[float]:
+def _zero_over_zero(H, shape, keys=("c1", "c2", "r1", "r2")) -> list[str]:
+    """The formulas among ``keys`` that are 0/0 on this H: a denominator at round-off level next to its partner's."""
+    d = _denominators(H, shape)
+    return [k for k in keys if abs(d[k]) < 1e-6 * abs(d[_PARTNER[k]])]  # noise of 1e-9 leaves ~1e-8
+
+
+def _decides(H, shape, keys) -> str:
+    """Which formula of the pair ``keys`` has the larger denominator on this H (the one the rule uses)."""
+    d = _denominators(H, shape)
+    return keys[0] if abs(d[keys[0]]) > abs(d[keys[1]]) else keys[1]
+
+
+def _zero_over_zero_answers(H, shape, zz: list[str], keys) -> list[float]:
     """What a student gets whose 0/0 formulas came out as 0 or inf (their own round-off), combined as usual.
 
     A student who takes the 0/0 formula anyway divides round-off by round-off; when the numerator is an exact
     0 and the denominator is not, that is f^2 = 0 (or inf the other way round), and the median with the
-    other formulas lands between them (300 px for a truth of 600).
+    other formula lands between them.
     """
     out = []
     for fill in (0.0, np.inf):
         for squared in (False, True):
-            values = _focal_formulas(H, shape, squared=squared)
+            values = {
+                k: v for k, v in _focal_formulas(H, shape, squared=squared).items() if k in keys
+            }
             values.update(dict.fromkeys(zz, fill))
             out += [a for a in _focal_answers(values, squared) if np.isfinite(a)]
     return out
 
 
-def _zero_over_zero_hint(zz: list[str], got: float) -> str:
+def _zero_over_zero_hint(zz: list[str], got: float, which: str) -> str:
     what = "NaN" if np.isnan(got) else ("inf" if np.isinf(got) else f"{got:.6g}")
     listed = "; ".join(
         f"{_FOCAL_ZERO_OVER_ZERO[k][0]} is 0/0 because {_FOCAL_ZERO_OVER_ZERO[k][1]}" for k in zz
     )
     return (
-        f"you returned {what} on a turn where {listed}. 0/0 is round-off divided by round-off (NaN, inf or any "
-        "number), not a slip in your indices: in each pair use the formula whose denominator is larger in "
-        "magnitude, and drop neither by a filter such as f^2 > 0: on an estimated H a 0/0 is a finite, "
+        f"you returned {what} for {which} on a turn where {listed}. 0/0 is round-off divided by round-off (NaN, "
+        "inf or any number), not a slip in your indices: in each pair use the formula whose denominator is larger "
+        "in magnitude, and drop neither by a filter such as f^2 > 0: on an estimated H a 0/0 is a finite, "
         "arbitrary number (a pure pan has h7 = 0, a pure tilt h6 = 0, a turn about a diagonal axis h6 = +-h7)."
     )
 
@@ -313,26 +369,20 @@ def _zero_over_zero_hint(zz: list[str], got: float) -> str:
 def _larger_denominator_student(slip: str, orthogonality_only=False, equal_length_only=False):
     """A student who follows the prompt with ``slip``, or uses one kind of formula.
 
-    Following the prompt is, per pair, the formula with the larger denominator, then the median of
-    the positive ones; one kind of formula only is for the tests.
+    Following the prompt is, per pair, the formula with the larger denominator (NaN where its f^2 is
+    not positive); one kind of formula only is for the tests.
     """
 
     def student(H, shape):
-        h, w = shape[:2]
-        C = np.array([[1.0, 0, (w - 1) / 2], [0, 1, (h - 1) / 2], [0, 0, 1]])
-        h0, h1, h2, h3, h4, h5, h6, h7, _ = (np.linalg.inv(C) @ np.asarray(H, float) @ C).ravel()
         f2 = _focal_formulas(H, shape, slip, squared=True)
-        cols = abs(h6 * h7) > abs(h7**2 - h6**2)
-        rows = abs(h0 * h3 + h1 * h4) > abs(h0**2 + h1**2 - h3**2 - h4**2)
-        if orthogonality_only or equal_length_only:
-            cols = rows = orthogonality_only
-        with np.errstate(all="ignore"):
-            raw = -(h0 * h1 + h3 * h4) / (h6 * h7) if orthogonality_only else None
-        picked = [f2["c1"] if cols else f2["c2"], f2["r1"] if rows else f2["r2"]]
-        if orthogonality_only and not np.isfinite(raw):
-            return float(raw)  # inf on a pure pan, as the student's own division gives
-        good = [np.sqrt(v) for v in picked if np.isfinite(v) and v > 0]
-        return float(np.median(good)) if good else float("nan")
+        out = []
+        for keys in (_ROWS, _COLUMNS):
+            k = _decides(H, shape, keys)
+            if orthogonality_only or equal_length_only:
+                k = keys[0] if orthogonality_only else keys[1]
+            v = f2[k]
+            out.append(float(np.sqrt(v)) if np.isfinite(v) and v > 0 else float("nan"))
+        return tuple(out)
 
     return student
 
@@ -342,6 +392,12 @@ def _shows_slip(got: float, answers: list[float]) -> bool:
         return any(np.isnan(a) for a in answers)
     return any(np.isfinite(a) and np.isclose(got, a, rtol=1e-6) for a in answers)
 
+
+_SIGN_HINT = (
+    "a sign flip: with the minus where it belongs, the columns give f_to^2 = -(h0 h1 + h3 h4) / (h6 h7) or "
+    "(h0^2 + h3^2 - h1^2 - h4^2) / (h7^2 - h6^2), the rows f_from^2 = -h2 h5 / (h0 h3 + h1 h4) or "
+    "(h5^2 - h2^2) / (h0^2 + h1^2 - h3^2 - h4^2) (a flipped sign makes f^2 negative and its square root NaN)."
+)
 
 _FOCAL_SLIPS = (
     Mistake(
@@ -383,17 +439,15 @@ _FOCAL_SLIPS = (
         "rows as the columns of H^T",
         _focal_slip("rows as H^T"),
         "the row conditions are not the column formulas applied to H^T: on H^T those give 1/f^2 (H^T is "
-        "diag(1/f, 1/f, 1) R^T diag(f, f, 1)). Rows 1 and 2 of R give f^2 = -h2 h5 / (h0 h3 + h1 h4) or "
-        "(h5^2 - h2^2) / (h0^2 + h1^2 - h3^2 - h4^2).",
+        "diag(1/f_from, 1/f_from, 1) R^T diag(f_to, f_to, 1)). Rows 0 and 1 of R give f_from^2 = "
+        "-h2 h5 / (h0 h3 + h1 h4) or (h5^2 - h2^2) / (h0^2 + h1^2 - h3^2 - h4^2).",
     ),
-    Mistake(
-        "sign flip",
-        _focal_slip("sign"),
-        "a sign flip: the orthogonality of the first two columns (0 and 1) gives f^2 = -(h0 h1 + h3 h4) / (h6 h7), and that of "
-        "the first two rows f^2 = -h2 h5 / (h0 h3 + h1 h4), each with the minus (without it f^2 comes out negative and "
-        "its square root NaN).",
-    ),
+    Mistake("sign flip", _focal_slip("sign"), _SIGN_HINT),
+    Mistake("sign flip (equal length)", _focal_slip("sign, equal length"), _SIGN_HINT),
 )
+"""The focal length's slips, as the focal lengths they give for one of the two focals (``keys``: the rows'
+or the columns' formulas), checked in this order; each row tries every way of combining the pair's formulas."""
+
 _FOCAL_SHORT = {
     "H transposed": "H transposed: h = H.ravel(), row by row, not H.T.ravel()",
     "width and height swapped": "width and height swapped: the centre is ((w-1)/2, (h-1)/2) with (h, w) = shape[:2]",
@@ -402,72 +456,103 @@ _FOCAL_SHORT = {
     "C H C^-1": "the normalisation the wrong way round: H_c = C^-1 H C, not C H C^-1",
     "principal point not moved": "the principal point not moved to the origin: H_c = C^-1 H C",
     "rows as the columns of H^T": (
-        "the rows' formulas taken as the columns' on H^T (that gives 1/f^2): f^2 = -h2 h5 / (h0 h3 + h1 h4) "
+        "the rows' formulas taken as the columns' on H^T (that gives 1/f^2): f_from^2 = -h2 h5 / (h0 h3 + h1 h4) "
         "or (h5^2 - h2^2) / (h0^2 + h1^2 - h3^2 - h4^2)"
     ),
-    "sign flip": "a sign flip: f^2 = -(h0 h1 + h3 h4) / (h6 h7), with the minus",
+    "sign flip": "a sign flip in an orthogonality formula: f^2 = -(h0 h1 + h3 h4) / (h6 h7), with the minus",
+    "sign flip (equal length)": (
+        "a sign flip in an equal-length formula: f_to^2 = (h0^2 + h3^2 - h1^2 - h4^2) / (h7^2 - h6^2), "
+        "f_from^2 = (h5^2 - h2^2) / (h0^2 + h1^2 - h3^2 - h4^2)"
+    ),
 }
 """Each slip in a few words, for a NaN that more than one slip explains."""
 
-"""The focal length's slips, as the focal lengths they give (from H, the image ``shape``, ``w`` and ``h``),
-checked in this order; each row tries every way of combining the four formulas."""
+
+def _pair_shape_hint(got, expected) -> str | None:
+    """The cause when the answer is not two numbers, or is the two focals mixed up; else None."""
+    pair = _focal_pair(got)
+    f_from, f_to = (float(v) for v in expected)
+    if pair is None:
+        g = _focal_number(got)
+        kind = type(got).__name__ + (
+            f" of shape {np.shape(got)}" if isinstance(got, np.ndarray) else ""
+        )
+        if g is not None:
+            return (
+                "you returned one number; return two, (f_from, f_to): the photos here were taken at different "
+                f"zooms ({f_from:.1f} and {f_to:.1f} px), so R's rows give f_from and its columns f_to (the median "
+                "of all four formulas mixes the two)."
+            )
+        return f"return two numbers, (f_from, f_to) in pixels (a tuple, a list or a (2,) array); got {kind}."
+    a, b = pair
+    if np.isclose(a, f_to, rtol=1e-5) and np.isclose(b, f_from, rtol=1e-5):
+        return (
+            "the two are swapped: R's rows give the focal of the image H maps FROM (f_from), its columns the "
+            "focal of the image it maps TO (f_to); return (f_from, f_to)."
+        )
+    if np.isclose(a, b, rtol=1e-9) and f_from != f_to:
+        return (
+            "you returned the same number twice: the photos here have different focal lengths "
+            f"({f_from:.1f} and {f_to:.1f} px), so keep the rows' answer (f_from) and the columns' (f_to) apart, "
+            "and do not take a median or mean across the two pairs."
+        )
+    if all(np.isfinite(v) and np.isclose(v, e**2, rtol=1e-3) for v, e in zip(pair, expected, strict=True)):
+        return "those are f squared: the formulas give f^2; take the square roots."
+    return None
 
 
 def _focal_diagnosis(args, got, expected) -> str:
     H, shape = args
-    g = _focal_number(got)
-    if g is None:
-        return (
-            f"return one number, the focal length in pixels (a float); got {type(got).__name__}"
-            + (f" of shape {np.shape(got)}" if isinstance(got, np.ndarray) else "")
-            + "."
-        )
-    if np.isfinite(g) and np.isclose(g, expected**2, rtol=1e-3):
-        return "that is f squared: the orthogonality conditions give f^2; take the square root."
+    shape_hint = _pair_shape_hint(got, expected)
+    if shape_hint:
+        return shape_hint
+    pair = _focal_pair(got)
+    j = 0 if not (np.isfinite(pair[0]) and abs(pair[0] / expected[0] - 1) < 1e-5) else 1
+    keys, which = (_ROWS, "f_from (the rows)") if j == 0 else (_COLUMNS, "f_to (the columns)")
+    g, e = pair[j], float(expected[j])
+    if np.isfinite(g) and np.isclose(g, e**2, rtol=1e-3):
+        return f"{which} is f squared: the formulas give f^2; take the square root."
     h, w = shape[:2]
-    context = SimpleNamespace(H=H, shape=shape, w=w, h=h, expected=expected)
-    zz = _zero_over_zero(H, shape)
+    context = SimpleNamespace(H=H, shape=shape, w=w, h=h, expected=e, keys=keys)
+    zz = _zero_over_zero(H, shape, keys)
     if zz:
-        # the student used a 0/0 formula if the answer is not finite, far off, or what the 0/0 values give
-        raw = _focal_formulas(H, shape)
+        values = {k: v for k, v in _focal_formulas(H, shape).items() if k in keys}
         with_zz = [
             a
             for squared in (False, True)
-            for a in _focal_answers(_focal_formulas(H, shape, squared=squared), squared)
+            for a in _focal_answers(
+                {k: v for k, v in _focal_formulas(H, shape, squared=squared).items() if k in keys},
+                squared,
+            )
         ]
-        far = np.isfinite(g) and g > 0 and abs(np.log(g / expected)) > np.log(10)
-        sign_nan = any(np.isnan(a) for a in _focal_answers(_focal_formulas(H, shape, "sign")))
+        far = np.isfinite(g) and g > 0 and abs(np.log(g / e)) > np.log(10)
         if (
             not np.isfinite(g)
+            and not (_decides(H, shape, keys) not in zz and np.isnan(g))
             or far
             or (
                 _shows_slip(g, with_zz)
-                and not _shows_slip(g, [v for k, v in raw.items() if k not in zz])
+                and not _shows_slip(g, [v for k, v in values.items() if k not in zz])
             )
-            or _shows_slip(g, _zero_over_zero_answers(H, shape, zz))
+            or _shows_slip(g, _zero_over_zero_answers(H, shape, zz, keys))
         ):
-            hint = _zero_over_zero_hint(zz, g)
-            if np.isnan(g) and sign_nan:
-                hint += (
-                    " Or, if you used an orthogonality formula here, check its sign: f^2 = -(h0 h1 + h3 h4) / "
-                    "(h6 h7) and -h2 h5 / (h0 h3 + h1 h4), with the minus."
-                )
-            return hint
+            return _zero_over_zero_hint(zz, g, which)
     if np.isnan(g):
         # NaN does not tell the slips apart by value: name every slip that gives NaN here with some formula
         causes = [
             m for m in _FOCAL_SLIPS if (a := m.answer(context)) is not None and _shows_slip(g, a)
         ]
-        if (
-            len(causes) > 1
-            and any(m.name == "sign flip" for m in causes)
-            and _orthogonality_decides(H, shape)
-        ):
-            # every other slip gives a wrong number on test input 1 already; here the minus is what is left
-            causes = [m for m in causes if m.name == "sign flip"]
+        signs = [m for m in causes if m.name.startswith("sign flip")]
+        other = pair[1 - j]
+        other_right = np.isfinite(other) and abs(other / expected[1 - j] - 1) < 1e-5
+        if len(causes) > 1 and signs and other_right:
+            # a sign flip spoils one formula, so the other focal can stay right; the other slips (H transposed,
+            # the centre) spoil both
+            causes = signs[:1]
         if causes:
             return (
-                "f^2 came out negative (its square root is NaN) on a turn where every formula is defined. "
+                f"{which}: f^2 came out negative (its square root is NaN) on a turn where the formula with the "
+                "larger denominator is defined. "
                 + (
                     causes[0].hint[:1].upper() + causes[0].hint[1:]
                     if len(causes) == 1
@@ -478,16 +563,37 @@ def _focal_diagnosis(args, got, expected) -> str:
             )
     cause = first_mistake(_FOCAL_SLIPS, context, g, _shows_slip)
     if cause:
-        return cause
+        return f"{which}: {cause}"
     if not np.isfinite(g):
         return (
-            "you returned NaN or inf on a turn where every formula is defined, so f^2 came out negative or divided "
-            "by zero through a slip. Check the indices: h0 ... h8 are H's entries row by row."
+            f"you returned NaN or inf for {which} on a turn where its formula is defined, so f^2 came out negative "
+            "or divided by zero through a slip. Check the indices and the signs: h0 ... h8 are H's entries row by row."
         )
     return (
-        "f^2 = -(h0 h1 + h3 h4) / (h6 h7) or (h0^2 + h3^2 - h1^2 - h4^2) / (h7^2 - h6^2) (columns), "
-        "-h2 h5 / (h0 h3 + h1 h4) or (h5^2 - h2^2) / (h0^2 + h1^2 - h3^2 - h4^2) (rows), on the centred H."
+        "f_to^2 = -(h0 h1 + h3 h4) / (h6 h7) or (h0^2 + h3^2 - h1^2 - h4^2) / (h7^2 - h6^2) (columns), "
+        "f_from^2 = -h2 h5 / (h0 h3 + h1 h4) or (h5^2 - h2^2) / (h0^2 + h1^2 - h3^2 - h4^2) (rows), on the "
+        "centred H."
     )
+
+
+def _one_focal(H, shape):
+    """A student who keeps the old single-focal answer: the median of both f's."""
+    return float(np.nanmedian(focal_from_rotation_homography(H, shape)))
+
+
+def _flipped(formula: str):
+    """The prompt's rule with the sign of one ``formula`` flipped (I9's student)."""
+
+    def student(H, shape):
+        f2 = _focal_formulas(H, shape, squared=True)
+        f2[formula] = -f2[formula]
+        out = []
+        for keys in (_ROWS, _COLUMNS):
+            v = f2[_decides(H, shape, keys)]
+            out.append(float(np.sqrt(v)) if np.isfinite(v) and v > 0 else float("nan"))
+        return tuple(out)
+
+    return student
 
 
 register_exercise(
@@ -499,7 +605,10 @@ register_exercise(
         compare=_same_focal,
         diagnose=_focal_diagnosis,
         wrong_variants=(
-            (lambda H, shape: focal_from_rotation_homography(H, shape) ** 2, "square root"),
+            (
+                lambda H, shape: tuple(v**2 for v in focal_from_rotation_homography(H, shape)),
+                "square root",
+            ),
             (_focal_uncentred, "principal point"),
             (
                 lambda H, shape: focal_from_rotation_homography(np.asarray(H, float).T, shape),
@@ -509,20 +618,20 @@ register_exercise(
                 lambda H, shape: focal_from_rotation_homography(H, tuple(shape[:2])[::-1]),
                 "width and height swapped",
             ),
-            (lambda H, shape: _slipped_student("half", H, shape), "half-pixel slip"),
-            (lambda H, shape: _slipped_student("one-based", H, shape), "counted pixels from 1"),
-            (lambda H, shape: _slipped_student("C H C^-1", H, shape), "wrong way round"),
-            (lambda H, shape: _slipped_student("swap", H, shape), "width and height swapped"),
-            (lambda H, shape: _slipped_student("rows as H^T", H, shape, ("c1", "r1")), "1/f^2"),
-            (lambda H, shape: _slipped_student("sign", H, shape, ("c1",)), "sign flip"),
+            (lambda H, shape: focal_from_rotation_homography(H, shape)[::-1], "swapped"),
+            (_one_focal, "you returned one number"),
+            (lambda H, shape: (_one_focal(H, shape),) * 2, "same number twice"),
+            (_slipped_student("half"), "half-pixel slip"),
+            (_slipped_student("one-based"), "counted pixels from 1"),
+            (_slipped_student("C H C^-1"), "wrong way round"),
+            (_slipped_student("swap"), "width and height swapped"),
+            (_slipped_student("rows as H^T", ("c1", "r1")), "1/f^2"),
             (_larger_denominator_student("sign"), "sign flip"),
+            (_larger_denominator_student("sign, equal length"), "sign flip"),
+            *((_flipped(k), "sign flip") for k in ("c1", "c2", "r1", "r2")),
             (_larger_denominator_student("", orthogonality_only=True), "0/0"),
             (_larger_denominator_student("", equal_length_only=True), "0/0"),
-            (lambda H, shape: _slipped_student("", H, shape), "f^2 > 0"),  # median of all four
-            (
-                lambda H, shape: float(np.nanmean(list(_focal_formulas(H, shape).values()))),
-                "f^2 > 0",
-            ),  # mean of all four
+            (_slipped_student(""), "f^2 > 0"),  # median of both formulas of each pair
         ),
         teaching=focal_from_rotation_homography,
     )

@@ -88,25 +88,33 @@ def _solve(
     M,
     *,
     sigma_n=SIGMA_N,
+    sigma_g=SIGMA_G,
     square=True,
     factor=2.0,
     prior_a=True,
     prior_b=True,
     sign=-1.0,
     diag=False,
+    diag_in_b=False,
 ):
-    """Section 5's normal equations with one slip switched on (the keywords' defaults are right)."""
+    """Section 5's normal equations with one slip switched on (the keywords' defaults are right).
+
+    ``diag_in_b`` zeroes N_ii in A but leaves it in b.
+    """
     N = np.array(N, dtype=float)
+    own = np.diag(N).copy()
     if not diag:  # the slip "diagonal kept" leaves N_ii in: with j = i the data terms cancel, the prior's stay
         np.fill_diagonal(N, 0)
     s2 = sigma_n**2 if square else sigma_n
     A = sign * N * factor * M * M.T / s2
     A[np.diag_indices(len(N))] = (
-        N * (factor * M**2 / s2 + (1 / SIGMA_G**2 if prior_a else 0))
+        N * (factor * M**2 / s2 + (1 / sigma_g**2 if prior_a else 0))
     ).sum(axis=1)
     if diag:
         A[np.diag_indices(len(N))] -= np.diag(N) * factor * np.diag(M) ** 2 / s2
-    b = N.sum(axis=1) / SIGMA_G**2 if prior_b else np.zeros(len(N))
+    b = N.sum(axis=1) / sigma_g**2 if prior_b else np.zeros(len(N))
+    if diag_in_b:
+        b = b + own / sigma_g**2
     with np.errstate(all="ignore"):
         try:
             return np.linalg.solve(A, b)
@@ -148,9 +156,10 @@ _GAIN_SLIPS = (
     Mistake(
         "no factor 2",
         lambda c: _solve(c.N, c.M, factor=1.0),
-        "the data terms lost their factor 2: d/dg_i of (g_i I_ij - g_j I_ji)^2 is 2 I_ij (...), while the "
-        "prior's 1/2-free term (1 - g_i)^2 / sigma_g^2 appears for both (i, j) and (j, i), which is why the 1/2 "
-        "in front of e cancels only there. Keep 2 I_ij^2 / sigma_N^2 and 2 I_ij I_ji / sigma_N^2.",
+        "the data terms lost their factor 2. In e = 1/2 sum over i != j, the data term (g_i I_ij - g_j I_ji)^2 "
+        "appears twice, as (i, j) and as (j, i): that cancels the 1/2, and differentiating the square leaves a 2, "
+        "2 I_ij (g_i I_ij - g_j I_ji). The prior (1 - g_i)^2 appears only in the (i, j) terms, so its 1/2 cancels "
+        "against the derivative's 2 and it keeps no factor. Keep 2 I_ij^2 / sigma_N^2 and 2 I_ij I_ji / sigma_N^2.",
     ),
     Mistake(
         "sigma not squared",
@@ -163,6 +172,30 @@ _GAIN_SLIPS = (
         lambda c: _solve(c.N, c.M, sigma_n=SIGMA_N / 255),
         "sigma_N = 10/255 is for intensities in [0, 1]; these means are grey levels 0-255, so sigma_N = 10. With "
         "the smaller sigma the prior barely counts.",
+    ),
+    Mistake(
+        "sigma_g = 0.1",
+        lambda c: _solve(c.N, c.M, sigma_g=0.1),
+        "you took sigma_g = 0.1, Brown & Lowe's value; this exercise (and camlab) takes sigma_g = 1, a weaker "
+        "prior, so that exposures 30 % apart are not pulled back towards 1 (section 5).",
+    ),
+    Mistake(
+        "means in 0-1",
+        lambda c: _solve(c.N, c.M / 255),
+        "you divided the means by 255 but kept sigma_N = 10 grey levels: the means are grey levels 0-255, as "
+        "sigma_N is; use them as they are (or divide sigma_N by 255 too).",
+    ),
+    Mistake(
+        "N_ii in b",
+        lambda c: _solve(c.N, c.M, diag_in_b=True),
+        "N[i, i] is image i's own size, not an overlap: you left it out of A but kept it in b_i = sum_j N_ij / "
+        "sigma_g^2. Skip j = i in every sum.",
+    ),
+    Mistake(
+        "1/g",
+        lambda c: 1 / c.expected,
+        "you returned 1/g: g is the gain that multiplies each image (g_i I_ij should match g_j I_ji), not the "
+        "exposure it undoes. Return the solution of A g = b itself.",
     ),
     Mistake(
         "diagonal kept",
@@ -207,7 +240,9 @@ def _gains_exception_hint(exc: Exception, args: tuple) -> str:
     if isinstance(exc, np.linalg.LinAlgError):
         return (
             "a singular matrix: without the prior's N_ij / sigma_g^2 on the diagonal the data terms alone only fix "
-            "the gains' ratios (any multiple of a solution is one), so A has no inverse. Add the prior."
+            "the gains' ratios (any multiple of a solution is one), so A has no inverse: add the prior. Or an "
+            "equation is empty: equation i sums over every j != i, j < i included; summing over j > i only (each "
+            "pair once) leaves the last image's row of A all zeros."
         )
     return ""
 
@@ -223,6 +258,20 @@ def _variant(name: str):
     return wrong
 
 
+def _pairs_once(N, I_mean):
+    """A student who sums over each pair once (j > i): the last image's equation is empty."""
+    N = np.array(N, dtype=float)
+    M = np.asarray(I_mean, dtype=float)
+    n = len(N)
+    A, b = np.zeros((n, n)), np.zeros(n)
+    for i in range(n):
+        for j in range(i + 1, n):
+            A[i, i] += N[i, j] * (2 * M[i, j] ** 2 / SIGMA_N**2 + 1 / SIGMA_G**2)
+            A[i, j] -= N[i, j] * 2 * M[i, j] * M[j, i] / SIGMA_N**2
+            b[i] += N[i, j] / SIGMA_G**2
+    return np.linalg.solve(A, b)
+
+
 register_exercise(
     Exercise(
         name="gains_from_overlaps",
@@ -230,7 +279,9 @@ register_exercise(
         reference=_reference,
         ndarray_only=True,
         cases=_gains_cases,
-        compare=same_array(rtol=1e-6, atol=1e-9),
+        compare=same_array(
+            rtol=1e-5, atol=1e-9
+        ),  # a right answer from an optimiser that stopped near 1e-6
         diagnose=_gains_diagnosis,
         teaching=gains_from_overlaps,
         exception_hint=_gains_exception_hint,
@@ -243,6 +294,11 @@ register_exercise(
             (_variant("sigma not squared"), "not sigma_N (10)"),
             (_variant("sigma in 0-1 units"), "grey levels 0-255"),
             (_variant("diagonal kept"), "own size, not an overlap"),
+            (_variant("sigma_g = 0.1"), "Brown & Lowe's value"),
+            (_variant("means in 0-1"), "divided the means by 255"),
+            (_variant("N_ii in b"), "kept it in b_i"),
+            (_pairs_once, "j < i included"),
+            (lambda N, M: 1 / _reference(N, M), "you returned 1/g"),
             (lambda N, M: _reference(N, M) / _reference(N, M)[0], "divided the gains"),
         ),
     )

@@ -158,7 +158,7 @@ def panorama_canvas() -> Demo:
             ln.set_data(p[:, 0], p[:, 1])
         scale = _fit(c.shape, box)[0]
         title.set_text(
-            f"reference view {ref}: canvas {ww} x {hh} px (160 x 120 images), shown x{scale:.2f} to fit"
+            f"reference view {ref}: canvas {ww} x {hh} px (160 x 120 images), scaled to fit"
         )
         state.update(reference=ref, canvas=(hh, ww), T=c.T, display_scale=scale)
         readout.value = monospace(
@@ -224,6 +224,26 @@ def _rows_inside(
     return np.array(keep, dtype=int)
 
 
+def _blend_readout(v: dict, gains, jump: float, scene: float, own: float) -> str:
+    """The blending demo's readout: the method, the gains and the seam's own step (grey levels)."""
+    multiband = v["method"] == "multiband"
+    levels = int(v["levels"])
+    return monospace(
+        f"blend: {v['method']}"
+        + (
+            f", {levels} pyramid level{'s' if levels != 1 else ''}"
+            if multiband
+            else " (pyramid levels: multiband only)"
+        )
+        + "\ngains: "
+        + (", ".join(f"{g:.3f}" for g in gains) if v["gains"] else "off")
+        + f"\nstep across the seam: {jump:.1f} grey levels\n"
+        f"the scene's own step there: {scene:.1f}\n"
+        "  (one photo alone across the same line, no seam)\n"
+        f"the seam's own step: {own:.1f} (the difference)"
+    )
+
+
 @register(lesson="09", sweep={"method": list(st.BLENDS), "gains": [False, True], "levels": [1, 5]})
 def blending_seams() -> Demo:
     """Overwrite, feather and multi-band blending of two differently exposed views, with a zoom on the seam.
@@ -243,6 +263,7 @@ def blending_seams() -> Demo:
         pyramid levels, 1-6; multi-band only, disabled otherwise), the figure (the blended
         canvas with the zoom window outlined, and the zoom) and ``state`` (``method``,
         ``seam_jump`` the mean brightness step across the seam in grey levels 0-255,
+        ``seam_own`` that step less the scene's own across the same line (one photo alone),
         ``image`` the blended canvas, (h, w, 3) floats in [0, 1]).
 
     References
@@ -283,7 +304,7 @@ def blending_seams() -> Demo:
     )  # over the image
     ax.set_xticks([])
     ax.set_yticks([])
-    ax.set_title("two views, exposures differ by 30%", fontsize=9)
+    ax.set_title("two views whose exposures differ by 30% (before gains)", fontsize=9)
     imz = view.animate(ax_z.imshow(np.zeros((z, z, 3), np.float32), interpolation="nearest"))
     ax_z.set_xticks([])
     ax_z.set_yticks([])
@@ -308,6 +329,8 @@ def blending_seams() -> Demo:
     blends = pe.pair_blends()
     cache = {key: (b.image, _rgba(b.image)) for key, b in blends.items()}
     jumps = {key: 255 * b.seam_step for key, b in blends.items()}
+    scenes = {key: 255 * b.scene_step for key, b in blends.items()}  # one photo alone, same line
+    owns = {key: 255 * b.seam_own for key, b in blends.items()}  # the step less the scene's
 
     def update(v: dict, state: dict) -> None:
         multiband = v["method"] == "multiband"
@@ -323,19 +346,8 @@ def blending_seams() -> Demo:
         jump = jumps[
             key
         ]  # the exposure step across the seam, grey levels (overwrite: the last image's border)
-        state.update(method=v["method"], seam_jump=jump, image=out)
-        readout.value = monospace(
-            f"blend: {v['method']}"
-            + (
-                f", {int(v['levels'])} pyramid level{'s' if int(v['levels']) != 1 else ''}"
-                if multiband
-                else " (pyramid levels: multiband only)"
-            )
-            + "\ngains: "
-            + (", ".join(f"{g:.3f}" for g in gains) if v["gains"] else "off")
-            + "\n"
-            f"mean step across the seam: {jump:.1f} grey levels"
-        )
+        state.update(method=v["method"], seam_jump=jump, seam_own=owns[key], image=out)
+        readout.value = _blend_readout(v, gains, jump, scenes[key], owns[key])
 
     controls = {
         "method": W.Dropdown(options=list(st.BLENDS), value="overwrite", description="blend"),
@@ -397,7 +409,7 @@ def full_panorama() -> Demo:
         legend.set_visible(bool(v["outlines"]))
         scale = _fit((hh, ww), box)[0]
         title.set_text(
-            f"{v['projection']} canvas: {ww} x {hh} px, reference view {r.reference}, shown x{scale:.2f} to fit"
+            f"{v['projection']} canvas: {ww} x {hh} px, reference view {r.reference}, scaled to fit"
         )
         state.update(
             projection=v["projection"],

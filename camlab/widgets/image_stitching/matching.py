@@ -199,8 +199,8 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
         xscale="log",
         xlim=(
             0.014,
-            450,
-        ),  # a little below the slider's 0.02 px (its threshold line shows), the > 300 px bar whole
+            640,
+        ),  # a little below the slider's 0.02 px (its threshold line shows), the > 300 px bar whole, off the spine
         ylim=(0, 1.55),
         yticks=[0, 0.5, 1],
     )
