@@ -496,7 +496,10 @@ def _pair_shape_hint(got, expected) -> str | None:
             f"({f_from:.1f} and {f_to:.1f} px), so keep the rows' answer (f_from) and the columns' (f_to) apart, "
             "and do not take a median or mean across the two pairs."
         )
-    if all(np.isfinite(v) and np.isclose(v, e**2, rtol=1e-3) for v, e in zip(pair, expected, strict=True)):
+    if all(
+        np.isfinite(v) and np.isclose(v, e**2, rtol=1e-3)
+        for v, e in zip(pair, expected, strict=True)
+    ):
         return "those are f squared: the formulas give f^2; take the square roots."
     return None
 
