@@ -617,7 +617,7 @@ def document_scanner() -> Demo:
         ax_r.set_title(
             f"scanned page ({how.get(est.focal_source, 'no f needed')})", fontsize=10, pad=3
         )
-        err = float(np.abs(corners - photo.corners).max())
+        err = float(np.linalg.norm(corners - photo.corners, axis=1).max())  # a distance, px
         state.update(
             found=True,
             corner_error=err,
