@@ -10,6 +10,8 @@ scene's (f = 800 px, principal point v = 239.5 px).
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import ipywidgets as W
 import numpy as np
 
@@ -134,6 +136,38 @@ def _label_vanishing_point(label, tilt: float, height: float) -> None:
     )
 
 
+def _facade_artists(view: FigureView, ax) -> SimpleNamespace:
+    """The facade, the rays to its ends and the field of view's bounds, animated."""
+    return SimpleNamespace(
+        fov=[view.animate(ax.plot([], [], color=palette.GREY, lw=1, ls="-.")[0]) for _ in "ab"],
+        rays=[view.animate(ax.plot([], [], color=palette.GREY, lw=1)[0]) for _ in "ab"],
+        line=view.animate(ax.plot([], [], color=palette.PURPLE, lw=4, solid_capstyle="butt")[0]),
+        label=view.animate(
+            ax.annotate(
+                "facade, centred\non the optical\naxis: all of it\nin the photo",
+                (0, 0),
+                xytext=(8, 0),
+                textcoords="offset points",
+                va="center",
+                fontsize=9,
+            )
+        ),
+    )
+
+
+def _draw_facade(art: SimpleNamespace, t: float, centre: np.ndarray, up: np.ndarray) -> None:
+    """Place the facade at tilt ``t``, the rays to its ends, and the field of view through the photo."""
+    ends = facade_ends(t)
+    art.line.set_data(*ends.T)
+    art.label.xy = ends.mean(axis=0)
+    for line, end in zip(art.rays, ends, strict=True):  # camera centre to the facade's top, bottom
+        line.set_data([0, end[0]], [0, end[1]])
+    for line, sign in zip(art.fov, (1, -1), strict=True):  # the field of view: the photo's ends
+        edge = centre + sign * _HALF_M * up
+        reach = (ends[0, 0] + 1.2) / edge[0]  # on to just past the facade
+        line.set_data([0, reach * edge[0]], [0, reach * edge[1]])
+
+
 @register(lesson="10", sweep={"tilt": [0.0, 0.15, 0.8]})
 def keystone_side_view() -> Demo:
     """The keystone camera from the side: tilt it and watch the verticals' vanishing point move.
@@ -150,19 +184,7 @@ def keystone_side_view() -> Demo:
     view = FigureView(figsize=(6.4, 4.9))
     ax = view.fig.subplots()
     _static_scene(ax)
-    fov = [view.animate(ax.plot([], [], color=palette.GREY, lw=1, ls="-.")[0]) for _ in range(2)]
-    rays = [view.animate(ax.plot([], [], color=palette.GREY, lw=1)[0]) for _ in range(2)]
-    facade = view.animate(ax.plot([], [], color=palette.PURPLE, lw=4, solid_capstyle="butt")[0])
-    facade_label = view.animate(
-        ax.annotate(
-            "facade, centred\non the optical\naxis: all of it\nin the photo",
-            (0, 0),
-            xytext=(8, 0),
-            textcoords="offset points",
-            va="center",
-            fontsize=9,
-        )
-    )
+    facade = _facade_artists(view, ax)
     axis = view.animate(ax.plot([], [], color=palette.GREY, lw=1, ls="--")[0])
     axis_label = view.animate(  # in the empty corner, off every ray at any tilt
         ax.text(-3.1, -1.5, "", ha="left", va="bottom", fontsize=9)
@@ -200,19 +222,7 @@ def keystone_side_view() -> Demo:
         plane.set_data(*(centre + np.outer([-1.4, reach], up)).T)
         photo.set_data(*(centre + np.outer([-_HALF_M, _HALF_M], up)).T)
         photo_label.xy = centre - _HALF_M * up
-        ends = facade_ends(t)
-        facade.set_data(*ends.T)
-        facade_label.xy = ends.mean(axis=0)
-        for line, end in zip(
-            rays, ends, strict=True
-        ):  # from the camera centre to the facade's top and bottom
-            line.set_data([0, end[0]], [0, end[1]])
-        for line, sign in zip(
-            fov, (1, -1), strict=True
-        ):  # the field of view: through the photo's ends
-            edge = centre + sign * _HALF_M * up
-            reach = (ends[0, 0] + 1.2) / edge[0]  # on to just past the facade
-            line.set_data([0, reach * edge[0]], [0, reach * edge[1]])
+        _draw_facade(facade, t, centre, up)
         ray.set_data([0, 0], [0, min(height + 0.6, _TOP)])
         px = vanishing_point_px(t)
         vp.set_data(*(([0], [height]) if height < _TOP - 0.5 else ([], [])))

@@ -226,12 +226,8 @@ def _shape_diagnosis(args, got, expected) -> str:
             "numbers unrounded (the test cameras' f are not whole pixels, e.g. 812.7 px); round only "
             "when you print."
         )
-    for factor in (1e3, 1e-3):
-        if np.isclose(g[1] * factor, f, rtol=1e-6):
-            return (
-                f"your f is off by a factor of {factor:g}: the prompt asks for pixels, from the "
-                "corners in pixels; no mm or m."
-            )
+    if slip := _units_or_precision(g, expected, f):
+        return slip
     if np.isclose(g[1], f, rtol=1e-6):
         return (
             "your f is right but the ratio is not: w/h squared is ((n21^2 + n22^2)/f^2 + n23^2) over the same "
@@ -241,15 +237,26 @@ def _shape_diagnosis(args, got, expected) -> str:
         return (
             "your ratio is right but f is not: f^2 = -(n21 n31 + n22 n32) / (n23 n33), in pixels."
         )
-    if np.allclose(g, expected, rtol=1e-3):
-        return (
-            "your numbers are within 0.1% but the check wants them within a relative 1e-6: use section "
-            "3's closed form in float64, and round or approximate nothing (no fitted or iterated f)."
-        )
     return (
         "check k2 and k3 (both use m1 x m4, dotted with m3 and m2), then n2 = k2 m2 - m1 and n3 = k3 m3 - m1, "
         "with m_i the corners relative to the principal point in Zhang & He's order TL, TR, BL, BR."
     )
+
+
+def _units_or_precision(g, expected, f) -> str | None:
+    """The hint for f off by a factor of 1000 (units), or an answer close but not within 1e-6."""
+    for factor in (1e3, 1e-3):
+        if np.isclose(g[1] * factor, f, rtol=1e-6):
+            return (
+                f"your f is off by a factor of {factor:g}: the prompt asks for pixels, from the "
+                "corners in pixels; no mm or m."
+            )
+    if np.allclose(g, expected, rtol=1e-3) and not np.allclose(g, expected, rtol=1e-6):
+        return (
+            "your numbers are within 0.1% but the check wants them within a relative 1e-6: use section "
+            "3's closed form in float64, and round or approximate nothing (no fitted or iterated f)."
+        )
+    return None
 
 
 def _edge_ratios(corners):
