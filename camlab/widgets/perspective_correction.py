@@ -205,7 +205,7 @@ def _truth_artist(view: FigureView, ax_r: Any, key: str | None) -> Any:
     if key:
         ax_r.text(0.5, -0.02, key, transform=ax_r.transAxes, ha="center", va="top", fontsize=8)
     return view.animate(
-        ax_r.plot([], [], ":", color=palette.GREEN, lw=2, path_effects=palette.halo(1, "black"))[0]
+        ax_r.plot([], [], ":", color=palette.GREEN, lw=2.2, path_effects=palette.halo(1.5))[0]
     )
 
 
