@@ -8,6 +8,8 @@ import numpy as np
 import pytest
 from matplotlib.backend_bases import MouseEvent
 
+from camlab import perspective as pp
+from camlab import scenes
 from camlab.exercises import all_exercises, check
 from camlab.projective import map_points
 from camlab.widgets import homographies as h07
@@ -152,6 +154,24 @@ def test_document_scanner_falls_back_to_the_assumed_f_when_f_is_not_determined()
     assert abs(d.state["ratio"] - 0.742) < 0.005
     d.set(yaw=0.45, pitch=0.35)  # a well-conditioned view keeps f from the corners
     assert d.state["focal_source"] == "estimated" and abs(d.state["focal"] - 800) < 15
+
+
+def test_document_scanner_reports_the_worst_corner_distance():
+    d = p10.document_scanner()
+    true = scenes.sample_photo("page").corners
+    worst = np.linalg.norm(pp.find_document(scenes.sample_photo("page").image) - true, axis=1).max()
+    assert np.isclose(d.state["corner_error"], worst)  # a distance, not the largest |du| or |dv|
+
+
+def test_keystone_side_view_draws_the_facade_where_the_photo_has_it():
+    from camlab.widgets import perspective_side
+
+    d = perspective_side.keystone_side_view()
+    for tilt in (0.0, 0.15, 0.5, 0.8):
+        d.set(tilt=tilt)
+        rows = scenes.sample_photo("facade", pitch=-tilt, yaw=0.0).corners[[0, 3], 1]
+        assert np.allclose(d.state["facade_rows_px"], rows, atol=1e-6)
+        assert 0 < rows[0] < rows[1] < 479  # all of the facade in the photo
 
 
 def test_keystone_demo_corrects_converging_verticals():

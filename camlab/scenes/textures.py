@@ -139,11 +139,10 @@ def _page_texture(width: int, height: int, seed: int) -> np.ndarray:
         y += line_h
     x0, x1 = int(0.2 * width), int(0.8 * width)
     y0, y1 = box_top, box_top + int(0.18 * height)
-    cv2.rectangle(page, (x0, y0), (x1, y1), (60, 90, 160), 2)
-    cv2.line(page, (x0, y1), (x1, y0), (200, 60, 40), 2, cv2.LINE_AA)
-    cv2.circle(
-        page, ((x0 + x1) // 2, (y0 + y1) // 2), (y1 - y0) // 4, (40, 140, 60), 2, cv2.LINE_AA
-    )
+    # a figure in grey ink: the lesson's colours (green truth, red refused, blue across) stay its own
+    cv2.rectangle(page, (x0, y0), (x1, y1), (70, 70, 70), 2)
+    cv2.line(page, (x0, y1), (x1, y0), (110, 110, 110), 2, cv2.LINE_AA)
+    cv2.circle(page, ((x0 + x1) // 2, (y0 + y1) // 2), (y1 - y0) // 4, (90, 90, 90), 2, cv2.LINE_AA)
     page.flags.writeable = False  # cached: copy before drawing on it
     return page
 

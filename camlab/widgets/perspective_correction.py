@@ -190,13 +190,14 @@ def _show_shapes(im: Any, photo: Any, corners: np.ndarray, ratio: float, outline
     pairs) are the rectangles other ratios would give, in the display box.
     """
     width = max(np.linalg.norm(corners[1] - corners[0]), np.linalg.norm(corners[2] - corners[3]))
-    _show_rectified(im, photo.image, corners, (int(width), int(width / ratio)))
+    shown = _size_for(width, ratio)
+    _show_rectified(im, photo.image, corners, shown)
     # Outlines, in the display box, of the rectangle the other focal length and the truth would give.
-    for artist, ratio in outlines:
-        if ratio is None:  # not drawn
+    for artist, other in outlines:
+        if other is None:  # not drawn
             artist.set_data([], [])
         else:
-            _box_outline(artist, (int(width), int(width / ratio)))
+            _box_outline(artist, _size_for(width, other), shown)
 
 
 def _truth_artist(view: FigureView, ax_r: Any, key: str | None) -> Any:
@@ -204,14 +205,29 @@ def _truth_artist(view: FigureView, ax_r: Any, key: str | None) -> Any:
     if key:
         ax_r.text(0.5, -0.02, key, transform=ax_r.transAxes, ha="center", va="top", fontsize=8)
     return view.animate(
-        ax_r.plot([], [], ":", color=palette.GREEN, lw=2, path_effects=palette.halo(2, "black"))[0]
+        ax_r.plot([], [], ":", color=palette.GREEN, lw=2.2, path_effects=palette.halo(1.5))[0]
     )
 
 
-def _box_outline(artist: Any, size_wh: tuple[int, int]) -> None:
-    """Outline, centred in the display box, the rectangle :func:`_show_rectified` draws at ``size_wh``."""
-    w, h = _fit(size_wh)
+def _size_for(width: float, ratio: float) -> tuple[int, int]:
+    """(width, height) of ratio w/h between corner-pixel centres: h = round((w - 1) / ratio) + 1."""
+    w = max(2, int(round(width)))
+    return w, int(round((w - 1) / ratio)) + 1
+
+
+def _box_outline(artist: Any, size_wh: tuple[int, int], like: tuple[int, int]) -> None:
+    """Outline the shape ``size_wh`` over the rectified view drawn at ``like`` (its size_wh).
+
+    The outline shares the view's top-left corner and its longer side, so a wrong ratio shows
+    as one gap, at the bottom or the right edge, not split in two halves.
+    """
+    w, h = _fit(like)
     x0, y0 = (_SHOW - w) // 2 - 0.5, (_SHOW - h) // 2 - 0.5
+    ratio = size_wh[0] / size_wh[1]
+    if w >= h:
+        h = w / ratio
+    else:
+        w = h * ratio
     artist.set_data([x0, x0 + w, x0 + w, x0, x0], [y0, y0, y0 + h, y0 + h, y0])
 
 
@@ -608,8 +624,9 @@ def document_scanner() -> Demo:
         closed = np.vstack([corners, corners[:1]])
         found.set_data(closed[:, 0], closed[:, 1])
         est, conditioning, undetermined = _scan_estimate(corners, image.shape)
-        _show_rectified(im_r, image, corners, (400, int(400 / est.ratio)))
-        _box_outline(truth_box, (400, int(400 / photo.aspect)))
+        shown = _size_for(400, est.ratio)
+        _show_rectified(im_r, image, corners, shown)
+        _box_outline(truth_box, _size_for(400, photo.aspect), shown)
         how = {
             "estimated": "f from the corners",
             "assumed": f"f assumed, {est.focal_length:.0f} px",
@@ -617,7 +634,7 @@ def document_scanner() -> Demo:
         ax_r.set_title(
             f"scanned page ({how.get(est.focal_source, 'no f needed')})", fontsize=10, pad=3
         )
-        err = float(np.abs(corners - photo.corners).max())
+        err = float(np.linalg.norm(corners - photo.corners, axis=1).max())  # a distance, px
         state.update(
             found=True,
             corner_error=err,
@@ -689,16 +706,17 @@ def keystone_correction() -> Demo:
         est = pp.estimate_aspect_ratio(
             c, photo.image.shape, focal_length=photo.K[0, 0] if v["use_focal"] else None
         )
-        _show_rectified(im_r, photo.image, c, (400, int(round(400 / est.ratio))))
+        shown = _size_for(400, est.ratio)
+        _show_rectified(im_r, photo.image, c, shown)
         how = {"given": "the known f", "estimated": "f from the corners", "assumed": "f assumed"}
         how["not needed"] = "no f (none needed)"
-        _box_outline(truth_box, (400, int(round(400 / photo.aspect))))
+        _box_outline(truth_box, _size_for(400, photo.aspect), shown)
         left, right = c[3] - c[0], c[2] - c[1]
         converge = float(np.degrees(np.arctan2(left[0], left[1]) - np.arctan2(right[0], right[1])))
         off = 100 * (est.ratio / photo.aspect - 1)
         off_text = f"{off:+.1f}%" if round(off, 1) != 0 else "0.0%"  # never -0.0%
         ax_r.set_title(
-            f"rectified with {how.get(est.focal_source, 'no f')}: w/h {off_text} off true",
+            f"rectified with {how.get(est.focal_source, 'no f')}\nw/h {off_text} off the true shape",
             fontsize=10,
             pad=3,
         )

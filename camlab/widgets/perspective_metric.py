@@ -131,7 +131,7 @@ def _figure():
     ax_p, ax_r = view.fig.subplots(1, 2, width_ratios=[1.3, 1])
     ax_p.set(xlim=(-0.5, 639.5), ylim=(479.5, -0.5), aspect="equal")
     ax_p.set_xlabel(
-        "u (px, right); each pair: a blue line l at right angles to a purple line m",
+        "u (px, right); each pair: a blue line (across) at right angles to a purple one (up)",
         fontsize=8,
         labelpad=1,
     )

@@ -76,11 +76,19 @@ def _affine_diagnosis(args, got, expected) -> str:
             "your l is in the third COLUMN: H_P = [[1, 0, 0], [0, 1, 0], [l1, l2, l3]] has l as its third "
             "ROW (a point x goes to (u, v, l . x): its new w is proportional to its distance from the vanishing line)."
         )
-    if (
-        np.all(np.isfinite(g))
-        and abs(np.linalg.det(g)) > 0
-        and _same_affine(np.linalg.inv(g), expected)
-    ):
+    invertible = bool(np.all(np.isfinite(g)) and abs(np.linalg.det(g)) > 0)
+    if invertible and _same_affine(np.linalg.inv(g).T, expected):
+        return (
+            "you returned H_P^-T, the matrix that maps LINES (lesson 06: l' = H^-T l sends l to "
+            "(0, 0, 1)); return H_P itself, which maps points: l as its third row."
+        )
+    if g[0, 0] != 0 and _parallel(g[2], l_true) and not np.allclose(g[:2] / g[0, 0], np.eye(3)[:2]):
+        return (
+            "your third row is the vanishing line, right, but the top two rows must be (1, 0, 0) and "
+            "(0, 1, 0): H_P only sends l to infinity; the rest of a full rectification (the metric "
+            "step) is section 7's H_M."
+        )
+    if invertible and _same_affine(np.linalg.inv(g), expected):
         return (
             "you returned H_P^-1, which maps the affine view back to the photo; H_P itself has l as its "
             "third row."
@@ -97,6 +105,19 @@ def _affine_diagnosis(args, got, expected) -> str:
         q = np.c_[corners, np.ones(4)]
         v_across = np.cross(np.cross(q[0], q[1]), np.cross(q[3], q[2]))
         v_up = np.cross(np.cross(q[0], q[3]), np.cross(q[1], q[2]))
+        if _parallel(row, l_true[[1, 0, 2]]):
+            return (
+                "your l has l1 and l2 swapped: the corners were read as (v, u) (row, column); take "
+                "each corner as (u, v, 1), u the column."
+            )
+        v_diag = np.cross(np.cross(q[0], q[2]), np.cross(q[1], q[3]))  # the diagonals meet inside
+        if _parallel(row, np.cross(v_across, v_diag)) or _parallel(row, np.cross(v_diag, v_up)):
+            return (
+                "one of your points is where the DIAGONALS meet (TL-BR with TR-BL), inside the "
+                "rectangle, not a vanishing point: meet opposite EDGES. The corners come TL, TR, BR, "
+                "BL (not Zhang & He's TL, TR, BL, BR): the left edge joins c0 and c3, the right c1 "
+                "and c2."
+            )
         if _parallel(row, v_across) or _parallel(row, v_up):
             return (
                 "your third row is a vanishing POINT; l is the LINE through both: l = v_across x v_up "
@@ -143,6 +164,17 @@ def _euclidean_points(corners):
         return np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], np.cross(v1, v2)])
 
 
+def _diagonals(corners):
+    """A typical slip: the corners taken as TL, TR, BL, BR, so one meet is of the diagonals."""
+    return affine_rectification(np.asarray(corners, dtype=float)[[0, 1, 3, 2]])
+
+
+def _full_rectification(corners):
+    """A typical slip: a whole rectifying homography, whose third row is along l too."""
+    q = np.asarray(corners, dtype=float)
+    return pp.rectify_quadrilateral(np.zeros((480, 640), np.uint8), q, size=(300, 200)).H
+
+
 register_exercise(
     Exercise(
         name="affine_rectification",
@@ -174,6 +206,10 @@ register_exercise(
                 "vanishing POINT",
             ),
             (_euclidean_points, "inf or NaN"),
+            (lambda c: np.linalg.inv(pp.affine_rectification(c)).T, "H_P^-T"),
+            (lambda c: affine_rectification(np.asarray(c)[:, ::-1]), "read as (v, u)"),
+            (_diagonals, "DIAGONALS"),
+            (_full_rectification, "top two rows"),
         ),
         ndarray_only=True,
         teaching=affine_rectification,

@@ -305,6 +305,9 @@ def dual_conic_from_orthogonal_lines(lines_l, lines_m):
         ],
         axis=1,
     )
+    # Unconditioned pixel-scale rows are fine for the exact or mildly noisy lines of this
+    # exercise; with real measurements condition first (lesson 07's T, lines moved by T^-T,
+    # the conic back by T^-1 C T^-T), as section 8's cell and pp.dual_conic_rows do.
     a, b, c, d, e, f = np.linalg.svd(rows)[2][-1]  # the null vector: the last row of Vt
     return np.array([[a, b / 2, d / 2], [b / 2, c, e / 2], [d / 2, e / 2, f]])
 

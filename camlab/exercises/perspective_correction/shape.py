@@ -7,6 +7,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from ... import perspective as pp
+from .._answers import SameArray, Tolerance
 from .._core import Exercise, Mistake, first_mistake, register_exercise
 
 
@@ -45,12 +46,9 @@ def _shape_reference(corners, principal_point):
     return est.ratio, est.focal_length
 
 
-def _shape_compare(got, expected) -> bool:
-    try:
-        g = np.asarray(got, dtype=float)
-    except (TypeError, ValueError):
-        return False
-    return g.shape == (2,) and bool(np.allclose(g, expected, rtol=1e-6, atol=0))
+# (ratio, f) within a relative 1e-6: the closed form in float64, nothing rounded. A SameArray,
+# so that a failed check names this tolerance.
+_shape_compare = SameArray(Tolerance(1e-6, 0.0))
 
 
 def _zhang_he(
@@ -228,6 +226,8 @@ def _shape_diagnosis(args, got, expected) -> str:
             "numbers unrounded (the test cameras' f are not whole pixels, e.g. 812.7 px); round only "
             "when you print."
         )
+    if slip := _units_or_precision(g, expected, f):
+        return slip
     if np.isclose(g[1], f, rtol=1e-6):
         return (
             "your f is right but the ratio is not: w/h squared is ((n21^2 + n22^2)/f^2 + n23^2) over the same "
@@ -241,6 +241,22 @@ def _shape_diagnosis(args, got, expected) -> str:
         "check k2 and k3 (both use m1 x m4, dotted with m3 and m2), then n2 = k2 m2 - m1 and n3 = k3 m3 - m1, "
         "with m_i the corners relative to the principal point in Zhang & He's order TL, TR, BL, BR."
     )
+
+
+def _units_or_precision(g, expected, f) -> str | None:
+    """The hint for f off by a factor of 1000 (units), or an answer close but not within 1e-6."""
+    for factor in (1e3, 1e-3):
+        if np.isclose(g[1] * factor, f, rtol=1e-6):
+            return (
+                f"your f is off by a factor of {factor:g}: the prompt asks for pixels, from the "
+                "corners in pixels; no mm or m."
+            )
+    if np.allclose(g, expected, rtol=1e-3) and not np.allclose(g, expected, rtol=1e-6):
+        return (
+            "your numbers are within 0.1% but the check wants them within a relative 1e-6: use section "
+            "3's closed form in float64, and round or approximate nothing (no fitted or iterated f)."
+        )
+    return None
 
 
 def _edge_ratios(corners):
@@ -338,6 +354,14 @@ register_exercise(
         wrong_variants=(
             (lambda c, p: (1 / _shape_reference(c, p)[0], _shape_reference(c, p)[1]), "h/w"),
             (lambda c, p: _shape_reference(c, p)[::-1], "(ratio, f), w/h first"),
+            (
+                lambda c, p: (_shape_reference(c, p)[0], _shape_reference(c, p)[1] / 1000),
+                "off by a factor of 1000",
+            ),
+            (
+                lambda c, p: np.array(_shape_reference(c, p)) * (1 + 3e-6),
+                "within a relative 1e-6",
+            ),
             (
                 lambda c, p: (_shape_reference(c, p)[0] ** 2, _shape_reference(c, p)[1]),
                 "take np.sqrt",
