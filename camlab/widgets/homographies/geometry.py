@@ -330,7 +330,9 @@ def _matrix_text(M: np.ndarray, significant: int | None = None) -> str:
         The matrix.
     significant : int, optional
         Print this many significant digits instead of 4 decimals, so that a small entry such as
-        h31 = -0.00704 keeps its digits (the drag demo's H must reproduce its table).
+        h31 = -0.00704 keeps its digits (the drag demo's H must reproduce its table). Entries
+        below 1e-12 of the largest are round-off of the solve and print as 0, so an affine H's
+        third row reads (0, 0, 1).
 
     Returns
     -------
@@ -339,7 +341,7 @@ def _matrix_text(M: np.ndarray, significant: int | None = None) -> str:
     """
     M = np.asarray(M, dtype=float)
     if significant is not None:
-        M = np.where(M == 0, 0.0, M)
+        M = np.where(np.abs(M) <= 1e-12 * np.abs(M).max(), 0.0, M)
         return np.array2string(
             M, formatter={"float_kind": lambda x: f"{x:>{significant + 6}.{significant}g}"}
         )
