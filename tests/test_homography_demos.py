@@ -392,3 +392,20 @@ def test_dlt_exercise_notes_a_scaling_without_centring(capsys):
     assert "did not move its centroid" in capsys.readouterr().out
     assert check("dlt_homography", all_exercises()["dlt_homography"].reference)
     assert "did not move its centroid" not in capsys.readouterr().out
+
+
+def test_hierarchy_demo_measures_each_groups_invariants():
+    d = h07.transformation_hierarchy()
+    kept = {}
+    for group in ("euclidean", "similarity", "affine", "projective"):
+        d.set(group=group)
+        kept[group] = tuple(k for *_, k in d.state["measures"].values())
+    # angle, |top|/|left|, |top|/|bottom|, parallel edges, cross-ratio
+    assert kept == {
+        "euclidean": (True, True, True, True, True),
+        "similarity": (True, True, True, True, True),
+        "affine": (False, False, True, True, True),
+        "projective": (False, False, False, False, True),
+    }
+    d.set(group="projective", v1=15.0, v2=15.0)  # torn: the edges' ratios run through infinity
+    assert np.isinf(d.state["measures"]["|top| / |bottom|"][1])
