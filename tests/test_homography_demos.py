@@ -400,12 +400,12 @@ def test_hierarchy_demo_measures_each_groups_invariants():
     for group in ("euclidean", "similarity", "affine", "projective"):
         d.set(group=group)
         kept[group] = tuple(k for *_, k in d.state["measures"].values())
-    # angle, |top|/|left|, |top|/|bottom|, parallel edges, cross-ratio
+    # angle, |top|/|left|, |top|/|bottom|, top ∥ bottom, left ∥ right, cross-ratio
     assert kept == {
-        "euclidean": (True, True, True, True, True),
-        "similarity": (True, True, True, True, True),
-        "affine": (False, False, True, True, True),
-        "projective": (False, False, False, False, True),
+        "euclidean": (True, True, True, True, True, True),
+        "similarity": (True, True, True, True, True, True),
+        "affine": (False, False, True, True, True, True),
+        "projective": (False, False, False, False, True, True),
     }
     d.set(group="projective", v1=15.0, v2=15.0)  # torn: the edges' ratios run through infinity
     assert np.isinf(d.state["measures"]["|top| / |bottom|"][1])

@@ -114,8 +114,8 @@ def _hierarchy_measures(H: np.ndarray, picture_shape) -> dict:
     dict
         Name -> (before, after, kept): the top-left angle (degrees, from the mapping's derivative,
         ``hg.mapped_angle``), the ratio of the top and left edges (two directions: similarities keep
-        it), of the top and bottom edges (parallel: affinities keep it), the angle between the
-        mapped top and bottom edges (0: still parallel) and the cross-ratio of four points on the
+        it), of the top and bottom edges (parallel: affinities keep it), the angles between the
+        mapped top and bottom edges and between the left and right ones (0: still parallel) and the cross-ratio of four points on the
         diagonal (every homography keeps it). A ratio with an edge through infinity is ``inf``.
     """
     ph, pw = picture_shape[:2]
@@ -129,21 +129,20 @@ def _hierarchy_measures(H: np.ndarray, picture_shape) -> dict:
     def ratio(a: float, b: float) -> float:  # inf when either edge runs through infinity
         return a / b if np.isfinite(a) and np.isfinite(b) else np.inf
 
-    def heading(
-        x: np.ndarray,
-    ) -> np.ndarray:  # the image of the direction (1, 0) at x: J (1, 0), J as in mapped_angle
-        return (H[:2, 0] - map_points(H, x) * H[2, 0]) / (H[2] @ [*x, 1.0])
+    def between(x1: np.ndarray, x2: np.ndarray, axis: int) -> float:
+        """The angle (degrees) between the images of one source direction at x1 and at x2 (J d, J as in mapped_angle)."""
+        d1, d2 = (
+            (H[:2, axis] - map_points(H, x) * H[2, axis]) / (H[2] @ [*x, 1.0]) for x in (x1, x2)
+        )
+        return float(np.degrees(np.arctan2(abs(d1[0] * d2[1] - d1[1] * d2[0]), abs(d1 @ d2))))
 
-    top, bottom = heading(tl), heading(bl)
-    between = float(
-        np.degrees(np.arctan2(abs(top[0] * bottom[1] - top[1] * bottom[0]), abs(top @ bottom)))
-    )
     diagonal = tl + np.array([[0.0], [0.25], [0.5], [1.0]]) * (br - tl)
     rows = {
         "top-left angle (°)": (90.0, hg.mapped_angle(H, tl, tr - tl, bl - tl), 0.1),
         "|top| / |left|": ((pw - 1) / (ph - 1), ratio(length(0, 1), length(0, 3)), 1e-3),
         "|top| / |bottom|": (1.0, ratio(length(0, 1), length(3, 2)), 1e-3),
-        "top vs bottom edge (°)": (0.0, between, 0.1),
+        "top vs bottom edge (°)": (0.0, between(tl, bl, 0), 0.1),
+        "left vs right edge (°)": (0.0, between(tl, tr, 1), 0.1),
         "cross-ratio, diagonal": (
             cross_ratio(diagonal),
             cross_ratio(map_points(H, diagonal)),
