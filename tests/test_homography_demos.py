@@ -412,3 +412,53 @@ def test_dlt_exercise_notes_a_scaling_without_centring(capsys):
     assert "did not move its centroid" in capsys.readouterr().out
     assert check("dlt_homography", all_exercises()["dlt_homography"].reference)
     assert "did not move its centroid" not in capsys.readouterr().out
+
+
+def test_hierarchy_demo_measures_each_groups_invariants():
+    d = h07.transformation_hierarchy()
+    kept = {}
+    for group in ("euclidean", "similarity", "affine", "projective"):
+        d.set(group=group)
+        kept[group] = tuple(k for *_, k in d.state["measures"].values())
+    # angle, |top|/|left|, |top|/|bottom|, top ∥ bottom, left ∥ right, cross-ratio
+    assert kept == {
+        "euclidean": (True, True, True, True, True, True),
+        "similarity": (True, True, True, True, True, True),
+        "affine": (False, False, True, True, True, True),
+        "projective": (False, False, False, False, True, True),
+    }
+    d.set(group="projective", v1=15.0, v2=15.0)  # torn: the edges' ratios run through infinity
+    assert np.isinf(d.state["measures"]["|top| / |bottom|"][1])
+
+
+def test_ransac_samples_check_names_per_cent_and_expected_trials():
+    from camlab.exercises import check_ransac_samples
+    from camlab.exercises._core import CheckFailed
+
+    slips = {
+        "both p and the inlier ratio by 100": lambda p, w: int(
+            np.ceil(np.log(1 - p / 100) / np.log(1 - (w / 100) ** 4))
+        ),
+        "the *expected* number of samples": lambda p, w: int(np.ceil(1 / w**4)),
+    }
+    for cause, slip in slips.items():
+        with pytest.raises(CheckFailed) as failed:
+            check_ransac_samples(slip)
+        assert cause in str(failed.value)
+
+
+def test_apply_homography_check_names_rounding_to_whole_pixels():
+    from camlab.exercises import check_apply_homography
+    from camlab.exercises._core import CheckFailed
+
+    def mapped(H, p):
+        X = np.c_[p, np.ones(len(p))] @ np.asarray(H).T
+        return X[:, :2] / X[:, 2:]
+
+    for slip in (
+        lambda H, p: np.round(mapped(H, p)).astype(int),
+        lambda H, p: np.round(mapped(H, p)),
+    ):
+        with pytest.raises(CheckFailed) as failed:
+            check_apply_homography(slip)
+        assert "rounded to whole pixels" in str(failed.value)

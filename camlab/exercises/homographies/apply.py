@@ -72,7 +72,9 @@ def _apply_diagnosis(args, got, expected) -> str:
     swapped = x[:, [1, 0, 2]] @ H.T
     if np.allclose(g, swapped[:, :2] / swapped[:, 2:], rtol=1e-6):
         return "you lifted (v, u, 1): points[:, 0] is u (the column) and points[:, 1] is v, so lift (u, v, 1)."
-    cause = _shift_slip(g, x, H, expected) or _conjugated_slip(g, pts, H)
+    cause = (
+        _shift_slip(g, x, H, expected) or _conjugated_slip(g, pts, H) or _rounded_slip(g, expected)
+    )
     if cause:
         return cause
     if (y[:, 2] < 0).any() and np.allclose(g, y[:, :2] / np.abs(y[:, 2:]), rtol=1e-6):
@@ -104,6 +106,20 @@ def _apply_diagnosis(args, got, expected) -> str:
         )
     return (
         "check the three steps: lift to (u, v, 1), multiply by H (X @ H.T for rows), divide by w."
+    )
+
+
+def _rounded_slip(g, expected) -> str:
+    """The answer is the right one rounded to whole pixels (np.round, astype(int)): say so ("" if not)."""
+    e = np.asarray(expected, dtype=float)
+    if np.allclose(e, np.round(e)) or not (
+        np.array_equal(g, np.round(e)) or np.array_equal(g, np.trunc(e))
+    ):
+        return ""
+    return (
+        "your points are the right ones rounded to whole pixels (np.round, astype(int) or an integer "
+        "array): a mapped point lands between pixel centres, and rounding throws away up to half a "
+        "pixel. Return the float64 quotients x / w unrounded."
     )
 
 

@@ -65,6 +65,20 @@ _SAMPLES_MISTAKES = (
         "(0.99 means 99 %), so use it as it is: k = log(1 - p) / log(1 - q^4).",
     ),
     Mistake(
+        "p and q in per cent",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p / 100), np.log(1 - (s.q / 100) ** 4)))),
+        "you divided both p and the inlier ratio by 100, as if they came in per cent: both are "
+        "already probabilities in (0, 1) (0.99 means 99 %), so use them as they are: "
+        "k = log(1 - p) / log(1 - q^4).",
+    ),
+    Mistake(
+        "expected number of trials",
+        lambda s: _is_any(s.g, s.ways(1 / s.q**4)) and not _is_any(s.g, {np.ceil(s.exact)}),
+        "you returned 1 / q^4, the *expected* number of samples until the first clean one. The "
+        "question asks for the k that makes at least one clean sample likely with probability p: "
+        "1 - p = (1 - q^4)^k, so k = log(1 - p) / log(1 - q^4), rounded up.",
+    ),
+    Mistake(
         "negative k",
         lambda s: s.g < 0,
         "your k is negative, but both logs are negative (1 - p and 1 - q^4 lie between 0 and 1), so "

@@ -99,6 +99,69 @@ def _hierarchy_texts(group, kind, Hg, H, picture_shape, canvas_hw):
     return facts, readout
 
 
+def _hierarchy_measures(H: np.ndarray, picture_shape) -> dict:
+    """What the hierarchy demo measures on the picture's outline, before and after H.
+
+    Parameters
+    ----------
+    H : (3, 3) ndarray
+        The map drawn, source pixels to canvas pixels.
+    picture_shape : tuple of int
+        The picture's shape (height, width, ...).
+
+    Returns
+    -------
+    dict
+        Name -> (before, after, kept): the top-left angle (degrees, from the mapping's derivative,
+        ``hg.mapped_angle``), the ratio of the top and left edges (two directions: similarities keep
+        it), of the top and bottom edges (parallel: affinities keep it), the angles between the
+        mapped top and bottom edges and between the left and right ones (0: still parallel) and the cross-ratio of four points on the
+        diagonal (every homography keeps it). A ratio with an edge through infinity is ``inf``.
+    """
+    ph, pw = picture_shape[:2]
+    tl, tr, br, bl = np.array([[0.0, 0.0], [pw - 1, 0.0], [pw - 1, ph - 1], [0.0, ph - 1]])
+    w = np.c_[[tl, tr, br, bl], np.ones(4)] @ H[2]
+    m = map_points(H, [tl, tr, br, bl])
+
+    def length(i: int, j: int) -> float:  # an edge's image; infinite when w changes sign along it
+        return float(np.linalg.norm(m[i] - m[j])) if w[i] * w[j] > 0 else np.inf
+
+    def ratio(a: float, b: float) -> float:  # inf when either edge runs through infinity
+        return a / b if np.isfinite(a) and np.isfinite(b) else np.inf
+
+    def between(x1: np.ndarray, x2: np.ndarray, axis: int) -> float:
+        """The angle (degrees) between the images of one source direction at x1 and at x2 (J d, J as in mapped_angle)."""
+        d1, d2 = (
+            (H[:2, axis] - map_points(H, x) * H[2, axis]) / (H[2] @ [*x, 1.0]) for x in (x1, x2)
+        )
+        return float(np.degrees(np.arctan2(abs(d1[0] * d2[1] - d1[1] * d2[0]), abs(d1 @ d2))))
+
+    diagonal = tl + np.array([[0.0], [0.25], [0.5], [1.0]]) * (br - tl)
+    rows = {
+        "top-left angle (°)": (90.0, hg.mapped_angle(H, tl, tr - tl, bl - tl), 0.1),
+        "|top| / |left|": ((pw - 1) / (ph - 1), ratio(length(0, 1), length(0, 3)), 1e-3),
+        "|top| / |bottom|": (1.0, ratio(length(0, 1), length(3, 2)), 1e-3),
+        "top vs bottom edge (°)": (0.0, between(tl, bl, 0), 0.1),
+        "left vs right edge (°)": (0.0, between(tl, tr, 1), 0.1),
+        "cross-ratio, diagonal": (
+            cross_ratio(diagonal),
+            cross_ratio(map_points(H, diagonal)),
+            1e-6,
+        ),
+    }
+    return {
+        k: (a, b, bool(abs(b - a) <= tol * max(1.0, abs(a)))) for k, (a, b, tol) in rows.items()
+    }
+
+
+def _measures_text(measures: dict) -> str:
+    """The hierarchy readout's table of measured invariants: before, after, kept or changes."""
+    lines = [f"{'measured on the picture':24s}{'source':>9s}{'mapped':>10s}"]
+    for name, (a, b, kept) in measures.items():
+        lines.append(f"{name:24s}{a:9.3f}{b:10.3f}  {'kept' if kept else 'changes'}")
+    return "\n".join(lines)
+
+
 def _hierarchy_figure(pic, C, P, canvas_hw):
     """The hierarchy demo's figure: its view, the animated artists and the grid lines to map.
 
@@ -285,8 +348,9 @@ def transformation_hierarchy() -> Demo:
             vanishing_line_in_view=bool(np.isfinite(vanishing).all()),
         )
         facts_text, readout_text = _hierarchy_texts(v["group"], kind, Hg, H, pic.shape, canvas_hw)
+        state["measures"] = _hierarchy_measures(H, pic.shape)
         facts.set_text(facts_text)
-        readout.value = monospace(readout_text)
+        readout.value = monospace(_measures_text(state["measures"]) + "\n\n" + readout_text)
 
     controls = {
         "group": W.Dropdown(options=list(_GROUPS), value="affine", description="group"),
@@ -330,7 +394,9 @@ def _matrix_text(M: np.ndarray, significant: int | None = None) -> str:
         The matrix.
     significant : int, optional
         Print this many significant digits instead of 4 decimals, so that a small entry such as
-        h31 = -0.00704 keeps its digits (the drag demo's H must reproduce its table).
+        h31 = -0.00704 keeps its digits (the drag demo's H must reproduce its table). Entries
+        below 1e-12 of the largest are round-off of the solve and print as 0, so an affine H's
+        third row reads (0, 0, 1).
 
     Returns
     -------
@@ -339,7 +405,7 @@ def _matrix_text(M: np.ndarray, significant: int | None = None) -> str:
     """
     M = np.asarray(M, dtype=float)
     if significant is not None:
-        M = np.where(M == 0, 0.0, M)
+        M = np.where(np.abs(M) <= 1e-12 * np.abs(M).max(), 0.0, M)
         return np.array2string(
             M, formatter={"float_kind": lambda x: f"{x:>{significant + 6}.{significant}g}"}
         )
