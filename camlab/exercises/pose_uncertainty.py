@@ -257,5 +257,10 @@ register_exercise(
         ),
         teaching=pose_covariance,
         ndarray_only=True,
+        solution_note=(
+            "# camlab: solve_pnp stores this covariance, sigma-hat from the residuals, as pose.covariance;\n"
+            "# camlab.measurement.pose_covariance(K, R, t, object_points, sigma_px) gives sigma^2 (J^T J)^-1 "
+            "for a\n# planned pose and a chosen noise (section 2's demo)."
+        ),
     )
 )

@@ -233,7 +233,7 @@ def plane_error() -> Demo:
             f"tilt {v['tilt']:.0f} deg, {v['distance']:.2f} m: the board's first row spans {now.board_px:.0f} px"
             + ("" if now.in_frame and now_x.in_frame else " (part of it is outside the photo!)")
             + "\n"
-            f"sigma of the 0.2 m edge along the slope (blue): {1000 * now.sigma:.2f} mm\n"
+            f"sigma of the 0.2 m edge along the slope (purple): {1000 * now.sigma:.2f} mm\n"
             f"  from the pose:         {1000 * now.pose:.2f} mm\n"
             f"  from picking the ends ({pick:g} px): {1000 * now.pixels:.2f} mm\n"
             f"sigma of the 0.2 m edge across the slope (brown): {1000 * now_x.sigma:.2f} mm"
