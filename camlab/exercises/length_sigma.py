@@ -62,7 +62,12 @@ def _cases():
     """(H_of, Sigma_p, a, b, sigma_u): a 9 x 6 board of 25 mm at two poses, ends picked or detected."""
     cases = []
     for w, t, (i, j), sigma_u in (
-        ([0.3, -0.2, 0.1], [-0.1, -0.05, 0.45], ((0, 0), (8, 0)), 0.5),
+        (
+            [0.3, -0.2, 0.1],
+            [-0.1, -0.05, 0.45],
+            ((0, 0), (8, 0)),
+            0.4,
+        ),  # not 0.5: 2 * 0.5**2 == 0.5
         ([-0.4, 0.25, 1.2], [-0.08, 0.02, 0.6], ((1, 5), (7, 1)), 0.14),
     ):
         R, t = _exp(w), np.array(t)
@@ -77,11 +82,15 @@ def _cases():
     return cases
 
 
-def _parts(H_of, Sigma_p, a, b):
-    """The gradients g_p (6,) and g_u (4,) of the length, by central differences."""
+def _parts(H_of, Sigma_p, a, b, forward=False):
+    """The gradients g_p (6,) and g_u (4,) of the length, by central differences.
+
+    ``forward=True`` maps the pixels by H instead of H^-1 (a student's slip).
+    """
 
     def length(p, u):
-        q = np.linalg.solve(H_of(p), np.vstack([u.reshape(2, 2).T, np.ones(2)]))
+        ends = np.vstack([u.reshape(2, 2).T, np.ones(2)])
+        q = H_of(p) @ ends if forward else np.linalg.solve(H_of(p), ends)
         q = q[:2] / q[2]
         return np.linalg.norm(q[:, 0] - q[:, 1])
 
@@ -129,10 +138,15 @@ def _context(H_of, Sigma_p, a, b, sigma_u):
     g_p, g_u = _parts(H_of, Sigma_p, a, b)
     pose2 = float(g_p @ Sigma_p @ g_p)
     pix2 = float(sigma_u**2 * g_u @ g_u)
+    f_p, f_u = _parts(H_of, Sigma_p, a, b, forward=True)
     return SimpleNamespace(
         right=np.sqrt(pose2 + pix2),
         variance=pose2 + pix2,
         sigma_u_once=np.sqrt(pose2 + sigma_u * g_u @ g_u),
+        picking_twice=np.sqrt(pose2 + 2 * pix2),
+        doubled=2 * np.sqrt(pose2 + pix2),
+        diagonal=np.sqrt(g_p**2 @ np.diag(Sigma_p) + pix2),
+        forward=np.sqrt(f_p @ Sigma_p @ f_p + sigma_u**2 * f_u @ f_u),
         no_pose=np.sqrt(pix2),
         no_pixels=np.sqrt(pose2),
         one_end=np.sqrt(pose2 + sigma_u**2 * g_u[:2] @ g_u[:2]),
@@ -155,6 +169,31 @@ _MISTAKES = (
         lambda c: c.sigma_u_once,
         "you multiplied |g_u|^2 by sigma_u where the variance sigma_u^2 belongs: each picked coordinate "
         "adds sigma_u^2 (dL/du)^2, so the pixel term is sigma_u**2 * g_u @ g_u.",
+    ),
+    Mistake(
+        "picking counted twice",
+        lambda c: c.picking_twice,
+        "you counted the picking twice (2 sigma_u^2 |g_u|^2, 'two ends, so twice'): g_u already holds "
+        "both ends' four coordinates, so sigma_u^2 |g_u|^2 = sigma_u^2 (g_u @ g_u) covers both ends once.",
+    ),
+    Mistake(
+        "central difference not halved",
+        lambda c: c.doubled,
+        "your sigma is exactly twice the answer: every gradient is doubled, as when a central difference "
+        "(L(p + h) - L(p - h)) is divided by h instead of 2h, the distance between its two points.",
+    ),
+    Mistake(
+        "diagonal of Sigma_p only",
+        lambda c: c.diagonal,
+        "you used only the diagonal of Sigma_p (g_p**2 @ np.diag(Sigma_p)): the pose's six parameters are "
+        "correlated (section 1's Mahalanobis test), so the pose term is the full quadratic form "
+        "g_p @ Sigma_p @ g_p.",
+    ),
+    Mistake(
+        "forward H",
+        lambda c: c.forward,
+        "you mapped the pixels with H, which goes board -> image: pixels go back to the board with H^-1, "
+        "np.linalg.solve(H_of(p), (u, v, 1)) (as in Exercise 3), before the length and its gradients.",
     ),
     Mistake(
         "no pose term",
@@ -227,6 +266,10 @@ register_exercise(
         wrong_variants=(
             (_variant("variance"), "square root"),
             (_variant("sigma_u not squared"), "sigma_u^2 belongs"),
+            (_variant("picking counted twice"), "counted the picking twice"),
+            (_variant("central difference not halved"), "instead of 2h"),
+            (_variant("diagonal of Sigma_p only"), "only the diagonal"),
+            (_variant("forward H"), "board -> image"),
             (_variant("no pose term"), "pose's part"),
             (_variant("no pixel term"), "left out the picking"),
             (_variant("one end only"), "only one end"),

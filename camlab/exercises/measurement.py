@@ -352,13 +352,16 @@ _REACH_MISTAKES = (
     Mistake(
         "half",
         lambda c: c.half,
-        "your depth is half the answer: nothing is halved in sigma_Z = Z^2 sigma_d / (f B) (the "
-        "baseline is B, not B / 2 from each camera); Z = sqrt(max_error f B / sigma_d).",
+        "your depth is exactly half the answer: a stray factor 1/2 outside the square root (or 1/4 "
+        "inside it, as with 4 sigma_d); nothing is halved in sigma_Z = Z^2 sigma_d / (f B), so "
+        "Z = sqrt(max_error f B / sigma_d).",
     ),
     Mistake(
         "two sigma",
         lambda c: c.two_sigma,
-        "you used 2 sigma_d: the tolerance is one sigma, sigma_Z = Z^2 sigma_d / (f B) = max_error.",
+        "your depth is the answer / sqrt(2): one factor 2 too many under the root. Either you used "
+        "2 sigma_d (the tolerance is one sigma, sigma_Z = Z^2 sigma_d / (f B) = max_error), or half the "
+        "baseline B / 2 (B is the whole distance between the two camera centres), or half the tolerance.",
     ),
     Mistake(
         "disparity equals sigma",

@@ -120,6 +120,9 @@ def _context(K, R, t, X):
         R=R,
         no_cross=np.array([[fx / z, 0.0, 0.0], [0.0, fy / z, 0.0]]),
         z_once=np.array([[fx / z, 0.0, -fx * x / z], [0.0, fy / z, -fy * y / z]]),
+        pixel_over_z=np.array(
+            [[fx / z, 0.0, -(fx * x / z + K[0, 2]) / z], [0.0, fy / z, -(fy * y / z + K[1, 2]) / z]]
+        ),
         z_plus=np.array([[fx / z, 0.0, fx * x / z**2], [0.0, fy / z, fy * y / z**2]]),
         fx_twice=np.array([[fx / z, 0.0, -fx * x / z**2], [0.0, fx / z, -fx * y / z**2]]),
         fx_fy_swapped=np.array([[fy / z, 0.0, -fy * x / z**2], [0.0, fx / z, -fx * y / z**2]]),
@@ -165,6 +168,12 @@ _MISTAKES = (
         "z not squared",
         lambda c: c.with_(-_skew(c.RX), c.z_once),
         "your d(u, v)/dz divides by z once: d(x / z)/dz = -x / z^2, so du/dz = -fx x / z^2.",
+    ),
+    Mistake(
+        "u for u - cx",
+        lambda c: c.with_(-_skew(c.RX), c.pixel_over_z),
+        "your third column uses the pixel u, which includes cx: du/dz = -fx x / z^2 = -(u - cx) / z, "
+        "and dv/dz = -fy y / z^2 = -(v - cy) / z (the principal point does not move with z).",
     ),
     Mistake(
         "z term sign",
@@ -291,6 +300,7 @@ register_exercise(
             (_variant("right perturbation"), "on the right"),
             (_variant("no -x/z^2 term"), "third column"),
             (_variant("z not squared"), "divides by z once"),
+            (_variant("u for u - cx"), "includes cx"),
             (_variant("z term sign"), "wrong sign: moving"),
             (_variant("fx for fy"), "uses fx"),
             (_variant("no perspective division"), "perspective division"),

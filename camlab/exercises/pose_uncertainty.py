@@ -99,6 +99,13 @@ _MISTAKES = (
         "divisor is len(r) - 6.",
     ),
     Mistake(
+        "per-corner variance",
+        lambda c: 2 * c.s2 * c.inv,
+        "your covariance is exactly twice the answer: sum(r^2) / (N - 3) (or 2 sum(r^2) / (2N - 6)) is the "
+        "noise per CORNER, u and v together; the formula needs the variance per pixel COORDINATE, "
+        "sigma^2 = sum(r^2) / (2N - 6) with 2N = len(r) (section 1: 0.188 px per corner, 0.137 px per coordinate).",
+    ),
+    Mistake(
         "divided by 2N - 7",
         lambda c: c.rss / (c.m - 7) * c.inv,
         "you divided by 2N - 7: the pose has 6 unknowns (3 for the rotation, 3 for the translation), "
@@ -234,6 +241,8 @@ register_exercise(
             ((lambda J, r: np.var(r, ddof=6) * np.linalg.inv(J.T @ J)), "ddof=6"),
             (_variant("divided by N - 6"), "N - 6"),
             (_variant("divided by 2N - 7"), "2N - 7"),
+            (_variant("per-corner variance"), "per CORNER"),
+            ((lambda J, r: np.sum(r**2) / (len(r) / 2 - 3) * np.linalg.inv(J.T @ J)), "per CORNER"),
             (_variant("square of the sum"), "square each residual first"),
             ((lambda J, r: np.sum(r**2) / (len(r) - 6) / (J.T @ J)), "entry by entry"),
             (_variant("divided by the inverse"), "multiply by it"),
@@ -248,5 +257,10 @@ register_exercise(
         ),
         teaching=pose_covariance,
         ndarray_only=True,
+        solution_note=(
+            "# camlab: solve_pnp stores this covariance, sigma-hat from the residuals, as pose.covariance;\n"
+            "# camlab.measurement.pose_covariance(K, R, t, object_points, sigma_px) gives sigma^2 (J^T J)^-1 "
+            "for a\n# planned pose and a chosen noise (section 2's demo)."
+        ),
     )
 )

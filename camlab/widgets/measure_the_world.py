@@ -123,9 +123,9 @@ def _figure() -> SimpleNamespace:
     ax_img.set_xlabel("u (px)", fontsize=8)
     ax_img.set_ylabel("v (px)", fontsize=8)
     ax_img.tick_params(labelsize=7)
-    ax_img.set_title("the photo: board corners, edges along (blue), across (brown)", fontsize=9)
+    ax_img.set_title("the photo: board corners, edges along (purple), across (brown)", fontsize=9)
     (corners,) = ax_img.plot([], [], ".", ms=3, color=palette.GREY)
-    (edge,) = ax_img.plot([], [], "-o", lw=2, ms=4, color=palette.BLUE)
+    (edge,) = ax_img.plot([], [], "-o", lw=2, ms=4, color=palette.PURPLE)
     (edge_x,) = ax_img.plot([], [], "-s", lw=2, ms=4, color=palette.BROWN)
     ax_plot.set(
         xlim=(-2, 77),  # room for the dot at 0 and 75 deg
@@ -139,11 +139,13 @@ def _figure() -> SimpleNamespace:
     ax_plot.tick_params(labelsize=7)
     ax_plot.grid(alpha=0.3)
     # the total (thick) under its picking part (dotted, near-black): they nearly coincide
-    (total,) = ax_plot.plot([], [], "-", color=palette.BLUE, lw=4.5, label="along the slope: total")
+    (total,) = ax_plot.plot(
+        [], [], "-", color=palette.PURPLE, lw=4.5, label="along the slope: total"
+    )
     (picks,) = ax_plot.plot(
         [], [], ":", color="0.1", lw=2.0, label="   its part from picking the ends"
     )
-    (pose,) = ax_plot.plot([], [], "--", color=palette.GREEN, label="   its part from the pose")
+    (pose,) = ax_plot.plot([], [], "--", color="0.45", label="   its part from the pose")
     (across,) = ax_plot.plot([], [], "-", color=palette.BROWN, label="across the slope: total")
     (here,) = ax_plot.plot(
         [], [], "o", mfc="white", mec="0.1", mew=1.5, ms=7, label="this tilt (both edges)"
@@ -231,7 +233,7 @@ def plane_error() -> Demo:
             f"tilt {v['tilt']:.0f} deg, {v['distance']:.2f} m: the board's first row spans {now.board_px:.0f} px"
             + ("" if now.in_frame and now_x.in_frame else " (part of it is outside the photo!)")
             + "\n"
-            f"sigma of the 0.2 m edge along the slope (blue): {1000 * now.sigma:.2f} mm\n"
+            f"sigma of the 0.2 m edge along the slope (purple): {1000 * now.sigma:.2f} mm\n"
             f"  from the pose:         {1000 * now.pose:.2f} mm\n"
             f"  from picking the ends ({pick:g} px): {1000 * now.pixels:.2f} mm\n"
             f"sigma of the 0.2 m edge across the slope (brown): {1000 * now_x.sigma:.2f} mm"
@@ -276,7 +278,7 @@ def click_to_measure(ax, length_text, area_text) -> SimpleNamespace:
         ``points`` (the clicks so far), ``line`` (the drawn outline), ``click(u, v, button)``
         (what a mouse click does; tests call it) and ``connection`` (the canvas callback id).
     """
-    (line,) = ax.plot([], [], "-o", color=palette.ORANGE, lw=2, ms=5)
+    (line,) = ax.plot([], [], "-o", color=palette.BROWN, lw=2, ms=5)
     state = SimpleNamespace(points=[], closed=False, line=line)
 
     def show(text: str) -> None:
