@@ -129,6 +129,16 @@ def _rectifying_diagnosis(args, got, expected) -> str:
             "worlds, not where camera 1 looks: its optical axis in world coordinates is R1[2]",
         ),
         (
+            expected * [[1.0], [-1.0], [1.0]],
+            "your y is x × z_old (it points up) and your z = y × x: the rows x, y, z make det R_new = -1, a "
+            "left-handed frame, and the image comes out upside down. y = z_old × x, then z = x × y",
+        ),
+        (
+            _fusiello(C1, C2, np.array([0.0, 1.0, 0.0])),
+            "your old viewing direction is the world's y axis (0, 1, 0), roughly ahead in this course's "
+            "worlds but not where camera 1 looks: its optical axis in world coordinates is R1[2]",
+        ),
+        (
             _fusiello(C1, C2, R1[1]),
             "your old viewing direction is R1[1], camera 1's y axis (down in its image): the optical "
             "axis is the third row, z_old = R1[2]",
@@ -207,6 +217,11 @@ register_exercise(
             (lambda C1, C2, R1: _fusiello(C1, C2, np.array([0.0, 0.0, 1.0])), "world's z axis"),
             (lambda C1, C2, R1: _fusiello(C1, C2, np.asarray(R1)[2], z_kept=True), "z = x × y"),
             (lambda C1, C2, R1: _fusiello(C1, C2, np.asarray(R1)[1]), "camera 1's y axis"),
+            (
+                lambda C1, C2, R1: rectifying_rotation(C1, C2, R1) * [[1], [-1], [1]],
+                "upside down",
+            ),
+            (lambda C1, C2, R1: _fusiello(C1, C2, np.array([0.0, 1.0, 0.0])), "world's y axis"),
         ),
         teaching=rectifying_rotation,
     )

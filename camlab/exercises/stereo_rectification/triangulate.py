@@ -136,6 +136,19 @@ def _triangulation_diagnosis(args, got, expected) -> str:
             _plain(_rows(P2, P1, x1, x2)),
             "you paired each camera with the other image's pixel: x1 is seen by P1 and x2 by P2",
         ),
+        (
+            _plain(_rows(P1, P1, x1, x2)),
+            "you used P1 for both images: the rows of image 2, u2 p3 - p1 and v2 p3 - p2, come from P2",
+        ),
+        (
+            _plain(_rows(P2, P2, x1, x2)),
+            "you used P2 for both images: the rows of image 1, u1 p3 - p1 and v1 p3 - p2, come from P1",
+        ),
+        (
+            (lambda Xh: Xh[:3] / Xh[2])(np.linalg.svd(_rows(P1, P2, x1, x2))[2][-1]),
+            "you divided by X_h[2], the homogeneous z: X_h = (X, Y, Z, W) has its scale W in the LAST "
+            "entry, index 3, so X = X_h[:3] / X_h[3]",
+        ),
     ]
     for off, what in (
         (0.5, "a half-pixel"),
@@ -169,6 +182,17 @@ def _triangulation_diagnosis(args, got, expected) -> str:
         "rows u p3 - p1, v p3 - p2 (p_i the rows of P, for each image), the SVD's last row of V^T and the "
         "division by X_h[3]"
     )
+
+
+def _triangulation_exception_hint(exc: Exception, args: tuple) -> str:
+    """An index past the end of X_h: A was built from P's columns (3 entries), so X_h has no X_h[3]."""
+    if isinstance(exc, IndexError) and "index 3" in str(exc) and "size 3" in str(exc):
+        return (
+            "your X_h has 3 entries, so X_h[3] does not exist: the rows of A come from the ROWS of P, "
+            "u P[2] - P[0] and v P[2] - P[1] (4 entries each, one per coordinate of X_h), not from its "
+            "columns P[:, 2], P[:, 0]"
+        )
+    return ""
 
 
 def triangulate_point(P1, P2, x1, x2):
@@ -212,6 +236,7 @@ register_exercise(
         # passes; every slip below moves X by centimetres or more
         compare=_triangulation_compare,
         diagnose=_triangulation_diagnosis,
+        exception_hint=_triangulation_exception_hint,
         wrong_variants=(
             (
                 lambda P1, P2, x1, x2: np.append(triangulate_point(P1, P2, x1, x2), 1.0),
@@ -231,6 +256,13 @@ register_exercise(
             ),
             (lambda P1, P2, x1, x2: 1000 * triangulate_point(P1, P2, x1, x2), "unit slip"),
             (lambda P1, P2, x1, x2: _plain(_six_rows(P1, P2, x1, x2)), "third, u p2 - v p1"),
+            (lambda P1, P2, x1, x2: _plain(_rows(P1, P1, x1, x2)), "P1 for both"),
+            (
+                lambda P1, P2, x1, x2: (lambda Xh: Xh[:3] / Xh[2])(
+                    np.linalg.svd(_rows(P1, P2, x1, x2))[2][-1]
+                ),
+                "divided by X_h[2]",
+            ),
         ),
         teaching=triangulate_point,
     )
