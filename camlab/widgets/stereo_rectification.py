@@ -32,7 +32,7 @@ from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import int_slider, monospace
 
 SIZE = (640, 480)
-# the epipolar demo's fixed pixels (their epipolar lines drawn in blue): four near the corners, the centre
+# the epipolar demo's fixed pixels (their epipolar lines drawn in pale red): four near the corners, the centre
 REF_PIXELS = np.array([[79.5, 59.5], [559.5, 99.5], [319.5, 239.5], [139.5, 419.5], [499.5, 399.5]])
 
 
@@ -89,14 +89,18 @@ def _epipolar_legends(axl, axr, depth_dots, epi_r) -> None:
     def key(**kw):
         return Line2D([], [], **kw)
 
-    blue = {"color": palette.BLUE, "lw": 1.0}
+    pale = {
+        "color": palette.RED,
+        "lw": 1.0,
+        "alpha": 0.5,
+    }  # epipolar lines are red; the fixed pencil pale
     axl.legend(
         [
-            key(**blue, marker="s", mec="k", ms=6),
+            key(**pale, marker="s", mfc="w", mec=palette.RED, ms=6),
             key(color=palette.TAB_RED, lw=1.2, ls="--"),
             key(marker="o", color=palette.TAB_RED, ls="none"),
         ],
-        ["5 fixed pixels, their epipolar lines", "l, the point's line", "point x"],
+        ["5 fixed pixels, their epipolar lines (pale red)", "l, the point's line", "point x"],
         loc="upper left",
         bbox_to_anchor=(-0.08, -0.18),
         ncol=3,
@@ -107,7 +111,7 @@ def _epipolar_legends(axl, axr, depth_dots, epi_r) -> None:
     )
     axr.legend(
         [
-            key(**blue),
+            key(**pale),
             key(color=palette.TAB_RED, lw=1.8),
             depth_dots,
             epi_r,
@@ -142,8 +146,8 @@ def _epipolar_figure(view: FigureView) -> SimpleNamespace:
     image_axes(axr, SIZE, "right image: its epipolar line")
     (wl,) = axl.plot([], [], color="0.55", lw=0.8)
     (wr,) = axr.plot([], [], color="0.55", lw=0.8)
-    (pencil_l,) = axl.plot([], [], color=palette.BLUE, lw=0.6, path_effects=palette.halo(0.6))
-    (pencil_r,) = axr.plot([], [], color=palette.BLUE, lw=0.6, path_effects=palette.halo(0.6))
+    (pencil_l,) = axl.plot([], [], color=palette.RED, lw=0.8, alpha=0.5)
+    (pencil_r,) = axr.plot([], [], color=palette.RED, lw=0.8, alpha=0.5)
     (point,) = axl.plot([], [], "o", color=palette.TAB_RED, ms=8)
     (line_l,) = axl.plot([], [], color=palette.TAB_RED, lw=1.2, ls="--")
     (line_r,) = axr.plot([], [], color=palette.TAB_RED, lw=1.8)
@@ -226,7 +230,7 @@ def _epipolar_readout(
     ep2 = (
         "at infinity (lines parallel)"
         if at_inf
-        else f"({e2[0] / e2[2]:.0f}, {e2[1] / e2[2]:.0f}) px, "
+        else f"({e2[0] / e2[2]:.0f}, {e2[1] / e2[2]:.1f}) px, "
         f"|u(e') - c_x| = {abs(e2[0] / e2[2] - (SIZE[0] - 1) / 2):,.0f} px"
     )
     return monospace(
@@ -296,11 +300,11 @@ def epipolar_lines() -> Demo:
     axl, axr, shafts, heads = art.axl, art.axr, art.shafts, art.heads
     readout = W.HTML()
     # four pixels, one near each corner, and the centre of the 640 x 480 image (319.5, 239.5), with
-    # pixel centres at integers: the pencil of the blue lines. No two of the four lie on one line
+    # pixel centres at integers: the pencil of the pale red lines. No two of the four lie on one line
     # through the centre, so in forward motion (epipole at the centre) they give four distinct lines
     ref = REF_PIXELS
     # the fixed pixels themselves, animated: the moving lines' halos would paint over a static marker
-    view.animate(axl.plot(*ref.T, "s", color=palette.BLUE, mec="k", ms=6, zorder=4)[0])
+    view.animate(axl.plot(*ref.T, "s", mfc="w", mec=palette.RED, mew=1.5, ms=6, zorder=4)[0])
 
     def update(v, state):
         c1, c2 = _MOTIONS[v["motion"]](v["baseline"], np.deg2rad(v["toe_in"]))
