@@ -96,13 +96,9 @@ def _baseline_not_unit(norms, C1, C2) -> str | None:
     )
 
 
-def _rectifying_diagnosis(args, got, expected) -> str:
-    C1, C2, R1 = (np.asarray(a, dtype=float) for a in args)
-    problem = shape_problem(got, expected)
-    if problem:
-        return problem + ". Return R_new as a (3, 3) array whose rows are the new x, y and z axes."
-    g = np.asarray(got, dtype=float)
-    forms = [
+def _rectifying_forms(C1, C2, R1, expected) -> list:
+    """Each typical slip's R_new on this input, with its hint."""
+    return [
         (
             expected.T,
             "you put x, y, z in the COLUMNS: that is world_from_cam. R_new is cam_from_world, so the new "
@@ -144,6 +140,15 @@ def _rectifying_diagnosis(args, got, expected) -> str:
             "axis is the third row, z_old = R1[2]",
         ),
     ]
+
+
+def _rectifying_diagnosis(args, got, expected) -> str:
+    C1, C2, R1 = (np.asarray(a, dtype=float) for a in args)
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + ". Return R_new as a (3, 3) array whose rows are the new x, y and z axes."
+    g = np.asarray(got, dtype=float)
+    forms = _rectifying_forms(C1, C2, R1, expected)
     for wrong, hint in forms:
         if np.allclose(g, wrong, atol=1e-8):
             return hint

@@ -89,23 +89,8 @@ def _six_rows(P1, P2, x1, x2):
     )
 
 
-def _triangulation_diagnosis(args, got, expected) -> str:
-    P1, P2, x1, x2 = (np.asarray(a, dtype=float) for a in args)
-    g = np.asarray(got, dtype=float)
-    if g.shape in ((4,), (4, 1), (1, 4)):
-        return (
-            "you returned the homogeneous 4-vector: divide by its last entry and return the first "
-            "three, X = X_h[:3] / X_h[3]"
-        )
-    problem = shape_problem(got, expected)
-    if problem:
-        return problem + ". Return the world point X as a (3,) array, metres."
-    Xh = np.linalg.svd(_rows(P1, P2, x1, x2))[2][-1]
-    if np.allclose(g, Xh[:3], rtol=1e-4) or np.allclose(g, -Xh[:3], rtol=1e-4):
-        return (
-            "you returned the first three entries of the unit singular vector without dividing by "
-            "its fourth: the SVD fixes |X_h| = 1, the world point is X_h[:3] / X_h[3]"
-        )
+def _triangulation_forms(P1, P2, x1, x2) -> list:
+    """Each typical slip's X on this input, with its hint."""
     forms = [
         (
             _plain(_six_rows(P1, P2, x1, x2)),
@@ -163,6 +148,27 @@ def _triangulation_diagnosis(args, got, expected) -> str:
                 "pixels are already in the course's convention (pixel centres at integers); use them as given",
             )
         )
+    return forms
+
+
+def _triangulation_diagnosis(args, got, expected) -> str:
+    P1, P2, x1, x2 = (np.asarray(a, dtype=float) for a in args)
+    g = np.asarray(got, dtype=float)
+    if g.shape in ((4,), (4, 1), (1, 4)):
+        return (
+            "you returned the homogeneous 4-vector: divide by its last entry and return the first "
+            "three, X = X_h[:3] / X_h[3]"
+        )
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + ". Return the world point X as a (3,) array, metres."
+    Xh = np.linalg.svd(_rows(P1, P2, x1, x2))[2][-1]
+    if np.allclose(g, Xh[:3], rtol=1e-4) or np.allclose(g, -Xh[:3], rtol=1e-4):
+        return (
+            "you returned the first three entries of the unit singular vector without dividing by "
+            "its fourth: the SVD fixes |X_h| = 1, the world point is X_h[:3] / X_h[3]"
+        )
+    forms = _triangulation_forms(P1, P2, x1, x2)
     for wrong, hint in forms:
         if np.allclose(g, wrong, rtol=1e-6, atol=1e-9):
             return hint
