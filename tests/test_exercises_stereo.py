@@ -152,3 +152,10 @@ def test_index_errors_get_each_exercises_own_cause():
             check(name, wrong)
         message = str(info.value)
         assert needle in message and "(N, 3) array of points" not in message, message
+
+
+def test_prompts_that_ask_for_an_array_reject_a_list():
+    """triangulate_point and disparity_to_depth ask for an array: a list is named, as in the rest of the course."""
+    reference = EXERCISES["triangulate_point"].teaching
+    with pytest.raises(AssertionError, match=r"you returned a list(.|\n)*np\.array"):
+        check("triangulate_point", lambda *a: list(reference(*a)))

@@ -243,6 +243,7 @@ register_exercise(
         compare=_triangulation_compare,
         diagnose=_triangulation_diagnosis,
         exception_hint=_triangulation_exception_hint,
+        ndarray_only=True,  # the prompt asks for "a (3,) array", as disparity_to_depth's does
         wrong_variants=(
             (
                 lambda P1, P2, x1, x2: np.append(triangulate_point(P1, P2, x1, x2), 1.0),
