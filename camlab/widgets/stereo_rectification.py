@@ -147,7 +147,7 @@ def _epipolar_figure(view: FigureView) -> SimpleNamespace:
     (point,) = axl.plot([], [], "o", color=palette.TAB_RED, ms=8)
     (line_l,) = axl.plot([], [], color=palette.TAB_RED, lw=1.2, ls="--")
     (line_r,) = axr.plot([], [], color=palette.TAB_RED, lw=1.8)
-    (depth_dots,) = axr.plot([], [], "o", color=palette.ORANGE, ms=5)
+    (depth_dots,) = axr.plot([], [], "o", color=palette.GREEN, mec="k", ms=5)
     (epi_l,) = axl.plot([], [], "*", color="k", ms=13)
     (epi_r,) = axr.plot([], [], "*", color="k", ms=13)
     # an epipole off the image: an arrow (shaft + head) at the border pointing to it
