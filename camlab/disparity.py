@@ -7,7 +7,9 @@ similar triangles, :math:`Z = f B / d`.
 
 * :func:`block_matching_disparity` is the teaching path, readable numpy: compare a small
   window around each left pixel with windows shifted by every candidate d in the right
-  image (sum of absolute differences of mean-removed windows), take the best d
+  image (sum of absolute differences of the images minus their local window mean: a
+  high-pass prefilter like OpenCV StereoBM's normalized-response one; not textbook ZSAD,
+  which removes one mean per compared window), take the best d
   (winner-takes-all), refine it to sub-pixel precision with a parabola through the three
   costs around the minimum, and reject pixels whose match is ambiguous or fails the
   left-right consistency check.
@@ -194,8 +196,11 @@ def block_matching_disparity(
     1. **Cost volume.** For each candidate disparity :math:`d` (``min_disparity`` ...
        ``max_disparity``) the cost of left pixel (u, v) is the sum over a ``block_size``
        window of :math:`|\tilde L(v, u) - \tilde R(v, u - d)|`, where :math:`\tilde L, \tilde R`
-       are the images minus their local window mean (so a brightness difference between
-       the cameras costs nothing). Window sums come from :func:`box_sum`, so one
+       are the images minus their local window mean, each pixel minus the mean of the
+       window around *it* (so a brightness difference between the cameras costs nothing).
+       That is a high-pass prefilter, like OpenCV StereoBM's
+       ``PREFILTER_NORMALIZED_RESPONSE`` without its clipping, followed by SAD; textbook
+       ZSAD instead subtracts one mean per compared window, a close but different cost. Window sums come from :func:`box_sum`, so one
        disparity costs a few whole-image operations; stacking them gives the (D, H, W)
        cost volume (the "disparity space image"; 4 bytes per entry).
     2. **Winner takes all**: the d with the smallest cost, per pixel.

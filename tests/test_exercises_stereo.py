@@ -120,3 +120,42 @@ def test_subpixel_disparity_accepts_other_forms(answer, capsys):
 def test_subpixel_disparity_names_each_typical_slip(slip, needle):
     with pytest.raises(AssertionError, match=r"likely cause: .*" + needle):
         check("subpixel_disparity", slip)
+
+
+def test_index_errors_get_each_exercises_own_cause():
+    """argmax in subpixel_disparity and P's columns in triangulate_point raise IndexError: name those slips."""
+
+    def argmax_winner(ds, cost):
+        ds, c = np.asarray(ds, float), np.asarray(cost, float)
+        k = int(np.argmax(c))
+        return float(ds[k] + (c[k - 1] - c[k + 1]) / (2 * (c[k - 1] - 2 * c[k] + c[k + 1])))
+
+    def columns_of_p(P1, P2, x1, x2):
+        P1, P2 = np.asarray(P1), np.asarray(P2)
+        (u1, v1), (u2, v2) = x1, x2
+        A = np.array(
+            [
+                u1 * P1[:, 2] - P1[:, 0],
+                v1 * P1[:, 2] - P1[:, 1],
+                u2 * P2[:, 2] - P2[:, 0],
+                v2 * P2[:, 2] - P2[:, 1],
+            ]
+        )
+        Xh = np.linalg.svd(A)[2][-1]
+        return Xh[:3] / Xh[3]
+
+    for name, wrong, needle in (
+        ("subpixel_disparity", argmax_winner, "did you take argmax"),
+        ("triangulate_point", columns_of_p, "ROWS of P"),
+    ):
+        with pytest.raises(AssertionError) as info:
+            check(name, wrong)
+        message = str(info.value)
+        assert needle in message and "(N, 3) array of points" not in message, message
+
+
+def test_prompts_that_ask_for_an_array_reject_a_list():
+    """triangulate_point and disparity_to_depth ask for an array: a list is named, as in the rest of the course."""
+    reference = EXERCISES["triangulate_point"].teaching
+    with pytest.raises(AssertionError, match=r"you returned a list(.|\n)*np\.array"):
+        check("triangulate_point", lambda *a: list(reference(*a)))

@@ -652,7 +652,12 @@ def _exception_hint(exc: Exception) -> str:
             " a copy (K = camera.K.copy())"
         )
     if isinstance(exc, IndexError) and "out of bounds" in str(exc):
-        return one_based
+        return (
+            "\n  likely cause: an index past the end of an axis (the error names the axis and its size)."
+            " Python counts from 0: an axis of size n has indices 0 .. n - 1, so counting columns from 1"
+            " fails at the last one (the columns of an (N, 3) array are 0, 1 and 2), and so does k + 1"
+            " when k is already the last index"
+        )
     if isinstance(exc, TypeError) and "converted to Python scalars" in str(exc):
         return (
             "\n  likely cause: int() or float() of an array: they convert one number, and the array holds several;"

@@ -32,7 +32,7 @@ from ._base import Demo, FigureView, build_demo, register, slider
 from .controls import int_slider, monospace
 
 SIZE = (640, 480)
-# the epipolar demo's fixed pixels (their epipolar lines drawn in blue): four near the corners, the centre
+# the epipolar demo's fixed pixels (their epipolar lines drawn thin red): four near the corners, the centre
 REF_PIXELS = np.array([[79.5, 59.5], [559.5, 99.5], [319.5, 239.5], [139.5, 419.5], [499.5, 399.5]])
 
 
@@ -89,10 +89,10 @@ def _epipolar_legends(axl, axr, depth_dots, epi_r) -> None:
     def key(**kw):
         return Line2D([], [], **kw)
 
-    blue = {"color": palette.BLUE, "lw": 1.0}
+    pale = {"color": palette.RED, "lw": 0.6}  # epipolar lines are red; the fixed pencil thin
     axl.legend(
         [
-            key(**blue, marker="s", mec="k", ms=6),
+            key(**pale, marker="s", mfc="w", mec=palette.RED, ms=6),
             key(color=palette.TAB_RED, lw=1.2, ls="--"),
             key(marker="o", color=palette.TAB_RED, ls="none"),
         ],
@@ -107,7 +107,7 @@ def _epipolar_legends(axl, axr, depth_dots, epi_r) -> None:
     )
     axr.legend(
         [
-            key(**blue),
+            key(**pale),
             key(color=palette.TAB_RED, lw=1.8),
             depth_dots,
             epi_r,
@@ -142,12 +142,12 @@ def _epipolar_figure(view: FigureView) -> SimpleNamespace:
     image_axes(axr, SIZE, "right image: its epipolar line")
     (wl,) = axl.plot([], [], color="0.55", lw=0.8)
     (wr,) = axr.plot([], [], color="0.55", lw=0.8)
-    (pencil_l,) = axl.plot([], [], color=palette.BLUE, lw=0.6, path_effects=palette.halo(0.6))
-    (pencil_r,) = axr.plot([], [], color=palette.BLUE, lw=0.6, path_effects=palette.halo(0.6))
+    (pencil_l,) = axl.plot([], [], color=palette.RED, lw=0.6)
+    (pencil_r,) = axr.plot([], [], color=palette.RED, lw=0.6)
     (point,) = axl.plot([], [], "o", color=palette.TAB_RED, ms=8)
     (line_l,) = axl.plot([], [], color=palette.TAB_RED, lw=1.2, ls="--")
     (line_r,) = axr.plot([], [], color=palette.TAB_RED, lw=1.8)
-    (depth_dots,) = axr.plot([], [], "o", color=palette.ORANGE, ms=5)
+    (depth_dots,) = axr.plot([], [], "o", color=palette.GREEN, mec="k", ms=5)
     (epi_l,) = axl.plot([], [], "*", color="k", ms=13)
     (epi_r,) = axr.plot([], [], "*", color="k", ms=13)
     # an epipole off the image: an arrow (shaft + head) at the border pointing to it
@@ -226,7 +226,7 @@ def _epipolar_readout(
     ep2 = (
         "at infinity (lines parallel)"
         if at_inf
-        else f"({e2[0] / e2[2]:.0f}, {e2[1] / e2[2]:.0f}) px, "
+        else f"({e2[0] / e2[2]:.0f}, {e2[1] / e2[2]:.1f}) px, "
         f"|u(e') - c_x| = {abs(e2[0] / e2[2] - (SIZE[0] - 1) / 2):,.0f} px"
     )
     return monospace(
@@ -296,11 +296,11 @@ def epipolar_lines() -> Demo:
     axl, axr, shafts, heads = art.axl, art.axr, art.shafts, art.heads
     readout = W.HTML()
     # four pixels, one near each corner, and the centre of the 640 x 480 image (319.5, 239.5), with
-    # pixel centres at integers: the pencil of the blue lines. No two of the four lie on one line
+    # pixel centres at integers: the pencil of the thin red lines. No two of the four lie on one line
     # through the centre, so in forward motion (epipole at the centre) they give four distinct lines
     ref = REF_PIXELS
     # the fixed pixels themselves, animated: the moving lines' halos would paint over a static marker
-    view.animate(axl.plot(*ref.T, "s", color=palette.BLUE, mec="k", ms=6, zorder=4)[0])
+    view.animate(axl.plot(*ref.T, "s", mfc="w", mec=palette.RED, mew=1.5, ms=6, zorder=4)[0])
 
     def update(v, state):
         c1, c2 = _MOTIONS[v["motion"]](v["baseline"], np.deg2rad(v["toe_in"]))
@@ -680,14 +680,14 @@ def _disparity_figure(gt: np.ndarray) -> tuple:
 
     plt_colormap = colormaps.get_cmap
     view = FigureView(figsize=(9.4, 3.6))
-    # the empty fourth column keeps the 3-D panel's z label ("up (m)") inside the figure
-    gs = view.fig.add_gridspec(1, 4, width_ratios=[1, 1, 1.25, 0.07])
+    # the 2-D maps get the width; the empty fourth column keeps the 3-D panel's z label inside
+    gs = view.fig.add_gridspec(1, 4, width_ratios=[1.2, 1.2, 1.0, 0.05])
     ax1 = view.fig.add_subplot(gs[0])
     ax2 = view.fig.add_subplot(gs[1])
     ax3 = scene3d.axes3d(view.fig, gs[2], elev=18, azim=-62)
     for a, t in (
-        (ax1, "disparity (px); grey: no match"),
-        (ax2, "depth error (%), red: too far;\ngrey: no match"),
+        (ax1, "disparity (half-size px);\ngrey: no match"),
+        (ax2, "depth error (%), red: too far,\nblue: too near; grey: no match"),
     ):
         a.set(xticks=[], yticks=[])
         a.set_title(t, fontsize=9)
@@ -695,11 +695,19 @@ def _disparity_figure(gt: np.ndarray) -> tuple:
     viridis = plt_colormap("viridis").with_extremes(bad=palette.GREY)
     coolwarm = plt_colormap("coolwarm").with_extremes(bad=palette.GREY)
     im1 = ax1.imshow(gt, cmap=viridis, vmin=8, vmax=40, interpolation="nearest")
-    view.fig.colorbar(im1, ax=ax1, shrink=0.7, label="d (half-size px)")
-    im2 = ax2.imshow(np.zeros_like(gt), cmap=coolwarm, vmin=-5, vmax=5, interpolation="nearest")
     view.fig.colorbar(
-        im2, ax=ax2, shrink=0.7, label="depth error (%)"
-    )  # red = too far: in the title
+        im1, ax=ax1, shrink=0.85, location="bottom", pad=0.03, label="d (half-size px)"
+    )
+    # +-2 %: the far wall's 0.7 % pixel-locking bias reads as a clear pink, not a faint tint
+    im2 = ax2.imshow(np.zeros_like(gt), cmap=coolwarm, vmin=-2, vmax=2, interpolation="nearest")
+    view.fig.colorbar(
+        im2,
+        ax=ax2,
+        shrink=0.85,
+        location="bottom",
+        pad=0.03,
+        label="depth error (%), clipped at ±2",
+    )
     ax3.set_title("3-D points, left camera", fontsize=9)
     ax3.set(xlim=(-1.6, 1.6), ylim=(1.0, 4.5), zlim=(-0.8, 1.4))
     ax3.set_box_aspect(None, zoom=1.2)  # fill the panel: the default leaves a wide empty margin

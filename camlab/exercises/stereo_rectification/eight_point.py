@@ -97,6 +97,12 @@ def _eight_point_diagnosis(args, got, expected) -> str:
                 f"your F is the right F for every point moved by {off:+g} px: {what} offset. The points are "
                 "already pixel coordinates with the origin at the centre of the top-left pixel; use them as given"
             )
+    for undo in (False, True):
+        if same_up_to_scale(g, _row_times_t(x1, x2, undo), rtol=1e-3):
+            return (
+                "you normalised the points with x_h @ T, which applies T^T (its translation lands in the "
+                "third column and never moves them): with points as rows, T x is x_h @ T.T"
+            )
     top = np.vstack([x1, x2]).max(axis=0)  # the image size, as a student might take it
     for scale in (None, (1 / 640, 1 / 480), (2 / 640, 2 / 480), tuple(1 / top)):
         if same_up_to_scale(g, _scaled_not_centred(x1, x2, scale), rtol=1e-3):
@@ -256,6 +262,17 @@ def _scaled_not_centred(x1, x2, scale=None, centre=False):
     return T2.T @ U @ np.diag([S[0], S[1], 0.0]) @ Vt @ T1
 
 
+def _row_times_t(x1, x2, undo_transposed=False):
+    """The 8-point algorithm with rows normalised as x_h @ T (T^T applied), undone as T2^T F_n T1 or transposed."""
+    a, b = np.asarray(x1, float), np.asarray(x2, float)
+    T1, T2 = hartley_normalise(a).T, hartley_normalise(b).T
+    ah, bh = np.c_[a, np.ones(len(a))] @ T1, np.c_[b, np.ones(len(b))] @ T2
+    A = np.column_stack([bh[:, [0]] * ah, bh[:, [1]] * ah, ah])  # as the teaching rows
+    U, S, Vt = np.linalg.svd(np.linalg.svd(A)[2][-1].reshape(3, 3))
+    F = U @ np.diag([S[0], S[1], 0.0]) @ Vt
+    return T2 @ F @ T1.T if undo_transposed else T2.T @ F @ T1
+
+
 def _only_t2(x1, x2):
     """The normalised F with only image 2's normalisation undone, T2^T F_n (tests)."""
     T1 = hartley_normalise(np.asarray(x1, float)).T
@@ -353,6 +370,7 @@ register_exercise(
                 "centred the points but did not scale",
             ),
             (_only_t2, "only image 2's normalisation"),
+            (_row_times_t, "x_h @ T.T"),
         ),
         teaching=eight_point,
     )

@@ -85,6 +85,15 @@ def _reflection_hint(Rs) -> str:
     return ""
 
 
+def _two_rotations(mine, right) -> str:
+    """Two 3 x 3 rotations side by side, 4 decimals: the summarised arrays above cannot show a transpose."""
+    rows = [
+        "    " + " ".join(f"{x:+.4f}" for x in a) + "   |   " + " ".join(f"{x:+.4f}" for x in b)
+        for a, b in zip(mine, right, strict=True)
+    ]
+    return "    yours" + " " * 21 + "|   expected\n" + "\n".join(rows)
+
+
 def _essential_diagnosis(args, got, expected) -> str:
     (E,) = args
     try:
@@ -131,7 +140,8 @@ def _essential_diagnosis(args, got, expected) -> str:
             return (
                 "your t is E's right null vector and your rotations are transposed: you decomposed E^T "
                 "(or swapped U and V^T). E = [t]x R = U diag(1, 1, 0) V^T: R = U W V^T or U W^T V^T, "
-                "t = ±U[:, 2]"
+                "t = ±U[:, 2]. Your first R and the candidate it transposes:\n"
+                + _two_rotations(Rs[0], Rs[0].T)
             )
         return (
             "your t is the right null vector of E (last row of V^T); t is the LEFT null vector, the last "
@@ -152,7 +162,8 @@ def _essential_diagnosis(args, got, expected) -> str:
         return (
             "your rotations are transposed: V W^T U^T is (U W V^T)^T. E = [t]x R with R = U W V^T or "
             "U W^T V^T takes camera 1's coordinates to camera 2's (X2 = R X1 + t); did you write Vt.T @ W @ U.T, "
-            "or decompose E^T?"
+            "or decompose E^T? Your first R and the candidate it transposes:\n"
+            + _two_rotations(Rs[0], Rs[0].T)
         )
     if len({tuple(np.round(R, 6).ravel()) for R in Rs}) < 2:
         return "your four candidates hold only one rotation: R_a = U W V^T and R_b = U W^T V^T (note the transpose)"

@@ -96,13 +96,9 @@ def _baseline_not_unit(norms, C1, C2) -> str | None:
     )
 
 
-def _rectifying_diagnosis(args, got, expected) -> str:
-    C1, C2, R1 = (np.asarray(a, dtype=float) for a in args)
-    problem = shape_problem(got, expected)
-    if problem:
-        return problem + ". Return R_new as a (3, 3) array whose rows are the new x, y and z axes."
-    g = np.asarray(got, dtype=float)
-    forms = [
+def _rectifying_forms(C1, C2, R1, expected) -> list:
+    """Each typical slip's R_new on this input, with its hint."""
+    return [
         (
             expected.T,
             "you put x, y, z in the COLUMNS: that is world_from_cam. R_new is cam_from_world, so the new "
@@ -129,11 +125,30 @@ def _rectifying_diagnosis(args, got, expected) -> str:
             "worlds, not where camera 1 looks: its optical axis in world coordinates is R1[2]",
         ),
         (
+            expected * [[1.0], [-1.0], [1.0]],
+            "your y is x × z_old (it points up) and your z = y × x: the rows x, y, z make det R_new = -1, a "
+            "left-handed frame, and the image comes out upside down. y = z_old × x, then z = x × y",
+        ),
+        (
+            _fusiello(C1, C2, np.array([0.0, 1.0, 0.0])),
+            "your old viewing direction is the world's y axis (0, 1, 0), roughly ahead in this course's "
+            "worlds but not where camera 1 looks: its optical axis in world coordinates is R1[2]",
+        ),
+        (
             _fusiello(C1, C2, R1[1]),
             "your old viewing direction is R1[1], camera 1's y axis (down in its image): the optical "
             "axis is the third row, z_old = R1[2]",
         ),
     ]
+
+
+def _rectifying_diagnosis(args, got, expected) -> str:
+    C1, C2, R1 = (np.asarray(a, dtype=float) for a in args)
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + ". Return R_new as a (3, 3) array whose rows are the new x, y and z axes."
+    g = np.asarray(got, dtype=float)
+    forms = _rectifying_forms(C1, C2, R1, expected)
     for wrong, hint in forms:
         if np.allclose(g, wrong, atol=1e-8):
             return hint
@@ -207,6 +222,11 @@ register_exercise(
             (lambda C1, C2, R1: _fusiello(C1, C2, np.array([0.0, 0.0, 1.0])), "world's z axis"),
             (lambda C1, C2, R1: _fusiello(C1, C2, np.asarray(R1)[2], z_kept=True), "z = x × y"),
             (lambda C1, C2, R1: _fusiello(C1, C2, np.asarray(R1)[1]), "camera 1's y axis"),
+            (
+                lambda C1, C2, R1: rectifying_rotation(C1, C2, R1) * [[1], [-1], [1]],
+                "upside down",
+            ),
+            (lambda C1, C2, R1: _fusiello(C1, C2, np.array([0.0, 1.0, 0.0])), "world's y axis"),
         ),
         teaching=rectifying_rotation,
     )

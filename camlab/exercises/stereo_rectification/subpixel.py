@@ -81,7 +81,9 @@ def _subpixel_diagnosis(args, got, expected) -> str:
             "difference c- - 2 c0 + c+ (the parabola's curvature): a + before 2 c0 makes the step far too small",
         ),
     ]
-    argmax = "you took the largest cost (argmax): the best match is the smallest ZSAD cost, k = argmin(cost)"
+    argmax = (
+        "you took the largest cost (argmax): the best match is the smallest cost, k = argmin(cost)"
+    )
     slips += [(ds[big] + _vertex(c, big), argmax), (ds[big], argmax)]
     index = f"you returned the index k = {k}, not the disparity ds[k] = {ds[k]:g}: the candidates start at min_disparity = {ds[0]:g}"
     slips += [(k, index + ", and step 3's parabola moves the winner to its vertex")]
@@ -94,6 +96,23 @@ def _subpixel_diagnosis(args, got, expected) -> str:
     return (
         f"you give {g:.4g} px; the winner is ds[{k}] = {ds[k]:g} (costs {c[k - 1]:.4g}, {c[k]:.4g}, {c[k + 1]:.4g} "
         f"at d - 1, d, d + 1) and the parabola's vertex is {expected:.4g} px"
+    )
+
+
+def _subpixel_exception_hint(exc: Exception, args: tuple) -> str:
+    """An index past the end of the cost: the winner was taken at an end, where c[k + 1] does not exist."""
+    if not (isinstance(exc, IndexError) and "out of bounds" in str(exc)):
+        return ""
+    c = np.asarray(args[1], dtype=float)
+    if int(np.argmax(c)) in (0, len(c) - 1):
+        return (
+            f"c[k + 1] or c[k - 1] past the end of the {len(c)} costs: your winner k sits at an end of ds, "
+            "where the LARGEST cost of this curve is. The winner is the lowest cost, k = np.argmin(cost) "
+            "(never at an end here); did you take argmax?"
+        )
+    return (
+        f"an index past the end of the {len(c)} costs: the three costs are c[k - 1], c[k], c[k + 1] around "
+        "k = np.argmin(cost), an index into cost (0 .. D - 1), not the disparity ds[k]"
     )
 
 
@@ -140,6 +159,7 @@ register_exercise(
             np.ndim(got) == 0 and np.isclose(float(got), expected, rtol=0, atol=1e-6)
         ),
         diagnose=_subpixel_diagnosis,
+        exception_hint=_subpixel_exception_hint,
         wrong_variants=(
             (_flip, "sign is flipped"),
             (

@@ -89,23 +89,8 @@ def _six_rows(P1, P2, x1, x2):
     )
 
 
-def _triangulation_diagnosis(args, got, expected) -> str:
-    P1, P2, x1, x2 = (np.asarray(a, dtype=float) for a in args)
-    g = np.asarray(got, dtype=float)
-    if g.shape in ((4,), (4, 1), (1, 4)):
-        return (
-            "you returned the homogeneous 4-vector: divide by its last entry and return the first "
-            "three, X = X_h[:3] / X_h[3]"
-        )
-    problem = shape_problem(got, expected)
-    if problem:
-        return problem + ". Return the world point X as a (3,) array, metres."
-    Xh = np.linalg.svd(_rows(P1, P2, x1, x2))[2][-1]
-    if np.allclose(g, Xh[:3], rtol=1e-4) or np.allclose(g, -Xh[:3], rtol=1e-4):
-        return (
-            "you returned the first three entries of the unit singular vector without dividing by "
-            "its fourth: the SVD fixes |X_h| = 1, the world point is X_h[:3] / X_h[3]"
-        )
+def _triangulation_forms(P1, P2, x1, x2) -> list:
+    """Each typical slip's X on this input, with its hint."""
     forms = [
         (
             _plain(_six_rows(P1, P2, x1, x2)),
@@ -136,6 +121,19 @@ def _triangulation_diagnosis(args, got, expected) -> str:
             _plain(_rows(P2, P1, x1, x2)),
             "you paired each camera with the other image's pixel: x1 is seen by P1 and x2 by P2",
         ),
+        (
+            _plain(_rows(P1, P1, x1, x2)),
+            "you used P1 for both images: the rows of image 2, u2 p3 - p1 and v2 p3 - p2, come from P2",
+        ),
+        (
+            _plain(_rows(P2, P2, x1, x2)),
+            "you used P2 for both images: the rows of image 1, u1 p3 - p1 and v1 p3 - p2, come from P1",
+        ),
+        (
+            (lambda Xh: Xh[:3] / Xh[2])(np.linalg.svd(_rows(P1, P2, x1, x2))[2][-1]),
+            "you divided by X_h[2], the homogeneous z: X_h = (X, Y, Z, W) has its scale W in the LAST "
+            "entry, index 3, so X = X_h[:3] / X_h[3]",
+        ),
     ]
     for off, what in (
         (0.5, "a half-pixel"),
@@ -150,6 +148,27 @@ def _triangulation_diagnosis(args, got, expected) -> str:
                 "pixels are already in the course's convention (pixel centres at integers); use them as given",
             )
         )
+    return forms
+
+
+def _triangulation_diagnosis(args, got, expected) -> str:
+    P1, P2, x1, x2 = (np.asarray(a, dtype=float) for a in args)
+    g = np.asarray(got, dtype=float)
+    if g.shape in ((4,), (4, 1), (1, 4)):
+        return (
+            "you returned the homogeneous 4-vector: divide by its last entry and return the first "
+            "three, X = X_h[:3] / X_h[3]"
+        )
+    problem = shape_problem(got, expected)
+    if problem:
+        return problem + ". Return the world point X as a (3,) array, metres."
+    Xh = np.linalg.svd(_rows(P1, P2, x1, x2))[2][-1]
+    if np.allclose(g, Xh[:3], rtol=1e-4) or np.allclose(g, -Xh[:3], rtol=1e-4):
+        return (
+            "you returned the first three entries of the unit singular vector without dividing by "
+            "its fourth: the SVD fixes |X_h| = 1, the world point is X_h[:3] / X_h[3]"
+        )
+    forms = _triangulation_forms(P1, P2, x1, x2)
     for wrong, hint in forms:
         if np.allclose(g, wrong, rtol=1e-6, atol=1e-9):
             return hint
@@ -169,6 +188,17 @@ def _triangulation_diagnosis(args, got, expected) -> str:
         "rows u p3 - p1, v p3 - p2 (p_i the rows of P, for each image), the SVD's last row of V^T and the "
         "division by X_h[3]"
     )
+
+
+def _triangulation_exception_hint(exc: Exception, args: tuple) -> str:
+    """An index past the end of X_h: A was built from P's columns (3 entries), so X_h has no X_h[3]."""
+    if isinstance(exc, IndexError) and "index 3" in str(exc) and "size 3" in str(exc):
+        return (
+            "your X_h has 3 entries, so X_h[3] does not exist: the rows of A come from the ROWS of P, "
+            "u P[2] - P[0] and v P[2] - P[1] (4 entries each, one per coordinate of X_h), not from its "
+            "columns P[:, 2], P[:, 0]"
+        )
+    return ""
 
 
 def triangulate_point(P1, P2, x1, x2):
@@ -212,6 +242,8 @@ register_exercise(
         # passes; every slip below moves X by centimetres or more
         compare=_triangulation_compare,
         diagnose=_triangulation_diagnosis,
+        exception_hint=_triangulation_exception_hint,
+        ndarray_only=True,  # the prompt asks for "a (3,) array", as disparity_to_depth's does
         wrong_variants=(
             (
                 lambda P1, P2, x1, x2: np.append(triangulate_point(P1, P2, x1, x2), 1.0),
@@ -231,6 +263,13 @@ register_exercise(
             ),
             (lambda P1, P2, x1, x2: 1000 * triangulate_point(P1, P2, x1, x2), "unit slip"),
             (lambda P1, P2, x1, x2: _plain(_six_rows(P1, P2, x1, x2)), "third, u p2 - v p1"),
+            (lambda P1, P2, x1, x2: _plain(_rows(P1, P1, x1, x2)), "P1 for both"),
+            (
+                lambda P1, P2, x1, x2: (lambda Xh: Xh[:3] / Xh[2])(
+                    np.linalg.svd(_rows(P1, P2, x1, x2))[2][-1]
+                ),
+                "divided by X_h[2]",
+            ),
         ),
         teaching=triangulate_point,
     )
