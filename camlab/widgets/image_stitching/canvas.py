@@ -440,7 +440,10 @@ def full_panorama() -> Demo:
             for p in r.pairs
         )
         readout.value = monospace(
-            f"{v['projection']}: {ww} x {hh} px, reference {r.reference}\n{rows}"
+            f"{v['projection']}: {ww} x {hh} px, reference {r.reference}\n"
+            "stitch's own matching (photos as floats, FLANN): a few matches more or fewer\n"
+            "than section 4's table (photos as loaded, brute force)\n"
+            f"{rows}"
         )
 
     controls = {
@@ -588,8 +591,7 @@ def canvas_projections() -> Demo:
 
 
 EDGE_RGB = tuple(
-    tuple(int(round(255 * c)) for c in to_rgb(colour))
-    for colour in (palette.TAB_BLUE, palette.ORANGE)
+    tuple(int(round(255 * c)) for c in to_rgb(colour)) for colour in (palette.BLUE, palette.ORANGE)
 )
 """The edges of view 0 and view 1 in the parallax demo: the lesson's colours of views 0 and 1."""
 
