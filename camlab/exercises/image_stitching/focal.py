@@ -504,6 +504,45 @@ def _pair_shape_hint(got, expected) -> str | None:
     return None
 
 
+def _nan_hint(context, pair, j: int, expected, which: str) -> str | None:
+    """The cause of a NaN focal (``pair[j]``) where the larger-denominator formula is defined; else None."""
+    g = pair[j]
+    # NaN does not tell the slips apart by value: name every slip that gives NaN here with some formula
+    causes = [m for m in _FOCAL_SLIPS if (a := m.answer(context)) is not None and _shows_slip(g, a)]
+    signs = [m for m in causes if m.name.startswith("sign flip")]
+    other = pair[1 - j]
+    other_right = np.isfinite(other) and abs(other / expected[1 - j] - 1) < 1e-5
+    if len(causes) > 1 and signs and other_right:
+        # a sign flip spoils one formula, so the other focal can stay right; the other slips (H transposed,
+        # the centre) spoil both
+        causes = signs[:1]
+    elif len(causes) > 1:
+        # the other focal tells them apart (width and height swapped leaves it finite, H.T does not)
+        ctx = SimpleNamespace(**{**vars(context), "expected": float(expected[1 - j])})
+        ctx.keys = _COLUMNS if j == 0 else _ROWS
+        causes = [
+            m for m in causes if (a := m.answer(ctx)) is not None and _shows_slip(other, a)
+        ] or causes
+        if np.isnan(other) and causes[0].name == "H transposed":  # one slip that spoils both focals
+            return (
+                f"{which}: both focals came out NaN (f^2 negative) on a turn where the formulas are defined: "
+                f"{causes[0].hint} (If you did not, a sign flip in both formulas does this too.)"
+            )
+    if causes:
+        return (
+            f"{which}: f^2 came out negative (its square root is NaN) on a turn where the formula with the "
+            "larger denominator is defined. "
+            + (
+                causes[0].hint[:1].upper() + causes[0].hint[1:]
+                if len(causes) == 1
+                else "Depending on the formulas you used, that is one of these slips: "
+                + "; ".join(f"({k}) {_FOCAL_SHORT[m.name]}" for k, m in enumerate(causes, 1))
+                + "."
+            )
+        )
+    return None
+
+
 def _focal_diagnosis(args, got, expected) -> str:
     H, shape = args
     shape_hint = _pair_shape_hint(got, expected)
@@ -541,29 +580,9 @@ def _focal_diagnosis(args, got, expected) -> str:
         ):
             return _zero_over_zero_hint(zz, g, which)
     if np.isnan(g):
-        # NaN does not tell the slips apart by value: name every slip that gives NaN here with some formula
-        causes = [
-            m for m in _FOCAL_SLIPS if (a := m.answer(context)) is not None and _shows_slip(g, a)
-        ]
-        signs = [m for m in causes if m.name.startswith("sign flip")]
-        other = pair[1 - j]
-        other_right = np.isfinite(other) and abs(other / expected[1 - j] - 1) < 1e-5
-        if len(causes) > 1 and signs and other_right:
-            # a sign flip spoils one formula, so the other focal can stay right; the other slips (H transposed,
-            # the centre) spoil both
-            causes = signs[:1]
-        if causes:
-            return (
-                f"{which}: f^2 came out negative (its square root is NaN) on a turn where the formula with the "
-                "larger denominator is defined. "
-                + (
-                    causes[0].hint[:1].upper() + causes[0].hint[1:]
-                    if len(causes) == 1
-                    else "Depending on the formulas you used, that is one of these slips: "
-                    + "; ".join(f"({k}) {_FOCAL_SHORT[m.name]}" for k, m in enumerate(causes, 1))
-                    + "."
-                )
-            )
+        hint = _nan_hint(context, pair, j, expected, which)
+        if hint:
+            return hint
     cause = first_mistake(_FOCAL_SLIPS, context, g, _shows_slip)
     if cause:
         return f"{which}: {cause}"
@@ -619,7 +638,7 @@ register_exercise(
             ),
             (
                 lambda H, shape: focal_from_rotation_homography(H, tuple(shape[:2])[::-1]),
-                "width and height swapped",
+                "idth and height swapped",  # W when it starts the sentence
             ),
             (lambda H, shape: focal_from_rotation_homography(H, shape)[::-1], "swapped"),
             (_one_focal, "you returned one number"),

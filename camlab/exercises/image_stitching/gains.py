@@ -96,17 +96,19 @@ def _solve(
     sign=-1.0,
     diag=False,
     diag_in_b=False,
+    coupling_sq=False,
 ):
     """Section 5's normal equations with one slip switched on (the keywords' defaults are right).
 
-    ``diag_in_b`` zeroes N_ii in A but leaves it in b.
+    ``diag_in_b`` zeroes N_ii in A but leaves it in b; ``coupling_sq`` writes the coupling with I * I
+    (I_ij^2) where I * I.T (I_ij I_ji) belongs.
     """
     N = np.array(N, dtype=float)
     own = np.diag(N).copy()
     if not diag:  # the slip "diagonal kept" leaves N_ii in: with j = i the data terms cancel, the prior's stay
         np.fill_diagonal(N, 0)
     s2 = sigma_n**2 if square else sigma_n
-    A = sign * N * factor * M * M.T / s2
+    A = sign * N * factor * M * (M if coupling_sq else M.T) / s2
     A[np.diag_indices(len(N))] = (
         N * (factor * M**2 / s2 + (1 / sigma_g**2 if prior_a else 0))
     ).sum(axis=1)
@@ -145,7 +147,14 @@ _GAIN_SLIPS = (
         "I transposed",
         lambda c: _solve(c.N, c.M.T),
         "I_mean[i, j] is image i's mean on its overlap with j, and the diagonal term of equation i uses it "
-        "(2 I_ij^2 / sigma_N^2): you used I_mean[j, i], the other image's mean there (I_mean transposed).",
+        "(2 I_ij^2 / sigma_N^2): you used I_mean[j, i], the other image's mean there. Either you passed I_mean "
+        "transposed, or you summed the diagonal term over axis 0: equation i sums over j along row i, axis=1.",
+    ),
+    Mistake(
+        "I * I coupling",
+        lambda c: _solve(c.N, c.M, coupling_sq=True),
+        "the coupling term A[i, j] = -2 N_ij I_ij I_ji / sigma_N^2 multiplies image i's mean by image j's on the "
+        "same overlap: with arrays that is I_mean * I_mean.T. You wrote I_mean * I_mean (I_ij^2).",
     ),
     Mistake(
         "sign",
@@ -289,6 +298,7 @@ register_exercise(
             (lambda N, M: np.zeros(len(N)), "without the prior"),
             (_variant("prior only on the right"), "first only"),
             (_variant("I transposed"), "I_mean transposed"),
+            (_variant("I * I coupling"), "I_mean * I_mean.T"),
             (_variant("sign"), "sign flip"),
             (_variant("no factor 2"), "factor 2"),
             (_variant("sigma not squared"), "not sigma_N (10)"),

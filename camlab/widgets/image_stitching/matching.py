@@ -93,7 +93,7 @@ def feature_matches() -> Demo:
         n, nbad = len(good), int((~good).sum())
         thinned = f"1 in {every} of each colour drawn" if every > 1 else "all drawn"
         title.set_text(
-            f"views {i} and {j}, r = {v['ratio']:.2f}: {n} matches, {n - nbad} right (green: within 2 px "
+            f"views {i} and {j}, r = {v['ratio']:.2f}, mutual check {'on' if v['mutual'] else 'off'}: {n} matches, {n - nbad} right (green: within 2 px "
             f"of the true H), {nbad} wrong (red)\n{thinned}; yellow circles: SIFT keypoints, radius ~ their scale"
         )
         state.update(
@@ -275,7 +275,7 @@ def _registration_controls() -> dict:
 
 @register(lesson="09", sweep={"threshold": [0.02, 0.05, 3.0, 15.0, 40.0], "ratio": [0.95, 0.7]})
 def ransac_registration() -> Demo:
-    """RANSAC on real matches: the threshold decides which matches count as inliers, and the H you get.
+    """RANSAC on the rendered photos' matches: the threshold decides which matches count as inliers, and the H you get.
 
     The ratio-tested matches from image 1 to image 2 of the half-size set are registered by
     :func:`camlab.stitching.register_pair` (RANSAC seeded with 0) at the chosen threshold,
