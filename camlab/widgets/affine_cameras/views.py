@@ -72,7 +72,7 @@ def three_cameras():
     """
     view = BrowserView(("azimuth", "elevation", "distance"), figsize=(9.5, 3.9))
     axes = view.fig.subplots(
-        1, 3, width_ratios=(0.8, 1.4, 0.8)
+        1, 3, width_ratios=(0.7, 1.4, 1.0)
     )  # the middle panel, where the gaps are, larger
     scene = fixtures.box_and_rails()
     persp, ghost, weak, orth, gap_lines = _three_panels(view.fig, axes)
