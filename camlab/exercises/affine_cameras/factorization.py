@@ -73,6 +73,20 @@ def _scrambled(s):
     return (_rank_k(C - means, 3) + means).reshape(s.m, s.N, 2)
 
 
+def _straight_reshape(s, forward, back):
+    """Centred by view, reshaped to (2m, N) and back with or without the transpose through (m, 2, N)."""
+    W = s.W - s.view_means
+    C = _rank_k(W.reshape(2 * s.m, s.N) if forward else _measurement(W), 3)
+    return (C.reshape(s.m, s.N, 2) if back else _tracks(C, s.m)) + s.view_means
+
+
+_UV_MIXED = (
+    "so each row mixes u and v: row 2i holds the u, v of half of view i's points, interleaved, "
+    "instead of view i's u of every point. Go through (m, 2, N): W.transpose(0, 2, 1).reshape(2 * m, N), "
+    "and back with W3.reshape(m, 2, N).transpose(0, 2, 1)."
+)
+
+
 _MISTAKES = (
     Mistake(
         "input returned",
@@ -135,6 +149,25 @@ _MISTAKES = (
         "your measurement matrix is scrambled: W.reshape(2 * m, N) on the (m, N, 2) tracks puts half the "
         "points' interleaved u, v in one row. Transpose each view to (2, N) first: "
         "W.transpose(0, 2, 1).reshape(2 * m, N), and undo it the same way.",
+    ),
+    Mistake(
+        "reshaped without transpose",
+        lambda s: _straight_reshape(s, True, True),
+        "you kept three terms, but of a scrambled matrix: you reshaped the (m, N, 2) tracks straight to "
+        "(2m, N) without transposing each view to (2, N), " + _UV_MIXED,
+    ),
+    Mistake(
+        "reshaped in without transpose",
+        lambda s: _straight_reshape(s, True, False),
+        "you kept three terms, but of a scrambled matrix: you reshaped the (m, N, 2) tracks straight to "
+        "(2m, N) without transposing each view to (2, N), " + _UV_MIXED,
+    ),
+    Mistake(
+        "reshaped back without transpose",
+        lambda s: _straight_reshape(s, False, True),
+        "your rank-3 matrix is right, but you reshaped it straight back to (m, N, 2): its rows are "
+        "u1, v1, u2, v2, ... over all N points, so that reshape mixes u and v (a point's (u, v) becomes "
+        "two neighbouring u's of one row). Go back through (m, 2, N): W3.reshape(m, 2, N).transpose(0, 2, 1).",
     ),
     Mistake(
         "u and v swapped",
@@ -229,6 +262,9 @@ register_exercise(
             (_variant("rank 2"), "kept two singular values"),
             (_variant("rank 4"), "kept four singular values"),
             (_variant("scrambled reshape"), "scrambled"),
+            (_variant("reshaped without transpose"), "mixes u and v"),
+            (_variant("reshaped in without transpose"), "mixes u and v"),
+            (_variant("reshaped back without transpose"), "reshaped it straight back"),
             (_variant("u and v swapped"), "u and v are swapped"),
             (lambda W: rank3_reprojection(W).transpose(0, 2, 1), "reshape the 2m x N"),
             (lambda W: rank3_reprojection(W) + 0.5, "not the best one"),

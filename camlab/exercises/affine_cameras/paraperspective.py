@@ -87,8 +87,9 @@ _MISTAKES = (
     Mistake(
         "weak perspective",
         lambda s: af.affine_approximation(s.camera, s.X0),
-        "this is the weak-perspective camera P_inf (the first exercise): para-perspective also takes a r3 and "
-        f"b r3 from the first two rows of E, with (a, b) = (x_c, y_c) / d0 X0's normalised position; {P_PARA}.",
+        "this is the weak-perspective camera P_inf (the first exercise): para-perspective's normalised image "
+        "(x - a (z - d0)) / d0 also depends on the depth z = r3 . X + t3, so E's first two rows gain r3 terms "
+        "and a constant, with (a, b) = (x_c, y_c) / d0 X0's normalised position.",
     ),
     Mistake(
         "(a, b) sign",
@@ -106,7 +107,7 @@ _MISTAKES = (
         "no t3 - d0 term",
         lambda s: _para(s, s.ab, t_term=0.0),
         "the last column lacks -(a, b) (t3 - d0): z - d0 = r3 . X + t3 - d0 in camera coordinates, so the "
-        f"a and b terms carry the constant t3 - d0 into E's last column; {P_PARA}.",
+        "a and b terms carry the constant t3 - d0 into E's last column.",
     ),
     Mistake(
         "t3 term without d0",
@@ -212,7 +213,7 @@ _MISTAKES = (
         lambda s: (
             f"X0 was scaled by 1000 (millimetres?): its depth came out as {s.x_mm[2]:.4g} m where X0 is "
             f"{s.d0:.4g} m deep, and (a, b) as {s.x_mm[0] / s.x_mm[2]:.4g}, {s.x_mm[1] / s.x_mm[2]:.4g} for "
-            f"{s.ab[0]:.4g}, {s.ab[1]:.4g}. The camera's t and X0 are both in metres; use X0 as given: {P_PARA}."
+            f"{s.ab[0]:.4g}, {s.ab[1]:.4g}. The camera's t and X0 are both in metres; use X0 as given."
         ),
     ),
     Mistake("unrotated ray", lambda s: _para(s, s.ray[:2] / s.ray[2]), _UNROTATED),
@@ -274,7 +275,10 @@ def _para_diagnosis(args, got, expected) -> str:
             f"normalised image position is (x_c, y_c) / d0 = ({ab[0]:.4g}, {ab[1]:.4g}) with x_c = R X0 + t: "
             "check how you computed (a, b)."
         )
-    return f"{what_differs(g, expected, camera, X0)}. Compare each block with {P_PARA}."
+    return (
+        f"{what_differs(g, expected, camera, X0)}. Compare each block with what you get by writing "
+        "(x - a (z - d0)) / d0 and (y - b (z - d0)) / d0, with (x, y, z) = R X + t, as rows acting on (X, 1)."
+    )
 
 
 def _ab_used(g, camera, d0):

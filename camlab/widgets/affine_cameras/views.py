@@ -72,7 +72,7 @@ def three_cameras():
     """
     view = BrowserView(("azimuth", "elevation", "distance"), figsize=(9.5, 3.9))
     axes = view.fig.subplots(
-        1, 3, width_ratios=(0.8, 1.4, 0.8)
+        1, 3, width_ratios=(0.7, 1.4, 1.0)
     )  # the middle panel, where the gaps are, larger
     scene = fixtures.box_and_rails()
     persp, ghost, weak, orth, gap_lines = _three_panels(view.fig, axes)
@@ -175,10 +175,14 @@ def _three_panels(fig, axes):
     gap_style = dict(color=palette.ORANGE, lw=1.8, marker="o", ms=2.5, zorder=3.5)
     (gap_lines,) = axes[1].plot([], [], **gap_style)
     gap_key = Line2D([], [], label="one point's two images", **gap_style)
+    # the principal point, fixed along the dolly zoom: every orange segment points at it (section 2's law)
+    centre = inspect.signature(af.dolly_zoom_camera).parameters["principal_point"].default
+    axes[1].plot(*np.transpose([centre]), **PRINCIPAL_POINT_MARKER)
     model_legend(
         fig,
         ("perspective", "weak perspective", "orthographic"),
         reference=True,
+        principal_point=True,
         extra=(gap_key,),
     )
     return persp, ghost, weak, orth, gap_lines
