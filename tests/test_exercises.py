@@ -1868,3 +1868,14 @@ def test_affine_rectification_l_divided_by_l1_is_named():
 
     with pytest.raises(AssertionError, match="not by l1 or l2"):
         check("affine_rectification", by_l1)
+
+
+def test_rectangle_homography_from_reversed_corners_is_named_mirrored():
+    """Corners taken in reverse (counter-clockwise) order: the hint says the result is mirrored."""
+    from camlab.exercises.perspective_correction.rectangle import rectangle_homography
+
+    def reversed_corners(corners, size):
+        return rectangle_homography(np.asarray(corners, dtype=float)[::-1], size)
+
+    with pytest.raises(AssertionError, match="opposite senses"):
+        check("rectangle_homography", reversed_corners)
