@@ -172,7 +172,13 @@ def _principal_point_artists(view: FigureView, ax) -> SimpleNamespace:
     """The principal point c, a black + where the optical axis meets the photo, and its label."""
     mark = view.animate(ax.plot([], [], "k+", ms=10, mew=2)[0])
     label = ax.annotate(
-        "c", (0, 0), xytext=(7, 2), textcoords="offset points", va="bottom", fontsize=10
+        "c",
+        (0, 0),
+        xytext=(7, 2),
+        textcoords="offset points",
+        va="bottom",
+        fontsize=10,
+        path_effects=palette.halo(3),
     )
     return SimpleNamespace(mark=mark, label=view.animate(label))
 
