@@ -380,7 +380,7 @@ def affine_rectification(corners: ArrayLike) -> np.ndarray:
 
     References
     ----------
-    Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., §2.7.1 (affine rectification) and
+    Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., §2.7.2 (affine rectification) and
     §2.4.6 (H_P, the projective factor of a homography).
     """
     q = np.c_[check_quadrilateral(corners), np.ones(4)]

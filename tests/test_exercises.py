@@ -1841,3 +1841,41 @@ def test_read_and_turn_rejects_lists_as_lift_and_divide_by_w_do():
     ):
         with pytest.raises(AssertionError, match="you returned a list"):
             check(name, answer)
+
+
+def test_affine_rectification_solution_warps_to_a_usable_size():
+    """The teaching H_P (l3 = 1) keeps the facade's size: not the ~1e-15 dot that raw cross products give."""
+    from camlab import scenes
+    from camlab.exercises.perspective_correction.affine import affine_rectification
+    from camlab.projective import map_points
+
+    corners = scenes.sample_photo("facade").corners
+    H_P = affine_rectification(corners)
+    assert H_P[2, 2] == 1.0
+    par = map_points(H_P, corners)
+    width = np.linalg.norm(par[1] - par[0])
+    assert 100 < width < 2000 and np.allclose(par[1] - par[0], par[2] - par[3])
+
+
+def test_affine_rectification_l_divided_by_l1_is_named():
+    """Dividing l by l1, which is 0 for a horizontal vanishing line, gives inf: the hint says so."""
+    from camlab.exercises.perspective_correction.affine import affine_rectification
+
+    def by_l1(corners):
+        H = affine_rectification(corners)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.array([H[0], H[1], H[2] / H[2, 0]])
+
+    with pytest.raises(AssertionError, match="not by l1 or l2"):
+        check("affine_rectification", by_l1)
+
+
+def test_rectangle_homography_from_reversed_corners_is_named_mirrored():
+    """Corners taken in reverse (counter-clockwise) order: the hint says the result is mirrored."""
+    from camlab.exercises.perspective_correction.rectangle import rectangle_homography
+
+    def reversed_corners(corners, size):
+        return rectangle_homography(np.asarray(corners, dtype=float)[::-1], size)
+
+    with pytest.raises(AssertionError, match="opposite senses"):
+        check("rectangle_homography", reversed_corners)

@@ -116,6 +116,16 @@ _KEY = "brown dashed: the other focal length's shape\ngreen dotted: the true sha
 _KEY_OFF_PAGE = (
     "brown dashed: the other focal length's shape\nno green: these are not the scene's corners"
 )
+
+
+def _key_text(on_page: bool, focal_source: str) -> str:
+    """The rectify demo's key: in an affine view (f cancels) the brown outline is the same shape."""
+    key = _KEY if on_page else _KEY_OFF_PAGE
+    if focal_source == "not needed":  # both focal-length choices give one shape
+        key = key.replace("the other focal length's shape", "the same shape (f cancels)")
+    return key
+
+
 _SCAN_KEY = "green dotted: the page's true shape (A4)"
 _ON_PAGE_PX = 10.0  # corners this close to the scene's true ones still mark its rectangle
 
@@ -526,7 +536,7 @@ def rectify_photo() -> Demo:
         current["corners"] = corners
         _show_corners(quad, handles, chosen, corners, v["corner"])
         on_page = bool(np.abs(corners - photo.corners).max() <= _ON_PAGE_PX)
-        art.key.set_text(_KEY if on_page else _KEY_OFF_PAGE)
+        art.key.set_text(_key_text(on_page, from_quad.focal_source))
         _show_shapes(
             im_r,
             photo,
@@ -620,10 +630,12 @@ def document_scanner() -> Demo:
             return
         why.set_text("")
         ax_p.set_title("photo with the detected outline", fontsize=10, pad=3)
-        key.set_text(_SCAN_KEY)
         closed = np.vstack([corners, corners[:1]])
         found.set_data(closed[:, 0], closed[:, 1])
         est, conditioning, undetermined = _scan_estimate(corners, image.shape)
+        key.set_text(
+            f"{_SCAN_KEY}\nthe scan's w/h: {100 * (est.ratio / photo.aspect - 1):+.1f}% off the truth"
+        )
         shown = _size_for(400, est.ratio)
         _show_rectified(im_r, image, corners, shown)
         _box_outline(truth_box, _size_for(400, photo.aspect), shown)

@@ -144,15 +144,19 @@ def _figure():
     for ax in (ax_p, ax_r):
         ax.tick_params(labelsize=7)
     truth = view.animate(  # hidden with a refusal: then there is nothing to compare with
-        ax_r.plot(*_PLANE.reshape(-1, 2).T, "+", color=palette.GREEN, ms=12, mew=1.2, zorder=1)[0]
+        ax_r.plot(*_PLANE.reshape(-1, 2).T, "+", color=palette.GREEN, ms=12, mew=1.2, zorder=4)[0]
     )
-    ax_r.set_title("rectified (black) on the true corners (green +)", fontsize=10, pad=3)
-    dots = view.animate(ax_p.plot([], [], "o", ms=3, color="k", zorder=3)[0])
+    ax_r.set_title("rectified (yellow) under the true corners (green +)", fontsize=10, pad=3)
+    dots = view.animate(  # yellow: corners found on a photo (the lesson's colour key)
+        ax_p.plot([], [], "o", ms=4, color=palette.YELLOW, mec="k", mew=0.6, zorder=3)[0]
+    )
     lines = [
         view.animate(ax_p.plot([], [], color=c, lw=1.2, zorder=2)[0])
         for c in [palette.BLUE, palette.PURPLE] * 8
     ]
-    rect = view.animate(ax_r.plot([], [], "o", ms=5, color="k", zorder=3)[0])
+    rect = view.animate(
+        ax_r.plot([], [], "o", ms=6, color=palette.YELLOW, mec="k", mew=0.8, zorder=3)[0]
+    )
     why = view.animate(
         ax_r.text(
             4,

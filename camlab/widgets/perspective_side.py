@@ -168,6 +168,21 @@ def _draw_facade(art: SimpleNamespace, t: float, centre: np.ndarray, up: np.ndar
         line.set_data([0, reach * edge[0]], [0, reach * edge[1]])
 
 
+def _principal_point_artists(view: FigureView, ax) -> SimpleNamespace:
+    """The principal point c, a black + where the optical axis meets the photo, and its label."""
+    mark = view.animate(ax.plot([], [], "k+", ms=10, mew=2)[0])
+    label = ax.annotate(
+        "c",
+        (0, 0),
+        xytext=(7, 2),
+        textcoords="offset points",
+        va="bottom",
+        fontsize=10,
+        path_effects=palette.halo(3),
+    )
+    return SimpleNamespace(mark=mark, label=view.animate(label))
+
+
 @register(lesson="10", sweep={"tilt": [0.0, 0.15, 0.8]})
 def keystone_side_view() -> Demo:
     """The keystone camera from the side: tilt it and watch the verticals' vanishing point move.
@@ -177,7 +192,7 @@ def keystone_side_view() -> Demo:
     Demo
         The demo: control ``tilt`` (the camera's tilt up, rad), the figure (the facade, aimed
         at as the facade scene is, the rays to its ends, the field of view, the camera, optical
-        axis, image plane and the vertical ray meeting it) and ``state``
+        axis, principal point c, image plane and the vertical ray meeting it) and ``state``
         (``vanishing_px``, the vanishing point's height above the principal point in px, inf
         at tilt 0; ``facade_rows_px``, the rows of the facade's top and bottom in the photo).
     """
@@ -196,6 +211,7 @@ def keystone_side_view() -> Demo:
             "the photo", (0, 0), xytext=(8, -8), textcoords="offset points", va="top", fontsize=9
         )
     )
+    pp_mark = _principal_point_artists(view, ax)
     ray = view.animate(ax.plot([], [], color=palette.PURPLE, lw=1.5)[0])
     vp = view.animate(ax.plot([], [], "o", color=palette.PURPLE, ms=6)[0])
     vp_label = view.animate(
@@ -222,6 +238,8 @@ def keystone_side_view() -> Demo:
         plane.set_data(*(centre + np.outer([-1.4, reach], up)).T)
         photo.set_data(*(centre + np.outer([-_HALF_M, _HALF_M], up)).T)
         photo_label.xy = centre - _HALF_M * up
+        pp_mark.mark.set_data([centre[0]], [centre[1]])  # where the optical axis meets the photo
+        pp_mark.label.xy = centre
         _draw_facade(facade, t, centre, up)
         ray.set_data([0, 0], [0, min(height + 0.6, _TOP)])
         px = vanishing_point_px(t)

@@ -65,7 +65,8 @@ def _affine_diagnosis(args, got, expected) -> str:
         return (
             "your H_P holds inf or NaN: a vanishing point at infinity (here the top and bottom edges are "
             "parallel in the photo) has w = 0, and dividing by w destroys it. Keep the points homogeneous: "
-            "v = (c0 x c1) x (c3 x c2) and l = v_across x v_up need no division."
+            "v = (c0 x c1) x (c3 x c2) and l = v_across x v_up need no division. If you scaled l, divide "
+            "by l3 or by its norm, not by l1 or l2: l1 = 0 here (a horizontal vanishing line)."
         )
     problem = shape_problem(got, expected)
     if problem:
@@ -141,16 +142,18 @@ def affine_rectification(corners):
     Returns
     -------
     (3, 3) ndarray
-        H_P = [[1, 0, 0], [0, 1, 0], l], which sends the vanishing line l to (0, 0, 1).
+        H_P = [[1, 0, 0], [0, 1, 0], l], which sends the vanishing line l to (0, 0, 1); l is
+        scaled to l3 = 1 (H&Z assume l3 != 0), so warping with H_P keeps the image's size.
 
     References
     ----------
-    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 2.7.1.
+    Hartley & Zisserman, Multiple View Geometry, 2nd ed., section 2.7.2.
     """
     c0, c1, c2, c3 = np.c_[np.asarray(corners, dtype=float), np.ones(4)]
     v_across = np.cross(np.cross(c0, c1), np.cross(c3, c2))  # top and bottom edges meet here
     v_up = np.cross(np.cross(c0, c3), np.cross(c1, c2))  # left and right edges meet here
     line = np.cross(v_across, v_up)  # the vanishing line l joins them
+    line = line / line[2]  # any scale is right; raw cross products are ~1e15, so warp with l3 = 1
     return np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], line])
 
 

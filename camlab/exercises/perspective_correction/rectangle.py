@@ -170,9 +170,18 @@ _RECT_MISTAKES = (
     ),
     Mistake(
         "counter-clockwise",
-        lambda s: s.fit(s.corners, s.target((0, 3, 2, 1))),
-        "your target goes counter-clockwise (TL, BL, BR, TR): pair TL, TR, BR, BL with (0, 0), "
-        "(w - 1, 0), (w - 1, h - 1), (0, h - 1) in that order.",
+        lambda s: next(  # (0, 3, 2, 1) and its rolls: corners[::-1] is one of them
+            (
+                H
+                for k in range(4)
+                if (H := s.fit(s.corners, s.target(np.roll([0, 3, 2, 1], -k)))) is not None
+                and s.same(H)
+            ),
+            None,
+        ),
+        "your corners and target go round in opposite senses (one counter-clockwise, e.g. the "
+        "corners reversed, or a target TL, BL, BR, TR): the result is mirrored (section 4). Pair TL, "
+        "TR, BR, BL with (0, 0), (w - 1, 0), (w - 1, h - 1), (0, h - 1) in that order.",
     ),
     Mistake(
         "target starts elsewhere",
