@@ -237,6 +237,14 @@ def divide_by_w(h):
     return h[:, :2] / h[:, 2:]
 
 
+def _describe_h(args: tuple) -> str:
+    """The test input as the student could type it, one row a line: ``h = np.array([[5.0, 8.5, 2.0], ...])``."""
+    h = np.asarray(args[0], dtype=float)
+    rows = ["[" + ", ".join(repr(float(c)) for c in row) + "]" for row in h]
+    # a message prints it after 11 characters ("  input    "), so the rows line up under the first
+    return "h = np.array([" + (",\n" + " " * 25).join(rows) + "])"
+
+
 def _guarded(h):
     """A wrong answer: a w = 0 row sent to (0, 0) by a guarded division."""
     w = h[:, 2:]
@@ -256,6 +264,7 @@ register_exercise(
         compare=same_array(),
         diagnose=_diagnose,
         exception_hint=_exception_hint,
+        describe_input=_describe_h,
         follow_up=_follow_up,
         teaching=divide_by_w,
         ndarray_only=True,  # as lift and read_and_turn: the prompt asks for a numpy array
