@@ -435,7 +435,7 @@ def draw_channel_order(axes: Sequence[Axes], bgr: np.ndarray, pixel: tuple[int, 
     u, v = pixel
     titles = (
         "cv2.imread shown as it is:\nB, G, R read as R, G, B",
-        "flipped to R, G, B: img[..., ::-1]",
+        "flipped to R, G, B:\nimg[..., ::-1]",
     )
     for ax, image, title in zip(axes, (bgr, bgr[..., ::-1]), titles, strict=True):
         ax.imshow(image)
