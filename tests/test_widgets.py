@@ -615,31 +615,39 @@ def test_pixel_explorer_reads_the_pixel_both_ways_and_places_each_tools_centre()
     "angle, drawn", [(15.0, False), (-19.0, False), (22.0, True), (-40.0, True)]
 )
 def test_stack_check_draws_no_arrowhead_on_an_arc_too_short_to_show(angle, drawn):
-    """Under about 20° (SHORT_ARC / 1.4 rad) the arc hides under the dot; a dart there read as the tip moving on."""
-    from camlab.widgets.start_here import SHORT_ARC
+    """Under SHORT_TURN_DEG the arc is too short for the dart (one there read as the tip moving on); the readout says so."""
+    from camlab.widgets.start_here import SHORT_TURN_DEG, SHORT_TURN_NOTE
 
-    assert 20 < np.degrees(SHORT_ARC / 1.4) < 21
+    assert (
+        SHORT_TURN_DEG == 20.0 and 1.4 * np.radians(SHORT_TURN_DEG) < 0.5
+    )  # the arc under 0.5 plot units
     demo = DEMOS["stack_check"].builder()
     demo.set(angle=angle)
     assert (demo.state["arrow"]["y down"] is not None) == drawn
     for ax in demo.figure.axes:
         (arrow,) = [ln for ln in ax.lines if ln.get_label() == "_the way"]
         assert (len(arrow.get_xdata()) == 1) == drawn
+    assert (SHORT_TURN_NOTE in _stack_check_readout(demo).get_text()) == (
+        not drawn
+    )  # one cut-off for both
 
 
 @pytest.mark.parametrize(
     "angle, scale, note",
     [
         (0.0, 1.0, "(unmoved: no path)"),
-        (5.0, 1.0, "(path hidden under the dot)"),
-        (-5.0, 1.0, "hidden"),
+        (5.0, 1.0, "(turn too short for an arrow)"),
+        (-5.0, 1.0, "too short"),
+        (15.0, 1.0, "too short"),
+        (-19.0, 1.0, "too short"),
+        (20.0, 1.0, ""),
         (30.0, 1.0, ""),
-        (5.0, 1.5, ""),
+        (5.0, 1.5, "too short"),
         (0.0, 2.0, ""),
     ],
 )
 def test_stack_check_readout_says_when_the_legends_path_is_not_seen(angle, scale, note):
-    """The legend lists the roof tip's path; at 0° it is not there, below 10° it hides under the dot."""
+    """The legend lists the roof tip's path and arrowhead; at 0° there is no path, under 20° no arrowhead."""
     from camlab.widgets.start_here import stack_check
 
     demo = stack_check()

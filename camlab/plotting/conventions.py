@@ -82,7 +82,15 @@ def draw_pixel_grid(ax: Axes, size: tuple[int, int], points: np.ndarray, marked:
         )
     mu, mv = points[marked]
     ax.add_patch(
-        Rectangle((mu - 0.5, mv - 0.5), 1.0, 1.0, fill=False, edgecolor=POINT_COLOUR, lw=2.5)
+        Rectangle(
+            (mu - 0.5, mv - 0.5),
+            1.0,
+            1.0,
+            fill=False,
+            edgecolor=POINT_COLOUR,
+            lw=2.5,
+            clip_on=False,
+        )
     )
     ax.annotate(
         f"img[{mv:g}, {mu:g}]",
@@ -213,15 +221,16 @@ def draw_camera_frame(ax: Axes, size: tuple[int, int] = (4, 3)) -> None:
         linespacing=1.1,
         arrowprops=dict(arrowstyle="-", color="0.4", lw=0.8, shrinkA=1, shrinkB=3),
     )
-    thick = dict(arrowstyle="-|>", lw=2, mutation_scale=18)
+    # x and y start at the circled cross's edge (its 16-point circle), so they never cover z's mark
+    thick = dict(arrowstyle="-|>", lw=2, mutation_scale=18, shrinkA=9, shrinkB=0)
     ax.annotate("", (1.5, 0), (0, 0), arrowprops=dict(color=X_COLOUR, **thick))
     ax.annotate("", (0, 1.3), (0, 0), arrowprops=dict(color=Y_COLOUR, **thick))
     ax.text(1.55, 0, "x, right", color=X_COLOUR, va="center", fontsize=10)
     ax.text(0, 1.37, "y, down", color=Y_COLOUR, ha="center", va="top", fontsize=10)
-    ax.plot(0, 0, "o", ms=16, mfc="white", mec=Z_COLOUR, mew=2)
-    ax.plot(0, 0, "x", ms=9, color=Z_COLOUR, mew=2)
+    ax.plot(0, 0, "o", ms=16, mfc="white", mec=Z_COLOUR, mew=2, zorder=4)
+    ax.plot(0, 0, "x", ms=9, color=Z_COLOUR, mew=2, zorder=5)
     ax.annotate(  # tied to the circled cross by a leader, so it is not read as a caption of the plane's edge
-        "z, forward:\ninto the page",
+        "z, forward: the principal\naxis, into the page",
         (0, 0),
         xytext=(w + 0.1, -0.3),
         color=Z_COLOUR,
@@ -294,7 +303,7 @@ def draw_transposed_read(
         f"row {u_sq}, not {v}",
     )
     ax.set_title(
-        f"left01 ({W} x {H}): the square crop photo[:, {crop_left}:] lies right of the dashed line (left of it: veiled)",
+        f"left01 ({W} x {H}): the crop photo[:, {crop_left}:] is right of the dashed line",
         fontsize=10,
     )
     ax.set_xlabel("u (px)", color=X_COLOUR)
@@ -426,7 +435,7 @@ def draw_channel_order(axes: Sequence[Axes], bgr: np.ndarray, pixel: tuple[int, 
     u, v = pixel
     titles = (
         "cv2.imread shown as it is:\nB, G, R read as R, G, B",
-        "flipped to R, G, B: img[..., ::-1]",
+        "flipped to R, G, B:\nimg[..., ::-1]",
     )
     for ax, image, title in zip(axes, (bgr, bgr[..., ::-1]), titles, strict=True):
         ax.imshow(image)

@@ -21,9 +21,11 @@ HOUSE = np.array([[-1, 1], [1, 1], [1, -0.6], [0, -1.4], [-1, -0.6], [-1, 1]], d
 ROOF_TIP = 3  # HOUSE[3] is the roof tip, (0, -1.4)
 DEFAULT_ANGLE = 40.0  # degrees: a turn whose arc (0.98 plot units) shows the path on both sides of its arrowhead
 ARC_SAMPLES = 61  # points on the arc of the roof tip's turn
-SHORT_ARC = (
-    0.5  # plot units: an arc shorter than this (a turn under 20°) hides under the dot: no dart
-)
+# The one cut-off for a short turn: under it the arc (1.4 θ, under 0.49 plot units) is too short to carry
+# the arrowhead (a dart there read as the tip moving on), so none is drawn and the readout says so; the
+# browser's twin (stack_check.js) gets it in the scene.
+SHORT_TURN_DEG = 20.0
+SHORT_TURN_NOTE = "  (turn too short for an arrow)"
 MOVED = (
     "0.15"  # the moved house: near-black, so colour stays for the points the lesson reads (orange)
 )
@@ -228,15 +230,12 @@ def screen_turn(ax, path: np.ndarray) -> str:
     return "anticlockwise" if bend > 0 else "clockwise"
 
 
-HIDDEN_TURN_DEG = (
-    10.0  # below this turn (and at scale 1) the arc and its dart hide under the orange dot
-)
-
-
 def path_note(angle_deg: float, scale: float) -> str:
-    """What the readout adds when the path the legend lists is not seen: none, or hidden under the dot.
+    """What the readout adds when the legend's path or arrowhead is not drawn: none, no path, or too short.
 
-    The browser's twin is the same test in ``widgets/browser/stack_check.js``.
+    At 0° and scale 1 nothing moves; under :data:`SHORT_TURN_DEG` (at any scale) the turn draws no
+    arrowhead, the same test as the demo's. The browser's twin is in ``widgets/browser/stack_check.js``,
+    which gets the cut-off and the note in the scene.
 
     Parameters
     ----------
@@ -250,11 +249,9 @@ def path_note(angle_deg: float, scale: float) -> str:
     str
         '' when the path shows, else a note starting with two spaces.
     """
-    if scale != 1:
-        return ""
     if angle_deg == 0:
-        return "  (unmoved: no path)"
-    return "  (path hidden under the dot)" if abs(angle_deg) < HIDDEN_TURN_DEG else ""
+        return "  (unmoved: no path)" if scale == 1 else ""
+    return SHORT_TURN_NOTE if abs(angle_deg) < SHORT_TURN_DEG else ""
 
 
 def arrowhead_size(angle_deg: float, radius: float = 1.4) -> float:
@@ -307,7 +304,8 @@ def _browser_scene(panels: list[dict], readout, dpi: float) -> dict:
         house=HOUSE.tolist(),
         roofTip=ROOF_TIP,
         arcSamples=ARC_SAMPLES,
-        shortArc=SHORT_ARC,
+        shortTurnDeg=SHORT_TURN_DEG,
+        shortTurnNote=SHORT_TURN_NOTE,
         arrowhead=ARROWHEAD.vertices[:-1].tolist(),
         panels=[dict(toPixels=to_canvas_pixels(p["ax"]), yDown=p["y_down"]) for p in panels],
         styles=dict(
@@ -337,7 +335,7 @@ def _browser_scene(panels: list[dict], readout, dpi: float) -> dict:
 @register(
     lesson="00",
     sweep={
-        "angle": [-180.0, -90.0, -30.0, -5.0, 0.0, 5.0, 90.0, 135.0, 180.0],
+        "angle": [-180.0, -90.0, -30.0, -15.0, -5.0, 0.0, 5.0, 15.0, 90.0, 135.0, 180.0],
         "scale": [0.3, 0.5, 1.5, 2.0],
     },
 )
@@ -382,9 +380,9 @@ def stack_check() -> Demo:
         middle = ARC_SAMPLES // 2  # the arrowhead sits half-way along the turn
         way = path[middle + 1] - path[middle - 1]  # the turn's direction there, in plot units
         arrows, turns = {}, {}
-        # An arc too short to carry the dart (a turn under about 20°) hides under the orange dot: no dart
-        # then (one drawn past the dot read as the tip moving on); cell 7 of the lesson names the turn.
-        if abs(np.radians(angle)) * 1.4 < SHORT_ARC:
+        # An arc too short to carry the dart (a turn under SHORT_TURN_DEG): no dart (one drawn past the
+        # dot read as the tip moving on); the readout says so, and cell 7 of the lesson names the turn.
+        if abs(angle) < SHORT_TURN_DEG:
             way = np.zeros(2)
         for panel in panels:
             panel["house"].set_data(moved[:, 0], moved[:, 1])

@@ -157,11 +157,14 @@ def _exception_hint(exc: Exception, args: tuple) -> str:
             "(there are 2): no keepdims. With two points it would raise nothing and divide the wrong entries, "
             f"with one it would be right by luck; keep w a column: {KEEPDIMS}"
         )
+    one_based = (
+        "counting from 1: numpy counts from 0, so the columns of h are 0 (wx), 1 (wy) and 2 (w), and there "
+        "is no column 3"
+    )
     if isinstance(exc, IndexError) and "axis 1 with size 3" in text:
-        return (
-            "counting from 1: numpy counts from 0, so the columns of h are 0 (wx), 1 (wy) and 2 (w), and there "
-            f"is no column 3: {KEEPDIMS}"
-        )
+        return f"{one_based}: {KEEPDIMS}"
+    if isinstance(exc, ValueError) and "broadcast" in text and re.search(r"\(\d+,\s?0\)", text):
+        return f"{one_based}, so h[:, 3:4] is an empty (N, 0) slice; w is h[:, 2:]: {KEEPDIMS}"
     return ""
 
 
@@ -191,11 +194,22 @@ def _follow_up(run) -> str | None:
         )
     if np.isfinite(got[1]).any():
         shown = ", ".join(f"{v:.3g}" for v in got[1])
+        if np.abs(got[1]).max() > 1e6:  # x / (w + eps), or a w clipped away from 0
+            cause = (
+                "dividing by w + eps (or by a w clipped away from 0). With w = 0 the row is a direction, no "
+                "point of the image (section 4), and a huge finite point hides that"
+            )
+        else:  # np.where(w == 0, 0, ...), np.divide(..., out=zeros, where=w != 0), a masked row
+            cause = (
+                "a guard that replaced the w = 0 row by a finite value (np.where, or np.divide's out= and "
+                f"where=). A point at infinity has no finite position: ({shown}) is a real point "
+                f"{'(the origin, the top-left pixel) ' if np.allclose(got[1], 0) else ''}of the image, "
+                "so the guard turns 'no point' into a point"
+            )
         return (
             f"on h = {_WITH_DIRECTION.tolist()} row 1, (3, -1.5, 0), came back as the finite point ({shown}).\n"
-            "  likely cause: dividing by w + eps (or by a w clipped away from 0). With w = 0 the row is a "
-            "direction, no point of the image (section 4), and a huge finite point hides that; divide by w "
-            "itself: numpy's x / 0 gives inf (or NaN), which says 'no point'"
+            f"  likely cause: {cause}; divide by w itself: numpy's x / 0 gives inf (or NaN), which says "
+            "'no point'"
         )
     return None
 
@@ -223,6 +237,20 @@ def divide_by_w(h):
     return h[:, :2] / h[:, 2:]
 
 
+def _describe_h(args: tuple) -> str:
+    """The test input as the student could type it, one row a line: ``h = np.array([[5.0, 8.5, 2.0], ...])``."""
+    h = np.asarray(args[0], dtype=float)
+    rows = ["[" + ", ".join(repr(float(c)) for c in row) + "]" for row in h]
+    # a message prints it after 11 characters ("  input    "), so the rows line up under the first
+    return "h = np.array([" + (",\n" + " " * 25).join(rows) + "])"
+
+
+def _guarded(h):
+    """A wrong answer: a w = 0 row sent to (0, 0) by a guarded division."""
+    w = h[:, 2:]
+    return np.where(w == 0, 0.0, h[:, :2] / np.where(w == 0, 1.0, w))
+
+
 def _variant(form):
     return lambda h: form(np.asarray(h, dtype=float))
 
@@ -236,6 +264,7 @@ register_exercise(
         compare=same_array(),
         diagnose=_diagnose,
         exception_hint=_exception_hint,
+        describe_input=_describe_h,
         follow_up=_follow_up,
         teaching=divide_by_w,
         ndarray_only=True,  # as lift and read_and_turn: the prompt asks for a numpy array
@@ -251,13 +280,20 @@ register_exercise(
             (_variant(lambda h: h), "you returned h as it came in"),
             (_variant(lambda h: h[:, :2] / h[0, 2]), "the same w"),
             (_variant(lambda h: h[:, :2] / h[:, 1:2]), "you divided by x or y"),
-            (_variant(lambda h: h[:, :2] / h[:, 3:4]), "counting columns from 1"),
+            (
+                _variant(lambda h: h[:, :2] / h[:, 3:4]),
+                "h[:, 3:4] is an empty (N, 0) slice; w is h[:, 2:]",
+            ),
             (_variant(lambda h: h[:, :2] / h[:, 3, None]), "no column 3"),
             (_variant(lambda h: h[:, :2] / np.abs(h[:, 2:])), "you divided by |w|"),
             (_variant(lambda h: h[:, 2:] / h[:, :2]), "upside down"),
             (_variant(lambda h: (h[:, :2] / h[:, 2:]).T), "(2, N)"),
             (_variant(lambda h: np.rint(h[:, :2] / h[:, 2:])), "rounded"),
             (_variant(lambda h: h[:, :2] / (h[:, 2:] + 1e-12)), "w + eps"),
+            (
+                _variant(_guarded),
+                "A point at infinity has no finite position: (0, 0) is a real point (the origin",
+            ),
             (_variant(lambda h: h[:, 1::-1] / h[:, 2:]), "swapped"),
             (_variant(lambda h: (h[:, :2] / h[:, 2:]).tolist()), "you returned a list"),
         ),

@@ -9,7 +9,7 @@ export function drawStackCheck(ctx, scene, p) {
   const path = turnPath(p.angle, p.scale, scene.house[scene.roofTip], scene.arcSamples);
   const middle = Math.floor(scene.arcSamples / 2);
   let way = [path[middle + 1][0] - path[middle - 1][0], path[middle + 1][1] - path[middle - 1][1]];
-  if (Math.abs((p.angle * Math.PI) / 180) * 1.4 < scene.shortArc) way = [0, 0];
+  if (Math.abs(p.angle) < scene.shortTurnDeg) way = [0, 0];
   const st = scene.styles;
   const arrow = { ...st.arrow, size: arrowheadSize(p.angle) * scene.pxPerPoint };
   for (const panel of scene.panels) {
@@ -26,9 +26,9 @@ export function drawStackCheck(ctx, scene, p) {
   ctx.font = r.font;
   ctx.fillStyle = r.color;
   ctx.textBaseline = "top";
-  // path_note in widgets/start_here.py: the path the legend lists is not seen
-  const hidden = p.angle !== 0 && Math.abs(p.angle) < 10 ? "  (path hidden under the dot)" : "";
-  const note = p.scale !== 1 ? "" : p.angle === 0 ? "  (unmoved: no path)" : hidden;
+  // path_note in widgets/start_here.py: the legend's path or arrowhead is not drawn
+  const short = Math.abs(p.angle) < scene.shortTurnDeg ? scene.shortTurnNote : "";
+  const note = p.angle === 0 ? (p.scale === 1 ? "  (unmoved: no path)" : "") : short;
   ctx.fillText(tipReadout(tip) + note, r.x, r.y);
   ctx.restore();
   return tipReadout(tip);
