@@ -625,7 +625,7 @@ register_exercise(
         wrong_variants=(
             (lambda s, d: hg.estimate_homography(d, s), "inverse"),
             (lambda s, d: hg.estimate_homography(s, d).T, "transposed"),
-            (lambda s, d: _dlt_unnormalised(s, d, pick=0), "singular vector of the *largest*"),
+            (lambda s, d: _dlt_unnormalised(s, d, pick=0), "sorts from small to large"),
             (_dlt_unnormalised, "Normalise each point set"),
             (_dlt_not_undone, "not undone"),
             (_dlt_undone_wrong_order, "wrong way round"),
