@@ -803,7 +803,7 @@ def drag_homography() -> Demo:
             verdicts={name: verdict for name, _, _, verdict in rows},
             **measures,
         )
-        table = "                 source    image\n" + "\n".join(
+        table = f"{'measured':15s}  source    image\n" + "\n".join(
             f"{name:15s} {a:>7s}  {b:>7s}  {verdict}" for name, a, b, verdict in rows
         )
         art.numbers.set_text(table)
