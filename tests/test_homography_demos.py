@@ -420,15 +420,33 @@ def test_hierarchy_demo_measures_each_groups_invariants():
     for group in ("euclidean", "similarity", "affine", "projective"):
         d.set(group=group)
         kept[group] = tuple(k for *_, k in d.state["measures"].values())
-    # angle, |top|/|left|, |top|/|bottom|, top ∥ bottom, left ∥ right, cross-ratio
+    # angle, |top|, |top|/|left|, |top|/|bottom|, top ∥ bottom, left ∥ right, cross-ratio:
+    # one row after another changes as the group grows (cell 5's promise)
     assert kept == {
-        "euclidean": (True, True, True, True, True, True),
-        "similarity": (True, True, True, True, True, True),
-        "affine": (False, False, True, True, True, True),
-        "projective": (False, False, False, False, True, True),
+        "euclidean": (True, True, True, True, True, True, True),
+        "similarity": (True, False, True, True, True, True, True),
+        "affine": (False, False, False, True, True, True, True),
+        "projective": (False, False, False, False, False, True, True),
     }
+    d.set(group="projective", v1=15.0)  # a setting the prose recommends: the corner turns to 98.6°
+    assert not d.state["measures"]["top-left angle (°)"][2]
     d.set(group="projective", v1=15.0, v2=15.0)  # torn: the edges' ratios run through infinity
     assert np.isinf(d.state["measures"]["|top| / |bottom|"][1])
+
+
+def test_hierarchy_measures_judge_angles_within_an_absolute_tenth_of_a_degree():
+    from camlab.widgets.homographies.geometry import _hierarchy_measures
+
+    def angle_row(H):
+        return _hierarchy_measures(np.asarray(H, float), (120, 160, 3))["top-left angle (°)"]
+
+    shear = angle_row([[1, 0.15, 0], [0, 1, 0], [0, 0, 1]])  # the corner turns to 81.5°
+    assert np.isclose(shear[1], 81.47, atol=0.01) and not shear[2]
+    one_degree = np.tan(np.radians(1.0))  # a 1° shear: changes, though 1° < 0.1 × 90°
+    assert not angle_row([[1, one_degree, 0], [0, 1, 0], [0, 0, 1]])[2]
+    assert angle_row([[1, np.tan(np.radians(0.05)), 0], [0, 1, 0], [0, 0, 1]])[2]  # 0.05°: kept
+    scaled = _hierarchy_measures(np.diag([1.5, 1.5, 1.0]), (120, 160, 3))
+    assert not scaled["|top| (px)"][2] and scaled["|top| / |left|"][2]  # a similarity of scale 1.5
 
 
 def test_ransac_samples_check_names_per_cent_and_expected_trials():

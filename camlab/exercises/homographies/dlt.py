@@ -10,7 +10,8 @@ import numpy as np
 from ... import homography as hg
 from ...projective import hartley_normalise, map_points
 from .._answers import same_up_to_scale, shape_problem
-from .._core import Exercise, Mistake, first_mistake, register_exercise
+from .._core import Exercise, first_mistake, register_exercise
+from ._dlt_undo import UNDO_MISTAKES
 
 # A patch far from the origin (like a crop of a large photo) with 1 px of noise: there the
 # unnormalised DLT is off by tens of pixels, while any Hartley-style normalisation is off by
@@ -319,6 +320,13 @@ def _dlt_diagnosis(args, got, expected) -> str:
         )
     if same_up_to_scale(g.T, expected, rtol=1e-5):
         return "your H is transposed: h lists H row by row, so use h.reshape(3, 3), not column by column."
+    flip = np.array([[0.0, 1, 0], [1, 0, 0], [0, 0, 1]])  # (u, v) -> (v, u)
+    if same_up_to_scale(g, flip @ expected @ flip, rtol=1e-5):
+        return (
+            "your H is the homography of the points with u and v swapped: you read each point as (v, u) "
+            "(row, column), in src and dst alike. The course's points are (u, v) = (column, row): "
+            "src[:, 0] is u."
+        )
     cause = _normalisation_slip(g, src, dst, expected)
     if cause:
         return cause
@@ -402,77 +410,6 @@ def _normalisers(src, dst):
     return [(hartley_normalise(src).T, hartley_normalise(dst).T), (rms(src), rms(dst))]
 
 
-def _wrong_way_round(how, undo):
-    return Mistake(
-        how,
-        undo,
-        f"you undid the normalisation the wrong way round ({how}). H_n maps normalised points: "
-        f"T_dst x' ~ H_n T_src x, so x' ~ inv(T_dst) H_n T_src x and H = inv(T_dst) @ H_n @ T_src.",
-    )
-
-
-_UNDO_MISTAKES = (
-    Mistake(
-        "not undone",
-        lambda s: s.Hn,
-        "you returned H_n, the homography of the normalised points: the normalisation is not "
-        "undone. H_n maps T_src x to T_dst x', so H = inv(T_dst) @ H_n @ T_src.",
-    ),
-    _wrong_way_round("T_dst @ H_n @ inv(T_src)", lambda s: s.Td @ s.Hn @ np.linalg.inv(s.Ts)),
-    _wrong_way_round(
-        "inv(T_dst) @ H_n @ inv(T_src)", lambda s: np.linalg.inv(s.Td) @ s.Hn @ np.linalg.inv(s.Ts)
-    ),
-    _wrong_way_round("T_dst @ H_n @ T_src", lambda s: s.Td @ s.Hn @ s.Ts),
-    _wrong_way_round("inv(T_src) @ H_n @ T_dst", lambda s: np.linalg.inv(s.Ts) @ s.Hn @ s.Td),
-    _wrong_way_round("T_src @ H_n @ inv(T_dst)", lambda s: s.Ts @ s.Hn @ np.linalg.inv(s.Td)),
-    Mistake(
-        "T_src on both sides",
-        lambda s: np.linalg.inv(s.Ts) @ s.Hn @ s.Ts,
-        "you undid the normalisation with T_src on both sides (inv(T_src) @ H_n @ T_src): the left "
-        "factor must undo the *destination's* normalisation. H = inv(T_dst) @ H_n @ T_src.",
-    ),
-    Mistake(
-        "T_dst on both sides",
-        lambda s: np.linalg.inv(s.Td) @ s.Hn @ s.Td,
-        "you undid the normalisation with T_dst on both sides (inv(T_dst) @ H_n @ T_dst): the right "
-        "factor must apply the *source's* normalisation. H = inv(T_dst) @ H_n @ T_src.",
-    ),
-    Mistake(
-        "T transposed in the undo",
-        lambda s: np.linalg.inv(s.Td.T) @ s.Hn @ s.Ts.T,
-        "you undid the normalisation with T transposed (inv(T_dst.T) @ H_n @ T_src.T): the translation "
-        "of T sits in its last column, so T.T puts it in the bottom row and makes T projective. With "
-        "points as rows you normalise by X @ T.T, but the undo is a product of the matrices themselves: "
-        "H = inv(T_dst) @ H_n @ T_src.",
-    ),
-    Mistake(
-        "elementwise products",
-        lambda s: np.linalg.inv(s.Td) * s.Hn * s.Ts,
-        "you multiplied the matrices element by element (inv(T_dst) * H_n * T_src): on numpy arrays * "
-        "is the entrywise product. Use the matrix product: H = inv(T_dst) @ H_n @ T_src.",
-    ),
-    Mistake(
-        "H_n transposed",
-        lambda s: np.linalg.inv(s.Td) @ s.Hn.T @ s.Ts,
-        "your H_n is transposed (the normalisation itself is undone right): h lists H row by row, so "
-        "reshape it with h.reshape(3, 3), not order='F' or .T, before undoing the normalisation.",
-    ),
-    Mistake(
-        "destination's normalisation only undone",
-        lambda s: np.linalg.inv(s.Td) @ s.Hn,
-        "you undid only the destination's normalisation (inv(T_dst) @ H_n): the result still "
-        "expects normalised source points T_src x. Undo both: H = inv(T_dst) @ H_n @ T_src.",
-    ),
-    Mistake(
-        "source's normalisation only undone",
-        lambda s: s.Hn @ s.Ts,
-        "you undid only the source's normalisation (H_n @ T_src): the result still gives "
-        "normalised destination points T_dst x'. Undo both: H = inv(T_dst) @ H_n @ T_src.",
-    ),
-)
-"""A normalised DLT's fit H_n = T_dst H inv(T_src) mapped back wrongly, in the order the diagnosis tests them."""
-
-
 def _normalisation_slip(g, src, dst, expected) -> str:
     """Name a normalised DLT done wrong; "" if none fits.
 
@@ -482,10 +419,10 @@ def _normalisation_slip(g, src, dst, expected) -> str:
     inv = np.linalg.inv
     for Ts, Td in _normalisers(src, dst):
         context = SimpleNamespace(
-            Ts=Ts, Td=Td, Hn=Td @ expected @ inv(Ts)
+            Ts=Ts, Td=Td, Hn=Td @ expected @ inv(Ts), H=np.asarray(expected, dtype=float)
         )  # H_n: of the normalised points
         cause = first_mistake(
-            _UNDO_MISTAKES, context, g, lambda got, wrong: same_up_to_scale(got, wrong, rtol=1e-5)
+            UNDO_MISTAKES, context, g, lambda got, wrong: same_up_to_scale(got, wrong, rtol=1e-5)
         )
         if cause:
             return cause
@@ -506,9 +443,10 @@ def _normalisation_slip(g, src, dst, expected) -> str:
     for largest in (_dlt_unnormalised(src, dst, pick=0), _dlt_normalised_largest(src, dst)):
         if same_up_to_scale(g, largest, rtol=1e-5):
             return (
-                "you took the singular vector of the *largest* singular value, Vt[0]. np.linalg.svd sorts "
-                "the singular values from large to small, so the one of the smallest, the h that makes "
-                "|A h| least, is the last row: Vt[-1]."
+                "you took the singular vector of the *largest* singular value (Vt[0], or the last column "
+                "of np.linalg.eigh(A.T @ A)[1], which sorts from small to large). The h that makes |A h| "
+                "least belongs to the smallest: Vt[-1] of np.linalg.svd (sorted large to small), or "
+                "eigh's first column [:, 0]."
             )
     for column in (_dlt_unnormalised(src, dst, column=True), _dlt_normalised_column(src, dst)):
         if same_up_to_scale(g, column, rtol=1e-5):
@@ -629,13 +567,13 @@ def _dlt_normalised_variant(src, dst, slip):
 
 
 def _undo_variant(src, dst, name):
-    """The normalised DLT undone by the row ``name`` of _UNDO_MISTAKES (a student's wrong answer)."""
+    """The normalised DLT undone by the row ``name`` of UNDO_MISTAKES (a student's wrong answer)."""
     src, dst = np.asarray(src, dtype=float), np.asarray(dst, dtype=float)
     Ts, Td = hartley_normalise(src).T, hartley_normalise(dst).T
     sn = (np.column_stack([src, np.ones(len(src))]) @ Ts.T)[:, :2]
     dn = (np.column_stack([dst, np.ones(len(dst))]) @ Td.T)[:, :2]
     Hn = np.linalg.svd(_dlt_rows(sn, dn))[2][-1].reshape(3, 3)
-    row = next(m for m in _UNDO_MISTAKES if m.name == name)
+    row = next(m for m in UNDO_MISTAKES if m.name == name)
     return row.answer(SimpleNamespace(Ts=Ts, Td=Td, Hn=Hn))
 
 
@@ -687,7 +625,7 @@ register_exercise(
         wrong_variants=(
             (lambda s, d: hg.estimate_homography(d, s), "inverse"),
             (lambda s, d: hg.estimate_homography(s, d).T, "transposed"),
-            (lambda s, d: _dlt_unnormalised(s, d, pick=0), "sorts the singular values"),
+            (lambda s, d: _dlt_unnormalised(s, d, pick=0), "sorts from small to large"),
             (_dlt_unnormalised, "Normalise each point set"),
             (_dlt_not_undone, "not undone"),
             (_dlt_undone_wrong_order, "wrong way round"),
@@ -712,6 +650,19 @@ register_exercise(
             (lambda s, d: _undo_variant(s, d, "elementwise products"), "element by element"),
             (lambda s, d: _undo_variant(s, d, "H_n transposed"), "H_n is transposed"),
             (_dlt_normalised_largest, "largest"),
+            (
+                lambda s, d: hg.estimate_homography(
+                    np.asarray(s, float)[:, ::-1], np.asarray(d, float)[:, ::-1]
+                ),
+                "u and v swapped",
+            ),
+            (
+                lambda s, d: (
+                    np.linalg.inv(hartley_normalise(np.asarray(d, float)).T)
+                    @ hg.estimate_homography(s, d)
+                ),
+                "dst never had",
+            ),
             (
                 lambda s, d: _dlt_with(s, d, _FAR_SLIPS[5][0]),
                 "maps normalised points back to pixels",

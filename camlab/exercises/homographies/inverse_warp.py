@@ -101,6 +101,15 @@ def _bilinear(image, H, out_shape):
     return out
 
 
+def _cv2_default(image, H, out_shape):
+    """cv2.warpPerspective with its default flags: bilinear, with OpenCV's 1/32-pixel fixed-point weights."""
+    import cv2
+
+    return cv2.warpPerspective(
+        np.asarray(image, dtype=float), np.asarray(H, dtype=float), tuple(out_shape)[::-1]
+    )
+
+
 def _forward(image, H, out_shape):
     """Forward mapping: push each source pixel to the output pixel nearest to H (u, v, 1)."""
     h, w = np.shape(image)
@@ -217,6 +226,20 @@ _WARP_MISTAKES = (
         "output pixel (u', v') is the point (u', v') itself.",
     ),
     Mistake(
+        "pixel corners",
+        lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, shift=0.5, rounding=np.floor),
+        "you sampled at H^-1 (u' + 0.5, v' + 0.5, 1) and took np.floor: the pixel-*corner* convention, "
+        "where pixel k covers [k, k + 1). The course puts pixel centres at integers (pixel k covers "
+        "[k - 0.5, k + 0.5)): map the point (u', v') itself and round to the nearest, np.rint.",
+    ),
+    Mistake(
+        "bound width, clamped",
+        lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, top=0),
+        "you tested iu <= width (and iv <= height) and clamped the index when reading: off by one. Index "
+        "width is one past the last column, so output pixels whose source lies just right of or below "
+        "the picture repeat its last column or row. Test 0 <= iu < width and 0 <= iv < height.",
+    ),
+    Mistake(
         "tested before rounding",
         lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, early=True),
         "you tested 0 <= u <= w - 1 before rounding, so source points just outside the pixel centres, such "
@@ -234,6 +257,13 @@ _WARP_MISTAKES = (
         lambda c: _bilinear(c.image, c.H, c.shape),
         "you interpolated bilinearly: a fine warp, but the prompt asks for nearest neighbour, one source "
         "pixel per output pixel: image[int(np.rint(v)), int(np.rint(u))].",
+    ),
+    Mistake(
+        "cv2's default, bilinear",
+        lambda c: _cv2_default(c.image, c.H, c.shape),
+        "you called cv2.warpPerspective with its default flags, which interpolate bilinearly "
+        "(cv2.INTER_LINEAR): a fine warp, but the prompt asks for nearest neighbour. Pass "
+        "flags=cv2.INTER_NEAREST, or write the loop: image[int(np.rint(v)), int(np.rint(u))].",
     ),
 )
 """The slips of an inverse nearest-neighbour warp, in the order they are tested."""
@@ -271,7 +301,7 @@ def _warp_diagnosis(args, got, expected) -> str:
             "them (pushing each source pixel to H x). Loop over the *output* pixels instead and pull each "
             "one's value from H^-1 (u', v', 1)."
         )
-    return _PULL + "; outside the picture, 0."
+    return _PULL + "; outside the picture, 0 (with cv2.warpPerspective: flags=cv2.INTER_NEAREST)."
 
 
 def _nan_outside(got, expected) -> str:
@@ -382,6 +412,12 @@ register_exercise(
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, swap=True), "image[row v, column u]"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, lower=False), "negative index"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, top=2), "off by one"),
+            (lambda im, H, s: _warp(im, np.linalg.inv(H), s, top=0), "iu <= width"),
+            (
+                lambda im, H, s: _warp(im, np.linalg.inv(H), s, shift=0.5, rounding=np.floor),
+                "pixel-*corner*",
+            ),
+            (_cv2_default, "cv2.INTER_NEAREST"),
         ),
         ndarray_only=True,
         teaching=warp_nearest,

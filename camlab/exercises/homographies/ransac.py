@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from types import SimpleNamespace
 
 import numpy as np
@@ -101,9 +102,10 @@ _SAMPLES_MISTAKES = (
         "int(k) + 1",
         # also true for a right answer on a fractional k: so the slip survives narrowing by those inputs
         lambda s: s.g == np.floor(s.exact) + 1,
-        "you returned int(k) + 1 (or np.floor(k) + 1): that rounds up only when k has a fraction. Here "
-        "k is a whole number, so it asks for one sample more than the fewest that reach p. "
-        "Round up with int(np.ceil(k)).",
+        "you returned int(k) + 1 (or np.floor(k) + 1), or looped on a strict inequality (adding "
+        "samples while (1 - q^4)^k >= 1 - p, i.e. until it is strictly below): both ask for one "
+        "more than k when k is a whole number, as here. The fewest samples that reach p are the "
+        "first k with (1 - q^4)^k <= 1 - p: int(np.ceil(k)).",
     ),
     Mistake(
         "ceil(k) + 1",
@@ -226,6 +228,12 @@ def _samples_exception_hint(exc, args) -> str:
             "multiplied p (or q) by 100 to turn it into per cent, don't: both are probabilities in "
             "(0, 1), 0.99 means 99 %. k = log(1 - p) / log(1 - q^4)."
         )
+    if isinstance(exc, ValueError) and "math domain error" in str(exc):
+        return (
+            "math.log got a number <= 0 ('math domain error'): 1 - p or 1 - q^4 fell to 0 or below. "
+            "Check the power, q**4 (q * 4 is 2.4 for q = 0.6), and that p and q are probabilities in "
+            "(0, 1), not per cent. k = log(1 - p) / log(1 - q^4)."
+        )
     return ""
 
 
@@ -283,6 +291,11 @@ register_exercise(
         wrong_variants=(
             (lambda p, q: np.log(1 - p) / np.log(1 - q**4), "a fraction of a sample"),
             (lambda p, q: int(np.log(1 - p) / np.log(1 - q**4)) + 1, "int(k) + 1"),
+            (
+                lambda p, q: next(k for k in range(10**6) if (1 - q**4) ** k < 1 - p),
+                "strict inequality",
+            ),
+            (lambda p, q: math.ceil(math.log(1 - p) / math.log(1 - q * 4)), "math domain"),
             (lambda p, q: int(np.ceil(np.log(1 - p) / np.log(1 - q**4))) + 1, "one sample more"),
             (lambda p, q: round(np.log(1 - p) / np.log(1 - q**4)), "rounded down"),
             (lambda p, q: int(np.log(1 - p) / np.log(1 - q**4)), "rounded down"),

@@ -113,10 +113,14 @@ def _hierarchy_measures(H: np.ndarray, picture_shape) -> dict:
     -------
     dict
         Name -> (before, after, kept): the top-left angle (degrees, from the mapping's derivative,
-        ``hg.mapped_angle``), the ratio of the top and left edges (two directions: similarities keep
-        it), of the top and bottom edges (parallel: affinities keep it), the angles between the
-        mapped top and bottom edges and between the left and right ones (0: still parallel) and the cross-ratio of four points on the
-        diagonal (every homography keeps it). A ratio with an edge through infinity is ``inf``.
+        ``hg.mapped_angle``), the top edge's length (px: Euclidean maps keep it), the ratio of the
+        top and left edges (two directions: similarities keep it), of the top and bottom edges
+        (parallel: affinities keep it), the angles between the mapped top and bottom edges and
+        between the left and right ones (0: still parallel) and the cross-ratio of four points on
+        the diagonal (every homography keeps it). A length or ratio with an edge through infinity
+        is ``inf``. *kept* means within 0.1° for the angles (absolute: a 1° change reads
+        *changes*), within 0.1 % of the value for lengths and ratios, and within 1e-6 of it for
+        the cross-ratio.
     """
     ph, pw = picture_shape[:2]
     tl, tr, br, bl = np.array([[0.0, 0.0], [pw - 1, 0.0], [pw - 1, ph - 1], [0.0, ph - 1]])
@@ -137,20 +141,25 @@ def _hierarchy_measures(H: np.ndarray, picture_shape) -> dict:
         return float(np.degrees(np.arctan2(abs(d1[0] * d2[1] - d1[1] * d2[0]), abs(d1 @ d2))))
 
     diagonal = tl + np.array([[0.0], [0.25], [0.5], [1.0]]) * (br - tl)
+    # (before, after, tolerance, absolute?): angles within 0.1° absolutely, lengths and ratios
+    # within 0.1 % of their value, the cross-ratio within 1e-6 of its value
     rows = {
-        "top-left angle (°)": (90.0, hg.mapped_angle(H, tl, tr - tl, bl - tl), 0.1),
-        "|top| / |left|": ((pw - 1) / (ph - 1), ratio(length(0, 1), length(0, 3)), 1e-3),
-        "|top| / |bottom|": (1.0, ratio(length(0, 1), length(3, 2)), 1e-3),
-        "top vs bottom edge (°)": (0.0, between(tl, bl, 0), 0.1),
-        "left vs right edge (°)": (0.0, between(tl, tr, 1), 0.1),
+        "top-left angle (°)": (90.0, hg.mapped_angle(H, tl, tr - tl, bl - tl), 0.1, True),
+        "|top| (px)": (pw - 1.0, length(0, 1), 1e-3, False),
+        "|top| / |left|": ((pw - 1) / (ph - 1), ratio(length(0, 1), length(0, 3)), 1e-3, False),
+        "|top| / |bottom|": (1.0, ratio(length(0, 1), length(3, 2)), 1e-3, False),
+        "top vs bottom edge (°)": (0.0, between(tl, bl, 0), 0.1, True),
+        "left vs right edge (°)": (0.0, between(tl, tr, 1), 0.1, True),
         "cross-ratio, diagonal": (
             cross_ratio(diagonal),
             cross_ratio(map_points(H, diagonal)),
             1e-6,
+            False,
         ),
     }
     return {
-        k: (a, b, bool(abs(b - a) <= tol * max(1.0, abs(a)))) for k, (a, b, tol) in rows.items()
+        k: (a, b, bool(abs(b - a) <= (tol if absolute else tol * abs(a))))
+        for k, (a, b, tol, absolute) in rows.items()
     }
 
 
@@ -794,7 +803,7 @@ def drag_homography() -> Demo:
             verdicts={name: verdict for name, _, _, verdict in rows},
             **measures,
         )
-        table = "                 source    image\n" + "\n".join(
+        table = f"{'measured':15s}  source    image\n" + "\n".join(
             f"{name:15s} {a:>7s}  {b:>7s}  {verdict}" for name, a, b, verdict in rows
         )
         art.numbers.set_text(table)
