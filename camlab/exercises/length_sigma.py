@@ -82,16 +82,20 @@ def _cases():
     return cases
 
 
-def _parts(H_of, Sigma_p, a, b, forward=False):
+def _parts(H_of, Sigma_p, a, b, slip=None):
     """The gradients g_p (6,) and g_u (4,) of the length, by central differences.
 
-    ``forward=True`` maps the pixels by H instead of H^-1 (a student's slip).
+    ``slip`` is a student's slip in mapping the pixels back: "forward" (by H instead of
+    H^-1), "transposed" (by H^-T) or "no w" (no division by the third coordinate).
     """
 
     def length(p, u):
-        ends = np.vstack([u.reshape(2, 2).T, np.ones(2)])
-        q = H_of(p) @ ends if forward else np.linalg.solve(H_of(p), ends)
-        q = q[:2] / q[2]
+        ends, H = np.vstack([u.reshape(2, 2).T, np.ones(2)]), H_of(p)
+        if slip == "forward":
+            q = H @ ends
+        else:
+            q = np.linalg.solve(H.T if slip == "transposed" else H, ends)
+        q = q[:2] if slip == "no w" else q[:2] / q[2]
         return np.linalg.norm(q[:, 0] - q[:, 1])
 
     p0, u0 = np.zeros(6), np.concatenate([a, b]).astype(float)
@@ -138,7 +142,10 @@ def _context(H_of, Sigma_p, a, b, sigma_u):
     g_p, g_u = _parts(H_of, Sigma_p, a, b)
     pose2 = float(g_p @ Sigma_p @ g_p)
     pix2 = float(sigma_u**2 * g_u @ g_u)
-    f_p, f_u = _parts(H_of, Sigma_p, a, b, forward=True)
+    slipped = {}
+    for slip in ("forward", "transposed", "no w"):
+        s_p, s_u = _parts(H_of, Sigma_p, a, b, slip)
+        slipped[slip] = np.sqrt(s_p @ Sigma_p @ s_p + sigma_u**2 * s_u @ s_u)
     return SimpleNamespace(
         right=np.sqrt(pose2 + pix2),
         variance=pose2 + pix2,
@@ -146,7 +153,10 @@ def _context(H_of, Sigma_p, a, b, sigma_u):
         picking_twice=np.sqrt(pose2 + 2 * pix2),
         doubled=2 * np.sqrt(pose2 + pix2),
         diagonal=np.sqrt(g_p**2 @ np.diag(Sigma_p) + pix2),
-        forward=np.sqrt(f_p @ Sigma_p @ f_p + sigma_u**2 * f_u @ f_u),
+        forward=slipped["forward"],
+        transposed=slipped["transposed"],
+        no_w=slipped["no w"],
+        per_end=np.sqrt(pose2 + pix2 / 2),
         no_pose=np.sqrt(pix2),
         no_pixels=np.sqrt(pose2),
         one_end=np.sqrt(pose2 + sigma_u**2 * g_u[:2] @ g_u[:2]),
@@ -194,6 +204,25 @@ _MISTAKES = (
         lambda c: c.forward,
         "you mapped the pixels with H, which goes board -> image: pixels go back to the board with H^-1, "
         "np.linalg.solve(H_of(p), (u, v, 1)) (as in Exercise 3), before the length and its gradients.",
+    ),
+    Mistake(
+        "no division by w",
+        lambda c: c.no_w,
+        "you forgot to divide by w: H^-1 (u, v, 1) is a homogeneous point (x w, y w, w); the board point "
+        "is its first two entries divided by the third, before the length (as in Exercise 3).",
+    ),
+    Mistake(
+        "transposed",
+        lambda c: c.transposed,
+        "you mapped the pixels with H^-T (np.linalg.solve(H_of(p).T, ...), or a row vector x @ inv(H)): "
+        "points go back to the board by H^-1 itself, np.linalg.solve(H_of(p), (u, v, 1)); H^-T maps lines.",
+    ),
+    Mistake(
+        "sigma_u per end",
+        lambda c: c.per_end,
+        "your picking term is half the right variance, as if sigma_u were the noise of a whole end split "
+        "over its two coordinates: sigma_u is the noise of EACH pixel coordinate, so every one of the four "
+        "coordinates adds sigma_u^2 (dL/du)^2, sigma_u**2 * g_u @ g_u.",
     ),
     Mistake(
         "no pose term",
@@ -270,6 +299,9 @@ register_exercise(
             (_variant("central difference not halved"), "instead of 2h"),
             (_variant("diagonal of Sigma_p only"), "only the diagonal"),
             (_variant("forward H"), "board -> image"),
+            (_variant("no division by w"), "divide by w"),
+            (_variant("transposed"), "H^-T"),
+            (_variant("sigma_u per end"), "EACH pixel coordinate"),
             (_variant("no pose term"), "pose's part"),
             (_variant("no pixel term"), "left out the picking"),
             (_variant("one end only"), "only one end"),

@@ -272,6 +272,8 @@ def _reach_context(f, B, s, e):
         right=right,
         linear=e * f * B / s,
         inverted=float(np.sqrt(s / (e * f * B))),
+        fraction_inverted=float(np.sqrt(e * s / (f * B))),
+        error_outside=float(np.sqrt(f * B / s) * e),
         tolerance_inverted=float(np.sqrt(f * B / (s * e))),
         doubled=float(np.sqrt(2 * e * f * B / s)),
         negative=-right,
@@ -312,6 +314,18 @@ _REACH_MISTAKES = (
         lambda c: c.inverted,
         "your formula is upside down: a longer focal length, a wider baseline and a larger tolerated "
         "error all let you see further; Z_max = sqrt(max_error f B / sigma_d).",
+    ),
+    Mistake(
+        "fraction inverted",
+        lambda c: c.fraction_inverted,
+        "you multiplied by sigma_d / (f B) where you should divide by it: from Z^2 sigma_d / (f B) = "
+        "max_error, Z^2 = max_error f B / sigma_d (a longer f or a wider B lets you see farther).",
+    ),
+    Mistake(
+        "error outside the root",
+        lambda c: c.error_outside,
+        "you multiplied by max_error outside the square root: it is part of Z^2 = max_error f B / sigma_d, "
+        "so it goes under the root with f B / sigma_d (Z_max grows as its square root).",
     ),
     Mistake(
         "sigma outside the root",
@@ -440,6 +454,8 @@ register_exercise(
             (_reach_variant("cube root"), "cube root"),
             (_reach_variant("inverted"), "upside down"),
             (_reach_variant("sigma outside the root"), "outside the square root"),
+            (_reach_variant("fraction inverted"), "where you should divide"),
+            (_reach_variant("error outside the root"), "max_error outside the square root"),
             (_reach_variant("no focal length"), "focal length"),
             (_reach_variant("millimetres"), "1000 times"),
             (_reach_variant("one input in millimetres"), "31.6"),

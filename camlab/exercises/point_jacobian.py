@@ -14,8 +14,8 @@ The chain rule gives the 2 x 6 Jacobian, columns :math:`(\delta\omega, \delta t)
 
 References
 ----------
-Hartley & Zisserman, Multiple View Geometry, 2nd ed., sections 6.2 and A6.2 (the Jacobian of a
-projection); Szeliski, Computer Vision, 2nd ed., section 11.2.2 (the left update of a rotation).
+Hartley & Zisserman, Multiple View Geometry, 2nd ed., sections 6.1 (the finite camera) and 7.2
+(resectioning by geometric error, minimised by the iterative methods of appendix A6); Szeliski, Computer Vision, 2nd ed., section 11.2.2 (the left update of a rotation).
 """
 
 from __future__ import annotations
