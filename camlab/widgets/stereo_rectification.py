@@ -89,7 +89,11 @@ def _epipolar_legends(axl, axr, depth_dots, epi_r) -> None:
     def key(**kw):
         return Line2D([], [], **kw)
 
-    pale = {"color": palette.RED, "lw": 0.6}  # epipolar lines are red; the fixed pencil thin
+    pale = {
+        "color": palette.RED,
+        "lw": 0.9,
+        "ls": ":",
+    }  # epipolar lines are red; the fixed pencil thin, dotted
     axl.legend(
         [
             key(**pale, marker="s", mfc="w", mec=palette.RED, ms=6),
@@ -142,8 +146,9 @@ def _epipolar_figure(view: FigureView) -> SimpleNamespace:
     image_axes(axr, SIZE, "right image: its epipolar line")
     (wl,) = axl.plot([], [], color="0.55", lw=0.8)
     (wr,) = axr.plot([], [], color="0.55", lw=0.8)
-    (pencil_l,) = axl.plot([], [], color=palette.RED, lw=0.6)
-    (pencil_r,) = axr.plot([], [], color=palette.RED, lw=0.6)
+    # the fixed pencil thin and dotted: told apart from the point's line by more than colour
+    (pencil_l,) = axl.plot([], [], color=palette.RED, lw=0.9, ls=":")
+    (pencil_r,) = axr.plot([], [], color=palette.RED, lw=0.9, ls=":")
     (point,) = axl.plot([], [], "o", color=palette.TAB_RED, ms=8)
     (line_l,) = axl.plot([], [], color=palette.TAB_RED, lw=1.2, ls="--")
     (line_r,) = axr.plot([], [], color=palette.TAB_RED, lw=1.8)
