@@ -376,8 +376,11 @@ def text_lines(text: Any) -> dict:
     _bbox, info, _d = text._get_layout(fig.canvas.get_renderer())  # noqa: SLF001 - matplotlib's own line layout
     x, y = text.get_transform().transform(text.get_unitless_position())
     height = canvas_height(fig)
+    # each line's offset from the anchor: (line, wad, (dx, dy)) since matplotlib 3.10,
+    # (line, (w, h), dx, dy) in 3.9 (the oldest the course supports)
+    offsets = [row[2][1] if len(row) == 3 else row[3] for row in info]
     return dict(
         x=float(x),
-        baselines=[float(height - (y + dy)) for _line, _wad, (_dx, dy) in info],
+        baselines=[float(height - (y + dy)) for dy in offsets],
         align=text.get_horizontalalignment(),
     )
