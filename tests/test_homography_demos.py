@@ -465,6 +465,26 @@ def test_ransac_samples_check_names_per_cent_and_expected_trials():
         assert cause in str(failed.value)
 
 
+def test_ransac_samples_check_names_nan_and_k_of_one():
+    """A NaN k names the log of a negative number; a 1 everywhere is not blamed on p in per cent."""
+    from camlab.exercises import check_ransac_samples
+    from camlab.exercises._core import CheckFailed
+
+    slips = {
+        "NaN or infinite": lambda p, q: np.ceil(
+            np.log(1 - p) / np.log(1 - q * 4)
+        ),  # a float NaN, no raise
+        "returns 1 sample where": lambda p, q: 1,
+        "you divided p by 100": lambda p, q: int(np.ceil(np.log(1 - p / 100) / np.log(1 - q**4))),
+    }
+    for cause, slip in slips.items():
+        with np.errstate(all="ignore"), pytest.raises(CheckFailed) as failed:
+            check_ransac_samples(slip)
+        assert cause in str(failed.value), (cause, str(failed.value))
+        if cause != "you divided p by 100":
+            assert "you divided p by 100" not in str(failed.value)
+
+
 def test_apply_homography_check_names_rounding_to_whole_pixels():
     from camlab.exercises import check_apply_homography
     from camlab.exercises._core import CheckFailed

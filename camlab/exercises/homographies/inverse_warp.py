@@ -135,6 +135,19 @@ def _indexed_image_u_v(image, H, out_shape):
     return out
 
 
+def _indexed_u_v_caught(image, H, out_shape):
+    """The slip image[u, v] with image[v, u]'s bounds, inside try/except IndexError: 0 where it raised."""
+    image = np.asarray(image, dtype=float)
+    h, w = image.shape[:2]
+    v, u = np.mgrid[0 : out_shape[0], 0 : out_shape[1]]
+    X = np.stack([u, v, np.ones_like(u)], axis=-1) @ np.linalg.inv(np.asarray(H, dtype=float)).T
+    iu, iv = np.rint(X[..., 0] / X[..., 2]).astype(int), np.rint(X[..., 1] / X[..., 2]).astype(int)
+    read = (
+        (iu >= 0) & (iu < w) & (iv >= 0) & (iv < h) & (iu < h) & (iv < w)
+    )  # passes the test, no IndexError
+    return np.where(read, image[np.clip(iu, 0, h - 1), np.clip(iv, 0, w - 1)], 0.0)
+
+
 def _same_picture(got, expected) -> bool:
     """Same shape, and all but :data:`_MISMATCH_ALLOWED` of the pixels equal (within float32 rounding)."""
     try:
@@ -186,6 +199,13 @@ _WARP_MISTAKES = (
         "you read image[u, v] and tested u against the height, v against the width: numpy images are "
         "image[row v, column u], with height = image.shape[0] rows and width = image.shape[1] columns. "
         "Read image[iv, iu] and test 0 <= iu < width, 0 <= iv < height.",
+    ),
+    Mistake(
+        "image[u, v], IndexError caught",
+        lambda c: _indexed_u_v_caught(c.image, c.H, c.shape),
+        "you read image[u, v] (column first) and caught the IndexError it raised: numpy images are "
+        "image[row v, column u], so read image[iv, iu], test 0 <= iu < width and 0 <= iv < height "
+        "(width = image.shape[1]) first, and drop the try/except, which hid the slip.",
     ),
     Mistake(
         "no lower bound",
@@ -408,6 +428,7 @@ register_exercise(
             (lambda im, H, s: _reference(im, H, s).T, "(rows, columns)"),
             (lambda im, H, s: _reference(im, H, s).tolist(), "list"),
             (_indexed_image_u_v, "image[v, u]"),
+            (_indexed_u_v_caught, "hid the slip"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, rounding=np.trunc), "toward zero"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, swap=True), "image[row v, column u]"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, lower=False), "negative index"),

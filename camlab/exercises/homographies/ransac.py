@@ -61,7 +61,8 @@ def _is_any(g, values) -> bool:
 _SAMPLES_MISTAKES = (
     Mistake(
         "p in per cent",
-        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p / 100), np.log(1 - s.q**4)))),
+        # p / 100 rounds k up to 1 on most inputs, as many slips do: 1 alone does not name it (_per_cent_k)
+        lambda s: s.g != 1 and _is_any(s.g, s.ways(_k(np.log(1 - s.p / 100), np.log(1 - s.q**4)))),
         "you divided p by 100, as if it came in per cent: p is already a probability in (0, 1) "
         "(0.99 means 99 %), so use it as it is: k = log(1 - p) / log(1 - q^4).",
     ),
@@ -199,14 +200,49 @@ def _narrowed(tied, args, run) -> list:
     return tied
 
 
+_NOT_FINITE = (
+    "your k is NaN or infinite: a log of a number <= 0. 1 - p or 1 - q^4 fell to 0 or below. Check the "
+    "power, q**4 (q * 4 is 2.4 for q = 0.6, and 1 - 2.4 is negative), and that p and q are probabilities "
+    "in (0, 1), not per cent. k = ceil(log(1 - p) / log(1 - q^4))."
+)
+_ONE_SAMPLE = (
+    "your function returns 1 sample where {expected} are needed: its k is below 1 before rounding up. "
+    "That happens when the denominator's log is far larger than the numerator's: check the power, "
+    "1 - q**4 (not 1 - q * 4, which is negative or 0 for q >= 0.25), that the ratio is not upside "
+    "down, and that p is used as it is. k = ceil(log(1 - p) / log(1 - q^4))."
+)
+
+
+def _per_cent_k(run) -> bool:
+    """True if the student's k is p / 100's on a test input where that k is not 1."""
+    for p, q in _ransac_samples_cases():
+        k = int(np.ceil(_k(np.log(1 - p / 100), np.log(1 - q**4))))
+        if k != 1:
+            try:
+                if float(run(p, q)) == k:
+                    return True
+            except Exception:  # the student's function fails there: that input tells nothing
+                continue
+    return False
+
+
 def _samples_diagnosis(args, got, expected, run=None) -> str:
     p, q = args
+    if isinstance(got, (float, np.floating)) and not np.isfinite(got):
+        return _NOT_FINITE
     if not _is_number(got):
         return not_one_number(got, "the whole number of samples k")
     context = _samples_context(p, q, float(got))
     tied = [m for m in _SAMPLES_MISTAKES if m.answer(context)]
-    if len(tied) > 1 and run is not None:  # small k: several slips give it; the other inputs decide
-        tied = _narrowed(tied, args, run) or tied
+    if run is not None:  # a slip must give the student's answers on the other inputs too
+        narrowed = _narrowed(tied, args, run)
+        if not narrowed and got == 1:  # no listed slip gives 1 everywhere the student gives 1
+            return (
+                _SAMPLES_MISTAKES[0].hint
+                if _per_cent_k(run)
+                else _ONE_SAMPLE.format(expected=expected)
+            )
+        tied = narrowed or tied
     causes = [m.hint for m in tied]
     if len(causes) > 1:  # small k: several slips round up to the same whole number
         return f"{len(causes)} different slips give this number here; either " + " Or ".join(causes)
