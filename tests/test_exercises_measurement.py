@@ -128,3 +128,15 @@ def test_pose_covariance_names_a_scaled_sigma():
     with pytest.raises(AssertionError) as info:
         check("pose_covariance", lambda J, r: 0.7 * pose_covariance(J, r))
     assert "0.7 times the answer" in str(info.value)
+
+
+def test_point_covariance_accepts_one_stacked_product(capsys):
+    from scipy.linalg import block_diag
+
+    def stacked(
+        J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u
+    ):  # section 3's form: J Sigma_in J^T in one step
+        J = np.hstack([J_A, J_B, J_u])
+        return J @ block_diag(Sigma_A, Sigma_B, sigma_u**2 * np.eye(4)) @ J.T
+
+    assert check("point_covariance", stacked).passed is True
