@@ -102,3 +102,41 @@ def test_length_sigma_reference_is_measure_on_plane_and_accepts_forward_differen
         return np.sqrt(g_p @ Sigma_p @ g_p + sigma_u**2 * np.sum(g_u**2))
 
     assert check("length_sigma", forward).passed is True
+
+
+def test_length_on_plane_accepts_opencv_in_float32(capsys):
+    import cv2
+
+    def opencv(H, a, b):  # the usual call: float32 points, 30 nm off on 0.17 m
+        p = cv2.perspectiveTransform(np.float32([[a, b]]), np.linalg.inv(H))[0]
+        return float(np.linalg.norm(p[0] - p[1]))
+
+    assert check("length_on_plane", opencv).passed is True
+
+
+def test_point_jacobian_names_a_forward_difference_with_its_columns():
+    from camlab.exercises.point_jacobian import _forward_difference
+
+    with pytest.raises(AssertionError) as info:
+        check("point_jacobian", _forward_difference)
+    assert "forward difference" in str(info.value) and "columns []" not in str(info.value)
+
+
+def test_pose_covariance_names_a_scaled_sigma():
+    from camlab.exercises.pose_uncertainty import pose_covariance
+
+    with pytest.raises(AssertionError) as info:
+        check("pose_covariance", lambda J, r: 0.7 * pose_covariance(J, r))
+    assert "0.7 times the answer" in str(info.value)
+
+
+def test_point_covariance_accepts_one_stacked_product(capsys):
+    from scipy.linalg import block_diag
+
+    def stacked(
+        J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u
+    ):  # section 3's form: J Sigma_in J^T in one step
+        J = np.hstack([J_A, J_B, J_u])
+        return J @ block_diag(Sigma_A, Sigma_B, sigma_u**2 * np.eye(4)) @ J.T
+
+    assert check("point_covariance", stacked).passed is True

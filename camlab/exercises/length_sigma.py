@@ -141,6 +141,12 @@ def length_sigma(H_of, Sigma_p, a, b, sigma_u):
 def _context(H_of, Sigma_p, a, b, sigma_u):
     g_p, g_u = _parts(H_of, Sigma_p, a, b)
     pose2 = float(g_p @ Sigma_p @ g_p)
+    w_p, w_u = _parts(
+        H_of, Sigma_p, np.asarray(a)[::-1], np.asarray(b)[::-1]
+    )  # (v, u) read as (u, v)
+    g_deg = np.r_[
+        np.radians(g_p[:3]), g_p[3:]
+    ]  # rotation gradients per degree, Sigma_p per radian^2
     pix2 = float(sigma_u**2 * g_u @ g_u)
     slipped = {}
     for slip in ("forward", "transposed", "no w"):
@@ -164,6 +170,13 @@ def _context(H_of, Sigma_p, a, b, sigma_u):
         inverse=np.sqrt(g_p @ np.linalg.inv(Sigma_p) @ g_p + pix2),
         swapped_order=np.sqrt(np.r_[g_p[3:], g_p[:3]] @ Sigma_p @ np.r_[g_p[3:], g_p[:3]] + pix2),
         mm=1000 * np.sqrt(pose2 + pix2),
+        uv_swapped=np.sqrt(w_p @ Sigma_p @ w_p + sigma_u**2 * w_u @ w_u),
+        per_degree=np.sqrt(g_deg @ Sigma_p @ g_deg + pix2),
+        per_degree_inv=np.sqrt(
+            np.r_[np.degrees(g_p[:3]), g_p[3:]] @ Sigma_p @ np.r_[np.degrees(g_p[:3]), g_p[3:]]
+            + pix2
+        ),
+        absolute=np.sqrt(np.abs(g_p) @ np.abs(Sigma_p) @ np.abs(g_p) + pix2),
     )
 
 
@@ -189,7 +202,8 @@ _MISTAKES = (
     Mistake(
         "central difference not halved",
         lambda c: c.doubled,
-        "your sigma is exactly twice the answer: every gradient is doubled, as when a central difference "
+        "your sigma is exactly twice the answer: either you returned a 2-sigma band (2 * sigma_L; the "
+        "prompt asks for one sigma), or every gradient is doubled, as when a central difference "
         "(L(p + h) - L(p - h)) is divided by h instead of 2h, the distance between its two points.",
     ),
     Mistake(
@@ -261,6 +275,31 @@ _MISTAKES = (
         "first, as H_of expects, so g_p and Sigma_p index the same parameters.",
     ),
     Mistake(
+        "u and v swapped",
+        lambda c: c.uv_swapped,
+        "you swapped u and v (row, column, as an array index reads them): a and b are (u, v) = (column, "
+        "row), the order H expects, so map (a[0], a[1], 1) as it is.",
+    ),
+    Mistake(
+        "rotation per degree",
+        lambda c: c.per_degree,
+        "your rotation gradients are per degree (pi / 180 times too small): Sigma_p is in radians^2 and "
+        "H_of takes p[0:3] in radians, so step p[0:3] by h radians and divide by 2h, with no degree conversion.",
+    ),
+    Mistake(
+        "rotation degrees inverted",
+        lambda c: c.per_degree_inv,
+        "your rotation gradients are 180 / pi = 57.3 times too large: you converted them to degrees where "
+        "none is needed; p[0:3] and Sigma_p are both in radians.",
+    ),
+    Mistake(
+        "absolute values",
+        lambda c: c.absolute,
+        "you took absolute values (of g_p or of Sigma_p): the pose's parameters are correlated, with "
+        "negative as well as positive covariances, and those signs partly cancel in g_p @ Sigma_p @ g_p; "
+        "use the signed gradient and the signed covariance.",
+    ),
+    Mistake(
         "millimetres",
         lambda c: c.mm,
         "your sigma is 1000 times too big: the plane is in metres, so sigma_L comes out in metres.",
@@ -309,6 +348,10 @@ register_exercise(
             (_variant("inverse covariance"), "information matrix"),
             (_variant("parameter order"), "(dt, dw)"),
             (_variant("millimetres"), "1000 times"),
+            (_variant("u and v swapped"), "swapped u and v"),
+            (_variant("rotation per degree"), "per degree"),
+            (_variant("rotation degrees inverted"), "57.3"),
+            (_variant("absolute values"), "absolute values"),
         ),
         teaching=length_sigma,
         solution_note=(

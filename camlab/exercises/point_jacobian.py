@@ -130,7 +130,20 @@ def _context(K, R, t, X):
         times_z=z * dpix,
         K_rows=K[:2],
         transposed=_reference(K, R.T, t, X),  # the right formula, R.T used for R throughout
+        inverted=_inverted(K, R, t, X),
     )
+
+
+def _inverted(K, R, t, X):
+    """The pose read as world_from_cam, X_c = R^T (X - t), with R, t perturbed as the prompt says.
+
+    R <- exp([dw]x) R gives X_c = R^T exp(-[dw]x) (X - t), so d X_c / d dw = R^T [X - t]x and
+    d X_c / d dt = -R^T, taken at X_c = R^T (X - t).
+    """
+    Xc = R.T @ (X - t)
+    P = K @ Xc
+    dpix = (K[:2] - np.outer(P[:2] / P[2], K[2])) / P[2]
+    return dpix @ np.hstack([R.T @ _skew(X - t), -R.T])
 
 
 _MISTAKES = (
@@ -248,6 +261,13 @@ _MISTAKES = (
         "row by fy, since u = fx x / z + cx.",
     ),
     Mistake(
+        "pose inverted",
+        lambda c: c.inverted,
+        "you read the pose the wrong way round, as world_from_cam, X_c = R^T (X - t): the course's poses "
+        "are cam_from_world, X_c = R X + t (docs/conventions.md), so X_c = R @ X + t, and its rotation "
+        "columns are -[X_c - t]x = -[R X]x.",
+    ),
+    Mistake(
         "rows swapped",
         lambda c: c.right[::-1],
         "your rows are (v, u): row 0 is u (the column), row 1 is v (the row), as pixels are (u, v).",
@@ -273,12 +293,31 @@ def _diagnosis(args, got, expected) -> str:
     )
     if hint:
         return hint
-    bad = [k for k in range(6) if not np.allclose(g[:, k], expected[:, k], rtol=1e-5, atol=1e-5)]
+    bad = [k for k in range(6) if not np.allclose(g[:, k], expected[:, k], rtol=1e-6, atol=1e-6)]
+    worst = float(np.max(np.abs(g - expected)) / np.max(np.abs(expected)))
+    if worst < 1e-2:
+        return (
+            f"nearly right: columns {bad} (0-2: dw, 3-5: dt) differ from the exact Jacobian by up to "
+            f"{np.max(np.abs(g - expected)):.1e} px per radian or per metre, more than the check's 1e-6 relative "
+            "to each entry: the error of a forward difference, (f(p + h) - f(p)) / h, or of "
+            "too large a step. Use central differences, (f(p + h) - f(p - h)) / (2h) with h about 1e-6, or "
+            "the chain rule the prompt asks for, which is exact."
+        )
     return (
         f"columns {bad} differ (0-2: dw, 3-5: dt): check d(u, v)/d X_c = [[fx/z, 0, -fx x/z^2], "
         "[0, fy/z, -fy y/z^2]], then d X_c / d dw = -[X_c - t]x and d X_c / d dt = I. Central "
         "differences of your projection, one parameter at a time, show which is off."
     )
+
+
+def _forward_difference(K, R, t, X):
+    """A near miss: one-sided differences of the projection, step 1e-6 (off by about 1e-4 px/rad)."""
+
+    def pixel(p):
+        Xc = (_rotation(p[:3]) if np.any(p[:3]) else np.eye(3)) @ R @ X + t + p[3:]
+        return (K @ Xc)[:2] / (K @ Xc)[2]
+
+    return np.column_stack([(pixel(h) - pixel(np.zeros(6))) / 1e-6 for h in 1e-6 * np.eye(6)])
 
 
 def _variant(name):
@@ -314,6 +353,8 @@ register_exercise(
             (_variant("residual"), "residual"),
             (_variant("no focal length"), "normalised"),
             (_variant("rows swapped"), "(v, u)"),
+            (_variant("pose inverted"), "world_from_cam"),
+            ((lambda K, R, t, X: _forward_difference(K, R, t, X)), "forward difference"),
             ((lambda K, R, t, X: point_jacobian(K, R, t, X).T), "transpose"),
         ),
         teaching=point_jacobian,

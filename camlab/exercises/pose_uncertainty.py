@@ -106,6 +106,13 @@ _MISTAKES = (
         "sigma^2 = sum(r^2) / (2N - 6) with 2N = len(r) (section 1: 0.188 px per corner, 0.137 px per coordinate).",
     ),
     Mistake(
+        "halved",
+        lambda c: c.s2 / 2 * c.inv,
+        "your covariance is exactly half the answer: you divided sum(r^2) by 2 (2N - 6), as if len(r) were "
+        "N and each point gave two more numbers, or took the mean of u's and v's variances as a sum over both; "
+        "r holds the 2N coordinates, so sigma^2 = np.sum(r**2) / (len(r) - 6).",
+    ),
+    Mistake(
         "divided by 2N - 7",
         lambda c: c.rss / (c.m - 7) * c.inv,
         "you divided by 2N - 7: the pose has 6 unknowns (3 for the rotation, 3 for the translation), "
@@ -212,11 +219,23 @@ def _diagnosis(args, got, expected) -> str:
     return (
         hint
         or shape_problem(got, expected)
+        or _scale_hint(g, expected)
         or (
             "your covariance differs from sigma^2 (J^T J)^-1 with sigma^2 = sum(r^2) / (2N - 6), 2N = len(r): "
             "check each factor."
         )
     )
+
+
+def _scale_hint(g, expected) -> str | None:
+    """A covariance that is a constant multiple of the answer: (J^T J)^-1 is right, sigma^2 is not."""
+    k = float(np.sum(g * expected) / np.sum(expected * expected))
+    if np.all(np.isfinite(g)) and np.allclose(g, k * expected, rtol=1e-6, atol=0):
+        return (
+            f"your covariance is {k:.4g} times the answer: the matrix (J^T J)^-1 is right, its factor sigma^2 "
+            "is not; sigma^2 = np.sum(r**2) / (len(r) - 6), the residuals squared, summed, divided by 2N - 6."
+        )
+    return None
 
 
 def _variant(name):
@@ -242,6 +261,8 @@ register_exercise(
             (_variant("divided by N - 6"), "N - 6"),
             (_variant("divided by 2N - 7"), "2N - 7"),
             (_variant("per-corner variance"), "per CORNER"),
+            (_variant("halved"), "exactly half"),
+            ((lambda J, r: 1.5 * pose_covariance(J, r)), "1.5 times the answer"),
             ((lambda J, r: np.sum(r**2) / (len(r) / 2 - 3) * np.linalg.inv(J.T @ J)), "per CORNER"),
             (_variant("square of the sum"), "square each residual first"),
             ((lambda J, r: np.sum(r**2) / (len(r) - 6) / (J.T @ J)), "entry by entry"),

@@ -233,10 +233,10 @@ def plane_error() -> Demo:
             f"tilt {v['tilt']:.0f} deg, {v['distance']:.2f} m: the board's first row spans {now.board_px:.0f} px"
             + ("" if now.in_frame and now_x.in_frame else " (part of it is outside the photo!)")
             + "\n"
-            f"sigma of the 0.2 m edge along the slope (purple): {1000 * now.sigma:.2f} mm\n"
-            f"  from the pose:         {1000 * now.pose:.2f} mm\n"
-            f"  from picking the ends ({pick:g} px): {1000 * now.pixels:.2f} mm\n"
-            f"sigma of the 0.2 m edge across the slope (brown): {1000 * now_x.sigma:.2f} mm"
+            f"σ of the 0.2 m edge along the slope (purple):  {1000 * now.sigma:5.2f} mm\n"
+            f"  its part from the pose:                      {1000 * now.pose:5.2f} mm\n"
+            f"  its part from picking the ends ({pick:4.2f} px):    {1000 * now.pixels:5.2f} mm\n"
+            f"σ of the 0.2 m edge across the slope (brown):  {1000 * now_x.sigma:5.2f} mm"
         )
 
     controls = {
@@ -278,7 +278,7 @@ def click_to_measure(ax, length_text, area_text) -> SimpleNamespace:
         ``points`` (the clicks so far), ``line`` (the drawn outline), ``click(u, v, button)``
         (what a mouse click does; tests call it) and ``connection`` (the canvas callback id).
     """
-    (line,) = ax.plot([], [], "-o", color=palette.BROWN, lw=2, ms=5)
+    (line,) = ax.plot([], [], "-o", color=palette.ORANGE, lw=2, ms=5)
     state = SimpleNamespace(points=[], closed=False, line=line)
 
     def show(text: str) -> None:
