@@ -421,7 +421,8 @@ def draw_channel_order(axes: Sequence[Axes], bgr: np.ndarray, pixel: tuple[int, 
     ``cv2.imread`` stores each pixel's channels as B, G, R; matplotlib's ``imshow`` reads the three
     numbers as R, G, B, so the unflipped picture swaps red and blue: a red-orange spot turns blue.
     ``bgr[..., ::-1]`` reverses the last axis and gives the true colours. Pixel ``(u, v)`` is ringed
-    in white edged with black in both panels, at x = u, y = v, wide of the spot so its colour shows.
+    in white edged with black in both panels, at x = u, y = v, wide of the spot so its colour shows, and
+    marked by a small white cross at its centre.
 
     Parameters
     ----------
@@ -443,6 +444,8 @@ def draw_channel_order(axes: Sequence[Axes], bgr: np.ndarray, pixel: tuple[int, 
         ax.plot(
             u, v, "o", ms=34, mfc="none", mec="white", mew=1.8
         )  # wide enough to leave the spot clear
+        ax.plot(u, v, "+", ms=9, mec="black", mew=3.2)  # the pixel itself: a small cross,
+        ax.plot(u, v, "+", ms=9, mec="white", mew=1.3)  # white edged in black
         ax.set_title(title, fontsize=10)
         ax.set_xlabel("u (px)", color=X_COLOUR)
         ax.set_ylabel("v (px)", color=Y_COLOUR)
@@ -498,7 +501,7 @@ def draw_homogeneous_rays(
         zorder=1,
     )
     ax.plot(*square.T, np.ones(5), color="0.45", lw=1, label="the plane w = 1: the image", zorder=2)
-    ax.plot(*square.T, np.zeros(5), color="0.45", lw=1, ls="--", label="the plane w = 0", zorder=2)
+    ax.plot(*square.T, np.zeros(5), color="0.2", lw=1.4, ls="--", label="the plane w = 0", zorder=2)
     ax.plot(
         [0, x], [0, y], [0, 1], color=POINT_COLOUR, lw=1.4, ls=(0, (3, 2)), zorder=3
     )  # below w = 1
@@ -542,6 +545,6 @@ def draw_homogeneous_rays(
     ax.set_xlabel("x", color=X_COLOUR)
     ax.set_ylabel("y", color=Y_COLOUR)
     ax.set_zlabel("w", color=Z_COLOUR)
-    ax.view_init(elev=16, azim=-58)
+    ax.view_init(elev=22, azim=-58)
     ax.set_box_aspect(None, zoom=1.2)  # fill the figure: mplot3d leaves a wide margin
     return multiples

@@ -591,6 +591,7 @@ def _explorer_text(u: int, v: int, img: np.ndarray) -> str:
         "OpenGL window": "OpenGL",
     }
     for tool, ((x, y), read) in tool_pixel(u, v, (W, H)).items():
+        read = f"Pillow: {read}" if tool == "Pillow, COLMAP" else read  # COLMAP reads no pixels
         lines.append(f"{short.get(tool, tool):13s} {f'({x:g}, {y:g})':11s} {read}")
     return "\n".join(lines)
 
