@@ -241,7 +241,8 @@ def _follow_up(run) -> str | None:
                 "so the guard turns 'no point' into a point"
             )
         return (
-            f"on the w = 0 test (the prompt's last paragraph), h = {_WITH_DIRECTION.tolist()}, row 1, (3, -1.5, 0), "
+            f"the test with a row of w = 0 (a direction: the prompt asks for inf or nan there), h = "
+            f"{_WITH_DIRECTION.tolist()}: row 1, (3, -1.5, 0), "
             f"came back as the finite point ({shown}).\n"
             f"  likely cause: {cause}; divide by w itself: numpy's x / 0 gives inf (or NaN), which says "
             "'no point'"
