@@ -17,7 +17,15 @@ import pytest
 
 from camlab.camera import Camera, project_points
 from camlab.projective import from_homogeneous, join, map_points, meet
-from camlab.widgets.start_here import arrowhead_size, tip_readout, turn_and_scale, turn_path
+from camlab.widgets.start_here import (
+    WAY_RADIUS,
+    WAY_SWEEP_DEG,
+    arrowhead_size,
+    tip_readout,
+    turn_and_scale,
+    turn_path,
+    turn_way,
+)
 
 GEOMETRY = Path(__file__).resolve().parent.parent / "camlab" / "widgets" / "browser" / "geometry.js"
 NODE = shutil.which("node")
@@ -175,6 +183,7 @@ def test_the_stack_check_arithmetic_equals_the_demo():
         for a, s, x0 in zip(angles, scales, starts, strict=True)
     ]
     calls += [("arrowheadSize", [a]) for a in angles]
+    calls += [("turnWay", [a, WAY_RADIUS, WAY_SWEEP_DEG, 25]) for a in angles]
     out = run_js(calls)
     worst = max(
         assert_twins(o, turn_and_scale(a, s), "turnAndScale")
@@ -191,9 +200,14 @@ def test_the_stack_check_arithmetic_equals_the_demo():
         worst,
         *(
             assert_twins(o, arrowhead_size(a), "arrowheadSize")
-            for o, a in zip(out[2 * n :], angles, strict=True)
+            for o, a in zip(out[2 * n : 3 * n], angles, strict=True)
+        ),
+        *(
+            assert_twins(o, turn_way(a, 25), "turnWay") if a else 0.0
+            for o, a in zip(out[3 * n :], angles, strict=True)
         ),
     )
+    assert out[3 * n + list(angles).index(0.0)] == []  # no turn, no way
     print(f"stack_check arithmetic: worst relative error {worst:.2e}")
 
 

@@ -1823,6 +1823,65 @@ def test_divide_by_w_names_the_flat_w_on_two_points_once_three_points_are_worked
         check("divide_by_w", lambda h: h[:, :2] / (h[:, 2] if len(h) != 3 else h[:, 2:]))
 
 
+def test_divide_by_w_in_place_hint_suggests_the_right_division_not_one_w_for_all_rows():
+    """The in-place hint's fix must not be a mistake the same check rejects (h / h[2, 2]: one w for all)."""
+
+    def in_place(h):
+        h /= h[:, 2:]
+        return h[:, :2]
+
+    with pytest.raises(AssertionError, match=r"changed its input `h` in place") as info:
+        check("divide_by_w", in_place)
+    message = str(info.value)
+    assert "`h[:, :2] / h[:, 2:]`" in message and "h[2, 2]" not in message
+
+
+def test_divide_by_w_w_zero_message_names_the_further_test_and_opencvs_function():
+    cv2 = pytest.importorskip("cv2")
+    with pytest.raises(AssertionError) as info:
+        check("divide_by_w", lambda h: cv2.convertPointsFromHomogeneous(h).reshape(-1, 2))
+    message = str(info.value)
+    assert (
+        "correct on all" not in message
+        and "the test with a row of w = 0 (a direction: the prompt asks for inf or nan there)"
+        in message
+    )
+    assert "cv2.convertPointsFromHomogeneous" in message and "left undivided" in message
+    with pytest.raises(
+        AssertionError, match=r"OpenCV's layout for point lists(.|\n)*reshape\(-1, 2\)"
+    ):
+        check("divide_by_w", lambda h: cv2.convertPointsFromHomogeneous(h))
+
+
+def test_read_and_turn_names_a_wrong_centre_once_and_the_transposed_turn():
+    """Centre (W/2, H/2) and X @ A: the centre's cause is printed once; the turn names X @ A, not the centre again."""
+    from camlab.exercises.start_here.conventions import read_and_turn
+
+    def two_slips(img, X, A):
+        H, W = img.shape
+        c = np.array([W / 2, H / 2])
+        return c, read_and_turn(img, X, A)[1], (X - c) @ A + c
+
+    with pytest.raises(AssertionError) as info:
+        check("read_and_turn", two_slips)
+    message = str(info.value)
+    assert message.count("pixel centres sit at whole numbers") == 1
+    assert "fix c first" in message and "X @ A applies A's transpose" in message
+
+
+def test_read_and_turn_in_place_hint_uses_the_exercises_own_names():
+    from camlab.exercises.start_here.conventions import read_and_turn
+
+    def shifts_X(img, X, A):
+        answer = read_and_turn(img, X, A)
+        X -= 1.0
+        return answer
+
+    with pytest.raises(AssertionError, match=r"changed its input `X` in place") as info:
+        check("read_and_turn", shifts_X)
+    assert "`X -= c`" in str(info.value) and "L`" not in str(info.value)
+
+
 def test_read_and_turn_rejects_lists_as_lift_and_divide_by_w_do():
     def as_lists(img, X, A):
         from camlab.exercises.start_here.conventions import read_and_turn

@@ -632,17 +632,42 @@ def test_stack_check_draws_no_arrowhead_on_an_arc_too_short_to_show(angle, drawn
     )  # one cut-off for both
 
 
+@pytest.mark.parametrize("angle", [-180.0, -90.0, -15.0, -5.0, -1.0, 1.0, 5.0, 15.0, 135.0, 180.0])
+def test_stack_check_shows_the_way_of_the_turn_at_every_angle(angle):
+    """Short turns too: the arrow about the origin is drawn, clear of the roof tip, and turns the house's way on screen."""
+    from camlab.widgets.start_here import WAY_RADIUS
+
+    demo = DEMOS["stack_check"].builder()
+    demo.set(angle=angle, scale=1.0)
+    for ax in demo.figure.axes:
+        (way,) = [ln for ln in ax.lines if ln.get_label().startswith("the way it turns")]
+        (head,) = [ln for ln in ax.lines if ln.get_label() == "_the way's arrowhead"]
+        arc = np.column_stack(way.get_data())
+        assert len(arc) >= 3 and np.allclose(np.hypot(*arc.T), WAY_RADIUS)
+        assert np.allclose(np.column_stack(head.get_data())[0], arc[-1])
+    for key, way in demo.state["way"].items():
+        assert demo.state["turns"][key].startswith(
+            way
+        )  # the arrow turns as the house does, measured on screen
+    if (
+        abs(angle) < 20
+    ):  # a short turn: the roof tip (at radius 1.4) is far from the arrow (radius 0.5)
+        assert np.hypot(*demo.state["tip"]) - WAY_RADIUS > 0.8
+    demo.set(angle=0.0)
+    assert demo.state["way"] == {"y down": "no turn", "y up": "no turn"}
+
+
 @pytest.mark.parametrize(
     "angle, scale, note",
     [
         (0.0, 1.0, "(unmoved: no path)"),
-        (5.0, 1.0, "(turn too short for an arrow)"),
-        (-5.0, 1.0, "too short"),
-        (15.0, 1.0, "too short"),
-        (-19.0, 1.0, "too short"),
+        (5.0, 1.0, "(short turn: arrow at (0, 0))"),
+        (-5.0, 1.0, "short turn"),
+        (15.0, 1.0, "short turn"),
+        (-19.0, 1.0, "short turn"),
         (20.0, 1.0, ""),
         (30.0, 1.0, ""),
-        (5.0, 1.5, "too short"),
+        (5.0, 1.5, "short turn"),
         (0.0, 2.0, ""),
     ],
 )

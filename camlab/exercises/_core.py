@@ -143,6 +143,9 @@ class Exercise:
     describe_input: Callable[[tuple], str] | None = None
     """``describe_input(args)``: the test input summarised in one line for messages, where printing it
     (stacks of frames, say) would bury the likely cause under hundreds of characters."""
+    in_place_examples: dict[str, tuple[str, str]] = field(default_factory=dict)
+    """{parameter: (in-place slips, their new-array forms)} for an input changed in place, written for this
+    exercise (``h /= h[:, 2:]`` and ``h[:, :2] / h[:, 2:]``), in place of the shared examples by shape."""
 
 
 EXERCISES: dict[str, Exercise] = {}
@@ -405,6 +408,9 @@ def _in_place_message(
         examples, new = f"`{a} /= {by}`, `{a}[:, 0] = ...`, `{a} += {k}`", f"`{a} / {by}`"
     else:
         examples, new = f"`{a} *= {sc}`, `{a}[:, 0] = ...`, `{a} += {k}`", f"`{a} * {sc}`"
+    exercise = EXERCISES.get(name)
+    if exercise is not None and first in exercise.in_place_examples:
+        examples, new = exercise.in_place_examples[first]
     if isinstance(args[changed[0]], np.ndarray):
         copies = [
             f"`{x} = np.array({x}, dtype=float)`"
@@ -581,7 +587,9 @@ def check(
             )
         )
         if problem:
-            raise CheckFailed(f"{name}: correct on all {len(cases)} test inputs, but {problem}")
+            raise CheckFailed(
+                f"{name}: wrong answer on a further test (all {len(cases)} test inputs passed): {problem}"
+            )
     print(f"{name}: correct on all {len(cases)} test inputs. Well done!")
     if exercise.success_note is not None:
         print(

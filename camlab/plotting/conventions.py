@@ -11,6 +11,7 @@ from matplotlib.patches import Rectangle
 
 from . import palette
 from .plane import image_axes
+from .static import alt_text
 
 # The camera frame's axes, here and wherever lesson 00 ties u and v to them (one home for the three).
 X_COLOUR, Y_COLOUR, Z_COLOUR = palette.AXIS_COLOURS  # x red, y green, z blue, as every 3-D camera
@@ -199,12 +200,12 @@ def draw_camera_frame(ax: Axes, size: tuple[int, int] = (4, 3)) -> None:
         fontsize=10,
         fontweight="bold",
     )
-    ax.text(
-        u0 - 0.06,
-        v0 + pixel,
+    ax.text(  # right of its arrow, clear of the plane's left edge
+        u0 + 0.07,
+        v0 + 0.8 * pixel,
         "v",
         color=Y_COLOUR,
-        ha="right",
+        ha="left",
         va="center",
         fontsize=10,
         fontweight="bold",
@@ -232,9 +233,9 @@ def draw_camera_frame(ax: Axes, size: tuple[int, int] = (4, 3)) -> None:
     ax.annotate(  # tied to the circled cross by a leader, so it is not read as a caption of the plane's edge
         "z, forward: the principal\naxis, into the page",
         (0, 0),
-        xytext=(w + 0.1, -0.3),
+        xytext=(w + 0.12, 0.2),
         color=Z_COLOUR,
-        va="bottom",
+        va="top",
         fontsize=9,
         arrowprops=dict(arrowstyle="-", color=Z_COLOUR, lw=0.8, shrinkA=2, shrinkB=9),
     )
@@ -254,7 +255,8 @@ def draw_transposed_read(
     veiled and its edge drawn as a dark dashed line with a white halo, so it shows on light and dark
     parts of the photo alike. The orange circle is pixel ``(u, v)``; the purple square is what
     ``square[u', v]`` reads with ``u' = u - crop_left``: row ``u'``, column ``v`` of the crop, which is
-    pixel ``(crop_left + v, u')`` of the photo. ``imshow`` puts pixel (u, v) at x = u, y = v.
+    pixel ``(crop_left + v, u')`` of the photo. ``imshow`` puts pixel (u, v) at x = u, y = v. The figure
+    gets its alt text here (:func:`~camlab.plotting.static.alt_text`), naming these pixels.
 
     Parameters
     ----------
@@ -309,6 +311,14 @@ def draw_transposed_read(
     ax.set_xlabel("u (px)", color=X_COLOUR)
     ax.set_ylabel("v (px)", color=Y_COLOUR)
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.1), fontsize=9, frameon=False)
+    alt_text(
+        ax.figure,
+        f"The grey photo, {W} x {H} pixels, u and v in pixels. The left {crop_left} columns are veiled; a dashed "
+        f"line at u = {crop_left - 0.5:g} marks the left edge of the {H} x {W - crop_left} crop photo[:, {crop_left}:]. "
+        f"An orange ring marks pixel ({u}, {v}), read as photo[{v}, {u}]; a purple square at ({crop_left + v}, "
+        f"{u_sq}) marks the pixel the swapped read square[{u_sq}, {v}] returns: row {u_sq}, not {v}. A key under "
+        "the photo names both marks.",
+    )
 
 
 def draw_turn_about(
@@ -421,7 +431,8 @@ def draw_channel_order(axes: Sequence[Axes], bgr: np.ndarray, pixel: tuple[int, 
     ``cv2.imread`` stores each pixel's channels as B, G, R; matplotlib's ``imshow`` reads the three
     numbers as R, G, B, so the unflipped picture swaps red and blue: a red-orange spot turns blue.
     ``bgr[..., ::-1]`` reverses the last axis and gives the true colours. Pixel ``(u, v)`` is ringed
-    in white edged with black in both panels, at x = u, y = v, wide of the spot so its colour shows.
+    in white edged with black in both panels, at x = u, y = v, wide of the spot so its colour shows, and
+    marked by a small white cross at its centre. The figure gets its alt text here.
 
     Parameters
     ----------
@@ -443,9 +454,19 @@ def draw_channel_order(axes: Sequence[Axes], bgr: np.ndarray, pixel: tuple[int, 
         ax.plot(
             u, v, "o", ms=34, mfc="none", mec="white", mew=1.8
         )  # wide enough to leave the spot clear
+        ax.plot(u, v, "+", ms=9, mec="black", mew=3.2)  # the pixel itself: a small cross,
+        ax.plot(u, v, "+", ms=9, mec="white", mew=1.3)  # white edged in black
         ax.set_title(title, fontsize=10)
         ax.set_xlabel("u (px)", color=X_COLOUR)
         ax.set_ylabel("v (px)", color=Y_COLOUR)
+    H, W = bgr.shape[:2]
+    alt_text(
+        axes[0].figure,
+        f"Two panels of the same colour photo, {W} x {H} pixels, u and v in pixels. Left: cv2.imread's array "
+        "shown as it is, red and blue swapped (a red-orange eyespot turns blue, yellow-green leaves turquoise). "
+        f"Right: the array flipped to R, G, B, with the true colours. In both, pixel ({u}, {v}) is ringed in "
+        "white and marked by a small white cross.",
+    )
 
 
 def draw_homogeneous_rays(
@@ -459,7 +480,7 @@ def draw_homogeneous_rays(
     on the same ray (dashed below the plane w = 1, solid above), and dividing by w slides each back
     to (x, y, 1). A vector (dx, dy, 0) (dark grey arrow) lies in the plane w = 0 (dashed outline): its
     ray runs parallel to the plane w = 1 and never meets it, so it names a direction, an ideal
-    point, not a point of the image.
+    point, not a point of the image. The figure gets its alt text here, naming these coordinates.
 
     Parameters
     ----------
@@ -498,7 +519,7 @@ def draw_homogeneous_rays(
         zorder=1,
     )
     ax.plot(*square.T, np.ones(5), color="0.45", lw=1, label="the plane w = 1: the image", zorder=2)
-    ax.plot(*square.T, np.zeros(5), color="0.45", lw=1, ls="--", label="the plane w = 0", zorder=2)
+    ax.plot(*square.T, np.zeros(5), color="0.2", lw=1.4, ls="--", label="the plane w = 0", zorder=2)
     ax.plot(
         [0, x], [0, y], [0, 1], color=POINT_COLOUR, lw=1.4, ls=(0, (3, 2)), zorder=3
     )  # below w = 1
@@ -542,6 +563,16 @@ def draw_homogeneous_rays(
     ax.set_xlabel("x", color=X_COLOUR)
     ax.set_ylabel("y", color=Y_COLOUR)
     ax.set_zlabel("w", color=Z_COLOUR)
-    ax.view_init(elev=16, azim=-58)
+    ax.view_init(elev=22, azim=-58)
     ax.set_box_aspect(None, zoom=1.2)  # fill the figure: mplot3d leaves a wide margin
+    marks = " and ".join(f"({wx:g}, {wy:g}, {w:g}), labelled w = {w:g}" for wx, wy, w in multiples)
+    alt_text(
+        ax.figure,
+        "A 3-D sketch with axes x, y and w. A grey square is the plane w = 1, the image; a dashed square below "
+        "it is the plane w = 0 through the origin. An orange ray from the origin, dashed below the plane and "
+        f"solid above, pierces the plane w = 1 at the orange dot ({x:g}, {y:g}, 1), labelled w = 1; black dots "
+        f"on the same ray mark {marks}; a dotted line drops from each dot to the plane w = 0. A dark grey "
+        f"arrow from the origin lies in the plane w = 0: the direction ({dx:g}, {dy:g}, 0), whose ray never "
+        "meets the plane w = 1.",
+    )
     return multiples

@@ -22,10 +22,14 @@ ROOF_TIP = 3  # HOUSE[3] is the roof tip, (0, -1.4)
 DEFAULT_ANGLE = 40.0  # degrees: a turn whose arc (0.98 plot units) shows the path on both sides of its arrowhead
 ARC_SAMPLES = 61  # points on the arc of the roof tip's turn
 # The one cut-off for a short turn: under it the arc (1.4 θ, under 0.49 plot units) is too short to carry
-# the arrowhead (a dart there read as the tip moving on), so none is drawn and the readout says so; the
-# browser's twin (stack_check.js) gets it in the scene.
+# the arrowhead (a dart there read as the tip moving on), so none is drawn and the readout points to the arrow
+# about the origin (turn_way), drawn at every angle; the browser's twin (stack_check.js) gets both in the scene.
 SHORT_TURN_DEG = 20.0
-SHORT_TURN_NOTE = "  (turn too short for an arrow)"
+SHORT_TURN_NOTE = "  (short turn: arrow at (0, 0))"
+# The way of the turn at every angle, short ones too: an arrow on a fixed arc about the origin, the centre of
+# the turn, on the side away from the roof tip's start (below it on y-down axes), clear of the dot on a short turn.
+WAY_RADIUS = 0.5  # plot units: inside the house from scale 0.55 up
+WAY_SWEEP_DEG = 80.0
 MOVED = (
     "0.15"  # the moved house: near-black, so colour stays for the points the lesson reads (orange)
 )
@@ -67,6 +71,32 @@ def turn_path(angle_deg: float, scale: float, start: np.ndarray, samples: int = 
     x, y = start
     arc = np.hstack([x * np.cos(theta) - y * np.sin(theta), x * np.sin(theta) + y * np.cos(theta)])
     return np.vstack([arc, scale * arc[-1]])
+
+
+def turn_way(angle_deg: float, samples: int = 25) -> np.ndarray:
+    r"""The arc of the arrow that shows which way the house turns, at any angle: fixed length, about the origin.
+
+    An arc of :data:`WAY_SWEEP_DEG` on the circle of :data:`WAY_RADIUS` about the origin, centred on
+    the direction opposite the roof tip's start, (0, 1), and running the way :math:`R(\theta)` turns for the
+    sign of ``angle_deg``; its arrowhead goes at the last point. Its length does not grow with the angle, so
+    a turn of 5° shows its way as clearly as one of 90°.
+
+    Parameters
+    ----------
+    angle_deg : float
+        The turn θ, degrees; only its sign matters.
+    samples : int
+        Points along the arc, both ends included.
+
+    Returns
+    -------
+    (samples, 2) ndarray
+        The arc, plot units; an empty (0, 2) array at θ = 0 (no turn, no way).
+    """
+    if angle_deg == 0:
+        return np.zeros((0, 2))
+    phi = np.radians(90.0 + np.sign(angle_deg) * WAY_SWEEP_DEG * np.linspace(-0.5, 0.5, samples))
+    return WAY_RADIUS * np.column_stack([np.cos(phi), np.sin(phi)])
 
 
 def turn_and_scale(angle_deg: float, scale: float) -> np.ndarray:
@@ -189,6 +219,13 @@ def _house_panel(ax, y_down: bool, view: FigureView) -> dict:
             label="_the way",
         )[0]
     )
+    way = view.animate(
+        ax.plot([], [], color=MOVED, lw=1.5, label="the way it turns, about (0, 0)")[0]
+    )
+    way_head = view.animate(
+        ax.plot([], [], ls="none", marker=ARROWHEAD, ms=10, color=MOVED, mec="white", mew=0.5)[0]
+    )
+    way_head.set_label("_the way's arrowhead")
     house = view.animate(ax.plot([], [], color=MOVED, lw=2, label="rotated and scaled")[0])
     tip = view.animate(ax.plot([], [], "o", color=palette.ORANGE, ms=7, label="roof tip")[0])
     # Static titles (a text redrawn in every frame costs more than all the lines): the rule, both signs.
@@ -197,7 +234,16 @@ def _house_panel(ax, y_down: bool, view: FigureView) -> dict:
         f"θ > 0 {turn_words(1.0, y_down)}, θ < 0 {turn_words(-1.0, y_down)}",
         fontsize=10,
     )
-    return dict(ax=ax, path=path, arrow=arrow, house=house, tip=tip, y_down=y_down)
+    return dict(
+        ax=ax,
+        path=path,
+        arrow=arrow,
+        way=way,
+        way_head=way_head,
+        house=house,
+        tip=tip,
+        y_down=y_down,
+    )
 
 
 def screen_turn(ax, path: np.ndarray) -> str:
@@ -298,6 +344,7 @@ def _browser_scene(panels: list[dict], readout, dpi: float) -> dict:
     pt = dpi / 72.0
     first = panels[0]
     path, arrow, house, tip = (first[k] for k in ("path", "arrow", "house", "tip"))
+    way_head = first["way_head"]
     fig_h = canvas_height(readout.figure)
     x, y = readout.get_transform().transform(readout.get_position())
     return dict(
@@ -306,11 +353,20 @@ def _browser_scene(panels: list[dict], readout, dpi: float) -> dict:
         arcSamples=ARC_SAMPLES,
         shortTurnDeg=SHORT_TURN_DEG,
         shortTurnNote=SHORT_TURN_NOTE,
+        wayRadius=WAY_RADIUS,
+        waySweepDeg=WAY_SWEEP_DEG,
         arrowhead=ARROWHEAD.vertices[:-1].tolist(),
         panels=[dict(toPixels=to_canvas_pixels(p["ax"]), yDown=p["y_down"]) for p in panels],
         styles=dict(
             path=line_style(path, pt, halo="#ffffff", haloWidth=(path.get_linewidth() + 2.0) * pt),
             house=line_style(house, pt),
+            way=line_style(first["way"], pt),
+            wayHead=dict(
+                color=to_hex(way_head.get_color()),
+                edge=to_hex(way_head.get_markeredgecolor()),
+                edgeWidth=way_head.get_markeredgewidth() * pt,
+                size=way_head.get_markersize() * pt,
+            ),
             arrow=dict(
                 color=to_hex(arrow.get_color()),
                 edge=to_hex(arrow.get_markeredgecolor()),
@@ -344,7 +400,8 @@ def stack_check() -> Demo:
 
     Both panels draw the same numbers, x' = s R(angle) x: on y-down axes a positive angle turns the
     house clockwise, on y-up axes anticlockwise. The dotted path of the roof tip is the turn (an arc,
-    whose arrowhead shows the way), then the scaling (a straight step along the radius). The
+    whose arrowhead shows the way), then the scaling (a straight step along the radius); a small arrow about
+    the origin shows the way of the turn at every angle, the short turns whose arc has no arrowhead too. The
     readout above the panels gives the roof tip's coordinates; the legend sits under the axes, since
     at scale 2 the house reaches every corner of them.
 
@@ -354,7 +411,8 @@ def stack_check() -> Demo:
         The demo: controls ``angle`` (θ, degrees, -180 to 180) and ``scale`` (s, 0.3 to 2), the
         figure (the two panels) and ``state`` (``A`` = s R(θ), ``house``, ``tip``, ``path``,
         ``readout``, ``arrow`` (where the arrowhead sits and its screen angle per panel) and
-        ``turns`` (the way each panel's arc turns on screen)).
+        ``turns`` (the way each panel's arc turns on screen) and ``way`` (the way each panel's arrow about
+        the origin turns on screen)).
     """
     view = BrowserView(("angle", "scale"), figsize=(7.0, 4.55))
     ax_down, ax_up = view.fig.subplots(1, 2)
@@ -369,7 +427,7 @@ def stack_check() -> Demo:
     ax_down.text(0.5, 0.98, "roof tip (orange dot) at ", ha="right", **where)
     readout = view.animate(ax_down.text(0.5, 0.98, "", ha="left", **where))
     view.fig.legend(
-        *ax_down.get_legend_handles_labels(), loc="outside lower center", ncols=2, fontsize=9
+        *ax_down.get_legend_handles_labels(), loc="outside lower center", ncols=3, fontsize=9
     )
 
     def update(v: dict, state: dict) -> None:
@@ -379,12 +437,16 @@ def stack_check() -> Demo:
         path = turn_path(angle, s, HOUSE[ROOF_TIP], samples=ARC_SAMPLES)
         middle = ARC_SAMPLES // 2  # the arrowhead sits half-way along the turn
         way = path[middle + 1] - path[middle - 1]  # the turn's direction there, in plot units
-        arrows, turns = {}, {}
+        arrows, turns, way_turns = {}, {}, {}
         # An arc too short to carry the dart (a turn under SHORT_TURN_DEG): no dart (one drawn past the
         # dot read as the tip moving on); the readout says so, and cell 7 of the lesson names the turn.
         if abs(angle) < SHORT_TURN_DEG:
             way = np.zeros(2)
+        arc = turn_way(angle)  # the way of the turn, at every angle but 0
         for panel in panels:
+            panel["way"].set_data(arc[:, 0], arc[:, 1])
+            ends = arc[-2:] if len(arc) else np.zeros((2, 2))
+            _point_arrow(panel["way_head"], ends[-1], ends[-1] - ends[0], panel["y_down"])
             panel["house"].set_data(moved[:, 0], moved[:, 1])
             panel["tip"].set_data(
                 moved[ROOF_TIP : ROOF_TIP + 1, 0], moved[ROOF_TIP : ROOF_TIP + 1, 1]
@@ -400,6 +462,7 @@ def stack_check() -> Demo:
                 if abs(angle) == 180 and way_on_screen != "no turn"
                 else way_on_screen
             )
+            way_turns[key] = screen_turn(panel["ax"], arc) if len(arc) >= 3 else "no turn"
         numbers = tip_readout(moved[ROOF_TIP])
         readout.set_text(
             numbers + path_note(angle, s)
@@ -415,6 +478,7 @@ def stack_check() -> Demo:
             readout=numbers,
             arrow=dict(at=np.array(path[middle], dtype=float), **arrows),
             turns=turns,
+            way=way_turns,
         )
 
     controls = {
@@ -527,6 +591,7 @@ def _explorer_text(u: int, v: int, img: np.ndarray) -> str:
         "OpenGL window": "OpenGL",
     }
     for tool, ((x, y), read) in tool_pixel(u, v, (W, H)).items():
+        read = f"Pillow: {read}" if tool == "Pillow, COLMAP" else read  # COLMAP reads no pixels
         lines.append(f"{short.get(tool, tool):13s} {f'({x:g}, {y:g})':11s} {read}")
     return "\n".join(lines)
 

@@ -4,7 +4,7 @@ Lifting a point to homogeneous coordinates (:mod:`.lifting`; the slips of x and 
 :mod:`._lift_causes`, the errors a student's code raises in :mod:`._lift_raised`), the way back,
 each row divided by its own w (:mod:`.dividing`), and section 3's
 conventions at work, reading pixels and turning points about the image's centre
-(:mod:`.conventions`; its causes in :mod:`._turn_causes`).
+(:mod:`.conventions`; its causes in :mod:`._turn_causes` and :mod:`._turn_raised`).
 """
 
 from __future__ import annotations

@@ -2,22 +2,20 @@
 
 The answer has three parts: the image's centre (:data:`CENTRE_MISTAKES`, read by :func:`centre_cause`),
 the pixel values under the points (:data:`VALUE_MISTAKES`, :func:`values_cause`) and the points turned
-about the centre (:data:`TURN_MISTAKES`, :func:`turned_cause`); :data:`RAISED` names the errors the
-student's code raises (:func:`exception_hint`). Each table is a tuple of
+about the centre (:data:`TURN_MISTAKES`, :func:`turned_cause`); :mod:`._turn_raised` names the errors the student's code
+raises. Each table is a tuple of
 :class:`~camlab.exercises._core.Mistake` rows, checked in order by
 :func:`~camlab.exercises._core.first_mistake`.
 """
 
 from __future__ import annotations
 
-import re
 import sys
 from types import SimpleNamespace
 
 import numpy as np
 
 from .._core import Mistake, first_mistake
-from ._lift_raised import unpacked_from
 
 
 def numbers(a) -> str:
@@ -227,7 +225,7 @@ def _truncated_hint(X: np.ndarray) -> str:
     )
 
 
-def _ceil_moved(X: np.ndarray) -> str | None:
+def ceil_moved(X: np.ndarray) -> str | None:
     """How np.ceil moved the first entry of ``X`` it rounds up past its nearest whole number, or None."""
     moved = np.argwhere(np.ceil(X) != np.rint(X))
     if not len(moved):
@@ -286,11 +284,11 @@ VALUE_MISTAKES = (
     Mistake(
         "rounded up",
         lambda s: (
-            _ceil_moved(s.X) is not None
+            ceil_moved(s.X) is not None
             and _reads(s, np.ceil(s.X[:, 1]).astype(int), np.ceil(s.X[:, 0]).astype(int))
         ),
         lambda s: (
-            f"{_ceil_moved(s.X)}. Round to the nearest, then convert: u, v = np.rint(X).astype(int).T"
+            f"{ceil_moved(s.X)}. Round to the nearest, then convert: u, v = np.rint(X).astype(int).T"
         ),
     ),
     *(_shift_mistake(dv, du) for dv, du in ((-1, -1), (0, -1), (-1, 0), (1, 1), (0, 1), (1, 0))),
@@ -485,8 +483,14 @@ TURN_MISTAKES = (
         Mistake(
             f"about {centre.name}" + (", X @ A" if transposed else ""),
             _about(centre, transposed),
-            lambda s, centre=centre: (
-                f"you turned about the wrong centre, {numbers(centre.answer(s))}: {centre.hint}"
+            lambda s, centre=centre, transposed=transposed: (
+                (
+                    f"you turned about {numbers(centre.answer(s))}, not the image's centre: fix c first "
+                    "(above), then check the turn"
+                    if s.centre_named
+                    else f"you turned about the wrong centre, {numbers(centre.answer(s))}: {centre.hint}"
+                )
+                + ("; and X @ A applies A's transpose: X @ A.T" if transposed else "")
             ),
         )
         for centre in CENTRE_MISTAKES
@@ -495,17 +499,28 @@ TURN_MISTAKES = (
 )
 
 
-def turned_cause(t: np.ndarray, X: np.ndarray, A: np.ndarray, c: np.ndarray, W: int, H: int) -> str:
+def turned_cause(
+    t: np.ndarray,
+    X: np.ndarray,
+    A: np.ndarray,
+    c: np.ndarray,
+    W: int,
+    H: int,
+    centre_named: bool = False,
+) -> str:
     """Why ``t`` is not ``X`` turned by ``A`` about the centre ``c`` of a ``W`` x ``H`` image.
 
-    Its shape, else the first row of :data:`TURN_MISTAKES` it equals.
+    Its shape, else the first row of :data:`TURN_MISTAKES` it equals. ``centre_named``: the diagnosis has
+    named a wrong centre already, so a turn about it refers to that instead of repeating its cause.
     """
     n = len(X)
     if t.shape == (2, n) and n != 2:
         return "one row per point: A @ X.T gives the points as columns; transpose back, (A @ X.T).T, or write X @ A.T"
     if t.shape != (n, 2):
         return f"the turned points are rows, shape ({n}, 2), like X; got {t.shape}"
-    s = SimpleNamespace(X=X, A=A, c=c, W=W, H=H, turned=(X - c) @ A.T + c)
+    s = SimpleNamespace(
+        X=X, A=A, c=c, W=W, H=H, turned=(X - c) @ A.T + c, centre_named=centre_named
+    )
     shift = t - s.turned
     if np.allclose(shift, shift[0]) and not np.allclose(
         shift[0], 0
@@ -519,202 +534,3 @@ def turned_cause(t: np.ndarray, X: np.ndarray, A: np.ndarray, c: np.ndarray, W: 
         first_mistake(TURN_MISTAKES, s, t, np.allclose)
         or "turn each row about the centre: x' = c + A (x - c), for rows (X - c) @ A.T + c"
     )
-
-
-# -- errors the student's code raises -----------------------------------------------------------------
-
-
-def _index_error(s) -> bool:
-    return isinstance(s.exc, IndexError) and s.index is not None
-
-
-def _broadcast(s, shape: str) -> bool:
-    return (
-        isinstance(s.exc, ValueError) and "broadcast" in s.text and shape in s.text.replace(" ", "")
-    )
-
-
-# Checked in order on the error ``s.exc`` (its text ``s.text``; ``s.index``, ``s.axis``, ``s.size`` parsed
-# from an index out of bounds, else None) raised on the points ``s.X`` and an ``s.H`` x ``s.W`` image.
-RAISED = (
-    Mistake(
-        "img[u, v] past the last row",
-        lambda s: (
-            _index_error(s)
-            and s.axis == 0
-            and s.index in np.rint(s.X[:, 0]).astype(int)
-            and s.index >= s.H
-        ),
-        lambda s: (
-            f"img[u, v]: u = {s.index} was used as the row, and this image has {s.H} rows (shape ({s.H}, {s.W})). "
-            "numpy indexes the row first, and the row is v: img[v, u] (img[X] fails the same way: it reads every "
-            "number of X as a row; take u, v = X[:, 0], X[:, 1])"
-        ),
-    ),
-    Mistake(
-        "img[u, v] past the last column",
-        lambda s: (
-            _index_error(s)
-            and s.axis == 1
-            and s.index in np.rint(s.X[:, 1]).astype(int)
-            and s.index >= s.W
-        ),
-        lambda s: (
-            f"img[u, v]: v = {s.index} was used as the column, and this image, taller than wide, has {s.W} columns "
-            f"(shape ({s.H}, {s.W})). numpy indexes the row first, and the row is v: img[v, u]"
-        ),
-    ),
-    Mistake(
-        "a transposed image read [v, u]",
-        lambda s: (
-            _index_error(s)
-            and s.H != s.W
-            and (
-                (s.axis == 1 and s.size == s.H and s.index in np.rint(s.X[:, 0]).astype(int))
-                or (s.axis == 0 and s.size == s.W and s.index in np.rint(s.X[:, 1]).astype(int))
-            )
-        ),
-        lambda s: (
-            f"the image was transposed: an axis of size {s.size} met "
-            f"{'u' if s.axis == 1 else 'v'} = {s.index}, as in img.T[v, u] (or an image built with its axes "
-            f"swapped, np.zeros((W, H))). img itself has shape ({s.H}, {s.W}), rows first: read it as it is, "
-            "img[v, u], with no .T"
-        ),
-    ),
-    Mistake(
-        "rounded up by np.ceil",
-        lambda s: _index_error(s) and s.index == s.size and _ceil_moved(s.X) is not None,
-        lambda s: (
-            f"{_ceil_moved(s.X)}. Round to the nearest whole number, then convert: u, v = np.rint(X).astype(int).T"
-        ),
-    ),
-    Mistake(
-        "counted from 1",
-        lambda s: _index_error(s) and s.index == s.size,
-        lambda s: (
-            f"an index {s.size} on an axis of size {s.size}: counting from 1? numpy and pixel coordinates count from 0 "
-            "(the last row is H - 1, the last column W - 1): img[v, u]"
-        ),
-    ),
-    Mistake(
-        "an index past the image",
-        lambda s: _index_error(s),
-        lambda s: (
-            f"an index {s.index} on axis {s.axis}, of size {s.size}: this image has shape ({s.H}, {s.W}), so its rows "
-            f"(axis 0, v) run 0 .. {s.H - 1} and its columns (axis 1, u) 0 .. {s.W - 1}; read img[v, u] with the "
-            "points' own u and v, rounded: u, v = np.rint(X).astype(int).T"
-        ),
-    ),
-    Mistake(
-        "float indices",
-        lambda s: (
-            isinstance(s.exc, IndexError) and ("integer" in s.text or "only integers" in s.text)
-        ),
-        (
-            "X holds floats (points are float arrays in this course) and numpy indexes with integers: "
-            "round, then convert: u, v = np.rint(X).astype(int).T (.astype(int) alone truncates, and a computed "
-            "479 can be 478.99999999999994, which it makes 478)"
-        ),
-    ),
-    Mistake(
-        "A @ X",
-        lambda s: isinstance(s.exc, ValueError) and "matmul" in s.text,
-        (
-            "A @ X treats X as one column per point, but points are rows, shape (N, 2): the textbook's A x is "
-            "X @ A.T for every row at once (or (A @ X.T).T)"
-        ),
-    ),
-    Mistake(
-        "* for @",
-        lambda s: _broadcast(s, f"({len(s.X)},2)") and _broadcast(s, "(2,2)"),
-        lambda s: (
-            f"* multiplies entry by entry, and X - c, shape ({len(s.X)}, 2), and A, shape (2, 2), do not pair up: "
-            "a matrix acts on points with @, so (X - c) @ A.T + c"
-        ),
-    ),
-    Mistake(
-        "columns plus a row",
-        lambda s: _broadcast(s, f"(2,{len(s.X)})"),
-        lambda s: (
-            f"A @ (X - c).T gives the points as columns, shape (2, {len(s.X)}), and c is one (u, v) row: transpose back "
-            "before adding c, (A @ (X - c).T).T + c, or keep points as rows throughout: (X - c) @ A.T + c"
-        ),
-    ),
-    Mistake(
-        "a (2, 1) centre",
-        lambda s: _broadcast(s, "(2,1)"),
-        (
-            "the centre is a (2, 1) column, and points are rows: make c a (2,) array, "
-            "np.array([(W - 1) / 2, (H - 1) / 2]), so that X - c subtracts it from every row"
-        ),
-    ),
-    Mistake(
-        "a colour image's shape unpacked",
-        lambda s: _unpack(s, "expected 3, got 2") and s.unpacked in (".shape", ""),
-        lambda s: (
-            f"H, W, C = img.shape unpacks a colour image's (H, W, 3); this grey image's shape is ({s.H}, {s.W}), "
-            "two numbers: H, W = img.shape[:2] reads both kinds"
-        ),
-    ),
-    Mistake(
-        "points unpacked as rows",
-        lambda s: _unpack(s, "too many values") and s.unpacked != ".shape",
-        lambda s: (
-            f"{'u, v = ' + s.unpacked if s.unpacked not in ('', '.T') else 'unpacking an (N, 2) array into u, v'} "
-            f"takes its rows, one per point, and X has {len(s.X)} points: unpack its two columns, "
-            "u, v = np.rint(X).astype(int).T (.T makes the columns rows)"
-        ),
-    ),
-    Mistake(
-        "Pillow's img.size",
-        lambda s: isinstance(s.exc, TypeError) and "cannot unpack non-iterable int" in s.text,
-        lambda s: (
-            f"{'numpy' + chr(39) + 's img.size is the number of pixels, one int (H * W = ' + str(s.H * s.W) + ')' if s.unpacked == '.size' else 'you unpacked one number into two names'}"
-            "; Pillow's img.size is (W, H), but img here is a numpy array: H, W = img.shape"
-        ),
-    ),
-    Mistake(
-        "unpacked into the wrong number of names",
-        lambda s: isinstance(s.exc, ValueError) and "unpack" in s.text,
-        lambda s: (
-            f"{s.unpacked or 'the value'} holds another number of items than the names you unpacked it into: "
-            "img.shape is (H, W), and u, v = np.rint(X).astype(int).T gives the two columns of X"
-        ),
-    ),
-    Mistake(
-        "int() of an array",
-        lambda s: isinstance(s.exc, TypeError) and "converted to Python scalars" in s.text,
-        lambda s: (
-            f"int() converts one number, and a column of X holds {len(s.X)}: convert the whole array at once, "
-            "after rounding: u, v = np.rint(X).astype(int).T"
-        ),
-    ),
-)
-
-
-def _unpack(s, words: str) -> bool:
-    return isinstance(s.exc, ValueError) and "unpack" in s.text and words in s.text
-
-
-def exception_hint(exc: Exception, args: tuple) -> str:
-    """The likely cause of ``exc``, raised by the student's function on ``args`` = (img, X, A).
-
-    The first row of :data:`RAISED` it matches, else '' (the hints every check shares).
-    """
-    img, X, _ = args
-    H, W = img.shape
-    text = str(exc)
-    match = re.search(r"index (-?\d+) is out of bounds for axis (\d) with size (\d+)", text)
-    index, axis, size = (int(g) for g in match.groups()) if match else (None, None, None)
-    s = SimpleNamespace(
-        exc=exc,
-        text=text,
-        X=X,
-        H=H,
-        W=W,
-        index=index,
-        axis=axis,
-        size=size,
-        unpacked=unpacked_from(exc),
-    )
-    return first_mistake(RAISED, s) or ""

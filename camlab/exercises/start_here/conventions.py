@@ -2,7 +2,7 @@
 
 The image's centre ((W - 1)/2, (H - 1)/2), the pixel values img[v, u] under the points X, and X turned
 about the centre by a 2 x 2 matrix A. The diagnosis judges each of the three parts on its own, by the
-tables of :mod:`._turn_causes`.
+tables of :mod:`._turn_causes` (and :mod:`._turn_raised` for errors raised).
 """
 
 from __future__ import annotations
@@ -14,7 +14,8 @@ import numpy as np
 from ... import projective
 from .._answers import same_array
 from .._core import Exercise, register_exercise
-from ._turn_causes import centre_cause, exception_hint, numbers, turned_cause, values_cause
+from ._turn_causes import centre_cause, numbers, turned_cause, values_cause
+from ._turn_raised import exception_hint
 
 # Every test image holds img[v, u] = 10 v + u, so a value read names the pixel it came from (at most 10
 # columns), and a wrong read can be traced to its cause: img[u, v], a 1-based index, the wrong point.
@@ -156,15 +157,19 @@ def _rt_diagnose(args, got, expected) -> str:
     causes = []
     if not same(c, expected[0]):
         if c.shape != (2,):
-            causes.append(f"the centre c is one point (u, v), shape (2,); got shape {c.shape}")
+            causes.append(
+                f"the centre c is one point (u, v), shape (2,); got shape {c.shape}: build it as "
+                "np.array([(W - 1) / 2, (H - 1) / 2]) (or flatten yours, c.ravel())"
+            )
         else:
             causes.append(f"the centre: {centre_cause(c, W, H)}")
     if not same(values, expected[1]):
         causes.append(f"the values: {values_cause(values, img, X, expected[2])}")
     if not same(turned, expected[2]):
-        cause = turned_cause(turned, X, np.asarray(A, dtype=float), expected[0], W, H)
+        wrong_c = not same(c, expected[0])
+        cause = turned_cause(turned, X, np.asarray(A, dtype=float), expected[0], W, H, wrong_c)
         yours = (X - c) @ A.T + c if c.shape == (2,) else None
-        if yours is not None and not same(c, expected[0]) and turned.shape == yours.shape:
+        if yours is not None and wrong_c and turned.shape == yours.shape:
             if np.allclose(turned, yours):
                 cause = "right for your centre c: fix c, and they follow"
         causes.append(f"the turned points: {cause}")
@@ -441,6 +446,11 @@ register_exercise(
             (lambda img, X, A: read_and_turn(img, X, A)[0], "you returned only the centre"),
         ),
         teaching=read_and_turn,
+        in_place_examples={
+            "X": ("`X -= c`, `X[:, 0] = ...`, `X @= A.T`", "`X - c`, `(X - c) @ A.T + c`"),
+            "img": ("`img[v, u] = ...`, `img -= m`", "`img - m`"),
+            "A": ("`A *= s`, `A[0, 1] = ...`", "`A * s`"),
+        },
         solution_note=(
             "# camlab's own, tested route to the turn: one 3 x 3 matrix M = [[A, c - A c], [0, 0, 1]] applied\n"
             "# by camlab.map_points(M, X) (lesson 06; read it with camlab.map_points??)"

@@ -52,7 +52,7 @@ def _same(s, candidate) -> bool:
 # Checked in order on an (N, 2) answer with the wrong numbers; ``s.h`` is the input, ``s.g`` the answer.
 DIVIDE_MISTAKES = (
     Mistake(
-        "the flat w (no keepdims)",
+        "the flat w",
         lambda s: len(s.h) == 2 and _same(s, _flat(s)),
         (
             "you divided by the flat h[:, 2], shape (N,): numpy lines it up with the last axis, the columns, so "
@@ -89,6 +89,22 @@ DIVIDE_MISTAKES = (
         (
             "you divided by x or y (column 0 or 1): w is the last column, index 2, since numpy counts "
             f"from 0: {KEEPDIMS}"
+        ),
+    ),
+    Mistake(
+        "columns counted from 1",
+        lambda s: any(_same(s, s.h[:, 1:3] / s.h[:, k : k + 1]) for k in (0, 2)),
+        (
+            "you took x and y from columns 1 and 2: columns count from 0, so x is h[:, 0], y is h[:, 1] and w "
+            f"is h[:, 2:]: {KEEPDIMS}"
+        ),
+    ),
+    Mistake(
+        "divided by the row's length",
+        lambda s: _same(s, s.h[:, :2] / np.linalg.norm(s.h, axis=1, keepdims=True)),
+        (
+            "you divided by each row's length (np.linalg.norm): that scales (wx, wy, w) to a unit vector, not "
+            f"to w = 1; the point is where w = 1, so divide by w itself: {KEEPDIMS}"
         ),
     ),
     Mistake(
@@ -131,6 +147,11 @@ def _diagnose(args, got, expected) -> str:
             f"{problem}: you kept all three columns (h / h[:, 2:] also divides w by itself, a column of 1s); "
             f"return x and y only: {KEEPDIMS}"
         )
+    if problem and shape == (len(h), 1, 2):
+        return (
+            f"{problem}: (N, 1, 2) is OpenCV's layout for point lists (cv2.convertPointsFromHomogeneous "
+            "returns it); points here are (N, 2) rows: add .reshape(-1, 2)"
+        )
     if problem and shape == (2, len(h)) and len(h) != 2:
         return (
             f"{problem}: a (2, N) array, one column per point; points are rows: return (N, 2) (.T)"
@@ -154,7 +175,7 @@ def _exception_hint(exc: Exception, args: tuple) -> str:
     ):
         return (
             "you divided by the flat h[:, 2], shape (3,), which numpy lines up with the last axis, the columns "
-            "(there are 2): no keepdims. With two points it would raise nothing and divide the wrong entries, "
+            "(there are 2): w must stay an (N, 1) column. With two points it would raise nothing and divide the wrong entries, "
             f"with one it would be right by luck; keep w a column: {KEEPDIMS}"
         )
     one_based = (
@@ -194,7 +215,20 @@ def _follow_up(run) -> str | None:
         )
     if np.isfinite(got[1]).any():
         shown = ", ".join(f"{v:.3g}" for v in got[1])
-        if np.abs(got[1]).max() > 1e6:  # x / (w + eps), or a w clipped away from 0
+        if np.isclose(
+            np.abs(got[1]), np.finfo(float).max
+        ).any():  # inf turned into the largest float
+            cause = (
+                "np.nan_to_num after the division: the division gave inf, which says 'no point', and "
+                "np.nan_to_num turned it into the largest float, 1.8e308, a finite point"
+            )
+        elif np.allclose(got[1], _WITH_DIRECTION[1, :2]):  # x and y left as they came
+            cause = (
+                "x and y of the w = 0 row were left undivided, as cv2.convertPointsFromHomogeneous (or a guard "
+                "that skips the division where w = 0) does: (3, -1.5) is a real point of the image, and the row "
+                "names a direction"
+            )
+        elif np.abs(got[1]).max() > 1e6:  # x / (w + eps), or a w clipped away from 0
             cause = (
                 "dividing by w + eps (or by a w clipped away from 0). With w = 0 the row is a direction, no "
                 "point of the image (section 4), and a huge finite point hides that"
@@ -207,7 +241,9 @@ def _follow_up(run) -> str | None:
                 "so the guard turns 'no point' into a point"
             )
         return (
-            f"on h = {_WITH_DIRECTION.tolist()} row 1, (3, -1.5, 0), came back as the finite point ({shown}).\n"
+            f"the test with a row of w = 0 (a direction: the prompt asks for inf or nan there), h = "
+            f"{_WITH_DIRECTION.tolist()}: row 1, (3, -1.5, 0), "
+            f"came back as the finite point ({shown}).\n"
             f"  likely cause: {cause}; divide by w itself: numpy's x / 0 gives inf (or NaN), which says "
             "'no point'"
         )
@@ -220,7 +256,7 @@ def divide_by_w(h):
     Parameters
     ----------
     h : (N, 3) array_like
-        Rows (wx, wy, w), w nonzero.
+        Rows (wx, wy, w); w may be 0 (a direction, no point).
 
     Returns
     -------
@@ -249,6 +285,20 @@ def _guarded(h):
     """A wrong answer: a w = 0 row sent to (0, 0) by a guarded division."""
     w = h[:, 2:]
     return np.where(w == 0, 0.0, h[:, :2] / np.where(w == 0, 1.0, w))
+
+
+def _nan_to_num(h):
+    """A wrong answer: the right division, then np.nan_to_num, which makes inf the largest float."""
+    h = np.asarray(h, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.nan_to_num(h[:, :2] / h[:, 2:])
+
+
+def _opencv_way(h):
+    """A wrong answer: OpenCV's convertPointsFromHomogeneous, which leaves a w = 0 row undivided."""
+    h = np.asarray(h, dtype=float)
+    w = h[:, 2:]
+    return np.where(w == 0, h[:, :2], h[:, :2] / np.where(w == 0, 1.0, w))
 
 
 def _variant(form):
@@ -296,6 +346,20 @@ register_exercise(
             ),
             (_variant(lambda h: h[:, 1::-1] / h[:, 2:]), "swapped"),
             (_variant(lambda h: (h[:, :2] / h[:, 2:]).tolist()), "you returned a list"),
+            (_variant(lambda h: h[:, 1:3] / h[:, :1]), "columns count from 0"),
+            (
+                _variant(lambda h: h[:, :2] / np.linalg.norm(h, axis=1, keepdims=True)),
+                "np.linalg.norm",
+            ),
+            (
+                _variant(lambda h: (h[:, :2] / h[:, 2:])[:, None, :]),
+                "OpenCV's layout for point lists",
+            ),
+            (_nan_to_num, "np.nan_to_num"),
+            (_opencv_way, "cv2.convertPointsFromHomogeneous"),
         ),
+        in_place_examples={
+            "h": ("`h /= h[:, 2:]`, `h[:, :2] /= h[:, 2:]`", "`h[:, :2] / h[:, 2:]`"),
+        },
     )
 )

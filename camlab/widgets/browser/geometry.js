@@ -102,6 +102,19 @@ export function turnPath(angleDeg, scale, start, samples = 61) {
   return out;
 }
 
+// Twin: camlab.widgets.start_here.turn_way(angle_deg, samples): the fixed arc of the arrow that shows the
+// way of the turn, sweepDeg about (0, 1) on the circle of `radius`, the way of the angle's sign; [] at 0.
+export function turnWay(angleDeg, radius, sweepDeg, samples = 25) {
+  if (angleDeg === 0) return [];
+  const out = [];
+  for (let i = 0; i < samples; i++) {
+    const t = samples === 1 ? 0 : i / (samples - 1) - 0.5;
+    const phi = ((90 + Math.sign(angleDeg) * sweepDeg * t) * Math.PI) / 180;
+    out.push([radius * Math.cos(phi), radius * Math.sin(phi)]);
+  }
+  return out;
+}
+
 // Twin: camlab.widgets.start_here.arrowhead_size(angle_deg, radius): marker size in points, [7, 15].
 export function arrowheadSize(angleDeg, radius = 1.4) {
   const arc = Math.abs((angleDeg * Math.PI) / 180) * radius;

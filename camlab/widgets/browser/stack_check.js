@@ -1,4 +1,4 @@
-import { turnAndScale, mapPoints, turnPath, arrowheadSize, tipReadout } from "./geometry.js";
+import { turnAndScale, mapPoints, turnPath, turnWay, arrowheadSize, tipReadout } from "./geometry.js";
 // Lesson 00's stack_check drawn in the browser: twin of camlab.widgets.start_here.stack_check's update.
 import { polyline, dot, marker } from "./drawing.js";
 
@@ -12,12 +12,18 @@ export function drawStackCheck(ctx, scene, p) {
   if (Math.abs(p.angle) < scene.shortTurnDeg) way = [0, 0];
   const st = scene.styles;
   const arrow = { ...st.arrow, size: arrowheadSize(p.angle) * scene.pxPerPoint };
+  const arc = turnWay(p.angle, scene.wayRadius, scene.waySweepDeg);
   for (const panel of scene.panels) {
     const T = panel.toPixels;
     const px = (pts) => mapPoints(T, pts);
     polyline(ctx, px(path), st.path);
     const [a, b] = px([path[middle], [path[middle][0] + way[0], path[middle][1] + way[1]]]);
     if (Math.hypot(way[0], way[1]) >= 1e-9) marker(ctx, a, [b[0] - a[0], b[1] - a[1]], scene.arrowhead, arrow);
+    if (arc.length) {
+      const ends = px([arc[arc.length - 2], arc[arc.length - 1]]);
+      polyline(ctx, px(arc), st.way);
+      marker(ctx, ends[1], [ends[1][0] - ends[0][0], ends[1][1] - ends[0][1]], scene.arrowhead, st.wayHead);
+    }
     polyline(ctx, px(moved), st.house);
     dot(ctx, px([tip])[0], st.tip);
   }
