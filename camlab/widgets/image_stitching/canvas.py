@@ -248,7 +248,7 @@ def _rows_inside(
     return np.array(keep, dtype=int)
 
 
-def _blend_readout(v: dict, gains, jump: float, scene: float, own: float) -> str:
+def _blend_readout(v: dict, gains, jump: float, scene: float) -> str:
     """The blending demo's readout: the method, the gains and the seam's own step (grey levels)."""
     multiband = v["method"] == "multiband"
     levels = int(v["levels"])
@@ -264,7 +264,12 @@ def _blend_readout(v: dict, gains, jump: float, scene: float, own: float) -> str
         + f"\nstep across the seam: {jump:.1f} grey levels\n"
         f"the scene's own step there: {scene:.1f}\n"
         "  (one photo alone across the same line, no seam)\n"
-        f"the seam's own step: {own:.1f} (the difference)"
+        f"the seam's own step: {jump - scene:+.1f} (the step less the scene's"
+        + (
+            "; below 0: a step against the scene's, the gains overshoot at this line)"
+            if jump - scene < -0.05
+            else ")"
+        )
     )
 
 
@@ -375,7 +380,7 @@ def blending_seams() -> Demo:
             key
         ]  # the exposure step across the seam, grey levels (overwrite: the last image's border)
         state.update(method=v["method"], seam_jump=jump, seam_own=owns[key], image=out)
-        readout.value = _blend_readout(v, gains, jump, scenes[key], owns[key])
+        readout.value = _blend_readout(v, gains, jump, scenes[key])
 
     controls = {
         "method": W.Dropdown(options=list(st.BLENDS), value="overwrite", description="blend"),
