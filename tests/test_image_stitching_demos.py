@@ -283,3 +283,51 @@ def test_gains_check_passes_an_optimiser_that_stopped_short_and_names_brown_and_
 
     with pytest.raises(AssertionError, match="Brown & Lowe's value"):
         ex.check_gains_from_overlaps(lambda N, M: _solve(N, np.asarray(M, float), sigma_g=0.1))
+
+
+def _loop_student(data=2.0, prior="N"):
+    """A student's loop over (i, j): data terms with factor ``data``; the prior weighted by N_ij ("N"),
+    by 1 per overlap ("one per overlap"), once per image ("per image") or doubled ("N twice")."""
+    import numpy as np
+
+    def student(N, I_mean):
+        N = np.array(N, dtype=float)
+        M = np.asarray(I_mean, dtype=float)
+        n = len(N)
+        A, b = np.zeros((n, n)), np.zeros(n)
+        for i in range(n):
+            if prior == "per image":
+                A[i, i] += 1.0
+                b[i] += 1.0
+            for j in range(n):
+                if j == i or N[i, j] == 0:
+                    continue
+                w = {"N": N[i, j], "N twice": 2 * N[i, j], "one per overlap": 1.0}.get(prior, 0.0)
+                A[i, i] += data * N[i, j] * M[i, j] ** 2 / 100 + w
+                A[i, j] -= data * N[i, j] * M[i, j] * M[j, i] / 100
+                b[i] += w
+        return np.linalg.solve(A, b)
+
+    return student
+
+
+@pytest.mark.parametrize(
+    "student, cause",
+    [
+        (
+            _loop_student(prior="N twice"),
+            "or the prior gained one",
+        ),  # the data keeps its 2: both causes named
+        (_loop_student(data=1.0), "lost their factor 2"),
+        (_loop_student(data=4.0), "twice what it should"),
+        (_loop_student(data=1.0, prior="N twice"), "a quarter"),
+        (_loop_student(prior="one per overlap"), "weighted by the overlap size N_ij"),
+        (_loop_student(prior="per image"), "one 1 / sigma_g^2 per image"),
+    ],
+)
+def test_gains_check_names_the_real_cause_of_a_misweighted_prior(student, cause):
+    assert ex.check_gains_from_overlaps(_loop_student()).passed  # the loop itself is right
+    with pytest.raises(AssertionError) as info:
+        ex.check_gains_from_overlaps(student)
+    assert cause in str(info.value)
+    assert "sigma_N = 10/255" not in str(info.value)  # a prior too weak is not blamed on sigma_N

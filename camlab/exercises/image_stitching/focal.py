@@ -427,7 +427,8 @@ _FOCAL_SLIPS = (
         "C H C^-1",
         _focal_slip("C H C^-1"),
         "the normalisation is applied the wrong way round: C maps centred coordinates to pixels, so the centred "
-        "homography is H_c = C^-1 H C (undo C on the way in, apply H, move back to centred coordinates), not C H C^-1.",
+        "homography is H_c = C^-1 H C (read right to left: C takes a centred point to pixels, H maps the pixels, C^-1 takes "
+        "them back to centred coordinates), not C H C^-1.",
     ),
     Mistake(
         "principal point not moved",

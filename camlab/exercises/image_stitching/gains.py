@@ -97,11 +97,13 @@ def _solve(
     diag=False,
     diag_in_b=False,
     coupling_sq=False,
+    prior="N",
 ):
     """Section 5's normal equations with one slip switched on (the keywords' defaults are right).
 
     ``diag_in_b`` zeroes N_ii in A but leaves it in b; ``coupling_sq`` writes the coupling with I * I
-    (I_ij^2) where I * I.T (I_ij I_ji) belongs.
+    (I_ij^2) where I * I.T (I_ij I_ji) belongs. ``prior`` weighs the prior (1 - g_i)^2 / sigma_g^2 by
+    N_ij ("N", right), by 1 per overlapping image ("count") or by 1 per image ("one").
     """
     N = np.array(N, dtype=float)
     own = np.diag(N).copy()
@@ -109,12 +111,15 @@ def _solve(
         np.fill_diagonal(N, 0)
     s2 = sigma_n**2 if square else sigma_n
     A = sign * N * factor * M * (M if coupling_sq else M.T) / s2
-    A[np.diag_indices(len(N))] = (
-        N * (factor * M**2 / s2 + (1 / sigma_g**2 if prior_a else 0))
-    ).sum(axis=1)
+    weight = {"N": N, "count": (N > 0).astype(float), "one": np.eye(len(N))}[
+        prior
+    ]  # the prior's weight per (i, j)
+    A[np.diag_indices(len(N))] = (N * factor * M**2 / s2).sum(axis=1) + (
+        weight.sum(axis=1) / sigma_g**2 if prior_a else 0
+    )
     if diag:
         A[np.diag_indices(len(N))] -= np.diag(N) * factor * np.diag(M) ** 2 / s2
-    b = N.sum(axis=1) / sigma_g**2 if prior_b else np.zeros(len(N))
+    b = weight.sum(axis=1) / sigma_g**2 if prior_b else np.zeros(len(N))
     if diag_in_b:
         b = b + own / sigma_g**2
     with np.errstate(all="ignore"):
@@ -165,10 +170,41 @@ _GAIN_SLIPS = (
     Mistake(
         "no factor 2",
         lambda c: _solve(c.N, c.M, factor=1.0),
-        "the data terms lost their factor 2. In e = 1/2 sum over i != j, the data term (g_i I_ij - g_j I_ji)^2 "
-        "appears twice, as (i, j) and as (j, i): that cancels the 1/2, and differentiating the square leaves a 2, "
-        "2 I_ij (g_i I_ij - g_j I_ji). The prior (1 - g_i)^2 appears only in the (i, j) terms, so its 1/2 cancels "
-        "against the derivative's 2 and it keeps no factor. Keep 2 I_ij^2 / sigma_N^2 and 2 I_ij I_ji / sigma_N^2.",
+        "the data term weighs half as much as it should against the prior: either the data terms lost their "
+        "factor 2, or the prior gained one (counted for (j, i) too: 2 N_ij / sigma_g^2). In e = 1/2 sum over "
+        "i != j, the data term (g_i I_ij - g_j I_ji)^2 appears twice, as (i, j) and as (j, i): that cancels the "
+        "1/2, and differentiating the square leaves a 2, 2 I_ij (g_i I_ij - g_j I_ji). The prior (1 - g_i)^2 "
+        "appears only in the (i, j) terms, so its 1/2 cancels against the derivative's 2 and it keeps no factor. "
+        "Keep 2 I_ij^2 / sigma_N^2 and 2 I_ij I_ji / sigma_N^2 in A, and N_ij / sigma_g^2 (no 2) in A and b.",
+    ),
+    Mistake(
+        "data counted twice",
+        lambda c: _solve(c.N, c.M, factor=4.0),
+        "the data term weighs twice what it should against the prior: either the data terms carry 4 (the pair "
+        "counted as (i, j) and (j, i) and the 1/2 of e dropped too, or the derivative's 2 taken twice), or the "
+        "prior kept the 1/2 of e (N_ij / (2 sigma_g^2)). Equation i has 2 I_ij^2 / sigma_N^2 and "
+        "2 I_ij I_ji / sigma_N^2 in the data terms and N_ij / sigma_g^2 in the prior.",
+    ),
+    Mistake(
+        "data once, prior twice",
+        lambda c: _solve(c.N, c.M, factor=0.5),
+        "the data term weighs a quarter of what it should against the prior: the data terms lost their factor 2 "
+        "and the prior gained one (or the data carry 1/2). Equation i: 2 N_ij I_ij^2 / sigma_N^2 and "
+        "-2 N_ij I_ij I_ji / sigma_N^2 from the data, N_ij / sigma_g^2 (no 2) from the prior.",
+    ),
+    Mistake(
+        "prior without N_ij",
+        lambda c: _solve(c.N, c.M, prior="count"),
+        "the prior is weighted by the overlap size N_ij, like the data term: e = 1/2 sum N_ij (data + "
+        "(1 - g_i)^2 / sigma_g^2), so it adds N_ij / sigma_g^2 to A[i, i] and to b_i for every j != i. You "
+        "added 1 / sigma_g^2 per overlap, so the prior is thousands of times too weak.",
+    ),
+    Mistake(
+        "one prior per image",
+        lambda c: _solve(c.N, c.M, prior="one"),
+        "the prior is weighted by the overlap size N_ij and summed over j, like the data term: it adds "
+        "sum_j N_ij / sigma_g^2 to A[i, i] and to b_i. You added one 1 / sigma_g^2 per image, so the prior is "
+        "thousands of times too weak.",
     ),
     Mistake(
         "sigma not squared",
@@ -229,15 +265,24 @@ def _same(got, answer) -> bool:
     )
 
 
-def _gains_diagnosis(args, got, expected) -> str:
+def _gains_diagnosis(args, got, expected, run=None) -> str:
     g = np.asarray(got, dtype=float)
     if g.shape != expected.shape:
         return (
             f"return one gain per image, an array of shape {expected.shape}, got shape {g.shape}."
         )
-    cause = first_mistake(_GAIN_SLIPS, _context(args, expected), g, _same)
-    if cause:
-        return cause
+    shown = [m for m in _GAIN_SLIPS if first_mistake([m], _context(args, expected), g, _same)]
+    for case in _gains_cases() if len(shown) > 1 and run is not None else ():
+        # slips that tie here (a prior too weak, whatever the cause, gives the same gains on two
+        # photos) are told apart on the other inputs
+        try:
+            other = np.asarray(run(*case), dtype=float)
+        except Exception:  # the student's function fails there: keep what this input showed
+            break
+        ctx = _context(case, _reference(*case))
+        shown = [m for m in shown if first_mistake([m], ctx, other, _same)] or shown
+    if shown:
+        return shown[0].hint
     return (
         "build A and b from section 5's equation, one row per image: A[i, i] = sum_j N_ij (2 I_ij^2 / sigma_N^2 "
         "+ 1 / sigma_g^2), A[i, j] = -2 N_ij I_ij I_ji / sigma_N^2, b_i = sum_j N_ij / sigma_g^2 (j != i), "
@@ -292,6 +337,7 @@ register_exercise(
             rtol=1e-5, atol=1e-9
         ),  # a right answer from an optimiser that stopped near 1e-6
         diagnose=_gains_diagnosis,
+        diagnosis_runs=True,
         teaching=gains_from_overlaps,
         exception_hint=_gains_exception_hint,
         wrong_variants=(
@@ -301,6 +347,11 @@ register_exercise(
             (_variant("I * I coupling"), "I_mean * I_mean.T"),
             (_variant("sign"), "sign flip"),
             (_variant("no factor 2"), "factor 2"),
+            (_variant("no factor 2"), "or the prior gained one"),
+            (_variant("data counted twice"), "twice what it should"),
+            (_variant("data once, prior twice"), "a quarter"),
+            (_variant("prior without N_ij"), "added 1 / sigma_g^2 per overlap"),
+            (_variant("one prior per image"), "one 1 / sigma_g^2 per image"),
             (_variant("sigma not squared"), "not sigma_N (10)"),
             (_variant("sigma in 0-1 units"), "grey levels 0-255"),
             (_variant("diagonal kept"), "own size, not an overlap"),

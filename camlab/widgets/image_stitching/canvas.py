@@ -18,6 +18,7 @@ from ...fixtures import panorama_examples as pe
 from ...plotting import palette
 from ...plotting.stitching import VIEW_COLOURS
 from ...projective import map_points
+from ...warp import canvas_bounds
 from .._base import Demo, FigureView, build_demo, register
 from ..controls import monospace
 
@@ -136,8 +137,10 @@ def _outline_figure(box, lw: float, name: str, animate_legend: bool):
 def panorama_canvas() -> Demo:
     """Every image warped onto one canvas; the reference image decides the shape (and the stretch).
 
-    Shown at quarter size (160 x 120 images) so that even the widest canvas warps quickly;
-    each canvas is scaled to fill the picture (the title gives its size in pixels). The
+    Drawn from quarter-size thumbnails (160 x 120) so that even the widest canvas warps quickly;
+    the title and the readout give the canvas size for the lesson's 320 x 240 photos (the same
+    homographies' corners at full size, as section 4's worked example sizes it), and each canvas
+    is scaled to fill the picture. The
     images are painted one after the other (overwrite) onto the canvas of the chosen
     reference (:func:`camlab.fixtures.panorama_examples.reference_canvases`).
 
@@ -148,7 +151,7 @@ def panorama_canvas() -> Demo:
         the match graph's best-connected image), the figure (the canvas scaled to fit, each
         image's outline, and a title with the canvas size and the display scale) and
         ``state`` (``reference``, ``canvas`` the canvas's (height, width) in quarter-size
-        px, ``T`` the translation into the canvas, ``display_scale`` the factor it is shown
+        px, ``canvas_full`` its (height, width) for the 320 x 240 photos, ``T`` the translation into the canvas, ``display_scale`` the factor it is shown
         at).
     """
     graph = pe.panorama_graph()
@@ -157,6 +160,11 @@ def panorama_canvas() -> Demo:
     view, ax, im, lines, _, title = _outline_figure(box, lw=2.5, name="view", animate_legend=False)
     readout = W.HTML()
     shown = {ref: _rgba(c.panorama) for ref, c in canvases.items()}
+    full_shapes = [im.shape for im in pe.panorama_example().images]  # the 320 x 240 photos
+    full = {
+        ref: canvas_bounds(pe.homographies_relative_to(graph, ref), full_shapes)[1]
+        for ref in canvases
+    }
 
     def update(v: dict, state: dict) -> None:
         ref = int(v["reference"])
@@ -168,13 +176,18 @@ def panorama_canvas() -> Demo:
             p = _fitted_points(map_points(c.homographies[k], _frame(small[k].shape)), c.shape, box)
             ln.set_data(p[:, 0], p[:, 1])
         scale = _fit(c.shape, box)[0]
+        fh, fw = full[ref]
         title.set_text(
-            f"reference view {ref}: canvas {ww} x {hh} px (160 x 120 images), scaled to fit"
+            f"reference view {ref}: canvas {fw} x {fh} px for the 320 x 240 photos "
+            "(drawn from 160 x 120 thumbnails), scaled to fit"
         )
-        state.update(reference=ref, canvas=(hh, ww), T=c.T, display_scale=scale)
+        state.update(
+            reference=ref, canvas=(hh, ww), canvas_full=(fh, fw), T=c.T, display_scale=scale
+        )
         readout.value = monospace(
-            f"reference view: {ref}\ncanvas: {ww} x {hh} px\n"
-            f"translation T: ({int(round(c.T[0, 2])):+d}, {int(round(c.T[1, 2])):+d}) px\n"
+            f"reference view: {ref}\ncanvas for the 320 x 240 photos: {fw} x {fh} px\n"
+            f"(the picture: 160 x 120 thumbnails on a {ww} x {hh} px canvas, translation T "
+            f"({int(round(c.T[0, 2])):+d}, {int(round(c.T[1, 2])):+d}) px)\n"
             f"best-connected image: {graph.reference}"
         )
 
@@ -235,7 +248,7 @@ def _rows_inside(
     return np.array(keep, dtype=int)
 
 
-def _blend_readout(v: dict, gains, jump: float, scene: float, own: float) -> str:
+def _blend_readout(v: dict, gains, jump: float, scene: float) -> str:
     """The blending demo's readout: the method, the gains and the seam's own step (grey levels)."""
     multiband = v["method"] == "multiband"
     levels = int(v["levels"])
@@ -251,7 +264,12 @@ def _blend_readout(v: dict, gains, jump: float, scene: float, own: float) -> str
         + f"\nstep across the seam: {jump:.1f} grey levels\n"
         f"the scene's own step there: {scene:.1f}\n"
         "  (one photo alone across the same line, no seam)\n"
-        f"the seam's own step: {own:.1f} (the difference)"
+        f"the seam's own step: {jump - scene:+.1f} (the step less the scene's"
+        + (
+            "; below 0: a step against the scene's, the gains overshoot at this line)"
+            if jump - scene < -0.05
+            else ")"
+        )
     )
 
 
@@ -362,7 +380,7 @@ def blending_seams() -> Demo:
             key
         ]  # the exposure step across the seam, grey levels (overwrite: the last image's border)
         state.update(method=v["method"], seam_jump=jump, seam_own=owns[key], image=out)
-        readout.value = _blend_readout(v, gains, jump, scenes[key], owns[key])
+        readout.value = _blend_readout(v, gains, jump, scenes[key])
 
     controls = {
         "method": W.Dropdown(options=list(st.BLENDS), value="overwrite", description="blend"),

@@ -195,7 +195,7 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
     """
     ax_e.set(
         xlabel="symmetric transfer error (px, log)",
-        ylabel="matches per bin\n(share of the tallest bin)",
+        ylabel="matches per bin (tallest = 1)\ngreen: within the threshold",
         xscale="log",
         xlim=(
             0.014,
@@ -332,8 +332,11 @@ def ransac_registration() -> Demo:
         res = hg.symmetric_transfer_error(r.H, m.src, m.dst)
         counts, _ = np.histogram(np.clip(res, 0.0201, 449), _RESIDUAL_BINS)
         top = max(counts.max(), 1)
-        for b, c in zip(art.bars, counts, strict=True):
+        inside = _RESIDUAL_BINS[1:] <= v["threshold"]  # bins wholly within the threshold: inliers
+        for k, (b, c) in enumerate(zip(art.bars, counts, strict=True)):
             b.set_height(c / top)
+            end = k in (0, len(counts) - 1)
+            b.set_facecolor(palette.GREEN if inside[k] else ("0.75" if end else "0.6"))
         err = float(
             np.max(np.linalg.norm(map_points(r.H, corners) - map_points(true_H, corners), axis=1))
         )
