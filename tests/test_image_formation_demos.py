@@ -182,6 +182,12 @@ def test_thin_lens_and_dof_state():
         "z_o = 0.060 m is inside f (no real image): held at 0.095 m"
         in demo.view.fig.axes[0].get_title()
     )
+    # far away (16 f, m = -1/15) the image is a tick without a head, with one dot where the rays meet
+    demo.set(focal_mm=50, object_m=0.8)
+    dots = [line for line in demo.view.fig.axes[0].lines if line.get_marker() == "o"]
+    assert not demo.state["image_head"] and len(dots) == 1 and len(dots[0].get_xdata()) == 1
+    demo.set(object_m=lenses_and_distortion.THIN_LENS_DEFAULT_M)
+    assert demo.state["image_head"] and demo.state["magnification"] == pytest.approx(-2)
     dof = lenses_and_distortion.depth_of_field()
     dof.set(f_number=16.0, focus_m=1.2)
     wide = dof.state["far"] - dof.state["near"]
