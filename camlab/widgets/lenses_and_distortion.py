@@ -58,6 +58,11 @@ def thin_lens():
         art["foci"],
         art["text"],
         art["F"],
+        *art["zoom_rays"],
+        art["zoom_image"],
+        art["zoom_dot"],
+        art["zoom_focus"],
+        *art["zoom_spines"],
     )
 
     readout = W.HTML()  # the numbers beside the sliders, as in the other demos
