@@ -165,6 +165,11 @@ def test_letter_chart_rows_shrink():
     runs = np.split(rows, np.flatnonzero(np.diff(rows) > 1) + 1)
     heights = [len(r) for r in runs]
     assert len(heights) == 5 and heights == sorted(heights, reverse=True)
+    # lesson 02's chart, seen small, prints only its four largest rows: the same four
+    four = scenes.letter_chart(0.3, rows=4).texture < 0.5
+    assert (four[: runs[3][-1] + 1] == ink[: runs[3][-1] + 1]).all() and not four[runs[4]].any()
+    with pytest.raises(ValueError, match="rows must be 1 to 5, got 6"):
+        scenes.letter_chart(0.3, rows=6)
 
 
 def test_thin_lens_and_dof_state():

@@ -278,7 +278,7 @@ def focus_and_blur():
         readout.value = monospace(
             f"f/{N:g}, sensor at {z_s * 1e3:.2f} mm: focused at {s:.3f} m\n"
             f"point at {z_o:.2f} m: image at {state['z_i'] * 1e3:.2f} mm\n"
-            f"blur c = {c_um:.3g} µm = {state['c'] / PIXEL:.3g} px of 5 µm\n"
+            f"blur c = {c_um:.3g} µm = {_px_text(state['c'] / PIXEL)} px of 5 µm\n"
             f"Airy disc {state['airy'] * 1e6:.3g} µm\nsharp (c &lt; 30 µm) {dof.near:.3f} m to {far}"
         )
 
@@ -290,6 +290,11 @@ def focus_and_blur():
         title="Focus, aperture and the blur circle",
         extra=[readout],
     )
+
+
+def _px_text(px: float) -> str:
+    """A blur in pixels as the lesson quotes it: whole pixels from 10 up (63), two digits below (0.1)."""
+    return f"{px:.0f}" if px >= 10 else f"{px:.2g}"
 
 
 def _dof_controls() -> dict:
