@@ -165,6 +165,11 @@ def test_letter_chart_rows_shrink():
     runs = np.split(rows, np.flatnonzero(np.diff(rows) > 1) + 1)
     heights = [len(r) for r in runs]
     assert len(heights) == 5 and heights == sorted(heights, reverse=True)
+    # lesson 02's chart, seen small, prints only its four largest rows: the same four
+    four = scenes.letter_chart(0.3, rows=4).texture < 0.5
+    assert (four[: runs[3][-1] + 1] == ink[: runs[3][-1] + 1]).all() and not four[runs[4]].any()
+    with pytest.raises(ValueError, match="rows must be 1 to 5, got 6"):
+        scenes.letter_chart(0.3, rows=6)
 
 
 def test_thin_lens_and_dof_state():
@@ -182,6 +187,12 @@ def test_thin_lens_and_dof_state():
         "z_o = 0.060 m is inside f (no real image): held at 0.095 m"
         in demo.view.fig.axes[0].get_title()
     )
+    # far away (16 f, m = -1/15) the image is a tick without a head, with one dot where the rays meet
+    demo.set(focal_mm=50, object_m=0.8)
+    dots = [line for line in demo.view.fig.axes[0].lines if line.get_marker() == "o"]
+    assert not demo.state["image_head"] and len(dots) == 1 and len(dots[0].get_xdata()) == 1
+    demo.set(object_m=lenses_and_distortion.THIN_LENS_DEFAULT_M)
+    assert demo.state["image_head"] and demo.state["magnification"] == pytest.approx(-2)
     dof = lenses_and_distortion.depth_of_field()
     dof.set(f_number=16.0, focus_m=1.2)
     wide = dof.state["far"] - dof.state["near"]

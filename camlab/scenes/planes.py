@@ -47,8 +47,8 @@ CHART_ROW_HEIGHTS = (90, 58, 38, 25, 16)
 _CHART_LETTERS = "EFHKLNOPTZ"
 
 
-@lru_cache(maxsize=2)
-def _chart_texture(seed: int) -> np.ndarray:
+@lru_cache(maxsize=4)
+def _chart_texture(seed: int, rows: int = len(CHART_ROW_HEIGHTS)) -> np.ndarray:
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
@@ -57,7 +57,7 @@ def _chart_texture(seed: int) -> np.ndarray:
     fig = Figure(figsize=(w_px / 100, h_px / 100), dpi=100)
     FigureCanvasAgg(fig)
     top = 30
-    for cap in CHART_ROW_HEIGHTS:
+    for cap in CHART_ROW_HEIGHTS[:rows]:
         letters = " ".join(rng.choice(list(_CHART_LETTERS), size=int(min(7, 380 // cap))))
         # DejaVu Sans capitals are about 0.73 em tall: a font size of cap / 0.73 pixels (at 100 dpi, 1 pt = 100/72 px)
         fig.text(
@@ -82,6 +82,7 @@ def letter_chart(
     t: ArrayLike = (0, 0, 0),
     seed: int = 0,
     name: str = "chart",
+    rows: int = len(CHART_ROW_HEIGHTS),
 ) -> Plane:
     """An optician's chart (6 : 5): rows of capitals, each row smaller, for judging blur by eye.
 
@@ -101,13 +102,21 @@ def letter_chart(
         Seed of the letters' choice.
     name : str
         The plane's name.
+    rows : int
+        How many of the rows to print, largest first (a chart seen small leaves out the rows it
+        could not show legibly even in focus).
 
     Returns
     -------
     Plane
         A centred grey plane, 5/6 as tall as wide.
     """
-    return textured_plane(_chart_texture(int(seed)), width, R=R, t=t, name=name)
+    if not 1 <= rows <= len(CHART_ROW_HEIGHTS):
+        raise ValueError(
+            f"letter_chart: rows must be 1 to {len(CHART_ROW_HEIGHTS)}, got {rows}; the chart has "
+            f"{len(CHART_ROW_HEIGHTS)} rows"
+        )
+    return textured_plane(_chart_texture(int(seed), int(rows)), width, R=R, t=t, name=name)
 
 
 @dataclass(frozen=True, eq=False)

@@ -58,7 +58,14 @@ def thin_lens():
         art["foci"],
         art["text"],
         art["F"],
+        *art["zoom_rays"],
+        art["zoom_image"],
+        art["zoom_dot"],
+        art["zoom_focus"],
+        *art["zoom_spines"],
     )
+
+    readout = W.HTML()  # the numbers beside the sliders, as in the other demos
 
     def update(values, state):
         f, asked = values["focal_mm"] * 1e-3, values["object_m"]
@@ -66,8 +73,13 @@ def thin_lens():
             asked, f * 1.05
         )  # slider corner (f > 57 mm): keep the object outside the focal length, and say so
         state.update(optics.update_thin_lens(art, f, zo, requested=asked), object_held=zo != asked)
+        zi, m = state["image_distance"], state["magnification"]
+        readout.value = monospace(
+            f"object  z_o = {zo:.3f} m = {zo / f:.2f} f\nimage   z_i = {zi:.3f} m = {zi / f:.2f} f\n"
+            f"magnification m = {m:.3f}\n(inverted, {abs(m):.3g} x the object's height)"
+        )
 
-    return build_demo("thin_lens", controls, view, update, title="Thin lens")
+    return build_demo("thin_lens", controls, view, update, title="Thin lens", extra=[readout])
 
 
 F_CONE = 0.05  # the focus-and-blur demo's 50 mm lens
@@ -215,6 +227,7 @@ def focus_and_blur():
     parts = _focus_figure(view)
     art, zoom, disc, curve, band = parts.art, parts.zoom, parts.disc, parts.curve, parts.band
     airy, marker, ax_c = parts.airy, parts.marker, parts.ax_c
+    readout = W.HTML()  # the numbers beside the sliders, as in the other demos
 
     def update(values, state):
         N, z_o, z_s = float(values["f_number"]), values["object_m"], values["sensor_mm"] * 1e-3
@@ -262,10 +275,26 @@ def focus_and_blur():
             c_px=state["c"] / PIXEL,
             marker_off_scale=bool(below),
         )
+        readout.value = monospace(
+            f"f/{N:g}, sensor at {z_s * 1e3:.2f} mm: focused at {s:.3f} m\n"
+            f"point at {z_o:.2f} m: image at {state['z_i'] * 1e3:.2f} mm\n"
+            f"blur c = {c_um:.3g} µm = {_px_text(state['c'] / PIXEL)} px of 5 µm\n"
+            f"Airy disc {state['airy'] * 1e6:.3g} µm\nsharp (c &lt; 30 µm) {dof.near:.3f} m to {far}"
+        )
 
     return build_demo(
-        "focus_and_blur", controls, view, update, title="Focus, aperture and the blur circle"
+        "focus_and_blur",
+        controls,
+        view,
+        update,
+        title="Focus, aperture and the blur circle",
+        extra=[readout],
     )
+
+
+def _px_text(px: float) -> str:
+    """A blur in pixels as the lesson quotes it: whole pixels from 10 up (63), two digits below (0.1)."""
+    return f"{px:.0f}" if px >= 10 else f"{px:.2g}"
 
 
 def _dof_controls() -> dict:
@@ -468,7 +497,9 @@ def _distortion_figure(view: FigureView) -> SimpleNamespace:
     (dots,) = ax_img.plot([], [], "o", color=palette.RED, ms=3.5, path_effects=palette.halo())
     ideal = _grid_lines()
     for k, ln in enumerate(ideal):  # the undistorted grid, drawn once in grey behind the bent one
-        ax_grid.plot(*ln.T, color=palette.GREY, lw=0.8, label="no lens" if k == 0 else None)
+        ax_grid.plot(
+            *ln.T, color=palette.GREY, lw=0.8, ls="--", label="no lens" if k == 0 else None
+        )
     bent = [
         ax_grid.plot(
             *ln.T, color=palette.BLUE, lw=1.2, label="through the lens" if k == 0 else None

@@ -367,3 +367,16 @@ def normalised_with(f_wrong, c_wrong):
 def back_with(s, f_back):
     """The model on the right normalised points, mapped back to pixels with focal lengths ``f_back``."""
     return np.allclose(s.g, s.x_d * f_back + s.c)
+
+
+ROUNDED_HINT = (
+    "you rounded the positions; return them exact, as floats (round only when you print them: a distorted "
+    "corner lands between pixel centres, and calibration needs every fraction of a pixel)"
+)
+
+
+def rounded_positions(s) -> bool:
+    """True when the answer ``s.g`` is the right positions rounded: to whole pixels (or floored), or to 1-4 decimals."""
+    return np.allclose(s.g, np.floor(s.expected), rtol=0, atol=1e-9) or any(
+        np.allclose(s.g, np.round(s.expected, k), rtol=0, atol=1e-9) for k in range(5)
+    )

@@ -18,8 +18,9 @@ from .._numbers import not_one_number, same_number
 
 
 def _f_number_cases():
+    # the first range has far != 2 near, so c / 2 or 2 c cannot be mistaken for the two ends' mix-ups
     return [
-        (0.05, 0.03e-3, 2.0, 4.0),
+        (0.05, 0.03e-3, 2.0, 3.5),
         (0.028, 0.02e-3, 0.8, 1.6),
         (0.085, 0.03e-3, 1.9, 2.1),
         (0.1, 0.015e-3, 9.0, 11.0),
@@ -188,6 +189,29 @@ _F_NUMBER_MISTAKES = (
         ),
     ),
     Mistake(
+        "the two ends mixed",
+        lambda s: any(
+            np.isclose(s.g, s.f**2 * abs(end - s.focus) / (s.c * other * (s.focus - s.f)))
+            for end, other in ((s.n, s.r), (s.r, s.n))
+        ),
+        (
+            "you mixed the two ends: each end's blur is c(z) = (f/N) (f/(s - f)) |z - s| / z with that end's own "
+            "z in both places, (s - near) / near at the near end, (far - s) / far at the far end"
+        ),
+    ),
+    Mistake(
+        "harmonic mean without its 2",
+        lambda s: any(
+            np.isclose(abs(s.g), s.f**2 * abs(end - half) / (s.c * end * abs(half - s.f)))
+            for half in (s.n * s.r / (s.n + s.r),)
+            for end in (s.n, s.r)
+        ),
+        (
+            "your focus distance misses the harmonic mean's factor 2: near far / (near + far) lies in front of "
+            "near; equal blur at both ends needs s = 2 near far / (near + far)"
+        ),
+    ),
+    Mistake(
         "c / 2",
         lambda s: np.isclose(s.g, 2 * s.expected),
         ("c is the blur circle's diameter, not its radius: you used c / 2"),
@@ -268,13 +292,14 @@ def _f_number_diagnosis(args, got, expected) -> str:
             or np.isclose(g, np.floor(expected))
             or np.isclose(g, np.ceil(expected))
             or np.isclose(g, np.round(expected))
+            or any(np.isclose(g, round(expected, k), rtol=0, atol=1e-12) for k in (1, 2, 3, 4))
         )
         and near_it
         and not np.isclose(g, expected)
     ):
         return (
-            f"you rounded N (to {g:g}); return the exact f-number, {expected:.4g} here: picking the next marked "
-            f"stop on the lens is your step afterwards, not the function's"
+            f"you rounded N (to {g:g}); return the exact f-number, {expected:.6g} here (round only when you print "
+            f"it): picking the next marked stop on the lens is your step afterwards, not the function's"
         )
     mid = (n + r) / 2
     context = SimpleNamespace(
@@ -304,8 +329,8 @@ def _f_number_note(run) -> str:
     return (
         f"Diffraction: 28 mm for 0.8 m to 1.6 m at c = 20 µm needs f/{N:.1f}, where the Airy disc 2.44 λN is "
         f"already {airy * 1e6:.1f} µm, {airy / 20e-6:.0%} of c. Section 2's blur budget adds the two: at best "
-        f"(f/{best:.1f}) they make {np.sqrt(2) * 2.44 * 550e-9 * best * 1e6:.0f} µm, so this range cannot be "
-        f"held to 20 µm at any f-number."
+        f"(f/{best:.1f}) they make {np.sqrt(2) * 2.44 * 550e-9 * best * 1e6:.0f} µm: by that rule of thumb (with "
+        f"the Airy disc measured to its first dark ring, a conservative size) no f-number holds this range to 20 µm."
     )
 
 
@@ -362,6 +387,24 @@ register_exercise(
                 ),
                 "not by the focus distance s",
             ),
+            (
+                lambda f, c, n, r: (
+                    f**2 * (2 * n * r / (n + r) - n) / (c * r * (2 * n * r / (n + r) - f))
+                ),
+                "you mixed the two ends",
+            ),
+            (
+                lambda f, c, n, r: (
+                    f**2 * (r - 2 * n * r / (n + r)) / (c * n * (2 * n * r / (n + r) - f))
+                ),
+                "you mixed the two ends",
+            ),
+            (
+                lambda f, c, n, r: f**2 * (n * r / (n + r) - n) / (c * n * (n * r / (n + r) - f)),
+                "misses the harmonic mean's factor 2",
+            ),
+            (lambda f, c, n, r: round(_f_number_reference(f, c, n, r), 1), "you rounded N"),
+            (lambda f, c, n, r: round(_f_number_reference(f, c, n, r), 2), "you rounded N"),
             (lambda f, c, n, r: 2 * _f_number_reference(f, c, n, r), "not its radius"),
             (lambda f, c, n, r: _f_number_reference(f, c, n, r) / 2, "you doubled c"),
             (lambda f, c, n, r: 1e3 * _f_number_reference(f, c, n, r), "mixed units"),

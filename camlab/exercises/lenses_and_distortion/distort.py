@@ -10,6 +10,7 @@ from ... import distortion
 from .._answers import same_array, shape_problem
 from .._core import Exercise, Mistake, first_mistake, register_exercise
 from ._distort_causes import (
+    ROUNDED_HINT,
     back_with,
     brown_variant,
     distort_cases,
@@ -17,6 +18,7 @@ from ._distort_causes import (
     model_diagnosis,
     normalised_with,
     pixel_variant,
+    rounded_positions,
     tangential_terms,
     transposed_k,
 )
@@ -47,17 +49,7 @@ _PIXEL_MISTAKES = (
         "the way in is right, but back to pixels you used one focal length for both: u_d = f_x x_d + c_x with "
         "f_x = K[0, 0], v_d = f_y y_d + c_y with f_y = K[1, 1]",
     ),
-    Mistake(
-        "rounded to whole pixels",
-        lambda s: (
-            np.allclose(s.g, np.round(s.expected), rtol=0, atol=1e-9)
-            or np.allclose(s.g, np.floor(s.expected), rtol=0, atol=1e-9)
-        ),
-        (
-            "you rounded to whole pixels; return the sub-pixel positions as floats (a distorted corner lands "
-            "between pixel centres, and calibration needs those fractions)"
-        ),
-    ),
+    Mistake("rounded", rounded_positions, ROUNDED_HINT),
     Mistake(
         "model on pixels",
         lambda s: np.allclose(s.g, distortion.distort_points(s.uv, s.d)),
@@ -551,7 +543,14 @@ register_exercise(
                 ),
                 "y_d has p1 and p2 swapped",
             ),
-            (lambda uv, K, d: np.round(distortion.distort_pixels(uv, K, d)), "rounded to whole"),
+            (
+                lambda uv, K, d: np.round(distortion.distort_pixels(uv, K, d)),
+                "you rounded the positions",
+            ),
+            (
+                lambda uv, K, d: np.round(distortion.distort_pixels(uv, K, d), 1),
+                "you rounded the positions",
+            ),
             (
                 lambda uv, K, d: distortion.distort_pixels(uv, K, [d[1], d[0], d[2], d[3], d[4]]),
                 "k1 and k2 are swapped",

@@ -47,6 +47,21 @@ def _fov_context(f, w, zo, g, expected):
 
 _FOV_MISTAKES = (
     Mistake(
+        "the narrowing",
+        lambda s: any(
+            np.isclose(s.g, narrowing)
+            for narrowing in (
+                s.fov(s.f) - s.expected,
+                np.degrees(s.fov(s.f) - s.expected),
+                1 - s.expected / s.fov(s.f),
+            )
+        ),
+        (
+            "that is how much narrower the view is than focused at infinity; the function returns the field of "
+            "view itself, 2 arctan(w / (2 z_i)) in radians (the check prints the narrowing once it passes)"
+        ),
+    ),
+    Mistake(
         "degrees",
         lambda s: np.isclose(s.g, np.degrees(s.expected)),
         (
@@ -244,10 +259,16 @@ _FOV_MISTAKES = (
     ),
     Mistake(
         "rounded",
-        lambda s: any(
-            np.isclose(s.g, conv(round(float(np.degrees(s.expected)), k)), rtol=0, atol=1e-12)
-            for k in (0, 1, 2)
-            for conv in (np.radians, float)
+        lambda s: (
+            any(
+                np.isclose(s.g, conv(round(float(np.degrees(s.expected)), k)), rtol=0, atol=1e-12)
+                for k in (0, 1, 2)
+                for conv in (np.radians, float)
+            )
+            or any(
+                np.isclose(s.g, round(float(s.expected), k), rtol=0, atol=1e-12)
+                for k in (1, 2, 3, 4)
+            )
         ),
         (
             "you rounded the angle; return it exact, in radians (round only when you print it, as the "
@@ -374,6 +395,14 @@ register_exercise(
                     round(float(np.degrees(lens.angle_of_view(f, w, zo))), 1)
                 ),
                 "you rounded the angle",
+            ),
+            (
+                lambda f, w, zo: round(float(lens.angle_of_view(f, w, zo)), 3),
+                "you rounded the angle",
+            ),
+            (
+                lambda f, w, zo: 2 * np.arctan(w / (2 * f)) - lens.angle_of_view(f, w, zo),
+                "how much narrower the view is",
             ),
         ),
         teaching=field_of_view,

@@ -5,6 +5,8 @@ One Newton step of undistortion from any current estimate (the whole 2 x 2 Jacob
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 from ... import distortion
@@ -83,6 +85,7 @@ def _wrong_step(
         "diagonal": (L[:, :, None] + slope[:, :, None] * where_j[:, :, None] ** 2) * eye,
         "minus": L[:, :, None] * eye - slope[:, :, None] * outer,
         "fixed": L[:, :, None] * eye,
+        "no L": eye + slope[:, :, None] * outer,  # d(x L)/dx's first term L I written as I
     }[jacobian]
     r2x = (x**2).sum(axis=1, keepdims=True)
     L_res = (
@@ -125,6 +128,18 @@ _WRONG_STEPS = (  # each row's answer: the step with that slip, from the test in
         lambda args: _wrong_step(*args, jacobian="fixed"),
         "you used J = L I, leaving out how L changes with x: that is the fixed-point step x = x_d / L(x); "
         "differentiate x L(r^2) with the product rule: J = L I + x (dL/dx)^T = L I + (2 k1 + 4 k2 r^2) x x^T",
+    ),
+    Mistake(
+        "I for L I",
+        lambda args: _wrong_step(*args, jacobian="no L"),
+        "your J starts with I where L I belongs: the product rule gives d(x L)/dx = L I + x (dL/dx)^T, and the "
+        "first term keeps L (dx/dx = I, times L). J = L I + (2 k1 + 4 k2 r^2) x x^T",
+    ),
+    Mistake(
+        "chain-rule 2 twice",
+        lambda args: _wrong_step(*args, chain=4.0, k2_chain=8.0),
+        "the x x^T term of J is twice too large: the chain rule's 2 from d(r^2)/dx = 2 x is already in "
+        "dL/dx = (2 k1 + 4 k2 r^2) x, so J = L I + (2 k1 + 4 k2 r^2) x x^T (do not double it again)",
     ),
     Mistake(
         "no chain-rule 2",
@@ -307,6 +322,16 @@ def _newton_exception_hint(exc, args) -> str:
             "residual[:, :, None], and take [:, :, 0] of the result (an (N, 2) b is read as one N x 2 matrix)"
         )
     if isinstance(exc, ValueError) and "broadcast" in str(exc):
+        shapes = [
+            tuple(int(n) for n in found.split(",") if n.strip())
+            for found in re.findall(r"\(([\d,\s]*)\)", str(exc))
+        ]
+        if any(len(shape) == 3 and shape[-1] == 1 for shape in shapes):
+            return (
+                "an (N, 2, 1) array met an (N, 2) one: np.linalg.solve on the stack returns (N, 2, 1), one column "
+                "per point, so take [:, :, 0] of its result before adding it to x "
+                "(delta = np.linalg.solve(J, -residual[:, :, None])[:, :, 0])"
+            )
         return (
             "a broadcasting slip: r2 = (x**2).sum(axis=1) is (N,), so L is (N,) too, and x * L lines it up with "
             "x's last axis (of size 2), not with its rows. Keep one value per row as a column: "
@@ -369,6 +394,17 @@ def _flat_r2_newton(x, x_d, k1, k2):
     return x - (x * L - x_d)
 
 
+def _no_column_newton(x, x_d, k1, k2):
+    """The stacked solve's (N, 2, 1) result added to x without [:, :, 0]: a broadcasting ValueError."""
+    r2 = (x**2).sum(axis=1, keepdims=True)
+    L = 1 + k1 * r2 + k2 * r2**2
+    J = (
+        L[:, :, None] * np.eye(2)
+        + (2 * k1 + 4 * k2 * r2)[:, :, None] * x[:, :, None] * x[:, None, :]
+    )
+    return x + np.linalg.solve(J, -(x * L - x_d)[:, :, None])
+
+
 def _loop_from_one_newton(x, x_d, k1, k2):
     """A per-point loop that starts at 1: row 0 comes back unchanged."""
     out = np.array(x, dtype=float)
@@ -395,6 +431,8 @@ register_exercise(
                     "no off-diagonal terms",
                     "term of J has the wrong sign",
                     "fixed-point step",
+                    "your J starts with I where L I belongs",
+                    "twice too large",
                     "misses the chain rule's factor 2",
                     "the k1 term of the Jacobian",
                     "the k2 term of the Jacobian",
@@ -441,6 +479,7 @@ register_exercise(
             ),
             (_flat_rhs_newton, "np.linalg.solve on a stack"),
             (_flat_r2_newton, "x * L lines it up"),
+            (_no_column_newton, "take [:, :, 0] of its result"),
             (_loop_from_one_newton, "skipped the first, point 0"),
             (lambda x, x_d, k1, k2: x.copy(), "you returned x itself"),
             (_numerical_jacobian_newton, "a numerical Jacobian"),

@@ -58,7 +58,8 @@ def draw_thin_lens(ax, focal_length: float, object_distance: float) -> dict:
     dict
         The artists for :func:`update_thin_lens`: ``"lens"``, ``"axis"``, ``"foci"``, ``"object"``
         and ``"image"`` (annotation arrows), ``"image_dot"``, ``"rays"`` (three Line2D) and
-        ``"text"`` (the title with the numbers), ``"F"`` (the label of F, moved clear of a near object).
+        ``"text"`` (the title with the numbers), ``"F"`` (the label of F, moved clear of a near object),
+        and the zoom on F': ``"zoom_rays"``, ``"zoom_image"``, ``"zoom_dot"``, ``"zoom_focus"``, ``"zoom_spines"``.
     """
     styles = (
         "-",
@@ -118,8 +119,45 @@ def draw_thin_lens(ax, focal_length: float, object_distance: float) -> dict:
         title="principal rays",
         title_fontsize=8,
     )
+    art.update(_draw_focus_zoom(ax, styles))
     update_thin_lens(art, focal_length, object_distance)
     return art
+
+
+ZOOM_X, ZOOM_Y = (
+    (0.9, 1.35),
+    (-0.28, 0.05),
+)  # the zoom on F' (units of f, object heights): every headless image
+
+
+def _draw_focus_zoom(ax, styles) -> dict:
+    """An inset magnifying the region around F', bottom left, where no ray or arrow goes at any setting.
+
+    A far object's image is a tick a few screen pixels tall just beyond F' (z_i = (1 + |m|) f); the
+    inset shows it and the rays meeting there at about ten times the scale. The object side's rays
+    stay above -1.5 object heights left of x = -0.8 f, so the inset covers none of them.
+    """
+    zoom = ax.inset_axes([0.075, 0.06, 0.27, 0.4])
+    zoom.set(
+        xlim=ZOOM_X,
+        ylim=ZOOM_Y,
+        aspect="equal",
+        xticks=[1.0, 1.1, 1.2, 1.3],
+        yticks=[-0.2, -0.1, 0],
+    )
+    zoom.set_anchor("SW")
+    zoom.tick_params(labelsize=7, pad=2, left=False, bottom=False)  # labels only, no tick marks
+    zoom.axhline(0, color="0.5", lw=0.8)
+    zoom.set_title("around F', magnified", fontsize=8, pad=2)
+    return {
+        "zoom_rays": [zoom.plot([], [], color=palette.ORANGE, ls=ls, lw=1.3)[0] for ls in styles],
+        "zoom_image": zoom.plot([], [], color=palette.RED, lw=2.5, solid_capstyle="butt", zorder=5)[
+            0
+        ],
+        "zoom_dot": zoom.plot([], [], "o", color=palette.RED, ms=4, zorder=5)[0],
+        "zoom_focus": zoom.plot([1], [0], "k+", ms=9, mew=1.5, zorder=4)[0],
+        "zoom_spines": list(zoom.spines.values()),
+    }
 
 
 def _thin_lens_note(xo: float, xi: float, m: float) -> str:
@@ -177,6 +215,11 @@ def update_thin_lens(art: dict, f: float, zo: float, requested: float | None = N
     art["rays"][0].set_data([xo, 0, xi], [1, 1, m])
     art["rays"][1].set_data([xo, xi], [1, m])
     art["rays"][2].set_data([xo, 0, xi], [1, m, m])
+    for ray, zoomed in zip(art["rays"], art.get("zoom_rays", ()), strict=False):
+        zoomed.set_data(*ray.get_data())
+    if "zoom_image" in art:
+        art["zoom_image"].set_data([xi, xi], [0, m])
+        art["zoom_dot"].set_data([xi], [m])
     note = _thin_lens_note(xo, xi, m)
     if requested is not None and not np.isclose(requested, zo):
         inside = "inside f (no real image)" if requested <= f else "inside 1.05 f"
