@@ -88,7 +88,7 @@ def draw_epipolar_geometry(
     camera2: Camera,
     X: ArrayLike,
     size: float = 0.3,
-    plane_color: str = palette.GREY,
+    plane_color: str | None = None,
     ghosts: tuple[Camera, Camera] | None = None,
     also: ArrayLike | None = None,
 ) -> None:
@@ -104,8 +104,9 @@ def draw_epipolar_geometry(
         The world point, metres.
     size : float
         Depth of the drawn image planes in front of the centres, metres.
-    plane_color : str
-        Colour of the image planes' outlines.
+    plane_color : str or None
+        Colour of both image planes' outlines; None (the default) draws each in its camera's
+        colour, as the centres: camera 1 (C) blue, camera 2 (C') orange.
     ghosts : (Camera, Camera) or None
         Two more cameras whose image planes are drawn dashed in light grey (the original cameras
         behind a rectified pair).
@@ -120,12 +121,16 @@ def draw_epipolar_geometry(
     ax.plot(*np.array([C1, C2]).T, color="k", lw=2)  # the baseline
     for C in (C1, C2):
         ax.plot(*np.array([C, X]).T, color="0.25", lw=1, ls=(0, (4, 2)))  # the rays
-    for cams, colour, style in ((ghosts, "0.6", ":"), ((camera1, camera2), plane_color, "-")):
+    own = (palette.BLUE, palette.ORANGE) if plane_color is None else (plane_color,) * 2
+    for cams, colours, style, lw in (
+        (ghosts, ("0.6",) * 2, ":", 1.2),
+        ((camera1, camera2), own, "-", 1.6),
+    ):
         if cams is None:
             continue
-        for cam in cams:
+        for cam, colour in zip(cams, colours):
             corners = image_plane_corners(cam, size)
-            ax.plot(*np.vstack([corners, corners[:1]]).T, color=colour, lw=1.2, ls=style)
+            ax.plot(*np.vstack([corners, corners[:1]]).T, color=colour, lw=lw, ls=style)
     for cam, other in ((camera1, camera2), (camera2, camera1)):
         ends = _lift(cam, epipolar_line_ends(cam, other, X), size)
         ax.plot(*ends.T, color=palette.RED, lw=2)
@@ -140,9 +145,20 @@ def draw_epipolar_geometry(
             ax.plot(*y, "o", mfc="w", mec=palette.RED, mew=1.5, ms=5)
         ax.plot(*Y, "o", mfc="w", mec="k", mew=1.5, ms=6)
         ax.text(*Y, "  Y", fontsize=10)
-    for C, name in ((C1, "C"), (C2, "C'")):
-        ax.plot(*C, "o", color="k", ms=5)
-        ax.text(C[0], C[1], C[2] - 0.06, name, fontsize=10, ha="center", va="top")
+    for C, name, colour in ((C1, "C", palette.BLUE), (C2, "C'", palette.ORANGE)):
+        ax.plot(*C, "o", color=colour, mec="k", ms=7)
+        ax.text(
+            C[0],
+            C[1],
+            C[2] - 0.02,
+            name,
+            fontsize=10,
+            ha="center",
+            va="top",
+            color=colour,
+            fontweight="bold",
+            path_effects=palette.halo(),
+        )
     pts = [tri] + [image_plane_corners(c, size) for c in (camera1, camera2)]
     set_equal_aspect(ax, pts, tight=True)
     ax.locator_params(nbins=4)
