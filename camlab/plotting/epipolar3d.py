@@ -128,7 +128,7 @@ def draw_epipolar_geometry(
     ):
         if cams is None:
             continue
-        for cam, colour in zip(cams, colours):
+        for cam, colour in zip(cams, colours, strict=True):
             corners = image_plane_corners(cam, size)
             ax.plot(*np.vstack([corners, corners[:1]]).T, color=colour, lw=lw, ls=style)
     for cam, other in ((camera1, camera2), (camera2, camera1)):
